@@ -1,0 +1,537 @@
+//! Basis functions: Bernstein polynomials and B-splines.
+//!
+//! - Bernstein polynomials `b_{n,i}(t) = C(n,i) t^i (1−t)^{n−i}` (document 002 §C.4, document 004
+//!   eq. 1) and their derivatives.
+//! - All non-zero B-spline basis functions of degree `p` at `t` by the Cox–de Boor triangular
+//!   scheme (P&T Algorithm A2.2) and their derivatives (A2.3).
+//! - A single `N_{i,p}(t)` by the lecture's recursive definition (document 002 §C.5), the slow
+//!   textbook oracle for the fast kernels.
+//!
+//! The B-spline as a divided difference of truncated powers (document 003 eq. 4) lives with the
+//! divided differences in `divdiff`.
+//!
+//! Conventions: `N_{i,0}` is the indicator of the half-open `[t_i, t_{i+1})`, except that at the
+//! last knot the last non-empty interval is closed, so that splines evaluate at their right end.
+//! Terms with a zero denominator are zero.
+
+use crate::error::{Error, Result};
+use crate::knots::KnotVector;
+
+/// Bernstein polynomial `b_{n,i}(t) = C(n,i) t^i (1 − t)^{n−i}`; zero for `i > n`.
+///
+/// Computed by the triangular recurrence `b_{j,i} = (1−t) b_{j−1,i} + t b_{j−1,i−1}` (P&T A1.2),
+/// which is stable for every `t ∈ [0, 1]`. O(n²).
+///
+/// ```
+/// use lekalo::basis::bernstein;
+/// assert!((bernstein(3, 1, 0.5) - 0.375).abs() < 1e-15);
+/// let sum: f64 = (0..=7).map(|i| bernstein(7, i, 0.3)).sum();
+/// assert!((sum - 1.0).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
+    if i > n {
+        return 0.0;
+    }
+    let mut tmp = vec![0.0; n + 1];
+    tmp[n - i] = 1.0;
+    let t1 = 1.0 - t;
+    for k in 1..=n {
+        for j in (k..=n).rev() {
+            tmp[j] = t1 * tmp[j] + t * tmp[j - 1];
+        }
+    }
+    tmp[n]
+}
+
+/// All Bernstein polynomials `b_{n,0..=n}(t)` into `out` (length `n + 1`), P&T Algorithm A1.3.
+/// O(n²), no allocation.
+///
+/// # Errors
+/// [`Error::LengthMismatch`] if `out.len() != n + 1`.
+pub fn bernstein_all(n: usize, t: f64, out: &mut [f64]) -> Result<()> {
+    if out.len() != n + 1 {
+        return Err(Error::LengthMismatch {
+            what: "output buffer (degree + 1)",
+            expected: n + 1,
+            got: out.len(),
+        });
+    }
+    bernstein_all_unchecked(n, t, out);
+    Ok(())
+}
+
+pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
+    out[0] = 1.0;
+    let t1 = 1.0 - t;
+    for j in 1..=n {
+        let mut saved = 0.0;
+        for o in out.iter_mut().take(j) {
+            let temp = *o;
+            *o = saved + t1 * temp;
+            saved = t * temp;
+        }
+        out[j] = saved;
+    }
+}
+
+/// Derivatives of all Bernstein polynomials of degree `n` at `t`, orders `0..=order`.
+///
+/// Uses `b_{n,i}^{(r)} = n!/(n−r)! Σ_j (−1)^{r−j} C(r,j) b_{n−r,i−j}` (the r-th forward
+/// difference of the lower-degree basis). Returns `(order + 1) × (n + 1)` values row by row:
+/// row `r` holds `b_{n,0..=n}^{(r)}(t)`; orders above `n` give zero rows.
+///
+/// ```
+/// use lekalo::basis::bernstein_derivatives;
+/// // b_{2,1}(t) = 2t(1 − t): derivative 2 − 4t, second derivative −4
+/// let d = bernstein_derivatives(2, 0.25, 2);
+/// assert!((d[3 + 1] - 1.0).abs() < 1e-15);
+/// assert!((d[6 + 1] + 4.0).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Vec<f64> {
+    let w = n + 1;
+    let mut out = vec![0.0; (order + 1) * w];
+    let mut lower = vec![0.0; w];
+    for r in 0..=order.min(n) {
+        let m = n - r;
+        bernstein_all_unchecked(m, t, &mut lower[..=m]);
+        let falling: f64 = (m + 1..=n).map(|x| x as f64).product();
+        let row = &mut out[r * w..(r + 1) * w];
+        // row[i] = falling * Σ_j (−1)^{r−j} C(r,j) lower[i−j], 0 ≤ i − j ≤ m
+        let mut binom = 1.0;
+        for j in 0..=r {
+            let sign = if (r - j) % 2 == 0 { 1.0 } else { -1.0 };
+            for (l, &b) in lower[..=m].iter().enumerate() {
+                row[l + j] += falling * sign * binom * b;
+            }
+            binom = binom * (r - j) as f64 / (j + 1) as f64;
+        }
+    }
+    out
+}
+
+/// Scratch space for the B-spline basis kernels, sized once for a degree so that batch
+/// evaluation does not allocate per point.
+#[derive(Debug, Clone)]
+pub(crate) struct BasisScratch {
+    left: Vec<f64>,
+    right: Vec<f64>,
+    ndu: Vec<f64>,
+    a: Vec<f64>,
+}
+
+impl BasisScratch {
+    pub(crate) fn new(degree: usize) -> Self {
+        let w = degree + 1;
+        BasisScratch {
+            left: vec![0.0; w],
+            right: vec![0.0; w],
+            ndu: vec![0.0; w * w],
+            a: vec![0.0; 2 * w],
+        }
+    }
+}
+
+/// The `p + 1` non-zero basis functions `N_{span−p..=span, p}(t)` into `out`, by the Cox–de Boor
+/// triangular scheme (P&T Algorithm A2.2). `span` must be the span of `t` (see
+/// [`KnotVector::find_span`]); then every denominator is positive. O(p²), no allocation.
+pub(crate) fn basis_funs_into(
+    knots: &[f64],
+    degree: usize,
+    span: usize,
+    t: f64,
+    scratch: &mut BasisScratch,
+    out: &mut [f64],
+) {
+    let (left, right) = (&mut scratch.left, &mut scratch.right);
+    out[0] = 1.0;
+    for j in 1..=degree {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = out[r] / (right[r + 1] + left[j - r]);
+            out[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        out[j] = saved;
+    }
+}
+
+/// Derivatives of orders `0..=n_ders` of the `p + 1` non-zero basis functions at `t`, into `out`
+/// laid out row by row (`(n_ders + 1) × (p + 1)`); P&T Algorithm A2.3. Orders above `p` are zero.
+/// O((`n_ders` + 1)·p²), no allocation.
+pub(crate) fn basis_ders_into(
+    knots: &[f64],
+    degree: usize,
+    span: usize,
+    t: f64,
+    n_ders: usize,
+    scratch: &mut BasisScratch,
+    out: &mut [f64],
+) {
+    let p = degree;
+    let w = p + 1;
+    let BasisScratch {
+        left,
+        right,
+        ndu,
+        a,
+    } = scratch;
+    // ndu[j*w + r]: upper triangle basis values, lower triangle knot differences
+    ndu[0] = 1.0;
+    for j in 1..=p {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            ndu[j * w + r] = right[r + 1] + left[j - r];
+            let temp = ndu[r * w + (j - 1)] / ndu[j * w + r];
+            ndu[r * w + j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j * w + j] = saved;
+    }
+    out.fill(0.0);
+    for j in 0..=p {
+        out[j] = ndu[j * w + p];
+    }
+    let kmax = n_ders.min(p);
+    // a holds two rows of coefficients, alternating
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0usize, 1usize);
+        a[0] = 1.0;
+        for k in 1..=kmax {
+            let mut d = 0.0;
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                let idx = s2 * w;
+                a[idx] = a[s1 * w] / ndu[(pk + 1) * w + r - k];
+                d = a[idx] * ndu[(r - k) * w + pk];
+            }
+            let j1: usize = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2: usize = if r <= pk { k - 1 } else { p - r };
+            for j in j1..=j2 {
+                let col = (rk + j as isize) as usize;
+                a[s2 * w + j] = (a[s1 * w + j] - a[s1 * w + j - 1]) / ndu[(pk + 1) * w + col];
+                d += a[s2 * w + j] * ndu[col * w + pk];
+            }
+            if r <= pk {
+                a[s2 * w + k] = -a[s1 * w + k - 1] / ndu[(pk + 1) * w + r];
+                d += a[s2 * w + k] * ndu[r * w + pk];
+            }
+            out[k * w + r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    // multiply by p!/(p−k)!
+    let mut factor = p as f64;
+    for k in 1..=kmax {
+        for j in 0..=p {
+            out[k * w + j] *= factor;
+        }
+        factor *= (p - k) as f64;
+    }
+}
+
+/// The non-zero B-spline basis functions of `degree` at `t`: returns the span `i` and
+/// `[N_{i−p,p}(t), …, N_{i,p}(t)]` (Cox–de Boor triangular scheme, P&T Algorithm A2.2).
+///
+/// ```
+/// use lekalo::{basis::basis_functions, KnotVector};
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 5.0, 5.0, 5.0]).unwrap();
+/// let (span, n) = basis_functions(&kv, 2, 2.5).unwrap(); // P&T Example 2.3
+/// assert_eq!(span, 4);
+/// assert!((n[0] - 1.0 / 8.0).abs() < 1e-15 && (n[1] - 6.0 / 8.0).abs() < 1e-15);
+/// assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+/// ```
+///
+/// # Errors
+/// [`Error::ParameterOutOfDomain`] or [`Error::Degree`] as [`KnotVector::find_span`].
+pub fn basis_functions(knots: &KnotVector, degree: usize, t: f64) -> Result<(usize, Vec<f64>)> {
+    let span = knots.find_span(degree, t)?;
+    let mut out = vec![0.0; degree + 1];
+    basis_funs_into(
+        knots.as_slice(),
+        degree,
+        span,
+        t,
+        &mut BasisScratch::new(degree),
+        &mut out,
+    );
+    Ok((span, out))
+}
+
+/// Derivatives of orders `0..=n_ders` of the non-zero basis functions at `t` (P&T Algorithm
+/// A2.3): returns the span `i` and `(n_ders + 1) × (p + 1)` values row by row; row `k` holds
+/// `N^{(k)}_{i−p..=i,p}(t)`. Orders above `p` are zero. At a knot the derivatives are the
+/// right-hand ones (left-hand at the right end of the domain).
+///
+/// # Errors
+/// As [`basis_functions`].
+pub fn basis_derivatives(
+    knots: &KnotVector,
+    degree: usize,
+    t: f64,
+    n_ders: usize,
+) -> Result<(usize, Vec<f64>)> {
+    let span = knots.find_span(degree, t)?;
+    let mut out = vec![0.0; (n_ders + 1) * (degree + 1)];
+    basis_ders_into(
+        knots.as_slice(),
+        degree,
+        span,
+        t,
+        n_ders,
+        &mut BasisScratch::new(degree),
+        &mut out,
+    );
+    Ok((span, out))
+}
+
+/// One B-spline `N_{i,p}(t)` by the recursive definition of the lecture (document 002 §C.5,
+/// Cox–de Boor):
+/// `N_{i,0}(t) = 1` on `[t_i, t_{i+1})`,
+/// `N_{i,p}(t) = (t − t_i)/(t_{i+p} − t_i) · N_{i,p−1}(t) + (t_{i+p+1} − t)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}(t)`,
+/// terms with a zero denominator taken as 0. At the last knot the last non-empty interval counts
+/// as closed. Exponential in `p`; meant as a transparent oracle and for teaching, defined on the
+/// whole range `[t_0, t_m]` (not only the spline's domain).
+///
+/// ```
+/// use lekalo::{basis::basis_function_recursive, KnotVector};
+/// // the lecture's example: knots [0,0,1,2,3,3], N_{0,2}(t) = 2t − 3t²/2 on [0,1)
+/// let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
+/// let v = basis_function_recursive(&kv, 0, 2, 0.5).unwrap();
+/// assert!((v - 0.625).abs() < 1e-15);
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] if `i + p + 1` exceeds the last knot index;
+/// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_0, t_m]` or NaN.
+pub fn basis_function_recursive(knots: &KnotVector, i: usize, p: usize, t: f64) -> Result<f64> {
+    let k = knots.as_slice();
+    if i + p + 1 >= k.len() {
+        return Err(Error::InvalidArgument {
+            what: "basis function index",
+            reason: format!(
+                "N_{{{i},{p}}} needs knots up to index {}, but the last knot index is {}",
+                i + p + 1,
+                k.len() - 1
+            ),
+        });
+    }
+    let (min, max) = (k[0], k[k.len() - 1]);
+    if !(t >= min && t <= max) {
+        return Err(Error::ParameterOutOfDomain { t, min, max });
+    }
+    Ok(cox_de_boor(k, i, p, t))
+}
+
+fn cox_de_boor(k: &[f64], i: usize, p: usize, t: f64) -> f64 {
+    if p == 0 {
+        let last = k[k.len() - 1];
+        if k[i] <= t && t < k[i + 1] {
+            return 1.0;
+        }
+        // closed last non-empty interval at t = t_max
+        if t == last && k[i] < k[i + 1] && k[i + 1] == last {
+            return 1.0;
+        }
+        return 0.0;
+    }
+    let mut v = 0.0;
+    let d1 = k[i + p] - k[i];
+    if d1 != 0.0 {
+        v += (t - k[i]) / d1 * cox_de_boor(k, i, p - 1, t);
+    }
+    let d2 = k[i + p + 1] - k[i + 1];
+    if d2 != 0.0 {
+        v += (k[i + p + 1] - t) / d2 * cox_de_boor(k, i + 1, p - 1, t);
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn binom(n: usize, k: usize) -> f64 {
+        (0..k).fold(1.0, |acc, j| acc * (n - j) as f64 / (j + 1) as f64)
+    }
+
+    #[test]
+    fn bernstein_closed_form() {
+        for n in 0..8 {
+            let mut all = vec![0.0; n + 1];
+            for &t in &[0.0, 0.2, 0.5, 0.9, 1.0] {
+                bernstein_all(n, t, &mut all).unwrap();
+                for i in 0..=n {
+                    let exact = binom(n, i) * t.powf(i as f64) * (1.0 - t).powf((n - i) as f64);
+                    assert!((bernstein(n, i, t) - exact).abs() < 1e-14, "n={n} i={i}");
+                    assert!((all[i] - exact).abs() < 1e-14, "n={n} i={i}");
+                }
+            }
+        }
+        assert_eq!(bernstein(3, 4, 0.5), 0.0);
+        assert!(matches!(
+            bernstein_all(3, 0.5, &mut [0.0; 3]),
+            Err(Error::LengthMismatch { .. })
+        ));
+    }
+
+    #[test]
+    fn bernstein_derivatives_match_finite_differences() {
+        let (n, t, h) = (6, 0.37, 1e-5);
+        let d = bernstein_derivatives(n, t, 3);
+        let w = n + 1;
+        for i in 0..=n {
+            let fd1 = (bernstein(n, i, t + h) - bernstein(n, i, t - h)) / (2.0 * h);
+            assert!((d[w + i] - fd1).abs() < 1e-8, "first derivative i={i}");
+            let fd2 = (bernstein(n, i, t + h) - 2.0 * bernstein(n, i, t) + bernstein(n, i, t - h))
+                / (h * h);
+            assert!((d[2 * w + i] - fd2).abs() < 1e-4, "second derivative i={i}");
+        }
+        // orders above n vanish
+        let d = bernstein_derivatives(2, 0.3, 4);
+        assert!(d[9..].iter().all(|&v| v == 0.0), "orders above n must be 0");
+    }
+
+    /// The lecture's worked example, document 002 §C.5, completed in the digest: piecewise
+    /// formulas of N_{i,1} and N_{i,2} on knots [0,0,1,2,3,3].
+    #[test]
+    fn lecture_example_piecewise_formulas() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
+        type F = fn(f64) -> f64;
+        // (i, p, formula on [0,1), [1,2), [2,3))
+        let table: [(usize, usize, [F; 3]); 7] = [
+            (0, 1, [|t| 1.0 - t, |_| 0.0, |_| 0.0]),
+            (1, 1, [|t| t, |t| 2.0 - t, |_| 0.0]),
+            (2, 1, [|_| 0.0, |t| t - 1.0, |t| 3.0 - t]),
+            (3, 1, [|_| 0.0, |_| 0.0, |t| t - 2.0]),
+            (
+                0,
+                2,
+                [
+                    |t| 2.0 * t - 1.5 * t * t,
+                    |t| 0.5 * (2.0 - t) * (2.0 - t),
+                    |_| 0.0,
+                ],
+            ),
+            (
+                1,
+                2,
+                [
+                    |t| 0.5 * t * t,
+                    |t| -t * t + 3.0 * t - 1.5,
+                    |t| 0.5 * (3.0 - t) * (3.0 - t),
+                ],
+            ),
+            (
+                2,
+                2,
+                [
+                    |_| 0.0,
+                    |t| 0.5 * (t - 1.0) * (t - 1.0),
+                    |t| -1.5 * t * t + 7.0 * t - 7.5,
+                ],
+            ),
+        ];
+        for (i, p, pieces) in table {
+            for step in 0..300 {
+                let t = step as f64 / 100.0;
+                let piece = pieces[(step / 100).min(2)];
+                let got = basis_function_recursive(&kv, i, p, t).unwrap();
+                assert!((got - piece(t)).abs() < 1e-14, "N_{i},{p}({t}) = {got}");
+            }
+        }
+        // sample table: t = 1.5 gives (1/8, 3/4, 1/8) and the curve point (17/8, 11/4)
+        let (span, n) = basis_functions(&kv, 2, 1.5).unwrap();
+        assert_eq!(span, 2);
+        let expect = [0.125, 0.75, 0.125];
+        for j in 0..3 {
+            assert!((n[j] - expect[j]).abs() < 1e-15, "N at 1.5");
+        }
+        // sum of the degree-2 functions is 2t − t² on [0,1): not a partition of unity there
+        let s: f64 = (0..3)
+            .map(|i| basis_function_recursive(&kv, i, 2, 0.5).unwrap())
+            .sum();
+        assert!((s - 0.75).abs() < 1e-15, "sum at 0.5 is {s}");
+        // the fast kernel refuses t outside the domain [1, 2]
+        assert!(matches!(
+            basis_functions(&kv, 2, 0.5),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(basis_function_recursive(&kv, 3, 2, 0.5).is_err());
+        assert!(basis_function_recursive(&kv, 0, 2, 3.5).is_err());
+    }
+
+    fn knot_vector_strategy() -> impl Strategy<Value = (KnotVector, usize)> {
+        // degree 0..=5, interior knots on a coarse grid so multiple knots occur
+        (0usize..=5, 1usize..=8).prop_flat_map(|(p, pieces)| {
+            proptest::collection::vec(0u32..=10, pieces.saturating_sub(1)..=pieces + 3).prop_map(
+                move |mut interior| {
+                    interior.sort_unstable();
+                    let mut k = vec![0.0; p + 1];
+                    let mut counts = std::collections::HashMap::new();
+                    for v in interior {
+                        let c = counts.entry(v).or_insert(0usize);
+                        if *c < p.max(1) && v > 0 && v < 10 {
+                            *c += 1;
+                            k.push(f64::from(v) / 10.0);
+                        }
+                    }
+                    k.extend(std::iter::repeat_n(1.0, p + 1));
+                    (KnotVector::new(k).unwrap(), p)
+                },
+            )
+        })
+    }
+
+    proptest! {
+        #[test]
+        fn fast_basis_matches_recursive_oracle((kv, p) in knot_vector_strategy(), s in 0.0f64..=1.0) {
+            let (span, n) = basis_functions(&kv, p, s).unwrap();
+            for j in 0..=p {
+                let oracle = basis_function_recursive(&kv, span - p + j, p, s).unwrap();
+                prop_assert!((n[j] - oracle).abs() < 1e-12, "j={} fast={} oracle={}", j, n[j], oracle);
+            }
+            // partition of unity and non-negativity
+            prop_assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-13);
+            prop_assert!(n.iter().all(|&v| v >= -1e-15));
+            // local support: every other basis function vanishes at s
+            let n_ctrl = kv.len() - p - 1;
+            for i in 0..n_ctrl {
+                if i + p < span || i > span {
+                    prop_assert_eq!(basis_function_recursive(&kv, i, p, s).unwrap(), 0.0);
+                }
+            }
+        }
+
+        #[test]
+        fn basis_derivatives_match_finite_differences((kv, p) in knot_vector_strategy(), s in 0.05f64..0.95) {
+            let (span, d) = basis_derivatives(&kv, p, s, 2).unwrap();
+            let w = p + 1;
+            let (_, n) = basis_functions(&kv, p, s).unwrap();
+            for j in 0..w {
+                prop_assert!((d[j] - n[j]).abs() < 1e-14);
+            }
+            // finite differences only inside the span (away from knots where derivatives jump)
+            let k = kv.as_slice();
+            let h = 1e-6;
+            if s - h > k[span] && s + h < k[span + 1] {
+                let (_, np) = basis_functions(&kv, p, s + h).unwrap();
+                let (_, nm) = basis_functions(&kv, p, s - h).unwrap();
+                for j in 0..w {
+                    let fd = (np[j] - nm[j]) / (2.0 * h);
+                    let scale = 1.0 + d[w + j].abs();
+                    prop_assert!((d[w + j] - fd).abs() < 1e-5 * scale, "j={} d={} fd={}", j, d[w + j], fd);
+                }
+            }
+            // derivatives of a partition of unity sum to zero
+            prop_assert!(d[w..2 * w].iter().sum::<f64>().abs() < 1e-9 * (1.0 + d[w..2*w].iter().map(|v| v.abs()).sum::<f64>()));
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Bezier degree elevation and reduction (document 004).

@@ -1,0 +1,1 @@
+//! Jump-smoothing polynomials and C^k blending of curves (document 001).

@@ -1,0 +1,1 @@
+//! Divided differences and B-splines as divided differences (document 003).

@@ -1,0 +1,362 @@
+//! The one error type of the library.
+//!
+//! Every public function that takes user data validates it once, at the boundary, and returns
+//! [`Error`] when it is unusable. Bad input ([`Error::NonFinite`], [`Error::KnotsNotSorted`], ...)
+//! is kept apart from numerical failure ([`Error::SingularSystem`], [`Error::IllConditioned`]).
+//! Each message names the argument, the offending values and, where there is one, the fix.
+
+/// Result alias used throughout the crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in lekalo.
+///
+/// Variants carry named fields so that callers can react programmatically; `Display` gives a
+/// sentence that names the problem and the fix.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A number is NaN or infinite.
+    ///
+    /// ```
+    /// use lekalo::{Error, Points};
+    /// let e = Points::new(vec![0.0, f64::NAN], 2).unwrap_err();
+    /// assert!(matches!(e, Error::NonFinite { index: 1, .. }));
+    /// ```
+    #[error("{what}[{index}] is {value}: every number must be finite (no NaN or infinity)")]
+    NonFinite {
+        /// Which argument holds the number.
+        what: &'static str,
+        /// Index of the number inside that argument (flat index for point data).
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+
+    /// An argument that needs at least some elements has too few.
+    ///
+    /// ```
+    /// use lekalo::{Error, Points};
+    /// let rows: [[f64; 2]; 0] = [];
+    /// let e = Points::from_rows(&rows).unwrap_err();
+    /// assert!(matches!(e, Error::TooFew { .. }));
+    /// ```
+    #[error("{what}: need at least {min}, got {got}")]
+    TooFew {
+        /// What is counted (e.g. "control points").
+        what: &'static str,
+        /// The least number accepted.
+        min: usize,
+        /// The number given.
+        got: usize,
+    },
+
+    /// Two related lengths disagree.
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Error, Points};
+    /// let ctrl = Points::new(vec![0.0, 1.0, 2.0], 1).unwrap();
+    /// // degree 2 with 3 control points needs 6 knots
+    /// let e = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0], ctrl).unwrap_err();
+    /// assert!(matches!(e, Error::LengthMismatch { expected: 6, got: 5, .. }));
+    /// ```
+    #[error("{what}: expected {expected}, got {got}")]
+    LengthMismatch {
+        /// Which length (names both sides, e.g. "knots (control points + degree + 1)").
+        what: &'static str,
+        /// The length required.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+
+    /// Point data whose dimension is wrong: zero, not dividing the data length, or different
+    /// from the dimension of another argument.
+    ///
+    /// ```
+    /// use lekalo::{Error, Points};
+    /// let e = Points::new(vec![1.0, 2.0, 3.0], 2).unwrap_err();
+    /// assert!(matches!(e, Error::Dimension { .. }));
+    /// ```
+    #[error("dimension of {what}: expected {expected}, got {got}")]
+    Dimension {
+        /// Which argument.
+        what: &'static str,
+        /// The dimension required (0 where any positive dimension would do).
+        expected: usize,
+        /// The dimension (or data length) found.
+        got: usize,
+    },
+
+    /// A degree outside the range the operation supports.
+    ///
+    /// ```
+    /// use lekalo::{Error, KnotVector};
+    /// // 3 control points cannot carry a cubic
+    /// let e = KnotVector::clamped_uniform(3, 3).unwrap_err();
+    /// assert!(matches!(e, Error::Degree { degree: 3, .. }));
+    /// ```
+    #[error("degree {degree} is not allowed here: {reason}")]
+    Degree {
+        /// The degree asked for.
+        degree: usize,
+        /// Why it is refused and what is allowed.
+        reason: String,
+    },
+
+    /// Knots that decrease.
+    ///
+    /// ```
+    /// use lekalo::{Error, KnotVector};
+    /// let e = KnotVector::new(vec![0.0, 1.0, 0.5]).unwrap_err();
+    /// assert!(matches!(e, Error::KnotsNotSorted { index: 2, .. }));
+    /// ```
+    #[error(
+        "knots must be non-decreasing, but knot {index} = {value} is less than knot {} = {previous}; \
+         sort them (lekalo never reorders your knots)", index - 1
+    )]
+    KnotsNotSorted {
+        /// Index of the first knot smaller than its predecessor.
+        index: usize,
+        /// That knot.
+        value: f64,
+        /// Its predecessor.
+        previous: f64,
+    },
+
+    /// A knot repeated more often than the degree allows.
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Error, Points};
+    /// let ctrl = Points::new(vec![0.0; 5], 1).unwrap();
+    /// let knots = vec![0.0, 0.0, 0.5, 0.5, 0.5, 0.5, 1.0, 1.0];
+    /// let e = BSplineCurve::new(2, knots, ctrl).unwrap_err();
+    /// assert!(matches!(e, Error::KnotMultiplicity { multiplicity: 4, max: 3, .. }));
+    /// ```
+    #[error(
+        "knot {knot} has multiplicity {multiplicity}, more than {max} (degree + 1) allowed; \
+         remove repeated copies of it"
+    )]
+    KnotMultiplicity {
+        /// The knot value.
+        knot: f64,
+        /// How often it occurs.
+        multiplicity: usize,
+        /// The largest multiplicity allowed.
+        max: usize,
+    },
+
+    /// A knot vector (or parameter interval) whose domain has zero length.
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Error, Points};
+    /// let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    /// let e = BSplineCurve::new(1, vec![1.0, 1.0, 1.0, 1.0], ctrl).unwrap_err();
+    /// assert!(matches!(e, Error::EmptyDomain { .. }));
+    /// ```
+    #[error(
+        "the domain [{min}, {max}] is empty: the knots must span an interval of positive length"
+    )]
+    EmptyDomain {
+        /// Start of the domain.
+        min: f64,
+        /// End of the domain.
+        max: f64,
+    },
+
+    /// A parameter outside the domain of a curve or surface (or NaN).
+    ///
+    /// ```
+    /// use lekalo::{BezierCurve, Error, Points};
+    /// let c = BezierCurve::new(Points::new(vec![0.0, 1.0], 1).unwrap()).unwrap();
+    /// let e = c.eval(1.5).unwrap_err();
+    /// assert!(matches!(e, Error::ParameterOutOfDomain { .. }));
+    /// ```
+    #[error("parameter {t} is outside the domain [{min}, {max}]")]
+    ParameterOutOfDomain {
+        /// The parameter given.
+        t: f64,
+        /// Start of the domain.
+        min: f64,
+        /// End of the domain.
+        max: f64,
+    },
+
+    /// A NURBS weight that is not strictly positive.
+    ///
+    /// ```
+    /// use lekalo::{Error, NurbsCurve, Points};
+    /// let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    /// let e = NurbsCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], ctrl, vec![1.0, -1.0]).unwrap_err();
+    /// assert!(matches!(e, Error::NonPositiveWeight { index: 1, .. }));
+    /// ```
+    #[error("weight {index} is {weight}: NURBS weights must be positive")]
+    NonPositiveWeight {
+        /// Index of the weight.
+        index: usize,
+        /// Its value.
+        weight: f64,
+    },
+
+    /// Two consecutive points coincide where distinct points are needed.
+    ///
+    /// ```
+    /// use lekalo::{Error, Points};
+    /// let e = Error::CoincidentPoints { first: 3, second: 4 };
+    /// assert!(e.to_string().contains("points 3 and 4 coincide"));
+    /// ```
+    #[error(
+        "points {first} and {second} coincide: chord-length and centripetal parameters need \
+         distinct consecutive points (remove the duplicate or use uniform parameters)"
+    )]
+    CoincidentPoints {
+        /// Index of the first point.
+        first: usize,
+        /// Index of the second point.
+        second: usize,
+    },
+
+    /// A linear system that has no unique solution (a zero pivot, or a violated
+    /// Schoenberg–Whitney condition).
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::SingularSystem { reason: "zero pivot in row 3".into() };
+    /// assert!(e.to_string().contains("singular"));
+    /// ```
+    #[error("the linear system is singular: {reason}")]
+    SingularSystem {
+        /// What made it singular.
+        reason: String,
+    },
+
+    /// A problem too ill-conditioned to solve to the promised accuracy.
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::IllConditioned { reason: "pivot growth 1e17".into() };
+    /// assert!(e.to_string().contains("ill-conditioned"));
+    /// ```
+    #[error("the problem is ill-conditioned: {reason}")]
+    IllConditioned {
+        /// What was detected.
+        reason: String,
+    },
+
+    /// An argument with a value the operation cannot use (the message says which and why).
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::InvalidArgument { what: "tension", reason: "must lie in [0, 1]".into() };
+    /// assert_eq!(e.to_string(), "invalid tension: must lie in [0, 1]");
+    /// ```
+    #[error("invalid {what}: {reason}")]
+    InvalidArgument {
+        /// Which argument.
+        what: &'static str,
+        /// Why it is invalid and what would be valid.
+        reason: String,
+    },
+
+    /// An exact degree reduction asked for below the real degree of the curve or surface.
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::DegreeReductionRefused { requested: 2, real_degree: 3, direction: "curve" };
+    /// assert!(e.to_string().contains("real degree is 3"));
+    /// ```
+    #[error(
+        "cannot reduce the {direction} to degree {requested} without changing its shape: its real \
+         degree is {real_degree}; reduce to {real_degree} or more, or use an approximate reduction"
+    )]
+    DegreeReductionRefused {
+        /// The degree asked for.
+        requested: usize,
+        /// The real degree found.
+        real_degree: usize,
+        /// "curve", "u direction" or "v direction".
+        direction: &'static str,
+    },
+
+    /// A size so large that it is refused instead of attempting the allocation.
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::TooLarge { what: "control points", size: usize::MAX, max: 1 << 28 };
+    /// assert!(e.to_string().contains("too large"));
+    /// ```
+    #[error("{what}: size {size} is too large (at most {max})")]
+    TooLarge {
+        /// What is too large.
+        what: &'static str,
+        /// The size asked for.
+        size: usize,
+        /// The largest size accepted.
+        max: usize,
+    },
+    // -- variants added by later issues go below, each group under its own comment --
+
+    // (interpolation, issue 3)
+
+    // (Bezier order change, issue 4)
+
+    // (blending, issue 5)
+
+    // (piecewise polynomials, issue 6)
+
+    // (formats, issue 7)
+}
+
+/// Checks that every number in `values` is finite.
+///
+/// # Errors
+/// [`Error::NonFinite`] naming `what` and the first bad index.
+pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Error::NonFinite {
+            what,
+            index,
+            value: values[index],
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
+/// refused with [`Error::TooLarge`] instead of being allocated.
+pub const MAX_SCALARS: usize = 1 << 31;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn check_finite_reports_first_bad_index() {
+        assert_eq!(check_finite("x", &[1.0, 2.0]), Ok(()));
+        let e = check_finite("x", &[1.0, f64::INFINITY, f64::NAN]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::NonFinite {
+                    what: "x",
+                    index: 1,
+                    ..
+                }
+            ),
+            "got {e:?}"
+        );
+    }
+
+    #[test]
+    fn messages_name_the_fix() {
+        let e = Error::KnotsNotSorted {
+            index: 3,
+            value: 0.5,
+            previous: 0.7,
+        };
+        let s = e.to_string();
+        assert!(
+            s.contains("knot 3 = 0.5") && s.contains("knot 2 = 0.7"),
+            "{s}"
+        );
+    }
+}

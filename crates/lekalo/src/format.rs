@@ -1,0 +1,1 @@
+//! Versioned JSON format of every object.

@@ -1,0 +1,1 @@
+//! Cubic Hermite and natural cubic splines.

@@ -1,0 +1,1 @@
+//! Interpolation of curves and surfaces through points (document 000).

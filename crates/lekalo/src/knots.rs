@@ -1,0 +1,761 @@
+//! Knot vectors: validation, construction rules, multiplicities and span search.
+//!
+//! Conventions, stated once:
+//! - A knot vector `t_0 ≤ t_1 ≤ … ≤ t_m` is stored as given; lekalo never sorts or alters it.
+//! - For degree `p` and `n + 1` control points, `m = n + p + 1` and the **domain** is
+//!   `[t_p, t_{n+1}]`.
+//! - Spans are half-open, `[t_i, t_{i+1})`, except that the right end of the domain belongs to the
+//!   last non-empty span, so that curves evaluate at their end point.
+//! - A knot may be repeated at most `p + 1` times.
+//!
+//! Construction rules follow document 000 (digest §A): clamped uniform (eq. 2), averaging
+//! (eq. 3), averaging with two extra knots for end derivatives (eq. 4), knots at the parameters
+//! (eq. 8); and the Curry–Schoenberg rule of document 003 (digest §D.4, Theorem 4.5).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+
+/// A validated, non-decreasing sequence of finite knots with a non-empty range.
+///
+/// ```
+/// use lekalo::KnotVector;
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]).unwrap();
+/// assert_eq!(kv.multiplicity(0.0), 3);
+/// assert_eq!(kv.find_span(2, 0.75).unwrap(), 3);
+/// assert_eq!(kv.find_span(2, 1.0).unwrap(), 3); // the right end belongs to the last span
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "Vec<f64>", into = "Vec<f64>")]
+pub struct KnotVector {
+    knots: Vec<f64>,
+}
+
+impl TryFrom<Vec<f64>> for KnotVector {
+    type Error = Error;
+    fn try_from(v: Vec<f64>) -> Result<Self> {
+        KnotVector::new(v)
+    }
+}
+
+impl From<KnotVector> for Vec<f64> {
+    fn from(k: KnotVector) -> Self {
+        k.knots
+    }
+}
+
+impl KnotVector {
+    /// A knot vector from values given in non-decreasing order.
+    ///
+    /// # Errors
+    /// [`Error::TooFew`] for fewer than 2 knots; [`Error::NonFinite`];
+    /// [`Error::KnotsNotSorted`] at the first decrease; [`Error::EmptyDomain`] if all knots are
+    /// equal; [`Error::TooLarge`].
+    pub fn new(knots: Vec<f64>) -> Result<Self> {
+        if knots.len() < 2 {
+            return Err(Error::TooFew {
+                what: "knots",
+                min: 2,
+                got: knots.len(),
+            });
+        }
+        if knots.len() > MAX_SCALARS {
+            return Err(Error::TooLarge {
+                what: "knots",
+                size: knots.len(),
+                max: MAX_SCALARS,
+            });
+        }
+        check_finite("knots", &knots)?;
+        for i in 1..knots.len() {
+            if knots[i] < knots[i - 1] {
+                return Err(Error::KnotsNotSorted {
+                    index: i,
+                    value: knots[i],
+                    previous: knots[i - 1],
+                });
+            }
+        }
+        let (min, max) = (knots[0], knots[knots.len() - 1]);
+        if min >= max {
+            return Err(Error::EmptyDomain { min, max });
+        }
+        Ok(KnotVector { knots })
+    }
+
+    /// Trusted constructor for knots built by this crate (debug-checked).
+    pub(crate) fn from_raw(knots: Vec<f64>) -> Self {
+        debug_assert!(
+            knots.len() >= 2 && knots.windows(2).all(|w| w[0] <= w[1]),
+            "raw knots must be sorted"
+        );
+        KnotVector { knots }
+    }
+
+    /// Checks that this knot vector suits a spline of `degree` with `n_ctrl` control points:
+    /// `len == n_ctrl + degree + 1`, `n_ctrl ≥ degree + 1`, multiplicities ≤ `degree + 1`, and a
+    /// non-empty domain `[t_p, t_{n+1}]`.
+    ///
+    /// # Errors
+    /// [`Error::Degree`], [`Error::LengthMismatch`], [`Error::KnotMultiplicity`],
+    /// [`Error::EmptyDomain`].
+    pub fn validate_for(&self, degree: usize, n_ctrl: usize) -> Result<()> {
+        if n_ctrl < degree + 1 {
+            return Err(Error::Degree {
+                degree,
+                reason: format!(
+                    "{n_ctrl} control points carry a degree of at most {}",
+                    n_ctrl.saturating_sub(1)
+                ),
+            });
+        }
+        let expected = n_ctrl + degree + 1;
+        if self.knots.len() != expected {
+            return Err(Error::LengthMismatch {
+                what: "knots (control points + degree + 1)",
+                expected,
+                got: self.knots.len(),
+            });
+        }
+        let max = degree + 1;
+        for (knot, multiplicity) in self.distinct() {
+            if multiplicity > max {
+                return Err(Error::KnotMultiplicity {
+                    knot,
+                    multiplicity,
+                    max,
+                });
+            }
+        }
+        let (min, max) = self.domain(degree);
+        if min >= max {
+            return Err(Error::EmptyDomain { min, max });
+        }
+        Ok(())
+    }
+
+    /// Clamped knots with uniformly spaced interior knots on `[0, 1]`, document 000 eq. (2)
+    /// (P&T eq. 9.7): `t_0 = … = t_p = 0`, `t_{j+p} = j / (n − p + 1)`, `t_{n+1} = … = 1`.
+    ///
+    /// ```
+    /// use lekalo::KnotVector;
+    /// let kv = KnotVector::clamped_uniform(2, 5).unwrap();
+    /// assert_eq!(kv.as_slice(), &[0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0]);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Degree`] if `n_ctrl < degree + 1`; [`Error::TooLarge`].
+    pub fn clamped_uniform(degree: usize, n_ctrl: usize) -> Result<Self> {
+        if n_ctrl < degree + 1 {
+            return Err(Error::Degree {
+                degree,
+                reason: format!(
+                    "{n_ctrl} control points carry a degree of at most {}",
+                    n_ctrl.saturating_sub(1)
+                ),
+            });
+        }
+        check_size(n_ctrl + degree + 1)?;
+        let n = n_ctrl - 1;
+        let pieces = n - degree + 1;
+        let mut knots = Vec::with_capacity(n_ctrl + degree + 1);
+        knots.extend(std::iter::repeat_n(0.0, degree + 1));
+        knots.extend((1..pieces).map(|j| j as f64 / pieces as f64));
+        knots.extend(std::iter::repeat_n(1.0, degree + 1));
+        Ok(KnotVector::from_raw(knots))
+    }
+
+    /// Knots by averaging the parameters, document 000 eq. (3) (P&T eq. 9.8): for parameters
+    /// `t̄_0 … t̄_n` and degree `p`, `p + 1` copies of `t̄_0`, then
+    /// `t_{j+p} = (1/p) Σ_{i=j}^{j+p−1} t̄_i` for `j = 1 … n − p`, then `p + 1` copies of `t̄_n`.
+    /// With these knots the interpolation matrix is banded and totally positive.
+    ///
+    /// ```
+    /// use lekalo::KnotVector;
+    /// // digest T.1: chord-length parameters of P&T Example 9.1
+    /// let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
+    /// let kv = KnotVector::averaged(&t, 3).unwrap();
+    /// assert!((kv.as_slice()[4] - 28.0 / 51.0).abs() < 1e-15);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Degree`] if `degree == 0` or there are fewer than `degree + 1` parameters;
+    /// parameter errors as [`check_parameters`].
+    pub fn averaged(params: &[f64], degree: usize) -> Result<Self> {
+        check_parameters(params)?;
+        check_interpolation_degree(degree, params.len(), params.len())?;
+        let n = params.len() - 1;
+        let mut knots = Vec::with_capacity(n + degree + 2);
+        knots.extend(std::iter::repeat_n(params[0], degree + 1));
+        for j in 1..=n - degree {
+            knots.push(average(&params[j..j + degree]));
+        }
+        knots.extend(std::iter::repeat_n(params[n], degree + 1));
+        Ok(KnotVector::from_raw(knots))
+    }
+
+    /// Knots for interpolation with prescribed end derivatives, document 000 eq. (4)
+    /// (P&T eq. 9.22): `p + 1` copies of `t̄_0`, then `t_{j+p+1} = (1/p) Σ_{i=j}^{j+p−1} t̄_i` for
+    /// `j = 0 … n − p + 1`, then `p + 1` copies of `t̄_n`; `n + p + 4` knots for `n + 3` control
+    /// points.
+    ///
+    /// # Errors
+    /// [`Error::Degree`] if `degree == 0` or there are fewer than `degree` parameters;
+    /// parameter errors as [`check_parameters`].
+    pub fn averaged_with_end_derivatives(params: &[f64], degree: usize) -> Result<Self> {
+        check_parameters(params)?;
+        check_interpolation_degree(degree, params.len() + 1, params.len() + 2)?;
+        let n = params.len() - 1;
+        let mut knots = Vec::with_capacity(n + degree + 4);
+        knots.extend(std::iter::repeat_n(params[0], degree + 1));
+        for j in 0..=(n + 1 - degree) {
+            knots.push(average(&params[j..j + degree]));
+        }
+        knots.extend(std::iter::repeat_n(params[n], degree + 1));
+        Ok(KnotVector::from_raw(knots))
+    }
+
+    /// Knots equal to the parameters, document 000 eq. (8) (P&T eq. 9.17) generalised to any
+    /// degree: `p + 1` copies of `t̄_0`, the interior parameters `t̄_1 … t̄_{n−1}`, `p + 1` copies
+    /// of `t̄_n`. For `p = 3` this gives the `n + 7` knots and `n + 3` control points of the C²
+    /// cubic with end conditions (§A.3–A.4).
+    ///
+    /// # Errors
+    /// [`Error::Degree`] if `degree == 0`; parameter errors as [`check_parameters`].
+    pub fn from_parameters(params: &[f64], degree: usize) -> Result<Self> {
+        check_parameters(params)?;
+        if degree == 0 {
+            return Err(Error::Degree {
+                degree,
+                reason: "knots at the parameters need degree ≥ 1".into(),
+            });
+        }
+        let n = params.len() - 1;
+        let mut knots = Vec::with_capacity(n + 2 * degree + 1);
+        knots.extend(std::iter::repeat_n(params[0], degree + 1));
+        knots.extend_from_slice(&params[1..n]);
+        knots.extend(std::iter::repeat_n(params[n], degree + 1));
+        Ok(KnotVector::from_raw(knots))
+    }
+
+    /// Knots by the Curry–Schoenberg rule (document 003, digest §D.4 Theorem 4.5): for strictly
+    /// increasing breakpoints `ξ_1 < … < ξ_{l+1}`, continuity conditions `ν_2 … ν_l` (the number
+    /// of derivatives, counting the value, that are continuous at each interior breakpoint;
+    /// `0 ≤ ν_i ≤ k`) and order `k` (degree `k − 1`), the knots are `k` copies of `ξ_1`, then
+    /// `ξ_i` repeated `k − ν_i` times, then `k` copies of `ξ_{l+1}`. The B-splines of order `k` on
+    /// these knots are a basis of `P_{k,ξ,ν}` on `[ξ_1, ξ_{l+1}]`, of dimension
+    /// `n = k + Σ (k − ν_i)`.
+    ///
+    /// The end knots are chosen clamped (`x_1 = … = x_k = ξ_1`, `x_{n+1} = … = x_{n+k} = ξ_{l+1}`),
+    /// as in the thesis's practical task; any choice outside the interval would also do.
+    ///
+    /// ```
+    /// use lekalo::KnotVector;
+    /// // the thesis's practical task: k = 3, C¹ quadratics (ν = 2) on 7 breakpoints
+    /// let xi = [0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0];
+    /// let kv = KnotVector::from_breakpoints(&xi, &[2; 5], 3).unwrap();
+    /// assert_eq!(kv.as_slice(), &[0.0, 0.0, 0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0, 3.0, 3.0]);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Degree`] if `order == 0`; [`Error::TooFew`] for fewer than two breakpoints;
+    /// [`Error::LengthMismatch`] if `continuity.len() != breakpoints.len() − 2`;
+    /// [`Error::InvalidArgument`] if some `ν_i > k` or breakpoints are not strictly increasing;
+    /// [`Error::NonFinite`].
+    pub fn from_breakpoints(
+        breakpoints: &[f64],
+        continuity: &[usize],
+        order: usize,
+    ) -> Result<Self> {
+        if order == 0 {
+            return Err(Error::Degree {
+                degree: 0,
+                reason: "the order k = degree + 1 must be at least 1".into(),
+            });
+        }
+        if breakpoints.len() < 2 {
+            return Err(Error::TooFew {
+                what: "breakpoints",
+                min: 2,
+                got: breakpoints.len(),
+            });
+        }
+        check_finite("breakpoints", breakpoints)?;
+        if let Some(i) = breakpoints.windows(2).position(|w| w[0] >= w[1]) {
+            return Err(Error::InvalidArgument {
+                what: "breakpoints",
+                reason: format!(
+                    "must be strictly increasing, but breakpoint {} = {} is not less than breakpoint {} = {}",
+                    i,
+                    breakpoints[i],
+                    i + 1,
+                    breakpoints[i + 1]
+                ),
+            });
+        }
+        let interior = breakpoints.len() - 2;
+        if continuity.len() != interior {
+            return Err(Error::LengthMismatch {
+                what: "continuity conditions (one per interior breakpoint)",
+                expected: interior,
+                got: continuity.len(),
+            });
+        }
+        if let Some(i) = continuity.iter().position(|&nu| nu > order) {
+            return Err(Error::InvalidArgument {
+                what: "continuity conditions",
+                reason: format!(
+                    "ν at breakpoint {} is {}, more than the order {order}",
+                    i + 1,
+                    continuity[i]
+                ),
+            });
+        }
+        let total: usize = 2 * order + continuity.iter().map(|nu| order - nu).sum::<usize>();
+        check_size(total)?;
+        let mut knots = Vec::with_capacity(total);
+        knots.extend(std::iter::repeat_n(breakpoints[0], order));
+        for (xi, nu) in breakpoints[1..=interior].iter().zip(continuity) {
+            knots.extend(std::iter::repeat_n(*xi, order - nu));
+        }
+        knots.extend(std::iter::repeat_n(breakpoints[interior + 1], order));
+        Ok(KnotVector::from_raw(knots))
+    }
+
+    /// The knots.
+    #[must_use]
+    pub fn as_slice(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// Number of knots.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.knots.len()
+    }
+
+    /// Always false: a knot vector has at least two knots.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.knots.is_empty()
+    }
+
+    /// The knots as an owned vector.
+    #[must_use]
+    pub fn into_vec(self) -> Vec<f64> {
+        self.knots
+    }
+
+    /// Domain `[t_p, t_{n+1}]` of a spline of `degree` on these knots.
+    ///
+    /// The caller guarantees `len ≥ 2·degree + 2` (true after [`KnotVector::validate_for`]).
+    #[must_use]
+    pub fn domain(&self, degree: usize) -> (f64, f64) {
+        (
+            self.knots[degree],
+            self.knots[self.knots.len() - degree - 1],
+        )
+    }
+
+    /// How many times `t` occurs (exact comparison).
+    #[must_use]
+    pub fn multiplicity(&self, t: f64) -> usize {
+        let lo = self.knots.partition_point(|&k| k < t);
+        let hi = self.knots.partition_point(|&k| k <= t);
+        hi - lo
+    }
+
+    /// Distinct knots with their multiplicities, in increasing order.
+    #[must_use]
+    pub fn distinct(&self) -> Vec<(f64, usize)> {
+        let mut out: Vec<(f64, usize)> = Vec::new();
+        for &k in &self.knots {
+            match out.last_mut() {
+                Some((v, m)) if *v == k => *m += 1,
+                _ => out.push((k, 1)),
+            }
+        }
+        out
+    }
+
+    /// True if the first and last `degree + 1` knots are equal (the curve interpolates its end
+    /// control points).
+    #[must_use]
+    pub fn is_clamped(&self, degree: usize) -> bool {
+        let m = self.knots.len();
+        m >= 2 * degree + 2
+            && self.knots[..=degree].iter().all(|&k| k == self.knots[0])
+            && self.knots[m - degree - 1..]
+                .iter()
+                .all(|&k| k == self.knots[m - 1])
+    }
+
+    /// Knot span index `i` with `t_i ≤ t < t_{i+1}` for a spline of `degree`; at the right end of
+    /// the domain, the last non-empty span. Binary search (P&T Algorithm A2.1), O(log n).
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_p, t_{n+1}]` or NaN;
+    /// [`Error::Degree`] if the knots are too few for `degree`.
+    pub fn find_span(&self, degree: usize, t: f64) -> Result<usize> {
+        if self.knots.len() < 2 * degree + 2 {
+            return Err(Error::Degree {
+                degree,
+                reason: format!(
+                    "{} knots carry a degree of at most {}",
+                    self.knots.len(),
+                    self.knots.len() / 2 - 1
+                ),
+            });
+        }
+        let (min, max) = self.domain(degree);
+        if !(t >= min && t <= max) || min >= max {
+            return Err(Error::ParameterOutOfDomain { t, min, max });
+        }
+        Ok(self.span_unchecked(degree, t))
+    }
+
+    /// Span search without domain checks; `t` must lie in the non-empty domain.
+    pub(crate) fn span_unchecked(&self, degree: usize, t: f64) -> usize {
+        let n = self.knots.len() - degree - 2; // last control point index
+        let end = self.knots[n + 1];
+        if t >= end {
+            // right end: last non-empty span
+            let mut i = n;
+            while i > degree && self.knots[i] >= end {
+                i -= 1;
+            }
+            return i;
+        }
+        let first_greater = self.knots.partition_point(|&k| k <= t);
+        (first_greater - 1).clamp(degree, n)
+    }
+
+    /// A cursor for span search over a batch of parameters: amortised O(1) per parameter when
+    /// they come sorted (it walks forward from the previous span), O(log n) otherwise.
+    ///
+    /// ```
+    /// use lekalo::KnotVector;
+    /// let kv = KnotVector::clamped_uniform(3, 10).unwrap();
+    /// let mut cursor = kv.span_cursor(3);
+    /// for k in 0..=100 {
+    ///     let t = k as f64 / 100.0;
+    ///     assert_eq!(cursor.find(t).unwrap(), kv.find_span(3, t).unwrap());
+    /// }
+    /// ```
+    #[must_use]
+    pub fn span_cursor(&self, degree: usize) -> SpanCursor<'_> {
+        SpanCursor {
+            knots: self,
+            degree,
+            span: degree,
+        }
+    }
+}
+
+/// Span search with memory of the previous span (see [`KnotVector::span_cursor`]).
+#[derive(Debug, Clone)]
+pub struct SpanCursor<'a> {
+    knots: &'a KnotVector,
+    degree: usize,
+    span: usize,
+}
+
+impl SpanCursor<'_> {
+    /// Longest forward walk before falling back to binary search.
+    const MAX_WALK: usize = 8;
+
+    /// Span of `t`, as [`KnotVector::find_span`].
+    ///
+    /// # Errors
+    /// As [`KnotVector::find_span`].
+    pub fn find(&mut self, t: f64) -> Result<usize> {
+        let k = &self.knots.knots;
+        let p = self.degree;
+        if k.len() < 2 * p + 2 {
+            return self.knots.find_span(p, t);
+        }
+        let (min, max) = self.knots.domain(p);
+        if !(t >= min && t <= max) || min >= max {
+            return Err(Error::ParameterOutOfDomain { t, min, max });
+        }
+        Ok(self.find_unchecked(t))
+    }
+
+    /// Span of `t` already known to be in the domain.
+    pub(crate) fn find_unchecked(&mut self, t: f64) -> usize {
+        let k = &self.knots.knots;
+        let n = k.len() - self.degree - 2;
+        let s = self.span;
+        if k[s] <= t && (t < k[s + 1] || (s == n && t <= k[s + 1])) {
+            return s;
+        }
+        if t > k[s] {
+            let mut i = s;
+            for _ in 0..Self::MAX_WALK {
+                if i >= n {
+                    break;
+                }
+                i += 1;
+                if k[i] <= t && t < k[i + 1] {
+                    self.span = i;
+                    return i;
+                }
+            }
+        }
+        self.span = self.knots.span_unchecked(self.degree, t);
+        self.span
+    }
+}
+
+/// Checks parameters for the knot constructors: at least two, finite, non-decreasing, with
+/// `t̄_0 < t̄_n`.
+///
+/// # Errors
+/// [`Error::TooFew`], [`Error::NonFinite`], [`Error::KnotsNotSorted`] (naming the parameter
+/// index), [`Error::EmptyDomain`].
+pub fn check_parameters(params: &[f64]) -> Result<()> {
+    if params.len() < 2 {
+        return Err(Error::TooFew {
+            what: "parameters",
+            min: 2,
+            got: params.len(),
+        });
+    }
+    check_size(params.len())?;
+    check_finite("parameters", params)?;
+    for i in 1..params.len() {
+        if params[i] < params[i - 1] {
+            return Err(Error::KnotsNotSorted {
+                index: i,
+                value: params[i],
+                previous: params[i - 1],
+            });
+        }
+    }
+    let (min, max) = (params[0], params[params.len() - 1]);
+    if min >= max {
+        return Err(Error::EmptyDomain { min, max });
+    }
+    Ok(())
+}
+
+fn check_interpolation_degree(
+    degree: usize,
+    n_points: usize,
+    min_points_plus: usize,
+) -> Result<()> {
+    if degree == 0 {
+        return Err(Error::Degree {
+            degree,
+            reason: "interpolation knots need degree ≥ 1".into(),
+        });
+    }
+    // n_points + (min_points_plus − n_points) extra conditions must carry degree + 1 unknowns
+    if min_points_plus < degree + 1 {
+        return Err(Error::Degree {
+            degree,
+            reason: format!(
+                "{n_points} parameters determine a spline of degree at most {}",
+                min_points_plus.saturating_sub(1)
+            ),
+        });
+    }
+    Ok(())
+}
+
+fn check_size(n: usize) -> Result<()> {
+    if n > MAX_SCALARS {
+        return Err(Error::TooLarge {
+            what: "knots",
+            size: n,
+            max: MAX_SCALARS,
+        });
+    }
+    Ok(())
+}
+
+/// Mean of a non-empty slice.
+fn average(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_rejects_each_bad_input() {
+        assert!(matches!(
+            KnotVector::new(vec![0.0]),
+            Err(Error::TooFew { .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0, f64::NAN]),
+            Err(Error::NonFinite { .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0, 2.0, 1.0]),
+            Err(Error::KnotsNotSorted { index: 2, .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![1.0, 1.0]),
+            Err(Error::EmptyDomain { .. })
+        ));
+    }
+
+    #[test]
+    fn validate_for_checks_counts_and_multiplicity() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).unwrap();
+        assert_eq!(kv.validate_for(2, 3), Ok(()));
+        assert!(matches!(
+            kv.validate_for(2, 4),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(kv.validate_for(3, 3), Err(Error::Degree { .. })));
+        assert!(matches!(
+            kv.validate_for(1, 4),
+            Err(Error::KnotMultiplicity {
+                multiplicity: 3,
+                max: 2,
+                ..
+            })
+        ));
+        // domain [t_1, t_3] = [0, 0] is empty
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 1.0]).unwrap();
+        assert!(matches!(
+            kv.validate_for(1, 3),
+            Err(Error::KnotMultiplicity { .. })
+        ));
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 1.0]).unwrap();
+        assert!(matches!(kv.validate_for(2, 2), Err(Error::Degree { .. })));
+    }
+
+    #[test]
+    fn averaged_matches_digest_t1() {
+        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
+        let kv = KnotVector::averaged(&t, 3).unwrap();
+        let expect = [0.0, 0.0, 0.0, 0.0, 28.0 / 51.0, 1.0, 1.0, 1.0, 1.0];
+        assert_eq!(kv.len(), expect.len());
+        for (a, b) in kv.as_slice().iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+        let kv = KnotVector::averaged(&t, 2).unwrap();
+        let expect = [0.0, 0.0, 0.0, 7.0 / 17.0, 23.0 / 34.0, 1.0, 1.0, 1.0];
+        for (a, b) in kv.as_slice().iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+        assert!(matches!(
+            KnotVector::averaged(&t, 5),
+            Err(Error::Degree { .. })
+        ));
+        assert!(matches!(
+            KnotVector::averaged(&t, 0),
+            Err(Error::Degree { .. })
+        ));
+    }
+
+    #[test]
+    fn averaged_with_end_derivatives_matches_digest_t1() {
+        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
+        let kv = KnotVector::averaged_with_end_derivatives(&t, 3).unwrap();
+        let expect = [
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            14.0 / 51.0,
+            28.0 / 51.0,
+            40.0 / 51.0,
+            1.0,
+            1.0,
+            1.0,
+            1.0,
+        ];
+        assert_eq!(kv.len(), expect.len());
+        for (a, b) in kv.as_slice().iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+        let kv = KnotVector::averaged_with_end_derivatives(&t, 2).unwrap();
+        let expect = [
+            0.0,
+            0.0,
+            0.0,
+            5.0 / 34.0,
+            7.0 / 17.0,
+            23.0 / 34.0,
+            31.0 / 34.0,
+            1.0,
+            1.0,
+            1.0,
+        ];
+        for (a, b) in kv.as_slice().iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn from_parameters_is_eq8() {
+        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
+        let kv = KnotVector::from_parameters(&t, 3).unwrap();
+        assert_eq!(kv.len(), 4 + 7);
+        assert_eq!(&kv.as_slice()[4..7], &t[1..4]);
+        assert!(kv.is_clamped(3));
+    }
+
+    #[test]
+    fn curry_schoenberg_counts_and_errors() {
+        let xi = [0.0, 1.0, 2.0, 3.0];
+        let kv = KnotVector::from_breakpoints(&xi, &[0, 4], 4).unwrap();
+        // 4 + (4 - 0) + (4 - 4) + 4 knots
+        assert_eq!(kv.len(), 12);
+        assert_eq!(kv.multiplicity(1.0), 4);
+        assert_eq!(kv.multiplicity(2.0), 0);
+        assert!(matches!(
+            KnotVector::from_breakpoints(&xi, &[1], 4),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            KnotVector::from_breakpoints(&xi, &[1, 5], 4),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            KnotVector::from_breakpoints(&[0.0, 0.0], &[], 2),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            KnotVector::from_breakpoints(&xi, &[1, 1], 0),
+            Err(Error::Degree { .. })
+        ));
+    }
+
+    #[test]
+    fn span_search_edges() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]).unwrap();
+        assert_eq!(kv.find_span(2, 0.0).unwrap(), 2);
+        assert_eq!(kv.find_span(2, 0.49).unwrap(), 2);
+        assert_eq!(kv.find_span(2, 0.5).unwrap(), 4);
+        assert_eq!(kv.find_span(2, 1.0).unwrap(), 4);
+        assert!(matches!(
+            kv.find_span(2, 1.0 + 1e-12),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            kv.find_span(2, f64::NAN),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(kv.find_span(4, 0.5), Err(Error::Degree { .. })));
+    }
+
+    #[test]
+    fn cursor_agrees_with_binary_search_in_any_order() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.1, 0.1, 0.3, 0.7, 0.7, 0.9, 1.0, 1.0]).unwrap();
+        let mut c = kv.span_cursor(1);
+        let ts = [
+            0.0, 0.05, 0.1, 0.2, 0.3, 0.69, 0.7, 0.95, 1.0, 0.0, 0.5, 1.0, 0.1,
+        ];
+        for t in ts {
+            assert_eq!(c.find(t).unwrap(), kv.find_span(1, t).unwrap(), "t = {t}");
+        }
+        assert!(c.find(-0.1).is_err());
+    }
+}

@@ -1,0 +1,1 @@
+//! Banded and tridiagonal solvers.

@@ -1,0 +1,1 @@
+//! Piecewise polynomials and their B-spline bases (document 003).

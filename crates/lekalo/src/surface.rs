@@ -1,0 +1,1 @@
+//! Tensor-product Bezier, B-spline and NURBS surfaces.
