@@ -486,7 +486,9 @@ impl SpanCursor<'_> {
         let k = &self.knots.knots;
         let n = k.len() - self.degree - 2;
         let s = self.span;
-        if k[s] <= t && (t < k[s + 1] || (s == n && t <= k[s + 1])) {
+        // the cursor only ever holds non-empty spans; the right end belongs to span n only when
+        // span n is non-empty (otherwise to the last non-empty span, found below)
+        if k[s] <= t && (t < k[s + 1] || (s == n && t == k[s + 1] && k[s] < k[s + 1])) {
             return s;
         }
         if t > k[s] {
@@ -744,6 +746,23 @@ mod tests {
             Err(Error::ParameterOutOfDomain { .. })
         ));
         assert!(matches!(kv.find_span(4, 0.5), Err(Error::Degree { .. })));
+    }
+
+    #[test]
+    fn empty_last_span_is_never_returned() {
+        // degree 2, 6 control points, domain [t_2, t_6] = [0, 1]; span 5 = [1, 1) is empty
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 2.0, 2.0]).unwrap();
+        kv.validate_for(2, 6).unwrap();
+        assert_eq!(kv.find_span(2, 1.0).unwrap(), 3);
+        let mut c = kv.span_cursor(2);
+        for t in [0.0, 0.6, 1.0, 0.2, 1.0] {
+            let s = c.find(t).unwrap();
+            assert!(
+                kv.as_slice()[s] < kv.as_slice()[s + 1],
+                "empty span {s} at t = {t}"
+            );
+            assert_eq!(s, kv.find_span(2, t).unwrap(), "t = {t}");
+        }
     }
 
     #[test]
