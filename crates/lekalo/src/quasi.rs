@@ -52,9 +52,10 @@ pub enum TauRule {
 }
 
 impl TauRule {
-    /// `τ_i` for B-spline `i` (0-based) of order `k` on `knots`; always in `[x_i, x_{i+k}]`.
+    /// `τ_i` for B-spline `i` (0-based) of order `k` on `knots`; always in `[x_i, x_{i+k}]`
+    /// (clamped there against rounding, e.g. a Greville mean of equal knots).
     fn tau(self, x: &[f64], i: usize, order: usize) -> f64 {
-        match self {
+        let tau = match self {
             TauRule::FirstKnotAfter => {
                 let after = x.partition_point(|&v| v <= x[i]);
                 // x_{i+k} > x_i in a valid knot vector, so the first greater knot is ≤ x_{i+k}
@@ -69,7 +70,8 @@ impl TauRule {
                     x[i + 1..i + order].iter().sum::<f64>() / (order - 1) as f64
                 }
             }
-        }
+        };
+        tau.clamp(x[i], x[i + order])
     }
 
     /// The points `τ_1 … τ_n` for the B-splines of order `k` on `knots`.
