@@ -58,6 +58,14 @@ mod blend;
 // -- piecewise polynomials (issue 6) --
 mod divdiff;
 mod ppform;
+mod quasi;
+
+pub use divdiff::{
+    bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
+    NewtonForm,
+};
+pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
 
 // -- formats (issue 7) --
 mod format;
