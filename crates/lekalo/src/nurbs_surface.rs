@@ -1,0 +1,402 @@
+//! NURBS surfaces: a [`BSplineSurface`] over homogeneous control points `(w·P, w)` in dimension
+//! `dim + 1`; the rational surface is the projection `S(u, v) = A(u, v) / w(u, v)` (P&T §4.4).
+//! Net layout and derivative tables as in [`crate::surface`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite, Error, Result};
+use crate::knots::KnotVector;
+use crate::nurbs::NurbsCurve;
+use crate::points::Points;
+use crate::surface::{
+    check_buffer, check_net, check_normal_dim, check_out, unit_normal, BSplineSurface,
+};
+
+/// A rational tensor-product B-spline surface.
+///
+/// ```
+/// use lekalo::{NurbsSurface, Points};
+/// use std::f64::consts::FRAC_1_SQRT_2 as H;
+/// // a quarter of a cylinder of radius 1 around the z axis, height 2
+/// let net = Points::from_3d(&[
+///     [1.0, 0.0, 0.0], [1.0, 0.0, 2.0],
+///     [1.0, 1.0, 0.0], [1.0, 1.0, 2.0],
+///     [0.0, 1.0, 0.0], [0.0, 1.0, 2.0],
+/// ])?;
+/// let weights = vec![1.0, 1.0, H, H, 1.0, 1.0];
+/// let s = NurbsSurface::new(2, 1, vec![0., 0., 0., 1., 1., 1.], vec![0., 0., 1., 1.], net, weights, (3, 2))?;
+/// let p = s.eval(0.3, 0.5)?;
+/// assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-15 && (p[2] - 1.0).abs() < 1e-15);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "NurbsSurfaceRepr", into = "NurbsSurfaceRepr")]
+pub struct NurbsSurface {
+    /// The B-spline surface in homogeneous coordinates (dimension `dim + 1`, weight last).
+    homogeneous: BSplineSurface,
+}
+
+#[derive(Serialize, Deserialize)]
+struct NurbsSurfaceRepr {
+    degree_u: usize,
+    degree_v: usize,
+    knots_u: Vec<f64>,
+    knots_v: Vec<f64>,
+    net_size: (usize, usize),
+    control: Points,
+    weights: Vec<f64>,
+}
+
+impl TryFrom<NurbsSurfaceRepr> for NurbsSurface {
+    type Error = Error;
+    fn try_from(r: NurbsSurfaceRepr) -> Result<Self> {
+        NurbsSurface::new(
+            r.degree_u, r.degree_v, r.knots_u, r.knots_v, r.control, r.weights, r.net_size,
+        )
+    }
+}
+
+impl From<NurbsSurface> for NurbsSurfaceRepr {
+    fn from(s: NurbsSurface) -> Self {
+        let control = s.control_points();
+        let weights = s.weights();
+        let net_size = s.net_size();
+        NurbsSurfaceRepr {
+            degree_u: s.degree_u(),
+            degree_v: s.degree_v(),
+            knots_u: s.knots_u().as_slice().to_vec(),
+            knots_v: s.knots_v().as_slice().to_vec(),
+            net_size,
+            control,
+            weights,
+        }
+    }
+}
+
+impl NurbsSurface {
+    /// A NURBS surface from degrees, knot vectors, the Euclidean control net (`net_size =
+    /// (nu, nv)`, point `(i, j)` at index `i·nv + j`) and one positive weight per control point
+    /// (same layout).
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::new`], and [`Error::LengthMismatch`] if there is not one weight per
+    /// control point, [`Error::NonFinite`] for a non-finite weight (or an overflowing `w·P`),
+    /// [`Error::NonPositiveWeight`] for a weight `≤ 0` (the index is the flat index `i·nv + j`).
+    pub fn new(
+        degree_u: usize,
+        degree_v: usize,
+        knots_u: impl Into<Vec<f64>>,
+        knots_v: impl Into<Vec<f64>>,
+        control: Points,
+        weights: Vec<f64>,
+        net_size: (usize, usize),
+    ) -> Result<Self> {
+        check_net(&control, net_size)?;
+        if weights.len() != control.len() {
+            return Err(Error::LengthMismatch {
+                what: "weights (one per control point, net_size.0 × net_size.1)",
+                expected: control.len(),
+                got: weights.len(),
+            });
+        }
+        check_finite("weights", &weights)?;
+        if let Some(index) = weights.iter().position(|&w| w <= 0.0) {
+            return Err(Error::NonPositiveWeight {
+                index,
+                weight: weights[index],
+            });
+        }
+        let dim = control.dim();
+        let mut h = Vec::with_capacity(control.len() * (dim + 1));
+        for (p, &w) in control.iter().zip(&weights) {
+            h.extend(p.iter().map(|x| x * w));
+            h.push(w);
+        }
+        let homogeneous = BSplineSurface::new(
+            degree_u,
+            degree_v,
+            knots_u,
+            knots_v,
+            Points::new(h, dim + 1)?,
+            net_size,
+        )?;
+        Ok(NurbsSurface { homogeneous })
+    }
+
+    /// A NURBS surface from a B-spline surface in homogeneous coordinates (last coordinate the
+    /// weight).
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] if the dimension is below 2; [`Error::NonPositiveWeight`].
+    pub fn from_homogeneous(homogeneous: BSplineSurface) -> Result<Self> {
+        let hd = homogeneous.dim();
+        if hd < 2 {
+            return Err(Error::Dimension {
+                what: "homogeneous control points (dim + 1 for the weight)",
+                expected: 2,
+                got: hd,
+            });
+        }
+        for (index, p) in homogeneous.control_points().iter().enumerate() {
+            let weight = p[hd - 1];
+            if weight <= 0.0 {
+                return Err(Error::NonPositiveWeight { index, weight });
+            }
+        }
+        Ok(NurbsSurface { homogeneous })
+    }
+
+    /// The same surface with unit weights.
+    #[must_use]
+    pub fn from_bspline(surface: &BSplineSurface) -> Self {
+        let dim = surface.dim();
+        let mut h = Vec::with_capacity(surface.control_points().len() * (dim + 1));
+        for p in surface.control_points().iter() {
+            h.extend_from_slice(p);
+            h.push(1.0);
+        }
+        let homogeneous = BSplineSurface::from_raw(
+            surface.degree_u(),
+            surface.degree_v(),
+            surface.knots_u().clone(),
+            surface.knots_v().clone(),
+            Points::from_raw(h, dim + 1),
+        );
+        NurbsSurface { homogeneous }
+    }
+
+    /// The homogeneous B-spline surface `(w·P, w)`.
+    #[must_use]
+    pub fn homogeneous(&self) -> &BSplineSurface {
+        &self.homogeneous
+    }
+
+    /// Degree in `u`.
+    #[must_use]
+    pub fn degree_u(&self) -> usize {
+        self.homogeneous.degree_u()
+    }
+
+    /// Degree in `v`.
+    #[must_use]
+    pub fn degree_v(&self) -> usize {
+        self.homogeneous.degree_v()
+    }
+
+    /// Knot vector in `u`.
+    #[must_use]
+    pub fn knots_u(&self) -> &KnotVector {
+        self.homogeneous.knots_u()
+    }
+
+    /// Knot vector in `v`.
+    #[must_use]
+    pub fn knots_v(&self) -> &KnotVector {
+        self.homogeneous.knots_v()
+    }
+
+    /// Net size `(nu, nv)`.
+    #[must_use]
+    pub fn net_size(&self) -> (usize, usize) {
+        self.homogeneous.net_size()
+    }
+
+    /// Euclidean dimension.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.homogeneous.dim() - 1
+    }
+
+    /// Parameter domain `((u_min, u_max), (v_min, v_max))`.
+    #[must_use]
+    pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
+        self.homogeneous.domain()
+    }
+
+    /// Weights, in net order.
+    #[must_use]
+    pub fn weights(&self) -> Vec<f64> {
+        let hd = self.homogeneous.dim();
+        self.homogeneous
+            .control_points()
+            .iter()
+            .map(|p| p[hd - 1])
+            .collect()
+    }
+
+    /// Weight of control point `(i, j)`, or `None` outside the net.
+    #[must_use]
+    pub fn weight(&self, i: usize, j: usize) -> Option<f64> {
+        self.homogeneous.control_point(i, j).map(|p| p[p.len() - 1])
+    }
+
+    /// Euclidean control net `P_{i,j} = (w·P_{i,j}) / w_{i,j}`.
+    #[must_use]
+    pub fn control_points(&self) -> Points {
+        let hd = self.homogeneous.dim();
+        let mut out = Vec::with_capacity(self.homogeneous.control_points().len() * (hd - 1));
+        for p in self.homogeneous.control_points().iter() {
+            out.extend(p[..hd - 1].iter().map(|x| x / p[hd - 1]));
+        }
+        Points::from_raw(out, hd - 1)
+    }
+
+    /// Euclidean control point `P_{i,j}`, or `None` outside the net.
+    #[must_use]
+    pub fn control_point(&self, i: usize, j: usize) -> Option<Vec<f64>> {
+        self.homogeneous.control_point(i, j).map(|p| {
+            let w = p[p.len() - 1];
+            p[..p.len() - 1].iter().map(|x| x / w).collect()
+        })
+    }
+
+    /// Point `S(u, v) = A(u, v) / w(u, v)` (P&T Algorithm A4.3).
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`].
+    pub fn eval(&self, u: f64, v: f64) -> Result<Vec<f64>> {
+        let mut out = vec![0.0; self.dim()];
+        self.eval_into(u, v, &mut out)?;
+        Ok(out)
+    }
+
+    /// Point `S(u, v)` into `out` (length `dim`), P&T Algorithm A4.3.
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] if `out.len() != dim`.
+    pub fn eval_into(&self, u: f64, v: f64, out: &mut [f64]) -> Result<()> {
+        check_out(out.len(), self.dim())?;
+        let h = self.homogeneous.eval(u, v)?;
+        project(&h, out);
+        Ok(())
+    }
+
+    /// Evaluates on the grid `us × vs` into `out`, point `(i, j)` at index `i·vs.len() + j`, as
+    /// [`BSplineSurface::eval_grid`] followed by the projection.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`]; [`Error::ParameterOutOfDomain`].
+    pub fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut [f64]) -> Result<()> {
+        let dim = self.dim();
+        check_buffer(
+            out.len(),
+            us.len().saturating_mul(vs.len()).saturating_mul(dim),
+        )?;
+        let mut chunks = out.chunks_exact_mut(dim);
+        self.homogeneous.grid_with(us, vs, |h| {
+            if let Some(o) = chunks.next() {
+                project(h, o);
+            }
+        })
+    }
+
+    /// Evaluates at a list of parameter pairs into `out` (`uv.len() · dim`), as
+    /// [`BSplineSurface::eval_batch`] followed by the projection.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`]; [`Error::ParameterOutOfDomain`].
+    pub fn eval_batch(&self, uv: &[[f64; 2]], out: &mut [f64]) -> Result<()> {
+        let dim = self.dim();
+        check_buffer(out.len(), uv.len().saturating_mul(dim))?;
+        let mut chunks = out.chunks_exact_mut(dim);
+        self.homogeneous.batch_with(uv, |h| {
+            if let Some(o) = chunks.next() {
+                project(h, o);
+            }
+        })
+    }
+
+    /// Partial derivatives `S_{u^k v^l}` for `0 ≤ k, l ≤ order`, as `(order + 1)²` points (point
+    /// `k·(order + 1) + l`), from the homogeneous derivatives `A_{k,l}`, `w_{k,l}` of
+    /// [`BSplineSurface::eval_derivatives`] by P&T eq. (4.20), Algorithm A4.4:
+    /// `S_{k,l} = (A_{k,l} − Σ_{j=1}^{l} C(l,j) w_{0,j} S_{k,l−j} − Σ_{i=1}^{k} C(k,i) w_{i,0}
+    /// S_{k−i,l} − Σ_{i=1}^{k} C(k,i) Σ_{j=1}^{l} C(l,j) w_{i,j} S_{k−i,l−j}) / w`.
+    /// O(order⁴·dim) on top of the polynomial derivatives.
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows.
+    pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
+        let hom = self.homogeneous.eval_derivatives(u, v, order)?;
+        let dim = self.dim();
+        let hd = dim + 1;
+        let side = order + 1;
+        let h = hom.as_slice();
+        let w = |i: usize, j: usize| h[(i * side + j) * hd + dim];
+        // Pascal's triangle C(n, k) for n < side
+        let mut binom = vec![0.0; side * side];
+        for n in 0..side {
+            binom[n * side] = 1.0;
+            for k in 1..=n {
+                binom[n * side + k] = binom[(n - 1) * side + k - 1]
+                    + if k < n {
+                        binom[(n - 1) * side + k]
+                    } else {
+                        0.0
+                    };
+            }
+        }
+        let w0 = w(0, 0);
+        let mut out = vec![0.0; side * side * dim];
+        let mut acc = vec![0.0; dim];
+        for k in 0..side {
+            for l in 0..side {
+                let at = (k * side + l) * hd;
+                acc.copy_from_slice(&h[at..at + dim]);
+                for i in 0..=k {
+                    for j in 0..=l {
+                        if i == 0 && j == 0 {
+                            continue;
+                        }
+                        let c = binom[k * side + i] * binom[l * side + j] * w(i, j);
+                        let prev = ((k - i) * side + (l - j)) * dim;
+                        for (a, s) in acc.iter_mut().zip(&out[prev..prev + dim]) {
+                            *a -= c * s;
+                        }
+                    }
+                }
+                let o = (k * side + l) * dim;
+                for (x, a) in out[o..o + dim].iter_mut().zip(&acc) {
+                    *x = a / w0;
+                }
+            }
+        }
+        Points::new(out, dim)
+    }
+
+    /// Unit normal `(S_u × S_v) / |S_u × S_v|` of a surface in 3-D, from the rational first
+    /// derivatives (P&T A4.4).
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::normal`].
+    pub fn normal(&self, u: f64, v: f64) -> Result<[f64; 3]> {
+        check_normal_dim(self.dim())?;
+        let d = self.eval_derivatives(u, v, 1)?;
+        unit_normal(d.point(2), d.point(1), u, v)
+    }
+
+    /// The iso-parametric NURBS curve `C(u) = S(u, v)` at fixed `v` (the homogeneous iso-curve
+    /// of [`BSplineSurface::iso_curve_u`], projected).
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`].
+    pub fn iso_curve_u(&self, v: f64) -> Result<NurbsCurve> {
+        NurbsCurve::from_homogeneous(self.homogeneous.iso_curve_u(v)?)
+    }
+
+    /// The iso-parametric NURBS curve `C(v) = S(u, v)` at fixed `u`.
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`].
+    pub fn iso_curve_v(&self, u: f64) -> Result<NurbsCurve> {
+        NurbsCurve::from_homogeneous(self.homogeneous.iso_curve_v(u)?)
+    }
+}
+
+/// `out = h[..dim] / h[dim]`.
+fn project(h: &[f64], out: &mut [f64]) {
+    let w = h[h.len() - 1];
+    debug_assert!(w > 0.0, "positive weights give w(u, v) > 0");
+    for (o, x) in out.iter_mut().zip(h) {
+        *o = x / w;
+    }
+}
