@@ -201,12 +201,14 @@ impl PiecewisePolynomial {
         }
         let (k, dim) = (space.order(), self.dim());
         let coef = de_boor_fix(space.knots(), k, dim, rule, |tau, from_left, out| {
-            let d = if from_left {
-                self.eval_derivatives_left(tau, k - 1)?
+            let piece = if from_left {
+                self.piece_index_left(tau)?
             } else {
-                self.eval_derivatives(tau, k - 1)?
+                self.piece_index(tau)?
             };
-            out.copy_from_slice(d.as_slice());
+            for (r, row) in out.chunks_exact_mut(dim).enumerate() {
+                self.piece_derivative_into(piece, tau, r, row);
+            }
             Ok(())
         })?;
         BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), coef)
