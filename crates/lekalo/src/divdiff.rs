@@ -401,6 +401,31 @@ mod tests {
         assert!((c - (2.0 * a - 3.0 * b)).abs() < 1e-12, "{c}");
     }
 
+    // Lemmas 2.9–2.10: f(x_0^{m_0}; …; x_s^{m_s}) = Σ_i Σ_{j<m_i} α_{ij} f^{(j)}(x_i) with α
+    // independent of f. The α are read off by feeding the unit data (one derivative at one point
+    // equal to 1, the rest 0), then applied to two different functions.
+    #[test]
+    fn confluent_weights_do_not_depend_on_f() {
+        let x = [0.0, 0.0, 0.5, 1.0, 1.0, 1.0];
+        let slots = [(0.0, 0), (0.0, 1), (0.5, 0), (1.0, 0), (1.0, 1), (1.0, 2)];
+        let alpha: Vec<f64> = slots
+            .iter()
+            .map(|&(p, j)| {
+                divided_difference(&x, |t, r| if t == p && r == j { 1.0 } else { 0.0 }).unwrap()
+            })
+            .collect();
+        let exp_d = |t: f64, _r: usize| t.exp();
+        for f in [&sin_d as &dyn Fn(f64, usize) -> f64, &exp_d] {
+            let direct = divided_difference(&x, f).unwrap();
+            let via: f64 = slots
+                .iter()
+                .zip(&alpha)
+                .map(|(&(p, j), a)| a * f(p, j))
+                .sum();
+            assert!((direct - via).abs() < 1e-13, "{direct} vs {via}");
+        }
+    }
+
     // Lemma 2.7 (Leibniz): (gh)(x_0; …; x_n) = Σ_k g(x_0; …; x_k) h(x_k; …; x_n), including
     // repeated points (derivatives of the product by the Leibniz rule for derivatives).
     #[test]
