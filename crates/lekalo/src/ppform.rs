@@ -28,8 +28,8 @@ pub const DEFAULT_CONTINUITY_RTOL: f64 = 1e-9;
 ///
 /// ```
 /// use lekalo::PiecewisePolynomial;
-/// // |x| on [−1, 1] as two linear pieces (order 2): −1 + (−1)(x + 1) ... written about each
-/// // piece's left breakpoint: piece 0: 1 − (x + 1), piece 1: 0 + (x − 0)
+/// // |x| on [−1, 1]: two linear pieces (order 2), each about its left breakpoint:
+/// // piece 0 is 1 − (x + 1), piece 1 is 0 + 1·(x − 0)
 /// let f = PiecewisePolynomial::new(vec![-1.0, 0.0, 1.0], 2, 1, vec![1.0, -1.0, 0.0, 1.0])?;
 /// assert_eq!(f.eval(-0.5)?, vec![0.5]);
 /// assert_eq!(f.eval(1.0)?, vec![1.0]);
@@ -225,7 +225,7 @@ impl PiecewisePolynomial {
 
     /// Index of the piece `(ξ_j, ξ_{j+1}]` whose closure contains `x` from the left (the first
     /// piece at `x = ξ_1`).
-    fn piece_index_left(&self, x: f64) -> Result<usize> {
+    pub(crate) fn piece_index_left(&self, x: f64) -> Result<usize> {
         let (min, max) = self.domain();
         if !(x >= min && x <= max) {
             return Err(Error::ParameterOutOfDomain { t: x, min, max });
@@ -406,12 +406,37 @@ impl PiecewisePolynomial {
 /// assert_eq!(PpSpace::unconstrained(&[0.0, 1.0, 2.0], 4)?.dimension(), 8); // k·l
 /// # Ok::<(), lekalo::Error>(())
 /// ```
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "PpSpaceRepr", into = "PpSpaceRepr")]
 pub struct PpSpace {
     breakpoints: Vec<f64>,
     continuity: Vec<usize>,
     order: usize,
     knots: KnotVector,
+}
+
+#[derive(Serialize, Deserialize)]
+struct PpSpaceRepr {
+    breakpoints: Vec<f64>,
+    continuity: Vec<usize>,
+    order: usize,
+}
+
+impl TryFrom<PpSpaceRepr> for PpSpace {
+    type Error = Error;
+    fn try_from(r: PpSpaceRepr) -> Result<Self> {
+        PpSpace::new(&r.breakpoints, &r.continuity, r.order)
+    }
+}
+
+impl From<PpSpace> for PpSpaceRepr {
+    fn from(s: PpSpace) -> Self {
+        PpSpaceRepr {
+            breakpoints: s.breakpoints,
+            continuity: s.continuity,
+            order: s.order,
+        }
+    }
 }
 
 impl PpSpace {
@@ -670,5 +695,10 @@ mod tests {
         assert_eq!(f, g);
         let bad = r#"{"breakpoints":[1.0,0.0],"order":1,"dim":1,"coefficients":[0.0]}"#;
         assert!(serde_json::from_str::<PiecewisePolynomial>(bad).is_err());
+        let space = PpSpace::new(&[0.0, 1.0, 3.0], &[2], 3).unwrap();
+        let s = serde_json::to_string(&space).unwrap();
+        assert_eq!(serde_json::from_str::<PpSpace>(&s).unwrap(), space);
+        let bad = r#"{"breakpoints":[0.0,1.0,3.0],"continuity":[4],"order":3}"#;
+        assert!(serde_json::from_str::<PpSpace>(bad).is_err());
     }
 }
