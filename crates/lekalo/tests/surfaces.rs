@@ -4,8 +4,8 @@
 //! circles and arcs. Randomness only from proptest strategies.
 
 use lekalo::{
-    basis::basis_functions, BSplineCurve, BSplineSurface, BezierSurface, NurbsCurve, NurbsSurface,
-    Points,
+    basis::{basis_function_recursive, basis_functions},
+    BSplineCurve, BSplineSurface, BezierSurface, Error, NurbsCurve, NurbsSurface, Points,
 };
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -398,4 +398,162 @@ fn check_partials(f: impl Fn(f64, f64, usize) -> Points, u: f64, v: f64, (p, q):
             }
         }
     }
+}
+
+// ---- fixed B-spline surface: oracle, finite differences, batches, iso-curves ----
+
+/// Degrees (3, 2), non-uniform knots with an interior double knot in u, 6 × 5 net in 3-D.
+fn general() -> BSplineSurface {
+    let (nu, nv) = (6, 5);
+    let data: Vec<f64> = (0..90_u32)
+        .map(|k| (0.37 * f64::from(k)).sin() + 0.1 * f64::from(k % 7))
+        .collect();
+    BSplineSurface::new(
+        3,
+        2,
+        vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0],
+        vec![-1.0, -1.0, -1.0, 0.5, 1.5, 2.0, 2.0, 2.0],
+        Points::new(data, 3).unwrap(),
+        (nu, nv),
+    )
+    .unwrap()
+}
+
+#[test]
+fn eval_matches_cox_de_boor_oracle() {
+    let s = general();
+    let (nu, nv) = s.net_size();
+    for a in 0..=12 {
+        for b in 0..=12 {
+            let u = f64::from(a) / 12.0;
+            let v = -1.0 + 3.0 * f64::from(b) / 12.0;
+            let p = s.eval(u, v).unwrap();
+            for d in 0..3 {
+                let mut oracle = 0.0;
+                for i in 0..nu {
+                    let bi = basis_function_recursive(s.knots_u(), i, 3, u).unwrap();
+                    for j in 0..nv {
+                        let bj = basis_function_recursive(s.knots_v(), j, 2, v).unwrap();
+                        oracle += bi * bj * s.control_point(i, j).unwrap()[d];
+                    }
+                }
+                assert!((p[d] - oracle).abs() < 1e-14, "({u},{v}) coordinate {d}");
+            }
+        }
+    }
+}
+
+#[test]
+fn partial_derivatives_match_finite_differences() {
+    let s = general();
+    let h = 1e-5;
+    let order = 2;
+    for &(u, v) in &[(0.1, -0.7), (0.5, 0.2), (0.8, 1.7), (0.29, 0.6)] {
+        let d = s.eval_derivatives(u, v, order + 1).unwrap();
+        let side = order + 2;
+        assert_eq!(
+            d.point(0),
+            s.eval(u, v).unwrap().as_slice(),
+            "S_00 is the point"
+        );
+        for k in 0..=order {
+            for l in 0..=order {
+                let lo_u = s.eval_derivatives(u - h, v, order).unwrap();
+                let hi_u = s.eval_derivatives(u + h, v, order).unwrap();
+                let lo_v = s.eval_derivatives(u, v - h, order).unwrap();
+                let hi_v = s.eval_derivatives(u, v + h, order).unwrap();
+                let idx = k * (order + 1) + l;
+                for c in 0..3 {
+                    let fd_u = (hi_u.point(idx)[c] - lo_u.point(idx)[c]) / (2.0 * h);
+                    let fd_v = (hi_v.point(idx)[c] - lo_v.point(idx)[c]) / (2.0 * h);
+                    let ex_u = d.point((k + 1) * side + l)[c];
+                    let ex_v = d.point(k * side + l + 1)[c];
+                    assert!(
+                        (fd_u - ex_u).abs() < 1e-4 * (1.0 + ex_u.abs()),
+                        "u k={k} l={l}"
+                    );
+                    assert!(
+                        (fd_v - ex_v).abs() < 1e-4 * (1.0 + ex_v.abs()),
+                        "v k={k} l={l}"
+                    );
+                }
+            }
+        }
+    }
+    // orders above the degree vanish
+    let d = s.eval_derivatives(0.5, 0.5, 4).unwrap();
+    assert_eq!(d.point(4 * 5), &[0.0; 3], "S_uuuu of a cubic");
+    assert_eq!(d.point(3), &[0.0; 3], "S_vvv of a quadratic");
+}
+
+#[test]
+fn grid_batch_and_single_agree() {
+    let s = general();
+    let us: Vec<f64> = (0..=7).map(|k| f64::from(k) / 7.0).collect();
+    let vs: Vec<f64> = (0..=5).map(|k| 2.0 - 3.0 * f64::from(k) / 5.0).collect();
+    let mut grid = vec![0.0; us.len() * vs.len() * 3];
+    s.eval_grid(&us, &vs, &mut grid).unwrap();
+    let pairs: Vec<[f64; 2]> = us
+        .iter()
+        .flat_map(|&u| vs.iter().map(move |&v| [u, v]))
+        .collect();
+    let mut list = vec![0.0; pairs.len() * 3];
+    s.eval_batch(&pairs, &mut list).unwrap();
+    for (k, &[u, v]) in pairs.iter().enumerate() {
+        let p = s.eval(u, v).unwrap();
+        assert_eq!(&grid[3 * k..3 * k + 3], p.as_slice(), "grid at ({u},{v})");
+        assert_eq!(&list[3 * k..3 * k + 3], p.as_slice(), "list at ({u},{v})");
+    }
+    assert!(matches!(
+        s.eval_grid(&us, &vs, &mut grid[1..]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        s.eval_batch(&pairs, &mut list[3..]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        s.eval_grid(&[0.5], &[2.5], &mut [0.0; 3]),
+        Err(Error::ParameterOutOfDomain { t, .. }) if t == 2.5
+    ));
+    assert!(matches!(
+        s.eval_batch(&[[f64::NAN, 0.0]], &mut [0.0; 3]),
+        Err(Error::ParameterOutOfDomain { .. })
+    ));
+    s.eval_grid(&[], &vs, &mut []).unwrap();
+}
+
+#[test]
+fn iso_curves_trace_the_surface() {
+    let s = general();
+    for &v in &[-1.0, 0.3, 2.0] {
+        let c = s.iso_curve_u(v).unwrap();
+        assert_eq!((c.degree(), c.knots()), (3, s.knots_u()));
+        for k in 0..=10 {
+            let u = f64::from(k) / 10.0;
+            let (a, b) = (c.eval(u).unwrap(), s.eval(u, v).unwrap());
+            for d in 0..3 {
+                assert!((a[d] - b[d]).abs() < 1e-14, "iso_u at ({u},{v})");
+            }
+        }
+    }
+    for &u in &[0.0, 0.3, 0.77, 1.0] {
+        let c = s.iso_curve_v(u).unwrap();
+        assert_eq!((c.degree(), c.knots()), (2, s.knots_v()));
+        for k in 0..=10 {
+            let v = -1.0 + 3.0 * f64::from(k) / 10.0;
+            let (a, b) = (c.eval(v).unwrap(), s.eval(u, v).unwrap());
+            for d in 0..3 {
+                assert!((a[d] - b[d]).abs() < 1e-14, "iso_v at ({u},{v})");
+            }
+        }
+    }
+    assert!(matches!(
+        s.iso_curve_u(2.1),
+        Err(Error::ParameterOutOfDomain { .. })
+    ));
+    assert!(matches!(
+        s.iso_curve_v(-0.1),
+        Err(Error::ParameterOutOfDomain { .. })
+    ));
 }
