@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::{
-    check_net, check_normal_dim, check_out, check_unit, unit_normal, BSplineSurface,
+    check_derivative_order, check_net, check_normal_dim, check_out, check_unit, unit_normal,
+    BSplineSurface,
 };
 
 /// A Bezier surface of degrees `(n, m) = (nu − 1, nv − 1)` with an `nu × nv` control net.
@@ -149,10 +150,12 @@ impl BezierSurface {
     /// in a direction are zero. O(order²·nu·nv·dim).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`.
+    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`; [`Error::TooLarge`] if `order`
+    /// exceeds [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         check_unit(u)?;
         check_unit(v)?;
+        check_derivative_order(order)?;
         let (nu, nv) = self.net_size;
         let dim = self.dim();
         let side = order + 1;

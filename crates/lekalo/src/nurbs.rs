@@ -312,8 +312,17 @@ impl NurbsCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows;
+    /// [`Error::TooLarge`] if `order` exceeds [`MAX_CURVE_DERIVATIVE_ORDER`] (the rational
+    /// quotient rule costs O(order²)).
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
+        if order > MAX_CURVE_DERIVATIVE_ORDER {
+            return Err(Error::TooLarge {
+                what: "curve derivative order",
+                size: order,
+                max: MAX_CURVE_DERIVATIVE_ORDER,
+            });
+        }
         let a = self.homogeneous.eval_derivatives(t, order)?;
         let dim = self.dim();
         let mut out = vec![0.0; (order + 1) * dim];
@@ -321,6 +330,10 @@ impl NurbsCurve {
         Points::new(out, dim)
     }
 }
+
+/// Largest derivative order accepted by [`NurbsCurve::eval_derivatives`]; larger orders are
+/// refused with [`Error::TooLarge`] instead of allocating and computing O(order²) terms.
+pub const MAX_CURVE_DERIVATIVE_ORDER: usize = 1024;
 
 /// Quotient rule for the derivatives of `C = A / w` (P&T eq. 4.8, Algorithm A4.2).
 ///
@@ -834,6 +847,10 @@ mod tests {
         assert!(matches!(
             c.eval_derivatives(1.5, 1),
             Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            c.eval_derivatives(0.5, usize::MAX),
+            Err(Error::TooLarge { .. })
         ));
     }
 

@@ -102,6 +102,26 @@ impl SurfaceScratch {
     }
 }
 
+/// Largest derivative order accepted by the surface `eval_derivatives` methods: the table has
+/// `(order + 1)²` points and the rational quotient rule costs O(order⁴), so absurd orders are
+/// refused with [`Error::TooLarge`] instead of exhausting memory or time.
+pub const MAX_SURFACE_DERIVATIVE_ORDER: usize = 64;
+
+/// Returns `order` if it is at most [`MAX_SURFACE_DERIVATIVE_ORDER`].
+///
+/// # Errors
+/// [`Error::TooLarge`].
+pub(crate) fn check_derivative_order(order: usize) -> Result<usize> {
+    if order > MAX_SURFACE_DERIVATIVE_ORDER {
+        return Err(Error::TooLarge {
+            what: "surface derivative order",
+            size: order,
+            max: MAX_SURFACE_DERIVATIVE_ORDER,
+        });
+    }
+    Ok(order)
+}
+
 /// Checks the net size against the number of control points; returns `nu · nv`.
 ///
 /// # Errors
@@ -125,7 +145,7 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
         .filter(|&c| c <= MAX_SCALARS)
         .ok_or(Error::TooLarge {
             what: "control net (net_size.0 × net_size.1)",
-            size: usize::MAX,
+            size: nu.saturating_mul(nv),
             max: MAX_SCALARS,
         })?;
     if control.len() != count {
@@ -569,20 +589,14 @@ impl BSplineSurface {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] for an absurd `order`.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order` exceeds
+    /// [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let (p, q) = (self.degree_u, self.degree_v);
         let dim = self.dim();
         let su = self.knots_u.find_span(p, u)?;
         let sv = self.knots_v.find_span(q, v)?;
-        let side = order
-            .checked_add(1)
-            .filter(|&s| s.saturating_mul(s).saturating_mul(dim) <= MAX_SCALARS);
-        let side = side.ok_or(Error::TooLarge {
-            what: "derivative table ((order + 1)² points)",
-            size: order,
-            max: 1 << 15,
-        })?;
+        let side = check_derivative_order(order)? + 1;
         let (wu, wv) = (p + 1, q + 1);
         let (du, dv) = (order.min(p), order.min(q));
         let mut nu = vec![0.0; (du + 1) * wu];
@@ -858,6 +872,24 @@ mod tests {
         assert!(matches!(
             tri.normal(1.5, 0.5),
             Err(Error::ParameterOutOfDomain { .. })
+        ));
+    }
+
+    #[test]
+    fn absurd_derivative_orders_are_refused() {
+        let s = bilinear();
+        assert_eq!(s.eval_derivatives(0.5, 0.5, 64).unwrap().len(), 65 * 65);
+        assert!(matches!(
+            s.eval_derivatives(0.5, 0.5, 65),
+            Err(Error::TooLarge {
+                size: 65,
+                max: 64,
+                ..
+            })
+        ));
+        assert!(matches!(
+            s.eval_derivatives(0.5, 0.5, usize::MAX),
+            Err(Error::TooLarge { .. })
         ));
     }
 
