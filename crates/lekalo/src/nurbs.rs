@@ -501,6 +501,33 @@ impl NurbsCurve {
     /// [`Error::Dimension`] if `dim < 2` or the points differ in dimension; [`Error::NonFinite`];
     /// [`Error::InvalidArgument`] if two points coincide or the three are collinear.
     pub fn arc_through_points(a: &[f64], b: &[f64], c: &[f64]) -> Result<Self> {
+        Self::arc_through_points_with_parameter(a, b, c).map(|(arc, _)| arc)
+    }
+
+    /// As [`NurbsCurve::arc_through_points`], also returning the parameter `t_b` with
+    /// `C(t_b) = b` (up to rounding), e.g. to split the arc at `b` or to blend local arcs
+    /// (document 001 §B.3).
+    ///
+    /// The arc's pieces are symmetric rational quadratics of half-angle `α = δ/2`, on which the
+    /// local parameter `s ∈ [0, 1]` and the angle `φ` from the piece's middle satisfy
+    /// `tan(φ/2) = (2s − 1) tan(α/2)` (the tangent-half-angle form of the conic, P&T §7.5), so
+    /// `t_b` follows in closed form from the angle of `b`.
+    ///
+    /// ```
+    /// use lekalo::NurbsCurve;
+    /// let (arc, tb) = NurbsCurve::arc_through_points_with_parameter(&[6.0, 2.0], &[1.0, -3.0], &[1.0, 7.0])?;
+    /// let p = arc.eval(tb)?;
+    /// assert!((p[0] - 1.0).abs() < 1e-14 && (p[1] + 3.0).abs() < 1e-14);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::arc_through_points`].
+    pub fn arc_through_points_with_parameter(
+        a: &[f64],
+        b: &[f64],
+        c: &[f64],
+    ) -> Result<(Self, f64)> {
         let dim = a.len();
         check_arc_dims(
             "arc point a",
@@ -585,6 +612,7 @@ impl NurbsCurve {
             }
         }
         let sweep = angle(&cc, &y);
+        let t_b = arc_parameter(angle(&cb, &y), sweep);
         let mut homogeneous = arc_homogeneous(&center, &x, &y, radius, 0.0, sweep, false)?;
         // the end points exactly (weight 1 there)
         let hd = dim + 1;
@@ -594,8 +622,39 @@ impl NurbsCurve {
         h[..dim].copy_from_slice(a);
         h[last..last + dim].copy_from_slice(c);
         homogeneous = BSplineCurve::from_raw(degree, knots.into_vec(), Points::from_raw(h, hd));
-        Ok(NurbsCurve { homogeneous })
+        Ok((NurbsCurve { homogeneous }, t_b))
     }
+}
+
+/// Number of pieces of at most 90° for a sweep (a sweep that exceeds k·90° by rounding only
+/// still takes k pieces).
+fn arc_pieces(sweep: f64) -> usize {
+    let quarters = sweep.abs() / std::f64::consts::FRAC_PI_2 * (1.0 - 4.0 * f64::EPSILON);
+    if quarters <= 1.0 {
+        1
+    } else if quarters <= 2.0 {
+        2
+    } else if quarters <= 3.0 {
+        3
+    } else {
+        4
+    }
+}
+
+/// Parameter in `[0, 1]` of the point at angle `theta ∈ [0, sweep]` (`sweep > 0`) of the arc
+/// built by [`arc_homogeneous`]: piece `k = ⌊θ/δ⌋`, angle `φ` from the piece's middle, local
+/// parameter `s = (1 + tan(φ/2) / tan(δ/4)) / 2`.
+fn arc_parameter(theta: f64, sweep: f64) -> f64 {
+    let n = arc_pieces(sweep);
+    let nf = n as f64;
+    let delta = sweep / nf;
+    let mut k = 0;
+    while k + 1 < n && theta >= delta * (k + 1) as f64 {
+        k += 1;
+    }
+    let phi = theta - delta * (k as f64 + 0.5);
+    let s = 0.5 * (1.0 + (0.5 * phi).tan() / (0.25 * delta).tan());
+    ((k as f64 + s.clamp(0.0, 1.0)) / nf).clamp(0.0, 1.0)
 }
 
 /// Homogeneous control points and knots of the arc (P&T Algorithm A7.1, with the middle
@@ -612,17 +671,7 @@ fn arc_homogeneous(
 ) -> Result<BSplineCurve> {
     let dim = center.len();
     let hd = dim + 1;
-    // pieces of at most 90° (a sweep that exceeds k·90° by rounding only still takes k pieces)
-    let quarters = sweep.abs() / std::f64::consts::FRAC_PI_2 * (1.0 - 4.0 * f64::EPSILON);
-    let pieces: usize = if quarters <= 1.0 {
-        1
-    } else if quarters <= 2.0 {
-        2
-    } else if quarters <= 3.0 {
-        3
-    } else {
-        4
-    };
+    let pieces = arc_pieces(sweep);
     let nf = pieces as f64;
     let weight = (sweep / (2.0 * nf)).cos();
     let mut h = Vec::with_capacity((2 * pieces + 1) * hd);

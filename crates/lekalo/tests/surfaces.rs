@@ -343,7 +343,9 @@ proptest! {
     ) {
         let at = |th: f64| vec![centre[0] + r * th.cos(), centre[1] + r * th.sin()];
         let (a, b, c) = (at(ta), at(ta + db), at(ta + db + dc));
-        let arc = NurbsCurve::arc_through_points(&a, &b, &c).unwrap();
+        let (arc, tb) = NurbsCurve::arc_through_points_with_parameter(&a, &b, &c).unwrap();
+        let pb = arc.eval(tb).unwrap();
+        prop_assert!((pb[0] - b[0]).hypot(pb[1] - b[1]) <= 1e-13 * r + 64.0 * f64::EPSILON * centre[0].hypot(centre[1]), "C(t_b) = b");
         prop_assert_eq!(arc.eval(0.0).unwrap(), a);
         prop_assert_eq!(arc.eval(1.0).unwrap(), c);
         let offset = centre[0].hypot(centre[1]);
