@@ -410,6 +410,56 @@ impl NurbsCurve {
         Self::circular_arc(center, x_axis, y_axis, radius, 0.0, std::f64::consts::TAU)
     }
 
+    /// The full circle of `radius` about `center` in the plane through `center` with the given
+    /// `normal` (3-D), as [`NurbsCurve::circle`] with the frame `X = normalise(e × n)`,
+    /// `Y = n̂ × X`, where `e` is the coordinate axis least aligned with `n` (so the frame is
+    /// deterministic and well conditioned). The circle runs counter-clockwise seen from the tip
+    /// of `normal`.
+    ///
+    /// ```
+    /// use lekalo::NurbsCurve;
+    /// let c = NurbsCurve::circle_with_normal([0.0, 0.0, 5.0], [0.0, 0.0, 2.0], 3.0)?;
+    /// for k in 0..=16 {
+    ///     let p = c.eval(k as f64 / 16.0)?;
+    ///     assert!((p[0].hypot(p[1]) - 3.0).abs() < 1e-14 && (p[2] - 5.0).abs() < 1e-15);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a zero normal or a radius that is not positive;
+    /// [`Error::NonFinite`].
+    pub fn circle_with_normal(center: [f64; 3], normal: [f64; 3], radius: f64) -> Result<Self> {
+        check_finite("normal", &normal)?;
+        let n = norm(&normal);
+        if n == 0.0 || !n.is_finite() {
+            return Err(Error::InvalidArgument {
+                what: "normal",
+                reason: "the normal is the zero vector; give the direction of the circle's axis"
+                    .into(),
+            });
+        }
+        let nh = [normal[0] / n, normal[1] / n, normal[2] / n];
+        // the coordinate axis least aligned with the normal
+        let mut e = [0.0; 3];
+        let k = (0..3)
+            .min_by(|&i, &j| nh[i].abs().total_cmp(&nh[j].abs()))
+            .unwrap_or(0);
+        e[k] = 1.0;
+        let cross = |a: &[f64; 3], b: &[f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let x = cross(&e, &nh);
+        let lx = norm(&x);
+        let x = [x[0] / lx, x[1] / lx, x[2] / lx];
+        let y = cross(&nh, &x);
+        Self::circle(&center, &x, &y, radius)
+    }
+
     /// The circular arc `C + r (cos θ X + sin θ Y)`, `θ` from `start_angle` to `end_angle`, as
     /// an exact rational quadratic on the parameter domain `[0, 1]` (P&T §7.5, Algorithm A7.1).
     ///

@@ -297,3 +297,55 @@ fn circular_arc_rejects_bad_input() {
         Err(Error::NonFinite { .. })
     ));
 }
+
+#[test]
+fn circles_with_a_normal_lie_in_their_plane() {
+    for normal in [
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0],
+        [0.0, -3.0, 0.0],
+        [1.0, 2.0, 3.0],
+        [-1e-3, 5.0, 1e3],
+    ] {
+        for (centre, r) in [
+            ([0.0, 0.0, 0.0], 1.0),
+            ([1e3, -2.0, 7.0], 1e3),
+            ([0.5, 0.5, 0.5], 0.01),
+        ] {
+            let c = NurbsCurve::circle_with_normal(centre, normal, r).unwrap();
+            let nh: Vec<f64> = normal.iter().map(|x| x / norm(&normal)).collect();
+            let tol = 1e-14 * r + 4.0 * f64::EPSILON * norm(&centre);
+            assert!(
+                max_radius_error(&c, &centre, r) <= tol,
+                "radius, normal {normal:?}"
+            );
+            for k in 0..=20 {
+                let p = c.eval(f64::from(k) / 20.0).unwrap();
+                let d: Vec<f64> = p.iter().zip(&centre).map(|(a, b)| a - b).collect();
+                assert!(dot(&d, &nh).abs() <= 2.0 * tol, "plane, normal {normal:?}");
+            }
+            // counter-clockwise about the normal: (C − centre) × C' points along n
+            let d = c.eval_derivatives(0.1, 1).unwrap();
+            let (p, v) = (d.point(0), d.point(1));
+            let q = [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+            let cross = [
+                q[1] * v[2] - q[2] * v[1],
+                q[2] * v[0] - q[0] * v[2],
+                q[0] * v[1] - q[1] * v[0],
+            ];
+            assert!(dot(&cross, &nh) > 0.0, "orientation");
+        }
+    }
+    assert!(matches!(
+        NurbsCurve::circle_with_normal([0.0; 3], [0.0; 3], 1.0),
+        Err(Error::InvalidArgument { what: "normal", .. })
+    ));
+    assert!(matches!(
+        NurbsCurve::circle_with_normal([0.0; 3], [0.0, f64::NAN, 1.0], 1.0),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        NurbsCurve::circle_with_normal([0.0; 3], [0.0, 0.0, 1.0], -1.0),
+        Err(Error::InvalidArgument { what: "radius", .. })
+    ));
+}
