@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::{
-    check_net, check_normal_dim, check_out, check_unit, unit_normal, BSplineSurface,
+    check_derivative_order, check_net, check_normal_dim, check_out, check_unit, unit_normal,
+    BSplineSurface,
 };
 
 /// A Bezier surface of degrees `(n, m) = (nu − 1, nv − 1)` with an `nu × nv` control net.
@@ -149,10 +150,12 @@ impl BezierSurface {
     /// in a direction are zero. O(order²·nu·nv·dim).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`.
+    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`; [`Error::TooLarge`] if `order`
+    /// exceeds [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         check_unit(u)?;
         check_unit(v)?;
+        check_derivative_order(order)?;
         let (nu, nv) = self.net_size;
         let dim = self.dim();
         let side = order + 1;
@@ -282,5 +285,147 @@ fn de_casteljau(points: &mut [f64], dim: usize, t: f64) {
                 points[i * dim + d] = s * points[i * dim + d] + t * points[(i + 1) * dim + d];
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn general() -> BezierSurface {
+        let data: Vec<f64> = (0..48_u32)
+            .map(|k| (0.83 * f64::from(k)).sin() + f64::from(k % 5))
+            .collect();
+        BezierSurface::new(Points::new(data, 4).unwrap(), (4, 3)).unwrap()
+    }
+
+    #[test]
+    fn de_casteljau_equals_bspline_form_and_bernstein_sum() {
+        let s = general();
+        let b = s.to_bspline();
+        assert_eq!(BSplineSurface::from(&s), b);
+        assert_eq!((b.degree_u(), b.degree_v(), b.net_size()), (3, 2, (4, 3)));
+        for a in 0..=8 {
+            for c in 0..=8 {
+                let (u, v) = (f64::from(a) / 8.0, f64::from(c) / 8.0);
+                let p = s.eval(u, v).unwrap();
+                let q = b.eval(u, v).unwrap();
+                let d = s.eval_derivatives(u, v, 4).unwrap();
+                let e = b.eval_derivatives(u, v, 4).unwrap();
+                for k in 0..4 {
+                    assert!((p[k] - q[k]).abs() < 1e-14, "({u},{v})");
+                    // the Bernstein sum (row 0 of the derivatives) vs de Casteljau
+                    assert!((d.point(0)[k] - p[k]).abs() < 1e-14, "sum vs de Casteljau");
+                }
+                let scale = e.max_abs();
+                for (x, y) in d.as_slice().iter().zip(e.as_slice()) {
+                    assert!((x - y).abs() < 1e-12 * scale, "derivatives at ({u},{v})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bilinear_golden_and_normal() {
+        let net = Points::from_3d(&[
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 1.0],
+        ])
+        .unwrap();
+        let s = BezierSurface::new(net, (2, 2)).unwrap();
+        let (u, v) = (0.3, 0.8);
+        let p = s.eval(u, v).unwrap();
+        assert!(
+            (p[0] - u).abs() < 1e-15 && (p[1] - v).abs() < 1e-15 && (p[2] - u * v).abs() < 1e-15,
+            "{p:?}"
+        );
+        let n = s.normal(u, v).unwrap();
+        let len = (1.0 + u * u + v * v).sqrt();
+        assert!(
+            (n[0] + v / len).abs() < 1e-15 && (n[1] + u / len).abs() < 1e-15,
+            "{n:?}"
+        );
+        let flat = BezierSurface::new(Points::new(vec![0.0; 8], 2).unwrap(), (2, 2)).unwrap();
+        assert!(matches!(
+            flat.normal(0.5, 0.5),
+            Err(Error::Dimension { .. })
+        ));
+        let point = BezierSurface::new(Points::new(vec![1.0; 12], 3).unwrap(), (2, 2)).unwrap();
+        assert!(matches!(
+            point.normal(0.5, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+    }
+
+    #[test]
+    fn iso_curves_and_accessors() {
+        let s = general();
+        assert_eq!(
+            (s.degree_u(), s.degree_v(), s.dim(), s.net_size()),
+            (3, 2, 4, (4, 3))
+        );
+        assert_eq!(s.domain(), ((0.0, 1.0), (0.0, 1.0)));
+        assert_eq!(s.control_point(1, 2), Some(s.control_points().point(5)));
+        assert_eq!(s.control_point(4, 0), None);
+        for &t in &[0.0, 0.4, 1.0] {
+            let cu = s.iso_curve_u(t).unwrap();
+            let cv = s.iso_curve_v(t).unwrap();
+            assert_eq!((cu.degree(), cv.degree()), (3, 2));
+            for &x in &[0.0, 0.7, 1.0] {
+                let (a, b) = (cu.eval(x).unwrap(), s.eval(x, t).unwrap());
+                let (c, d) = (cv.eval(x).unwrap(), s.eval(t, x).unwrap());
+                for k in 0..4 {
+                    assert!(
+                        (a[k] - b[k]).abs() < 1e-14 && (c[k] - d[k]).abs() < 1e-14,
+                        "iso at {t}, {x}"
+                    );
+                }
+            }
+        }
+        assert!(matches!(
+            s.iso_curve_u(1.5),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.iso_curve_v(-0.5),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.eval(f64::NAN, 0.0),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.eval_derivatives(0.0, 2.0, 1),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.eval_into(0.0, 0.0, &mut [0.0; 3]),
+            Err(Error::LengthMismatch { .. })
+        ));
+    }
+
+    #[test]
+    fn constructor_and_serde_validate() {
+        let net = Points::new(vec![0.0; 6], 1).unwrap();
+        assert!(matches!(
+            BezierSurface::new(net.clone(), (2, 2)),
+            Err(Error::LengthMismatch {
+                expected: 4,
+                got: 6,
+                ..
+            })
+        ));
+        assert!(matches!(
+            BezierSurface::new(net.clone(), (6, 0)),
+            Err(Error::TooFew { .. })
+        ));
+        let s = BezierSurface::new(net, (3, 2)).unwrap();
+        let json = serde_json::to_string(&s).unwrap();
+        assert_eq!(serde_json::from_str::<BezierSurface>(&json).unwrap(), s);
+        let bad = json.replace("[3,2]", "[2,2]");
+        assert_ne!(bad, json, "the replacement must hit");
+        assert!(serde_json::from_str::<BezierSurface>(&bad).is_err());
     }
 }

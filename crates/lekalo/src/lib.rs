@@ -44,10 +44,10 @@ pub use bezier_surface::BezierSurface;
 pub use bspline::BSplineCurve;
 pub use error::{Error, Result, MAX_SCALARS};
 pub use knots::{check_parameters, KnotVector, SpanCursor};
-pub use nurbs::NurbsCurve;
+pub use nurbs::{NurbsCurve, MAX_CURVE_DERIVATIVE_ORDER};
 pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
-pub use surface::BSplineSurface;
+pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
 
 // -- interpolation (issue 3) --
 mod hermite;

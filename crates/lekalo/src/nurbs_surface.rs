@@ -314,7 +314,9 @@ impl NurbsSurface {
     /// O(order⁴·dim) on top of the polynomial derivatives.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows;
+    /// [`Error::TooLarge`] if `order` exceeds
+    /// [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let hom = self.homogeneous.eval_derivatives(u, v, order)?;
         let dim = self.dim();
@@ -398,5 +400,371 @@ fn project(h: &[f64], out: &mut [f64]) {
     debug_assert!(w > 0.0, "positive weights give w(u, v) > 0");
     for (o, x) in out.iter_mut().zip(h) {
         *o = x / w;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// The cylinder piece `x² + y² = r²` (axis through `centre` along z), `z ∈ [z0, z0 + h]`:
+    /// the extrusion of an exact arc, degree (2, 1), weights of the arc repeated along v.
+    fn cylinder(centre: [f64; 3], r: f64, sweep: f64, h: f64) -> NurbsSurface {
+        let arc = NurbsCurve::circular_arc(
+            &centre,
+            &[1.0, 0.0, 0.0],
+            &[0.0, 1.0, 0.0],
+            r,
+            0.3,
+            0.3 + sweep,
+        )
+        .unwrap();
+        let ctrl = arc.control_points();
+        let w = arc.weights();
+        let mut net = Vec::new();
+        let mut weights = Vec::new();
+        for (p, &wi) in ctrl.iter().zip(&w) {
+            for dz in [0.0, h] {
+                net.extend_from_slice(&[p[0], p[1], p[2] + dz]);
+                weights.push(wi);
+            }
+        }
+        NurbsSurface::new(
+            2,
+            1,
+            arc.knots().as_slice().to_vec(),
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::new(net, 3).unwrap(),
+            weights,
+            (ctrl.len(), 2),
+        )
+        .unwrap()
+    }
+
+    /// A rational bicubic-by-quadratic surface with varied weights.
+    fn general() -> NurbsSurface {
+        let data: Vec<f64> = (0..60_u32)
+            .map(|k| (0.61 * f64::from(k)).cos() * 2.0)
+            .collect();
+        let weights: Vec<f64> = (0..20_u32)
+            .map(|k| 0.5 + (f64::from(k) * 0.9).sin().abs())
+            .collect();
+        NurbsSurface::new(
+            3,
+            2,
+            vec![0.0, 0.0, 0.0, 0.0, 0.6, 1.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0],
+            Points::new(data, 3).unwrap(),
+            weights,
+            (5, 4),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn cylinder_points_lie_at_radius_and_normals_are_radial() {
+        for &(centre, r) in &[
+            ([0.0, 0.0, 0.0], 1.0),
+            ([0.25, -0.5, 3.0], 2.5),
+            ([1e3, -1e3, 5.0], 1e3),
+            ([1e3, 2e3, 0.0], 1.0),
+        ] {
+            for sweep in [0.5 * PI, 1.3 * PI, 2.0 * PI] {
+                let s = cylinder(centre, r, sweep, 4.0);
+                let offset = (centre[0] * centre[0] + centre[1] * centre[1]).sqrt();
+                // 1e-14·r, plus the unavoidable rounding ε·|centre| of the coordinates
+                let tol = 1e-14 * r + 4.0 * f64::EPSILON * offset;
+                let steps = 60;
+                for a in 0..=steps {
+                    for b in 0..=4 {
+                        let (u, v) = (f64::from(a) / f64::from(steps), f64::from(b) / 4.0);
+                        let p = s.eval(u, v).unwrap();
+                        let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
+                        let err = (dx.hypot(dy) - r).abs();
+                        assert!(err <= tol, "({u},{v}), r={r}: {err:e} > {tol:e}");
+                        assert!(
+                            (p[2] - centre[2] - 4.0 * v).abs() <= 1e-14 * (1.0 + centre[2]),
+                            "height"
+                        );
+                        let n = s.normal(u, v).unwrap();
+                        // S_u is tangent to the circle (counter-clockwise), S_v = +z: the normal
+                        // S_u × S_v points outwards
+                        let (ex, ey) = (dx / r, dy / r);
+                        let ntol = 1e-13 + 8.0 * f64::EPSILON * offset / r;
+                        assert!(
+                            (n[0] - ex).abs() <= ntol
+                                && (n[1] - ey).abs() <= ntol
+                                && n[2].abs() <= ntol,
+                            "normal {n:?} vs ({ex}, {ey}, 0)"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rational_partials_match_finite_differences() {
+        let s = general();
+        let h = 1e-5;
+        for &(u, v) in &[(0.2, 0.3), (0.7, 0.8), (0.55, 0.05)] {
+            let order = 2;
+            let side = order + 2;
+            let d = s.eval_derivatives(u, v, order + 1).unwrap();
+            assert_eq!(d.point(0), s.eval(u, v).unwrap().as_slice(), "S_00");
+            let lo_u = s.eval_derivatives(u - h, v, order).unwrap();
+            let hi_u = s.eval_derivatives(u + h, v, order).unwrap();
+            let lo_v = s.eval_derivatives(u, v - h, order).unwrap();
+            let hi_v = s.eval_derivatives(u, v + h, order).unwrap();
+            for k in 0..=order {
+                for l in 0..=order {
+                    let idx = k * (order + 1) + l;
+                    for c in 0..3 {
+                        let fd_u = (hi_u.point(idx)[c] - lo_u.point(idx)[c]) / (2.0 * h);
+                        let fd_v = (hi_v.point(idx)[c] - lo_v.point(idx)[c]) / (2.0 * h);
+                        let ex_u = d.point((k + 1) * side + l)[c];
+                        let ex_v = d.point(k * side + l + 1)[c];
+                        let tol =
+                            1e-5 * (1.0 + ex_u.abs().max(ex_v.abs())) * 10f64.powf((k + l) as f64);
+                        assert!(
+                            (fd_u - ex_u).abs() < tol,
+                            "({u},{v}) u k={k} l={l}: {fd_u} vs {ex_u}"
+                        );
+                        assert!(
+                            (fd_v - ex_v).abs() < tol,
+                            "({u},{v}) v k={k} l={l}: {fd_v} vs {ex_v}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn unit_weights_reproduce_the_bspline() {
+        let g = general();
+        let b = BSplineSurface::new(
+            3,
+            2,
+            g.knots_u().as_slice().to_vec(),
+            g.knots_v().as_slice().to_vec(),
+            g.control_points(),
+            (5, 4),
+        )
+        .unwrap();
+        let n = NurbsSurface::from_bspline(&b);
+        assert_eq!(n.weights(), vec![1.0; 20]);
+        for &(u, v) in &[(0.0, 0.0), (0.3, 0.9), (1.0, 0.5), (0.6, 0.5)] {
+            let (db, dn) = (
+                b.eval_derivatives(u, v, 3).unwrap(),
+                n.eval_derivatives(u, v, 3).unwrap(),
+            );
+            let scale = db.max_abs();
+            for (x, y) in db.as_slice().iter().zip(dn.as_slice()) {
+                assert!((x - y).abs() < 1e-12 * scale, "({u},{v}): {x} vs {y}");
+            }
+        }
+    }
+
+    #[test]
+    fn grid_batch_iso_and_single_agree() {
+        let s = general();
+        let us = [0.0, 0.25, 0.6, 1.0];
+        let vs = [1.0, 0.5, 0.1];
+        let mut grid = vec![0.0; 12 * 3];
+        s.eval_grid(&us, &vs, &mut grid).unwrap();
+        let pairs: Vec<[f64; 2]> = us
+            .iter()
+            .flat_map(|&u| vs.iter().map(move |&v| [u, v]))
+            .collect();
+        let mut list = vec![0.0; 12 * 3];
+        s.eval_batch(&pairs, &mut list).unwrap();
+        for (k, &[u, v]) in pairs.iter().enumerate() {
+            let p = s.eval(u, v).unwrap();
+            let cu = s.iso_curve_u(v).unwrap().eval(u).unwrap();
+            let cv = s.iso_curve_v(u).unwrap().eval(v).unwrap();
+            for c in 0..3 {
+                let tol = 1e-14 * (1.0 + p[c].abs());
+                assert!((grid[3 * k + c] - p[c]).abs() <= tol, "grid ({u},{v})");
+                assert!((list[3 * k + c] - p[c]).abs() <= tol, "list ({u},{v})");
+                assert!((cu[c] - p[c]).abs() <= tol, "iso u ({u},{v})");
+                assert!((cv[c] - p[c]).abs() <= tol, "iso v ({u},{v})");
+            }
+        }
+        assert!(matches!(
+            s.eval_grid(&us, &vs, &mut grid[2..]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            s.eval_batch(&pairs, &mut list[2..]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            s.eval_into(0.5, 0.5, &mut [0.0; 4]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            s.eval(0.5, 1.5),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.iso_curve_u(-1.0),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            s.iso_curve_v(2.0),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+    }
+
+    #[test]
+    fn accessors_and_weights() {
+        let s = general();
+        assert_eq!(
+            (s.degree_u(), s.degree_v(), s.dim(), s.net_size()),
+            (3, 2, 3, (5, 4))
+        );
+        assert_eq!(s.domain(), ((0.0, 1.0), (0.0, 1.0)));
+        assert_eq!(s.weight(1, 2), Some(s.weights()[6]));
+        assert_eq!(s.weight(5, 0), None);
+        let p = s.control_point(2, 3).unwrap();
+        let q = s.control_points().point(11).to_vec();
+        assert_eq!(p, q);
+        assert_eq!(s.control_point(0, 4), None);
+        assert_eq!(s.homogeneous().dim(), 4);
+        assert_eq!(
+            NurbsSurface::from_homogeneous(s.homogeneous().clone()).unwrap(),
+            s
+        );
+    }
+
+    #[test]
+    fn constructor_errors() {
+        let net = Points::new(vec![0.0; 8], 2).unwrap();
+        let k = vec![0.0, 0.0, 1.0, 1.0];
+        let make =
+            |w: Vec<f64>| NurbsSurface::new(1, 1, k.clone(), k.clone(), net.clone(), w, (2, 2));
+        assert!(make(vec![1.0; 4]).is_ok());
+        assert!(matches!(
+            make(vec![1.0; 3]),
+            Err(Error::LengthMismatch {
+                expected: 4,
+                got: 3,
+                ..
+            })
+        ));
+        assert!(matches!(
+            make(vec![1.0, 1.0, 0.0, 1.0]),
+            Err(Error::NonPositiveWeight { index: 2, .. })
+        ));
+        assert!(matches!(
+            make(vec![1.0, f64::NAN, 1.0, 1.0]),
+            Err(Error::NonFinite {
+                what: "weights",
+                ..
+            })
+        ));
+        assert!(matches!(
+            NurbsSurface::new(
+                1,
+                1,
+                k.clone(),
+                k.clone(),
+                net.clone(),
+                vec![1.0; 4],
+                (2, 3)
+            ),
+            Err(Error::LengthMismatch { .. })
+        ));
+        let big = Points::new(vec![1e300; 8], 2).unwrap();
+        assert!(matches!(
+            NurbsSurface::new(1, 1, k.clone(), k.clone(), big, vec![1e10; 4], (2, 2)),
+            Err(Error::NonFinite { .. })
+        ));
+        // from_homogeneous: weights must be positive, dimension at least 2
+        let h = BSplineSurface::new(
+            1,
+            1,
+            k.clone(),
+            k.clone(),
+            Points::new(vec![1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0], 2).unwrap(),
+            (2, 2),
+        )
+        .unwrap();
+        assert!(matches!(
+            NurbsSurface::from_homogeneous(h),
+            Err(Error::NonPositiveWeight { index: 0, .. })
+        ));
+        let h1 = BSplineSurface::new(
+            1,
+            1,
+            k.clone(),
+            k,
+            Points::new(vec![1.0; 4], 1).unwrap(),
+            (2, 2),
+        )
+        .unwrap();
+        assert!(matches!(
+            NurbsSurface::from_homogeneous(h1),
+            Err(Error::Dimension { .. })
+        ));
+    }
+
+    #[test]
+    fn normal_errors() {
+        let net = Points::new(vec![0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0], 2).unwrap();
+        let k = vec![0.0, 0.0, 1.0, 1.0];
+        let s = NurbsSurface::new(
+            1,
+            1,
+            k.clone(),
+            k.clone(),
+            net,
+            vec![1.0, 2.0, 1.0, 1.0],
+            (2, 2),
+        )
+        .unwrap();
+        assert!(matches!(
+            s.normal(0.5, 0.5),
+            Err(Error::Dimension {
+                expected: 3,
+                got: 2,
+                ..
+            })
+        ));
+        // collapsed edge u = 0 (a rational triangle): S_v = 0 there
+        let net = Points::from_3d(&[
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ])
+        .unwrap();
+        let t =
+            NurbsSurface::new(1, 1, k.clone(), k, net, vec![1.0, 2.0, 1.0, 3.0], (2, 2)).unwrap();
+        let n = t.normal(0.5, 0.5).unwrap();
+        assert!((n[2] - 1.0).abs() < 1e-15, "planar triangle normal {n:?}");
+        assert!(matches!(
+            t.normal(0.0, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+    }
+
+    #[test]
+    fn serde_goes_through_validation() {
+        let s = cylinder([0.0, 0.0, 0.0], 2.0, PI, 1.0);
+        let json = serde_json::to_string(&s).unwrap();
+        let back: NurbsSurface = serde_json::from_str(&json).unwrap();
+        for &(u, v) in &[(0.1, 0.2), (0.9, 0.7)] {
+            let (a, b) = (s.eval(u, v).unwrap(), back.eval(u, v).unwrap());
+            for c in 0..3 {
+                assert!((a[c] - b[c]).abs() < 1e-15, "round trip");
+            }
+        }
+        let bad = json.replace("\"weights\":[1.0", "\"weights\":[-1.0");
+        assert_ne!(bad, json, "the replacement must hit");
+        let e = serde_json::from_str::<NurbsSurface>(&bad).unwrap_err();
+        assert!(e.to_string().contains("weight"), "{e}");
     }
 }

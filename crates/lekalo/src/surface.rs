@@ -102,6 +102,26 @@ impl SurfaceScratch {
     }
 }
 
+/// Largest derivative order accepted by the surface `eval_derivatives` methods: the table has
+/// `(order + 1)²` points and the rational quotient rule costs O(order⁴), so absurd orders are
+/// refused with [`Error::TooLarge`] instead of exhausting memory or time.
+pub const MAX_SURFACE_DERIVATIVE_ORDER: usize = 64;
+
+/// Returns `order` if it is at most [`MAX_SURFACE_DERIVATIVE_ORDER`].
+///
+/// # Errors
+/// [`Error::TooLarge`].
+pub(crate) fn check_derivative_order(order: usize) -> Result<usize> {
+    if order > MAX_SURFACE_DERIVATIVE_ORDER {
+        return Err(Error::TooLarge {
+            what: "surface derivative order",
+            size: order,
+            max: MAX_SURFACE_DERIVATIVE_ORDER,
+        });
+    }
+    Ok(order)
+}
+
 /// Checks the net size against the number of control points; returns `nu · nv`.
 ///
 /// # Errors
@@ -125,7 +145,7 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
         .filter(|&c| c <= MAX_SCALARS)
         .ok_or(Error::TooLarge {
             what: "control net (net_size.0 × net_size.1)",
-            size: usize::MAX,
+            size: nu.saturating_mul(nv),
             max: MAX_SCALARS,
         })?;
     if control.len() != count {
@@ -569,20 +589,14 @@ impl BSplineSurface {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] for an absurd `order`.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order` exceeds
+    /// [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let (p, q) = (self.degree_u, self.degree_v);
         let dim = self.dim();
         let su = self.knots_u.find_span(p, u)?;
         let sv = self.knots_v.find_span(q, v)?;
-        let side = order
-            .checked_add(1)
-            .filter(|&s| s.saturating_mul(s).saturating_mul(dim) <= MAX_SCALARS);
-        let side = side.ok_or(Error::TooLarge {
-            what: "derivative table ((order + 1)² points)",
-            size: order,
-            max: 1 << 15,
-        })?;
+        let side = check_derivative_order(order)? + 1;
         let (wu, wv) = (p + 1, q + 1);
         let (du, dv) = (order.min(p), order.min(q));
         let mut nu = vec![0.0; (du + 1) * wu];
@@ -760,7 +774,6 @@ pub(crate) fn unit_normal(su: &[f64], sv: &[f64], u: f64, v: f64) -> Result<[f64
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::basis::basis_function_recursive;
 
     fn bilinear() -> BSplineSurface {
         let net = Points::from_3d(&[
@@ -828,145 +841,6 @@ mod tests {
     }
 
     #[test]
-    fn eval_matches_cox_de_boor_oracle() {
-        let s = general();
-        let (nu, nv) = s.net_size();
-        for a in 0..=12 {
-            for b in 0..=12 {
-                let u = f64::from(a) / 12.0;
-                let v = -1.0 + 3.0 * f64::from(b) / 12.0;
-                let p = s.eval(u, v).unwrap();
-                for d in 0..3 {
-                    let mut oracle = 0.0;
-                    for i in 0..nu {
-                        let bi = basis_function_recursive(s.knots_u(), i, 3, u).unwrap();
-                        for j in 0..nv {
-                            let bj = basis_function_recursive(s.knots_v(), j, 2, v).unwrap();
-                            oracle += bi * bj * s.control_point(i, j).unwrap()[d];
-                        }
-                    }
-                    assert!((p[d] - oracle).abs() < 1e-14, "({u},{v}) coordinate {d}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn partial_derivatives_match_finite_differences() {
-        let s = general();
-        let h = 1e-5;
-        let order = 2;
-        for &(u, v) in &[(0.1, -0.7), (0.5, 0.2), (0.8, 1.7), (0.29, 0.6)] {
-            let d = s.eval_derivatives(u, v, order + 1).unwrap();
-            let side = order + 2;
-            assert_eq!(
-                d.point(0),
-                s.eval(u, v).unwrap().as_slice(),
-                "S_00 is the point"
-            );
-            for k in 0..=order {
-                for l in 0..=order {
-                    let lo_u = s.eval_derivatives(u - h, v, order).unwrap();
-                    let hi_u = s.eval_derivatives(u + h, v, order).unwrap();
-                    let lo_v = s.eval_derivatives(u, v - h, order).unwrap();
-                    let hi_v = s.eval_derivatives(u, v + h, order).unwrap();
-                    let idx = k * (order + 1) + l;
-                    for c in 0..3 {
-                        let fd_u = (hi_u.point(idx)[c] - lo_u.point(idx)[c]) / (2.0 * h);
-                        let fd_v = (hi_v.point(idx)[c] - lo_v.point(idx)[c]) / (2.0 * h);
-                        let ex_u = d.point((k + 1) * side + l)[c];
-                        let ex_v = d.point(k * side + l + 1)[c];
-                        assert!(
-                            (fd_u - ex_u).abs() < 1e-4 * (1.0 + ex_u.abs()),
-                            "u k={k} l={l}"
-                        );
-                        assert!(
-                            (fd_v - ex_v).abs() < 1e-4 * (1.0 + ex_v.abs()),
-                            "v k={k} l={l}"
-                        );
-                    }
-                }
-            }
-        }
-        // orders above the degree vanish
-        let d = s.eval_derivatives(0.5, 0.5, 4).unwrap();
-        assert_eq!(d.point(4 * 5), &[0.0; 3], "S_uuuu of a cubic");
-        assert_eq!(d.point(3), &[0.0; 3], "S_vvv of a quadratic");
-    }
-
-    #[test]
-    fn grid_batch_and_single_agree() {
-        let s = general();
-        let us: Vec<f64> = (0..=7).map(|k| f64::from(k) / 7.0).collect();
-        let vs: Vec<f64> = (0..=5).map(|k| 2.0 - 3.0 * f64::from(k) / 5.0).collect();
-        let mut grid = vec![0.0; us.len() * vs.len() * 3];
-        s.eval_grid(&us, &vs, &mut grid).unwrap();
-        let pairs: Vec<[f64; 2]> = us
-            .iter()
-            .flat_map(|&u| vs.iter().map(move |&v| [u, v]))
-            .collect();
-        let mut list = vec![0.0; pairs.len() * 3];
-        s.eval_batch(&pairs, &mut list).unwrap();
-        for (k, &[u, v]) in pairs.iter().enumerate() {
-            let p = s.eval(u, v).unwrap();
-            assert_eq!(&grid[3 * k..3 * k + 3], p.as_slice(), "grid at ({u},{v})");
-            assert_eq!(&list[3 * k..3 * k + 3], p.as_slice(), "list at ({u},{v})");
-        }
-        assert!(matches!(
-            s.eval_grid(&us, &vs, &mut grid[1..]),
-            Err(Error::LengthMismatch { .. })
-        ));
-        assert!(matches!(
-            s.eval_batch(&pairs, &mut list[3..]),
-            Err(Error::LengthMismatch { .. })
-        ));
-        assert!(matches!(
-            s.eval_grid(&[0.5], &[2.5], &mut [0.0; 3]),
-            Err(Error::ParameterOutOfDomain { t, .. }) if t == 2.5
-        ));
-        assert!(matches!(
-            s.eval_batch(&[[f64::NAN, 0.0]], &mut [0.0; 3]),
-            Err(Error::ParameterOutOfDomain { .. })
-        ));
-        s.eval_grid(&[], &vs, &mut []).unwrap();
-    }
-
-    #[test]
-    fn iso_curves_trace_the_surface() {
-        let s = general();
-        for &v in &[-1.0, 0.3, 2.0] {
-            let c = s.iso_curve_u(v).unwrap();
-            assert_eq!((c.degree(), c.knots()), (3, s.knots_u()));
-            for k in 0..=10 {
-                let u = f64::from(k) / 10.0;
-                let (a, b) = (c.eval(u).unwrap(), s.eval(u, v).unwrap());
-                for d in 0..3 {
-                    assert!((a[d] - b[d]).abs() < 1e-14, "iso_u at ({u},{v})");
-                }
-            }
-        }
-        for &u in &[0.0, 0.3, 0.77, 1.0] {
-            let c = s.iso_curve_v(u).unwrap();
-            assert_eq!((c.degree(), c.knots()), (2, s.knots_v()));
-            for k in 0..=10 {
-                let v = -1.0 + 3.0 * f64::from(k) / 10.0;
-                let (a, b) = (c.eval(v).unwrap(), s.eval(u, v).unwrap());
-                for d in 0..3 {
-                    assert!((a[d] - b[d]).abs() < 1e-14, "iso_v at ({u},{v})");
-                }
-            }
-        }
-        assert!(matches!(
-            s.iso_curve_u(2.1),
-            Err(Error::ParameterOutOfDomain { .. })
-        ));
-        assert!(matches!(
-            s.iso_curve_v(-0.1),
-            Err(Error::ParameterOutOfDomain { .. })
-        ));
-    }
-
-    #[test]
     fn normals_need_3d_and_a_regular_point() {
         // a 2-D surface has no normal
         let net = Points::from_2d(&[[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]]).unwrap();
@@ -998,6 +872,24 @@ mod tests {
         assert!(matches!(
             tri.normal(1.5, 0.5),
             Err(Error::ParameterOutOfDomain { .. })
+        ));
+    }
+
+    #[test]
+    fn absurd_derivative_orders_are_refused() {
+        let s = bilinear();
+        assert_eq!(s.eval_derivatives(0.5, 0.5, 64).unwrap().len(), 65 * 65);
+        assert!(matches!(
+            s.eval_derivatives(0.5, 0.5, 65),
+            Err(Error::TooLarge {
+                size: 65,
+                max: 64,
+                ..
+            })
+        ));
+        assert!(matches!(
+            s.eval_derivatives(0.5, 0.5, usize::MAX),
+            Err(Error::TooLarge { .. })
         ));
     }
 
