@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bezier::{BezierCurve, BezierSegment};
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -448,8 +448,7 @@ impl BSplineCurve {
     /// # Errors
     /// [`Error::NonFinite`]; [`Error::KnotsNotSorted`] if `x` decreases (lekalo never sorts your
     /// knots); [`Error::ParameterOutOfDomain`] for a knot outside the domain;
-    /// [`Error::InvalidArgument`] if some knot's multiplicity would exceed the degree;
-    /// [`Error::TooLarge`] if the result would exceed [`MAX_SCALARS`](crate::MAX_SCALARS).
+    /// [`Error::InvalidArgument`] if some knot's multiplicity would exceed the degree.
     pub fn refine_knots(&self, x: &[f64]) -> Result<BSplineCurve> {
         if x.is_empty() {
             return Ok(self.clone());
@@ -481,14 +480,6 @@ impl BSplineCurve {
                 });
             }
             i += run;
-        }
-        let size = (self.control.len() + x.len()).saturating_mul(self.dim());
-        if size > MAX_SCALARS {
-            return Err(Error::TooLarge {
-                what: "refined control points",
-                size,
-                max: MAX_SCALARS,
-            });
         }
         Ok(self.refine_unchecked(x))
     }
@@ -776,8 +767,9 @@ impl BSplineCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::KnotMultiplicity`] or [`Error::EmptyDomain`] if rounding merges distinct knots
-    /// (knots closer than the rounding unit of the domain's scale).
+    /// Only for knots at the limits of `f64`: [`Error::KnotMultiplicity`] if rounding merges
+    /// distinct knots (knots closer than the rounding unit of the domain's scale);
+    /// [`Error::NonFinite`] if a mapped knot outside the domain overflows.
     pub fn reverse(&self) -> Result<BSplineCurve> {
         let (a, b) = self.domain();
         // piecewise so that a ↔ b exactly and the map stays monotone under rounding

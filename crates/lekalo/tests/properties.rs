@@ -29,32 +29,44 @@ const FD_STEP: f64 = 1e-4;
 // strategies
 
 /// Knots from a start in `[-5, 5)` and gaps that are zero a quarter of the time (multiple knots)
-/// or in `[0.25, 2)`; optionally clamped. Invalid draws (multiplicity > p + 1, empty domain) are
-/// filtered out by `BSplineCurve::new` itself.
+/// or in `[0.25, 2)`, all times a scale `10^e`, `e ∈ [-4, 4]`; optionally clamped. Control
+/// coordinates in `[-10, 10)` times `10^f`, `f ∈ [-3, 6]`. Invalid draws (multiplicity > p + 1,
+/// empty domain) are filtered out by `BSplineCurve::new` itself.
 fn curve_with(degrees: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = BSplineCurve> {
-    (degrees, 1usize..=6, 0usize..=6, any::<bool>())
-        .prop_flat_map(|(p, dim, extra, clamped)| {
+    (
+        degrees,
+        1usize..=6,
+        0usize..=6,
+        any::<bool>(),
+        -4i32..=4,
+        -3i32..=6,
+    )
+        .prop_flat_map(|(p, dim, extra, clamped, knot_exp, ctrl_exp)| {
             let n_ctrl = p + 1 + extra;
             let n_knots = n_ctrl + p + 1;
             (
-                Just((p, dim, clamped)),
+                Just((p, dim, clamped, 10f64.powi(knot_exp), 10f64.powi(ctrl_exp))),
                 -5.0f64..5.0,
                 prop::collection::vec(prop_oneof![1 => Just(0.0), 3 => 0.25f64..2.0], n_knots - 1),
                 prop::collection::vec(-10.0f64..10.0, n_ctrl * dim),
             )
         })
-        .prop_filter_map("valid knots", |((p, dim, clamped), t0, mut gaps, ctrl)| {
-            if clamped {
-                let len = gaps.len();
-                gaps[..p].fill(0.0);
-                gaps[len - p..].fill(0.0);
-            }
-            let mut knots = vec![t0];
-            for g in gaps {
-                knots.push(knots[knots.len() - 1] + g);
-            }
-            BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
-        })
+        .prop_filter_map(
+            "valid knots",
+            |((p, dim, clamped, knot_scale, ctrl_scale), t0, mut gaps, ctrl)| {
+                if clamped {
+                    let len = gaps.len();
+                    gaps[..p].fill(0.0);
+                    gaps[len - p..].fill(0.0);
+                }
+                let mut knots = vec![t0 * knot_scale];
+                for g in gaps {
+                    knots.push(knots[knots.len() - 1] + g * knot_scale);
+                }
+                let ctrl = ctrl.into_iter().map(|x| x * ctrl_scale).collect();
+                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+            },
+        )
 }
 
 fn curve() -> impl Strategy<Value = BSplineCurve> {
@@ -774,4 +786,70 @@ fn bezier_batch_and_eval_errors() {
         Err(Error::ParameterOutOfDomain { .. })
     ));
     assert_eq!(seg.eval(3.0).unwrap(), vec![3.0, 2.0]);
+}
+
+/// Boehm insertion into a quadratic Bezier (as a clamped B-spline) at 1/2 gives the de Casteljau
+/// midpoints `P_0, (P_0 + P_1)/2, (P_1 + P_2)/2, P_2` (P&T eq. 5.15), exactly in binary floats.
+#[test]
+fn insertion_golden_quadratic() {
+    let ctrl = Points::from_2d(&[[0.0, 0.0], [2.0, 4.0], [6.0, 2.0]]).unwrap();
+    let c = BezierCurve::new(ctrl).unwrap().to_bspline();
+    let d = c.insert_knot(0.5, 1).unwrap();
+    assert_eq!(d.knots().as_slice(), &[0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]);
+    assert_eq!(
+        d.control_points().as_slice(),
+        &[0.0, 0.0, 1.0, 2.0, 4.0, 3.0, 6.0, 2.0]
+    );
+    let twice = c.insert_knot(0.5, 2).unwrap();
+    assert_eq!(
+        twice.control_points().as_slice(),
+        &[0.0, 0.0, 1.0, 2.0, 2.5, 2.5, 4.0, 3.0, 6.0, 2.0]
+    );
+    assert_eq!(c.refine_knots(&[0.5, 0.5]).unwrap(), twice);
+}
+
+/// A clamped quadratic with one interior knot (P&T §5.4): the pieces share the midpoint of
+/// `P_1 P_2`, and each interior control point is kept.
+#[test]
+fn decomposition_golden_clamped_quadratic() {
+    let ctrl = Points::new(vec![0.0, 2.0, 4.0, 8.0], 1).unwrap();
+    let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], ctrl).unwrap();
+    assert!(c.is_clamped());
+    let pieces = c.to_bezier_segments();
+    assert_eq!(pieces.len(), 2);
+    assert_eq!((pieces[0].start, pieces[0].end), (0.0, 0.5));
+    assert_eq!((pieces[1].start, pieces[1].end), (0.5, 1.0));
+    assert_eq!(
+        pieces[0].curve.control_points().as_slice(),
+        &[0.0, 2.0, 3.0]
+    );
+    assert_eq!(
+        pieces[1].curve.control_points().as_slice(),
+        &[3.0, 4.0, 8.0]
+    );
+    let back = BSplineCurve::from_bezier_segments(&pieces).unwrap();
+    assert_eq!(
+        back.knots().as_slice(),
+        &[0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]
+    );
+    // degree 0: one piece per non-empty span, the constant control point
+    let steps = BSplineCurve::new(
+        0,
+        vec![0.0, 1.0, 2.5, 3.0],
+        Points::new(vec![5.0, 6.0, 7.0], 1).unwrap(),
+    )
+    .unwrap();
+    let pieces = steps.to_bezier_segments();
+    assert_eq!(pieces.len(), 3);
+    assert_eq!((pieces[1].start, pieces[1].end), (1.0, 2.5));
+    assert_eq!(pieces[2].curve.control_points().as_slice(), &[7.0]);
+    assert_eq!(BSplineCurve::from_bezier_segments(&pieces).unwrap(), steps);
+}
+
+#[test]
+fn reverse_overflow_is_an_error() {
+    // domain [1e308, 1.5e308]; the first knot maps to 1.5e308 + (1e308 + 1.7e308) = inf
+    let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    let c = BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl).unwrap();
+    assert!(matches!(c.reverse(), Err(Error::NonFinite { .. })));
 }
