@@ -1,7 +1,12 @@
-//! Non-rational B-spline curves `C(t) = Σ_i N_{i,p}(t) P_i` of any degree and dimension.
+//! Non-rational B-spline curves `C(t) = Σ_i N_{i,p}(t) P_i` of any degree and dimension:
+//! evaluation (P&T A3.1, A3.2), the derivative curve (A3.3), knot insertion (A5.1) and refinement
+//! (A5.4), splitting, Bezier decomposition (the pieces of A5.6) and its inverse, reversal and
+//! affine reparametrisation.
 //!
 //! Knot conventions are those of [`crate::knots`]: domain `[t_p, t_{n+1}]`, half-open spans,
-//! the right end evaluated by the last non-empty span.
+//! the right end evaluated by the last non-empty span. Every operation works for unclamped knot
+//! vectors (such as the lecture's `[0, 0, 1, 2, 3, 3]`, document 002 §C.5) and acts on the curve
+//! over its domain; knots of multiplicity `p + 1` (jumps) are allowed throughout.
 
 use serde::{Deserialize, Serialize};
 
@@ -406,7 +411,7 @@ impl BSplineCurve {
         knots.extend_from_slice(&u[k + 1..]);
         let mut q = vec![0.0; (n + 1 + r) * dim];
         // unchanged points: P_0 … P_{k−p} and P_{k−s} … P_n (shifted by r)
-        q[..=(k - p) * dim + dim - 1].copy_from_slice(&pc[..(k - p + 1) * dim]);
+        q[..(k - p + 1) * dim].copy_from_slice(&pc[..(k - p + 1) * dim]);
         q[(k - s + r) * dim..].copy_from_slice(&pc[(k - s) * dim..]);
         // rw: the p − s + 1 affected points P_{k−p} … P_{k−s}, updated in place
         let mut rw = pc[(k - p) * dim..(k - s + 1) * dim].to_vec();
@@ -684,17 +689,13 @@ impl BSplineCurve {
         let p = first.curve.degree();
         let dim = first.curve.dim();
         for (i, seg) in segments.iter().enumerate() {
-            check_finite("Bezier segment ends", &[seg.start, seg.end]).map_err(|_| {
-                Error::NonFinite {
-                    what: "Bezier segment start/end",
+            if let Some(value) = [seg.start, seg.end].into_iter().find(|v| !v.is_finite()) {
+                return Err(Error::NonFinite {
+                    what: "Bezier segment start/end (index = segment)",
                     index: i,
-                    value: if seg.start.is_finite() {
-                        seg.end
-                    } else {
-                        seg.start
-                    },
-                }
-            })?;
+                    value,
+                });
+            }
             if seg.start >= seg.end {
                 return Err(Error::EmptyDomain {
                     min: seg.start,
