@@ -410,11 +410,18 @@ proptest! {
         prop_assert_eq!(again, rebuilt);
     }
 
-    /// Splitting: the left piece is the curve on `[lo, t]`, the right piece on `[t, hi]`.
+    /// Splitting: the left piece is the curve on `[lo, t)` (its value at `t` is the left limit),
+    /// the right piece on `[t, hi]`.
     #[test]
-    fn split_keeps_curve(c in curve(), f in 0.01f64..0.99) {
-        let t = at(&c, f);
+    fn split_keeps_curve(c in curve(), f in 0.01f64..0.99, at_knot in any::<bool>(), knot_index in any::<prop::sample::Index>()) {
         let (lo, hi) = c.domain();
+        let interior: Vec<f64> = c.knots().as_slice().iter().copied().filter(|&k| k > lo && k < hi).collect();
+        // at an existing knot (of any multiplicity up to p + 1, i.e. also at a jump) or anywhere
+        let t = if at_knot && !interior.is_empty() {
+            interior[knot_index.index(interior.len())]
+        } else {
+            at(&c, f)
+        };
         prop_assume!(t > lo && t < hi);
         let (left, right) = c.split_at(t).unwrap();
         prop_assert_eq!(left.domain(), (lo, t));
@@ -897,4 +904,48 @@ proptest! {
             }
         }
     }
+}
+
+/// A cubic with a jump at 1 (multiplicity p + 1 = 4): two independent Bezier pieces; the
+/// decomposition and its inverse are exact, splitting at the jump separates them, and insertion
+/// next to the jump keeps the curve.
+#[test]
+fn cubic_with_a_jump() {
+    let ctrl = Points::new(vec![0.0, 1.0, 2.0, 3.0, 10.0, 9.0, 8.0, 7.0], 1).unwrap();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0];
+    let c = BSplineCurve::new(3, knots, ctrl).unwrap();
+    let pieces = c.to_bezier_segments();
+    assert_eq!(pieces.len(), 2);
+    assert_eq!(
+        pieces[0].curve.control_points().as_slice(),
+        &[0.0, 1.0, 2.0, 3.0]
+    );
+    assert_eq!(
+        pieces[1].curve.control_points().as_slice(),
+        &[10.0, 9.0, 8.0, 7.0]
+    );
+    assert_eq!(BSplineCurve::from_bezier_segments(&pieces).unwrap(), c);
+    let (left, right) = c.split_at(1.0).unwrap();
+    assert_eq!(left.eval(1.0).unwrap(), vec![3.0]);
+    assert_eq!(right.eval(1.0).unwrap(), vec![10.0]);
+    assert_eq!(c.eval(1.0).unwrap(), vec![10.0]);
+    assert!(matches!(
+        c.insert_knot(1.0, 1),
+        Err(Error::InvalidArgument { .. })
+    ));
+    let d = c.insert_knot(0.5, 3).unwrap();
+    for k in 0..=20 {
+        let t = f64::from(k) / 10.0;
+        let diff = max_diff(&c.eval(t).unwrap(), &d.eval(t).unwrap());
+        assert!(diff <= 1e-14, "t = {t}: {diff:e}");
+    }
+    let der = c.derivative().unwrap();
+    assert_eq!(
+        der.knots().as_slice(),
+        &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0]
+    );
+    assert_eq!(
+        der.control_points().as_slice(),
+        &[3.0, 3.0, 3.0, -3.0, -3.0, -3.0]
+    );
 }
