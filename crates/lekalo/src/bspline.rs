@@ -271,7 +271,7 @@ impl BSplineCurve {
     }
 
     /// Axis-aligned bounding box `(min, max)` of the control points. By the convex-hull property
-    /// (P&T §3.2, property P4) it contains the curve on its domain.
+    /// (P&T §3.2, strong convex hull property) it contains the curve on its domain.
     #[must_use]
     pub fn bounding_box(&self) -> (Vec<f64>, Vec<f64>) {
         debug_assert!(!self.control.is_empty(), "a curve has control points");
@@ -282,7 +282,7 @@ impl BSplineCurve {
 
     /// The derivative curve `C'(t) = Σ_{i=0}^{n−1} N_{i+1,p−1}(t) Q_i` with
     /// `Q_i = p (P_{i+1} − P_i) / (t_{i+p+1} − t_{i+1})` on the knots `t_1 … t_{m−1}`, of degree
-    /// `p − 1` (P&T eq. 3.8 and Algorithm A3.3). Where `t_{i+p+1} = t_{i+1}` (a knot of
+    /// `p − 1` (P&T §3.3 and Algorithm A3.3). Where `t_{i+p+1} = t_{i+1}` (a knot of
     /// multiplicity `p + 1`, where the curve jumps) the basis function `N_{i+1,p−1}` vanishes
     /// identically; its control point and one copy of the knot are dropped, so the result is a
     /// valid spline (multiplicities ≤ `p`). The derivative curve has the same domain; at a knot it
@@ -347,7 +347,7 @@ impl BSplineCurve {
         Ok(curve)
     }
 
-    /// Inserts the knot `t` `times` times by Boehm's algorithm (P&T Algorithm A5.1, eq. 5.15):
+    /// Inserts the knot `t` `times` times by Boehm's algorithm (P&T §5.2, Algorithm A5.1):
     /// the curve is unchanged, it gains `times` control points, and each new control point is
     /// `Q_i = α_i P_i + (1 − α_i) P_{i−1}` with `α_i = (t − t_i)/(t_{i+p} − t_i)`. Works for
     /// unclamped knot vectors too, including at the ends of the domain. `times = 0` returns a
@@ -659,8 +659,8 @@ impl BSplineCurve {
     /// `p + 1`, each join with multiplicity `p` when the adjacent end control points are equal
     /// (the shared point is stored once; the curve is continuous there), else `p + 1` (the curve
     /// jumps there, exactly as the pieces do). Degree-0 pieces always join with multiplicity 1.
-    /// (P&T §5.6; Curry–Schoenberg, document 003 Theorem 4.5, with `ν = 1` or `0` at the
-    /// breakpoints.) O(total control points · dim).
+    /// (The inverse of P&T A5.6; Curry–Schoenberg, document 003 Theorem 4.5, with `ν = 1` or
+    /// `0` at the breakpoints.) O(total control points · dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, BezierSegment, BSplineCurve, Points};
@@ -753,7 +753,7 @@ impl BSplineCurve {
     }
 
     /// The reversed curve `C̃(t) = C(a + b − t)` on the same domain `[a, b]`: control points in
-    /// reverse order, knots `t̃_i = a + b − t_{m−i}` (P&T §6.1 "reversing"; Open CASCADE
+    /// reverse order, knots `t̃_i = a + b − t_{m−i}` (standard; Open CASCADE
     /// `Geom_BSplineCurve::Reverse`). The ends of the domain map exactly onto each other; the
     /// other knots are rounded once.
     ///
@@ -799,9 +799,10 @@ impl BSplineCurve {
     }
 
     /// The same curve on the domain `[a, b]`: the affine change of parameter
-    /// `t̃ = a + (t − t_min)·(b − a)/(t_max − t_min)` applied to every knot (P&T §6.2, linear
-    /// reparametrisation), so `C̃(t̃) = C(t)`; control points are unchanged and derivatives scale by
-    /// `(t_max − t_min)/(b − a)` per order. The ends of the domain map exactly to `a` and `b`.
+    /// `t̃ = a + (t − t_min)·(b − a)/(t_max − t_min)` applied to every knot (linear
+    /// reparametrisation, P&T ch. 6), so `C̃(t̃) = C(t)`; control points are unchanged and
+    /// derivatives scale by `(t_max − t_min)/(b − a)` per order. The ends of the domain map
+    /// exactly to `a` and `b`.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Points};

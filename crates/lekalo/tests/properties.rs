@@ -191,7 +191,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     /// Partition of unity, non-negativity and local support of the basis on the domain
-    /// (P&T §2.2, P2–P4; document 003 Lemmas 3.1, 3.5, 3.8).
+    /// (P&T §2.2; document 003 Lemmas 3.1, 3.5, 3.8).
     #[test]
     fn basis_partition_nonnegative_local(c in curve()) {
         let p = c.degree();
@@ -254,7 +254,7 @@ proptest! {
         }
     }
 
-    /// Strong convex hull (P&T P4): `C(t)` lies in the box of the active control points
+    /// Strong convex hull (P&T §3.2): `C(t)` lies in the box of the active control points
     /// `P_{k−p} … P_k` of its span `k`.
     #[test]
     fn convex_hull(c in curve()) {
@@ -281,7 +281,7 @@ proptest! {
         check_finite_differences(&c, &fs)?;
     }
 
-    /// The derivative curve (P&T eq. 3.8) equals `eval_derivatives`, order by order, including at
+    /// The derivative curve (P&T §3.3, A3.3) equals `eval_derivatives`, order by order, including at
     /// knots (right-hand derivatives) and at the ends.
     #[test]
     fn derivative_curve_matches_eval_derivatives(c in curve_with(1..=6)) {
@@ -806,7 +806,7 @@ fn bezier_batch_and_eval_errors() {
 }
 
 /// Boehm insertion into a quadratic Bezier (as a clamped B-spline) at 1/2 gives the de Casteljau
-/// midpoints `P_0, (P_0 + P_1)/2, (P_1 + P_2)/2, P_2` (P&T eq. 5.15), exactly in binary floats.
+/// midpoints `P_0, (P_0 + P_1)/2, (P_1 + P_2)/2, P_2` (P&T §5.2), exactly in binary floats.
 #[test]
 fn insertion_golden_quadratic() {
     let ctrl = Points::from_2d(&[[0.0, 0.0], [2.0, 4.0], [6.0, 2.0]]).unwrap();
@@ -825,7 +825,7 @@ fn insertion_golden_quadratic() {
     assert_eq!(c.refine_knots(&[0.5, 0.5]).unwrap(), twice);
 }
 
-/// A clamped quadratic with one interior knot (P&T §5.4): the pieces share the midpoint of
+/// A clamped quadratic with one interior knot (P&T §5.3): the pieces share the midpoint of
 /// `P_1 P_2`, and each interior control point is kept.
 #[test]
 fn decomposition_golden_clamped_quadratic() {
@@ -874,7 +874,7 @@ fn reverse_overflow_is_an_error() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
-    /// Document 003 Lemma 3.9 (P&T §2.2, P5): at an interior knot of multiplicity `m ≤ p` the
+    /// Document 003 Lemma 3.9 (P&T §2.2): at an interior knot of multiplicity `m ≤ p` the
     /// curve is `C^{p−m}`. Left-hand derivatives come from the left piece of a split there
     /// (evaluated at its right end), right-hand ones from the curve itself. Tolerance:
     /// `1e-10 · σ_k` with `σ_k` the largest control point of the k-th derivative curve of either
