@@ -237,8 +237,9 @@ impl BezierCurve {
 
     /// Subdivision at `t` by de Casteljau's algorithm (P&T §1.3 and §5.2; Farin, *Curves and
     /// Surfaces for CAGD*, "subdivision"): the left curve holds the first points `P_0^{(k)}` of
-    /// each de Casteljau level, the right curve the last points `P_{n−k}^{(k)}`. The left curve reparametrised to `[0, 1]` is `P` on `[0, t]`,
-    /// the right one is `P` on `[t, 1]`; both have the degree of `P`. O(n²·dim).
+    /// each de Casteljau level, the right curve the last points `P_{n−k}^{(k)}`. The left curve
+    /// reparametrised to `[0, 1]` is `P` on `[0, t]`, the right one is `P` on `[t, 1]`; both
+    /// have the degree of `P`. O(n²·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
