@@ -169,8 +169,8 @@ impl BezierCurve {
 
     /// Derivatives `P^{(k)}(t)` for `k = 0..=order`: returns `order + 1` points, row `k` the k-th
     /// derivative; orders above the degree are zero. Each derivative is evaluated by de Casteljau
-    /// on the k-th hodograph, whose control points are `n!/(n−k)! Δ^k P_i` (P&T eq. 1.9 applied
-    /// k times; see [`BezierCurve::derivative`]). O((order + 1)·n²·dim).
+    /// on the k-th hodograph, whose control points are `n!/(n−k)! Δ^k P_i` (the hodograph formula
+    /// applied k times; see [`BezierCurve::derivative`]). O((order + 1)·n²·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
@@ -211,7 +211,8 @@ impl BezierCurve {
     }
 
     /// The derivative curve (hodograph) `P'(t) = Σ_{i=0}^{n−1} b_{n−1,i}(t) · n (P_{i+1} − P_i)`,
-    /// a Bezier curve of degree `n − 1` (P&T eq. 1.9). The derivative of a degree-0 (constant)
+    /// a Bezier curve of degree `n − 1` (the hodograph; P&T §1.3, derivative of a Bezier
+    /// curve). The derivative of a degree-0 (constant)
     /// curve is the constant zero curve of degree 0.
     ///
     /// ```
@@ -234,10 +235,11 @@ impl BezierCurve {
         BezierCurve::from_raw(Points::from_raw(data, dim))
     }
 
-    /// Subdivision at `t` by de Casteljau's algorithm (P&T §1.4, eq. 1.11; Farin §4.6): the left
-    /// curve holds the first points `P_0^{(k)}` of each de Casteljau level, the right curve the
-    /// last points `P_{n−k}^{(k)}`. The left curve reparametrised to `[0, 1]` is `P` on `[0, t]`,
-    /// the right one is `P` on `[t, 1]`; both have the degree of `P`. O(n²·dim).
+    /// Subdivision at `t` by de Casteljau's algorithm (P&T §1.3 and §5.2; Farin, *Curves and
+    /// Surfaces for CAGD*, "subdivision"): the left curve holds the first points `P_0^{(k)}` of
+    /// each de Casteljau level, the right curve the last points `P_{n−k}^{(k)}`. The left curve
+    /// reparametrised to `[0, 1]` is `P` on `[0, t]`, the right one is `P` on `[t, 1]`; both
+    /// have the degree of `P`. O(n²·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
@@ -284,7 +286,7 @@ impl BezierCurve {
 
     /// The same curve as a clamped B-spline of degree `n` on the knots
     /// `[0, …, 0, 1, …, 1]` (`n + 1` copies each), whose basis functions are the Bernstein
-    /// polynomials (P&T §2.2).
+    /// polynomials (P&T §2.2, property P2.1).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};

@@ -1,13 +1,18 @@
-//! Non-rational B-spline curves `C(t) = Σ_i N_{i,p}(t) P_i` of any degree and dimension.
+//! Non-rational B-spline curves `C(t) = Σ_i N_{i,p}(t) P_i` of any degree and dimension:
+//! evaluation (P&T A3.1, A3.2), the derivative curve (A3.3), knot insertion (A5.1) and refinement
+//! (A5.4), splitting, Bezier decomposition (the pieces of A5.6) and its inverse, reversal and
+//! affine reparametrisation.
 //!
 //! Knot conventions are those of [`crate::knots`]: domain `[t_p, t_{n+1}]`, half-open spans,
-//! the right end evaluated by the last non-empty span.
+//! the right end evaluated by the last non-empty span. Every operation works for unclamped knot
+//! vectors (such as the lecture's `[0, 0, 1, 2, 3, 3]`, document 002 §C.5) and acts on the curve
+//! over its domain; knots of multiplicity `p + 1` (jumps) are allowed throughout.
 
 use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bezier::{BezierCurve, BezierSegment};
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -266,7 +271,7 @@ impl BSplineCurve {
     }
 
     /// Axis-aligned bounding box `(min, max)` of the control points. By the convex-hull property
-    /// (P&T §3.2, property P4) it contains the curve on its domain.
+    /// (P&T §3.2, strong convex hull property) it contains the curve on its domain.
     #[must_use]
     pub fn bounding_box(&self) -> (Vec<f64>, Vec<f64>) {
         debug_assert!(!self.control.is_empty(), "a curve has control points");
@@ -277,7 +282,7 @@ impl BSplineCurve {
 
     /// The derivative curve `C'(t) = Σ_{i=0}^{n−1} N_{i+1,p−1}(t) Q_i` with
     /// `Q_i = p (P_{i+1} − P_i) / (t_{i+p+1} − t_{i+1})` on the knots `t_1 … t_{m−1}`, of degree
-    /// `p − 1` (P&T eq. 3.8 and Algorithm A3.3). Where `t_{i+p+1} = t_{i+1}` (a knot of
+    /// `p − 1` (P&T §3.3 and Algorithm A3.3). Where `t_{i+p+1} = t_{i+1}` (a knot of
     /// multiplicity `p + 1`, where the curve jumps) the basis function `N_{i+1,p−1}` vanishes
     /// identically; its control point and one copy of the knot are dropped, so the result is a
     /// valid spline (multiplicities ≤ `p`). The derivative curve has the same domain; at a knot it
@@ -342,7 +347,7 @@ impl BSplineCurve {
         Ok(curve)
     }
 
-    /// Inserts the knot `t` `times` times by Boehm's algorithm (P&T Algorithm A5.1, eq. 5.15):
+    /// Inserts the knot `t` `times` times by Boehm's algorithm (P&T §5.2, Algorithm A5.1):
     /// the curve is unchanged, it gains `times` control points, and each new control point is
     /// `Q_i = α_i P_i + (1 − α_i) P_{i−1}` with `α_i = (t − t_i)/(t_{i+p} − t_i)`. Works for
     /// unclamped knot vectors too, including at the ends of the domain. `times = 0` returns a
@@ -406,7 +411,7 @@ impl BSplineCurve {
         knots.extend_from_slice(&u[k + 1..]);
         let mut q = vec![0.0; (n + 1 + r) * dim];
         // unchanged points: P_0 … P_{k−p} and P_{k−s} … P_n (shifted by r)
-        q[..=(k - p) * dim + dim - 1].copy_from_slice(&pc[..(k - p + 1) * dim]);
+        q[..(k - p + 1) * dim].copy_from_slice(&pc[..(k - p + 1) * dim]);
         q[(k - s + r) * dim..].copy_from_slice(&pc[(k - s) * dim..]);
         // rw: the p − s + 1 affected points P_{k−p} … P_{k−s}, updated in place
         let mut rw = pc[(k - p) * dim..(k - s + 1) * dim].to_vec();
@@ -448,8 +453,7 @@ impl BSplineCurve {
     /// # Errors
     /// [`Error::NonFinite`]; [`Error::KnotsNotSorted`] if `x` decreases (lekalo never sorts your
     /// knots); [`Error::ParameterOutOfDomain`] for a knot outside the domain;
-    /// [`Error::InvalidArgument`] if some knot's multiplicity would exceed the degree;
-    /// [`Error::TooLarge`] if the result would exceed [`MAX_SCALARS`](crate::MAX_SCALARS).
+    /// [`Error::InvalidArgument`] if some knot's multiplicity would exceed the degree.
     pub fn refine_knots(&self, x: &[f64]) -> Result<BSplineCurve> {
         if x.is_empty() {
             return Ok(self.clone());
@@ -481,14 +485,6 @@ impl BSplineCurve {
                 });
             }
             i += run;
-        }
-        let size = (self.control.len() + x.len()).saturating_mul(self.dim());
-        if size > MAX_SCALARS {
-            return Err(Error::TooLarge {
-                what: "refined control points",
-                size,
-                max: MAX_SCALARS,
-            });
         }
         Ok(self.refine_unchecked(x))
     }
@@ -663,8 +659,8 @@ impl BSplineCurve {
     /// `p + 1`, each join with multiplicity `p` when the adjacent end control points are equal
     /// (the shared point is stored once; the curve is continuous there), else `p + 1` (the curve
     /// jumps there, exactly as the pieces do). Degree-0 pieces always join with multiplicity 1.
-    /// (P&T §5.6; Curry–Schoenberg, document 003 Theorem 4.5, with `ν = 1` or `0` at the
-    /// breakpoints.) O(total control points · dim).
+    /// (The inverse of P&T A5.6; Curry–Schoenberg, document 003 Theorem 4.5, with `ν = 1` or
+    /// `0` at the breakpoints.) O(total control points · dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, BezierSegment, BSplineCurve, Points};
@@ -693,17 +689,13 @@ impl BSplineCurve {
         let p = first.curve.degree();
         let dim = first.curve.dim();
         for (i, seg) in segments.iter().enumerate() {
-            check_finite("Bezier segment ends", &[seg.start, seg.end]).map_err(|_| {
-                Error::NonFinite {
-                    what: "Bezier segment start/end",
+            if let Some(value) = [seg.start, seg.end].into_iter().find(|v| !v.is_finite()) {
+                return Err(Error::NonFinite {
+                    what: "Bezier segment start/end (index = segment)",
                     index: i,
-                    value: if seg.start.is_finite() {
-                        seg.end
-                    } else {
-                        seg.start
-                    },
-                }
-            })?;
+                    value,
+                });
+            }
             if seg.start >= seg.end {
                 return Err(Error::EmptyDomain {
                     min: seg.start,
@@ -761,7 +753,7 @@ impl BSplineCurve {
     }
 
     /// The reversed curve `C̃(t) = C(a + b − t)` on the same domain `[a, b]`: control points in
-    /// reverse order, knots `t̃_i = a + b − t_{m−i}` (P&T §6.1 "reversing"; Open CASCADE
+    /// reverse order, knots `t̃_i = a + b − t_{m−i}` (standard; Open CASCADE
     /// `Geom_BSplineCurve::Reverse`). The ends of the domain map exactly onto each other; the
     /// other knots are rounded once.
     ///
@@ -776,8 +768,9 @@ impl BSplineCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::KnotMultiplicity`] or [`Error::EmptyDomain`] if rounding merges distinct knots
-    /// (knots closer than the rounding unit of the domain's scale).
+    /// Only for knots at the limits of `f64`: [`Error::KnotMultiplicity`] if rounding merges
+    /// distinct knots (knots closer than the rounding unit of the domain's scale);
+    /// [`Error::NonFinite`] if a mapped knot outside the domain overflows.
     pub fn reverse(&self) -> Result<BSplineCurve> {
         let (a, b) = self.domain();
         // piecewise so that a ↔ b exactly and the map stays monotone under rounding
@@ -806,9 +799,10 @@ impl BSplineCurve {
     }
 
     /// The same curve on the domain `[a, b]`: the affine change of parameter
-    /// `t̃ = a + (t − t_min)·(b − a)/(t_max − t_min)` applied to every knot (P&T §6.2, linear
-    /// reparametrisation), so `C̃(t̃) = C(t)`; control points are unchanged and derivatives scale by
-    /// `(t_max − t_min)/(b − a)` per order. The ends of the domain map exactly to `a` and `b`.
+    /// `t̃ = a + (t − t_min)·(b − a)/(t_max − t_min)` applied to every knot (linear
+    /// reparametrisation, P&T ch. 6), so `C̃(t̃) = C(t)`; control points are unchanged and
+    /// derivatives scale by `(t_max − t_min)/(b − a)` per order. The ends of the domain map
+    /// exactly to `a` and `b`.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Points};

@@ -29,32 +29,44 @@ const FD_STEP: f64 = 1e-4;
 // strategies
 
 /// Knots from a start in `[-5, 5)` and gaps that are zero a quarter of the time (multiple knots)
-/// or in `[0.25, 2)`; optionally clamped. Invalid draws (multiplicity > p + 1, empty domain) are
-/// filtered out by `BSplineCurve::new` itself.
+/// or in `[0.25, 2)`, all times a scale `10^e`, `e ∈ [-4, 4]`; optionally clamped. Control
+/// coordinates in `[-10, 10)` times `10^f`, `f ∈ [-3, 6]`. Invalid draws (multiplicity > p + 1,
+/// empty domain) are filtered out by `BSplineCurve::new` itself.
 fn curve_with(degrees: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = BSplineCurve> {
-    (degrees, 1usize..=6, 0usize..=6, any::<bool>())
-        .prop_flat_map(|(p, dim, extra, clamped)| {
+    (
+        degrees,
+        1usize..=6,
+        0usize..=6,
+        any::<bool>(),
+        -4i32..=4,
+        -3i32..=6,
+    )
+        .prop_flat_map(|(p, dim, extra, clamped, knot_exp, ctrl_exp)| {
             let n_ctrl = p + 1 + extra;
             let n_knots = n_ctrl + p + 1;
             (
-                Just((p, dim, clamped)),
+                Just((p, dim, clamped, 10f64.powi(knot_exp), 10f64.powi(ctrl_exp))),
                 -5.0f64..5.0,
                 prop::collection::vec(prop_oneof![1 => Just(0.0), 3 => 0.25f64..2.0], n_knots - 1),
                 prop::collection::vec(-10.0f64..10.0, n_ctrl * dim),
             )
         })
-        .prop_filter_map("valid knots", |((p, dim, clamped), t0, mut gaps, ctrl)| {
-            if clamped {
-                let len = gaps.len();
-                gaps[..p].fill(0.0);
-                gaps[len - p..].fill(0.0);
-            }
-            let mut knots = vec![t0];
-            for g in gaps {
-                knots.push(knots[knots.len() - 1] + g);
-            }
-            BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
-        })
+        .prop_filter_map(
+            "valid knots",
+            |((p, dim, clamped, knot_scale, ctrl_scale), t0, mut gaps, ctrl)| {
+                if clamped {
+                    let len = gaps.len();
+                    gaps[..p].fill(0.0);
+                    gaps[len - p..].fill(0.0);
+                }
+                let mut knots = vec![t0 * knot_scale];
+                for g in gaps {
+                    knots.push(knots[knots.len() - 1] + g * knot_scale);
+                }
+                let ctrl = ctrl.into_iter().map(|x| x * ctrl_scale).collect();
+                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+            },
+        )
 }
 
 fn curve() -> impl Strategy<Value = BSplineCurve> {
@@ -179,7 +191,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     /// Partition of unity, non-negativity and local support of the basis on the domain
-    /// (P&T §2.2, P2–P4; document 003 Lemmas 3.1, 3.5, 3.8).
+    /// (P&T §2.2; document 003 Lemmas 3.1, 3.5, 3.8).
     #[test]
     fn basis_partition_nonnegative_local(c in curve()) {
         let p = c.degree();
@@ -242,7 +254,7 @@ proptest! {
         }
     }
 
-    /// Strong convex hull (P&T P4): `C(t)` lies in the box of the active control points
+    /// Strong convex hull (P&T §3.2): `C(t)` lies in the box of the active control points
     /// `P_{k−p} … P_k` of its span `k`.
     #[test]
     fn convex_hull(c in curve()) {
@@ -269,7 +281,7 @@ proptest! {
         check_finite_differences(&c, &fs)?;
     }
 
-    /// The derivative curve (P&T eq. 3.8) equals `eval_derivatives`, order by order, including at
+    /// The derivative curve (P&T §3.3, A3.3) equals `eval_derivatives`, order by order, including at
     /// knots (right-hand derivatives) and at the ends.
     #[test]
     fn derivative_curve_matches_eval_derivatives(c in curve_with(1..=6)) {
@@ -398,11 +410,18 @@ proptest! {
         prop_assert_eq!(again, rebuilt);
     }
 
-    /// Splitting: the left piece is the curve on `[lo, t]`, the right piece on `[t, hi]`.
+    /// Splitting: the left piece is the curve on `[lo, t)` (its value at `t` is the left limit),
+    /// the right piece on `[t, hi]`.
     #[test]
-    fn split_keeps_curve(c in curve(), f in 0.01f64..0.99) {
-        let t = at(&c, f);
+    fn split_keeps_curve(c in curve(), f in 0.01f64..0.99, at_knot in any::<bool>(), knot_index in any::<prop::sample::Index>()) {
         let (lo, hi) = c.domain();
+        let interior: Vec<f64> = c.knots().as_slice().iter().copied().filter(|&k| k > lo && k < hi).collect();
+        // at an existing knot (of any multiplicity up to p + 1, i.e. also at a jump) or anywhere
+        let t = if at_knot && !interior.is_empty() {
+            interior[knot_index.index(interior.len())]
+        } else {
+            at(&c, f)
+        };
         prop_assume!(t > lo && t < hi);
         let (left, right) = c.split_at(t).unwrap();
         prop_assert_eq!(left.domain(), (lo, t));
@@ -417,31 +436,41 @@ proptest! {
     }
 
     /// Reversal and reparametrisation: `rev(a + b − t) = C(t)`, `C̃(a' + (t − a)·s) = C(t)`.
+    /// Knots and parameters are mapped with one or two roundings each, i.e. moved by up to
+    /// `δ = 4ε·(|t_min| + |t_max| + |a'| + |b'|)` in domain units, which moves the curve by up to
+    /// `(p + 1)·δ·σ_1` (σ_1: largest control point of the derivative curve, a bound of `|C'|`);
+    /// the tolerance is that plus [`SAME_CURVE_TOL`]. At a jump the two sides differ, so knots of
+    /// multiplicity `p + 1` are skipped.
     #[test]
     fn reverse_and_reparametrize(c in curve(), a in -100.0f64..100.0, len in 0.1f64..100.0) {
+        let p = c.degree();
         let (lo, hi) = c.domain();
+        let b = a + len;
+        let sigma1 = c.derivative().map_or(0.0, |d| d.control_points().max_abs());
+        let shift = 4.0 * f64::EPSILON * (lo.abs() + hi.abs());
         let r = c.reverse().unwrap();
         prop_assert_eq!(r.domain(), (lo, hi));
-        let tol = SAME_CURVE_TOL * scale(&c);
+        let tol = SAME_CURVE_TOL * scale(&c) + (p + 1) as f64 * shift * sigma1;
         for t in params(&c) {
-            let u = (lo + hi - t).clamp(lo, hi);
-            // away from knots the map's rounding is harmless; at a jump it picks the other side
-            if c.knots().multiplicity(t) > c.degree() {
+            if c.knots().multiplicity(t) > p {
                 continue;
             }
+            let u = (lo + hi - t).clamp(lo, hi);
             let d = max_diff(&r.eval(u).unwrap(), &c.eval(t).unwrap());
-            prop_assert!(d <= 1e3 * tol, "reverse at {t}: diff {d:e}");
+            prop_assert!(d <= tol, "reverse at {t}: diff {d:e} > {tol:e}");
         }
-        let b = a + len;
         let q = c.reparametrize(a, b).unwrap();
         prop_assert_eq!(q.domain(), (a, b));
+        // shifts in the new parameter, measured in old units
+        let shift_new = 4.0 * f64::EPSILON * (a.abs() + b.abs()) * (hi - lo) / (b - a);
+        let tol = SAME_CURVE_TOL * scale(&c) + (p + 1) as f64 * (shift + shift_new) * sigma1;
         for t in params(&c) {
-            if c.knots().multiplicity(t) > c.degree() {
+            if c.knots().multiplicity(t) > p {
                 continue;
             }
             let s = (a + (t - lo) * (b - a) / (hi - lo)).clamp(a, b);
             let d = max_diff(&q.eval(s).unwrap(), &c.eval(t).unwrap());
-            prop_assert!(d <= 1e3 * tol, "reparametrize at {t}: diff {d:e}");
+            prop_assert!(d <= tol, "reparametrize at {t}: diff {d:e} > {tol:e}");
         }
     }
 }
@@ -774,4 +803,149 @@ fn bezier_batch_and_eval_errors() {
         Err(Error::ParameterOutOfDomain { .. })
     ));
     assert_eq!(seg.eval(3.0).unwrap(), vec![3.0, 2.0]);
+}
+
+/// Boehm insertion into a quadratic Bezier (as a clamped B-spline) at 1/2 gives the de Casteljau
+/// midpoints `P_0, (P_0 + P_1)/2, (P_1 + P_2)/2, P_2` (P&T §5.2), exactly in binary floats.
+#[test]
+fn insertion_golden_quadratic() {
+    let ctrl = Points::from_2d(&[[0.0, 0.0], [2.0, 4.0], [6.0, 2.0]]).unwrap();
+    let c = BezierCurve::new(ctrl).unwrap().to_bspline();
+    let d = c.insert_knot(0.5, 1).unwrap();
+    assert_eq!(d.knots().as_slice(), &[0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]);
+    assert_eq!(
+        d.control_points().as_slice(),
+        &[0.0, 0.0, 1.0, 2.0, 4.0, 3.0, 6.0, 2.0]
+    );
+    let twice = c.insert_knot(0.5, 2).unwrap();
+    assert_eq!(
+        twice.control_points().as_slice(),
+        &[0.0, 0.0, 1.0, 2.0, 2.5, 2.5, 4.0, 3.0, 6.0, 2.0]
+    );
+    assert_eq!(c.refine_knots(&[0.5, 0.5]).unwrap(), twice);
+}
+
+/// A clamped quadratic with one interior knot (P&T §5.3): the pieces share the midpoint of
+/// `P_1 P_2`, and each interior control point is kept.
+#[test]
+fn decomposition_golden_clamped_quadratic() {
+    let ctrl = Points::new(vec![0.0, 2.0, 4.0, 8.0], 1).unwrap();
+    let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], ctrl).unwrap();
+    assert!(c.is_clamped());
+    let pieces = c.to_bezier_segments();
+    assert_eq!(pieces.len(), 2);
+    assert_eq!((pieces[0].start, pieces[0].end), (0.0, 0.5));
+    assert_eq!((pieces[1].start, pieces[1].end), (0.5, 1.0));
+    assert_eq!(
+        pieces[0].curve.control_points().as_slice(),
+        &[0.0, 2.0, 3.0]
+    );
+    assert_eq!(
+        pieces[1].curve.control_points().as_slice(),
+        &[3.0, 4.0, 8.0]
+    );
+    let back = BSplineCurve::from_bezier_segments(&pieces).unwrap();
+    assert_eq!(
+        back.knots().as_slice(),
+        &[0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]
+    );
+    // degree 0: one piece per non-empty span, the constant control point
+    let steps = BSplineCurve::new(
+        0,
+        vec![0.0, 1.0, 2.5, 3.0],
+        Points::new(vec![5.0, 6.0, 7.0], 1).unwrap(),
+    )
+    .unwrap();
+    let pieces = steps.to_bezier_segments();
+    assert_eq!(pieces.len(), 3);
+    assert_eq!((pieces[1].start, pieces[1].end), (1.0, 2.5));
+    assert_eq!(pieces[2].curve.control_points().as_slice(), &[7.0]);
+    assert_eq!(BSplineCurve::from_bezier_segments(&pieces).unwrap(), steps);
+}
+
+#[test]
+fn reverse_overflow_is_an_error() {
+    // domain [1e308, 1.5e308]; the first knot maps to 1.5e308 + (1e308 + 1.7e308) = inf
+    let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    let c = BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl).unwrap();
+    assert!(matches!(c.reverse(), Err(Error::NonFinite { .. })));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Document 003 Lemma 3.9 (P&T §2.2): at an interior knot of multiplicity `m ≤ p` the
+    /// curve is `C^{p−m}`. Left-hand derivatives come from the left piece of a split there
+    /// (evaluated at its right end), right-hand ones from the curve itself. Tolerance:
+    /// `1e-10 · σ_k` with `σ_k` the largest control point of the k-th derivative curve of either
+    /// piece (the derivative's scale): each derivative order differences the rounding of the
+    /// insertion once more; the largest ratio seen over 3000 cases was 1.3e-12 (order 4).
+    #[test]
+    fn smoothness_at_knots_follows_multiplicity(c in curve_with(1..=6)) {
+        let p = c.degree();
+        let (lo, hi) = c.domain();
+        for (u, m) in c.knots().distinct() {
+            if !(u > lo && u < hi) || m > p {
+                continue;
+            }
+            let (left, _) = c.split_at(u).unwrap();
+            let order = p - m;
+            let from_left = left.eval_derivatives(u, order).unwrap();
+            let from_right = c.eval_derivatives(u, order).unwrap();
+            let (mut dl, mut dc) = (left.clone(), c.clone());
+            for k in 0..=order {
+                let sigma = dl.control_points().max_abs().max(dc.control_points().max_abs()).max(1e-300);
+                let diff = max_diff(from_left.point(k), from_right.point(k));
+                prop_assert!(diff <= 1e-10 * sigma, "knot {u} (multiplicity {m}), order {k}: diff {diff:e}, scale {sigma:e}");
+                if k < order {
+                    dl = dl.derivative().unwrap();
+                    dc = dc.derivative().unwrap();
+                }
+            }
+        }
+    }
+}
+
+/// A cubic with a jump at 1 (multiplicity p + 1 = 4): two independent Bezier pieces; the
+/// decomposition and its inverse are exact, splitting at the jump separates them, and insertion
+/// next to the jump keeps the curve.
+#[test]
+fn cubic_with_a_jump() {
+    let ctrl = Points::new(vec![0.0, 1.0, 2.0, 3.0, 10.0, 9.0, 8.0, 7.0], 1).unwrap();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0];
+    let c = BSplineCurve::new(3, knots, ctrl).unwrap();
+    let pieces = c.to_bezier_segments();
+    assert_eq!(pieces.len(), 2);
+    assert_eq!(
+        pieces[0].curve.control_points().as_slice(),
+        &[0.0, 1.0, 2.0, 3.0]
+    );
+    assert_eq!(
+        pieces[1].curve.control_points().as_slice(),
+        &[10.0, 9.0, 8.0, 7.0]
+    );
+    assert_eq!(BSplineCurve::from_bezier_segments(&pieces).unwrap(), c);
+    let (left, right) = c.split_at(1.0).unwrap();
+    assert_eq!(left.eval(1.0).unwrap(), vec![3.0]);
+    assert_eq!(right.eval(1.0).unwrap(), vec![10.0]);
+    assert_eq!(c.eval(1.0).unwrap(), vec![10.0]);
+    assert!(matches!(
+        c.insert_knot(1.0, 1),
+        Err(Error::InvalidArgument { .. })
+    ));
+    let d = c.insert_knot(0.5, 3).unwrap();
+    for k in 0..=20 {
+        let t = f64::from(k) / 10.0;
+        let diff = max_diff(&c.eval(t).unwrap(), &d.eval(t).unwrap());
+        assert!(diff <= 1e-14, "t = {t}: {diff:e}");
+    }
+    let der = c.derivative().unwrap();
+    assert_eq!(
+        der.knots().as_slice(),
+        &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0]
+    );
+    assert_eq!(
+        der.control_points().as_slice(),
+        &[3.0, 3.0, 3.0, -3.0, -3.0, -3.0]
+    );
 }
