@@ -159,8 +159,8 @@ impl BezierSurface {
         let (nu, nv) = self.net_size;
         let dim = self.dim();
         let side = order + 1;
-        let bu = bernstein_derivatives(nu - 1, u, order.min(nu - 1));
-        let bv = bernstein_derivatives(nv - 1, v, order.min(nv - 1));
+        let bu = bernstein_derivatives(nu - 1, u, order.min(nu - 1))?;
+        let bv = bernstein_derivatives(nv - 1, v, order.min(nv - 1))?;
         let ctrl = self.control.as_slice();
         let mut out = vec![0.0; side * side * dim];
         let mut tmp = vec![0.0; dim];

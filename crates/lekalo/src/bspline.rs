@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bezier::{BezierCurve, BezierSegment};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_curve_derivative_order, check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -234,6 +234,7 @@ impl BSplineCurve {
     /// # Errors
     /// [`Error::ParameterOutOfDomain`].
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
+        check_curve_derivative_order(order)?;
         let p = self.degree;
         let dim = self.dim();
         let span = self.knots.find_span(p, t)?;
@@ -891,6 +892,21 @@ mod tests {
             c.eval(0.5),
             Err(Error::ParameterOutOfDomain { .. })
         ));
+    }
+
+    #[test]
+    fn absurd_derivative_orders_are_refused_before_allocating() {
+        let c = lecture();
+        assert!(matches!(
+            c.eval_derivatives(1.5, usize::MAX),
+            Err(Error::TooLarge { .. })
+        ));
+        let b = crate::BezierCurve::new(c.control_points().clone()).unwrap();
+        assert!(matches!(
+            b.eval_derivatives(0.5, usize::MAX),
+            Err(Error::TooLarge { .. })
+        ));
+        assert_eq!(c.eval_derivatives(1.5, 1024).unwrap().len(), 1025);
     }
 
     #[test]

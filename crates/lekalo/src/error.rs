@@ -321,6 +321,23 @@ pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// Refuses derivative orders above [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER)
+/// before any buffer of `order + 1` rows is allocated.
+///
+/// # Errors
+/// [`Error::TooLarge`].
+pub(crate) fn check_curve_derivative_order(order: usize) -> Result<()> {
+    let max = crate::MAX_CURVE_DERIVATIVE_ORDER;
+    if order > max {
+        return Err(Error::TooLarge {
+            what: "derivative order",
+            size: order,
+            max,
+        });
+    }
+    Ok(())
+}
+
 /// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
 /// refused with [`Error::TooLarge`] instead of being allocated.
 pub const MAX_SCALARS: usize = 1 << 31;

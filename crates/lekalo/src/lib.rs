@@ -33,9 +33,9 @@ mod bspline;
 mod error;
 mod knots;
 mod nurbs;
+mod nurbs_surface;
 #[cfg(test)]
 mod oracle;
-mod nurbs_surface;
 mod points;
 mod surface;
 
