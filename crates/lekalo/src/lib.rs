@@ -47,6 +47,15 @@ mod hermite;
 mod interpolate;
 mod linalg;
 
+pub use hermite::{
+    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
+    CubicHermite, TangentEstimate, HERMITE_MATRIX,
+};
+pub use interpolate::{
+    interpolate_surface, natural_cubic_spline, parametrize, CurveInterpolation, EndCondition,
+    KnotPlacement, Parametrization, SurfaceInterpolant,
+};
+
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
 
