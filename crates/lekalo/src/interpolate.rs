@@ -578,6 +578,15 @@ fn add_reference(control: &mut [f64], reference: &[f64]) {
     }
 }
 
+/// A clamped interpolant has `P_0 = q_0` and `P_last = q_n`: store them exactly (the centred
+/// solve would round `(q_n − q_0) + q_0`).
+fn set_clamped_ends(control: &mut [f64], points: PointsRef<'_>) {
+    let dim = points.dim();
+    let len = control.len();
+    control[..dim].copy_from_slice(points.point(0));
+    control[len - dim..].copy_from_slice(points.point(points.len() - 1));
+}
+
 /// §A.1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
 /// ones from the collocation rows `t̄_1 … t̄_{n−1}`.
 fn free_end(
@@ -594,6 +603,7 @@ fn free_end(
     let kv = KnotVector::from_raw(knots);
     solve_collocation(&kv, p, &params[1..n], 1, &mut control, dim, false)?;
     add_reference(&mut control, reference);
+    set_clamped_ends(&mut control, points);
     Ok(BSplineCurve::from_raw(
         p,
         kv.into_vec(),
@@ -637,6 +647,7 @@ fn first_derivative_ends(
     let kv = KnotVector::from_raw(knots);
     solve_collocation(&kv, p, &params[1..n], 2, &mut control, dim, false)?;
     add_reference(&mut control, reference);
+    set_clamped_ends(&mut control, points);
     Ok(BSplineCurve::from_raw(
         p,
         kv.into_vec(),
@@ -683,7 +694,7 @@ fn second_derivative_ends(
     let mut basis = [0.0; P + 1];
     let rhs = &mut control[dim..(n + 2) * dim];
     row.copy_from_slice(&[0.0, -(1.0 + h4 / h5), h4 / h5]);
-    lu.push_row(&mut row, rhs, dim)?;
+    lu.push_row(&mut row, rhs, dim, 0.0)?;
     let kv = KnotVector::from_raw(knots);
     let mut cursor = kv.span_cursor(P);
     for r in 1..n {
@@ -702,12 +713,13 @@ fn second_derivative_ends(
                 _ => return Err(sw_failure(r, t)),
             }
         }
-        lu.push_row(&mut row, rhs, dim)?;
+        lu.push_row(&mut row, rhs, dim, 1.0)?;
     }
     row.copy_from_slice(&[g / g1, -(1.0 + g / g1), 0.0]);
-    lu.push_row(&mut row, rhs, dim)?;
+    lu.push_row(&mut row, rhs, dim, 0.0)?;
     lu.back_substitute(rhs, dim);
     add_reference(&mut control, reference);
+    set_clamped_ends(&mut control, points);
     Ok(BSplineCurve::from_raw(
         P,
         kv.into_vec(),
@@ -784,7 +796,7 @@ fn solve_collocation(
                 None => row[kl + (i - first) - r] = v,
             }
         }
-        lu.push_row(&mut row, block, dim)?;
+        lu.push_row(&mut row, block, dim, 1.0)?;
     }
     lu.back_substitute(block, dim);
     Ok(lu)
@@ -907,7 +919,7 @@ fn periodic(points: PointsRef<'_>, params: &[f64], p: usize) -> Result<BSplineCu
                     row[off] += v;
                 }
             }
-            lu.push_row(&mut row, &mut work, width)?;
+            lu.push_row(&mut row, &mut work, width, 1.0)?;
         } else {
             let entries = basis
                 .iter()

@@ -70,7 +70,9 @@ impl BandedCrout {
     /// `row` (length [`BandedCrout::width`]) holds `A[r][r−kl..=r+ku]`, the diagonal at `kl`;
     /// entries left of column 0 must be zero. `rhs` is the `ncols`-wide right-hand-side block
     /// whose rows `0..r` were forward-solved by earlier calls; row `r` is forward-solved here.
-    /// `row` is overwritten.
+    /// `row` is overwritten. The pivot is judged against the larger of the row's largest entry
+    /// and `row_scale` (pass 1 for B-spline collocation rows, whose full rows sum to 1 even when
+    /// some entries were moved to the right-hand side; 0 to use the row alone).
     ///
     /// # Errors
     /// [`Error::SingularSystem`] on a zero (or non-finite) pivot; [`Error::IllConditioned`] if
@@ -80,10 +82,11 @@ impl BandedCrout {
         row: &mut [f64],
         rhs: &mut [f64],
         ncols: usize,
+        row_scale: f64,
     ) -> Result<()> {
         let (kl, ku, r) = (self.kl, self.ku, self.rows);
         debug_assert_eq!(row.len(), kl + 1 + ku, "row buffer width");
-        let row_max = row.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let row_max = row.iter().fold(row_scale, |m, v| m.max(v.abs()));
         self.max_entry = self.max_entry.max(row_max);
         let (done, current) = rhs.split_at_mut(r * ncols);
         let current = &mut current[..ncols];
@@ -283,7 +286,7 @@ mod tests {
             for (t, v) in vals.iter().enumerate() {
                 buf[c0 + t + kl - r] = *v;
             }
-            lu.push_row(&mut buf, rhs, ncols)?;
+            lu.push_row(&mut buf, rhs, ncols, 0.0)?;
         }
         Ok(lu)
     }
