@@ -464,7 +464,14 @@ fn parametrize_impl(
     let mut t = vec![0.0; steps + 1];
     let data = points.as_slice();
     let dim = points.dim();
-    let point = |k: usize| &data[(k % n_pts) * dim..(k % n_pts + 1) * dim];
+    // k = n_pts only for the closing chord of a closed polygon
+    let point = |k: usize| {
+        if k < n_pts {
+            &data[k * dim..(k + 1) * dim]
+        } else {
+            &data[..dim]
+        }
+    };
     let e = method.exponent()?;
     parametrize_into(steps, point, e, |k| (k % n_pts, (k + 1) % n_pts), &mut t)?;
     Ok(t)

@@ -84,8 +84,38 @@ impl BandedCrout {
         ncols: usize,
         row_scale: f64,
     ) -> Result<()> {
-        let (kl, ku, r) = (self.kl, self.ku, self.rows);
+        // constant band widths and column counts let the compiler unroll the common cases
+        // (cubic and quadratic curves in 1–3 dimensions); the arithmetic is the same
+        macro_rules! fixed {
+            ($kl:literal, $ku:literal, $nc:literal) => {
+                self.push_row_impl(row, rhs, $kl, $ku, $nc, row_scale)
+            };
+        }
+        match (self.kl, self.ku, ncols) {
+            (1, 1, 1) => fixed!(1, 1, 1),
+            (1, 1, 2) => fixed!(1, 1, 2),
+            (1, 1, 3) => fixed!(1, 1, 3),
+            (2, 2, 1) => fixed!(2, 2, 1),
+            (2, 2, 2) => fixed!(2, 2, 2),
+            (2, 2, 3) => fixed!(2, 2, 3),
+            (kl, ku, nc) => self.push_row_impl(row, rhs, kl, ku, nc, row_scale),
+        }
+    }
+
+    #[inline(always)]
+    fn push_row_impl(
+        &mut self,
+        row: &mut [f64],
+        rhs: &mut [f64],
+        kl: usize,
+        ku: usize,
+        ncols: usize,
+        row_scale: f64,
+    ) -> Result<()> {
+        let r = self.rows;
         debug_assert_eq!(row.len(), kl + 1 + ku, "row buffer width");
+        debug_assert!(self.kl == kl && self.ku == ku, "band widths");
+        let row = &mut row[..kl + 1 + ku];
         let row_max = row.iter().fold(row_scale, |m, v| m.max(v.abs()));
         self.max_entry = self.max_entry.max(row_max);
         let (done, current) = rhs.split_at_mut(r * ncols);
@@ -94,9 +124,6 @@ impl BandedCrout {
         for m in kl.saturating_sub(r)..kl {
             let j = r + m - kl;
             let l = row[m];
-            if l == 0.0 {
-                continue;
-            }
             let u = &self.upper[j * ku..(j + 1) * ku];
             for (x, uj) in row[m + 1..m + 1 + ku].iter_mut().zip(u) {
                 *x -= l * uj;
@@ -107,38 +134,23 @@ impl BandedCrout {
         }
         let pivot = row[kl];
         if !pivot.is_finite() || pivot.abs() <= SINGULAR_PIVOT * row_max {
-            return Err(Error::SingularSystem {
-                reason: format!(
-                    "pivot {pivot:e} in row {r} vanishes against the row's largest entry \
-                     {row_max:e}; the interpolation conditions are not independent (check that \
-                     the parameters are distinct and the degree fits the data)"
-                ),
-            });
+            return Err(singular(pivot, r, row_max));
         }
         let inv = 1.0 / pivot;
-        let mut growth = pivot.abs();
-        for m in 0..kl {
-            growth = growth.max(row[m].abs());
-        }
-        for x in &mut row[kl + 1..] {
-            *x *= inv;
-            growth = growth.max((*x * pivot).abs());
-        }
-        self.max_factor = self.max_factor.max(growth);
-        if self.max_factor > MAX_GROWTH * self.max_entry {
-            return Err(Error::IllConditioned {
-                reason: format!(
-                    "elimination without pivoting grew the factors to {:e} times the matrix \
-                     entries (limit {MAX_GROWTH:e}) at row {r}; the parameters or knots are too \
-                     unevenly spaced for this degree",
-                    self.max_factor / self.max_entry
-                ),
-            });
+        // growth: the largest entry of the reduced row (L part, pivot and unscaled U part)
+        let growth = row.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if growth > self.max_factor {
+            self.max_factor = growth;
+            if self.max_factor > MAX_GROWTH * self.max_entry {
+                return Err(ill_conditioned(self.max_factor / self.max_entry, r));
+            }
         }
         for x in current.iter_mut() {
             *x *= inv;
         }
-        self.upper.extend_from_slice(&row[kl + 1..]);
+        for x in &row[kl + 1..] {
+            self.upper.push(x * inv);
+        }
         if let Some(lower) = &mut self.lower {
             lower.extend_from_slice(&row[..kl]);
             lower.push(inv);
@@ -149,15 +161,25 @@ impl BandedCrout {
 
     /// Back substitution `U·x = y` in place on the `rows × ncols` block `rhs`.
     pub(crate) fn back_substitute(&self, rhs: &mut [f64], ncols: usize) {
-        let ku = self.ku;
-        for r in (0..self.rows).rev() {
+        match (self.ku, ncols) {
+            (1, 3) => self.back_substitute_impl(rhs, 1, 3),
+            (2, 3) => self.back_substitute_impl(rhs, 2, 3),
+            (2, 2) => self.back_substitute_impl(rhs, 2, 2),
+            (ku, nc) => self.back_substitute_impl(rhs, ku, nc),
+        }
+    }
+
+    #[inline(always)]
+    fn back_substitute_impl(&self, rhs: &mut [f64], ku: usize, ncols: usize) {
+        debug_assert_eq!(self.ku, ku, "band width");
+        let rows = self.rows;
+        for r in (0..rows).rev() {
             let (head, tail) = rhs.split_at_mut((r + 1) * ncols);
             let x = &mut head[r * ncols..];
             let u = &self.upper[r * ku..(r + 1) * ku];
-            for (t, &ut) in u.iter().enumerate() {
-                if ut == 0.0 || (t + 1) * ncols > tail.len() {
-                    continue;
-                }
+            // entries beyond the last row are zero by construction
+            let live = ku.min(rows - 1 - r);
+            for (t, &ut) in u[..live].iter().enumerate() {
                 let y = &tail[t * ncols..(t + 1) * ncols];
                 for (a, b) in x.iter_mut().zip(y) {
                     *a -= ut * b;
@@ -194,6 +216,28 @@ impl BandedCrout {
             }
         }
         self.back_substitute(rhs, ncols);
+    }
+}
+
+#[cold]
+fn singular(pivot: f64, r: usize, row_max: f64) -> Error {
+    Error::SingularSystem {
+        reason: format!(
+            "pivot {pivot:e} in row {r} vanishes against the row's largest entry {row_max:e}; \
+             the interpolation conditions are not independent (check that the parameters are \
+             distinct and the degree fits the data)"
+        ),
+    }
+}
+
+#[cold]
+fn ill_conditioned(growth: f64, r: usize) -> Error {
+    Error::IllConditioned {
+        reason: format!(
+            "elimination without pivoting grew the factors to {growth:e} times the matrix \
+             entries (limit {MAX_GROWTH:e}) at row {r}; the parameters or knots are too unevenly \
+             spaced for this degree"
+        ),
     }
 }
 
