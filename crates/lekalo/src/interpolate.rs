@@ -32,6 +32,7 @@ use crate::error::{check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::linalg::{solve_dense, BandedCrout};
 use crate::points::{Points, PointsRef};
+use crate::surface::BSplineSurface;
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
 /// 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k − q_{k−1}|^e`.
@@ -1016,7 +1017,8 @@ pub fn natural_cubic_spline(x: &[f64], y: PointsRef<'_>) -> Result<BSplineCurve>
 }
 
 /// Parts of a tensor-product B-spline surface `S(u, v) = Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) P_ij`
-/// (the caller builds a surface type from them). `control[(i*nv + j)*dim + k]`.
+/// with the grid parameters; `control[(i*nv + j)*dim + k]`. [`SurfaceInterpolant::into_surface`]
+/// gives the [`BSplineSurface`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceInterpolant {
     /// Degree `p` in `u`.
@@ -1039,6 +1041,20 @@ pub struct SurfaceInterpolant {
     pub params_v: Vec<f64>,
 }
 
+impl SurfaceInterpolant {
+    /// The interpolating surface as a [`BSplineSurface`].
+    #[must_use]
+    pub fn into_surface(self) -> BSplineSurface {
+        BSplineSurface::from_raw(
+            self.degree_u,
+            self.degree_v,
+            self.knots_u,
+            self.knots_v,
+            self.control,
+        )
+    }
+}
+
 /// Interpolates an `nu × nv` grid of points `q_kl` (flat, point `(k, l)` at
 /// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §A.5, eq. (16)–(18),
 /// Algorithm A.5.
@@ -1058,6 +1074,9 @@ pub struct SurfaceInterpolant {
 /// let s = interpolate_surface(grid.as_view(), 4, 3, 3, 2, Parametrization::Uniform)?;
 /// assert_eq!((s.nu, s.nv), (4, 3));
 /// assert_eq!(s.control.point(0), &[0.0, 0.0, 0.0]);
+/// let (u, v) = (s.params_u[2], s.params_v[1]);
+/// let p = s.into_surface().eval(u, v)?;
+/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14 && (p[2] - 2.0).abs() < 1e-14);
 /// # Ok::<(), lekalo::Error>(())
 /// ```
 ///

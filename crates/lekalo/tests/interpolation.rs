@@ -586,21 +586,9 @@ fn grid(nu: usize, nv: usize, offset: f64) -> Points {
     Points::new(data, 3).unwrap()
 }
 
-/// Naive surface evaluation with the public basis function API.
+/// Evaluation through the library's surface type.
 fn surface_point(s: &lekalo::SurfaceInterpolant, u: f64, v: f64) -> Vec<f64> {
-    let (su, nu_vals) = lekalo::basis::basis_functions(&s.knots_u, s.degree_u, u).unwrap();
-    let (sv, nv_vals) = lekalo::basis::basis_functions(&s.knots_v, s.degree_v, v).unwrap();
-    let dim = s.control.dim();
-    let mut out = vec![0.0; dim];
-    for (a, nu) in nu_vals.iter().enumerate() {
-        for (b, nv) in nv_vals.iter().enumerate() {
-            let (i, j) = (su - s.degree_u + a, sv - s.degree_v + b);
-            for (o, c) in out.iter_mut().zip(s.control.point(i * s.nv + j)) {
-                *o += nu * nv * c;
-            }
-        }
-    }
-    out
+    s.clone().into_surface().eval(u, v).unwrap()
 }
 
 #[test]
