@@ -339,8 +339,15 @@ impl CurveInterpolation {
                         reason: "prescribed end derivatives need degree ≥ 2 (§A.2)".into(),
                     });
                 }
+                let n = params.len() - 1;
                 let kv = if at_params {
                     KnotVector::from_parameters(params, 3)?
+                } else if p == n + 2 {
+                    // eq. (4) with an empty range of interior knots: a single Bezier piece
+                    // (KnotVector::averaged_with_end_derivatives does not handle this case)
+                    let mut knots = vec![params[0]; p + 1];
+                    knots.resize(2 * p + 2, params[n]);
+                    KnotVector::from_raw(knots)
                 } else {
                     KnotVector::averaged_with_end_derivatives(params, p)?
                 };

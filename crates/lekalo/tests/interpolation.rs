@@ -1166,19 +1166,30 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn interpolants_hit_the_data(q in (1usize..5).prop_flat_map(|d| walk(d, 6, 40)), p in 1usize..6, m in method()) {
-        let c = CurveInterpolation::new(p).parametrization(m).interpolate(q.as_view()).unwrap();
+    fn interpolants_hit_the_data(q in (1usize..5).prop_flat_map(|d| walk(d, 1, 40)), p in 1usize..6, m in method()) {
+        let r = CurveInterpolation::new(p).parametrization(m).interpolate(q.as_view());
+        if p >= q.len() {
+            prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
+            return Ok(());
+        }
+        let c = r.unwrap();
         let t = params_of(q.as_view(), m);
         let (worst, bound) = residual(&c, &q, &t);
         prop_assert!(worst <= bound, "residual {} > {}", worst, bound);
     }
 
     #[test]
-    fn end_derivatives_are_met(q in walk(3, 4, 30), p in 2usize..6, d in prop::collection::vec(-3.0..3.0_f64, 6), at_params in any::<bool>()) {
+    fn end_derivatives_are_met(q in walk(3, 1, 30), p in 2usize..6, d in prop::collection::vec(-3.0..3.0_f64, 6), at_params in any::<bool>()) {
         let end = EndCondition::FirstDerivatives { start: d[..3].to_vec(), end: d[3..].to_vec() };
         let p = if at_params { 3 } else { p };
         let placement = if at_params { KnotPlacement::AtParameters } else { KnotPlacement::Averaged };
-        let c = CurveInterpolation::new(p).end_condition(end).knot_placement(placement).interpolate(q.as_view()).unwrap();
+        let r = CurveInterpolation::new(p).end_condition(end).knot_placement(placement).interpolate(q.as_view());
+        // n + 1 points and two derivatives carry a degree of at most n + 2
+        if p > q.len() + 1 {
+            prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
+            return Ok(());
+        }
+        let c = r.unwrap();
         let t = params_of(q.as_view(), Parametrization::ChordLength);
         let (worst, bound) = residual(&c, &q, &t);
         prop_assert!(worst <= bound, "residual {}", worst);
@@ -1192,7 +1203,7 @@ proptest! {
     }
 
     #[test]
-    fn second_derivatives_are_met(q in walk(2, 2, 30), d in prop::collection::vec(-3.0..3.0_f64, 4)) {
+    fn second_derivatives_are_met(q in walk(2, 1, 30), d in prop::collection::vec(-3.0..3.0_f64, 4)) {
         let end = EndCondition::SecondDerivatives { start: d[..2].to_vec(), end: d[2..].to_vec() };
         let c = CurveInterpolation::new(3).end_condition(end).interpolate(q.as_view()).unwrap();
         let t = params_of(q.as_view(), Parametrization::ChordLength);
@@ -1411,4 +1422,36 @@ fn scipy_agreement() {
             assert_near(&c.eval(u).unwrap(), &e, tol, name);
         }
     }
+}
+
+#[test]
+fn end_derivatives_with_the_fewest_points() {
+    // two points and two derivatives determine a cubic (the Hermite segment); p = n + 2
+    let q = pts(&[[0.0, 0.0], [1.0, 1.0]]);
+    for placement in [KnotPlacement::Averaged, KnotPlacement::AtParameters] {
+        let c = CurveInterpolation::new(3)
+            .end_condition(first_derivatives())
+            .knot_placement(placement)
+            .interpolate(q.as_view())
+            .unwrap();
+        let h =
+            CubicHermite::new(vec![0.0, 1.0], q.clone(), pts(&[[1.0, 2.0], [-3.0, -1.0]])).unwrap();
+        for k in 0..=10 {
+            let t = f64::from(k) / 10.0;
+            assert_near(
+                &c.eval(t).unwrap(),
+                &h.eval(t).unwrap(),
+                1e-14,
+                "Hermite segment",
+            );
+        }
+    }
+    // quadratic with two points and two derivatives: 4 control points
+    let c = CurveInterpolation::new(2)
+        .end_condition(first_derivatives())
+        .interpolate(q.as_view())
+        .unwrap();
+    assert_near(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-13, "d0");
+    assert_near(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-13, "dn");
+    assert_near(&c.eval(1.0).unwrap(), &[1.0, 1.0], 0.0, "end");
 }
