@@ -29,10 +29,10 @@
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
+use crate::interpolate_periodic::periodic;
 use crate::knots::KnotVector;
-use crate::linalg::{solve_dense, BandedCrout};
+use crate::linalg::BandedCrout;
 use crate::points::{Points, PointsRef};
-use crate::surface::BSplineSurface;
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
 /// 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k − q_{k−1}|^e`.
@@ -49,7 +49,7 @@ pub enum Parametrization {
 }
 
 impl Parametrization {
-    fn exponent(self) -> Result<f64> {
+    pub(crate) fn exponent(self) -> Result<f64> {
         let e = match self {
             Parametrization::Uniform => 0.0,
             Parametrization::ChordLength => 1.0,
@@ -406,7 +406,7 @@ fn check_vector(what: &'static str, v: &[f64], dim: usize) -> Result<()> {
     check_finite(what, v)
 }
 
-fn check_strictly_increasing(params: &[f64]) -> Result<()> {
+pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
     check_finite("parameters", params)?;
     for i in 1..params.len() {
         if params[i] < params[i - 1] {
@@ -487,7 +487,7 @@ fn parametrize_impl(
 
 /// Fills `t[0..=steps]` with normalised parameters of the polygon `point(0), …, point(steps)`;
 /// `names(k)` gives the point indices reported for a zero step `k → k+1`.
-fn parametrize_into<'a>(
+pub(crate) fn parametrize_into<'a>(
     steps: usize,
     point: impl Fn(usize) -> &'a [f64],
     e: f64,
@@ -585,7 +585,7 @@ fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &
     }
 }
 
-fn add_reference(control: &mut [f64], reference: &[f64]) {
+pub(crate) fn add_reference(control: &mut [f64], reference: &[f64]) {
     for c in control.chunks_exact_mut(reference.len()) {
         for (ci, ri) in c.iter_mut().zip(reference) {
             *ci += ri;
@@ -762,7 +762,7 @@ fn sw_failure(row: usize, t: f64) -> Error {
 /// ([`BandedCrout`]). O(m·p²) time, O(m·p) memory besides `control`.
 ///
 /// With `keep` the factorisation is returned for further right-hand sides.
-fn solve_collocation(
+pub(crate) fn solve_collocation(
     kv: &KnotVector,
     p: usize,
     ts: &[f64],
@@ -843,163 +843,6 @@ fn band_widths(kv: &KnotVector, p: usize, ts: &[f64], first: usize) -> Result<(u
     Ok((kl, ku))
 }
 
-/// Closed curve through `N` points (`params` has `N + 1` entries, the last for the return to
-/// `q_0`). See [`EndCondition::Periodic`] for the knots. Unknowns `X_0 … X_{N−1}` with control
-/// points `P_i = X_{(i − r) mod N}`, `r = ⌊p/2⌋`, so that row `k` has its non-zeros in the
-/// cyclic band `X_{k−r} … X_{k+r}`. The cyclic system is split as `[[A11, A12], [A21, A22]]`
-/// with `A22` of size `r × r`: `A11` (banded, no wrap) is eliminated without pivoting with
-/// right-hand sides `[b_1 | A12]`, then the `r × r` Schur complement `A22 − A21·A11⁻¹·A12` is
-/// solved by partial pivoting (block elimination, Golub & Van Loan §4.5.4 / the cyclic
-/// reduction of banded periodic splines). O(N·p²).
-fn periodic(points: PointsRef<'_>, params: &[f64], p: usize) -> Result<BSplineCurve> {
-    let n = points.len();
-    let dim = points.dim();
-    if n < p + 1 {
-        return Err(Error::Degree {
-            degree: p,
-            reason: format!(
-                "a closed curve through {n} points has degree at most {}",
-                n - 1
-            ),
-        });
-    }
-    let period = params[n] - params[0];
-    let ext = |i: isize| -> f64 {
-        let ni = n as isize;
-        let q = i.div_euclid(ni);
-        params[i.rem_euclid(ni) as usize] + q as f64 * period
-    };
-    let n_knots = n + 2 * p + 1;
-    let knots: Vec<f64> = (0..n_knots as isize)
-        .map(|j| {
-            let i = j - p as isize;
-            if p % 2 == 1 {
-                ext(i)
-            } else {
-                0.5 * (ext(i - 1) + ext(i))
-            }
-        })
-        .collect();
-    if let Some(j) = (1..n_knots).find(|&j| knots[j] < knots[j - 1]) {
-        return Err(Error::IllConditioned {
-            reason: format!(
-                "periodic knots {} and {j} are out of order after rounding",
-                j - 1
-            ),
-        });
-    }
-    let r = p / 2;
-    let nb = r; // size of the coupling block A22
-    let n1 = n - nb; // rows of A11
-    let width = dim + nb; // right-hand sides of the A11 solve: b_1 and the columns of A12
-    let reference = points.point(0);
-    let mut work = vec![0.0; n1 * width];
-    for k in 0..n1 {
-        for d in 0..dim {
-            work[k * width + d] = points.point(k)[d] - reference[d];
-        }
-    }
-    let kv = KnotVector::from_raw(knots);
-    let mut cursor = kv.span_cursor(p);
-    let mut scratch = BasisScratch::new(p);
-    let mut basis = vec![0.0; p + 1];
-    let mut lu = BandedCrout::new(n1, r, r, false);
-    let mut row = vec![0.0; lu.width()];
-    // bottom rows: sparse (column, value) entries and their right-hand sides
-    let mut bottom: Vec<Vec<(usize, f64)>> = Vec::with_capacity(nb);
-    let too_close = || Error::IllConditioned {
-        reason: "periodic parameters too close for distinct knot spans".into(),
-    };
-    for k in 0..n {
-        let t = params[k];
-        let span = cursor.find_unchecked(t);
-        if span != k + p {
-            return Err(too_close());
-        }
-        basis_funs_into(kv.as_slice(), p, span, t, &mut scratch, &mut basis);
-        if k < n1 {
-            row.fill(0.0);
-            for (j, &v) in basis.iter().enumerate() {
-                if v == 0.0 {
-                    continue;
-                }
-                let c = (span - p + j + n - r) % n;
-                if c >= n1 {
-                    work[k * width + dim + (c - n1)] += v;
-                } else {
-                    let off = (c + r)
-                        .checked_sub(k)
-                        .filter(|&o| o <= 2 * r)
-                        .ok_or_else(too_close)?;
-                    row[off] += v;
-                }
-            }
-            lu.push_row(&mut row, &mut work, width, 1.0)?;
-        } else {
-            let entries = basis
-                .iter()
-                .enumerate()
-                .filter(|(_, &v)| v != 0.0)
-                .map(|(j, &v)| ((span - p + j + n - r) % n, v))
-                .collect();
-            bottom.push(entries);
-        }
-    }
-    lu.back_substitute(&mut work, width);
-    // Schur complement S = A22 − A21·Y and its right-hand side b_2 − A21·y
-    let mut s = vec![0.0; nb * nb];
-    let mut rhs2 = vec![0.0; nb * dim];
-    for (i, entries) in bottom.iter().enumerate() {
-        let q = points.point(n1 + i);
-        for d in 0..dim {
-            rhs2[i * dim + d] = q[d] - reference[d];
-        }
-        for &(c, v) in entries {
-            if c >= n1 {
-                s[i * nb + (c - n1)] += v;
-            } else {
-                let w = &work[c * width..(c + 1) * width];
-                for d in 0..dim {
-                    rhs2[i * dim + d] -= v * w[d];
-                }
-                for j in 0..nb {
-                    s[i * nb + j] -= v * w[dim + j];
-                }
-            }
-        }
-    }
-    if nb > 0 {
-        solve_dense(&mut s, &mut rhs2, nb, dim)?;
-    }
-    let mut x = vec![0.0; n * dim];
-    for c in 0..n1 {
-        let w = &work[c * width..(c + 1) * width];
-        for d in 0..dim {
-            let mut v = w[d];
-            for j in 0..nb {
-                v -= w[dim + j] * rhs2[j * dim + d];
-            }
-            x[c * dim + d] = v;
-        }
-    }
-    x[n1 * dim..].copy_from_slice(&rhs2);
-    let mut control = Vec::with_capacity((n + p) * dim);
-    for i in 0..n + p {
-        let c = (i + n - r) % n;
-        control.extend(
-            x[c * dim..(c + 1) * dim]
-                .iter()
-                .zip(reference)
-                .map(|(a, b)| a + b),
-        );
-    }
-    Ok(BSplineCurve::from_raw(
-        p,
-        kv.into_vec(),
-        Points::from_raw(control, dim),
-    ))
-}
-
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` for strictly increasing `x`: document
 /// 000 §A.4 with zero end second derivatives, the parameters being the abscissae themselves, so
 /// that `curve.eval(x)` is `y(x)` (each component of `y` is one function). The result equals
@@ -1021,201 +864,6 @@ pub fn natural_cubic_spline(x: &[f64], y: PointsRef<'_>) -> Result<BSplineCurve>
     CurveInterpolation::new(3)
         .end_condition(EndCondition::Natural)
         .interpolate_at(y, x)
-}
-
-/// Parts of a tensor-product B-spline surface `S(u, v) = Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) P_ij`
-/// with the grid parameters; `control[(i*nv + j)*dim + k]`. [`SurfaceInterpolant::into_surface`]
-/// gives the [`BSplineSurface`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct SurfaceInterpolant {
-    /// Degree `p` in `u`.
-    pub degree_u: usize,
-    /// Degree `q` in `v`.
-    pub degree_v: usize,
-    /// Knots in `u` (`nu + p + 1`).
-    pub knots_u: KnotVector,
-    /// Knots in `v` (`nv + q + 1`).
-    pub knots_v: KnotVector,
-    /// Control net, flat, `nu × nv` points, point `(i, j)` at `(i*nv + j)*dim`.
-    pub control: Points,
-    /// Number of control points in `u`.
-    pub nu: usize,
-    /// Number of control points in `v`.
-    pub nv: usize,
-    /// Parameters `ū_k` of the grid rows.
-    pub params_u: Vec<f64>,
-    /// Parameters `v̄_l` of the grid columns.
-    pub params_v: Vec<f64>,
-}
-
-impl SurfaceInterpolant {
-    /// The interpolating surface as a [`BSplineSurface`].
-    #[must_use]
-    pub fn into_surface(self) -> BSplineSurface {
-        BSplineSurface::from_raw(
-            self.degree_u,
-            self.degree_v,
-            self.knots_u,
-            self.knots_v,
-            self.control,
-        )
-    }
-}
-
-/// Interpolates an `nu × nv` grid of points `q_kl` (flat, point `(k, l)` at
-/// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §A.5, eq. (16)–(18),
-/// Algorithm A.5.
-///
-/// Parameters: for each column `l` the [`Parametrization`] of `q_0l … q_{n,l}`, averaged over the
-/// columns (`ū_k = Σ_l ū_k^{(l)} / (m + 1)`, P&T §9.2.5), likewise `v̄_l` over the rows; knots by
-/// averaging (eq. 3). Then two passes of curve interpolation, each with one matrix factored once:
-/// the `u` pass solves all `nv·dim` columns of the grid together, the `v` pass reuses the `v`
-/// factorisation for each of the `nu` rows. O(nu·nv·(p² + q²)·dim).
-///
-/// ```
-/// use lekalo::{interpolate_surface, Parametrization, Points};
-/// // a 4×3 grid on z = x·y
-/// let mut data = Vec::new();
-/// for k in 0..4 { for l in 0..3 { let (x, y) = (k as f64, l as f64); data.extend([x, y, x * y]); } }
-/// let grid = Points::new(data, 3)?;
-/// let s = interpolate_surface(grid.as_view(), 4, 3, 3, 2, Parametrization::Uniform)?;
-/// assert_eq!((s.nu, s.nv), (4, 3));
-/// assert_eq!(s.control.point(0), &[0.0, 0.0, 0.0]);
-/// let (u, v) = (s.params_u[2], s.params_v[1]);
-/// let p = s.into_surface().eval(u, v)?;
-/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14 && (p[2] - 2.0).abs() < 1e-14);
-/// # Ok::<(), lekalo::Error>(())
-/// ```
-///
-/// # Errors
-/// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points; [`Error::TooFew`] if `nu`
-/// or `nv` is below 2; [`Error::Degree`] if `p ≥ nu`, `q ≥ nv` or a degree is 0;
-/// [`Error::CoincidentPoints`] (flat point indices) for a zero step in a row or column;
-/// [`Error::InvalidArgument`]; [`Error::SingularSystem`] / [`Error::IllConditioned`].
-pub fn interpolate_surface(
-    grid: PointsRef<'_>,
-    nu: usize,
-    nv: usize,
-    degree_u: usize,
-    degree_v: usize,
-    parametrization: Parametrization,
-) -> Result<SurfaceInterpolant> {
-    let total = nu.checked_mul(nv).ok_or(Error::TooLarge {
-        what: "grid size",
-        size: usize::MAX,
-        max: crate::error::MAX_SCALARS,
-    })?;
-    if grid.len() != total {
-        return Err(Error::LengthMismatch {
-            what: "grid points (nu × nv)",
-            expected: total,
-            got: grid.len(),
-        });
-    }
-    for (n, what) in [(nu, "grid rows (nu)"), (nv, "grid columns (nv)")] {
-        if n < 2 {
-            return Err(Error::TooFew {
-                what,
-                min: 2,
-                got: n,
-            });
-        }
-    }
-    for (deg, n) in [(degree_u, nu), (degree_v, nv)] {
-        if deg == 0 || deg >= n {
-            return Err(Error::Degree {
-                degree: deg,
-                reason: format!(
-                    "a direction with {n} points takes a degree from 1 to {}",
-                    n - 1
-                ),
-            });
-        }
-    }
-    let e = parametrization.exponent()?;
-    let dim = grid.dim();
-    let data = grid.as_slice();
-    let pt = |k: usize, l: usize| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim];
-    let mut params_u = vec![0.0; nu];
-    let mut params_v = vec![0.0; nv];
-    let mut tmp = vec![0.0; nu.max(nv)];
-    for l in 0..nv {
-        parametrize_into(
-            nu - 1,
-            |k| pt(k, l),
-            e,
-            |k| (k * nv + l, (k + 1) * nv + l),
-            &mut tmp[..nu],
-        )?;
-        for (a, b) in params_u.iter_mut().zip(&tmp) {
-            *a += b;
-        }
-    }
-    for k in 0..nu {
-        parametrize_into(
-            nv - 1,
-            |l| pt(k, l),
-            e,
-            |l| (k * nv + l, k * nv + l + 1),
-            &mut tmp[..nv],
-        )?;
-        for (a, b) in params_v.iter_mut().zip(&tmp) {
-            *a += b;
-        }
-    }
-    finish_average(&mut params_u, nv);
-    finish_average(&mut params_v, nu);
-    check_strictly_increasing(&params_u)?;
-    check_strictly_increasing(&params_v)?;
-    let knots_u = KnotVector::averaged(&params_u, degree_u)?;
-    let knots_v = KnotVector::averaged(&params_v, degree_v)?;
-    let reference = pt(0, 0).to_vec();
-    let mut control = data.to_vec();
-    for c in control.chunks_exact_mut(dim) {
-        for (ci, ri) in c.iter_mut().zip(&reference) {
-            *ci -= ri;
-        }
-    }
-    // u pass: rows k of the grid, all nv·dim numbers of a row as right-hand-side columns
-    solve_collocation(
-        &knots_u,
-        degree_u,
-        &params_u,
-        0,
-        &mut control,
-        nv * dim,
-        false,
-    )?;
-    // v pass: for each i, an nv × dim block; factor once, reuse
-    let (first, rest) = control.split_at_mut(nv * dim);
-    let lu = solve_collocation(&knots_v, degree_v, &params_v, 0, first, dim, true)?;
-    for block in rest.chunks_exact_mut(nv * dim) {
-        lu.solve(block, dim);
-    }
-    add_reference(&mut control, &reference);
-    Ok(SurfaceInterpolant {
-        degree_u,
-        degree_v,
-        knots_u,
-        knots_v,
-        control: Points::from_raw(control, dim),
-        nu,
-        nv,
-        params_u,
-        params_v,
-    })
-}
-
-/// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.
-fn finish_average(params: &mut [f64], count: usize) {
-    let inv = 1.0 / count as f64;
-    for t in params.iter_mut() {
-        *t *= inv;
-    }
-    params[0] = 0.0;
-    if let Some(last) = params.last_mut() {
-        *last = 1.0;
-    }
 }
 
 #[cfg(test)]

@@ -50,6 +50,8 @@ pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
 // -- interpolation (issue 3) --
 mod hermite;
 mod interpolate;
+mod interpolate_periodic;
+mod interpolate_surface;
 mod linalg;
 
 pub use hermite::{
@@ -57,9 +59,10 @@ pub use hermite::{
     CubicHermite, TangentEstimate, HERMITE_MATRIX,
 };
 pub use interpolate::{
-    interpolate_surface, natural_cubic_spline, parametrize, CurveInterpolation, EndCondition,
-    KnotPlacement, Parametrization, SurfaceInterpolant,
+    natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
+    Parametrization,
 };
+pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
 
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
