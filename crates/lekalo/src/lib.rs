@@ -52,7 +52,19 @@ pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
 // -- interpolation (issue 3) --
 mod hermite;
 mod interpolate;
+mod interpolate_periodic;
+mod interpolate_surface;
 mod linalg;
+
+pub use hermite::{
+    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
+    CubicHermite, TangentEstimate, HERMITE_MATRIX,
+};
+pub use interpolate::{
+    natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
+    Parametrization,
+};
+pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
 
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
