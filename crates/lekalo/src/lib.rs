@@ -32,10 +32,12 @@ mod bspline;
 mod error;
 mod knots;
 mod nurbs;
+#[cfg(test)]
+mod oracle;
 mod points;
 mod surface;
 
-pub use bezier::BezierCurve;
+pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
 pub use error::{Error, Result, MAX_SCALARS};
 pub use knots::{check_parameters, KnotVector, SpanCursor};
