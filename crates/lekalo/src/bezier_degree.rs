@@ -196,7 +196,13 @@ pub(crate) fn try_reduce_exact(
     tol_abs: f64,
 ) -> Option<Vec<f64>> {
     let n = src.len() / dim - 1;
-    let q = reduce_least_squares(src, dim, k);
+    let mut q = reduce_least_squares(src, dim, k);
+    if k >= 1 {
+        // an exact reduction keeps the end points (eq. 6 read backwards): use them exactly, so
+        // that joins of Bezier pieces stay bit-identical
+        q[..dim].copy_from_slice(&src[..dim]);
+        q[k * dim..].copy_from_slice(&src[n * dim..]);
+    }
     let back = elevate(&q, dim, n - k);
     (max_abs_diff(&back, src) <= tol_abs).then_some(q)
 }

@@ -52,11 +52,13 @@ mod linalg;
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
 mod bezier_degree_approx;
+mod bezier_degree_bspline;
 mod bezier_degree_matrix;
 mod bezier_degree_surface;
 
 pub use bezier_degree::{ElevationPlan, DEFAULT_DEGREE_TOLERANCE, MAX_MONOMIAL_DEGREE};
 pub use bezier_degree_approx::{ApproximateReduction, EndConditions, APPROX_SAMPLES};
+pub use bezier_degree_bspline::BSplineApproximateReduction;
 pub use bezier_degree_matrix::{
     bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, elevation_block,
     elevation_matrix, order_change_matrix, reduction_block, truncation_matrix, RationalMatrix,
