@@ -1,5 +1,5 @@
-//! Degree change of tensor-product Bezier surfaces (document 004 §E.4, eq. 11–16), on a plain
-//! control net.
+//! Degree change of tensor-product Bezier surfaces (document 004 §E.4, eq. 11–16): functions on
+//! a plain control net (`bezier_net_*`) and the same operations as methods of [`BezierSurface`].
 //!
 //! A net of degrees `(n, m)` is a [`Points`] of `(n+1)·(m+1)` points with point `(i, j)` at
 //! `data[(i·(m+1) + j)·dim ..]`, `i ∈ 0..=n` along `u` (the paper's `t`) and `j ∈ 0..=m` along `v`
@@ -24,6 +24,7 @@ use crate::bezier_degree::{
 };
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
+use crate::{BezierSurface, DEFAULT_DEGREE_TOLERANCE};
 
 /// Checks that `net` holds `(degree_u + 1)·(degree_v + 1)` points.
 fn check_net(net: &Points, degree_u: usize, degree_v: usize) -> Result<()> {
@@ -301,6 +302,97 @@ fn change_curve(
     })
 }
 
+impl BezierSurface {
+    /// Monomial coefficients `S = H_nᵀ U H_m` in the net layout (document 004 eq. 12); see
+    /// [`bezier_net_to_monomial`].
+    ///
+    /// # Errors
+    /// As [`bezier_net_to_monomial`].
+    pub fn to_monomial(&self) -> Result<Points> {
+        bezier_net_to_monomial(self.control_points(), self.degree_u(), self.degree_v())
+    }
+
+    /// Raises the degrees by `by_u` and `by_v` without changing the surface (document 004 eq. 14
+    /// and 15); see [`bezier_net_elevate`].
+    ///
+    /// ```
+    /// use lekalo::{BezierSurface, Points};
+    /// let net = Points::from_3d(&[[0., 0., 0.], [0., 1., 0.], [1., 0., 0.], [1., 1., 1.]])?;
+    /// let s = BezierSurface::new(net, (2, 2))?;
+    /// let e = s.elevate_degree(2, 1)?;
+    /// assert_eq!((e.degree_u(), e.degree_v()), (3, 2));
+    /// assert_eq!(e.eval(0.5, 0.25)?, s.eval(0.5, 0.25)?);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`bezier_net_elevate`].
+    pub fn elevate_degree(&self, by_u: usize, by_v: usize) -> Result<BezierSurface> {
+        let (n, m) = (self.degree_u(), self.degree_v());
+        let net = bezier_net_elevate(self.control_points(), n, m, by_u, by_v)?;
+        BezierSurface::new(net, (n + by_u + 1, m + by_v + 1))
+    }
+
+    /// Real degrees `(n', m')` with the default tolerance [`DEFAULT_DEGREE_TOLERANCE`]; see
+    /// [`bezier_net_real_degrees`].
+    #[must_use]
+    pub fn real_degrees(&self) -> (usize, usize) {
+        bezier_net_real_degrees(
+            self.control_points(),
+            self.degree_u(),
+            self.degree_v(),
+            DEFAULT_DEGREE_TOLERANCE,
+        )
+        .unwrap_or((self.degree_u(), self.degree_v()))
+    }
+
+    /// Real degrees `(n', m')` with a relative tolerance; see [`bezier_net_real_degrees`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a negative or non-finite tolerance.
+    pub fn real_degrees_with_tolerance(&self, tolerance: f64) -> Result<(usize, usize)> {
+        bezier_net_real_degrees(
+            self.control_points(),
+            self.degree_u(),
+            self.degree_v(),
+            tolerance,
+        )
+    }
+
+    /// Changes the degrees to `(new_u, new_v)` without changing the surface (document 004 eq. 14,
+    /// all raise/keep/lower combinations), with the default tolerance; see
+    /// [`bezier_net_change_degree`].
+    ///
+    /// # Errors
+    /// As [`bezier_net_change_degree`].
+    pub fn change_degree(&self, new_u: usize, new_v: usize) -> Result<BezierSurface> {
+        self.change_degree_with_tolerance(new_u, new_v, DEFAULT_DEGREE_TOLERANCE)
+    }
+
+    /// Changes the degrees to `(new_u, new_v)` without changing the surface, judging degree
+    /// defects with `tolerance` relative to the largest absolute coordinate of the net; see
+    /// [`bezier_net_change_degree`].
+    ///
+    /// # Errors
+    /// As [`bezier_net_change_degree`].
+    pub fn change_degree_with_tolerance(
+        &self,
+        new_u: usize,
+        new_v: usize,
+        tolerance: f64,
+    ) -> Result<BezierSurface> {
+        let net = bezier_net_change_degree(
+            self.control_points(),
+            self.degree_u(),
+            self.degree_v(),
+            new_u,
+            new_v,
+            tolerance,
+        )?;
+        BezierSurface::new(net, (new_u + 1, new_v + 1))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -403,6 +495,41 @@ mod tests {
             }
             assert!((sum - p[k]).abs() < 1e-12, "monomial value");
         }
+    }
+
+    #[test]
+    fn bezier_surface_methods() {
+        let base =
+            BezierSurface::new(Points::new(rough(3 * 4 * 2, 0.3), 2).unwrap(), (3, 4)).unwrap();
+        let up = base.elevate_degree(2, 1).unwrap();
+        assert_eq!((up.degree_u(), up.degree_v()), (4, 4));
+        assert_eq!(up.real_degrees(), (2, 3));
+        assert_eq!(up.real_degrees_with_tolerance(1e-10).unwrap(), (2, 3));
+        let c = up.change_degree(2, 5).unwrap();
+        let scale = base.control_points().max_abs();
+        for (u, v) in [(0.0, 0.0), (0.3, 0.9), (0.5, 0.5), (1.0, 0.2)] {
+            let (a, b) = (base.eval(u, v).unwrap(), c.eval(u, v).unwrap());
+            for (x, y) in a.iter().zip(&b) {
+                assert!((x - y).abs() <= 1e-13 * scale, "({u}, {v})");
+            }
+        }
+        assert_eq!(
+            up.change_degree(1, 4).unwrap_err(),
+            Error::DegreeReductionRefused {
+                requested: 1,
+                real_degree: 2,
+                direction: "u direction"
+            }
+        );
+        let s = base.to_monomial().unwrap();
+        assert_eq!(
+            s,
+            bezier_net_to_monomial(base.control_points(), 2, 3).unwrap()
+        );
+        assert!(matches!(
+            base.change_degree_with_tolerance(2, 3, f64::INFINITY),
+            Err(Error::InvalidArgument { .. })
+        ));
     }
 
     #[test]
