@@ -9,8 +9,8 @@
 use lekalo::{
     bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, bezier_net_change_degree,
     bezier_net_elevate, bezier_net_real_degrees, bezier_net_real_degrees_monomial, elevation_block,
-    order_change_matrix, reduction_block, BezierCurve, Error, Points, RationalMatrix,
-    DEFAULT_DEGREE_TOLERANCE,
+    order_change_matrix, reduction_block, BSplineCurve, BezierCurve, ElevationPlan, EndConditions,
+    Error, KnotVector, Points, RationalMatrix, DEFAULT_DEGREE_TOLERANCE,
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -546,6 +546,90 @@ proptest! {
                 Err(Error::DegreeReductionRefused { direction: "u direction", .. })
             );
             prop_assert!(refused, "u below the real degree");
+        }
+    }
+}
+
+/// A clamped B-spline of degree 1..=4 with 1..=4 interior knots (some repeated), dims 1..=6.
+fn bspline_strategy() -> impl Strategy<Value = BSplineCurve> {
+    (
+        1usize..=6,
+        1usize..=4,
+        prop::collection::vec(0.05f64..0.95, 1..=4),
+        any::<bool>(),
+    )
+        .prop_flat_map(|(dim, p, mut inner, repeat)| {
+            inner.sort_by(f64::total_cmp);
+            if repeat && p >= 2 {
+                inner.push(inner[0]); // a double knot: lower continuity there
+                inner.sort_by(f64::total_cmp);
+            }
+            let n_ctrl = p + 1 + inner.len();
+            prop::collection::vec(-10.0f64..10.0, n_ctrl * dim).prop_map(move |data| {
+                let mut knots = vec![0.0; p + 1];
+                knots.extend_from_slice(&inner);
+                knots.extend(std::iter::repeat_n(1.0, p + 1));
+                let kv = KnotVector::new(knots).expect("sorted");
+                BSplineCurve::from_knot_vector(p, kv, Points::new(data, dim).expect("finite"))
+                    .expect("valid clamped B-spline")
+            })
+        })
+}
+
+fn bspline_dev(a: &BSplineCurve, b: &BSplineCurve) -> f64 {
+    (0..=200)
+        .map(|k| {
+            let t = f64::from(k) / 200.0;
+            max_diff(
+                &a.eval(t).expect("in domain"),
+                &b.eval(t).expect("in domain"),
+            )
+        })
+        .fold(0.0, f64::max)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// B-spline elevation per Bezier piece keeps the curve; exact reduction returns it.
+    #[test]
+    fn bspline_elevation_and_reduction(c in bspline_strategy(), r in 1usize..=4) {
+        let s = c.control_points().max_abs().max(f64::MIN_POSITIVE);
+        let up = c.elevate_degree(r).unwrap();
+        prop_assert_eq!(up.degree(), c.degree() + r);
+        prop_assert!(bspline_dev(&c, &up) <= 1e-13 * s, "elevation");
+        let down = up.change_degree(c.degree()).unwrap();
+        prop_assert!(bspline_dev(&c, &down) <= 1e-12 * s, "reduction");
+    }
+
+    /// The precomputed plan gives exactly the one-step elevation.
+    #[test]
+    fn plan_equals_elevate_degree(c in curve_strategy(15), r in 0usize..=15) {
+        let plan = ElevationPlan::new(c.degree(), c.degree() + r).unwrap();
+        prop_assert_eq!(plan.apply(&c).unwrap(), c.elevate_degree(r).unwrap());
+    }
+
+    /// Approximate reduction: the bound is an upper bound of the sampled deviation, the end
+    /// conditions hold, and a curve with a defect is reduced exactly.
+    #[test]
+    fn approximate_reduction(c in curve_strategy(12), r in 0usize..=3, drop in 1usize..=4) {
+        let s = scale(&c);
+        let n = c.degree();
+        let up = c.elevate_degree(r).unwrap();
+        let exact = up.reduce_degree_approx(n, EndConditions::Free).unwrap();
+        prop_assert!(exact.max_deviation_bound <= 1e-11 * s, "defect: exact {:e}", exact.max_deviation_bound);
+        let target = n.saturating_sub(drop).max(3);
+        if target < n {
+            let t = c.reduce_degree_approx(target, EndConditions::Tangents).unwrap();
+            prop_assert!(t.max_deviation_sampled <= t.max_deviation_bound * (1.0 + 1e-12) + 1e-14 * s);
+            let (p, q) = (c.control_points(), t.curve.control_points());
+            let (nf, kf) = (n as f64, target as f64);
+            for k in 0..c.dim() {
+                prop_assert!((p.point(0)[k] - q.point(0)[k]).abs() <= 1e-14 * s, "start");
+                prop_assert!((p.point(n)[k] - q.point(target)[k]).abs() <= 1e-14 * s, "end");
+                let d0 = nf * (p.point(1)[k] - p.point(0)[k]) - kf * (q.point(1)[k] - q.point(0)[k]);
+                prop_assert!(d0.abs() <= 1e-12 * s, "start tangent {:e}", d0);
+            }
         }
     }
 }
