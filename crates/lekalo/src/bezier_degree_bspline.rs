@@ -1,10 +1,13 @@
-//! Degree change of B-spline curves, composed from the Bezier operations of document 004 (digest
+//! Degree change of B-spline curves and surfaces, composed from the Bezier operations of document 004 (digest
 //! §E) and Bezier decomposition (STYLE §7; as `ricosjp/truck` `BSplineCurve::elevate_degree` and
 //! `msteinbeck/tinyspline` `ts_bspline_elevate_degree`):
 //!
 //! 1. split the curve into its polynomial pieces ([`BSplineCurve::to_bezier_segments`]);
 //! 2. change the degree of every piece (elevation, exact reduction or approximate reduction);
 //! 3. join the pieces again ([`BSplineCurve::from_bezier_segments`]).
+//!
+//! A surface is changed along `u` as the B-spline curve whose control points are the rows of the
+//! net (dimension `nv·dim`), then along `v` on the transposed net.
 //!
 //! The shape is kept (exactly for elevation and exact reduction), and so is continuity at the
 //! breakpoints where the pieces share their end points. The knot vector of the result has every
@@ -17,7 +20,7 @@ use crate::bezier_degree::{absolute_tolerance, real_degree_and_net, try_reduce_e
 use crate::bezier_degree_approx::EndConditions;
 use crate::error::{Error, Result};
 use crate::points::Points;
-use crate::{BSplineCurve, BezierCurve, BezierSegment, DEFAULT_DEGREE_TOLERANCE};
+use crate::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, DEFAULT_DEGREE_TOLERANCE};
 
 /// Result of [`BSplineCurve::reduce_degree_approx`].
 #[derive(Debug, Clone, PartialEq)]
@@ -187,6 +190,112 @@ impl BSplineCurve {
     }
 }
 
+/// The net of a surface with `u` and `v` exchanged (`rows × cols` points to `cols × rows`).
+fn transpose(data: &[f64], rows: usize, cols: usize, dim: usize) -> Vec<f64> {
+    let mut out = vec![0.0; data.len()];
+    for i in 0..rows {
+        for j in 0..cols {
+            let (src, dst) = ((i * cols + j) * dim, (j * rows + i) * dim);
+            out[dst..dst + dim].copy_from_slice(&data[src..src + dim]);
+        }
+    }
+    out
+}
+
+/// Names the direction in a refusal of a surface operation done as a curve operation.
+fn in_direction(e: Error, direction: &'static str) -> Error {
+    match e {
+        Error::DegreeReductionRefused {
+            requested,
+            real_degree,
+            ..
+        } => Error::DegreeReductionRefused {
+            requested,
+            real_degree,
+            direction,
+        },
+        other => other,
+    }
+}
+
+impl BSplineSurface {
+    /// Raises the degrees by `by_u` and `by_v` without changing the surface; see
+    /// [`BSplineSurface::change_degree_with_tolerance`].
+    ///
+    /// ```
+    /// use lekalo::{BSplineSurface, KnotVector, Points};
+    /// let net = Points::new((0..4 * 3).map(|k| f64::from(k * k % 5)).collect(), 1)?;
+    /// let s = BSplineSurface::from_knot_vectors(
+    ///     2, 1, KnotVector::clamped_uniform(2, 4)?, KnotVector::clamped_uniform(1, 3)?, net, (4, 3))?;
+    /// let e = s.elevate_degree(1, 2)?;
+    /// assert_eq!((e.degree_u(), e.degree_v()), (3, 3));
+    /// assert!((e.eval(0.3, 0.6)?[0] - s.eval(0.3, 0.6)?[0]).abs() < 1e-13);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::TooLarge`] if the result is too large to allocate.
+    pub fn elevate_degree(&self, by_u: usize, by_v: usize) -> Result<BSplineSurface> {
+        let new_u = self.degree_u().saturating_add(by_u);
+        let new_v = self.degree_v().saturating_add(by_v);
+        self.change_degree_with_tolerance(new_u, new_v, 0.0)
+    }
+
+    /// Changes the degrees to `(new_u, new_v)` with the default tolerance
+    /// [`DEFAULT_DEGREE_TOLERANCE`]; see [`BSplineSurface::change_degree_with_tolerance`].
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::change_degree_with_tolerance`].
+    pub fn change_degree(&self, new_u: usize, new_v: usize) -> Result<BSplineSurface> {
+        self.change_degree_with_tolerance(new_u, new_v, DEFAULT_DEGREE_TOLERANCE)
+    }
+
+    /// Changes the degrees from `(p, q)` to `(new_u, new_v)` without changing the surface: the
+    /// tensor-product form of document 004 eq. 14 on B-splines. Along `u` the rows of the net are
+    /// the control points of one B-spline curve of dimension `nv·dim` on the `u` knots, whose
+    /// degree is changed per Bezier piece by [`BSplineCurve::change_degree_with_tolerance`];
+    /// then the same along `v` on the transposed net. Lowering is exact and refused (naming the
+    /// direction and the largest real degree of its pieces) when a piece has no sufficient
+    /// defect; `tolerance` is relative to the largest absolute coordinate of the net. As for
+    /// curves, the new knot vectors have every interior breakpoint with multiplicity equal to
+    /// the new degree.
+    ///
+    /// # Errors
+    /// [`Error::DegreeReductionRefused`] with `direction` "u direction" or "v direction";
+    /// [`Error::InvalidArgument`] for a bad tolerance; [`Error::TooLarge`].
+    pub fn change_degree_with_tolerance(
+        &self,
+        new_u: usize,
+        new_v: usize,
+        tolerance: f64,
+    ) -> Result<BSplineSurface> {
+        let nv = self.net_size().1;
+        let dim = self.dim();
+        let rows = BSplineCurve::from_knot_vector(
+            self.degree_u(),
+            self.knots_u().clone(),
+            Points::from_raw(self.control_points().as_slice().to_vec(), nv * dim),
+        )?;
+        let (pu, knots_u, rows) = rows
+            .change_degree_with_tolerance(new_u, tolerance)
+            .map_err(|e| in_direction(e, "u direction"))?
+            .into_parts();
+        let nu_new = rows.len();
+        let cols = BSplineCurve::from_knot_vector(
+            self.degree_v(),
+            self.knots_v().clone(),
+            Points::from_raw(transpose(rows.as_slice(), nu_new, nv, dim), nu_new * dim),
+        )?;
+        let (pv, knots_v, cols) = cols
+            .change_degree_with_tolerance(new_v, tolerance)
+            .map_err(|e| in_direction(e, "v direction"))?
+            .into_parts();
+        let nv_new = cols.len();
+        let net = Points::from_raw(transpose(cols.as_slice(), nv_new, nu_new, dim), dim);
+        BSplineSurface::from_knot_vectors(pu, pv, knots_u, knots_v, net, (nu_new, nv_new))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -241,6 +350,49 @@ mod tests {
             c.change_degree_with_tolerance(2, -1.0),
             Err(Error::InvalidArgument { .. })
         ));
+    }
+
+    #[test]
+    fn surface_degree_change() {
+        use crate::KnotVector;
+        let net = Points::new(
+            (0..5 * 4 * 2)
+                .map(|k| (f64::from(k) * 12.9898).sin() * 3.0)
+                .collect(),
+            2,
+        )
+        .unwrap();
+        let ku = KnotVector::new(vec![0., 0., 0., 0.4, 0.4, 1., 1., 1.]).unwrap();
+        let kv = KnotVector::new(vec![0., 0., 0., 0.5, 1., 1., 1.]).unwrap();
+        let s = BSplineSurface::from_knot_vectors(2, 2, ku, kv, net, (5, 4)).unwrap();
+        let e = s.elevate_degree(2, 1).unwrap();
+        assert_eq!((e.degree_u(), e.degree_v()), (4, 3));
+        let back = e.change_degree(2, 2).unwrap();
+        for (u, v) in [(0.0, 0.0), (0.2, 0.7), (0.4, 0.5), (0.9, 1.0)] {
+            let a = s.eval(u, v).unwrap();
+            for other in [&e, &back] {
+                let b = other.eval(u, v).unwrap();
+                for (x, y) in a.iter().zip(&b) {
+                    assert!((x - y).abs() < 1e-12 * 3.0, "({u}, {v})");
+                }
+            }
+        }
+        assert_eq!(
+            e.change_degree(4, 1).unwrap_err(),
+            Error::DegreeReductionRefused {
+                requested: 1,
+                real_degree: 2,
+                direction: "v direction"
+            }
+        );
+        assert_eq!(
+            e.change_degree(1, 3).unwrap_err(),
+            Error::DegreeReductionRefused {
+                requested: 1,
+                real_degree: 2,
+                direction: "u direction"
+            }
+        );
     }
 
     #[test]
