@@ -68,6 +68,25 @@ pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
 
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
+mod bezier_degree_approx;
+mod bezier_degree_bspline;
+mod bezier_degree_matrix;
+mod bezier_degree_plan;
+mod bezier_degree_surface;
+
+pub use bezier_degree::{DEFAULT_DEGREE_TOLERANCE, MAX_MONOMIAL_DEGREE};
+pub use bezier_degree_approx::{ApproximateReduction, EndConditions, APPROX_SAMPLES};
+pub use bezier_degree_bspline::BSplineApproximateReduction;
+pub use bezier_degree_matrix::{
+    bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, elevation_block,
+    elevation_matrix, order_change_matrix, reduction_block, truncation_matrix, RationalMatrix,
+    MAX_EXACT_MATRIX_DEGREE,
+};
+pub use bezier_degree_plan::ElevationPlan;
+pub use bezier_degree_surface::{
+    bezier_net_change_degree, bezier_net_elevate, bezier_net_from_monomial,
+    bezier_net_real_degrees, bezier_net_real_degrees_monomial, bezier_net_to_monomial,
+};
 
 // -- blending (issue 5) --
 mod blend;
