@@ -761,3 +761,132 @@ impl ParametricCurve for BlendSpline {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn central_difference(c: &dyn ParametricCurve, t: f64, order: usize, h: f64) -> Vec<f64> {
+        let dim = c.dim();
+        let mut plus = vec![0.0; (order + 1) * dim];
+        let mut minus = vec![0.0; (order + 1) * dim];
+        c.eval_derivatives_into(t + h, order, &mut plus).unwrap();
+        c.eval_derivatives_into(t - h, order, &mut minus).unwrap();
+        let lo = (order - 1) * dim..order * dim;
+        plus[lo.clone()]
+            .iter()
+            .zip(&minus[lo])
+            .map(|(a, b)| (a - b) / (2.0 * h))
+            .collect()
+    }
+
+    // the digest's cross-product centre formula (§B.3 note 1) in 3D, against the Gram solve
+    #[test]
+    fn circle_through_three_points_in_3d() {
+        let (a, b, c) = ([1.0, 2.0, 0.5], [2.0, 0.0, 1.0], [0.0, -1.0, 2.0]);
+        let circle = circle_through([&a, &b, &c]).unwrap();
+        let cross = |u: [f64; 3], v: [f64; 3]| {
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
+        let sub = |u: [f64; 3], v: [f64; 3]| [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
+        let (aa, bb) = (sub(a, c), sub(b, c));
+        let axb = cross(aa, bb);
+        let n2: f64 = axb.iter().map(|x| x * x).sum();
+        let (la, lb) = (dot(&aa, &aa), dot(&bb, &bb));
+        let m = [
+            lb * aa[0] - la * bb[0],
+            lb * aa[1] - la * bb[1],
+            lb * aa[2] - la * bb[2],
+        ];
+        // O = C + (|a|² b − |b|² a) × (a × b) / (2 |a × b|²)
+        let q = cross([-m[0], -m[1], -m[2]], axb);
+        for d in 0..3 {
+            let o = c[d] + q[d] / (2.0 * n2);
+            assert!((circle.centre[d] - o).abs() < 1e-14, "centre[{d}]");
+        }
+        assert!(
+            0.0 < circle.phi1 && circle.phi1 < circle.phi2,
+            "order of traversal"
+        );
+        // P_1 and P_2 at their angles
+        for (phi, p) in [(circle.phi1, b), (circle.phi2, c)] {
+            for d in 0..3 {
+                let x = circle.centre[d]
+                    + circle.radius * (phi.cos() * circle.e1[d] + phi.sin() * circle.e2[d]);
+                assert!((x - p[d]).abs() < 1e-14, "point at {phi}");
+            }
+        }
+        assert!(circle_through([&[0.0, 0.0], &[1.0, 1.0], &[3.0, 3.0]]).is_none());
+        assert!(circle_through([&[0.0], &[1.0], &[3.0]]).is_none());
+    }
+
+    // both traversal orientations: P_1 counter-clockwise or clockwise between P_0 and P_2
+    #[test]
+    fn arcs_pass_through_the_points_in_order() {
+        for sign in [1.0, -1.0] {
+            let p = [[1.0, 0.0], [0.0, sign], [-1.0, 0.0]];
+            let arcs = CircularArcs::default();
+            let [left, right] = arcs.pieces([&p[0], &p[1], &p[2]], (1.0, 2.0)).unwrap();
+            assert_eq!(left.domain(), (-1.0, 0.0));
+            assert_eq!(right.domain(), (0.0, 2.0));
+            let mid = left.eval(-0.5).unwrap();
+            let s = std::f64::consts::FRAC_1_SQRT_2;
+            assert!((mid[0] - s).abs() < 1e-15 && (mid[1] - sign * s).abs() < 1e-15);
+            let end = right.eval(2.0).unwrap();
+            assert!((end[0] + 1.0).abs() < 1e-15 && end[1].abs() < 1e-15);
+        }
+    }
+
+    // arc pieces with a quadratic angle: derivatives against central differences of the
+    // next-lower derivative
+    #[test]
+    fn arc_piece_derivatives() {
+        let piece = ArcPiece {
+            centre: vec![1.0, -2.0, 0.5],
+            radius: 1.5,
+            e1: vec![0.6, 0.8, 0.0],
+            e2: vec![0.0, 0.0, 1.0],
+            domain: (0.0, 2.0),
+            theta: [0.3, 0.9, -0.2],
+        };
+        for order in 1..=5 {
+            let mut out = vec![0.0; (order + 1) * 3];
+            piece.eval_derivatives_into(0.7, order, &mut out).unwrap();
+            let fd = central_difference(&piece, 0.7, order, 1e-5);
+            for d in 0..3 {
+                assert!((out[order * 3 + d] - fd[d]).abs() < 1e-8, "order {order}");
+            }
+        }
+        assert!(matches!(
+            piece.eval(2.5),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            piece.eval_derivatives_into(0.5, 1, &mut [0.0; 3]),
+            Err(Error::LengthMismatch { .. })
+        ));
+    }
+
+    // rational pieces are the arcs: every point at distance r from the centre
+    #[test]
+    fn rational_pieces_lie_on_the_circle() {
+        let p = [[0.0, 0.0], [2.0, 1.0], [3.0, 3.0]];
+        let circle = circle_through([&p[0], &p[1], &p[2]]).unwrap();
+        let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+        let pieces = arcs.pieces([&p[0], &p[1], &p[2]], (1.0, 1.0)).unwrap();
+        for piece in &pieces {
+            let (a, b) = piece.domain();
+            assert!(piece.bezier_form().is_some(), "rational Bezier form");
+            for step in 0..=10 {
+                let q = piece.eval(a + (b - a) * f64::from(step) / 10.0).unwrap();
+                let r =
+                    ((q[0] - circle.centre[0]).powi(2) + (q[1] - circle.centre[1]).powi(2)).sqrt();
+                assert!((r - circle.radius).abs() < 1e-14, "radius {r}");
+            }
+        }
+    }
+}

@@ -53,12 +53,14 @@ mod bezier_degree;
 // -- blending (issue 5) --
 mod bernstein_ops;
 mod blend;
+mod blend_approx;
 mod blend_spline;
 mod jump;
 
 pub use blend::{
     BezierForm, CornerTransition, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE,
 };
+pub use blend_approx::{approximate_curve, Approximation};
 pub use blend_spline::{
     ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity, FnLocalCurves,
     LocalCurves, Parabolas, SharedCurve, SplineParameters,

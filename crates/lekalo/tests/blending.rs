@@ -818,3 +818,48 @@ fn errors() {
     ));
     assert_eq!(s.eval(0.5).unwrap(), vec![0.5, 0.0]);
 }
+
+// Angle-parametrised arcs have no exact form: the Hermite approximation meets the tolerance,
+// reproduces the derivatives up to order k at the nodes (so it keeps the spline's G^k joins),
+// and its measured error is an honest estimate of the true one (checked on a 10x finer grid).
+#[test]
+fn approximation_of_arc_splines() {
+    for k in 1..=3 {
+        let s = spline(
+            &ZIGZAG,
+            &CircularArcs::default(),
+            k,
+            false,
+            SplineParameters::Uniform,
+        );
+        let tol = 1e-7;
+        let a = s.approximate(tol).unwrap();
+        assert!(a.max_error() <= tol, "k = {k}");
+        let c = a.curve();
+        assert_eq!(c.degree(), 2 * k + 1);
+        let end = s.parameters()[s.segment_count()];
+        let mut worst = 0.0_f64;
+        for step in 0..=2000 {
+            let t = end * f64::from(step) / 2000.0;
+            worst = worst.max(dist(&c.eval(t).unwrap(), &s.eval(t).unwrap()));
+        }
+        assert!(worst <= 2.0 * tol, "k = {k}: true error {worst}");
+        // derivatives at an interior node from the right
+        let node = s.parameters()[2];
+        let exact = s.eval_derivatives(node, k).unwrap();
+        let approx = c.eval_derivatives(node, k).unwrap();
+        for l in 0..=k {
+            assert!(
+                agree(exact.point(l), approx.point(l), 1e-9),
+                "k = {k}, order {l}"
+            );
+        }
+    }
+    assert!(matches!(
+        spline(&ZIGZAG, &Parabolas, 1, false, SplineParameters::Uniform).approximate(-1.0),
+        Err(Error::InvalidArgument {
+            what: "tolerance",
+            ..
+        })
+    ));
+}
