@@ -28,19 +28,24 @@
 // -- foundation (issue 2) --
 pub mod basis;
 mod bezier;
+mod bezier_surface;
 mod bspline;
 mod error;
 mod knots;
 mod nurbs;
+mod nurbs_surface;
 mod points;
 mod surface;
 
 pub use bezier::BezierCurve;
+pub use bezier_surface::BezierSurface;
 pub use bspline::BSplineCurve;
 pub use error::{Error, Result, MAX_SCALARS};
 pub use knots::{check_parameters, KnotVector, SpanCursor};
-pub use nurbs::NurbsCurve;
+pub use nurbs::{NurbsCurve, MAX_CURVE_DERIVATIVE_ORDER};
+pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
+pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
 
 // -- interpolation (issue 3) --
 mod hermite;
