@@ -216,31 +216,11 @@ impl ParametricCurve for NurbsCurve {
     fn domain(&self) -> (f64, f64) {
         NurbsCurve::domain(self)
     }
-    /// Derivatives of the homogeneous curve `(A, w)` (A3.2), then the quotient rule
-    /// `C^{(l)} = (A^{(l)} − Σ_{i=1}^{l} C(l,i) w^{(i)} C^{(l−i)}) / w` (P&T eq. 4.8,
-    /// Algorithm A4.2).
+    /// [`NurbsCurve::eval_derivatives`] (quotient rule, P&T Algorithm A4.2).
     fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
-        let dim = NurbsCurve::dim(self);
-        check_out_len(out, order, dim)?;
-        let h = self.homogeneous().eval_derivatives(t, order)?;
-        let w0 = h.point(0)[dim];
-        for l in 0..=order {
-            let (done, rest) = out.split_at_mut(l * dim);
-            let row = &mut rest[..dim];
-            row.copy_from_slice(&h.point(l)[..dim]);
-            let mut binom = 1.0;
-            for i in 1..=l {
-                binom = binom * (l + 1 - i) as f64 / i as f64;
-                let wi = h.point(i)[dim];
-                let prev = &done[(l - i) * dim..(l - i + 1) * dim];
-                for (r, c) in row.iter_mut().zip(prev) {
-                    *r -= binom * wi * c;
-                }
-            }
-            for r in row.iter_mut() {
-                *r /= w0;
-            }
-        }
+        check_out_len(out, order, NurbsCurve::dim(self))?;
+        let d = self.eval_derivatives(t, order)?;
+        out.copy_from_slice(d.as_slice());
         Ok(())
     }
     /// `Some` when the knot vector is a single clamped Bezier segment.
