@@ -115,6 +115,51 @@ pub(crate) fn product(a: &[f64], ctrl: &[f64], dim: usize) -> Vec<f64> {
     out
 }
 
+/// Bernstein coefficients of the restriction `f(t_0 + u (t_1 − t_0))`, `u ∈ [0, 1]`, of the
+/// polynomial with coefficients `ctrl`, by two de Casteljau subdivisions (Farin, *Curves and Surfaces
+/// for CAGD*, §4.6, subdivision): split at `t_1` and keep the left part,
+/// then split that at `t_0 / t_1` and keep the right part. Stable (convex combinations only for
+/// `0 ≤ t_0 < t_1 ≤ 1`). O(n² · dim).
+pub(crate) fn restrict(ctrl: &[f64], dim: usize, t0: f64, t1: f64) -> Vec<f64> {
+    debug_assert!(
+        (0.0..1.0).contains(&t0) && t0 < t1 && t1 <= 1.0,
+        "0 <= t0 < t1 <= 1"
+    );
+    let n = ctrl.len() / dim - 1;
+    let left = if t1 < 1.0 {
+        subdivide(ctrl, dim, t1).0
+    } else {
+        ctrl.to_vec()
+    };
+    if t0 > 0.0 {
+        subdivide(&left, dim, t0 / t1).1
+    } else {
+        debug_assert_eq!(left.len(), (n + 1) * dim, "restrict length");
+        left
+    }
+}
+
+/// De Casteljau subdivision at `t`: the control points of the left and right parts.
+fn subdivide(ctrl: &[f64], dim: usize, t: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = ctrl.len() / dim - 1;
+    let mut work = ctrl.to_vec();
+    let mut left = Vec::with_capacity(ctrl.len());
+    let mut right = vec![0.0; ctrl.len()];
+    left.extend_from_slice(&work[..dim]);
+    right[n * dim..].copy_from_slice(&work[n * dim..]);
+    for level in 1..=n {
+        for i in 0..=(n - level) {
+            for d in 0..dim {
+                work[i * dim + d] = (1.0 - t) * work[i * dim + d] + t * work[(i + 1) * dim + d];
+            }
+        }
+        left.extend_from_slice(&work[..dim]);
+        let last = n - level;
+        right[last * dim..(last + 1) * dim].copy_from_slice(&work[last * dim..(last + 1) * dim]);
+    }
+    (left, right)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,6 +171,23 @@ mod tests {
             .enumerate()
             .map(|(i, c)| c * bernstein(n, i, u))
             .sum()
+    }
+
+    #[test]
+    fn restriction_reparametrises() {
+        let c = [0.5, -1.0, 2.0, 3.0, 0.25];
+        for (t0, t1) in [(0.0, 0.4), (0.3, 1.0), (0.2, 0.7), (0.0, 1.0)] {
+            let r = restrict(&c, 1, t0, t1);
+            assert_eq!(r.len(), c.len());
+            for step in 0..=10 {
+                let u = f64::from(step) / 10.0;
+                let expect = eval_sum(&c, t0 + u * (t1 - t0));
+                assert!(
+                    (eval_sum(&r, u) - expect).abs() < 1e-14,
+                    "[{t0}, {t1}] at {u}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -541,7 +541,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     /// [`Error::InvalidArgument`] if a curve has no polynomial Bezier form (use
     /// [`Deformation::to_nurbs`] for rational pieces).
     pub fn to_bezier(&self) -> Result<BezierCurve> {
-        let (Some(BezierForm::Polynomial(b1)), Some(BezierForm::Polynomial(b2))) =
+        let (Some(f1 @ BezierForm::Polynomial(_)), Some(f2 @ BezierForm::Polynomial(_))) =
             (self.first.bezier_form(), self.second.bezier_form())
         else {
             return Err(Error::InvalidArgument {
@@ -551,23 +551,10 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
                     .into(),
             });
         };
-        let dim = b1.dim();
-        let w = self.jump.bernstein_coefficients_f64();
-        let one_minus: Vec<f64> = w.iter().map(|x| 1.0 - x).collect();
-        let (d1, d2) = (b1.degree(), b2.degree());
-        let d = d1.max(d2);
-        let t1 = bernstein_ops::product(
-            &one_minus,
-            &elevate(b1.control_points().as_slice(), dim, d - d1),
-            dim,
-        );
-        let t2 = bernstein_ops::product(
-            &w,
-            &elevate(b2.control_points().as_slice(), dim, d - d2),
-            dim,
-        );
-        let ctrl: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
-        Ok(BezierCurve::from_raw(Points::new(ctrl, dim)?))
+        match blend_forms(&f1, &f2, &self.jump)? {
+            BezierForm::Polynomial(b) => Ok(b),
+            BezierForm::Rational(_) => unreachable_form(),
+        }
     }
 
     /// The exact rational Bezier form (a single-segment NURBS on `[0, 1]`) when both curves are
@@ -586,29 +573,110 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
                 reason: "both must be Bezier or rational Bezier pieces for an exact form".into(),
             });
         };
-        if let (BezierForm::Polynomial(_), BezierForm::Polynomial(_)) = (&f1, &f2) {
-            return Ok(NurbsCurve::from_bspline(&bezier_as_bspline(
-                &self.to_bezier()?,
-            )));
-        }
-        let (h1, dim) = f1.homogeneous();
-        let (h2, _) = f2.homogeneous();
-        let hd = dim + 1;
-        let weights = |h: &[f64]| -> Vec<f64> { h.iter().skip(dim).step_by(hd).copied().collect() };
-        let (omega1, omega2) = (weights(&h1), weights(&h2));
-        let w = self.jump.bernstein_coefficients_f64();
-        let one_minus: Vec<f64> = w.iter().map(|x| 1.0 - x).collect();
-        // (1 − w) ω_2 H_1 and w ω_1 H_2, then elevate to the common degree
-        let t1 = bernstein_ops::product(&bernstein_ops::product(&one_minus, &omega2, 1), &h1, hd);
-        let t2 = bernstein_ops::product(&bernstein_ops::product(&w, &omega1, 1), &h2, hd);
-        let (n1, n2) = (t1.len() / hd - 1, t2.len() / hd - 1);
-        let n = n1.max(n2);
-        let t1 = elevate(&t1, hd, n - n1);
-        let t2 = elevate(&t2, hd, n - n2);
-        let h: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
-        let bez = BezierCurve::from_raw(Points::new(h, hd)?);
-        NurbsCurve::from_homogeneous(bezier_as_bspline(&bez))
+        Ok(blend_forms(&f1, &f2, &self.jump)?.to_nurbs())
     }
+}
+
+/// Never returned for two polynomial pieces; kept as an error rather than a panic.
+fn unreachable_form() -> Result<BezierCurve> {
+    debug_assert!(false, "blend of polynomial pieces must be polynomial");
+    Err(Error::InvalidArgument {
+        what: "curves of the deformation",
+        reason: "internal: expected a polynomial blend".into(),
+    })
+}
+
+/// `(1 − w) p_1 + w p_2` in exact (rational) Bezier form, `w` the jump polynomial: the formulas
+/// of [`Deformation::to_bezier`] (both polynomial) and [`Deformation::to_nurbs`] (otherwise).
+fn blend_forms(f1: &BezierForm, f2: &BezierForm, jump: &JumpPolynomial) -> Result<BezierForm> {
+    let w = jump.bernstein_coefficients_f64();
+    let one_minus: Vec<f64> = w.iter().map(|x| 1.0 - x).collect();
+    if let (BezierForm::Polynomial(b1), BezierForm::Polynomial(b2)) = (f1, f2) {
+        let dim = b1.dim();
+        let (d1, d2) = (b1.degree(), b2.degree());
+        let d = d1.max(d2);
+        let t1 = bernstein_ops::product(
+            &one_minus,
+            &elevate(b1.control_points().as_slice(), dim, d - d1),
+            dim,
+        );
+        let t2 = bernstein_ops::product(
+            &w,
+            &elevate(b2.control_points().as_slice(), dim, d - d2),
+            dim,
+        );
+        let ctrl: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
+        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(Points::new(
+            ctrl, dim,
+        )?)));
+    }
+    let (h1, dim) = f1.homogeneous();
+    let (h2, _) = f2.homogeneous();
+    let hd = dim + 1;
+    let (omega1, omega2) = (weights_of(&h1, dim), weights_of(&h2, dim));
+    // (1 − w) ω_2 H_1 and w ω_1 H_2, then elevate to the common degree
+    let t1 = bernstein_ops::product(&bernstein_ops::product(&one_minus, &omega2, 1), &h1, hd);
+    let t2 = bernstein_ops::product(&bernstein_ops::product(&w, &omega1, 1), &h2, hd);
+    let (n1, n2) = (t1.len() / hd - 1, t2.len() / hd - 1);
+    let n = n1.max(n2);
+    let t1 = elevate(&t1, hd, n - n1);
+    let t2 = elevate(&t2, hd, n - n2);
+    let h: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
+    let bez = BezierCurve::from_raw(Points::new(h, hd)?);
+    Ok(BezierForm::Rational(NurbsCurve::from_homogeneous(
+        bezier_as_bspline(&bez),
+    )?))
+}
+
+/// The weights (last coordinates) of flat homogeneous points.
+fn weights_of(h: &[f64], dim: usize) -> Vec<f64> {
+    h.iter().skip(dim).step_by(dim + 1).copied().collect()
+}
+
+/// A corner-transition piece in exact form: `form` restricted to `range` (unit parameters) plus
+/// `jump(u) · offset`, where `jump` are scalar Bernstein coefficients. Polynomial:
+/// `restrict(P) + jump ⊗ offset` at degree `max(d, m)`; rational `A/ω`:
+/// `(A + jump·ω·offset, ω)` at degree `d + m`.
+fn offset_piece(
+    form: &BezierForm,
+    range: (f64, f64),
+    jump: &[f64],
+    offset: &[f64],
+) -> Result<BezierForm> {
+    let (h, dim) = form.homogeneous();
+    let hd = dim + 1;
+    let h = bernstein_ops::restrict(&h, hd, range.0, range.1);
+    let m = jump.len() - 1;
+    let d = h.len() / hd - 1;
+    if let BezierForm::Polynomial(_) = form {
+        let euclid: Vec<f64> = h
+            .chunks_exact(hd)
+            .flat_map(|p| p[..dim].iter().copied())
+            .collect();
+        let n = d.max(m);
+        let mut ctrl = elevate(&euclid, dim, n - d);
+        let jump = elevate(jump, 1, n - m);
+        for (p, j) in ctrl.chunks_exact_mut(dim).zip(&jump) {
+            for (x, o) in p.iter_mut().zip(offset) {
+                *x += j * o;
+            }
+        }
+        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(Points::new(
+            ctrl, dim,
+        )?)));
+    }
+    let omega = weights_of(&h, dim);
+    let jw = bernstein_ops::product(jump, &omega, 1);
+    let mut ctrl = elevate(&h, hd, m);
+    for (p, j) in ctrl.chunks_exact_mut(hd).zip(&jw) {
+        for (x, o) in p[..dim].iter_mut().zip(offset) {
+            *x += j * o;
+        }
+    }
+    let bez = BezierCurve::from_raw(Points::new(ctrl, hd)?);
+    Ok(BezierForm::Rational(NurbsCurve::from_homogeneous(
+        bezier_as_bspline(&bez),
+    )?))
 }
 
 /// Degree elevation by `r` as the Bernstein product with the constant 1 of degree `r`.
@@ -689,6 +757,21 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C
 /// for `l ≤ k`. Placing `p` on a parameter interval of length `h` after `before`'s `[a_1, t_1]`
 /// gives **C^k when `h_1 = h_2 = h`** (equal parameter windows) and G^k (a linear
 /// reparametrisation) otherwise.
+///
+/// **Exact form:** when both curves are single Bezier or rational Bezier pieces,
+/// [`ParametricCurve::bezier_form`] returns the transition as one (rational) Bezier curve.
+///
+/// ```
+/// use lekalo::{BezierCurve, BezierForm, CornerTransition, ParametricCurve, Points};
+/// let before = BezierCurve::new(Points::from_2d(&[[-1.0, 0.0], [0.0, 0.0]])?)?;
+/// let after = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [0.0, 1.0]])?)?;
+/// let c = CornerTransition::new(&before, 0.5, &after, 0.5, 2)?; // C² rounding of a right angle
+/// let Some(BezierForm::Polynomial(b)) = c.bezier_form() else { unreachable!() };
+/// assert_eq!(b.degree(), 8); // (2k − 1) + (2k + 1)
+/// let (p, q) = (b.eval(0.3)?, c.eval(0.3)?);
+/// assert!((p[0] - q[0]).abs() < 1e-15 && (p[1] - q[1]).abs() < 1e-15);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct CornerTransition<C1, C2> {
     before: C1,
@@ -814,6 +897,23 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
     fn domain(&self) -> (f64, f64) {
         (0.0, 1.0)
     }
+    /// Exact form when `before` and `after` are single (rational) Bezier pieces: the windows are
+    /// cut out by de Casteljau subdivision, `q_1, q_2` get their `w_k` offsets in Bernstein form
+    /// and are blended as in [`Deformation::to_nurbs`]. Polynomial pieces of degrees `d_1, d_2`
+    /// give degree `(2k − 1) + max(d_1, d_2, 2k + 1)`.
+    fn bezier_form(&self) -> Option<BezierForm> {
+        let (f1, f2) = (self.before.bezier_form()?, self.after.bezier_form()?);
+        let (a1, b1) = self.before.domain();
+        let (a2, b2) = self.after.domain();
+        let r1 = ((self.t1 - a1) / (b1 - a1), 1.0);
+        let r2 = (0.0, (self.t2 - a2) / (b2 - a2));
+        let wk = self.outer.bernstein_coefficients_f64();
+        let one_minus: Vec<f64> = wk.iter().map(|x| 1.0 - x).collect();
+        let q1 = offset_piece(&f1, r1, &wk, &self.d2).ok()?;
+        let q2 = offset_piece(&f2, r2, &one_minus, &self.d1).ok()?;
+        blend_forms(&q1, &q2, &self.inner).ok()
+    }
+
     fn eval_derivatives_into(&self, u: f64, order: usize, out: &mut [f64]) -> Result<()> {
         check_unit(u)?;
         let dim = self.before.dim();

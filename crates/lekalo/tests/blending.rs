@@ -863,3 +863,42 @@ fn approximation_of_arc_splines() {
         })
     ));
 }
+
+// Corner transitions between single Bezier / rational Bezier pieces have an exact form.
+#[test]
+fn corner_transition_exact_forms() {
+    let before = bezier(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.5], [3.0, 0.0]]);
+    let after = bezier(&[[3.0, 0.0], [3.5, 1.0], [3.2, 2.0], [4.0, 3.0]]);
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    // quarter circle from (1, 0) to (0, 1), then a straight line on to (-2, 1), on [0, 2]
+    let arc = NurbsCurve::new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap(),
+        vec![1.0, w, 1.0],
+    )
+    .unwrap();
+    let line = lekalo::BSplineCurve::new(
+        1,
+        vec![0.0, 0.0, 2.0, 2.0],
+        Points::from_2d(&[[0.0, 1.0], [-2.0, 1.0]]).unwrap(),
+    )
+    .unwrap();
+    for k in 1..=3 {
+        let c = CornerTransition::new(&before, 0.6, &after, 0.25, k).unwrap();
+        let Some(lekalo::BezierForm::Polynomial(b)) = c.bezier_form() else {
+            panic!("polynomial corner must have a Bezier form")
+        };
+        assert_eq!(b.degree(), 2 * k - 1 + (2 * k + 1).max(3));
+        let r = CornerTransition::new(&arc, 0.5, &line, 1.0, k).unwrap();
+        let Some(lekalo::BezierForm::Rational(n)) = r.bezier_form() else {
+            panic!("rational corner must have a rational form")
+        };
+        for step in 0..=20 {
+            let u = f64::from(step) / 20.0;
+            let (e1, e2) = (c.eval(u).unwrap(), r.eval(u).unwrap());
+            assert!(dist(&b.eval(u).unwrap(), &e1) < 1e-13, "k = {k}, u = {u}");
+            assert!(dist(&n.eval(u).unwrap(), &e2) < 1e-13, "k = {k}, u = {u}");
+        }
+    }
+}
