@@ -960,3 +960,92 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cubic(rows: [[f64; 2]; 4]) -> BezierCurve {
+        BezierCurve::new(Points::from_2d(&rows).unwrap()).unwrap()
+    }
+
+    fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Contact order at u = 0 of `d` with `p1` (largest l with matching derivatives 0..=l).
+    fn contact(d: &Points, p1: &BezierCurve, max: usize) -> usize {
+        let mut e = vec![0.0; 2 * (max + 1)];
+        p1.eval_derivatives_into(0.0, max, &mut e).unwrap();
+        (0..=max)
+            .take_while(|&l| max_diff(d.point(l), &e[2 * l..2 * l + 2]) < 1e-10)
+            .last()
+            .unwrap_or(0)
+    }
+
+    // The index subtlety of §B.2, checked on the formula itself (the digest's verification log):
+    // with common end points w_{k−1} gives contact of order exactly k and w_k order k + 1;
+    // without common end points w_{k−1} gives only k − 1.
+    #[test]
+    fn index_of_the_jump_polynomial() {
+        let p1 = cubic([[0.0, 0.0], [1.0, 2.0], [2.0, 2.5], [3.0, 0.0]]);
+        let p2 = cubic([[0.0, 0.0], [1.5, 1.0], [2.5, -1.0], [3.0, 0.0]]);
+        let shifted = cubic([[0.0, 0.5], [1.5, 1.0], [2.5, -1.0], [3.0, 0.0]]);
+        for k in 1..=4 {
+            let with = |second: &BezierCurve, index: usize| Deformation {
+                first: p1.clone(),
+                second: second.clone(),
+                continuity: k,
+                jump: JumpPolynomial::new(index).unwrap(),
+            };
+            let d = with(&p2, k - 1).eval_derivatives(0.0, k + 2).unwrap();
+            assert_eq!(contact(&d, &p1, k + 2), k, "w_(k-1), k = {k}");
+            let d = with(&p2, k).eval_derivatives(0.0, k + 2).unwrap();
+            assert_eq!(contact(&d, &p1, k + 2), k + 1, "w_k, k = {k}");
+            // bypassing the end-point check on purpose: order k − 1 only (and for k = 1 not
+            // even the point, which is why `new` refuses such curves)
+            let d = with(&shifted, k - 1).eval_derivatives(0.0, k + 2).unwrap();
+            let c = contact(&d, &p1, k + 2);
+            if k == 1 {
+                assert!(
+                    max_diff(d.point(1), &[3.0, 6.0]) > 0.1,
+                    "k = 1 without common ends"
+                );
+            } else {
+                assert_eq!(c, k - 1, "w_(k-1) without common ends, k = {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn bezier_forms_of_library_curves() {
+        let b = cubic([[0.0, 0.0], [1.0, 2.0], [2.0, 2.5], [3.0, 0.0]]);
+        let single = bezier_as_bspline(&b);
+        assert_eq!(
+            single.bezier_form(),
+            Some(BezierForm::Polynomial(b.clone()))
+        );
+        let two = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 0.5, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(two.bezier_form(), None);
+        assert_eq!(NurbsCurve::from_bspline(&two).bezier_form(), None);
+        let f = BezierForm::Polynomial(b.clone());
+        assert_eq!(f.degree(), 3);
+        assert_eq!(f.to_nurbs().weights(), vec![1.0; 4]);
+        // BSpline derivatives through the trait equal the inherent ones
+        let mut out = vec![0.0; 6];
+        single.eval_derivatives_into(0.3, 2, &mut out).unwrap();
+        assert_eq!(out, single.eval_derivatives(0.3, 2).unwrap().into_vec());
+        assert!(matches!(
+            single.eval_derivatives_into(0.3, 2, &mut [0.0; 5]),
+            Err(Error::LengthMismatch { .. })
+        ));
+    }
+}
