@@ -1,45 +1,6 @@
-//! C^k deformation (blending) of curves with jump-smoothing polynomials (document 001).
-//!
-//! ## The construction (digest §B.2)
-//! Two parametric curves `p_1, p_2 : [0, 1] → R^d` with **common end points**
-//! (`p_1(0) = p_2(0)`, `p_1(1) = p_2(1)`) are blended into
-//!
-//! ```text
-//! p(u) = (1 − w_{k−1}(u)) p_1(u) + w_{k−1}(u) p_2(u),      u ∈ [0, 1],
-//! ```
-//!
-//! where `w_{k−1}` is the jump-smoothing polynomial of degree `2k − 1` ([`JumpPolynomial`]). The
-//! result starts as `p_1` and ends as `p_2` with **continuity degree k**:
-//! `p^{(l)}(0) = p_1^{(l)}(0)` and `p^{(l)}(1) = p_2^{(l)}(1)` for `l = 0 … k`.
-//!
-//! ## The index: `w_{k−1}`, not `w_k`
-//! By Leibniz, `p^{(l)} = p_1^{(l)} + Σ_{i=0}^{l} C(l,i) w^{(i)} (p_2 − p_1)^{(l−i)}`. At `u = 0`
-//! the term `i = 0` vanishes because `w(0) = 0`; the terms `1 ≤ i ≤ k − 1` vanish because
-//! `w_{k−1}^{(i)}(0) = 0`; the term `i = l = k` is `w^{(k)}(0) (p_2 − p_1)(0)`, which vanishes
-//! **because the end points are common**. So `w_{k−1}` already gives contact of order `k`, one
-//! more than its own boundary conditions. Without common end points it gives only `k − 1`; with
-//! `w_k` one would get `k + 1`. Derivative `k + 1` generally jumps (tested). `k = 1` is the
-//! linear blend `(1 − u) p_1 + u p_2` with `w_0(u) = u`.
-//!
-//! ## Curves of any kind
-//! Anything implementing [`ParametricCurve`] can be blended: [`BezierCurve`],
-//! [`BSplineCurve`], [`NurbsCurve`], closures ([`FnCurve`]), other deformations, and the local
-//! curves of [`BlendSpline`](crate::BlendSpline). A curve on `[a, b]` is used as
-//! `u ↦ c(a + u (b − a))`, so its `l`-th derivative is scaled by `(b − a)^l`.
-//!
-//! ## Exact form
-//! If `p_1, p_2` are polynomial of degrees `d_1, d_2`, `p` is a polynomial of degree
-//! `(2k − 1) + max(d_1, d_2)` and [`Deformation::to_bezier`] returns its Bezier control points,
-//! computed by Bernstein products (no monomial conversion). If they are rational
-//! `p_i = A_i / ω_i` (for example circular arcs as rational quadratics), then
-//! `p = [(1 − w) ω_2 A_1 + w ω_1 A_2] / (ω_1 ω_2)`, a rational Bezier of degree
-//! `(2k − 1) + d_1 + d_2`: [`Deformation::to_nurbs`]. Its weights are positive when those of
-//! `p_1, p_2` are (products and sums of positive Bernstein coefficients), so it exports to CAD.
-//!
-//! ## Corners
-//! [`CornerTransition`] replaces a window around the corner where two curves meet by a
-//! deformation with continuity degree `k` (the "smoothing of corners" named in document 001's
-//! conclusion; the construction is ours and documented there).
+//! C^k deformation (blending) of curves with jump-smoothing polynomials (document 001, digest
+//! §B.2): [`ParametricCurve`], [`Deformation`] (the mathematics is documented there),
+//! [`CornerTransition`], exact Bezier/NURBS forms.
 
 use std::sync::Arc;
 
@@ -417,7 +378,48 @@ fn dist(x: &[f64], y: &[f64]) -> f64 {
 
 /// The deformation of `p_1` into `p_2` with continuity degree `k` (document 001, digest §B.2):
 /// `p(u) = (1 − w_{k−1}(u)) p_1(u) + w_{k−1}(u) p_2(u)`, `u ∈ [0, 1]`; see the
-/// [module documentation](self) for why `w_{k−1}` suffices.
+/// sections below for why `w_{k−1}` suffices.
+///
+/// # The construction (digest §B.2)
+/// Two parametric curves `p_1, p_2 : [0, 1] → R^d` with **common end points**
+/// (`p_1(0) = p_2(0)`, `p_1(1) = p_2(1)`) are blended into
+///
+/// ```text
+/// p(u) = (1 − w_{k−1}(u)) p_1(u) + w_{k−1}(u) p_2(u),      u ∈ [0, 1],
+/// ```
+///
+/// where `w_{k−1}` is the jump-smoothing polynomial of degree `2k − 1` ([`JumpPolynomial`]). The
+/// result starts as `p_1` and ends as `p_2` with **continuity degree k**:
+/// `p^{(l)}(0) = p_1^{(l)}(0)` and `p^{(l)}(1) = p_2^{(l)}(1)` for `l = 0 … k`.
+///
+/// # The index: `w_{k−1}`, not `w_k`
+/// By Leibniz, `p^{(l)} = p_1^{(l)} + Σ_{i=0}^{l} C(l,i) w^{(i)} (p_2 − p_1)^{(l−i)}`. At `u = 0`
+/// the term `i = 0` vanishes because `w(0) = 0`; the terms `1 ≤ i ≤ k − 1` vanish because
+/// `w_{k−1}^{(i)}(0) = 0`; the term `i = l = k` is `w^{(k)}(0) (p_2 − p_1)(0)`, which vanishes
+/// **because the end points are common**. So `w_{k−1}` already gives contact of order `k`, one
+/// more than its own boundary conditions. Without common end points it gives only `k − 1`; with
+/// `w_k` one would get `k + 1`. Derivative `k + 1` generally jumps (tested). `k = 1` is the
+/// linear blend `(1 − u) p_1 + u p_2` with `w_0(u) = u`.
+///
+/// # Curves of any kind
+/// Anything implementing [`ParametricCurve`] can be blended: [`BezierCurve`],
+/// [`BSplineCurve`], [`NurbsCurve`], closures ([`FnCurve`]), other deformations, and the local
+/// curves of [`BlendSpline`](crate::BlendSpline). A curve on `[a, b]` is used as
+/// `u ↦ c(a + u (b − a))`, so its `l`-th derivative is scaled by `(b − a)^l`.
+///
+/// # Exact form
+/// If `p_1, p_2` are polynomial of degrees `d_1, d_2`, `p` is a polynomial of degree
+/// `(2k − 1) + max(d_1, d_2)` and [`Deformation::to_bezier`] returns its Bezier control points,
+/// computed by Bernstein products (no monomial conversion). If they are rational
+/// `p_i = A_i / ω_i` (for example circular arcs as rational quadratics), then
+/// `p = [(1 − w) ω_2 A_1 + w ω_1 A_2] / (ω_1 ω_2)`, a rational Bezier of degree
+/// `(2k − 1) + d_1 + d_2`: [`Deformation::to_nurbs`]. Its weights are positive when those of
+/// `p_1, p_2` are (products and sums of positive Bernstein coefficients), so it exports to CAD.
+///
+/// # Corners
+/// [`CornerTransition`] replaces a window around the corner where two curves meet by a
+/// deformation with continuity degree `k` (the "smoothing of corners" named in document 001's
+/// conclusion; the construction is ours and documented there).
 ///
 /// ```
 /// use lekalo::{BezierCurve, Deformation, ParametricCurve, Points};

@@ -1,22 +1,4 @@
-//! Piecewise Hermite–Bezier approximation of curves without an exact Bezier form (blends of
-//! angle-parametrised arcs, user curves), with the error measured and reported.
-//!
-//! On a piece `[a, b]` (`h = b − a`) of a smooth curve `c`, the Bezier curve of degree
-//! `q = 2r + 1` that matches `c` and its first `r` derivatives at both ends has control points
-//! (two-point Hermite interpolation in Bernstein form; Farin, *Curves and Surfaces for CAGD*,
-//! §5.3 derivative formula `c^{(i)}(0) = q!/(q−i)! Δ^i B_0` solved for the `B_j`)
-//!
-//! ```text
-//! B_j     = Σ_{i=0}^{j} C(j,i) (q−i)!/q! · h^i c^{(i)}(a)
-//! B_{q−j} = Σ_{i=0}^{j} C(j,i) (q−i)!/q! · (−h)^i c^{(i)}(b),      j = 0 … r.
-//! ```
-//!
-//! Its error is `O(h^{2r+2})` (the Hermite remainder `c^{(2r+2)}(ξ)/(2r+2)! · ((u−a)(b−u))^{r+1}`),
-//! and because neighbouring pieces share the end data, the approximation is `C^r` at the piece
-//! joins and reproduces the derivatives up to order `r` at every breakpoint exactly. Pieces are
-//! halved until the error, **measured** at [`Approximation::SAMPLES_PER_PIECE`] interior points of every piece
-//! (the remainder is a smooth function vanishing to order `r + 1` at both ends, so this
-//! estimate converges to the true maximum as pieces shrink), is below the tolerance.
+//! Piecewise Hermite–Bezier approximation with measured error; documented on [`Approximation`].
 
 use crate::blend::ParametricCurve;
 use crate::blend_spline::BlendSpline;
@@ -28,6 +10,28 @@ const SAMPLES_PER_PIECE: usize = Approximation::SAMPLES_PER_PIECE;
 const MAX_PIECES: usize = Approximation::MAX_PIECES;
 
 /// A polynomial approximation and its measured error.
+///
+/// Piecewise Hermite–Bezier approximation of curves without an exact Bezier form (blends of
+/// angle-parametrised arcs, user curves), with the error measured and reported.
+///
+/// On a piece `[a, b]` (`h = b − a`) of a smooth curve `c`, the Bezier curve of degree
+/// `q = 2r + 1` that matches `c` and its first `r` derivatives at both ends has control points
+/// (two-point Hermite interpolation in Bernstein form; Farin, *Curves and Surfaces for CAGD*,
+/// §5.3 derivative formula `c^{(i)}(0) = q!/(q−i)! Δ^i B_0` solved for the `B_j`)
+///
+/// ```text
+/// B_j     = Σ_{i=0}^{j} C(j,i) (q−i)!/q! · h^i c^{(i)}(a)
+/// B_{q−j} = Σ_{i=0}^{j} C(j,i) (q−i)!/q! · (−h)^i c^{(i)}(b),      j = 0 … r.
+/// ```
+///
+/// Its error is `O(h^{2r+2})` (the Hermite remainder
+/// `c^{(2r+2)}(ξ)/(2r+2)! · ((u−a)(b−u))^{r+1}`), and because neighbouring pieces share the
+/// end data, the approximation is `C^r` at the piece joins and reproduces the derivatives up to
+/// order `r` at every breakpoint exactly. Pieces are halved until the error, **measured** at
+/// [`Approximation::SAMPLES_PER_PIECE`] interior points of every piece, is below the tolerance.
+/// The remainder is a smooth function vanishing to order `r + 1` at both ends of a piece, so
+/// this estimate converges to the true maximum as pieces shrink (a test checks it on a grid ten
+/// times finer); it is a measured error, not a proven bound.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Approximation {
     curve: BSplineCurve,
@@ -203,7 +207,7 @@ fn assemble(
 }
 
 /// Approximates a smooth curve on its whole domain by a piecewise Bezier curve of degree
-/// `2r + 1` matching derivatives up to order `r` at the breakpoints (module docs), refined until
+/// `2r + 1` matching derivatives up to order `r` at the breakpoints (see [`Approximation`]), refined until
 /// the measured error is at most `tolerance`.
 ///
 /// ```

@@ -1,43 +1,5 @@
-//! Interpolating spline curves by blending local three-point curves (document 001, digest §B.3).
-//!
-//! ## Construction
-//! Points `P_0 … P_{n−1}` get global parameters `s_0 < s_1 < …` ([`SplineParameters`]) with
-//! `Δ_i = s_{i+1} − s_i`. At every interior point `P_j` a **local curve** `L_j` passes through
-//! `P_{j−1}, P_j, P_{j+1}`, in its own parameter `σ` taking the values `−Δ_{j−1}, 0, Δ_j` there
-//! (so `σ = s − s_j`). It is given as two pieces: the *left* piece on `[−Δ_{j−1}, 0]`
-//! (from `P_{j−1}` to `P_j`) and the *right* piece on `[0, Δ_j]` (from `P_j` to `P_{j+1}`).
-//!
-//! The segment from `P_i` to `P_{i+1}` is the [`Deformation`] of the right piece of `L_i` into the
-//! left piece of `L_{i+1}` (both run from `P_i` to `P_{i+1}`):
-//! `p_i(u) = (1 − w_{k−1}(u)) L_i(u Δ_i) + w_{k−1}(u) L_{i+1}((u − 1) Δ_i)`, `u = (s − s_i)/Δ_i`.
-//! By §B.2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left piece and
-//! segment `i + 1` starts with those of `L_{i+1}`'s right piece.
-//!
-//! ## C^k or G^k: which one each construction has
-//! - If the two pieces of every `L_j` are **one curve** of `σ` (the same function on both sides of
-//!   0), the spline is **C^k in the global parameter `s`**: [`Parabolas`] (the quadratic Lagrange
-//!   interpolant in `σ`; with uniform parameters and `k = 1` this is exactly **Catmull–Rom**,
-//!   digest §B.3 note 3) and [`CircularArcs`] with [`ArcParametrization::GlobalAngle`] (the angle
-//!   on the circle is the quadratic in `σ` through the three points' angles; digest §B.3 note 2).
-//! - If each piece is parametrised on its own, the two sides of `P_j` are the same curve (the
-//!   same circle) traced at different speeds: the spline is only **G^k** (geometric continuity,
-//!   derivatives agree after a reparametrisation). This is document 001's own construction:
-//!   [`ArcParametrization::UniformAngle`] (angle linear on each arc; across `P_{j}` the l-th
-//!   derivatives differ by `(β Δ_{j−1} / (α Δ_j))^l` with `α, β` the angles of the arcs
-//!   `P_{j−1}P_j`, `P_jP_{j+1}`), and [`ArcParametrization::RationalQuadratic`] (each arc as a
-//!   rational quadratic Bezier, which makes the spline an exact NURBS). A rational quadratic arc
-//!   leaves its ends with speed `2r sin(θ/2)`, its chord; so with
-//!   [`SplineParameters::ChordLength`] the speeds match and the rational arc spline is `C¹` and
-//!   `G^k`, but not `C²` (tested).
-//!
-//! [`BlendSpline::continuity`] reports which one holds; the tests measure exactly that.
-//!
-//! ## End segments and closed curves (not addressed by the source; our rule)
-//! An open curve has no local curve at `P_0` and `P_{n−1}`: the first segment is the left piece
-//! of `L_1` and the last the right piece of `L_{n−2}`, unblended (so the spline ends on the
-//! three-point curves through the first and last three points, and the continuity at `P_1` and
-//! `P_{n−2}` is the same as elsewhere). Two points give the straight segment. A closed curve uses
-//! cyclic indices (`n ≥ 3` points, the segment `P_{n−1} → P_0` included; do not repeat `P_0`).
+//! Interpolating spline curves by blending local three-point curves (document 001, digest §B.3);
+//! the mathematics is documented on [`BlendSpline`].
 
 use std::sync::Arc;
 
@@ -158,7 +120,7 @@ impl LocalCurves for Parabolas {
     }
 }
 
-/// How each circular arc is parametrised (see the module docs for the continuity each gives).
+/// How each circular arc is parametrised (see [`BlendSpline`] for the continuity each gives).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ArcParametrization {
     /// Angle linear on each arc (document 001; spline `G^k`).
@@ -472,8 +434,47 @@ impl Default for BlendSplineOptions {
 type Segment = Deformation<SharedCurve, SharedCurve>;
 
 /// An interpolating spline curve built by blending local three-point curves (document 001,
-/// digest §B.3); see the [module documentation](self) for the construction, the end rule and
-/// which continuity each family of local curves gives.
+/// digest §B.3): the construction, the end rule and which continuity each family of local
+/// curves gives are documented below.
+///
+/// # Construction
+/// Points `P_0 … P_{n−1}` get global parameters `s_0 < s_1 < …` ([`SplineParameters`]) with
+/// `Δ_i = s_{i+1} − s_i`. At every interior point `P_j` a **local curve** `L_j` passes through
+/// `P_{j−1}, P_j, P_{j+1}`, in its own parameter `σ` taking the values `−Δ_{j−1}, 0, Δ_j` there
+/// (so `σ = s − s_j`). It is given as two pieces: the *left* piece on `[−Δ_{j−1}, 0]`
+/// (from `P_{j−1}` to `P_j`) and the *right* piece on `[0, Δ_j]` (from `P_j` to `P_{j+1}`).
+///
+/// The segment from `P_i` to `P_{i+1}` is the [`Deformation`] of the right piece of `L_i` into the
+/// left piece of `L_{i+1}` (both run from `P_i` to `P_{i+1}`):
+/// `p_i(u) = (1 − w_{k−1}(u)) L_i(u Δ_i) + w_{k−1}(u) L_{i+1}((u − 1) Δ_i)`, `u = (s − s_i)/Δ_i`.
+/// By §B.2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left piece and
+/// segment `i + 1` starts with those of `L_{i+1}`'s right piece.
+///
+/// # C^k or G^k: which one each construction has
+/// - If the two pieces of every `L_j` are **one curve** of `σ` (the same function on both sides of
+///   0), the spline is **C^k in the global parameter `s`**: [`Parabolas`] (the quadratic Lagrange
+///   interpolant in `σ`; with uniform parameters and `k = 1` this is exactly **Catmull–Rom**,
+///   digest §B.3 note 3) and [`CircularArcs`] with [`ArcParametrization::GlobalAngle`] (the angle
+///   on the circle is the quadratic in `σ` through the three points' angles; digest §B.3 note 2).
+/// - If each piece is parametrised on its own, the two sides of `P_j` are the same curve (the
+///   same circle) traced at different speeds: the spline is only **G^k** (geometric continuity,
+///   derivatives agree after a reparametrisation). This is document 001's own construction:
+///   [`ArcParametrization::UniformAngle`] (angle linear on each arc; across `P_{j}` the l-th
+///   derivatives differ by `(β Δ_{j−1} / (α Δ_j))^l` with `α, β` the angles of the arcs
+///   `P_{j−1}P_j`, `P_jP_{j+1}`), and [`ArcParametrization::RationalQuadratic`] (each arc as a
+///   rational quadratic Bezier, which makes the spline an exact NURBS). A rational quadratic arc
+///   leaves its ends with speed `2r sin(θ/2)`, its chord; so with
+///   [`SplineParameters::ChordLength`] the speeds match and the rational arc spline is `C¹` and
+///   `G^k`, but not `C²` (tested).
+///
+/// [`BlendSpline::continuity`] reports which one holds; the tests measure exactly that.
+///
+/// # End segments and closed curves (not addressed by the source; our rule)
+/// An open curve has no local curve at `P_0` and `P_{n−1}`: the first segment is the left piece
+/// of `L_1` and the last the right piece of `L_{n−2}`, unblended (so the spline ends on the
+/// three-point curves through the first and last three points, and the continuity at `P_1` and
+/// `P_{n−2}` is the same as elsewhere). Two points give the straight segment. A closed curve uses
+/// cyclic indices (`n ≥ 3` points, the segment `P_{n−1} → P_0` included; do not repeat `P_0`).
 ///
 /// ```
 /// use lekalo::{BlendSpline, BlendSplineOptions, Continuity, Parabolas, ParametricCurve, Points};
@@ -482,6 +483,28 @@ type Segment = Deformation<SharedCurve, SharedCurve>;
 /// let s = BlendSpline::new(pts.as_view(), &Parabolas, opts)?;
 /// assert_eq!(s.continuity(), Continuity::Parametric); // C² in the uniform parameter
 /// assert_eq!(s.eval(1.0)?, vec![1.0, 1.0]);              // interpolates P_1 at s_1 = 1
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// Document 001's example, circular arcs, as a closed curve exported to CAD as one NURBS:
+///
+/// ```
+/// use lekalo::{ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity};
+/// use lekalo::{ParametricCurve, Points, SplineParameters};
+/// let pts = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [3.0, 1.5], [1.0, 2.5], [-0.5, 1.0]])?;
+/// let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+/// let opts = BlendSplineOptions {
+///     continuity: 2,
+///     closed: true,
+///     parameters: SplineParameters::ChordLength,
+/// };
+/// let s = BlendSpline::new(pts.as_view(), &arcs, opts)?;
+/// assert_eq!(s.continuity(), Continuity::Geometric); // G² (and C¹ with chord-length params)
+/// let nurbs = s.to_nurbs()?;                          // exact: degree (2k − 1) + 2 + 2 = 7
+/// assert_eq!(nurbs.degree(), 7);
+/// let t = 0.37 * s.parameters()[5];
+/// let (a, b) = (nurbs.eval(t)?, s.eval(t)?);
+/// assert!((a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12);
 /// # Ok::<(), lekalo::Error>(())
 /// ```
 #[derive(Clone)]
@@ -604,7 +627,7 @@ impl BlendSpline {
         self.continuity_degree
     }
 
-    /// Whether the joins are `C^k` or only `G^k` (see the module docs).
+    /// Whether the joins are `C^k` or only `G^k` (see the type docs).
     #[must_use]
     pub fn continuity(&self) -> Continuity {
         self.continuity

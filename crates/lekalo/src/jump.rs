@@ -1,36 +1,5 @@
-//! Jump-smoothing polynomials `w_k` (document 001, digest §B.1).
-//!
-//! ## Definition
-//! The unit step `σ(u)` on `[0, 1]` (0 before `1/2`, 1 after) is approximated by the Bezier
-//! function whose `2k + 2` ordinates are `k + 1` zeros followed by `k + 1` ones:
-//!
-//! ```text
-//! w_k(u) = Σ_{i=k+1}^{2k+1} b_{2k+1,i}(u),    b_{n,i}(u) = C(n,i) (1−u)^{n−i} u^i,   u ∈ [0, 1].
-//! ```
-//!
-//! `w_k` has degree `2k + 1`; `w_0(u) = u`, `w_1(u) = 3u² − 2u³`, `w_2(u) = 10u³ − 15u⁴ + 6u⁵`.
-//!
-//! ## Properties (all tested below, exactly for k ≤ 10, in floating point beyond)
-//! - **Boundary conditions:** `w_k(0) = 0`, `w_k(1) = 1`, `w_k^{(l)}(0) = w_k^{(l)}(1) = 0` for
-//!   `l = 1 … k`. The `(k+1)`-th derivative does *not* vanish:
-//!   `w_k^{(k+1)}(0) = (2k+1) C(2k,k) k! = (2k+1)!/k!` and `w_k^{(k+1)}(1) = (−1)^k` times that.
-//!   This is why the conditions stop at `l = k`.
-//! - **Derivative:** `w_k'(u) = (2k+1) C(2k,k) u^k (1−u)^k`, hence the closed monomial form
-//!   `w_k(u) = (2k+1) C(2k,k) Σ_{j=0}^{k} (−1)^j C(k,j) u^{k+j+1} / (k+j+1)` (the regularised
-//!   incomplete beta function `I_u(k+1, k+1)`). Its coefficients are integers.
-//! - **Property 1 / 2 (point symmetry):** `w_k(u) + w_k(1 − u) = 1`.
-//! - **Property 3:** `∫_0^{1/2} w_k = C(2k+1, k) / 2^{2k+3} ~ 1/(4√(πk)) → 0`, so `w_k → σ`.
-//! - **Property 4 (energy minimality):** among all `f` with the boundary conditions above, `w_k`
-//!   is the unique minimiser of `J_{k+1}(f) = ∫_0^1 (f^{(k+1)})²`. Integrating by parts `k + 1`
-//!   times (document 001's proof) gives `J_{k+1}(w_k) = (−1)^k w_k^{(2k+1)} = (2k+1)! C(2k,k)`:
-//!   1, 12, 720, 100800, … and `J(w_k + h) = J(w_k) + J(h)` for every admissible perturbation `h`.
-//!
-//! ## Why `w_{k−1}` gives continuity degree `k`
-//! Blending two curves that share their end points, `p = (1 − w) p_1 + w p_2`, has
-//! `p^{(l)}(0) − p_1^{(l)}(0) = Σ_{i=1}^{l} C(l,i) w^{(i)}(0) (p_2 − p_1)^{(l−i)}(0)`. With
-//! `w = w_{k−1}` the terms `i < k` vanish by the boundary conditions and the term `i = l = k`
-//! multiplies `p_2(0) − p_1(0) = 0`. So the cheaper `w_{k−1}` (degree `2k − 1`) already gives
-//! contact of order `k`; see [`crate::Deformation`].
+//! Jump-smoothing polynomials `w_k` (document 001, digest §B.1); the mathematics is documented on
+//! [`JumpPolynomial`].
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -40,7 +9,39 @@ use crate::bernstein_ops;
 use crate::error::{Error, Result};
 
 /// The jump-smoothing polynomial `w_k(u) = Σ_{i=k+1}^{2k+1} b_{2k+1,i}(u)` of document 001
-/// (digest §B.1); see the [module documentation](self) for its properties.
+/// (digest §B.1).
+///
+/// # Definition
+/// The unit step `σ(u)` on `[0, 1]` (0 before `1/2`, 1 after) is approximated by the Bezier
+/// function whose `2k + 2` ordinates are `k + 1` zeros followed by `k + 1` ones:
+///
+/// ```text
+/// w_k(u) = Σ_{i=k+1}^{2k+1} b_{2k+1,i}(u),    b_{n,i}(u) = C(n,i) (1−u)^{n−i} u^i,   u ∈ [0, 1].
+/// ```
+///
+/// `w_k` has degree `2k + 1`; `w_0(u) = u`, `w_1(u) = 3u² − 2u³`, `w_2(u) = 10u³ − 15u⁴ + 6u⁵`.
+///
+/// # Properties (all tested in this module, exactly for k ≤ 10, in floating point beyond)
+/// - **Boundary conditions:** `w_k(0) = 0`, `w_k(1) = 1`, `w_k^{(l)}(0) = w_k^{(l)}(1) = 0` for
+///   `l = 1 … k`. The `(k+1)`-th derivative does *not* vanish:
+///   `w_k^{(k+1)}(0) = (2k+1) C(2k,k) k! = (2k+1)!/k!` and `w_k^{(k+1)}(1) = (−1)^k` times that.
+///   This is why the conditions stop at `l = k`.
+/// - **Derivative:** `w_k'(u) = (2k+1) C(2k,k) u^k (1−u)^k`, hence the closed monomial form
+///   `w_k(u) = (2k+1) C(2k,k) Σ_{j=0}^{k} (−1)^j C(k,j) u^{k+j+1} / (k+j+1)` (the regularised
+///   incomplete beta function `I_u(k+1, k+1)`). Its coefficients are integers.
+/// - **Property 1 / 2 (point symmetry):** `w_k(u) + w_k(1 − u) = 1`.
+/// - **Property 3:** `∫_0^{1/2} w_k = C(2k+1, k) / 2^{2k+3} ~ 1/(4√(πk)) → 0`, so `w_k → σ`.
+/// - **Property 4 (energy minimality):** among all `f` with the boundary conditions above, `w_k`
+///   is the unique minimiser of `J_{k+1}(f) = ∫_0^1 (f^{(k+1)})²`. Integrating by parts `k + 1`
+///   times (document 001's proof) gives `J_{k+1}(w_k) = (−1)^k w_k^{(2k+1)} = (2k+1)! C(2k,k)`:
+///   1, 12, 720, 100800, … and `J(w_k + h) = J(w_k) + J(h)` for every admissible perturbation `h`.
+///
+/// # Why `w_{k−1}` gives continuity degree `k`
+/// Blending two curves that share their end points, `p = (1 − w) p_1 + w p_2`, has
+/// `p^{(l)}(0) − p_1^{(l)}(0) = Σ_{i=1}^{l} C(l,i) w^{(i)}(0) (p_2 − p_1)^{(l−i)}(0)`. With
+/// `w = w_{k−1}` the terms `i < k` vanish by the boundary conditions and the term `i = l = k`
+/// multiplies `p_2(0) − p_1(0) = 0`. So the cheaper `w_{k−1}` (degree `2k − 1`) already gives
+/// contact of order `k`; see [`Deformation`](crate::Deformation).
 ///
 /// ```
 /// use lekalo::JumpPolynomial;
