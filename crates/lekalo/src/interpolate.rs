@@ -503,8 +503,10 @@ pub(crate) fn parametrize_into<'a>(
         t[steps] = 1.0;
         return Ok(());
     }
-    // distances into t[1..], then increments d^e, then the cumulative sum
+    // running sums of the distances into t[1..] (one pass for chord length); other exponents
+    // and sums that overflow take the increments (d / d_max)^e in a second pass
     let mut dmax = 0.0_f64;
+    let mut sum = 0.0;
     for k in 0..steps {
         let d = distance(point(k), point(k + 1));
         if d == 0.0 {
@@ -512,43 +514,47 @@ pub(crate) fn parametrize_into<'a>(
             return Err(Error::CoincidentPoints { first, second });
         }
         if !d.is_finite() {
+            let (first, second) = names(k);
             return Err(Error::InvalidArgument {
                 what: "points",
-                reason: format!(
-                    "the distance between points {} and {} overflows",
-                    names(k).0,
-                    names(k).1
-                ),
+                reason: format!("the distance between points {first} and {second} overflows"),
             });
         }
         dmax = dmax.max(d);
-        t[k + 1] = d;
+        sum += d;
+        t[k + 1] = sum;
     }
-    if e != 1.0 {
-        for tk in &mut t[1..] {
-            *tk = (*tk / dmax).powf(e);
+    if e != 1.0 || !sum.is_finite() {
+        let mut acc = 0.0;
+        for k in 0..steps {
+            let d = distance(point(k), point(k + 1));
+            acc += (d / dmax).powf(e);
+            t[k + 1] = acc;
         }
-    }
-    let mut sum = 0.0;
-    for tk in &mut t[1..] {
-        sum += *tk;
-        *tk = sum;
+        sum = acc;
     }
     let inv = 1.0 / sum;
-    for tk in &mut t[1..steps] {
-        *tk *= inv;
+    for k in 1..steps {
+        t[k] *= inv;
+        if t[k] <= t[k - 1] {
+            return Err(too_close(names(k - 1)));
+        }
     }
     t[steps] = 1.0;
-    if let Some(k) = (1..=steps).find(|&k| t[k] <= t[k - 1]) {
-        let (first, second) = names(k - 1);
-        return Err(Error::InvalidArgument {
-            what: "points",
-            reason: format!(
-                "points {first} and {second} are too close relative to the others for distinct parameters"
-            ),
-        });
+    if t[steps] <= t[steps - 1] {
+        return Err(too_close(names(steps - 1)));
     }
     Ok(())
+}
+
+#[cold]
+fn too_close((first, second): (usize, usize)) -> Error {
+    Error::InvalidArgument {
+        what: "points",
+        reason: format!(
+            "points {first} and {second} are too close relative to the others for distinct parameters"
+        ),
+    }
 }
 
 /// Euclidean distance without overflow or underflow in the squares.
@@ -916,6 +922,17 @@ mod tests {
         assert!((distance(&[0.0, 0.0], &[3e-200, 4e-200]) - 5e-200).abs() < 1e-214);
         assert!((distance(&[0.0, 0.0], &[3e200, 4e200]) - 5e200).abs() < 1e186);
         assert_eq!(distance(&[1.0], &[1.0]), 0.0);
+    }
+
+    #[test]
+    fn chord_length_survives_an_overflowing_total() {
+        // 19 points 1e307 apart: the total length 1.8e308 exceeds f64::MAX
+        let data: Vec<f64> = (-9..=9).map(|k| f64::from(k) * 1e307).collect();
+        let q = Points::new(data, 1).unwrap();
+        let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
+        for (k, tk) in t.iter().enumerate() {
+            assert!((tk - k as f64 / 18.0).abs() < 1e-14, "t[{k}] = {tk}");
+        }
     }
 
     #[test]
