@@ -523,7 +523,7 @@ impl BezierCurve {
     /// within `tolerance × max|coordinate|`. By the convex-hull property the curve then moves by
     /// at most that much per coordinate. Equivalent in exact arithmetic to the paper's count of
     /// zero trailing monomial coefficients ([`BezierCurve::real_degree_monomial`]), but stable at
-    /// high degree. O(n·d·dim) for a defect `d`.
+    /// high degree. O(n·d²·(d + dim)) for a defect `d` (O(n·dim) without defect).
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] if `tolerance` is negative or not finite.
