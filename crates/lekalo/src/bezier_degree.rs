@@ -358,7 +358,7 @@ pub(crate) fn check_size(what: &'static str, points: usize, dim: usize) -> Resul
     }
 }
 
-fn finite_result(what: &'static str, data: Vec<f64>, dim: usize) -> Result<Points> {
+pub(crate) fn finite_result(what: &'static str, data: Vec<f64>, dim: usize) -> Result<Points> {
     if check_finite(what, &data).is_err() {
         return Err(Error::IllConditioned {
             reason: format!("{what} overflowed f64"),
@@ -479,15 +479,18 @@ impl BezierCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::TooLarge`] if the new net would exceed [`MAX_SCALARS`](crate::MAX_SCALARS).
+    /// [`Error::TooLarge`] if the new net would exceed [`MAX_SCALARS`](crate::MAX_SCALARS);
+    /// [`Error::IllConditioned`] if a coordinate within an ulp of `f64::MAX` overflows.
     pub fn elevate_degree(&self, by: usize) -> Result<BezierCurve> {
         let p = self.control_points();
         let pts = p.len().saturating_add(by);
         check_size("elevated control points", pts, p.dim())?;
-        Ok(BezierCurve::from_raw(Points::from_raw(
-            elevate(p.as_slice(), p.dim(), by),
+        let out = elevate(p.as_slice(), p.dim(), by);
+        Ok(BezierCurve::from_raw(finite_result(
+            "elevated control points",
+            out,
             p.dim(),
-        )))
+        )?))
     }
 
     /// Real degree with the default tolerance [`DEFAULT_DEGREE_TOLERANCE`]; see
@@ -520,7 +523,7 @@ impl BezierCurve {
     /// within `tolerance × max|coordinate|`. By the convex-hull property the curve then moves by
     /// at most that much per coordinate. Equivalent in exact arithmetic to the paper's count of
     /// zero trailing monomial coefficients ([`BezierCurve::real_degree_monomial`]), but stable at
-    /// high degree. O(n·d·dim) for a defect `d`.
+    /// high degree. O(n·d²·(d + dim)) for a defect `d` (O(n·dim) without defect).
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] if `tolerance` is negative or not finite.

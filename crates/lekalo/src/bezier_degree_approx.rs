@@ -160,6 +160,12 @@ pub(crate) fn deviations(p: &BezierCurve, q: &BezierCurve) -> Result<(f64, f64)>
     let pe = elevate(p.control_points().as_slice(), dim, degree - p.degree());
     let qe = elevate(q.control_points().as_slice(), dim, degree - q.degree());
     let diff: Vec<f64> = pe.iter().zip(&qe).map(|(a, b)| a - b).collect();
+    if check_finite("curve difference", &diff).is_err() {
+        return Err(Error::IllConditioned {
+            reason: "the deviation between the curves overflows f64 (coordinates near 1e308)"
+                .into(),
+        });
+    }
     let norm_max = |c: &BezierCurve| {
         c.control_points()
             .iter()
@@ -211,7 +217,7 @@ impl BezierCurve {
     /// # Errors
     /// [`Error::Degree`] if `target` is too low for the end conditions (1 for points, 3 for
     /// tangents); [`Error::TooLarge`] for a target too large to allocate;
-    /// [`Error::IllConditioned`] if the result is not finite.
+    /// [`Error::IllConditioned`] if the result or its deviation overflows `f64`.
     pub fn reduce_degree_approx(
         &self,
         target: usize,
@@ -439,6 +445,17 @@ mod tests {
                     .sum::<f64>()
             })
             .sum()
+    }
+
+    #[test]
+    fn overflow_is_reported() {
+        let big =
+            BezierCurve::new(Points::new(vec![1.7e308, -1.7e308, 1.7e308, -1.7e308], 1).unwrap())
+                .unwrap();
+        let e = big
+            .reduce_degree_approx(1, EndConditions::Free)
+            .unwrap_err();
+        assert!(matches!(e, Error::IllConditioned { .. }), "{e:?}");
     }
 
     #[test]

@@ -276,7 +276,7 @@ pub fn bezier_net_change_degree(
     let (data, _) = along_v(&after_u, new_u + 1, cols, dim, |d, dd| {
         change_curve(d, dd, new_v, tol, "v direction")
     })?;
-    Ok(Points::from_raw(data, dim))
+    finite_net("changed control net", data, dim)
 }
 
 /// Degree change of the curve with flat points `src` of dimension `dim` to `target`.
