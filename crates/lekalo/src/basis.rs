@@ -61,6 +61,7 @@ pub fn bernstein_all(n: usize, t: f64, out: &mut [f64]) -> Result<()> {
     Ok(())
 }
 
+#[inline]
 pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
     out[0] = 1.0;
     let t1 = 1.0 - t;
@@ -141,6 +142,7 @@ impl BasisScratch {
 /// The `p + 1` non-zero basis functions `N_{span−p..=span, p}(t)` into `out`, by the Cox–de Boor
 /// triangular scheme (P&T Algorithm A2.2). `span` must be the span of `t` (see
 /// [`KnotVector::find_span`]); then every denominator is positive. O(p²), no allocation.
+#[inline]
 pub(crate) fn basis_funs_into(
     knots: &[f64],
     degree: usize,
@@ -167,6 +169,7 @@ pub(crate) fn basis_funs_into(
 /// Derivatives of orders `0..=n_ders` of the `p + 1` non-zero basis functions at `t`, into `out`
 /// laid out row by row (`(n_ders + 1) × (p + 1)`); P&T Algorithm A2.3. Orders above `p` are zero.
 /// O((`n_ders` + 1)·p²), no allocation.
+#[inline]
 pub(crate) fn basis_ders_into(
     knots: &[f64],
     degree: usize,

@@ -208,7 +208,8 @@ impl KnotVector {
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + degree + 4);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
-        for j in 0..=(n + 1 - degree) {
+        // n − p + 2 interior knots (none when p = n + 2: two points and two derivatives)
+        for j in 0..(n + 2 - degree) {
             knots.push(average(&params[j..j + degree]));
         }
         knots.extend(std::iter::repeat_n(params[n], degree + 1));
@@ -415,6 +416,7 @@ impl KnotVector {
     }
 
     /// Span search without domain checks; `t` must lie in the non-empty domain.
+    #[inline]
     pub(crate) fn span_unchecked(&self, degree: usize, t: f64) -> usize {
         let n = self.knots.len() - degree - 2; // last control point index
         let end = self.knots[n + 1];
@@ -482,6 +484,7 @@ impl SpanCursor<'_> {
     }
 
     /// Span of `t` already known to be in the domain.
+    #[inline]
     pub(crate) fn find_unchecked(&mut self, t: f64) -> usize {
         let k = &self.knots.knots;
         let n = k.len() - self.degree - 2;
@@ -693,6 +696,17 @@ mod tests {
         for (a, b) in kv.as_slice().iter().zip(expect) {
             assert!((a - b).abs() < 1e-15, "{a} vs {b}");
         }
+    }
+
+    #[test]
+    fn end_derivative_knots_for_the_highest_degree() {
+        // two points and two end derivatives determine a cubic: no interior knots
+        let kv = KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 3).unwrap();
+        assert_eq!(kv.as_slice(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        assert!(matches!(
+            KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 4),
+            Err(Error::Degree { .. })
+        ));
     }
 
     #[test]
