@@ -109,7 +109,21 @@ pub(crate) fn bezier_as_bspline(b: &BezierCurve) -> BSplineCurve {
     BSplineCurve::from_raw(p, knots, b.control_points().clone())
 }
 
+/// Refuses derivative orders above [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER)
+/// before any `(order + 1) · dim` allocation can overflow.
+pub(crate) fn check_order(order: usize) -> Result<()> {
+    if order > crate::MAX_CURVE_DERIVATIVE_ORDER {
+        return Err(Error::TooLarge {
+            what: "curve derivative order",
+            size: order,
+            max: crate::MAX_CURVE_DERIVATIVE_ORDER,
+        });
+    }
+    Ok(())
+}
+
 fn check_out_len(out: &[f64], order: usize, dim: usize) -> Result<()> {
+    check_order(order)?;
     let expected = (order + 1) * dim;
     if out.len() != expected {
         return Err(Error::LengthMismatch {
@@ -526,8 +540,10 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     /// O(order² · dim) plus the curves' own cost.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; errors of the curves.
+    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; [`Error::TooLarge`] for an order above
+    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER); errors of the curves.
     pub fn eval_derivatives(&self, u: f64, order: usize) -> Result<Points> {
+        check_order(order)?;
         let dim = self.first.dim();
         let mut out = vec![0.0; (order + 1) * dim];
         self.eval_derivatives_into(u, order, &mut out)?;
@@ -883,8 +899,10 @@ impl<C1: ParametricCurve, C2: ParametricCurve> CornerTransition<C1, C2> {
     /// `p^{(l)}(u)`, `l = 0 … order`, as rows of [`Points`].
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; errors of the curves.
+    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; [`Error::TooLarge`] for an order above
+    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER); errors of the curves.
     pub fn eval_derivatives(&self, u: f64, order: usize) -> Result<Points> {
+        check_order(order)?;
         let dim = self.before.dim();
         let mut out = vec![0.0; (order + 1) * dim];
         self.eval_derivatives_into(u, order, &mut out)?;

@@ -817,6 +817,21 @@ fn errors() {
         Err(Error::InvalidArgument { .. })
     ));
     assert_eq!(s.eval(0.5).unwrap(), vec![0.5, 0.0]);
+    // absurd derivative orders are refused before allocating
+    assert!(matches!(
+        s.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+    assert!(matches!(
+        p.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+    let before = bezier(&[[0.0, 0.0], [2.0, 0.0]]);
+    let corner = CornerTransition::new(&before, 0.5, &c, 0.5, 1).unwrap();
+    assert!(matches!(
+        corner.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
 }
 
 // Angle-parametrised arcs have no exact form: the Hermite approximation meets the tolerance,
