@@ -984,3 +984,23 @@ proptest! {
         }
     }
 }
+
+// Golden: spline through (0,0), (1,2), (3,3), (4,0) with parabolas at uniform parameters, the
+// middle segment at u = 3/10; exact rationals computed independently (Python `fractions`:
+// Lagrange parabolas at (−1, 0, 1) and (0, 1, 2), w_1 = 3u² − 2u³, w_2 = 10u³ − 15u⁴ + 6u⁵).
+#[test]
+fn golden_parabola_spline_values() {
+    let pts = [[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]];
+    let golden = [
+        (2, [38_509.0 / 25_000.0, 30_913.0 / 12_500.0]),
+        (3, [3_823_117.0 / 2_500_000.0, 12_281_851.0 / 5_000_000.0]),
+    ];
+    for (k, expect) in golden {
+        let s = spline(&pts, &Parabolas, k, false, SplineParameters::Uniform);
+        let got = s.eval(1.3).unwrap();
+        assert!(
+            dist(&got, &expect) < 1e-14,
+            "k = {k}: {got:?} vs {expect:?}"
+        );
+    }
+}
