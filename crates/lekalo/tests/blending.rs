@@ -1004,3 +1004,26 @@ fn golden_parabola_spline_values() {
         );
     }
 }
+
+// Mixed local curves (a collinear triple gives straight pieces of degree 1 next to rational
+// arcs): the segments are elevated to a common degree and the NURBS still matches.
+#[test]
+fn mixed_degrees_export_exactly() {
+    let pts = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 1.0], [3.5, 2.5]];
+    let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+    for k in 1..=2 {
+        let s = spline(&pts, &arcs, k, false, SplineParameters::ChordLength);
+        let forms = s.to_bezier_segments().unwrap();
+        let degrees: Vec<usize> = forms.iter().map(lekalo::BezierForm::degree).collect();
+        assert!(degrees.iter().min() < degrees.iter().max(), "{degrees:?}");
+        let n = s.to_nurbs().unwrap();
+        let end = s.parameters()[s.segment_count()];
+        for step in 0..=40 {
+            let t = end * (f64::from(step) / 40.0);
+            assert!(
+                dist(&n.eval(t).unwrap(), &s.eval(t).unwrap()) < 1e-12,
+                "k = {k}, t = {t}"
+            );
+        }
+    }
+}
