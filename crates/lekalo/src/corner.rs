@@ -75,7 +75,7 @@ fn offset_piece(
 /// ```
 ///
 /// `q_1, q_2` run from `before(t_1)` to `after(t_2)` (common end points), so `p` is a
-/// [`Deformation`] of `q_1` into `q_2`. The correction `w_k(u) D_2` has vanishing derivatives
+/// [`Deformation`](crate::Deformation) of `q_1` into `q_2`. The correction `w_k(u) D_2` has vanishing derivatives
 /// up to order `k` at `u = 0`, so `q_1` keeps `before`'s derivatives there.
 ///
 /// **Continuity:** `p^{(l)}(0) = h_1^l before^{(l)}(t_1)` and `p^{(l)}(1) = h_2^l after^{(l)}(t_2)`
@@ -226,7 +226,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
     }
     /// Exact form when `before` and `after` are single (rational) Bezier pieces: the windows are
     /// cut out by de Casteljau subdivision, `q_1, q_2` get their `w_k` offsets in Bernstein form
-    /// and are blended as in [`Deformation::to_nurbs`]. Polynomial pieces of degrees `d_1, d_2`
+    /// and are blended as in [`Deformation::to_nurbs`](crate::Deformation::to_nurbs). Polynomial pieces of degrees `d_1, d_2`
     /// give degree `(2k − 1) + max(d_1, d_2, 2k + 1)`.
     fn bezier_form(&self) -> Option<BezierForm> {
         let (f1, f2) = (self.before.bezier_form()?, self.after.bezier_form()?);
