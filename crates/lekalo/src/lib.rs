@@ -7,6 +7,18 @@
 //! their B-spline bases. It implements five Russian documents on curves and splines (see
 //! `docs/` and the digest) and what users of SciPy, Open CASCADE, geomdl or tinyspline expect.
 //!
+//! ## What is here
+//!
+//! | area | main items | source |
+//! |---|---|---|
+//! | points, knots, bases | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; doc 002 §C.5; doc 003 Thm 4.5 |
+//! | curves | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | doc 002 §C.4–C.5; P&T ch. 2–5, 7 |
+//! | surfaces | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
+//! | interpolation | [`CurveInterpolation`], [`interpolate_surface`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; doc 002 §C.2–C.3 |
+//! | Bezier degree change | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
+//! | blending | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
+//! | piecewise polynomials | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//!
 //! ## Conventions
 //! - Scalars are `f64`. Points of any dimension are stored flat and point-major ([`Points`]).
 //! - Degree `p`, order `p + 1`. Knot domains are `[t_p, t_{n+1}]`; spans are half-open and the
