@@ -24,6 +24,15 @@ use crate::points::Points;
 
 /// Relative part of [`BSplineCurve::default_removal_tolerance`]: `1e-12` times the extent
 /// (bounding-box diagonal) of the control net.
+///
+/// Knot-removal tolerances in lekalo are **absolute distances** in the units of the control
+/// points: a removal is accepted only if the new curve `C̃` satisfies `|C(t) − C̃(t)| ≤ tolerance`
+/// on the whole domain. Choose it relative to the curve's scale (e.g. `1e-6 · extent` for a
+/// visually exact fit); the default, `DEFAULT_REMOVAL_RTOL · extent + 64 ε · max|P|`, removes
+/// only knots that are removable up to rounding. The bound is checked exactly: inserting the
+/// removed copies back into `C̃` (Boehm, exact) gives control points `Q'_i` on the original
+/// knots, and `C − C̃ = Σ N_{i,p} (P_i − Q'_i)`, so by partition of unity and non-negativity
+/// `|C − C̃| ≤ max_i |P_i − Q'_i|` (P&T §5.4).
 pub const DEFAULT_REMOVAL_RTOL: f64 = 1e-12;
 
 /// Rounding part of the default tolerance, in units of `ε · max|P|`: the coefficients of A5.8
@@ -34,8 +43,8 @@ const ROUNDING_ULPS: f64 = 64.0;
 impl BSplineCurve {
     /// The default knot-removal tolerance: `DEFAULT_REMOVAL_RTOL · extent + 64 ε · max|P|`, where
     /// `extent` is the bounding-box diagonal of the control points and `max|P|` their largest
-    /// coordinate (see the module docs of `knot_removal`). Removes only knots that are removable
-    /// up to rounding.
+    /// coordinate. Removes only knots that are removable
+    /// up to rounding. See [`DEFAULT_REMOVAL_RTOL`] for what a removal tolerance means.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
@@ -51,7 +60,7 @@ impl BSplineCurve {
     }
 
     /// Removes the interior knot `t` up to `times` times (P&T §5.4, Algorithm A5.8), keeping
-    /// the curve within `tolerance` (an absolute distance, see the module docs): copies are
+    /// the curve within `tolerance` (an absolute distance, see [`DEFAULT_REMOVAL_RTOL`]): copies are
     /// removed one at a time and the removal stops at the first copy whose removal would move
     /// the curve by more than `tolerance` from `self`. Returns the new curve and the number of
     /// copies removed (`0 ..= times`; `0` returns a copy of `self`).
@@ -61,7 +70,9 @@ impl BSplineCurve {
     /// ends by inverting Boehm's formula (P&T eq. 5.28),
     /// `Q_i = (P_i − (1 − α_i) Q_{i−1}) / α_i`, `Q_{j−1} = (P_j − α_j Q_j) / (1 − α_j)`,
     /// `α_k = (t − t_k) / (t_{k+p+1} − t_k)`; where the two sweeps meet their average is kept.
-    /// The deviation is then bounded exactly by re-insertion (module docs).
+    /// The deviation from `self` is then bounded exactly by re-insertion
+    /// ([`DEFAULT_REMOVAL_RTOL`]) instead of by A5.8's single distance test, so the guarantee
+    /// holds for several copies and for knots of multiplicity `p + 1` too.
     /// O(times·(n + p²)·dim).
     ///
     /// ```
@@ -135,13 +146,13 @@ impl BSplineCurve {
     }
 
     /// Removes every interior knot copy whose removal keeps the curve within `tolerance` of
-    /// `self` (an absolute distance, see the module docs), and returns the new curve and the
+    /// `self` (an absolute distance, see [`DEFAULT_REMOVAL_RTOL`]), and returns the new curve and the
     /// number of copies removed. Knots are tried from left to right, each copy by
     /// [`BSplineCurve::remove_knot`]'s step, in passes until nothing more can be removed. The
     /// error bound of each removal is charged to the breakpoint intervals of `self` it affects
-    /// (the supports of the changed B-splines; P&T §9.4.1, Algorithm A9.8's bookkeeping), and
-    /// a removal is accepted only if the accumulated bound stays `≤ tolerance` on every interval
-    /// — so the final curve is within `tolerance` of `self` everywhere. O(passes·n·(n + p²)·dim).
+    /// (the supports of the changed B-splines), and a removal is accepted only if the
+    /// accumulated bound stays `≤ tolerance` on every interval — by the triangle inequality the
+    /// final curve is then within `tolerance` of `self` everywhere. O(passes·n·(n + p²)·dim).
     ///
     /// Use it after operations that introduce removable knots: [`BSplineCurve::from_bezier_segments`]
     /// (joins of multiplicity `p`), degree elevation per Bezier segment, knot refinement.
@@ -321,9 +332,13 @@ fn point_deviations(
 }
 
 /// Removes every removable knot copy within `tolerance` (validated), charging each removal's
-/// bound to the breakpoint intervals of `c` it affects.
+/// bound to the breakpoint intervals of `c` it affects. Each attempt works on a local window of
+/// the curve (the arithmetic is the same as on the whole curve, since removal and re-insertion
+/// change only `p − s + 2` points), so an attempt costs O(p²·dim + log n) plus the O(n) splice
+/// of an accepted removal.
 fn remove_all(c: &BSplineCurve, tolerance: f64) -> (BSplineCurve, usize) {
     let p = c.degree();
+    let dim = c.dim();
     let (min, max) = c.domain();
     // breakpoints of the original domain and the error bound charged to each interval
     let mut breaks: Vec<f64> = c
@@ -336,21 +351,32 @@ fn remove_all(c: &BSplineCurve, tolerance: f64) -> (BSplineCurve, usize) {
     breaks.insert(0, min);
     breaks.push(max);
     let mut charged = vec![0.0_f64; breaks.len() - 1];
-    let mut current = c.clone();
+    let mut knots = c.knots().as_slice().to_vec();
+    let mut points = c.control_points().as_slice().to_vec();
     let mut removed = 0;
     loop {
         let mut changed = false;
-        let interior: Vec<f64> = current
-            .knots()
-            .distinct()
-            .into_iter()
-            .map(|(k, _)| k)
-            .filter(|&k| k > min && k < max)
-            .collect();
+        let interior: Vec<f64> = breaks[1..breaks.len() - 1].to_vec();
         for t in interior {
-            while current.knots().multiplicity(t) > 0 {
-                let candidate = remove_once(&current, t);
-                let Some(dev) = point_deviations(&current, &candidate, t, 1) else {
+            loop {
+                let lo_t = knots.partition_point(|&x| x < t);
+                let hi_t = knots.partition_point(|&x| x <= t);
+                if hi_t == lo_t {
+                    break;
+                }
+                let (r, s) = (hi_t - 1, hi_t - lo_t);
+                let n = points.len() / dim - 1;
+                // window of points a ..= b around the changed ones (first − 1 ..= last + 1),
+                // padded by p so that t is strictly inside the window's own domain
+                let a = (r - p - 1).saturating_sub(p);
+                let b = (r - s + 1 + p).min(n);
+                let window = BSplineCurve::from_raw(
+                    p,
+                    knots[a..=b + p + 1].to_vec(),
+                    Points::from_raw(points[a * dim..(b + 1) * dim].to_vec(), dim),
+                );
+                let candidate = remove_once(&window, t);
+                let Some(dev) = point_deviations(&window, &candidate, t, 1) else {
                     break;
                 };
                 let worst = dev.iter().fold(0.0_f64, |m, &x| m.max(x));
@@ -358,27 +384,32 @@ fn remove_all(c: &BSplineCurve, tolerance: f64) -> (BSplineCurve, usize) {
                     break;
                 }
                 // the change Σ N_i δ_i lives on the supports [t_i, t_{i+p+1}] of the changed i
-                let u = current.knots().as_slice();
                 let changed_pts: Vec<usize> = (0..dev.len()).filter(|&i| dev[i] > 0.0).collect();
-                let intervals: Vec<usize> = match (changed_pts.first(), changed_pts.last()) {
-                    (Some(&lo_i), Some(&hi_i)) => {
-                        let (lo, hi) = (u[lo_i], u[hi_i + p + 1]);
-                        (0..charged.len())
-                            .filter(|&b| breaks[b] < hi && breaks[b + 1] > lo)
-                            .collect()
+                let range = match (changed_pts.first(), changed_pts.last()) {
+                    (Some(&i0), Some(&i1)) => {
+                        let (lo, hi) = (knots[a + i0], knots[a + i1 + p + 1]);
+                        // intervals [breaks[k], breaks[k+1]] with breaks[k] < hi and
+                        // breaks[k+1] > lo
+                        let k0 = breaks.partition_point(|&x| x <= lo).saturating_sub(1);
+                        let k1 = breaks.partition_point(|&x| x < hi).min(charged.len());
+                        k0..k1.max(k0)
                     }
-                    _ => Vec::new(),
+                    _ => 0..0,
                 };
-                if intervals
+                if charged[range.clone()]
                     .iter()
-                    .any(|&b| !within(charged[b] + worst, tolerance))
+                    .any(|&e| !within(e + worst, tolerance))
                 {
                     break;
                 }
-                for b in intervals {
-                    charged[b] += worst;
+                for e in &mut charged[range] {
+                    *e += worst;
                 }
-                current = candidate;
+                knots.remove(r);
+                points.splice(
+                    a * dim..(b + 1) * dim,
+                    candidate.control_points().as_slice().iter().copied(),
+                );
                 removed += 1;
                 changed = true;
             }
@@ -387,7 +418,14 @@ fn remove_all(c: &BSplineCurve, tolerance: f64) -> (BSplineCurve, usize) {
             break;
         }
     }
-    (current, removed)
+    let out = BSplineCurve::from_raw(p, knots, Points::from_raw(points, dim));
+    debug_assert!(
+        out.knots()
+            .validate_for(p, out.control_points().len())
+            .is_ok(),
+        "simplified curve must be valid"
+    );
+    (out, removed)
 }
 
 #[cfg(test)]

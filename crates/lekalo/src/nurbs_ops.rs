@@ -122,7 +122,7 @@ impl NurbsCurve {
     ///
     /// The homogeneous removal runs with `TOL = d·w_min / (1 + |P|_max + d)` (`d = tolerance`,
     /// `w_min` the least weight, `|P|_max` the largest distance of a control point from the
-    /// origin), a form of P&T eq. 5.30: if `|(A, w) − (Ã, w̃)| ≤ TOL` everywhere, then
+    /// origin) — a variant of the tolerance P&T §5.4 gives for rational curves, derived here: if `|(A, w) − (Ã, w̃)| ≤ TOL` everywhere, then
     /// `C − C̃ = ((A − Ã) − C (w − w̃)) / w̃` with `|C| ≤ |P|_max` and `w̃ ≥ w_min − TOL`
     /// gives `|C − C̃| ≤ TOL (1 + |P|_max) / (w_min − TOL) = d`. A removal that would make a
     /// weight non-positive is not made.
