@@ -65,6 +65,12 @@ impl BezierSurface {
         Ok(BezierSurface { control, net_size })
     }
 
+    /// Trusted constructor for nets built inside the crate (debug-checked).
+    pub(crate) fn from_raw(control: Points, net_size: (usize, usize)) -> Self {
+        debug_assert!(check_net(&control, net_size).is_ok(), "raw Bezier net");
+        BezierSurface { control, net_size }
+    }
+
     /// Degree `n = nu − 1` in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {

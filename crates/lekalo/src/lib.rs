@@ -43,23 +43,28 @@ mod bezier;
 mod bezier_surface;
 mod bspline;
 mod error;
+mod knot_removal;
 mod knots;
 mod nurbs;
+mod nurbs_ops;
 mod nurbs_surface;
 #[cfg(test)]
 mod oracle;
 mod points;
 mod surface;
+mod surface_ops;
 
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bezier_surface::BezierSurface;
 pub use bspline::BSplineCurve;
 pub use error::{Error, Result, MAX_SCALARS};
+pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use knots::{check_parameters, KnotVector, SpanCursor};
 pub use nurbs::{NurbsCurve, MAX_CURVE_DERIVATIVE_ORDER};
 pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
 pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
+pub use surface_ops::{BezierPatch, RationalBezierPatch};
 
 // -- interpolation (issue 3) --
 mod hermite;

@@ -120,6 +120,16 @@ impl NurbsCurve {
         Ok(NurbsCurve { homogeneous })
     }
 
+    /// Trusted constructor for homogeneous curves built inside the crate, whose weights are
+    /// positive by construction (debug-checked).
+    pub(crate) fn from_homogeneous_unchecked(homogeneous: BSplineCurve) -> Self {
+        debug_assert!(
+            Self::from_homogeneous(homogeneous.clone()).is_ok(),
+            "raw homogeneous NURBS curve"
+        );
+        NurbsCurve { homogeneous }
+    }
+
     /// The same curve with unit weights: the non-rational B-spline as a NURBS.
     #[must_use]
     pub fn from_bspline(curve: &BSplineCurve) -> Self {

@@ -146,6 +146,16 @@ impl NurbsSurface {
         Ok(NurbsSurface { homogeneous })
     }
 
+    /// Trusted constructor for homogeneous surfaces built inside the crate, whose weights are
+    /// positive by construction (debug-checked).
+    pub(crate) fn from_homogeneous_unchecked(homogeneous: BSplineSurface) -> Self {
+        debug_assert!(
+            Self::from_homogeneous(homogeneous.clone()).is_ok(),
+            "raw homogeneous NURBS surface"
+        );
+        NurbsSurface { homogeneous }
+    }
+
     /// The same surface with unit weights.
     #[must_use]
     pub fn from_bspline(surface: &BSplineSurface) -> Self {
