@@ -10,11 +10,11 @@
 //! net (dimension `nv·dim`), then along `v` on the transposed net.
 //!
 //! The shape is kept (exactly for elevation and exact reduction), and so is continuity at the
-//! breakpoints where the pieces share their end points. The knot vector of the result has every
-//! interior breakpoint with multiplicity equal to the new degree (a C0 representation of a
-//! possibly smoother curve), so it has more control points than the minimal representation
-//! with multiplicities `m_i + r` that P&T Algorithm A5.9 produces; knot removal (P&T A5.8)
-//! would recover that form.
+//! breakpoints where the pieces share their end points. Joining the pieces gives every interior
+//! breakpoint the multiplicity of the new degree (a C0 representation of a possibly smoother
+//! curve); [`BSplineCurve::elevate_degree`] then removes the copies that decomposition added
+//! (knot removal, P&T A5.8), so that its result has the minimal multiplicities `m_i + r` of P&T
+//! Algorithm A5.9. Degree reduction keeps the C0 form.
 
 use crate::bezier_degree::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::bezier_degree_approx::EndConditions;
@@ -36,9 +36,10 @@ pub struct BSplineApproximateReduction {
 
 impl BSplineCurve {
     /// Degree elevation by `by`, per Bezier piece: every piece is elevated by the closed form of
-    /// document 004 eq. 8 ([`BezierCurve::elevate_degree`]) and the pieces are joined again (see
-    /// the module documentation for the knot vector of the result). The curve is unchanged to a
-    /// few ulps of its scale. O(pieces · (p+1)(r+1) · dim).
+    /// document 004 eq. 8 ([`BezierCurve::elevate_degree`]), the pieces are joined again, and
+    /// every interior knot of multiplicity `m` is brought back to `m + by` by knot removal
+    /// (P&T A5.8), the knot vector of P&T Algorithm A5.9. The curve is unchanged to a few ulps
+    /// of its scale. O(pieces · (p+1)(r+1) · dim) plus the removals.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Points};
@@ -46,6 +47,8 @@ impl BSplineCurve {
     /// let c = BSplineCurve::new(2, vec![0., 0., 0., 1., 2., 3., 3., 3.], ctrl)?;
     /// let e = c.elevate_degree(1)?;
     /// assert_eq!(e.degree(), 3);
+    /// // simple interior knots stay simple + 1: knots of P&T Algorithm A5.9
+    /// assert_eq!(e.knots().as_slice(), &[0., 0., 0., 0., 1., 1., 2., 2., 3., 3., 3., 3.]);
     /// for t in [0.0, 0.4, 1.0, 2.5, 3.0] {
     ///     let (a, b) = (c.eval(t)?, e.eval(t)?);
     ///     assert!((a[0] - b[0]).abs() < 1e-14 && (a[1] - b[1]).abs() < 1e-14);
@@ -66,7 +69,17 @@ impl BSplineCurve {
                 })
             })
             .collect::<Result<Vec<_>>>()?;
-        BSplineCurve::from_bezier_segments(&pieces)
+        let mut curve = BSplineCurve::from_bezier_segments(&pieces)?;
+        // the removals are exact in exact arithmetic; the tolerance only absorbs rounding
+        let tolerance = curve.default_removal_tolerance();
+        let p = self.degree();
+        let (a, b) = self.domain();
+        for (t, m) in self.knots().distinct() {
+            if t > a && t < b && m < p {
+                curve = curve.remove_knot(t, p - m, tolerance)?.0;
+            }
+        }
+        Ok(curve)
     }
 
     /// Changes the degree to `target` without changing the shape, with the default tolerance
@@ -299,6 +312,27 @@ impl BSplineSurface {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn elevation_gives_the_minimal_knot_vector_of_a5_9() {
+        let c = curve();
+        for by in 1..=3 {
+            let e = c.elevate_degree(by).unwrap();
+            // interior knot 1 (simple) → 1 + by copies, knot 2 (double) → 2 + by copies
+            assert_eq!(e.knots().multiplicity(1.0), 1 + by, "by = {by}");
+            assert_eq!(e.knots().multiplicity(2.0), 2 + by, "by = {by}");
+            assert_eq!(e.control_points().len(), c.control_points().len() + by * 3);
+            let scale = c.control_points().max_abs();
+            let (a, b) = c.domain();
+            for k in 0..=60 {
+                let t = a + (b - a) * f64::from(k) / 60.0;
+                let (p, q) = (c.eval(t).unwrap(), e.eval(t).unwrap());
+                for d in 0..3 {
+                    assert!((p[d] - q[d]).abs() <= 1e-13 * scale, "t = {t}, by = {by}");
+                }
+            }
+        }
+    }
 
     fn curve() -> BSplineCurve {
         // cubic, interior knots 1 (simple) and 2 (double): C2 at 1, C1 at 2
