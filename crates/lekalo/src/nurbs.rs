@@ -10,7 +10,9 @@ use serde::{Deserialize, Serialize};
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
-use crate::points::Points;
+use crate::points::{
+    check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
+};
 
 /// A rational B-spline curve.
 ///
@@ -72,28 +74,8 @@ impl NurbsCurve {
         control: Points,
         weights: Vec<f64>,
     ) -> Result<Self> {
-        if weights.len() != control.len() {
-            return Err(Error::LengthMismatch {
-                what: "weights (one per control point)",
-                expected: control.len(),
-                got: weights.len(),
-            });
-        }
-        check_finite("weights", &weights)?;
-        if let Some(index) = weights.iter().position(|&w| w <= 0.0) {
-            return Err(Error::NonPositiveWeight {
-                index,
-                weight: weights[index],
-            });
-        }
-        let dim = control.dim();
-        let mut h = Vec::with_capacity(control.len() * (dim + 1));
-        for (p, &w) in control.iter().zip(&weights) {
-            h.extend(p.iter().map(|x| x * w));
-            h.push(w);
-        }
-        // w·x can overflow for huge coordinates and weights
-        let homogeneous_points = Points::new(h, dim + 1)?;
+        // w·x can overflow for huge coordinates and weights: homogenize checks that too
+        let homogeneous_points = homogenize(&control, &weights)?;
         let homogeneous = BSplineCurve::new(degree, knots, homogeneous_points)?;
         Ok(NurbsCurve { homogeneous })
     }
@@ -103,20 +85,7 @@ impl NurbsCurve {
     /// # Errors
     /// [`Error::Dimension`] if the dimension is below 2; [`Error::NonPositiveWeight`].
     pub fn from_homogeneous(homogeneous: BSplineCurve) -> Result<Self> {
-        let hd = homogeneous.dim();
-        if hd < 2 {
-            return Err(Error::Dimension {
-                what: "homogeneous control points (dim + 1 for the weight)",
-                expected: 2,
-                got: hd,
-            });
-        }
-        for (index, p) in homogeneous.control_points().iter().enumerate() {
-            let weight = p[hd - 1];
-            if weight <= 0.0 {
-                return Err(Error::NonPositiveWeight { index, weight });
-            }
-        }
+        check_homogeneous(homogeneous.control_points())?;
         Ok(NurbsCurve { homogeneous })
     }
 
@@ -133,16 +102,10 @@ impl NurbsCurve {
     /// The same curve with unit weights: the non-rational B-spline as a NURBS.
     #[must_use]
     pub fn from_bspline(curve: &BSplineCurve) -> Self {
-        let dim = curve.dim();
-        let mut h = Vec::with_capacity(curve.control_points().len() * (dim + 1));
-        for p in curve.control_points().iter() {
-            h.extend_from_slice(p);
-            h.push(1.0);
-        }
         let homogeneous = BSplineCurve::from_raw(
             curve.degree(),
             curve.knots().as_slice().to_vec(),
-            Points::from_raw(h, dim + 1),
+            with_unit_weights(curve.control_points()),
         );
         NurbsCurve { homogeneous }
     }
@@ -180,24 +143,13 @@ impl NurbsCurve {
     /// Weights.
     #[must_use]
     pub fn weights(&self) -> Vec<f64> {
-        let hd = self.homogeneous.dim();
-        self.homogeneous
-            .control_points()
-            .iter()
-            .map(|p| p[hd - 1])
-            .collect()
+        weights_of(self.homogeneous.control_points())
     }
 
     /// Euclidean control points `P_i = (w·P_i) / w_i`.
     #[must_use]
     pub fn control_points(&self) -> Points {
-        let hd = self.homogeneous.dim();
-        let mut out = Vec::with_capacity(self.homogeneous.control_points().len() * (hd - 1));
-        for p in self.homogeneous.control_points().iter() {
-            let w = p[hd - 1];
-            out.extend(p[..hd - 1].iter().map(|x| x / w));
-        }
-        Points::from_raw(out, hd - 1)
+        dehomogenize(self.homogeneous.control_points())
     }
 
     /// Point `C(t) = A(t) / w(t)` (P&T Algorithm A4.1).

@@ -4,10 +4,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, Error, Result};
+use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::nurbs::NurbsCurve;
-use crate::points::Points;
+use crate::points::{
+    check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
+};
 use crate::surface::{
     check_buffer, check_net, check_normal_dim, check_out, unit_normal, BSplineSurface,
 };
@@ -92,32 +94,12 @@ impl NurbsSurface {
         net_size: (usize, usize),
     ) -> Result<Self> {
         check_net(&control, net_size)?;
-        if weights.len() != control.len() {
-            return Err(Error::LengthMismatch {
-                what: "weights (one per control point, net_size.0 × net_size.1)",
-                expected: control.len(),
-                got: weights.len(),
-            });
-        }
-        check_finite("weights", &weights)?;
-        if let Some(index) = weights.iter().position(|&w| w <= 0.0) {
-            return Err(Error::NonPositiveWeight {
-                index,
-                weight: weights[index],
-            });
-        }
-        let dim = control.dim();
-        let mut h = Vec::with_capacity(control.len() * (dim + 1));
-        for (p, &w) in control.iter().zip(&weights) {
-            h.extend(p.iter().map(|x| x * w));
-            h.push(w);
-        }
         let homogeneous = BSplineSurface::new(
             degree_u,
             degree_v,
             knots_u,
             knots_v,
-            Points::new(h, dim + 1)?,
+            homogenize(&control, &weights)?,
             net_size,
         )?;
         Ok(NurbsSurface { homogeneous })
@@ -129,20 +111,7 @@ impl NurbsSurface {
     /// # Errors
     /// [`Error::Dimension`] if the dimension is below 2; [`Error::NonPositiveWeight`].
     pub fn from_homogeneous(homogeneous: BSplineSurface) -> Result<Self> {
-        let hd = homogeneous.dim();
-        if hd < 2 {
-            return Err(Error::Dimension {
-                what: "homogeneous control points (dim + 1 for the weight)",
-                expected: 2,
-                got: hd,
-            });
-        }
-        for (index, p) in homogeneous.control_points().iter().enumerate() {
-            let weight = p[hd - 1];
-            if weight <= 0.0 {
-                return Err(Error::NonPositiveWeight { index, weight });
-            }
-        }
+        check_homogeneous(homogeneous.control_points())?;
         Ok(NurbsSurface { homogeneous })
     }
 
@@ -159,18 +128,12 @@ impl NurbsSurface {
     /// The same surface with unit weights.
     #[must_use]
     pub fn from_bspline(surface: &BSplineSurface) -> Self {
-        let dim = surface.dim();
-        let mut h = Vec::with_capacity(surface.control_points().len() * (dim + 1));
-        for p in surface.control_points().iter() {
-            h.extend_from_slice(p);
-            h.push(1.0);
-        }
         let homogeneous = BSplineSurface::from_raw(
             surface.degree_u(),
             surface.degree_v(),
             surface.knots_u().clone(),
             surface.knots_v().clone(),
-            Points::from_raw(h, dim + 1),
+            with_unit_weights(surface.control_points()),
         );
         NurbsSurface { homogeneous }
     }
@@ -226,12 +189,7 @@ impl NurbsSurface {
     /// Weights, in net order.
     #[must_use]
     pub fn weights(&self) -> Vec<f64> {
-        let hd = self.homogeneous.dim();
-        self.homogeneous
-            .control_points()
-            .iter()
-            .map(|p| p[hd - 1])
-            .collect()
+        weights_of(self.homogeneous.control_points())
     }
 
     /// Weight of control point `(i, j)`, or `None` outside the net.
@@ -243,12 +201,7 @@ impl NurbsSurface {
     /// Euclidean control net `P_{i,j} = (w·P_{i,j}) / w_{i,j}`.
     #[must_use]
     pub fn control_points(&self) -> Points {
-        let hd = self.homogeneous.dim();
-        let mut out = Vec::with_capacity(self.homogeneous.control_points().len() * (hd - 1));
-        for p in self.homogeneous.control_points().iter() {
-            out.extend(p[..hd - 1].iter().map(|x| x / p[hd - 1]));
-        }
-        Points::from_raw(out, hd - 1)
+        dehomogenize(self.homogeneous.control_points())
     }
 
     /// Euclidean control point `P_{i,j}`, or `None` outside the net.

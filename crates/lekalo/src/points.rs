@@ -256,6 +256,86 @@ impl Points {
     }
 }
 
+/// Homogeneous coordinates `(w·P, w)` of points with weights: the representation in which a
+/// NURBS is a B-spline one dimension up (P&T §4.2).
+///
+/// # Errors
+/// [`Error::LengthMismatch`] if there is not one weight per point; [`Error::NonFinite`] for a
+/// non-finite weight or an overflowing `w·P`; [`Error::NonPositiveWeight`] for a weight `≤ 0`.
+pub(crate) fn homogenize(points: &Points, weights: &[f64]) -> Result<Points> {
+    if weights.len() != points.len() {
+        return Err(Error::LengthMismatch {
+            what: "weights (one per control point)",
+            expected: points.len(),
+            got: weights.len(),
+        });
+    }
+    check_finite("weights", weights)?;
+    if let Some(index) = weights.iter().position(|&w| w <= 0.0) {
+        return Err(Error::NonPositiveWeight {
+            index,
+            weight: weights[index],
+        });
+    }
+    let dim = points.dim();
+    let mut h = Vec::with_capacity(points.len() * (dim + 1));
+    for (p, &w) in points.iter().zip(weights) {
+        h.extend(p.iter().map(|x| x * w));
+        h.push(w);
+    }
+    Points::new(h, dim + 1)
+}
+
+/// Homogeneous coordinates with unit weights, `(P, 1)`.
+pub(crate) fn with_unit_weights(points: &Points) -> Points {
+    let dim = points.dim();
+    let mut h = Vec::with_capacity(points.len() * (dim + 1));
+    for p in points.iter() {
+        h.extend_from_slice(p);
+        h.push(1.0);
+    }
+    Points::from_raw(h, dim + 1)
+}
+
+/// Checks that homogeneous points have dimension ≥ 2 and positive weights (last coordinate).
+///
+/// # Errors
+/// [`Error::Dimension`], [`Error::NonPositiveWeight`].
+pub(crate) fn check_homogeneous(h: &Points) -> Result<()> {
+    let hd = h.dim();
+    if hd < 2 {
+        return Err(Error::Dimension {
+            what: "homogeneous control points (dim + 1 for the weight)",
+            expected: 2,
+            got: hd,
+        });
+    }
+    for (index, p) in h.iter().enumerate() {
+        let weight = p[hd - 1];
+        if weight <= 0.0 {
+            return Err(Error::NonPositiveWeight { index, weight });
+        }
+    }
+    Ok(())
+}
+
+/// The weights (last coordinates) of homogeneous points.
+pub(crate) fn weights_of(h: &Points) -> Vec<f64> {
+    let hd = h.dim();
+    h.iter().map(|p| p[hd - 1]).collect()
+}
+
+/// Euclidean points `(w·P) / w` of homogeneous points.
+pub(crate) fn dehomogenize(h: &Points) -> Points {
+    let hd = h.dim();
+    let mut out = Vec::with_capacity(h.len() * (hd - 1));
+    for p in h.iter() {
+        let w = p[hd - 1];
+        out.extend(p[..hd - 1].iter().map(|x| x / w));
+    }
+    Points::from_raw(out, hd - 1)
+}
+
 /// Borrowed flat point-major points (see [`Points`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointsRef<'a> {
