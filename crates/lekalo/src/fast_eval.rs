@@ -1,0 +1,1017 @@
+//! Fast batch evaluation of B-spline and NURBS curves, for many parameters at once.
+//!
+//! The reference path, [`BSplineCurve::eval_batch`], does for every parameter what
+//! P&T *The NURBS Book* Algorithm A3.1 says: a span search, the `p + 1` basis functions by the
+//! Cox–de Boor triangular scheme (Algorithm A2.2, `p(p + 1)/2` divisions) and their combination
+//! with `p + 1` control points. A [`CurveEvaluator`] does the parameter-independent part of that
+//! work once per curve:
+//!
+//! - **Piece location.** The distinct knots of the domain `x_0 < … < x_m` split it into `m`
+//!   polynomial pieces, piece `j` on `[x_j, x_{j+1})` (the last also holds `x_m`): the same
+//!   half-open convention as [`crate::KnotVector::find_span`]. A bucket table over the domain
+//!   gives, for any parameter, the few pieces it can fall in, so that the search costs O(1) for
+//!   reasonably spread knots and O(log m) at worst, in any order; sorted batches reuse the
+//!   previous piece.
+//! - **Kernel [`EvalKernel::PowerForm`]** (default for degree ≤ [`POWER_FORM_MAX_DEGREE`]): each
+//!   piece as a polynomial in the *local* parameter `u = (t − x_j) / (x_{j+1} − x_j) ∈ [0, 1]`,
+//!   `C(t) = Σ_{k=0}^{p} c_k u^k` with `c_k = h_j^k C^{(k)}(x_j⁺) / k!` (Taylor's formula about the
+//!   piece's left end, `h_j = x_{j+1} − x_j`; the derivatives by P&T Algorithm A2.3 once per
+//!   piece), evaluated by Horner's scheme: `p·dim` multiply–adds per point. Expanding about the
+//!   left knot and scaling by the piece's length keeps `|u| ≤ 1` and the coefficients bounded by
+//!   `3^p` times the control net's scale however wide the span or large the knot values, which
+//!   is what keeps this form accurate (see `docs/performance.md` for the measured error).
+//! - **Kernel [`EvalKernel::Basis`]** (default for higher degrees, where the power form's
+//!   rounding grows like `3^p`): Algorithm A2.2 with the reciprocals of the knot differences
+//!   `1 / (t_{i+r+1} − t_{i+r+1−j})` precomputed per piece, so that a point costs no division.
+//!
+//! Both kernels agree with the reference to about `1e-15` relative to the control net's scale
+//! (the largest absolute control coordinate); the tests check `1e-14`. The opt-in parallel paths
+//! (`par_*`, rayon) split the parameters into fixed chunks and run the sequential kernel on each,
+//! so their results are bit-identical to the sequential fast path's.
+//!
+//! Monomorphised kernels (degree and dimension known at compile time) serve the common cases:
+//! degree 1–3 in dimension 1–4 (so also 2-D and 3-D NURBS, evaluated in homogeneous dimension
+//! 3 and 4); everything else takes the generic kernel, which performs the same arithmetic.
+
+use rayon::prelude::*;
+
+use crate::basis::{basis_ders_into, BasisScratch};
+use crate::bspline::BSplineCurve;
+use crate::error::{Error, Result};
+use crate::nurbs::NurbsCurve;
+
+/// Highest degree for which [`EvalKernel::Auto`] chooses the power form. The power form's
+/// rounding error grows like `3^p` times the control net's scale in the worst case; measured
+/// against the reference (random, alternating ±1, offset by 10^6 and geometrically graded
+/// knots, `docs/performance.md`) it stays below `3e-15` relative up to degree 3 but reaches
+/// `6.7e-15` at degree 5 and `1e-13` at degree 9, so above degree 3 the basis kernel (below
+/// `1.1e-15` at every degree) is the default.
+pub const POWER_FORM_MAX_DEGREE: usize = 3;
+
+/// Parameters per task of the parallel paths. Fixed (not derived from the thread count) so that
+/// nothing about the arithmetic depends on the machine.
+const PAR_CHUNK: usize = 1 << 13;
+
+/// Buckets of the piece-location table per polynomial piece.
+const BUCKETS_PER_PIECE: usize = 4;
+
+/// Largest candidate range searched linearly; wider ones (very uneven knots) are bisected.
+const LINEAR_SEARCH_MAX: usize = 8;
+
+/// Which per-piece representation a [`CurveEvaluator`] uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EvalKernel {
+    /// Power form for degree ≤ [`POWER_FORM_MAX_DEGREE`] (and finite coefficients), basis
+    /// functions otherwise.
+    Auto,
+    /// Per-piece power (Taylor) form in the local parameter, Horner's scheme.
+    PowerForm,
+    /// Cox–de Boor basis functions with precomputed reciprocals of knot differences.
+    Basis,
+}
+
+/// Finds the polynomial piece of a parameter in O(1) for spread-out knots.
+///
+/// Bucket `b` covers the parameters with `β(t) = min(⌊(t − x_0)·s⌋, nb − 1) = b`. As `β` is
+/// non-decreasing in `t` (rounding is monotone), `t` lies in a piece `j` with
+/// `lo_b ≤ j ≤ hi_b`, where `lo_b` is the last piece whose start maps below `b` and `hi_b` the
+/// last whose start maps to at most `b`: the table is exact despite rounding.
+#[derive(Debug, Clone)]
+struct PieceLocator {
+    x0: f64,
+    scale: f64,
+    /// `(lo_b, hi_b)` per bucket.
+    range: Vec<(usize, usize)>,
+}
+
+impl PieceLocator {
+    fn new(breaks: &[f64]) -> Self {
+        let pieces = breaks.len() - 1;
+        let nb = pieces * BUCKETS_PER_PIECE;
+        let x0 = breaks[0];
+        // may be 0 (range overflows) or +inf (subnormal range): β stays monotone either way
+        let scale = nb as f64 / (breaks[pieces] - x0);
+        let mut loc = PieceLocator {
+            x0,
+            scale,
+            range: vec![(0, 0); nb],
+        };
+        let starts: Vec<usize> = breaks[..pieces].iter().map(|&x| loc.bucket(x)).collect();
+        // sweep: lo_b = last j with start_j < b, hi_b = last j with start_j ≤ b
+        let (mut below, mut at_most) = (0usize, 0usize);
+        for b in 0..nb {
+            while below + 1 < pieces && starts[below + 1] < b {
+                below += 1;
+            }
+            while at_most + 1 < pieces && starts[at_most + 1] <= b {
+                at_most += 1;
+            }
+            loc.range[b] = (below, at_most.max(below));
+        }
+        loc
+    }
+
+    #[inline(always)]
+    fn bucket(&self, t: f64) -> usize {
+        // saturating float-to-int cast: monotone, NaN → 0 (NaN never gets here)
+        #[allow(clippy::cast_possible_truncation)]
+        let b = ((t - self.x0) * self.scale) as usize;
+        b.min(self.range.len() - 1)
+    }
+
+    /// Piece `j` with `x_j ≤ t < x_{j+1}` (the last piece at `t = x_m`); `t` in the domain.
+    #[inline(always)]
+    fn find(&self, breaks: &[f64], t: f64) -> usize {
+        let (lo, hi) = self.range[self.bucket(t)];
+        if hi - lo <= 1 {
+            // the common case, without a branch on t (random parameters mispredict it)
+            lo + usize::from((hi > lo) & (breaks[lo + 1] <= t))
+        } else if hi - lo <= LINEAR_SEARCH_MAX {
+            let mut j = lo;
+            while j < hi && breaks[j + 1] <= t {
+                j += 1;
+            }
+            j
+        } else {
+            lo + breaks[lo + 1..=hi].partition_point(|&x| x <= t)
+        }
+    }
+}
+
+/// Per-piece data of the kernels.
+#[derive(Debug, Clone)]
+enum KernelData {
+    /// Per piece `j` a block of `2 + (p+1)·dim` values, kept together so that a random
+    /// parameter touches one place: `x_j`, `1 / h_j`, then at `2 + k·dim + d` the coefficient
+    /// of `u^{p−k}`, coordinate `d` (highest power first, as Horner's scheme reads them).
+    Power { coef: Vec<f64> },
+    /// Knots and control points of the curve, and `recip[j·p(p+1)/2 + l(l−1)/2 + r]`:
+    /// `1 / (t_{i+r+1} − t_{i+r+1−l})` for piece `j` with knot span `i`, level `l = 1..=p`,
+    /// `r = 0..l` (the denominators of Algorithm A2.2).
+    Basis {
+        knots: Vec<f64>,
+        control: Vec<f64>,
+        recip: Vec<f64>,
+    },
+}
+
+/// A B-spline curve prepared for fast evaluation at many parameters (piece location by a bucket
+/// table, then a per-piece power form or basis functions with precomputed reciprocals; see
+/// `docs/performance.md`): build it once with [`BSplineCurve::evaluator`], then
+/// call [`CurveEvaluator::eval_batch`], [`CurveEvaluator::par_eval_batch`] or
+/// [`CurveEvaluator::eval_derivatives_batch`] as often as needed.
+///
+/// ```
+/// use lekalo::{BSplineCurve, KnotVector, Points};
+/// let ctrl = Points::from_3d(&[[0.0, 0.0, 0.0], [1.0, 2.0, 0.5], [3.0, 2.0, 1.0], [4.0, 0.0, 2.0], [5.0, 1.0, 0.0]])?;
+/// let curve = BSplineCurve::from_knot_vector(3, KnotVector::clamped_uniform(3, 5)?, ctrl)?;
+/// let fast = curve.evaluator();
+/// let ts: Vec<f64> = (0..=100).map(|k| f64::from(k) / 100.0).collect();
+/// let (mut a, mut b) = (vec![0.0; 303], vec![0.0; 303]);
+/// fast.eval_batch(&ts, &mut a)?;
+/// curve.eval_batch(&ts, &mut b)?; // the reference
+/// let scale = curve.control_points().max_abs();
+/// assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-14 * scale));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct CurveEvaluator {
+    degree: usize,
+    dim: usize,
+    /// Distinct knots of the domain, `x_0 < … < x_m`.
+    breaks: Vec<f64>,
+    /// `1 / (x_{j+1} − x_j)` per piece.
+    inv_len: Vec<f64>,
+    /// Knot span index `i` (`t_i = x_j < t_{i+1}`) per piece.
+    spans: Vec<usize>,
+    locator: PieceLocator,
+    kernel: KernelData,
+}
+
+impl BSplineCurve {
+    /// A [`CurveEvaluator`] for this curve with the default kernel ([`EvalKernel::Auto`]).
+    /// O(n·p²·dim) once.
+    #[must_use]
+    pub fn evaluator(&self) -> CurveEvaluator {
+        CurveEvaluator::build(self, EvalKernel::Auto)
+    }
+}
+
+impl CurveEvaluator {
+    /// A [`CurveEvaluator`] with the given kernel.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] if [`EvalKernel::PowerForm`] is asked for and a power-form
+    /// coefficient overflows (control coordinates near `f64::MAX`); [`EvalKernel::Auto`] then
+    /// falls back to the basis kernel.
+    pub fn with_kernel(curve: &BSplineCurve, kernel: EvalKernel) -> Result<Self> {
+        let ev = Self::build(curve, kernel);
+        if kernel == EvalKernel::PowerForm && ev.kernel() != EvalKernel::PowerForm {
+            return Err(Error::InvalidArgument {
+                what: "evaluation kernel",
+                reason: "the power form's coefficients overflow for these control points; \
+                         use EvalKernel::Basis or EvalKernel::Auto"
+                    .into(),
+            });
+        }
+        Ok(ev)
+    }
+
+    fn build(curve: &BSplineCurve, kernel: EvalKernel) -> Self {
+        let p = curve.degree();
+        let dim = curve.dim();
+        let knots = curve.knots().as_slice();
+        let n_ctrl = curve.control_points().len();
+        let mut breaks = Vec::new();
+        let mut spans = Vec::new();
+        for i in p..n_ctrl {
+            if knots[i] < knots[i + 1] {
+                breaks.push(knots[i]);
+                spans.push(i);
+            }
+        }
+        debug_assert!(
+            !spans.is_empty(),
+            "validated curves have a non-empty domain"
+        );
+        breaks.push(knots[n_ctrl]);
+        let inv_len: Vec<f64> = breaks.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect();
+        let locator = PieceLocator::new(&breaks);
+        let mut ev = CurveEvaluator {
+            degree: p,
+            dim,
+            breaks,
+            inv_len,
+            spans,
+            locator,
+            kernel: KernelData::Power { coef: Vec::new() },
+        };
+        let want_power = match kernel {
+            EvalKernel::Auto => p <= POWER_FORM_MAX_DEGREE,
+            EvalKernel::PowerForm => true,
+            EvalKernel::Basis => false,
+        };
+        ev.kernel = match want_power.then(|| ev.power_coefficients(curve)).flatten() {
+            Some(coef) => KernelData::Power { coef },
+            None => ev.basis_data(curve),
+        };
+        ev
+    }
+
+    /// Taylor coefficients `c_k = h^k C^{(k)}(x_j⁺) / k!` per piece (None on overflow).
+    fn power_coefficients(&self, curve: &BSplineCurve) -> Option<Vec<f64>> {
+        let p = self.degree;
+        let dim = self.dim;
+        let w = p + 1;
+        let knots = curve.knots().as_slice();
+        let ctrl = curve.control_points().as_slice();
+        let stride = 2 + w * dim;
+        let mut coef = vec![0.0; self.spans.len() * stride];
+        let mut scratch = BasisScratch::new(p);
+        let mut ders = vec![0.0; w * w];
+        for (j, &span) in self.spans.iter().enumerate() {
+            let x = self.breaks[j];
+            let h = self.breaks[j + 1] - x;
+            basis_ders_into(knots, p, span, x, p, &mut scratch, &mut ders);
+            let block = &mut coef[j * stride..(j + 1) * stride];
+            block[0] = x;
+            block[1] = self.inv_len[j];
+            let block = &mut block[2..];
+            let mut factor = 1.0; // h^k / k!
+            for k in 0..=p {
+                let row = &mut block[(p - k) * dim..(p - k + 1) * dim];
+                for r in 0..w {
+                    let c = ders[k * w + r] * factor;
+                    let base = (span - p + r) * dim;
+                    for (o, &q) in row.iter_mut().zip(&ctrl[base..base + dim]) {
+                        *o += c * q;
+                    }
+                }
+                factor *= h / (k + 1) as f64;
+            }
+        }
+        coef.iter().all(|c| c.is_finite()).then_some(coef)
+    }
+
+    fn basis_data(&self, curve: &BSplineCurve) -> KernelData {
+        let p = self.degree;
+        let knots = curve.knots().as_slice();
+        let tri = p * (p + 1) / 2;
+        let mut recip = Vec::with_capacity(self.spans.len() * tri);
+        for &i in &self.spans {
+            for l in 1..=p {
+                for r in 0..l {
+                    recip.push(1.0 / (knots[i + r + 1] - knots[i + r + 1 - l]));
+                }
+            }
+        }
+        KernelData::Basis {
+            knots: knots.to_vec(),
+            control: curve.control_points().as_slice().to_vec(),
+            recip,
+        }
+    }
+
+    /// The kernel in use ([`EvalKernel::PowerForm`] or [`EvalKernel::Basis`], never `Auto`).
+    #[must_use]
+    pub fn kernel(&self) -> EvalKernel {
+        match self.kernel {
+            KernelData::Power { .. } => EvalKernel::PowerForm,
+            KernelData::Basis { .. } => EvalKernel::Basis,
+        }
+    }
+
+    /// Degree of the curve.
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// Dimension of the curve's points.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Parameter domain `[t_p, t_{n+1}]`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (self.breaks[0], self.breaks[self.breaks.len() - 1])
+    }
+
+    /// Number of polynomial pieces (non-empty knot spans in the domain).
+    #[must_use]
+    pub fn pieces(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// Knot span index of `t`, the same as [`crate::KnotVector::find_span`] but found through
+    /// the bucket table: O(1) for spread-out knots, O(log n) at worst.
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`] if `t` is outside the domain or NaN.
+    pub fn find_span(&self, t: f64) -> Result<usize> {
+        self.check_domain(t)?;
+        Ok(self.spans[self.locator.find(&self.breaks, t)])
+    }
+
+    #[inline(always)]
+    fn check_domain(&self, t: f64) -> Result<()> {
+        let (min, max) = self.domain();
+        if t >= min && t <= max {
+            Ok(())
+        } else {
+            Err(Error::ParameterOutOfDomain { t, min, max })
+        }
+    }
+
+    /// Points `C(t)` for every `t` in `ts` into `out` (`ts.len() × dim`, point-major), in any
+    /// parameter order; the fast twin of [`BSplineCurve::eval_batch`] (same results to
+    /// `1e-14` relative to the control net's scale). No allocation.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out.len() != ts.len() · dim`;
+    /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain (the points
+    /// before it are written, nothing is guaranteed about the rest).
+    pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim, out.len())?;
+        self.eval_slice(ts, out)
+    }
+
+    /// As [`CurveEvaluator::eval_batch`], split over the current rayon thread pool in chunks of
+    /// a fixed number of parameters; the results are bit-identical to the sequential ones. Run
+    /// inside `rayon::ThreadPool::install` to choose the number of threads.
+    ///
+    /// # Errors
+    /// As [`CurveEvaluator::eval_batch`] (the error of the first failing chunk).
+    pub fn par_eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim, out.len())?;
+        par_chunks(ts, out, self.dim, |t, o| self.eval_slice(t, o))
+    }
+
+    /// Derivatives `C^{(k)}(t)`, `k = 0..=order`, for every `t` in `ts`, into `out` laid out
+    /// `ts.len() × (order + 1) × dim` (for each parameter the rows of
+    /// [`BSplineCurve::eval_derivatives`]). Orders above the degree are zero; at an interior
+    /// knot the derivatives are right-hand ones (left-hand at the right end).
+    ///
+    /// Power form: Horner's scheme repeated as synthetic division (Knuth, TAOCP vol. 2,
+    /// §4.6.4) gives the Taylor coefficients `a_k` at `u`, and `C^{(k)}(t) = k!·a_k / h^k`.
+    /// Basis kernel: P&T Algorithm A2.3 per point. One allocation per call (scratch).
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out.len() != ts.len() · (order + 1) · dim`;
+    /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain.
+    pub fn eval_derivatives_batch(&self, ts: &[f64], order: usize, out: &mut [f64]) -> Result<()> {
+        let row = (order + 1) * self.dim;
+        check_batch(ts.len(), row, out.len())?;
+        let p = self.degree;
+        let dim = self.dim;
+        match &self.kernel {
+            KernelData::Power { coef } => {
+                let w = p + 1;
+                let stride = 2 + w * dim;
+                let kmax = order.min(p);
+                let mut a = vec![0.0; w];
+                self.drive(ts, out, row, |j, t, o| {
+                    let block = &coef[j * stride..(j + 1) * stride];
+                    let (x, inv) = (block[0], block[1]);
+                    let u = (t - x) * inv;
+                    o[(kmax + 1) * dim..].fill(0.0);
+                    for d in 0..dim {
+                        // a[i]: coefficient of u^i, coordinate d (lowest power first)
+                        for (i, ai) in a.iter_mut().enumerate() {
+                            *ai = block[2 + (p - i) * dim + d];
+                        }
+                        let mut scale = 1.0; // k! / h^k
+                        for k in 0..=kmax {
+                            // synthetic division by (x − u): afterwards a[k] is the k-th Taylor
+                            // coefficient at u
+                            for i in (k..p).rev() {
+                                a[i] += u * a[i + 1];
+                            }
+                            o[k * dim + d] = a[k] * scale;
+                            scale *= (k + 1) as f64 * inv;
+                        }
+                    }
+                })
+            }
+            KernelData::Basis { knots, control, .. } => {
+                let w = p + 1;
+                let mut scratch = BasisScratch::new(p);
+                let mut d = vec![0.0; (order + 1) * w];
+                self.drive(ts, out, row, |j, t, o| {
+                    let span = self.spans[j];
+                    basis_ders_into(knots, p, span, t, order, &mut scratch, &mut d);
+                    o.fill(0.0);
+                    for k in 0..=order.min(p) {
+                        let orow = &mut o[k * dim..(k + 1) * dim];
+                        for r in 0..w {
+                            let c = d[k * w + r];
+                            let base = (span - p + r) * dim;
+                            for (x, &q) in orow.iter_mut().zip(&control[base..base + dim]) {
+                                *x += c * q;
+                            }
+                        }
+                    }
+                })
+            }
+        }
+    }
+
+    /// The batch loop shared by all kernels: piece location (reusing the previous piece when
+    /// the next parameter is in it), domain check, then `f(piece, t, out_row)`.
+    #[inline(always)]
+    fn drive<F: FnMut(usize, f64, &mut [f64])>(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        row: usize,
+        mut f: F,
+    ) -> Result<()> {
+        let b = &self.breaks;
+        let (mut j, mut lo, mut hi) = (0, b[0], b[1]);
+        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(row)) {
+            // the last piece's `hi` is x_m, so t = x_m and anything beyond come here
+            if !(t >= lo && t < hi) {
+                self.check_domain(t)?;
+                j = self.locator.find(b, t);
+                lo = b[j];
+                hi = b[j + 1];
+            }
+            f(j, t, o);
+        }
+        Ok(())
+    }
+
+    /// Points into `out`, choosing a monomorphised kernel where there is one.
+    fn eval_slice(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        match &self.kernel {
+            KernelData::Power { coef } => {
+                macro_rules! fixed {
+                    ($p:literal, $d:literal) => {
+                        self.drive(ts, out, $d, |j, t, o| {
+                            power_fixed::<$p, $d>(coef, j, t, o);
+                        })
+                    };
+                }
+                match (self.degree, self.dim) {
+                    (1, 2) => fixed!(1, 2),
+                    (1, 3) => fixed!(1, 3),
+                    (2, 2) => fixed!(2, 2),
+                    (2, 3) => fixed!(2, 3),
+                    (3, 1) => fixed!(3, 1),
+                    (3, 2) => fixed!(3, 2),
+                    (3, 3) => fixed!(3, 3),
+                    (3, 4) => fixed!(3, 4),
+                    _ => self.drive(ts, out, self.dim, |j, t, o| {
+                        power_dyn(self.degree, coef, j, t, o);
+                    }),
+                }
+            }
+            KernelData::Basis {
+                knots,
+                control,
+                recip,
+            } => {
+                let mut n = vec![0.0; 3 * (self.degree + 1)];
+                self.drive(ts, out, self.dim, |j, t, o| {
+                    self.basis_point(knots, control, recip, j, t, &mut n, o);
+                })
+            }
+        }
+    }
+
+    /// One point by Algorithm A2.2 with precomputed reciprocals, then A3.1's combination.
+    /// `n` is scratch of length `3(p + 1)`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn basis_point(
+        &self,
+        knots: &[f64],
+        control: &[f64],
+        recip: &[f64],
+        j: usize,
+        t: f64,
+        n: &mut [f64],
+        o: &mut [f64],
+    ) {
+        let p = self.degree;
+        let dim = self.dim;
+        let i = self.spans[j];
+        let tri = p * (p + 1) / 2;
+        let rc = &recip[j * tri..(j + 1) * tri];
+        let (nv, rest) = n.split_at_mut(p + 1);
+        let (left, right) = rest.split_at_mut(p + 1);
+        nv[0] = 1.0;
+        let mut off = 0;
+        for l in 1..=p {
+            left[l] = t - knots[i + 1 - l];
+            right[l] = knots[i + l] - t;
+            let mut saved = 0.0;
+            for r in 0..l {
+                let temp = nv[r] * rc[off + r];
+                nv[r] = saved + right[r + 1] * temp;
+                saved = left[l - r] * temp;
+            }
+            nv[l] = saved;
+            off += l;
+        }
+        o.fill(0.0);
+        for (r, &nr) in nv.iter().enumerate() {
+            let base = (i - p + r) * dim;
+            for (x, &q) in o.iter_mut().zip(&control[base..base + dim]) {
+                *x += nr * q;
+            }
+        }
+    }
+}
+
+/// Horner's scheme on piece `j` with degree `P` and dimension `D` fixed at compile time; the
+/// same operations in the same order as [`power_dyn`].
+#[inline(always)]
+fn power_fixed<const P: usize, const D: usize>(coef: &[f64], j: usize, t: f64, o: &mut [f64]) {
+    let stride = 2 + (P + 1) * D;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let u = (t - block[0]) * block[1];
+    let c = &block[2..];
+    let mut acc = [0.0; D];
+    acc.copy_from_slice(&c[..D]);
+    for k in 1..=P {
+        for d in 0..D {
+            acc[d] = acc[d] * u + c[k * D + d];
+        }
+    }
+    o[..D].copy_from_slice(&acc);
+}
+
+/// Horner's scheme on piece `j`, any degree and dimension.
+#[inline(always)]
+fn power_dyn(p: usize, coef: &[f64], j: usize, t: f64, o: &mut [f64]) {
+    let dim = o.len();
+    let stride = 2 + (p + 1) * dim;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let u = (t - block[0]) * block[1];
+    let c = &block[2..];
+    o.copy_from_slice(&c[..dim]);
+    for k in 1..=p {
+        for (x, &ck) in o.iter_mut().zip(&c[k * dim..(k + 1) * dim]) {
+            *x = *x * u + ck;
+        }
+    }
+}
+
+fn check_batch(n: usize, row: usize, got: usize) -> Result<()> {
+    let expected = n * row;
+    if got != expected {
+        return Err(Error::LengthMismatch {
+            what: "output buffer (parameters × values per parameter)",
+            expected,
+            got,
+        });
+    }
+    Ok(())
+}
+
+/// Runs `f` on fixed-size chunks of `(ts, out)` in parallel; the first failing chunk's error.
+fn par_chunks<F>(ts: &[f64], out: &mut [f64], row: usize, f: F) -> Result<()>
+where
+    F: Fn(&[f64], &mut [f64]) -> Result<()> + Sync,
+{
+    let results: Vec<Result<()>> = ts
+        .par_chunks(PAR_CHUNK)
+        .zip(out.par_chunks_mut(PAR_CHUNK * row))
+        .map(|(t, o)| f(t, o))
+        .collect();
+    results.into_iter().collect()
+}
+
+/// A NURBS curve prepared for fast evaluation: a [`CurveEvaluator`] of the homogeneous
+/// B-spline `(w·P, w)` followed by the projection `C(t) = A(t) / w(t)` (P&T Algorithm A4.1).
+///
+/// ```
+/// use lekalo::{NurbsCurve, Points};
+/// let ctrl = Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])?;
+/// let w = std::f64::consts::FRAC_1_SQRT_2;
+/// let arc = NurbsCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], ctrl, vec![1.0, w, 1.0])?;
+/// let ts: Vec<f64> = (0..=64).map(|k| f64::from(k) / 64.0).collect();
+/// let mut out = vec![0.0; ts.len() * 2];
+/// arc.evaluator().eval_batch(&ts, &mut out)?;
+/// assert!(out.chunks(2).all(|p| (p[0].hypot(p[1]) - 1.0).abs() < 1e-15));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct NurbsEvaluator {
+    homogeneous: CurveEvaluator,
+}
+
+impl NurbsCurve {
+    /// A [`NurbsEvaluator`] for this curve (default kernel). O(n·p²·dim) once.
+    #[must_use]
+    pub fn evaluator(&self) -> NurbsEvaluator {
+        NurbsEvaluator {
+            homogeneous: self.homogeneous().evaluator(),
+        }
+    }
+}
+
+impl NurbsEvaluator {
+    /// A [`NurbsEvaluator`] with the given kernel for the homogeneous curve.
+    ///
+    /// # Errors
+    /// As [`CurveEvaluator::with_kernel`].
+    pub fn with_kernel(curve: &NurbsCurve, kernel: EvalKernel) -> Result<Self> {
+        Ok(NurbsEvaluator {
+            homogeneous: CurveEvaluator::with_kernel(curve.homogeneous(), kernel)?,
+        })
+    }
+
+    /// The evaluator of the homogeneous B-spline.
+    #[must_use]
+    pub fn homogeneous(&self) -> &CurveEvaluator {
+        &self.homogeneous
+    }
+
+    /// Euclidean dimension.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.homogeneous.dim - 1
+    }
+
+    /// Points `C(t)` for every `t` in `ts` into `out` (`ts.len() × dim`); the fast twin of
+    /// [`NurbsCurve::eval`] at every parameter. One allocation per call (scratch).
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out.len() != ts.len() · dim`;
+    /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain.
+    pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim(), out.len())?;
+        self.eval_slice(ts, out)
+    }
+
+    /// As [`NurbsEvaluator::eval_batch`] over the rayon pool, bit-identical to it.
+    ///
+    /// # Errors
+    /// As [`NurbsEvaluator::eval_batch`].
+    pub fn par_eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim(), out.len())?;
+        par_chunks(ts, out, self.dim(), |t, o| self.eval_slice(t, o))
+    }
+
+    fn eval_slice(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        let h = &self.homogeneous;
+        let dim = self.dim();
+        if let KernelData::Power { coef } = &h.kernel {
+            macro_rules! fixed {
+                ($p:literal, $hd:literal) => {
+                    return h.drive(ts, out, $hd - 1, |j, t, o| {
+                        let mut a = [0.0; $hd];
+                        power_fixed::<$p, $hd>(coef, j, t, &mut a);
+                        project(&a, o);
+                    })
+                };
+            }
+            match (h.degree, h.dim) {
+                (2, 3) => fixed!(2, 3),
+                (2, 4) => fixed!(2, 4),
+                (3, 3) => fixed!(3, 3),
+                (3, 4) => fixed!(3, 4),
+                _ => {}
+            }
+        }
+        let mut a = vec![0.0; dim + 1];
+        match &h.kernel {
+            KernelData::Power { coef } => h.drive(ts, out, dim, |j, t, o| {
+                power_dyn(h.degree, coef, j, t, &mut a);
+                project(&a, o);
+            }),
+            KernelData::Basis {
+                knots,
+                control,
+                recip,
+            } => {
+                let mut n = vec![0.0; 3 * (h.degree + 1)];
+                h.drive(ts, out, dim, |j, t, o| {
+                    h.basis_point(knots, control, recip, j, t, &mut n, &mut a);
+                    project(&a, o);
+                })
+            }
+        }
+    }
+}
+
+/// `o = a[..dim] / a[dim]`, as [`NurbsCurve::eval`] divides.
+#[inline(always)]
+fn project(a: &[f64], o: &mut [f64]) {
+    let w = a[o.len()];
+    for (x, &y) in o.iter_mut().zip(a) {
+        *x = y / w;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{KnotVector, Points};
+
+    /// Deterministic, irregular values in [−1, 1].
+    fn wave(i: usize) -> f64 {
+        (i as f64 * 0.731 + 0.3).sin() * (i as f64 * 0.117).cos()
+    }
+
+    fn curve(p: usize, n: usize, dim: usize) -> BSplineCurve {
+        let ctrl = Points::new((0..n * dim).map(wave).collect(), dim).unwrap();
+        BSplineCurve::from_knot_vector(p, KnotVector::clamped_uniform(p, n).unwrap(), ctrl).unwrap()
+    }
+
+    fn params(n: usize, shuffled: bool) -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let k = if shuffled { (i * 7919) % n } else { i };
+                k as f64 / (n - 1) as f64
+            })
+            .collect()
+    }
+
+    fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn locator_is_exact_for_uneven_and_extreme_breaks() {
+        let cases: Vec<Vec<f64>> = vec![
+            vec![0.0, 1.0],
+            vec![0.0, 1e-9, 2e-9, 0.5, 0.5 + 1e-12, 1.0],
+            (0..40).map(|i| 1.0 - 0.7f64.powi(i)).collect(),
+            vec![-1e308, -1.0, 0.0, 1e-300, 1e308],
+            vec![1e6, 1e6 + 1e-9, 1e6 + 1.0, 1e6 + 1000.0],
+            vec![0.0, 5e-324, 1e-323],
+        ];
+        for breaks in cases {
+            let loc = PieceLocator::new(&breaks);
+            let m = breaks.len() - 1;
+            let mut ts: Vec<f64> = breaks.clone();
+            for w in breaks.windows(2) {
+                ts.extend([w[0] + (w[1] - w[0]) * 0.25, w[0] + (w[1] - w[0]) * 0.75]);
+                ts.push(f64::from_bits(w[1].to_bits().wrapping_sub(1)).max(w[0]));
+            }
+            for &t in &ts {
+                let want = (breaks.partition_point(|&x| x <= t) - 1).min(m - 1);
+                assert_eq!(loc.find(&breaks, t), want, "t = {t:e} in {breaks:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn find_span_matches_knot_vector() {
+        let kv =
+            KnotVector::new(vec![0.0, 0.0, 0.0, 0.1, 0.1, 0.4, 0.45, 0.9, 1.0, 1.0, 1.0]).unwrap();
+        let ctrl = Points::new((0..16).map(wave).collect(), 2).unwrap();
+        let c = BSplineCurve::from_knot_vector(2, kv.clone(), ctrl).unwrap();
+        let ev = c.evaluator();
+        assert_eq!(ev.pieces(), 5);
+        for t in params(1001, false)
+            .into_iter()
+            .chain(kv.as_slice().iter().copied())
+        {
+            assert_eq!(
+                ev.find_span(t).unwrap(),
+                kv.find_span(2, t).unwrap(),
+                "t = {t}"
+            );
+        }
+        assert!(matches!(
+            ev.find_span(f64::NAN),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+    }
+
+    #[test]
+    fn kernels_agree_with_reference_sorted_and_shuffled() {
+        for (p, dim) in [
+            (0, 2),
+            (1, 3),
+            (2, 2),
+            (3, 1),
+            (3, 3),
+            (3, 4),
+            (3, 5),
+            (4, 3),
+            (7, 2),
+        ] {
+            let c = curve(p, 40, dim);
+            let scale = c.control_points().max_abs();
+            for shuffled in [false, true] {
+                let ts = params(997, shuffled);
+                let mut want = vec![0.0; ts.len() * dim];
+                c.eval_batch(&ts, &mut want).unwrap();
+                for kernel in [EvalKernel::Auto, EvalKernel::PowerForm, EvalKernel::Basis] {
+                    if kernel == EvalKernel::PowerForm && p > POWER_FORM_MAX_DEGREE {
+                        continue; // not promised to 1e-14 (see POWER_FORM_MAX_DEGREE)
+                    }
+                    let ev = CurveEvaluator::with_kernel(&c, kernel).unwrap();
+                    let mut got = vec![0.0; ts.len() * dim];
+                    ev.eval_batch(&ts, &mut got).unwrap();
+                    let err = max_diff(&got, &want);
+                    assert!(err <= 1e-14 * scale, "p {p} dim {dim} {kernel:?}: {err:e}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn auto_kernel_choice() {
+        assert_eq!(curve(3, 10, 3).evaluator().kernel(), EvalKernel::PowerForm);
+        assert_eq!(
+            curve(POWER_FORM_MAX_DEGREE + 1, 10, 3).evaluator().kernel(),
+            EvalKernel::Basis
+        );
+    }
+
+    #[test]
+    fn parallel_is_bit_identical() {
+        let c = curve(3, 200, 3);
+        let ev = c.evaluator();
+        let eb = CurveEvaluator::with_kernel(&c, EvalKernel::Basis).unwrap();
+        let n = 3 * PAR_CHUNK + 17;
+        for shuffled in [false, true] {
+            let ts = params(n, shuffled);
+            for e in [&ev, &eb] {
+                let (mut a, mut b) = (vec![0.0; n * 3], vec![1.0; n * 3]);
+                e.eval_batch(&ts, &mut a).unwrap();
+                e.par_eval_batch(&ts, &mut b).unwrap();
+                assert!(
+                    a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
+                    "{:?}",
+                    e.kernel()
+                );
+            }
+        }
+        let mut bad = params(n, false);
+        bad[2 * PAR_CHUNK + 5] = 2.0;
+        bad[PAR_CHUNK + 1] = -1.0;
+        let mut out = vec![0.0; n * 3];
+        assert_eq!(
+            ev.par_eval_batch(&bad, &mut out),
+            Err(Error::ParameterOutOfDomain {
+                t: -1.0,
+                min: 0.0,
+                max: 1.0
+            })
+        );
+    }
+
+    #[test]
+    fn derivatives_agree_with_reference() {
+        for (p, dim) in [(1, 2), (2, 3), (3, 3), (5, 2)] {
+            let c = curve(p, 30, dim);
+            let ts = params(301, true);
+            let order = p + 1;
+            let row = (order + 1) * dim;
+            for kernel in [EvalKernel::PowerForm, EvalKernel::Basis] {
+                let ev = CurveEvaluator::with_kernel(&c, kernel).unwrap();
+                let mut got = vec![0.0; ts.len() * row];
+                ev.eval_derivatives_batch(&ts, order, &mut got).unwrap();
+                // scale of the k-th derivative: control scale × (p / h_min)^k
+                let pieces = ev.pieces() as f64;
+                for (i, &t) in ts.iter().enumerate() {
+                    let want = c.eval_derivatives(t, order).unwrap();
+                    for k in 0..=order {
+                        let scale = c.control_points().max_abs()
+                            * (2.0 * p as f64 * pieces).powi(i32::try_from(k).unwrap());
+                        let g = &got[i * row + k * dim..i * row + (k + 1) * dim];
+                        let err = max_diff(g, want.point(k));
+                        assert!(
+                            err <= 1e-14 * scale,
+                            "p {p} {kernel:?} k {k} t {t}: {err:e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nurbs_agrees_with_reference() {
+        for (p, dim) in [(2, 2), (2, 3), (3, 2), (3, 3), (3, 4), (5, 3)] {
+            let b = curve(p, 25, dim);
+            let weights: Vec<f64> = (0..25).map(|i| 1.5 + wave(i + 100)).collect();
+            let n = NurbsCurve::new(
+                p,
+                b.knots().as_slice().to_vec(),
+                b.control_points().clone(),
+                weights,
+            )
+            .unwrap();
+            let ts = params(401, true);
+            let ev = n.evaluator();
+            let mut got = vec![0.0; ts.len() * dim];
+            ev.eval_batch(&ts, &mut got).unwrap();
+            let mut par = vec![0.0; ts.len() * dim];
+            ev.par_eval_batch(&ts, &mut par).unwrap();
+            assert_eq!(got, par);
+            let scale = b.control_points().max_abs();
+            for (i, &t) in ts.iter().enumerate() {
+                let want = n.eval(t).unwrap();
+                let err = max_diff(&got[i * dim..(i + 1) * dim], &want);
+                assert!(err <= 1e-14 * scale, "p {p} dim {dim} t {t}: {err:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn errors() {
+        let c = curve(3, 10, 3);
+        let ev = c.evaluator();
+        let mut out = vec![0.0; 5];
+        assert!(matches!(
+            ev.eval_batch(&[0.5, 0.6], &mut out),
+            Err(Error::LengthMismatch {
+                expected: 6,
+                got: 5,
+                ..
+            })
+        ));
+        assert!(matches!(
+            ev.eval_derivatives_batch(&[0.5], 1, &mut out),
+            Err(Error::LengthMismatch {
+                expected: 6,
+                got: 5,
+                ..
+            })
+        ));
+        let mut out = vec![0.0; 6];
+        for bad in [f64::NAN, -0.1, 1.5, f64::INFINITY] {
+            assert!(
+                matches!(
+                    ev.eval_batch(&[0.5, bad], &mut out),
+                    Err(Error::ParameterOutOfDomain { .. })
+                ),
+                "{bad}"
+            );
+            assert!(matches!(
+                ev.eval_derivatives_batch(&[bad], 1, &mut out),
+                Err(Error::ParameterOutOfDomain { .. })
+            ));
+        }
+        // the right end is in the domain
+        ev.eval_batch(&[1.0, 0.0], &mut out).unwrap();
+        assert!(max_diff(&out[..3], c.control_points().point(9)) <= 1e-15);
+        let huge = Points::new(
+            (0..12)
+                .map(|i| if i % 2 == 0 { 1e308 } else { -1e308 })
+                .collect(),
+            3,
+        )
+        .unwrap();
+        let h = BSplineCurve::from_knot_vector(3, KnotVector::clamped_uniform(3, 4).unwrap(), huge)
+            .unwrap();
+        assert!(matches!(
+            CurveEvaluator::with_kernel(&h, EvalKernel::PowerForm),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert_eq!(h.evaluator().kernel(), EvalKernel::Basis);
+    }
+}
