@@ -86,9 +86,15 @@ def main():
     try:
         from OCP.Geom import Geom_BSplineCurve
         from OCP.GeomAdaptor import GeomAdaptor_Curve
-        from OCP.TColgp import TColgp_Array1OfPnt
-        from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
         from OCP.gp import gp_Pnt
+
+        try:  # OCP 7.x names
+            from OCP.TColgp import TColgp_Array1OfPnt
+            from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
+        except ImportError:  # cadquery-ocp 8: generic collections
+            from OCP.OCP.collections import Array1_double as TColStd_Array1OfReal
+            from OCP.OCP.collections import Array1_gp_Pnt as TColgp_Array1OfPnt
+            from OCP.OCP.collections import Array1_int as TColStd_Array1OfInteger
 
         poles = TColgp_Array1OfPnt(1, n_ctrl)
         for i, c in enumerate(ctrl):
