@@ -10,8 +10,9 @@
 //!   polynomial pieces, piece `j` on `[x_j, x_{j+1})` (the last also holds `x_m`): the same
 //!   half-open convention as [`crate::KnotVector::find_span`]. A bucket table over the domain
 //!   gives, for any parameter, the few pieces it can fall in, so that the search costs O(1) for
-//!   reasonably spread knots and O(log m) at worst, in any order; sorted batches reuse the
-//!   previous piece.
+//!   reasonably spread knots and O(log m) at worst, in any order. Consecutive parameters in the
+//!   same piece (sorted batches) skip the search after a one-comparison test against a ball
+//!   strictly inside the piece.
 //! - **Kernel [`EvalKernel::PowerForm`]** (default for degree ≤ [`POWER_FORM_MAX_DEGREE`]): each
 //!   piece as a polynomial in the *local* parameter `u = (t − x_j) / (x_{j+1} − x_j) ∈ [0, 1]`,
 //!   `C(t) = Σ_{k=0}^{p} c_k u^k` with `c_k = h_j^k C^{(k)}(x_j⁺) / k!` (Taylor's formula about the
@@ -24,14 +25,14 @@
 //!   rounding grows like `3^p`): Algorithm A2.2 with the reciprocals of the knot differences
 //!   `1 / (t_{i+r+1} − t_{i+r+1−j})` precomputed per piece, so that a point costs no division.
 //!
-//! Both kernels agree with the reference to about `1e-15` relative to the control net's scale
+//! The default kernels agree with the reference to a few `1e-15` relative to the control net's scale
 //! (the largest absolute control coordinate); the tests check `1e-14`. The opt-in parallel paths
 //! (`par_*`, rayon) split the parameters into fixed chunks and run the sequential kernel on each,
 //! so their results are bit-identical to the sequential fast path's.
 //!
 //! Monomorphised kernels (degree and dimension known at compile time) serve the common cases:
-//! degree 1–3 in dimension 1–4 (so also 2-D and 3-D NURBS, evaluated in homogeneous dimension
-//! 3 and 4); everything else takes the generic kernel, which performs the same arithmetic.
+//! degree 1–3 in dimensions 2 and 3, cubics also in dimensions 1 and 4, and NURBS of degree 2–3
+//! in 2-D and 3-D (homogeneous dimension 3 and 4); everything else takes the generic kernel, which performs the same arithmetic.
 
 use rayon::prelude::*;
 
@@ -44,7 +45,7 @@ use crate::nurbs::NurbsCurve;
 /// rounding error grows like `3^p` times the control net's scale in the worst case; measured
 /// against the reference (random, alternating ±1, offset by 10^6 and geometrically graded
 /// knots, `docs/performance.md`) it stays below `3e-15` relative up to degree 3 but reaches
-/// `6.7e-15` at degree 5 and `1e-13` at degree 9, so above degree 3 the basis kernel (below
+/// `6.7e-15` at degree 5 and `9e-13` at degree 9, so above degree 3 the basis kernel (below
 /// `1.1e-15` at every degree) is the default.
 pub const POWER_FORM_MAX_DEGREE: usize = 3;
 
