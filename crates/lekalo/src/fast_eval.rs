@@ -522,10 +522,29 @@ impl CurveEvaluator {
                 control,
                 recip,
             } => {
-                let mut n = vec![0.0; 3 * (self.degree + 1)];
-                self.drive(ts, out, self.dim, |j, t, o| {
-                    self.basis_point(knots, control, recip, j, t, &mut n, o);
-                })
+                macro_rules! fixed {
+                    ($w:literal, $d:literal) => {
+                        self.drive(ts, out, $d, |j, t, o| {
+                            basis_fixed::<$w, $d>(knots, control, recip, self.spans[j], j, t, o);
+                        })
+                    };
+                }
+                match (self.degree, self.dim) {
+                    (3, 2) => fixed!(4, 2),
+                    (3, 3) => fixed!(4, 3),
+                    (4, 2) => fixed!(5, 2),
+                    (4, 3) => fixed!(5, 3),
+                    (5, 2) => fixed!(6, 2),
+                    (5, 3) => fixed!(6, 3),
+                    (6, 3) => fixed!(7, 3),
+                    (7, 3) => fixed!(8, 3),
+                    _ => {
+                        let mut n = vec![0.0; 3 * (self.degree + 1)];
+                        self.drive(ts, out, self.dim, |j, t, o| {
+                            self.basis_point(knots, control, recip, j, t, &mut n, o);
+                        })
+                    }
+                }
             }
         }
     }
@@ -588,6 +607,47 @@ fn power_fixed<const P: usize, const D: usize>(coef: &[f64], j: usize, t: f64, o
     for k in 1..=P {
         for d in 0..D {
             acc[d] = acc[d] * u + c[k * D + d];
+        }
+    }
+    o[..D].copy_from_slice(&acc);
+}
+
+/// [`CurveEvaluator::basis_point`] with the order `W = p + 1` and dimension `D` fixed at
+/// compile time, so that the triangle lives in registers; the same operations in the same
+/// order.
+#[inline(always)]
+fn basis_fixed<const W: usize, const D: usize>(
+    knots: &[f64],
+    control: &[f64],
+    recip: &[f64],
+    span: usize,
+    j: usize,
+    t: f64,
+    o: &mut [f64],
+) {
+    let p = W - 1;
+    let tri = p * W / 2;
+    let rc = &recip[j * tri..(j + 1) * tri];
+    let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
+    nv[0] = 1.0;
+    let mut off = 0;
+    for l in 1..W {
+        left[l] = t - knots[span + 1 - l];
+        right[l] = knots[span + l] - t;
+        let mut saved = 0.0;
+        for r in 0..l {
+            let temp = nv[r] * rc[off + r];
+            nv[r] = saved + right[r + 1] * temp;
+            saved = left[l - r] * temp;
+        }
+        nv[l] = saved;
+        off += l;
+    }
+    let mut acc = [0.0; D];
+    let c = &control[(span - p) * D..(span + 1) * D];
+    for r in 0..W {
+        for d in 0..D {
+            acc[d] += nv[r] * c[r * D + d];
         }
     }
     o[..D].copy_from_slice(&acc);
@@ -897,6 +957,36 @@ mod tests {
                     let err = max_diff(&got, &want);
                     assert!(err <= 1e-14 * scale, "p {p} dim {dim} {kernel:?}: {err:e}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_kernels_match_generic_bit_for_bit() {
+        for (p, dim) in [(3, 3), (5, 2), (7, 3), (2, 3), (3, 4)] {
+            let c = curve(p, 30, dim);
+            let ts = params(501, true);
+            for kernel in [EvalKernel::PowerForm, EvalKernel::Basis] {
+                let ev = CurveEvaluator::with_kernel(&c, kernel).unwrap();
+                let mut fast = vec![0.0; ts.len() * dim];
+                ev.eval_batch(&ts, &mut fast).unwrap();
+                let mut generic = vec![0.0; ts.len() * dim];
+                let mut n = vec![0.0; 3 * (p + 1)];
+                ev.drive(&ts, &mut generic, dim, |j, t, o| match &ev.kernel {
+                    KernelData::Power { coef } => power_dyn(p, coef, j, t, o),
+                    KernelData::Basis {
+                        knots,
+                        control,
+                        recip,
+                    } => ev.basis_point(knots, control, recip, j, t, &mut n, o),
+                })
+                .unwrap();
+                assert!(
+                    fast.iter()
+                        .zip(&generic)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "p {p} dim {dim} {kernel:?}"
+                );
             }
         }
     }
