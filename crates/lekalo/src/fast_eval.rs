@@ -414,32 +414,27 @@ impl CurveEvaluator {
         let dim = self.dim;
         match &self.kernel {
             KernelData::Power { coef } => {
-                let w = p + 1;
-                let stride = 2 + w * dim;
                 let kmax = order.min(p);
-                let mut a = vec![0.0; w];
-                self.drive(ts, out, row, |j, t, o| {
-                    let block = &coef[j * stride..(j + 1) * stride];
-                    let (x, inv) = (block[0], block[1]);
-                    let u = (t - x) * inv;
-                    o[(kmax + 1) * dim..].fill(0.0);
-                    for d in 0..dim {
-                        // a[i]: coefficient of u^i, coordinate d (lowest power first)
-                        for (i, ai) in a.iter_mut().enumerate() {
-                            *ai = block[2 + (p - i) * dim + d];
-                        }
-                        let mut scale = 1.0; // k! / h^k
-                        for k in 0..=kmax {
-                            // synthetic division by (x − u): afterwards a[k] is the k-th Taylor
-                            // coefficient at u
-                            for i in (k..p).rev() {
-                                a[i] += u * a[i + 1];
-                            }
-                            o[k * dim + d] = a[k] * scale;
-                            scale *= (k + 1) as f64 * inv;
-                        }
+                macro_rules! fixed {
+                    ($w:literal, $d:literal) => {
+                        self.drive(ts, out, row, |j, t, o| {
+                            let mut a = [0.0; $w];
+                            power_ders(&mut a, $d, coef, j, t, kmax, o);
+                        })
+                    };
+                }
+                match (p, dim) {
+                    (2, 2) => fixed!(3, 2),
+                    (2, 3) => fixed!(3, 3),
+                    (3, 2) => fixed!(4, 2),
+                    (3, 3) => fixed!(4, 3),
+                    _ => {
+                        let mut a = vec![0.0; p + 1];
+                        self.drive(ts, out, row, |j, t, o| {
+                            power_ders(&mut a, dim, coef, j, t, kmax, o);
+                        })
                     }
-                })
+                }
             }
             KernelData::Basis { knots, control, .. } => {
                 let w = p + 1;
@@ -651,6 +646,42 @@ fn basis_fixed<const W: usize, const D: usize>(
         }
     }
     o[..D].copy_from_slice(&acc);
+}
+
+/// Derivatives of orders `0..=kmax` on piece `j` by repeated synthetic division (Knuth, TAOCP
+/// vol. 2, §4.6.4); `a` is scratch of length `p + 1` (an array when the caller knows `p`, so
+/// that it lives in registers), `o` a row of `(order + 1)·dim` values, zero above `kmax`.
+#[inline(always)]
+fn power_ders(
+    a: &mut [f64],
+    dim: usize,
+    coef: &[f64],
+    j: usize,
+    t: f64,
+    kmax: usize,
+    o: &mut [f64],
+) {
+    let p = a.len() - 1;
+    let stride = 2 + (p + 1) * dim;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let (x, inv) = (block[0], block[1]);
+    let u = (t - x) * inv;
+    o[(kmax + 1) * dim..].fill(0.0);
+    for d in 0..dim {
+        // a[i]: coefficient of u^i, coordinate d (lowest power first)
+        for (i, ai) in a.iter_mut().enumerate() {
+            *ai = block[2 + (p - i) * dim + d];
+        }
+        let mut scale = 1.0; // k! / h^k
+        for k in 0..=kmax {
+            // synthetic division by (x − u): afterwards a[k] is the k-th Taylor coefficient at u
+            for i in (k..p).rev() {
+                a[i] += u * a[i + 1];
+            }
+            o[k * dim + d] = a[k] * scale;
+            scale *= (k + 1) as f64 * inv;
+        }
+    }
 }
 
 /// Horner's scheme on piece `j`, any degree and dimension.
@@ -987,6 +1018,23 @@ mod tests {
                         .all(|(a, b)| a.to_bits() == b.to_bits()),
                     "p {p} dim {dim} {kernel:?}"
                 );
+                if let KernelData::Power { coef } = &ev.kernel {
+                    let row = 3 * dim;
+                    let mut fast = vec![0.0; ts.len() * row];
+                    ev.eval_derivatives_batch(&ts, 2, &mut fast).unwrap();
+                    let mut generic = vec![0.0; ts.len() * row];
+                    let mut a = vec![0.0; p + 1];
+                    ev.drive(&ts, &mut generic, row, |j, t, o| {
+                        power_ders(&mut a, dim, coef, j, t, 2.min(p), o);
+                    })
+                    .unwrap();
+                    assert!(
+                        fast.iter()
+                            .zip(&generic)
+                            .all(|(a, b)| a.to_bits() == b.to_bits()),
+                        "derivatives p {p} dim {dim}"
+                    );
+                }
             }
         }
     }
