@@ -1,0 +1,69 @@
+//! Workloads shared by the criterion benches and `examples/peer_bench.rs`: deterministic data
+//! (a fixed linear congruential generator, no randomness), so that every run and every peer
+//! sees the same curves and parameters.
+#![allow(dead_code)]
+
+use lekalo::{BSplineCurve, KnotVector, NurbsCurve, Points};
+
+/// Knuth's MMIX linear congruential generator: deterministic uniform numbers in `[0, 1)`.
+pub(crate) struct Lcg(u64);
+
+impl Lcg {
+    pub(crate) fn new(seed: u64) -> Self {
+        Lcg(seed)
+    }
+
+    pub(crate) fn next_f64(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Control points of a smooth random walk in `dim` dimensions (coordinates of order 10).
+pub(crate) fn walk(n: usize, dim: usize, seed: u64) -> Points {
+    let mut rng = Lcg::new(seed);
+    let mut p = vec![0.0; dim];
+    let mut data = Vec::with_capacity(n * dim);
+    for _ in 0..n {
+        for x in &mut p {
+            *x += rng.next_f64() - 0.5;
+        }
+        data.extend_from_slice(&p);
+    }
+    Points::new(data, dim).expect("finite walk")
+}
+
+/// The evaluation workload: a B-spline of `degree` with `n_ctrl` control points in
+/// `dim` dimensions on clamped uniform knots over `[0, 1]`.
+pub(crate) fn curve(degree: usize, n_ctrl: usize, dim: usize) -> BSplineCurve {
+    let knots = KnotVector::clamped_uniform(degree, n_ctrl).expect("enough control points");
+    BSplineCurve::from_knot_vector(degree, knots, walk(n_ctrl, dim, 7)).expect("valid curve")
+}
+
+/// A NURBS version of [`curve`] with weights in `[0.5, 1.5)`.
+pub(crate) fn nurbs(degree: usize, n_ctrl: usize, dim: usize) -> NurbsCurve {
+    let c = curve(degree, n_ctrl, dim);
+    let mut rng = Lcg::new(11);
+    let w: Vec<f64> = (0..n_ctrl).map(|_| 0.5 + rng.next_f64()).collect();
+    NurbsCurve::new(
+        degree,
+        c.knots().as_slice().to_vec(),
+        c.control_points().clone(),
+        w,
+    )
+    .expect("valid NURBS")
+}
+
+/// `n` equally spaced parameters over `[0, 1]`.
+pub(crate) fn sorted_params(n: usize) -> Vec<f64> {
+    (0..n).map(|i| i as f64 / (n - 1) as f64).collect()
+}
+
+/// `n` uniformly distributed parameters in `[0, 1)`, in random order.
+pub(crate) fn random_params(n: usize) -> Vec<f64> {
+    let mut rng = Lcg::new(12_345);
+    (0..n).map(|_| rng.next_f64()).collect()
+}
