@@ -56,6 +56,3 @@ mod blend;
 // -- piecewise polynomials (issue 6) --
 mod divdiff;
 mod ppform;
-
-// -- formats (issue 7) --
-mod format;
