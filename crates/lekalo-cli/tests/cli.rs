@@ -235,7 +235,7 @@ fn internal_failure_is_exit_code_3() {
 #[test]
 fn knots_build_and_inspect() {
     // digest T.1: averaged chord-length knots, interior 28/51
-    lekalo()
+    let out = lekalo()
         .args([
             "knots",
             "averaged",
@@ -243,13 +243,16 @@ fn knots_build_and_inspect() {
             "3",
             "--params",
             "0,5/17,9/17,14/17,1",
+            "--json",
         ])
-        .assert()
-        .success()
-        .stdout(contains(format!(
-            "[0, 0, 0, 0, {}, 1, 1, 1, 1]",
-            28.0 / 51.0
-        )));
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let k: Vec<f64> = serde_json::from_value(j["knots"].clone()).unwrap();
+    assert_eq!(k.len(), 9);
+    assert!((k[4] - 28.0 / 51.0).abs() < 1e-15, "{k:?}");
+    assert_eq!(j["domain"], serde_json::json!([0.0, 1.0]));
     lekalo()
         .args([
             "knots", "uniform", "--degree", "3", "--count", "5", "--json",
@@ -637,10 +640,20 @@ fn step_reads_back_with_an_independent_parser() {
         })
         .collect();
     let k = get("B_SPLINE_CURVE_WITH_KNOTS");
-    let knots: Vec<f64> = reals(&k[0])
+    let Parameter::List(mults) = &k[0] else {
+        panic!()
+    };
+    let mults: Vec<usize> = mults
+        .iter()
+        .map(|m| match m {
+            Parameter::Integer(i) => usize::try_from(*i).unwrap(),
+            _ => panic!("multiplicities are integers"),
+        })
+        .collect();
+    let knots: Vec<f64> = mults
         .iter()
         .zip(reals(&k[1]))
-        .flat_map(|(m, t)| std::iter::repeat_n(t, *m as usize))
+        .flat_map(|(m, t)| std::iter::repeat_n(t, *m))
         .collect();
     let weights = reals(&get("RATIONAL_B_SPLINE_CURVE")[0]);
     let back = lekalo::NurbsCurve::new(

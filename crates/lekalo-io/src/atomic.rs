@@ -15,9 +15,9 @@ use crate::error::{IoError, IoResult};
 /// directory is not writable or the rename fails.
 pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<()> {
     check_not_input(path, inputs)?;
-    let write_err = |source| IoError::Write {
+    let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
-        source,
+        error,
     };
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -58,17 +58,17 @@ pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
 pub fn read_input(path: &Path) -> IoResult<(String, String)> {
     if path.as_os_str() == "-" {
         let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s).map_err(|source| {
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s).map_err(|error| {
             IoError::Read {
                 path: PathBuf::from("<stdin>"),
-                source,
+                error,
             }
         })?;
         return Ok((s, "<stdin>".to_string()));
     }
-    let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+    let text = std::fs::read_to_string(path).map_err(|error| IoError::Read {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     Ok((text, path.display().to_string()))
 }

@@ -69,28 +69,28 @@ pub enum IoError {
         message: String,
     },
     /// The input is well-formed but the library's validating constructor rejected it.
-    #[error("{at}: {source}")]
+    #[error("{at}: {error}")]
     Invalid {
         /// Where (the field is derived from the kind of error when possible).
         at: Location,
-        /// The library's error.
-        source: lekalo::Error,
+        /// The library's error (part of the message, so not a separate `source`).
+        error: lekalo::Error,
     },
     /// An input file could not be read.
-    #[error("cannot read {}: {source}", path.display())]
+    #[error("cannot read {}: {error}", path.display())]
     Read {
         /// The file.
         path: PathBuf,
         /// The operating system's error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// An output file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
+    #[error("cannot write {}: {error}", path.display())]
     Write {
         /// The file.
         path: PathBuf,
         /// The operating system's error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The output path is one of the inputs; lekalo never overwrites its inputs.
     #[error("refusing to write {}: it is an input file; choose another output path", path.display())]

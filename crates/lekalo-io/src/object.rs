@@ -258,14 +258,14 @@ impl Object {
         };
         let invalid = |e: lekalo::Error| IoError::Invalid {
             at: field_of(&e).map_or_else(|| at.clone(), field_at),
-            source: e,
+            error: e,
         };
         match kind.as_str() {
             "bezier_curve" => {
                 let r: BezierJson = serde_json::from_value(rest).map_err(decode_err)?;
                 let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
                     at: field_at("control"),
-                    source: e,
+                    error: e,
                 })?;
                 BezierCurve::new(ctrl).map(Object::Bezier).map_err(invalid)
             }
@@ -273,7 +273,7 @@ impl Object {
                 let r: BSplineJson = serde_json::from_value(rest).map_err(decode_err)?;
                 let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
                     at: field_at("control"),
-                    source: e,
+                    error: e,
                 })?;
                 BSplineCurve::new(r.degree, r.knots, ctrl)
                     .map(Object::BSpline)
@@ -283,7 +283,7 @@ impl Object {
                 let r: NurbsJson = serde_json::from_value(rest).map_err(decode_err)?;
                 let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
                     at: field_at("control"),
-                    source: e,
+                    error: e,
                 })?;
                 NurbsCurve::new(r.degree, r.knots, ctrl, r.weights)
                     .map(Object::Nurbs)

@@ -95,7 +95,7 @@ pub fn read_points(text: &str, source: &str) -> IoResult<Points> {
     };
     Points::new(data, dim).map_err(|e| IoError::Invalid {
         at: Location::new(source),
-        source: e,
+        error: e,
     })
 }
 
@@ -128,7 +128,7 @@ fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
                     })?);
                 }
                 let dim = usize::try_from(dim).unwrap_or(usize::MAX);
-                return Points::new(flat, dim).map_err(|e| IoError::Invalid { at, source: e });
+                return Points::new(flat, dim).map_err(|e| IoError::Invalid { at, error: e });
             }
         }
         _ => {
@@ -157,7 +157,7 @@ fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
         }
         out.push(p);
     }
-    Points::from_rows(&out).map_err(|e| IoError::Invalid { at, source: e })
+    Points::from_rows(&out).map_err(|e| IoError::Invalid { at, error: e })
 }
 
 /// Parses a list of numbers written `0, 0.5, 1` or `0 0.5 1` (command-line arguments).

@@ -105,9 +105,9 @@ pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
     let mut stdout = std::io::stdout().lock();
     std::io::Write::write_all(&mut stdout, summary(&sections, v).as_bytes())?;
     if let Some(dir) = out {
-        std::fs::create_dir_all(dir).map_err(|source| lekalo_io::IoError::Write {
+        std::fs::create_dir_all(dir).map_err(|error| lekalo_io::IoError::Write {
             path: dir.to_path_buf(),
-            source,
+            error,
         })?;
         let mut n_files = 0;
         for s in &sections {
