@@ -498,7 +498,8 @@ fn json_lines_batches_report_bad_lines_and_go_on() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(lines.len(), 40);
-    assert_eq!(lines[0]["samples"][0]["y"], serde_json::json!(1.0));
+    assert_eq!(lines[0]["columns"], serde_json::json!(["t", "x", "y"]));
+    assert_eq!(lines[0]["rows"], serde_json::json!([[0.5, 1.0, 1.0]]));
     assert_eq!(lines[7]["line"], serde_json::json!(8));
     assert!(lines[7]["error"].is_string());
     let good_only: String = (0..5).map(|_| format!("{good}\n")).collect();

@@ -17,7 +17,8 @@ use crate::Verbosity;
 Without --at, the curve is sampled at --samples parameters spread evenly over its domain.
 Output columns: t, the point (x, y, z or x1 … xd), derivatives d1x, d1y, … up to
 --derivatives, and curvature. A JSON Lines input (.jsonl, or --jsonl) is evaluated in
-parallel and gives one JSON line per object (bad lines are reported, exit code 2).
+parallel and gives one JSON line per object with the fields line, columns and rows (a bad
+line gives line and error instead, is reported on stderr, and the exit code is 2).
 
 Examples:
   lekalo eval curve.json --at 1,1.5,2
@@ -99,7 +100,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                     match r {
                         Ok(t) => (
                             true,
-                            json!({"line": line, "samples": t.to_json()}).to_string(),
+                            json!({"line": line, "columns": t.header, "rows": t.rows}).to_string(),
                         ),
                         Err(e) => (false, json!({"line": line, "error": e}).to_string()),
                     }

@@ -5,7 +5,7 @@
 use anyhow::Result;
 use lekalo::basis::{basis_function_recursive, basis_functions};
 use lekalo::{BSplineCurve, KnotVector, Points};
-use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object};
+use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PALETTE};
 
 use super::{trim, Section};
 
@@ -59,17 +59,35 @@ fn lecture_bspline(s: &mut Section) -> Result<()> {
         The table evaluates the basis over all of [0, 3) as the notes do."
         .into();
     let obj = Object::BSpline(curve.clone());
-    let fig = curve_figure(
+    let mut fig = curve_figure(
         &obj,
         &CurvePlot {
             title: Some("The lecture's B-spline on its domain [1, 2]".into()),
             ..CurvePlot::default()
         },
     )?;
+    // the notes evaluate Σ N_{i,2}(t) P_i over all of [0, 3]: outside [1, 2] the basis does not
+    // sum to 1 and the "curve" leaves the convex hull towards the origin
+    let mut full = Vec::new();
+    for t in lekalo_io::uniform(0.0, 3.0, 301) {
+        let mut p = [0.0; 2];
+        for i in 0..3 {
+            let n = basis_function_recursive(&knots, i, 2, t)?;
+            p[0] += n * ctrl.point(i)[0];
+            p[1] += n * ctrl.point(i)[1];
+        }
+        full.push(p);
+    }
+    fig.series.insert(
+        0,
+        Series::new(Some("Σ N P over [0, 3]"), full, Style::Dashed, PALETTE[3]),
+    );
     s.figures.push((
         fig,
-        "The curve on its domain [1, 2] (blue), control polygon (dashed), points at the knots \
-         t = 1, 2 (orange): (3/2, 2) and (3, 3)."
+        "The curve on its domain [1, 2] (blue) from the midpoint (3/2, 2) of P0P1 to the \
+         midpoint (3, 3) of P1P2 (orange: points at the knots), the control polygon (grey, \
+         dashed), and Σ N_i,2(t) P_i over all of [0, 3] as the notes evaluate it (purple, \
+         dashed): outside the domain it leaves the convex hull and runs to the origin."
             .into(),
     ));
     let mut basis = basis_figure(&knots, 2, 301)?;
