@@ -545,6 +545,42 @@ mod tests {
     }
 
     #[test]
+    fn knot_and_curve_figures() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]).unwrap();
+        let fig = knots_figure("k", &kv);
+        // one marker per knot, stacked by multiplicity: 0 three times, 0.5 twice
+        let marks = &fig.series[1].paths[0];
+        assert_eq!(marks.len(), 8);
+        assert_eq!(marks[4], [0.5, 2.0]);
+        let obj = Object::from_json_str(
+            r#"{"lekalo":1,"type":"nurbs_curve","degree":2,"knots":[0,0,0,0.5,0.5,1,1,1],
+               "control":[[1,0,0],[1,1,0],[0,1,0],[-1,1,0],[-1,0,0]],"weights":[1,0.5,1,0.5,1]}"#,
+            "t",
+        )
+        .unwrap();
+        let data = Points::from_3d(&[[1.0, 0.0, 0.0]]).unwrap();
+        let fig = curve_figure(
+            &obj,
+            &CurvePlot {
+                data_points: Some(&data),
+                samples: 11,
+                ..CurvePlot::default()
+            },
+        )
+        .unwrap();
+        assert!(!fig.axes, "no axes in a projected 3-D view");
+        let labels: Vec<_> = fig.series.iter().filter_map(|s| s.label.clone()).collect();
+        assert_eq!(
+            labels,
+            ["control polygon", "curve", "points at knots", "data points"]
+        );
+        // knot marks at the distinct knots 0, 0.5, 1 of the domain
+        assert_eq!(fig.series[3].paths[0].len(), 3);
+        assert_eq!(fig.series[2].paths[0].len(), 11);
+        assert!(fig.to_svg().contains("NURBS curve of degree 2"));
+    }
+
+    #[test]
     fn basis_plot_of_the_lecture() {
         let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
         let fig = basis_figure(&kv, 2, 31).unwrap();

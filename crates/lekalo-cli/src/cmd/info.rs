@@ -57,6 +57,7 @@ pub(crate) fn info_json(obj: &Object, samples: usize) -> lekalo::Result<Value> {
     };
     Ok(json!({
         "type": obj.type_name(),
+        "name": obj.display_name(),
         "dim": obj.dim(),
         "degree": obj.degree(),
         "order": obj.degree() + 1,
@@ -88,7 +89,12 @@ fn fmt_list(v: &Value) -> String {
 /// Human-readable text of [`info_json`].
 fn info_text(j: &Value) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "type            {}", j["type"].as_str().unwrap_or("?"));
+    let _ = writeln!(
+        s,
+        "type            {} ({})",
+        j["name"].as_str().unwrap_or("?"),
+        j["type"].as_str().unwrap_or("?")
+    );
     let _ = writeln!(s, "dimension       {}", j["dim"]);
     let _ = writeln!(s, "degree          {} (order {})", j["degree"], j["order"]);
     let _ = writeln!(s, "control points  {}", j["control_points"]);
