@@ -138,11 +138,17 @@ fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
             ))
         }
     };
+    let lines = row_lines(text);
+    let row_at = |i: usize| {
+        let mut loc = at.clone();
+        loc.line = lines.get(i).copied();
+        loc
+    };
     let mut out: Vec<Vec<f64>> = Vec::with_capacity(rows.len());
     for (i, row) in rows.iter().enumerate() {
         let Value::Array(coords) = row else {
             return Err(IoError::syntax(
-                at.clone().at_field(format!("[{i}]")),
+                row_at(i).at_field(format!("[{i}]")),
                 format!("point {i} is {row}, not an array of coordinates"),
             ));
         };
@@ -150,14 +156,48 @@ fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
         for (k, c) in coords.iter().enumerate() {
             p.push(c.as_f64().ok_or_else(|| {
                 IoError::syntax(
-                    at.clone().at_field(format!("[{i}][{k}]")),
+                    row_at(i).at_field(format!("[{i}][{k}]")),
                     format!("{c} is not a number"),
                 )
             })?);
         }
         out.push(p);
     }
+    if let Some(i) = out.iter().position(|r| r.len() != out[0].len()) {
+        return Err(IoError::syntax(
+            row_at(i),
+            format!(
+                "point {i} has {} coordinates, point 0 has {}; every point needs the same number",
+                out[i].len(),
+                out[0].len()
+            ),
+        ));
+    }
     Points::from_rows(&out).map_err(|e| IoError::Invalid { at, error: e })
+}
+
+/// 1-based line of each innermost JSON array (`[` followed by `]` before any other `[`), in
+/// order: the line of point `i` in `[[x, y], …]`, used only to point error messages at a line.
+fn row_lines(text: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut line = 1;
+    let bytes = text.as_bytes();
+    for (pos, &b) in bytes.iter().enumerate() {
+        match b {
+            b'\n' => line += 1,
+            b'[' => {
+                let innermost = bytes[pos + 1..]
+                    .iter()
+                    .find(|&&c| c == b'[' || c == b']')
+                    .is_some_and(|&c| c == b']');
+                if innermost {
+                    out.push(line);
+                }
+            }
+            _ => {}
+        }
+    }
+    out
 }
 
 /// Parses a list of numbers written `0, 0.5, 1` or `0 0.5 1` (command-line arguments).
@@ -221,14 +261,18 @@ mod tests {
         );
         let e = read_points("# nothing\n", "p.csv").unwrap_err().to_string();
         assert!(e.starts_with("p.csv: no points found"), "{e}");
-        let e = read_points("[[0,0],[1,\"a\"]]", "p.json")
+        let e = read_points("[[0,0],\n [1,\"a\"]]", "p.json")
             .unwrap_err()
             .to_string();
-        assert_eq!(e, "p.json: field `[1][1]`: \"a\" is not a number");
-        let e = read_points("[[0,0],[1]]", "p.json")
+        assert_eq!(e, "p.json:2: field `[1][1]`: \"a\" is not a number");
+        let e = read_points("{\"points\": [\n[0,0],\n[1],\n[2,2]]}", "p.json")
             .unwrap_err()
             .to_string();
-        assert!(e.contains("dimension of point rows"), "{e}");
+        assert_eq!(
+            e,
+            "p.json:3: point 1 has 1 coordinates, point 0 has 2; every point needs the same number"
+        );
+        assert_eq!(row_lines("[[1,2],\n[3,4]]"), vec![1, 2]);
         let e = read_points("[[0,0],\n[1", "p.json")
             .unwrap_err()
             .to_string();
