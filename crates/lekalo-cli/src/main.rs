@@ -1,41 +1,116 @@
 //! `lekalo`: command-line front end of the lekalo spline kernel.
 //!
-//! Thin by design: parse arguments, call the library, write output. No mathematics here.
+//! Thin by design: parse arguments, call the library (`lekalo`) and the formats crate
+//! (`lekalo-io`), write output. No mathematics here.
+//!
+//! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
+//! outside the domain — the message names the file, line and field); 3 internal failure
+//! (cannot write the output, rendering failed, a demo check did not reproduce its document).
 
-use anyhow::Result;
-use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
 
+use clap::{Args, Parser, Subcommand};
+
+mod cmd;
 mod demo;
+mod io;
 
 /// Construct, convert and analyse spline curves and surfaces.
+///
+/// Objects are read from the versioned JSON format (docs/formats.md) or JSON Lines of many
+/// objects; `-` reads standard input. Outputs are written atomically and never over an input.
+///
+/// Exit codes: 0 success, 2 bad input, 3 internal failure.
 #[derive(Parser, Debug)]
-#[command(name = "lekalo", version, about, long_about = None)]
-struct Cli {
+#[command(name = "lekalo", version, about, long_about, after_help = EXAMPLES)]
+pub(crate) struct Cli {
+    /// Print nothing but the results (no progress, no notes).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    quiet: bool,
+    /// Print what is read and written, with timings, to standard error.
+    #[arg(short, long, global = true)]
+    verbose: bool,
     #[command(subcommand)]
     command: Command,
 }
 
+const EXAMPLES: &str = "\
+Examples:
+  lekalo demo --out gallery            # the documents' constructions, as an HTML gallery
+  lekalo make bspline --control pts.csv --degree 3 -o curve.json
+  lekalo info curve.json
+  lekalo eval curve.json --samples 5 --derivatives 1 --curvature
+  lekalo knots averaged --degree 3 --params 0,5/17,9/17,14/17,1
+  lekalo plot curve.json -o curve.svg --basis
+  lekalo convert curve.json -o curve.step
+
+Exit codes: 0 success, 2 bad input, 3 internal failure.";
+
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Run the built-in constructions of the five documents and print their key numbers.
-    ///
-    /// Example: `lekalo demo`
-    Demo,
+    /// Build a curve object from control points (and knots, weights).
+    Make(cmd::make::MakeArgs),
+    /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
+    Eval(cmd::eval::EvalArgs),
+    /// Show degree, knots, domain, bounding box of a curve (or of every curve of a batch).
+    Info(cmd::info::InfoArgs),
+    /// Build knot vectors (uniform, averaged, from parameters, Curry–Schoenberg) or inspect one.
+    Knots(cmd::knots::KnotsArgs),
+    /// Convert between formats: JSON, JSON Lines, CSV samples, SVG, PNG, STEP, OBJ.
+    Convert(cmd::convert::ConvertArgs),
+    /// Plot a curve (control polygon, knots, data points) or its basis functions to SVG/PNG.
+    Plot(cmd::plot::PlotArgs),
+    /// Run the documents' constructions on built-in data; print a summary table and optionally
+    /// write an HTML gallery.
+    Demo(DemoArgs),
 }
 
-fn main() -> std::process::ExitCode {
+/// Arguments of `lekalo demo`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Examples:
+  lekalo demo                 # print the summary table of every construction and check
+  lekalo demo --out gallery   # also write gallery/index.html with SVG figures
+
+Exit code 3 if a construction does not reproduce its document's numbers.")]
+pub(crate) struct DemoArgs {
+    /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+/// How much to say on standard error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Verbosity {
+    Quiet,
+    Normal,
+    Verbose,
+}
+
+fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli) {
-        Ok(()) => std::process::ExitCode::SUCCESS,
+    let verbosity = if cli.quiet {
+        Verbosity::Quiet
+    } else if cli.verbose {
+        Verbosity::Verbose
+    } else {
+        Verbosity::Normal
+    };
+    let result = match cli.command {
+        Command::Make(a) => cmd::make::run(&a, verbosity),
+        Command::Eval(a) => cmd::eval::run(&a, verbosity),
+        Command::Info(a) => cmd::info::run(&a, verbosity),
+        Command::Knots(a) => cmd::knots::run(&a, verbosity),
+        Command::Convert(a) => cmd::convert::run(&a, verbosity),
+        Command::Plot(a) => cmd::plot::run(&a, verbosity),
+        Command::Demo(a) => demo::run(a.out.as_deref(), verbosity),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            std::process::ExitCode::from(2)
+            ExitCode::from(io::exit_code(&e))
         }
-    }
-}
-
-fn run(cli: Cli) -> Result<()> {
-    match cli.command {
-        Command::Demo => demo::run(&mut std::io::stdout().lock()),
     }
 }

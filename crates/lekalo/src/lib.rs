@@ -135,6 +135,3 @@ pub use divdiff::{
 };
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
-
-// -- formats (issue 7) --
-mod format;

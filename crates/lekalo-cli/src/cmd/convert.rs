@@ -1,0 +1,120 @@
+//! `lekalo convert`: between the formats.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, StepWriter};
+
+use crate::cmd::plot::encode;
+use crate::io::{bad_input, emit, format_of, load, Loaded};
+use crate::Verbosity;
+
+/// Arguments of `lekalo convert`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Formats (chosen by --to or the output's extension):
+  json   the versioned lekalo JSON (docs/formats.md)     jsonl  one object per line
+  csv    samples t, x, y, … (--samples)                  svg, png  a plot of the curve
+  step   ISO 10303-21 AP214 (B_SPLINE_CURVE_WITH_KNOTS, rational form for NURBS); every object
+         of a JSON Lines input goes into one file
+  obj    Wavefront OBJ polyline of the sampled curve
+
+Examples:
+  lekalo convert curve.json -o curve.step
+  lekalo convert many.jsonl -o all.step
+  lekalo convert curve.json -o curve.csv --samples 200
+  lekalo convert curve.json --to jsonl")]
+pub(crate) struct ConvertArgs {
+    /// Object file (JSON; JSON Lines for batches; `-` for standard input).
+    input: PathBuf,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Output format (default: from the output's extension).
+    #[arg(long)]
+    to: Option<String>,
+    /// Samples for csv, svg, png and obj output.
+    #[arg(long, default_value_t = 200)]
+    samples: usize,
+    /// Treat the input as JSON Lines.
+    #[arg(long)]
+    jsonl: bool,
+}
+
+/// Timestamp written into STEP headers: fixed, so that the same input gives the same file.
+const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
+
+pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
+    let objects: Vec<Object> = match load(&a.input, a.jsonl, v)? {
+        Loaded::One(o) => vec![o],
+        Loaded::Many(items) => items
+            .into_iter()
+            .map(|(_, o)| o)
+            .collect::<std::result::Result<_, _>>()?,
+    };
+    let Some(first) = objects.first() else {
+        return bad_input(format!("{}: no objects", a.input.display()));
+    };
+    let format = format_of(a.to.as_deref(), a.output.as_deref(), "json");
+    let single = || -> Result<&Object> {
+        if objects.len() == 1 {
+            Ok(first)
+        } else {
+            bad_input(format!(
+                "{} objects: {format} output takes one object (use step or jsonl for many)",
+                objects.len()
+            ))
+        }
+    };
+    let samples = a.samples.clamp(2, 10_000_000);
+    let bytes: Vec<u8> = match format.as_str() {
+        "json" => single()?.to_json_pretty().into_bytes(),
+        "jsonl" => objects
+            .iter()
+            .map(|o| o.to_json_line() + "\n")
+            .collect::<String>()
+            .into_bytes(),
+        "csv" => {
+            let o = single()?;
+            sample_table(o, &o.uniform_parameters(samples), SampleSpec::default())?
+                .to_csv()
+                .into_bytes()
+        }
+        "svg" | "png" => {
+            let fig = curve_figure(
+                single()?,
+                &CurvePlot {
+                    samples,
+                    ..CurvePlot::default()
+                },
+            )?;
+            encode(&fig, &format, 2.0)?
+        }
+        "step" => {
+            let name = a
+                .output
+                .as_ref()
+                .and_then(|p| p.file_stem())
+                .and_then(|s| s.to_str())
+                .unwrap_or("lekalo");
+            let mut w = StepWriter::new(name);
+            for o in &objects {
+                w.add_object(o)?;
+            }
+            w.finish(STEP_TIMESTAMP).into_bytes()
+        }
+        "obj" => lekalo_io::polyline_to_obj(&single()?.sample(samples)?).into_bytes(),
+        other => {
+            return bad_input(format!(
+                "unknown output format \"{other}\": use json, jsonl, csv, svg, png, step or obj"
+            ))
+        }
+    };
+    emit(
+        a.output.as_deref(),
+        &bytes,
+        std::slice::from_ref(&a.input),
+        v,
+    )
+}

@@ -1,0 +1,147 @@
+//! `lekalo eval`: points, derivatives and curvature at parameters or on a uniform sampling.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+use lekalo_io::{sample_table, Object, SampleSpec};
+use rayon::prelude::*;
+use serde_json::{json, Value};
+
+use crate::io::{bad_input, emit, format_of, load, numbers, progress, BadInput, Loaded};
+use crate::Verbosity;
+
+/// Arguments of `lekalo eval`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Without --at, the curve is sampled at --samples parameters spread evenly over its domain.
+Output columns: t, the point (x, y, z or x1 … xd), derivatives d1x, d1y, … up to
+--derivatives, and curvature. A JSON Lines input (.jsonl, or --jsonl) is evaluated in
+parallel and gives one JSON line per object with the fields line, columns and rows (a bad
+line gives line and error instead, is reported on stderr, and the exit code is 2).
+
+Examples:
+  lekalo eval curve.json --at 1,1.5,2
+  lekalo eval curve.json --samples 5 --derivatives 2 --curvature -o samples.csv
+  lekalo eval curve.json --at 0.5 --format json
+  lekalo eval many.jsonl --samples 100 -o samples.jsonl")]
+pub(crate) struct EvalArgs {
+    /// Object file (JSON; JSON Lines for batches; `-` for standard input).
+    input: PathBuf,
+    /// Parameters, comma-separated (fractions like 5/17 allowed).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "samples")]
+    at: Option<String>,
+    /// Number of uniformly spaced parameters over the domain (default 11).
+    #[arg(long, short = 'n')]
+    samples: Option<usize>,
+    /// Highest derivative order to output.
+    #[arg(long, short = 'd', default_value_t = 0)]
+    derivatives: usize,
+    /// Output the curvature |C' × C''| / |C'|³.
+    #[arg(long)]
+    curvature: bool,
+    /// Output format: csv or json (default: from the output's extension, else csv).
+    #[arg(long)]
+    format: Option<String>,
+    /// Treat the input as JSON Lines.
+    #[arg(long)]
+    jsonl: bool,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+const DEFAULT_SAMPLES: usize = 11;
+const MAX_SAMPLES: usize = 10_000_000;
+
+fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
+    match (&a.at, a.samples) {
+        (Some(at), _) => numbers(at, "--at"),
+        (None, n) => {
+            let n = n.unwrap_or(DEFAULT_SAMPLES);
+            if !(1..=MAX_SAMPLES).contains(&n) {
+                return bad_input(format!("--samples must be between 1 and {MAX_SAMPLES}"));
+            }
+            Ok(obj.uniform_parameters(n))
+        }
+    }
+}
+
+pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
+    let spec = SampleSpec {
+        derivatives: a.derivatives,
+        curvature: a.curvature,
+    };
+    let inputs = vec![a.input.clone()];
+    match load(&a.input, a.jsonl, v)? {
+        Loaded::One(obj) => {
+            let ts = parameters(a, &obj)?;
+            let table = sample_table(&obj, &ts, spec)
+                .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
+            let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "csv");
+            let text = match fmt.as_str() {
+                "csv" => table.to_csv(),
+                "json" => format!("{:#}\n", table.to_json()),
+                other => return bad_input(format!("--format {other}: use csv or json")),
+            };
+            emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+        }
+        Loaded::Many(items) => {
+            let bar = progress(items.len(), v);
+            let lines: Vec<(bool, String)> = items
+                .into_par_iter()
+                .map(|(line, obj)| {
+                    let r = obj.map_err(|e| e.to_string()).and_then(|o| {
+                        let ts = parameters(a, &o).map_err(|e| e.to_string())?;
+                        sample_table(&o, &ts, spec)
+                            .map_err(|e| format!("{}:{line}: {e}", a.input.display()))
+                    });
+                    bar.inc(1);
+                    match r {
+                        Ok(t) => (
+                            true,
+                            json!({"line": line, "columns": t.header, "rows": t.rows}).to_string(),
+                        ),
+                        Err(e) => (false, json!({"line": line, "error": e}).to_string()),
+                    }
+                })
+                .collect();
+            bar.finish_and_clear();
+            finish_batch(lines, a.output.as_deref(), &inputs, v)
+        }
+    }
+}
+
+/// Writes the JSON lines of a batch, then reports failed lines (exit code 2 if any).
+pub(crate) fn finish_batch(
+    lines: Vec<(bool, String)>,
+    out: Option<&std::path::Path>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let failed: Vec<String> = lines
+        .iter()
+        .filter(|(ok, _)| !ok)
+        .filter_map(|(_, l)| serde_json::from_str::<Value>(l).ok())
+        .filter_map(|j| j["error"].as_str().map(str::to_string))
+        .collect();
+    let mut text = String::new();
+    for (_, l) in &lines {
+        text.push_str(l);
+        text.push('\n');
+    }
+    emit(out, text.as_bytes(), inputs, v)?;
+    if failed.is_empty() {
+        return Ok(());
+    }
+    if v != Verbosity::Quiet {
+        for e in &failed {
+            eprintln!("  {e}");
+        }
+    }
+    bad_input(format!(
+        "{} of {} objects failed (listed above and as \"error\" lines in the output)",
+        failed.len(),
+        lines.len()
+    ))
+}

@@ -1,0 +1,212 @@
+//! `lekalo knots`: knot vectors by the documents' rules, and inspection of a knot vector.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, Subcommand};
+use lekalo::KnotVector;
+use serde_json::json;
+
+use crate::io::{bad_input, emit, integers, load_one, numbers};
+use crate::Verbosity;
+
+/// Arguments of `lekalo knots`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Examples (digest T.1: the chord-length parameters of P&T Example 9.1):
+  lekalo knots uniform --degree 3 --count 5
+  lekalo knots averaged --degree 3 --params 0,5/17,9/17,14/17,1
+  lekalo knots end-derivatives --degree 3 --params 0,5/17,9/17,14/17,1
+  lekalo knots from-parameters --degree 3 --params 0,5/17,9/17,14/17,1
+  lekalo knots curry-schoenberg --order 3 --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --continuity 2,2,2,2,2
+  lekalo knots inspect --knots 0,0,1,2,3,3 --degree 2
+  lekalo knots inspect curve.json")]
+pub(crate) struct KnotsArgs {
+    #[command(subcommand)]
+    rule: Rule,
+    /// Print JSON instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+    /// Output file (default: standard output).
+    #[arg(short, long, global = true, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Rule {
+    /// Clamped uniform knots on [0, 1] (document 000 eq. 2).
+    #[command(
+        after_help = "Example:\n  lekalo knots uniform --degree 3 --count 5   # {0,0,0,0,1/2,1,1,1,1}"
+    )]
+    Uniform {
+        /// Degree p.
+        #[arg(long, short = 'p')]
+        degree: usize,
+        /// Number of control points n + 1.
+        #[arg(long)]
+        count: usize,
+    },
+    /// Knots by averaging the parameters (document 000 eq. 3).
+    #[command(
+        after_help = "Example:\n  lekalo knots averaged --degree 3 --params 0,5/17,9/17,14/17,1   # interior knot 28/51"
+    )]
+    Averaged(ParamArgs),
+    /// Knots for interpolation with end derivatives (document 000 eq. 4).
+    #[command(
+        after_help = "Example:\n  lekalo knots end-derivatives --degree 3 --params 0,5/17,9/17,14/17,1   # 14/51, 28/51, 40/51"
+    )]
+    EndDerivatives(ParamArgs),
+    /// Knots at the parameters (document 000 eq. 8).
+    #[command(
+        after_help = "Example:\n  lekalo knots from-parameters --degree 3 --params 0,5/17,9/17,14/17,1"
+    )]
+    FromParameters(ParamArgs),
+    /// Curry–Schoenberg knots from breakpoints and continuity conditions (document 003).
+    #[command(
+        after_help = "Example (the thesis's practical task):\n  lekalo knots curry-schoenberg --order 3 --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --continuity 2,2,2,2,2"
+    )]
+    CurrySchoenberg {
+        /// Order k = degree + 1.
+        #[arg(long, short = 'k')]
+        order: usize,
+        /// Strictly increasing breakpoints ξ1 < ξ2 < … < ξ(l+1), comma-separated.
+        #[arg(long, allow_hyphen_values = true)]
+        breakpoints: String,
+        /// Continuity νi at each interior breakpoint (number of continuous derivatives,
+        /// counting the value), one per interior breakpoint.
+        #[arg(long, default_value = "")]
+        continuity: String,
+    },
+    /// Distinct knots, multiplicities and domain of a knot vector or of a curve file.
+    #[command(
+        after_help = "Examples:\n  lekalo knots inspect --knots 0,0,1,2,3,3 --degree 2\n  lekalo knots inspect curve.json"
+    )]
+    Inspect {
+        /// A curve file whose knots to inspect.
+        #[arg(conflicts_with = "knots")]
+        input: Option<PathBuf>,
+        /// A knot vector, comma-separated.
+        #[arg(long, allow_hyphen_values = true)]
+        knots: Option<String>,
+        /// Degree, for the domain [t(p), t(n+1)] and the clamped test.
+        #[arg(long, short = 'p')]
+        degree: Option<usize>,
+    },
+}
+
+#[derive(Args, Debug)]
+struct ParamArgs {
+    /// Degree p.
+    #[arg(long, short = 'p')]
+    degree: usize,
+    /// Parameters t̄0 … t̄n, comma-separated, non-decreasing (fractions like 5/17 allowed).
+    #[arg(long, allow_hyphen_values = true)]
+    params: String,
+}
+
+pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
+    let mut inputs = Vec::new();
+    let (kv, degree) = match &a.rule {
+        Rule::Uniform { degree, count } => {
+            (KnotVector::clamped_uniform(*degree, *count)?, Some(*degree))
+        }
+        Rule::Averaged(p) => (
+            KnotVector::averaged(&numbers(&p.params, "--params")?, p.degree)?,
+            Some(p.degree),
+        ),
+        Rule::EndDerivatives(p) => (
+            KnotVector::averaged_with_end_derivatives(&numbers(&p.params, "--params")?, p.degree)?,
+            Some(p.degree),
+        ),
+        Rule::FromParameters(p) => (
+            KnotVector::from_parameters(&numbers(&p.params, "--params")?, p.degree)?,
+            Some(p.degree),
+        ),
+        Rule::CurrySchoenberg {
+            order,
+            breakpoints,
+            continuity,
+        } => (
+            KnotVector::from_breakpoints(
+                &numbers(breakpoints, "--breakpoints")?,
+                &integers(continuity, "--continuity")?,
+                *order,
+            )?,
+            order.checked_sub(1),
+        ),
+        Rule::Inspect {
+            input,
+            knots,
+            degree,
+        } => match (input, knots) {
+            (Some(path), _) => {
+                let obj = load_one(path, v)?;
+                inputs.push(path.clone());
+                (obj.knots(), Some(degree.unwrap_or(obj.degree())))
+            }
+            (None, Some(k)) => (KnotVector::new(numbers(k, "--knots")?)?, *degree),
+            (None, None) => return bad_input("give a curve file or --knots"),
+        },
+    };
+    let text = describe(&kv, degree, a.json)?;
+    emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+}
+
+/// The knot vector with its multiplicities (and domain for a degree), as text or JSON.
+fn describe(kv: &KnotVector, degree: Option<usize>, as_json: bool) -> Result<String> {
+    let n_ctrl = degree.and_then(|p| kv.len().checked_sub(p + 1));
+    let domain = match (degree, n_ctrl) {
+        (Some(p), Some(n)) if n > p => {
+            kv.validate_for(p, n)?;
+            Some(kv.domain(p))
+        }
+        (Some(p), _) => {
+            return bad_input(format!(
+                "{} knots are too few for degree {p} (need at least {})",
+                kv.len(),
+                2 * p + 2
+            ))
+        }
+        _ => None,
+    };
+    let distinct = kv.distinct();
+    if as_json {
+        let d: Vec<_> = distinct
+            .iter()
+            .map(|(t, m)| json!({"knot": t, "multiplicity": m}))
+            .collect();
+        let j = json!({
+            "knots": kv.as_slice(),
+            "distinct_knots": d,
+            "degree": degree,
+            "control_points": n_ctrl,
+            "domain": domain.map(|(a, b)| [a, b]),
+            "clamped": degree.map(|p| kv.is_clamped(p)),
+        });
+        return Ok(format!("{j:#}\n"));
+    }
+    let mut s = String::new();
+    let ks: Vec<String> = kv.as_slice().iter().map(|k| format!("{k}")).collect();
+    let _ = writeln!(s, "knots           [{}]", ks.join(", "));
+    let _ = writeln!(s, "count           {}", kv.len());
+    let ms: Vec<String> = distinct.iter().map(|(t, m)| format!("{t}×{m}")).collect();
+    let _ = writeln!(s, "multiplicities  {}", ms.join("  "));
+    if let (Some(p), Some(n), Some((lo, hi))) = (degree, n_ctrl, domain) {
+        let _ = writeln!(
+            s,
+            "degree          {p} (order {}), {n} control points",
+            p + 1
+        );
+        let _ = writeln!(
+            s,
+            "domain          [{lo}, {hi}] ({})",
+            if kv.is_clamped(p) {
+                "clamped"
+            } else {
+                "not clamped"
+            }
+        );
+    }
+    Ok(s)
+}

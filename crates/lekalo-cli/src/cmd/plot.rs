@@ -1,0 +1,120 @@
+//! `lekalo plot`: SVG or PNG plots of a curve, its basis functions or its knots.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::Args;
+use lekalo_io::{basis_figure, curve_figure, CurvePlot, Figure, Object, Projection};
+
+use crate::io::{bad_input, emit, format_of, load_one};
+use crate::Verbosity;
+
+/// Arguments of `lekalo plot`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+The format follows the output's extension (.svg or .png) or --to. Curves in 3-D are drawn in
+an orthographic view (--azimuth, --elevation).
+
+Examples:
+  lekalo plot curve.json -o curve.svg
+  lekalo plot curve.json -o curve.png --points data.csv --title 'Interpolated'
+  lekalo plot curve.json -o basis.svg --basis
+  lekalo plot curve3d.json -o view.svg --azimuth 30 --elevation 20")]
+pub(crate) struct PlotArgs {
+    /// Object file (JSON; `-` for standard input).
+    input: PathBuf,
+    /// Output file (.svg or .png; default: SVG on standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Output format: svg or png.
+    #[arg(long)]
+    to: Option<String>,
+    /// Plot the B-spline basis functions of the curve's knots instead of the curve.
+    #[arg(long)]
+    basis: bool,
+    /// Data points to show (CSV, text or JSON).
+    #[arg(long, value_name = "FILE")]
+    points: Option<PathBuf>,
+    /// Leave out the control polygon.
+    #[arg(long)]
+    no_control: bool,
+    /// Leave out the marks at the knots.
+    #[arg(long)]
+    no_knots: bool,
+    /// Evaluation points along the curve.
+    #[arg(long, default_value_t = 400)]
+    samples: usize,
+    /// Title of the figure.
+    #[arg(long)]
+    title: Option<String>,
+    /// View azimuth in degrees (3-D curves).
+    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true)]
+    azimuth: f64,
+    /// View elevation in degrees (3-D curves).
+    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+    elevation: f64,
+    /// PNG scale factor (1 = 640 × 420 pixels).
+    #[arg(long, default_value_t = 2.0)]
+    scale: f32,
+}
+
+/// Encodes a figure as SVG or PNG bytes.
+pub(crate) fn encode(fig: &Figure, format: &str, scale: f32) -> Result<Vec<u8>> {
+    match format {
+        "svg" => Ok(fig.to_svg().into_bytes()),
+        "png" => {
+            if !(scale > 0.0 && scale <= 16.0) {
+                return bad_input("--scale must be in (0, 16]");
+            }
+            Ok(lekalo_io::svg_to_png(&fig.to_svg(), scale)?)
+        }
+        other => bad_input(format!("cannot plot to {other}: use .svg or .png")),
+    }
+}
+
+/// The figure `plot` draws for one object.
+pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) -> Result<Figure> {
+    if a.basis {
+        let mut fig = basis_figure(&obj.knots(), obj.degree(), a.samples)?;
+        if let Some(t) = &a.title {
+            fig.title.clone_from(t);
+        }
+        return Ok(fig);
+    }
+    Ok(curve_figure(
+        obj,
+        &CurvePlot {
+            title: a.title.clone(),
+            samples: a.samples.clamp(2, 1_000_000),
+            control_polygon: !a.no_control,
+            knot_marks: !a.no_knots,
+            data_points: data,
+            projection: Projection {
+                azimuth: a.azimuth,
+                elevation: a.elevation,
+            },
+        },
+    )?)
+}
+
+pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
+    let obj = load_one(&a.input, v)?;
+    let mut inputs = vec![a.input.clone()];
+    let data = match &a.points {
+        Some(p) => {
+            let (text, name) = lekalo_io::read_input(p)?;
+            inputs.push(p.clone());
+            Some(lekalo_io::read_points(&text, &name)?)
+        }
+        None => None,
+    };
+    let fig = figure(&obj, a, data.as_ref())?;
+    let format = format_of(a.to.as_deref(), a.output.as_deref(), "svg");
+    let bytes = encode(&fig, &format, a.scale)?;
+    emit(
+        a.output.as_deref().filter(|p| *p != Path::new("-")),
+        &bytes,
+        &inputs,
+        v,
+    )
+}

@@ -1,0 +1,399 @@
+//! The gallery's registry: one entry per construction of the documents. The other issues'
+//! constructions (interpolation, Bezier degree change, blending, piecewise polynomials,
+//! surfaces) are added here as they land: write a build function and list it in [`ENTRIES`].
+
+use anyhow::Result;
+use lekalo::basis::{basis_function_recursive, basis_functions};
+use lekalo::{BSplineCurve, KnotVector, Points};
+use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PALETTE};
+
+use super::{trim, Section};
+
+/// A gallery entry: identity and the function that builds it.
+pub(crate) struct Entry {
+    /// File-name id.
+    pub(crate) id: &'static str,
+    /// Title.
+    pub(crate) title: &'static str,
+    /// Document and section.
+    pub(crate) source: &'static str,
+    /// Fills the section: caption, figures, tables, checks.
+    pub(crate) build: fn(&mut Section) -> Result<()>,
+}
+
+/// Every construction shown by `lekalo demo`, in gallery order.
+pub(crate) const ENTRIES: &[Entry] = &[
+    Entry {
+        id: "doc002-bspline",
+        title: "B-spline curve by the Cox–de Boor recursion",
+        source: "document 002 §C.5 (digest §C.5)",
+        build: lecture_bspline,
+    },
+    Entry {
+        id: "doc000-knots",
+        title: "Knot vectors for interpolation",
+        source: "document 000 eqs. (2), (3), (4), (8); test vectors of digest T.1",
+        build: interpolation_knots,
+    },
+    Entry {
+        id: "doc003-curry-schoenberg",
+        title: "Curry–Schoenberg knots and B-spline basis",
+        source: "document 003 Theorem 4.5 and the practical task (digest §D.4–D.5)",
+        build: curry_schoenberg,
+    },
+];
+
+/// Tolerance of checks against exact fractions (the values are O(1)).
+const EXACT: f64 = 1e-14;
+/// Tolerance of checks against numbers the digest prints with 6 decimals.
+const SIX_DECIMALS: f64 = 5e-7;
+
+fn lecture_bspline(s: &mut Section) -> Result<()> {
+    let ctrl = Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]])?;
+    let knots = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0])?;
+    let curve = BSplineCurve::from_knot_vector(2, knots.clone(), ctrl.clone())?;
+    s.caption = "Control points P0 = (1,1), P1 = (2,3), P2 = (4,3), knots T = [0,0,1,2,3,3], \
+        degree 2 = 6 − 3 − 1 (the notes call 3 the degree; it is the order). The end knots have \
+        multiplicity 2 < p + 1, so the curve is not clamped: the basis sums to 1 only on \
+        [t2, t3] = [1, 2], where the curve runs from the midpoint of P0P1 to the midpoint of P1P2. \
+        The table evaluates the basis over all of [0, 3) as the notes do."
+        .into();
+    let obj = Object::BSpline(curve.clone());
+    let mut fig = curve_figure(
+        &obj,
+        &CurvePlot {
+            title: Some("The lecture's B-spline on its domain [1, 2]".into()),
+            ..CurvePlot::default()
+        },
+    )?;
+    // the notes evaluate Σ N_{i,2}(t) P_i over all of [0, 3]: outside [1, 2] the basis does not
+    // sum to 1 and the "curve" leaves the convex hull towards the origin
+    let mut full = Vec::new();
+    for t in lekalo_io::uniform(0.0, 3.0, 301) {
+        let mut p = [0.0; 2];
+        for i in 0..3 {
+            let n = basis_function_recursive(&knots, i, 2, t)?;
+            p[0] += n * ctrl.point(i)[0];
+            p[1] += n * ctrl.point(i)[1];
+        }
+        full.push(p);
+    }
+    fig.series.insert(
+        0,
+        Series::new(Some("Σ N P over [0, 3]"), full, Style::Dashed, PALETTE[3]),
+    );
+    s.figures.push((
+        fig,
+        "The curve on its domain [1, 2] (blue) from the midpoint (3/2, 2) of P0P1 to the \
+         midpoint (3, 3) of P1P2 (orange: points at the knots), the control polygon (grey, \
+         dashed), and Σ N_i,2(t) P_i over all of [0, 3] as the notes evaluate it (purple, \
+         dashed): outside the domain it leaves the convex hull and runs to the origin."
+            .into(),
+    ));
+    let mut basis = basis_figure(&knots, 2, 301)?;
+    basis.title = "N0,2, N1,2, N2,2 on T = [0, 0, 1, 2, 3, 3]".into();
+    s.figures.push((
+        basis,
+        "The three quadratic basis functions over [0, 3]; shaded: the domain [1, 2] where they \
+         sum to 1. Ticks: the knots."
+            .into(),
+    ));
+    // the notes' table: P(t) = Σ N_{i,2}(t) P_i over [0, 3), also outside the domain
+    let mut rows = Vec::new();
+    let mut at = |t: f64| -> Result<(Vec<f64>, [f64; 2])> {
+        let n: Vec<f64> = (0..3)
+            .map(|i| basis_function_recursive(&knots, i, 2, t))
+            .collect::<lekalo::Result<_>>()?;
+        let mut p = [0.0; 2];
+        for (i, ni) in n.iter().enumerate() {
+            p[0] += ni * ctrl.point(i)[0];
+            p[1] += ni * ctrl.point(i)[1];
+        }
+        rows.push(vec![
+            trim(t),
+            format!("({}, {}, {})", trim(n[0]), trim(n[1]), trim(n[2])),
+            format!("({}, {})", trim(p[0]), trim(p[1])),
+        ]);
+        Ok((n, p))
+    };
+    let _ = at(0.0)?;
+    let (_, p05) = at(0.5)?;
+    let (n1, _) = at(1.0)?;
+    let (n15, p15) = at(1.5)?;
+    let _ = at(2.0)?;
+    let (_, p25) = at(2.5)?;
+    s.tables.push((
+        "Sample values (digest §C.5 table)".into(),
+        vec!["t".into(), "(N0,2, N1,2, N2,2)".into(), "P(t)".into()],
+        rows,
+    ));
+    s.check_all(
+        "(N0,2, N1,2, N2,2)(1)",
+        &n1,
+        &[0.5, 0.5, 0.0],
+        "(1/2, 1/2, 0)",
+        EXACT,
+    );
+    s.check_all(
+        "(N0,2, N1,2, N2,2)(1.5)",
+        &n15,
+        &[0.125, 0.75, 0.125],
+        "(1/8, 3/4, 1/8)",
+        EXACT,
+    );
+    s.check_all(
+        "P(0.5) = Σ N P (outside the domain)",
+        &p05,
+        &[0.875, 1.0],
+        "(7/8, 1)",
+        EXACT,
+    );
+    s.check_all(
+        "P(2.5) = Σ N P (outside the domain)",
+        &p25,
+        &[2.75, 2.25],
+        "(11/4, 9/4)",
+        EXACT,
+    );
+    s.check_all(
+        "P(1.5) by the Cox–de Boor sum",
+        &p15,
+        &[17.0 / 8.0, 11.0 / 4.0],
+        "(17/8, 11/4)",
+        EXACT,
+    );
+    s.check_all(
+        "P(1.5) by BSplineCurve::eval (de Boor)",
+        &curve.eval(1.5)?,
+        &[17.0 / 8.0, 11.0 / 4.0],
+        "(17/8, 11/4)",
+        EXACT,
+    );
+    let (a, b) = curve.domain();
+    s.check_all("domain [t_p, t_{n+1}]", &[a, b], &[1.0, 2.0], "[1, 2]", 0.0);
+    s.check_all(
+        "P(1), P(2): leg midpoints",
+        &[curve.eval(a)?, curve.eval(b)?].concat(),
+        &[1.5, 2.0, 3.0, 3.0],
+        "(3/2, 2), (3, 3)",
+        EXACT,
+    );
+    let d = curve.eval_derivatives(1.25, 2)?;
+    // on [1, 2): P = (t²/2 + 1, −t² + 4t − 1), P' = (t, 4 − 2t), P'' = (1, −2)
+    s.check_all(
+        "P'(1.25), P''(1.25)",
+        &[d.point(1), d.point(2)].concat(),
+        &[1.25, 1.5, 1.0, -2.0],
+        "(5/4, 3/2), (1, −2)",
+        1e-13,
+    );
+    Ok(())
+}
+
+/// Digest T.1: P&T Example 9.1 data, chord lengths 5, 4, 5, 3 (total 17).
+const CHORD: [f64; 5] = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
+/// Digest T.1: centripetal parameters, as printed (6 decimals).
+const CENTRIPETAL: [f64; 5] = [0.0, 0.272552, 0.516330, 0.788882, 1.0];
+const UNIFORM: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+
+/// Interior knots (between the clamped ends) of a knot vector of `degree`.
+fn interior(kv: &KnotVector, degree: usize) -> Vec<f64> {
+    let k = kv.as_slice();
+    k[degree + 1..k.len() - degree - 1].to_vec()
+}
+
+fn interpolation_knots(s: &mut Section) -> Result<()> {
+    s.caption = "Knots for global interpolation of the points q0..q4 = (0,0), (3,4), (−1,4), \
+        (−4,0), (−4,−3) (P&T Example 9.1; chord lengths 5, 4, 5, 3). Uniform knots (eq. 2) \
+        ignore the parameters; averaged knots (eq. 3) make the collocation matrix banded and \
+        totally positive; eq. (4) adds two knots for the end derivatives; eq. (8) puts the knots \
+        at the parameters (cubic C² interpolation, §A.3–A.4). The curves themselves come with \
+        interpolation (issue 3)."
+        .into();
+    let mut rows = Vec::new();
+    let mut add = |s: &mut Section,
+                   rule: &str,
+                   params: &str,
+                   p: usize,
+                   kv: &KnotVector,
+                   expected: &[f64],
+                   shown: &str,
+                   tol: f64| {
+        let inner = interior(kv, p);
+        let r: Vec<String> = inner.iter().map(|x| trim(*x)).collect();
+        rows.push(vec![
+            rule.to_string(),
+            params.to_string(),
+            p.to_string(),
+            r.join(", "),
+        ]);
+        s.check_all(
+            &format!("{rule}, {params}, p = {p}: interior knots"),
+            &inner,
+            expected,
+            shown,
+            tol,
+        );
+    };
+    let uni = KnotVector::clamped_uniform(3, 5)?;
+    add(s, "uniform (2)", "—", 3, &uni, &[0.5], "1/2", EXACT);
+    let kv = KnotVector::averaged(&UNIFORM, 3)?;
+    add(s, "averaged (3)", "uniform", 3, &kv, &[0.5], "1/2", EXACT);
+    let chord3 = KnotVector::averaged(&CHORD, 3)?;
+    add(
+        s,
+        "averaged (3)",
+        "chord",
+        3,
+        &chord3,
+        &[28.0 / 51.0],
+        "28/51",
+        EXACT,
+    );
+    let kv = KnotVector::averaged(&CENTRIPETAL, 3)?;
+    add(
+        s,
+        "averaged (3)",
+        "centripetal",
+        3,
+        &kv,
+        &[0.525921],
+        "0.525921",
+        SIX_DECIMALS,
+    );
+    let kv = KnotVector::averaged(&CHORD, 2)?;
+    add(
+        s,
+        "averaged (3)",
+        "chord",
+        2,
+        &kv,
+        &[7.0 / 17.0, 23.0 / 34.0],
+        "7/17, 23/34",
+        EXACT,
+    );
+    let ends3 = KnotVector::averaged_with_end_derivatives(&CHORD, 3)?;
+    add(
+        s,
+        "end derivatives (4)",
+        "chord",
+        3,
+        &ends3,
+        &[14.0 / 51.0, 28.0 / 51.0, 40.0 / 51.0],
+        "14/51, 28/51, 40/51",
+        EXACT,
+    );
+    let kv = KnotVector::averaged_with_end_derivatives(&CHORD, 2)?;
+    add(
+        s,
+        "end derivatives (4)",
+        "chord",
+        2,
+        &kv,
+        &[5.0 / 34.0, 7.0 / 17.0, 23.0 / 34.0, 31.0 / 34.0],
+        "5/34, 7/17, 23/34, 31/34",
+        EXACT,
+    );
+    let at3 = KnotVector::from_parameters(&CHORD, 3)?;
+    add(
+        s,
+        "at the parameters (8)",
+        "chord",
+        3,
+        &at3,
+        &[5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0],
+        "5/17, 9/17, 14/17",
+        EXACT,
+    );
+    s.tables.push((
+        "Interior knots (the ends are clamped: p + 1 zeros and ones)".into(),
+        vec![
+            "rule (eq.)".into(),
+            "parameters".into(),
+            "p".into(),
+            "interior knots".into(),
+        ],
+        rows,
+    ));
+    for (kv, title, caption) in [
+        (&chord3, "Cubic basis on averaged chord-length knots (eq. 3)", "The five cubic B-splines of global interpolation through five points (A.1), on knots {0,0,0,0, 28/51, 1,1,1,1}."),
+        (&ends3, "Cubic basis with end-derivative knots (eq. 4)", "Seven cubic B-splines for interpolation with given end derivatives (A.2): two more knots, two more control points."),
+        (&at3, "Cubic basis on knots at the parameters (eq. 8)", "Seven cubic B-splines of C² cubic interpolation with end conditions (A.3–A.4): knots {0,0,0,0, 5/17, 9/17, 14/17, 1,1,1,1}."),
+    ] {
+        let mut fig = basis_figure(kv, 3, 301)?;
+        fig.title = title.into();
+        s.figures.push((fig, caption.into()));
+    }
+    // partition of unity on the domain (what makes the knots usable)
+    let (_, n) = basis_functions(&chord3, 3, 0.4)?;
+    s.check(
+        "Σ N_i,3(0.4) on the chord knots",
+        n.iter().sum(),
+        1.0,
+        "1",
+        1e-15,
+    );
+    Ok(())
+}
+
+fn curry_schoenberg(s: &mut Section) -> Result<()> {
+    let xi = [0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0];
+    s.caption = "For breakpoints ξ1 < … < ξ(l+1), continuity conditions ν_i (how many \
+        derivatives, counting the value, are continuous at ξ_i) and order k, the knots are k \
+        copies of ξ1, each interior ξ_i repeated k − ν_i times, and k copies of ξ(l+1); the \
+        B-splines on them are a basis of the piecewise polynomials P(k, ξ, ν), of dimension \
+        n = k + Σ(k − ν_i). The thesis's practical task: k = 3, C¹ quadratics (ν = 2) on seven \
+        breakpoints."
+        .into();
+    let kv = KnotVector::from_breakpoints(&xi, &[2; 5], 3)?;
+    let n = kv.len() - 3;
+    s.check_all(
+        "knots, k = 3, ν = 2",
+        kv.as_slice(),
+        &[0.0, 0.0, 0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0, 3.0, 3.0],
+        "{0,0,0,0.5,0.9,1.4,2.1,2.7,3,3,3}",
+        0.0,
+    );
+    s.check("dimension n = k + Σ(k − ν_i)", n as f64, 8.0, "8", 0.0);
+    let mut fig = basis_figure(&kv, 2, 301)?;
+    fig.title = "Curry–Schoenberg basis: k = 3, ν = 2 at every breakpoint".into();
+    s.figures.push((
+        fig,
+        "The eight C¹ quadratic B-splines of the practical task.".into(),
+    ));
+    let nu = [2, 1, 2, 0, 2];
+    let kv2 = KnotVector::from_breakpoints(&xi, &nu, 3)?;
+    let n2 = kv2.len() - 3;
+    s.check(
+        "dimension with ν = (2, 1, 2, 0, 2)",
+        n2 as f64,
+        11.0,
+        "3 + 1+2+1+3+1 = 11",
+        0.0,
+    );
+    let mut fig = basis_figure(&kv2, 2, 601)?;
+    fig.title = "Lower continuity: ν = (2, 1, 2, 0, 2)".into();
+    s.figures.push((
+        fig,
+        "The same breakpoints with ν = 1 at 0.9 (double knot: a kink allowed) and ν = 0 at 2.1 \
+         (triple knot: a jump allowed); eleven basis functions."
+            .into(),
+    ));
+    let rows = [("ν = 2 everywhere", &kv), ("ν = (2, 1, 2, 0, 2)", &kv2)]
+        .iter()
+        .map(|(name, k)| {
+            let m: Vec<String> = k
+                .distinct()
+                .iter()
+                .map(|(t, m)| format!("{}×{m}", trim(*t)))
+                .collect();
+            vec![name.to_string(), m.join("  ")]
+        })
+        .collect();
+    s.tables.push((
+        "Knots with multiplicities, k = 3".into(),
+        vec!["continuity".into(), "knots".into()],
+        rows,
+    ));
+    Ok(())
+}

@@ -1,0 +1,243 @@
+//! Reading inputs, writing outputs, exit codes and progress for the subcommands.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use lekalo_io::{IoError, Object};
+
+use crate::Verbosity;
+
+/// Exit code for bad input.
+pub(crate) const EXIT_BAD_INPUT: u8 = 2;
+/// Exit code for an internal failure.
+pub(crate) const EXIT_INTERNAL: u8 = 3;
+
+/// A problem with the user's input or arguments (exit code 2).
+#[derive(Debug)]
+pub(crate) struct BadInput(pub(crate) String);
+
+impl std::fmt::Display for BadInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BadInput {}
+
+/// An internal failure (exit code 3), e.g. a demo check that did not reproduce its document.
+#[derive(Debug)]
+pub(crate) struct Internal(pub(crate) String);
+
+impl std::fmt::Display for Internal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Internal {}
+
+/// `Err(BadInput)` with a message.
+pub(crate) fn bad_input<T>(msg: impl Into<String>) -> Result<T> {
+    Err(BadInput(msg.into()).into())
+}
+
+/// Exit code of an error: 2 if anything in its chain is the user's input, 3 otherwise.
+pub(crate) fn exit_code(e: &anyhow::Error) -> u8 {
+    for cause in e.chain() {
+        if let Some(io) = cause.downcast_ref::<IoError>() {
+            return if io.is_bad_input() {
+                EXIT_BAD_INPUT
+            } else {
+                EXIT_INTERNAL
+            };
+        }
+        if cause.downcast_ref::<BadInput>().is_some()
+            || cause.downcast_ref::<lekalo::Error>().is_some()
+        {
+            return EXIT_BAD_INPUT;
+        }
+        if cause.downcast_ref::<Internal>().is_some() {
+            return EXIT_INTERNAL;
+        }
+    }
+    EXIT_INTERNAL
+}
+
+/// True for JSON Lines input: a `.jsonl`/`.ndjson` file, or `force`.
+pub(crate) fn is_json_lines(path: &Path, force: bool) -> bool {
+    force
+        || matches!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("jsonl" | "ndjson")
+        )
+}
+
+/// The objects of an input: one object, or every line of JSON Lines as `(line, object)`.
+pub(crate) enum Loaded {
+    One(Object),
+    Many(Vec<(usize, std::result::Result<Object, IoError>)>),
+}
+
+/// Reads an object file or JSON Lines (`-` is standard input).
+pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
+    let start = Instant::now();
+    let (text, name) = lekalo_io::read_input(path)?;
+    let loaded = if is_json_lines(path, jsonl) {
+        Loaded::Many(lekalo_io::read_json_lines(&text, &name))
+    } else {
+        Loaded::One(Object::from_json_str(&text, &name)?)
+    };
+    if v == Verbosity::Verbose {
+        let n = match &loaded {
+            Loaded::One(_) => 1,
+            Loaded::Many(m) => m.len(),
+        };
+        eprintln!("read {n} object(s) from {name} in {:.1?}", start.elapsed());
+    }
+    Ok(loaded)
+}
+
+/// Reads exactly one object (JSON Lines with one line is accepted too).
+pub(crate) fn load_one(path: &Path, v: Verbosity) -> Result<Object> {
+    match load(path, false, v)? {
+        Loaded::One(o) => Ok(o),
+        Loaded::Many(mut m) if m.len() == 1 => Ok(m.remove(0).1?),
+        Loaded::Many(m) => bad_input(format!(
+            "{}: holds {} objects; this command takes one (use `lekalo convert` to split, or `eval`/`info` for batches)",
+            path.display(),
+            m.len()
+        )),
+    }
+}
+
+/// Writes `bytes` to `out` atomically, or to standard output when `out` is `None` or `-`.
+pub(crate) fn emit(
+    out: Option<&Path>,
+    bytes: &[u8],
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    match out {
+        Some(p) if p.as_os_str() != "-" => {
+            lekalo_io::write_atomic(p, bytes, inputs)?;
+            if v == Verbosity::Verbose {
+                eprintln!("wrote {} ({} bytes)", p.display(), bytes.len());
+            }
+        }
+        _ => {
+            let mut stdout = std::io::stdout().lock();
+            stdout
+                .write_all(bytes)
+                .and_then(|()| stdout.flush())
+                .context("cannot write to standard output")?;
+        }
+    }
+    Ok(())
+}
+
+/// A progress bar on standard error, shown only if stderr is a terminal and not `--quiet`.
+pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
+    if v == Verbosity::Quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(n as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} objects ({eta} left)")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// Output format chosen by `--to` or by the output file's extension.
+pub(crate) fn format_of(to: Option<&str>, out: Option<&Path>, default: &str) -> String {
+    if let Some(t) = to {
+        return t.to_ascii_lowercase();
+    }
+    out.and_then(|p| p.extension())
+        .and_then(|e| e.to_str())
+        .map(|e| match e.to_ascii_lowercase().as_str() {
+            "stp" | "step" | "p21" => "step".to_string(),
+            "ndjson" => "jsonl".to_string(),
+            other => other.to_string(),
+        })
+        .unwrap_or_else(|| default.to_string())
+}
+
+/// Parses a number list argument (`0,0.5,1`; fractions `5/17` allowed).
+pub(crate) fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
+    let mut out = Vec::new();
+    for (i, s) in text
+        .split([',', ' '])
+        .filter(|s| !s.trim().is_empty())
+        .enumerate()
+    {
+        let s = s.trim();
+        let v = if let Some((a, b)) = s.split_once('/') {
+            let parsed = (a.trim().parse::<f64>(), b.trim().parse::<f64>());
+            match parsed {
+                (Ok(a), Ok(b)) if b != 0.0 => Some(a / b),
+                _ => None,
+            }
+        } else {
+            s.parse::<f64>().ok()
+        };
+        match v.filter(|v| v.is_finite()) {
+            Some(v) => out.push(v),
+            None => {
+                return bad_input(format!(
+                    "{what}: value {} is \"{s}\", not a finite number (write e.g. 0.5 or 5/17)",
+                    i + 1
+                ))
+            }
+        }
+    }
+    if out.is_empty() {
+        return bad_input(format!("{what}: no numbers given"));
+    }
+    Ok(out)
+}
+
+/// Parses a list of non-negative integers (`2,2,1`).
+pub(crate) fn integers(text: &str, what: &str) -> Result<Vec<usize>> {
+    text.split([',', ' '])
+        .filter(|s| !s.trim().is_empty())
+        .enumerate()
+        .map(|(i, s)| {
+            s.trim().parse::<usize>().map_err(|_| {
+                BadInput(format!(
+                    "{what}: value {} is \"{}\", not a non-negative integer",
+                    i + 1,
+                    s.trim()
+                ))
+                .into()
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn number_lists_and_codes() {
+        assert_eq!(
+            numbers("0, 5/17 1", "p").unwrap(),
+            vec![0.0, 5.0 / 17.0, 1.0]
+        );
+        let e = numbers("0,x", "--params").unwrap_err();
+        assert_eq!(exit_code(&e), EXIT_BAD_INPUT);
+        assert!(e.to_string().contains("--params: value 2 is \"x\""), "{e}");
+        assert!(numbers("1/0", "p").is_err());
+        assert_eq!(integers("2,1", "c").unwrap(), vec![2, 1]);
+        assert!(integers("-1", "c").is_err());
+        assert_eq!(exit_code(&anyhow::anyhow!("plain")), EXIT_INTERNAL);
+        let lib: anyhow::Error = lekalo::KnotVector::new(vec![1.0, 0.0]).unwrap_err().into();
+        assert_eq!(exit_code(&lib), EXIT_BAD_INPUT);
+        assert_eq!(format_of(None, Some(Path::new("a.STP")), "json"), "step");
+        assert_eq!(format_of(Some("PNG"), None, "json"), "png");
+        assert_eq!(format_of(None, None, "csv"), "csv");
+    }
+}

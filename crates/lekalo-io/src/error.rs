@@ -1,0 +1,136 @@
+//! The one error type of the formats crate: every message names the source (file or `<stdin>`),
+//! the line and the field when they are known, and says how to fix the input.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where in an input a problem is: source name (file path or `<stdin>`), line (1-based) and
+/// field, each when known.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Location {
+    /// File path, `<stdin>` or another name of the input.
+    pub source: String,
+    /// 1-based line number.
+    pub line: Option<usize>,
+    /// Field name (JSON key) or column (`column 2`).
+    pub field: Option<String>,
+}
+
+impl Location {
+    /// A location in `source` with no line or field yet.
+    #[must_use]
+    pub fn new(source: impl Into<String>) -> Self {
+        Location {
+            source: source.into(),
+            line: None,
+            field: None,
+        }
+    }
+
+    /// The same location at `line`.
+    #[must_use]
+    pub fn at_line(mut self, line: usize) -> Self {
+        self.line = Some(line);
+        self
+    }
+
+    /// The same location at `field`.
+    #[must_use]
+    pub fn at_field(mut self, field: impl Into<String>) -> Self {
+        self.field = Some(field.into());
+        self
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.source)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        if let Some(field) = &self.field {
+            write!(f, ": field `{field}`")?;
+        }
+        Ok(())
+    }
+}
+
+/// Errors of reading and writing lekalo files.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum IoError {
+    /// The input is malformed: not JSON, not a number, a missing or unknown field, a wrong
+    /// format version.
+    #[error("{at}: {message}")]
+    Syntax {
+        /// Where.
+        at: Location,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
+    /// The input is well-formed but the library's validating constructor rejected it.
+    #[error("{at}: {error}")]
+    Invalid {
+        /// Where (the field is derived from the kind of error when possible).
+        at: Location,
+        /// The library's error (part of the message, so not a separate `source`).
+        error: lekalo::Error,
+    },
+    /// An input file could not be read.
+    #[error("cannot read {}: {error}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        error: std::io::Error,
+    },
+    /// An output file could not be written.
+    #[error("cannot write {}: {error}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        error: std::io::Error,
+    },
+    /// The output path is one of the inputs; lekalo never overwrites its inputs.
+    #[error("refusing to write {}: it is an input file; choose another output path", path.display())]
+    WouldOverwriteInput {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The object cannot be written in the requested format (e.g. a 4-D curve to STEP).
+    #[error("{what}")]
+    Unsupported {
+        /// What and why, with the alternative.
+        what: String,
+    },
+    /// Rendering an SVG to PNG failed (an internal failure, not bad input).
+    #[error("rendering failed: {0}")]
+    Render(String),
+}
+
+impl IoError {
+    /// True if the error is the user's input (exit code 2 in the CLI), false for an internal
+    /// or environment failure (exit code 3).
+    #[must_use]
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            IoError::Syntax { .. }
+            | IoError::Invalid { .. }
+            | IoError::Read { .. }
+            | IoError::WouldOverwriteInput { .. }
+            | IoError::Unsupported { .. } => true,
+            IoError::Write { .. } | IoError::Render(_) => false,
+        }
+    }
+
+    pub(crate) fn syntax(at: Location, message: impl Into<String>) -> Self {
+        IoError::Syntax {
+            at,
+            message: message.into(),
+        }
+    }
+}
+
+/// Result of the formats crate.
+pub type IoResult<T> = std::result::Result<T, IoError>;

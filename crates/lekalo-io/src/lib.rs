@@ -1,0 +1,53 @@
+//! # lekalo-io — file formats of the lekalo spline kernel
+//!
+//! Reading and writing is kept out of the core library (`lekalo` does mathematics only). Every
+//! read goes through the library's validating constructors; every error names the source, the
+//! line and the field.
+//!
+//! | format | read | write | module |
+//! |---|---|---|---|
+//! | versioned JSON envelope `{"lekalo": 1, "type": …}` (docs/formats.md) | yes | yes | [`Object`] |
+//! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
+//! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
+//! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
+//! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
+//! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
+//! | STEP ISO 10303-21 AP214 B-spline/NURBS curves and surfaces | — | yes | [`StepWriter`] |
+//! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
+//!
+//! Outputs are written atomically ([`write_atomic`]) and never over an input.
+//!
+//! ```
+//! use lekalo_io::{Object, sample_table, SampleSpec};
+//! let obj = Object::from_json_str(
+//!     r#"{"lekalo":1,"type":"bezier_curve","control":[[0,0],[1,2],[2,0]]}"#, "inline")?;
+//! let table = sample_table(&obj, &[0.5], SampleSpec::default()).unwrap();
+//! assert_eq!(table.to_csv(), "t,x,y\n0.5,1,1\n");
+//! # Ok::<(), lekalo_io::IoError>(())
+//! ```
+
+mod analysis;
+mod atomic;
+mod error;
+mod obj;
+mod object;
+mod png;
+mod points_in;
+mod samples;
+mod step;
+mod svg;
+mod wireframe;
+
+pub use analysis::{curvature, uniform};
+pub use atomic::{check_not_input, read_input, write_atomic};
+pub use error::{IoError, IoResult, Location};
+pub use obj::{grid_to_obj, polyline_to_obj};
+pub use object::{read_json_lines, Object, FORMAT_VERSION};
+pub use png::svg_to_png;
+pub use points_in::{parse_number_list, read_points};
+pub use samples::{sample_table, SampleSpec, SampleTable};
+pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
+pub use svg::{
+    basis_figure, curve_figure, escape, knots_figure, CurvePlot, Figure, Series, Style, PALETTE,
+};
+pub use wireframe::{wireframe_figure, Grid, Projection};

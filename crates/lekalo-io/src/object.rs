@@ -1,0 +1,497 @@
+//! The versioned JSON envelope of every lekalo object (see `docs/formats.md`).
+//!
+//! ```json
+//! {"lekalo": 1, "type": "bspline_curve", "degree": 2,
+//!  "knots": [0, 0, 1, 2, 3, 3], "control": [[1, 1], [2, 3], [4, 3]]}
+//! ```
+//!
+//! `lekalo` is the format version ([`FORMAT_VERSION`]), `type` selects the object, the other
+//! fields are the object's. Control points are rows (`[[x, y], …]`) or the flat form
+//! `{"dim": 2, "data": [x0, y0, …]}`. Every read goes through the library's validating
+//! constructor ([`BSplineCurve::new`] etc.), so a file can never hold an object that the library
+//! would refuse. Unknown fields are errors (a misspelt `weigths` must not be ignored).
+//!
+//! New object kinds (surfaces, piecewise polynomials) are added as variants of [`Object`] with
+//! a `type` name, a repr struct and two match arms; readers of older versions reject unknown
+//! types by name.
+
+use lekalo::{BSplineCurve, BezierCurve, NurbsCurve, Points};
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+
+use crate::error::{IoError, IoResult, Location};
+
+/// The current format version, the value of the `"lekalo"` field.
+pub const FORMAT_VERSION: u64 = 1;
+
+/// Any object lekalo reads and writes.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Object {
+    /// `"type": "bezier_curve"`.
+    Bezier(BezierCurve),
+    /// `"type": "bspline_curve"`.
+    BSpline(BSplineCurve),
+    /// `"type": "nurbs_curve"`.
+    Nurbs(NurbsCurve),
+}
+
+/// Control points as written in files: rows `[[x, y], …]` or flat `{"dim", "data"}`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(untagged)]
+enum PointsJson {
+    Rows(Vec<Vec<f64>>),
+    Flat { dim: usize, data: Vec<f64> },
+}
+
+impl PointsJson {
+    fn into_points(self) -> lekalo::Result<Points> {
+        match self {
+            PointsJson::Rows(rows) => Points::from_rows(&rows),
+            PointsJson::Flat { dim, data } => Points::new(data, dim),
+        }
+    }
+
+    fn rows(p: &Points) -> Self {
+        PointsJson::Rows(p.iter().map(<[f64]>::to_vec).collect())
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BezierJson {
+    control: PointsJson,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BSplineJson {
+    degree: usize,
+    knots: Vec<f64>,
+    control: PointsJson,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NurbsJson {
+    degree: usize,
+    knots: Vec<f64>,
+    control: PointsJson,
+    weights: Vec<f64>,
+}
+
+/// The `type` names this version reads, for error messages.
+const KNOWN_TYPES: &str = "bezier_curve, bspline_curve, nurbs_curve";
+
+impl Object {
+    /// The `type` name in the envelope.
+    #[must_use]
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            Object::Bezier(_) => "bezier_curve",
+            Object::BSpline(_) => "bspline_curve",
+            Object::Nurbs(_) => "nurbs_curve",
+        }
+    }
+
+    /// Name for people: "Bezier curve", "B-spline curve", "NURBS curve".
+    #[must_use]
+    pub fn display_name(&self) -> &'static str {
+        match self {
+            Object::Bezier(_) => "Bezier curve",
+            Object::BSpline(_) => "B-spline curve",
+            Object::Nurbs(_) => "NURBS curve",
+        }
+    }
+
+    /// The envelope as a JSON value (control points as rows).
+    #[must_use]
+    pub fn to_json_value(&self) -> Value {
+        let mut m = Map::new();
+        m.insert("lekalo".into(), Value::from(FORMAT_VERSION));
+        m.insert("type".into(), Value::from(self.type_name()));
+        let rows = |p: &Points| serde_json::to_value(PointsJson::rows(p)).unwrap_or(Value::Null);
+        match self {
+            Object::Bezier(c) => {
+                m.insert("control".into(), rows(c.control_points()));
+            }
+            Object::BSpline(c) => {
+                m.insert("degree".into(), Value::from(c.degree()));
+                m.insert("knots".into(), Value::from(c.knots().as_slice().to_vec()));
+                m.insert("control".into(), rows(c.control_points()));
+            }
+            Object::Nurbs(c) => {
+                m.insert("degree".into(), Value::from(c.degree()));
+                m.insert("knots".into(), Value::from(c.knots().as_slice().to_vec()));
+                m.insert("control".into(), rows(&c.control_points()));
+                m.insert("weights".into(), Value::from(c.weights()));
+            }
+        }
+        Value::Object(m)
+    }
+
+    /// JSON text of the envelope, fields in a fixed order (`lekalo`, `type`, then the object's
+    /// fields as in `docs/formats.md`), one control point per line, final newline.
+    #[must_use]
+    pub fn to_json_pretty(&self) -> String {
+        self.format_json(true)
+    }
+
+    /// One-line JSON (for JSON Lines), same field order.
+    #[must_use]
+    pub fn to_json_line(&self) -> String {
+        self.format_json(false)
+    }
+
+    fn format_json(&self, pretty: bool) -> String {
+        let v = self.to_json_value();
+        let (nl, ind, ind2, sp) = if pretty {
+            ("\n", "  ", "    ", " ")
+        } else {
+            ("", "", "", "")
+        };
+        let mut fields = Vec::new();
+        for key in ["lekalo", "type", "degree", "knots", "control", "weights"] {
+            let Some(val) = v.get(key) else { continue };
+            let text = if key == "control" {
+                let rows: Vec<String> = val
+                    .as_array()
+                    .map(|a| a.iter().map(|r| compact(r, sp)).collect())
+                    .unwrap_or_default();
+                format!(
+                    "[{nl}{ind2}{}{nl}{ind}]",
+                    rows.join(&format!(",{nl}{ind2}"))
+                )
+            } else {
+                compact(val, sp)
+            };
+            fields.push(format!("{ind}\"{key}\":{sp}{text}"));
+        }
+        let mut s = format!("{{{nl}{}{nl}}}", fields.join(&format!(",{nl}")));
+        if pretty {
+            s.push('\n');
+        }
+        s
+    }
+
+    /// Reads one object from JSON text. `source` names the input in error messages.
+    ///
+    /// ```
+    /// use lekalo_io::Object;
+    /// let text = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
+    ///                "knots": [0, 0, 1, 2, 3, 3], "control": [[1, 1], [2, 3], [4, 3]]}"#;
+    /// let obj = Object::from_json_str(text, "example.json").unwrap();
+    /// assert_eq!(obj.type_name(), "bspline_curve");
+    /// let bad = text.replace("[0, 0, 1, 2, 3, 3]", "[0, 0, 2, 1, 3, 3]");
+    /// let e = Object::from_json_str(&bad, "example.json").unwrap_err().to_string();
+    /// assert!(e.starts_with("example.json:2: field `knots`"), "{e}");
+    /// ```
+    ///
+    /// # Errors
+    /// [`IoError::Syntax`] for malformed JSON, a missing or unsupported version, an unknown
+    /// type, missing or unknown fields; [`IoError::Invalid`] when the library's constructor
+    /// rejects the data (the field is named).
+    pub fn from_json_str(text: &str, source: &str) -> IoResult<Object> {
+        let value: Value = serde_json::from_str(text).map_err(|e| {
+            IoError::syntax(
+                Location::new(source).at_line(e.line()),
+                format!("not valid JSON: {e}"),
+            )
+        })?;
+        Object::from_json_value(value, &Location::new(source), text)
+    }
+
+    /// Reads one object from a parsed JSON value; `text` (the value's source text, possibly
+    /// empty) is used to find the line of a field named in an error.
+    ///
+    /// # Errors
+    /// As [`Object::from_json_str`].
+    pub fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Object> {
+        let Value::Object(mut map) = value else {
+            return Err(IoError::syntax(
+                at.clone(),
+                "expected a JSON object like {\"lekalo\": 1, \"type\": \"bspline_curve\", ...}",
+            ));
+        };
+        let field_at = |field: &str| {
+            let mut loc = at.clone().at_field(field);
+            if let Some(line) = line_of_field(text, field) {
+                loc.line = Some(at.line.unwrap_or(1) + line - 1);
+            }
+            loc
+        };
+        match map.remove("lekalo") {
+            Some(v) if v.as_u64() == Some(FORMAT_VERSION) => {}
+            Some(v) => {
+                return Err(IoError::syntax(
+                    field_at("lekalo"),
+                    format!(
+                        "format version {v} is not supported; this lekalo reads version {FORMAT_VERSION}"
+                    ),
+                ))
+            }
+            None => {
+                return Err(IoError::syntax(
+                    at.clone().at_field("lekalo"),
+                    format!("missing the format version; add \"lekalo\": {FORMAT_VERSION}"),
+                ))
+            }
+        }
+        let kind = match map.remove("type") {
+            Some(Value::String(s)) => s,
+            _ => {
+                return Err(IoError::syntax(
+                    at.clone().at_field("type"),
+                    format!("missing or non-string object type; use one of {KNOWN_TYPES}"),
+                ))
+            }
+        };
+        let rest = Value::Object(map);
+        let decode_err = |e: serde_json::Error| {
+            let msg = e.to_string();
+            let field = backticked(&msg);
+            let loc = match &field {
+                Some(f) => field_at(f),
+                None => at.clone(),
+            };
+            IoError::syntax(loc, format!("{kind}: {msg}"))
+        };
+        let invalid = |e: lekalo::Error| IoError::Invalid {
+            at: field_of(&e).map_or_else(|| at.clone(), field_at),
+            error: e,
+        };
+        match kind.as_str() {
+            "bezier_curve" => {
+                let r: BezierJson = serde_json::from_value(rest).map_err(decode_err)?;
+                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
+                    at: field_at("control"),
+                    error: e,
+                })?;
+                BezierCurve::new(ctrl).map(Object::Bezier).map_err(invalid)
+            }
+            "bspline_curve" => {
+                let r: BSplineJson = serde_json::from_value(rest).map_err(decode_err)?;
+                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
+                    at: field_at("control"),
+                    error: e,
+                })?;
+                BSplineCurve::new(r.degree, r.knots, ctrl)
+                    .map(Object::BSpline)
+                    .map_err(invalid)
+            }
+            "nurbs_curve" => {
+                let r: NurbsJson = serde_json::from_value(rest).map_err(decode_err)?;
+                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
+                    at: field_at("control"),
+                    error: e,
+                })?;
+                NurbsCurve::new(r.degree, r.knots, ctrl, r.weights)
+                    .map(Object::Nurbs)
+                    .map_err(invalid)
+            }
+            other => Err(IoError::syntax(
+                at.clone().at_field("type"),
+                format!("unknown object type \"{other}\"; this lekalo reads {KNOWN_TYPES}"),
+            )),
+        }
+    }
+}
+
+/// A JSON value on one line, with `sp` after commas.
+fn compact(v: &Value, sp: &str) -> String {
+    match v {
+        Value::Array(a) => {
+            let items: Vec<String> = a.iter().map(|x| compact(x, sp)).collect();
+            format!("[{}]", items.join(&format!(",{sp}")))
+        }
+        other => other.to_string(),
+    }
+}
+
+/// The field that a library error is about, when its kind says so.
+fn field_of(e: &lekalo::Error) -> Option<&'static str> {
+    use lekalo::Error as E;
+    match e {
+        E::KnotsNotSorted { .. } | E::KnotMultiplicity { .. } | E::EmptyDomain { .. } => {
+            Some("knots")
+        }
+        E::NonPositiveWeight { .. } => Some("weights"),
+        E::Degree { .. } => Some("degree"),
+        E::LengthMismatch { what, .. } | E::NonFinite { what, .. } | E::TooFew { what, .. } => {
+            if what.contains("weight") {
+                Some("weights")
+            } else if what.contains("knot") {
+                Some("knots")
+            } else if what.contains("point") {
+                Some("control")
+            } else {
+                None
+            }
+        }
+        _ => None,
+    }
+}
+
+/// The first name in backticks in a serde message, e.g. `knots` in "missing field \`knots\`".
+fn backticked(msg: &str) -> Option<String> {
+    let start = msg.find('`')? + 1;
+    let len = msg[start..].find('`')?;
+    Some(msg[start..start + len].to_string())
+}
+
+/// 1-based line of the first `"field"` key in `text`, if present.
+fn line_of_field(text: &str, field: &str) -> Option<usize> {
+    let key = format!("\"{field}\"");
+    let pos = text.find(&key)?;
+    Some(text[..pos].matches('\n').count() + 1)
+}
+
+/// Reads JSON Lines: one object per non-blank line (lines starting with `#` are comments).
+/// Returns `(line number, object or error)` for every object line, so a batch can report every
+/// bad line and go on with the good ones.
+#[must_use]
+pub fn read_json_lines(text: &str, source: &str) -> Vec<(usize, IoResult<Object>)> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            let t = l.trim();
+            !t.is_empty() && !t.starts_with('#')
+        })
+        .map(|(i, l)| {
+            let at = Location::new(source).at_line(i + 1);
+            let obj = serde_json::from_str::<Value>(l)
+                .map_err(|e| IoError::syntax(at.clone(), format!("not valid JSON: {e}")))
+                .and_then(|v| Object::from_json_value(v, &at, l));
+            (i + 1, obj)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LECTURE: &str = r#"{
+  "lekalo": 1,
+  "type": "bspline_curve",
+  "degree": 2,
+  "knots": [0, 0, 1, 2, 3, 3],
+  "control": [[1, 1], [2, 3], [4, 3]]
+}"#;
+
+    #[test]
+    fn round_trip_every_type() {
+        let b = Object::from_json_str(LECTURE, "t").unwrap();
+        let Object::BSpline(c) = &b else {
+            panic!("wrong type")
+        };
+        assert_eq!(c.eval(1.5).unwrap(), vec![17.0 / 8.0, 11.0 / 4.0]);
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let ctrl = Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap();
+        let objs = [
+            b.clone(),
+            Object::Bezier(BezierCurve::new(ctrl.clone()).unwrap()),
+            Object::Nurbs(
+                NurbsCurve::new(
+                    2,
+                    vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                    ctrl,
+                    vec![1.0, w, 1.0],
+                )
+                .unwrap(),
+            ),
+        ];
+        for o in objs {
+            let back = Object::from_json_str(&o.to_json_pretty(), "t").unwrap();
+            assert_eq!(back, o);
+            let back = Object::from_json_str(&o.to_json_line(), "t").unwrap();
+            assert_eq!(back, o);
+            assert!(!o.to_json_line().contains('\n'));
+        }
+    }
+
+    #[test]
+    fn pretty_layout() {
+        let o = Object::from_json_str(LECTURE, "t").unwrap();
+        assert_eq!(
+            o.to_json_pretty(),
+            "{\n  \"lekalo\": 1,\n  \"type\": \"bspline_curve\",\n  \"degree\": 2,\n  \"knots\": [0.0, 0.0, 1.0, 2.0, 3.0, 3.0],\n  \"control\": [\n    [1.0, 1.0],\n    [2.0, 3.0],\n    [4.0, 3.0]\n  ]\n}\n"
+        );
+        assert_eq!(
+            o.to_json_line(),
+            r#"{"lekalo":1,"type":"bspline_curve","degree":2,"knots":[0.0,0.0,1.0,2.0,3.0,3.0],"control":[[1.0,1.0],[2.0,3.0],[4.0,3.0]]}"#
+        );
+    }
+
+    #[test]
+    fn flat_control_points_accepted() {
+        let text = LECTURE.replace(
+            "[[1, 1], [2, 3], [4, 3]]",
+            r#"{"dim": 2, "data": [1, 1, 2, 3, 4, 3]}"#,
+        );
+        let a = Object::from_json_str(&text, "t").unwrap();
+        assert_eq!(a, Object::from_json_str(LECTURE, "t").unwrap());
+    }
+
+    fn err(text: &str) -> String {
+        Object::from_json_str(text, "c.json")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn errors_name_line_and_field() {
+        let e = err(&LECTURE.replace("\"lekalo\": 1", "\"lekalo\": 9"));
+        assert!(
+            e.starts_with("c.json:2: field `lekalo`: format version 9"),
+            "{e}"
+        );
+        let e = err(&LECTURE.replace("  \"lekalo\": 1,\n", ""));
+        assert!(
+            e.contains("field `lekalo`: missing the format version"),
+            "{e}"
+        );
+        let e = err(&LECTURE.replace("bspline_curve", "spline"));
+        assert!(e.contains("unknown object type \"spline\""), "{e}");
+        let e = err(&LECTURE.replace("\"degree\"", "\"degre\""));
+        assert!(
+            e.starts_with("c.json:4: field `degre`: bspline_curve: unknown field"),
+            "{e}"
+        );
+        let e = err(&LECTURE.replace("  \"degree\": 2,\n", ""));
+        assert!(
+            e.contains("field `degree`: bspline_curve: missing field"),
+            "{e}"
+        );
+        let e = err(&LECTURE.replace("[0, 0, 1, 2, 3, 3]", "[0, 0, 1, 2, 3]"));
+        assert!(e.starts_with("c.json:5: field `knots`"), "{e}");
+        let e = err(&LECTURE.replace("[2, 3]", "[2, 3, 5]"));
+        assert!(e.starts_with("c.json:6: field `control`"), "{e}");
+        let e = err("{\"lekalo\": 1,\n \"type\": ");
+        assert!(e.starts_with("c.json:2: not valid JSON"), "{e}");
+        let e = err("[1, 2]");
+        assert!(e.contains("expected a JSON object"), "{e}");
+        let nurbs = r#"{"lekalo":1,"type":"nurbs_curve","degree":1,"knots":[0,0,1,1],
+            "control":[[0,0],[1,1]],"weights":[1,-1]}"#;
+        let e = err(nurbs);
+        assert!(
+            e.starts_with("c.json:2: field `weights`: weight 1 is -1"),
+            "{e}"
+        );
+        let e = err(r#"{"lekalo":1,"type":"bezier_curve","control":[]}"#);
+        assert!(e.contains("field `control`"), "{e}");
+    }
+
+    #[test]
+    fn json_lines_report_each_line() {
+        let good = Object::from_json_str(LECTURE, "t").unwrap().to_json_line();
+        let text = format!("# comment\n{good}\n\n{{\"lekalo\":1}}\n{good}\n");
+        let r = read_json_lines(&text, "many.jsonl");
+        assert_eq!(r.len(), 3);
+        assert_eq!(r[0].0, 2);
+        assert!(r[0].1.is_ok());
+        let e = r[1].1.as_ref().unwrap_err().to_string();
+        assert!(e.starts_with("many.jsonl:4: field `type`"), "{e}");
+        assert_eq!(r[2].0, 5);
+    }
+}

@@ -1,0 +1,146 @@
+//! Tables of samples of a curve: parameter, point, derivatives, curvature; written as CSV or
+//! JSON.
+
+use std::fmt::Write as _;
+
+use serde_json::{Map, Value};
+
+use crate::analysis::curvature;
+use crate::object::Object;
+
+/// What to compute at each parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SampleSpec {
+    /// Highest derivative order (0 = points only).
+    pub derivatives: usize,
+    /// Add the curvature column (needs derivatives up to order 2, computed internally).
+    pub curvature: bool,
+}
+
+/// A table of samples: column names and rows of numbers (`None` where undefined, e.g. the
+/// curvature where `C' = 0`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampleTable {
+    /// Column names: `t`, `x`, `y`, …, `d1x`, …, `curvature`.
+    pub header: Vec<String>,
+    /// One row per parameter.
+    pub rows: Vec<Vec<Option<f64>>>,
+}
+
+/// Coordinate names: `x, y, z` up to 3-D, `x1 … xd` above.
+fn coord_names(dim: usize) -> Vec<String> {
+    if dim <= 3 {
+        ["x", "y", "z"][..dim]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    } else {
+        (1..=dim).map(|k| format!("x{k}")).collect()
+    }
+}
+
+/// Evaluates `obj` at every parameter of `ts`.
+///
+/// # Errors
+/// [`lekalo::Error::ParameterOutOfDomain`] for a parameter outside the domain.
+pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Result<SampleTable> {
+    let dim = obj.dim();
+    let names = coord_names(dim);
+    let mut header = vec!["t".to_string()];
+    header.extend(names.iter().cloned());
+    for k in 1..=spec.derivatives {
+        header.extend(names.iter().map(|n| format!("d{k}{n}")));
+    }
+    if spec.curvature {
+        header.push("curvature".into());
+    }
+    let order = if spec.curvature {
+        spec.derivatives.max(2)
+    } else {
+        spec.derivatives
+    };
+    let mut rows = Vec::with_capacity(ts.len());
+    for &t in ts {
+        let d = obj.derivatives(t, order)?;
+        let mut row = vec![Some(t)];
+        for k in 0..=spec.derivatives {
+            row.extend(d.point(k).iter().map(|v| Some(*v)));
+        }
+        if spec.curvature {
+            row.push(curvature(d.point(1), d.point(2)));
+        }
+        rows.push(row);
+    }
+    Ok(SampleTable { header, rows })
+}
+
+impl SampleTable {
+    /// CSV with a header line; undefined values are empty fields. Numbers are written in the
+    /// shortest form that reads back to the same `f64`.
+    #[must_use]
+    pub fn to_csv(&self) -> String {
+        let mut s = self.header.join(",");
+        s.push('\n');
+        for row in &self.rows {
+            let fields: Vec<String> = row
+                .iter()
+                .map(|v| v.map(|x| format!("{x}")).unwrap_or_default())
+                .collect();
+            let _ = writeln!(s, "{}", fields.join(","));
+        }
+        s
+    }
+
+    /// JSON: an array of objects keyed by the column names (`null` where undefined).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        Value::Array(
+            self.rows
+                .iter()
+                .map(|row| {
+                    let m: Map<String, Value> = self
+                        .header
+                        .iter()
+                        .zip(row)
+                        .map(|(h, v)| (h.clone(), v.map_or(Value::Null, Value::from)))
+                        .collect();
+                    Value::Object(m)
+                })
+                .collect(),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lekalo::{BSplineCurve, Points};
+
+    #[test]
+    fn lecture_samples() {
+        let ctrl = Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]]).unwrap();
+        let c = Object::BSpline(
+            BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl).unwrap(),
+        );
+        let spec = SampleSpec {
+            derivatives: 1,
+            curvature: true,
+        };
+        let t = sample_table(&c, &[1.0, 1.5], spec).unwrap();
+        assert_eq!(t.header, ["t", "x", "y", "d1x", "d1y", "curvature"]);
+        // on [1,2): P = (t²/2 + 1, −t² + 4t − 1), P' = (t, 4 − 2t), P'' = (1, −2)
+        let csv = t.to_csv();
+        assert!(
+            csv.starts_with("t,x,y,d1x,d1y,curvature\n1,1.5,2,1,2,"),
+            "{csv}"
+        );
+        let k = t.rows[1][5].unwrap();
+        let (d1, d2) = ([1.5f64, 1.0], [1.0f64, -2.0]);
+        let expect = (d1[0] * d2[1] - d1[1] * d2[0]).abs() / (d1[0].hypot(d1[1])).powi(3);
+        assert!((k - expect).abs() < 1e-14, "{k} vs {expect}");
+        let j = t.to_json();
+        assert_eq!(j[1]["x"], Value::from(2.125));
+        assert!(sample_table(&c, &[2.5], spec).is_err());
+        assert_eq!(coord_names(4), ["x1", "x2", "x3", "x4"]);
+    }
+}

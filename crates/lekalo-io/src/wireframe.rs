@@ -1,0 +1,148 @@
+//! Surfaces as wireframes in a simple projection, written against plain point grids so that
+//! any surface type plugs in by sampling itself into a [`Grid`].
+
+use crate::svg::{Figure, Series, Style, PALETTE};
+
+/// A grid of `nu × nv` points of dimension `dim`, point `(i, j)` at
+/// `data[(i * nv + j) * dim ..]` (the layout of lekalo's surface nets).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid<'a> {
+    /// Rows (first parameter direction).
+    pub nu: usize,
+    /// Columns (second parameter direction).
+    pub nv: usize,
+    /// Dimension of each point (3 for surfaces in space).
+    pub dim: usize,
+    /// Point-major coordinates, `nu · nv · dim` values.
+    pub data: &'a [f64],
+}
+
+impl<'a> Grid<'a> {
+    /// A grid view, checking the length.
+    ///
+    /// # Errors
+    /// [`lekalo::Error::LengthMismatch`] if `data.len() != nu · nv · dim`;
+    /// [`lekalo::Error::TooFew`] for fewer than 2 × 2 points.
+    pub fn new(nu: usize, nv: usize, dim: usize, data: &'a [f64]) -> lekalo::Result<Self> {
+        if nu < 2 || nv < 2 {
+            return Err(lekalo::Error::TooFew {
+                what: "grid rows and columns",
+                min: 2,
+                got: nu.min(nv),
+            });
+        }
+        let expected = nu.saturating_mul(nv).saturating_mul(dim);
+        if data.len() != expected || dim == 0 {
+            return Err(lekalo::Error::LengthMismatch {
+                what: "grid data (rows × columns × dimension)",
+                expected,
+                got: data.len(),
+            });
+        }
+        Ok(Grid { nu, nv, dim, data })
+    }
+
+    /// Point `(i, j)` padded to 3-D (missing coordinates are 0).
+    #[must_use]
+    pub fn point3(&self, i: usize, j: usize) -> [f64; 3] {
+        let base = (i * self.nv + j) * self.dim;
+        let mut p = [0.0; 3];
+        for (k, v) in p.iter_mut().enumerate().take(self.dim) {
+            *v = self.data[base + k];
+        }
+        p
+    }
+}
+
+/// Orthographic view from the direction given by azimuth (about the z axis) and elevation
+/// (above the xy plane), in degrees. The default (azimuth −60°, elevation 30°) is the usual
+/// engineering view.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Projection {
+    /// Rotation about the z axis, degrees.
+    pub azimuth: f64,
+    /// Angle of the eye above the xy plane, degrees.
+    pub elevation: f64,
+}
+
+impl Default for Projection {
+    fn default() -> Self {
+        Projection {
+            azimuth: -60.0,
+            elevation: 30.0,
+        }
+    }
+}
+
+impl Projection {
+    /// Screen coordinates of a 3-D point: rotate by −azimuth about z, then tilt by the
+    /// elevation about the screen's x axis, and drop the depth.
+    #[must_use]
+    pub fn project(&self, p: [f64; 3]) -> [f64; 2] {
+        let (sa, ca) = self.azimuth.to_radians().sin_cos();
+        let (se, ce) = self.elevation.to_radians().sin_cos();
+        let x = ca * p[0] - sa * p[1];
+        let y = sa * p[0] + ca * p[1];
+        [x, -se * y + ce * p[2]]
+    }
+}
+
+/// Wireframe of a grid: one polyline per row and per column, projected.
+#[must_use]
+pub fn wireframe_figure(title: &str, grid: &Grid<'_>, projection: &Projection) -> Figure {
+    let mut fig = Figure::new(title, true);
+    fig.axes = false;
+    let mut paths = Vec::with_capacity(grid.nu + grid.nv);
+    for i in 0..grid.nu {
+        paths.push(
+            (0..grid.nv)
+                .map(|j| projection.project(grid.point3(i, j)))
+                .collect(),
+        );
+    }
+    for j in 0..grid.nv {
+        paths.push(
+            (0..grid.nu)
+                .map(|i| projection.project(grid.point3(i, j)))
+                .collect(),
+        );
+    }
+    fig.series.push(Series {
+        label: None,
+        paths,
+        style: Style::Line,
+        color: PALETTE[0].to_string(),
+    });
+    fig
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn projection_and_wireframe() {
+        let top = Projection {
+            azimuth: 0.0,
+            elevation: 90.0,
+        };
+        // from above, x stays and y goes up the screen... up to the sign convention of depth
+        let p = top.project([1.0, 2.0, 5.0]);
+        assert!(
+            (p[0] - 1.0).abs() < 1e-15 && (p[1] + 2.0).abs() < 1e-12,
+            "{p:?}"
+        );
+        let front = Projection {
+            azimuth: 0.0,
+            elevation: 0.0,
+        };
+        assert_eq!(front.project([1.0, 2.0, 5.0]), [1.0, 5.0]);
+        let data: Vec<f64> = (0..12).map(f64::from).collect();
+        let g = Grid::new(2, 2, 3, &data).unwrap();
+        assert_eq!(g.point3(1, 0), [6.0, 7.0, 8.0]);
+        let fig = wireframe_figure("w", &g, &Projection::default());
+        assert_eq!(fig.series[0].paths.len(), 4);
+        assert!(Grid::new(2, 2, 3, &data[1..]).is_err());
+        assert!(Grid::new(1, 12, 1, &data).is_err());
+    }
+}

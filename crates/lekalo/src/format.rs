@@ -1,1 +1,0 @@
-//! Versioned JSON format of every object.
