@@ -1,12 +1,10 @@
 //! Uniform access to the curve objects for the writers and the CLI: domain, points,
 //! derivatives, curvature, control net and knots.
 //!
-//! The mathematics is the library's (B-spline evaluation and derivatives); the only formulas
-//! here are the quotient rule for rational derivatives and the curvature of a curve in any
-//! dimension, both cited. They belong in the library once it offers them (see the report of
-//! issue 7).
+//! The mathematics is the library's (evaluation, derivatives, curvature); this module only
+//! dispatches over the object kinds.
 
-use lekalo::{BSplineCurve, KnotVector, Points};
+use lekalo::{KnotVector, Points};
 
 use crate::object::Object;
 
@@ -84,48 +82,16 @@ impl Object {
         }
     }
 
-    /// Derivatives `C^{(k)}(t)`, `k = 0..=order`, one row each.
-    ///
-    /// Polynomial curves use [`BSplineCurve::eval_derivatives`] (a Bezier curve through its
-    /// B-spline form on clamped knots). A NURBS curve `C = A / w` uses the derivatives of the
-    /// homogeneous B-spline and the quotient rule of P&T eq. (4.8), Algorithm A4.2:
-    /// `C^{(k)} = (A^{(k)} − Σ_{i=1}^{k} binom(k, i) w^{(i)} C^{(k−i)}) / w`.
+    /// Derivatives `C^{(k)}(t)`, `k = 0..=order`, one row each (the library's
+    /// `eval_derivatives` of each curve type; rational curves by the quotient rule, P&T A4.2).
     ///
     /// # Errors
-    /// [`lekalo::Error::ParameterOutOfDomain`].
+    /// [`lekalo::Error::ParameterOutOfDomain`], [`lekalo::Error::TooLarge`] for absurd orders.
     pub fn derivatives(&self, t: f64, order: usize) -> lekalo::Result<Points> {
         match self {
-            Object::Bezier(c) => {
-                let b = BSplineCurve::from_knot_vector(
-                    c.degree(),
-                    bezier_knots(c.degree()),
-                    c.control_points().clone(),
-                )?;
-                b.eval_derivatives(t, order)
-            }
+            Object::Bezier(c) => c.eval_derivatives(t, order),
             Object::BSpline(c) => c.eval_derivatives(t, order),
-            Object::Nurbs(c) => {
-                let h = c.homogeneous().eval_derivatives(t, order)?;
-                let dim = c.dim();
-                let mut out = vec![0.0; (order + 1) * dim];
-                for k in 0..=order {
-                    let a = h.point(k);
-                    let mut v: Vec<f64> = a[..dim].to_vec();
-                    let mut binom = 1.0; // binom(k, i), updated multiplicatively
-                    for i in 1..=k {
-                        binom = binom * (k + 1 - i) as f64 / i as f64;
-                        let wi = h.point(i)[dim];
-                        for d in 0..dim {
-                            v[d] -= binom * wi * out[(k - i) * dim + d];
-                        }
-                    }
-                    let w = h.point(0)[dim];
-                    for d in 0..dim {
-                        out[k * dim + d] = v[d] / w;
-                    }
-                }
-                Points::new(out, dim)
-            }
+            Object::Nurbs(c) => c.eval_derivatives(t, order),
         }
     }
 
@@ -175,20 +141,7 @@ fn bezier_knots(degree: usize) -> KnotVector {
     KnotVector::new(k).unwrap_or_else(|_| unreachable!("clamped Bezier knots are valid"))
 }
 
-/// Curvature `κ = |C' × C''| / |C'|³` from the first two derivatives, in any dimension through
-/// Lagrange's identity `|a × b|² = |a|²|b|² − (a·b)²` (do Carmo, *Differential Geometry of
-/// Curves and Surfaces*, §1-5). `None` where `C' = 0` (curvature undefined).
-#[must_use]
-pub fn curvature(d1: &[f64], d2: &[f64]) -> Option<f64> {
-    let aa: f64 = d1.iter().map(|x| x * x).sum();
-    let bb: f64 = d2.iter().map(|x| x * x).sum();
-    let ab: f64 = d1.iter().zip(d2).map(|(x, y)| x * y).sum();
-    if aa == 0.0 {
-        return None;
-    }
-    let cross2 = (aa * bb - ab * ab).max(0.0);
-    Some(cross2.sqrt() / (aa * aa.sqrt()))
-}
+pub use lekalo::curvature;
 
 #[cfg(test)]
 mod tests {
