@@ -33,9 +33,9 @@ mod bspline;
 mod error;
 mod knots;
 mod nurbs;
+mod nurbs_surface;
 #[cfg(test)]
 mod oracle;
-mod nurbs_surface;
 mod points;
 mod surface;
 
@@ -74,3 +74,6 @@ pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRu
 
 // -- formats (issue 7) --
 mod format;
+
+// -- robustness (issue 9) --
+pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};
