@@ -14,7 +14,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{check_degree_bound, check_finite, Error, Result, MAX_SCALARS};
 
 /// A validated, non-decreasing sequence of finite knots with a non-empty range.
 ///
@@ -100,7 +100,7 @@ impl KnotVector {
     /// [`Error::Degree`], [`Error::LengthMismatch`], [`Error::KnotMultiplicity`],
     /// [`Error::EmptyDomain`].
     pub fn validate_for(&self, degree: usize, n_ctrl: usize) -> Result<()> {
-        if n_ctrl < degree + 1 {
+        if n_ctrl <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -109,7 +109,8 @@ impl KnotVector {
                 ),
             });
         }
-        let expected = n_ctrl + degree + 1;
+        // n_ctrl > degree, so only the sum can overflow (and then cannot match any length)
+        let expected = n_ctrl.saturating_add(degree).saturating_add(1);
         if self.knots.len() != expected {
             return Err(Error::LengthMismatch {
                 what: "knots (control points + degree + 1)",
@@ -146,7 +147,7 @@ impl KnotVector {
     /// # Errors
     /// [`Error::Degree`] if `n_ctrl < degree + 1`; [`Error::TooLarge`].
     pub fn clamped_uniform(degree: usize, n_ctrl: usize) -> Result<Self> {
-        if n_ctrl < degree + 1 {
+        if n_ctrl <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -155,7 +156,8 @@ impl KnotVector {
                 ),
             });
         }
-        check_size(n_ctrl + degree + 1)?;
+        check_degree_bound(degree)?;
+        check_size(n_ctrl.saturating_add(degree + 1))?;
         let n = n_ctrl - 1;
         let pieces = n - degree + 1;
         let mut knots = Vec::with_capacity(n_ctrl + degree + 1);
@@ -230,6 +232,7 @@ impl KnotVector {
                 reason: "knots at the parameters need degree ≥ 1".into(),
             });
         }
+        check_degree_bound(degree)?;
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + 2 * degree + 1);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
@@ -273,6 +276,7 @@ impl KnotVector {
                 reason: "the order k = degree + 1 must be at least 1".into(),
             });
         }
+        check_degree_bound(order - 1)?;
         if breakpoints.len() < 2 {
             return Err(Error::TooFew {
                 what: "breakpoints",
@@ -383,7 +387,7 @@ impl KnotVector {
     #[must_use]
     pub fn is_clamped(&self, degree: usize) -> bool {
         let m = self.knots.len();
-        m >= 2 * degree + 2
+        m / 2 > degree // m ≥ 2·degree + 2, without overflow
             && self.knots[..=degree].iter().all(|&k| k == self.knots[0])
             && self.knots[m - degree - 1..]
                 .iter()
@@ -397,7 +401,8 @@ impl KnotVector {
     /// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_p, t_{n+1}]` or NaN;
     /// [`Error::Degree`] if the knots are too few for `degree`.
     pub fn find_span(&self, degree: usize, t: f64) -> Result<usize> {
-        if self.knots.len() < 2 * degree + 2 {
+        // len < 2·degree + 2, without overflow
+        if self.knots.len() / 2 <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -471,7 +476,7 @@ impl SpanCursor<'_> {
     pub fn find(&mut self, t: f64) -> Result<usize> {
         let k = &self.knots.knots;
         let p = self.degree;
-        if k.len() < 2 * p + 2 {
+        if k.len() / 2 <= p {
             return self.knots.find_span(p, t);
         }
         let (min, max) = self.knots.domain(p);
@@ -553,7 +558,7 @@ fn check_interpolation_degree(
         });
     }
     // n_points + (min_points_plus − n_points) extra conditions must carry degree + 1 unknowns
-    if min_points_plus < degree + 1 {
+    if min_points_plus <= degree {
         return Err(Error::Degree {
             degree,
             reason: format!(
