@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::bernstein_derivatives;
 use crate::bezier::BezierCurve;
-use crate::error::{Error, Result};
+use crate::error::{check_derivative_order, Error, Result, MAX_SURFACE_DERIVATIVE_ORDER};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::{
@@ -153,6 +153,7 @@ impl BezierSurface {
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         check_unit(u)?;
         check_unit(v)?;
+        check_derivative_order(order, MAX_SURFACE_DERIVATIVE_ORDER)?;
         let (nu, nv) = self.net_size;
         let dim = self.dim();
         let side = order + 1;

@@ -7,7 +7,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bezier::{BezierCurve, BezierSegment};
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -232,6 +234,7 @@ impl BSplineCurve {
         let p = self.degree;
         let dim = self.dim();
         let span = self.knots.find_span(p, t)?;
+        check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
         let w = p + 1;
         let mut d = vec![0.0; (order + 1) * w];
         basis_ders_into(

@@ -14,7 +14,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::bspline::BSplineCurve;
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -268,6 +270,7 @@ impl PiecewisePolynomial {
     /// [`Error::ParameterOutOfDomain`].
     pub fn eval_derivatives(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index(x)?;
+        check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
         Ok(self.piece_derivatives(j, x, m))
     }
 
@@ -278,6 +281,7 @@ impl PiecewisePolynomial {
     /// [`Error::ParameterOutOfDomain`].
     pub fn eval_derivatives_left(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index_left(x)?;
+        check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
         Ok(self.piece_derivatives(j, x, m))
     }
 

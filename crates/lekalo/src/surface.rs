@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
-use crate::error::{Error, Result, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, Error, Result, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -141,7 +143,7 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
 /// Validates a knot vector for one direction of a surface with `n` control points in that
 /// direction, with errors that name the direction.
 fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) -> Result<()> {
-    if n < degree + 1 {
+    if n <= degree {
         return Err(Error::Degree {
             degree,
             reason: format!(
@@ -152,7 +154,8 @@ fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) 
             ),
         });
     }
-    let expected = n + degree + 1;
+    // n > degree, so only the sum can overflow (and then cannot match any length)
+    let expected = n.saturating_add(degree).saturating_add(1);
     if knots.len() != expected {
         return Err(Error::LengthMismatch {
             what: dir.knot_count(),
@@ -575,6 +578,7 @@ impl BSplineSurface {
         let dim = self.dim();
         let su = self.knots_u.find_span(p, u)?;
         let sv = self.knots_v.find_span(q, v)?;
+        check_derivative_order(order, MAX_SURFACE_DERIVATIVE_ORDER)?;
         let side = order
             .checked_add(1)
             .filter(|&s| s.saturating_mul(s).saturating_mul(dim) <= MAX_SCALARS);
