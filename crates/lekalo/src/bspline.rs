@@ -79,7 +79,7 @@ impl BSplineCurve {
         if control.is_empty() {
             return Err(Error::TooFew {
                 what: "control points",
-                min: degree + 1,
+                min: degree.saturating_add(1),
                 got: 0,
             });
         }
