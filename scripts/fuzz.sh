@@ -17,7 +17,10 @@ export RUSTC_BOOTSTRAP=1
 seconds="${FUZZ_SECONDS:-60}"
 timeout_s="${FUZZ_TIMEOUT:-10}"
 rss_mb="${FUZZ_RSS_MB:-2048}"
+# FUZZ_JOBS > 1 runs parallel workers (their output goes to fuzz/fuzz-<n>.log)
 jobs="${FUZZ_JOBS:-1}"
+parallel=()
+[ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
 all_targets=(json_load knots curves surfaces ppform)
 if [ "$#" -gt 0 ]; then targets=("$@"); else targets=("${all_targets[@]}"); fi
 
@@ -30,8 +33,7 @@ for t in "${targets[@]}"; do
     echo "== fuzz target $t for ${seconds}s"
     if ! cargo fuzz run "$t" "$PWD/corpus/$t" "${seeds[@]}" -- \
         -max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb="$rss_mb" \
-        -malloc_limit_mb="$rss_mb" -max_len=4096 -jobs="$jobs" -workers="$jobs" \
-        -print_final_stats=1; then
+        -malloc_limit_mb="$rss_mb" -max_len=4096 "${parallel[@]}" -print_final_stats=1; then
         failed+=("$t")
     fi
 done

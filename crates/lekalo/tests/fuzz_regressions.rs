@@ -206,3 +206,20 @@ fn derivative_orders_are_bounded() {
         .eval_derivatives(0.5, 0.5, MAX_SURFACE_DERIVATIVE_ORDER)
         .is_ok());
 }
+
+// fuzz target `curves`, artifact crash-ea7bfcd8: `BSplineCurve::new(usize::MAX, knots, <no
+// points>)` panicked with "attempt to add with overflow" building the TooFew message
+// (`min: degree + 1`).
+#[test]
+fn empty_control_points_with_absurd_degree() {
+    let empty = Points::new(Vec::new(), 2).expect("empty points are valid");
+    for d in ABSURD {
+        let r = BSplineCurve::new(d, vec![0.0, 1.0], empty.clone());
+        assert!(
+            matches!(r, Err(Error::TooFew { min, got: 0, .. }) if min == d.saturating_add(1)),
+            "degree {d}: {r:?}"
+        );
+        let r = NurbsCurve::new(d, vec![0.0, 1.0], empty.clone(), Vec::new());
+        assert!(r.is_err(), "degree {d}: {r:?}");
+    }
+}
