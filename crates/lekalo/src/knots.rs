@@ -210,7 +210,8 @@ impl KnotVector {
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + degree + 4);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
-        for j in 0..=(n + 1 - degree) {
+        // n − p + 2 interior knots; none when n + 2 = p (checked above: n + 2 ≥ p)
+        for j in 0..(n + 2 - degree) {
             knots.push(average(&params[j..j + degree]));
         }
         knots.extend(std::iter::repeat_n(params[n], degree + 1));
