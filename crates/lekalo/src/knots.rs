@@ -50,7 +50,7 @@ impl KnotVector {
     /// # Errors
     /// [`Error::TooFew`] for fewer than 2 knots; [`Error::NonFinite`];
     /// [`Error::KnotsNotSorted`] at the first decrease; [`Error::EmptyDomain`] if all knots are
-    /// equal; [`Error::TooLarge`].
+    /// equal; [`Error::InvalidArgument`] if `t_last − t_0` overflows; [`Error::TooLarge`].
     pub fn new(knots: Vec<f64>) -> Result<Self> {
         if knots.len() < 2 {
             return Err(Error::TooFew {
@@ -80,6 +80,7 @@ impl KnotVector {
         if min >= max {
             return Err(Error::EmptyDomain { min, max });
         }
+        check_width("knots", min, max)?;
         Ok(KnotVector { knots })
     }
 
@@ -298,6 +299,11 @@ impl KnotVector {
                 ),
             });
         }
+        check_width(
+            "breakpoints",
+            breakpoints[0],
+            breakpoints[breakpoints.len() - 1],
+        )?;
         let interior = breakpoints.len() - 2;
         if continuity.len() != interior {
             return Err(Error::LengthMismatch {
@@ -520,7 +526,7 @@ impl SpanCursor<'_> {
 ///
 /// # Errors
 /// [`Error::TooFew`], [`Error::NonFinite`], [`Error::KnotsNotSorted`] (naming the parameter
-/// index), [`Error::EmptyDomain`].
+/// index), [`Error::EmptyDomain`]; [`Error::InvalidArgument`] if `t̄_n − t̄_0` overflows.
 pub fn check_parameters(params: &[f64]) -> Result<()> {
     if params.len() < 2 {
         return Err(Error::TooFew {
@@ -543,6 +549,20 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
     let (min, max) = (params[0], params[params.len() - 1]);
     if min >= max {
         return Err(Error::EmptyDomain { min, max });
+    }
+    check_width("parameters", min, max)
+}
+
+/// Every basis function divides by knot differences: the width `max − min` must be finite.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `what` if `max − min` overflows.
+fn check_width(what: &'static str, min: f64, max: f64) -> Result<()> {
+    if !(max - min).is_finite() {
+        return Err(Error::InvalidArgument {
+            what,
+            reason: format!("the width of [{min}, {max}] overflows; rescale them"),
+        });
     }
     Ok(())
 }

@@ -94,6 +94,17 @@ pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
             ),
         });
     }
+    let width = breakpoints[breakpoints.len() - 1] - breakpoints[0];
+    if !width.is_finite() {
+        return Err(Error::InvalidArgument {
+            what: "breakpoints",
+            reason: format!(
+                "the width ξ_last − ξ_1 of [{}, {}] overflows to {width}; rescale the breakpoints",
+                breakpoints[0],
+                breakpoints[breakpoints.len() - 1]
+            ),
+        });
+    }
     Ok(())
 }
 
@@ -103,7 +114,7 @@ impl PiecewisePolynomial {
     ///
     /// # Errors
     /// [`Error::TooFew`] for fewer than two breakpoints; [`Error::InvalidArgument`] if they are
-    /// not strictly increasing; [`Error::Degree`] if `order == 0`; [`Error::Dimension`] if
+    /// not strictly increasing or their width overflows; [`Error::Degree`] if `order == 0`; [`Error::Dimension`] if
     /// `dim == 0`; [`Error::LengthMismatch`] for a wrong number of coefficients;
     /// [`Error::NonFinite`]; [`Error::TooLarge`].
     pub fn new(
@@ -249,7 +260,8 @@ impl PiecewisePolynomial {
     /// As [`PiecewisePolynomial::eval`], into a caller's buffer of length `dim`; no allocation.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] for a wrong buffer length.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] for a wrong buffer length;
+    /// [`Error::NonFinite`] if the value overflows (huge coefficients: rescale them).
     pub fn eval_into(&self, x: f64, out: &mut [f64]) -> Result<()> {
         if out.len() != self.dim {
             return Err(Error::LengthMismatch {
@@ -260,6 +272,10 @@ impl PiecewisePolynomial {
         }
         let j = self.piece_index(x)?;
         self.piece_derivative_into(j, x, 0, out);
+        check_finite(
+            "piecewise polynomial value (overflow: rescale the coefficients)",
+            out,
+        )?;
         Ok(())
     }
 
