@@ -223,3 +223,80 @@ fn empty_control_points_with_absurd_degree() {
         assert!(r.is_err(), "degree {d}: {r:?}");
     }
 }
+
+// fuzz target `knots`, artifact crash-aa8f007b: `averaged_with_end_derivatives` of 2 parameters
+// with degree 3 (allowed: n + 3 = 4 control points) underflowed at `n + 1 − degree`.
+#[test]
+fn averaged_with_end_derivatives_with_the_fewest_parameters() {
+    let kv = KnotVector::averaged_with_end_derivatives(&[1e8, 1.5e8], 3).expect("n + 2 = p");
+    assert_eq!(
+        kv.as_slice(),
+        &[1e8, 1e8, 1e8, 1e8, 1.5e8, 1.5e8, 1.5e8, 1.5e8]
+    );
+    kv.validate_for(3, 4)
+        .expect("n + 3 control points of degree 3");
+    // one parameter fewer than that is refused
+    assert!(matches!(
+        KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 4),
+        Err(Error::Degree { .. })
+    ));
+}
+
+// fuzz target `ppform`, artifact crash-787b71a9: breakpoints [−f64::MAX, 1e300] were accepted,
+// and `eval` returned NaN as `Ok` (the local variable x − ξ_j overflowed). The same width
+// overflow made a B-spline on knots [−MAX, −MAX, MAX, MAX] evaluate to 0 instead of 0.5 (every
+// basis function divided by an infinite knot difference): silently wrong.
+#[test]
+fn overflowing_widths_are_refused() {
+    let r = PiecewisePolynomial::new(vec![-f64::MAX, 1e300], 2, 1, vec![1.0, 1.0]);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "breakpoints",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    let r = KnotVector::new(vec![-f64::MAX, -f64::MAX, f64::MAX, f64::MAX]);
+    assert!(
+        matches!(r, Err(Error::InvalidArgument { what: "knots", .. })),
+        "{r:?}"
+    );
+    let r = KnotVector::averaged(&[-f64::MAX, 0.0, f64::MAX], 1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "parameters",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    let r = PpSpace::unconstrained(&[-f64::MAX, f64::MAX], 2);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "breakpoints",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    // the widest finite interval is still accepted
+    assert!(KnotVector::new(vec![-f64::MAX / 2.0, f64::MAX / 2.0]).is_ok());
+}
+
+// same finding, the other route to NaN: a value that overflows inside Horner's rule
+#[test]
+fn overflowing_pp_values_are_reported() {
+    // −1e300·u² at u = 1e200 overflows to −∞ inside Horner's rule
+    let f = PiecewisePolynomial::new(vec![0.0, 1e200], 3, 1, vec![0.0, 1e300, -1e300])
+        .expect("finite data");
+    let r = f.eval(1e200);
+    assert!(matches!(r, Err(Error::NonFinite { .. })), "{r:?}");
+    assert!(f.eval(0.0).is_ok());
+}
