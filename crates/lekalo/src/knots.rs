@@ -602,9 +602,16 @@ fn check_size(n: usize) -> Result<()> {
     Ok(())
 }
 
-/// Mean of a non-empty slice.
+/// Mean of a non-empty slice. If the plain sum overflows (values near `f64::MAX`), the terms
+/// are scaled first, so that the mean of finite values is always finite.
 fn average(values: &[f64]) -> f64 {
-    values.iter().sum::<f64>() / values.len() as f64
+    let n = values.len() as f64;
+    let sum = values.iter().sum::<f64>();
+    if sum.is_finite() {
+        sum / n
+    } else {
+        values.iter().map(|v| v / n).sum()
+    }
 }
 
 #[cfg(test)]
