@@ -300,3 +300,21 @@ fn overflowing_pp_values_are_reported() {
     assert!(matches!(r, Err(Error::NonFinite { .. })), "{r:?}");
     assert!(f.eval(0.0).is_ok());
 }
+
+// fuzz target `knots`, artifact crash-dbf6ef33: the averaged knots of parameters near f64::MAX
+// overflowed to ∞ ((1e300 + MAX) / 2), giving unsorted knots behind the debug assertion of the
+// trusted constructor (in release: an infinite knot).
+#[test]
+fn averaged_knots_of_huge_parameters_stay_finite_and_sorted() {
+    let params = [-1e-300, 1e300, f64::MAX];
+    for kv in [
+        KnotVector::averaged_with_end_derivatives(&params, 2),
+        KnotVector::averaged(&params, 2),
+        KnotVector::averaged(&[0.0, f64::MAX / 2.0, f64::MAX * 0.75, f64::MAX], 2),
+    ] {
+        let kv = kv.expect("finite parameters with a finite width");
+        let k = kv.as_slice();
+        assert!(k.iter().all(|x| x.is_finite()), "{k:?}");
+        assert!(k.windows(2).all(|w| w[0] <= w[1]), "{k:?}");
+    }
+}
