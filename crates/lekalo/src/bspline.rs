@@ -229,7 +229,7 @@ impl BSplineCurve {
     /// interior knot the derivatives are right-hand ones (left-hand at the right end).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
         let p = self.degree;
         let dim = self.dim();
@@ -258,6 +258,10 @@ impl BSplineCurve {
                 }
             }
         }
+        check_finite(
+            "derivatives (overflow: rescale the control points)",
+            out.as_slice(),
+        )?;
         Ok(out)
     }
 
@@ -301,6 +305,7 @@ impl BSplineCurve {
     /// [`Error::Degree`] for a degree-0 (piecewise constant) curve: its derivative is zero
     /// between the knots and undefined at its jumps, and degree −1 does not exist. (Use
     /// [`BSplineCurve::eval_derivatives`], which returns zero rows for orders above the degree.)
+    /// [`Error::NonFinite`] if a control point of the derivative overflows.
     pub fn derivative(&self) -> Result<BSplineCurve> {
         let p = self.degree;
         if p == 0 {
@@ -337,6 +342,10 @@ impl BSplineCurve {
                 knots.push(k);
             }
         }
+        check_finite(
+            "derivative control points (overflow: rescale the control points)",
+            &ctrl,
+        )?;
         let curve = BSplineCurve::from_raw(p - 1, knots, Points::from_raw(ctrl, dim));
         debug_assert!(
             curve.knots.validate_for(p - 1, curve.control.len()).is_ok(),

@@ -283,22 +283,32 @@ impl PiecewisePolynomial {
     /// the right end): row `r` is `D^r f(x)`. Orders `≥ k` are zero.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `m > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index(x)?;
         check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
-        Ok(self.piece_derivatives(j, x, m))
+        let out = self.piece_derivatives(j, x, m);
+        check_finite(
+            "derivatives (overflow: rescale the coefficients)",
+            out.as_slice(),
+        )?;
+        Ok(out)
     }
 
     /// As [`PiecewisePolynomial::eval_derivatives`] but with left-hand limits at interior
     /// breakpoints (right-hand at the left end `ξ_1`).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// As [`PiecewisePolynomial::eval_derivatives`].
     pub fn eval_derivatives_left(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index_left(x)?;
         check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
-        Ok(self.piece_derivatives(j, x, m))
+        let out = self.piece_derivatives(j, x, m);
+        check_finite(
+            "derivatives (overflow: rescale the coefficients)",
+            out.as_slice(),
+        )?;
+        Ok(out)
     }
 
     fn piece_derivatives(&self, j: usize, x: f64, m: usize) -> Points {
