@@ -270,7 +270,7 @@ pub fn basis_functions(knots: &KnotVector, degree: usize, t: f64) -> Result<(usi
 /// right-hand ones (left-hand at the right end of the domain).
 ///
 /// # Errors
-/// As [`basis_functions`].
+/// As [`basis_functions`]; [`Error::TooLarge`] if `n_ders > MAX_DERIVATIVE_ORDER`.
 pub fn basis_derivatives(
     knots: &KnotVector,
     degree: usize,

@@ -149,7 +149,7 @@ impl BezierSurface {
     /// in a direction are zero. O(order²·nu·nv·dim).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`.
+    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`; [`Error::TooLarge`] if `order > MAX_SURFACE_DERIVATIVE_ORDER`.
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         check_unit(u)?;
         check_unit(v)?;

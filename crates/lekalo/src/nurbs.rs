@@ -312,7 +312,7 @@ impl NurbsCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
         let a = self.homogeneous.eval_derivatives(t, order)?;
         let dim = self.dim();

@@ -572,7 +572,7 @@ impl BSplineSurface {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] for an absurd `order`.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_SURFACE_DERIVATIVE_ORDER`.
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let (p, q) = (self.degree_u, self.degree_v);
         let dim = self.dim();
