@@ -318,3 +318,37 @@ fn averaged_knots_of_huge_parameters_stay_finite_and_sorted() {
         assert!(k.windows(2).all(|w| w[0] <= w[1]), "{k:?}");
     }
 }
+
+// audit after the NaN finding in the pp-form: derivatives of data near f64::MAX overflow.
+// BezierCurve::eval_derivatives returned NaN as Ok, BSplineCurve::eval_derivatives ∞ as Ok, and
+// BSplineCurve::derivative built a curve with infinite control points (surfaces and NURBS
+// already reported NonFinite).
+#[test]
+fn overflowing_derivatives_are_reported() {
+    let m = f64::MAX;
+    let data = Points::new(vec![m, -m, m], 1).expect("finite");
+    let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], data.clone()).expect("valid");
+    let b = BezierCurve::new(data).expect("valid");
+    assert!(matches!(
+        c.eval_derivatives(0.5, 2),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        b.eval_derivatives(0.5, 2),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(c.derivative(), Err(Error::NonFinite { .. })));
+    let pp =
+        PiecewisePolynomial::new(vec![0.0, 1e200], 3, 1, vec![0.0, 1e300, 1e300]).expect("finite");
+    assert!(matches!(
+        pp.eval_derivatives(1e200, 1),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        pp.eval_derivatives_left(1e200, 1),
+        Err(Error::NonFinite { .. })
+    ));
+    // the values themselves are fine: a convex combination of finite points
+    assert_eq!(c.eval(0.5).expect("finite"), vec![0.0]);
+    assert_eq!(b.eval(0.5).expect("finite"), vec![0.0]);
+}
