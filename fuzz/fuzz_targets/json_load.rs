@@ -7,7 +7,7 @@ mod common;
 
 use common::{Num, Size};
 use lekalo::{
-    BSplineCurve, BezierCurve, BezierSegment, BezierSurface, BSplineSurface, KnotVector,
+    BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, BezierSurface, KnotVector,
     NurbsCurve, NurbsSurface, PiecewisePolynomial, Points, PpSpace,
 };
 use libfuzzer_sys::fuzz_target;

@@ -71,7 +71,11 @@ fuzz_target!(|input: Input| {
         PpSpace::new(&bp_strict, &nu, k),
         PpSpace::unconstrained(&bp_strict, k),
         PpSpace::unconstrained(&bp_strict, kk),
-        PpSpace::new(&bp_strict, &vec![kk - 1; bp_strict.len().saturating_sub(2)], kk),
+        PpSpace::new(
+            &bp_strict,
+            &vec![kk - 1; bp_strict.len().saturating_sub(2)],
+            kk,
+        ),
     ]
     .into_iter()
     .flatten()

@@ -55,13 +55,26 @@ fuzz_target!(|input: Input| {
         KnotVector::clamped_uniform(pu, nu),
         KnotVector::clamped_uniform(pv, nv),
     ) {
-        if let Ok(s) =
-            BSplineSurface::from_knot_vectors(pu, pv, a.clone(), b.clone(), points.clone(), (nu, nv))
-        {
+        if let Ok(s) = BSplineSurface::from_knot_vectors(
+            pu,
+            pv,
+            a.clone(),
+            b.clone(),
+            points.clone(),
+            (nu, nv),
+        ) {
             common::exercise_bspline_surface(&s, &input.uv, input.order);
             let _ = NurbsSurface::from_bspline(&s).eval(0.5, 0.5);
         }
-        if let Ok(s) = NurbsSurface::new(pu, pv, a.into_vec(), b.into_vec(), points.clone(), w, (nu, nv)) {
+        if let Ok(s) = NurbsSurface::new(
+            pu,
+            pv,
+            a.into_vec(),
+            b.into_vec(),
+            points.clone(),
+            w,
+            (nu, nv),
+        ) {
             common::exercise_nurbs_surface(&s, &input.uv, input.order);
         }
     }
