@@ -14,7 +14,7 @@
 //! last knot the last non-empty interval is closed, so that splines evaluate at their right end.
 //! Terms with a zero denominator are zero.
 
-use crate::error::{check_curve_derivative_order, Error, Result};
+use crate::error::{check_derivative_order, Error, Result, MAX_DERIVATIVE_ORDER};
 use crate::knots::KnotVector;
 
 /// Bernstein polynomial `b_{n,i}(t) = C(n,i) t^i (1 − t)^{n−i}`; zero for `i > n`.
@@ -50,10 +50,10 @@ pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
 /// # Errors
 /// [`Error::LengthMismatch`] if `out.len() != n + 1`.
 pub fn bernstein_all(n: usize, t: f64, out: &mut [f64]) -> Result<()> {
-    if out.len() != n + 1 {
+    if n.checked_add(1) != Some(out.len()) {
         return Err(Error::LengthMismatch {
             what: "output buffer (degree + 1)",
-            expected: n + 1,
+            expected: n.saturating_add(1),
             got: out.len(),
         });
     }
@@ -93,9 +93,9 @@ pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
 ///
 /// # Errors
 /// [`Error::TooLarge`] if `order` exceeds
-/// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER).
+/// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER).
 pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Result<Vec<f64>> {
-    check_curve_derivative_order(order)?;
+    check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
     let w = n + 1;
     let mut out = vec![0.0; (order + 1) * w];
     let mut lower = vec![0.0; w];
@@ -278,15 +278,15 @@ pub fn basis_functions(knots: &KnotVector, degree: usize, t: f64) -> Result<(usi
 /// right-hand ones (left-hand at the right end of the domain).
 ///
 /// # Errors
-/// As [`basis_functions`].
+/// As [`basis_functions`]; [`Error::TooLarge`] if `n_ders > MAX_DERIVATIVE_ORDER`.
 pub fn basis_derivatives(
     knots: &KnotVector,
     degree: usize,
     t: f64,
     n_ders: usize,
 ) -> Result<(usize, Vec<f64>)> {
-    check_curve_derivative_order(n_ders)?;
     let span = knots.find_span(degree, t)?;
+    check_derivative_order(n_ders, MAX_DERIVATIVE_ORDER)?;
     let mut out = vec![0.0; (n_ders + 1) * (degree + 1)];
     basis_ders_into(
         knots.as_slice(),
@@ -321,12 +321,13 @@ pub fn basis_derivatives(
 /// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_0, t_m]` or NaN.
 pub fn basis_function_recursive(knots: &KnotVector, i: usize, p: usize, t: f64) -> Result<f64> {
     let k = knots.as_slice();
-    if i + p + 1 >= k.len() {
+    let last_needed = i.checked_add(p).and_then(|v| v.checked_add(1));
+    if last_needed.is_none_or(|end| end >= k.len()) {
         return Err(Error::InvalidArgument {
             what: "basis function index",
             reason: format!(
                 "N_{{{i},{p}}} needs knots up to index {}, but the last knot index is {}",
-                i + p + 1,
+                i.saturating_add(p).saturating_add(1),
                 k.len() - 1
             ),
         });

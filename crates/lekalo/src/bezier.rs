@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::bernstein_all_unchecked;
 use crate::bspline::BSplineCurve;
-use crate::error::{check_curve_derivative_order, Error, Result};
+use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
 use crate::points::Points;
 
 /// A Bezier curve of degree `n` with control points `P_0 … P_n` on the domain `[0, 1]`.
@@ -182,10 +182,10 @@ impl BezierCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ t ≤ 1`.
+    /// [`Error::ParameterOutOfDomain`] unless `0 ≤ t ≤ 1`; [`Error::TooLarge`] if `order > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
         check_unit(t)?;
-        check_curve_derivative_order(order)?;
+        check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
         let n = self.degree();
         let dim = self.dim();
         let mut out = Points::zeros(order + 1, dim);
@@ -208,6 +208,10 @@ impl BezierCurve {
                 }
             }
         }
+        check_finite(
+            "derivatives (overflow: rescale the control points)",
+            out.as_slice(),
+        )?;
         Ok(out)
     }
 

@@ -6,12 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::bernstein_derivatives;
 use crate::bezier::BezierCurve;
-use crate::error::{Error, Result};
+use crate::error::{check_derivative_order, Error, Result, MAX_SURFACE_DERIVATIVE_ORDER};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::{
-    check_derivative_order, check_net, check_normal_dim, check_out, check_unit, unit_normal,
-    BSplineSurface,
+    check_net, check_normal_dim, check_out, check_unit, unit_normal, BSplineSurface,
 };
 
 /// A Bezier surface of degrees `(n, m) = (nu − 1, nv − 1)` with an `nu × nv` control net.
@@ -156,12 +155,11 @@ impl BezierSurface {
     /// in a direction are zero. O(order²·nu·nv·dim).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`; [`Error::TooLarge`] if `order`
-    /// exceeds [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
+    /// [`Error::ParameterOutOfDomain`] unless `u, v ∈ [0, 1]`; [`Error::TooLarge`] if `order > MAX_SURFACE_DERIVATIVE_ORDER`.
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         check_unit(u)?;
         check_unit(v)?;
-        check_derivative_order(order)?;
+        check_derivative_order(order, MAX_SURFACE_DERIVATIVE_ORDER)?;
         let (nu, nv) = self.net_size;
         let dim = self.dim();
         let side = order + 1;

@@ -109,14 +109,14 @@ pub(crate) fn bezier_as_bspline(b: &BezierCurve) -> BSplineCurve {
     BSplineCurve::from_raw(p, knots, b.control_points().clone())
 }
 
-/// Refuses derivative orders above [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER)
+/// Refuses derivative orders above [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER)
 /// before any `(order + 1) · dim` allocation can overflow.
 pub(crate) fn check_order(order: usize) -> Result<()> {
-    if order > crate::MAX_CURVE_DERIVATIVE_ORDER {
+    if order > crate::MAX_DERIVATIVE_ORDER {
         return Err(Error::TooLarge {
             what: "curve derivative order",
             size: order,
-            max: crate::MAX_CURVE_DERIVATIVE_ORDER,
+            max: crate::MAX_DERIVATIVE_ORDER,
         });
     }
     Ok(())
@@ -541,7 +541,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; [`Error::TooLarge`] for an order above
-    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER); errors of the curves.
+    /// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER); errors of the curves.
     pub fn eval_derivatives(&self, u: f64, order: usize) -> Result<Points> {
         check_order(order)?;
         let dim = self.first.dim();

@@ -207,6 +207,12 @@ fn circle_through(points: [&[f64]; 3]) -> Option<Circle> {
     }
     let n2 = dot(&e2, &e2).sqrt();
     e2.iter_mut().for_each(|v| *v /= n2);
+    // a second Gram–Schmidt pass ("twice is enough"): r2 is nearly parallel to e1 for nearly
+    // collinear points, and the first pass leaves e2·e1 ~ ε·r/chord, which atan2 below would turn
+    // into an angle error of that size (a position error of r times it)
+    let again = ortho(&e2);
+    let n2 = dot(&again, &again).sqrt();
+    e2 = again.iter().map(|v| v / n2).collect();
     let angle = |v: &[f64], e2: &[f64]| {
         dot(v, e2)
             .atan2(dot(v, &e1))
@@ -219,6 +225,19 @@ fn circle_through(points: [&[f64]; 3]) -> Option<Circle> {
         phi1 = std::f64::consts::TAU - phi1;
         phi2 = std::f64::consts::TAU - phi2;
     }
+    // small arc angles from their chords, 2·asin(c / 2r): accurate relative to the angle, so the
+    // arcs meet the points to rounding of the chord even when r is 10⁶ chords
+    let chord_angle = |p: &[f64], q: &[f64], approx: f64| {
+        if approx < std::f64::consts::FRAC_PI_2 {
+            let c = (0..dim).map(|d| (p[d] - q[d]).powi(2)).sum::<f64>().sqrt();
+            2.0 * (0.5 * c / radius).min(1.0).asin()
+        } else {
+            approx
+        }
+    };
+    let beta = chord_angle(p1, p2, phi2 - phi1);
+    phi1 = chord_angle(p0, p1, phi1);
+    phi2 = phi1 + beta;
     Some(Circle {
         centre,
         radius,
@@ -229,21 +248,30 @@ fn circle_through(points: [&[f64]; 3]) -> Option<Circle> {
     })
 }
 
-/// An arc `c(σ) = O + r (cos θ e_1 + sin θ e_2)` on `[a, b]` with
-/// `θ(a + h) = θ_0 + θ_1 h + θ_2 h²`.
+/// An arc `c(σ) = O + r (cos θ e_1 + sin θ e_2)` on `[a, b]` with `θ(σ) = φ + u(σ)`,
+/// `u(σ) = u_1 σ + u_2 σ²`, where `σ = 0` is the middle point `P_1 = O + r (cos φ e_1 + sin φ e_2)`
+/// of the local circle.
+///
+/// Points are evaluated relative to `P_1` (the `anchor`), by the half-angle differences
+/// `cos θ − cos φ = −2 sin(φ + u/2) sin(u/2)`, `sin θ − sin φ = 2 cos(φ + u/2) sin(u/2)`, so that
+/// rounding scales with the chord, not with the radius: nearly collinear triples have radii of
+/// up to ~10⁶ chords (see [`CircularArcs::COLLINEAR_SIN2`]), where `O + r e^{iθ}` would lose six
+/// digits at the data points.
 #[derive(Debug, Clone)]
 struct ArcPiece {
-    centre: Vec<f64>,
+    anchor: Vec<f64>,
+    phi: f64,
     radius: f64,
     e1: Vec<f64>,
     e2: Vec<f64>,
     domain: (f64, f64),
-    theta: [f64; 3],
+    /// `[u_1, u_2]`.
+    u: [f64; 2],
 }
 
 impl ParametricCurve for ArcPiece {
     fn dim(&self) -> usize {
-        self.centre.len()
+        self.anchor.len()
     }
     fn domain(&self) -> (f64, f64) {
         self.domain
@@ -266,10 +294,10 @@ impl ParametricCurve for ArcPiece {
                 got: out.len(),
             });
         }
-        let h = t - a;
-        let [t0, t1, t2] = self.theta;
-        let theta = t0 + t1 * h + t2 * h * h;
-        let speed = t1 + 2.0 * t2 * h;
+        let [u1, t2] = self.u;
+        let u = (u1 + t2 * t) * t;
+        let theta = self.phi + u;
+        let speed = u1 + 2.0 * t2 * t;
         let (s, c) = theta.sin_cos();
         // complex Taylor coefficients (re, im)
         let (mut prev, mut cur) = ((0.0, 0.0), (1.0, 0.0));
@@ -286,12 +314,21 @@ impl ParametricCurve for ArcPiece {
                 cur = next;
                 factorial *= n;
             }
+            if l == 0 {
+                // P_1 + r (e^{iθ} − e^{iφ}) by half-angle differences
+                let sh = (0.5 * u).sin();
+                let (sm, cm) = (self.phi + 0.5 * u).sin_cos();
+                let (dc, ds) = (-2.0 * sm * sh, 2.0 * cm * sh);
+                for d in 0..dim {
+                    out[d] = self.anchor[d] + self.radius * (dc * self.e1[d] + ds * self.e2[d]);
+                }
+                continue;
+            }
             // l! e_l e^{iθ}
             let re = factorial * (cur.0 * c - cur.1 * s);
             let im = factorial * (cur.0 * s + cur.1 * c);
             for d in 0..dim {
-                let base = if l == 0 { self.centre[d] } else { 0.0 };
-                out[l * dim + d] = base + self.radius * (re * self.e1[d] + im * self.e2[d]);
+                out[l * dim + d] = self.radius * (re * self.e1[d] + im * self.e2[d]);
             }
         }
         Ok(())
@@ -322,20 +359,22 @@ impl LocalCurves for CircularArcs {
             };
         };
         let (alpha, beta) = (circle.phi1, circle.phi2 - circle.phi1);
-        let arc = |domain: (f64, f64), theta: [f64; 3]| -> SharedCurve {
+        let arc = |domain: (f64, f64), u: [f64; 2]| -> SharedCurve {
             Arc::new(ArcPiece {
-                centre: circle.centre.clone(),
+                anchor: points[1].to_vec(),
+                phi: alpha,
                 radius: circle.radius,
                 e1: circle.e1.clone(),
                 e2: circle.e2.clone(),
                 domain,
-                theta,
+                u,
             })
         };
         match self.parametrization {
+            // θ(σ) = α + u(σ): the middle point P_1 sits at angle φ_1 = α, σ = 0
             ArcParametrization::UniformAngle => Ok([
-                arc((-dl, 0.0), [0.0, alpha / dl, 0.0]),
-                arc((0.0, dr), [alpha, beta / dr, 0.0]),
+                arc((-dl, 0.0), [alpha / dl, 0.0]),
+                arc((0.0, dr), [beta / dr, 0.0]),
             ]),
             ArcParametrization::GlobalAngle => {
                 // Newton form θ(σ) = f01 (σ + Δ_l) + c (σ + Δ_l) σ through (−Δ_l, 0), (0, α),
@@ -353,9 +392,10 @@ impl LocalCurves for CircularArcs {
                         ),
                     });
                 }
+                // the same quadratic about σ = 0: θ(σ) = α + slope(0) σ + c σ²
                 Ok([
-                    arc((-dl, 0.0), [0.0, slope(-dl), c]),
-                    arc((0.0, dr), [alpha, slope(0.0), c]),
+                    arc((-dl, 0.0), [slope(0.0), c]),
+                    arc((0.0, dr), [slope(0.0), c]),
                 ])
             }
             ArcParametrization::RationalQuadratic => {
@@ -666,7 +706,7 @@ impl BlendSpline {
     /// # Errors
     /// [`Error::InvalidArgument`] if `i` is not a segment; [`Error::ParameterOutOfDomain`];
     /// [`Error::TooLarge`] for an order above
-    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER).
+    /// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER).
     pub fn segment_derivatives(&self, i: usize, u: f64, order: usize) -> Result<Points> {
         crate::blend::check_order(order)?;
         let seg = self.segments.get(i).ok_or_else(|| Error::InvalidArgument {
@@ -872,14 +912,32 @@ mod tests {
     // next-lower derivative
     #[test]
     fn arc_piece_derivatives() {
-        let piece = ArcPiece {
-            centre: vec![1.0, -2.0, 0.5],
-            radius: 1.5,
-            e1: vec![0.6, 0.8, 0.0],
-            e2: vec![0.0, 0.0, 1.0],
-            domain: (0.0, 2.0),
-            theta: [0.3, 0.9, -0.2],
+        // θ(σ) = 0.3 + 0.9 σ − 0.2 σ² on the circle O + 1.5 (cos θ e_1 + sin θ e_2)
+        let (centre, radius, phi) = ([1.0, -2.0, 0.5], 1.5, 0.3_f64);
+        let (e1, e2) = ([0.6, 0.8, 0.0], [0.0, 0.0, 1.0]);
+        let on_circle = |theta: f64| -> Vec<f64> {
+            (0..3)
+                .map(|d| centre[d] + radius * (theta.cos() * e1[d] + theta.sin() * e2[d]))
+                .collect()
         };
+        let piece = ArcPiece {
+            anchor: on_circle(phi),
+            phi,
+            radius,
+            e1: e1.to_vec(),
+            e2: e2.to_vec(),
+            domain: (0.0, 2.0),
+            u: [0.9, -0.2],
+        };
+        // the anchored half-angle form is the circle
+        for k in 0..=8 {
+            let t = f64::from(k) / 4.0;
+            let q = piece.eval(t).unwrap();
+            let expect = on_circle(phi + 0.9 * t - 0.2 * t * t);
+            for d in 0..3 {
+                assert!((q[d] - expect[d]).abs() < 1e-15, "point at {t}");
+            }
+        }
         for order in 1..=5 {
             let mut out = vec![0.0; (order + 1) * 3];
             piece.eval_derivatives_into(0.7, order, &mut out).unwrap();
@@ -896,6 +954,36 @@ mod tests {
             piece.eval_derivatives_into(0.5, 1, &mut [0.0; 3]),
             Err(Error::LengthMismatch { .. })
         ));
+    }
+
+    // a nearly collinear triple (radius ~10⁵ chords): the arc pieces still meet the data points
+    // to rounding of the chord, not of the radius
+    #[test]
+    fn nearly_collinear_arcs_hit_the_points() {
+        let p = [[0.0, 0.0], [1.0, 1e-5], [2.0, 0.0]];
+        let circle = circle_through([&p[0], &p[1], &p[2]]).unwrap();
+        assert!(circle.radius > 1e4, "radius {}", circle.radius);
+        for par in [
+            ArcParametrization::UniformAngle,
+            ArcParametrization::GlobalAngle,
+        ] {
+            let arcs = CircularArcs::new(par);
+            let [left, right] = arcs.pieces([&p[0], &p[1], &p[2]], (1.0, 1.0)).unwrap();
+            let checks = [
+                (&left, -1.0, p[0]),
+                (&left, 0.0, p[1]),
+                (&right, 0.0, p[1]),
+                (&right, 1.0, p[2]),
+            ];
+            for (piece, t, q) in checks {
+                let got = piece.eval(t).unwrap();
+                // 1e-12 of the extent (2): the radius of such a circle is itself only known to
+                // ~1e-7 relative, which moves the sagitta (1e-5) by ~1e-12
+                for d in 0..2 {
+                    assert!((got[d] - q[d]).abs() < 2e-12, "{par:?} at {t}: {got:?}");
+                }
+            }
+        }
     }
 
     // rational pieces are the arcs: every point at distance r from the centre

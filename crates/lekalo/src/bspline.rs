@@ -12,7 +12,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bezier::{BezierCurve, BezierSegment};
-use crate::error::{check_curve_derivative_order, check_finite, Error, Result};
+use crate::error::{
+    check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -82,7 +84,7 @@ impl BSplineCurve {
         if control.is_empty() {
             return Err(Error::TooFew {
                 what: "control points",
-                min: degree + 1,
+                min: degree.saturating_add(1),
                 got: 0,
             });
         }
@@ -232,9 +234,9 @@ impl BSplineCurve {
     /// interior knot the derivatives are right-hand ones (left-hand at the right end).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
-        check_curve_derivative_order(order)?;
+        check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
         let p = self.degree;
         let dim = self.dim();
         let span = self.knots.find_span(p, t)?;
@@ -261,6 +263,10 @@ impl BSplineCurve {
                 }
             }
         }
+        check_finite(
+            "derivatives (overflow: rescale the control points)",
+            out.as_slice(),
+        )?;
         Ok(out)
     }
 
@@ -304,6 +310,7 @@ impl BSplineCurve {
     /// [`Error::Degree`] for a degree-0 (piecewise constant) curve: its derivative is zero
     /// between the knots and undefined at its jumps, and degree −1 does not exist. (Use
     /// [`BSplineCurve::eval_derivatives`], which returns zero rows for orders above the degree.)
+    /// [`Error::NonFinite`] if a control point of the derivative overflows.
     pub fn derivative(&self) -> Result<BSplineCurve> {
         let p = self.degree;
         if p == 0 {
@@ -340,6 +347,10 @@ impl BSplineCurve {
                 knots.push(k);
             }
         }
+        check_finite(
+            "derivative control points (overflow: rescale the control points)",
+            &ctrl,
+        )?;
         let curve = BSplineCurve::from_raw(p - 1, knots, Points::from_raw(ctrl, dim));
         debug_assert!(
             curve.knots.validate_for(p - 1, curve.control.len()).is_ok(),
@@ -486,6 +497,14 @@ impl BSplineCurve {
                 });
             }
             i += run;
+        }
+        let size = (self.control.len() + x.len()).saturating_mul(self.dim());
+        if size > MAX_SCALARS {
+            return Err(Error::TooLarge {
+                what: "refined control points",
+                size,
+                max: MAX_SCALARS,
+            });
         }
         Ok(self.refine_unchecked(x))
     }

@@ -207,7 +207,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> CornerTransition<C1, C2> {
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`; [`Error::TooLarge`] for an order above
-    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER); errors of the curves.
+    /// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER); errors of the curves.
     pub fn eval_derivatives(&self, u: f64, order: usize) -> Result<Points> {
         check_order(order)?;
         let dim = self.before.dim();

@@ -232,7 +232,7 @@ pub fn bspline_divided_difference(
     t: f64,
 ) -> Result<f64> {
     let all = knots.as_slice();
-    let order = degree + 1;
+    let order = degree.saturating_add(1); // saturated: then the check below fails
     if i.checked_add(order).is_none_or(|end| end >= all.len()) {
         return Err(Error::InvalidArgument {
             what: "basis function index",

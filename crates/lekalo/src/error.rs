@@ -343,13 +343,39 @@ pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
 }
 
-/// Refuses derivative orders above [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER)
-/// before any buffer of `order + 1` rows is allocated.
+/// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
+/// refused with [`Error::TooLarge`] instead of being allocated.
+pub const MAX_SCALARS: usize = 1 << 31;
+
+/// Largest degree accepted where the degree alone sets an allocation or the running time, i.e.
+/// where no user data of that size backs it ([`KnotVector::clamped_uniform`],
+/// [`KnotVector::from_parameters`], [`KnotVector::from_breakpoints`] and the order of a
+/// [`PpSpace`]). Larger degrees are refused with [`Error::Degree`]: evaluation costs O(p²) per
+/// point, and Bernstein/B-spline bases of degree > 1024 have no practical use.
+///
+/// [`KnotVector::clamped_uniform`]: crate::KnotVector::clamped_uniform
+/// [`KnotVector::from_parameters`]: crate::KnotVector::from_parameters
+/// [`KnotVector::from_breakpoints`]: crate::KnotVector::from_breakpoints
+/// [`PpSpace`]: crate::PpSpace
+pub const MAX_DEGREE: usize = 1 << 10;
+
+/// Largest derivative order accepted by the `eval_derivatives` of curves, piecewise polynomials
+/// and the basis kernels: the result has `order + 1` rows and a rational curve costs O(order²).
+/// Larger orders are refused with [`Error::TooLarge`] instead of allocating the table.
+/// (Polynomial derivatives above the degree are zero; rational ones past about order 170 overflow
+/// because of the `k!` growth.)
+pub const MAX_DERIVATIVE_ORDER: usize = 1 << 10;
+
+/// Largest derivative order accepted by the `eval_derivatives` of surfaces: the table has
+/// `(order + 1)²` entries and the rational quotient rule (P&T A4.4) costs O(order⁴).
+pub const MAX_SURFACE_DERIVATIVE_ORDER: usize = 1 << 6;
+
+/// Refuses a derivative order above `max` ([`MAX_DERIVATIVE_ORDER`] or
+/// [`MAX_SURFACE_DERIVATIVE_ORDER`]).
 ///
 /// # Errors
-/// [`Error::TooLarge`].
-pub(crate) fn check_curve_derivative_order(order: usize) -> Result<()> {
-    let max = crate::MAX_CURVE_DERIVATIVE_ORDER;
+/// [`Error::TooLarge`] naming the derivative order.
+pub(crate) fn check_derivative_order(order: usize, max: usize) -> Result<()> {
     if order > max {
         return Err(Error::TooLarge {
             what: "derivative order",
@@ -360,9 +386,19 @@ pub(crate) fn check_curve_derivative_order(order: usize) -> Result<()> {
     Ok(())
 }
 
-/// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
-/// refused with [`Error::TooLarge`] instead of being allocated.
-pub const MAX_SCALARS: usize = 1 << 31;
+/// Refuses a degree above [`MAX_DEGREE`] where the degree alone sets the work.
+///
+/// # Errors
+/// [`Error::Degree`].
+pub(crate) fn check_degree_bound(degree: usize) -> Result<()> {
+    if degree > MAX_DEGREE {
+        return Err(Error::Degree {
+            degree,
+            reason: format!("at most {MAX_DEGREE} (lekalo::MAX_DEGREE) is supported"),
+        });
+    }
+    Ok(())
+}
 
 #[cfg(test)]
 mod tests {

@@ -14,7 +14,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{check_degree_bound, check_finite, Error, Result, MAX_SCALARS};
 
 /// A validated, non-decreasing sequence of finite knots with a non-empty range.
 ///
@@ -50,7 +50,7 @@ impl KnotVector {
     /// # Errors
     /// [`Error::TooFew`] for fewer than 2 knots; [`Error::NonFinite`];
     /// [`Error::KnotsNotSorted`] at the first decrease; [`Error::EmptyDomain`] if all knots are
-    /// equal; [`Error::TooLarge`].
+    /// equal; [`Error::InvalidArgument`] if `t_last − t_0` overflows; [`Error::TooLarge`].
     pub fn new(knots: Vec<f64>) -> Result<Self> {
         if knots.len() < 2 {
             return Err(Error::TooFew {
@@ -80,6 +80,7 @@ impl KnotVector {
         if min >= max {
             return Err(Error::EmptyDomain { min, max });
         }
+        check_width("knots", min, max)?;
         Ok(KnotVector { knots })
     }
 
@@ -100,7 +101,7 @@ impl KnotVector {
     /// [`Error::Degree`], [`Error::LengthMismatch`], [`Error::KnotMultiplicity`],
     /// [`Error::EmptyDomain`].
     pub fn validate_for(&self, degree: usize, n_ctrl: usize) -> Result<()> {
-        if n_ctrl < degree + 1 {
+        if n_ctrl <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -109,7 +110,8 @@ impl KnotVector {
                 ),
             });
         }
-        let expected = n_ctrl + degree + 1;
+        // n_ctrl > degree, so only the sum can overflow (and then cannot match any length)
+        let expected = n_ctrl.saturating_add(degree).saturating_add(1);
         if self.knots.len() != expected {
             return Err(Error::LengthMismatch {
                 what: "knots (control points + degree + 1)",
@@ -146,7 +148,7 @@ impl KnotVector {
     /// # Errors
     /// [`Error::Degree`] if `n_ctrl < degree + 1`; [`Error::TooLarge`].
     pub fn clamped_uniform(degree: usize, n_ctrl: usize) -> Result<Self> {
-        if n_ctrl < degree + 1 {
+        if n_ctrl <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -155,7 +157,8 @@ impl KnotVector {
                 ),
             });
         }
-        check_size(n_ctrl + degree + 1)?;
+        check_degree_bound(degree)?;
+        check_size(n_ctrl.saturating_add(degree + 1))?;
         let n = n_ctrl - 1;
         let pieces = n - degree + 1;
         let mut knots = Vec::with_capacity(n_ctrl + degree + 1);
@@ -208,7 +211,7 @@ impl KnotVector {
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + degree + 4);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
-        // n − p + 2 interior knots (none when p = n + 2: two points and two derivatives)
+        // n − p + 2 interior knots; none when n + 2 = p (checked above: n + 2 ≥ p)
         for j in 0..(n + 2 - degree) {
             knots.push(average(&params[j..j + degree]));
         }
@@ -231,6 +234,7 @@ impl KnotVector {
                 reason: "knots at the parameters need degree ≥ 1".into(),
             });
         }
+        check_degree_bound(degree)?;
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + 2 * degree + 1);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
@@ -274,6 +278,7 @@ impl KnotVector {
                 reason: "the order k = degree + 1 must be at least 1".into(),
             });
         }
+        check_degree_bound(order - 1)?;
         if breakpoints.len() < 2 {
             return Err(Error::TooFew {
                 what: "breakpoints",
@@ -294,6 +299,11 @@ impl KnotVector {
                 ),
             });
         }
+        check_width(
+            "breakpoints",
+            breakpoints[0],
+            breakpoints[breakpoints.len() - 1],
+        )?;
         let interior = breakpoints.len() - 2;
         if continuity.len() != interior {
             return Err(Error::LengthMismatch {
@@ -384,7 +394,7 @@ impl KnotVector {
     #[must_use]
     pub fn is_clamped(&self, degree: usize) -> bool {
         let m = self.knots.len();
-        m >= 2 * degree + 2
+        m / 2 > degree // m ≥ 2·degree + 2, without overflow
             && self.knots[..=degree].iter().all(|&k| k == self.knots[0])
             && self.knots[m - degree - 1..]
                 .iter()
@@ -398,7 +408,8 @@ impl KnotVector {
     /// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_p, t_{n+1}]` or NaN;
     /// [`Error::Degree`] if the knots are too few for `degree`.
     pub fn find_span(&self, degree: usize, t: f64) -> Result<usize> {
-        if self.knots.len() < 2 * degree + 2 {
+        // len < 2·degree + 2, without overflow
+        if self.knots.len() / 2 <= degree {
             return Err(Error::Degree {
                 degree,
                 reason: format!(
@@ -473,7 +484,7 @@ impl SpanCursor<'_> {
     pub fn find(&mut self, t: f64) -> Result<usize> {
         let k = &self.knots.knots;
         let p = self.degree;
-        if k.len() < 2 * p + 2 {
+        if k.len() / 2 <= p {
             return self.knots.find_span(p, t);
         }
         let (min, max) = self.knots.domain(p);
@@ -517,7 +528,7 @@ impl SpanCursor<'_> {
 ///
 /// # Errors
 /// [`Error::TooFew`], [`Error::NonFinite`], [`Error::KnotsNotSorted`] (naming the parameter
-/// index), [`Error::EmptyDomain`].
+/// index), [`Error::EmptyDomain`]; [`Error::InvalidArgument`] if `t̄_n − t̄_0` overflows.
 pub fn check_parameters(params: &[f64]) -> Result<()> {
     if params.len() < 2 {
         return Err(Error::TooFew {
@@ -541,6 +552,20 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
     if min >= max {
         return Err(Error::EmptyDomain { min, max });
     }
+    check_width("parameters", min, max)
+}
+
+/// Every basis function divides by knot differences: the width `max − min` must be finite.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `what` if `max − min` overflows.
+fn check_width(what: &'static str, min: f64, max: f64) -> Result<()> {
+    if !(max - min).is_finite() {
+        return Err(Error::InvalidArgument {
+            what,
+            reason: format!("the width of [{min}, {max}] overflows; rescale them"),
+        });
+    }
     Ok(())
 }
 
@@ -556,7 +581,7 @@ fn check_interpolation_degree(
         });
     }
     // n_points + (min_points_plus − n_points) extra conditions must carry degree + 1 unknowns
-    if min_points_plus < degree + 1 {
+    if min_points_plus <= degree {
         return Err(Error::Degree {
             degree,
             reason: format!(
@@ -579,9 +604,16 @@ fn check_size(n: usize) -> Result<()> {
     Ok(())
 }
 
-/// Mean of a non-empty slice.
+/// Mean of a non-empty slice. If the plain sum overflows (values near `f64::MAX`), the terms
+/// are scaled first, so that the mean of finite values is always finite.
 fn average(values: &[f64]) -> f64 {
-    values.iter().sum::<f64>() / values.len() as f64
+    let n = values.len() as f64;
+    let sum = values.iter().sum::<f64>();
+    if sum.is_finite() {
+        sum / n
+    } else {
+        values.iter().map(|v| v / n).sum()
+    }
 }
 
 #[cfg(test)]

@@ -64,10 +64,10 @@ pub use error::{Error, Result, MAX_SCALARS};
 pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use knots::{check_parameters, KnotVector, SpanCursor};
-pub use nurbs::{NurbsCurve, MAX_CURVE_DERIVATIVE_ORDER};
+pub use nurbs::NurbsCurve;
 pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
-pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
+pub use surface::BSplineSurface;
 pub use surface_ops::{BezierPatch, RationalBezierPatch};
 
 // -- interpolation (issue 3) --
@@ -137,3 +137,6 @@ pub use divdiff::{
 };
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+
+// -- robustness (issue 9) --
+pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
 use crate::points::{
     check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
 };
@@ -274,17 +274,9 @@ impl NurbsCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows;
-    /// [`Error::TooLarge`] if `order` exceeds [`MAX_CURVE_DERIVATIVE_ORDER`] (the rational
-    /// quotient rule costs O(order²)).
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, t: f64, order: usize) -> Result<Points> {
-        if order > MAX_CURVE_DERIVATIVE_ORDER {
-            return Err(Error::TooLarge {
-                what: "curve derivative order",
-                size: order,
-                max: MAX_CURVE_DERIVATIVE_ORDER,
-            });
-        }
+        check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
         let a = self.homogeneous.eval_derivatives(t, order)?;
         let dim = self.dim();
         let mut out = vec![0.0; (order + 1) * dim];
@@ -292,10 +284,6 @@ impl NurbsCurve {
         Points::new(out, dim)
     }
 }
-
-/// Largest derivative order accepted by [`NurbsCurve::eval_derivatives`]; larger orders are
-/// refused with [`Error::TooLarge`] instead of allocating and computing O(order²) terms.
-pub const MAX_CURVE_DERIVATIVE_ORDER: usize = 1024;
 
 /// Quotient rule for the derivatives of `C = A / w` (P&T eq. 4.8, Algorithm A4.2).
 ///

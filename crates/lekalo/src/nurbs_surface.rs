@@ -277,9 +277,7 @@ impl NurbsSurface {
     /// O(order⁴·dim) on top of the polynomial derivatives.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::NonFinite`] if a derivative overflows;
-    /// [`Error::TooLarge`] if `order` exceeds
-    /// [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_SURFACE_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let hom = self.homogeneous.eval_derivatives(u, v, order)?;
         let dim = self.dim();

@@ -14,7 +14,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::bspline::BSplineCurve;
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -92,6 +94,17 @@ pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
             ),
         });
     }
+    let width = breakpoints[breakpoints.len() - 1] - breakpoints[0];
+    if !width.is_finite() {
+        return Err(Error::InvalidArgument {
+            what: "breakpoints",
+            reason: format!(
+                "the width ξ_last − ξ_1 of [{}, {}] overflows to {width}; rescale the breakpoints",
+                breakpoints[0],
+                breakpoints[breakpoints.len() - 1]
+            ),
+        });
+    }
     Ok(())
 }
 
@@ -101,7 +114,7 @@ impl PiecewisePolynomial {
     ///
     /// # Errors
     /// [`Error::TooFew`] for fewer than two breakpoints; [`Error::InvalidArgument`] if they are
-    /// not strictly increasing; [`Error::Degree`] if `order == 0`; [`Error::Dimension`] if
+    /// not strictly increasing or their width overflows; [`Error::Degree`] if `order == 0`; [`Error::Dimension`] if
     /// `dim == 0`; [`Error::LengthMismatch`] for a wrong number of coefficients;
     /// [`Error::NonFinite`]; [`Error::TooLarge`].
     pub fn new(
@@ -247,7 +260,8 @@ impl PiecewisePolynomial {
     /// As [`PiecewisePolynomial::eval`], into a caller's buffer of length `dim`; no allocation.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] for a wrong buffer length.
+    /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] for a wrong buffer length;
+    /// [`Error::NonFinite`] if the value overflows (huge coefficients: rescale them).
     pub fn eval_into(&self, x: f64, out: &mut [f64]) -> Result<()> {
         if out.len() != self.dim {
             return Err(Error::LengthMismatch {
@@ -258,6 +272,10 @@ impl PiecewisePolynomial {
         }
         let j = self.piece_index(x)?;
         self.piece_derivative_into(j, x, 0, out);
+        check_finite(
+            "piecewise polynomial value (overflow: rescale the coefficients)",
+            out,
+        )?;
         Ok(())
     }
 
@@ -265,20 +283,32 @@ impl PiecewisePolynomial {
     /// the right end): row `r` is `D^r f(x)`. Orders `≥ k` are zero.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `m > MAX_DERIVATIVE_ORDER`; [`Error::NonFinite`] if a derivative overflows.
     pub fn eval_derivatives(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index(x)?;
-        Ok(self.piece_derivatives(j, x, m))
+        check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
+        let out = self.piece_derivatives(j, x, m);
+        check_finite(
+            "derivatives (overflow: rescale the coefficients)",
+            out.as_slice(),
+        )?;
+        Ok(out)
     }
 
     /// As [`PiecewisePolynomial::eval_derivatives`] but with left-hand limits at interior
     /// breakpoints (right-hand at the left end `ξ_1`).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`].
+    /// As [`PiecewisePolynomial::eval_derivatives`].
     pub fn eval_derivatives_left(&self, x: f64, m: usize) -> Result<Points> {
         let j = self.piece_index_left(x)?;
-        Ok(self.piece_derivatives(j, x, m))
+        check_derivative_order(m, MAX_DERIVATIVE_ORDER)?;
+        let out = self.piece_derivatives(j, x, m);
+        check_finite(
+            "derivatives (overflow: rescale the coefficients)",
+            out.as_slice(),
+        )?;
+        Ok(out)
     }
 
     fn piece_derivatives(&self, j: usize, x: f64, m: usize) -> Points {

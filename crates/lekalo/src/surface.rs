@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
-use crate::error::{Error, Result, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, Error, Result, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -102,26 +104,6 @@ impl SurfaceScratch {
     }
 }
 
-/// Largest derivative order accepted by the surface `eval_derivatives` methods: the table has
-/// `(order + 1)²` points and the rational quotient rule costs O(order⁴), so absurd orders are
-/// refused with [`Error::TooLarge`] instead of exhausting memory or time.
-pub const MAX_SURFACE_DERIVATIVE_ORDER: usize = 64;
-
-/// Returns `order` if it is at most [`MAX_SURFACE_DERIVATIVE_ORDER`].
-///
-/// # Errors
-/// [`Error::TooLarge`].
-pub(crate) fn check_derivative_order(order: usize) -> Result<usize> {
-    if order > MAX_SURFACE_DERIVATIVE_ORDER {
-        return Err(Error::TooLarge {
-            what: "surface derivative order",
-            size: order,
-            max: MAX_SURFACE_DERIVATIVE_ORDER,
-        });
-    }
-    Ok(order)
-}
-
 /// Checks the net size against the number of control points; returns `nu · nv`.
 ///
 /// # Errors
@@ -161,7 +143,7 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
 /// Validates a knot vector for one direction of a surface with `n` control points in that
 /// direction, with errors that name the direction.
 fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) -> Result<()> {
-    if n < degree + 1 {
+    if n <= degree {
         return Err(Error::Degree {
             degree,
             reason: format!(
@@ -172,7 +154,8 @@ fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) 
             ),
         });
     }
-    let expected = n + degree + 1;
+    // n > degree, so only the sum can overflow (and then cannot match any length)
+    let expected = n.saturating_add(degree).saturating_add(1);
     if knots.len() != expected {
         return Err(Error::LengthMismatch {
             what: dir.knot_count(),
@@ -589,14 +572,21 @@ impl BSplineSurface {
     /// ```
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order` exceeds
-    /// [`MAX_SURFACE_DERIVATIVE_ORDER`](crate::MAX_SURFACE_DERIVATIVE_ORDER).
+    /// [`Error::ParameterOutOfDomain`]; [`Error::TooLarge`] if `order > MAX_SURFACE_DERIVATIVE_ORDER`.
     pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> Result<Points> {
         let (p, q) = (self.degree_u, self.degree_v);
         let dim = self.dim();
         let su = self.knots_u.find_span(p, u)?;
         let sv = self.knots_v.find_span(q, v)?;
-        let side = check_derivative_order(order)? + 1;
+        check_derivative_order(order, MAX_SURFACE_DERIVATIVE_ORDER)?;
+        let side = order
+            .checked_add(1)
+            .filter(|&s| s.saturating_mul(s).saturating_mul(dim) <= MAX_SCALARS);
+        let side = side.ok_or(Error::TooLarge {
+            what: "derivative table ((order + 1)² points)",
+            size: order,
+            max: 1 << 15,
+        })?;
         let (wu, wv) = (p + 1, q + 1);
         let (du, dv) = (order.min(p), order.min(q));
         let mut nu = vec![0.0; (du + 1) * wu];

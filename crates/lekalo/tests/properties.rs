@@ -865,9 +865,14 @@ fn decomposition_golden_clamped_quadratic() {
 
 #[test]
 fn reverse_overflow_is_an_error() {
-    // domain [1e308, 1.5e308]; the first knot maps to 1.5e308 + (1e308 + 1.7e308) = inf
+    // knots whose width overflows are refused when the curve is built
     let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
-    let c = BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl).unwrap();
+    assert!(matches!(
+        BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl.clone()),
+        Err(Error::InvalidArgument { what: "knots", .. })
+    ));
+    // domain [1e308, 1.5e308]: a + b overflows when the knots are mirrored
+    let c = BSplineCurve::new(1, vec![0.0, 1e308, 1.5e308, 1.7e308], ctrl).unwrap();
     assert!(matches!(c.reverse(), Err(Error::NonFinite { .. })));
 }
 

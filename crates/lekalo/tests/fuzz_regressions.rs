@@ -1,0 +1,354 @@
+//! One test per crash, hang or huge allocation ever found by the fuzz targets in `fuzz/` (or by
+//! the audit that followed a fuzz finding of the same class), issue 9.
+//!
+//! Each test names where it came from and the commit that fixed it; every one failed (panicked
+//! on an integer overflow, or tried to allocate gigabytes) before the fix. Tests run in the debug
+//! profile, so integer overflow panics here exactly as it does under the fuzzer.
+
+use lekalo::basis::{basis_derivatives, basis_function_recursive, bernstein_all};
+use lekalo::{
+    bspline_divided_difference, BSplineCurve, BSplineSurface, BezierCurve, BezierSurface, Error,
+    KnotVector, NurbsCurve, NurbsSurface, PiecewisePolynomial, Points, PpSpace, TauRule,
+    MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER,
+};
+
+/// Absurd sizes the fuzzer's `Size` generator produces.
+const ABSURD: [usize; 5] = [
+    usize::MAX,
+    usize::MAX / 2 + 1,
+    1 << 40,
+    1_000_000_000_000,
+    1_000_000_000,
+];
+
+fn cubic() -> BSplineCurve {
+    let ctrl = Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0], [5.0, 1.0]])
+        .expect("finite points");
+    BSplineCurve::from_knot_vector(
+        3,
+        KnotVector::clamped_uniform(3, 5).expect("valid knots"),
+        ctrl,
+    )
+    .expect("valid curve")
+}
+
+fn assert_too_large(r: Result<Points, Error>, what: &str) {
+    match r {
+        Err(Error::TooLarge {
+            what: "derivative order",
+            ..
+        }) => {}
+        other => panic!("{what}: expected TooLarge(derivative order), got {other:?}"),
+    }
+}
+
+// fuzz target `knots`, first run: `clamped_uniform(usize::MAX, _)` panicked with "attempt to add
+// with overflow" at `n_ctrl < degree + 1`; degree 10^9 asked for 2·10^9 knots (16 GB).
+#[test]
+fn clamped_uniform_refuses_absurd_degrees() {
+    for d in ABSURD {
+        for n in [0, 5, d, d.saturating_add(1)] {
+            let r = KnotVector::clamped_uniform(d, n);
+            assert!(
+                matches!(r, Err(Error::Degree { degree, .. }) if degree == d),
+                "clamped_uniform({d}, {n}): {r:?}"
+            );
+        }
+    }
+    assert!(KnotVector::clamped_uniform(MAX_DEGREE, MAX_DEGREE + 1).is_ok());
+    assert!(matches!(
+        KnotVector::clamped_uniform(MAX_DEGREE + 1, MAX_DEGREE + 2),
+        Err(Error::Degree { .. })
+    ));
+    // a huge control point count is refused as too large, not allocated
+    assert!(matches!(
+        KnotVector::clamped_uniform(3, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+}
+
+// audit after the clamped_uniform finding: every other knot constructor with a bare degree
+#[test]
+fn knot_constructors_refuse_absurd_degrees() {
+    let params = [0.0, 0.25, 0.5, 1.0];
+    for d in ABSURD {
+        for r in [
+            KnotVector::from_parameters(&params, d),
+            KnotVector::averaged(&params, d),
+            KnotVector::averaged_with_end_derivatives(&params, d),
+        ] {
+            assert!(matches!(r, Err(Error::Degree { .. })), "degree {d}: {r:?}");
+        }
+        let r = KnotVector::from_breakpoints(&[0.0, 1.0], &[], d);
+        assert!(matches!(r, Err(Error::Degree { .. })), "order {d}: {r:?}");
+        let r = PpSpace::unconstrained(&[0.0, 1.0], d);
+        assert!(matches!(r, Err(Error::Degree { .. })), "order {d}: {r:?}");
+    }
+}
+
+// audit: `find_span`, `SpanCursor::find`, `is_clamped` and `validate_for` computed
+// `2·degree + 2` / `n_ctrl + degree + 1` and overflowed for a huge degree
+#[test]
+fn span_search_and_validation_survive_absurd_degrees() {
+    let kv = KnotVector::clamped_uniform(2, 6).expect("valid knots");
+    for d in ABSURD {
+        assert!(matches!(kv.find_span(d, 0.5), Err(Error::Degree { .. })));
+        assert!(matches!(
+            kv.span_cursor(d).find(0.5),
+            Err(Error::Degree { .. })
+        ));
+        assert!(!kv.is_clamped(d));
+        assert!(kv.validate_for(d, 3).is_err());
+        assert!(kv.validate_for(2, d).is_err());
+        assert!(kv.validate_for(d, d).is_err());
+        assert!(TauRule::Greville.points(&kv, d).is_err());
+        let ctrl = Points::new(vec![0.0; 6], 1).expect("finite points");
+        assert!(BSplineCurve::new(d, kv.as_slice().to_vec(), ctrl).is_err());
+    }
+}
+
+// audit: basis kernels with absurd indices, degrees and derivative orders
+#[test]
+fn basis_kernels_refuse_absurd_sizes() {
+    let kv = KnotVector::clamped_uniform(2, 6).expect("valid knots");
+    for d in ABSURD {
+        assert!(matches!(
+            bernstein_all(d, 0.5, &mut [0.0; 3]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            basis_function_recursive(&kv, d, 1, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            basis_function_recursive(&kv, 0, d, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            bspline_divided_difference(&kv, 0, d, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            bspline_divided_difference(&kv, d, 1, 0.5),
+            Err(Error::InvalidArgument { .. })
+        ));
+        let r = basis_derivatives(&kv, 2, 0.5, d);
+        assert!(
+            matches!(r, Err(Error::TooLarge { .. })),
+            "n_ders {d}: {r:?}"
+        );
+    }
+    assert!(basis_derivatives(&kv, 2, 0.5, MAX_DERIVATIVE_ORDER).is_ok());
+}
+
+// audit: every `eval_derivatives` allocated `order + 1` rows (or `(order + 1)²` for surfaces)
+// from a bare number: order 10^12 asked for terabytes, usize::MAX overflowed
+#[test]
+fn derivative_orders_are_bounded() {
+    let c = cubic();
+    let nurbs = NurbsCurve::new(
+        3,
+        c.knots().as_slice().to_vec(),
+        c.control_points().clone(),
+        vec![1.0, 2.0, 0.5, 1.0, 3.0],
+    )
+    .expect("valid NURBS");
+    let bez = BezierCurve::new(c.control_points().clone()).expect("valid Bezier");
+    let pp = PiecewisePolynomial::from_bspline(&c).expect("pp form");
+    let net = Points::new((0..12).map(f64::from).collect(), 3).expect("finite points");
+    let surf = BSplineSurface::new(
+        1,
+        1,
+        [0.0, 0.0, 1.0, 1.0],
+        [0.0, 0.0, 1.0, 1.0],
+        net.clone(),
+        (2, 2),
+    )
+    .expect("valid surface");
+    let nsurf = NurbsSurface::new(
+        1,
+        1,
+        [0.0, 0.0, 1.0, 1.0],
+        [0.0, 0.0, 1.0, 1.0],
+        net.clone(),
+        vec![1.0, 2.0, 3.0, 4.0],
+        (2, 2),
+    )
+    .expect("valid NURBS surface");
+    let bsurf = BezierSurface::new(net, (2, 2)).expect("valid Bezier surface");
+    for k in ABSURD.into_iter().chain([MAX_DERIVATIVE_ORDER + 1]) {
+        assert_too_large(c.eval_derivatives(0.5, k), "BSplineCurve");
+        assert_too_large(nurbs.eval_derivatives(0.5, k), "NurbsCurve");
+        assert_too_large(bez.eval_derivatives(0.5, k), "BezierCurve");
+        assert_too_large(pp.eval_derivatives(0.5, k), "PiecewisePolynomial");
+        assert_too_large(
+            pp.eval_derivatives_left(0.5, k),
+            "PiecewisePolynomial (left)",
+        );
+    }
+    for k in ABSURD.into_iter().chain([MAX_SURFACE_DERIVATIVE_ORDER + 1]) {
+        assert_too_large(surf.eval_derivatives(0.5, 0.5, k), "BSplineSurface");
+        assert_too_large(nsurf.eval_derivatives(0.5, 0.5, k), "NurbsSurface");
+        assert_too_large(bsurf.eval_derivatives(0.5, 0.5, k), "BezierSurface");
+    }
+    // the limits themselves are accepted, and orders above the degree are exact zeros
+    let d = c
+        .eval_derivatives(0.5, MAX_DERIVATIVE_ORDER)
+        .expect("at the limit");
+    assert_eq!(d.len(), MAX_DERIVATIVE_ORDER + 1);
+    assert!(d.as_slice()[4 * 2..].iter().all(|&x| x == 0.0));
+    assert!(nurbs.eval_derivatives(0.5, 8).is_ok());
+    let s = surf
+        .eval_derivatives(0.5, 0.5, MAX_SURFACE_DERIVATIVE_ORDER)
+        .expect("at the limit");
+    assert_eq!(s.len(), (MAX_SURFACE_DERIVATIVE_ORDER + 1).pow(2));
+    assert!(nsurf
+        .eval_derivatives(0.5, 0.5, MAX_SURFACE_DERIVATIVE_ORDER)
+        .is_ok());
+}
+
+// fuzz target `curves`, artifact crash-ea7bfcd8: `BSplineCurve::new(usize::MAX, knots, <no
+// points>)` panicked with "attempt to add with overflow" building the TooFew message
+// (`min: degree + 1`).
+#[test]
+fn empty_control_points_with_absurd_degree() {
+    let empty = Points::new(Vec::new(), 2).expect("empty points are valid");
+    for d in ABSURD {
+        let r = BSplineCurve::new(d, vec![0.0, 1.0], empty.clone());
+        assert!(
+            matches!(r, Err(Error::TooFew { min, got: 0, .. }) if min == d.saturating_add(1)),
+            "degree {d}: {r:?}"
+        );
+        let r = NurbsCurve::new(d, vec![0.0, 1.0], empty.clone(), Vec::new());
+        assert!(r.is_err(), "degree {d}: {r:?}");
+    }
+}
+
+// fuzz target `knots`, artifact crash-aa8f007b: `averaged_with_end_derivatives` of 2 parameters
+// with degree 3 (allowed: n + 3 = 4 control points) underflowed at `n + 1 − degree`.
+#[test]
+fn averaged_with_end_derivatives_with_the_fewest_parameters() {
+    let kv = KnotVector::averaged_with_end_derivatives(&[1e8, 1.5e8], 3).expect("n + 2 = p");
+    assert_eq!(
+        kv.as_slice(),
+        &[1e8, 1e8, 1e8, 1e8, 1.5e8, 1.5e8, 1.5e8, 1.5e8]
+    );
+    kv.validate_for(3, 4)
+        .expect("n + 3 control points of degree 3");
+    // one parameter fewer than that is refused
+    assert!(matches!(
+        KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 4),
+        Err(Error::Degree { .. })
+    ));
+}
+
+// fuzz target `ppform`, artifact crash-787b71a9: breakpoints [−f64::MAX, 1e300] were accepted,
+// and `eval` returned NaN as `Ok` (the local variable x − ξ_j overflowed). The same width
+// overflow made a B-spline on knots [−MAX, −MAX, MAX, MAX] evaluate to 0 instead of 0.5 (every
+// basis function divided by an infinite knot difference): silently wrong.
+#[test]
+fn overflowing_widths_are_refused() {
+    let r = PiecewisePolynomial::new(vec![-f64::MAX, 1e300], 2, 1, vec![1.0, 1.0]);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "breakpoints",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    let r = KnotVector::new(vec![-f64::MAX, -f64::MAX, f64::MAX, f64::MAX]);
+    assert!(
+        matches!(r, Err(Error::InvalidArgument { what: "knots", .. })),
+        "{r:?}"
+    );
+    let r = KnotVector::averaged(&[-f64::MAX, 0.0, f64::MAX], 1);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "parameters",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    let r = PpSpace::unconstrained(&[-f64::MAX, f64::MAX], 2);
+    assert!(
+        matches!(
+            r,
+            Err(Error::InvalidArgument {
+                what: "breakpoints",
+                ..
+            })
+        ),
+        "{r:?}"
+    );
+    // the widest finite interval is still accepted
+    assert!(KnotVector::new(vec![-f64::MAX / 2.0, f64::MAX / 2.0]).is_ok());
+}
+
+// same finding, the other route to NaN: a value that overflows inside Horner's rule
+#[test]
+fn overflowing_pp_values_are_reported() {
+    // −1e300·u² at u = 1e200 overflows to −∞ inside Horner's rule
+    let f = PiecewisePolynomial::new(vec![0.0, 1e200], 3, 1, vec![0.0, 1e300, -1e300])
+        .expect("finite data");
+    let r = f.eval(1e200);
+    assert!(matches!(r, Err(Error::NonFinite { .. })), "{r:?}");
+    assert!(f.eval(0.0).is_ok());
+}
+
+// fuzz target `knots`, artifact crash-dbf6ef33: the averaged knots of parameters near f64::MAX
+// overflowed to ∞ ((1e300 + MAX) / 2), giving unsorted knots behind the debug assertion of the
+// trusted constructor (in release: an infinite knot).
+#[test]
+fn averaged_knots_of_huge_parameters_stay_finite_and_sorted() {
+    let params = [-1e-300, 1e300, f64::MAX];
+    for kv in [
+        KnotVector::averaged_with_end_derivatives(&params, 2),
+        KnotVector::averaged(&params, 2),
+        KnotVector::averaged(&[0.0, f64::MAX / 2.0, f64::MAX * 0.75, f64::MAX], 2),
+    ] {
+        let kv = kv.expect("finite parameters with a finite width");
+        let k = kv.as_slice();
+        assert!(k.iter().all(|x| x.is_finite()), "{k:?}");
+        assert!(k.windows(2).all(|w| w[0] <= w[1]), "{k:?}");
+    }
+}
+
+// audit after the NaN finding in the pp-form: derivatives of data near f64::MAX overflow.
+// BezierCurve::eval_derivatives returned NaN as Ok, BSplineCurve::eval_derivatives ∞ as Ok, and
+// BSplineCurve::derivative built a curve with infinite control points (surfaces and NURBS
+// already reported NonFinite).
+#[test]
+fn overflowing_derivatives_are_reported() {
+    let m = f64::MAX;
+    let data = Points::new(vec![m, -m, m], 1).expect("finite");
+    let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], data.clone()).expect("valid");
+    let b = BezierCurve::new(data).expect("valid");
+    assert!(matches!(
+        c.eval_derivatives(0.5, 2),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        b.eval_derivatives(0.5, 2),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(c.derivative(), Err(Error::NonFinite { .. })));
+    let pp =
+        PiecewisePolynomial::new(vec![0.0, 1e200], 3, 1, vec![0.0, 1e300, 1e300]).expect("finite");
+    assert!(matches!(
+        pp.eval_derivatives(1e200, 1),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        pp.eval_derivatives_left(1e200, 1),
+        Err(Error::NonFinite { .. })
+    ));
+    // the values themselves are fine: a convex combination of finite points
+    assert_eq!(c.eval(0.5).expect("finite"), vec![0.0]);
+    assert_eq!(b.eval(0.5).expect("finite"), vec![0.0]);
+}
