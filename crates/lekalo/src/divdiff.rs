@@ -541,7 +541,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(96))]
+        #![proptest_config(crate::oracle::proptest_config(96))]
 
         // Foundation item 6: Cox–de Boor (fast), the lecture recursion and the divided
         // difference of truncated powers (eq. 4) agree to 1e-12, multiple knots included.

@@ -79,6 +79,16 @@ pub(crate) fn bezier_naive(curve: &BezierCurve, t: f64) -> Vec<f64> {
     out
 }
 
+/// Proptest configuration for the unit tests: `PROPTEST_CASES` if set (the long job of
+/// docs/robustness.md), else `default_cases`.
+pub(crate) fn proptest_config(default_cases: u32) -> proptest::test_runner::Config {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default_cases);
+    proptest::test_runner::Config::with_cases(cases)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,7 +144,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(128))]
+        #![proptest_config(super::proptest_config(128))]
 
         #[test]
         fn bspline_kernels_agree_with_cox_de_boor(c in curve()) {

@@ -2,6 +2,9 @@
 //! through points, corner smoothing. Continuity is *measured*: derivatives up to order k agree
 //! at the joins, derivative k + 1 in general does not.
 
+mod common;
+use common::config;
+
 use lekalo::{
     ArcParametrization, BezierCurve, BlendSpline, BlendSplineOptions, CircularArcs, Continuity,
     CornerTransition, Deformation, Error, FnCurve, FnLocalCurves, NurbsCurve, Parabolas,
@@ -81,7 +84,7 @@ fn cubic_pair(c: [f64; 8], e: [f64; 4]) -> (BezierCurve, BezierCurve) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(config(48))]
 
     // Contact of order exactly k with p_1 at u = 0 and with p_2 at u = 1 (digest §B.2
     // verification), for k = 1 … 4, and the exact Bezier form of degree (2k − 1) + 3 agrees.
@@ -919,7 +922,7 @@ fn corner_transition_exact_forms() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(32))]
+    #![proptest_config(config(32))]
 
     // Random 3D polygons: parabola and global-angle arc splines interpolate the points, are C^k
     // in the chord-length parameter at every join (k + 1 generally not: only the lower orders

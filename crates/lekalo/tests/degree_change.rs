@@ -6,6 +6,9 @@
 //! one-step elevation equals repeated eq. 6, monomial round trip, reductions below the real
 //! degree are refused.
 
+mod common;
+use common::config;
+
 use lekalo::{
     bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, bezier_net_change_degree,
     bezier_net_elevate, bezier_net_real_degrees, bezier_net_real_degrees_monomial, elevation_block,
@@ -461,7 +464,7 @@ fn scale(c: &BezierCurve) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// Elevation leaves the curve unchanged to 1e-13 relative (degrees up to 40, by up to 20).
     #[test]
@@ -589,7 +592,7 @@ fn bspline_dev(a: &BSplineCurve, b: &BSplineCurve) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// B-spline elevation per Bezier piece keeps the curve; exact reduction returns it.
     #[test]

@@ -34,6 +34,9 @@
 //! [`basis_function_recursive`] on many cases; their number follows the standard
 //! `PROPTEST_CASES` environment variable (default 64 here), see `docs/robustness.md`.
 
+mod common;
+use common::config;
+
 use lekalo::basis::{basis_derivatives, basis_function_recursive, basis_functions};
 use lekalo::{BSplineCurve, BezierCurve, Error, NurbsCurve, Points};
 use proptest::prelude::*;
@@ -539,15 +542,6 @@ fn nurbs_overflowing_homogeneous_points_fail_clearly() {
 
 // -------------------------------------------------------------------------------------------
 // property tests against the slow oracle (PROPTEST_CASES sets the count; 64 by default)
-
-/// Proptest configuration: `PROPTEST_CASES` if set (the long job), else `default_cases`.
-fn config(default_cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default_cases);
-    ProptestConfig::with_cases(cases)
-}
 
 /// A clamped B-spline of degree 1..=8 whose data are offset by `10^e_off` and scaled by
 /// `10^e_scale`, with irregular knots that may repeat up to multiplicity `p`.

@@ -3,6 +3,9 @@
 //! unevenly spaced knots, unclamped ends, large offsets) and parameter order; the parallel path
 //! is bit-identical to the sequential one.
 
+mod common;
+use common::config;
+
 use lekalo::{BSplineCurve, CurveEvaluator, EvalKernel, Points};
 use proptest::prelude::*;
 
@@ -93,7 +96,7 @@ fn check(curve: &BSplineCurve, fracs: &[f64]) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(config(96))]
     #[test]
     fn fast_paths_agree_with_reference(
         curve in arb_curve(),

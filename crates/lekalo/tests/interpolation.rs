@@ -3,6 +3,9 @@
 //! the data, prescribed derivatives, offset/scale invariance, closed curves, surfaces, Hermite,
 //! one negative test per error, and proptest invariants.
 
+mod common;
+use common::config;
+
 use lekalo::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
     interpolate_surface, natural_cubic_spline, parametrize, BSplineCurve, CubicHermite,
@@ -1163,7 +1166,7 @@ fn params_of(q: PointsRef<'_>, m: Parametrization) -> Vec<f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     #[test]
     fn interpolants_hit_the_data(q in (1usize..5).prop_flat_map(|d| walk(d, 1, 40)), p in 1usize..6, m in method()) {

@@ -2,6 +2,9 @@
 //! (insertion, refinement, splitting, Bezier patches, transposition, reversal). Randomness only
 //! from proptest strategies.
 
+mod common;
+use common::config;
+
 use lekalo::{
     BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, Error, KnotVector, NurbsCurve,
     NurbsSurface, Points,
@@ -306,7 +309,7 @@ fn inside_a_span(c: &BSplineCurve, index: prop::sample::Index, f: f64) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// Insertion then removal returns the original knots exactly and the control points to
     /// `1e-12` relative (P&T §5.4: removal inverts insertion).
@@ -454,7 +457,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(config(48))]
 
     /// Knot insertion, refinement, splitting, Bezier patches, transposition and reversal leave
     /// a B-spline surface unchanged (1e-12 relative).

@@ -1,6 +1,9 @@
 //! Piecewise polynomials, Curry–Schoenberg bases and the de Boor–Fix functionals (document 003,
 //! digest §D.4–§D.5): round trips on random spaces and the thesis's practical task.
 
+mod common;
+use common::config;
+
 use lekalo::{
     quasi_interpolate, sample_quasi_interpolant, BSplineCurve, Error, PiecewisePolynomial, Points,
     PpSpace, TauRule, DEFAULT_CONTINUITY_RTOL,
@@ -152,7 +155,7 @@ fn rel_close(a: &[f64], b: &[f64], rtol: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     // Curry–Schoenberg (Theorem 4.5): n = dim P_{k,ξ,ν} B-splines; B-spline → pp → B-spline is
     // the identity for every τ rule (de Boor–Fix, λ_i b_j = δ_ij), and the pp is in the space.

@@ -9,6 +9,9 @@
 //!   compared at many parameters to `1e-12 · max(1, max |P_i|)`.
 //! - [`FD_TOL`]: derivatives against central differences, see [`check_finite_differences`].
 
+mod common;
+use common::config;
+
 use lekalo::basis::{basis_function_recursive, basis_functions};
 use lekalo::{BSplineCurve, BezierCurve, BezierSegment, Error, Points};
 use proptest::prelude::*;
@@ -188,7 +191,7 @@ fn check_finite_differences(c: &BSplineCurve, fractions: &[f64]) -> Result<(), T
 // basis laws
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// Partition of unity, non-negativity and local support of the basis on the domain
     /// (P&T §2.2; document 003 Lemmas 3.1, 3.5, 3.8).
@@ -320,7 +323,7 @@ proptest! {
 // operations that leave the curve unchanged
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     #[test]
     fn knot_insertion_keeps_curve(c in curve_with(1..=6), f in 0.0f64..=1.0, knot_index in any::<prop::sample::Index>(), times in 1usize..=6, at_knot in any::<bool>(), end in 0usize..3) {
@@ -479,7 +482,7 @@ proptest! {
 // Bezier laws
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     #[test]
     fn bezier_de_casteljau_equals_bernstein_and_batch(c in bezier(), ts in prop::collection::vec(0.0f64..=1.0, 0..20)) {
@@ -877,7 +880,7 @@ fn reverse_overflow_is_an_error() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// Document 003 Lemma 3.9 (P&T §2.2): at an interior knot of multiplicity `m ≤ p` the
     /// curve is `C^{p−m}`. Left-hand derivatives come from the left piece of a split there

@@ -3,6 +3,9 @@
 //! and rational derivatives against finite differences, normals, affine invariance, iso-curves,
 //! circles and arcs. Randomness only from proptest strategies.
 
+mod common;
+use common::config;
+
 use lekalo::{
     basis::{basis_function_recursive, basis_functions},
     BSplineCurve, BSplineSurface, BezierSurface, Error, NurbsCurve, NurbsSurface, Points,
@@ -119,7 +122,7 @@ fn unit_weight_nurbs(s: &BSplineSurface) -> NurbsSurface {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config(64))]
 
     /// NURBS curves with unit weights are the B-spline: points and derivatives, dims 1..=6.
     #[test]
