@@ -14,7 +14,7 @@
 //! last knot the last non-empty interval is closed, so that splines evaluate at their right end.
 //! Terms with a zero denominator are zero.
 
-use crate::error::{Error, Result};
+use crate::error::{check_curve_derivative_order, Error, Result};
 use crate::knots::KnotVector;
 
 /// Bernstein polynomial `b_{n,i}(t) = C(n,i) t^i (1 − t)^{n−i}`; zero for `i > n`.
@@ -61,6 +61,7 @@ pub fn bernstein_all(n: usize, t: f64, out: &mut [f64]) -> Result<()> {
     Ok(())
 }
 
+#[inline]
 pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
     out[0] = 1.0;
     let t1 = 1.0 - t;
@@ -84,12 +85,17 @@ pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
 /// ```
 /// use lekalo::basis::bernstein_derivatives;
 /// // b_{2,1}(t) = 2t(1 − t): derivative 2 − 4t, second derivative −4
-/// let d = bernstein_derivatives(2, 0.25, 2);
+/// let d = bernstein_derivatives(2, 0.25, 2)?;
 /// assert!((d[3 + 1] - 1.0).abs() < 1e-15);
 /// assert!((d[6 + 1] + 4.0).abs() < 1e-15);
+/// # Ok::<(), lekalo::Error>(())
 /// ```
-#[must_use]
-pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Vec<f64> {
+///
+/// # Errors
+/// [`Error::TooLarge`] if `order` exceeds
+/// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER).
+pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Result<Vec<f64>> {
+    check_curve_derivative_order(order)?;
     let w = n + 1;
     let mut out = vec![0.0; (order + 1) * w];
     let mut lower = vec![0.0; w];
@@ -108,7 +114,7 @@ pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Vec<f64> {
             binom = binom * (r - j) as f64 / (j + 1) as f64;
         }
     }
-    out
+    Ok(out)
 }
 
 /// Scratch space for the B-spline basis kernels, sized once for a degree so that batch
@@ -136,6 +142,7 @@ impl BasisScratch {
 /// The `p + 1` non-zero basis functions `N_{span−p..=span, p}(t)` into `out`, by the Cox–de Boor
 /// triangular scheme (P&T Algorithm A2.2). `span` must be the span of `t` (see
 /// [`KnotVector::find_span`]); then every denominator is positive. O(p²), no allocation.
+#[inline]
 pub(crate) fn basis_funs_into(
     knots: &[f64],
     degree: usize,
@@ -162,6 +169,7 @@ pub(crate) fn basis_funs_into(
 /// Derivatives of orders `0..=n_ders` of the `p + 1` non-zero basis functions at `t`, into `out`
 /// laid out row by row (`(n_ders + 1) × (p + 1)`); P&T Algorithm A2.3. Orders above `p` are zero.
 /// O((`n_ders` + 1)·p²), no allocation.
+#[inline]
 pub(crate) fn basis_ders_into(
     knots: &[f64],
     degree: usize,
@@ -277,6 +285,7 @@ pub fn basis_derivatives(
     t: f64,
     n_ders: usize,
 ) -> Result<(usize, Vec<f64>)> {
+    check_curve_derivative_order(n_ders)?;
     let span = knots.find_span(degree, t)?;
     let mut out = vec![0.0; (n_ders + 1) * (degree + 1)];
     basis_ders_into(
@@ -385,7 +394,7 @@ mod tests {
     #[test]
     fn bernstein_derivatives_match_finite_differences() {
         let (n, t, h) = (6, 0.37, 1e-5);
-        let d = bernstein_derivatives(n, t, 3);
+        let d = bernstein_derivatives(n, t, 3).unwrap();
         let w = n + 1;
         for i in 0..=n {
             let fd1 = (bernstein(n, i, t + h) - bernstein(n, i, t - h)) / (2.0 * h);
@@ -395,7 +404,20 @@ mod tests {
             assert!((d[2 * w + i] - fd2).abs() < 1e-4, "second derivative i={i}");
         }
         // orders above n vanish
-        let d = bernstein_derivatives(2, 0.3, 4);
+        let d = bernstein_derivatives(2, 0.3, 4).unwrap();
+        assert!(matches!(
+            bernstein_derivatives(2, 0.3, usize::MAX),
+            Err(Error::TooLarge { .. })
+        ));
+        assert!(matches!(
+            basis_derivatives(
+                &KnotVector::clamped_uniform(2, 4).unwrap(),
+                2,
+                0.5,
+                usize::MAX
+            ),
+            Err(Error::TooLarge { .. })
+        ));
         assert!(d[9..].iter().all(|&v| v == 0.0), "orders above n must be 0");
     }
 

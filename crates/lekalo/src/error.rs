@@ -300,7 +300,29 @@ pub enum Error {
     // (Bezier order change, issue 4)
 
     // (blending, issue 5)
-
+    /// Two curves that must share an end point (a deformation's ends, or the corner of a
+    /// corner transition) do not: their distance exceeds the tolerance, which is
+    /// [`ENDPOINT_TOLERANCE`](crate::ENDPOINT_TOLERANCE) times the largest absolute coordinate.
+    ///
+    /// ```
+    /// use lekalo::{BezierCurve, Deformation, Error, Points};
+    /// let a = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 0.0]]).unwrap()).unwrap();
+    /// let b = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 0.5]]).unwrap()).unwrap();
+    /// let e = Deformation::new(&a, &b, 1).unwrap_err();
+    /// assert!(matches!(e, Error::EndPointMismatch { end: "end (u = 1)", .. }));
+    /// ```
+    #[error(
+        "the curves do not share their {end} point: distance {distance} exceeds the tolerance \
+         {tolerance}; deform only curves with common end points (move one curve's end point)"
+    )]
+    EndPointMismatch {
+        /// Which end ("start (u = 0)", "end (u = 1)" or the corner).
+        end: &'static str,
+        /// Distance between the two end points.
+        distance: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
     // (piecewise polynomials, issue 6)
 
     // (formats, issue 7)
@@ -319,6 +341,23 @@ pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
         }),
         None => Ok(()),
     }
+}
+
+/// Refuses derivative orders above [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER)
+/// before any buffer of `order + 1` rows is allocated.
+///
+/// # Errors
+/// [`Error::TooLarge`].
+pub(crate) fn check_curve_derivative_order(order: usize) -> Result<()> {
+    let max = crate::MAX_CURVE_DERIVATIVE_ORDER;
+    if order > max {
+        return Err(Error::TooLarge {
+            what: "derivative order",
+            size: order,
+            max,
+        });
+    }
+    Ok(())
 }
 
 /// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are

@@ -208,7 +208,8 @@ impl KnotVector {
         let n = params.len() - 1;
         let mut knots = Vec::with_capacity(n + degree + 4);
         knots.extend(std::iter::repeat_n(params[0], degree + 1));
-        for j in 0..=(n + 1 - degree) {
+        // n − p + 2 interior knots (none when p = n + 2: two points and two derivatives)
+        for j in 0..(n + 2 - degree) {
             knots.push(average(&params[j..j + degree]));
         }
         knots.extend(std::iter::repeat_n(params[n], degree + 1));
@@ -415,6 +416,7 @@ impl KnotVector {
     }
 
     /// Span search without domain checks; `t` must lie in the non-empty domain.
+    #[inline]
     pub(crate) fn span_unchecked(&self, degree: usize, t: f64) -> usize {
         let n = self.knots.len() - degree - 2; // last control point index
         let end = self.knots[n + 1];
@@ -482,11 +484,14 @@ impl SpanCursor<'_> {
     }
 
     /// Span of `t` already known to be in the domain.
+    #[inline]
     pub(crate) fn find_unchecked(&mut self, t: f64) -> usize {
         let k = &self.knots.knots;
         let n = k.len() - self.degree - 2;
         let s = self.span;
-        if k[s] <= t && (t < k[s + 1] || (s == n && t <= k[s + 1])) {
+        // the cursor only ever holds non-empty spans; the right end belongs to span n only when
+        // span n is non-empty (otherwise to the last non-empty span, found below)
+        if k[s] <= t && (t < k[s + 1] || (s == n && t == k[s + 1] && k[s] < k[s + 1])) {
             return s;
         }
         if t > k[s] {
@@ -694,6 +699,17 @@ mod tests {
     }
 
     #[test]
+    fn end_derivative_knots_for_the_highest_degree() {
+        // two points and two end derivatives determine a cubic: no interior knots
+        let kv = KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 3).unwrap();
+        assert_eq!(kv.as_slice(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        assert!(matches!(
+            KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 4),
+            Err(Error::Degree { .. })
+        ));
+    }
+
+    #[test]
     fn from_parameters_is_eq8() {
         let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
         let kv = KnotVector::from_parameters(&t, 3).unwrap();
@@ -744,6 +760,23 @@ mod tests {
             Err(Error::ParameterOutOfDomain { .. })
         ));
         assert!(matches!(kv.find_span(4, 0.5), Err(Error::Degree { .. })));
+    }
+
+    #[test]
+    fn empty_last_span_is_never_returned() {
+        // degree 2, 6 control points, domain [t_2, t_6] = [0, 1]; span 5 = [1, 1) is empty
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 2.0, 2.0]).unwrap();
+        kv.validate_for(2, 6).unwrap();
+        assert_eq!(kv.find_span(2, 1.0).unwrap(), 3);
+        let mut c = kv.span_cursor(2);
+        for t in [0.0, 0.6, 1.0, 0.2, 1.0] {
+            let s = c.find(t).unwrap();
+            assert!(
+                kv.as_slice()[s] < kv.as_slice()[s + 1],
+                "empty span {s} at t = {t}"
+            );
+            assert_eq!(s, kv.find_span(2, t).unwrap(), "t = {t}");
+        }
     }
 
     #[test]

@@ -28,31 +28,92 @@
 // -- foundation (issue 2) --
 pub mod basis;
 mod bezier;
+mod bezier_surface;
 mod bspline;
 mod error;
 mod knots;
 mod nurbs;
+mod nurbs_surface;
+#[cfg(test)]
+mod oracle;
 mod points;
 mod surface;
 
-pub use bezier::BezierCurve;
+pub use bezier::{BezierCurve, BezierSegment};
+pub use bezier_surface::BezierSurface;
 pub use bspline::BSplineCurve;
 pub use error::{Error, Result, MAX_SCALARS};
 pub use knots::{check_parameters, KnotVector, SpanCursor};
-pub use nurbs::NurbsCurve;
+pub use nurbs::{NurbsCurve, MAX_CURVE_DERIVATIVE_ORDER};
+pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
+pub use surface::{BSplineSurface, MAX_SURFACE_DERIVATIVE_ORDER};
 
 // -- interpolation (issue 3) --
 mod hermite;
 mod interpolate;
+mod interpolate_periodic;
+mod interpolate_surface;
 mod linalg;
+
+pub use hermite::{
+    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
+    CubicHermite, TangentEstimate, HERMITE_MATRIX,
+};
+pub use interpolate::{
+    natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
+    Parametrization,
+};
+pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
 
 // -- Bezier order change (issue 4) --
 mod bezier_degree;
+mod bezier_degree_approx;
+mod bezier_degree_bspline;
+mod bezier_degree_matrix;
+mod bezier_degree_plan;
+mod bezier_degree_surface;
+
+pub use bezier_degree::{DEFAULT_DEGREE_TOLERANCE, MAX_MONOMIAL_DEGREE};
+pub use bezier_degree_approx::{ApproximateReduction, EndConditions, APPROX_SAMPLES};
+pub use bezier_degree_bspline::BSplineApproximateReduction;
+pub use bezier_degree_matrix::{
+    bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, elevation_block,
+    elevation_matrix, order_change_matrix, reduction_block, truncation_matrix, RationalMatrix,
+    MAX_EXACT_MATRIX_DEGREE,
+};
+pub use bezier_degree_plan::ElevationPlan;
+pub use bezier_degree_surface::{
+    bezier_net_change_degree, bezier_net_elevate, bezier_net_from_monomial,
+    bezier_net_real_degrees, bezier_net_real_degrees_monomial, bezier_net_to_monomial,
+};
 
 // -- blending (issue 5) --
+mod bernstein_ops;
 mod blend;
+mod blend_approx;
+mod blend_spline;
+mod jump;
+
+pub use blend::{
+    BezierForm, CornerTransition, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE,
+};
+pub use blend_approx::{approximate_curve, Approximation};
+pub use blend_spline::{
+    ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity, FnLocalCurves,
+    LocalCurves, Parabolas, SharedCurve, SplineParameters,
+};
+pub use jump::JumpPolynomial;
 
 // -- piecewise polynomials (issue 6) --
 mod divdiff;
 mod ppform;
+mod quasi;
+
+pub use divdiff::{
+    bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
+    NewtonForm,
+};
+pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+

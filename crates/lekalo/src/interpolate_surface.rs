@@ -1,0 +1,206 @@
+//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §A.5,
+//! eq. 16–18): row and column parameters averaged, knots by averaging, two passes of curve
+//! interpolation with one factorisation per direction.
+
+use crate::error::{Error, Result};
+use crate::interpolate::{
+    add_reference, check_strictly_increasing, parametrize_into, solve_collocation, Parametrization,
+};
+use crate::knots::KnotVector;
+use crate::points::{Points, PointsRef};
+use crate::surface::BSplineSurface;
+
+/// Parts of a tensor-product B-spline surface `S(u, v) = Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) P_ij`
+/// with the grid parameters; `control[(i*nv + j)*dim + k]`. [`SurfaceInterpolant::into_surface`]
+/// gives the [`BSplineSurface`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceInterpolant {
+    /// Degree `p` in `u`.
+    pub degree_u: usize,
+    /// Degree `q` in `v`.
+    pub degree_v: usize,
+    /// Knots in `u` (`nu + p + 1`).
+    pub knots_u: KnotVector,
+    /// Knots in `v` (`nv + q + 1`).
+    pub knots_v: KnotVector,
+    /// Control net, flat, `nu × nv` points, point `(i, j)` at `(i*nv + j)*dim`.
+    pub control: Points,
+    /// Number of control points in `u`.
+    pub nu: usize,
+    /// Number of control points in `v`.
+    pub nv: usize,
+    /// Parameters `ū_k` of the grid rows.
+    pub params_u: Vec<f64>,
+    /// Parameters `v̄_l` of the grid columns.
+    pub params_v: Vec<f64>,
+}
+
+impl SurfaceInterpolant {
+    /// The interpolating surface as a [`BSplineSurface`].
+    #[must_use]
+    pub fn into_surface(self) -> BSplineSurface {
+        BSplineSurface::from_raw(
+            self.degree_u,
+            self.degree_v,
+            self.knots_u,
+            self.knots_v,
+            self.control,
+        )
+    }
+}
+
+/// Interpolates an `nu × nv` grid of points `q_kl` (flat, point `(k, l)` at
+/// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §A.5, eq. (16)–(18),
+/// Algorithm A.5.
+///
+/// Parameters: for each column `l` the [`Parametrization`] of `q_0l … q_{n,l}`, averaged over the
+/// columns (`ū_k = Σ_l ū_k^{(l)} / (m + 1)`, P&T §9.2.5), likewise `v̄_l` over the rows; knots by
+/// averaging (eq. 3). Then two passes of curve interpolation, each with one matrix factored once:
+/// the `u` pass solves all `nv·dim` columns of the grid together, the `v` pass reuses the `v`
+/// factorisation for each of the `nu` rows. O(nu·nv·(p² + q²)·dim).
+///
+/// ```
+/// use lekalo::{interpolate_surface, Parametrization, Points};
+/// // a 4×3 grid on z = x·y
+/// let mut data = Vec::new();
+/// for k in 0..4 { for l in 0..3 { let (x, y) = (k as f64, l as f64); data.extend([x, y, x * y]); } }
+/// let grid = Points::new(data, 3)?;
+/// let s = interpolate_surface(grid.as_view(), 4, 3, 3, 2, Parametrization::Uniform)?;
+/// assert_eq!((s.nu, s.nv), (4, 3));
+/// assert_eq!(s.control.point(0), &[0.0, 0.0, 0.0]);
+/// let (u, v) = (s.params_u[2], s.params_v[1]);
+/// let p = s.into_surface().eval(u, v)?;
+/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14 && (p[2] - 2.0).abs() < 1e-14);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points; [`Error::TooFew`] if `nu`
+/// or `nv` is below 2; [`Error::Degree`] if `p ≥ nu`, `q ≥ nv` or a degree is 0;
+/// [`Error::CoincidentPoints`] (flat point indices) for a zero step in a row or column;
+/// [`Error::InvalidArgument`]; [`Error::SingularSystem`] / [`Error::IllConditioned`].
+pub fn interpolate_surface(
+    grid: PointsRef<'_>,
+    nu: usize,
+    nv: usize,
+    degree_u: usize,
+    degree_v: usize,
+    parametrization: Parametrization,
+) -> Result<SurfaceInterpolant> {
+    let total = nu.checked_mul(nv).ok_or(Error::TooLarge {
+        what: "grid size",
+        size: usize::MAX,
+        max: crate::error::MAX_SCALARS,
+    })?;
+    if grid.len() != total {
+        return Err(Error::LengthMismatch {
+            what: "grid points (nu × nv)",
+            expected: total,
+            got: grid.len(),
+        });
+    }
+    for (n, what) in [(nu, "grid rows (nu)"), (nv, "grid columns (nv)")] {
+        if n < 2 {
+            return Err(Error::TooFew {
+                what,
+                min: 2,
+                got: n,
+            });
+        }
+    }
+    for (deg, n) in [(degree_u, nu), (degree_v, nv)] {
+        if deg == 0 || deg >= n {
+            return Err(Error::Degree {
+                degree: deg,
+                reason: format!(
+                    "a direction with {n} points takes a degree from 1 to {}",
+                    n - 1
+                ),
+            });
+        }
+    }
+    let e = parametrization.exponent()?;
+    let dim = grid.dim();
+    let data = grid.as_slice();
+    let pt = |k: usize, l: usize| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim];
+    let mut params_u = vec![0.0; nu];
+    let mut params_v = vec![0.0; nv];
+    let mut tmp = vec![0.0; nu.max(nv)];
+    for l in 0..nv {
+        parametrize_into(
+            nu - 1,
+            |k| pt(k, l),
+            e,
+            |k| (k * nv + l, (k + 1) * nv + l),
+            &mut tmp[..nu],
+        )?;
+        for (a, b) in params_u.iter_mut().zip(&tmp) {
+            *a += b;
+        }
+    }
+    for k in 0..nu {
+        parametrize_into(
+            nv - 1,
+            |l| pt(k, l),
+            e,
+            |l| (k * nv + l, k * nv + l + 1),
+            &mut tmp[..nv],
+        )?;
+        for (a, b) in params_v.iter_mut().zip(&tmp) {
+            *a += b;
+        }
+    }
+    finish_average(&mut params_u, nv);
+    finish_average(&mut params_v, nu);
+    check_strictly_increasing(&params_u)?;
+    check_strictly_increasing(&params_v)?;
+    let knots_u = KnotVector::averaged(&params_u, degree_u)?;
+    let knots_v = KnotVector::averaged(&params_v, degree_v)?;
+    let reference = pt(0, 0).to_vec();
+    let mut control = data.to_vec();
+    for c in control.chunks_exact_mut(dim) {
+        for (ci, ri) in c.iter_mut().zip(&reference) {
+            *ci -= ri;
+        }
+    }
+    // u pass: rows k of the grid, all nv·dim numbers of a row as right-hand-side columns
+    solve_collocation(
+        &knots_u,
+        degree_u,
+        &params_u,
+        0,
+        &mut control,
+        nv * dim,
+        false,
+    )?;
+    // v pass: for each i, an nv × dim block; factor once, reuse
+    let (first, rest) = control.split_at_mut(nv * dim);
+    let lu = solve_collocation(&knots_v, degree_v, &params_v, 0, first, dim, true)?;
+    for block in rest.chunks_exact_mut(nv * dim) {
+        lu.solve(block, dim);
+    }
+    add_reference(&mut control, &reference);
+    Ok(SurfaceInterpolant {
+        degree_u,
+        degree_v,
+        knots_u,
+        knots_v,
+        control: Points::from_raw(control, dim),
+        nu,
+        nv,
+        params_u,
+        params_v,
+    })
+}
+
+/// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.
+fn finish_average(params: &mut [f64], count: usize) {
+    let inv = 1.0 / count as f64;
+    for t in params.iter_mut() {
+        *t *= inv;
+    }
+    params[0] = 0.0;
+    if let Some(last) = params.last_mut() {
+        *last = 1.0;
+    }
+}
