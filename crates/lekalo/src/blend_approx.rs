@@ -65,6 +65,20 @@ impl Approximation {
     }
 }
 
+/// Largest Hermite order `r` (degree `2r + 1`): beyond it the Hermite basis is too
+/// ill-conditioned for the approximation to be useful.
+const MAX_ORDER: usize = 20;
+
+fn check_order(r: usize) -> Result<()> {
+    if r > MAX_ORDER {
+        return Err(Error::InvalidArgument {
+            what: "Hermite order r",
+            reason: format!("{r} is above {MAX_ORDER} (degree 2r + 1); use a lower order"),
+        });
+    }
+    Ok(())
+}
+
 fn check_tolerance(tolerance: f64) -> Result<()> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidArgument {
@@ -228,13 +242,14 @@ fn assemble(
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] if `tolerance` is not positive and finite, or is not reached
-/// with [`Approximation::MAX_PIECES`] pieces; evaluation errors of the curve.
+/// with [`Approximation::MAX_PIECES`] pieces, or if `r > 20`; evaluation errors of the curve.
 pub fn approximate_curve(
     curve: &dyn ParametricCurve,
     r: usize,
     tolerance: f64,
 ) -> Result<Approximation> {
     check_tolerance(tolerance)?;
+    check_order(r)?;
     let mut ctrl = Vec::new();
     let domain = curve.domain();
     let (m, max_error) = approximate_interval(curve, domain, r, tolerance, &mut ctrl, false)?;
@@ -255,6 +270,7 @@ impl BlendSpline {
     pub fn approximate(&self, tolerance: f64) -> Result<Approximation> {
         check_tolerance(tolerance)?;
         let r = self.continuity_degree();
+        check_order(r)?;
         let params = self.parameters();
         let mut ctrl = Vec::new();
         let mut intervals = Vec::with_capacity(self.segment_count());
@@ -331,6 +347,13 @@ mod tests {
         assert!(matches!(
             approximate_curve(&line, 1, 0.0),
             Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            approximate_curve(&line, 21, 1e-3),
+            Err(Error::InvalidArgument {
+                what: "Hermite order r",
+                ..
+            })
         ));
         assert!(matches!(
             approximate_curve(&line, 1, f64::NAN),

@@ -258,6 +258,7 @@ impl ParametricCurve for ArcPiece {
             return Err(Error::ParameterOutOfDomain { t, min: a, max: b });
         }
         let dim = self.dim();
+        crate::blend::check_order(order)?;
         if out.len() != (order + 1) * dim {
             return Err(Error::LengthMismatch {
                 what: "derivative output ((order + 1) · dim)",
@@ -663,8 +664,11 @@ impl BlendSpline {
     /// parameter `s` (`d^l/ds^l = Δ_i^{−l} d^l/du^l`): the one-sided derivatives at the joins.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] if `i` is not a segment; [`Error::ParameterOutOfDomain`].
+    /// [`Error::InvalidArgument`] if `i` is not a segment; [`Error::ParameterOutOfDomain`];
+    /// [`Error::TooLarge`] for an order above
+    /// [`MAX_CURVE_DERIVATIVE_ORDER`](crate::MAX_CURVE_DERIVATIVE_ORDER).
     pub fn segment_derivatives(&self, i: usize, u: f64, order: usize) -> Result<Points> {
+        crate::blend::check_order(order)?;
         let seg = self.segments.get(i).ok_or_else(|| Error::InvalidArgument {
             what: "segment index",
             reason: format!("{i} is not below the segment count {}", self.segments.len()),

@@ -93,16 +93,16 @@ mod bernstein_ops;
 mod blend;
 mod blend_approx;
 mod blend_spline;
+mod corner;
 mod jump;
 
-pub use blend::{
-    BezierForm, CornerTransition, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE,
-};
+pub use blend::{BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE};
 pub use blend_approx::{approximate_curve, Approximation};
 pub use blend_spline::{
     ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity, FnLocalCurves,
     LocalCurves, Parabolas, SharedCurve, SplineParameters,
 };
+pub use corner::CornerTransition;
 pub use jump::JumpPolynomial;
 
 // -- piecewise polynomials (issue 6) --

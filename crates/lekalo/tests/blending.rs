@@ -817,6 +817,21 @@ fn errors() {
         Err(Error::InvalidArgument { .. })
     ));
     assert_eq!(s.eval(0.5).unwrap(), vec![0.5, 0.0]);
+    // absurd derivative orders are refused before allocating
+    assert!(matches!(
+        s.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+    assert!(matches!(
+        p.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+    let before = bezier(&[[0.0, 0.0], [2.0, 0.0]]);
+    let corner = CornerTransition::new(&before, 0.5, &c, 0.5, 1).unwrap();
+    assert!(matches!(
+        corner.eval_derivatives(0.5, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
 }
 
 // Angle-parametrised arcs have no exact form: the Hermite approximation meets the tolerance,
@@ -966,6 +981,49 @@ proptest! {
                     prop_assert!((a[d] + shift[d] - b[d]).abs() < 1e-9 * (1.0 + shift[d].abs()));
                 }
             }
+        }
+    }
+}
+
+// Golden: spline through (0,0), (1,2), (3,3), (4,0) with parabolas at uniform parameters, the
+// middle segment at u = 3/10; exact rationals computed independently (Python `fractions`:
+// Lagrange parabolas at (−1, 0, 1) and (0, 1, 2), w_1 = 3u² − 2u³, w_2 = 10u³ − 15u⁴ + 6u⁵).
+#[test]
+fn golden_parabola_spline_values() {
+    let pts = [[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0]];
+    let golden = [
+        (2, [38_509.0 / 25_000.0, 30_913.0 / 12_500.0]),
+        (3, [3_823_117.0 / 2_500_000.0, 12_281_851.0 / 5_000_000.0]),
+    ];
+    for (k, expect) in golden {
+        let s = spline(&pts, &Parabolas, k, false, SplineParameters::Uniform);
+        let got = s.eval(1.3).unwrap();
+        assert!(
+            dist(&got, &expect) < 1e-14,
+            "k = {k}: {got:?} vs {expect:?}"
+        );
+    }
+}
+
+// Mixed local curves (a collinear triple gives straight pieces of degree 1 next to rational
+// arcs): the segments are elevated to a common degree and the NURBS still matches.
+#[test]
+fn mixed_degrees_export_exactly() {
+    let pts = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 1.0], [3.5, 2.5]];
+    let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+    for k in 1..=2 {
+        let s = spline(&pts, &arcs, k, false, SplineParameters::ChordLength);
+        let forms = s.to_bezier_segments().unwrap();
+        let degrees: Vec<usize> = forms.iter().map(lekalo::BezierForm::degree).collect();
+        assert!(degrees.iter().min() < degrees.iter().max(), "{degrees:?}");
+        let n = s.to_nurbs().unwrap();
+        let end = s.parameters()[s.segment_count()];
+        for step in 0..=40 {
+            let t = end * (f64::from(step) / 40.0);
+            assert!(
+                dist(&n.eval(t).unwrap(), &s.eval(t).unwrap()) < 1e-12,
+                "k = {k}, t = {t}"
+            );
         }
     }
 }
