@@ -376,6 +376,14 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             ));
         }
         let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+        if let Some(k) = x.windows(2).position(|w| w[1] <= w[0]) {
+            return bad_input(format!(
+                "{name}: --function: x must be strictly increasing: row {} has x = {} after {} (sort the rows by x and merge repeated x)",
+                k + 2,
+                x[k + 1],
+                x[k]
+            ));
+        }
         let ys: Vec<f64> = pts.iter().flat_map(|p| p[1..].to_vec()).collect();
         let y = Points::new(ys, pts.dim() - 1)?;
         let curve = match a.hermite {
