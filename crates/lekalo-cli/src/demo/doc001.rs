@@ -228,7 +228,8 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
         indices."
         .into();
     let pts = spline_points()?;
-    let mut fig = Figure::new("Splines by blended arcs and parabolas, k = 2", true);
+    let mut fig = Figure::new("Open splines by blended arcs and parabolas, k = 2", true);
+    let mut closed_fig = None;
     let mut rows = Vec::new();
     let arcs = CircularArcs::new(ArcParametrization::UniformAngle);
     let rational = CircularArcs::new(ArcParametrization::RationalQuadratic);
@@ -290,7 +291,14 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
             format!("{jump:.1e}"),
             form,
         ]);
-        add_curve(&mut fig, &obj, name, PALETTE[n])?;
+        if closed {
+            let mut fig = Figure::new("Closed spline by parabolas, k = 2", true);
+            add_curve(&mut fig, &obj, name, PALETTE[n])?;
+            add_points(&mut fig, &pts, "points", PALETTE[7], false);
+            closed_fig = Some(fig);
+        } else {
+            add_curve(&mut fig, &obj, name, PALETTE[n])?;
+        }
     }
     add_points(&mut fig, &pts, "points", PALETTE[7], false);
     s.tables.push((
@@ -305,9 +313,14 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
     ));
     s.figures.push((
         fig,
-        "Open splines by parabolas, arcs and rational arcs, and a closed spline by parabolas."
-            .into(),
+        "Open splines through six points by parabolas (C²), arcs and rational arcs (G²).".into(),
     ));
+    if let Some(fig) = closed_fig {
+        s.figures.push((
+            fig,
+            "The closed spline through the same points (cyclic indices), by parabolas.".into(),
+        ));
+    }
     Ok(())
 }
 

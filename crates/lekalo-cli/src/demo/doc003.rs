@@ -172,7 +172,10 @@ pub(super) fn quasi(s: &mut Section) -> Result<()> {
             .map(|(t, y)| [*t, *y])
             .collect();
         fig.series.push(Series::new(
-            Some(&format!("q, {name}")),
+            Some(&format!(
+                "q: {}",
+                ["after", "left end", "midpoint", "Greville"][n]
+            )),
             graph,
             Style::Dashed,
             PALETTE[n],
