@@ -114,16 +114,34 @@ fn surfaces() {
     surf(&["real-degree"])
         .success()
         .stdout(contains("degrees 3 3\n"));
-    surf(&["elevate", "--by", "1,2"])
+    let elevated = surf(&["elevate", "--by", "1,2"])
         .success()
-        .stdout(contains("\"degree_u\": 4"))
-        .stdout(contains("\"degree_v\": 5"));
+        .stdout(contains("\"type\": \"bezier_surface\""))
+        .stdout(contains("\"net\": [5, 6]"))
+        .get_output()
+        .stdout
+        .clone();
+    // the bezier_surface object is read back as input, and its real degrees are still (3, 3)
+    let obj = d.path().join("elevated.json");
+    fs::write(&obj, elevated).unwrap();
+    lekalo()
+        .args(["bezier", "real-degree"])
+        .arg(&obj)
+        .assert()
+        .success()
+        .stdout("degrees 4 5\nreal degrees 3 3\ndefects 1 2\n");
+    lekalo()
+        .args(["bezier", "change", "--degree", "3,3", "--to", "obj"])
+        .arg(&obj)
+        .assert()
+        .success()
+        .stdout(contains("vn "));
     surf(&["change", "--degree", "3,5", "--to", "step"])
         .success()
         .stdout(contains("B_SPLINE_SURFACE_WITH_KNOTS"));
     surf(&["reduce"])
         .success()
-        .stdout(contains("bspline_surface"));
+        .stdout(contains("\"net\": [4, 4]"));
     surf(&["change", "--degree", "2,3"])
         .code(2)
         .stderr(contains("real degree is 3"));

@@ -7,14 +7,15 @@ use clap::{Args, Subcommand};
 use lekalo::{BezierCurve, BezierSurface};
 use lekalo_io::Object;
 
-use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs};
+use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
 use crate::io::{bad_input, emit, integers, load_one};
 use crate::Verbosity;
 
 /// The input of a `bezier` operation: a curve object, or a surface net.
 #[derive(Args, Debug)]
 pub(crate) struct BezierInput {
-    /// A Bezier curve object (JSON; `-` for standard input). Omit it for a surface.
+    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), or nothing with
+    /// --surface.
     input: Option<PathBuf>,
     /// A Bezier surface: its control net as a points file, read row by row (with --net).
     #[arg(long, value_name = "FILE", requires = "net")]
@@ -32,7 +33,8 @@ pub(crate) enum BezierOp {
 Examples:
   lekalo bezier elevate quad.json --by 1          # Example 1, task 1: 2 legs -> 3 legs
   lekalo bezier elevate cubic.json --by 2 -o quintic.svg
-  lekalo bezier elevate --surface net.csv --net 3x4 --by 1,2 -o s.json")]
+  lekalo bezier elevate --surface net.csv --net 3x4 --by 1,2 -o s.json
+  lekalo bezier elevate s.json --by 1,0 -o s.step    # s.json: a bezier_surface object")]
     Elevate {
         #[command(flatten)]
         input: BezierInput,
@@ -103,14 +105,14 @@ enum Loaded {
 
 fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
     match (&i.input, &i.surface, &i.net) {
-        (Some(p), None, None) => match load_one(p, v)? {
-            Object::Bezier(c) => Ok(Loaded::Curve(c, p.clone())),
-            other => bad_input(format!(
-                "{}: is a {}; `lekalo bezier` takes a Bezier curve (or --surface with --net)",
-                p.display(),
-                other.display_name()
-            )),
-        },
+        (Some(p), None, None) => {
+            let (text, name) = lekalo_io::read_input(p)?;
+            if lekalo_io::envelope_type(&text).as_deref() == Some("bezier_surface") {
+                let s = lekalo_io::read_bezier_surface(&text, &name)?;
+                return Ok(Loaded::Surface(s, p.clone()));
+            }
+            load_curve(p, v)
+        }
         (None, Some(p), Some(net)) => {
             let (rows, cols) = net_size(net, "--net")?;
             let (text, name) = lekalo_io::read_input(p)?;
@@ -124,6 +126,17 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
             bad_input("give either a curve file or --surface FILE --net ROWSxCOLS, not both")
         }
         _ => bad_input("no input: give a Bezier curve file, or --surface FILE --net ROWSxCOLS"),
+    }
+}
+
+fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
+    match load_one(p, v)? {
+        Object::Bezier(c) => Ok(Loaded::Curve(c, p.to_path_buf())),
+        other => bad_input(format!(
+            "{}: is a {}; `lekalo bezier` takes a Bezier curve or surface (or --surface with --net)",
+            p.display(),
+            other.display_name()
+        )),
     }
 }
 
@@ -150,7 +163,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             }
             Loaded::Surface(s, p) => {
                 let (du, dv) = amounts(by, "--by", true)?;
-                write_surface(&s.elevate_degree(du, dv)?.to_bspline(), out, &[p], v)
+                write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], v)
             }
         },
         BezierOp::Reduce { input, out } => match load(input, v)? {
@@ -159,7 +172,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             }
             Loaded::Surface(s, p) => {
                 let (n, m) = s.real_degrees();
-                write_surface(&s.change_degree(n, m)?.to_bspline(), out, &[p], v)
+                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
             }
         },
         BezierOp::RealDegree { input } => {
@@ -190,7 +203,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             }
             Loaded::Surface(s, p) => {
                 let (n, m) = amounts(degree, "--degree", true)?;
-                write_surface(&s.change_degree(n, m)?.to_bspline(), out, &[p], v)
+                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
             }
         },
     }

@@ -119,24 +119,6 @@ fn stem(out: Option<&Path>) -> &str {
         .unwrap_or("lekalo")
 }
 
-/// The versioned JSON of a B-spline surface (`"type": "bspline_surface"`, docs/formats.md).
-pub(crate) fn surface_json(s: &BSplineSurface) -> String {
-    let (nu, nv) = s.net_size();
-    let rows: Vec<String> = s
-        .control_points()
-        .iter()
-        .map(|p| serde_json::to_string(p).unwrap_or_default())
-        .collect();
-    format!(
-        "{{\n  \"lekalo\": 1,\n  \"type\": \"bspline_surface\",\n  \"degree_u\": {},\n  \"degree_v\": {},\n  \"knots_u\": {},\n  \"knots_v\": {},\n  \"net\": [{nu}, {nv}],\n  \"control\": [\n    {}\n  ]\n}}\n",
-        s.degree_u(),
-        s.degree_v(),
-        serde_json::to_string(s.knots_u().as_slice()).unwrap_or_default(),
-        serde_json::to_string(s.knots_v().as_slice()).unwrap_or_default(),
-        rows.join(",\n    ")
-    )
-}
-
 /// Wireframe of a surface sampled on a `SURFACE_SAMPLES²` grid, with its control net.
 pub(crate) fn surface_figure(s: &BSplineSurface, title: &str) -> Result<Figure> {
     let ((u0, u1), (v0, v1)) = s.domain();
@@ -179,7 +161,7 @@ pub(crate) fn write_surface(
         s.degree_v()
     );
     let bytes = match format.as_str() {
-        "json" => surface_json(s).into_bytes(),
+        "json" => lekalo_io::bspline_surface_to_json(s).into_bytes(),
         "svg" | "png" => encode(&surface_figure(s, &title)?, &format, 2.0)?,
         "step" => {
             let (nu, nv) = s.net_size();
@@ -208,6 +190,21 @@ pub(crate) fn write_surface(
         }
     };
     emit(out.output.as_deref(), &bytes, inputs, v)
+}
+
+/// Writes a Bezier surface: its own JSON (`bezier_surface`), other formats as
+/// [`write_surface`] of its B-spline form.
+pub(crate) fn write_bezier_surface(
+    s: &lekalo::BezierSurface,
+    out: &OutArgs,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    if format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
+        let text = lekalo_io::bezier_surface_to_json(s);
+        return emit(out.output.as_deref(), text.as_bytes(), inputs, v);
+    }
+    write_surface(&s.to_bspline(), out, inputs, v)
 }
 
 /// Parses `NUxNV` (e.g. `4x3`).

@@ -6,11 +6,10 @@ use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{quasi_interpolate, sample_quasi_interpolant, PiecewisePolynomial, PpSpace, TauRule};
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
-use serde::Deserialize;
 
 use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
 use crate::cmd::plot::encode;
-use crate::io::{bad_input, emit, format_of, integers, load_one, numbers, BadInput};
+use crate::io::{bad_input, emit, format_of, integers, load_one, numbers};
 use crate::Verbosity;
 
 /// The τ rule of the de Boor–Fix functionals (document 003 §D.5 step 5).
@@ -154,30 +153,6 @@ pub(crate) struct PpArgs {
     op: PpOp,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PpJson {
-    lekalo: u64,
-    #[serde(rename = "type")]
-    kind: String,
-    breakpoints: Vec<f64>,
-    order: usize,
-    dim: usize,
-    coefficients: Vec<f64>,
-}
-
-/// The versioned JSON of a piecewise polynomial.
-pub(crate) fn pp_json(p: &PiecewisePolynomial) -> String {
-    let j = |x: &[f64]| serde_json::to_string(x).unwrap_or_default();
-    format!(
-        "{{\n  \"lekalo\": 1,\n  \"type\": \"piecewise_polynomial\",\n  \"breakpoints\": {},\n  \"order\": {},\n  \"dim\": {},\n  \"coefficients\": {}\n}}\n",
-        j(p.breakpoints()),
-        p.order(),
-        p.dim(),
-        j(p.coefficients())
-    )
-}
-
 fn continuity(text: Option<&String>, n_breakpoints: usize, order: usize) -> Result<Vec<usize>> {
     let interior = n_breakpoints.saturating_sub(2);
     match text {
@@ -204,22 +179,10 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             out,
         } => {
             let (text, name) = lekalo_io::read_input(input)?;
-            let is_pp = serde_json::from_str::<serde_json::Value>(&text)
-                .ok()
-                .and_then(|val| val.get("type").cloned())
-                .is_some_and(|t| t == "piecewise_polynomial");
-            if is_pp {
-                let r: PpJson = serde_json::from_str(&text)
-                    .map_err(|e| BadInput(format!("{name}: piecewise_polynomial: {e}")))?;
-                if r.lekalo != 1 || r.kind != "piecewise_polynomial" {
-                    return bad_input(format!(
-                        "{name}: format version {} is not supported; this lekalo reads version 1",
-                        r.lekalo
-                    ));
-                }
-                let nu = continuity(cont.as_ref(), r.breakpoints.len(), r.order)?;
-                let space = PpSpace::new(&r.breakpoints, &nu, r.order)?;
-                let p = PiecewisePolynomial::new(r.breakpoints, r.order, r.dim, r.coefficients)?;
+            if lekalo_io::envelope_type(&text).as_deref() == Some("piecewise_polynomial") {
+                let p = lekalo_io::read_piecewise_polynomial(&text, &name)?;
+                let nu = continuity(cont.as_ref(), p.breakpoints().len(), p.order())?;
+                let space = PpSpace::new(p.breakpoints(), &nu, p.order())?;
                 let c = p.to_bspline(&space, rule.to_lib())?;
                 return write_curve(
                     &Object::BSpline(c),
@@ -249,7 +212,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             }
             emit(
                 out.output.as_deref(),
-                pp_json(&p).as_bytes(),
+                lekalo_io::piecewise_polynomial_to_json(&p).as_bytes(),
                 std::slice::from_ref(input),
                 v,
             )
