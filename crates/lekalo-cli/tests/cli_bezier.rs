@@ -71,6 +71,14 @@ fn example_2_real_degree_reduce_and_refusal() {
         .assert()
         .code(2)
         .stderr(contains("real degree is 3"));
+    // approximate reduction below the real degree: shape changes, deviation printed
+    lekalo()
+        .args(["bezier", "reduce", "--approx", "2"])
+        .arg(&q)
+        .assert()
+        .success()
+        .stdout(contains("bezier_curve"))
+        .stderr(contains("max deviation"));
     lekalo()
         .args(["bezier", "change", "--degree", "4"])
         .arg(&q)
@@ -188,4 +196,29 @@ fn bad_input_exit_code_2_names_the_problem() {
         .assert()
         .code(2)
         .stderr(contains("takes a Bezier curve"));
+    // B-spline curves can be elevated
+    lekalo()
+        .args(["bezier", "elevate", "--by", "2"])
+        .arg(&bs)
+        .assert()
+        .success()
+        .stdout(contains("\"degree\": 3"));
+    let nurbs = d.path().join("n.json");
+    fs::write(
+        &nurbs,
+        r#"{"lekalo":1,"type":"nurbs_curve","degree":1,"knots":[0,0,1,1],"control":[[0,0],[1,1]],"weights":[1,2]}"#,
+    )
+    .unwrap();
+    lekalo()
+        .args(["bezier", "elevate"])
+        .arg(&nurbs)
+        .assert()
+        .code(2)
+        .stderr(contains("NURBS curve"));
+    lekalo()
+        .args(["bezier", "reduce", "--approx", "2", "--ends", "tangents"])
+        .arg(&q)
+        .assert()
+        .code(2)
+        .stderr(contains("degree"));
 }

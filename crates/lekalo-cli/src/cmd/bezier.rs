@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Args, Subcommand};
-use lekalo::{BezierCurve, BezierSurface};
+use clap::{Args, Subcommand, ValueEnum};
+use lekalo::{BSplineCurve, BezierCurve, BezierSurface, EndConditions};
 use lekalo_io::Object;
 
 use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
@@ -25,10 +25,22 @@ pub(crate) struct BezierInput {
     net: Option<String>,
 }
 
+/// End conditions of the approximate reduction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Ends {
+    /// Nothing (plain L2 best approximation).
+    Free,
+    /// The end points.
+    Points,
+    /// The end points and end tangents (degree ≥ 3).
+    Tangents,
+}
+
 /// `lekalo bezier` operations.
 #[derive(Subcommand, Debug)]
 pub(crate) enum BezierOp {
-    /// Raise the degree without changing the shape (document 004 eq. 7–8).
+    /// Raise the degree without changing the shape (document 004 eq. 7–8); B-spline curves too
+    /// (each Bezier piece elevated, knots repeated).
     #[command(after_help = "\
 Examples:
   lekalo bezier elevate quad.json --by 1          # Example 1, task 1: 2 legs -> 3 legs
@@ -44,14 +56,22 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// Reduce exactly to the real degree: the minimal control polygon (document 004 eq. 9).
+    /// Reduce exactly to the real degree: the minimal control polygon (document 004 eq. 9);
+    /// or, with --approx, the best L2 approximation of a lower degree (curves).
     #[command(after_help = "\
 Examples:
   lekalo bezier reduce quintic.json               # Example 2: the cubic (10,0),(30,10),(0,20),(20,0)
-  lekalo bezier reduce --surface net.csv --net 5x4 -o minimal.json")]
+  lekalo bezier reduce --surface net.csv --net 5x4 -o minimal.json
+  lekalo bezier reduce quartic.json --approx 3 --ends tangents   # prints the deviation")]
     Reduce {
         #[command(flatten)]
         input: BezierInput,
+        /// Approximate reduction to this degree (changes the shape; the deviation is printed).
+        #[arg(long, value_name = "DEGREE")]
+        approx: Option<usize>,
+        /// What the approximate reduction keeps at the ends.
+        #[arg(long, value_enum, default_value_t = Ends::Points)]
+        ends: Ends,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -100,6 +120,7 @@ pub(crate) struct BezierArgs {
 
 enum Loaded {
     Curve(BezierCurve, PathBuf),
+    BSpline(BSplineCurve, PathBuf),
     Surface(BezierSurface, PathBuf),
 }
 
@@ -132,12 +153,20 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
 fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
     match load_one(p, v)? {
         Object::Bezier(c) => Ok(Loaded::Curve(c, p.to_path_buf())),
+        Object::BSpline(c) => Ok(Loaded::BSpline(c, p.to_path_buf())),
         other => bad_input(format!(
             "{}: is a {}; `lekalo bezier` takes a Bezier curve or surface (or --surface with --net)",
             p.display(),
             other.display_name()
         )),
     }
+}
+
+fn not_bezier() -> Result<()> {
+    bad_input(
+        "this operation takes a Bezier curve or surface; a B-spline curve can only be elevated \
+         (split it into Bezier pieces with `lekalo convert` first)",
+    )
 }
 
 /// One number for curves, two for surfaces.
@@ -161,15 +190,43 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                 let r = c.elevate_degree(k)?;
                 write_curve(&Object::Bezier(r), None, out, &[p], v)
             }
+            Loaded::BSpline(c, p) => {
+                let (k, _) = amounts(by, "--by", false)?;
+                write_curve(&Object::BSpline(c.elevate_degree(k)?), None, out, &[p], v)
+            }
             Loaded::Surface(s, p) => {
                 let (du, dv) = amounts(by, "--by", true)?;
                 write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], v)
             }
         },
-        BezierOp::Reduce { input, out } => match load(input, v)? {
-            Loaded::Curve(c, p) => {
-                write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v)
-            }
+        BezierOp::Reduce {
+            input,
+            approx,
+            ends,
+            out,
+        } => match load(input, v)? {
+            Loaded::Curve(c, p) => match approx {
+                None => write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v),
+                Some(target) => {
+                    let ends = match ends {
+                        Ends::Free => EndConditions::Free,
+                        Ends::Points => EndConditions::Points,
+                        Ends::Tangents => EndConditions::Tangents,
+                    };
+                    let r = c.reduce_degree_approx(*target, ends)?;
+                    if v != Verbosity::Quiet {
+                        eprintln!(
+                            "max deviation {:.6e} (sampled), bound {:.6e}",
+                            r.max_deviation_sampled, r.max_deviation_bound
+                        );
+                    }
+                    write_curve(&Object::Bezier(r.curve), None, out, &[p], v)
+                }
+            },
+            Loaded::BSpline(..) => not_bezier(),
+            Loaded::Surface(_, _) if approx.is_some() => bad_input(
+                "--approx reduces curves; surfaces are reduced exactly to their real degrees",
+            ),
             Loaded::Surface(s, p) => {
                 let (n, m) = s.real_degrees();
                 write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
@@ -183,6 +240,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                     c.real_degree(),
                     c.degree_defect()
                 ),
+                Loaded::BSpline(..) => return not_bezier(),
                 Loaded::Surface(s, _) => {
                     let (n, m) = s.real_degrees();
                     format!(
@@ -201,6 +259,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                 let (n, _) = amounts(degree, "--degree", false)?;
                 write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], v)
             }
+            Loaded::BSpline(..) => not_bezier(),
             Loaded::Surface(s, p) => {
                 let (n, m) = amounts(degree, "--degree", true)?;
                 write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
