@@ -99,8 +99,8 @@ Examples:
     Convert {
         /// A B-spline curve object, or a piecewise polynomial (JSON).
         input: PathBuf,
-        /// ν at each interior breakpoint for pp → B-spline (default: k − 1, i.e. C^(k−2)…
-        /// every ν = order − 1 means C^(k−2) continuity).
+        /// ν at each interior breakpoint for pp → B-spline: how many derivatives, counting the
+        /// value, are continuous there (default k − 1 everywhere, i.e. C^(k−2)).
         #[arg(long)]
         continuity: Option<String>,
         /// τ rule of the de Boor–Fix functionals.
