@@ -64,6 +64,15 @@ enum Command {
     /// Run the documents' constructions on built-in data; print a summary table and optionally
     /// write an HTML gallery.
     Demo(DemoArgs),
+    /// Interpolate points by a curve (every parametrisation, knot placement, end condition),
+    /// a grid by a surface, a function y(x) by a natural or Hermite spline.
+    Interpolate(cmd::interpolate::InterpolateArgs),
+    /// Bezier order change: elevate, reduce, real-degree, change (curves and surfaces).
+    Bezier(cmd::bezier::BezierArgs),
+    /// Blending: deformation of curves, splines through points, corner smoothing.
+    Blend(cmd::blend::BlendArgs),
+    /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
+    Pp(cmd::pp::PpArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -105,6 +114,10 @@ fn main() -> ExitCode {
         Command::Convert(a) => cmd::convert::run(&a, verbosity),
         Command::Plot(a) => cmd::plot::run(&a, verbosity),
         Command::Demo(a) => demo::run(a.out.as_deref(), verbosity),
+        Command::Interpolate(a) => cmd::interpolate::run(&a, verbosity),
+        Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
+        Command::Blend(a) => cmd::blend::run(&a, verbosity),
+        Command::Pp(a) => cmd::pp::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -556,7 +556,7 @@ fn demo_writes_the_gallery() {
         .success()
         .stdout(contains("(0.125, 0.75, 0.125)"))
         .stdout(contains("(2.125, 2.75)"))
-        .stdout(contains("of 21 checks reproduce the documents").and(contains("21 of 21")));
+        .stdout(contains("checks reproduce the documents").and(contains("[FAIL]").not()));
     let html = fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<img src=\"doc002-bspline-2.svg\""), "{html}");
     assert!(!html.contains("class=\"fail\""));

@@ -31,6 +31,7 @@ mod atomic;
 mod error;
 mod obj;
 mod object;
+mod object_ext;
 mod png;
 mod points_in;
 mod samples;
@@ -43,6 +44,10 @@ pub use atomic::{check_not_input, read_input, write_atomic};
 pub use error::{IoError, IoResult, Location};
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};
+pub use object_ext::{
+    bezier_surface_to_json, bspline_surface_to_json, envelope_type, piecewise_polynomial_to_json,
+    read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
+};
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points};
 pub use samples::{sample_table, SampleSpec, SampleTable};

@@ -6,3 +6,8 @@ pub(crate) mod info;
 pub(crate) mod knots;
 pub(crate) mod make;
 pub(crate) mod plot;
+// construction subcommands (issues 3–6)
+pub(crate) mod bezier;
+pub(crate) mod blend;
+pub(crate) mod interpolate;
+pub(crate) mod pp;

@@ -9,6 +9,16 @@ use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PA
 
 use super::{trim, Section};
 
+// the documents' constructions of issues 3–6 (interpolation, blending, pp-form, degree change)
+#[path = "doc000.rs"]
+mod doc000;
+#[path = "doc001.rs"]
+mod doc001;
+#[path = "doc003.rs"]
+mod doc003;
+#[path = "doc004.rs"]
+mod doc004;
+
 /// A gallery entry: identity and the function that builds it.
 pub(crate) struct Entry {
     /// File-name id.
@@ -40,6 +50,78 @@ pub(crate) const ENTRIES: &[Entry] = &[
         title: "Curry–Schoenberg knots and B-spline basis",
         source: "document 003 Theorem 4.5 and the practical task (digest §D.4–D.5)",
         build: curry_schoenberg,
+    },
+    Entry {
+        id: "doc000-curves",
+        title: "Curves through points: P&T Example 9.1",
+        source: "document 000 §A.1; test vectors of digest T.1",
+        build: doc000::curves,
+    },
+    Entry {
+        id: "doc000-ends",
+        title: "End derivatives, second derivatives, natural spline",
+        source: "document 000 §A.2–A.4; test vectors of digest T.1",
+        build: doc000::end_conditions,
+    },
+    Entry {
+        id: "doc000-surface",
+        title: "Surface through a grid of points",
+        source: "document 000 §A.5",
+        build: doc000::surface,
+    },
+    Entry {
+        id: "doc001-jump",
+        title: "Jump-smoothing polynomials w_k, k = 0 … 5",
+        source: "document 001 §1, Properties 1–4 (digest §B.1)",
+        build: doc001::jump,
+    },
+    Entry {
+        id: "doc001-deformation",
+        title: "Deformation of two circular arcs",
+        source: "document 001 §2 (digest §B.2)",
+        build: doc001::deformation,
+    },
+    Entry {
+        id: "doc001-spline",
+        title: "Splines through points by blended arcs and parabolas",
+        source: "document 001 §3 (digest §B.3)",
+        build: doc001::spline,
+    },
+    Entry {
+        id: "doc001-corner",
+        title: "Corner smoothing",
+        source: "document 001, conclusion (construction: lekalo CornerTransition)",
+        build: doc001::corner,
+    },
+    Entry {
+        id: "doc002-hermite",
+        title: "Hermite segment and the four-point cubic",
+        source: "document 002 §C.2–C.3",
+        build: doc003::hermite,
+    },
+    Entry {
+        id: "doc003-quasi",
+        title: "Quasi-interpolation of x·cos x (thesis Figure 1)",
+        source: "document 003 §5, practical task (digest §D.5)",
+        build: doc003::quasi,
+    },
+    Entry {
+        id: "doc004-elevation",
+        title: "Degree elevation: Example 1",
+        source: "document 004 Example 1, eq. (7)–(8) (digest §E.2)",
+        build: doc004::elevation,
+    },
+    Entry {
+        id: "doc004-reduction",
+        title: "Real degree and exact reduction: Example 2",
+        source: "document 004 Example 2, eq. (9)–(10) (digest §E.3)",
+        build: doc004::reduction,
+    },
+    Entry {
+        id: "doc004-surface",
+        title: "Order change of a Bezier surface",
+        source: "document 004 eq. (14), Fig. 5 (digest §E.4)",
+        build: doc004::surface,
     },
 ];
 

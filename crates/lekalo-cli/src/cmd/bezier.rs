@@ -1,0 +1,269 @@
+//! `lekalo bezier`: order change of Bezier curves and surfaces (document 004).
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, Subcommand, ValueEnum};
+use lekalo::{BSplineCurve, BezierCurve, BezierSurface, EndConditions};
+use lekalo_io::Object;
+
+use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
+use crate::io::{bad_input, emit, integers, load_one};
+use crate::Verbosity;
+
+/// The input of a `bezier` operation: a curve object, or a surface net.
+#[derive(Args, Debug)]
+pub(crate) struct BezierInput {
+    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), or nothing with
+    /// --surface.
+    input: Option<PathBuf>,
+    /// A Bezier surface: its control net as a points file, read row by row (with --net).
+    #[arg(long, value_name = "FILE", requires = "net")]
+    surface: Option<PathBuf>,
+    /// Net size of --surface, rows x columns = (n + 1) x (m + 1), e.g. 5x4.
+    #[arg(long, value_name = "ROWSxCOLS")]
+    net: Option<String>,
+}
+
+/// End conditions of the approximate reduction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Ends {
+    /// Nothing (plain L2 best approximation).
+    Free,
+    /// The end points.
+    Points,
+    /// The end points and end tangents (degree ≥ 3).
+    Tangents,
+}
+
+/// `lekalo bezier` operations.
+#[derive(Subcommand, Debug)]
+pub(crate) enum BezierOp {
+    /// Raise the degree without changing the shape (document 004 eq. 7–8); B-spline curves too
+    /// (each Bezier piece elevated, knots repeated).
+    #[command(after_help = "\
+Examples:
+  lekalo bezier elevate quad.json --by 1          # Example 1, task 1: 2 legs -> 3 legs
+  lekalo bezier elevate cubic.json --by 2 -o quintic.svg
+  lekalo bezier elevate --surface net.csv --net 3x4 --by 1,2 -o s.json
+  lekalo bezier elevate s.json --by 1,0 -o s.step    # s.json: a bezier_surface object")]
+    Elevate {
+        #[command(flatten)]
+        input: BezierInput,
+        /// How much to raise: one number for a curve, `du,dv` for a surface.
+        #[arg(long, default_value = "1")]
+        by: String,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+    /// Reduce exactly to the real degree: the minimal control polygon (document 004 eq. 9);
+    /// or, with --approx, the best L2 approximation of a lower degree (curves).
+    #[command(after_help = "\
+Examples:
+  lekalo bezier reduce quintic.json               # Example 2: the cubic (10,0),(30,10),(0,20),(20,0)
+  lekalo bezier reduce --surface net.csv --net 5x4 -o minimal.json
+  lekalo bezier reduce quartic.json --approx 3 --ends tangents   # prints the deviation")]
+    Reduce {
+        #[command(flatten)]
+        input: BezierInput,
+        /// Approximate reduction to this degree (changes the shape; the deviation is printed).
+        #[arg(long, value_name = "DEGREE")]
+        approx: Option<usize>,
+        /// What the approximate reduction keeps at the ends.
+        #[arg(long, value_enum, default_value_t = Ends::Points)]
+        ends: Ends,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+    /// Print the formal degree, the real degree and the defect (document 004 §E.3).
+    #[command(after_help = "\
+Examples:
+  lekalo bezier real-degree quintic.json          # degree 5, real degree 3, defect 2
+  lekalo bezier real-degree --surface net.csv --net 5x4")]
+    RealDegree {
+        #[command(flatten)]
+        input: BezierInput,
+    },
+    /// Change to any degree by the unified formula (eq. 10; eq. 14 for surfaces). Lowering
+    /// below the real degree is refused with the real degree in the message.
+    #[command(after_help = "\
+Examples:
+  lekalo bezier change quintic.json --degree 3
+  lekalo bezier change quintic.json --degree 2    # refused: the real degree is 3
+  lekalo bezier change --surface net.csv --net 5x4 --degree 3,6")]
+    Change {
+        #[command(flatten)]
+        input: BezierInput,
+        /// Target degree: one number for a curve, `n,m` for a surface.
+        #[arg(long)]
+        degree: String,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+}
+
+/// Arguments of `lekalo bezier`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Curves are read as Bezier curve objects (make one with `lekalo make bezier --control pts.csv`);
+surfaces as a points file of the control net, row by row, with --net ROWSxCOLS.
+
+Examples:
+  lekalo bezier real-degree quintic.json
+  lekalo bezier reduce quintic.json -o cubic.json
+  lekalo bezier elevate cubic.json --by 2
+  lekalo bezier change --surface net.csv --net 5x4 --degree 3,6 -o s.step")]
+pub(crate) struct BezierArgs {
+    #[command(subcommand)]
+    op: BezierOp,
+}
+
+enum Loaded {
+    Curve(BezierCurve, PathBuf),
+    BSpline(BSplineCurve, PathBuf),
+    Surface(BezierSurface, PathBuf),
+}
+
+fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
+    match (&i.input, &i.surface, &i.net) {
+        (Some(p), None, None) => {
+            let (text, name) = lekalo_io::read_input(p)?;
+            if lekalo_io::envelope_type(&text).as_deref() == Some("bezier_surface") {
+                let s = lekalo_io::read_bezier_surface(&text, &name)?;
+                return Ok(Loaded::Surface(s, p.clone()));
+            }
+            load_curve(p, v)
+        }
+        (None, Some(p), Some(net)) => {
+            let (rows, cols) = net_size(net, "--net")?;
+            let (text, name) = lekalo_io::read_input(p)?;
+            let pts = lekalo_io::read_points(&text, &name)?;
+            Ok(Loaded::Surface(
+                BezierSurface::new(pts, (rows, cols))?,
+                p.clone(),
+            ))
+        }
+        (Some(_), Some(_), _) => {
+            bad_input("give either a curve file or --surface FILE --net ROWSxCOLS, not both")
+        }
+        _ => bad_input("no input: give a Bezier curve file, or --surface FILE --net ROWSxCOLS"),
+    }
+}
+
+fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
+    match load_one(p, v)? {
+        Object::Bezier(c) => Ok(Loaded::Curve(c, p.to_path_buf())),
+        Object::BSpline(c) => Ok(Loaded::BSpline(c, p.to_path_buf())),
+        other => bad_input(format!(
+            "{}: is a {}; `lekalo bezier` takes a Bezier curve or surface (or --surface with --net)",
+            p.display(),
+            other.display_name()
+        )),
+    }
+}
+
+fn not_bezier() -> Result<()> {
+    bad_input(
+        "this operation takes a Bezier curve or surface; a B-spline curve can only be elevated \
+         (split it into Bezier pieces with `lekalo convert` first)",
+    )
+}
+
+/// One number for curves, two for surfaces.
+fn amounts(text: &str, what: &str, surface: bool) -> Result<(usize, usize)> {
+    let n = integers(text, what)?;
+    match (surface, n.as_slice()) {
+        (false, [a]) => Ok((*a, 0)),
+        (true, [a, b]) => Ok((*a, *b)),
+        (true, [a]) => Ok((*a, *a)),
+        _ => bad_input(format!(
+            "{what}: give one number for a curve, or two (u,v) for a surface; got \"{text}\""
+        )),
+    }
+}
+
+pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
+    match &a.op {
+        BezierOp::Elevate { input, by, out } => match load(input, v)? {
+            Loaded::Curve(c, p) => {
+                let (k, _) = amounts(by, "--by", false)?;
+                let r = c.elevate_degree(k)?;
+                write_curve(&Object::Bezier(r), None, out, &[p], v)
+            }
+            Loaded::BSpline(c, p) => {
+                let (k, _) = amounts(by, "--by", false)?;
+                write_curve(&Object::BSpline(c.elevate_degree(k)?), None, out, &[p], v)
+            }
+            Loaded::Surface(s, p) => {
+                let (du, dv) = amounts(by, "--by", true)?;
+                write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], v)
+            }
+        },
+        BezierOp::Reduce {
+            input,
+            approx,
+            ends,
+            out,
+        } => match load(input, v)? {
+            Loaded::Curve(c, p) => match approx {
+                None => write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v),
+                Some(target) => {
+                    let ends = match ends {
+                        Ends::Free => EndConditions::Free,
+                        Ends::Points => EndConditions::Points,
+                        Ends::Tangents => EndConditions::Tangents,
+                    };
+                    let r = c.reduce_degree_approx(*target, ends)?;
+                    if v != Verbosity::Quiet {
+                        eprintln!(
+                            "max deviation {:.6e} (sampled), bound {:.6e}",
+                            r.max_deviation_sampled, r.max_deviation_bound
+                        );
+                    }
+                    write_curve(&Object::Bezier(r.curve), None, out, &[p], v)
+                }
+            },
+            Loaded::BSpline(..) => not_bezier(),
+            Loaded::Surface(_, _) if approx.is_some() => bad_input(
+                "--approx reduces curves; surfaces are reduced exactly to their real degrees",
+            ),
+            Loaded::Surface(s, p) => {
+                let (n, m) = s.real_degrees();
+                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
+            }
+        },
+        BezierOp::RealDegree { input } => {
+            let text = match load(input, v)? {
+                Loaded::Curve(c, _) => format!(
+                    "degree {}\nreal degree {}\ndefect {}\n",
+                    c.degree(),
+                    c.real_degree(),
+                    c.degree_defect()
+                ),
+                Loaded::BSpline(..) => return not_bezier(),
+                Loaded::Surface(s, _) => {
+                    let (n, m) = s.real_degrees();
+                    format!(
+                        "degrees {} {}\nreal degrees {n} {m}\ndefects {} {}\n",
+                        s.degree_u(),
+                        s.degree_v(),
+                        s.degree_u() - n,
+                        s.degree_v() - m
+                    )
+                }
+            };
+            emit(None, text.as_bytes(), &[], v)
+        }
+        BezierOp::Change { input, degree, out } => match load(input, v)? {
+            Loaded::Curve(c, p) => {
+                let (n, _) = amounts(degree, "--degree", false)?;
+                write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], v)
+            }
+            Loaded::BSpline(..) => not_bezier(),
+            Loaded::Surface(s, p) => {
+                let (n, m) = amounts(degree, "--degree", true)?;
+                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
+            }
+        },
+    }
+}

@@ -1,0 +1,260 @@
+//! `lekalo blend`: deformation of curves, splines by blending local curves, corner smoothing
+//! (document 001).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Result;
+use clap::{Args, Subcommand, ValueEnum};
+use lekalo::{
+    ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions, CircularArcs,
+    CornerTransition, Deformation, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
+    SplineParameters,
+};
+use lekalo_io::Object;
+
+use crate::cmd::interpolate::{write_curve, OutArgs};
+use crate::io::{bad_input, load_one, numbers};
+use crate::Verbosity;
+
+/// Local curves of a blended spline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Local {
+    /// Circular arcs with the angle linear (document 001's example; approximated for output).
+    Arcs,
+    /// Circular arcs as rational quadratics (exact NURBS output; arcs under 180°).
+    RationalArcs,
+    /// Arcs with the angle quadratic in the global parameter (C^k with --params chord).
+    GlobalArcs,
+    /// Parabolas through three points (C^k; exact B-spline output).
+    Parabolas,
+}
+
+/// Parameters of the spline's points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SplineParams {
+    /// Δ = 1.
+    Uniform,
+    /// Δ = chord length.
+    Chord,
+    /// Δ = square root of the chord length.
+    Centripetal,
+}
+
+/// `lekalo blend` operations.
+#[derive(Subcommand, Debug)]
+pub(crate) enum BlendOp {
+    /// Deform curve A into curve B (same end points): p = (1 − w_{k−1}) A + w_{k−1} B (§B.2).
+    #[command(after_help = "\
+The result is exact: a Bezier curve of degree (2k − 1) + max(d1, d2), or a rational Bezier
+(NURBS) when a curve is rational (e.g. circular arcs made with `lekalo make nurbs`).
+
+Examples:
+  lekalo blend deform up.json down.json -k 2 -o blend.json
+  lekalo blend deform arc1.json arc2.json -k 3 -o blend.svg")]
+    Deform {
+        /// The first curve (object JSON).
+        first: PathBuf,
+        /// The second curve, with the same end points.
+        second: PathBuf,
+        /// Continuity degree k ≥ 1 (contact of order k with each curve at its end).
+        #[arg(short, default_value_t = 2)]
+        k: usize,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+    /// A spline through points by blending local three-point curves (§B.3).
+    #[command(after_help = "\
+Output: exact NURBS for --local parabolas and rational-arcs; for arcs and global-arcs a
+B-spline approximation of degree 2k + 1 with the same joins, within --tolerance (printed).
+
+Examples:
+  lekalo blend spline pts.csv -k 2 --local parabolas -o spline.json
+  lekalo blend spline pts.csv -k 3 --local arcs --closed -o closed.svg
+  lekalo blend spline pts.csv --local rational-arcs --params chord -o spline.step")]
+    Spline {
+        /// Points file (CSV, text or JSON; `-` for standard input).
+        points: PathBuf,
+        /// Continuity degree k ≥ 1.
+        #[arg(short, default_value_t = 2)]
+        k: usize,
+        /// Local curves.
+        #[arg(long, value_enum, default_value_t = Local::Arcs)]
+        local: Local,
+        /// Closed curve through the points.
+        #[arg(long)]
+        closed: bool,
+        /// Parameters of the points.
+        #[arg(long, value_enum, default_value_t = SplineParams::Uniform)]
+        params: SplineParams,
+        /// Tolerance of the approximation for arcs.
+        #[arg(long, default_value_t = 1e-8)]
+        tolerance: f64,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+    /// Smooth the corner where curve A ends and curve B starts, with continuity degree k.
+    #[command(after_help = "\
+The window: A is replaced from parameter --from to its end, B from its start to --until. The
+output is the transition curve, exact (Bezier or rational Bezier) when A and B are single
+Bezier pieces.
+
+Examples:
+  lekalo blend corner before.json after.json --from 0.5 --until 0.5 -k 2 -o corner.json")]
+    Corner {
+        /// The curve before the corner.
+        before: PathBuf,
+        /// The curve after the corner (starts where `before` ends).
+        after: PathBuf,
+        /// Parameter of `before` where the transition starts.
+        #[arg(long, allow_hyphen_values = true)]
+        from: String,
+        /// Parameter of `after` where the transition ends.
+        #[arg(long, allow_hyphen_values = true)]
+        until: String,
+        /// Continuity degree k ≥ 1.
+        #[arg(short, default_value_t = 2)]
+        k: usize,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+}
+
+/// Arguments of `lekalo blend`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Examples:
+  lekalo blend deform a.json b.json -k 2
+  lekalo blend spline pts.csv -k 2 --local parabolas
+  lekalo blend corner a.json b.json --from 0.8 --until 0.2")]
+pub(crate) struct BlendArgs {
+    #[command(subcommand)]
+    op: BlendOp,
+}
+
+/// A curve object as a library curve.
+fn curve(path: &Path, v: Verbosity) -> Result<SharedCurve> {
+    Ok(match load_one(path, v)? {
+        Object::Bezier(c) => Arc::new(c),
+        Object::BSpline(c) => Arc::new(c),
+        Object::Nurbs(c) => Arc::new(c),
+        other => {
+            return bad_input(format!(
+                "{}: a {} cannot be blended; give a curve",
+                path.display(),
+                other.display_name()
+            ))
+        }
+    })
+}
+
+fn form_object(f: BezierForm) -> Object {
+    match f {
+        BezierForm::Polynomial(b) => Object::Bezier(b),
+        BezierForm::Rational(n) => Object::Nurbs(n),
+    }
+}
+
+fn one_number(text: &str, what: &str) -> Result<f64> {
+    match numbers(text, what)?.as_slice() {
+        [x] => Ok(*x),
+        _ => bad_input(format!("{what}: give one parameter value, got \"{text}\"")),
+    }
+}
+
+pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
+    match &a.op {
+        BlendOp::Deform {
+            first,
+            second,
+            k,
+            out,
+        } => {
+            let d = Deformation::new(curve(first, v)?, curve(second, v)?, *k)?;
+            let Some(form) = d.bezier_form() else {
+                return bad_input(
+                    "the deformation has an exact form only for single Bezier pieces (Bezier \
+                     curves, or B-spline/NURBS curves without interior knots)",
+                );
+            };
+            write_curve(
+                &form_object(form),
+                None,
+                out,
+                &[first.clone(), second.clone()],
+                v,
+            )
+        }
+        BlendOp::Spline {
+            points,
+            k,
+            local,
+            closed,
+            params,
+            tolerance,
+            out,
+        } => {
+            let (text, name) = lekalo_io::read_input(points)?;
+            let pts = lekalo_io::read_points(&text, &name)?;
+            let family: Box<dyn LocalCurves> = match local {
+                Local::Arcs => Box::new(CircularArcs::new(ArcParametrization::UniformAngle)),
+                Local::RationalArcs => {
+                    Box::new(CircularArcs::new(ArcParametrization::RationalQuadratic))
+                }
+                Local::GlobalArcs => Box::new(CircularArcs::new(ArcParametrization::GlobalAngle)),
+                Local::Parabolas => Box::new(Parabolas),
+            };
+            let options = BlendSplineOptions {
+                continuity: *k,
+                closed: *closed,
+                parameters: match params {
+                    SplineParams::Uniform => SplineParameters::Uniform,
+                    SplineParams::Chord => SplineParameters::ChordLength,
+                    SplineParams::Centripetal => SplineParameters::Centripetal,
+                },
+            };
+            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options)?;
+            let obj = match local {
+                Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
+                Local::Arcs | Local::GlobalArcs => {
+                    let approx = s.approximate(*tolerance)?;
+                    if v != Verbosity::Quiet {
+                        eprintln!(
+                            "note: arcs have no exact polynomial form; B-spline approximation of \
+                             degree {} with max error {:.3e}",
+                            approx.curve().degree(),
+                            approx.max_error()
+                        );
+                    }
+                    Object::BSpline(approx.curve().clone())
+                }
+            };
+            write_curve(&obj, Some(&pts), out, std::slice::from_ref(points), v)
+        }
+        BlendOp::Corner {
+            before,
+            after,
+            from,
+            until,
+            k,
+            out,
+        } => {
+            let t1 = one_number(from, "--from")?;
+            let t2 = one_number(until, "--until")?;
+            let c = CornerTransition::new(curve(before, v)?, t1, curve(after, v)?, t2, *k)?;
+            let Some(form) = c.bezier_form() else {
+                return bad_input(
+                    "the transition has an exact form only when both curves are single Bezier \
+                     pieces",
+                );
+            };
+            write_curve(
+                &form_object(form),
+                None,
+                out,
+                &[before.clone(), after.clone()],
+                v,
+            )
+        }
+    }
+}

@@ -1,0 +1,446 @@
+//! `lekalo interpolate`: curves and surfaces through points (document 000; document 002 §C.2–C.3),
+//! plus the output helpers shared by the construction subcommands (`bezier`, `blend`, `pp`).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use lekalo::{
+    interpolate_surface, natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation,
+    EndCondition, KnotPlacement, Parametrization, Points, TangentEstimate,
+};
+use lekalo_io::{
+    curve_figure, sample_table, wireframe_figure, CurvePlot, Figure, Grid, Object, Projection,
+    SampleSpec, Series, Style, SurfaceNet, PALETTE,
+};
+
+use crate::cmd::plot::encode;
+use crate::io::{bad_input, emit, format_of, numbers};
+use crate::Verbosity;
+
+/// Output options shared by the construction subcommands.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct OutArgs {
+    /// Output file (default: standard output); the format follows the extension.
+    #[arg(short, long, value_name = "FILE")]
+    pub(crate) output: Option<PathBuf>,
+    /// Output format: json, svg, png, step, csv (samples) or obj (surfaces: tessellation).
+    #[arg(long, value_name = "FORMAT")]
+    pub(crate) to: Option<String>,
+}
+
+/// Fixed STEP timestamp, so that the same input gives the same file.
+const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
+/// Samples along a curve in plots, CSV and OBJ output.
+const CURVE_SAMPLES: usize = 200;
+/// Samples per direction of a surface in plots and OBJ output.
+const SURFACE_SAMPLES: usize = 25;
+
+/// Writes a curve object in the chosen format; `data` are points to show in plots.
+pub(crate) fn write_curve(
+    obj: &Object,
+    data: Option<&Points>,
+    out: &OutArgs,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
+    let bytes = match format.as_str() {
+        "json" => obj.to_json_pretty().into_bytes(),
+        "svg" | "png" => encode(&curve_plot(obj, data, None)?, &format, 2.0)?,
+        "csv" => sample_table(
+            obj,
+            &obj.uniform_parameters(CURVE_SAMPLES),
+            SampleSpec::default(),
+        )?
+        .to_csv()
+        .into_bytes(),
+        "step" => {
+            let mut w = lekalo_io::StepWriter::new(stem(out.output.as_deref()));
+            w.add_object(obj)?;
+            w.finish(STEP_TIMESTAMP).into_bytes()
+        }
+        "obj" => lekalo_io::polyline_to_obj(&obj.sample(CURVE_SAMPLES)?).into_bytes(),
+        other => {
+            return bad_input(format!(
+                "unknown output format \"{other}\": use json, svg, png, step, csv or obj"
+            ))
+        }
+    };
+    emit(out.output.as_deref(), &bytes, inputs, v)
+}
+
+/// A plot of a curve: plane curves with control polygon and data; 1-D curves (functions) as a
+/// graph `(t, y(t))` with the data as `(x_k, y_k)`.
+pub(crate) fn curve_plot(
+    obj: &Object,
+    data: Option<&Points>,
+    title: Option<&str>,
+) -> Result<Figure> {
+    if obj.dim() != 1 {
+        return Ok(curve_figure(
+            obj,
+            &CurvePlot {
+                title: title.map(str::to_string),
+                data_points: data,
+                ..CurvePlot::default()
+            },
+        )?);
+    }
+    let t = obj.uniform_parameters(CURVE_SAMPLES);
+    let y = obj.sample(CURVE_SAMPLES)?;
+    let graph = t.iter().zip(y.iter()).map(|(t, y)| [*t, y[0]]).collect();
+    let mut fig = Figure::new(
+        title.unwrap_or(&format!(
+            "{} y(x) of degree {}",
+            obj.display_name(),
+            obj.degree()
+        )),
+        false,
+    );
+    fig.series
+        .push(Series::new(Some("y(x)"), graph, Style::Line, PALETTE[0]));
+    if let Some(d) = data {
+        let pts = d.iter().map(|p| [p[0], p[1]]).collect();
+        fig.series.push(Series::new(
+            Some("data points"),
+            pts,
+            Style::Markers,
+            PALETTE[2],
+        ));
+    }
+    fig.axis_labels = ("x".into(), "y".into());
+    Ok(fig)
+}
+
+fn stem(out: Option<&Path>) -> &str {
+    out.and_then(|p| p.file_stem())
+        .and_then(|s| s.to_str())
+        .unwrap_or("lekalo")
+}
+
+/// Wireframe of a surface sampled on a `SURFACE_SAMPLES²` grid, with its control net.
+pub(crate) fn surface_figure(s: &BSplineSurface, title: &str) -> Result<Figure> {
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let us = lekalo_io::uniform(u0, u1, SURFACE_SAMPLES);
+    let vs = lekalo_io::uniform(v0, v1, SURFACE_SAMPLES);
+    let mut data = vec![0.0; us.len() * vs.len() * s.dim()];
+    s.eval_grid(&us, &vs, &mut data)?;
+    let grid = Grid::new(us.len(), vs.len(), s.dim(), &data)?;
+    let proj = Projection::default();
+    let mut fig = wireframe_figure(title, &grid, &proj);
+    let (nu, nv) = s.net_size();
+    let net = Grid::new(nu, nv, s.dim(), s.control_points().as_slice())?;
+    let mut paths = Vec::new();
+    for i in 0..nu {
+        paths.push((0..nv).map(|j| proj.project(net.point3(i, j))).collect());
+    }
+    for j in 0..nv {
+        paths.push((0..nu).map(|i| proj.project(net.point3(i, j))).collect());
+    }
+    fig.series.push(Series {
+        label: Some("control net".into()),
+        paths,
+        style: Style::Dashed,
+        color: "#777777".into(),
+    });
+    Ok(fig)
+}
+
+/// Writes a B-spline surface: json, svg/png (wireframe), step, obj (tessellation).
+pub(crate) fn write_surface(
+    s: &BSplineSurface,
+    out: &OutArgs,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
+    let title = format!(
+        "B-spline surface of degrees ({}, {})",
+        s.degree_u(),
+        s.degree_v()
+    );
+    let bytes = match format.as_str() {
+        "json" => lekalo_io::bspline_surface_to_json(s).into_bytes(),
+        "svg" | "png" => encode(&surface_figure(s, &title)?, &format, 2.0)?,
+        "step" => {
+            let (nu, nv) = s.net_size();
+            let mut w = lekalo_io::StepWriter::new(stem(out.output.as_deref()));
+            w.add_surface(&SurfaceNet {
+                degrees: (s.degree_u(), s.degree_v()),
+                knots: (s.knots_u().as_slice(), s.knots_v().as_slice()),
+                net: Grid::new(nu, nv, s.dim(), s.control_points().as_slice())?,
+                weights: None,
+            })?;
+            w.finish(STEP_TIMESTAMP).into_bytes()
+        }
+        "obj" => {
+            let ((u0, u1), (v0, v1)) = s.domain();
+            let us = lekalo_io::uniform(u0, u1, SURFACE_SAMPLES);
+            let vs = lekalo_io::uniform(v0, v1, SURFACE_SAMPLES);
+            let mut data = vec![0.0; us.len() * vs.len() * s.dim()];
+            s.eval_grid(&us, &vs, &mut data)?;
+            lekalo_io::grid_to_obj(&Grid::new(us.len(), vs.len(), s.dim(), &data)?, None)?
+                .into_bytes()
+        }
+        other => {
+            return bad_input(format!(
+                "unknown surface output format \"{other}\": use json, svg, png, step or obj"
+            ))
+        }
+    };
+    emit(out.output.as_deref(), &bytes, inputs, v)
+}
+
+/// Writes a Bezier surface: its own JSON (`bezier_surface`), other formats as
+/// [`write_surface`] of its B-spline form.
+pub(crate) fn write_bezier_surface(
+    s: &lekalo::BezierSurface,
+    out: &OutArgs,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    if format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
+        let text = lekalo_io::bezier_surface_to_json(s);
+        return emit(out.output.as_deref(), text.as_bytes(), inputs, v);
+    }
+    write_surface(&s.to_bspline(), out, inputs, v)
+}
+
+/// Parses `NUxNV` (e.g. `4x3`).
+pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
+    let parsed = text
+        .split_once(['x', 'X', '×'])
+        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
+    match parsed {
+        Some((a, b)) => Ok((a, b)),
+        None => bad_input(format!(
+            "{what}: \"{text}\" is not a grid size; write rows x columns, e.g. 4x3"
+        )),
+    }
+}
+
+/// Parameter choice (document 000 §A.1; P&T eq. 9.4–9.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Param {
+    /// Parameters k/n.
+    Uniform,
+    /// Chord length (exponent 1).
+    Chord,
+    /// Centripetal (exponent 1/2).
+    Centripetal,
+}
+
+impl Param {
+    fn to_lib(self, exponent: Option<f64>) -> Parametrization {
+        match (exponent, self) {
+            (Some(e), _) => Parametrization::Exponent(e),
+            (None, Param::Uniform) => Parametrization::Uniform,
+            (None, Param::Chord) => Parametrization::ChordLength,
+            (None, Param::Centripetal) => Parametrization::Centripetal,
+        }
+    }
+}
+
+/// Knot placement (document 000 eqs. 2, 3, 4, 8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Knots {
+    /// What the end condition needs (averaged, or at the parameters for C² cubics).
+    Auto,
+    /// Averaging of the parameters (eq. 3; eq. 4 with end derivatives).
+    Averaged,
+    /// Uniform interior knots (eq. 2).
+    Uniform,
+    /// Knots at the parameters (eq. 8, cubic with end conditions).
+    AtParams,
+}
+
+/// End conditions (document 000 §A.1–A.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum End {
+    /// No extra condition (§A.1).
+    Free,
+    /// Given first derivatives --d0, --dn (§A.2; §A.3 with --knots at-params).
+    Derivatives,
+    /// Given second derivatives --d0, --dn (§A.4, cubic).
+    Second,
+    /// Zero second derivatives: the natural cubic spline.
+    Natural,
+    /// Closed curve, C^(p−1) at the seam.
+    Periodic,
+}
+
+/// Tangent estimates for Hermite interpolation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Tangents {
+    /// Mean of the neighbouring secant slopes.
+    FiniteDifference,
+    /// Catmull–Rom.
+    CatmullRom,
+    /// Cardinal with --tension.
+    Cardinal,
+    /// Fritsch–Carlson monotone (functions y(x)).
+    Monotone,
+}
+
+/// Arguments of `lekalo interpolate`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Curves (document 000): global B-spline interpolation, any degree, every parametrisation,
+knot placement and end condition. Surfaces (§A.5): --grid ROWSxCOLS reads the points row by row.
+Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
+--hermite. Hermite curves (document 002 §C.3): --hermite TANGENTS.
+
+Examples:
+  lekalo interpolate pts.csv --degree 3 --param chord -o curve.json
+  lekalo interpolate pts.csv --param centripetal --knots averaged -o curve.svg
+  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --degree 2
+  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --knots at-params
+  lekalo interpolate pts.csv --end second --d0 2,-1 --dn 0.5,4
+  lekalo interpolate pts.csv --end natural -o natural.step
+  lekalo interpolate pts.csv --end periodic --degree 3
+  lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
+  lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
+  lekalo interpolate xy.csv --function --hermite monotone
+  lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json")]
+pub(crate) struct InterpolateArgs {
+    /// Points file (CSV, whitespace text or JSON; `-` for standard input).
+    points: PathBuf,
+    /// Degree (curves and the u direction of surfaces).
+    #[arg(long, short = 'p', default_value_t = 3)]
+    degree: usize,
+    /// Degree in v of a surface (default: --degree, at most columns − 1).
+    #[arg(long)]
+    degree_v: Option<usize>,
+    /// Parametrisation.
+    #[arg(long, value_enum, default_value_t = Param::Chord)]
+    param: Param,
+    /// General parametrisation exponent e ≥ 0 (overrides --param; 0.5 is centripetal).
+    #[arg(long)]
+    exponent: Option<f64>,
+    /// Knot placement.
+    #[arg(long, value_enum, default_value_t = Knots::Auto)]
+    knots: Knots,
+    /// End condition.
+    #[arg(long, value_enum, default_value_t = End::Free)]
+    end: End,
+    /// Derivative at the start (first or second, after --end), comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    d0: Option<String>,
+    /// Derivative at the end, comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    dn: Option<String>,
+    /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
+    #[arg(long, value_name = "ROWSxCOLS")]
+    grid: Option<String>,
+    /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
+    #[arg(long)]
+    function: bool,
+    /// Cubic Hermite interpolation with estimated tangents.
+    #[arg(long, value_enum)]
+    hermite: Option<Tangents>,
+    /// Tension of cardinal tangents, in [0, 1].
+    #[arg(long, default_value_t = 0.0)]
+    tension: f64,
+    #[command(flatten)]
+    out: OutArgs,
+}
+
+pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
+    let (text, name) = lekalo_io::read_input(&a.points)?;
+    let pts = lekalo_io::read_points(&text, &name)?;
+    let inputs = vec![a.points.clone()];
+    let param = a.param.to_lib(a.exponent);
+    if let Some(g) = &a.grid {
+        let (nu, nv) = net_size(g, "--grid")?;
+        let s = interpolate_surface(
+            pts.as_view(),
+            nu,
+            nv,
+            a.degree,
+            a.degree_v
+                .unwrap_or(a.degree.min(nv.saturating_sub(1)).max(1)),
+            param,
+        )?
+        .into_surface();
+        return write_surface(&s, &a.out, &inputs, v);
+    }
+    if a.function {
+        if pts.dim() < 2 {
+            return bad_input(format!(
+                "{name}: --function needs at least two columns, x and y (got {})",
+                pts.dim()
+            ));
+        }
+        let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+        if let Some(k) = x.windows(2).position(|w| w[1] <= w[0]) {
+            return bad_input(format!(
+                "{name}: --function: x must be strictly increasing: row {} has x = {} after {} (sort the rows by x and merge repeated x)",
+                k + 2,
+                x[k + 1],
+                x[k]
+            ));
+        }
+        let ys: Vec<f64> = pts.iter().flat_map(|p| p[1..].to_vec()).collect();
+        let y = Points::new(ys, pts.dim() - 1)?;
+        let curve = match a.hermite {
+            Some(t) => {
+                CubicHermite::function(&x, y.as_view(), tangents(t, a.tension))?.to_bspline()
+            }
+            None => natural_cubic_spline(&x, y.as_view())?,
+        };
+        return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
+    }
+    if let Some(t) = a.hermite {
+        let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
+        let obj = Object::BSpline(h.to_bspline());
+        return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
+    }
+    let pair = |what: &str| -> Result<(Vec<f64>, Vec<f64>)> {
+        match (&a.d0, &a.dn) {
+            (Some(s), Some(e)) => Ok((numbers(s, "--d0")?, numbers(e, "--dn")?)),
+            _ => bad_input(format!(
+                "--end {what} needs --d0 and --dn (one value per coordinate, e.g. --d0 1,2)"
+            )),
+        }
+    };
+    let end = match a.end {
+        End::Free => EndCondition::Free,
+        End::Derivatives => {
+            let (start, end) = pair("derivatives")?;
+            EndCondition::FirstDerivatives { start, end }
+        }
+        End::Second => {
+            let (start, end) = pair("second")?;
+            EndCondition::SecondDerivatives { start, end }
+        }
+        End::Natural => EndCondition::Natural,
+        End::Periodic => EndCondition::Periodic,
+    };
+    if matches!(a.end, End::Free | End::Natural | End::Periodic)
+        && (a.d0.is_some() || a.dn.is_some())
+    {
+        return bad_input("--d0/--dn are used only with --end derivatives or --end second");
+    }
+    let knots = match a.knots {
+        Knots::Auto => KnotPlacement::Auto,
+        Knots::Averaged => KnotPlacement::Averaged,
+        Knots::Uniform => KnotPlacement::Uniform,
+        Knots::AtParams => KnotPlacement::AtParameters,
+    };
+    let curve = CurveInterpolation::new(a.degree)
+        .parametrization(param)
+        .knot_placement(knots)
+        .end_condition(end)
+        .interpolate(pts.as_view())?;
+    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
+}
+
+fn tangents(t: Tangents, tension: f64) -> TangentEstimate {
+    match t {
+        Tangents::FiniteDifference => TangentEstimate::FiniteDifference,
+        Tangents::CatmullRom => TangentEstimate::CatmullRom,
+        Tangents::Cardinal => TangentEstimate::Cardinal { tension },
+        Tangents::Monotone => TangentEstimate::Monotone,
+    }
+}

@@ -1,0 +1,261 @@
+//! `lekalo pp`: piecewise polynomials ↔ B-splines and quasi-interpolation (document 003).
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, Subcommand, ValueEnum};
+use lekalo::{quasi_interpolate, sample_quasi_interpolant, PiecewisePolynomial, PpSpace, TauRule};
+use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+
+use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
+use crate::cmd::plot::encode;
+use crate::io::{bad_input, emit, format_of, integers, load_one, numbers};
+use crate::Verbosity;
+
+/// The τ rule of the de Boor–Fix functionals (document 003 §D.5 step 5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Rule {
+    /// Tau = the first knot after the left end of the support (the thesis's rule).
+    FirstKnotAfter,
+    /// Tau = the left end of the support (reproduces the thesis's printed error 0.204831).
+    LeftEndOfSupport,
+    /// Tau = the middle of the support.
+    Midpoint,
+    /// Tau = the Greville abscissa.
+    Greville,
+}
+
+impl Rule {
+    pub(crate) fn to_lib(self) -> TauRule {
+        match self {
+            Rule::FirstKnotAfter => TauRule::FirstKnotAfter,
+            Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
+            Rule::Midpoint => TauRule::Midpoint,
+            Rule::Greville => TauRule::Greville,
+        }
+    }
+}
+
+/// Built-in functions for quasi-interpolation, with their derivatives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Function {
+    /// x·cos(x), the thesis's example.
+    #[value(name = "x*cos(x)", alias = "xcosx")]
+    XCosX,
+    /// sin(x).
+    Sin,
+    /// cos(x).
+    Cos,
+    /// exp(x).
+    Exp,
+    /// 1/(1 + x²) (Runge).
+    Runge,
+}
+
+impl Function {
+    /// The r-th derivative at x.
+    pub(crate) fn eval(self, x: f64, r: usize) -> f64 {
+        let (s, c) = x.sin_cos();
+        match self {
+            // (x cos x)^(r) = x cos(x + rπ/2) + r cos(x + (r−1)π/2)
+            Function::XCosX => {
+                let rf = r as f64;
+                let h = std::f64::consts::FRAC_PI_2;
+                x * (x + rf * h).cos() + rf * (x + (rf - 1.0) * h).cos()
+            }
+            Function::Sin => [s, c, -s, -c][r % 4],
+            Function::Cos => [c, -s, -c, s][r % 4],
+            Function::Exp => x.exp(),
+            Function::Runge => runge_derivative(x, r),
+        }
+    }
+}
+
+/// (1 + x²)^{-1} derivatives by the recurrence of (1 + x²) f = 1:
+/// (1 + x²) f^(r) + 2 r x f^(r−1) + r(r−1) f^(r−2) = 0.
+fn runge_derivative(x: f64, r: usize) -> f64 {
+    let q = 1.0 + x * x;
+    let mut d = vec![1.0 / q];
+    for m in 1..=r {
+        let mf = m as f64;
+        let prev2 = if m >= 2 { d[m - 2] } else { 0.0 };
+        d.push(-(2.0 * mf * x * d[m - 1] + mf * (mf - 1.0) * prev2) / q);
+    }
+    d[r]
+}
+
+/// `lekalo pp` operations.
+#[derive(Subcommand, Debug)]
+pub(crate) enum PpOp {
+    /// B-spline curve → pp-form (local power coefficients), or pp-form → B-spline on the
+    /// Curry–Schoenberg knots of --continuity (document 003 §5.1).
+    #[command(after_help = "\
+The pp-form JSON: {\"lekalo\": 1, \"type\": \"piecewise_polynomial\", \"breakpoints\": [...],
+\"order\": k, \"dim\": d, \"coefficients\": [...]} with, for each piece j, c_{j,r} = f^(r)(ξ_j+)/r!.
+
+Examples:
+  lekalo pp convert curve.json -o curve.pp.json
+  lekalo pp convert curve.pp.json --continuity 2,2,2 --rule midpoint -o curve.json")]
+    Convert {
+        /// A B-spline curve object, or a piecewise polynomial (JSON).
+        input: PathBuf,
+        /// ν at each interior breakpoint for pp → B-spline: how many derivatives, counting the
+        /// value, are continuous there (default k − 1 everywhere, i.e. C^(k−2)).
+        #[arg(long)]
+        continuity: Option<String>,
+        /// τ rule of the de Boor–Fix functionals.
+        #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
+        rule: Rule,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+    /// Quasi-interpolate a built-in function in P(k, ξ, ν) (document 003 §D.5).
+    #[command(after_help = "\
+Prints the maximum error on a uniform grid (--intervals) to standard error. SVG/PNG output
+plots f and its quasi-interpolant, like the thesis's Figure 1.
+
+Examples:
+  lekalo pp quasi --function 'x*cos(x)' --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --order 3 \\
+      --continuity 2,2,2,2,2 --rule left-end-of-support -o fig1.svg    # max error 0.204831
+  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json")]
+    Quasi {
+        /// The function.
+        #[arg(long, value_enum)]
+        function: Function,
+        /// Breakpoints, strictly increasing.
+        #[arg(long, allow_hyphen_values = true)]
+        breakpoints: String,
+        /// Order k = degree + 1.
+        #[arg(long, default_value_t = 3)]
+        order: usize,
+        /// ν at each interior breakpoint (default: k − 1 everywhere).
+        #[arg(long)]
+        continuity: Option<String>,
+        /// τ rule.
+        #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
+        rule: Rule,
+        /// Intervals of the error grid.
+        #[arg(long, default_value_t = 60)]
+        intervals: usize,
+        #[command(flatten)]
+        out: OutArgs,
+    },
+}
+
+/// Arguments of `lekalo pp`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Examples:
+  lekalo pp convert curve.json -o curve.pp.json
+  lekalo pp quasi --function 'x*cos(x)' --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --rule midpoint")]
+pub(crate) struct PpArgs {
+    #[command(subcommand)]
+    op: PpOp,
+}
+
+fn continuity(text: Option<&String>, n_breakpoints: usize, order: usize) -> Result<Vec<usize>> {
+    let interior = n_breakpoints.saturating_sub(2);
+    match text {
+        Some(t) => {
+            let nu = integers(t, "--continuity")?;
+            if nu.len() != interior {
+                return bad_input(format!(
+                    "--continuity: {} values given; the {n_breakpoints} breakpoints have {interior} interior ones",
+                    nu.len()
+                ));
+            }
+            Ok(nu)
+        }
+        None => Ok(vec![order.saturating_sub(1); interior]),
+    }
+}
+
+pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
+    match &a.op {
+        PpOp::Convert {
+            input,
+            continuity: cont,
+            rule,
+            out,
+        } => {
+            let (text, name) = lekalo_io::read_input(input)?;
+            if lekalo_io::envelope_type(&text).as_deref() == Some("piecewise_polynomial") {
+                let p = lekalo_io::read_piecewise_polynomial(&text, &name)?;
+                let nu = continuity(cont.as_ref(), p.breakpoints().len(), p.order())?;
+                let space = PpSpace::new(p.breakpoints(), &nu, p.order())?;
+                let c = p.to_bspline(&space, rule.to_lib())?;
+                return write_curve(
+                    &Object::BSpline(c),
+                    None,
+                    out,
+                    std::slice::from_ref(input),
+                    v,
+                );
+            }
+            let c = match load_one(input, v)? {
+                Object::BSpline(c) => c,
+                Object::Bezier(b) => b.to_bspline(),
+                other => {
+                    return bad_input(format!(
+                        "{}: a {} has no pp-form (rational); give a B-spline or Bezier curve",
+                        input.display(),
+                        other.display_name()
+                    ))
+                }
+            };
+            let p = PiecewisePolynomial::from_bspline(&c)?;
+            let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
+            if format != "json" {
+                return bad_input(format!(
+                    "a piecewise polynomial is written as json, not {format}"
+                ));
+            }
+            emit(
+                out.output.as_deref(),
+                lekalo_io::piecewise_polynomial_to_json(&p).as_bytes(),
+                std::slice::from_ref(input),
+                v,
+            )
+        }
+        PpOp::Quasi {
+            function,
+            breakpoints,
+            order,
+            continuity: cont,
+            rule,
+            intervals,
+            out,
+        } => {
+            let xi = numbers(breakpoints, "--breakpoints")?;
+            let nu = continuity(cont.as_ref(), xi.len(), *order)?;
+            let space = PpSpace::new(&xi, &nu, *order)?;
+            let f = |x: f64, r: usize| function.eval(x, r);
+            let q = quasi_interpolate(&space, rule.to_lib(), f)?;
+            let samples = sample_quasi_interpolant(&space, rule.to_lib(), f, *intervals)?;
+            if v != Verbosity::Quiet {
+                eprintln!(
+                    "max |f − q| on {} intervals: {:.6}",
+                    intervals,
+                    samples.max_error()
+                );
+            }
+            let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
+            let obj = Object::BSpline(q);
+            if format == "svg" || format == "png" {
+                let fig = quasi_figure(&obj, &samples, &format!("{function:?}"))?;
+                return emit(out.output.as_deref(), &encode(&fig, &format, 2.0)?, &[], v);
+            }
+            write_curve(&obj, None, out, &[], v)
+        }
+    }
+}
+
+/// f and its quasi-interpolant on the grid (the thesis's Figure 1).
+pub(crate) fn quasi_figure(q: &Object, s: &lekalo::QuasiSamples, name: &str) -> Result<Figure> {
+    let mut fig = curve_plot(q, None, Some(&format!("{name} and its quasi-interpolant")))?;
+    fig.series[0].label = Some("quasi-interpolant".into());
+    let exact = s.t.iter().zip(&s.exact).map(|(t, y)| [*t, *y]).collect();
+    fig.series
+        .push(Series::new(Some("f(x)"), exact, Style::Dashed, PALETTE[1]));
+    Ok(fig)
+}

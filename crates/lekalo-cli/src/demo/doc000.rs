@@ -1,0 +1,380 @@
+//! Gallery: document 000, interpolation of curves and surfaces (digest §A, test vectors T.1).
+
+use anyhow::Result;
+use lekalo::{
+    interpolate_surface, BSplineCurve, CurveInterpolation, EndCondition, KnotPlacement,
+    Parametrization, Points,
+};
+use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+
+use crate::cmd::interpolate::surface_figure;
+use crate::demo::{trim, Section};
+
+/// Numbers the digest prints with 6 decimals.
+const SIX_DECIMALS: f64 = 5e-7;
+/// Interpolation conditions hold to rounding (data of size O(1)).
+const ROUNDING: f64 = 1e-12;
+
+/// P&T Example 9.1 (digest T.1).
+pub(super) fn example_9_1() -> Result<Points> {
+    Ok(Points::from_2d(&[
+        [0.0, 0.0],
+        [3.0, 4.0],
+        [-1.0, 4.0],
+        [-4.0, 0.0],
+        [-4.0, -3.0],
+    ])?)
+}
+
+/// Adds a curve (sampled) to a figure.
+pub(super) fn add_curve(fig: &mut Figure, obj: &Object, label: &str, color: &str) -> Result<()> {
+    let pts = obj.sample(300)?;
+    let line = pts.iter().map(|p| [p[0], p[1]]).collect();
+    fig.series
+        .push(Series::new(Some(label), line, Style::Line, color));
+    Ok(())
+}
+
+/// Adds points as markers (`dashed` also joins them as a polygon).
+pub(super) fn add_points(fig: &mut Figure, pts: &Points, label: &str, color: &str, dashed: bool) {
+    let p: Vec<[f64; 2]> = pts.iter().map(|p| [p[0], p[1]]).collect();
+    if dashed {
+        fig.series
+            .push(Series::new(Some(label), p.clone(), Style::Dashed, color));
+        fig.series.push(Series::new(None, p, Style::Markers, color));
+    } else {
+        fig.series
+            .push(Series::new(Some(label), p, Style::Markers, color));
+    }
+}
+
+/// Control points as flat numbers.
+fn flat(c: &BSplineCurve) -> Vec<f64> {
+    c.control_points().as_slice().to_vec()
+}
+
+/// Control points `(x, y); …` for tables.
+pub(super) fn show(p: &Points) -> String {
+    p.iter()
+        .map(|q| format!("({}, {})", trim(q[0]), trim(q[1])))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+pub(super) fn curves(s: &mut Section) -> Result<()> {
+    s.caption = "Global interpolation (§A.1) of P&T Example 9.1: q0..q4 = (0,0), (3,4), (−1,4), \
+        (−4,0), (−4,−3), cubic, averaged knots (eq. 3), with the three parametrisations; the \
+        control points are the library's and are checked against the test vectors of digest T.1."
+        .into();
+    let q = example_9_1()?;
+    let mut fig = Figure::new("Cubic interpolation of P&T Example 9.1", true);
+    let mut rows = Vec::new();
+    let cases = [
+        (
+            "uniform",
+            Parametrization::Uniform,
+            vec![
+                0.0,
+                0.0,
+                58.0 / 9.0,
+                67.0 / 18.0,
+                -8.0 / 3.0,
+                7.5,
+                -46.0 / 9.0,
+                -49.0 / 18.0,
+                -4.0,
+                -3.0,
+            ],
+            "(0,0); (58/9, 67/18); (−8/3, 15/2); (−46/9, −49/18); (−4,−3)",
+        ),
+        (
+            "chord length",
+            Parametrization::ChordLength,
+            vec![
+                0.0, 0.0, 7.316964, 3.686778, -2.958131, 6.678277, -4.494953, -0.673692, -4.0, -3.0,
+            ],
+            "(0,0); (7.316964, 3.686778); (−2.958131, 6.678277); (−4.494953, −0.673692); (−4,−3)",
+        ),
+        (
+            "centripetal",
+            Parametrization::Centripetal,
+            vec![
+                0.0, 0.0, 6.844809, 3.683071, -2.780244, 7.092664, -4.754979, -1.614238, -4.0, -3.0,
+            ],
+            "(0,0); (6.844809, 3.683071); (−2.780244, 7.092664); (−4.754979, −1.614238); (−4,−3)",
+        ),
+    ];
+    for (k, (name, param, expected, shown)) in cases.iter().enumerate() {
+        let c = CurveInterpolation::new(3)
+            .parametrization(*param)
+            .interpolate(q.as_view())?;
+        s.check_all(
+            &format!("p = 3, {name}: control points"),
+            &flat(&c),
+            expected,
+            shown,
+            SIX_DECIMALS,
+        );
+        rows.push(vec![name.to_string(), show(c.control_points())]);
+        let obj = Object::BSpline(c);
+        add_curve(&mut fig, &obj, name, PALETTE[k])?;
+        if *param == Parametrization::ChordLength {
+            let Object::BSpline(c) = &obj else {
+                continue;
+            };
+            let r: Vec<f64> = [0.25, 0.5, 0.75]
+                .iter()
+                .map(|t| c.eval(*t))
+                .collect::<lekalo::Result<Vec<_>>>()?
+                .concat();
+            s.check_all(
+                "chord length: r(0.25), r(0.5), r(0.75)",
+                &r,
+                &[3.407028, 3.663345, -0.474156, 4.175193, -3.627509, 1.253884],
+                "(3.407028, 3.663345), (−0.474156, 4.175193), (−3.627509, 1.253884)",
+                SIX_DECIMALS,
+            );
+        }
+    }
+    let quad = CurveInterpolation::new(2).interpolate(q.as_view())?;
+    s.check_all(
+        "p = 2, chord length: control points",
+        &flat(&quad),
+        &[
+            0.0, 0.0, 5.767270, 4.323172, -1.627371, 4.418936, -4.616510, -0.163975, -4.0, -3.0,
+        ],
+        "(0,0); (5.767270, 4.323172); (−1.627371, 4.418936); (−4.616510, −0.163975); (−4,−3)",
+        SIX_DECIMALS,
+    );
+    rows.push(vec![
+        "chord length, p = 2".into(),
+        show(quad.control_points()),
+    ]);
+    add_curve(
+        &mut fig,
+        &Object::BSpline(quad),
+        "chord length, p = 2",
+        PALETTE[3],
+    )?;
+    add_points(&mut fig, &q, "data points", PALETTE[7], false);
+    s.figures.push((
+        fig,
+        "Cubic interpolants with uniform, chord-length and centripetal parameters, and the \
+         quadratic with chord length, through the five data points."
+            .into(),
+    ));
+    s.tables.push((
+        "Control points computed by lekalo".into(),
+        vec!["parametrisation".into(), "p0..p4".into()],
+        rows,
+    ));
+    Ok(())
+}
+
+/// Name, degree, knots, end condition, T.1 control points, as printed.
+type EndCase = (
+    &'static str,
+    usize,
+    KnotPlacement,
+    EndCondition,
+    Vec<f64>,
+    &'static str,
+);
+
+pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
+    s.caption = "The same points with end conditions, chord-length parameters: given end \
+        derivatives d0 = (1,2), dn = (−3,−1) with averaged knots (eq. 4, §A.2, p = 3 and 2) and \
+        with knots at the parameters (§A.3, C² cubic, tridiagonal system); given second \
+        derivatives d″0 = (2,−1), d″n = (0.5,4) (§A.4); the natural spline (d″ = 0)."
+        .into();
+    let q = example_9_1()?;
+    let (d0, dn) = (vec![1.0, 2.0], vec![-3.0, -1.0]);
+    let first = EndCondition::FirstDerivatives {
+        start: d0.clone(),
+        end: dn.clone(),
+    };
+    let cases: [EndCase; 5] = [
+        (
+            "§A.2 end derivatives, p = 3",
+            3,
+            KnotPlacement::Averaged,
+            first.clone(),
+            vec![
+                0.0, 0.0, 0.091503, 0.183007, 5.814921, 5.233246, -1.946712, 4.199996, -4.505986,
+                1.863104, -3.784314, -2.928105, -4.0, -3.0,
+            ],
+            "(0,0); (0.091503, 0.183007); (5.814921, 5.233246); … (−3.784314, −2.928105); (−4,−3)",
+        ),
+        (
+            "§A.2 end derivatives, p = 2",
+            2,
+            KnotPlacement::Averaged,
+            first.clone(),
+            vec![
+                0.0, 0.0, 0.073529, 0.147059, 4.523123, 4.612808, -1.685332, 4.316488, -4.293624,
+                0.852796, -3.867647, -2.955882, -4.0, -3.0,
+            ],
+            "(0,0); (0.073529, 0.147059); (4.523123, 4.612808); … (−3.867647, −2.955882); (−4,−3)",
+        ),
+        (
+            "§A.3 C² cubic, knots at parameters",
+            3,
+            KnotPlacement::AtParameters,
+            first,
+            vec![
+                0.0, 0.0, 0.098039, 0.196078, 5.671017, 5.171684, -2.242701, 4.219889, -4.453199,
+                1.460911, -3.823529, -2.941176, -4.0, -3.0,
+            ],
+            "(0,0); (0.098039, 0.196078); (5.671017, 5.171684); … (−3.823529, −2.941176); (−4,−3)",
+        ),
+        (
+            "§A.4 second derivatives",
+            3,
+            KnotPlacement::Auto,
+            EndCondition::SecondDerivatives {
+                start: vec![2.0, -1.0],
+                end: vec![0.5, 4.0],
+            },
+            vec![
+                0.0, 0.0, 1.792028, 1.645498, 5.069581, 4.581444, -2.098122, 4.573864, -4.285399,
+                0.690131, -4.079724, -2.008700, -4.0, -3.0,
+            ],
+            "(0,0); (1.792028, 1.645498); (5.069581, 4.581444); … (−4.079724, −2.008700); (−4,−3)",
+        ),
+        (
+            "natural (d″ = 0)",
+            3,
+            KnotPlacement::Auto,
+            EndCondition::Natural,
+            vec![
+                0.0, 0.0, 1.808397, 1.637040, 5.063510, 4.583713, -2.095936, 4.575376, -4.286914,
+                0.680423, -4.078249, -1.996248, -4.0, -3.0,
+            ],
+            "(0,0); (1.808397, 1.637040); (5.063510, 4.583713); … (−4.078249, −1.996248); (−4,−3)",
+        ),
+    ];
+    let mut fig = Figure::new("End conditions on P&T Example 9.1", true);
+    let mut rows = Vec::new();
+    for (k, (name, p, knots, end, expected, shown)) in cases.into_iter().enumerate() {
+        let c = CurveInterpolation::new(p)
+            .parametrization(Parametrization::ChordLength)
+            .knot_placement(knots)
+            .end_condition(end.clone())
+            .interpolate(q.as_view())?;
+        s.check_all(
+            &format!("{name}: control points"),
+            &flat(&c),
+            &expected,
+            shown,
+            SIX_DECIMALS,
+        );
+        let (a, b) = c.domain();
+        let ends = [c.eval_derivatives(a, 2)?, c.eval_derivatives(b, 2)?];
+        let order = match end {
+            EndCondition::FirstDerivatives { .. } => Some(1),
+            EndCondition::SecondDerivatives { .. } | EndCondition::Natural => Some(2),
+            _ => None,
+        };
+        let shown_ends = order.map_or_else(String::new, |o| {
+            format!(
+                "C{}(0) = ({}, {}), C{}(1) = ({}, {})",
+                "′".repeat(o),
+                trim(ends[0].point(o)[0]),
+                trim(ends[0].point(o)[1]),
+                "′".repeat(o),
+                trim(ends[1].point(o)[0]),
+                trim(ends[1].point(o)[1])
+            )
+        });
+        rows.push(vec![
+            name.to_string(),
+            c.knots().len().to_string(),
+            shown_ends,
+        ]);
+        add_curve(&mut fig, &Object::BSpline(c), name, PALETTE[k])?;
+    }
+    add_points(&mut fig, &q, "data points", PALETTE[7], false);
+    s.figures.push((
+        fig,
+        "Interpolants with prescribed first derivatives (§A.2, §A.3), second derivatives (§A.4) \
+         and the natural spline."
+            .into(),
+    ));
+    s.tables.push((
+        "End derivatives of the computed curves (from the library)".into(),
+        vec![
+            "construction".into(),
+            "knots".into(),
+            "end derivatives".into(),
+        ],
+        rows,
+    ));
+    Ok(())
+}
+
+pub(super) fn surface(s: &mut Section) -> Result<()> {
+    s.caption = "Surface interpolation (§A.5): a 5 × 4 grid on z = sin(x)·cos(y) interpolated \
+        by a bicubic × quadratic B-spline surface, chord-length parameters averaged over the \
+        rows and columns, knots by averaging; two passes of curve interpolation."
+        .into();
+    let (nu, nv) = (5, 4);
+    let mut data = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, y) = (i as f64 * 0.75, j as f64 * 0.8);
+            data.extend([x, y, x.sin() * y.cos()]);
+        }
+    }
+    let grid = Points::new(data, 3)?;
+    let it = interpolate_surface(grid.as_view(), nu, nv, 3, 2, Parametrization::ChordLength)?;
+    let (pu, pv) = (it.params_u.clone(), it.params_v.clone());
+    let surf = it.into_surface();
+    let mut dev = 0.0_f64;
+    for (i, u) in pu.iter().enumerate() {
+        for (j, v) in pv.iter().enumerate() {
+            let p = surf.eval(*u, *v)?;
+            for (a, b) in p.iter().zip(grid.point(i * nv + j)) {
+                dev = dev.max((a - b).abs());
+            }
+        }
+    }
+    s.check(
+        "max |S(ū_k, v̄_l) − q_kl| over the grid",
+        dev,
+        0.0,
+        "0 (interpolation)",
+        ROUNDING,
+    );
+    s.tables.push((
+        "Parameters and knots (computed)".into(),
+        vec!["direction".into(), "parameters".into(), "knots".into()],
+        vec![
+            vec![
+                "u".into(),
+                pu.iter().map(|x| trim(*x)).collect::<Vec<_>>().join(", "),
+                surf.knots_u()
+                    .as_slice()
+                    .iter()
+                    .map(|x| trim(*x))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ],
+            vec![
+                "v".into(),
+                pv.iter().map(|x| trim(*x)).collect::<Vec<_>>().join(", "),
+                surf.knots_v()
+                    .as_slice()
+                    .iter()
+                    .map(|x| trim(*x))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ],
+        ],
+    ));
+    let fig = surface_figure(&surf, "Surface through a 5 × 4 grid (wireframe)")?;
+    s.figures.push((
+        fig,
+        "The interpolating surface as a wireframe (blue) with its control net (dashed).".into(),
+    ));
+    Ok(())
+}

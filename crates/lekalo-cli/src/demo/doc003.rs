@@ -1,0 +1,226 @@
+//! Gallery: document 002 (Hermite, the four-point cubic) and document 003 (quasi-interpolation
+//! of x·cos x, pp-form ↔ B-spline).
+
+use anyhow::Result;
+use lekalo::{
+    cubic_through_four_points, four_point_cubic_coefficients, quasi_interpolate,
+    sample_quasi_interpolant, CubicHermite, Parametrization, PiecewisePolynomial, Points, PpSpace,
+    TangentEstimate, TauRule, HERMITE_MATRIX,
+};
+use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+
+use super::doc000::{add_curve, add_points, show};
+use crate::demo::{trim, Section};
+
+/// Exact small rationals computed in floating point.
+const EXACT: f64 = 1e-13;
+
+pub(super) fn hermite(s: &mut Section) -> Result<()> {
+    s.caption = "The lecture's cubic Hermite segment (§C.3): P(u) = [u³ u² u 1]·M_H·[p_k p_k+1 \
+        Dp_k Dp_k+1]ᵀ with the Hermite matrix M_H as printed (the printed forward matrix has an \
+        error in its last row). A Hermite spline through points with Catmull–Rom tangents; the \
+        lecture's single cubic through four points at u = 0, 1/3, 2/3, 1 (§C.2), C = A⁻¹P."
+        .into();
+    s.check_all(
+        "M_H (rows)",
+        &HERMITE_MATRIX.concat(),
+        &[
+            2.0, -2.0, 1.0, 1.0, -3.0, 3.0, -2.0, -1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+        ],
+        "[[2,−2,1,1],[−3,3,−2,−1],[0,0,1,0],[1,0,0,0]]",
+        0.0,
+    );
+    // A⁻¹ column by column: the coefficients of the cubic through unit data
+    let mut inv = [[0.0; 4]; 4];
+    for (j, col) in (0..4).map(|j| {
+        let mut e = vec![0.0; 4];
+        e[j] = 1.0;
+        (j, e)
+    }) {
+        let c = four_point_cubic_coefficients(Points::new(col, 1)?.as_view())?;
+        for (i, row) in inv.iter_mut().enumerate() {
+            row[j] = c.point(i)[0];
+        }
+    }
+    s.check_all(
+        "A⁻¹ (rows)",
+        &inv.concat(),
+        &[
+            -4.5, 13.5, -13.5, 4.5, 9.0, -22.5, 18.0, -4.5, -5.5, 9.0, -4.5, 1.0, 1.0, 0.0, 0.0,
+            0.0,
+        ],
+        "[[−9/2,27/2,−27/2,9/2],[9,−45/2,18,−9/2],[−11/2,9,−9/2,1],[1,0,0,0]]",
+        EXACT,
+    );
+    let four = Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.0]])?;
+    let cubic = cubic_through_four_points(four.as_view())?;
+    let mut dev = 0.0_f64;
+    for (i, p) in four.iter().enumerate() {
+        let q = cubic.eval(i as f64 / 3.0)?;
+        dev = dev.max((q[0] - p[0]).hypot(q[1] - p[1]));
+    }
+    s.check("four-point cubic: max |p(i/3) − p_i|", dev, 0.0, "0", EXACT);
+    let pts = Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5], [6.0, 1.0]])?;
+    let h = CubicHermite::from_points(
+        pts.as_view(),
+        Parametrization::Uniform,
+        TangentEstimate::CatmullRom,
+    )?;
+    let b = h.to_bspline();
+    let mut dev = 0.0_f64;
+    for (i, p) in pts.iter().enumerate() {
+        let q = b.eval(h.params()[i])?;
+        dev = dev.max((q[0] - p[0]).hypot(q[1] - p[1]));
+    }
+    s.check(
+        "Catmull–Rom Hermite spline: max distance to the points",
+        dev,
+        0.0,
+        "0",
+        EXACT,
+    );
+    let mut fig = Figure::new("Hermite spline and the four-point cubic", true);
+    add_curve(
+        &mut fig,
+        &Object::BSpline(b),
+        "Hermite, Catmull–Rom tangents",
+        PALETTE[0],
+    )?;
+    add_points(&mut fig, &pts, "Hermite data", PALETTE[2], false);
+    add_curve(
+        &mut fig,
+        &Object::Bezier(cubic.clone()),
+        "cubic through 4 points",
+        PALETTE[1],
+    )?;
+    add_points(&mut fig, &four, "four points", PALETTE[1], false);
+    s.tables.push((
+        "The four-point cubic as a Bezier curve (computed)".into(),
+        vec!["data".into(), "Bezier control points".into()],
+        vec![vec![show(&four), show(cubic.control_points())]],
+    ));
+    s.figures.push((
+        fig,
+        "A C¹ Hermite spline through five points (uniform parameters, Catmull–Rom tangents) and \
+         the single cubic through four points at u = 0, 1/3, 2/3, 1."
+            .into(),
+    ));
+    Ok(())
+}
+
+/// x·cos x and its derivatives (document 003's example).
+fn xcosx(x: f64, r: usize) -> f64 {
+    match r {
+        0 => x * x.cos(),
+        1 => x.cos() - x * x.sin(),
+        2 => -2.0 * x.sin() - x * x.cos(),
+        _ => -3.0 * x.cos() + x * x.sin(),
+    }
+}
+
+pub(super) fn quasi(s: &mut Section) -> Result<()> {
+    s.caption = "The thesis's practical task (§D.5): f(x) = x·cos x on [0, 3], breakpoints \
+        0, 0.5, 0.9, 1.4, 2.1, 2.7, 3, C¹ quadratics (k = 3, ν = 2): the de Boor–Fix \
+        coefficients c_i = λ_i f at points τ_i give the quasi-interpolant; the error is measured \
+        on 60 intervals of 0.05. The rule τ_i = x_i (left end of the support) reproduces the \
+        thesis's printed error 0.204831; the rule it states (first knot after x_i) gives less."
+        .into();
+    let xi = [0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0];
+    let space = PpSpace::new(&xi, &[2; 5], 3)?;
+    let mut rows = Vec::new();
+    let mut fig = Figure::new("x·cos x and its quasi-interpolants (thesis Fig. 1)", false);
+    fig.axis_labels = ("x".into(), "y".into());
+    let rules = [
+        ("first knot after x_i (stated)", TauRule::FirstKnotAfter),
+        ("left end of support x_i", TauRule::LeftEndOfSupport),
+        ("midpoint of support", TauRule::Midpoint),
+        ("Greville abscissa", TauRule::Greville),
+    ];
+    for (n, (name, rule)) in rules.into_iter().enumerate() {
+        let samples = sample_quasi_interpolant(&space, rule, xcosx, 60)?;
+        let err = samples.max_error();
+        if rule == TauRule::LeftEndOfSupport {
+            s.check(
+                "max error, τ_i = x_i (LeftEndOfSupport)",
+                err,
+                0.204831,
+                "0.204831",
+                5e-7,
+            );
+            let exact = samples
+                .t
+                .iter()
+                .zip(&samples.exact)
+                .map(|(t, y)| [*t, *y])
+                .collect();
+            fig.series.insert(
+                0,
+                Series::new(Some("f(x) = x·cos x"), exact, Style::Line, PALETTE[7]),
+            );
+        }
+        let q = quasi_interpolate(&space, rule, xcosx)?;
+        let tau = rule.points(space.knots(), 3)?;
+        rows.push(vec![
+            name.to_string(),
+            tau.iter().map(|x| trim(*x)).collect::<Vec<_>>().join(", "),
+            trim(err),
+        ]);
+        let graph = samples
+            .t
+            .iter()
+            .zip(&samples.approx)
+            .map(|(t, y)| [*t, *y])
+            .collect();
+        fig.series.push(Series::new(
+            Some(&format!(
+                "q: {}",
+                ["after", "left end", "midpoint", "Greville"][n]
+            )),
+            graph,
+            Style::Dashed,
+            PALETTE[n],
+        ));
+        if rule == TauRule::FirstKnotAfter {
+            s.check_all(
+                "τ for the stated rule",
+                &tau,
+                &[0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0],
+                "0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3",
+                0.0,
+            );
+            // pp-form round trip: q → pp → B-spline on the same knots
+            let pp = PiecewisePolynomial::from_bspline(&q)?;
+            let back = pp.to_bspline(&space, TauRule::Midpoint)?;
+            let dev = q
+                .control_points()
+                .as_slice()
+                .iter()
+                .zip(back.control_points().as_slice())
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            s.check(
+                "B-spline → pp-form → B-spline: max coefficient change",
+                dev,
+                0.0,
+                "0",
+                EXACT,
+            );
+            s.check(
+                "pp-form pieces",
+                pp.n_pieces() as f64,
+                6.0,
+                "6 (l = 6 intervals)",
+                0.0,
+            );
+        }
+    }
+    s.tables.push((
+        "Quasi-interpolation of x·cos x by each τ rule (computed; 61 grid points)".into(),
+        vec!["τ rule".into(), "τ_1 … τ_8".into(), "max |f − q|".into()],
+        rows,
+    ));
+    s.figures.push((
+        fig,
+        "f(x) = x·cos x (black) and its quasi-interpolants for the four τ rules (dashed).".into(),
+    ));
+    Ok(())
+}

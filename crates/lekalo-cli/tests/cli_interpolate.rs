@@ -1,0 +1,205 @@
+//! End-to-end tests of `lekalo interpolate` (document 000; document 002 §C.2–C.3).
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+
+use assert_cmd::Command;
+use predicates::str::contains;
+
+/// P&T Example 9.1 (digest T.1).
+const Q: &str = "0 0\n3 4\n-1 4\n-4 0\n-4 -3\n";
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+fn json(out: &[u8]) -> serde_json::Value {
+    serde_json::from_slice(out).unwrap()
+}
+
+fn control(v: &serde_json::Value, i: usize) -> (f64, f64) {
+    let p = &v["control"][i];
+    (p[0].as_f64().unwrap(), p[1].as_f64().unwrap())
+}
+
+fn close(a: (f64, f64), b: (f64, f64)) -> bool {
+    (a.0 - b.0).abs() < 5e-7 && (a.1 - b.1).abs() < 5e-7
+}
+
+#[test]
+fn help_has_examples() {
+    lekalo()
+        .args(["interpolate", "--help"])
+        .assert()
+        .success()
+        .stdout(contains("Examples:"))
+        .stdout(contains("--end periodic"));
+}
+
+#[test]
+fn curves_reproduce_the_test_vectors() {
+    let d = tempfile::tempdir().unwrap();
+    let q = d.path().join("q.txt");
+    fs::write(&q, Q).unwrap();
+    let cases: [(&[&str], usize, (f64, f64)); 6] = [
+        (&["--param", "chord"], 1, (7.316964, 3.686778)),
+        (&["--param", "centripetal"], 1, (6.844809, 3.683071)),
+        (&["--param", "uniform"], 2, (-8.0 / 3.0, 7.5)),
+        (
+            &["--exponent", "1", "--degree", "2"],
+            1,
+            (5.767270, 4.323172),
+        ),
+        (
+            &[
+                "--end",
+                "derivatives",
+                "--d0",
+                "1,2",
+                "--dn",
+                "-3,-1",
+                "--knots",
+                "at-params",
+            ],
+            2,
+            (5.671017, 5.171684),
+        ),
+        (&["--end", "natural"], 1, (1.808397, 1.637040)),
+    ];
+    for (args, i, want) in cases {
+        let out = lekalo()
+            .arg("interpolate")
+            .arg(&q)
+            .args(args)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let got = control(&json(&out), i);
+        assert!(close(got, want), "{args:?}: {got:?} vs {want:?}");
+    }
+    let out = lekalo()
+        .arg("interpolate")
+        .arg(&q)
+        .args(["--end", "second", "--d0", "2,-1", "--dn", "0.5,4"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert!(close(control(&json(&out), 1), (1.792028, 1.645498)));
+    lekalo()
+        .arg("interpolate")
+        .arg(&q)
+        .args(["--end", "periodic"])
+        .assert()
+        .success()
+        .stdout(contains("bspline_curve"));
+}
+
+#[test]
+fn surfaces_functions_hermite_and_formats() {
+    let d = tempfile::tempdir().unwrap();
+    let q = d.path().join("q.txt");
+    fs::write(&q, Q).unwrap();
+    let mut grid = String::new();
+    for k in 0..4 {
+        for l in 0..3 {
+            grid.push_str(&format!("{k} {l} {}\n", k * l));
+        }
+    }
+    let g = d.path().join("grid.txt");
+    fs::write(&g, grid).unwrap();
+    for (name, needle) in [
+        ("s.json", "bspline_surface"),
+        ("s.svg", "<svg"),
+        ("s.step", "B_SPLINE_SURFACE_WITH_KNOTS"),
+        ("s.obj", "vn "),
+    ] {
+        let out = d.path().join(name);
+        lekalo()
+            .arg("interpolate")
+            .arg(&g)
+            .args(["--grid", "4x3"])
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        assert!(fs::read_to_string(&out).unwrap().contains(needle), "{name}");
+    }
+    let xy = d.path().join("xy.csv");
+    fs::write(&xy, "x,y\n0,1\n1,3\n2,2\n4,5\n").unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&xy)
+        .arg("--function")
+        .args(["--to", "csv"])
+        .assert()
+        .success()
+        .stdout(contains("t,x\n0,1\n"));
+    lekalo()
+        .arg("interpolate")
+        .arg(&xy)
+        .args(["--function", "--hermite", "monotone", "--to", "svg"])
+        .assert()
+        .success()
+        .stdout(contains("data points"));
+    lekalo()
+        .arg("interpolate")
+        .arg(&q)
+        .args(["--hermite", "cardinal", "--tension", "0.5", "--to", "step"])
+        .assert()
+        .success()
+        .stdout(contains("B_SPLINE_CURVE_WITH_KNOTS"));
+}
+
+#[test]
+fn bad_input_exit_code_2_names_the_problem() {
+    let d = tempfile::tempdir().unwrap();
+    let q = d.path().join("q.txt");
+    fs::write(&q, Q).unwrap();
+    let bad = |args: &[&str], msg: &str| {
+        lekalo()
+            .arg("interpolate")
+            .arg(&q)
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(msg.to_string()));
+    };
+    bad(&["--end", "derivatives"], "needs --d0 and --dn");
+    bad(&["--d0", "1,2"], "--d0/--dn are used only");
+    bad(
+        &["--end", "derivatives", "--d0", "1,x", "--dn", "0,0"],
+        "--d0: value 2",
+    );
+    bad(&["--degree", "7"], "degree");
+    bad(&["--grid", "4by3"], "--grid: \"4by3\" is not a grid size");
+    bad(&["--grid", "2x2"], "grid points");
+    bad(&["--to", "pdf"], "unknown output format \"pdf\"");
+    bad(&["--function"], "x must be strictly increasing: row 3");
+    let one = d.path().join("one.txt");
+    fs::write(&one, "1\n2\n3\n").unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&one)
+        .arg("--function")
+        .assert()
+        .code(2)
+        .stderr(contains("two columns"));
+    let dup = d.path().join("dup.txt");
+    fs::write(&dup, "0 0\n0 0\n1 1\n").unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&dup)
+        .assert()
+        .code(2)
+        .stderr(contains("error:"));
+    lekalo()
+        .args(["interpolate", "missing.csv"])
+        .assert()
+        .code(2)
+        .stderr(contains("missing.csv"));
+}
