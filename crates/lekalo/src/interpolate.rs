@@ -31,7 +31,7 @@ use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
 use crate::interpolate_periodic::periodic;
 use crate::knots::KnotVector;
-use crate::linalg::BandedCrout;
+use crate::linalg::{solve_free_cubic, BandedCrout};
 use crate::points::{Points, PointsRef};
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
@@ -216,6 +216,15 @@ impl CurveInterpolation {
     pub fn interpolate(&self, points: PointsRef<'_>) -> Result<BSplineCurve> {
         let owned = self.prepare_points(points);
         let points = owned.as_ref().map_or(points, Points::as_view);
+        if self.degree == 3
+            && self.end == EndCondition::Free
+            && self.parametrization == Parametrization::ChordLength
+            && matches!(self.knots, KnotPlacement::Auto | KnotPlacement::Averaged)
+        {
+            if let Some(curve) = chord_cubic(points) {
+                return Ok(curve);
+            }
+        }
         let periodic = self.end == EndCondition::Periodic;
         let params = parametrize_impl(points, self.parametrization, periodic)?;
         self.interpolate_checked(points, &params)
@@ -306,6 +315,11 @@ impl CurveInterpolation {
         match (&self.end, self.knots) {
             (EndCondition::Free, KnotPlacement::Auto | KnotPlacement::Averaged) => {
                 let kv = KnotVector::averaged(params, p)?;
+                if p == 3 {
+                    if let Some(control) = free_end_cubic(points, params, kv.as_slice()) {
+                        return Ok(BSplineCurve::from_raw(3, kv.into_vec(), control));
+                    }
+                }
                 free_end(points, params, p, kv.into_vec())
             }
             (EndCondition::Free, KnotPlacement::Uniform) => {
@@ -632,6 +646,85 @@ fn free_end(
     ))
 }
 
+/// The fast path of [`free_end`] for cubics with averaged knots in 1–3 dimensions
+/// ([`solve_free_cubic`]): the control points, or `None` when it does not apply or a check
+/// fails, so that the general path reports the error.
+fn free_end_cubic(points: PointsRef<'_>, params: &[f64], knots: &[f64]) -> Option<Points> {
+    let dim = points.dim();
+    let mut control = vec![0.0; points.as_slice().len()];
+    for (c, t) in control.chunks_exact_mut(dim).zip(params) {
+        c[0] = *t;
+    }
+    solve_free_cubic_dyn(points.as_slice(), knots, &mut control, dim)
+        .then(|| Points::from_raw(control, dim))
+}
+
+/// [`solve_free_cubic`] for a runtime dimension 1–3 (`false` for others).
+fn solve_free_cubic_dyn(q: &[f64], knots: &[f64], control: &mut [f64], dim: usize) -> bool {
+    match dim {
+        1 => solve_free_cubic::<1>(q, knots, control),
+        2 => solve_free_cubic::<2>(q, knots, control),
+        3 => solve_free_cubic::<3>(q, knots, control),
+        _ => false,
+    }
+}
+
+/// The whole free-end chord-length cubic in three sweeps over the data and no buffers besides
+/// the result and `U`: chord lengths (P&T eq. 9.5, as [`parametrize_into`], the same numbers)
+/// go straight into the first slot of each control point's row, the averaged knots (document
+/// 000 eq. 3, as [`KnotVector::averaged`], the same numbers) are formed as the lengths are
+/// normalised, then [`solve_free_cubic`]. `None` (take the general path, which reports the
+/// problem) for coincident or overflowing points, a dimension above 3, fewer than 5 points or
+/// a failed check of the solve.
+fn chord_cubic(points: PointsRef<'_>) -> Option<BSplineCurve> {
+    let dim = points.dim();
+    let q = points.as_slice();
+    let n = points.len().checked_sub(1)?;
+    if !(1..=3).contains(&dim) || n < 4 {
+        return None;
+    }
+    let mut control = vec![0.0; q.len()];
+    let mut sum = 0.0;
+    for (r, (pair, c)) in q
+        .windows(2 * dim)
+        .step_by(dim)
+        .zip(control.chunks_exact_mut(dim).skip(1))
+        .enumerate()
+    {
+        let d = distance(&pair[..dim], &pair[dim..]);
+        debug_assert!(r < n, "chord {r}");
+        if d == 0.0 || !d.is_finite() {
+            return None;
+        }
+        sum += d;
+        c[0] = sum;
+    }
+    if !sum.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / sum;
+    control[n * dim] = 1.0;
+    let mut knots = vec![0.0; n + 5];
+    knots[n + 1..].fill(1.0);
+    let mut prev = 0.0;
+    for r in 1..=n {
+        let t = if r < n { control[r * dim] * inv } else { 1.0 };
+        if t <= prev {
+            return None;
+        }
+        control[r * dim] = t;
+        prev = t;
+        // u_{j+3} = (t̄_j + t̄_{j+1} + t̄_{j+2}) / 3 for j = 1 … n − 3, complete once t̄_{j+2} is
+        if (3..n).contains(&r) {
+            let j = r - 2;
+            let sum3: f64 = [control[j * dim], control[(j + 1) * dim], t].iter().sum();
+            knots[j + 3] = sum3 / 3.0;
+        }
+    }
+    solve_free_cubic_dyn(q, &knots, &mut control, dim)
+        .then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
+}
+
 /// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
 /// follow directly from eq. (6)–(7) / (9)–(10): `P_0 = q_0`,
 /// `P_1 = q_0 + (t_{p+1} − t̄_0)/p · d_0`, `P_{n+1} = q_n − (t̄_n − t_{n+2})/p · d_n`,
@@ -915,6 +1008,68 @@ mod tests {
             ],
             1e-14,
         );
+    }
+
+    /// The general path (parametrisation, averaged knots, [`solve_collocation`]) for comparison
+    /// with the fused cubic.
+    fn general_cubic(q: PointsRef<'_>, params: &[f64]) -> BSplineCurve {
+        let kv = KnotVector::averaged(params, 3).unwrap();
+        free_end(q, params, 3, kv.into_vec()).unwrap()
+    }
+
+    /// Wobbly, unevenly spaced points around `offset`, scaled by `scale`.
+    fn wobbly(n: usize, dim: usize, offset: f64, scale: f64) -> Points {
+        let mut data = Vec::new();
+        for i in 0..n {
+            let s = i as f64 * 0.37 + 0.2 * (i as f64 * 1.3).sin();
+            for k in 0..dim {
+                data.push(offset + scale * (s * (k as f64 + 1.0)).sin() * (1.0 + s));
+            }
+        }
+        Points::new(data, dim).unwrap()
+    }
+
+    #[test]
+    fn fused_cubic_agrees_with_the_general_path() {
+        for dim in 1..=3 {
+            for n in [5, 6, 7, 12, 200] {
+                for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e-8), (-3.0, 1e5)] {
+                    let q = wobbly(n, dim, offset, scale);
+                    let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
+                    let fused = chord_cubic(q.as_view()).unwrap();
+                    let general = general_cubic(q.as_view(), &params);
+                    assert_eq!(
+                        fused.knots().as_slice(),
+                        general.knots().as_slice(),
+                        "knots"
+                    );
+                    let extent = scale * n as f64;
+                    let a = fused.control_points().as_slice();
+                    let b = general.control_points().as_slice();
+                    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                        assert!(
+                            (x - y).abs() <= 1e-14 * extent,
+                            "dim {dim}, n {n}, offset {offset}, entry {i}: {x} vs {y}"
+                        );
+                    }
+                    // the interpolate_at route through free_end_cubic gives the same curve
+                    let at = CurveInterpolation::new(3)
+                        .interpolate_at(q.as_view(), &params)
+                        .unwrap();
+                    assert_eq!(at.control_points().as_slice(), a, "interpolate_at");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fused_cubic_declines_what_it_does_not_handle() {
+        // four points (too few for the band), four dimensions, coincident points
+        assert!(chord_cubic(wobbly(4, 2, 0.0, 1.0).as_view()).is_none());
+        assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view()).is_none());
+        let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
+        q.copy_within(6..8, 8);
+        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view()).is_none());
     }
 
     #[test]
