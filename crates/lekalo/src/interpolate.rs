@@ -680,49 +680,57 @@ fn chord_cubic(points: PointsRef<'_>) -> Option<BSplineCurve> {
     let dim = points.dim();
     let q = points.as_slice();
     let n = points.len().checked_sub(1)?;
-    if !(1..=3).contains(&dim) || n < 4 {
+    if n < 4 {
         return None;
     }
     let mut control = vec![0.0; q.len()];
+    let mut knots = vec![0.0; n + 5];
+    let done = match dim {
+        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots),
+        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots),
+        3 => chord_cubic_fill::<3>(q, &mut control, &mut knots),
+        _ => false,
+    };
+    done.then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
+}
+
+/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` are zeroed buffers of
+/// the result's sizes.
+fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
+    let n = q.len() / D - 1;
     let mut sum = 0.0;
-    for (r, (pair, c)) in q
-        .windows(2 * dim)
-        .step_by(dim)
-        .zip(control.chunks_exact_mut(dim).skip(1))
-        .enumerate()
-    {
-        let d = distance(&pair[..dim], &pair[dim..]);
-        debug_assert!(r < n, "chord {r}");
+    let mut prev: &[f64] = &q[..D];
+    for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
+        let d = distance(prev, next);
         if d == 0.0 || !d.is_finite() {
-            return None;
+            return false;
         }
         sum += d;
         c[0] = sum;
+        prev = next;
     }
     if !sum.is_finite() {
-        return None;
+        return false;
     }
     let inv = 1.0 / sum;
-    control[n * dim] = 1.0;
-    let mut knots = vec![0.0; n + 5];
+    control[n * D] = 1.0;
     knots[n + 1..].fill(1.0);
-    let mut prev = 0.0;
+    // t̄_{r−2}, t̄_{r−1}
+    let (mut t2, mut t1) = (0.0, 0.0);
     for r in 1..=n {
-        let t = if r < n { control[r * dim] * inv } else { 1.0 };
-        if t <= prev {
-            return None;
+        let t = if r < n { control[r * D] * inv } else { 1.0 };
+        if t <= t1 {
+            return false;
         }
-        control[r * dim] = t;
-        prev = t;
+        control[r * D] = t;
         // u_{j+3} = (t̄_j + t̄_{j+1} + t̄_{j+2}) / 3 for j = 1 … n − 3, complete once t̄_{j+2} is
         if (3..n).contains(&r) {
-            let j = r - 2;
-            let sum3: f64 = [control[j * dim], control[(j + 1) * dim], t].iter().sum();
-            knots[j + 3] = sum3 / 3.0;
+            let sum3: f64 = [t2, t1, t].iter().sum();
+            knots[r + 1] = sum3 / 3.0;
         }
+        (t2, t1) = (t1, t);
     }
-    solve_free_cubic_dyn(q, &knots, &mut control, dim)
-        .then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
+    solve_free_cubic::<D>(q, knots, control)
 }
 
 /// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two

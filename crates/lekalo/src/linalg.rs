@@ -326,8 +326,7 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     for (a, b) in qn.iter_mut().zip(&q0) {
         *a -= b;
     }
-    let mut upper: Vec<[f64; 2]> = Vec::with_capacity(n + 1);
-    upper.push([0.0; 2]);
+    let mut upper = vec![[0.0_f64; 2]; n];
     // rows r − 2 and r − 1 of U and of the forward-solved right-hand side
     let (mut u2, mut u1) = ([0.0_f64; 2], [0.0_f64; 2]);
     let (mut y2, mut y1) = ([0.0_f64; D], [0.0_f64; D]);
@@ -392,14 +391,15 @@ pub(crate) fn solve_free_cubic<const D: usize>(
         if !pivot.is_finite() || pivot.abs() <= SINGULAR_PIVOT {
             return false;
         }
-        growth = a.iter().fold(growth, |m, v| m.max(v.abs()));
+        // a[0] and a[4] are basis values (≤ 1) left as they were
+        growth = growth.max(a[1].abs()).max(a[2].abs()).max(a[3].abs());
         let inv = 1.0 / pivot;
         for x in &mut b {
             *x *= inv;
         }
         let u = [a[3] * inv, a[4] * inv];
         control[r * D..(r + 1) * D].copy_from_slice(&b);
-        upper.push(u);
+        upper[r] = u;
         (u2, u1) = (u1, u);
         (y2, y1) = (y1, b);
     }
