@@ -29,10 +29,6 @@ const SINGULAR_PIVOT: f64 = 64.0 * f64::EPSILON;
 /// too ill-conditioned to solve to the promised accuracy without pivoting.
 const MAX_GROWTH: f64 = 1e8;
 
-/// Knot differences in `[1/MONTGOMERY_RANGE, MONTGOMERY_RANGE]` may be inverted together in
-/// [`cubic_basis`]: a product of six stays within `1e±288`, well inside the normal range.
-const MONTGOMERY_RANGE: f64 = 1e48;
-
 /// Row-by-row banded elimination without pivoting (Crout), see the module documentation.
 #[derive(Debug, Clone)]
 pub(crate) struct BandedCrout {
@@ -225,18 +221,11 @@ impl BandedCrout {
 
 /// The four non-zero cubic basis functions `N_{span−3..=span, 3}(t)`: P&T Algorithm A2.2
 /// (Cox–de Boor, [`crate::basis::basis_funs_into`]) unrolled for `p = 3` with every
-/// intermediate in registers.
-///
-/// A2.2 divides by the six knot differences `u_{s+1}−u_s`, `u_{s+1}−u_{s−1}`, `u_{s+2}−u_s`,
-/// `u_{s+1}−u_{s−2}`, `u_{s+2}−u_{s−1}`, `u_{s+3}−u_s` (`s = span`). Divisions are the
-/// bottleneck of the interpolation sweep, so their reciprocals are formed with one division by
-/// Montgomery's simultaneous inversion (P. L. Montgomery, "Speeding the Pollard and elliptic
-/// curve methods of factorization", Math. Comp. 48, 1987, §10.3.1): the prefix products
-/// `c_k = d_1⋯d_k`, one reciprocal `1/c_6`, then `1/d_k = c_{k−1}·(1/c_k)` and
-/// `1/c_{k−1} = d_k·(1/c_k)` backwards. Each reciprocal carries a few rounding errors instead of
-/// one (the values agree with A2.2 to a few ulps; tested to 1e-15). Knot differences outside
-/// `[1e-48, 1e48]` (parameters given on an extreme scale) take six divisions instead, so that
-/// no product under- or overflows. `span` must be the span of `t`.
+/// intermediate in registers. The operations and their order are those of A2.2, so the values
+/// are identical to the reference kernel's (tested). The six divisions are independent of one
+/// another within a level and across rows, so they pipeline; forming their reciprocals with one
+/// division (Montgomery's simultaneous inversion) was measured slower here and loses the
+/// identity with A2.2. `span` must be the span of `t`.
 #[inline(always)]
 pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
     debug_assert!(span >= 3 && span + 3 < knots.len(), "cubic span {span}");
@@ -244,45 +233,24 @@ pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
     // left[j] = t − u[span+1−j], right[j] = u[span+j] − t
     let (l1, l2, l3) = (t - k[2], t - k[1], t - k[0]);
     let (r1, r2, r3) = (k[3] - t, k[4] - t, k[5] - t);
-    let d = [r1 + l1, r1 + l2, r2 + l1, r1 + l3, r2 + l2, r3 + l1];
-    let mut inv = [0.0_f64; 6];
-    // d[0] is the smallest difference, d[3] or d[5] the largest: with all of them in
-    // [1e-48, 1e48] no partial product leaves the normal range
-    if d[0] >= MONTGOMERY_RANGE.recip() && d[3].max(d[5]) <= MONTGOMERY_RANGE {
-        let mut prefix = [0.0_f64; 6];
-        let mut acc = 1.0;
-        for (c, di) in prefix.iter_mut().zip(&d) {
-            *c = acc;
-            acc *= di;
-        }
-        // acc = d_1⋯d_6; prefix[k] = d_1⋯d_k (0-based, empty product 1)
-        let mut inv_acc = 1.0 / acc;
-        for k in (0..6).rev() {
-            inv[k] = prefix[k] * inv_acc;
-            inv_acc *= d[k];
-        }
-    } else {
-        for (i, di) in inv.iter_mut().zip(&d) {
-            *i = 1.0 / di;
-        }
-    }
     // j = 1
-    let (n0, n1) = (r1 * inv[0], l1 * inv[0]);
+    let temp = 1.0 / (r1 + l1);
+    let (n0, n1) = (r1 * temp, l1 * temp);
     // j = 2
-    let temp = n0 * inv[1];
+    let temp = n0 / (r1 + l2);
     let m0 = r1 * temp;
     let saved = l2 * temp;
-    let temp = n1 * inv[2];
+    let temp = n1 / (r2 + l1);
     let m1 = saved + r2 * temp;
     let m2 = l1 * temp;
     // j = 3
-    let temp = m0 * inv[3];
+    let temp = m0 / (r1 + l3);
     let o0 = r1 * temp;
     let saved = l3 * temp;
-    let temp = m1 * inv[4];
+    let temp = m1 / (r2 + l2);
     let o1 = saved + r2 * temp;
     let saved = l2 * temp;
-    let temp = m2 * inv[5];
+    let temp = m2 / (r3 + l1);
     let o2 = saved + r3 * temp;
     let o3 = l1 * temp;
     [o0, o1, o2, o3]
@@ -304,9 +272,9 @@ pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
 /// Row `r` of the forward-solved right-hand side replaces `t̄_r`, which is read just before,
 /// so the parameters need no buffer of their own; `U` (two numbers a row) is stored for the
 /// back substitution, which writes the final, un-centred control points in place. The data are
-/// centred on `q_0` (see [`crate::interpolate`]). Apart from the basis reciprocals (see
-/// [`cubic_basis`]) the arithmetic is that of the general path operation by operation. Time
-/// O(n), memory `2·n` numbers besides the result.
+/// centred on `q_0` (see [`crate::interpolate`]). The arithmetic is that of the general path
+/// operation by operation (the terms the general path skips are products with zero), so both
+/// give the same numbers. Time O(n), memory `2·n` numbers besides the result.
 pub(crate) fn solve_free_cubic<const D: usize>(
     q: &[f64],
     knots: &[f64],
@@ -372,6 +340,10 @@ pub(crate) fn solve_free_cubic<const D: usize>(
                 _ if v == 0.0 => {}
                 _ => return false,
             }
+        }
+        // Schoenberg–Whitney: N_r(t̄_r) > 0 (else the general path reports the failure)
+        if a[2] <= 0.0 {
+            return false;
         }
         // subtract L[r][j]·U[j][·] for j = r − 2, r − 1 (as BandedCrout::push_row)
         let l = a[0];
@@ -639,9 +611,7 @@ mod tests {
                     }
                     basis_funs_into(&knots, 3, span, t, &mut scratch, &mut reference);
                     let fast = cubic_basis(&knots, span, t);
-                    for (a, b) in fast.iter().zip(&reference) {
-                        assert!((a - b).abs() <= 1e-15, "span {span}, t {t}: {a} vs {b}");
-                    }
+                    assert_eq!(fast, reference, "span {span}, t {t}");
                 }
             }
         }
