@@ -97,7 +97,7 @@ fn time_surface(n: usize, reps: usize) {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.iter().any(|a| a == "surface") {
-        time_surface(400, 10);
+        time_surface(400, 40);
         return;
     }
     let sizes: Vec<usize> = if args.is_empty() {

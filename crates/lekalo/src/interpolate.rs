@@ -578,6 +578,7 @@ fn too_close((first, second): (usize, usize)) -> Error {
 }
 
 /// Euclidean distance without overflow or underflow in the squares.
+#[inline]
 pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
     let ss: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
     if ss.is_normal() && ss < 1e300 {

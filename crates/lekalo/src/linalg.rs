@@ -191,12 +191,23 @@ impl BandedCrout {
     /// Solves `A·X = B` in place for a further right-hand side (`rows × ncols`, row-major). Only
     /// for a factorisation made with `keep_lower`.
     pub(crate) fn solve(&self, rhs: &mut [f64], ncols: usize) {
+        // constant band widths and column counts for the common cases (bicubic and biquadratic
+        // surfaces in 3-D, many rows each), as in push_row; the arithmetic is the same
+        match (self.kl, ncols) {
+            (2, 3) => self.solve_impl(rhs, 2, 3),
+            (1, 3) => self.solve_impl(rhs, 1, 3),
+            (kl, nc) => self.solve_impl(rhs, kl, nc),
+        }
+    }
+
+    #[inline(always)]
+    fn solve_impl(&self, rhs: &mut [f64], kl: usize, ncols: usize) {
         debug_assert_eq!(rhs.len(), self.rows * ncols, "rhs block size");
+        debug_assert_eq!(self.kl, kl, "band width");
         let Some(lower) = &self.lower else {
             debug_assert!(false, "solve needs the kept lower factor");
             return;
         };
-        let kl = self.kl;
         for r in 0..self.rows {
             let (done, current) = rhs.split_at_mut(r * ncols);
             let current = &mut current[..ncols];
