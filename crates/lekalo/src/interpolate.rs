@@ -16,6 +16,12 @@
 //! - The collocation matrix is built row by row straight from the Cox–de Boor kernel into a band
 //!   buffer and eliminated without pivoting ([`crate::linalg`]); all coordinates are solved
 //!   together. Time O(n·p²), memory O(n·p); no dense matrix.
+//! - The common case — a free-end cubic with chord-length parameters and averaged knots in 1–3
+//!   dimensions — takes a fused path (`chord_cubic`, [`crate::linalg`]'s `solve_free_cubic`):
+//!   parameters, knots, rows and elimination in three sweeps with no buffer but the result and
+//!   the `U` factor (peak memory about twice the input's size besides the input), giving the
+//!   same numbers as the general path; anything it does not handle, and every error, goes to
+//!   the general path.
 //! - Control points whose values follow from the end conditions (`P_0 = q_0`, `P_n = q_n` of a
 //!   clamped curve, `P_1` and `P_{n+1}` from first derivatives, eq. 6–7 and 9–10) are set
 //!   directly and moved to the right-hand side, so the remaining system is a submatrix of a
@@ -31,7 +37,7 @@ use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
 use crate::interpolate_periodic::periodic;
 use crate::knots::KnotVector;
-use crate::linalg::BandedCrout;
+use crate::linalg::{solve_free_cubic, BandedCrout};
 use crate::points::{Points, PointsRef};
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
@@ -216,6 +222,15 @@ impl CurveInterpolation {
     pub fn interpolate(&self, points: PointsRef<'_>) -> Result<BSplineCurve> {
         let owned = self.prepare_points(points);
         let points = owned.as_ref().map_or(points, Points::as_view);
+        if self.degree == 3
+            && self.end == EndCondition::Free
+            && self.parametrization == Parametrization::ChordLength
+            && matches!(self.knots, KnotPlacement::Auto | KnotPlacement::Averaged)
+        {
+            if let Some(curve) = chord_cubic(points) {
+                return Ok(curve);
+            }
+        }
         let periodic = self.end == EndCondition::Periodic;
         let params = parametrize_impl(points, self.parametrization, periodic)?;
         self.interpolate_checked(points, &params)
@@ -306,6 +321,11 @@ impl CurveInterpolation {
         match (&self.end, self.knots) {
             (EndCondition::Free, KnotPlacement::Auto | KnotPlacement::Averaged) => {
                 let kv = KnotVector::averaged(params, p)?;
+                if p == 3 {
+                    if let Some(control) = free_end_cubic(points, params, kv.as_slice()) {
+                        return Ok(BSplineCurve::from_raw(3, kv.into_vec(), control));
+                    }
+                }
                 free_end(points, params, p, kv.into_vec())
             }
             (EndCondition::Free, KnotPlacement::Uniform) => {
@@ -558,7 +578,8 @@ fn too_close((first, second): (usize, usize)) -> Error {
 }
 
 /// Euclidean distance without overflow or underflow in the squares.
-fn distance(a: &[f64], b: &[f64]) -> f64 {
+#[inline]
+pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
     let ss: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
     if ss.is_normal() && ss < 1e300 {
         return ss.sqrt();
@@ -630,6 +651,93 @@ fn free_end(
         kv.into_vec(),
         Points::from_raw(control, dim),
     ))
+}
+
+/// The fast path of [`free_end`] for cubics with averaged knots in 1–3 dimensions
+/// ([`solve_free_cubic`]): the control points, or `None` when it does not apply or a check
+/// fails, so that the general path reports the error.
+fn free_end_cubic(points: PointsRef<'_>, params: &[f64], knots: &[f64]) -> Option<Points> {
+    let dim = points.dim();
+    let mut control = vec![0.0; points.as_slice().len()];
+    for (c, t) in control.chunks_exact_mut(dim).zip(params) {
+        c[0] = *t;
+    }
+    solve_free_cubic_dyn(points.as_slice(), knots, &mut control, dim)
+        .then(|| Points::from_raw(control, dim))
+}
+
+/// [`solve_free_cubic`] for a runtime dimension 1–3 (`false` for others).
+fn solve_free_cubic_dyn(q: &[f64], knots: &[f64], control: &mut [f64], dim: usize) -> bool {
+    match dim {
+        1 => solve_free_cubic::<1>(q, knots, control),
+        2 => solve_free_cubic::<2>(q, knots, control),
+        3 => solve_free_cubic::<3>(q, knots, control),
+        _ => false,
+    }
+}
+
+/// The whole free-end chord-length cubic in three sweeps over the data and no buffers besides
+/// the result and `U`: chord lengths (P&T eq. 9.5, as [`parametrize_into`], the same numbers)
+/// go straight into the first slot of each control point's row, the averaged knots (document
+/// 000 eq. 3, as [`KnotVector::averaged`], the same numbers) are formed as the lengths are
+/// normalised, then [`solve_free_cubic`]. `None` (take the general path, which reports the
+/// problem) for coincident or overflowing points, a dimension above 3, fewer than 5 points or
+/// a failed check of the solve.
+fn chord_cubic(points: PointsRef<'_>) -> Option<BSplineCurve> {
+    let dim = points.dim();
+    let q = points.as_slice();
+    let n = points.len().checked_sub(1)?;
+    if n < 4 {
+        return None;
+    }
+    let mut control = vec![0.0; q.len()];
+    let mut knots = vec![0.0; n + 5];
+    let done = match dim {
+        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots),
+        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots),
+        3 => chord_cubic_fill::<3>(q, &mut control, &mut knots),
+        _ => false,
+    };
+    done.then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
+}
+
+/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` are zeroed buffers of
+/// the result's sizes.
+fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
+    let n = q.len() / D - 1;
+    let mut sum = 0.0;
+    let mut prev: &[f64] = &q[..D];
+    for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
+        let d = distance(prev, next);
+        if d == 0.0 || !d.is_finite() {
+            return false;
+        }
+        sum += d;
+        c[0] = sum;
+        prev = next;
+    }
+    if !sum.is_finite() {
+        return false;
+    }
+    let inv = 1.0 / sum;
+    control[n * D] = 1.0;
+    knots[n + 1..].fill(1.0);
+    // t̄_{r−2}, t̄_{r−1}
+    let (mut t2, mut t1) = (0.0, 0.0);
+    for r in 1..=n {
+        let t = if r < n { control[r * D] * inv } else { 1.0 };
+        if t <= t1 {
+            return false;
+        }
+        control[r * D] = t;
+        // u_{j+3} = (t̄_j + t̄_{j+1} + t̄_{j+2}) / 3 for j = 1 … n − 3, complete once t̄_{j+2} is
+        if (3..n).contains(&r) {
+            let sum3: f64 = [t2, t1, t].iter().sum();
+            knots[r + 1] = sum3 / 3.0;
+        }
+        (t2, t1) = (t1, t);
+    }
+    solve_free_cubic::<D>(q, knots, control)
 }
 
 /// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
@@ -915,6 +1023,66 @@ mod tests {
             ],
             1e-14,
         );
+    }
+
+    /// The general path (parametrisation, averaged knots, [`solve_collocation`]) for comparison
+    /// with the fused cubic.
+    fn general_cubic(q: PointsRef<'_>, params: &[f64]) -> BSplineCurve {
+        let kv = KnotVector::averaged(params, 3).unwrap();
+        free_end(q, params, 3, kv.into_vec()).unwrap()
+    }
+
+    /// Wobbly, unevenly spaced points around `offset`, scaled by `scale`.
+    fn wobbly(n: usize, dim: usize, offset: f64, scale: f64) -> Points {
+        let mut data = Vec::new();
+        for i in 0..n {
+            let s = i as f64 * 0.37 + 0.2 * (i as f64 * 1.3).sin();
+            for k in 0..dim {
+                data.push(offset + scale * (s * (k as f64 + 1.0)).sin() * (1.0 + s));
+            }
+        }
+        Points::new(data, dim).unwrap()
+    }
+
+    #[test]
+    fn fused_cubic_agrees_with_the_general_path() {
+        for dim in 1..=3 {
+            for n in [5, 6, 7, 12, 200] {
+                for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e-8), (-3.0, 1e5)] {
+                    let q = wobbly(n, dim, offset, scale);
+                    let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
+                    let fused = chord_cubic(q.as_view()).unwrap();
+                    let general = general_cubic(q.as_view(), &params);
+                    assert_eq!(
+                        fused.knots().as_slice(),
+                        general.knots().as_slice(),
+                        "knots"
+                    );
+                    // the same operations in the same order: the same numbers
+                    assert_eq!(
+                        fused.control_points().as_slice(),
+                        general.control_points().as_slice(),
+                        "dim {dim}, n {n}, offset {offset}, scale {scale}"
+                    );
+                    let a = fused.control_points().as_slice();
+                    // the interpolate_at route through free_end_cubic gives the same curve
+                    let at = CurveInterpolation::new(3)
+                        .interpolate_at(q.as_view(), &params)
+                        .unwrap();
+                    assert_eq!(at.control_points().as_slice(), a, "interpolate_at");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fused_cubic_declines_what_it_does_not_handle() {
+        // four points (too few for the band), four dimensions, coincident points
+        assert!(chord_cubic(wobbly(4, 2, 0.0, 1.0).as_view()).is_none());
+        assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view()).is_none());
+        let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
+        q.copy_within(6..8, 8);
+        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view()).is_none());
     }
 
     #[test]

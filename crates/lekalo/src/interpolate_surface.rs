@@ -4,7 +4,8 @@
 
 use crate::error::{Error, Result};
 use crate::interpolate::{
-    add_reference, check_strictly_increasing, parametrize_into, solve_collocation, Parametrization,
+    add_reference, check_strictly_increasing, distance, parametrize_into, solve_collocation,
+    Parametrization,
 };
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
@@ -126,7 +127,8 @@ pub fn interpolate_surface(
     let mut params_u = vec![0.0; nu];
     let mut params_v = vec![0.0; nv];
     let mut tmp = vec![0.0; nu.max(nv)];
-    for l in 0..nv {
+    let fast_u = e == 1.0 && chord_params_u(data, nu, nv, dim, &mut params_u);
+    for l in (0..nv).filter(|_| !fast_u) {
         parametrize_into(
             nu - 1,
             |k| pt(k, l),
@@ -193,6 +195,55 @@ pub fn interpolate_surface(
     })
 }
 
+/// The sums over the columns `l` of the chord-length parameters `ū_k^{(l)}` of
+/// `q_0l … q_{nu−1,l}` added into `params_u` (zero on entry): the same numbers, in the same
+/// order, as [`parametrize_into`] with exponent 1 column by column (P&T eq. 9.5), but computed
+/// row pair by row pair so that the grid is read contiguously (the column walk strides over
+/// whole rows and misses the cache at every point). `false`, with `params_u` to be discarded,
+/// when a distance is zero or not finite, a column's length overflows or its parameters are not
+/// strictly increasing: the caller then takes the column loop, which reports the problem.
+fn chord_params_u(data: &[f64], nu: usize, nv: usize, dim: usize, params_u: &mut [f64]) -> bool {
+    let row_len = nv * dim;
+    let pairs = || {
+        data.chunks_exact(row_len)
+            .zip(data.chunks_exact(row_len).skip(1))
+    };
+    let mut total = vec![0.0_f64; nv];
+    for (a, b) in pairs() {
+        for ((s, p), q) in total
+            .iter_mut()
+            .zip(a.chunks_exact(dim))
+            .zip(b.chunks_exact(dim))
+        {
+            let d = distance(p, q);
+            if d == 0.0 || !d.is_finite() {
+                return false;
+            }
+            *s += d;
+        }
+    }
+    if !total.iter().all(|s| s.is_finite()) {
+        return false;
+    }
+    let inv: Vec<f64> = total.iter().map(|s| 1.0 / s).collect();
+    // running sums and the previous parameter of each column
+    let mut acc = vec![0.0_f64; nv];
+    let mut prev = vec![0.0_f64; nv];
+    for (k, (a, b)) in pairs().enumerate().map(|(i, ab)| (i + 1, ab)) {
+        let out = &mut params_u[k];
+        for (l, (p, q)) in a.chunks_exact(dim).zip(b.chunks_exact(dim)).enumerate() {
+            acc[l] += distance(p, q);
+            let t = if k + 1 < nu { acc[l] * inv[l] } else { 1.0 };
+            if t <= prev[l] {
+                return false;
+            }
+            prev[l] = t;
+            *out += t;
+        }
+    }
+    true
+}
+
 /// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.
 fn finish_average(params: &mut [f64], count: usize) {
     let inv = 1.0 / count as f64;
@@ -202,5 +253,50 @@ fn finish_average(params: &mut [f64], count: usize) {
     params[0] = 0.0;
     if let Some(last) = params.last_mut() {
         *last = 1.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The column-by-column sums of [`parametrize_into`] (the reference for [`chord_params_u`]).
+    fn column_loop(data: &[f64], nu: usize, nv: usize, dim: usize) -> Vec<f64> {
+        let mut params_u = vec![0.0; nu];
+        let mut tmp = vec![0.0; nu];
+        for l in 0..nv {
+            parametrize_into(
+                nu - 1,
+                |k| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim],
+                1.0,
+                |k| (k, k + 1),
+                &mut tmp,
+            )
+            .unwrap();
+            for (a, b) in params_u.iter_mut().zip(&tmp) {
+                *a += b;
+            }
+        }
+        params_u
+    }
+
+    #[test]
+    fn row_pair_chord_parameters_equal_the_column_loop() {
+        for (nu, nv, dim) in [(2, 2, 1), (5, 3, 3), (17, 11, 2), (40, 7, 3)] {
+            let data: Vec<f64> = (0..nu * nv * dim)
+                .map(|i| {
+                    let x = i as f64;
+                    (i / (nv * dim)) as f64 + 0.3 * (1.7 * x).sin() + 1e8
+                })
+                .collect();
+            let mut fast = vec![0.0; nu];
+            assert!(chord_params_u(&data, nu, nv, dim, &mut fast), "{nu}×{nv}");
+            assert_eq!(fast, column_loop(&data, nu, nv, dim), "{nu}×{nv}×{dim}");
+        }
+        // a zero step declines (the column loop reports it)
+        let mut data = vec![0.0, 1.0, 2.0, 3.0, 2.0, 5.0];
+        data[4] = data[2];
+        let mut out = vec![0.0; 3];
+        assert!(!chord_params_u(&data, 3, 2, 1, &mut out));
     }
 }

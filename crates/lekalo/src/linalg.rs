@@ -191,12 +191,23 @@ impl BandedCrout {
     /// Solves `A·X = B` in place for a further right-hand side (`rows × ncols`, row-major). Only
     /// for a factorisation made with `keep_lower`.
     pub(crate) fn solve(&self, rhs: &mut [f64], ncols: usize) {
+        // constant band widths and column counts for the common cases (bicubic and biquadratic
+        // surfaces in 3-D, many rows each), as in push_row; the arithmetic is the same
+        match (self.kl, ncols) {
+            (2, 3) => self.solve_impl(rhs, 2, 3),
+            (1, 3) => self.solve_impl(rhs, 1, 3),
+            (kl, nc) => self.solve_impl(rhs, kl, nc),
+        }
+    }
+
+    #[inline(always)]
+    fn solve_impl(&self, rhs: &mut [f64], kl: usize, ncols: usize) {
         debug_assert_eq!(rhs.len(), self.rows * ncols, "rhs block size");
+        debug_assert_eq!(self.kl, kl, "band width");
         let Some(lower) = &self.lower else {
             debug_assert!(false, "solve needs the kept lower factor");
             return;
         };
-        let kl = self.kl;
         for r in 0..self.rows {
             let (done, current) = rhs.split_at_mut(r * ncols);
             let current = &mut current[..ncols];
@@ -217,6 +228,186 @@ impl BandedCrout {
         }
         self.back_substitute(rhs, ncols);
     }
+}
+
+/// The four non-zero cubic basis functions `N_{span−3..=span, 3}(t)`: P&T Algorithm A2.2
+/// (Cox–de Boor, [`crate::basis::basis_funs_into`]) unrolled for `p = 3` with every
+/// intermediate in registers. The operations and their order are those of A2.2, so the values
+/// are identical to the reference kernel's (tested). The six divisions are independent of one
+/// another within a level and across rows, so they pipeline; forming their reciprocals with one
+/// division (Montgomery's simultaneous inversion) was measured slower here and loses the
+/// identity with A2.2. `span` must be the span of `t`.
+#[inline(always)]
+pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
+    debug_assert!(span >= 3 && span + 3 < knots.len(), "cubic span {span}");
+    let k = &knots[span - 2..span + 4];
+    // left[j] = t − u[span+1−j], right[j] = u[span+j] − t
+    let (l1, l2, l3) = (t - k[2], t - k[1], t - k[0]);
+    let (r1, r2, r3) = (k[3] - t, k[4] - t, k[5] - t);
+    // j = 1
+    let temp = 1.0 / (r1 + l1);
+    let (n0, n1) = (r1 * temp, l1 * temp);
+    // j = 2
+    let temp = n0 / (r1 + l2);
+    let m0 = r1 * temp;
+    let saved = l2 * temp;
+    let temp = n1 / (r2 + l1);
+    let m1 = saved + r2 * temp;
+    let m2 = l1 * temp;
+    // j = 3
+    let temp = m0 / (r1 + l3);
+    let o0 = r1 * temp;
+    let saved = l3 * temp;
+    let temp = m1 / (r2 + l2);
+    let o1 = saved + r2 * temp;
+    let saved = l2 * temp;
+    let temp = m2 / (r3 + l1);
+    let o2 = saved + r3 * temp;
+    let o3 = l1 * temp;
+    [o0, o1, o2, o3]
+}
+
+/// Fused collocation solve of the free-end cubic interpolant with averaged knots (document 000
+/// §A.1 eq. 1 and 3, P&T Algorithm A9.1): the fast path of [`BandedCrout::push_row`] +
+/// [`BandedCrout::back_substitute`] with Cox–de Boor rows (P&T A2.2, see [`cubic_basis`]).
+///
+/// `q` holds the `n + 1` points (`D` coordinates each) and `knots` the `n + 5` averaged knots;
+/// `control` (`(n + 1)·D` numbers) holds on entry the parameter `t̄_r` of point `r` in
+/// `control[r·D]` (the other entries are ignored) and on return the control points
+/// (`P_0 = q_0`, `P_n = q_n`). Returns `false` when a row does not fit the band `kl = ku = 2`
+/// or a pivot or the growth fails the checks of [`BandedCrout`]: the caller then takes the
+/// general path, which reports the precise error.
+///
+/// The rows are built and eliminated as the parameters are swept; only the two previous rows
+/// of `U` and of the forward-solved right-hand side are live during the sweep (in registers).
+/// Row `r` of the forward-solved right-hand side replaces `t̄_r`, which is read just before,
+/// so the parameters need no buffer of their own; `U` (two numbers a row) is stored for the
+/// back substitution, which writes the final, un-centred control points in place. The data are
+/// centred on `q_0` (see [`crate::interpolate`]). The arithmetic is that of the general path
+/// operation by operation (the terms the general path skips are products with zero), so both
+/// give the same numbers. Time O(n), memory `2·n` numbers besides the result.
+pub(crate) fn solve_free_cubic<const D: usize>(
+    q: &[f64],
+    knots: &[f64],
+    control: &mut [f64],
+) -> bool {
+    let n = (q.len() / D).saturating_sub(1);
+    if n < 4 || q.len() != (n + 1) * D || knots.len() != n + 5 || control.len() != q.len() {
+        return false;
+    }
+    let point = |i: usize| -> [f64; D] {
+        let mut v = [0.0; D];
+        v.copy_from_slice(&q[i * D..(i + 1) * D]);
+        v
+    };
+    let q0 = point(0);
+    let mut qn = point(n);
+    for (a, b) in qn.iter_mut().zip(&q0) {
+        *a -= b;
+    }
+    let mut upper = vec![[0.0_f64; 2]; n];
+    // rows r − 2 and r − 1 of U and of the forward-solved right-hand side
+    let (mut u2, mut u1) = ([0.0_f64; 2], [0.0_f64; 2]);
+    let (mut y2, mut y1) = ([0.0_f64; D], [0.0_f64; D]);
+    let mut growth = 0.0_f64;
+    let mut span = 3;
+    for r in 1..n {
+        let t = control[r * D];
+        while knots[span + 1] <= t {
+            span += 1;
+        }
+        let basis = cubic_basis(knots, span, t);
+        // band positions 0..5 are the columns r − 2 ..= r + 2; basis j is column span − 3 + j
+        let mut b = point(r);
+        for (x, c) in b.iter_mut().zip(&q0) {
+            *x -= c;
+        }
+        let [n0, n1, n2, n3] = basis;
+        // the usual rows: no known column (0 or n) and the basis at a fixed place in the band
+        // (fixed indices keep the row in registers)
+        let mut a = match span.wrapping_sub(r + 1) {
+            0 if span >= 4 && span < n => [n0, n1, n2, n3, 0.0],
+            1 if span >= 4 && span < n => [0.0, n0, n1, n2, n3],
+            _ => [0.0_f64; 5],
+        };
+        let usual = span >= 4 && span < n && span.wrapping_sub(r + 1) <= 1;
+        for (j, &v) in basis.iter().enumerate() {
+            if usual {
+                break;
+            }
+            let col = span - 3 + j;
+            if col == 0 {
+                // P_0 − q_0 = 0
+                continue;
+            }
+            if col == n {
+                for (x, c) in b.iter_mut().zip(&qn) {
+                    *x -= v * c;
+                }
+                continue;
+            }
+            match (col + 2).checked_sub(r) {
+                Some(pos) if pos < 5 => a[pos] = v,
+                _ if v == 0.0 => {}
+                _ => return false,
+            }
+        }
+        // Schoenberg–Whitney: N_r(t̄_r) > 0 (else the general path reports the failure)
+        if a[2] <= 0.0 {
+            return false;
+        }
+        // subtract L[r][j]·U[j][·] for j = r − 2, r − 1 (as BandedCrout::push_row)
+        let l = a[0];
+        a[1] -= l * u2[0];
+        a[2] -= l * u2[1];
+        for (x, y) in b.iter_mut().zip(&y2) {
+            *x -= l * y;
+        }
+        let l = a[1];
+        a[2] -= l * u1[0];
+        a[3] -= l * u1[1];
+        for (x, y) in b.iter_mut().zip(&y1) {
+            *x -= l * y;
+        }
+        let pivot = a[2];
+        // the rows' largest entry is at most 1 (basis values), the row scale is 1
+        if !pivot.is_finite() || pivot.abs() <= SINGULAR_PIVOT {
+            return false;
+        }
+        // a[0] and a[4] are basis values (≤ 1) left as they were
+        growth = growth.max(a[1].abs()).max(a[2].abs()).max(a[3].abs());
+        let inv = 1.0 / pivot;
+        for x in &mut b {
+            *x *= inv;
+        }
+        let u = [a[3] * inv, a[4] * inv];
+        control[r * D..(r + 1) * D].copy_from_slice(&b);
+        upper[r] = u;
+        (u2, u1) = (u1, u);
+        (y2, y1) = (y1, b);
+    }
+    if growth > MAX_GROWTH {
+        return false;
+    }
+    control[n * D..].copy_from_slice(&q[n * D..]);
+    // back substitution x_r = y_r − U[r][0]·x_{r+1} − U[r][1]·x_{r+2}, x_n = x_{n+1} = 0 for
+    // the unknowns (P_n was moved to the right-hand side), then P_r = x_r + q_0
+    let (mut x1, mut x2) = ([0.0_f64; D], [0.0_f64; D]);
+    for r in (1..n).rev() {
+        let u = upper[r];
+        let row = &mut control[r * D..(r + 1) * D];
+        let mut x = [0.0_f64; D];
+        for k in 0..D {
+            let mut v = row[k];
+            v -= u[0] * x1[k];
+            v -= u[1] * x2[k];
+            x[k] = v;
+            row[k] = v + q0[k];
+        }
+        (x2, x1) = (x1, x);
+    }
+    control[..D].copy_from_slice(&q0);
+    true
 }
 
 #[cold]
@@ -409,6 +600,32 @@ mod tests {
         let mut rhs = vec![1.0, 2.0];
         let e = factor_rows(&rows, 1, 1, &mut rhs, 1, false).unwrap_err();
         assert!(matches!(e, Error::IllConditioned { .. }), "{e:?}");
+    }
+
+    #[test]
+    fn cubic_basis_matches_cox_de_boor() {
+        use crate::basis::{basis_funs_into, BasisScratch};
+        // uneven knots on three scales, including the extreme ones that take the plain divisions
+        let base = [
+            0.0, 0.0, 0.0, 0.0, 0.1, 0.13, 0.4, 0.41, 0.7, 1.0, 1.0, 1.0, 1.0,
+        ];
+        let mut scratch = BasisScratch::new(3);
+        let mut reference = [0.0; 4];
+        for scale in [1.0, 1e-8, 1e-60, 1e60] {
+            let knots: Vec<f64> = base.iter().map(|u| u * scale).collect();
+            for span in 3..knots.len() - 4 {
+                for k in 0..=16 {
+                    let s = f64::from(k) / 16.0;
+                    let t = knots[span] + s * (knots[span + 1] - knots[span]);
+                    if t >= knots[span + 1] {
+                        continue;
+                    }
+                    basis_funs_into(&knots, 3, span, t, &mut scratch, &mut reference);
+                    let fast = cubic_basis(&knots, span, t);
+                    assert_eq!(fast, reference, "span {span}, t {t}");
+                }
+            }
+        }
     }
 
     #[test]

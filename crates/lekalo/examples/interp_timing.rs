@@ -1,0 +1,112 @@
+//! Timing of cubic global curve interpolation (issue 8) and bicubic surface interpolation.
+//!
+//! `cargo run --release --example interp_timing -- [n ...]` prints, for each `n`, the CPU time
+//! per point (from `/proc/self/schedstat`, so other load on the machine matters less than with
+//! wall-clock time), the wall time and the peak resident memory added by the call relative to
+//! the input's size (`VmHWM` of `/proc/self/status`; run one `n` per process for a clean figure).
+//! `surface` as an argument times the 400×400 bicubic grid instead.
+
+use std::time::Instant;
+
+use lekalo::{interpolate_surface, CurveInterpolation, Parametrization, Points};
+
+/// CPU time of this thread in nanoseconds (0 where `/proc` is unavailable).
+fn cpu_ns() -> u64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().and_then(|v| v.parse().ok()))
+        .unwrap_or(0)
+}
+
+/// A `/proc/self/status` field in kB (0 where unavailable).
+fn status_kb(field: &str) -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with(field))
+                .and_then(|l| l.split_whitespace().nth(1).and_then(|v| v.parse().ok()))
+        })
+        .unwrap_or(0)
+}
+
+/// `n` points of a wobbly 3-D helix, unevenly spaced.
+fn helix(n: usize) -> Points {
+    let mut data = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        let s = i as f64 * 0.01;
+        let w = s + 0.003 * (7.0 * s).sin();
+        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
+    }
+    Points::new(data, 3).expect("finite helix")
+}
+
+fn time_curve(n: usize, reps: usize) {
+    let q = helix(n);
+    let base_kb = status_kb("VmRSS:");
+    let mut best_wall = f64::MAX;
+    let c0 = cpu_ns();
+    for _ in 0..reps {
+        let w0 = Instant::now();
+        let c = CurveInterpolation::new(3)
+            .interpolate(q.as_view())
+            .expect("interpolation");
+        let wall = w0.elapsed().as_secs_f64();
+        std::hint::black_box(&c);
+        drop(c);
+        best_wall = best_wall.min(wall);
+    }
+    let mean_cpu = (cpu_ns() - c0) as f64 / reps as f64;
+    let peak_kb = status_kb("VmHWM:");
+    let input_kb = (n * 3 * 8) as f64 / 1024.0;
+    println!(
+        "curve n = {n:>8}: {:>6.1} ns/point CPU (mean), {:>6.1} ns/point wall (min), peak above input {:.2}× input",
+        mean_cpu / n as f64,
+        best_wall * 1e9 / n as f64,
+        (peak_kb.saturating_sub(base_kb)) as f64 / input_kb
+    );
+}
+
+fn time_surface(n: usize, reps: usize) {
+    let mut data = Vec::with_capacity(n * n * 3);
+    for k in 0..n {
+        for l in 0..n {
+            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
+            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
+        }
+    }
+    let g = Points::new(data, 3).expect("finite grid");
+    let mut best_wall = f64::MAX;
+    let c0 = cpu_ns();
+    for _ in 0..reps {
+        let w0 = Instant::now();
+        let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)
+            .expect("surface");
+        let wall = w0.elapsed().as_secs_f64();
+        best_wall = best_wall.min(wall);
+        std::hint::black_box(&s);
+    }
+    let mean_cpu = (cpu_ns() - c0) as f64 / reps as f64;
+    println!(
+        "surface {n}×{n}: {:.2} ms CPU (mean), {:.2} ms wall (min)",
+        mean_cpu * 1e-6,
+        best_wall * 1e3
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "surface") {
+        time_surface(400, 40);
+        return;
+    }
+    let sizes: Vec<usize> = if args.is_empty() {
+        vec![1_000, 10_000, 100_000, 1_000_000]
+    } else {
+        args.iter().filter_map(|a| a.parse().ok()).collect()
+    };
+    for n in sizes {
+        let reps = (30_000_000 / n).clamp(10, 3000);
+        time_curve(n, reps);
+    }
+}
