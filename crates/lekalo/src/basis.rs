@@ -93,7 +93,7 @@ pub(crate) fn bernstein_all_unchecked(n: usize, t: f64, out: &mut [f64]) {
 ///
 /// # Errors
 /// [`Error::TooLarge`] if `order` exceeds
-/// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER).
+/// [`MAX_DERIVATIVE_ORDER`].
 pub fn bernstein_derivatives(n: usize, t: f64, order: usize) -> Result<Vec<f64>> {
     check_derivative_order(order, MAX_DERIVATIVE_ORDER)?;
     let w = n + 1;

@@ -35,9 +35,10 @@
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
+use crate::interpolate_fast::{chord_cubic, free_end_cubic};
 use crate::interpolate_periodic::periodic;
 use crate::knots::KnotVector;
-use crate::linalg::{solve_free_cubic, BandedCrout};
+use crate::linalg::BandedCrout;
 use crate::points::{Points, PointsRef};
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
@@ -653,93 +654,6 @@ fn free_end(
     ))
 }
 
-/// The fast path of [`free_end`] for cubics with averaged knots in 1–3 dimensions
-/// ([`solve_free_cubic`]): the control points, or `None` when it does not apply or a check
-/// fails, so that the general path reports the error.
-fn free_end_cubic(points: PointsRef<'_>, params: &[f64], knots: &[f64]) -> Option<Points> {
-    let dim = points.dim();
-    let mut control = vec![0.0; points.as_slice().len()];
-    for (c, t) in control.chunks_exact_mut(dim).zip(params) {
-        c[0] = *t;
-    }
-    solve_free_cubic_dyn(points.as_slice(), knots, &mut control, dim)
-        .then(|| Points::from_raw(control, dim))
-}
-
-/// [`solve_free_cubic`] for a runtime dimension 1–3 (`false` for others).
-fn solve_free_cubic_dyn(q: &[f64], knots: &[f64], control: &mut [f64], dim: usize) -> bool {
-    match dim {
-        1 => solve_free_cubic::<1>(q, knots, control),
-        2 => solve_free_cubic::<2>(q, knots, control),
-        3 => solve_free_cubic::<3>(q, knots, control),
-        _ => false,
-    }
-}
-
-/// The whole free-end chord-length cubic in three sweeps over the data and no buffers besides
-/// the result and `U`: chord lengths (P&T eq. 9.5, as [`parametrize_into`], the same numbers)
-/// go straight into the first slot of each control point's row, the averaged knots (document
-/// 000 eq. 3, as [`KnotVector::averaged`], the same numbers) are formed as the lengths are
-/// normalised, then [`solve_free_cubic`]. `None` (take the general path, which reports the
-/// problem) for coincident or overflowing points, a dimension above 3, fewer than 5 points or
-/// a failed check of the solve.
-fn chord_cubic(points: PointsRef<'_>) -> Option<BSplineCurve> {
-    let dim = points.dim();
-    let q = points.as_slice();
-    let n = points.len().checked_sub(1)?;
-    if n < 4 {
-        return None;
-    }
-    let mut control = vec![0.0; q.len()];
-    let mut knots = vec![0.0; n + 5];
-    let done = match dim {
-        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots),
-        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots),
-        3 => chord_cubic_fill::<3>(q, &mut control, &mut knots),
-        _ => false,
-    };
-    done.then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
-}
-
-/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` are zeroed buffers of
-/// the result's sizes.
-fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
-    let n = q.len() / D - 1;
-    let mut sum = 0.0;
-    let mut prev: &[f64] = &q[..D];
-    for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
-        let d = distance(prev, next);
-        if d == 0.0 || !d.is_finite() {
-            return false;
-        }
-        sum += d;
-        c[0] = sum;
-        prev = next;
-    }
-    if !sum.is_finite() {
-        return false;
-    }
-    let inv = 1.0 / sum;
-    control[n * D] = 1.0;
-    knots[n + 1..].fill(1.0);
-    // t̄_{r−2}, t̄_{r−1}
-    let (mut t2, mut t1) = (0.0, 0.0);
-    for r in 1..=n {
-        let t = if r < n { control[r * D] * inv } else { 1.0 };
-        if t <= t1 {
-            return false;
-        }
-        control[r * D] = t;
-        // u_{j+3} = (t̄_j + t̄_{j+1} + t̄_{j+2}) / 3 for j = 1 … n − 3, complete once t̄_{j+2} is
-        if (3..n).contains(&r) {
-            let sum3: f64 = [t2, t1, t].iter().sum();
-            knots[r + 1] = sum3 / 3.0;
-        }
-        (t2, t1) = (t1, t);
-    }
-    solve_free_cubic::<D>(q, knots, control)
-}
-
 /// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
 /// follow directly from eq. (6)–(7) / (9)–(10): `P_0 = q_0`,
 /// `P_1 = q_0 + (t_{p+1} − t̄_0)/p · d_0`, `P_{n+1} = q_n − (t̄_n − t_{n+2})/p · d_n`,
@@ -983,6 +897,7 @@ pub fn natural_cubic_spline(x: &[f64], y: PointsRef<'_>) -> Result<BSplineCurve>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::interpolate_fast::chord_cubic;
 
     fn example() -> Points {
         Points::from_2d(&[
@@ -1045,6 +960,35 @@ mod tests {
     }
 
     #[test]
+    fn distance_survives_tiny_and_huge_scales() {
+        assert!((distance(&[0.0, 0.0], &[3e-200, 4e-200]) - 5e-200).abs() < 1e-214);
+        assert!((distance(&[0.0, 0.0], &[3e200, 4e200]) - 5e200).abs() < 1e186);
+        assert_eq!(distance(&[1.0], &[1.0]), 0.0);
+    }
+
+    #[test]
+    fn chord_length_survives_an_overflowing_total() {
+        // 19 points 1e307 apart: the total length 1.8e308 exceeds f64::MAX
+        let data: Vec<f64> = (-9..=9).map(|k| f64::from(k) * 1e307).collect();
+        let q = Points::new(data, 1).unwrap();
+        let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
+        for (k, tk) in t.iter().enumerate() {
+            assert!((tk - k as f64 / 18.0).abs() < 1e-14, "t[{k}] = {tk}");
+        }
+    }
+
+    #[test]
+    fn periodic_with_two_points_degree_one() {
+        let q = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
+        let c = CurveInterpolation::new(1)
+            .end_condition(EndCondition::Periodic)
+            .interpolate(q.as_view())
+            .unwrap();
+        assert_eq!(c.eval(0.5).unwrap(), vec![1.0, 0.0]);
+        assert_eq!(c.eval(1.0).unwrap(), vec![0.0, 0.0]);
+    }
+
+    #[test]
     fn fused_cubic_agrees_with_the_general_path() {
         for dim in 1..=3 {
             for n in [5, 6, 7, 12, 200] {
@@ -1083,34 +1027,5 @@ mod tests {
         let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
         q.copy_within(6..8, 8);
         assert!(chord_cubic(Points::new(q, 2).unwrap().as_view()).is_none());
-    }
-
-    #[test]
-    fn distance_survives_tiny_and_huge_scales() {
-        assert!((distance(&[0.0, 0.0], &[3e-200, 4e-200]) - 5e-200).abs() < 1e-214);
-        assert!((distance(&[0.0, 0.0], &[3e200, 4e200]) - 5e200).abs() < 1e186);
-        assert_eq!(distance(&[1.0], &[1.0]), 0.0);
-    }
-
-    #[test]
-    fn chord_length_survives_an_overflowing_total() {
-        // 19 points 1e307 apart: the total length 1.8e308 exceeds f64::MAX
-        let data: Vec<f64> = (-9..=9).map(|k| f64::from(k) * 1e307).collect();
-        let q = Points::new(data, 1).unwrap();
-        let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
-        for (k, tk) in t.iter().enumerate() {
-            assert!((tk - k as f64 / 18.0).abs() < 1e-14, "t[{k}] = {tk}");
-        }
-    }
-
-    #[test]
-    fn periodic_with_two_points_degree_one() {
-        let q = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0]]).unwrap();
-        let c = CurveInterpolation::new(1)
-            .end_condition(EndCondition::Periodic)
-            .interpolate(q.as_view())
-            .unwrap();
-        assert_eq!(c.eval(0.5).unwrap(), vec![1.0, 0.0]);
-        assert_eq!(c.eval(1.0).unwrap(), vec![0.0, 0.0]);
     }
 }

@@ -73,6 +73,7 @@ pub use surface_ops::{BezierPatch, RationalBezierPatch};
 // -- interpolation (issue 3) --
 mod hermite;
 mod interpolate;
+mod interpolate_fast;
 mod interpolate_periodic;
 mod interpolate_surface;
 mod linalg;
