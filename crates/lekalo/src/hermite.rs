@@ -17,6 +17,7 @@
 use crate::bezier::BezierCurve;
 use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
+use crate::interpolate::check_strictly_increasing;
 use crate::interpolate::{parametrize, Parametrization};
 use crate::points::{Points, PointsRef};
 
@@ -392,26 +393,7 @@ fn check_data(params: &[f64], points: PointsRef<'_>) -> Result<()> {
             got: params.len(),
         });
     }
-    check_finite("parameters", params)?;
-    for i in 1..params.len() {
-        if params[i] < params[i - 1] {
-            return Err(Error::KnotsNotSorted {
-                index: i,
-                value: params[i],
-                previous: params[i - 1],
-            });
-        }
-        if params[i] == params[i - 1] {
-            return Err(Error::InvalidArgument {
-                what: "parameters",
-                reason: format!(
-                    "parameters {} and {i} are both {}: they must be strictly increasing",
-                    i - 1,
-                    params[i]
-                ),
-            });
-        }
-    }
+    check_strictly_increasing(params)?;
     Ok(())
 }
 

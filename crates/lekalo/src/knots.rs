@@ -279,31 +279,7 @@ impl KnotVector {
             });
         }
         check_degree_bound(order - 1)?;
-        if breakpoints.len() < 2 {
-            return Err(Error::TooFew {
-                what: "breakpoints",
-                min: 2,
-                got: breakpoints.len(),
-            });
-        }
-        check_finite("breakpoints", breakpoints)?;
-        if let Some(i) = breakpoints.windows(2).position(|w| w[0] >= w[1]) {
-            return Err(Error::InvalidArgument {
-                what: "breakpoints",
-                reason: format!(
-                    "must be strictly increasing, but breakpoint {} = {} is not less than breakpoint {} = {}",
-                    i,
-                    breakpoints[i],
-                    i + 1,
-                    breakpoints[i + 1]
-                ),
-            });
-        }
-        check_width(
-            "breakpoints",
-            breakpoints[0],
-            breakpoints[breakpoints.len() - 1],
-        )?;
+        check_breakpoints(breakpoints)?;
         let interior = breakpoints.len() - 2;
         if continuity.len() != interior {
             return Err(Error::LengthMismatch {
@@ -521,6 +497,38 @@ impl SpanCursor<'_> {
         self.span = self.knots.span_unchecked(self.degree, t);
         self.span
     }
+}
+
+/// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §D.4): at least two, finite,
+/// strictly increasing, with a width `ξ_{l+1} − ξ_1` that does not overflow.
+///
+/// # Errors
+/// [`Error::TooFew`], [`Error::NonFinite`], [`Error::InvalidArgument`].
+pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
+    if breakpoints.len() < 2 {
+        return Err(Error::TooFew {
+            what: "breakpoints",
+            min: 2,
+            got: breakpoints.len(),
+        });
+    }
+    check_finite("breakpoints", breakpoints)?;
+    if let Some(i) = breakpoints.windows(2).position(|w| w[0] >= w[1]) {
+        return Err(Error::InvalidArgument {
+            what: "breakpoints",
+            reason: format!(
+                "must be strictly increasing, but breakpoint {i} = {} is not less than breakpoint {} = {}",
+                breakpoints[i],
+                i + 1,
+                breakpoints[i + 1]
+            ),
+        });
+    }
+    check_width(
+        "breakpoints",
+        breakpoints[0],
+        breakpoints[breakpoints.len() - 1],
+    )
 }
 
 /// Checks parameters for the knot constructors: at least two, finite, non-decreasing, with

@@ -17,6 +17,7 @@ use crate::bspline::BSplineCurve;
 use crate::error::{
     check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
 };
+use crate::knots::check_breakpoints;
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -71,41 +72,6 @@ impl From<PiecewisePolynomial> for PpRepr {
             coefficients: p.coefficients,
         }
     }
-}
-
-/// Validates breakpoints: at least two, finite, strictly increasing.
-pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
-    if breakpoints.len() < 2 {
-        return Err(Error::TooFew {
-            what: "breakpoints",
-            min: 2,
-            got: breakpoints.len(),
-        });
-    }
-    check_finite("breakpoints", breakpoints)?;
-    if let Some(i) = breakpoints.windows(2).position(|w| w[0] >= w[1]) {
-        return Err(Error::InvalidArgument {
-            what: "breakpoints",
-            reason: format!(
-                "must be strictly increasing, but breakpoint {i} = {} is not less than breakpoint {} = {}",
-                breakpoints[i],
-                i + 1,
-                breakpoints[i + 1]
-            ),
-        });
-    }
-    let width = breakpoints[breakpoints.len() - 1] - breakpoints[0];
-    if !width.is_finite() {
-        return Err(Error::InvalidArgument {
-            what: "breakpoints",
-            reason: format!(
-                "the width ξ_last − ξ_1 of [{}, {}] overflows to {width}; rescale the breakpoints",
-                breakpoints[0],
-                breakpoints[breakpoints.len() - 1]
-            ),
-        });
-    }
-    Ok(())
 }
 
 impl PiecewisePolynomial {
