@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use lekalo_io::{IoError, Object};
+use lekalo_io::{IoError, Object, Shape};
 
 use crate::Verbosity;
 
@@ -74,9 +74,12 @@ pub(crate) fn is_json_lines(path: &Path, force: bool) -> bool {
         )
 }
 
-/// The objects of an input: one object, or every line of JSON Lines as `(line, object)`.
+/// The objects of an input: one curve, one surface or pp-form, or every line of JSON Lines
+/// (curves) as `(line, object)`.
 pub(crate) enum Loaded {
     One(Object),
+    /// A single object that is not a curve (surface, piecewise polynomial).
+    Other(Shape),
     Many(Vec<(usize, std::result::Result<Object, IoError>)>),
 }
 
@@ -87,11 +90,14 @@ pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
     let loaded = if is_json_lines(path, jsonl) {
         Loaded::Many(lekalo_io::read_json_lines(&text, &name))
     } else {
-        Loaded::One(Object::from_json_str(&text, &name)?)
+        match Shape::from_json_str(&text, &name)? {
+            Shape::Curve(o) => Loaded::One(o),
+            other => Loaded::Other(other),
+        }
     };
     if v == Verbosity::Verbose {
         let n = match &loaded {
-            Loaded::One(_) => 1,
+            Loaded::One(_) | Loaded::Other(_) => 1,
             Loaded::Many(m) => m.len(),
         };
         eprintln!("read {n} object(s) from {name} in {:.1?}", start.elapsed());
@@ -103,6 +109,7 @@ pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
 pub(crate) fn load_one(path: &Path, v: Verbosity) -> Result<Object> {
     match load(path, false, v)? {
         Loaded::One(o) => Ok(o),
+        Loaded::Other(s) => not_a_curve(path, &s),
         Loaded::Many(mut m) if m.len() == 1 => Ok(m.remove(0).1?),
         Loaded::Many(m) => bad_input(format!(
             "{}: holds {} objects; this command takes one (use `lekalo convert` to split, or `eval`/`info` for batches)",
@@ -110,6 +117,15 @@ pub(crate) fn load_one(path: &Path, v: Verbosity) -> Result<Object> {
             m.len()
         )),
     }
+}
+
+/// `Err(BadInput)` for a curve-only command given a surface or pp-form.
+pub(crate) fn not_a_curve<T>(path: &Path, s: &Shape) -> Result<T> {
+    bad_input(format!(
+        "{}: field `type`: \"{}\" is not a curve; this command takes curves (info, convert and plot take surfaces and piecewise polynomials too)",
+        path.display(),
+        s.type_name()
+    ))
 }
 
 /// Writes `bytes` to `out` atomically, or to standard output when `out` is `None` or `-`.

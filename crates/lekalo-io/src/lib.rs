@@ -6,7 +6,7 @@
 //!
 //! | format | read | write | module |
 //! |---|---|---|---|
-//! | versioned JSON envelope `{"lekalo": 1, "type": …}` (docs/formats.md) | yes | yes | [`Object`] |
+//! | versioned JSON envelope `{"lekalo": 1, "type": …}` (docs/formats.md) | yes | yes | [`Shape`]: curves [`Object`], [`Surface`], pp-forms |
 //! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
@@ -35,6 +35,7 @@ mod object_ext;
 mod png;
 mod points_in;
 mod samples;
+mod shape;
 mod step;
 mod svg;
 mod wireframe;
@@ -51,6 +52,7 @@ pub use object_ext::{
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points};
 pub use samples::{sample_table, SampleSpec, SampleTable};
+pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use svg::{
     basis_figure, curve_figure, escape, knots_figure, CurvePlot, Figure, Series, Style, PALETTE,

@@ -7,6 +7,7 @@ use clap::Args;
 use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, StepWriter};
 
 use crate::cmd::plot::encode;
+use crate::cmd::shapes;
 use crate::io::{bad_input, emit, format_of, load, Loaded};
 use crate::Verbosity;
 
@@ -19,12 +20,19 @@ Formats (chosen by --to or the output's extension):
   step   ISO 10303-21 AP214 (B_SPLINE_CURVE_WITH_KNOTS, rational form for NURBS); every object
          of a JSON Lines input goes into one file
   obj    Wavefront OBJ polyline of the sampled curve
+Surfaces (bezier_surface, bspline_surface, nurbs_surface) convert to json, step
+(B_SPLINE_SURFACE_WITH_KNOTS, rational for NURBS), obj (a √samples × √samples tessellation
+with the surface's normals) and svg/png (wireframe); piecewise polynomials to json, csv
+(x, f samples) and svg/png (graph with the breakpoints).
 
 Examples:
   lekalo convert curve.json -o curve.step
   lekalo convert many.jsonl -o all.step
   lekalo convert curve.json -o curve.csv --samples 200
-  lekalo convert curve.json --to jsonl")]
+  lekalo convert curve.json --to jsonl
+  lekalo convert surface.json -o surface.step
+  lekalo convert surface.json -o surface.obj --samples 900
+  lekalo convert spline.pp.json -o spline.csv --samples 100")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -45,9 +53,35 @@ pub(crate) struct ConvertArgs {
 /// Timestamp written into STEP headers: fixed, so that the same input gives the same file.
 const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
 
+/// The STEP product name: the output's file stem, or "lekalo".
+fn step_name(a: &ConvertArgs) -> String {
+    a.output
+        .as_ref()
+        .and_then(|p| p.file_stem())
+        .and_then(|s| s.to_str())
+        .unwrap_or("lekalo")
+        .to_string()
+}
+
 pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
     let objects: Vec<Object> = match load(&a.input, a.jsonl, v)? {
         Loaded::One(o) => vec![o],
+        Loaded::Other(shape) => {
+            let format = format_of(a.to.as_deref(), a.output.as_deref(), "json");
+            let bytes = shapes::convert(
+                &shape,
+                &format,
+                a.samples.clamp(2, 10_000_000),
+                &step_name(a),
+                STEP_TIMESTAMP,
+            )?;
+            return emit(
+                a.output.as_deref(),
+                &bytes,
+                std::slice::from_ref(&a.input),
+                v,
+            );
+        }
         Loaded::Many(items) => items
             .into_iter()
             .map(|(_, o)| o)
@@ -92,13 +126,7 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             encode(&fig, &format, 2.0)?
         }
         "step" => {
-            let name = a
-                .output
-                .as_ref()
-                .and_then(|p| p.file_stem())
-                .and_then(|s| s.to_str())
-                .unwrap_or("lekalo");
-            let mut w = StepWriter::new(name);
+            let mut w = StepWriter::new(&step_name(a));
             for o in &objects {
                 w.add_object(o)?;
             }

@@ -8,7 +8,9 @@ use lekalo_io::{sample_table, Object, SampleSpec};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
-use crate::io::{bad_input, emit, format_of, load, numbers, progress, BadInput, Loaded};
+use crate::io::{
+    bad_input, emit, format_of, load, not_a_curve, numbers, progress, BadInput, Loaded,
+};
 use crate::Verbosity;
 
 /// Arguments of `lekalo eval`.
@@ -74,6 +76,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
     };
     let inputs = vec![a.input.clone()];
     match load(&a.input, a.jsonl, v)? {
+        Loaded::Other(s) => not_a_curve(&a.input, &s),
         Loaded::One(obj) => {
             let ts = parameters(a, &obj)?;
             let table = sample_table(&obj, &ts, spec)

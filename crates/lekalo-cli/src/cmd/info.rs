@@ -1,16 +1,18 @@
-//! `lekalo info`: what a curve is: type, degree, knots with multiplicities, domain, boxes.
+//! `lekalo info`: what an object is: for a curve its type, degree, knots with multiplicities,
+//! domain and boxes; surfaces and pp-forms as in [`crate::cmd::shapes`].
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use lekalo_io::Object;
+use lekalo_io::{Object, Shape};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::cmd::eval::finish_batch;
-use crate::io::{emit, load, progress, Loaded};
+use crate::cmd::shapes;
+use crate::io::{emit, load, not_a_curve, progress, Loaded};
 use crate::Verbosity;
 
 /// Arguments of `lekalo info`.
@@ -22,6 +24,8 @@ of --samples points on the curve, a close inner estimate.
 Examples:
   lekalo info curve.json
   lekalo info curve.json --json
+  lekalo info surface.json          # degrees, knots u and v, net, domain, boxes
+  lekalo info spline.pp.json        # order, breakpoints, continuity at each breakpoint
   lekalo info many.jsonl            # one JSON line per object, in parallel")]
 pub(crate) struct InfoArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
@@ -132,6 +136,19 @@ fn info_text(j: &Value) -> String {
 pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
     let inputs = vec![a.input.clone()];
     match load(&a.input, a.jsonl, v)? {
+        Loaded::Other(shape) => {
+            let j = match &shape {
+                Shape::Surface(s) => shapes::surface_info_json(s, a.samples)?,
+                Shape::Pp(p) => shapes::pp_info_json(p, a.samples)?,
+                other => return not_a_curve(&a.input, other),
+            };
+            let text = if a.json {
+                format!("{j:#}\n")
+            } else {
+                shapes::info_text(&j)
+            };
+            emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+        }
         Loaded::One(obj) => {
             let j = info_json(&obj, a.samples)?;
             let text = if a.json {

@@ -6,6 +6,8 @@ pub(crate) mod info;
 pub(crate) mod knots;
 pub(crate) mod make;
 pub(crate) mod plot;
+// surfaces and pp-forms in info, convert and plot (issue 7)
+pub(crate) mod shapes;
 // construction subcommands (issues 3–6)
 pub(crate) mod bezier;
 pub(crate) mod blend;

@@ -1,12 +1,14 @@
-//! `lekalo plot`: SVG or PNG plots of a curve, its basis functions or its knots.
+//! `lekalo plot`: SVG or PNG plots of a curve, its basis functions or its knots; wireframes of
+//! surfaces and graphs of piecewise polynomials.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
-use lekalo_io::{basis_figure, curve_figure, CurvePlot, Figure, Object, Projection};
+use lekalo_io::{basis_figure, curve_figure, CurvePlot, Figure, Object, Projection, Shape};
 
-use crate::io::{bad_input, emit, format_of, load_one};
+use crate::cmd::shapes;
+use crate::io::{bad_input, emit, format_of, load, load_one, not_a_curve, Loaded};
 use crate::Verbosity;
 
 /// Arguments of `lekalo plot`.
@@ -19,7 +21,9 @@ Examples:
   lekalo plot curve.json -o curve.svg
   lekalo plot curve.json -o curve.png --points data.csv --title 'Interpolated'
   lekalo plot curve.json -o basis.svg --basis
-  lekalo plot curve3d.json -o view.svg --azimuth 30 --elevation 20")]
+  lekalo plot curve3d.json -o view.svg --azimuth 30 --elevation 20
+  lekalo plot surface.json -o surface.svg --samples 20      # 20 × 20 wireframe
+  lekalo plot spline.pp.json -o spline.png")]
 pub(crate) struct PlotArgs {
     /// Object file (JSON; `-` for standard input).
     input: PathBuf,
@@ -98,7 +102,42 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
 }
 
 pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
-    let obj = load_one(&a.input, v)?;
+    let format = format_of(a.to.as_deref(), a.output.as_deref(), "svg");
+    let obj = match load(&a.input, false, v)? {
+        Loaded::One(o) => o,
+        Loaded::Other(shape) => {
+            let fig = match &shape {
+                _ if a.basis || a.points.is_some() => {
+                    return bad_input(format!(
+                        "--basis and --points are for curves; {} is a {}",
+                        a.input.display(),
+                        shape.type_name()
+                    ))
+                }
+                Shape::Surface(s) => shapes::surface_figure(
+                    s,
+                    a.samples.clamp(2, 1000),
+                    a.title.as_deref(),
+                    &Projection {
+                        azimuth: a.azimuth,
+                        elevation: a.elevation,
+                    },
+                )?,
+                Shape::Pp(p) => {
+                    shapes::pp_figure(p, a.samples.clamp(2, 1_000_000), a.title.as_deref())?
+                }
+                other => return not_a_curve(&a.input, other),
+            };
+            let bytes = encode(&fig, &format, a.scale)?;
+            return emit(
+                a.output.as_deref().filter(|p| *p != Path::new("-")),
+                &bytes,
+                std::slice::from_ref(&a.input),
+                v,
+            );
+        }
+        Loaded::Many(_) => return load_one(&a.input, v).map(|_| ()),
+    };
     let mut inputs = vec![a.input.clone()];
     let data = match &a.points {
         Some(p) => {
@@ -109,7 +148,6 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         None => None,
     };
     let fig = figure(&obj, a, data.as_ref())?;
-    let format = format_of(a.to.as_deref(), a.output.as_deref(), "svg");
     let bytes = encode(&fig, &format, a.scale)?;
     emit(
         a.output.as_deref().filter(|p| *p != Path::new("-")),
