@@ -75,8 +75,11 @@ fn deformation_and_corner(c: &mut Criterion) {
     g.bench_function("eval_c2_cubics", |b| {
         b.iter(|| eval_all(&deform, &ts, &mut out));
     });
+    g.finish();
     let after = cubic([[3., 0., 0.], [4., 1., 0.], [4., 2., 1.], [5., 3., 1.]]);
-    g.bench_function("corner_new_c2", |b| {
+    let mut g = c.benchmark_group("corner_c2");
+    g.measurement_time(Duration::from_secs(2)).sample_size(20);
+    g.bench_function("new", |b| {
         b.iter(|| {
             CornerTransition::new(black_box(&first), 0.8, black_box(&after), 0.2, 2)
                 .expect("valid corner")
@@ -84,7 +87,8 @@ fn deformation_and_corner(c: &mut Criterion) {
     });
     let corner = CornerTransition::new(&first, 0.8, &after, 0.2, 2).expect("valid corner");
     let ts = params(&corner);
-    g.bench_function("corner_eval_c2", |b| {
+    g.throughput(Throughput::Elements(N_EVAL as u64));
+    g.bench_function("eval", |b| {
         b.iter(|| eval_all(&corner, &ts, &mut out));
     });
     g.finish();
