@@ -352,3 +352,19 @@ fn overflowing_derivatives_are_reported() {
     assert_eq!(c.eval(0.5).expect("finite"), vec![0.0]);
     assert_eq!(b.eval(0.5).expect("finite"), vec![0.0]);
 }
+
+/// Fuzz target `degree` (crash-a86069e4…): `ElevationPlan::new(0, usize::MAX)` overflowed at
+/// `r + 1` before the size check could refuse it.
+#[test]
+fn elevation_plan_to_absurd_degree_is_too_large() {
+    for to in ABSURD.into_iter().filter(|&to| to > lekalo::MAX_SCALARS) {
+        assert!(matches!(
+            lekalo::ElevationPlan::new(0, to),
+            Err(Error::TooLarge { .. })
+        ));
+    }
+    assert!(matches!(
+        lekalo::ElevationPlan::new(usize::MAX, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+}
