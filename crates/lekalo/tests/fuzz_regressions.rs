@@ -368,3 +368,24 @@ fn elevation_plan_to_absurd_degree_is_too_large() {
         Err(Error::TooLarge { .. })
     ));
 }
+
+/// Fuzz target `interpolation` (crash-03b418a4…): finite points near `-f64::MAX` gave
+/// `CubicHermite::from_points` tangents `[-0.75, -inf, NaN, inf]` inside an `Ok`.
+#[test]
+fn hermite_tangents_that_overflow_are_reported() {
+    let p = Points::new(vec![2.2250738585072014e-308, -0.25, -f64::MAX, -2.0], 1).expect("finite");
+    for estimate in [
+        lekalo::TangentEstimate::FiniteDifference,
+        lekalo::TangentEstimate::CatmullRom,
+        lekalo::TangentEstimate::Monotone,
+    ] {
+        assert!(matches!(
+            lekalo::CubicHermite::from_points(
+                p.as_view(),
+                lekalo::Parametrization::Uniform,
+                estimate
+            ),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+}
