@@ -43,7 +43,12 @@ impl ElevationPlan {
                  BezierCurve::change_degree"
             ),
         })?;
-        check_size("elevation weights", from + 1, r + 1)?;
+        // saturating: `to = usize::MAX` must be refused as too large, not overflow
+        check_size(
+            "elevation weights",
+            from.saturating_add(1),
+            r.saturating_add(1),
+        )?;
         let mut band = vec![0.0; (from + 1) * (r + 1)];
         let mut scratch = vec![0.0; from + 1];
         for j in 0..=to {

@@ -445,6 +445,15 @@ fn estimate_tangents(
             }
         }
     }
+    // finite data can still overflow (slopes of points near ±f64::MAX, or tiny parameter
+    // steps): refuse instead of returning infinite or NaN tangents
+    if let Some((index, &value)) = d.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            what: "estimated tangents (the data's slopes overflow f64)",
+            index,
+            value,
+        });
+    }
     Ok(Points::from_raw(d, dim))
 }
 

@@ -352,3 +352,40 @@ fn overflowing_derivatives_are_reported() {
     assert_eq!(c.eval(0.5).expect("finite"), vec![0.0]);
     assert_eq!(b.eval(0.5).expect("finite"), vec![0.0]);
 }
+
+/// Fuzz target `degree` (crash-a86069e4…): `ElevationPlan::new(0, usize::MAX)` overflowed at
+/// `r + 1` before the size check could refuse it.
+#[test]
+fn elevation_plan_to_absurd_degree_is_too_large() {
+    for to in ABSURD.into_iter().filter(|&to| to > lekalo::MAX_SCALARS) {
+        assert!(matches!(
+            lekalo::ElevationPlan::new(0, to),
+            Err(Error::TooLarge { .. })
+        ));
+    }
+    assert!(matches!(
+        lekalo::ElevationPlan::new(usize::MAX, usize::MAX),
+        Err(Error::TooLarge { .. })
+    ));
+}
+
+/// Fuzz target `interpolation` (crash-03b418a4…): finite points near `-f64::MAX` gave
+/// `CubicHermite::from_points` tangents `[-0.75, -inf, NaN, inf]` inside an `Ok`.
+#[test]
+fn hermite_tangents_that_overflow_are_reported() {
+    let p = Points::new(vec![2.2250738585072014e-308, -0.25, -f64::MAX, -2.0], 1).expect("finite");
+    for estimate in [
+        lekalo::TangentEstimate::FiniteDifference,
+        lekalo::TangentEstimate::CatmullRom,
+        lekalo::TangentEstimate::Monotone,
+    ] {
+        assert!(matches!(
+            lekalo::CubicHermite::from_points(
+                p.as_view(),
+                lekalo::Parametrization::Uniform,
+                estimate
+            ),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+}
