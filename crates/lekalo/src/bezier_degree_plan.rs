@@ -43,6 +43,14 @@ impl ElevationPlan {
                  BezierCurve::change_degree"
             ),
         })?;
+        // degrees above MAX_DEGREE would pass the size check and then loop `to` times
+        if to > crate::MAX_DEGREE {
+            return Err(Error::TooLarge {
+                what: "elevation target degree",
+                size: to,
+                max: crate::MAX_DEGREE,
+            });
+        }
         // saturating: `to = usize::MAX` must be refused as too large, not overflow
         check_size(
             "elevation weights",

@@ -698,7 +698,11 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C
                 }
             }
         }
-        Ok(())
+        // p_2 − p_1 can overflow for curves near f64::MAX (found by the `blending` fuzz target)
+        crate::error::check_finite(
+            "deformation derivatives (overflow: rescale the curves)",
+            out,
+        )
     }
     fn bezier_form(&self) -> Option<BezierForm> {
         match (self.first.bezier_form()?, self.second.bezier_form()?) {

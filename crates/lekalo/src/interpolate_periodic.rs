@@ -19,7 +19,8 @@ use crate::points::{Points, PointsRef};
 pub(crate) fn periodic(points: PointsRef<'_>, params: &[f64], p: usize) -> Result<BSplineCurve> {
     let n = points.len();
     let dim = points.dim();
-    if n < p + 1 {
+    // `p >= n`, not `n < p + 1`: p may be usize::MAX (found by the `interpolation` fuzz target)
+    if p >= n {
         return Err(Error::Degree {
             degree: p,
             reason: format!(

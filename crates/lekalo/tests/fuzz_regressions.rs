@@ -389,3 +389,44 @@ fn hermite_tangents_that_overflow_are_reported() {
         ));
     }
 }
+
+/// Found while writing the test above: `ElevationPlan::new(0, 10^9)` passed the size check,
+/// then allocated 8 GB and looped 10^9 times. Degrees above `MAX_DEGREE` are refused.
+#[test]
+fn elevation_plan_above_max_degree_is_refused_at_once() {
+    assert!(matches!(
+        lekalo::ElevationPlan::new(0, 1_000_000_000),
+        Err(Error::TooLarge { .. })
+    ));
+    assert!(lekalo::ElevationPlan::new(0, lekalo::MAX_DEGREE).is_ok());
+}
+
+/// Fuzz target `interpolation` (crash-b140087b…): periodic interpolation with degree
+/// `usize::MAX` overflowed at `p + 1` in the degree check.
+#[test]
+fn periodic_interpolation_with_absurd_degree_is_refused() {
+    let pts = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).expect("finite");
+    let e = lekalo::CurveInterpolation::new(usize::MAX)
+        .end_condition(lekalo::EndCondition::Periodic)
+        .interpolate(pts.as_view());
+    assert!(e.is_err(), "got {e:?}");
+}
+
+/// Fuzz target `blending` (crash-0f61523a…): a deformation of finite Bezier curves near
+/// `f64::MAX` returned derivatives `[.., inf, NaN, ..]` inside an `Ok`.
+#[test]
+fn deformation_that_overflows_is_reported() {
+    use lekalo::ParametricCurve;
+    let m = f64::MAX;
+    let c1 = lekalo::BezierCurve::new(Points::new(vec![0.0, -m, 1.0], 1).expect("finite"))
+        .expect("curve");
+    let c2 = lekalo::BezierCurve::new(Points::new(vec![0.0, m, 1.0], 1).expect("finite"))
+        .expect("curve");
+    let d = lekalo::Deformation::new(c1, c2, 2).expect("common end points");
+    let mut out = [0.0; 3];
+    let r = d.eval_derivatives_into(0.5, 2, &mut out);
+    assert!(
+        matches!(r, Err(Error::NonFinite { .. })),
+        "got {r:?} {out:?}"
+    );
+}
