@@ -40,7 +40,7 @@ pub(crate) enum Ends {
 #[derive(Subcommand, Debug)]
 pub(crate) enum BezierOp {
     /// Raise the degree without changing the shape (document 004 eq. 7–8); B-spline curves too
-    /// (each Bezier piece elevated, knots repeated).
+    /// (each Bezier piece elevated; interior knots get multiplicity m + r, as P&T A5.9).
     #[command(after_help = "\
 Examples:
   lekalo bezier elevate quad.json --by 1          # Example 1, task 1: 2 legs -> 3 legs
