@@ -112,14 +112,7 @@ pub(crate) fn bezier_as_bspline(b: &BezierCurve) -> BSplineCurve {
 /// Refuses derivative orders above [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER)
 /// before any `(order + 1) · dim` allocation can overflow.
 pub(crate) fn check_order(order: usize) -> Result<()> {
-    if order > crate::MAX_DERIVATIVE_ORDER {
-        return Err(Error::TooLarge {
-            what: "curve derivative order",
-            size: order,
-            max: crate::MAX_DERIVATIVE_ORDER,
-        });
-    }
-    Ok(())
+    crate::error::check_derivative_order(order, crate::MAX_DERIVATIVE_ORDER)
 }
 
 pub(crate) fn check_out_len(out: &[f64], order: usize, dim: usize) -> Result<()> {
@@ -212,50 +205,27 @@ impl ParametricCurve for NurbsCurve {
     }
 }
 
-impl<C: ParametricCurve + ?Sized> ParametricCurve for &C {
-    fn dim(&self) -> usize {
-        (**self).dim()
-    }
-    fn domain(&self) -> (f64, f64) {
-        (**self).domain()
-    }
-    fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
-        (**self).eval_derivatives_into(t, order, out)
-    }
-    fn bezier_form(&self) -> Option<BezierForm> {
-        (**self).bezier_form()
-    }
+/// Smart pointers and references to curves are curves: every method forwards to the pointee.
+macro_rules! forward_parametric_curve {
+    ($($ptr:ty),*) => {$(
+        impl<C: ParametricCurve + ?Sized> ParametricCurve for $ptr {
+            fn dim(&self) -> usize {
+                (**self).dim()
+            }
+            fn domain(&self) -> (f64, f64) {
+                (**self).domain()
+            }
+            fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
+                (**self).eval_derivatives_into(t, order, out)
+            }
+            fn bezier_form(&self) -> Option<BezierForm> {
+                (**self).bezier_form()
+            }
+        }
+    )*};
 }
 
-impl<C: ParametricCurve + ?Sized> ParametricCurve for Box<C> {
-    fn dim(&self) -> usize {
-        (**self).dim()
-    }
-    fn domain(&self) -> (f64, f64) {
-        (**self).domain()
-    }
-    fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
-        (**self).eval_derivatives_into(t, order, out)
-    }
-    fn bezier_form(&self) -> Option<BezierForm> {
-        (**self).bezier_form()
-    }
-}
-
-impl<C: ParametricCurve + ?Sized> ParametricCurve for Arc<C> {
-    fn dim(&self) -> usize {
-        (**self).dim()
-    }
-    fn domain(&self) -> (f64, f64) {
-        (**self).domain()
-    }
-    fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
-        (**self).eval_derivatives_into(t, order, out)
-    }
-    fn bezier_form(&self) -> Option<BezierForm> {
-        (**self).bezier_form()
-    }
-}
+forward_parametric_curve!(&C, Box<C>, Arc<C>);
 
 /// A user-supplied curve: a closure `f(t, order, out)` that writes `c^{(l)}(t)`,
 /// `l = 0 … order`, into `out` (row-major, `(order + 1) · dim`), on a domain `[a, b]`.
