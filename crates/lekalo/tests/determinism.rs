@@ -272,3 +272,31 @@ fn evaluation_has_no_hidden_state() {
     c.eval_batch(&[1.0, 0.0, t], &mut out).expect("ok");
     assert_eq!(bits(&out[6..9]), first, "batch after jumping backwards");
 }
+
+#[test]
+fn parallel_bits_do_not_depend_on_the_thread_count() {
+    // 200,003 parameters: the parallel task size is 25,001 on two threads and 12,501 on four,
+    // so the split differs between pools; the bits must not.
+    let c = curve();
+    let n = nurbs();
+    let ts = scrambled(&sorted_params(0.0, 1.0, 200_003));
+    let (ev, nev) = (c.evaluator(), n.evaluator());
+    let mut want = vec![0.0; ts.len() * 3];
+    let mut want_n = vec![0.0; ts.len() * 3];
+    ev.eval_batch(&ts, &mut want).expect("in domain");
+    nev.eval_batch(&ts, &mut want_n).expect("in domain");
+    for threads in 1..=4 {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        let mut got = vec![0.0; ts.len() * 3];
+        let mut got_n = vec![0.0; ts.len() * 3];
+        pool.install(|| {
+            ev.par_eval_batch(&ts, &mut got).expect("in domain");
+            nev.par_eval_batch(&ts, &mut got_n).expect("in domain");
+        });
+        assert_eq!(bits(&got), bits(&want), "B-spline, {threads} threads");
+        assert_eq!(bits(&got_n), bits(&want_n), "NURBS, {threads} threads");
+    }
+}
