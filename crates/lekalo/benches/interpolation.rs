@@ -1,9 +1,14 @@
 //! Interpolation benchmarks (issue 8): cubic global curve interpolation through `n` 3-D points
 //! (chord length, averaged knots) for `n = 10^3 … 10^6`, and bicubic surface interpolation of
 //! `n × n` grids for `n = 50 … 400`. Throughput is per point, so ns/point reads off directly.
+//! Curves are timed twice: `fresh` (every result in newly allocated memory, as
+//! `CurveInterpolation::interpolate`) and `workspace` (`interpolate_with` reusing the previous
+//! result's buffers), which separates the arithmetic from the operating system's page faults.
 
 use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
-use lekalo::{interpolate_surface, CurveInterpolation, Parametrization, Points};
+use lekalo::{
+    interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization, Points,
+};
 
 /// `n` points of a wobbly 3-D helix, unevenly spaced.
 fn helix(n: usize) -> Points {
@@ -36,11 +41,21 @@ fn curve_interpolation(c: &mut Criterion) {
         if n >= 100_000 {
             group.sample_size(10);
         }
-        group.bench_with_input(BenchmarkId::from_parameter(n), &q, |b, q| {
+        group.bench_with_input(BenchmarkId::new("fresh", n), &q, |b, q| {
             b.iter(|| {
                 CurveInterpolation::new(3)
                     .interpolate(q.as_view())
                     .expect("interpolation")
+            });
+        });
+        // the same curve with the buffers of the previous result reused: no page faults
+        let mut ws = InterpolationWorkspace::new();
+        group.bench_with_input(BenchmarkId::new("workspace", n), &q, |b, q| {
+            b.iter(|| {
+                let c = CurveInterpolation::new(3)
+                    .interpolate_with(q.as_view(), &mut ws)
+                    .expect("interpolation");
+                ws.recycle(c);
             });
         });
     }

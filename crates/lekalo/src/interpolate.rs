@@ -35,7 +35,7 @@
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
-use crate::interpolate_fast::{chord_cubic, free_end_cubic};
+use crate::interpolate_fast::{chord_cubic, free_end_cubic, InterpolationWorkspace};
 use crate::interpolate_periodic::periodic;
 use crate::knots::KnotVector;
 use crate::linalg::BandedCrout;
@@ -221,6 +221,23 @@ impl CurveInterpolation {
     /// for an unsupported combination of knot placement and end condition or a bad exponent;
     /// [`Error::SingularSystem`] / [`Error::IllConditioned`] from the solve.
     pub fn interpolate(&self, points: PointsRef<'_>) -> Result<BSplineCurve> {
+        self.interpolate_with(points, &mut InterpolationWorkspace::new())
+    }
+
+    /// [`CurveInterpolation::interpolate`] with buffers from (and the `U` factor kept in) a
+    /// reusable [`InterpolationWorkspace`]: the same curve, bit for bit. Give finished curves
+    /// back with [`InterpolationWorkspace::recycle`] and repeated interpolation of large data
+    /// sets touches no fresh memory. Only the fused path (free-end cubic, chord length,
+    /// averaged knots, 1–3 dimensions, the default configuration) uses the workspace; the
+    /// others allocate as `interpolate` does.
+    ///
+    /// # Errors
+    /// As [`CurveInterpolation::interpolate`].
+    pub fn interpolate_with(
+        &self,
+        points: PointsRef<'_>,
+        ws: &mut InterpolationWorkspace,
+    ) -> Result<BSplineCurve> {
         let owned = self.prepare_points(points);
         let points = owned.as_ref().map_or(points, Points::as_view);
         if self.degree == 3
@@ -228,7 +245,7 @@ impl CurveInterpolation {
             && self.parametrization == Parametrization::ChordLength
             && matches!(self.knots, KnotPlacement::Auto | KnotPlacement::Averaged)
         {
-            if let Some(curve) = chord_cubic(points) {
+            if let Some(curve) = chord_cubic(points, ws) {
                 return Ok(curve);
             }
         }
@@ -897,7 +914,7 @@ pub fn natural_cubic_spline(x: &[f64], y: PointsRef<'_>) -> Result<BSplineCurve>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::interpolate_fast::chord_cubic;
+    use crate::interpolate_fast::{chord_cubic, InterpolationWorkspace};
 
     fn example() -> Points {
         Points::from_2d(&[
@@ -990,12 +1007,15 @@ mod tests {
 
     #[test]
     fn fused_cubic_agrees_with_the_general_path() {
+        // one workspace throughout, sizes up and down: recycled buffers hold stale numbers of
+        // other curves, which must not leak into the result
+        let mut ws = InterpolationWorkspace::new();
         for dim in 1..=3 {
-            for n in [5, 6, 7, 12, 200] {
+            for n in [200, 5, 12, 6, 7] {
                 for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e-8), (-3.0, 1e5)] {
                     let q = wobbly(n, dim, offset, scale);
                     let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
-                    let fused = chord_cubic(q.as_view()).unwrap();
+                    let fused = chord_cubic(q.as_view(), &mut ws).unwrap();
                     let general = general_cubic(q.as_view(), &params);
                     assert_eq!(
                         fused.knots().as_slice(),
@@ -1014,6 +1034,7 @@ mod tests {
                         .interpolate_at(q.as_view(), &params)
                         .unwrap();
                     assert_eq!(at.control_points().as_slice(), a, "interpolate_at");
+                    ws.recycle(fused);
                 }
             }
         }
@@ -1022,10 +1043,13 @@ mod tests {
     #[test]
     fn fused_cubic_declines_what_it_does_not_handle() {
         // four points (too few for the band), four dimensions, coincident points
-        assert!(chord_cubic(wobbly(4, 2, 0.0, 1.0).as_view()).is_none());
-        assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view()).is_none());
+        let mut ws = InterpolationWorkspace::new();
+        assert!(chord_cubic(wobbly(4, 2, 0.0, 1.0).as_view(), &mut ws).is_none());
+        assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view(), &mut ws).is_none());
         let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
         q.copy_within(6..8, 8);
-        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view()).is_none());
+        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view(), &mut ws).is_none());
+        // the declined attempt keeps the buffers it had grown for the next call
+        assert!(ws.capacity_bytes() >= 9 * 2 * 8);
     }
 }

@@ -20,17 +20,72 @@ pub(crate) fn free_end_cubic(
     for (c, t) in control.chunks_exact_mut(dim).zip(params) {
         c[0] = *t;
     }
-    solve_free_cubic_dyn(points.as_slice(), knots, &mut control, dim)
-        .then(|| Points::from_raw(control, dim))
+    let mut upper = Vec::new();
+    let q = points.as_slice();
+    let done = match dim {
+        1 => solve_free_cubic::<1>(q, knots, &mut control, &mut upper),
+        2 => solve_free_cubic::<2>(q, knots, &mut control, &mut upper),
+        3 => solve_free_cubic::<3>(q, knots, &mut control, &mut upper),
+        _ => false,
+    };
+    done.then(|| Points::from_raw(control, dim))
 }
 
-/// [`solve_free_cubic`](crate::linalg::solve_free_cubic) for a runtime dimension 1–3 (`false` for others).
-fn solve_free_cubic_dyn(q: &[f64], knots: &[f64], control: &mut [f64], dim: usize) -> bool {
-    match dim {
-        1 => solve_free_cubic::<1>(q, knots, control),
-        2 => solve_free_cubic::<2>(q, knots, control),
-        3 => solve_free_cubic::<3>(q, knots, control),
-        _ => false,
+/// Buffers kept between calls of
+/// [`CurveInterpolation::interpolate_with`](crate::CurveInterpolation::interpolate_with), so
+/// that repeated interpolation of large data sets does not ask the operating system for fresh
+/// memory each time.
+///
+/// A large fresh allocation costs a page fault per 4 KiB page on first touch: on the 2-core VM
+/// of `docs/performance.md` about 2 µs a page, 25 ns per point of a 3-D cubic interpolation at
+/// 10^6 points, as much as the arithmetic. The workspace holds the `U` factor of the fused solve
+/// and, once [`InterpolationWorkspace::recycle`] has given them back, the knot and control-point
+/// buffers of a previous result, which the next result then reuses.
+///
+/// ```
+/// use lekalo::{CurveInterpolation, InterpolationWorkspace, Points};
+/// let interp = CurveInterpolation::new(3);
+/// let mut ws = InterpolationWorkspace::new();
+/// for shift in [0.0, 0.5, 1.0] {
+///     let q = Points::from_2d(&[[0.0, shift], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0], [4.0, shift]])?;
+///     let curve = interp.interpolate_with(q.as_view(), &mut ws)?;
+///     assert_eq!(curve, interp.interpolate(q.as_view())?);
+///     ws.recycle(curve);
+/// }
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct InterpolationWorkspace {
+    control: Vec<f64>,
+    knots: Vec<f64>,
+    upper: Vec<[f64; 2]>,
+}
+
+impl InterpolationWorkspace {
+    /// An empty workspace (buffers grow on first use).
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Takes back the knot and control-point storage of a curve that is no longer needed, for
+    /// the next result to reuse (the larger of the held and the given buffers is kept).
+    pub fn recycle(&mut self, curve: BSplineCurve) {
+        let (_, knots, control) = curve.into_parts();
+        let (knots, control) = (knots.into_vec(), control.into_vec());
+        if knots.capacity() > self.knots.capacity() {
+            self.knots = knots;
+        }
+        if control.capacity() > self.control.capacity() {
+            self.control = control;
+        }
+    }
+
+    /// Bytes of storage currently held.
+    #[must_use]
+    pub fn capacity_bytes(&self) -> usize {
+        (self.control.capacity() + self.knots.capacity() + 2 * self.upper.capacity())
+            * std::mem::size_of::<f64>()
     }
 }
 
@@ -41,27 +96,51 @@ fn solve_free_cubic_dyn(q: &[f64], knots: &[f64], control: &mut [f64], dim: usiz
 /// normalised, then [`solve_free_cubic`](crate::linalg::solve_free_cubic). `None` (take the general path, which reports the
 /// problem) for coincident or overflowing points, a dimension above 3, fewer than 5 points or
 /// a failed check of the solve.
-pub(crate) fn chord_cubic(points: PointsRef<'_>) -> Option<BSplineCurve> {
+///
+/// The result's buffers and the `U` factor come from `ws` (taken out of it; a failed attempt
+/// puts them back).
+pub(crate) fn chord_cubic(
+    points: PointsRef<'_>,
+    ws: &mut InterpolationWorkspace,
+) -> Option<BSplineCurve> {
     let dim = points.dim();
     let q = points.as_slice();
     let n = points.len().checked_sub(1)?;
-    if n < 4 {
+    if n < 4 || dim > 3 {
         return None;
     }
-    let mut control = vec![0.0; q.len()];
-    let mut knots = vec![0.0; n + 5];
+    // every entry of both buffers is written before it is read, so stale values from a
+    // recycled curve need no clearing (`resize` writes only the growth)
+    let mut control = std::mem::take(&mut ws.control);
+    let mut knots = std::mem::take(&mut ws.knots);
+    control.resize(q.len(), 0.0);
+    knots.resize(n + 5, 0.0);
+    let upper = &mut ws.upper;
     let done = match dim {
-        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots),
-        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots),
-        3 => chord_cubic_fill::<3>(q, &mut control, &mut knots),
-        _ => false,
+        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots, upper),
+        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots, upper),
+        _ => chord_cubic_fill::<3>(q, &mut control, &mut knots, upper),
     };
-    done.then(|| BSplineCurve::from_raw(3, knots, Points::from_raw(control, dim)))
+    if done {
+        Some(BSplineCurve::from_raw(
+            3,
+            knots,
+            Points::from_raw(control, dim),
+        ))
+    } else {
+        (ws.control, ws.knots) = (control, knots);
+        None
+    }
 }
 
-/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` are zeroed buffers of
-/// the result's sizes.
-fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
+/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` have the result's
+/// sizes and any content (every entry is written before it is read).
+fn chord_cubic_fill<const D: usize>(
+    q: &[f64],
+    control: &mut [f64],
+    knots: &mut [f64],
+    upper: &mut Vec<[f64; 2]>,
+) -> bool {
     let n = q.len() / D - 1;
     let mut sum = 0.0;
     let mut prev: &[f64] = &q[..D];
@@ -79,6 +158,7 @@ fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut 
     }
     let inv = 1.0 / sum;
     control[n * D] = 1.0;
+    knots[..4].fill(0.0);
     knots[n + 1..].fill(1.0);
     // t̄_{r−2}, t̄_{r−1}
     let (mut t2, mut t1) = (0.0, 0.0);
@@ -95,5 +175,5 @@ fn chord_cubic_fill<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut 
         }
         (t2, t1) = (t1, t);
     }
-    solve_free_cubic::<D>(q, knots, control)
+    solve_free_cubic::<D>(q, knots, control, upper)
 }

@@ -86,6 +86,7 @@ pub use interpolate::{
     natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
     Parametrization,
 };
+pub use interpolate_fast::InterpolationWorkspace;
 pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
 
 // -- Bezier order change (issue 4) --

@@ -281,8 +281,9 @@ pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
 /// The rows are built and eliminated as the parameters are swept; only the two previous rows
 /// of `U` and of the forward-solved right-hand side are live during the sweep (in registers).
 /// Row `r` of the forward-solved right-hand side replaces `t̄_r`, which is read just before,
-/// so the parameters need no buffer of their own; `U` (two numbers a row) is stored for the
-/// back substitution, which writes the final, un-centred control points in place. The data are
+/// so the parameters need no buffer of their own; `U` (two numbers a row, in `upper`, grown to
+/// `n` rows if shorter and otherwise reused as it is: every row read is written first) is stored
+/// for the back substitution, which writes the final, un-centred control points in place. The data are
 /// centred on `q_0` (see [`crate::interpolate`]). The arithmetic is that of the general path
 /// operation by operation (the terms the general path skips are products with zero), so both
 /// give the same numbers. Time O(n), memory `2·n` numbers besides the result.
@@ -290,6 +291,7 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     q: &[f64],
     knots: &[f64],
     control: &mut [f64],
+    upper: &mut Vec<[f64; 2]>,
 ) -> bool {
     let n = (q.len() / D).saturating_sub(1);
     if n < 4 || q.len() != (n + 1) * D || knots.len() != n + 5 || control.len() != q.len() {
@@ -305,7 +307,9 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     for (a, b) in qn.iter_mut().zip(&q0) {
         *a -= b;
     }
-    let mut upper = vec![[0.0_f64; 2]; n];
+    if upper.len() < n {
+        upper.resize(n, [0.0; 2]);
+    }
     // rows r − 2 and r − 1 of U and of the forward-solved right-hand side
     let (mut u2, mut u1) = ([0.0_f64; 2], [0.0_f64; 2]);
     let (mut y2, mut y1) = ([0.0_f64; D], [0.0_f64; D]);
