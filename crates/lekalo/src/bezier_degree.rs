@@ -41,6 +41,7 @@
 //! - The real degree depends on the tolerance: a smooth control polygon of high degree is often
 //!   within `1e-10 × scale` of a lower degree, and then that lower degree is its real degree.
 
+use crate::bezier_degree_plan::{apply_band, elevation_band};
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -59,17 +60,80 @@ pub const MAX_MONOMIAL_DEGREE: usize = 1000;
 // Kernels on flat point-major slices (pub(crate); callers validate).
 // ---------------------------------------------------------------------------------------------
 
+/// Largest `n` for which every binomial coefficient `C(n, k)` is an integer below `2^53`, so exact
+/// in `f64` (`C(56, 28) ≈ 7.65·10^15 < 2^53 ≈ 9.01·10^15 < C(57, 28)`).
+const EXACT_BINOMIAL_MAX: usize = 56;
+
+/// Pascal's triangle up to [`EXACT_BINOMIAL_MAX`]: `BINOMIAL[n][k] = C(n, k)` for `k ≤ n`, exact
+/// integers stored as `f64` (no conversion in the kernels).
+static BINOMIAL: [[f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1] = pascal();
+
+/// Pascal's triangle by `C(n, k) = C(n−1, k−1) + C(n−1, k)` in integers, at compile time.
+const fn pascal() -> [[f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1] {
+    let mut c = [[0_u64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1];
+    let mut f = [[0.0_f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1];
+    let mut n = 0;
+    while n <= EXACT_BINOMIAL_MAX {
+        c[n][0] = 1;
+        f[n][0] = 1.0;
+        let mut k = 1;
+        while k <= n {
+            c[n][k] = c[n - 1][k - 1] + c[n - 1][k];
+            // exact: every entry is below 2^53
+            f[n][k] = c[n][k] as f64;
+            k += 1;
+        }
+        n += 1;
+    }
+    f
+}
+
+/// Rows `n`, `r` and `n + r` of the exact binomial table, when `n + r ≤ 56`
+/// ([`EXACT_BINOMIAL_MAX`]).
+pub(crate) type BinomialRow = [f64; EXACT_BINOMIAL_MAX + 1];
+
+/// The rows `C(n, ·)`, `C(r, ·)`, `C(n + r, ·)` of the exact table, or `None` above it.
+pub(crate) fn exact_binomial_rows(
+    n: usize,
+    r: usize,
+) -> Option<(
+    &'static BinomialRow,
+    &'static BinomialRow,
+    &'static BinomialRow,
+)> {
+    let total = n.checked_add(r)?;
+    (total <= EXACT_BINOMIAL_MAX).then(|| (&BINOMIAL[n], &BINOMIAL[r], &BINOMIAL[total]))
+}
+
 /// Weights `w_i = C(n,i) C(r,j−i) / C(n+r,j)` of point `u_i` in the elevated point `u'_j`, for
 /// `i = lo..=hi` with `lo = max(0, j−r)`, `hi = min(j, n)`, written to `out[..=hi−lo]`. Returns
 /// `lo`.
 ///
-/// These are hypergeometric probabilities. They are built from their ratios starting at the mode
-/// (so nothing overflows at any degree) and normalised by their sum, which is exactly 1
+/// Up to `n + r = 56` ([`EXACT_BINOMIAL_MAX`]) the binomials come from a table and are exact,
+/// and so is the numerator (`C(n,i) C(r,j−i) ≤ C(n+r,j) < 2^53` by Vandermonde's identity): each
+/// weight is the correctly rounded quotient of two exact integers, one division. Above, the
+/// weights are hypergeometric probabilities built from their ratios starting at the mode (so
+/// nothing overflows at any degree) and normalised by their sum, which is exactly 1
 /// (Vandermonde's identity); each weight is then accurate to a few ulps.
 pub(crate) fn elevation_weights_into(n: usize, r: usize, j: usize, out: &mut [f64]) -> usize {
     let lo = j.saturating_sub(r);
     let hi = j.min(n);
     debug_assert!(lo <= hi && out.len() > hi - lo, "weights buffer too short");
+    if let Some((row_n, row_r, row_nr)) = exact_binomial_rows(n, r) {
+        let total = row_nr[j];
+        for (w, i) in out.iter_mut().zip(lo..=hi) {
+            // the product is an exact integer below 2^53
+            *w = row_n[i] * row_r[j - i] / total;
+        }
+        return lo;
+    }
+    ratio_weights_into(n, r, j, out)
+}
+
+/// The weights of [`elevation_weights_into`] from their ratios, for any degree.
+fn ratio_weights_into(n: usize, r: usize, j: usize, out: &mut [f64]) -> usize {
+    let lo = j.saturating_sub(r);
+    let hi = j.min(n);
     // mode of the hypergeometric distribution (population n + r, n successes, j draws)
     let mode = ((j + 1) * (n + 1) / (n + r + 2)).clamp(lo, hi);
     out[mode - lo] = 1.0;
@@ -90,38 +154,15 @@ pub(crate) fn elevation_weights_into(n: usize, r: usize, j: usize, out: &mut [f6
     lo
 }
 
-/// One-step elevation by `r` (document 004 eq. 8 in closed form). `src` holds `n + 1` points,
-/// `out` `n + r + 1`, `weights` at least `n + 1` scalars of scratch. O((n+1)(r+1)·dim).
-pub(crate) fn elevate_into(
-    src: &[f64],
-    dim: usize,
-    r: usize,
-    out: &mut [f64],
-    weights: &mut [f64],
-) {
-    let n = src.len() / dim - 1;
-    debug_assert!(out.len() == (n + r + 1) * dim, "output size");
-    for (j, o) in out.chunks_exact_mut(dim).enumerate() {
-        let lo = elevation_weights_into(n, r, j, weights);
-        let count = j.min(n) - lo + 1;
-        o.fill(0.0);
-        for (w, p) in weights[..count]
-            .iter()
-            .zip(src[lo * dim..].chunks_exact(dim))
-        {
-            for (x, y) in o.iter_mut().zip(p) {
-                *x += w * y;
-            }
-        }
-    }
-}
-
-/// Elevation by `r` into a new vector.
+/// One-step elevation by `r` into a new vector (document 004 eq. 8 in closed form): the band of
+/// weights ([`elevation_band`]) applied to `src` (`n + 1` points of `dim` coordinates).
+/// O((n+1)(r+1)·dim), the same arithmetic as an [`ElevationPlan`](crate::ElevationPlan).
 pub(crate) fn elevate(src: &[f64], dim: usize, r: usize) -> Vec<f64> {
     let n_pts = src.len() / dim;
     let mut out = vec![0.0; (n_pts + r) * dim];
-    let mut weights = vec![0.0; n_pts];
-    elevate_into(src, dim, r, &mut out, &mut weights);
+    if n_pts > 0 {
+        apply_band(&elevation_band(n_pts - 1, r), r, src, dim, &mut out);
+    }
     out
 }
 
@@ -686,6 +727,33 @@ impl BezierCurve {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn exact_binomial_weights_agree_with_the_ratio_weights() {
+        use super::{elevation_weights_into, ratio_weights_into, BINOMIAL, EXACT_BINOMIAL_MAX};
+        // the table is Pascal's triangle with C(56, 28) the largest entry, below 2^53
+        assert_eq!(BINOMIAL[56][28], 7_648_690_600_760_440.0);
+        assert!(BINOMIAL[56][28] < 2.0_f64.powi(53));
+        assert_eq!(BINOMIAL[10][3], 120.0);
+        let (mut a, mut b) = ([0.0; 64], [0.0; 64]);
+        for n in 0..=EXACT_BINOMIAL_MAX {
+            for r in 0..=EXACT_BINOMIAL_MAX - n {
+                for j in 0..=n + r {
+                    let lo = elevation_weights_into(n, r, j, &mut a);
+                    assert_eq!(lo, ratio_weights_into(n, r, j, &mut b));
+                    let count = j.min(n) - lo + 1;
+                    let sum: f64 = a[..count].iter().sum();
+                    assert!((sum - 1.0).abs() <= 64.0 * f64::EPSILON, "sum {sum}");
+                    for (x, y) in a[..count].iter().zip(&b[..count]) {
+                        assert!(
+                            (x - y).abs() <= 8.0 * f64::EPSILON * x.max(*y),
+                            "n {n}, r {r}, j {j}: {x} vs {y}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     use super::*;
 
     /// A rough, deterministic net in [−4, 4] (a fixed hash, not randomness). Smooth nets would

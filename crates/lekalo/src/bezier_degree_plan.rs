@@ -1,7 +1,7 @@
 //! Precomputed Bezier degree elevation for many curves of one degree (document 004 eq. 8), the
 //! fast path for batch work such as elevating every piece of a large model.
 
-use crate::bezier_degree::{check_size, elevation_weights_into};
+use crate::bezier_degree::{check_size, elevation_weights_into, exact_binomial_rows};
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -57,15 +57,11 @@ impl ElevationPlan {
             from.saturating_add(1),
             r.saturating_add(1),
         )?;
-        let mut band = vec![0.0; (from + 1) * (r + 1)];
-        let mut scratch = vec![0.0; from + 1];
-        for j in 0..=to {
-            let lo = elevation_weights_into(from, r, j, &mut scratch);
-            for i in lo..=j.min(from) {
-                band[i * (r + 1) + (j - i)] = scratch[i - lo];
-            }
-        }
-        Ok(ElevationPlan { from, to, band })
+        Ok(ElevationPlan {
+            from,
+            to,
+            band: elevation_band(from, r),
+        })
     }
 
     /// Degree of the input curves.
@@ -109,50 +105,8 @@ impl ElevationPlan {
                 got: out.len(),
             });
         }
-        match dim {
-            1 => self.apply_fixed::<1>(control, out),
-            2 => self.apply_fixed::<2>(control, out),
-            3 => self.apply_fixed::<3>(control, out),
-            4 => self.apply_fixed::<4>(control, out),
-            _ => {
-                let width = self.to - self.from + 1;
-                out.fill(0.0);
-                for (i, (p, w)) in control
-                    .chunks_exact(dim)
-                    .zip(self.band.chunks_exact(width))
-                    .enumerate()
-                {
-                    let o = &mut out[i * dim..(i + width) * dim];
-                    for (oc, &wl) in o.chunks_exact_mut(dim).zip(w) {
-                        for (x, y) in oc.iter_mut().zip(p) {
-                            *x += wl * y;
-                        }
-                    }
-                }
-            }
-        }
+        apply_band(&self.band, self.to - self.from, control, dim, out);
         Ok(())
-    }
-
-    /// [`ElevationPlan::apply_into`] for a dimension known at compile time: scatter each old
-    /// point into its `r + 1` new points.
-    fn apply_fixed<const D: usize>(&self, control: &[f64], out: &mut [f64]) {
-        let width = self.to - self.from + 1;
-        out.fill(0.0);
-        for (i, (p, w)) in control
-            .chunks_exact(D)
-            .zip(self.band.chunks_exact(width))
-            .enumerate()
-        {
-            let mut pt = [0.0; D];
-            pt.copy_from_slice(p);
-            let o = &mut out[i * D..(i + width) * D];
-            for (oc, &wl) in o.chunks_exact_mut(D).zip(w) {
-                for k in 0..D {
-                    oc[k] += wl * pt[k];
-                }
-            }
-        }
     }
 
     /// Elevates a curve of degree [`ElevationPlan::from_degree`].
@@ -170,6 +124,88 @@ impl ElevationPlan {
         let mut out = vec![0.0; (self.to + 1) * dim];
         self.apply_into(curve.control_points().as_slice(), dim, &mut out)?;
         Ok(BezierCurve::from_raw(Points::from_raw(out, dim)))
+    }
+}
+
+/// The weights of elevation from degree `n` by `r` as a band: `band[i·(r+1) + l]` is the weight
+/// `C(n,i) C(r,l) / C(n+r,i+l)` of old point `i` in new point `i + l` (document 004 eq. 8).
+///
+/// Up to `n + r = 56` from the exact binomial table: the numerator is an exact integer and the
+/// reciprocal of each denominator is computed once, so each weight is within an ulp (two
+/// roundings) for `n + r + 1` divisions in all. Above, row by row with
+/// [`elevation_weights_into`].
+pub(crate) fn elevation_band(n: usize, r: usize) -> Vec<f64> {
+    let mut band = vec![0.0; (n + 1) * (r + 1)];
+    if let Some((row_n, row_r, row_nr)) = exact_binomial_rows(n, r) {
+        let inv: Vec<f64> = row_nr[..=n + r].iter().map(|c| 1.0 / c).collect();
+        for ((w, &cn), inv) in band
+            .chunks_exact_mut(r + 1)
+            .zip(&row_n[..=n])
+            .zip(inv.windows(r + 1))
+        {
+            for ((x, &cr), &v) in w.iter_mut().zip(&row_r[..=r]).zip(inv) {
+                *x = cn * cr * v;
+            }
+        }
+        return band;
+    }
+    let mut scratch = vec![0.0; n + 1];
+    for j in 0..=n + r {
+        let lo = elevation_weights_into(n, r, j, &mut scratch);
+        for i in lo..=j.min(n) {
+            band[i * (r + 1) + (j - i)] = scratch[i - lo];
+        }
+    }
+    band
+}
+
+/// Applies an [`elevation_band`] for elevation by `r`: scatters each old point of `control`
+/// (point-major, `dim ≥ 1` coordinates) into its `r + 1` new points of `out`, which is
+/// overwritten. Every new point is summed over the old points in increasing order, as a direct
+/// evaluation of eq. 8 would. Dimensions 1 to 4 use loops specialised at compile time. The
+/// caller checks the lengths.
+pub(crate) fn apply_band(band: &[f64], r: usize, control: &[f64], dim: usize, out: &mut [f64]) {
+    match dim {
+        1 => apply_band_fixed::<1>(band, r, control, out),
+        2 => apply_band_fixed::<2>(band, r, control, out),
+        3 => apply_band_fixed::<3>(band, r, control, out),
+        4 => apply_band_fixed::<4>(band, r, control, out),
+        _ => {
+            let width = r + 1;
+            out.fill(0.0);
+            for (i, (p, w)) in control
+                .chunks_exact(dim)
+                .zip(band.chunks_exact(width))
+                .enumerate()
+            {
+                let o = &mut out[i * dim..(i + width) * dim];
+                for (oc, &wl) in o.chunks_exact_mut(dim).zip(w) {
+                    for (x, y) in oc.iter_mut().zip(p) {
+                        *x += wl * y;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// [`apply_band`] for a dimension known at compile time.
+fn apply_band_fixed<const D: usize>(band: &[f64], r: usize, control: &[f64], out: &mut [f64]) {
+    let width = r + 1;
+    out.fill(0.0);
+    for (i, (p, w)) in control
+        .chunks_exact(D)
+        .zip(band.chunks_exact(width))
+        .enumerate()
+    {
+        let mut pt = [0.0; D];
+        pt.copy_from_slice(p);
+        let o = &mut out[i * D..(i + width) * D];
+        for (oc, &wl) in o.chunks_exact_mut(D).zip(w) {
+            for k in 0..D {
+                oc[k] += wl * pt[k];
+            }
+        }
     }
 }
 

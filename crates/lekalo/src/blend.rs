@@ -625,12 +625,9 @@ pub(crate) fn weights_of(h: &[f64], dim: usize) -> Vec<f64> {
     h.iter().skip(dim).step_by(dim + 1).copied().collect()
 }
 
-/// Degree elevation by `r` as the Bernstein product with the constant 1 of degree `r`.
+/// Degree elevation by `r` (document 004 eq. 8, [`crate::bezier_degree`]'s closed form).
 pub(crate) fn elevate(ctrl: &[f64], dim: usize, r: usize) -> Vec<f64> {
-    if r == 0 {
-        return ctrl.to_vec();
-    }
-    bernstein_ops::product(&vec![1.0; r + 1], ctrl, dim)
+    crate::bezier_degree::elevate(ctrl, dim, r)
 }
 
 impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C1, C2> {
