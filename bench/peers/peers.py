@@ -1,10 +1,19 @@
-"""Times the Python peers on the workload files written by `examples/peer_bench.rs` and prints a
-table of medians (ns per point) next to lekalo's, with the ratio peer / lekalo.
+"""Times the Python peers on the workload files written by `examples/peer_bench.rs` and prints one
+table of medians next to lekalo's, with the ratio peer / lekalo, plus agreement checks.
+
+Workloads (data and our results from `peer_bench`, little-endian f64 files):
+- eval_*: cubic 3-D B-spline, 1000 control points, 10^6 parameters (ns per parameter);
+- interp_N: cubic global interpolation through N 3-D points of a wobbly helix, chord-length
+  parameters, averaged knots (ns per point);
+- surface_N: bicubic interpolation of an N x N grid, averaged chord-length parameters (ns per
+  grid point);
+- elevate_A_B: Bezier degree elevation A -> B of one 3-D curve (µs per curve).
 
 Usage: peers.py DATA_DIR REPEATS  (run through bench/peers/run.sh)
 """
 
 import json
+import math
 import statistics
 import sys
 import time
@@ -12,30 +21,73 @@ from pathlib import Path
 
 import numpy as np
 
+# shortest time of one timed sample: quick calls are repeated inside a sample up to this
+# (the same rule as peer_bench.rs)
+MIN_SAMPLE_SECS = 0.02
+# the OCP array fill costs several µs per point in Python: above this size it is timed once
+OCP_FILL_ONCE_ABOVE = 10_000
 
-def median_ns(fn, points, repeats):
-    """Median wall time of `repeats` calls of fn (after one warm-up), in ns per point."""
+
+def median_ns(fn, units, repeats):
+    """Median wall time of `repeats` samples of fn (after one warm-up call that also sets how many
+    calls make one sample), in ns per unit."""
+    t0 = time.perf_counter()
     fn()
+    once = time.perf_counter() - t0
+    inner = max(1, math.ceil(MIN_SAMPLE_SECS / max(once, 1e-9)))
     times = []
-    for _ in range(repeats):
+    for _ in range(max(1, repeats)):
         t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times) * 1e9 / points
+        for _ in range(inner):
+            fn()
+        times.append((time.perf_counter() - t0) / inner)
+    return statistics.median(times) * 1e9 / units
 
 
-def main():
-    data = Path(sys.argv[1])
-    repeats = int(sys.argv[2])
-    meta = json.loads((data / "ours.json").read_text())
+def rel(a, b, scale=None):
+    """max |a - b| / max |b| (or / scale)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return np.abs(a - b).max() / (np.abs(b).max() if scale is None else scale)
+
+
+def try_import(what, fn):
+    try:
+        return fn()
+    except ImportError:
+        print(f"peers: {what} not installed; skipped", file=sys.stderr)
+        return None
+
+
+class Table:
+    def __init__(self, ours):
+        self.ours = ours
+        self.rows = []  # (workload, unit, lekalo, lekalo alt, peer, peer figure, note)
+
+    def add(self, work, peer, value, note, unit="ns/pt", keys=("fast", "parallel_2")):
+        o = self.ours[work]
+        if "reference" in o:
+            note = f"lekalo ref {o['reference']:.1f}; {note}"
+        self.rows.append((work, unit, o.get(keys[0], math.nan), o.get(keys[1], math.nan),
+                          peer, value, note))
+
+    def print(self):
+        print(f"{'workload':<16} {'unit':<8} {'lekalo':>9} {'alt':>9}  {'peer':<40} "
+              f"{'peer':>10} {'ratio':>7} {'/alt':>7}  note")
+        for work, unit, ours, alt, peer, value, note in self.rows:
+            scale = 1e-3 if unit == "µs/curve" else 1.0
+            ratio = value / ours
+            ralt = f"{value / alt:>6.1f}x" if not math.isnan(alt) else f"{'':>7}"
+            altf = f"{alt * scale:>9.2f}" if not math.isnan(alt) else f"{'–':>9}"
+            print(f"{work:<16} {unit:<8} {ours * scale:>9.2f} {altf}  {peer:<40} "
+                  f"{value * scale:>10.2f} {ratio:>6.1f}x {ralt}  {note}")
+
+
+def evaluation(data, meta, repeats, table, f64):
     p, dim, n_ctrl, n = meta["degree"], meta["dim"], meta["n_ctrl"], meta["n"]
-    ours = meta["results"]
-    f64 = lambda name: np.fromfile(data / name, dtype="<f8")
     knots = f64("knots.bin")
     ctrl = f64("ctrl.bin").reshape(n_ctrl, dim)
     params = {"sorted": f64("ts_sorted.bin"), "random": f64("ts_random.bin")}
     scale = np.abs(ctrl).max()
-    rows = []  # (workload, peer, peer ns/pt, note)
 
     from scipy.interpolate import BSpline
 
@@ -43,18 +95,16 @@ def main():
     for order, x in params.items():
         ns = median_ns(lambda: spl(x), n, repeats)
         ref = f64(f"ours_eval_{order}.bin").reshape(n, dim)
-        err = np.abs(spl(x) - ref).max() / scale
-        rows.append((f"eval_{order}", "scipy BSpline", ns, f"max diff {err:.1e} rel"))
+        err = rel(spl(x), ref, scale)
+        table.add(f"eval_{order}", "scipy BSpline", ns, f"diff {err:.1e} rel")
     x = params["sorted"]
     ns = median_ns(lambda: spl(x, nu=1), n, repeats)
-    err = np.abs(spl(x, nu=1) - f64("ours_deriv1_sorted.bin").reshape(n, dim)).max()
-    err /= np.abs(spl(x, nu=1)).max()
-    rows.append(("deriv1_sorted", "scipy BSpline(nu=1)", ns, f"max diff {err:.1e} rel"))
+    err = rel(f64("ours_deriv1_sorted.bin").reshape(n, dim), spl(x, nu=1))
+    table.add("deriv1_sorted", "scipy BSpline(nu=1)", ns, f"diff {err:.1e} rel")
 
     sub = 100_000
-    try:
-        import tinyspline as ts
-
+    ts = try_import("tinyspline", lambda: __import__("tinyspline"))
+    if ts:
         s = ts.BSpline(n_ctrl, dim, p, ts.BSpline.Opened)
         s.control_points = ctrl.ravel().tolist()
         s.knots = knots.tolist()
@@ -62,16 +112,12 @@ def main():
             xs = x[:sub].tolist()
             ns = median_ns(lambda: s.eval_all(xs), sub, repeats)
             got = np.array(s.eval_all(xs)).reshape(sub, dim)
-            err = np.abs(got - f64(f"ours_eval_{order}.bin").reshape(n, dim)[:sub]).max() / scale
-            rows.append((f"eval_{order}", "tinyspline eval_all", ns,
-                         f"{sub} points; max diff {err:.1e} rel"))
-    except ImportError:
-        print("peers: tinyspline not installed; skipped", file=sys.stderr)
+            err = rel(got, f64(f"ours_eval_{order}.bin").reshape(n, dim)[:sub], scale)
+            table.add(f"eval_{order}", "tinyspline eval_all (10^5)", ns, f"diff {err:.1e} rel")
 
-    try:
-        from geomdl import BSpline as GBSpline
-
-        g = GBSpline.Curve()
+    geomdl = try_import("geomdl", lambda: __import__("geomdl.BSpline").BSpline)
+    if geomdl:
+        g = geomdl.Curve()
         g.degree = p
         g.ctrlpts = ctrl.tolist()
         g.knotvector = knots.tolist()
@@ -79,55 +125,253 @@ def main():
         for order, x in params.items():
             xs = x[:gsub].tolist()
             ns = median_ns(lambda: g.evaluate_list(xs), gsub, max(1, repeats // 3))
-            rows.append((f"eval_{order}", "geomdl evaluate_list", ns, f"{gsub} points, pure Python"))
-    except ImportError:
-        print("peers: geomdl not installed; skipped", file=sys.stderr)
+            table.add(f"eval_{order}", "geomdl evaluate_list (10^4)", ns, "pure Python")
 
-    try:
-        from OCP.Geom import Geom_BSplineCurve
-        from OCP.GeomAdaptor import GeomAdaptor_Curve
-        from OCP.gp import gp_Pnt
-
-        try:  # OCP 7.x names
-            from OCP.TColgp import TColgp_Array1OfPnt
-            from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
-        except ImportError:  # cadquery-ocp 8: generic collections
-            from OCP.OCP.collections import Array1_double as TColStd_Array1OfReal
-            from OCP.OCP.collections import Array1_gp_Pnt as TColgp_Array1OfPnt
-            from OCP.OCP.collections import Array1_int as TColStd_Array1OfInteger
-
-        poles = TColgp_Array1OfPnt(1, n_ctrl)
-        for i, c in enumerate(ctrl):
-            poles.SetValue(i + 1, gp_Pnt(*[float(v) for v in c]))
+    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
+    if ocp:
+        poles = ocp["Array1_Pnt"](1, n_ctrl)
+        for i, c in enumerate(ctrl.tolist()):
+            poles.SetValue(i + 1, ocp["gp_Pnt"](*c))
         distinct, mults = np.unique(knots, return_counts=True)
-        kn = TColStd_Array1OfReal(1, len(distinct))
-        mu = TColStd_Array1OfInteger(1, len(distinct))
+        kn = ocp["Array1_Real"](1, len(distinct))
+        mu = ocp["Array1_Int"](1, len(distinct))
         for i, (k, m) in enumerate(zip(distinct, mults)):
             kn.SetValue(i + 1, float(k))
             mu.SetValue(i + 1, int(m))
-        adaptor = GeomAdaptor_Curve(Geom_BSplineCurve(poles, kn, mu, p))
+        adaptor = ocp["GeomAdaptor_Curve"](ocp["Geom_BSplineCurve"](poles, kn, mu, p))
+        value = adaptor.Value
         for order, x in params.items():
             xs = x[:sub].tolist()
-            value = adaptor.Value
             ns = median_ns(lambda: [value(t) for t in xs], sub, max(1, repeats // 2))
             # one Python call per point, each returning a new gp_Pnt: this measures the
             # binding (~1-3 µs), not Open CASCADE's C++ evaluator (≈25 ns/point per issue 8)
-            rows.append((f"eval_{order}", "OCP GeomAdaptor_Curve.Value", ns,
-                         f"{sub} points, one Python call each: measures the binding"))
-    except ImportError:
-        print("peers: OCP (cadquery-ocp) not installed; skipped", file=sys.stderr)
+            table.add(f"eval_{order}", "OCP GeomAdaptor_Curve.Value (10^5)", ns,
+                      "one Python call per point: the binding")
 
+
+def ocp_modules():
+    """The OCP names used here, for OCP 7.x and cadquery-ocp 8 (generic collections)."""
+    from OCP.Approx import Approx_ParametrizationType
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.GeomAdaptor import GeomAdaptor_Curve
+    from OCP.GeomAPI import GeomAPI_Interpolate, GeomAPI_PointsToBSplineSurface
+    from OCP.gp import gp_Pnt
+
+    try:  # OCP 7.x names
+        from OCP.TColgp import TColgp_Array1OfPnt as Array1_Pnt
+        from OCP.TColgp import TColgp_Array2OfPnt as Array2_Pnt
+        from OCP.TColgp import TColgp_HArray1OfPnt as HArray1_Pnt
+        from OCP.TColStd import TColStd_Array1OfInteger as Array1_Int
+        from OCP.TColStd import TColStd_Array1OfReal as Array1_Real
+        from OCP.TColStd import TColStd_HArray1OfReal as HArray1_Real
+    except ImportError:  # cadquery-ocp 8
+        from OCP.OCP.collections import Array1_double as Array1_Real
+        from OCP.OCP.collections import Array1_gp_Pnt as Array1_Pnt
+        from OCP.OCP.collections import Array1_int as Array1_Int
+        from OCP.OCP.collections import Array2_gp_Pnt as Array2_Pnt
+        from OCP.OCP.collections import HArray1_double as HArray1_Real
+        from OCP.OCP.collections import HArray1_gp_Pnt as HArray1_Pnt
+    return dict(locals())
+
+
+def interpolation(meta, repeats, table, f64):
+    from scipy.interpolate import BSpline, make_interp_spline
+
+    keys = ("fresh", "workspace")
+    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
+    for n in meta["interp_sizes"]:
+        work = f"interp_{n}"
+        q = f64(f"interp_q_{n}.bin").reshape(n, 3)
+        t = f64(f"interp_t_{n}.bin")
+        knots = f64(f"interp_knots_{n}.bin")
+        ours = f64(f"interp_ctrl_{n}.bin").reshape(-1, 3)
+        scale = np.abs(q).max()
+        ours_err = rel(BSpline(knots, ours, 3)(t), q, scale)
+
+        ns = median_ns(lambda: make_interp_spline(t, q, k=3), n, repeats)
+        s = make_interp_spline(t, q, k=3)
+        err = rel(s(t), q, scale)
+        table.add(work, "scipy make_interp_spline (not-a-knot)", ns,
+                  f"at data {err:.1e}", keys=keys)
+
+        ns = median_ns(lambda: make_interp_spline(t, q, k=3, t=knots), n, repeats)
+        s = make_interp_spline(t, q, k=3, t=knots)
+        err = rel(s(t), q, scale)
+        cerr = rel(s.c, ours)
+        table.add(work, "scipy make_interp_spline(t=our knots)", ns,
+                  f"at data {err:.1e} (ours {ours_err:.1e}); ctrl vs ours {cerr:.1e}",
+                  keys=keys)
+
+        if ocp:
+            gp = ocp["gp_Pnt"]
+            ql, tl = q.tolist(), t.tolist()
+
+            def fill():
+                pts = ocp["HArray1_Pnt"](1, n)
+                par = ocp["HArray1_Real"](1, n)
+                for i, (x, y, z) in enumerate(ql):
+                    pts.SetValue(i + 1, gp(x, y, z))
+                for i, v in enumerate(tl):
+                    par.SetValue(i + 1, v)
+                return pts, par
+
+            t0 = time.perf_counter()
+            pts, par = fill()
+            fill_ns = (time.perf_counter() - t0) * 1e9 / n
+            if n <= OCP_FILL_ONCE_ABOVE:
+                fill_ns = median_ns(fill, n, repeats)
+
+            def solve():
+                it = ocp["GeomAPI_Interpolate"](pts, par, False, 1e-12)
+                it.Perform()
+                return it.Curve()
+
+            ns = median_ns(solve, n, repeats)
+            c = solve()
+            step = max(1, n // 2000)
+            err = max(c.Value(tl[i]).Distance(gp(*ql[i])) for i in range(0, n, step)) / scale
+            # Open CASCADE's own scheme: knots at all the parameters, n + 2 poles (two end
+            # conditions of its own), so only the fit at the data is compared
+            table.add(work, "OCP GeomAPI_Interpolate (solve)", ns,
+                      f"at data {err:.1e}; {c.NbPoles()} poles", keys=keys)
+            once = " (fill timed once)" if n > OCP_FILL_ONCE_ABOVE else ""
+            table.add(work, "OCP GeomAPI_Interpolate (fill+solve)", fill_ns + ns,
+                      f"array fill {fill_ns:.0f} ns/pt{once}", keys=keys)
+
+
+def at_grid(ku, kv, ctrl, u, v, g):
+    """max |S(u_k, v_l) - q_kl| / max |q| for the tensor-product cubic with control net ctrl."""
+    from scipy.interpolate import BSpline
+
+    bu = BSpline.design_matrix(u, ku, 3).toarray()
+    bv = BSpline.design_matrix(v, kv, 3).toarray()
+    s = np.einsum("ki,ijc,lj->klc", bu, ctrl, bv, optimize=True)
+    return rel(s, g, np.abs(g).max())
+
+
+def surface(meta, repeats, table, f64):
+    from scipy.interpolate import make_interp_spline
+
+    keys = ("fresh", "-")
+    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
+    for n in meta["surface_sizes"]:
+        work = f"surface_{n}"
+        g = f64(f"surf_q_{n}.bin").reshape(n, n, 3)
+        u, v = f64(f"surf_u_{n}.bin"), f64(f"surf_v_{n}.bin")
+        ku, kv = f64(f"surf_ku_{n}.bin"), f64(f"surf_kv_{n}.bin")
+        ours = f64(f"surf_ctrl_{n}.bin").reshape(n, n, 3)
+        scale = np.abs(g).max()
+
+        def two_pass(tu=None, tv=None):
+            # u pass: all n*3 numbers of a grid row as right-hand sides; then the v pass on
+            # the transposed intermediate net
+            a = make_interp_spline(u, g.reshape(n, n * 3), k=3, t=tu).c.reshape(n, n, 3)
+            b = a.transpose(1, 0, 2).reshape(n, n * 3)
+            return make_interp_spline(v, b, k=3, t=tv).c.reshape(n, n, 3).transpose(1, 0, 2)
+
+        ns = median_ns(lambda: two_pass(ku, kv), n * n, repeats)
+        got = two_pass(ku, kv)
+        table.add(work, "scipy 2-pass make_interp_spline(t=ours)", ns,
+                  f"at data {at_grid(ku, kv, got, u, v, g):.1e} "
+                  f"(ours {at_grid(ku, kv, ours, u, v, g):.1e}); "
+                  f"ctrl vs ours {rel(got, ours):.1e}", keys=keys)
+        ns = median_ns(lambda: two_pass(), n * n, repeats)
+        table.add(work, "scipy 2-pass make_interp_spline", ns, "not-a-knot", keys=keys)
+
+        if ocp:
+            gl = g.tolist()
+            gp = ocp["gp_Pnt"]
+
+            def fill():
+                a = ocp["Array2_Pnt"](1, n, 1, n)
+                for k in range(n):
+                    for l in range(n):
+                        a.SetValue(k + 1, l + 1, gp(*gl[k][l]))
+                return a
+
+            t0 = time.perf_counter()
+            arr = fill()
+            fill_ns = (time.perf_counter() - t0) * 1e9 / (n * n)
+            chord = ocp["Approx_ParametrizationType"].Approx_ChordLength
+
+            def solve():
+                s = ocp["GeomAPI_PointsToBSplineSurface"]()
+                s.Interpolate(arr, chord)
+                return s.Surface()
+
+            ns = median_ns(solve, n * n, max(1, repeats // 2))
+            s = solve()
+            # its knots are its parameters: check the surface at a sub-grid of the data
+            idx = range(0, n, max(1, n // 40))
+            err = max(s.Value(s.UKnot(k + 1), s.VKnot(l + 1)).Distance(gp(*gl[k][l]))
+                      for k in idx for l in idx) / scale
+            table.add(work, "OCP PointsToBSplineSurface.Interpolate", ns,
+                      f"at data {err:.1e}; fill {fill_ns:.0f} ns/pt more", keys=keys)
+
+
+def elevation(meta, repeats, table, f64):
+    from math import comb
+
+    keys = ("plan", "elevate_degree")
+    unit = "µs/curve"
+    ts = try_import("tinyspline", lambda: __import__("tinyspline"))
+    bz = try_import("bezier", lambda: __import__("bezier"))
+    for a, b in meta["elevations"]:
+        work = f"elevate_{a}_{b}"
+        p = f64(f"elev_in_{a}_{b}.bin").reshape(a + 1, 3)
+        ours = f64(f"elev_out_{a}_{b}.bin").reshape(b + 1, 3)
+        r = b - a
+
+        # NumPy with the (b+1) x (a+1) matrix C(a,i) C(r,j-i) / C(b,j) precomputed (as our plan)
+        m = np.array([[comb(a, i) * comb(r, j - i) / comb(b, j) if 0 <= j - i <= r else 0.0
+                       for i in range(a + 1)] for j in range(b + 1)])
+        ns = median_ns(lambda: m @ p, 1, repeats)
+        table.add(work, "NumPy M @ P (M precomputed)", ns,
+                  f"diff {rel(m @ p, ours):.1e} rel", unit=unit, keys=keys)
+
+        if ts:
+            s = ts.BSpline(a + 1, 3, a, ts.BSpline.Clamped)
+            s.control_points = p.ravel().tolist()
+            ns = median_ns(lambda: s.elevate_degree(r), 1, repeats)
+            got = np.array(s.elevate_degree(r).control_points).reshape(-1, 3)
+            note = (f"diff {rel(got, ours):.1e} rel" if got.shape == ours.shape
+                    else f"{len(got)} points, not {b + 1}")
+            table.add(work, "tinyspline BSpline.elevate_degree", ns, note, unit=unit, keys=keys)
+
+        if bz:
+            nodes = np.asfortranarray(p.T)
+
+            def by_one():
+                c = bz.Curve(nodes, a, copy=False, verify=False)
+                for _ in range(r):
+                    c = c.elevate()
+                return c
+
+            ns = median_ns(by_one, 1, repeats)
+            got = by_one().nodes.T
+            table.add(work, f"bezier Curve.elevate() x{r}", ns,
+                      f"diff {rel(got, ours):.1e} rel", unit=unit, keys=keys)
+
+
+def main():
+    data = Path(sys.argv[1])
+    repeats = int(sys.argv[2])
+    meta = json.loads((data / "ours.json").read_text())
+    f64 = lambda name: np.fromfile(data / name, dtype="<f8")
+    table = Table(meta["results"])
+    t0 = time.perf_counter()
+    evaluation(data, meta, repeats, table, f64)
+    interpolation(meta, repeats, table, f64)
+    surface(meta, repeats, table, f64)
+    elevation(meta, repeats, table, f64)
     print()
-    print(f"workload: cubic B-spline, {dim}-D, {n_ctrl} control points, {n} parameters; "
-          f"medians of {repeats} runs, ns per point")
-    print(f"{'workload':<15} {'lekalo ref':>10} {'lekalo':>8} {'par(2)':>8}  "
-          f"{'peer':<30} {'peer':>9} {'peer/lekalo':>11}  note")
-    for work, peer, ns, note in rows:
-        o = ours[work]
-        ref = o.get("reference", float("nan"))
-        par = o.get("parallel_2", float("nan"))
-        print(f"{work:<15} {ref:>10.1f} {o['fast']:>8.1f} {par:>8.1f}  {peer:<30} {ns:>9.1f} "
-              f"{ns / o['fast']:>10.1f}x  {note}")
+    print(f"medians of {repeats} samples (short calls repeated within a sample to >= "
+          f"{MIN_SAMPLE_SECS * 1e3:.0f} ms); ratio = peer / lekalo, /alt = peer / lekalo alt")
+    print("lekalo | alt: eval = fast | parallel(2); interp = fresh | InterpolationWorkspace; "
+          "surface = interpolate_surface; elevate = ElevationPlan::apply_into | "
+          "BezierCurve::elevate_degree")
+    table.print()
+    print(f"(peers took {time.perf_counter() - t0:.0f} s)")
 
 
 if __name__ == "__main__":

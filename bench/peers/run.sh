@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# Peer comparison in one run: lekalo against SciPy, tinyspline, geomdl and Open CASCADE (OCP)
-# on the same data. Creates bench/peers/.venv on first use (PyPI: numpy, scipy, and whichever of
-# the optional peers install here), writes the workload data with our example `peer_bench`
-# (target/peers-data/*.bin, little-endian f64), times lekalo there, then times the peers on the
-# same files and prints ours, theirs and the ratio (medians).
+# Peer comparison in one run: lekalo against SciPy, tinyspline, geomdl, bezier and Open CASCADE
+# (OCP) on the same data. Creates bench/peers/.venv on first use (PyPI: numpy, scipy, and
+# whichever of the optional peers install here), writes the workload data with our example
+# `peer_bench` (target/peers-data/*.bin, little-endian f64), times lekalo there, then times the
+# peers on the same files and prints ours, theirs and the ratio (medians) with agreement checks.
 #
-# Usage: bench/peers/run.sh [REPEATS]     (default 7 repeats per measurement; ~2-3 minutes)
+# Workloads: cubic B-spline evaluation (10^6 parameters); cubic curve interpolation through
+# 10^3..10^6 3-D points; bicubic surface interpolation of 100^2..400^2 grids; Bezier degree
+# elevation 10 -> 20 and 50 -> 100. Slow peers run on subsets (tinyspline and OCP evaluation on
+# 10^5 parameters, geomdl on 10^4; the OCP array fill is timed once above 10^4 points).
+#
+# Usage: bench/peers/run.sh [REPEATS]     (default 7 repeats per measurement; ~1-2 minutes
+#                                          after the build and the first-time venv)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 repeats=${1:-7}

@@ -1,11 +1,21 @@
 //! Our side of the peer comparison (`bench/peers/run.sh`): writes the shared workload data to a
-//! directory as little-endian `f64` files and times lekalo on it, medians in ns per point, into
-//! `ours.json` in the same directory. The Python script then times the peers on the same files.
+//! directory as little-endian `f64` files and times lekalo on it, medians into `ours.json` in
+//! the same directory. The Python script then times the peers on the same files.
+//!
+//! Workloads: curve evaluation (ns per parameter), cubic curve interpolation through `n` 3-D
+//! points (ns per point), bicubic surface interpolation of `n × n` grids (ns per grid point) and
+//! Bezier degree elevation of one 3-D curve (ns per curve).
 //!
 //! `cargo run --release --example peer_bench -- DIR [REPEATS]`
 
+use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+use lekalo::{
+    interpolate_surface, parametrize, BezierCurve, CurveInterpolation, ElevationPlan,
+    InterpolationWorkspace, Parametrization, Points,
+};
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -16,27 +26,178 @@ const DIM: usize = 3;
 const N_CTRL: usize = 1000;
 /// Parameters per evaluation workload.
 const N: usize = 1_000_000;
+/// Point counts of the curve interpolation workload.
+const INTERP_SIZES: [usize; 4] = [1_000, 10_000, 100_000, 1_000_000];
+/// Grid sides of the surface interpolation workload.
+const SURFACE_SIZES: [usize; 3] = [100, 200, 400];
+/// Bezier degree elevations `(from, to)`.
+const ELEVATIONS: [(usize, usize); 2] = [(10, 20), (50, 100)];
+/// Shortest time of one timed sample, in ns: quick calls are repeated inside a sample up to this.
+const MIN_SAMPLE_NANOS: u128 = 20_000_000;
 
 fn write_f64(dir: &Path, name: &str, v: &[f64]) -> std::io::Result<()> {
     let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
     std::fs::write(dir.join(name), bytes)
 }
 
-/// Median wall time of `repeats` runs of `f`, in ns per point.
+/// Median wall time of `repeats` samples of `f`, in ns per point (`points` per call). The
+/// warm-up call sets how many calls make one sample (at least [`MIN_SAMPLE_NANOS`]), so that
+/// sub-millisecond calls are timed over many repetitions; the Python side does the same.
 fn median_ns(repeats: usize, points: usize, mut f: impl FnMut()) -> f64 {
+    let t0 = Instant::now();
     f(); // warm-up
-    let mut times: Vec<f64> = (0..repeats)
+    let once = t0.elapsed().as_nanos().max(1);
+    let inner = usize::try_from(MIN_SAMPLE_NANOS.div_ceil(once)).map_or(1, |k| k.max(1));
+    let mut times: Vec<f64> = (0..repeats.max(1))
         .map(|_| {
             let t0 = Instant::now();
-            f();
-            t0.elapsed().as_secs_f64()
+            for _ in 0..inner {
+                f();
+            }
+            t0.elapsed().as_secs_f64() / inner as f64
         })
         .collect();
     times.sort_by(f64::total_cmp);
     times[times.len() / 2] * 1e9 / points as f64
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// `n` points of a wobbly 3-D helix, unevenly spaced (as in `benches/interpolation.rs`).
+fn helix(n: usize) -> Points {
+    let mut data = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        let s = i as f64 * 0.01;
+        let w = s + 0.003 * (7.0 * s).sin();
+        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
+    }
+    Points::new(data, 3).expect("finite helix")
+}
+
+/// An `n × n` grid of 3-D points on a smooth, slightly sheared surface (as in
+/// `benches/interpolation.rs`); point `(k, l)` at `(k*n + l)*3`.
+fn grid(n: usize) -> Points {
+    let mut data = Vec::with_capacity(n * n * 3);
+    for k in 0..n {
+        for l in 0..n {
+            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
+            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
+        }
+    }
+    Points::new(data, 3).expect("finite grid")
+}
+
+type Results = serde_json::Map<String, serde_json::Value>;
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+/// Cubic chord-length interpolation through the helix, fresh and with a reused workspace; writes
+/// the points, our parameters, knots and control points.
+fn interpolation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+    for n in INTERP_SIZES {
+        let q = helix(n);
+        let params = parametrize(q.as_view(), Parametrization::ChordLength)?;
+        let curve = CurveInterpolation::new(3).interpolate(q.as_view())?;
+        write_f64(dir, &format!("interp_q_{n}.bin"), q.as_slice())?;
+        write_f64(dir, &format!("interp_t_{n}.bin"), &params)?;
+        write_f64(
+            dir,
+            &format!("interp_knots_{n}.bin"),
+            curve.knots().as_slice(),
+        )?;
+        write_f64(
+            dir,
+            &format!("interp_ctrl_{n}.bin"),
+            curve.control_points().as_slice(),
+        )?;
+        let fresh = median_ns(repeats, n, || {
+            black_box(
+                CurveInterpolation::new(3)
+                    .interpolate(black_box(q.as_view()))
+                    .expect("interpolation"),
+            );
+        });
+        let mut ws = InterpolationWorkspace::new();
+        let reused = median_ns(repeats, n, || {
+            let c = CurveInterpolation::new(3)
+                .interpolate_with(black_box(q.as_view()), &mut ws)
+                .expect("interpolation");
+            ws.recycle(black_box(c));
+        });
+        println!("interp_{n}: fresh {fresh:.1} ns/pt, workspace {reused:.1}");
+        results.insert(
+            format!("interp_{n}"),
+            serde_json::json!({"fresh": fresh, "workspace": reused}),
+        );
+    }
+    Ok(())
+}
+
+/// Bicubic chord-length surface interpolation of the `n × n` grid; writes the grid, our
+/// parameters, knots and control net.
+fn surface(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+    for n in SURFACE_SIZES {
+        let g = grid(n);
+        let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)?;
+        write_f64(dir, &format!("surf_q_{n}.bin"), g.as_slice())?;
+        write_f64(dir, &format!("surf_u_{n}.bin"), &s.params_u)?;
+        write_f64(dir, &format!("surf_v_{n}.bin"), &s.params_v)?;
+        write_f64(dir, &format!("surf_ku_{n}.bin"), s.knots_u.as_slice())?;
+        write_f64(dir, &format!("surf_kv_{n}.bin"), s.knots_v.as_slice())?;
+        write_f64(dir, &format!("surf_ctrl_{n}.bin"), s.control.as_slice())?;
+        let fresh = median_ns(repeats, n * n, || {
+            black_box(
+                interpolate_surface(
+                    black_box(g.as_view()),
+                    n,
+                    n,
+                    3,
+                    3,
+                    Parametrization::ChordLength,
+                )
+                .expect("surface"),
+            );
+        });
+        println!("surface_{n}: {fresh:.1} ns/pt");
+        results.insert(format!("surface_{n}"), serde_json::json!({"fresh": fresh}));
+    }
+    Ok(())
+}
+
+/// Bezier degree elevation of one 3-D curve: [`ElevationPlan::apply_into`] into a reused
+/// buffer and [`BezierCurve::elevate_degree`] (allocating), ns per curve.
+fn elevation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+    for (from, to) in ELEVATIONS {
+        let ctrl = common::walk(from + 1, DIM, 21 + from as u64);
+        let bez = BezierCurve::new(ctrl.clone())?;
+        let plan = ElevationPlan::new(from, to)?;
+        let mut out = vec![0.0; (to + 1) * DIM];
+        let planned = median_ns(repeats, 1, || {
+            plan.apply_into(black_box(ctrl.as_slice()), DIM, &mut out)
+                .expect("sizes match");
+            black_box(&mut out);
+        });
+        let once = median_ns(repeats, 1, || {
+            black_box(
+                black_box(&bez)
+                    .elevate_degree(to - from)
+                    .expect("elevation"),
+            );
+        });
+        let elevated = bez.elevate_degree(to - from)?;
+        write_f64(dir, &format!("elev_in_{from}_{to}.bin"), ctrl.as_slice())?;
+        write_f64(
+            dir,
+            &format!("elev_out_{from}_{to}.bin"),
+            elevated.control_points().as_slice(),
+        )?;
+        println!("elevate_{from}_{to}: plan {planned:.1} ns/curve, elevate_degree {once:.1}");
+        results.insert(
+            format!("elevate_{from}_{to}"),
+            serde_json::json!({"plan": planned, "elevate_degree": once}),
+        );
+    }
+    Ok(())
+}
+
+fn main() -> Res<()> {
     let mut args = std::env::args().skip(1);
     let dir = PathBuf::from(args.next().ok_or("usage: peer_bench DIR [REPEATS]")?);
     let repeats: usize = args.next().map_or(Ok(7), |s| s.parse())?;
@@ -53,7 +214,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let fast = curve.evaluator();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     let mut out = vec![0.0; N * DIM];
-    let mut results = serde_json::Map::new();
+    let mut results = Results::new();
     for (name, ts) in [("eval_sorted", &sorted), ("eval_random", &random)] {
         let reference = median_ns(repeats, N, || {
             curve.eval_batch(ts, &mut out).expect("in domain")
@@ -85,8 +246,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     write_f64(&dir, "ours_deriv1_sorted.bin", &d1)?;
     println!("deriv1_sorted: fast {deriv:.1} ns/pt");
     results.insert("deriv1_sorted".into(), serde_json::json!({"fast": deriv}));
+    interpolation(&dir, repeats, &mut results)?;
+    surface(&dir, repeats, &mut results)?;
+    elevation(&dir, repeats, &mut results)?;
     let meta = serde_json::json!({
         "degree": DEGREE, "dim": DIM, "n_ctrl": N_CTRL, "n": N, "repeats": repeats,
+        "interp_sizes": INTERP_SIZES, "surface_sizes": SURFACE_SIZES, "elevations": ELEVATIONS,
         "results": results,
     });
     std::fs::write(dir.join("ours.json"), serde_json::to_string_pretty(&meta)?)?;
