@@ -135,16 +135,27 @@ impl JumpPolynomial {
             .collect()
     }
 
-    /// `w_k(u)` by de Casteljau's algorithm on the 0/1 ordinates (P&T Algorithm A1.5): every
-    /// step is a convex combination, so the result lies in `[0, 1]` and is accurate to a few ulps
-    /// for every `k`. O(k²).
+    /// `w_k(u)`. Up to `k = 27` (`2k + 1 ≤ 56`, where the binomials are exact in `f64`) by the
+    /// binomial tail in Horner form: for `u ≤ 1/2`, with `s = 1 − u` and `ρ = u/s ≤ 1`,
+    /// `w_k(u) = u^{k+1} s^k Σ_{j=0}^{k} C(2k+1, k+1+j) ρ^j`, a sum of positive terms (relative
+    /// error a few `k` ulps, no cancellation), and `w_k(u) = 1 − w_k(1 − u)` above `1/2`
+    /// (Property 2; `1 − u` is exact there). O(k), no allocation. Above `k = 27` by de
+    /// Casteljau's algorithm on the 0/1 ordinates (P&T Algorithm A1.5): every step is a convex
+    /// combination, so the result lies in `[0, 1]` and is accurate to a few ulps. O(k²).
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`.
     pub fn eval(&self, u: f64) -> Result<f64> {
-        let mut out = [0.0];
-        self.eval_derivatives(u, &mut out)?;
-        Ok(out[0])
+        crate::bezier::check_unit(u)?;
+        Ok(match binomial_tail(self.k, u) {
+            Some(w) => w,
+            None => {
+                let ctrl = self.bernstein_coefficients_f64();
+                let mut out = [0.0];
+                bernstein_ops::derivatives_at(&ctrl, 1, u, 0, &mut out, &mut Vec::new());
+                out[0]
+            }
+        })
     }
 
     /// `w_k^{(l)}(u)` for `l = 0 … out.len() − 1` into `out`, by de Casteljau's algorithm plus
@@ -165,9 +176,13 @@ impl JumpPolynomial {
                 got: 0,
             });
         }
-        let ctrl = self.bernstein_coefficients_f64();
-        let mut scratch = Vec::with_capacity(ctrl.len());
-        bernstein_ops::derivatives_at(&ctrl, 1, u, out.len() - 1, out, &mut scratch);
+        if out.len() > 1 {
+            let ctrl = self.bernstein_coefficients_f64();
+            let mut scratch = Vec::with_capacity(ctrl.len());
+            bernstein_ops::derivatives_at(&ctrl, 1, u, out.len() - 1, out, &mut scratch);
+        }
+        // the value as JumpPolynomial::eval computes it, whatever the number of derivatives
+        out[0] = self.eval(u)?;
         Ok(())
     }
 
@@ -276,6 +291,26 @@ fn energy_exact(f: &[BigRational], r: usize) -> BigRational {
     poly_integral(&poly_mul(&d, &d), &BigRational::one())
 }
 
+/// `w_k(u)` as the upper tail `P(X ≥ k + 1)` of the binomial distribution `X ~ B(2k+1, u)` in
+/// Horner form (see [`JumpPolynomial::eval`]), or `None` when `2k + 1` is beyond the exact
+/// binomial table. `u` is in `[0, 1]`.
+fn binomial_tail(k: usize, u: f64) -> Option<f64> {
+    let n = 2 * k + 1;
+    let (row, _, _) = crate::bezier_degree::exact_binomial_rows(n, 0)?;
+    if u > 0.5 {
+        // 1 − u is exact for u in [1/2, 1] (Sterbenz)
+        return binomial_tail(k, 1.0 - u).map(|w| 1.0 - w);
+    }
+    let s = 1.0 - u;
+    let rho = u / s;
+    let sum = row[k + 1..=n]
+        .iter()
+        .rev()
+        .fold(0.0_f64, |acc, &c| acc * rho + c);
+    // powi with an exponent ≤ 28: a handful of multiplications
+    Some(sum * u.powi(k as i32 + 1) * s.powi(k as i32))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -286,6 +321,61 @@ mod tests {
 
     fn rat(x: &BigInt) -> BigRational {
         BigRational::from_integer(x.clone())
+    }
+
+    /// `w_k(u)` exactly, from the exact monomial coefficients at the exact rational `u`.
+    fn exact_value(k: usize, u: f64) -> f64 {
+        use num_traits::ToPrimitive;
+        let x = BigRational::from_float(u).unwrap();
+        let value = w(k)
+            .monomial_coefficients()
+            .iter()
+            .rev()
+            .fold(BigRational::zero(), |acc, c| acc * &x + rat(c));
+        value.to_f64().unwrap()
+    }
+
+    #[test]
+    fn horner_tail_is_relatively_accurate_and_matches_de_casteljau() {
+        let us = [
+            0.0,
+            1e-300,
+            1e-9,
+            0.001,
+            0.1,
+            0.3,
+            0.49,
+            0.5,
+            0.51,
+            0.7,
+            0.999,
+            1.0 - 1e-12,
+            1.0,
+        ];
+        for k in 0..=28 {
+            let ctrl = w(k).bernstein_coefficients_f64();
+            for &u in &us {
+                let fast = w(k).eval(u).unwrap();
+                let mut dc = [0.0];
+                bernstein_ops::derivatives_at(&ctrl, 1, u, 0, &mut dc, &mut Vec::new());
+                // both are accurate to a few ulps relative to max(w, 1 − w)'s scale
+                assert!(
+                    (fast - dc[0]).abs() <= 64.0 * f64::EPSILON * dc[0].max(1e-300)
+                        || (fast - dc[0]).abs() <= 4.0 * f64::EPSILON,
+                    "k {k}, u {u}: {fast} vs de Casteljau {}",
+                    dc[0]
+                );
+                assert!((0.0..=1.0).contains(&fast));
+                if k <= 12 && u > 0.0 && u <= 0.5 {
+                    // below 1/2 the tail is accurate relative to its own (small) size
+                    let exact = exact_value(k, u);
+                    assert!(
+                        (fast - exact).abs() <= 16.0 * (k + 2) as f64 * f64::EPSILON * exact,
+                        "k {k}, u {u}: {fast} vs exact {exact}"
+                    );
+                }
+            }
+        }
     }
 
     fn w(k: usize) -> JumpPolynomial {
