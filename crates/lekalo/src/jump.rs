@@ -308,7 +308,8 @@ fn binomial_tail(k: usize, u: f64) -> Option<f64> {
         .rev()
         .fold(0.0_f64, |acc, &c| acc * rho + c);
     // powi with an exponent ≤ 28: a handful of multiplications
-    Some(sum * u.powi(k as i32 + 1) * s.powi(k as i32))
+    let e = i32::try_from(k).ok()?;
+    Some(sum * u.powi(e + 1) * s.powi(e))
 }
 
 #[cfg(test)]
