@@ -12,9 +12,10 @@
 //! The shape is kept (exactly for elevation and exact reduction), and so is continuity at the
 //! breakpoints where the pieces share their end points. Joining the pieces gives every interior
 //! breakpoint the multiplicity of the new degree (a C0 representation of a possibly smoother
-//! curve); [`BSplineCurve::elevate_degree`] then removes the copies that decomposition added
-//! (knot removal, P&T A5.8), so that its result has the minimal multiplicities `m_i + r` of P&T
-//! Algorithm A5.9. Degree reduction keeps the C0 form.
+//! curve). [`BSplineCurve::elevate_degree`] does not join: it reads its control points off the
+//! elevated pieces as blossom values at the knots of P&T Algorithm A5.9 (multiplicities
+//! `m_i + r`), which keeps the curve's continuity in its representation. Degree reduction keeps
+//! the C0 form.
 
 use crate::bezier_degree::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::bezier_degree_approx::EndConditions;
@@ -35,11 +36,19 @@ pub struct BSplineApproximateReduction {
 }
 
 impl BSplineCurve {
-    /// Degree elevation by `by`, per Bezier piece: every piece is elevated by the closed form of
-    /// document 004 eq. 8 ([`BezierCurve::elevate_degree`]), the pieces are joined again, and
-    /// every interior knot of multiplicity `m` is brought back to `m + by` by knot removal
-    /// (P&T A5.8), the knot vector of P&T Algorithm A5.9. The curve is unchanged to a few ulps
-    /// of its scale. O(pieces · (p+1)(r+1) · dim) plus the removals.
+    /// Degree elevation by `by` to the knot vector of P&T Algorithm A5.9 (every interior knot of
+    /// multiplicity `m` gets `m + by`, the ends `p + by + 1`), in two local passes:
+    ///
+    /// 1. every polynomial piece is elevated by the closed form of document 004 eq. 8 (one
+    ///    [`ElevationPlan`](crate::ElevationPlan) for all pieces);
+    /// 2. every control point of the result is the blossom (polar form) of its piece at its
+    ///    knots, `P_i = b(u_{i+1}, …, u_{i+p'})` (Ramshaw 1989; de Boor's "B-spline coefficients
+    ///    are blossom values"), evaluated by de Casteljau's algorithm with one parameter per
+    ///    level on the piece whose interval is nearest the middle of those knots.
+    ///
+    /// Time O(pieces · (p+1)(r+1) · dim + n · p'² · dim), linear in the number of pieces. The
+    /// curve is unchanged to a few ulps of its scale (the blossom is evaluated at arguments at
+    /// most about `p'/2` intervals outside its piece).
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Points};
@@ -59,27 +68,66 @@ impl BSplineCurve {
     /// # Errors
     /// [`Error::TooLarge`] if the result is too large to allocate.
     pub fn elevate_degree(&self, by: usize) -> Result<BSplineCurve> {
-        let pieces = self
-            .to_bezier_segments()
-            .into_iter()
-            .map(|s| {
-                Ok(BezierSegment {
-                    curve: s.curve.elevate_degree(by)?,
-                    ..s
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let mut curve = BSplineCurve::from_bezier_segments(&pieces)?;
-        // the removals are exact in exact arithmetic; the tolerance only absorbs rounding
-        let tolerance = curve.default_removal_tolerance();
         let p = self.degree();
+        let segments = self.to_bezier_segments();
+        let dim = self.dim();
         let (a, b) = self.domain();
+        let q = p.checked_add(by).ok_or(Error::TooLarge {
+            what: "elevated degree",
+            size: usize::MAX,
+            max: crate::MAX_DEGREE,
+        })?;
+        let plan = crate::ElevationPlan::new(p, q)?;
+        // knots of A5.9; a discontinuity (interior multiplicity p + 1) keeps the C0 join
+        let mut knots = vec![a; q + 1];
         for (t, m) in self.knots().distinct() {
-            if t > a && t < b && m < p {
-                curve = curve.remove_knot(t, p - m, tolerance)?.0;
+            if t > a && t < b {
+                knots.extend(std::iter::repeat_n(t, m.min(p) + by));
             }
         }
-        Ok(curve)
+        knots.extend(std::iter::repeat_n(b, q + 1));
+        let n_ctrl = knots.len() - q - 1;
+        crate::bezier_degree::check_size("elevated control points", n_ctrl, dim)?;
+        let width = (q + 1) * dim;
+        crate::bezier_degree::check_size("elevated pieces", segments.len(), width)?;
+        let mut nets = vec![0.0; segments.len() * width];
+        for (s, net) in segments.iter().zip(nets.chunks_exact_mut(width)) {
+            plan.apply_into(s.curve.control_points().as_slice(), dim, net)?;
+        }
+        // piece of each non-empty knot interval [u_k, u_{k+1}) of the domain
+        let mut piece_of = vec![usize::MAX; knots.len()];
+        let mut next = 0;
+        for k in q..n_ctrl {
+            if knots[k] < knots[k + 1] {
+                piece_of[k] = next;
+                next += 1;
+            }
+        }
+        debug_assert_eq!(next, segments.len(), "one piece per non-empty interval");
+        let mut control = vec![0.0; n_ctrl * dim];
+        let mut scratch = vec![0.0; width];
+        for (i, out) in control.chunks_exact_mut(dim).enumerate() {
+            let args = &knots[i + 1..=i + q];
+            // the non-empty interval among k = i ..= i + q nearest the middle of the arguments
+            let centre = i + q.div_ceil(2);
+            let k = (0..=q)
+                .flat_map(|d| [centre.checked_sub(d), centre.checked_add(d)])
+                .flatten()
+                .find(|&k| {
+                    k >= i && k <= i + q && piece_of.get(k).is_some_and(|&j| j != usize::MAX)
+                })
+                // B_i is positive somewhere in the domain, so one of its intervals is non-empty
+                .ok_or_else(|| Error::InvalidArgument {
+                    what: "curve to elevate",
+                    reason: format!("control point {i} of the elevated curve has no piece"),
+                })?;
+            let j = piece_of[k];
+            let (lo, hi) = (segments[j].start, segments[j].end);
+            scratch.copy_from_slice(&nets[j * width..(j + 1) * width]);
+            blossom_in_place(&mut scratch, dim, args, lo, hi);
+            out.copy_from_slice(&scratch[..dim]);
+        }
+        BSplineCurve::new(q, knots, Points::new(control, dim)?)
     }
 
     /// Changes the degree to `target` without changing the shape, with the default tolerance
@@ -306,6 +354,24 @@ impl BSplineSurface {
         let nv_new = cols.len();
         let net = Points::from_raw(transpose(cols.as_slice(), nv_new, nu_new, dim), dim);
         BSplineSurface::from_knot_vectors(pu, pv, knots_u, knots_v, net, (nu_new, nv_new))
+    }
+}
+
+/// The blossom of the Bezier piece with control points `net` (point-major, `args.len() + 1`
+/// points) over `[lo, hi]` at `args`, left in the first point of `net`: de Casteljau's algorithm
+/// with parameter `args[l]` at level `l` (Ramshaw 1989; P&T §3.3 for the one-parameter case).
+/// The weights `(x − lo)/(hi − lo)` and `(hi − x)/(hi − lo)` are formed separately, so that an
+/// argument at an end of the interval picks a point exactly.
+fn blossom_in_place(net: &mut [f64], dim: usize, args: &[f64], lo: f64, hi: f64) {
+    let h = hi - lo;
+    let q = args.len();
+    for (l, &x) in args.iter().enumerate() {
+        let (w0, w1) = ((hi - x) / h, (x - lo) / h);
+        for j in 0..q - l {
+            for c in 0..dim {
+                net[j * dim + c] = w0 * net[j * dim + c] + w1 * net[(j + 1) * dim + c];
+            }
+        }
     }
 }
 

@@ -601,6 +601,16 @@ proptest! {
         let up = c.elevate_degree(r).unwrap();
         prop_assert_eq!(up.degree(), c.degree() + r);
         prop_assert!(bspline_dev(&c, &up) <= 1e-13 * s, "elevation");
+        // the knots of P&T A5.9: interior multiplicity m becomes m + r, the ends p + r + 1
+        let (a, b) = c.domain();
+        let want: Vec<(f64, usize)> = c
+            .knots()
+            .distinct()
+            .into_iter()
+            .filter(|&(t, _)| t >= a && t <= b)
+            .map(|(t, m)| (t, if t == a || t == b { c.degree() + r + 1 } else { m.min(c.degree()) + r }))
+            .collect();
+        prop_assert_eq!(up.knots().distinct(), want);
         let down = up.change_degree(c.degree()).unwrap();
         prop_assert!(bspline_dev(&c, &down) <= 1e-12 * s, "reduction");
     }
