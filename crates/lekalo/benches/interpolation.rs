@@ -6,37 +6,14 @@
 //! result's buffers), which separates the arithmetic from the operating system's page faults.
 
 use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
-use lekalo::{
-    interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization, Points,
-};
+use lekalo::{interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization};
 
-/// `n` points of a wobbly 3-D helix, unevenly spaced.
-fn helix(n: usize) -> Points {
-    let mut data = Vec::with_capacity(3 * n);
-    for i in 0..n {
-        let s = i as f64 * 0.01;
-        let w = s + 0.003 * (7.0 * s).sin();
-        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
-    }
-    Points::new(data, 3).expect("finite helix")
-}
-
-/// An `n × n` grid of 3-D points on a smooth, slightly sheared surface.
-fn grid(n: usize) -> Points {
-    let mut data = Vec::with_capacity(n * n * 3);
-    for k in 0..n {
-        for l in 0..n {
-            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
-            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
-        }
-    }
-    Points::new(data, 3).expect("finite grid")
-}
+mod common;
 
 fn curve_interpolation(c: &mut Criterion) {
     let mut group = c.benchmark_group("curve_interpolation_cubic_3d");
     for n in [1_000, 10_000, 100_000, 1_000_000] {
-        let q = helix(n);
+        let q = common::helix(n);
         group.throughput(Throughput::Elements(n as u64));
         if n >= 100_000 {
             group.sample_size(10);
@@ -66,7 +43,7 @@ fn surface_interpolation(c: &mut Criterion) {
     let mut group = c.benchmark_group("surface_interpolation_bicubic");
     group.sample_size(10);
     for n in [50, 100, 200, 400] {
-        let g = grid(n);
+        let g = common::grid(n);
         group.throughput(Throughput::Elements((n * n) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &g, |b, g| {
             b.iter(|| {

@@ -8,9 +8,10 @@
 
 use std::time::Instant;
 
-use lekalo::{
-    interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization, Points,
-};
+use lekalo::{interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization};
+
+#[path = "../benches/common/mod.rs"]
+mod common;
 
 /// CPU time of this thread in nanoseconds (0 where `/proc` is unavailable).
 fn cpu_ns() -> u64 {
@@ -32,19 +33,8 @@ fn status_kb(field: &str) -> u64 {
         .unwrap_or(0)
 }
 
-/// `n` points of a wobbly 3-D helix, unevenly spaced.
-fn helix(n: usize) -> Points {
-    let mut data = Vec::with_capacity(3 * n);
-    for i in 0..n {
-        let s = i as f64 * 0.01;
-        let w = s + 0.003 * (7.0 * s).sin();
-        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
-    }
-    Points::new(data, 3).expect("finite helix")
-}
-
 fn time_curve(n: usize, reps: usize) {
-    let q = helix(n);
+    let q = common::helix(n);
     let base_kb = status_kb("VmRSS:");
     let mut best_wall = f64::MAX;
     let c0 = cpu_ns();
@@ -91,14 +81,7 @@ fn time_curve(n: usize, reps: usize) {
 }
 
 fn time_surface(n: usize, reps: usize) {
-    let mut data = Vec::with_capacity(n * n * 3);
-    for k in 0..n {
-        for l in 0..n {
-            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
-            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
-        }
-    }
-    let g = Points::new(data, 3).expect("finite grid");
+    let g = common::grid(n);
     let mut best_wall = f64::MAX;
     let c0 = cpu_ns();
     for _ in 0..reps {

@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use lekalo::{
     interpolate_surface, parametrize, BezierCurve, CurveInterpolation, ElevationPlan,
-    InterpolationWorkspace, Parametrization, Points,
+    InterpolationWorkspace, Parametrization,
 };
 
 #[path = "../benches/common/mod.rs"]
@@ -61,30 +61,6 @@ fn median_ns(repeats: usize, points: usize, mut f: impl FnMut()) -> f64 {
     times[times.len() / 2] * 1e9 / points as f64
 }
 
-/// `n` points of a wobbly 3-D helix, unevenly spaced (as in `benches/interpolation.rs`).
-fn helix(n: usize) -> Points {
-    let mut data = Vec::with_capacity(3 * n);
-    for i in 0..n {
-        let s = i as f64 * 0.01;
-        let w = s + 0.003 * (7.0 * s).sin();
-        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
-    }
-    Points::new(data, 3).expect("finite helix")
-}
-
-/// An `n × n` grid of 3-D points on a smooth, slightly sheared surface (as in
-/// `benches/interpolation.rs`); point `(k, l)` at `(k*n + l)*3`.
-fn grid(n: usize) -> Points {
-    let mut data = Vec::with_capacity(n * n * 3);
-    for k in 0..n {
-        for l in 0..n {
-            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
-            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
-        }
-    }
-    Points::new(data, 3).expect("finite grid")
-}
-
 type Results = serde_json::Map<String, serde_json::Value>;
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
@@ -92,7 +68,7 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 /// the points, our parameters, knots and control points.
 fn interpolation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
     for n in INTERP_SIZES {
-        let q = helix(n);
+        let q = common::helix(n);
         let params = parametrize(q.as_view(), Parametrization::ChordLength)?;
         let curve = CurveInterpolation::new(3).interpolate(q.as_view())?;
         write_f64(dir, &format!("interp_q_{n}.bin"), q.as_slice())?;
@@ -134,7 +110,7 @@ fn interpolation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
 /// parameters, knots and control net.
 fn surface(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
     for n in SURFACE_SIZES {
-        let g = grid(n);
+        let g = common::grid(n);
         let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)?;
         write_f64(dir, &format!("surf_q_{n}.bin"), g.as_slice())?;
         write_f64(dir, &format!("surf_u_{n}.bin"), &s.params_u)?;

@@ -67,3 +67,27 @@ pub(crate) fn random_params(n: usize) -> Vec<f64> {
     let mut rng = Lcg::new(12_345);
     (0..n).map(|_| rng.next_f64()).collect()
 }
+
+/// `n` points of a wobbly 3-D helix, unevenly spaced: the curve interpolation workload.
+pub(crate) fn helix(n: usize) -> Points {
+    let mut data = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        let s = i as f64 * 0.01;
+        let w = s + 0.003 * (7.0 * s).sin();
+        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
+    }
+    Points::new(data, 3).expect("finite helix")
+}
+
+/// An `n × n` grid of 3-D points on a smooth, slightly sheared surface, point `(k, l)` at
+/// `(k·n + l)·3`: the surface interpolation workload.
+pub(crate) fn grid(n: usize) -> Points {
+    let mut data = Vec::with_capacity(n * n * 3);
+    for k in 0..n {
+        for l in 0..n {
+            let (x, y) = (k as f64 / n as f64, l as f64 / n as f64);
+            data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
+        }
+    }
+    Points::new(data, 3).expect("finite grid")
+}
