@@ -64,45 +64,45 @@ pub const MAX_MONOMIAL_DEGREE: usize = 1000;
 /// in `f64` (`C(56, 28) ≈ 7.65·10^15 < 2^53 ≈ 9.01·10^15 < C(57, 28)`).
 const EXACT_BINOMIAL_MAX: usize = 56;
 
-/// Pascal's triangle up to [`EXACT_BINOMIAL_MAX`]: `BINOMIAL[n][k] = C(n, k)` for `k ≤ n`, exact
-/// integers stored as `f64` (no conversion in the kernels).
-static BINOMIAL: [[f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1] = pascal();
+/// Largest `n` of the binomial table: every `C(n, k)` up to `C(131, 65) ≈ 1.9·10^38` is an exact
+/// `u128` at compile time, stored correctly rounded to `f64` (exact up to
+/// [`EXACT_BINOMIAL_MAX`]).
+pub(crate) const BINOMIAL_TABLE_MAX: usize = 131;
 
-/// Pascal's triangle by `C(n, k) = C(n−1, k−1) + C(n−1, k)` in integers, at compile time.
-const fn pascal() -> [[f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1] {
-    let mut c = [[0_u64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1];
-    let mut f = [[0.0_f64; EXACT_BINOMIAL_MAX + 1]; EXACT_BINOMIAL_MAX + 1];
+/// Entries of the triangle `0 ≤ k ≤ n ≤ BINOMIAL_TABLE_MAX`.
+const BINOMIAL_ENTRIES: usize = (BINOMIAL_TABLE_MAX + 1) * (BINOMIAL_TABLE_MAX + 2) / 2;
+
+/// Pascal's triangle row after row: `C(n, k)` at `n(n+1)/2 + k`.
+static BINOMIAL: [f64; BINOMIAL_ENTRIES] = pascal();
+
+/// Pascal's triangle by `C(n, k) = C(n−1, k−1) + C(n−1, k)` in `u128` (exact), at compile time,
+/// each entry then rounded to the nearest `f64`.
+const fn pascal() -> [f64; BINOMIAL_ENTRIES] {
+    let mut exact = [0_u128; BINOMIAL_ENTRIES];
+    let mut rounded = [0.0_f64; BINOMIAL_ENTRIES];
     let mut n = 0;
-    while n <= EXACT_BINOMIAL_MAX {
-        c[n][0] = 1;
-        f[n][0] = 1.0;
-        let mut k = 1;
+    while n <= BINOMIAL_TABLE_MAX {
+        let row = n * (n + 1) / 2;
+        let mut k = 0;
         while k <= n {
-            c[n][k] = c[n - 1][k - 1] + c[n - 1][k];
-            // exact: every entry is below 2^53
-            f[n][k] = c[n][k] as f64;
+            exact[row + k] = if k == 0 || k == n {
+                1
+            } else {
+                let prev = (n - 1) * n / 2;
+                exact[prev + k - 1] + exact[prev + k]
+            };
+            rounded[row + k] = exact[row + k] as f64;
             k += 1;
         }
         n += 1;
     }
-    f
+    rounded
 }
 
-/// Rows `n`, `r` and `n + r` of the exact binomial table, when `n + r ≤ 56`
-/// ([`EXACT_BINOMIAL_MAX`]).
-pub(crate) type BinomialRow = [f64; EXACT_BINOMIAL_MAX + 1];
-
-/// The rows `C(n, ·)`, `C(r, ·)`, `C(n + r, ·)` of the exact table, or `None` above it.
-pub(crate) fn exact_binomial_rows(
-    n: usize,
-    r: usize,
-) -> Option<(
-    &'static BinomialRow,
-    &'static BinomialRow,
-    &'static BinomialRow,
-)> {
-    let total = n.checked_add(r)?;
-    (total <= EXACT_BINOMIAL_MAX).then(|| (&BINOMIAL[n], &BINOMIAL[r], &BINOMIAL[total]))
+/// The row `C(n, 0 ..= n)` of the binomial table (correctly rounded, exact up to `n = 56`), or
+/// `None` above [`BINOMIAL_TABLE_MAX`].
+pub(crate) fn binomial_row(n: usize) -> Option<&'static [f64]> {
+    (n <= BINOMIAL_TABLE_MAX).then(|| &BINOMIAL[n * (n + 1) / 2..=n * (n + 1) / 2 + n])
 }
 
 /// Weights `w_i = C(n,i) C(r,j−i) / C(n+r,j)` of point `u_i` in the elevated point `u'_j`, for
@@ -119,7 +119,12 @@ pub(crate) fn elevation_weights_into(n: usize, r: usize, j: usize, out: &mut [f6
     let lo = j.saturating_sub(r);
     let hi = j.min(n);
     debug_assert!(lo <= hi && out.len() > hi - lo, "weights buffer too short");
-    if let Some((row_n, row_r, row_nr)) = exact_binomial_rows(n, r) {
+    if let (true, Some(row_n), Some(row_r), Some(row_nr)) = (
+        n + r <= EXACT_BINOMIAL_MAX,
+        binomial_row(n),
+        binomial_row(r),
+        binomial_row(n + r),
+    ) {
         let total = row_nr[j];
         for (w, i) in out.iter_mut().zip(lo..=hi) {
             // the product is an exact integer below 2^53
@@ -729,11 +734,19 @@ impl BezierCurve {
 mod tests {
     #[test]
     fn exact_binomial_weights_agree_with_the_ratio_weights() {
-        use super::{elevation_weights_into, ratio_weights_into, BINOMIAL, EXACT_BINOMIAL_MAX};
-        // the table is Pascal's triangle with C(56, 28) the largest entry, below 2^53
-        assert_eq!(BINOMIAL[56][28], 7_648_690_600_760_440.0);
-        assert!(BINOMIAL[56][28] < 2.0_f64.powi(53));
-        assert_eq!(BINOMIAL[10][3], 120.0);
+        use super::{binomial_row, elevation_weights_into, ratio_weights_into, EXACT_BINOMIAL_MAX};
+        // the table is Pascal's triangle, exact up to C(56, 28) (below 2^53), rounded beyond
+        let row = |n| binomial_row(n).unwrap();
+        assert_eq!(row(56)[28], 7_648_690_600_760_440.0);
+        assert!(row(56)[28] < 2.0_f64.powi(53));
+        assert_eq!(row(10)[3], 120.0);
+        assert_eq!(row(10).len(), 11);
+        // C(131, 65) = 188694833082770476622296176145946360850 (exact, rounded once)
+        assert_eq!(
+            row(131)[65],
+            188_694_833_082_770_476_622_296_176_145_946_360_850_u128 as f64
+        );
+        assert!(binomial_row(132).is_none());
         let (mut a, mut b) = ([0.0; 64], [0.0; 64]);
         for n in 0..=EXACT_BINOMIAL_MAX {
             for r in 0..=EXACT_BINOMIAL_MAX - n {

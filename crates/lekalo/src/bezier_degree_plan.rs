@@ -1,7 +1,7 @@
 //! Precomputed Bezier degree elevation for many curves of one degree (document 004 eq. 8), the
 //! fast path for batch work such as elevating every piece of a large model.
 
-use crate::bezier_degree::{check_size, elevation_weights_into, exact_binomial_rows};
+use crate::bezier_degree::{binomial_row, check_size, elevation_weights_into};
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -130,13 +130,16 @@ impl ElevationPlan {
 /// The weights of elevation from degree `n` by `r` as a band: `band[i·(r+1) + l]` is the weight
 /// `C(n,i) C(r,l) / C(n+r,i+l)` of old point `i` in new point `i + l` (document 004 eq. 8).
 ///
-/// Up to `n + r = 56` from the exact binomial table: the numerator is an exact integer and the
-/// reciprocal of each denominator is computed once, so each weight is within an ulp (two
-/// roundings) for `n + r + 1` divisions in all. Above, row by row with
-/// [`elevation_weights_into`].
+/// Up to `n + r = 131` from the binomial table, with the reciprocal of each denominator
+/// computed once (`n + r + 1` divisions in all): up to `n + r = 56` the table and the numerator
+/// are exact integers, so each weight is within an ulp (two roundings); above, the three
+/// binomials are correctly rounded and each weight is within about three ulps. Beyond 131, row
+/// by row with [`elevation_weights_into`].
 pub(crate) fn elevation_band(n: usize, r: usize) -> Vec<f64> {
     let mut band = vec![0.0; (n + 1) * (r + 1)];
-    if let Some((row_n, row_r, row_nr)) = exact_binomial_rows(n, r) {
+    if let (Some(row_n), Some(row_r), Some(row_nr)) =
+        (binomial_row(n), binomial_row(r), binomial_row(n + r))
+    {
         let inv: Vec<f64> = row_nr[..=n + r].iter().map(|c| 1.0 / c).collect();
         for ((w, &cn), inv) in band
             .chunks_exact_mut(r + 1)

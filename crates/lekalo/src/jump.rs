@@ -135,11 +135,11 @@ impl JumpPolynomial {
             .collect()
     }
 
-    /// `w_k(u)`. Up to `k = 27` (`2k + 1 ≤ 56`, where the binomials are exact in `f64`) by the
-    /// binomial tail in Horner form: for `u ≤ 1/2`, with `s = 1 − u` and `ρ = u/s ≤ 1`,
+    /// `w_k(u)`. Up to `k = 65` (`2k + 1 ≤ 131`, the binomial table: exact integers up to
+    /// `k = 27`, correctly rounded above) by the binomial tail in Horner form: for `u ≤ 1/2`, with `s = 1 − u` and `ρ = u/s ≤ 1`,
     /// `w_k(u) = u^{k+1} s^k Σ_{j=0}^{k} C(2k+1, k+1+j) ρ^j`, a sum of positive terms (relative
     /// error a few `k` ulps, no cancellation), and `w_k(u) = 1 − w_k(1 − u)` above `1/2`
-    /// (Property 2; `1 − u` is exact there). O(k), no allocation. Above `k = 27` by de
+    /// (Property 2; `1 − u` is exact there). O(k), no allocation. Above `k = 65` by de
     /// Casteljau's algorithm on the 0/1 ordinates (P&T Algorithm A1.5): every step is a convex
     /// combination, so the result lies in `[0, 1]` and is accurate to a few ulps. O(k²).
     ///
@@ -292,11 +292,11 @@ fn energy_exact(f: &[BigRational], r: usize) -> BigRational {
 }
 
 /// `w_k(u)` as the upper tail `P(X ≥ k + 1)` of the binomial distribution `X ~ B(2k+1, u)` in
-/// Horner form (see [`JumpPolynomial::eval`]), or `None` when `2k + 1` is beyond the exact
-/// binomial table. `u` is in `[0, 1]`.
+/// Horner form (see [`JumpPolynomial::eval`]), or `None` when `2k + 1` is beyond the binomial
+/// table. `u` is in `[0, 1]`.
 fn binomial_tail(k: usize, u: f64) -> Option<f64> {
     let n = 2 * k + 1;
-    let (row, _, _) = crate::bezier_degree::exact_binomial_rows(n, 0)?;
+    let row = crate::bezier_degree::binomial_row(n)?;
     if u > 0.5 {
         // 1 − u is exact for u in [1/2, 1] (Sterbenz)
         return binomial_tail(k, 1.0 - u).map(|w| 1.0 - w);
@@ -307,7 +307,7 @@ fn binomial_tail(k: usize, u: f64) -> Option<f64> {
         .iter()
         .rev()
         .fold(0.0_f64, |acc, &c| acc * rho + c);
-    // powi with an exponent ≤ 28: a handful of multiplications
+    // powi with an exponent ≤ 66: a handful of multiplications
     let e = i32::try_from(k).ok()?;
     Some(sum * u.powi(e + 1) * s.powi(e))
 }
@@ -353,7 +353,7 @@ mod tests {
             1.0 - 1e-12,
             1.0,
         ];
-        for k in 0..=28 {
+        for k in (0..=30).chain([64, 65, 66, 80]) {
             let ctrl = w(k).bernstein_coefficients_f64();
             for &u in &us {
                 let fast = w(k).eval(u).unwrap();
