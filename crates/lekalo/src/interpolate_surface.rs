@@ -5,7 +5,7 @@
 use crate::error::{Error, Result};
 use crate::interpolate::{
     add_reference, check_strictly_increasing, distance, parametrize_into, solve_collocation,
-    Parametrization,
+    Factors, Parametrization,
 };
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
@@ -173,11 +173,11 @@ pub fn interpolate_surface(
         0,
         &mut control,
         nv * dim,
-        false,
+        Factors::Discard,
     )?;
     // v pass: for each i, an nv × dim block; factor once, reuse
     let (first, rest) = control.split_at_mut(nv * dim);
-    let lu = solve_collocation(&knots_v, degree_v, &params_v, 0, first, dim, true)?;
+    let lu = solve_collocation(&knots_v, degree_v, &params_v, 0, first, dim, Factors::Keep)?;
     for block in rest.chunks_exact_mut(nv * dim) {
         lu.solve(block, dim);
     }
