@@ -48,9 +48,8 @@ pub(crate) struct BandedCrout {
     max_entry: f64,
     /// Largest absolute entry of the factors so far.
     max_factor: f64,
-    /// With a condition estimate: the column sums `Σ_r |A[r][c]|` so far, column `c` at index
-    /// `c + kl` (so that the entries left of column 0, which are zero, need no test).
-    col_sums: Option<Vec<f64>>,
+    /// With a condition estimate: `‖A‖_1` accumulated as the rows arrive.
+    col_sums: Option<ColumnSums>,
 }
 
 impl BandedCrout {
@@ -73,7 +72,10 @@ impl BandedCrout {
     /// [`BandedCrout::condition_estimate`] can be called once the rows are pushed.
     pub(crate) fn new_estimating(capacity: usize, kl: usize, ku: usize) -> Self {
         let mut lu = BandedCrout::new(capacity, kl, ku, true);
-        lu.col_sums = Some(Vec::with_capacity(capacity + kl + ku));
+        lu.col_sums = Some(ColumnSums {
+            open: vec![0.0; kl + 1 + ku],
+            closed_max: 0.0,
+        });
         lu
     }
 
@@ -134,7 +136,7 @@ impl BandedCrout {
         debug_assert!(self.kl == kl && self.ku == ku, "band widths");
         let row = &mut row[..kl + 1 + ku];
         if let Some(sums) = &mut self.col_sums {
-            add_column_sums(sums, row, r);
+            sums.add_row(row, r);
         }
         let row_max = row.iter().fold(row_scale, |m, v| m.max(v.abs()));
         self.max_entry = self.max_entry.max(row_max);
@@ -255,19 +257,38 @@ impl BandedCrout {
     /// `U` (of `L`), so both sweeps read the stored rows in order (column-oriented substitution,
     /// Golub & Van Loan §3.1.4). O(m·(kl + ku)).
     pub(crate) fn solve_transposed(&self, x: &mut [f64]) {
-        let (kl, ku, rows) = (self.kl, self.ku, self.rows);
-        debug_assert_eq!(x.len(), rows, "rhs length");
+        debug_assert_eq!(x.len(), self.rows, "rhs length");
         let Some(lower) = &self.lower else {
             debug_assert!(false, "solve_transposed needs the kept lower factor");
             return;
         };
+        match (self.kl, self.ku) {
+            (1, 1) => self.solve_transposed_fixed::<1, 1>(lower, x),
+            (2, 2) => self.solve_transposed_fixed::<2, 2>(lower, x),
+            (1, 2) => self.solve_transposed_fixed::<1, 2>(lower, x),
+            (2, 1) => self.solve_transposed_fixed::<2, 1>(lower, x),
+            (3, 3) => self.solve_transposed_fixed::<3, 3>(lower, x),
+            (4, 4) => self.solve_transposed_fixed::<4, 4>(lower, x),
+            (kl, ku) => self.solve_transposed_impl(lower, x, kl, ku),
+        }
+    }
+
+    #[inline(always)]
+    fn solve_transposed_impl(&self, lower: &[f64], x: &mut [f64], kl: usize, ku: usize) {
+        let rows = self.rows;
         // Uᵀ·z = b: z_j is final once the columns before it are subtracted
         for j in 0..rows {
             let zj = x[j];
-            let live = ku.min(rows - 1 - j);
-            let u = &self.upper[j * ku..j * ku + live];
-            for (xi, uj) in x[j + 1..j + 1 + live].iter_mut().zip(u) {
-                *xi -= uj * zj;
+            let u = &self.upper[j * ku..(j + 1) * ku];
+            if j + ku < rows {
+                for (xi, uj) in x[j + 1..j + 1 + ku].iter_mut().zip(u) {
+                    *xi -= uj * zj;
+                }
+            } else {
+                // entries beyond the last row are zero by construction
+                for (xi, uj) in x[j + 1..].iter_mut().zip(u) {
+                    *xi -= uj * zj;
+                }
             }
         }
         // Lᵀ·x = z: row i of L holds L[i][i−kl..i] and 1 / L[i][i]
@@ -275,18 +296,144 @@ impl BandedCrout {
             let l = &lower[i * (kl + 1)..(i + 1) * (kl + 1)];
             let xi = x[i] * l[kl];
             x[i] = xi;
-            for m in kl.saturating_sub(i)..kl {
-                x[i + m - kl] -= l[m] * xi;
+            if i >= kl {
+                for (xc, lm) in x[i - kl..i].iter_mut().zip(l) {
+                    *xc -= lm * xi;
+                }
+            } else {
+                for (xc, lm) in x[..i].iter_mut().zip(&l[kl - i..kl]) {
+                    *xc -= lm * xi;
+                }
             }
+        }
+    }
+
+    /// [`BandedCrout::solve`] for one right-hand side, with the band widths fixed for the common
+    /// cases (the condition estimate's solves; the sweeps are latency-bound recurrences, so the
+    /// generic loop overhead would double their time).
+    fn solve_vector(&self, x: &mut [f64]) {
+        debug_assert_eq!(x.len(), self.rows, "rhs length");
+        let Some(lower) = &self.lower else {
+            debug_assert!(false, "solve_vector needs the kept lower factor");
+            return;
+        };
+        match (self.kl, self.ku) {
+            (1, 1) => self.solve_vector_fixed::<1, 1>(lower, x),
+            (2, 2) => self.solve_vector_fixed::<2, 2>(lower, x),
+            (1, 2) => self.solve_vector_fixed::<1, 2>(lower, x),
+            (2, 1) => self.solve_vector_fixed::<2, 1>(lower, x),
+            (3, 3) => self.solve_vector_fixed::<3, 3>(lower, x),
+            (4, 4) => self.solve_vector_fixed::<4, 4>(lower, x),
+            (kl, ku) => self.solve_vector_impl(lower, x, kl, ku),
+        }
+    }
+
+    /// [`BandedCrout::solve_vector`] for fixed band widths, row-oriented with the last `KL`
+    /// (`KU`) solution values in registers: the sweeps are latency-bound recurrences, and
+    /// reloading a value just stored would add the store-forwarding delay to every row. The
+    /// entries of `L` left of column 0 and of `U` beyond the last row are zero, as are the
+    /// initial windows, so the first and last rows need no special case.
+    fn solve_vector_fixed<const KL: usize, const KU: usize>(&self, lower: &[f64], x: &mut [f64]) {
+        let mut win = [0.0_f64; KL];
+        for (r, l) in lower.chunks_exact(KL + 1).take(self.rows).enumerate() {
+            let mut v = x[r];
+            for m in 0..KL {
+                v -= l[m] * win[m];
+            }
+            v *= l[KL];
+            x[r] = v;
+            push_back(&mut win, v);
+        }
+        let mut win = [0.0_f64; KU];
+        for (r, u) in self
+            .upper
+            .chunks_exact(KU)
+            .take(self.rows)
+            .enumerate()
+            .rev()
+        {
+            let mut v = x[r];
+            for t in 0..KU {
+                v -= u[t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+    }
+
+    /// [`BandedCrout::solve_transposed`] for fixed band widths, row-oriented with the last
+    /// solution values in registers (see [`BandedCrout::solve_vector_fixed`]): row `r` of `Uᵀ`
+    /// holds `U[r−1−t][t]`, row `i` of `Lᵀ` holds `L[i+1+t][i]` for `t = 0, 1, …`.
+    fn solve_transposed_fixed<const KL: usize, const KU: usize>(
+        &self,
+        lower: &[f64],
+        x: &mut [f64],
+    ) {
+        let rows = self.rows;
+        let upper = &self.upper[..rows * KU];
+        // Uᵀ·z = b; win[t] = z_{r−1−t}
+        let mut win = [0.0_f64; KU];
+        for r in 0..rows {
+            let mut v = x[r];
+            for t in 0..KU.min(r) {
+                v -= upper[(r - 1 - t) * KU + t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+        // Lᵀ·x = z; win[t] = x_{i+1+t}; L[i+1+t][i] at lower[(i+1+t)·(KL+1) + KL−1−t]
+        let lower = &lower[..rows * (KL + 1)];
+        let mut win = [0.0_f64; KL];
+        for i in (0..rows).rev() {
+            let mut v = x[i];
+            for t in 0..KL.min(rows - 1 - i) {
+                v -= lower[(i + 1 + t) * (KL + 1) + KL - 1 - t] * win[t];
+            }
+            v *= lower[i * (KL + 1) + KL];
+            x[i] = v;
+            push_front(&mut win, v);
+        }
+    }
+
+    #[inline(always)]
+    fn solve_vector_impl(&self, lower: &[f64], x: &mut [f64], kl: usize, ku: usize) {
+        let rows = self.rows;
+        // L·y = b, row by row (as solve_impl)
+        for r in 0..rows {
+            let l = &lower[r * (kl + 1)..(r + 1) * (kl + 1)];
+            let mut v = x[r];
+            if r >= kl {
+                for (lm, y) in l[..kl].iter().zip(&x[r - kl..r]) {
+                    v -= lm * y;
+                }
+            } else {
+                for (lm, y) in l[kl - r..kl].iter().zip(&x[..r]) {
+                    v -= lm * y;
+                }
+            }
+            x[r] = v * l[kl];
+        }
+        // U·x = y (as back_substitute_impl)
+        for r in (0..rows).rev() {
+            let u = &self.upper[r * ku..(r + 1) * ku];
+            let mut v = x[r];
+            if r + ku < rows {
+                for (uj, y) in u.iter().zip(&x[r + 1..r + 1 + ku]) {
+                    v -= uj * y;
+                }
+            } else {
+                for (uj, y) in u.iter().zip(&x[r + 1..]) {
+                    v -= uj * y;
+                }
+            }
+            x[r] = v;
         }
     }
 
     /// `‖A‖_1`, the largest column sum of `|A|` over the rows pushed so far; `None` unless made
     /// by [`BandedCrout::new_estimating`].
     pub(crate) fn norm1(&self) -> Option<f64> {
-        self.col_sums
-            .as_ref()
-            .map(|s| s.iter().fold(0.0_f64, |m, v| m.max(*v)))
+        self.col_sums.as_ref().map(ColumnSums::norm1)
     }
 
     /// Estimate of the 1-norm condition number `κ_1(A) = ‖A‖_1·‖A⁻¹‖_1` of the factored
@@ -324,7 +471,7 @@ impl BandedCrout {
     fn inverse_norm1_estimate(&self) -> f64 {
         const MAX_ITERATIONS: usize = 5;
         let n = self.rows;
-        let sign = |v: f64| if v >= 0.0 { 1.0 } else { -1.0 };
+        let sign = |non_negative: bool| if non_negative { 1.0 } else { -1.0 };
         let first_largest = |x: &[f64]| {
             let mut j = 0;
             for (i, v) in x.iter().enumerate() {
@@ -337,7 +484,7 @@ impl BandedCrout {
         let norm = |x: &[f64]| x.iter().map(|v| v.abs()).sum::<f64>();
         // v = B·(e/n)
         let mut x = vec![1.0 / n as f64; n];
-        self.solve(&mut x, 1);
+        self.solve_vector(&mut x);
         if n == 1 {
             return x[0].abs();
         }
@@ -346,8 +493,11 @@ impl BandedCrout {
             // the solves overflowed: numerically singular
             return f64::INFINITY;
         }
-        let mut xi: Vec<f64> = x.iter().map(|&v| sign(v)).collect();
-        x.copy_from_slice(&xi);
+        // ξ = sign(v) as `v ≥ 0` flags (n bytes rather than n numbers)
+        let mut xi: Vec<bool> = x.iter().map(|&v| v >= 0.0).collect();
+        for (v, &s) in x.iter_mut().zip(&xi) {
+            *v = sign(s);
+        }
         self.solve_transposed(&mut x);
         let mut j = first_largest(&x);
         let mut iteration = 2;
@@ -355,21 +505,21 @@ impl BandedCrout {
             // v = B·e_j
             x.fill(0.0);
             x[j] = 1.0;
-            self.solve(&mut x, 1);
+            self.solve_vector(&mut x);
             let previous = est;
             est = norm(&x);
             if !est.is_finite() {
                 return f64::INFINITY;
             }
-            let repeated = x.iter().zip(&xi).all(|(&v, &s)| sign(v) == s);
+            let repeated = x.iter().zip(&xi).all(|(&v, &s)| (v >= 0.0) == s);
             if repeated || est <= previous {
                 est = est.max(previous);
                 break;
             }
-            for (s, &v) in xi.iter_mut().zip(&x) {
-                *s = sign(v);
+            for (s, v) in xi.iter_mut().zip(x.iter_mut()) {
+                *s = *v >= 0.0;
+                *v = sign(*s);
             }
-            x.copy_from_slice(&xi);
             self.solve_transposed(&mut x);
             let last = j;
             j = first_largest(&x);
@@ -384,7 +534,7 @@ impl BandedCrout {
             *v = alt * (1.0 + i as f64 / (n - 1) as f64);
             alt = -alt;
         }
-        self.solve(&mut x, 1);
+        self.solve_vector(&mut x);
         let temp = 2.0 * norm(&x) / (3 * n) as f64;
         if temp.is_nan() || temp > est {
             est = temp;
@@ -393,16 +543,59 @@ impl BandedCrout {
     }
 }
 
-/// Adds `|row|` (row `r`, columns `r − kl ..= r + ku` at `row[0..]`) to the column sums stored
-/// from index `c + kl` for column `c`. Kept out of line: only the estimating factorisation
-/// takes it.
-#[inline(never)]
-fn add_column_sums(sums: &mut Vec<f64>, row: &[f64], r: usize) {
-    if sums.len() < r + row.len() {
-        sums.resize(r + row.len(), 0.0);
+/// Shifts the window one place towards index 0 and puts `v` last (no-op for `N = 0`).
+/// Written out (not `rotate_left`, which is not inlined) so that it stays in registers.
+#[inline(always)]
+fn push_back<const N: usize>(win: &mut [f64; N], v: f64) {
+    if N > 0 {
+        for m in 1..N {
+            win[m - 1] = win[m];
+        }
+        win[N - 1] = v;
     }
-    for (s, v) in sums[r..r + row.len()].iter_mut().zip(row) {
-        *s += v.abs();
+}
+
+/// Shifts the window one place away from index 0 and puts `v` first (no-op for `N = 0`).
+#[inline(always)]
+fn push_front<const N: usize>(win: &mut [f64; N], v: f64) {
+    if N > 0 {
+        for m in (1..N).rev() {
+            win[m] = win[m - 1];
+        }
+        win[0] = v;
+    }
+}
+
+/// `‖A‖_1 = max_c Σ_r |A[r][c]|` of a banded matrix whose rows arrive one at a time, in
+/// O(kl + ku) memory: row `r` touches columns `r − kl ..= r + ku` only, so column `c` is complete
+/// once row `c + kl` is in. The `kl + 1 + ku` open columns live in a ring (column `c` at slot
+/// `(c + kl) mod width`); a completed column's sum goes into `closed_max` and its slot is reused
+/// by the column that the next row opens.
+#[derive(Debug, Clone)]
+struct ColumnSums {
+    open: Vec<f64>,
+    closed_max: f64,
+}
+
+impl ColumnSums {
+    /// Adds `|row|` (row `r`, columns `r − kl ..= r + ku` at `row[0..]`; those left of column 0
+    /// are zero). Kept out of line: only the estimating factorisation takes it.
+    #[inline(never)]
+    fn add_row(&mut self, row: &[f64], r: usize) {
+        let width = self.open.len();
+        debug_assert_eq!(row.len(), width, "row width");
+        // the slot of column r − kl − 1 (complete now) is that of column r + ku (opened now)
+        let last = (r + width - 1) % width;
+        self.closed_max = self.closed_max.max(self.open[last]);
+        self.open[last] = 0.0;
+        for (m, v) in row.iter().enumerate() {
+            let slot = (r + m) % width;
+            self.open[slot] += v.abs();
+        }
+    }
+
+    fn norm1(&self) -> f64 {
+        self.open.iter().fold(self.closed_max, |m, v| m.max(*v))
     }
 }
 
@@ -845,35 +1038,51 @@ mod tests {
     }
 
     #[test]
-    fn transposed_solve_solves_the_transpose() {
-        // nonsymmetric, kl = 2, ku = 1
+    fn single_vector_and_transposed_solves_match_the_dense_matrix() {
+        // nonsymmetric; band widths with fixed kernels and without (generic loops)
         let n = 9;
-        let band: Vec<Vec<f64>> = (0..n)
-            .map(|r| {
-                let x = r as f64;
-                vec![0.3 * x.sin(), -0.7 + 0.1 * x, 4.0 + x.cos(), 0.9 - 0.05 * x]
-            })
-            .collect();
-        let rows = band_rows(&band, 2);
-        let a = dense(&rows);
-        let mut rhs = vec![0.0; n];
-        let lu = factor_rows(&rows, 2, 1, &mut rhs, 1, true).unwrap();
-        let x_true: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64 * 0.7).cos()).collect();
-        // b = Aᵀ·x
-        let mut b = vec![0.0; n];
-        for r in 0..n {
-            for c in 0..n {
-                b[c] += a[r * n + c] * x_true[r];
+        for (kl, ku) in [(2, 1), (1, 1), (2, 2), (3, 2), (0, 2), (4, 4), (1, 0)] {
+            let band: Vec<Vec<f64>> = (0..n)
+                .map(|r| {
+                    let x = r as f64;
+                    (0..kl + 1 + ku)
+                        .map(|m| {
+                            if m == kl {
+                                6.0 + x.cos()
+                            } else {
+                                (x * 0.7 + m as f64).sin()
+                            }
+                        })
+                        .collect()
+                })
+                .collect();
+            let rows = band_rows(&band, kl);
+            let a = dense(&rows);
+            let mut rhs = vec![0.0; n];
+            let lu = factor_rows(&rows, kl, ku, &mut rhs, 1, true).unwrap();
+            let x_true: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64 * 0.7).cos()).collect();
+            // b = A·x and c = Aᵀ·x
+            let (mut b, mut c) = (vec![0.0; n], vec![0.0; n]);
+            for r in 0..n {
+                for col in 0..n {
+                    b[r] += a[r * n + col] * x_true[col];
+                    c[col] += a[r * n + col] * x_true[r];
+                }
             }
-        }
-        lu.solve_transposed(&mut b);
-        for i in 0..n {
-            assert!(
-                (b[i] - x_true[i]).abs() < 1e-14,
-                "x[{i}] = {} vs {}",
-                b[i],
-                x_true[i]
-            );
+            lu.solve_vector(&mut b);
+            lu.solve_transposed(&mut c);
+            for i in 0..n {
+                assert!(
+                    (b[i] - x_true[i]).abs() < 1e-14,
+                    "({kl}, {ku}) A: x[{i}] = {}",
+                    b[i]
+                );
+                assert!(
+                    (c[i] - x_true[i]).abs() < 1e-14,
+                    "({kl}, {ku}) Aᵀ: x[{i}] = {}",
+                    c[i]
+                );
+            }
         }
     }
 
@@ -960,8 +1169,25 @@ mod tests {
                 .collect();
             let n = band.len();
             let rows = band_rows(&band, kl);
-            let exact = dense_kappa1(&dense(&rows), n);
+            let a = dense(&rows);
+            let exact = dense_kappa1(&a, n);
             let est = estimate(&rows, kl, ku).unwrap();
+            // ‖A‖_1 from the ring of open column sums: the same sums as the dense ones
+            let mut lu = BandedCrout::new_estimating(n, kl, ku);
+            let mut rhs = vec![0.0; n];
+            for (r, b) in band.iter().enumerate() {
+                let mut row: Vec<f64> = b.clone();
+                for (m, v) in row.iter_mut().enumerate() {
+                    if r + m < kl || r + m >= n + kl {
+                        *v = 0.0;
+                    }
+                }
+                lu.push_row(&mut row, &mut rhs, 1, 0.0).unwrap();
+            }
+            let dense_norm = (0..n)
+                .map(|c| (0..n).map(|r| a[r * n + c].abs()).sum::<f64>())
+                .fold(0.0_f64, f64::max);
+            proptest::prop_assert_eq!(lu.norm1(), Some(dense_norm));
             proptest::prop_assert!(
                 est >= exact / 3.0 && est <= exact * (1.0 + 1e-12),
                 "estimate {} vs exact {}", est, exact
