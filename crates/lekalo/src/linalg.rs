@@ -373,9 +373,19 @@ impl BandedCrout {
         let upper = &self.upper[..rows * KU];
         // Uᵀ·z = b; win[t] = z_{r−1−t}
         let mut win = [0.0_f64; KU];
-        for r in 0..rows {
+        let head = KU.min(rows);
+        for r in 0..head {
             let mut v = x[r];
-            for t in 0..KU.min(r) {
+            for t in 0..r {
+                v -= upper[(r - 1 - t) * KU + t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+        // the full rows: fixed trip counts, unrolled
+        for r in head..rows {
+            let mut v = x[r];
+            for t in 0..KU {
                 v -= upper[(r - 1 - t) * KU + t] * win[t];
             }
             x[r] = v;
@@ -384,9 +394,19 @@ impl BandedCrout {
         // Lᵀ·x = z; win[t] = x_{i+1+t}; L[i+1+t][i] at lower[(i+1+t)·(KL+1) + KL−1−t]
         let lower = &lower[..rows * (KL + 1)];
         let mut win = [0.0_f64; KL];
-        for i in (0..rows).rev() {
+        let tail = rows.saturating_sub(KL);
+        for i in (tail..rows).rev() {
             let mut v = x[i];
-            for t in 0..KL.min(rows - 1 - i) {
+            for t in 0..rows - 1 - i {
+                v -= lower[(i + 1 + t) * (KL + 1) + KL - 1 - t] * win[t];
+            }
+            v *= lower[i * (KL + 1) + KL];
+            x[i] = v;
+            push_front(&mut win, v);
+        }
+        for i in (0..tail).rev() {
+            let mut v = x[i];
+            for t in 0..KL {
                 v -= lower[(i + 1 + t) * (KL + 1) + KL - 1 - t] * win[t];
             }
             v *= lower[i * (KL + 1) + KL];

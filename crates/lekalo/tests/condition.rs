@@ -7,7 +7,8 @@ use common::config;
 
 use lekalo::basis::basis_functions;
 use lekalo::{
-    parametrize, BSplineCurve, CurveInterpolation, EndCondition, Error, KnotPlacement,
+    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
+    parametrize, BSplineCurve, CurveInterpolation, EndCondition, Error, KnotPlacement, KnotVector,
     Parametrization, Points, PointsRef,
 };
 use proptest::prelude::*;
@@ -290,6 +291,82 @@ fn periodic_curves_have_no_estimate_yet() {
         );
     }
     assert!(closed.interpolate(q.as_view()).is_ok());
+}
+
+/// Dense `κ_1` of the full collocation matrix `A[k][i] = N_{i,p}(t[k])` (all rows and columns,
+/// as the surface passes solve them).
+fn dense_full_kappa(knots: &KnotVector, p: usize, t: &[f64]) -> f64 {
+    let m = t.len();
+    let mut a = vec![0.0; m * m];
+    for (k, tk) in t.iter().enumerate() {
+        let (span, vals) = basis_functions(knots, p, *tk).unwrap();
+        for (j, v) in vals.iter().enumerate() {
+            a[k * m + span - p + j] = *v;
+        }
+    }
+    norm1(&a, m) * norm1(&inverse(&a, m), m)
+}
+
+/// A 7 × 5 grid on a wavy sheet; row 3 moved to `gap` beyond row 2.
+fn sheet(gap: Option<f64>) -> Points {
+    let mut data = Vec::new();
+    for k in 0..7 {
+        let x = match gap {
+            Some(g) if k == 3 => 2.0 + g,
+            _ => f64::from(k),
+        };
+        for l in 0..5 {
+            let y = f64::from(l) * (1.0 + 0.1 * f64::from(l));
+            data.extend([x, y, (0.5 * x).sin() * (0.3 * y).cos()]);
+        }
+    }
+    Points::new(data, 3).unwrap()
+}
+
+#[test]
+fn surface_estimate_is_the_product_of_the_directions() {
+    for (gap, p, q) in [(None, 3, 3), (None, 2, 4), (Some(1e-6), 3, 2)] {
+        let grid = sheet(gap);
+        let param = Parametrization::ChordLength;
+        let s = interpolate_surface(grid.as_view(), 7, 5, p, q, param).unwrap();
+        let exact = dense_full_kappa(&s.knots_u, p, &s.params_u)
+            * dense_full_kappa(&s.knots_v, q, &s.params_v);
+        let est = interpolate_surface_condition(grid.as_view(), 7, 5, p, q, param).unwrap();
+        // each direction's estimate is within 3 below its κ_1 (f64 solves: relative κ·ε)
+        assert!(
+            est >= exact / 9.0 && est <= exact * (1.0 + 64.0 * f64::EPSILON * exact),
+            "{gap:?}, ({p}, {q}): estimate {est}, dense {exact}"
+        );
+        // under the limit the result is interpolate_surface's
+        let limited =
+            interpolate_surface_max_condition(grid.as_view(), 7, 5, p, q, param, 1e15).unwrap();
+        assert_eq!(limited, s);
+    }
+}
+
+#[test]
+fn surface_with_crowded_rows_is_ill_conditioned() {
+    let grid = sheet(Some(1e-10));
+    let param = Parametrization::ChordLength;
+    let kappa = interpolate_surface_condition(grid.as_view(), 7, 5, 3, 3, param).unwrap();
+    assert!(kappa > 1e9, "κ_1 = {kappa}");
+    let e = interpolate_surface_max_condition(grid.as_view(), 7, 5, 3, 3, param, 1e8).unwrap_err();
+    let Error::IllConditioned { reason } = &e else {
+        panic!("expected IllConditioned, got {e:?}");
+    };
+    assert!(
+        reason.contains(&format!("{kappa:.3e}")) && reason.contains("1e8"),
+        "{reason}"
+    );
+    // well-spaced: small
+    let fine = interpolate_surface_condition(sheet(None).as_view(), 7, 5, 3, 3, param).unwrap();
+    assert!(fine < 100.0, "κ_1 = {fine}");
+    for limit in [0.0, f64::NAN] {
+        assert!(matches!(
+            interpolate_surface_max_condition(grid.as_view(), 7, 5, 3, 3, param, limit),
+            Err(Error::InvalidArgument { .. })
+        ));
+    }
 }
 
 proptest! {
