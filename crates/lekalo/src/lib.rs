@@ -142,3 +142,4 @@ pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRu
 
 // -- robustness (issue 9) --
 pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};
+pub use interpolate_surface::{interpolate_surface_condition, interpolate_surface_max_condition};

@@ -17,6 +17,11 @@
 //!
 //! Cost: O(m·kl·(ku + ncols)) time; memory `m·ku` for `U`, plus `m·(kl + 1)` when the factors are
 //! kept for further right-hand sides.
+//!
+//! On request ([`BandedCrout::new_estimating`]) the factorisation also accumulates `‖A‖_1` as the
+//! rows arrive and [`BandedCrout::condition_estimate`] estimates `κ_1(A) = ‖A‖_1·‖A⁻¹‖_1` by
+//! Hager's method as refined by Higham (LAPACK `dgbcon`), with solves by the stored factors:
+//! O(m·(kl + ku)) more time and O(m) more memory, nothing for the default factorisation.
 
 use crate::error::{Error, Result};
 
@@ -43,6 +48,8 @@ pub(crate) struct BandedCrout {
     max_entry: f64,
     /// Largest absolute entry of the factors so far.
     max_factor: f64,
+    /// With a condition estimate: `‖A‖_1` accumulated as the rows arrive.
+    col_sums: Option<ColumnSums>,
 }
 
 impl BandedCrout {
@@ -57,7 +64,19 @@ impl BandedCrout {
             lower: keep_lower.then(|| Vec::with_capacity(capacity * (kl + 1))),
             max_entry: 0.0,
             max_factor: 0.0,
+            col_sums: None,
         }
+    }
+
+    /// As [`BandedCrout::new`] with `L` kept and the column sums of `|A|` accumulated, so that
+    /// [`BandedCrout::condition_estimate`] can be called once the rows are pushed.
+    pub(crate) fn new_estimating(capacity: usize, kl: usize, ku: usize) -> Self {
+        let mut lu = BandedCrout::new(capacity, kl, ku, true);
+        lu.col_sums = Some(ColumnSums {
+            open: vec![0.0; kl + 1 + ku],
+            closed_max: 0.0,
+        });
+        lu
     }
 
     /// Width of a row buffer: `kl + 1 + ku`, the diagonal at index `kl`.
@@ -116,6 +135,9 @@ impl BandedCrout {
         debug_assert_eq!(row.len(), kl + 1 + ku, "row buffer width");
         debug_assert!(self.kl == kl && self.ku == ku, "band widths");
         let row = &mut row[..kl + 1 + ku];
+        if let Some(sums) = &mut self.col_sums {
+            sums.add_row(row, r);
+        }
         let row_max = row.iter().fold(row_scale, |m, v| m.max(v.abs()));
         self.max_entry = self.max_entry.max(row_max);
         let (done, current) = rhs.split_at_mut(r * ncols);
@@ -227,6 +249,374 @@ impl BandedCrout {
             }
         }
         self.back_substitute(rhs, ncols);
+    }
+
+    /// Solves the transposed system `Aᵀ·x = b` in place (one right-hand side) with the kept
+    /// factors: `Aᵀ = Uᵀ·Lᵀ`, so a forward sweep with the unit lower triangular `Uᵀ` and a
+    /// backward sweep with the upper triangular `Lᵀ`. Column `j` of `Uᵀ` (of `Lᵀ`) is row `j` of
+    /// `U` (of `L`), so both sweeps read the stored rows in order (column-oriented substitution,
+    /// Golub & Van Loan §3.1.4). O(m·(kl + ku)).
+    pub(crate) fn solve_transposed(&self, x: &mut [f64]) {
+        debug_assert_eq!(x.len(), self.rows, "rhs length");
+        let Some(lower) = &self.lower else {
+            debug_assert!(false, "solve_transposed needs the kept lower factor");
+            return;
+        };
+        match (self.kl, self.ku) {
+            (1, 1) => self.solve_transposed_fixed::<1, 1>(lower, x),
+            (2, 2) => self.solve_transposed_fixed::<2, 2>(lower, x),
+            (1, 2) => self.solve_transposed_fixed::<1, 2>(lower, x),
+            (2, 1) => self.solve_transposed_fixed::<2, 1>(lower, x),
+            (3, 3) => self.solve_transposed_fixed::<3, 3>(lower, x),
+            (4, 4) => self.solve_transposed_fixed::<4, 4>(lower, x),
+            (kl, ku) => self.solve_transposed_impl(lower, x, kl, ku),
+        }
+    }
+
+    #[inline(always)]
+    fn solve_transposed_impl(&self, lower: &[f64], x: &mut [f64], kl: usize, ku: usize) {
+        let rows = self.rows;
+        // Uᵀ·z = b: z_j is final once the columns before it are subtracted
+        for j in 0..rows {
+            let zj = x[j];
+            let u = &self.upper[j * ku..(j + 1) * ku];
+            if j + ku < rows {
+                for (xi, uj) in x[j + 1..j + 1 + ku].iter_mut().zip(u) {
+                    *xi -= uj * zj;
+                }
+            } else {
+                // entries beyond the last row are zero by construction
+                for (xi, uj) in x[j + 1..].iter_mut().zip(u) {
+                    *xi -= uj * zj;
+                }
+            }
+        }
+        // Lᵀ·x = z: row i of L holds L[i][i−kl..i] and 1 / L[i][i]
+        for i in (0..rows).rev() {
+            let l = &lower[i * (kl + 1)..(i + 1) * (kl + 1)];
+            let xi = x[i] * l[kl];
+            x[i] = xi;
+            if i >= kl {
+                for (xc, lm) in x[i - kl..i].iter_mut().zip(l) {
+                    *xc -= lm * xi;
+                }
+            } else {
+                for (xc, lm) in x[..i].iter_mut().zip(&l[kl - i..kl]) {
+                    *xc -= lm * xi;
+                }
+            }
+        }
+    }
+
+    /// [`BandedCrout::solve`] for one right-hand side, with the band widths fixed for the common
+    /// cases (the condition estimate's solves; the sweeps are latency-bound recurrences, so the
+    /// generic loop overhead would double their time).
+    fn solve_vector(&self, x: &mut [f64]) {
+        debug_assert_eq!(x.len(), self.rows, "rhs length");
+        let Some(lower) = &self.lower else {
+            debug_assert!(false, "solve_vector needs the kept lower factor");
+            return;
+        };
+        match (self.kl, self.ku) {
+            (1, 1) => self.solve_vector_fixed::<1, 1>(lower, x),
+            (2, 2) => self.solve_vector_fixed::<2, 2>(lower, x),
+            (1, 2) => self.solve_vector_fixed::<1, 2>(lower, x),
+            (2, 1) => self.solve_vector_fixed::<2, 1>(lower, x),
+            (3, 3) => self.solve_vector_fixed::<3, 3>(lower, x),
+            (4, 4) => self.solve_vector_fixed::<4, 4>(lower, x),
+            (kl, ku) => self.solve_vector_impl(lower, x, kl, ku),
+        }
+    }
+
+    /// [`BandedCrout::solve_vector`] for fixed band widths, row-oriented with the last `KL`
+    /// (`KU`) solution values in registers: the sweeps are latency-bound recurrences, and
+    /// reloading a value just stored would add the store-forwarding delay to every row. The
+    /// entries of `L` left of column 0 and of `U` beyond the last row are zero, as are the
+    /// initial windows, so the first and last rows need no special case.
+    fn solve_vector_fixed<const KL: usize, const KU: usize>(&self, lower: &[f64], x: &mut [f64]) {
+        let mut win = [0.0_f64; KL];
+        for (r, l) in lower.chunks_exact(KL + 1).take(self.rows).enumerate() {
+            let mut v = x[r];
+            for m in 0..KL {
+                v -= l[m] * win[m];
+            }
+            v *= l[KL];
+            x[r] = v;
+            push_back(&mut win, v);
+        }
+        let mut win = [0.0_f64; KU];
+        for (r, u) in self
+            .upper
+            .chunks_exact(KU)
+            .take(self.rows)
+            .enumerate()
+            .rev()
+        {
+            let mut v = x[r];
+            for t in 0..KU {
+                v -= u[t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+    }
+
+    /// [`BandedCrout::solve_transposed`] for fixed band widths, row-oriented with the last
+    /// solution values in registers (see [`BandedCrout::solve_vector_fixed`]): row `r` of `Uᵀ`
+    /// holds `U[r−1−t][t]`, row `i` of `Lᵀ` holds `L[i+1+t][i]` for `t = 0, 1, …`.
+    fn solve_transposed_fixed<const KL: usize, const KU: usize>(
+        &self,
+        lower: &[f64],
+        x: &mut [f64],
+    ) {
+        let rows = self.rows;
+        let upper = &self.upper[..rows * KU];
+        // Uᵀ·z = b; win[t] = z_{r−1−t}
+        let mut win = [0.0_f64; KU];
+        let head = KU.min(rows);
+        for r in 0..head {
+            let mut v = x[r];
+            for t in 0..r {
+                v -= upper[(r - 1 - t) * KU + t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+        // the full rows: fixed trip counts, unrolled
+        for r in head..rows {
+            let mut v = x[r];
+            for t in 0..KU {
+                v -= upper[(r - 1 - t) * KU + t] * win[t];
+            }
+            x[r] = v;
+            push_front(&mut win, v);
+        }
+        // Lᵀ·x = z; win[t] = x_{i+1+t}; L[i+1+t][i] at lower[(i+1+t)·(KL+1) + KL−1−t]
+        let lower = &lower[..rows * (KL + 1)];
+        let mut win = [0.0_f64; KL];
+        let tail = rows.saturating_sub(KL);
+        for i in (tail..rows).rev() {
+            let mut v = x[i];
+            for t in 0..rows - 1 - i {
+                v -= lower[(i + 1 + t) * (KL + 1) + KL - 1 - t] * win[t];
+            }
+            v *= lower[i * (KL + 1) + KL];
+            x[i] = v;
+            push_front(&mut win, v);
+        }
+        for i in (0..tail).rev() {
+            let mut v = x[i];
+            for t in 0..KL {
+                v -= lower[(i + 1 + t) * (KL + 1) + KL - 1 - t] * win[t];
+            }
+            v *= lower[i * (KL + 1) + KL];
+            x[i] = v;
+            push_front(&mut win, v);
+        }
+    }
+
+    #[inline(always)]
+    fn solve_vector_impl(&self, lower: &[f64], x: &mut [f64], kl: usize, ku: usize) {
+        let rows = self.rows;
+        // L·y = b, row by row (as solve_impl)
+        for r in 0..rows {
+            let l = &lower[r * (kl + 1)..(r + 1) * (kl + 1)];
+            let mut v = x[r];
+            if r >= kl {
+                for (lm, y) in l[..kl].iter().zip(&x[r - kl..r]) {
+                    v -= lm * y;
+                }
+            } else {
+                for (lm, y) in l[kl - r..kl].iter().zip(&x[..r]) {
+                    v -= lm * y;
+                }
+            }
+            x[r] = v * l[kl];
+        }
+        // U·x = y (as back_substitute_impl)
+        for r in (0..rows).rev() {
+            let u = &self.upper[r * ku..(r + 1) * ku];
+            let mut v = x[r];
+            if r + ku < rows {
+                for (uj, y) in u.iter().zip(&x[r + 1..r + 1 + ku]) {
+                    v -= uj * y;
+                }
+            } else {
+                for (uj, y) in u.iter().zip(&x[r + 1..]) {
+                    v -= uj * y;
+                }
+            }
+            x[r] = v;
+        }
+    }
+
+    /// `‖A‖_1`, the largest column sum of `|A|` over the rows pushed so far; `None` unless made
+    /// by [`BandedCrout::new_estimating`].
+    pub(crate) fn norm1(&self) -> Option<f64> {
+        self.col_sums.as_ref().map(ColumnSums::norm1)
+    }
+
+    /// Estimate of the 1-norm condition number `κ_1(A) = ‖A‖_1·‖A⁻¹‖_1` of the factored
+    /// (square, `rows × rows`) matrix; `None` unless made by [`BandedCrout::new_estimating`].
+    ///
+    /// `‖A⁻¹‖_1` comes from Hager's estimator as refined by Higham: N. J. Higham, "FORTRAN codes
+    /// for estimating the one-norm of a real or complex matrix, with applications to condition
+    /// estimation", ACM TOMS 14 (1988) 381–396, Algorithm 4.1 — the algorithm of LAPACK's
+    /// `dlacn2`, which `dgbcon` applies to a banded LU. It needs products with `A⁻¹` and `A⁻ᵀ`
+    /// only (single-vector [`BandedCrout::solve`] and [`BandedCrout::solve_transposed`]): at
+    /// most 5 iterations, usually 2 or 3 — about four solves with `A` and two with `Aᵀ` — so
+    /// O(m·(kl + ku)) time, one O(m) buffer and `m` sign flags. Every value it forms is
+    /// `‖A⁻¹·x‖_1 / ‖x‖_1` for some `x`, so the estimate is a lower bound of `κ_1` (up to
+    /// rounding in the solves); it is usually exact, and in Higham's experiments rarely low by
+    /// more than a factor of 3 (tested here against the dense `κ_1`). Of the last two
+    /// iterates the larger is kept (Algorithm 4.1 keeps the last), still a lower bound.
+    ///
+    /// Returns 1 for an empty system (LAPACK's convention) and `∞` when the solves overflow.
+    pub(crate) fn condition_estimate(&self) -> Option<f64> {
+        let norm = self.norm1()?;
+        let rows = self.rows;
+        if rows == 0 {
+            return Some(1.0);
+        }
+        let inv = self.inverse_norm1_estimate();
+        let kappa = norm * inv;
+        Some(if kappa.is_finite() {
+            kappa
+        } else {
+            f64::INFINITY
+        })
+    }
+
+    /// Higham's Algorithm 4.1 (see [`BandedCrout::condition_estimate`]) for `B = A⁻¹`, in the
+    /// order of LAPACK's `dlacn2` (`ITMAX = 5`, `sign(0) = +1`, the first largest entry).
+    fn inverse_norm1_estimate(&self) -> f64 {
+        const MAX_ITERATIONS: usize = 5;
+        let n = self.rows;
+        let sign = |non_negative: bool| if non_negative { 1.0 } else { -1.0 };
+        let first_largest = |x: &[f64]| {
+            let mut j = 0;
+            for (i, v) in x.iter().enumerate() {
+                if v.abs() > x[j].abs() {
+                    j = i;
+                }
+            }
+            j
+        };
+        let norm = |x: &[f64]| x.iter().map(|v| v.abs()).sum::<f64>();
+        // v = B·(e/n)
+        let mut x = vec![1.0 / n as f64; n];
+        self.solve_vector(&mut x);
+        if n == 1 {
+            return x[0].abs();
+        }
+        let mut est = norm(&x);
+        if !est.is_finite() {
+            // the solves overflowed: numerically singular
+            return f64::INFINITY;
+        }
+        // ξ = sign(v) as `v ≥ 0` flags (n bytes rather than n numbers)
+        let mut xi: Vec<bool> = x.iter().map(|&v| v >= 0.0).collect();
+        for (v, &s) in x.iter_mut().zip(&xi) {
+            *v = sign(s);
+        }
+        self.solve_transposed(&mut x);
+        let mut j = first_largest(&x);
+        let mut iteration = 2;
+        loop {
+            // v = B·e_j
+            x.fill(0.0);
+            x[j] = 1.0;
+            self.solve_vector(&mut x);
+            let previous = est;
+            est = norm(&x);
+            if !est.is_finite() {
+                return f64::INFINITY;
+            }
+            let repeated = x.iter().zip(&xi).all(|(&v, &s)| (v >= 0.0) == s);
+            if repeated || est <= previous {
+                est = est.max(previous);
+                break;
+            }
+            for (s, v) in xi.iter_mut().zip(x.iter_mut()) {
+                *s = *v >= 0.0;
+                *v = sign(*s);
+            }
+            self.solve_transposed(&mut x);
+            let last = j;
+            j = first_largest(&x);
+            if x[last] == x[j].abs() || iteration >= MAX_ITERATIONS {
+                break;
+            }
+            iteration += 1;
+        }
+        // the alternating test vector x_i = (−1)^i·(1 + i/(n−1)), ‖x‖_1 = 3n/2
+        let mut alt = 1.0;
+        for (i, v) in x.iter_mut().enumerate() {
+            *v = alt * (1.0 + i as f64 / (n - 1) as f64);
+            alt = -alt;
+        }
+        self.solve_vector(&mut x);
+        let temp = 2.0 * norm(&x) / (3 * n) as f64;
+        if temp.is_nan() || temp > est {
+            est = temp;
+        }
+        est
+    }
+}
+
+/// Shifts the window one place towards index 0 and puts `v` last (no-op for `N = 0`).
+/// Written out (not `rotate_left`, which is not inlined) so that it stays in registers.
+#[inline(always)]
+fn push_back<const N: usize>(win: &mut [f64; N], v: f64) {
+    if N > 0 {
+        for m in 1..N {
+            win[m - 1] = win[m];
+        }
+        win[N - 1] = v;
+    }
+}
+
+/// Shifts the window one place away from index 0 and puts `v` first (no-op for `N = 0`).
+#[inline(always)]
+fn push_front<const N: usize>(win: &mut [f64; N], v: f64) {
+    if N > 0 {
+        for m in (1..N).rev() {
+            win[m] = win[m - 1];
+        }
+        win[0] = v;
+    }
+}
+
+/// `‖A‖_1 = max_c Σ_r |A[r][c]|` of a banded matrix whose rows arrive one at a time, in
+/// O(kl + ku) memory: row `r` touches columns `r − kl ..= r + ku` only, so column `c` is complete
+/// once row `c + kl` is in. The `kl + 1 + ku` open columns live in a ring (column `c` at slot
+/// `(c + kl) mod width`); a completed column's sum goes into `closed_max` and its slot is reused
+/// by the column that the next row opens.
+#[derive(Debug, Clone)]
+struct ColumnSums {
+    open: Vec<f64>,
+    closed_max: f64,
+}
+
+impl ColumnSums {
+    /// Adds `|row|` (row `r`, columns `r − kl ..= r + ku` at `row[0..]`; those left of column 0
+    /// are zero). Kept out of line: only the estimating factorisation takes it.
+    #[inline(never)]
+    fn add_row(&mut self, row: &[f64], r: usize) {
+        let width = self.open.len();
+        debug_assert_eq!(row.len(), width, "row width");
+        // the slot of column r − kl − 1 (complete now) is that of column r + ku (opened now)
+        let last = (r + width - 1) % width;
+        self.closed_max = self.closed_max.max(self.open[last]);
+        self.open[last] = 0.0;
+        for (m, v) in row.iter().enumerate() {
+            let slot = (r + m) % width;
+            self.open[slot] += v.abs();
+        }
+    }
+
+    fn norm1(&self) -> f64 {
+        self.open.iter().fold(self.closed_max, |m, v| m.max(*v))
     }
 }
 
@@ -604,6 +994,226 @@ mod tests {
         let mut rhs = vec![1.0, 2.0];
         let e = factor_rows(&rows, 1, 1, &mut rhs, 1, false).unwrap_err();
         assert!(matches!(e, Error::IllConditioned { .. }), "{e:?}");
+    }
+
+    /// Dense `n × n` matrix of banded rows `(first column, values)`, row-major.
+    fn dense(rows: &[(usize, Vec<f64>)]) -> Vec<f64> {
+        let n = rows.len();
+        let mut a = vec![0.0; n * n];
+        for (r, (c0, vals)) in rows.iter().enumerate() {
+            for (t, v) in vals.iter().enumerate() {
+                a[r * n + c0 + t] = *v;
+            }
+        }
+        a
+    }
+
+    /// Exact (to rounding) `κ_1 = ‖A‖_1·‖A⁻¹‖_1` of a dense matrix: the inverse by Gauss–Jordan
+    /// elimination with partial pivoting (test-only reference, O(n³)).
+    fn dense_kappa1(a: &[f64], n: usize) -> f64 {
+        let col_norm = |m: &[f64]| {
+            (0..n)
+                .map(|c| (0..n).map(|r| m[r * n + c].abs()).sum::<f64>())
+                .fold(0.0_f64, f64::max)
+        };
+        let mut inv = vec![0.0; n * n];
+        for c in 0..n {
+            // column c of A⁻¹: solve A·x = e_c with the pivoting dense solver
+            let mut m = a.to_vec();
+            let mut e = vec![0.0; n];
+            e[c] = 1.0;
+            solve_dense(&mut m, &mut e, n, 1).unwrap();
+            for r in 0..n {
+                inv[r * n + c] = e[r];
+            }
+        }
+        col_norm(a) * col_norm(&inv)
+    }
+
+    fn estimate(rows: &[(usize, Vec<f64>)], kl: usize, ku: usize) -> Result<f64> {
+        let mut lu = BandedCrout::new_estimating(rows.len(), kl, ku);
+        let mut buf = vec![0.0; lu.width()];
+        let mut rhs = vec![0.0; rows.len()];
+        for (r, (c0, vals)) in rows.iter().enumerate() {
+            buf.fill(0.0);
+            for (t, v) in vals.iter().enumerate() {
+                buf[c0 + t + kl - r] = *v;
+            }
+            lu.push_row(&mut buf, &mut rhs, 1, 0.0)?;
+        }
+        Ok(lu.condition_estimate().unwrap())
+    }
+
+    /// Banded rows with `kl`, `ku` from row-major band values `band[r][0..kl+1+ku]`.
+    fn band_rows(band: &[Vec<f64>], kl: usize) -> Vec<(usize, Vec<f64>)> {
+        let n = band.len();
+        band.iter()
+            .enumerate()
+            .map(|(r, b)| {
+                let c0 = r.saturating_sub(kl);
+                let skip = c0 + kl - r;
+                let end = (b.len()).min(n + kl - r);
+                (c0, b[skip..end].to_vec())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn single_vector_and_transposed_solves_match_the_dense_matrix() {
+        // nonsymmetric; band widths with fixed kernels and without (generic loops)
+        let n = 9;
+        for (kl, ku) in [(2, 1), (1, 1), (2, 2), (3, 2), (0, 2), (4, 4), (1, 0)] {
+            let band: Vec<Vec<f64>> = (0..n)
+                .map(|r| {
+                    let x = r as f64;
+                    (0..kl + 1 + ku)
+                        .map(|m| {
+                            if m == kl {
+                                6.0 + x.cos()
+                            } else {
+                                (x * 0.7 + m as f64).sin()
+                            }
+                        })
+                        .collect()
+                })
+                .collect();
+            let rows = band_rows(&band, kl);
+            let a = dense(&rows);
+            let mut rhs = vec![0.0; n];
+            let lu = factor_rows(&rows, kl, ku, &mut rhs, 1, true).unwrap();
+            let x_true: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64 * 0.7).cos()).collect();
+            // b = A·x and c = Aᵀ·x
+            let (mut b, mut c) = (vec![0.0; n], vec![0.0; n]);
+            for r in 0..n {
+                for col in 0..n {
+                    b[r] += a[r * n + col] * x_true[col];
+                    c[col] += a[r * n + col] * x_true[r];
+                }
+            }
+            lu.solve_vector(&mut b);
+            lu.solve_transposed(&mut c);
+            for i in 0..n {
+                assert!(
+                    (b[i] - x_true[i]).abs() < 1e-14,
+                    "({kl}, {ku}) A: x[{i}] = {}",
+                    b[i]
+                );
+                assert!(
+                    (c[i] - x_true[i]).abs() < 1e-14,
+                    "({kl}, {ku}) Aᵀ: x[{i}] = {}",
+                    c[i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn condition_estimate_of_the_second_difference_matrix_is_exact() {
+        // T = tridiag(−1, 2, −1): (T⁻¹)_ij = min(i,j)·(n+1−max(i,j))/(n+1) (1-based), so
+        // ‖T‖_1 = 4 and ‖T⁻¹‖_1 = max_j j·(n+1−j)/2: κ_1 = 2·⌊(n+1)/2⌋·⌈(n+1)/2⌉ ~ n²/2
+        for n in [3usize, 4, 10, 31, 100] {
+            let rows: Vec<(usize, Vec<f64>)> = (0..n)
+                .map(|r| match r {
+                    0 => (0, vec![2.0, -1.0]),
+                    r if r == n - 1 => (r - 1, vec![-1.0, 2.0]),
+                    r => (r - 1, vec![-1.0, 2.0, -1.0]),
+                })
+                .collect();
+            let half = n.div_ceil(2);
+            let closed = 2.0 * (half * (n + 1 - half)) as f64;
+            let exact = dense_kappa1(&dense(&rows), n);
+            assert!(
+                (exact - closed).abs() <= 1e-12 * closed,
+                "dense {exact} vs {closed}"
+            );
+            let est = estimate(&rows, 1, 1).unwrap();
+            assert!(
+                est >= exact / 3.0 && est <= exact * (1.0 + 1e-12),
+                "n {n}: estimate {est}, exact {exact}"
+            );
+        }
+    }
+
+    #[test]
+    fn condition_estimate_of_small_systems() {
+        // 1 × 1: κ = 1; 0 rows: 1 by convention; identity: 1
+        assert_eq!(estimate(&[(0, vec![-3.0])], 0, 0).unwrap(), 1.0);
+        assert_eq!(estimate(&[], 1, 1).unwrap(), 1.0);
+        let eye: Vec<(usize, Vec<f64>)> = (0..5).map(|r| (r, vec![1.0])).collect();
+        assert_eq!(estimate(&eye, 2, 2).unwrap(), 1.0);
+        // without the estimating constructor there is no estimate
+        let lu = BandedCrout::new(3, 1, 1, true);
+        assert!(lu.condition_estimate().is_none());
+    }
+
+    #[test]
+    fn condition_estimate_of_a_nearly_singular_collocation_pair() {
+        // two rows that differ by 1e-10: κ_1 ≈ 2e10, which the estimate finds
+        let rows = vec![
+            (0, vec![1.0, 0.0, 0.0]),
+            (0, vec![0.25, 0.5, 0.25]),
+            (0, vec![0.25, 0.5 + 1e-10, 0.25 - 1e-10]),
+        ];
+        let exact = dense_kappa1(&dense(&rows), 3);
+        let est = estimate(&rows, 2, 2).unwrap();
+        assert!(exact > 1e10, "{exact}");
+        assert!(
+            est >= exact / 3.0 && est <= exact * (1.0 + 1e-5),
+            "{est} vs {exact}"
+        );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// Random banded matrices, diagonally dominant by a random factor (so that elimination
+        /// without pivoting applies and κ_1 is moderate): the estimate is within the factor
+        /// 3 of the dense κ_1 and never above it.
+        #[test]
+        fn condition_estimate_matches_dense_kappa(
+            kl in 0usize..4,
+            ku in 0usize..4,
+            band in proptest::collection::vec(
+                (proptest::collection::vec(-1.0_f64..1.0, 7), 1.01_f64..3.0, proptest::bool::ANY),
+                1..25,
+            ),
+        ) {
+            let band: Vec<Vec<f64>> = band
+                .iter()
+                .map(|(v, dom, neg)| {
+                    let mut b: Vec<f64> = v[3 - kl..4 + ku].to_vec();
+                    let off: f64 = b.iter().map(|x| x.abs()).sum::<f64>() - b[kl].abs();
+                    let d = dom * off.max(0.1);
+                    b[kl] = if *neg { -d } else { d };
+                    b
+                })
+                .collect();
+            let n = band.len();
+            let rows = band_rows(&band, kl);
+            let a = dense(&rows);
+            let exact = dense_kappa1(&a, n);
+            let est = estimate(&rows, kl, ku).unwrap();
+            // ‖A‖_1 from the ring of open column sums: the same sums as the dense ones
+            let mut lu = BandedCrout::new_estimating(n, kl, ku);
+            let mut rhs = vec![0.0; n];
+            for (r, b) in band.iter().enumerate() {
+                let mut row: Vec<f64> = b.clone();
+                for (m, v) in row.iter_mut().enumerate() {
+                    if r + m < kl || r + m >= n + kl {
+                        *v = 0.0;
+                    }
+                }
+                lu.push_row(&mut row, &mut rhs, 1, 0.0).unwrap();
+            }
+            let dense_norm = (0..n)
+                .map(|c| (0..n).map(|r| a[r * n + c].abs()).sum::<f64>())
+                .fold(0.0_f64, f64::max);
+            proptest::prop_assert_eq!(lu.norm1(), Some(dense_norm));
+            proptest::prop_assert!(
+                est >= exact / 3.0 && est <= exact * (1.0 + 1e-12),
+                "estimate {} vs exact {}", est, exact
+            );
+        }
     }
 
     #[test]
