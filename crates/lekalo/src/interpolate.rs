@@ -440,7 +440,7 @@ impl CurveInterpolation {
             });
         }
         let dim = points.dim();
-        match (&self.end, self.knots) {
+        let curve = match (&self.end, self.knots) {
             (EndCondition::Free, KnotPlacement::Auto | KnotPlacement::Averaged) => {
                 let kv = KnotVector::averaged(params, p)?;
                 if p == 3 && kappa.is_none() {
@@ -532,8 +532,64 @@ impl CurveInterpolation {
                 "at-the-parameters",
                 "free (use first or second derivatives, or averaged knots)",
             )),
+        }?;
+        // the fused cubic (averaged knots, returned above) needs no check: its rows satisfy the
+        // Schoenberg–Whitney condition with margin and its growth is bounded
+        check_residual(&curve, points, params)?;
+        Ok(curve)
+    }
+}
+
+/// Largest accepted distance of an interpolant from its data, relative to the data's extent
+/// (`max_k ‖q_k − q_0‖_∞`), on top of the rounding of evaluating in absolute coordinates
+/// (`64 (p+1) ε max|q|`). A backward-stable banded solve of a well-posed collocation system
+/// stays near `1e-15`; a curve that misses its data by more than this is refused as
+/// [`Error::IllConditioned`] rather than returned.
+pub const INTERPOLATION_RESIDUAL_RTOL: f64 = 1e-9;
+
+/// The a-posteriori check of the general path: evaluates `curve` at the data parameters
+/// (the fast evaluator, O(n·p²·dim) to build, a few ns a point) and refuses a result that misses
+/// a data point by more than [`INTERPOLATION_RESIDUAL_RTOL`] times the data's extent. Catches
+/// what the pivot checks cannot: elimination without pivoting on a system whose
+/// Schoenberg–Whitney condition holds only barely (e.g. uniform knots under clustered
+/// chord-length parameters) can lose every digit with pivots and growth that look harmless.
+fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -> Result<()> {
+    let dim = points.dim();
+    let n = points.len();
+    let q0 = points.point(0);
+    let extent = (0..n)
+        .flat_map(|k| points.point(k).iter().zip(q0).map(|(a, b)| (a - b).abs()))
+        .fold(0.0_f64, f64::max);
+    let magnitude = points
+        .as_slice()
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let mut at = vec![0.0; n * dim];
+    curve.evaluator().eval_batch(&params[..n], &mut at)?;
+    // plus the rounding of an evaluation in absolute coordinates (data offset far from 0)
+    let rounding = 64.0 * (curve.degree() + 1) as f64 * f64::EPSILON * magnitude;
+    let tolerance = INTERPOLATION_RESIDUAL_RTOL * extent + rounding;
+    for (k, c) in at.chunks_exact(dim).enumerate() {
+        let miss = c
+            .iter()
+            .zip(points.point(k))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0_f64, f64::max);
+        // NaN fails the comparison too
+        if !(miss <= tolerance) {
+            return Err(Error::IllConditioned {
+                reason: format!(
+                    "the computed curve misses data point {k} by {miss:e} ({:e} of the data's \
+                     extent {extent:e}; at most {INTERPOLATION_RESIDUAL_RTOL:e} is accepted): the \
+                     collocation system is too ill-conditioned to solve in floating point; use \
+                     averaged knots (KnotPlacement::Averaged), centripetal or uniform \
+                     parameters, or fewer points",
+                    miss / extent
+                ),
+            });
         }
     }
+    Ok(())
 }
 
 #[cold]

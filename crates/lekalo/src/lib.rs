@@ -84,7 +84,7 @@ pub use hermite::{
 };
 pub use interpolate::{
     natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
-    Parametrization,
+    Parametrization, INTERPOLATION_RESIDUAL_RTOL,
 };
 pub use interpolate_fast::InterpolationWorkspace;
 pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};

@@ -399,3 +399,49 @@ proptest! {
         );
     }
 }
+
+/// `n` points of a wobbly 3-D helix, unevenly spaced (as the interpolation benchmark's).
+fn helix(n: usize) -> Points {
+    let mut data = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        let s = i as f64 * 0.01;
+        let w = s + 0.003 * (7.0 * s).sin();
+        data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
+    }
+    Points::new(data, 3).unwrap()
+}
+
+#[test]
+fn uniform_knots_on_chord_parameters_are_never_silently_wrong() {
+    // Uniform knots ignore where the chord-length parameters fall: on this helix the
+    // collocation matrix's κ_1 grows from 43 at 20 points to 1e17 at 100 and 1e43 at 200.
+    // Whatever the size, the result either interpolates or is an error.
+    for n in [20, 50, 100, 200, 1000, 3000] {
+        let q = helix(n);
+        let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
+        let got = CurveInterpolation::new(3)
+            .knot_placement(KnotPlacement::Uniform)
+            .interpolate(q.as_view());
+        match got {
+            Ok(curve) => {
+                let r = relative_residual(&curve, q.as_view(), &t);
+                assert!(r <= REL, "n = {n}: Ok with residual {r:e}");
+            }
+            Err(e) => {
+                assert!(
+                    matches!(
+                        e,
+                        Error::IllConditioned { .. } | Error::SingularSystem { .. }
+                    ),
+                    "n = {n}: {e}"
+                );
+            }
+        }
+    }
+    // a case that used to come back as Ok, away from its data
+    let e = CurveInterpolation::new(3)
+        .knot_placement(KnotPlacement::Uniform)
+        .interpolate(helix(200).as_view())
+        .unwrap_err();
+    assert!(e.to_string().contains("misses data point"), "{e}");
+}
