@@ -570,13 +570,19 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
     let rounding = 64.0 * (curve.degree() + 1) as f64 * f64::EPSILON * magnitude;
     let tolerance = INTERPOLATION_RESIDUAL_RTOL * extent + rounding;
     for (k, c) in at.chunks_exact(dim).enumerate() {
+        // a NaN coordinate counts as an infinite miss (f64::max would skip it)
         let miss = c
             .iter()
             .zip(points.point(k))
-            .map(|(a, b)| (a - b).abs())
+            .map(|(a, b)| {
+                if a.is_nan() {
+                    f64::INFINITY
+                } else {
+                    (a - b).abs()
+                }
+            })
             .fold(0.0_f64, f64::max);
-        // NaN fails the comparison too
-        if !(miss <= tolerance) {
+        if miss > tolerance {
             return Err(Error::IllConditioned {
                 reason: format!(
                     "the computed curve misses data point {k} by {miss:e} ({:e} of the data's \
