@@ -203,3 +203,69 @@ fn bad_input_exit_code_2_names_the_problem() {
         .code(2)
         .stderr(contains("missing.csv"));
 }
+
+#[test]
+fn max_condition_refuses_crowded_points_and_passes_the_others() {
+    let d = tempfile::tempdir().unwrap();
+    // points 4 and 5 lie 1e-12 apart: κ_1 ≈ 3.5e12 with chord-length parameters
+    let crowded = d.path().join("crowded.txt");
+    let mut rows: Vec<String> = (0..10)
+        .map(|k| format!("{} {}", k, f64::from(k).sin()))
+        .collect();
+    rows.insert(5, format!("{} {}", 4.0 + 1e-12, 4.0_f64.sin()));
+    fs::write(&crowded, rows.join("\n")).unwrap();
+    let q = d.path().join("q.txt");
+    fs::write(&q, Q).unwrap();
+    lekalo()
+        .args([
+            "interpolate",
+            crowded.to_str().unwrap(),
+            "--max-condition",
+            "1e8",
+        ])
+        .assert()
+        .code(2)
+        .stderr(contains("condition number"))
+        .stderr(contains("max_condition"));
+    // without the limit the same data interpolate (the residual stays small)
+    lekalo()
+        .args(["interpolate", crowded.to_str().unwrap()])
+        .assert()
+        .success();
+    lekalo()
+        .args(["interpolate", q.to_str().unwrap(), "--max-condition", "1e8"])
+        .assert()
+        .success();
+    let grid = d.path().join("grid.txt");
+    let g: Vec<String> = (0..4)
+        .flat_map(|i| (0..4).map(move |j| format!("{i} {j} {}", (i * j) % 3)))
+        .collect();
+    fs::write(&grid, g.join("\n")).unwrap();
+    lekalo()
+        .args([
+            "interpolate",
+            grid.to_str().unwrap(),
+            "--grid",
+            "4x4",
+            "--max-condition",
+            "1e8",
+        ])
+        .assert()
+        .success();
+    lekalo()
+        .args([
+            "interpolate",
+            q.to_str().unwrap(),
+            "--function",
+            "--max-condition",
+            "1e8",
+        ])
+        .assert()
+        .code(2)
+        .stderr(contains("--max-condition applies"));
+    lekalo()
+        .args(["interpolate", q.to_str().unwrap(), "--max-condition", "0.5"])
+        .assert()
+        .code(2)
+        .stderr(contains("condition limit"));
+}
