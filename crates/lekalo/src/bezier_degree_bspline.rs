@@ -78,11 +78,12 @@ impl BSplineCurve {
             max: crate::MAX_DEGREE,
         })?;
         let plan = crate::ElevationPlan::new(p, q)?;
-        // knots of A5.9; a discontinuity (interior multiplicity p + 1) keeps the C0 join
+        // knots of A5.9: multiplicity m + r inside, so a discontinuity (m = p + 1) stays one
+        // (m + r = q + 1) and the blossoms of its two control points come from its two sides
         let mut knots = vec![a; q + 1];
         for (t, m) in self.knots().distinct() {
             if t > a && t < b {
-                knots.extend(std::iter::repeat_n(t, m.min(p) + by));
+                knots.extend(std::iter::repeat_n(t, m + by));
             }
         }
         knots.extend(std::iter::repeat_n(b, q + 1));
@@ -103,7 +104,16 @@ impl BSplineCurve {
                 next += 1;
             }
         }
-        debug_assert_eq!(next, segments.len(), "one piece per non-empty interval");
+        if next != segments.len() {
+            return Err(Error::InvalidArgument {
+                what: "curve to elevate",
+                reason: format!(
+                    "its {} Bezier pieces do not match the {next} knot intervals of the \
+                     elevated curve",
+                    segments.len()
+                ),
+            });
+        }
         let mut control = vec![0.0; n_ctrl * dim];
         let mut scratch = vec![0.0; width];
         for (i, out) in control.chunks_exact_mut(dim).enumerate() {

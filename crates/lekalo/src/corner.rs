@@ -284,6 +284,11 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
                 }
             }
         }
-        Ok(())
+        // curves near f64::MAX overflow in their derivatives or in q_2 − q_1 (found by the
+        // `blending` fuzz target)
+        crate::error::check_finite(
+            "corner transition derivatives (overflow: rescale the curves)",
+            out,
+        )
     }
 }

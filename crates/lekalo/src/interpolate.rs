@@ -560,6 +560,31 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
     let extent = (0..n)
         .flat_map(|k| points.point(k).iter().zip(q0).map(|(a, b)| (a - b).abs()))
         .fold(0.0_f64, f64::max);
+    if !extent.is_finite() {
+        return Err(Error::InvalidArgument {
+            what: "points",
+            reason: format!(
+                "coordinates differ from the first point by more than the largest f64 \
+                 ({extent:e}); the interpolant is computed from such differences: rescale the \
+                 data so that their span stays well below {:e}",
+                f64::MAX
+            ),
+        });
+    }
+    if let Some(i) = curve
+        .control_points()
+        .as_slice()
+        .iter()
+        .position(|v| !v.is_finite())
+    {
+        return Err(Error::IllConditioned {
+            reason: format!(
+                "control point coordinate {i} overflowed to {:e}: the data are too close to \
+                 the largest f64 for this interpolant; rescale them",
+                curve.control_points().as_slice()[i]
+            ),
+        });
+    }
     let magnitude = points
         .as_slice()
         .iter()

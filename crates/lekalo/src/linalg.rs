@@ -664,9 +664,9 @@ pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
 /// `q` holds the `n + 1` points (`D` coordinates each) and `knots` the `n + 5` averaged knots;
 /// `control` (`(n + 1)·D` numbers) holds on entry the parameter `t̄_r` of point `r` in
 /// `control[r·D]` (the other entries are ignored) and on return the control points
-/// (`P_0 = q_0`, `P_n = q_n`). Returns `false` when a row does not fit the band `kl = ku = 2`
-/// or a pivot or the growth fails the checks of [`BandedCrout`]: the caller then takes the
-/// general path, which reports the precise error.
+/// (`P_0 = q_0`, `P_n = q_n`). Returns `false` when a row does not fit the band `kl = ku = 2`,
+/// a pivot or the growth fails the checks of [`BandedCrout`], or a result overflows (data near
+/// the largest `f64`): the caller then takes the general path, which reports the precise error.
 ///
 /// The rows are built and eliminated as the parameters are swept; only the two previous rows
 /// of `U` and of the forward-solved right-hand side are live during the sweep (in registers).
@@ -787,6 +787,9 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     // back substitution x_r = y_r − U[r][0]·x_{r+1} − U[r][1]·x_{r+2}, x_n = x_{n+1} = 0 for
     // the unknowns (P_n was moved to the right-hand side), then P_r = x_r + q_0
     let (mut x1, mut x2) = ([0.0_f64; D], [0.0_f64; D]);
+    // data near the largest f64 can overflow in the centring or the solve: then decline, and
+    // the general path reports it
+    let mut finite = qn.iter().all(|v| v.is_finite());
     for r in (1..n).rev() {
         let u = upper[r];
         let row = &mut control[r * D..(r + 1) * D];
@@ -797,11 +800,12 @@ pub(crate) fn solve_free_cubic<const D: usize>(
             v -= u[1] * x2[k];
             x[k] = v;
             row[k] = v + q0[k];
+            finite &= row[k].is_finite();
         }
         (x2, x1) = (x1, x);
     }
     control[..D].copy_from_slice(&q0);
-    true
+    finite
 }
 
 #[cold]

@@ -430,3 +430,96 @@ fn deformation_that_overflows_is_reported() {
         "got {r:?} {out:?}"
     );
 }
+
+/// Fuzz target `degree` (crash-af0d9c0b…, session 2): elevating a degree-0 B-spline (a step
+/// function: every interior knot a discontinuity, multiplicity `p + 1`) dropped its interior
+/// knots and tripped a debug assertion in the blossoming elevation. Discontinuities of higher
+/// degrees (multiplicity `p + 1`) must stay discontinuities, with each side reproduced.
+#[test]
+fn elevating_discontinuous_bsplines_keeps_both_sides() {
+    let step = BSplineCurve::new(
+        0,
+        vec![0.0, 0.5, 1.0],
+        Points::new(vec![-1.5, 1e300], 1).expect("finite"),
+    )
+    .expect("valid step");
+    for by in [0, 1, 2] {
+        let e = step.elevate_degree(by).expect("elevation");
+        assert_eq!(e.degree(), by);
+        for t in [0.0, 0.25, 0.4999, 0.5, 0.75, 1.0] {
+            assert_eq!(
+                e.eval(t).expect("in domain"),
+                step.eval(t).expect("in domain"),
+                "t {t}"
+            );
+        }
+    }
+    assert!(step.change_degree(0).is_ok());
+    // a polyline with a jump at 1 (knot of multiplicity 2 = p + 1)
+    let jump = BSplineCurve::new(
+        1,
+        vec![0.0, 0.0, 1.0, 1.0, 2.0, 2.0],
+        Points::from_2d(&[[0.0, 0.0], [1.0, 1.0], [5.0, 5.0], [6.0, 4.0]]).expect("finite"),
+    )
+    .expect("valid polyline");
+    let e = jump.elevate_degree(2).expect("elevation");
+    assert_eq!(
+        e.knots().as_slice(),
+        &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0]
+    );
+    for t in [0.0, 0.3, 0.999, 1.0, 1.5, 2.0] {
+        let (a, b) = (
+            jump.eval(t).expect("in domain"),
+            e.eval(t).expect("in domain"),
+        );
+        assert!(
+            a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-14 * 6.0),
+            "t {t}: {a:?} vs {b:?}"
+        );
+    }
+}
+
+/// Fuzz target `interpolation` (crash-a6af776d…, session 2): 1-D data from −3e305 to `f64::MAX`
+/// (uniform parameters, degree 1, averaged knots). Centring on the first point overflowed, and
+/// the curve came back as `Ok` with control points `[.., 0, inf, ..]` (NaN between them).
+#[test]
+fn interpolation_of_data_spanning_beyond_f64_is_refused() {
+    let q =
+        Points::new(vec![-3.0417986395407823e305, 1e8, f64::MAX, 1e300, 0.25], 1).expect("finite");
+    for degree in [1, 2, 3] {
+        let r = lekalo::CurveInterpolation::new(degree)
+            .parametrization(lekalo::Parametrization::Uniform)
+            .knot_placement(lekalo::KnotPlacement::Averaged)
+            .interpolate(q.as_view());
+        assert!(
+            matches!(r, Err(Error::InvalidArgument { what: "points", .. })),
+            "degree {degree}: {r:?}"
+        );
+    }
+}
+
+/// Fuzz target `blending` (crash-c955576e…, session 2): a corner transition of a 1-D Bezier
+/// curve whose control points start at `f64::MAX` returned `[MAX, 0, NaN, NaN]` as `Ok` for the
+/// point and three derivatives (the second derivative of the curve overflows).
+#[test]
+fn corner_transition_that_overflows_is_reported() {
+    use lekalo::ParametricCurve;
+    let m = f64::MAX;
+    let tiny = f64::MIN_POSITIVE;
+    let before = BezierCurve::new(
+        Points::new(
+            vec![m, m, tiny, tiny, -2.0, -2.0, -2.0, 0.9999999999999999],
+            1,
+        )
+        .expect("finite"),
+    )
+    .expect("curve");
+    let after = BezierCurve::new(Points::new(vec![-2.0], 1).expect("finite")).expect("curve");
+    let c = lekalo::CornerTransition::new(&before, tiny, &after, tiny, 5).expect("corner");
+    let mut out = [0.0; 4];
+    let r = c.eval_derivatives_into(c.domain().0, 3, &mut out);
+    assert!(
+        matches!(r, Err(Error::NonFinite { .. })),
+        "got {r:?} {out:?}"
+    );
+}
