@@ -1048,6 +1048,17 @@ fn second_derivative_ends(
     ))
 }
 
+#[cold]
+fn unresolved_parameters(row: usize, t: f64) -> Error {
+    Error::SingularSystem {
+        reason: format!(
+            "parameter {t:e} of row {row} lies too close to its knots to resolve in floating \
+             point (spacing near the smallest normal f64); rescale the data or drop points that \
+             are negligibly close to their neighbours"
+        ),
+    }
+}
+
 fn sw_failure(row: usize, t: f64) -> Error {
     Error::SingularSystem {
         reason: format!(
@@ -1119,7 +1130,15 @@ pub(crate) fn solve_collocation(
                         *y -= v * xi;
                     }
                 }
-                None => row[kl + (i - first) - r] = v,
+                // band_widths placed every value the exact basis can make non-zero; a value
+                // outside comes from knots too close to resolve (subnormal spacing)
+                None => match (kl + (i - first))
+                    .checked_sub(r)
+                    .and_then(|c| row.get_mut(c))
+                {
+                    Some(x) => *x = v,
+                    None => return Err(unresolved_parameters(r, t)),
+                },
             }
         }
         lu.push_row(&mut row, block, dim, 1.0)?;

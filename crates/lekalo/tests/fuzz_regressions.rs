@@ -523,3 +523,30 @@ fn corner_transition_that_overflows_is_reported() {
         "got {r:?} {out:?}"
     );
 }
+
+/// Fuzz target `interpolation` (crash-7fbdc617…, session 2): chord-length parameters of
+/// `[2.2e-308, -1.5, -2, f64::MAX]` are subnormal (`1.5 / f64::MAX`); the rounded Cox–de Boor
+/// values put a non-zero outside the band the exact basis allows, and the collocation solve
+/// indexed past its row buffer.
+#[test]
+fn interpolation_with_subnormal_parameter_spacing_is_an_error() {
+    let q = Points::new(vec![f64::MIN_POSITIVE, -1.5, -2.0, f64::MAX], 1).expect("finite");
+    for placement in [
+        lekalo::KnotPlacement::Averaged,
+        lekalo::KnotPlacement::Uniform,
+    ] {
+        for degree in [1, 2] {
+            let r = lekalo::CurveInterpolation::new(degree)
+                .knot_placement(placement)
+                .interpolate(q.as_view());
+            if let Ok(c) = &r {
+                // an accepted curve passes the residual check: finite and through the data
+                assert!(c.control_points().as_slice().iter().all(|v| v.is_finite()));
+            }
+        }
+    }
+    let r = lekalo::CurveInterpolation::new(1)
+        .knot_placement(lekalo::KnotPlacement::Averaged)
+        .interpolate(q.as_view());
+    assert!(r.is_err(), "{r:?}");
+}
