@@ -705,7 +705,7 @@ impl BlendSpline {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] if `i` is not a segment; [`Error::ParameterOutOfDomain`];
-    /// [`Error::TooLarge`] for an order above
+    /// [`Error::NonFinite`] if a derivative overflows; [`Error::TooLarge`] for an order above
     /// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER).
     pub fn segment_derivatives(&self, i: usize, u: f64, order: usize) -> Result<Points> {
         crate::blend::check_order(order)?;
@@ -720,6 +720,12 @@ impl BlendSpline {
             scale /= delta;
             d.point_mut(l).iter_mut().for_each(|x| *x *= scale);
         }
+        // Δ_i^{−l} overflows for a tiny segment and a high order (found by the `blending`
+        // fuzz target): an error, never inf·0 = NaN inside an Ok
+        crate::error::check_finite(
+            "blend spline derivatives (overflow: the segment is too short for this order)",
+            d.as_slice(),
+        )?;
         Ok(d)
     }
 

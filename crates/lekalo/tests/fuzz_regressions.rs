@@ -550,3 +550,57 @@ fn interpolation_with_subnormal_parameter_spacing_is_an_error() {
         .interpolate(q.as_view());
     assert!(r.is_err(), "{r:?}");
 }
+
+/// Fuzz target `blending` (crash-aaedb770…, session 2): a closed blend spline of circular arcs
+/// with a segment of length ~1e-13 (points 1e-127 apart, centripetal parameters); its 8th
+/// derivative scale `Δ^{−8}` overflowed and `inf · 0` came back as NaN inside an `Ok`.
+#[test]
+fn blend_spline_derivatives_that_overflow_are_reported() {
+    use lekalo::{
+        ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, ParametricCurve,
+        SplineParameters,
+    };
+    let q = Points::new(
+        vec![
+            -2.4983353906818427e-127,
+            -2.4983353906949635e-127,
+            -2.4983800935480445e-127,
+            1.5,
+            0.9999999999999999,
+            0.5,
+            1e8,
+        ],
+        1,
+    )
+    .expect("finite");
+    let arcs = CircularArcs {
+        parametrization: ArcParametrization::UniformAngle,
+    };
+    let options = BlendSplineOptions {
+        continuity: 8,
+        closed: true,
+        parameters: SplineParameters::Centripetal,
+    };
+    let s = BlendSpline::new(q.as_view(), &arcs, options).expect("blend spline");
+    let (a, b) = s.domain();
+    let mut out = vec![0.0; 9];
+    let mut errors = 0;
+    for t in [
+        a,
+        b,
+        0.5 * (a + b),
+        a + 0.25 * (b - a),
+        b - 1e-3 * (b - a),
+        0.9999999999999999,
+    ] {
+        for order in [0, 1, 8] {
+            let n = order + 1;
+            match s.eval_derivatives_into(t, order, &mut out[..n]) {
+                Ok(()) => assert!(out[..n].iter().all(|v| !v.is_nan()), "t {t}: {out:?}"),
+                Err(Error::NonFinite { .. }) => errors += 1,
+                Err(e) => assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e}"),
+            }
+        }
+    }
+    assert!(errors > 0, "the overflow is reported as NonFinite");
+}
