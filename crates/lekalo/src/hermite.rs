@@ -304,7 +304,8 @@ impl CubicHermite {
     /// (`[t_k, t_{k+1})`, the last one closed). O(log n + dim).
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] outside `[t_0, t_n]` or for NaN.
+    /// [`Error::ParameterOutOfDomain`] outside `[t_0, t_n]` or for NaN; [`Error::NonFinite`] if
+    /// the point overflows (data and tangents near `f64::MAX`).
     pub fn eval(&self, t: f64) -> Result<Vec<f64>> {
         let (min, max) = self.domain();
         if !(t >= min && t <= max) {
@@ -321,9 +322,13 @@ impl CubicHermite {
         let h11 = (u3 - u2) * h;
         let (p0, p1) = (self.points.point(k), self.points.point(k + 1));
         let (d0, d1) = (self.tangents.point(k), self.tangents.point(k + 1));
-        Ok((0..self.points.dim())
+        let p: Vec<f64> = (0..self.points.dim())
             .map(|i| h00 * p0[i] + h01 * p1[i] + h10 * d0[i] + h11 * d1[i])
-            .collect())
+            .collect();
+        // h·D overflows for tangents and segments near f64::MAX (found by the `interpolation`
+        // fuzz target): an error, never NaN inside an Ok
+        crate::error::check_finite("Hermite curve point (overflow: rescale the data)", &p)?;
+        Ok(p)
     }
 
     /// Bezier control points of segment `k` on `[0, 1]`: `p_k`, `p_k + h D_k/3`,

@@ -604,3 +604,40 @@ fn blend_spline_derivatives_that_overflow_are_reported() {
     }
     assert!(errors > 0, "the overflow is reported as NonFinite");
 }
+
+/// Fuzz target `interpolation` (crash-b6a8a44b…, session 2, third run): Hermite curves through
+/// `[MIN_POSITIVE, 1e300, f64::MAX]` on parameters `[−2, −1.75, f64::MAX]` (tangents as large as
+/// the points): `h·D` overflows and `CubicHermite::eval` returned NaN inside an `Ok`.
+#[test]
+fn hermite_evaluation_that_overflows_is_reported() {
+    use lekalo::{CubicHermite, Parametrization, TangentEstimate};
+    let q = Points::new(vec![f64::MIN_POSITIVE, 1e300, f64::MAX], 1).expect("finite");
+    let params = vec![-2.0, -1.75, f64::MAX];
+    let candidates = [
+        CubicHermite::from_points(
+            q.as_view(),
+            Parametrization::Uniform,
+            TangentEstimate::CatmullRom,
+        ),
+        CubicHermite::function(&params, q.as_view(), TangentEstimate::CatmullRom),
+        CubicHermite::new(params.clone(), q.clone(), q.clone()),
+    ];
+    let mut overflow = 0;
+    for h in candidates.into_iter().flatten() {
+        let (a, b) = h.domain();
+        for t in [
+            a,
+            b,
+            0.5 * a + 0.5 * b,
+            a + 0.25 * (b - a),
+            b - 1e-3 * (b - a),
+        ] {
+            match h.eval(t) {
+                Ok(p) => assert!(p.iter().all(|v| !v.is_nan()), "t {t}: {p:?}"),
+                Err(Error::NonFinite { .. }) => overflow += 1,
+                Err(e) => panic!("t {t}: {e}"),
+            }
+        }
+    }
+    assert!(overflow > 0, "the overflow is reported as NonFinite");
+}
