@@ -333,6 +333,17 @@ fn surface(
         lu.solve(block, dim);
     }
     add_reference(&mut control, &reference);
+    // data near the largest f64 overflow in the centring or the solves (found by the
+    // `interpolation` fuzz target): an error, never a NaN control net inside an Ok
+    if let Some(i) = control.iter().position(|v| !v.is_finite()) {
+        return Err(Error::IllConditioned {
+            reason: format!(
+                "control net coordinate {i} overflowed to {:e}: the grid's coordinates are too \
+                 close to the largest f64 (or differ by more than it); rescale the data",
+                control[i]
+            ),
+        });
+    }
     Ok(SurfaceInterpolant {
         degree_u,
         degree_v,

@@ -641,3 +641,19 @@ fn hermite_evaluation_that_overflows_is_reported() {
     }
     assert!(overflow > 0, "the overflow is reported as NonFinite");
 }
+
+/// Fuzz target `interpolation` (crash-4aba54b3…, session 2, fourth run): an 8 × 7 grid of 1-D values,
+/// mostly `1 − ε/2`, with `f64::MAX`, −6e66 and 1e300 among them (uniform parameters, degrees
+/// 7 and 3): `interpolate_surface` returned a control net full of NaN inside an `Ok`.
+#[test]
+fn surface_interpolation_that_overflows_is_reported() {
+    let mut values = vec![0.9999999999999999; 56];
+    values[..3].copy_from_slice(&[-2.0, f64::MAX, 0.0]);
+    values[18] = 1.0000000000000002;
+    values[30] = -6.27743856100529e66;
+    values[49..].copy_from_slice(&[0.0, 1e300, -2.0, -1.5, 1e8, 1e8, 1e8]);
+    let grid = Points::new(values, 1).expect("finite");
+    let r =
+        lekalo::interpolate_surface(grid.as_view(), 8, 7, 7, 3, lekalo::Parametrization::Uniform);
+    assert!(matches!(r, Err(Error::IllConditioned { .. })), "{r:?}");
+}
