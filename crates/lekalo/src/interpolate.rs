@@ -542,7 +542,9 @@ impl CurveInterpolation {
 
 /// Largest accepted distance of an interpolant from its data, relative to the data's extent
 /// (`max_k ‖q_k − q_0‖_∞`), on top of the rounding of evaluating in absolute coordinates
-/// (`64 (p+1) ε max|q|`). A backward-stable banded solve of a well-posed collocation system
+/// (`64 (p+1) ε max|q|`). Control points far larger than the data (from an ill-conditioned
+/// system, or from end derivatives far larger than the data's scale) cancel in every
+/// evaluation and can break this bound: such results are refused too. A backward-stable banded solve of a well-posed collocation system
 /// stays near `1e-15`; a curve that misses its data by more than this is refused as
 /// [`Error::IllConditioned`] rather than returned.
 pub const INTERPOLATION_RESIDUAL_RTOL: f64 = 1e-9;
@@ -611,11 +613,14 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
             return Err(Error::IllConditioned {
                 reason: format!(
                     "the computed curve misses data point {k} by {miss:e} ({:e} of the data's \
-                     extent {extent:e}; at most {INTERPOLATION_RESIDUAL_RTOL:e} is accepted): the \
-                     collocation system is too ill-conditioned to solve in floating point; use \
-                     averaged knots (KnotPlacement::Averaged), centripetal or uniform \
-                     parameters, or fewer points",
-                    miss / extent
+                     extent {extent:e}; at most {INTERPOLATION_RESIDUAL_RTOL:e} is accepted); \
+                     its control points reach {:e}, and evaluations cancel them: the \
+                     collocation system is too ill-conditioned, or the end derivatives are far \
+                     larger than the data's scale; use averaged knots \
+                     (KnotPlacement::Averaged), centripetal or uniform parameters, fewer points \
+                     or smaller end derivatives",
+                    miss / extent,
+                    curve.control_points().max_abs()
                 ),
             });
         }

@@ -415,7 +415,9 @@ fn helix(n: usize) -> Points {
 fn uniform_knots_on_chord_parameters_are_never_silently_wrong() {
     // Uniform knots ignore where the chord-length parameters fall: on this helix the
     // collocation matrix's κ_1 grows from 43 at 20 points to 1e17 at 100 and 1e43 at 200.
-    // Whatever the size, the result either interpolates or is an error.
+    // Whatever the size, the result either passes within the documented residual bound
+    // (INTERPOLATION_RESIDUAL_RTOL of the extent plus the evaluation's rounding) or is an error.
+    let mut refused = Vec::new();
     for n in [20, 50, 100, 200, 1000, 3000] {
         let q = helix(n);
         let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
@@ -424,8 +426,12 @@ fn uniform_knots_on_chord_parameters_are_never_silently_wrong() {
             .interpolate(q.as_view());
         match got {
             Ok(curve) => {
+                // relative_residual divides by the largest |coordinate| (about the extent here)
                 let r = relative_residual(&curve, q.as_view(), &t);
-                assert!(r <= REL, "n = {n}: Ok with residual {r:e}");
+                assert!(
+                    r <= 2.0 * lekalo::INTERPOLATION_RESIDUAL_RTOL,
+                    "n = {n}: Ok with residual {r:e}"
+                );
             }
             Err(e) => {
                 assert!(
@@ -435,13 +441,49 @@ fn uniform_knots_on_chord_parameters_are_never_silently_wrong() {
                     ),
                     "n = {n}: {e}"
                 );
+                refused.push(n);
             }
         }
     }
-    // a case that used to come back as Ok, away from its data
+    // 200 and 1000 points used to come back as Ok, up to 1e21 away from the data
+    assert!(
+        refused.contains(&200) && refused.contains(&1000),
+        "refused: {refused:?}"
+    );
     let e = CurveInterpolation::new(3)
         .knot_placement(KnotPlacement::Uniform)
-        .interpolate(helix(200).as_view())
+        .interpolate(helix(1000).as_view())
         .unwrap_err();
     assert!(e.to_string().contains("misses data point"), "{e}");
+}
+
+#[test]
+fn end_derivatives_far_beyond_the_data_scale_are_refused_not_returned_off_the_data() {
+    // end derivatives up to 1e6 on data of size 4 interpolate within the bound; 1e12 makes
+    // control points of 1e11 whose evaluations cancel to a miss of 7e-7: refused, with the
+    // control points' size in the message
+    let q = Points::from_2d(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.5], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+    let first = |d: f64| EndCondition::FirstDerivatives {
+        start: vec![d, 0.0],
+        end: vec![0.0, d],
+    };
+    let second = |d: f64| EndCondition::SecondDerivatives {
+        start: vec![d, 0.0],
+        end: vec![0.0, d],
+    };
+    for d in [1.0, 1e3, 1e6] {
+        for end in [first(d), second(d)] {
+            let c = CurveInterpolation::new(3)
+                .end_condition(end)
+                .interpolate(q.as_view());
+            assert!(c.is_ok(), "d = {d:e}: {c:?}");
+        }
+    }
+    let e = CurveInterpolation::new(3)
+        .end_condition(first(1e12))
+        .interpolate(q.as_view())
+        .unwrap_err();
+    assert!(matches!(e, Error::IllConditioned { .. }), "{e}");
+    assert!(e.to_string().contains("control points reach"), "{e}");
+    assert!(e.to_string().contains("end derivatives"), "{e}");
 }
