@@ -135,13 +135,7 @@ pub fn interpolate_surface_max_condition(
             ),
         });
     }
-    let grid = Grid {
-        points: grid,
-        nu,
-        nv,
-    };
-    let mut kappa = 1.0;
-    let s = surface(grid, degree_u, degree_v, parametrization, Some(&mut kappa))?;
+    let (s, kappa) = surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization)?;
     if kappa > max_condition {
         return Err(condition_exceeded(kappa, max_condition));
     }
@@ -177,14 +171,23 @@ pub fn interpolate_surface_condition(
     degree_v: usize,
     parametrization: Parametrization,
 ) -> Result<f64> {
-    let grid = Grid {
-        points: grid,
-        nu,
-        nv,
-    };
+    surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization).map(|(_, k)| k)
+}
+
+/// The interpolant and the estimate of `κ_1` of its system (see
+/// [`interpolate_surface_condition`]).
+fn surface_estimating(
+    points: PointsRef<'_>,
+    nu: usize,
+    nv: usize,
+    degree_u: usize,
+    degree_v: usize,
+    parametrization: Parametrization,
+) -> Result<(SurfaceInterpolant, f64)> {
+    let grid = Grid { points, nu, nv };
     let mut kappa = 1.0;
-    surface(grid, degree_u, degree_v, parametrization, Some(&mut kappa))?;
-    Ok(kappa)
+    let s = surface(grid, degree_u, degree_v, parametrization, Some(&mut kappa))?;
+    Ok((s, kappa))
 }
 
 #[cold]
