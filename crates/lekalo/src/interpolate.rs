@@ -886,9 +886,25 @@ fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &
 }
 
 pub(crate) fn add_reference(control: &mut [f64], reference: &[f64]) {
-    for c in control.chunks_exact_mut(reference.len()) {
-        for (ci, ri) in c.iter_mut().zip(reference) {
-            *ci += ri;
+    /// The loop for a dimension known at compile time (the reference in registers).
+    fn fixed<const D: usize>(control: &mut [f64], reference: &[f64]) {
+        let mut r = [0.0; D];
+        r.copy_from_slice(reference);
+        for c in control.chunks_exact_mut(D) {
+            for k in 0..D {
+                c[k] += r[k];
+            }
+        }
+    }
+    match reference.len() {
+        2 => fixed::<2>(control, reference),
+        3 => fixed::<3>(control, reference),
+        _ => {
+            for c in control.chunks_exact_mut(reference.len()) {
+                for (ci, ri) in c.iter_mut().zip(reference) {
+                    *ci += ri;
+                }
+            }
         }
     }
 }

@@ -277,7 +277,11 @@ fn surface(
             *a += b;
         }
     }
-    for k in 0..nu {
+    let fast_v = e == 1.0 && chord_params_v(data, nu, nv, dim, &mut params_v, &mut tmp[..nv]);
+    if !fast_v {
+        params_v.fill(0.0);
+    }
+    for k in (0..nu).filter(|_| !fast_v) {
         parametrize_into(
             nv - 1,
             |l| pt(k, l),
@@ -374,6 +378,8 @@ fn chord_params_u(data: &[f64], nu: usize, nv: usize, dim: usize, params_u: &mut
             .zip(data.chunks_exact(row_len).skip(1))
     };
     let mut total = vec![0.0_f64; nv];
+    // the distances of the first pass, reused by the second (the same numbers)
+    let mut dist = Vec::with_capacity((nu - 1) * nv);
     for (a, b) in pairs() {
         for ((s, p), q) in total
             .iter_mut()
@@ -385,6 +391,7 @@ fn chord_params_u(data: &[f64], nu: usize, nv: usize, dim: usize, params_u: &mut
                 return false;
             }
             *s += d;
+            dist.push(d);
         }
     }
     if !total.iter().all(|s| s.is_finite()) {
@@ -394,16 +401,67 @@ fn chord_params_u(data: &[f64], nu: usize, nv: usize, dim: usize, params_u: &mut
     // running sums and the previous parameter of each column
     let mut acc = vec![0.0_f64; nv];
     let mut prev = vec![0.0_f64; nv];
-    for (k, (a, b)) in pairs().enumerate().map(|(i, ab)| (i + 1, ab)) {
+    for (k, row) in dist.chunks_exact(nv).enumerate().map(|(i, r)| (i + 1, r)) {
         let out = &mut params_u[k];
-        for (l, (p, q)) in a.chunks_exact(dim).zip(b.chunks_exact(dim)).enumerate() {
-            acc[l] += distance(p, q);
+        for (l, &d) in row.iter().enumerate() {
+            acc[l] += d;
             let t = if k + 1 < nu { acc[l] * inv[l] } else { 1.0 };
             if t <= prev[l] {
                 return false;
             }
             prev[l] = t;
             *out += t;
+        }
+    }
+    true
+}
+
+/// The sums over the rows `k` of the chord-length parameters `v̄_l^{(k)}` of
+/// `q_k0 … q_{k,nv−1}` added into `params_v` (zero on entry; `tmp` holds `nv` numbers of
+/// scratch): the same numbers, in the same order, as [`parametrize_into`] with exponent 1 row by
+/// row (P&T eq. 9.5), without its per-point closures. `false`, with `params_v` to be discarded,
+/// when a distance is zero or not finite, a row's length overflows or its parameters are not
+/// strictly increasing: the caller then takes the general loop, which reports the problem.
+fn chord_params_v(
+    data: &[f64],
+    nu: usize,
+    nv: usize,
+    dim: usize,
+    params_v: &mut [f64],
+    tmp: &mut [f64],
+) -> bool {
+    debug_assert_eq!(tmp.len(), nv, "scratch for one row");
+    for row in data.chunks_exact(nv * dim).take(nu) {
+        let mut sum = 0.0;
+        tmp[0] = 0.0;
+        for (l, (p, q)) in row
+            .chunks_exact(dim)
+            .zip(row.chunks_exact(dim).skip(1))
+            .enumerate()
+        {
+            let d = distance(p, q);
+            if d == 0.0 || !d.is_finite() {
+                return false;
+            }
+            sum += d;
+            tmp[l + 1] = sum;
+        }
+        if !sum.is_finite() {
+            return false;
+        }
+        let inv = 1.0 / sum;
+        for l in 1..nv - 1 {
+            tmp[l] *= inv;
+            if tmp[l] <= tmp[l - 1] {
+                return false;
+            }
+        }
+        tmp[nv - 1] = 1.0;
+        if tmp[nv - 1] <= tmp[nv - 2] {
+            return false;
+        }
+        for (a, b) in params_v.iter_mut().zip(tmp.iter()) {
+            *a += b;
         }
     }
     true
@@ -463,5 +521,47 @@ mod tests {
         data[4] = data[2];
         let mut out = vec![0.0; 3];
         assert!(!chord_params_u(&data, 3, 2, 1, &mut out));
+    }
+
+    /// The row-by-row sums of [`parametrize_into`] (the reference for [`chord_params_v`]).
+    fn row_loop(data: &[f64], nu: usize, nv: usize, dim: usize) -> Vec<f64> {
+        let mut params_v = vec![0.0; nv];
+        let mut tmp = vec![0.0; nv];
+        for k in 0..nu {
+            parametrize_into(
+                nv - 1,
+                |l| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim],
+                1.0,
+                |l| (l, l + 1),
+                &mut tmp,
+            )
+            .unwrap();
+            for (a, b) in params_v.iter_mut().zip(&tmp) {
+                *a += b;
+            }
+        }
+        params_v
+    }
+
+    #[test]
+    fn row_chord_parameters_equal_the_row_loop() {
+        for (nu, nv, dim) in [(2, 2, 1), (3, 5, 3), (11, 17, 2), (7, 40, 3)] {
+            let data: Vec<f64> = (0..nu * nv * dim)
+                .map(|i| {
+                    let x = i as f64;
+                    ((i / dim) % nv) as f64 + 0.3 * (1.7 * x).sin() + 1e8
+                })
+                .collect();
+            let (mut fast, mut tmp) = (vec![0.0; nv], vec![0.0; nv]);
+            assert!(
+                chord_params_v(&data, nu, nv, dim, &mut fast, &mut tmp),
+                "{nu}×{nv}"
+            );
+            assert_eq!(fast, row_loop(&data, nu, nv, dim), "{nu}×{nv}×{dim}");
+        }
+        // a zero step declines (the row loop reports it)
+        let data = vec![0.0, 1.0, 1.0, 2.0, 3.0, 4.0];
+        let (mut out, mut tmp) = (vec![0.0; 3], vec![0.0; 3]);
+        assert!(!chord_params_v(&data, 2, 3, 1, &mut out, &mut tmp));
     }
 }
