@@ -44,11 +44,13 @@ impl BSplineCurve {
     /// 2. every control point of the result is the blossom (polar form) of its piece at its
     ///    knots, `P_i = b(u_{i+1}, …, u_{i+p'})` (Ramshaw 1989; de Boor's "B-spline coefficients
     ///    are blossom values"), evaluated by de Casteljau's algorithm with one parameter per
-    ///    level on the piece whose interval is nearest the middle of those knots.
+    ///    level on the piece from whose interval those knots stick out least, relative to its
+    ///    length.
     ///
     /// Time O(pieces · (p+1)(r+1) · dim + n · p'² · dim), linear in the number of pieces. The
-    /// curve is unchanged to a few ulps of its scale (the blossom is evaluated at arguments at
-    /// most about `p'/2` intervals outside its piece).
+    /// curve is unchanged to a few ulps of its scale: the arguments stick out of the chosen
+    /// interval by no more than they do from the longest of the `p' + 1` candidates, which is
+    /// at most about `p'` of its lengths.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Points};
@@ -118,14 +120,18 @@ impl BSplineCurve {
         let mut scratch = vec![0.0; width];
         for (i, out) in control.chunks_exact_mut(dim).enumerate() {
             let args = &knots[i + 1..=i + q];
-            // the non-empty interval among k = i ..= i + q nearest the middle of the arguments
-            let centre = i + q.div_ceil(2);
-            let k = (0..=q)
-                .flat_map(|d| [centre.checked_sub(d), centre.checked_add(d)])
-                .flatten()
-                .find(|&k| {
-                    k >= i && k <= i + q && piece_of.get(k).is_some_and(|&j| j != usize::MAX)
-                })
+            // the non-empty interval among k = i ..= i + q from which the arguments stick out
+            // least, relative to its length (de Casteljau outside [0, 1] amplifies rounding by
+            // about the distance outside): never a tiny interval between two close knots when
+            // a longer one is at hand
+            let outside = |k: usize| {
+                let (lo, hi) = (knots[k], knots[k + 1]);
+                let far = args.iter().fold(0.0_f64, |m, &x| m.max(lo - x).max(x - hi));
+                far / (hi - lo)
+            };
+            let k = (i..=i + q)
+                .filter(|&k| piece_of.get(k).is_some_and(|&j| j != usize::MAX))
+                .min_by(|&a, &b| outside(a).total_cmp(&outside(b)))
                 // B_i is positive somewhere in the domain, so one of its intervals is non-empty
                 .ok_or_else(|| Error::InvalidArgument {
                     what: "curve to elevate",

@@ -591,6 +591,38 @@ fn bspline_dev(a: &BSplineCurve, b: &BSplineCurve) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Found by the long property-test job (`PROPTEST_CASES=1000`): two knots 8e-6 apart. The
+/// blossoms of the elevation were first taken on the tiny interval between them, at arguments
+/// thousands of its lengths away, which amplified rounding to 1e-9 of the scale.
+#[test]
+fn bspline_elevation_with_two_close_knots() {
+    let c = BSplineCurve::new(
+        3,
+        vec![
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.4037810824558112,
+            0.4037891742170899,
+            1.0,
+            1.0,
+            1.0,
+            1.0,
+        ],
+        Points::new(vec![0.0, 0.0, 0.0, -5.268960839437541, 0.0, 0.0], 1).unwrap(),
+    )
+    .unwrap();
+    for r in 1..=3 {
+        let up = c.elevate_degree(r).unwrap();
+        let dev = bspline_dev(&c, &up);
+        assert!(
+            dev <= 1e-13 * 5.268960839437541,
+            "r = {r}: deviation {dev:e}"
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(config(64))]
 
