@@ -86,7 +86,12 @@ pub(crate) fn proptest_config(default_cases: u32) -> proptest::test_runner::Conf
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(default_cases);
-    proptest::test_runner::Config::with_cases(cases)
+    // rejected draws (prop_assume) grow with the case count: allow as many as cases, so that
+    // the long job with thousands of cases is not aborted for "too many global rejects"
+    proptest::test_runner::Config {
+        max_global_rejects: cases.max(1024),
+        ..proptest::test_runner::Config::with_cases(cases)
+    }
 }
 
 #[cfg(test)]

@@ -9,5 +9,10 @@ pub(crate) fn config(default_cases: u32) -> ProptestConfig {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(default_cases);
-    ProptestConfig::with_cases(cases)
+    // rejected draws (prop_assume) grow with the case count: allow as many as cases, so that
+    // the long job with thousands of cases is not aborted for "too many global rejects"
+    ProptestConfig {
+        max_global_rejects: cases.max(1024),
+        ..ProptestConfig::with_cases(cases)
+    }
 }
