@@ -1167,57 +1167,109 @@ mod tests {
         );
     }
 
-    proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    /// A random banded matrix, diagonally dominant by the factor `dom` (so that elimination
+    /// without pivoting applies and κ_1 is moderate): rows of `kl + 1 + ku` band entries.
+    fn dominant_band(kl: usize, ku: usize, raw: &[(Vec<f64>, f64, bool)]) -> Vec<Vec<f64>> {
+        raw.iter()
+            .map(|(v, dom, neg)| {
+                let mut b: Vec<f64> = v[3 - kl..4 + ku].to_vec();
+                let off: f64 = b.iter().map(|x| x.abs()).sum::<f64>() - b[kl].abs();
+                let d = dom * off.max(0.1);
+                b[kl] = if *neg { -d } else { d };
+                b
+            })
+            .collect()
+    }
 
-        /// Random banded matrices, diagonally dominant by a random factor (so that elimination
-        /// without pivoting applies and κ_1 is moderate): the estimate is within the factor
-        /// 3 of the dense κ_1 and never above it.
+    /// The estimate is a lower bound of the dense κ_1 by construction (it is ‖A‖_1 times the
+    /// norm of a computed column combination of A⁻¹), and ‖A‖_1 is exact. How close the bound
+    /// comes is not guaranteed (Higham 1988 shows matrices where Hager's method is off by any
+    /// factor), so the quality is checked on a fixed sample in
+    /// `condition_estimate_is_usually_within_three`, not per random case.
+    fn check_estimate(band: &[Vec<f64>], kl: usize, ku: usize) -> (f64, f64) {
+        let n = band.len();
+        let rows = band_rows(band, kl);
+        let a = dense(&rows);
+        let exact = dense_kappa1(&a, n);
+        let est = estimate(&rows, kl, ku).unwrap();
+        let mut lu = BandedCrout::new_estimating(n, kl, ku);
+        let mut rhs = vec![0.0; n];
+        for (r, b) in band.iter().enumerate() {
+            let mut row: Vec<f64> = b.clone();
+            for (m, v) in row.iter_mut().enumerate() {
+                if r + m < kl || r + m >= n + kl {
+                    *v = 0.0;
+                }
+            }
+            lu.push_row(&mut row, &mut rhs, 1, 0.0).unwrap();
+        }
+        let dense_norm = (0..n)
+            .map(|c| (0..n).map(|r| a[r * n + c].abs()).sum::<f64>())
+            .fold(0.0_f64, f64::max);
+        // ‖A‖_1 from the ring of open column sums: the same sums as the dense ones
+        assert_eq!(lu.norm1(), Some(dense_norm));
+        assert!(
+            est <= exact * (1.0 + 1e-12),
+            "estimate {est} above exact {exact}"
+        );
+        (est, exact)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(crate::oracle::proptest_config(64))]
+
+        /// Random banded matrices: ‖A‖_1 exact, the estimate never above the dense κ_1.
         #[test]
-        fn condition_estimate_matches_dense_kappa(
+        fn condition_estimate_is_a_lower_bound(
             kl in 0usize..4,
             ku in 0usize..4,
-            band in proptest::collection::vec(
+            raw in proptest::collection::vec(
                 (proptest::collection::vec(-1.0_f64..1.0, 7), 1.01_f64..3.0, proptest::bool::ANY),
                 1..25,
             ),
         ) {
-            let band: Vec<Vec<f64>> = band
-                .iter()
-                .map(|(v, dom, neg)| {
-                    let mut b: Vec<f64> = v[3 - kl..4 + ku].to_vec();
-                    let off: f64 = b.iter().map(|x| x.abs()).sum::<f64>() - b[kl].abs();
-                    let d = dom * off.max(0.1);
-                    b[kl] = if *neg { -d } else { d };
-                    b
+            check_estimate(&dominant_band(kl, ku, &raw), kl, ku);
+        }
+    }
+
+    /// On a fixed sample of 2000 random banded matrices (a deterministic generator), the
+    /// estimate is within a factor 3 of the dense κ_1 in at least 99 % of cases and within a
+    /// factor 10 in all (Higham's observation for Hager's method). Measured: all 2000 within 3,
+    /// worst ratio 0.45; a random draw once gave 0.30, which is why the per-case property
+    /// test checks only the lower-bound side.
+    #[test]
+    fn condition_estimate_is_usually_within_three() {
+        let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut uniform = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut within3, mut worst) = (0, f64::INFINITY);
+        let cases = 2000;
+        for _ in 0..cases {
+            let kl = (uniform() * 4.0) as usize;
+            let ku = (uniform() * 4.0) as usize;
+            let n = 1 + (uniform() * 24.0) as usize;
+            let raw: Vec<(Vec<f64>, f64, bool)> = (0..n)
+                .map(|_| {
+                    let v = (0..7).map(|_| 2.0 * uniform() - 1.0).collect();
+                    (v, 1.01 + 1.99 * uniform(), uniform() < 0.5)
                 })
                 .collect();
-            let n = band.len();
-            let rows = band_rows(&band, kl);
-            let a = dense(&rows);
-            let exact = dense_kappa1(&a, n);
-            let est = estimate(&rows, kl, ku).unwrap();
-            // ‖A‖_1 from the ring of open column sums: the same sums as the dense ones
-            let mut lu = BandedCrout::new_estimating(n, kl, ku);
-            let mut rhs = vec![0.0; n];
-            for (r, b) in band.iter().enumerate() {
-                let mut row: Vec<f64> = b.clone();
-                for (m, v) in row.iter_mut().enumerate() {
-                    if r + m < kl || r + m >= n + kl {
-                        *v = 0.0;
-                    }
-                }
-                lu.push_row(&mut row, &mut rhs, 1, 0.0).unwrap();
+            let (est, exact) = check_estimate(&dominant_band(kl, ku, &raw), kl, ku);
+            let ratio = est / exact;
+            worst = worst.min(ratio);
+            if ratio >= 1.0 / 3.0 {
+                within3 += 1;
             }
-            let dense_norm = (0..n)
-                .map(|c| (0..n).map(|r| a[r * n + c].abs()).sum::<f64>())
-                .fold(0.0_f64, f64::max);
-            proptest::prop_assert_eq!(lu.norm1(), Some(dense_norm));
-            proptest::prop_assert!(
-                est >= exact / 3.0 && est <= exact * (1.0 + 1e-12),
-                "estimate {} vs exact {}", est, exact
-            );
         }
+        assert!(
+            within3 * 100 >= cases * 99,
+            "{within3} of {cases} within 3; worst {worst}"
+        );
+        assert!(worst >= 0.1, "worst ratio {worst}");
     }
 
     #[test]
