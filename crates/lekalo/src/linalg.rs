@@ -1168,7 +1168,7 @@ mod tests {
     }
 
     /// A random banded matrix, diagonally dominant by the factor `dom` (so that elimination
-    /// without pivoting applies and κ_1 is moderate): rows of `kl + 1 + ku` band entries.
+    /// without pivoting applies and `κ_1` is moderate): rows of `kl + 1 + ku` band entries.
     fn dominant_band(kl: usize, ku: usize, raw: &[(Vec<f64>, f64, bool)]) -> Vec<Vec<f64>> {
         raw.iter()
             .map(|(v, dom, neg)| {
@@ -1181,8 +1181,8 @@ mod tests {
             .collect()
     }
 
-    /// The estimate is a lower bound of the dense κ_1 by construction (it is ‖A‖_1 times the
-    /// norm of a computed column combination of A⁻¹), and ‖A‖_1 is exact. How close the bound
+    /// The estimate is a lower bound of the dense `κ_1` by construction (it is `‖A‖_1` times the
+    /// norm of a computed column combination of A⁻¹), and `‖A‖_1` is exact. How close the bound
     /// comes is not guaranteed (Higham 1988 shows matrices where Hager's method is off by any
     /// factor), so the quality is checked on a fixed sample in
     /// `condition_estimate_is_usually_within_three`, not per random case.
@@ -1218,7 +1218,7 @@ mod tests {
     proptest::proptest! {
         #![proptest_config(crate::oracle::proptest_config(64))]
 
-        /// Random banded matrices: ‖A‖_1 exact, the estimate never above the dense κ_1.
+        /// Random banded matrices: `‖A‖_1` exact, the estimate never above the dense `κ_1`.
         #[test]
         fn condition_estimate_is_a_lower_bound(
             kl in 0usize..4,
@@ -1233,29 +1233,36 @@ mod tests {
     }
 
     /// On a fixed sample of 2000 random banded matrices (a deterministic generator), the
-    /// estimate is within a factor 3 of the dense κ_1 in at least 99 % of cases and within a
+    /// estimate is within a factor 3 of the dense `κ_1` in at least 99 % of cases and within a
     /// factor 10 in all (Higham's observation for Hager's method). Measured: all 2000 within 3,
-    /// worst ratio 0.45; a random draw once gave 0.30, which is why the per-case property
+    /// worst ratio 0.36; a random draw once gave 0.30, which is why the per-case property
     /// test checks only the lower-bound side.
     #[test]
     fn condition_estimate_is_usually_within_three() {
         let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut uniform = move || {
+        let mut next = move || {
             state = state
                 .wrapping_mul(6_364_136_223_846_793_005)
                 .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
+            state >> 11
         };
+        let scale = 1.0 / (1u64 << 53) as f64;
         let (mut within3, mut worst) = (0, f64::INFINITY);
         let cases = 2000;
         for _ in 0..cases {
-            let kl = (uniform() * 4.0) as usize;
-            let ku = (uniform() * 4.0) as usize;
-            let n = 1 + (uniform() * 24.0) as usize;
+            let kl = usize::try_from(next() % 4).unwrap_or(0);
+            let ku = usize::try_from(next() % 4).unwrap_or(0);
+            let n = 1 + usize::try_from(next() % 24).unwrap_or(0);
             let raw: Vec<(Vec<f64>, f64, bool)> = (0..n)
                 .map(|_| {
-                    let v = (0..7).map(|_| 2.0 * uniform() - 1.0).collect();
-                    (v, 1.01 + 1.99 * uniform(), uniform() < 0.5)
+                    let v = (0..7)
+                        .map(|_| 2.0 * (next() as f64 * scale) - 1.0)
+                        .collect();
+                    (
+                        v,
+                        1.01 + 1.99 * (next() as f64 * scale),
+                        (next() as f64 * scale) < 0.5,
+                    )
                 })
                 .collect();
             let (est, exact) = check_estimate(&dominant_band(kl, ku, &raw), kl, ku);
