@@ -300,11 +300,10 @@ fn surface(
     let knots_u = KnotVector::averaged(&params_u, degree_u)?;
     let knots_v = KnotVector::averaged(&params_v, degree_v)?;
     let reference = pt(0, 0).to_vec();
-    let mut control = data.to_vec();
-    for c in control.chunks_exact_mut(dim) {
-        for (ci, ri) in c.iter_mut().zip(&reference) {
-            *ci -= ri;
-        }
+    // the centred grid in one pass (no copy first)
+    let mut control = Vec::with_capacity(data.len());
+    for q in data.chunks_exact(dim) {
+        control.extend(q.iter().zip(&reference).map(|(x, r)| x - r));
     }
     // u pass: rows k of the grid, all nv·dim numbers of a row as right-hand-side columns
     let factors = if kappa.is_some() {
@@ -336,10 +335,13 @@ fn surface(
         let (ku, kv) = (lu_u.condition_estimate(), lu.condition_estimate());
         *k = ku.unwrap_or(1.0) * kv.unwrap_or(1.0);
     }
+    // the reference is added back to each row while it is still in cache; the first row was
+    // solved above
+    add_reference(first, &reference);
     for block in rest.chunks_exact_mut(nv * dim) {
         lu.solve(block, dim);
+        add_reference(block, &reference);
     }
-    add_reference(&mut control, &reference);
     // data near the largest f64 overflow in the centring or the solves (found by the
     // `interpolation` fuzz target): an error, never a NaN control net inside an Ok
     if let Some(i) = control.iter().position(|v| !v.is_finite()) {
