@@ -131,7 +131,9 @@ impl BSplineCurve {
             };
             let k = (i..=i + q)
                 .filter(|&k| piece_of.get(k).is_some_and(|&j| j != usize::MAX))
-                .min_by(|&a, &b| outside(a).total_cmp(&outside(b)))
+                .map(|k| (k, outside(k)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(k, _)| k)
                 // B_i is positive somewhere in the domain, so one of its intervals is non-empty
                 .ok_or_else(|| Error::InvalidArgument {
                     what: "curve to elevate",

@@ -620,6 +620,41 @@ pub(crate) fn blend_forms(
     )?))
 }
 
+/// The derivatives `l = 0 … order` of `p = p_1 + w·(p_2 − p_1)` by Leibniz's rule,
+/// `p^(l) = p_1^(l) + Σ_i C(l,i) w^(i) (p_2 − p_1)^(l−i)` (document 001, the deformation): `out`
+/// holds the derivatives of `p_1` on entry and of `p` on return, `second` those of `p_2` (it is
+/// overwritten by `p_2 − p_1`), `w` those of the blending function; rows of `dim` numbers. Terms
+/// with a zero coefficient are skipped (so that `0·∞` does not turn into NaN). An overflow, for
+/// curves near `f64::MAX` (found by the `blending` fuzz target), is [`Error::NonFinite`] naming
+/// `what`, never NaN inside an `Ok`.
+pub(crate) fn blend_derivatives(
+    out: &mut [f64],
+    second: &mut [f64],
+    w: &[f64],
+    dim: usize,
+    what: &'static str,
+) -> Result<()> {
+    for (s, f) in second.iter_mut().zip(out.iter()) {
+        *s -= f;
+    }
+    for l in 0..w.len() {
+        let mut binom = 1.0;
+        for i in 0..=l {
+            if i > 0 {
+                binom = binom * (l + 1 - i) as f64 / i as f64;
+            }
+            let c = binom * w[i];
+            if c == 0.0 {
+                continue;
+            }
+            for d in 0..dim {
+                out[l * dim + d] += c * second[(l - i) * dim + d];
+            }
+        }
+    }
+    crate::error::check_finite(what, out)
+}
+
 /// The weights (last coordinates) of flat homogeneous points.
 pub(crate) fn weights_of(h: &[f64], dim: usize) -> Vec<f64> {
     h.iter().skip(dim).step_by(dim + 1).copied().collect()
@@ -646,29 +681,12 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C
         unit_derivatives(&self.first, u, order, out)?;
         unit_derivatives(&self.second, u, order, &mut second)?;
         self.jump.eval_derivatives(u, &mut w)?;
-        // second := p_2 − p_1 (all orders), then out += Σ C(l,i) w^(i) (p_2 − p_1)^(l−i)
-        for (s, f) in second.iter_mut().zip(out.iter()) {
-            *s -= f;
-        }
-        for l in 0..=order {
-            let mut binom = 1.0;
-            for i in 0..=l {
-                if i > 0 {
-                    binom = binom * (l + 1 - i) as f64 / i as f64;
-                }
-                let c = binom * w[i];
-                if c == 0.0 {
-                    continue;
-                }
-                for d in 0..dim {
-                    out[l * dim + d] += c * second[(l - i) * dim + d];
-                }
-            }
-        }
-        // p_2 − p_1 can overflow for curves near f64::MAX (found by the `blending` fuzz target)
-        crate::error::check_finite(
-            "deformation derivatives (overflow: rescale the curves)",
+        blend_derivatives(
             out,
+            &mut second,
+            &w,
+            dim,
+            "deformation derivatives (overflow: rescale the curves)",
         )
     }
     fn bezier_form(&self) -> Option<BezierForm> {

@@ -269,26 +269,12 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
         // p = q_1 + Σ C(l,i) w_{k−1}^{(i)} (q_2 − q_1)^{(l−i)}
         let mut w = vec![0.0; order + 1];
         self.inner.eval_derivatives(u, &mut w)?;
-        for (s, f) in q2.iter_mut().zip(out.iter()) {
-            *s -= f;
-        }
-        for l in 0..=order {
-            let mut binom = 1.0;
-            for i in 0..=l {
-                if i > 0 {
-                    binom = binom * (l + 1 - i) as f64 / i as f64;
-                }
-                let c = binom * w[i];
-                for d in 0..dim {
-                    out[l * dim + d] += c * q2[(l - i) * dim + d];
-                }
-            }
-        }
-        // curves near f64::MAX overflow in their derivatives or in q_2 − q_1 (found by the
-        // `blending` fuzz target)
-        crate::error::check_finite(
-            "corner transition derivatives (overflow: rescale the curves)",
+        crate::blend::blend_derivatives(
             out,
+            &mut q2,
+            &w,
+            dim,
+            "corner transition derivatives (overflow: rescale the curves)",
         )
     }
 }

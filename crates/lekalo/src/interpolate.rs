@@ -398,16 +398,7 @@ impl CurveInterpolation {
         let Some(limit) = self.max_condition else {
             return self.solve_system(points, params, None);
         };
-        // κ_1 ≥ 1 always
-        if limit.is_nan() || limit < MIN_CONDITION_LIMIT {
-            return Err(Error::InvalidArgument {
-                what: "condition limit (max_condition)",
-                reason: format!(
-                    "{limit} is not a number ≥ {MIN_CONDITION_LIMIT} (every matrix has κ_1 ≥ 1); \
-                     pass e.g. 1e8 to keep about 8 significant digits"
-                ),
-            });
-        }
+        check_condition_limit(limit)?;
         let mut kappa = 1.0;
         let curve = self.solve_system(points, params, Some(&mut kappa))?;
         // an infinite estimate (overflowing solves) exceeds every limit
@@ -624,6 +615,23 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
                 ),
             });
         }
+    }
+    Ok(())
+}
+
+/// A condition limit must be a number ≥ 1 (`κ_1 ≥ 1` for every matrix).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for NaN or a limit below 1.
+pub(crate) fn check_condition_limit(limit: f64) -> Result<()> {
+    if limit.is_nan() || limit < MIN_CONDITION_LIMIT {
+        return Err(Error::InvalidArgument {
+            what: "condition limit (max_condition)",
+            reason: format!(
+                "{limit} is not a number ≥ {MIN_CONDITION_LIMIT} (every matrix has κ_1 ≥ 1); \
+                 pass e.g. 1e8 to keep about 8 significant digits"
+            ),
+        });
     }
     Ok(())
 }
@@ -909,6 +917,19 @@ pub(crate) fn add_reference(control: &mut [f64], reference: &[f64]) {
     }
 }
 
+/// The clamped interpolant from the centred solution `control` (relative to `q_0`): the
+/// reference added back, the ends set exactly ([`set_clamped_ends`]).
+fn clamped_result(
+    p: usize,
+    kv: KnotVector,
+    mut control: Vec<f64>,
+    points: PointsRef<'_>,
+) -> BSplineCurve {
+    add_reference(&mut control, points.point(0));
+    set_clamped_ends(&mut control, points);
+    BSplineCurve::from_raw(p, kv.into_vec(), Points::from_raw(control, points.dim()))
+}
+
 /// A clamped interpolant has `P_0 = q_0` and `P_last = q_n`: store them exactly (the centred
 /// solve would round `(q_n − q_0) + q_0`).
 fn set_clamped_ends(control: &mut [f64], points: PointsRef<'_>) {
@@ -936,13 +957,7 @@ fn free_end(
     let factors = Factors::for_condition(kappa.as_deref());
     let lu = solve_collocation(&kv, p, &params[1..n], 1, &mut control, dim, factors)?;
     record_condition(&lu, kappa);
-    add_reference(&mut control, reference);
-    set_clamped_ends(&mut control, points);
-    Ok(BSplineCurve::from_raw(
-        p,
-        kv.into_vec(),
-        Points::from_raw(control, dim),
-    ))
+    Ok(clamped_result(p, kv, control, points))
 }
 
 /// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
@@ -982,13 +997,7 @@ fn first_derivative_ends(
     let factors = Factors::for_condition(kappa.as_deref());
     let lu = solve_collocation(&kv, p, &params[1..n], 2, &mut control, dim, factors)?;
     record_condition(&lu, kappa);
-    add_reference(&mut control, reference);
-    set_clamped_ends(&mut control, points);
-    Ok(BSplineCurve::from_raw(
-        p,
-        kv.into_vec(),
-        Points::from_raw(control, dim),
-    ))
+    Ok(clamped_result(p, kv, control, points))
 }
 
 /// §A.4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
@@ -1060,13 +1069,7 @@ fn second_derivative_ends(
     lu.push_row(&mut row, rhs, dim, 0.0)?;
     lu.back_substitute(rhs, dim);
     record_condition(&lu, kappa);
-    add_reference(&mut control, reference);
-    set_clamped_ends(&mut control, points);
-    Ok(BSplineCurve::from_raw(
-        P,
-        kv.into_vec(),
-        Points::from_raw(control, dim),
-    ))
+    Ok(clamped_result(P, kv, control, points))
 }
 
 #[cold]

@@ -126,15 +126,7 @@ pub fn interpolate_surface_max_condition(
     parametrization: Parametrization,
     max_condition: f64,
 ) -> Result<SurfaceInterpolant> {
-    if max_condition.is_nan() || max_condition < 1.0 {
-        return Err(Error::InvalidArgument {
-            what: "condition limit (max_condition)",
-            reason: format!(
-                "{max_condition} is not a number ≥ 1 (every matrix has κ_1 ≥ 1); pass e.g. 1e8 \
-                 to keep about 8 significant digits"
-            ),
-        });
-    }
+    crate::interpolate::check_condition_limit(max_condition)?;
     let (s, kappa) = surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization)?;
     if kappa > max_condition {
         return Err(condition_exceeded(kappa, max_condition));
@@ -485,24 +477,33 @@ fn finish_average(params: &mut [f64], count: usize) {
 mod tests {
     use super::*;
 
-    /// The column-by-column sums of [`parametrize_into`] (the reference for [`chord_params_u`]).
-    fn column_loop(data: &[f64], nu: usize, nv: usize, dim: usize) -> Vec<f64> {
-        let mut params_u = vec![0.0; nu];
-        let mut tmp = vec![0.0; nu];
-        for l in 0..nv {
+    /// The sums of [`parametrize_into`] with exponent 1, column by column (`along_u`, the
+    /// reference for [`chord_params_u`]) or row by row (the reference for [`chord_params_v`]).
+    fn general_loop(data: &[f64], nu: usize, nv: usize, dim: usize, along_u: bool) -> Vec<f64> {
+        let (lines, len) = if along_u { (nv, nu) } else { (nu, nv) };
+        let at = |line: usize, i: usize| {
+            if along_u {
+                i * nv + line
+            } else {
+                line * nv + i
+            }
+        };
+        let mut sums = vec![0.0; len];
+        let mut tmp = vec![0.0; len];
+        for line in 0..lines {
             parametrize_into(
-                nu - 1,
-                |k| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim],
+                len - 1,
+                |i| &data[at(line, i) * dim..(at(line, i) + 1) * dim],
                 1.0,
-                |k| (k, k + 1),
+                |i| (i, i + 1),
                 &mut tmp,
             )
             .unwrap();
-            for (a, b) in params_u.iter_mut().zip(&tmp) {
+            for (a, b) in sums.iter_mut().zip(&tmp) {
                 *a += b;
             }
         }
-        params_u
+        sums
     }
 
     #[test]
@@ -516,33 +517,17 @@ mod tests {
                 .collect();
             let mut fast = vec![0.0; nu];
             assert!(chord_params_u(&data, nu, nv, dim, &mut fast), "{nu}×{nv}");
-            assert_eq!(fast, column_loop(&data, nu, nv, dim), "{nu}×{nv}×{dim}");
+            assert_eq!(
+                fast,
+                general_loop(&data, nu, nv, dim, true),
+                "{nu}×{nv}×{dim}"
+            );
         }
         // a zero step declines (the column loop reports it)
         let mut data = vec![0.0, 1.0, 2.0, 3.0, 2.0, 5.0];
         data[4] = data[2];
         let mut out = vec![0.0; 3];
         assert!(!chord_params_u(&data, 3, 2, 1, &mut out));
-    }
-
-    /// The row-by-row sums of [`parametrize_into`] (the reference for [`chord_params_v`]).
-    fn row_loop(data: &[f64], nu: usize, nv: usize, dim: usize) -> Vec<f64> {
-        let mut params_v = vec![0.0; nv];
-        let mut tmp = vec![0.0; nv];
-        for k in 0..nu {
-            parametrize_into(
-                nv - 1,
-                |l| &data[(k * nv + l) * dim..(k * nv + l + 1) * dim],
-                1.0,
-                |l| (l, l + 1),
-                &mut tmp,
-            )
-            .unwrap();
-            for (a, b) in params_v.iter_mut().zip(&tmp) {
-                *a += b;
-            }
-        }
-        params_v
     }
 
     #[test]
@@ -559,7 +544,11 @@ mod tests {
                 chord_params_v(&data, nu, nv, dim, &mut fast, &mut tmp),
                 "{nu}×{nv}"
             );
-            assert_eq!(fast, row_loop(&data, nu, nv, dim), "{nu}×{nv}×{dim}");
+            assert_eq!(
+                fast,
+                general_loop(&data, nu, nv, dim, false),
+                "{nu}×{nv}×{dim}"
+            );
         }
         // a zero step declines (the row loop reports it)
         let data = vec![0.0, 1.0, 1.0, 2.0, 3.0, 4.0];

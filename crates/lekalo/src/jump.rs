@@ -147,14 +147,16 @@ impl JumpPolynomial {
     /// [`Error::ParameterOutOfDomain`] unless `0 ≤ u ≤ 1`.
     pub fn eval(&self, u: f64) -> Result<f64> {
         crate::bezier::check_unit(u)?;
-        Ok(match binomial_tail(self.k, u) {
-            Some(w) => w,
-            None => {
-                let ctrl = self.bernstein_coefficients_f64();
-                let mut out = [0.0];
-                bernstein_ops::derivatives_at(&ctrl, 1, u, 0, &mut out, &mut Vec::new());
-                out[0]
-            }
+        Ok(self.value(u))
+    }
+
+    /// [`JumpPolynomial::eval`] for a `u` already checked to lie in `[0, 1]`.
+    fn value(&self, u: f64) -> f64 {
+        binomial_tail(self.k, u).unwrap_or_else(|| {
+            let ctrl = self.bernstein_coefficients_f64();
+            let mut out = [0.0];
+            bernstein_ops::derivatives_at(&ctrl, 1, u, 0, &mut out, &mut Vec::new());
+            out[0]
         })
     }
 
@@ -182,7 +184,7 @@ impl JumpPolynomial {
             bernstein_ops::derivatives_at(&ctrl, 1, u, out.len() - 1, out, &mut scratch);
         }
         // the value as JumpPolynomial::eval computes it, whatever the number of derivatives
-        out[0] = self.eval(u)?;
+        out[0] = self.value(u);
         Ok(())
     }
 
