@@ -669,15 +669,6 @@ pub(crate) enum Factors {
 }
 
 impl Factors {
-    /// [`Factors::Estimate`] if either asks for it, else the one that keeps more.
-    pub(crate) fn or(self, other: Factors) -> Factors {
-        match (self, other) {
-            (Factors::Estimate, _) | (_, Factors::Estimate) => Factors::Estimate,
-            (Factors::Keep, _) | (_, Factors::Keep) => Factors::Keep,
-            _ => Factors::Discard,
-        }
-    }
-
     fn for_condition(kappa: Option<&f64>) -> Self {
         if kappa.is_some() {
             Factors::Estimate
@@ -1169,6 +1160,19 @@ pub(crate) fn solve_collocation(
     }
     lu.back_substitute(block, dim);
     Ok(lu)
+}
+
+/// The banded factors of the collocation matrix `A[r][i] = N_{i,p}(ts[r])` alone (no
+/// right-hand side), kept for [`BandedCrout::solve`]: [`solve_collocation`] with every control
+/// point unknown and no columns. `factors` is [`Factors::Keep`] or [`Factors::Estimate`].
+pub(crate) fn factor_collocation(
+    kv: &KnotVector,
+    p: usize,
+    ts: &[f64],
+    factors: Factors,
+) -> Result<BandedCrout> {
+    debug_assert!(factors != Factors::Discard, "the factors are the result");
+    solve_collocation(kv, p, ts, 0, &mut [], 0, factors)
 }
 
 /// Band widths `(kl, ku)` of the collocation rows (see [`solve_collocation`]), counting only

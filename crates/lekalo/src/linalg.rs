@@ -214,12 +214,111 @@ impl BandedCrout {
     /// for a factorisation made with `keep_lower`.
     pub(crate) fn solve(&self, rhs: &mut [f64], ncols: usize) {
         // constant band widths and column counts for the common cases (bicubic and biquadratic
-        // surfaces in 3-D, many rows each), as in push_row; the arithmetic is the same
-        match (self.kl, ncols) {
-            (2, 3) => self.solve_impl(rhs, 2, 3),
-            (1, 3) => self.solve_impl(rhs, 1, 3),
-            (kl, nc) => self.solve_impl(rhs, kl, nc),
+        // surfaces in 1–4 dimensions, many small blocks each); the arithmetic is the same
+        debug_assert_eq!(rhs.len(), self.rows * ncols, "rhs block size");
+        let Some(lower) = &self.lower else {
+            debug_assert!(false, "solve needs the kept lower factor");
+            return;
+        };
+        macro_rules! fixed {
+            ($kl:literal, $ku:literal, $nc:literal) => {
+                self.solve_block_fixed::<$kl, $ku, $nc>(lower, rhs)
+            };
         }
+        match (self.kl, self.ku, ncols) {
+            (1, 1, 1) => fixed!(1, 1, 1),
+            (1, 1, 2) => fixed!(1, 1, 2),
+            (1, 1, 3) => fixed!(1, 1, 3),
+            (1, 1, 4) => fixed!(1, 1, 4),
+            (2, 2, 1) => fixed!(2, 2, 1),
+            (2, 2, 2) => fixed!(2, 2, 2),
+            (2, 2, 3) => fixed!(2, 2, 3),
+            (2, 2, 4) => fixed!(2, 2, 4),
+            (1, 2, 3) => fixed!(1, 2, 3),
+            (2, 1, 3) => fixed!(2, 1, 3),
+            (kl, _, nc) => self.solve_impl(rhs, kl, nc),
+        }
+    }
+
+    /// [`BandedCrout::solve`] for fixed band widths and column count, row-oriented with the last
+    /// `KL` (`KU`) solved rows in registers, as [`BandedCrout::solve_vector_fixed`] does for one
+    /// column: the rows of a small block are a latency-bound recurrence, and reloading a row just
+    /// stored would add the store-forwarding delay to each. The same operations in the same
+    /// order as [`BandedCrout::solve_impl`], except that the zero entries of `L` left of column
+    /// 0 and of `U` beyond the last row are multiplied (by the zero initial windows) instead of
+    /// skipped, which leaves every finite value unchanged.
+    fn solve_block_fixed<const KL: usize, const KU: usize, const NC: usize>(
+        &self,
+        lower: &[f64],
+        rhs: &mut [f64],
+    ) {
+        let rows = self.rows;
+        let mut win = [[0.0_f64; NC]; KL];
+        for (x, l) in rhs
+            .chunks_exact_mut(NC)
+            .zip(lower.chunks_exact(KL + 1))
+            .take(rows)
+        {
+            let mut v = [0.0_f64; NC];
+            v.copy_from_slice(x);
+            for m in 0..KL {
+                for c in 0..NC {
+                    v[c] -= l[m] * win[m][c];
+                }
+            }
+            for c in 0..NC {
+                v[c] *= l[KL];
+            }
+            x.copy_from_slice(&v);
+            push_back(&mut win, v);
+        }
+        let mut win = [[0.0_f64; NC]; KU];
+        for (x, u) in rhs
+            .chunks_exact_mut(NC)
+            .zip(self.upper.chunks_exact(KU))
+            .take(rows)
+            .rev()
+        {
+            let mut v = [0.0_f64; NC];
+            v.copy_from_slice(x);
+            for t in 0..KU {
+                for c in 0..NC {
+                    v[c] -= u[t] * win[t][c];
+                }
+            }
+            x.copy_from_slice(&v);
+            push_front(&mut win, v);
+        }
+    }
+
+    /// Row `r` of the kept lower factor: `L[r][r−kl..r]` (zeros left of column 0), then
+    /// `1 / L[r][r]`. Only for a factorisation made with `keep_lower`.
+    pub(crate) fn lower_row(&self, r: usize) -> &[f64] {
+        let kl = self.kl;
+        self.lower
+            .as_deref()
+            .map_or(&[], |l| &l[r * (kl + 1)..(r + 1) * (kl + 1)])
+    }
+
+    /// Row `r` of the unit upper factor: `U[r][r+1..=r+ku]` (zeros beyond the last row).
+    pub(crate) fn upper_row(&self, r: usize) -> &[f64] {
+        &self.upper[r * self.ku..(r + 1) * self.ku]
+    }
+
+    /// Number of sub-diagonals `kl` of the band.
+    pub(crate) fn kl(&self) -> usize {
+        self.kl
+    }
+
+    /// Number of super-diagonals `ku` of the band.
+    pub(crate) fn ku(&self) -> usize {
+        self.ku
+    }
+
+    /// [`BandedCrout::solve`] by its general loop only (the reference for the fixed kernels).
+    #[cfg(test)]
+    pub(crate) fn solve_general(&self, rhs: &mut [f64], ncols: usize) {
+        self.solve_impl(rhs, self.kl, ncols);
     }
 
     #[inline(always)]
@@ -567,7 +666,7 @@ impl BandedCrout {
 /// Shifts the window one place towards index 0 and puts `v` last (no-op for `N = 0`).
 /// Written out (not `rotate_left`, which is not inlined) so that it stays in registers.
 #[inline(always)]
-fn push_back<const N: usize>(win: &mut [f64; N], v: f64) {
+fn push_back<T: Copy, const N: usize>(win: &mut [T; N], v: T) {
     if N > 0 {
         for m in 1..N {
             win[m - 1] = win[m];
@@ -578,7 +677,7 @@ fn push_back<const N: usize>(win: &mut [f64; N], v: f64) {
 
 /// Shifts the window one place away from index 0 and puts `v` first (no-op for `N = 0`).
 #[inline(always)]
-fn push_front<const N: usize>(win: &mut [f64; N], v: f64) {
+fn push_front<T: Copy, const N: usize>(win: &mut [T; N], v: T) {
     if N > 0 {
         for m in (1..N).rev() {
             win[m] = win[m - 1];
