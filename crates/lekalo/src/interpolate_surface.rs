@@ -322,31 +322,28 @@ fn solve_grid(
     let row_len = nv * dim;
     let reference = &data[..dim];
     let ref_row: Vec<f64> = reference.iter().copied().cycle().take(row_len).collect();
-    // zeroed by the allocator (fresh pages), written once in sweep 1
-    let mut control = vec![0.0; data.len()];
+    // grown row by row in sweep 1 (no zero-fill first: the allocator may hand back used memory)
+    let mut control = Vec::with_capacity(data.len());
     let (kl, ku) = (lu_u.kl(), lu_u.ku());
     for (k, q) in data.chunks_exact(row_len).enumerate() {
-        let (done, rest) = control.split_at_mut(k * row_len);
-        let row = &mut rest[..row_len];
-        for ((c, x), r) in row.iter_mut().zip(q).zip(&ref_row) {
-            *c = x - r;
-        }
+        control.extend(q.iter().zip(&ref_row).map(|(x, r)| x - r));
+        let (done, row) = control.split_at_mut(k * row_len);
         lu_v.solve(row, dim);
         let l = lu_u.lower_row(k);
         let prev = |j: usize| &done[j * row_len..(j + 1) * row_len];
         match (kl, k >= kl) {
-            (1, true) => combine_rows(row, [prev(k - 1)], [l[0]], Some(l[1])),
-            (2, true) => combine_rows(row, [prev(k - 2), prev(k - 1)], [l[0], l[1]], Some(l[2])),
+            (1, true) => combine_rows(row, [prev(k - 1)], [l[0]], l[1]),
+            (2, true) => combine_rows(row, [prev(k - 2), prev(k - 1)], [l[0], l[1]], l[2]),
             (3, true) => combine_rows(
                 row,
                 [prev(k - 3), prev(k - 2), prev(k - 1)],
                 [l[0], l[1], l[2]],
-                Some(l[3]),
+                l[3],
             ),
             _ => {
                 // the first rows (entries of L left of column 0 are skipped) and wide bands
                 for m in kl.saturating_sub(k)..kl {
-                    combine_rows(row, [prev(k + m - kl)], [l[m]], None);
+                    combine_rows(row, [prev(k + m - kl)], [l[m]], 1.0);
                 }
                 scale_row(row, l[kl]);
             }
@@ -361,12 +358,12 @@ fn solve_grid(
         let next = |t: usize| &tail[t * row_len..(t + 1) * row_len];
         let live = ku.min(nu - 1 - k);
         match (ku, live == ku) {
-            (1, true) => combine_rows(row, [next(0)], [u[0]], None),
-            (2, true) => combine_rows(row, [next(0), next(1)], [u[0], u[1]], None),
-            (3, true) => combine_rows(row, [next(0), next(1), next(2)], [u[0], u[1], u[2]], None),
+            (1, true) => combine_rows(row, [next(0)], [u[0]], 1.0),
+            (2, true) => combine_rows(row, [next(0), next(1)], [u[0], u[1]], 1.0),
+            (3, true) => combine_rows(row, [next(0), next(1), next(2)], [u[0], u[1], u[2]], 1.0),
             _ => {
                 for (t, &ut) in u[..live].iter().enumerate() {
-                    combine_rows(row, [next(t)], [ut], None);
+                    combine_rows(row, [next(t)], [ut], 1.0);
                 }
             }
         }
@@ -399,31 +396,19 @@ fn solve_grid(
 }
 
 /// `x ← (x − Σ_m c_m·y_m)·s` element by element, the terms subtracted in the order given (the
-/// order of [`BandedCrout::solve`]'s row operations), `s` applied when given. One pass over
-/// the row with `K` fixed, so the compiler keeps the coefficients in registers and vectorises.
+/// order of [`BandedCrout::solve`]'s row operations); `s = 1` (exact) when there is no scale.
+/// One pass over the row with `K` fixed, so the compiler keeps the coefficients in registers
+/// and vectorises.
 #[inline(always)]
-fn combine_rows<const K: usize>(x: &mut [f64], ys: [&[f64]; K], c: [f64; K], s: Option<f64>) {
+fn combine_rows<const K: usize>(x: &mut [f64], ys: [&[f64]; K], c: [f64; K], s: f64) {
     let n = x.len();
     let ys = ys.map(|y| &y[..n]);
-    match s {
-        Some(s) => {
-            for (i, xi) in x.iter_mut().enumerate() {
-                let mut v = *xi;
-                for m in 0..K {
-                    v -= c[m] * ys[m][i];
-                }
-                *xi = v * s;
-            }
+    for (i, xi) in x.iter_mut().enumerate() {
+        let mut v = *xi;
+        for m in 0..K {
+            v -= c[m] * ys[m][i];
         }
-        None => {
-            for (i, xi) in x.iter_mut().enumerate() {
-                let mut v = *xi;
-                for m in 0..K {
-                    v -= c[m] * ys[m][i];
-                }
-                *xi = v;
-            }
-        }
+        *xi = v * s;
     }
 }
 
@@ -528,15 +513,14 @@ fn chord_params_fixed<const D: usize>(
 ) -> bool {
     let dim = if D == 0 { dim } else { D };
     let row_len = nv * dim;
-    let valid = |d: f64| d != 0.0 && d.is_finite();
+    let distance = distance_fixed::<D>;
     // column lengths, and the distances down the columns for the second pass
     let mut total = vec![0.0_f64; nv];
-    let mut dist = vec![0.0_f64; (nu - 1) * nv];
+    let mut dist = Vec::with_capacity((nu - 1) * nv);
     // running sums along the current row
     let mut run = vec![0.0_f64; nv];
     let rows = data.chunks_exact(row_len);
     let next_rows = data.chunks_exact(row_len).skip(1).map(Some).chain([None]);
-    let mut dist_rows = dist.chunks_exact_mut(nv);
     for (row, next) in rows.zip(next_rows) {
         let mut ok = true;
         let mut sum = 0.0;
@@ -546,7 +530,8 @@ fn chord_params_fixed<const D: usize>(
             .zip(&mut run[1..])
         {
             let d = distance(p, q);
-            ok &= valid(d);
+            // a NaN or infinite distance makes the row's sum non-finite (tested below)
+            ok &= d > 0.0;
             sum += d;
             *s = sum;
         }
@@ -562,17 +547,18 @@ fn chord_params_fixed<const D: usize>(
         }
         ok &= 1.0 > prev;
         params_v[nv - 1] += 1.0;
-        if let (Some(next), Some(out)) = (next, dist_rows.next()) {
-            for (((p, q), s), o) in row
+        if let Some(next) = next {
+            for ((p, q), s) in row
                 .chunks_exact(dim)
                 .zip(next.chunks_exact(dim))
                 .zip(&mut total)
-                .zip(out)
             {
                 let d = distance(p, q);
-                ok &= valid(d);
+                // a NaN or infinite distance makes the column's length non-finite (tested
+                // after the pass)
+                ok &= d > 0.0;
                 *s += d;
-                *o = d;
+                dist.push(d);
             }
         }
         if !ok {
@@ -605,6 +591,26 @@ fn chord_params_fixed<const D: usize>(
         }
     }
     ok
+}
+
+/// [`distance`] with the dimension `D` fixed at compile time (`0`: any length): the same
+/// operations in the same order, unrolled, with the same fallback for sums of squares that
+/// underflow or approach overflow.
+#[inline(always)]
+fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
+    if D == 0 {
+        return distance(a, b);
+    }
+    let (a, b) = (&a[..D], &b[..D]);
+    let mut ss = 0.0;
+    for k in 0..D {
+        ss += (a[k] - b[k]) * (a[k] - b[k]);
+    }
+    if ss.is_normal() && ss < 1e300 {
+        ss.sqrt()
+    } else {
+        distance(a, b)
+    }
 }
 
 /// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.

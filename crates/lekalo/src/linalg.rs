@@ -254,11 +254,10 @@ impl BandedCrout {
     ) {
         let rows = self.rows;
         let mut win = [[0.0_f64; NC]; KL];
-        for (x, l) in rhs
-            .chunks_exact_mut(NC)
-            .zip(lower.chunks_exact(KL + 1))
-            .take(rows)
-        {
+        // the factors hold exactly `rows` rows, so the zips need no `take`
+        debug_assert_eq!(lower.len(), rows * (KL + 1), "lower factor size");
+        debug_assert_eq!(self.upper.len(), rows * KU, "upper factor size");
+        for (x, l) in rhs.chunks_exact_mut(NC).zip(lower.chunks_exact(KL + 1)) {
             let mut v = [0.0_f64; NC];
             v.copy_from_slice(x);
             for m in 0..KL {
@@ -276,7 +275,6 @@ impl BandedCrout {
         for (x, u) in rhs
             .chunks_exact_mut(NC)
             .zip(self.upper.chunks_exact(KU))
-            .take(rows)
             .rev()
         {
             let mut v = [0.0_f64; NC];
