@@ -371,6 +371,13 @@ def main():
           "surface = interpolate_surface; elevate = ElevationPlan::apply_into | "
           "BezierCurve::elevate_degree")
     table.print()
+    try:
+        from numpy._core import multiarray
+        thp = multiarray._get_madvise_hugepage()
+    except (ImportError, AttributeError):
+        thp = "unknown"
+    print(f"NumPy madvise(MADV_HUGEPAGE) for large arrays: {thp}; lekalo ran with "
+          "GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (the same for its allocations)")
     print(f"(peers took {time.perf_counter() - t0:.0f} s)")
 
 

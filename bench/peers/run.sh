@@ -27,5 +27,10 @@ for pkg in tinyspline geomdl bezier cadquery-ocp; do
   "${pip[@]}" "$pkg" || echo "peers: $pkg is not installable here; skipped" >&2
 done
 
-cargo run --quiet --release --example peer_bench -- "$data" "$repeats"
+# Large NumPy arrays are backed by transparent huge pages: NumPy madvise()s every allocation of
+# 4 MiB and more (numpy._core.multiarray._get_madvise_hugepage(), on by default on Linux; the
+# peers' output prints it). glibc does the same for our side when asked by this tunable, so that
+# both pay the same for first touching fresh memory (about 2 us a 4 KiB page on a VM otherwise).
+cargo build --quiet --release -p lekalo --example peer_bench
+GLIBC_TUNABLES=glibc.malloc.hugetlb=1 target/release/examples/peer_bench "$data" "$repeats"
 "$venv/bin/python" bench/peers/peers.py "$data" "$repeats"

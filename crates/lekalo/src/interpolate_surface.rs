@@ -1,6 +1,6 @@
 //! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §A.5,
-//! eq. 16–18): row and column parameters averaged, knots by averaging, two passes of curve
-//! interpolation with one factorisation per direction.
+//! eq. 16–18): row and column parameters averaged, knots by averaging, curve interpolation in
+//! both directions with one factorisation per direction, applied in two sweeps over the grid.
 
 use crate::error::{Error, Result};
 use crate::interpolate::{
@@ -57,9 +57,10 @@ impl SurfaceInterpolant {
 ///
 /// Parameters: for each column `l` the [`Parametrization`] of `q_0l … q_{n,l}`, averaged over the
 /// columns (`ū_k = Σ_l ū_k^{(l)} / (m + 1)`, P&T §9.2.5), likewise `v̄_l` over the rows; knots by
-/// averaging (eq. 3). Then two passes of curve interpolation, each with one matrix factored once:
-/// the `u` pass solves all `nv·dim` columns of the grid together, the `v` pass reuses the `v`
-/// factorisation for each of the `nu` rows. O(nu·nv·(p² + q²)·dim).
+/// averaging (eq. 3). Then curve interpolation down every column and along every row, each
+/// direction's banded collocation matrix factored once; the two solves commute, and are
+/// interleaved so that the grid is swept twice (see `solve_grid` in the source).
+/// O(nu·nv·(p + q)·dim) after the factorisations' O(nu·p² + nv·q²).
 ///
 /// ```
 /// use lekalo::{interpolate_surface, Parametrization, Points};
