@@ -754,6 +754,17 @@ pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
     [o0, o1, o2, o3]
 }
 
+/// `max(a, b)` by one comparison (`maxsd`): `b` when `a < b` is false, so a NaN `a` gives `b`
+/// and a NaN `b` gives `b`. For running maxima whose NaNs are caught elsewhere.
+#[inline(always)]
+fn max_num(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 /// Fused collocation solve of the free-end cubic interpolant with averaged knots (document 000
 /// §A.1 eq. 1 and 3, P&T Algorithm A9.1): the fast path of [`BandedCrout::push_row`] +
 /// [`BandedCrout::back_substitute`] with Cox–de Boor rows (P&T A2.2, see [`cubic_basis`]).
@@ -865,8 +876,10 @@ pub(crate) fn solve_free_cubic<const D: usize>(
         if !pivot.is_finite() || pivot.abs() <= SINGULAR_PIVOT {
             return false;
         }
-        // a[0] and a[4] are basis values (≤ 1) left as they were
-        growth = growth.max(a[1].abs()).max(a[2].abs()).max(a[3].abs());
+        // a[0] and a[4] are basis values (≤ 1) left as they were. Plain comparisons (one
+        // `maxsd` each) instead of `f64::max`'s NaN handling: the pivot was checked finite, and
+        // a NaN in a[1] or a[3] reaches the control points, whose finiteness is checked below
+        growth = max_num(max_num(max_num(growth, a[1].abs()), a[2].abs()), a[3].abs());
         let inv = 1.0 / pivot;
         for x in &mut b {
             *x *= inv;
@@ -886,7 +899,12 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     let (mut x1, mut x2) = ([0.0_f64; D], [0.0_f64; D]);
     // data near the largest f64 can overflow in the centring or the solve: then decline, and
     // the general path reports it
-    let mut finite = qn.iter().all(|v| v.is_finite());
+    // (`poison` stays 0 unless an infinity or NaN is multiplied into it: one multiply-add a
+    // coordinate, one accumulator per coordinate so that no chain crosses coordinates)
+    let mut poison = [0.0_f64; D];
+    for (p, v) in poison.iter_mut().zip(&qn) {
+        *p += v * 0.0;
+    }
     for r in (1..n).rev() {
         let u = upper[r];
         let row = &mut control[r * D..(r + 1) * D];
@@ -897,12 +915,12 @@ pub(crate) fn solve_free_cubic<const D: usize>(
             v -= u[1] * x2[k];
             x[k] = v;
             row[k] = v + q0[k];
-            finite &= row[k].is_finite();
+            poison[k] += row[k] * 0.0;
         }
         (x2, x1) = (x1, x);
     }
     control[..D].copy_from_slice(&q0);
-    finite
+    poison.iter().all(|p| *p == 0.0)
 }
 
 #[cold]
