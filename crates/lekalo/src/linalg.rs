@@ -848,8 +848,13 @@ pub(crate) fn solve_free_cubic<const D: usize>(
                 }
                 continue;
             }
+            // constant indices only, so that `a` is never addressed through memory
             match (col + 2).checked_sub(r) {
-                Some(pos) if pos < 5 => a[pos] = v,
+                Some(0) => a[0] = v,
+                Some(1) => a[1] = v,
+                Some(2) => a[2] = v,
+                Some(3) => a[3] = v,
+                Some(4) => a[4] = v,
                 _ if v == 0.0 => {}
                 _ => return false,
             }
