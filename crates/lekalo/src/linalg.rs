@@ -910,9 +910,11 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     for (p, v) in poison.iter_mut().zip(&qn) {
         *p += v * 0.0;
     }
-    for r in (1..n).rev() {
-        let u = upper[r];
-        let row = &mut control[r * D..(r + 1) * D];
+    for (row, u) in control[D..n * D]
+        .chunks_exact_mut(D)
+        .zip(&upper[1..n])
+        .rev()
+    {
         let mut x = [0.0_f64; D];
         for k in 0..D {
             let mut v = row[k];
