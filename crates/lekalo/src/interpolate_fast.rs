@@ -146,7 +146,8 @@ fn chord_cubic_fill<const D: usize>(
     let mut prev: &[f64] = &q[..D];
     for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
         let d = distance(prev, next);
-        if d == 0.0 || !d.is_finite() {
+        // zero and NaN fail here; an infinite distance makes the sum infinite (checked below)
+        if d <= 0.0 || d.is_nan() {
             return false;
         }
         sum += d;
