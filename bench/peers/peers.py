@@ -202,6 +202,29 @@ def interpolation(meta, repeats, table, f64):
                   f"at data {err:.1e} (ours {ours_err:.1e}); ctrl vs ours {cerr:.1e}",
                   keys=keys)
 
+        # the whole workload as a SciPy user writes it: chord-length parameters by NumPy, then
+        # the solve (the rows above are handed our parameters and knots, which lekalo's time
+        # includes computing)
+        def chord_params():
+            d = np.linalg.norm(np.diff(q, axis=0), axis=1)
+            s = np.concatenate(([0.0], np.cumsum(d)))
+            return s / s[-1]
+
+        def averaged_knots(tt):
+            # u_{j+3} = (t_j + t_{j+1} + t_{j+2}) / 3, j = 1 .. n-4 (document 000 eq. 3)
+            inner = np.convolve(tt[1:-1], np.ones(3) / 3.0, mode="valid")
+            return np.concatenate((np.zeros(4), inner, np.ones(4)))
+
+        def scipy_whole():
+            tt = chord_params()
+            return make_interp_spline(tt, q, k=3, t=averaged_knots(tt))
+
+        ns = median_ns(scipy_whole, n, repeats)
+        s = scipy_whole()
+        table.add(work, "scipy NumPy chord+knots, make_interp_spline", ns,
+                  f"whole workload; at data {rel(s(t), q, scale):.1e}; "
+                  f"ctrl vs ours {rel(s.c, ours):.1e}", keys=keys)
+
         if ocp:
             gp = ocp["gp_Pnt"]
             ql, tl = q.tolist(), t.tolist()
@@ -237,6 +260,21 @@ def interpolation(meta, repeats, table, f64):
             once = " (fill timed once)" if n > OCP_FILL_ONCE_ABOVE else ""
             table.add(work, "OCP GeomAPI_Interpolate (fill+solve)", fill_ns + ns,
                       f"array fill {fill_ns:.0f} ns/pt{once}", keys=keys)
+
+            # the whole workload in Open CASCADE: its own chord-length parameters (cumulative
+            # distances, not normalised) and the solve
+            def solve_own():
+                it = ocp["GeomAPI_Interpolate"](pts, False, 1e-12)
+                it.Perform()
+                return it.Curve()
+
+            ns = median_ns(solve_own, n, repeats)
+            c = solve_own()
+            dist = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(q, axis=0), axis=1))))
+            sl = (dist * (c.LastParameter() / dist[-1])).tolist()
+            err = max(c.Value(sl[i]).Distance(gp(*ql[i])) for i in range(0, n, step)) / scale
+            table.add(work, "OCP GeomAPI_Interpolate (own params+solve)", ns,
+                      f"whole workload; at data {err:.1e}", keys=keys)
 
 
 def at_grid(ku, kv, ctrl, u, v, g):
