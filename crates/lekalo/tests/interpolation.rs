@@ -1236,6 +1236,49 @@ proptest! {
     }
 
     #[test]
+    fn surfaces_hit_their_grids(
+        (nu, nv, dim) in (2usize..12, 2usize..12, 1usize..5),
+        noise in prop::collection::vec(-0.3..0.3_f64, 11 * 11 * 4),
+        (p, q) in (1usize..6, 1usize..6),
+        m in method(),
+        offset in prop_oneof![Just(0.0), Just(1e6)],
+    ) {
+        // a perturbed lattice: rows along the first coordinate, columns along the second (a
+        // 1-D grid increases along both), the other coordinates free
+        let mut data = Vec::with_capacity(nu * nv * dim);
+        for k in 0..nu {
+            for l in 0..nv {
+                let e = &noise[((k * 11 + l) * 4)..((k * 11 + l) * 4 + 4)];
+                let (x, y) = (k as f64, l as f64);
+                let coords = if dim == 1 {
+                    vec![(k * nv + l) as f64 + e[0]]
+                } else {
+                    let mut c = vec![x + e[0], y + e[1]];
+                    c.extend(e[2..].iter().take(dim - 2).map(|v| 3.0 * v));
+                    c
+                };
+                data.extend(coords.iter().map(|v| v + offset));
+            }
+        }
+        let g = Points::new(data, dim).unwrap();
+        let r = interpolate_surface(g.as_view(), nu, nv, p, q, m);
+        if p >= nu || q >= nv {
+            prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
+            return Ok(());
+        }
+        let s = r.unwrap();
+        let bound = REL * g.extent() + 16.0 * f64::EPSILON * g.max_abs();
+        for k in 0..nu {
+            for l in 0..nv {
+                let at = surface_point(&s, s.params_u[k], s.params_v[l]);
+                for (a, b) in at.iter().zip(g.point(k * nv + l)) {
+                    prop_assert!((a - b).abs() <= bound, "({}, {}): {} vs {}", k, l, a, b);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn offset_does_not_change_the_shape(q in walk(2, 5, 20), off in -1_000_000i32..1_000_000) {
         // coordinates on a 2^-20 grid and an integer offset: the moved data are exact, so
         // only the final addition of the offset may round
