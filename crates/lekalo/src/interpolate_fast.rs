@@ -1,7 +1,8 @@
 //! The fused fast path of global cubic interpolation (document 000 §A.1 with chord-length
 //! parameters and averaged knots, eq. 3), for 1–3 dimensions: parameters, knots, banded
-//! elimination and back substitution in three sweeps, with the same numbers as the general path
-//! of [`crate::interpolate`] (tested there), which it falls back to whenever it does not apply.
+//! elimination and back substitution in three sweeps, agreeing with the general path of
+//! [`crate::interpolate`] to rounding (the same parameters and knots bit for bit; the control
+//! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
 use crate::interpolate::distance;
 use crate::linalg::solve_free_cubic;

@@ -717,38 +717,53 @@ impl ColumnSums {
     }
 }
 
+/// Reciprocals `1/(u_{c+m} − u_c)`, `m = 1, 2, 3`, of the knot differences that start at
+/// knot `c`: the denominators of Cox–de Boor for the cubic (see [`cubic_basis`]). Infinite for
+/// a zero difference, which no span of positive length uses.
+#[inline(always)]
+fn knot_reciprocals(knots: &[f64], c: usize) -> [f64; 3] {
+    let k = &knots[c..c + 4];
+    [
+        1.0 / (k[1] - k[0]),
+        1.0 / (k[2] - k[0]),
+        1.0 / (k[3] - k[0]),
+    ]
+}
+
 /// The four non-zero cubic basis functions `N_{span−3..=span, 3}(t)`: P&T Algorithm A2.2
 /// (Cox–de Boor, [`crate::basis::basis_funs_into`]) unrolled for `p = 3` with every
-/// intermediate in registers. The operations and their order are those of A2.2, so the values
-/// are identical to the reference kernel's (tested). The six divisions are independent of one
-/// another within a level and across rows, so they pipeline; forming their reciprocals with one
-/// division (Montgomery's simultaneous inversion) was measured slower here and loses the
-/// identity with A2.2. `span` must be the span of `t`.
+/// intermediate in registers, each division by a knot difference replaced by a product with
+/// its reciprocal. `recip[i]` holds [`knot_reciprocals`] of knot `span − 2 + i`; consecutive
+/// rows share them, so a collocation sweep forms three reciprocals per knot instead of six
+/// quotients per row. The divisions were the bottleneck of the fused solve's forward sweep
+/// (measured 14.5 → 8.5 ns a row). The A2.2 denominator `right + left` is the knot difference
+/// rounded twice instead of once, so the values agree with A2.2 to a few ulps (tested) rather
+/// than bit for bit. `span` must be the span of `t`.
 #[inline(always)]
-pub(crate) fn cubic_basis(knots: &[f64], span: usize, t: f64) -> [f64; 4] {
+pub(crate) fn cubic_basis(knots: &[f64], recip: &[[f64; 3]; 3], span: usize, t: f64) -> [f64; 4] {
     debug_assert!(span >= 3 && span + 3 < knots.len(), "cubic span {span}");
     let k = &knots[span - 2..span + 4];
     // left[j] = t − u[span+1−j], right[j] = u[span+j] − t
     let (l1, l2, l3) = (t - k[2], t - k[1], t - k[0]);
     let (r1, r2, r3) = (k[3] - t, k[4] - t, k[5] - t);
-    // j = 1
-    let temp = 1.0 / (r1 + l1);
+    // j = 1: 1/(u_{s+1} − u_s)
+    let temp = recip[2][0];
     let (n0, n1) = (r1 * temp, l1 * temp);
-    // j = 2
-    let temp = n0 / (r1 + l2);
+    // j = 2: 1/(u_{s+1} − u_{s−1}), 1/(u_{s+2} − u_s)
+    let temp = n0 * recip[1][1];
     let m0 = r1 * temp;
     let saved = l2 * temp;
-    let temp = n1 / (r2 + l1);
+    let temp = n1 * recip[2][1];
     let m1 = saved + r2 * temp;
     let m2 = l1 * temp;
-    // j = 3
-    let temp = m0 / (r1 + l3);
+    // j = 3: 1/(u_{s+1} − u_{s−2}), 1/(u_{s+2} − u_{s−1}), 1/(u_{s+3} − u_s)
+    let temp = m0 * recip[0][2];
     let o0 = r1 * temp;
     let saved = l3 * temp;
-    let temp = m1 / (r2 + l2);
+    let temp = m1 * recip[1][2];
     let o1 = saved + r2 * temp;
     let saved = l2 * temp;
-    let temp = m2 / (r3 + l1);
+    let temp = m2 * recip[2][2];
     let o2 = saved + r3 * temp;
     let o3 = l1 * temp;
     [o0, o1, o2, o3]
@@ -782,9 +797,12 @@ fn max_num(a: f64, b: f64) -> f64 {
 /// so the parameters need no buffer of their own; `U` (two numbers a row, in `upper`, grown to
 /// `n` rows if shorter and otherwise reused as it is: every row read is written first) is stored
 /// for the back substitution, which writes the final, un-centred control points in place. The data are
-/// centred on `q_0` (see [`crate::interpolate`]). The arithmetic is that of the general path
-/// operation by operation (the terms the general path skips are products with zero), so both
-/// give the same numbers. Time O(n), memory `2·n` numbers besides the result.
+/// centred on `q_0` (see [`crate::interpolate`]). The elimination is that of the general path
+/// operation by operation (the terms the general path skips are products with zero); the rows
+/// differ from its Cox–de Boor rows by a few ulps (shared reciprocals, see [`cubic_basis`]), so
+/// the control points agree with the general path's to rounding amplified by the condition
+/// number (tested: within `κ·ε` of the data's extent, and 1e-14 of the net on smooth data).
+/// Time O(n), memory `2·n` numbers besides the result.
 pub(crate) fn solve_free_cubic<const D: usize>(
     q: &[f64],
     knots: &[f64],
@@ -813,12 +831,19 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     let (mut y2, mut y1) = ([0.0_f64; D], [0.0_f64; D]);
     let mut growth = 0.0_f64;
     let mut span = 3;
+    // reciprocals of the knot differences from knots span − 2, span − 1, span
+    let mut recip = [
+        knot_reciprocals(knots, 1),
+        knot_reciprocals(knots, 2),
+        knot_reciprocals(knots, 3),
+    ];
     for r in 1..n {
         let t = control[r * D];
         while knots[span + 1] <= t {
             span += 1;
+            recip = [recip[1], recip[2], knot_reciprocals(knots, span)];
         }
-        let basis = cubic_basis(knots, span, t);
+        let basis = cubic_basis(knots, &recip, span, t);
         // band positions 0..5 are the columns r − 2 ..= r + 2; basis j is column span − 3 + j
         let mut b = point(r);
         for (x, c) in b.iter_mut().zip(&q0) {
@@ -1404,7 +1429,7 @@ mod tests {
     #[test]
     fn cubic_basis_matches_cox_de_boor() {
         use crate::basis::{basis_funs_into, BasisScratch};
-        // uneven knots on three scales, including the extreme ones that take the plain divisions
+        // uneven knots on four scales, down to 1e-60 and up to 1e60
         let base = [
             0.0, 0.0, 0.0, 0.0, 0.1, 0.13, 0.4, 0.41, 0.7, 1.0, 1.0, 1.0, 1.0,
         ];
@@ -1420,8 +1445,24 @@ mod tests {
                         continue;
                     }
                     basis_funs_into(&knots, 3, span, t, &mut scratch, &mut reference);
-                    let fast = cubic_basis(&knots, span, t);
-                    assert_eq!(fast, reference, "span {span}, t {t}");
+                    let recip = [
+                        knot_reciprocals(&knots, span - 2),
+                        knot_reciprocals(&knots, span - 1),
+                        knot_reciprocals(&knots, span),
+                    ];
+                    let fast = cubic_basis(&knots, &recip, span, t);
+                    for (f, e) in fast.iter().zip(&reference) {
+                        // a few ulps of the partition of unity's scale (the values sum to 1)
+                        assert!(
+                            (f - e).abs() <= 8.0 * f64::EPSILON,
+                            "span {span}, t {t}: {fast:?} vs {reference:?}"
+                        );
+                    }
+                    let sum: f64 = fast.iter().sum();
+                    assert!(
+                        (sum - 1.0).abs() <= 4.0 * f64::EPSILON,
+                        "partition of unity {sum}"
+                    );
                 }
             }
         }

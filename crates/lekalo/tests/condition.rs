@@ -176,11 +176,22 @@ fn nearly_coincident_points_are_ill_conditioned_but_still_interpolated() {
     let res = relative_residual(&curve, q.as_view(), &t);
     assert!(res <= REL, "relative residual {res}");
     let general = chord.clone().max_condition(f64::INFINITY);
-    let same = general.interpolate(q.as_view()).unwrap();
-    assert_eq!(
-        same.control_points().as_slice(),
-        curve.control_points().as_slice(),
-        "the general path gives the fused path's numbers"
+    let other = general.interpolate(q.as_view()).unwrap();
+    let res = relative_residual(&other, q.as_view(), &t);
+    assert!(res <= REL, "general path: relative residual {res}");
+    // the two paths round their Cox–de Boor rows differently (the fused one shares the
+    // reciprocals of the knot differences): their control points may differ by up to about
+    // κ·ε of the data's extent, here ~1e-5 of it, while both fit the data to rounding
+    let extent = q.as_slice().iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let worst = other
+        .control_points()
+        .as_slice()
+        .iter()
+        .zip(curve.control_points().as_slice())
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(
+        worst <= kappa * f64::EPSILON * extent,
+        "paths differ by {worst:e} (κ_1 = {kappa:e})"
     );
 
     // with a limit: a clear error naming the estimate, the limit and the fix
