@@ -717,26 +717,67 @@ impl ColumnSums {
     }
 }
 
-/// Reciprocals `1/(u_{c+m} − u_c)`, `m = 1, 2, 3`, of the knot differences that start at
-/// knot `c`: the denominators of Cox–de Boor for the cubic (see [`cubic_basis`]). Infinite for
+/// Number of knots whose reciprocals [`ReciprocalBlock`] holds at a time.
+const RECIPROCAL_BLOCK: usize = 256;
+
+/// Reciprocals `1/(u_{c+m} − u_c)`, `m = 1, 2, 3`, of the knot differences that start at the
+/// knots `c` of a block `base ..` (the denominators of Cox–de Boor for the cubic, see
+/// [`cubic_basis`]), stored by difference (structure of arrays) so that a block is filled by
+/// vectorised divisions: the divider's throughput bounds the fused forward sweep. Infinite for
 /// a zero difference, which no span of positive length uses.
-#[inline(always)]
-fn knot_reciprocals(knots: &[f64], c: usize) -> [f64; 3] {
-    let k = &knots[c..c + 4];
-    [
-        1.0 / (k[1] - k[0]),
-        1.0 / (k[2] - k[0]),
-        1.0 / (k[3] - k[0]),
-    ]
+struct ReciprocalBlock {
+    base: usize,
+    len: usize,
+    /// `1/(u_{c+m} − u_c)` for `m = 1, 2, 3` at `c = base + i`.
+    by_gap: [[f64; RECIPROCAL_BLOCK]; 3],
+}
+
+impl ReciprocalBlock {
+    fn new(knots: &[f64], base: usize) -> Self {
+        let mut block = ReciprocalBlock {
+            base,
+            len: 0,
+            by_gap: [[0.0; RECIPROCAL_BLOCK]; 3],
+        };
+        block.fill(knots, base);
+        block
+    }
+
+    /// Whether knots `span − 2 ..= span` are in the block.
+    #[inline(always)]
+    fn covers(&self, span: usize) -> bool {
+        span >= self.base + 2 && span < self.base + self.len
+    }
+
+    fn fill(&mut self, knots: &[f64], base: usize) {
+        let len = RECIPROCAL_BLOCK.min(knots.len().saturating_sub(3 + base));
+        for (m, out) in self.by_gap.iter_mut().enumerate() {
+            let from = &knots[base..base + len];
+            let to = &knots[base + m + 1..base + m + 1 + len];
+            for ((o, a), b) in out[..len].iter_mut().zip(to).zip(from) {
+                *o = 1.0 / (a - b);
+            }
+        }
+        (self.base, self.len) = (base, len);
+    }
+
+    /// The reciprocals of knots `span − 2`, `span − 1`, `span` (see [`cubic_basis`]).
+    #[inline(always)]
+    fn window(&self, span: usize) -> [[f64; 3]; 3] {
+        let i = span - self.base;
+        let at = |c: usize| [self.by_gap[0][c], self.by_gap[1][c], self.by_gap[2][c]];
+        [at(i - 2), at(i - 1), at(i)]
+    }
 }
 
 /// The four non-zero cubic basis functions `N_{span−3..=span, 3}(t)`: P&T Algorithm A2.2
 /// (Cox–de Boor, [`crate::basis::basis_funs_into`]) unrolled for `p = 3` with every
 /// intermediate in registers, each division by a knot difference replaced by a product with
-/// its reciprocal. `recip[i]` holds [`knot_reciprocals`] of knot `span − 2 + i`; consecutive
-/// rows share them, so a collocation sweep forms three reciprocals per knot instead of six
-/// quotients per row. The divisions were the bottleneck of the fused solve's forward sweep
-/// (measured 14.5 → 8.5 ns a row). The A2.2 denominator `right + left` is the knot difference
+/// its reciprocal. `recip[i]` holds the reciprocals of the differences from knot `span − 2 + i`
+/// ([`ReciprocalBlock::window`]); consecutive rows share them, so a collocation sweep forms
+/// three reciprocals per knot (vectorised, a block at a time) instead of six quotients per row.
+/// The divisions were the bottleneck of the fused solve's forward sweep (measured 14.5 → 8.5 ns
+/// a row without them). The A2.2 denominator `right + left` is the knot difference
 /// rounded twice instead of once, so the values agree with A2.2 to a few ulps (tested) rather
 /// than bit for bit. `span` must be the span of `t`.
 #[inline(always)]
@@ -831,19 +872,17 @@ pub(crate) fn solve_free_cubic<const D: usize>(
     let (mut y2, mut y1) = ([0.0_f64; D], [0.0_f64; D]);
     let mut growth = 0.0_f64;
     let mut span = 3;
-    // reciprocals of the knot differences from knots span − 2, span − 1, span
-    let mut recip = [
-        knot_reciprocals(knots, 1),
-        knot_reciprocals(knots, 2),
-        knot_reciprocals(knots, 3),
-    ];
+    // reciprocals of the knot differences, a block of knots at a time
+    let mut block = ReciprocalBlock::new(knots, 1);
     for r in 1..n {
         let t = control[r * D];
         while knots[span + 1] <= t {
             span += 1;
-            recip = [recip[1], recip[2], knot_reciprocals(knots, span)];
         }
-        let basis = cubic_basis(knots, &recip, span, t);
+        if !block.covers(span) {
+            block.fill(knots, span - 2);
+        }
+        let basis = cubic_basis(knots, &block.window(span), span, t);
         // band positions 0..5 are the columns r − 2 ..= r + 2; basis j is column span − 3 + j
         let mut b = point(r);
         for (x, c) in b.iter_mut().zip(&q0) {
@@ -1445,11 +1484,7 @@ mod tests {
                         continue;
                     }
                     basis_funs_into(&knots, 3, span, t, &mut scratch, &mut reference);
-                    let recip = [
-                        knot_reciprocals(&knots, span - 2),
-                        knot_reciprocals(&knots, span - 1),
-                        knot_reciprocals(&knots, span),
-                    ];
+                    let recip = ReciprocalBlock::new(&knots, span - 2).window(span);
                     let fast = cubic_basis(&knots, &recip, span, t);
                     for (f, e) in fast.iter().zip(&reference) {
                         // a few ulps of the partition of unity's scale (the values sum to 1)
