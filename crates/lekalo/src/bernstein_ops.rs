@@ -33,8 +33,9 @@ pub(crate) fn binomial(n: usize, k: usize) -> f64 {
 
 /// Derivatives `f^{(l)}(u)`, `l = 0..=order`, of the Bernstein polynomial with coefficients
 /// `ctrl` (degree `n = ctrl.len()/dim − 1`), into `out` (`(order + 1) * dim`, row `l` the l-th
-/// derivative). Orders above `n` are zero. `scratch` is resized to `ctrl.len()` (reuse it across
-/// calls to avoid allocation). O(n² · dim + order³ · dim).
+/// derivative). Orders above `n` are zero. `scratch` is resized to `2 · ctrl.len()` (reuse it
+/// across calls to avoid allocation; [`derivatives_at_in`] takes any slice that long).
+/// O(n² · dim + order³ · dim).
 ///
 /// Method: see the module docs (de Casteljau + forward differences).
 pub(crate) fn derivatives_at(
@@ -45,20 +46,48 @@ pub(crate) fn derivatives_at(
     out: &mut [f64],
     scratch: &mut Vec<f64>,
 ) {
+    scratch.resize(2 * ctrl.len(), 0.0);
+    derivatives_at_in(ctrl, dim, u, order, out, scratch);
+}
+
+/// Stack room for [`with_work`]: enough for [`derivatives_at_in`] on a 3-D curve of degree 9.
+pub(crate) const SMALL_WORK: usize = 64;
+
+/// Calls `f` with a zeroed work slice of `len` numbers: on the stack up to [`SMALL_WORK`],
+/// allocated above, so that evaluations of small curves allocate nothing.
+pub(crate) fn with_work<R>(len: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    if len <= SMALL_WORK {
+        let mut stack = [0.0; SMALL_WORK];
+        f(&mut stack[..len])
+    } else {
+        f(&mut vec![0.0; len])
+    }
+}
+
+/// [`derivatives_at`] with the work space given as a slice of at least `2 · ctrl.len()`
+/// numbers (the de Casteljau points, then their differences).
+pub(crate) fn derivatives_at_in(
+    ctrl: &[f64],
+    dim: usize,
+    u: f64,
+    order: usize,
+    out: &mut [f64],
+    work: &mut [f64],
+) {
     debug_assert!(dim > 0 && ctrl.len() % dim == 0 && !ctrl.is_empty(), "ctrl");
     debug_assert_eq!(out.len(), (order + 1) * dim, "derivative output length");
+    debug_assert!(work.len() >= 2 * ctrl.len(), "work space");
+    let (scratch, diff) = work.split_at_mut(ctrl.len());
     let n = ctrl.len() / dim - 1;
     out.fill(0.0);
-    scratch.clear();
-    scratch.extend_from_slice(ctrl);
-    let mut diff: Vec<f64> = Vec::new();
+    scratch.copy_from_slice(ctrl);
     // after `m` de Casteljau steps, points 0..=n−m remain; they give derivative l = n − m
     for m in 0..=n {
         let l = n - m;
         if l <= order {
             // Δ^l of the l + 1 remaining points, times n!/(n−l)!
-            diff.clear();
-            diff.extend_from_slice(&scratch[..(l + 1) * dim]);
+            let diff = &mut diff[..(l + 1) * dim];
+            diff.copy_from_slice(&scratch[..(l + 1) * dim]);
             for level in 1..=l {
                 for i in 0..=(l - level) {
                     for d in 0..dim {

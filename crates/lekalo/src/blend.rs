@@ -139,15 +139,10 @@ impl ParametricCurve for BezierCurve {
     fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
         check_unit(t)?;
         check_out_len(out, order, BezierCurve::dim(self))?;
-        let mut scratch = Vec::new();
-        bernstein_ops::derivatives_at(
-            self.control_points().as_slice(),
-            BezierCurve::dim(self),
-            t,
-            order,
-            out,
-            &mut scratch,
-        );
+        let ctrl = self.control_points().as_slice();
+        bernstein_ops::with_work(2 * ctrl.len(), |work| {
+            bernstein_ops::derivatives_at_in(ctrl, BezierCurve::dim(self), t, order, out, work);
+        });
         Ok(())
     }
     fn bezier_form(&self) -> Option<BezierForm> {
@@ -676,18 +671,20 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C
         check_unit(u)?;
         let dim = self.first.dim();
         check_out_len(out, order, dim)?;
-        let mut second = vec![0.0; out.len()];
-        let mut w = vec![0.0; order + 1];
-        unit_derivatives(&self.first, u, order, out)?;
-        unit_derivatives(&self.second, u, order, &mut second)?;
-        self.jump.eval_derivatives(u, &mut w)?;
-        blend_derivatives(
-            out,
-            &mut second,
-            &w,
-            dim,
-            "deformation derivatives (overflow: rescale the curves)",
-        )
+        // the second curve's derivatives, then the jump polynomial's, in one work slice
+        bernstein_ops::with_work(out.len() + order + 1, |work| {
+            let (second, w) = work.split_at_mut(out.len());
+            unit_derivatives(&self.first, u, order, out)?;
+            unit_derivatives(&self.second, u, order, second)?;
+            self.jump.eval_derivatives(u, w)?;
+            blend_derivatives(
+                out,
+                second,
+                w,
+                dim,
+                "deformation derivatives (overflow: rescale the curves)",
+            )
+        })
     }
     fn bezier_form(&self) -> Option<BezierForm> {
         match (self.first.bezier_form()?, self.second.bezier_form()?) {
