@@ -246,35 +246,37 @@ impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for CornerTransit
         let dim = self.before.dim();
         check_out_len(out, order, dim)?;
         let (h1, h2) = self.window_lengths();
-        // q_1 into `out`, q_2 into `q2`
-        let mut q2 = vec![0.0; out.len()];
-        let t = (self.t1 + u * h1).min(self.before.domain().1);
-        self.before.eval_derivatives_into(t, order, out)?;
-        let t = (self.after.domain().0 + u * h2).min(self.t2);
-        self.after.eval_derivatives_into(t, order, &mut q2)?;
-        let mut wk = vec![0.0; order + 1];
-        self.outer.eval_derivatives(u, &mut wk)?;
-        let (mut s1, mut s2) = (1.0, 1.0);
-        for l in 0..=order {
-            for d in 0..dim {
-                let i = l * dim + d;
-                // (1 − w_k)^{(l)} = δ_{l0} − w_k^{(l)}
-                let one_minus = if l == 0 { 1.0 - wk[0] } else { -wk[l] };
-                out[i] = s1 * out[i] + wk[l] * self.d2[d];
-                q2[i] = s2 * q2[i] + one_minus * self.d1[d];
+        // q_1 into `out`; q_2, w_k's and w_{k−1}'s derivatives in one work slice (on the stack
+        // for small orders)
+        crate::bernstein_ops::with_work(out.len() + 2 * (order + 1), |work| {
+            let (q2, rest) = work.split_at_mut(out.len());
+            let (wk, w) = rest.split_at_mut(order + 1);
+            let t = (self.t1 + u * h1).min(self.before.domain().1);
+            self.before.eval_derivatives_into(t, order, out)?;
+            let t = (self.after.domain().0 + u * h2).min(self.t2);
+            self.after.eval_derivatives_into(t, order, q2)?;
+            self.outer.eval_derivatives(u, wk)?;
+            let (mut s1, mut s2) = (1.0, 1.0);
+            for l in 0..=order {
+                for d in 0..dim {
+                    let i = l * dim + d;
+                    // (1 − w_k)^{(l)} = δ_{l0} − w_k^{(l)}
+                    let one_minus = if l == 0 { 1.0 - wk[0] } else { -wk[l] };
+                    out[i] = s1 * out[i] + wk[l] * self.d2[d];
+                    q2[i] = s2 * q2[i] + one_minus * self.d1[d];
+                }
+                s1 *= h1;
+                s2 *= h2;
             }
-            s1 *= h1;
-            s2 *= h2;
-        }
-        // p = q_1 + Σ C(l,i) w_{k−1}^{(i)} (q_2 − q_1)^{(l−i)}
-        let mut w = vec![0.0; order + 1];
-        self.inner.eval_derivatives(u, &mut w)?;
-        crate::blend::blend_derivatives(
-            out,
-            &mut q2,
-            &w,
-            dim,
-            "corner transition derivatives (overflow: rescale the curves)",
-        )
+            // p = q_1 + Σ C(l,i) w_{k−1}^{(i)} (q_2 − q_1)^{(l−i)}
+            self.inner.eval_derivatives(u, w)?;
+            crate::blend::blend_derivatives(
+                out,
+                q2,
+                w,
+                dim,
+                "corner transition derivatives (overflow: rescale the curves)",
+            )
+        })
     }
 }
