@@ -872,6 +872,26 @@ pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
         .sqrt()
 }
 
+/// [`distance`] with the dimension `D` fixed at compile time (`0`: any length): the same
+/// operations in the same order, unrolled, with the same fallback for sums of squares that
+/// underflow or approach overflow.
+#[inline(always)]
+pub(crate) fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
+    if D == 0 {
+        return distance(a, b);
+    }
+    let (a, b) = (&a[..D], &b[..D]);
+    let mut ss = 0.0;
+    for k in 0..D {
+        ss += (a[k] - b[k]) * (a[k] - b[k]);
+    }
+    if ss.is_normal() && ss < 1e300 {
+        ss.sqrt()
+    } else {
+        distance(a, b)
+    }
+}
+
 /// Copies `points` minus `reference` into rows `first..first + n` of `control`.
 fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &[f64]) {
     let dim = reference.len();
@@ -885,7 +905,7 @@ fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &
     }
 }
 
-pub(crate) fn add_reference(control: &mut [f64], reference: &[f64]) {
+fn add_reference(control: &mut [f64], reference: &[f64]) {
     /// The loop for a dimension known at compile time (the reference in registers).
     fn fixed<const D: usize>(control: &mut [f64], reference: &[f64]) {
         let mut r = [0.0; D];

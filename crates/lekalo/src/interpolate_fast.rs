@@ -4,7 +4,7 @@
 //! [`crate::interpolate`] to rounding (the same parameters and knots bit for bit; the control
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
-use crate::interpolate::distance;
+use crate::interpolate::distance_fixed;
 use crate::linalg::solve_free_cubic;
 use crate::{BSplineCurve, Points, PointsRef};
 
@@ -146,7 +146,7 @@ fn chord_cubic_fill<const D: usize>(
     let mut sum = 0.0;
     let mut prev: &[f64] = &q[..D];
     for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
-        let d = distance(prev, next);
+        let d = distance_fixed::<D>(prev, next);
         // zero and NaN fail here; an infinite distance makes the sum infinite (checked below)
         if d <= 0.0 || d.is_nan() {
             return false;

@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::interpolate::{
-    check_strictly_increasing, distance, factor_collocation, parametrize_into, Factors,
+    check_strictly_increasing, distance_fixed, factor_collocation, parametrize_into, Factors,
     Parametrization,
 };
 use crate::knots::KnotVector;
@@ -592,26 +592,6 @@ fn chord_params_fixed<const D: usize>(
         }
     }
     ok
-}
-
-/// [`distance`] with the dimension `D` fixed at compile time (`0`: any length): the same
-/// operations in the same order, unrolled, with the same fallback for sums of squares that
-/// underflow or approach overflow.
-#[inline(always)]
-fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
-    if D == 0 {
-        return distance(a, b);
-    }
-    let (a, b) = (&a[..D], &b[..D]);
-    let mut ss = 0.0;
-    for k in 0..D {
-        ss += (a[k] - b[k]) * (a[k] - b[k]);
-    }
-    if ss.is_normal() && ss < 1e300 {
-        ss.sqrt()
-    } else {
-        distance(a, b)
-    }
 }
 
 /// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.

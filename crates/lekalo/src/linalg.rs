@@ -214,7 +214,8 @@ impl BandedCrout {
     /// for a factorisation made with `keep_lower`.
     pub(crate) fn solve(&self, rhs: &mut [f64], ncols: usize) {
         // constant band widths and column counts for the common cases (bicubic and biquadratic
-        // surfaces in 1–4 dimensions, many small blocks each); the arithmetic is the same
+        // surfaces in 1–4 dimensions, many small blocks each, and the condition estimate's
+        // single columns); the arithmetic is the same
         debug_assert_eq!(rhs.len(), self.rows * ncols, "rhs block size");
         let Some(lower) = &self.lower else {
             debug_assert!(false, "solve needs the kept lower factor");
@@ -234,6 +235,10 @@ impl BandedCrout {
             (2, 2, 2) => fixed!(2, 2, 2),
             (2, 2, 3) => fixed!(2, 2, 3),
             (2, 2, 4) => fixed!(2, 2, 4),
+            (1, 2, 1) => fixed!(1, 2, 1),
+            (2, 1, 1) => fixed!(2, 1, 1),
+            (3, 3, 1) => fixed!(3, 3, 1),
+            (4, 4, 1) => fixed!(4, 4, 1),
             (1, 2, 3) => fixed!(1, 2, 3),
             (2, 1, 3) => fixed!(2, 1, 3),
             (kl, _, nc) => self.solve_impl(rhs, kl, nc),
@@ -241,9 +246,9 @@ impl BandedCrout {
     }
 
     /// [`BandedCrout::solve`] for fixed band widths and column count, row-oriented with the last
-    /// `KL` (`KU`) solved rows in registers, as [`BandedCrout::solve_vector_fixed`] does for one
-    /// column: the rows of a small block are a latency-bound recurrence, and reloading a row just
-    /// stored would add the store-forwarding delay to each. The same operations in the same
+    /// `KL` (`KU`) solved rows in registers: the rows of a small block (or of a single column)
+    /// are a latency-bound recurrence, and reloading a row just stored would add the
+    /// store-forwarding delay to each. The same operations in the same
     /// order as [`BandedCrout::solve_impl`], except that the zero entries of `L` left of column
     /// 0 and of `U` beyond the last row are multiplied (by the zero initial windows) instead of
     /// skipped, which leaves every finite value unchanged.
@@ -405,61 +410,14 @@ impl BandedCrout {
         }
     }
 
-    /// [`BandedCrout::solve`] for one right-hand side, with the band widths fixed for the common
-    /// cases (the condition estimate's solves; the sweeps are latency-bound recurrences, so the
-    /// generic loop overhead would double their time).
+    /// [`BandedCrout::solve`] for one right-hand side (the condition estimate's solves, whose
+    /// band widths [`BandedCrout::solve`] fixes at compile time for the common cases).
     fn solve_vector(&self, x: &mut [f64]) {
-        debug_assert_eq!(x.len(), self.rows, "rhs length");
-        let Some(lower) = &self.lower else {
-            debug_assert!(false, "solve_vector needs the kept lower factor");
-            return;
-        };
-        match (self.kl, self.ku) {
-            (1, 1) => self.solve_vector_fixed::<1, 1>(lower, x),
-            (2, 2) => self.solve_vector_fixed::<2, 2>(lower, x),
-            (1, 2) => self.solve_vector_fixed::<1, 2>(lower, x),
-            (2, 1) => self.solve_vector_fixed::<2, 1>(lower, x),
-            (3, 3) => self.solve_vector_fixed::<3, 3>(lower, x),
-            (4, 4) => self.solve_vector_fixed::<4, 4>(lower, x),
-            (kl, ku) => self.solve_vector_impl(lower, x, kl, ku),
-        }
-    }
-
-    /// [`BandedCrout::solve_vector`] for fixed band widths, row-oriented with the last `KL`
-    /// (`KU`) solution values in registers: the sweeps are latency-bound recurrences, and
-    /// reloading a value just stored would add the store-forwarding delay to every row. The
-    /// entries of `L` left of column 0 and of `U` beyond the last row are zero, as are the
-    /// initial windows, so the first and last rows need no special case.
-    fn solve_vector_fixed<const KL: usize, const KU: usize>(&self, lower: &[f64], x: &mut [f64]) {
-        let mut win = [0.0_f64; KL];
-        for (r, l) in lower.chunks_exact(KL + 1).take(self.rows).enumerate() {
-            let mut v = x[r];
-            for m in 0..KL {
-                v -= l[m] * win[m];
-            }
-            v *= l[KL];
-            x[r] = v;
-            push_back(&mut win, v);
-        }
-        let mut win = [0.0_f64; KU];
-        for (r, u) in self
-            .upper
-            .chunks_exact(KU)
-            .take(self.rows)
-            .enumerate()
-            .rev()
-        {
-            let mut v = x[r];
-            for t in 0..KU {
-                v -= u[t] * win[t];
-            }
-            x[r] = v;
-            push_front(&mut win, v);
-        }
+        self.solve(x, 1);
     }
 
     /// [`BandedCrout::solve_transposed`] for fixed band widths, row-oriented with the last
-    /// solution values in registers (see [`BandedCrout::solve_vector_fixed`]): row `r` of `Uᵀ`
+    /// solution values in registers (see [`BandedCrout::solve_block_fixed`]): row `r` of `Uᵀ`
     /// holds `U[r−1−t][t]`, row `i` of `Lᵀ` holds `L[i+1+t][i]` for `t = 0, 1, …`.
     fn solve_transposed_fixed<const KL: usize, const KU: usize>(
         &self,
@@ -509,41 +467,6 @@ impl BandedCrout {
             v *= lower[i * (KL + 1) + KL];
             x[i] = v;
             push_front(&mut win, v);
-        }
-    }
-
-    #[inline(always)]
-    fn solve_vector_impl(&self, lower: &[f64], x: &mut [f64], kl: usize, ku: usize) {
-        let rows = self.rows;
-        // L·y = b, row by row (as solve_impl)
-        for r in 0..rows {
-            let l = &lower[r * (kl + 1)..(r + 1) * (kl + 1)];
-            let mut v = x[r];
-            if r >= kl {
-                for (lm, y) in l[..kl].iter().zip(&x[r - kl..r]) {
-                    v -= lm * y;
-                }
-            } else {
-                for (lm, y) in l[kl - r..kl].iter().zip(&x[..r]) {
-                    v -= lm * y;
-                }
-            }
-            x[r] = v * l[kl];
-        }
-        // U·x = y (as back_substitute_impl)
-        for r in (0..rows).rev() {
-            let u = &self.upper[r * ku..(r + 1) * ku];
-            let mut v = x[r];
-            if r + ku < rows {
-                for (uj, y) in u.iter().zip(&x[r + 1..r + 1 + ku]) {
-                    v -= uj * y;
-                }
-            } else {
-                for (uj, y) in u.iter().zip(&x[r + 1..]) {
-                    v -= uj * y;
-                }
-            }
-            x[r] = v;
         }
     }
 
