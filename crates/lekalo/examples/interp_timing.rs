@@ -33,10 +33,23 @@ fn status_kb(field: &str) -> u64 {
         .unwrap_or(0)
 }
 
+/// Minor page faults of this process so far (`/proc/self/stat` field 10; 0 where unavailable).
+fn minor_faults() -> u64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // the fields after the parenthesised command name; minflt is the 10th field
+            let rest = s.rsplit_once(')')?.1;
+            rest.split_whitespace().nth(7).and_then(|v| v.parse().ok())
+        })
+        .unwrap_or(0)
+}
+
 fn time_curve(n: usize, reps: usize) {
     let q = common::helix(n);
     let base_kb = status_kb("VmRSS:");
     let mut best_wall = f64::MAX;
+    let f0 = minor_faults();
     let c0 = cpu_ns();
     for _ in 0..reps {
         let w0 = Instant::now();
@@ -49,10 +62,11 @@ fn time_curve(n: usize, reps: usize) {
         best_wall = best_wall.min(wall);
     }
     let mean_cpu = (cpu_ns() - c0) as f64 / reps as f64;
+    let faults = (minor_faults() - f0) as f64 / reps as f64;
     let peak_kb = status_kb("VmHWM:");
     let input_kb = (n * 3 * 8) as f64 / 1024.0;
     println!(
-        "curve n = {n:>8}: {:>6.1} ns/point CPU (mean), {:>6.1} ns/point wall (min), peak above input {:.2}× input",
+        "curve n = {n:>8}: {:>6.1} ns/point CPU (mean), {:>6.1} ns/point wall (min), peak above input {:.2}× input, {faults:.0} page faults a call",
         mean_cpu / n as f64,
         best_wall * 1e9 / n as f64,
         (peak_kb.saturating_sub(base_kb)) as f64 / input_kb
@@ -83,6 +97,7 @@ fn time_curve(n: usize, reps: usize) {
 fn time_surface(n: usize, reps: usize) {
     let g = common::grid(n);
     let mut best_wall = f64::MAX;
+    let f0 = minor_faults();
     let c0 = cpu_ns();
     for _ in 0..reps {
         let w0 = Instant::now();
@@ -93,8 +108,9 @@ fn time_surface(n: usize, reps: usize) {
         std::hint::black_box(&s);
     }
     let mean_cpu = (cpu_ns() - c0) as f64 / reps as f64;
+    let faults = (minor_faults() - f0) as f64 / reps as f64;
     println!(
-        "surface {n}×{n}: {:.2} ms CPU (mean), {:.2} ms wall (min)",
+        "surface {n}×{n}: {:.2} ms CPU (mean), {:.2} ms wall (min), {faults:.0} page faults a call",
         mean_cpu * 1e-6,
         best_wall * 1e3
     );

@@ -5,6 +5,7 @@
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
 use crate::interpolate::distance_fixed;
+use crate::large_buffer::reuse_or_zeroed;
 use crate::linalg::solve_free_cubic;
 use crate::{BSplineCurve, Points, PointsRef};
 
@@ -17,7 +18,7 @@ pub(crate) fn free_end_cubic(
     knots: &[f64],
 ) -> Option<Points> {
     let dim = points.dim();
-    let mut control = vec![0.0; points.as_slice().len()];
+    let mut control = crate::large_buffer::zeroed(points.as_slice().len());
     for (c, t) in control.chunks_exact_mut(dim).zip(params) {
         c[0] = *t;
     }
@@ -112,10 +113,8 @@ pub(crate) fn chord_cubic(
     }
     // every entry of both buffers is written before it is read, so stale values from a
     // recycled curve need no clearing (`resize` writes only the growth)
-    let mut control = std::mem::take(&mut ws.control);
-    let mut knots = std::mem::take(&mut ws.knots);
-    control.resize(q.len(), 0.0);
-    knots.resize(n + 5, 0.0);
+    let mut control = reuse_or_zeroed(&mut ws.control, q.len());
+    let mut knots = reuse_or_zeroed(&mut ws.knots, n + 5);
     let upper = &mut ws.upper;
     let done = match dim {
         1 => chord_cubic_fill::<1>(q, &mut control, &mut knots, upper),

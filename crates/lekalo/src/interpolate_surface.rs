@@ -324,7 +324,7 @@ fn solve_grid(
     let reference = &data[..dim];
     let ref_row: Vec<f64> = reference.iter().copied().cycle().take(row_len).collect();
     // grown row by row in sweep 1 (no zero-fill first: the allocator may hand back used memory)
-    let mut control = Vec::with_capacity(data.len());
+    let mut control = crate::large_buffer::with_capacity(data.len());
     let (kl, ku) = (lu_u.kl(), lu_u.ku());
     for (k, q) in data.chunks_exact(row_len).enumerate() {
         control.extend(q.iter().zip(&ref_row).map(|(x, r)| x - r));

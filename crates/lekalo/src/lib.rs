@@ -26,6 +26,10 @@
 //! - NURBS are B-splines over homogeneous points `(w·x, …, w)`.
 //! - Every function that takes user data validates it and returns [`Result`]; nothing panics on
 //!   user input. Errors are one enum, [`Error`].
+//! - No `unsafe` code but one call: on Linux, large result buffers (4 MiB and more, e.g. the
+//!   control points of an interpolation through 10^6 points) are marked for transparent huge
+//!   pages with `madvise`, as NumPy marks its arrays, because first-touch page faults otherwise
+//!   cost as much as the arithmetic (`docs/performance.md`).
 //!
 //! ## Example
 //! ```
@@ -47,6 +51,7 @@ mod error;
 mod fast_eval;
 mod knot_removal;
 mod knots;
+mod large_buffer;
 mod nurbs;
 mod nurbs_ops;
 mod nurbs_surface;

@@ -788,7 +788,8 @@ pub(crate) fn solve_free_cubic<const D: usize>(
         *a -= b;
     }
     if upper.len() < n {
-        upper.resize(n, [0.0; 2]);
+        // fresh zero pages (no zeroing pass) unless the workspace already holds the room
+        *upper = crate::large_buffer::reuse_or_zeroed(upper, n);
     }
     // rows r − 2 and r − 1 of U and of the forward-solved right-hand side
     let (mut u2, mut u1) = ([0.0_f64; 2], [0.0_f64; 2]);
