@@ -414,8 +414,8 @@ def main():
         thp = multiarray._get_madvise_hugepage()
     except (ImportError, AttributeError):
         thp = "unknown"
-    print(f"NumPy madvise(MADV_HUGEPAGE) for large arrays: {thp}; lekalo ran with "
-          "GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (the same for its allocations)")
+    print(f"NumPy madvise(MADV_HUGEPAGE) for large arrays: {thp}; lekalo gives the same hint "
+          "for its result buffers of 4 MiB and more")
     print(f"(peers took {time.perf_counter() - t0:.0f} s)")
 
 
