@@ -6,7 +6,6 @@
 
 use crate::interpolate::distance_fixed;
 use crate::large_buffer::reuse_or_zeroed;
-use crate::linalg::solve_free_cubic;
 use crate::{BSplineCurve, Points, PointsRef};
 
 /// The fast path of [`free_end`](crate::interpolate) for cubics with averaged knots in 1–3 dimensions
@@ -25,9 +24,9 @@ pub(crate) fn free_end_cubic(
     let mut upper = Vec::new();
     let q = points.as_slice();
     let done = match dim {
-        1 => solve_free_cubic::<1>(q, knots, &mut control, &mut upper),
-        2 => solve_free_cubic::<2>(q, knots, &mut control, &mut upper),
-        3 => solve_free_cubic::<3>(q, knots, &mut control, &mut upper),
+        1 => dispatch::solve_free_cubic_best::<1>(q, knots, &mut control, &mut upper),
+        2 => dispatch::solve_free_cubic_best::<2>(q, knots, &mut control, &mut upper),
+        3 => dispatch::solve_free_cubic_best::<3>(q, knots, &mut control, &mut upper),
         _ => false,
     };
     done.then(|| Points::from_raw(control, dim))
@@ -117,9 +116,18 @@ pub(crate) fn chord_cubic(
     let mut knots = reuse_or_zeroed(&mut ws.knots, n + 5);
     let upper = &mut ws.upper;
     let done = match dim {
-        1 => chord_cubic_fill::<1>(q, &mut control, &mut knots, upper),
-        2 => chord_cubic_fill::<2>(q, &mut control, &mut knots, upper),
-        _ => chord_cubic_fill::<3>(q, &mut control, &mut knots, upper),
+        1 => {
+            dispatch::chord_params::<1>(q, &mut control, &mut knots)
+                && dispatch::solve_free_cubic_best::<1>(q, &knots, &mut control, upper)
+        }
+        2 => {
+            dispatch::chord_params::<2>(q, &mut control, &mut knots)
+                && dispatch::solve_free_cubic_best::<2>(q, &knots, &mut control, upper)
+        }
+        _ => {
+            dispatch::chord_params::<3>(q, &mut control, &mut knots)
+                && dispatch::solve_free_cubic_best::<3>(q, &knots, &mut control, upper)
+        }
     };
     if done {
         Some(BSplineCurve::from_raw(
@@ -133,14 +141,80 @@ pub(crate) fn chord_cubic(
     }
 }
 
-/// The body of [`chord_cubic`] for `D` coordinates: `control` and `knots` have the result's
-/// sizes and any content (every entry is written before it is read).
-fn chord_cubic_fill<const D: usize>(
-    q: &[f64],
-    control: &mut [f64],
-    knots: &mut [f64],
-    upper: &mut Vec<[f64; 2]>,
-) -> bool {
+/// [`chord_params`] and [`solve_free_cubic`] compiled twice, for the baseline instruction
+/// set and with AVX2, the latter taken at run time when the processor has it ([`crate::isa`]:
+/// the same bits either way, tested below).
+mod dispatch {
+    use crate::isa::has_avx2;
+    use crate::linalg::solve_free_cubic;
+
+    /// [`super::chord_params`], the AVX2 copy where the processor has AVX2.
+    #[allow(unsafe_code)]
+    pub(crate) fn chord_params<const D: usize>(
+        q: &[f64],
+        control: &mut [f64],
+        knots: &mut [f64],
+    ) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2() {
+            // SAFETY: the one requirement of a `target_feature` function is that the processor
+            // has the feature, checked just above.
+            return unsafe { avx2::chord_params::<D>(q, control, knots) };
+        }
+        super::chord_params::<D>(q, control, knots)
+    }
+
+    /// [`solve_free_cubic`], the AVX2 copy where the processor has AVX2.
+    #[allow(unsafe_code)]
+    pub(crate) fn solve_free_cubic_best<const D: usize>(
+        q: &[f64],
+        knots: &[f64],
+        control: &mut [f64],
+        upper: &mut Vec<[f64; 2]>,
+    ) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2() {
+            // SAFETY: as above, AVX2 was checked just before.
+            return unsafe { avx2::solve_free_cubic::<D>(q, knots, control, upper) };
+        }
+        solve_free_cubic::<D>(q, knots, control, upper)
+    }
+
+    /// The AVX2 copies. The bodies are `#[inline(always)]`, so they are compiled again here,
+    /// with AVX2; callers must have checked [`has_avx2`].
+    #[cfg(target_arch = "x86_64")]
+    #[allow(unsafe_code)]
+    pub(crate) mod avx2 {
+        /// AVX2 copy of [`super::super::chord_params`].
+        #[target_feature(enable = "avx2")]
+        pub(crate) unsafe fn chord_params<const D: usize>(
+            q: &[f64],
+            control: &mut [f64],
+            knots: &mut [f64],
+        ) -> bool {
+            super::super::chord_params::<D>(q, control, knots)
+        }
+
+        /// AVX2 copy of [`crate::linalg::solve_free_cubic`].
+        #[target_feature(enable = "avx2")]
+        pub(crate) unsafe fn solve_free_cubic<const D: usize>(
+            q: &[f64],
+            knots: &[f64],
+            control: &mut [f64],
+            upper: &mut Vec<[f64; 2]>,
+        ) -> bool {
+            crate::linalg::solve_free_cubic::<D>(q, knots, control, upper)
+        }
+    }
+}
+
+/// The first two sweeps of [`chord_cubic`] for `D` coordinates: the parameters into
+/// `control[r·D]` and the knots, as [`solve_free_cubic`](crate::linalg::solve_free_cubic)
+/// takes them. `control` and `knots` have the result's sizes and any content (every entry is
+/// written before it is read). `false` for coincident or overflowing points. Inlined into both
+/// copies of [`dispatch`].
+#[inline(always)]
+fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
     let n = q.len() / D - 1;
     let mut sum = 0.0;
     let mut prev: &[f64] = &q[..D];
@@ -176,5 +250,95 @@ fn chord_cubic_fill<const D: usize>(
         }
         (t2, t1) = (t1, t);
     }
-    solve_free_cubic::<D>(q, knots, control, upper)
+    true
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+    use crate::isa::has_avx2;
+    use proptest::prelude::*;
+
+    /// Parameters, knots and control points of both copies of the fused sweeps, and the
+    /// baseline's success.
+    fn both_copies<const D: usize>(q: &[f64]) -> [(bool, Vec<f64>, Vec<f64>); 2] {
+        let n = q.len() / D - 1;
+        let run = |avx2: bool| {
+            let (mut control, mut knots) = (vec![0.0; q.len()], vec![0.0; n + 5]);
+            let mut upper = Vec::new();
+            // SAFETY (test): the AVX2 copies run only after `has_avx2` (checked by the caller)
+            #[allow(unsafe_code)]
+            let done = if avx2 {
+                unsafe {
+                    dispatch::avx2::chord_params::<D>(q, &mut control, &mut knots)
+                        && dispatch::avx2::solve_free_cubic::<D>(
+                            q,
+                            &knots,
+                            &mut control,
+                            &mut upper,
+                        )
+                }
+            } else {
+                chord_params::<D>(q, &mut control, &mut knots)
+                    && crate::linalg::solve_free_cubic::<D>(q, &knots, &mut control, &mut upper)
+            };
+            (done, knots, control)
+        };
+        [run(false), run(true)]
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    /// Points with uneven random steps (so that both band placements of the rows occur), from
+    /// a seed: `n` points of `D` coordinates.
+    fn walk<const D: usize>(n: usize, seed: u64) -> Vec<f64> {
+        let mut state = seed | 1;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut p = [0.0; D];
+        let mut q = Vec::with_capacity(n * D);
+        for _ in 0..n {
+            for x in &mut p {
+                *x += (next() - 0.3) * (1.0 + 30.0 * next().powi(4));
+            }
+            q.extend_from_slice(&p);
+        }
+        q
+    }
+
+    fn check<const D: usize>(n: usize, seed: u64) -> Result<(), TestCaseError> {
+        let q = walk::<D>(n, seed);
+        let [base, avx2] = both_copies::<D>(&q);
+        prop_assert!(
+            base.0,
+            "the fused path declined a random walk of {} points",
+            n
+        );
+        prop_assert_eq!(base.0, avx2.0);
+        prop_assert_eq!(bits(&base.1), bits(&avx2.1), "knots differ");
+        prop_assert_eq!(bits(&base.2), bits(&avx2.2), "control points differ");
+        Ok(())
+    }
+
+    proptest! {
+        /// The AVX2 copies return the baseline's bits: knots and control points, in 1–3
+        /// dimensions, across several reciprocal blocks.
+        #[test]
+        fn avx2_copies_return_the_baseline_bits(n in 5usize..1200, seed in any::<u64>(), dim in 1usize..=3) {
+            if !has_avx2() {
+                return Ok(());
+            }
+            match dim {
+                1 => check::<1>(n, seed)?,
+                2 => check::<2>(n, seed)?,
+                _ => check::<3>(n, seed)?,
+            }
+        }
+    }
 }

@@ -49,6 +49,7 @@ mod bspline;
 mod differential;
 mod error;
 mod fast_eval;
+mod isa;
 mod knot_removal;
 mod knots;
 mod large_buffer;
