@@ -26,10 +26,15 @@
 //! - NURBS are B-splines over homogeneous points `(w·x, …, w)`.
 //! - Every function that takes user data validates it and returns [`Result`]; nothing panics on
 //!   user input. Errors are one enum, [`Error`].
-//! - No `unsafe` code but one call: on Linux, large result buffers (4 MiB and more, e.g. the
-//!   control points of an interpolation through 10^6 points) are marked for transparent huge
-//!   pages with `madvise`, as NumPy marks its arrays, because first-touch page faults otherwise
-//!   cost as much as the arithmetic (`docs/performance.md`).
+//! - No `unsafe` code but two kinds of call, each with its safety argument beside it:
+//!   - on Linux, large result buffers (4 MiB and more, e.g. the control points of an
+//!     interpolation through 10^6 points) are marked for transparent huge pages with `madvise`,
+//!     as NumPy marks its arrays, because first-touch page faults otherwise cost as much as the
+//!     arithmetic (`large_buffer`);
+//!   - a few throughput-bound kernels have a second copy compiled with AVX2, called after the
+//!     processor's AVX2 is detected (`isa`); without FMA, so both copies return the same bits.
+//!
+//!   See `docs/performance.md`.
 //!
 //! ## Example
 //! ```
