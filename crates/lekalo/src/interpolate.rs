@@ -1345,7 +1345,7 @@ mod tests {
         // other curves, which must not leak into the result
         let mut ws = InterpolationWorkspace::new();
         for dim in 1..=3 {
-            for n in [200, 5, 12, 6, 7] {
+            for n in [200, 600, 5, 258, 12, 6, 257, 7] {
                 for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e-8), (-3.0, 1e5)] {
                     let q = wobbly(n, dim, offset, scale);
                     let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();

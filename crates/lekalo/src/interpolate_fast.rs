@@ -216,41 +216,63 @@ mod dispatch {
 #[inline(always)]
 fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
     let n = q.len() / D - 1;
+    // sweep 1: the running sums s_r of the chord lengths, r = 1 … n, into knots[r + 4]
+    // (contiguous; their slots are free until the knots are formed from them below)
     let mut sum = 0.0;
-    let mut prev: &[f64] = &q[..D];
-    for (next, c) in q[D..].chunks_exact(D).zip(control[D..].chunks_exact_mut(D)) {
-        let d = distance_fixed::<D>(prev, next);
+    let points = q.chunks_exact(D);
+    for ((p, next), s) in points.clone().zip(points.skip(1)).zip(&mut knots[5..]) {
+        let d = distance_fixed::<D>(p, next);
         // zero and NaN fail here; an infinite distance makes the sum infinite (checked below)
         if d <= 0.0 || d.is_nan() {
             return false;
         }
         sum += d;
-        c[0] = sum;
-        prev = next;
+        *s = sum;
     }
     if !sum.is_finite() {
         return false;
     }
     let inv = 1.0 / sum;
-    control[n * D] = 1.0;
+    // sweep 2, a block of rows at a time so that each step vectorises: t̄_r = s_r / s (t̄_n = 1
+    // exactly), strictly increasing, into control[r·D]; u_{r+1} = (t̄_{r−2} + t̄_{r−1} + t̄_r) / 3
+    // for r = 3 … n − 1, written at indices below those of the sums still to be read
+    const ROWS: usize = 256;
+    // t̄_{a−2}, t̄_{a−1}, then the block's t̄_a … t̄_{b−1}
+    let mut t = [0.0_f64; ROWS + 2];
+    let mut ok = true;
+    let mut a = 1;
+    while a <= n {
+        let b = (a + ROWS).min(n + 1);
+        let m = b - a;
+        let tb = &mut t[..m + 2];
+        for (dst, s) in tb[2..].iter_mut().zip(&knots[a + 4..b + 4]) {
+            *dst = s * inv;
+        }
+        if b == n + 1 {
+            tb[m + 1] = 1.0;
+        }
+        for w in tb[1..].windows(2) {
+            ok &= w[1] > w[0];
+        }
+        for (c, &v) in control[a * D..b * D].chunks_exact_mut(D).zip(&tb[2..]) {
+            c[0] = v;
+        }
+        let (lo, hi) = (a.max(3), b.min(n));
+        if lo < hi {
+            for (u, w) in knots[lo + 1..hi + 1]
+                .iter_mut()
+                .zip(tb[lo - a..].windows(3))
+            {
+                // the sum in the order of `KnotVector::averaged`
+                *u = (w[0] + w[1] + w[2]) / 3.0;
+            }
+        }
+        (t[0], t[1]) = (t[m], t[m + 1]);
+        a = b;
+    }
     knots[..4].fill(0.0);
     knots[n + 1..].fill(1.0);
-    // t̄_{r−2}, t̄_{r−1}
-    let (mut t2, mut t1) = (0.0, 0.0);
-    for r in 1..=n {
-        let t = if r < n { control[r * D] * inv } else { 1.0 };
-        if t <= t1 {
-            return false;
-        }
-        control[r * D] = t;
-        // u_{j+3} = (t̄_j + t̄_{j+1} + t̄_{j+2}) / 3 for j = 1 … n − 3, complete once t̄_{j+2} is
-        if (3..n).contains(&r) {
-            let sum3: f64 = [t2, t1, t].iter().sum();
-            knots[r + 1] = sum3 / 3.0;
-        }
-        (t2, t1) = (t1, t);
-    }
-    true
+    ok
 }
 
 #[cfg(all(test, target_arch = "x86_64"))]
