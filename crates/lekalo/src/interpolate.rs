@@ -892,6 +892,37 @@ pub(crate) fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
     }
 }
 
+/// The distances between the points of `a` and those of `b` (`dim` coordinates each; `D` is
+/// `dim` or 0 for a run-time `dim`) into `out`, the same numbers as
+/// [`distance_fixed`] point by point. The usual case (every
+/// sum of squares normal and below 1e300) runs without branches, so that it vectorises; a row
+/// with any other sum is redone point by point with the scaled fallback.
+#[inline(always)]
+pub(crate) fn distances<const D: usize>(a: &[f64], b: &[f64], dim: usize, out: &mut [f64]) {
+    if D > 0 {
+        let mut plain = true;
+        for ((p, q), o) in a.chunks_exact(D).zip(b.chunks_exact(D)).zip(out.iter_mut()) {
+            let mut ss = 0.0;
+            for k in 0..D {
+                ss += (p[k] - q[k]) * (p[k] - q[k]);
+            }
+            // `is_normal() && < 1e300` for a sum of squares (never negative; NaN fails both)
+            plain &= (f64::MIN_POSITIVE..1e300).contains(&ss);
+            *o = ss.sqrt();
+        }
+        if plain {
+            return;
+        }
+    }
+    for ((p, q), o) in a
+        .chunks_exact(dim)
+        .zip(b.chunks_exact(dim))
+        .zip(out.iter_mut())
+    {
+        *o = distance_fixed::<D>(p, q);
+    }
+}
+
 /// Copies `points` minus `reference` into rows `first..first + n` of `control`.
 fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &[f64]) {
     let dim = reference.len();
@@ -1346,7 +1377,15 @@ mod tests {
         let mut ws = InterpolationWorkspace::new();
         for dim in 1..=3 {
             for n in [200, 600, 5, 258, 12, 6, 257, 7] {
-                for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e-8), (-3.0, 1e5)] {
+                // (squared steps subnormal at 1e-160 and overflowing at 1e155: the scaled lengths)
+                for (offset, scale) in [
+                    (0.0, 1.0),
+                    (1e8, 1.0),
+                    (0.0, 1e-8),
+                    (-3.0, 1e5),
+                    (0.0, 1e-160),
+                    (0.0, 1e155),
+                ] {
                     let q = wobbly(n, dim, offset, scale);
                     let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
                     let fused = chord_cubic(q.as_view(), &mut ws).unwrap();

@@ -4,7 +4,7 @@
 //! [`crate::interpolate`] to rounding (the same parameters and knots bit for bit; the control
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
-use crate::interpolate::distance_fixed;
+use crate::interpolate::distances;
 use crate::large_buffer::reuse_or_zeroed;
 use crate::{BSplineCurve, Points, PointsRef};
 
@@ -218,16 +218,31 @@ fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64
     let n = q.len() / D - 1;
     // sweep 1: the running sums s_r of the chord lengths, r = 1 … n, into knots[r + 4]
     // (contiguous; their slots are free until the knots are formed from them below)
+    // (the lengths of a block first, branch-free so that the square roots vectorise)
+    const ROWS: usize = 256;
     let mut sum = 0.0;
-    let points = q.chunks_exact(D);
-    for ((p, next), s) in points.clone().zip(points.skip(1)).zip(&mut knots[5..]) {
-        let d = distance_fixed::<D>(p, next);
-        // zero and NaN fail here; an infinite distance makes the sum infinite (checked below)
-        if d <= 0.0 || d.is_nan() {
+    let mut lengths = [0.0_f64; ROWS];
+    let mut start = 0;
+    while start < n {
+        let end = (start + ROWS).min(n);
+        let d = &mut lengths[..end - start];
+        distances::<D>(
+            &q[start * D..end * D],
+            &q[(start + 1) * D..(end + 1) * D],
+            D,
+            d,
+        );
+        let mut ok = true;
+        for (s, &d) in knots[start + 5..end + 5].iter_mut().zip(d.iter()) {
+            // zero and NaN fail here; an infinite length makes the sum infinite (checked below)
+            ok &= d > 0.0;
+            sum += d;
+            *s = sum;
+        }
+        if !ok {
             return false;
         }
-        sum += d;
-        *s = sum;
+        start = end;
     }
     if !sum.is_finite() {
         return false;
@@ -236,7 +251,6 @@ fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64
     // sweep 2, a block of rows at a time so that each step vectorises: t̄_r = s_r / s (t̄_n = 1
     // exactly), strictly increasing, into control[r·D]; u_{r+1} = (t̄_{r−2} + t̄_{r−1} + t̄_r) / 3
     // for r = 3 … n − 1, written at indices below those of the sums still to be read
-    const ROWS: usize = 256;
     // t̄_{a−2}, t̄_{a−1}, then the block's t̄_a … t̄_{b−1}
     let mut t = [0.0_f64; ROWS + 2];
     let mut ok = true;

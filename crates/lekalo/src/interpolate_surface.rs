@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::interpolate::{
-    check_strictly_increasing, distance_fixed, factor_collocation, parametrize_into, Factors,
+    check_strictly_increasing, distances, factor_collocation, parametrize_into, Factors,
     Parametrization,
 };
 use crate::knots::KnotVector;
@@ -660,37 +660,6 @@ fn chord_params_fixed<const D: usize>(
         }
     }
     ok
-}
-
-/// The distances between the points of `a` and those of `b` (`dim` coordinates each; `D` is
-/// `dim` or 0 for a run-time `dim`) into `out`, the same numbers as
-/// [`distance_fixed`](crate::interpolate::distance_fixed) point by point. The usual case (every
-/// sum of squares normal and below 1e300) runs without branches, so that it vectorises; a row
-/// with any other sum is redone point by point with the scaled fallback.
-#[inline(always)]
-fn distances<const D: usize>(a: &[f64], b: &[f64], dim: usize, out: &mut [f64]) {
-    if D > 0 {
-        let mut plain = true;
-        for ((p, q), o) in a.chunks_exact(D).zip(b.chunks_exact(D)).zip(out.iter_mut()) {
-            let mut ss = 0.0;
-            for k in 0..D {
-                ss += (p[k] - q[k]) * (p[k] - q[k]);
-            }
-            // `is_normal() && < 1e300` for a sum of squares (never negative; NaN fails both)
-            plain &= (f64::MIN_POSITIVE..1e300).contains(&ss);
-            *o = ss.sqrt();
-        }
-        if plain {
-            return;
-        }
-    }
-    for ((p, q), o) in a
-        .chunks_exact(dim)
-        .zip(b.chunks_exact(dim))
-        .zip(out.iter_mut())
-    {
-        *o = distance_fixed::<D>(p, q);
-    }
 }
 
 /// Divides the summed parameters by their count and pins the ends to exactly 0 and 1.
