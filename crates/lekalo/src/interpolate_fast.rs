@@ -37,11 +37,15 @@ pub(crate) fn free_end_cubic(
 /// that repeated interpolation of large data sets does not ask the operating system for fresh
 /// memory each time.
 ///
-/// A large fresh allocation costs a page fault per 4 KiB page on first touch: on the 2-core VM
-/// of `docs/performance.md` about 2 µs a page, 25 ns per point of a 3-D cubic interpolation at
-/// 10^6 points, as much as the arithmetic. The workspace holds the `U` factor of the fused solve
-/// and, once [`InterpolationWorkspace::recycle`] has given them back, the knot and control-point
-/// buffers of a previous result, which the next result then reuses.
+/// Fresh memory costs page faults on first touch. On the 2-core VM of `docs/performance.md`,
+/// a 3-D cubic interpolation through 10^6 points runs at about 25 ns a point with new memory
+/// (on transparent huge pages, see `large_buffer`; 38 ns without them) and 16 ns with a
+/// workspace. At 10^5 points glibc returns its heap to the operating system after each call,
+/// and new memory costs more than the arithmetic.
+///
+/// The workspace holds the `U` factor of the fused solve. Once
+/// [`InterpolationWorkspace::recycle`] has given them back, it also holds the knot and
+/// control-point buffers of a previous result, which the next result then reuses.
 ///
 /// ```
 /// use lekalo::{CurveInterpolation, InterpolationWorkspace, Points};
