@@ -293,8 +293,15 @@ impl CurveInterpolation {
     /// [`Error::IllConditioned`] for a condition estimate above
     /// [`CurveInterpolation::max_condition`] ([`Error::InvalidArgument`] if that limit is not a
     /// number ≥ 1, or with [`EndCondition::Periodic`]).
+    ///
+    /// The result is always in new memory. The scratch of the fused cubic path (the `U`
+    /// factor, 16 bytes a point) is kept per thread for the next call, up to 32 MiB; an
+    /// [`InterpolationWorkspace`] keeps the result buffers as well.
     pub fn interpolate(&self, points: PointsRef<'_>) -> Result<BSplineCurve> {
-        self.interpolate_with(points, &mut InterpolationWorkspace::new())
+        let mut ws = InterpolationWorkspace::from_thread();
+        let curve = self.interpolate_with(points, &mut ws);
+        ws.return_to_thread();
+        curve
     }
 
     /// [`CurveInterpolation::interpolate`] with buffers from (and the `U` factor kept in) a

@@ -7,6 +7,7 @@
 use crate::interpolate::distances;
 use crate::large_buffer::reuse_or_zeroed;
 use crate::{BSplineCurve, Points, PointsRef};
+use std::cell::RefCell;
 
 /// The fast path of [`free_end`](crate::interpolate) for cubics with averaged knots in 1–3 dimensions
 /// ([`solve_free_cubic`](crate::linalg::solve_free_cubic)): the control points, or `None` when it does not apply or a check
@@ -66,11 +67,63 @@ pub struct InterpolationWorkspace {
     upper: Vec<[f64; 2]>,
 }
 
+/// Most bytes of `U` storage [`InterpolationWorkspace::return_to_thread`] keeps for a thread:
+/// 32 MiB, the factor of 2·10^6 points.
+const THREAD_UPPER_MAX_BYTES: usize = 32 << 20;
+
+thread_local! {
+    /// The `U` storage of this thread's last fused interpolation without a workspace
+    /// ([`CurveInterpolation::interpolate`](crate::CurveInterpolation::interpolate)), kept for
+    /// the next one.
+    static THREAD_UPPER: RefCell<Vec<[f64; 2]>> = const { RefCell::new(Vec::new()) };
+}
+
 impl InterpolationWorkspace {
     /// An empty workspace (buffers grow on first use).
     #[must_use]
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A workspace with no result buffers and the `U` storage this thread kept from its last
+    /// interpolation, if any (taken out of the thread's slot until
+    /// [`Self::return_to_thread`]).
+    ///
+    /// Why: `U` is scratch, 16 bytes a point, freed at the end of each call. Freeing it is what
+    /// tips glibc into handing its heap back to the operating system after every call, so
+    /// that the next call faults every page of its result again. At 10^5 points that cost twice
+    /// the arithmetic: 30 ns a point against 15 (`docs/performance.md`, session 4). Kept, the
+    /// result buffers come from memory the allocator already holds.
+    pub(crate) fn from_thread() -> Self {
+        let upper = THREAD_UPPER
+            .try_with(|slot| {
+                slot.try_borrow_mut()
+                    .map(|mut v| std::mem::take(&mut *v))
+                    .unwrap_or_default()
+            })
+            .unwrap_or_default();
+        Self {
+            upper,
+            ..Self::default()
+        }
+    }
+
+    /// Gives the `U` storage back to this thread's slot, keeping the larger of it and what the
+    /// slot holds, up to [`THREAD_UPPER_MAX_BYTES`]. The result buffers are not kept: they
+    /// belong to the returned curve.
+    pub(crate) fn return_to_thread(self) {
+        let upper = self.upper;
+        if upper.capacity() * std::mem::size_of::<[f64; 2]>() > THREAD_UPPER_MAX_BYTES {
+            return;
+        }
+        // (a thread being torn down, or a slot in use, keeps nothing)
+        let _ = THREAD_UPPER.try_with(|slot| {
+            if let Ok(mut held) = slot.try_borrow_mut() {
+                if upper.capacity() > held.capacity() {
+                    *held = upper;
+                }
+            }
+        });
     }
 
     /// Takes back the knot and control-point storage of a curve that is no longer needed, for
@@ -380,5 +433,63 @@ mod tests {
                 _ => check::<3>(n, seed)?,
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod thread_scratch_tests {
+    use super::*;
+    use crate::{CurveInterpolation, Points};
+
+    fn held_capacity() -> usize {
+        THREAD_UPPER.with(|slot| slot.borrow().capacity())
+    }
+
+    #[test]
+    fn interpolate_keeps_the_u_storage_for_the_thread() {
+        THREAD_UPPER.with(|slot| *slot.borrow_mut() = Vec::new());
+        let data: Vec<f64> = (0..300)
+            .flat_map(|i| {
+                let s = f64::from(i) * 0.1;
+                [s.cos(), s.sin(), 0.05 * s]
+            })
+            .collect();
+        let q = Points::new(data, 3).unwrap();
+        let first = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
+        assert!(held_capacity() >= 299, "U kept after the call");
+        // the kept (stale) storage changes nothing
+        let second = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
+        assert_eq!(first, second, "same curve with kept scratch");
+        let mut ws = InterpolationWorkspace::new();
+        assert_eq!(
+            first,
+            CurveInterpolation::new(3)
+                .interpolate_with(q.as_view(), &mut ws)
+                .unwrap(),
+            "same curve as with a fresh workspace"
+        );
+    }
+
+    #[test]
+    fn the_slot_keeps_the_larger_buffer_up_to_the_cap() {
+        // empty the slot (tests may share a thread with --test-threads=1)
+        THREAD_UPPER.with(|slot| *slot.borrow_mut() = Vec::new());
+        let with_upper = |rows: usize| InterpolationWorkspace {
+            upper: Vec::with_capacity(rows),
+            ..InterpolationWorkspace::default()
+        };
+        with_upper(100).return_to_thread();
+        assert_eq!(held_capacity(), 100, "kept");
+        with_upper(50).return_to_thread();
+        assert_eq!(held_capacity(), 100, "the larger kept");
+        // over the cap: not kept (the capacity is reserved, never touched)
+        with_upper(THREAD_UPPER_MAX_BYTES / 16 + 1).return_to_thread();
+        assert_eq!(held_capacity(), 100, "over the cap");
+        // taking leaves the slot empty until the storage comes back
+        let ws = InterpolationWorkspace::from_thread();
+        assert_eq!(ws.upper.capacity(), 100, "taken");
+        assert_eq!(held_capacity(), 0, "slot empty while taken");
+        ws.return_to_thread();
+        assert_eq!(held_capacity(), 100, "given back");
     }
 }
