@@ -38,11 +38,13 @@ pub(crate) fn free_end_cubic(
 /// that repeated interpolation of large data sets does not ask the operating system for fresh
 /// memory each time.
 ///
-/// Fresh memory costs page faults on first touch. On the 2-core VM of `docs/performance.md`,
-/// a 3-D cubic interpolation through 10^6 points runs at about 25 ns a point with new memory
-/// (on transparent huge pages, see `large_buffer`; 38 ns without them) and 16 ns with a
-/// workspace. At 10^5 points glibc returns its heap to the operating system after each call,
-/// and new memory costs more than the arithmetic.
+/// New memory costs page faults on first touch. On the 2-core VM of `docs/performance.md`, a
+/// first 3-D cubic interpolation through 10^6 points in a process runs at about 25 ns a point
+/// on new memory (on transparent huge pages; 38 ns without them), against 16 ns with a
+/// workspace. [`CurveInterpolation::interpolate`](crate::CurveInterpolation::interpolate)
+/// keeps its `U` scratch per thread, so that its later calls come close to the workspace's
+/// speed; a workspace reuses the result buffers as well and keeps nothing behind the caller's
+/// back.
 ///
 /// The workspace holds the `U` factor of the fused solve. Once
 /// [`InterpolationWorkspace::recycle`] has given them back, it also holds the knot and

@@ -331,7 +331,7 @@ fn solve_grid(
 }
 
 /// The AVX2 copies of [`solve_grid`] and [`chord_params`] ([`crate::isa`]: the same bits,
-/// tested; about one instruction in seven fewer for the 400×400 grid). Callers check
+/// tested; about one instruction in ten fewer for the 400×400 grid). Callers check
 /// [`crate::isa::has_avx2`].
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
