@@ -892,11 +892,18 @@ pub(crate) fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
     for k in 0..D {
         ss += (a[k] - b[k]) * (a[k] - b[k]);
     }
-    if ss.is_normal() && ss < 1e300 {
+    if plain_square_sum(ss) {
         ss.sqrt()
     } else {
         distance(a, b)
     }
+}
+
+/// Whether a sum of squares can be square-rooted as it is: normal and below 1e300 (a sum of
+/// squares is never negative, and NaN fails), else [`distance`]'s scaled sum is needed.
+#[inline(always)]
+fn plain_square_sum(ss: f64) -> bool {
+    (f64::MIN_POSITIVE..1e300).contains(&ss)
 }
 
 /// The distances between the points of `a` and those of `b` (`dim` coordinates each; `D` is
@@ -913,8 +920,7 @@ pub(crate) fn distances<const D: usize>(a: &[f64], b: &[f64], dim: usize, out: &
             for k in 0..D {
                 ss += (p[k] - q[k]) * (p[k] - q[k]);
             }
-            // `is_normal() && < 1e300` for a sum of squares (never negative; NaN fails both)
-            plain &= (f64::MIN_POSITIVE..1e300).contains(&ss);
+            plain &= plain_square_sum(ss);
             *o = ss.sqrt();
         }
         if plain {

@@ -6,6 +6,7 @@
 
 use crate::interpolate::distances;
 use crate::large_buffer::reuse_or_zeroed;
+use crate::linalg::solve_free_cubic;
 use crate::{BSplineCurve, Points, PointsRef};
 use std::cell::RefCell;
 
@@ -25,9 +26,9 @@ pub(crate) fn free_end_cubic(
     let mut upper = Vec::new();
     let q = points.as_slice();
     let done = match dim {
-        1 => dispatch::solve_free_cubic_best::<1>(q, knots, &mut control, &mut upper),
-        2 => dispatch::solve_free_cubic_best::<2>(q, knots, &mut control, &mut upper),
-        3 => dispatch::solve_free_cubic_best::<3>(q, knots, &mut control, &mut upper),
+        1 => solve_free_cubic::<1>(q, knots, &mut control, &mut upper),
+        2 => solve_free_cubic::<2>(q, knots, &mut control, &mut upper),
+        3 => solve_free_cubic::<3>(q, knots, &mut control, &mut upper),
         _ => false,
     };
     done.then(|| Points::from_raw(control, dim))
@@ -176,16 +177,16 @@ pub(crate) fn chord_cubic(
     let upper = &mut ws.upper;
     let done = match dim {
         1 => {
-            dispatch::chord_params::<1>(q, &mut control, &mut knots)
-                && dispatch::solve_free_cubic_best::<1>(q, &knots, &mut control, upper)
+            chord_params::<1>(q, &mut control, &mut knots)
+                && solve_free_cubic::<1>(q, &knots, &mut control, upper)
         }
         2 => {
-            dispatch::chord_params::<2>(q, &mut control, &mut knots)
-                && dispatch::solve_free_cubic_best::<2>(q, &knots, &mut control, upper)
+            chord_params::<2>(q, &mut control, &mut knots)
+                && solve_free_cubic::<2>(q, &knots, &mut control, upper)
         }
         _ => {
-            dispatch::chord_params::<3>(q, &mut control, &mut knots)
-                && dispatch::solve_free_cubic_best::<3>(q, &knots, &mut control, upper)
+            chord_params::<3>(q, &mut control, &mut knots)
+                && solve_free_cubic::<3>(q, &knots, &mut control, upper)
         }
     };
     if done {
@@ -200,80 +201,20 @@ pub(crate) fn chord_cubic(
     }
 }
 
-/// [`chord_params`] and [`solve_free_cubic`] compiled twice, for the baseline instruction
-/// set and with AVX2, the latter taken at run time when the processor has it ([`crate::isa`]:
-/// the same bits either way, tested below).
-mod dispatch {
-    use crate::isa::has_avx2;
-    use crate::linalg::solve_free_cubic;
-
-    /// [`super::chord_params`], the AVX2 copy where the processor has AVX2.
-    #[allow(unsafe_code)]
-    pub(crate) fn chord_params<const D: usize>(
-        q: &[f64],
-        control: &mut [f64],
-        knots: &mut [f64],
-    ) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if has_avx2() {
-            // SAFETY: the one requirement of a `target_feature` function is that the processor
-            // has the feature, checked just above.
-            return unsafe { avx2::chord_params::<D>(q, control, knots) };
-        }
-        super::chord_params::<D>(q, control, knots)
-    }
-
-    /// [`solve_free_cubic`], the AVX2 copy where the processor has AVX2.
-    #[allow(unsafe_code)]
-    pub(crate) fn solve_free_cubic_best<const D: usize>(
-        q: &[f64],
-        knots: &[f64],
-        control: &mut [f64],
-        upper: &mut Vec<[f64; 2]>,
-    ) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if has_avx2() {
-            // SAFETY: as above, AVX2 was checked just before.
-            return unsafe { avx2::solve_free_cubic::<D>(q, knots, control, upper) };
-        }
-        solve_free_cubic::<D>(q, knots, control, upper)
-    }
-
-    /// The AVX2 copies. The bodies are `#[inline(always)]`, so they are compiled again here,
-    /// with AVX2; callers must have checked [`has_avx2`].
-    #[cfg(target_arch = "x86_64")]
-    #[allow(unsafe_code)]
-    pub(crate) mod avx2 {
-        /// AVX2 copy of [`super::super::chord_params`].
-        #[target_feature(enable = "avx2")]
-        pub(crate) unsafe fn chord_params<const D: usize>(
-            q: &[f64],
-            control: &mut [f64],
-            knots: &mut [f64],
-        ) -> bool {
-            super::super::chord_params::<D>(q, control, knots)
-        }
-
-        /// AVX2 copy of [`crate::linalg::solve_free_cubic`].
-        #[target_feature(enable = "avx2")]
-        pub(crate) unsafe fn solve_free_cubic<const D: usize>(
-            q: &[f64],
-            knots: &[f64],
-            control: &mut [f64],
-            upper: &mut Vec<[f64; 2]>,
-        ) -> bool {
-            crate::linalg::solve_free_cubic::<D>(q, knots, control, upper)
-        }
-    }
+crate::isa::avx2_dispatch! {
+    /// [`chord_params_body`] compiled with AVX2 where the processor has it, else as built
+    /// ([`crate::isa`]: the same bits, tested below).
+    fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool
+        = chord_params_body;
 }
 
 /// The first two sweeps of [`chord_cubic`] for `D` coordinates: the parameters into
 /// `control[r·D]` and the knots, as [`solve_free_cubic`](crate::linalg::solve_free_cubic)
 /// takes them. `control` and `knots` have the result's sizes and any content (every entry is
 /// written before it is read). `false` for coincident or overflowing points. Inlined into both
-/// copies of [`dispatch`].
+/// copies of [`chord_params`].
 #[inline(always)]
-fn chord_params<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
+fn chord_params_body<const D: usize>(q: &[f64], control: &mut [f64], knots: &mut [f64]) -> bool {
     let n = q.len() / D - 1;
     // sweep 1: the running sums s_r of the chord lengths, r = 1 … n, into knots[r + 4]
     // (contiguous; their slots are free until the knots are formed from them below)
@@ -354,28 +295,25 @@ mod tests {
     use crate::isa::has_avx2;
     use proptest::prelude::*;
 
-    /// Parameters, knots and control points of both copies of the fused sweeps, and the
-    /// baseline's success.
+    /// Parameters, knots and control points of both copies of the fused sweeps (the bodies as
+    /// built, then the dispatchers, which take the AVX2 copies where `has_avx2`), and their
+    /// success.
     fn both_copies<const D: usize>(q: &[f64]) -> [(bool, Vec<f64>, Vec<f64>); 2] {
         let n = q.len() / D - 1;
-        let run = |avx2: bool| {
+        let run = |dispatched: bool| {
             let (mut control, mut knots) = (vec![0.0; q.len()], vec![0.0; n + 5]);
             let mut upper = Vec::new();
-            // SAFETY (test): the AVX2 copies run only after `has_avx2` (checked by the caller)
-            #[allow(unsafe_code)]
-            let done = if avx2 {
-                unsafe {
-                    dispatch::avx2::chord_params::<D>(q, &mut control, &mut knots)
-                        && dispatch::avx2::solve_free_cubic::<D>(
-                            q,
-                            &knots,
-                            &mut control,
-                            &mut upper,
-                        )
-                }
-            } else {
+            let done = if dispatched {
                 chord_params::<D>(q, &mut control, &mut knots)
-                    && crate::linalg::solve_free_cubic::<D>(q, &knots, &mut control, &mut upper)
+                    && solve_free_cubic::<D>(q, &knots, &mut control, &mut upper)
+            } else {
+                chord_params_body::<D>(q, &mut control, &mut knots)
+                    && crate::linalg::solve_free_cubic_body::<D>(
+                        q,
+                        &knots,
+                        &mut control,
+                        &mut upper,
+                    )
             };
             (done, knots, control)
         };

@@ -294,75 +294,35 @@ fn surface(
     })
 }
 
-/// The control net `P = A_u⁻¹ (Q − q_00) A_vᵀ⁻¹ + q_00` of the grid `Q` (`nu` rows of `nv`
-/// points), given the factored collocation matrices of both directions (document 000 §A.5,
-/// eq. 17–18: a curve interpolation down every column, then along every row).
-///
-/// The two directions' solves are linear maps acting on different indices of the grid, so they
-/// commute; this applies them in the order that reads the grid least. Sweep 1, row by row in
-/// order: centre the row on `q_00` (affine invariance, and no cancellation for grids far from
-/// the origin), solve it along `v` (`nv × dim` block, [`BandedCrout::solve`]) while it is in
-/// the L1 cache, and forward-eliminate it along `u` (`L_u`, with the earlier rows as
-/// right-hand-side columns, [`BandedCrout::solve`]'s forward sweep over `nv·dim` columns).
-/// Sweep 2, rows in reverse: back-substitute along `u` (`U_u`), and add `q_00` back to each row
-/// as soon as no later row needs it. Each grid number is read twice and written twice
-/// (instead of the eight sweeps of a pass-by-pass solve), and the arithmetic is that of the
-/// two passes: the same operations per number, in a different order, so the result agrees with
-/// the pass-by-pass solve to rounding (tested against it at 1e-14 of the net's size).
-///
-/// # Errors
-/// [`Error::IllConditioned`] if a control-net number overflows (data near the largest `f64`).
-#[allow(unsafe_code)]
-fn solve_grid(
-    data: &[f64],
-    nu: usize,
-    nv: usize,
-    dim: usize,
-    lu_u: &BandedCrout,
-    lu_v: &BandedCrout,
-) -> Result<Vec<f64>> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::isa::has_avx2() {
-        // SAFETY: the one requirement of a `target_feature` function is that the processor has
-        // the feature, checked just above.
-        return unsafe { avx2::solve_grid(data, nu, nv, dim, lu_u, lu_v) };
-    }
-    solve_grid_body(data, nu, nv, dim, lu_u, lu_v)
-}
-
-/// The AVX2 copies of [`solve_grid`] and [`chord_params`] ([`crate::isa`]: the same bits,
-/// tested; about one instruction in ten fewer for the 400×400 grid). Callers check
-/// [`crate::isa::has_avx2`].
-#[cfg(target_arch = "x86_64")]
-#[allow(unsafe_code)]
-mod avx2 {
-    use super::{BandedCrout, Result};
-
-    /// [`super::solve_grid_body`] compiled with AVX2.
-    #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn solve_grid(
+crate::isa::avx2_dispatch! {
+    /// The control net `P = A_u⁻¹ (Q − q_00) A_vᵀ⁻¹ + q_00` of the grid `Q` (`nu` rows of `nv`
+    /// points), given the factored collocation matrices of both directions (document 000 §A.5,
+    /// eq. 17–18: a curve interpolation down every column, then along every row).
+    ///
+    /// The two directions' solves are linear maps acting on different indices of the grid, so they
+    /// commute; this applies them in the order that reads the grid least. Sweep 1, row by row in
+    /// order: centre the row on `q_00` (affine invariance, and no cancellation for grids far from
+    /// the origin), solve it along `v` (`nv × dim` block, [`BandedCrout::solve`]) while it is in
+    /// the L1 cache, and forward-eliminate it along `u` (`L_u`, with the earlier rows as
+    /// right-hand-side columns, [`BandedCrout::solve`]'s forward sweep over `nv·dim` columns).
+    /// Sweep 2, rows in reverse: back-substitute along `u` (`U_u`), and add `q_00` back to each row
+    /// as soon as no later row needs it. Each grid number is read twice and written twice
+    /// (instead of the eight sweeps of a pass-by-pass solve), and the arithmetic is that of the
+    /// two passes: the same operations per number, in a different order, so the result agrees with
+    /// the pass-by-pass solve to rounding (tested against it at 1e-14 of the net's size).
+    ///
+    /// # Errors
+    /// [`Error::IllConditioned`] if a control-net number overflows (data near the largest `f64`).
+    ///
+    /// Compiled with AVX2 where the processor has it ([`crate::isa`]: the same bits, tested).
+    fn solve_grid(
         data: &[f64],
         nu: usize,
         nv: usize,
         dim: usize,
         lu_u: &BandedCrout,
         lu_v: &BandedCrout,
-    ) -> Result<Vec<f64>> {
-        super::solve_grid_body(data, nu, nv, dim, lu_u, lu_v)
-    }
-
-    /// [`super::chord_params_body`] compiled with AVX2.
-    #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn chord_params(
-        data: &[f64],
-        nu: usize,
-        nv: usize,
-        dim: usize,
-        params_u: &mut [f64],
-        params_v: &mut [f64],
-    ) -> bool {
-        super::chord_params_body(data, nu, nv, dim, params_u, params_v)
-    }
+    ) -> Result<Vec<f64>> = solve_grid_body;
 }
 
 /// The body of [`solve_grid`], inlined into its baseline and AVX2 copies.
@@ -534,31 +494,26 @@ fn line_params(
     Ok(())
 }
 
-/// The sums over the columns `l` of the chord-length parameters `ū_k^{(l)}` of
-/// `q_0l … q_{nu−1,l}` into `params_u`, and over the rows `k` of the parameters `v̄_l^{(k)}`
-/// of `q_k0 … q_{k,nv−1}` into `params_v` (both zero on entry): the same numbers, in the same
-/// order, as [`line_params`] with exponent 1 (P&T eq. 9.5), but in one pass over the grid that
-/// reads each row once (the column walk strides over whole rows and misses the cache at every
-/// point) with the dimension fixed at compile time for 2-D and 3-D. `false`, with the sums to
-/// be discarded, when a distance is zero or not finite, a line's length overflows or its
-/// parameters are not strictly increasing: the caller then takes [`line_params`], which
-/// reports the problem.
-#[allow(unsafe_code)]
-fn chord_params(
-    data: &[f64],
-    nu: usize,
-    nv: usize,
-    dim: usize,
-    params_u: &mut [f64],
-    params_v: &mut [f64],
-) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if crate::isa::has_avx2() {
-        // SAFETY: the one requirement of a `target_feature` function is that the processor has
-        // the feature, checked just above.
-        return unsafe { avx2::chord_params(data, nu, nv, dim, params_u, params_v) };
-    }
-    chord_params_body(data, nu, nv, dim, params_u, params_v)
+crate::isa::avx2_dispatch! {
+    /// The sums over the columns `l` of the chord-length parameters `ū_k^{(l)}` of
+    /// `q_0l … q_{nu−1,l}` into `params_u`, and over the rows `k` of the parameters `v̄_l^{(k)}`
+    /// of `q_k0 … q_{k,nv−1}` into `params_v` (both zero on entry): the same numbers, in the same
+    /// order, as [`line_params`] with exponent 1 (P&T eq. 9.5), but in one pass over the grid that
+    /// reads each row once (the column walk strides over whole rows and misses the cache at every
+    /// point) with the dimension fixed at compile time for 2-D and 3-D. `false`, with the sums to
+    /// be discarded, when a distance is zero or not finite, a line's length overflows or its
+    /// parameters are not strictly increasing: the caller then takes [`line_params`], which
+    /// reports the problem.
+    ///
+    /// Compiled with AVX2 where the processor has it ([`crate::isa`]: the same bits, tested).
+    fn chord_params(
+        data: &[f64],
+        nu: usize,
+        nv: usize,
+        dim: usize,
+        params_u: &mut [f64],
+        params_v: &mut [f64],
+    ) -> bool = chord_params_body;
 }
 
 /// The body of [`chord_params`], inlined into its baseline and AVX2 copies.

@@ -21,3 +21,43 @@ pub(crate) fn has_avx2() -> bool {
         false
     }
 }
+
+/// Defines `fn $name(args) -> ret` that calls `$body(args)` compiled with AVX2 where the
+/// processor has it ([`has_avx2`]) and as built otherwise. `$body` must be `#[inline(always)]`
+/// (with what it calls in its hot loops), so that the AVX2 copy, a nested
+/// `#[target_feature(enable = "avx2")]` function, compiles it again. The one `unsafe` call
+/// of every such pair is here, with its safety argument. One `const` generic parameter is
+/// supported.
+///
+/// ```ignore
+/// avx2_dispatch! {
+///     /// docs of the dispatcher
+///     pub(crate) fn solve_free_cubic<const D: usize>(q: &[f64]) -> bool = solve_free_cubic_body;
+/// }
+/// ```
+macro_rules! avx2_dispatch {
+    (
+        $(#[$meta:meta])*
+        $vis:vis fn $name:ident $(<const $c:ident: usize>)?
+            ($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? = $body:ident;
+    ) => {
+        $(#[$meta])*
+        #[allow(unsafe_code)]
+        $vis fn $name $(<const $c: usize>)? ($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx2")]
+                unsafe fn avx2 $(<const $c: usize>)? ($($arg: $ty),*) $(-> $ret)? {
+                    $body $(::<$c>)? ($($arg),*)
+                }
+                if $crate::isa::has_avx2() {
+                    // SAFETY: the one requirement of a `target_feature` function is that the
+                    // processor has the feature, checked just above.
+                    return unsafe { avx2 $(::<$c>)? ($($arg),*) };
+                }
+            }
+            $body $(::<$c>)? ($($arg),*)
+        }
+    };
+}
+pub(crate) use avx2_dispatch;

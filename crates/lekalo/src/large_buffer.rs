@@ -160,20 +160,19 @@ mod tests {
         if !std::path::Path::new("/sys/kernel/mm/transparent_hugepage/enabled").exists() {
             return; // a kernel without transparent huge pages: nothing to check
         }
+        // whether the mapping holding the first 2 MiB-aligned address at or after `ptr` is
+        // marked, and its flags for the message
+        let hinted = |ptr: *const f64| {
+            let flags = vm_flags((ptr as usize).next_multiple_of(HUGE_PAGE))
+                .expect("the buffer's mapping in /proc/self/smaps");
+            (flags.split_whitespace().any(|f| f == "hg"), flags)
+        };
         let big: Vec<f64> = zeroed(2 * HUGE_PAGE_THRESHOLD / 8);
-        let aligned = (big.as_ptr() as usize).next_multiple_of(HUGE_PAGE);
-        let flags = vm_flags(aligned).expect("the buffer's mapping in /proc/self/smaps");
-        assert!(
-            flags.split_whitespace().any(|f| f == "hg"),
-            "no hint: {flags}"
-        );
+        let (marked, flags) = hinted(big.as_ptr());
+        assert!(marked, "no hint: {flags}");
         let grown: Vec<f64> = with_capacity(2 * HUGE_PAGE_THRESHOLD / 8);
-        let aligned = (grown.as_ptr() as usize).next_multiple_of(HUGE_PAGE);
-        let flags = vm_flags(aligned).expect("the reserved buffer's mapping");
-        assert!(
-            flags.split_whitespace().any(|f| f == "hg"),
-            "no hint on reserve: {flags}"
-        );
+        let (marked, flags) = hinted(grown.as_ptr());
+        assert!(marked, "no hint on reserve: {flags}");
         let small: Vec<f64> = zeroed(1000);
         let flags = vm_flags(small.as_ptr() as usize).expect("the small buffer's mapping");
         assert!(

@@ -673,41 +673,10 @@ impl ReciprocalBlock {
         span >= self.base + 2 && span < self.base + self.len
     }
 
-    /// Fills the block from knot `base` on: [`Self::fill_body`], compiled with AVX2 (4-wide
-    /// divisions) where the processor has it ([`crate::isa`]; the same bits either way). Kept
-    /// out of line: inlined, it slowed the sweep that calls it once per block.
-    #[inline(never)]
-    #[allow(unsafe_code)]
-    fn fill(&mut self, knots: &[f64], base: usize) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::isa::has_avx2() {
-            // SAFETY: the one requirement of a `target_feature` function is that the processor
-            // has the feature, checked just above.
-            unsafe { self.fill_avx2(knots, base) };
-            return;
-        }
-        self.fill_body(knots, base);
-    }
-
-    /// [`Self::fill_body`] compiled with AVX2; callers check [`crate::isa::has_avx2`].
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[allow(unsafe_code)]
-    unsafe fn fill_avx2(&mut self, knots: &[f64], base: usize) {
-        self.fill_body(knots, base);
-    }
-
+    /// Fills the block from knot `base` on ([`fill_reciprocals`]).
     #[inline(always)]
-    fn fill_body(&mut self, knots: &[f64], base: usize) {
-        let len = RECIPROCAL_BLOCK.min(knots.len().saturating_sub(3 + base));
-        for (m, out) in self.by_gap.iter_mut().enumerate() {
-            let from = &knots[base..base + len];
-            let to = &knots[base + m + 1..base + m + 1 + len];
-            for ((o, a), b) in out[..len].iter_mut().zip(to).zip(from) {
-                *o = 1.0 / (a - b);
-            }
-        }
-        (self.base, self.len) = (base, len);
+    fn fill(&mut self, knots: &[f64], base: usize) {
+        fill_reciprocals(self, knots, base);
     }
 
     /// The reciprocals of knots `span − 2`, `span − 1`, `span` (see [`cubic_basis`]).
@@ -717,6 +686,29 @@ impl ReciprocalBlock {
         let at = |c: usize| [self.by_gap[0][c], self.by_gap[1][c], self.by_gap[2][c]];
         [at(i - 2), at(i - 1), at(i)]
     }
+}
+
+/// The body of [`fill_reciprocals`]: `RECIPROCAL_BLOCK` knots' reciprocals, one difference
+/// `m` at a time so that the divisions vectorise.
+#[inline(always)]
+fn fill_reciprocals_body(block: &mut ReciprocalBlock, knots: &[f64], base: usize) {
+    let len = RECIPROCAL_BLOCK.min(knots.len().saturating_sub(3 + base));
+    for (m, out) in block.by_gap.iter_mut().enumerate() {
+        let from = &knots[base..base + len];
+        let to = &knots[base + m + 1..base + m + 1 + len];
+        for ((o, a), b) in out[..len].iter_mut().zip(to).zip(from) {
+            *o = 1.0 / (a - b);
+        }
+    }
+    (block.base, block.len) = (base, len);
+}
+
+crate::isa::avx2_dispatch! {
+    /// Fills a [`ReciprocalBlock`] from knot `base` on, compiled with AVX2 (4-wide divisions)
+    /// where the processor has it ([`crate::isa`]; the same bits either way). Kept out of line:
+    /// inlined, it slowed the sweep that calls it once per block.
+    #[inline(never)]
+    fn fill_reciprocals(block: &mut ReciprocalBlock, knots: &[f64], base: usize) = fill_reciprocals_body;
 }
 
 /// The four non-zero cubic basis functions `N_{span−3..=span, 3}(t)`: P&T Algorithm A2.2
@@ -770,6 +762,17 @@ fn max_num(a: f64, b: f64) -> f64 {
     }
 }
 
+crate::isa::avx2_dispatch! {
+    /// [`solve_free_cubic_body`] compiled with AVX2 where the processor has it, else as built
+    /// ([`crate::isa`]: the same bits, tested in `interpolate_fast`).
+    pub(crate) fn solve_free_cubic<const D: usize>(
+        q: &[f64],
+        knots: &[f64],
+        control: &mut [f64],
+        upper: &mut Vec<[f64; 2]>,
+    ) -> bool = solve_free_cubic_body;
+}
+
 /// Fused collocation solve of the free-end cubic interpolant with averaged knots (document 000
 /// §A.1 eq. 1 and 3, P&T Algorithm A9.1): the fast path of [`BandedCrout::push_row`] +
 /// [`BandedCrout::back_substitute`] with Cox–de Boor rows (P&T A2.2, see [`cubic_basis`]).
@@ -793,8 +796,10 @@ fn max_num(a: f64, b: f64) -> f64 {
 /// the control points agree with the general path's to rounding amplified by the condition
 /// number (tested: within `κ·ε` of the data's extent, and 1e-14 of the net on smooth data).
 /// Time O(n), memory `2·n` numbers besides the result.
+///
+/// This is the body, inlined into both copies of [`solve_free_cubic`].
 #[inline(always)]
-pub(crate) fn solve_free_cubic<const D: usize>(
+pub(crate) fn solve_free_cubic_body<const D: usize>(
     q: &[f64],
     knots: &[f64],
     control: &mut [f64],
@@ -1032,7 +1037,6 @@ mod tests {
     /// middle of the knots and a short one at their end.
     #[cfg(target_arch = "x86_64")]
     #[test]
-    #[allow(unsafe_code)]
     fn reciprocal_blocks_agree_bit_for_bit() {
         if !crate::isa::has_avx2() {
             return;
@@ -1047,9 +1051,9 @@ mod tests {
         for base in [0, 100, 500, 690] {
             let mut a = ReciprocalBlock::new(&knots, 0);
             let mut b = ReciprocalBlock::new(&knots, 0);
-            a.fill_body(&knots, base);
-            // SAFETY (test): AVX2 checked above
-            unsafe { b.fill_avx2(&knots, base) };
+            fill_reciprocals_body(&mut a, &knots, base);
+            // the dispatched fill takes the AVX2 copy here
+            b.fill(&knots, base);
             assert_eq!((a.base, a.len), (b.base, b.len), "block extent");
             for m in 0..3 {
                 let bits = |blk: &ReciprocalBlock| -> Vec<u64> {
