@@ -18,19 +18,13 @@ const N_BATCH: usize = 1_000_000;
 /// Batch size of the per-point reference loops (derivatives, NURBS, search, basis).
 const N_POINTS: usize = 100_000;
 
-fn two_threads() -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("a rayon pool of two threads")
-}
-
 /// Cubic 3-D curve with 1000 control points at 10^6 parameters.
 fn batch(c: &mut Criterion) {
     let curve = common::curve(3, 1000, 3);
     let power = CurveEvaluator::with_kernel(&curve, EvalKernel::PowerForm).expect("power form");
     let basis = CurveEvaluator::with_kernel(&curve, EvalKernel::Basis).expect("basis kernel");
-    let pool = two_threads();
+    let pinned = common::rayon_pool(2, true);
+    let free = common::rayon_pool(2, false);
     let mut out = vec![0.0; N_BATCH * 3];
     for (order, ts) in [
         ("sorted", common::sorted_params(N_BATCH)),
@@ -60,12 +54,17 @@ fn batch(c: &mut Criterion) {
                     .expect("in domain")
             });
         });
-        g.bench_function("parallel_2_threads", |b| {
-            b.iter(|| {
-                pool.install(|| power.par_eval_batch(black_box(&ts), &mut out))
-                    .expect("in domain");
+        for (name, pool) in [
+            ("parallel_2_threads", &pinned),
+            ("parallel_2_threads_unpinned", &free),
+        ] {
+            g.bench_function(name, |b| {
+                b.iter(|| {
+                    pool.install(|| power.par_eval_batch(black_box(&ts), &mut out))
+                        .expect("in domain");
+                });
             });
-        });
+        }
         g.finish();
     }
 }
@@ -99,7 +98,7 @@ fn derivatives(c: &mut Criterion) {
 fn nurbs(c: &mut Criterion) {
     let curve = common::nurbs(3, 1000, 3);
     let ev = curve.evaluator();
-    let pool = two_threads();
+    let pool = common::rayon_pool(2, true);
     let ts = common::random_params(N_POINTS);
     let mut out = vec![0.0; N_POINTS * 3];
     let mut g = c.benchmark_group("nurbs_random");

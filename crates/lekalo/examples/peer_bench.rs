@@ -188,7 +188,8 @@ fn main() -> Res<()> {
     write_f64(&dir, "ts_random.bin", &random)?;
 
     let fast = curve.evaluator();
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
+    let pool = common::rayon_pool(2, true);
+    let free = common::rayon_pool(2, false);
     let mut out = vec![0.0; N * DIM];
     let mut results = Results::new();
     for (name, ts) in [("eval_sorted", &sorted), ("eval_random", &random)] {
@@ -203,10 +204,18 @@ fn main() -> Res<()> {
             pool.install(|| fast.par_eval_batch(ts, &mut out))
                 .expect("in domain");
         });
-        println!("{name}: reference {reference:.1} ns/pt, fast {ours:.1}, parallel(2) {par:.1}");
+        let par_free = median_ns(repeats, N, || {
+            free.install(|| fast.par_eval_batch(ts, &mut out))
+                .expect("in domain");
+        });
+        println!(
+            "{name}: reference {reference:.1} ns/pt, fast {ours:.1}, parallel(2, pinned) {par:.1}, \
+             parallel(2, unpinned) {par_free:.1}"
+        );
         results.insert(
             name.into(),
-            serde_json::json!({"reference": reference, "fast": ours, "parallel_2": par}),
+            serde_json::json!({"reference": reference, "fast": ours, "parallel_2": par,
+                               "parallel_2_unpinned": par_free}),
         );
     }
     // first derivative (with the point) at sorted parameters

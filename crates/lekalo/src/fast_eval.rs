@@ -389,6 +389,12 @@ impl CurveEvaluator {
     /// a fixed number of parameters; the results are bit-identical to the sequential ones. Run
     /// inside `rayon::ThreadPool::install` to choose the number of threads.
     ///
+    /// On machines with few processors, pin the pool's workers to distinct processors
+    /// (`ThreadPoolBuilder::start_handler`, e.g. with the `core_affinity` crate): Linux
+    /// sometimes queues two freshly woken workers on one processor and leaves them there for
+    /// milliseconds, which costs up to the whole speed-up (`docs/performance.md`, "Parallel
+    /// evaluation and thread placement").
+    ///
     /// # Errors
     /// As [`CurveEvaluator::eval_batch`] (the error of the first failing chunk).
     pub fn par_eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {

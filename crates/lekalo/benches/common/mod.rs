@@ -91,3 +91,29 @@ pub(crate) fn grid(n: usize) -> Points {
     }
     Points::new(data, 3).expect("finite grid")
 }
+
+/// A rayon pool of `threads` workers, worker `i` pinned to the `i`-th processor the process may
+/// run on (`core_affinity`), or left to the scheduler if `pinned` is false.
+///
+/// Why pin: on the 2-vCPU CI machine, Linux sometimes queues both workers on one processor (the
+/// one that woke the second worker, while the caller's processor was still busy) and, as both
+/// are cache-hot, does not move one for milliseconds, so a 10 ms batch runs at one thread's
+/// speed. Pinned workers cannot share a processor; `docs/performance.md` ("Parallel evaluation
+/// and thread placement") has the measurements of both pools.
+pub(crate) fn rayon_pool(threads: usize, pinned: bool) -> rayon::ThreadPool {
+    let cores = if pinned {
+        core_affinity::get_core_ids().unwrap_or_default()
+    } else {
+        Vec::new()
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .start_handler(move |i| {
+            if let Some(&core) = cores.get(i % cores.len().max(1)) {
+                // best effort: an unpinned worker is only slower
+                let _ = core_affinity::set_for_current(core);
+            }
+        })
+        .build()
+        .expect("a rayon pool")
+}
