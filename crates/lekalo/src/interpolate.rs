@@ -17,7 +17,7 @@
 //!   buffer and eliminated without pivoting ([`crate::linalg`]); all coordinates are solved
 //!   together. Time O(n·p²), memory O(n·p); no dense matrix.
 //! - The common case — a free-end cubic with chord-length parameters and averaged knots in 1–3
-//!   dimensions — takes a fused path (`chord_cubic`, [`crate::linalg`]'s `solve_free_cubic`):
+//!   dimensions — takes a fused path (`chord_cubic`, [`crate::cubic_sweep`]'s `solve_free_cubic`):
 //!   parameters, knots, rows and elimination in three sweeps with no buffer but the result and
 //!   the `U` factor (peak memory about twice the input's size besides the input). Its rows
 //!   share the reciprocals of the knot differences, so it agrees with the general path to

@@ -4,14 +4,14 @@
 //! [`crate::interpolate`] to rounding (the same parameters and knots bit for bit; the control
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
+use crate::cubic_sweep::solve_free_cubic;
 use crate::interpolate::distances;
 use crate::large_buffer::reuse_or_zeroed;
-use crate::linalg::solve_free_cubic;
 use crate::{BSplineCurve, Points, PointsRef};
 use std::cell::RefCell;
 
 /// The fast path of [`free_end`](crate::interpolate) for cubics with averaged knots in 1–3 dimensions
-/// ([`solve_free_cubic`](crate::linalg::solve_free_cubic)): the control points, or `None` when it does not apply or a check
+/// ([`solve_free_cubic`](crate::cubic_sweep::solve_free_cubic)): the control points, or `None` when it does not apply or a check
 /// fails, so that the general path reports the error.
 pub(crate) fn free_end_cubic(
     points: PointsRef<'_>,
@@ -154,7 +154,7 @@ impl InterpolationWorkspace {
 /// the result and `U`: chord lengths (P&T eq. 9.5, as [`parametrize_into`](crate::interpolate::parametrize_into), the same numbers)
 /// go straight into the first slot of each control point's row, the averaged knots (document
 /// 000 eq. 3, as [`KnotVector::averaged`](crate::KnotVector::averaged), the same numbers) are formed as the lengths are
-/// normalised, then [`solve_free_cubic`](crate::linalg::solve_free_cubic). `None` (take the general path, which reports the
+/// normalised, then [`solve_free_cubic`](crate::cubic_sweep::solve_free_cubic). `None` (take the general path, which reports the
 /// problem) for coincident or overflowing points, a dimension above 3, fewer than 5 points or
 /// a failed check of the solve.
 ///
@@ -209,7 +209,7 @@ crate::isa::avx2_dispatch! {
 }
 
 /// The first two sweeps of [`chord_cubic`] for `D` coordinates: the parameters into
-/// `control[r·D]` and the knots, as [`solve_free_cubic`](crate::linalg::solve_free_cubic)
+/// `control[r·D]` and the knots, as [`solve_free_cubic`](crate::cubic_sweep::solve_free_cubic)
 /// takes them. `control` and `knots` have the result's sizes and any content (every entry is
 /// written before it is read). `false` for coincident or overflowing points. Inlined into both
 /// copies of [`chord_params`].
@@ -308,7 +308,7 @@ mod tests {
                     && solve_free_cubic::<D>(q, &knots, &mut control, &mut upper)
             } else {
                 chord_params_body::<D>(q, &mut control, &mut knots)
-                    && crate::linalg::solve_free_cubic_body::<D>(
+                    && crate::cubic_sweep::solve_free_cubic_body::<D>(
                         q,
                         &knots,
                         &mut control,

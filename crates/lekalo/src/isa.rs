@@ -1,5 +1,5 @@
 //! Run-time choice of the instruction set for the few kernels compiled twice (the fused cubic
-//! interpolation sweeps of `interpolate_fast` and the reciprocal blocks of `linalg`).
+//! interpolation sweeps of `interpolate_fast` and `cubic_sweep`).
 //!
 //! The crate is built for the baseline of its target (SSE2 on x86-64), so that one binary runs
 //! anywhere. Where a kernel is bound by instruction throughput, a second copy compiled with AVX2

@@ -82,6 +82,7 @@ pub use surface::BSplineSurface;
 pub use surface_ops::{BezierPatch, RationalBezierPatch};
 
 // -- interpolation (issue 3) --
+mod cubic_sweep;
 mod hermite;
 mod interpolate;
 mod interpolate_fast;
