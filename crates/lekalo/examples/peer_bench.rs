@@ -35,9 +35,15 @@ const ELEVATIONS: [(usize, usize); 2] = [(10, 20), (50, 100)];
 /// Shortest time of one timed sample, in ns: quick calls are repeated inside a sample up to this.
 const MIN_SAMPLE_NANOS: u128 = 20_000_000;
 
+/// Writes `v` to `dir/name` as little-endian `f64`, synced to the disk before returning.
 fn write_f64(dir: &Path, name: &str, v: &[f64]) -> std::io::Result<()> {
+    use std::io::Write;
     let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-    std::fs::write(dir.join(name), bytes)
+    let mut file = std::fs::File::create(dir.join(name))?;
+    file.write_all(&bytes)?;
+    // written through to the disk now: otherwise the kernel writes the dirty pages back while
+    // the next timings run, on one of this 2-vCPU machine's processors
+    file.sync_all()
 }
 
 /// Median wall time of `repeats` samples of `f`, in ns per point (`points` per call). The
