@@ -15,6 +15,7 @@ Usage: peers.py DATA_DIR REPEATS  (run through bench/peers/run.sh)
 import json
 import math
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -61,19 +62,20 @@ def try_import(what, fn):
 class Table:
     def __init__(self, ours):
         self.ours = ours
-        self.rows = []  # (workload, unit, lekalo, lekalo alt, peer, peer figure, note)
+        self.rows = []  # (workload, unit, our two keys, peer, peer figure, note)
 
     def add(self, work, peer, value, note, unit="ns/pt", keys=("fast", "parallel_2")):
-        o = self.ours[work]
-        if "reference" in o:
-            note = f"lekalo ref {o['reference']:.1f}; {note}"
-        self.rows.append((work, unit, o.get(keys[0], math.nan), o.get(keys[1], math.nan),
-                          peer, value, note))
+        # our figures are looked up when printing (`ours` may by then hold the bracketed means)
+        self.rows.append((work, unit, keys, peer, value, note))
 
     def print(self):
         print(f"{'workload':<16} {'unit':<8} {'lekalo':>9} {'alt':>9}  {'peer':<40} "
               f"{'peer':>10} {'ratio':>7} {'/alt':>7}  note")
-        for work, unit, ours, alt, peer, value, note in self.rows:
+        for work, unit, keys, peer, value, note in self.rows:
+            o = self.ours[work]
+            ours, alt = o.get(keys[0], math.nan), o.get(keys[1], math.nan)
+            if "reference" in o:
+                note = f"lekalo ref {o['reference']:.1f}; {note}"
             scale = 1e-3 if unit == "µs/curve" else 1.0
             ratio = value / ours
             ralt = f"{value / alt:>6.1f}x" if not math.isnan(alt) else f"{'':>7}"
@@ -391,9 +393,25 @@ def elevation(meta, repeats, table, f64):
                       f"diff {rel(got, ours):.1e} rel", unit=unit, keys=keys)
 
 
+def bracket(before, after):
+    """lekalo's figures as the mean of its medians timed before and after the peers, so that a
+    slow spell of the shared machine weighs on both sides alike; also the largest relative change
+    between the two timings, per workload."""
+    combined, change = {}, {}
+    for work, keys in before.items():
+        combined[work] = dict(keys)
+        for key, b in keys.items():
+            a = after.get(work, {}).get(key)
+            if isinstance(b, (int, float)) and isinstance(a, (int, float)):
+                combined[work][key] = (a + b) / 2
+                change[work] = max(change.get(work, 0.0), abs(a - b) / min(a, b))
+    return combined, change
+
+
 def main():
     data = Path(sys.argv[1])
     repeats = int(sys.argv[2])
+    ours_again = sys.argv[3] if len(sys.argv) > 3 else None
     meta = json.loads((data / "ours.json").read_text())
     f64 = lambda name: np.fromfile(data / name, dtype="<f8")
     table = Table(meta["results"])
@@ -402,6 +420,17 @@ def main():
     interpolation(meta, repeats, table, f64)
     surface(meta, repeats, table, f64)
     elevation(meta, repeats, table, f64)
+    peers_secs = time.perf_counter() - t0
+    if ours_again:
+        # lekalo once more, after the peers (timings only)
+        subprocess.run([ours_again, str(data), str(repeats), "ours_after.json"], check=True,
+                       stdout=subprocess.DEVNULL)
+        after = json.loads((data / "ours_after.json").read_text())["results"]
+        table.ours, change = bracket(meta["results"], after)
+        print()
+        print("lekalo timed before and after the peers; the ratios use the mean of the two "
+              "medians. Largest change between them, per workload:")
+        print("  " + ", ".join(f"{w} {c * 100:.0f}%" for w, c in change.items()))
     print()
     print(f"medians of {repeats} samples (short calls repeated within a sample to >= "
           f"{MIN_SAMPLE_SECS * 1e3:.0f} ms); ratio = peer / lekalo, /alt = peer / lekalo alt")
@@ -416,7 +445,7 @@ def main():
         thp = "unknown"
     print(f"NumPy madvise(MADV_HUGEPAGE) for large arrays: {thp}; lekalo gives the same hint "
           "for its result buffers of 4 MiB and more")
-    print(f"(peers took {time.perf_counter() - t0:.0f} s)")
+    print(f"(peers took {peers_secs:.0f} s)")
 
 
 if __name__ == "__main__":

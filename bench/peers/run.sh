@@ -3,7 +3,8 @@
 # (OCP) on the same data. Creates bench/peers/.venv on first use (PyPI: numpy, scipy, and
 # whichever of the optional peers install here), writes the workload data with our example
 # `peer_bench` (target/peers-data/*.bin, little-endian f64), times lekalo there, then times the
-# peers on the same files and prints ours, theirs and the ratio (medians) with agreement checks.
+# peers on the same files, times lekalo again, and prints ours (the mean of the two medians),
+# theirs and the ratio with agreement checks.
 #
 # Workloads: cubic B-spline evaluation (10^6 parameters); cubic curve interpolation through
 # 10^3..10^6 3-D points; bicubic surface interpolation of 100^2..400^2 grids; Bezier degree
@@ -34,4 +35,6 @@ done
 # 2 us a 4 KiB page on a VM otherwise), with no environment settings.
 cargo build --quiet --release -p lekalo --example peer_bench
 target/release/examples/peer_bench "$data" "$repeats"
-"$venv/bin/python" bench/peers/peers.py "$data" "$repeats"
+# lekalo is timed before the peers and, by peers.py, once more after them: the ratios use the
+# mean of the two, so that a slow spell of the shared machine does not fall on one side only
+"$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench

@@ -1,12 +1,15 @@
 //! Our side of the peer comparison (`bench/peers/run.sh`): writes the shared workload data to a
 //! directory as little-endian `f64` files and times lekalo on it, medians into `ours.json` in
-//! the same directory. The Python script then times the peers on the same files.
+//! the same directory. The Python script then times the peers on the same files, and runs this
+//! program once more with a third argument, a results file name (`ours_after.json`): then only
+//! the timings are taken and written there, so that lekalo is timed both before and after the
+//! peers.
 //!
 //! Workloads: curve evaluation (ns per parameter), cubic curve interpolation through `n` 3-D
 //! points (ns per point), bicubic surface interpolation of `n × n` grids (ns per grid point) and
 //! Bezier degree elevation of one 3-D curve (ns per curve).
 //!
-//! `cargo run --release --example peer_bench -- DIR [REPEATS]`
+//! `cargo run --release --example peer_bench -- DIR [REPEATS [RESULTS]]`
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -35,15 +38,26 @@ const ELEVATIONS: [(usize, usize); 2] = [(10, 20), (50, 100)];
 /// Shortest time of one timed sample, in ns: quick calls are repeated inside a sample up to this.
 const MIN_SAMPLE_NANOS: u128 = 20_000_000;
 
-/// Writes `v` to `dir/name` as little-endian `f64`, synced to the disk before returning.
-fn write_f64(dir: &Path, name: &str, v: &[f64]) -> std::io::Result<()> {
-    use std::io::Write;
-    let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-    let mut file = std::fs::File::create(dir.join(name))?;
-    file.write_all(&bytes)?;
-    // written through to the disk now: otherwise the kernel writes the dirty pages back while
-    // the next timings run, on one of this 2-vCPU machine's processors
-    file.sync_all()
+/// Where the workload data go: `dir`, or nowhere when only timings are wanted.
+struct Data<'a> {
+    dir: &'a Path,
+    write: bool,
+}
+
+impl Data<'_> {
+    /// Writes `v` to `dir/name` as little-endian `f64`, synced to the disk before returning.
+    fn f64s(&self, name: &str, v: &[f64]) -> std::io::Result<()> {
+        use std::io::Write;
+        if !self.write {
+            return Ok(());
+        }
+        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let mut file = std::fs::File::create(self.dir.join(name))?;
+        file.write_all(&bytes)?;
+        // written through to the disk now: otherwise the kernel writes the dirty pages back
+        // while the next timings run, on one of this 2-vCPU machine's processors
+        file.sync_all()
+    }
 }
 
 /// Median wall time of `repeats` samples of `f`, in ns per point (`points` per call). The
@@ -72,20 +86,15 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
 /// Cubic chord-length interpolation through the helix, fresh and with a reused workspace; writes
 /// the points, our parameters, knots and control points.
-fn interpolation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+fn interpolation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for n in INTERP_SIZES {
         let q = common::helix(n);
         let params = parametrize(q.as_view(), Parametrization::ChordLength)?;
         let curve = CurveInterpolation::new(3).interpolate(q.as_view())?;
-        write_f64(dir, &format!("interp_q_{n}.bin"), q.as_slice())?;
-        write_f64(dir, &format!("interp_t_{n}.bin"), &params)?;
-        write_f64(
-            dir,
-            &format!("interp_knots_{n}.bin"),
-            curve.knots().as_slice(),
-        )?;
-        write_f64(
-            dir,
+        data.f64s(&format!("interp_q_{n}.bin"), q.as_slice())?;
+        data.f64s(&format!("interp_t_{n}.bin"), &params)?;
+        data.f64s(&format!("interp_knots_{n}.bin"), curve.knots().as_slice())?;
+        data.f64s(
             &format!("interp_ctrl_{n}.bin"),
             curve.control_points().as_slice(),
         )?;
@@ -114,16 +123,16 @@ fn interpolation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
 
 /// Bicubic chord-length surface interpolation of the `n × n` grid; writes the grid, our
 /// parameters, knots and control net.
-fn surface(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+fn surface(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for n in SURFACE_SIZES {
         let g = common::grid(n);
         let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)?;
-        write_f64(dir, &format!("surf_q_{n}.bin"), g.as_slice())?;
-        write_f64(dir, &format!("surf_u_{n}.bin"), &s.params_u)?;
-        write_f64(dir, &format!("surf_v_{n}.bin"), &s.params_v)?;
-        write_f64(dir, &format!("surf_ku_{n}.bin"), s.knots_u.as_slice())?;
-        write_f64(dir, &format!("surf_kv_{n}.bin"), s.knots_v.as_slice())?;
-        write_f64(dir, &format!("surf_ctrl_{n}.bin"), s.control.as_slice())?;
+        data.f64s(&format!("surf_q_{n}.bin"), g.as_slice())?;
+        data.f64s(&format!("surf_u_{n}.bin"), &s.params_u)?;
+        data.f64s(&format!("surf_v_{n}.bin"), &s.params_v)?;
+        data.f64s(&format!("surf_ku_{n}.bin"), s.knots_u.as_slice())?;
+        data.f64s(&format!("surf_kv_{n}.bin"), s.knots_v.as_slice())?;
+        data.f64s(&format!("surf_ctrl_{n}.bin"), s.control.as_slice())?;
         let fresh = median_ns(repeats, n * n, || {
             black_box(
                 interpolate_surface(
@@ -145,7 +154,7 @@ fn surface(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
 
 /// Bezier degree elevation of one 3-D curve: [`ElevationPlan::apply_into`] into a reused
 /// buffer and [`BezierCurve::elevate_degree`] (allocating), ns per curve.
-fn elevation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
+fn elevation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for (from, to) in ELEVATIONS {
         let ctrl = common::walk(from + 1, DIM, 21 + from as u64);
         let bez = BezierCurve::new(ctrl.clone())?;
@@ -164,9 +173,8 @@ fn elevation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
             );
         });
         let elevated = bez.elevate_degree(to - from)?;
-        write_f64(dir, &format!("elev_in_{from}_{to}.bin"), ctrl.as_slice())?;
-        write_f64(
-            dir,
+        data.f64s(&format!("elev_in_{from}_{to}.bin"), ctrl.as_slice())?;
+        data.f64s(
             &format!("elev_out_{from}_{to}.bin"),
             elevated.control_points().as_slice(),
         )?;
@@ -181,17 +189,25 @@ fn elevation(dir: &Path, repeats: usize, results: &mut Results) -> Res<()> {
 
 fn main() -> Res<()> {
     let mut args = std::env::args().skip(1);
-    let dir = PathBuf::from(args.next().ok_or("usage: peer_bench DIR [REPEATS]")?);
+    let dir = PathBuf::from(
+        args.next()
+            .ok_or("usage: peer_bench DIR [REPEATS [RESULTS]]")?,
+    );
     let repeats: usize = args.next().map_or(Ok(7), |s| s.parse())?;
+    let results_name = args.next().unwrap_or_else(|| "ours.json".into());
     std::fs::create_dir_all(&dir)?;
+    let data = Data {
+        dir: &dir,
+        write: results_name == "ours.json",
+    };
 
     let curve = common::curve(DEGREE, N_CTRL, DIM);
     let sorted = common::sorted_params(N);
     let random = common::random_params(N);
-    write_f64(&dir, "knots.bin", curve.knots().as_slice())?;
-    write_f64(&dir, "ctrl.bin", curve.control_points().as_slice())?;
-    write_f64(&dir, "ts_sorted.bin", &sorted)?;
-    write_f64(&dir, "ts_random.bin", &random)?;
+    data.f64s("knots.bin", curve.knots().as_slice())?;
+    data.f64s("ctrl.bin", curve.control_points().as_slice())?;
+    data.f64s("ts_sorted.bin", &sorted)?;
+    data.f64s("ts_random.bin", &random)?;
 
     let fast = curve.evaluator();
     let pool = common::rayon_pool(2, true);
@@ -205,7 +221,7 @@ fn main() -> Res<()> {
         let ours = median_ns(repeats, N, || {
             fast.eval_batch(ts, &mut out).expect("in domain")
         });
-        write_f64(&dir, &format!("ours_{name}.bin"), &out)?;
+        data.f64s(&format!("ours_{name}.bin"), &out)?;
         let par = median_ns(repeats, N, || {
             pool.install(|| fast.par_eval_batch(ts, &mut out))
                 .expect("in domain");
@@ -234,17 +250,17 @@ fn main() -> Res<()> {
         .chunks_exact(2 * DIM)
         .flat_map(|r| r[DIM..].to_vec())
         .collect();
-    write_f64(&dir, "ours_deriv1_sorted.bin", &d1)?;
+    data.f64s("ours_deriv1_sorted.bin", &d1)?;
     println!("deriv1_sorted: fast {deriv:.1} ns/pt");
     results.insert("deriv1_sorted".into(), serde_json::json!({"fast": deriv}));
-    interpolation(&dir, repeats, &mut results)?;
-    surface(&dir, repeats, &mut results)?;
-    elevation(&dir, repeats, &mut results)?;
+    interpolation(&data, repeats, &mut results)?;
+    surface(&data, repeats, &mut results)?;
+    elevation(&data, repeats, &mut results)?;
     let meta = serde_json::json!({
         "degree": DEGREE, "dim": DIM, "n_ctrl": N_CTRL, "n": N, "repeats": repeats,
         "interp_sizes": INTERP_SIZES, "surface_sizes": SURFACE_SIZES, "elevations": ELEVATIONS,
         "results": results,
     });
-    std::fs::write(dir.join("ours.json"), serde_json::to_string_pretty(&meta)?)?;
+    std::fs::write(dir.join(results_name), serde_json::to_string_pretty(&meta)?)?;
     Ok(())
 }
