@@ -222,14 +222,13 @@ fn main() -> Res<()> {
             fast.eval_batch(ts, &mut out).expect("in domain")
         });
         data.f64s(&format!("ours_{name}.bin"), &out)?;
-        let par = median_ns(repeats, N, || {
-            pool.install(|| fast.par_eval_batch(ts, &mut out))
-                .expect("in domain");
-        });
-        let par_free = median_ns(repeats, N, || {
-            free.install(|| fast.par_eval_batch(ts, &mut out))
-                .expect("in domain");
-        });
+        let mut parallel = |pool: &rayon::ThreadPool| {
+            median_ns(repeats, N, || {
+                pool.install(|| fast.par_eval_batch(ts, &mut out))
+                    .expect("in domain");
+            })
+        };
+        let (par, par_free) = (parallel(&pool), parallel(&free));
         println!(
             "{name}: reference {reference:.1} ns/pt, fast {ours:.1}, parallel(2, pinned) {par:.1}, \
              parallel(2, unpinned) {par_free:.1}"

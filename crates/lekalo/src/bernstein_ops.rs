@@ -51,7 +51,7 @@ pub(crate) fn derivatives_at(
 }
 
 /// Stack room for [`with_work`]: enough for [`derivatives_at_in`] on a 3-D curve of degree 9.
-pub(crate) const SMALL_WORK: usize = 64;
+const SMALL_WORK: usize = 64;
 
 /// Calls `f` with a zeroed work slice of `len` numbers: on the stack up to [`SMALL_WORK`],
 /// allocated above, so that evaluations of small curves allocate nothing.

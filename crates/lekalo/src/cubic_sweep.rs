@@ -88,7 +88,7 @@ crate::isa::avx2_dispatch! {
 /// rounded twice instead of once, so the values agree with A2.2 to a few ulps (tested) rather
 /// than bit for bit. `span` must be the span of `t`.
 #[inline(always)]
-pub(crate) fn cubic_basis(knots: &[f64], recip: &[[f64; 3]; 3], span: usize, t: f64) -> [f64; 4] {
+fn cubic_basis(knots: &[f64], recip: &[[f64; 3]; 3], span: usize, t: f64) -> [f64; 4] {
     debug_assert!(span >= 3 && span + 3 < knots.len(), "cubic span {span}");
     let k = &knots[span - 2..span + 4];
     // left[j] = t − u[span+1−j], right[j] = u[span+j] − t

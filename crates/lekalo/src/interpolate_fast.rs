@@ -176,18 +176,9 @@ pub(crate) fn chord_cubic(
     let mut knots = reuse_or_zeroed(&mut ws.knots, n + 5);
     let upper = &mut ws.upper;
     let done = match dim {
-        1 => {
-            chord_params::<1>(q, &mut control, &mut knots)
-                && solve_free_cubic::<1>(q, &knots, &mut control, upper)
-        }
-        2 => {
-            chord_params::<2>(q, &mut control, &mut knots)
-                && solve_free_cubic::<2>(q, &knots, &mut control, upper)
-        }
-        _ => {
-            chord_params::<3>(q, &mut control, &mut knots)
-                && solve_free_cubic::<3>(q, &knots, &mut control, upper)
-        }
+        1 => chord_sweeps::<1>(q, &mut control, &mut knots, upper),
+        2 => chord_sweeps::<2>(q, &mut control, &mut knots, upper),
+        _ => chord_sweeps::<3>(q, &mut control, &mut knots, upper),
     };
     if done {
         Some(BSplineCurve::from_raw(
@@ -199,6 +190,17 @@ pub(crate) fn chord_cubic(
         (ws.control, ws.knots) = (control, knots);
         None
     }
+}
+
+/// The three sweeps of [`chord_cubic`] for `D` coordinates: parameters and knots
+/// ([`chord_params`]), then the fused solve ([`solve_free_cubic`]); `false` when either declines.
+fn chord_sweeps<const D: usize>(
+    q: &[f64],
+    control: &mut [f64],
+    knots: &mut [f64],
+    upper: &mut Vec<[f64; 2]>,
+) -> bool {
+    chord_params::<D>(q, control, knots) && solve_free_cubic::<D>(q, knots, control, upper)
 }
 
 crate::isa::avx2_dispatch! {
@@ -304,8 +306,7 @@ mod tests {
             let (mut control, mut knots) = (vec![0.0; q.len()], vec![0.0; n + 5]);
             let mut upper = Vec::new();
             let done = if dispatched {
-                chord_params::<D>(q, &mut control, &mut knots)
-                    && solve_free_cubic::<D>(q, &knots, &mut control, &mut upper)
+                chord_sweeps::<D>(q, &mut control, &mut knots, &mut upper)
             } else {
                 chord_params_body::<D>(q, &mut control, &mut knots)
                     && crate::cubic_sweep::solve_free_cubic_body::<D>(

@@ -632,6 +632,12 @@ fn finish_average(params: &mut [f64], count: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The bit patterns of `v`, for comparisons that must be exact.
+    #[cfg(target_arch = "x86_64")]
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
     use crate::interpolate::solve_collocation;
 
     /// A wavy `nu × nv` grid in `dim` dimensions, offset by `offset`, rows along the first
@@ -684,7 +690,6 @@ mod tests {
                         &mut base_v
                     ));
                     // `chord_params` took the AVX2 copy: the same bits as the baseline body
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&fu), bits(&base_u), "AVX2 ū, {nu}×{nv}×{dim}");
                     assert_eq!(bits(&fv), bits(&base_v), "AVX2 v̄, {nu}×{nv}×{dim}");
                 }
@@ -780,7 +785,6 @@ mod tests {
                     let lu_v =
                         factor_collocation(&s.knots_v, q, &s.params_v, Factors::Keep).unwrap();
                     let base = solve_grid_body(&data, nu, nv, dim, &lu_u, &lu_v).unwrap();
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                     assert_eq!(
                         bits(s.control.as_slice()),
                         bits(&base),
