@@ -9,7 +9,8 @@ Workloads (data and our results from `peer_bench`, little-endian f64 files):
   grid point);
 - elevate_A_B: Bezier degree elevation A -> B of one 3-D curve (µs per curve).
 
-Usage: peers.py DATA_DIR REPEATS  (run through bench/peers/run.sh)
+Usage: peers.py DATA_DIR REPEATS [PEER_BENCH]  (run through bench/peers/run.sh; with the path of
+the peer_bench binary, lekalo is timed again after the peers and the ratios use both timings)
 """
 
 import json
