@@ -9,8 +9,10 @@ Workloads (data and our results from `peer_bench`, little-endian f64 files):
   grid point);
 - elevate_A_B: Bezier degree elevation A -> B of one 3-D curve (µs per curve).
 
-Usage: peers.py DATA_DIR REPEATS [PEER_BENCH]  (run through bench/peers/run.sh; with the path of
-the peer_bench binary, lekalo is timed again after the peers and the ratios use both timings)
+Usage: peers.py DATA_DIR REPEATS [PEER_BENCH [OCCT_BENCH]]  (run through bench/peers/run.sh;
+with the path of the peer_bench binary, lekalo is timed again after the peers and the ratios use
+both timings; with the path of the C++ harness built from occt_bench.cpp, Open CASCADE is also
+timed in C++, between the two timings of lekalo)
 """
 
 import json
@@ -70,6 +72,11 @@ class Table:
         self.rows.append((work, unit, keys, peer, value, note))
 
     def print(self):
+        # grouped by workload, in the order the workloads first appear (the C++ peers come last)
+        first = {}
+        for i, row in enumerate(self.rows):
+            first.setdefault(row[0], i)
+        self.rows.sort(key=lambda row: first[row[0]])
         print(f"{'workload':<16} {'unit':<8} {'lekalo':>9} {'alt':>9}  {'peer':<40} "
               f"{'peer':>10} {'ratio':>7} {'/alt':>7}  note")
         for work, unit, keys, peer, value, note in self.rows:
@@ -394,6 +401,26 @@ def elevation(meta, repeats, table, f64):
                       f"diff {rel(got, ours):.1e} rel", unit=unit, keys=keys)
 
 
+def occt_cpp(binary, data, meta, repeats, table):
+    """Open CASCADE timed in C++ by the harness built from occt_bench.cpp, on the same files: its
+    geometry kernel without a Python binding's per-call cost."""
+    args = [binary, str(data), str(repeats), str(meta["n_ctrl"]), str(meta["n"]),
+            ",".join(map(str, meta["interp_sizes"])), ",".join(map(str, meta["surface_sizes"])),
+            ";".join(f"{a},{b}" for a, b in meta["elevations"])]
+    out = subprocess.run(args, check=True, stdout=subprocess.PIPE, text=True).stdout
+    for line in out.splitlines():
+        work, peer, ns, note = line.split("\t")
+        if work.startswith("interp_"):
+            keys, unit = ("fresh", "workspace"), "ns/pt"
+        elif work.startswith("surface_"):
+            keys, unit = ("fresh", "-"), "ns/pt"
+        elif work.startswith("elevate_"):
+            keys, unit = ("plan", "elevate_degree"), "µs/curve"
+        else:
+            keys, unit = ("fast", "parallel_2"), "ns/pt"
+        table.add(work, peer, float(ns), note, unit=unit, keys=keys)
+
+
 def bracket(before, after):
     """lekalo's figures as the mean of its medians timed before and after the peers, so that a
     slow spell of the shared machine weighs on both sides alike; also the largest relative change
@@ -413,6 +440,7 @@ def main():
     data = Path(sys.argv[1])
     repeats = int(sys.argv[2])
     ours_again = sys.argv[3] if len(sys.argv) > 3 else None
+    occt = sys.argv[4] if len(sys.argv) > 4 else None
     meta = json.loads((data / "ours.json").read_text())
     f64 = lambda name: np.fromfile(data / name, dtype="<f8")
     table = Table(meta["results"])
@@ -421,6 +449,8 @@ def main():
     interpolation(meta, repeats, table, f64)
     surface(meta, repeats, table, f64)
     elevation(meta, repeats, table, f64)
+    if occt:
+        occt_cpp(occt, data, meta, repeats, table)
     peers_secs = time.perf_counter() - t0
     if ours_again:
         # lekalo once more, after the peers (timings only)

@@ -11,6 +11,11 @@
 # elevation 10 -> 20 and 50 -> 100. Slow peers run on subsets (tinyspline and OCP evaluation on
 # 10^5 parameters, geomdl on 10^4; the OCP array fill is timed once above 10^4 points).
 #
+# Open CASCADE is timed twice: through its Python binding OCP (PyPI's cadquery-ocp), as a Python
+# user meets it, and in C++ by bench/peers/occt_bench.cpp, which is built here when OCCT's headers
+# and libraries are installed (Debian: apt-get install libocct-modeling-algorithms-dev
+# libocct-modeling-data-dev; elsewhere set OCCT_INCLUDE and OCCT_LIB) and skipped otherwise.
+#
 # Usage: bench/peers/run.sh [REPEATS]     (default 7 repeats per measurement; ~1-2 minutes
 #                                          after the build and the first-time venv)
 set -euo pipefail
@@ -35,6 +40,26 @@ done
 # 2 us a 4 KiB page on a VM otherwise), with no environment settings.
 cargo build --quiet --release -p lekalo --example peer_bench
 target/release/examples/peer_bench "$data" "$repeats"
+
+occt_include=${OCCT_INCLUDE:-/usr/include/opencascade}
+occt_bench=()
+if [ -f "$occt_include/GeomAPI_Interpolate.hxx" ] && command -v g++ >/dev/null; then
+  mkdir -p target/peers-occt
+  occt_lib=()
+  if [ -n "${OCCT_LIB:-}" ]; then occt_lib=(-L"$OCCT_LIB" -Wl,-rpath,"$OCCT_LIB"); fi
+  if g++ -O2 -std=c++17 -Wno-deprecated-declarations -I"$occt_include" \
+      bench/peers/occt_bench.cpp -o target/peers-occt/occt_bench "${occt_lib[@]}" \
+      -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
+    occt_bench=(target/peers-occt/occt_bench)
+  else
+    echo "peers: occt_bench.cpp did not build against $occt_include; C++ Open CASCADE skipped" >&2
+  fi
+else
+  echo "peers: no Open CASCADE headers in $occt_include (Debian: apt-get install" \
+    "libocct-modeling-algorithms-dev libocct-modeling-data-dev); C++ Open CASCADE skipped" >&2
+fi
+
 # lekalo is timed before the peers and, by peers.py, once more after them: the ratios use the
 # mean of the two, so that a slow spell of the shared machine does not fall on one side only
-"$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench
+"$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench \
+  "${occt_bench[@]}"
