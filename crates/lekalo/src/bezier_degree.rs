@@ -41,7 +41,7 @@
 //! - The real degree depends on the tolerance: a smooth control polygon of high degree is often
 //!   within `1e-10 × scale` of a lower degree, and then that lower degree is its real degree.
 
-use crate::bezier_degree_plan::{apply_band, elevation_band};
+use crate::bezier_degree_plan::{apply_band, band_stride, elevation_band};
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -185,7 +185,7 @@ pub(crate) fn elevate(src: &[f64], dim: usize, r: usize) -> Vec<f64> {
         return out;
     }
     let n = n_pts - 1;
-    let kept = (n + 1).saturating_mul(r + 1) <= KEPT_BAND_MAX
+    let kept = (n + 1).saturating_mul(band_stride(r)) <= KEPT_BAND_MAX
         && LAST_BAND
             .try_with(|slot| {
                 // (a slot in use or a thread being torn down: form the band afresh)
@@ -803,7 +803,7 @@ mod tests {
                 "{pts} points by {r}"
             );
         }
-        // too large to keep: (n + 1)(r + 1) above the limit
+        // too large to keep: (n + 1) rows of r + 1 + 2·BAND_PAD numbers above the limit
         let (pts, r) = (300, KEPT_BAND_MAX / 300);
         let src = net(pts, 1);
         assert_eq!(elevate(&src, 1, r), fresh(&src, 1, r), "large band");
