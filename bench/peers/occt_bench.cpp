@@ -5,7 +5,8 @@
 //
 // Usage: occt_bench DATA_DIR REPEATS N_CTRL N INTERP_SIZES SURFACE_SIZES ELEVATIONS
 //   INTERP_SIZES and SURFACE_SIZES as comma lists (1000,10000), ELEVATIONS as a,b pairs joined
-//   by ';' (10,20;50,100); the evaluation curve is a cubic in 3-D, as peer_bench writes it.
+//   by ';' (10,20;50,100); the evaluation curve is a cubic in 3-D, as peer_bench writes it, and
+//   N = 0 leaves evaluation out (peers.py times one workload at a time; empty lists are fine).
 // Prints one tab-separated line a measurement: workload, peer, ns per unit, note.
 // Timing as peers.py's median_ns: one warm-up call that also sets how many calls make a sample
 // of at least 20 ms, then the median of REPEATS samples.
@@ -290,7 +291,7 @@ int main(int argc, char** argv) {
   try {
     g_dir = argv[1];
     g_repeats = std::stoi(argv[2]);
-    evaluation(std::stoi(argv[3]), std::stol(argv[4]));
+    if (std::stol(argv[4]) > 0) evaluation(std::stoi(argv[3]), std::stol(argv[4]));
     for (long n : parse_list(argv[5], ',')) interpolation(n);
     for (long n : parse_list(argv[6], ',')) surface(n);
     std::stringstream ss(argv[7]);

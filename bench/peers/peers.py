@@ -9,11 +9,15 @@ Workloads (data and our results from `peer_bench`, little-endian f64 files):
   grid point);
 - elevate_A_B: Bezier degree elevation A -> B of one 3-D curve (µs per curve).
 
-Usage: peers.py DATA_DIR REPEATS [PEER_BENCH [OCCT_BENCH]]  (run through bench/peers/run.sh;
-with the path of the peer_bench binary, lekalo is timed again after the peers and the ratios use
-both timings; with the path of the C++ harness built from occt_bench.cpp, Open CASCADE is also
-timed in C++, between the two timings of lekalo)
+Usage: peers.py DATA_DIR REPEATS [PEER_BENCH [OCCT_BENCH]]  (run through bench/peers/run.sh)
+- with the path of the peer_bench binary, lekalo is timed again, workload by workload, just
+  before and just after that workload's peers, and the ratios use the mean of those two timings,
+  so that both sides of a ratio fall in the same few seconds of a shared, noisy machine;
+- with the path of the C++ harness built from occt_bench.cpp, Open CASCADE is also timed in C++,
+  inside the same brackets.
+Without PEER_BENCH the ratios use the timings in DATA_DIR/ours.json.
 """
+import functools
 
 import json
 import math
@@ -93,6 +97,7 @@ class Table:
 
 
 def evaluation(data, meta, repeats, table, f64):
+    """eval_sorted, eval_random, deriv1_sorted: SciPy, tinyspline, geomdl and OCP."""
     p, dim, n_ctrl, n = meta["degree"], meta["dim"], meta["n_ctrl"], meta["n"]
     knots = f64("knots.bin")
     ctrl = f64("ctrl.bin").reshape(n_ctrl, dim)
@@ -137,7 +142,7 @@ def evaluation(data, meta, repeats, table, f64):
             ns = median_ns(lambda: g.evaluate_list(xs), gsub, max(1, repeats // 3))
             table.add(f"eval_{order}", "geomdl evaluate_list (10^4)", ns, "pure Python")
 
-    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
+    ocp = ocp_modules()
     if ocp:
         poles = ocp["Array1_Pnt"](1, n_ctrl)
         for i, c in enumerate(ctrl.tolist()):
@@ -159,8 +164,14 @@ def evaluation(data, meta, repeats, table, f64):
                       "one Python call per point: the binding")
 
 
+@functools.cache
 def ocp_modules():
-    """The OCP names used here, for OCP 7.x and cadquery-ocp 8 (generic collections)."""
+    """The OCP names used here, for OCP 7.x and cadquery-ocp 8 (generic collections), or None
+    (said once) when OCP is not installed."""
+    return try_import("OCP (cadquery-ocp)", _ocp_modules)
+
+
+def _ocp_modules():
     from OCP.Approx import Approx_ParametrizationType
     from OCP.Geom import Geom_BSplineCurve
     from OCP.GeomAdaptor import GeomAdaptor_Curve
@@ -184,12 +195,13 @@ def ocp_modules():
     return dict(locals())
 
 
-def interpolation(meta, repeats, table, f64):
+def interpolation(meta, repeats, table, f64, sizes):
+    """interp_N for N in sizes: SciPy three ways and OCP three ways."""
     from scipy.interpolate import BSpline, make_interp_spline
 
     keys = ("fresh", "workspace")
-    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
-    for n in meta["interp_sizes"]:
+    ocp = ocp_modules()
+    for n in sizes:
         work = f"interp_{n}"
         q = f64(f"interp_q_{n}.bin").reshape(n, 3)
         t = f64(f"interp_t_{n}.bin")
@@ -297,12 +309,13 @@ def at_grid(ku, kv, ctrl, u, v, g):
     return rel(s, g, np.abs(g).max())
 
 
-def surface(meta, repeats, table, f64):
+def surface(meta, repeats, table, f64, sizes):
+    """surface_N for N in sizes: SciPy's two passes and OCP."""
     from scipy.interpolate import make_interp_spline
 
     keys = ("fresh", "-")
-    ocp = try_import("OCP (cadquery-ocp)", ocp_modules)
-    for n in meta["surface_sizes"]:
+    ocp = ocp_modules()
+    for n in sizes:
         work = f"surface_{n}"
         g = f64(f"surf_q_{n}.bin").reshape(n, n, 3)
         u, v = f64(f"surf_u_{n}.bin"), f64(f"surf_v_{n}.bin")
@@ -357,14 +370,15 @@ def surface(meta, repeats, table, f64):
                       f"at data {err:.1e}; fill {fill_ns:.0f} ns/pt more", keys=keys)
 
 
-def elevation(meta, repeats, table, f64):
+def elevation(meta, repeats, table, f64, pairs):
+    """elevate_A_B for (A, B) in pairs: NumPy, tinyspline and bezier."""
     from math import comb
 
     keys = ("plan", "elevate_degree")
     unit = "µs/curve"
     ts = try_import("tinyspline", lambda: __import__("tinyspline"))
     bz = try_import("bezier", lambda: __import__("bezier"))
-    for a, b in meta["elevations"]:
+    for a, b in pairs:
         work = f"elevate_{a}_{b}"
         p = f64(f"elev_in_{a}_{b}.bin").reshape(a + 1, 3)
         ours = f64(f"elev_out_{a}_{b}.bin").reshape(b + 1, 3)
@@ -401,12 +415,12 @@ def elevation(meta, repeats, table, f64):
                       f"diff {rel(got, ours):.1e} rel", unit=unit, keys=keys)
 
 
-def occt_cpp(binary, data, meta, repeats, table):
+def occt_cpp(binary, data, meta, repeats, table, evaluate=False, interp=(), surf=(), elev=()):
     """Open CASCADE timed in C++ by the harness built from occt_bench.cpp, on the same files: its
-    geometry kernel without a Python binding's per-call cost."""
-    args = [binary, str(data), str(repeats), str(meta["n_ctrl"]), str(meta["n"]),
-            ",".join(map(str, meta["interp_sizes"])), ",".join(map(str, meta["surface_sizes"])),
-            ";".join(f"{a},{b}" for a, b in meta["elevations"])]
+    geometry kernel without a Python binding's per-call cost. Only the workloads named."""
+    args = [binary, str(data), str(repeats), str(meta["n_ctrl"]), str(meta["n"] if evaluate else 0),
+            ",".join(map(str, interp)), ",".join(map(str, surf)),
+            ";".join(f"{a},{b}" for a, b in elev)]
     out = subprocess.run(args, check=True, stdout=subprocess.PIPE, text=True).stdout
     for line in out.splitlines():
         work, peer, ns, note = line.split("\t")
@@ -419,6 +433,13 @@ def occt_cpp(binary, data, meta, repeats, table):
         else:
             keys, unit = ("fast", "parallel_2"), "ns/pt"
         table.add(work, peer, float(ns), note, unit=unit, keys=keys)
+
+
+def time_ours(binary, data, repeats, works):
+    """lekalo's medians for the named workloads, from a timings-only run of peer_bench."""
+    subprocess.run([binary, str(data), str(repeats), "ours_bracket.json", ",".join(works)],
+                   check=True, stdout=subprocess.DEVNULL)
+    return json.loads((data / "ours_bracket.json").read_text())["results"]
 
 
 def bracket(before, after):
@@ -444,23 +465,32 @@ def main():
     meta = json.loads((data / "ours.json").read_text())
     f64 = lambda name: np.fromfile(data / name, dtype="<f8")
     table = Table(meta["results"])
+    # (workloads, their Python peers, the same workloads in the C++ harness)
+    groups = [(["eval_sorted", "eval_random", "deriv1_sorted"],
+               lambda: evaluation(data, meta, repeats, table, f64), {"evaluate": True})]
+    groups += [([f"interp_{n}"], functools.partial(interpolation, meta, repeats, table, f64, [n]),
+                {"interp": [n]}) for n in meta["interp_sizes"]]
+    groups += [([f"surface_{n}"], functools.partial(surface, meta, repeats, table, f64, [n]),
+                {"surf": [n]}) for n in meta["surface_sizes"]]
+    groups += [([f"elevate_{a}_{b}"],
+                functools.partial(elevation, meta, repeats, table, f64, [(a, b)]),
+                {"elev": [(a, b)]}) for a, b in meta["elevations"]]
+    before, after = {}, {}
     t0 = time.perf_counter()
-    evaluation(data, meta, repeats, table, f64)
-    interpolation(meta, repeats, table, f64)
-    surface(meta, repeats, table, f64)
-    elevation(meta, repeats, table, f64)
-    if occt:
-        occt_cpp(occt, data, meta, repeats, table)
-    peers_secs = time.perf_counter() - t0
+    for works, python_peers, cpp in groups:
+        if ours_again:
+            before.update(time_ours(ours_again, data, repeats, works))
+        python_peers()
+        if occt:
+            occt_cpp(occt, data, meta, repeats, table, **cpp)
+        if ours_again:
+            after.update(time_ours(ours_again, data, repeats, works))
+    secs = time.perf_counter() - t0
     if ours_again:
-        # lekalo once more, after the peers (timings only)
-        subprocess.run([ours_again, str(data), str(repeats), "ours_after.json"], check=True,
-                       stdout=subprocess.DEVNULL)
-        after = json.loads((data / "ours_after.json").read_text())["results"]
-        table.ours, change = bracket(meta["results"], after)
+        table.ours, change = bracket(before, after)
         print()
-        print("lekalo timed before and after the peers; the ratios use the mean of the two "
-              "medians. Largest change between them, per workload:")
+        print("lekalo timed again just before and just after each workload's peers; the ratios "
+              "use the mean of those two medians. Their largest change, per workload:")
         print("  " + ", ".join(f"{w} {c * 100:.0f}%" for w, c in change.items()))
     print()
     print(f"medians of {repeats} samples (short calls repeated within a sample to >= "
@@ -476,7 +506,7 @@ def main():
         thp = "unknown"
     print(f"NumPy madvise(MADV_HUGEPAGE) for large arrays: {thp}; lekalo gives the same hint "
           "for its result buffers of 4 MiB and more")
-    print(f"(peers took {peers_secs:.0f} s)")
+    print(f"(peers{' and brackets' if ours_again else ''} took {secs:.0f} s)")
 
 
 if __name__ == "__main__":

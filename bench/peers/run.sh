@@ -2,9 +2,10 @@
 # Peer comparison in one run: lekalo against SciPy, tinyspline, geomdl, bezier and Open CASCADE
 # (OCP) on the same data. Creates bench/peers/.venv on first use (PyPI: numpy, scipy, and
 # whichever of the optional peers install here), writes the workload data with our example
-# `peer_bench` (target/peers-data/*.bin, little-endian f64), times lekalo there, then times the
-# peers on the same files, times lekalo again, and prints ours (the mean of the two medians),
-# theirs and the ratio with agreement checks.
+# `peer_bench` (target/peers-data/*.bin, little-endian f64) and times lekalo there once, then
+# peers.py times the peers on the same files, workload by workload, each between two more
+# timings of lekalo on that workload, and prints ours (the mean of those two medians), theirs
+# and the ratio with agreement checks.
 #
 # Workloads: cubic B-spline evaluation (10^6 parameters); cubic curve interpolation through
 # 10^3..10^6 3-D points; bicubic surface interpolation of 100^2..400^2 grids; Bezier degree
@@ -59,7 +60,7 @@ else
     "libocct-modeling-algorithms-dev libocct-modeling-data-dev); C++ Open CASCADE skipped" >&2
 fi
 
-# lekalo is timed before the peers and, by peers.py, once more after them: the ratios use the
-# mean of the two, so that a slow spell of the shared machine does not fall on one side only
+# peers.py times lekalo again just before and just after each workload's peers: the ratios use
+# the mean of the two, so that a slow spell of the shared machine does not fall on one side only
 "$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench \
   "${occt_bench[@]}"

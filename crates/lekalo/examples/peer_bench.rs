@@ -3,13 +3,16 @@
 //! the same directory. The Python script then times the peers on the same files, and runs this
 //! program once more with a third argument, a results file name (`ours_after.json`): then only
 //! the timings are taken and written there, so that lekalo is timed both before and after the
-//! peers.
+//! peers. A fourth argument, a comma list of workload names (`interp_1000000`,
+//! `eval_sorted`, ...), times only those: `peers.py` times each workload this way just before
+//! and just after its peers, so that both sides of a ratio fall in the same few seconds of
+//! this shared machine.
 //!
 //! Workloads: curve evaluation (ns per parameter), cubic curve interpolation through `n` 3-D
 //! points (ns per point), bicubic surface interpolation of `n × n` grids (ns per grid point) and
 //! Bezier degree elevation of one 3-D curve (ns per curve).
 //!
-//! `cargo run --release --example peer_bench -- DIR [REPEATS [RESULTS]]`
+//! `cargo run --release --example peer_bench -- DIR [REPEATS [RESULTS [WORKLOADS]]]`
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -38,13 +41,20 @@ const ELEVATIONS: [(usize, usize); 2] = [(10, 20), (50, 100)];
 /// Shortest time of one timed sample, in ns: quick calls are repeated inside a sample up to this.
 const MIN_SAMPLE_NANOS: u128 = 20_000_000;
 
-/// Where the workload data go: `dir`, or nowhere when only timings are wanted.
+/// Where the workload data go: `dir`, or nowhere when only timings are wanted; and which
+/// workloads are timed (all when `only` is empty).
 struct Data<'a> {
     dir: &'a Path,
     write: bool,
+    only: Vec<String>,
 }
 
 impl Data<'_> {
+    /// Whether the workload `name` is timed in this run.
+    fn wants(&self, name: &str) -> bool {
+        self.only.is_empty() || self.only.iter().any(|w| w == name)
+    }
+
     /// Writes `v` to `dir/name` as little-endian `f64`, synced to the disk before returning.
     fn f64s(&self, name: &str, v: &[f64]) -> std::io::Result<()> {
         use std::io::Write;
@@ -88,6 +98,9 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 /// the points, our parameters, knots and control points.
 fn interpolation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for n in INTERP_SIZES {
+        if !data.wants(&format!("interp_{n}")) {
+            continue;
+        }
         let q = common::helix(n);
         let params = parametrize(q.as_view(), Parametrization::ChordLength)?;
         let curve = CurveInterpolation::new(3).interpolate(q.as_view())?;
@@ -125,6 +138,9 @@ fn interpolation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<
 /// parameters, knots and control net.
 fn surface(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for n in SURFACE_SIZES {
+        if !data.wants(&format!("surface_{n}")) {
+            continue;
+        }
         let g = common::grid(n);
         let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)?;
         data.f64s(&format!("surf_q_{n}.bin"), g.as_slice())?;
@@ -156,6 +172,9 @@ fn surface(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
 /// buffer and [`BezierCurve::elevate_degree`] (allocating), ns per curve.
 fn elevation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     for (from, to) in ELEVATIONS {
+        if !data.wants(&format!("elevate_{from}_{to}")) {
+            continue;
+        }
         let ctrl = common::walk(from + 1, DIM, 21 + from as u64);
         let bez = BezierCurve::new(ctrl.clone())?;
         let plan = ElevationPlan::new(from, to)?;
@@ -191,16 +210,49 @@ fn main() -> Res<()> {
     let mut args = std::env::args().skip(1);
     let dir = PathBuf::from(
         args.next()
-            .ok_or("usage: peer_bench DIR [REPEATS [RESULTS]]")?,
+            .ok_or("usage: peer_bench DIR [REPEATS [RESULTS [WORKLOADS]]]")?,
     );
     let repeats: usize = args.next().map_or(Ok(7), |s| s.parse())?;
     let results_name = args.next().unwrap_or_else(|| "ours.json".into());
+    let only: Vec<String> = args.next().map_or_else(Vec::new, |list| {
+        list.split(',')
+            .filter(|w| !w.is_empty())
+            .map(String::from)
+            .collect()
+    });
     std::fs::create_dir_all(&dir)?;
+    let write = results_name == "ours.json";
+    if write && !only.is_empty() {
+        return Err("a workload list times only: give a results name other than ours.json".into());
+    }
     let data = Data {
         dir: &dir,
-        write: results_name == "ours.json",
+        write,
+        only,
     };
+    let mut results = Results::new();
+    if ["eval_sorted", "eval_random", "deriv1_sorted"]
+        .iter()
+        .any(|w| data.wants(w))
+    {
+        evaluation(&data, repeats, &mut results)?;
+    }
+    interpolation(&data, repeats, &mut results)?;
+    surface(&data, repeats, &mut results)?;
+    elevation(&data, repeats, &mut results)?;
+    let meta = serde_json::json!({
+        "degree": DEGREE, "dim": DIM, "n_ctrl": N_CTRL, "n": N, "repeats": repeats,
+        "interp_sizes": INTERP_SIZES, "surface_sizes": SURFACE_SIZES, "elevations": ELEVATIONS,
+        "results": results,
+    });
+    std::fs::write(dir.join(results_name), serde_json::to_string_pretty(&meta)?)?;
+    Ok(())
+}
 
+/// Evaluation of the cubic 3-D curve at 10^6 sorted and random parameters (reference, fast
+/// sequential, 2 threads pinned and unpinned) and of point and first derivative at the sorted
+/// ones; writes the curve, the parameters and our results.
+fn evaluation(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
     let curve = common::curve(DEGREE, N_CTRL, DIM);
     let sorted = common::sorted_params(N);
     let random = common::random_params(N);
@@ -213,7 +265,6 @@ fn main() -> Res<()> {
     let pool = common::rayon_pool(2, true);
     let free = common::rayon_pool(2, false);
     let mut out = vec![0.0; N * DIM];
-    let mut results = Results::new();
     for (name, ts) in [("eval_sorted", &sorted), ("eval_random", &random)] {
         let reference = median_ns(repeats, N, || {
             curve.eval_batch(ts, &mut out).expect("in domain")
@@ -252,14 +303,5 @@ fn main() -> Res<()> {
     data.f64s("ours_deriv1_sorted.bin", &d1)?;
     println!("deriv1_sorted: fast {deriv:.1} ns/pt");
     results.insert("deriv1_sorted".into(), serde_json::json!({"fast": deriv}));
-    interpolation(&data, repeats, &mut results)?;
-    surface(&data, repeats, &mut results)?;
-    elevation(&data, repeats, &mut results)?;
-    let meta = serde_json::json!({
-        "degree": DEGREE, "dim": DIM, "n_ctrl": N_CTRL, "n": N, "repeats": repeats,
-        "interp_sizes": INTERP_SIZES, "surface_sizes": SURFACE_SIZES, "elevations": ELEVATIONS,
-        "results": results,
-    });
-    std::fs::write(dir.join(results_name), serde_json::to_string_pretty(&meta)?)?;
     Ok(())
 }
