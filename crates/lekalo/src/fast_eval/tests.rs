@@ -128,7 +128,7 @@ fn kernels_agree_with_reference_sorted_and_shuffled() {
 
 #[test]
 fn fixed_kernels_match_generic_bit_for_bit() {
-    for (p, dim) in [(3, 3), (5, 2), (7, 3), (2, 3), (3, 4)] {
+    for (p, dim) in [(3, 3), (5, 2), (7, 3), (2, 3), (3, 4), (3, 2), (2, 2)] {
         let c = curve(p, 30, dim);
         let ts = params(501, true);
         for kernel in [EvalKernel::PowerForm, EvalKernel::Basis] {
@@ -152,21 +152,26 @@ fn fixed_kernels_match_generic_bit_for_bit() {
                     .all(|(a, b)| a.to_bits() == b.to_bits()),
                 "p {p} dim {dim} {kernel:?}"
             );
-            if let KernelData::Power { coef } = &ev.kernel {
-                let row = 3 * dim;
+            // orders 1 and 2 take the kernels with the order fixed too (degree 2–3, 2-D/3-D),
+            // order 3 the ones with a run-time order
+            for order in 1..=3 {
+                let KernelData::Power { coef } = &ev.kernel else {
+                    break;
+                };
+                let row = (order + 1) * dim;
                 let mut fast = vec![0.0; ts.len() * row];
-                ev.eval_derivatives_batch(&ts, 2, &mut fast).unwrap();
-                let mut generic = vec![0.0; ts.len() * row];
+                ev.eval_derivatives_batch(&ts, order, &mut fast).unwrap();
+                let mut generic = vec![f64::NAN; ts.len() * row];
                 let mut a = vec![0.0; p + 1];
                 ev.drive(&ts, &mut generic, row, |j, t, o| {
-                    power_ders(&mut a, dim, coef, j, t, 2.min(p), o);
+                    power_ders(&mut a, dim, coef, j, t, order.min(p), o);
                 })
                 .unwrap();
                 assert!(
                     fast.iter()
                         .zip(&generic)
                         .all(|(a, b)| a.to_bits() == b.to_bits()),
-                    "derivatives p {p} dim {dim}"
+                    "derivatives p {p} dim {dim} order {order}"
                 );
             }
         }
