@@ -232,15 +232,16 @@ pub(crate) fn reduce_least_squares(src: &[f64], dim: usize, k: usize) -> Vec<f64
     let mut b = src.to_vec(); // right-hand sides, row-major (rows × dim)
     let mut diag = vec![0.0; k + 1];
     let mut v = vec![0.0; r + 1];
+    let mut dots = vec![0.0; dim];
     for i in 0..=k {
         let last = (i + r).min(n);
         let len = last - i + 1;
         let col = &a[i * rows + i..=i * rows + last];
-        let norm = col.iter().fold(0.0_f64, |m, x| m.hypot(*x));
+        let norm = column_norm(col);
         let alpha = if col[0] > 0.0 { -norm } else { norm };
         v[..len].copy_from_slice(col);
         v[0] -= alpha;
-        let vv: f64 = v[..len].iter().map(|x| x * x).sum();
+        let vv = dot4(&v[..len], &v[..len]);
         diag[i] = alpha;
         if vv == 0.0 {
             continue;
@@ -248,15 +249,22 @@ pub(crate) fn reduce_least_squares(src: &[f64], dim: usize, k: usize) -> Vec<f64
         let tau = 2.0 / vv;
         for j in i + 1..=(i + r).min(k) {
             let cj = &mut a[j * rows + i..=j * rows + last];
-            let dot: f64 = cj.iter().zip(&v[..len]).map(|(x, y)| x * y).sum();
+            let dot = dot4(cj, &v[..len]);
             for (x, y) in cj.iter_mut().zip(&v[..len]) {
                 *x -= tau * dot * y;
             }
         }
-        for d in 0..dim {
-            let dot: f64 = (0..len).map(|l| b[(i + l) * dim + d] * v[l]).sum();
-            for l in 0..len {
-                b[(i + l) * dim + d] -= tau * dot * v[l];
+        // all coordinates at once: one pass over the rows, `dim` independent sums
+        let rhs = &mut b[i * dim..(last + 1) * dim];
+        dots.fill(0.0);
+        for (row, &vl) in rhs.chunks_exact(dim).zip(&v[..len]) {
+            for (s, &x) in dots.iter_mut().zip(row) {
+                *s += x * vl;
+            }
+        }
+        for (row, &vl) in rhs.chunks_exact_mut(dim).zip(&v[..len]) {
+            for (x, &s) in row.iter_mut().zip(&dots) {
+                *x -= tau * s * vl;
             }
         }
     }
@@ -272,6 +280,37 @@ pub(crate) fn reduce_least_squares(src: &[f64], dim: usize, k: usize) -> Vec<f64
         }
     }
     q
+}
+
+/// `Σ a_l b_l` in four interleaved partial sums (combined pairwise at the end), so that the
+/// Householder updates of [`reduce_least_squares`] are not bound by the latency of one chain of
+/// additions; as accurate as the sequential sum (the error bound of pairwise summation).
+fn dot4(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0_f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for l in 0..4 {
+            s[l] += x[l] * y[l];
+        }
+    }
+    for (l, (x, y)) in ra.iter().zip(rb).enumerate() {
+        s[l] += x * y;
+    }
+    (s[0] + s[1]) + (s[2] + s[3])
+}
+
+/// Euclidean norm of a column of [`reduce_least_squares`]: `sqrt(Σ x²)`, whose squares can
+/// neither overflow (orthogonal reflections keep the column's norm at that of an elevation
+/// column, at most `sqrt(r + 1)`) nor lose the norm to underflow unless the whole column is
+/// below about 1e-150, which then takes the overflow-safe `hypot` chain. `hypot` for every
+/// entry took a tenth of an exact reduction's time.
+fn column_norm(col: &[f64]) -> f64 {
+    let largest = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if largest < 1e-150 {
+        return col.iter().fold(0.0_f64, |m, x| m.hypot(*x));
+    }
+    dot4(col, col).sqrt()
 }
 
 /// Whether the net reduces exactly to degree `k`: the least-squares reduction, elevated back,
@@ -307,9 +346,16 @@ pub(crate) fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
     m
 }
 
-/// Real degree of the net `src` and the net reduced to it: the smallest `k ≥ floor` such that
-/// [`try_reduce_exact`] succeeds for every degree from `k` to `n − 1`. Tries `n − 1` first, so
-/// a net without defect costs one O(n·dim) reduction; a defect `d` costs `d + 1` reductions.
+/// Real degree of the net `src` and the net reduced to it: the smallest `k ≥ floor` to which
+/// [`try_reduce_exact`] reduces it, found by galloping down from the top (degrees `n − 1`,
+/// `n − 2`, `n − 4`, … until one fails) and bisecting between the last success and that
+/// failure.
+///
+/// Reducibility is monotone in `k` (a degree-`k` net elevated by one is a degree-`k + 1`
+/// reduction), which both this search and a scan down from `n − 1` to the first failure rely
+/// on; they return the same degree (tested). A net without defect costs one O(n·dim) reduction,
+/// as before; a defect `d` costs about `2 log₂ d` reductions instead of `d + 1` (3-D,
+/// 100 → 48: 4.5 ms scanned, see `docs/performance.md`, session 6).
 pub(crate) fn real_degree_and_net(
     src: &[f64],
     dim: usize,
@@ -317,14 +363,28 @@ pub(crate) fn real_degree_and_net(
     floor: usize,
 ) -> (usize, Vec<f64>) {
     let n = src.len() / dim - 1;
-    let mut best = (n, src.to_vec());
-    for k in (floor..n).rev() {
+    // the lowest degree known to reduce, with its net, and a degree below it known not to
+    let mut good = (n, src.to_vec());
+    let mut bad = None;
+    let mut step = 1;
+    while bad.is_none() && good.0 > floor {
+        let k = n.saturating_sub(step).max(floor);
         match try_reduce_exact(src, dim, k, tol_abs) {
-            Some(q) => best = (k, q),
-            None => break,
+            Some(q) => good = (k, q),
+            None => bad = Some(k),
+        }
+        step = step.saturating_mul(2);
+    }
+    if let Some(mut bad) = bad {
+        while good.0 - bad > 1 {
+            let mid = bad + (good.0 - bad) / 2;
+            match try_reduce_exact(src, dim, mid, tol_abs) {
+                Some(q) => good = (mid, q),
+                None => bad = mid,
+            }
         }
     }
-    best
+    good
 }
 
 /// Checks a relative tolerance and turns it into an absolute one for a net.
@@ -766,6 +826,55 @@ impl BezierCurve {
 
 #[cfg(test)]
 mod tests {
+    /// The galloping search of `real_degree_and_net` returns the degree and net of the scan
+    /// from `n − 1` down to the first failure, for nets elevated from random ones (defects 0 to
+    /// 40, degrees up to 60, 1–3 dimensions), with and without a floor.
+    #[test]
+    fn galloping_real_degree_matches_scan() {
+        use super::{elevate, real_degree_and_net, try_reduce_exact, DEFAULT_DEGREE_TOLERANCE};
+        let scan = |src: &[f64], dim: usize, tol: f64, floor: usize| {
+            let n = src.len() / dim - 1;
+            let mut best = (n, src.to_vec());
+            for k in (floor..n).rev() {
+                match try_reduce_exact(src, dim, k, tol) {
+                    Some(q) => best = (k, q),
+                    None => break,
+                }
+            }
+            best
+        };
+        let mut seed = 7_u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for dim in 1..=3 {
+            for (m, d) in [
+                (0, 3),
+                (1, 0),
+                (2, 5),
+                (3, 1),
+                (5, 7),
+                (8, 8),
+                (12, 20),
+                (20, 40),
+            ] {
+                let base: Vec<f64> = (0..(m + 1) * dim).map(|_| next()).collect();
+                let src = if d == 0 { base } else { elevate(&base, dim, d) };
+                let tol =
+                    DEFAULT_DEGREE_TOLERANCE * src.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+                for floor in [0, m / 2, m + d / 2] {
+                    let got = real_degree_and_net(&src, dim, tol, floor);
+                    let want = scan(&src, dim, tol, floor);
+                    assert_eq!(got.0, want.0, "dim {dim}, {m} + {d}, floor {floor}");
+                    assert_eq!(got.1, want.1, "dim {dim}, {m} + {d}, floor {floor}");
+                }
+            }
+        }
+    }
+
     /// The kept band gives the numbers a freshly formed band gives, whichever elevation came
     /// before, and a band over the limit is formed every time.
     #[test]
