@@ -25,6 +25,7 @@
 #include <TColgp_HArray1OfPnt.hxx>
 #include <gp_Pnt.hxx>
 #include <gp_Vec.hxx>
+#include <gp_XYZ.hxx>
 
 #include <algorithm>
 #include <chrono>
@@ -76,6 +77,33 @@ double max_abs(const std::vector<double>& v) {
   double m = 0.0;
   for (double x : v) m = std::max(m, std::fabs(x));
   return m;
+}
+
+// largest |a_i - b_i| over the common length
+double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0.0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) m = std::max(m, std::fabs(a[i] - b[i]));
+  return m;
+}
+
+// Times `at(adaptor, t)` (a gp_XYZ: a point or a derivative) at every parameter of `ts` into
+// `out` (3 numbers a parameter), with a fresh adaptor, so a fresh span cache, per batch; `out`
+// holds the last batch on return. ns per parameter.
+template <class At>
+double time_batch(const Handle(Geom_BSplineCurve) & curve, const std::vector<double>& ts,
+                  std::vector<double>& out, At at) {
+  auto batch = [&]() {
+    GeomAdaptor_Curve adaptor(curve);
+    for (size_t i = 0; i < ts.size(); ++i) {
+      gp_XYZ v = at(adaptor, ts[i]);
+      out[3 * i] = v.X();
+      out[3 * i + 1] = v.Y();
+      out[3 * i + 2] = v.Z();
+    }
+  };
+  double ns = median_ns(batch, static_cast<double>(ts.size()));
+  batch();
+  return ns;
 }
 
 void row(const std::string& work, const std::string& peer, double ns, const std::string& note) {
@@ -130,41 +158,21 @@ void evaluation(int n_ctrl, long n) {
   std::vector<double> out(3 * n);
   for (const char* order : {"sorted", "random"}) {
     std::vector<double> ts = read_f64(std::string("ts_") + order + ".bin");
-    std::vector<double> ours = read_f64(std::string("ours_eval_") + order + ".bin");
-    auto eval_all = [&]() {
-      GeomAdaptor_Curve adaptor(curve);  // a fresh span cache for each batch
-      for (long i = 0; i < n; ++i) {
-        gp_Pnt p = adaptor.Value(ts[i]);
-        out[3 * i] = p.X();
-        out[3 * i + 1] = p.Y();
-        out[3 * i + 2] = p.Z();
-      }
-    };
-    double ns = median_ns(eval_all, static_cast<double>(n));
-    eval_all();
-    double diff = 0.0;
-    for (long i = 0; i < 3 * n; ++i) diff = std::max(diff, std::fabs(out[i] - ours[i]));
+    double ns = time_batch(curve, ts, out,
+                           [](GeomAdaptor_Curve& a, double t) { return a.Value(t).XYZ(); });
+    double diff = max_abs_diff(out, read_f64(std::string("ours_eval_") + order + ".bin"));
     row(std::string("eval_") + order, "OCCT C++ GeomAdaptor_Curve::Value", ns,
         "diff " + sci(diff / scale) + " rel");
   }
-  std::vector<double> ts = read_f64("ts_sorted.bin"), ours = read_f64("ours_deriv1_sorted.bin");
-  auto d1_all = [&]() {
-    GeomAdaptor_Curve adaptor(curve);
+  double ns = time_batch(curve, read_f64("ts_sorted.bin"), out, [](GeomAdaptor_Curve& a, double t) {
     gp_Pnt p;
     gp_Vec d;
-    for (long i = 0; i < n; ++i) {
-      adaptor.D1(ts[i], p, d);
-      out[3 * i] = d.X();
-      out[3 * i + 1] = d.Y();
-      out[3 * i + 2] = d.Z();
-    }
-  };
-  double ns = median_ns(d1_all, static_cast<double>(n));
-  d1_all();
-  double diff = 0.0;
-  for (long i = 0; i < 3 * n; ++i) diff = std::max(diff, std::fabs(out[i] - ours[i]));
+    a.D1(t, p, d);
+    return d.XYZ();
+  });
+  std::vector<double> ours = read_f64("ours_deriv1_sorted.bin");
   row("deriv1_sorted", "OCCT C++ GeomAdaptor_Curve::D1", ns,
-      "point and 1st derivative; diff " + sci(diff / max_abs(ours)) + " rel");
+      "point and 1st derivative; diff " + sci(max_abs_diff(out, ours) / max_abs(ours)) + " rel");
 }
 
 // cubic interpolation through n 3-D points: GeomAPI_Interpolate, given our chord-length
@@ -266,12 +274,12 @@ void elevation(int a, int b) {
         c->Increase(b);
       },
       1.0);
-  double diff = 0.0;
-  for (int i = 0; i <= b; ++i) {
-    gp_Pnt q = c->Pole(i + 1);
-    diff = std::max({diff, std::fabs(q.X() - ours[3 * i]), std::fabs(q.Y() - ours[3 * i + 1]),
-                     std::fabs(q.Z() - ours[3 * i + 2])});
+  std::vector<double> got;
+  for (int i = 1; i <= c->NbPoles(); ++i) {
+    const gp_Pnt& q = c->Pole(i);
+    got.insert(got.end(), {q.X(), q.Y(), q.Z()});
   }
+  double diff = got.size() == ours.size() ? max_abs_diff(got, ours) : HUGE_VAL;
   char note[96];
   std::snprintf(note, sizeof note, "construct+Increase (construct alone %.2f us); diff %s rel",
                 build * 1e-3, sci(diff / max_abs(ours)).c_str());

@@ -237,7 +237,7 @@ pub(crate) fn reduce_least_squares(src: &[f64], dim: usize, k: usize) -> Vec<f64
         let last = (i + r).min(n);
         let len = last - i + 1;
         let col = &a[i * rows + i..=i * rows + last];
-        let norm = column_norm(col);
+        let norm = crate::linalg::norm2(col);
         let alpha = if col[0] > 0.0 { -norm } else { norm };
         v[..len].copy_from_slice(col);
         v[0] -= alpha;
@@ -298,19 +298,6 @@ fn dot4(a: &[f64], b: &[f64]) -> f64 {
         s[l] += x * y;
     }
     (s[0] + s[1]) + (s[2] + s[3])
-}
-
-/// Euclidean norm of a column of [`reduce_least_squares`]: `sqrt(Σ x²)`, whose squares can
-/// neither overflow (orthogonal reflections keep the column's norm at that of an elevation
-/// column, at most `sqrt(r + 1)`) nor lose the norm to underflow unless the whole column is
-/// below about 1e-150, which then takes the overflow-safe `hypot` chain. `hypot` for every
-/// entry took a tenth of an exact reduction's time.
-fn column_norm(col: &[f64]) -> f64 {
-    let largest = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    if largest < 1e-150 {
-        return col.iter().fold(0.0_f64, |m, x| m.hypot(*x));
-    }
-    dot4(col, col).sqrt()
 }
 
 /// Whether the net reduces exactly to degree `k`: the least-squares reduction, elevated back,

@@ -662,6 +662,16 @@ fn ill_conditioned(growth: f64, r: usize) -> Error {
     }
 }
 
+/// Euclidean norm, scaled by the largest magnitude against overflow and underflow (the
+/// largest magnitude itself when it is zero or not finite).
+pub(crate) fn norm2(v: &[f64]) -> f64 {
+    let m = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.iter().map(|x| (x / m) * (x / m)).sum::<f64>().sqrt()
+}
+
 /// Solves the small dense system `A·X = B` (`A` is `n × n` row-major, `B` is `n × ncols`) in
 /// place by Gaussian elimination with partial pivoting (Golub & Van Loan, Algorithm 3.4.1).
 /// Used for the `p × p` Schur complement of periodic interpolation.

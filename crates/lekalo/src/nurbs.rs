@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::bspline::BSplineCurve;
 use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
+use crate::linalg::norm2;
 use crate::points::{
     check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
 };
@@ -381,7 +382,7 @@ impl NurbsCurve {
     /// [`Error::NonFinite`].
     pub fn circle_with_normal(center: [f64; 3], normal: [f64; 3], radius: f64) -> Result<Self> {
         check_finite("normal", &normal)?;
-        let n = norm(&normal);
+        let n = norm2(&normal);
         if n == 0.0 || !n.is_finite() {
             return Err(Error::InvalidArgument {
                 what: "normal",
@@ -404,7 +405,7 @@ impl NurbsCurve {
             ]
         };
         let x = cross(&e, &nh);
-        let lx = norm(&x);
+        let lx = norm2(&x);
         let x = [x[0] / lx, x[1] / lx, x[2] / lx];
         let y = cross(&nh, &x);
         Self::circle(&center, &x, &y, radius)
@@ -547,7 +548,7 @@ impl NurbsCurve {
                 value: f64::INFINITY,
             });
         }
-        let (lu, lv, lw) = (norm(&u), norm(&v), norm(&w));
+        let (lu, lv, lw) = (norm2(&u), norm2(&v), norm2(&w));
         let scale = lu.max(lv).max(lw);
         for (len, names) in [(lu, "a and b"), (lv, "b and c"), (lw, "a and c")] {
             if len <= ARC_COINCIDENT_TOL * scale {
@@ -587,14 +588,14 @@ impl NurbsCurve {
             .collect();
         // frame: X towards a; Y in the plane, oriented so that b comes before c
         let ca: Vec<f64> = a.iter().zip(&center).map(|(p, q)| p - q).collect();
-        let radius = norm(&ca);
+        let radius = norm2(&ca);
         let x: Vec<f64> = ca.iter().map(|p| p / radius).collect();
         let cb: Vec<f64> = b.iter().zip(&center).map(|(p, q)| p - q).collect();
         let cc: Vec<f64> = c.iter().zip(&center).map(|(p, q)| p - q).collect();
         let yb = reject(&cb, &x);
         let yc = reject(&cc, &x);
-        let mut y = if norm(&yb) >= norm(&yc) { yb } else { yc };
-        let ly = norm(&y);
+        let mut y = if norm2(&yb) >= norm2(&yc) { yb } else { yc };
+        let ly = norm2(&y);
         for p in &mut y {
             *p /= ly;
         }
@@ -720,7 +721,7 @@ fn arc_frame(center: &[f64], x_axis: &[f64], y_axis: &[f64]) -> Result<(Vec<f64>
     check_finite("x_axis", x_axis)?;
     check_finite("y_axis", y_axis)?;
     let unit = |v: &[f64], what: &'static str| -> Result<Vec<f64>> {
-        let n = norm(v);
+        let n = norm2(v);
         if !(n > 0.0 && n.is_finite()) {
             return Err(Error::InvalidArgument {
                 what,
@@ -783,15 +784,6 @@ fn check_radius(radius: f64) -> Result<()> {
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(p, q)| p * q).sum()
-}
-
-/// Euclidean norm, scaled against overflow and underflow.
-fn norm(v: &[f64]) -> f64 {
-    let m = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    m * v.iter().map(|x| (x / m) * (x / m)).sum::<f64>().sqrt()
 }
 
 /// `v − (v·e) e` for a unit vector `e`.
