@@ -430,14 +430,16 @@ impl CurveEvaluator {
                         })
                     };
                 }
-                // the usual requests with the order fixed too: every loop unrolls and the
-                // Taylor coefficients stay in registers. With a run-time order they went through
-                // the stack: a 3-D cubic's point and 1st derivative took 10.2 ns a parameter,
-                // now 3.5; with the 2nd, 13.2 → 4.9 (docs/performance.md, session 6)
+                // the usual requests with the order a constant too (`power_ders` is inlined,
+                // so every loop unrolls and the Taylor coefficients stay in registers). With a
+                // run-time order they went through the stack: a 3-D cubic's point and 1st
+                // derivative took 10.2 ns a parameter, now 3.5; with the 2nd, 13.2 → 4.9
+                // (docs/performance.md, session 6)
                 macro_rules! fixed_order {
                     ($w:literal, $d:literal, $k:literal) => {
                         self.drive(ts, out, row, |j, t, o| {
-                            power_ders_fixed::<$w, $d, $k>(coef, j, t, o);
+                            let mut a = [0.0; $w];
+                            power_ders(&mut a, $d, coef, j, t, $k, o);
                         })
                     };
                 }
@@ -705,37 +707,6 @@ fn power_ders(
                 a[i] += u * a[i + 1];
             }
             o[k * dim + d] = a[k] * scale;
-            scale *= (k + 1) as f64 * inv;
-        }
-    }
-}
-
-/// [`power_ders`] with the order `W = p + 1`, the dimension `D` and the derivative order
-/// `K ≤ p` fixed at compile time (the same operations in the same order, so the same bits:
-/// tested); `o` is a row of `(K + 1)·D` values.
-#[inline(always)]
-fn power_ders_fixed<const W: usize, const D: usize, const K: usize>(
-    coef: &[f64],
-    j: usize,
-    t: f64,
-    o: &mut [f64],
-) {
-    let stride = 2 + W * D;
-    let block = &coef[j * stride..(j + 1) * stride];
-    let (x, inv) = (block[0], block[1]);
-    let u = (t - x) * inv;
-    let o = &mut o[..(K + 1) * D];
-    for d in 0..D {
-        let mut a = [0.0; W];
-        for (i, ai) in a.iter_mut().enumerate() {
-            *ai = block[2 + (W - 1 - i) * D + d];
-        }
-        let mut scale = 1.0;
-        for k in 0..=K {
-            for i in (k..W - 1).rev() {
-                a[i] += u * a[i + 1];
-            }
-            o[k * D + d] = a[k] * scale;
             scale *= (k + 1) as f64 * inv;
         }
     }
