@@ -655,9 +655,9 @@ pub(crate) fn weights_of(h: &[f64], dim: usize) -> Vec<f64> {
     h.iter().skip(dim).step_by(dim + 1).copied().collect()
 }
 
-/// Degree elevation by `r` (document 004 eq. 8, [`crate::degree::curve`]'s closed form).
+/// Degree elevation by `r` (document 004 eq. 8, [`crate::degree::elevation`]'s closed form).
 pub(crate) fn elevate(ctrl: &[f64], dim: usize, r: usize) -> Vec<f64> {
-    crate::degree::curve::elevate(ctrl, dim, r)
+    crate::degree::elevation::elevate(ctrl, dim, r)
 }
 
 impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C1, C2> {

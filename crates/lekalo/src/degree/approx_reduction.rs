@@ -17,7 +17,7 @@
 //!   is within O(h²) of the curve);
 //! - `max_deviation_sampled`: `max ‖p(t) − q(t)‖` over dense samples, a lower bound.
 
-use crate::degree::curve::{check_size, elevate};
+use crate::degree::elevation::{check_size, elevate};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -346,7 +346,7 @@ mod tests {
             EndConditions::Tangents,
         ] {
             let r = up.reduce_degree_approx(3, ends).unwrap();
-            let d = crate::degree::curve::max_abs_diff(
+            let d = crate::degree::reduction::max_abs_diff(
                 r.curve.control_points().as_slice(),
                 c.control_points().as_slice(),
             );

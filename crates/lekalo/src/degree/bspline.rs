@@ -18,7 +18,8 @@
 //! the C0 form.
 
 use crate::degree::approx_reduction::EndConditions;
-use crate::degree::curve::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
+use crate::degree::elevation::check_size;
+use crate::degree::reduction::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, DEFAULT_DEGREE_TOLERANCE};
@@ -90,9 +91,9 @@ impl BSplineCurve {
         }
         knots.extend(std::iter::repeat_n(b, q + 1));
         let n_ctrl = knots.len() - q - 1;
-        crate::degree::curve::check_size("elevated control points", n_ctrl, dim)?;
+        check_size("elevated control points", n_ctrl, dim)?;
         let width = (q + 1) * dim;
-        crate::degree::curve::check_size("elevated pieces", segments.len(), width)?;
+        check_size("elevated pieces", segments.len(), width)?;
         let mut nets = vec![0.0; segments.len() * width];
         for (s, net) in segments.iter().zip(nets.chunks_exact_mut(width)) {
             plan.apply_into(s.curve.control_points().as_slice(), dim, net)?;

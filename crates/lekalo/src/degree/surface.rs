@@ -18,10 +18,11 @@
 //! `S = H_nᵀ U H_m`, eq. 15–16) is the defect of that big curve, that is the smallest defect over
 //! the column curves `j ↦ (u_0j … u_nj)`; likewise along `v`.
 
-use crate::degree::curve::{
-    absolute_tolerance, check_size, elevate, from_monomial_vec, real_degree_and_net,
-    real_degree_monomial_slice, to_monomial_vec, try_reduce_exact, MAX_MONOMIAL_DEGREE,
+use crate::degree::elevation::{binomials, check_size, elevate};
+use crate::degree::monomial::{
+    from_monomial_vec, real_degree_monomial_slice, to_monomial_vec, MAX_MONOMIAL_DEGREE,
 };
+use crate::degree::reduction::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::{BezierSurface, DEFAULT_DEGREE_TOLERANCE};
@@ -221,7 +222,7 @@ pub fn bezier_net_real_degrees_monomial(
 
 /// `max_j C(m, j) 2^j`.
 fn max_binomial_power(m: usize) -> f64 {
-    crate::degree::curve::binomials(m)
+    binomials(m)
         .iter()
         .zip(0_i32..)
         .map(|(c, j)| c * 2.0_f64.powi(j))

@@ -5,7 +5,7 @@
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
 use crate::interpolate::cubic_sweep::solve_free_cubic;
-use crate::interpolate::curve::distances;
+use crate::interpolate::parametrization::distances;
 use crate::numeric::large_buffer::reuse_or_zeroed;
 use crate::{BSplineCurve, Points, PointsRef};
 use std::cell::RefCell;

@@ -17,8 +17,9 @@
 use crate::curve::bezier::BezierCurve;
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
-use crate::interpolate::curve::check_strictly_increasing;
-use crate::interpolate::curve::{parametrize, Parametrization};
+use crate::interpolate::parametrization::{
+    check_strictly_increasing, parametrize, Parametrization,
+};
 use crate::points::{Points, PointsRef};
 
 /// The Hermite basis matrix `M_H` of document 002 §C.3: `[a b c d]ᵀ = M_H·[p_k p_{k+1} Dp_k

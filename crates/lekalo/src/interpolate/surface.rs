@@ -3,9 +3,9 @@
 //! both directions with one factorisation per direction, applied in two sweeps over the grid.
 
 use crate::error::{Error, Result};
-use crate::interpolate::curve::{
-    check_strictly_increasing, distances, factor_collocation, parametrize_into, Factors,
-    Parametrization,
+use crate::interpolate::collocation::{check_condition_limit, factor_collocation, Factors};
+use crate::interpolate::parametrization::{
+    check_strictly_increasing, distances, parametrize_into, Parametrization,
 };
 use crate::knots::KnotVector;
 use crate::numeric::linalg::BandedCrout;
@@ -128,7 +128,7 @@ pub fn interpolate_surface_max_condition(
     parametrization: Parametrization,
     max_condition: f64,
 ) -> Result<SurfaceInterpolant> {
-    crate::interpolate::curve::check_condition_limit(max_condition)?;
+    check_condition_limit(max_condition)?;
     let (s, kappa) = surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization)?;
     if kappa > max_condition {
         return Err(condition_exceeded(kappa, max_condition));
@@ -638,7 +638,7 @@ mod tests {
     fn bits(v: &[f64]) -> Vec<u64> {
         v.iter().map(|x| x.to_bits()).collect()
     }
-    use crate::interpolate::curve::solve_collocation;
+    use crate::interpolate::collocation::solve_collocation;
 
     /// A wavy `nu × nv` grid in `dim` dimensions, offset by `offset`, rows along the first
     /// coordinate and columns along the second.
