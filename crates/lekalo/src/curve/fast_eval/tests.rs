@@ -2,7 +2,7 @@
 //! the bucket table, the inner balls, the generic kernels).
 
 use super::*;
-use crate::{KnotVector, Points};
+use crate::{KnotVector, NurbsCurve, Points};
 
 /// Deterministic, irregular values in [−1, 1].
 fn wave(i: usize) -> f64 {
