@@ -99,7 +99,7 @@ impl LocalCurves for Parabolas {
             Ok(Arc::new(BSplineCurve::new(
                 2,
                 vec![a, a, a, b, b, b],
-                Points::new(ctrl, dim)?,
+                Points::from_flat(dim, ctrl)?,
             )?))
         };
         Ok([piece(-dl, 0.0, p0, p1)?, piece(0.0, dr, p1, p2)?])
@@ -331,7 +331,7 @@ pub(crate) fn line_piece(p: &[f64], q: &[f64], a: f64, b: f64) -> Result<SharedC
     Ok(Arc::new(BSplineCurve::new(
         1,
         vec![a, a, b, b],
-        Points::new(ctrl, p.len())?,
+        Points::from_flat(p.len(), ctrl)?,
     )?))
 }
 
@@ -419,7 +419,7 @@ impl LocalCurves for CircularArcs {
                     Ok(Arc::new(NurbsCurve::new(
                         2,
                         vec![a, a, a, b, b, b],
-                        Points::new(ctrl, dim)?,
+                        Points::from_flat(dim, ctrl)?,
                         vec![1.0, w, 1.0],
                     )?))
                 };

@@ -375,7 +375,7 @@ impl BlendSpline {
             let mult = if i + 1 == forms.len() { q + 1 } else { q };
             knots.extend(std::iter::repeat_n(s, mult));
         }
-        let hom = BSplineCurve::new(q, knots, Points::new(ctrl, hd)?)?;
+        let hom = BSplineCurve::new(q, knots, Points::from_flat(hd, ctrl)?)?;
         NurbsCurve::from_homogeneous(hom)
     }
 }

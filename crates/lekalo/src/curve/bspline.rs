@@ -523,7 +523,7 @@ mod tests {
             BSplineCurve::new(1, vec![0.0, 1.0, 0.5, 1.0], ctrl),
             Err(Error::KnotsNotSorted { .. })
         ));
-        let empty = Points::new(vec![], 2).unwrap();
+        let empty = Points::from_flat(2, vec![]).unwrap();
         assert!(matches!(
             BSplineCurve::new(1, vec![0.0, 1.0], empty),
             Err(Error::TooFew { .. })
@@ -532,7 +532,7 @@ mod tests {
 
     #[test]
     fn batch_matches_single_and_oracle() {
-        let ctrl = Points::new((0..21).map(|i| f64::from(i).sin()).collect(), 3).unwrap();
+        let ctrl = Points::from_flat(3, (0..21).map(|i| f64::from(i).sin()).collect()).unwrap();
         let kv =
             KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.2, 0.2, 0.5, 1.0, 1.0, 1.0, 1.0]).unwrap();
         let c = BSplineCurve::from_knot_vector(3, kv.clone(), ctrl.clone()).unwrap();

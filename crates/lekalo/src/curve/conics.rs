@@ -399,8 +399,8 @@ fn arc_homogeneous(
         knots.push(k);
     }
     knots.extend_from_slice(&[1.0; 3]);
-    // Points::new catches an overflow of r·cos θ + C
-    BSplineCurve::new(2, knots, Points::new(h, hd)?)
+    // Points::from_flat catches an overflow of r·cos θ + C
+    BSplineCurve::new(2, knots, Points::from_flat(hd, h)?)
 }
 
 /// Validates the centre and axes of an arc and returns the orthonormal frame `(x̂, ŷ)`.

@@ -104,7 +104,7 @@ impl BSplineCurve {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0, 3.0, 2.0], 1)?;
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0, 3.0, 2.0])?;
     /// let c = BSplineCurve::from_knot_vector(2, KnotVector::clamped_uniform(2, 4)?, ctrl)?;
     /// let d = c.refine_knots(&[0.25, 0.5, 0.75])?;
     /// assert_eq!(d.control_points().len(), 7);
@@ -214,7 +214,7 @@ impl BSplineCurve {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0, 3.0, 2.0], 1)?;
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0, 3.0, 2.0])?;
     /// let c = BSplineCurve::from_knot_vector(2, KnotVector::clamped_uniform(2, 4)?, ctrl)?;
     /// let (left, right) = c.split_at(0.3)?;
     /// assert_eq!(left.domain(), (0.0, 0.3));
@@ -334,8 +334,8 @@ impl BSplineCurve {
     ///
     /// ```
     /// use lekalo::{BezierCurve, BezierSegment, BSplineCurve, Points};
-    /// let a = BezierCurve::new(Points::new(vec![0.0, 1.0, 2.0], 1)?)?;
-    /// let b = BezierCurve::new(Points::new(vec![2.0, 0.0, 5.0], 1)?)?;
+    /// let a = BezierCurve::new(Points::from_flat(1, vec![0.0, 1.0, 2.0])?)?;
+    /// let b = BezierCurve::new(Points::from_flat(1, vec![2.0, 0.0, 5.0])?)?;
     /// let c = BSplineCurve::from_bezier_segments(&[
     ///     BezierSegment { start: 0.0, end: 1.0, curve: a },
     ///     BezierSegment { start: 1.0, end: 3.0, curve: b },

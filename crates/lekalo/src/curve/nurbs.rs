@@ -278,7 +278,7 @@ impl NurbsCurve {
         let dim = self.dim();
         let mut out = vec![0.0; (order + 1) * dim];
         rational_derivatives(a.as_slice(), dim, order, &mut out);
-        Points::new(out, dim)
+        Points::from_flat(dim, out)
     }
 }
 
@@ -350,11 +350,11 @@ mod tests {
     }
 
     fn rational_cubic() -> NurbsCurve {
-        let ctrl = Points::new(
+        let ctrl = Points::from_flat(
+            3,
             vec![
                 0.0, 0.0, 1.0, 1.0, 3.0, -1.0, 2.0, 0.5, 4.0, 2.0, 6.0, 1.0, 5.0, 3.0, 7.0,
             ],
-            3,
         )
         .unwrap();
         let knots = vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0];
@@ -425,7 +425,7 @@ mod tests {
 
     #[test]
     fn unit_weight_derivatives_equal_bspline() {
-        let ctrl = Points::new((0..12).map(|i| f64::from(i).cos()).collect(), 2).unwrap();
+        let ctrl = Points::from_flat(2, (0..12).map(|i| f64::from(i).cos()).collect()).unwrap();
         let knots = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0];
         let b = BSplineCurve::new(3, knots, ctrl).unwrap();
         let n = NurbsCurve::from_bspline(&b);

@@ -98,7 +98,7 @@ impl BezierCurve {
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // p(t) = 1 + 2t + 0t², a quadratic whose real degree is 1 (the paper's example, §E.2)
-    /// let c = BezierCurve::from_monomial(Points::new(vec![1.0, 2.0, 0.0], 1)?)?;
+    /// let c = BezierCurve::from_monomial(Points::from_flat(1, vec![1.0, 2.0, 0.0])?)?;
     /// assert_eq!(c.control_points().as_slice(), &[1.0, 2.0, 3.0]);
     /// assert_eq!(c.real_degree(), 1);
     /// # Ok::<(), lekalo::Error>(())
@@ -132,7 +132,7 @@ impl BezierCurve {
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // document 004, Example 1, task 1: u'_1 = u_0/3 + 2u_1/3
-    /// let c = BezierCurve::new(Points::new(vec![0.0, 3.0, 6.0], 1)?)?.elevate_degree_once();
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![0.0, 3.0, 6.0])?)?.elevate_degree_once();
     /// assert_eq!(c.control_points().as_slice(), &[0.0, 2.0, 4.0, 6.0]);
     /// # Ok::<(), lekalo::Error>(())
     /// ```
@@ -163,7 +163,7 @@ impl BezierCurve {
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // document 004, Example 1, task 3: u'_2 = (u_0 + 6u_1 + 3u_2)/10
-    /// let c = BezierCurve::new(Points::new(vec![10.0, 0.0, 0.0, 0.0], 1)?)?.elevate_degree(2)?;
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![10.0, 0.0, 0.0, 0.0])?)?.elevate_degree(2)?;
     /// assert!((c.control_points().as_slice()[2] - 1.0).abs() < 1e-15);
     /// # Ok::<(), lekalo::Error>(())
     /// ```
@@ -391,7 +391,7 @@ mod tests {
                 8.0 * (x - x.floor()) - 4.0
             })
             .collect();
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     fn curve_dev(a: &BezierCurve, b: &BezierCurve) -> f64 {
@@ -537,14 +537,16 @@ mod tests {
             "round trip"
         );
         assert!(matches!(
-            BezierCurve::from_monomial(Points::new(vec![], 2).unwrap()),
+            BezierCurve::from_monomial(Points::from_flat(2, vec![]).unwrap()),
             Err(Error::TooFew { .. })
         ));
         let big =
-            BezierCurve::new(Points::new(vec![0.0; MAX_MONOMIAL_DEGREE + 2], 1).unwrap()).unwrap();
+            BezierCurve::new(Points::from_flat(1, vec![0.0; MAX_MONOMIAL_DEGREE + 2]).unwrap())
+                .unwrap();
         assert!(matches!(big.to_monomial(), Err(Error::Degree { .. })));
         let huge =
-            BezierCurve::new(Points::new(vec![1.5e308, -1.5e308, 1.5e308], 1).unwrap()).unwrap();
+            BezierCurve::new(Points::from_flat(1, vec![1.5e308, -1.5e308, 1.5e308]).unwrap())
+                .unwrap();
         assert!(matches!(
             huge.to_monomial(),
             Err(Error::IllConditioned { .. })
@@ -565,14 +567,14 @@ mod tests {
 
     #[test]
     fn constant_and_linear_nets() {
-        let p = BezierCurve::new(Points::new(vec![2.0, 2.0, 2.0, 2.0], 1).unwrap()).unwrap();
+        let p = BezierCurve::new(Points::from_flat(1, vec![2.0, 2.0, 2.0, 2.0]).unwrap()).unwrap();
         assert_eq!(p.real_degree(), 0, "constant");
         assert_eq!(p.reduce_degree_exact().control_points().as_slice(), &[2.0]);
-        let z = BezierCurve::new(Points::new(vec![0.0; 6], 2).unwrap()).unwrap();
+        let z = BezierCurve::new(Points::from_flat(2, vec![0.0; 6]).unwrap()).unwrap();
         assert_eq!(z.real_degree(), 0, "zero net");
-        let l = BezierCurve::new(Points::new(vec![1.0, 2.0, 3.0, 4.0], 1).unwrap()).unwrap();
+        let l = BezierCurve::new(Points::from_flat(1, vec![1.0, 2.0, 3.0, 4.0]).unwrap()).unwrap();
         assert_eq!(l.real_degree(), 1, "line");
-        let single = BezierCurve::new(Points::new(vec![5.0], 1).unwrap()).unwrap();
+        let single = BezierCurve::new(Points::from_flat(1, vec![5.0]).unwrap()).unwrap();
         assert_eq!(single.change_degree(0).unwrap(), single, "degree 0 stays");
     }
 }

@@ -136,7 +136,7 @@ mod tests {
         let data = (0..(n + 1) * dim)
             .map(|i| ((i as f64) * 12.9898).sin() * 4.0)
             .collect();
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     /// The block gather (both instruction-set copies where the processor has AVX2) returns the

@@ -187,7 +187,7 @@ impl CurveInterpolation {
     ///
     /// ```
     /// use lekalo::{CurveInterpolation, Parametrization, Points};
-    /// let q = Points::new((0..50).map(|k| f64::from(k).sin()).collect(), 1)?;
+    /// let q = Points::from_flat(1, (0..50).map(|k| f64::from(k).sin()).collect())?;
     /// let kappa = CurveInterpolation::new(3)
     ///     .parametrization(Parametrization::Uniform)
     ///     .condition(q.as_view())?;
@@ -585,7 +585,7 @@ fn check_vector(what: &'static str, v: &[f64], dim: usize) -> Result<()> {
 /// ```
 /// use lekalo::{natural_cubic_spline, Points};
 /// let x = [0.0, 1.0, 2.5, 4.0];
-/// let y = Points::new(vec![1.0, 3.0, 2.0, 5.0], 1)?;
+/// let y = Points::from_flat(1, vec![1.0, 3.0, 2.0, 5.0])?;
 /// let s = natural_cubic_spline(&x, y.as_view())?;
 /// assert!((s.eval(2.5)?[0] - 2.0).abs() < 1e-14);
 /// assert!(s.eval_derivatives(4.0, 2)?.point(2)[0].abs() < 1e-12);
@@ -663,7 +663,7 @@ mod tests {
                 data.push(offset + scale * (s * (k as f64 + 1.0)).sin() * (1.0 + s));
             }
         }
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     #[test]
@@ -677,7 +677,7 @@ mod tests {
     fn chord_length_survives_an_overflowing_total() {
         // 19 points 1e307 apart: the total length 1.8e308 exceeds f64::MAX
         let data: Vec<f64> = (-9..=9).map(|k| f64::from(k) * 1e307).collect();
-        let q = Points::new(data, 1).unwrap();
+        let q = Points::from_flat(1, data).unwrap();
         let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
         for (k, tk) in t.iter().enumerate() {
             assert!((tk - k as f64 / 18.0).abs() < 1e-14, "t[{k}] = {tk}");
@@ -764,7 +764,7 @@ mod tests {
             })
             .collect();
         for (data, dim) in [(helix, 3), (uneven, 2)] {
-            let q = Points::new(data, dim).unwrap();
+            let q = Points::from_flat(dim, data).unwrap();
             let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
             let fused = chord_cubic(q.as_view(), &mut ws).unwrap();
             let general = general_cubic(q.as_view(), &params);
@@ -792,7 +792,7 @@ mod tests {
         assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view(), &mut ws).is_none());
         let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
         q.copy_within(6..8, 8);
-        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view(), &mut ws).is_none());
+        assert!(chord_cubic(Points::from_flat(2, q).unwrap().as_view(), &mut ws).is_none());
         // the declined attempt keeps the buffers it had grown for the next call
         assert!(ws.capacity_bytes() >= 9 * 2 * 8);
     }

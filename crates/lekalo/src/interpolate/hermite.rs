@@ -189,7 +189,7 @@ pub enum TangentEstimate {
 /// ```
 /// use lekalo::{CubicHermite, Points, TangentEstimate};
 /// let x = [0.0, 1.0, 2.0, 3.0];
-/// let y = Points::new(vec![0.0, 1.0, 1.0, 2.0], 1)?;
+/// let y = Points::from_flat(1, vec![0.0, 1.0, 1.0, 2.0])?;
 /// let h = CubicHermite::function(&x, y.as_view(), TangentEstimate::Monotone)?;
 /// assert_eq!(h.eval(1.5)?, vec![1.0]); // flat where the data are flat
 /// let b = h.to_bspline();

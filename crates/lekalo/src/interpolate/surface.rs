@@ -67,7 +67,7 @@ impl SurfaceInterpolant {
 /// // a 4×3 grid on z = x·y
 /// let mut data = Vec::new();
 /// for k in 0..4 { for l in 0..3 { let (x, y) = (k as f64, l as f64); data.extend([x, y, x * y]); } }
-/// let grid = Points::new(data, 3)?;
+/// let grid = Points::from_flat(3, data)?;
 /// let s = interpolate_surface(grid.as_view(), 4, 3, 3, 2, Parametrization::Uniform)?;
 /// assert_eq!((s.nu, s.nv), (4, 3));
 /// assert_eq!(s.control.point(0), &[0.0, 0.0, 0.0]);
@@ -110,7 +110,7 @@ pub fn interpolate_surface(
 /// for x in [0.0, 1.0, 2.0, 2.0 + 1e-10, 3.0, 4.0] {
 ///     for y in 0..4 { let y = f64::from(y); data.extend([x, y, (x * y).sin()]); }
 /// }
-/// let grid = Points::new(data, 3)?;
+/// let grid = Points::from_flat(3, data)?;
 /// let e = interpolate_surface_max_condition(grid.as_view(), 6, 4, 3, 3, Parametrization::ChordLength, 1e8);
 /// assert!(matches!(e, Err(Error::IllConditioned { .. })));
 /// # Ok::<(), lekalo::Error>(())
@@ -149,7 +149,7 @@ pub fn interpolate_surface_max_condition(
 /// use lekalo::{interpolate_surface_condition, Parametrization, Points};
 /// let mut data = Vec::new();
 /// for k in 0..10 { for l in 0..8 { let (x, y) = (f64::from(k), f64::from(l)); data.extend([x, y, x * y]); } }
-/// let grid = Points::new(data, 3)?;
+/// let grid = Points::from_flat(3, data)?;
 /// let kappa = interpolate_surface_condition(grid.as_view(), 10, 8, 3, 3, Parametrization::Uniform)?;
 /// assert!(kappa >= 1.0 && kappa < 100.0);
 /// # Ok::<(), lekalo::Error>(())

@@ -246,7 +246,7 @@ impl BSplineSurface {
     ///
     /// ```
     /// use lekalo::{BSplineSurface, KnotVector, Points};
-    /// let net = Points::new((0..4 * 3).map(|k| k as f64).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..4 * 3).map(|k| k as f64).collect())?;
     /// let s = BSplineSurface::from_knot_vectors(
     ///     2, 1, KnotVector::clamped_uniform(2, 4)?, KnotVector::clamped_uniform(1, 3)?, net, (4, 3))?;
     /// assert_eq!(s.net_size(), (4, 3));
@@ -624,7 +624,7 @@ impl BSplineSurface {
                 );
             }
         }
-        Points::new(out, dim)
+        Points::from_flat(dim, out)
     }
 
     /// Unit normal `(S_u × S_v) / |S_u × S_v|` of a surface in 3-D.
@@ -668,7 +668,7 @@ impl BSplineSurface {
                 }
             }
         }
-        BSplineCurve::from_knot_vector(p, self.knots_u.clone(), Points::new(out, dim)?)
+        BSplineCurve::from_knot_vector(p, self.knots_u.clone(), Points::from_flat(dim, out)?)
     }
 
     /// The iso-parametric curve `C(v) = S(u, v)` at fixed `u`: degree `q`, knots `V`, control
@@ -689,7 +689,7 @@ impl BSplineSurface {
                 *x += b * c;
             }
         }
-        BSplineCurve::from_knot_vector(q, self.knots_v.clone(), Points::new(out, dim)?)
+        BSplineCurve::from_knot_vector(q, self.knots_v.clone(), Points::from_flat(dim, out)?)
     }
 }
 

@@ -128,7 +128,7 @@ fn two_sweeps_agree_with_the_pass_by_pass_solve() {
             (0.0, Parametrization::Uniform),
         ] {
             let data = wavy(nu, nv, dim, offset);
-            let grid = Points::new(data.clone(), dim).unwrap();
+            let grid = Points::from_flat(dim, data.clone()).unwrap();
             let s = interpolate_surface(grid.as_view(), nu, nv, p, q, param).unwrap();
             let reference = pass_by_pass(&s, &data, dim);
             let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -166,7 +166,7 @@ fn small_block_solve_equals_the_general_loop() {
     // collocation factors of both directions of a grid
     let (nu, nv, dim) = (23, 19, 3);
     let data = wavy(nu, nv, dim, 0.0);
-    let grid = Points::new(data.clone(), dim).unwrap();
+    let grid = Points::from_flat(dim, data.clone()).unwrap();
     for (p, nc) in [(3, 3), (2, 3), (3, 1), (2, 2), (3, 4), (5, 3)] {
         let s = interpolate_surface(grid.as_view(), nu, nv, p, p, Parametrization::ChordLength)
             .unwrap();

@@ -30,7 +30,7 @@ fn general() -> BSplineSurface {
         2,
         vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0],
         vec![-1.0, -1.0, -1.0, 0.5, 1.5, 2.0, 2.0, 2.0],
-        Points::new(data, 3).unwrap(),
+        Points::from_flat(3, data).unwrap(),
         (nu, nv),
     )
     .unwrap()
@@ -136,7 +136,7 @@ fn accessors() {
 
 #[test]
 fn constructor_errors_name_the_direction() {
-    let net = Points::new(vec![0.0; 6], 1).unwrap();
+    let net = Points::from_flat(1, vec![0.0; 6]).unwrap();
     let k2 = vec![0.0, 0.0, 1.0, 1.0];
     let k3 = vec![0.0, 0.0, 0.5, 1.0, 1.0];
     // 6 points is 2 × 3, not 2 × 2
@@ -246,7 +246,7 @@ fn serde_goes_through_validation() {
         2,
         g.knots_u().as_slice().to_vec(),
         g.knots_v().as_slice().to_vec(),
-        Points::new(data, 3).unwrap(),
+        Points::from_flat(3, data).unwrap(),
         (6, 5),
     )
     .unwrap();
