@@ -6,7 +6,7 @@
 //! result's buffers), which separates the arithmetic from the operating system's page faults.
 
 use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
-use lekalo::{interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization};
+use lekalo::{CurveInterpolation, InterpolationWorkspace, Parametrization, SurfaceInterpolation};
 
 mod common;
 
@@ -47,7 +47,9 @@ fn surface_interpolation(c: &mut Criterion) {
         group.throughput(Throughput::Elements((n * n) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &g, |b, g| {
             b.iter(|| {
-                interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)
+                SurfaceInterpolation::new(3, 3)
+                    .parametrization(Parametrization::ChordLength)
+                    .interpolate(g.as_view(), n, n)
                     .expect("surface")
             });
         });

@@ -14,7 +14,7 @@
 //! | points, knots, bases | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; doc 002 §C.5; doc 003 Thm 4.5 |
 //! | curves | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | doc 002 §C.4–C.5; P&T ch. 2–5, 7 |
 //! | surfaces | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
-//! | interpolation | [`CurveInterpolation`], [`interpolate_surface`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; doc 002 §C.2–C.3 |
+//! | interpolation | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; doc 002 §C.2–C.3 |
 //! | Bezier degree change | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
 //! | piecewise polynomials | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
@@ -76,10 +76,15 @@ pub mod interpolate;
 
 pub use interpolate::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
     natural_cubic_spline, parametrize, CubicHermite, CurveInterpolation, EndCondition,
-    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolant, TangentEstimate,
-    HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
+    SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+};
+// the grid interpolation functions before `SurfaceInterpolation`, kept for existing code
+#[allow(deprecated)]
+pub use interpolate::{
+    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
+    SurfaceInterpolant,
 };
 
 // -- degree change of Bezier curves and surfaces --

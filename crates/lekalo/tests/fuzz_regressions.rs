@@ -645,7 +645,7 @@ fn hermite_evaluation_that_overflows_is_reported() {
 
 /// Fuzz target `interpolation` (crash-4aba54b3…, session 2, fourth run): an 8 × 7 grid of 1-D values,
 /// mostly `1 − ε/2`, with `f64::MAX`, −6e66 and 1e300 among them (uniform parameters, degrees
-/// 7 and 3): `interpolate_surface` returned a control net full of NaN inside an `Ok`.
+/// 7 and 3): surface interpolation returned a control net full of NaN inside an `Ok`.
 #[test]
 fn surface_interpolation_that_overflows_is_reported() {
     let mut values = vec![0.9999999999999999; 56];
@@ -654,7 +654,8 @@ fn surface_interpolation_that_overflows_is_reported() {
     values[30] = -6.27743856100529e66;
     values[49..].copy_from_slice(&[0.0, 1e300, -2.0, -1.5, 1e8, 1e8, 1e8]);
     let grid = Points::from_flat(1, values).expect("finite");
-    let r =
-        lekalo::interpolate_surface(grid.as_view(), 8, 7, 7, 3, lekalo::Parametrization::Uniform);
+    let r = lekalo::SurfaceInterpolation::new(7, 3)
+        .parametrization(lekalo::Parametrization::Uniform)
+        .interpolate(grid.as_view(), 8, 7);
     assert!(matches!(r, Err(Error::IllConditioned { .. })), "{r:?}");
 }

@@ -8,9 +8,9 @@ use common::config;
 
 use lekalo::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    interpolate_surface, natural_cubic_spline, parametrize, BSplineCurve, CubicHermite,
+    natural_cubic_spline, parametrize, BSplineCurve, BSplineSurface, CubicHermite,
     CurveInterpolation, EndCondition, Error, KnotPlacement, Parametrization, Points, PointsRef,
-    TangentEstimate,
+    SurfaceInterpolation, SurfaceInterpolationReport, TangentEstimate,
 };
 use proptest::prelude::*;
 
@@ -589,9 +589,17 @@ fn grid(nu: usize, nv: usize, offset: f64) -> Points {
     Points::from_flat(3, data).unwrap()
 }
 
-/// Evaluation through the library's surface type.
-fn surface_point(s: &lekalo::SurfaceInterpolant, u: f64, v: f64) -> Vec<f64> {
-    s.clone().into_surface().eval(u, v).unwrap()
+/// The surface through a grid, with its parameters.
+fn surface_through(
+    g: &Points,
+    nu: usize,
+    nv: usize,
+    (p, q): (usize, usize),
+    parametrization: Parametrization,
+) -> lekalo::Result<(BSplineSurface, SurfaceInterpolationReport)> {
+    SurfaceInterpolation::new(p, q)
+        .parametrization(parametrization)
+        .interpolate_with_report(g.as_view(), nu, nv)
 }
 
 #[test]
@@ -599,13 +607,14 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
     for offset in [0.0, 1e8] {
         let (nu, nv) = (7, 5);
         let g = grid(nu, nv, offset);
-        let s =
-            interpolate_surface(g.as_view(), nu, nv, 3, 2, Parametrization::ChordLength).unwrap();
-        assert_eq!(s.control.len(), nu * nv, "net size");
+        let (s, report) =
+            surface_through(&g, nu, nv, (3, 2), Parametrization::ChordLength).unwrap();
+        let (params_u, params_v) = (report.params_u(), report.params_v());
+        assert_eq!(s.net_size(), (nu, nv), "net size");
         let bound = REL * g.extent() + 16.0 * f64::EPSILON * g.max_abs();
         for k in 0..nu {
             for l in 0..nv {
-                let r = surface_point(&s, s.params_u[k], s.params_v[l]);
+                let r = s.eval(params_u[k], params_v[l]).unwrap();
                 for (a, b) in r.iter().zip(g.point(k * nv + l)) {
                     assert!((a - b).abs() <= bound, "({k},{l}): {a} vs {b}");
                 }
@@ -620,17 +629,17 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
                     for i in 0..nu {
                         for j in 0..nv {
                             let bu = lekalo::basis::basis_function_recursive(
-                                &s.knots_u,
+                                s.knots_u(),
                                 i,
                                 3,
-                                s.params_u[k],
+                                params_u[k],
                             )
                             .unwrap();
                             let bv = lekalo::basis::basis_function_recursive(
-                                &s.knots_v,
+                                s.knots_v(),
                                 j,
                                 2,
-                                s.params_v[l],
+                                params_v[l],
                             )
                             .unwrap();
                             a[(k * nv + l) * n + i * nv + j] = bu * bv;
@@ -639,7 +648,7 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
                 }
             }
             let x = dense_solve(a, g.as_slice().to_vec(), n, 3);
-            assert_near(s.control.as_slice(), &x, 1e-12, "Kronecker");
+            assert_near(s.control_points().as_slice(), &x, 1e-12, "Kronecker");
         }
     }
 }
@@ -682,7 +691,7 @@ fn dense_solve(mut a: Vec<f64>, mut b: Vec<f64>, n: usize, m: usize) -> Vec<f64>
 fn surface_parameters_are_row_and_column_averages() {
     let (nu, nv) = (4, 3);
     let g = grid(nu, nv, 0.0);
-    let s = interpolate_surface(g.as_view(), nu, nv, 2, 2, Parametrization::ChordLength).unwrap();
+    let (_, report) = surface_through(&g, nu, nv, (2, 2), Parametrization::ChordLength).unwrap();
     let mut expect = vec![0.0; nu];
     for l in 0..nv {
         let col: Vec<f64> = (0..nu).flat_map(|k| g.point(k * nv + l).to_vec()).collect();
@@ -695,7 +704,37 @@ fn surface_parameters_are_row_and_column_averages() {
             *e += v / nv as f64;
         }
     }
-    assert_near(&s.params_u, &expect, 1e-15, "ū averaged over columns");
+    assert_near(report.params_u(), &expect, 1e-15, "ū averaged over columns");
+}
+
+/// The grid functions kept for code written before `SurfaceInterpolation` give its surface,
+/// parameters and condition estimate, and refuse what it refuses.
+#[test]
+#[allow(deprecated)]
+fn deprecated_surface_functions_match_the_builder() {
+    let (nu, nv) = (6, 5);
+    let g = grid(nu, nv, 0.0);
+    let param = Parametrization::Centripetal;
+    let fit = SurfaceInterpolation::new(3, 2).parametrization(param);
+    let (s, report) = fit.interpolate_with_report(g.as_view(), nu, nv).unwrap();
+    let old = lekalo::interpolate_surface(g.as_view(), nu, nv, 3, 2, param).unwrap();
+    assert_eq!((old.nu, old.nv), (nu, nv), "net size");
+    assert_eq!(old.params_u, report.params_u(), "row parameters");
+    assert_eq!(old.params_v, report.params_v(), "column parameters");
+    assert_eq!(old.into_surface(), s, "surface");
+    let kappa = lekalo::interpolate_surface_condition(g.as_view(), nu, nv, 3, 2, param).unwrap();
+    assert_eq!(kappa, report.condition(), "condition estimate");
+    let limited =
+        lekalo::interpolate_surface_max_condition(g.as_view(), nu, nv, 3, 2, param, 1e12).unwrap();
+    assert_eq!(limited.into_surface(), s, "surface under a limit");
+    assert!(matches!(
+        lekalo::interpolate_surface_max_condition(g.as_view(), nu, nv, 3, 2, param, 1.0),
+        Err(Error::IllConditioned { .. })
+    ));
+    assert!(matches!(
+        lekalo::interpolate_surface(g.as_view(), nu, nv, 6, 2, param),
+        Err(Error::Degree { .. })
+    ));
 }
 
 // ---------------------------------------------------------------- Hermite and §C.2
@@ -895,17 +934,15 @@ fn error_coincident_points_and_dropping_them() {
             second: 3
         }
     );
-    let e = interpolate_surface(
-        Points::from_flat(2, vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0])
-            .unwrap()
-            .as_view(),
-        2,
-        2,
-        1,
-        1,
-        Parametrization::ChordLength,
-    )
-    .unwrap_err();
+    let e = SurfaceInterpolation::new(1, 1)
+        .interpolate(
+            Points::from_flat(2, vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0])
+                .unwrap()
+                .as_view(),
+            2,
+            2,
+        )
+        .unwrap_err();
     assert_eq!(
         e,
         Error::CoincidentPoints {
@@ -1063,16 +1100,16 @@ fn error_degree_dimension_counts_and_arguments() {
     // surfaces
     let g = grid(4, 3, 0.0);
     assert!(matches!(
-        interpolate_surface(g.as_view(), 4, 4, 2, 2, Parametrization::Uniform),
+        surface_through(&g, 4, 4, (2, 2), Parametrization::Uniform),
         Err(Error::LengthMismatch { .. })
     ));
     assert!(matches!(
-        interpolate_surface(g.as_view(), 4, 3, 4, 2, Parametrization::Uniform),
+        surface_through(&g, 4, 3, (4, 2), Parametrization::Uniform),
         Err(Error::Degree { .. })
     ));
     let line = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     assert!(matches!(
-        interpolate_surface(line.as_view(), 1, 2, 1, 1, Parametrization::Uniform),
+        surface_through(&line, 1, 2, (1, 1), Parametrization::Uniform),
         Err(Error::TooFew { .. })
     ));
     // Hermite
@@ -1261,16 +1298,16 @@ proptest! {
             }
         }
         let g = Points::from_flat(dim, data).unwrap();
-        let r = interpolate_surface(g.as_view(), nu, nv, p, q, m);
+        let r = surface_through(&g, nu, nv, (p, q), m);
         if p >= nu || q >= nv {
             prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
             return Ok(());
         }
-        let s = r.unwrap();
+        let (s, report) = r.unwrap();
         let bound = REL * g.extent() + 16.0 * f64::EPSILON * g.max_abs();
         for k in 0..nu {
             for l in 0..nv {
-                let at = surface_point(&s, s.params_u[k], s.params_v[l]);
+                let at = s.eval(report.params_u()[k], report.params_v()[l]).unwrap();
                 for (a, b) in at.iter().zip(g.point(k * nv + l)) {
                     prop_assert!((a - b).abs() <= bound, "({}, {}): {} vs {}", k, l, a, b);
                 }

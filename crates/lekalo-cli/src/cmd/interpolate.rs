@@ -6,9 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use lekalo::{
-    interpolate_surface, interpolate_surface_max_condition, natural_cubic_spline, BSplineSurface,
-    CubicHermite, CurveInterpolation, EndCondition, KnotPlacement, Parametrization, Points,
-    TangentEstimate,
+    natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, EndCondition,
+    KnotPlacement, Parametrization, Points, SurfaceInterpolation, TangentEstimate,
 };
 use lekalo_io::{
     curve_figure, sample_table, wireframe_figure, CurvePlot, Figure, Grid, Object, Projection,
@@ -368,19 +367,11 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let degree_v = a
             .degree_v
             .unwrap_or(a.degree.min(nv.saturating_sub(1)).max(1));
-        let s = match a.max_condition {
-            Some(limit) => interpolate_surface_max_condition(
-                pts.as_view(),
-                nu,
-                nv,
-                a.degree,
-                degree_v,
-                param,
-                limit,
-            )?,
-            None => interpolate_surface(pts.as_view(), nu, nv, a.degree, degree_v, param)?,
+        let mut fit = SurfaceInterpolation::new(a.degree, degree_v).parametrization(param);
+        if let Some(limit) = a.max_condition {
+            fit = fit.max_condition(limit);
         }
-        .into_surface();
+        let s = fit.interpolate(pts.as_view(), nu, nv)?;
         return write_surface(&s, &a.out, &inputs, v);
     }
     if a.function {

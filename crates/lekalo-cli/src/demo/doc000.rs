@@ -2,8 +2,8 @@
 
 use anyhow::Result;
 use lekalo::{
-    interpolate_surface, BSplineCurve, CurveInterpolation, EndCondition, KnotPlacement,
-    Parametrization, Points,
+    BSplineCurve, CurveInterpolation, EndCondition, KnotPlacement, Parametrization, Points,
+    SurfaceInterpolation,
 };
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
@@ -326,9 +326,10 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
         }
     }
     let grid = Points::from_flat(3, data)?;
-    let it = interpolate_surface(grid.as_view(), nu, nv, 3, 2, Parametrization::ChordLength)?;
-    let (pu, pv) = (it.params_u.clone(), it.params_v.clone());
-    let surf = it.into_surface();
+    let (surf, report) = SurfaceInterpolation::new(3, 2)
+        .parametrization(Parametrization::ChordLength)
+        .interpolate_with_report(grid.as_view(), nu, nv)?;
+    let (pu, pv) = (report.params_u(), report.params_v());
     let mut dev = 0.0_f64;
     for (i, u) in pu.iter().enumerate() {
         for (j, v) in pv.iter().enumerate() {

@@ -74,6 +74,12 @@ impl BezierCurve {
         self.control.dim()
     }
 
+    /// The parameter domain, always `(0, 1)`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+
     /// The control points.
     #[must_use]
     pub fn control_points(&self) -> &Points {
