@@ -1,4 +1,4 @@
-//! End-to-end tests of surfaces and pp-forms in `info`, `convert` and `plot` (issue 7).
+//! End-to-end tests of surfaces and pp-forms in `info`, `convert` and `plot`.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 

@@ -1,4 +1,4 @@
-//! Interpolation benchmarks (issue 8): cubic global curve interpolation through `n` 3-D points
+//! Interpolation benchmarks: cubic global curve interpolation through `n` 3-D points
 //! (chord length, averaged knots) for `n = 10^3 … 10^6`, and bicubic surface interpolation of
 //! `n × n` grids for `n = 50 … 400`. Throughput is per point, so ns/point reads off directly.
 //! Curves are timed twice: `fresh` (every result in newly allocated memory, as

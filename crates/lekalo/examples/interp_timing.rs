@@ -1,4 +1,4 @@
-//! Timing of cubic global curve interpolation (issue 8) and bicubic surface interpolation.
+//! Timing of cubic global curve interpolation and bicubic surface interpolation.
 //!
 //! `cargo run --release --example interp_timing -- [n ...]` prints, for each `n`, the CPU time
 //! per point (from `/proc/self/schedstat`, so other load on the machine matters less than with

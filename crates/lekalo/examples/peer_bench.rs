@@ -26,7 +26,7 @@ use lekalo::{
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-/// Curve of the evaluation workload: cubic, 3-D, 1000 control points.
+/// Curve of the evaluation workload: cubic, 3-D, 1000 control points.
 const DEGREE: usize = 3;
 const DIM: usize = 3;
 const N_CTRL: usize = 1000;

@@ -293,13 +293,7 @@ pub enum Error {
         /// The largest size accepted.
         max: usize,
     },
-    // -- variants added by later issues go below, each group under its own comment --
-
-    // (interpolation, issue 3)
-
-    // (Bezier order change, issue 4)
-
-    // (blending, issue 5)
+    // -- blending --
     /// Two curves that must share an end point (a deformation's ends, or the corner of a
     /// corner transition) do not: their distance exceeds the tolerance, which is
     /// [`ENDPOINT_TOLERANCE`](crate::ENDPOINT_TOLERANCE) times the largest absolute coordinate.
@@ -323,9 +317,6 @@ pub enum Error {
         /// The tolerance it was compared with.
         tolerance: f64,
     },
-    // (piecewise polynomials, issue 6)
-
-    // (formats, issue 7)
 }
 
 /// Checks that every number in `values` is finite.

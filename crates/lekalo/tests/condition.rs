@@ -1,4 +1,4 @@
-//! Condition estimate of curve interpolation (issue 9): `CurveInterpolation::condition` against
+//! Condition estimate of curve interpolation: `CurveInterpolation::condition` against
 //! the dense `κ_1` of the collocation matrix, the limit of `CurveInterpolation::max_condition`,
 //! and what nearly coincident points do to the condition number and to the interpolant.
 
@@ -12,7 +12,7 @@ use lekalo::{
 };
 use proptest::prelude::*;
 
-/// Residual tolerance at the data relative to the data's extent (issue 3's criterion).
+/// Residual tolerance at the data relative to the data's extent (the interpolation tests' criterion).
 const REL: f64 = 1e-12;
 
 /// `n` unit-spaced points on a wave, 2-D.

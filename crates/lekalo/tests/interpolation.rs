@@ -1,4 +1,4 @@
-//! Interpolation (issue 3): golden numbers of digest Appendix T.1 (document 000 has no numeric
+//! Interpolation: golden numbers of digest Appendix T.1 (document 000 has no numeric
 //! example; the digest author computed these and cross-checked them with SciPy), residuals at
 //! the data, prescribed derivatives, offset/scale invariance, closed curves, surfaces, Hermite,
 //! one negative test per error, and proptest invariants.
@@ -14,7 +14,7 @@ use lekalo::{
 };
 use proptest::prelude::*;
 
-/// Residual tolerance relative to the data's extent (the issue's acceptance criterion).
+/// Residual tolerance relative to the data's extent (what an interpolant must meet at its data).
 const REL: f64 = 1e-12;
 
 /// P&T Example 9.1, digest T.1.

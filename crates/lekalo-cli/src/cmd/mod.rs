@@ -6,9 +6,9 @@ pub(crate) mod info;
 pub(crate) mod knots;
 pub(crate) mod make;
 pub(crate) mod plot;
-// surfaces and pp-forms in info, convert and plot (issue 7)
+// surfaces and pp-forms in info, convert and plot
 pub(crate) mod shapes;
-// construction subcommands (issues 3–6)
+// construction subcommands
 pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;

@@ -9,7 +9,7 @@ use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PA
 
 use super::{trim, Section};
 
-// the documents' constructions of issues 3–6 (interpolation, blending, pp-form, degree change)
+// the documents' constructions: interpolation, blending, pp-form, degree change
 #[path = "doc000.rs"]
 mod doc000;
 #[path = "doc001.rs"]
@@ -289,8 +289,8 @@ fn interpolation_knots(s: &mut Section) -> Result<()> {
         (−4,0), (−4,−3) (P&T Example 9.1; chord lengths 5, 4, 5, 3). Uniform knots (eq. 2) \
         ignore the parameters; averaged knots (eq. 3) make the collocation matrix banded and \
         totally positive; eq. (4) adds two knots for the end derivatives; eq. (8) puts the knots \
-        at the parameters (cubic C² interpolation, §A.3–A.4). The curves themselves come with \
-        interpolation (issue 3)."
+        at the parameters (cubic C² interpolation, §A.3–A.4). The curves themselves are in the \
+        interpolation section."
         .into();
     let mut rows = Vec::new();
     let mut add = |s: &mut Section,
