@@ -159,10 +159,15 @@ fn text_files(root: &Path) -> Vec<PathBuf> {
         for entry in entries.flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             let rel = dir.join(&name);
-            let Ok(kind) = entry.file_type() else { continue };
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
             if kind.is_dir() {
                 let skip = name.starts_with('.')
-                    || matches!(name.as_str(), "target" | "node_modules" | "venv" | "__pycache__");
+                    || matches!(
+                        name.as_str(),
+                        "target" | "node_modules" | "venv" | "__pycache__"
+                    );
                 if !skip {
                     stack.push(rel);
                 }
@@ -257,9 +262,15 @@ fn every_theory_page_is_listed_in_the_index() {
 fn anchors_are_computed_as_github_does() {
     assert_eq!(slug("Averaged knots"), "averaged-knots");
     assert_eq!(slug("Cox-de Boor recursion"), "cox-de-boor-recursion");
-    assert_eq!(slug("The lecture's worked example"), "the-lectures-worked-example");
+    assert_eq!(
+        slug("The lecture's worked example"),
+        "the-lectures-worked-example"
+    );
     assert_eq!(slug("Why the index is k-1"), "why-the-index-is-k-1");
-    assert_eq!(slug("`KnotVector` and C² (tested)"), "knotvector-and-c²-tested");
+    assert_eq!(
+        slug("`KnotVector` and C² (tested)"),
+        "knotvector-and-c²-tested"
+    );
     assert_eq!(slug("Points, knots & bases"), "points-knots--bases");
     let md = "# Title\n## Same\n```\n## Not a heading\n```\n## Same\n#NoSpace\n";
     let got: Vec<String> = anchors(md).into_iter().collect();
@@ -273,7 +284,10 @@ fn broken_citations_are_reported() {
     let text = format!("see {dir}/curves.md#no-such-section and {dir}/nowhere.md#x.");
     let cites = repository_citations(&text, "probe.rs:1");
     assert_eq!(cites.len(), 2, "both citations are found: {cites:?}");
-    assert_eq!(cites[1].anchor, "x", "sentence punctuation is not part of the anchor");
+    assert_eq!(
+        cites[1].anchor, "x",
+        "sentence punctuation is not part of the anchor"
+    );
     let problems = broken(&repo_root(), &cites);
     assert_eq!(problems.len(), 2, "both are broken: {problems:?}");
 
@@ -285,7 +299,11 @@ fn broken_citations_are_reported() {
     let pages: Vec<_> = links.iter().map(|c| c.page.display().to_string()).collect();
     assert_eq!(
         pages,
-        ["docs/theory/curves.md", "docs/theory/surfaces.md", "docs/theory.md"],
+        [
+            "docs/theory/curves.md",
+            "docs/theory/surfaces.md",
+            "docs/theory.md"
+        ],
         "relative links resolve from the citing file"
     );
     let problems = broken(&repo_root(), &links);

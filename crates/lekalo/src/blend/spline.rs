@@ -1,4 +1,5 @@
-//! Interpolating spline curves by blending local three-point curves (document 001, digest §B.3);
+//! Interpolating spline curves by blending local three-point curves (document 001 §3;
+//! docs/theory/blending.md#blend-splines);
 //! the mathematics is documented on [`BlendSpline`].
 
 use std::sync::Arc;
@@ -33,7 +34,8 @@ pub enum Continuity {
     Geometric,
 }
 
-/// A family of local curves through three consecutive points (digest §B.3).
+/// A family of local curves through three consecutive points
+/// (docs/theory/blending.md#local-curves).
 pub trait LocalCurves {
     /// The local curve through `points[0], points[1], points[2]` taking them at the parameters
     /// `−delta.0, 0, delta.1`, as its left piece on `[−delta.0, 0]` and right piece on
@@ -129,9 +131,10 @@ pub enum ArcParametrization {
     /// Each arc a rational quadratic Bezier with weights `1, cos(θ/2), 1` (P&T §7.5): the spline
     /// is an exact NURBS (`G^k`). Arcs must be shorter than a half circle.
     RationalQuadratic,
-    /// Angle the quadratic in `σ` through the three points' angles (digest §B.3 note 2): the
-    /// spline is `C^k` in the global parameter (use [`SplineParameters::ChordLength`]). Collinear
-    /// points fall back to the parabola.
+    /// Angle the quadratic in `σ` through the three points' angles
+    /// (docs/theory/blending.md#parametric-and-geometric-continuity): the spline is `C^k` in the
+    /// global parameter (use [`SplineParameters::ChordLength`]). Collinear points fall back to the
+    /// parabola.
     GlobalAngle,
 }
 
@@ -167,7 +170,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `P_0 = O + r e_1`, and the angles `0 < φ_1 < φ_2 < 2π` of `P_1, P_2` (traversal order).
 /// `None` when collinear. Centre from the 2×2 Gram system
 /// `[a·a a·b; a·b b·b] (x, y) = (|a|²/2, |b|²/2)`, `O = P_1 + x a + y b` (equivalent to the
-/// digest's cross-product formula, §B.3 note 1, in any dimension).
+/// cross-product formula in 3-D, in any dimension;
+/// docs/theory/blending.md#circle-through-three-points).
 struct Circle {
     centre: Vec<f64>,
     radius: f64,
@@ -474,9 +478,9 @@ impl Default for BlendSplineOptions {
 
 type Segment = Deformation<SharedCurve, SharedCurve>;
 
-/// An interpolating spline curve built by blending local three-point curves (document 001,
-/// digest §B.3): the construction, the end rule and which continuity each family of local
-/// curves gives are documented below.
+/// An interpolating spline curve built by blending local three-point curves (document 001 §3;
+/// docs/theory/blending.md#blend-splines): the construction, the end rule and which continuity each
+/// family of local curves gives are documented below.
 ///
 /// # Construction
 /// Points `P_0 … P_{n−1}` get global parameters `s_0 < s_1 < …` ([`SplineParameters`]) with
@@ -488,15 +492,16 @@ type Segment = Deformation<SharedCurve, SharedCurve>;
 /// The segment from `P_i` to `P_{i+1}` is the [`Deformation`] of the right piece of `L_i` into the
 /// left piece of `L_{i+1}` (both run from `P_i` to `P_{i+1}`):
 /// `p_i(u) = (1 − w_{k−1}(u)) L_i(u Δ_i) + w_{k−1}(u) L_{i+1}((u − 1) Δ_i)`, `u = (s − s_i)/Δ_i`.
-/// By §B.2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left piece and
-/// segment `i + 1` starts with those of `L_{i+1}`'s right piece.
+/// By document 001 §2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left
+/// piece and segment `i + 1` starts with those of `L_{i+1}`'s right piece.
 ///
 /// # C^k or G^k: which one each construction has
 /// - If the two pieces of every `L_j` are **one curve** of `σ` (the same function on both sides of
 ///   0), the spline is **C^k in the global parameter `s`**: [`Parabolas`] (the quadratic Lagrange
 ///   interpolant in `σ`; with uniform parameters and `k = 1` this is exactly **Catmull–Rom**,
-///   digest §B.3 note 3) and [`CircularArcs`] with [`ArcParametrization::GlobalAngle`] (the angle
-///   on the circle is the quadratic in `σ` through the three points' angles; digest §B.3 note 2).
+///   docs/theory/blending.md#local-curves) and [`CircularArcs`] with
+/// [`ArcParametrization::GlobalAngle`] (the angle on the circle is the quadratic in `σ` through the
+/// three points' angles; docs/theory/blending.md#parametric-and-geometric-continuity).
 /// - If each piece is parametrised on its own, the two sides of `P_j` are the same curve (the
 ///   same circle) traced at different speeds: the spline is only **G^k** (geometric continuity,
 ///   derivatives agree after a reparametrisation). This is document 001's own construction:
@@ -853,7 +858,8 @@ mod tests {
             .collect()
     }
 
-    // the digest's cross-product centre formula (§B.3 note 1) in 3D, against the Gram solve
+    // the cross-product centre formula in 3D (docs/theory/blending.md#circle-through-three-points),
+    // against the Gram solve
     #[test]
     fn circle_through_three_points_in_3d() {
         let (a, b, c) = ([1.0, 2.0, 0.5], [2.0, 0.0, 1.0], [0.0, -1.0, 2.0]);

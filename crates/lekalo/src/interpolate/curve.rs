@@ -1,13 +1,15 @@
-//! Interpolation of curves through points (document 000, digest §A.1–§A.4) and closed curves.
+//! Interpolation of curves through points (document 000 §1–4;
+//! docs/theory/interpolation.md#global-interpolation) and closed curves
+//! (docs/theory/interpolation.md#closed-curves).
 //!
 //! One configurable construction, [`CurveInterpolation`], combines three independent choices:
 //!
 //! - **parametrisation** ([`Parametrization`]): uniform, chord length, centripetal or the general
-//!   exponent form (digest §A.1, P&T eq. 9.4–9.6);
+//!   exponent form (docs/theory/interpolation.md#parametrisation; P&T eq. 9.4–9.6);
 //! - **knot placement** ([`KnotPlacement`]): averaging (eq. 3, eq. 4), uniform (eq. 2) or at the
 //!   parameters (eq. 8);
-//! - **end conditions** ([`EndCondition`]): none (§A.1), first derivatives (§A.2 for any degree
-//!   `p ≥ 2`, §A.3 for the C² cubic), second derivatives and the natural cubic (§A.4), or a
+//! - **end conditions** ([`EndCondition`]): none (§1), first derivatives (§2 for any degree
+//!   `p ≥ 2`, §3 for the C² cubic), second derivatives and the natural cubic (§4), or a
 //!   closed periodic curve.
 //!
 //! Every result is a [`BSplineCurve`], so evaluation, derivatives, export and plotting apply.
@@ -49,8 +51,9 @@ use crate::numeric::linalg::BandedCrout;
 const MIN_CONDITION_LIMIT: f64 = 1.0;
 use crate::points::{Points, PointsRef};
 
-/// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
-/// 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k − q_{k−1}|^e`.
+/// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1`
+/// (docs/theory/interpolation.md#parametrisation, P&T eq. 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k −
+/// q_{k−1}|^e`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Parametrization {
     /// `t̄_k = k / n` (exponent 0). Accepts coincident consecutive points.
@@ -99,7 +102,7 @@ pub enum KnotPlacement {
     /// parameters this "can lead to a system with a singular matrix"; lekalo then reports
     /// [`Error::SingularSystem`]. Only with [`EndCondition::Free`].
     Uniform,
-    /// Knots at the parameters, eq. (8): the C² cubic of §A.3–§A.4. Degree 3 with first or
+    /// Knots at the parameters, eq. (8): the C² cubic of §3–4. Degree 3 with first or
     /// second end derivatives only.
     AtParameters,
 }
@@ -110,11 +113,11 @@ pub enum KnotPlacement {
 /// dimension.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum EndCondition {
-    /// No extra condition (document 000 §A.1): `n + 1` control points, any degree `1 ≤ p ≤ n`.
+    /// No extra condition (document 000 §1): `n + 1` control points, any degree `1 ≤ p ≤ n`.
     #[default]
     Free,
-    /// Prescribed first derivatives `C'(t̄_0) = start`, `C'(t̄_n) = end`: §A.2 (eq. 4–7) for any
-    /// degree `p ≥ 2` with averaged knots, or §A.3 (eq. 8–12, C² cubic, Thomas algorithm) with
+    /// Prescribed first derivatives `C'(t̄_0) = start`, `C'(t̄_n) = end`: §2 (eq. 4–7) for any
+    /// degree `p ≥ 2` with averaged knots, or §3 (eq. 8–12, C² cubic, Thomas algorithm) with
     /// knots at the parameters.
     FirstDerivatives {
         /// `d_0`, the derivative at the start.
@@ -122,7 +125,7 @@ pub enum EndCondition {
         /// `d_n`, the derivative at the end.
         end: Vec<f64>,
     },
-    /// Prescribed second derivatives of a C² cubic with knots at the parameters: §A.4
+    /// Prescribed second derivatives of a C² cubic with knots at the parameters: §4
     /// (eq. 13–15).
     SecondDerivatives {
         /// `d''_0`, the second derivative at the start.
@@ -130,7 +133,7 @@ pub enum EndCondition {
         /// `d''_n`, the second derivative at the end.
         end: Vec<f64>,
     },
-    /// Zero second derivatives at both ends: the natural cubic spline (§A.4 with
+    /// Zero second derivatives at both ends: the natural cubic spline (§4 with
     /// `d''_0 = d''_n = 0`; the minimum-`∫|C''|²` interpolant).
     Natural,
     /// A closed curve, `C^{p−1}` everywhere including the seam. The points are the distinct
@@ -143,11 +146,12 @@ pub enum EndCondition {
 }
 
 /// Global interpolation of points by a B-spline curve: parametrisation × knot placement × end
-/// conditions (document 000, digest §A.1–§A.4, plus closed curves).
+/// conditions (document 000 §1–4, plus closed curves;
+/// docs/theory/interpolation.md#global-interpolation).
 ///
 /// ```
 /// use lekalo::{CurveInterpolation, EndCondition, Parametrization, Points};
-/// // digest T.1: P&T Example 9.1, cubic, chord length, averaged knots
+/// // P&T Example 9.1, cubic, chord length, averaged knots
 /// let q = Points::from_2d(&[[0.0, 0.0], [3.0, 4.0], [-1.0, 4.0], [-4.0, 0.0], [-4.0, -3.0]])?;
 /// let c = CurveInterpolation::new(3).interpolate(q.as_view())?;
 /// let p1 = c.control_points().point(1);
@@ -156,7 +160,7 @@ pub enum EndCondition {
 /// let r = c.eval(9.0 / 17.0)?;
 /// assert!((r[0] + 1.0).abs() < 1e-14 && (r[1] - 4.0).abs() < 1e-14);
 ///
-/// // the natural cubic spline (§A.4 with zero second derivatives)
+/// // the natural cubic spline (§4 with zero second derivatives)
 /// let natural = CurveInterpolation::new(3)
 ///     .end_condition(EndCondition::Natural)
 ///     .parametrization(Parametrization::ChordLength)
@@ -470,14 +474,15 @@ impl CurveInterpolation {
                 if at_params && p != 3 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "knots at the parameters with end derivatives need a cubic (§A.3)"
+                        reason: "knots at the parameters with end derivatives need a cubic (document 000 §3)"
                             .into(),
                     });
                 }
                 if p < 2 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "prescribed end derivatives need degree ≥ 2 (§A.2)".into(),
+                        reason: "prescribed end derivatives need degree ≥ 2 (document 000 §2)"
+                            .into(),
                     });
                 }
                 let n = params.len() - 1;
@@ -502,7 +507,7 @@ impl CurveInterpolation {
                     return Err(Error::Degree {
                         degree: p,
                         reason:
-                            "second-derivative and natural end conditions are for cubics (§A.4)"
+                            "second-derivative and natural end conditions are for cubics (document 000 §4)"
                                 .into(),
                     });
                 }
@@ -730,9 +735,10 @@ pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Parameters `t̄_0 = 0 < … < t̄_n = 1` of the points by `method` (digest §A.1 [not in source];
-/// P&T eq. 9.3–9.6): `t̄_k = t̄_{k−1} + |q_k − q_{k−1}|^e / Σ_j |q_j − q_{j−1}|^e`, with `e = 0`
-/// (uniform, `t̄_k = k/n`), 1 (chord length), 1/2 (centripetal) or any `e ≥ 0`.
+/// Parameters `t̄_0 = 0 < … < t̄_n = 1` of the points by `method`
+/// (docs/theory/interpolation.md#parametrisation; P&T eq. 9.3–9.6): `t̄_k = t̄_{k−1} + |q_k −
+/// q_{k−1}|^e / Σ_j |q_j − q_{j−1}|^e`, with `e = 0` (uniform, `t̄_k = k/n`), 1 (chord length), 1/2
+/// (centripetal) or any `e ≥ 0`.
 ///
 /// Only differences of points enter, so the result does not change when the data are offset
 /// or scaled. O(n·dim).
@@ -995,7 +1001,7 @@ fn set_clamped_ends(control: &mut [f64], points: PointsRef<'_>) {
     control[len - dim..].copy_from_slice(points.point(points.len() - 1));
 }
 
-/// §A.1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
+/// §1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
 /// ones from the collocation rows `t̄_1 … t̄_{n−1}`.
 fn free_end(
     points: PointsRef<'_>,
@@ -1016,7 +1022,7 @@ fn free_end(
     Ok(clamped_result(p, kv, control, points))
 }
 
-/// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
+/// §2 (eq. 4–7) and §3 (eq. 8–12): `n + 3` control points. The first two and last two
 /// follow directly from eq. (6)–(7) / (9)–(10): `P_0 = q_0`,
 /// `P_1 = q_0 + (t_{p+1} − t̄_0)/p · d_0`, `P_{n+1} = q_n − (t̄_n − t_{n+2})/p · d_n`,
 /// `P_{n+2} = q_n`; `P_2 … P_n` solve the collocation rows `t̄_1 … t̄_{n−1}` (for the cubic with
@@ -1056,7 +1062,7 @@ fn first_derivative_ends(
     Ok(clamped_result(p, kv, control, points))
 }
 
-/// §A.4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
+/// §4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
 /// derivatives. `P_0 = q_0`, `P_{n+2} = q_n`; `P_1 … P_{n+1}` solve the tridiagonal system whose
 /// first and last rows are eq. (13) and (14) multiplied by `h_4 = t_4 − t̄_0` and
 /// `g = t̄_n − t_{n+2}` respectively (so that every entry is O(1)):
@@ -1267,7 +1273,7 @@ fn band_widths(kv: &KnotVector, p: usize, ts: &[f64], first: usize) -> Result<(u
 }
 
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` for strictly increasing `x`: document
-/// 000 §A.4 with zero end second derivatives, the parameters being the abscissae themselves, so
+/// 000 §4 with zero end second derivatives, the parameters being the abscissae themselves, so
 /// that `curve.eval(x)` is `y(x)` (each component of `y` is one function). The result equals
 /// SciPy's `CubicSpline(x, y, bc_type="natural")`.
 ///
@@ -1317,7 +1323,7 @@ mod tests {
     }
 
     #[test]
-    fn t1_uniform_exact() {
+    fn example_9_1_uniform_exact() {
         let c = CurveInterpolation::new(3)
             .parametrization(Parametrization::Uniform)
             .interpolate(example().as_view())

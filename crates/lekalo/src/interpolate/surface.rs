@@ -1,4 +1,4 @@
-//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §A.5,
+//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §5,
 //! eq. 16–18): row and column parameters averaged, knots by averaging, curve interpolation in
 //! both directions with one factorisation per direction, applied in two sweeps over the grid.
 
@@ -52,8 +52,7 @@ impl SurfaceInterpolant {
 }
 
 /// Interpolates an `nu × nv` grid of points `q_kl` (flat, point `(k, l)` at
-/// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §A.5, eq. (16)–(18),
-/// Algorithm A.5.
+/// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §5, eq. (16)–(18).
 ///
 /// Parameters: for each column `l` the [`Parametrization`] of `q_0l … q_{n,l}`, averaged over the
 /// columns (`ū_k = Σ_l ū_k^{(l)} / (m + 1)`, P&T §9.2.5), likewise `v̄_l` over the rows; knots by
@@ -296,7 +295,7 @@ fn surface(
 
 crate::numeric::isa::avx2_dispatch! {
     /// The control net `P = A_u⁻¹ (Q − q_00) A_vᵀ⁻¹ + q_00` of the grid `Q` (`nu` rows of `nv`
-    /// points), given the factored collocation matrices of both directions (document 000 §A.5,
+    /// points), given the factored collocation matrices of both directions (document 000 §5,
     /// eq. 17–18: a curve interpolation down every column, then along every row).
     ///
     /// The two directions' solves are linear maps acting on different indices of the grid, so they
@@ -711,7 +710,7 @@ mod tests {
         assert!(!chord_params(&data, 3, 3, 2, &mut u, &mut v));
     }
 
-    /// The pass-by-pass solve of document 000 §A.5 (P&T A9.4 order): every column along `u`
+    /// The pass-by-pass solve of document 000 §5 (P&T A9.4 order): every column along `u`
     /// (all `nv·dim` numbers of a row as right-hand sides), then every row along `v`, each by
     /// [`solve_collocation`] with its own factorisation, on the grid centred on `q_00`.
     fn pass_by_pass(s: &SurfaceInterpolant, data: &[f64], dim: usize) -> Vec<f64> {
