@@ -1,11 +1,11 @@
 //! Basis functions: Bernstein polynomials and B-splines.
 //!
 //! - Bernstein polynomials `b_{n,i}(t) = C(n,i) t^i (1−t)^{n−i}` (document 002, Bezier curves,
-//! document 004 eq. 1) and their derivatives.
+//!   document 004 eq. 1) and their derivatives.
 //! - All non-zero B-spline basis functions of degree `p` at `t` by the Cox–de Boor triangular
 //!   scheme (P&T Algorithm A2.2) and their derivatives (A2.3).
 //! - A single `N_{i,p}(t)` by the lecture's recursive definition (document 002, B-splines), the
-//! slow textbook oracle for the fast kernels.
+//!   slow textbook oracle for the fast kernels.
 //!
 //! The B-spline as a divided difference of truncated powers (document 003 eq. 4) lives with the
 //! divided differences in `divdiff`.

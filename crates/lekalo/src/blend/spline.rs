@@ -500,8 +500,8 @@ type Segment = Deformation<SharedCurve, SharedCurve>;
 ///   0), the spline is **C^k in the global parameter `s`**: [`Parabolas`] (the quadratic Lagrange
 ///   interpolant in `σ`; with uniform parameters and `k = 1` this is exactly **Catmull–Rom**,
 ///   docs/theory/blending.md#local-curves) and [`CircularArcs`] with
-/// [`ArcParametrization::GlobalAngle`] (the angle on the circle is the quadratic in `σ` through the
-/// three points' angles; docs/theory/blending.md#parametric-and-geometric-continuity).
+///   [`ArcParametrization::GlobalAngle`] (the angle on the circle is the quadratic in `σ` through
+///   the three points' angles; docs/theory/blending.md#parametric-and-geometric-continuity).
 /// - If each piece is parametrised on its own, the two sides of `P_j` are the same curve (the
 ///   same circle) traced at different speeds: the spline is only **G^k** (geometric continuity,
 ///   derivatives agree after a reparametrisation). This is document 001's own construction:

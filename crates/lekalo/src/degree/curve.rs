@@ -726,7 +726,7 @@ impl BezierCurve {
     ///   ([`BezierCurve::real_degree_with_tolerance`]) is at most `target`. Otherwise the request
     ///   is refused instead of silently changing the shape (which eq. 10 would do by dropping
     ///   the terms `t^(target+1) … t^n`, docs/theory/degree.md#reduction-without-a-defect). For an
-    /// approximation use [`BezierCurve::reduce_degree_approx`].
+    ///   approximation use [`BezierCurve::reduce_degree_approx`].
     ///
     /// # Errors
     /// [`Error::DegreeReductionRefused`] with the real degree; [`Error::InvalidArgument`] for a

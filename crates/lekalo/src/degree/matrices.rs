@@ -340,9 +340,9 @@ pub fn reduction_block(n: usize, n_new: usize) -> Result<RationalMatrix> {
 ///   `C(n,i) C(n'−n, j−i) / C(n',j)` (non-negative, columns summing to 1).
 /// - For `n' < n` it is exact only when the curve has a degree defect of at least `n − n'`:
 ///   otherwise it silently drops the monomial terms `t^(n'+1) … t^n`
-/// (docs/theory/degree.md#reduction-without-a-defect). This function builds the matrix and does not
-/// see the curve; the checked operation is
-/// [`BezierCurve::change_degree`](crate::BezierCurve::change_degree).
+///   (docs/theory/degree.md#reduction-without-a-defect). This function builds the matrix and
+///   does not see the curve; the checked operation is
+///   [`BezierCurve::change_degree`](crate::BezierCurve::change_degree).
 ///
 /// ```
 /// use lekalo::order_change_matrix;
