@@ -1,4 +1,5 @@
-//! End-to-end tests of `lekalo interpolate` (document 000; document 002 §C.2–C.3).
+//! End-to-end tests of `lekalo interpolate` (document 000; document 002, four-point cubic and
+//! Hermite segment).
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -7,7 +8,7 @@ use std::fs;
 use assert_cmd::Command;
 use predicates::str::contains;
 
-/// P&T Example 9.1 (digest T.1).
+/// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 const Q: &str = "0 0\n3 4\n-1 4\n-4 0\n-4 -3\n";
 
 fn lekalo() -> Command {

@@ -5,16 +5,16 @@
 //! A spline kernel in pure Rust: Bezier, B-spline and NURBS curves and surfaces; interpolation
 //! of points and grids; Bezier degree change; C^k blending of curves; piecewise polynomials and
 //! their B-spline bases. It implements five Russian documents on curves and splines (see
-//! `docs/` and the digest) and what users of SciPy, Open CASCADE, geomdl or tinyspline expect.
+//! `docs/theory.md`) and what users of SciPy, Open CASCADE, geomdl or tinyspline expect.
 //!
 //! ## What is here
 //!
 //! | area (module) | main items | source |
 //! |---|---|---|
-//! | points, knots, bases ([`basis`]) | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; doc 002 §C.5; doc 003 Thm 4.5 |
-//! | curves ([`curve`]) | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | doc 002 §C.4–C.5; P&T ch. 2–5, 7 |
+//! | points, knots, bases ([`basis`]) | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; document 002, B-splines; doc 003 Thm 4.5 |
+//! | curves ([`curve`]) | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | document 002, Bezier curves and B-splines; P&T ch. 2–5, 7 |
 //! | surfaces ([`surface`]) | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
-//! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; doc 002 §C.2–C.3 |
+//! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; document 002, four-point cubic and Hermite segment |
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
 //! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |

@@ -1,7 +1,7 @@
-//! Interpolation: golden numbers of digest Appendix T.1 (document 000 has no numeric
-//! example; the digest author computed these and cross-checked them with SciPy), residuals at
-//! the data, prescribed derivatives, offset/scale invariance, closed curves, surfaces, Hermite,
-//! one negative test per error, and proptest invariants.
+//! Interpolation: golden numbers of P&T Example 9.1 (docs/theory/interpolation.md#test-vectors;
+//! document 000 has no numeric example, so these were computed independently and cross-checked with
+//! SciPy), residuals at the data, prescribed derivatives, offset/scale invariance, closed curves,
+//! surfaces, Hermite, one negative test per error, and proptest invariants.
 
 mod common;
 use common::config;
@@ -17,7 +17,7 @@ use proptest::prelude::*;
 /// Residual tolerance relative to the data's extent (what an interpolant must meet at its data).
 const REL: f64 = 1e-12;
 
-/// P&T Example 9.1, digest T.1.
+/// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 fn example() -> Points {
     Points::from_2d(&[
         [0.0, 0.0],
@@ -33,7 +33,7 @@ fn chord() -> Vec<f64> {
     vec![0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0]
 }
 
-/// Compares with a tolerance; the T.1 numbers are printed with 6 decimals.
+/// Compares with a tolerance; the reference numbers are given with 6 decimals.
 fn assert_near(got: &[f64], expect: &[f64], tol: f64, what: &str) {
     assert_eq!(got.len(), expect.len(), "{what}: length");
     for (i, (g, e)) in got.iter().zip(expect).enumerate() {
@@ -64,10 +64,10 @@ fn derivative(c: &BSplineCurve, t: f64, order: usize) -> Vec<f64> {
     c.eval_derivatives(t, order).unwrap().point(order).to_vec()
 }
 
-// ---------------------------------------------------------------- golden numbers, digest T.1
+// ---------------------------------------------------------------- golden numbers, P&T Example 9.1
 
 #[test]
-fn t1_a1_cubic_three_parametrisations() {
+fn example_9_1_free_cubic_three_parametrisations() {
     let q = example();
     let cases: [(Parametrization, f64, [[f64; 2]; 3]); 2] = [
         (
@@ -142,7 +142,7 @@ fn t1_a1_cubic_three_parametrisations() {
 }
 
 #[test]
-fn t1_a1_chord_curve_values_and_quadratic() {
+fn example_9_1_chord_curve_values_and_quadratic() {
     let q = example();
     let c = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
     for (t, e) in [
@@ -182,7 +182,7 @@ fn first_derivatives() -> EndCondition {
 }
 
 #[test]
-fn t1_a2_end_derivatives_any_degree() {
+fn example_9_1_end_derivatives_any_degree() {
     let q = example();
     let cases: [(usize, Vec<f64>, [[f64; 2]; 7]); 2] = [
         (
@@ -256,9 +256,9 @@ fn t1_a2_end_derivatives_any_degree() {
 }
 
 #[test]
-fn t1_a3_cubic_knots_at_parameters() {
+fn example_9_1_cubic_knots_at_parameters() {
     let q = example();
-    // Auto picks §A.3 for cubics with first derivatives
+    // Auto picks §3 for cubics with first derivatives
     let c = CurveInterpolation::new(3)
         .end_condition(first_derivatives())
         .interpolate(q.as_view())
@@ -318,7 +318,7 @@ fn t1_a3_cubic_knots_at_parameters() {
 }
 
 #[test]
-fn t1_a4_second_derivatives_and_natural() {
+fn example_9_1_second_derivatives_and_natural() {
     let q = example();
     let c = CurveInterpolation::new(3)
         .end_condition(EndCondition::SecondDerivatives {
@@ -346,7 +346,7 @@ fn t1_a4_second_derivatives_and_natural() {
     assert_near(&derivative(&c, 1.0, 2), &[0.5, 4.0], 1e-11, "d''n");
     let (worst, bound) = residual(&c, &q, &chord());
     assert!(worst <= bound, "A.4 residual {worst}");
-    // the digest's b_0, c_0, a_n, b_n are the unscaled rows (13), (14): check via the knots
+    // document 000's b_0, c_0, a_n, b_n are the unscaled rows (13), (14): check via the knots
     let k = c.knots().as_slice();
     let (t4, t5, tn1, tn2) = (k[4], k[5], k[5], k[6]);
     assert_near(
@@ -737,7 +737,8 @@ fn deprecated_surface_functions_match_the_builder() {
     ));
 }
 
-// ---------------------------------------------------------------- Hermite and §C.2
+// ---------------------------------------------------------------- Hermite and document 002,
+// four-point cubic
 
 #[test]
 fn four_point_cubic_matches_the_lecture() {

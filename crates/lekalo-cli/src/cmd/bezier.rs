@@ -75,7 +75,7 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// Print the formal degree, the real degree and the defect (document 004 §E.3).
+    /// Print the formal degree, the real degree and the defect (document 004, eq. (9)–(10)).
     #[command(after_help = "\
 Examples:
   lekalo bezier real-degree quintic.json          # degree 5, real degree 3, defect 2

@@ -44,7 +44,8 @@ pub(crate) enum SplineParams {
 /// `lekalo blend` operations.
 #[derive(Subcommand, Debug)]
 pub(crate) enum BlendOp {
-    /// Deform curve A into curve B (same end points): p = (1 − w_{k−1}) A + w_{k−1} B (§B.2).
+    /// Deform curve A into curve B (same end points; document 001 §2):
+    /// p = (1 − w_{k−1}) A + w_{k−1} B.
     #[command(after_help = "\
 The result is exact: a Bezier curve of degree (2k − 1) + max(d1, d2), or a rational Bezier
 (NURBS) when a curve is rational (e.g. circular arcs made with `lekalo make nurbs`).
@@ -63,7 +64,7 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// A spline through points by blending local three-point curves (§B.3).
+    /// A spline through points by blending local three-point curves (document 001 §3).
     #[command(after_help = "\
 Output: exact NURBS for --local parabolas and rational-arcs; for arcs and global-arcs a
 B-spline approximation of degree 2k + 1 with the same joins, within --tolerance (printed).

@@ -1,5 +1,6 @@
-//! `lekalo interpolate`: curves and surfaces through points (document 000; document 002 §C.2–C.3),
-//! plus the output helpers shared by the construction subcommands (`bezier`, `blend`, `pp`).
+//! `lekalo interpolate`: curves and surfaces through points (document 000; document 002, four-point
+//! cubic and Hermite segment), plus the output helpers shared by the construction subcommands
+//! (`bezier`, `blend`, `pp`).
 
 use std::path::{Path, PathBuf};
 
@@ -220,7 +221,7 @@ pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
     }
 }
 
-/// Parameter choice (document 000 §A.1; P&T eq. 9.4–9.6).
+/// Parameter choice (document 000 §1; P&T eq. 9.4–9.6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Param {
     /// Parameters k/n.
@@ -255,14 +256,14 @@ pub(crate) enum Knots {
     AtParams,
 }
 
-/// End conditions (document 000 §A.1–A.4).
+/// End conditions (document 000 §1–4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum End {
-    /// No extra condition (§A.1).
+    /// No extra condition (§1).
     Free,
-    /// Given first derivatives --d0, --dn (§A.2; §A.3 with --knots at-params).
+    /// Given first derivatives --d0, --dn (§2; §3 with --knots at-params).
     Derivatives,
-    /// Given second derivatives --d0, --dn (§A.4, cubic).
+    /// Given second derivatives --d0, --dn (§4, cubic).
     Second,
     /// Zero second derivatives: the natural cubic spline.
     Natural,
@@ -287,9 +288,9 @@ pub(crate) enum Tangents {
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Curves (document 000): global B-spline interpolation, any degree, every parametrisation,
-knot placement and end condition. Surfaces (§A.5): --grid ROWSxCOLS reads the points row by row.
+knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
---hermite. Hermite curves (document 002 §C.3): --hermite TANGENTS.
+--hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 
 Examples:
   lekalo interpolate pts.csv --degree 3 --param chord -o curve.json

@@ -12,7 +12,7 @@ use crate::cmd::plot::encode;
 use crate::io::{bad_input, emit, format_of, integers, load_one, numbers};
 use crate::Verbosity;
 
-/// The τ rule of the de Boor–Fix functionals (document 003 §D.5 step 5).
+/// The τ rule of the de Boor–Fix functionals (document 003 §5.1, step 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Rule {
     /// Tau = the first knot after the left end of the support (the thesis's rule).
@@ -109,7 +109,7 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// Quasi-interpolate a built-in function in P(k, ξ, ν) (document 003 §D.5).
+    /// Quasi-interpolate a built-in function in P(k, ξ, ν) (document 003 §5).
     #[command(after_help = "\
 Prints the maximum error on a uniform grid (--intervals) to standard error. SVG/PNG output
 plots f and its quasi-interpolant, like the thesis's Figure 1.

@@ -1,4 +1,4 @@
-//! The fused fast path of global cubic interpolation (document 000 §A.1 with chord-length
+//! The fused fast path of global cubic interpolation (document 000 §1 with chord-length
 //! parameters and averaged knots, eq. 3), for 1–3 dimensions: parameters, knots, banded
 //! elimination and back substitution in three sweeps, agreeing with the general path of
 //! [`crate::interpolate::curve`] to rounding (the same parameters and knots bit for bit; the control

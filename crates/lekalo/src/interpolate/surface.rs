@@ -1,4 +1,4 @@
-//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §A.5,
+//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §5,
 //! eq. 16–18): row and column parameters averaged, knots by averaging, curve interpolation in
 //! both directions with one factorisation per direction, applied in two sweeps over the grid.
 
@@ -479,7 +479,7 @@ fn surface(
 
 crate::numeric::isa::avx2_dispatch! {
     /// The control net `P = A_u⁻¹ (Q − q_00) A_vᵀ⁻¹ + q_00` of the grid `Q` (`nu` rows of `nv`
-    /// points), given the factored collocation matrices of both directions (document 000 §A.5,
+    /// points), given the factored collocation matrices of both directions (document 000 §5,
     /// eq. 17–18: a curve interpolation down every column, then along every row).
     ///
     /// The two directions' solves are linear maps acting on different indices of the grid, so they

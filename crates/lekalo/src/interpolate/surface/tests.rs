@@ -78,7 +78,7 @@ fn one_pass_chord_parameters_equal_the_line_loops() {
     assert!(!chord_params(&data, 3, 3, 2, &mut u, &mut v));
 }
 
-/// The pass-by-pass solve of document 000 §A.5 (P&T A9.4 order): every column along `u`
+/// The pass-by-pass solve of document 000 §5 (P&T A9.4 order): every column along `u`
 /// (all `nv·dim` numbers of a row as right-hand sides), then every row along `v`, each by
 /// [`solve_collocation`] with its own factorisation, on the grid centred on `q_00`.
 fn pass_by_pass(
