@@ -66,6 +66,7 @@ mod oracle;
 mod points;
 mod surface;
 mod surface_ops;
+mod surface_curvature;
 
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bezier_surface::BezierSurface;
@@ -80,6 +81,7 @@ pub use nurbs_surface::NurbsSurface;
 pub use points::{Points, PointsRef};
 pub use surface::BSplineSurface;
 pub use surface_ops::{BezierPatch, RationalBezierPatch};
+pub use surface_curvature::{surface_curvature, SurfaceCurvature};
 
 // -- interpolation (issue 3) --
 mod cubic_sweep;
