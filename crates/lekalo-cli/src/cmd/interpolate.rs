@@ -303,7 +303,9 @@ Examples:
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
   lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
   lekalo interpolate xy.csv --function --hermite monotone
-  lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json")]
+  lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json
+  lekalo interpolate pts.csv --params 0,0.25,0.5,1 --degree 2 -o at-params.json
+  lekalo interpolate pts.csv --tangents tangents.csv --params 0,1,2,3 -o hermite.json")]
 pub(crate) struct InterpolateArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     points: PathBuf,
@@ -348,6 +350,14 @@ pub(crate) struct InterpolateArgs {
     /// points); off by default.
     #[arg(long, value_name = "LIMIT")]
     max_condition: Option<f64>,
+    /// Explicit parameters of the points (strictly increasing): a list `0,0.3,1` or a file
+    /// with one value per line. Replaces --param.
+    #[arg(long, value_name = "LIST|FILE", allow_hyphen_values = true)]
+    params: Option<String>,
+    /// Cubic Hermite interpolation with the given tangents: a points file with one tangent
+    /// per data point (same dimension). Parameters from --params or --param.
+    #[arg(long, value_name = "FILE", conflicts_with = "hermite")]
+    tangents: Option<PathBuf>,
     #[command(flatten)]
     out: OutArgs,
 }
@@ -409,6 +419,23 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         };
         return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
     }
+    if let Some(file) = &a.tangents {
+        let (ttext, tname) = lekalo_io::read_input(file)?;
+        let tan = lekalo_io::read_points(&ttext, &tname)?;
+        let ts = match &a.params {
+            Some(p) => crate::cmd::explicit::parameters(p, "--params")?,
+            None => lekalo::parametrize(pts.as_view(), param)?,
+        };
+        let h = CubicHermite::new(ts, pts.clone(), tan)?;
+        let mut inputs = inputs;
+        inputs.push(file.clone());
+        return write_curve(&Object::BSpline(h.to_bspline()), Some(&pts), &a.out, &inputs, v);
+    }
+    if let (Some(t), Some(p)) = (a.hermite, &a.params) {
+        let ts = crate::cmd::explicit::parameters(p, "--params")?;
+        let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension))?;
+        return write_curve(&Object::BSpline(h.to_bspline()), Some(&pts), &a.out, &inputs, v);
+    }
     if let Some(t) = a.hermite {
         let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
         let obj = Object::BSpline(h.to_bspline());
@@ -453,7 +480,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if let Some(limit) = a.max_condition {
         interp = interp.max_condition(limit);
     }
-    let curve = interp.interpolate(pts.as_view())?;
+    let curve = match &a.params {
+        Some(p) => {
+            interp.interpolate_at(pts.as_view(), &crate::cmd::explicit::parameters(p, "--params")?)?
+        }
+        None => interp.interpolate(pts.as_view())?,
+    };
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
 }
 

@@ -13,3 +13,9 @@ pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;
 pub(crate) mod pp;
+// knot operations, surfaces in make/eval, CAD files in convert
+pub(crate) mod cad;
+pub(crate) mod knot;
+pub(crate) mod make_surface;
+pub(crate) mod surface_eval;
+pub(crate) mod explicit;
