@@ -212,3 +212,28 @@ fn step_from_open_cascade_converts_both_ways() {
 }
 
 use predicates::prelude::PredicateBooleanExt;
+
+#[test]
+fn machine_readable_real_degree_and_quasi_error() {
+    // a quintic of lower real degree; the figures are the library's
+    let quintic = r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [0.6, 1.2], [1.2, 1.8], [1.8, 1.8], [2.4, 1.2], [3, 0]]}"#;
+    let d = dir_with(&[("q.json", quintic)]);
+    let out = lekalo().args(["bezier", "real-degree"]).arg(p(&d, "q.json")).arg("--json").assert().success();
+    let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    let Shape::Curve(Object::Bezier(b)) = Shape::from_json_str(quintic, "q").unwrap() else {
+        panic!("a Bezier curve")
+    };
+    assert_eq!(j["degree"], 5);
+    assert_eq!(j["real_degree"], b.real_degree());
+    assert!(b.real_degree() < 5);
+    assert_eq!(j["defect"], 5 - b.real_degree());
+    let args = [
+        "pp", "quasi", "--function", "x*cos(x)", "--breakpoints", "0,0.5,0.9,1.4,2.1,2.7,3",
+        "--order", "3", "--continuity", "2,2,2,2,2", "--rule", "left-end-of-support", "--json",
+    ];
+    let out = lekalo().args(args).assert().success();
+    let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    let e = j["max_error"].as_f64().unwrap();
+    assert!((e - 0.204831).abs() < 5e-7, "{e}");
+    assert_eq!(j["curve"]["type"], "bspline_curve");
+}
