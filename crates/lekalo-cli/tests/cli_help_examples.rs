@@ -26,16 +26,29 @@ fn help_examples_run() {
     let d = tempfile::tempdir().unwrap();
     let w = |name: &str, text: &str| fs::write(d.path().join(name), text).unwrap();
     w("pts.csv", "1,1\n2,3\n4,3\n");
-    w("net.csv", "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 0\n2 0 0\n2 1 0\n2 2 0\n");
+    w(
+        "net.csv",
+        "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 0\n2 0 0\n2 1 0\n2 2 0\n",
+    );
     let curve = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2, "knots": [0, 0, 0, 1, 2, 2, 2], "control": [[1, 1], [2, 3], [4, 3], [5, 0]]}"#;
     w("curve.json", curve);
-    w("many.jsonl", &format!("{curve}\n{}\n", curve.replace("[5, 0]", "[6, 1]")));
+    w(
+        "many.jsonl",
+        &format!("{curve}\n{}\n", curve.replace("[5, 0]", "[6, 1]")),
+    );
     fs::copy(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../lekalo-io/tests/data/occ/mixed_ap242_m.step"),
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../lekalo-io/tests/data/occ/mixed_ap242_m.step"
+        ),
         d.path().join("part.step"),
     )
     .unwrap();
-    lekalo().current_dir(d.path()).args(["pp", "convert", "curve.json", "-o", "spline.pp.json"]).assert().success();
+    lekalo()
+        .current_dir(d.path())
+        .args(["pp", "convert", "curve.json", "-o", "spline.pp.json"])
+        .assert()
+        .success();
     let mut ran = 0;
     for cmd in ["make", "eval", "convert", "knot"] {
         let out = lekalo().args([cmd, "--help"]).assert().success();

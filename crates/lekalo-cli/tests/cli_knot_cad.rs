@@ -37,8 +37,15 @@ fn library_surface() -> BSplineSurface {
         .map(|l| l.split(' ').map(|x| x.parse().unwrap()).collect())
         .collect();
     let ctrl = Points::from_rows(&rows).unwrap();
-    BSplineSurface::new(2, 2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], ctrl, (3, 3))
-        .unwrap()
+    BSplineSurface::new(
+        2,
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        ctrl,
+        (3, 3),
+    )
+    .unwrap()
 }
 
 /// The CSV's rows as numbers by column name.
@@ -64,7 +71,16 @@ fn surface_make_and_eval_agree_with_the_library_to_the_bit() {
     let out = lekalo()
         .arg("eval")
         .arg(p(&d, "s.json"))
-        .args(["--uv", "0.3,0.7", "--uv", "0.5,1e-7", "--derivatives", "2", "--normals", "--curvature"])
+        .args([
+            "--uv",
+            "0.3,0.7",
+            "--uv",
+            "0.5,1e-7",
+            "--derivatives",
+            "2",
+            "--normals",
+            "--curvature",
+        ])
         .assert()
         .success();
     let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
@@ -75,8 +91,9 @@ fn surface_make_and_eval_agree_with_the_library_to_the_bit() {
         let pt = s.eval(u, v).unwrap();
         let d = s.eval_derivatives(u, v, 2).unwrap();
         let n = s.normal(u, v).unwrap();
-        let k = lekalo::surface_curvature(d.point(3), d.point(1), d.point(6), d.point(4), d.point(2))
-            .unwrap();
+        let k =
+            lekalo::surface_curvature(d.point(3), d.point(1), d.point(6), d.point(4), d.point(2))
+                .unwrap();
         assert_eq!(col(r, "z").to_bits(), pt[2].to_bits());
         assert_eq!(col(r, "du1v0z").to_bits(), d.point(3)[2].to_bits());
         assert_eq!(col(r, "du1v1y").to_bits(), d.point(4)[1].to_bits());
@@ -85,15 +102,34 @@ fn surface_make_and_eval_agree_with_the_library_to_the_bit() {
         assert_eq!(col(r, "gaussian").to_bits(), k.gaussian.to_bits());
         assert_eq!(col(r, "k2").to_bits(), k.k2.to_bits());
     }
-    assert!(text.contains(",1e-7,"), "exponent notation for small numbers: {text}");
+    assert!(
+        text.contains(",1e-7,"),
+        "exponent notation for small numbers: {text}"
+    );
     // a grid, and JSON
-    let out = lekalo().arg("eval").arg(p(&d, "s.json")).args(["--grid", "2x3", "--format", "json"]).assert().success();
+    let out = lekalo()
+        .arg("eval")
+        .arg(p(&d, "s.json"))
+        .args(["--grid", "2x3", "--format", "json"])
+        .assert()
+        .success();
     let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
     assert_eq!(j.as_array().unwrap().len(), 6);
     assert_eq!(j[5]["v"], 1.0);
     // wrong use is exit code 2 with a message naming the option
-    lekalo().arg("eval").arg(p(&d, "s.json")).args(["--uv", "0.3"]).assert().code(2).stderr(contains("--uv"));
-    lekalo().arg("eval").arg(p(&d, "s.json")).args(["--uv", "3,0"]).assert().code(2);
+    lekalo()
+        .arg("eval")
+        .arg(p(&d, "s.json"))
+        .args(["--uv", "0.3"])
+        .assert()
+        .code(2)
+        .stderr(contains("--uv"));
+    lekalo()
+        .arg("eval")
+        .arg(p(&d, "s.json"))
+        .args(["--uv", "3,0"])
+        .assert()
+        .code(2);
     lekalo()
         .args(["make", "bspline-surface", "--control"])
         .arg(p(&d, "net.txt"))
@@ -102,7 +138,13 @@ fn surface_make_and_eval_agree_with_the_library_to_the_bit() {
         .code(2)
         .stderr(contains("--net 2x3 needs 6 control points"));
     // convert to CSV samples
-    lekalo().arg("convert").arg(p(&d, "s.json")).args(["--to", "csv", "--samples", "9"]).assert().success().stdout(contains("u,v,x,y,z\n0,0,0,0,0\n"));
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "s.json"))
+        .args(["--to", "csv", "--samples", "9"])
+        .assert()
+        .success()
+        .stdout(contains("u,v,x,y,z\n0,0,0,0,0\n"));
 }
 
 #[test]
@@ -111,12 +153,32 @@ fn nurbs_surface_make_and_step_round_trip() {
     lekalo()
         .args(["make", "nurbs-surface", "--control"])
         .arg(p(&d, "net.txt"))
-        .args(["--net", "3x3", "--degree", "2", "--weights", "1,1,1,1,2,1,1,1,0.5", "-o"])
+        .args([
+            "--net",
+            "3x3",
+            "--degree",
+            "2",
+            "--weights",
+            "1,1,1,1,2,1,1,1,0.5",
+            "-o",
+        ])
         .arg(p(&d, "n.json"))
         .assert()
         .success();
-    lekalo().arg("convert").arg(p(&d, "n.json")).arg("-o").arg(p(&d, "n.step")).assert().success();
-    lekalo().arg("convert").arg(p(&d, "n.step")).arg("-o").arg(p(&d, "back.json")).assert().success();
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "n.json"))
+        .arg("-o")
+        .arg(p(&d, "n.step"))
+        .assert()
+        .success();
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "n.step"))
+        .arg("-o")
+        .arg(p(&d, "back.json"))
+        .assert()
+        .success();
     let a = fs::read_to_string(p(&d, "n.json")).unwrap();
     let b = fs::read_to_string(p(&d, "back.json")).unwrap();
     let sa = Shape::from_json_str(&a, "a").unwrap();
@@ -138,9 +200,18 @@ fn knot_family_matches_the_library() {
     let read = |name: &str| -> Shape {
         Shape::from_json_str(&fs::read_to_string(p(&d, name)).unwrap(), name).unwrap()
     };
-    lekalo().args(["knot", "insert"]).arg(p(&d, "c.json")).args(["--at", "0.25", "--times", "2", "-o"]).arg(p(&d, "i.json")).assert().success();
+    lekalo()
+        .args(["knot", "insert"])
+        .arg(p(&d, "c.json"))
+        .args(["--at", "0.25", "--times", "2", "-o"])
+        .arg(p(&d, "i.json"))
+        .assert()
+        .success();
     let inserted = c.insert_knot(0.25, 2).unwrap();
-    assert_eq!(read("i.json"), Shape::Curve(Object::BSpline(inserted.clone())));
+    assert_eq!(
+        read("i.json"),
+        Shape::Curve(Object::BSpline(inserted.clone()))
+    );
     lekalo()
         .args(["knot", "remove"])
         .arg(p(&d, "i.json"))
@@ -150,46 +221,148 @@ fn knot_family_matches_the_library() {
         .success()
         .stderr(contains("removed 2 knot copies").and(contains("0.25×2")));
     let tol = inserted.default_removal_tolerance();
-    assert_eq!(read("r.json"), Shape::Curve(Object::BSpline(inserted.remove_knot(0.25, 2, tol).unwrap().0)));
-    lekalo().args(["knot", "refine"]).arg(p(&d, "c.json")).args(["--knots", "0.1,0.6", "-o"]).arg(p(&d, "f.json")).assert().success();
-    assert_eq!(read("f.json"), Shape::Curve(Object::BSpline(c.refine_knots(&[0.1, 0.6]).unwrap())));
-    lekalo().args(["knot", "reverse"]).arg(p(&d, "c.json")).arg("-o").arg(p(&d, "v.json")).assert().success();
-    assert_eq!(read("v.json"), Shape::Curve(Object::BSpline(c.reverse().unwrap())));
-    lekalo().args(["knot", "reparam"]).arg(p(&d, "c.json")).args(["--interval", "-1,3", "-o"]).arg(p(&d, "m.json")).assert().success();
-    assert_eq!(read("m.json"), Shape::Curve(Object::BSpline(c.reparametrize(-1.0, 3.0).unwrap())));
+    assert_eq!(
+        read("r.json"),
+        Shape::Curve(Object::BSpline(
+            inserted.remove_knot(0.25, 2, tol).unwrap().0
+        ))
+    );
+    lekalo()
+        .args(["knot", "refine"])
+        .arg(p(&d, "c.json"))
+        .args(["--knots", "0.1,0.6", "-o"])
+        .arg(p(&d, "f.json"))
+        .assert()
+        .success();
+    assert_eq!(
+        read("f.json"),
+        Shape::Curve(Object::BSpline(c.refine_knots(&[0.1, 0.6]).unwrap()))
+    );
+    lekalo()
+        .args(["knot", "reverse"])
+        .arg(p(&d, "c.json"))
+        .arg("-o")
+        .arg(p(&d, "v.json"))
+        .assert()
+        .success();
+    assert_eq!(
+        read("v.json"),
+        Shape::Curve(Object::BSpline(c.reverse().unwrap()))
+    );
+    lekalo()
+        .args(["knot", "reparam"])
+        .arg(p(&d, "c.json"))
+        .args(["--interval", "-1,3", "-o"])
+        .arg(p(&d, "m.json"))
+        .assert()
+        .success();
+    assert_eq!(
+        read("m.json"),
+        Shape::Curve(Object::BSpline(c.reparametrize(-1.0, 3.0).unwrap()))
+    );
     // split: two lines of JSON Lines
-    let out = lekalo().args(["knot", "split"]).arg(p(&d, "c.json")).args(["--at", "0.3"]).assert().success();
+    let out = lekalo()
+        .args(["knot", "split"])
+        .arg(p(&d, "c.json"))
+        .args(["--at", "0.3"])
+        .assert()
+        .success();
     let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
     let (l, r) = c.split_at(0.3).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(Shape::from_json_str(lines[0], "l").unwrap(), Shape::Curve(Object::BSpline(l)));
-    assert_eq!(Shape::from_json_str(lines[1], "r").unwrap(), Shape::Curve(Object::BSpline(r)));
+    assert_eq!(
+        Shape::from_json_str(lines[0], "l").unwrap(),
+        Shape::Curve(Object::BSpline(l))
+    );
+    assert_eq!(
+        Shape::from_json_str(lines[1], "r").unwrap(),
+        Shape::Curve(Object::BSpline(r))
+    );
     // decompose and join: the same curve with breakpoints of full multiplicity
-    lekalo().args(["knot", "decompose"]).arg(p(&d, "c.json")).arg("-o").arg(p(&d, "pieces.jsonl")).assert().success();
-    lekalo().args(["knot", "join"]).arg(p(&d, "pieces.jsonl")).arg("-o").arg(p(&d, "j.json")).assert().success();
+    lekalo()
+        .args(["knot", "decompose"])
+        .arg(p(&d, "c.json"))
+        .arg("-o")
+        .arg(p(&d, "pieces.jsonl"))
+        .assert()
+        .success();
+    lekalo()
+        .args(["knot", "join"])
+        .arg(p(&d, "pieces.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "j.json"))
+        .assert()
+        .success();
     let joined = BSplineCurve::from_bezier_segments(&c.to_bezier_segments()).unwrap();
     assert_eq!(read("j.json"), Shape::Curve(Object::BSpline(joined)));
     // errors: a parameter outside the domain, remove on a surface
-    lekalo().args(["knot", "insert"]).arg(p(&d, "c.json")).args(["--at", "2"]).assert().code(2);
-    lekalo().args(["knot", "split"]).arg(p(&d, "c.json")).args(["--at", "x"]).assert().code(2).stderr(contains("--at"));
+    lekalo()
+        .args(["knot", "insert"])
+        .arg(p(&d, "c.json"))
+        .args(["--at", "2"])
+        .assert()
+        .code(2);
+    lekalo()
+        .args(["knot", "split"])
+        .arg(p(&d, "c.json"))
+        .args(["--at", "x"])
+        .assert()
+        .code(2)
+        .stderr(contains("--at"));
 }
 
 #[test]
 fn knot_operations_on_surfaces_in_u_and_v() {
     let d = dir_with(&[("net.txt", NET)]);
-    lekalo().args(["make", "bspline-surface", "--control"]).arg(p(&d, "net.txt")).args(["--net", "3x3", "--degree", "2", "-o"]).arg(p(&d, "s.json")).assert().success();
+    lekalo()
+        .args(["make", "bspline-surface", "--control"])
+        .arg(p(&d, "net.txt"))
+        .args(["--net", "3x3", "--degree", "2", "-o"])
+        .arg(p(&d, "s.json"))
+        .assert()
+        .success();
     let s = library_surface();
-    lekalo().args(["knot", "insert"]).arg(p(&d, "s.json")).args(["--dir", "v", "--at", "0.5", "-o"]).arg(p(&d, "i.json")).assert().success();
+    lekalo()
+        .args(["knot", "insert"])
+        .arg(p(&d, "s.json"))
+        .args(["--dir", "v", "--at", "0.5", "-o"])
+        .arg(p(&d, "i.json"))
+        .assert()
+        .success();
     let got = Shape::from_json_str(&fs::read_to_string(p(&d, "i.json")).unwrap(), "i").unwrap();
-    assert_eq!(got, Shape::Surface(Surface::BSpline(s.insert_knot_v(0.5, 1).unwrap())));
-    lekalo().args(["knot", "remove"]).arg(p(&d, "s.json")).args(["--at", "0.5"]).assert().code(2).stderr(contains("curves"));
-    lekalo().args(["knot", "decompose"]).arg(p(&d, "i.json")).arg("-o").arg(p(&d, "patches.jsonl")).assert().success();
-    assert_eq!(fs::read_to_string(p(&d, "patches.jsonl")).unwrap().lines().count(), 2);
+    assert_eq!(
+        got,
+        Shape::Surface(Surface::BSpline(s.insert_knot_v(0.5, 1).unwrap()))
+    );
+    lekalo()
+        .args(["knot", "remove"])
+        .arg(p(&d, "s.json"))
+        .args(["--at", "0.5"])
+        .assert()
+        .code(2)
+        .stderr(contains("curves"));
+    lekalo()
+        .args(["knot", "decompose"])
+        .arg(p(&d, "i.json"))
+        .arg("-o")
+        .arg(p(&d, "patches.jsonl"))
+        .assert()
+        .success();
+    assert_eq!(
+        fs::read_to_string(p(&d, "patches.jsonl"))
+            .unwrap()
+            .lines()
+            .count(),
+        2
+    );
 }
 
 #[test]
 fn step_from_open_cascade_converts_both_ways() {
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../lekalo-io/tests/data/occ/mixed_ap242_m.step");
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../lekalo-io/tests/data/occ/mixed_ap242_m.step"
+    );
     let d = tempfile::tempdir().unwrap();
     lekalo()
         .arg("convert")
@@ -205,10 +378,38 @@ fn step_from_open_cascade_converts_both_ways() {
     for (line, (_, shape)) in text.lines().zip(&direct.shapes) {
         assert_eq!(&Shape::from_json_str(line, "l").unwrap(), shape);
     }
-    lekalo().arg("convert").arg(p(&d, "all.jsonl")).arg("-o").arg(p(&d, "again.step")).assert().success();
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "all.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "again.step"))
+        .assert()
+        .success();
     let again = read_step(&fs::read_to_string(p(&d, "again.step")).unwrap(), "again").unwrap();
     assert_eq!(again.shapes.len(), direct.shapes.len());
-    lekalo().arg("convert").arg(data).args(["--to", "json"]).assert().code(2).stderr(contains("json output takes one"));
+    lekalo()
+        .arg("convert")
+        .arg(data)
+        .args(["--to", "json"])
+        .assert()
+        .code(2)
+        .stderr(contains("json output takes one"));
+    // IGES both ways: the same objects as JSON Lines
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "all.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "all.igs"))
+        .assert()
+        .success();
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "all.igs"))
+        .arg("-o")
+        .arg(p(&d, "from-iges.jsonl"))
+        .assert()
+        .success();
+    assert_eq!(fs::read_to_string(p(&d, "from-iges.jsonl")).unwrap(), text);
 }
 
 use predicates::prelude::PredicateBooleanExt;
@@ -218,7 +419,12 @@ fn machine_readable_real_degree_and_quasi_error() {
     // a quintic of lower real degree; the figures are the library's
     let quintic = r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [0.6, 1.2], [1.2, 1.8], [1.8, 1.8], [2.4, 1.2], [3, 0]]}"#;
     let d = dir_with(&[("q.json", quintic)]);
-    let out = lekalo().args(["bezier", "real-degree"]).arg(p(&d, "q.json")).arg("--json").assert().success();
+    let out = lekalo()
+        .args(["bezier", "real-degree"])
+        .arg(p(&d, "q.json"))
+        .arg("--json")
+        .assert()
+        .success();
     let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
     let Shape::Curve(Object::Bezier(b)) = Shape::from_json_str(quintic, "q").unwrap() else {
         panic!("a Bezier curve")
@@ -228,8 +434,19 @@ fn machine_readable_real_degree_and_quasi_error() {
     assert!(b.real_degree() < 5);
     assert_eq!(j["defect"], 5 - b.real_degree());
     let args = [
-        "pp", "quasi", "--function", "x*cos(x)", "--breakpoints", "0,0.5,0.9,1.4,2.1,2.7,3",
-        "--order", "3", "--continuity", "2,2,2,2,2", "--rule", "left-end-of-support", "--json",
+        "pp",
+        "quasi",
+        "--function",
+        "x*cos(x)",
+        "--breakpoints",
+        "0,0.5,0.9,1.4,2.1,2.7,3",
+        "--order",
+        "3",
+        "--continuity",
+        "2,2,2,2,2",
+        "--rule",
+        "left-end-of-support",
+        "--json",
     ];
     let out = lekalo().args(args).assert().success();
     let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();

@@ -13,6 +13,7 @@
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
 //! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
+//! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.
@@ -29,6 +30,7 @@
 mod analysis;
 mod atomic;
 mod error;
+mod iges;
 mod numfmt;
 mod obj;
 mod object;
@@ -46,6 +48,7 @@ mod wireframe;
 pub use analysis::{curvature, uniform};
 pub use atomic::{check_not_input, read_input, write_atomic};
 pub use error::{IoError, IoResult, Location};
+pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};

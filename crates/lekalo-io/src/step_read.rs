@@ -153,9 +153,10 @@ impl<'a> Lexer<'a> {
             self.pos += 1;
             Ok(())
         } else {
-            let found = self
-                .peek()
-                .map_or_else(|| "the end of the file".to_string(), |b| format!("'{}'", b as char));
+            let found = self.peek().map_or_else(
+                || "the end of the file".to_string(),
+                |b| format!("'{}'", b as char),
+            );
             self.err(format!("expected '{}', found {found}", c as char))
         }
     }
@@ -164,7 +165,10 @@ impl<'a> Lexer<'a> {
         self.skip_ws()?;
         let start = self.pos;
         while let Some(b) = self.peek() {
-            if b.is_ascii_alphanumeric() || b == b'_' || b == b'-' || (b == b'!' && self.pos == start)
+            if b.is_ascii_alphanumeric()
+                || b == b'_'
+                || b == b'-'
+                || (b == b'!' && self.pos == start)
             {
                 self.pos += 1;
             } else {
@@ -191,7 +195,9 @@ impl<'a> Lexer<'a> {
         let text = String::from_utf8_lossy(d);
         match text.parse::<u64>() {
             Ok(n) => Ok(n),
-            Err(_) => self.err(format!("entity instance name #{text} is not a number below 2^64")),
+            Err(_) => self.err(format!(
+                "entity instance name #{text} is not a number below 2^64"
+            )),
         }
     }
 
@@ -268,7 +274,11 @@ impl<'a> Lexer<'a> {
                 self.expect(b'"')?;
                 Ok(P::Str(text))
             }
-            b'.' if self.s.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic) => {
+            b'.' if self
+                .s
+                .get(self.pos + 1)
+                .is_some_and(u8::is_ascii_alphabetic) =>
+            {
                 self.pos += 1;
                 let start = self.pos;
                 while self
@@ -283,10 +293,9 @@ impl<'a> Lexer<'a> {
             }
             b'+' | b'-' | b'.' | b'0'..=b'9' => {
                 let start = self.pos;
-                while self
-                    .peek()
-                    .is_some_and(|c| c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'E' | b'e'))
-                {
+                while self.peek().is_some_and(|c| {
+                    c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'E' | b'e')
+                }) {
                     self.pos += 1;
                 }
                 let text = String::from_utf8_lossy(&self.s[start..self.pos]);
@@ -302,7 +311,10 @@ impl<'a> Lexer<'a> {
                 let inner = self.params()?;
                 Ok(P::Typed(k, inner))
             }
-            _ => self.err(format!("unexpected character '{}' in a parameter", b as char)),
+            _ => self.err(format!(
+                "unexpected character '{}' in a parameter",
+                b as char
+            )),
         }
     }
 }
@@ -510,9 +522,12 @@ impl Reader<'_> {
             .instances
             .get(id)
             .ok_or_else(|| format!("control point #{id} is not defined"))?;
-        let c = inst
-            .get("CARTESIAN_POINT")
-            .ok_or_else(|| format!("control point #{id} is a {}, not a CARTESIAN_POINT", inst.type_name()))?;
+        let c = inst.get("CARTESIAN_POINT").ok_or_else(|| {
+            format!(
+                "control point #{id} is a {}, not a CARTESIAN_POINT",
+                inst.type_name()
+            )
+        })?;
         let coords = c
             .get(1)
             .ok_or_else(|| format!("CARTESIAN_POINT #{id} has no coordinates"))
@@ -537,26 +552,30 @@ impl Reader<'_> {
 
     /// A B-spline curve instance (simple or complex, rational or not).
     fn curve(&self, inst: &Instance) -> Result<Object, Why> {
-        let (degree, ctrl, mults, knots, weights) =
-            if let Some(r) = inst.get("B_SPLINE_CURVE_WITH_KNOTS").filter(|r| r.len() >= 9) {
-                (&r[1], &r[2], &r[6], &r[7], None)
-            } else {
-                let b = inst
-                    .get("B_SPLINE_CURVE")
-                    .filter(|r| r.len() >= 2)
-                    .ok_or("no B_SPLINE_CURVE record with degree and control points")?;
-                let k = inst
-                    .get("B_SPLINE_CURVE_WITH_KNOTS")
-                    .filter(|r| r.len() >= 2)
-                    .ok_or("implicit knots (only B_SPLINE_CURVE_WITH_KNOTS is read)")?;
-                let w = inst.get("RATIONAL_B_SPLINE_CURVE").and_then(|r| r.first());
-                (&b[0], &b[1], &k[0], &k[1], w)
-            };
+        let (degree, ctrl, mults, knots, weights) = if let Some(r) = inst
+            .get("B_SPLINE_CURVE_WITH_KNOTS")
+            .filter(|r| r.len() >= 9)
+        {
+            (&r[1], &r[2], &r[6], &r[7], None)
+        } else {
+            let b = inst
+                .get("B_SPLINE_CURVE")
+                .filter(|r| r.len() >= 2)
+                .ok_or("no B_SPLINE_CURVE record with degree and control points")?;
+            let k = inst
+                .get("B_SPLINE_CURVE_WITH_KNOTS")
+                .filter(|r| r.len() >= 2)
+                .ok_or("implicit knots (only B_SPLINE_CURVE_WITH_KNOTS is read)")?;
+            let w = inst.get("RATIONAL_B_SPLINE_CURVE").and_then(|r| r.first());
+            (&b[0], &b[1], &k[0], &k[1], w)
+        };
         let degree = int(degree).ok_or("degree is not a non-negative integer")?;
         let ctrl = self.points(ctrl)?;
         let knots = expand_knots(mults, knots)?;
         let obj = match weights {
-            None => Object::BSpline(BSplineCurve::new(degree, knots, ctrl).map_err(|e| e.to_string())?),
+            None => {
+                Object::BSpline(BSplineCurve::new(degree, knots, ctrl).map_err(|e| e.to_string())?)
+            }
             Some(w) => {
                 let w = numbers(w, "weights_data")?;
                 Object::Nurbs(NurbsCurve::new(degree, knots, ctrl, w).map_err(|e| e.to_string())?)
@@ -581,7 +600,9 @@ impl Reader<'_> {
                 .get("B_SPLINE_SURFACE_WITH_KNOTS")
                 .filter(|r| r.len() >= 4)
                 .ok_or("implicit knots (only B_SPLINE_SURFACE_WITH_KNOTS is read)")?;
-            let w = inst.get("RATIONAL_B_SPLINE_SURFACE").and_then(|r| r.first());
+            let w = inst
+                .get("RATIONAL_B_SPLINE_SURFACE")
+                .and_then(|r| r.first());
             (&b[0], &b[1], &b[2], &k[0], &k[1], &k[2], &k[3], w)
         };
         let du = int(du).ok_or("u_degree is not a non-negative integer")?;
@@ -628,7 +649,9 @@ impl Reader<'_> {
     /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values.
     fn trimmed(&self, r: &[P]) -> Result<(u64, Object), Why> {
         if r.len() < 5 {
-            return Err("TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into());
+            return Err(
+                "TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into(),
+            );
         }
         let P::Ref(basis) = &r[1] else {
             return Err("basis_curve is not a reference".into());
@@ -727,7 +750,9 @@ fn length_unit(p: &Parsed) -> (String, f64) {
     let mut ids: Vec<u64> = p.instances.keys().copied().collect();
     ids.sort_unstable();
     let from_context = ids.iter().find_map(|id| {
-        let refs = p.instances[id].get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?.first()?;
+        let refs = p.instances[id]
+            .get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?
+            .first()?;
         list(refs)?.iter().find_map(|r| match r {
             P::Ref(u) if p.instances.get(u).is_some_and(|i| i.has("LENGTH_UNIT")) => Some(*u),
             _ => None,
@@ -928,7 +953,10 @@ END-ISO-10303-21;
         let r = read_step(OCC_STYLE, "occ.step").unwrap();
         assert_eq!(r.length_unit, "metre");
         assert_eq!(r.scale_to_mm, 1000.0);
-        assert_eq!(r.schema.as_deref(), Some("AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }"));
+        assert_eq!(
+            r.schema.as_deref(),
+            Some("AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }")
+        );
         let ids: Vec<u64> = r.shapes.iter().map(|(i, _)| *i).collect();
         assert_eq!(ids, [5, 6, 7]);
         let Shape::Curve(Object::BSpline(c)) = &r.shapes[0].1 else {
@@ -952,11 +980,16 @@ END-ISO-10303-21;
     #[test]
     fn our_own_files_round_trip_bit_for_bit() {
         let w = std::f64::consts::FRAC_1_SQRT_2;
-        let ctrl = Points::from_3d(&[[1.0, 0.0, 0.1], [1.0, 1.0, 1.0 / 3.0], [0.0, 1.0, 1e-300]])
-            .unwrap();
+        let ctrl =
+            Points::from_3d(&[[1.0, 0.0, 0.1], [1.0, 1.0, 1.0 / 3.0], [0.0, 1.0, 1e-300]]).unwrap();
         let curve = Object::Nurbs(
-            NurbsCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], ctrl, vec![1.0, w, 1.0])
-                .unwrap(),
+            NurbsCurve::new(
+                2,
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                ctrl,
+                vec![1.0, w, 1.0],
+            )
+            .unwrap(),
         );
         let net = Points::from_3d(&[
             [0.0, 0.0, 0.0],
@@ -965,8 +998,15 @@ END-ISO-10303-21;
             [1.0, 1.0, 1.0 / 7.0],
         ])
         .unwrap();
-        let surf = BSplineSurface::new(1, 1, vec![0.0, 0.0, 2.0, 2.0], vec![0.0, 0.0, 1.0, 1.0], net, (2, 2))
-            .unwrap();
+        let surf = BSplineSurface::new(
+            1,
+            1,
+            vec![0.0, 0.0, 2.0, 2.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            net,
+            (2, 2),
+        )
+        .unwrap();
         let nurbs = NurbsSurface::new(
             1,
             1,
@@ -997,9 +1037,12 @@ END-ISO-10303-21;
 
     #[test]
     fn errors_name_the_line_and_never_panic() {
-        let e = read_step("ISO-10303-21;\nDATA;\n#1=FOO(1.0E99999999999999999999);\nENDSEC;", "x")
-            .unwrap_err()
-            .to_string();
+        let e = read_step(
+            "ISO-10303-21;\nDATA;\n#1=FOO(1.0E99999999999999999999);\nENDSEC;",
+            "x",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.starts_with("x:3:"), "{e}");
         let e = read_step("hello", "x").unwrap_err().to_string();
         assert!(e.starts_with("x:1:"), "{e}");
@@ -1010,9 +1053,12 @@ END-ISO-10303-21;
         let bad = OCC_STYLE.replace("(3,1,3),(0.,0.5,1.)", "(3,1,3),(0.,1.5,1.)");
         let e = read_step(&bad, "b.step").unwrap_err().to_string();
         assert!(e.starts_with("b.step:13: entity #5"), "{e}");
-        let e = read_step("ISO-10303-21;\nDATA;\n#1=A(#99999999999999999999999);\n", "x")
-            .unwrap_err()
-            .to_string();
+        let e = read_step(
+            "ISO-10303-21;\nDATA;\n#1=A(#99999999999999999999999);\n",
+            "x",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("#99999999999999999999999"), "{e}");
         for cut in [10, 200, 600, 900] {
             let _ = read_step(&OCC_STYLE[..cut], "cut");

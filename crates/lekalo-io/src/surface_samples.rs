@@ -164,8 +164,15 @@ mod tests {
             [1.0, 1.0, 1.0],
         ])
         .unwrap();
-        BSplineSurface::new(1, 1, vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0], net, (2, 2))
-            .unwrap()
+        BSplineSurface::new(
+            1,
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            net,
+            (2, 2),
+        )
+        .unwrap()
     }
 
     #[test]
@@ -207,7 +214,17 @@ mod tests {
         ];
         for s in &kinds {
             let g = s.grid_parameters(3, 2);
-            assert_eq!(g, vec![[0.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 1.0], [1.0, 0.0], [1.0, 1.0]]);
+            assert_eq!(
+                g,
+                vec![
+                    [0.0, 0.0],
+                    [0.0, 1.0],
+                    [0.5, 0.0],
+                    [0.5, 1.0],
+                    [1.0, 0.0],
+                    [1.0, 1.0]
+                ]
+            );
             let t = surface_sample_table(s, &g, SurfaceSampleSpec::default()).unwrap();
             assert_eq!(t.rows.len(), 6);
             assert_eq!(t.rows[5][4], Some(1.0));

@@ -31,7 +31,11 @@ fn usize_of(v: &Value) -> usize {
 /// The object Open CASCADE read, as a lekalo shape.
 fn expected(e: &Value) -> Shape {
     if e["kind"] == "curve" {
-        let (p, k, c) = (usize_of(&e["degree"]), floats(&e["knots"]), points(&e["control"]));
+        let (p, k, c) = (
+            usize_of(&e["degree"]),
+            floats(&e["knots"]),
+            points(&e["control"]),
+        );
         return Shape::Curve(match e.get("weights") {
             None => Object::BSpline(BSplineCurve::new(p, k, c).expect("curve")),
             Some(w) => Object::Nurbs(NurbsCurve::new(p, k, c, floats(w)).expect("nurbs")),
@@ -56,7 +60,12 @@ fn read(name: &str) -> (lekalo_io::StepRead, Vec<Shape>) {
     )
     .expect("json");
     let r = read_step(&text, name).expect("read");
-    let e = expect.as_array().expect("list").iter().map(expected).collect();
+    let e = expect
+        .as_array()
+        .expect("list")
+        .iter()
+        .map(expected)
+        .collect();
     (r, e)
 }
 
@@ -77,7 +86,11 @@ fn what_open_cascade_reads_we_read_bit_for_bit() {
         assert_eq!(r.scale_to_mm, if metres { 1000.0 } else { 1.0 }, "{name}");
         // the faces' boundary lines are reported, not silently dropped
         if name.starts_with("surfaces") {
-            assert!(r.skipped.iter().any(|s| s.entity == "LINE"), "{:?}", r.skipped);
+            assert!(
+                r.skipped.iter().any(|s| s.entity == "LINE"),
+                "{:?}",
+                r.skipped
+            );
         }
     }
 }
@@ -91,15 +104,21 @@ fn read_modify_write_read() {
             modified.push(match s {
                 Shape::Curve(Object::BSpline(c)) => {
                     let (a, b) = c.domain();
-                    Shape::Curve(Object::BSpline(c.insert_knot(0.5 * (a + b), 1).expect("insert")))
+                    Shape::Curve(Object::BSpline(
+                        c.insert_knot(0.5 * (a + b), 1).expect("insert"),
+                    ))
                 }
                 Shape::Curve(Object::Nurbs(c)) => {
                     let (a, b) = c.domain();
-                    Shape::Curve(Object::Nurbs(c.insert_knot(0.5 * (a + b), 2).expect("insert")))
+                    Shape::Curve(Object::Nurbs(
+                        c.insert_knot(0.5 * (a + b), 2).expect("insert"),
+                    ))
                 }
                 Shape::Surface(Surface::BSpline(f)) => {
                     let ((a, b), _) = f.domain();
-                    Shape::Surface(Surface::BSpline(f.insert_knot_u(0.25 * (a + 3.0 * b), 1).expect("insert")))
+                    Shape::Surface(Surface::BSpline(
+                        f.insert_knot_u(0.25 * (a + 3.0 * b), 1).expect("insert"),
+                    ))
                 }
                 other => other.clone(),
             });
@@ -137,7 +156,10 @@ fn read_modify_write_read() {
 fn close(a: &[f64], b: &[f64]) {
     assert_eq!(a.len(), b.len(), "lengths");
     for (x, y) in a.iter().zip(b) {
-        assert!((x - y).abs() <= 2.0 * f64::EPSILON * x.abs().max(y.abs()), "{x} vs {y}");
+        assert!(
+            (x - y).abs() <= 2.0 * f64::EPSILON * x.abs().max(y.abs()),
+            "{x} vs {y}"
+        );
     }
 }
 

@@ -9,15 +9,20 @@ use lekalo_io::{fmt_number, read_step, Shape, StepWriter};
 use crate::io::{bad_input, emit, format_of, is_json_lines, load, Loaded};
 use crate::Verbosity;
 
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
 /// True for a STEP input (`.step`, `.stp`, `.p21`).
 pub(crate) fn is_step(path: &Path) -> bool {
-    matches!(
-        path.extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref(),
-        Some("step" | "stp" | "p21")
-    )
+    matches!(extension(path).as_deref(), Some("step" | "stp" | "p21"))
+}
+
+/// True for an IGES input (`.igs`, `.iges`).
+pub(crate) fn is_iges(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("igs" | "iges"))
 }
 
 /// Reads exactly one object of any kind (curve, surface, piecewise polynomial).
@@ -41,6 +46,20 @@ pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
     if is_step(path) {
         let r = read_step(&text, &name)?;
         report_step(&name, &r, v);
+        return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
+    }
+    if is_iges(path) {
+        let r = lekalo_io::read_iges(&text, &name)?;
+        if v != Verbosity::Quiet {
+            eprintln!(
+                "{name}: read {} object(s); length unit {}",
+                r.shapes.len(),
+                r.length_unit
+            );
+            for s in &r.skipped {
+                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
+            }
+        }
         return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
     }
     if !is_json_lines(path, false) {
@@ -152,9 +171,25 @@ pub(crate) fn convert_shapes(
             }
             w.finish(timestamp)
         }
+        "iges" | "igs" => {
+            let mut w = lekalo_io::IgesWriter::new();
+            for s in &shapes {
+                match s {
+                    Shape::Curve(o) => w.add_object(o)?,
+                    Shape::Surface(f) => w.add_surface(f)?,
+                    other => {
+                        return bad_input(format!(
+                            "a {} cannot go into an IGES file",
+                            other.type_name()
+                        ))
+                    }
+                }
+            }
+            w.finish(step_name, "20000101.000000")
+        }
         other => {
             return bad_input(format!(
-                "{}: several objects convert to jsonl, json (one object) or step, not \"{other}\"",
+                "{}: several objects convert to jsonl, json (one object), step or iges, not \"{other}\"",
                 input.display()
             ))
         }
@@ -165,8 +200,11 @@ pub(crate) fn convert_shapes(
 
 /// True when `convert` should take the many-shapes path: a STEP input, or JSON Lines holding
 /// something other than curves.
-pub(crate) fn wants_shapes(input: &Path, jsonl: bool) -> bool {
-    if is_step(input) {
+pub(crate) fn wants_shapes(input: &Path, jsonl: bool, out_format: &str) -> bool {
+    if is_step(input) || is_iges(input) {
+        return true;
+    }
+    if matches!(out_format, "iges" | "igs") {
         return true;
     }
     if !is_json_lines(input, jsonl) || input.as_os_str() == "-" {

@@ -36,13 +36,16 @@ Examples:
   lekalo convert surface.json -o grid.csv --samples 400
   lekalo convert part.step -o curves.jsonl
   lekalo convert curves.jsonl -o again.step
+  lekalo convert curves.jsonl -o again.igs
+  lekalo convert again.igs -o from-iges.jsonl
 
 Surfaces also convert to csv: u, v, x, y, z on a √samples × √samples grid.
 CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and NURBS
 curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
 complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),
 json (one object) or step; what was skipped is listed on stderr. JSON Lines holding surfaces
-convert to step and jsonl.")]
+convert to step and jsonl. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
+(rational B-spline surface) are written and read.")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -90,7 +93,11 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             );
         }
     }
-    if crate::cmd::cad::wants_shapes(&a.input, a.jsonl) {
+    if crate::cmd::cad::wants_shapes(
+        &a.input,
+        a.jsonl,
+        &format_of(a.to.as_deref(), a.output.as_deref(), "json"),
+    ) {
         return crate::cmd::cad::convert_shapes(
             &a.input,
             a.output.as_deref(),

@@ -429,12 +429,24 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let h = CubicHermite::new(ts, pts.clone(), tan)?;
         let mut inputs = inputs;
         inputs.push(file.clone());
-        return write_curve(&Object::BSpline(h.to_bspline()), Some(&pts), &a.out, &inputs, v);
+        return write_curve(
+            &Object::BSpline(h.to_bspline()),
+            Some(&pts),
+            &a.out,
+            &inputs,
+            v,
+        );
     }
     if let (Some(t), Some(p)) = (a.hermite, &a.params) {
         let ts = crate::cmd::explicit::parameters(p, "--params")?;
         let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension))?;
-        return write_curve(&Object::BSpline(h.to_bspline()), Some(&pts), &a.out, &inputs, v);
+        return write_curve(
+            &Object::BSpline(h.to_bspline()),
+            Some(&pts),
+            &a.out,
+            &inputs,
+            v,
+        );
     }
     if let Some(t) = a.hermite {
         let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
@@ -481,9 +493,10 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         interp = interp.max_condition(limit);
     }
     let curve = match &a.params {
-        Some(p) => {
-            interp.interpolate_at(pts.as_view(), &crate::cmd::explicit::parameters(p, "--params")?)?
-        }
+        Some(p) => interp.interpolate_at(
+            pts.as_view(),
+            &crate::cmd::explicit::parameters(p, "--params")?,
+        )?,
         None => interp.interpolate(pts.as_view())?,
     };
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)

@@ -87,7 +87,12 @@ enum KnotOp {
         #[command(flatten)]
         c: Common,
         /// The knot to remove.
-        #[arg(long, allow_hyphen_values = true, conflicts_with = "all", required_unless_present = "all")]
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            conflicts_with = "all",
+            required_unless_present = "all"
+        )]
         at: Option<String>,
         /// How many copies to try to remove (default: all copies).
         #[arg(long, short = 'r')]
@@ -299,7 +304,10 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                 }
             };
             if v != Verbosity::Quiet {
-                eprintln!("{}", removal_report(&before, &knots_of(&after), removed, tol));
+                eprintln!(
+                    "{}",
+                    removal_report(&before, &knots_of(&after), removed, tol)
+                );
             }
             write_one(c, &curve_shape(after), v)
         }
@@ -547,7 +555,12 @@ mod tests {
 
     #[test]
     fn removal_report_lists_what_went() {
-        let r = removal_report(&[0.0, 0.0, 0.5, 0.5, 1.0, 1.0], &[0.0, 0.0, 1.0, 1.0], 2, 1e-9);
+        let r = removal_report(
+            &[0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
+            &[0.0, 0.0, 1.0, 1.0],
+            2,
+            1e-9,
+        );
         assert_eq!(r, "removed 2 knot copies (tolerance 1e-9): 0.5×2");
         let r = removal_report(&[0.0, 1.0], &[0.0, 1.0], 0, 0.5);
         assert!(r.starts_with("removed no knot"), "{r}");

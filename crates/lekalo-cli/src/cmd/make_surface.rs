@@ -57,34 +57,59 @@ pub(crate) fn run(m: &SurfaceMake<'_>, v: Verbosity) -> Result<()> {
     let degrees = || -> Result<(usize, usize)> {
         match m.degree {
             Some(p) => Ok((p, m.degree_v.unwrap_or(p))),
-            None => bad_input("--degree is required for B-spline and NURBS surfaces (--degree-v sets v apart)"),
+            None => bad_input(
+                "--degree is required for B-spline and NURBS surfaces (--degree-v sets v apart)",
+            ),
         }
     };
     let surface = match m.kind {
         SurfaceKind::Bezier => {
-            if m.degree.is_some() || m.knots_u.is_some() || m.knots_v.is_some() || m.weights.is_some() {
+            if m.degree.is_some()
+                || m.knots_u.is_some()
+                || m.knots_v.is_some()
+                || m.weights.is_some()
+            {
                 return bad_input("a Bezier surface takes only --control and --net (its degrees are NU − 1 and NV − 1)");
             }
             Surface::Bezier(BezierSurface::new(ctrl, (nu, nv))?)
         }
         SurfaceKind::BSpline => {
             if m.weights.is_some() {
-                return bad_input("--weights make a rational surface: use `lekalo make nurbs-surface`");
+                return bad_input(
+                    "--weights make a rational surface: use `lekalo make nurbs-surface`",
+                );
             }
             let (p, q) = degrees()?;
             let ku = knots(m.knots_u, p, nu, "--knots-u")?;
             let kv = knots(m.knots_v, q, nv, "--knots-v")?;
-            Surface::BSpline(BSplineSurface::new(p, q, ku.into_vec(), kv.into_vec(), ctrl, (nu, nv))?)
+            Surface::BSpline(BSplineSurface::new(
+                p,
+                q,
+                ku.into_vec(),
+                kv.into_vec(),
+                ctrl,
+                (nu, nv),
+            )?)
         }
         SurfaceKind::Nurbs => {
             let (p, q) = degrees()?;
             let Some(w) = m.weights else {
-                return bad_input("a NURBS surface needs --weights, one per control point, row by row");
+                return bad_input(
+                    "a NURBS surface needs --weights, one per control point, row by row",
+                );
             };
             let w = numbers(w, "--weights")?;
             let ku = knots(m.knots_u, p, nu, "--knots-u")?;
             let kv = knots(m.knots_v, q, nv, "--knots-v")?;
-            Surface::Nurbs(NurbsSurface::new(p, q, ku.into_vec(), kv.into_vec(), ctrl, w, (nu, nv))?)
+            Surface::Nurbs(NurbsSurface::new(
+                p,
+                q,
+                ku.into_vec(),
+                kv.into_vec(),
+                ctrl,
+                w,
+                (nu, nv),
+            )?)
         }
     };
     let inputs: Vec<PathBuf> = vec![m.control.to_path_buf()];

@@ -15,7 +15,7 @@ pub(crate) mod interpolate;
 pub(crate) mod pp;
 // knot operations, surfaces in make/eval, CAD files in convert
 pub(crate) mod cad;
+pub(crate) mod explicit;
 pub(crate) mod knot;
 pub(crate) mod make_surface;
 pub(crate) mod surface_eval;
-pub(crate) mod explicit;

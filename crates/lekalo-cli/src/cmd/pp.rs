@@ -252,12 +252,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                     "intervals": intervals,
                     "curve": obj.to_json_value(),
                 });
-                return emit(
-                    out.output.as_deref(),
-                    format!("{j:#}\n").as_bytes(),
-                    &[],
-                    v,
-                );
+                return emit(out.output.as_deref(), format!("{j:#}\n").as_bytes(), &[], v);
             }
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
             let obj = Object::BSpline(q);

@@ -143,7 +143,13 @@ mod tests {
         )
         .unwrap();
         assert_eq!((k.gaussian, k.mean, k.k1, k.k2), (-1.0, 0.0, 1.0, -1.0));
-        let e = surface_curvature(&[1.0, 0.0, 0.0], &[2.0, 0.0, 0.0], &[0.0; 3], &[0.0; 3], &[0.0; 3]);
+        let e = surface_curvature(
+            &[1.0, 0.0, 0.0],
+            &[2.0, 0.0, 0.0],
+            &[0.0; 3],
+            &[0.0; 3],
+            &[0.0; 3],
+        );
         assert!(matches!(e, Err(Error::InvalidArgument { .. })), "{e:?}");
         let e = surface_curvature(&[1.0, 0.0], &[0.0, 1.0], &[0.0; 2], &[0.0; 2], &[0.0; 2]);
         assert!(matches!(e, Err(Error::Dimension { .. })), "{e:?}");
