@@ -454,3 +454,31 @@ fn machine_readable_real_degree_and_quasi_error() {
     assert!((e - 0.204831).abs() < 5e-7, "{e}");
     assert_eq!(j["curve"]["type"], "bspline_curve");
 }
+
+#[test]
+fn blend_jump_prints_exact_coefficients_and_samples() {
+    let out = lekalo()
+        .args(["blend", "jump", "--k", "1", "--samples", "5", "--json"])
+        .assert()
+        .success();
+    let j: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    assert_eq!(j["monomial"], serde_json::json!(["0", "0", "3", "-2"]));
+    assert_eq!(j["bernstein"], serde_json::json!(["0", "0", "1", "1"]));
+    let w = lekalo::JumpPolynomial::new(1).unwrap();
+    for s in j["samples"].as_array().unwrap() {
+        let u = s["u"].as_f64().unwrap();
+        assert_eq!(
+            s["w"].as_f64().unwrap().to_bits(),
+            w.eval(u).unwrap().to_bits()
+        );
+    }
+    lekalo()
+        .args(["blend", "jump", "--k", "2"])
+        .assert()
+        .success()
+        .stdout(contains("monomial   a_0 … a_5: 0 0 0 10 -15 6"));
+    lekalo()
+        .args(["blend", "jump", "--k", "5000"])
+        .assert()
+        .code(2);
+}

@@ -1,4 +1,4 @@
-//! STEP files written by Open CASCADE (scripts/occ_step_files.py, `write`): every B-spline and
+//! STEP files written by Open CASCADE (`scripts/occ_step_files.py write`): every B-spline and
 //! NURBS curve and surface Open CASCADE reads from them is read here too, bit for bit (both
 //! parse the same decimal text, correctly rounded), including the file in metres (scaled to
 //! millimetres as Open CASCADE does). Then read-modify-write-read: a knot inserted into every

@@ -118,6 +118,13 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
+    /// The jump-smoothing polynomial `w_k` (document 001): exact monomial and Bernstein
+    /// coefficients and samples.
+    #[command(after_help = "\
+Examples:
+  lekalo blend jump --k 1             # 3u^2 - 2u^3: monomial 0 0 3 -2, Bernstein 0 0 1 1
+  lekalo blend jump --k 3 --samples 5 --json")]
+    Jump(crate::cmd::jump::JumpArgs),
 }
 
 /// Arguments of `lekalo blend`.
@@ -164,6 +171,7 @@ fn one_number(text: &str, what: &str) -> Result<f64> {
 
 pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
     match &a.op {
+        BlendOp::Jump(j) => crate::cmd::jump::run(j, v),
         BlendOp::Deform {
             first,
             second,

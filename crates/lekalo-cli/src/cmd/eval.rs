@@ -66,7 +66,7 @@ pub(crate) struct EvalArgs {
     /// Surfaces: a file of (u, v) rows, two columns.
     #[arg(long, value_name = "FILE")]
     uv_file: Option<PathBuf>,
-    /// Surfaces: an evenly spaced NUxNV parameter grid over the domain (e.g. 5x7).
+    /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`).
     #[arg(long, value_name = "NUxNV", conflicts_with_all = ["uv", "uv_file"])]
     grid: Option<String>,
     /// Surfaces: output the unit normal nx, ny, nz.

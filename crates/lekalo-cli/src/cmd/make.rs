@@ -59,7 +59,7 @@ pub(crate) struct MakeArgs {
     /// Weights, one per control point (NURBS).
     #[arg(long)]
     weights: Option<String>,
-    /// Surfaces: size of the control net, NUxNV (e.g. 4x5).
+    /// Surfaces: size of the control net, `NUxNV` (e.g. `4x5`).
     #[arg(long, value_name = "NUxNV")]
     net: Option<String>,
     /// Surfaces: degree in v (default: --degree).

@@ -16,6 +16,7 @@ pub(crate) mod pp;
 // knot operations, surfaces in make/eval, CAD files in convert
 pub(crate) mod cad;
 pub(crate) mod explicit;
+pub(crate) mod jump;
 pub(crate) mod knot;
 pub(crate) mod make_surface;
 pub(crate) mod surface_eval;

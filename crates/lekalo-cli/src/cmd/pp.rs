@@ -138,7 +138,7 @@ Examples:
         /// Intervals of the error grid.
         #[arg(long, default_value_t = 60)]
         intervals: usize,
-        /// Write one JSON object {"max_error", "intervals", "curve"} instead of the curve alone
+        /// Write one JSON object `{"max_error", "intervals", "curve"}` instead of the curve alone
         /// (the error at full precision).
         #[arg(long)]
         json: bool,
