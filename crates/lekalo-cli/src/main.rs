@@ -101,6 +101,12 @@ pub(crate) enum Verbosity {
 }
 
 fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    if !args.iter().any(|a| a == "-q" || a == "--quiet") {
+        for w in cmd::deprecated::warnings(&args) {
+            eprintln!("warning: {w}");
+        }
+    }
     let cli = Cli::parse();
     let verbosity = if cli.quiet {
         Verbosity::Quiet

@@ -246,7 +246,8 @@ impl Param {
 /// Knot placement (document 000 eqs. 2, 3, 4, 8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Knots {
-    /// What the end condition needs (averaged, or at the parameters for C² cubics).
+    /// By degree and end condition: averaging (eq. 3; eq. 4 with end derivatives), and knots
+    /// at the parameters for C² cubics with end conditions (eq. 8).
     Auto,
     /// Averaging of the parameters (eq. 3; eq. 4 with end derivatives).
     Averaged,
@@ -261,9 +262,10 @@ pub(crate) enum Knots {
 pub(crate) enum End {
     /// No extra condition (§A.1).
     Free,
-    /// Given first derivatives --d0, --dn (§A.2; §A.3 with --knots at-params).
+    /// Given first derivatives --start-derivative, --end-derivative (§A.2; §A.3 with --knots
+    /// at-params).
     Derivatives,
-    /// Given second derivatives --d0, --dn (§A.4, cubic).
+    /// Given second derivatives --start-derivative, --end-derivative (§A.4, cubic).
     Second,
     /// Zero second derivatives: the natural cubic spline.
     Natural,
@@ -295,9 +297,9 @@ Functions y(x) (--function): the first column is x; natural cubic spline, or Her
 Examples:
   lekalo interpolate pts.csv --degree 3 --param chord -o curve.json
   lekalo interpolate pts.csv --param centripetal --knots averaged -o curve.svg
-  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --degree 2
-  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --knots at-params
-  lekalo interpolate pts.csv --end second --d0 2,-1 --dn 0.5,4
+  lekalo interpolate pts.csv --end derivatives --start-derivative 1,2 --end-derivative -3,-1 --degree 2
+  lekalo interpolate pts.csv --end derivatives --start-derivative 1,2 --end-derivative -3,-1 --knots at-params
+  lekalo interpolate pts.csv --end second --start-derivative 2,-1 --end-derivative 0.5,4
   lekalo interpolate pts.csv --end natural -o natural.step
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
@@ -327,11 +329,12 @@ pub(crate) struct InterpolateArgs {
     /// End condition.
     #[arg(long, value_enum, default_value_t = End::Free)]
     end: End,
-    /// Derivative at the start (first or second, after --end), comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Derivative at the start: the first (`--end derivatives`) or second (`--end second`),
+    /// comma-separated. Formerly `--d0`.
+    #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
     d0: Option<String>,
-    /// Derivative at the end, comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Derivative at the end, as --start-derivative. Formerly `--dn`.
+    #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
     #[arg(long, value_name = "ROWSxCOLS")]
@@ -455,9 +458,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     }
     let pair = |what: &str| -> Result<(Vec<f64>, Vec<f64>)> {
         match (&a.d0, &a.dn) {
-            (Some(s), Some(e)) => Ok((numbers(s, "--d0")?, numbers(e, "--dn")?)),
+            (Some(s), Some(e)) => Ok((
+                numbers(s, "--start-derivative")?,
+                numbers(e, "--end-derivative")?,
+            )),
             _ => bad_input(format!(
-                "--end {what} needs --d0 and --dn (one value per coordinate, e.g. --d0 1,2)"
+                "--end {what} needs --start-derivative and --end-derivative (one value per coordinate, e.g. --start-derivative 1,2)"
             )),
         }
     };
@@ -477,7 +483,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if matches!(a.end, End::Free | End::Natural | End::Periodic)
         && (a.d0.is_some() || a.dn.is_some())
     {
-        return bad_input("--d0/--dn are used only with --end derivatives or --end second");
+        return bad_input("--start-derivative/--end-derivative are used only with --end derivatives or --end second");
     }
     let knots = match a.knots {
         Knots::Auto => KnotPlacement::Auto,

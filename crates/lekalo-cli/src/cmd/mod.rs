@@ -15,6 +15,7 @@ pub(crate) mod interpolate;
 pub(crate) mod pp;
 // knot operations, surfaces in make/eval, CAD files in convert
 pub(crate) mod cad;
+pub(crate) mod deprecated;
 pub(crate) mod explicit;
 pub(crate) mod jump;
 pub(crate) mod knot;
