@@ -496,7 +496,7 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
             for i in 0..3 * (k + 1) {
                 data.push(r(pb + i)? * unit_mm);
             }
-            let ctrl = Points::new(data, 3).map_err(lib)?;
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
             let obj = if poly {
                 Object::BSpline(BSplineCurve::new(m, knots, ctrl).map_err(lib)?)
             } else {
@@ -532,7 +532,7 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                     }
                 }
             }
-            let ctrl = Points::new(data, 3).map_err(lib)?;
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
             let s = if poly {
                 Surface::BSpline(BSplineSurface::new(m1, m2, ku, kv, ctrl, (nu, nv)).map_err(lib)?)
             } else {

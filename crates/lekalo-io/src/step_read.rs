@@ -544,7 +544,7 @@ impl Reader<'_> {
         let mut pts = Points::from_rows(&rows).map_err(|e| e.to_string())?;
         if pts.dim() == 3 && self.scale != 1.0 {
             let s = self.scale;
-            pts = Points::new(pts.as_slice().iter().map(|x| x * s).collect(), 3)
+            pts = Points::from_flat(3, pts.as_slice().iter().map(|x| x * s).collect())
                 .map_err(|e| e.to_string())?;
         }
         Ok(pts)
@@ -626,7 +626,7 @@ impl Reader<'_> {
             }
             flat.extend_from_slice(pts.as_slice());
         }
-        let ctrl = Points::new(flat, dim.max(1)).map_err(|e| e.to_string())?;
+        let ctrl = Points::from_flat(dim.max(1), flat).map_err(|e| e.to_string())?;
         let ku = expand_knots(um, uk)?;
         let kv = expand_knots(vm, vk)?;
         Ok(match weights {
