@@ -170,11 +170,29 @@ fn bad_input_exit_code_2_names_the_problem() {
             .code(2)
             .stderr(contains(msg.to_string()));
     };
-    bad(&["--end", "derivatives"], "needs --d0 and --dn");
-    bad(&["--d0", "1,2"], "--d0/--dn are used only");
     bad(
-        &["--end", "derivatives", "--d0", "1,x", "--dn", "0,0"],
-        "--d0: value 2",
+        &["--end", "derivatives"],
+        "needs --start-derivative and --end-derivative",
+    );
+    bad(
+        &["--start-derivative", "1,2"],
+        "--start-derivative/--end-derivative are used only",
+    );
+    bad(
+        &[
+            "--end",
+            "derivatives",
+            "--start-derivative",
+            "1,x",
+            "--end-derivative",
+            "0,0",
+        ],
+        "--start-derivative: value 2",
+    );
+    // the old spellings still work, with a warning naming the new ones
+    bad(
+        &["--d0", "1,2"],
+        "`--d0` of `lekalo interpolate` is deprecated; write `--start-derivative`",
     );
     bad(&["--degree", "7"], "degree");
     bad(&["--grid", "4by3"], "--grid: \"4by3\" is not a grid size");

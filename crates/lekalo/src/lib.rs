@@ -71,7 +71,10 @@ pub use curve::{
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --
 pub mod surface;
 
-pub use surface::{BSplineSurface, BezierPatch, BezierSurface, NurbsSurface, RationalBezierPatch};
+pub use surface::{
+    surface_curvature, BSplineSurface, BezierPatch, BezierSurface, NurbsSurface,
+    RationalBezierPatch, SurfaceCurvature,
+};
 
 // -- interpolation: curves and surfaces through points, natural and Hermite splines --
 pub mod interpolate;

@@ -68,7 +68,7 @@ enum Rule {
     )]
     CurrySchoenberg {
         /// Order k = degree + 1.
-        #[arg(long, short = 'k')]
+        #[arg(long, short_alias = 'k')]
         order: usize,
         /// Strictly increasing breakpoints ξ1 < ξ2 < … < ξ(l+1), comma-separated.
         #[arg(long, allow_hyphen_values = true)]

@@ -13,3 +13,11 @@ pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;
 pub(crate) mod pp;
+// knot operations, surfaces in make/eval, CAD files in convert
+pub(crate) mod cad;
+pub(crate) mod deprecated;
+pub(crate) mod explicit;
+pub(crate) mod jump;
+pub(crate) mod knot;
+pub(crate) mod make_surface;
+pub(crate) mod surface_eval;
