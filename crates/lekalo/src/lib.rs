@@ -18,6 +18,7 @@
 //! | Bezier degree change | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
 //! | piecewise polynomials | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
 //! ## Conventions
 //! - Scalars are `f64`. Points of any dimension are stored flat and point-major ([`Points`]).
@@ -151,6 +152,14 @@ pub use divdiff::{
 };
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+
+// -- fitting --
+pub mod fit;
+
+pub use fit::{
+    least_squares, place_knots, smoothing_spline, CurveFit, EndConstraints, FitData, FitReport,
+    Lambda,
+};
 
 // -- robustness (issue 9) --
 pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};
