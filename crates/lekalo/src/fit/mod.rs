@@ -50,6 +50,10 @@ mod tolerance;
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
-// robust
+pub use robust::{robust_least_squares, RobustFit, RobustLoss};
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
-// rest
+pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
+pub use surface::{
+    surface_grid_least_squares, surface_scattered_least_squares, ScatteredSurfaceFit,
+};
+pub use tolerance::{fit_tolerance, Deviation, ToleranceFit, ToleranceOptions};
