@@ -149,6 +149,23 @@ pub struct FitReport {
 }
 
 impl FitReport {
+    /// The report of any `curve` against `data` (residuals at the data parameters).
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] if the curve's dimension is not the data's;
+    /// [`Error::ParameterOutOfDomain`] for a data parameter outside the curve's domain.
+    pub fn of(curve: &BSplineCurve, data: &FitData<'_>) -> Result<Self> {
+        if curve.dim() != data.points.dim() {
+            return Err(Error::Dimension {
+                what: "curve for a fit report (the data's dimension)",
+                expected: data.points.dim(),
+                got: curve.dim(),
+            });
+        }
+        check_in_domain(data.params, curve.domain())?;
+        Ok(Self::new(curve, data, None))
+    }
+
     /// The report of `curve` against `data`.
     pub(crate) fn new(curve: &BSplineCurve, data: &FitData<'_>, lambda: Option<f64>) -> Self {
         let dim = data.points.dim();

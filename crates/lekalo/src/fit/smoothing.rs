@@ -79,7 +79,8 @@ pub fn smoothing_spline(data: &FitData<'_>, lambda: Lambda) -> Result<CurveFit> 
 /// (Craven & Wahba 1979): `V(λ) = (RSS_w(λ) / (N·d)) / (1 − tr A(λ)/N)²`, with
 /// `RSS_w = Σ_k w_k |Q_k − f_λ(ū_k)|²` over the `d` coordinates and
 /// `tr A = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse. With unit weights and 1-D data
-/// this is the score SciPy's `make_smoothing_spline` minimises. O(N).
+/// this is the score SciPy's `make_smoothing_spline` minimises. Where `N − tr A < 0.5` (all but
+/// interpolation, where the score is 0/0 in rounding) the score is `+∞`. O(N).
 ///
 /// # Errors
 /// As [`smoothing_spline`]; [`Error::NegativeSmoothing`] for `λ ≤ 0`.
@@ -92,6 +93,10 @@ pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
     }
     Smoother::new(data)?.gcv(lambda)
 }
+
+/// Least residual degrees of freedom `N − tr A(λ)` at which the GCV score is evaluated: closer
+/// to interpolation both its numerator and denominator vanish and rounding decides the value.
+const GCV_MIN_DOF: f64 = 0.5;
 
 /// The banded pieces of the problem, assembled once for all λ.
 struct Smoother {
@@ -259,6 +264,11 @@ impl Smoother {
             }
         }
         let n = self.n as f64;
+        // near interpolation (fewer than half a residual degree of freedom) the score is 0/0 in
+        // rounding: not a candidate
+        if n - tr < GCV_MIN_DOF {
+            return Ok(f64::INFINITY);
+        }
         let denom = 1.0 - tr / n;
         Ok((rss / (n * self.dim as f64)) / (denom * denom))
     }

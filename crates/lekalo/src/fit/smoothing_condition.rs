@@ -77,6 +77,9 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         });
     }
     let (a, b) = (x[0], x[x.len() - 1]);
+    // knot sites: the distinct parameters x_i, (p+1)/2 ≤ i ≤ N − 1 − (p+2)/2 (FITPACK's
+    // interpolation knots for s = 0); any subset keeps the Schoenberg–Whitney conditions
+    let sites = &x[(p + 1) / 2..x.len() - (p + 2) / 2];
     let wmax = data
         .weights()
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
@@ -93,7 +96,7 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         let report = FitReport::new(&curve, data, None);
         let fit = CurveFit { curve, report };
         // interpolation reached: every distinct parameter carries a control point
-        if fp <= s || n_ctrl >= x.len() {
+        if fp <= s || interior.len() >= sites.len() {
             break (kv, qr, fit);
         }
         // FITPACK's rule for the number of knots to add
@@ -109,7 +112,7 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
             nplus = (nplus * 2).min(npl1.max(nplus / 2).max(1));
         }
         fpold = fp;
-        let added = add_knots(data, &fit, &kv, p, &x, &mut interior, nplus);
+        let added = add_knots(data, &fit, &kv, p, sites, &mut interior, nplus);
         if added == 0 {
             break (kv, qr, fit);
         }
@@ -155,8 +158,8 @@ fn clamped(a: f64, b: f64, p: usize, interior: &[f64]) -> KnotVector {
 }
 
 /// Adds up to `count` knots, each in the span with the largest weighted residual sum among the
-/// spans with a data parameter strictly inside, at the middle such parameter. Returns how many
-/// were added.
+/// spans with a knot site `x` strictly inside, at the middle such site. Returns how many were
+/// added.
 fn add_knots(
     data: &FitData<'_>,
     fit: &CurveFit,

@@ -179,7 +179,12 @@ pub fn surface_scattered_least_squares(
         }
     }
     let m = nu * nv;
-    let band = p * nv + q;
+    // the second differences along u couple rows i and i + 2
+    let band = if penalty > 0.0 {
+        (p * nv + q).max(2 * nv)
+    } else {
+        p * nv + q
+    };
     let mut a = SymBand::zeros(m, band);
     let mut rhs = vec![0.0; m * vd];
     let center: Vec<f64> = data.point(0)[2..].to_vec();

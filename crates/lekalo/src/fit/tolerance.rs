@@ -94,7 +94,9 @@ pub struct ToleranceFit {
 /// # Errors
 /// [`Error::NonPositiveTolerance`] for `tol ≤ 0` or NaN; [`Error::Degree`] for degree 0;
 /// [`Error::TooFew`] for fewer than `degree + 1` points; the parametrisation's errors (e.g.
-/// [`Error::CoincidentPoints`] for chord-length parameters of repeated points).
+/// [`Error::CoincidentPoints`] for chord-length parameters of repeated points);
+/// [`Error::IllConditioned`] if even interpolation misses `tol` (a tolerance below the data's
+/// rounding).
 pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<ToleranceFit> {
     let tol = opts.tol;
     if !(tol > 0.0 && tol.is_finite()) {
@@ -120,6 +122,17 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     let (a, b) = (params[0], params[params.len() - 1]);
     let ends = EndConstraints::points();
     let mut interior: Vec<f64> = Vec::new();
+    // knot sites that keep the Schoenberg–Whitney conditions (see smoothing_condition)
+    let mut distinct = params.clone();
+    distinct.dedup();
+    if distinct.len() < p + 1 {
+        return Err(Error::TooFew {
+            what: "distinct data parameters for a tolerance fit (degree + 1)",
+            min: p + 1,
+            got: distinct.len(),
+        });
+    }
+    let sites = &distinct[(p + 1) / 2..distinct.len() - (p + 2) / 2];
     let fit = |interior: &[f64]| -> Result<(BSplineCurve, Vec<f64>)> {
         let kv = clamped(a, b, p, interior);
         let f = least_squares(&data, p, &kv, &ends)?;
@@ -140,11 +153,16 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
         }
         let before = interior.len();
         for (lo, hi) in bad {
-            // the middle data parameter strictly inside the span
-            let i = params.partition_point(|&v| v <= lo);
-            let j = params.partition_point(|&v| v < hi);
+            // the middle knot site strictly inside the span
+            let i = sites.partition_point(|&v| v <= lo);
+            let j = sites.partition_point(|&v| v < hi);
             if i < j {
-                interior.push(params[(i + j - 1) / 2]);
+                interior.push(sites[(i + j - 1) / 2]);
+            } else {
+                // no site inside (an end span): the nearest unused sites on either side
+                let right = sites[j..].iter().find(|c| !interior.contains(c));
+                let left = sites[..i].iter().rev().find(|c| !interior.contains(c));
+                interior.extend(right.into_iter().chain(left).copied());
             }
         }
         if interior.len() == before {
@@ -183,6 +201,15 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
         if d > max_deviation {
             (worst_index, max_deviation) = (i, d);
         }
+    }
+    if !(max_deviation <= tol) {
+        // every site carries a knot (interpolation) and rounding still exceeds tol
+        return Err(Error::IllConditioned {
+            reason: format!(
+                "the closest fit found deviates by {max_deviation} at point {worst_index}, more \
+                 than the tolerance {tol}; raise the tolerance above the data's rounding"
+            ),
+        });
     }
     let worst_param = project(&curve, points.point(worst_index), params[worst_index]).0;
     Ok(ToleranceFit {
