@@ -73,6 +73,9 @@ enum Command {
     Blend(cmd::blend::BlendArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
+    /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
+    /// surfaces through grids and scattered data.
+    Fit(cmd::fit::FitArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -118,6 +121,7 @@ fn main() -> ExitCode {
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
+        Command::Fit(a) => cmd::fit::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -13,3 +13,5 @@ pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;
 pub(crate) mod pp;
+// fitting: least squares, smoothing, tolerance
+pub(crate) mod fit;
