@@ -24,13 +24,14 @@ fn lsq(c: &mut Criterion) {
             .expect("knots");
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::new("lsq_1000_cubic", n), &n, |b, _| {
-            let data = FitData::new(PointsRef::new(&y, 1).expect("points"), &x).expect("data");
+            let data =
+                FitData::new(PointsRef::from_flat(1, &y).expect("points"), &x).expect("data");
             b.iter(|| least_squares(&data, 3, &kv, &EndConstraints::none()).expect("fit"));
         });
     }
     let n = 100_000;
     let (x, y) = w::noisy_function(n, 2);
-    let data = FitData::new(PointsRef::new(&y, 1).expect("points"), &x).expect("data");
+    let data = FitData::new(PointsRef::from_flat(1, &y).expect("points"), &x).expect("data");
     g.throughput(Throughput::Elements(n as u64));
     g.bench_function(BenchmarkId::new("smoothing_gcv", n), |b| {
         b.iter(|| smoothing_spline(&data, Lambda::Gcv).expect("fit"));
@@ -43,7 +44,7 @@ fn lsq(c: &mut Criterion) {
     g.bench_function(BenchmarkId::new("tolerance_1e-3", n), |b| {
         b.iter(|| {
             fit_tolerance(
-                PointsRef::new(&q, 2).expect("points"),
+                PointsRef::from_flat(2, &q).expect("points"),
                 &ToleranceOptions::new(3, 1e-3),
             )
             .expect("fit")
@@ -54,7 +55,7 @@ fn lsq(c: &mut Criterion) {
     g.bench_function(BenchmarkId::new("scattered_surface_30x30", n), |b| {
         b.iter(|| {
             surface_scattered_least_squares(
-                PointsRef::new(&rows, 3).expect("rows"),
+                PointsRef::from_flat(3, &rows).expect("rows"),
                 None,
                 (3, 3),
                 (&ku, &ku),

@@ -48,7 +48,7 @@ fn main() {
     let t = w::uniform_knots(lo, hi, 1000);
     write(dir, "lsq_t", &t);
     let kv = KnotVector::new(t).expect("knots");
-    let data = FitData::new(PointsRef::new(&y, 1).expect("points"), &x).expect("data");
+    let data = FitData::new(PointsRef::from_flat(1, &y).expect("points"), &x).expect("data");
     let (secs, fit) = median_secs(repeats, || {
         least_squares(&data, 3, &kv, &EndConstraints::none()).expect("fit")
     });
@@ -63,7 +63,7 @@ fn main() {
     let (x, y) = w::noisy_function(n, 2);
     write(dir, "smooth_x", &x);
     write(dir, "smooth_y", &y);
-    let data = FitData::new(PointsRef::new(&y, 1).expect("points"), &x).expect("data");
+    let data = FitData::new(PointsRef::from_flat(1, &y).expect("points"), &x).expect("data");
     let (secs, fit) = median_secs(repeats, || {
         smoothing_spline(&data, Lambda::Gcv).expect("fit")
     });
@@ -94,7 +94,7 @@ fn main() {
     write(dir, "tol_q", &q);
     let (secs, fit) = median_secs(repeats.min(3), || {
         fit_tolerance(
-            PointsRef::new(&q, 2).expect("points"),
+            PointsRef::from_flat(2, &q).expect("points"),
             &ToleranceOptions::new(3, 1e-3),
         )
         .expect("fit")
@@ -113,7 +113,7 @@ fn main() {
     let ku = KnotVector::new(t).expect("knots");
     let (secs, fit) = median_secs(repeats, || {
         surface_scattered_least_squares(
-            PointsRef::new(&rows, 3).expect("rows"),
+            PointsRef::from_flat(3, &rows).expect("rows"),
             None,
             (3, 3),
             (&ku, &ku),

@@ -362,7 +362,7 @@ pub enum Error {
     /// use lekalo::fit::FitData;
     /// use lekalo::{Error, PointsRef};
     /// let q = [0.0, 1.0, 2.0];
-    /// let data = FitData::new(PointsRef::new(&q, 1)?, &[0.0, 0.5, 1.0])?;
+    /// let data = FitData::new(PointsRef::from_flat(1, &q)?, &[0.0, 0.5, 1.0])?;
     /// let e = data.with_weights(&[1.0, f64::NAN, 1.0]).unwrap_err();
     /// assert!(matches!(e, Error::InvalidDataWeight { index: 1, .. }));
     /// # Ok::<(), lekalo::Error>(())
@@ -384,7 +384,7 @@ pub enum Error {
     /// use lekalo::fit::{smoothing_spline, FitData, Lambda};
     /// use lekalo::{Error, PointsRef};
     /// let y = [0.0, 1.0, 0.0, 1.0];
-    /// let data = FitData::new(PointsRef::new(&y, 1)?, &[0.0, 1.0, 2.0, 3.0])?;
+    /// let data = FitData::new(PointsRef::from_flat(1, &y)?, &[0.0, 1.0, 2.0, 3.0])?;
     /// let e = smoothing_spline(&data, Lambda::Given(-1.0)).unwrap_err();
     /// assert!(matches!(e, Error::NegativeSmoothing { what: "λ", .. }));
     /// # Ok::<(), lekalo::Error>(())
@@ -403,7 +403,7 @@ pub enum Error {
     /// use lekalo::fit::{fit_tolerance, ToleranceOptions};
     /// use lekalo::{Error, PointsRef};
     /// let q = [0.0, 0.0, 1.0, 1.0, 2.0, 0.0, 3.0, 1.0];
-    /// let e = fit_tolerance(PointsRef::new(&q, 2)?, &ToleranceOptions::new(3, 0.0)).unwrap_err();
+    /// let e = fit_tolerance(PointsRef::from_flat(2, &q)?, &ToleranceOptions::new(3, 0.0)).unwrap_err();
     /// assert!(matches!(e, Error::NonPositiveTolerance { .. }));
     /// # Ok::<(), lekalo::Error>(())
     /// ```

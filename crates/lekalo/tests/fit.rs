@@ -51,7 +51,7 @@ fn lsq_matches_scipy_make_lsq_spline() {
     );
     // SciPy's weights multiply the residual (FITPACK's 1/σ), lekalo's its square
     let w: Vec<f64> = w.iter().map(|v| v * v).collect();
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x)
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
         .unwrap()
         .with_weights(&w)
         .unwrap();
@@ -72,7 +72,7 @@ fn lsq_matches_scipy_make_lsq_spline() {
     let xo: Vec<f64> = x.iter().map(|v| v + 1e8).collect();
     let yo: Vec<f64> = y.iter().map(|v| v + 1e8).collect();
     let to: Vec<f64> = t.iter().map(|v| v + 1e8).collect();
-    let data = FitData::new(PointsRef::new(&yo, 1).unwrap(), &xo)
+    let data = FitData::new(PointsRef::from_flat(1, &yo).unwrap(), &xo)
         .unwrap()
         .with_weights(&w)
         .unwrap();
@@ -100,7 +100,7 @@ fn smoothing_matches_scipy_make_smoothing_spline() {
     let s = &g["smoothing"];
     let (x, y, w) = (vec_of(&s["x"]), vec_of(&s["y"]), vec_of(&s["w"]));
     let lam = s["lam"].as_f64().unwrap();
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x)
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
         .unwrap()
         .with_weights(&w)
         .unwrap();
@@ -113,7 +113,7 @@ fn smoothing_matches_scipy_make_smoothing_spline() {
     );
     // GCV, unit weights: the GCV minimum is flat, so the fits agree to the data's noise scale
     // only loosely; lekalo's λ must score at least as well as any λ near SciPy's fit
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
     let fit = smoothing_spline(&data, Lambda::Gcv).unwrap();
     let lam = fit.report.lambda.unwrap();
     assert_close(
@@ -136,7 +136,7 @@ fn smoothing_condition_against_scipy_splrep() {
     let g = golden();
     let r = &g["splrep"];
     let (x, y, s) = (vec_of(&r["x"]), vec_of(&r["y"]), r["s"].as_f64().unwrap());
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
     let fit = smoothing_condition(&data, 3, s).unwrap();
     assert!(
         fit.report.weighted_rss <= s,
@@ -173,7 +173,7 @@ fn scattered_surface_matches_scipy_lsq_bivariate_spline() {
     let kv = knots(bbox[2], bbox[3], vec_of(&b["ty"]));
     let rows: Vec<f64> = (0..u.len()).flat_map(|k| [u[k], v[k], z[k]]).collect();
     let fit = surface_scattered_least_squares(
-        PointsRef::new(&rows, 3).unwrap(),
+        PointsRef::from_flat(3, &rows).unwrap(),
         None,
         (3, 3),
         (&ku, &kv),
@@ -204,7 +204,7 @@ fn scattered_surface_matches_scipy_lsq_bivariate_spline() {
 fn bad_inputs_are_named_errors() {
     let x: Vec<f64> = (0..10).map(f64::from).collect();
     let y: Vec<f64> = x.iter().map(|v| v.sin()).collect();
-    let pts = PointsRef::new(&y, 1).unwrap();
+    let pts = PointsRef::from_flat(1, &y).unwrap();
     let data = FitData::new(pts, &x).unwrap();
     // empty span
     let kv = KnotVector::new(vec![
@@ -249,7 +249,7 @@ fn bad_inputs_are_named_errors() {
     let q: Vec<f64> = x.iter().flat_map(|&v| [v, v.sin()]).collect();
     for tol in [0.0, -1.0, f64::NAN] {
         let e = fit_tolerance(
-            PointsRef::new(&q, 2).unwrap(),
+            PointsRef::from_flat(2, &q).unwrap(),
             &ToleranceOptions::new(3, tol),
         )
         .unwrap_err();
@@ -284,7 +284,7 @@ fn bad_inputs_are_named_errors() {
         .collect();
     let ku = KnotVector::clamped_uniform(1, 4).unwrap();
     let e = surface_scattered_least_squares(
-        PointsRef::new(&rows, 3).unwrap(),
+        PointsRef::from_flat(3, &rows).unwrap(),
         None,
         (1, 1),
         (&ku, &ku),
@@ -295,7 +295,7 @@ fn bad_inputs_are_named_errors() {
     // …which a positive penalty fills
     assert!(
         surface_scattered_least_squares(
-            PointsRef::new(&rows, 3).unwrap(),
+            PointsRef::from_flat(3, &rows).unwrap(),
             None,
             (1, 1),
             (&ku, &ku),
@@ -314,7 +314,7 @@ fn lambda_limits_are_interpolation_and_the_least_squares_line() {
         .enumerate()
         .map(|(k, t)| (4.0 * t).sin() + 0.1 * f64::from(i32::try_from(k % 3).unwrap() - 1))
         .collect();
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
     let tiny = smoothing_spline(&data, Lambda::Given(1e-12)).unwrap();
     assert!(
         tiny.report.max_residual < 1e-6,
@@ -345,7 +345,7 @@ fn robust_fit_rejects_outliers_and_returns_weights() {
     for k in [10, 40, 77] {
         y[k] += 5.0;
     }
-    let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
     let kv = KnotVector::clamped_uniform(3, 8).unwrap();
     let r = robust_least_squares(&data, 3, &kv, RobustLoss::Tukey(4.685), 50).unwrap();
     for k in [10, 40, 77] {
@@ -388,12 +388,12 @@ proptest! {
     ) {
         let kv = KnotVector::new(k).unwrap();
         let n = kv.len() - p - 1;
-        let ctrl = Points::new(coef[..2 * n].to_vec(), 2).unwrap();
+        let ctrl = Points::from_flat(2, coef[..2 * n].to_vec()).unwrap();
         let truth = BSplineCurve::from_knot_vector(p, kv.clone(), ctrl).unwrap();
         let count = 4 * n + m;
         let u: Vec<f64> = (0..count).map(|i| i as f64 / (count - 1) as f64).collect();
         let q = eval_all(&truth, &u);
-        let data = FitData::new(PointsRef::new(&q, 2).unwrap(), &u).unwrap();
+        let data = FitData::new(PointsRef::from_flat(2, &q).unwrap(), &u).unwrap();
         prop_assume!(check_schoenberg_whitney(&u, p, &kv).is_ok());
         let fit = least_squares(&data, p, &kv, &EndConstraints::none()).unwrap();
         let scale = coef.iter().fold(1.0f64, |a, b| a.max(b.abs()));
@@ -402,11 +402,11 @@ proptest! {
         let (c, s) = (0.7f64.cos(), 0.7f64.sin());
         let mapped: Vec<f64> = q.chunks_exact(2).flat_map(|v| [3.0 * (c * v[0] - s * v[1]) + 100.0, 3.0 * (s * v[0] + c * v[1]) - 50.0]).collect();
         let noisy: Vec<f64> = mapped.iter().enumerate().map(|(i, v)| v + 0.01 * ((i * 7 % 5) as f64 - 2.0)).collect();
-        let d2 = FitData::new(PointsRef::new(&noisy, 2).unwrap(), &u).unwrap();
+        let d2 = FitData::new(PointsRef::from_flat(2, &noisy).unwrap(), &u).unwrap();
         let f2 = least_squares(&d2, p, &kv, &EndConstraints::none()).unwrap();
         // the inverse map of the fit of mapped data is the fit of the inverse-mapped data
         let back: Vec<f64> = noisy.chunks_exact(2).flat_map(|v| { let (x, y) = ((v[0] - 100.0) / 3.0, (v[1] + 50.0) / 3.0); [c * x + s * y, -s * x + c * y] }).collect();
-        let d3 = FitData::new(PointsRef::new(&back, 2).unwrap(), &u).unwrap();
+        let d3 = FitData::new(PointsRef::from_flat(2, &back).unwrap(), &u).unwrap();
         let f3 = least_squares(&d3, p, &kv, &EndConstraints::none()).unwrap();
         let mapped_ctrl: Vec<f64> = f3.curve.control_points().as_slice().chunks_exact(2).flat_map(|v| [3.0 * (c * v[0] - s * v[1]) + 100.0, 3.0 * (s * v[0] + c * v[1]) - 50.0]).collect();
         assert_close(f2.curve.control_points().as_slice(), &mapped_ctrl, 1e-8 * (scale * 3.0 + 100.0), "affine invariance");
@@ -423,7 +423,7 @@ proptest! {
     ) {
         let x: Vec<f64> = (0..count).map(|i| i as f64 / (count - 1) as f64).collect();
         let y: Vec<f64> = x.iter().enumerate().map(|(i, t)| (freq * t).sin() + amp * (((i * 7919) % 11) as f64 / 10.0 - 0.5)).collect();
-        let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
         let s = s_frac * count as f64 * amp * amp / 12.0;
         let fit = smoothing_condition(&data, 3, s).unwrap();
         prop_assert!(fit.report.weighted_rss <= s, "rss {} > s {}", fit.report.weighted_rss, s);
@@ -432,7 +432,7 @@ proptest! {
         for how in [Deviation::Distance, Deviation::Parameter] {
             let mut opts = ToleranceOptions::new(3, tol);
             opts.deviation = how;
-            let t = fit_tolerance(PointsRef::new(&q, 2).unwrap(), &opts).unwrap();
+            let t = fit_tolerance(PointsRef::from_flat(2, &q).unwrap(), &opts).unwrap();
             prop_assert!(t.max_deviation <= tol, "deviation {} > tol {}", t.max_deviation, tol);
             prop_assert!(t.deviations.iter().all(|&d| d <= tol), "every deviation within tol");
         }

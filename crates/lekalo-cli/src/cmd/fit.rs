@@ -154,9 +154,9 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
             ));
         }
         let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
-        let y = Points::new(
-            pts.iter().flat_map(|p| p[1..].to_vec()).collect(),
+        let y = Points::from_flat(
             pts.dim() - 1,
+            pts.iter().flat_map(|p| p[1..].to_vec()).collect(),
         )?;
         (y, x)
     } else {

@@ -1,8 +1,8 @@
 //! The data of a fit and the report of its residuals (`docs/theory/fitting.md#residuals`).
 
-use crate::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
+use crate::BSplineCurve;
 
 /// Points `Q_k` with parameters `ū_k` and optional weights `w_k`, validated once.
 ///
@@ -10,7 +10,7 @@ use crate::points::PointsRef;
 /// use lekalo::fit::FitData;
 /// use lekalo::PointsRef;
 /// let q = [0.0, 1.0, 0.5, 2.0];
-/// let data = FitData::new(PointsRef::new(&q, 1)?, &[0.0, 1.0, 2.0, 3.0])?.with_weights(&[1.0; 4])?;
+/// let data = FitData::new(PointsRef::from_flat(1, &q)?, &[0.0, 1.0, 2.0, 3.0])?.with_weights(&[1.0; 4])?;
 /// assert_eq!(data.len(), 4);
 /// # Ok::<(), lekalo::Error>(())
 /// ```

@@ -4,10 +4,10 @@
 use super::banded::GivensQr;
 use super::data::{check_in_domain, CurveFit, FitData, FitReport};
 use crate::basis::{basis_funs_into, BasisScratch};
-use crate::bspline::BSplineCurve;
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
+use crate::BSplineCurve;
 
 /// End conditions imposed exactly on a least-squares fit (Piegl & Tiller §9.4.1, A9.6/A9.7):
 /// the curve starts at the first data point and/or ends at the last, optionally with given
@@ -82,7 +82,7 @@ impl EndConstraints {
 /// // samples of a cubic polynomial are reproduced exactly by any cubic spline space
 /// let x: Vec<f64> = (0..20).map(|k| k as f64 / 19.0).collect();
 /// let y: Vec<f64> = x.iter().map(|t| 1.0 - 2.0 * t + t * t * t).collect();
-/// let data = FitData::new(PointsRef::new(&y, 1)?, &x)?;
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
 /// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0])?;
 /// let fit = least_squares(&data, 3, &kv, &EndConstraints::none())?;
 /// assert!(fit.report.max_residual < 1e-14);
@@ -372,7 +372,7 @@ mod tests {
             .iter()
             .flat_map(|&t| [(3.0 * t).sin() + 0.01 * (40.0 * t).cos(), t * t])
             .collect();
-        let data = FitData::new(PointsRef::new(&q, 2).unwrap(), &u).unwrap();
+        let data = FitData::new(PointsRef::from_flat(2, &q).unwrap(), &u).unwrap();
         let kv = KnotVector::clamped_uniform(3, 8).unwrap();
         let ends = EndConstraints::points()
             .with_start_derivative(vec![3.0, 0.0])
@@ -407,13 +407,13 @@ mod tests {
     fn unsorted_parameters_give_the_same_fit() {
         let u: Vec<f64> = (0..40).map(|k| ((k * 17) % 40) as f64 / 39.0).collect();
         let q: Vec<f64> = u.iter().map(|&t| (5.0 * t).sin()).collect();
-        let data = FitData::new(PointsRef::new(&q, 1).unwrap(), &u).unwrap();
+        let data = FitData::new(PointsRef::from_flat(1, &q).unwrap(), &u).unwrap();
         let kv = KnotVector::clamped_uniform(3, 9).unwrap();
         let a = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
         let mut pairs: Vec<(f64, f64)> = u.iter().copied().zip(q.iter().copied()).collect();
         pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (us, qs): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
-        let data = FitData::new(PointsRef::new(&qs, 1).unwrap(), &us).unwrap();
+        let data = FitData::new(PointsRef::from_flat(1, &qs).unwrap(), &us).unwrap();
         let b = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
         let (ea, eb) = (sample(&a.curve, &us), sample(&b.curve, &us));
         for (x, y) in ea.iter().zip(&eb) {
@@ -425,7 +425,7 @@ mod tests {
     fn constraint_errors_are_named() {
         let u = [0.0, 0.25, 0.5, 0.75, 1.0];
         let q = [0.0, 1.0, 0.0, 1.0, 0.0];
-        let data = FitData::new(PointsRef::new(&q, 1).unwrap(), &u).unwrap();
+        let data = FitData::new(PointsRef::from_flat(1, &q).unwrap(), &u).unwrap();
         let kv = KnotVector::clamped_uniform(2, 4).unwrap();
         let bad_dim = EndConstraints::points().with_start_derivative(vec![1.0, 2.0]);
         assert!(

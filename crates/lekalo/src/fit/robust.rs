@@ -63,7 +63,7 @@ pub struct RobustFit {
 /// let x: Vec<f64> = (0..60).map(|k| k as f64 / 59.0).collect();
 /// let mut y: Vec<f64> = x.iter().map(|t| 2.0 * t).collect();
 /// y[30] = 50.0; // an outlier
-/// let data = FitData::new(PointsRef::new(&y, 1)?, &x)?;
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
 /// let r = robust_least_squares(&data, 3, &KnotVector::clamped_uniform(3, 6)?, RobustLoss::Tukey(4.685), 50)?;
 /// assert_eq!(r.weights[30], 0.0);
 /// assert!((r.fit.curve.eval(0.5)?[0] - 1.0).abs() < 1e-6);

@@ -4,10 +4,10 @@
 use super::banded::SymBand;
 use super::data::{CurveFit, FitData, FitReport};
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
-use crate::bspline::BSplineCurve;
 use crate::error::{Error, Result};
-use crate::interpolate::natural_cubic_spline;
+use crate::natural_cubic_spline;
 use crate::points::Points;
+use crate::BSplineCurve;
 
 /// How the smoothing weight λ is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,7 +38,7 @@ pub enum Lambda {
 /// use lekalo::PointsRef;
 /// let x: Vec<f64> = (0..50).map(|k| k as f64 / 49.0).collect();
 /// let y: Vec<f64> = x.iter().enumerate().map(|(k, t)| t * t + 0.01 * ((k * 7 % 5) as f64 - 2.0)).collect();
-/// let data = FitData::new(PointsRef::new(&y, 1)?, &x)?;
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
 /// let fit = smoothing_spline(&data, Lambda::Gcv)?;
 /// assert!(fit.report.lambda.unwrap() > 0.0 && fit.report.rms < 0.02);
 /// # Ok::<(), lekalo::Error>(())
@@ -402,7 +402,7 @@ mod tests {
         // for f = Σ c_i B_i, cᵀΩc = ∫ f''², checked by Gauss–Legendre per span
         let x = [0.0, 0.3, 0.5, 1.2, 1.5, 2.0];
         let y = [0.0; 6];
-        let data = FitData::new(PointsRef::new(&y, 1).unwrap(), &x).unwrap();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
         let s = Smoother::new(&data).unwrap();
         let c: Vec<f64> = (0..8).map(|i| ((i * 5 % 7) as f64).sin()).collect();
         let mut quad = 0.0;

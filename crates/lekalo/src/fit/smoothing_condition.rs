@@ -6,9 +6,9 @@ use super::banded::GivensQr;
 use super::data::{CurveFit, FitData, FitReport};
 use super::lsq::{accumulate, solve_control, Fixed};
 use crate::basis::{basis_ders_into, BasisScratch};
-use crate::bspline::BSplineCurve;
 use crate::error::{check_degree_bound, Error, Result};
 use crate::knots::KnotVector;
+use crate::BSplineCurve;
 
 /// Relative accuracy of the final residual: the result has
 /// `(1 − SMOOTHING_RTOL)·s ≤ Σ w_k |C(ū_k) − Q_k|² ≤ s` when it is smoothed (FITPACK's 0.001).
@@ -41,7 +41,7 @@ pub const SMOOTHING_RTOL: f64 = 1e-3;
 /// use lekalo::PointsRef;
 /// let x: Vec<f64> = (0..200).map(|k| k as f64 / 199.0).collect();
 /// let y: Vec<f64> = x.iter().enumerate().map(|(k, t)| (6.0 * t).sin() + 0.01 * ((k * 7919 % 13) as f64 - 6.0)).collect();
-/// let data = FitData::new(PointsRef::new(&y, 1)?, &x)?;
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
 /// let fit = smoothing_condition(&data, 3, 0.05)?;
 /// assert!(fit.report.weighted_rss <= 0.05);
 /// assert!(fit.report.n_ctrl < 30);

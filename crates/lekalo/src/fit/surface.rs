@@ -25,7 +25,7 @@ use crate::surface::BSplineSurface;
 /// use lekalo::{Parametrization, PointsRef};
 /// let grid: Vec<f64> = (0..20).flat_map(|i| (0..15).flat_map(move |j| {
 ///     let (x, y) = (i as f64, j as f64); [x, y, (x * 0.3).sin() * (y * 0.2).cos()] })).collect();
-/// let s = surface_grid_least_squares(PointsRef::new(&grid, 3)?, (20, 15), (3, 3), (8, 6), Parametrization::ChordLength)?;
+/// let s = surface_grid_least_squares(PointsRef::from_flat(3, &grid)?, (20, 15), (3, 3), (8, 6), Parametrization::ChordLength)?;
 /// assert_eq!(s.net_size(), (8, 6));
 /// # Ok::<(), lekalo::Error>(())
 /// ```
@@ -54,7 +54,7 @@ pub fn surface_grid_least_squares(
         let mut acc = vec![0.0; len];
         let count = lines.len() as f64;
         for line in lines {
-            let pts = PointsRef::new(&line, dim)?;
+            let pts = PointsRef::from_flat(dim, &line)?;
             for (a, u) in acc.iter_mut().zip(parametrize(pts, parametrization)?) {
                 *a += u / count;
             }
@@ -80,7 +80,7 @@ pub fn surface_grid_least_squares(
     // u direction: each grid column (fixed j) → ncu points
     let mut mid = vec![0.0; ncu * nv * dim];
     for (j, line) in rows_u.iter().enumerate() {
-        let d = FitData::new(PointsRef::new(line, dim)?, &uu)?;
+        let d = FitData::new(PointsRef::from_flat(dim, line)?, &uu)?;
         let f = least_squares(&d, p, &ku, &EndConstraints::none())?;
         for (i, c) in f.curve.control_points().iter().enumerate() {
             mid[(i * nv + j) * dim..(i * nv + j + 1) * dim].copy_from_slice(c);
@@ -89,12 +89,12 @@ pub fn surface_grid_least_squares(
     let mut net = vec![0.0; ncu * ncv * dim];
     for i in 0..ncu {
         let line = &mid[i * nv * dim..(i + 1) * nv * dim];
-        let d = FitData::new(PointsRef::new(line, dim)?, &vv)?;
+        let d = FitData::new(PointsRef::from_flat(dim, line)?, &vv)?;
         let f = least_squares(&d, q, &kv, &EndConstraints::none())?;
         net[i * ncv * dim..(i + 1) * ncv * dim]
             .copy_from_slice(f.curve.control_points().as_slice());
     }
-    BSplineSurface::from_knot_vectors(p, q, ku, kv, Points::new(net, dim)?, (ncu, ncv))
+    BSplineSurface::from_knot_vectors(p, q, ku, kv, Points::from_flat(dim, net)?, (ncu, ncv))
 }
 
 /// The result of [`surface_scattered_least_squares`].
@@ -158,7 +158,7 @@ pub fn surface_scattered_least_squares(
     if let Some(w) = weights {
         // the same checks as curve data
         let dummy: Vec<f64> = vec![0.0; n];
-        FitData::new(PointsRef::new(&dummy, 1)?, &dummy)?.with_weights(w)?;
+        FitData::new(PointsRef::from_flat(1, &dummy)?, &dummy)?.with_weights(w)?;
     }
     let (du, dv) = (ku.domain(p), kv.domain(q));
     for row in data.iter() {
@@ -267,7 +267,7 @@ pub fn surface_scattered_least_squares(
         q,
         ku.clone(),
         kv.clone(),
-        Points::new(rhs, vd)?,
+        Points::from_flat(vd, rhs)?,
         (nu, nv),
     )?;
     let mut residuals = Vec::with_capacity(n);

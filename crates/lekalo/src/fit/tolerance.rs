@@ -3,11 +3,11 @@
 
 use super::data::FitData;
 use super::lsq::{least_squares, EndConstraints};
-use crate::bspline::BSplineCurve;
 use crate::error::{Error, Result};
 use crate::interpolate::{parametrize, Parametrization};
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
+use crate::BSplineCurve;
 
 /// How the deviation of a data point from the curve is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -85,7 +85,7 @@ pub struct ToleranceFit {
 /// use lekalo::fit::{fit_tolerance, ToleranceOptions};
 /// use lekalo::PointsRef;
 /// let q: Vec<f64> = (0..200).flat_map(|k| { let t = k as f64 / 199.0 * 3.0; [t, t.sin()] }).collect();
-/// let fit = fit_tolerance(PointsRef::new(&q, 2)?, &ToleranceOptions::new(3, 1e-4))?;
+/// let fit = fit_tolerance(PointsRef::from_flat(2, &q)?, &ToleranceOptions::new(3, 1e-4))?;
 /// assert!(fit.max_deviation <= 1e-4);
 /// assert!(fit.curve.control_points().len() < 20);
 /// # Ok::<(), lekalo::Error>(())
@@ -142,6 +142,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             &params,
             &f.report.residuals,
             opts.deviation,
+            tol,
         );
         Ok((f.curve, dev))
     };
@@ -177,7 +178,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     if worst < tol && !interior.is_empty() {
         let (removed_curve, removed) = curve.remove_all_removable_knots(tol - worst)?;
         if removed > 0 {
-            let d = deviations_full(&removed_curve, points, &params, opts.deviation);
+            let d = deviations_full(&removed_curve, points, &params, opts.deviation, tol);
             if d.iter().all(|&v| v <= tol) {
                 curve = removed_curve;
                 dev = d;
@@ -195,6 +196,10 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             }
             _ => k += 1,
         }
+    }
+    // the exact distances of the final curve (the rounds kept upper bounds below tol)
+    if opts.deviation == Deviation::Distance {
+        dev = deviations_full(&curve, points, &params, opts.deviation, -1.0);
     }
     let (mut worst_index, mut max_deviation) = (0, 0.0);
     for (i, &d) in dev.iter().enumerate() {
@@ -262,12 +267,16 @@ fn bad_spans(
         .collect()
 }
 
+/// Deviations of every point. The distance is at most the deviation at the parameter, so only
+/// points beyond `skip_below` there are projected (the others keep that upper bound);
+/// `skip_below = 0` projects every point.
 fn deviations(
     curve: &BSplineCurve,
     points: PointsRef<'_>,
     params: &[f64],
     at_param: &[f64],
     how: Deviation,
+    skip_below: f64,
 ) -> Vec<f64> {
     match how {
         Deviation::Parameter => at_param.to_vec(),
@@ -275,7 +284,13 @@ fn deviations(
             .iter()
             .zip(params)
             .zip(at_param)
-            .map(|((q, &u), &d)| project(curve, q, u).1.min(d))
+            .map(|((q, &u), &d)| {
+                if d <= skip_below {
+                    d
+                } else {
+                    project(curve, q, u).1.min(d)
+                }
+            })
             .collect(),
     }
 }
@@ -285,6 +300,7 @@ fn deviations_full(
     points: PointsRef<'_>,
     params: &[f64],
     how: Deviation,
+    skip_below: f64,
 ) -> Vec<f64> {
     let dim = points.dim();
     let mut out = vec![0.0; params.len() * dim];
@@ -302,7 +318,7 @@ fn deviations_full(
                 .sqrt()
         })
         .collect();
-    deviations(curve, points, params, &at, how)
+    deviations(curve, points, params, &at, how, skip_below)
 }
 
 /// Closest point on `curve` to `q` by Newton's method from `u0` (at most 8 steps, kept in the
