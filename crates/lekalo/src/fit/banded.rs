@@ -85,7 +85,8 @@ impl GivensQr {
             }
             let rj = &mut self.r[j * bw..(j + 1) * bw];
             let d = (piv * piv + rj[0] * rj[0]).sqrt();
-            let (c, s) = (rj[0] / d, piv / d);
+            let inv = 1.0 / d;
+            let (c, s) = (rj[0] * inv, piv * inv);
             rj[0] = d;
             for k in i + 1..len {
                 let (a, b) = (h[k], rj[k - i]);
