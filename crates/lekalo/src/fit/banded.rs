@@ -108,7 +108,9 @@ impl GivensQr {
     pub(crate) fn solve(&self, x: &mut [f64]) -> Result<(), usize> {
         let (n, bw, nc) = (self.n, self.bw, self.ncols);
         let dmax = (0..n).fold(0.0_f64, |m, i| m.max(self.r[i * bw].abs()));
-        if let Some(i) = (0..n).find(|&i| !(self.r[i * bw].abs() > RANK_RTOL * dmax)) {
+        if let Some(i) =
+            (0..n).find(|&i| self.r[i * bw].abs() <= RANK_RTOL * dmax || self.r[i * bw].is_nan())
+        {
             return Err(i);
         }
         for i in (0..n).rev() {
@@ -185,7 +187,7 @@ impl SymBand {
                 let u = self.a[k * w + i - k];
                 d -= u * u * self.a[k * w];
             }
-            if !(d > RANK_RTOL * dmax) {
+            if d <= RANK_RTOL * dmax || d.is_nan() {
                 return Err(i);
             }
             self.a[i * w] = d;

@@ -103,7 +103,7 @@ pub fn robust_least_squares(
         let mut abs: Vec<f64> = fit.report.residuals.clone();
         abs.sort_by(f64::total_cmp);
         scale = 1.4826 * abs[n / 2];
-        if !(scale > 0.0) {
+        if scale <= 0.0 || scale.is_nan() {
             break;
         }
         let new: Vec<f64> = fit

@@ -77,9 +77,9 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         });
     }
     let (a, b) = (x[0], x[x.len() - 1]);
-    // knot sites: the distinct parameters x_i, (p+1)/2 ≤ i ≤ N − 1 − (p+2)/2 (FITPACK's
+    // knot sites: the distinct parameters x_i, ⌈p/2⌉ ≤ i ≤ N − 1 − (p+2)/2 (FITPACK's
     // interpolation knots for s = 0); any subset keeps the Schoenberg–Whitney conditions
-    let sites = &x[(p + 1) / 2..x.len() - (p + 2) / 2];
+    let sites = &x[p.div_ceil(2)..x.len() - (p + 2) / 2];
     let wmax = data
         .weights()
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));

@@ -115,7 +115,7 @@ pub struct ScatteredSurfaceFit {
 ///
 /// The normal matrix, in the order `i·n_v + j`, is symmetric and banded with half-bandwidth
 /// `p·n_v + q`; it is assembled point by point and factored by the banded `UᵀDU` of the curve
-/// smoothing (O(n_u n_v (p n_v + q)²), no dense matrix; fill inside the band is unavoidable for
+/// smoothing (O(`n_u n_v (p n_v + q)²`), no dense matrix; fill inside the band is unavoidable for
 /// a direct solver in this ordering). The values are shifted by the first point's before the
 /// solve. A knot cell without data leaves the matrix singular: with `penalty = 0` this is
 /// [`Error::SchoenbergWhitney`] whose `basis` is the net index `i·n_v + j` of the first control
@@ -150,8 +150,8 @@ pub fn surface_scattered_least_squares(
         });
     }
     let vd = dim - 2;
-    let nu = ku.len().checked_sub(p + 1).unwrap_or(0);
-    let nv = kv.len().checked_sub(q + 1).unwrap_or(0);
+    let nu = ku.len().saturating_sub(p + 1);
+    let nv = kv.len().saturating_sub(q + 1);
     ku.validate_for(p, nu)?;
     kv.validate_for(q, nv)?;
     let n = data.len();

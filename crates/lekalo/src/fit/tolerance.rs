@@ -132,7 +132,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             got: distinct.len(),
         });
     }
-    let sites = &distinct[(p + 1) / 2..distinct.len() - (p + 2) / 2];
+    let sites = &distinct[p.div_ceil(2)..distinct.len() - (p + 2) / 2];
     let fit = |interior: &[f64]| -> Result<(BSplineCurve, Vec<f64>)> {
         let kv = clamped(a, b, p, interior);
         let f = least_squares(&data, p, &kv, &ends)?;
@@ -207,7 +207,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             (worst_index, max_deviation) = (i, d);
         }
     }
-    if !(max_deviation <= tol) {
+    if max_deviation > tol || max_deviation.is_nan() {
         // every site carries a knot (interpolation) and rounding still exceeds tol
         return Err(Error::IllConditioned {
             reason: format!(
@@ -348,7 +348,7 @@ fn project(curve: &BSplineCurve, q: &[f64], u0: f64) -> (f64, f64) {
             f += r * c1[k];
             df += c1[k] * c1[k] + r * c2[k];
         }
-        if !(df > 0.0) {
+        if df <= 0.0 || df.is_nan() {
             break;
         }
         let next = (u - f / df).clamp(a, b);
