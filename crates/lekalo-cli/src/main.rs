@@ -76,6 +76,9 @@ enum Command {
     /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
     /// reparam, decompose into Bezier pieces, join.
     Knot(cmd::knot::KnotArgs),
+    /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
+    /// surfaces through grids and scattered data.
+    Fit(cmd::fit::FitArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -128,6 +131,7 @@ fn main() -> ExitCode {
         Command::Blend(a) => cmd::blend::run(&a, verbosity),
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
         Command::Knot(a) => cmd::knot::run(&a, verbosity),
+        Command::Fit(a) => cmd::fit::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -18,6 +18,7 @@
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
 //! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
 //! ## Conventions
 //! - Scalars are `f64`. Points of any dimension are stored flat and point-major ([`Points`],
@@ -121,6 +122,14 @@ pub use pp::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
     sample_quasi_interpolant, truncated_power, NewtonForm, PiecewisePolynomial, PpSpace,
     QuasiSamples, TauRule, DEFAULT_CONTINUITY_RTOL,
+};
+
+// -- fitting: least squares, smoothing, fitting to a tolerance --
+pub mod fit;
+
+pub use fit::{
+    fit_tolerance, least_squares, place_knots, smoothing_condition, smoothing_spline, CurveFit,
+    EndConstraints, FitData, FitReport, Lambda, ToleranceOptions,
 };
 
 // -- numerical building blocks (crate-private) and the test oracle --

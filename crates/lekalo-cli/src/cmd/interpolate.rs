@@ -233,7 +233,7 @@ pub(crate) enum Param {
 }
 
 impl Param {
-    fn to_lib(self, exponent: Option<f64>) -> Parametrization {
+    pub(crate) fn to_lib(self, exponent: Option<f64>) -> Parametrization {
         match (exponent, self) {
             (Some(e), _) => Parametrization::Exponent(e),
             (None, Param::Uniform) => Parametrization::Uniform,

@@ -21,3 +21,5 @@ pub(crate) mod jump;
 pub(crate) mod knot;
 pub(crate) mod make_surface;
 pub(crate) mod surface_eval;
+// fitting: least squares, smoothing, tolerance
+pub(crate) mod fit;

@@ -18,6 +18,8 @@ mod doc001;
 mod doc003;
 #[path = "doc004.rs"]
 mod doc004;
+#[path = "fitting.rs"]
+mod fitting;
 
 /// A gallery entry: identity and the function that builds it.
 pub(crate) struct Entry {
@@ -122,6 +124,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         title: "Order change of a Bezier surface",
         source: "document 004 eq. (14), Fig. 5",
         build: doc004::surface,
+    },
+    Entry {
+        id: "fitting",
+        title: "Fitting noisy points: least squares, smoothing, tolerance",
+        source: "docs/theory/fitting.md; P&T §9.4.1",
+        build: fitting::fitting,
     },
 ];
 
