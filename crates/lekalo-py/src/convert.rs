@@ -152,7 +152,7 @@ pub(crate) fn vec1(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
 pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
     let mut n: usize = 1;
     for &c in counts {
-        n = n.checked_mul(c).unwrap_or(usize::MAX);
+        n = n.saturating_mul(c);
     }
     if n > MAX_SCALARS {
         return Err(lib_err(lekalo::Error::TooLarge {

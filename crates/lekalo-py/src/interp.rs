@@ -94,7 +94,7 @@ pub(crate) fn end_arg(
 /// 000 and docs/theory/interpolation.md.
 ///
 /// - `parametrization`: 'uniform', 'chord' (default), 'centripetal' or an exponent;
-/// - `knots`: 'auto' (default), 'averaged', 'uniform', 'at_parameters';
+/// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at_parameters'`;
 /// - `end`: 'free' (default), 'natural', 'periodic', 'first' / 'second' with `d_start`,
 ///   `d_end`;
 /// - `params`: explicit parameters (strictly increasing; one more than the points for
@@ -272,7 +272,7 @@ impl PyCubicHermite {
     }
 
     /// A parametric Hermite curve through `points` with parameters on `[0, 1]` and tangents
-    /// estimated by `tangents` ('finite_difference', 'catmull_rom', 'cardinal' with `tension`,
+    /// estimated by `tangents` (`'finite_difference'`, `'catmull_rom'`, `'cardinal'` with `tension`,
     /// 'monotone').
     #[staticmethod]
     #[pyo3(signature = (points, parametrization = None, tangents = "catmull_rom", tension = 0.0))]
