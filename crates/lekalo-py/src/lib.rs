@@ -1,6 +1,6 @@
 //! # lekalo-py — the Python package `lekalo`
 //!
-//! The native module `lekalo._lekalo`, built by maturin into one `abi3` wheel for CPython ≥ 3.9;
+//! The native module `lekalo._lekalo`, built by maturin into one `abi3` wheel for `CPython` ≥ 3.9;
 //! the pure-Python package around it (`python/lekalo/`) adds SciPy and geomdl interop and the
 //! type stubs. This crate holds conversions and argument handling only: every computation is a
 //! call of the `lekalo` library, made with the GIL released.
