@@ -11,6 +11,7 @@ use lekalo::{
     SplineParameters,
 };
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, floats};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
@@ -157,6 +158,10 @@ impl PyJumpPolynomial {
     fn integral_to_half(&self) -> f64 {
         self.inner.integral_to_half_f64()
     }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (usize,))> {
+        Ok((py.get_type::<Self>().into_any(), (self.inner.k(),)))
+    }
 }
 
 /// The deformation of `first` into `second` with continuity degree `k`:
@@ -164,6 +169,8 @@ impl PyJumpPolynomial {
 /// (document 001 §B.1).
 #[pyclass(module = "lekalo", name = "Deformation", frozen)]
 pub(crate) struct PyDeformation {
+    /// The constructor's arguments, for pickling.
+    args: Py<PyTuple>,
     inner: Arc<Deformation<SharedCurve, SharedCurve>>,
     shared: SharedCurve,
 }
@@ -185,9 +192,22 @@ impl PyDeformation {
         .map_err(lib_err)?;
         let inner = Arc::new(d);
         Ok(Self {
+            args: PyTuple::new(
+                first.py(),
+                [
+                    first.clone(),
+                    second.clone(),
+                    continuity.into_pyobject(first.py())?.into_any(),
+                ],
+            )?
+            .unbind(),
             shared: Arc::clone(&inner) as SharedCurve,
             inner,
         })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
+        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
     }
 
     /// The parameter domain `(0, 1)`.
@@ -246,6 +266,8 @@ fn spline_parameters(s: &str) -> PyResult<SplineParameters> {
 /// [0.0, 0.0]
 #[pyclass(module = "lekalo", name = "BlendSpline", frozen)]
 pub(crate) struct PyBlendSpline {
+    /// The constructor's arguments, for pickling.
+    args: Py<PyTuple>,
     inner: Arc<BlendSpline>,
     shared: SharedCurve,
 }
@@ -275,6 +297,7 @@ impl PyBlendSpline {
             }
         };
         let circular = CircularArcs::new(arc_kind);
+        let local_name = local;
         let local: &(dyn LocalCurves + Sync) = match local {
             "parabolas" => &Parabolas,
             "arcs" => &circular,
@@ -295,10 +318,16 @@ impl PyBlendSpline {
             .detach(|| BlendSpline::new(pts, local, options))
             .map_err(lib_err)?;
         let inner = Arc::new(s);
+        let args = (points, local_name, continuity, closed, parameters, arcs).into_pyobject(py)?;
         Ok(Self {
+            args: args.unbind(),
             shared: Arc::clone(&inner) as SharedCurve,
             inner,
         })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
+        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
     }
 
     /// The parameter domain.
@@ -347,6 +376,8 @@ impl PyBlendSpline {
 /// to `t_end`): the deformation of one into the other over the window (document 001 §B.2).
 #[pyclass(module = "lekalo", name = "CornerTransition", frozen)]
 pub(crate) struct PyCornerTransition {
+    /// The constructor's arguments, for pickling.
+    args: Py<PyTuple>,
     inner: Arc<CornerTransition<SharedCurve, SharedCurve>>,
     shared: SharedCurve,
 }
@@ -371,10 +402,17 @@ impl PyCornerTransition {
         )
         .map_err(lib_err)?;
         let inner = Arc::new(c);
+        let py = before.py();
+        let args = (before, t_start, after, t_end, continuity).into_pyobject(py)?;
         Ok(Self {
+            args: args.unbind(),
             shared: Arc::clone(&inner) as SharedCurve,
             inner,
         })
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
+        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
     }
 
     /// The parameter domain.

@@ -75,5 +75,20 @@ def test_blend_errors_are_named():
         lekalo.BlendSpline([[0, 0], [1, 1]], local="splines")
     with pytest.raises(lekalo.Error, match="coincide"):
         lekalo.BlendSpline([[0, 0], [0, 0], [1, 1]])
-    with pytest.raises(TypeError):
-        pickle.dumps(lekalo.JumpPolynomial(2))
+
+
+def test_blend_objects_pickle():
+    a = lekalo.BezierCurve([[0, 0], [1, 2], [2, 0]])
+    b = lekalo.BezierCurve([[0, 1], [1, -1], [2, 1]])
+    line = lekalo.BSplineCurve(1, [0, 0, 1, 1], [[0, 0], [1, 0]])
+    up = lekalo.BSplineCurve(1, [0, 0, 1, 1], [[1, 0], [1, 1]])
+    objs = [
+        lekalo.JumpPolynomial(3),
+        lekalo.Deformation(a, b, 2),
+        lekalo.BlendSpline(np.array([[0, 0], [1, 1], [2, 0.5], [3, 1.5]]), local="arcs"),
+        lekalo.CornerTransition(line, 0.5, up, 0.5, 2),
+    ]
+    for o in objs:
+        back = pickle.loads(pickle.dumps(o))
+        u = np.linspace(*(getattr(o, "domain", (0.0, 1.0))), 11)
+        assert np.array_equal(back(u), o(u))
