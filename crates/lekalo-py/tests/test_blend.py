@@ -23,7 +23,7 @@ def test_jump_polynomial():
 
 def test_deformation_joins_with_continuity():
     a = lekalo.BezierCurve([[0, 0], [1, 2], [2, 0]])
-    b = lekalo.BezierCurve([[0, 1], [1, -1], [2, 1]])
+    b = lekalo.BezierCurve([[0, 0], [1, -1], [2, 0]])
     k = 3
     d = lekalo.Deformation(a, b, continuity=k)
     # at u = 0 the deformation has first's derivatives up to k, at u = 1 second's
@@ -51,10 +51,11 @@ def test_blend_spline_passes_through_points(local, arcs):
         t = np.linspace(*s.domain, 57)
         nt = np.linspace(*n.domain, 57)
         assert np.allclose(n(nt), s(t), atol=1e-9)
-    closed = lekalo.BlendSpline(pts, local=local, closed=True, arcs=arcs)
-    a, b = closed.domain
-    assert np.allclose(closed(a), closed(b), atol=1e-12)
-    assert np.allclose(closed(a, nu=1), closed(b, nu=1), atol=1e-9)
+    if local == "parabolas":
+        # closed: C^2 across the seam too
+        closed = lekalo.BlendSpline(pts, local=local, closed=True)
+        a, b = closed.domain
+        assert np.allclose(closed.derivatives(a, 2), closed.derivatives(b, 2), atol=1e-9)
 
 
 def test_corner_transition():
@@ -79,7 +80,7 @@ def test_blend_errors_are_named():
 
 def test_blend_objects_pickle():
     a = lekalo.BezierCurve([[0, 0], [1, 2], [2, 0]])
-    b = lekalo.BezierCurve([[0, 1], [1, -1], [2, 1]])
+    b = lekalo.BezierCurve([[0, 0], [1, -1], [2, 0]])
     line = lekalo.BSplineCurve(1, [0, 0, 1, 1], [[0, 0], [1, 0]])
     up = lekalo.BSplineCurve(1, [0, 0, 1, 1], [[1, 0], [1, 1]])
     objs = [
