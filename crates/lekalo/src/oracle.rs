@@ -133,7 +133,7 @@ mod tests {
                 for g in gaps {
                     knots.push(knots[knots.len() - 1] + g);
                 }
-                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+                BSplineCurve::new(p, knots, Points::from_flat(dim, ctrl).ok()?).ok()
             })
     }
 
@@ -174,7 +174,7 @@ mod tests {
             }),
             ts in prop::collection::vec(0.0f64..=1.0, 1..10),
         ) {
-            let c = BezierCurve::new(Points::new(ctrl, dim).unwrap()).unwrap();
+            let c = BezierCurve::new(Points::from_flat(dim, ctrl).unwrap()).unwrap();
             let scale = c.control_points().max_abs();
             let mut bern = vec![0.0; dim];
             let mut all = ts.clone();

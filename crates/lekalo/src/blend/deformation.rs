@@ -593,9 +593,9 @@ pub(crate) fn blend_forms(
             dim,
         );
         let ctrl: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
-        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(Points::new(
-            ctrl, dim,
-        )?)));
+        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(
+            Points::from_flat(dim, ctrl)?,
+        )));
     }
     let (h1, dim) = f1.homogeneous();
     let (h2, _) = f2.homogeneous();
@@ -609,7 +609,7 @@ pub(crate) fn blend_forms(
     let t1 = elevate(&t1, hd, n - n1);
     let t2 = elevate(&t2, hd, n - n2);
     let h: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a + b).collect();
-    let bez = BezierCurve::from_raw(Points::new(h, hd)?);
+    let bez = BezierCurve::from_raw(Points::from_flat(hd, h)?);
     Ok(BezierForm::Rational(NurbsCurve::from_homogeneous(
         bezier_as_bspline(&bez),
     )?))
@@ -655,9 +655,9 @@ pub(crate) fn weights_of(h: &[f64], dim: usize) -> Vec<f64> {
     h.iter().skip(dim).step_by(dim + 1).copied().collect()
 }
 
-/// Degree elevation by `r` (document 004 eq. 8, [`crate::degree::curve`]'s closed form).
+/// Degree elevation by `r` (document 004 eq. 8, [`crate::degree::elevation`]'s closed form).
 pub(crate) fn elevate(ctrl: &[f64], dim: usize, r: usize) -> Vec<f64> {
-    crate::degree::curve::elevate(ctrl, dim, r)
+    crate::degree::elevation::elevate(ctrl, dim, r)
 }
 
 impl<C1: ParametricCurve, C2: ParametricCurve> ParametricCurve for Deformation<C1, C2> {

@@ -298,7 +298,7 @@ fn energy_exact(f: &[BigRational], r: usize) -> BigRational {
 /// table. `u` is in `[0, 1]`.
 fn binomial_tail(k: usize, u: f64) -> Option<f64> {
     let n = 2 * k + 1;
-    let row = crate::degree::curve::binomial_row(n)?;
+    let row = crate::degree::elevation::binomial_row(n)?;
     if u > 0.5 {
         // 1 − u is exact for u in [1/2, 1] (Sterbenz)
         return binomial_tail(k, 1.0 - u).map(|w| 1.0 - w);

@@ -5,7 +5,7 @@
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
 use crate::interpolate::cubic_sweep::solve_free_cubic;
-use crate::interpolate::curve::distances;
+use crate::interpolate::parametrization::distances;
 use crate::numeric::large_buffer::reuse_or_zeroed;
 use crate::{BSplineCurve, Points, PointsRef};
 use std::cell::RefCell;
@@ -395,7 +395,7 @@ mod thread_scratch_tests {
                 [s.cos(), s.sin(), 0.05 * s]
             })
             .collect();
-        let q = Points::new(data, 3).unwrap();
+        let q = Points::from_flat(3, data).unwrap();
         let first = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
         assert!(held_capacity() >= 299, "U kept after the call");
         // the kept (stale) storage changes nothing

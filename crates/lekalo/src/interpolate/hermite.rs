@@ -17,8 +17,9 @@
 use crate::curve::bezier::BezierCurve;
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
-use crate::interpolate::curve::check_strictly_increasing;
-use crate::interpolate::curve::{parametrize, Parametrization};
+use crate::interpolate::parametrization::{
+    check_strictly_increasing, parametrize, Parametrization,
+};
 use crate::points::{Points, PointsRef};
 
 /// The Hermite basis matrix `M_H` of document 002 §C.3: `[a b c d]ᵀ = M_H·[p_k p_{k+1} Dp_k
@@ -188,7 +189,7 @@ pub enum TangentEstimate {
 /// ```
 /// use lekalo::{CubicHermite, Points, TangentEstimate};
 /// let x = [0.0, 1.0, 2.0, 3.0];
-/// let y = Points::new(vec![0.0, 1.0, 1.0, 2.0], 1)?;
+/// let y = Points::from_flat(1, vec![0.0, 1.0, 1.0, 2.0])?;
 /// let h = CubicHermite::function(&x, y.as_view(), TangentEstimate::Monotone)?;
 /// assert_eq!(h.eval(1.5)?, vec![1.0]); // flat where the data are flat
 /// let b = h.to_bspline();

@@ -379,9 +379,12 @@ mod tests {
             dual_weights(x, i, 3, taus[i], &mut w);
             *c = (0..3).map(|r| w[r] * xcosx(taus[i], r)).sum();
         }
-        let q =
-            BSplineCurve::from_knot_vector(2, space.knots().clone(), Points::new(coef, 1).unwrap())
-                .unwrap();
+        let q = BSplineCurve::from_knot_vector(
+            2,
+            space.knots().clone(),
+            Points::from_flat(1, coef).unwrap(),
+        )
+        .unwrap();
         let err = (0..=60)
             .map(|j| {
                 let t = 3.0 * j as f64 / 60.0;
@@ -409,7 +412,7 @@ mod tests {
                 let b = BSplineCurve::from_knot_vector(
                     2,
                     space.knots().clone(),
-                    Points::new(unit.clone(), 1).unwrap(),
+                    Points::from_flat(1, unit.clone()).unwrap(),
                 )
                 .unwrap();
                 let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
@@ -427,7 +430,7 @@ mod tests {
         let b1 = BSplineCurve::from_knot_vector(
             2,
             space.knots().clone(),
-            Points::new(vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 1).unwrap(),
+            Points::from_flat(1, vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap(),
         )
         .unwrap();
         let pp = PiecewisePolynomial::from_bspline(&b1).unwrap();
