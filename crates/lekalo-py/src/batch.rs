@@ -127,7 +127,7 @@ where
         .into_par_iter()
         .map(|i| {
             let part = &data[offsets[i] * dim..offsets[i + 1] * dim];
-            make(PointsRef::new(part, dim)?)
+            make(PointsRef::from_flat(dim, part)?)
         })
         .collect();
     let mut r = Ragged {
@@ -265,7 +265,7 @@ pub(crate) fn evaluate_batch<'py>(
                 let curve = BSplineCurve::new(
                     degree,
                     k[ko[i]..ko[i + 1]].to_vec(),
-                    lekalo::Points::new(cd[co[i] * dim..co[i + 1] * dim].to_vec(), dim)
+                    lekalo::Points::from_flat(dim, cd[co[i] * dim..co[i + 1] * dim].to_vec())
                         .map_err(|e| format!("curve {i}: {e}"))?,
                 )
                 .map_err(|e| format!("curve {i}: {e}"))?;

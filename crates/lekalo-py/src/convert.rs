@@ -55,7 +55,7 @@ impl FloatArray<'_> {
         if dim == 0 {
             return Err(bad(format!("{what}: the dimension (last axis) is 0")));
         }
-        PointsRef::new(self.data(), dim).map_err(lib_err)
+        PointsRef::from_flat(dim, self.data()).map_err(lib_err)
     }
 
     /// The array as a 1-D list of numbers, checked finite.

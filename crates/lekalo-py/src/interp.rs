@@ -210,7 +210,7 @@ pub(crate) fn interpolate_surface(
         )));
     }
     let (nu, nv) = (s[0], s[1]);
-    let pts = lekalo::PointsRef::new(ga.data(), s[2]).map_err(lib_err)?;
+    let pts = lekalo::PointsRef::from_flat(s[2], ga.data()).map_err(lib_err)?;
     let r = py
         .detach(|| match max_condition {
             Some(mc) => interpolate_surface_max_condition(pts, nu, nv, degree_u, degree_v, m, mc),

@@ -20,7 +20,7 @@ pub(crate) fn net_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Points, (
             "{what}: expected a 3-D array (nu, nv, dim), got shape {s:?}"
         )));
     }
-    let p = Points::new(a.data().to_vec(), s[2]).map_err(lib_err)?;
+    let p = Points::from_flat(s[2], a.data().to_vec()).map_err(lib_err)?;
     Ok((p, (s[0], s[1])))
 }
 
