@@ -1,0 +1,135 @@
+"""lekalo from Python, side by side with SciPy on the same arrays, in one run.
+
+    python bench/python/bench.py [--repeats 7] [--batch 100000] [--loop 5000]
+
+Workloads (cubic, 3-D, as in bench/peers): evaluation of a 1000-control-point B-spline at
+10^6 sorted and random parameters; interpolation through 10^6 points; bicubic interpolation of
+a 400x400 grid; the overhead of one scalar evaluation; the batch API interpolating 10^5
+curves of 100 points, against a Python loop over make_interp_spline (timed on `--loop`
+curves and scaled to the batch). Each figure is the median of `--repeats` runs; every result
+is checked against SciPy's before it is timed. The Rust figures to compare with are those of
+docs/performance.md (criterion and peer_bench on the same machine).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+import timeit
+
+import numpy as np
+from scipy import interpolate as si
+
+import lekalo
+
+
+def median_s(fn, repeats):
+    fn()
+    out = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        out.append(time.perf_counter() - t0)
+    return statistics.median(out)
+
+
+def row(work, ours_s, scipy_s, units, note=""):
+    ratio = scipy_s / ours_s if scipy_s else float("nan")
+    print(
+        f"{work:<34} lekalo {ours_s / units * 1e9:9.2f} ns/unit   SciPy {scipy_s / units * 1e9:9.2f} ns/unit"
+        f"   {ratio:6.1f}x   {note}"
+    )
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--batch", type=int, default=100_000)
+    ap.add_argument("--loop", type=int, default=5000)
+    a = ap.parse_args()
+    rng = np.random.default_rng(1)
+    print(f"lekalo {lekalo.__file__}; numpy {np.__version__}; scipy {__import__('scipy').__version__}; "
+          f"{os.cpu_count()} processors; RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', '-')}")
+
+    # -- scalar evaluation overhead
+    k = 1000
+    knots = np.concatenate([[0] * 4, np.linspace(0, 1, k - 2)[1:-1], [1] * 4])
+    ctrl = rng.standard_normal((k, 3))
+    c = lekalo.BSplineCurve(3, knots, ctrl)
+    ref = si.BSpline(knots, ctrl, 3)
+    n_calls = 200_000
+    ours = min(timeit.repeat(lambda: c(0.123), number=n_calls, repeat=5)) / n_calls
+    theirs = min(timeit.repeat(lambda: ref(0.123), number=n_calls // 10, repeat=5)) / (n_calls // 10)
+    print(f"{'scalar eval, one call':<34} lekalo {ours * 1e6:9.3f} us         SciPy {theirs * 1e6:9.3f} us")
+
+    # -- vectorised evaluation
+    n = 1_000_000
+    for name, t in (("sorted", np.linspace(0, 1, n)), ("random", rng.random(n))):
+        got, want = c(t), ref(t)
+        err = np.abs(got - want).max()
+        row(f"eval {name}, 10^6, K=1000", median_s(lambda: c(t), a.repeats), median_s(lambda: ref(t), a.repeats), n, f"max diff {err:.1e}")
+    t = np.linspace(0, 1, n)
+    err = np.abs(c(t, nu=1) - ref(t, nu=1)).max() / np.abs(ref(t, nu=1)).max()
+    row("first derivative, 10^6", median_s(lambda: c(t, nu=1), a.repeats), median_s(lambda: ref(t, nu=1), a.repeats), n, f"rel diff {err:.1e}")
+
+    # -- interpolation through 10^6 points (chord length; SciPy with our knots, and not-a-knot)
+    q = np.cumsum(rng.standard_normal((n, 3)), axis=0)
+    curve = lekalo.interpolate(q, 3)
+    u = lekalo.parametrize(q)
+    s_ours_knots = si.make_interp_spline(u, q, k=3, t=curve.knots)
+    err = np.abs(s_ours_knots.c - curve.control).max() / np.abs(q).max()
+    ours_s = median_s(lambda: lekalo.interpolate(q, 3), a.repeats)
+    row("interpolation 10^6 (t = ours)", ours_s, median_s(lambda: si.make_interp_spline(u, q, k=3, t=curve.knots), a.repeats), n, f"control rel diff {err:.1e}")
+    row("interpolation 10^6 (SciPy not-a-knot)", ours_s, median_s(lambda: si.make_interp_spline(u, q, k=3), a.repeats), n)
+
+    # -- surface interpolation, 400 x 400
+    m = 400
+    x = np.linspace(0, 1, m)
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    g = np.stack([X, Y, np.sin(6 * X) * np.cos(4 * Y)], axis=-1)
+    s = lekalo.interpolate_surface(g, 3, 3, parametrization="uniform")
+    ku, kv = s.knots_u, s.knots_v
+
+    def two_pass(tu=None, tv=None):
+        a1 = si.make_interp_spline(x, g.reshape(m, m * 3), k=3, t=tu).c.reshape(m, m, 3)
+        b = a1.transpose(1, 0, 2).reshape(m, m * 3)
+        return si.make_interp_spline(x, b, k=3, t=tv).c.reshape(m, m, 3).transpose(1, 0, 2)
+
+    err = np.abs(two_pass(ku, kv) - s.control).max()
+    row("surface 400x400 (t = ours)", median_s(lambda: lekalo.interpolate_surface(g, 3, 3, parametrization="uniform"), a.repeats),
+        median_s(lambda: two_pass(ku, kv), a.repeats), m * m, f"control diff {err:.1e}")
+
+    # -- batch: 10^5 curves x 100 points
+    nb, length = a.batch, 100
+    pts = np.cumsum(rng.standard_normal((nb * length, 3)), axis=0)
+    off = lekalo.ragged_offsets([length] * nb)
+    xs = np.linspace(0, 1, length)
+    ys = np.ascontiguousarray(pts[:, 0]).reshape(nb, length)
+    # 1-D functions y(x) at x = linspace(0, 1): lekalo's default free-end cubic (averaged knots)
+    # against make_interp_spline's default not-a-knot cubic, one call per curve
+    b1 = lambda: lekalo.interpolate_batch(ys.reshape(-1, 1), off, 3, parametrization="uniform")  # noqa: E731
+    b = b1()
+    for i in (0, nb - 1):
+        cc = lekalo.BSplineCurve(3, b["knots"][b["knot_offsets"][i]:b["knot_offsets"][i + 1]], b["control"][b["control_offsets"][i]:b["control_offsets"][i + 1]])
+        ref = si.make_interp_spline(xs, ys[i], k=3, t=cc.knots)
+        assert np.allclose(cc(xs)[:, 0], ref(xs), atol=1e-10)
+    loop_n = min(a.loop, nb)
+    loop_s = median_s(lambda: [si.make_interp_spline(xs, ys[i], k=3) for i in range(loop_n)], 3) * nb / loop_n
+    row(f"batch {nb} curves x {length} (1-D)", median_s(b1, max(3, a.repeats // 2)), loop_s, nb, "SciPy: Python loop over make_interp_spline")
+
+    # 3-D curves: chord-length parameters computed per curve in NumPy for SciPy
+    def scipy_curve(p):
+        d = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        u = np.concatenate([[0.0], np.cumsum(d)]) / d.sum()
+        return si.make_interp_spline(u, p, k=3)
+
+    b3_s = median_s(lambda: lekalo.interpolate_batch(pts, off, 3), max(3, a.repeats // 2))
+    loop3_s = median_s(lambda: [scipy_curve(pts[i * length:(i + 1) * length]) for i in range(loop_n)], 3) * nb / loop_n
+    row(f"batch {nb} curves x {length} (3-D)", b3_s, loop3_s, nb, "SciPy: chord parameters + make_interp_spline per curve")
+    print(f"calibration: np.empty(3) takes {min(timeit.repeat(lambda: np.empty(3), number=100_000, repeat=5)) / 100_000 * 1e6:.3f} us here")
+
+
+if __name__ == "__main__":
+    main()

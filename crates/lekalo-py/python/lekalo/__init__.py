@@ -1,0 +1,88 @@
+"""lekalo: spline curves and surfaces, NumPy in and out.
+
+Bezier, B-spline and NURBS curves and surfaces; interpolation with every parametrisation, knot
+placement and end condition; natural and Hermite splines; piecewise polynomials and
+quasi-interpolation; many small curves at once from flat arrays (``interpolate_batch``,
+``evaluate_batch``). The computations are the Rust library ``lekalo``'s, run with the GIL
+released.
+
+Conventions (see the package README, "SciPy users start here"):
+
+- arrays are float64; points are ``(n, dim)``, the last axis is the dimension, and a 1-D array
+  is ``n`` values (dimension 1); C-ordered arrays are used in place, F-ordered ones copied once;
+- evaluation returns ``t.shape + (dim,)``, also for dimension 1;
+- parameters outside a curve's domain raise ``lekalo.Error`` (no extrapolation);
+- every error is ``lekalo.Error``, a subclass of ``ValueError``, with the library's message.
+
+>>> import numpy as np, lekalo
+>>> c = lekalo.interpolate(np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float))
+>>> c(np.linspace(0, 1, 5)).shape
+(5, 2)
+"""
+
+from __future__ import annotations
+
+from ._lekalo import (
+    MAX_DEGREE,
+    MAX_SCALARS,
+    BezierCurve,
+    BezierSurface,
+    BSplineCurve,
+    BSplineSurface,
+    CubicHermite,
+    Error,
+    NurbsCurve,
+    NurbsSurface,
+    PiecewisePolynomial,
+    PpSpace,
+    cubic_through_four_points,
+    evaluate_batch,
+    from_json,
+    interpolate,
+    interpolate_batch,
+    interpolate_surface,
+    natural_cubic_spline,
+    parametrize,
+    quasi_interpolate,
+)
+from . import _lekalo
+from ._interop import from_geomdl, from_scipy, to_geomdl, to_scipy
+from ._batch import curves_from_batch, curves_to_batch, ragged_offsets
+
+Error.__module__ = "lekalo"
+
+# blending (document 001), when the native module has it
+for _name in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition"):
+    if hasattr(_lekalo, _name):
+        globals()[_name] = getattr(_lekalo, _name)
+
+__all__ = [
+    "MAX_DEGREE",
+    "MAX_SCALARS",
+    "BezierCurve",
+    "BezierSurface",
+    "BSplineCurve",
+    "BSplineSurface",
+    "CubicHermite",
+    "Error",
+    "NurbsCurve",
+    "NurbsSurface",
+    "PiecewisePolynomial",
+    "PpSpace",
+    "cubic_through_four_points",
+    "curves_from_batch",
+    "curves_to_batch",
+    "evaluate_batch",
+    "from_geomdl",
+    "from_json",
+    "from_scipy",
+    "interpolate",
+    "interpolate_batch",
+    "interpolate_surface",
+    "natural_cubic_spline",
+    "parametrize",
+    "quasi_interpolate",
+    "ragged_offsets",
+    "to_geomdl",
+    "to_scipy",
+] + [n for n in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition") if n in globals()]

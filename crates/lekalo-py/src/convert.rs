@@ -1,0 +1,195 @@
+//! NumPy arrays in and out: dtype, layout and shape checks with named errors, borrowing the
+//! caller's memory when the layout allows.
+//!
+//! Inputs are float64 arrays (or sequences of numbers, converted once by NumPy). A C-contiguous
+//! array is borrowed, never copied; a Fortran-ordered one is copied once into the point-major
+//! layout the library works in; any other strided view is refused with the fix in the message
+//! (`np.ascontiguousarray`). Other dtypes are refused rather than silently converted, so that
+//! an integer or float32 array never costs a hidden copy.
+
+use lekalo::{Points, PointsRef, MAX_SCALARS};
+use numpy::{
+    PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray, PyUntypedArrayMethods,
+};
+use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyInt};
+
+use crate::error::{bad, lib_err};
+
+/// A float64 array argument: borrowed from NumPy when C-contiguous, else a C-order copy.
+pub(crate) struct FloatArray<'py> {
+    borrowed: Option<PyReadonlyArrayDyn<'py, f64>>,
+    owned: Vec<f64>,
+    shape: Vec<usize>,
+    /// The argument was a Python number, not an array.
+    pub(crate) scalar: bool,
+}
+
+impl FloatArray<'_> {
+    /// The numbers in C (row-major) order.
+    pub(crate) fn data(&self) -> &[f64] {
+        match &self.borrowed {
+            // a C-contiguous array always gives its slice
+            Some(a) => a.as_slice().unwrap_or(&[]),
+            None => &self.owned,
+        }
+    }
+
+    /// The array's shape.
+    pub(crate) fn shape(&self) -> &[usize] {
+        &self.shape
+    }
+
+    /// The array as points: the last axis is the dimension (`(n, d)`), a 1-D array is `n`
+    /// points of dimension 1.
+    pub(crate) fn points(&self, what: &str) -> PyResult<PointsRef<'_>> {
+        let dim = match self.shape.len() {
+            1 => 1,
+            2 => self.shape[1],
+            n => {
+                return Err(bad(format!(
+                    "{what}: expected a 2-D array (points, dimension) or a 1-D array of values, got {n} dimensions"
+                )))
+            }
+        };
+        if dim == 0 {
+            return Err(bad(format!("{what}: the dimension (last axis) is 0")));
+        }
+        PointsRef::from_flat(dim, self.data()).map_err(lib_err)
+    }
+
+    /// The array as a 1-D list of numbers, checked finite.
+    pub(crate) fn vector(&self, what: &str) -> PyResult<&[f64]> {
+        if self.shape.len() != 1 {
+            return Err(bad(format!(
+                "{what}: expected a 1-D array, got shape {:?}",
+                self.shape
+            )));
+        }
+        finite(self.data(), what)?;
+        Ok(self.data())
+    }
+}
+
+/// Refuses NaN and infinity with the index of the first offender.
+pub(crate) fn finite(data: &[f64], what: &str) -> PyResult<()> {
+    match data.iter().position(|v| !v.is_finite()) {
+        Some(i) => Err(bad(format!(
+            "{what}[{i}] is {}: every number must be finite (no NaN or infinity)",
+            data[i]
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Reads a float64 argument. `what` names it in errors.
+pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<FloatArray<'py>> {
+    if let Ok(a) = obj.cast::<PyArrayDyn<f64>>() {
+        let shape = a.shape().to_vec();
+        let ro = a.try_readonly().map_err(|e| {
+            bad(format!(
+                "{what}: the array is being written elsewhere ({e}); pass a copy"
+            ))
+        })?;
+        if a.is_c_contiguous() {
+            return Ok(FloatArray {
+                borrowed: Some(ro),
+                owned: Vec::new(),
+                shape,
+                scalar: false,
+            });
+        }
+        if a.is_fortran_contiguous() {
+            // the library's layout is point-major: one copy in C order
+            let owned: Vec<f64> = ro.as_array().iter().copied().collect();
+            return Ok(FloatArray {
+                borrowed: None,
+                owned,
+                shape,
+                scalar: false,
+            });
+        }
+        return Err(bad(format!(
+            "{what}: the array is not contiguous (a strided view, shape {shape:?}); pass np.ascontiguousarray({what})"
+        )));
+    }
+    if let Ok(a) = obj.cast::<PyUntypedArray>() {
+        return Err(bad(format!(
+            "{what}: dtype {} is not float64; convert with np.asarray({what}, dtype=np.float64)",
+            a.dtype()
+        )));
+    }
+    if obj.is_instance_of::<PyFloat>() || obj.is_instance_of::<PyInt>() {
+        let v: f64 = obj.extract()?;
+        return Ok(FloatArray {
+            borrowed: None,
+            owned: vec![v],
+            shape: Vec::new(),
+            scalar: true,
+        });
+    }
+    let np = obj.py().import("numpy")?;
+    let arr = np.call_method1("asarray", (obj, "float64")).map_err(|e| {
+        bad(format!(
+            "{what}: expected a float64 NumPy array or a sequence of numbers ({e})"
+        ))
+    })?;
+    floats(&arr, what)
+}
+
+/// Reads points `(n, d)` (or `(n,)` for dimension 1) into owned [`Points`].
+pub(crate) fn owned_points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Points> {
+    let a = floats(obj, what)?;
+    Ok(a.points(what)?.to_owned())
+}
+
+/// Reads a 1-D float vector into a `Vec`.
+pub(crate) fn vec1(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    Ok(floats(obj, what)?.vector(what)?.to_vec())
+}
+
+/// Refuses outputs past the library's size limit before allocating them.
+pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
+    let mut n: usize = 1;
+    for &c in counts {
+        n = n.saturating_mul(c);
+    }
+    if n > MAX_SCALARS {
+        return Err(lib_err(lekalo::Error::TooLarge {
+            what: "output",
+            size: n,
+            max: MAX_SCALARS,
+        }))
+        .map_err(|e: PyErr| bad(format!("{what}: {e}")));
+    }
+    Ok(n)
+}
+
+/// A NumPy array of the given shape over `data` (moved, not copied).
+pub(crate) fn array<'py>(
+    py: Python<'py>,
+    data: Vec<f64>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let a = PyArray1::from_vec(py, data);
+    if shape.len() == 1 {
+        return Ok(a.into_any());
+    }
+    Ok(a.reshape(shape.to_vec())?.into_any())
+}
+
+/// Points as an `(n, d)` array.
+pub(crate) fn points_array<'py>(py: Python<'py>, p: &Points) -> PyResult<Bound<'py, PyAny>> {
+    array(py, p.as_slice().to_vec(), &[p.len(), p.dim()])
+}
+
+/// Moves points into an `(n, d)` array.
+pub(crate) fn points_into_array(py: Python<'_>, p: Points) -> PyResult<Bound<'_, PyAny>> {
+    let (n, d) = (p.len(), p.dim());
+    array(py, p.into_vec(), &[n, d])
+}
+
+/// A 1-D array copy of a slice.
+pub(crate) fn vec_array<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyAny> {
+    PyArray1::from_slice(py, v).into_any()
+}

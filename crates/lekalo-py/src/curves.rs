@@ -1,0 +1,876 @@
+//! `BezierCurve`, `BSplineCurve`, `NurbsCurve`: thin wrappers over the library's types.
+//!
+//! Evaluation takes parameters of any shape and returns `t.shape + (dim,)` (a scalar `t` gives
+//! `(dim,)`); derivatives `t.shape + (order + 1, dim)`. Large batches run on the rayon pool
+//! with results identical to the sequential ones (the library's `par_eval_batch`). The GIL is
+//! released around every computation.
+
+use std::sync::OnceLock;
+
+use lekalo::{
+    BSplineCurve, BezierCurve, CurveEvaluator, EndConditions, NurbsCurve, NurbsEvaluator,
+    PiecewisePolynomial, Points,
+};
+use lekalo_io::{Object, Shape};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{
+    array, check_size, floats, owned_points, points_array, points_into_array, vec1, vec_array,
+    FloatArray,
+};
+use crate::error::{bad, io_err, lib_err};
+use crate::pp::PyPiecewisePolynomial;
+
+/// Batches at least this long are split over the rayon pool.
+pub(crate) const PAR_MIN: usize = 1 << 14;
+
+/// `t.shape + tail` for an evaluation result.
+pub(crate) fn out_shape(t: &FloatArray<'_>, tail: &[usize]) -> Vec<usize> {
+    let mut s = t.shape().to_vec();
+    s.extend_from_slice(tail);
+    s
+}
+
+pub(crate) fn ends_arg(ends: &str) -> PyResult<EndConditions> {
+    match ends {
+        "free" => Ok(EndConditions::Free),
+        "points" => Ok(EndConditions::Points),
+        "tangents" => Ok(EndConditions::Tangents),
+        _ => Err(bad(format!(
+            "ends: unknown value {ends:?}; use 'free', 'points' or 'tangents'"
+        ))),
+    }
+}
+
+/// Evaluates `f(t, out)` point by point for a scalar-wise curve evaluation (Bezier).
+fn eval_pointwise<F>(py: Python<'_>, t: &Bound<'_, PyAny>, dim: usize, f: F) -> PyResult<Py<PyAny>>
+where
+    F: Fn(f64, &mut [f64]) -> lekalo::Result<()> + Sync,
+{
+    let ta = floats(t, "t")?;
+    let ts = ta.data();
+    let n = check_size("t", &[ts.len(), dim])?;
+    let mut out = vec![0.0; n];
+    py.detach(|| {
+        ts.iter()
+            .zip(out.chunks_exact_mut(dim))
+            .try_for_each(|(&t, o)| f(t, o))
+    })
+    .map_err(lib_err)?;
+    Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+}
+
+/// Derivatives up to `order` at every parameter with a per-point function returning rows.
+fn derivatives_pointwise<F>(
+    py: Python<'_>,
+    t: &Bound<'_, PyAny>,
+    order: usize,
+    dim: usize,
+    f: F,
+) -> PyResult<Py<PyAny>>
+where
+    F: Fn(f64, usize) -> lekalo::Result<Points> + Sync,
+{
+    let ta = floats(t, "t")?;
+    let ts = ta.data();
+    let row = check_size("order", &[order.saturating_add(1), dim])?;
+    let n = check_size("t", &[ts.len(), row])?;
+    let mut out = vec![0.0; n];
+    py.detach(|| {
+        ts.iter()
+            .zip(out.chunks_exact_mut(row))
+            .try_for_each(|(&t, o)| {
+                let d = f(t, order)?;
+                o.copy_from_slice(d.as_slice());
+                Ok(())
+            })
+    })
+    .map_err(lib_err)?;
+    Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+}
+
+/// Picks row `nu` out of a derivative result `t.shape + (order + 1, dim)`.
+fn pick_order(py: Python<'_>, d: Py<PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+    let d = d.into_bound(py);
+    let idx = (
+        pyo3::types::PyEllipsis::get(py),
+        nu,
+        pyo3::types::PySlice::full(py),
+    );
+    let row = d.get_item(idx)?;
+    // a contiguous copy of the view
+    Ok(py
+        .import("numpy")?
+        .call_method1("ascontiguousarray", (row,))?
+        .unbind())
+}
+
+fn from_json_shape(text: &str) -> PyResult<Shape> {
+    Shape::from_json_str(text, "json").map_err(io_err)
+}
+
+/// Python object for any shape read from JSON.
+pub(crate) fn shape_to_py(py: Python<'_>, shape: Shape) -> PyResult<Py<PyAny>> {
+    use lekalo_io::Surface;
+    Ok(match shape {
+        Shape::Curve(Object::Bezier(c)) => Py::new(py, PyBezierCurve::wrap(c))?.into_any(),
+        Shape::Curve(Object::BSpline(c)) => Py::new(py, PyBSplineCurve::wrap(c))?.into_any(),
+        Shape::Curve(Object::Nurbs(c)) => Py::new(py, PyNurbsCurve::wrap(c))?.into_any(),
+        Shape::Surface(Surface::Bezier(s)) => {
+            Py::new(py, crate::surfaces::PyBezierSurface { inner: s })?.into_any()
+        }
+        Shape::Surface(Surface::BSpline(s)) => {
+            Py::new(py, crate::surfaces::PyBSplineSurface { inner: s })?.into_any()
+        }
+        Shape::Surface(Surface::Nurbs(s)) => {
+            Py::new(py, crate::surfaces::PyNurbsSurface { inner: s })?.into_any()
+        }
+        Shape::Pp(p) => Py::new(py, PyPiecewisePolynomial { inner: p })?.into_any(),
+        other => {
+            return Err(bad(format!(
+                "JSON object of type {:?} has no Python class",
+                other.type_name()
+            )))
+        }
+    })
+}
+
+/// Reads any lekalo object from its JSON text (the CLI's format, `docs/formats.md`).
+#[pyfunction]
+pub(crate) fn from_json(py: Python<'_>, text: &str) -> PyResult<Py<PyAny>> {
+    let shape = py.detach(|| from_json_shape(text))?;
+    shape_to_py(py, shape)
+}
+
+/// `__reduce__` for pickling: `(lekalo._lekalo.from_json, (json,))`. The JSON holds every
+/// number with its shortest round-trip text, so the object comes back bit for bit.
+pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, PyTuple>> {
+    let f = py.import("lekalo._lekalo")?.getattr("from_json")?;
+    PyTuple::new(py, [f.into_any(), PyTuple::new(py, [json])?.into_any()])
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// A Bezier curve `C(t) = Σ B_{i,n}(t) P_i`, `t ∈ [0, 1]` (docs/theory/curves.md#bezier-curves).
+///
+/// >>> import numpy as np, lekalo
+/// >>> c = lekalo.BezierCurve([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
+/// >>> c(0.5)
+/// array([1., 1.])
+#[pyclass(module = "lekalo", name = "BezierCurve", frozen, eq)]
+#[derive(PartialEq)]
+pub(crate) struct PyBezierCurve {
+    pub(crate) inner: BezierCurve,
+}
+
+impl PyBezierCurve {
+    pub(crate) fn wrap(inner: BezierCurve) -> Self {
+        PyBezierCurve { inner }
+    }
+}
+
+#[pymethods]
+impl PyBezierCurve {
+    #[new]
+    fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = owned_points(control, "control")?;
+        Ok(Self::wrap(BezierCurve::new(p).map_err(lib_err)?))
+    }
+
+    /// The degree `n` (control points minus one).
+    #[getter]
+    fn degree(&self) -> usize {
+        self.inner.degree()
+    }
+
+    /// The dimension of the points.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// The control points, `(n + 1, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_array(py, self.inner.control_points())
+    }
+
+    /// The parameter domain, always `(0.0, 1.0)`.
+    #[getter]
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+
+    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
+    #[pyo3(signature = (t, nu = 0))]
+    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+        if nu > 0 {
+            return pick_order(py, self.derivatives(py, t, nu)?, nu);
+        }
+        let c = &self.inner;
+        eval_pointwise(py, t, c.dim(), |t, o| c.eval_into(t, o))
+    }
+
+    /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)`.
+    fn derivatives(
+        &self,
+        py: Python<'_>,
+        t: &Bound<'_, PyAny>,
+        order: usize,
+    ) -> PyResult<Py<PyAny>> {
+        let c = &self.inner;
+        derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
+    }
+
+    /// The hodograph `C'` as a Bezier curve of degree `n − 1`.
+    fn derivative(&self, py: Python<'_>) -> Self {
+        Self::wrap(py.detach(|| self.inner.derivative()))
+    }
+
+    /// de Casteljau subdivision at `t`: the curves on `[0, t]` and `[t, 1]`, each
+    /// reparametrised to `[0, 1]`.
+    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
+        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
+        Ok((Self::wrap(a), Self::wrap(b)))
+    }
+
+    /// Degree elevation by `by` (document 004): the same curve with more control points.
+    #[pyo3(signature = (by = 1))]
+    fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.elevate_degree(by))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Exact degree change to `target` (document 004): elevation, or reduction that is refused
+    /// below the real degree.
+    fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.change_degree(target))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Least-squares degree reduction to `target` keeping `ends` ('free', 'points',
+    /// 'tangents'); returns `(curve, max_deviation_bound)`.
+    #[pyo3(signature = (target, ends = "points"))]
+    fn reduce_degree_approx(
+        &self,
+        py: Python<'_>,
+        target: usize,
+        ends: &str,
+    ) -> PyResult<(Self, f64)> {
+        let ends = ends_arg(ends)?;
+        let r = py
+            .detach(|| self.inner.reduce_degree_approx(target, ends))
+            .map_err(lib_err)?;
+        Ok((Self::wrap(r.curve.clone()), r.max_deviation_bound))
+    }
+
+    /// The real degree: the least degree that represents the same curve (document 004).
+    fn real_degree(&self) -> usize {
+        self.inner.real_degree()
+    }
+
+    /// The monomial coefficients `a_k` with `C(t) = Σ a_k t^k`, `(n + 1, dim)`.
+    fn to_monomial<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_into_array(py, self.inner.to_monomial().map_err(lib_err)?)
+    }
+
+    /// The Bezier curve with the given monomial coefficients `(n + 1, dim)`.
+    #[staticmethod]
+    fn from_monomial(coefficients: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = owned_points(coefficients, "coefficients")?;
+        Ok(Self::wrap(BezierCurve::from_monomial(p).map_err(lib_err)?))
+    }
+
+    /// The same curve as a clamped B-spline on `[0, 1]`.
+    fn to_bspline(&self) -> PyBSplineCurve {
+        PyBSplineCurve::wrap(self.inner.to_bspline())
+    }
+
+    /// JSON text in the command-line tool's format (`{"lekalo": 1, "type": "bezier_curve", …}`).
+    fn to_json(&self) -> String {
+        Object::Bezier(self.inner.clone()).to_json_pretty()
+    }
+
+    /// Reads a Bezier curve from JSON text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        match from_json_shape(text)? {
+            Shape::Curve(Object::Bezier(c)) => Ok(Self::wrap(c)),
+            other => Err(bad(format!(
+                "expected a bezier_curve, got {}",
+                other.type_name()
+            ))),
+        }
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        reduce(py, self.to_json())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "BezierCurve(degree={}, dim={})",
+            self.inner.degree(),
+            self.inner.dim()
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// A B-spline curve `C(t) = Σ N_{i,p}(t) P_i` on the domain `[t_p, t_{n+1}]`
+/// (docs/theory/curves.md#b-spline-curves).
+///
+/// >>> import lekalo
+/// >>> c = lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], [[1, 1], [2, 3], [4, 3]])
+/// >>> c.domain
+/// (1.0, 2.0)
+/// >>> c(1.5)
+/// array([2.125, 2.75 ])
+#[pyclass(module = "lekalo", name = "BSplineCurve", frozen)]
+pub(crate) struct PyBSplineCurve {
+    pub(crate) inner: BSplineCurve,
+    evaluator: OnceLock<CurveEvaluator>,
+}
+
+impl PyBSplineCurve {
+    pub(crate) fn wrap(inner: BSplineCurve) -> Self {
+        PyBSplineCurve {
+            inner,
+            evaluator: OnceLock::new(),
+        }
+    }
+
+    /// The fast evaluator, built on first use and kept.
+    fn evaluator(&self) -> &CurveEvaluator {
+        self.evaluator.get_or_init(|| self.inner.evaluator())
+    }
+}
+
+#[pymethods]
+impl PyBSplineCurve {
+    #[new]
+    fn new(degree: usize, knots: &Bound<'_, PyAny>, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let k = vec1(knots, "knots")?;
+        let p = owned_points(control, "control")?;
+        Ok(Self::wrap(
+            BSplineCurve::new(degree, k, p).map_err(lib_err)?,
+        ))
+    }
+
+    /// A clamped B-spline with uniform interior knots on `[0, 1]` over the control points.
+    #[staticmethod]
+    fn clamped(degree: usize, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = owned_points(control, "control")?;
+        let kv = lekalo::KnotVector::clamped_uniform(degree, p.len()).map_err(lib_err)?;
+        Ok(Self::wrap(
+            BSplineCurve::from_knot_vector(degree, kv, p).map_err(lib_err)?,
+        ))
+    }
+
+    /// The degree `p`.
+    #[getter]
+    fn degree(&self) -> usize {
+        self.inner.degree()
+    }
+
+    /// The dimension of the points.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// The knot vector, a 1-D array of `n + p + 2` numbers.
+    #[getter]
+    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots().as_slice())
+    }
+
+    /// The control points, `(n + 1, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_array(py, self.inner.control_points())
+    }
+
+    /// The parameter domain `(t_p, t_{n+1})`.
+    #[getter]
+    fn domain(&self) -> (f64, f64) {
+        self.inner.domain()
+    }
+
+    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
+    /// Parameters outside the domain raise `lekalo.Error` (no extrapolation).
+    #[pyo3(signature = (t, nu = 0))]
+    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+        if nu > 0 {
+            return pick_order(py, self.derivatives(py, t, nu)?, nu);
+        }
+        let dim = self.inner.dim();
+        let ta = floats(t, "t")?;
+        let ts = ta.data();
+        if ta.scalar {
+            let mut out = vec![0.0; dim];
+            py.detach(|| self.inner.eval_into(ts[0], &mut out))
+                .map_err(lib_err)?;
+            return Ok(array(py, out, &[dim])?.unbind());
+        }
+        let n = check_size("t", &[ts.len(), dim])?;
+        let mut out = vec![0.0; n];
+        py.detach(|| {
+            let ev = self.evaluator();
+            if ts.len() >= PAR_MIN {
+                ev.par_eval_batch(ts, &mut out)
+            } else {
+                ev.eval_batch(ts, &mut out)
+            }
+        })
+        .map_err(lib_err)?;
+        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    }
+
+    /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)` (right-hand at
+    /// interior knots, left-hand at the right end).
+    fn derivatives(
+        &self,
+        py: Python<'_>,
+        t: &Bound<'_, PyAny>,
+        order: usize,
+    ) -> PyResult<Py<PyAny>> {
+        let dim = self.inner.dim();
+        let ta = floats(t, "t")?;
+        let ts = ta.data();
+        let row = check_size("order", &[order.saturating_add(1), dim])?;
+        let n = check_size("t", &[ts.len(), row])?;
+        if order > lekalo::MAX_DERIVATIVE_ORDER {
+            // the library's own message for the limit
+            return Err(lib_err(
+                self.inner
+                    .eval_derivatives(self.inner.domain().0, order)
+                    .err()
+                    .unwrap_or(lekalo::Error::InvalidArgument {
+                        what: "order",
+                        reason: "too large".into(),
+                    }),
+            ));
+        }
+        let mut out = vec![0.0; n];
+        py.detach(|| self.evaluator().eval_derivatives_batch(ts, order, &mut out))
+            .map_err(lib_err)?;
+        Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+    }
+
+    /// The derivative curve `C'` (degree `p − 1`).
+    fn derivative(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.derivative()).map_err(lib_err)?,
+        ))
+    }
+
+    /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
+    #[pyo3(signature = (t, times = 1))]
+    fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.insert_knot(t, times))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Inserts all knots of the sorted array `x` at once (P&T A5.4).
+    fn refine_knots(&self, py: Python<'_>, x: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let x = vec1(x, "x")?;
+        Ok(Self::wrap(
+            py.detach(|| self.inner.refine_knots(&x)).map_err(lib_err)?,
+        ))
+    }
+
+    /// Removes knot `t` up to `times` times while the curve moves less than `tolerance`
+    /// (default: relative to the control net's size; P&T A5.8). Returns `(curve, removed)`.
+    #[pyo3(signature = (t, times = 1, tolerance = None))]
+    fn remove_knot(
+        &self,
+        py: Python<'_>,
+        t: f64,
+        times: usize,
+        tolerance: Option<f64>,
+    ) -> PyResult<(Self, usize)> {
+        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
+        let (c, k) = py
+            .detach(|| self.inner.remove_knot(t, times, tol))
+            .map_err(lib_err)?;
+        Ok((Self::wrap(c), k))
+    }
+
+    /// Removes every knot that can go within `tolerance`; returns `(curve, removed)`.
+    #[pyo3(signature = (tolerance = None))]
+    fn remove_all_removable_knots(
+        &self,
+        py: Python<'_>,
+        tolerance: Option<f64>,
+    ) -> PyResult<(Self, usize)> {
+        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
+        let (c, k) = py
+            .detach(|| self.inner.remove_all_removable_knots(tol))
+            .map_err(lib_err)?;
+        Ok((Self::wrap(c), k))
+    }
+
+    /// Splits at `t` into the curves on `[t_min, t]` and `[t, t_max]` (parameters kept).
+    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
+        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
+        Ok((Self::wrap(a), Self::wrap(b)))
+    }
+
+    /// The Bezier pieces: a list of `(start, end, BezierCurve)`.
+    fn to_bezier_segments(&self, py: Python<'_>) -> Vec<(f64, f64, PyBezierCurve)> {
+        py.detach(|| self.inner.to_bezier_segments())
+            .into_iter()
+            .map(|s| (s.start, s.end, PyBezierCurve::wrap(s.curve)))
+            .collect()
+    }
+
+    /// The same curve traversed backwards on the same domain.
+    fn reverse(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.reverse()).map_err(lib_err)?,
+        ))
+    }
+
+    /// The same curve on the domain `[a, b]` (an affine change of parameter).
+    fn reparametrize(&self, py: Python<'_>, a: f64, b: f64) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.reparametrize(a, b))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Degree elevation by `by`, piece by piece (document 004).
+    #[pyo3(signature = (by = 1))]
+    fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.elevate_degree(by))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Exact degree change to `target` (refused below the real degree of a piece).
+    fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.change_degree(target))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// The axis-aligned bounding box of the control net, `(lo, hi)`.
+    fn bounding_box<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
+        let (lo, hi) = self.inner.bounding_box();
+        (vec_array(py, &lo), vec_array(py, &hi))
+    }
+
+    /// The piecewise-polynomial (pp) form over the distinct knots of the domain.
+    fn to_pp(&self, py: Python<'_>) -> PyResult<PyPiecewisePolynomial> {
+        let p = py
+            .detach(|| PiecewisePolynomial::from_bspline(&self.inner))
+            .map_err(lib_err)?;
+        Ok(PyPiecewisePolynomial { inner: p })
+    }
+
+    /// The same curve as a NURBS with unit weights.
+    fn to_nurbs(&self) -> PyNurbsCurve {
+        PyNurbsCurve::wrap(NurbsCurve::from_bspline(&self.inner))
+    }
+
+    /// JSON text in the command-line tool's format (`{"lekalo": 1, "type": "bspline_curve", …}`).
+    fn to_json(&self) -> String {
+        Object::BSpline(self.inner.clone()).to_json_pretty()
+    }
+
+    /// Reads a B-spline curve from JSON text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        match from_json_shape(text)? {
+            Shape::Curve(Object::BSpline(c)) => Ok(Self::wrap(c)),
+            other => Err(bad(format!(
+                "expected a bspline_curve, got {}",
+                other.type_name()
+            ))),
+        }
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        reduce(py, self.to_json())
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| o.get().inner == self.inner)
+    }
+
+    fn __repr__(&self) -> String {
+        let (a, b) = self.inner.domain();
+        format!(
+            "BSplineCurve(degree={}, n_control={}, dim={}, domain=({a}, {b}))",
+            self.inner.degree(),
+            self.inner.control_points().len(),
+            self.inner.dim()
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// A NURBS curve `C(t) = Σ N_{i,p}(t) w_i P_i / Σ N_{i,p}(t) w_i`
+/// (docs/theory/curves.md#nurbs-curves).
+///
+/// >>> import lekalo
+/// >>> c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+/// >>> bool(abs((c(0.3) ** 2).sum() - 4.0) < 1e-12)
+/// True
+#[pyclass(module = "lekalo", name = "NurbsCurve", frozen)]
+pub(crate) struct PyNurbsCurve {
+    pub(crate) inner: NurbsCurve,
+    evaluator: OnceLock<NurbsEvaluator>,
+}
+
+impl PyNurbsCurve {
+    pub(crate) fn wrap(inner: NurbsCurve) -> Self {
+        PyNurbsCurve {
+            inner,
+            evaluator: OnceLock::new(),
+        }
+    }
+}
+
+#[pymethods]
+impl PyNurbsCurve {
+    #[new]
+    fn new(
+        degree: usize,
+        knots: &Bound<'_, PyAny>,
+        control: &Bound<'_, PyAny>,
+        weights: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let k = vec1(knots, "knots")?;
+        let p = owned_points(control, "control")?;
+        let w = vec1(weights, "weights")?;
+        Ok(Self::wrap(
+            NurbsCurve::new(degree, k, p, w).map_err(lib_err)?,
+        ))
+    }
+
+    /// A full circle of `radius` about `center` in the plane of the orthonormal axes
+    /// `x_axis`, `y_axis` (exact: nine control points, degree 2).
+    #[staticmethod]
+    fn circle(
+        center: &Bound<'_, PyAny>,
+        x_axis: &Bound<'_, PyAny>,
+        y_axis: &Bound<'_, PyAny>,
+        radius: f64,
+    ) -> PyResult<Self> {
+        let (c, x, y) = (
+            vec1(center, "center")?,
+            vec1(x_axis, "x_axis")?,
+            vec1(y_axis, "y_axis")?,
+        );
+        Ok(Self::wrap(
+            NurbsCurve::circle(&c, &x, &y, radius).map_err(lib_err)?,
+        ))
+    }
+
+    /// The circular arc through three points `a`, `b`, `c` (from `a` to `c`).
+    #[staticmethod]
+    fn arc_through_points(
+        a: &Bound<'_, PyAny>,
+        b: &Bound<'_, PyAny>,
+        c: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let (a, b, c) = (vec1(a, "a")?, vec1(b, "b")?, vec1(c, "c")?);
+        Ok(Self::wrap(
+            NurbsCurve::arc_through_points(&a, &b, &c).map_err(lib_err)?,
+        ))
+    }
+
+    /// The degree `p`.
+    #[getter]
+    fn degree(&self) -> usize {
+        self.inner.degree()
+    }
+
+    /// The dimension of the (Euclidean) points.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// The knot vector.
+    #[getter]
+    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots().as_slice())
+    }
+
+    /// The Euclidean control points, `(n + 1, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_into_array(py, self.inner.control_points())
+    }
+
+    /// The weights, `(n + 1,)`.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, &self.inner.weights())
+    }
+
+    /// The parameter domain.
+    #[getter]
+    fn domain(&self) -> (f64, f64) {
+        self.inner.domain()
+    }
+
+    /// The homogeneous B-spline `(w·P, w)`.
+    fn homogeneous(&self) -> PyBSplineCurve {
+        PyBSplineCurve::wrap(self.inner.homogeneous().clone())
+    }
+
+    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
+    #[pyo3(signature = (t, nu = 0))]
+    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+        if nu > 0 {
+            return pick_order(py, self.derivatives(py, t, nu)?, nu);
+        }
+        let dim = self.inner.dim();
+        let ta = floats(t, "t")?;
+        let ts = ta.data();
+        if ta.scalar {
+            let mut out = vec![0.0; dim];
+            py.detach(|| self.inner.eval_into(ts[0], &mut out))
+                .map_err(lib_err)?;
+            return Ok(array(py, out, &[dim])?.unbind());
+        }
+        let n = check_size("t", &[ts.len(), dim])?;
+        let mut out = vec![0.0; n];
+        py.detach(|| {
+            let ev = self.evaluator.get_or_init(|| self.inner.evaluator());
+            if ts.len() >= PAR_MIN {
+                ev.par_eval_batch(ts, &mut out)
+            } else {
+                ev.eval_batch(ts, &mut out)
+            }
+        })
+        .map_err(lib_err)?;
+        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    }
+
+    /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)`.
+    fn derivatives(
+        &self,
+        py: Python<'_>,
+        t: &Bound<'_, PyAny>,
+        order: usize,
+    ) -> PyResult<Py<PyAny>> {
+        let c = &self.inner;
+        derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
+    }
+
+    /// Inserts `t` `times` times.
+    #[pyo3(signature = (t, times = 1))]
+    fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.insert_knot(t, times))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// Inserts all knots of the sorted array `x`.
+    fn refine_knots(&self, py: Python<'_>, x: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let x = vec1(x, "x")?;
+        Ok(Self::wrap(
+            py.detach(|| self.inner.refine_knots(&x)).map_err(lib_err)?,
+        ))
+    }
+
+    /// Removes knot `t` up to `times` times within `tolerance`; returns `(curve, removed)`.
+    #[pyo3(signature = (t, times = 1, tolerance = None))]
+    fn remove_knot(
+        &self,
+        py: Python<'_>,
+        t: f64,
+        times: usize,
+        tolerance: Option<f64>,
+    ) -> PyResult<(Self, usize)> {
+        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
+        let (c, k) = py
+            .detach(|| self.inner.remove_knot(t, times, tol))
+            .map_err(lib_err)?;
+        Ok((Self::wrap(c), k))
+    }
+
+    /// Splits at `t` (parameters kept).
+    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
+        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
+        Ok((Self::wrap(a), Self::wrap(b)))
+    }
+
+    /// The rational Bezier pieces as NURBS curves.
+    fn to_bezier_segments(&self, py: Python<'_>) -> Vec<Self> {
+        py.detach(|| self.inner.to_bezier_segments())
+            .into_iter()
+            .map(Self::wrap)
+            .collect()
+    }
+
+    /// The same curve traversed backwards.
+    fn reverse(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.reverse()).map_err(lib_err)?,
+        ))
+    }
+
+    /// The same curve on the domain `[a, b]`.
+    fn reparametrize(&self, py: Python<'_>, a: f64, b: f64) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.reparametrize(a, b))
+                .map_err(lib_err)?,
+        ))
+    }
+
+    /// JSON text in the command-line tool's format.
+    fn to_json(&self) -> String {
+        Object::Nurbs(self.inner.clone()).to_json_pretty()
+    }
+
+    /// Reads a NURBS curve from JSON text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        match from_json_shape(text)? {
+            Shape::Curve(Object::Nurbs(c)) => Ok(Self::wrap(c)),
+            other => Err(bad(format!(
+                "expected a nurbs_curve, got {}",
+                other.type_name()
+            ))),
+        }
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        reduce(py, self.to_json())
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Self>()
+            .is_ok_and(|o| o.get().inner == self.inner)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "NurbsCurve(degree={}, n_control={}, dim={})",
+            self.inner.degree(),
+            self.inner.weights().len(),
+            self.inner.dim()
+        )
+    }
+}

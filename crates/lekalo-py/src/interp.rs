@@ -1,0 +1,388 @@
+//! Interpolation: curves (every parametrisation, knot placement and end condition), surfaces,
+//! the natural cubic spline and cubic Hermite splines. Options are strings, parsed here into
+//! the library's enums (the parsers are shared with the batch API).
+
+use lekalo::{
+    interpolate_surface as lk_interpolate_surface, interpolate_surface_max_condition,
+    natural_cubic_spline as lk_natural, CubicHermite, CurveInterpolation, EndCondition,
+    KnotPlacement, Parametrization, TangentEstimate,
+};
+use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyInt, PyTuple};
+
+use crate::convert::{array, check_size, floats, owned_points, points_array, vec1, vec_array};
+use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
+use crate::error::{bad, lib_err};
+use crate::surfaces::PyBSplineSurface;
+
+/// `"uniform"`, `"chord"` (`"chord_length"`), `"centripetal"`, or a number: the exponent `e`
+/// of `|Δq|^e`.
+pub(crate) fn parametrization_arg(obj: &Bound<'_, PyAny>) -> PyResult<Parametrization> {
+    if obj.is_instance_of::<PyFloat>() || obj.is_instance_of::<PyInt>() {
+        return Ok(Parametrization::Exponent(obj.extract()?));
+    }
+    let s: String = obj.extract().map_err(|_| {
+        bad("parametrization: expected 'uniform', 'chord', 'centripetal' or an exponent".into())
+    })?;
+    match s.as_str() {
+        "uniform" => Ok(Parametrization::Uniform),
+        "chord" | "chord_length" => Ok(Parametrization::ChordLength),
+        "centripetal" => Ok(Parametrization::Centripetal),
+        _ => Err(bad(format!(
+            "parametrization: unknown value {s:?}; use 'uniform', 'chord', 'centripetal' or an exponent"
+        ))),
+    }
+}
+
+/// `"auto"`, `"averaged"`, `"uniform"`, `"at_parameters"`.
+pub(crate) fn knots_arg(s: &str) -> PyResult<KnotPlacement> {
+    match s {
+        "auto" => Ok(KnotPlacement::Auto),
+        "averaged" => Ok(KnotPlacement::Averaged),
+        "uniform" => Ok(KnotPlacement::Uniform),
+        "at_parameters" => Ok(KnotPlacement::AtParameters),
+        _ => Err(bad(format!(
+            "knots: unknown value {s:?}; use 'auto', 'averaged', 'uniform' or 'at_parameters'"
+        ))),
+    }
+}
+
+/// `"free"`, `"natural"`, `"periodic"`, `"first"` (first derivatives `d_start`, `d_end`),
+/// `"second"` (second derivatives).
+pub(crate) fn end_arg(
+    s: &str,
+    d_start: Option<Vec<f64>>,
+    d_end: Option<Vec<f64>>,
+) -> PyResult<EndCondition> {
+    let both = |name: &str| match (d_start.clone(), d_end.clone()) {
+        (Some(a), Some(b)) => Ok((a, b)),
+        _ => Err(bad(format!(
+            "end={name:?} needs both d_start and d_end (vectors of the points' dimension)"
+        ))),
+    };
+    let e = match s {
+        "free" => EndCondition::Free,
+        "natural" => EndCondition::Natural,
+        "periodic" => EndCondition::Periodic,
+        "first" | "first_derivatives" | "clamped" => {
+            let (start, end) = both(s)?;
+            EndCondition::FirstDerivatives { start, end }
+        }
+        "second" | "second_derivatives" => {
+            let (start, end) = both(s)?;
+            EndCondition::SecondDerivatives { start, end }
+        }
+        _ => {
+            return Err(bad(format!(
+                "end: unknown value {s:?}; use 'free', 'natural', 'periodic', 'first' or 'second'"
+            )))
+        }
+    };
+    if matches!(
+        e,
+        EndCondition::Free | EndCondition::Natural | EndCondition::Periodic
+    ) && (d_start.is_some() || d_end.is_some())
+    {
+        return Err(bad(format!(
+            "d_start/d_end are only used with end='first' or end='second', not end={s:?}"
+        )));
+    }
+    Ok(e)
+}
+
+/// Global B-spline interpolation through `points` (`(n, dim)`, or `(n,)` values): document
+/// 000 and docs/theory/interpolation.md.
+///
+/// - `parametrization`: 'uniform', 'chord' (default), 'centripetal' or an exponent;
+/// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at_parameters'`;
+/// - `end`: 'free' (default), 'natural', 'periodic', 'first' / 'second' with `d_start`,
+///   `d_end`;
+/// - `params`: explicit parameters (strictly increasing; one more than the points for
+///   'periodic'), replacing `parametrization`;
+/// - `max_condition`: refuse systems whose condition estimate exceeds it.
+///
+/// >>> import numpy as np, lekalo
+/// >>> q = np.array([[0, 0], [3, 4], [-1, 4], [-4, 0], [-4, -3]], dtype=float)
+/// >>> c = lekalo.interpolate(q, degree=3)
+/// >>> np.allclose(c(9 / 17), [-1, 4])
+/// True
+#[pyfunction]
+#[pyo3(signature = (points, degree = 3, *, parametrization = None, knots = "auto", end = "free",
+                    d_start = None, d_end = None, params = None, max_condition = None,
+                    drop_duplicates = false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn interpolate(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    degree: usize,
+    parametrization: Option<&Bound<'_, PyAny>>,
+    knots: &str,
+    end: &str,
+    d_start: Option<&Bound<'_, PyAny>>,
+    d_end: Option<&Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyAny>>,
+    max_condition: Option<f64>,
+    drop_duplicates: bool,
+) -> PyResult<PyBSplineCurve> {
+    let mut ci = CurveInterpolation::new(degree)
+        .knot_placement(knots_arg(knots)?)
+        .end_condition(end_arg(
+            end,
+            d_start.map(|d| vec1(d, "d_start")).transpose()?,
+            d_end.map(|d| vec1(d, "d_end")).transpose()?,
+        )?)
+        .drop_duplicates(drop_duplicates);
+    if let Some(p) = parametrization {
+        ci = ci.parametrization(parametrization_arg(p)?);
+    }
+    if let Some(m) = max_condition {
+        ci = ci.max_condition(m);
+    }
+    let pa = floats(points, "points")?;
+    let pts = pa.points("points")?;
+    let curve = match params {
+        Some(t) => {
+            let ta = floats(t, "params")?;
+            let t = ta.vector("params")?;
+            py.detach(|| ci.interpolate_at(pts, t))
+        }
+        None => py.detach(|| ci.interpolate(pts)),
+    }
+    .map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(curve))
+}
+
+/// The parameters `t̄_k` on `[0, 1]` that `interpolate` would use for `points`.
+#[pyfunction]
+#[pyo3(signature = (points, parametrization = None))]
+pub(crate) fn parametrize<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    parametrization: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let m = match parametrization {
+        Some(p) => parametrization_arg(p)?,
+        None => Parametrization::ChordLength,
+    };
+    let pa = floats(points, "points")?;
+    let pts = pa.points("points")?;
+    let t = py.detach(|| lekalo::parametrize(pts, m)).map_err(lib_err)?;
+    Ok(vec_array(py, &t))
+}
+
+/// The natural cubic spline `y(x)` through `(x_k, y_k)` (zero second derivatives at the ends;
+/// document 002 §C.2), as a B-spline with knots at the `x_k`.
+#[pyfunction]
+pub(crate) fn natural_cubic_spline(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+) -> PyResult<PyBSplineCurve> {
+    let xa = floats(x, "x")?;
+    let xs = xa.vector("x")?;
+    let ya = floats(y, "y")?;
+    let ys = ya.points("y")?;
+    let c = py.detach(|| lk_natural(xs, ys)).map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(c))
+}
+
+/// Tensor-product interpolation of a grid `(nu, nv, dim)` of points (document 000 applied in
+/// both directions): the B-spline surface through every grid point.
+#[pyfunction]
+#[pyo3(signature = (grid, degree_u = 3, degree_v = 3, *, parametrization = None, max_condition = None))]
+pub(crate) fn interpolate_surface(
+    py: Python<'_>,
+    grid: &Bound<'_, PyAny>,
+    degree_u: usize,
+    degree_v: usize,
+    parametrization: Option<&Bound<'_, PyAny>>,
+    max_condition: Option<f64>,
+) -> PyResult<PyBSplineSurface> {
+    let m = match parametrization {
+        Some(p) => parametrization_arg(p)?,
+        None => Parametrization::ChordLength,
+    };
+    let ga = floats(grid, "grid")?;
+    let s = ga.shape();
+    if s.len() != 3 {
+        return Err(bad(format!(
+            "grid: expected a 3-D array (nu, nv, dim), got shape {s:?}"
+        )));
+    }
+    let (nu, nv) = (s[0], s[1]);
+    let pts = lekalo::PointsRef::from_flat(s[2], ga.data()).map_err(lib_err)?;
+    let r = py
+        .detach(|| match max_condition {
+            Some(mc) => interpolate_surface_max_condition(pts, nu, nv, degree_u, degree_v, m, mc),
+            None => lk_interpolate_surface(pts, nu, nv, degree_u, degree_v, m),
+        })
+        .map_err(lib_err)?;
+    Ok(PyBSplineSurface {
+        inner: r.into_surface(),
+    })
+}
+
+/// The cubic Bezier curve through four points at parameters 0, 1/3, 2/3, 1.
+#[pyfunction]
+pub(crate) fn cubic_through_four_points(points: &Bound<'_, PyAny>) -> PyResult<PyBezierCurve> {
+    let pa = floats(points, "points")?;
+    let c = lekalo::cubic_through_four_points(pa.points("points")?).map_err(lib_err)?;
+    Ok(PyBezierCurve::wrap(c))
+}
+
+fn estimate_arg(s: &str, tension: f64) -> PyResult<TangentEstimate> {
+    match s {
+        "finite_difference" => Ok(TangentEstimate::FiniteDifference),
+        "catmull_rom" => Ok(TangentEstimate::CatmullRom),
+        "cardinal" => Ok(TangentEstimate::Cardinal { tension }),
+        "monotone" => Ok(TangentEstimate::Monotone),
+        _ => Err(bad(format!(
+            "tangents: unknown value {s:?}; use 'finite_difference', 'catmull_rom', 'cardinal' or 'monotone'"
+        ))),
+    }
+}
+
+/// A C¹ piecewise cubic Hermite curve (document 002 §C.3): points and tangents at increasing
+/// parameters. Build it with tangents given, or estimated (`from_points`, `function`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> h = lekalo.CubicHermite.function([0, 1, 2, 3], [0, 1, 1, 2], tangents="monotone")
+/// >>> h(1.5)
+/// array([1.])
+#[pyclass(module = "lekalo", name = "CubicHermite", frozen, eq)]
+#[derive(PartialEq)]
+pub(crate) struct PyCubicHermite {
+    inner: CubicHermite,
+}
+
+#[pymethods]
+impl PyCubicHermite {
+    #[new]
+    fn new(
+        params: &Bound<'_, PyAny>,
+        points: &Bound<'_, PyAny>,
+        tangents: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let t = vec1(params, "params")?;
+        let p = owned_points(points, "points")?;
+        let d = owned_points(tangents, "tangents")?;
+        Ok(Self {
+            inner: CubicHermite::new(t, p, d).map_err(lib_err)?,
+        })
+    }
+
+    /// A parametric Hermite curve through `points` with parameters on `[0, 1]` and tangents
+    /// estimated by `tangents` (`'finite_difference'`, `'catmull_rom'`, `'cardinal'` with `tension`,
+    /// 'monotone').
+    #[staticmethod]
+    #[pyo3(signature = (points, parametrization = None, tangents = "catmull_rom", tension = 0.0))]
+    fn from_points(
+        points: &Bound<'_, PyAny>,
+        parametrization: Option<&Bound<'_, PyAny>>,
+        tangents: &str,
+        tension: f64,
+    ) -> PyResult<Self> {
+        let m = match parametrization {
+            Some(p) => parametrization_arg(p)?,
+            None => Parametrization::ChordLength,
+        };
+        let pa = floats(points, "points")?;
+        let h =
+            CubicHermite::from_points(pa.points("points")?, m, estimate_arg(tangents, tension)?)
+                .map_err(lib_err)?;
+        Ok(Self { inner: h })
+    }
+
+    /// The function `y(x)` through `(x_k, y_k)` (`x` strictly increasing); 'monotone' keeps
+    /// monotone data monotone (Fritsch–Carlson, like SciPy's `PchipInterpolator` in spirit).
+    #[staticmethod]
+    #[pyo3(signature = (x, y, tangents = "monotone", tension = 0.0))]
+    fn function(
+        x: &Bound<'_, PyAny>,
+        y: &Bound<'_, PyAny>,
+        tangents: &str,
+        tension: f64,
+    ) -> PyResult<Self> {
+        let xa = floats(x, "x")?;
+        let ya = floats(y, "y")?;
+        let h = CubicHermite::function(
+            xa.vector("x")?,
+            ya.points("y")?,
+            estimate_arg(tangents, tension)?,
+        )
+        .map_err(lib_err)?;
+        Ok(Self { inner: h })
+    }
+
+    /// The parameters.
+    #[getter]
+    fn params<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.params())
+    }
+
+    /// The points `(n, dim)`.
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_array(py, self.inner.points())
+    }
+
+    /// The tangents `(n, dim)`.
+    #[getter]
+    fn tangents<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        points_array(py, self.inner.tangents())
+    }
+
+    /// The parameter domain.
+    #[getter]
+    fn domain(&self) -> (f64, f64) {
+        self.inner.domain()
+    }
+
+    /// Points at `t` (any shape): `t.shape + (dim,)`.
+    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+        let ta = floats(t, "t")?;
+        let ts = ta.data();
+        let dim = self.inner.points().dim();
+        let n = check_size("t", &[ts.len(), dim])?;
+        let mut out = vec![0.0; n];
+        py.detach(|| {
+            ts.iter()
+                .zip(out.chunks_exact_mut(dim))
+                .try_for_each(|(&t, o)| {
+                    o.copy_from_slice(&self.inner.eval(t)?);
+                    Ok(())
+                })
+        })
+        .map_err(lib_err)?;
+        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    }
+
+    /// The same curve as a B-spline (knots of multiplicity 2 at the parameters).
+    fn to_bspline(&self) -> PyBSplineCurve {
+        PyBSplineCurve::wrap(self.inner.to_bspline())
+    }
+
+    /// The cubic Bezier pieces.
+    fn to_bezier_segments(&self) -> Vec<PyBezierCurve> {
+        self.inner
+            .to_bezier_segments()
+            .into_iter()
+            .map(PyBezierCurve::wrap)
+            .collect()
+    }
+
+    /// Pickled as its parameters, points and tangents (bit for bit).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let cls = py.get_type::<Self>();
+        let args = PyTuple::new(py, [self.params(py), self.points(py)?, self.tangents(py)?])?;
+        PyTuple::new(py, [cls.into_any(), args.into_any()])
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "CubicHermite(n_points={}, dim={})",
+            self.inner.params().len(),
+            self.inner.points().dim()
+        )
+    }
+}

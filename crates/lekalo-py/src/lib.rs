@@ -1,0 +1,52 @@
+//! # lekalo-py — the Python package `lekalo`
+//!
+//! The native module `lekalo._lekalo`, built by maturin into one `abi3` wheel for `CPython` ≥ 3.9;
+//! the pure-Python package around it (`python/lekalo/`) adds SciPy and geomdl interop and the
+//! type stubs. This crate holds conversions and argument handling only: every computation is a
+//! call of the `lekalo` library, made with the GIL released.
+//!
+//! - arrays: `convert` (float64, C- or F-ordered, the last axis is the dimension; C-ordered
+//!   arrays are borrowed, not copied);
+//! - errors: `error` (`lekalo.Error`, a `ValueError`, with the library's message);
+//! - classes: `curves`, `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
+//! - many curves at once: `batch`.
+
+mod batch;
+mod blend;
+mod convert;
+mod curves;
+mod error;
+mod interp;
+mod pp;
+mod surfaces;
+
+use pyo3::prelude::*;
+
+/// The native module.
+#[pymodule]
+fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("Error", py.get_type::<error::Error>())?;
+    m.add("MAX_SCALARS", lekalo::MAX_SCALARS)?;
+    m.add("MAX_DEGREE", lekalo::MAX_DEGREE)?;
+    m.add_class::<curves::PyBezierCurve>()?;
+    m.add_class::<curves::PyBSplineCurve>()?;
+    m.add_class::<curves::PyNurbsCurve>()?;
+    m.add_class::<surfaces::PyBezierSurface>()?;
+    m.add_class::<surfaces::PyBSplineSurface>()?;
+    m.add_class::<surfaces::PyNurbsSurface>()?;
+    m.add_class::<interp::PyCubicHermite>()?;
+    m.add_class::<pp::PyPiecewisePolynomial>()?;
+    m.add_class::<pp::PyPpSpace>()?;
+    m.add_function(wrap_pyfunction!(curves::from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::natural_cubic_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::interpolate_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
+    blend::register(m)?;
+    Ok(())
+}

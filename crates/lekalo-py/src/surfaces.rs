@@ -1,0 +1,501 @@
+//! `BezierSurface`, `BSplineSurface`, `NurbsSurface`: control nets are `(nu, nv, dim)` arrays;
+//! evaluation at `(u, v)` arrays of one shape gives `shape + (dim,)`, on a grid
+//! `(len(us), len(vs), dim)`.
+
+use lekalo::{BSplineSurface, BezierSurface, NurbsSurface, Points};
+use lekalo_io::{Shape, Surface};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{array, check_size, floats, vec1, vec_array, FloatArray};
+use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
+use crate::error::{bad, io_err, lib_err};
+
+/// A control net `(nu, nv, dim)` as points and its size.
+pub(crate) fn net_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Points, (usize, usize))> {
+    let a = floats(obj, what)?;
+    let s = a.shape();
+    if s.len() != 3 {
+        return Err(bad(format!(
+            "{what}: expected a 3-D array (nu, nv, dim), got shape {s:?}"
+        )));
+    }
+    let p = Points::from_flat(s[2], a.data().to_vec()).map_err(lib_err)?;
+    Ok((p, (s[0], s[1])))
+}
+
+fn net_array<'py>(
+    py: Python<'py>,
+    p: &Points,
+    (nu, nv): (usize, usize),
+) -> PyResult<Bound<'py, PyAny>> {
+    array(py, p.as_slice().to_vec(), &[nu, nv, p.dim()])
+}
+
+/// Pairs `(u, v)` from two arrays of one shape.
+fn uv_pairs<'a>(u: &FloatArray<'a>, v: &FloatArray<'a>) -> PyResult<Vec<[f64; 2]>> {
+    if u.shape() != v.shape() {
+        return Err(bad(format!(
+            "u and v: shapes differ ({:?} and {:?}); use grid(us, vs) for a tensor grid",
+            u.shape(),
+            v.shape()
+        )));
+    }
+    Ok(u.data()
+        .iter()
+        .zip(v.data())
+        .map(|(&a, &b)| [a, b])
+        .collect())
+}
+
+fn shape_of(text: &str) -> PyResult<Shape> {
+    Shape::from_json_str(text, "json").map_err(io_err)
+}
+
+macro_rules! surface_common {
+    ($ty:ident, $variant:ident, $name:literal, { $($extra:tt)* }) => {
+        #[pymethods]
+        impl $ty {
+            $($extra)*
+
+            /// The dimension of the points.
+            #[getter]
+            fn dim(&self) -> usize {
+                self.inner.dim()
+            }
+
+            /// The parameter domain `((u0, u1), (v0, v1))`.
+            #[getter]
+            fn domain(&self) -> ((f64, f64), (f64, f64)) {
+                self.inner.domain()
+            }
+
+            /// The net size `(nu, nv)`.
+            #[getter]
+            fn net_size(&self) -> (usize, usize) {
+                self.inner.net_size()
+            }
+
+            /// Points at `(u, v)` (arrays of one shape, or numbers): `shape + (dim,)`.
+            fn __call__(
+                &self,
+                py: Python<'_>,
+                u: &Bound<'_, PyAny>,
+                v: &Bound<'_, PyAny>,
+            ) -> PyResult<Py<PyAny>> {
+                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
+                let uv = uv_pairs(&ua, &va)?;
+                let dim = self.inner.dim();
+                let n = check_size("u, v", &[uv.len(), dim])?;
+                let mut out = vec![0.0; n];
+                py.detach(|| {
+                    uv.iter()
+                        .zip(out.chunks_exact_mut(dim))
+                        .try_for_each(|(&[u, v], o)| self.inner.eval_into(u, v, o))
+                })
+                .map_err(lib_err)?;
+                Ok(array(py, out, &out_shape(&ua, &[dim]))?.unbind())
+            }
+
+            /// Partial derivatives `∂^{a+b} S / ∂u^a ∂v^b` for `a, b ≤ order` at `(u, v)`:
+            /// `shape + (order + 1, order + 1, dim)` indexed `[..., a, b, :]`.
+            fn derivatives(
+                &self,
+                py: Python<'_>,
+                u: &Bound<'_, PyAny>,
+                v: &Bound<'_, PyAny>,
+                order: usize,
+            ) -> PyResult<Py<PyAny>> {
+                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
+                let uv = uv_pairs(&ua, &va)?;
+                let dim = self.inner.dim();
+                let k = order.saturating_add(1);
+                let row = check_size("order", &[k, k, dim])?;
+                let n = check_size("u, v", &[uv.len(), row])?;
+                let mut out = vec![0.0; n];
+                py.detach(|| {
+                    uv.iter()
+                        .zip(out.chunks_exact_mut(row))
+                        .try_for_each(|(&[u, v], o)| {
+                            let d = self.inner.eval_derivatives(u, v, order)?;
+                            o.copy_from_slice(d.as_slice());
+                            Ok(())
+                        })
+                })
+                .map_err(lib_err)?;
+                Ok(array(py, out, &out_shape(&ua, &[k, k, dim]))?.unbind())
+            }
+
+            /// Unit normals at `(u, v)` (3-D surfaces): `shape + (3,)`.
+            fn normal(
+                &self,
+                py: Python<'_>,
+                u: &Bound<'_, PyAny>,
+                v: &Bound<'_, PyAny>,
+            ) -> PyResult<Py<PyAny>> {
+                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
+                let uv = uv_pairs(&ua, &va)?;
+                let n = check_size("u, v", &[uv.len(), 3])?;
+                let mut out = vec![0.0; n];
+                py.detach(|| {
+                    uv.iter()
+                        .zip(out.chunks_exact_mut(3))
+                        .try_for_each(|(&[u, v], o)| {
+                            o.copy_from_slice(&self.inner.normal(u, v)?);
+                            Ok(())
+                        })
+                })
+                .map_err(lib_err)?;
+                Ok(array(py, out, &out_shape(&ua, &[3]))?.unbind())
+            }
+
+            /// JSON text in the command-line tool's format.
+            fn to_json(&self) -> String {
+                Shape::Surface(Surface::$variant(self.inner.clone())).to_json_pretty()
+            }
+
+            /// Reads the surface from JSON text.
+            #[staticmethod]
+            fn from_json(text: &str) -> PyResult<Self> {
+                match shape_of(text)? {
+                    Shape::Surface(Surface::$variant(s)) => Ok(Self { inner: s }),
+                    other => Err(bad(format!(
+                        concat!("expected a ", $name, ", got {}"),
+                        other.type_name()
+                    ))),
+                }
+            }
+
+            fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+                reduce(py, self.to_json())
+            }
+
+            fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+                other
+                    .cast::<Self>()
+                    .is_ok_and(|o| o.get().inner == self.inner)
+            }
+        }
+    };
+}
+
+/// A tensor-product Bezier surface on `[0, 1]²` (docs/theory/surfaces.md).
+///
+/// >>> import numpy as np, lekalo
+/// >>> net = np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]], dtype=float)
+/// >>> lekalo.BezierSurface(net)(0.5, 0.25)
+/// array([0.5  , 0.25 , 0.125])
+#[pyclass(module = "lekalo", name = "BezierSurface", frozen)]
+pub(crate) struct PyBezierSurface {
+    pub(crate) inner: BezierSurface,
+}
+
+surface_common!(PyBezierSurface, Bezier, "bezier_surface", {
+    #[new]
+    fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let (p, size) = net_arg(control, "control")?;
+        Ok(Self {
+            inner: BezierSurface::new(p, size).map_err(lib_err)?,
+        })
+    }
+
+    /// The degrees `(nu − 1, nv − 1)`.
+    #[getter]
+    fn degrees(&self) -> (usize, usize) {
+        (self.inner.degree_u(), self.inner.degree_v())
+    }
+
+    /// The control net `(nu, nv, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        net_array(py, self.inner.control_points(), self.inner.net_size())
+    }
+
+    /// The iso-curve `S(·, v)` as a Bezier curve in `u`.
+    fn iso_curve_u(&self, v: f64) -> PyResult<PyBezierCurve> {
+        Ok(PyBezierCurve::wrap(
+            self.inner.iso_curve_u(v).map_err(lib_err)?,
+        ))
+    }
+
+    /// The iso-curve `S(u, ·)` as a Bezier curve in `v`.
+    fn iso_curve_v(&self, u: f64) -> PyResult<PyBezierCurve> {
+        Ok(PyBezierCurve::wrap(
+            self.inner.iso_curve_v(u).map_err(lib_err)?,
+        ))
+    }
+
+    /// Degree elevation by `(by_u, by_v)` (document 004).
+    fn elevate_degree(&self, py: Python<'_>, by_u: usize, by_v: usize) -> PyResult<Self> {
+        Ok(Self {
+            inner: py
+                .detach(|| self.inner.elevate_degree(by_u, by_v))
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// Exact degree change to `(new_u, new_v)`, refused below the real degrees.
+    fn change_degree(&self, py: Python<'_>, new_u: usize, new_v: usize) -> PyResult<Self> {
+        Ok(Self {
+            inner: py
+                .detach(|| self.inner.change_degree(new_u, new_v))
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// The real degrees `(u, v)`: the least degrees that represent the same surface.
+    fn real_degrees(&self) -> (usize, usize) {
+        self.inner.real_degrees()
+    }
+
+    /// The same surface as a B-spline surface.
+    fn to_bspline(&self) -> PyBSplineSurface {
+        PyBSplineSurface {
+            inner: self.inner.to_bspline(),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "BezierSurface(degrees=({}, {}), dim={})",
+            self.inner.degree_u(),
+            self.inner.degree_v(),
+            self.inner.dim()
+        )
+    }
+});
+
+/// A tensor-product B-spline surface (docs/theory/surfaces.md).
+#[pyclass(module = "lekalo", name = "BSplineSurface", frozen)]
+pub(crate) struct PyBSplineSurface {
+    pub(crate) inner: BSplineSurface,
+}
+
+surface_common!(PyBSplineSurface, BSpline, "bspline_surface", {
+    #[new]
+    fn new(
+        degree_u: usize,
+        degree_v: usize,
+        knots_u: &Bound<'_, PyAny>,
+        knots_v: &Bound<'_, PyAny>,
+        control: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
+        let (p, size) = net_arg(control, "control")?;
+        Ok(Self {
+            inner: BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)?,
+        })
+    }
+
+    /// The degrees `(p, q)`.
+    #[getter]
+    fn degrees(&self) -> (usize, usize) {
+        (self.inner.degree_u(), self.inner.degree_v())
+    }
+
+    /// The knot vector in `u`.
+    #[getter]
+    fn knots_u<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots_u().as_slice())
+    }
+
+    /// The knot vector in `v`.
+    #[getter]
+    fn knots_v<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots_v().as_slice())
+    }
+
+    /// The control net `(nu, nv, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        net_array(py, self.inner.control_points(), self.inner.net_size())
+    }
+
+    /// Points on the tensor grid `us × vs`: `(len(us), len(vs), dim)`.
+    fn grid(
+        &self,
+        py: Python<'_>,
+        us: &Bound<'_, PyAny>,
+        vs: &Bound<'_, PyAny>,
+    ) -> PyResult<Py<PyAny>> {
+        let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
+        let (u, v) = (ua.vector("us")?, va.vector("vs")?);
+        let dim = self.inner.dim();
+        let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
+        let mut out = vec![0.0; n];
+        py.detach(|| self.inner.eval_grid(u, v, &mut out))
+            .map_err(lib_err)?;
+        Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
+    }
+
+    /// Inserts `u` into the `u` knots `times` times.
+    #[pyo3(signature = (u, times = 1))]
+    fn insert_knot_u(&self, py: Python<'_>, u: f64, times: usize) -> PyResult<Self> {
+        Ok(Self {
+            inner: py
+                .detach(|| self.inner.insert_knot_u(u, times))
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// Inserts `v` into the `v` knots `times` times.
+    #[pyo3(signature = (v, times = 1))]
+    fn insert_knot_v(&self, py: Python<'_>, v: f64, times: usize) -> PyResult<Self> {
+        Ok(Self {
+            inner: py
+                .detach(|| self.inner.insert_knot_v(v, times))
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// Splits at `u` into two surfaces.
+    fn split_u(&self, py: Python<'_>, u: f64) -> PyResult<(Self, Self)> {
+        let (a, b) = py.detach(|| self.inner.split_at_u(u)).map_err(lib_err)?;
+        Ok((Self { inner: a }, Self { inner: b }))
+    }
+
+    /// Splits at `v` into two surfaces.
+    fn split_v(&self, py: Python<'_>, v: f64) -> PyResult<(Self, Self)> {
+        let (a, b) = py.detach(|| self.inner.split_at_v(v)).map_err(lib_err)?;
+        Ok((Self { inner: a }, Self { inner: b }))
+    }
+
+    /// Degree elevation by `(by_u, by_v)`.
+    fn elevate_degree(&self, py: Python<'_>, by_u: usize, by_v: usize) -> PyResult<Self> {
+        Ok(Self {
+            inner: py
+                .detach(|| self.inner.elevate_degree(by_u, by_v))
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// The iso-curve `S(·, v)`.
+    fn iso_curve_u(&self, v: f64) -> PyResult<PyBSplineCurve> {
+        Ok(PyBSplineCurve::wrap(
+            self.inner.iso_curve_u(v).map_err(lib_err)?,
+        ))
+    }
+
+    /// The iso-curve `S(u, ·)`.
+    fn iso_curve_v(&self, u: f64) -> PyResult<PyBSplineCurve> {
+        Ok(PyBSplineCurve::wrap(
+            self.inner.iso_curve_v(u).map_err(lib_err)?,
+        ))
+    }
+
+    fn __repr__(&self) -> String {
+        let (nu, nv) = self.inner.net_size();
+        format!(
+            "BSplineSurface(degrees=({}, {}), net=({nu}, {nv}), dim={})",
+            self.inner.degree_u(),
+            self.inner.degree_v(),
+            self.inner.dim()
+        )
+    }
+});
+
+/// A tensor-product NURBS surface (docs/theory/surfaces.md).
+#[pyclass(module = "lekalo", name = "NurbsSurface", frozen)]
+pub(crate) struct PyNurbsSurface {
+    pub(crate) inner: NurbsSurface,
+}
+
+surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", {
+    #[new]
+    fn new(
+        degree_u: usize,
+        degree_v: usize,
+        knots_u: &Bound<'_, PyAny>,
+        knots_v: &Bound<'_, PyAny>,
+        control: &Bound<'_, PyAny>,
+        weights: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
+        let (p, size) = net_arg(control, "control")?;
+        let w = floats(weights, "weights")?;
+        if w.shape() != [size.0, size.1] {
+            return Err(bad(format!(
+                "weights: expected shape ({}, {}), got {:?}",
+                size.0,
+                size.1,
+                w.shape()
+            )));
+        }
+        Ok(Self {
+            inner: NurbsSurface::new(degree_u, degree_v, ku, kv, p, w.data().to_vec(), size)
+                .map_err(lib_err)?,
+        })
+    }
+
+    /// The degrees `(p, q)`.
+    #[getter]
+    fn degrees(&self) -> (usize, usize) {
+        (self.inner.degree_u(), self.inner.degree_v())
+    }
+
+    /// The knot vector in `u`.
+    #[getter]
+    fn knots_u<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots_u().as_slice())
+    }
+
+    /// The knot vector in `v`.
+    #[getter]
+    fn knots_v<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        vec_array(py, self.inner.knots_v().as_slice())
+    }
+
+    /// The Euclidean control net `(nu, nv, dim)`.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        net_array(py, &self.inner.control_points(), self.inner.net_size())
+    }
+
+    /// The weights `(nu, nv)`.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (nu, nv) = self.inner.net_size();
+        array(py, self.inner.weights(), &[nu, nv])
+    }
+
+    /// Points on the tensor grid `us × vs`: `(len(us), len(vs), dim)`.
+    fn grid(
+        &self,
+        py: Python<'_>,
+        us: &Bound<'_, PyAny>,
+        vs: &Bound<'_, PyAny>,
+    ) -> PyResult<Py<PyAny>> {
+        let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
+        let (u, v) = (ua.vector("us")?, va.vector("vs")?);
+        let dim = self.inner.dim();
+        let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
+        let mut out = vec![0.0; n];
+        py.detach(|| self.inner.eval_grid(u, v, &mut out))
+            .map_err(lib_err)?;
+        Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
+    }
+
+    /// The iso-curve `S(·, v)`.
+    fn iso_curve_u(&self, v: f64) -> PyResult<PyNurbsCurve> {
+        Ok(PyNurbsCurve::wrap(
+            self.inner.iso_curve_u(v).map_err(lib_err)?,
+        ))
+    }
+
+    /// The iso-curve `S(u, ·)`.
+    fn iso_curve_v(&self, u: f64) -> PyResult<PyNurbsCurve> {
+        Ok(PyNurbsCurve::wrap(
+            self.inner.iso_curve_v(u).map_err(lib_err)?,
+        ))
+    }
+
+    fn __repr__(&self) -> String {
+        let (nu, nv) = self.inner.net_size();
+        format!(
+            "NurbsSurface(degrees=({}, {}), net=({nu}, {nv}), dim={})",
+            self.inner.degree_u(),
+            self.inner.degree_v(),
+            self.inner.dim()
+        )
+    }
+});

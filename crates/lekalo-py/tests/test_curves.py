@@ -1,0 +1,246 @@
+"""Curves, surfaces, pp-forms: evaluation against SciPy, operations, JSON and pickle."""
+
+import pickle
+
+import numpy as np
+import pytest
+from scipy import interpolate as si
+
+import lekalo
+
+RNG = np.random.default_rng(7)
+
+
+def lecture_curve():
+    return lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], [[1, 1], [2, 3], [4, 3]])
+
+
+def test_lecture_example():
+    c = lecture_curve()
+    assert c.domain == (1.0, 2.0)
+    assert c(1.5).tolist() == [17 / 8, 11 / 4]
+    d = c.derivatives(1.5, 2)
+    assert d.shape == (3, 2)
+    assert np.array_equal(d[0], c(1.5))
+
+
+def test_bspline_matches_scipy_bspline():
+    t = np.concatenate([[0] * 4, np.sort(RNG.random(20)), [1] * 4])
+    ctrl = RNG.standard_normal((24, 3))
+    c = lekalo.BSplineCurve(3, t, ctrl)
+    ref = si.BSpline(t, ctrl, 3)
+    x = np.linspace(0, 1, 1001)
+    assert np.allclose(c(x), ref(x), rtol=0, atol=1e-13)
+    # large batches take the parallel path: same numbers
+    xl = RNG.random(100_000)
+    assert np.allclose(c(xl), ref(xl), rtol=0, atol=1e-13)
+    for nu in (1, 2, 3):
+        assert np.allclose(c(x, nu=nu), ref(x, nu=nu), rtol=1e-9, atol=1e-9 * np.abs(ref(x, nu=nu)).max())
+    # derivatives of every order at once
+    xs = np.linspace(0, 1, 21)
+    d = c.derivatives(xs, 3)
+    for nu in range(4):
+        assert np.allclose(d[:, nu], ref(xs, nu=nu), rtol=1e-9, atol=1e-8 * max(1, np.abs(d[:, nu]).max()))
+
+
+def test_shapes_and_layouts():
+    c = lecture_curve()
+    t = np.linspace(1, 2, 12).reshape(3, 4)
+    assert c(t).shape == (3, 4, 2)
+    assert c(t.T).shape == (4, 3, 2)  # F-ordered parameters
+    assert np.array_equal(c(t.T), c(np.ascontiguousarray(t.T)))
+    assert c([1.0, 1.5]).shape == (2, 2)
+    # F-ordered control points give the same curve as C-ordered ones
+    ctrl = np.asfortranarray(np.array([[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]]))
+    assert lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], ctrl) == c
+
+
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.array([[1, 1], [2, 3], [4, 3]])), "dtype int64 is not float64"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.ones((3, 4))[:, ::2]), "not contiguous"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], [[1, np.nan], [2, 3], [4, 3]]), "finite"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 2, 1, 3, 3], [[1, 1], [2, 3], [4, 3]]), "knots"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3], [[1, 1], [2, 3], [4, 3]]), "expected 6, got 5"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.ones((3, 2, 2))), "2-D array"),
+        (lambda: lecture_curve()(0.5), "outside the domain"),
+        (lambda: lecture_curve()(np.array([1.5, np.nan])), "outside the domain|finite"),
+        (lambda: lecture_curve()(np.zeros(3, dtype=np.float32)), "float32"),
+        (lambda: lecture_curve()("abc"), "sequence of numbers"),
+        (lambda: lecture_curve().derivatives(1.5, 10**9), "order|too large"),
+        (lambda: lekalo.interpolate(np.zeros((1, 2))), "need at least|too few|points"),
+        (lambda: lekalo.interpolate(RNG.random((5, 2)), degree=0), "degree"),
+        (lambda: lekalo.interpolate(np.ones((5, 2))), "coincide"),
+        (lambda: lekalo.interpolate(RNG.random((5, 2)), knots="bogus"), "knots: unknown"),
+        (lambda: lekalo.evaluate_batch(3, np.zeros(8), [0, 8], np.zeros((4, 1)), [0, 4], np.zeros(1), [0, 2]), "last offset"),
+    ],
+)
+def test_named_errors(make, match):
+    with pytest.raises(lekalo.Error, match=match) as e:
+        make()
+    assert isinstance(e.value, ValueError)
+
+
+def test_huge_output_refused():
+    c = lecture_curve()
+    with pytest.raises(lekalo.Error, match="too large"):
+        c.derivatives(np.ones(1), 2**40)
+
+
+def test_knot_operations_keep_the_curve():
+    c = lekalo.interpolate(RNG.standard_normal((12, 2)))
+    x = np.linspace(*c.domain, 301)
+    for d in (
+        c.insert_knot(0.37, 2),
+        c.refine_knots(np.array([0.1, 0.2, 0.2, 0.8])),
+        c.elevate_degree(2),
+        c.reverse().reverse(),
+    ):
+        assert np.allclose(d(x), c(x), atol=1e-12)
+    a, b = c.split(0.4)
+    assert a.domain == (0.0, 0.4) and b.domain == (0.4, 1.0)
+    assert np.allclose(a(x[x <= 0.4]), c(x[x <= 0.4]), atol=1e-12)
+    c2, removed = c.insert_knot(0.37, 2).remove_knot(0.37, 2)
+    assert removed == 2 and np.allclose(c2(x), c(x), atol=1e-10)
+    segs = c.to_bezier_segments()
+    for start, end, bez in segs:
+        assert np.allclose(bez(0.5), c((start + end) / 2), atol=1e-12)
+    r = c.reparametrize(2.0, 5.0)
+    assert r.domain == (2.0, 5.0) and np.allclose(r(2 + 3 * x), c(x), atol=1e-12)
+    dc = c.derivative()
+    assert np.allclose(dc(x), c(x, nu=1), atol=1e-9)
+
+
+def test_bezier_degree_change():
+    b = lekalo.BezierCurve(RNG.standard_normal((4, 3)))
+    e = b.elevate_degree(3)
+    assert e.degree == 6 and e.real_degree() == 3
+    back = e.change_degree(3)
+    assert np.allclose(back.control, b.control, atol=1e-12)
+    with pytest.raises(lekalo.Error):
+        e.change_degree(2)
+    t = np.linspace(0, 1, 50)
+    assert np.allclose(e(t), b(t), atol=1e-13)
+    left, right = b.split(0.25)
+    assert np.allclose(left(1.0), b(0.25), atol=1e-14)
+    mono = b.to_monomial()
+    assert np.allclose(lekalo.BezierCurve.from_monomial(mono).control, b.control, atol=1e-12)
+    r, bound = b.elevate_degree(2).reduce_degree_approx(3)
+    assert bound < 1e-9 and np.allclose(r(t), b(t), atol=1e-9)
+    # a Bezier curve as SciPy's BPoly of one piece
+    assert np.allclose(lekalo.to_scipy(b)(t), b(t), atol=1e-13)
+
+
+def test_nurbs_circle():
+    c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    t = np.linspace(*c.domain, 1001)
+    r = np.linalg.norm(c(t), axis=1)
+    assert np.allclose(r, 2.0, atol=1e-13)
+    d = c.derivatives(t[:10], 1)
+    assert np.allclose(np.einsum("ij,ij->i", d[:, 0], d[:, 1]), 0, atol=1e-12)
+    a, b = c.split(0.5 * sum(c.domain))
+    assert np.allclose(np.linalg.norm(a(np.linspace(*a.domain, 9)), axis=1), 2.0, atol=1e-13)
+    assert c.insert_knot(0.3) != c
+    arc = lekalo.NurbsCurve.arc_through_points([1, 0], [0, 1], [-1, 0])
+    assert np.allclose(np.linalg.norm(arc(np.linspace(*arc.domain, 17)), axis=1), 1.0, atol=1e-13)
+
+
+def test_surfaces():
+    net = RNG.standard_normal((5, 4, 3))
+    ku = [0, 0, 0, 0, 0.5, 1, 1, 1, 1]
+    kv = [0, 0, 0, 0.4, 1, 1, 1]
+    s = lekalo.BSplineSurface(3, 2, ku, kv, net)
+    us, vs = np.linspace(0, 1, 7), np.linspace(0, 1, 6)
+    u, v = np.meshgrid(us, vs, indexing="ij")
+    # the same surface by SciPy: a B-spline in u of B-splines in v
+    ref = np.empty(u.shape + (3,))
+    for i, uu in enumerate(us):
+        rows = si.BSpline(np.array(ku, float), net, 3)(uu)  # (4, 3): control row in v
+        ref[i] = si.BSpline(np.array(kv, float), rows, 2)(v[i])
+    assert np.allclose(s(u, v), ref, atol=1e-13)
+    assert np.allclose(s.grid(us, vs), ref, atol=1e-13)
+    with pytest.raises(lekalo.Error, match="not contiguous"):
+        s.grid(u[:, 0], vs)
+    d = s.derivatives(0.3, 0.6, 1)
+    assert d.shape == (2, 2, 3) and np.allclose(d[0, 0], s(0.3, 0.6))
+    n = s.normal(0.3, 0.6)
+    assert np.isclose(np.linalg.norm(n), 1.0)
+    s2 = s.insert_knot_u(0.3).insert_knot_v(0.7, 2)
+    assert np.allclose(s2(u, v), s(u, v), atol=1e-12)
+    a, b = s.split_u(0.5)
+    assert a.domain[0] == (0.0, 0.5)
+    iso = s.iso_curve_u(0.25)
+    assert np.allclose(iso(us), s(us, np.full(7, 0.25)), atol=1e-13)
+    bz = lekalo.BezierSurface(RNG.standard_normal((3, 4, 3)))
+    assert bz.degrees == (2, 3)
+    assert np.allclose(bz.to_bspline()(u, v), bz(u, v), atol=1e-13)
+    assert bz.elevate_degree(1, 1).real_degrees() == (2, 3)
+    w = RNG.random((5, 4)) + 0.5
+    ns = lekalo.NurbsSurface(3, 2, ku, kv, net, w)
+    # the rational surface is the projection of its homogeneous surface
+    hom = lekalo.BSplineSurface(3, 2, ku, kv, np.concatenate([net * w[..., None], w[..., None]], axis=2))
+    h = hom(u, v)
+    assert np.allclose(ns(u, v), h[..., :3] / h[..., 3:], atol=1e-12)
+    assert np.allclose(ns.grid(us, vs), ns(u, v), atol=1e-13)
+    with pytest.raises(lekalo.Error, match="shapes differ"):
+        s(np.zeros(3), np.zeros(4))
+
+
+def test_pp_form():
+    c = lekalo.interpolate(RNG.standard_normal((9, 2)))
+    pp = c.to_pp()
+    x = np.linspace(0, 1, 101)
+    assert np.allclose(pp(x), c(x), atol=1e-12)
+    assert np.allclose(pp(x, nu=2), c(x, nu=2), atol=1e-8)
+    assert np.allclose(pp.derivative(1)(x), c(x, nu=1), atol=1e-9)
+    space = lekalo.PpSpace(pp.breakpoints, 4, [3] * (len(pp.breakpoints) - 2))
+    assert space.contains(pp)
+    back = pp.to_bspline(space)
+    assert np.allclose(back(x), c(x), atol=1e-10)
+    # quasi-interpolation reproduces a cubic exactly
+    f = lambda t, r: [t**3, 3 * t**2, 6 * t, 6.0][r] if r < 4 else 0.0  # noqa: E731
+    q = lekalo.quasi_interpolate(lekalo.PpSpace([0, 0.3, 0.6, 1.0], 4, [2, 2]), f)
+    assert np.allclose(q(x)[:, 0], x**3, atol=1e-12)
+    with pytest.raises(ZeroDivisionError):
+        lekalo.quasi_interpolate(space, lambda t, r: 1 / 0)
+    assert len(space.truncated_power_basis()) == space.dimension
+
+
+def all_objects():
+    c = lekalo.interpolate(RNG.standard_normal((7, 3)))
+    yield c
+    yield lecture_curve()
+    yield lekalo.BezierCurve(RNG.standard_normal((5, 2)))
+    yield lekalo.NurbsCurve.circle([0, 0, 0], [1, 0, 0], [0, 1, 0], 1.5)
+    yield lekalo.BSplineSurface(2, 1, [0, 0, 0, 1, 1, 1], [0, 0, 1, 1], RNG.standard_normal((3, 2, 3)))
+    yield lekalo.BezierSurface(RNG.standard_normal((3, 3, 3)))
+    yield lekalo.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], RNG.standard_normal((2, 2, 3)), RNG.random((2, 2)) + 0.1)
+    yield c.to_pp()
+    yield lekalo.CubicHermite.from_points(RNG.standard_normal((6, 2)))
+    yield lekalo.PpSpace([0, 1, 2, 3], 3, [1, 2])
+
+
+@pytest.mark.parametrize("obj", list(all_objects()), ids=lambda o: type(o).__name__)
+def test_pickle_round_trip_bit_for_bit(obj):
+    back = pickle.loads(pickle.dumps(obj))
+    assert type(back) is type(obj)
+    assert back == obj
+
+
+@pytest.mark.parametrize("obj", [o for o in all_objects() if hasattr(o, "to_json")], ids=lambda o: type(o).__name__)
+def test_json_round_trip_bit_for_bit(obj):
+    text = obj.to_json()
+    assert text.startswith('{\n  "lekalo": 1')
+    assert type(obj).from_json(text) == obj
+    assert lekalo.from_json(text) == obj
+
+
+def test_json_errors_are_named():
+    text = lecture_curve().to_json().replace("[0.0, 0.0, 1.0, 2.0, 3.0, 3.0]", "[0.0, 0.0, 2.0, 1.0, 3.0, 3.0]")
+    with pytest.raises(lekalo.Error, match="knots"):
+        lekalo.BSplineCurve.from_json(text)
+    with pytest.raises(lekalo.Error, match="expected a bezier_curve"):
+        lekalo.BezierCurve.from_json(lecture_curve().to_json())
+    with pytest.raises(lekalo.Error, match="not valid JSON"):
+        lekalo.from_json("{")

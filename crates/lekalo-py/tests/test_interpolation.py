@@ -1,0 +1,179 @@
+"""Interpolation and interop, cross-checked against SciPy inside the tests."""
+
+import numpy as np
+import pytest
+from scipy import interpolate as si
+
+import lekalo
+
+RNG = np.random.default_rng(11)
+
+
+def test_make_interp_spline_same_curve():
+    # lekalo's free-end cubic through (x, y) with de Boor's averaged knots (document 000 eq. 3)
+    # is the curve SciPy's make_interp_spline builds when given the same knots
+    x = np.sort(RNG.random(30)) * 10
+    y = RNG.standard_normal((30, 2))
+    c = lekalo.interpolate(y, 3, params=x)
+    ref = si.make_interp_spline(x, y, k=3, t=c.knots)
+    xx = np.linspace(x[0], x[-1], 500)
+    assert np.allclose(c(xx), ref(xx), atol=1e-10)
+    assert np.allclose(c.control, ref.c, atol=1e-10)
+    for k in (1, 2, 5):
+        ck = lekalo.interpolate(y, k, params=x)
+        assert np.allclose(ck(xx), si.make_interp_spline(x, y, k=k, t=ck.knots)(xx), atol=1e-9)
+    # the natural and clamped cubics are make_interp_spline's with the same bc_type
+    nat = lekalo.interpolate(y, 3, params=x, end="natural")
+    assert np.allclose(nat(xx), si.make_interp_spline(x, y, k=3, bc_type="natural")(xx), atol=1e-10)
+    zero = np.zeros(2)
+    cl = lekalo.interpolate(y, 3, params=x, end="first", d_start=zero, d_end=zero)
+    assert np.allclose(cl(xx), si.make_interp_spline(x, y, k=3, bc_type="clamped")(xx), atol=1e-10)
+
+
+def test_natural_spline_matches_cubic_spline():
+    x = np.sort(RNG.random(40)) * 3
+    y = np.sin(3 * x)
+    ref = si.CubicSpline(x, y, bc_type="natural")
+    c = lekalo.natural_cubic_spline(x, y)
+    xx = np.linspace(x[0], x[-1], 1000)
+    assert np.allclose(c(xx)[:, 0], ref(xx), atol=1e-12)
+    assert np.allclose(c(xx, nu=1)[:, 0], ref(xx, 1), atol=1e-9)
+    # the same through interpolate(..., end="natural", knots at the parameters)
+    c2 = lekalo.interpolate(y, 3, params=x, end="natural", knots="at_parameters")
+    assert np.allclose(c2(xx)[:, 0], ref(xx), atol=1e-12)
+
+
+def test_clamped_spline_matches_cubic_spline():
+    x = np.linspace(0, 2, 25)
+    y = np.column_stack([np.cos(x), x**2])
+    d0, d1 = np.array([0.0, 0.0]), np.array([-np.sin(2.0), 4.0])
+    ref = si.CubicSpline(x, y, bc_type=((1, d0), (1, d1)))
+    c = lekalo.interpolate(y, 3, params=x, knots="at_parameters", end="first", d_start=d0, d_end=d1)
+    xx = np.linspace(0, 2, 777)
+    assert np.allclose(c(xx), ref(xx), atol=1e-12)
+    dd0, dd1 = np.array([-1.0, 2.0]), np.array([-np.cos(2.0), 2.0])
+    ref2 = si.CubicSpline(x, y, bc_type=((2, dd0), (2, dd1)))
+    c2 = lekalo.interpolate(y, 3, params=x, knots="at_parameters", end="second", d_start=dd0, d_end=dd1)
+    assert np.allclose(c2(xx), ref2(xx), atol=1e-12)
+
+
+def test_periodic_matches_cubic_spline():
+    x = np.linspace(0, 2 * np.pi, 17)
+    y = np.column_stack([np.cos(x), np.sin(2 * x)])
+    y[-1] = y[0]
+    ref = si.CubicSpline(x, y, bc_type="periodic")
+    c = lekalo.interpolate(y[:-1], 3, params=x, end="periodic")
+    xx = np.linspace(0, 2 * np.pi, 400)
+    assert np.allclose(c(xx), ref(xx), atol=1e-12)
+
+
+@pytest.mark.parametrize("param", ["uniform", "chord", "centripetal", 0.3])
+@pytest.mark.parametrize("knots", ["auto", "averaged", "uniform", "at_parameters"])
+@pytest.mark.parametrize("degree", [1, 2, 3, 5])
+def test_every_configuration_interpolates(param, knots, degree):
+    q = RNG.standard_normal((12, 3))
+    try:
+        c = lekalo.interpolate(q, degree, parametrization=param, knots=knots)
+    except lekalo.Error as e:
+        # only a documented unsupported combination may refuse, and it says so
+        assert "knot" in str(e) or "degree" in str(e)
+        return
+    t = lekalo.parametrize(q, param)
+    assert np.allclose(c(t), q, atol=1e-9)
+
+
+def test_end_derivatives_any_degree():
+    q = RNG.standard_normal((10, 2))
+    d0, d1 = np.array([1.0, 0.0]), np.array([0.0, -1.0])
+    c = lekalo.interpolate(q, 4, end="first", d_start=d0, d_end=d1)
+    assert np.allclose(c(0.0, nu=1), d0, atol=1e-9) and np.allclose(c(1.0, nu=1), d1, atol=1e-9)
+    with pytest.raises(lekalo.Error, match="needs both d_start and d_end"):
+        lekalo.interpolate(q, 3, end="first", d_start=d0)
+
+
+def test_surface_interpolation():
+    u = np.linspace(0, 1, 12)
+    v = np.linspace(0, 2, 9)
+    U, V = np.meshgrid(u, v, indexing="ij")
+    grid = np.stack([U, V, np.sin(U * 3) * np.cos(V)], axis=-1)
+    s = lekalo.interpolate_surface(grid, 3, 3, parametrization="uniform")
+    pu, pv = np.linspace(0, 1, 12), np.linspace(0, 1, 9)
+    assert np.allclose(s.grid(pu, pv), grid, atol=1e-12)
+    with pytest.raises(lekalo.Error, match="3-D array"):
+        lekalo.interpolate_surface(grid[0])
+
+
+def test_hermite_matches_pchip():
+    x = np.sort(RNG.random(20)) * 5
+    y = np.cumsum(RNG.random(20))
+    h = lekalo.CubicHermite.function(x, y, tangents="monotone")
+    xx = np.linspace(x[0], x[-1], 500)
+    hy = h(xx)[:, 0]
+    assert np.all(np.diff(hy) >= -1e-12)  # monotone data stay monotone
+    assert np.allclose(h(x)[:, 0], y, atol=1e-14)
+    # with SciPy's tangents given, the Hermite curve is CubicHermiteSpline bit for bit in value
+    d = RNG.standard_normal(20)
+    ref = si.CubicHermiteSpline(x, y, d)
+    h2 = lekalo.CubicHermite(x, y, d)
+    assert np.allclose(h2(xx)[:, 0], ref(xx), atol=1e-12)
+    assert np.allclose(h2.to_bspline()(xx)[:, 0], ref(xx), atol=1e-12)
+    cr = lekalo.CubicHermite.from_points(RNG.standard_normal((8, 2)), tangents="cardinal", tension=0.5)
+    assert cr(np.linspace(0, 1, 5)).shape == (5, 2)
+
+
+def test_scipy_round_trips_bit_for_bit():
+    x = np.sort(RNG.random(15))
+    y = RNG.standard_normal((15, 3))
+    bs = si.make_interp_spline(x, y, k=3)
+    c = lekalo.from_scipy(bs)
+    back = lekalo.to_scipy(c)
+    assert np.array_equal(back.t, bs.t) and np.array_equal(back.c, bs.c) and back.k == bs.k
+    assert lekalo.from_scipy(back) == c
+    xx = np.linspace(x[0], x[-1], 300)
+    assert np.allclose(c(xx), bs(xx), atol=1e-13)
+    # 1-D coefficients come back 1-D
+    b1 = si.make_interp_spline(x, y[:, 0], k=3)
+    assert np.array_equal(lekalo.to_scipy(lekalo.from_scipy(b1)).c, b1.c)
+    # PPoly (CubicSpline is one)
+    cs = si.CubicSpline(x, y)
+    pp = lekalo.from_scipy(cs)
+    assert np.allclose(pp(xx), cs(xx), atol=1e-13)
+    pb = lekalo.to_scipy(pp)
+    assert np.array_equal(pb.c, cs.c) and np.array_equal(pb.x, cs.x)
+    assert lekalo.from_scipy(pb) == pp
+    # lekalo's pp-form of a B-spline evaluates like SciPy's PPoly.from_spline
+    mine = lekalo.to_scipy(c, "PPoly")
+    for d in range(3):
+        ref_pp = si.PPoly.from_spline(si.BSpline(c.knots, c.control[:, d], c.degree))
+        assert np.allclose(mine(xx)[:, d], ref_pp(xx), atol=1e-12)
+    # BPoly: a continuous piecewise Bezier is a B-spline with interior knots of multiplicity k
+    bp = lekalo.to_scipy(c, "BPoly")
+    assert np.allclose(bp(xx), bs(xx), atol=1e-12)
+    c_bp = lekalo.from_scipy(bp)
+    back_bp = lekalo.to_scipy(c_bp, "BPoly")
+    assert np.array_equal(back_bp.c, bp.c) and np.array_equal(back_bp.x, bp.x)
+    assert np.allclose(c_bp(xx), bs(xx), atol=1e-12)
+    broken = si.BPoly(RNG.standard_normal((3, 2, 1)), [0, 1, 2])
+    with pytest.raises(lekalo.Error, match="do not join"):
+        lekalo.from_scipy(broken)
+
+
+def test_geomdl_dict_round_trip():
+    objs = [
+        lekalo.interpolate(RNG.standard_normal((6, 3))),
+        lekalo.NurbsCurve.circle([0, 0, 0], [1, 0, 0], [0, 1, 0], 1.0),
+        lekalo.BSplineSurface(2, 1, [0, 0, 0, 1, 1, 1], [0, 0, 1, 1], RNG.standard_normal((3, 2, 3))),
+        lekalo.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], RNG.standard_normal((2, 2, 3)), RNG.random((2, 2)) + 0.5),
+    ]
+    for o in objs:
+        d = lekalo.to_geomdl(o)
+        assert d["shape"]["count"] == 1
+        back = lekalo.from_geomdl(d)
+        assert type(back) is type(o)
+        if isinstance(o, lekalo.NurbsCurve):
+            t = np.linspace(*o.domain, 50)
+            assert np.allclose(back(t), o(t), atol=1e-14)
+        elif isinstance(o, lekalo.NurbsSurface):
+            assert np.allclose(back.grid([0, 0.5, 1], [0, 1]), o.grid([0, 0.5, 1], [0, 1]), atol=1e-14)
+        else:
+            assert back == o
