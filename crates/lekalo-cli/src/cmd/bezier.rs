@@ -136,8 +136,7 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
         }
         (None, Some(p), Some(net)) => {
             let (rows, cols) = net_size(net, "--net")?;
-            let (text, name) = lekalo_io::read_input(p)?;
-            let pts = lekalo_io::read_points(&text, &name)?;
+            let (pts, _) = crate::io::read_points(p)?;
             Ok(Loaded::Surface(
                 BezierSurface::new(pts, (rows, cols))?,
                 p.clone(),

@@ -194,8 +194,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             tolerance,
             out,
         } => {
-            let (text, name) = lekalo_io::read_input(points)?;
-            let pts = lekalo_io::read_points(&text, &name)?;
+            let (pts, _) = crate::io::read_points(points)?;
             let family: Box<dyn LocalCurves> = match local {
                 Local::Arcs => Box::new(CircularArcs::new(ArcParametrization::UniformAngle)),
                 Local::RationalArcs => {

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::io::{
-    bad_input, emit, format_of, load, not_a_curve, numbers, progress, BadInput, Loaded,
+    bad_input, emit, format_of, in_range, load, not_a_curve, numbers, progress, BadInput, Loaded,
 };
 use crate::Verbosity;
 
@@ -54,19 +54,28 @@ pub(crate) struct EvalArgs {
 }
 
 const DEFAULT_SAMPLES: usize = 11;
-const MAX_SAMPLES: usize = 10_000_000;
+/// Highest `--derivatives` (every derivative above the degree is zero).
+const MAX_DERIVATIVES: usize = 1000;
 
 fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
     match (&a.at, a.samples) {
         (Some(at), _) => numbers(at, "--at"),
         (None, n) => {
-            let n = n.unwrap_or(DEFAULT_SAMPLES);
-            if !(1..=MAX_SAMPLES).contains(&n) {
-                return bad_input(format!("--samples must be between 1 and {MAX_SAMPLES}"));
-            }
+            let n = in_range(n.unwrap_or(DEFAULT_SAMPLES), 1, usize::MAX, "--samples")?;
             Ok(obj.uniform_parameters(n))
         }
     }
+}
+
+/// Refuses a derivative order whose column names alone would not fit in memory.
+fn check_derivatives(a: &EvalArgs) -> Result<()> {
+    if a.derivatives > MAX_DERIVATIVES {
+        return bad_input(format!(
+            "--derivatives {} is above {MAX_DERIVATIVES}, the highest order eval writes (every derivative above the curve's degree is zero)",
+            a.derivatives
+        ));
+    }
+    Ok(())
 }
 
 pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
@@ -75,6 +84,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         curvature: a.curvature,
     };
     let inputs = vec![a.input.clone()];
+    check_derivatives(a)?;
     match load(&a.input, a.jsonl, v)? {
         Loaded::Other(s) => not_a_curve(&a.input, &s),
         Loaded::One(obj) => {

@@ -49,7 +49,7 @@ pub(crate) fn info_json(obj: &Object, samples: usize) -> lekalo::Result<Value> {
     let kv = obj.knots();
     let ctrl = obj.control_points();
     let (a, b) = obj.domain();
-    let sampled = obj.sample(samples.clamp(2, 1_000_000))?;
+    let sampled = obj.sample(samples)?;
     let distinct: Vec<Value> = kv
         .distinct()
         .iter()
@@ -135,11 +135,12 @@ fn info_text(j: &Value) -> String {
 
 pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
     let inputs = vec![a.input.clone()];
+    let samples = crate::io::in_range(a.samples, 2, 1_000_000, "--samples")?;
     match load(&a.input, a.jsonl, v)? {
         Loaded::Other(shape) => {
             let j = match &shape {
-                Shape::Surface(s) => shapes::surface_info_json(s, a.samples)?,
-                Shape::Pp(p) => shapes::pp_info_json(p, a.samples)?,
+                Shape::Surface(s) => shapes::surface_info_json(s, samples)?,
+                Shape::Pp(p) => shapes::pp_info_json(p, samples)?,
                 other => return not_a_curve(&a.input, other),
             };
             let text = if a.json {
@@ -150,7 +151,7 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
             emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
         }
         Loaded::One(obj) => {
-            let j = info_json(&obj, a.samples)?;
+            let j = info_json(&obj, samples)?;
             let text = if a.json {
                 format!("{j:#}\n")
             } else {
@@ -165,7 +166,7 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
                 .map(|(line, obj)| {
                     let r = obj
                         .map_err(|e| e.to_string())
-                        .and_then(|o| info_json(&o, a.samples).map_err(|e| e.to_string()));
+                        .and_then(|o| info_json(&o, samples).map_err(|e| e.to_string()));
                     bar.inc(1);
                     match r {
                         Ok(mut j) => {

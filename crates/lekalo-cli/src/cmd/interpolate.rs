@@ -101,7 +101,8 @@ pub(crate) fn curve_plot(
     );
     fig.series
         .push(Series::new(Some("y(x)"), graph, Style::Line, PALETTE[0]));
-    if let Some(d) = data {
+    // (x, y) data of a function; 1-D data are values without their parameters: not drawn
+    if let Some(d) = data.filter(|d| d.dim() >= 2) {
         let pts = d.iter().map(|p| [p[0], p[1]]).collect();
         fig.series.push(Series::new(
             Some("data points"),
@@ -332,17 +333,28 @@ pub(crate) struct InterpolateArgs {
     #[arg(long, allow_hyphen_values = true)]
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
-    #[arg(long, value_name = "ROWSxCOLS")]
+    #[arg(
+        long,
+        value_name = "ROWSxCOLS",
+        conflicts_with_all = ["end", "knots", "d0", "dn", "function", "hermite"]
+    )]
     grid: Option<String>,
     /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
-    #[arg(long)]
+    #[arg(
+        long,
+        conflicts_with_all = ["end", "knots", "d0", "dn", "param", "exponent", "degree", "degree_v"]
+    )]
     function: bool,
     /// Cubic Hermite interpolation with estimated tangents.
-    #[arg(long, value_enum)]
+    #[arg(
+        long,
+        value_enum,
+        conflicts_with_all = ["end", "knots", "d0", "dn", "degree", "degree_v"]
+    )]
     hermite: Option<Tangents>,
-    /// Tension of cardinal tangents, in [0, 1].
-    #[arg(long, default_value_t = 0.0)]
-    tension: f64,
+    /// Tension of cardinal tangents, in [0, 1] (with --hermite cardinal; default 0).
+    #[arg(long, requires = "hermite")]
+    tension: Option<f64>,
     /// Refuse (exit code 2) a curve or grid whose collocation system has an estimated 1-norm
     /// condition number above LIMIT (e.g. 1e8 keeps about 8 significant digits in the control
     /// points); off by default.
@@ -353,10 +365,17 @@ pub(crate) struct InterpolateArgs {
 }
 
 pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(&a.points)?;
-    let pts = lekalo_io::read_points(&text, &name)?;
+    let (pts, name) = crate::io::read_points(&a.points)?;
     let inputs = vec![a.points.clone()];
     let param = a.param.to_lib(a.exponent);
+    if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
+        return bad_input(
+            "--tension is used only with --hermite cardinal; give --hermite cardinal or drop --tension",
+        );
+    }
+    if a.degree_v.is_some() && a.grid.is_none() {
+        return bad_input("--degree-v is the v degree of a surface; it needs --grid ROWSxCOLS");
+    }
     if a.max_condition.is_some() && (a.function || a.hermite.is_some()) {
         return bad_input(
             "--max-condition applies to B-spline curves and grids; --function and --hermite \
@@ -403,14 +422,16 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let y = Points::new(ys, pts.dim() - 1)?;
         let curve = match a.hermite {
             Some(t) => {
-                CubicHermite::function(&x, y.as_view(), tangents(t, a.tension))?.to_bspline()
+                CubicHermite::function(&x, y.as_view(), tangents(t, a.tension.unwrap_or(0.0)))?
+                    .to_bspline()
             }
             None => natural_cubic_spline(&x, y.as_view())?,
         };
         return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
     }
     if let Some(t) = a.hermite {
-        let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
+        let h =
+            CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension.unwrap_or(0.0)))?;
         let obj = Object::BSpline(h.to_bspline());
         return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
     }

@@ -54,8 +54,7 @@ pub(crate) struct MakeArgs {
 }
 
 pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(&a.control)?;
-    let ctrl = lekalo_io::read_points(&text, &name)?;
+    let (ctrl, _) = crate::io::read_points(&a.control)?;
     let degree = || -> Result<usize> {
         match a.degree {
             Some(d) => Ok(d),
