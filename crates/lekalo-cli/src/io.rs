@@ -13,6 +13,9 @@ use crate::Verbosity;
 /// Default of `--max-size`.
 pub(crate) const DEFAULT_MAX_SIZE: usize = 10_000_000;
 
+/// Default of `--max-degree`.
+pub(crate) const DEFAULT_MAX_DEGREE: usize = 2_000;
+
 /// `--header`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub(crate) enum HeaderArg {
@@ -30,6 +33,7 @@ pub(crate) struct Settings {
     pub(crate) header: HeaderArg,
     pub(crate) force: bool,
     pub(crate) max_size: usize,
+    pub(crate) max_degree: usize,
 }
 
 static SETTINGS: OnceLock<Settings> = OnceLock::new();
@@ -44,6 +48,7 @@ pub(crate) fn settings() -> Settings {
         header: HeaderArg::Auto,
         force: false,
         max_size: DEFAULT_MAX_SIZE,
+        max_degree: DEFAULT_MAX_DEGREE,
     })
 }
 
@@ -106,6 +111,22 @@ pub(crate) fn check_size(n: usize, option: &str) -> Result<()> {
         return bad_input(format!(
             "{option} {n} is above the size limit {limit}; raise the limit with --max-size {n} if the machine has the memory"
         ));
+    }
+    Ok(())
+}
+
+/// `Err(BadInput)` if a Bezier curve's degree is above `--max-degree` for `what` (work that
+/// grows as the degree squared or cubed).
+pub(crate) fn check_bezier_degree(obj: &Object, what: &str) -> Result<()> {
+    let limit = settings().max_degree;
+    if let Object::Bezier(c) = obj {
+        if c.degree() > limit {
+            return bad_input(format!(
+                "{what} of a Bezier curve of degree {} is above the degree limit {limit} (its cost grows as the degree squared or faster); raise it with --max-degree {}, or convert the curve to a B-spline of lower degree",
+                c.degree(),
+                c.degree()
+            ));
+        }
     }
     Ok(())
 }
@@ -304,6 +325,38 @@ pub(crate) fn emit(
     Ok(())
 }
 
+/// [`emit`] for output made piece by piece by `fill`: streamed into the temporary file (or to
+/// standard output), never held whole in memory.
+pub(crate) fn emit_stream(
+    out: Option<&Path>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    match out {
+        Some(p) if p.as_os_str() != "-" => {
+            lekalo_io::write_atomic_stream(
+                p,
+                inputs,
+                lekalo_io::WriteOptions {
+                    force: settings().force,
+                },
+                fill,
+            )?;
+            if v == Verbosity::Verbose {
+                report(&format!("wrote {}", p.display()));
+            }
+        }
+        _ => {
+            let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+            fill(&mut stdout)
+                .and_then(|()| stdout.flush())
+                .context("cannot write to standard output")?;
+        }
+    }
+    Ok(())
+}
+
 /// A progress bar on standard error, shown only if stderr is a terminal and not `--quiet`.
 pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
     if v == Verbosity::Quiet || !std::io::stderr().is_terminal() {
@@ -311,9 +364,26 @@ pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
     }
     let bar = indicatif::ProgressBar::new(n as u64);
     bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} objects ({eta} left)")
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} ({eta} left)")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    bar
+}
+
+/// A spinner with a message on standard error for one long step (a large interpolation, a
+/// high-degree reduction), shown only if stderr is a terminal, not `--quiet`, and the work is
+/// `large`; cleared by `finish_and_clear`.
+pub(crate) fn spinner(msg: String, large: bool, v: Verbosity) -> indicatif::ProgressBar {
+    if !large || v == Verbosity::Quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.set_message(msg);
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
 }
 

@@ -42,6 +42,11 @@ pub(crate) struct Cli {
     /// arguments (docs/robustness.md).
     #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
     max_size: usize,
+    /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
+    /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
+    /// reduction (docs/robustness.md).
+    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
+    max_degree: usize,
     #[command(subcommand)]
     command: Command,
 }
@@ -115,6 +120,7 @@ fn main() -> ExitCode {
         header: cli.header,
         force: cli.force,
         max_size: cli.max_size,
+        max_degree: cli.max_degree,
     });
     let verbosity = if cli.quiet {
         Verbosity::Quiet

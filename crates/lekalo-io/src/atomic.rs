@@ -71,6 +71,21 @@ pub fn write_atomic_with(
     inputs: &[PathBuf],
     options: WriteOptions,
 ) -> IoResult<()> {
+    write_atomic_stream(path, inputs, options, |w| w.write_all(bytes))
+}
+
+/// [`write_atomic_with`] for output made piece by piece: `fill` writes into the temporary
+/// file (buffered), which is renamed over `path` only if `fill` succeeds, so a large output
+/// never has to be held in memory whole.
+///
+/// # Errors
+/// As [`write_atomic_with`]; an error of `fill` as [`IoError::Write`].
+pub fn write_atomic_stream(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> IoResult<()> {
     check_not_input(path, inputs)?;
     let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
@@ -78,11 +93,12 @@ pub fn write_atomic_with(
     };
     let target = match Target::of(path) {
         Target::Special => {
-            let mut f = std::fs::OpenOptions::new()
+            let f = std::fs::OpenOptions::new()
                 .write(true)
                 .open(path)
                 .map_err(write_err)?;
-            return f.write_all(bytes).map_err(write_err);
+            let mut w = std::io::BufWriter::new(f);
+            return fill(&mut w).and_then(|()| w.flush()).map_err(write_err);
         }
         Target::Directory => {
             return Err(write_err(std::io::Error::other(
@@ -111,7 +127,7 @@ pub fn write_atomic_with(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let mut tmp = {
+    let tmp = {
         let mut guard = pending();
         let tmp = builder.tempfile_in(&dir).map_err(write_err)?;
         guard.push(tmp.path().to_path_buf());
@@ -119,7 +135,11 @@ pub fn write_atomic_with(
     };
     let tmp_path = tmp.path().to_path_buf();
     let result = (|| {
-        tmp.write_all(bytes)?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp);
+        fill(&mut w)?;
+        let tmp = w
+            .into_inner()
+            .map_err(std::io::IntoInnerError::into_error)?;
         if let Some(perm) = existing {
             tmp.as_file().set_permissions(perm)?;
         }

@@ -44,7 +44,7 @@ mod wireframe;
 pub use analysis::{curvature, uniform};
 pub use atomic::{
     check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
-    write_atomic_with, WriteOptions,
+    write_atomic_stream, write_atomic_with, WriteOptions,
 };
 pub use error::{IoError, IoResult, Location};
 pub use obj::{grid_to_obj, polyline_to_obj};

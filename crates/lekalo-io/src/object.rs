@@ -333,6 +333,12 @@ impl Object {
         let decode_err = |e: serde_json::Error| {
             let msg = flat::message(&e);
             let loc = match backticked(&msg) {
+                // the second occurrence, where the parser stopped
+                Some(f) if msg.starts_with("duplicate field") => {
+                    let mut loc = at.clone().at_field(f);
+                    loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
+                    loc
+                }
                 Some(f) if !f.contains('[') && !f.contains('.') => field_at(&f),
                 Some(f) => {
                     let top = f.split(['[', '.']).next().unwrap_or_default().to_string();

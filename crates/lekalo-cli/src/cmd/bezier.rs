@@ -161,6 +161,23 @@ fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
     }
 }
 
+/// Refuses degrees above `--max-degree` for the operations whose cost grows as the degree
+/// squared (real degree, exact reduction, change) or cubed (approximate reduction).
+fn guard(l: Loaded, what: &str) -> Result<Loaded> {
+    let limit = crate::io::settings().max_degree;
+    let degree = match &l {
+        Loaded::Curve(c, _) => c.degree(),
+        Loaded::Surface(s, _) => s.degree_u().max(s.degree_v()),
+        Loaded::BSpline(..) => 0,
+    };
+    if degree > limit {
+        return bad_input(format!(
+            "{what} of degree {degree} is above the degree limit {limit} (its cost grows as the degree squared or faster); raise it with --max-degree {degree}"
+        ));
+    }
+    Ok(l)
+}
+
 fn not_bezier() -> Result<()> {
     bad_input(
         "this operation takes a Bezier curve or surface; a B-spline curve can only be elevated \
@@ -186,6 +203,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
         BezierOp::Elevate { input, by, out } => match load(input, v)? {
             Loaded::Curve(c, p) => {
                 let (k, _) = amounts(by, "--by", false)?;
+                crate::io::check_size(c.degree().saturating_add(k), "degree after --by")?;
                 let r = c.elevate_degree(k)?;
                 write_curve(&Object::Bezier(r), None, out, &[p], v)
             }
@@ -203,16 +221,31 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             approx,
             ends,
             out,
-        } => match load(input, v)? {
+        } => match guard(load(input, v)?, "reduction")? {
             Loaded::Curve(c, p) => match approx {
                 None => write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v),
                 Some(target) => {
+                    let limit = crate::io::settings().max_degree / 4;
+                    if c.degree() > limit {
+                        return bad_input(format!(
+                            "approximate reduction of degree {} is above its limit {limit} (a quarter of --max-degree: its cost grows as the degree cubed); raise it with --max-degree {}",
+                            c.degree(),
+                            c.degree().saturating_mul(4)
+                        ));
+                    }
                     let ends = match ends {
                         Ends::Free => EndConditions::Free,
                         Ends::Points => EndConditions::Points,
                         Ends::Tangents => EndConditions::Tangents,
                     };
-                    let r = c.reduce_degree_approx(*target, ends)?;
+                    let bar = crate::io::spinner(
+                        format!("reducing degree {} to {target}", c.degree()),
+                        c.degree() > 200,
+                        v,
+                    );
+                    let r = c.reduce_degree_approx(*target, ends);
+                    bar.finish_and_clear();
+                    let r = r?;
                     if v != Verbosity::Quiet {
                         eprintln!(
                             "max deviation {:.6e} (sampled), bound {:.6e}",
@@ -232,7 +265,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             }
         },
         BezierOp::RealDegree { input } => {
-            let text = match load(input, v)? {
+            let text = match guard(load(input, v)?, "the real degree")? {
                 Loaded::Curve(c, _) => format!(
                     "degree {}\nreal degree {}\ndefect {}\n",
                     c.degree(),
@@ -253,7 +286,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             };
             emit(None, text.as_bytes(), &[], v)
         }
-        BezierOp::Change { input, degree, out } => match load(input, v)? {
+        BezierOp::Change { input, degree, out } => match guard(load(input, v)?, "degree change")? {
             Loaded::Curve(c, p) => {
                 let (n, _) = amounts(degree, "--degree", false)?;
                 write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], v)

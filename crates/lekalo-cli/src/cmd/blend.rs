@@ -212,7 +212,14 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     SplineParams::Centripetal => SplineParameters::Centripetal,
                 },
             };
-            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options)?;
+            let bar = crate::io::spinner(
+                format!("blending through {} points", pts.len()),
+                pts.len() > 100_000,
+                v,
+            );
+            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
+            bar.finish_and_clear();
+            let s = s?;
             let obj = match local {
                 Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
                 Local::Arcs | Local::GlobalArcs => {

@@ -121,6 +121,9 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
         }
     };
     let samples = in_range(a.samples, 2, usize::MAX, "--samples")?;
+    if matches!(format.as_str(), "csv" | "svg" | "png" | "obj") {
+        crate::io::check_bezier_degree(first, "sampling")?;
+    }
     let bytes: Vec<u8> = match format.as_str() {
         "json" => single()?.to_json_pretty().into_bytes(),
         "jsonl" => objects

@@ -474,7 +474,14 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if let Some(limit) = a.max_condition {
         interp = interp.max_condition(limit);
     }
-    let curve = interp.interpolate(pts.as_view())?;
+    let bar = crate::io::spinner(
+        format!("interpolating {} points", pts.len()),
+        pts.len() > 100_000,
+        v,
+    );
+    let curve = interp.interpolate(pts.as_view());
+    bar.finish_and_clear();
+    let curve = curve?;
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
 }
 

@@ -165,6 +165,9 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         }
         None => None,
     };
+    if !a.basis {
+        crate::io::check_bezier_degree(&obj, "plotting")?;
+    }
     let fig = figure(&obj, a, data.as_ref())?;
     let bytes = encode(&fig, &format, a.scale)?;
     emit(
