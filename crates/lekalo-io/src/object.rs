@@ -186,9 +186,20 @@ impl Object {
         self.format_json(false)
     }
 
-    // Written straight into one buffer (no `Value` tree): a curve of millions of control
-    // points costs its text and nothing more.
     fn format_json(&self, pretty: bool) -> String {
+        let mut bytes = Vec::new();
+        // writing into a Vec cannot fail
+        let _ = self.write_json(&mut bytes, pretty);
+        String::from_utf8(bytes).unwrap_or_default()
+    }
+
+    /// Writes the JSON text of [`Object::to_json_pretty`] (or, not `pretty`, of
+    /// [`Object::to_json_line`]) to `w` piece by piece, with no `Value` tree and no copy of the
+    /// whole text: a curve of millions of control points costs a small buffer.
+    ///
+    /// # Errors
+    /// The writer's.
+    pub fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()> {
         let (nl, ind, ind2, sp) = if pretty {
             ("\n", "  ", "    ", " ")
         } else {
@@ -199,9 +210,13 @@ impl Object {
             // serde_json's shortest round-trip form (`1.0`, `0.1`, `1e-7`)
             out.push_str(&serde_json::Value::from(x).to_string());
         };
-        let list = |out: &mut String, xs: &[f64]| {
+        let list = |out: &mut String, w: &mut dyn std::io::Write, xs: &[f64]| {
             out.push('[');
             for (i, &x) in xs.iter().enumerate() {
+                if out.len() > 1 << 16 {
+                    w.write_all(out.as_bytes())?;
+                    out.clear();
+                }
                 if i > 0 {
                     out.push(',');
                     out.push_str(sp);
@@ -209,6 +224,7 @@ impl Object {
                 num(out, x);
             }
             out.push(']');
+            std::io::Result::Ok(())
         };
         let field = |out: &mut String, key: &str, first: bool| {
             if !first {
@@ -244,33 +260,37 @@ impl Object {
         }
         if let Some(k) = knots {
             field(&mut out, "knots", false);
-            list(&mut out, k);
+            list(&mut out, w, k)?;
         }
         field(&mut out, "control", false);
         out.push('[');
         out.push_str(nl);
         let control = self.control_points();
         for (i, p) in control.iter().enumerate() {
+            if out.len() > 1 << 16 {
+                w.write_all(out.as_bytes())?;
+                out.clear();
+            }
             if i > 0 {
                 out.push(',');
                 out.push_str(nl);
             }
             out.push_str(ind2);
-            list(&mut out, p);
+            list(&mut out, w, p)?;
         }
         out.push_str(nl);
         out.push_str(ind);
         out.push(']');
-        if let Some(w) = weights {
+        if let Some(weights) = weights {
             field(&mut out, "weights", false);
-            list(&mut out, &w);
+            list(&mut out, w, &weights)?;
         }
         out.push_str(nl);
         out.push('}');
         if pretty {
             out.push('\n');
         }
-        out
+        w.write_all(out.as_bytes())
     }
 
     /// Reads one object from JSON text. `source` names the input in error messages.

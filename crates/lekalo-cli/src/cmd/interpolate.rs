@@ -47,7 +47,12 @@ pub(crate) fn write_curve(
 ) -> Result<()> {
     let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
     let bytes = match format.as_str() {
-        "json" => obj.to_json_pretty().into_bytes(),
+        // streamed: a curve of millions of control points is never held as text
+        "json" => {
+            return crate::io::emit_stream(out.output.as_deref(), inputs, v, |w| {
+                obj.write_json(w, true)
+            })
+        }
         "svg" | "png" => encode(&curve_plot(obj, data, None)?, &format, 2.0)?,
         "csv" => sample_table(
             obj,
