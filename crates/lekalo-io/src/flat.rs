@@ -24,7 +24,7 @@ impl FlatPoints {
         if self.data.is_empty() {
             return lekalo::Points::from_rows::<Vec<f64>>(&[]);
         }
-        lekalo::Points::new(self.data, self.dim)
+        lekalo::Points::from_flat(self.dim, self.data)
     }
 }
 

@@ -130,7 +130,7 @@ pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResu
             "no points found; write one point per line, e.g. `1.0, 2.0`",
         ));
     };
-    Points::new(data, dim).map_err(|e| IoError::Invalid {
+    Points::from_flat(dim, data).map_err(|e| IoError::Invalid {
         at: Location::new(source),
         error: e,
     })
