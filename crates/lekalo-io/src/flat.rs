@@ -286,7 +286,7 @@ pub(crate) fn control<'de, D: Deserializer<'de>>(d: D) -> Result<FlatPoints, D::
     .deserialize(d)
 }
 
-/// The message of a serde_json error without its " at line L column C" suffix.
+/// The message of a `serde_json` error without its " at line L column C" suffix.
 pub(crate) fn message(e: &serde_json::Error) -> String {
     let s = e.to_string();
     match s.rfind(" at line ") {
