@@ -16,12 +16,14 @@ pub(crate) struct FlatPoints {
     pub(crate) dim: usize,
     /// Coordinates, point-major.
     pub(crate) data: Vec<f64>,
+    /// Given as `{"dim", "data"}` (the dimension is the file's, even with no data).
+    pub(crate) flat_form: bool,
 }
 
 impl FlatPoints {
     /// The library's points (its constructor checks the dimension and the values).
     pub(crate) fn into_points(self) -> lekalo::Result<lekalo::Points> {
-        if self.data.is_empty() {
+        if self.data.is_empty() && !self.flat_form {
             return lekalo::Points::from_rows::<Vec<f64>>(&[]);
         }
         lekalo::Points::from_flat(self.dim, self.data)
@@ -116,7 +118,11 @@ impl<'de> Visitor<'de> for PointsSeed {
         }
         match (dim, data, rows) {
             (None, None, Some(r)) => Ok(r),
-            (Some(dim), Some(data), None) => Ok(FlatPoints { dim, data }),
+            (Some(dim), Some(data), None) => Ok(FlatPoints {
+                dim,
+                data,
+                flat_form: true,
+            }),
             _ => Err(A::Error::custom(format!(
                 "{}expected [[x, y], …]{} or {{\"dim\": 2, \"data\": [x0, y0, …]}}",
                 if self.field.is_empty() {
