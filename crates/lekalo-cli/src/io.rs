@@ -2,12 +2,176 @@
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use lekalo_io::{IoError, Object, Shape};
 
 use crate::Verbosity;
+
+/// Default of `--max-size`.
+pub(crate) const DEFAULT_MAX_SIZE: usize = 10_000_000;
+
+/// Default of `--max-degree`.
+pub(crate) const DEFAULT_MAX_DEGREE: usize = 2_000;
+
+/// `--header`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum HeaderArg {
+    /// A header only if no field on the first line is a number.
+    Auto,
+    /// The first line is a header.
+    Yes,
+    /// No header.
+    No,
+}
+
+/// The global options that the input and output helpers follow.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Settings {
+    pub(crate) header: HeaderArg,
+    pub(crate) force: bool,
+    pub(crate) max_size: usize,
+    pub(crate) max_degree: usize,
+}
+
+static SETTINGS: OnceLock<Settings> = OnceLock::new();
+
+/// Records the global options (once, from `main`).
+pub(crate) fn configure(s: Settings) {
+    let _ = SETTINGS.set(s);
+}
+
+pub(crate) fn settings() -> Settings {
+    SETTINGS.get().copied().unwrap_or(Settings {
+        header: HeaderArg::Auto,
+        force: false,
+        max_size: DEFAULT_MAX_SIZE,
+        max_degree: DEFAULT_MAX_DEGREE,
+    })
+}
+
+/// Writes a line to standard error, ignoring a closed stderr (never panics).
+pub(crate) fn report(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// Exit code of an interrupted run (128 + SIGINT), as shells report it.
+const EXIT_INTERRUPTED: i32 = 130;
+
+/// The last-resort handlers: a panic prints a short report and exits with code 3 (it is a bug;
+/// every input error has its own message); SIGINT, SIGTERM and SIGHUP remove the temporary
+/// files of outputs being written and exit with code 130, so no partial file is left.
+pub(crate) fn install_handlers() {
+    std::panic::set_hook(Box::new(|info| {
+        lekalo_io::remove_temporary_files();
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        let what = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        report(&format!(
+            "internal error{at}: {what}\nThis is a bug in lekalo: please report it with the command and input that caused it."
+        ));
+        std::process::exit(i32::from(EXIT_INTERNAL));
+    }));
+    let _ = ctrlc::set_handler(|| {
+        let n = lekalo_io::remove_temporary_files();
+        report(&format!(
+            "interrupted{}",
+            if n > 0 {
+                "; the partial output was removed"
+            } else {
+                ""
+            }
+        ));
+        std::process::exit(EXIT_INTERRUPTED);
+    });
+}
+
+/// True if the error is a write to a closed pipe (`lekalo eval … | head`): the reader has
+/// what it wanted, so the command stops quietly.
+pub(crate) fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// `Err(BadInput)` if `n` (given by `option`) is above `--max-size`.
+pub(crate) fn check_size(n: usize, option: &str) -> Result<()> {
+    let limit = settings().max_size;
+    if n > limit {
+        return bad_input(format!(
+            "{option} {n} is above the size limit {limit}; raise the limit with --max-size {n} if the machine has the memory"
+        ));
+    }
+    Ok(())
+}
+
+/// `Err(BadInput)` if a Bezier curve's degree is above `--max-degree` for `what` (work that
+/// grows as the degree squared or cubed).
+pub(crate) fn check_bezier_degree(obj: &Object, what: &str) -> Result<()> {
+    let limit = settings().max_degree;
+    if let Object::Bezier(c) = obj {
+        if c.degree() > limit {
+            return bad_input(format!(
+                "{what} of a Bezier curve of degree {} is above the degree limit {limit} (its cost grows as the degree squared or faster); raise it with --max-degree {}, or convert the curve to a B-spline of lower degree",
+                c.degree(),
+                c.degree()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `n` given by `option` if it is in `[min, max]`, else `Err(BadInput)` naming the option and
+/// the bound (never a silent clamp). `max` above `--max-size` is lowered to it.
+pub(crate) fn in_range(n: usize, min: usize, max: usize, option: &str) -> Result<usize> {
+    if n < min {
+        return bad_input(format!("{option} {n}: at least {min} are needed"));
+    }
+    let limit = settings().max_size;
+    if max >= limit {
+        check_size(n, option)?;
+    } else if n > max {
+        return bad_input(format!(
+            "{option} {n} is above {max}, the most this output can use; give at most {max}"
+        ));
+    }
+    Ok(n)
+}
+
+/// Checks that `n` values of `T` can be allocated before a library call allocates them (an
+/// allocation failure there would abort the process): `Err` naming `option` and `--max-size`.
+pub(crate) fn check_memory<T>(n: usize, option: &str) -> Result<()> {
+    let mut probe: Vec<T> = Vec::new();
+    if probe.try_reserve_exact(n).is_err() {
+        return bad_input(format!(
+            "{option}: cannot reserve memory for {n} values ({} bytes); lower {option}",
+            n.saturating_mul(std::mem::size_of::<T>())
+        ));
+    }
+    Ok(())
+}
+
+/// Reads a points file (CSV, whitespace text, JSON; `-` is standard input) with `--header`.
+pub(crate) fn read_points(path: &Path) -> Result<(lekalo::Points, String)> {
+    let (text, name) = lekalo_io::read_input(path)?;
+    let header = match settings().header {
+        HeaderArg::Auto => lekalo_io::Header::Auto,
+        HeaderArg::Yes => lekalo_io::Header::Yes,
+        HeaderArg::No => lekalo_io::Header::No,
+    };
+    let pts = lekalo_io::read_points_with(&text, &name, header)?;
+    Ok((pts, name))
+}
 
 /// Exit code for bad input.
 pub(crate) const EXIT_BAD_INPUT: u8 = 2;
@@ -137,7 +301,14 @@ pub(crate) fn emit(
 ) -> Result<()> {
     match out {
         Some(p) if p.as_os_str() != "-" => {
-            lekalo_io::write_atomic(p, bytes, inputs)?;
+            lekalo_io::write_atomic_with(
+                p,
+                bytes,
+                inputs,
+                lekalo_io::WriteOptions {
+                    force: settings().force,
+                },
+            )?;
             if v == Verbosity::Verbose {
                 eprintln!("wrote {} ({} bytes)", p.display(), bytes.len());
             }
@@ -146,6 +317,39 @@ pub(crate) fn emit(
             let mut stdout = std::io::stdout().lock();
             stdout
                 .write_all(bytes)
+                .and_then(|()| stdout.flush())
+                .context("cannot write to standard output")?;
+            // (a closed pipe is recognised by `is_broken_pipe` in the chain of this error)
+        }
+    }
+    Ok(())
+}
+
+/// [`emit`] for output made piece by piece by `fill`: streamed into the temporary file (or to
+/// standard output), never held whole in memory.
+pub(crate) fn emit_stream(
+    out: Option<&Path>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    match out {
+        Some(p) if p.as_os_str() != "-" => {
+            lekalo_io::write_atomic_stream(
+                p,
+                inputs,
+                lekalo_io::WriteOptions {
+                    force: settings().force,
+                },
+                fill,
+            )?;
+            if v == Verbosity::Verbose {
+                report(&format!("wrote {}", p.display()));
+            }
+        }
+        _ => {
+            let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+            fill(&mut stdout)
                 .and_then(|()| stdout.flush())
                 .context("cannot write to standard output")?;
         }
@@ -160,9 +364,26 @@ pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
     }
     let bar = indicatif::ProgressBar::new(n as u64);
     bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} objects ({eta} left)")
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} ({eta} left)")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    bar
+}
+
+/// A spinner with a message on standard error for one long step (a large interpolation, a
+/// high-degree reduction), shown only if stderr is a terminal, not `--quiet`, and the work is
+/// `large`; cleared by `finish_and_clear`.
+pub(crate) fn spinner(msg: String, large: bool, v: Verbosity) -> indicatif::ProgressBar {
+    if !large || v == Verbosity::Quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.set_message(msg);
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
 }
 

@@ -31,6 +31,22 @@ pub(crate) struct Cli {
     /// Print what is read and written, with timings, to standard error.
     #[arg(short, long, global = true)]
     verbose: bool,
+    /// Whether the first line of a CSV or text points file is a header: auto (only if no field
+    /// on it is a number), yes or no.
+    #[arg(long, global = true, value_enum, default_value_t = io::HeaderArg::Auto)]
+    header: io::HeaderArg,
+    /// Replace a write-protected output file too (it is refused otherwise, as by a shell's `>`).
+    #[arg(long, global = true)]
+    force: bool,
+    /// Largest number of samples, knots, intervals or grid points a command may create from its
+    /// arguments (docs/robustness.md).
+    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
+    max_size: usize,
+    /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
+    /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
+    /// reduction (docs/robustness.md).
+    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
+    max_degree: usize,
     #[command(subcommand)]
     command: Command,
 }
@@ -104,6 +120,7 @@ pub(crate) enum Verbosity {
 }
 
 fn main() -> ExitCode {
+    io::install_handlers();
     let args: Vec<String> = std::env::args().collect();
     if !args.iter().any(|a| a == "-q" || a == "--quiet") {
         for w in cmd::deprecated::warnings(&args) {
@@ -111,6 +128,12 @@ fn main() -> ExitCode {
         }
     }
     let cli = Cli::parse();
+    io::configure(io::Settings {
+        header: cli.header,
+        force: cli.force,
+        max_size: cli.max_size,
+        max_degree: cli.max_degree,
+    });
     let verbosity = if cli.quiet {
         Verbosity::Quiet
     } else if cli.verbose {
@@ -135,8 +158,9 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if io::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            io::report(&format!("error: {e:#}"));
             ExitCode::from(io::exit_code(&e))
         }
     }

@@ -4,20 +4,88 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use crate::error::{IoError, IoResult};
+
+/// How [`write_atomic_with`] treats an existing target.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct WriteOptions {
+    /// Replace a write-protected file (no write permission for anyone) too; without it such a
+    /// file is refused with [`IoError::WriteProtected`], as a shell's `>` refuses it.
+    pub force: bool,
+}
+
+/// Temporary files being written, removed by [`remove_temporary_files`] when the process is
+/// interrupted (a signal handler cannot run destructors).
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    PENDING
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Removes every temporary file that a [`write_atomic`] in progress has created and not yet
+/// renamed into place, and keeps the registry locked so that no new one is started: call it
+/// from a SIGINT/SIGTERM handler just before the process exits. Returns how many were removed.
+pub fn remove_temporary_files() -> usize {
+    let mut guard = pending();
+    let n = guard
+        .drain(..)
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count();
+    // Hold the lock until the process exits: a writer that gets here later blocks instead of
+    // creating a new temporary file.
+    std::mem::forget(guard);
+    n
+}
+
+/// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
+/// Refuses to write over any of `inputs` (compared after resolving symbolic links) and over a
+/// write-protected file; see [`write_atomic_with`].
+///
+/// # Errors
+/// As [`write_atomic_with`].
+pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<()> {
+    write_atomic_with(path, bytes, inputs, WriteOptions::default())
+}
 
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
 /// Refuses to write over any of `inputs` (compared after resolving symbolic links).
 ///
+/// A new file is created with mode `0666` minus the umask, like a shell's `>`; a replaced file
+/// keeps its mode. A write-protected target is refused unless `options.force`.
 /// A symbolic link is followed (the file it points to is replaced, the link stays). A target
 /// that exists but is not a regular file — `/dev/null`, a named pipe, a terminal — is written
-/// to directly: it cannot be replaced by a rename, and must not be.
+/// to directly: it cannot be replaced by a rename, and must not be. The temporary file is
+/// removed if anything fails, and by [`remove_temporary_files`] on an interrupt.
 ///
 /// # Errors
-/// [`IoError::WouldOverwriteInput`] if `path` is one of `inputs`; [`IoError::Write`] if the
-/// target is a directory, the directory is not writable or the rename fails.
-pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<()> {
+/// [`IoError::WouldOverwriteInput`] if `path` is one of `inputs`; [`IoError::WriteProtected`]
+/// for a write-protected target without `force`; [`IoError::Write`] if the target is a
+/// directory, the directory is not writable or the rename fails.
+pub fn write_atomic_with(
+    path: &Path,
+    bytes: &[u8],
+    inputs: &[PathBuf],
+    options: WriteOptions,
+) -> IoResult<()> {
+    write_atomic_stream(path, inputs, options, |w| w.write_all(bytes))
+}
+
+/// [`write_atomic_with`] for output made piece by piece: `fill` writes into the temporary
+/// file (buffered), which is renamed over `path` only if `fill` succeeds, so a large output
+/// never has to be held in memory whole.
+///
+/// # Errors
+/// As [`write_atomic_with`]; an error of `fill` as [`IoError::Write`].
+pub fn write_atomic_stream(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> IoResult<()> {
     check_not_input(path, inputs)?;
     let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
@@ -25,11 +93,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<(
     };
     let target = match Target::of(path) {
         Target::Special => {
-            let mut f = std::fs::OpenOptions::new()
+            let f = std::fs::OpenOptions::new()
                 .write(true)
                 .open(path)
                 .map_err(write_err)?;
-            return f.write_all(bytes).map_err(write_err);
+            let mut w = std::io::BufWriter::new(f);
+            return fill(&mut w).and_then(|()| w.flush()).map_err(write_err);
         }
         Target::Directory => {
             return Err(write_err(std::io::Error::other(
@@ -38,15 +107,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<(
         }
         Target::File(resolved) => resolved,
     };
+    let existing = std::fs::metadata(&target).ok().map(|m| m.permissions());
+    if let Some(perm) = &existing {
+        if perm.readonly() && !options.force {
+            return Err(IoError::WriteProtected {
+                path: path.to_path_buf(),
+            });
+        }
+    }
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let mut tmp = tempfile::NamedTempFile::new_in(&dir).map_err(write_err)?;
-    tmp.write_all(bytes).map_err(write_err)?;
-    tmp.as_file().sync_all().map_err(write_err)?;
-    tmp.persist(&target).map_err(|e| write_err(e.error))?;
-    Ok(())
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".lekalo-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        // 0666 at creation: the kernel applies the umask, as for a shell's `>`
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let tmp = {
+        let mut guard = pending();
+        let tmp = builder.tempfile_in(&dir).map_err(write_err)?;
+        guard.push(tmp.path().to_path_buf());
+        tmp
+    };
+    let tmp_path = tmp.path().to_path_buf();
+    let result = (|| {
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp);
+        fill(&mut w)?;
+        let tmp = w
+            .into_inner()
+            .map_err(std::io::IntoInnerError::into_error)?;
+        if let Some(perm) = existing {
+            tmp.as_file().set_permissions(perm)?;
+        }
+        tmp.as_file().sync_all()?;
+        tmp.persist(&target).map(|_| ()).map_err(|e| e.error)
+    })();
+    pending().retain(|p| *p != tmp_path);
+    // on failure the temporary file was dropped (and removed) inside the closure
+    result.map_err(write_err)
 }
 
 /// What an output path names.
@@ -96,24 +198,82 @@ pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
 /// Reads a whole input: a file, or standard input when `path` is `-`. Returns the text and the
 /// name to use in messages.
 ///
+/// A UTF-8 byte-order mark at the start is removed (editors on Windows write one), so that it
+/// cannot glue itself to the first field of every text format.
+///
 /// # Errors
-/// [`IoError::Read`] if the file is missing, unreadable or not UTF-8.
+/// [`IoError::Read`] if the file is missing, unreadable or not UTF-8; [`IoError::TooLarge`] if
+/// memory for it cannot be reserved.
 pub fn read_input(path: &Path) -> IoResult<(String, String)> {
-    if path.as_os_str() == "-" {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s).map_err(|error| {
-            IoError::Read {
-                path: PathBuf::from("<stdin>"),
-                error,
-            }
+    let (name, read): (String, Box<dyn std::io::Read>) = if path.as_os_str() == "-" {
+        ("<stdin>".to_string(), Box::new(std::io::stdin()))
+    } else {
+        let f = std::fs::File::open(path).map_err(|error| IoError::Read {
+            path: path.to_path_buf(),
+            error,
         })?;
-        return Ok((s, "<stdin>".to_string()));
-    }
-    let text = std::fs::read_to_string(path).map_err(|error| IoError::Read {
-        path: path.to_path_buf(),
+        (path.display().to_string(), Box::new(f))
+    };
+    let read_err = |error| IoError::Read {
+        path: PathBuf::from(&name),
         error,
+    };
+    let mut bytes = Vec::new();
+    let file_meta = (path.as_os_str() != "-")
+        .then(|| std::fs::metadata(path).ok())
+        .flatten();
+    if let Some(m) = file_meta {
+        let len = usize::try_from(m.len()).unwrap_or(usize::MAX);
+        bytes
+            .try_reserve_exact(len)
+            .map_err(|_| IoError::TooLarge {
+                what: format!(
+                    "{name}: cannot reserve {} bytes of memory to read it",
+                    m.len()
+                ),
+            })?;
+    }
+    read_to_end_fallible(read, &mut bytes).map_err(read_err)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        read_err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+        ))
     })?;
-    Ok((text, path.display().to_string()))
+    Ok((strip_bom(text), name))
+}
+
+/// `read_to_end` that reports a failed allocation as an error instead of aborting.
+fn read_to_end_fallible(mut r: impl std::io::Read, buf: &mut Vec<u8>) -> std::io::Result<()> {
+    let mut chunk = [0u8; 64 * 1024];
+    loop {
+        let n = match r.read(&mut chunk) {
+            Ok(0) => return Ok(()),
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        if buf.capacity() - buf.len() < n {
+            buf.try_reserve(n.max(buf.len()))
+                .map_err(|_| std::io::Error::other("out of memory while reading"))?;
+        }
+        buf.extend_from_slice(&chunk[..n]);
+    }
+}
+
+/// `text` without a leading UTF-8 byte-order mark.
+#[must_use]
+pub fn strip_bom_str(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// `text` without a leading UTF-8 byte-order mark.
+#[must_use]
+pub fn strip_bom(mut text: String) -> String {
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    text
 }
 
 #[cfg(test)]

@@ -98,6 +98,20 @@ pub enum IoError {
         /// The path.
         path: PathBuf,
     },
+    /// The output file exists and is write-protected (no write permission for anyone); it is
+    /// replaced only when the caller says so (`--force` in the CLI), as a shell's `>` refuses.
+    #[error("refusing to replace {}: it is write-protected; give --force to replace it, or choose another output path", path.display())]
+    WriteProtected {
+        /// The path.
+        path: PathBuf,
+    },
+    /// A size declared by the input or the arguments is above a limit, or memory for it could
+    /// not be reserved; the message names the limit and the option that raises it.
+    #[error("{what}")]
+    TooLarge {
+        /// What, the limit, and how to raise it.
+        what: String,
+    },
     /// The object cannot be written in the requested format (e.g. a 4-D curve to STEP).
     #[error("{what}")]
     Unsupported {
@@ -119,6 +133,8 @@ impl IoError {
             | IoError::Invalid { .. }
             | IoError::Read { .. }
             | IoError::WouldOverwriteInput { .. }
+            | IoError::WriteProtected { .. }
+            | IoError::TooLarge { .. }
             | IoError::Unsupported { .. } => true,
             IoError::Write { .. } | IoError::Render(_) => false,
         }

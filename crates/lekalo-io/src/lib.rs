@@ -32,6 +32,7 @@ mod atomic;
 mod error;
 mod iges;
 mod numfmt;
+mod flat;
 mod obj;
 mod object;
 mod object_ext;
@@ -46,7 +47,10 @@ mod svg;
 mod wireframe;
 
 pub use analysis::{curvature, uniform};
-pub use atomic::{check_not_input, read_input, write_atomic};
+pub use atomic::{
+    check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
+    write_atomic_stream, write_atomic_with, WriteOptions,
+};
 pub use error::{IoError, IoResult, Location};
 pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use numfmt::fmt_number;
@@ -57,7 +61,7 @@ pub use object_ext::{
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
 };
 pub use png::svg_to_png;
-pub use points_in::{parse_number_list, read_points};
+pub use points_in::{parse_number_list, read_points, read_points_with, Header};
 pub use samples::{sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};

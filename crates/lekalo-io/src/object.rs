@@ -16,10 +16,12 @@
 //! types by name.
 
 use lekalo::{BSplineCurve, BezierCurve, NurbsCurve, Points};
-use serde::{Deserialize, Serialize};
+use serde::de::IgnoredAny;
+use serde::Deserialize;
 use serde_json::{Map, Value};
 
 use crate::error::{IoError, IoResult, Location};
+use crate::flat::{self, FlatPoints};
 
 /// The current format version, the value of the `"lekalo"` field.
 pub const FORMAT_VERSION: u64 = 1;
@@ -36,48 +38,89 @@ pub enum Object {
     Nurbs(NurbsCurve),
 }
 
-/// Control points as written in files: rows `[[x, y], …]` or flat `{"dim", "data"}`.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(untagged)]
-enum PointsJson {
-    Rows(Vec<Vec<f64>>),
-    Flat { dim: usize, data: Vec<f64> },
-}
-
-impl PointsJson {
-    fn into_points(self) -> lekalo::Result<Points> {
-        match self {
-            PointsJson::Rows(rows) => Points::from_rows(&rows),
-            PointsJson::Flat { dim, data } => Points::from_flat(dim, data),
-        }
-    }
-
-    fn rows(p: &Points) -> Self {
-        PointsJson::Rows(p.iter().map(<[f64]>::to_vec).collect())
-    }
-}
-
+// The readers take the envelope's `lekalo` and `type` too (checked before, by `Head`), so
+// that one typed pass reads the object straight from the text: no `serde_json::Value` tree,
+// and a key given twice is an error (serde's derived readers refuse duplicate fields).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BezierJson {
-    control: PointsJson,
+    #[serde(rename = "lekalo")]
+    _version: IgnoredAny,
+    #[serde(rename = "type")]
+    _kind: IgnoredAny,
+    #[serde(deserialize_with = "flat::control")]
+    control: FlatPoints,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BSplineJson {
+    #[serde(rename = "lekalo")]
+    _version: IgnoredAny,
+    #[serde(rename = "type")]
+    _kind: IgnoredAny,
     degree: usize,
     knots: Vec<f64>,
-    control: PointsJson,
+    #[serde(deserialize_with = "flat::control")]
+    control: FlatPoints,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct NurbsJson {
+    #[serde(rename = "lekalo")]
+    _version: IgnoredAny,
+    #[serde(rename = "type")]
+    _kind: IgnoredAny,
     degree: usize,
     knots: Vec<f64>,
-    control: PointsJson,
+    #[serde(deserialize_with = "flat::control")]
+    control: FlatPoints,
     weights: Vec<f64>,
+}
+
+/// The envelope alone (`lekalo`, `type`); every other field is skipped without being stored.
+#[derive(Deserialize)]
+pub(crate) struct Head {
+    lekalo: Option<Value>,
+    #[serde(rename = "type")]
+    kind: Option<Value>,
+}
+
+impl Head {
+    /// Reads the envelope of `text`, refusing text that is not one JSON object.
+    pub(crate) fn read(text: &str, at: &Location) -> IoResult<Head> {
+        let line = |l: usize| at.clone().at_line(at.line.unwrap_or(1) + l.max(1) - 1);
+        if !text.trim_start().starts_with('{') {
+            if let Err(e) = serde_json::from_str::<IgnoredAny>(text) {
+                return Err(IoError::syntax(
+                    line(e.line()),
+                    format!("not valid JSON: {e}"),
+                ));
+            }
+            return Err(IoError::syntax(
+                at.clone(),
+                "expected a JSON object like {\"lekalo\": 1, \"type\": \"bspline_curve\", ...}",
+            ));
+        }
+        serde_json::from_str::<Head>(text).map_err(|e| {
+            let msg = flat::message(&e);
+            if e.is_data() {
+                let mut loc = line(e.line());
+                if let Some(f) = backticked(&msg) {
+                    loc = loc.at_field(f);
+                }
+                IoError::syntax(loc, format!("{msg}; each field may appear once"))
+            } else {
+                IoError::syntax(line(e.line()), format!("not valid JSON: {e}"))
+            }
+        })
+    }
+
+    /// The `type`, if it is a string.
+    pub(crate) fn kind(&self) -> Option<&str> {
+        self.kind.as_ref().and_then(Value::as_str)
+    }
 }
 
 /// The `type` names this version reads, for error messages.
@@ -110,7 +153,7 @@ impl Object {
         let mut m = Map::new();
         m.insert("lekalo".into(), Value::from(FORMAT_VERSION));
         m.insert("type".into(), Value::from(self.type_name()));
-        let rows = |p: &Points| serde_json::to_value(PointsJson::rows(p)).unwrap_or(Value::Null);
+        let rows = |p: &Points| Value::from(p.iter().map(Value::from).collect::<Vec<_>>());
         match self {
             Object::Bezier(c) => {
                 m.insert("control".into(), rows(c.control_points()));
@@ -144,34 +187,110 @@ impl Object {
     }
 
     fn format_json(&self, pretty: bool) -> String {
-        let v = self.to_json_value();
+        let mut bytes = Vec::new();
+        // writing into a Vec cannot fail
+        let _ = self.write_json(&mut bytes, pretty);
+        String::from_utf8(bytes).unwrap_or_default()
+    }
+
+    /// Writes the JSON text of [`Object::to_json_pretty`] (or, not `pretty`, of
+    /// [`Object::to_json_line`]) to `w` piece by piece, with no `Value` tree and no copy of the
+    /// whole text: a curve of millions of control points costs a small buffer.
+    ///
+    /// # Errors
+    /// The writer's.
+    pub fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()> {
         let (nl, ind, ind2, sp) = if pretty {
             ("\n", "  ", "    ", " ")
         } else {
             ("", "", "", "")
         };
-        let mut fields = Vec::new();
-        for key in ["lekalo", "type", "degree", "knots", "control", "weights"] {
-            let Some(val) = v.get(key) else { continue };
-            let text = if key == "control" {
-                let rows: Vec<String> = val
-                    .as_array()
-                    .map(|a| a.iter().map(|r| compact(r, sp)).collect())
-                    .unwrap_or_default();
-                format!(
-                    "[{nl}{ind2}{}{nl}{ind}]",
-                    rows.join(&format!(",{nl}{ind2}"))
-                )
-            } else {
-                compact(val, sp)
-            };
-            fields.push(format!("{ind}\"{key}\":{sp}{text}"));
+        let mut out = String::new();
+        let num = |out: &mut String, x: f64| {
+            // serde_json's shortest round-trip form (`1.0`, `0.1`, `1e-7`)
+            out.push_str(&serde_json::Value::from(x).to_string());
+        };
+        let list = |out: &mut String, w: &mut dyn std::io::Write, xs: &[f64]| {
+            out.push('[');
+            for (i, &x) in xs.iter().enumerate() {
+                if out.len() > 1 << 16 {
+                    w.write_all(out.as_bytes())?;
+                    out.clear();
+                }
+                if i > 0 {
+                    out.push(',');
+                    out.push_str(sp);
+                }
+                num(out, x);
+            }
+            out.push(']');
+            std::io::Result::Ok(())
+        };
+        let field = |out: &mut String, key: &str, first: bool| {
+            if !first {
+                out.push(',');
+                out.push_str(nl);
+            }
+            out.push_str(ind);
+            out.push('"');
+            out.push_str(key);
+            out.push_str("\":");
+            out.push_str(sp);
+        };
+        out.push('{');
+        out.push_str(nl);
+        field(&mut out, "lekalo", true);
+        out.push_str(&FORMAT_VERSION.to_string());
+        field(&mut out, "type", false);
+        out.push('"');
+        out.push_str(self.type_name());
+        out.push('"');
+        let (degree, knots, weights) = match self {
+            Object::Bezier(_) => (None, None, None),
+            Object::BSpline(c) => (Some(c.degree()), Some(c.knots().as_slice()), None),
+            Object::Nurbs(c) => (
+                Some(c.degree()),
+                Some(c.knots().as_slice()),
+                Some(c.weights()),
+            ),
+        };
+        if let Some(d) = degree {
+            field(&mut out, "degree", false);
+            out.push_str(&d.to_string());
         }
-        let mut s = format!("{{{nl}{}{nl}}}", fields.join(&format!(",{nl}")));
+        if let Some(k) = knots {
+            field(&mut out, "knots", false);
+            list(&mut out, w, k)?;
+        }
+        field(&mut out, "control", false);
+        out.push('[');
+        out.push_str(nl);
+        let control = self.control_points();
+        for (i, p) in control.iter().enumerate() {
+            if out.len() > 1 << 16 {
+                w.write_all(out.as_bytes())?;
+                out.clear();
+            }
+            if i > 0 {
+                out.push(',');
+                out.push_str(nl);
+            }
+            out.push_str(ind2);
+            list(&mut out, w, p)?;
+        }
+        out.push_str(nl);
+        out.push_str(ind);
+        out.push(']');
+        if let Some(weights) = weights {
+            field(&mut out, "weights", false);
+            list(&mut out, w, &weights)?;
+        }
+        out.push_str(nl);
+        out.push('}');
         if pretty {
-            s.push('\n');
+            out.push('\n');
         }
-        s
+        w.write_all(out.as_bytes())
     }
 
     /// Reads one object from JSON text. `source` names the input in error messages.
@@ -192,27 +311,15 @@ impl Object {
     /// type, missing or unknown fields; [`IoError::Invalid`] when the library's constructor
     /// rejects the data (the field is named).
     pub fn from_json_str(text: &str, source: &str) -> IoResult<Object> {
-        let value: Value = serde_json::from_str(text).map_err(|e| {
-            IoError::syntax(
-                Location::new(source).at_line(e.line()),
-                format!("not valid JSON: {e}"),
-            )
-        })?;
-        Object::from_json_value(value, &Location::new(source), text)
+        let text = crate::atomic::strip_bom_str(text);
+        let at = Location::new(source);
+        let head = Head::read(text, &at)?;
+        Object::from_head(text, &at, &head)
     }
 
-    /// Reads one object from a parsed JSON value; `text` (the value's source text, possibly
-    /// empty) is used to find the line of a field named in an error.
-    ///
-    /// # Errors
-    /// As [`Object::from_json_str`].
-    pub fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Object> {
-        let Value::Object(mut map) = value else {
-            return Err(IoError::syntax(
-                at.clone(),
-                "expected a JSON object like {\"lekalo\": 1, \"type\": \"bspline_curve\", ...}",
-            ));
-        };
+    /// Reads the object of `text` whose envelope `head` has been read; `at` may carry the line
+    /// where `text` starts (JSON Lines).
+    pub(crate) fn from_head(text: &str, at: &Location, head: &Head) -> IoResult<Object> {
         let field_at = |field: &str| {
             let mut loc = at.clone().at_field(field);
             if let Some(line) = line_of_field(text, field) {
@@ -220,7 +327,7 @@ impl Object {
             }
             loc
         };
-        match map.remove("lekalo") {
+        match &head.lekalo {
             Some(v) if v.as_u64() == Some(FORMAT_VERSION) => {}
             Some(v) => {
                 return Err(IoError::syntax(
@@ -237,22 +344,36 @@ impl Object {
                 ))
             }
         }
-        let kind = match map.remove("type") {
-            Some(Value::String(s)) => s,
-            _ => {
-                return Err(IoError::syntax(
-                    at.clone().at_field("type"),
-                    format!("missing or non-string object type; use one of {KNOWN_TYPES}"),
-                ))
-            }
+        let Some(kind) = head.kind() else {
+            return Err(IoError::syntax(
+                at.clone().at_field("type"),
+                format!("missing or non-string object type; use one of {KNOWN_TYPES}"),
+            ));
         };
-        let rest = Value::Object(map);
         let decode_err = |e: serde_json::Error| {
-            let msg = e.to_string();
-            let field = backticked(&msg);
-            let loc = match &field {
-                Some(f) => field_at(f),
+            let msg = flat::message(&e);
+            let loc = match backticked(&msg) {
+                // the second occurrence, where the parser stopped
+                Some(f) if msg.starts_with("duplicate field") => {
+                    let mut loc = at.clone().at_field(f);
+                    loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
+                    loc
+                }
+                Some(f) if !f.contains('[') && !f.contains('.') => field_at(&f),
+                Some(f) => {
+                    let top = f.split(['[', '.']).next().unwrap_or_default().to_string();
+                    let mut loc = at.clone().at_field(top);
+                    loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
+                    loc
+                }
                 None => at.clone(),
+            };
+            // the location names the field; say it once
+            let msg = match msg.strip_prefix("field `") {
+                Some(rest) => rest
+                    .split_once("`: ")
+                    .map_or(msg.clone(), |(_, m)| m.to_string()),
+                None => msg,
             };
             IoError::syntax(loc, format!("{kind}: {msg}"))
         };
@@ -260,32 +381,28 @@ impl Object {
             at: field_of(&e).map_or_else(|| at.clone(), field_at),
             error: e,
         };
-        match kind.as_str() {
+        let control = |p: FlatPoints| {
+            p.into_points().map_err(|e| IoError::Invalid {
+                at: field_at("control"),
+                error: e,
+            })
+        };
+        match kind {
             "bezier_curve" => {
-                let r: BezierJson = serde_json::from_value(rest).map_err(decode_err)?;
-                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
-                    at: field_at("control"),
-                    error: e,
-                })?;
-                BezierCurve::new(ctrl).map(Object::Bezier).map_err(invalid)
+                let r: BezierJson = serde_json::from_str(text).map_err(decode_err)?;
+                BezierCurve::new(control(r.control)?)
+                    .map(Object::Bezier)
+                    .map_err(invalid)
             }
             "bspline_curve" => {
-                let r: BSplineJson = serde_json::from_value(rest).map_err(decode_err)?;
-                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
-                    at: field_at("control"),
-                    error: e,
-                })?;
-                BSplineCurve::new(r.degree, r.knots, ctrl)
+                let r: BSplineJson = serde_json::from_str(text).map_err(decode_err)?;
+                BSplineCurve::new(r.degree, r.knots, control(r.control)?)
                     .map(Object::BSpline)
                     .map_err(invalid)
             }
             "nurbs_curve" => {
-                let r: NurbsJson = serde_json::from_value(rest).map_err(decode_err)?;
-                let ctrl = r.control.into_points().map_err(|e| IoError::Invalid {
-                    at: field_at("control"),
-                    error: e,
-                })?;
-                NurbsCurve::new(r.degree, r.knots, ctrl, r.weights)
+                let r: NurbsJson = serde_json::from_str(text).map_err(decode_err)?;
+                NurbsCurve::new(r.degree, r.knots, control(r.control)?, r.weights)
                     .map(Object::Nurbs)
                     .map_err(invalid)
             }
@@ -295,16 +412,40 @@ impl Object {
             )),
         }
     }
-}
 
-/// A JSON value on one line, with `sp` after commas.
-fn compact(v: &Value, sp: &str) -> String {
-    match v {
-        Value::Array(a) => {
-            let items: Vec<String> = a.iter().map(|x| compact(x, sp)).collect();
-            format!("[{}]", items.join(&format!(",{sp}")))
+    /// Reads one object from a parsed JSON value; `text` (the value's source text, possibly
+    /// empty) is used to find the line of a field named in an error.
+    ///
+    /// # Errors
+    /// As [`Object::from_json_str`].
+    pub fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Object> {
+        if !value.is_object() {
+            return Err(IoError::syntax(
+                at.clone(),
+                "expected a JSON object like {\"lekalo\": 1, \"type\": \"bspline_curve\", ...}",
+            ));
         }
-        other => other.to_string(),
+        let own = value.to_string();
+        let head = Head::read(&own, &at.clone())?;
+        Object::from_head(&own, at, &head).map_err(|e| match e {
+            // point messages at the lines of the original text
+            IoError::Syntax {
+                at: mut loc,
+                message,
+            } => {
+                if let Some(f) = &loc.field {
+                    loc.line = line_of_field(text, f).map(|l| at.line.unwrap_or(1) + l - 1);
+                }
+                IoError::Syntax { at: loc, message }
+            }
+            IoError::Invalid { at: mut loc, error } => {
+                if let Some(f) = &loc.field {
+                    loc.line = line_of_field(text, f).map(|l| at.line.unwrap_or(1) + l - 1);
+                }
+                IoError::Invalid { at: loc, error }
+            }
+            other => other,
+        })
     }
 }
 
@@ -351,7 +492,8 @@ fn line_of_field(text: &str, field: &str) -> Option<usize> {
 /// bad line and go on with the good ones.
 #[must_use]
 pub fn read_json_lines(text: &str, source: &str) -> Vec<(usize, IoResult<Object>)> {
-    text.lines()
+    crate::atomic::strip_bom_str(text)
+        .lines()
         .enumerate()
         .filter(|(_, l)| {
             let t = l.trim();
@@ -359,9 +501,7 @@ pub fn read_json_lines(text: &str, source: &str) -> Vec<(usize, IoResult<Object>
         })
         .map(|(i, l)| {
             let at = Location::new(source).at_line(i + 1);
-            let obj = serde_json::from_str::<Value>(l)
-                .map_err(|e| IoError::syntax(at.clone(), format!("not valid JSON: {e}")))
-                .and_then(|v| Object::from_json_value(v, &at, l));
+            let obj = Head::read(l, &at).and_then(|head| Object::from_head(l, &at, &head));
             (i + 1, obj)
         })
         .collect()

@@ -15,7 +15,6 @@
 
 use lekalo::{BSplineSurface, BezierSurface, PiecewisePolynomial, Points};
 use serde::Deserialize;
-use serde_json::Value;
 
 use crate::error::{IoError, IoResult, Location};
 use crate::object::FORMAT_VERSION;
@@ -59,12 +58,16 @@ struct PpJson {
 /// The `type` of an envelope, if the text is a JSON object with a string `type`.
 #[must_use]
 pub fn envelope_type(text: &str) -> Option<String> {
-    let v: Value = serde_json::from_str(text).ok()?;
-    v.get("type")?.as_str().map(str::to_string)
+    // the envelope only: the rest of the text is skipped, not stored
+    let text = crate::atomic::strip_bom_str(text);
+    crate::object::Head::read(text, &crate::error::Location::new(""))
+        .ok()?
+        .kind()
+        .map(str::to_string)
 }
 
 fn decode<T: for<'de> Deserialize<'de>>(text: &str, source: &str, kind: &str) -> IoResult<T> {
-    serde_json::from_str(text).map_err(|e| {
+    serde_json::from_str(crate::atomic::strip_bom_str(text)).map_err(|e| {
         IoError::syntax(
             Location::new(source).at_line(e.line()),
             format!("{kind}: {e}"),

@@ -1,8 +1,10 @@
 //! Points from text: CSV, whitespace-separated columns or JSON, one point per row.
 //!
 //! - **CSV / whitespace:** one point per line, coordinates separated by commas or by blanks;
-//!   blank lines and lines starting with `#` are skipped; a first line that is not numeric is a
-//!   header naming the columns (`x,y,z`).
+//!   blank lines and lines starting with `#` are skipped; a first line on which no field is a
+//!   number is a header naming the columns (`x,y,z`) ([`Header::Auto`]; [`Header::Yes`] and
+//!   [`Header::No`] decide it instead). A line mixing numbers and text is an error naming the
+//!   line and the field, never a header silently dropped. A UTF-8 byte-order mark is skipped.
 //! - **JSON:** an array of rows `[[x, y], …]`, the flat form `{"dim": 2, "data": [x0, y0, …]}`,
 //!   or `{"points": [[x, y], …]}`.
 //!
@@ -11,9 +13,22 @@
 //! `data.csv:3: field `y`: cannot read "abc" as a number`.
 
 use lekalo::Points;
-use serde_json::Value;
+use serde::de::DeserializeSeed;
 
 use crate::error::{IoError, IoResult, Location};
+use crate::flat::{self, PointsSeed};
+
+/// Whether the first line of a CSV or whitespace points file is a header naming the columns.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Header {
+    /// A header if no field on the first line parses as a number.
+    #[default]
+    Auto,
+    /// The first line is a header, whatever it holds.
+    Yes,
+    /// There is no header: the first line is a point.
+    No,
+}
 
 /// Reads points from `text`; `source` names the input in messages (a path or `<stdin>`).
 ///
@@ -29,6 +44,23 @@ use crate::error::{IoError, IoResult, Location};
 /// [`IoError::Syntax`] for a field that is not a finite number, rows of different lengths, no
 /// points, or malformed JSON; [`IoError::Invalid`] if the library rejects the points.
 pub fn read_points(text: &str, source: &str) -> IoResult<Points> {
+    read_points_with(text, source, Header::Auto)
+}
+
+/// [`read_points`] with the header rule given.
+///
+/// ```
+/// use lekalo_io::{read_points_with, Header};
+/// let e = read_points_with("0,0a\n1,1\n", "p.csv", Header::Auto).unwrap_err();
+/// assert!(e.to_string().starts_with("p.csv:1: field `2`: cannot read \"0a\""), "{e}");
+/// let p = read_points_with("0,0a\n1,1\n", "p.csv", Header::Yes).unwrap();
+/// assert_eq!(p.len(), 1);
+/// ```
+///
+/// # Errors
+/// As [`read_points`].
+pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResult<Points> {
+    let text = crate::atomic::strip_bom_str(text);
     let first = text.trim_start().chars().next();
     if matches!(first, Some('[' | '{')) {
         return read_points_json(text, source);
@@ -47,8 +79,13 @@ pub fn read_points(text: &str, source: &str) -> IoResult<Points> {
         } else {
             line.split_whitespace().collect()
         };
-        let is_header =
-            dim.is_none() && header.is_none() && fields.iter().any(|f| f.parse::<f64>().is_err());
+        let first_line = dim.is_none() && header.is_none();
+        let is_header = first_line
+            && match header_rule {
+                Header::Yes => true,
+                Header::No => false,
+                Header::Auto => fields.iter().all(|f| f.parse::<f64>().is_err()),
+            };
         if is_header {
             header = Some(fields.iter().map(|f| f.to_string()).collect());
             continue;
@@ -101,103 +138,23 @@ pub fn read_points(text: &str, source: &str) -> IoResult<Points> {
 
 fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
     let at = Location::new(source);
-    let value: Value = serde_json::from_str(text).map_err(|e| {
-        IoError::syntax(at.clone().at_line(e.line()), format!("not valid JSON: {e}"))
+    let mut de = serde_json::Deserializer::from_str(text);
+    let flat = PointsSeed {
+        field: "",
+        allow_points_key: true,
+    }
+    .deserialize(&mut de)
+    .and_then(|p| de.end().map(|()| p))
+    .map_err(|e| {
+        let loc = at.clone().at_line(e.line());
+        if e.is_data() {
+            IoError::syntax(loc, flat::message(&e))
+        } else {
+            IoError::syntax(loc, format!("not valid JSON: {e}"))
+        }
     })?;
-    let rows = match value {
-        Value::Array(rows) => rows,
-        Value::Object(mut m) => {
-            if let Some(Value::Array(rows)) = m.remove("points") {
-                rows
-            } else {
-                let dim = m.get("dim").and_then(Value::as_u64);
-                let data = m.get("data").and_then(Value::as_array);
-                let (Some(dim), Some(data)) = (dim, data) else {
-                    return Err(IoError::syntax(
-                        at,
-                        "expected [[x, y], …], {\"points\": [[x, y], …]} or {\"dim\": 2, \"data\": [x0, y0, …]}",
-                    ));
-                };
-                let mut flat = Vec::with_capacity(data.len());
-                for (i, v) in data.iter().enumerate() {
-                    flat.push(v.as_f64().ok_or_else(|| {
-                        IoError::syntax(
-                            at.clone().at_field(format!("data[{i}]")),
-                            format!("{v} is not a number"),
-                        )
-                    })?);
-                }
-                let dim = usize::try_from(dim).unwrap_or(usize::MAX);
-                return Points::from_flat(dim, flat).map_err(|e| IoError::Invalid { at, error: e });
-            }
-        }
-        _ => {
-            return Err(IoError::syntax(
-                at,
-                "expected an array of points [[x, y], …]",
-            ))
-        }
-    };
-    let lines = row_lines(text);
-    let row_at = |i: usize| {
-        let mut loc = at.clone();
-        loc.line = lines.get(i).copied();
-        loc
-    };
-    let mut out: Vec<Vec<f64>> = Vec::with_capacity(rows.len());
-    for (i, row) in rows.iter().enumerate() {
-        let Value::Array(coords) = row else {
-            return Err(IoError::syntax(
-                row_at(i).at_field(format!("[{i}]")),
-                format!("point {i} is {row}, not an array of coordinates"),
-            ));
-        };
-        let mut p = Vec::with_capacity(coords.len());
-        for (k, c) in coords.iter().enumerate() {
-            p.push(c.as_f64().ok_or_else(|| {
-                IoError::syntax(
-                    row_at(i).at_field(format!("[{i}][{k}]")),
-                    format!("{c} is not a number"),
-                )
-            })?);
-        }
-        out.push(p);
-    }
-    if let Some(i) = out.iter().position(|r| r.len() != out[0].len()) {
-        return Err(IoError::syntax(
-            row_at(i),
-            format!(
-                "point {i} has {} coordinates, point 0 has {}; every point needs the same number",
-                out[i].len(),
-                out[0].len()
-            ),
-        ));
-    }
-    Points::from_rows(&out).map_err(|e| IoError::Invalid { at, error: e })
-}
-
-/// 1-based line of each innermost JSON array (`[` followed by `]` before any other `[`), in
-/// order: the line of point `i` in `[[x, y], …]`, used only to point error messages at a line.
-fn row_lines(text: &str) -> Vec<usize> {
-    let mut out = Vec::new();
-    let mut line = 1;
-    let bytes = text.as_bytes();
-    for (pos, &b) in bytes.iter().enumerate() {
-        match b {
-            b'\n' => line += 1,
-            b'[' => {
-                let innermost = bytes[pos + 1..]
-                    .iter()
-                    .find(|&&c| c == b'[' || c == b']')
-                    .is_some_and(|&c| c == b']');
-                if innermost {
-                    out.push(line);
-                }
-            }
-            _ => {}
-        }
-    }
-    out
+    flat.into_points()
+        .map_err(|e| IoError::Invalid { at, error: e })
 }
 
 /// Parses a list of numbers written `0, 0.5, 1` or `0 0.5 1` (command-line arguments).
@@ -270,9 +227,8 @@ mod tests {
             .to_string();
         assert_eq!(
             e,
-            "p.json:3: point 1 has 1 coordinates, point 0 has 2; every point needs the same number"
+            "p.json:3: field `[1]`: point 1 has 1 coordinates, point 0 has 2; every point needs the same number"
         );
-        assert_eq!(row_lines("[[1,2],\n[3,4]]"), vec![1, 2]);
         let e = read_points("[[0,0],\n[1", "p.json")
             .unwrap_err()
             .to_string();
@@ -281,6 +237,31 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("dimension of points"), "{e}");
+    }
+
+    #[test]
+    fn headers_boms_and_mixed_lines() {
+        // a line with a number on it is data, never a header: refused, not dropped
+        let e = read_points("0,0a\n1,1\n2,0\n", "h.csv")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "h.csv:1: field `2`: cannot read \"0a\" as a number");
+        assert_eq!(read_points("x,y\n1,1\n", "h.csv").unwrap().len(), 1);
+        assert_eq!(
+            read_points_with("0,0a\n1,1\n2,0\n", "h.csv", Header::Yes)
+                .unwrap()
+                .len(),
+            2
+        );
+        let e = read_points_with("x,y\n1,1\n", "h.csv", Header::No).unwrap_err();
+        assert!(e.to_string().starts_with("h.csv:1: field `1`"), "{e}");
+        // a byte-order mark is not part of the first field
+        let p = read_points("\u{feff}0,0\n1,1\n", "b.csv").unwrap();
+        assert_eq!(p.len(), 2);
+        let p = read_points("\u{feff}[[0,0],[1,1]]", "b.json").unwrap();
+        assert_eq!(p.len(), 2);
+        let e = read_points(r#"{"dim": 2, "dim": 3, "data": [1, 2]}"#, "d.json").unwrap_err();
+        assert!(e.to_string().contains("duplicate key `dim`"), "{e}");
     }
 
     #[test]

@@ -92,6 +92,29 @@ impl SampleTable {
         s
     }
 
+    /// Writes the CSV of [`SampleTable::to_csv`] to `w`, the header line only if `header`, so
+    /// that a long sampling can be written chunk by chunk.
+    ///
+    /// # Errors
+    /// The writer's.
+    pub fn write_csv(&self, w: &mut dyn std::io::Write, header: bool) -> std::io::Result<()> {
+        if header {
+            writeln!(w, "{}", self.header.join(","))?;
+        }
+        for row in &self.rows {
+            for (i, v) in row.iter().enumerate() {
+                if i > 0 {
+                    w.write_all(b",")?;
+                }
+                if let Some(x) = v {
+                    write!(w, "{x}")?;
+                }
+            }
+            w.write_all(b"\n")?;
+        }
+        Ok(())
+    }
+
     /// JSON: an array of objects keyed by the column names (`null` where undefined).
     #[must_use]
     pub fn to_json(&self) -> Value {

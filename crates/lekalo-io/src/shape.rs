@@ -78,12 +78,13 @@ struct NurbsSurfaceJson {
 /// [`IoError::Invalid`] when [`NurbsSurface::new`] rejects the data (field `weights` for a
 /// weight problem, else `control`).
 pub fn read_nurbs_surface(text: &str, source: &str) -> IoResult<NurbsSurface> {
-    let r: NurbsSurfaceJson = serde_json::from_str(text).map_err(|e| {
-        IoError::syntax(
-            Location::new(source).at_line(e.line()),
-            format!("nurbs_surface: {e}"),
-        )
-    })?;
+    let r: NurbsSurfaceJson =
+        serde_json::from_str(crate::atomic::strip_bom_str(text)).map_err(|e| {
+            IoError::syntax(
+                Location::new(source).at_line(e.line()),
+                format!("nurbs_surface: {e}"),
+            )
+        })?;
     if r.lekalo != FORMAT_VERSION {
         return Err(IoError::syntax(
             Location::new(source).at_field("lekalo"),

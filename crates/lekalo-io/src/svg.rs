@@ -94,7 +94,9 @@ impl Figure {
         }
     }
 
-    /// Data bounds `(xmin, xmax, ymin, ymax)`, padded by 5 % and never degenerate.
+    /// Data extent as centre and half-width `(cx, hx, cy, hy)`, padded by 5 % and never
+    /// degenerate. Computed from halves (`hi/2 − lo/2`), so coordinates near ±1.8e308 do not
+    /// overflow; non-finite points are left out.
     fn bounds(&self) -> (f64, f64, f64, f64) {
         let mut b = (
             f64::INFINITY,
@@ -102,52 +104,60 @@ impl Figure {
             f64::INFINITY,
             f64::NEG_INFINITY,
         );
-        for p in self.series.iter().flat_map(|s| s.paths.iter().flatten()) {
+        let finite = |p: &&[f64; 2]| p[0].is_finite() && p[1].is_finite();
+        for p in self
+            .series
+            .iter()
+            .flat_map(|s| s.paths.iter().flatten())
+            .filter(finite)
+        {
             b.0 = b.0.min(p[0]);
             b.1 = b.1.max(p[0]);
             b.2 = b.2.min(p[1]);
             b.3 = b.3.max(p[1]);
         }
         if let Some((a, c, _)) = &self.band {
-            b.0 = b.0.min(*a);
-            b.1 = b.1.max(*c);
+            if a.is_finite() && c.is_finite() {
+                b.0 = b.0.min(*a);
+                b.1 = b.1.max(*c);
+            }
         }
-        if !b.0.is_finite() {
-            return (0.0, 1.0, 0.0, 1.0);
+        if !b.0.is_finite() || !b.2.is_finite() {
+            return (0.5, 0.5, 0.5, 0.5);
         }
         let fix = |lo: f64, hi: f64| {
-            let span = hi - lo;
-            let pad = if span > 0.0 {
-                0.05 * span
+            let half = hi / 2.0 - lo / 2.0;
+            let centre = lo / 2.0 + hi / 2.0;
+            let half = if half > 0.0 {
+                (1.05 * half).min(f64::MAX)
             } else {
                 0.5 * lo.abs().max(1.0)
             };
-            (lo - pad, hi + pad)
+            (centre, half)
         };
-        let (x0, x1) = fix(b.0, b.1);
-        let (y0, y1) = fix(b.2, b.3);
-        (x0, x1, y0, y1)
+        let (cx, hx) = fix(b.0, b.1);
+        let (cy, hy) = fix(b.2, b.3);
+        (cx, hx, cy, hy)
     }
 
     /// The figure as a standalone SVG document.
     #[must_use]
     pub fn to_svg(&self) -> String {
         let (w, h) = self.size;
-        let (mut x0, mut x1, mut y0, mut y1) = self.bounds();
+        let (cx, mut hx, cy, mut hy) = self.bounds();
         let pw = w - MARGIN_LEFT - MARGIN_RIGHT;
         let ph = h - MARGIN_TOP - MARGIN_BOTTOM;
         if self.equal_aspect {
-            let sx = (x1 - x0) / pw;
-            let sy = (y1 - y0) / ph;
-            let s = sx.max(sy);
-            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-            x0 = cx - 0.5 * s * pw;
-            x1 = cx + 0.5 * s * pw;
-            y0 = cy - 0.5 * s * ph;
-            y1 = cy + 0.5 * s * ph;
+            let s = (hx / pw).max(hy / ph);
+            hx = (s * pw).min(f64::MAX);
+            hy = (s * ph).min(f64::MAX);
         }
-        let tx = |x: f64| MARGIN_LEFT + (x - x0) / (x1 - x0) * pw;
-        let ty = |y: f64| MARGIN_TOP + (y1 - y) / (y1 - y0) * ph;
+        // (x − cx) / 2 without overflow, over the half-width: in [−1/2, 1/2] on the plot
+        let tx = |x: f64| MARGIN_LEFT + (0.5 + (x / 2.0 - cx / 2.0) / hx) * pw;
+        let ty = |y: f64| MARGIN_TOP + (0.5 - (y / 2.0 - cy / 2.0) / hy) * ph;
+        let clamp = |v: f64| v.clamp(-f64::MAX, f64::MAX);
+        let (x0, x1) = (clamp(cx - hx), clamp(cx + hx));
+        let (y0, y1) = (clamp(cy - hy), clamp(cy + hy));
         let mut s = String::new();
         let _ = writeln!(
             s,
@@ -176,7 +186,8 @@ impl Figure {
                 s,
                 r##"<rect x="{MARGIN_LEFT}" y="{MARGIN_TOP}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
             );
-            for v in nice_ticks(x0, x1) {
+            let (xticks, xstep) = nice_ticks(x0, x1);
+            for v in xticks {
                 let x = tx(v);
                 let _ = writeln!(
                     s,
@@ -184,10 +195,11 @@ impl Figure {
                     MARGIN_TOP + ph,
                     MARGIN_TOP + ph + 5.0,
                     MARGIN_TOP + ph + 18.0,
-                    fmt_tick(v)
+                    fmt_tick(v, xstep)
                 );
             }
-            for v in nice_ticks(y0, y1) {
+            let (yticks, ystep) = nice_ticks(y0, y1);
+            for v in yticks {
                 let y = ty(v);
                 let _ = writeln!(
                     s,
@@ -195,7 +207,7 @@ impl Figure {
                     MARGIN_LEFT - 5.0,
                     MARGIN_LEFT - 8.0,
                     y + 4.0,
-                    fmt_tick(v)
+                    fmt_tick(v, ystep)
                 );
             }
             let (xl, yl) = &self.axis_labels;
@@ -222,7 +234,9 @@ impl Figure {
                         };
                         let pts: Vec<String> = path
                             .iter()
-                            .map(|p| format!("{:.2},{:.2}", tx(p[0]), ty(p[1])))
+                            .map(|p| (tx(p[0]), ty(p[1])))
+                            .filter(|(x, y)| x.is_finite() && y.is_finite())
+                            .map(|(x, y)| format!("{x:.2},{y:.2}"))
                             .collect();
                         let _ = writeln!(
                             s,
@@ -236,7 +250,10 @@ impl Figure {
                         );
                     }
                     Style::Markers => {
-                        for p in path {
+                        for p in path
+                            .iter()
+                            .filter(|p| tx(p[0]).is_finite() && ty(p[1]).is_finite())
+                        {
                             let _ = writeln!(
                                 s,
                                 r#"<circle cx="{:.2}" cy="{:.2}" r="4" fill="white" stroke="{c}" stroke-width="1.8"/>"#,
@@ -246,7 +263,10 @@ impl Figure {
                         }
                     }
                     Style::Ticks => {
-                        for p in path {
+                        for p in path
+                            .iter()
+                            .filter(|p| tx(p[0]).is_finite() && ty(p[1]).is_finite())
+                        {
                             let (x, y) = (tx(p[0]), ty(p[1]));
                             let _ = writeln!(
                                 s,
@@ -309,37 +329,68 @@ pub fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks).
-fn nice_ticks(lo: f64, hi: f64) -> Vec<f64> {
-    let span = hi - lo;
-    if span.is_nan() || span <= 0.0 || !span.is_finite() {
-        return Vec::new();
+/// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks), and the step.
+/// The span is taken from halves, so `[−1e308, 1e308]` does not overflow.
+fn nice_ticks(lo: f64, hi: f64) -> (Vec<f64>, f64) {
+    let half = hi / 2.0 - lo / 2.0;
+    if half.is_nan() || half <= 0.0 || !half.is_finite() {
+        return (Vec::new(), 0.0);
     }
-    let raw = span / 5.0;
+    let raw = half / 2.5;
     let mag = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
+    if !(step > 0.0 && step.is_finite()) {
+        return (Vec::new(), 0.0);
+    }
     let first = (lo / step).ceil();
     let last = (hi / step).floor();
     let mut out = Vec::new();
     let mut k = first;
     while k <= last && out.len() < 50 {
-        out.push(k * step);
+        let v = k * step;
+        if v.is_finite() {
+            out.push(v);
+        }
         k += 1.0;
     }
-    out
+    (out, step)
 }
 
-fn fmt_tick(v: f64) -> String {
-    let r = (v * 1e9).round() / 1e9;
-    let s = format!("{r}");
-    if s == "-0" {
-        "0".into()
+/// A tick label with as many digits as the step needs: plain decimals for ordinary
+/// magnitudes, `1.5e300` / `2e-320` beyond them (never `inf`, never every tick `0`).
+#[allow(clippy::cast_possible_truncation)] // decimal exponents of finite f64 are within ±330
+fn fmt_tick(v: f64, step: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (step > 0.0 && a < step * 1e-6) {
+        return "0".into();
+    }
+    let e_step = if step > 0.0 {
+        step.log10().floor() as i32
     } else {
-        s
+        a.log10().floor() as i32 - 3
+    };
+    if (1e-4..1e6).contains(&a) {
+        let decimals = usize::try_from((-e_step).clamp(0, 15)).unwrap_or(0);
+        let s = format!("{v:.decimals$}");
+        return if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+            s[1..].to_string()
+        } else {
+            s
+        };
+    }
+    let e_v = a.log10().floor() as i32;
+    let digits = usize::try_from((e_v - e_step).clamp(0, 15)).unwrap_or(0);
+    let s = format!("{v:.digits$e}");
+    // 1.50e3 -> 1.5e3
+    match s.split_once('e') {
+        Some((m, e)) if m.contains('.') => {
+            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+        }
+        _ => s,
     }
 }
 
@@ -383,7 +434,24 @@ fn to_plane(p: &[f64], projection: &crate::wireframe::Projection) -> [f64; 2] {
     }
 }
 
+/// Most vertices of a control polygon or data series drawn in a curve plot; beyond it every
+/// k-th is drawn (first and last kept), as a picture cannot show more.
+pub(crate) const PLOT_MAX_VERTICES: usize = 20_000;
+/// Most markers (control points, points at knots, data points) drawn per series; beyond it the
+/// markers are left out and the legend says so.
+pub(crate) const PLOT_MAX_MARKERS: usize = 2_000;
+
+/// Every k-th of `n` indices (first and last kept) so that at most `max` remain.
+fn decimated(n: usize, max: usize) -> impl Iterator<Item = usize> {
+    let k = n.div_ceil(max.max(2) - 1).max(1);
+    (0..n)
+        .step_by(k)
+        .chain((n > 0 && (n - 1) % k != 0).then_some(n - 1))
+}
+
 /// Plot of a curve: the curve over its domain, its control polygon, knot marks and data points.
+/// Huge objects are decimated: at most 20,000 vertices of a control polygon and 2,000 markers
+/// per series are drawn.
 ///
 /// # Errors
 /// Evaluation errors of the library (none for a valid object).
@@ -404,29 +472,38 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         .map(|p| to_plane(p, proj))
         .collect();
     if opts.control_polygon {
-        let ctrl: Vec<[f64; 2]> = obj
-            .control_points()
-            .iter()
-            .map(|p| to_plane(p, proj))
+        let cp = obj.control_points();
+        let n = cp.len();
+        let ctrl: Vec<[f64; 2]> = decimated(n, PLOT_MAX_VERTICES)
+            .map(|i| to_plane(cp.point(i), proj))
             .collect();
-        fig.series.push(Series::new(
-            Some("control polygon"),
-            ctrl.clone(),
-            Style::Dashed,
-            "#777777",
-        ));
+        let label = if ctrl.len() < n {
+            format!("control polygon ({} of {n} points)", ctrl.len())
+        } else {
+            "control polygon".to_string()
+        };
+        let markers = (ctrl.len() <= PLOT_MAX_MARKERS).then(|| ctrl.clone());
         fig.series
-            .push(Series::new(None, ctrl, Style::Markers, "#777777"));
+            .push(Series::new(Some(&label), ctrl, Style::Dashed, "#777777"));
+        if let Some(m) = markers {
+            fig.series
+                .push(Series::new(None, m, Style::Markers, "#777777"));
+        }
     }
     fig.series
         .push(Series::new(Some("curve"), curve, Style::Line, PALETTE[0]));
     if opts.knot_marks {
         let (a, b) = obj.domain();
+        let inside: Vec<f64> = obj
+            .knots()
+            .distinct()
+            .into_iter()
+            .map(|(t, _)| t)
+            .filter(|t| *t >= a && *t <= b)
+            .collect();
         let mut marks = Vec::new();
-        for (t, _) in obj.knots().distinct() {
-            if t >= a && t <= b {
-                marks.push(to_plane(&obj.eval(t)?, proj));
-            }
+        for i in decimated(inside.len(), PLOT_MAX_MARKERS) {
+            marks.push(to_plane(&obj.eval(inside[i])?, proj));
         }
         fig.series.push(Series::new(
             Some("points at knots"),
@@ -436,7 +513,9 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         ));
     }
     if let Some(data) = opts.data_points {
-        let pts = data.iter().map(|p| to_plane(p, proj)).collect();
+        let pts = decimated(data.len(), PLOT_MAX_MARKERS)
+            .map(|i| to_plane(data.point(i), proj))
+            .collect();
         fig.series.push(Series::new(
             Some("data points"),
             pts,
@@ -536,12 +615,24 @@ mod tests {
     #[test]
     fn ticks_are_nice() {
         assert_eq!(
-            nice_ticks(0.0, 1.0),
+            nice_ticks(0.0, 1.0).0,
             vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
         );
-        assert_eq!(nice_ticks(-3.0, 3.0), vec![-2.0, 0.0, 2.0]);
-        assert!(nice_ticks(1.0, 1.0).is_empty());
-        assert_eq!(fmt_tick(0.6000000000000001), "0.6");
+        assert_eq!(nice_ticks(-3.0, 3.0).0, vec![-2.0, 0.0, 2.0]);
+        assert!(nice_ticks(1.0, 1.0).0.is_empty());
+        assert_eq!(fmt_tick(0.6000000000000001, 0.2), "0.6");
+        // extreme magnitudes: finite, distinct labels
+        let (t, step) = nice_ticks(-1.7e308, 1.7e308);
+        assert!(t.len() >= 3 && t.iter().all(|v| v.is_finite()), "{t:?}");
+        let labels: Vec<String> = t.iter().map(|v| fmt_tick(*v, step)).collect();
+        assert!(labels.iter().all(|l| !l.contains("inf")), "{labels:?}");
+        let (t, step) = nice_ticks(1e-320, 5e-320);
+        let labels: Vec<String> = t.iter().map(|v| fmt_tick(*v, step)).collect();
+        assert!(
+            labels.len() >= 2 && labels.iter().all(|l| l != "0"),
+            "{labels:?}"
+        );
+        assert_eq!(fmt_tick(1.5e300, 5e299), "1.5e300");
     }
 
     #[test]

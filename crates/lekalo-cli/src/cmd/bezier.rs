@@ -140,8 +140,7 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
         }
         (None, Some(p), Some(net)) => {
             let (rows, cols) = net_size(net, "--net")?;
-            let (text, name) = lekalo_io::read_input(p)?;
-            let pts = lekalo_io::read_points(&text, &name)?;
+            let (pts, _) = crate::io::read_points(p)?;
             Ok(Loaded::Surface(
                 BezierSurface::new(pts, (rows, cols))?,
                 p.clone(),
@@ -164,6 +163,23 @@ fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
             other.display_name()
         )),
     }
+}
+
+/// Refuses degrees above `--max-degree` for the operations whose cost grows as the degree
+/// squared (real degree, exact reduction, change) or cubed (approximate reduction).
+fn guard(l: Loaded, what: &str) -> Result<Loaded> {
+    let limit = crate::io::settings().max_degree;
+    let degree = match &l {
+        Loaded::Curve(c, _) => c.degree(),
+        Loaded::Surface(s, _) => s.degree_u().max(s.degree_v()),
+        Loaded::BSpline(..) => 0,
+    };
+    if degree > limit {
+        return bad_input(format!(
+            "{what} of degree {degree} is above the degree limit {limit} (its cost grows as the degree squared or faster); raise it with --max-degree {degree}"
+        ));
+    }
+    Ok(l)
 }
 
 fn not_bezier() -> Result<()> {
@@ -191,6 +207,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
         BezierOp::Elevate { input, by, out } => match load(input, v)? {
             Loaded::Curve(c, p) => {
                 let (k, _) = amounts(by, "--by", false)?;
+                crate::io::check_size(c.degree().saturating_add(k), "degree after --by")?;
                 let r = c.elevate_degree(k)?;
                 write_curve(&Object::Bezier(r), None, out, &[p], v)
             }
@@ -208,16 +225,31 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             approx,
             ends,
             out,
-        } => match load(input, v)? {
+        } => match guard(load(input, v)?, "reduction")? {
             Loaded::Curve(c, p) => match approx {
                 None => write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v),
                 Some(target) => {
+                    let limit = crate::io::settings().max_degree / 4;
+                    if c.degree() > limit {
+                        return bad_input(format!(
+                            "approximate reduction of degree {} is above its limit {limit} (a quarter of --max-degree: its cost grows as the degree cubed); raise it with --max-degree {}",
+                            c.degree(),
+                            c.degree().saturating_mul(4)
+                        ));
+                    }
                     let ends = match ends {
                         Ends::Free => EndConditions::Free,
                         Ends::Points => EndConditions::Points,
                         Ends::Tangents => EndConditions::Tangents,
                     };
-                    let r = c.reduce_degree_approx(*target, ends)?;
+                    let bar = crate::io::spinner(
+                        format!("reducing degree {} to {target}", c.degree()),
+                        c.degree() > 200,
+                        v,
+                    );
+                    let r = c.reduce_degree_approx(*target, ends);
+                    bar.finish_and_clear();
+                    let r = r?;
                     if v != Verbosity::Quiet {
                         eprintln!(
                             "max deviation {:.6e} (sampled), bound {:.6e}",
@@ -238,7 +270,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
         },
         BezierOp::RealDegree { input, json } => {
             if *json {
-                let j = match load(input, v)? {
+                let j = match guard(load(input, v)?, "the real degree")? {
                     Loaded::Curve(c, _) => serde_json::json!({
                         "degree": c.degree(),
                         "real_degree": c.real_degree(),
@@ -256,7 +288,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                 };
                 return emit(None, format!("{j}\n").as_bytes(), &[], v);
             }
-            let text = match load(input, v)? {
+            let text = match guard(load(input, v)?, "the real degree")? {
                 Loaded::Curve(c, _) => format!(
                     "degree {}\nreal degree {}\ndefect {}\n",
                     c.degree(),
@@ -277,7 +309,7 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             };
             emit(None, text.as_bytes(), &[], v)
         }
-        BezierOp::Change { input, degree, out } => match load(input, v)? {
+        BezierOp::Change { input, degree, out } => match guard(load(input, v)?, "degree change")? {
             Loaded::Curve(c, p) => {
                 let (n, _) = amounts(degree, "--degree", false)?;
                 write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], v)

@@ -203,8 +203,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             tolerance,
             out,
         } => {
-            let (text, name) = lekalo_io::read_input(points)?;
-            let pts = lekalo_io::read_points(&text, &name)?;
+            let (pts, _) = crate::io::read_points(points)?;
             let family: Box<dyn LocalCurves> = match local {
                 Local::Arcs => Box::new(CircularArcs::new(ArcParametrization::UniformAngle)),
                 Local::RationalArcs => {
@@ -222,7 +221,14 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     SplineParams::Centripetal => SplineParameters::Centripetal,
                 },
             };
-            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options)?;
+            let bar = crate::io::spinner(
+                format!("blending through {} points", pts.len()),
+                pts.len() > 100_000,
+                v,
+            );
+            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
+            bar.finish_and_clear();
+            let s = s?;
             let obj = match local {
                 Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
                 Local::Arcs | Local::GlobalArcs => {

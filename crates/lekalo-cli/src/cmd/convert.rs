@@ -8,7 +8,7 @@ use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, Shape
 
 use crate::cmd::plot::encode;
 use crate::cmd::shapes;
-use crate::io::{bad_input, emit, format_of, load, Loaded};
+use crate::io::{bad_input, emit, format_of, in_range, load, Loaded};
 use crate::Verbosity;
 
 /// Arguments of `lekalo convert`.
@@ -107,6 +107,9 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             v,
         );
     }
+    // bad lines of JSON Lines: reported after the good ones are written (exit code 2)
+    let mut failed: Vec<String> = Vec::new();
+    let mut total = 0;
     let objects: Vec<Object> = match load(&a.input, a.jsonl, v)? {
         Loaded::One(o) => vec![o],
         Loaded::Other(shape) => {
@@ -114,7 +117,7 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             let bytes = shapes::convert(
                 &shape,
                 &format,
-                a.samples.clamp(2, 10_000_000),
+                in_range(a.samples, 2, usize::MAX, "--samples")?,
                 &step_name(a),
                 STEP_TIMESTAMP,
             )?;
@@ -125,11 +128,27 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
                 v,
             );
         }
-        Loaded::Many(items) => items
-            .into_iter()
-            .map(|(_, o)| o)
-            .collect::<std::result::Result<_, _>>()?,
+        Loaded::Many(items) => {
+            total = items.len();
+            let mut good = Vec::with_capacity(items.len());
+            for (_, o) in items {
+                match o {
+                    Ok(o) => good.push(o),
+                    Err(e) => failed.push(e.to_string()),
+                }
+            }
+            good
+        }
     };
+    if objects.is_empty() && !failed.is_empty() {
+        for e in &failed {
+            crate::io::report(&format!("  {e}"));
+        }
+        return bad_input(format!(
+            "{}: all {total} objects failed (listed above); nothing written",
+            a.input.display()
+        ));
+    }
     let Some(first) = objects.first() else {
         return bad_input(format!("{}: no objects", a.input.display()));
     };
@@ -144,7 +163,10 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             ))
         }
     };
-    let samples = a.samples.clamp(2, 10_000_000);
+    let samples = in_range(a.samples, 2, usize::MAX, "--samples")?;
+    if matches!(format.as_str(), "csv" | "svg" | "png" | "obj") {
+        crate::io::check_bezier_degree(first, "sampling")?;
+    }
     let bytes: Vec<u8> = match format.as_str() {
         "json" => single()?.to_json_pretty().into_bytes(),
         "jsonl" => objects
@@ -187,5 +209,18 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
         &bytes,
         std::slice::from_ref(&a.input),
         v,
-    )
+    )?;
+    if failed.is_empty() {
+        return Ok(());
+    }
+    if v != Verbosity::Quiet {
+        for e in &failed {
+            crate::io::report(&format!("  {e}"));
+        }
+    }
+    bad_input(format!(
+        "{} of {total} objects failed (listed above); the other {} were written",
+        failed.len(),
+        total - failed.len()
+    ))
 }

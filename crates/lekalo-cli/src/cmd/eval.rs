@@ -9,7 +9,8 @@ use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::io::{
-    bad_input, emit, format_of, load, not_a_curve, numbers, progress, BadInput, Loaded,
+    bad_input, emit, emit_stream, format_of, in_range, load, not_a_curve, numbers, progress,
+    BadInput, Loaded,
 };
 use crate::Verbosity;
 
@@ -75,19 +76,28 @@ pub(crate) struct EvalArgs {
 }
 
 const DEFAULT_SAMPLES: usize = 11;
-const MAX_SAMPLES: usize = 10_000_000;
+/// Highest `--derivatives` (every derivative above the degree is zero).
+const MAX_DERIVATIVES: usize = 1000;
 
 fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
     match (&a.at, a.samples) {
         (Some(at), _) => numbers(at, "--at"),
         (None, n) => {
-            let n = n.unwrap_or(DEFAULT_SAMPLES);
-            if !(1..=MAX_SAMPLES).contains(&n) {
-                return bad_input(format!("--samples must be between 1 and {MAX_SAMPLES}"));
-            }
+            let n = in_range(n.unwrap_or(DEFAULT_SAMPLES), 1, usize::MAX, "--samples")?;
             Ok(obj.uniform_parameters(n))
         }
     }
+}
+
+/// Refuses a derivative order whose column names alone would not fit in memory.
+fn check_derivatives(a: &EvalArgs) -> Result<()> {
+    if a.derivatives > MAX_DERIVATIVES {
+        return bad_input(format!(
+            "--derivatives {} is above {MAX_DERIVATIVES}, the highest order eval writes (every derivative above the curve's degree is zero)",
+            a.derivatives
+        ));
+    }
+    Ok(())
 }
 
 pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
@@ -96,6 +106,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         curvature: a.curvature,
     };
     let inputs = vec![a.input.clone()];
+    check_derivatives(a)?;
     match load(&a.input, a.jsonl, v)? {
         Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {
@@ -121,9 +132,12 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         }
         Loaded::One(obj) => {
             let ts = parameters(a, &obj)?;
+            let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "csv");
+            if fmt == "csv" && ts.len() > CHUNK {
+                return eval_csv_streamed(a, &obj, &ts, spec, &inputs, v);
+            }
             let table = sample_table(&obj, &ts, spec)
                 .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
-            let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "csv");
             let text = match fmt.as_str() {
                 "csv" => table.to_csv(),
                 "json" => format!("{:#}\n", table.to_json()),
@@ -155,6 +169,49 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
             finish_batch(lines, a.output.as_deref(), &inputs, v)
         }
     }
+}
+
+/// Parameters evaluated at a time by a streamed evaluation.
+const CHUNK: usize = 65_536;
+
+/// A long sampling as CSV, evaluated and written chunk by chunk (memory O(chunk), a progress
+/// bar on a terminal). Every parameter is checked against the domain first, so that an error
+/// never comes after part of the output was written.
+fn eval_csv_streamed(
+    a: &EvalArgs,
+    obj: &Object,
+    ts: &[f64],
+    spec: SampleSpec,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let (lo, hi) = obj.domain();
+    if let Some(t) = ts.iter().find(|t| !(lo..=hi).contains(*t)) {
+        // the library's message for it
+        sample_table(obj, &[*t], spec)
+            .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
+    }
+    let bar = progress(ts.len(), v);
+    let mut failure: Option<lekalo::Error> = None;
+    let r = emit_stream(a.output.as_deref(), inputs, v, |w| {
+        for (k, chunk) in ts.chunks(CHUNK).enumerate() {
+            let table = match sample_table(obj, chunk, spec) {
+                Ok(t) => t,
+                Err(e) => {
+                    failure = Some(e);
+                    return Err(std::io::Error::other("evaluation failed"));
+                }
+            };
+            table.write_csv(w, k == 0)?;
+            bar.inc(chunk.len() as u64);
+        }
+        Ok(())
+    });
+    bar.finish_and_clear();
+    if let Some(e) = failure {
+        return Err(BadInput(format!("{}: {e}", a.input.display())).into());
+    }
+    r
 }
 
 /// Writes the JSON lines of a batch, then reports failed lines (exit code 2 if any).

@@ -11,8 +11,7 @@ use crate::io::{bad_input, numbers};
 pub(crate) fn parameters(text: &str, what: &str) -> Result<Vec<f64>> {
     let path = Path::new(text);
     if text == "-" || path.is_file() {
-        let (body, name) = lekalo_io::read_input(path)?;
-        let pts = lekalo_io::read_points(&body, &name)?;
+        let (pts, name) = crate::io::read_points(path)?;
         if pts.dim() != 1 {
             return bad_input(format!(
                 "{name}: {what} needs one value per line; found {} columns",

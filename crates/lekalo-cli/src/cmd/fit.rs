@@ -122,8 +122,7 @@ pub(crate) struct FitArgs {
 }
 
 pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(&a.points)?;
-    let pts = lekalo_io::read_points(&text, &name)?;
+    let (pts, name) = crate::io::read_points(&a.points)?;
     let mut inputs = vec![a.points.clone()];
     let modes = [
         a.lsq,

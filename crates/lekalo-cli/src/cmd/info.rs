@@ -44,17 +44,32 @@ pub(crate) struct InfoArgs {
     output: Option<PathBuf>,
 }
 
+/// Most entries of a knot list shown by `info`; a longer list shows its first and last
+/// `LIST_MAX / 2` entries (the `*_total` fields give the full count), so that the report of a
+/// curve with millions of knots stays small.
+const LIST_MAX: usize = 10_000;
+
+/// Indices of the entries of a list of `n` that `info` shows.
+fn shown(n: usize) -> impl Iterator<Item = usize> {
+    let half = LIST_MAX / 2;
+    if n <= LIST_MAX {
+        (0..n).chain(0..0)
+    } else {
+        (0..half).chain(n - half..n)
+    }
+}
+
 /// The facts about one object, as JSON.
 pub(crate) fn info_json(obj: &Object, samples: usize) -> lekalo::Result<Value> {
     let kv = obj.knots();
     let ctrl = obj.control_points();
     let (a, b) = obj.domain();
-    let sampled = obj.sample(samples.clamp(2, 1_000_000))?;
-    let distinct: Vec<Value> = kv
-        .distinct()
-        .iter()
-        .map(|(t, m)| json!({"knot": t, "multiplicity": m}))
+    let sampled = obj.sample(samples)?;
+    let all_distinct = kv.distinct();
+    let distinct: Vec<Value> = shown(all_distinct.len())
+        .map(|i| json!({"knot": all_distinct[i].0, "multiplicity": all_distinct[i].1}))
         .collect();
+    let knots: Vec<f64> = shown(kv.len()).map(|i| kv.as_slice()[i]).collect();
     let bbox = |p: &lekalo::Points| {
         p.bounding_box()
             .map_or(Value::Null, |(lo, hi)| json!({"min": lo, "max": hi}))
@@ -68,8 +83,10 @@ pub(crate) fn info_json(obj: &Object, samples: usize) -> lekalo::Result<Value> {
         "control_points": ctrl.len(),
         "rational": obj.weights().is_some(),
         "weights": obj.weights(),
-        "knots": kv.as_slice(),
+        "knots": knots,
+        "knots_total": kv.len(),
         "distinct_knots": distinct,
+        "distinct_knots_total": all_distinct.len(),
         "clamped": kv.is_clamped(obj.degree()),
         "domain": [a, b],
         "start": obj.eval(a)?,
@@ -105,7 +122,20 @@ fn info_text(j: &Value) -> String {
     if j["rational"] == Value::Bool(true) {
         let _ = writeln!(s, "weights         {}", fmt_list(&j["weights"]));
     }
-    let _ = writeln!(s, "knots           {}", fmt_list(&j["knots"]));
+    let more = |list: &str, total: &str| {
+        let (n, total) = (j[list].as_array().map_or(0, Vec::len), &j[total]);
+        if total.as_u64().is_some_and(|t| t > n as u64) {
+            format!(" (the first and last {} of {total})", n / 2)
+        } else {
+            String::new()
+        }
+    };
+    let _ = writeln!(
+        s,
+        "knots           {}{}",
+        fmt_list(&j["knots"]),
+        more("knots", "knots_total")
+    );
     let mults: Vec<String> = j["distinct_knots"]
         .as_array()
         .map(|a| {
@@ -114,7 +144,12 @@ fn info_text(j: &Value) -> String {
                 .collect()
         })
         .unwrap_or_default();
-    let _ = writeln!(s, "multiplicities  {}", mults.join("  "));
+    let _ = writeln!(
+        s,
+        "multiplicities  {}{}",
+        mults.join("  "),
+        more("distinct_knots", "distinct_knots_total")
+    );
     let clamped = if j["clamped"] == Value::Bool(true) {
         "clamped: the curve starts and ends at its end control points"
     } else {
@@ -135,11 +170,12 @@ fn info_text(j: &Value) -> String {
 
 pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
     let inputs = vec![a.input.clone()];
+    let samples = crate::io::in_range(a.samples, 2, 1_000_000, "--samples")?;
     match load(&a.input, a.jsonl, v)? {
         Loaded::Other(shape) => {
             let j = match &shape {
-                Shape::Surface(s) => shapes::surface_info_json(s, a.samples)?,
-                Shape::Pp(p) => shapes::pp_info_json(p, a.samples)?,
+                Shape::Surface(s) => shapes::surface_info_json(s, samples)?,
+                Shape::Pp(p) => shapes::pp_info_json(p, samples)?,
                 other => return not_a_curve(&a.input, other),
             };
             let text = if a.json {
@@ -150,7 +186,8 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
             emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
         }
         Loaded::One(obj) => {
-            let j = info_json(&obj, a.samples)?;
+            crate::io::check_bezier_degree(&obj, "sampling")?;
+            let j = info_json(&obj, samples)?;
             let text = if a.json {
                 format!("{j:#}\n")
             } else {
@@ -163,9 +200,11 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
             let lines: Vec<(bool, String)> = items
                 .into_par_iter()
                 .map(|(line, obj)| {
-                    let r = obj
-                        .map_err(|e| e.to_string())
-                        .and_then(|o| info_json(&o, a.samples).map_err(|e| e.to_string()));
+                    let r = obj.map_err(|e| e.to_string()).and_then(|o| {
+                        crate::io::check_bezier_degree(&o, "sampling")
+                            .map_err(|e| format!("{}:{line}: {e}", a.input.display()))?;
+                        info_json(&o, samples).map_err(|e| e.to_string())
+                    });
                     bar.inc(1);
                     match r {
                         Ok(mut j) => {

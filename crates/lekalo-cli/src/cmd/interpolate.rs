@@ -47,7 +47,12 @@ pub(crate) fn write_curve(
 ) -> Result<()> {
     let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
     let bytes = match format.as_str() {
-        "json" => obj.to_json_pretty().into_bytes(),
+        // streamed: a curve of millions of control points is never held as text
+        "json" => {
+            return crate::io::emit_stream(out.output.as_deref(), inputs, v, |w| {
+                obj.write_json(w, true)
+            })
+        }
         "svg" | "png" => encode(&curve_plot(obj, data, None)?, &format, 2.0)?,
         "csv" => sample_table(
             obj,
@@ -101,7 +106,8 @@ pub(crate) fn curve_plot(
     );
     fig.series
         .push(Series::new(Some("y(x)"), graph, Style::Line, PALETTE[0]));
-    if let Some(d) = data {
+    // (x, y) data of a function; 1-D data are values without their parameters: not drawn
+    if let Some(d) = data.filter(|d| d.dim() >= 2) {
         let pts = d.iter().map(|p| [p[0], p[1]]).collect();
         fig.series.push(Series::new(
             Some("data points"),
@@ -337,17 +343,28 @@ pub(crate) struct InterpolateArgs {
     #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
-    #[arg(long, value_name = "ROWSxCOLS")]
+    #[arg(
+        long,
+        value_name = "ROWSxCOLS",
+        conflicts_with_all = ["end", "knots", "d0", "dn", "function", "hermite"]
+    )]
     grid: Option<String>,
     /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
-    #[arg(long)]
+    #[arg(
+        long,
+        conflicts_with_all = ["end", "knots", "d0", "dn", "param", "exponent", "degree", "degree_v"]
+    )]
     function: bool,
     /// Cubic Hermite interpolation with estimated tangents.
-    #[arg(long, value_enum)]
+    #[arg(
+        long,
+        value_enum,
+        conflicts_with_all = ["end", "knots", "d0", "dn", "degree", "degree_v"]
+    )]
     hermite: Option<Tangents>,
-    /// Tension of cardinal tangents, in [0, 1].
-    #[arg(long, default_value_t = 0.0)]
-    tension: f64,
+    /// Tension of cardinal tangents, in [0, 1] (with --hermite cardinal; default 0).
+    #[arg(long, requires = "hermite")]
+    tension: Option<f64>,
     /// Refuse (exit code 2) a curve or grid whose collocation system has an estimated 1-norm
     /// condition number above LIMIT (e.g. 1e8 keeps about 8 significant digits in the control
     /// points); off by default.
@@ -366,10 +383,17 @@ pub(crate) struct InterpolateArgs {
 }
 
 pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(&a.points)?;
-    let pts = lekalo_io::read_points(&text, &name)?;
+    let (pts, name) = crate::io::read_points(&a.points)?;
     let inputs = vec![a.points.clone()];
     let param = a.param.to_lib(a.exponent);
+    if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
+        return bad_input(
+            "--tension is used only with --hermite cardinal; give --hermite cardinal or drop --tension",
+        );
+    }
+    if a.degree_v.is_some() && a.grid.is_none() {
+        return bad_input("--degree-v is the v degree of a surface; it needs --grid ROWSxCOLS");
+    }
     if a.max_condition.is_some() && (a.function || a.hermite.is_some()) {
         return bad_input(
             "--max-condition applies to B-spline curves and grids; --function and --hermite \
@@ -408,15 +432,15 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let y = Points::from_flat(pts.dim() - 1, ys)?;
         let curve = match a.hermite {
             Some(t) => {
-                CubicHermite::function(&x, y.as_view(), tangents(t, a.tension))?.to_bspline()
+                CubicHermite::function(&x, y.as_view(), tangents(t, a.tension.unwrap_or(0.0)))?
+                    .to_bspline()
             }
             None => natural_cubic_spline(&x, y.as_view())?,
         };
         return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
     }
     if let Some(file) = &a.tangents {
-        let (ttext, tname) = lekalo_io::read_input(file)?;
-        let tan = lekalo_io::read_points(&ttext, &tname)?;
+        let (tan, _) = crate::io::read_points(file)?;
         let ts = match &a.params {
             Some(p) => crate::cmd::explicit::parameters(p, "--params")?,
             None => lekalo::parametrize(pts.as_view(), param)?,
@@ -434,7 +458,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     }
     if let (Some(t), Some(p)) = (a.hermite, &a.params) {
         let ts = crate::cmd::explicit::parameters(p, "--params")?;
-        let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension))?;
+        let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension.unwrap_or(0.0)))?;
         return write_curve(
             &Object::BSpline(h.to_bspline()),
             Some(&pts),
@@ -444,7 +468,8 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         );
     }
     if let Some(t) = a.hermite {
-        let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
+        let h =
+            CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension.unwrap_or(0.0)))?;
         let obj = Object::BSpline(h.to_bspline());
         return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
     }
@@ -490,13 +515,20 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if let Some(limit) = a.max_condition {
         interp = interp.max_condition(limit);
     }
+    let bar = crate::io::spinner(
+        format!("interpolating {} points", pts.len()),
+        pts.len() > 100_000,
+        v,
+    );
     let curve = match &a.params {
         Some(p) => interp.interpolate_at(
             pts.as_view(),
             &crate::cmd::explicit::parameters(p, "--params")?,
-        )?,
-        None => interp.interpolate(pts.as_view())?,
+        ),
+        None => interp.interpolate(pts.as_view()),
     };
+    bar.finish_and_clear();
+    let curve = curve?;
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
 }
 

@@ -109,6 +109,12 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
     let mut inputs = Vec::new();
     let (kv, degree) = match &a.rule {
         Rule::Uniform { degree, count } => {
+            crate::io::check_size(*count, "--count")?;
+            crate::io::check_size(*degree, "--degree")?;
+            crate::io::check_memory::<f64>(
+                count.saturating_add(*degree).saturating_add(1),
+                "--count",
+            )?;
             (KnotVector::clamped_uniform(*degree, *count)?, Some(*degree))
         }
         Rule::Averaged(p) => (

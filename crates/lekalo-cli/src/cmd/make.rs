@@ -105,8 +105,7 @@ pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
             "--net, --degree-v, --knots-u and --knots-v are for surfaces: use bezier-surface, bspline-surface or nurbs-surface",
         );
     }
-    let (text, name) = lekalo_io::read_input(&a.control)?;
-    let ctrl = lekalo_io::read_points(&text, &name)?;
+    let (ctrl, _) = crate::io::read_points(&a.control)?;
     let degree = || -> Result<usize> {
         match a.degree {
             Some(d) => Ok(d),

@@ -32,8 +32,7 @@ pub(crate) struct SurfaceMake<'a> {
 }
 
 pub(crate) fn run(m: &SurfaceMake<'_>, v: Verbosity) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(m.control)?;
-    let ctrl = lekalo_io::read_points(&text, &name)?;
+    let (ctrl, name) = crate::io::read_points(m.control)?;
     let Some(net) = m.net else {
         return bad_input(format!(
             "a surface needs --net NUxNV: the {} control points of {name} are rows of the net, NV points per row",

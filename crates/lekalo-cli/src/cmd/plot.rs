@@ -8,7 +8,7 @@ use clap::Args;
 use lekalo_io::{basis_figure, curve_figure, CurvePlot, Figure, Object, Projection, Shape};
 
 use crate::cmd::shapes;
-use crate::io::{bad_input, emit, format_of, load, load_one, not_a_curve, Loaded};
+use crate::io::{bad_input, emit, format_of, in_range, load, load_one, not_a_curve, Loaded};
 use crate::Verbosity;
 
 /// Arguments of `lekalo plot`.
@@ -79,7 +79,8 @@ pub(crate) fn encode(fig: &Figure, format: &str, scale: f32) -> Result<Vec<u8>> 
 /// The figure `plot` draws for one object.
 pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) -> Result<Figure> {
     if a.basis {
-        let mut fig = basis_figure(&obj.knots(), obj.degree(), a.samples)?;
+        let n = in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?;
+        let mut fig = basis_figure(&obj.knots(), obj.degree(), n)?;
         if let Some(t) = &a.title {
             fig.title.clone_from(t);
         }
@@ -89,7 +90,7 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
         obj,
         &CurvePlot {
             title: a.title.clone(),
-            samples: a.samples.clamp(2, 1_000_000),
+            samples: in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?,
             control_polygon: !a.no_control,
             knot_marks: !a.no_knots,
             data_points: data,
@@ -101,7 +102,23 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
     )?)
 }
 
+/// Most samples along a plotted curve (far more than a picture can show).
+const PLOT_SAMPLES: usize = 1_000_000;
+
+/// `Err(BadInput)` unless the view angles are finite numbers.
+fn check_view(a: &PlotArgs) -> Result<()> {
+    for (name, v) in [("--azimuth", a.azimuth), ("--elevation", a.elevation)] {
+        if !v.is_finite() {
+            return bad_input(format!(
+                "{name} {v}: the view angle must be a finite number of degrees"
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
+    check_view(a)?;
     let format = format_of(a.to.as_deref(), a.output.as_deref(), "svg");
     let obj = match load(&a.input, false, v)? {
         Loaded::One(o) => o,
@@ -116,16 +133,18 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 }
                 Shape::Surface(s) => shapes::surface_figure(
                     s,
-                    a.samples.clamp(2, 1000),
+                    in_range(a.samples, 2, 1000, "--samples (per direction of a surface)")?,
                     a.title.as_deref(),
                     &Projection {
                         azimuth: a.azimuth,
                         elevation: a.elevation,
                     },
                 )?,
-                Shape::Pp(p) => {
-                    shapes::pp_figure(p, a.samples.clamp(2, 1_000_000), a.title.as_deref())?
-                }
+                Shape::Pp(p) => shapes::pp_figure(
+                    p,
+                    in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?,
+                    a.title.as_deref(),
+                )?,
                 other => return not_a_curve(&a.input, other),
             };
             let bytes = encode(&fig, &format, a.scale)?;
@@ -141,12 +160,14 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
     let mut inputs = vec![a.input.clone()];
     let data = match &a.points {
         Some(p) => {
-            let (text, name) = lekalo_io::read_input(p)?;
             inputs.push(p.clone());
-            Some(lekalo_io::read_points(&text, &name)?)
+            Some(crate::io::read_points(p)?.0)
         }
         None => None,
     };
+    if !a.basis {
+        crate::io::check_bezier_degree(&obj, "plotting")?;
+    }
     let fig = figure(&obj, a, data.as_ref())?;
     let bytes = encode(&fig, &format, a.scale)?;
     emit(

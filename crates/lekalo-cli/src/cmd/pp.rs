@@ -237,6 +237,8 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             let space = PpSpace::new(&xi, &nu, *order)?;
             let f = |x: f64, r: usize| function.eval(x, r);
             let q = quasi_interpolate(&space, rule.to_lib(), f)?;
+            crate::io::check_size(*intervals, "--intervals")?;
+            crate::io::check_memory::<f64>(intervals.saturating_mul(4), "--intervals")?;
             let samples = sample_quasi_interpolant(&space, rule.to_lib(), f, *intervals)?;
             if v != Verbosity::Quiet {
                 eprintln!(

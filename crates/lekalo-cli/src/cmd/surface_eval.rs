@@ -71,8 +71,7 @@ fn pairs(e: &SurfaceEval<'_>, s: &Surface) -> Result<Vec<[f64; 2]>> {
         out.extend(v.chunks_exact(2).map(|c| [c[0], c[1]]));
     }
     if let Some(f) = e.uv_file {
-        let (text, name) = lekalo_io::read_input(f)?;
-        let pts = lekalo_io::read_points(&text, &name)?;
+        let (pts, name) = crate::io::read_points(f)?;
         if pts.dim() != 2 {
             return bad_input(format!(
                 "{name}: --uv-file needs two columns u, v; found {}",

@@ -90,7 +90,9 @@ pub(crate) fn trim(x: f64) -> String {
 /// Runs every entry, prints the summary table, writes the gallery if `out` is given.
 pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
     let mut sections = Vec::new();
+    let bar = crate::io::progress(registry::ENTRIES.len(), v);
     for entry in registry::ENTRIES {
+        bar.inc(1);
         let mut s = Section {
             id: entry.id,
             title: entry.title,
@@ -103,6 +105,7 @@ pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
         (entry.build)(&mut s).with_context(|| format!("demo entry {}", entry.id))?;
         sections.push(s);
     }
+    bar.finish_and_clear();
     let mut stdout = std::io::stdout().lock();
     std::io::Write::write_all(&mut stdout, summary(&sections, v).as_bytes())?;
     if let Some(dir) = out {
