@@ -422,10 +422,11 @@ pub(super) fn corner(s: &mut Section) -> Result<()> {
     s.figure(
         fig,
         Caption::new(
-            "A right-angle corner (grey, dashed) rounded over the last half of the first leg \
-             and the first half of the second, by one Bezier transition of degree 4k for \
-             k = 1, 2, 3. The larger k, the higher the order of contact with the legs: the \
-             rounding leaves them more gently and turns more tightly at the corner.",
+            "A right-angle corner (grey, dashed) smoothed over the last half of the first leg \
+             and the first half of the second by one Bezier transition of degree 4k, for \
+             k = 1, 2, 3: it leaves the first leg at (1, 0) and joins the second at (2, 1). The \
+             larger k, the higher the order of contact at both ends: the transition clings to \
+             the legs longer and crosses between them more steeply.",
         )
         .theory("blending.md#corner-smoothing"),
     );

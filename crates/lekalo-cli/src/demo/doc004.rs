@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use lekalo::{BezierCurve, BezierSurface, Points};
-use lekalo_io::{Figure, Object, PALETTE};
+use lekalo_io::{Figure, Marker, Object, PALETTE};
 
 use super::doc000::{add_curve, add_points, show};
 use crate::cmd::interpolate::surface_figure;
@@ -10,6 +10,16 @@ use crate::demo::{Caption, Section};
 
 /// Exact results computed in floating point (coordinates O(10)).
 const EXACT: f64 = 1e-12;
+
+/// Draws the polygon just added (its line and its points, the last two series) dotted with
+/// square markers, so that where it runs along the old polygon the two stay apart.
+fn distinguish_new_polygon(fig: &mut Figure) {
+    let n = fig.series.len();
+    if let [line, points] = &mut fig.series[n.saturating_sub(2)..] {
+        line.dash = Some("2 3".into());
+        points.marker = Some(Marker::Square);
+    }
+}
 
 /// `Σ w_i u_i` for the document's formulas `u'_j = Σ w_i u_i`.
 fn combo(u: &Points, w: &[f64]) -> Vec<f64> {
@@ -132,11 +142,12 @@ pub(super) fn elevation(s: &mut Section) -> Result<()> {
             PALETTE[n + 1],
             true,
         );
+        distinguish_new_polygon(&mut fig);
         add_curve(&mut fig, &Object::Bezier(e.clone()), "curve", PALETTE[0])?;
         let where_ = if by == 1 {
             "each new vertex lies on a leg of the old polygon, cutting its corners"
         } else {
-            "each new vertex is a combination of three old ones, inside the old polygon"
+            "the inner new vertices combine up to three old ones and lie inside the old polygon"
         };
         s.figure(
             fig,
@@ -228,6 +239,7 @@ pub(super) fn reduction(s: &mut Section) -> Result<()> {
         PALETTE[1],
         true,
     );
+    distinguish_new_polygon(&mut fig);
     add_curve(&mut fig, &Object::Bezier(c), "curve", PALETTE[0])?;
     s.figure(
         fig,
