@@ -13,8 +13,8 @@
 //! [`ORACLE_TOL`] relative to the control net's scale.
 
 use crate::basis::basis_function_recursive;
-use crate::bezier::BezierCurve;
-use crate::bspline::BSplineCurve;
+use crate::curve::bezier::BezierCurve;
+use crate::curve::bspline::BSplineCurve;
 
 /// Agreement required between a fast kernel and the oracle, relative to
 /// `max(1, max |P_i|)`: a few hundred rounding units of `f64`, for degrees up to 6.
