@@ -11,6 +11,9 @@ use resvg::usvg::roxmltree::{Document, Node};
 
 use crate::png::render_pixmap;
 
+/// A series as drawn: label, line width, vertices, the label it is declared to coincide with.
+type SeriesSeen = (String, f64, Vec<[f64; 2]>, Option<String>);
+
 /// A box `x, y, width, height`.
 type BoxXywh = [f64; 4];
 
@@ -165,7 +168,7 @@ pub fn check_svg(svg: &str, caption: Option<&str>) -> Vec<String> {
         }
     }
     // every labelled series visible
-    let series: Vec<(String, f64, Vec<[f64; 2]>, Option<String>)> = doc
+    let series: Vec<SeriesSeen> = doc
         .descendants()
         .filter(|n| n.attribute("class") == Some("series"))
         .filter_map(|g| {

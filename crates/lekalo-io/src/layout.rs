@@ -1,56 +1,58 @@
 //! Text metrics and legend layout of the figures.
 //!
 //! SVG figures are laid out before a browser sees them, so text widths are estimated from the
-//! advance widths of DejaVu Sans (the figures' first font; `scripts/font_widths.py` printed the
+//! advance widths of `DejaVu Sans` (the figures' first font; `scripts/font_widths.py` printed the
 //! table). The estimate errs wide: characters outside the table count as 0.84 em, the width of
-//! DejaVu's widest common symbols, and narrower fallback fonts (Arial) only leave more room.
+//! the font's widest common symbols, and narrower fallback fonts (Arial) only leave more room.
 
-/// Advance widths of DejaVu Sans for the printable ASCII characters `' '..='~'`, in em.
-const ASCII_WIDTHS: [f64; 95] = [
-    0.318, 0.401, 0.460, 0.838, 0.636, 0.950, 0.780, 0.275, 0.390, 0.390, 0.500, 0.838, 0.318,
-    0.361, 0.318, 0.337, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636, 0.636,
-    0.337, 0.337, 0.838, 0.838, 0.838, 0.531, 1.000, 0.684, 0.686, 0.698, 0.770, 0.632, 0.575,
-    0.775, 0.752, 0.295, 0.295, 0.656, 0.557, 0.863, 0.748, 0.787, 0.603, 0.787, 0.695, 0.635,
-    0.611, 0.732, 0.684, 0.989, 0.685, 0.611, 0.685, 0.390, 0.337, 0.390, 0.838, 0.500, 0.500,
-    0.613, 0.635, 0.550, 0.635, 0.615, 0.352, 0.635, 0.634, 0.278, 0.278, 0.579, 0.278, 0.974,
-    0.634, 0.612, 0.635, 0.635, 0.411, 0.521, 0.392, 0.634, 0.592, 0.818, 0.592, 0.592, 0.525,
-    0.636, 0.337, 0.636, 0.838,
+/// Advance widths of `DejaVu Sans` for the printable ASCII characters `' '..='~'`, in font
+/// units ([`UNITS_PER_EM`] to the em).
+const ASCII_WIDTHS: [u16; 95] = [
+    651, 821, 942, 1716, 1303, 1946, 1597, 563, 799, 799, 1024, 1716, 651, 739, 651, 690, 1303,
+    1303, 1303, 1303, 1303, 1303, 1303, 1303, 1303, 1303, 690, 690, 1716, 1716, 1716, 1087, 2048,
+    1401, 1405, 1430, 1577, 1294, 1178, 1587, 1540, 604, 604, 1343, 1141, 1767, 1532, 1612, 1235,
+    1612, 1423, 1300, 1251, 1499, 1401, 2025, 1403, 1251, 1403, 799, 690, 799, 1716, 1024, 1024,
+    1255, 1300, 1126, 1300, 1260, 721, 1300, 1298, 569, 569, 1186, 569, 1995, 1298, 1253, 1300,
+    1300, 842, 1067, 803, 1298, 1212, 1675, 1212, 1212, 1075, 1303, 690, 1303, 1716,
 ];
 
-/// Advance widths of DejaVu Sans for symbols the figures use, in em.
-const OTHER_WIDTHS: [(char, f64); 26] = [
-    ('ν', 0.559),
-    ('Σ', 0.632),
-    ('′', 0.227),
-    ('″', 0.374),
-    ('→', 0.838),
-    ('·', 0.318),
-    ('≤', 0.838),
-    ('−', 0.838),
-    ('²', 0.401),
-    ('³', 0.401),
-    ('¹', 0.401),
-    ('ξ', 0.558),
-    ('τ', 0.602),
-    ('λ', 0.592),
-    ('…', 1.000),
-    ('×', 0.838),
-    ('ū', 0.634),
-    ('—', 1.000),
-    ('–', 0.500),
-    ('“', 0.518),
-    ('”', 0.518),
-    ('‘', 0.318),
-    ('’', 0.318),
-    ('°', 0.500),
-    ('±', 0.838),
-    ('≈', 0.838),
+/// Advance widths of `DejaVu Sans` for symbols the figures use, in font units.
+const OTHER_WIDTHS: [(char, u16); 26] = [
+    ('ν', 1144),
+    ('Σ', 1294),
+    ('′', 465),
+    ('″', 765),
+    ('→', 1716),
+    ('·', 651),
+    ('≤', 1716),
+    ('−', 1716),
+    ('²', 821),
+    ('³', 821),
+    ('¹', 821),
+    ('ξ', 1142),
+    ('τ', 1233),
+    ('λ', 1212),
+    ('…', 2048),
+    ('×', 1716),
+    ('ū', 1298),
+    ('—', 2048),
+    ('–', 1024),
+    ('“', 1061),
+    ('”', 1061),
+    ('‘', 651),
+    ('’', 651),
+    ('°', 1024),
+    ('±', 1716),
+    ('≈', 1716),
 ];
+
+/// Font units per em of `DejaVu Sans`.
+const UNITS_PER_EM: f64 = 2048.0;
 
 /// Width assumed for a character outside the tables, in em.
 const OTHER_WIDTH: f64 = 0.84;
 
-/// Estimated width in pixels of `text` set in DejaVu Sans at `font_size` pixels.
+/// Estimated width in pixels of `text` set in `DejaVu Sans` at `font_size` pixels.
 #[must_use]
 pub fn text_width(text: &str, font_size: f64) -> f64 {
     let em: f64 = text
@@ -58,12 +60,12 @@ pub fn text_width(text: &str, font_size: f64) -> f64 {
         .map(|c| {
             let code = c as u32;
             if (32..127).contains(&code) {
-                ASCII_WIDTHS[(code - 32) as usize]
+                f64::from(ASCII_WIDTHS[(code - 32) as usize]) / UNITS_PER_EM
             } else {
                 OTHER_WIDTHS
                     .iter()
                     .find(|(o, _)| *o == c)
-                    .map_or(OTHER_WIDTH, |(_, w)| *w)
+                    .map_or(OTHER_WIDTH, |(_, w)| f64::from(*w) / UNITS_PER_EM)
             }
         })
         .sum();
@@ -71,7 +73,7 @@ pub fn text_width(text: &str, font_size: f64) -> f64 {
 }
 
 /// Height of a line of text of `font_size` pixels: ascent above the baseline and descent
-/// below it (DejaVu Sans: 0.93 em and 0.24 em).
+/// below it (`DejaVu Sans`: 0.93 em and 0.24 em).
 #[must_use]
 pub fn text_extent(font_size: f64) -> (f64, f64) {
     (0.93 * font_size, 0.24 * font_size)
@@ -135,9 +137,12 @@ mod tests {
 
     #[test]
     fn widths() {
-        // DejaVu Sans: "M" is 0.863 em, "i" 0.278 em
-        assert!((text_width("Mi", 10.0) - 11.41).abs() < 1e-9, "width of Mi");
-        assert!((text_width("ν", 12.0) - 0.559 * 12.0).abs() < 1e-9, "nu");
+        // `DejaVu Sans`: "M" is 1767 units, "i" 569 (2048 to the em)
+        assert!(
+            (text_width("Mi", 2048.0) - 2336.0).abs() < 1e-9,
+            "width of Mi"
+        );
+        assert!((text_width("ν", 2048.0) - 1144.0).abs() < 1e-9, "nu");
         assert!(
             (text_width("ж", 10.0) - 8.4).abs() < 1e-9,
             "unknown characters count wide"

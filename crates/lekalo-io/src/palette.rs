@@ -70,7 +70,8 @@ const VIRIDIS: [[f64; 3]; 5] = [
 pub(crate) fn height_rgb(s: f64) -> [f64; 3] {
     let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
     let x = (0.2 + 0.8 * s) * 4.0;
-    let k = (x.floor() as usize).min(3);
+    // x is in [0.8, 4]: the stop below it, at most the last but one
+    let k = [1.0, 2.0, 3.0].iter().filter(|b| x >= **b).count();
     let f = x - k as f64;
     let (a, b) = (VIRIDIS[k], VIRIDIS[k + 1]);
     [
