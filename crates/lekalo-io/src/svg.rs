@@ -412,7 +412,10 @@ impl Figure {
     /// plot keeps the size asked for in [`Figure::size`].
     fn frame(&self) -> Frame {
         let (bx0, bx1, by0, by1) = self.bounds();
-        let pw = (self.size.0 - MARGIN_LEFT - MARGIN_RIGHT).max(100.0);
+        // the plot's width is what `size` leaves beside the usual margins; wider tick labels,
+        // a colour bar or a legend column widen the canvas instead of narrowing the plot
+        let usual_left = if self.axes { MARGIN_LEFT } else { 20.0 };
+        let pw = (self.size.0 - usual_left - MARGIN_RIGHT).max(100.0);
         let bottom = if self.axes { MARGIN_BOTTOM } else { 16.0 };
         let ph = (self.size.1 - MARGIN_TOP - MARGIN_BOTTOM).max(60.0);
         let (mut x0, mut x1, mut y0, mut y1) = (bx0, bx1, by0, by1);

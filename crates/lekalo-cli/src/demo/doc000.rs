@@ -162,8 +162,9 @@ pub(super) fn curves(s: &mut Section) -> Result<()> {
         Caption::new(
             "Four interpolants of the same five points: cubics with uniform, chord-length and \
              centripetal parameters, and the quadratic with chord length. The parametrisation \
-             alone changes the curve: compare how far each swings out on the long legs between \
-             (0, 0), (3, 4) and (−1, 4).",
+             alone changes the curve: chord length swings widest past (3, 4), uniform \
+             parameters bulge below (−4, 0) on the way to the last point, and the quadratic \
+             keeps tightest to the data.",
         )
         .theory("interpolation.md#parametrisation"),
     );
