@@ -49,7 +49,7 @@ Exit codes: 0 success, 2 bad input, 3 internal failure.";
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Build a curve object from control points (and knots, weights).
+    /// Build a curve or surface object from control points (and knots, weights).
     Make(cmd::make::MakeArgs),
     /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
     Eval(cmd::eval::EvalArgs),
@@ -73,6 +73,9 @@ enum Command {
     Blend(cmd::blend::BlendArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
+    /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
+    /// reparam, decompose into Bezier pieces, join.
+    Knot(cmd::knot::KnotArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -102,6 +105,12 @@ pub(crate) enum Verbosity {
 }
 
 fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    if !args.iter().any(|a| a == "-q" || a == "--quiet") {
+        for w in cmd::deprecated::warnings(&args) {
+            eprintln!("warning: {w}");
+        }
+    }
     let cli = Cli::parse();
     let verbosity = if cli.quiet {
         Verbosity::Quiet
@@ -122,6 +131,7 @@ fn main() -> ExitCode {
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
+        Command::Knot(a) => cmd::knot::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -8,9 +8,10 @@
 //!   last non-empty span, so that curves evaluate at their end point.
 //! - A knot may be repeated at most `p + 1` times.
 //!
-//! Construction rules follow document 000 (digest §A): clamped uniform (eq. 2), averaging
-//! (eq. 3), averaging with two extra knots for end derivatives (eq. 4), knots at the parameters
-//! (eq. 8); and the Curry–Schoenberg rule of document 003 (digest §D.4, Theorem 4.5).
+//! Construction rules follow document 000 (docs/theory/interpolation.md#averaged-knots): clamped
+//! uniform (eq. 2), averaging (eq. 3), averaging with two extra knots for end derivatives (eq. 4),
+//! knots at the parameters (eq. 8); and the Curry–Schoenberg rule of document 003 (Theorem 4.5,
+//! docs/theory/pp.md#curry-schoenberg-knots).
 
 use serde::{Deserialize, Serialize};
 
@@ -175,7 +176,7 @@ impl KnotVector {
     ///
     /// ```
     /// use lekalo::KnotVector;
-    /// // digest T.1: chord-length parameters of P&T Example 9.1
+    /// // chord-length parameters of P&T Example 9.1
     /// let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
     /// let kv = KnotVector::averaged(&t, 3).unwrap();
     /// assert!((kv.as_slice()[4] - 28.0 / 51.0).abs() < 1e-15);
@@ -222,7 +223,7 @@ impl KnotVector {
     /// Knots equal to the parameters, document 000 eq. (8) (P&T eq. 9.17) generalised to any
     /// degree: `p + 1` copies of `t̄_0`, the interior parameters `t̄_1 … t̄_{n−1}`, `p + 1` copies
     /// of `t̄_n`. For `p = 3` this gives the `n + 7` knots and `n + 3` control points of the C²
-    /// cubic with end conditions (§A.3–A.4).
+    /// cubic with end conditions (§3–4).
     ///
     /// # Errors
     /// [`Error::Degree`] if `degree == 0`; parameter errors as [`check_parameters`].
@@ -243,13 +244,13 @@ impl KnotVector {
         Ok(KnotVector::from_raw(knots))
     }
 
-    /// Knots by the Curry–Schoenberg rule (document 003, digest §D.4 Theorem 4.5): for strictly
-    /// increasing breakpoints `ξ_1 < … < ξ_{l+1}`, continuity conditions `ν_2 … ν_l` (the number
-    /// of derivatives, counting the value, that are continuous at each interior breakpoint;
-    /// `0 ≤ ν_i ≤ k`) and order `k` (degree `k − 1`), the knots are `k` copies of `ξ_1`, then
-    /// `ξ_i` repeated `k − ν_i` times, then `k` copies of `ξ_{l+1}`. The B-splines of order `k` on
-    /// these knots are a basis of `P_{k,ξ,ν}` on `[ξ_1, ξ_{l+1}]`, of dimension
-    /// `n = k + Σ (k − ν_i)`.
+    /// Knots by the Curry–Schoenberg rule (document 003, Theorem 4.5;
+    /// docs/theory/pp.md#curry-schoenberg-knots): for strictly increasing breakpoints `ξ_1 < … <
+    /// ξ_{l+1}`, continuity conditions `ν_2 … ν_l` (the number of derivatives, counting the value,
+    /// that are continuous at each interior breakpoint; `0 ≤ ν_i ≤ k`) and order `k` (degree `k −
+    /// 1`), the knots are `k` copies of `ξ_1`, then `ξ_i` repeated `k − ν_i` times, then `k` copies
+    /// of `ξ_{l+1}`. The B-splines of order `k` on these knots are a basis of `P_{k,ξ,ν}` on `[ξ_1,
+    /// ξ_{l+1}]`, of dimension `n = k + Σ (k − ν_i)`.
     ///
     /// The end knots are chosen clamped (`x_1 = … = x_k = ξ_1`, `x_{n+1} = … = x_{n+k} = ξ_{l+1}`),
     /// as in the thesis's practical task; any choice outside the interval would also do.
@@ -499,7 +500,7 @@ impl SpanCursor<'_> {
     }
 }
 
-/// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §D.4): at least two, finite,
+/// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §4): at least two, finite,
 /// strictly increasing, with a width `ξ_{l+1} − ξ_1` that does not overflow.
 ///
 /// # Errors
@@ -625,210 +626,4 @@ fn average(values: &[f64]) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn new_rejects_each_bad_input() {
-        assert!(matches!(
-            KnotVector::new(vec![0.0]),
-            Err(Error::TooFew { .. })
-        ));
-        assert!(matches!(
-            KnotVector::new(vec![0.0, f64::NAN]),
-            Err(Error::NonFinite { .. })
-        ));
-        assert!(matches!(
-            KnotVector::new(vec![0.0, 2.0, 1.0]),
-            Err(Error::KnotsNotSorted { index: 2, .. })
-        ));
-        assert!(matches!(
-            KnotVector::new(vec![1.0, 1.0]),
-            Err(Error::EmptyDomain { .. })
-        ));
-    }
-
-    #[test]
-    fn validate_for_checks_counts_and_multiplicity() {
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).unwrap();
-        assert_eq!(kv.validate_for(2, 3), Ok(()));
-        assert!(matches!(
-            kv.validate_for(2, 4),
-            Err(Error::LengthMismatch { .. })
-        ));
-        assert!(matches!(kv.validate_for(3, 3), Err(Error::Degree { .. })));
-        assert!(matches!(
-            kv.validate_for(1, 4),
-            Err(Error::KnotMultiplicity {
-                multiplicity: 3,
-                max: 2,
-                ..
-            })
-        ));
-        // domain [t_1, t_3] = [0, 0] is empty
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 1.0]).unwrap();
-        assert!(matches!(
-            kv.validate_for(1, 3),
-            Err(Error::KnotMultiplicity { .. })
-        ));
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 1.0]).unwrap();
-        assert!(matches!(kv.validate_for(2, 2), Err(Error::Degree { .. })));
-    }
-
-    #[test]
-    fn averaged_matches_digest_t1() {
-        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
-        let kv = KnotVector::averaged(&t, 3).unwrap();
-        let expect = [0.0, 0.0, 0.0, 0.0, 28.0 / 51.0, 1.0, 1.0, 1.0, 1.0];
-        assert_eq!(kv.len(), expect.len());
-        for (a, b) in kv.as_slice().iter().zip(expect) {
-            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
-        }
-        let kv = KnotVector::averaged(&t, 2).unwrap();
-        let expect = [0.0, 0.0, 0.0, 7.0 / 17.0, 23.0 / 34.0, 1.0, 1.0, 1.0];
-        for (a, b) in kv.as_slice().iter().zip(expect) {
-            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
-        }
-        assert!(matches!(
-            KnotVector::averaged(&t, 5),
-            Err(Error::Degree { .. })
-        ));
-        assert!(matches!(
-            KnotVector::averaged(&t, 0),
-            Err(Error::Degree { .. })
-        ));
-    }
-
-    #[test]
-    fn averaged_with_end_derivatives_matches_digest_t1() {
-        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
-        let kv = KnotVector::averaged_with_end_derivatives(&t, 3).unwrap();
-        let expect = [
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            14.0 / 51.0,
-            28.0 / 51.0,
-            40.0 / 51.0,
-            1.0,
-            1.0,
-            1.0,
-            1.0,
-        ];
-        assert_eq!(kv.len(), expect.len());
-        for (a, b) in kv.as_slice().iter().zip(expect) {
-            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
-        }
-        let kv = KnotVector::averaged_with_end_derivatives(&t, 2).unwrap();
-        let expect = [
-            0.0,
-            0.0,
-            0.0,
-            5.0 / 34.0,
-            7.0 / 17.0,
-            23.0 / 34.0,
-            31.0 / 34.0,
-            1.0,
-            1.0,
-            1.0,
-        ];
-        for (a, b) in kv.as_slice().iter().zip(expect) {
-            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
-        }
-    }
-
-    #[test]
-    fn end_derivative_knots_for_the_highest_degree() {
-        // two points and two end derivatives determine a cubic: no interior knots
-        let kv = KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 3).unwrap();
-        assert_eq!(kv.as_slice(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
-        assert!(matches!(
-            KnotVector::averaged_with_end_derivatives(&[0.0, 1.0], 4),
-            Err(Error::Degree { .. })
-        ));
-    }
-
-    #[test]
-    fn from_parameters_is_eq8() {
-        let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
-        let kv = KnotVector::from_parameters(&t, 3).unwrap();
-        assert_eq!(kv.len(), 4 + 7);
-        assert_eq!(&kv.as_slice()[4..7], &t[1..4]);
-        assert!(kv.is_clamped(3));
-    }
-
-    #[test]
-    fn curry_schoenberg_counts_and_errors() {
-        let xi = [0.0, 1.0, 2.0, 3.0];
-        let kv = KnotVector::from_breakpoints(&xi, &[0, 4], 4).unwrap();
-        // 4 + (4 - 0) + (4 - 4) + 4 knots
-        assert_eq!(kv.len(), 12);
-        assert_eq!(kv.multiplicity(1.0), 4);
-        assert_eq!(kv.multiplicity(2.0), 0);
-        assert!(matches!(
-            KnotVector::from_breakpoints(&xi, &[1], 4),
-            Err(Error::LengthMismatch { .. })
-        ));
-        assert!(matches!(
-            KnotVector::from_breakpoints(&xi, &[1, 5], 4),
-            Err(Error::InvalidArgument { .. })
-        ));
-        assert!(matches!(
-            KnotVector::from_breakpoints(&[0.0, 0.0], &[], 2),
-            Err(Error::InvalidArgument { .. })
-        ));
-        assert!(matches!(
-            KnotVector::from_breakpoints(&xi, &[1, 1], 0),
-            Err(Error::Degree { .. })
-        ));
-    }
-
-    #[test]
-    fn span_search_edges() {
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]).unwrap();
-        assert_eq!(kv.find_span(2, 0.0).unwrap(), 2);
-        assert_eq!(kv.find_span(2, 0.49).unwrap(), 2);
-        assert_eq!(kv.find_span(2, 0.5).unwrap(), 4);
-        assert_eq!(kv.find_span(2, 1.0).unwrap(), 4);
-        assert!(matches!(
-            kv.find_span(2, 1.0 + 1e-12),
-            Err(Error::ParameterOutOfDomain { .. })
-        ));
-        assert!(matches!(
-            kv.find_span(2, f64::NAN),
-            Err(Error::ParameterOutOfDomain { .. })
-        ));
-        assert!(matches!(kv.find_span(4, 0.5), Err(Error::Degree { .. })));
-    }
-
-    #[test]
-    fn empty_last_span_is_never_returned() {
-        // degree 2, 6 control points, domain [t_2, t_6] = [0, 1]; span 5 = [1, 1) is empty
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 2.0, 2.0]).unwrap();
-        kv.validate_for(2, 6).unwrap();
-        assert_eq!(kv.find_span(2, 1.0).unwrap(), 3);
-        let mut c = kv.span_cursor(2);
-        for t in [0.0, 0.6, 1.0, 0.2, 1.0] {
-            let s = c.find(t).unwrap();
-            assert!(
-                kv.as_slice()[s] < kv.as_slice()[s + 1],
-                "empty span {s} at t = {t}"
-            );
-            assert_eq!(s, kv.find_span(2, t).unwrap(), "t = {t}");
-        }
-    }
-
-    #[test]
-    fn cursor_agrees_with_binary_search_in_any_order() {
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.1, 0.1, 0.3, 0.7, 0.7, 0.9, 1.0, 1.0]).unwrap();
-        let mut c = kv.span_cursor(1);
-        let ts = [
-            0.0, 0.05, 0.1, 0.2, 0.3, 0.69, 0.7, 0.95, 1.0, 0.0, 0.5, 1.0, 0.1,
-        ];
-        for t in ts {
-            assert_eq!(c.find(t).unwrap(), kv.find_span(1, t).unwrap(), "t = {t}");
-        }
-        assert!(c.find(-0.1).is_err());
-    }
-}
+mod tests;

@@ -1,6 +1,6 @@
-//! Blending with jump-smoothing polynomials (document 001, digest §B): deformations, splines
-//! through points, corner smoothing. Continuity is *measured*: derivatives up to order k agree
-//! at the joins, derivative k + 1 in general does not.
+//! Blending with jump-smoothing polynomials (document 001; docs/theory/blending.md): deformations,
+//! splines through points, corner smoothing. Continuity is *measured*: derivatives up to order k
+//! agree at the joins, derivative k + 1 in general does not.
 
 mod common;
 use common::config;
@@ -69,7 +69,7 @@ fn spline(
     BlendSpline::new(pts.as_view(), local, opts).unwrap()
 }
 
-// ---------------------------------------------------------------- deformation (§B.2)
+// ---------------------------------------------------------------- deformation (document 001 §2)
 
 // Two cubics with common end points (first control legs differ).
 fn cubic_pair(c: [f64; 8], e: [f64; 4]) -> (BezierCurve, BezierCurve) {
@@ -86,8 +86,9 @@ fn cubic_pair(c: [f64; 8], e: [f64; 4]) -> (BezierCurve, BezierCurve) {
 proptest! {
     #![proptest_config(config(48))]
 
-    // Contact of order exactly k with p_1 at u = 0 and with p_2 at u = 1 (digest §B.2
-    // verification), for k = 1 … 4, and the exact Bezier form of degree (2k − 1) + 3 agrees.
+    // Contact of order exactly k with p_1 at u = 0 and with p_2 at u = 1
+    // (docs/theory/blending.md#why-the-index-is-k-1), for k = 1 … 4, and the exact Bezier form of
+    // degree (2k − 1) + 3 agrees.
     #[test]
     fn deformation_has_contact_of_order_k(
         c in prop::array::uniform8(-3.0f64..3.0),
@@ -102,8 +103,8 @@ proptest! {
         let mut e2 = vec![0.0; 2 * (k + 2)];
         p1.eval_derivatives_into(0.0, k + 1, &mut e1).unwrap();
         p2.eval_derivatives_into(1.0, k + 1, &mut e2).unwrap();
-        let e1 = Points::new(e1, 2).unwrap();
-        let e2 = Points::new(e2, 2).unwrap();
+        let e1 = Points::from_flat(2, e1).unwrap();
+        let e2 = Points::from_flat(2, e2).unwrap();
         assert_ck(&d0, &e1, k, 1e-12, 1e-6, "u = 0");
         assert_ck(&d1, &e2, k, 1e-12, 1e-6, "u = 1");
         let b = p.to_bezier().unwrap();
@@ -115,7 +116,7 @@ proptest! {
     }
 }
 
-// k = 1 is the linear blend (1 − u) p_1 + u p_2 (digest §B.2, the simplest case).
+// k = 1 is the linear blend (1 − u) p_1 + u p_2 (document 001 §2, the simplest case).
 #[test]
 fn k1_is_the_linear_blend() {
     let (p1, p2) = cubic_pair(
@@ -196,10 +197,10 @@ fn golden_blend_of_two_arcs() {
     }
 }
 
-// ---------------------------------------------------------------- splines (§B.3)
+// ---------------------------------------------------------------- splines (document 001 §3)
 
-// Digest §B.3 note 3: parabolas at parameters (−1, 0, 1), (0, 1, 2) with k = 1 give exactly
-// the uniform Catmull–Rom spline.
+// docs/theory/blending.md#local-curves: parabolas at parameters (−1, 0, 1), (0, 1, 2) with k = 1
+// give exactly the uniform Catmull–Rom spline.
 #[test]
 fn golden_parabolas_k1_are_catmull_rom() {
     let pts = [
@@ -309,8 +310,8 @@ fn parametric_constructions_are_ck() {
 }
 
 // Document 001's arcs (angle linear on each arc) are only G^k: across P_j the l-th derivatives
-// differ by exactly ρ^l, ρ = (β Δ_{j−1}) / (α Δ_j), the ratio of the angular speeds (digest §B.3
-// note 2: β/α with uniform parameters).
+// differ by exactly ρ^l, ρ = (β Δ_{j−1}) / (α Δ_j), the ratio of the angular speeds (β/α with
+// uniform parameters; docs/theory/blending.md#parametric-and-geometric-continuity).
 #[test]
 fn uniform_angle_arcs_are_gk_with_speed_ratio() {
     let s0 = spline(
@@ -582,8 +583,11 @@ fn user_local_curves() {
             let seg = |a: &[f64], b: &[f64], t0: f64, t1: f64| -> lekalo::Result<SharedCurve> {
                 let mut c = a.to_vec();
                 c.extend_from_slice(b);
-                let curve =
-                    lekalo::BSplineCurve::new(1, vec![t0, t0, t1, t1], Points::new(c, a.len())?)?;
+                let curve = lekalo::BSplineCurve::new(
+                    1,
+                    vec![t0, t0, t1, t1],
+                    Points::from_flat(a.len(), c)?,
+                )?;
                 Ok(Arc::new(curve))
             };
             Ok([seg(p[0], p[1], -dl, 0.0)?, seg(p[1], p[2], 0.0, dr)?])
@@ -630,11 +634,11 @@ fn corner_transition_has_contact_k() {
                     v[2 * l + d] *= h.powi(i32::try_from(l).unwrap());
                 }
             }
-            Points::new(v, 2).unwrap()
+            Points::from_flat(2, v).unwrap()
         };
         let mut e = vec![0.0; 2 * (k + 2)];
         before.eval_derivatives_into(0.7, k + 1, &mut e).unwrap();
-        let b = scale(&Points::new(e.clone(), 2).unwrap());
+        let b = scale(&Points::from_flat(2, e.clone()).unwrap());
         assert_ck(
             &c.eval_derivatives(0.0, k + 1).unwrap(),
             &b,
@@ -644,7 +648,7 @@ fn corner_transition_has_contact_k() {
             "start",
         );
         after.eval_derivatives_into(0.3, k + 1, &mut e).unwrap();
-        let a = scale(&Points::new(e, 2).unwrap());
+        let a = scale(&Points::from_flat(2, e).unwrap());
         assert_ck(
             &c.eval_derivatives(1.0, k + 1).unwrap(),
             &a,

@@ -1,7 +1,7 @@
-//! Degree ("order") change of Bezier curves and surfaces (document 004, digest §E).
+//! Degree ("order") change of Bezier curves and surfaces (document 004; docs/theory/degree.md).
 //!
 //! Golden tests: the paper's Examples 1 and 2, every matrix compared exactly in rational
-//! arithmetic (source: digest §E.2–E.3, "All matrices as printed; all verified"). Property tests
+//! arithmetic (docs/theory/degree.md#worked-examples). Property tests
 //! (dimensions 1 to 6): elevation keeps the curve or surface, reduction inverts elevation,
 //! one-step elevation equals repeated eq. 6, monomial round trip, reductions below the real
 //! degree are refused.
@@ -67,9 +67,9 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 /// of one curve of dimension (m+1)·dim along u, then a curve along v.
 fn surface_eval(net: &Points, m: usize, u: f64, v: f64) -> Vec<f64> {
     let dim = net.dim();
-    let rows = Points::new(net.as_slice().to_vec(), (m + 1) * dim).expect("net rows");
+    let rows = Points::from_flat((m + 1) * dim, net.as_slice().to_vec()).expect("net rows");
     let row = BezierCurve::new(rows).expect("curve").eval(u).expect("u");
-    BezierCurve::new(Points::new(row, dim).expect("row"))
+    BezierCurve::new(Points::from_flat(dim, row).expect("row"))
         .expect("curve")
         .eval(v)
         .expect("v")
@@ -90,7 +90,7 @@ fn surface_dev(a: &Points, ma: usize, b: &Points, mb: usize) -> f64 {
 }
 
 // ------------------------------------------------------------------------------------------
-// Golden: document 004, Example 1 (digest §E.2)
+// Golden: document 004, Example 1 (eq. (7)–(8))
 // ------------------------------------------------------------------------------------------
 
 #[test]
@@ -271,7 +271,7 @@ fn example_1_task_3_cubic_to_quintic_in_one_step() {
 }
 
 // ------------------------------------------------------------------------------------------
-// Golden: document 004, Example 2 (digest §E.3)
+// Golden: document 004, Example 2 (eq. (9)–(10))
 // ------------------------------------------------------------------------------------------
 
 const EXAMPLE_2: [[f64; 2]; 6] = [
@@ -398,14 +398,15 @@ fn example_2_floating_point_paths() {
     assert!(curve_dev(&quintic, &quartic) < 1e-13, "quartic");
 }
 
-/// Digest §E.4, Fig. 5: a (4, 3) net with one zero bottom row of S has real u-order 3; (3, 3),
-/// (3, 6) and (4, 6) keep the shape, (6, 2) lowers m without a defect and is refused.
+/// Document 004, Fig. 5 (docs/theory/degree.md#degree-change-of-surfaces): a (4, 3) net with one
+/// zero bottom row of S has real u-order 3; (3, 3), (3, 6) and (4, 6) keep the shape, (6, 2) lowers
+/// m without a defect and is refused.
 #[test]
 fn figure_5_surface_order_change() {
     let base: Vec<f64> = (0..16 * 3)
         .map(|i| f64::from((i * 7 + 3) % 13) - 6.0)
         .collect();
-    let base = Points::new(base, 3).unwrap(); // degrees (3, 3)
+    let base = Points::from_flat(3, base).unwrap(); // degrees (3, 3)
     let net = bezier_net_elevate(&base, 3, 3, 1, 0).unwrap(); // (4, 3)
     assert_eq!(bezier_net_real_degrees(&net, 4, 3, 1e-10).unwrap(), (3, 3));
     assert_eq!(
@@ -435,14 +436,15 @@ fn figure_5_surface_order_change() {
 fn curve_strategy(max_degree: usize) -> impl Strategy<Value = BezierCurve> {
     (1usize..=6, 0usize..=max_degree).prop_flat_map(|(dim, n)| {
         prop::collection::vec(-10.0f64..10.0, (n + 1) * dim).prop_map(move |data| {
-            BezierCurve::new(Points::new(data, dim).expect("finite")).expect("non-empty")
+            BezierCurve::new(Points::from_flat(dim, data).expect("finite")).expect("non-empty")
         })
     })
 }
 
 /// A curve whose real degree is exactly `k` by construction: monomial coefficients with the
-/// first coordinate of `s_k` at least 1 in magnitude (digest §E.3: real degree = index of the
-/// last non-zero monomial coefficient). Degrees up to 8, where the power basis is accurate.
+/// first coordinate of `s_k` at least 1 in magnitude (real degree = index of the last non-zero
+/// monomial coefficient, docs/theory/degree.md#degree-defect-and-real-degree). Degrees up to 8,
+/// where the power basis is accurate.
 fn planted_degree_strategy() -> impl Strategy<Value = (BezierCurve, usize)> {
     (1usize..=6, 1usize..=8).prop_flat_map(|(dim, k)| {
         (
@@ -452,7 +454,7 @@ fn planted_degree_strategy() -> impl Strategy<Value = (BezierCurve, usize)> {
         )
             .prop_map(move |(mut s, lead, negative)| {
                 s[k * dim] = if negative { -lead } else { lead };
-                let c = BezierCurve::from_monomial(Points::new(s, dim).expect("finite"))
+                let c = BezierCurve::from_monomial(Points::from_flat(dim, s).expect("finite"))
                     .expect("degree ≤ 8");
                 (c, k)
             })
@@ -534,7 +536,7 @@ proptest! {
         (au, av) in (0usize..=3, 0usize..=3),
         (tu, tv) in (0usize..=6, 0usize..=6),
     ) {
-        let base = Points::new(data, dim).unwrap();
+        let base = Points::from_flat(dim, data).unwrap();
         let net = bezier_net_elevate(&base, n, m, au, av).unwrap();
         let s = base.max_abs().max(f64::MIN_POSITIVE);
         prop_assert!(surface_dev(&base, m, &net, m + av) <= 1e-13 * s, "elevation");
@@ -573,7 +575,7 @@ fn bspline_strategy() -> impl Strategy<Value = BSplineCurve> {
                 knots.extend_from_slice(&inner);
                 knots.extend(std::iter::repeat_n(1.0, p + 1));
                 let kv = KnotVector::new(knots).expect("sorted");
-                BSplineCurve::from_knot_vector(p, kv, Points::new(data, dim).expect("finite"))
+                BSplineCurve::from_knot_vector(p, kv, Points::from_flat(dim, data).expect("finite"))
                     .expect("valid clamped B-spline")
             })
         })
@@ -610,7 +612,7 @@ fn bspline_elevation_with_two_close_knots() {
             1.0,
             1.0,
         ],
-        Points::new(vec![0.0, 0.0, 0.0, -5.268960839437541, 0.0, 0.0], 1).unwrap(),
+        Points::from_flat(1, vec![0.0, 0.0, 0.0, -5.268960839437541, 0.0, 0.0]).unwrap(),
     )
     .unwrap();
     for r in 1..=3 {

@@ -1,5 +1,5 @@
 //! Piecewise polynomials, Curry–Schoenberg bases and the de Boor–Fix functionals (document 003,
-//! digest §D.4–§D.5): round trips on random spaces and the thesis's practical task.
+//! §4–5; docs/theory/pp.md): round trips on random spaces and the thesis's practical task.
 
 mod common;
 use common::config;
@@ -81,8 +81,8 @@ fn thesis_practical_task() {
 }
 
 // The coefficients of the stated rule (τ = 0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3), from the
-// k = 3 formula of digest §D.5: c_i = f(τ) + ((x_{i+1}+x_{i+2})/2 − τ) f'(τ)
-// + (x_{i+1} − τ)(x_{i+2} − τ)/2 · f''(τ).
+// k = 3 formula of docs/theory/pp.md#de-boor-fix-functionals: c_i = f(τ) + ((x_{i+1}+x_{i+2})/2 −
+// τ) f'(τ) + (x_{i+1} − τ)(x_{i+2} − τ)/2 · f''(τ).
 #[test]
 fn thesis_coefficients_closed_form() {
     let space = thesis_space();
@@ -169,7 +169,7 @@ proptest! {
         let n = space.knots().len() - k;
         prop_assert_eq!(n, space.dimension());
         let coef: Vec<f64> = seed.iter().cycle().take(n * dim).copied().collect();
-        let b = BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), Points::new(coef.clone(), dim).unwrap()).unwrap();
+        let b = BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), Points::from_flat(dim, coef.clone()).unwrap()).unwrap();
         let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
         prop_assert_eq!(pp.breakpoints(), space.breakpoints());
         prop_assert!(space.contains(&pp, DEFAULT_CONTINUITY_RTOL));
@@ -246,8 +246,12 @@ fn smoothness_follows_multiplicity() {
     // b_3 (0-based) has knots 0 1 1 1 2: multiplicity 3 at 1, simple at 2
     let mut unit = vec![0.0; n];
     unit[3] = 1.0;
-    let b = BSplineCurve::from_knot_vector(3, space.knots().clone(), Points::new(unit, 1).unwrap())
-        .unwrap();
+    let b = BSplineCurve::from_knot_vector(
+        3,
+        space.knots().clone(),
+        Points::from_flat(1, unit).unwrap(),
+    )
+    .unwrap();
     let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
     assert!(
         pp.jump(1, 0).unwrap()[0].abs() < 1e-14,

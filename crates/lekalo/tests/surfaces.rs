@@ -62,7 +62,15 @@ fn bspline_surface(
             )
         })
         .prop_map(|(ku, kv, data, (p, q, nu, nv, dim))| {
-            BSplineSurface::new(p, q, ku, kv, Points::new(data, dim).unwrap(), (nu, nv)).unwrap()
+            BSplineSurface::new(
+                p,
+                q,
+                ku,
+                kv,
+                Points::from_flat(dim, data).unwrap(),
+                (nu, nv),
+            )
+            .unwrap()
         })
 }
 
@@ -103,7 +111,7 @@ fn nurbs_curve() -> impl Strategy<Value = NurbsCurve> {
             )
         })
         .prop_map(|((p, dim), k, data, w)| {
-            NurbsCurve::new(p, k, Points::new(data, dim).unwrap(), w).unwrap()
+            NurbsCurve::new(p, k, Points::from_flat(dim, data).unwrap(), w).unwrap()
         })
 }
 
@@ -191,7 +199,7 @@ proptest! {
         let s = BSplineSurface::new(
             shape.degree_u(), shape.degree_v(),
             shape.knots_u().as_slice().to_vec(), shape.knots_v().as_slice().to_vec(),
-            Points::new(data, n).unwrap(), (nu, nv),
+            Points::from_flat(n, data).unwrap(), (nu, nv),
         ).unwrap();
         let b = s.eval(u, v).unwrap();
         let sum: f64 = b.iter().sum();
@@ -265,7 +273,7 @@ proptest! {
         let t = NurbsSurface::new(
             s.degree_u(), s.degree_v(),
             s.knots_u().as_slice().to_vec(), s.knots_v().as_slice().to_vec(),
-            Points::new(moved, dim).unwrap(), s.weights(), s.net_size(),
+            Points::from_flat(dim, moved).unwrap(), s.weights(), s.net_size(),
         ).unwrap();
         let scale = 50.0 + 8.0 * 10.0;
         assert_near(&t.eval(u, v).unwrap(), &map(&s.eval(u, v).unwrap()), 1e-13 * scale, 0.0, "NURBS");
@@ -302,7 +310,7 @@ proptest! {
         u in 0.0f64..=1.0, v in 0.0f64..=1.0,
     ) {
         let data = seed[..nu * nv * dim].to_vec();
-        let bez = BezierSurface::new(Points::new(data, dim).unwrap(), (nu, nv)).unwrap();
+        let bez = BezierSurface::new(Points::from_flat(dim, data).unwrap(), (nu, nv)).unwrap();
         let bs = bez.to_bspline();
         assert_near(&bez.eval(u, v).unwrap(), &bs.eval(u, v).unwrap(), 1e-13, 0.0, "point");
         let (a, b) = (bez.eval_derivatives(u, v, 2).unwrap(), bs.eval_derivatives(u, v, 2).unwrap());
@@ -418,7 +426,7 @@ fn general() -> BSplineSurface {
         2,
         vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0],
         vec![-1.0, -1.0, -1.0, 0.5, 1.5, 2.0, 2.0, 2.0],
-        Points::new(data, 3).unwrap(),
+        Points::from_flat(3, data).unwrap(),
         (nu, nv),
     )
     .unwrap()
@@ -561,4 +569,41 @@ fn iso_curves_trace_the_surface() {
         s.iso_curve_v(-0.1),
         Err(Error::ParameterOutOfDomain { .. })
     ));
+}
+
+/// Curves and surfaces answer to the same accessor names: a surface's `degree` and `knots` are
+/// the pairs of its per-direction forms, and a Bezier curve has a domain like the others.
+#[test]
+fn surfaces_share_the_curve_accessor_names() {
+    let net = Points::from_flat(
+        3,
+        (0..4 * 3)
+            .flat_map(|k| {
+                let (i, j) = (f64::from(k / 3), f64::from(k % 3));
+                [i, j, (i * j).sin()]
+            })
+            .collect(),
+    )
+    .unwrap();
+    let s = BSplineSurface::new(
+        2,
+        1,
+        vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0],
+        vec![0.0, 0.0, 0.5, 1.0, 1.0],
+        net.clone(),
+        (4, 3),
+    )
+    .unwrap();
+    assert_eq!(s.degree(), (s.degree_u(), s.degree_v()), "B-spline degree");
+    assert_eq!(s.degree(), (2, 1), "B-spline degree");
+    assert_eq!(s.knots(), (s.knots_u(), s.knots_v()), "B-spline knots");
+    let n = NurbsSurface::from_bspline(&s);
+    assert_eq!(n.degree(), s.degree(), "NURBS degree");
+    assert_eq!(n.knots(), s.knots(), "NURBS knots");
+    assert_eq!(n.domain(), s.domain(), "NURBS domain");
+    let b = BezierSurface::new(net, (4, 3)).unwrap();
+    assert_eq!(b.degree(), (3, 2), "Bezier degree");
+    assert_eq!(b.degree(), (b.degree_u(), b.degree_v()), "Bezier degree");
+    let c = lekalo::BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 1.0]]).unwrap()).unwrap();
+    assert_eq!(c.domain(), (0.0, 1.0), "Bezier curve domain");
 }

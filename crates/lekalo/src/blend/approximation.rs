@@ -224,7 +224,7 @@ fn assemble(
             knots.extend(std::iter::repeat_n(x, if last { q + 1 } else { q }));
         }
     }
-    BSplineCurve::new(q, knots, Points::new(ctrl, dim)?)
+    BSplineCurve::new(q, knots, Points::from_flat(dim, ctrl)?)
 }
 
 /// Approximates a smooth curve on its whole domain by a piecewise Bezier curve of degree

@@ -41,9 +41,9 @@ fn offset_piece(
                 *x += j * o;
             }
         }
-        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(Points::new(
-            ctrl, dim,
-        )?)));
+        return Ok(BezierForm::Polynomial(BezierCurve::from_raw(
+            Points::from_flat(dim, ctrl)?,
+        )));
     }
     let omega = weights_of(&h, dim);
     let jw = bernstein_ops::product(jump, &omega, 1);
@@ -53,7 +53,7 @@ fn offset_piece(
             *x += j * o;
         }
     }
-    let bez = BezierCurve::from_raw(Points::new(ctrl, hd)?);
+    let bez = BezierCurve::from_raw(Points::from_flat(hd, ctrl)?);
     Ok(BezierForm::Rational(NurbsCurve::from_homogeneous(
         bezier_as_bspline(&bez),
     )?))

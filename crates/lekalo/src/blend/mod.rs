@@ -4,6 +4,7 @@
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
 //! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
 //! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
 //!   measured error.
@@ -14,13 +15,15 @@ pub(crate) mod bernstein;
 mod corner;
 pub(crate) mod deformation;
 mod jump;
+mod local_curves;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
 pub use corner::CornerTransition;
 pub use deformation::{BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE};
 pub use jump::JumpPolynomial;
-pub use spline::{
-    ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity, FnLocalCurves,
-    LocalCurves, Parabolas, SharedCurve, SplineParameters,
+pub use local_curves::{
+    ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
+    SharedCurve,
 };
+pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};

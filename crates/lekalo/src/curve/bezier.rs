@@ -1,5 +1,5 @@
-//! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002 §C.4, document
-//! 004 eq. 1), of any degree and dimension.
+//! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002, Bezier curves,
+//! document 004 eq. 1), of any degree and dimension.
 
 use serde::{Deserialize, Serialize};
 
@@ -72,6 +72,12 @@ impl BezierCurve {
     #[must_use]
     pub fn dim(&self) -> usize {
         self.control.dim()
+    }
+
+    /// The parameter domain, always `(0, 1)`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
     }
 
     /// The control points.
@@ -147,7 +153,8 @@ impl BezierCurve {
         Ok(())
     }
 
-    /// Point `P(t)` by the Bernstein sum `Σ b_{n,i}(t) P_i` (document 002 §C.4), into `out`.
+    /// Point `P(t)` by the Bernstein sum `Σ b_{n,i}(t) P_i` (document 002, Bezier curves), into
+    /// `out`.
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] if `out.len() != dim`.
@@ -175,7 +182,7 @@ impl BezierCurve {
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // P(t) = t² in Bernstein form (0, 0, 1): P' = 2t, P'' = 2
-    /// let c = BezierCurve::new(Points::new(vec![0.0, 0.0, 1.0], 1)?)?;
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![0.0, 0.0, 1.0])?)?;
     /// let d = c.eval_derivatives(0.25, 3)?;
     /// assert_eq!(d.as_slice(), &[0.0625, 0.5, 2.0, 0.0]);
     /// # Ok::<(), lekalo::Error>(())
@@ -393,7 +400,8 @@ mod tests {
 
     #[test]
     fn de_casteljau_equals_bernstein_sum() {
-        let ctrl = Points::new((0..18).map(|i| (f64::from(i) * 0.7).cos()).collect(), 3).unwrap();
+        let ctrl =
+            Points::from_flat(3, (0..18).map(|i| (f64::from(i) * 0.7).cos()).collect()).unwrap();
         let c = BezierCurve::new(ctrl).unwrap();
         let mut out = vec![0.0; 3];
         for k in 0..=10 {
@@ -406,7 +414,7 @@ mod tests {
         }
         assert!(c.eval(-0.1).is_err() && c.eval(f64::NAN).is_err());
         assert!(matches!(
-            BezierCurve::new(Points::new(vec![], 2).unwrap()),
+            BezierCurve::new(Points::from_flat(2, vec![]).unwrap()),
             Err(Error::TooFew { .. })
         ));
         assert!(matches!(
@@ -415,10 +423,10 @@ mod tests {
         ));
     }
 
-    /// Document 002 §C.4: the cubic written out.
+    /// Document 002, Bezier curves: the cubic written out.
     #[test]
     fn cubic_formula() {
-        let c = BezierCurve::new(Points::new(vec![1.0, 5.0, -2.0, 3.0], 1).unwrap()).unwrap();
+        let c = BezierCurve::new(Points::from_flat(1, vec![1.0, 5.0, -2.0, 3.0]).unwrap()).unwrap();
         let t: f64 = 0.3;
         let s = 1.0 - t;
         let expect = s.powi(3) + 3.0 * 5.0 * t * s * s + 3.0 * -2.0 * t * t * s + 3.0 * t.powi(3);

@@ -38,8 +38,15 @@ use rayon::prelude::*;
 
 use crate::basis::{basis_ders_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
-use crate::curve::nurbs::NurbsCurve;
 use crate::error::{Error, Result};
+
+mod kernels;
+mod locate;
+mod nurbs;
+
+use kernels::{basis_fixed, power_ders, power_dyn, power_fixed};
+use locate::{inner_ball, PieceLocator};
+pub use nurbs::NurbsEvaluator;
 
 /// Highest degree for which [`EvalKernel::Auto`] chooses the power form. The power form's
 /// rounding error grows like `3^p` times the control net's scale in the worst case; measured
@@ -54,12 +61,6 @@ pub const POWER_FORM_MAX_DEGREE: usize = 3;
 /// only on its parameter and its piece (tested bit for bit against the sequential path).
 const PAR_CHUNK: usize = 1 << 13;
 
-/// Buckets of the piece-location table per polynomial piece.
-const BUCKETS_PER_PIECE: usize = 4;
-
-/// Largest candidate range searched linearly; wider ones (very uneven knots) are bisected.
-const LINEAR_SEARCH_MAX: usize = 8;
-
 /// Which per-piece representation a [`CurveEvaluator`] uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EvalKernel {
@@ -70,74 +71,6 @@ pub enum EvalKernel {
     PowerForm,
     /// Cox–de Boor basis functions with precomputed reciprocals of knot differences.
     Basis,
-}
-
-/// Finds the polynomial piece of a parameter in O(1) for spread-out knots.
-///
-/// Bucket `b` covers the parameters with `β(t) = min(⌊(t − x_0)·s⌋, nb − 1) = b`. As `β` is
-/// non-decreasing in `t` (rounding is monotone), `t` lies in a piece `j` with
-/// `lo_b ≤ j ≤ hi_b`, where `lo_b` is the last piece whose start maps below `b` and `hi_b` the
-/// last whose start maps to at most `b`: the table is exact despite rounding.
-#[derive(Debug, Clone)]
-struct PieceLocator {
-    x0: f64,
-    scale: f64,
-    /// `(lo_b, hi_b)` per bucket.
-    range: Vec<(usize, usize)>,
-}
-
-impl PieceLocator {
-    fn new(breaks: &[f64]) -> Self {
-        let pieces = breaks.len() - 1;
-        let nb = pieces * BUCKETS_PER_PIECE;
-        let x0 = breaks[0];
-        // may be 0 (range overflows) or +inf (subnormal range): β stays monotone either way
-        let scale = nb as f64 / (breaks[pieces] - x0);
-        let mut loc = PieceLocator {
-            x0,
-            scale,
-            range: vec![(0, 0); nb],
-        };
-        let starts: Vec<usize> = breaks[..pieces].iter().map(|&x| loc.bucket(x)).collect();
-        // sweep: lo_b = last j with start_j < b, hi_b = last j with start_j ≤ b
-        let (mut below, mut at_most) = (0usize, 0usize);
-        for b in 0..nb {
-            while below + 1 < pieces && starts[below + 1] < b {
-                below += 1;
-            }
-            while at_most + 1 < pieces && starts[at_most + 1] <= b {
-                at_most += 1;
-            }
-            loc.range[b] = (below, at_most.max(below));
-        }
-        loc
-    }
-
-    #[inline(always)]
-    fn bucket(&self, t: f64) -> usize {
-        // saturating float-to-int cast: monotone, NaN → 0 (NaN never gets here)
-        #[allow(clippy::cast_possible_truncation)]
-        let b = ((t - self.x0) * self.scale) as usize;
-        b.min(self.range.len() - 1)
-    }
-
-    /// Piece `j` with `x_j ≤ t < x_{j+1}` (the last piece at `t = x_m`); `t` in the domain.
-    #[inline(always)]
-    fn find(&self, breaks: &[f64], t: f64) -> usize {
-        let (lo, hi) = self.range[self.bucket(t)];
-        if hi - lo <= 1 {
-            // the common case, without a branch on t (random parameters mispredict it)
-            lo + usize::from((hi > lo) & (breaks[lo + 1] <= t))
-        } else if hi - lo <= LINEAR_SEARCH_MAX {
-            let mut j = lo;
-            while j < hi && breaks[j + 1] <= t {
-                j += 1;
-            }
-            j
-        } else {
-            lo + breaks[lo + 1..=hi].partition_point(|&x| x <= t)
-        }
-    }
 }
 
 /// Per-piece data of the kernels.
@@ -434,7 +367,7 @@ impl CurveEvaluator {
                 // so every loop unrolls and the Taylor coefficients stay in registers). With a
                 // run-time order they went through the stack: a 3-D cubic's point and 1st
                 // derivative took 10.2 ns a parameter, now 3.5; with the 2nd, 13.2 → 4.9
-                // (docs/performance.md, session 6)
+                // (docs/performance.md)
                 macro_rules! fixed_order {
                     ($w:literal, $d:literal, $k:literal) => {
                         self.drive(ts, out, row, |j, t, o| {
@@ -617,133 +550,6 @@ impl CurveEvaluator {
     }
 }
 
-/// Horner's scheme on piece `j` with degree `P` and dimension `D` fixed at compile time; the
-/// same operations in the same order as [`power_dyn`].
-#[inline(always)]
-fn power_fixed<const P: usize, const D: usize>(coef: &[f64], j: usize, t: f64, o: &mut [f64]) {
-    let stride = 2 + (P + 1) * D;
-    let block = &coef[j * stride..(j + 1) * stride];
-    let u = (t - block[0]) * block[1];
-    let c = &block[2..];
-    let mut acc = [0.0; D];
-    acc.copy_from_slice(&c[..D]);
-    for k in 1..=P {
-        for d in 0..D {
-            acc[d] = acc[d] * u + c[k * D + d];
-        }
-    }
-    o[..D].copy_from_slice(&acc);
-}
-
-/// [`CurveEvaluator::basis_point`] with the order `W = p + 1` and dimension `D` fixed at
-/// compile time, so that the triangle lives in registers; the same operations in the same
-/// order.
-#[inline(always)]
-fn basis_fixed<const W: usize, const D: usize>(
-    knots: &[f64],
-    control: &[f64],
-    recip: &[f64],
-    span: usize,
-    j: usize,
-    t: f64,
-    o: &mut [f64],
-) {
-    let p = W - 1;
-    let tri = p * W / 2;
-    let rc = &recip[j * tri..(j + 1) * tri];
-    let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
-    nv[0] = 1.0;
-    let mut off = 0;
-    for l in 1..W {
-        left[l] = t - knots[span + 1 - l];
-        right[l] = knots[span + l] - t;
-        let mut saved = 0.0;
-        for r in 0..l {
-            let temp = nv[r] * rc[off + r];
-            nv[r] = saved + right[r + 1] * temp;
-            saved = left[l - r] * temp;
-        }
-        nv[l] = saved;
-        off += l;
-    }
-    let mut acc = [0.0; D];
-    let c = &control[(span - p) * D..(span + 1) * D];
-    for r in 0..W {
-        for d in 0..D {
-            acc[d] += nv[r] * c[r * D + d];
-        }
-    }
-    o[..D].copy_from_slice(&acc);
-}
-
-/// Derivatives of orders `0..=kmax` on piece `j` by repeated synthetic division (Knuth, TAOCP
-/// vol. 2, §4.6.4); `a` is scratch of length `p + 1` (an array when the caller knows `p`, so
-/// that it lives in registers), `o` a row of `(order + 1)·dim` values, zero above `kmax`.
-#[inline(always)]
-fn power_ders(
-    a: &mut [f64],
-    dim: usize,
-    coef: &[f64],
-    j: usize,
-    t: f64,
-    kmax: usize,
-    o: &mut [f64],
-) {
-    let p = a.len() - 1;
-    let stride = 2 + (p + 1) * dim;
-    let block = &coef[j * stride..(j + 1) * stride];
-    let (x, inv) = (block[0], block[1]);
-    let u = (t - x) * inv;
-    o[(kmax + 1) * dim..].fill(0.0);
-    for d in 0..dim {
-        // a[i]: coefficient of u^i, coordinate d (lowest power first)
-        for (i, ai) in a.iter_mut().enumerate() {
-            *ai = block[2 + (p - i) * dim + d];
-        }
-        let mut scale = 1.0; // k! / h^k
-        for k in 0..=kmax {
-            // synthetic division by (x − u): afterwards a[k] is the k-th Taylor coefficient at u
-            for i in (k..p).rev() {
-                a[i] += u * a[i + 1];
-            }
-            o[k * dim + d] = a[k] * scale;
-            scale *= (k + 1) as f64 * inv;
-        }
-    }
-}
-
-/// Horner's scheme on piece `j`, any degree and dimension.
-#[inline(always)]
-fn power_dyn(p: usize, coef: &[f64], j: usize, t: f64, o: &mut [f64]) {
-    let dim = o.len();
-    let stride = 2 + (p + 1) * dim;
-    let block = &coef[j * stride..(j + 1) * stride];
-    let u = (t - block[0]) * block[1];
-    let c = &block[2..];
-    o.copy_from_slice(&c[..dim]);
-    for k in 1..=p {
-        for (x, &ck) in o.iter_mut().zip(&c[k * dim..(k + 1) * dim]) {
-            *x = *x * u + ck;
-        }
-    }
-}
-
-/// Centre `m` and radius `r` of a ball inside the open interval `(a, b)` such that the computed
-/// test `fl(|fl(t − m)|) < r` implies `a < t < b` exactly. With `M, H` the true midpoint and
-/// half-width, the computed `m, h` (halving first, so nothing overflows) are within
-/// `ε(|M| + H)` of them and `fl(t − m)` within `ε/2` relative of `t − m`; shrinking the radius
-/// by `8ε(|m| + h)` (plus the smallest normal number, for subnormal knots) absorbs all of it, so the test gives `|t − M| < H`. Pieces narrower than
-/// the rounding of their position get `r ≤ 0`: never inside, always located exactly.
-fn inner_ball(a: f64, b: f64) -> (f64, f64) {
-    let m = 0.5 * a + 0.5 * b;
-    let h = 0.5 * b - 0.5 * a;
-    // MIN_POSITIVE covers the absolute rounding of halving subnormal knots
-    (
-        m,
-        h - 8.0 * f64::EPSILON * (m.abs() + h) - f64::MIN_POSITIVE,
-    )
-}
-
 fn check_batch(n: usize, row: usize, got: usize) -> Result<()> {
     let expected = n * row;
     if got != expected {
@@ -776,129 +582,6 @@ where
         .map(|(t, o)| f(t, o))
         .collect();
     results.into_iter().collect()
-}
-
-/// A NURBS curve prepared for fast evaluation: a [`CurveEvaluator`] of the homogeneous
-/// B-spline `(w·P, w)` followed by the projection `C(t) = A(t) / w(t)` (P&T Algorithm A4.1).
-///
-/// ```
-/// use lekalo::{NurbsCurve, Points};
-/// let ctrl = Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])?;
-/// let w = std::f64::consts::FRAC_1_SQRT_2;
-/// let arc = NurbsCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], ctrl, vec![1.0, w, 1.0])?;
-/// let ts: Vec<f64> = (0..=64).map(|k| f64::from(k) / 64.0).collect();
-/// let mut out = vec![0.0; ts.len() * 2];
-/// arc.evaluator().eval_batch(&ts, &mut out)?;
-/// assert!(out.chunks(2).all(|p| (p[0].hypot(p[1]) - 1.0).abs() < 1e-15));
-/// # Ok::<(), lekalo::Error>(())
-/// ```
-#[derive(Debug, Clone)]
-pub struct NurbsEvaluator {
-    homogeneous: CurveEvaluator,
-}
-
-impl NurbsCurve {
-    /// A [`NurbsEvaluator`] for this curve (default kernel). O(n·p²·dim) once.
-    #[must_use]
-    pub fn evaluator(&self) -> NurbsEvaluator {
-        NurbsEvaluator {
-            homogeneous: self.homogeneous().evaluator(),
-        }
-    }
-}
-
-impl NurbsEvaluator {
-    /// A [`NurbsEvaluator`] with the given kernel for the homogeneous curve.
-    ///
-    /// # Errors
-    /// As [`CurveEvaluator::with_kernel`].
-    pub fn with_kernel(curve: &NurbsCurve, kernel: EvalKernel) -> Result<Self> {
-        Ok(NurbsEvaluator {
-            homogeneous: CurveEvaluator::with_kernel(curve.homogeneous(), kernel)?,
-        })
-    }
-
-    /// The evaluator of the homogeneous B-spline.
-    #[must_use]
-    pub fn homogeneous(&self) -> &CurveEvaluator {
-        &self.homogeneous
-    }
-
-    /// Euclidean dimension.
-    #[must_use]
-    pub fn dim(&self) -> usize {
-        self.homogeneous.dim - 1
-    }
-
-    /// Points `C(t)` for every `t` in `ts` into `out` (`ts.len() × dim`); the fast twin of
-    /// [`NurbsCurve::eval`] at every parameter. One allocation per call (scratch).
-    ///
-    /// # Errors
-    /// [`Error::LengthMismatch`] if `out.len() != ts.len() · dim`;
-    /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain.
-    pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
-        check_batch(ts.len(), self.dim(), out.len())?;
-        self.eval_slice(ts, out)
-    }
-
-    /// As [`NurbsEvaluator::eval_batch`] over the rayon pool, bit-identical to it.
-    ///
-    /// # Errors
-    /// As [`NurbsEvaluator::eval_batch`].
-    pub fn par_eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
-        check_batch(ts.len(), self.dim(), out.len())?;
-        par_chunks(ts, out, self.dim(), |t, o| self.eval_slice(t, o))
-    }
-
-    fn eval_slice(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
-        let h = &self.homogeneous;
-        let dim = self.dim();
-        if let KernelData::Power { coef } = &h.kernel {
-            macro_rules! fixed {
-                ($p:literal, $hd:literal) => {
-                    return h.drive(ts, out, $hd - 1, |j, t, o| {
-                        let mut a = [0.0; $hd];
-                        power_fixed::<$p, $hd>(coef, j, t, &mut a);
-                        project(&a, o);
-                    })
-                };
-            }
-            match (h.degree, h.dim) {
-                (2, 3) => fixed!(2, 3),
-                (2, 4) => fixed!(2, 4),
-                (3, 3) => fixed!(3, 3),
-                (3, 4) => fixed!(3, 4),
-                _ => {}
-            }
-        }
-        let mut a = vec![0.0; dim + 1];
-        match &h.kernel {
-            KernelData::Power { coef } => h.drive(ts, out, dim, |j, t, o| {
-                power_dyn(h.degree, coef, j, t, &mut a);
-                project(&a, o);
-            }),
-            KernelData::Basis {
-                knots,
-                control,
-                recip,
-            } => {
-                let mut n = vec![0.0; 3 * (h.degree + 1)];
-                h.drive(ts, out, dim, |j, t, o| {
-                    h.basis_point(knots, control, recip, j, t, &mut n, &mut a);
-                    project(&a, o);
-                })
-            }
-        }
-    }
-}
-
-/// `o = a[..dim] / a[dim]`, as [`NurbsCurve::eval`] divides.
-#[inline(always)]
-fn project(a: &[f64], o: &mut [f64]) {
-    let w = a[o.len()];
-    for (x, &y) in o.iter_mut().zip(a) {
-        *x = y / w;
-    }
 }
 
 #[cfg(test)]

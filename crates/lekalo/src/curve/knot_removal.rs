@@ -159,7 +159,7 @@ impl BSplineCurve {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0, 3.0, 2.0, 5.0], 1)?;
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0, 3.0, 2.0, 5.0])?;
     /// let c = BSplineCurve::from_knot_vector(3, KnotVector::clamped_uniform(3, 5)?, ctrl)?;
     /// let pieces = BSplineCurve::from_bezier_segments(&c.to_bezier_segments())?;
     /// assert_eq!(pieces.control_points().len(), 7);
@@ -183,7 +183,7 @@ impl BSplineCurve {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0, 3.0, 2.0], 1)?;
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0, 3.0, 2.0])?;
     /// let c = BSplineCurve::from_knot_vector(2, KnotVector::clamped_uniform(2, 4)?, ctrl)?;
     /// let (simple, removed) = c.refine_knots(&[0.2, 0.7, 0.7])?.simplify();
     /// assert_eq!((removed, simple.knots()), (3, c.knots()));
@@ -472,7 +472,7 @@ mod tests {
         let equal = BSplineCurve::new(
             1,
             vec![0.0, 0.0, 1.0, 1.0, 2.0, 2.0],
-            Points::new(vec![0.0, 3.0, 3.0, 5.0], 1).unwrap(),
+            Points::from_flat(1, vec![0.0, 3.0, 3.0, 5.0]).unwrap(),
         )
         .unwrap();
         let (c, removed) = equal.remove_knot(1.0, 2, 0.0).unwrap();
@@ -489,7 +489,7 @@ mod tests {
         let jump = BSplineCurve::new(
             1,
             vec![0.0, 0.0, 1.0, 1.0, 2.0, 2.0],
-            Points::new(vec![0.0, 3.0, 4.0, 5.0], 1).unwrap(),
+            Points::from_flat(1, vec![0.0, 3.0, 4.0, 5.0]).unwrap(),
         )
         .unwrap();
         assert_eq!(

@@ -1,5 +1,5 @@
 //! Approximate degree reduction of Bezier curves (beyond document 004, which reduces only when
-//! the curve has a degree defect, §E.3).
+//! the curve has a degree defect, document 004, eq. (9)–(10)).
 //!
 //! The reduced curve `q` of degree `k` minimises the L2 distance `∫₀¹ ‖p(t) − q(t)‖² dt` to the
 //! curve `p` of degree `n > k`, optionally with the end points, or the end points and end
@@ -17,7 +17,7 @@
 //!   is within O(h²) of the curve);
 //! - `max_deviation_sampled`: `max ‖p(t) − q(t)‖` over dense samples, a lower bound.
 
-use crate::degree::curve::{check_size, elevate};
+use crate::degree::elevation::{check_size, elevate};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -346,7 +346,7 @@ mod tests {
             EndConditions::Tangents,
         ] {
             let r = up.reduce_degree_approx(3, ends).unwrap();
-            let d = crate::degree::curve::max_abs_diff(
+            let d = crate::degree::reduction::max_abs_diff(
                 r.curve.control_points().as_slice(),
                 c.control_points().as_slice(),
             );
@@ -359,7 +359,7 @@ mod tests {
     /// (Legendre truncation). Their max deviations are 2/3 and 1/6.
     #[test]
     fn closed_form_best_approximations() {
-        let p = BezierCurve::new(Points::new(vec![0.0, 0.0, 1.0], 1).unwrap()).unwrap(); // t²
+        let p = BezierCurve::new(Points::from_flat(1, vec![0.0, 0.0, 1.0]).unwrap()).unwrap(); // t²
         let r0 = p.reduce_degree_approx(0, EndConditions::Free).unwrap();
         assert!(
             (r0.curve.control_points().as_slice()[0] - 1.0 / 3.0).abs() < 1e-14,
@@ -395,7 +395,7 @@ mod tests {
     #[test]
     fn end_conditions_are_kept_and_checked() {
         let p = BezierCurve::new(
-            Points::new((0..24).map(|i| (f64::from(i) * 1.3).sin()).collect(), 3).unwrap(),
+            Points::from_flat(3, (0..24).map(|i| (f64::from(i) * 1.3).sin()).collect()).unwrap(),
         )
         .unwrap(); // degree 7
         let r = p.reduce_degree_approx(4, EndConditions::Tangents).unwrap();
@@ -449,9 +449,10 @@ mod tests {
 
     #[test]
     fn overflow_is_reported() {
-        let big =
-            BezierCurve::new(Points::new(vec![1.7e308, -1.7e308, 1.7e308, -1.7e308], 1).unwrap())
-                .unwrap();
+        let big = BezierCurve::new(
+            Points::from_flat(1, vec![1.7e308, -1.7e308, 1.7e308, -1.7e308]).unwrap(),
+        )
+        .unwrap();
         let e = big
             .reduce_degree_approx(1, EndConditions::Free)
             .unwrap_err();

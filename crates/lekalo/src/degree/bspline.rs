@@ -1,6 +1,7 @@
-//! Degree change of B-spline curves and surfaces, composed from the Bezier operations of document 004 (digest
-//! §E) and Bezier decomposition (STYLE §7; as `ricosjp/truck` `BSplineCurve::elevate_degree` and
-//! `msteinbeck/tinyspline` `ts_bspline_elevate_degree`):
+//! Degree change of B-spline curves and surfaces, composed from the Bezier operations of document
+//! 004 (docs/theory/degree.md#b-spline-degree-change) and Bezier decomposition (STYLE §7; as
+//! `ricosjp/truck` `BSplineCurve::elevate_degree` and `msteinbeck/tinyspline`
+//! `ts_bspline_elevate_degree`):
 //!
 //! 1. split the curve into its polynomial pieces ([`BSplineCurve::to_bezier_segments`]);
 //! 2. change the degree of every piece (elevation, exact reduction or approximate reduction);
@@ -18,7 +19,8 @@
 //! the C0 form.
 
 use crate::degree::approx_reduction::EndConditions;
-use crate::degree::curve::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
+use crate::degree::elevation::check_size;
+use crate::degree::reduction::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, DEFAULT_DEGREE_TOLERANCE};
@@ -90,9 +92,9 @@ impl BSplineCurve {
         }
         knots.extend(std::iter::repeat_n(b, q + 1));
         let n_ctrl = knots.len() - q - 1;
-        crate::degree::curve::check_size("elevated control points", n_ctrl, dim)?;
+        check_size("elevated control points", n_ctrl, dim)?;
         let width = (q + 1) * dim;
-        crate::degree::curve::check_size("elevated pieces", segments.len(), width)?;
+        check_size("elevated pieces", segments.len(), width)?;
         let mut nets = vec![0.0; segments.len() * width];
         for (s, net) in segments.iter().zip(nets.chunks_exact_mut(width)) {
             plan.apply_into(s.curve.control_points().as_slice(), dim, net)?;
@@ -145,7 +147,7 @@ impl BSplineCurve {
             blossom_in_place(&mut scratch, dim, args, lo, hi);
             out.copy_from_slice(&scratch[..dim]);
         }
-        BSplineCurve::new(q, knots, Points::new(control, dim)?)
+        BSplineCurve::new(q, knots, Points::from_flat(dim, control)?)
     }
 
     /// Changes the degree to `target` without changing the shape, with the default tolerance
@@ -303,7 +305,7 @@ impl BSplineSurface {
     ///
     /// ```
     /// use lekalo::{BSplineSurface, KnotVector, Points};
-    /// let net = Points::new((0..4 * 3).map(|k| f64::from(k * k % 5)).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..4 * 3).map(|k| f64::from(k * k % 5)).collect())?;
     /// let s = BSplineSurface::from_knot_vectors(
     ///     2, 1, KnotVector::clamped_uniform(2, 4)?, KnotVector::clamped_uniform(1, 3)?, net, (4, 3))?;
     /// let e = s.elevate_degree(1, 2)?;
@@ -473,11 +475,11 @@ mod tests {
     #[test]
     fn surface_degree_change() {
         use crate::KnotVector;
-        let net = Points::new(
+        let net = Points::from_flat(
+            2,
             (0..5 * 4 * 2)
                 .map(|k| (f64::from(k) * 12.9898).sin() * 3.0)
                 .collect(),
-            2,
         )
         .unwrap();
         let ku = KnotVector::new(vec![0., 0., 0., 0.4, 0.4, 1., 1., 1.]).unwrap();
@@ -524,7 +526,7 @@ mod tests {
             let (p, knots, ctrl) = e.into_parts();
             let mut data = ctrl.into_vec();
             data[7] += 0.01; // breaks the degree defect of one piece
-            BSplineCurve::from_knot_vector(p, knots, Points::new(data, 3).unwrap()).unwrap()
+            BSplineCurve::from_knot_vector(p, knots, Points::from_flat(3, data).unwrap()).unwrap()
         };
         assert!(matches!(
             noisy.change_degree(3),

@@ -1,5 +1,6 @@
 //! Changing the degree of Bezier curves without changing their shape (document 004, Nikulin
-//! 2011, "A new method of changing the orders of Bezier curves and surfaces", digest §E).
+//! 2011, "A new method of changing the orders of Bezier curves and surfaces";
+//! docs/theory/degree.md).
 //!
 //! The paper calls the degree `n` the "order" (the number of legs of the control polygon). It
 //! works with the monomial form `p(t) = U_n H_n T_n(t)` (eq. 1–5): elevation is
@@ -41,449 +42,16 @@
 //! - The real degree depends on the tolerance: a smooth control polygon of high degree is often
 //!   within `1e-10 × scale` of a lower degree, and then that lower degree is its real degree.
 
-use crate::degree::elevation_plan::{apply_band, band_stride, elevation_band};
-use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::degree::elevation::{binomials, check_size, elevate};
+use crate::degree::monomial::{
+    check_monomial_degree, from_monomial_vec, real_degree_monomial_slice, to_monomial_vec,
+};
+use crate::degree::reduction::{
+    absolute_tolerance, real_degree_and_net, try_reduce_exact, DEFAULT_DEGREE_TOLERANCE,
+};
+use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
-use std::cell::RefCell;
-
-/// Default relative tolerance of the degree-defect test: a reduction is accepted as exact when it
-/// changes no control-point coordinate by more than `1e-10 ×` the largest absolute coordinate.
-/// Elevated nets computed in `f64` reduce back with residuals near `1e-15`, so this leaves five
-/// orders of magnitude for data that went through other software or a text file.
-pub const DEFAULT_DEGREE_TOLERANCE: f64 = 1e-10;
-
-/// Largest degree for the monomial (power-basis) conversions in `f64`: above it the binomial
-/// coefficients `C(n, j)` overflow.
-pub const MAX_MONOMIAL_DEGREE: usize = 1000;
-
-// ---------------------------------------------------------------------------------------------
-// Kernels on flat point-major slices (pub(crate); callers validate).
-// ---------------------------------------------------------------------------------------------
-
-/// Largest `n` for which every binomial coefficient `C(n, k)` is an integer below `2^53`, so exact
-/// in `f64` (`C(56, 28) ≈ 7.65·10^15 < 2^53 ≈ 9.01·10^15 < C(57, 28)`).
-const EXACT_BINOMIAL_MAX: usize = 56;
-
-/// Largest `n` of the binomial table: every `C(n, k)` up to `C(131, 65) ≈ 1.9·10^38` is an exact
-/// `u128` at compile time, stored correctly rounded to `f64` (exact up to
-/// [`EXACT_BINOMIAL_MAX`]).
-pub(crate) const BINOMIAL_TABLE_MAX: usize = 131;
-
-/// Entries of the triangle `0 ≤ k ≤ n ≤ BINOMIAL_TABLE_MAX`.
-const BINOMIAL_ENTRIES: usize = (BINOMIAL_TABLE_MAX + 1) * (BINOMIAL_TABLE_MAX + 2) / 2;
-
-/// Pascal's triangle row after row: `C(n, k)` at `n(n+1)/2 + k`.
-static BINOMIAL: [f64; BINOMIAL_ENTRIES] = pascal();
-
-/// Pascal's triangle by `C(n, k) = C(n−1, k−1) + C(n−1, k)` in `u128` (exact), at compile time,
-/// each entry then rounded to the nearest `f64`.
-const fn pascal() -> [f64; BINOMIAL_ENTRIES] {
-    let mut exact = [0_u128; BINOMIAL_ENTRIES];
-    let mut rounded = [0.0_f64; BINOMIAL_ENTRIES];
-    let mut n = 0;
-    while n <= BINOMIAL_TABLE_MAX {
-        let row = n * (n + 1) / 2;
-        let mut k = 0;
-        while k <= n {
-            exact[row + k] = if k == 0 || k == n {
-                1
-            } else {
-                let prev = (n - 1) * n / 2;
-                exact[prev + k - 1] + exact[prev + k]
-            };
-            rounded[row + k] = exact[row + k] as f64;
-            k += 1;
-        }
-        n += 1;
-    }
-    rounded
-}
-
-/// The row `C(n, 0 ..= n)` of the binomial table (correctly rounded, exact up to `n = 56`), or
-/// `None` above [`BINOMIAL_TABLE_MAX`].
-pub(crate) fn binomial_row(n: usize) -> Option<&'static [f64]> {
-    (n <= BINOMIAL_TABLE_MAX).then(|| &BINOMIAL[n * (n + 1) / 2..=n * (n + 1) / 2 + n])
-}
-
-/// Weights `w_i = C(n,i) C(r,j−i) / C(n+r,j)` of point `u_i` in the elevated point `u'_j`, for
-/// `i = lo..=hi` with `lo = max(0, j−r)`, `hi = min(j, n)`, written to `out[..=hi−lo]`. Returns
-/// `lo`.
-///
-/// Up to `n + r = 56` ([`EXACT_BINOMIAL_MAX`]) the binomials come from a table and are exact,
-/// and so is the numerator (`C(n,i) C(r,j−i) ≤ C(n+r,j) < 2^53` by Vandermonde's identity): each
-/// weight is the correctly rounded quotient of two exact integers, one division. Above, the
-/// weights are hypergeometric probabilities built from their ratios starting at the mode (so
-/// nothing overflows at any degree) and normalised by their sum, which is exactly 1
-/// (Vandermonde's identity); each weight is then accurate to a few ulps.
-pub(crate) fn elevation_weights_into(n: usize, r: usize, j: usize, out: &mut [f64]) -> usize {
-    let lo = j.saturating_sub(r);
-    let hi = j.min(n);
-    debug_assert!(lo <= hi && out.len() > hi - lo, "weights buffer too short");
-    if let (true, Some(row_n), Some(row_r), Some(row_nr)) = (
-        n + r <= EXACT_BINOMIAL_MAX,
-        binomial_row(n),
-        binomial_row(r),
-        binomial_row(n + r),
-    ) {
-        let total = row_nr[j];
-        for (w, i) in out.iter_mut().zip(lo..=hi) {
-            // the product is an exact integer below 2^53
-            *w = row_n[i] * row_r[j - i] / total;
-        }
-        return lo;
-    }
-    ratio_weights_into(n, r, j, out)
-}
-
-/// The weights of [`elevation_weights_into`] from their ratios, for any degree.
-fn ratio_weights_into(n: usize, r: usize, j: usize, out: &mut [f64]) -> usize {
-    let lo = j.saturating_sub(r);
-    let hi = j.min(n);
-    // mode of the hypergeometric distribution (population n + r, n successes, j draws)
-    let mode = ((j + 1) * (n + 1) / (n + r + 2)).clamp(lo, hi);
-    out[mode - lo] = 1.0;
-    for i in mode..hi {
-        // w(i+1)/w(i) = (n−i)(j−i) / ((i+1)(r−j+i+1))
-        let ratio = ((n - i) * (j - i)) as f64 / ((i + 1) * (r + i + 1 - j)) as f64;
-        out[i + 1 - lo] = out[i - lo] * ratio;
-    }
-    for i in (lo + 1..=mode).rev() {
-        // w(i−1)/w(i) = i(r−j+i) / ((n−i+1)(j−i+1))
-        let ratio = (i * (r + i - j)) as f64 / ((n - i + 1) * (j - i + 1)) as f64;
-        out[i - 1 - lo] = out[i - lo] * ratio;
-    }
-    let sum: f64 = out[..=hi - lo].iter().sum();
-    for w in &mut out[..=hi - lo] {
-        *w /= sum;
-    }
-    lo
-}
-
-/// Largest band (in numbers) [`elevate`] keeps between calls: 64 Ki numbers, 512 KiB.
-const KEPT_BAND_MAX: usize = 1 << 16;
-
-thread_local! {
-    /// `(n, r, band)` of this thread's last one-step elevation ([`elevate`]).
-    static LAST_BAND: RefCell<(usize, usize, Vec<f64>)> =
-        const { RefCell::new((usize::MAX, 0, Vec::new())) };
-}
-
-/// One-step elevation by `r` into a new vector (document 004 eq. 8 in closed form): the band of
-/// weights ([`elevation_band`]) applied to `src` (`n + 1` points of `dim` coordinates).
-/// O((n+1)(r+1)·dim), the same arithmetic as an [`ElevationPlan`](crate::ElevationPlan).
-///
-/// The band depends on `(n, r)` only, and forming it (`n + r + 1` divisions, `(n+1)(r+1)`
-/// products) costs more than applying it to a 3-D curve: 0.38 µs a call against the plan's
-/// 0.10 µs for 10 → 20. So the last band of each thread (up to [`KEPT_BAND_MAX`] numbers) is kept,
-/// and a run of elevations between the same degrees forms it once. The numbers are the same
-/// either way (tested).
-pub(crate) fn elevate(src: &[f64], dim: usize, r: usize) -> Vec<f64> {
-    let n_pts = src.len() / dim;
-    let mut out = vec![0.0; (n_pts + r) * dim];
-    if n_pts == 0 {
-        return out;
-    }
-    let n = n_pts - 1;
-    let kept = (n + 1).saturating_mul(band_stride(r)) <= KEPT_BAND_MAX
-        && LAST_BAND
-            .try_with(|slot| {
-                // (a slot in use or a thread being torn down: form the band afresh)
-                let Ok(mut slot) = slot.try_borrow_mut() else {
-                    return false;
-                };
-                if (slot.0, slot.1) != (n, r) {
-                    *slot = (n, r, elevation_band(n, r));
-                }
-                apply_band(&slot.2, r, src, dim, &mut out);
-                true
-            })
-            .unwrap_or(false);
-    if !kept {
-        apply_band(&elevation_band(n, r), r, src, dim, &mut out);
-    }
-    out
-}
-
-/// Least-squares inverse of elevation: the degree-`k` net `Q` minimising `‖E Q − P‖₂` for each
-/// coordinate, where `E` is the `(n+1)×(k+1)` elevation matrix `C(k,i) C(r,j−i) / C(n,j)`,
-/// `r = n − k` (the transpose of `H_k K_{k,n}`, document 004 eq. 8). When `P` is an elevated net
-/// (a degree defect of at least `r`, eq. 9) the residual is zero and `Q` is the exact reduction.
-///
-/// Householder QR that exploits the band (column `i` of `E` is non-zero in rows `i..=i+r` only,
-/// and so is row `i` of `R` in columns `i..=i+r`): O((k+1)(r+1)(r+1+dim)) flops, backward stable.
-/// The error in `Q` is bounded by `cond(E)·ε·scale`; measured `cond(E)`: 4.6 for 40→41, 3.2e2
-/// for 20→30, 2.0e5 for 40→60, 1.2e7 for 40→80. This is far better than reducing one degree
-/// at a time, whose error amplifications multiply.
-pub(crate) fn reduce_least_squares(src: &[f64], dim: usize, k: usize) -> Vec<f64> {
-    let rows = src.len() / dim;
-    let n = rows - 1;
-    debug_assert!(k <= n, "reduction target above the degree");
-    let r = n - k;
-    // E column-major: a[i * rows + j] = weight of q_i in p_j
-    let mut a = vec![0.0; rows * (k + 1)];
-    let mut w = vec![0.0; k + 1];
-    for j in 0..=n {
-        let lo = elevation_weights_into(k, r, j, &mut w);
-        for i in lo..=j.min(k) {
-            a[i * rows + j] = w[i - lo];
-        }
-    }
-    let mut b = src.to_vec(); // right-hand sides, row-major (rows × dim)
-    let mut diag = vec![0.0; k + 1];
-    let mut v = vec![0.0; r + 1];
-    let mut dots = vec![0.0; dim];
-    for i in 0..=k {
-        let last = (i + r).min(n);
-        let len = last - i + 1;
-        let col = &a[i * rows + i..=i * rows + last];
-        let norm = crate::numeric::linalg::norm2(col);
-        let alpha = if col[0] > 0.0 { -norm } else { norm };
-        v[..len].copy_from_slice(col);
-        v[0] -= alpha;
-        let vv = dot4(&v[..len], &v[..len]);
-        diag[i] = alpha;
-        if vv == 0.0 {
-            continue;
-        }
-        let tau = 2.0 / vv;
-        for j in i + 1..=(i + r).min(k) {
-            let cj = &mut a[j * rows + i..=j * rows + last];
-            let dot = dot4(cj, &v[..len]);
-            for (x, y) in cj.iter_mut().zip(&v[..len]) {
-                *x -= tau * dot * y;
-            }
-        }
-        // all coordinates at once: one pass over the rows, `dim` independent sums
-        let rhs = &mut b[i * dim..(last + 1) * dim];
-        dots.fill(0.0);
-        for (row, &vl) in rhs.chunks_exact(dim).zip(&v[..len]) {
-            for (s, &x) in dots.iter_mut().zip(row) {
-                *s += x * vl;
-            }
-        }
-        for (row, &vl) in rhs.chunks_exact_mut(dim).zip(&v[..len]) {
-            for (x, &s) in row.iter_mut().zip(&dots) {
-                *x -= tau * s * vl;
-            }
-        }
-    }
-    // back substitution with R (diagonal in `diag`, R[i][j] = a[j * rows + i] for j > i)
-    let mut q = vec![0.0; (k + 1) * dim];
-    for i in (0..=k).rev() {
-        for d in 0..dim {
-            let mut s = b[i * dim + d];
-            for j in i + 1..=(i + r).min(k) {
-                s -= a[j * rows + i] * q[j * dim + d];
-            }
-            q[i * dim + d] = s / diag[i];
-        }
-    }
-    q
-}
-
-/// `Σ a_l b_l` in four interleaved partial sums (combined pairwise at the end), so that the
-/// Householder updates of [`reduce_least_squares`] are not bound by the latency of one chain of
-/// additions; as accurate as the sequential sum (the error bound of pairwise summation).
-fn dot4(a: &[f64], b: &[f64]) -> f64 {
-    let mut s = [0.0_f64; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for l in 0..4 {
-            s[l] += x[l] * y[l];
-        }
-    }
-    for (l, (x, y)) in ra.iter().zip(rb).enumerate() {
-        s[l] += x * y;
-    }
-    (s[0] + s[1]) + (s[2] + s[3])
-}
-
-/// Whether the net reduces exactly to degree `k`: the least-squares reduction, elevated back,
-/// reproduces `src` within `tol_abs` per coordinate. Returns the reduced net if so.
-pub(crate) fn try_reduce_exact(
-    src: &[f64],
-    dim: usize,
-    k: usize,
-    tol_abs: f64,
-) -> Option<Vec<f64>> {
-    let n = src.len() / dim - 1;
-    let mut q = reduce_least_squares(src, dim, k);
-    if k >= 1 {
-        // an exact reduction keeps the end points (eq. 6 read backwards): use them exactly, so
-        // that joins of Bezier pieces stay bit-identical
-        q[..dim].copy_from_slice(&src[..dim]);
-        q[k * dim..].copy_from_slice(&src[n * dim..]);
-    }
-    let back = elevate(&q, dim, n - k);
-    (max_abs_diff(&back, src) <= tol_abs).then_some(q)
-}
-
-/// Largest coordinate difference; infinite if any difference is NaN or infinite.
-pub(crate) fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
-    let mut m = 0.0_f64;
-    for (x, y) in a.iter().zip(b) {
-        let d = (x - y).abs();
-        if !d.is_finite() {
-            return f64::INFINITY;
-        }
-        m = m.max(d);
-    }
-    m
-}
-
-/// Real degree of the net `src` and the net reduced to it: the smallest `k ≥ floor` to which
-/// [`try_reduce_exact`] reduces it, found by galloping down from the top (degrees `n − 1`,
-/// `n − 2`, `n − 4`, … until one fails) and bisecting between the last success and that
-/// failure.
-///
-/// Reducibility is monotone in `k` (a degree-`k` net elevated by one is a degree-`k + 1`
-/// reduction), which both this search and a scan down from `n − 1` to the first failure rely
-/// on; they return the same degree (tested). A net without defect costs one O(n·dim) reduction,
-/// as before; a defect `d` costs about `2 log₂ d` reductions instead of `d + 1` (3-D,
-/// 100 → 48: 4.5 ms scanned, see `docs/performance.md`, session 6).
-pub(crate) fn real_degree_and_net(
-    src: &[f64],
-    dim: usize,
-    tol_abs: f64,
-    floor: usize,
-) -> (usize, Vec<f64>) {
-    let n = src.len() / dim - 1;
-    // the lowest degree known to reduce, with its net, and a degree below it known not to
-    let mut good = (n, src.to_vec());
-    let mut bad = None;
-    let mut step = 1;
-    while bad.is_none() && good.0 > floor {
-        let k = n.saturating_sub(step).max(floor);
-        match try_reduce_exact(src, dim, k, tol_abs) {
-            Some(q) => good = (k, q),
-            None => bad = Some(k),
-        }
-        step = step.saturating_mul(2);
-    }
-    if let Some(mut bad) = bad {
-        while good.0 - bad > 1 {
-            let mid = bad + (good.0 - bad) / 2;
-            match try_reduce_exact(src, dim, mid, tol_abs) {
-                Some(q) => good = (mid, q),
-                None => bad = mid,
-            }
-        }
-    }
-    good
-}
-
-/// Checks a relative tolerance and turns it into an absolute one for a net.
-pub(crate) fn absolute_tolerance(tolerance: f64, net: &[f64]) -> Result<f64> {
-    if !(tolerance.is_finite() && tolerance >= 0.0) {
-        return Err(Error::InvalidArgument {
-            what: "degree tolerance",
-            reason: format!(
-                "{tolerance} is not a finite non-negative number (relative to the largest \
-                 absolute control-point coordinate; the default is {DEFAULT_DEGREE_TOLERANCE})"
-            ),
-        });
-    }
-    Ok(tolerance * net.iter().fold(0.0_f64, |m, v| m.max(v.abs())))
-}
-
-/// Binomial coefficients `C(n, 0..=n)` in `f64` (exact up to `n = 56`, a few ulps beyond).
-pub(crate) fn binomials(n: usize) -> Vec<f64> {
-    let mut c = Vec::with_capacity(n + 1);
-    let mut v = 1.0_f64;
-    c.push(v);
-    for j in 1..=n {
-        v = v * (n + 1 - j) as f64 / j as f64;
-        c.push(v);
-    }
-    for j in 0..=n / 2 {
-        c[n - j] = c[j];
-    }
-    c
-}
-
-/// Monomial coefficients `s_j = C(n,j) Δ^j u_0` (the columns of `U_n H_n`, document 004 eq. 5).
-pub(crate) fn to_monomial_vec(src: &[f64], dim: usize) -> Vec<f64> {
-    let n = src.len() / dim - 1;
-    let c = binomials(n);
-    let mut diff = src.to_vec();
-    let mut out = vec![0.0; src.len()];
-    out[..dim].copy_from_slice(&src[..dim]);
-    for j in 1..=n {
-        for i in 0..=(n - j) {
-            for k in 0..dim {
-                diff[i * dim + k] = diff[(i + 1) * dim + k] - diff[i * dim + k];
-            }
-        }
-        for k in 0..dim {
-            out[j * dim + k] = c[j] * diff[k];
-        }
-    }
-    out
-}
-
-/// Control points `u_j = Σ_{i≤j} C(j,i)/C(n,i) s_i` from monomial coefficients (`S_n H_n^{-1}`).
-pub(crate) fn from_monomial_vec(coeffs: &[f64], dim: usize) -> Vec<f64> {
-    let n = coeffs.len() / dim - 1;
-    let mut out = vec![0.0; coeffs.len()];
-    for j in 0..=n {
-        let mut ratio = 1.0_f64; // C(j,i)/C(n,i) at i = 0
-        for i in 0..=j {
-            for k in 0..dim {
-                out[j * dim + k] += ratio * coeffs[i * dim + k];
-            }
-            if i < j {
-                ratio *= (j - i) as f64 / (n - i) as f64;
-            }
-        }
-    }
-    out
-}
-
-/// Real degree by the paper's rule (§E.3): the number of trailing monomial coefficients that
-/// vanish. `s_j` counts as zero when `|s_j| ≤ tol_abs · C(n,j) · 2^j`, the size of its rounding
-/// error when computed from a net of scale 1.
-pub(crate) fn real_degree_monomial_slice(coeffs: &[f64], dim: usize, tol_abs: f64) -> usize {
-    let n = coeffs.len() / dim - 1;
-    let c = binomials(n);
-    let mut degree = n;
-    while degree > 0 {
-        let bound = tol_abs * c[degree] * 2.0_f64.powi(i32::try_from(degree).unwrap_or(i32::MAX));
-        let s = &coeffs[degree * dim..(degree + 1) * dim];
-        if s.iter().all(|x| x.abs() <= bound) {
-            degree -= 1;
-        } else {
-            break;
-        }
-    }
-    degree
-}
-
-fn check_monomial_degree(degree: usize) -> Result<()> {
-    if degree > MAX_MONOMIAL_DEGREE {
-        return Err(Error::Degree {
-            degree,
-            reason: format!(
-                "monomial (power-basis) conversion is limited to degree {MAX_MONOMIAL_DEGREE}, \
-                 above which the binomial coefficients overflow f64"
-            ),
-        });
-    }
-    Ok(())
-}
-
-/// Checks that `points × dim` scalars can be allocated.
-pub(crate) fn check_size(what: &'static str, points: usize, dim: usize) -> Result<()> {
-    match points.checked_mul(dim) {
-        Some(size) if size <= MAX_SCALARS => Ok(()),
-        other => Err(Error::TooLarge {
-            what,
-            size: other.unwrap_or(usize::MAX),
-            max: MAX_SCALARS,
-        }),
-    }
-}
 
 pub(crate) fn finite_result(what: &'static str, data: Vec<f64>, dim: usize) -> Result<Points> {
     if check_finite(what, &data).is_err() {
@@ -493,10 +61,6 @@ pub(crate) fn finite_result(what: &'static str, data: Vec<f64>, dim: usize) -> R
     }
     Ok(Points::from_raw(data, dim))
 }
-
-// ---------------------------------------------------------------------------------------------
-// Bezier curves
-// ---------------------------------------------------------------------------------------------
 
 impl BezierCurve {
     /// Monomial coefficients `s_0 … s_n` with `p(t) = Σ s_j t^j`: the columns of `S_n = U_n H_n`
@@ -530,12 +94,12 @@ impl BezierCurve {
 
     /// The Bezier curve of degree `n` (= number of coefficients − 1) with `p(t) = Σ s_j t^j`:
     /// `U_n = S_n H_n^{-1}`, `u_j = Σ_{i≤j} C(j,i)/C(n,i) s_i` (document 004 eq. 5 with the
-    /// closed-form inverse of digest §E.1). O(n²·dim).
+    /// closed-form inverse of docs/theory/degree.md#three-forms-of-a-bezier-curve). O(n²·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
-    /// // p(t) = 1 + 2t + 0t², a quadratic whose real degree is 1 (the paper's example, §E.2)
-    /// let c = BezierCurve::from_monomial(Points::new(vec![1.0, 2.0, 0.0], 1)?)?;
+    /// // p(t) = 1 + 2t + 0t², a quadratic of real degree 1 (document 004's example, eq. (6)–(8))
+    /// let c = BezierCurve::from_monomial(Points::from_flat(1, vec![1.0, 2.0, 0.0])?)?;
     /// assert_eq!(c.control_points().as_slice(), &[1.0, 2.0, 3.0]);
     /// assert_eq!(c.real_degree(), 1);
     /// # Ok::<(), lekalo::Error>(())
@@ -569,7 +133,7 @@ impl BezierCurve {
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // document 004, Example 1, task 1: u'_1 = u_0/3 + 2u_1/3
-    /// let c = BezierCurve::new(Points::new(vec![0.0, 3.0, 6.0], 1)?)?.elevate_degree_once();
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![0.0, 3.0, 6.0])?)?.elevate_degree_once();
     /// assert_eq!(c.control_points().as_slice(), &[0.0, 2.0, 4.0, 6.0]);
     /// # Ok::<(), lekalo::Error>(())
     /// ```
@@ -592,15 +156,16 @@ impl BezierCurve {
     }
 
     /// Elevation by `by` in one step (document 004 eq. 7–8) in the closed form
-    /// `u'_j = Σ_i C(n,i) C(r,j−i) / C(n+r,j) u_i`, `r = by` (digest §E.2; Farin, *Curves and
-    /// Surfaces for CAGD*, §5.1). Each new point is a convex combination of old ones, so the
-    /// result is accurate to a few ulps of the net's scale at any degree. Equal to `by`
-    /// applications of [`BezierCurve::elevate_degree_once`]. O((n+1)(r+1)·dim).
+    /// `u'_j = Σ_i C(n,i) C(r,j−i) / C(n+r,j) u_i`, `r = by`
+    /// (docs/theory/degree.md#elevation-by-several-degrees; Farin, *Curves and Surfaces for CAGD*,
+    /// §5.1). Each new point is a convex combination of old ones, so the result is accurate to a
+    /// few ulps of the net's scale at any degree. Equal to `by` applications of
+    /// [`BezierCurve::elevate_degree_once`]. O((n+1)(r+1)·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
     /// // document 004, Example 1, task 3: u'_2 = (u_0 + 6u_1 + 3u_2)/10
-    /// let c = BezierCurve::new(Points::new(vec![10.0, 0.0, 0.0, 0.0], 1)?)?.elevate_degree(2)?;
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![10.0, 0.0, 0.0, 0.0])?)?.elevate_degree(2)?;
     /// assert!((c.control_points().as_slice()[2] - 1.0).abs() < 1e-15);
     /// # Ok::<(), lekalo::Error>(())
     /// ```
@@ -638,14 +203,14 @@ impl BezierCurve {
         real_degree_and_net(p.as_slice(), p.dim(), tol, 0).0
     }
 
-    /// Degree defect `d = n − n'` (document 004 §E.3) with the default tolerance.
+    /// Degree defect `d = n − n'` (document 004, eq. (9)–(10)) with the default tolerance.
     #[must_use]
     pub fn degree_defect(&self) -> usize {
         self.degree() - self.real_degree()
     }
 
-    /// Real degree `n'` of the polynomial (document 004 §E.3): the smallest `k` such that the
-    /// exact reduction to degree `k` (stable Bernstein-domain recurrences, see the module
+    /// Real degree `n'` of the polynomial (document 004, eq. (9)–(10)): the smallest `k` such that
+    /// the exact reduction to degree `k` (stable Bernstein-domain recurrences, see the module
     /// documentation), elevated back to degree `n`, reproduces every control-point coordinate to
     /// within `tolerance × max|coordinate|`. By the convex-hull property the curve then moves by
     /// at most that much per coordinate. Equivalent in exact arithmetic to the paper's count of
@@ -660,10 +225,11 @@ impl BezierCurve {
         Ok(real_degree_and_net(p.as_slice(), p.dim(), tol, 0).0)
     }
 
-    /// Real degree by the paper's literal rule (document 004 §E.3): the number of trailing zero
-    /// columns of `S_n = U_n H_n`. Coefficient `s_j` counts as zero when every coordinate is at
-    /// most `tolerance × max|coordinate| × C(n,j) × 2^j`, the scale of its rounding error. Reliable
-    /// for low degrees (about 15); use [`BezierCurve::real_degree_with_tolerance`] otherwise.
+    /// Real degree by the paper's literal rule (document 004, eq. (9)–(10)): the number of trailing
+    /// zero columns of `S_n = U_n H_n`. Coefficient `s_j` counts as zero when every coordinate is
+    /// at most `tolerance × max|coordinate| × C(n,j) × 2^j`, the scale of its rounding error.
+    /// Reliable for low degrees (about 15); use [`BezierCurve::real_degree_with_tolerance`]
+    /// otherwise.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a bad tolerance; as [`BezierCurve::to_monomial`].
@@ -722,8 +288,8 @@ impl BezierCurve {
     /// - `target < n`: exact reduction, possible only if the real degree
     ///   ([`BezierCurve::real_degree_with_tolerance`]) is at most `target`. Otherwise the request
     ///   is refused instead of silently changing the shape (which eq. 10 would do by dropping
-    ///   the terms `t^(target+1) … t^n`, digest §E.3). For an approximation use
-    ///   [`BezierCurve::reduce_degree_approx`].
+    ///   the terms `t^(target+1) … t^n`, docs/theory/degree.md#reduction-without-a-defect). For an
+    ///   approximation use [`BezierCurve::reduce_degree_approx`].
     ///
     /// # Errors
     /// [`Error::DegreeReductionRefused`] with the real degree; [`Error::InvalidArgument`] for a
@@ -813,141 +379,10 @@ impl BezierCurve {
 
 #[cfg(test)]
 mod tests {
-    /// The galloping search of `real_degree_and_net` returns the degree and net of the scan
-    /// from `n − 1` down to the first failure, for nets elevated from random ones (defects 0 to
-    /// 40, degrees up to 60, 1–3 dimensions), with and without a floor.
-    #[test]
-    fn galloping_real_degree_matches_scan() {
-        use super::{elevate, real_degree_and_net, try_reduce_exact, DEFAULT_DEGREE_TOLERANCE};
-        let scan = |src: &[f64], dim: usize, tol: f64, floor: usize| {
-            let n = src.len() / dim - 1;
-            let mut best = (n, src.to_vec());
-            for k in (floor..n).rev() {
-                match try_reduce_exact(src, dim, k, tol) {
-                    Some(q) => best = (k, q),
-                    None => break,
-                }
-            }
-            best
-        };
-        let mut seed = 7_u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
-        for dim in 1..=3 {
-            for (m, d) in [
-                (0, 3),
-                (1, 0),
-                (2, 5),
-                (3, 1),
-                (5, 7),
-                (8, 8),
-                (12, 20),
-                (20, 40),
-            ] {
-                let base: Vec<f64> = (0..(m + 1) * dim).map(|_| next()).collect();
-                let src = if d == 0 { base } else { elevate(&base, dim, d) };
-                let tol =
-                    DEFAULT_DEGREE_TOLERANCE * src.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-                for floor in [0, m / 2, m + d / 2] {
-                    let got = real_degree_and_net(&src, dim, tol, floor);
-                    let want = scan(&src, dim, tol, floor);
-                    assert_eq!(got.0, want.0, "dim {dim}, {m} + {d}, floor {floor}");
-                    assert_eq!(got.1, want.1, "dim {dim}, {m} + {d}, floor {floor}");
-                }
-            }
-        }
-    }
-
-    /// The kept band gives the numbers a freshly formed band gives, whichever elevation came
-    /// before, and a band over the limit is formed every time.
-    #[test]
-    fn kept_elevation_band_changes_nothing() {
-        use super::{apply_band, elevate, elevation_band, KEPT_BAND_MAX};
-        let fresh = |src: &[f64], dim: usize, r: usize| {
-            let mut out = vec![0.0; (src.len() / dim + r) * dim];
-            apply_band(
-                &elevation_band(src.len() / dim - 1, r),
-                r,
-                src,
-                dim,
-                &mut out,
-            );
-            out
-        };
-        let net = |pts: usize, dim: usize| -> Vec<f64> {
-            (0..pts * dim)
-                .map(|i| (i as f64 * 0.7).sin() * 3.0 + 1.0)
-                .collect()
-        };
-        // alternate degrees and elevations so that the slot both hits and misses
-        for (pts, dim, r) in [
-            (11, 3, 10),
-            (11, 3, 10),
-            (5, 2, 3),
-            (11, 3, 10),
-            (11, 2, 4),
-            (5, 2, 3),
-        ] {
-            let src = net(pts, dim);
-            assert_eq!(
-                elevate(&src, dim, r),
-                fresh(&src, dim, r),
-                "{pts} points by {r}"
-            );
-        }
-        // too large to keep: (n + 1) rows of r + 1 + 2·BAND_PAD numbers above the limit
-        let (pts, r) = (300, KEPT_BAND_MAX / 300);
-        let src = net(pts, 1);
-        assert_eq!(elevate(&src, 1, r), fresh(&src, 1, r), "large band");
-        // and the kept slot still serves the small one afterwards
-        let src = net(11, 3);
-        assert_eq!(
-            elevate(&src, 3, 10),
-            fresh(&src, 3, 10),
-            "after the large band"
-        );
-    }
-
-    #[test]
-    fn exact_binomial_weights_agree_with_the_ratio_weights() {
-        use super::{binomial_row, elevation_weights_into, ratio_weights_into, EXACT_BINOMIAL_MAX};
-        // the table is Pascal's triangle, exact up to C(56, 28) (below 2^53), rounded beyond
-        let row = |n| binomial_row(n).unwrap();
-        assert_eq!(row(56)[28], 7_648_690_600_760_440.0);
-        assert!(row(56)[28] < 2.0_f64.powi(53));
-        assert_eq!(row(10)[3], 120.0);
-        assert_eq!(row(10).len(), 11);
-        // C(131, 65) = 188694833082770476622296176145946360850 (exact, rounded once)
-        assert_eq!(
-            row(131)[65],
-            188_694_833_082_770_476_622_296_176_145_946_360_850_u128 as f64
-        );
-        assert!(binomial_row(132).is_none());
-        let (mut a, mut b) = ([0.0; 64], [0.0; 64]);
-        for n in 0..=EXACT_BINOMIAL_MAX {
-            for r in 0..=EXACT_BINOMIAL_MAX - n {
-                for j in 0..=n + r {
-                    let lo = elevation_weights_into(n, r, j, &mut a);
-                    assert_eq!(lo, ratio_weights_into(n, r, j, &mut b));
-                    let count = j.min(n) - lo + 1;
-                    let sum: f64 = a[..count].iter().sum();
-                    assert!((sum - 1.0).abs() <= 64.0 * f64::EPSILON, "sum {sum}");
-                    for (x, y) in a[..count].iter().zip(&b[..count]) {
-                        assert!(
-                            (x - y).abs() <= 8.0 * f64::EPSILON * x.max(*y),
-                            "n {n}, r {r}, j {j}: {x} vs {y}"
-                        );
-                    }
-                }
-            }
-        }
-    }
-
     use super::*;
+    use crate::degree::elevation::elevation_weights_into;
+    use crate::degree::monomial::MAX_MONOMIAL_DEGREE;
+    use crate::degree::reduction::max_abs_diff;
 
     /// A rough, deterministic net in [−4, 4] (a fixed hash, not randomness). Smooth nets would
     /// not do: their high-degree components are so small that their real degree at a tolerance
@@ -959,7 +394,7 @@ mod tests {
                 8.0 * (x - x.floor()) - 4.0
             })
             .collect();
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     fn curve_dev(a: &BezierCurve, b: &BezierCurve) -> f64 {
@@ -1105,14 +540,16 @@ mod tests {
             "round trip"
         );
         assert!(matches!(
-            BezierCurve::from_monomial(Points::new(vec![], 2).unwrap()),
+            BezierCurve::from_monomial(Points::from_flat(2, vec![]).unwrap()),
             Err(Error::TooFew { .. })
         ));
         let big =
-            BezierCurve::new(Points::new(vec![0.0; MAX_MONOMIAL_DEGREE + 2], 1).unwrap()).unwrap();
+            BezierCurve::new(Points::from_flat(1, vec![0.0; MAX_MONOMIAL_DEGREE + 2]).unwrap())
+                .unwrap();
         assert!(matches!(big.to_monomial(), Err(Error::Degree { .. })));
         let huge =
-            BezierCurve::new(Points::new(vec![1.5e308, -1.5e308, 1.5e308], 1).unwrap()).unwrap();
+            BezierCurve::new(Points::from_flat(1, vec![1.5e308, -1.5e308, 1.5e308]).unwrap())
+                .unwrap();
         assert!(matches!(
             huge.to_monomial(),
             Err(Error::IllConditioned { .. })
@@ -1133,14 +570,14 @@ mod tests {
 
     #[test]
     fn constant_and_linear_nets() {
-        let p = BezierCurve::new(Points::new(vec![2.0, 2.0, 2.0, 2.0], 1).unwrap()).unwrap();
+        let p = BezierCurve::new(Points::from_flat(1, vec![2.0, 2.0, 2.0, 2.0]).unwrap()).unwrap();
         assert_eq!(p.real_degree(), 0, "constant");
         assert_eq!(p.reduce_degree_exact().control_points().as_slice(), &[2.0]);
-        let z = BezierCurve::new(Points::new(vec![0.0; 6], 2).unwrap()).unwrap();
+        let z = BezierCurve::new(Points::from_flat(2, vec![0.0; 6]).unwrap()).unwrap();
         assert_eq!(z.real_degree(), 0, "zero net");
-        let l = BezierCurve::new(Points::new(vec![1.0, 2.0, 3.0, 4.0], 1).unwrap()).unwrap();
+        let l = BezierCurve::new(Points::from_flat(1, vec![1.0, 2.0, 3.0, 4.0]).unwrap()).unwrap();
         assert_eq!(l.real_degree(), 1, "line");
-        let single = BezierCurve::new(Points::new(vec![5.0], 1).unwrap()).unwrap();
+        let single = BezierCurve::new(Points::from_flat(1, vec![5.0]).unwrap()).unwrap();
         assert_eq!(single.change_degree(0).unwrap(), single, "degree 0 stays");
     }
 }

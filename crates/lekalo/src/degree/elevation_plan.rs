@@ -1,7 +1,7 @@
 //! Precomputed Bezier degree elevation for many curves of one degree (document 004 eq. 8), the
 //! fast path for batch work such as elevating every piece of a large model.
 
-use crate::degree::curve::{binomial_row, check_size, elevation_weights_into};
+use crate::degree::elevation::{apply_band, check_size, elevation_band, BAND_PAD};
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
@@ -127,151 +127,16 @@ impl ElevationPlan {
     }
 }
 
-/// Zeros on each side of a row of an [`elevation_band`]: one fewer than [`BLOCK`], so that a
-/// block of new points reads its weights from any old point's row without a bounds case.
-pub(crate) const BAND_PAD: usize = BLOCK - 1;
-
-/// New points [`gather_band`] sums at once, per coordinate (two 4-wide vectors).
-const BLOCK: usize = 8;
-
-/// Length of a row of an [`elevation_band`] for elevation by `r`.
-pub(crate) fn band_stride(r: usize) -> usize {
-    r + 1 + 2 * BAND_PAD
-}
-
-/// The weights of elevation from degree `n` by `r` as a zero-padded band: row `i` (of
-/// [`band_stride`]`(r)` numbers) holds [`BAND_PAD`] zeros, the weights `C(n,i) C(r,l) /
-/// C(n+r,i+l)` of old point `i` in new points `i + l`, `l = 0 … r` (document 004 eq. 8), and
-/// [`BAND_PAD`] zeros.
-///
-/// Up to `n + r = 131` from the binomial table, with the reciprocal of each denominator
-/// computed once (`n + r + 1` divisions in all): up to `n + r = 56` the table and the numerator
-/// are exact integers, so each weight is within an ulp (two roundings); above, the three
-/// binomials are correctly rounded and each weight is within about three ulps. Beyond 131, row
-/// by row with [`elevation_weights_into`].
-pub(crate) fn elevation_band(n: usize, r: usize) -> Vec<f64> {
-    let stride = band_stride(r);
-    let mut band = vec![0.0; (n + 1) * stride];
-    if let (Some(row_n), Some(row_r), Some(row_nr)) =
-        (binomial_row(n), binomial_row(r), binomial_row(n + r))
-    {
-        let inv: Vec<f64> = row_nr[..=n + r].iter().map(|c| 1.0 / c).collect();
-        for ((row, &cn), inv) in band
-            .chunks_exact_mut(stride)
-            .zip(&row_n[..=n])
-            .zip(inv.windows(r + 1))
-        {
-            for ((x, &cr), &v) in row[BAND_PAD..].iter_mut().zip(&row_r[..=r]).zip(inv) {
-                *x = cn * cr * v;
-            }
-        }
-        return band;
-    }
-    let mut scratch = vec![0.0; n + 1];
-    for j in 0..=n + r {
-        let lo = elevation_weights_into(n, r, j, &mut scratch);
-        for i in lo..=j.min(n) {
-            band[i * stride + BAND_PAD + (j - i)] = scratch[i - lo];
-        }
-    }
-    band
-}
-
-/// Applies an [`elevation_band`] for elevation by `r` to `control` (point-major, `dim ≥ 1`
-/// coordinates), overwriting `out`. Every new point is summed over the old points in increasing
-/// order, one multiply and one add a term, as a direct evaluation of eq. 8 would. Dimensions 1
-/// to 4 take [`gather_band`]; others scatter each old point into its `r + 1` new points (the
-/// same sums, tested). The caller checks the lengths.
-pub(crate) fn apply_band(band: &[f64], r: usize, control: &[f64], dim: usize, out: &mut [f64]) {
-    match dim {
-        1 => gather_band::<1>(band, r, control, out),
-        2 => gather_band::<2>(band, r, control, out),
-        3 => gather_band::<3>(band, r, control, out),
-        4 => gather_band::<4>(band, r, control, out),
-        _ => scatter_band(band, r, control, dim, out),
-    }
-}
-
-/// The point-major scatter of [`apply_band`]: old point `i` times each weight of its row, added
-/// to the new points `i … i + r` (document 004 eq. 8 term by term).
-fn scatter_band(band: &[f64], r: usize, control: &[f64], dim: usize, out: &mut [f64]) {
-    let width = r + 1;
-    out.fill(0.0);
-    for (i, (p, row)) in control
-        .chunks_exact(dim)
-        .zip(band.chunks_exact(band_stride(r)))
-        .enumerate()
-    {
-        let o = &mut out[i * dim..(i + width) * dim];
-        for (oc, &wl) in o
-            .chunks_exact_mut(dim)
-            .zip(&row[BAND_PAD..BAND_PAD + width])
-        {
-            for (x, y) in oc.iter_mut().zip(p) {
-                *x += wl * y;
-            }
-        }
-    }
-}
-
-crate::numeric::isa::avx2_dispatch! {
-    /// [`gather_band_body`] compiled with AVX2 where the processor has it, else as built
-    /// ([`crate::numeric::isa`]: the same bits, tested).
-    fn gather_band<const D: usize>(band: &[f64], r: usize, control: &[f64], out: &mut [f64])
-        = gather_band_body;
-}
-
-/// [`apply_band`] for `D` coordinates known at compile time: the new points a [`BLOCK`] at a
-/// time, each block's `D × BLOCK` sums held in registers while the old points that reach it
-/// (`i = j₀ − r … j₀ + BLOCK − 1`) are added in increasing order, the block's weights of old
-/// point `i` being `BLOCK` consecutive numbers of its padded row.
-///
-/// Why not the scatter: its three coordinates a weight are scalar read-modify-writes of memory
-/// (about one multiply-add a cycle). A vector axpy of a row into coordinate-major
-/// accumulators was tried and was slower (10 → 20 in 3-D: 96 → 244 ns): the windows of
-/// consecutive rows overlap by all but one number, so each vector load straddles two earlier
-/// stores and store-to-load forwarding fails. Held in registers, the sums touch memory once.
-///
-/// The same bits as the scatter for finite input: each sum adds its products in increasing `i`
-/// from `+0.0`; the extra terms are the padding's zeros times a finite coordinate, `±0.0`,
-/// which leave a sum that starts at `+0.0` unchanged. (A non-finite coordinate spreads to the
-/// whole blocks it reaches, up to [`BAND_PAD`] new points beyond those the scatter would spoil.)
-#[inline(always)]
-fn gather_band_body<const D: usize>(band: &[f64], r: usize, control: &[f64], out: &mut [f64]) {
-    let stride = band_stride(r);
-    let last_old = (control.len() / D).saturating_sub(1);
-    for (b, block) in out.chunks_mut(BLOCK * D).enumerate() {
-        let j0 = b * BLOCK;
-        let mut acc = [[0.0_f64; BLOCK]; D];
-        for i in j0.saturating_sub(r)..=(j0 + BLOCK - 1).min(last_old) {
-            // the weights of old point i in new points j0 … j0 + BLOCK − 1: positions
-            // j0 − i ≥ −BAND_PAD … of its row, within the padding on both sides
-            let base = i * stride + BAND_PAD + j0 - i;
-            let w = &band[base..base + BLOCK];
-            let p = &control[i * D..i * D + D];
-            for (a, &s) in acc.iter_mut().zip(p) {
-                for (x, &wt) in a.iter_mut().zip(w) {
-                    *x += wt * s;
-                }
-            }
-        }
-        for (t, o) in block.chunks_exact_mut(D).enumerate() {
-            for (x, a) in o.iter_mut().zip(&acc) {
-                *x = a[t];
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::degree::elevation::{band_stride, gather_band_body, scatter_band};
 
     fn net(n: usize, dim: usize) -> Points {
         let data = (0..(n + 1) * dim)
             .map(|i| ((i as f64) * 12.9898).sin() * 4.0)
             .collect();
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     /// The block gather (both instruction-set copies where the processor has AVX2) returns the

@@ -1,4 +1,4 @@
-//! Degree change of tensor-product Bezier surfaces (document 004 §E.4, eq. 11–16): functions on
+//! Degree change of tensor-product Bezier surfaces (document 004, eq. (11)–(16)): functions on
 //! a plain control net (`bezier_net_*`) and the same operations as methods of [`BezierSurface`].
 //!
 //! A net of degrees `(n, m)` is a [`Points`] of `(n+1)·(m+1)` points with point `(i, j)` at
@@ -18,10 +18,11 @@
 //! `S = H_nᵀ U H_m`, eq. 15–16) is the defect of that big curve, that is the smallest defect over
 //! the column curves `j ↦ (u_0j … u_nj)`; likewise along `v`.
 
-use crate::degree::curve::{
-    absolute_tolerance, check_size, elevate, from_monomial_vec, real_degree_and_net,
-    real_degree_monomial_slice, to_monomial_vec, try_reduce_exact, MAX_MONOMIAL_DEGREE,
+use crate::degree::elevation::{binomials, check_size, elevate};
+use crate::degree::monomial::{
+    from_monomial_vec, real_degree_monomial_slice, to_monomial_vec, MAX_MONOMIAL_DEGREE,
 };
+use crate::degree::reduction::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::{BezierSurface, DEFAULT_DEGREE_TOLERANCE};
@@ -167,7 +168,7 @@ pub fn bezier_net_elevate(
 ///
 /// ```
 /// use lekalo::{bezier_net_elevate, bezier_net_real_degrees, Points, DEFAULT_DEGREE_TOLERANCE};
-/// let net = Points::new((0..12).map(|i| f64::from(i * i % 7)).collect(), 1)?; // degrees (3, 2)
+/// let net = Points::from_flat(1, (0..12).map(|i| f64::from(i * i % 7)).collect())?; // degrees (3, 2)
 /// let up = bezier_net_elevate(&net, 3, 2, 1, 3)?;
 /// assert_eq!(bezier_net_real_degrees(&up, 4, 5, DEFAULT_DEGREE_TOLERANCE)?, (3, 2));
 /// # Ok::<(), lekalo::Error>(())
@@ -221,7 +222,7 @@ pub fn bezier_net_real_degrees_monomial(
 
 /// `max_j C(m, j) 2^j`.
 fn max_binomial_power(m: usize) -> f64 {
-    crate::degree::curve::binomials(m)
+    binomials(m)
         .iter()
         .zip(0_i32..)
         .map(|(c, j)| c * 2.0_f64.powi(j))
@@ -241,8 +242,8 @@ fn max_binomial_power(m: usize) -> f64 {
 ///
 /// ```
 /// use lekalo::{bezier_net_change_degree, bezier_net_elevate, Error, Points};
-/// // document 004 §E.4, Fig. 5: a net of degrees (4, 3) with one zero bottom row of S
-/// let base = Points::new((0..16).map(|i| f64::from(i * 5 % 11)).collect(), 1)?; // (3, 3)
+/// // document 004, Fig. 5: a net of degrees (4, 3) with one zero bottom row of S
+/// let base = Points::from_flat(1, (0..16).map(|i| f64::from(i * 5 % 11)).collect())?; // (3, 3)
 /// let net = bezier_net_elevate(&base, 3, 3, 1, 0)?; // (4, 3), real u degree 3
 /// let lowered = bezier_net_change_degree(&net, 4, 3, 3, 6, 1e-10)?; // lower u, raise v
 /// assert_eq!(lowered.len(), 4 * 7);
@@ -411,10 +412,11 @@ mod tests {
     fn eval(net: &Points, n: usize, m: usize, u: f64, v: f64) -> Vec<f64> {
         let dim = net.dim();
         let rows =
-            BezierCurve::new(Points::new(net.as_slice().to_vec(), (m + 1) * dim).unwrap()).unwrap();
+            BezierCurve::new(Points::from_flat((m + 1) * dim, net.as_slice().to_vec()).unwrap())
+                .unwrap();
         debug_assert!(rows.degree() == n, "net rows");
         let row = rows.eval(u).unwrap();
-        BezierCurve::new(Points::new(row, dim).unwrap())
+        BezierCurve::new(Points::from_flat(dim, row).unwrap())
             .unwrap()
             .eval(v)
             .unwrap()
@@ -438,7 +440,7 @@ mod tests {
     #[test]
     fn all_nine_combinations() {
         // a (4, 3) net with real degrees (3, 2), as in the paper's Fig. 5
-        let base = Points::new(rough(4 * 3 * 3, 0.7), 3).unwrap();
+        let base = Points::from_flat(3, rough(4 * 3 * 3, 0.7)).unwrap();
         let net = bezier_net_elevate(&base, 3, 2, 1, 1).unwrap();
         let scale = net.max_abs();
         assert_eq!(
@@ -475,7 +477,7 @@ mod tests {
 
     #[test]
     fn monomial_round_trip_and_bilinear() {
-        let net = Points::new(rough(4 * 5 * 2, 0.1), 2).unwrap();
+        let net = Points::from_flat(2, rough(4 * 5 * 2, 0.1)).unwrap();
         let s = bezier_net_to_monomial(&net, 3, 4).unwrap();
         let back = bezier_net_from_monomial(&s, 3, 4).unwrap();
         for (a, b) in back.as_slice().iter().zip(net.as_slice()) {
@@ -499,8 +501,8 @@ mod tests {
 
     #[test]
     fn bezier_surface_methods() {
-        let base =
-            BezierSurface::new(Points::new(rough(3 * 4 * 2, 0.3), 2).unwrap(), (3, 4)).unwrap();
+        let base = BezierSurface::new(Points::from_flat(2, rough(3 * 4 * 2, 0.3)).unwrap(), (3, 4))
+            .unwrap();
         let up = base.elevate_degree(2, 1).unwrap();
         assert_eq!((up.degree_u(), up.degree_v()), (4, 4));
         assert_eq!(up.real_degrees(), (2, 3));
@@ -534,7 +536,7 @@ mod tests {
 
     #[test]
     fn errors() {
-        let net = Points::new(rough(12, 0.2), 1).unwrap();
+        let net = Points::from_flat(1, rough(12, 0.2)).unwrap();
         assert!(matches!(
             bezier_net_change_degree(&net, 3, 3, 3, 3, 0.0),
             Err(Error::LengthMismatch {
@@ -552,14 +554,14 @@ mod tests {
             Err(Error::TooLarge { .. })
         ));
         assert!(matches!(
-            bezier_net_to_monomial(&Points::new(vec![0.0; 1002], 1).unwrap(), 1001, 0),
+            bezier_net_to_monomial(&Points::from_flat(1, vec![0.0; 1002]).unwrap(), 1001, 0),
             Err(Error::Degree { .. })
         ));
         assert!(matches!(
             bezier_net_from_monomial(&net, usize::MAX, 0),
             Err(Error::LengthMismatch { .. })
         ));
-        let big = Points::new(vec![1.5e308, -1.5e308, 1.5e308, 0.0], 1).unwrap();
+        let big = Points::from_flat(1, vec![1.5e308, -1.5e308, 1.5e308, 0.0]).unwrap();
         assert!(matches!(
             bezier_net_to_monomial(&big, 3, 0),
             Err(Error::IllConditioned { .. })

@@ -1,13 +1,15 @@
-//! Interpolation of curves through points (document 000, digest §A.1–§A.4) and closed curves.
+//! Interpolation of curves through points (document 000 §1–4;
+//! docs/theory/interpolation.md#global-interpolation) and closed curves
+//! (docs/theory/interpolation.md#closed-curves).
 //!
 //! One configurable construction, [`CurveInterpolation`], combines three independent choices:
 //!
 //! - **parametrisation** ([`Parametrization`]): uniform, chord length, centripetal or the general
-//!   exponent form (digest §A.1, P&T eq. 9.4–9.6);
+//!   exponent form (docs/theory/interpolation.md#parametrisation; P&T eq. 9.4–9.6);
 //! - **knot placement** ([`KnotPlacement`]): averaging (eq. 3, eq. 4), uniform (eq. 2) or at the
 //!   parameters (eq. 8);
-//! - **end conditions** ([`EndCondition`]): none (§A.1), first derivatives (§A.2 for any degree
-//!   `p ≥ 2`, §A.3 for the C² cubic), second derivatives and the natural cubic (§A.4), or a
+//! - **end conditions** ([`EndCondition`]): none (§1), first derivatives (§2 for any degree
+//!   `p ≥ 2`, §3 for the C² cubic), second derivatives and the natural cubic (§4), or a
 //!   closed periodic curve.
 //!
 //! Every result is a [`BSplineCurve`], so evaluation, derivatives, export and plotting apply.
@@ -37,51 +39,19 @@
 //!   `dgbcon`) from the banded factors, and a system above the limit is refused with
 //!   [`Error::IllConditioned`]. Off by default: the default path does not pay for it.
 
-use crate::basis::{basis_funs_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
+use crate::interpolate::collocation::{check_condition_limit, condition_exceeded};
+use crate::interpolate::end_conditions::{
+    first_derivative_ends, free_end, second_derivative_ends, EndCondition,
+};
 use crate::interpolate::fast::{chord_cubic, free_end_cubic, InterpolationWorkspace};
+use crate::interpolate::parametrization::{
+    check_strictly_increasing, parametrize_impl, Parametrization,
+};
 use crate::interpolate::periodic::periodic;
 use crate::knots::KnotVector;
-use crate::numeric::linalg::BandedCrout;
-
-/// Smallest meaningful [`CurveInterpolation::max_condition`]: `κ_1 ≥ 1` for every matrix.
-const MIN_CONDITION_LIMIT: f64 = 1.0;
 use crate::points::{Points, PointsRef};
-
-/// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
-/// 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k − q_{k−1}|^e`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Parametrization {
-    /// `t̄_k = k / n` (exponent 0). Accepts coincident consecutive points.
-    Uniform,
-    /// Chord length, exponent 1 (P&T eq. 9.5). The usual choice.
-    ChordLength,
-    /// Centripetal, exponent 1/2 (P&T eq. 9.6; E. T. Y. Lee 1989): better for sharp turns.
-    Centripetal,
-    /// The general form with exponent `e ≥ 0` (finite).
-    Exponent(f64),
-}
-
-impl Parametrization {
-    pub(crate) fn exponent(self) -> Result<f64> {
-        let e = match self {
-            Parametrization::Uniform => 0.0,
-            Parametrization::ChordLength => 1.0,
-            Parametrization::Centripetal => 0.5,
-            Parametrization::Exponent(e) => e,
-        };
-        if !(e.is_finite() && e >= 0.0) {
-            return Err(Error::InvalidArgument {
-                what: "parametrisation exponent",
-                reason: format!(
-                    "{e} is not a finite number ≥ 0 (0 uniform, 0.5 centripetal, 1 chord length)"
-                ),
-            });
-        }
-        Ok(e)
-    }
-}
 
 /// Where the knots go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -99,55 +69,18 @@ pub enum KnotPlacement {
     /// parameters this "can lead to a system with a singular matrix"; lekalo then reports
     /// [`Error::SingularSystem`]. Only with [`EndCondition::Free`].
     Uniform,
-    /// Knots at the parameters, eq. (8): the C² cubic of §A.3–§A.4. Degree 3 with first or
+    /// Knots at the parameters, eq. (8): the C² cubic of §3–4. Degree 3 with first or
     /// second end derivatives only.
     AtParameters,
 }
 
-/// Conditions at the ends of the curve. Derivatives are with respect to the curve parameter
-/// (which runs over `[0, 1]` for [`CurveInterpolation::interpolate`], or over the given
-/// parameters for [`CurveInterpolation::interpolate_at`]); each vector has the points'
-/// dimension.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum EndCondition {
-    /// No extra condition (document 000 §A.1): `n + 1` control points, any degree `1 ≤ p ≤ n`.
-    #[default]
-    Free,
-    /// Prescribed first derivatives `C'(t̄_0) = start`, `C'(t̄_n) = end`: §A.2 (eq. 4–7) for any
-    /// degree `p ≥ 2` with averaged knots, or §A.3 (eq. 8–12, C² cubic, Thomas algorithm) with
-    /// knots at the parameters.
-    FirstDerivatives {
-        /// `d_0`, the derivative at the start.
-        start: Vec<f64>,
-        /// `d_n`, the derivative at the end.
-        end: Vec<f64>,
-    },
-    /// Prescribed second derivatives of a C² cubic with knots at the parameters: §A.4
-    /// (eq. 13–15).
-    SecondDerivatives {
-        /// `d''_0`, the second derivative at the start.
-        start: Vec<f64>,
-        /// `d''_n`, the second derivative at the end.
-        end: Vec<f64>,
-    },
-    /// Zero second derivatives at both ends: the natural cubic spline (§A.4 with
-    /// `d''_0 = d''_n = 0`; the minimum-`∫|C''|²` interpolant).
-    Natural,
-    /// A closed curve, `C^{p−1}` everywhere including the seam. The points are the distinct
-    /// corners `q_0 … q_{N−1}` (a final copy of `q_0` is dropped); the parametrisation includes
-    /// the closing chord `q_{N−1} → q_0`. Odd degrees put the knots at the parameters (the
-    /// periodic version of eq. 8), even degrees halfway between them (so that the collocation
-    /// matrix stays non-singular); the domain has length 1 and starts at `t̄_0 = 0` for odd and
-    /// at `−(1 − t̄_{N−1})/2` for even degrees. Needs `N ≥ p + 1` points.
-    Periodic,
-}
-
 /// Global interpolation of points by a B-spline curve: parametrisation × knot placement × end
-/// conditions (document 000, digest §A.1–§A.4, plus closed curves).
+/// conditions (document 000 §1–4, plus closed curves;
+/// docs/theory/interpolation.md#global-interpolation).
 ///
 /// ```
 /// use lekalo::{CurveInterpolation, EndCondition, Parametrization, Points};
-/// // digest T.1: P&T Example 9.1, cubic, chord length, averaged knots
+/// // P&T Example 9.1, cubic, chord length, averaged knots
 /// let q = Points::from_2d(&[[0.0, 0.0], [3.0, 4.0], [-1.0, 4.0], [-4.0, 0.0], [-4.0, -3.0]])?;
 /// let c = CurveInterpolation::new(3).interpolate(q.as_view())?;
 /// let p1 = c.control_points().point(1);
@@ -156,7 +89,7 @@ pub enum EndCondition {
 /// let r = c.eval(9.0 / 17.0)?;
 /// assert!((r[0] + 1.0).abs() < 1e-14 && (r[1] - 4.0).abs() < 1e-14);
 ///
-/// // the natural cubic spline (§A.4 with zero second derivatives)
+/// // the natural cubic spline (§4 with zero second derivatives)
 /// let natural = CurveInterpolation::new(3)
 ///     .end_condition(EndCondition::Natural)
 ///     .parametrization(Parametrization::ChordLength)
@@ -257,7 +190,7 @@ impl CurveInterpolation {
     ///
     /// ```
     /// use lekalo::{CurveInterpolation, Parametrization, Points};
-    /// let q = Points::new((0..50).map(|k| f64::from(k).sin()).collect(), 1)?;
+    /// let q = Points::from_flat(1, (0..50).map(|k| f64::from(k).sin()).collect())?;
     /// let kappa = CurveInterpolation::new(3)
     ///     .parametrization(Parametrization::Uniform)
     ///     .condition(q.as_view())?;
@@ -470,14 +403,15 @@ impl CurveInterpolation {
                 if at_params && p != 3 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "knots at the parameters with end derivatives need a cubic (§A.3)"
+                        reason: "knots at the parameters with end derivatives need a cubic (document 000 §3)"
                             .into(),
                     });
                 }
                 if p < 2 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "prescribed end derivatives need degree ≥ 2 (§A.2)".into(),
+                        reason: "prescribed end derivatives need degree ≥ 2 (document 000 §2)"
+                            .into(),
                     });
                 }
                 let n = params.len() - 1;
@@ -502,7 +436,7 @@ impl CurveInterpolation {
                     return Err(Error::Degree {
                         degree: p,
                         reason:
-                            "second-derivative and natural end conditions are for cubics (§A.4)"
+                            "second-derivative and natural end conditions are for cubics (document 000 §4)"
                                 .into(),
                     });
                 }
@@ -627,65 +561,6 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
     Ok(())
 }
 
-/// A condition limit must be a number ≥ 1 (`κ_1 ≥ 1` for every matrix).
-///
-/// # Errors
-/// [`Error::InvalidArgument`] for NaN or a limit below 1.
-pub(crate) fn check_condition_limit(limit: f64) -> Result<()> {
-    if limit.is_nan() || limit < MIN_CONDITION_LIMIT {
-        return Err(Error::InvalidArgument {
-            what: "condition limit (max_condition)",
-            reason: format!(
-                "{limit} is not a number ≥ {MIN_CONDITION_LIMIT} (every matrix has κ_1 ≥ 1); \
-                 pass e.g. 1e8 to keep about 8 significant digits"
-            ),
-        });
-    }
-    Ok(())
-}
-
-#[cold]
-fn condition_exceeded(kappa: f64, limit: f64) -> Error {
-    Error::IllConditioned {
-        reason: format!(
-            "the collocation matrix has an estimated condition number κ_1 ≈ {kappa:.3e}, above \
-             the limit {limit:e} set by max_condition: the parameters crowd together (nearly \
-             coincident points) or the knot spacing is too uneven for this degree; use \
-             centripetal or uniform parameters, drop near-duplicate points, use fewer points or \
-             a lower degree"
-        ),
-    }
-}
-
-/// Folds the condition estimate of `lu` (made by [`Factors::Estimate`]) into `kappa`: the
-/// largest over the systems of one problem.
-fn record_condition(lu: &BandedCrout, kappa: Option<&mut f64>) {
-    if let (Some(k), Some(e)) = (kappa, lu.condition_estimate()) {
-        *k = k.max(e);
-    }
-}
-
-/// Which factors a banded solve keeps.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Factors {
-    /// Only `U` (dropped with the solver).
-    Discard,
-    /// `L` and `U`, for further right-hand sides ([`BandedCrout::solve`]).
-    Keep,
-    /// `L`, `U` and `‖A‖_1`, for [`BandedCrout::condition_estimate`] as well.
-    Estimate,
-}
-
-impl Factors {
-    fn for_condition(kappa: Option<&f64>) -> Self {
-        if kappa.is_some() {
-            Factors::Estimate
-        } else {
-            Factors::Discard
-        }
-    }
-}
-
 fn unsupported(knots: &str, end: &str) -> Error {
     Error::InvalidArgument {
         what: "knot placement",
@@ -706,575 +581,15 @@ fn check_vector(what: &'static str, v: &[f64], dim: usize) -> Result<()> {
     check_finite(what, v)
 }
 
-pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
-    check_finite("parameters", params)?;
-    for i in 1..params.len() {
-        if params[i] < params[i - 1] {
-            return Err(Error::KnotsNotSorted {
-                index: i,
-                value: params[i],
-                previous: params[i - 1],
-            });
-        }
-        if params[i] == params[i - 1] {
-            return Err(Error::InvalidArgument {
-                what: "parameters",
-                reason: format!(
-                    "parameters {} and {i} are both {}: interpolation parameters must be strictly increasing",
-                    i - 1,
-                    params[i]
-                ),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// Parameters `t̄_0 = 0 < … < t̄_n = 1` of the points by `method` (digest §A.1 [not in source];
-/// P&T eq. 9.3–9.6): `t̄_k = t̄_{k−1} + |q_k − q_{k−1}|^e / Σ_j |q_j − q_{j−1}|^e`, with `e = 0`
-/// (uniform, `t̄_k = k/n`), 1 (chord length), 1/2 (centripetal) or any `e ≥ 0`.
-///
-/// Only differences of points enter, so the result does not change when the data are offset
-/// or scaled. O(n·dim).
-///
-/// ```
-/// use lekalo::{parametrize, Parametrization, Points};
-/// let q = Points::from_2d(&[[0.0, 0.0], [3.0, 4.0], [-1.0, 4.0], [-4.0, 0.0], [-4.0, -3.0]])?;
-/// let t = parametrize(q.as_view(), Parametrization::ChordLength)?;
-/// assert_eq!(t[4], 1.0);
-/// assert!((t[1] - 5.0 / 17.0).abs() < 1e-15 && (t[3] - 14.0 / 17.0).abs() < 1e-15);
-/// # Ok::<(), lekalo::Error>(())
-/// ```
-///
-/// # Errors
-/// [`Error::TooFew`] for fewer than 2 points; [`Error::CoincidentPoints`] naming the first
-/// pair of equal consecutive points (for `e > 0`); [`Error::InvalidArgument`] for a negative
-/// or non-finite exponent, or distances that overflow.
-pub fn parametrize(points: PointsRef<'_>, method: Parametrization) -> Result<Vec<f64>> {
-    parametrize_impl(points, method, false)
-}
-
-/// As [`parametrize`]; with `closed`, one more parameter for the chord back to the first point.
-fn parametrize_impl(
-    points: PointsRef<'_>,
-    method: Parametrization,
-    closed: bool,
-) -> Result<Vec<f64>> {
-    let n_pts = points.len();
-    if n_pts < 2 {
-        return Err(Error::TooFew {
-            what: "points to parametrise",
-            min: 2,
-            got: n_pts,
-        });
-    }
-    let steps = n_pts - 1 + usize::from(closed);
-    let mut t = vec![0.0; steps + 1];
-    let data = points.as_slice();
-    let dim = points.dim();
-    // k = n_pts only for the closing chord of a closed polygon
-    let point = |k: usize| {
-        if k < n_pts {
-            &data[k * dim..(k + 1) * dim]
-        } else {
-            &data[..dim]
-        }
-    };
-    let e = method.exponent()?;
-    parametrize_into(steps, point, e, |k| (k % n_pts, (k + 1) % n_pts), &mut t)?;
-    Ok(t)
-}
-
-/// Fills `t[0..=steps]` with normalised parameters of the polygon `point(0), …, point(steps)`;
-/// `names(k)` gives the point indices reported for a zero step `k → k+1`.
-pub(crate) fn parametrize_into<'a>(
-    steps: usize,
-    point: impl Fn(usize) -> &'a [f64],
-    e: f64,
-    names: impl Fn(usize) -> (usize, usize),
-    t: &mut [f64],
-) -> Result<()> {
-    debug_assert_eq!(t.len(), steps + 1, "parameter buffer");
-    t[0] = 0.0;
-    if e == 0.0 {
-        for (k, tk) in t.iter_mut().enumerate() {
-            *tk = k as f64 / steps as f64;
-        }
-        t[steps] = 1.0;
-        return Ok(());
-    }
-    // running sums of the distances into t[1..] (one pass for chord length); other exponents
-    // and sums that overflow take the increments (d / d_max)^e in a second pass
-    let mut dmax = 0.0_f64;
-    let mut sum = 0.0;
-    for k in 0..steps {
-        let d = distance(point(k), point(k + 1));
-        if d == 0.0 {
-            let (first, second) = names(k);
-            return Err(Error::CoincidentPoints { first, second });
-        }
-        if !d.is_finite() {
-            let (first, second) = names(k);
-            return Err(Error::InvalidArgument {
-                what: "points",
-                reason: format!("the distance between points {first} and {second} overflows"),
-            });
-        }
-        dmax = dmax.max(d);
-        sum += d;
-        t[k + 1] = sum;
-    }
-    if e != 1.0 || !sum.is_finite() {
-        let mut acc = 0.0;
-        for k in 0..steps {
-            let d = distance(point(k), point(k + 1));
-            acc += (d / dmax).powf(e);
-            t[k + 1] = acc;
-        }
-        sum = acc;
-    }
-    let inv = 1.0 / sum;
-    for k in 1..steps {
-        t[k] *= inv;
-        if t[k] <= t[k - 1] {
-            return Err(too_close(names(k - 1)));
-        }
-    }
-    t[steps] = 1.0;
-    if t[steps] <= t[steps - 1] {
-        return Err(too_close(names(steps - 1)));
-    }
-    Ok(())
-}
-
-#[cold]
-fn too_close((first, second): (usize, usize)) -> Error {
-    Error::InvalidArgument {
-        what: "points",
-        reason: format!(
-            "points {first} and {second} are too close relative to the others for distinct parameters"
-        ),
-    }
-}
-
-/// Euclidean distance without overflow or underflow in the squares.
-#[inline]
-pub(crate) fn distance(a: &[f64], b: &[f64]) -> f64 {
-    let ss: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
-    if ss.is_normal() && ss < 1e300 {
-        return ss.sqrt();
-    }
-    let m = a
-        .iter()
-        .zip(b)
-        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
-    if m == 0.0 || !m.is_finite() {
-        return m;
-    }
-    m * a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| ((x - y) / m) * ((x - y) / m))
-        .sum::<f64>()
-        .sqrt()
-}
-
-/// [`distance`] with the dimension `D` fixed at compile time (`0`: any length): the same
-/// operations in the same order, unrolled, with the same fallback for sums of squares that
-/// underflow or approach overflow.
-#[inline(always)]
-pub(crate) fn distance_fixed<const D: usize>(a: &[f64], b: &[f64]) -> f64 {
-    if D == 0 {
-        return distance(a, b);
-    }
-    let (a, b) = (&a[..D], &b[..D]);
-    let mut ss = 0.0;
-    for k in 0..D {
-        ss += (a[k] - b[k]) * (a[k] - b[k]);
-    }
-    if plain_square_sum(ss) {
-        ss.sqrt()
-    } else {
-        distance(a, b)
-    }
-}
-
-/// Whether a sum of squares can be square-rooted as it is: normal and below 1e300 (a sum of
-/// squares is never negative, and NaN fails), else [`distance`]'s scaled sum is needed.
-#[inline(always)]
-fn plain_square_sum(ss: f64) -> bool {
-    (f64::MIN_POSITIVE..1e300).contains(&ss)
-}
-
-/// The distances between the points of `a` and those of `b` (`dim` coordinates each; `D` is
-/// `dim` or 0 for a run-time `dim`) into `out`, the same numbers as
-/// [`distance_fixed`] point by point. The usual case (every
-/// sum of squares normal and below 1e300) runs without branches, so that it vectorises; a row
-/// with any other sum is redone point by point with the scaled fallback.
-#[inline(always)]
-pub(crate) fn distances<const D: usize>(a: &[f64], b: &[f64], dim: usize, out: &mut [f64]) {
-    if D > 0 {
-        let mut plain = true;
-        for ((p, q), o) in a.chunks_exact(D).zip(b.chunks_exact(D)).zip(out.iter_mut()) {
-            let mut ss = 0.0;
-            for k in 0..D {
-                ss += (p[k] - q[k]) * (p[k] - q[k]);
-            }
-            plain &= plain_square_sum(ss);
-            *o = ss.sqrt();
-        }
-        if plain {
-            return;
-        }
-    }
-    for ((p, q), o) in a
-        .chunks_exact(dim)
-        .zip(b.chunks_exact(dim))
-        .zip(out.iter_mut())
-    {
-        *o = distance_fixed::<D>(p, q);
-    }
-}
-
-/// Copies `points` minus `reference` into rows `first..first + n` of `control`.
-fn fill_centered(control: &mut [f64], first: usize, points: &[f64], reference: &[f64]) {
-    let dim = reference.len();
-    for (c, q) in control[first * dim..]
-        .chunks_exact_mut(dim)
-        .zip(points.chunks_exact(dim))
-    {
-        for ((ci, qi), ri) in c.iter_mut().zip(q).zip(reference) {
-            *ci = qi - ri;
-        }
-    }
-}
-
-fn add_reference(control: &mut [f64], reference: &[f64]) {
-    /// The loop for a dimension known at compile time (the reference in registers).
-    fn fixed<const D: usize>(control: &mut [f64], reference: &[f64]) {
-        let mut r = [0.0; D];
-        r.copy_from_slice(reference);
-        for c in control.chunks_exact_mut(D) {
-            for k in 0..D {
-                c[k] += r[k];
-            }
-        }
-    }
-    match reference.len() {
-        2 => fixed::<2>(control, reference),
-        3 => fixed::<3>(control, reference),
-        _ => {
-            for c in control.chunks_exact_mut(reference.len()) {
-                for (ci, ri) in c.iter_mut().zip(reference) {
-                    *ci += ri;
-                }
-            }
-        }
-    }
-}
-
-/// The clamped interpolant from the centred solution `control` (relative to `q_0`): the
-/// reference added back, the ends set exactly ([`set_clamped_ends`]).
-fn clamped_result(
-    p: usize,
-    kv: KnotVector,
-    mut control: Vec<f64>,
-    points: PointsRef<'_>,
-) -> BSplineCurve {
-    add_reference(&mut control, points.point(0));
-    set_clamped_ends(&mut control, points);
-    BSplineCurve::from_raw(p, kv.into_vec(), Points::from_raw(control, points.dim()))
-}
-
-/// A clamped interpolant has `P_0 = q_0` and `P_last = q_n`: store them exactly (the centred
-/// solve would round `(q_n − q_0) + q_0`).
-fn set_clamped_ends(control: &mut [f64], points: PointsRef<'_>) {
-    let dim = points.dim();
-    let len = control.len();
-    control[..dim].copy_from_slice(points.point(0));
-    control[len - dim..].copy_from_slice(points.point(points.len() - 1));
-}
-
-/// §A.1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
-/// ones from the collocation rows `t̄_1 … t̄_{n−1}`.
-fn free_end(
-    points: PointsRef<'_>,
-    params: &[f64],
-    p: usize,
-    knots: Vec<f64>,
-    kappa: Option<&mut f64>,
-) -> Result<BSplineCurve> {
-    let dim = points.dim();
-    let n = points.len() - 1;
-    let reference = points.point(0);
-    let mut control = vec![0.0; (n + 1) * dim];
-    fill_centered(&mut control, 0, points.as_slice(), reference);
-    let kv = KnotVector::from_raw(knots);
-    let factors = Factors::for_condition(kappa.as_deref());
-    let lu = solve_collocation(&kv, p, &params[1..n], 1, &mut control, dim, factors)?;
-    record_condition(&lu, kappa);
-    Ok(clamped_result(p, kv, control, points))
-}
-
-/// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
-/// follow directly from eq. (6)–(7) / (9)–(10): `P_0 = q_0`,
-/// `P_1 = q_0 + (t_{p+1} − t̄_0)/p · d_0`, `P_{n+1} = q_n − (t̄_n − t_{n+2})/p · d_n`,
-/// `P_{n+2} = q_n`; `P_2 … P_n` solve the collocation rows `t̄_1 … t̄_{n−1}` (for the cubic with
-/// knots at the parameters these rows are the tridiagonal eq. (11)–(12), solved by the Thomas
-/// sweep).
-fn first_derivative_ends(
-    points: PointsRef<'_>,
-    params: &[f64],
-    p: usize,
-    knots: Vec<f64>,
-    [d0, dn]: [&[f64]; 2],
-    kappa: Option<&mut f64>,
-) -> Result<BSplineCurve> {
-    let dim = points.dim();
-    let n = points.len() - 1;
-    let reference = points.point(0);
-    let n_ctrl = n + 3;
-    debug_assert_eq!(knots.len(), n_ctrl + p + 1, "knots of eq. 4 / eq. 8");
-    let mut control = vec![0.0; n_ctrl * dim];
-    // rows 1..n of the data go to control rows 2..=n (the unknowns' right-hand sides)
-    fill_centered(&mut control, 1, points.as_slice(), reference);
-    let (a, b) = (params[0], params[n]);
-    let s0 = (knots[p + 1] - a) / p as f64;
-    let sn = (b - knots[n + 2]) / p as f64;
-    let qn = points.point(n);
-    for k in 0..dim {
-        control[k] = 0.0;
-        control[dim + k] = s0 * d0[k];
-        let last = qn[k] - reference[k];
-        control[(n + 2) * dim + k] = last;
-        control[(n + 1) * dim + k] = last - sn * dn[k];
-    }
-    let kv = KnotVector::from_raw(knots);
-    let factors = Factors::for_condition(kappa.as_deref());
-    let lu = solve_collocation(&kv, p, &params[1..n], 2, &mut control, dim, factors)?;
-    record_condition(&lu, kappa);
-    Ok(clamped_result(p, kv, control, points))
-}
-
-/// §A.4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
-/// derivatives. `P_0 = q_0`, `P_{n+2} = q_n`; `P_1 … P_{n+1}` solve the tridiagonal system whose
-/// first and last rows are eq. (13) and (14) multiplied by `h_4 = t_4 − t̄_0` and
-/// `g = t̄_n − t_{n+2}` respectively (so that every entry is O(1)):
-/// `P_0 − (1 + h_4/h_5) P_1 + (h_4/h_5) P_2 = h_4²/6 · d''_0` with `h_5 = t_5 − t̄_0`, and
-/// `(g/g') P_n − (1 + g/g') P_{n+1} + P_{n+2} = g²/6 · d''_n` with `g' = t̄_n − t_{n+1}`; the rows
-/// in between are eq. (11). Solved by the Thomas sweep, O(n).
-fn second_derivative_ends(
-    points: PointsRef<'_>,
-    params: &[f64],
-    d0: &[f64],
-    dn: &[f64],
-    kappa: Option<&mut f64>,
-) -> Result<BSplineCurve> {
-    const P: usize = 3;
-    let dim = points.dim();
-    let n = points.len() - 1;
-    let knots = KnotVector::from_parameters(params, P)?.into_vec();
-    let reference = points.point(0);
-    let n_ctrl = n + 3;
-    let mut control = vec![0.0; n_ctrl * dim];
-    fill_centered(&mut control, 1, points.as_slice(), reference);
-    let (a, b) = (params[0], params[n]);
-    let (h4, h5) = (knots[4] - a, knots[5] - a);
-    let (g, g1) = (b - knots[n + 2], b - knots[n + 1]);
-    let qn = points.point(n);
-    // unknown rows: 0 ↔ P_1 (eq. 13), r ↔ P_{r+1}, n ↔ P_{n+1} (eq. 14); rhs in control[1..=n+1]
-    for k in 0..dim {
-        control[k] = 0.0; // P_0 − q_0
-        control[dim + k] = h4 * h4 / 6.0 * d0[k]; // − 1·(P_0 − q_0) = 0
-        let last = qn[k] - reference[k];
-        control[(n + 2) * dim + k] = last;
-        control[(n + 1) * dim + k] = g * g / 6.0 * dn[k] - last;
-    }
-    let mut lu = if kappa.is_some() {
-        BandedCrout::new_estimating(n + 1, 1, 1)
-    } else {
-        BandedCrout::new(n + 1, 1, 1, false)
-    };
-    let mut row = [0.0; 3];
-    let mut scratch = BasisScratch::new(P);
-    let mut basis = [0.0; P + 1];
-    let rhs = &mut control[dim..(n + 2) * dim];
-    row.copy_from_slice(&[0.0, -(1.0 + h4 / h5), h4 / h5]);
-    lu.push_row(&mut row, rhs, dim, 0.0)?;
-    let kv = KnotVector::from_raw(knots);
-    let mut cursor = kv.span_cursor(P);
-    for r in 1..n {
-        let t = params[r];
-        let span = cursor.find_unchecked(t);
-        basis_funs_into(kv.as_slice(), P, span, t, &mut scratch, &mut basis);
-        // unknown column of basis i is i − 1; the diagonal is column r
-        row.fill(0.0);
-        for (j, &v) in basis.iter().enumerate() {
-            let i = span - P + j;
-            if v == 0.0 {
-                continue;
-            }
-            match (i + 1).checked_sub(r + 1) {
-                Some(off) if off <= 2 && i >= 1 => row[off] = v,
-                _ => return Err(sw_failure(r, t)),
-            }
-        }
-        lu.push_row(&mut row, rhs, dim, 1.0)?;
-    }
-    row.copy_from_slice(&[g / g1, -(1.0 + g / g1), 0.0]);
-    lu.push_row(&mut row, rhs, dim, 0.0)?;
-    lu.back_substitute(rhs, dim);
-    record_condition(&lu, kappa);
-    Ok(clamped_result(P, kv, control, points))
-}
-
-#[cold]
-fn unresolved_parameters(row: usize, t: f64) -> Error {
-    Error::SingularSystem {
-        reason: format!(
-            "parameter {t:e} of row {row} lies too close to its knots to resolve in floating \
-             point (spacing near the smallest normal f64); rescale the data or drop points that \
-             are negligibly close to their neighbours"
-        ),
-    }
-}
-
-fn sw_failure(row: usize, t: f64) -> Error {
-    Error::SingularSystem {
-        reason: format!(
-            "Schoenberg–Whitney condition fails: the basis function of unknown {row} vanishes at \
-             its parameter {t}; place the knots by averaging or use other parameters"
-        ),
-    }
-}
-
-/// Solves `Σ_i N_{i,p}(ts[r]) P_i = rhs_r` for the unknown control points `P_first … P_{first+m−1}`
-/// (`m = ts.len()`, row `r` has its diagonal at `P_{first+r}`), with the other control points
-/// known. On entry `control` (all control points, `dim` per point) holds the known points and,
-/// in rows `first..first+m`, the right-hand sides; on return those rows hold the solution.
-///
-/// Two passes over sorted parameters with a span cursor: the first finds the band widths
-/// (and checks the Schoenberg–Whitney condition `N_{first+r}(ts[r]) > 0`), the second evaluates
-/// each row by Cox–de Boor (P&T A2.2) into the band buffer and eliminates it at once
-/// ([`BandedCrout`]). O(m·p²) time, O(m·p) memory besides `control`.
-///
-/// With [`Factors::Keep`] the factorisation is returned for further right-hand sides, with
-/// [`Factors::Estimate`] also for [`BandedCrout::condition_estimate`].
-pub(crate) fn solve_collocation(
-    kv: &KnotVector,
-    p: usize,
-    ts: &[f64],
-    first: usize,
-    control: &mut [f64],
-    dim: usize,
-    factors: Factors,
-) -> Result<BandedCrout> {
-    let m = ts.len();
-    let knots = kv.as_slice();
-    let (kl, ku) = band_widths(kv, p, ts, first)?;
-    let mut lu = match factors {
-        Factors::Discard => BandedCrout::new(m, kl, ku, false),
-        Factors::Keep => BandedCrout::new(m, kl, ku, true),
-        Factors::Estimate => BandedCrout::new_estimating(m, kl, ku),
-    };
-    if m == 0 {
-        return Ok(lu);
-    }
-    let mut row = vec![0.0; lu.width()];
-    let mut basis = vec![0.0; p + 1];
-    let mut scratch = BasisScratch::new(p);
-    let mut cursor = kv.span_cursor(p);
-    let (known_lo, rest) = control.split_at_mut(first * dim);
-    let (block, known_hi) = rest.split_at_mut(m * dim);
-    for (r, &t) in ts.iter().enumerate() {
-        let span = cursor.find_unchecked(t);
-        basis_funs_into(knots, p, span, t, &mut scratch, &mut basis);
-        row.fill(0.0);
-        let rhs = &mut block[r * dim..(r + 1) * dim];
-        for (j, &v) in basis.iter().enumerate() {
-            if v == 0.0 {
-                continue;
-            }
-            let i = span - p + j;
-            let known = if i < first {
-                Some(&known_lo[i * dim..(i + 1) * dim])
-            } else if i >= first + m {
-                let o = i - first - m;
-                Some(&known_hi[o * dim..(o + 1) * dim])
-            } else {
-                None
-            };
-            match known {
-                Some(x) => {
-                    for (y, xi) in rhs.iter_mut().zip(x) {
-                        *y -= v * xi;
-                    }
-                }
-                // band_widths placed every value the exact basis can make non-zero; a value
-                // outside comes from knots too close to resolve (subnormal spacing)
-                None => match (kl + (i - first))
-                    .checked_sub(r)
-                    .and_then(|c| row.get_mut(c))
-                {
-                    Some(x) => *x = v,
-                    None => return Err(unresolved_parameters(r, t)),
-                },
-            }
-        }
-        lu.push_row(&mut row, block, dim, 1.0)?;
-    }
-    lu.back_substitute(block, dim);
-    Ok(lu)
-}
-
-/// The banded factors of the collocation matrix `A[r][i] = N_{i,p}(ts[r])` alone (no
-/// right-hand side), kept for [`BandedCrout::solve`]: [`solve_collocation`] with every control
-/// point unknown and no columns. `factors` is [`Factors::Keep`] or [`Factors::Estimate`].
-pub(crate) fn factor_collocation(
-    kv: &KnotVector,
-    p: usize,
-    ts: &[f64],
-    factors: Factors,
-) -> Result<BandedCrout> {
-    debug_assert!(factors != Factors::Discard, "the factors are the result");
-    solve_collocation(kv, p, ts, 0, &mut [], 0, factors)
-}
-
-/// Band widths `(kl, ku)` of the collocation rows (see [`solve_collocation`]), counting only
-/// unknown columns and entries that can be non-zero (`N_{span}` vanishes at `t = t_span`).
-fn band_widths(kv: &KnotVector, p: usize, ts: &[f64], first: usize) -> Result<(usize, usize)> {
-    let knots = kv.as_slice();
-    let m = ts.len();
-    let mut cursor = kv.span_cursor(p);
-    let (mut kl, mut ku) = (0usize, 0usize);
-    for (r, &t) in ts.iter().enumerate() {
-        let span = cursor.find_unchecked(t);
-        // non-zero basis functions: N_{span−p..=span}, except that N_span vanishes at t = t_span
-        // and only N_span is left at a clamped right end
-        let clamped_end = t == knots[span + 1] && knots[span + 1] == knots[span + p + 1];
-        let lo = if clamped_end { span } else { span - p };
-        let hi = if t == knots[span] { span - 1 } else { span };
-        let diag = first + r;
-        if diag < lo || diag > hi {
-            return Err(sw_failure(r, t));
-        }
-        let lo_u = lo.max(first);
-        let hi_u = hi.min(first + m - 1);
-        kl = kl.max(diag - lo_u);
-        ku = ku.max(hi_u - diag);
-    }
-    Ok((kl, ku))
-}
-
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` for strictly increasing `x`: document
-/// 000 §A.4 with zero end second derivatives, the parameters being the abscissae themselves, so
+/// 000 §4 with zero end second derivatives, the parameters being the abscissae themselves, so
 /// that `curve.eval(x)` is `y(x)` (each component of `y` is one function). The result equals
 /// SciPy's `CubicSpline(x, y, bc_type="natural")`.
 ///
 /// ```
 /// use lekalo::{natural_cubic_spline, Points};
 /// let x = [0.0, 1.0, 2.5, 4.0];
-/// let y = Points::new(vec![1.0, 3.0, 2.0, 5.0], 1)?;
+/// let y = Points::from_flat(1, vec![1.0, 3.0, 2.0, 5.0])?;
 /// let s = natural_cubic_spline(&x, y.as_view())?;
 /// assert!((s.eval(2.5)?[0] - 2.0).abs() < 1e-14);
 /// assert!(s.eval_derivatives(4.0, 2)?.point(2)[0].abs() < 1e-12);
@@ -1293,6 +608,7 @@ pub fn natural_cubic_spline(x: &[f64], y: PointsRef<'_>) -> Result<BSplineCurve>
 mod tests {
     use super::*;
     use crate::interpolate::fast::{chord_cubic, InterpolationWorkspace};
+    use crate::interpolate::parametrization::{distance, parametrize};
 
     fn example() -> Points {
         Points::from_2d(&[
@@ -1317,7 +633,7 @@ mod tests {
     }
 
     #[test]
-    fn t1_uniform_exact() {
+    fn example_9_1_uniform_exact() {
         let c = CurveInterpolation::new(3)
             .parametrization(Parametrization::Uniform)
             .interpolate(example().as_view())
@@ -1351,7 +667,7 @@ mod tests {
                 data.push(offset + scale * (s * (k as f64 + 1.0)).sin() * (1.0 + s));
             }
         }
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     }
 
     #[test]
@@ -1365,7 +681,7 @@ mod tests {
     fn chord_length_survives_an_overflowing_total() {
         // 19 points 1e307 apart: the total length 1.8e308 exceeds f64::MAX
         let data: Vec<f64> = (-9..=9).map(|k| f64::from(k) * 1e307).collect();
-        let q = Points::new(data, 1).unwrap();
+        let q = Points::from_flat(1, data).unwrap();
         let t = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
         for (k, tk) in t.iter().enumerate() {
             assert!((tk - k as f64 / 18.0).abs() < 1e-14, "t[{k}] = {tk}");
@@ -1452,7 +768,7 @@ mod tests {
             })
             .collect();
         for (data, dim) in [(helix, 3), (uneven, 2)] {
-            let q = Points::new(data, dim).unwrap();
+            let q = Points::from_flat(dim, data).unwrap();
             let params = parametrize(q.as_view(), Parametrization::ChordLength).unwrap();
             let fused = chord_cubic(q.as_view(), &mut ws).unwrap();
             let general = general_cubic(q.as_view(), &params);
@@ -1480,7 +796,7 @@ mod tests {
         assert!(chord_cubic(wobbly(9, 4, 0.0, 1.0).as_view(), &mut ws).is_none());
         let mut q = wobbly(9, 2, 0.0, 1.0).as_slice().to_vec();
         q.copy_within(6..8, 8);
-        assert!(chord_cubic(Points::new(q, 2).unwrap().as_view(), &mut ws).is_none());
+        assert!(chord_cubic(Points::from_flat(2, q).unwrap().as_view(), &mut ws).is_none());
         // the declined attempt keeps the buffers it had grown for the next call
         assert!(ws.capacity_bytes() >= 9 * 2 * 8);
     }

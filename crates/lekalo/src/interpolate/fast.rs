@@ -1,11 +1,11 @@
-//! The fused fast path of global cubic interpolation (document 000 §A.1 with chord-length
+//! The fused fast path of global cubic interpolation (document 000 §1 with chord-length
 //! parameters and averaged knots, eq. 3), for 1–3 dimensions: parameters, knots, banded
 //! elimination and back substitution in three sweeps, agreeing with the general path of
 //! [`crate::interpolate::curve`] to rounding (the same parameters and knots bit for bit; the control
 //! points within `κ·ε`, tested there), which it falls back to whenever it does not apply.
 
 use crate::interpolate::cubic_sweep::solve_free_cubic;
-use crate::interpolate::curve::distances;
+use crate::interpolate::parametrization::distances;
 use crate::numeric::large_buffer::reuse_or_zeroed;
 use crate::{BSplineCurve, Points, PointsRef};
 use std::cell::RefCell;
@@ -95,7 +95,7 @@ impl InterpolationWorkspace {
     /// Why: `U` is scratch, 16 bytes a point, freed at the end of each call. Freeing it is what
     /// tips glibc into handing its heap back to the operating system after every call, so
     /// that the next call faults every page of its result again. At 10^5 points that cost twice
-    /// the arithmetic: 30 ns a point against 15 (`docs/performance.md`, session 4). Kept, the
+    /// the arithmetic: 30 ns a point against 15 (`docs/performance.md`). Kept, the
     /// result buffers come from memory the allocator already holds.
     pub(crate) fn from_thread() -> Self {
         let upper = THREAD_UPPER
@@ -395,7 +395,7 @@ mod thread_scratch_tests {
                 [s.cos(), s.sin(), 0.05 * s]
             })
             .collect();
-        let q = Points::new(data, 3).unwrap();
+        let q = Points::from_flat(3, data).unwrap();
         let first = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
         assert!(held_capacity() >= 299, "U kept after the call");
         // the kept (stale) storage changes nothing

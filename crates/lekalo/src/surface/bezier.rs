@@ -70,6 +70,13 @@ impl BezierSurface {
         BezierSurface { control, net_size }
     }
 
+    /// Degrees `(n, m) = (nu − 1, nv − 1)` in `u` and `v` (the pair of
+    /// [`BezierCurve::degree`](crate::BezierCurve::degree)).
+    #[must_use]
+    pub fn degree(&self) -> (usize, usize) {
+        (self.degree_u(), self.degree_v())
+    }
+
     /// Degree `n = nu − 1` in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {
@@ -186,7 +193,7 @@ impl BezierSurface {
                 }
             }
         }
-        Points::new(out, dim)
+        Points::from_flat(dim, out)
     }
 
     /// Unit normal `(p_u × p_v) / |p_u × p_v|` of a surface in 3-D.
@@ -216,7 +223,7 @@ impl BezierSurface {
             de_casteljau(&mut work, dim, v);
             q.copy_from_slice(&work[..dim]);
         }
-        BezierCurve::new(Points::new(out, dim)?)
+        BezierCurve::new(Points::from_flat(dim, out)?)
     }
 
     /// The iso-parametric Bezier curve `C(v) = p(u, v)` at fixed `u`: control points
@@ -238,7 +245,7 @@ impl BezierSurface {
             de_casteljau(&mut work, dim, u);
             q.copy_from_slice(&work[..dim]);
         }
-        BezierCurve::new(Points::new(out, dim)?)
+        BezierCurve::new(Points::from_flat(dim, out)?)
     }
 
     /// The same surface as a B-spline surface of degrees `(nu − 1, nv − 1)` on the clamped knot
@@ -247,7 +254,7 @@ impl BezierSurface {
     ///
     /// ```
     /// use lekalo::{BezierSurface, Points};
-    /// let net = Points::new((0..3 * 4).map(|k| (k as f64).sin()).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..3 * 4).map(|k| (k as f64).sin()).collect())?;
     /// let bez = BezierSurface::new(net, (3, 4))?;
     /// let bs = bez.to_bspline();
     /// assert_eq!((bs.degree_u(), bs.degree_v()), (2, 3));
@@ -300,7 +307,7 @@ mod tests {
         let data: Vec<f64> = (0..48_u32)
             .map(|k| (0.83 * f64::from(k)).sin() + f64::from(k % 5))
             .collect();
-        BezierSurface::new(Points::new(data, 4).unwrap(), (4, 3)).unwrap()
+        BezierSurface::new(Points::from_flat(4, data).unwrap(), (4, 3)).unwrap()
     }
 
     #[test]
@@ -351,12 +358,13 @@ mod tests {
             (n[0] + v / len).abs() < 1e-15 && (n[1] + u / len).abs() < 1e-15,
             "{n:?}"
         );
-        let flat = BezierSurface::new(Points::new(vec![0.0; 8], 2).unwrap(), (2, 2)).unwrap();
+        let flat = BezierSurface::new(Points::from_flat(2, vec![0.0; 8]).unwrap(), (2, 2)).unwrap();
         assert!(matches!(
             flat.normal(0.5, 0.5),
             Err(Error::Dimension { .. })
         ));
-        let point = BezierSurface::new(Points::new(vec![1.0; 12], 3).unwrap(), (2, 2)).unwrap();
+        let point =
+            BezierSurface::new(Points::from_flat(3, vec![1.0; 12]).unwrap(), (2, 2)).unwrap();
         assert!(matches!(
             point.normal(0.5, 0.5),
             Err(Error::InvalidArgument { .. })
@@ -412,7 +420,7 @@ mod tests {
 
     #[test]
     fn constructor_and_serde_validate() {
-        let net = Points::new(vec![0.0; 6], 1).unwrap();
+        let net = Points::from_flat(1, vec![0.0; 6]).unwrap();
         assert!(matches!(
             BezierSurface::new(net.clone(), (2, 2)),
             Err(Error::LengthMismatch {

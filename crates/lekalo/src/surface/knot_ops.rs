@@ -81,7 +81,7 @@ impl BSplineSurface {
     ///
     /// ```
     /// use lekalo::{BSplineSurface, KnotVector, Points};
-    /// let net = Points::new((0..4 * 3).map(|k| (k as f64).sin()).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..4 * 3).map(|k| (k as f64).sin()).collect())?;
     /// let s = BSplineSurface::from_knot_vectors(
     ///     2, 1, KnotVector::clamped_uniform(2, 4)?, KnotVector::clamped_uniform(1, 3)?, net, (4, 3))?;
     /// let t = s.transpose();
@@ -110,7 +110,7 @@ impl BSplineSurface {
     ///
     /// ```
     /// use lekalo::{BSplineSurface, KnotVector, Points};
-    /// let net = Points::new((0..4 * 3).map(|k| (k as f64).sin()).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..4 * 3).map(|k| (k as f64).sin()).collect())?;
     /// let s = BSplineSurface::from_knot_vectors(
     ///     2, 1, KnotVector::clamped_uniform(2, 4)?, KnotVector::clamped_uniform(1, 3)?, net, (4, 3))?;
     /// let r = s.insert_knot_u(0.3, 2)?;
@@ -179,7 +179,7 @@ impl BSplineSurface {
     ///
     /// ```
     /// use lekalo::{BSplineSurface, Points};
-    /// let net = Points::new((0..4 * 3).map(|k| (k as f64).cos()).collect(), 1)?;
+    /// let net = Points::from_flat(1, (0..4 * 3).map(|k| (k as f64).cos()).collect())?;
     /// let s = BSplineSurface::new(2, 1, vec![0., 0., 0., 0.5, 1., 1., 1.], vec![0., 0., 0.5, 1., 1.], net, (4, 3))?;
     /// let patches = s.to_bezier_patches();
     /// assert_eq!(patches.len(), 4);

@@ -144,6 +144,18 @@ impl NurbsSurface {
         &self.homogeneous
     }
 
+    /// Degrees `(p, q)` in `u` and `v` (the pair of [`NurbsCurve::degree`](crate::NurbsCurve::degree)).
+    #[must_use]
+    pub fn degree(&self) -> (usize, usize) {
+        self.homogeneous.degree()
+    }
+
+    /// Knot vectors in `u` and `v` (the pair of [`NurbsCurve::knots`](crate::NurbsCurve::knots)).
+    #[must_use]
+    pub fn knots(&self) -> (&KnotVector, &KnotVector) {
+        self.homogeneous.knots()
+    }
+
     /// Degree in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {
@@ -323,7 +335,7 @@ impl NurbsSurface {
                 }
             }
         }
-        Points::new(out, dim)
+        Points::from_flat(dim, out)
     }
 
     /// Unit normal `(S_u × S_v) / |S_u × S_v|` of a surface in 3-D, from the rational first
@@ -396,7 +408,7 @@ mod tests {
             1,
             arc.knots().as_slice().to_vec(),
             vec![0.0, 0.0, 1.0, 1.0],
-            Points::new(net, 3).unwrap(),
+            Points::from_flat(3, net).unwrap(),
             weights,
             (ctrl.len(), 2),
         )
@@ -416,7 +428,7 @@ mod tests {
             2,
             vec![0.0, 0.0, 0.0, 0.0, 0.6, 1.0, 1.0, 1.0, 1.0],
             vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0],
-            Points::new(data, 3).unwrap(),
+            Points::from_flat(3, data).unwrap(),
             weights,
             (5, 4),
         )
@@ -602,7 +614,7 @@ mod tests {
 
     #[test]
     fn constructor_errors() {
-        let net = Points::new(vec![0.0; 8], 2).unwrap();
+        let net = Points::from_flat(2, vec![0.0; 8]).unwrap();
         let k = vec![0.0, 0.0, 1.0, 1.0];
         let make =
             |w: Vec<f64>| NurbsSurface::new(1, 1, k.clone(), k.clone(), net.clone(), w, (2, 2));
@@ -638,7 +650,7 @@ mod tests {
             ),
             Err(Error::LengthMismatch { .. })
         ));
-        let big = Points::new(vec![1e300; 8], 2).unwrap();
+        let big = Points::from_flat(2, vec![1e300; 8]).unwrap();
         assert!(matches!(
             NurbsSurface::new(1, 1, k.clone(), k.clone(), big, vec![1e10; 4], (2, 2)),
             Err(Error::NonFinite { .. })
@@ -649,7 +661,7 @@ mod tests {
             1,
             k.clone(),
             k.clone(),
-            Points::new(vec![1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0], 2).unwrap(),
+            Points::from_flat(2, vec![1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]).unwrap(),
             (2, 2),
         )
         .unwrap();
@@ -662,7 +674,7 @@ mod tests {
             1,
             k.clone(),
             k,
-            Points::new(vec![1.0; 4], 1).unwrap(),
+            Points::from_flat(1, vec![1.0; 4]).unwrap(),
             (2, 2),
         )
         .unwrap();
@@ -674,7 +686,7 @@ mod tests {
 
     #[test]
     fn normal_errors() {
-        let net = Points::new(vec![0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0], 2).unwrap();
+        let net = Points::from_flat(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0]).unwrap();
         let k = vec![0.0, 0.0, 1.0, 1.0];
         let s = NurbsSurface::new(
             1,

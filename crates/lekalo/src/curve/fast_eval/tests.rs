@@ -2,7 +2,7 @@
 //! the bucket table, the inner balls, the generic kernels).
 
 use super::*;
-use crate::{KnotVector, Points};
+use crate::{KnotVector, NurbsCurve, Points};
 
 /// Deterministic, irregular values in [−1, 1].
 fn wave(i: usize) -> f64 {
@@ -10,7 +10,7 @@ fn wave(i: usize) -> f64 {
 }
 
 fn curve(p: usize, n: usize, dim: usize) -> BSplineCurve {
-    let ctrl = Points::new((0..n * dim).map(wave).collect(), dim).unwrap();
+    let ctrl = Points::from_flat(dim, (0..n * dim).map(wave).collect()).unwrap();
     BSplineCurve::from_knot_vector(p, KnotVector::clamped_uniform(p, n).unwrap(), ctrl).unwrap()
 }
 
@@ -73,7 +73,7 @@ fn locator_is_exact_for_uneven_and_extreme_breaks() {
 #[test]
 fn find_span_matches_knot_vector() {
     let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.1, 0.1, 0.4, 0.45, 0.9, 1.0, 1.0, 1.0]).unwrap();
-    let ctrl = Points::new((0..16).map(wave).collect(), 2).unwrap();
+    let ctrl = Points::from_flat(2, (0..16).map(wave).collect()).unwrap();
     let c = BSplineCurve::from_knot_vector(2, kv.clone(), ctrl).unwrap();
     let ev = c.evaluator();
     assert_eq!(ev.pieces(), 5);
@@ -316,11 +316,11 @@ fn errors() {
     // the right end is in the domain
     ev.eval_batch(&[1.0, 0.0], &mut out).unwrap();
     assert!(max_diff(&out[..3], c.control_points().point(9)) <= 1e-15);
-    let huge = Points::new(
+    let huge = Points::from_flat(
+        3,
         (0..12)
             .map(|i| if i % 2 == 0 { 1e308 } else { -1e308 })
             .collect(),
-        3,
     )
     .unwrap();
     let h = BSplineCurve::from_knot_vector(3, KnotVector::clamped_uniform(3, 4).unwrap(), huge)
