@@ -102,13 +102,17 @@ enum Command {
 #[command(after_help = "\
 Examples:
   lekalo demo                 # print the summary table of every construction and check
-  lekalo demo --out gallery   # also write gallery/index.html with SVG figures
+  lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
+  lekalo demo --only doc000-ends --out gallery   # one entry's figures
 
 Exit code 3 if a construction does not reproduce its document's numbers.")]
 pub(crate) struct DemoArgs {
     /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids.
+    #[arg(long, value_name = "ID")]
+    only: Option<String>,
 }
 
 /// How much to say on standard error.
@@ -148,7 +152,7 @@ fn main() -> ExitCode {
         Command::Knots(a) => cmd::knots::run(&a, verbosity),
         Command::Convert(a) => cmd::convert::run(&a, verbosity),
         Command::Plot(a) => cmd::plot::run(&a, verbosity),
-        Command::Demo(a) => demo::run(a.out.as_deref(), verbosity),
+        Command::Demo(a) => demo::run(a.out.as_deref(), a.only.as_deref(), verbosity),
         Command::Interpolate(a) => cmd::interpolate::run(&a, verbosity),
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),

@@ -30,18 +30,22 @@
 mod analysis;
 mod atomic;
 mod error;
+mod figure_check;
 mod iges;
+mod layout;
 mod numfmt;
 mod flat;
 mod obj;
 mod object;
 mod object_ext;
+mod palette;
 mod png;
 mod points_in;
 mod samples;
 mod shape;
 mod step;
 mod step_read;
+mod surface_plot;
 mod surface_samples;
 mod svg;
 mod wireframe;
@@ -52,7 +56,9 @@ pub use atomic::{
     write_atomic_stream, write_atomic_with, WriteOptions,
 };
 pub use error::{IoError, IoResult, Location};
+pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};
+pub use layout::{text_extent, text_width};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};
@@ -60,14 +66,17 @@ pub use object_ext::{
     bezier_surface_to_json, bspline_surface_to_json, envelope_type, piecewise_polynomial_to_json,
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
 };
+pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points, read_points_with, Header};
 pub use samples::{sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{read_step, StepRead, StepSkipped};
+pub use surface_plot::{surface_plot, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{
-    basis_figure, curve_figure, escape, knots_figure, CurvePlot, Figure, Series, Style, PALETTE,
+    basis_figure, curve_figure, escape, knots_figure, Annotation, Coincidence, ColorBar, CurvePlot,
+    Face, Figure, Series, Style,
 };
 pub use wireframe::{wireframe_figure, Grid, Projection};

@@ -22,6 +22,18 @@ fn fontdb() -> std::sync::Arc<resvg::usvg::fontdb::Database> {
 /// [`IoError::Render`] if the SVG cannot be parsed or the image cannot be allocated or encoded
 /// (an internal failure: our writers produce valid SVG).
 pub fn svg_to_png(svg: &str, scale: f32) -> IoResult<Vec<u8>> {
+    let (pixmap, _) = render_pixmap(svg, scale)?;
+    pixmap
+        .encode_png()
+        .map_err(|e| IoError::Render(e.to_string()))
+}
+
+/// Renders an SVG document at `scale`; also returns the boxes `x, y, width, height` (in the
+/// SVG's pixels) of its texts as laid out with the system's fonts (none without fonts).
+pub(crate) fn render_pixmap(
+    svg: &str,
+    scale: f32,
+) -> IoResult<(resvg::tiny_skia::Pixmap, Vec<[f64; 4]>)> {
     let mut opt = resvg::usvg::Options {
         fontdb: fontdb(),
         ..resvg::usvg::Options::default()
@@ -41,9 +53,27 @@ pub fn svg_to_png(svg: &str, scale: f32) -> IoResult<Vec<u8>> {
         resvg::tiny_skia::Transform::from_scale(scale, scale),
         &mut pixmap.as_mut(),
     );
-    pixmap
-        .encode_png()
-        .map_err(|e| IoError::Render(e.to_string()))
+    let mut boxes = Vec::new();
+    text_boxes(tree.root(), &mut boxes);
+    Ok((pixmap, boxes))
+}
+
+fn text_boxes(g: &resvg::usvg::Group, out: &mut Vec<[f64; 4]>) {
+    for node in g.children() {
+        match node {
+            resvg::usvg::Node::Group(g) => text_boxes(g, out),
+            resvg::usvg::Node::Text(t) => {
+                let b = t.abs_bounding_box();
+                out.push([
+                    f64::from(b.x()),
+                    f64::from(b.y()),
+                    f64::from(b.width()),
+                    f64::from(b.height()),
+                ]);
+            }
+            _ => {}
+        }
+    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,12 @@ use std::fmt::Write as _;
 
 use lekalo::{basis::basis_function_recursive, KnotVector, Points};
 
+use crate::layout::{
+    place_legend, text_extent, text_width, LegendPlace, LEGEND_FONT, LEGEND_GAP, LEGEND_ROW,
+    LEGEND_SAMPLE,
+};
 use crate::object::Object;
+use crate::palette::{height_color, look, Marker, PALETTE};
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,6 +40,11 @@ pub struct Series {
     pub style: Style,
     /// CSS colour.
     pub color: String,
+    /// Dash pattern (SVG `stroke-dasharray`) instead of the style's own; `Some("")` is solid.
+    pub dash: Option<String>,
+    /// Marker shape: of a [`Style::Markers`] series (default: circle), or drawn along a line
+    /// at a few of its vertices.
+    pub marker: Option<Marker>,
 }
 
 impl Series {
@@ -46,7 +56,106 @@ impl Series {
             paths: vec![points],
             style,
             color: color.to_string(),
+            dash: None,
+            marker: None,
         }
+    }
+
+    /// Line `i` of a family (basis functions, a parameter sweep): colour, dash and marker from
+    /// [`crate::palette::look`], so that any two of the first 28 lines differ.
+    #[must_use]
+    pub fn nth(label: Option<&str>, points: Vec<[f64; 2]>, i: usize) -> Self {
+        let (color, dash, marker) = look(i);
+        Series {
+            label: label.map(str::to_string),
+            paths: vec![points],
+            style: Style::Line,
+            color: color.to_string(),
+            dash: Some(dash.to_string()),
+            marker,
+        }
+    }
+
+    /// Stroke width in pixels.
+    fn width(&self) -> f64 {
+        match self.style {
+            Style::Line | Style::Ticks => 2.0,
+            Style::Dashed => 1.2,
+            Style::Markers => 1.8,
+        }
+    }
+
+    /// The dash pattern drawn ("" for solid).
+    fn dash_pattern(&self) -> &str {
+        match (&self.dash, self.style) {
+            (Some(d), _) => d,
+            (None, Style::Dashed) => "6 4",
+            _ => "",
+        }
+    }
+}
+
+/// A filled polygon of a shaded surface, in world coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    /// Corners (projected).
+    pub points: Vec<[f64; 2]>,
+    /// CSS fill colour.
+    pub fill: String,
+    /// Segments drawn over the fill (isoparametric lines on this face), so that nearer faces
+    /// hide them as they hide the face.
+    pub edges: Vec<[[f64; 2]; 2]>,
+    /// CSS colour and width in pixels of the edges.
+    pub edge_style: (String, f64),
+}
+
+/// Text placed at a world point, moved by a pixel offset.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Annotation {
+    /// World position.
+    pub at: [f64; 2],
+    /// Offset in pixels (x right, y down).
+    pub offset: (f64, f64),
+    /// The text.
+    pub text: String,
+    /// `start`, `middle` or `end`.
+    pub anchor: &'static str,
+}
+
+/// A colour scale beside the plot (the height map of shaded surfaces).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColorBar {
+    /// Name of the quantity (e.g. `z`).
+    pub label: String,
+    /// Values at the bottom and the top of the bar.
+    pub range: (f64, f64),
+}
+
+/// Two labelled series that are drawn on top of each other: the later one is drawn dashed so
+/// that the earlier one shows through, and captions say so ([`Figure::coincidences`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coincidence {
+    /// Label of the series that would be hidden.
+    pub hidden: String,
+    /// Label of the series drawn over it.
+    pub over: String,
+    /// Largest distance from a point of the hidden series to the other, in data units.
+    pub distance: f64,
+}
+
+impl Coincidence {
+    /// A sentence for a caption.
+    #[must_use]
+    pub fn note(&self) -> String {
+        let by = if self.distance == 0.0 {
+            "exactly".to_string()
+        } else {
+            format!("to {:.0e}", self.distance)
+        };
+        format!(
+            "“{}” coincides with “{}” ({by}): it is drawn dashed over it.",
+            self.over, self.hidden
+        )
     }
 }
 
@@ -55,7 +164,7 @@ impl Series {
 pub struct Figure {
     /// Title above the plot.
     pub title: String,
-    /// Width and height in pixels.
+    /// Width and height in pixels, before the legend, title and labels grow the canvas.
     pub size: (f64, f64),
     /// Same scale on both axes (true for geometry, false for function graphs).
     pub equal_aspect: bool,
@@ -67,17 +176,163 @@ pub struct Figure {
     pub series: Vec<Series>,
     /// Shaded vertical band `[a, b]` with a label (e.g. the parameter domain).
     pub band: Option<(f64, f64, String)>,
+    /// Filled polygons drawn before the series, in order (back to front).
+    pub faces: Vec<Face>,
+    /// Texts at world positions (3-D axis ticks and names).
+    pub annotations: Vec<Annotation>,
+    /// Colour scale beside the plot.
+    pub colorbar: Option<ColorBar>,
 }
-
-/// The palette of the plots (colour-blind safe, Okabe–Ito).
-pub const PALETTE: [&str; 8] = [
-    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442", "#000000",
-];
 
 const MARGIN_LEFT: f64 = 60.0;
 const MARGIN_RIGHT: f64 = 20.0;
 const MARGIN_TOP: f64 = 54.0;
 const MARGIN_BOTTOM: f64 = 44.0;
+/// Baseline of the title.
+const TITLE_Y: f64 = 22.0;
+const TITLE_FONT: f64 = 15.0;
+const FONT: f64 = 12.0;
+/// Centre line of the first legend row.
+const LEGEND_Y: f64 = 42.0;
+/// Width of the colour bar's strip, pixels.
+const BAR: f64 = 14.0;
+
+/// The page geometry of a figure: canvas, plot rectangle, world window, legend placement.
+struct Frame {
+    w: f64,
+    h: f64,
+    left: f64,
+    top: f64,
+    pw: f64,
+    ph: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    /// Labelled series and their legend widths.
+    entries: Vec<(usize, f64)>,
+    legend: LegendPlace,
+}
+
+impl Frame {
+    fn tx(&self, x: f64) -> f64 {
+        self.left + (x - self.x0) / (self.x1 - self.x0) * self.pw
+    }
+
+    fn ty(&self, y: f64) -> f64 {
+        self.top + (self.y1 - y) / (self.y1 - self.y0) * self.ph
+    }
+
+    fn page(&self, p: [f64; 2]) -> [f64; 2] {
+        [self.tx(p[0]), self.ty(p[1])]
+    }
+}
+
+/// Writes a `<text>` element with its estimated box as `data-bbox="x y w h"`.
+fn text(s: &mut String, x: f64, y: f64, anchor: &str, size: f64, body: &str, extra: &str) {
+    let w = text_width(body, size);
+    let (asc, desc) = text_extent(size);
+    let x0 = match anchor {
+        "middle" => x - 0.5 * w,
+        "end" => x - w,
+        _ => x,
+    };
+    let size_attr = if (size - FONT).abs() > f64::EPSILON {
+        format!(r#" font-size="{size}""#)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        s,
+        r#"<text x="{x:.2}" y="{y:.2}" text-anchor="{anchor}"{size_attr}{extra} data-bbox="{x0:.2} {:.2} {w:.2} {:.2}">{}</text>"#,
+        y - asc,
+        asc + desc,
+        escape(body)
+    );
+}
+
+/// A marker of `shape` centred at `(x, y)`.
+fn marker(s: &mut String, shape: Marker, x: f64, y: f64, r: f64, color: &str, fill: &str) {
+    let common = format!(r#"fill="{fill}" stroke="{color}" stroke-width="1.8""#);
+    let _ = match shape {
+        Marker::Circle => writeln!(s, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{r}" {common}/>"#),
+        Marker::Square => writeln!(
+            s,
+            r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" {common}/>"#,
+            x - 0.85 * r,
+            y - 0.85 * r,
+            1.7 * r,
+            1.7 * r
+        ),
+        Marker::Triangle => writeln!(
+            s,
+            r#"<polygon points="{x:.2},{:.2} {:.2},{:.2} {:.2},{:.2}" {common}/>"#,
+            y - 1.1 * r,
+            x - r,
+            y + 0.8 * r,
+            x + r,
+            y + 0.8 * r
+        ),
+        Marker::Diamond => writeln!(
+            s,
+            r#"<polygon points="{x:.2},{:.2} {:.2},{y:.2} {x:.2},{:.2} {:.2},{y:.2}" {common}/>"#,
+            y - 1.2 * r,
+            x + 1.2 * r,
+            y + 1.2 * r,
+            x - 1.2 * r
+        ),
+    };
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
+/// Largest distance from a vertex of `a` to the nearest polyline of `b` (to the nearest vertex
+/// if `b` is markers), stopping early once it exceeds `stop`.
+fn one_sided(a: &[Vec<[f64; 2]>], b: &[Vec<[f64; 2]>], lines: bool, stop: f64) -> f64 {
+    let mut worst = 0.0_f64;
+    for p in a.iter().flatten() {
+        let mut best = f64::INFINITY;
+        for path in b {
+            if lines && path.len() > 1 {
+                for w in path.windows(2) {
+                    best = best.min(seg_dist(*p, w[0], w[1]));
+                }
+            } else {
+                for q in path {
+                    best = best.min((p[0] - q[0]).hypot(p[1] - q[1]));
+                }
+            }
+        }
+        worst = worst.max(best);
+        if worst > stop {
+            break;
+        }
+    }
+    worst
+}
+
+/// Bounding box `(xmin, xmax, ymin, ymax)` of paths.
+fn bbox(paths: &[Vec<[f64; 2]>]) -> (f64, f64, f64, f64) {
+    paths.iter().flatten().fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |b, p| (b.0.min(p[0]), b.1.max(p[0]), b.2.min(p[1]), b.3.max(p[1])),
+    )
+}
 
 impl Figure {
     /// An empty figure of the given title.
@@ -91,12 +346,13 @@ impl Figure {
             axes: true,
             series: Vec::new(),
             band: None,
+            faces: Vec::new(),
+            annotations: Vec::new(),
+            colorbar: None,
         }
     }
 
-    /// Data extent as centre and half-width `(cx, hx, cy, hy)`, padded by 5 % and never
-    /// degenerate. Computed from halves (`hi/2 − lo/2`), so coordinates near ±1.8e308 do not
-    /// overflow; non-finite points are left out.
+    /// Data bounds `(xmin, xmax, ymin, ymax)`, padded by 5 % and never degenerate.
     fn bounds(&self) -> (f64, f64, f64, f64) {
         let mut b = (
             f64::INFINITY,
@@ -104,12 +360,15 @@ impl Figure {
             f64::INFINITY,
             f64::NEG_INFINITY,
         );
-        let finite = |p: &&[f64; 2]| p[0].is_finite() && p[1].is_finite();
+        let faces = self.faces.iter().flat_map(|f| f.points.iter());
+        let notes = self.annotations.iter().map(|a| &a.at);
         for p in self
             .series
             .iter()
             .flat_map(|s| s.paths.iter().flatten())
-            .filter(finite)
+            .chain(faces)
+            .chain(notes)
+            .filter(|p| p[0].is_finite() && p[1].is_finite())
         {
             b.0 = b.0.min(p[0]);
             b.1 = b.1.max(p[0]);
@@ -117,207 +376,521 @@ impl Figure {
             b.3 = b.3.max(p[1]);
         }
         if let Some((a, c, _)) = &self.band {
-            if a.is_finite() && c.is_finite() {
-                b.0 = b.0.min(*a);
-                b.1 = b.1.max(*c);
-            }
+            b.0 = b.0.min(*a);
+            b.1 = b.1.max(*c);
         }
-        if !b.0.is_finite() || !b.2.is_finite() {
-            return (0.5, 0.5, 0.5, 0.5);
+        if !b.0.is_finite() {
+            return (0.0, 1.0, 0.0, 1.0);
         }
         let fix = |lo: f64, hi: f64| {
-            let half = hi / 2.0 - lo / 2.0;
-            let centre = lo / 2.0 + hi / 2.0;
-            let half = if half > 0.0 {
-                (1.05 * half).min(f64::MAX)
+            let span = hi - lo;
+            let pad = if span > 0.0 {
+                0.05 * span
             } else {
                 0.5 * lo.abs().max(1.0)
             };
-            (centre, half)
+            (lo - pad, hi + pad)
         };
-        let (cx, hx) = fix(b.0, b.1);
-        let (cy, hy) = fix(b.2, b.3);
-        (cx, hx, cy, hy)
+        let (x0, x1) = fix(b.0, b.1);
+        let (y0, y1) = fix(b.2, b.3);
+        (x0, x1, y0, y1)
     }
 
-    /// The figure as a standalone SVG document.
+    /// Width of the colour bar with its tick labels, or 0.
+    fn colorbar_width(&self) -> f64 {
+        self.colorbar.as_ref().map_or(0.0, |c| {
+            let labels = nice_ticks(c.range.0, c.range.1)
+                .into_iter()
+                .map(|v| text_width(&fmt_tick(v), FONT))
+                .chain([text_width(&c.label, FONT) - BAR - 6.0])
+                .fold(0.0_f64, f64::max);
+            20.0 + BAR + 6.0 + labels + 8.0
+        })
+    }
+
+    /// Lays the figure out: margins grow to hold tick labels, the canvas grows to hold the
+    /// title, the legend (rows above the plot, or a column beside it) and the colour bar; the
+    /// plot keeps the size asked for in [`Figure::size`].
+    fn frame(&self) -> Frame {
+        let (bx0, bx1, by0, by1) = self.bounds();
+        // the plot's width is what `size` leaves beside the usual margins; wider tick labels,
+        // a colour bar or a legend column widen the canvas instead of narrowing the plot
+        let usual_left = if self.axes { MARGIN_LEFT } else { 20.0 };
+        let pw = (self.size.0 - usual_left - MARGIN_RIGHT).max(100.0);
+        let bottom = if self.axes { MARGIN_BOTTOM } else { 16.0 };
+        let ph = (self.size.1 - MARGIN_TOP - MARGIN_BOTTOM).max(60.0);
+        let (mut x0, mut x1, mut y0, mut y1) = (bx0, bx1, by0, by1);
+        if self.equal_aspect {
+            let s = ((x1 - x0) / pw).max((y1 - y0) / ph);
+            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+            x0 = cx - 0.5 * s * pw;
+            x1 = cx + 0.5 * s * pw;
+            y0 = cy - 0.5 * s * ph;
+            y1 = cy + 0.5 * s * ph;
+        }
+        let left = if self.axes {
+            let labels = nice_ticks(y0, y1)
+                .into_iter()
+                .map(|v| text_width(&fmt_tick(v), FONT))
+                .fold(0.0_f64, f64::max);
+            // tick (5) + gap (3) + labels + gap (6) + the rotated axis name (20)
+            MARGIN_LEFT.max(labels + 34.0)
+        } else {
+            20.0
+        };
+        let entries: Vec<(usize, f64)> = self
+            .series
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| {
+                s.label
+                    .as_deref()
+                    .map(|l| (i, LEGEND_SAMPLE + text_width(l, LEGEND_FONT)))
+            })
+            .collect();
+        let mut w = left + pw + MARGIN_RIGHT + self.colorbar_width();
+        let widths: Vec<f64> = entries.iter().map(|e| e.1).collect();
+        let legend = place_legend(&widths, w - 24.0);
+        let (top, column) = match &legend {
+            LegendPlace::None => (40.0, 0.0),
+            LegendPlace::Rows(rows) => (MARGIN_TOP + LEGEND_ROW * (rows.len() as f64 - 1.0), 0.0),
+            LegendPlace::Column(cw) => (40.0, cw + 24.0),
+        };
+        w += column;
+        w = w.max(text_width(&self.title, TITLE_FONT) + 24.0);
+        let mut h = top + ph + bottom;
+        if let LegendPlace::Column(_) = legend {
+            h = h.max(top + LEGEND_ROW * entries.len() as f64 + bottom);
+        }
+        Frame {
+            w: w.ceil(),
+            h: h.ceil(),
+            left,
+            top,
+            pw,
+            ph,
+            x0,
+            x1,
+            y0,
+            y1,
+            entries,
+            legend,
+        }
+    }
+
+    /// Pairs of labelled series of which the earlier would be hidden under the later on the
+    /// page (every point of it within a line width of the other): the later one is drawn dashed
+    /// over the earlier, and the caption should carry [`Coincidence::note`].
+    #[must_use]
+    pub fn coincidences(&self) -> Vec<Coincidence> {
+        let frame = self.frame();
+        self.hidden_pairs(&frame)
+            .into_iter()
+            .map(|(i, j)| {
+                let (a, b) = (&self.series[i], &self.series[j]);
+                let lines = b.style != Style::Markers;
+                Coincidence {
+                    hidden: a.label.clone().unwrap_or_default(),
+                    over: b.label.clone().unwrap_or_default(),
+                    distance: one_sided(&a.paths, &b.paths, lines, f64::INFINITY),
+                }
+            })
+            .collect()
+    }
+
+    /// `(i, j)`, `i < j`, both labelled, same kind (lines or markers), where series `i` lies
+    /// within a line width of series `j` on the page.
+    fn hidden_pairs(&self, frame: &Frame) -> Vec<(usize, usize)> {
+        let page: Vec<Vec<Vec<[f64; 2]>>> = self
+            .series
+            .iter()
+            .map(|s| {
+                s.paths
+                    .iter()
+                    .map(|p| p.iter().map(|q| frame.page(*q)).collect())
+                    .collect()
+            })
+            .collect();
+        let boxes: Vec<_> = page.iter().map(|p| bbox(p)).collect();
+        let kind = |s: &Series| match s.style {
+            Style::Line | Style::Dashed => Some(true),
+            Style::Markers => Some(false),
+            Style::Ticks => None,
+        };
+        let mut out = Vec::new();
+        for j in 0..self.series.len() {
+            for i in 0..j {
+                let (a, b) = (&self.series[i], &self.series[j]);
+                if a.label.is_none() || b.label.is_none() || kind(a).is_none() {
+                    continue;
+                }
+                if kind(a) != kind(b) || page[i].iter().all(Vec::is_empty) {
+                    continue;
+                }
+                let tol = a.width().max(b.width()) + if kind(a) == Some(false) { 2.0 } else { 0.0 };
+                let (ba, bb) = (boxes[i], boxes[j]);
+                if ba.0 < bb.0 - tol || ba.1 > bb.1 + tol || ba.2 < bb.2 - tol || ba.3 > bb.3 + tol
+                {
+                    continue;
+                }
+                if one_sided(&page[i], &page[j], kind(a) == Some(true), tol) <= tol {
+                    out.push((i, j));
+                }
+            }
+        }
+        out
+    }
+
+    /// The figure as a standalone SVG document. Text elements and legend entries carry their
+    /// boxes as `data-bbox="x y width height"`, series groups their label, so that tests can
+    /// check the layout without a font.
     #[must_use]
     pub fn to_svg(&self) -> String {
-        let (w, h) = self.size;
-        let (cx, mut hx, cy, mut hy) = self.bounds();
-        let pw = w - MARGIN_LEFT - MARGIN_RIGHT;
-        let ph = h - MARGIN_TOP - MARGIN_BOTTOM;
-        if self.equal_aspect {
-            let s = (hx / pw).max(hy / ph);
-            hx = (s * pw).min(f64::MAX);
-            hy = (s * ph).min(f64::MAX);
-        }
-        // (x − cx) / 2 without overflow, over the half-width: in [−1/2, 1/2] on the plot
-        let tx = |x: f64| MARGIN_LEFT + (0.5 + (x / 2.0 - cx / 2.0) / hx) * pw;
-        let ty = |y: f64| MARGIN_TOP + (0.5 - (y / 2.0 - cy / 2.0) / hy) * ph;
-        let clamp = |v: f64| v.clamp(-f64::MAX, f64::MAX);
-        let (x0, x1) = (clamp(cx - hx), clamp(cx + hx));
-        let (y0, y1) = (clamp(cy - hy), clamp(cy + hy));
+        let f = self.frame();
+        let (w, h, left, top, pw, ph) = (f.w, f.h, f.left, f.top, f.pw, f.ph);
+        let hidden = self.hidden_pairs(&f);
         let mut s = String::new();
         let _ = writeln!(
             s,
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Arial, sans-serif" font-size="12">"#
         );
         let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="22" text-anchor="middle" font-size="15">{}</text>"#,
+        text(
+            &mut s,
             w / 2.0,
-            escape(&self.title)
+            TITLE_Y,
+            "middle",
+            TITLE_FONT,
+            &self.title,
+            "",
         );
         if let Some((a, b, label)) = &self.band {
             let _ = writeln!(
                 s,
-                r##"<rect x="{:.2}" y="{MARGIN_TOP}" width="{:.2}" height="{ph}" fill="#fff3c4"/><text x="{:.2}" y="{}" text-anchor="middle" fill="#8a6d00">{}</text>"##,
-                tx(*a),
-                tx(*b) - tx(*a),
-                0.5 * (tx(*a) + tx(*b)),
-                MARGIN_TOP + 14.0,
-                escape(label)
+                r##"<rect x="{:.2}" y="{top}" width="{:.2}" height="{ph}" fill="#fff3c4"/>"##,
+                f.tx(*a),
+                f.tx(*b) - f.tx(*a),
+            );
+            text(
+                &mut s,
+                0.5 * (f.tx(*a) + f.tx(*b)),
+                top + 14.0,
+                "middle",
+                FONT,
+                label,
+                r##" fill="#8a6d00""##,
             );
         }
         if self.axes {
-            let _ = writeln!(
-                s,
-                r##"<rect x="{MARGIN_LEFT}" y="{MARGIN_TOP}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
-            );
-            let (xticks, xstep) = nice_ticks(x0, x1);
-            for v in xticks {
-                let x = tx(v);
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="#888"/><text x="{x:.2}" y="{:.2}" text-anchor="middle">{}</text>"##,
-                    MARGIN_TOP + ph,
-                    MARGIN_TOP + ph + 5.0,
-                    MARGIN_TOP + ph + 18.0,
-                    fmt_tick(v, xstep)
-                );
-            }
-            let (yticks, ystep) = nice_ticks(y0, y1);
-            for v in yticks {
-                let y = ty(v);
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{:.2}" y1="{y:.2}" x2="{MARGIN_LEFT}" y2="{y:.2}" stroke="#888"/><text x="{:.2}" y="{:.2}" text-anchor="end">{}</text>"##,
-                    MARGIN_LEFT - 5.0,
-                    MARGIN_LEFT - 8.0,
-                    y + 4.0,
-                    fmt_tick(v, ystep)
-                );
-            }
-            let (xl, yl) = &self.axis_labels;
-            let _ = writeln!(
-                s,
-                r#"<text x="{:.2}" y="{:.2}" text-anchor="middle">{}</text><text x="14" y="{:.2}" text-anchor="middle" transform="rotate(-90 14 {:.2})">{}</text>"#,
-                MARGIN_LEFT + pw / 2.0,
-                h - 8.0,
-                escape(xl),
-                MARGIN_TOP + ph / 2.0,
-                MARGIN_TOP + ph / 2.0,
-                escape(yl)
-            );
+            self.axes_svg(&mut s, &f);
         }
-        for series in &self.series {
-            let c = &series.color;
-            for path in &series.paths {
-                match series.style {
-                    Style::Line | Style::Dashed => {
-                        let dash = if series.style == Style::Dashed {
-                            r#" stroke-dasharray="6 4""#
-                        } else {
-                            ""
-                        };
-                        let pts: Vec<String> = path
-                            .iter()
-                            .map(|p| (tx(p[0]), ty(p[1])))
-                            .filter(|(x, y)| x.is_finite() && y.is_finite())
-                            .map(|(x, y)| format!("{x:.2},{y:.2}"))
-                            .collect();
-                        let _ = writeln!(
-                            s,
-                            r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="{}"{dash}/>"#,
-                            pts.join(" "),
-                            if series.style == Style::Line {
-                                2.0
-                            } else {
-                                1.2
-                            }
-                        );
-                    }
-                    Style::Markers => {
-                        for p in path
-                            .iter()
-                            .filter(|p| tx(p[0]).is_finite() && ty(p[1]).is_finite())
-                        {
-                            let _ = writeln!(
-                                s,
-                                r#"<circle cx="{:.2}" cy="{:.2}" r="4" fill="white" stroke="{c}" stroke-width="1.8"/>"#,
-                                tx(p[0]),
-                                ty(p[1])
-                            );
-                        }
-                    }
-                    Style::Ticks => {
-                        for p in path
-                            .iter()
-                            .filter(|p| tx(p[0]).is_finite() && ty(p[1]).is_finite())
-                        {
-                            let (x, y) = (tx(p[0]), ty(p[1]));
-                            let _ = writeln!(
-                                s,
-                                r#"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="{c}" stroke-width="2"/>"#,
-                                y - 7.0,
-                                y + 7.0
-                            );
-                        }
-                    }
-                }
-            }
-        }
-        // legend: one row in the top margin, under the title
-        let mut x = MARGIN_LEFT;
-        let y = MARGIN_TOP - 12.0;
-        for series in self.series.iter().filter(|s| s.label.is_some()) {
-            let label = series.label.as_deref().unwrap_or_default();
-            let c = &series.color;
-            match series.style {
-                Style::Markers => {
+        if !self.faces.is_empty() {
+            s.push_str("<g class=\"surface\" stroke-linejoin=\"round\">\n");
+            for face in &self.faces {
+                if face.points.len() >= 3 {
+                    let pts: Vec<String> = face
+                        .points
+                        .iter()
+                        .map(|p| format!("{:.2},{:.2}", f.tx(p[0]), f.ty(p[1])))
+                        .collect();
                     let _ = writeln!(
                         s,
-                        r#"<circle cx="{:.2}" cy="{y:.2}" r="4" fill="white" stroke="{c}" stroke-width="1.8"/>"#,
-                        x + 10.0
+                        r#"<polygon points="{}" fill="{c}" stroke="{c}" stroke-width="0.7"/>"#,
+                        pts.join(" "),
+                        c = face.fill
                     );
                 }
-                _ => {
-                    let dash = if series.style == Style::Dashed {
-                        r#" stroke-dasharray="6 4""#
-                    } else {
-                        ""
-                    };
+                let (ec, ew) = &face.edge_style;
+                for e in &face.edges {
                     let _ = writeln!(
                         s,
-                        r#"<line x1="{x:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{c}" stroke-width="2"{dash}/>"#,
-                        x + 20.0
+                        r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="{ec}" stroke-width="{ew}" stroke-linecap="round"/>"#,
+                        f.tx(e[0][0]),
+                        f.ty(e[0][1]),
+                        f.tx(e[1][0]),
+                        f.ty(e[1][1])
                     );
                 }
             }
-            let _ = writeln!(
-                s,
-                r#"<text x="{:.2}" y="{:.2}">{}</text>"#,
-                x + 26.0,
-                y + 4.0,
-                escape(label)
-            );
-            x += 40.0 + 7.0 * label.chars().count() as f64;
+            s.push_str("</g>\n");
         }
+        for (k, series) in self.series.iter().enumerate() {
+            let over = hidden.iter().find(|(_, j)| *j == k).map(|(i, _)| *i);
+            self.series_svg(&mut s, &f, series, over);
+        }
+        for a in &self.annotations {
+            text(
+                &mut s,
+                f.tx(a.at[0]) + a.offset.0,
+                f.ty(a.at[1]) + a.offset.1,
+                a.anchor,
+                FONT,
+                &a.text,
+                r##" fill="#444""##,
+            );
+        }
+        if let Some(bar) = &self.colorbar {
+            colorbar_svg(&mut s, bar, left + pw + 20.0, top + 20.0, ph - 20.0);
+        }
+        self.legend_svg(&mut s, &f, &hidden);
         s.push_str("</svg>\n");
         s
     }
+
+    /// Frame, ticks and axis names.
+    fn axes_svg(&self, s: &mut String, f: &Frame) {
+        let (left, top, pw, ph) = (f.left, f.top, f.pw, f.ph);
+        let _ = writeln!(
+            s,
+            r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
+        );
+        for v in nice_ticks(f.x0, f.x1) {
+            let x = f.tx(v);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="#888"/>"##,
+                top + ph,
+                top + ph + 5.0,
+            );
+            text(s, x, top + ph + 18.0, "middle", FONT, &fmt_tick(v), "");
+        }
+        for v in nice_ticks(f.y0, f.y1) {
+            let y = f.ty(v);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{:.2}" y1="{y:.2}" x2="{left}" y2="{y:.2}" stroke="#888"/>"##,
+                left - 5.0,
+            );
+            text(s, left - 8.0, y + 4.0, "end", FONT, &fmt_tick(v), "");
+        }
+        let (xl, yl) = &self.axis_labels;
+        if !xl.is_empty() {
+            text(s, left + pw / 2.0, top + ph + 36.0, "middle", FONT, xl, "");
+        }
+        if !yl.is_empty() {
+            // rotated: the box of the turned text, for the checks
+            let cy = top + ph / 2.0;
+            let wl = text_width(yl, FONT);
+            let (asc, desc) = text_extent(FONT);
+            let _ = writeln!(
+                s,
+                r#"<text x="16" y="{cy:.2}" text-anchor="middle" transform="rotate(-90 16 {cy:.2})" data-bbox="{:.2} {:.2} {:.2} {wl:.2}">{}</text>"#,
+                16.0 - asc,
+                cy - wl / 2.0,
+                asc + desc,
+                escape(yl)
+            );
+        }
+    }
+
+    /// One series; `over` is the series it would hide, if any (then it is drawn dashed).
+    fn series_svg(&self, s: &mut String, f: &Frame, series: &Series, over: Option<usize>) {
+        let c = &series.color;
+        let label = series.label.as_deref().unwrap_or_default();
+        let note = over
+            .and_then(|i| self.series[i].label.as_deref())
+            .map(|l| format!(r#" data-coincides="{}""#, escape(l)))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            r#"<g class="series" data-label="{}" data-width="{}"{note}>"#,
+            escape(label),
+            series.width()
+        );
+        let dash = if over.is_some() && series.style != Style::Markers {
+            "5 5"
+        } else {
+            series.dash_pattern()
+        };
+        let dash_attr = if dash.is_empty() {
+            String::new()
+        } else {
+            format!(r#" stroke-dasharray="{dash}""#)
+        };
+        for path in &series.paths {
+            match series.style {
+                Style::Line | Style::Dashed => {
+                    let pts: Vec<String> = path
+                        .iter()
+                        .map(|p| format!("{:.2},{:.2}", f.tx(p[0]), f.ty(p[1])))
+                        .collect();
+                    let _ = writeln!(
+                        s,
+                        r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="{}"{dash_attr} stroke-linejoin="round"/>"#,
+                        pts.join(" "),
+                        series.width()
+                    );
+                    if let (Some(m), true) = (series.marker, path.len() > 1) {
+                        // three markers where the line is its own: off its lowest level (the
+                        // zero line a family of basis functions shares), staggered by label so
+                        // that lines of one family put theirs at different abscissae
+                        let low = path.iter().fold(f64::INFINITY, |m, p| m.min(p[1]));
+                        let own: Vec<&[f64; 2]> = path.iter().filter(|p| p[1] > low).collect();
+                        let own = if own.is_empty() {
+                            path.iter().collect()
+                        } else {
+                            own
+                        };
+                        let shift = 1 + label.len() % 3;
+                        for q in 0..3 {
+                            let p = own[((2 * q + shift) * own.len() / 8).min(own.len() - 1)];
+                            marker(s, m, f.tx(p[0]), f.ty(p[1]), 3.5, c, "white");
+                        }
+                    }
+                }
+                Style::Markers => {
+                    let (r, fill) = if over.is_some() {
+                        (2.2, c.as_str())
+                    } else {
+                        (4.0, "white")
+                    };
+                    for p in path {
+                        let m = series.marker.unwrap_or(Marker::Circle);
+                        marker(s, m, f.tx(p[0]), f.ty(p[1]), r, c, fill);
+                    }
+                }
+                Style::Ticks => {
+                    for p in path {
+                        let (x, y) = (f.tx(p[0]), f.ty(p[1]));
+                        let _ = writeln!(
+                            s,
+                            r#"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="{c}" stroke-width="2"/>"#,
+                            y - 7.0,
+                            y + 7.0
+                        );
+                    }
+                }
+            }
+        }
+        s.push_str("</g>\n");
+    }
+
+    /// The legend: rows under the title, or a column right of the plot.
+    fn legend_svg(&self, s: &mut String, f: &Frame, hidden: &[(usize, usize)]) {
+        let place = |s: &mut String, k: usize, x: f64, y: f64| {
+            let (i, width) = f.entries[k];
+            let series = &self.series[i];
+            let c = &series.color;
+            let (asc, desc) = text_extent(LEGEND_FONT);
+            let _ = writeln!(
+                s,
+                r#"<g class="legend" data-bbox="{x:.2} {:.2} {width:.2} {:.2}">"#,
+                y + 4.0 - asc,
+                asc + desc
+            );
+            let over = hidden.iter().any(|(_, j)| *j == i);
+            match series.style {
+                Style::Markers => {
+                    let m = series.marker.unwrap_or(Marker::Circle);
+                    let (r, fill) = if over {
+                        (2.2, c.as_str())
+                    } else {
+                        (4.0, "white")
+                    };
+                    marker(s, m, x + 11.0, y, r, c, fill);
+                }
+                _ => {
+                    let dash = if over { "5 5" } else { series.dash_pattern() };
+                    let dash = if dash.is_empty() {
+                        String::new()
+                    } else {
+                        format!(r#" stroke-dasharray="{dash}""#)
+                    };
+                    let _ = writeln!(
+                        s,
+                        r#"<line x1="{x:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{c}" stroke-width="{}"{dash}/>"#,
+                        x + 22.0,
+                        series.width()
+                    );
+                    if let Some(m) = series.marker {
+                        marker(s, m, x + 11.0, y, 3.5, c, "white");
+                    }
+                }
+            }
+            let label = series.label.as_deref().unwrap_or_default();
+            text(
+                s,
+                x + LEGEND_SAMPLE,
+                y + 4.0,
+                "start",
+                LEGEND_FONT,
+                label,
+                "",
+            );
+            s.push_str("</g>\n");
+        };
+        match &f.legend {
+            LegendPlace::None => {}
+            LegendPlace::Rows(rows) => {
+                for (r, row) in rows.iter().enumerate() {
+                    let used: f64 = row.iter().map(|k| f.entries[*k].1).sum::<f64>()
+                        + LEGEND_GAP * (row.len() as f64 - 1.0);
+                    // aligned with the plot if the row fits there, else from the left edge
+                    let mut x = if f.left + used <= f.w - 12.0 {
+                        f.left
+                    } else {
+                        12.0
+                    };
+                    let y = LEGEND_Y + LEGEND_ROW * r as f64;
+                    for k in row {
+                        place(s, *k, x, y);
+                        x += f.entries[*k].1 + LEGEND_GAP;
+                    }
+                }
+            }
+            LegendPlace::Column(_) => {
+                let x = f.w - f.entries.iter().fold(0.0_f64, |m, e| m.max(e.1)) - 12.0;
+                for k in 0..f.entries.len() {
+                    place(s, k, x, f.top + 8.0 + LEGEND_ROW * k as f64);
+                }
+            }
+        }
+    }
+}
+
+/// A vertical colour bar with ticks at `(x, top)`, `height` pixels tall.
+fn colorbar_svg(s: &mut String, bar: &ColorBar, x: f64, top: f64, height: f64) {
+    let (lo, hi) = bar.range;
+    let steps = 48;
+    let _ = writeln!(s, r#"<g class="colorbar">"#);
+    for k in 0..steps {
+        let a = f64::from(k) / f64::from(steps);
+        let y = top + height * (1.0 - a - 1.0 / f64::from(steps));
+        let _ = writeln!(
+            s,
+            r#"<rect x="{x:.2}" y="{y:.2}" width="{BAR}" height="{:.2}" fill="{}"/>"#,
+            height / f64::from(steps) + 0.5,
+            height_color(a + 0.5 / f64::from(steps))
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{x:.2}" y="{top:.2}" width="{BAR}" height="{height:.2}" fill="none" stroke="#888"/>"##
+    );
+    if hi > lo {
+        for v in nice_ticks(lo, hi) {
+            let y = top + height * (hi - v) / (hi - lo);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#888"/>"##,
+                x + BAR,
+                x + BAR + 4.0
+            );
+            text(s, x + BAR + 6.0, y + 4.0, "start", FONT, &fmt_tick(v), "");
+        }
+    } else {
+        text(
+            s,
+            x + BAR + 6.0,
+            top + height / 2.0 + 4.0,
+            "start",
+            FONT,
+            &fmt_tick(lo),
+            "",
+        );
+    }
+    text(s, x, top - 8.0, "start", FONT, &bar.label, "");
+    s.push_str("</g>\n");
 }
 
 /// Escapes text for SVG/HTML.
@@ -329,68 +902,37 @@ pub fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks), and the step.
-/// The span is taken from halves, so `[−1e308, 1e308]` does not overflow.
-fn nice_ticks(lo: f64, hi: f64) -> (Vec<f64>, f64) {
-    let half = hi / 2.0 - lo / 2.0;
-    if half.is_nan() || half <= 0.0 || !half.is_finite() {
-        return (Vec::new(), 0.0);
+/// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks).
+pub(crate) fn nice_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    let span = hi - lo;
+    if span.is_nan() || span <= 0.0 || !span.is_finite() {
+        return Vec::new();
     }
-    let raw = half / 2.5;
+    let raw = span / 5.0;
     let mag = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
-    if !(step > 0.0 && step.is_finite()) {
-        return (Vec::new(), 0.0);
-    }
     let first = (lo / step).ceil();
     let last = (hi / step).floor();
     let mut out = Vec::new();
     let mut k = first;
     while k <= last && out.len() < 50 {
-        let v = k * step;
-        if v.is_finite() {
-            out.push(v);
-        }
+        out.push(k * step);
         k += 1.0;
     }
-    (out, step)
+    out
 }
 
-/// A tick label with as many digits as the step needs: plain decimals for ordinary
-/// magnitudes, `1.5e300` / `2e-320` beyond them (never `inf`, never every tick `0`).
-#[allow(clippy::cast_possible_truncation)] // decimal exponents of finite f64 are within ±330
-fn fmt_tick(v: f64, step: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 || (step > 0.0 && a < step * 1e-6) {
-        return "0".into();
-    }
-    let e_step = if step > 0.0 {
-        step.log10().floor() as i32
+pub(crate) fn fmt_tick(v: f64) -> String {
+    let r = (v * 1e9).round() / 1e9;
+    let s = format!("{r}");
+    if s == "-0" {
+        "0".into()
     } else {
-        a.log10().floor() as i32 - 3
-    };
-    if (1e-4..1e6).contains(&a) {
-        let decimals = usize::try_from((-e_step).clamp(0, 15)).unwrap_or(0);
-        let s = format!("{v:.decimals$}");
-        return if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-            s[1..].to_string()
-        } else {
-            s
-        };
-    }
-    let e_v = a.log10().floor() as i32;
-    let digits = usize::try_from((e_v - e_step).clamp(0, 15)).unwrap_or(0);
-    let s = format!("{v:.digits$e}");
-    // 1.50e3 -> 1.5e3
-    match s.split_once('e') {
-        Some((m, e)) if m.contains('.') => {
-            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
-        }
-        _ => s,
+        s
     }
 }
 
@@ -434,24 +976,7 @@ fn to_plane(p: &[f64], projection: &crate::wireframe::Projection) -> [f64; 2] {
     }
 }
 
-/// Most vertices of a control polygon or data series drawn in a curve plot; beyond it every
-/// k-th is drawn (first and last kept), as a picture cannot show more.
-pub(crate) const PLOT_MAX_VERTICES: usize = 20_000;
-/// Most markers (control points, points at knots, data points) drawn per series; beyond it the
-/// markers are left out and the legend says so.
-pub(crate) const PLOT_MAX_MARKERS: usize = 2_000;
-
-/// Every k-th of `n` indices (first and last kept) so that at most `max` remain.
-fn decimated(n: usize, max: usize) -> impl Iterator<Item = usize> {
-    let k = n.div_ceil(max.max(2) - 1).max(1);
-    (0..n)
-        .step_by(k)
-        .chain((n > 0 && (n - 1) % k != 0).then_some(n - 1))
-}
-
 /// Plot of a curve: the curve over its domain, its control polygon, knot marks and data points.
-/// Huge objects are decimated: at most 20,000 vertices of a control polygon and 2,000 markers
-/// per series are drawn.
 ///
 /// # Errors
 /// Evaluation errors of the library (none for a valid object).
@@ -472,38 +997,29 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         .map(|p| to_plane(p, proj))
         .collect();
     if opts.control_polygon {
-        let cp = obj.control_points();
-        let n = cp.len();
-        let ctrl: Vec<[f64; 2]> = decimated(n, PLOT_MAX_VERTICES)
-            .map(|i| to_plane(cp.point(i), proj))
+        let ctrl: Vec<[f64; 2]> = obj
+            .control_points()
+            .iter()
+            .map(|p| to_plane(p, proj))
             .collect();
-        let label = if ctrl.len() < n {
-            format!("control polygon ({} of {n} points)", ctrl.len())
-        } else {
-            "control polygon".to_string()
-        };
-        let markers = (ctrl.len() <= PLOT_MAX_MARKERS).then(|| ctrl.clone());
+        fig.series.push(Series::new(
+            Some("control polygon"),
+            ctrl.clone(),
+            Style::Dashed,
+            "#777777",
+        ));
         fig.series
-            .push(Series::new(Some(&label), ctrl, Style::Dashed, "#777777"));
-        if let Some(m) = markers {
-            fig.series
-                .push(Series::new(None, m, Style::Markers, "#777777"));
-        }
+            .push(Series::new(None, ctrl, Style::Markers, "#777777"));
     }
     fig.series
         .push(Series::new(Some("curve"), curve, Style::Line, PALETTE[0]));
     if opts.knot_marks {
         let (a, b) = obj.domain();
-        let inside: Vec<f64> = obj
-            .knots()
-            .distinct()
-            .into_iter()
-            .map(|(t, _)| t)
-            .filter(|t| *t >= a && *t <= b)
-            .collect();
         let mut marks = Vec::new();
-        for i in decimated(inside.len(), PLOT_MAX_MARKERS) {
-            marks.push(to_plane(&obj.eval(inside[i])?, proj));
+        for (t, _) in obj.knots().distinct() {
+            if t >= a && t <= b {
+                marks.push(to_plane(&obj.eval(t)?, proj));
+            }
         }
         fig.series.push(Series::new(
             Some("points at knots"),
@@ -513,9 +1029,7 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         ));
     }
     if let Some(data) = opts.data_points {
-        let pts = decimated(data.len(), PLOT_MAX_MARKERS)
-            .map(|i| to_plane(data.point(i), proj))
-            .collect();
+        let pts = data.iter().map(|p| to_plane(p, proj)).collect();
         fig.series.push(Series::new(
             Some("data points"),
             pts,
@@ -569,22 +1083,11 @@ pub fn basis_figure(knots: &KnotVector, degree: usize, samples: usize) -> lekalo
             pts.push([t, basis_function_recursive(knots, i, degree, t)?]);
         }
         let label = format!("N{i},{degree}");
-        fig.series.push(Series::new(
-            Some(&label),
-            pts,
-            Style::Line,
-            PALETTE[i % PALETTE.len()],
-        ));
+        fig.series.push(Series::nth(Some(&label), pts, i));
     }
     let ticks: Vec<[f64; 2]> = k.iter().map(|&t| [t, 0.0]).collect();
     fig.series
         .push(Series::new(None, ticks, Style::Ticks, "#000000"));
-    if n_basis > 8 {
-        // the legend would cover the plot
-        for s in &mut fig.series {
-            s.label = None;
-        }
-    }
     Ok(fig)
 }
 
@@ -615,24 +1118,12 @@ mod tests {
     #[test]
     fn ticks_are_nice() {
         assert_eq!(
-            nice_ticks(0.0, 1.0).0,
+            nice_ticks(0.0, 1.0),
             vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
         );
-        assert_eq!(nice_ticks(-3.0, 3.0).0, vec![-2.0, 0.0, 2.0]);
-        assert!(nice_ticks(1.0, 1.0).0.is_empty());
-        assert_eq!(fmt_tick(0.6000000000000001, 0.2), "0.6");
-        // extreme magnitudes: finite, distinct labels
-        let (t, step) = nice_ticks(-1.7e308, 1.7e308);
-        assert!(t.len() >= 3 && t.iter().all(|v| v.is_finite()), "{t:?}");
-        let labels: Vec<String> = t.iter().map(|v| fmt_tick(*v, step)).collect();
-        assert!(labels.iter().all(|l| !l.contains("inf")), "{labels:?}");
-        let (t, step) = nice_ticks(1e-320, 5e-320);
-        let labels: Vec<String> = t.iter().map(|v| fmt_tick(*v, step)).collect();
-        assert!(
-            labels.len() >= 2 && labels.iter().all(|l| l != "0"),
-            "{labels:?}"
-        );
-        assert_eq!(fmt_tick(1.5e300, 5e299), "1.5e300");
+        assert_eq!(nice_ticks(-3.0, 3.0), vec![-2.0, 0.0, 2.0]);
+        assert!(nice_ticks(1.0, 1.0).is_empty());
+        assert_eq!(fmt_tick(0.6000000000000001), "0.6");
     }
 
     #[test]

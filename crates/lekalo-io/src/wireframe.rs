@@ -1,7 +1,8 @@
 //! Surfaces as wireframes in a simple projection, written against plain point grids so that
 //! any surface type plugs in by sampling itself into a [`Grid`].
 
-use crate::svg::{Figure, Series, Style, PALETTE};
+use crate::palette::PALETTE;
+use crate::svg::{Figure, Series, Style};
 
 /// A grid of `nu × nv` points of dimension `dim`, point `(i, j)` at
 /// `data[(i * nv + j) * dim ..]` (the layout of lekalo's surface nets).
@@ -75,15 +76,50 @@ impl Default for Projection {
 }
 
 impl Projection {
+    /// The view's right-handed frame: screen right, screen up, and the unit vector toward the
+    /// eye (right × up = toward the eye, so the picture is never a mirror image).
+    #[must_use]
+    pub fn frame(&self) -> [[f64; 3]; 3] {
+        let (sa, ca) = self.azimuth.to_radians().sin_cos();
+        let (se, ce) = self.elevation.to_radians().sin_cos();
+        [
+            [ca, -sa, 0.0],
+            [se * sa, se * ca, ce],
+            [-ce * sa, -ce * ca, se],
+        ]
+    }
+
     /// Screen coordinates of a 3-D point: rotate by −azimuth about z, then tilt by the
     /// elevation about the screen's x axis, and drop the depth.
     #[must_use]
     pub fn project(&self, p: [f64; 3]) -> [f64; 2] {
-        let (sa, ca) = self.azimuth.to_radians().sin_cos();
-        let (se, ce) = self.elevation.to_radians().sin_cos();
-        let x = ca * p[0] - sa * p[1];
-        let y = sa * p[0] + ca * p[1];
-        [x, -se * y + ce * p[2]]
+        let [r, u, _] = self.frame();
+        [dot(r, p), dot(u, p)]
+    }
+
+    /// Distance toward the eye (larger is nearer): the sort key of the painter's algorithm.
+    #[must_use]
+    pub fn depth(&self, p: [f64; 3]) -> f64 {
+        dot(self.frame()[2], p)
+    }
+}
+
+/// Dot product in 3-D.
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl Projection {
+    /// `(right × up) · toward`: 1 for a right-handed frame.
+    #[cfg(test)]
+    fn handed(&self) -> f64 {
+        let [r, u, t] = self.frame();
+        let c = [
+            r[1] * u[2] - r[2] * u[1],
+            r[2] * u[0] - r[0] * u[2],
+            r[0] * u[1] - r[1] * u[0],
+        ];
+        dot(c, t)
     }
 }
 
@@ -112,6 +148,8 @@ pub fn wireframe_figure(title: &str, grid: &Grid<'_>, projection: &Projection) -
         paths,
         style: Style::Line,
         color: PALETTE[0].to_string(),
+        dash: None,
+        marker: None,
     });
     fig
 }
@@ -126,11 +164,19 @@ mod tests {
             azimuth: 0.0,
             elevation: 90.0,
         };
-        // from above, x stays and y goes up the screen... up to the sign convention of depth
+        // from above, x goes right and y up the screen: a right-handed view, not a mirror
         let p = top.project([1.0, 2.0, 5.0]);
         assert!(
-            (p[0] - 1.0).abs() < 1e-15 && (p[1] + 2.0).abs() < 1e-12,
+            (p[0] - 1.0).abs() < 1e-15 && (p[1] - 2.0).abs() < 1e-12,
             "{p:?}"
+        );
+        assert!(
+            (Projection::default().handed() - 1.0).abs() < 1e-12,
+            "right × up = toward the eye"
+        );
+        assert!(
+            top.depth([0.0, 0.0, 1.0]) > top.depth([0.0, 0.0, 0.0]),
+            "z nearer from above"
         );
         let front = Projection {
             azimuth: 0.0,

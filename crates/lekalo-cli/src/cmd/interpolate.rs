@@ -11,8 +11,8 @@ use lekalo::{
     KnotPlacement, Parametrization, Points, SurfaceInterpolation, TangentEstimate,
 };
 use lekalo_io::{
-    curve_figure, sample_table, wireframe_figure, CurvePlot, Figure, Grid, Object, Projection,
-    SampleSpec, Series, Style, SurfaceNet, PALETTE,
+    curve_figure, sample_table, CurvePlot, Figure, Grid, Object, SampleSpec, Series, Style,
+    SurfaceNet, PALETTE,
 };
 
 use crate::cmd::plot::encode;
@@ -126,32 +126,21 @@ fn stem(out: Option<&Path>) -> &str {
         .unwrap_or("lekalo")
 }
 
-/// Wireframe of a surface sampled on a `SURFACE_SAMPLES²` grid, with its control net.
+/// A surface sampled on a `SURFACE_SAMPLES²` grid, shaded, with its control net.
 pub(crate) fn surface_figure(s: &BSplineSurface, title: &str) -> Result<Figure> {
     let ((u0, u1), (v0, v1)) = s.domain();
-    let us = lekalo_io::uniform(u0, u1, SURFACE_SAMPLES);
-    let vs = lekalo_io::uniform(v0, v1, SURFACE_SAMPLES);
+    let us = lekalo_io::uniform(u0, u1, lekalo_io::SURFACE_SAMPLES);
+    let vs = lekalo_io::uniform(v0, v1, lekalo_io::SURFACE_SAMPLES);
     let mut data = vec![0.0; us.len() * vs.len() * s.dim()];
     s.eval_grid(&us, &vs, &mut data)?;
     let grid = Grid::new(us.len(), vs.len(), s.dim(), &data)?;
-    let proj = Projection::default();
-    let mut fig = wireframe_figure(title, &grid, &proj);
     let (nu, nv) = s.net_size();
     let net = Grid::new(nu, nv, s.dim(), s.control_points().as_slice())?;
-    let mut paths = Vec::new();
-    for i in 0..nu {
-        paths.push((0..nv).map(|j| proj.project(net.point3(i, j))).collect());
-    }
-    for j in 0..nv {
-        paths.push((0..nu).map(|i| proj.project(net.point3(i, j))).collect());
-    }
-    fig.series.push(Series {
-        label: Some("control net".into()),
-        paths,
-        style: Style::Dashed,
-        color: "#777777".into(),
-    });
-    Ok(fig)
+    Ok(lekalo_io::surface_plot(
+        &grid,
+        Some(&net),
+        &lekalo_io::SurfacePlot::new(title),
+    ))
 }
 
 /// Writes a B-spline surface: json, svg/png (wireframe), step, obj (tessellation).

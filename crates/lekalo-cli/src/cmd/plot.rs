@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
-use lekalo_io::{basis_figure, curve_figure, CurvePlot, Figure, Object, Projection, Shape};
+use lekalo_io::{
+    basis_figure, curve_figure, CurvePlot, Figure, Object, Projection, Shape, SurfacePlot,
+    SURFACE_SAMPLES,
+};
 
 use crate::cmd::shapes;
 use crate::io::{bad_input, emit, format_of, in_range, load, load_one, not_a_curve, Loaded};
@@ -22,7 +25,9 @@ Examples:
   lekalo plot curve.json -o curve.png --points data.csv --title 'Interpolated'
   lekalo plot curve.json -o basis.svg --basis
   lekalo plot curve3d.json -o view.svg --azimuth 30 --elevation 20
-  lekalo plot surface.json -o surface.svg --samples 20      # 20 × 20 wireframe
+  lekalo plot surface.json -o surface.svg                  # shaded, 33 × 33 points, axes
+  lekalo plot surface.json -o surface.png --net --iso 4     # with its control net
+  lekalo plot surface.json -o surface.svg --wireframe --samples 20   # 20 × 20 hidden-line mesh
   lekalo plot spline.pp.json -o spline.png")]
 pub(crate) struct PlotArgs {
     /// Object file (JSON; `-` for standard input).
@@ -45,9 +50,20 @@ pub(crate) struct PlotArgs {
     /// Leave out the marks at the knots.
     #[arg(long)]
     no_knots: bool,
-    /// Evaluation points along the curve.
-    #[arg(long, default_value_t = 400)]
-    samples: usize,
+    /// Evaluation points along the curve (default 400), or per direction of a surface
+    /// (default 33).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// Surfaces: draw a hidden-line wireframe of every sampled grid line instead of the
+    /// shaded surface.
+    #[arg(long)]
+    wireframe: bool,
+    /// Surfaces: draw the control net.
+    #[arg(long)]
+    net: bool,
+    /// Surfaces: isoparametric lines drawn on the shaded surface, per direction (0: none).
+    #[arg(long, default_value_t = 8, value_name = "N")]
+    iso: usize,
     /// Title of the figure.
     #[arg(long)]
     title: Option<String>,
@@ -61,6 +77,9 @@ pub(crate) struct PlotArgs {
     #[arg(long, default_value_t = 2.0)]
     scale: f32,
 }
+
+/// Evaluation points along a curve, a basis function or a pp-form by default.
+const CURVE_SAMPLES: usize = 400;
 
 /// Encodes a figure as SVG or PNG bytes.
 pub(crate) fn encode(fig: &Figure, format: &str, scale: f32) -> Result<Vec<u8>> {
@@ -79,8 +98,11 @@ pub(crate) fn encode(fig: &Figure, format: &str, scale: f32) -> Result<Vec<u8>> 
 /// The figure `plot` draws for one object.
 pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) -> Result<Figure> {
     if a.basis {
-        let n = in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?;
-        let mut fig = basis_figure(&obj.knots(), obj.degree(), n)?;
+        let mut fig = basis_figure(
+            &obj.knots(),
+            obj.degree(),
+            in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
+        )?;
         if let Some(t) = &a.title {
             fig.title.clone_from(t);
         }
@@ -90,7 +112,7 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
         obj,
         &CurvePlot {
             title: a.title.clone(),
-            samples: in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?,
+            samples: in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
             control_polygon: !a.no_control,
             knot_marks: !a.no_knots,
             data_points: data,
@@ -133,16 +155,22 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 }
                 Shape::Surface(s) => shapes::surface_figure(
                     s,
-                    in_range(a.samples, 2, 1000, "--samples (per direction of a surface)")?,
-                    a.title.as_deref(),
-                    &Projection {
-                        azimuth: a.azimuth,
-                        elevation: a.elevation,
+                    in_range(a.samples.unwrap_or(SURFACE_SAMPLES), 2, 1000, "--samples (per direction of a surface)")?,
+                    a.net,
+                    &SurfacePlot {
+                        title: a.title.as_deref().unwrap_or(s.display_name()).to_string(),
+                        projection: Projection {
+                            azimuth: a.azimuth,
+                            elevation: a.elevation,
+                        },
+                        shaded: !a.wireframe,
+                        iso_lines: a.iso,
+                        axes: true,
                     },
                 )?,
                 Shape::Pp(p) => shapes::pp_figure(
                     p,
-                    in_range(a.samples, 2, PLOT_SAMPLES, "--samples")?,
+                    in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
                     a.title.as_deref(),
                 )?,
                 other => return not_a_curve(&a.input, other),

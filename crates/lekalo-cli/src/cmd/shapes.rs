@@ -7,8 +7,8 @@ use std::fmt::Write as _;
 use anyhow::Result;
 use lekalo::{PiecewisePolynomial, Points};
 use lekalo_io::{
-    grid_to_obj, wireframe_figure, Figure, Grid, Projection, Series, Shape, StepWriter, Style,
-    Surface, PALETTE,
+    grid_to_obj, surface_plot, Figure, Grid, Series, Shape, StepWriter, Style, Surface,
+    SurfacePlot, PALETTE,
 };
 use serde_json::{json, Value};
 
@@ -267,21 +267,25 @@ pub(crate) fn pp_figure(p: &PiecewisePolynomial, n: usize, title: Option<&str>) 
     Ok(fig)
 }
 
-/// Wireframe of a surface: an `n × n` grid of surface points in the given view.
+/// A surface drawn from an `n × n` grid of its points (shaded or as a wireframe, as `opts`
+/// say), with its control net if `net`.
 pub(crate) fn surface_figure(
     s: &Surface,
     n: usize,
-    title: Option<&str>,
-    projection: &Projection,
+    net: bool,
+    opts: &SurfacePlot,
 ) -> Result<Figure> {
     let side = n.clamp(2, 1000);
     let (pts, _) = s.sample_grid(side, side, false)?;
     let grid = Grid::new(side, side, s.dim(), &pts)?;
-    Ok(wireframe_figure(
-        title.unwrap_or(s.display_name()),
-        &grid,
-        projection,
-    ))
+    let ctrl = s.control_points();
+    let (nu, nv) = s.net_size();
+    let net = if net {
+        Some(Grid::new(nu, nv, ctrl.dim(), ctrl.as_slice())?)
+    } else {
+        None
+    };
+    Ok(surface_plot(&grid, net.as_ref(), opts))
 }
 
 /// OBJ tessellation of a surface on an `n × n` grid, normals from the surface's `normal(u, v)`.
@@ -324,8 +328,8 @@ pub(crate) fn convert(
         (Shape::Surface(s), "svg" | "png") => plot(&surface_figure(
             s,
             samples_side(samples),
-            None,
-            &Projection::default(),
+            false,
+            &SurfacePlot::new(s.display_name()),
         )?),
         (Shape::Pp(p), "csv") => Ok(pp_csv(p, samples)?.into_bytes()),
         (Shape::Pp(p), "svg" | "png") => plot(&pp_figure(p, samples, None)?),

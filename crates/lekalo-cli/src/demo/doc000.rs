@@ -9,7 +9,7 @@ use lekalo::{
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
 use crate::cmd::interpolate::surface_figure;
-use crate::demo::{trim, Section};
+use crate::demo::{trim, Caption, Section};
 
 /// Reference numbers given with 6 decimals (docs/theory/interpolation.md#test-vectors).
 const SIX_DECIMALS: f64 = 5e-7;
@@ -63,7 +63,7 @@ pub(super) fn show(p: &Points) -> String {
 }
 
 pub(super) fn curves(s: &mut Section) -> Result<()> {
-    s.caption = "Global interpolation (§A.1) of P&T Example 9.1: q0..q4 = (0,0), (3,4), (−1,4), \
+    s.caption = "Global interpolation of P&T Example 9.1: q0..q4 = (0,0), (3,4), (−1,4), \
         (−4,0), (−4,−3), cubic, averaged knots (eq. 3), with the three parametrisations; the \
         control points are the library's and are checked against the reference values of the theory \
         reference (interpolation, test vectors)."
@@ -119,7 +119,7 @@ pub(super) fn curves(s: &mut Section) -> Result<()> {
         );
         rows.push(vec![name.to_string(), show(c.control_points())]);
         let obj = Object::BSpline(c);
-        add_curve(&mut fig, &obj, name, PALETTE[k])?;
+        add_curve(&mut fig, &obj, &format!("cubic, {name}"), PALETTE[k])?;
         if *param == Parametrization::ChordLength {
             let Object::BSpline(c) = &obj else {
                 continue;
@@ -155,16 +155,21 @@ pub(super) fn curves(s: &mut Section) -> Result<()> {
     add_curve(
         &mut fig,
         &Object::BSpline(quad),
-        "chord length, p = 2",
+        "quadratic, chord length",
         PALETTE[3],
     )?;
     add_points(&mut fig, &q, "data points", PALETTE[7], false);
-    s.figures.push((
+    s.figure(
         fig,
-        "Cubic interpolants with uniform, chord-length and centripetal parameters, and the \
-         quadratic with chord length, through the five data points."
-            .into(),
-    ));
+        Caption::new(
+            "Four interpolants of the same five points: cubics with uniform, chord-length and \
+             centripetal parameters, and the quadratic with chord length. The parametrisation \
+             alone changes the curve: chord length swings widest past (3, 4), uniform \
+             parameters bulge below (−4, 0) on the way to the last point, and the quadratic \
+             keeps tightest to the data.",
+        )
+        .theory("interpolation.md#parametrisation"),
+    );
     s.tables.push((
         "Control points computed by lekalo".into(),
         vec!["parametrisation".into(), "p0..p4".into()],
@@ -186,9 +191,9 @@ type EndCase = (
 
 pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
     s.caption = "The same points with end conditions, chord-length parameters: given end \
-        derivatives d0 = (1,2), dn = (−3,−1) with averaged knots (eq. 4, §A.2, p = 3 and 2) and \
-        with knots at the parameters (§A.3, C² cubic, tridiagonal system); given second \
-        derivatives d″0 = (2,−1), d″n = (0.5,4) (§A.4); the natural spline (d″ = 0)."
+        derivatives d0 = (1,2), dn = (−3,−1) with averaged knots (eq. 4, p = 3 and 2) and \
+        with knots at the parameters (C² cubic, tridiagonal system); given second \
+        derivatives d″0 = (2,−1), d″n = (0.5,4); the natural spline (d″ = 0)."
         .into();
     let q = example_9_1()?;
     let (d0, dn) = (vec![1.0, 2.0], vec![-3.0, -1.0]);
@@ -198,7 +203,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
     };
     let cases: [EndCase; 5] = [
         (
-            "§A.2 end derivatives, p = 3",
+            "end derivatives, p = 3",
             3,
             KnotPlacement::Averaged,
             first.clone(),
@@ -209,7 +214,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             "(0,0); (0.091503, 0.183007); (5.814921, 5.233246); … (−3.784314, −2.928105); (−4,−3)",
         ),
         (
-            "§A.2 end derivatives, p = 2",
+            "end derivatives, p = 2",
             2,
             KnotPlacement::Averaged,
             first.clone(),
@@ -220,7 +225,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             "(0,0); (0.073529, 0.147059); (4.523123, 4.612808); … (−3.867647, −2.955882); (−4,−3)",
         ),
         (
-            "§A.3 C² cubic, knots at parameters",
+            "end derivatives, knots at the parameters",
             3,
             KnotPlacement::AtParameters,
             first,
@@ -231,7 +236,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             "(0,0); (0.098039, 0.196078); (5.671017, 5.171684); … (−3.823529, −2.941176); (−4,−3)",
         ),
         (
-            "§A.4 second derivatives",
+            "second derivatives",
             3,
             KnotPlacement::Auto,
             EndCondition::SecondDerivatives {
@@ -245,7 +250,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
             "(0,0); (1.792028, 1.645498); (5.069581, 4.581444); … (−4.079724, −2.008700); (−4,−3)",
         ),
         (
-            "natural (d″ = 0)",
+            "natural spline (d″ = 0)",
             3,
             KnotPlacement::Auto,
             EndCondition::Natural,
@@ -297,12 +302,18 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
         add_curve(&mut fig, &Object::BSpline(c), name, PALETTE[k])?;
     }
     add_points(&mut fig, &q, "data points", PALETTE[7], false);
-    s.figures.push((
+    s.figure(
         fig,
-        "Interpolants with prescribed first derivatives (§A.2, §A.3), second derivatives (§A.4) \
-         and the natural spline."
-            .into(),
-    ));
+        Caption::new(
+            "Five interpolants of the same points with conditions at the ends: first \
+             derivatives d0 = (1, 2) and dn = (−3, −1) (cubic and quadratic on averaged knots, \
+             and the C² cubic with knots at the parameters), second derivatives (2, −1) and \
+             (0.5, 4), and the natural spline with zero second derivatives. Look at the ends: \
+             the three curves with given first derivatives leave (0, 0) in the same direction, \
+             (1, 2); the conditions on second derivatives leave the direction free.",
+        )
+        .theory("interpolation.md#end-conditions"),
+    );
     s.tables.push((
         "End derivatives of the computed curves (from the library)".into(),
         vec![
@@ -316,7 +327,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
 }
 
 pub(super) fn surface(s: &mut Section) -> Result<()> {
-    s.caption = "Surface interpolation (§A.5): a 5 × 4 grid on z = sin(x)·cos(y) interpolated \
+    s.caption = "Surface interpolation: a 5 × 4 grid on z = sin(x)·cos(y) interpolated \
         by a bicubic × quadratic B-spline surface, chord-length parameters averaged over the \
         rows and columns, knots by averaging; two passes of curve interpolation."
         .into();
@@ -375,10 +386,16 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
             ],
         ],
     ));
-    let fig = surface_figure(&surf, "Surface through a 5 × 4 grid (wireframe)")?;
-    s.figures.push((
+    let fig = surface_figure(&surf, "Surface through a 5 × 4 grid")?;
+    s.figure(
         fig,
-        "The interpolating surface as a wireframe (blue) with its control net (dashed).".into(),
-    ));
+        Caption::new(
+            "The bicubic × quadratic B-spline surface through a 5 × 4 grid of points on \
+             z = sin x · cos y, shaded by height with eight isoparametric lines each way, and its \
+             control net (dashed). The surface passes through the grid points; the net's corners \
+             are the corner data points, its other points stand off the surface.",
+        )
+        .theory("interpolation.md#surface-interpolation"),
+    );
     Ok(())
 }

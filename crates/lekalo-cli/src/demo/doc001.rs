@@ -5,10 +5,10 @@ use lekalo::{
     ArcParametrization, BezierCurve, BlendSpline, BlendSplineOptions, CircularArcs, Continuity,
     CornerTransition, Deformation, JumpPolynomial, NurbsCurve, Parabolas, ParametricCurve, Points,
 };
-use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+use lekalo_io::{Figure, Object, Series, PALETTE};
 
 use super::doc000::{add_curve, add_points};
-use crate::demo::{trim, Section};
+use crate::demo::{trim, Caption, Section};
 
 /// Differences of derivatives that agree in exact arithmetic (values O(1)–O(10)).
 const ROUNDING: f64 = 1e-10;
@@ -39,12 +39,8 @@ pub(super) fn jump(s: &mut Section) -> Result<()> {
             let u = f64::from(j) / 200.0;
             line.push([u, w.eval(u)?]);
         }
-        fig.series.push(Series::new(
-            Some(&format!("w_{k}")),
-            line,
-            Style::Line,
-            PALETTE[k],
-        ));
+        fig.series
+            .push(Series::nth(Some(&format!("w_{k}")), line, k));
         let mut d0 = vec![0.0; k + 2];
         let mut d1 = vec![0.0; k + 2];
         w.eval_derivatives(0.0, &mut d0)?;
@@ -104,10 +100,15 @@ pub(super) fn jump(s: &mut Section) -> Result<()> {
         ],
         rows,
     ));
-    s.figures.push((
+    s.figure(
         fig,
-        "w_0 … w_5 on [0, 1] (document 001, Fig. 1): steeper at 1/2 as k grows.".into(),
-    ));
+        Caption::new(
+            "The jump-smoothing polynomials w_0 … w_5 on [0, 1] (document 001, Fig. 1): w_k \
+             rises from 0 to 1 with its first k derivatives zero at both ends. As k grows the \
+             rise gathers at u = 1/2 and w_k tends to the unit step.",
+        )
+        .theory("blending.md#jump-smoothing-polynomials"),
+    );
     Ok(())
 }
 
@@ -120,8 +121,18 @@ pub(super) fn deformation(s: &mut Section) -> Result<()> {
     let a1 = NurbsCurve::arc_through_points(&[0.0, 0.0], &[1.0, 0.4], &[2.0, 0.0])?;
     let a2 = NurbsCurve::arc_through_points(&[0.0, 0.0], &[1.0, -0.35], &[2.0, 0.0])?;
     let mut fig = Figure::new("Deformation of an arc into another arc", true);
-    add_curve(&mut fig, &Object::Nurbs(a1.clone()), "p_1 (arc)", "#777777")?;
-    add_curve(&mut fig, &Object::Nurbs(a2.clone()), "p_2 (arc)", "#AAAAAA")?;
+    add_curve(
+        &mut fig,
+        &Object::Nurbs(a1.clone()),
+        "upper arc p1",
+        "#777777",
+    )?;
+    add_curve(
+        &mut fig,
+        &Object::Nurbs(a2.clone()),
+        "lower arc p2",
+        "#AAAAAA",
+    )?;
     let mut rows = Vec::new();
     for k in 1..=3 {
         let d = Deformation::new(&a1, &a2, k)?;
@@ -181,10 +192,16 @@ pub(super) fn deformation(s: &mut Section) -> Result<()> {
         ],
         rows,
     ));
-    s.figures.push((
+    s.figure(
         fig,
-        "An upper arc deformed into a lower arc through (0,0) and (2,0), for k = 1, 2, 3.".into(),
-    ));
+        Caption::new(
+            "An upper circular arc deformed into a lower one through the same end points (0, 0) \
+             and (2, 0): p = (1 − w_{k−1}) p1 + w_{k−1} p2 for k = 1, 2, 3. Each blend starts \
+             along the upper arc and ends along the lower one, and the larger k, the longer it \
+             hugs each arc (contact of order k) and the steeper it crosses between them.",
+        )
+        .theory("blending.md#deformation-of-curves"),
+    );
     Ok(())
 }
 
@@ -311,15 +328,26 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
         ],
         rows,
     ));
-    s.figures.push((
+    s.figure(
         fig,
-        "Open splines through six points by parabolas (C²), arcs and rational arcs (G²).".into(),
-    ));
+        Caption::new(
+            "Open splines through six points, each segment blending the local curve through \
+             three consecutive points into the next one with w_1: parabolas give a C² curve, \
+             circular arcs a G² one. The arcs with uniform-angle and with rational quadratic \
+             parametrisation trace the same curve.",
+        )
+        .theory("blending.md#splines-through-points"),
+    );
     if let Some(fig) = closed_fig {
-        s.figures.push((
+        s.figure(
             fig,
-            "The closed spline through the same points (cyclic indices), by parabolas.".into(),
-        ));
+            Caption::new(
+                "The closed spline through the same six points by blended parabolas: the \
+                 indices wrap around, so the last segment blends back into the first and the \
+                 curve is C² everywhere, with no start or end.",
+            )
+            .theory("blending.md#splines-through-points"),
+        );
     }
     Ok(())
 }
@@ -391,9 +419,16 @@ pub(super) fn corner(s: &mut Section) -> Result<()> {
         vec!["k".into(), "Bezier degree".into(), "midpoint".into()],
         rows,
     ));
-    s.figures.push((
+    s.figure(
         fig,
-        "The corner (dashed) and its C¹, C², C³ roundings over half of each leg.".into(),
-    ));
+        Caption::new(
+            "A right-angle corner (grey, dashed) smoothed over the last half of the first leg \
+             and the first half of the second by one Bezier transition of degree 4k, for \
+             k = 1, 2, 3: it leaves the first leg at (1, 0) and joins the second at (2, 1). The \
+             larger k, the higher the order of contact at both ends: the transition clings to \
+             the legs longer and crosses between them more steeply.",
+        )
+        .theory("blending.md#corner-smoothing"),
+    );
     Ok(())
 }

@@ -2,14 +2,24 @@
 
 use anyhow::Result;
 use lekalo::{BezierCurve, BezierSurface, Points};
-use lekalo_io::{Figure, Object, PALETTE};
+use lekalo_io::{Figure, Marker, Object, PALETTE};
 
 use super::doc000::{add_curve, add_points, show};
 use crate::cmd::interpolate::surface_figure;
-use crate::demo::{trim, Section};
+use crate::demo::{Caption, Section};
 
 /// Exact results computed in floating point (coordinates O(10)).
 const EXACT: f64 = 1e-12;
+
+/// Draws the polygon just added (its line and its points, the last two series) dotted with
+/// square markers, so that where it runs along the old polygon the two stay apart.
+fn distinguish_new_polygon(fig: &mut Figure) {
+    let n = fig.series.len();
+    if let [line, points] = &mut fig.series[n.saturating_sub(2)..] {
+        line.dash = Some("2 3".into());
+        points.marker = Some(Marker::Square);
+    }
+}
 
 /// `Σ w_i u_i` for the document's formulas `u'_j = Σ w_i u_i`.
 fn combo(u: &Points, w: &[f64]) -> Vec<f64> {
@@ -132,11 +142,23 @@ pub(super) fn elevation(s: &mut Section) -> Result<()> {
             PALETTE[n + 1],
             true,
         );
+        distinguish_new_polygon(&mut fig);
         add_curve(&mut fig, &Object::Bezier(e.clone()), "curve", PALETTE[0])?;
-        s.figures.push((
+        let where_ = if by == 1 {
+            "each new vertex lies on a leg of the old polygon, cutting its corners"
+        } else {
+            "the inner new vertices combine up to three old ones and lie inside the old polygon"
+        };
+        s.figure(
             fig,
-            format!("{name}: the old and the new polygon define the same curve."),
-        ));
+            Caption::new(format!(
+                "{name}: the old polygon (grey) and the elevated one with {by} more vertex{es} \
+                 define the same Bezier curve (blue); {where_}. The new polygon lies closer to \
+                 the curve, which is what elevation is for.",
+                es = if by == 1 { "" } else { "es" }
+            ))
+            .theory("degree.md#degree-elevation"),
+        );
     }
     s.tables.push((
         "Elevated polygons (computed)".into(),
@@ -217,11 +239,18 @@ pub(super) fn reduction(s: &mut Section) -> Result<()> {
         PALETTE[1],
         true,
     );
+    distinguish_new_polygon(&mut fig);
     add_curve(&mut fig, &Object::Bezier(c), "curve", PALETTE[0])?;
-    s.figures.push((
+    s.figure(
         fig,
-        "The formally quintic polygon and the minimal cubic polygon of the same curve.".into(),
-    ));
+        Caption::new(
+            "A formally quintic Bezier polygon (grey) and the cubic polygon (orange) of the same \
+             curve (blue): the quintic's monomial coefficients of degrees 4 and 5 vanish, so its \
+             real degree is 3. Both polygons hold the curve in their convex hulls; the cubic one \
+             is the minimal description.",
+        )
+        .theory("degree.md#real-degree-and-exact-reduction"),
+    );
     Ok(())
 }
 
@@ -296,19 +325,27 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
         rows,
     ));
     let low = original.change_degree(3, 3)?;
-    s.figures.push((
+    s.figure(
         surface_figure(
             &original.to_bspline(),
             "Bezier surface on a 5 × 4 net U_{4,3}",
         )?,
-        "The original surface and its 5 × 4 control net (Fig. 5a).".into(),
-    ));
-    s.figures.push((
+        Caption::new(
+            "The Bezier surface on its 5 × 4 control net U_{4,3} (Fig. 5a), shaded by height. \
+             The net has five rows in t although the surface is cubic in t: one row is spare.",
+        )
+        .theory("degree.md#bezier-surfaces"),
+    );
+    s.figure(
         surface_figure(&low.to_bspline(), "The same surface on a 4 × 4 net U_{3,3}")?,
-        format!(
-            "The same surface on the minimal 4 × 4 net (Fig. 5b); real orders {}.",
-            trim(low.real_degrees().0 as f64)
-        ),
-    ));
+        Caption::new(format!(
+            "The same surface on the minimal 4 × 4 net (Fig. 5b), real degrees ({}, {}): the \
+             shape is unchanged, to rounding, while the net has lost its spare row. Compare the \
+             two nets over the same shading.",
+            low.real_degrees().0,
+            low.real_degrees().1
+        ))
+        .theory("degree.md#bezier-surfaces"),
+    );
     Ok(())
 }

@@ -1,17 +1,22 @@
 //! `lekalo demo`: the documents' constructions on built-in data. Every gallery entry builds its
-//! objects with the library, draws figures and checks its key numbers against the documents
-//! (docs/theory/foundations.md#the-lectures-worked-example,
-//! docs/theory/interpolation.md#test-vectors, docs/theory/pp.md#the-practical-task); the summary
-//! table lists every check, the HTML gallery shows the figures with captions and the same numbers.
+//! objects with the library, draws figures and checks its key numbers against the documents;
+//! the summary table lists every check, the HTML gallery shows the figures (SVG and PNG) with
+//! captions, links to the theory reference and the command that redraws them.
 //!
 //! To add a construction, write a `fn(&mut Section) -> Result<()>` and list it in
-//! [`registry::ENTRIES`].
+//! [`registry::ENTRIES`]. A captioned figure is one call:
+//!
+//! ```ignore
+//! s.figure(fig, Caption::new("Two or three sentences: what it is, what to look at.")
+//!     .theory("fitting.md#least-squares"));
+//! ```
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};
 use lekalo_io::{escape, Figure};
+use rayon::prelude::*;
 
 use crate::io::Internal;
 use crate::Verbosity;
@@ -29,11 +34,59 @@ pub(crate) struct Section {
     /// Paragraph describing the construction.
     pub(crate) caption: String,
     /// Figures with their captions.
-    pub(crate) figures: Vec<(Figure, String)>,
+    pub(crate) figures: Vec<(Figure, Caption)>,
     /// Tables: (caption, header, rows).
     pub(crate) tables: Vec<(String, Vec<String>, Vec<Vec<String>>)>,
     /// Checked numbers.
     pub(crate) checks: Vec<Check>,
+}
+
+/// What the gallery shows under a figure: what the construction is and what to look at, the
+/// section of the theory reference it illustrates, and the command that redraws it.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Caption {
+    /// Two or three sentences.
+    pub(crate) text: String,
+    /// Page and anchor under `docs/theory/` (`interpolation.md#end-conditions`).
+    pub(crate) theory: Option<String>,
+    /// A `lekalo …` command that draws the figure from its data (default: `lekalo demo --only`).
+    pub(crate) command: Option<String>,
+}
+
+impl Caption {
+    /// A caption of the given text.
+    pub(crate) fn new(text: impl Into<String>) -> Self {
+        Caption {
+            text: text.into(),
+            ..Caption::default()
+        }
+    }
+
+    /// The section of the theory reference: a page under `docs/theory/` and its anchor.
+    #[must_use]
+    pub(crate) fn theory(mut self, page_and_anchor: &str) -> Self {
+        self.theory = Some(page_and_anchor.to_string());
+        self
+    }
+
+    /// A command that draws the figure from its data.
+    #[must_use]
+    pub(crate) fn command(mut self, command: &str) -> Self {
+        self.command = Some(command.to_string());
+        self
+    }
+}
+
+impl From<&str> for Caption {
+    fn from(text: &str) -> Self {
+        Caption::new(text)
+    }
+}
+
+impl From<String> for Caption {
+    fn from(text: String) -> Self {
+        Caption::new(text)
+    }
 }
 
 /// A number compared with the document's value.
@@ -45,6 +98,12 @@ pub(crate) struct Check {
 }
 
 impl Section {
+    /// Adds a figure with its caption. Curves the figure draws on top of each other are named
+    /// in the caption (the figure draws the later one dashed over the earlier).
+    pub(crate) fn figure(&mut self, fig: Figure, caption: impl Into<Caption>) {
+        self.figures.push((fig, caption.into()));
+    }
+
     /// Checks `ours` against `expected` within `tol` (absolute; the values are O(1)).
     pub(crate) fn check(&mut self, what: &str, ours: f64, expected: f64, shown: &str, tol: f64) {
         self.checks.push(Check {
@@ -87,12 +146,25 @@ pub(crate) fn trim(x: f64) -> String {
     }
 }
 
-/// Runs every entry, prints the summary table, writes the gallery if `out` is given.
-pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
+/// Runs every entry (or the one named by `only`), prints the summary table, writes the gallery
+/// if `out` is given: `index.html` and every figure as SVG and PNG.
+pub(crate) fn run(out: Option<&Path>, only: Option<&str>, v: Verbosity) -> Result<()> {
+    if let Some(id) = only {
+        if !registry::ENTRIES.iter().any(|e| e.id == id) {
+            let ids: Vec<&str> = registry::ENTRIES.iter().map(|e| e.id).collect();
+            return crate::io::bad_input(format!(
+                "--only {id}: no such demo entry; the entries are {}",
+                ids.join(", ")
+            ));
+        }
+    }
     let mut sections = Vec::new();
     let bar = crate::io::progress(registry::ENTRIES.len(), v);
     for entry in registry::ENTRIES {
         bar.inc(1);
+        if only.is_some_and(|id| id != entry.id) {
+            continue;
+        }
         let mut s = Section {
             id: entry.id,
             title: entry.title,
@@ -113,21 +185,37 @@ pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
             path: dir.to_path_buf(),
             error,
         })?;
-        let mut n_files = 0;
-        for s in &sections {
-            for (k, (fig, _)) in s.figures.iter().enumerate() {
-                let path = dir.join(format!("{}-{}.svg", s.id, k + 1));
-                lekalo_io::write_atomic(&path, fig.to_svg().as_bytes(), &[])?;
-                n_files += 1;
-            }
-        }
+        let figures: Vec<(String, &Figure)> = sections
+            .iter()
+            .flat_map(|s| {
+                s.figures
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, (fig, _))| (format!("{}-{}", s.id, k + 1), fig))
+            })
+            .collect();
+        // the PNGs are most of the time: render them on every core
+        figures
+            .par_iter()
+            .try_for_each(|(name, fig)| -> Result<()> {
+                let svg = fig.to_svg();
+                lekalo_io::write_atomic(&dir.join(format!("{name}.svg")), svg.as_bytes(), &[])?;
+                let png = lekalo_io::svg_to_png(&svg, PNG_SCALE)?;
+                lekalo_io::write_atomic(&dir.join(format!("{name}.png")), &png, &[])?;
+                Ok(())
+            })?;
         let index = dir.join("index.html");
-        lekalo_io::write_atomic(&index, gallery(&sections).as_bytes(), &[])?;
+        let theory = theory_base(dir);
+        lekalo_io::write_atomic(
+            &index,
+            gallery(&sections, theory.as_deref()).as_bytes(),
+            &[],
+        )?;
         if v != Verbosity::Quiet {
             eprintln!(
-                "gallery: {} ({} figures); open it in a browser",
+                "gallery: {} ({} figures, SVG and PNG); open it in a browser",
                 index.display(),
-                n_files
+                figures.len()
             );
         }
     }
@@ -150,6 +238,69 @@ pub(crate) fn run(out: Option<&Path>, v: Verbosity) -> Result<()> {
         ))
         .into())
     }
+}
+
+/// Scale of the gallery's PNGs (2: sharp on slides and high-density screens).
+const PNG_SCALE: f32 = 2.0;
+
+/// The relative path from the gallery directory to the repository's `docs/theory/`, if the
+/// gallery is written inside a checkout (else the captions name the page without a link).
+fn theory_base(dir: &Path) -> Option<String> {
+    let dir = dir.canonicalize().ok()?;
+    let mut up = String::new();
+    for anc in dir.ancestors() {
+        if anc.join("docs").join("theory").is_dir() {
+            return Some(format!("{up}docs/theory/"));
+        }
+        up.push_str("../");
+    }
+    None
+}
+
+/// The caption of a figure as shown: its text, then the note of every pair of curves drawn
+/// on top of each other.
+pub(crate) fn full_caption(fig: &Figure, caption: &Caption) -> String {
+    let mut text = caption.text.clone();
+    for c in fig.coincidences() {
+        text.push(' ');
+        text.push_str(&c.note());
+    }
+    text
+}
+
+/// The command that redraws figure `k` (1-based) of entry `id`.
+pub(crate) fn command_of(id: &str, caption: &Caption) -> String {
+    caption
+        .command
+        .clone()
+        .unwrap_or_else(|| format!("lekalo demo --only {id} --out gallery"))
+}
+
+/// The gallery's document groups: (id prefix, heading).
+const DOCUMENTS: &[(&str, &str)] = &[
+    (
+        "doc000",
+        "Document 000: interpolation of curves and surfaces",
+    ),
+    ("doc001", "Document 001: blending by polynomial deformation"),
+    ("doc002", "Document 002: B-splines and the Hermite form"),
+    (
+        "doc003",
+        "Document 003: piecewise polynomials and their B-spline bases",
+    ),
+    (
+        "doc004",
+        "Document 004: order change of Bezier curves and surfaces",
+    ),
+];
+
+/// Heading of the group of an entry id: its document, or the id's first word.
+fn group_of(id: &str) -> String {
+    let prefix = id.split('-').next().unwrap_or(id);
+    DOCUMENTS
+        .iter()
+        .find(|(p, _)| *p == prefix)
+        .map_or_else(|| format!("More: {prefix}"), |(_, h)| (*h).to_string())
 }
 
 /// The printed summary: every entry's tables and checks.
@@ -202,15 +353,45 @@ fn summary(sections: &[Section], v: Verbosity) -> String {
     s
 }
 
-/// The HTML gallery: one section per entry with figures, captions, tables and checks.
-fn gallery(sections: &[Section]) -> String {
+/// The HTML gallery: thumbnails grouped by document, then one section per entry with its
+/// figures, captions, tables and checks.
+fn gallery(sections: &[Section], theory: Option<&str>) -> String {
     let mut h = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>lekalo gallery</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}figure{margin:1em 0}figcaption{color:#555;font-size:90%}table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right;font-family:monospace}.ok{color:#080}.fail{color:#c00;font-weight:bold}nav a{margin-right:1em}</style></head><body>\n<h1>lekalo gallery</h1>\n<p>The constructions of the source documents, built by the library on built-in data, with the documents' numbers checked. Regenerate with <code>lekalo demo --out DIR</code>.</p>\n<nav>",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>lekalo gallery</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}figure{margin:1.5em 0}figure img{max-width:100%;height:auto}figcaption{color:#444;font-size:92%;max-width:760px}figcaption .meta{display:block;margin-top:.3em;color:#666}table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right;font-family:monospace}.ok{color:#080}.fail{color:#c00;font-weight:bold}.thumbs{display:flex;flex-wrap:wrap;gap:12px}.thumbs a{width:230px;text-decoration:none;color:#333;font-size:85%}.thumbs img{width:230px;height:auto;border:1px solid #ddd;display:block}code{background:#f4f4f4;padding:0 3px}</style></head><body>\n<h1>lekalo gallery</h1>\n<p>The constructions of the source documents, built by the library on built-in data, with the documents' numbers checked. Every figure is here as SVG and as PNG. Regenerate with <code>lekalo demo --out DIR</code>.</p>\n",
     );
+    // thumbnails, grouped by document
+    let mut groups: Vec<(String, Vec<&Section>)> = Vec::new();
     for s in sections {
-        let _ = write!(h, "<a href=\"#{}\">{}</a>", s.id, escape(s.title));
+        let g = group_of(s.id);
+        match groups.iter_mut().find(|(name, _)| *name == g) {
+            Some((_, list)) => list.push(s),
+            None => groups.push((g, vec![s])),
+        }
     }
-    h.push_str("</nav>\n");
+    groups.sort_by(|a, b| {
+        let rank = |g: &str| {
+            DOCUMENTS
+                .iter()
+                .position(|(_, h)| *h == g)
+                .unwrap_or(usize::MAX)
+        };
+        rank(&a.0).cmp(&rank(&b.0))
+    });
+    for (name, list) in &groups {
+        let _ = writeln!(h, "<h2>{}</h2><div class=\"thumbs\">", escape(name));
+        for s in list {
+            for (k, (fig, _)) in s.figures.iter().enumerate() {
+                let _ = writeln!(
+                    h,
+                    "<a href=\"#{id}-{n}\"><img src=\"{id}-{n}.png\" alt=\"{t}\" loading=\"lazy\">{t}</a>",
+                    id = s.id,
+                    n = k + 1,
+                    t = escape(&fig.title)
+                );
+            }
+        }
+        h.push_str("</div>\n");
+    }
     for s in sections {
         let _ = writeln!(
             h,
@@ -220,15 +401,27 @@ fn gallery(sections: &[Section]) -> String {
             escape(s.source),
             escape(&s.caption)
         );
-        for (k, (_, caption)) in s.figures.iter().enumerate() {
+        for (k, (fig, caption)) in s.figures.iter().enumerate() {
+            let name = format!("{}-{}", s.id, k + 1);
+            let text = full_caption(fig, caption);
+            let link = caption.theory.as_deref().map_or_else(String::new, |t| {
+                let shown = format!("docs/theory/{t}");
+                match theory {
+                    Some(base) => format!(
+                        "Theory: <a href=\"{}\">{}</a>. ",
+                        escape(&format!("{base}{t}")),
+                        escape(&shown)
+                    ),
+                    None => format!("Theory: <code>{}</code>. ", escape(&shown)),
+                }
+            });
             let _ = writeln!(
                 h,
-                "<figure><img src=\"{}-{}.svg\" alt=\"{}\"><figcaption>Figure {}. {}</figcaption></figure>",
-                s.id,
-                k + 1,
-                escape(caption),
-                k + 1,
-                escape(caption)
+                "<figure id=\"{name}\"><img src=\"{name}.svg\" alt=\"{alt}\"><figcaption>Figure {n}. {text}<span class=\"meta\">{link}Redraw: <code>{cmd}</code>. Download: <a href=\"{name}.svg\">SVG</a>, <a href=\"{name}.png\">PNG</a>.</span></figcaption></figure>",
+                alt = escape(&fig.title),
+                n = k + 1,
+                text = escape(&text),
+                cmd = escape(&command_of(s.id, caption)),
             );
         }
         for (caption, header, rows) in &s.tables {

@@ -7,7 +7,7 @@ use lekalo::basis::{basis_function_recursive, basis_functions};
 use lekalo::{BSplineCurve, KnotVector, Points};
 use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PALETTE};
 
-use super::{trim, Section};
+use super::{trim, Caption, Section};
 
 // the documents' constructions: interpolation, blending, pp-form, degree change
 #[path = "doc000.rs"]
@@ -68,7 +68,7 @@ pub(crate) const ENTRIES: &[Entry] = &[
     Entry {
         id: "doc000-surface",
         title: "Surface through a grid of points",
-        source: "document 000 §A.5",
+        source: "document 000, surface interpolation",
         build: doc000::surface,
     },
     Entry {
@@ -98,7 +98,7 @@ pub(crate) const ENTRIES: &[Entry] = &[
     Entry {
         id: "doc002-hermite",
         title: "Hermite segment and the four-point cubic",
-        source: "document 002 §C.2–C.3",
+        source: "document 002, the Hermite form and the four-point cubic",
         build: doc003::hermite,
     },
     Entry {
@@ -173,22 +173,34 @@ fn lecture_bspline(s: &mut Section) -> Result<()> {
         0,
         Series::new(Some("Σ N P over [0, 3]"), full, Style::Dashed, PALETTE[3]),
     );
-    s.figures.push((
+    s.figure(
         fig,
-        "The curve on its domain [1, 2] (blue) from the midpoint (3/2, 2) of P0P1 to the \
-         midpoint (3, 3) of P1P2 (orange: points at the knots), the control polygon (grey, \
-         dashed), and Σ N_i,2(t) P_i over all of [0, 3] as the notes evaluate it (purple, \
-         dashed): outside the domain it leaves the convex hull and runs to the origin."
-            .into(),
-    ));
+        Caption::new(
+            "The lecture's quadratic B-spline with control points (1,1), (2,3), (4,3) and knots \
+             [0,0,1,2,3,3], on its domain [1, 2] (blue): it runs from the midpoint (3/2, 2) of \
+             the first leg to the midpoint (3, 3) of the second (orange: the points at the \
+             knots). The dashed purple curve is Σ N_i,2(t) P_i over all of [0, 3], as the notes \
+             evaluate it: outside the domain the basis no longer sums to 1, and the curve leaves \
+             the convex hull and runs to the origin.",
+        )
+        .theory("curves.md#b-spline-curves"),
+    );
     let mut basis = basis_figure(&knots, 2, 301)?;
     basis.title = "N0,2, N1,2, N2,2 on T = [0, 0, 1, 2, 3, 3]".into();
-    s.figures.push((
+    s.figure(
         basis,
-        "The three quadratic basis functions over [0, 3]; shaded: the domain [1, 2] where they \
-         sum to 1. Ticks: the knots."
-            .into(),
-    ));
+        Caption::new(
+            "The three quadratic B-splines N0,2, N1,2, N2,2 of the knots [0, 0, 1, 2, 3, 3] by \
+             the Cox–de Boor recursion, over the whole knot range; the ticks on the axis are the \
+             knots. Only on the shaded domain [1, 2] do they sum to 1, which is why the curve \
+             is drawn there and nowhere else.",
+        )
+        .theory("foundations.md#cox-de-boor-recursion")
+        .command(
+            "printf '1 1\\n2 3\\n4 3\\n' | lekalo make bspline --control - --degree 2 \
+             --knots 0,0,1,2,3,3 -o lecture.json && lekalo plot lecture.json --basis -o basis.svg",
+        ),
+    );
     // the notes' table: P(t) = Σ N_{i,2}(t) P_i over [0, 3), also outside the domain
     let mut rows = Vec::new();
     let mut at = |t: f64| -> Result<(Vec<f64>, [f64; 2])> {
@@ -409,13 +421,13 @@ fn interpolation_knots(s: &mut Section) -> Result<()> {
         rows,
     ));
     for (kv, title, caption) in [
-        (&chord3, "Cubic basis on averaged chord-length knots (eq. 3)", "The five cubic B-splines of global interpolation through five points (A.1), on knots {0,0,0,0, 28/51, 1,1,1,1}."),
-        (&ends3, "Cubic basis with end-derivative knots (eq. 4)", "Seven cubic B-splines for interpolation with given end derivatives (A.2): two more knots, two more control points."),
-        (&at3, "Cubic basis on knots at the parameters (eq. 8)", "Seven cubic B-splines of C² cubic interpolation with end conditions (A.3–A.4): knots {0,0,0,0, 5/17, 9/17, 14/17, 1,1,1,1}."),
+        (&chord3, "Cubic basis on averaged chord-length knots (eq. 3)", "The five cubic B-splines for interpolating five points with chord-length parameters, on the averaged knots {0,0,0,0, 28/51, 1,1,1,1} (eq. 3). Averaging puts the interior knot among the parameters it serves (5/17, 9/17, 14/17), which keeps the interpolation matrix banded and well conditioned."),
+        (&ends3, "Cubic basis with end-derivative knots (eq. 4)", "Seven cubic B-splines for interpolation with given end derivatives: eq. (4) adds two knots, 14/51 and 40/51, and with them two functions whose coefficients carry the derivatives. Compare with the five functions above: the extra two crowd in next to the ends."),
+        (&at3, "Cubic basis on knots at the parameters (eq. 8)", "Seven cubic B-splines on knots placed at the parameters themselves, {0,0,0,0, 5/17, 9/17, 14/17, 1,1,1,1} (eq. 8): the basis of C² cubic interpolation with two end conditions. Each interior tick is a data point's parameter, so every piece of the curve runs between two data points."),
     ] {
         let mut fig = basis_figure(kv, 3, 301)?;
         fig.title = title.into();
-        s.figures.push((fig, caption.into()));
+        s.figure(fig, Caption::new(caption).theory("interpolation.md#knot-placement"));
     }
     // partition of unity on the domain (what makes the knots usable)
     let (_, n) = basis_functions(&chord3, 3, 0.4)?;
@@ -450,10 +462,16 @@ fn curry_schoenberg(s: &mut Section) -> Result<()> {
     s.check("dimension n = k + Σ(k − ν_i)", n as f64, 8.0, "8", 0.0);
     let mut fig = basis_figure(&kv, 2, 301)?;
     fig.title = "Curry–Schoenberg basis: k = 3, ν = 2 at every breakpoint".into();
-    s.figures.push((
+    s.figure(
         fig,
-        "The eight C¹ quadratic B-splines of the practical task.".into(),
-    ));
+        Caption::new(
+            "The eight C¹ quadratic B-splines (order k = 3, ν = 2 at every breakpoint) on the \
+             breakpoints 0, 0.5, 0.9, 1.4, 2.1, 2.7, 3 of the thesis's practical task. Every \
+             interior breakpoint is a single knot, so each function is smooth across it; the \
+             shaded domain is where they sum to 1.",
+        )
+        .theory("pp.md#the-curry-schoenberg-theorem"),
+    );
     let nu = [2, 1, 2, 0, 2];
     let kv2 = KnotVector::from_breakpoints(&xi, &nu, 3)?;
     let n2 = kv2.len() - 3;
@@ -466,12 +484,17 @@ fn curry_schoenberg(s: &mut Section) -> Result<()> {
     );
     let mut fig = basis_figure(&kv2, 2, 601)?;
     fig.title = "Lower continuity: ν = (2, 1, 2, 0, 2)".into();
-    s.figures.push((
+    s.figure(
         fig,
-        "The same breakpoints with ν = 1 at 0.9 (double knot: a kink allowed) and ν = 0 at 2.1 \
-         (triple knot: a jump allowed); eleven basis functions."
-            .into(),
-    ));
+        Caption::new(
+            "The same breakpoints with lower continuity, ν = (2, 1, 2, 0, 2): the double knot at \
+             0.9 lets the functions have a kink there and the triple knot at 2.1 a jump, and the \
+             space grows to eleven functions. Look at 2.1: one function drops from 1 to 0 and \
+             the next rises from 0 to 1. Beyond seven colours, dashes and markers tell the \
+             functions apart.",
+        )
+        .theory("pp.md#the-curry-schoenberg-theorem"),
+    );
     let rows = [("ν = 2 everywhere", &kv), ("ν = (2, 1, 2, 0, 2)", &kv2)]
         .iter()
         .map(|(name, k)| {
