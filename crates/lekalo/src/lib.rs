@@ -155,3 +155,8 @@ pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRu
 // -- robustness (issue 9) --
 pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};
 pub use interpolate_surface::{interpolate_surface_condition, interpolate_surface_max_condition};
+
+// -- geometric queries --
+pub mod query;
+
+pub use query::{ArcLength, QueryCurve, MAX_QUERY_DEGREE};

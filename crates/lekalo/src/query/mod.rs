@@ -1,0 +1,28 @@
+//! Geometric queries on curves and surfaces: how long, where is the closest point, where do two
+//! objects meet, what lies at a distance, which polyline or mesh is within a tolerance, how
+//! curved, how big (`docs/theory/queries.md`).
+//!
+//! Every query works on the object's Bezier pieces (rational for NURBS), because on a piece the
+//! convex-hull property bounds the geometry and the Bernstein coefficients count roots, so no
+//! answer depends on sampling luck. A curve is prepared once as a [`QueryCurve`] (pieces
+//! normalised to the unit box, a tree of their boxes), a surface as a [`QuerySurface`].
+//!
+//! | file | subject |
+//! |---|---|
+//! | `pieces.rs` | [`QueryCurve`]: the pieces, their tree, evaluation; scalar Bernstein polynomials and their roots |
+//! | `length.rs` | arc length by adaptive Gauss–Legendre, its inverse, equal arc-length steps, the arc-length spline ([`ArcLength`]) |
+//! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
+//! | `intersect.rs` | curve–curve (planar), self-intersection, curve–plane and curve–surface intersections |
+//! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
+//! | `tessellate.rs` | polylines and triangle meshes within a proved deviation |
+//! | `curvature.rs` | curvature and torsion, inflections and curvature extrema; surface curvatures |
+//! | `bbox.rs` | exact bounding boxes from the pieces' extrema |
+//!
+//! Every iteration in here has a bound (stated where it is), and every query validates its
+//! input: NaN queries, bad tolerances and degrees beyond [`MAX_QUERY_DEGREE`] are named errors.
+
+mod length;
+mod pieces;
+
+pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
+pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
