@@ -159,4 +159,6 @@ pub use interpolate_surface::{interpolate_surface_condition, interpolate_surface
 // -- geometric queries --
 pub mod query;
 
-pub use query::{ArcLength, QueryCurve, MAX_QUERY_DEGREE};
+pub use query::{
+    ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection, MAX_QUERY_DEGREE,
+};

@@ -10,6 +10,7 @@
 //! | file | subject |
 //! |---|---|
 //! | `pieces.rs` | [`QueryCurve`]: the pieces, their tree, evaluation; scalar Bernstein polynomials and their roots |
+//! | `surface.rs` | [`QuerySurface`]: the patches, their evaluation and subdivision |
 //! | `length.rs` | arc length by adaptive Gauss–Legendre, its inverse, equal arc-length steps, the arc-length spline ([`ArcLength`]) |
 //! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
 //! | `intersect.rs` | curve–curve (planar), self-intersection, curve–plane and curve–surface intersections |
@@ -23,6 +24,10 @@
 
 mod length;
 mod pieces;
+mod project;
+mod surface;
 
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
+pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
+pub use surface::QuerySurface;
