@@ -314,13 +314,36 @@ impl QueryCurve {
                 || (closed && ta - lo <= 1e-9 * span && hi - tb <= 1e-9 * span);
             !trivial
         };
-        let raw: Vec<(f64, f64, f64)> = raw
+        let mut raw: Vec<(f64, f64, f64)> = raw
             .into_iter()
             .map(|(ka, sa, kb, sb, g)| (self.global(ka, sa), self.global(kb, sb), g))
             .filter(|x| keep(x))
             .map(|(ta, tb, g)| (ta.min(tb), ta.max(tb), g))
             .collect();
-        Ok(self.assemble_global(self, raw, tolerance))
+        // one answer per crossing: solutions from several sub-curve pairs that meet at the same
+        // pair of parameters (the gap to the curve itself cannot group them, it is zero)
+        raw.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+        let mut out: Vec<(f64, f64, f64)> = Vec::new();
+        for r in raw {
+            if let Some(o) = out
+                .iter_mut()
+                .find(|o| (o.0 - r.0).abs() <= 1e-6 * span && (o.1 - r.1).abs() <= 1e-6 * span)
+            {
+                if r.2 < o.2 {
+                    *o = r;
+                }
+                continue;
+            }
+            out.push(r);
+        }
+        Ok(out
+            .into_iter()
+            .map(|(t_a, t_b, _)| CurveIntersection::Point {
+                t_a,
+                t_b,
+                point: self.point(t_a).unwrap_or_default(),
+            })
+            .collect())
     }
 
     fn check_planar(&self, other: &QueryCurve) -> Result<()> {
@@ -378,7 +401,16 @@ impl QueryCurve {
         let mut out = Vec::new();
         for (gi, g) in groups.iter().enumerate() {
             let (mut a0, mut a1) = (g[0].0, g[g.len() - 1].0);
-            if g.len() > 1 && a1 > a0 {
+            // a single solution may still sit in an overlap or a tangential contact: the gap
+            // stays tiny a little way to either side
+            let probe = || {
+                let h = 1e-6 * (hi - lo);
+                [a0 - h, a1 + h]
+                    .iter()
+                    .filter(|t| **t >= lo && **t <= hi)
+                    .all(|&t| gap(t).0 <= tolerance / 100.0)
+            };
+            if (g.len() > 1 && a1 > a0) || probe() {
                 // grow to where the gap exceeds the tolerance (bisection, 60 steps each side)
                 let left_lim = if gi > 0 {
                     groups[gi - 1][groups[gi - 1].len() - 1].0
@@ -772,13 +804,35 @@ fn sub_pairs(
     Ok(out)
 }
 
-/// Moves `from` towards `limit` while `ok` holds: the last point where it holds, by bisection
-/// (60 steps), assuming one change.
+/// Moves `from` towards `limit` while `ok` holds: steps doubling from `1e-12·|limit − from|`
+/// (at most 64) find the first point where it fails, then bisection (60 steps) the last point
+/// where it holds. Returns `from` when it fails at once.
 fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
-    if ok(limit) {
+    let span = limit - from;
+    if span == 0.0 {
+        return from;
+    }
+    let mut good = from;
+    let mut h = 1e-12 * span;
+    let mut bad = limit;
+    let mut reached = true;
+    for _ in 0..64 {
+        let t = from + h;
+        if (span > 0.0 && t >= limit) || (span < 0.0 && t <= limit) {
+            break;
+        }
+        if ok(t) {
+            good = t;
+            h *= 2.0;
+        } else {
+            bad = t;
+            reached = false;
+            break;
+        }
+    }
+    if reached && ok(limit) {
         return limit;
     }
-    let (mut good, mut bad) = (from, limit);
     for _ in 0..60 {
         let m = 0.5 * (good + bad);
         if m == good || m == bad {

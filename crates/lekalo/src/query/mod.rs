@@ -22,12 +22,19 @@
 //! Every iteration in here has a bound (stated where it is), and every query validates its
 //! input: NaN queries, bad tolerances and degrees beyond [`MAX_QUERY_DEGREE`] are named errors.
 
+mod bbox;
+mod curvature;
+mod intersect;
 mod length;
 mod pieces;
 mod project;
 mod surface;
+mod tessellate;
 
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
+pub use curvature::{CurvatureExtremum, SurfaceCurvature};
+pub use intersect::CurveIntersection;
 pub use surface::QuerySurface;
+pub use tessellate::{Mesh, Polyline, MAX_MESH_VERTICES, MIN_RELATIVE_TOLERANCE};

@@ -49,11 +49,11 @@ pub struct QueryCurve {
     pub(crate) scale: f64,
 }
 
-/// One node of the piece tree: pieces `lo..hi`, its box, its children (leaves have none).
+/// One node of the piece tree: its first piece (the only one for a leaf), its box, its
+/// children (leaves have none).
 #[derive(Debug, Clone)]
 pub(crate) struct Node {
     pub(crate) lo: usize,
-    pub(crate) hi: usize,
     pub(crate) bbox: Vec<f64>,
     pub(crate) children: Option<(usize, usize)>,
 }
@@ -201,7 +201,6 @@ impl QueryCurve {
         let id = nodes.len();
         nodes.push(Node {
             lo,
-            hi,
             bbox,
             children: None,
         });
@@ -457,7 +456,7 @@ impl Bern {
         )
     }
 
-    /// Product (Farin §5.? product of Bernstein polynomials).
+    /// Product of Bernstein polynomials (`docs/theory/queries.md#bezier-pieces`).
     pub(crate) fn mul(&self, o: &Bern) -> Bern {
         let (a, b) = (self.degree(), o.degree());
         let mut c = vec![0.0; a + b + 1];
@@ -530,7 +529,7 @@ const MAX_ROOT_NODES: usize = 1 << 14;
 
 /// The roots of `p` in `[0, 1]`, sorted, within about `1e-15`: subdivision with the Bernstein
 /// sign-variation count (the number of roots in an interval is at most the number of sign
-/// changes of the coefficients, and of the same parity: Farin §5.? / Lane–Riesenfeld), so an
+/// changes of the coefficients, and of the same parity: Lane–Riesenfeld 1981, `docs/theory/queries.md#bezier-pieces`), so an
 /// interval without a change holds no root and one with exactly one change holds exactly one,
 /// found by a bracketed Newton–bisection. Coefficients within `zero` of 0 count as zero; a
 /// polynomial that is zero throughout returns no roots (callers check [`Bern::is_zero`]). Bounded:
