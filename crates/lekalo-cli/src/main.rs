@@ -73,6 +73,14 @@ enum Command {
     Blend(cmd::blend::BlendArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
+    /// Length, parameter at length, exact bounding box and curvature extrema of a curve.
+    Measure(cmd::measure::MeasureArgs),
+    /// Closest points on a curve or a surface (single points or batches).
+    Project(cmd::project::ProjectArgs),
+    /// Intersections of planar curves, self-intersections, curve–plane.
+    Intersect(cmd::intersect::IntersectArgs),
+    /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
+    Mesh(cmd::mesh::MeshArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -118,6 +126,10 @@ fn main() -> ExitCode {
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
+        Command::Measure(a) => cmd::measure::run(&a, verbosity),
+        Command::Project(a) => cmd::project::run(&a, verbosity),
+        Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
+        Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -13,3 +13,8 @@ pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;
 pub(crate) mod pp;
+// geometric queries
+pub(crate) mod intersect;
+pub(crate) mod measure;
+pub(crate) mod mesh;
+pub(crate) mod project;

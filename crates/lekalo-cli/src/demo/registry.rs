@@ -18,6 +18,8 @@ mod doc001;
 mod doc003;
 #[path = "doc004.rs"]
 mod doc004;
+#[path = "queries.rs"]
+mod queries;
 
 /// A gallery entry: identity and the function that builds it.
 pub(crate) struct Entry {
@@ -122,6 +124,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         title: "Order change of a Bezier surface",
         source: "document 004 eq. (14), Fig. 5 (digest §E.4)",
         build: doc004::surface,
+    },
+    Entry {
+        id: "queries",
+        title: "Geometric queries: intersections, closest points, offsets, curvature",
+        source: "docs/theory/queries.md",
+        build: queries::queries,
     },
 ];
 

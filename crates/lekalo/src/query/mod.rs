@@ -26,12 +26,14 @@ mod bbox;
 mod curvature;
 mod intersect;
 mod length;
+mod offset;
 mod pieces;
 mod project;
 mod surface;
 mod tessellate;
 
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
+pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use curvature::{CurvatureExtremum, SurfaceCurvature};
