@@ -78,14 +78,14 @@ fuzz_target!(|input: Input| {
     if ctrl.len() > MAX_POINTS * dim {
         return;
     }
-    let Ok(points) = Points::new(ctrl[..ctrl.len() - ctrl.len() % dim].to_vec(), dim) else {
+    let Ok(points) = Points::from_flat(dim, ctrl[..ctrl.len() - ctrl.len() % dim].to_vec()) else {
         return;
     };
     let finite = points.iter().all(|q| q.iter().all(|x| x.is_finite()));
     let split = usize::from(input.split).min(points.len());
     let halves = (
-        Points::new(points.as_slice()[..split * dim].to_vec(), dim),
-        Points::new(points.as_slice()[split * dim..].to_vec(), dim),
+        Points::from_flat(dim, points.as_slice()[..split * dim].to_vec()),
+        Points::from_flat(dim, points.as_slice()[split * dim..].to_vec()),
     );
     if let (Ok(a), Ok(b)) = halves {
         if let (Ok(a), Ok(b)) = (BezierCurve::new(a), BezierCurve::new(b)) {

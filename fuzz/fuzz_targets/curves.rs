@@ -30,9 +30,9 @@ fuzz_target!(|input: Input| {
     let knots = common::maybe_sorted(&input.knots, input.sort_knots);
     let ctrl = common::floats(&input.control);
     let weights = common::floats(&input.weights);
-    let Ok(points) = Points::new(ctrl.clone(), dim) else {
+    let Ok(points) = Points::from_flat(dim, ctrl.clone()) else {
         // still try the other constructors with the raw data
-        let _ = Points::new(ctrl, dim.max(1));
+        let _ = Points::from_flat(dim.max(1), ctrl);
         return;
     };
     common::exercise_points(&points);

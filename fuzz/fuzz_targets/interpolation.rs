@@ -45,7 +45,7 @@ fuzz_target!(|input: Input| {
     if ctrl.len() > MAX_POINTS * dim {
         return;
     }
-    let Ok(points) = Points::new(ctrl[..ctrl.len() - ctrl.len() % dim].to_vec(), dim) else {
+    let Ok(points) = Points::from_flat(dim, ctrl[..ctrl.len() - ctrl.len() % dim].to_vec()) else {
         return;
     };
     let view = points.as_view();

@@ -26,7 +26,7 @@ struct Input {
 
 fuzz_target!(|input: Input| {
     let dim = usize::from(input.dim % 4).max(1);
-    let Ok(points) = Points::new(common::floats(&input.control), dim) else {
+    let Ok(points) = Points::from_flat(dim, common::floats(&input.control)) else {
         return;
     };
     let (pu, pv) = (input.degree_u.0, input.degree_v.0);

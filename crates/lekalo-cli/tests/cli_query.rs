@@ -11,11 +11,12 @@ use predicates::str::contains;
 /// A polyline (0,0) → (3,4) → (3,0): length 9.
 const POLY: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
  "knots": [0, 0, 1, 2, 2], "control": [[0, 0], [3, 4], [3, 0]]}"#;
-/// The line y = 1 from x = −2 to 2.
+/// The line y = 1 from x = −2 to 4.
 const LINE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
- "knots": [0, 0, 1, 1], "control": [[-2, 1], [2, 1]]}"#;
+ "knots": [0, 0, 1, 1], "control": [[-2, 1], [4, 1]]}"#;
 /// A cubic with a loop.
-const LOOP: &str = r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [3, 2], [-1, 2], [2, 0]]}"#;
+const LOOP: &str =
+    r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [3, 2], [-1, 2], [2, 0]]}"#;
 /// z = x² over [0, 1]², bilinear in y.
 const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 1,
  "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "net": [3, 2],
@@ -45,7 +46,11 @@ fn measure_length_and_inverse() {
         .arg(p(&d, "poly.json"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!((j["length"].as_f64().unwrap() - 9.0).abs() < 1e-13);
     // length 7 is 2 along the second leg of length 4: t = 1.5
@@ -88,14 +93,22 @@ fn project_single_batch_and_all() {
 
 #[test]
 fn intersect_pairs_self_and_plane() {
-    let d = dir_with(&[("poly.json", POLY), ("line.json", LINE), ("loop.json", LOOP)]);
+    let d = dir_with(&[
+        ("poly.json", POLY),
+        ("line.json", LINE),
+        ("loop.json", LOOP),
+    ]);
     let out = lekalo()
         .args(["intersect", "--json"])
         .arg(p(&d, "poly.json"))
         .arg(p(&d, "line.json"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let hits = j.as_array().unwrap();
     assert_eq!(hits.len(), 2, "{j}");
@@ -137,7 +150,9 @@ fn mesh_writes_obj_stl_and_reports_the_bound() {
         .arg(p(&d, "s.json"))
         .assert()
         .success();
-    assert!(fs::read_to_string(p(&d, "s.stl")).unwrap().starts_with("solid lekalo"));
+    assert!(fs::read_to_string(p(&d, "s.stl"))
+        .unwrap()
+        .starts_with("solid lekalo"));
     let out = lekalo()
         .args(["mesh", "--json", "--tolerance", "1e-3"])
         .arg(p(&d, "s.json"))

@@ -112,7 +112,7 @@ impl Object {
         for t in ts {
             data.extend(self.eval(t)?);
         }
-        Points::new(data, self.dim())
+        Points::from_flat(self.dim(), data)
     }
 }
 

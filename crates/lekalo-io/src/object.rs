@@ -48,7 +48,7 @@ impl PointsJson {
     fn into_points(self) -> lekalo::Result<Points> {
         match self {
             PointsJson::Rows(rows) => Points::from_rows(&rows),
-            PointsJson::Flat { dim, data } => Points::new(data, dim),
+            PointsJson::Flat { dim, data } => Points::from_flat(dim, data),
         }
     }
 

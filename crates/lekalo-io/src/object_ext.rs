@@ -207,7 +207,7 @@ mod tests {
 
     #[test]
     fn round_trips_and_errors() {
-        let net = Points::new((0..12).map(f64::from).collect(), 3).unwrap();
+        let net = Points::from_flat(3, (0..12).map(f64::from).collect()).unwrap();
         let b = BezierSurface::new(net, (2, 2)).unwrap();
         let back = read_bezier_surface(&bezier_surface_to_json(&b), "t").unwrap();
         assert_eq!(back, b);

@@ -93,7 +93,7 @@ pub fn read_points(text: &str, source: &str) -> IoResult<Points> {
             "no points found; write one point per line, e.g. `1.0, 2.0`",
         ));
     };
-    Points::new(data, dim).map_err(|e| IoError::Invalid {
+    Points::from_flat(dim, data).map_err(|e| IoError::Invalid {
         at: Location::new(source),
         error: e,
     })
@@ -128,7 +128,7 @@ fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
                     })?);
                 }
                 let dim = usize::try_from(dim).unwrap_or(usize::MAX);
-                return Points::new(flat, dim).map_err(|e| IoError::Invalid { at, error: e });
+                return Points::from_flat(dim, flat).map_err(|e| IoError::Invalid { at, error: e });
             }
         }
         _ => {

@@ -360,7 +360,7 @@ mod tests {
     #[test]
     fn rejects_bad_nets() {
         let pts = [0.0; 12];
-        let p4 = PointsRef::new(&pts, 4).unwrap();
+        let p4 = PointsRef::from_flat(4, &pts).unwrap();
         let mut w = StepWriter::new("x");
         let c = CurveNet {
             degree: 1,
@@ -369,7 +369,7 @@ mod tests {
             weights: None,
         };
         assert!(matches!(w.add_curve(&c), Err(IoError::Unsupported { .. })));
-        let p2 = PointsRef::new(&pts, 2).unwrap();
+        let p2 = PointsRef::from_flat(2, &pts).unwrap();
         let c = CurveNet { points: p2, ..c };
         assert!(w.add_curve(&c).is_err());
         let c = CurveNet {

@@ -242,7 +242,7 @@ fn bezier_and_surface_structure() {
     let _ = CurveNet {
         degree: 0,
         knots: &[],
-        points: Points::new(vec![], 1).unwrap().as_view(),
+        points: Points::from_flat(1, vec![]).unwrap().as_view(),
         weights: None,
     };
 }

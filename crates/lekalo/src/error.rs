@@ -19,7 +19,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{Error, Points};
-    /// let e = Points::new(vec![0.0, f64::NAN], 2).unwrap_err();
+    /// let e = Points::from_flat(2, vec![0.0, f64::NAN]).unwrap_err();
     /// assert!(matches!(e, Error::NonFinite { index: 1, .. }));
     /// ```
     #[error("{what}[{index}] is {value}: every number must be finite (no NaN or infinity)")]
@@ -54,7 +54,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Error, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0, 2.0], 1).unwrap();
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0, 2.0]).unwrap();
     /// // degree 2 with 3 control points needs 6 knots
     /// let e = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0], ctrl).unwrap_err();
     /// assert!(matches!(e, Error::LengthMismatch { expected: 6, got: 5, .. }));
@@ -74,7 +74,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{Error, Points};
-    /// let e = Points::new(vec![1.0, 2.0, 3.0], 2).unwrap_err();
+    /// let e = Points::from_flat(2, vec![1.0, 2.0, 3.0]).unwrap_err();
     /// assert!(matches!(e, Error::Dimension { .. }));
     /// ```
     #[error("dimension of {what}: expected {expected}, got {got}")]
@@ -127,7 +127,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Error, Points};
-    /// let ctrl = Points::new(vec![0.0; 5], 1).unwrap();
+    /// let ctrl = Points::from_flat(1, vec![0.0; 5]).unwrap();
     /// let knots = vec![0.0, 0.0, 0.5, 0.5, 0.5, 0.5, 1.0, 1.0];
     /// let e = BSplineCurve::new(2, knots, ctrl).unwrap_err();
     /// assert!(matches!(e, Error::KnotMultiplicity { multiplicity: 4, max: 3, .. }));
@@ -149,7 +149,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{BSplineCurve, Error, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     /// let e = BSplineCurve::new(1, vec![1.0, 1.0, 1.0, 1.0], ctrl).unwrap_err();
     /// assert!(matches!(e, Error::EmptyDomain { .. }));
     /// ```
@@ -167,7 +167,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{BezierCurve, Error, Points};
-    /// let c = BezierCurve::new(Points::new(vec![0.0, 1.0], 1).unwrap()).unwrap();
+    /// let c = BezierCurve::new(Points::from_flat(1, vec![0.0, 1.0]).unwrap()).unwrap();
     /// let e = c.eval(1.5).unwrap_err();
     /// assert!(matches!(e, Error::ParameterOutOfDomain { .. }));
     /// ```
@@ -185,7 +185,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::{Error, NurbsCurve, Points};
-    /// let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    /// let ctrl = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     /// let e = NurbsCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], ctrl, vec![1.0, -1.0]).unwrap_err();
     /// assert!(matches!(e, Error::NonPositiveWeight { index: 1, .. }));
     /// ```

@@ -46,117 +46,79 @@
 //! # Ok::<(), lekalo::Error>(())
 //! ```
 
-// -- foundation (issue 2) --
+// -- foundations: points, knots, B-spline bases, errors --
 pub mod basis;
-mod bezier;
-mod bezier_surface;
-mod bspline;
-mod differential;
 mod error;
-mod fast_eval;
-mod isa;
-mod knot_removal;
 mod knots;
-mod large_buffer;
-mod nurbs;
-mod nurbs_ops;
-mod nurbs_surface;
+mod points;
+
+pub use error::{
+    Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
+};
+pub use knots::{check_parameters, KnotVector, SpanCursor};
+pub use points::{Points, PointsRef};
+
+// -- curves: Bezier, B-spline, NURBS, knot operations, fast evaluation --
+pub mod curve;
+
+pub use curve::{
+    curvature, BSplineCurve, BezierCurve, BezierSegment, CurveEvaluator, EvalKernel, NurbsCurve,
+    NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
+};
+
+// -- surfaces: tensor-product Bezier, B-spline, NURBS --
+pub mod surface;
+
+pub use surface::{BSplineSurface, BezierPatch, BezierSurface, NurbsSurface, RationalBezierPatch};
+
+// -- interpolation: curves and surfaces through points, natural and Hermite splines --
+pub mod interpolate;
+
+pub use interpolate::{
+    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
+    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
+    natural_cubic_spline, parametrize, CubicHermite, CurveInterpolation, EndCondition,
+    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolant, TangentEstimate,
+    HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+};
+
+// -- degree change of Bezier curves and surfaces --
+pub mod degree;
+
+pub use degree::{
+    bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, bezier_net_change_degree,
+    bezier_net_elevate, bezier_net_from_monomial, bezier_net_real_degrees,
+    bezier_net_real_degrees_monomial, bezier_net_to_monomial, elevation_block, elevation_matrix,
+    order_change_matrix, reduction_block, truncation_matrix, ApproximateReduction,
+    BSplineApproximateReduction, ElevationPlan, EndConditions, RationalMatrix, APPROX_SAMPLES,
+    DEFAULT_DEGREE_TOLERANCE, MAX_EXACT_MATRIX_DEGREE, MAX_MONOMIAL_DEGREE,
+};
+
+// -- blending: jump polynomials, deformation, blended splines, corners --
+pub mod blend;
+
+pub use blend::{
+    approximate_curve, Approximation, ArcParametrization, BezierForm, BlendSpline,
+    BlendSplineOptions, CircularArcs, Continuity, CornerTransition, Deformation, FnCurve,
+    FnLocalCurves, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
+    SplineParameters, ENDPOINT_TOLERANCE,
+};
+
+// -- piecewise polynomials: divided differences, pp-form, quasi-interpolation --
+pub mod pp;
+
+pub use pp::{
+    bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
+    sample_quasi_interpolant, truncated_power, NewtonForm, PiecewisePolynomial, PpSpace,
+    QuasiSamples, TauRule, DEFAULT_CONTINUITY_RTOL,
+};
+
+// -- numerical building blocks (crate-private) and the test oracle --
+mod numeric;
 #[cfg(test)]
 mod oracle;
-mod points;
-mod surface;
-mod surface_ops;
 
-pub use bezier::{BezierCurve, BezierSegment};
-pub use bezier_surface::BezierSurface;
-pub use bspline::BSplineCurve;
-pub use differential::curvature;
-pub use error::{Error, Result, MAX_SCALARS};
-pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
-pub use knot_removal::DEFAULT_REMOVAL_RTOL;
-pub use knots::{check_parameters, KnotVector, SpanCursor};
-pub use nurbs::NurbsCurve;
-pub use nurbs_surface::NurbsSurface;
-pub use points::{Points, PointsRef};
-pub use surface::BSplineSurface;
-pub use surface_ops::{BezierPatch, RationalBezierPatch};
-
-// -- interpolation (issue 3) --
-mod cubic_sweep;
-mod hermite;
-mod interpolate;
-mod interpolate_fast;
-mod interpolate_periodic;
-mod interpolate_surface;
-mod linalg;
-
-pub use hermite::{
-    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    CubicHermite, TangentEstimate, HERMITE_MATRIX,
-};
-pub use interpolate::{
-    natural_cubic_spline, parametrize, CurveInterpolation, EndCondition, KnotPlacement,
-    Parametrization, INTERPOLATION_RESIDUAL_RTOL,
-};
-pub use interpolate_fast::InterpolationWorkspace;
-pub use interpolate_surface::{interpolate_surface, SurfaceInterpolant};
-
-// -- Bezier order change (issue 4) --
-mod bezier_degree;
-mod bezier_degree_approx;
-mod bezier_degree_bspline;
-mod bezier_degree_matrix;
-mod bezier_degree_plan;
-mod bezier_degree_surface;
-
-pub use bezier_degree::{DEFAULT_DEGREE_TOLERANCE, MAX_MONOMIAL_DEGREE};
-pub use bezier_degree_approx::{ApproximateReduction, EndConditions, APPROX_SAMPLES};
-pub use bezier_degree_bspline::BSplineApproximateReduction;
-pub use bezier_degree_matrix::{
-    bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, elevation_block,
-    elevation_matrix, order_change_matrix, reduction_block, truncation_matrix, RationalMatrix,
-    MAX_EXACT_MATRIX_DEGREE,
-};
-pub use bezier_degree_plan::ElevationPlan;
-pub use bezier_degree_surface::{
-    bezier_net_change_degree, bezier_net_elevate, bezier_net_from_monomial,
-    bezier_net_real_degrees, bezier_net_real_degrees_monomial, bezier_net_to_monomial,
-};
-
-// -- blending (issue 5) --
-mod bernstein_ops;
-mod blend;
-mod blend_approx;
-mod blend_spline;
-mod corner;
-mod jump;
-
-pub use blend::{BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE};
-pub use blend_approx::{approximate_curve, Approximation};
-pub use blend_spline::{
-    ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, Continuity, FnLocalCurves,
-    LocalCurves, Parabolas, SharedCurve, SplineParameters,
-};
-pub use corner::CornerTransition;
-pub use jump::JumpPolynomial;
-
-// -- piecewise polynomials (issue 6) --
-mod divdiff;
-mod ppform;
-mod quasi;
-
-pub use divdiff::{
-    bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
-    NewtonForm,
-};
-pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
-pub use quasi::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
-
-// -- robustness (issue 9) --
-pub use error::{MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SURFACE_DERIVATIVE_ORDER};
-pub use interpolate_surface::{interpolate_surface_condition, interpolate_surface_max_condition};
-
-// -- geometric queries --
+// -- geometric queries: length, closest points, intersections, offsets, tessellation, curvature --
 pub mod query;
 
 pub use query::{

@@ -13,8 +13,8 @@
 //! [`ORACLE_TOL`] relative to the control net's scale.
 
 use crate::basis::basis_function_recursive;
-use crate::bezier::BezierCurve;
-use crate::bspline::BSplineCurve;
+use crate::curve::bezier::BezierCurve;
+use crate::curve::bspline::BSplineCurve;
 
 /// Agreement required between a fast kernel and the oracle, relative to
 /// `max(1, max |P_i|)`: a few hundred rounding units of `f64`, for degrees up to 6.
@@ -133,7 +133,7 @@ mod tests {
                 for g in gaps {
                     knots.push(knots[knots.len() - 1] + g);
                 }
-                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+                BSplineCurve::new(p, knots, Points::from_flat(dim, ctrl).ok()?).ok()
             })
     }
 
@@ -174,7 +174,7 @@ mod tests {
             }),
             ts in prop::collection::vec(0.0f64..=1.0, 1..10),
         ) {
-            let c = BezierCurve::new(Points::new(ctrl, dim).unwrap()).unwrap();
+            let c = BezierCurve::new(Points::from_flat(dim, ctrl).unwrap()).unwrap();
             let scale = c.control_points().max_abs();
             let mut bern = vec![0.0; dim];
             let mut all = ts.clone();

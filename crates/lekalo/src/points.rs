@@ -43,7 +43,7 @@ struct PointsRepr {
 impl TryFrom<PointsRepr> for Points {
     type Error = Error;
     fn try_from(r: PointsRepr) -> Result<Self> {
-        Points::new(r.data, r.dim)
+        Points::from_flat(r.dim, r.data)
     }
 }
 
@@ -57,13 +57,23 @@ impl From<Points> for PointsRepr {
 }
 
 impl Points {
-    /// Points from flat point-major data.
+    /// Points of dimension `dim` from flat point-major data `x0 y0 … x1 y1 …` (the storage
+    /// order of [`Points`]). For fixed small dimensions [`Points::from_2d`] and
+    /// [`Points::from_3d`] take arrays; [`Points::from_rows`] takes rows of any equal length.
+    ///
+    /// ```
+    /// use lekalo::Points;
+    /// let p = Points::from_flat(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 2.0])?;
+    /// assert_eq!((p.len(), p.dim()), (3, 2));
+    /// assert_eq!(p.point(1), &[1.0, 2.0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
     ///
     /// # Errors
     /// [`Error::Dimension`] if `dim == 0` or `data.len()` is not a multiple of `dim`;
     /// [`Error::NonFinite`] for NaN or infinite coordinates; [`Error::TooLarge`] past
     /// [`MAX_SCALARS`](crate::MAX_SCALARS).
-    pub fn new(data: Vec<f64>, dim: usize) -> Result<Self> {
+    pub fn from_flat(dim: usize, data: Vec<f64>) -> Result<Self> {
         if dim == 0 {
             return Err(Error::Dimension {
                 what: "points",
@@ -87,6 +97,16 @@ impl Points {
         }
         check_finite("point coordinates", &data)?;
         Ok(Points { data, dim })
+    }
+
+    /// Points from flat point-major data: [`Points::from_flat`] with the arguments the other
+    /// way round.
+    ///
+    /// # Errors
+    /// As [`Points::from_flat`].
+    #[deprecated(note = "use Points::from_flat(dim, data)")]
+    pub fn new(data: Vec<f64>, dim: usize) -> Result<Self> {
+        Points::from_flat(dim, data)
     }
 
     /// Points from rows of any equal length.
@@ -113,7 +133,7 @@ impl Points {
             }
             data.extend_from_slice(row);
         }
-        Points::new(data, dim)
+        Points::from_flat(dim, data)
     }
 
     /// Planar points.
@@ -121,7 +141,7 @@ impl Points {
     /// # Errors
     /// [`Error::NonFinite`].
     pub fn from_2d(points: &[[f64; 2]]) -> Result<Self> {
-        Points::new(points.iter().flatten().copied().collect(), 2)
+        Points::from_flat(2, points.iter().flatten().copied().collect())
     }
 
     /// Spatial points.
@@ -129,7 +149,7 @@ impl Points {
     /// # Errors
     /// [`Error::NonFinite`].
     pub fn from_3d(points: &[[f64; 3]]) -> Result<Self> {
-        Points::new(points.iter().flatten().copied().collect(), 3)
+        Points::from_flat(3, points.iter().flatten().copied().collect())
     }
 
     /// Trusted constructor for internal results whose invariants hold by construction.
@@ -283,7 +303,7 @@ pub(crate) fn homogenize(points: &Points, weights: &[f64]) -> Result<Points> {
         h.extend(p.iter().map(|x| x * w));
         h.push(w);
     }
-    Points::new(h, dim + 1)
+    Points::from_flat(dim + 1, h)
 }
 
 /// Homogeneous coordinates with unit weights, `(P, 1)`.
@@ -344,11 +364,12 @@ pub struct PointsRef<'a> {
 }
 
 impl<'a> PointsRef<'a> {
-    /// A view of flat point-major data, validated like [`Points::new`].
+    /// A view of flat point-major data of dimension `dim`, validated like
+    /// [`Points::from_flat`] (no copy).
     ///
     /// # Errors
-    /// As [`Points::new`].
-    pub fn new(data: &'a [f64], dim: usize) -> Result<Self> {
+    /// As [`Points::from_flat`].
+    pub fn from_flat(dim: usize, data: &'a [f64]) -> Result<Self> {
         if dim == 0 || data.len() % dim != 0 {
             return Err(Error::Dimension {
                 what: "point data (length is not a multiple of the dimension)",
@@ -358,6 +379,16 @@ impl<'a> PointsRef<'a> {
         }
         check_finite("point coordinates", data)?;
         Ok(PointsRef { data, dim })
+    }
+
+    /// A view of flat point-major data: [`PointsRef::from_flat`] with the arguments the other
+    /// way round.
+    ///
+    /// # Errors
+    /// As [`PointsRef::from_flat`].
+    #[deprecated(note = "use PointsRef::from_flat(dim, data)")]
+    pub fn new(data: &'a [f64], dim: usize) -> Result<Self> {
+        PointsRef::from_flat(dim, data)
     }
 
     /// Number of points.
@@ -406,18 +437,44 @@ impl<'a> PointsRef<'a> {
 mod tests {
     use super::*;
 
+    /// The constructors kept for code written against the old argument order build the same
+    /// points and refuse the same data.
+    #[test]
+    #[allow(deprecated)]
+    fn deprecated_constructors_match_from_flat() {
+        let data = vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        assert_eq!(
+            Points::new(data.clone(), 3).unwrap(),
+            Points::from_flat(3, data.clone()).unwrap(),
+            "Points::new"
+        );
+        assert_eq!(
+            PointsRef::new(&data, 2).unwrap(),
+            PointsRef::from_flat(2, &data).unwrap(),
+            "PointsRef::new"
+        );
+        assert!(
+            matches!(Points::new(data.clone(), 4), Err(Error::Dimension { .. })),
+            "Points::new refuses a length that is not a multiple of the dimension"
+        );
+        assert!(
+            matches!(PointsRef::new(&data, 0), Err(Error::Dimension { .. })),
+            "PointsRef::new refuses dimension 0"
+        );
+    }
+
     #[test]
     fn rejects_bad_data() {
         assert!(matches!(
-            Points::new(vec![1.0], 0),
+            Points::from_flat(0, vec![1.0]),
             Err(Error::Dimension { .. })
         ));
         assert!(matches!(
-            Points::new(vec![1.0, 2.0, 3.0], 2),
+            Points::from_flat(2, vec![1.0, 2.0, 3.0]),
             Err(Error::Dimension { .. })
         ));
         assert!(matches!(
-            Points::new(vec![1.0, f64::NEG_INFINITY], 2),
+            Points::from_flat(2, vec![1.0, f64::NEG_INFINITY]),
             Err(Error::NonFinite { index: 1, .. })
         ));
         assert!(matches!(

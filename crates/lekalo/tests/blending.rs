@@ -102,8 +102,8 @@ proptest! {
         let mut e2 = vec![0.0; 2 * (k + 2)];
         p1.eval_derivatives_into(0.0, k + 1, &mut e1).unwrap();
         p2.eval_derivatives_into(1.0, k + 1, &mut e2).unwrap();
-        let e1 = Points::new(e1, 2).unwrap();
-        let e2 = Points::new(e2, 2).unwrap();
+        let e1 = Points::from_flat(2, e1).unwrap();
+        let e2 = Points::from_flat(2, e2).unwrap();
         assert_ck(&d0, &e1, k, 1e-12, 1e-6, "u = 0");
         assert_ck(&d1, &e2, k, 1e-12, 1e-6, "u = 1");
         let b = p.to_bezier().unwrap();
@@ -582,8 +582,11 @@ fn user_local_curves() {
             let seg = |a: &[f64], b: &[f64], t0: f64, t1: f64| -> lekalo::Result<SharedCurve> {
                 let mut c = a.to_vec();
                 c.extend_from_slice(b);
-                let curve =
-                    lekalo::BSplineCurve::new(1, vec![t0, t0, t1, t1], Points::new(c, a.len())?)?;
+                let curve = lekalo::BSplineCurve::new(
+                    1,
+                    vec![t0, t0, t1, t1],
+                    Points::from_flat(a.len(), c)?,
+                )?;
                 Ok(Arc::new(curve))
             };
             Ok([seg(p[0], p[1], -dl, 0.0)?, seg(p[1], p[2], 0.0, dr)?])
@@ -630,11 +633,11 @@ fn corner_transition_has_contact_k() {
                     v[2 * l + d] *= h.powi(i32::try_from(l).unwrap());
                 }
             }
-            Points::new(v, 2).unwrap()
+            Points::from_flat(2, v).unwrap()
         };
         let mut e = vec![0.0; 2 * (k + 2)];
         before.eval_derivatives_into(0.7, k + 1, &mut e).unwrap();
-        let b = scale(&Points::new(e.clone(), 2).unwrap());
+        let b = scale(&Points::from_flat(2, e.clone()).unwrap());
         assert_ck(
             &c.eval_derivatives(0.0, k + 1).unwrap(),
             &b,
@@ -644,7 +647,7 @@ fn corner_transition_has_contact_k() {
             "start",
         );
         after.eval_derivatives_into(0.3, k + 1, &mut e).unwrap();
-        let a = scale(&Points::new(e, 2).unwrap());
+        let a = scale(&Points::from_flat(2, e).unwrap());
         assert_ck(
             &c.eval_derivatives(1.0, k + 1).unwrap(),
             &a,

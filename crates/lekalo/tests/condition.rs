@@ -258,7 +258,7 @@ fn every_end_condition_is_estimated() {
 #[test]
 fn interpolate_at_honours_the_limit() {
     let t = [0.0, 1.0, 2.0, 2.0 + 1e-10, 3.0, 4.0, 5.0];
-    let y = Points::new(vec![0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0], 1).unwrap();
+    let y = Points::from_flat(1, vec![0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0]).unwrap();
     let e = CurveInterpolation::new(3)
         .max_condition(1e8)
         .interpolate_at(y.as_view(), &t)
@@ -331,7 +331,7 @@ fn sheet(gap: Option<f64>) -> Points {
             data.extend([x, y, (0.5 * x).sin() * (0.3 * y).cos()]);
         }
     }
-    Points::new(data, 3).unwrap()
+    Points::from_flat(3, data).unwrap()
 }
 
 #[test]
@@ -419,7 +419,7 @@ fn helix(n: usize) -> Points {
         let w = s + 0.003 * (7.0 * s).sin();
         data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
     }
-    Points::new(data, 3).unwrap()
+    Points::from_flat(3, data).unwrap()
 }
 
 #[test]

@@ -67,9 +67,9 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 /// of one curve of dimension (m+1)·dim along u, then a curve along v.
 fn surface_eval(net: &Points, m: usize, u: f64, v: f64) -> Vec<f64> {
     let dim = net.dim();
-    let rows = Points::new(net.as_slice().to_vec(), (m + 1) * dim).expect("net rows");
+    let rows = Points::from_flat((m + 1) * dim, net.as_slice().to_vec()).expect("net rows");
     let row = BezierCurve::new(rows).expect("curve").eval(u).expect("u");
-    BezierCurve::new(Points::new(row, dim).expect("row"))
+    BezierCurve::new(Points::from_flat(dim, row).expect("row"))
         .expect("curve")
         .eval(v)
         .expect("v")
@@ -405,7 +405,7 @@ fn figure_5_surface_order_change() {
     let base: Vec<f64> = (0..16 * 3)
         .map(|i| f64::from((i * 7 + 3) % 13) - 6.0)
         .collect();
-    let base = Points::new(base, 3).unwrap(); // degrees (3, 3)
+    let base = Points::from_flat(3, base).unwrap(); // degrees (3, 3)
     let net = bezier_net_elevate(&base, 3, 3, 1, 0).unwrap(); // (4, 3)
     assert_eq!(bezier_net_real_degrees(&net, 4, 3, 1e-10).unwrap(), (3, 3));
     assert_eq!(
@@ -435,7 +435,7 @@ fn figure_5_surface_order_change() {
 fn curve_strategy(max_degree: usize) -> impl Strategy<Value = BezierCurve> {
     (1usize..=6, 0usize..=max_degree).prop_flat_map(|(dim, n)| {
         prop::collection::vec(-10.0f64..10.0, (n + 1) * dim).prop_map(move |data| {
-            BezierCurve::new(Points::new(data, dim).expect("finite")).expect("non-empty")
+            BezierCurve::new(Points::from_flat(dim, data).expect("finite")).expect("non-empty")
         })
     })
 }
@@ -452,7 +452,7 @@ fn planted_degree_strategy() -> impl Strategy<Value = (BezierCurve, usize)> {
         )
             .prop_map(move |(mut s, lead, negative)| {
                 s[k * dim] = if negative { -lead } else { lead };
-                let c = BezierCurve::from_monomial(Points::new(s, dim).expect("finite"))
+                let c = BezierCurve::from_monomial(Points::from_flat(dim, s).expect("finite"))
                     .expect("degree ≤ 8");
                 (c, k)
             })
@@ -534,7 +534,7 @@ proptest! {
         (au, av) in (0usize..=3, 0usize..=3),
         (tu, tv) in (0usize..=6, 0usize..=6),
     ) {
-        let base = Points::new(data, dim).unwrap();
+        let base = Points::from_flat(dim, data).unwrap();
         let net = bezier_net_elevate(&base, n, m, au, av).unwrap();
         let s = base.max_abs().max(f64::MIN_POSITIVE);
         prop_assert!(surface_dev(&base, m, &net, m + av) <= 1e-13 * s, "elevation");
@@ -573,7 +573,7 @@ fn bspline_strategy() -> impl Strategy<Value = BSplineCurve> {
                 knots.extend_from_slice(&inner);
                 knots.extend(std::iter::repeat_n(1.0, p + 1));
                 let kv = KnotVector::new(knots).expect("sorted");
-                BSplineCurve::from_knot_vector(p, kv, Points::new(data, dim).expect("finite"))
+                BSplineCurve::from_knot_vector(p, kv, Points::from_flat(dim, data).expect("finite"))
                     .expect("valid clamped B-spline")
             })
         })
@@ -610,7 +610,7 @@ fn bspline_elevation_with_two_close_knots() {
             1.0,
             1.0,
         ],
-        Points::new(vec![0.0, 0.0, 0.0, -5.268960839437541, 0.0, 0.0], 1).unwrap(),
+        Points::from_flat(1, vec![0.0, 0.0, 0.0, -5.268960839437541, 0.0, 0.0]).unwrap(),
     )
     .unwrap();
     for r in 1..=3 {

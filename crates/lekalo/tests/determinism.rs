@@ -48,7 +48,7 @@ fn curve() -> BSplineCurve {
         0.0, 0.0, 0.0, 0.0, 0.1, 0.25, 0.25, 0.5, 0.7, 0.7, 0.7, 0.9, 1.0, 1.0, 1.0, 1.0,
     ];
     let n = knots.len() - 4;
-    BSplineCurve::new(3, knots, Points::new(data(n, 3), 3).expect("finite")).expect("valid")
+    BSplineCurve::new(3, knots, Points::from_flat(3, data(n, 3)).expect("finite")).expect("valid")
 }
 
 fn nurbs() -> NurbsCurve {
@@ -87,7 +87,7 @@ fn check_batch_matches_single(
 fn curves_batch_equals_single_bit_for_bit_in_any_order() {
     let c = curve();
     let n = nurbs();
-    let b = BezierCurve::new(Points::new(data(8, 2), 2).expect("finite")).expect("valid");
+    let b = BezierCurve::new(Points::from_flat(2, data(8, 2)).expect("finite")).expect("valid");
     let ts = sorted_params(0.0, 1.0, 200);
     for order in [
         ts.clone(),
@@ -121,7 +121,7 @@ fn curves_batch_equals_single_bit_for_bit_in_any_order() {
 #[test]
 fn surfaces_grid_and_batch_equal_single_bit_for_bit() {
     let (nu, nv) = (6, 5);
-    let ctrl = Points::new(data(nu * nv, 3), 3).expect("finite");
+    let ctrl = Points::from_flat(3, data(nu * nv, 3)).expect("finite");
     let ku = KnotVector::clamped_uniform(3, nu).expect("valid");
     let kv = KnotVector::clamped_uniform(2, nv).expect("valid");
     let s = BSplineSurface::from_knot_vectors(3, 2, ku.clone(), kv.clone(), ctrl.clone(), (nu, nv))

@@ -137,7 +137,7 @@ fn transformed(c: &BSplineCurve, f: impl Fn(f64) -> f64) -> BSplineCurve {
     BSplineCurve::new(
         c.degree(),
         c.knots().as_slice().to_vec(),
-        Points::new(data, c.dim()).expect("finite data"),
+        Points::from_flat(c.dim(), data).expect("finite data"),
     )
     .expect("same knots")
 }
@@ -146,7 +146,7 @@ fn base_curve(p: usize, n_ctrl: usize, dim: usize) -> BSplineCurve {
     BSplineCurve::new(
         p,
         irregular_knots(p, n_ctrl),
-        Points::new(ctrl(n_ctrl, dim, p as f64), dim).expect("finite data"),
+        Points::from_flat(dim, ctrl(n_ctrl, dim, p as f64)).expect("finite data"),
     )
     .expect("valid curve")
 }
@@ -297,7 +297,8 @@ fn nearly_coincident_knots_agree_with_the_oracle() {
             knots.extend([0.3, 0.5, 0.5 + gap, 0.5 + 2.0 * gap, 0.8]);
             knots.extend(std::iter::repeat_n(1.0, p + 1));
             let n = knots.len() - p - 1;
-            let c = BSplineCurve::new(p, knots, Points::new(ctrl(n, 2, gap), 2).unwrap()).unwrap();
+            let c = BSplineCurve::new(p, knots, Points::from_flat(2, ctrl(n, 2, gap)).unwrap())
+                .unwrap();
             let scale = max_abs(c.control_points().as_slice());
             let mut ts = params(0.0, 1.0);
             ts.extend([
@@ -347,7 +348,7 @@ fn multiplicity_p_plus_one_inside_and_at_the_ends() {
         knots.extend(std::iter::repeat_n(1.0, p + 1));
         let n = 2 * (p + 1);
         let data = ctrl(n, 2, 7.0);
-        let c = BSplineCurve::new(p, knots, Points::new(data.clone(), 2).unwrap()).unwrap();
+        let c = BSplineCurve::new(p, knots, Points::from_flat(2, data.clone()).unwrap()).unwrap();
         // ends interpolate the end points; at 0.5 the curve is right-continuous: P_{p+1}
         assert_eq!(c.eval(0.0).unwrap(), &data[..2], "p={p} start");
         assert_eq!(c.eval(1.0).unwrap(), &data[2 * n - 2..], "p={p} end");
@@ -386,7 +387,7 @@ fn multiplicity_p_plus_one_inside_and_at_the_ends() {
         bad.extend(std::iter::repeat_n(0.5, p + 2));
         bad.extend(std::iter::repeat_n(1.0, p + 1));
         let m = bad.len() - p - 1;
-        let r = BSplineCurve::new(p, bad, Points::new(ctrl(m, 2, 1.0), 2).unwrap());
+        let r = BSplineCurve::new(p, bad, Points::from_flat(2, ctrl(m, 2, 1.0)).unwrap());
         assert!(
             matches!(r, Err(Error::KnotMultiplicity { multiplicity, max, .. }) if multiplicity == p + 2 && max == p + 1),
             "p={p}: {r:?}"
@@ -424,7 +425,7 @@ fn binomial(n: usize, k: usize) -> f64 {
 fn bezier_degree_up_to_20_matches_explicit_bernstein_sum() {
     for n in [5, 10, 15, 20] {
         let data = ctrl(n + 1, 3, n as f64);
-        let c = BezierCurve::new(Points::new(data.clone(), 3).unwrap()).unwrap();
+        let c = BezierCurve::new(Points::from_flat(3, data.clone()).unwrap()).unwrap();
         let scale = max_abs(&data);
         for t in params(0.0, 1.0) {
             // independent oracle: C(n,i) t^i (1−t)^(n−i), each term positive
@@ -488,7 +489,7 @@ fn nurbs_extreme_weight_ratios_keep_relative_accuracy() {
             let c = NurbsCurve::new(
                 p,
                 knots.clone(),
-                Points::new(data.clone(), 2).unwrap(),
+                Points::from_flat(2, data.clone()).unwrap(),
                 weights.clone(),
             )
             .unwrap();
@@ -498,7 +499,8 @@ fn nurbs_extreme_weight_ratios_keep_relative_accuracy() {
             let tol = 2.0 * eval_bound(p, scale) + 2.0 * f64::EPSILON * scale;
             // multiplying every weight by a constant leaves the curve unchanged
             let lifted: Vec<f64> = weights.iter().map(|w| w * 1e6).collect();
-            let c2 = NurbsCurve::new(p, knots, Points::new(data, 2).unwrap(), lifted).unwrap();
+            let c2 =
+                NurbsCurve::new(p, knots, Points::from_flat(2, data).unwrap(), lifted).unwrap();
             for t in params(0.0, 1.0) {
                 let got = c.eval(t).unwrap();
                 assert_close(
@@ -577,7 +579,7 @@ fn extreme_curve() -> impl Strategy<Value = BSplineCurve> {
             let s = 10f64.powi(e_scale);
             let off = if offset { 10f64.powi(e_off) } else { 0.0 };
             let data: Vec<f64> = data.iter().map(|x| x * s + off).collect();
-            BSplineCurve::new(p, knots, Points::new(data, dim).ok()?).ok()
+            BSplineCurve::new(p, knots, Points::from_flat(dim, data).ok()?).ok()
         })
 }
 

@@ -49,7 +49,7 @@ fn arb_curve() -> impl Strategy<Value = BSplineCurve> {
                     knots[m - p..].fill(b);
                 }
                 let ctrl: Vec<f64> = ctrl.iter().map(|x| x * 1e3 + shift).collect();
-                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+                BSplineCurve::new(p, knots, Points::from_flat(dim, ctrl).ok()?).ok()
             },
         )
 }

@@ -102,7 +102,7 @@ fn span_search_and_validation_survive_absurd_degrees() {
         assert!(kv.validate_for(2, d).is_err());
         assert!(kv.validate_for(d, d).is_err());
         assert!(TauRule::Greville.points(&kv, d).is_err());
-        let ctrl = Points::new(vec![0.0; 6], 1).expect("finite points");
+        let ctrl = Points::from_flat(1, vec![0.0; 6]).expect("finite points");
         assert!(BSplineCurve::new(d, kv.as_slice().to_vec(), ctrl).is_err());
     }
 }
@@ -155,7 +155,7 @@ fn derivative_orders_are_bounded() {
     .expect("valid NURBS");
     let bez = BezierCurve::new(c.control_points().clone()).expect("valid Bezier");
     let pp = PiecewisePolynomial::from_bspline(&c).expect("pp form");
-    let net = Points::new((0..12).map(f64::from).collect(), 3).expect("finite points");
+    let net = Points::from_flat(3, (0..12).map(f64::from).collect()).expect("finite points");
     let surf = BSplineSurface::new(
         1,
         1,
@@ -212,7 +212,7 @@ fn derivative_orders_are_bounded() {
 // (`min: degree + 1`).
 #[test]
 fn empty_control_points_with_absurd_degree() {
-    let empty = Points::new(Vec::new(), 2).expect("empty points are valid");
+    let empty = Points::from_flat(2, Vec::new()).expect("empty points are valid");
     for d in ABSURD {
         let r = BSplineCurve::new(d, vec![0.0, 1.0], empty.clone());
         assert!(
@@ -326,7 +326,7 @@ fn averaged_knots_of_huge_parameters_stay_finite_and_sorted() {
 #[test]
 fn overflowing_derivatives_are_reported() {
     let m = f64::MAX;
-    let data = Points::new(vec![m, -m, m], 1).expect("finite");
+    let data = Points::from_flat(1, vec![m, -m, m]).expect("finite");
     let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], data.clone()).expect("valid");
     let b = BezierCurve::new(data).expect("valid");
     assert!(matches!(
@@ -373,7 +373,8 @@ fn elevation_plan_to_absurd_degree_is_too_large() {
 /// `CubicHermite::from_points` tangents `[-0.75, -inf, NaN, inf]` inside an `Ok`.
 #[test]
 fn hermite_tangents_that_overflow_are_reported() {
-    let p = Points::new(vec![2.2250738585072014e-308, -0.25, -f64::MAX, -2.0], 1).expect("finite");
+    let p = Points::from_flat(1, vec![2.2250738585072014e-308, -0.25, -f64::MAX, -2.0])
+        .expect("finite");
     for estimate in [
         lekalo::TangentEstimate::FiniteDifference,
         lekalo::TangentEstimate::CatmullRom,
@@ -418,9 +419,9 @@ fn periodic_interpolation_with_absurd_degree_is_refused() {
 fn deformation_that_overflows_is_reported() {
     use lekalo::ParametricCurve;
     let m = f64::MAX;
-    let c1 = lekalo::BezierCurve::new(Points::new(vec![0.0, -m, 1.0], 1).expect("finite"))
+    let c1 = lekalo::BezierCurve::new(Points::from_flat(1, vec![0.0, -m, 1.0]).expect("finite"))
         .expect("curve");
-    let c2 = lekalo::BezierCurve::new(Points::new(vec![0.0, m, 1.0], 1).expect("finite"))
+    let c2 = lekalo::BezierCurve::new(Points::from_flat(1, vec![0.0, m, 1.0]).expect("finite"))
         .expect("curve");
     let d = lekalo::Deformation::new(c1, c2, 2).expect("common end points");
     let mut out = [0.0; 3];
@@ -440,7 +441,7 @@ fn elevating_discontinuous_bsplines_keeps_both_sides() {
     let step = BSplineCurve::new(
         0,
         vec![0.0, 0.5, 1.0],
-        Points::new(vec![-1.5, 1e300], 1).expect("finite"),
+        Points::from_flat(1, vec![-1.5, 1e300]).expect("finite"),
     )
     .expect("valid step");
     for by in [0, 1, 2] {
@@ -484,8 +485,8 @@ fn elevating_discontinuous_bsplines_keeps_both_sides() {
 /// the curve came back as `Ok` with control points `[.., 0, inf, ..]` (NaN between them).
 #[test]
 fn interpolation_of_data_spanning_beyond_f64_is_refused() {
-    let q =
-        Points::new(vec![-3.0417986395407823e305, 1e8, f64::MAX, 1e300, 0.25], 1).expect("finite");
+    let q = Points::from_flat(1, vec![-3.0417986395407823e305, 1e8, f64::MAX, 1e300, 0.25])
+        .expect("finite");
     for degree in [1, 2, 3] {
         let r = lekalo::CurveInterpolation::new(degree)
             .parametrization(lekalo::Parametrization::Uniform)
@@ -507,14 +508,14 @@ fn corner_transition_that_overflows_is_reported() {
     let m = f64::MAX;
     let tiny = f64::MIN_POSITIVE;
     let before = BezierCurve::new(
-        Points::new(
-            vec![m, m, tiny, tiny, -2.0, -2.0, -2.0, 0.9999999999999999],
+        Points::from_flat(
             1,
+            vec![m, m, tiny, tiny, -2.0, -2.0, -2.0, 0.9999999999999999],
         )
         .expect("finite"),
     )
     .expect("curve");
-    let after = BezierCurve::new(Points::new(vec![-2.0], 1).expect("finite")).expect("curve");
+    let after = BezierCurve::new(Points::from_flat(1, vec![-2.0]).expect("finite")).expect("curve");
     let c = lekalo::CornerTransition::new(&before, tiny, &after, tiny, 5).expect("corner");
     let mut out = [0.0; 4];
     let r = c.eval_derivatives_into(c.domain().0, 3, &mut out);
@@ -530,7 +531,7 @@ fn corner_transition_that_overflows_is_reported() {
 /// indexed past its row buffer.
 #[test]
 fn interpolation_with_subnormal_parameter_spacing_is_an_error() {
-    let q = Points::new(vec![f64::MIN_POSITIVE, -1.5, -2.0, f64::MAX], 1).expect("finite");
+    let q = Points::from_flat(1, vec![f64::MIN_POSITIVE, -1.5, -2.0, f64::MAX]).expect("finite");
     for placement in [
         lekalo::KnotPlacement::Averaged,
         lekalo::KnotPlacement::Uniform,
@@ -560,7 +561,8 @@ fn blend_spline_derivatives_that_overflow_are_reported() {
         ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, ParametricCurve,
         SplineParameters,
     };
-    let q = Points::new(
+    let q = Points::from_flat(
+        1,
         vec![
             -2.4983353906818427e-127,
             -2.4983353906949635e-127,
@@ -570,7 +572,6 @@ fn blend_spline_derivatives_that_overflow_are_reported() {
             0.5,
             1e8,
         ],
-        1,
     )
     .expect("finite");
     let arcs = CircularArcs {
@@ -611,7 +612,7 @@ fn blend_spline_derivatives_that_overflow_are_reported() {
 #[test]
 fn hermite_evaluation_that_overflows_is_reported() {
     use lekalo::{CubicHermite, Parametrization, TangentEstimate};
-    let q = Points::new(vec![f64::MIN_POSITIVE, 1e300, f64::MAX], 1).expect("finite");
+    let q = Points::from_flat(1, vec![f64::MIN_POSITIVE, 1e300, f64::MAX]).expect("finite");
     let params = vec![-2.0, -1.75, f64::MAX];
     let candidates = [
         CubicHermite::from_points(
@@ -652,7 +653,7 @@ fn surface_interpolation_that_overflows_is_reported() {
     values[18] = 1.0000000000000002;
     values[30] = -6.27743856100529e66;
     values[49..].copy_from_slice(&[0.0, 1e300, -2.0, -1.5, 1e8, 1e8, 1e8]);
-    let grid = Points::new(values, 1).expect("finite");
+    let grid = Points::from_flat(1, values).expect("finite");
     let r =
         lekalo::interpolate_surface(grid.as_view(), 8, 7, 7, 3, lekalo::Parametrization::Uniform);
     assert!(matches!(r, Err(Error::IllConditioned { .. })), "{r:?}");

@@ -389,7 +389,7 @@ fn natural_function_reproduces_lines_and_matches_the_parametric_form() {
     // a natural spline through collinear data is the line itself
     let x = [-2.0, -0.5, 0.1, 1.0, 3.5];
     let y: Vec<f64> = x.iter().map(|v| 3.0 * v - 1.0).collect();
-    let s = natural_cubic_spline(&x, Points::new(y, 1).unwrap().as_view()).unwrap();
+    let s = natural_cubic_spline(&x, Points::from_flat(1, y).unwrap().as_view()).unwrap();
     for k in 0..=40 {
         let t = -2.0 + 5.5 * f64::from(k) / 40.0;
         assert!(
@@ -425,7 +425,7 @@ fn wavy(n: usize, offset: f64, scale: f64) -> Points {
             ]
         })
         .collect();
-    Points::new(data, 3).unwrap()
+    Points::from_flat(3, data).unwrap()
 }
 
 #[test]
@@ -536,7 +536,7 @@ fn periodic_curves_close_smoothly_for_every_degree() {
         )
         .unwrap();
         t.pop();
-        let corners = Points::new(square.as_slice()[..10].to_vec(), 2).unwrap();
+        let corners = Points::from_flat(2, square.as_slice()[..10].to_vec()).unwrap();
         let (worst, bound) = residual(&c, &corners, &t);
         assert!(worst <= bound, "degree {p}: residual {worst}");
         assert!(
@@ -586,7 +586,7 @@ fn grid(nu: usize, nv: usize, offset: f64) -> Points {
             ]);
         }
     }
-    Points::new(data, 3).unwrap()
+    Points::from_flat(3, data).unwrap()
 }
 
 /// Evaluation through the library's surface type.
@@ -687,7 +687,7 @@ fn surface_parameters_are_row_and_column_averages() {
     for l in 0..nv {
         let col: Vec<f64> = (0..nu).flat_map(|k| g.point(k * nv + l).to_vec()).collect();
         let t = parametrize(
-            Points::new(col, 3).unwrap().as_view(),
+            Points::from_flat(3, col).unwrap().as_view(),
             Parametrization::ChordLength,
         )
         .unwrap();
@@ -815,7 +815,7 @@ fn monotone_hermite_preserves_monotonicity() {
     let y = [0.0, 0.0, 0.0, 0.1, 5.0, 5.0, 5.1, 9.0, 9.0];
     let h = CubicHermite::function(
         &x,
-        Points::new(y.to_vec(), 1).unwrap().as_view(),
+        Points::from_flat(1, y.to_vec()).unwrap().as_view(),
         TangentEstimate::Monotone,
     )
     .unwrap();
@@ -828,7 +828,7 @@ fn monotone_hermite_preserves_monotonicity() {
     // the finite-difference tangents are not monotone on the same data
     let fd = CubicHermite::function(
         &x,
-        Points::new(y.to_vec(), 1).unwrap().as_view(),
+        Points::from_flat(1, y.to_vec()).unwrap().as_view(),
         TangentEstimate::FiniteDifference,
     )
     .unwrap();
@@ -896,7 +896,7 @@ fn error_coincident_points_and_dropping_them() {
         }
     );
     let e = interpolate_surface(
-        Points::new(vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0], 2)
+        Points::from_flat(2, vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0])
             .unwrap()
             .as_view(),
         2,
@@ -943,7 +943,7 @@ fn error_singular_system_with_uniform_knots() {
 #[test]
 fn error_ill_conditioned_parameters() {
     // parameters so uneven that the collocation factors grow past the limit
-    let q = Points::new(vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0], 1).unwrap();
+    let q = Points::from_flat(1, vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]).unwrap();
     let t = [0.0, 1e-13, 2e-13, 0.5, 1.0 - 1e-13, 1.0];
     let r = CurveInterpolation::new(3).interpolate_at(q.as_view(), &t);
     assert!(
@@ -1070,7 +1070,7 @@ fn error_degree_dimension_counts_and_arguments() {
         interpolate_surface(g.as_view(), 4, 3, 4, 2, Parametrization::Uniform),
         Err(Error::Degree { .. })
     ));
-    let line = Points::new(vec![0.0, 1.0], 1).unwrap();
+    let line = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     assert!(matches!(
         interpolate_surface(line.as_view(), 1, 2, 1, 1, Parametrization::Uniform),
         Err(Error::TooFew { .. })
@@ -1102,13 +1102,13 @@ fn error_degree_dimension_counts_and_arguments() {
     let e = CubicHermite::new(
         vec![0.0, 1.0],
         pts(&[[0.0, 0.0], [1.0, 1.0]]),
-        Points::new(vec![0.0, 0.0], 1).unwrap(),
+        Points::from_flat(1, vec![0.0, 0.0]).unwrap(),
     )
     .unwrap_err();
     assert!(matches!(e, Error::Dimension { .. }), "{e:?}");
     let h = CubicHermite::function(
         &[0.0, 1.0],
-        Points::new(vec![0.0, 1.0], 1).unwrap().as_view(),
+        Points::from_flat(1, vec![0.0, 1.0]).unwrap().as_view(),
         TangentEstimate::CatmullRom,
     )
     .unwrap();
@@ -1148,7 +1148,7 @@ fn walk(dim: usize, min_n: usize, max_n: usize) -> impl Strategy<Value = Points>
             }
             data.extend_from_slice(&cur);
         }
-        Points::new(data, dim).unwrap()
+        Points::from_flat(dim, data).unwrap()
     })
 }
 
@@ -1227,7 +1227,7 @@ proptest! {
         prop_assert!(closure_error(&c) < 1e-9, "seam error {}", closure_error(&c));
         let mut closed = q.as_slice().to_vec();
         closed.extend_from_slice(q.point(0));
-        let t = params_of(Points::new(closed, 2).unwrap().as_view(), m);
+        let t = params_of(Points::from_flat(2, closed).unwrap().as_view(), m);
         let (a, _) = c.domain();
         // even degrees: the domain starts before 0; q_0 sits at parameter 0 either way
         prop_assert!(a <= 0.0);
@@ -1260,7 +1260,7 @@ proptest! {
                 data.extend(coords.iter().map(|v| v + offset));
             }
         }
-        let g = Points::new(data, dim).unwrap();
+        let g = Points::from_flat(dim, data).unwrap();
         let r = interpolate_surface(g.as_view(), nu, nv, p, q, m);
         if p >= nu || q >= nv {
             prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
@@ -1283,9 +1283,9 @@ proptest! {
         // coordinates on a 2^-20 grid and an integer offset: the moved data are exact, so
         // only the final addition of the offset may round
         let grid = |v: f64| (v * 1_048_576.0).round() / 1_048_576.0;
-        let q = Points::new(q.as_slice().iter().map(|&v| grid(v)).collect(), 2).unwrap();
+        let q = Points::from_flat(2, q.as_slice().iter().map(|&v| grid(v)).collect()).unwrap();
         let off = f64::from(off);
-        let moved = Points::new(q.as_slice().iter().map(|v| v + off).collect(), 2).unwrap();
+        let moved = Points::from_flat(2, q.as_slice().iter().map(|v| v + off).collect()).unwrap();
         let a = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
         let b = CurveInterpolation::new(3).interpolate(moved.as_view()).unwrap();
         let tol = 4.0 * f64::EPSILON * moved.max_abs();
@@ -1308,7 +1308,7 @@ fn scipy_agreement() {
             [k + 0.3 * (1.7 * k).sin(), (0.9 * k).cos(), 0.02 * k * k]
         })
         .collect();
-    let q = Points::new(data, 3).unwrap();
+    let q = Points::from_flat(3, data).unwrap();
     let ends = EndCondition::FirstDerivatives {
         start: vec![1.0, -0.5, 0.25],
         end: vec![0.5, 2.0, -1.0],

@@ -58,7 +58,7 @@ fn curve(
         })
         .prop_filter_map("valid curve", |((p, dim), t0, g, ctrl, clamped)| {
             let knots = knots_from(t0, &g, p, clamped);
-            BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+            BSplineCurve::new(p, knots, Points::from_flat(dim, ctrl).ok()?).ok()
         })
 }
 
@@ -100,7 +100,7 @@ fn surface() -> impl Strategy<Value = BSplineSurface> {
                     q,
                     knots_from(u0, &gu, p, cu),
                     knots_from(v0, &gv, q, cv),
-                    Points::new(data, dim).ok()?,
+                    Points::from_flat(dim, data).ok()?,
                     (nu, nv),
                 )
                 .ok()
@@ -372,7 +372,7 @@ proptest! {
     #[test]
     fn corner_is_kept(p in 1usize..=5, dim in 1usize..=4, a in prop::collection::vec(-10.0f64..10.0, 44), kink in prop::collection::vec(5.0f64..10.0, 4), sign in any::<bool>()) {
         let a = &a[..(2 * p + 1) * dim];
-        let left = Points::new(a[..(p + 1) * dim].to_vec(), dim).unwrap();
+        let left = Points::from_flat(dim, a[..(p + 1) * dim].to_vec()).unwrap();
         // right piece: starts at the join, its first leg = left's last leg + a kink
         let mut right = a[p * dim..(2 * p + 1) * dim].to_vec();
         let sgn = if sign { 1.0 } else { -1.0 };
@@ -382,7 +382,7 @@ proptest! {
         }
         let segs = [
             BezierSegment { start: 0.0, end: 1.0, curve: BezierCurve::new(left).unwrap() },
-            BezierSegment { start: 1.0, end: 2.0, curve: BezierCurve::new(Points::new(right, dim).unwrap()).unwrap() },
+            BezierSegment { start: 1.0, end: 2.0, curve: BezierCurve::new(Points::from_flat(dim, right).unwrap()).unwrap() },
         ];
         let c = BSplineCurve::from_bezier_segments(&segs).unwrap();
         let tol = 1e-6 * c.control_points().extent();
@@ -565,7 +565,7 @@ fn quadratic() -> BSplineCurve {
     BSplineCurve::new(
         2,
         vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
-        Points::new(vec![0.0, 1.0, 3.0, 2.0, 5.0], 1).unwrap(),
+        Points::from_flat(1, vec![0.0, 1.0, 3.0, 2.0, 5.0]).unwrap(),
     )
     .unwrap()
 }
@@ -727,7 +727,7 @@ fn nurbs_errors() {
     let tiny = NurbsCurve::new(
         1,
         vec![0.0, 1e-20, 2e-20, 1.0, 1.0],
-        Points::new(vec![0.0, 1.0, 2.0], 1).unwrap(),
+        Points::from_flat(1, vec![0.0, 1.0, 2.0]).unwrap(),
         vec![1.0, 2.0, 1.0],
     )
     .unwrap();
@@ -763,7 +763,7 @@ fn circle_pieces_and_simplification() {
 }
 
 fn small_surface() -> BSplineSurface {
-    let net = Points::new((0..4 * 3).map(|k| f64::from(k).sin()).collect(), 1).unwrap();
+    let net = Points::from_flat(1, (0..4 * 3).map(|k| f64::from(k).sin()).collect()).unwrap();
     BSplineSurface::new(
         2,
         1,
@@ -848,7 +848,7 @@ fn surface_errors() {
         1,
         vec![0.0, 1e-20, 2e-20, 1.0, 1.0],
         vec![0.0, 1e-20, 2e-20, 1.0, 1.0],
-        Points::new(vec![0.0; 9], 1).unwrap(),
+        Points::from_flat(1, vec![0.0; 9]).unwrap(),
         (3, 3),
     )
     .unwrap();

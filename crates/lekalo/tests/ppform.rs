@@ -169,7 +169,7 @@ proptest! {
         let n = space.knots().len() - k;
         prop_assert_eq!(n, space.dimension());
         let coef: Vec<f64> = seed.iter().cycle().take(n * dim).copied().collect();
-        let b = BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), Points::new(coef.clone(), dim).unwrap()).unwrap();
+        let b = BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), Points::from_flat(dim, coef.clone()).unwrap()).unwrap();
         let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
         prop_assert_eq!(pp.breakpoints(), space.breakpoints());
         prop_assert!(space.contains(&pp, DEFAULT_CONTINUITY_RTOL));
@@ -246,8 +246,12 @@ fn smoothness_follows_multiplicity() {
     // b_3 (0-based) has knots 0 1 1 1 2: multiplicity 3 at 1, simple at 2
     let mut unit = vec![0.0; n];
     unit[3] = 1.0;
-    let b = BSplineCurve::from_knot_vector(3, space.knots().clone(), Points::new(unit, 1).unwrap())
-        .unwrap();
+    let b = BSplineCurve::from_knot_vector(
+        3,
+        space.knots().clone(),
+        Points::from_flat(1, unit).unwrap(),
+    )
+    .unwrap();
     let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
     assert!(
         pp.jump(1, 0).unwrap()[0].abs() < 1e-14,

@@ -67,7 +67,7 @@ fn curve_with(degrees: std::ops::RangeInclusive<usize>) -> impl Strategy<Value =
                     knots.push(knots[knots.len() - 1] + g * knot_scale);
                 }
                 let ctrl = ctrl.into_iter().map(|x| x * ctrl_scale).collect();
-                BSplineCurve::new(p, knots, Points::new(ctrl, dim).ok()?).ok()
+                BSplineCurve::new(p, knots, Points::from_flat(dim, ctrl).ok()?).ok()
             },
         )
 }
@@ -79,7 +79,7 @@ fn curve() -> impl Strategy<Value = BSplineCurve> {
 fn bezier() -> impl Strategy<Value = BezierCurve> {
     (1usize..=6, 1usize..=8)
         .prop_flat_map(|(dim, n)| (Just(dim), prop::collection::vec(-10.0f64..10.0, n * dim)))
-        .prop_map(|(dim, ctrl)| BezierCurve::new(Points::new(ctrl, dim).unwrap()).unwrap())
+        .prop_map(|(dim, ctrl)| BezierCurve::new(Points::from_flat(dim, ctrl).unwrap()).unwrap())
 }
 
 /// A parameter in the domain given by a fraction in `[0, 1]`.
@@ -227,7 +227,7 @@ proptest! {
         for d in 0..dim {
             data[j * dim + d] += delta[d];
         }
-        let moved = BSplineCurve::new(p, c.knots().as_slice().to_vec(), Points::new(data, dim).unwrap()).unwrap();
+        let moved = BSplineCurve::new(p, c.knots().as_slice().to_vec(), Points::from_flat(dim, data).unwrap()).unwrap();
         let k = c.knots().as_slice();
         for t in params(&c) {
             if t < k[j] || t > k[j + p + 1] {
@@ -248,7 +248,7 @@ proptest! {
             (0..dim).map(|r| b[r] + (0..dim).map(|s| a[r * 6 + s] * x[s]).sum::<f64>()).collect()
         };
         let data: Vec<f64> = c.control_points().iter().flat_map(map).collect();
-        let mapped = BSplineCurve::new(c.degree(), c.knots().as_slice().to_vec(), Points::new(data, dim).unwrap()).unwrap();
+        let mapped = BSplineCurve::new(c.degree(), c.knots().as_slice().to_vec(), Points::from_flat(dim, data).unwrap()).unwrap();
         let tol = SAME_CURVE_TOL * (1.0 + 2.0 * dim as f64 * scale(&c) + 10.0);
         for t in params(&c) {
             let lhs = mapped.eval(t).unwrap();
@@ -636,7 +636,7 @@ fn split_errors() {
         c.split_at(2.0),
         Err(Error::InvalidArgument { .. })
     ));
-    let b = BezierCurve::new(Points::new(vec![0.0, 1.0, 3.0], 1).unwrap()).unwrap();
+    let b = BezierCurve::new(Points::from_flat(1, vec![0.0, 1.0, 3.0]).unwrap()).unwrap();
     assert!(matches!(
         b.split_at(1.5),
         Err(Error::ParameterOutOfDomain { .. })
@@ -660,14 +660,14 @@ fn derivative_of_degree_zero() {
     let c = BSplineCurve::new(
         0,
         vec![0.0, 1.0, 2.0],
-        Points::new(vec![3.0, 4.0], 1).unwrap(),
+        Points::from_flat(1, vec![3.0, 4.0]).unwrap(),
     )
     .unwrap();
     assert!(matches!(
         c.derivative(),
         Err(Error::Degree { degree: 0, .. })
     ));
-    let b = BezierCurve::new(Points::new(vec![3.0, 4.0], 2).unwrap()).unwrap();
+    let b = BezierCurve::new(Points::from_flat(2, vec![3.0, 4.0]).unwrap()).unwrap();
     assert_eq!(b.derivative().control_points().as_slice(), &[0.0, 0.0]);
 }
 
@@ -675,7 +675,7 @@ fn derivative_of_degree_zero() {
 /// the vanishing basis function.
 #[test]
 fn derivative_across_a_jump() {
-    let ctrl = Points::new(vec![0.0, 1.0, 2.0, 5.0, 7.0, 6.0], 1).unwrap();
+    let ctrl = Points::from_flat(1, vec![0.0, 1.0, 2.0, 5.0, 7.0, 6.0]).unwrap();
     let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0], ctrl).unwrap();
     let d = c.derivative().unwrap();
     assert_eq!(d.knots().as_slice(), &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0]);
@@ -689,7 +689,7 @@ fn derivative_across_a_jump() {
 
 #[test]
 fn from_bezier_segments_errors() {
-    let q = |v: &[f64]| BezierCurve::new(Points::new(v.to_vec(), 1).unwrap()).unwrap();
+    let q = |v: &[f64]| BezierCurve::new(Points::from_flat(1, v.to_vec()).unwrap()).unwrap();
     let seg = |s: f64, e: f64, c: BezierCurve| BezierSegment {
         start: s,
         end: e,
@@ -721,7 +721,7 @@ fn from_bezier_segments_errors() {
         ]),
         Err(Error::Degree { degree: 2, .. })
     ));
-    let planar = BezierCurve::new(Points::new(vec![2.0, 0.0, 3.0, 0.0], 2).unwrap()).unwrap();
+    let planar = BezierCurve::new(Points::from_flat(2, vec![2.0, 0.0, 3.0, 0.0]).unwrap()).unwrap();
     assert!(matches!(
         BSplineCurve::from_bezier_segments(&[seg(0.0, 1.0, q(&[1.0, 2.0])), seg(1.0, 2.0, planar)]),
         Err(Error::Dimension {
@@ -758,7 +758,7 @@ fn reverse_and_reparametrize_errors() {
         Err(Error::NonFinite { .. })
     ));
     // knots 1e-20 apart next to a domain of length 1 merge when mapped to 1 − t
-    let ctrl = Points::new(vec![0.0, 1.0, 2.0], 1).unwrap();
+    let ctrl = Points::from_flat(1, vec![0.0, 1.0, 2.0]).unwrap();
     let tiny = BSplineCurve::new(1, vec![0.0, 1e-20, 2e-20, 1.0, 1.0], ctrl.clone());
     // (the knot vector itself is fine)
     let tiny = tiny.unwrap();
@@ -774,7 +774,7 @@ fn reverse_and_reparametrize_errors() {
 
 #[test]
 fn bezier_batch_and_eval_errors() {
-    let b = BezierCurve::new(Points::new(vec![0.0, 1.0, 3.0, 2.0], 2).unwrap()).unwrap();
+    let b = BezierCurve::new(Points::from_flat(2, vec![0.0, 1.0, 3.0, 2.0]).unwrap()).unwrap();
     let mut out = vec![0.0; 4];
     assert!(matches!(
         b.eval_batch(&[0.5], &mut out),
@@ -832,7 +832,7 @@ fn insertion_golden_quadratic() {
 /// `P_1 P_2`, and each interior control point is kept.
 #[test]
 fn decomposition_golden_clamped_quadratic() {
-    let ctrl = Points::new(vec![0.0, 2.0, 4.0, 8.0], 1).unwrap();
+    let ctrl = Points::from_flat(1, vec![0.0, 2.0, 4.0, 8.0]).unwrap();
     let c = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], ctrl).unwrap();
     assert!(c.is_clamped());
     let pieces = c.to_bezier_segments();
@@ -856,7 +856,7 @@ fn decomposition_golden_clamped_quadratic() {
     let steps = BSplineCurve::new(
         0,
         vec![0.0, 1.0, 2.5, 3.0],
-        Points::new(vec![5.0, 6.0, 7.0], 1).unwrap(),
+        Points::from_flat(1, vec![5.0, 6.0, 7.0]).unwrap(),
     )
     .unwrap();
     let pieces = steps.to_bezier_segments();
@@ -869,7 +869,7 @@ fn decomposition_golden_clamped_quadratic() {
 #[test]
 fn reverse_overflow_is_an_error() {
     // knots whose width overflows are refused when the curve is built
-    let ctrl = Points::new(vec![0.0, 1.0], 1).unwrap();
+    let ctrl = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     assert!(matches!(
         BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl.clone()),
         Err(Error::InvalidArgument { what: "knots", .. })
@@ -919,7 +919,7 @@ proptest! {
 /// next to the jump keeps the curve.
 #[test]
 fn cubic_with_a_jump() {
-    let ctrl = Points::new(vec![0.0, 1.0, 2.0, 3.0, 10.0, 9.0, 8.0, 7.0], 1).unwrap();
+    let ctrl = Points::from_flat(1, vec![0.0, 1.0, 2.0, 3.0, 10.0, 9.0, 8.0, 7.0]).unwrap();
     let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0];
     let c = BSplineCurve::new(3, knots, ctrl).unwrap();
     let pieces = c.to_bezier_segments();

@@ -1,5 +1,5 @@
-//! Geometric queries against Open CASCADE's answers (tests/data/queries_occt.json, made by
-//! tests/data/queries_occt.py) and their invariants as property tests.
+//! Geometric queries against Open CASCADE's answers (`tests/data/queries_occt.json`, made by
+//! `tests/data/queries_occt.py`) and their invariants as property tests.
 
 mod common;
 
@@ -14,7 +14,7 @@ fn golden() -> Value {
 }
 
 fn curve(v: &Value) -> QueryCurve {
-    let degree = v["degree"].as_u64().expect("degree") as usize;
+    let degree = usize::try_from(v["degree"].as_u64().expect("degree")).expect("small degree");
     let knots: Vec<f64> = v["knots"]
         .as_array()
         .expect("knots")
@@ -79,7 +79,10 @@ fn lengths_match_open_cascade() {
         for p in l["inverse"].as_array().expect("inverse") {
             let t = table.param_at(f(&p["length"])).expect("param");
             let theirs = f(&p["t"]);
-            assert!((t - theirs).abs() <= 1e-10, "{name}: t {t} vs OCCT {theirs}");
+            assert!(
+                (t - theirs).abs() <= 1e-10,
+                "{name}: t {t} vs OCCT {theirs}"
+            );
         }
     }
 }
@@ -101,7 +104,11 @@ fn projections_match_open_cascade() {
         let (lo, hi) = c.domain();
         let ends = [lo, hi].map(|t| {
             let e = c.point(t).expect("end");
-            e.iter().zip(&q).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
+            e.iter()
+                .zip(&q)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt()
         });
         let theirs = p["closest"]
             .as_object()
@@ -140,10 +147,21 @@ fn intersections_match_open_cascade() {
             let CurveIntersection::Point { t_a, t_b, point } = o else {
                 panic!("overlap where OCCT sees a point")
             };
-            assert!((t_a - f(&t["t_a"])).abs() <= 1e-9, "t_a {t_a} vs {}", t["t_a"]);
-            assert!((t_b - f(&t["t_b"])).abs() <= 1e-9, "t_b {t_b} vs {}", t["t_b"]);
+            assert!(
+                (t_a - f(&t["t_a"])).abs() <= 1e-9,
+                "t_a {t_a} vs {}",
+                t["t_a"]
+            );
+            assert!(
+                (t_b - f(&t["t_b"])).abs() <= 1e-9,
+                "t_b {t_b} vs {}",
+                t["t_b"]
+            );
             for d in 0..2 {
-                assert!((point[d] - f(&t["point"][d])).abs() <= 1e-9, "{point:?} vs {t}");
+                assert!(
+                    (point[d] - f(&t["point"][d])).abs() <= 1e-9,
+                    "{point:?} vs {t}"
+                );
             }
         }
     }
@@ -156,12 +174,18 @@ fn cubic(ctrl: &[[f64; 2]]) -> QueryCurve {
         knots.push(i as f64 / (n - 3) as f64);
     }
     knots.extend([1.0; 4]);
-    QueryCurve::from_bspline(&BSplineCurve::new(3, knots, Points::from_2d(ctrl).expect("pts")).expect("curve"))
-        .expect("query")
+    QueryCurve::from_bspline(
+        &BSplineCurve::new(3, knots, Points::from_2d(ctrl).expect("pts")).expect("curve"),
+    )
+    .expect("query")
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 proptest! {

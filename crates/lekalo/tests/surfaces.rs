@@ -62,7 +62,15 @@ fn bspline_surface(
             )
         })
         .prop_map(|(ku, kv, data, (p, q, nu, nv, dim))| {
-            BSplineSurface::new(p, q, ku, kv, Points::new(data, dim).unwrap(), (nu, nv)).unwrap()
+            BSplineSurface::new(
+                p,
+                q,
+                ku,
+                kv,
+                Points::from_flat(dim, data).unwrap(),
+                (nu, nv),
+            )
+            .unwrap()
         })
 }
 
@@ -103,7 +111,7 @@ fn nurbs_curve() -> impl Strategy<Value = NurbsCurve> {
             )
         })
         .prop_map(|((p, dim), k, data, w)| {
-            NurbsCurve::new(p, k, Points::new(data, dim).unwrap(), w).unwrap()
+            NurbsCurve::new(p, k, Points::from_flat(dim, data).unwrap(), w).unwrap()
         })
 }
 
@@ -191,7 +199,7 @@ proptest! {
         let s = BSplineSurface::new(
             shape.degree_u(), shape.degree_v(),
             shape.knots_u().as_slice().to_vec(), shape.knots_v().as_slice().to_vec(),
-            Points::new(data, n).unwrap(), (nu, nv),
+            Points::from_flat(n, data).unwrap(), (nu, nv),
         ).unwrap();
         let b = s.eval(u, v).unwrap();
         let sum: f64 = b.iter().sum();
@@ -265,7 +273,7 @@ proptest! {
         let t = NurbsSurface::new(
             s.degree_u(), s.degree_v(),
             s.knots_u().as_slice().to_vec(), s.knots_v().as_slice().to_vec(),
-            Points::new(moved, dim).unwrap(), s.weights(), s.net_size(),
+            Points::from_flat(dim, moved).unwrap(), s.weights(), s.net_size(),
         ).unwrap();
         let scale = 50.0 + 8.0 * 10.0;
         assert_near(&t.eval(u, v).unwrap(), &map(&s.eval(u, v).unwrap()), 1e-13 * scale, 0.0, "NURBS");
@@ -302,7 +310,7 @@ proptest! {
         u in 0.0f64..=1.0, v in 0.0f64..=1.0,
     ) {
         let data = seed[..nu * nv * dim].to_vec();
-        let bez = BezierSurface::new(Points::new(data, dim).unwrap(), (nu, nv)).unwrap();
+        let bez = BezierSurface::new(Points::from_flat(dim, data).unwrap(), (nu, nv)).unwrap();
         let bs = bez.to_bspline();
         assert_near(&bez.eval(u, v).unwrap(), &bs.eval(u, v).unwrap(), 1e-13, 0.0, "point");
         let (a, b) = (bez.eval_derivatives(u, v, 2).unwrap(), bs.eval_derivatives(u, v, 2).unwrap());
@@ -418,7 +426,7 @@ fn general() -> BSplineSurface {
         2,
         vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0],
         vec![-1.0, -1.0, -1.0, 0.5, 1.5, 2.0, 2.0, 2.0],
-        Points::new(data, 3).unwrap(),
+        Points::from_flat(3, data).unwrap(),
         (nu, nv),
     )
     .unwrap()

@@ -400,7 +400,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             ));
         }
         let ys: Vec<f64> = pts.iter().flat_map(|p| p[1..].to_vec()).collect();
-        let y = Points::new(ys, pts.dim() - 1)?;
+        let y = Points::from_flat(pts.dim() - 1, ys)?;
         let curve = match a.hermite {
             Some(t) => {
                 CubicHermite::function(&x, y.as_view(), tangents(t, a.tension))?.to_bspline()

@@ -55,12 +55,20 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
         let nums = numbers(plane, "--plane")?;
         let d = qa.dim();
         if nums.len() != 2 * d {
-            return bad_input(format!("--plane: give {} numbers (origin, normal), got {}", 2 * d, nums.len()));
+            return bad_input(format!(
+                "--plane: give {} numbers (origin, normal), got {}",
+                2 * d,
+                nums.len()
+            ));
         }
         qa.intersect_plane(&nums[..d], &nums[d..])
             .map_err(bad)?
             .into_iter()
-            .map(|(t, point)| CurveIntersection::Point { t_a: t, t_b: f64::NAN, point })
+            .map(|(t, point)| CurveIntersection::Point {
+                t_a: t,
+                t_b: f64::NAN,
+                point,
+            })
             .collect()
     } else if a.self_ {
         qa.self_intersections(a.tolerance).map_err(bad)?
@@ -95,7 +103,11 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
             match h {
                 CurveIntersection::Point { t_a, t_b, point } => {
                     let p: Vec<String> = point.iter().map(f64::to_string).collect();
-                    let tb = if t_b.is_nan() { String::new() } else { t_b.to_string() };
+                    let tb = if t_b.is_nan() {
+                        String::new()
+                    } else {
+                        t_b.to_string()
+                    };
                     s.push_str(&format!("point,{t_a},{tb},{}\n", p.join(",")));
                 }
                 CurveIntersection::Overlap { a, b } => {

@@ -49,7 +49,12 @@ pub(crate) fn query_curve(obj: &Object, path: &Path) -> Result<QueryCurve> {
         Object::Bezier(c) => QueryCurve::from_bezier(c),
         Object::BSpline(c) => QueryCurve::from_bspline(c),
         Object::Nurbs(c) => QueryCurve::from_nurbs(c),
-        _ => return bad_input(format!("{}: not a curve kind this command knows", path.display())),
+        _ => {
+            return bad_input(format!(
+                "{}: not a curve kind this command knows",
+                path.display()
+            ))
+        }
     };
     q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
 }
@@ -61,7 +66,12 @@ pub(crate) fn query_surface(s: &lekalo_io::Surface, path: &Path) -> Result<lekal
         Surface::Bezier(b) => lekalo::QuerySurface::from_bspline(&b.to_bspline()),
         Surface::BSpline(b) => lekalo::QuerySurface::from_bspline(b),
         Surface::Nurbs(n) => lekalo::QuerySurface::from_nurbs(n),
-        _ => return bad_input(format!("{}: not a surface kind this command knows", path.display())),
+        _ => {
+            return bad_input(format!(
+                "{}: not a surface kind this command knows",
+                path.display()
+            ))
+        }
     };
     q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
 }
@@ -129,5 +139,10 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
     if lengths.is_empty() && a.lengths.is_some() {
         return bad_input("--lengths: the file holds no numbers");
     }
-    emit(a.output.as_deref(), text.as_bytes(), &[a.input.clone()], v)
+    emit(
+        a.output.as_deref(),
+        text.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
 }

@@ -74,9 +74,21 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
                             [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
                             [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
                         );
-                        let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
-                        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt().max(f64::MIN_POSITIVE);
-                        let _ = writeln!(s, "facet normal {} {} {}\n outer loop", n[0] / l, n[1] / l, n[2] / l);
+                        let n = [
+                            u[1] * w[2] - u[2] * w[1],
+                            u[2] * w[0] - u[0] * w[2],
+                            u[0] * w[1] - u[1] * w[0],
+                        ];
+                        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+                            .sqrt()
+                            .max(f64::MIN_POSITIVE);
+                        let _ = writeln!(
+                            s,
+                            "facet normal {} {} {}\n outer loop",
+                            n[0] / l,
+                            n[1] / l,
+                            n[2] / l
+                        );
                         for p in [&a, &b, &c] {
                             let _ = writeln!(s, "  vertex {} {} {}", p[0], p[1], p[2]);
                         }
@@ -109,11 +121,15 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
             let q = query_curve(&obj, &a.input)?;
             let poly = q.polyline(a.tolerance).map_err(bad)?;
             if fmt != "obj" {
-                return bad_input(format!("--format {fmt}: a curve is written as an OBJ polyline"));
+                return bad_input(format!(
+                    "--format {fmt}: a curve is written as an OBJ polyline"
+                ));
             }
             let mut s = format!("# lekalo polyline: deviation <= {:e}\n", poly.deviation);
             for p in poly.points.iter() {
-                let c: Vec<String> = (0..3).map(|d| p.get(d).copied().unwrap_or(0.0).to_string()).collect();
+                let c: Vec<String> = (0..3)
+                    .map(|d| p.get(d).copied().unwrap_or(0.0).to_string())
+                    .collect();
                 let _ = writeln!(s, "v {}", c.join(" "));
             }
             s.push('l');
@@ -127,10 +143,20 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
         _ => return bad_input(format!("{}: mesh curves and surfaces", a.input.display())),
     };
     if a.json && a.output.is_none() {
-        return emit(None, format!("{summary:#}\n").as_bytes(), &[a.input.clone()], v);
+        return emit(
+            None,
+            format!("{summary:#}\n").as_bytes(),
+            std::slice::from_ref(&a.input),
+            v,
+        );
     }
     if a.json {
         eprintln!("{summary}");
     }
-    emit(a.output.as_deref(), body.as_bytes(), &[a.input.clone()], v)
+    emit(
+        a.output.as_deref(),
+        body.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
 }

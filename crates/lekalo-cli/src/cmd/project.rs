@@ -91,8 +91,13 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
                         bad_pt.len()
                     ));
                 }
-                let flat = Points::new(pts.concat(), dim).map_err(bad)?;
-                for (i, r) in q.project_batch(flat.as_view()).map_err(bad)?.into_iter().enumerate() {
+                let flat = Points::from_flat(dim, pts.concat()).map_err(bad)?;
+                for (i, r) in q
+                    .project_batch(flat.as_view())
+                    .map_err(bad)?
+                    .into_iter()
+                    .enumerate()
+                {
                     out_rows.push((i, vec![r.t], r.point, r.distance));
                 }
             }
@@ -139,5 +144,10 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
         }
         s
     };
-    emit(a.output.as_deref(), text.as_bytes(), &[a.input.clone()], v)
+    emit(
+        a.output.as_deref(),
+        text.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
 }

@@ -46,7 +46,7 @@ pub(crate) fn surface_info_json(s: &Surface, samples: usize) -> lekalo::Result<V
     // a square grid of about `samples` points
     let side = samples.max(4).isqrt().clamp(2, 1000);
     let (pts, _) = s.sample_grid(side, side, false)?;
-    let sampled = Points::new(pts, s.dim())?;
+    let sampled = Points::from_flat(s.dim(), pts)?;
     Ok(json!({
         "type": s.type_name(),
         "name": s.display_name(),
@@ -208,7 +208,7 @@ fn pp_samples(p: &PiecewisePolynomial, n: usize) -> lekalo::Result<(Vec<f64>, Po
     for (x, out) in xs.iter().zip(data.chunks_exact_mut(p.dim())) {
         p.eval_into(*x, out)?;
     }
-    Ok((xs, Points::new(data, p.dim())?))
+    Ok((xs, Points::from_flat(p.dim(), data)?))
 }
 
 /// CSV of `n` samples of a pp: `x,f` (one column per component `f0, f1, …` for dim > 1).

@@ -325,7 +325,7 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
             data.extend([x, y, x.sin() * y.cos()]);
         }
     }
-    let grid = Points::new(data, 3)?;
+    let grid = Points::from_flat(3, data)?;
     let it = interpolate_surface(grid.as_view(), nu, nv, 3, 2, Parametrization::ChordLength)?;
     let (pu, pv) = (it.params_u.clone(), it.params_v.clone());
     let surf = it.into_surface();

@@ -37,7 +37,7 @@ pub(super) fn hermite(s: &mut Section) -> Result<()> {
         e[j] = 1.0;
         (j, e)
     }) {
-        let c = four_point_cubic_coefficients(Points::new(col, 1)?.as_view())?;
+        let c = four_point_cubic_coefficients(Points::from_flat(1, col)?.as_view())?;
         for (i, row) in inv.iter_mut().enumerate() {
             row[j] = c.point(i)[0];
         }

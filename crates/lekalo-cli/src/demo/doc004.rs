@@ -239,7 +239,7 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
             net.extend([x, y, z]);
         }
     }
-    let bicubic = BezierSurface::new(Points::new(net, 3)?, (4, 4))?;
+    let bicubic = BezierSurface::new(Points::from_flat(3, net)?, (4, 4))?;
     let original = bicubic.elevate_degree(1, 0)?;
     s.check_all(
         "net size, real degrees (n′, m′)",

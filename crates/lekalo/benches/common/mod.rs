@@ -33,7 +33,7 @@ pub(crate) fn walk(n: usize, dim: usize, seed: u64) -> Points {
         }
         data.extend_from_slice(&p);
     }
-    Points::new(data, dim).expect("finite walk")
+    Points::from_flat(dim, data).expect("finite walk")
 }
 
 /// The evaluation workload: a B-spline of `degree` with `n_ctrl` control points in
@@ -76,7 +76,7 @@ pub(crate) fn helix(n: usize) -> Points {
         let w = s + 0.003 * (7.0 * s).sin();
         data.extend([w.cos(), w.sin(), 0.1 * w + 0.01 * (3.0 * w).cos()]);
     }
-    Points::new(data, 3).expect("finite helix")
+    Points::from_flat(3, data).expect("finite helix")
 }
 
 /// An `n × n` grid of 3-D points on a smooth, slightly sheared surface, point `(k, l)` at
@@ -89,7 +89,7 @@ pub(crate) fn grid(n: usize) -> Points {
             data.extend([x + 0.01 * y, y, (3.0 * x).sin() * (2.0 * y).cos()]);
         }
     }
-    Points::new(data, 3).expect("finite grid")
+    Points::from_flat(3, data).expect("finite grid")
 }
 
 /// A rayon pool of `threads` workers, worker `i` pinned to the `i`-th processor the process may

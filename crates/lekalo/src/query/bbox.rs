@@ -87,7 +87,10 @@ mod tests {
         // y(t) = 9t(1−t)² − 9t²(1−t) = 9t(1−t)(1−2t); extremes at t = (3 ± √3)/6
         let t: f64 = (3.0 - 3f64.sqrt()) / 6.0;
         let ymax = 9.0 * t * (1.0 - t) * (1.0 - 2.0 * t);
-        assert!((hi[1] - ymax).abs() < 1e-14 && (lo[1] + ymax).abs() < 1e-14, "{lo:?} {hi:?}");
+        assert!(
+            (hi[1] - ymax).abs() < 1e-14 && (lo[1] + ymax).abs() < 1e-14,
+            "{lo:?} {hi:?}"
+        );
         assert!(lo[0] == 0.0 && hi[0] == 3.0, "x range");
     }
 }

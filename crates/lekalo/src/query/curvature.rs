@@ -74,7 +74,12 @@ impl QueryCurve {
         }
         let w: Vec<f64> = h.iter().map(|x| x[dim]).collect();
         let mut c: Vec<Vec<f64>> = Vec::with_capacity(4);
-        let binom = [[1.0, 0.0, 0.0, 0.0], [1.0, 1.0, 0.0, 0.0], [1.0, 2.0, 1.0, 0.0], [1.0, 3.0, 3.0, 1.0]];
+        let binom = [
+            [1.0, 0.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0, 0.0],
+            [1.0, 2.0, 1.0, 0.0],
+            [1.0, 3.0, 3.0, 1.0],
+        ];
         for kk in 0..4 {
             let mut v: Vec<f64> = h[kk][..dim].to_vec();
             for i in 1..=kk {
@@ -123,7 +128,9 @@ impl QueryCurve {
         if !(xx > 0.0) {
             return Ok(None);
         }
-        Ok(Some((x[0] * c[0] + x[1] * c[1] + x[2] * c[2]) / xx / self.scale))
+        Ok(Some(
+            (x[0] * c[0] + x[1] * c[1] + x[2] * c[2]) / xx / self.scale,
+        ))
     }
 
     fn coord_polys(&self, k: usize) -> (Vec<Bern>, Option<Bern>) {
@@ -168,10 +175,16 @@ impl QueryCurve {
                     let rows = [
                         [a[0].clone(), a[1].clone(), w.clone()],
                         [a[0].deriv(), a[1].deriv(), w.deriv()],
-                        [a[0].deriv().deriv(), a[1].deriv().deriv(), w.deriv().deriv()],
+                        [
+                            a[0].deriv().deriv(),
+                            a[1].deriv().deriv(),
+                            w.deriv().deriv(),
+                        ],
                     ];
                     let m = |i: usize, j: usize, p: usize, q: usize| {
-                        rows[1][i].mul(&rows[2][j]).sub(&rows[1][p].mul(&rows[2][q]))
+                        rows[1][i]
+                            .mul(&rows[2][j])
+                            .sub(&rows[1][p].mul(&rows[2][q]))
                     };
                     rows[0][0]
                         .mul(&m(1, 2, 2, 1))
@@ -336,7 +349,11 @@ impl QuerySurface {
             .position(|((u0, u1), (v0, v1))| u >= *u0 && u <= *u1 && v >= *v0 && v <= *v1)
             .unwrap_or(0);
         let ((u0, u1), (v0, v1)) = self.ranges[k];
-        Ok((k, ((u - u0) / (u1 - u0)).clamp(0.0, 1.0), ((v - v0) / (v1 - v0)).clamp(0.0, 1.0)))
+        Ok((
+            k,
+            ((u - u0) / (u1 - u0)).clamp(0.0, 1.0),
+            ((v - v0) / (v1 - v0)).clamp(0.0, 1.0),
+        ))
     }
 
     /// Gaussian, mean and principal curvatures of a 3-D surface at `(u, v)` from the first and
@@ -411,7 +428,8 @@ mod tests {
             assert!((k - 0.25).abs() < 1e-13, "{t}: {k}");
         }
         // a planar 3-D curve has no torsion
-        let c3 = NurbsCurve::circle(&[0.0, 0.0, 1.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 2.0).unwrap();
+        let c3 =
+            NurbsCurve::circle(&[0.0, 0.0, 1.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 2.0).unwrap();
         let q3 = QueryCurve::from_nurbs(&c3).unwrap();
         assert!(q3.torsion_at(0.4).unwrap().unwrap().abs() < 1e-12, "planar");
     }

@@ -18,6 +18,9 @@ const MAX_PAIRS: usize = 1 << 20;
 /// Deepest halving of a sub-curve.
 const MAX_DEPTH: u32 = 48;
 
+/// A curve–surface intersection: the curve's parameter, the surface's `(u, v)` and the point.
+pub type SurfaceHit = (f64, (f64, f64), Vec<f64>);
+
 /// One intersection of two curves.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CurveIntersection {
@@ -159,7 +162,14 @@ fn halve(f: &Framed<'_>, s: &Sub) -> (Sub, Sub) {
 
 /// Levenberg–Marquardt for `A(s) = B(u)` on local parameters in `[0, 1]²`, at most 60 steps.
 /// Returns `(s, u, gap)`.
-fn solve_pair(fa: &Framed<'_>, ka: usize, fb: &Framed<'_>, kb: usize, s0: f64, u0: f64) -> (f64, f64, f64) {
+fn solve_pair(
+    fa: &Framed<'_>,
+    ka: usize,
+    fb: &Framed<'_>,
+    kb: usize,
+    s0: f64,
+    u0: f64,
+) -> (f64, f64, f64) {
     let mut scratch = Vec::new();
     let (mut s, mut u) = (s0, u0);
     let (pa, _) = fa.eval(ka, s, &mut scratch);
@@ -388,8 +398,7 @@ impl QueryCurve {
         for r in raw {
             if let Some(g) = groups.last_mut() {
                 let last = g[g.len() - 1];
-                let same_b = (last.1 - r.1).abs()
-                    <= 0.5 * (other.domain().1 - other.domain().0);
+                let same_b = (last.1 - r.1).abs() <= 0.5 * (other.domain().1 - other.domain().0);
                 if same_b && gap(0.5 * (last.0 + r.0)).0 <= tolerance {
                     g.push(r);
                     continue;
@@ -484,13 +493,19 @@ impl QueryCurve {
                 .map(|p| {
                     let w = if self.rational { p[self.dim] } else { 1.0 };
                     let v: f64 = (0..self.dim).map(|d| (p[d] - w * o[d]) * n[d]).sum();
-                    mag = mag.max((0..self.dim).map(|d| (p[d] * n[d]).abs()).sum::<f64>() + w * o.iter().map(|x| x.abs()).sum::<f64>());
+                    mag = mag.max(
+                        (0..self.dim).map(|d| (p[d] * n[d]).abs()).sum::<f64>()
+                            + w * o.iter().map(|x| x.abs()).sum::<f64>(),
+                    );
                     v
                 })
                 .collect();
             for s in bern_roots(&Bern(coef), 64.0 * f64::EPSILON * mag) {
                 let t = self.global(k, s);
-                if out.last().is_some_and(|(u, _)| (t - u).abs() <= 1e-12 * (1.0 + t.abs())) {
+                if out
+                    .last()
+                    .is_some_and(|(u, _)| (t - u).abs() <= 1e-12 * (1.0 + t.abs()))
+                {
                     continue;
                 }
                 out.push((t, self.eval_global(t, 0, &mut scratch)));
@@ -511,7 +526,7 @@ impl QueryCurve {
         &self,
         surface: &QuerySurface,
         tolerance: f64,
-    ) -> Result<Vec<(f64, (f64, f64), Vec<f64>)>> {
+    ) -> Result<Vec<SurfaceHit>> {
         if surface.dim != self.dim {
             return Err(Error::Dimension {
                 what: "surface for a curve–surface intersection",
@@ -526,8 +541,22 @@ impl QueryCurve {
         for k in 0..self.piece_count() {
             for pk in 0..surface.patch_count() {
                 // both in original coordinates: sub-curve nets and sub-patch nets
-                let cnet = to_original(self.piece(k), self.hd, self.dim, self.rational, &self.centre, self.scale);
-                let snet = to_original(surface.patch(pk), surface.hd, surface.dim, surface.rational, &surface.centre, surface.scale);
+                let cnet = to_original(
+                    self.piece(k),
+                    self.hd,
+                    self.dim,
+                    self.rational,
+                    &self.centre,
+                    self.scale,
+                );
+                let snet = to_original(
+                    surface.patch(pk),
+                    surface.hd,
+                    surface.dim,
+                    surface.rational,
+                    &surface.centre,
+                    surface.scale,
+                );
                 let mut stack = vec![((0.0, 1.0), cnet, (0.0, 1.0), (0.0, 1.0), snet, 0_u32)];
                 while let Some((cs, cn, us, vs, sn, depth)) = stack.pop() {
                     visited += 1;
@@ -547,8 +576,14 @@ impl QueryCurve {
                     let sd = dist(&sb[..self.dim], &sb[self.dim..]);
                     let big = cd.max(sd);
                     if big <= 1e-2 * self.scale.max(surface.scale) || depth >= MAX_DEPTH {
-                        let x0 = [0.5 * (cs.0 + cs.1), 0.5 * (us.0 + us.1), 0.5 * (vs.0 + vs.1)];
-                        if let Some((t, u, v, p)) = self.curve_surface_newton(k, surface, pk, x0, &mut scratch) {
+                        let x0 = [
+                            0.5 * (cs.0 + cs.1),
+                            0.5 * (us.0 + us.1),
+                            0.5 * (vs.0 + vs.1),
+                        ];
+                        if let Some((t, u, v, p)) =
+                            self.curve_surface_newton(k, surface, pk, x0, &mut scratch)
+                        {
                             if dist(&p.0, &p.1) <= tolerance {
                                 found.push((t, surface.global_uv(pk, u, v), p.0));
                             }
@@ -613,7 +648,11 @@ impl QueryCurve {
         for _ in 0..60 {
             let (c, s, dc, su, sv) = eval(&x, scratch);
             let r: Vec<f64> = c.iter().zip(&s).map(|(a, b)| a - b).collect();
-            let cols = [dc, su.iter().map(|v| -v).collect::<Vec<_>>(), sv.iter().map(|v| -v).collect()];
+            let cols = [
+                dc,
+                su.iter().map(|v| -v).collect::<Vec<_>>(),
+                sv.iter().map(|v| -v).collect(),
+            ];
             let mut a = [[0.0; 3]; 3];
             let mut g = [0.0; 3];
             for i in 0..3 {
@@ -683,7 +722,14 @@ fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     Some(x)
 }
 
-fn to_original(net: &[f64], hd: usize, dim: usize, rational: bool, centre: &[f64], scale: f64) -> Vec<f64> {
+fn to_original(
+    net: &[f64],
+    hd: usize,
+    dim: usize,
+    rational: bool,
+    centre: &[f64],
+    scale: f64,
+) -> Vec<f64> {
     let mut out = net.to_vec();
     for p in out.chunks_exact_mut(hd) {
         let w = if rational { p[dim] } else { 1.0 };
@@ -881,21 +927,34 @@ mod tests {
     use crate::{BSplineCurve, NurbsCurve, Points};
 
     fn line(a: [f64; 2], b: [f64; 2]) -> QueryCurve {
-        let c = BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], Points::from_2d(&[a, b]).unwrap()).unwrap();
+        let c = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[a, b]).unwrap(),
+        )
+        .unwrap();
         QueryCurve::from_bspline(&c).unwrap()
     }
 
     fn circle(r: f64) -> QueryCurve {
-        QueryCurve::from_nurbs(&NurbsCurve::circle(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], r).unwrap()).unwrap()
+        QueryCurve::from_nurbs(
+            &NurbsCurve::circle(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], r).unwrap(),
+        )
+        .unwrap()
     }
 
     #[test]
     fn tangent_line_gives_one_point() {
-        let hits = circle(1.0).intersect(&line([-2.0, 1.0], [2.0, 1.0]), 1e-9).unwrap();
+        let hits = circle(1.0)
+            .intersect(&line([-2.0, 1.0], [2.0, 1.0]), 1e-9)
+            .unwrap();
         assert_eq!(hits.len(), 1, "{hits:?}");
         match &hits[0] {
             CurveIntersection::Point { point, .. } => {
-                assert!(point[0].abs() < 1e-4 && (point[1] - 1.0).abs() < 1e-8, "{point:?}");
+                assert!(
+                    point[0].abs() < 1e-4 && (point[1] - 1.0).abs() < 1e-8,
+                    "{point:?}"
+                );
             }
             CurveIntersection::Overlap { .. } => panic!("tangency reported as overlap"),
         }
@@ -909,7 +968,10 @@ mod tests {
         assert_eq!(hits.len(), 1, "{hits:?}");
         match hits[0] {
             CurveIntersection::Overlap { a, b } => {
-                assert!((a.0 - 0.5).abs() < 1e-9 && (a.1 - 1.0).abs() < 1e-12, "{a:?}");
+                assert!(
+                    (a.0 - 0.5).abs() < 1e-9 && (a.1 - 1.0).abs() < 1e-12,
+                    "{a:?}"
+                );
                 assert!(b.0.abs() < 1e-9 && (b.1 - 0.5).abs() < 1e-9, "{b:?}");
             }
             CurveIntersection::Point { .. } => panic!("overlap reported as a point"),
@@ -951,9 +1013,15 @@ mod tests {
             panic!("not a point")
         };
         assert!(t_a < t_b, "ordered");
-        assert!(dist(&q.point(t_a).unwrap(), &q.point(t_b).unwrap()) < 1e-9, "same point");
+        assert!(
+            dist(&q.point(t_a).unwrap(), &q.point(t_b).unwrap()) < 1e-9,
+            "same point"
+        );
         // a circle does not cross itself
-        assert!(circle(1.0).self_intersections(1e-10).unwrap().is_empty(), "circle");
+        assert!(
+            circle(1.0).self_intersections(1e-10).unwrap().is_empty(),
+            "circle"
+        );
     }
 
     #[test]
@@ -965,13 +1033,17 @@ mod tests {
         )
         .unwrap();
         let q = QueryCurve::from_bspline(&c).unwrap();
-        let hits = q.intersect_plane(&[0.0, 0.0, 0.0], &[0.0, 0.0, 2.0]).unwrap();
+        let hits = q
+            .intersect_plane(&[0.0, 0.0, 0.0], &[0.0, 0.0, 2.0])
+            .unwrap();
         assert_eq!(hits.len(), 2, "{hits:?}");
         for (_, p) in &hits {
             assert!(p[2].abs() < 1e-15, "{p:?}");
         }
         // touching the plane z = 1 at the top: one answer
-        let touch = q.intersect_plane(&[0.0, 0.0, 1.0], &[0.0, 0.0, 1.0]).unwrap();
+        let touch = q
+            .intersect_plane(&[0.0, 0.0, 1.0], &[0.0, 0.0, 1.0])
+            .unwrap();
         assert_eq!(touch.len(), 1, "{touch:?}");
         assert!((touch[0].0 - 0.5).abs() < 1e-6, "{touch:?}");
     }

@@ -50,6 +50,9 @@ fn gauss_legendre() -> &'static ([f64; GL_ORDER], [f64; GL_ORDER]) {
     })
 }
 
+/// The adaptive intervals `(a, b, length)` of one piece and their summed error estimate.
+type PieceIntervals = (Vec<(f64, f64, f64)>, f64);
+
 impl QueryCurve {
     /// `|C'(s)|` of piece `k` in normalised units per unit of the local parameter.
     pub(crate) fn speed(&self, k: usize, s: f64, scratch: &mut Vec<f64>, buf: &mut [f64]) -> f64 {
@@ -91,7 +94,7 @@ impl QueryCurve {
     pub fn arc_length(&self, rtol: f64) -> Result<ArcLength<'_>> {
         check_tolerance("arc-length tolerance", rtol)?;
         let rtol = rtol.max(1e-15);
-        let per_piece: Vec<(Vec<(f64, f64, f64)>, f64)> = (0..self.piece_count())
+        let per_piece: Vec<PieceIntervals> = (0..self.piece_count())
             .into_par_iter()
             .map_init(Vec::new, |scratch, k| self.adapt_piece(k, rtol, scratch))
             .collect();
@@ -339,7 +342,7 @@ impl ArcLength<'_> {
             }
             let params: Vec<f64> = (0..=m).map(|i| total * i as f64 / m as f64).collect();
             let spline = CurveInterpolation::new(3.min(m))
-                .interpolate_at(Points::new(pts, c.dim)?.as_view(), &params)?;
+                .interpolate_at(Points::from_flat(c.dim, pts)?.as_view(), &params)?;
             let mut worst = 0.0_f64;
             for i in 0..m {
                 for j in 1..8 {
@@ -414,7 +417,10 @@ mod tests {
             let s = f * table.total();
             let t = table.param_at(s).unwrap();
             let back = table.length_at(t).unwrap();
-            assert!((back - s).abs() < 1e-12 * table.total(), "{f}: {back} vs {s}");
+            assert!(
+                (back - s).abs() < 1e-12 * table.total(),
+                "{f}: {back} vs {s}"
+            );
         }
         assert!(table.param_at(f64::NAN).is_err(), "NaN length");
         assert!(table.param_at(2.0 * table.total()).is_err(), "too long");
@@ -431,8 +437,8 @@ mod tests {
 
     #[test]
     fn arc_length_spline_is_within_its_deviation() {
-        let arc = NurbsCurve::circular_arc(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0, 0.0, 1.5)
-            .unwrap();
+        let arc =
+            NurbsCurve::circular_arc(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0, 0.0, 1.5).unwrap();
         let q = QueryCurve::from_nurbs(&arc).unwrap();
         let table = q.arc_length(1e-13).unwrap();
         let (spline, dev) = table.parametrized_spline(1e-6).unwrap();

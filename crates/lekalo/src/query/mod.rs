@@ -22,6 +22,10 @@
 //! Every iteration in here has a bound (stated where it is), and every query validates its
 //! input: NaN queries, bad tolerances and degrees beyond [`MAX_QUERY_DEGREE`] are named errors.
 
+// Every negated comparison in here (`!(x > 0.0)`) is deliberate: NaN must fail the test it
+// guards, which the un-negated opposite (`x <= 0.0`) would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod bbox;
 mod curvature;
 mod intersect;
@@ -32,11 +36,11 @@ mod project;
 mod surface;
 mod tessellate;
 
+pub use curvature::{CurvatureExtremum, SurfaceCurvature};
+pub use intersect::{CurveIntersection, SurfaceHit};
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
-pub use curvature::{CurvatureExtremum, SurfaceCurvature};
-pub use intersect::CurveIntersection;
 pub use surface::QuerySurface;
 pub use tessellate::{Mesh, Polyline, MAX_MESH_VERTICES, MIN_RELATIVE_TOLERANCE};

@@ -39,7 +39,10 @@ impl QueryCurve {
             return None;
         }
         let kappa = (x1 * y2 - y1 * x2) / (speed * speed * speed);
-        Some(([v[0] - d * y1 / speed, v[1] + d * x1 / speed], 1.0 - d * kappa))
+        Some((
+            [v[0] - d * y1 / speed, v[1] + d * x1 / speed],
+            1.0 - d * kappa,
+        ))
     }
 
     /// The offset of a planar curve at signed distance `d` (positive to the left of the
@@ -90,15 +93,20 @@ impl QueryCurve {
                 let ts: Vec<f64> = (0..=m).map(|i| a + (b - a) * i as f64 / m as f64).collect();
                 let mut pts = Vec::with_capacity(2 * (m + 1));
                 for &t in &ts {
-                    let (p, _) = self.offset_point(t, d, &mut scratch).ok_or_else(|| no_normal(t))?;
+                    let (p, _) = self
+                        .offset_point(t, d, &mut scratch)
+                        .ok_or_else(|| no_normal(t))?;
                     pts.extend(p);
                 }
-                let spline = CurveInterpolation::new(3).interpolate_at(Points::new(pts, 2)?.as_view(), &ts)?;
+                let spline = CurveInterpolation::new(3)
+                    .interpolate_at(Points::from_flat(2, pts)?.as_view(), &ts)?;
                 let mut dev = 0.0_f64;
                 for i in 0..m {
                     for j in 1..8 {
                         let t = ts[i] + (ts[i + 1] - ts[i]) * f64::from(j) / 8.0;
-                        let (p, _) = self.offset_point(t, d, &mut scratch).ok_or_else(|| no_normal(t))?;
+                        let (p, _) = self
+                            .offset_point(t, d, &mut scratch)
+                            .ok_or_else(|| no_normal(t))?;
                         dev = dev.max(dist(&spline.eval(t)?, &p));
                     }
                 }
@@ -125,7 +133,8 @@ impl QueryCurve {
         breaks.extend(self.inflections()?);
         breaks.sort_by(f64::total_cmp);
         breaks.dedup();
-        let h = |t: f64, scratch: &mut Vec<f64>| self.offset_point(t, d, scratch).map_or(0.0, |x| x.1);
+        let h =
+            |t: f64, scratch: &mut Vec<f64>| self.offset_point(t, d, scratch).map_or(0.0, |x| x.1);
         let mut cusps = Vec::new();
         for w in breaks.windows(2) {
             let (mut lo, mut hi) = (w[0], w[1]);
@@ -156,7 +165,8 @@ impl QueryCurve {
             }
             let before = sub_curve(&curve, bounds[i - 1], c1)?;
             let after = sub_curve(&curve, c2, bounds[i + 2])?;
-            let hits = QueryCurve::from_bspline(&before)?.intersect(&QueryCurve::from_bspline(&after)?, tolerance)?;
+            let hits = QueryCurve::from_bspline(&before)?
+                .intersect(&QueryCurve::from_bspline(&after)?, tolerance)?;
             let best = hits
                 .iter()
                 .filter_map(|x| match x {
@@ -206,7 +216,8 @@ mod tests {
         let c = BSplineCurve::new(
             3,
             vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
-            Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [2.0, -1.0], [4.0, 1.0], [5.0, 0.0]]).unwrap(),
+            Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [2.0, -1.0], [4.0, 1.0], [5.0, 0.0]])
+                .unwrap(),
         )
         .unwrap();
         let q = QueryCurve::from_bspline(&c).unwrap();
@@ -231,7 +242,12 @@ mod tests {
             p[0] *= 2.0; // x scaled: the ellipse x²/4 + y² = 1
         }
         let e = NurbsCurve::from_homogeneous(
-            BSplineCurve::new(2, h.knots().as_slice().to_vec(), Points::new(data, 3).unwrap()).unwrap(),
+            BSplineCurve::new(
+                2,
+                h.knots().as_slice().to_vec(),
+                Points::from_flat(3, data).unwrap(),
+            )
+            .unwrap(),
         )
         .unwrap();
         let q = QueryCurve::from_nurbs(&e).unwrap();

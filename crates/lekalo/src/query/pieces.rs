@@ -678,11 +678,17 @@ mod tests {
             assert!((x - e).abs() < 1e-14, "{x} vs {e}");
         }
         // no roots
-        assert!(bern_roots(&Bern(vec![1.0, 0.2, 3.0]), 0.0).is_empty(), "none");
+        assert!(
+            bern_roots(&Bern(vec![1.0, 0.2, 3.0]), 0.0).is_empty(),
+            "none"
+        );
         // double root: reported once
         let d = lin(0.3).mul(&lin(0.3));
         let r = bern_roots(&d, 1e-15);
-        assert!(!r.is_empty() && r.iter().all(|x| (x - 0.3).abs() < 1e-6), "{r:?}");
+        assert!(
+            !r.is_empty() && r.iter().all(|x| (x - 0.3).abs() < 1e-6),
+            "{r:?}"
+        );
     }
 
     #[test]

@@ -168,7 +168,14 @@ impl QueryCurve {
 
     /// Newton's method on `g(s)` with the curve's own derivatives, at most 4 steps, kept in
     /// `[0, 1]` and only while the distance decreases.
-    fn polish(&self, k: usize, s0: f64, q: &[f64], scratch: &mut Vec<f64>, buf: &mut [f64]) -> Cand {
+    fn polish(
+        &self,
+        k: usize,
+        s0: f64,
+        q: &[f64],
+        scratch: &mut Vec<f64>,
+        buf: &mut [f64],
+    ) -> Cand {
         let dim = self.dim;
         let mut s = s0;
         let mut d = self.dist_at(k, s, q, scratch, buf);
@@ -242,7 +249,11 @@ impl QueryCurve {
             }
         }
         found.retain(|c| c.d <= best + slack);
-        found.sort_by(|a, b| a.d.total_cmp(&b.d).then(a.k.cmp(&b.k)).then(a.s.total_cmp(&b.s)));
+        found.sort_by(|a, b| {
+            a.d.total_cmp(&b.d)
+                .then(a.k.cmp(&b.k))
+                .then(a.s.total_cmp(&b.s))
+        });
         found
     }
 
@@ -613,7 +624,10 @@ mod tests {
         let q = QueryCurve::from_bspline(&c).unwrap();
         let p = q.project(&[4.0, 6.0]).unwrap();
         assert!((p.distance - 5.0).abs() < 1e-15, "{p:?}");
-        assert!(matches!(q.project(&[f64::NAN, 0.0]), Err(Error::NonFinite { .. })));
+        assert!(matches!(
+            q.project(&[f64::NAN, 0.0]),
+            Err(Error::NonFinite { .. })
+        ));
         assert!(matches!(q.project(&[0.0]), Err(Error::Dimension { .. })));
         assert!(matches!(
             wiggle().project(&[1e200, 0.0]),
@@ -647,7 +661,7 @@ mod tests {
             })
             .collect();
         let batch = q
-            .project_batch(Points::new(pts.clone(), 2).unwrap().as_view())
+            .project_batch(Points::from_flat(2, pts.clone()).unwrap().as_view())
             .unwrap();
         for (i, b) in batch.iter().enumerate() {
             assert_eq!(*b, q.project(&pts[2 * i..2 * i + 2]).unwrap(), "point {i}");

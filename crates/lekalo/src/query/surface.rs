@@ -223,12 +223,7 @@ impl QuerySurface {
 
     /// The four quarters of a sub-patch net covering local `u` and `v` ranges (split at the
     /// middle of each, de Casteljau in `u` on the rows, then in `v`).
-    pub(crate) fn split4(
-        &self,
-        net: &[f64],
-        u: (f64, f64),
-        v: (f64, f64),
-    ) -> Vec<((f64, f64), (f64, f64), Vec<f64>)> {
+    pub(crate) fn split4(&self, net: &[f64], u: (f64, f64), v: (f64, f64)) -> Vec<SubNet> {
         let (p, q, hd) = (self.p, self.q, self.hd);
         let (um, vm) = (0.5 * (u.0 + u.1), 0.5 * (v.0 + v.1));
         // split in u: the rows form a curve of (q + 1)·hd-points
@@ -249,6 +244,9 @@ impl QuerySurface {
         out
     }
 }
+
+/// A sub-patch: its local `u` and `v` ranges and its net.
+pub(crate) type SubNet = ((f64, f64), (f64, f64), Vec<f64>);
 
 /// Halves of a Bezier curve of degree `n` with `stride`-scalar points, split at 1/2.
 pub(crate) fn split_curve(ctrl: &[f64], stride: usize, n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -284,7 +282,8 @@ pub(crate) fn bezier_ders(
     for level in 0..n - keep {
         for i in 0..n - level {
             for d in 0..stride {
-                tmp[i * stride + d] = (1.0 - s) * tmp[i * stride + d] + s * tmp[(i + 1) * stride + d];
+                tmp[i * stride + d] =
+                    (1.0 - s) * tmp[i * stride + d] + s * tmp[(i + 1) * stride + d];
             }
         }
     }

@@ -1,8 +1,8 @@
 //! Tessellation within a proved deviation: curves to polylines, surfaces to triangle meshes
 //! (`docs/theory/queries.md#tessellation`).
 
-use super::pieces::{QueryCurve, MAX_QUERY_DEGREE};
 use super::intersect::segment_distance;
+use super::pieces::{QueryCurve, MAX_QUERY_DEGREE};
 use super::surface::{split_curve, QuerySurface};
 use crate::error::{check_finite, Error, Result};
 use crate::Points;
@@ -116,7 +116,7 @@ impl QueryCurve {
         }
         Ok(Polyline {
             params,
-            points: Points::new(pts, dim)?,
+            points: Points::from_flat(dim, pts)?,
             deviation: worst * self.scale,
         })
     }
@@ -138,10 +138,14 @@ impl QuerySurface {
         for i in 0..=p {
             for j in 0..=q {
                 if i + 2 <= p {
-                    uu = uu.max(norm(&|d| at(i + 2, j, d) - 2.0 * at(i + 1, j, d) + at(i, j, d)));
+                    uu = uu.max(norm(&|d| {
+                        at(i + 2, j, d) - 2.0 * at(i + 1, j, d) + at(i, j, d)
+                    }));
                 }
                 if j + 2 <= q {
-                    vv = vv.max(norm(&|d| at(i, j + 2, d) - 2.0 * at(i, j + 1, d) + at(i, j, d)));
+                    vv = vv.max(norm(&|d| {
+                        at(i, j + 2, d) - 2.0 * at(i, j + 1, d) + at(i, j, d)
+                    }));
                 }
                 if i < p && j < q {
                     uv = uv.max(norm(&|d| {
@@ -199,17 +203,25 @@ impl QuerySurface {
         vs.dedup();
         let ui = |u: (f64, f64)| us.partition_point(|x| x.0 < u.0);
         let vi = |v: (f64, f64)| vs.partition_point(|x| x.0 < v.0);
-        let bounds: Vec<(f64, f64, f64)> = (0..self.patch_count()).map(|k| self.second_bounds(k)).collect();
+        let bounds: Vec<(f64, f64, f64)> = (0..self.patch_count())
+            .map(|k| self.second_bounds(k))
+            .collect();
+        #[allow(clippy::cast_possible_truncation)] // a whole number in [1, 1e9]
         let steps = |m: f64| -> usize {
             let s = m.ceil().max(1.0);
-            if s > 1e9 { 1_000_000_000 } else { s as usize }
+            if s > 1e9 {
+                1_000_000_000
+            } else {
+                s as usize
+            }
         };
         let mut mu = vec![1_usize; us.len()];
         let mut mv = vec![1_usize; vs.len()];
         for (k, &(a, _, c)) in bounds.iter().enumerate() {
             let (i, j) = (ui(self.ranges[k].0), vi(self.ranges[k].1));
-            mu[i] = mu[i].max(steps((3.0 * a / (8.0 * tol)).sqrt()));
-            mv[j] = mv[j].max(steps((3.0 * c / (8.0 * tol)).sqrt()));
+            // the least steps for the pure terms alone; the loop below adds for the sum
+            mu[i] = mu[i].max(steps((a / (8.0 * tol)).sqrt()));
+            mv[j] = mv[j].max(steps((c / (8.0 * tol)).sqrt()));
         }
         let bound = |k: usize, mu: &[usize], mv: &[usize]| {
             let (a, b, c) = bounds[k];
@@ -226,8 +238,14 @@ impl QuerySurface {
                     ok = false;
                     let f = (e / tol).sqrt() * 1.0001;
                     let (i, j) = (ui(self.ranges[k].0), vi(self.ranges[k].1));
-                    mu[i] = steps(mu[i] as f64 * f);
-                    mv[j] = steps(mv[j] as f64 * f);
+                    // refine only a direction whose steps enter the bound
+                    let (a, b, c) = bounds[k];
+                    if a > 0.0 || b > 0.0 {
+                        mu[i] = steps(mu[i] as f64 * f);
+                    }
+                    if c > 0.0 || b > 0.0 {
+                        mv[j] = steps(mv[j] as f64 * f);
+                    }
                 }
             }
             if ok {
@@ -243,13 +261,19 @@ impl QuerySurface {
                 max: MAX_MESH_VERTICES,
             });
         }
-        let deviation = (0..self.patch_count()).map(|k| bound(k, &mu, &mv)).fold(0.0, f64::max);
+        let deviation = (0..self.patch_count())
+            .map(|k| bound(k, &mu, &mv))
+            .fold(0.0, f64::max);
         // global parameter lines
         let lines = |strips: &[(f64, f64)], m: &[usize]| {
             let mut out = Vec::new();
             for (s, &(a, b)) in strips.iter().enumerate() {
                 for i in 0..m[s] {
-                    out.push((s, a + (b - a) * i as f64 / m[s] as f64, i as f64 / m[s] as f64));
+                    out.push((
+                        s,
+                        a + (b - a) * i as f64 / m[s] as f64,
+                        i as f64 / m[s] as f64,
+                    ));
                 }
             }
             let last = strips.len() - 1;
@@ -285,7 +309,7 @@ impl QuerySurface {
             }
         }
         Ok(Mesh {
-            vertices: Points::new(verts, dim)?,
+            vertices: Points::from_flat(dim, verts)?,
             uv,
             triangles,
             deviation: deviation * self.scale,
@@ -313,7 +337,8 @@ impl QuerySurface {
         for level in 1..=p {
             for i in 0..=p - level {
                 for d in 0..hd {
-                    scratch[i * hd + d] = (1.0 - u) * scratch[i * hd + d] + u * scratch[(i + 1) * hd + d];
+                    scratch[i * hd + d] =
+                        (1.0 - u) * scratch[i * hd + d] + u * scratch[(i + 1) * hd + d];
                 }
             }
         }
@@ -332,7 +357,8 @@ mod tests {
         let c = BSplineCurve::new(
             3,
             vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
-            Points::from_2d(&[[0.0, 0.0], [1.0, 3.0], [2.0, -2.0], [4.0, 2.0], [5.0, 0.0]]).unwrap(),
+            Points::from_2d(&[[0.0, 0.0], [1.0, 3.0], [2.0, -2.0], [4.0, 2.0], [5.0, 0.0]])
+                .unwrap(),
         )
         .unwrap();
         let q = QueryCurve::from_bspline(&c).unwrap();
@@ -347,7 +373,10 @@ mod tests {
                 .fold(f64::INFINITY, f64::min);
             assert!(d <= 1e-4 * (1.0 + 1e-12), "sample {i}: {d}");
         }
-        assert!(q.polyline(0.0).is_err() && q.polyline(f64::NAN).is_err(), "bad tolerances");
+        assert!(
+            q.polyline(0.0).is_err() && q.polyline(f64::NAN).is_err(),
+            "bad tolerances"
+        );
     }
 
     #[test]
@@ -367,7 +396,7 @@ mod tests {
             3,
             vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
             vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0],
-            Points::new(net, 3).unwrap(),
+            Points::from_flat(3, net).unwrap(),
             (nu, nv),
         )
         .unwrap();
@@ -392,7 +421,11 @@ mod tests {
                 }
                 let p = s.eval(uv[0], uv[1]).unwrap();
                 let e = super::super::pieces::dist(&p, &l);
-                assert!(e <= mesh.deviation * (1.0 + 1e-9), "{e} > {}", mesh.deviation);
+                assert!(
+                    e <= mesh.deviation * (1.0 + 1e-9),
+                    "{e} > {}",
+                    mesh.deviation
+                );
             }
         }
     }

@@ -1,0 +1,29 @@
+//! C^k blending of curves (document 001): jump-smoothing polynomials, deformation of one curve
+//! into another, splines blended from local curves, corner smoothing.
+//!
+//! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
+//! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
+//! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
+//! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
+//! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
+//!   measured error.
+//! - `bernstein.rs`: Bernstein-form derivatives and products used by the above.
+
+mod approximation;
+pub(crate) mod bernstein;
+mod corner;
+pub(crate) mod deformation;
+mod jump;
+mod local_curves;
+mod spline;
+
+pub use approximation::{approximate_curve, Approximation};
+pub use corner::CornerTransition;
+pub use deformation::{BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE};
+pub use jump::JumpPolynomial;
+pub use local_curves::{
+    ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
+    SharedCurve,
+};
+pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};

@@ -1,0 +1,118 @@
+//! The per-point kernels with degree and dimension fixed at compile time, and the generic
+//! power-form kernels they must match operation for operation.
+
+/// Horner's scheme on piece `j` with degree `P` and dimension `D` fixed at compile time; the
+/// same operations in the same order as [`power_dyn`].
+#[inline(always)]
+pub(super) fn power_fixed<const P: usize, const D: usize>(
+    coef: &[f64],
+    j: usize,
+    t: f64,
+    o: &mut [f64],
+) {
+    let stride = 2 + (P + 1) * D;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let u = (t - block[0]) * block[1];
+    let c = &block[2..];
+    let mut acc = [0.0; D];
+    acc.copy_from_slice(&c[..D]);
+    for k in 1..=P {
+        for d in 0..D {
+            acc[d] = acc[d] * u + c[k * D + d];
+        }
+    }
+    o[..D].copy_from_slice(&acc);
+}
+
+/// [`CurveEvaluator::basis_point`] with the order `W = p + 1` and dimension `D` fixed at
+/// compile time, so that the triangle lives in registers; the same operations in the same
+/// order.
+#[inline(always)]
+pub(super) fn basis_fixed<const W: usize, const D: usize>(
+    knots: &[f64],
+    control: &[f64],
+    recip: &[f64],
+    span: usize,
+    j: usize,
+    t: f64,
+    o: &mut [f64],
+) {
+    let p = W - 1;
+    let tri = p * W / 2;
+    let rc = &recip[j * tri..(j + 1) * tri];
+    let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
+    nv[0] = 1.0;
+    let mut off = 0;
+    for l in 1..W {
+        left[l] = t - knots[span + 1 - l];
+        right[l] = knots[span + l] - t;
+        let mut saved = 0.0;
+        for r in 0..l {
+            let temp = nv[r] * rc[off + r];
+            nv[r] = saved + right[r + 1] * temp;
+            saved = left[l - r] * temp;
+        }
+        nv[l] = saved;
+        off += l;
+    }
+    let mut acc = [0.0; D];
+    let c = &control[(span - p) * D..(span + 1) * D];
+    for r in 0..W {
+        for d in 0..D {
+            acc[d] += nv[r] * c[r * D + d];
+        }
+    }
+    o[..D].copy_from_slice(&acc);
+}
+
+/// Derivatives of orders `0..=kmax` on piece `j` by repeated synthetic division (Knuth, TAOCP
+/// vol. 2, §4.6.4); `a` is scratch of length `p + 1` (an array when the caller knows `p`, so
+/// that it lives in registers), `o` a row of `(order + 1)·dim` values, zero above `kmax`.
+#[inline(always)]
+pub(super) fn power_ders(
+    a: &mut [f64],
+    dim: usize,
+    coef: &[f64],
+    j: usize,
+    t: f64,
+    kmax: usize,
+    o: &mut [f64],
+) {
+    let p = a.len() - 1;
+    let stride = 2 + (p + 1) * dim;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let (x, inv) = (block[0], block[1]);
+    let u = (t - x) * inv;
+    o[(kmax + 1) * dim..].fill(0.0);
+    for d in 0..dim {
+        // a[i]: coefficient of u^i, coordinate d (lowest power first)
+        for (i, ai) in a.iter_mut().enumerate() {
+            *ai = block[2 + (p - i) * dim + d];
+        }
+        let mut scale = 1.0; // k! / h^k
+        for k in 0..=kmax {
+            // synthetic division by (x − u): afterwards a[k] is the k-th Taylor coefficient at u
+            for i in (k..p).rev() {
+                a[i] += u * a[i + 1];
+            }
+            o[k * dim + d] = a[k] * scale;
+            scale *= (k + 1) as f64 * inv;
+        }
+    }
+}
+
+/// Horner's scheme on piece `j`, any degree and dimension.
+#[inline(always)]
+pub(super) fn power_dyn(p: usize, coef: &[f64], j: usize, t: f64, o: &mut [f64]) {
+    let dim = o.len();
+    let stride = 2 + (p + 1) * dim;
+    let block = &coef[j * stride..(j + 1) * stride];
+    let u = (t - block[0]) * block[1];
+    let c = &block[2..];
+    o.copy_from_slice(&c[..dim]);
+    for k in 1..=p {
+        for (x, &ck) in o.iter_mut().zip(&c[k * dim..(k + 1) * dim]) {
+            *x = *x * u + ck;
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! Curves: Bezier, B-spline and NURBS curves, their knot operations and fast evaluation.
+//!
+//! - `bezier.rs`: [`BezierCurve`] (de Casteljau, Bernstein form) and [`BezierSegment`].
+//! - `bspline.rs`: [`BSplineCurve`]: evaluation, derivatives, the derivative curve, reversal,
+//!   reparametrisation.
+//! - `knot_insertion.rs`: knot insertion and refinement, splitting, Bezier decomposition and
+//!   its inverse.
+//! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
+//! - `conics.rs`: exact circles and circular arcs as rational quadratics.
+//! - `nurbs_ops.rs`: knot operations on NURBS curves through their homogeneous B-spline.
+//! - `knot_removal.rs`: knot removal with a tolerance and curve simplification.
+//! - `curvature.rs`: [`curvature`] from the first two derivatives.
+//! - `fast_eval.rs`: [`CurveEvaluator`], batch evaluation by polynomial pieces; in
+//!   `fast_eval/`: `locate.rs` (piece location), `kernels.rs` (fixed-size kernels), `nurbs.rs`
+//!   ([`NurbsEvaluator`]), `tests.rs`.
+
+pub(crate) mod bezier;
+pub(crate) mod bspline;
+mod conics;
+mod curvature;
+mod fast_eval;
+mod knot_insertion;
+pub(crate) mod knot_removal;
+pub(crate) mod nurbs;
+mod nurbs_ops;
+
+pub use bezier::{BezierCurve, BezierSegment};
+pub use bspline::BSplineCurve;
+pub use curvature::curvature;
+pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
+pub use knot_removal::DEFAULT_REMOVAL_RTOL;
+pub use nurbs::NurbsCurve;

@@ -1,0 +1,42 @@
+//! Interpolation: curves and surfaces through given points (document 000) and the natural
+//! cubic and Hermite splines of document 002.
+//!
+//! - `curve.rs`: [`CurveInterpolation`], the builder that combines a parametrisation, a knot
+//!   placement ([`KnotPlacement`]) and end conditions, and checks the result's residual;
+//!   [`natural_cubic_spline`] for functions `y(x)`.
+//! - `parametrization.rs`: [`Parametrization`] and [`parametrize`]: uniform, chord length,
+//!   centripetal parameters.
+//! - `end_conditions.rs`: [`EndCondition`]: free ends, first and second end derivatives, the
+//!   natural cubic.
+//! - `collocation.rs`: the banded collocation system and its condition estimate.
+//! - `fast.rs`: the fused fast path of free-end cubic interpolation
+//!   ([`InterpolationWorkspace`]).
+//! - `cubic_sweep.rs`: the fused collocation sweep of that fast path.
+//! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
+//! - `surface.rs`: tensor-product surface interpolation of a grid ([`interpolate_surface`]).
+//! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
+
+pub(crate) mod collocation;
+mod cubic_sweep;
+pub(crate) mod curve;
+mod end_conditions;
+mod fast;
+pub(crate) mod hermite;
+pub(crate) mod parametrization;
+mod periodic;
+mod surface;
+
+pub use curve::{
+    natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
+};
+pub use end_conditions::EndCondition;
+pub use fast::InterpolationWorkspace;
+pub use hermite::{
+    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
+    CubicHermite, TangentEstimate, HERMITE_MATRIX,
+};
+pub use parametrization::{parametrize, Parametrization};
+pub use surface::{
+    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
+    SurfaceInterpolant,
+};

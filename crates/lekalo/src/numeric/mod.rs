@@ -1,0 +1,10 @@
+//! Numerical building blocks (crate-private).
+//!
+//! - `linalg.rs`: banded linear systems (Crout elimination without pivoting, cyclic systems)
+//!   and scaled norms.
+//! - `isa.rs`: run-time choice of the instruction set for kernels compiled twice.
+//! - `large_buffer.rs`: zeroed buffers for large results, on huge pages where available.
+
+pub(crate) mod isa;
+pub(crate) mod large_buffer;
+pub(crate) mod linalg;

@@ -1,0 +1,18 @@
+//! Piecewise polynomials and their B-spline bases (document 003).
+//!
+//! - `divided_difference.rs`: divided differences ([`divided_difference`], [`NewtonForm`]) and
+//!   the B-spline as a divided difference of truncated powers.
+//! - `ppform.rs`: [`PiecewisePolynomial`] (pp-form) and the spaces [`PpSpace`].
+//! - `quasi_interpolation.rs`: the de Boor–Fix dual functionals: pp-form to B-spline
+//!   conversion and [`quasi_interpolate`].
+
+mod divided_difference;
+pub(crate) mod ppform;
+mod quasi_interpolation;
+
+pub use divided_difference::{
+    bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
+    NewtonForm,
+};
+pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+pub use quasi_interpolation::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};

@@ -1,0 +1,473 @@
+//! The de Boor–Fix dual functionals: pp-form → B-spline conversion and quasi-interpolation
+//! (document 003, digest §D.5).
+//!
+//! For the knots `x_1 ≤ … ≤ x_{n+k}` of order `k` and a point `τ_i ∈ [x_i, x_{i+k}]`,
+//! `λ_i f = Σ_{r=0}^{k−1} (−1)^{k−1−r} ψ_i^{(k−1−r)}(τ_i) f^{(r)}(τ_i)`,
+//! `ψ_i(z) = (x_{i+1} − z)⋯(x_{i+k−1} − z)/(k − 1)!`, and `λ_i b_j = δ_{ij}` (de Boor–Fix). So the
+//! B-spline coefficients of a spline are `c_i = λ_i f`, and for a smooth `f` the same functionals
+//! give a quasi-interpolant whose coefficients depend on the choice of `τ` ([`TauRule`]).
+//!
+//! **One-sided derivatives.** When `τ_i` lies on a knot, the derivatives of a spline are taken
+//! from the side inside the support: the left side when `τ_i = x_{i+k}` (the thesis's rule does
+//! this for the last B-spline), the right side otherwise (also at `τ_i = x_i`). With the other side
+//! `λ_i b_j = δ_{ij}` fails (digest §D.5).
+
+use crate::curve::bspline::BSplineCurve;
+use crate::error::{Error, Result};
+use crate::knots::KnotVector;
+use crate::points::Points;
+use crate::pp::ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+
+/// How the point `τ_i ∈ [x_i, x_{i+k}]` of the dual functional `λ_i` is chosen.
+///
+/// On the thesis's practical task (f = x·cos x on [0, 3], k = 3, breakpoints
+/// {0, 0.5, 0.9, 1.4, 2.1, 2.7, 3}, 61-point grid of step 0.05), the maximum errors are
+/// (`tests/ppform.rs`):
+///
+/// | rule | max error |
+/// |---|---|
+/// | [`TauRule::FirstKnotAfter`] (stated in the thesis) | 0.0548489 (at x = 0) |
+/// | [`TauRule::LeftEndOfSupport`] | **0.2048312** (at x = 2.75), the thesis's printed 0.204831 |
+/// | [`TauRule::Midpoint`] | 0.0266450 |
+/// | [`TauRule::Greville`] | 0.0126331 |
+///
+/// The printed figure is reproduced by `τ_i = x_i`, i.e. the thesis's rule read with `≥`
+/// (`min{x_j : x_j ≥ x_i}`), or equivalently (the same figure to 1e-15) by the thesis's rule
+/// with its index shifted by one, `τ_i = min{x_j : x_j > x_{i−1}}` (a 0-/1-based off-by-one). No
+/// other choice searched reproduces it. Searched (all combinations): τ rules first knot after,
+/// `x_i`, midpoint, Greville, `x_{i+1}`, `x_{i+k−1}`, `x_{i+k}`, middle of the inner knots and
+/// the shifted-index variants; `ψ` without its index (`ψ_1` for all `i`) or with its index
+/// shifted by ±1; the sign `(−1)^{k−1−r}` or the `1/(k−1)!` dropped; the step-3 typo
+/// `(x_{i+k} − x_k)` scaling the B-splines; left-continuous B-splines or an open right end;
+/// exact, accumulated (`z += 0.05`) or 60-point grids; non-clamped end knots
+/// (`−1, −0.5, 0 … 3, 3.5, 4` and others, 0.2088 at best); the explicit sum (4) with zero factors
+/// skipped at repeated knots (errors > 300). The side of the derivatives does not matter for the
+/// smooth `x cos x`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TauRule {
+    /// `τ_i = min{x_j : x_j > x_i}`, the rule stated in the thesis (§D.5 step 5).
+    #[default]
+    FirstKnotAfter,
+    /// `τ_i = x_i`, the left end of the support; reproduces the thesis's printed error.
+    LeftEndOfSupport,
+    /// `τ_i = (x_i + x_{i+k})/2`, the middle of the support.
+    Midpoint,
+    /// `τ_i = (x_{i+1} + … + x_{i+k−1})/(k − 1)`, the Greville abscissa (`x_i` for `k = 1`).
+    Greville,
+}
+
+impl TauRule {
+    /// `τ_i` for B-spline `i` (0-based) of order `k` on `knots`; always in `[x_i, x_{i+k}]`
+    /// (clamped there against rounding, e.g. a Greville mean of equal knots).
+    fn tau(self, x: &[f64], i: usize, order: usize) -> f64 {
+        let tau = match self {
+            TauRule::FirstKnotAfter => {
+                let after = x.partition_point(|&v| v <= x[i]);
+                // x_{i+k} > x_i in a valid knot vector, so the first greater knot is ≤ x_{i+k}
+                x[after.min(i + order)]
+            }
+            TauRule::LeftEndOfSupport => x[i],
+            TauRule::Midpoint => 0.5 * (x[i] + x[i + order]),
+            TauRule::Greville => {
+                if order == 1 {
+                    x[i]
+                } else {
+                    x[i + 1..i + order].iter().sum::<f64>() / (order - 1) as f64
+                }
+            }
+        };
+        tau.clamp(x[i], x[i + order])
+    }
+
+    /// The points `τ_1 … τ_n` for the B-splines of order `k` on `knots`.
+    ///
+    /// ```
+    /// use lekalo::{PpSpace, TauRule};
+    /// let s = PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3)?;
+    /// let tau = TauRule::FirstKnotAfter.points(s.knots(), 3)?;
+    /// assert_eq!(tau, vec![0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0]); // digest §D.5
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`KnotVector::validate_for`] for degree `k − 1` and `len − k` B-splines
+    /// ([`Error::Degree`] if `order == 0`).
+    pub fn points(self, knots: &KnotVector, order: usize) -> Result<Vec<f64>> {
+        let n = check_knots(knots, order)?;
+        Ok((0..n)
+            .map(|i| self.tau(knots.as_slice(), i, order))
+            .collect())
+    }
+}
+
+/// Validates knots for order `k`, returning the number of B-splines.
+fn check_knots(knots: &KnotVector, order: usize) -> Result<usize> {
+    let degree = order.checked_sub(1).ok_or(Error::Degree {
+        degree: 0,
+        reason: "the order k = degree + 1 must be at least 1".into(),
+    })?;
+    let n = knots.len().saturating_sub(order);
+    knots.validate_for(degree, n)?;
+    Ok(n)
+}
+
+/// The weights `w_r = (−1)^{k−1−r} ψ_i^{(k−1−r)}(τ)`, `r = 0 … k−1`, so that
+/// `λ_i f = Σ_r w_r f^{(r)}(τ)`. `ψ_i` is expanded in powers of `u = z − τ`:
+/// `Π_{j=1}^{k−1} ((x_{i+j} − τ) − u) = Σ_m e_m u^m`, and `ψ^{(m)}(τ) = m! e_m/(k−1)!`. O(k²).
+fn dual_weights(x: &[f64], i: usize, order: usize, tau: f64, w: &mut [f64]) {
+    debug_assert_eq!(w.len(), order, "weight buffer");
+    let k = order;
+    // e holds the product's coefficients, degree grows to k − 1
+    let mut e = vec![0.0; k];
+    e[0] = 1.0;
+    for j in 1..k {
+        let a = x[i + j] - tau;
+        for m in (0..=j).rev() {
+            let lower = if m > 0 { e[m - 1] } else { 0.0 };
+            e[m] = a * e[m] - lower;
+        }
+    }
+    let fact_k1: f64 = (1..k).map(|v| v as f64).product();
+    for r in 0..k {
+        let m = k - 1 - r;
+        let m_fact: f64 = (1..=m).map(|v| v as f64).product();
+        let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+        w[r] = sign * m_fact * e[m] / fact_k1;
+    }
+}
+
+/// B-spline coefficients `c_i = λ_i f` on `knots` of order `k`, with `derivs(τ, from_left, out)`
+/// filling `out` (`k × dim`, row `r` = `f^{(r)}(τ)`) from the given side.
+fn de_boor_fix<D>(
+    knots: &KnotVector,
+    order: usize,
+    dim: usize,
+    rule: TauRule,
+    mut derivs: D,
+) -> Result<Points>
+where
+    D: FnMut(f64, bool, &mut [f64]) -> Result<()>,
+{
+    let n = check_knots(knots, order)?;
+    let x = knots.as_slice();
+    let mut w = vec![0.0; order];
+    let mut d = vec![0.0; order * dim];
+    let mut coef = vec![0.0; n * dim];
+    for (i, c) in coef.chunks_exact_mut(dim).enumerate() {
+        let tau = rule.tau(x, i, order);
+        dual_weights(x, i, order, tau, &mut w);
+        let from_left = tau == x[i + order] && x[i] < tau;
+        derivs(tau, from_left, &mut d)?;
+        for (wr, row) in w.iter().zip(d.chunks_exact(dim)) {
+            for (ci, v) in c.iter_mut().zip(row) {
+                *ci += wr * v;
+            }
+        }
+    }
+    Ok(Points::from_raw(coef, dim))
+}
+
+impl PiecewisePolynomial {
+    /// The B-spline form of `self ∈ P_{k,ξ,ν}` on the Curry–Schoenberg knots of `space`
+    /// (document 003 §5.1, digest Algorithm D.5): `c_i = λ_i f` with the de Boor–Fix functionals
+    /// at `τ_i` chosen by `rule`, one-sided derivatives as in the module docs. Exact for every
+    /// rule (to rounding) because `f` is in the space. O(n·k·(k + dim)).
+    ///
+    /// ```
+    /// use lekalo::{PiecewisePolynomial, PpSpace, TauRule};
+    /// // x² on [0, 2] with a breakpoint at 1, as a C¹ quadratic: coefficients x_{i+1}·x_{i+2}
+    /// let f = PiecewisePolynomial::new(vec![0.0, 1.0, 2.0], 3, 1, vec![0.0, 0.0, 1.0, 1.0, 2.0, 1.0])?;
+    /// let space = PpSpace::new(&[0.0, 1.0, 2.0], &[2], 3)?; // knots 0 0 0 1 2 2 2
+    /// let c = f.to_bspline(&space, TauRule::Midpoint)?;
+    /// let want = [0.0, 0.0, 2.0, 4.0];
+    /// for (got, w) in c.control_points().as_slice().iter().zip(want) {
+    ///     assert!((got - w).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] if `self` is not in the space (other breakpoints, higher
+    /// order, or a continuity condition violated beyond [`DEFAULT_CONTINUITY_RTOL`]); use
+    /// [`quasi_interpolate`] to approximate a function outside the space.
+    pub fn to_bspline(&self, space: &PpSpace, rule: TauRule) -> Result<BSplineCurve> {
+        if !space.contains(self, DEFAULT_CONTINUITY_RTOL) {
+            return Err(Error::InvalidArgument {
+                what: "piecewise polynomial",
+                reason: format!(
+                    "not in the space P_{{k,ξ,ν}} with k = {}, {} breakpoints and ν = {:?}: it \
+                     needs the same breakpoints, order at most k and the continuity \
+                     conditions; use quasi_interpolate to approximate it instead",
+                    space.order(),
+                    space.breakpoints().len(),
+                    space.continuity()
+                ),
+            });
+        }
+        let (k, dim) = (space.order(), self.dim());
+        let coef = de_boor_fix(space.knots(), k, dim, rule, |tau, from_left, out| {
+            let piece = if from_left {
+                self.piece_index_left(tau)?
+            } else {
+                self.piece_index(tau)?
+            };
+            for (r, row) in out.chunks_exact_mut(dim).enumerate() {
+                self.piece_derivative_into(piece, tau, r, row);
+            }
+            Ok(())
+        })?;
+        BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), coef)
+    }
+}
+
+/// The de Boor–Fix quasi-interpolant `Σ_i (λ_i f) b_{i,k}` of a smooth scalar function on the
+/// Curry–Schoenberg knots of `space` (document 003 §5.1–5.3). `f(x, r)` returns `f^{(r)}(x)` for
+/// `r = 0 … k − 1`. It reproduces every `f ∈ P_{k,ξ,ν}`; for other `f` the result depends on
+/// `rule` (see [`TauRule`] for the thesis's practical task). O(n·k²) plus `n·k` calls of `f`.
+///
+/// ```
+/// use lekalo::{quasi_interpolate, PpSpace, TauRule};
+/// // the thesis's practical task
+/// let space = PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3)?;
+/// let f = |x: f64, r: usize| match r {
+///     0 => x * x.cos(),
+///     1 => x.cos() - x * x.sin(),
+///     _ => -2.0 * x.sin() - x * x.cos(),
+/// };
+/// let q = quasi_interpolate(&space, TauRule::FirstKnotAfter, f)?;
+/// assert_eq!(q.control_points().len(), 8);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] if `f` returns NaN or infinity.
+pub fn quasi_interpolate<F: FnMut(f64, usize) -> f64>(
+    space: &PpSpace,
+    rule: TauRule,
+    mut f: F,
+) -> Result<BSplineCurve> {
+    let k = space.order();
+    let coef = de_boor_fix(space.knots(), k, 1, rule, |tau, _left, out| {
+        for (r, o) in out.iter_mut().enumerate() {
+            let v = f(tau, r);
+            if !v.is_finite() {
+                return Err(Error::NonFinite {
+                    what: "f^(r)(τ) returned by the function (index = r)",
+                    index: r,
+                    value: v,
+                });
+            }
+            *o = v;
+        }
+        Ok(())
+    })?;
+    BSplineCurve::from_knot_vector(k - 1, space.knots().clone(), coef)
+}
+
+/// A function and its quasi-interpolant sampled on a uniform grid (for plots such as the
+/// thesis's Figure 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuasiSamples {
+    /// The grid `t_j = a + j (b − a)/N`, `j = 0 … N`.
+    pub t: Vec<f64>,
+    /// `f(t_j)`.
+    pub exact: Vec<f64>,
+    /// The quasi-interpolant at `t_j`.
+    pub approx: Vec<f64>,
+}
+
+impl QuasiSamples {
+    /// `max_j |f(t_j) − q(t_j)|`.
+    #[must_use]
+    pub fn max_error(&self) -> f64 {
+        self.exact
+            .iter()
+            .zip(&self.approx)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Builds the quasi-interpolant of [`quasi_interpolate`] and samples `f` and it on the uniform
+/// grid of `n_intervals + 1` points over the space's domain (the thesis's task: 60 intervals
+/// of 0.05 on [0, 3]). Each grid point is computed as `a + j (b − a)/N`, not by accumulation.
+///
+/// # Errors
+/// [`Error::TooFew`] if `n_intervals == 0`; errors of [`quasi_interpolate`].
+pub fn sample_quasi_interpolant<F: FnMut(f64, usize) -> f64>(
+    space: &PpSpace,
+    rule: TauRule,
+    mut f: F,
+    n_intervals: usize,
+) -> Result<QuasiSamples> {
+    if n_intervals == 0 {
+        return Err(Error::TooFew {
+            what: "grid intervals",
+            min: 1,
+            got: 0,
+        });
+    }
+    let q = quasi_interpolate(space, rule, &mut f)?;
+    let (a, b) = q.domain();
+    let t: Vec<f64> = (0..=n_intervals)
+        .map(|j| {
+            if j == n_intervals {
+                b
+            } else {
+                a + (b - a) * j as f64 / n_intervals as f64
+            }
+        })
+        .collect();
+    let exact = t.iter().map(|&x| f(x, 0)).collect();
+    let mut approx = vec![0.0; t.len()];
+    q.eval_batch(&t, &mut approx)?;
+    Ok(QuasiSamples { t, exact, approx })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn xcosx(x: f64, r: usize) -> f64 {
+        let (s, c) = x.sin_cos();
+        match r {
+            0 => x * c,
+            1 => c - x * s,
+            2 => -2.0 * s - x * c,
+            _ => -3.0 * c + x * s,
+        }
+    }
+
+    fn thesis_space() -> PpSpace {
+        PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3).unwrap()
+    }
+
+    // Digest §D.5 worked case: for k = 3, λ_i(x²) = x_{i+1} x_{i+2} for every τ.
+    #[test]
+    fn dual_weights_quadratic() {
+        let x = [0.0, 0.2, 0.7, 1.5, 2.0];
+        let mut w = [0.0; 3];
+        for tau in [0.0, 0.3, 1.0, 1.5] {
+            dual_weights(&x, 0, 3, tau, &mut w);
+            let lam = w[0] * tau * tau + w[1] * 2.0 * tau + w[2] * 2.0;
+            assert!((lam - 0.2 * 0.7).abs() < 1e-15, "τ = {tau}");
+            // k = 3: w = (1, (x1 + x2)/2 − τ, (x1 − τ)(x2 − τ)/2)
+            assert!((w[1] - (0.45 - tau)).abs() < 1e-15, "w1");
+            assert!((w[2] - (0.2 - tau) * (0.7 - tau) / 2.0).abs() < 1e-15, "w2");
+        }
+    }
+
+    // The thesis's printed 0.204831 is also reproduced by the stated rule with its index shifted
+    // by one (τ_i = min{x_j : x_j > x_{i−1}}, τ_1 = x_1): the same figure as τ_i = x_i.
+    #[test]
+    fn printed_error_by_shifted_index() {
+        let space = thesis_space();
+        let x = space.knots().as_slice();
+        let taus: Vec<f64> = (0..8)
+            .map(|i| {
+                if i == 0 {
+                    x[0]
+                } else {
+                    x[x.partition_point(|&v| v <= x[i - 1])]
+                }
+            })
+            .collect();
+        assert_eq!(taus, [0.0, 0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7]);
+        let mut coef = vec![0.0; 8];
+        let mut w = [0.0; 3];
+        for (i, c) in coef.iter_mut().enumerate() {
+            dual_weights(x, i, 3, taus[i], &mut w);
+            *c = (0..3).map(|r| w[r] * xcosx(taus[i], r)).sum();
+        }
+        let q = BSplineCurve::from_knot_vector(
+            2,
+            space.knots().clone(),
+            Points::from_flat(1, coef).unwrap(),
+        )
+        .unwrap();
+        let err = (0..=60)
+            .map(|j| {
+                let t = 3.0 * j as f64 / 60.0;
+                (q.eval(t).unwrap()[0] - xcosx(t, 0)).abs()
+            })
+            .fold(0.0, f64::max);
+        assert!((err - 0.204_831_219_164_730_4).abs() < 1e-12, "{err}");
+    }
+
+    // λ_i(b_j) = δ_ij for the practical task's knots with every rule (digest §D.5). With the
+    // thesis's rule τ_1 = 0.5 = x_4 is the right end of b_1's support: there the left-hand
+    // derivatives are needed; the right-hand ones would give λ_1(b_1) = 0.
+    #[test]
+    fn duality_and_side() {
+        let space = thesis_space();
+        for rule in [
+            TauRule::FirstKnotAfter,
+            TauRule::LeftEndOfSupport,
+            TauRule::Midpoint,
+            TauRule::Greville,
+        ] {
+            for j in 0..8 {
+                let mut unit = vec![0.0; 8];
+                unit[j] = 1.0;
+                let b = BSplineCurve::from_knot_vector(
+                    2,
+                    space.knots().clone(),
+                    Points::from_flat(1, unit.clone()).unwrap(),
+                )
+                .unwrap();
+                let pp = PiecewisePolynomial::from_bspline(&b).unwrap();
+                let c = pp.to_bspline(&space, rule).unwrap();
+                for (got, want) in c.control_points().as_slice().iter().zip(&unit) {
+                    assert!((got - want).abs() < 1e-13, "{rule:?} j = {j}");
+                }
+            }
+        }
+        // wrong side at τ_1 = 0.5 (= x_4, the right end of b_1's support): right-hand derivatives
+        // of b_1 there are all zero, so λ_1(b_1) would be 0 instead of 1
+        let x = space.knots().as_slice();
+        let mut w = [0.0; 3];
+        dual_weights(x, 0, 3, 0.5, &mut w);
+        let b1 = BSplineCurve::from_knot_vector(
+            2,
+            space.knots().clone(),
+            Points::from_flat(1, vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap(),
+        )
+        .unwrap();
+        let pp = PiecewisePolynomial::from_bspline(&b1).unwrap();
+        let right = pp.eval_derivatives(0.5, 2).unwrap();
+        let left = pp.eval_derivatives_left(0.5, 2).unwrap();
+        let lam = |d: &Points| (0..3).map(|r| w[r] * d.point(r)[0]).sum::<f64>();
+        assert!((lam(&left) - 1.0).abs() < 1e-14, "left side gives 1");
+        assert!(lam(&right).abs() < 1e-14, "right side gives 0");
+    }
+
+    #[test]
+    fn errors() {
+        let space = thesis_space();
+        assert!(matches!(
+            sample_quasi_interpolant(&space, TauRule::Midpoint, xcosx, 0),
+            Err(Error::TooFew { .. })
+        ));
+        assert!(matches!(
+            quasi_interpolate(&space, TauRule::Midpoint, |_, _| f64::NAN),
+            Err(Error::NonFinite { .. })
+        ));
+        // a pp with a kink is not in the C¹ space
+        let kink = PiecewisePolynomial::new(
+            vec![0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0],
+            2,
+            1,
+            vec![0.0, 1.0, 0.5, 1.0, 0.9, 1.0, 1.4, 1.0, 2.1, -1.0, 1.5, 1.0],
+        )
+        .unwrap();
+        assert!(matches!(
+            kink.to_bspline(&space, TauRule::Midpoint),
+            Err(Error::InvalidArgument { .. })
+        ));
+        let kv = KnotVector::new(vec![0.0, 1.0]).unwrap();
+        assert!(matches!(
+            TauRule::Midpoint.points(&kv, 0),
+            Err(Error::Degree { .. })
+        ));
+    }
+}

@@ -1,0 +1,18 @@
+//! Tensor-product surfaces: Bezier, B-spline and NURBS, and their knot operations.
+//!
+//! - `bspline.rs`: [`BSplineSurface`] and the conventions shared by all surfaces (net layout,
+//!   derivative tables).
+//! - `bezier.rs`: [`BezierSurface`] on `[0, 1]²`.
+//! - `nurbs.rs`: [`NurbsSurface`], a B-spline surface over homogeneous points.
+//! - `knot_ops.rs`: knot insertion, refinement, splitting, Bezier patches ([`BezierPatch`],
+//!   [`RationalBezierPatch`]), transposition and reversal.
+
+pub(crate) mod bezier;
+pub(crate) mod bspline;
+mod knot_ops;
+pub(crate) mod nurbs;
+
+pub use bezier::BezierSurface;
+pub use bspline::BSplineSurface;
+pub use knot_ops::{BezierPatch, RationalBezierPatch};
+pub use nurbs::NurbsSurface;
