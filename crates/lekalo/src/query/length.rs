@@ -82,7 +82,8 @@ impl QueryCurve {
     /// ```
     /// use lekalo::{NurbsCurve, QueryCurve};
     /// let arc = NurbsCurve::circular_arc(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 2.0, 0.0, 2.0)?;
-    /// let table = QueryCurve::from_nurbs(&arc)?.arc_length(1e-14)?;
+    /// let q = QueryCurve::from_nurbs(&arc)?;
+    /// let table = q.arc_length(1e-14)?;
     /// assert!((table.total() - 4.0).abs() < 4e-14);
     /// let t = table.param_at(2.0)?;                       // half way along
     /// assert!((table.length_at(t)? - 2.0).abs() < 1e-13);
