@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every lekalo fuzz target for a fixed time (issue 9; see docs/robustness.md).
+# Runs every lekalo fuzz target for a fixed time (see docs/robustness.md).
 #
 #   FUZZ_SECONDS=60 scripts/fuzz.sh            # all targets, 60 s each
 #   FUZZ_SECONDS=300 scripts/fuzz.sh curves    # one target

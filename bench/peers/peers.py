@@ -159,7 +159,7 @@ def evaluation(data, meta, repeats, table, f64):
             xs = x[:sub].tolist()
             ns = median_ns(lambda: [value(t) for t in xs], sub, max(1, repeats // 2))
             # one Python call per point, each returning a new gp_Pnt: this measures the
-            # binding (~1-3 µs), not Open CASCADE's C++ evaluator (≈25 ns/point per issue 8)
+            # binding (~1-3 µs), not Open CASCADE's C++ evaluator (≈25 ns/point in its C++ harness)
             table.add(f"eval_{order}", "OCP GeomAdaptor_Curve.Value (10^5)", ns,
                       "one Python call per point: the binding")
 

@@ -37,7 +37,7 @@ done
 # Large NumPy arrays are backed by transparent huge pages: NumPy madvise()s every allocation of
 # 4 MiB and more (numpy._core.multiarray._get_madvise_hugepage(), on by default on Linux; the
 # peers' output prints it). lekalo gives the same hint for its own large result buffers
-# (crates/lekalo/src/large_buffer.rs), so both pay alike for first touching fresh memory (about
+# (crates/lekalo/src/numeric/large_buffer.rs), so both pay alike for first touching fresh memory (about
 # 2 us a 4 KiB page on a VM otherwise), with no environment settings.
 cargo build --quiet --release -p lekalo --example peer_bench
 target/release/examples/peer_bench "$data" "$repeats"

@@ -1,6 +1,6 @@
 //! Interpolation entry points with hostile numbers and sizes: `CurveInterpolation` with every
 //! parametrisation, knot placement and end condition (also at given parameters),
-//! `interpolate_surface`, `natural_cubic_spline` and `CubicHermite`.
+//! `SurfaceInterpolation`, `natural_cubic_spline` and `CubicHermite`.
 #![no_main]
 
 #[path = "common.rs"]
@@ -9,8 +9,8 @@ mod common;
 use arbitrary::Arbitrary;
 use common::{Num, Size};
 use lekalo::{
-    natural_cubic_spline, interpolate_surface, CubicHermite, CurveInterpolation, EndCondition,
-    KnotPlacement, Parametrization, Points, TangentEstimate,
+    natural_cubic_spline, CubicHermite, CurveInterpolation, EndCondition, KnotPlacement,
+    Parametrization, Points, SurfaceInterpolation, TangentEstimate,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -120,10 +120,10 @@ fuzz_target!(|input: Input| {
         let _ = h.to_bezier_segments();
     }
     let (nu, nv) = (usize::from(input.nu % 12), usize::from(input.nv % 12));
-    if let Ok(s) = interpolate_surface(view, nu, nv, degree, input.degree_v.0, parametrization) {
-        let s = s.into_surface();
+    let fit = SurfaceInterpolation::new(degree, input.degree_v.0).parametrization(parametrization);
+    if let Ok(s) = fit.interpolate(view, nu, nv) {
         if finite {
-            common::assert_no_nan("interpolate_surface", s.control_points().as_slice());
+            common::assert_no_nan("SurfaceInterpolation", s.control_points().as_slice());
         }
         common::exercise_bspline_surface(&s, &input.ts, Size(1));
     }

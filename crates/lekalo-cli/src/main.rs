@@ -49,7 +49,7 @@ Exit codes: 0 success, 2 bad input, 3 internal failure.";
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Build a curve object from control points (and knots, weights).
+    /// Build a curve or surface object from control points (and knots, weights).
     Make(cmd::make::MakeArgs),
     /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
     Eval(cmd::eval::EvalArgs),
@@ -73,6 +73,12 @@ enum Command {
     Blend(cmd::blend::BlendArgs),
     /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
     Pp(cmd::pp::PpArgs),
+    /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
+    /// reparam, decompose into Bezier pieces, join.
+    Knot(cmd::knot::KnotArgs),
+    /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
+    /// surfaces through grids and scattered data.
+    Fit(cmd::fit::FitArgs),
     /// Length, parameter at length, exact bounding box and curvature extrema of a curve.
     Measure(cmd::measure::MeasureArgs),
     /// Closest points on a curve or a surface (single points or batches).
@@ -106,6 +112,12 @@ pub(crate) enum Verbosity {
 }
 
 fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    if !args.iter().any(|a| a == "-q" || a == "--quiet") {
+        for w in cmd::deprecated::warnings(&args) {
+            eprintln!("warning: {w}");
+        }
+    }
     let cli = Cli::parse();
     let verbosity = if cli.quiet {
         Verbosity::Quiet
@@ -126,6 +138,8 @@ fn main() -> ExitCode {
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
+        Command::Knot(a) => cmd::knot::run(&a, verbosity),
+        Command::Fit(a) => cmd::fit::run(&a, verbosity),
         Command::Measure(a) => cmd::measure::run(&a, verbosity),
         Command::Project(a) => cmd::project::run(&a, verbosity),
         Command::Intersect(a) => cmd::intersect::run(&a, verbosity),

@@ -110,7 +110,7 @@ fn make_info_eval_the_lecture_curve() {
         .unwrap();
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(j["start"], serde_json::json!([1.5, 2.0]));
-    // document 002 §C.5: P(1.5) = (17/8, 11/4); P' = (t, 4 − 2t)
+    // document 002, B-splines: P(1.5) = (17/8, 11/4); P' = (t, 4 − 2t)
     lekalo()
         .arg("eval")
         .arg(&curve)
@@ -234,7 +234,8 @@ fn internal_failure_is_exit_code_3() {
 
 #[test]
 fn knots_build_and_inspect() {
-    // digest T.1: averaged chord-length knots, interior 28/51
+    // averaged chord-length knots of P&T Example 9.1, interior 28/51
+    // (docs/theory/interpolation.md#averaged-knots)
     let out = lekalo()
         .args([
             "knots",

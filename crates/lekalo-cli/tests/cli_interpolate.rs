@@ -1,4 +1,5 @@
-//! End-to-end tests of `lekalo interpolate` (document 000; document 002 §C.2–C.3).
+//! End-to-end tests of `lekalo interpolate` (document 000; document 002, four-point cubic and
+//! Hermite segment).
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -7,7 +8,7 @@ use std::fs;
 use assert_cmd::Command;
 use predicates::str::contains;
 
-/// P&T Example 9.1 (digest T.1).
+/// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 const Q: &str = "0 0\n3 4\n-1 4\n-4 0\n-4 -3\n";
 
 fn lekalo() -> Command {
@@ -169,11 +170,29 @@ fn bad_input_exit_code_2_names_the_problem() {
             .code(2)
             .stderr(contains(msg.to_string()));
     };
-    bad(&["--end", "derivatives"], "needs --d0 and --dn");
-    bad(&["--d0", "1,2"], "--d0/--dn are used only");
     bad(
-        &["--end", "derivatives", "--d0", "1,x", "--dn", "0,0"],
-        "--d0: value 2",
+        &["--end", "derivatives"],
+        "needs --start-derivative and --end-derivative",
+    );
+    bad(
+        &["--start-derivative", "1,2"],
+        "--start-derivative/--end-derivative are used only",
+    );
+    bad(
+        &[
+            "--end",
+            "derivatives",
+            "--start-derivative",
+            "1,x",
+            "--end-derivative",
+            "0,0",
+        ],
+        "--start-derivative: value 2",
+    );
+    // the old spellings still work, with a warning naming the new ones
+    bad(
+        &["--d0", "1,2"],
+        "`--d0` of `lekalo interpolate` is deprecated; write `--start-derivative`",
     );
     bad(&["--degree", "7"], "degree");
     bad(&["--grid", "4by3"], "--grid: \"4by3\" is not a grid size");

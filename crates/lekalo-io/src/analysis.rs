@@ -59,8 +59,8 @@ impl Object {
     }
 
     /// The knot vector; a Bezier curve of degree `n` has the equivalent clamped knots
-    /// `[0]·(n+1) ++ [1]·(n+1)` (document 002 §C.4–C.5: the Bernstein polynomials are the
-    /// B-splines on these knots).
+    /// `[0]·(n+1) ++ [1]·(n+1)` (document 002, Bezier curves and B-splines: the Bernstein
+    /// polynomials are the B-splines on these knots).
     #[must_use]
     pub fn knots(&self) -> KnotVector {
         match self {

@@ -12,7 +12,8 @@
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
-//! | STEP ISO 10303-21 AP214 B-spline/NURBS curves and surfaces | — | yes | [`StepWriter`] |
+//! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
+//! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.
@@ -29,6 +30,8 @@
 mod analysis;
 mod atomic;
 mod error;
+mod iges;
+mod numfmt;
 mod obj;
 mod object;
 mod object_ext;
@@ -37,12 +40,16 @@ mod points_in;
 mod samples;
 mod shape;
 mod step;
+mod step_read;
+mod surface_samples;
 mod svg;
 mod wireframe;
 
 pub use analysis::{curvature, uniform};
 pub use atomic::{check_not_input, read_input, write_atomic};
 pub use error::{IoError, IoResult, Location};
+pub use iges::{read_iges, IgesRead, IgesWriter};
+pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};
 pub use object_ext::{
@@ -54,6 +61,8 @@ pub use points_in::{parse_number_list, read_points};
 pub use samples::{sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
+pub use step_read::{read_step, StepRead, StepSkipped};
+pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{
     basis_figure, curve_figure, escape, knots_figure, CurvePlot, Figure, Series, Style, PALETTE,
 };

@@ -76,7 +76,8 @@ pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Resul
 
 impl SampleTable {
     /// CSV with a header line; undefined values are empty fields. Numbers are written in the
-    /// shortest form that reads back to the same `f64`.
+    /// shortest form that reads back to the same `f64` ([`crate::fmt_number`]: exponent
+    /// notation below 1e-5 and from 1e16 on).
     #[must_use]
     pub fn to_csv(&self) -> String {
         let mut s = self.header.join(",");
@@ -84,7 +85,7 @@ impl SampleTable {
         for row in &self.rows {
             let fields: Vec<String> = row
                 .iter()
-                .map(|v| v.map(|x| format!("{x}")).unwrap_or_default())
+                .map(|v| v.map(crate::numfmt::fmt_number).unwrap_or_default())
                 .collect();
             let _ = writeln!(s, "{}", fields.join(","));
         }

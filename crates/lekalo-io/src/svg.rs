@@ -454,7 +454,7 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
 }
 
 /// Graphs of the B-spline basis functions `N_{i,p}(t)`, `i = 0 … n`, over the whole knot range
-/// `[t_0, t_m]` by the Cox–de Boor recursion (document 002 §C.5; P&T eq. 2.5), with the valid
+/// `[t_0, t_m]` by the Cox–de Boor recursion (document 002, B-splines; P&T eq. 2.5), with the valid
 /// domain `[t_p, t_{n+1}]` shaded (there, and only there, `Σ N_{i,p} = 1`).
 ///
 /// # Errors
@@ -587,7 +587,7 @@ mod tests {
         // three basis functions, the knot ticks, the shaded domain [1, 2]
         assert_eq!(fig.series.len(), 4);
         assert_eq!(fig.band.as_ref().map(|b| (b.0, b.1)), Some((1.0, 2.0)));
-        // N_{1,2}(1.5) = 3/4 (document 002 §C.5): sample 15 is t = 1.5
+        // N_{1,2}(1.5) = 3/4 (document 002, B-splines): sample 15 is t = 1.5
         assert_eq!(fig.series[1].paths[0][15], [1.5, 0.75]);
         let svg = fig.to_svg();
         assert!(svg.starts_with("<svg") && svg.ends_with("</svg>\n"));

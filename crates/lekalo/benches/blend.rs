@@ -1,4 +1,4 @@
-//! Blending benchmarks (issue 5 workloads, issue 8): the jump-smoothing polynomial `w_k`,
+//! Blending benchmarks: the jump-smoothing polynomial `w_k`,
 //! a C² deformation of two cubic Bezier curves, a blend spline through 100 points with local
 //! parabolas and circular arcs (construction, then 1000 evaluations), and a corner transition.
 //!

@@ -1,4 +1,4 @@
-//! Degree-change benchmarks (issue 8): Bezier elevation 10→20 and 50→100 in 3-D, per curve
+//! Degree-change benchmarks: Bezier elevation 10→20 and 50→100 in 3-D, per curve
 //! (`BezierCurve::elevate_degree`, allocating, and a precomputed `ElevationPlan::apply_into`
 //! into a reused buffer), exact reduction of an elevated curve back to its real degree
 //! (`reduce_degree_exact`, `change_degree`), approximate reduction with tangent end conditions,

@@ -13,7 +13,7 @@ use lekalo::{CurveEvaluator, EvalKernel};
 
 mod common;
 
-/// The batch size for curve evaluation.
+/// Batch size for curve evaluation (as in the peer comparison).
 const N_BATCH: usize = 1_000_000;
 /// Batch size of the per-point reference loops (derivatives, NURBS, search, basis).
 const N_POINTS: usize = 100_000;

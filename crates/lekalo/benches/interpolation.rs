@@ -1,4 +1,4 @@
-//! Interpolation benchmarks (issue 8): cubic global curve interpolation through `n` 3-D points
+//! Interpolation benchmarks: cubic global curve interpolation through `n` 3-D points
 //! (chord length, averaged knots) for `n = 10^3 … 10^6`, and bicubic surface interpolation of
 //! `n × n` grids for `n = 50 … 400`. Throughput is per point, so ns/point reads off directly.
 //! Curves are timed twice: `fresh` (every result in newly allocated memory, as
@@ -6,7 +6,7 @@
 //! result's buffers), which separates the arithmetic from the operating system's page faults.
 
 use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
-use lekalo::{interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization};
+use lekalo::{CurveInterpolation, InterpolationWorkspace, Parametrization, SurfaceInterpolation};
 
 mod common;
 
@@ -47,7 +47,9 @@ fn surface_interpolation(c: &mut Criterion) {
         group.throughput(Throughput::Elements((n * n) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &g, |b, g| {
             b.iter(|| {
-                interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)
+                SurfaceInterpolation::new(3, 3)
+                    .parametrization(Parametrization::ChordLength)
+                    .interpolate(g.as_view(), n, n)
                     .expect("surface")
             });
         });

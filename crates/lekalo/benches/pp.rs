@@ -1,4 +1,4 @@
-//! Piecewise-polynomial benchmarks (issue 6 workloads, issue 8): B-spline → pp form
+//! Piecewise-polynomial benchmarks: B-spline → pp form
 //! (`PiecewisePolynomial::from_bspline`) and pp → B-spline by de Boor–Fix functionals
 //! (`PiecewisePolynomial::to_bspline`) for cubic C² 3-D splines of 10, 100 and 1000 pieces,
 //! and `quasi_interpolate` of `x cos x` on the same spaces (scalar).

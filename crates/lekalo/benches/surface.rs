@@ -1,4 +1,4 @@
-//! Surface evaluation benchmarks (issue 8): a bicubic 3-D B-spline surface with a 30×30 net on
+//! Surface evaluation benchmarks: a bicubic 3-D B-spline surface with a 30×30 net on
 //! clamped uniform knots, evaluated on a 100×100 grid (`eval_grid`) and at 10^4 scattered
 //! parameters (`eval_batch`), and the same as a NURBS surface with weights in `[0.5, 1.5)`.
 //!

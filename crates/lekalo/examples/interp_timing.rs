@@ -1,4 +1,4 @@
-//! Timing of cubic global curve interpolation (issue 8) and bicubic surface interpolation.
+//! Timing of cubic global curve interpolation and bicubic surface interpolation.
 //!
 //! `cargo run --release --example interp_timing -- [n ...]` prints, for each `n`, the CPU time
 //! per point (from `/proc/self/schedstat`, so other load on the machine matters less than with
@@ -8,7 +8,7 @@
 
 use std::time::Instant;
 
-use lekalo::{interpolate_surface, CurveInterpolation, InterpolationWorkspace, Parametrization};
+use lekalo::{CurveInterpolation, InterpolationWorkspace, Parametrization, SurfaceInterpolation};
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -101,7 +101,9 @@ fn time_surface(n: usize, reps: usize) {
     let c0 = cpu_ns();
     for _ in 0..reps {
         let w0 = Instant::now();
-        let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)
+        let s = SurfaceInterpolation::new(3, 3)
+            .parametrization(Parametrization::ChordLength)
+            .interpolate(g.as_view(), n, n)
             .expect("surface");
         let wall = w0.elapsed().as_secs_f64();
         best_wall = best_wall.min(wall);

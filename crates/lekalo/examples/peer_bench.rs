@@ -19,14 +19,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use lekalo::{
-    interpolate_surface, parametrize, BezierCurve, CurveInterpolation, ElevationPlan,
-    InterpolationWorkspace, Parametrization,
+    parametrize, BezierCurve, CurveInterpolation, ElevationPlan, InterpolationWorkspace,
+    Parametrization, SurfaceInterpolation,
 };
 
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-/// Curve of the evaluation workload: cubic, 3-D, 1000 control points.
+/// Curve of the evaluation workload: cubic, 3-D, 1000 control points.
 const DEGREE: usize = 3;
 const DIM: usize = 3;
 const N_CTRL: usize = 1000;
@@ -142,24 +142,19 @@ fn surface(data: &Data<'_>, repeats: usize, results: &mut Results) -> Res<()> {
             continue;
         }
         let g = common::grid(n);
-        let s = interpolate_surface(g.as_view(), n, n, 3, 3, Parametrization::ChordLength)?;
+        let fit = SurfaceInterpolation::new(3, 3).parametrization(Parametrization::ChordLength);
+        let (s, report) = fit.interpolate_with_report(g.as_view(), n, n)?;
+        let (knots_u, knots_v) = s.knots();
         data.f64s(&format!("surf_q_{n}.bin"), g.as_slice())?;
-        data.f64s(&format!("surf_u_{n}.bin"), &s.params_u)?;
-        data.f64s(&format!("surf_v_{n}.bin"), &s.params_v)?;
-        data.f64s(&format!("surf_ku_{n}.bin"), s.knots_u.as_slice())?;
-        data.f64s(&format!("surf_kv_{n}.bin"), s.knots_v.as_slice())?;
-        data.f64s(&format!("surf_ctrl_{n}.bin"), s.control.as_slice())?;
+        data.f64s(&format!("surf_u_{n}.bin"), report.params_u())?;
+        data.f64s(&format!("surf_v_{n}.bin"), report.params_v())?;
+        data.f64s(&format!("surf_ku_{n}.bin"), knots_u.as_slice())?;
+        data.f64s(&format!("surf_kv_{n}.bin"), knots_v.as_slice())?;
+        data.f64s(&format!("surf_ctrl_{n}.bin"), s.control_points().as_slice())?;
         let fresh = median_ns(repeats, n * n, || {
             black_box(
-                interpolate_surface(
-                    black_box(g.as_view()),
-                    n,
-                    n,
-                    3,
-                    3,
-                    Parametrization::ChordLength,
-                )
-                .expect("surface"),
+                fit.interpolate(black_box(g.as_view()), n, n)
+                    .expect("surface"),
             );
         });
         println!("surface_{n}: {fresh:.1} ns/pt");

@@ -1,11 +1,11 @@
 //! Basis functions: Bernstein polynomials and B-splines.
 //!
-//! - Bernstein polynomials `b_{n,i}(t) = C(n,i) t^i (1−t)^{n−i}` (document 002 §C.4, document 004
-//!   eq. 1) and their derivatives.
+//! - Bernstein polynomials `b_{n,i}(t) = C(n,i) t^i (1−t)^{n−i}` (document 002, Bezier curves,
+//!   document 004 eq. 1) and their derivatives.
 //! - All non-zero B-spline basis functions of degree `p` at `t` by the Cox–de Boor triangular
 //!   scheme (P&T Algorithm A2.2) and their derivatives (A2.3).
-//! - A single `N_{i,p}(t)` by the lecture's recursive definition (document 002 §C.5), the slow
-//!   textbook oracle for the fast kernels.
+//! - A single `N_{i,p}(t)` by the lecture's recursive definition (document 002, B-splines), the
+//!   slow textbook oracle for the fast kernels.
 //!
 //! The B-spline as a divided difference of truncated powers (document 003 eq. 4) lives with the
 //! divided differences in `divdiff`.
@@ -300,7 +300,7 @@ pub fn basis_derivatives(
     Ok((span, out))
 }
 
-/// One B-spline `N_{i,p}(t)` by the recursive definition of the lecture (document 002 §C.5,
+/// One B-spline `N_{i,p}(t)` by the recursive definition of the lecture (document 002, B-splines,
 /// Cox–de Boor):
 /// `N_{i,0}(t) = 1` on `[t_i, t_{i+1})`,
 /// `N_{i,p}(t) = (t − t_i)/(t_{i+p} − t_i) · N_{i,p−1}(t) + (t_{i+p+1} − t)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}(t)`,
@@ -422,8 +422,8 @@ mod tests {
         assert!(d[9..].iter().all(|&v| v == 0.0), "orders above n must be 0");
     }
 
-    /// The lecture's worked example, document 002 §C.5, completed in the digest: piecewise
-    /// formulas of N_{i,1} and N_{i,2} on knots [0,0,1,2,3,3].
+    /// The lecture's worked example (docs/theory/foundations.md#the-lectures-worked-example),
+    /// completed: piecewise formulas of N_{i,1} and N_{i,2} on knots [0,0,1,2,3,3].
     #[test]
     fn lecture_example_piecewise_formulas() {
         let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();

@@ -293,13 +293,7 @@ pub enum Error {
         /// The largest size accepted.
         max: usize,
     },
-    // -- variants added by later issues go below, each group under its own comment --
-
-    // (interpolation, issue 3)
-
-    // (Bezier order change, issue 4)
-
-    // (blending, issue 5)
+    // -- blending --
     /// Two curves that must share an end point (a deformation's ends, or the corner of a
     /// corner transition) do not: their distance exceeds the tolerance, which is
     /// [`ENDPOINT_TOLERANCE`](crate::ENDPOINT_TOLERANCE) times the largest absolute coordinate.
@@ -323,9 +317,91 @@ pub enum Error {
         /// The tolerance it was compared with.
         tolerance: f64,
     },
-    // (piecewise polynomials, issue 6)
+    // (fitting)
+    /// The data of a least-squares fit leave a basis function without support: the
+    /// Schoenberg–Whitney conditions fail (a knot span without data, or more control points than
+    /// distinct data parameters), so the fit is not unique. `start..end` is the knot span that
+    /// holds no data (or the support of the basis function when every span there holds some).
+    ///
+    /// ```
+    /// use lekalo::fit::check_schoenberg_whitney;
+    /// use lekalo::{Error, KnotVector};
+    /// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.2, 0.4, 0.6, 1.0, 1.0, 1.0])?;
+    /// let e = check_schoenberg_whitney(&[0.0, 0.05, 0.1, 0.15, 0.8, 1.0], 2, &kv).unwrap_err();
+    /// assert!(matches!(e, Error::SchoenbergWhitney { basis: 4, .. }));
+    /// assert!(e.to_string().contains("[0.4, 0.6]"));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error(
+        "no data for basis function {basis}: the knot span [{start}, {end}] holds too few data \
+         parameters (Schoenberg–Whitney conditions); remove knots there, use fewer control \
+         points, or add data in that span"
+    )]
+    SchoenbergWhitney {
+        /// Index of the first basis function (control point) left without a data parameter.
+        basis: usize,
+        /// Start of the knot span without data.
+        start: f64,
+        /// End of that span.
+        end: f64,
+    },
 
-    // (formats, issue 7)
+    /// A data weight that is NaN, infinite or negative, or weights that are all zero.
+    ///
+    /// ```
+    /// use lekalo::fit::FitData;
+    /// use lekalo::{Error, PointsRef};
+    /// let q = [0.0, 1.0, 2.0];
+    /// let data = FitData::new(PointsRef::from_flat(1, &q)?, &[0.0, 0.5, 1.0])?;
+    /// let e = data.with_weights(&[1.0, f64::NAN, 1.0]).unwrap_err();
+    /// assert!(matches!(e, Error::InvalidDataWeight { index: 1, .. }));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error(
+        "data weight {index} is {weight}: weights must be finite and ≥ 0, with at least one \
+         positive"
+    )]
+    InvalidDataWeight {
+        /// Index of the weight (0 when all are zero).
+        index: usize,
+        /// Its value.
+        weight: f64,
+    },
+
+    /// A negative smoothing weight λ or smoothing target `s`.
+    ///
+    /// ```
+    /// use lekalo::fit::{smoothing_spline, FitData, Lambda};
+    /// use lekalo::{Error, PointsRef};
+    /// let y = [0.0, 1.0, 0.0, 1.0];
+    /// let data = FitData::new(PointsRef::from_flat(1, &y)?, &[0.0, 1.0, 2.0, 3.0])?;
+    /// let e = smoothing_spline(&data, Lambda::Given(-1.0)).unwrap_err();
+    /// assert!(matches!(e, Error::NegativeSmoothing { what: "λ", .. }));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error("smoothing {what} = {value}: it must be finite and ≥ 0 (0 interpolates)")]
+    NegativeSmoothing {
+        /// "λ" (penalty weight) or "s" (residual target).
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+
+    /// A fitting tolerance that is not positive and finite.
+    ///
+    /// ```
+    /// use lekalo::fit::{fit_tolerance, ToleranceOptions};
+    /// use lekalo::{Error, PointsRef};
+    /// let q = [0.0, 0.0, 1.0, 1.0, 2.0, 0.0, 3.0, 1.0];
+    /// let e = fit_tolerance(PointsRef::from_flat(2, &q)?, &ToleranceOptions::new(3, 0.0)).unwrap_err();
+    /// assert!(matches!(e, Error::NonPositiveTolerance { .. }));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error("tolerance {value}: it must be finite and > 0 (a distance in the data's units)")]
+    NonPositiveTolerance {
+        /// The value given.
+        value: f64,
+    },
 
     // (geometric queries)
     /// A query point lies so far from the object (more than

@@ -8,9 +8,10 @@
 //!   last non-empty span, so that curves evaluate at their end point.
 //! - A knot may be repeated at most `p + 1` times.
 //!
-//! Construction rules follow document 000 (digest §A): clamped uniform (eq. 2), averaging
-//! (eq. 3), averaging with two extra knots for end derivatives (eq. 4), knots at the parameters
-//! (eq. 8); and the Curry–Schoenberg rule of document 003 (digest §D.4, Theorem 4.5).
+//! Construction rules follow document 000 (docs/theory/interpolation.md#averaged-knots): clamped
+//! uniform (eq. 2), averaging (eq. 3), averaging with two extra knots for end derivatives (eq. 4),
+//! knots at the parameters (eq. 8); and the Curry–Schoenberg rule of document 003 (Theorem 4.5,
+//! docs/theory/pp.md#curry-schoenberg-knots).
 
 use serde::{Deserialize, Serialize};
 
@@ -175,7 +176,7 @@ impl KnotVector {
     ///
     /// ```
     /// use lekalo::KnotVector;
-    /// // digest T.1: chord-length parameters of P&T Example 9.1
+    /// // chord-length parameters of P&T Example 9.1
     /// let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
     /// let kv = KnotVector::averaged(&t, 3).unwrap();
     /// assert!((kv.as_slice()[4] - 28.0 / 51.0).abs() < 1e-15);
@@ -222,7 +223,7 @@ impl KnotVector {
     /// Knots equal to the parameters, document 000 eq. (8) (P&T eq. 9.17) generalised to any
     /// degree: `p + 1` copies of `t̄_0`, the interior parameters `t̄_1 … t̄_{n−1}`, `p + 1` copies
     /// of `t̄_n`. For `p = 3` this gives the `n + 7` knots and `n + 3` control points of the C²
-    /// cubic with end conditions (§A.3–A.4).
+    /// cubic with end conditions (§3–4).
     ///
     /// # Errors
     /// [`Error::Degree`] if `degree == 0`; parameter errors as [`check_parameters`].
@@ -243,13 +244,13 @@ impl KnotVector {
         Ok(KnotVector::from_raw(knots))
     }
 
-    /// Knots by the Curry–Schoenberg rule (document 003, digest §D.4 Theorem 4.5): for strictly
-    /// increasing breakpoints `ξ_1 < … < ξ_{l+1}`, continuity conditions `ν_2 … ν_l` (the number
-    /// of derivatives, counting the value, that are continuous at each interior breakpoint;
-    /// `0 ≤ ν_i ≤ k`) and order `k` (degree `k − 1`), the knots are `k` copies of `ξ_1`, then
-    /// `ξ_i` repeated `k − ν_i` times, then `k` copies of `ξ_{l+1}`. The B-splines of order `k` on
-    /// these knots are a basis of `P_{k,ξ,ν}` on `[ξ_1, ξ_{l+1}]`, of dimension
-    /// `n = k + Σ (k − ν_i)`.
+    /// Knots by the Curry–Schoenberg rule (document 003, Theorem 4.5;
+    /// docs/theory/pp.md#curry-schoenberg-knots): for strictly increasing breakpoints `ξ_1 < … <
+    /// ξ_{l+1}`, continuity conditions `ν_2 … ν_l` (the number of derivatives, counting the value,
+    /// that are continuous at each interior breakpoint; `0 ≤ ν_i ≤ k`) and order `k` (degree `k −
+    /// 1`), the knots are `k` copies of `ξ_1`, then `ξ_i` repeated `k − ν_i` times, then `k` copies
+    /// of `ξ_{l+1}`. The B-splines of order `k` on these knots are a basis of `P_{k,ξ,ν}` on `[ξ_1,
+    /// ξ_{l+1}]`, of dimension `n = k + Σ (k − ν_i)`.
     ///
     /// The end knots are chosen clamped (`x_1 = … = x_k = ξ_1`, `x_{n+1} = … = x_{n+k} = ξ_{l+1}`),
     /// as in the thesis's practical task; any choice outside the interval would also do.
@@ -499,7 +500,7 @@ impl SpanCursor<'_> {
     }
 }
 
-/// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §D.4): at least two, finite,
+/// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §4): at least two, finite,
 /// strictly increasing, with a width `ξ_{l+1} − ξ_1` that does not overflow.
 ///
 /// # Errors

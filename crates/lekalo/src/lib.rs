@@ -5,22 +5,24 @@
 //! A spline kernel in pure Rust: Bezier, B-spline and NURBS curves and surfaces; interpolation
 //! of points and grids; Bezier degree change; C^k blending of curves; piecewise polynomials and
 //! their B-spline bases. It implements five Russian documents on curves and splines (see
-//! `docs/` and the digest) and what users of SciPy, Open CASCADE, geomdl or tinyspline expect.
+//! `docs/theory.md`) and what users of SciPy, Open CASCADE, geomdl or tinyspline expect.
 //!
 //! ## What is here
 //!
-//! | area | main items | source |
+//! | area (module) | main items | source |
 //! |---|---|---|
-//! | points, knots, bases | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; doc 002 §C.5; doc 003 Thm 4.5 |
-//! | curves | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | doc 002 §C.4–C.5; P&T ch. 2–5, 7 |
-//! | surfaces | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
-//! | interpolation | [`CurveInterpolation`], [`interpolate_surface`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; doc 002 §C.2–C.3 |
-//! | Bezier degree change | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
-//! | blending | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
-//! | piecewise polynomials | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | points, knots, bases ([`basis`]) | [`Points`], [`KnotVector`], [`basis`] | doc 000 eq. 2–4, 8; document 002, B-splines; doc 003 Thm 4.5 |
+//! | curves ([`curve`]) | [`BezierCurve`], [`BSplineCurve`], [`NurbsCurve`] (exact circles and arcs) | document 002, Bezier curves and B-splines; P&T ch. 2–5, 7 |
+//! | surfaces ([`surface`]) | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
+//! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; document 002, four-point cubic and Hermite segment |
+//! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
+//! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
+//! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
 //! ## Conventions
-//! - Scalars are `f64`. Points of any dimension are stored flat and point-major ([`Points`]).
+//! - Scalars are `f64`. Points of any dimension are stored flat and point-major ([`Points`],
+//!   built by [`Points::from_flat`]).
 //! - Degree `p`, order `p + 1`. Knot domains are `[t_p, t_{n+1}]`; spans are half-open and the
 //!   right end of the domain belongs to the last span ([`KnotVector`]).
 //! - NURBS are B-splines over homogeneous points `(w·x, …, w)`.
@@ -30,9 +32,10 @@
 //!   - on Linux, large result buffers (4 MiB and more, e.g. the control points of an
 //!     interpolation through 10^6 points) are marked for transparent huge pages with `madvise`,
 //!     as NumPy marks its arrays, because first-touch page faults otherwise cost as much as the
-//!     arithmetic (`large_buffer`);
+//!     arithmetic (`numeric/large_buffer.rs`);
 //!   - a few throughput-bound kernels have a second copy compiled with AVX2, called after the
-//!     processor's AVX2 is detected (`isa`); without FMA, so both copies return the same bits.
+//!     processor's AVX2 is detected (`numeric/isa.rs`); without FMA, so both copies return the
+//!     same bits.
 //!
 //!   See `docs/performance.md`.
 //!
@@ -69,17 +72,25 @@ pub use curve::{
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --
 pub mod surface;
 
-pub use surface::{BSplineSurface, BezierPatch, BezierSurface, NurbsSurface, RationalBezierPatch};
+pub use surface::{
+    surface_curvature, BSplineSurface, BezierPatch, BezierSurface, NurbsSurface,
+    RationalBezierPatch, SurfaceCurvature,
+};
 
 // -- interpolation: curves and surfaces through points, natural and Hermite splines --
 pub mod interpolate;
 
 pub use interpolate::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
     natural_cubic_spline, parametrize, CubicHermite, CurveInterpolation, EndCondition,
-    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolant, TangentEstimate,
-    HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
+    SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+};
+// the grid interpolation functions before `SurfaceInterpolation`, kept for existing code
+#[allow(deprecated)]
+pub use interpolate::{
+    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
+    SurfaceInterpolant,
 };
 
 // -- degree change of Bezier curves and surfaces --
@@ -111,6 +122,14 @@ pub use pp::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
     sample_quasi_interpolant, truncated_power, NewtonForm, PiecewisePolynomial, PpSpace,
     QuasiSamples, TauRule, DEFAULT_CONTINUITY_RTOL,
+};
+
+// -- fitting: least squares, smoothing, fitting to a tolerance --
+pub mod fit;
+
+pub use fit::{
+    fit_tolerance, least_squares, place_knots, smoothing_condition, smoothing_spline, CurveFit,
+    EndConstraints, FitData, FitReport, Lambda, ToleranceOptions,
 };
 
 // -- numerical building blocks (crate-private) and the test oracle --

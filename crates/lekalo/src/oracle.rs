@@ -1,13 +1,13 @@
 //! Slow, transparent reference evaluators (compiled for tests only).
 //!
-//! - B-spline curves by the lecture's recursive Cox–de Boor definition (document 002 §C.5,
+//! - B-spline curves by the lecture's recursive Cox–de Boor definition (document 002, B-splines,
 //!   [`basis_function_recursive`]) summed over **all** control points, with no span search and no
 //!   triangular scheme. At the right end of an unclamped domain (`t = t_{n+1} < t_m`) the
 //!   right-continuous definition would use the span beyond the domain, so there the oracle uses
 //!   the left-continuous variant (`N_{i,0} = 1` on `(t_i, t_{i+1}]`), i.e. the left limit, which
 //!   is the value the library defines at the end of the domain.
 //! - Bezier curves by the Bernstein formula with explicit binomial coefficients and powers
-//!   (document 002 §C.4): `P(t) = Σ C(n,i) t^i (1 − t)^{n−i} P_i`.
+//!   (document 002, Bezier curves): `P(t) = Σ C(n,i) t^i (1 − t)^{n−i} P_i`.
 //!
 //! The fast kernels (P&T A2.1/A2.2/A3.1 and de Casteljau) must agree with these to
 //! [`ORACLE_TOL`] relative to the control net's scale.
@@ -191,7 +191,7 @@ mod tests {
         }
     }
 
-    /// The lecture's table (document 002 §C.5), through the oracle itself.
+    /// The lecture's table (document 002, B-splines), through the oracle itself.
     #[test]
     fn oracle_reproduces_lecture_table() {
         let ctrl = Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]]).unwrap();

@@ -1,6 +1,6 @@
-//! Blending with jump-smoothing polynomials (document 001, digest §B): deformations, splines
-//! through points, corner smoothing. Continuity is *measured*: derivatives up to order k agree
-//! at the joins, derivative k + 1 in general does not.
+//! Blending with jump-smoothing polynomials (document 001; docs/theory/blending.md): deformations,
+//! splines through points, corner smoothing. Continuity is *measured*: derivatives up to order k
+//! agree at the joins, derivative k + 1 in general does not.
 
 mod common;
 use common::config;
@@ -69,7 +69,7 @@ fn spline(
     BlendSpline::new(pts.as_view(), local, opts).unwrap()
 }
 
-// ---------------------------------------------------------------- deformation (§B.2)
+// ---------------------------------------------------------------- deformation (document 001 §2)
 
 // Two cubics with common end points (first control legs differ).
 fn cubic_pair(c: [f64; 8], e: [f64; 4]) -> (BezierCurve, BezierCurve) {
@@ -86,8 +86,9 @@ fn cubic_pair(c: [f64; 8], e: [f64; 4]) -> (BezierCurve, BezierCurve) {
 proptest! {
     #![proptest_config(config(48))]
 
-    // Contact of order exactly k with p_1 at u = 0 and with p_2 at u = 1 (digest §B.2
-    // verification), for k = 1 … 4, and the exact Bezier form of degree (2k − 1) + 3 agrees.
+    // Contact of order exactly k with p_1 at u = 0 and with p_2 at u = 1
+    // (docs/theory/blending.md#why-the-index-is-k-1), for k = 1 … 4, and the exact Bezier form of
+    // degree (2k − 1) + 3 agrees.
     #[test]
     fn deformation_has_contact_of_order_k(
         c in prop::array::uniform8(-3.0f64..3.0),
@@ -115,7 +116,7 @@ proptest! {
     }
 }
 
-// k = 1 is the linear blend (1 − u) p_1 + u p_2 (digest §B.2, the simplest case).
+// k = 1 is the linear blend (1 − u) p_1 + u p_2 (document 001 §2, the simplest case).
 #[test]
 fn k1_is_the_linear_blend() {
     let (p1, p2) = cubic_pair(
@@ -196,10 +197,10 @@ fn golden_blend_of_two_arcs() {
     }
 }
 
-// ---------------------------------------------------------------- splines (§B.3)
+// ---------------------------------------------------------------- splines (document 001 §3)
 
-// Digest §B.3 note 3: parabolas at parameters (−1, 0, 1), (0, 1, 2) with k = 1 give exactly
-// the uniform Catmull–Rom spline.
+// docs/theory/blending.md#local-curves: parabolas at parameters (−1, 0, 1), (0, 1, 2) with k = 1
+// give exactly the uniform Catmull–Rom spline.
 #[test]
 fn golden_parabolas_k1_are_catmull_rom() {
     let pts = [
@@ -309,8 +310,8 @@ fn parametric_constructions_are_ck() {
 }
 
 // Document 001's arcs (angle linear on each arc) are only G^k: across P_j the l-th derivatives
-// differ by exactly ρ^l, ρ = (β Δ_{j−1}) / (α Δ_j), the ratio of the angular speeds (digest §B.3
-// note 2: β/α with uniform parameters).
+// differ by exactly ρ^l, ρ = (β Δ_{j−1}) / (α Δ_j), the ratio of the angular speeds (β/α with
+// uniform parameters; docs/theory/blending.md#parametric-and-geometric-continuity).
 #[test]
 fn uniform_angle_arcs_are_gk_with_speed_ratio() {
     let s0 = spline(

@@ -1,4 +1,4 @@
-//! Condition estimate of curve interpolation (issue 9): `CurveInterpolation::condition` against
+//! Condition estimate of curve interpolation: `CurveInterpolation::condition` against
 //! the dense `κ_1` of the collocation matrix, the limit of `CurveInterpolation::max_condition`,
 //! and what nearly coincident points do to the condition number and to the interpolant.
 
@@ -7,13 +7,12 @@ use common::config;
 
 use lekalo::basis::basis_functions;
 use lekalo::{
-    interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
     parametrize, BSplineCurve, CurveInterpolation, EndCondition, Error, KnotPlacement, KnotVector,
-    Parametrization, Points, PointsRef,
+    Parametrization, Points, PointsRef, SurfaceInterpolation,
 };
 use proptest::prelude::*;
 
-/// Residual tolerance at the data relative to the data's extent (issue 3's criterion).
+/// Residual tolerance at the data relative to the data's extent (the interpolation tests' criterion).
 const REL: f64 = 1e-12;
 
 /// `n` unit-spaced points on a wave, 2-D.
@@ -338,30 +337,39 @@ fn sheet(gap: Option<f64>) -> Points {
 fn surface_estimate_is_the_product_of_the_directions() {
     for (gap, p, q) in [(None, 3, 3), (None, 2, 4), (Some(1e-6), 3, 2)] {
         let grid = sheet(gap);
-        let param = Parametrization::ChordLength;
-        let s = interpolate_surface(grid.as_view(), 7, 5, p, q, param).unwrap();
-        let exact = dense_full_kappa(&s.knots_u, p, &s.params_u)
-            * dense_full_kappa(&s.knots_v, q, &s.params_v);
-        let est = interpolate_surface_condition(grid.as_view(), 7, 5, p, q, param).unwrap();
+        let fit = SurfaceInterpolation::new(p, q).parametrization(Parametrization::ChordLength);
+        let (s, report) = fit.interpolate_with_report(grid.as_view(), 7, 5).unwrap();
+        let exact = dense_full_kappa(s.knots_u(), p, report.params_u())
+            * dense_full_kappa(s.knots_v(), q, report.params_v());
+        let est = fit.condition(grid.as_view(), 7, 5).unwrap();
+        assert_eq!(report.condition(), est, "the report's estimate");
         // each direction's estimate is within 3 below its κ_1 (f64 solves: relative κ·ε)
         assert!(
             est >= exact / 9.0 && est <= exact * (1.0 + 64.0 * f64::EPSILON * exact),
             "{gap:?}, ({p}, {q}): estimate {est}, dense {exact}"
         );
-        // under the limit the result is interpolate_surface's
-        let limited =
-            interpolate_surface_max_condition(grid.as_view(), 7, 5, p, q, param, 1e15).unwrap();
+        // under the limit the result is the unlimited one
+        let limited = fit
+            .clone()
+            .max_condition(1e15)
+            .interpolate(grid.as_view(), 7, 5)
+            .unwrap();
         assert_eq!(limited, s);
+        assert_eq!(fit.interpolate(grid.as_view(), 7, 5).unwrap(), s);
     }
 }
 
 #[test]
 fn surface_with_crowded_rows_is_ill_conditioned() {
     let grid = sheet(Some(1e-10));
-    let param = Parametrization::ChordLength;
-    let kappa = interpolate_surface_condition(grid.as_view(), 7, 5, 3, 3, param).unwrap();
+    let fit = SurfaceInterpolation::new(3, 3).parametrization(Parametrization::ChordLength);
+    let kappa = fit.condition(grid.as_view(), 7, 5).unwrap();
     assert!(kappa > 1e9, "κ_1 = {kappa}");
-    let e = interpolate_surface_max_condition(grid.as_view(), 7, 5, 3, 3, param, 1e8).unwrap_err();
+    let e = fit
+        .clone()
+        .max_condition(1e8)
+        .interpolate(grid.as_view(), 7, 5)
+        .unwrap_err();
     let Error::IllConditioned { reason } = &e else {
         panic!("expected IllConditioned, got {e:?}");
     };
@@ -370,11 +378,13 @@ fn surface_with_crowded_rows_is_ill_conditioned() {
         "{reason}"
     );
     // well-spaced: small
-    let fine = interpolate_surface_condition(sheet(None).as_view(), 7, 5, 3, 3, param).unwrap();
+    let fine = fit.condition(sheet(None).as_view(), 7, 5).unwrap();
     assert!(fine < 100.0, "κ_1 = {fine}");
     for limit in [0.0, f64::NAN] {
         assert!(matches!(
-            interpolate_surface_max_condition(grid.as_view(), 7, 5, 3, 3, param, limit),
+            fit.clone()
+                .max_condition(limit)
+                .interpolate(grid.as_view(), 7, 5),
             Err(Error::InvalidArgument { .. })
         ));
     }

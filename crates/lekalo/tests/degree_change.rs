@@ -1,7 +1,7 @@
-//! Degree ("order") change of Bezier curves and surfaces (document 004, digest §E).
+//! Degree ("order") change of Bezier curves and surfaces (document 004; docs/theory/degree.md).
 //!
 //! Golden tests: the paper's Examples 1 and 2, every matrix compared exactly in rational
-//! arithmetic (source: digest §E.2–E.3, "All matrices as printed; all verified"). Property tests
+//! arithmetic (docs/theory/degree.md#worked-examples). Property tests
 //! (dimensions 1 to 6): elevation keeps the curve or surface, reduction inverts elevation,
 //! one-step elevation equals repeated eq. 6, monomial round trip, reductions below the real
 //! degree are refused.
@@ -90,7 +90,7 @@ fn surface_dev(a: &Points, ma: usize, b: &Points, mb: usize) -> f64 {
 }
 
 // ------------------------------------------------------------------------------------------
-// Golden: document 004, Example 1 (digest §E.2)
+// Golden: document 004, Example 1 (eq. (7)–(8))
 // ------------------------------------------------------------------------------------------
 
 #[test]
@@ -271,7 +271,7 @@ fn example_1_task_3_cubic_to_quintic_in_one_step() {
 }
 
 // ------------------------------------------------------------------------------------------
-// Golden: document 004, Example 2 (digest §E.3)
+// Golden: document 004, Example 2 (eq. (9)–(10))
 // ------------------------------------------------------------------------------------------
 
 const EXAMPLE_2: [[f64; 2]; 6] = [
@@ -398,8 +398,9 @@ fn example_2_floating_point_paths() {
     assert!(curve_dev(&quintic, &quartic) < 1e-13, "quartic");
 }
 
-/// Digest §E.4, Fig. 5: a (4, 3) net with one zero bottom row of S has real u-order 3; (3, 3),
-/// (3, 6) and (4, 6) keep the shape, (6, 2) lowers m without a defect and is refused.
+/// Document 004, Fig. 5 (docs/theory/degree.md#degree-change-of-surfaces): a (4, 3) net with one
+/// zero bottom row of S has real u-order 3; (3, 3), (3, 6) and (4, 6) keep the shape, (6, 2) lowers
+/// m without a defect and is refused.
 #[test]
 fn figure_5_surface_order_change() {
     let base: Vec<f64> = (0..16 * 3)
@@ -441,8 +442,9 @@ fn curve_strategy(max_degree: usize) -> impl Strategy<Value = BezierCurve> {
 }
 
 /// A curve whose real degree is exactly `k` by construction: monomial coefficients with the
-/// first coordinate of `s_k` at least 1 in magnitude (digest §E.3: real degree = index of the
-/// last non-zero monomial coefficient). Degrees up to 8, where the power basis is accurate.
+/// first coordinate of `s_k` at least 1 in magnitude (real degree = index of the last non-zero
+/// monomial coefficient, docs/theory/degree.md#degree-defect-and-real-degree). Degrees up to 8,
+/// where the power basis is accurate.
 fn planted_degree_strategy() -> impl Strategy<Value = (BezierCurve, usize)> {
     (1usize..=6, 1usize..=8).prop_flat_map(|(dim, k)| {
         (

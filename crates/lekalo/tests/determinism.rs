@@ -1,9 +1,9 @@
-//! Determinism (issue 9): the same input gives the same output **bits** — on a fresh object or a
+//! Determinism: the same input gives the same output **bits** — on a fresh object or a
 //! clone, in a batch or one point at a time, in any order of the parameters, on any thread.
 //!
 //! Bit-identity of batch and single evaluation holds because both run the same kernel on the
 //! same span with the same operation order; the span cursor of the batch only changes how the
-//! span is *found*, never which span is used. Parallel batch paths (issue 8, fast evaluation)
+//! span is *found*, never which span is used. Parallel batch paths (fast evaluation)
 //! must keep this: see `docs/robustness.md`.
 
 use lekalo::{

@@ -1,4 +1,4 @@
-//! Numerical extremes (issue 9): data offset by 1e8, scaled by 1e-8 and 1e8, nearly coincident
+//! Numerical extremes: data offset by 1e8, scaled by 1e-8 and 1e8, nearly coincident
 //! knots, knot multiplicities at the limit, degrees up to 20 against the slow recursive oracle,
 //! NURBS weight ratios from 1e-6 to 1e6. Every result keeps its relative accuracy, or the call
 //! fails with a clear error.

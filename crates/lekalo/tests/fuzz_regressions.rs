@@ -1,5 +1,5 @@
 //! One test per crash, hang or huge allocation ever found by the fuzz targets in `fuzz/` (or by
-//! the audit that followed a fuzz finding of the same class), issue 9.
+//! the audit that followed a fuzz finding of the same class).
 //!
 //! Each test names where it came from and the commit that fixed it; every one failed (panicked
 //! on an integer overflow, or tried to allocate gigabytes) before the fix. Tests run in the debug
@@ -432,7 +432,7 @@ fn deformation_that_overflows_is_reported() {
     );
 }
 
-/// Fuzz target `degree` (crash-af0d9c0b…, session 2): elevating a degree-0 B-spline (a step
+/// Fuzz target `degree` (crash-af0d9c0b…): elevating a degree-0 B-spline (a step
 /// function: every interior knot a discontinuity, multiplicity `p + 1`) dropped its interior
 /// knots and tripped a debug assertion in the blossoming elevation. Discontinuities of higher
 /// degrees (multiplicity `p + 1`) must stay discontinuities, with each side reproduced.
@@ -480,7 +480,7 @@ fn elevating_discontinuous_bsplines_keeps_both_sides() {
     }
 }
 
-/// Fuzz target `interpolation` (crash-a6af776d…, session 2): 1-D data from −3e305 to `f64::MAX`
+/// Fuzz target `interpolation` (crash-a6af776d…): 1-D data from −3e305 to `f64::MAX`
 /// (uniform parameters, degree 1, averaged knots). Centring on the first point overflowed, and
 /// the curve came back as `Ok` with control points `[.., 0, inf, ..]` (NaN between them).
 #[test]
@@ -499,7 +499,7 @@ fn interpolation_of_data_spanning_beyond_f64_is_refused() {
     }
 }
 
-/// Fuzz target `blending` (crash-c955576e…, session 2): a corner transition of a 1-D Bezier
+/// Fuzz target `blending` (crash-c955576e…): a corner transition of a 1-D Bezier
 /// curve whose control points start at `f64::MAX` returned `[MAX, 0, NaN, NaN]` as `Ok` for the
 /// point and three derivatives (the second derivative of the curve overflows).
 #[test]
@@ -525,7 +525,7 @@ fn corner_transition_that_overflows_is_reported() {
     );
 }
 
-/// Fuzz target `interpolation` (crash-7fbdc617…, session 2): chord-length parameters of
+/// Fuzz target `interpolation` (crash-7fbdc617…): chord-length parameters of
 /// `[2.2e-308, -1.5, -2, f64::MAX]` are subnormal (`1.5 / f64::MAX`); the rounded Cox–de Boor
 /// values put a non-zero outside the band the exact basis allows, and the collocation solve
 /// indexed past its row buffer.
@@ -552,7 +552,7 @@ fn interpolation_with_subnormal_parameter_spacing_is_an_error() {
     assert!(r.is_err(), "{r:?}");
 }
 
-/// Fuzz target `blending` (crash-aaedb770…, session 2): a closed blend spline of circular arcs
+/// Fuzz target `blending` (crash-aaedb770…): a closed blend spline of circular arcs
 /// with a segment of length ~1e-13 (points 1e-127 apart, centripetal parameters); its 8th
 /// derivative scale `Δ^{−8}` overflowed and `inf · 0` came back as NaN inside an `Ok`.
 #[test]
@@ -606,7 +606,7 @@ fn blend_spline_derivatives_that_overflow_are_reported() {
     assert!(errors > 0, "the overflow is reported as NonFinite");
 }
 
-/// Fuzz target `interpolation` (crash-b6a8a44b…, session 2, third run): Hermite curves through
+/// Fuzz target `interpolation` (crash-b6a8a44b…): Hermite curves through
 /// `[MIN_POSITIVE, 1e300, f64::MAX]` on parameters `[−2, −1.75, f64::MAX]` (tangents as large as
 /// the points): `h·D` overflows and `CubicHermite::eval` returned NaN inside an `Ok`.
 #[test]
@@ -643,9 +643,9 @@ fn hermite_evaluation_that_overflows_is_reported() {
     assert!(overflow > 0, "the overflow is reported as NonFinite");
 }
 
-/// Fuzz target `interpolation` (crash-4aba54b3…, session 2, fourth run): an 8 × 7 grid of 1-D values,
+/// Fuzz target `interpolation` (crash-4aba54b3…): an 8 × 7 grid of 1-D values,
 /// mostly `1 − ε/2`, with `f64::MAX`, −6e66 and 1e300 among them (uniform parameters, degrees
-/// 7 and 3): `interpolate_surface` returned a control net full of NaN inside an `Ok`.
+/// 7 and 3): surface interpolation returned a control net full of NaN inside an `Ok`.
 #[test]
 fn surface_interpolation_that_overflows_is_reported() {
     let mut values = vec![0.9999999999999999; 56];
@@ -654,7 +654,8 @@ fn surface_interpolation_that_overflows_is_reported() {
     values[30] = -6.27743856100529e66;
     values[49..].copy_from_slice(&[0.0, 1e300, -2.0, -1.5, 1e8, 1e8, 1e8]);
     let grid = Points::from_flat(1, values).expect("finite");
-    let r =
-        lekalo::interpolate_surface(grid.as_view(), 8, 7, 7, 3, lekalo::Parametrization::Uniform);
+    let r = lekalo::SurfaceInterpolation::new(7, 3)
+        .parametrization(lekalo::Parametrization::Uniform)
+        .interpolate(grid.as_view(), 8, 7);
     assert!(matches!(r, Err(Error::IllConditioned { .. })), "{r:?}");
 }

@@ -1,23 +1,23 @@
-//! Interpolation (issue 3): golden numbers of digest Appendix T.1 (document 000 has no numeric
-//! example; the digest author computed these and cross-checked them with SciPy), residuals at
-//! the data, prescribed derivatives, offset/scale invariance, closed curves, surfaces, Hermite,
-//! one negative test per error, and proptest invariants.
+//! Interpolation: golden numbers of P&T Example 9.1 (docs/theory/interpolation.md#test-vectors;
+//! document 000 has no numeric example, so these were computed independently and cross-checked with
+//! SciPy), residuals at the data, prescribed derivatives, offset/scale invariance, closed curves,
+//! surfaces, Hermite, one negative test per error, and proptest invariants.
 
 mod common;
 use common::config;
 
 use lekalo::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    interpolate_surface, natural_cubic_spline, parametrize, BSplineCurve, CubicHermite,
+    natural_cubic_spline, parametrize, BSplineCurve, BSplineSurface, CubicHermite,
     CurveInterpolation, EndCondition, Error, KnotPlacement, Parametrization, Points, PointsRef,
-    TangentEstimate,
+    SurfaceInterpolation, SurfaceInterpolationReport, TangentEstimate,
 };
 use proptest::prelude::*;
 
-/// Residual tolerance relative to the data's extent (the issue's acceptance criterion).
+/// Residual tolerance relative to the data's extent (what an interpolant must meet at its data).
 const REL: f64 = 1e-12;
 
-/// P&T Example 9.1, digest T.1.
+/// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 fn example() -> Points {
     Points::from_2d(&[
         [0.0, 0.0],
@@ -33,7 +33,7 @@ fn chord() -> Vec<f64> {
     vec![0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0]
 }
 
-/// Compares with a tolerance; the T.1 numbers are printed with 6 decimals.
+/// Compares with a tolerance; the reference numbers are given with 6 decimals.
 fn assert_near(got: &[f64], expect: &[f64], tol: f64, what: &str) {
     assert_eq!(got.len(), expect.len(), "{what}: length");
     for (i, (g, e)) in got.iter().zip(expect).enumerate() {
@@ -64,10 +64,10 @@ fn derivative(c: &BSplineCurve, t: f64, order: usize) -> Vec<f64> {
     c.eval_derivatives(t, order).unwrap().point(order).to_vec()
 }
 
-// ---------------------------------------------------------------- golden numbers, digest T.1
+// ---------------------------------------------------------------- golden numbers, P&T Example 9.1
 
 #[test]
-fn t1_a1_cubic_three_parametrisations() {
+fn example_9_1_free_cubic_three_parametrisations() {
     let q = example();
     let cases: [(Parametrization, f64, [[f64; 2]; 3]); 2] = [
         (
@@ -142,7 +142,7 @@ fn t1_a1_cubic_three_parametrisations() {
 }
 
 #[test]
-fn t1_a1_chord_curve_values_and_quadratic() {
+fn example_9_1_chord_curve_values_and_quadratic() {
     let q = example();
     let c = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
     for (t, e) in [
@@ -182,7 +182,7 @@ fn first_derivatives() -> EndCondition {
 }
 
 #[test]
-fn t1_a2_end_derivatives_any_degree() {
+fn example_9_1_end_derivatives_any_degree() {
     let q = example();
     let cases: [(usize, Vec<f64>, [[f64; 2]; 7]); 2] = [
         (
@@ -256,9 +256,9 @@ fn t1_a2_end_derivatives_any_degree() {
 }
 
 #[test]
-fn t1_a3_cubic_knots_at_parameters() {
+fn example_9_1_cubic_knots_at_parameters() {
     let q = example();
-    // Auto picks §A.3 for cubics with first derivatives
+    // Auto picks §3 for cubics with first derivatives
     let c = CurveInterpolation::new(3)
         .end_condition(first_derivatives())
         .interpolate(q.as_view())
@@ -318,7 +318,7 @@ fn t1_a3_cubic_knots_at_parameters() {
 }
 
 #[test]
-fn t1_a4_second_derivatives_and_natural() {
+fn example_9_1_second_derivatives_and_natural() {
     let q = example();
     let c = CurveInterpolation::new(3)
         .end_condition(EndCondition::SecondDerivatives {
@@ -346,7 +346,7 @@ fn t1_a4_second_derivatives_and_natural() {
     assert_near(&derivative(&c, 1.0, 2), &[0.5, 4.0], 1e-11, "d''n");
     let (worst, bound) = residual(&c, &q, &chord());
     assert!(worst <= bound, "A.4 residual {worst}");
-    // the digest's b_0, c_0, a_n, b_n are the unscaled rows (13), (14): check via the knots
+    // document 000's b_0, c_0, a_n, b_n are the unscaled rows (13), (14): check via the knots
     let k = c.knots().as_slice();
     let (t4, t5, tn1, tn2) = (k[4], k[5], k[5], k[6]);
     assert_near(
@@ -589,9 +589,17 @@ fn grid(nu: usize, nv: usize, offset: f64) -> Points {
     Points::from_flat(3, data).unwrap()
 }
 
-/// Evaluation through the library's surface type.
-fn surface_point(s: &lekalo::SurfaceInterpolant, u: f64, v: f64) -> Vec<f64> {
-    s.clone().into_surface().eval(u, v).unwrap()
+/// The surface through a grid, with its parameters.
+fn surface_through(
+    g: &Points,
+    nu: usize,
+    nv: usize,
+    (p, q): (usize, usize),
+    parametrization: Parametrization,
+) -> lekalo::Result<(BSplineSurface, SurfaceInterpolationReport)> {
+    SurfaceInterpolation::new(p, q)
+        .parametrization(parametrization)
+        .interpolate_with_report(g.as_view(), nu, nv)
 }
 
 #[test]
@@ -599,13 +607,14 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
     for offset in [0.0, 1e8] {
         let (nu, nv) = (7, 5);
         let g = grid(nu, nv, offset);
-        let s =
-            interpolate_surface(g.as_view(), nu, nv, 3, 2, Parametrization::ChordLength).unwrap();
-        assert_eq!(s.control.len(), nu * nv, "net size");
+        let (s, report) =
+            surface_through(&g, nu, nv, (3, 2), Parametrization::ChordLength).unwrap();
+        let (params_u, params_v) = (report.params_u(), report.params_v());
+        assert_eq!(s.net_size(), (nu, nv), "net size");
         let bound = REL * g.extent() + 16.0 * f64::EPSILON * g.max_abs();
         for k in 0..nu {
             for l in 0..nv {
-                let r = surface_point(&s, s.params_u[k], s.params_v[l]);
+                let r = s.eval(params_u[k], params_v[l]).unwrap();
                 for (a, b) in r.iter().zip(g.point(k * nv + l)) {
                     assert!((a - b).abs() <= bound, "({k},{l}): {a} vs {b}");
                 }
@@ -620,17 +629,17 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
                     for i in 0..nu {
                         for j in 0..nv {
                             let bu = lekalo::basis::basis_function_recursive(
-                                &s.knots_u,
+                                s.knots_u(),
                                 i,
                                 3,
-                                s.params_u[k],
+                                params_u[k],
                             )
                             .unwrap();
                             let bv = lekalo::basis::basis_function_recursive(
-                                &s.knots_v,
+                                s.knots_v(),
                                 j,
                                 2,
-                                s.params_v[l],
+                                params_v[l],
                             )
                             .unwrap();
                             a[(k * nv + l) * n + i * nv + j] = bu * bv;
@@ -639,7 +648,7 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
                 }
             }
             let x = dense_solve(a, g.as_slice().to_vec(), n, 3);
-            assert_near(s.control.as_slice(), &x, 1e-12, "Kronecker");
+            assert_near(s.control_points().as_slice(), &x, 1e-12, "Kronecker");
         }
     }
 }
@@ -682,7 +691,7 @@ fn dense_solve(mut a: Vec<f64>, mut b: Vec<f64>, n: usize, m: usize) -> Vec<f64>
 fn surface_parameters_are_row_and_column_averages() {
     let (nu, nv) = (4, 3);
     let g = grid(nu, nv, 0.0);
-    let s = interpolate_surface(g.as_view(), nu, nv, 2, 2, Parametrization::ChordLength).unwrap();
+    let (_, report) = surface_through(&g, nu, nv, (2, 2), Parametrization::ChordLength).unwrap();
     let mut expect = vec![0.0; nu];
     for l in 0..nv {
         let col: Vec<f64> = (0..nu).flat_map(|k| g.point(k * nv + l).to_vec()).collect();
@@ -695,10 +704,41 @@ fn surface_parameters_are_row_and_column_averages() {
             *e += v / nv as f64;
         }
     }
-    assert_near(&s.params_u, &expect, 1e-15, "ū averaged over columns");
+    assert_near(report.params_u(), &expect, 1e-15, "ū averaged over columns");
 }
 
-// ---------------------------------------------------------------- Hermite and §C.2
+/// The grid functions kept for code written before `SurfaceInterpolation` give its surface,
+/// parameters and condition estimate, and refuse what it refuses.
+#[test]
+#[allow(deprecated)]
+fn deprecated_surface_functions_match_the_builder() {
+    let (nu, nv) = (6, 5);
+    let g = grid(nu, nv, 0.0);
+    let param = Parametrization::Centripetal;
+    let fit = SurfaceInterpolation::new(3, 2).parametrization(param);
+    let (s, report) = fit.interpolate_with_report(g.as_view(), nu, nv).unwrap();
+    let old = lekalo::interpolate_surface(g.as_view(), nu, nv, 3, 2, param).unwrap();
+    assert_eq!((old.nu, old.nv), (nu, nv), "net size");
+    assert_eq!(old.params_u, report.params_u(), "row parameters");
+    assert_eq!(old.params_v, report.params_v(), "column parameters");
+    assert_eq!(old.into_surface(), s, "surface");
+    let kappa = lekalo::interpolate_surface_condition(g.as_view(), nu, nv, 3, 2, param).unwrap();
+    assert_eq!(kappa, report.condition(), "condition estimate");
+    let limited =
+        lekalo::interpolate_surface_max_condition(g.as_view(), nu, nv, 3, 2, param, 1e12).unwrap();
+    assert_eq!(limited.into_surface(), s, "surface under a limit");
+    assert!(matches!(
+        lekalo::interpolate_surface_max_condition(g.as_view(), nu, nv, 3, 2, param, 1.0),
+        Err(Error::IllConditioned { .. })
+    ));
+    assert!(matches!(
+        lekalo::interpolate_surface(g.as_view(), nu, nv, 6, 2, param),
+        Err(Error::Degree { .. })
+    ));
+}
+
+// ---------------------------------------------------------------- Hermite and document 002,
+// four-point cubic
 
 #[test]
 fn four_point_cubic_matches_the_lecture() {
@@ -895,17 +935,15 @@ fn error_coincident_points_and_dropping_them() {
             second: 3
         }
     );
-    let e = interpolate_surface(
-        Points::from_flat(2, vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0])
-            .unwrap()
-            .as_view(),
-        2,
-        2,
-        1,
-        1,
-        Parametrization::ChordLength,
-    )
-    .unwrap_err();
+    let e = SurfaceInterpolation::new(1, 1)
+        .interpolate(
+            Points::from_flat(2, vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 2.0, 2.0])
+                .unwrap()
+                .as_view(),
+            2,
+            2,
+        )
+        .unwrap_err();
     assert_eq!(
         e,
         Error::CoincidentPoints {
@@ -1063,16 +1101,16 @@ fn error_degree_dimension_counts_and_arguments() {
     // surfaces
     let g = grid(4, 3, 0.0);
     assert!(matches!(
-        interpolate_surface(g.as_view(), 4, 4, 2, 2, Parametrization::Uniform),
+        surface_through(&g, 4, 4, (2, 2), Parametrization::Uniform),
         Err(Error::LengthMismatch { .. })
     ));
     assert!(matches!(
-        interpolate_surface(g.as_view(), 4, 3, 4, 2, Parametrization::Uniform),
+        surface_through(&g, 4, 3, (4, 2), Parametrization::Uniform),
         Err(Error::Degree { .. })
     ));
     let line = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     assert!(matches!(
-        interpolate_surface(line.as_view(), 1, 2, 1, 1, Parametrization::Uniform),
+        surface_through(&line, 1, 2, (1, 1), Parametrization::Uniform),
         Err(Error::TooFew { .. })
     ));
     // Hermite
@@ -1261,16 +1299,16 @@ proptest! {
             }
         }
         let g = Points::from_flat(dim, data).unwrap();
-        let r = interpolate_surface(g.as_view(), nu, nv, p, q, m);
+        let r = surface_through(&g, nu, nv, (p, q), m);
         if p >= nu || q >= nv {
             prop_assert!(matches!(r, Err(Error::Degree { .. })), "{:?}", r);
             return Ok(());
         }
-        let s = r.unwrap();
+        let (s, report) = r.unwrap();
         let bound = REL * g.extent() + 16.0 * f64::EPSILON * g.max_abs();
         for k in 0..nu {
             for l in 0..nv {
-                let at = surface_point(&s, s.params_u[k], s.params_v[l]);
+                let at = s.eval(report.params_u()[k], report.params_v()[l]).unwrap();
                 for (a, b) in at.iter().zip(g.point(k * nv + l)) {
                     prop_assert!((a - b).abs() <= bound, "({}, {}): {} vs {}", k, l, a, b);
                 }

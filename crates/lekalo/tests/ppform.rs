@@ -1,5 +1,5 @@
 //! Piecewise polynomials, Curry–Schoenberg bases and the de Boor–Fix functionals (document 003,
-//! digest §D.4–§D.5): round trips on random spaces and the thesis's practical task.
+//! §4–5; docs/theory/pp.md): round trips on random spaces and the thesis's practical task.
 
 mod common;
 use common::config;
@@ -81,8 +81,8 @@ fn thesis_practical_task() {
 }
 
 // The coefficients of the stated rule (τ = 0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3), from the
-// k = 3 formula of digest §D.5: c_i = f(τ) + ((x_{i+1}+x_{i+2})/2 − τ) f'(τ)
-// + (x_{i+1} − τ)(x_{i+2} − τ)/2 · f''(τ).
+// k = 3 formula of docs/theory/pp.md#de-boor-fix-functionals: c_i = f(τ) + ((x_{i+1}+x_{i+2})/2 −
+// τ) f'(τ) + (x_{i+1} − τ)(x_{i+2} − τ)/2 · f''(τ).
 #[test]
 fn thesis_coefficients_closed_form() {
     let space = thesis_space();

@@ -553,7 +553,7 @@ fn lecture() -> BSplineCurve {
     BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl).unwrap()
 }
 
-/// Document 002 §C.5: the unclamped lecture curve decomposes into one quadratic on its domain
+/// Document 002, B-splines: the unclamped lecture curve decomposes into one quadratic on its domain
 /// [1, 2], from (3/2, 2) to (3, 3), with middle control point `P_1 = (2, 3)`: on [1, 2] the curve
 /// is (t²/2 + 1, −t² + 4t − 1), whose Bezier points are C(1), C(1) + C'(1)/2, C(2).
 #[test]

@@ -570,3 +570,40 @@ fn iso_curves_trace_the_surface() {
         Err(Error::ParameterOutOfDomain { .. })
     ));
 }
+
+/// Curves and surfaces answer to the same accessor names: a surface's `degree` and `knots` are
+/// the pairs of its per-direction forms, and a Bezier curve has a domain like the others.
+#[test]
+fn surfaces_share_the_curve_accessor_names() {
+    let net = Points::from_flat(
+        3,
+        (0..4 * 3)
+            .flat_map(|k| {
+                let (i, j) = (f64::from(k / 3), f64::from(k % 3));
+                [i, j, (i * j).sin()]
+            })
+            .collect(),
+    )
+    .unwrap();
+    let s = BSplineSurface::new(
+        2,
+        1,
+        vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0],
+        vec![0.0, 0.0, 0.5, 1.0, 1.0],
+        net.clone(),
+        (4, 3),
+    )
+    .unwrap();
+    assert_eq!(s.degree(), (s.degree_u(), s.degree_v()), "B-spline degree");
+    assert_eq!(s.degree(), (2, 1), "B-spline degree");
+    assert_eq!(s.knots(), (s.knots_u(), s.knots_v()), "B-spline knots");
+    let n = NurbsSurface::from_bspline(&s);
+    assert_eq!(n.degree(), s.degree(), "NURBS degree");
+    assert_eq!(n.knots(), s.knots(), "NURBS knots");
+    assert_eq!(n.domain(), s.domain(), "NURBS domain");
+    let b = BezierSurface::new(net, (4, 3)).unwrap();
+    assert_eq!(b.degree(), (3, 2), "Bezier degree");
+    assert_eq!(b.degree(), (b.degree_u(), b.degree_v()), "Bezier degree");
+    let c = lekalo::BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 1.0]]).unwrap()).unwrap();
+    assert_eq!(c.domain(), (0.0, 1.0), "Bezier curve domain");
+}

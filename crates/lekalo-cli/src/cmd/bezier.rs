@@ -75,14 +75,18 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// Print the formal degree, the real degree and the defect (document 004 §E.3).
+    /// Print the formal degree, the real degree and the defect (document 004, eq. (9)–(10)).
     #[command(after_help = "\
 Examples:
   lekalo bezier real-degree quintic.json          # degree 5, real degree 3, defect 2
+  lekalo bezier real-degree quintic.json --json   # {\"degree\": 5, \"real_degree\": 3, \"defect\": 2}
   lekalo bezier real-degree --surface net.csv --net 5x4")]
     RealDegree {
         #[command(flatten)]
         input: BezierInput,
+        /// Print a JSON object instead of text.
+        #[arg(long)]
+        json: bool,
     },
     /// Change to any degree by the unified formula (eq. 10; eq. 14 for surfaces). Lowering
     /// below the real degree is refused with the real degree in the message.
@@ -232,7 +236,26 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                 write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
             }
         },
-        BezierOp::RealDegree { input } => {
+        BezierOp::RealDegree { input, json } => {
+            if *json {
+                let j = match load(input, v)? {
+                    Loaded::Curve(c, _) => serde_json::json!({
+                        "degree": c.degree(),
+                        "real_degree": c.real_degree(),
+                        "defect": c.degree_defect(),
+                    }),
+                    Loaded::BSpline(..) => return not_bezier(),
+                    Loaded::Surface(s, _) => {
+                        let (n, m) = s.real_degrees();
+                        serde_json::json!({
+                            "degree": [s.degree_u(), s.degree_v()],
+                            "real_degree": [n, m],
+                            "defect": [s.degree_u() - n, s.degree_v() - m],
+                        })
+                    }
+                };
+                return emit(None, format!("{j}\n").as_bytes(), &[], v);
+            }
             let text = match load(input, v)? {
                 Loaded::Curve(c, _) => format!(
                     "degree {}\nreal degree {}\ndefect {}\n",

@@ -24,7 +24,7 @@ pub(crate) enum Local {
     Arcs,
     /// Circular arcs as rational quadratics (exact NURBS output; arcs under 180°).
     RationalArcs,
-    /// Arcs with the angle quadratic in the global parameter (C^k with --params chord).
+    /// Arcs with the angle quadratic in the global parameter (C^k with --param chord).
     GlobalArcs,
     /// Parabolas through three points (C^k; exact B-spline output).
     Parabolas,
@@ -44,39 +44,40 @@ pub(crate) enum SplineParams {
 /// `lekalo blend` operations.
 #[derive(Subcommand, Debug)]
 pub(crate) enum BlendOp {
-    /// Deform curve A into curve B (same end points): p = (1 − w_{k−1}) A + w_{k−1} B (§B.2).
+    /// Deform curve A into curve B (same end points; document 001 §2):
+    /// p = (1 − w_{k−1}) A + w_{k−1} B.
     #[command(after_help = "\
 The result is exact: a Bezier curve of degree (2k − 1) + max(d1, d2), or a rational Bezier
 (NURBS) when a curve is rational (e.g. circular arcs made with `lekalo make nurbs`).
 
 Examples:
-  lekalo blend deform up.json down.json -k 2 -o blend.json
-  lekalo blend deform arc1.json arc2.json -k 3 -o blend.svg")]
+  lekalo blend deform up.json down.json --continuity 2 -o blend.json
+  lekalo blend deform arc1.json arc2.json --continuity 3 -o blend.svg")]
     Deform {
         /// The first curve (object JSON).
         first: PathBuf,
         /// The second curve, with the same end points.
         second: PathBuf,
         /// Continuity degree k ≥ 1 (contact of order k with each curve at its end).
-        #[arg(short, default_value_t = 2)]
+        #[arg(long = "continuity", short_alias = 'k', default_value_t = 2)]
         k: usize,
         #[command(flatten)]
         out: OutArgs,
     },
-    /// A spline through points by blending local three-point curves (§B.3).
+    /// A spline through points by blending local three-point curves (document 001 §3).
     #[command(after_help = "\
 Output: exact NURBS for --local parabolas and rational-arcs; for arcs and global-arcs a
 B-spline approximation of degree 2k + 1 with the same joins, within --tolerance (printed).
 
 Examples:
-  lekalo blend spline pts.csv -k 2 --local parabolas -o spline.json
-  lekalo blend spline pts.csv -k 3 --local arcs --closed -o closed.svg
-  lekalo blend spline pts.csv --local rational-arcs --params chord -o spline.step")]
+  lekalo blend spline pts.csv --continuity 2 --local parabolas -o spline.json
+  lekalo blend spline pts.csv --continuity 3 --local arcs --closed -o closed.svg
+  lekalo blend spline pts.csv --local rational-arcs --param chord -o spline.step")]
     Spline {
         /// Points file (CSV, text or JSON; `-` for standard input).
         points: PathBuf,
         /// Continuity degree k ≥ 1.
-        #[arg(short, default_value_t = 2)]
+        #[arg(long = "continuity", short_alias = 'k', default_value_t = 2)]
         k: usize,
         /// Local curves.
         #[arg(long, value_enum, default_value_t = Local::Arcs)]
@@ -85,7 +86,7 @@ Examples:
         #[arg(long)]
         closed: bool,
         /// Parameters of the points.
-        #[arg(long, value_enum, default_value_t = SplineParams::Uniform)]
+        #[arg(long = "param", alias = "params", value_enum, default_value_t = SplineParams::Uniform)]
         params: SplineParams,
         /// Tolerance of the approximation for arcs.
         #[arg(long, default_value_t = 1e-8)]
@@ -100,7 +101,7 @@ output is the transition curve, exact (Bezier or rational Bezier) when A and B a
 Bezier pieces.
 
 Examples:
-  lekalo blend corner before.json after.json --from 0.5 --until 0.5 -k 2 -o corner.json")]
+  lekalo blend corner before.json after.json --from 0.5 --until 0.5 --continuity 2 -o corner.json")]
     Corner {
         /// The curve before the corner.
         before: PathBuf,
@@ -113,19 +114,26 @@ Examples:
         #[arg(long, allow_hyphen_values = true)]
         until: String,
         /// Continuity degree k ≥ 1.
-        #[arg(short, default_value_t = 2)]
+        #[arg(long = "continuity", short_alias = 'k', default_value_t = 2)]
         k: usize,
         #[command(flatten)]
         out: OutArgs,
     },
+    /// The jump-smoothing polynomial `w_k` (document 001): exact monomial and Bernstein
+    /// coefficients and samples.
+    #[command(after_help = "\
+Examples:
+  lekalo blend jump --k 1             # 3u^2 - 2u^3: monomial 0 0 3 -2, Bernstein 0 0 1 1
+  lekalo blend jump --k 3 --samples 5 --json")]
+    Jump(crate::cmd::jump::JumpArgs),
 }
 
 /// Arguments of `lekalo blend`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Examples:
-  lekalo blend deform a.json b.json -k 2
-  lekalo blend spline pts.csv -k 2 --local parabolas
+  lekalo blend deform a.json b.json --continuity 2
+  lekalo blend spline pts.csv --continuity 2 --local parabolas
   lekalo blend corner a.json b.json --from 0.8 --until 0.2")]
 pub(crate) struct BlendArgs {
     #[command(subcommand)]
@@ -164,6 +172,7 @@ fn one_number(text: &str, what: &str) -> Result<f64> {
 
 pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
     match &a.op {
+        BlendOp::Jump(j) => crate::cmd::jump::run(j, v),
         BlendOp::Deform {
             first,
             second,

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, StepWriter};
+use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, Shape, StepWriter};
 
 use crate::cmd::plot::encode;
 use crate::cmd::shapes;
@@ -32,7 +32,20 @@ Examples:
   lekalo convert curve.json --to jsonl
   lekalo convert surface.json -o surface.step
   lekalo convert surface.json -o surface.obj --samples 900
-  lekalo convert spline.pp.json -o spline.csv --samples 100")]
+  lekalo convert spline.pp.json -o spline.csv --samples 100
+  lekalo convert surface.json -o grid.csv --samples 400
+  lekalo convert part.step -o curves.jsonl
+  lekalo convert curves.jsonl -o again.step
+  lekalo convert curves.jsonl -o again.igs
+  lekalo convert again.igs -o from-iges.jsonl
+
+Surfaces also convert to csv: u, v, x, y, z on a √samples × √samples grid.
+CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and NURBS
+curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
+complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),
+json (one object) or step; what was skipped is listed on stderr. JSON Lines holding surfaces
+convert to step and jsonl. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
+(rational B-spline surface) are written and read.")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -64,6 +77,36 @@ fn step_name(a: &ConvertArgs) -> String {
 }
 
 pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
+    if shapes::surface_csv_wanted(a.to.as_deref(), a.output.as_deref()) {
+        if let Ok(Loaded::Other(Shape::Surface(s))) = load(&a.input, false, Verbosity::Quiet) {
+            let side = a.samples.clamp(2, 10_000_000).isqrt().max(2);
+            let table = lekalo_io::surface_sample_table(
+                &s,
+                &s.grid_parameters(side, side),
+                lekalo_io::SurfaceSampleSpec::default(),
+            )?;
+            return emit(
+                a.output.as_deref(),
+                table.to_csv().as_bytes(),
+                std::slice::from_ref(&a.input),
+                v,
+            );
+        }
+    }
+    if crate::cmd::cad::wants_shapes(
+        &a.input,
+        a.jsonl,
+        &format_of(a.to.as_deref(), a.output.as_deref(), "json"),
+    ) {
+        return crate::cmd::cad::convert_shapes(
+            &a.input,
+            a.output.as_deref(),
+            a.to.as_deref(),
+            &step_name(a),
+            STEP_TIMESTAMP,
+            v,
+        );
+    }
     let objects: Vec<Object> = match load(&a.input, a.jsonl, v)? {
         Loaded::One(o) => vec![o],
         Loaded::Other(shape) => {

@@ -26,7 +26,16 @@ Examples:
   lekalo eval curve.json --at 1,1.5,2
   lekalo eval curve.json --samples 5 --derivatives 2 --curvature -o samples.csv
   lekalo eval curve.json --at 0.5 --format json
-  lekalo eval many.jsonl --samples 100 -o samples.jsonl")]
+  lekalo eval many.jsonl --samples 100 -o samples.jsonl
+  lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
+  lekalo eval surface.json --grid 5x7 -o grid.csv
+
+Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
+of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
+u, v, the point, the partial derivatives du{a}v{b}x … of every total order up to
+--derivatives (du1v0x is ∂x/∂u), with --normals the unit normal nx, ny, nz, with --curvature
+the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the surface bends
+towards the normal (S_u × S_v)/|S_u × S_v|).")]
 pub(crate) struct EvalArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -51,6 +60,18 @@ pub(crate) struct EvalArgs {
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
+    /// Surfaces: parameter pairs U,V (repeatable; `0.3,0.7,0.5,0.5` is two pairs).
+    #[arg(long, value_name = "U,V", allow_hyphen_values = true)]
+    uv: Vec<String>,
+    /// Surfaces: a file of (u, v) rows, two columns.
+    #[arg(long, value_name = "FILE")]
+    uv_file: Option<PathBuf>,
+    /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`).
+    #[arg(long, value_name = "NUxNV", conflicts_with_all = ["uv", "uv_file"])]
+    grid: Option<String>,
+    /// Surfaces: output the unit normal nx, ny, nz.
+    #[arg(long)]
+    normals: bool,
 }
 
 const DEFAULT_SAMPLES: usize = 11;
@@ -76,7 +97,28 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
     };
     let inputs = vec![a.input.clone()];
     match load(&a.input, a.jsonl, v)? {
+        Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
+            &crate::cmd::surface_eval::SurfaceEval {
+                input: &a.input,
+                uv: &a.uv,
+                uv_file: a.uv_file.as_deref(),
+                grid: a.grid.as_deref(),
+                samples: a.samples,
+                derivatives: a.derivatives,
+                normals: a.normals,
+                curvature: a.curvature,
+                format: a.format.as_deref(),
+                output: a.output.as_deref(),
+            },
+            &s,
+            v,
+        ),
         Loaded::Other(s) => not_a_curve(&a.input, &s),
+        Loaded::One(_) | Loaded::Many(_)
+            if !a.uv.is_empty() || a.uv_file.is_some() || a.grid.is_some() || a.normals =>
+        {
+            bad_input("--uv, --uv-file, --grid and --normals are for surfaces; a curve takes --at or --samples")
+        }
         Loaded::One(obj) => {
             let ts = parameters(a, &obj)?;
             let table = sample_table(&obj, &ts, spec)

@@ -1,14 +1,14 @@
-//! `lekalo interpolate`: curves and surfaces through points (document 000; document 002 §C.2–C.3),
-//! plus the output helpers shared by the construction subcommands (`bezier`, `blend`, `pp`).
+//! `lekalo interpolate`: curves and surfaces through points (document 000; document 002, four-point
+//! cubic and Hermite segment), plus the output helpers shared by the construction subcommands
+//! (`bezier`, `blend`, `pp`).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use lekalo::{
-    interpolate_surface, interpolate_surface_max_condition, natural_cubic_spline, BSplineSurface,
-    CubicHermite, CurveInterpolation, EndCondition, KnotPlacement, Parametrization, Points,
-    TangentEstimate,
+    natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, EndCondition,
+    KnotPlacement, Parametrization, Points, SurfaceInterpolation, TangentEstimate,
 };
 use lekalo_io::{
     curve_figure, sample_table, wireframe_figure, CurvePlot, Figure, Grid, Object, Projection,
@@ -221,7 +221,7 @@ pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
     }
 }
 
-/// Parameter choice (document 000 §A.1; P&T eq. 9.4–9.6).
+/// Parameter choice (document 000 §1; P&T eq. 9.4–9.6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Param {
     /// Parameters k/n.
@@ -233,7 +233,7 @@ pub(crate) enum Param {
 }
 
 impl Param {
-    fn to_lib(self, exponent: Option<f64>) -> Parametrization {
+    pub(crate) fn to_lib(self, exponent: Option<f64>) -> Parametrization {
         match (exponent, self) {
             (Some(e), _) => Parametrization::Exponent(e),
             (None, Param::Uniform) => Parametrization::Uniform,
@@ -246,7 +246,8 @@ impl Param {
 /// Knot placement (document 000 eqs. 2, 3, 4, 8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Knots {
-    /// What the end condition needs (averaged, or at the parameters for C² cubics).
+    /// By degree and end condition: averaging (eq. 3; eq. 4 with end derivatives), and knots
+    /// at the parameters for C² cubics with end conditions (eq. 8).
     Auto,
     /// Averaging of the parameters (eq. 3; eq. 4 with end derivatives).
     Averaged,
@@ -256,14 +257,15 @@ pub(crate) enum Knots {
     AtParams,
 }
 
-/// End conditions (document 000 §A.1–A.4).
+/// End conditions (document 000 §1–4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum End {
-    /// No extra condition (§A.1).
+    /// No extra condition (§1).
     Free,
-    /// Given first derivatives --d0, --dn (§A.2; §A.3 with --knots at-params).
+    /// Given first derivatives --start-derivative, --end-derivative (§2; §3 with --knots
+    /// at-params).
     Derivatives,
-    /// Given second derivatives --d0, --dn (§A.4, cubic).
+    /// Given second derivatives --start-derivative, --end-derivative (§4, cubic).
     Second,
     /// Zero second derivatives: the natural cubic spline.
     Natural,
@@ -288,22 +290,24 @@ pub(crate) enum Tangents {
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Curves (document 000): global B-spline interpolation, any degree, every parametrisation,
-knot placement and end condition. Surfaces (§A.5): --grid ROWSxCOLS reads the points row by row.
+knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
---hermite. Hermite curves (document 002 §C.3): --hermite TANGENTS.
+--hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 
 Examples:
   lekalo interpolate pts.csv --degree 3 --param chord -o curve.json
   lekalo interpolate pts.csv --param centripetal --knots averaged -o curve.svg
-  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --degree 2
-  lekalo interpolate pts.csv --end derivatives --d0 1,2 --dn -3,-1 --knots at-params
-  lekalo interpolate pts.csv --end second --d0 2,-1 --dn 0.5,4
+  lekalo interpolate pts.csv --end derivatives --start-derivative 1,2 --end-derivative -3,-1 --degree 2
+  lekalo interpolate pts.csv --end derivatives --start-derivative 1,2 --end-derivative -3,-1 --knots at-params
+  lekalo interpolate pts.csv --end second --start-derivative 2,-1 --end-derivative 0.5,4
   lekalo interpolate pts.csv --end natural -o natural.step
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
   lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
   lekalo interpolate xy.csv --function --hermite monotone
-  lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json")]
+  lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json
+  lekalo interpolate pts.csv --params 0,0.25,0.5,1 --degree 2 -o at-params.json
+  lekalo interpolate pts.csv --tangents tangents.csv --params 0,1,2,3 -o hermite.json")]
 pub(crate) struct InterpolateArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     points: PathBuf,
@@ -325,11 +329,12 @@ pub(crate) struct InterpolateArgs {
     /// End condition.
     #[arg(long, value_enum, default_value_t = End::Free)]
     end: End,
-    /// Derivative at the start (first or second, after --end), comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Derivative at the start: the first (`--end derivatives`) or second (`--end second`),
+    /// comma-separated. Formerly `--d0`.
+    #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
     d0: Option<String>,
-    /// Derivative at the end, comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Derivative at the end, as --start-derivative. Formerly `--dn`.
+    #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
     #[arg(long, value_name = "ROWSxCOLS")]
@@ -348,6 +353,14 @@ pub(crate) struct InterpolateArgs {
     /// points); off by default.
     #[arg(long, value_name = "LIMIT")]
     max_condition: Option<f64>,
+    /// Explicit parameters of the points (strictly increasing): a list `0,0.3,1` or a file
+    /// with one value per line. Replaces --param.
+    #[arg(long, value_name = "LIST|FILE", allow_hyphen_values = true)]
+    params: Option<String>,
+    /// Cubic Hermite interpolation with the given tangents: a points file with one tangent
+    /// per data point (same dimension). Parameters from --params or --param.
+    #[arg(long, value_name = "FILE", conflicts_with = "hermite")]
+    tangents: Option<PathBuf>,
     #[command(flatten)]
     out: OutArgs,
 }
@@ -368,19 +381,11 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let degree_v = a
             .degree_v
             .unwrap_or(a.degree.min(nv.saturating_sub(1)).max(1));
-        let s = match a.max_condition {
-            Some(limit) => interpolate_surface_max_condition(
-                pts.as_view(),
-                nu,
-                nv,
-                a.degree,
-                degree_v,
-                param,
-                limit,
-            )?,
-            None => interpolate_surface(pts.as_view(), nu, nv, a.degree, degree_v, param)?,
+        let mut fit = SurfaceInterpolation::new(a.degree, degree_v).parametrization(param);
+        if let Some(limit) = a.max_condition {
+            fit = fit.max_condition(limit);
         }
-        .into_surface();
+        let s = fit.interpolate(pts.as_view(), nu, nv)?;
         return write_surface(&s, &a.out, &inputs, v);
     }
     if a.function {
@@ -409,6 +414,35 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         };
         return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
     }
+    if let Some(file) = &a.tangents {
+        let (ttext, tname) = lekalo_io::read_input(file)?;
+        let tan = lekalo_io::read_points(&ttext, &tname)?;
+        let ts = match &a.params {
+            Some(p) => crate::cmd::explicit::parameters(p, "--params")?,
+            None => lekalo::parametrize(pts.as_view(), param)?,
+        };
+        let h = CubicHermite::new(ts, pts.clone(), tan)?;
+        let mut inputs = inputs;
+        inputs.push(file.clone());
+        return write_curve(
+            &Object::BSpline(h.to_bspline()),
+            Some(&pts),
+            &a.out,
+            &inputs,
+            v,
+        );
+    }
+    if let (Some(t), Some(p)) = (a.hermite, &a.params) {
+        let ts = crate::cmd::explicit::parameters(p, "--params")?;
+        let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension))?;
+        return write_curve(
+            &Object::BSpline(h.to_bspline()),
+            Some(&pts),
+            &a.out,
+            &inputs,
+            v,
+        );
+    }
     if let Some(t) = a.hermite {
         let h = CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension))?;
         let obj = Object::BSpline(h.to_bspline());
@@ -416,9 +450,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     }
     let pair = |what: &str| -> Result<(Vec<f64>, Vec<f64>)> {
         match (&a.d0, &a.dn) {
-            (Some(s), Some(e)) => Ok((numbers(s, "--d0")?, numbers(e, "--dn")?)),
+            (Some(s), Some(e)) => Ok((
+                numbers(s, "--start-derivative")?,
+                numbers(e, "--end-derivative")?,
+            )),
             _ => bad_input(format!(
-                "--end {what} needs --d0 and --dn (one value per coordinate, e.g. --d0 1,2)"
+                "--end {what} needs --start-derivative and --end-derivative (one value per coordinate, e.g. --start-derivative 1,2)"
             )),
         }
     };
@@ -438,7 +475,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if matches!(a.end, End::Free | End::Natural | End::Periodic)
         && (a.d0.is_some() || a.dn.is_some())
     {
-        return bad_input("--d0/--dn are used only with --end derivatives or --end second");
+        return bad_input("--start-derivative/--end-derivative are used only with --end derivatives or --end second");
     }
     let knots = match a.knots {
         Knots::Auto => KnotPlacement::Auto,
@@ -453,7 +490,13 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if let Some(limit) = a.max_condition {
         interp = interp.max_condition(limit);
     }
-    let curve = interp.interpolate(pts.as_view())?;
+    let curve = match &a.params {
+        Some(p) => interp.interpolate_at(
+            pts.as_view(),
+            &crate::cmd::explicit::parameters(p, "--params")?,
+        )?,
+        None => interp.interpolate(pts.as_view())?,
+    };
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
 }
 

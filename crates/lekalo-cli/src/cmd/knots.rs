@@ -14,7 +14,7 @@ use crate::Verbosity;
 /// Arguments of `lekalo knots`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
-Examples (digest T.1: the chord-length parameters of P&T Example 9.1):
+Examples (chord-length parameters of P&T Example 9.1; docs/theory/interpolation.md#test-vectors):
   lekalo knots uniform --degree 3 --count 5
   lekalo knots averaged --degree 3 --params 0,5/17,9/17,14/17,1
   lekalo knots end-derivatives --degree 3 --params 0,5/17,9/17,14/17,1
@@ -68,7 +68,7 @@ enum Rule {
     )]
     CurrySchoenberg {
         /// Order k = degree + 1.
-        #[arg(long, short = 'k')]
+        #[arg(long, short_alias = 'k')]
         order: usize,
         /// Strictly increasing breakpoints ξ1 < ξ2 < … < ξ(l+1), comma-separated.
         #[arg(long, allow_hyphen_values = true)]

@@ -6,13 +6,23 @@ pub(crate) mod info;
 pub(crate) mod knots;
 pub(crate) mod make;
 pub(crate) mod plot;
-// surfaces and pp-forms in info, convert and plot (issue 7)
+// surfaces and pp-forms in info, convert and plot
 pub(crate) mod shapes;
-// construction subcommands (issues 3–6)
+// construction subcommands
 pub(crate) mod bezier;
 pub(crate) mod blend;
 pub(crate) mod interpolate;
 pub(crate) mod pp;
+// knot operations, surfaces in make/eval, CAD files in convert
+pub(crate) mod cad;
+pub(crate) mod deprecated;
+pub(crate) mod explicit;
+pub(crate) mod jump;
+pub(crate) mod knot;
+pub(crate) mod make_surface;
+pub(crate) mod surface_eval;
+// fitting: least squares, smoothing, tolerance
+pub(crate) mod fit;
 // geometric queries
 pub(crate) mod intersect;
 pub(crate) mod measure;

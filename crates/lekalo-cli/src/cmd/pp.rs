@@ -12,7 +12,7 @@ use crate::cmd::plot::encode;
 use crate::io::{bad_input, emit, format_of, integers, load_one, numbers};
 use crate::Verbosity;
 
-/// The τ rule of the de Boor–Fix functionals (document 003 §D.5 step 5).
+/// The τ rule of the de Boor–Fix functionals (document 003 §5.1, step 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Rule {
     /// Tau = the first knot after the left end of the support (the thesis's rule).
@@ -109,7 +109,7 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
-    /// Quasi-interpolate a built-in function in P(k, ξ, ν) (document 003 §D.5).
+    /// Quasi-interpolate a built-in function in P(k, ξ, ν) (document 003 §5).
     #[command(after_help = "\
 Prints the maximum error on a uniform grid (--intervals) to standard error. SVG/PNG output
 plots f and its quasi-interpolant, like the thesis's Figure 1.
@@ -117,7 +117,8 @@ plots f and its quasi-interpolant, like the thesis's Figure 1.
 Examples:
   lekalo pp quasi --function 'x*cos(x)' --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --order 3 \\
       --continuity 2,2,2,2,2 --rule left-end-of-support -o fig1.svg    # max error 0.204831
-  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json")]
+  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json
+  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 --json   # error and curve")]
     Quasi {
         /// The function.
         #[arg(long, value_enum)]
@@ -137,6 +138,10 @@ Examples:
         /// Intervals of the error grid.
         #[arg(long, default_value_t = 60)]
         intervals: usize,
+        /// Write one JSON object `{"max_error", "intervals", "curve"}` instead of the curve alone
+        /// (the error at full precision).
+        #[arg(long)]
+        json: bool,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -224,6 +229,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             continuity: cont,
             rule,
             intervals,
+            json,
             out,
         } => {
             let xi = numbers(breakpoints, "--breakpoints")?;
@@ -234,10 +240,19 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             let samples = sample_quasi_interpolant(&space, rule.to_lib(), f, *intervals)?;
             if v != Verbosity::Quiet {
                 eprintln!(
-                    "max |f − q| on {} intervals: {:.6}",
+                    "max |f − q| on {} intervals: {}",
                     intervals,
-                    samples.max_error()
+                    lekalo_io::fmt_number(samples.max_error())
                 );
+            }
+            if *json {
+                let obj = Object::BSpline(q);
+                let j = serde_json::json!({
+                    "max_error": samples.max_error(),
+                    "intervals": intervals,
+                    "curve": obj.to_json_value(),
+                });
+                return emit(out.output.as_deref(), format!("{j:#}\n").as_bytes(), &[], v);
             }
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
             let obj = Object::BSpline(q);

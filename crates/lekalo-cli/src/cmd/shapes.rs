@@ -330,7 +330,7 @@ pub(crate) fn convert(
         (Shape::Pp(p), "csv") => Ok(pp_csv(p, samples)?.into_bytes()),
         (Shape::Pp(p), "svg" | "png") => plot(&pp_figure(p, samples, None)?),
         (Shape::Surface(_), other) => bad_input(format!(
-            "a surface converts to json, step, obj, svg or png, not \"{other}\""
+            "a surface converts to json, csv, step, obj, svg or png, not \"{other}\""
         )),
         (_, other) => bad_input(format!(
             "a {} converts to json, csv, svg or png, not \"{other}\"",
@@ -343,4 +343,9 @@ pub(crate) fn convert(
 /// would be 40 000 surface points; a surface gets `√samples` per direction, at least 8.
 fn samples_side(samples: usize) -> usize {
     samples.isqrt().max(8)
+}
+
+/// True when `convert` is asked for CSV (by `--to` or the output's extension).
+pub(crate) fn surface_csv_wanted(to: Option<&str>, out: Option<&std::path::Path>) -> bool {
+    crate::io::format_of(to, out, "json") == "csv"
 }

@@ -1,21 +1,22 @@
-//! Gallery: document 000, interpolation of curves and surfaces (digest §A, test vectors T.1).
+//! Gallery: document 000, interpolation of curves and surfaces (docs/theory/interpolation.md, test
+//! vectors in docs/theory/interpolation.md#test-vectors).
 
 use anyhow::Result;
 use lekalo::{
-    interpolate_surface, BSplineCurve, CurveInterpolation, EndCondition, KnotPlacement,
-    Parametrization, Points,
+    BSplineCurve, CurveInterpolation, EndCondition, KnotPlacement, Parametrization, Points,
+    SurfaceInterpolation,
 };
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
 use crate::cmd::interpolate::surface_figure;
 use crate::demo::{trim, Section};
 
-/// Numbers the digest prints with 6 decimals.
+/// Reference numbers given with 6 decimals (docs/theory/interpolation.md#test-vectors).
 const SIX_DECIMALS: f64 = 5e-7;
 /// Interpolation conditions hold to rounding (data of size O(1)).
 const ROUNDING: f64 = 1e-12;
 
-/// P&T Example 9.1 (digest T.1).
+/// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 pub(super) fn example_9_1() -> Result<Points> {
     Ok(Points::from_2d(&[
         [0.0, 0.0],
@@ -64,7 +65,8 @@ pub(super) fn show(p: &Points) -> String {
 pub(super) fn curves(s: &mut Section) -> Result<()> {
     s.caption = "Global interpolation (§A.1) of P&T Example 9.1: q0..q4 = (0,0), (3,4), (−1,4), \
         (−4,0), (−4,−3), cubic, averaged knots (eq. 3), with the three parametrisations; the \
-        control points are the library's and are checked against the test vectors of digest T.1."
+        control points are the library's and are checked against the reference values of the theory \
+        reference (interpolation, test vectors)."
         .into();
     let q = example_9_1()?;
     let mut fig = Figure::new("Cubic interpolation of P&T Example 9.1", true);
@@ -171,7 +173,8 @@ pub(super) fn curves(s: &mut Section) -> Result<()> {
     Ok(())
 }
 
-/// Name, degree, knots, end condition, T.1 control points, as printed.
+/// Name, degree, knots, end condition, reference control points
+/// (docs/theory/interpolation.md#test-vectors).
 type EndCase = (
     &'static str,
     usize,
@@ -326,9 +329,10 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
         }
     }
     let grid = Points::from_flat(3, data)?;
-    let it = interpolate_surface(grid.as_view(), nu, nv, 3, 2, Parametrization::ChordLength)?;
-    let (pu, pv) = (it.params_u.clone(), it.params_v.clone());
-    let surf = it.into_surface();
+    let (surf, report) = SurfaceInterpolation::new(3, 2)
+        .parametrization(Parametrization::ChordLength)
+        .interpolate_with_report(grid.as_view(), nu, nv)?;
+    let (pu, pv) = (report.params_u(), report.params_v());
     let mut dev = 0.0_f64;
     for (i, u) in pu.iter().enumerate() {
         for (j, v) in pv.iter().enumerate() {

@@ -1,4 +1,4 @@
-//! Gallery: document 001, polynomial deformation of curves (digest §B).
+//! Gallery: document 001, polynomial deformation of curves (docs/theory/blending.md).
 
 use anyhow::Result;
 use lekalo::{

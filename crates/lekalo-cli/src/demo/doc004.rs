@@ -1,4 +1,4 @@
-//! Gallery: document 004, order change of Bezier curves and surfaces (digest §E).
+//! Gallery: document 004, order change of Bezier curves and surfaces (docs/theory/degree.md).
 
 use anyhow::Result;
 use lekalo::{BezierCurve, BezierSurface, Points};
@@ -226,7 +226,7 @@ pub(super) fn reduction(s: &mut Section) -> Result<()> {
 }
 
 pub(super) fn surface(s: &mut Section) -> Result<()> {
-    s.caption = "Order change of a Bezier surface (§E.4, eq. 14, Fig. 5): a 5 × 4 net \
+    s.caption = "Order change of a Bezier surface (document 004, eq. (14), Fig. 5): a 5 × 4 net \
         U_{4,3} whose monomial matrix has one zero bottom row (a bicubic net elevated in t), so \
         its real orders are (3, 3). It is rebuilt on nets of orders (3, 3), (3, 6) and (4, 6) \
         without changing the shape; lowering m without a defect is refused."

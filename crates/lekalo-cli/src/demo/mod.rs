@@ -1,7 +1,8 @@
 //! `lekalo demo`: the documents' constructions on built-in data. Every gallery entry builds its
 //! objects with the library, draws figures and checks its key numbers against the documents
-//! (digest §C.5, T.1, §D.5); the summary table lists every check, the HTML gallery shows the
-//! figures with captions and the same numbers.
+//! (docs/theory/foundations.md#the-lectures-worked-example,
+//! docs/theory/interpolation.md#test-vectors, docs/theory/pp.md#the-practical-task); the summary
+//! table lists every check, the HTML gallery shows the figures with captions and the same numbers.
 //!
 //! To add a construction, write a `fn(&mut Section) -> Result<()>` and list it in
 //! [`registry::ENTRIES`].

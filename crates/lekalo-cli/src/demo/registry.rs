@@ -9,7 +9,7 @@ use lekalo_io::{basis_figure, curve_figure, CurvePlot, Object, Series, Style, PA
 
 use super::{trim, Section};
 
-// the documents' constructions of issues 3–6 (interpolation, blending, pp-form, degree change)
+// the documents' constructions: interpolation, blending, pp-form, degree change
 #[path = "doc000.rs"]
 mod doc000;
 #[path = "doc001.rs"]
@@ -18,6 +18,8 @@ mod doc001;
 mod doc003;
 #[path = "doc004.rs"]
 mod doc004;
+#[path = "fitting.rs"]
+mod fitting;
 #[path = "queries.rs"]
 mod queries;
 
@@ -38,31 +40,31 @@ pub(crate) const ENTRIES: &[Entry] = &[
     Entry {
         id: "doc002-bspline",
         title: "B-spline curve by the Cox–de Boor recursion",
-        source: "document 002 §C.5 (digest §C.5)",
+        source: "document 002, B-splines; theory: foundations, the lecture's worked example",
         build: lecture_bspline,
     },
     Entry {
         id: "doc000-knots",
         title: "Knot vectors for interpolation",
-        source: "document 000 eqs. (2), (3), (4), (8); test vectors of digest T.1",
+        source: "document 000 eqs. (2), (3), (4), (8); theory: interpolation, test vectors",
         build: interpolation_knots,
     },
     Entry {
         id: "doc003-curry-schoenberg",
         title: "Curry–Schoenberg knots and B-spline basis",
-        source: "document 003 Theorem 4.5 and the practical task (digest §D.4–D.5)",
+        source: "document 003 Theorem 4.5 and the practical task (§4.2, §5.3)",
         build: curry_schoenberg,
     },
     Entry {
         id: "doc000-curves",
         title: "Curves through points: P&T Example 9.1",
-        source: "document 000 §A.1; test vectors of digest T.1",
+        source: "document 000 §1; theory: interpolation, test vectors",
         build: doc000::curves,
     },
     Entry {
         id: "doc000-ends",
         title: "End derivatives, second derivatives, natural spline",
-        source: "document 000 §A.2–A.4; test vectors of digest T.1",
+        source: "document 000 §2–4; theory: interpolation, test vectors",
         build: doc000::end_conditions,
     },
     Entry {
@@ -74,19 +76,19 @@ pub(crate) const ENTRIES: &[Entry] = &[
     Entry {
         id: "doc001-jump",
         title: "Jump-smoothing polynomials w_k, k = 0 … 5",
-        source: "document 001 §1, Properties 1–4 (digest §B.1)",
+        source: "document 001 §1, Properties 1–4",
         build: doc001::jump,
     },
     Entry {
         id: "doc001-deformation",
         title: "Deformation of two circular arcs",
-        source: "document 001 §2 (digest §B.2)",
+        source: "document 001 §2",
         build: doc001::deformation,
     },
     Entry {
         id: "doc001-spline",
         title: "Splines through points by blended arcs and parabolas",
-        source: "document 001 §3 (digest §B.3)",
+        source: "document 001 §3",
         build: doc001::spline,
     },
     Entry {
@@ -104,26 +106,32 @@ pub(crate) const ENTRIES: &[Entry] = &[
     Entry {
         id: "doc003-quasi",
         title: "Quasi-interpolation of x·cos x (thesis Figure 1)",
-        source: "document 003 §5, practical task (digest §D.5)",
+        source: "document 003 §5.3, practical task",
         build: doc003::quasi,
     },
     Entry {
         id: "doc004-elevation",
         title: "Degree elevation: Example 1",
-        source: "document 004 Example 1, eq. (7)–(8) (digest §E.2)",
+        source: "document 004 Example 1, eq. (7)–(8)",
         build: doc004::elevation,
     },
     Entry {
         id: "doc004-reduction",
         title: "Real degree and exact reduction: Example 2",
-        source: "document 004 Example 2, eq. (9)–(10) (digest §E.3)",
+        source: "document 004 Example 2, eq. (9)–(10)",
         build: doc004::reduction,
     },
     Entry {
         id: "doc004-surface",
         title: "Order change of a Bezier surface",
-        source: "document 004 eq. (14), Fig. 5 (digest §E.4)",
+        source: "document 004 eq. (14), Fig. 5",
         build: doc004::surface,
+    },
+    Entry {
+        id: "fitting",
+        title: "Fitting noisy points: least squares, smoothing, tolerance",
+        source: "docs/theory/fitting.md; P&T §9.4.1",
+        build: fitting::fitting,
     },
     Entry {
         id: "queries",
@@ -135,7 +143,8 @@ pub(crate) const ENTRIES: &[Entry] = &[
 
 /// Tolerance of checks against exact fractions (the values are O(1)).
 const EXACT: f64 = 1e-14;
-/// Tolerance of checks against numbers the digest prints with 6 decimals.
+/// Tolerance of checks against reference numbers given with 6 decimals
+/// (docs/theory/interpolation.md#test-vectors).
 const SIX_DECIMALS: f64 = 5e-7;
 
 fn lecture_bspline(s: &mut Section) -> Result<()> {
@@ -213,7 +222,7 @@ fn lecture_bspline(s: &mut Section) -> Result<()> {
     let _ = at(2.0)?;
     let (_, p25) = at(2.5)?;
     s.tables.push((
-        "Sample values (digest §C.5 table)".into(),
+        "Sample values (the lecture's example, completed)".into(),
         vec!["t".into(), "(N0,2, N1,2, N2,2)".into(), "P(t)".into()],
         rows,
     ));
@@ -280,9 +289,11 @@ fn lecture_bspline(s: &mut Section) -> Result<()> {
     Ok(())
 }
 
-/// Digest T.1: P&T Example 9.1 data, chord lengths 5, 4, 5, 3 (total 17).
+/// P&T Example 9.1 data, chord lengths 5, 4, 5, 3 (total 17)
+/// (docs/theory/interpolation.md#test-vectors).
 const CHORD: [f64; 5] = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
-/// Digest T.1: centripetal parameters, as printed (6 decimals).
+/// Centripetal parameters of P&T Example 9.1, 6 decimals
+/// (docs/theory/interpolation.md#test-vectors).
 const CENTRIPETAL: [f64; 5] = [0.0, 0.272552, 0.516330, 0.788882, 1.0];
 const UNIFORM: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 
@@ -297,8 +308,8 @@ fn interpolation_knots(s: &mut Section) -> Result<()> {
         (−4,0), (−4,−3) (P&T Example 9.1; chord lengths 5, 4, 5, 3). Uniform knots (eq. 2) \
         ignore the parameters; averaged knots (eq. 3) make the collocation matrix banded and \
         totally positive; eq. (4) adds two knots for the end derivatives; eq. (8) puts the knots \
-        at the parameters (cubic C² interpolation, §A.3–A.4). The curves themselves come with \
-        interpolation (issue 3)."
+        at the parameters (cubic C² interpolation, §A.3–A.4). The curves themselves are in the \
+        interpolation section."
         .into();
     let mut rows = Vec::new();
     let mut add = |s: &mut Section,

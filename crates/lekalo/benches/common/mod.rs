@@ -36,7 +36,7 @@ pub(crate) fn walk(n: usize, dim: usize, seed: u64) -> Points {
     Points::from_flat(dim, data).expect("finite walk")
 }
 
-/// The evaluation workload: a B-spline of `degree` with `n_ctrl` control points in
+/// The evaluation workload of the benchmarks and the peer comparison: a B-spline of `degree` with `n_ctrl` control points in
 /// `dim` dimensions on clamped uniform knots over `[0, 1]`.
 pub(crate) fn curve(degree: usize, n_ctrl: usize, dim: usize) -> BSplineCurve {
     let knots = KnotVector::clamped_uniform(degree, n_ctrl).expect("enough control points");

@@ -1,6 +1,6 @@
-//! C^k deformation (blending) of curves with jump-smoothing polynomials (document 001, digest
-//! §B.2): [`ParametricCurve`], [`Deformation`] (the mathematics is documented there),
-//! exact Bezier/NURBS forms; corners are in `corner.rs`.
+//! C^k deformation (blending) of curves with jump-smoothing polynomials (document 001 §2;
+//! docs/theory/blending.md#deformation-of-curves): [`ParametricCurve`], [`Deformation`] (the
+//! mathematics is documented there), exact Bezier/NURBS forms; corners are in `corner.rs`.
 
 use std::sync::Arc;
 
@@ -355,11 +355,11 @@ pub(crate) fn dist(x: &[f64], y: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// The deformation of `p_1` into `p_2` with continuity degree `k` (document 001, digest §B.2):
-/// `p(u) = (1 − w_{k−1}(u)) p_1(u) + w_{k−1}(u) p_2(u)`, `u ∈ [0, 1]`; see the
-/// sections below for why `w_{k−1}` suffices.
+/// The deformation of `p_1` into `p_2` with continuity degree `k` (document 001 §2;
+/// docs/theory/blending.md#deformation-of-curves): `p(u) = (1 − w_{k−1}(u)) p_1(u) + w_{k−1}(u)
+/// p_2(u)`, `u ∈ [0, 1]`; see the sections below for why `w_{k−1}` suffices.
 ///
-/// # The construction (digest §B.2)
+/// # The construction (document 001 §2)
 /// Two parametric curves `p_1, p_2 : [0, 1] → R^d` with **common end points**
 /// (`p_1(0) = p_2(0)`, `p_1(1) = p_2(1)`) are blended into
 ///
@@ -501,7 +501,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     }
 
     /// `p^{(l)}(u)`, `l = 0 … order`, as rows of [`Points`], by the Leibniz rule
-    /// `p^{(l)} = p_1^{(l)} + Σ_{i=0}^{l} C(l,i) w^{(i)} (p_2 − p_1)^{(l−i)}` (digest §B.2).
+    /// `p^{(l)} = p_1^{(l)} + Σ_{i=0}^{l} C(l,i) w^{(i)} (p_2 − p_1)^{(l−i)}` (document 001 §2).
     /// O(order² · dim) plus the curves' own cost.
     ///
     /// # Errors
@@ -721,9 +721,9 @@ mod tests {
             .unwrap_or(0)
     }
 
-    // The index subtlety of §B.2, checked on the formula itself (the digest's verification log):
-    // with common end points w_{k−1} gives contact of order exactly k and w_k order k + 1;
-    // without common end points w_{k−1} gives only k − 1.
+    // The index subtlety of document 001 §2 (docs/theory/blending.md#why-the-index-is-k-1), checked
+    // on the formula itself: with common end points w_{k−1} gives contact of order exactly k and
+    // w_k order k + 1; without common end points w_{k−1} gives only k − 1.
     #[test]
     fn index_of_the_jump_polynomial() {
         let p1 = cubic([[0.0, 0.0], [1.0, 2.0], [2.0, 2.5], [3.0, 0.0]]);

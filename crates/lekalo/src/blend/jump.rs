@@ -1,4 +1,5 @@
-//! Jump-smoothing polynomials `w_k` (document 001, digest §B.1); the mathematics is documented on
+//! Jump-smoothing polynomials `w_k` (document 001 §1;
+//! docs/theory/blending.md#jump-smoothing-polynomials); the mathematics is documented on
 //! [`JumpPolynomial`].
 
 use num_bigint::BigInt;
@@ -8,8 +9,8 @@ use num_traits::{One, Zero};
 use crate::blend::bernstein as bernstein_ops;
 use crate::error::{Error, Result};
 
-/// The jump-smoothing polynomial `w_k(u) = Σ_{i=k+1}^{2k+1} b_{2k+1,i}(u)` of document 001
-/// (digest §B.1).
+/// The jump-smoothing polynomial `w_k(u) = Σ_{i=k+1}^{2k+1} b_{2k+1,i}(u)` of document 001 §1
+/// (docs/theory/blending.md#jump-smoothing-polynomials).
 ///
 /// # Definition
 /// The unit step `σ(u)` on `[0, 1]` (0 before `1/2`, 1 after) is approximated by the Bezier
@@ -396,9 +397,9 @@ mod tests {
             .fold(BigRational::zero(), |acc, c| acc * x + c)
     }
 
-    // Digest §B.1 table, k = 0 … 5.
+    // The table of w_k, k = 0 … 5 (docs/theory/blending.md#jump-smoothing-polynomials).
     #[test]
-    fn table_of_the_digest() {
+    fn table_of_w_0_to_w_5() {
         let table: [&[i64]; 6] = [
             &[0, 1],
             &[0, 0, 3, -2],
@@ -506,13 +507,14 @@ mod tests {
                 assert_eq!(
                     got,
                     BigRational::new(int(p), int(q)),
-                    "digest value k = {k}"
+                    "tabulated value k = {k}"
                 );
             }
         }
     }
 
-    // Property 3 numerically for large k, and the digest's decimals for k = 10, 20.
+    // Property 3 numerically for large k, and the decimals for k = 10, 20
+    // (docs/theory/blending.md#properties-of-the-jump-polynomials).
     #[test]
     fn integral_to_half_f64() {
         assert!(
@@ -544,19 +546,20 @@ mod tests {
     // Property 4: J_{k+1}(w_k) = 1, 12, 720, 100800, … = (2k+1)! C(2k,k), exactly for k ≤ 10.
     #[test]
     fn energy_values() {
-        let digest = [1, 12, 720, 100_800];
+        let tabulated = [1, 12, 720, 100_800];
         for k in 0..=10 {
             let j = w(k).energy();
             assert_eq!(j, factorial(2 * k + 1) * big_binomial(2 * k, k), "k = {k}");
-            if let Some(&v) = digest.get(k) {
-                assert_eq!(j, int(v), "digest value k = {k}");
+            if let Some(&v) = tabulated.get(k) {
+                assert_eq!(j, int(v), "tabulated value k = {k}");
             }
         }
     }
 
     // Property 4: w_k + c·u^{k+1}(1−u)^{k+1}·q(u) keeps the boundary conditions and has
     // J = J(w_k) + J(perturbation) > J(w_k), exactly (the cross term integrates to zero).
-    // Digest values: 12 + 4c²/5 (k = 1), 720 + 36c²/7 (k = 2).
+    // Reference values: 12 + 4c²/5 (k = 1), 720 + 36c²/7 (k = 2)
+    // (docs/theory/blending.md#energy-minimality).
     #[test]
     fn energy_minimal_against_perturbations() {
         let r = |p: i64, q: i64| BigRational::new(int(p), int(q));
@@ -600,7 +603,7 @@ mod tests {
                 } else {
                     r(720, 1) + r(36, 7) * &c * &c
                 };
-                assert_eq!(energy_exact(&f, k + 1), expect, "digest formula k = {k}");
+                assert_eq!(energy_exact(&f, k + 1), expect, "closed form k = {k}");
             }
         }
     }

@@ -1,6 +1,7 @@
-//! The local curves that a blended spline is made of (document 001, digest §B.3): a family
-//! ([`LocalCurves`]) gives, for three consecutive points, two pieces through them: parabolas
-//! ([`Parabolas`]), circular arcs ([`CircularArcs`]) or your own ([`FnLocalCurves`]).
+//! The local curves that a blended spline is made of (document 001 §3;
+//! docs/theory/blending.md#local-curves): a family ([`LocalCurves`]) gives, for three consecutive
+//! points, two pieces through them: parabolas ([`Parabolas`]), circular arcs ([`CircularArcs`]) or
+//! your own ([`FnLocalCurves`]).
 
 use std::sync::Arc;
 
@@ -22,7 +23,8 @@ pub enum Continuity {
     Geometric,
 }
 
-/// A family of local curves through three consecutive points (digest §B.3).
+/// A family of local curves through three consecutive points
+/// (docs/theory/blending.md#local-curves).
 pub trait LocalCurves {
     /// The local curve through `points[0], points[1], points[2]` taking them at the parameters
     /// `−delta.0, 0, delta.1`, as its left piece on `[−delta.0, 0]` and right piece on
@@ -118,9 +120,10 @@ pub enum ArcParametrization {
     /// Each arc a rational quadratic Bezier with weights `1, cos(θ/2), 1` (P&T §7.5): the spline
     /// is an exact NURBS (`G^k`). Arcs must be shorter than a half circle.
     RationalQuadratic,
-    /// Angle the quadratic in `σ` through the three points' angles (digest §B.3 note 2): the
-    /// spline is `C^k` in the global parameter (use [`SplineParameters::ChordLength`]). Collinear
-    /// points fall back to the parabola.
+    /// Angle the quadratic in `σ` through the three points' angles
+    /// (docs/theory/blending.md#parametric-and-geometric-continuity): the spline is `C^k` in the
+    /// global parameter (use [`SplineParameters::ChordLength`]). Collinear points fall back to the
+    /// parabola.
     GlobalAngle,
 }
 
@@ -156,7 +159,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `P_0 = O + r e_1`, and the angles `0 < φ_1 < φ_2 < 2π` of `P_1, P_2` (traversal order).
 /// `None` when collinear. Centre from the 2×2 Gram system
 /// `[a·a a·b; a·b b·b] (x, y) = (|a|²/2, |b|²/2)`, `O = P_1 + x a + y b` (equivalent to the
-/// digest's cross-product formula, §B.3 note 1, in any dimension).
+/// cross-product formula in 3-D, in any dimension;
+/// docs/theory/blending.md#circle-through-three-points).
 struct Circle {
     centre: Vec<f64>,
     radius: f64,
@@ -457,7 +461,8 @@ mod tests {
             .collect()
     }
 
-    // the digest's cross-product centre formula (§B.3 note 1) in 3D, against the Gram solve
+    // the cross-product centre formula in 3D (docs/theory/blending.md#circle-through-three-points),
+    // against the Gram solve
     #[test]
     fn circle_through_three_points_in_3d() {
         let (a, b, c) = ([1.0, 2.0, 0.5], [2.0, 0.0, 1.0], [0.0, -1.0, 2.0]);

@@ -1,4 +1,5 @@
-//! Interpolating spline curves by blending local three-point curves (document 001, digest §B.3);
+//! Interpolating spline curves by blending local three-point curves (document 001 §3;
+//! docs/theory/blending.md#blend-splines);
 //! the mathematics is documented on [`BlendSpline`].
 
 use crate::blend::deformation::{BezierForm, Deformation, ParametricCurve};
@@ -44,9 +45,9 @@ impl Default for BlendSplineOptions {
 
 type Segment = Deformation<SharedCurve, SharedCurve>;
 
-/// An interpolating spline curve built by blending local three-point curves (document 001,
-/// digest §B.3): the construction, the end rule and which continuity each family of local
-/// curves gives are documented below.
+/// An interpolating spline curve built by blending local three-point curves (document 001 §3;
+/// docs/theory/blending.md#blend-splines): the construction, the end rule and which continuity each
+/// family of local curves gives are documented below.
 ///
 /// # Construction
 /// Points `P_0 … P_{n−1}` get global parameters `s_0 < s_1 < …` ([`SplineParameters`]) with
@@ -58,15 +59,16 @@ type Segment = Deformation<SharedCurve, SharedCurve>;
 /// The segment from `P_i` to `P_{i+1}` is the [`Deformation`] of the right piece of `L_i` into the
 /// left piece of `L_{i+1}` (both run from `P_i` to `P_{i+1}`):
 /// `p_i(u) = (1 − w_{k−1}(u)) L_i(u Δ_i) + w_{k−1}(u) L_{i+1}((u − 1) Δ_i)`, `u = (s − s_i)/Δ_i`.
-/// By §B.2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left piece and
-/// segment `i + 1` starts with those of `L_{i+1}`'s right piece.
+/// By document 001 §2, segment `i` ends with the derivatives (to order `k`) of `L_{i+1}`'s left
+/// piece and segment `i + 1` starts with those of `L_{i+1}`'s right piece.
 ///
 /// # C^k or G^k: which one each construction has
 /// - If the two pieces of every `L_j` are **one curve** of `σ` (the same function on both sides of
 ///   0), the spline is **C^k in the global parameter `s`**: [`Parabolas`] (the quadratic Lagrange
 ///   interpolant in `σ`; with uniform parameters and `k = 1` this is exactly **Catmull–Rom**,
-///   digest §B.3 note 3) and [`CircularArcs`] with [`ArcParametrization::GlobalAngle`] (the angle
-///   on the circle is the quadratic in `σ` through the three points' angles; digest §B.3 note 2).
+///   docs/theory/blending.md#local-curves) and [`CircularArcs`] with
+///   [`ArcParametrization::GlobalAngle`] (the angle on the circle is the quadratic in `σ` through
+///   the three points' angles; docs/theory/blending.md#parametric-and-geometric-continuity).
 /// - If each piece is parametrised on its own, the two sides of `P_j` are the same curve (the
 ///   same circle) traced at different speeds: the spline is only **G^k** (geometric continuity,
 ///   derivatives agree after a reparametrisation). This is document 001's own construction:

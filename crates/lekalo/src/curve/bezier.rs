@@ -1,5 +1,5 @@
-//! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002 §C.4, document
-//! 004 eq. 1), of any degree and dimension.
+//! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002, Bezier curves,
+//! document 004 eq. 1), of any degree and dimension.
 
 use serde::{Deserialize, Serialize};
 
@@ -72,6 +72,12 @@ impl BezierCurve {
     #[must_use]
     pub fn dim(&self) -> usize {
         self.control.dim()
+    }
+
+    /// The parameter domain, always `(0, 1)`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
     }
 
     /// The control points.
@@ -147,7 +153,8 @@ impl BezierCurve {
         Ok(())
     }
 
-    /// Point `P(t)` by the Bernstein sum `Σ b_{n,i}(t) P_i` (document 002 §C.4), into `out`.
+    /// Point `P(t)` by the Bernstein sum `Σ b_{n,i}(t) P_i` (document 002, Bezier curves), into
+    /// `out`.
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`]; [`Error::LengthMismatch`] if `out.len() != dim`.
@@ -416,7 +423,7 @@ mod tests {
         ));
     }
 
-    /// Document 002 §C.4: the cubic written out.
+    /// Document 002, Bezier curves: the cubic written out.
     #[test]
     fn cubic_formula() {
         let c = BezierCurve::new(Points::from_flat(1, vec![1.0, 5.0, -2.0, 3.0]).unwrap()).unwrap();

@@ -6,8 +6,8 @@
 //!
 //! Knot conventions are those of [`crate::knots`]: domain `[t_p, t_{n+1}]`, half-open spans,
 //! the right end evaluated by the last non-empty span. Every operation works for unclamped knot
-//! vectors (such as the lecture's `[0, 0, 1, 2, 3, 3]`, document 002 §C.5) and acts on the curve
-//! over its domain; knots of multiplicity `p + 1` (jumps) are allowed throughout.
+//! vectors (such as the lecture's `[0, 0, 1, 2, 3, 3]`, document 002, B-splines) and acts on the
+//! curve over its domain; knots of multiplicity `p + 1` (jumps) are allowed throughout.
 
 use serde::{Deserialize, Serialize};
 
@@ -22,7 +22,7 @@ use crate::points::Points;
 ///
 /// ```
 /// use lekalo::{BSplineCurve, Points};
-/// // the lecture's example (document 002 §C.5): P(1.5) = (17/8, 11/4)
+/// // the lecture's example (document 002, B-splines): P(1.5) = (17/8, 11/4)
 /// let ctrl = Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]]).unwrap();
 /// let c = BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl).unwrap();
 /// assert_eq!(c.domain(), (1.0, 2.0));
@@ -466,7 +466,7 @@ mod tests {
         BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl).unwrap()
     }
 
-    /// Document 002 §C.5: on [1,2) the curve is (t²/2 + 1, −t² + 4t − 1).
+    /// Document 002, B-splines: on [1,2) the curve is (t²/2 + 1, −t² + 4t − 1).
     #[test]
     fn lecture_curve_piece_on_domain() {
         let c = lecture();

@@ -167,7 +167,7 @@ impl NurbsCurve {
     }
 
     /// The circular arc from `a` through `b` to `c` (the circle through three points, document
-    /// 001 §B.3's local curves), as in [`NurbsCurve::circular_arc`]: `C(0) = a` and `C(1) = c`
+    /// 001 §3's local curves), as in [`NurbsCurve::circular_arc`]: `C(0) = a` and `C(1) = c`
     /// exactly, and `b` lies on the curve. Any dimension ≥ 2; the arc lies in the plane of the
     /// three points and may sweep up to (not including) a full turn.
     ///
@@ -200,7 +200,7 @@ impl NurbsCurve {
 
     /// As [`NurbsCurve::arc_through_points`], also returning the parameter `t_b` with
     /// `C(t_b) = b` (up to rounding), e.g. to split the arc at `b` or to blend local arcs
-    /// (document 001 §B.3).
+    /// (document 001 §3).
     ///
     /// The arc's pieces are symmetric rational quadratics of half-angle `α = δ/2`, on which the
     /// local parameter `s ∈ [0, 1]` and the angle `φ` from the piece's middle satisfy

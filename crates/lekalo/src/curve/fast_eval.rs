@@ -367,7 +367,7 @@ impl CurveEvaluator {
                 // so every loop unrolls and the Taylor coefficients stay in registers). With a
                 // run-time order they went through the stack: a 3-D cubic's point and 1st
                 // derivative took 10.2 ns a parameter, now 3.5; with the 2nd, 13.2 → 4.9
-                // (docs/performance.md, session 6)
+                // (docs/performance.md)
                 macro_rules! fixed_order {
                     ($w:literal, $d:literal, $k:literal) => {
                         self.drive(ts, out, row, |j, t, o| {

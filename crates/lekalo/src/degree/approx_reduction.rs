@@ -1,5 +1,5 @@
 //! Approximate degree reduction of Bezier curves (beyond document 004, which reduces only when
-//! the curve has a degree defect, §E.3).
+//! the curve has a degree defect, document 004, eq. (9)–(10)).
 //!
 //! The reduced curve `q` of degree `k` minimises the L2 distance `∫₀¹ ‖p(t) − q(t)‖² dt` to the
 //! curve `p` of degree `n > k`, optionally with the end points, or the end points and end

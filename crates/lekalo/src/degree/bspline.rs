@@ -1,6 +1,7 @@
-//! Degree change of B-spline curves and surfaces, composed from the Bezier operations of document 004 (digest
-//! §E) and Bezier decomposition (STYLE §7; as `ricosjp/truck` `BSplineCurve::elevate_degree` and
-//! `msteinbeck/tinyspline` `ts_bspline_elevate_degree`):
+//! Degree change of B-spline curves and surfaces, composed from the Bezier operations of document
+//! 004 (docs/theory/degree.md#b-spline-degree-change) and Bezier decomposition (STYLE §7; as
+//! `ricosjp/truck` `BSplineCurve::elevate_degree` and `msteinbeck/tinyspline`
+//! `ts_bspline_elevate_degree`):
 //!
 //! 1. split the curve into its polynomial pieces ([`BSplineCurve::to_bezier_segments`]);
 //! 2. change the degree of every piece (elevation, exact reduction or approximate reduction);

@@ -1,5 +1,6 @@
 //! Changing the degree of Bezier curves without changing their shape (document 004, Nikulin
-//! 2011, "A new method of changing the orders of Bezier curves and surfaces", digest §E).
+//! 2011, "A new method of changing the orders of Bezier curves and surfaces";
+//! docs/theory/degree.md).
 //!
 //! The paper calls the degree `n` the "order" (the number of legs of the control polygon). It
 //! works with the monomial form `p(t) = U_n H_n T_n(t)` (eq. 1–5): elevation is
@@ -93,11 +94,11 @@ impl BezierCurve {
 
     /// The Bezier curve of degree `n` (= number of coefficients − 1) with `p(t) = Σ s_j t^j`:
     /// `U_n = S_n H_n^{-1}`, `u_j = Σ_{i≤j} C(j,i)/C(n,i) s_i` (document 004 eq. 5 with the
-    /// closed-form inverse of digest §E.1). O(n²·dim).
+    /// closed-form inverse of docs/theory/degree.md#three-forms-of-a-bezier-curve). O(n²·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
-    /// // p(t) = 1 + 2t + 0t², a quadratic whose real degree is 1 (the paper's example, §E.2)
+    /// // p(t) = 1 + 2t + 0t², a quadratic of real degree 1 (document 004's example, eq. (6)–(8))
     /// let c = BezierCurve::from_monomial(Points::from_flat(1, vec![1.0, 2.0, 0.0])?)?;
     /// assert_eq!(c.control_points().as_slice(), &[1.0, 2.0, 3.0]);
     /// assert_eq!(c.real_degree(), 1);
@@ -155,10 +156,11 @@ impl BezierCurve {
     }
 
     /// Elevation by `by` in one step (document 004 eq. 7–8) in the closed form
-    /// `u'_j = Σ_i C(n,i) C(r,j−i) / C(n+r,j) u_i`, `r = by` (digest §E.2; Farin, *Curves and
-    /// Surfaces for CAGD*, §5.1). Each new point is a convex combination of old ones, so the
-    /// result is accurate to a few ulps of the net's scale at any degree. Equal to `by`
-    /// applications of [`BezierCurve::elevate_degree_once`]. O((n+1)(r+1)·dim).
+    /// `u'_j = Σ_i C(n,i) C(r,j−i) / C(n+r,j) u_i`, `r = by`
+    /// (docs/theory/degree.md#elevation-by-several-degrees; Farin, *Curves and Surfaces for CAGD*,
+    /// §5.1). Each new point is a convex combination of old ones, so the result is accurate to a
+    /// few ulps of the net's scale at any degree. Equal to `by` applications of
+    /// [`BezierCurve::elevate_degree_once`]. O((n+1)(r+1)·dim).
     ///
     /// ```
     /// use lekalo::{BezierCurve, Points};
@@ -201,14 +203,14 @@ impl BezierCurve {
         real_degree_and_net(p.as_slice(), p.dim(), tol, 0).0
     }
 
-    /// Degree defect `d = n − n'` (document 004 §E.3) with the default tolerance.
+    /// Degree defect `d = n − n'` (document 004, eq. (9)–(10)) with the default tolerance.
     #[must_use]
     pub fn degree_defect(&self) -> usize {
         self.degree() - self.real_degree()
     }
 
-    /// Real degree `n'` of the polynomial (document 004 §E.3): the smallest `k` such that the
-    /// exact reduction to degree `k` (stable Bernstein-domain recurrences, see the module
+    /// Real degree `n'` of the polynomial (document 004, eq. (9)–(10)): the smallest `k` such that
+    /// the exact reduction to degree `k` (stable Bernstein-domain recurrences, see the module
     /// documentation), elevated back to degree `n`, reproduces every control-point coordinate to
     /// within `tolerance × max|coordinate|`. By the convex-hull property the curve then moves by
     /// at most that much per coordinate. Equivalent in exact arithmetic to the paper's count of
@@ -223,10 +225,11 @@ impl BezierCurve {
         Ok(real_degree_and_net(p.as_slice(), p.dim(), tol, 0).0)
     }
 
-    /// Real degree by the paper's literal rule (document 004 §E.3): the number of trailing zero
-    /// columns of `S_n = U_n H_n`. Coefficient `s_j` counts as zero when every coordinate is at
-    /// most `tolerance × max|coordinate| × C(n,j) × 2^j`, the scale of its rounding error. Reliable
-    /// for low degrees (about 15); use [`BezierCurve::real_degree_with_tolerance`] otherwise.
+    /// Real degree by the paper's literal rule (document 004, eq. (9)–(10)): the number of trailing
+    /// zero columns of `S_n = U_n H_n`. Coefficient `s_j` counts as zero when every coordinate is
+    /// at most `tolerance × max|coordinate| × C(n,j) × 2^j`, the scale of its rounding error.
+    /// Reliable for low degrees (about 15); use [`BezierCurve::real_degree_with_tolerance`]
+    /// otherwise.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a bad tolerance; as [`BezierCurve::to_monomial`].
@@ -285,8 +288,8 @@ impl BezierCurve {
     /// - `target < n`: exact reduction, possible only if the real degree
     ///   ([`BezierCurve::real_degree_with_tolerance`]) is at most `target`. Otherwise the request
     ///   is refused instead of silently changing the shape (which eq. 10 would do by dropping
-    ///   the terms `t^(target+1) … t^n`, digest §E.3). For an approximation use
-    ///   [`BezierCurve::reduce_degree_approx`].
+    ///   the terms `t^(target+1) … t^n`, docs/theory/degree.md#reduction-without-a-defect). For an
+    ///   approximation use [`BezierCurve::reduce_degree_approx`].
     ///
     /// # Errors
     /// [`Error::DegreeReductionRefused`] with the real degree; [`Error::InvalidArgument`] for a

@@ -1,4 +1,5 @@
-//! The matrices of document 004 (Nikulin 2011, digest §E) in exact rational arithmetic.
+//! The matrices of document 004 (Nikulin 2011; docs/theory/degree.md#order-change-matrices) in
+//! exact rational arithmetic.
 //!
 //! The paper writes a Bezier curve of degree `n` as `p(t) = U_n B_n(t) = S_n T_n(t) =
 //! U_n H_n T_n(t)` (eq. 1–5): `U_n` holds the control points as *columns*, `B_n(t)` the Bernstein
@@ -269,8 +270,8 @@ pub fn bernstein_monomial_matrix(n: usize) -> Result<RationalMatrix> {
 }
 
 /// `H_n^{-1}` in closed form, `(H_n^{-1})_ij = C(j,i) / C(n,i)` for `i ≤ j` and 0 otherwise
-/// (digest §E.1, "not in source, verified"; it is the standard monomial-to-Bernstein matrix,
-/// Farin, *Curves and Surfaces for CAGD*, §5.4). Row 0 and the last column are all ones.
+/// (docs/theory/degree.md#three-forms-of-a-bezier-curve; it is the standard monomial-to-Bernstein
+/// matrix, Farin, *Curves and Surfaces for CAGD*, §5.4). Row 0 and the last column are all ones.
 ///
 /// ```
 /// use lekalo::{bernstein_monomial_matrix, bernstein_monomial_matrix_inverse};
@@ -338,8 +339,9 @@ pub fn reduction_block(n: usize, n_new: usize) -> Result<RationalMatrix> {
 /// - For `n' ≥ n` it equals the elevation matrix with the closed form
 ///   `C(n,i) C(n'−n, j−i) / C(n',j)` (non-negative, columns summing to 1).
 /// - For `n' < n` it is exact only when the curve has a degree defect of at least `n − n'`:
-///   otherwise it silently drops the monomial terms `t^(n'+1) … t^n` (digest §E.3). This
-///   function builds the matrix and does not see the curve; the checked operation is
+///   otherwise it silently drops the monomial terms `t^(n'+1) … t^n`
+///   (docs/theory/degree.md#reduction-without-a-defect). This function builds the matrix and
+///   does not see the curve; the checked operation is
 ///   [`BezierCurve::change_degree`](crate::BezierCurve::change_degree).
 ///
 /// ```
@@ -357,8 +359,8 @@ pub fn order_change_matrix(n: usize, n_new: usize) -> Result<RationalMatrix> {
 }
 
 /// The closed-form elevation matrix `(H_n K_{n,n'})_ij = C(n,i) C(n'−n, j−i) / C(n',j)`
-/// (digest §E.2, "not in source, verified"; Farin, *Curves and Surfaces for CAGD*, §5.1), built
-/// without any inverse.
+/// (docs/theory/degree.md#elevation-by-several-degrees; Farin, *Curves and Surfaces for CAGD*,
+/// §5.1), built without any inverse.
 ///
 /// # Errors
 /// [`Error::Degree`] if `n_new < n` or either exceeds [`MAX_EXACT_MATRIX_DEGREE`].

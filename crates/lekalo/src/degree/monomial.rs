@@ -47,9 +47,9 @@ pub(crate) fn from_monomial_vec(coeffs: &[f64], dim: usize) -> Vec<f64> {
     out
 }
 
-/// Real degree by the paper's rule (§E.3): the number of trailing monomial coefficients that
-/// vanish. `s_j` counts as zero when `|s_j| ≤ tol_abs · C(n,j) · 2^j`, the size of its rounding
-/// error when computed from a net of scale 1.
+/// Real degree by the paper's rule (document 004, eq. (9)–(10)): the number of trailing monomial
+/// coefficients that vanish. `s_j` counts as zero when `|s_j| ≤ tol_abs · C(n,j) · 2^j`, the size
+/// of its rounding error when computed from a net of scale 1.
 pub(crate) fn real_degree_monomial_slice(coeffs: &[f64], dim: usize, tol_abs: f64) -> usize {
     let n = coeffs.len() / dim - 1;
     let c = binomials(n);

@@ -149,7 +149,7 @@ pub(crate) fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
 /// reduction), which both this search and a scan down from `n − 1` to the first failure rely
 /// on; they return the same degree (tested). A net without defect costs one O(n·dim) reduction,
 /// as before; a defect `d` costs about `2 log₂ d` reductions instead of `d + 1` (3-D,
-/// 100 → 48: 4.5 ms scanned, see `docs/performance.md`, session 6).
+/// 100 → 48: 4.5 ms scanned, see `docs/performance.md`).
 pub(crate) fn real_degree_and_net(
     src: &[f64],
     dim: usize,

@@ -1,4 +1,4 @@
-//! Degree change of tensor-product Bezier surfaces (document 004 §E.4, eq. 11–16): functions on
+//! Degree change of tensor-product Bezier surfaces (document 004, eq. (11)–(16)): functions on
 //! a plain control net (`bezier_net_*`) and the same operations as methods of [`BezierSurface`].
 //!
 //! A net of degrees `(n, m)` is a [`Points`] of `(n+1)·(m+1)` points with point `(i, j)` at
@@ -242,7 +242,7 @@ fn max_binomial_power(m: usize) -> f64 {
 ///
 /// ```
 /// use lekalo::{bezier_net_change_degree, bezier_net_elevate, Error, Points};
-/// // document 004 §E.4, Fig. 5: a net of degrees (4, 3) with one zero bottom row of S
+/// // document 004, Fig. 5: a net of degrees (4, 3) with one zero bottom row of S
 /// let base = Points::from_flat(1, (0..16).map(|i| f64::from(i * 5 % 11)).collect())?; // (3, 3)
 /// let net = bezier_net_elevate(&base, 3, 3, 1, 0)?; // (4, 3), real u degree 3
 /// let lowered = bezier_net_change_degree(&net, 4, 3, 3, 6, 1e-10)?; // lower u, raise v

@@ -2,7 +2,7 @@
 //! knot differences a block at a time, the four cubic basis functions of a row by Cox–de Boor
 //! with those reciprocals, and the forward elimination and back substitution of the pentadiagonal
 //! system fused with the row construction. The fast path of [`crate::numeric::linalg::BandedCrout`] for
-//! the free-end cubic with averaged knots (document 000 §A.1), used by `interpolate_fast`.
+//! the free-end cubic with averaged knots (document 000 §1), used by `interpolate_fast`.
 
 use crate::numeric::linalg::{MAX_GROWTH, SINGULAR_PIVOT};
 
@@ -140,7 +140,8 @@ crate::numeric::isa::avx2_dispatch! {
 }
 
 /// Fused collocation solve of the free-end cubic interpolant with averaged knots (document 000
-/// §A.1 eq. 1 and 3, P&T Algorithm A9.1): the fast path of [`crate::numeric::linalg::BandedCrout::push_row`] +
+/// §1 eq. 1 and 3, P&T Algorithm A9.1): the fast path of
+/// [`crate::numeric::linalg::BandedCrout::push_row`] +
 /// [`crate::numeric::linalg::BandedCrout::back_substitute`] with Cox–de Boor rows (P&T A2.2, see [`cubic_basis`]).
 ///
 /// `q` holds the `n + 1` points (`D` coordinates each) and `knots` the `n + 5` averaged knots;

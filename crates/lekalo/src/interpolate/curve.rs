@@ -1,13 +1,15 @@
-//! Interpolation of curves through points (document 000, digest §A.1–§A.4) and closed curves.
+//! Interpolation of curves through points (document 000 §1–4;
+//! docs/theory/interpolation.md#global-interpolation) and closed curves
+//! (docs/theory/interpolation.md#closed-curves).
 //!
 //! One configurable construction, [`CurveInterpolation`], combines three independent choices:
 //!
 //! - **parametrisation** ([`Parametrization`]): uniform, chord length, centripetal or the general
-//!   exponent form (digest §A.1, P&T eq. 9.4–9.6);
+//!   exponent form (docs/theory/interpolation.md#parametrisation; P&T eq. 9.4–9.6);
 //! - **knot placement** ([`KnotPlacement`]): averaging (eq. 3, eq. 4), uniform (eq. 2) or at the
 //!   parameters (eq. 8);
-//! - **end conditions** ([`EndCondition`]): none (§A.1), first derivatives (§A.2 for any degree
-//!   `p ≥ 2`, §A.3 for the C² cubic), second derivatives and the natural cubic (§A.4), or a
+//! - **end conditions** ([`EndCondition`]): none (§1), first derivatives (§2 for any degree
+//!   `p ≥ 2`, §3 for the C² cubic), second derivatives and the natural cubic (§4), or a
 //!   closed periodic curve.
 //!
 //! Every result is a [`BSplineCurve`], so evaluation, derivatives, export and plotting apply.
@@ -67,17 +69,18 @@ pub enum KnotPlacement {
     /// parameters this "can lead to a system with a singular matrix"; lekalo then reports
     /// [`Error::SingularSystem`]. Only with [`EndCondition::Free`].
     Uniform,
-    /// Knots at the parameters, eq. (8): the C² cubic of §A.3–§A.4. Degree 3 with first or
+    /// Knots at the parameters, eq. (8): the C² cubic of §3–4. Degree 3 with first or
     /// second end derivatives only.
     AtParameters,
 }
 
 /// Global interpolation of points by a B-spline curve: parametrisation × knot placement × end
-/// conditions (document 000, digest §A.1–§A.4, plus closed curves).
+/// conditions (document 000 §1–4, plus closed curves;
+/// docs/theory/interpolation.md#global-interpolation).
 ///
 /// ```
 /// use lekalo::{CurveInterpolation, EndCondition, Parametrization, Points};
-/// // digest T.1: P&T Example 9.1, cubic, chord length, averaged knots
+/// // P&T Example 9.1, cubic, chord length, averaged knots
 /// let q = Points::from_2d(&[[0.0, 0.0], [3.0, 4.0], [-1.0, 4.0], [-4.0, 0.0], [-4.0, -3.0]])?;
 /// let c = CurveInterpolation::new(3).interpolate(q.as_view())?;
 /// let p1 = c.control_points().point(1);
@@ -86,7 +89,7 @@ pub enum KnotPlacement {
 /// let r = c.eval(9.0 / 17.0)?;
 /// assert!((r[0] + 1.0).abs() < 1e-14 && (r[1] - 4.0).abs() < 1e-14);
 ///
-/// // the natural cubic spline (§A.4 with zero second derivatives)
+/// // the natural cubic spline (§4 with zero second derivatives)
 /// let natural = CurveInterpolation::new(3)
 ///     .end_condition(EndCondition::Natural)
 ///     .parametrization(Parametrization::ChordLength)
@@ -400,14 +403,15 @@ impl CurveInterpolation {
                 if at_params && p != 3 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "knots at the parameters with end derivatives need a cubic (§A.3)"
+                        reason: "knots at the parameters with end derivatives need a cubic (document 000 §3)"
                             .into(),
                     });
                 }
                 if p < 2 {
                     return Err(Error::Degree {
                         degree: p,
-                        reason: "prescribed end derivatives need degree ≥ 2 (§A.2)".into(),
+                        reason: "prescribed end derivatives need degree ≥ 2 (document 000 §2)"
+                            .into(),
                     });
                 }
                 let n = params.len() - 1;
@@ -432,7 +436,7 @@ impl CurveInterpolation {
                     return Err(Error::Degree {
                         degree: p,
                         reason:
-                            "second-derivative and natural end conditions are for cubics (§A.4)"
+                            "second-derivative and natural end conditions are for cubics (document 000 §4)"
                                 .into(),
                     });
                 }
@@ -578,7 +582,7 @@ fn check_vector(what: &'static str, v: &[f64], dim: usize) -> Result<()> {
 }
 
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` for strictly increasing `x`: document
-/// 000 §A.4 with zero end second derivatives, the parameters being the abscissae themselves, so
+/// 000 §4 with zero end second derivatives, the parameters being the abscissae themselves, so
 /// that `curve.eval(x)` is `y(x)` (each component of `y` is one function). The result equals
 /// SciPy's `CubicSpline(x, y, bc_type="natural")`.
 ///
@@ -629,7 +633,7 @@ mod tests {
     }
 
     #[test]
-    fn t1_uniform_exact() {
+    fn example_9_1_uniform_exact() {
         let c = CurveInterpolation::new(3)
             .parametrization(Parametrization::Uniform)
             .interpolate(example().as_view())

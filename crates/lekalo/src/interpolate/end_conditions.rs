@@ -1,4 +1,4 @@
-//! End conditions of global curve interpolation (document 000 §A.1–§A.4): free ends, prescribed
+//! End conditions of global curve interpolation (document 000 §1–4): free ends, prescribed
 //! first derivatives (any degree `p ≥ 2`, and the C² cubic with knots at the parameters),
 //! prescribed second derivatives and the natural cubic spline.
 
@@ -18,11 +18,11 @@ use crate::points::PointsRef;
 /// dimension.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum EndCondition {
-    /// No extra condition (document 000 §A.1): `n + 1` control points, any degree `1 ≤ p ≤ n`.
+    /// No extra condition (document 000 §1): `n + 1` control points, any degree `1 ≤ p ≤ n`.
     #[default]
     Free,
-    /// Prescribed first derivatives `C'(t̄_0) = start`, `C'(t̄_n) = end`: §A.2 (eq. 4–7) for any
-    /// degree `p ≥ 2` with averaged knots, or §A.3 (eq. 8–12, C² cubic, Thomas algorithm) with
+    /// Prescribed first derivatives `C'(t̄_0) = start`, `C'(t̄_n) = end`: §2 (eq. 4–7) for any
+    /// degree `p ≥ 2` with averaged knots, or §3 (eq. 8–12, C² cubic, Thomas algorithm) with
     /// knots at the parameters.
     FirstDerivatives {
         /// `d_0`, the derivative at the start.
@@ -30,7 +30,7 @@ pub enum EndCondition {
         /// `d_n`, the derivative at the end.
         end: Vec<f64>,
     },
-    /// Prescribed second derivatives of a C² cubic with knots at the parameters: §A.4
+    /// Prescribed second derivatives of a C² cubic with knots at the parameters: §4
     /// (eq. 13–15).
     SecondDerivatives {
         /// `d''_0`, the second derivative at the start.
@@ -38,7 +38,7 @@ pub enum EndCondition {
         /// `d''_n`, the second derivative at the end.
         end: Vec<f64>,
     },
-    /// Zero second derivatives at both ends: the natural cubic spline (§A.4 with
+    /// Zero second derivatives at both ends: the natural cubic spline (§4 with
     /// `d''_0 = d''_n = 0`; the minimum-`∫|C''|²` interpolant).
     Natural,
     /// A closed curve, `C^{p−1}` everywhere including the seam. The points are the distinct
@@ -50,7 +50,7 @@ pub enum EndCondition {
     Periodic,
 }
 
-/// §A.1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
+/// §1 (eq. 1): `n + 1` control points, `P_0 = q_0`, `P_n = q_n` (clamped ends), the interior
 /// ones from the collocation rows `t̄_1 … t̄_{n−1}`.
 pub(crate) fn free_end(
     points: PointsRef<'_>,
@@ -71,7 +71,7 @@ pub(crate) fn free_end(
     Ok(clamped_result(p, kv, control, points))
 }
 
-/// §A.2 (eq. 4–7) and §A.3 (eq. 8–12): `n + 3` control points. The first two and last two
+/// §2 (eq. 4–7) and §3 (eq. 8–12): `n + 3` control points. The first two and last two
 /// follow directly from eq. (6)–(7) / (9)–(10): `P_0 = q_0`,
 /// `P_1 = q_0 + (t_{p+1} − t̄_0)/p · d_0`, `P_{n+1} = q_n − (t̄_n − t_{n+2})/p · d_n`,
 /// `P_{n+2} = q_n`; `P_2 … P_n` solve the collocation rows `t̄_1 … t̄_{n−1}` (for the cubic with
@@ -111,7 +111,7 @@ pub(crate) fn first_derivative_ends(
     Ok(clamped_result(p, kv, control, points))
 }
 
-/// §A.4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
+/// §4 (eq. 13–15): the C² cubic with knots at the parameters and prescribed second
 /// derivatives. `P_0 = q_0`, `P_{n+2} = q_n`; `P_1 … P_{n+1}` solve the tridiagonal system whose
 /// first and last rows are eq. (13) and (14) multiplied by `h_4 = t_4 − t̄_0` and
 /// `g = t̄_n − t_{n+2}` respectively (so that every entry is O(1)):

@@ -1,4 +1,4 @@
-//! The fused fast path of global cubic interpolation (document 000 §A.1 with chord-length
+//! The fused fast path of global cubic interpolation (document 000 §1 with chord-length
 //! parameters and averaged knots, eq. 3), for 1–3 dimensions: parameters, knots, banded
 //! elimination and back substitution in three sweeps, agreeing with the general path of
 //! [`crate::interpolate::curve`] to rounding (the same parameters and knots bit for bit; the control
@@ -95,7 +95,7 @@ impl InterpolationWorkspace {
     /// Why: `U` is scratch, 16 bytes a point, freed at the end of each call. Freeing it is what
     /// tips glibc into handing its heap back to the operating system after every call, so
     /// that the next call faults every page of its result again. At 10^5 points that cost twice
-    /// the arithmetic: 30 ns a point against 15 (`docs/performance.md`, session 4). Kept, the
+    /// the arithmetic: 30 ns a point against 15 (`docs/performance.md`). Kept, the
     /// result buffers come from memory the allocator already holds.
     pub(crate) fn from_thread() -> Self {
         let upper = THREAD_UPPER

@@ -1,14 +1,14 @@
-//! Cubic Hermite splines (document 002 §C.3) and the lecture's cubic through four points
-//! (document 002 §C.2).
+//! Cubic Hermite splines (document 002, Hermite segment) and the lecture's cubic through four
+//! points (document 002, four-point cubic).
 //!
 //! A cubic Hermite spline through points `p_0 … p_n` at parameters `t_0 < … < t_n` with tangents
 //! `D_0 … D_n` is, on segment `k` with `h = t_{k+1} − t_k` and `u = (t − t_k)/h ∈ [0, 1]`,
 //! `P(t) = h00(u) p_k + h01(u) p_{k+1} + h10(u) h D_k + h11(u) h D_{k+1}` with the Hermite basis
-//! `[h00 h01 h10 h11] = [u³ u² u 1]·M_H` (digest §C.3, the printed inverse `M_H`, which is the
-//! inverse of the *corrected* forward matrix whose last row is `[3 2 1 0]`). With `t_k = k` this
-//! is exactly the lecture's segment. The curve is C¹; [`CubicHermite::to_bspline`] gives the
-//! equal cubic B-spline with double interior knots and [`CubicHermite::to_bezier_segments`] its
-//! Bezier pieces.
+//! `[h00 h01 h10 h11] = [u³ u² u 1]·M_H` (docs/theory/interpolation.md#the-hermite-matrix-row: the
+//! printed inverse `M_H`, which is the inverse of the *corrected* forward matrix whose last row is
+//! `[3 2 1 0]`). With `t_k = k` this is exactly the lecture's segment. The curve is C¹;
+//! [`CubicHermite::to_bspline`] gives the equal cubic B-spline with double interior knots and
+//! [`CubicHermite::to_bezier_segments`] its Bezier pieces.
 //!
 //! Natural and clamped C² cubic splines are B-spline interpolants: see
 //! [`CurveInterpolation`](crate::CurveInterpolation) and
@@ -22,8 +22,8 @@ use crate::interpolate::parametrization::{
 };
 use crate::points::{Points, PointsRef};
 
-/// The Hermite basis matrix `M_H` of document 002 §C.3: `[a b c d]ᵀ = M_H·[p_k p_{k+1} Dp_k
-/// Dp_{k+1}]ᵀ` for `P(u) = a u³ + b u² + c u + d`. It is the inverse of the corrected forward
+/// The Hermite basis matrix `M_H` of document 002, Hermite segment: `[a b c d]ᵀ = M_H·[p_k p_{k+1}
+/// Dp_k Dp_{k+1}]ᵀ` for `P(u) = a u³ + b u² + c u + d`. It is the inverse of the corrected forward
 /// matrix `[[0,0,0,1],[1,1,1,1],[0,0,1,0],[3,2,1,0]]` (the source prints the last row as
 /// `[3 2 1 1]`, which is wrong: `P'(1) = 3a + 2b + c`).
 pub const HERMITE_MATRIX: [[f64; 4]; 4] = [
@@ -34,7 +34,8 @@ pub const HERMITE_MATRIX: [[f64; 4]; 4] = [
 ];
 
 /// Inverse of the lecture's matrix `A` with rows `[u³ u² u 1]` at `u = 0, 1/3, 2/3, 1`
-/// (document 002 §C.2, the exact inverse verified in the digest).
+/// (document 002, four-point cubic; the exact inverse,
+/// docs/theory/interpolation.md#the-lectures-four-point-cubic).
 const FOUR_POINT_INVERSE: [[f64; 4]; 4] = [
     [-4.5, 13.5, -13.5, 4.5],
     [9.0, -22.5, 18.0, -4.5],
@@ -44,7 +45,8 @@ const FOUR_POINT_INVERSE: [[f64; 4]; 4] = [
 
 /// Power-basis coefficients `a, b, c, d` (rows of the result) of the Hermite segment
 /// `P(u) = a u³ + b u² + c u + d`, `u ∈ [0, 1]`, with `P(0) = p0`, `P(1) = p1`, `P'(0) = d0`,
-/// `P'(1) = d1`: the product `M_H·[p0 p1 d0 d1]ᵀ` of document 002 §C.3 ([`HERMITE_MATRIX`]).
+/// `P'(1) = d1`: the product `M_H·[p0 p1 d0 d1]ᵀ` of document 002, Hermite segment
+/// ([`HERMITE_MATRIX`]).
 ///
 /// ```
 /// use lekalo::hermite_segment_coefficients;
@@ -92,10 +94,11 @@ pub fn hermite_segment_coefficients(
     Ok(Points::from_raw(out, dim))
 }
 
-/// The lecture's single cubic through four points at `u = 0, 1/3, 2/3, 1` (document 002 §C.2):
-/// power-basis coefficients `a, b, c, d` (rows of the result) of `p(u) = a u³ + b u² + c u + d`,
-/// computed as `C = A⁻¹·P` with the exact inverse. This is cubic Lagrange interpolation, not a
-/// natural spline (for that see [`natural_cubic_spline`](crate::natural_cubic_spline)).
+/// The lecture's single cubic through four points at `u = 0, 1/3, 2/3, 1` (document 002,
+/// four-point cubic): power-basis coefficients `a, b, c, d` (rows of the result) of
+/// `p(u) = a u³ + b u² + c u + d`, computed as `C = A⁻¹·P` with the exact inverse. This is
+/// cubic Lagrange interpolation, not a natural spline (for that see
+/// [`natural_cubic_spline`](crate::natural_cubic_spline)).
 ///
 /// # Errors
 /// [`Error::LengthMismatch`] unless exactly 4 points are given.
@@ -301,7 +304,7 @@ impl CubicHermite {
         (self.params[0], self.params[self.params.len() - 1])
     }
 
-    /// `P(t)` by the Hermite basis of §C.3 on the segment containing `t`
+    /// `P(t)` by the Hermite basis (document 002, Hermite segment) on the segment containing `t`
     /// (`[t_k, t_{k+1})`, the last one closed). O(log n + dim).
     ///
     /// # Errors

@@ -13,7 +13,7 @@
 //!   ([`InterpolationWorkspace`]).
 //! - `cubic_sweep.rs`: the fused collocation sweep of that fast path.
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
-//! - `surface.rs`: tensor-product surface interpolation of a grid ([`interpolate_surface`]).
+//! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
 
 pub(crate) mod collocation;
@@ -36,7 +36,9 @@ pub use hermite::{
     CubicHermite, TangentEstimate, HERMITE_MATRIX,
 };
 pub use parametrization::{parametrize, Parametrization};
+#[allow(deprecated)]
 pub use surface::{
     interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
     SurfaceInterpolant,
 };
+pub use surface::{SurfaceInterpolation, SurfaceInterpolationReport};

@@ -1,11 +1,12 @@
 //! Parameters of the data points: uniform, chord length, centripetal or any exponent
-//! (document 000 §A.1; P&T eq. 9.3–9.6), and the overflow-safe distances they are built from.
+//! (document 000 §1; P&T eq. 9.3–9.6), and the overflow-safe distances they are built from.
 
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
 
-/// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1` (digest §A.1, P&T eq.
-/// 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k − q_{k−1}|^e`.
+/// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1`
+/// (docs/theory/interpolation.md#parametrisation, P&T eq. 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k −
+/// q_{k−1}|^e`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Parametrization {
     /// `t̄_k = k / n` (exponent 0). Accepts coincident consecutive points.
@@ -38,9 +39,10 @@ impl Parametrization {
     }
 }
 
-/// Parameters `t̄_0 = 0 < … < t̄_n = 1` of the points by `method` (digest §A.1 [not in source];
-/// P&T eq. 9.3–9.6): `t̄_k = t̄_{k−1} + |q_k − q_{k−1}|^e / Σ_j |q_j − q_{j−1}|^e`, with `e = 0`
-/// (uniform, `t̄_k = k/n`), 1 (chord length), 1/2 (centripetal) or any `e ≥ 0`.
+/// Parameters `t̄_0 = 0 < … < t̄_n = 1` of the points by `method`
+/// (docs/theory/interpolation.md#parametrisation; P&T eq. 9.3–9.6): `t̄_k = t̄_{k−1} + |q_k −
+/// q_{k−1}|^e / Σ_j |q_j − q_{j−1}|^e`, with `e = 0` (uniform, `t̄_k = k/n`), 1 (chord length), 1/2
+/// (centripetal) or any `e ≥ 0`.
 ///
 /// Only differences of points enter, so the result does not change when the data are offset
 /// or scaled. O(n·dim).

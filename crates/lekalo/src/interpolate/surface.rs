@@ -1,4 +1,4 @@
-//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §A.5,
+//! Interpolation of a grid of points by a tensor-product B-spline surface (document 000 §5,
 //! eq. 16–18): row and column parameters averaged, knots by averaging, curve interpolation in
 //! both directions with one factorisation per direction, applied in two sweeps over the grid.
 
@@ -12,9 +12,239 @@ use crate::numeric::linalg::BandedCrout;
 use crate::points::{Points, PointsRef};
 use crate::surface::bspline::BSplineSurface;
 
+/// Global interpolation of a grid of points by a tensor-product B-spline surface: document
+/// 000 §A.5, eq. (16)–(18), Algorithm A.5. The surface counterpart of
+/// [`CurveInterpolation`](crate::CurveInterpolation): set the degrees and the options, then
+/// [`SurfaceInterpolation::interpolate`] returns the [`BSplineSurface`];
+/// [`SurfaceInterpolation::interpolate_with_report`] also returns the grid parameters and the
+/// condition estimate.
+///
+/// The grid is `nu × nv` points `q_kl`, flat and point-major, point `(k, l)` at
+/// `(k·nv + l)·dim` (`k` along `u`). Parameters: for each column `l` the [`Parametrization`] of
+/// `q_0l … q_{nu−1,l}`, averaged over the columns (`ū_k = Σ_l ū_k^{(l)} / nv`, P&T §9.2.5),
+/// likewise `v̄_l` over the rows; knots by averaging (eq. 3). Then curve interpolation down
+/// every column and along every row, each direction's banded collocation matrix factored once;
+/// the two solves commute, and are interleaved so that the grid is swept twice (see
+/// `solve_grid` in the source). O(nu·nv·(p + q)·dim) after the factorisations'
+/// O(nu·p² + nv·q²).
+///
+/// ```
+/// use lekalo::{Parametrization, Points, SurfaceInterpolation};
+/// // a 4×3 grid on z = x·y
+/// let mut data = Vec::new();
+/// for k in 0..4 { for l in 0..3 { let (x, y) = (k as f64, l as f64); data.extend([x, y, x * y]); } }
+/// let grid = Points::from_flat(3, data)?;
+/// let fit = SurfaceInterpolation::new(3, 2).parametrization(Parametrization::Uniform);
+/// let s = fit.interpolate(grid.as_view(), 4, 3)?;
+/// assert_eq!(s.net_size(), (4, 3));
+/// assert_eq!(s.control_points().point(0), &[0.0, 0.0, 0.0]);
+/// // the parameters of the grid, on request
+/// let (s, report) = fit.interpolate_with_report(grid.as_view(), 4, 3)?;
+/// let (u, v) = (report.params_u()[2], report.params_v()[1]);
+/// let p = s.eval(u, v)?;
+/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14 && (p[2] - 2.0).abs() < 1e-14);
+/// assert!(report.condition() >= 1.0);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceInterpolation {
+    degree_u: usize,
+    degree_v: usize,
+    parametrization: Parametrization,
+    max_condition: Option<f64>,
+}
+
+impl SurfaceInterpolation {
+    /// Interpolation of degrees `(degree_u, degree_v)` with chord-length parameters (as
+    /// [`CurveInterpolation::new`](crate::CurveInterpolation::new)) and no condition limit.
+    #[must_use]
+    pub fn new(degree_u: usize, degree_v: usize) -> Self {
+        SurfaceInterpolation {
+            degree_u,
+            degree_v,
+            parametrization: Parametrization::ChordLength,
+            max_condition: None,
+        }
+    }
+
+    /// Sets the parametrisation of the rows and columns.
+    #[must_use]
+    pub fn parametrization(mut self, parametrization: Parametrization) -> Self {
+        self.parametrization = parametrization;
+        self
+    }
+
+    /// Refuses, with [`Error::IllConditioned`], a system whose 1-norm condition number is
+    /// estimated above `limit` (a number ≥ 1, e.g. `1e8`): see
+    /// [`SurfaceInterpolation::condition`] for the estimate. The surface, when there is one, is
+    /// the same bit for bit as without the limit; the estimate adds a few banded solves per
+    /// direction.
+    ///
+    /// ```
+    /// use lekalo::{Error, Parametrization, Points, SurfaceInterpolation};
+    /// // a 6×4 grid whose rows 2 and 3 nearly coincide
+    /// let mut data = Vec::new();
+    /// for x in [0.0, 1.0, 2.0, 2.0 + 1e-10, 3.0, 4.0] {
+    ///     for y in 0..4 { let y = f64::from(y); data.extend([x, y, (x * y).sin()]); }
+    /// }
+    /// let grid = Points::from_flat(3, data)?;
+    /// let strict = SurfaceInterpolation::new(3, 3).max_condition(1e8);
+    /// assert!(matches!(strict.interpolate(grid.as_view(), 6, 4), Err(Error::IllConditioned { .. })));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn max_condition(mut self, limit: f64) -> Self {
+        self.max_condition = Some(limit);
+        self
+    }
+
+    /// The B-spline surface through the `nu × nv` grid.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points; [`Error::TooFew`] if
+    /// `nu` or `nv` is below 2; [`Error::Degree`] if `p ≥ nu`, `q ≥ nv` or a degree is 0;
+    /// [`Error::CoincidentPoints`] (flat point indices) for a zero step in a row or column;
+    /// [`Error::InvalidArgument`] (also for a condition limit that is NaN or below 1);
+    /// [`Error::SingularSystem`] / [`Error::IllConditioned`] (also for an estimate above the
+    /// limit of [`SurfaceInterpolation::max_condition`]).
+    pub fn interpolate(&self, grid: PointsRef<'_>, nu: usize, nv: usize) -> Result<BSplineSurface> {
+        self.solve(grid, nu, nv, false).map(|(s, _)| s.surface)
+    }
+
+    /// [`SurfaceInterpolation::interpolate`], and what went into it: the parameters of the
+    /// grid's rows and columns and the condition estimate of the system (see
+    /// [`SurfaceInterpolation::condition`]). The surface is the same bit for bit.
+    ///
+    /// # Errors
+    /// As [`SurfaceInterpolation::interpolate`].
+    pub fn interpolate_with_report(
+        &self,
+        grid: PointsRef<'_>,
+        nu: usize,
+        nv: usize,
+    ) -> Result<(BSplineSurface, SurfaceInterpolationReport)> {
+        let (s, kappa) = self.solve(grid, nu, nv, true)?;
+        let report = SurfaceInterpolationReport {
+            params_u: s.params_u,
+            params_v: s.params_v,
+            condition: kappa,
+        };
+        Ok((s.surface, report))
+    }
+
+    /// Estimate of the 1-norm condition number `κ_1` of the linear system that
+    /// [`SurfaceInterpolation::interpolate`] solves for the grid. The system is the Kronecker
+    /// product `A_u ⊗ A_v` of the two curve collocation matrices, and
+    /// `κ_1(A_u ⊗ A_v) = κ_1(A_u)·κ_1(A_v)` (both `‖·‖_1` and the inverse factor over `⊗`: Horn &
+    /// Johnson, *Topics in Matrix Analysis*, §4.2), so the result is the product of the two
+    /// directions' estimates, each by Higham's refinement of Hager's method (ACM TOMS 14 (1988),
+    /// Algorithm 4.1; LAPACK `dgbcon`), see
+    /// [`CurveInterpolation::condition`](crate::CurveInterpolation::condition). A lower bound,
+    /// usually exact.
+    ///
+    /// ```
+    /// use lekalo::{Parametrization, Points, SurfaceInterpolation};
+    /// let mut data = Vec::new();
+    /// for k in 0..10 { for l in 0..8 { let (x, y) = (f64::from(k), f64::from(l)); data.extend([x, y, x * y]); } }
+    /// let grid = Points::from_flat(3, data)?;
+    /// let kappa = SurfaceInterpolation::new(3, 3)
+    ///     .parametrization(Parametrization::Uniform)
+    ///     .condition(grid.as_view(), 10, 8)?;
+    /// assert!(kappa >= 1.0 && kappa < 100.0);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`SurfaceInterpolation::interpolate`] (it performs the same solve), but never the
+    /// limit of [`SurfaceInterpolation::max_condition`].
+    pub fn condition(&self, grid: PointsRef<'_>, nu: usize, nv: usize) -> Result<f64> {
+        let grid = Grid {
+            points: grid,
+            nu,
+            nv,
+        };
+        let mut kappa = 1.0;
+        surface(
+            grid,
+            self.degree_u,
+            self.degree_v,
+            self.parametrization,
+            Some(&mut kappa),
+        )?;
+        Ok(kappa)
+    }
+
+    /// The solve, with the limit applied; with `estimate` (or a limit) the condition estimate
+    /// is made and returned, else 1.
+    fn solve(
+        &self,
+        points: PointsRef<'_>,
+        nu: usize,
+        nv: usize,
+        estimate: bool,
+    ) -> Result<(Solved, f64)> {
+        let grid = Grid { points, nu, nv };
+        let (p, q, param) = (self.degree_u, self.degree_v, self.parametrization);
+        if let Some(limit) = self.max_condition {
+            check_condition_limit(limit)?;
+        }
+        if !estimate && self.max_condition.is_none() {
+            return surface(grid, p, q, param, None).map(|s| (s, 1.0));
+        }
+        let mut kappa = 1.0;
+        let s = surface(grid, p, q, param, Some(&mut kappa))?;
+        match self.max_condition {
+            Some(limit) if kappa > limit => Err(condition_exceeded(kappa, limit)),
+            _ => Ok((s, kappa)),
+        }
+    }
+}
+
+/// What went into a surface interpolation, from
+/// [`SurfaceInterpolation::interpolate_with_report`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceInterpolationReport {
+    params_u: Vec<f64>,
+    params_v: Vec<f64>,
+    condition: f64,
+}
+
+impl SurfaceInterpolationReport {
+    /// Parameters `ū_k` of the grid rows (`nu` of them, from 0 to 1): the surface passes
+    /// through point `(k, l)` at `(ū_k, v̄_l)`.
+    #[must_use]
+    pub fn params_u(&self) -> &[f64] {
+        &self.params_u
+    }
+
+    /// Parameters `v̄_l` of the grid columns (`nv` of them, from 0 to 1).
+    #[must_use]
+    pub fn params_v(&self) -> &[f64] {
+        &self.params_v
+    }
+
+    /// Estimate of the 1-norm condition number of the system solved (see
+    /// [`SurfaceInterpolation::condition`]).
+    #[must_use]
+    pub fn condition(&self) -> f64 {
+        self.condition
+    }
+}
+
+/// The interpolating surface and the grid parameters.
+struct Solved {
+    surface: BSplineSurface,
+    params_u: Vec<f64>,
+    params_v: Vec<f64>,
+}
+
 /// Parts of a tensor-product B-spline surface `S(u, v) = Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) P_ij`
 /// with the grid parameters; `control[(i*nv + j)*dim + k]`. [`SurfaceInterpolant::into_surface`]
 /// gives the [`BSplineSurface`].
+#[deprecated(
+    note = "use SurfaceInterpolation, whose interpolate returns the BSplineSurface \
+            (interpolate_with_report gives the parameters)"
+)]
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceInterpolant {
     /// Degree `p` in `u`.
@@ -37,6 +267,7 @@ pub struct SurfaceInterpolant {
     pub params_v: Vec<f64>,
 }
 
+#[allow(deprecated)]
 impl SurfaceInterpolant {
     /// The interpolating surface as a [`BSplineSurface`].
     #[must_use]
@@ -49,39 +280,32 @@ impl SurfaceInterpolant {
             self.control,
         )
     }
+
+    fn from_solved(s: Solved) -> Self {
+        let (nu, nv) = s.surface.net_size();
+        SurfaceInterpolant {
+            degree_u: s.surface.degree_u(),
+            degree_v: s.surface.degree_v(),
+            knots_u: s.surface.knots_u().clone(),
+            knots_v: s.surface.knots_v().clone(),
+            control: s.surface.control_points().clone(),
+            nu,
+            nv,
+            params_u: s.params_u,
+            params_v: s.params_v,
+        }
+    }
 }
 
-/// Interpolates an `nu × nv` grid of points `q_kl` (flat, point `(k, l)` at
-/// `(k*nv + l)*dim`) by a B-spline surface of degrees `(p, q)`: document 000 §A.5, eq. (16)–(18),
-/// Algorithm A.5.
-///
-/// Parameters: for each column `l` the [`Parametrization`] of `q_0l … q_{n,l}`, averaged over the
-/// columns (`ū_k = Σ_l ū_k^{(l)} / (m + 1)`, P&T §9.2.5), likewise `v̄_l` over the rows; knots by
-/// averaging (eq. 3). Then curve interpolation down every column and along every row, each
-/// direction's banded collocation matrix factored once; the two solves commute, and are
-/// interleaved so that the grid is swept twice (see `solve_grid` in the source).
-/// O(nu·nv·(p + q)·dim) after the factorisations' O(nu·p² + nv·q²).
-///
-/// ```
-/// use lekalo::{interpolate_surface, Parametrization, Points};
-/// // a 4×3 grid on z = x·y
-/// let mut data = Vec::new();
-/// for k in 0..4 { for l in 0..3 { let (x, y) = (k as f64, l as f64); data.extend([x, y, x * y]); } }
-/// let grid = Points::from_flat(3, data)?;
-/// let s = interpolate_surface(grid.as_view(), 4, 3, 3, 2, Parametrization::Uniform)?;
-/// assert_eq!((s.nu, s.nv), (4, 3));
-/// assert_eq!(s.control.point(0), &[0.0, 0.0, 0.0]);
-/// let (u, v) = (s.params_u[2], s.params_v[1]);
-/// let p = s.into_surface().eval(u, v)?;
-/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14 && (p[2] - 2.0).abs() < 1e-14);
-/// # Ok::<(), lekalo::Error>(())
-/// ```
+/// Interpolates an `nu × nv` grid of points by a B-spline surface of degrees `(p, q)`:
+/// [`SurfaceInterpolation`] with the parts of the surface and the parameters as public fields.
 ///
 /// # Errors
-/// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points; [`Error::TooFew`] if `nu`
-/// or `nv` is below 2; [`Error::Degree`] if `p ≥ nu`, `q ≥ nv` or a degree is 0;
-/// [`Error::CoincidentPoints`] (flat point indices) for a zero step in a row or column;
-/// [`Error::InvalidArgument`]; [`Error::SingularSystem`] / [`Error::IllConditioned`].
+/// As [`SurfaceInterpolation::interpolate`].
+#[deprecated(
+    note = "use SurfaceInterpolation::new(degree_u, degree_v).parametrization(p).interpolate(grid, nu, nv)"
+)]
+#[allow(deprecated)]
 pub fn interpolate_surface(
     grid: PointsRef<'_>,
     nu: usize,
@@ -90,35 +314,21 @@ pub fn interpolate_surface(
     degree_v: usize,
     parametrization: Parametrization,
 ) -> Result<SurfaceInterpolant> {
-    let grid = Grid {
-        points: grid,
-        nu,
-        nv,
-    };
-    surface(grid, degree_u, degree_v, parametrization, None)
+    SurfaceInterpolation::new(degree_u, degree_v)
+        .parametrization(parametrization)
+        .solve(grid, nu, nv, false)
+        .map(|(s, _)| SurfaceInterpolant::from_solved(s))
 }
 
-/// [`interpolate_surface`] refusing, with [`Error::IllConditioned`], a system whose 1-norm
-/// condition number is estimated above `max_condition` (a number ≥ 1, e.g. `1e8`): see
-/// [`interpolate_surface_condition`] for the estimate. The result, when there is one, is that
-/// of [`interpolate_surface`] bit for bit; the estimate adds a few banded solves per direction.
-///
-/// ```
-/// use lekalo::{interpolate_surface_max_condition, Error, Parametrization, Points};
-/// // a 6×4 grid whose rows 2 and 3 nearly coincide
-/// let mut data = Vec::new();
-/// for x in [0.0, 1.0, 2.0, 2.0 + 1e-10, 3.0, 4.0] {
-///     for y in 0..4 { let y = f64::from(y); data.extend([x, y, (x * y).sin()]); }
-/// }
-/// let grid = Points::from_flat(3, data)?;
-/// let e = interpolate_surface_max_condition(grid.as_view(), 6, 4, 3, 3, Parametrization::ChordLength, 1e8);
-/// assert!(matches!(e, Err(Error::IllConditioned { .. })));
-/// # Ok::<(), lekalo::Error>(())
-/// ```
+/// [`interpolate_surface`] with a condition limit: see
+/// [`SurfaceInterpolation::max_condition`].
 ///
 /// # Errors
-/// As [`interpolate_surface`]; [`Error::IllConditioned`] for an estimate above the limit;
-/// [`Error::InvalidArgument`] if `max_condition` is NaN or below 1.
+/// As [`SurfaceInterpolation::interpolate`].
+#[deprecated(
+    note = "use SurfaceInterpolation::new(degree_u, degree_v).parametrization(p).max_condition(limit).interpolate(grid, nu, nv)"
+)]
+#[allow(deprecated)]
 pub fn interpolate_surface_max_condition(
     grid: PointsRef<'_>,
     nu: usize,
@@ -128,35 +338,21 @@ pub fn interpolate_surface_max_condition(
     parametrization: Parametrization,
     max_condition: f64,
 ) -> Result<SurfaceInterpolant> {
-    check_condition_limit(max_condition)?;
-    let (s, kappa) = surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization)?;
-    if kappa > max_condition {
-        return Err(condition_exceeded(kappa, max_condition));
-    }
-    Ok(s)
+    SurfaceInterpolation::new(degree_u, degree_v)
+        .parametrization(parametrization)
+        .max_condition(max_condition)
+        .solve(grid, nu, nv, false)
+        .map(|(s, _)| SurfaceInterpolant::from_solved(s))
 }
 
-/// Estimate of the 1-norm condition number `κ_1` of the linear system that
-/// [`interpolate_surface`] solves for the grid. The system is the Kronecker product `A_u ⊗ A_v`
-/// of the two curve collocation matrices, and `κ_1(A_u ⊗ A_v) = κ_1(A_u)·κ_1(A_v)` (both
-/// `‖·‖_1` and the inverse factor over `⊗`: Horn & Johnson, *Topics in Matrix Analysis*, §4.2),
-/// so the result is the product of the two directions' estimates, each by Higham's refinement
-/// of Hager's method (ACM TOMS 14 (1988), Algorithm 4.1; LAPACK `dgbcon`), see
-/// [`CurveInterpolation::condition`](crate::CurveInterpolation::condition). A lower bound,
-/// usually exact.
-///
-/// ```
-/// use lekalo::{interpolate_surface_condition, Parametrization, Points};
-/// let mut data = Vec::new();
-/// for k in 0..10 { for l in 0..8 { let (x, y) = (f64::from(k), f64::from(l)); data.extend([x, y, x * y]); } }
-/// let grid = Points::from_flat(3, data)?;
-/// let kappa = interpolate_surface_condition(grid.as_view(), 10, 8, 3, 3, Parametrization::Uniform)?;
-/// assert!(kappa >= 1.0 && kappa < 100.0);
-/// # Ok::<(), lekalo::Error>(())
-/// ```
+/// The condition estimate of [`interpolate_surface`]'s system: see
+/// [`SurfaceInterpolation::condition`].
 ///
 /// # Errors
-/// As [`interpolate_surface`] (it performs the same solve).
+/// As [`SurfaceInterpolation::condition`].
+#[deprecated(
+    note = "use SurfaceInterpolation::new(degree_u, degree_v).parametrization(p).condition(grid, nu, nv)"
+)]
 pub fn interpolate_surface_condition(
     grid: PointsRef<'_>,
     nu: usize,
@@ -165,23 +361,9 @@ pub fn interpolate_surface_condition(
     degree_v: usize,
     parametrization: Parametrization,
 ) -> Result<f64> {
-    surface_estimating(grid, nu, nv, degree_u, degree_v, parametrization).map(|(_, k)| k)
-}
-
-/// The interpolant and the estimate of `κ_1` of its system (see
-/// [`interpolate_surface_condition`]).
-fn surface_estimating(
-    points: PointsRef<'_>,
-    nu: usize,
-    nv: usize,
-    degree_u: usize,
-    degree_v: usize,
-    parametrization: Parametrization,
-) -> Result<(SurfaceInterpolant, f64)> {
-    let grid = Grid { points, nu, nv };
-    let mut kappa = 1.0;
-    let s = surface(grid, degree_u, degree_v, parametrization, Some(&mut kappa))?;
-    Ok((s, kappa))
+    SurfaceInterpolation::new(degree_u, degree_v)
+        .parametrization(parametrization)
+        .condition(grid, nu, nv)
 }
 
 #[cold]
@@ -197,7 +379,7 @@ fn condition_exceeded(kappa: f64, limit: f64) -> Error {
     }
 }
 
-/// The grid of [`interpolate_surface`]: `nu × nv` points.
+/// The grid of a surface interpolation: `nu × nv` points.
 #[derive(Clone, Copy)]
 struct Grid<'a> {
     points: PointsRef<'a>,
@@ -205,7 +387,7 @@ struct Grid<'a> {
     nv: usize,
 }
 
-/// The body of [`interpolate_surface`]; with `kappa`, the product of the two directions'
+/// The body of [`SurfaceInterpolation::interpolate`]; with `kappa`, the product of the two directions'
 /// condition estimates goes there.
 fn surface(
     grid: Grid<'_>,
@@ -213,7 +395,7 @@ fn surface(
     degree_v: usize,
     parametrization: Parametrization,
     kappa: Option<&mut f64>,
-) -> Result<SurfaceInterpolant> {
+) -> Result<Solved> {
     let Grid {
         points: grid,
         nu,
@@ -281,14 +463,15 @@ fn surface(
         *k = ku.unwrap_or(1.0) * kv.unwrap_or(1.0);
     }
     let control = solve_grid(data, nu, nv, dim, &lu_u, &lu_v)?;
-    Ok(SurfaceInterpolant {
+    let surface = BSplineSurface::from_raw(
         degree_u,
         degree_v,
         knots_u,
         knots_v,
-        control: Points::from_raw(control, dim),
-        nu,
-        nv,
+        Points::from_raw(control, dim),
+    );
+    Ok(Solved {
+        surface,
         params_u,
         params_v,
     })
@@ -296,7 +479,7 @@ fn surface(
 
 crate::numeric::isa::avx2_dispatch! {
     /// The control net `P = A_u⁻¹ (Q − q_00) A_vᵀ⁻¹ + q_00` of the grid `Q` (`nu` rows of `nv`
-    /// points), given the factored collocation matrices of both directions (document 000 §A.5,
+    /// points), given the factored collocation matrices of both directions (document 000 §5,
     /// eq. 17–18: a curve interpolation down every column, then along every row).
     ///
     /// The two directions' solves are linear maps acting on different indices of the grid, so they

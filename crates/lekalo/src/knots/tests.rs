@@ -48,7 +48,7 @@ fn validate_for_checks_counts_and_multiplicity() {
 }
 
 #[test]
-fn averaged_matches_digest_t1() {
+fn averaged_matches_example_9_1() {
     let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
     let kv = KnotVector::averaged(&t, 3).unwrap();
     let expect = [0.0, 0.0, 0.0, 0.0, 28.0 / 51.0, 1.0, 1.0, 1.0, 1.0];
@@ -72,7 +72,7 @@ fn averaged_matches_digest_t1() {
 }
 
 #[test]
-fn averaged_with_end_derivatives_matches_digest_t1() {
+fn averaged_with_end_derivatives_matches_example_9_1() {
     let t = [0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0];
     let kv = KnotVector::averaged_with_end_derivatives(&t, 3).unwrap();
     let expect = [

@@ -3,14 +3,14 @@
 //! B-spline collocation matrices are banded and totally positive (de Boor, "Total positivity of
 //! the spline collocation matrix", Indiana Univ. Math. J. 26, 1977); Gaussian elimination without
 //! pivoting is then stable (de Boor & Pinkus, "Backward error analysis for totally positive
-//! linear systems", Numer. Math. 27, 1977). Document 000 (digest §A.1, step 4) prescribes exactly
+//! linear systems", Numer. Math. 27, 1977). Document 000 (§1, step 4) prescribes exactly
 //! this: "banded Gaussian elimination without pivoting".
 //!
 //! [`BandedCrout`] eliminates one row at a time (Crout form `A = L·U`, `U` unit upper
 //! triangular), so a caller can build each matrix row straight from the basis kernel into a
 //! small buffer and never store the matrix. With `kl = ku = 1` the sweep is the Thomas algorithm
-//! ("progonka", digest §A.3): `m = β_i − α_i γ'_{i−1}`, `γ'_i = γ_i / m`,
-//! `r'_i = (r_i − α_i r'_{i−1}) / m`, then `x_i = r'_i − γ'_i x_{i+1}`.
+//! ("progonka", docs/theory/interpolation.md#thomas-algorithm): `m = β_i − α_i γ'_{i−1}`, `γ'_i =
+//! γ_i / m`, `r'_i = (r_i − α_i r'_{i−1}) / m`, then `x_i = r'_i − γ'_i x_{i+1}`.
 //!
 //! The right-hand side is an `m × ncols` row-major block: every coordinate of the data (and, for
 //! surfaces, every row of the grid) is one column, so one factorisation serves them all.

@@ -1,5 +1,5 @@
 //! Divided differences and the B-spline as a divided difference of truncated powers
-//! (document 003, digest §D.2–§D.3).
+//! (document 003, chapters 2–3; docs/theory/pp.md#divided-differences).
 //!
 //! Notation of the thesis: `f(x_1; …; x_n)` is de Boor's `[x_1, …, x_n] f`, the divided difference
 //! of order `n − 1`. Points may repeat: at a point that occurs `m` times the divided difference

@@ -1,5 +1,5 @@
 //! Piecewise polynomials (pp-form) and the spaces `P_{k,ξ}` and `P_{k,ξ,ν}` (document 003,
-//! digest §D.4).
+//! docs/theory/pp.md#piecewise-polynomials).
 //!
 //! A [`PiecewisePolynomial`] of order `k` (degree `< k`) on strictly increasing breakpoints
 //! `ξ_1 < … < ξ_{l+1}` stores, for each piece `j`, the local power coefficients about its left
@@ -27,7 +27,7 @@ use crate::points::Points;
 pub const DEFAULT_CONTINUITY_RTOL: f64 = 1e-9;
 
 /// A piecewise polynomial in pp-form: breakpoints, order and local power coefficients
-/// (module docs; document 003 §D.4 conventions).
+/// (module docs; document 003 §4 conventions).
 ///
 /// ```
 /// use lekalo::PiecewisePolynomial;
@@ -349,9 +349,9 @@ impl PiecewisePolynomial {
         Ok(right.iter().zip(&left).map(|(r, l)| r - l).collect())
     }
 
-    /// The pp-form of a B-spline curve (digest §D.5, the inverse direction): the breakpoints are
-    /// the distinct knots of the domain `[x_k, x_{n+1}]`, the order `k = p + 1`, and the
-    /// coefficients of piece `j` are the right-hand derivatives at its left breakpoint,
+    /// The pp-form of a B-spline curve (docs/theory/pp.md#from-b-spline-to-pp-form): the
+    /// breakpoints are the distinct knots of the domain `[x_k, x_{n+1}]`, the order `k = p + 1`,
+    /// and the coefficients of piece `j` are the right-hand derivatives at its left breakpoint,
     /// `c_{j,r} = C^{(r)}(ξ_j^+)/r!` ([`BSplineCurve::eval_derivatives`], P&T A2.3).
     /// O(l·(p² + p·dim)).
     ///

@@ -1,5 +1,5 @@
 //! The de Boor–Fix dual functionals: pp-form → B-spline conversion and quasi-interpolation
-//! (document 003, digest §D.5).
+//! (document 003 §5; docs/theory/pp.md#de-boor-fix-functionals).
 //!
 //! For the knots `x_1 ≤ … ≤ x_{n+k}` of order `k` and a point `τ_i ∈ [x_i, x_{i+k}]`,
 //! `λ_i f = Σ_{r=0}^{k−1} (−1)^{k−1−r} ψ_i^{(k−1−r)}(τ_i) f^{(r)}(τ_i)`,
@@ -10,7 +10,7 @@
 //! **One-sided derivatives.** When `τ_i` lies on a knot, the derivatives of a spline are taken
 //! from the side inside the support: the left side when `τ_i = x_{i+k}` (the thesis's rule does
 //! this for the last B-spline), the right side otherwise (also at `τ_i = x_i`). With the other side
-//! `λ_i b_j = δ_{ij}` fails (digest §D.5).
+//! `λ_i b_j = δ_{ij}` fails (docs/theory/pp.md#one-sided-derivatives).
 
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{Error, Result};
@@ -45,7 +45,7 @@ use crate::pp::ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 /// smooth `x cos x`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TauRule {
-    /// `τ_i = min{x_j : x_j > x_i}`, the rule stated in the thesis (§D.5 step 5).
+    /// `τ_i = min{x_j : x_j > x_i}`, the rule stated in the thesis (document 003 §5.1, step 5).
     #[default]
     FirstKnotAfter,
     /// `τ_i = x_i`, the left end of the support; reproduces the thesis's printed error.
@@ -85,7 +85,7 @@ impl TauRule {
     /// use lekalo::{PpSpace, TauRule};
     /// let s = PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3)?;
     /// let tau = TauRule::FirstKnotAfter.points(s.knots(), 3)?;
-    /// assert_eq!(tau, vec![0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0]); // digest §D.5
+    /// assert_eq!(tau, vec![0.5, 0.5, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0]); // the practical task
     /// # Ok::<(), lekalo::Error>(())
     /// ```
     ///
@@ -169,9 +169,9 @@ where
 
 impl PiecewisePolynomial {
     /// The B-spline form of `self ∈ P_{k,ξ,ν}` on the Curry–Schoenberg knots of `space`
-    /// (document 003 §5.1, digest Algorithm D.5): `c_i = λ_i f` with the de Boor–Fix functionals
-    /// at `τ_i` chosen by `rule`, one-sided derivatives as in the module docs. Exact for every
-    /// rule (to rounding) because `f` is in the space. O(n·k·(k + dim)).
+    /// (document 003 §5.1; docs/theory/pp.md#de-boor-fix-functionals): `c_i = λ_i f` with the de
+    /// Boor–Fix functionals at `τ_i` chosen by `rule`, one-sided derivatives as in the module docs.
+    /// Exact for every rule (to rounding) because `f` is in the space. O(n·k·(k + dim)).
     ///
     /// ```
     /// use lekalo::{PiecewisePolynomial, PpSpace, TauRule};
@@ -342,7 +342,7 @@ mod tests {
         PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3).unwrap()
     }
 
-    // Digest §D.5 worked case: for k = 3, λ_i(x²) = x_{i+1} x_{i+2} for every τ.
+    // For k = 3, λ_i(x²) = x_{i+1} x_{i+2} for every τ (docs/theory/pp.md#de-boor-fix-functionals).
     #[test]
     fn dual_weights_quadratic() {
         let x = [0.0, 0.2, 0.7, 1.5, 2.0];
@@ -394,9 +394,10 @@ mod tests {
         assert!((err - 0.204_831_219_164_730_4).abs() < 1e-12, "{err}");
     }
 
-    // λ_i(b_j) = δ_ij for the practical task's knots with every rule (digest §D.5). With the
-    // thesis's rule τ_1 = 0.5 = x_4 is the right end of b_1's support: there the left-hand
-    // derivatives are needed; the right-hand ones would give λ_1(b_1) = 0.
+    // λ_i(b_j) = δ_ij for the practical task's knots with every rule
+    // (docs/theory/pp.md#one-sided-derivatives). With the thesis's rule τ_1 = 0.5 = x_4 is the
+    // right end of b_1's support: there the left-hand derivatives are needed; the right-hand ones
+    // would give λ_1(b_1) = 0.
     #[test]
     fn duality_and_side() {
         let space = thesis_space();

@@ -70,6 +70,13 @@ impl BezierSurface {
         BezierSurface { control, net_size }
     }
 
+    /// Degrees `(n, m) = (nu − 1, nv − 1)` in `u` and `v` (the pair of
+    /// [`BezierCurve::degree`](crate::BezierCurve::degree)).
+    #[must_use]
+    pub fn degree(&self) -> (usize, usize) {
+        (self.degree_u(), self.degree_v())
+    }
+
     /// Degree `n = nu − 1` in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {

@@ -298,6 +298,18 @@ impl BSplineSurface {
         }
     }
 
+    /// Degrees `(p, q)` in `u` and `v` (the pair of [`BSplineCurve::degree`](crate::BSplineCurve::degree)).
+    #[must_use]
+    pub fn degree(&self) -> (usize, usize) {
+        (self.degree_u, self.degree_v)
+    }
+
+    /// Knot vectors in `u` and `v` (the pair of [`BSplineCurve::knots`](crate::BSplineCurve::knots)).
+    #[must_use]
+    pub fn knots(&self) -> (&KnotVector, &KnotVector) {
+        (&self.knots_u, &self.knots_v)
+    }
+
     /// Degree `p` in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {

@@ -6,13 +6,16 @@
 //! - `nurbs.rs`: [`NurbsSurface`], a B-spline surface over homogeneous points.
 //! - `knot_ops.rs`: knot insertion, refinement, splitting, Bezier patches ([`BezierPatch`],
 //!   [`RationalBezierPatch`]), transposition and reversal.
+//! - `curvature.rs`: Gaussian, mean and principal curvatures ([`surface_curvature`]).
 
 pub(crate) mod bezier;
 pub(crate) mod bspline;
+mod curvature;
 mod knot_ops;
 pub(crate) mod nurbs;
 
 pub use bezier::BezierSurface;
 pub use bspline::BSplineSurface;
+pub use curvature::{surface_curvature, SurfaceCurvature};
 pub use knot_ops::{BezierPatch, RationalBezierPatch};
 pub use nurbs::NurbsSurface;

@@ -144,6 +144,18 @@ impl NurbsSurface {
         &self.homogeneous
     }
 
+    /// Degrees `(p, q)` in `u` and `v` (the pair of [`NurbsCurve::degree`](crate::NurbsCurve::degree)).
+    #[must_use]
+    pub fn degree(&self) -> (usize, usize) {
+        self.homogeneous.degree()
+    }
+
+    /// Knot vectors in `u` and `v` (the pair of [`NurbsCurve::knots`](crate::NurbsCurve::knots)).
+    #[must_use]
+    pub fn knots(&self) -> (&KnotVector, &KnotVector) {
+        self.homogeneous.knots()
+    }
+
     /// Degree in `u`.
     #[must_use]
     pub fn degree_u(&self) -> usize {

@@ -78,21 +78,27 @@ fn one_pass_chord_parameters_equal_the_line_loops() {
     assert!(!chord_params(&data, 3, 3, 2, &mut u, &mut v));
 }
 
-/// The pass-by-pass solve of document 000 §A.5 (P&T A9.4 order): every column along `u`
+/// The pass-by-pass solve of document 000 §5 (P&T A9.4 order): every column along `u`
 /// (all `nv·dim` numbers of a row as right-hand sides), then every row along `v`, each by
 /// [`solve_collocation`] with its own factorisation, on the grid centred on `q_00`.
-fn pass_by_pass(s: &SurfaceInterpolant, data: &[f64], dim: usize) -> Vec<f64> {
-    let (nu, nv) = (s.nu, s.nv);
+fn pass_by_pass(
+    s: &BSplineSurface,
+    report: &SurfaceInterpolationReport,
+    data: &[f64],
+    dim: usize,
+) -> Vec<f64> {
+    let (nu, nv) = s.net_size();
     let reference = data[..dim].to_vec();
     let mut control: Vec<f64> = data
         .chunks_exact(dim)
         .flat_map(|q| q.iter().zip(&reference).map(|(x, r)| x - r))
         .collect();
-    let (p, q) = (s.degree_u, s.degree_v);
+    let (p, q) = s.degree();
+    let (knots_u, knots_v) = s.knots();
     solve_collocation(
-        &s.knots_u,
+        knots_u,
         p,
-        &s.params_u,
+        report.params_u(),
         0,
         &mut control,
         nv * dim,
@@ -100,7 +106,16 @@ fn pass_by_pass(s: &SurfaceInterpolant, data: &[f64], dim: usize) -> Vec<f64> {
     )
     .unwrap();
     for block in control.chunks_exact_mut(nv * dim).take(nu) {
-        solve_collocation(&s.knots_v, q, &s.params_v, 0, block, dim, Factors::Discard).unwrap();
+        solve_collocation(
+            knots_v,
+            q,
+            report.params_v(),
+            0,
+            block,
+            dim,
+            Factors::Discard,
+        )
+        .unwrap();
     }
     for c in control.chunks_exact_mut(dim) {
         for (x, r) in c.iter_mut().zip(&reference) {
@@ -129,11 +144,14 @@ fn two_sweeps_agree_with_the_pass_by_pass_solve() {
         ] {
             let data = wavy(nu, nv, dim, offset);
             let grid = Points::from_flat(dim, data.clone()).unwrap();
-            let s = interpolate_surface(grid.as_view(), nu, nv, p, q, param).unwrap();
-            let reference = pass_by_pass(&s, &data, dim);
+            let (s, report) = SurfaceInterpolation::new(p, q)
+                .parametrization(param)
+                .interpolate_with_report(grid.as_view(), nu, nv)
+                .unwrap();
+            let reference = pass_by_pass(&s, &report, &data, dim);
             let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let worst = s
-                .control
+                .control_points()
                 .as_slice()
                 .iter()
                 .zip(&reference)
@@ -143,15 +161,18 @@ fn two_sweeps_agree_with_the_pass_by_pass_solve() {
                 "{nu}×{nv}×{dim}, degrees ({p}, {q}), offset {offset}, {param:?}: \
                  {worst:e} of {scale:e}"
             );
-            // `interpolate_surface` took the AVX2 copy of the sweeps: the same bits as the
+            // the interpolation took the AVX2 copy of the sweeps: the same bits as the
             // baseline body
             #[cfg(target_arch = "x86_64")]
             if crate::numeric::isa::has_avx2() {
-                let lu_u = factor_collocation(&s.knots_u, p, &s.params_u, Factors::Keep).unwrap();
-                let lu_v = factor_collocation(&s.knots_v, q, &s.params_v, Factors::Keep).unwrap();
+                let (knots_u, knots_v) = s.knots();
+                let lu_u =
+                    factor_collocation(knots_u, p, report.params_u(), Factors::Keep).unwrap();
+                let lu_v =
+                    factor_collocation(knots_v, q, report.params_v(), Factors::Keep).unwrap();
                 let base = solve_grid_body(&data, nu, nv, dim, &lu_u, &lu_v).unwrap();
                 assert_eq!(
-                    bits(s.control.as_slice()),
+                    bits(s.control_points().as_slice()),
                     bits(&base),
                     "AVX2 net, {nu}×{nv}×{dim}, degrees ({p}, {q}), {param:?}"
                 );
@@ -168,9 +189,10 @@ fn small_block_solve_equals_the_general_loop() {
     let data = wavy(nu, nv, dim, 0.0);
     let grid = Points::from_flat(dim, data.clone()).unwrap();
     for (p, nc) in [(3, 3), (2, 3), (3, 1), (2, 2), (3, 4), (5, 3)] {
-        let s = interpolate_surface(grid.as_view(), nu, nv, p, p, Parametrization::ChordLength)
+        let (s, report) = SurfaceInterpolation::new(p, p)
+            .interpolate_with_report(grid.as_view(), nu, nv)
             .unwrap();
-        let lu = factor_collocation(&s.knots_v, p, &s.params_v, Factors::Keep).unwrap();
+        let lu = factor_collocation(s.knots_v(), p, report.params_v(), Factors::Keep).unwrap();
         let rhs: Vec<f64> = (0..nv * nc).map(|i| (0.37 * i as f64).sin()).collect();
         let mut fast = rhs.clone();
         lu.solve(&mut fast, nc);

@@ -34,8 +34,8 @@ fn factor_rows(
 }
 
 #[test]
-fn solves_the_digest_uniform_collocation_matrix() {
-    // digest T.1: exact matrix of (1) for uniform parameters, p = 3
+fn solves_the_uniform_collocation_matrix_of_example_9_1() {
+    // exact matrix of eq. (1) for uniform parameters, p = 3 (docs/theory/interpolation.md#test-vectors)
     let rows = vec![
         (0, vec![1.0]),
         (0, vec![1.0 / 8.0, 19.0 / 32.0, 1.0 / 4.0, 1.0 / 32.0]),

@@ -1,0 +1,216 @@
+//! Objects of any kind in and out: one shape from a file, JSON Lines of shapes (curves and
+//! surfaces mixed), and CAD files (STEP) as input of `convert`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use lekalo_io::{fmt_number, read_step, Shape, StepWriter};
+
+use crate::io::{bad_input, emit, format_of, is_json_lines, load, Loaded};
+use crate::Verbosity;
+
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+/// True for a STEP input (`.step`, `.stp`, `.p21`).
+pub(crate) fn is_step(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("step" | "stp" | "p21"))
+}
+
+/// True for an IGES input (`.igs`, `.iges`).
+pub(crate) fn is_iges(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("igs" | "iges"))
+}
+
+/// Reads exactly one object of any kind (curve, surface, piecewise polynomial).
+pub(crate) fn load_shape(path: &Path, v: Verbosity) -> Result<Shape> {
+    match load(path, false, v)? {
+        Loaded::One(o) => Ok(Shape::Curve(o)),
+        Loaded::Other(s) => Ok(s),
+        Loaded::Many(mut m) if m.len() == 1 => Ok(Shape::Curve(m.remove(0).1?)),
+        Loaded::Many(m) => bad_input(format!(
+            "{}: holds {} objects; this command takes one (`lekalo knot join` joins pieces)",
+            path.display(),
+            m.len()
+        )),
+    }
+}
+
+/// Every object of a file: JSON Lines of any kinds (one object per non-blank line, `#`
+/// comments), a STEP file's curves and surfaces, or a single JSON object.
+pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
+    let (text, name) = lekalo_io::read_input(path)?;
+    if is_step(path) {
+        let r = read_step(&text, &name)?;
+        report_step(&name, &r, v);
+        return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
+    }
+    if is_iges(path) {
+        let r = lekalo_io::read_iges(&text, &name)?;
+        if v != Verbosity::Quiet {
+            eprintln!(
+                "{name}: read {} object(s); length unit {}",
+                r.shapes.len(),
+                r.length_unit
+            );
+            for s in &r.skipped {
+                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
+            }
+        }
+        return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
+    }
+    if !is_json_lines(path, false) {
+        return Ok(vec![Shape::from_json_str(&text, &name)?]);
+    }
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let s = Shape::from_json_str(t, &format!("{name}:{}", i + 1))?;
+        out.push(s);
+    }
+    if out.is_empty() {
+        return bad_input(format!("{name}: no objects"));
+    }
+    Ok(out)
+}
+
+/// One line of JSON Lines for any shape (the pretty envelope with its newlines removed; the
+/// numbers are unchanged).
+pub(crate) fn shape_line(s: &Shape) -> String {
+    match s {
+        Shape::Curve(o) => o.to_json_line(),
+        other => other
+            .to_json_pretty()
+            .lines()
+            .map(str::trim)
+            .collect::<String>(),
+    }
+}
+
+fn report_step(name: &str, r: &lekalo_io::StepRead, v: Verbosity) {
+    if v == Verbosity::Quiet {
+        return;
+    }
+    let curves = r
+        .shapes
+        .iter()
+        .filter(|(_, s)| matches!(s, Shape::Curve(_)))
+        .count();
+    eprintln!(
+        "{name}: read {curves} curve(s) and {} surface(s); schema {}; length unit {}{}",
+        r.shapes.len() - curves,
+        r.schema.as_deref().unwrap_or("not named"),
+        r.length_unit,
+        if r.scale_to_mm == 1.0 {
+            String::new()
+        } else {
+            format!(
+                " (coordinates × {} to millimetres)",
+                fmt_number(r.scale_to_mm)
+            )
+        }
+    );
+    if !r.skipped.is_empty() {
+        eprintln!("{name}: skipped {} entities:", r.skipped.len());
+        for s in &r.skipped {
+            eprintln!("  #{} {}: {}", s.id, s.entity, s.reason);
+        }
+    }
+}
+
+/// `convert` of a file of several shapes (STEP, or JSON Lines holding surfaces) to json (one
+/// shape), jsonl or step.
+pub(crate) fn convert_shapes(
+    input: &Path,
+    output: Option<&Path>,
+    to: Option<&str>,
+    step_name: &str,
+    timestamp: &str,
+    v: Verbosity,
+) -> Result<()> {
+    let shapes = load_shapes(input, v)?;
+    let format = format_of(to, output, "jsonl");
+    let bytes = match format.as_str() {
+        "jsonl" => shapes
+            .iter()
+            .map(|s| shape_line(s) + "\n")
+            .collect::<String>(),
+        "json" => match shapes.as_slice() {
+            [one] => one.to_json_pretty(),
+            _ => {
+                return bad_input(format!(
+                    "{}: {} objects; json output takes one (use -o FILE.jsonl or -o FILE.step)",
+                    input.display(),
+                    shapes.len()
+                ))
+            }
+        },
+        "step" => {
+            let mut w = StepWriter::new(step_name);
+            for s in &shapes {
+                match s {
+                    Shape::Curve(o) => {
+                        w.add_object(o)?;
+                    }
+                    Shape::Surface(f) => {
+                        f.add_to_step(&mut w)?;
+                    }
+                    other => {
+                        return bad_input(format!(
+                            "a {} cannot go into a STEP file",
+                            other.type_name()
+                        ))
+                    }
+                }
+            }
+            w.finish(timestamp)
+        }
+        "iges" | "igs" => {
+            let mut w = lekalo_io::IgesWriter::new();
+            for s in &shapes {
+                match s {
+                    Shape::Curve(o) => w.add_object(o)?,
+                    Shape::Surface(f) => w.add_surface(f)?,
+                    other => {
+                        return bad_input(format!(
+                            "a {} cannot go into an IGES file",
+                            other.type_name()
+                        ))
+                    }
+                }
+            }
+            w.finish(step_name, "20000101.000000")
+        }
+        other => {
+            return bad_input(format!(
+                "{}: several objects convert to jsonl, json (one object), step or iges, not \"{other}\"",
+                input.display()
+            ))
+        }
+    };
+    let inputs: Vec<PathBuf> = vec![input.to_path_buf()];
+    emit(output, bytes.as_bytes(), &inputs, v)
+}
+
+/// True when `convert` should take the many-shapes path: a STEP input, or JSON Lines holding
+/// something other than curves.
+pub(crate) fn wants_shapes(input: &Path, jsonl: bool, out_format: &str) -> bool {
+    if is_step(input) || is_iges(input) {
+        return true;
+    }
+    if matches!(out_format, "iges" | "igs") {
+        return true;
+    }
+    if !is_json_lines(input, jsonl) || input.as_os_str() == "-" {
+        return false;
+    }
+    std::fs::read_to_string(input)
+        .map(|t| t.contains("_surface\"") || t.contains("piecewise_polynomial"))
+        .unwrap_or(false)
+}

@@ -1,0 +1,401 @@
+//! `lekalo fit`: least squares, smoothing and fitting to a tolerance (curves and surfaces).
+//! Parses arguments, calls `lekalo::fit`, writes the result and its report.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use lekalo::fit::{
+    fit_tolerance, least_squares, place_knots, robust_least_squares, smoothing_condition,
+    smoothing_spline, surface_grid_least_squares, surface_scattered_least_squares, CurveFit,
+    Deviation, EndConstraints, FitData, Lambda, RobustLoss, ToleranceOptions,
+};
+use lekalo::{parametrize, KnotVector, Points};
+use lekalo_io::Object;
+use serde_json::{json, Value};
+
+use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs, Param};
+use crate::io::{bad_input, emit, numbers};
+use crate::Verbosity;
+
+/// Robust loss for `--robust`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Robust {
+    /// Huber weights (c = 1.345 robust standard deviations).
+    Huber,
+    /// Tukey's biweight (c = 4.685): outliers get weight 0.
+    Tukey,
+}
+
+/// Arguments of `lekalo fit`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Modes (one of them; least squares by default):
+  --lsq              least squares with --ctrl N control points or --knots (interior knots)
+  --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation)
+  --s S              fewest knots with weighted residual sum of squares <= S (like splrep)
+  --tol TOL          within TOL of every point (distance), few control points
+  --robust huber|tukey   least squares that resists outliers (final weights in the report)
+Surfaces: --grid ROWSxCOLS with --ctrl-grid NUxNV; --scattered (rows u,v,z) with --ctrl-grid.
+
+The report (residual max and RMS, λ or s, control points) goes to standard error, or with
+--json the output is {\"object\": …, \"report\": …}; --per-point adds every residual.
+
+Examples:
+  lekalo fit scan.csv --ctrl 20 -o fit.json
+  lekalo fit scan.csv --lsq --knots 0.25,0.5,0.75 --clamp-ends --d0 1,0 --dn 0,-1
+  lekalo fit xy.csv --function --smooth gcv --json
+  lekalo fit xy.csv --function --s 0.05 --weights w.txt
+  lekalo fit track.csv --tol 0.01 -o track.svg
+  lekalo fit xy.csv --function --ctrl 12 --robust tukey --json
+  lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
+  lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3")]
+pub(crate) struct FitArgs {
+    /// Points file (CSV, whitespace text or JSON; `-` for standard input).
+    points: PathBuf,
+    /// Least squares with given control-point count or knots (the default mode).
+    #[arg(long)]
+    lsq: bool,
+    /// Penalised smoothing: λ ≥ 0, or `gcv`.
+    #[arg(long, value_name = "LAMBDA|gcv", allow_hyphen_values = true)]
+    smooth: Option<String>,
+    /// Smoothing condition: the weighted residual sum of squares target.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    s: Option<f64>,
+    /// Fit within this distance of every point.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    tol: Option<f64>,
+    /// With --tol: measure the deviation at the data parameters instead of the distance.
+    #[arg(long)]
+    parameter_deviation: bool,
+    /// Iteratively reweighted least squares with this loss.
+    #[arg(long, value_enum)]
+    robust: Option<Robust>,
+    /// The points are (x, y...) samples of a function y(x): x is the parameter.
+    #[arg(long)]
+    function: bool,
+    /// Degree (curves; both directions of surfaces).
+    #[arg(long, short = 'p', default_value_t = 3)]
+    degree: usize,
+    /// Number of control points (least squares, robust; default: a tenth of the points, at
+    /// least degree + 1).
+    #[arg(long)]
+    ctrl: Option<usize>,
+    /// Interior knots (comma-separated, inside the parameter range) instead of --ctrl.
+    #[arg(long, value_name = "LIST")]
+    knots: Option<String>,
+    /// Weights file: one number per point.
+    #[arg(long, value_name = "FILE")]
+    weights: Option<PathBuf>,
+    /// Interpolate the first and last points exactly.
+    #[arg(long)]
+    clamp_ends: bool,
+    /// First derivative at the start (with --clamp-ends), comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    d0: Option<String>,
+    /// First derivative at the end (with --clamp-ends), comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    dn: Option<String>,
+    /// Parametrisation of parametric curves.
+    #[arg(long, value_enum, default_value_t = Param::Chord)]
+    param: Param,
+    /// A grid of points (rows x columns) fitted by a surface.
+    #[arg(long, value_name = "ROWSxCOLS")]
+    grid: Option<String>,
+    /// Scattered rows (u, v, z…) fitted by a surface z(u, v).
+    #[arg(long)]
+    scattered: bool,
+    /// Surface control net size (e.g. 8x6).
+    #[arg(long, value_name = "NUxNV")]
+    ctrl_grid: Option<String>,
+    /// Smoothing penalty of scattered surfaces (second differences of the net).
+    #[arg(long, default_value_t = 0.0)]
+    penalty: f64,
+    /// Write {"object", "report"} as JSON instead of the object alone.
+    #[arg(long)]
+    json: bool,
+    /// Add every point's residual to the report.
+    #[arg(long)]
+    per_point: bool,
+    #[command(flatten)]
+    out: OutArgs,
+}
+
+pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
+    let (text, name) = lekalo_io::read_input(&a.points)?;
+    let pts = lekalo_io::read_points(&text, &name)?;
+    let mut inputs = vec![a.points.clone()];
+    let modes = [
+        a.lsq,
+        a.smooth.is_some(),
+        a.s.is_some(),
+        a.tol.is_some(),
+        a.robust.is_some(),
+    ];
+    if modes.iter().filter(|&&m| m).count() > 1 {
+        return bad_input("choose one mode: --lsq, --smooth, --s, --tol or --robust");
+    }
+    let weights = match &a.weights {
+        Some(p) => {
+            let (t, n) = lekalo_io::read_input(p)?;
+            inputs.push(p.clone());
+            Some(lekalo_io::read_points(&t, &n)?.into_vec())
+        }
+        None => None,
+    };
+    if a.grid.is_some() || a.scattered {
+        return run_surface(a, &pts, weights.as_deref(), &inputs, v);
+    }
+    // data: function samples (x, y…) or parametric points
+    let (values, params) = if a.function {
+        if pts.dim() < 2 {
+            return bad_input(format!(
+                "{name}: --function needs two columns or more, x and y"
+            ));
+        }
+        let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+        let y = Points::from_flat(
+            pts.dim() - 1,
+            pts.iter().flat_map(|p| p[1..].to_vec()).collect(),
+        )?;
+        (y, x)
+    } else {
+        let u = parametrize(pts.as_view(), a.param.to_lib(None))?;
+        (pts.clone(), u)
+    };
+    let mut data = FitData::new(values.as_view(), &params)?;
+    if let Some(w) = &weights {
+        data = data.with_weights(w)?;
+    }
+    let mut report = json!({});
+    let fit: CurveFit = if let Some(sm) = &a.smooth {
+        let lambda = if sm.eq_ignore_ascii_case("gcv") {
+            Lambda::Gcv
+        } else {
+            match sm.parse::<f64>() {
+                Ok(l) => Lambda::Given(l),
+                Err(_) => {
+                    return bad_input(format!("--smooth: \"{sm}\" is neither a number nor gcv"))
+                }
+            }
+        };
+        smoothing_spline(&data, lambda)?
+    } else if let Some(s) = a.s {
+        report["s"] = json!(s);
+        smoothing_condition(&data, a.degree, s)?
+    } else if let Some(tol) = a.tol {
+        if a.function {
+            return bad_input(
+                "--tol fits parametric curves (distance to the curve); drop --function",
+            );
+        }
+        let mut opts = ToleranceOptions::new(a.degree, tol);
+        opts.parametrization = a.param.to_lib(None);
+        if a.parameter_deviation {
+            opts.deviation = Deviation::Parameter;
+        }
+        let t = fit_tolerance(pts.as_view(), &opts)?;
+        report["tol"] = json!(tol);
+        report["max_deviation"] = json!(t.max_deviation);
+        report["worst_index"] = json!(t.worst_index);
+        report["worst_param"] = json!(t.worst_param);
+        if a.per_point {
+            report["deviations"] = json!(t.deviations);
+        }
+        let d = FitData::new(pts.as_view(), &t.params)?;
+        let fit = least_squares_report(&t.curve, &d)?;
+        return finish(
+            a,
+            Object::BSpline(fit.curve.clone()),
+            &pts,
+            &fit,
+            report,
+            &inputs,
+            v,
+        );
+    } else {
+        let knots = curve_knots(a, &params)?;
+        let ends = constraints(a)?;
+        match a.robust {
+            Some(r) => {
+                if ends != EndConstraints::none() {
+                    return bad_input(
+                        "--robust fits without end constraints; drop --clamp-ends/--d0/--dn",
+                    );
+                }
+                let loss = match r {
+                    Robust::Huber => RobustLoss::Huber(1.345),
+                    Robust::Tukey => RobustLoss::Tukey(4.685),
+                };
+                let r = robust_least_squares(&data, a.degree, &knots, loss, 50)?;
+                report["robust_weights"] = json!(r.weights);
+                report["robust_scale"] = json!(r.scale);
+                report["iterations"] = json!(r.iterations);
+                r.fit
+            }
+            None => least_squares(&data, a.degree, &knots, &ends)?,
+        }
+    };
+    let shown = if a.function { &pts } else { &values };
+    finish(
+        a,
+        Object::BSpline(fit.curve.clone()),
+        shown,
+        &fit,
+        report,
+        &inputs,
+        v,
+    )
+}
+
+/// The report of a curve that is already fitted (tolerance mode).
+fn least_squares_report(curve: &lekalo::BSplineCurve, d: &FitData<'_>) -> Result<CurveFit> {
+    Ok(CurveFit {
+        curve: curve.clone(),
+        report: lekalo::fit::FitReport::of(curve, d)?,
+    })
+}
+
+fn finish(
+    a: &FitArgs,
+    obj: Object,
+    shown: &Points,
+    fit: &CurveFit,
+    mut report: Value,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let r = &fit.report;
+    report["max_residual"] = json!(r.max_residual);
+    report["max_index"] = json!(r.max_index);
+    report["rms"] = json!(r.rms);
+    report["weighted_rss"] = json!(r.weighted_rss);
+    report["control_points"] = json!(r.n_ctrl);
+    report["knots"] = json!(fit.curve.knots().len());
+    if let Some(l) = r.lambda {
+        report["lambda"] = json!(l);
+    }
+    if a.per_point {
+        report["residuals"] = json!(r.residuals);
+    }
+    if a.json {
+        let object: Value = serde_json::from_str(&obj.to_json_pretty())?;
+        let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
+    }
+    if v != Verbosity::Quiet {
+        eprintln!("{}", report_line(&report));
+    }
+    write_curve(&obj, Some(shown), &a.out, inputs, v)
+}
+
+fn report_line(r: &Value) -> String {
+    let mut s = format!(
+        "fit: {} control points, residual max {} (point {}), RMS {}, weighted RSS {}",
+        r["control_points"], r["max_residual"], r["max_index"], r["rms"], r["weighted_rss"]
+    );
+    for key in ["lambda", "s", "tol", "max_deviation"] {
+        if !r[key].is_null() {
+            s.push_str(&format!(", {key} {}", r[key]));
+        }
+    }
+    s
+}
+
+fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
+    let (lo, hi) = params
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
+            (l.min(u), h.max(u))
+        });
+    if let Some(k) = &a.knots {
+        if a.ctrl.is_some() {
+            return bad_input("give --ctrl or --knots, not both");
+        }
+        let inner = numbers(k, "--knots")?;
+        let mut all = vec![lo; a.degree + 1];
+        all.extend(inner);
+        all.extend(vec![hi; a.degree + 1]);
+        return Ok(KnotVector::new(all)?);
+    }
+    let n = a.ctrl.unwrap_or((params.len() / 10).max(a.degree + 1));
+    let mut sorted = params.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    Ok(place_knots(&sorted, a.degree, n)?)
+}
+
+fn constraints(a: &FitArgs) -> Result<EndConstraints> {
+    let mut e = if a.clamp_ends {
+        EndConstraints::points()
+    } else {
+        EndConstraints::none()
+    };
+    if (a.d0.is_some() || a.dn.is_some()) && !a.clamp_ends {
+        return bad_input("--d0/--dn need --clamp-ends (the end points are interpolated too)");
+    }
+    if let Some(d) = &a.d0 {
+        e = e.with_start_derivative(numbers(d, "--d0")?);
+    }
+    if let Some(d) = &a.dn {
+        e = e.with_end_derivative(numbers(d, "--dn")?);
+    }
+    Ok(e)
+}
+
+fn run_surface(
+    a: &FitArgs,
+    pts: &Points,
+    weights: Option<&[f64]>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let Some(cg) = &a.ctrl_grid else {
+        return bad_input("surfaces need --ctrl-grid NUxNV (the control net size)");
+    };
+    let (ncu, ncv) = net_size(cg, "--ctrl-grid")?;
+    let p = a.degree;
+    if let Some(g) = &a.grid {
+        let (nu, nv) = net_size(g, "--grid")?;
+        let s = surface_grid_least_squares(
+            pts.as_view(),
+            (nu, nv),
+            (p, p),
+            (ncu, ncv),
+            a.param.to_lib(None),
+        )?;
+        return write_surface(&s, &a.out, inputs, v);
+    }
+    if pts.dim() < 3 {
+        return bad_input("--scattered needs rows u, v, z (three columns or more)");
+    }
+    let bounds = |c: usize| {
+        pts.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
+                (l.min(r[c]), h.max(r[c]))
+            })
+    };
+    let uniform = |(lo, hi): (f64, f64), n: usize| -> Result<KnotVector> {
+        let k = KnotVector::clamped_uniform(p, n)?;
+        Ok(KnotVector::new(
+            k.as_slice().iter().map(|t| lo + (hi - lo) * t).collect(),
+        )?)
+    };
+    let (ku, kv) = (uniform(bounds(0), ncu)?, uniform(bounds(1), ncv)?);
+    let f = surface_scattered_least_squares(pts.as_view(), weights, (p, p), (&ku, &kv), a.penalty)?;
+    let max = f.residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
+    let rms = (f.residuals.iter().map(|r| r * r).sum::<f64>() / f.residuals.len() as f64).sqrt();
+    let mut report = json!({ "max_residual": max, "rms": rms, "weighted_rss": f.weighted_rss,
+        "control_points": ncu * ncv, "penalty": a.penalty });
+    if a.per_point {
+        report["residuals"] = json!(f.residuals);
+    }
+    if a.json {
+        let object: Value = serde_json::from_str(&lekalo_io::bspline_surface_to_json(&f.surface))?;
+        let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
+    }
+    if v != Verbosity::Quiet {
+        eprintln!("fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}");
+    }
+    write_surface(&f.surface, &a.out, inputs, v)
+}

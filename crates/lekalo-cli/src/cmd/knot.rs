@@ -1,0 +1,568 @@
+//! `lekalo knot`: knot operations on curves and surfaces — insert, refine, remove, split,
+//! reverse, reparametrise, decompose into Bezier pieces and join them back. Every operation is
+//! the library's own (`BSplineCurve::insert_knot`, `NurbsSurface::split_at_u`, …); this module
+//! only chooses the method by the object's kind and the direction.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::{Args, Subcommand, ValueEnum};
+use lekalo::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, NurbsCurve};
+use lekalo_io::{fmt_number, Object, Shape, Surface};
+
+use crate::cmd::cad::{load_shape, load_shapes, shape_line};
+use crate::io::{bad_input, emit, numbers};
+use crate::Verbosity;
+
+/// Arguments of `lekalo knot`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Curves (Bezier, B-spline, NURBS) and surfaces (in u or v with --dir). A Bezier curve or
+surface is first written as a B-spline on clamped knots. Results that are several objects
+(split, decompose) are JSON Lines, one object per line; `join` reads them back.
+
+Examples:
+  lekalo knot insert curve.json --at 0.5 --times 2 -o inserted.json
+  lekalo knot refine curve.json --knots 0.25,0.5,0.75 -o refined.json
+  lekalo knot remove inserted.json --at 0.5 --times 2 -o back.json
+  lekalo knot remove curve.json --all --tolerance 1e-6 -o simpler.json
+  lekalo knot split curve.json --at 0.5 -o halves.jsonl
+  lekalo knot reverse curve.json -o reversed.json
+  lekalo knot reparam curve.json --interval 0,10 -o scaled.json
+  lekalo knot decompose curve.json -o pieces.jsonl
+  lekalo knot join pieces.jsonl -o joined.json
+  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json")]
+pub(crate) struct KnotArgs {
+    #[command(subcommand)]
+    op: KnotOp,
+}
+
+/// Parameter direction of a surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub(crate) enum Dir {
+    /// The first parameter.
+    #[default]
+    U,
+    /// The second parameter.
+    V,
+}
+
+/// Input, output and direction shared by every operation.
+#[derive(Args, Debug)]
+pub(crate) struct Common {
+    /// Object file (JSON; `-` for standard input).
+    input: PathBuf,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+    /// Surfaces: the parameter direction.
+    #[arg(long, value_enum, default_value_t = Dir::U)]
+    dir: Dir,
+}
+
+#[derive(Subcommand, Debug)]
+enum KnotOp {
+    /// Insert a knot `--times` times (Boehm; P&T Algorithm A5.1).
+    Insert {
+        #[command(flatten)]
+        c: Common,
+        /// The knot value.
+        #[arg(long, allow_hyphen_values = true)]
+        at: String,
+        /// How many copies to insert.
+        #[arg(long, short = 'r', default_value_t = 1)]
+        times: usize,
+    },
+    /// Insert many knots at once (Oslo refinement; P&T Algorithm A5.4).
+    Refine {
+        #[command(flatten)]
+        c: Common,
+        /// The knots to insert, sorted, comma-separated.
+        #[arg(long, allow_hyphen_values = true)]
+        knots: String,
+    },
+    /// Remove a knot (or every removable knot) within a tolerance (P&T Algorithm A5.8);
+    /// reports on stderr what was removed. Curves only.
+    Remove {
+        #[command(flatten)]
+        c: Common,
+        /// The knot to remove.
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            conflicts_with = "all",
+            required_unless_present = "all"
+        )]
+        at: Option<String>,
+        /// How many copies to try to remove (default: all copies).
+        #[arg(long, short = 'r')]
+        times: Option<usize>,
+        /// Remove every interior knot copy that the tolerance allows.
+        #[arg(long)]
+        all: bool,
+        /// Largest distance the curve may move (default: the library's, relative to the size
+        /// of the control polygon).
+        #[arg(long)]
+        tolerance: Option<f64>,
+    },
+    /// Split at a parameter into two objects (JSON Lines).
+    Split {
+        #[command(flatten)]
+        c: Common,
+        /// The parameter to split at (inside the domain).
+        #[arg(long, allow_hyphen_values = true)]
+        at: String,
+    },
+    /// Reverse the direction of the parameter.
+    Reverse {
+        #[command(flatten)]
+        c: Common,
+    },
+    /// Map the domain affinely onto `[a, b]` (curves).
+    Reparam {
+        #[command(flatten)]
+        c: Common,
+        /// The new domain `a,b` with `a < b`.
+        #[arg(long, allow_hyphen_values = true, value_name = "A,B")]
+        interval: String,
+    },
+    /// Decompose into Bezier pieces (JSON Lines), each on its own interval of the domain.
+    Decompose {
+        #[command(flatten)]
+        c: Common,
+    },
+    /// Join Bezier pieces (JSON Lines of single-segment curves, as `decompose` writes them)
+    /// into one B-spline or NURBS curve.
+    Join {
+        /// JSON Lines of the pieces, in order.
+        input: PathBuf,
+        /// Output file (default: standard output).
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+    },
+}
+
+/// A curve as B-spline or NURBS (a Bezier curve as a B-spline on `[0, 1]`).
+enum Curve {
+    B(BSplineCurve),
+    N(NurbsCurve),
+}
+
+fn as_curve(o: &Object) -> Result<Curve> {
+    Ok(match o {
+        Object::Bezier(c) => Curve::B(c.to_bspline()),
+        Object::BSpline(c) => Curve::B(c.clone()),
+        Object::Nurbs(c) => Curve::N(c.clone()),
+        other => {
+            return bad_input(format!(
+                "knot operations do not take a {} yet",
+                other.type_name()
+            ))
+        }
+    })
+}
+
+fn curve_shape(c: Curve) -> Shape {
+    Shape::Curve(match c {
+        Curve::B(b) => Object::BSpline(b),
+        Curve::N(n) => Object::Nurbs(n),
+    })
+}
+
+/// A surface as B-spline or NURBS.
+enum Surf {
+    B(BSplineSurface),
+    N(lekalo::NurbsSurface),
+}
+
+fn as_surf(s: &Surface) -> Result<Surf> {
+    Ok(match s {
+        Surface::Bezier(b) => Surf::B(b.to_bspline()),
+        Surface::BSpline(b) => Surf::B(b.clone()),
+        Surface::Nurbs(n) => Surf::N(n.clone()),
+        other => {
+            return bad_input(format!(
+                "knot operations do not take a {} yet",
+                other.type_name()
+            ))
+        }
+    })
+}
+
+fn surf_shape(s: Surf) -> Shape {
+    Shape::Surface(match s {
+        Surf::B(b) => Surface::BSpline(b),
+        Surf::N(n) => Surface::Nurbs(n),
+    })
+}
+
+fn one(text: &str, what: &str) -> Result<f64> {
+    let v = numbers(text, what)?;
+    if v.len() != 1 {
+        return bad_input(format!("{what}: give one value, not {}", v.len()));
+    }
+    Ok(v[0])
+}
+
+fn write_one(c: &Common, s: &Shape, v: Verbosity) -> Result<()> {
+    emit(
+        c.output.as_deref(),
+        s.to_json_pretty().as_bytes(),
+        std::slice::from_ref(&c.input),
+        v,
+    )
+}
+
+fn write_many(out: Option<&Path>, input: &Path, shapes: &[Shape], v: Verbosity) -> Result<()> {
+    let text: String = shapes.iter().map(|s| shape_line(s) + "\n").collect();
+    emit(out, text.as_bytes(), &[input.to_path_buf()], v)
+}
+
+fn surface_only_u_v<T>(op: &str) -> Result<T> {
+    bad_input(format!(
+        "`lekalo knot {op}` works on curves; for a surface use insert, refine, split, reverse or decompose (with --dir u or v)"
+    ))
+}
+
+pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
+    match &a.op {
+        KnotOp::Insert { c, at, times } => {
+            let t = one(at, "--at")?;
+            let out = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
+                    Curve::B(b) => Curve::B(b.insert_knot(t, *times)?),
+                    Curve::N(n) => Curve::N(n.insert_knot(t, *times)?),
+                }),
+                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
+                    (Surf::B(b), Dir::U) => Surf::B(b.insert_knot_u(t, *times)?),
+                    (Surf::B(b), Dir::V) => Surf::B(b.insert_knot_v(t, *times)?),
+                    (Surf::N(n), Dir::U) => Surf::N(n.insert_knot_u(t, *times)?),
+                    (Surf::N(n), Dir::V) => Surf::N(n.insert_knot_v(t, *times)?),
+                }),
+                other => return not_spline(&c.input, &other),
+            };
+            write_one(c, &out, v)
+        }
+        KnotOp::Refine { c, knots } => {
+            let x = numbers(knots, "--knots")?;
+            let out = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
+                    Curve::B(b) => Curve::B(b.refine_knots(&x)?),
+                    Curve::N(n) => Curve::N(n.refine_knots(&x)?),
+                }),
+                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
+                    (Surf::B(b), Dir::U) => Surf::B(b.refine_knots_u(&x)?),
+                    (Surf::B(b), Dir::V) => Surf::B(b.refine_knots_v(&x)?),
+                    (Surf::N(n), Dir::U) => Surf::N(n.refine_knots_u(&x)?),
+                    (Surf::N(n), Dir::V) => Surf::N(n.refine_knots_v(&x)?),
+                }),
+                other => return not_spline(&c.input, &other),
+            };
+            write_one(c, &out, v)
+        }
+        KnotOp::Remove {
+            c,
+            at,
+            times,
+            all,
+            tolerance,
+        } => {
+            let o = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => o,
+                Shape::Surface(_) => return surface_only_u_v("remove"),
+                other => return not_spline(&c.input, &other),
+            };
+            let curve = as_curve(&o)?;
+            let tol = match tolerance {
+                Some(t) => *t,
+                None => match &curve {
+                    Curve::B(b) => b.default_removal_tolerance(),
+                    Curve::N(n) => n.default_removal_tolerance(),
+                },
+            };
+            let before = knots_of(&curve);
+            let (after, removed) = match (&curve, at) {
+                (Curve::B(b), Some(at)) if !*all => {
+                    let t = one(at, "--at")?;
+                    let r = times.unwrap_or_else(|| b.knots().multiplicity(t));
+                    let (b2, n) = b.remove_knot(t, r, tol)?;
+                    (Curve::B(b2), n)
+                }
+                (Curve::N(nc), Some(at)) if !*all => {
+                    let t = one(at, "--at")?;
+                    let r = times.unwrap_or_else(|| nc.knots().multiplicity(t));
+                    let (n2, n) = nc.remove_knot(t, r, tol)?;
+                    (Curve::N(n2), n)
+                }
+                (Curve::B(b), _) => {
+                    let (b2, n) = b.remove_all_removable_knots(tol)?;
+                    (Curve::B(b2), n)
+                }
+                (Curve::N(nc), _) => {
+                    let (n2, n) = nc.remove_all_removable_knots(tol)?;
+                    (Curve::N(n2), n)
+                }
+            };
+            if v != Verbosity::Quiet {
+                eprintln!(
+                    "{}",
+                    removal_report(&before, &knots_of(&after), removed, tol)
+                );
+            }
+            write_one(c, &curve_shape(after), v)
+        }
+        KnotOp::Split { c, at } => {
+            let t = one(at, "--at")?;
+            let pieces = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => match as_curve(&o)? {
+                    Curve::B(b) => {
+                        let (l, r) = b.split_at(t)?;
+                        vec![curve_shape(Curve::B(l)), curve_shape(Curve::B(r))]
+                    }
+                    Curve::N(n) => {
+                        let (l, r) = n.split_at(t)?;
+                        vec![curve_shape(Curve::N(l)), curve_shape(Curve::N(r))]
+                    }
+                },
+                Shape::Surface(s) => {
+                    let (l, r) = match (as_surf(&s)?, c.dir) {
+                        (Surf::B(b), Dir::U) => {
+                            let (l, r) = b.split_at_u(t)?;
+                            (Surf::B(l), Surf::B(r))
+                        }
+                        (Surf::B(b), Dir::V) => {
+                            let (l, r) = b.split_at_v(t)?;
+                            (Surf::B(l), Surf::B(r))
+                        }
+                        (Surf::N(n), Dir::U) => {
+                            let (l, r) = n.split_at_u(t)?;
+                            (Surf::N(l), Surf::N(r))
+                        }
+                        (Surf::N(n), Dir::V) => {
+                            let (l, r) = n.split_at_v(t)?;
+                            (Surf::N(l), Surf::N(r))
+                        }
+                    };
+                    vec![surf_shape(l), surf_shape(r)]
+                }
+                other => return not_spline(&c.input, &other),
+            };
+            write_many(c.output.as_deref(), &c.input, &pieces, v)
+        }
+        KnotOp::Reverse { c } => {
+            let out = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
+                    Curve::B(b) => Curve::B(b.reverse()?),
+                    Curve::N(n) => Curve::N(n.reverse()?),
+                }),
+                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
+                    (Surf::B(b), Dir::U) => Surf::B(b.reverse_u()?),
+                    (Surf::B(b), Dir::V) => Surf::B(b.reverse_v()?),
+                    (Surf::N(n), Dir::U) => Surf::N(n.reverse_u()?),
+                    (Surf::N(n), Dir::V) => Surf::N(n.reverse_v()?),
+                }),
+                other => return not_spline(&c.input, &other),
+            };
+            write_one(c, &out, v)
+        }
+        KnotOp::Reparam { c, interval } => {
+            let ab = numbers(interval, "--interval")?;
+            let [lo, hi] = ab[..] else {
+                return bad_input(format!(
+                    "--interval: give two values a,b with a < b, not {}",
+                    ab.len()
+                ));
+            };
+            let out = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
+                    Curve::B(b) => Curve::B(b.reparametrize(lo, hi)?),
+                    Curve::N(n) => Curve::N(n.reparametrize(lo, hi)?),
+                }),
+                Shape::Surface(_) => {
+                    return bad_input(
+                        "`lekalo knot reparam` works on curves; surfaces keep their domain",
+                    )
+                }
+                other => return not_spline(&c.input, &other),
+            };
+            write_one(c, &out, v)
+        }
+        KnotOp::Decompose { c } => {
+            let pieces: Vec<Shape> = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => match as_curve(&o)? {
+                    Curve::B(b) => b
+                        .to_bezier_segments()
+                        .into_iter()
+                        .map(|seg| {
+                            BSplineCurve::from_bezier_segments(std::slice::from_ref(&seg))
+                                .map(|c| curve_shape(Curve::B(c)))
+                        })
+                        .collect::<lekalo::Result<_>>()?,
+                    Curve::N(n) => n
+                        .to_bezier_segments()
+                        .into_iter()
+                        .map(|c| curve_shape(Curve::N(c)))
+                        .collect(),
+                },
+                Shape::Surface(s) => match as_surf(&s)? {
+                    Surf::B(b) => b
+                        .to_bezier_patches()
+                        .into_iter()
+                        .map(|((u0, u1), (v0, v1), patch)| {
+                            let (p, q) = (patch.degree_u(), patch.degree_v());
+                            let clamp = |a: f64, b: f64, d: usize| {
+                                let mut k = vec![a; d + 1];
+                                k.extend(std::iter::repeat_n(b, d + 1));
+                                k
+                            };
+                            BSplineSurface::new(
+                                p,
+                                q,
+                                clamp(u0, u1, p),
+                                clamp(v0, v1, q),
+                                patch.control_points().clone(),
+                                patch.net_size(),
+                            )
+                            .map(|b| surf_shape(Surf::B(b)))
+                        })
+                        .collect::<lekalo::Result<_>>()?,
+                    Surf::N(n) => n
+                        .to_bezier_patches()
+                        .into_iter()
+                        .map(|(_, _, patch)| surf_shape(Surf::N(patch)))
+                        .collect(),
+                },
+                other => return not_spline(&c.input, &other),
+            };
+            write_many(c.output.as_deref(), &c.input, &pieces, v)
+        }
+        KnotOp::Join { input, output } => {
+            let shapes = load_shapes(input, v)?;
+            let joined = join(&shapes, input)?;
+            emit(
+                output.as_deref(),
+                joined.to_json_pretty().as_bytes(),
+                std::slice::from_ref(input),
+                v,
+            )
+        }
+    }
+}
+
+fn not_spline<T>(path: &Path, s: &Shape) -> Result<T> {
+    bad_input(format!(
+        "{}: field `type`: \"{}\" has no knots to operate on (knot operations take curves and surfaces)",
+        path.display(),
+        s.type_name()
+    ))
+}
+
+fn knots_of(c: &Curve) -> Vec<f64> {
+    match c {
+        Curve::B(b) => b.knots().as_slice().to_vec(),
+        Curve::N(n) => n.knots().as_slice().to_vec(),
+    }
+}
+
+/// "removed 2 knot copies (tolerance 1e-9): 0.5×2" — the knots that were in `before` and are
+/// not in `after`, with how many copies went.
+fn removal_report(before: &[f64], after: &[f64], removed: usize, tol: f64) -> String {
+    let mut gone: Vec<(f64, usize)> = Vec::new();
+    let (mut i, mut j) = (0, 0);
+    while i < before.len() {
+        if j < after.len() && after[j] == before[i] {
+            i += 1;
+            j += 1;
+        } else {
+            match gone.last_mut() {
+                Some((x, m)) if *x == before[i] => *m += 1,
+                _ => gone.push((before[i], 1)),
+            }
+            i += 1;
+        }
+    }
+    let list: Vec<String> = gone
+        .iter()
+        .map(|(x, m)| format!("{}×{m}", fmt_number(*x)))
+        .collect();
+    if removed == 0 {
+        format!(
+            "removed no knot (tolerance {}): no removal keeps the curve that close",
+            fmt_number(tol)
+        )
+    } else {
+        format!(
+            "removed {removed} knot cop{} (tolerance {}): {}",
+            if removed == 1 { "y" } else { "ies" },
+            fmt_number(tol),
+            list.join("  ")
+        )
+    }
+}
+
+/// One curve from single-segment pieces in order.
+fn join(shapes: &[Shape], input: &Path) -> Result<Shape> {
+    let mut segs = Vec::with_capacity(shapes.len());
+    let mut rational = None;
+    for (k, s) in shapes.iter().enumerate() {
+        let Shape::Curve(o) = s else {
+            return bad_input(format!(
+                "{}: piece {} is a {}, not a curve",
+                input.display(),
+                k + 1,
+                s.type_name()
+            ));
+        };
+        let (hom, is_rational) = match as_curve(o)? {
+            Curve::B(b) => (b, false),
+            Curve::N(n) => (n.homogeneous().clone(), true),
+        };
+        if *rational.get_or_insert(is_rational) != is_rational {
+            return bad_input(format!(
+                "{}: piece {} mixes rational and polynomial pieces; make them all NURBS",
+                input.display(),
+                k + 1
+            ));
+        }
+        let p = hom.degree();
+        let kv = hom.knots().as_slice();
+        let n = hom.control_points().len();
+        let (a, b) = hom.domain();
+        if n != p + 1 || kv.len() != 2 * (p + 1) {
+            return bad_input(format!(
+                "{}: piece {} is not a single Bezier segment ({n} control points for degree {p}); split it with `lekalo knot decompose` first",
+                input.display(),
+                k + 1
+            ));
+        }
+        segs.push(BezierSegment {
+            start: a,
+            end: b,
+            curve: BezierCurve::new(hom.control_points().clone())?,
+        });
+    }
+    let joined = BSplineCurve::from_bezier_segments(&segs)?;
+    Ok(if rational == Some(true) {
+        Shape::Curve(Object::Nurbs(NurbsCurve::from_homogeneous(joined)?))
+    } else {
+        Shape::Curve(Object::BSpline(joined))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn removal_report_lists_what_went() {
+        let r = removal_report(
+            &[0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
+            &[0.0, 0.0, 1.0, 1.0],
+            2,
+            1e-9,
+        );
+        assert_eq!(r, "removed 2 knot copies (tolerance 1e-9): 0.5×2");
+        let r = removal_report(&[0.0, 1.0], &[0.0, 1.0], 0, 0.5);
+        assert!(r.starts_with("removed no knot"), "{r}");
+    }
+}

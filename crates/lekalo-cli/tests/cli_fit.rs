@@ -1,0 +1,256 @@
+//! End-to-end tests of `lekalo fit`: every mode, the report, and bad inputs.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fmt::Write as _;
+use std::fs;
+
+use assert_cmd::Command;
+use predicates::str::contains;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+/// 80 noisy samples (x, y) of sin(3x) with a fixed pseudo-noise.
+fn function_samples() -> String {
+    let mut s = String::new();
+    for k in 0..80 {
+        let x = f64::from(k) / 79.0 * 3.0;
+        let e = 0.02 * ((f64::from(k) * 0.618_033_988_7).fract() - 0.5);
+        writeln!(s, "{x} {}", (3.0 * x).sin() + e).unwrap();
+    }
+    s
+}
+
+/// 120 points of a plane spiral.
+fn spiral() -> String {
+    let mut s = String::new();
+    for k in 0..120 {
+        let t = 5.0 * f64::from(k) / 119.0;
+        writeln!(
+            s,
+            "{} {}",
+            (1.0 + 0.3 * t) * t.cos(),
+            (1.0 + 0.3 * t) * t.sin()
+        )
+        .unwrap();
+    }
+    s
+}
+
+fn run_json(args: &[&str], stdin: &str) -> serde_json::Value {
+    let out = lekalo()
+        .args(args)
+        .write_stdin(stdin)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    serde_json::from_slice(&out).unwrap()
+}
+
+#[test]
+fn help_has_examples() {
+    lekalo()
+        .args(["fit", "--help"])
+        .assert()
+        .success()
+        .stdout(contains("Examples:"))
+        .stdout(contains("--smooth gcv"));
+}
+
+#[test]
+fn least_squares_with_constraints_reports_residuals() {
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--lsq",
+            "--ctrl",
+            "10",
+            "--clamp-ends",
+            "--json",
+            "--per-point",
+        ],
+        &spiral(),
+    );
+    let r = &v["report"];
+    assert_eq!(r["control_points"], 10);
+    assert_eq!(r["residuals"].as_array().unwrap().len(), 120);
+    assert!(r["max_residual"].as_f64().unwrap() < 0.05);
+    assert_eq!(v["object"]["type"], "bspline_curve");
+    // the first control point is the first data point
+    let p0 = &v["object"]["control"][0];
+    assert!((p0[0].as_f64().unwrap() - 1.0).abs() < 1e-12 && p0[1].as_f64().unwrap().abs() < 1e-12);
+    // a start derivative: P_1 − P_0 = D (t_4 − t_1) / 3
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--ctrl",
+            "10",
+            "--clamp-ends",
+            "--d0",
+            "3,10",
+            "--json",
+        ],
+        &spiral(),
+    );
+    let o = &v["object"];
+    let t = |i: usize| o["knots"][i].as_f64().unwrap();
+    let c = |i: usize, k: usize| o["control"][i][k].as_f64().unwrap();
+    let h = (t(4) - t(1)) / 3.0;
+    assert!(
+        (c(1, 0) - c(0, 0) - 3.0 * h).abs() < 1e-12 && (c(1, 1) - c(0, 1) - 10.0 * h).abs() < 1e-12
+    );
+}
+
+#[test]
+fn smoothing_modes_report_lambda_and_s() {
+    let data = function_samples();
+    let v = run_json(
+        &["fit", "-", "--function", "--smooth", "gcv", "--json"],
+        &data,
+    );
+    assert!(v["report"]["lambda"].as_f64().unwrap() > 0.0);
+    let v = run_json(
+        &["fit", "-", "--function", "--smooth", "1e-3", "--json"],
+        &data,
+    );
+    assert_eq!(v["report"]["lambda"].as_f64().unwrap(), 1e-3);
+    let v = run_json(&["fit", "-", "--function", "--s", "0.01", "--json"], &data);
+    assert!(v["report"]["weighted_rss"].as_f64().unwrap() <= 0.01);
+    assert_eq!(v["report"]["s"].as_f64().unwrap(), 0.01);
+}
+
+#[test]
+fn tolerance_fit_stays_within_tol_and_writes_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("spiral.txt");
+    let output = dir.path().join("fit.json");
+    fs::write(&input, spiral()).unwrap();
+    lekalo()
+        .args([
+            "fit",
+            input.to_str().unwrap(),
+            "--tol",
+            "1e-3",
+            "-o",
+            output.to_str().unwrap(),
+        ])
+        .assert()
+        .success()
+        .stderr(contains("max_deviation"));
+    let v: serde_json::Value = serde_json::from_str(&fs::read_to_string(&output).unwrap()).unwrap();
+    assert_eq!(v["type"], "bspline_curve");
+    let r = run_json(
+        &["fit", input.to_str().unwrap(), "--tol", "1e-3", "--json"],
+        "",
+    );
+    assert!(r["report"]["max_deviation"].as_f64().unwrap() <= 1e-3);
+}
+
+#[test]
+fn robust_fit_returns_weights() {
+    let mut data = function_samples();
+    data.push_str("1.5 40\n");
+    let mut rows: Vec<(f64, f64)> = data
+        .lines()
+        .map(|l| {
+            let mut it = l.split_whitespace().map(|x| x.parse::<f64>().unwrap());
+            (it.next().unwrap(), it.next().unwrap())
+        })
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let text: String = rows.iter().map(|(x, y)| format!("{x} {y}\n")).collect();
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--ctrl",
+            "12",
+            "--robust",
+            "tukey",
+            "--json",
+        ],
+        &text,
+    );
+    let w = v["report"]["robust_weights"].as_array().unwrap();
+    assert_eq!(w.len(), 81);
+    assert!(w.iter().any(|x| x.as_f64().unwrap() == 0.0));
+}
+
+#[test]
+fn surfaces_from_grids_and_scattered_rows() {
+    let mut grid = String::new();
+    for i in 0..12 {
+        for j in 0..10 {
+            let (x, y) = (f64::from(i), f64::from(j));
+            writeln!(grid, "{x} {y} {}", (0.3 * x).sin() * (0.2 * y).cos()).unwrap();
+        }
+    }
+    let out = lekalo()
+        .args(["fit", "-", "--grid", "12x10", "--ctrl-grid", "6x5"])
+        .write_stdin(grid)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(v["type"], "bspline_surface");
+    let mut rows = String::new();
+    for k in 0..400 {
+        let (u, v) = (
+            (f64::from(k) * 0.754_877_666).fract(),
+            (f64::from(k) * 0.569_840_291).fract(),
+        );
+        writeln!(rows, "{u} {v} {}", u * u - v).unwrap();
+    }
+    let v = run_json(
+        &["fit", "-", "--scattered", "--ctrl-grid", "5x5", "--json"],
+        &rows,
+    );
+    assert!(v["report"]["max_residual"].as_f64().unwrap() < 1e-9);
+}
+
+#[test]
+fn bad_inputs_exit_2_with_the_reason() {
+    let data = function_samples();
+    for (args, needle) in [
+        (vec!["fit", "-", "--function", "--smooth", "-1"], "λ"),
+        (
+            vec!["fit", "-", "--function", "--s", "-2"],
+            "must be finite and ≥ 0",
+        ),
+        (vec!["fit", "-", "--tol", "0"], "tolerance"),
+        (
+            vec![
+                "fit",
+                "-",
+                "--function",
+                "--knots",
+                "0.1,0.11,0.12,0.13,0.14",
+            ],
+            "Schoenberg",
+        ),
+        (
+            vec!["fit", "-", "--function", "--ctrl", "500"],
+            "need at least 500",
+        ),
+        (
+            vec!["fit", "-", "--smooth", "gcv", "--s", "1"],
+            "choose one mode",
+        ),
+    ] {
+        lekalo()
+            .args(&args)
+            .write_stdin(data.clone())
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    }
+}

@@ -1,0 +1,649 @@
+//! IGES 5.3 (Initial Graphics Exchange Specification): rational B-spline curves (entity 126)
+//! and surfaces (entity 128), written and read.
+//!
+//! A file is 80-column records in five sections: Start (`S`), Global (`G`: delimiters, units,
+//! precision), Directory Entry (`D`: two records per entity), Parameter Data (`P`: the entity's
+//! numbers, comma-separated, `;` at the end) and Terminate (`T`: the section counts). Entity 126
+//! carries `K, M, PROP1–4`, the `K + M + 2` knots, `K + 1` weights, the control points, the
+//! parameter range and a normal; entity 128 the same per direction with the net stored `u`
+//! fastest (IGES 5.3 §4.23, §4.24). Polynomial objects are written with `PROP3 = 1` and unit
+//! weights and read back as B-splines.
+//!
+//! Reals are written in the shortest form that reads back to the same `f64` and read correctly
+//! rounded (`D` exponents accepted), so a round trip is exact. The units of the Global section
+//! (flag 1–11) convert coordinates to millimetres. Entities of other types, and 126/128 entities
+//! with a transformation matrix, are listed as skipped.
+
+use std::fmt::Write as _;
+
+use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
+
+use crate::error::{IoError, IoResult, Location};
+use crate::object::Object;
+use crate::shape::{Shape, Surface};
+use crate::step::step_real;
+use crate::step_read::StepSkipped;
+
+/// What [`read_iges`] found: the shapes with their directory-entry sequence numbers, what was
+/// skipped, the unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IgesRead {
+    /// Curves and surfaces, with the sequence number of their directory entry.
+    pub shapes: Vec<(u64, Shape)>,
+    /// Entities not read (`id` is the directory entry's sequence number, `entity` its type).
+    pub skipped: Vec<StepSkipped>,
+    /// The unit named by the Global section, e.g. `MM`, `IN`.
+    pub length_unit: String,
+    /// The factor that converted coordinates to millimetres.
+    pub scale_to_mm: f64,
+}
+
+/// Builds one IGES file from curves and surfaces.
+#[derive(Debug, Clone, Default)]
+pub struct IgesWriter {
+    /// `(entity type, form, parameter text)` per entity.
+    entities: Vec<(u32, u32, Vec<String>)>,
+}
+
+fn pad3(p: &[f64]) -> [f64; 3] {
+    let mut c = [0.0; 3];
+    c[..p.len()].copy_from_slice(p);
+    c
+}
+
+fn check_dim(dim: usize) -> IoResult<()> {
+    if dim == 0 || dim > 3 {
+        return Err(IoError::Unsupported {
+            what: format!(
+                "IGES holds points in 1 to 3 dimensions, these have {dim}; project the data first"
+            ),
+        });
+    }
+    Ok(())
+}
+
+impl IgesWriter {
+    /// An empty file.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a curve as entity 126.
+    ///
+    /// # Errors
+    /// [`IoError::Unsupported`] for points of dimension above 3.
+    pub fn add_object(&mut self, obj: &Object) -> IoResult<()> {
+        check_dim(obj.dim())?;
+        let p = obj.degree();
+        let knots = obj.knots();
+        let ctrl = obj.control_points();
+        let n = ctrl.len();
+        let weights = obj.weights();
+        let (a, b) = obj.domain();
+        let mut t: Vec<String> = vec!["126".into(), (n - 1).to_string(), p.to_string()];
+        let planar = ctrl.dim() < 3 || ctrl.iter().all(|q| q[2] == 0.0);
+        t.extend(
+            [usize::from(planar), 0, usize::from(weights.is_none()), 0].map(|x| x.to_string()),
+        );
+        t.extend(knots.as_slice().iter().map(|&x| step_real(x)));
+        match &weights {
+            Some(w) => t.extend(w.iter().map(|&x| step_real(x))),
+            None => t.extend(std::iter::repeat_n("1.".to_string(), n)),
+        }
+        for q in ctrl.iter() {
+            t.extend(pad3(q).iter().map(|&x| step_real(x)));
+        }
+        t.extend([step_real(a), step_real(b)]);
+        t.extend(["0.", "0.", if planar { "1." } else { "0." }].map(String::from));
+        self.entities.push((126, 0, t));
+        Ok(())
+    }
+
+    /// Adds a surface as entity 128.
+    ///
+    /// # Errors
+    /// [`IoError::Unsupported`] for points of dimension above 3.
+    pub fn add_surface(&mut self, s: &Surface) -> IoResult<()> {
+        check_dim(s.dim())?;
+        let (pu, pv) = s.degrees();
+        let (nu, nv) = s.net_size();
+        let (ku, kv) = s.knots();
+        let ctrl = s.control_points();
+        let weights = s.weights();
+        let ((u0, u1), (v0, v1)) = s.domain();
+        let mut t: Vec<String> = vec!["128".into()];
+        t.extend(
+            [
+                nu - 1,
+                nv - 1,
+                pu,
+                pv,
+                0,
+                0,
+                usize::from(weights.is_none()),
+                0,
+                0,
+            ]
+            .map(|x| x.to_string()),
+        );
+        t.extend(ku.iter().chain(&kv).map(|&x| step_real(x)));
+        // u varies fastest
+        for j in 0..nv {
+            for i in 0..nu {
+                t.push(
+                    weights
+                        .as_ref()
+                        .map_or_else(|| "1.".to_string(), |w| step_real(w[i * nv + j])),
+                );
+            }
+        }
+        for j in 0..nv {
+            for i in 0..nu {
+                t.extend(pad3(ctrl.point(i * nv + j)).iter().map(|&x| step_real(x)));
+            }
+        }
+        t.extend([u0, u1, v0, v1].map(step_real));
+        self.entities.push((128, 0, t));
+        Ok(())
+    }
+
+    /// The complete file; `name` is the file name in the Global section, `timestamp` its date
+    /// (`YYYYMMDD.HHNNSS`; pass a fixed value for reproducible files).
+    #[must_use]
+    pub fn finish(&self, name: &str, timestamp: &str) -> String {
+        let mut out = String::new();
+        let line = |out: &mut String, text: &str, section: char, seq: usize| {
+            let _ = writeln!(out, "{text:<72}{section}{seq:>7}");
+        };
+        line(&mut out, "lekalo spline export", 'S', 1);
+        let h = |s: &str| format!("{}H{s}", s.len());
+        let max_coord = self
+            .entities
+            .iter()
+            .flat_map(|(_, _, t)| t.iter().filter_map(|x| x.parse::<f64>().ok()))
+            .fold(0.0_f64, |m, x| m.max(x.abs()));
+        let global = [
+            h(","),
+            h(";"),
+            h(name),
+            h(name),
+            h("lekalo"),
+            h(env!("CARGO_PKG_VERSION")),
+            "32".into(),
+            "308".into(),
+            "15".into(),
+            "308".into(),
+            "15".into(),
+            h(name),
+            "1.".into(),
+            "2".into(),
+            h("MM"),
+            "1".into(),
+            "1.".into(),
+            h(timestamp),
+            "1.E-10".into(),
+            step_real(max_coord),
+            h("lekalo"),
+            h(""),
+            "11".into(),
+            "0".into(),
+            h(timestamp),
+        ];
+        let glines = pack(&global, 72);
+        for (k, g) in glines.iter().enumerate() {
+            line(&mut out, g, 'G', k + 1);
+        }
+        // parameter lines first (to know the pointers), then the directory
+        let mut dir = String::new();
+        let mut par = String::new();
+        let mut pseq = 1;
+        for (k, (ty, form, t)) in self.entities.iter().enumerate() {
+            let de = 2 * k + 1;
+            let lines = pack(t, 64);
+            let start = pseq;
+            for l in &lines {
+                let _ = writeln!(par, "{l:<64}{de:>8}P{pseq:>7}");
+                pseq += 1;
+            }
+            let _ = writeln!(
+                dir,
+                "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{de:>7}",
+                0, 0, 0, 0, 0, 0, "00000000"
+            );
+            let _ = writeln!(
+                dir,
+                "{ty:>8}{:>8}{:>8}{:>8}{form:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
+                0,
+                0,
+                lines.len(),
+                "",
+                "",
+                "",
+                0,
+                de + 1
+            );
+        }
+        out.push_str(&dir);
+        out.push_str(&par);
+        let t = format!(
+            "S{:>7}G{:>7}D{:>7}P{:>7}",
+            1,
+            glines.len(),
+            2 * self.entities.len(),
+            pseq - 1
+        );
+        line(&mut out, &t, 'T', 1);
+        out
+    }
+}
+
+/// Tokens joined by `,` (the last followed by `;`), packed into lines of at most `width`
+/// characters without splitting a token.
+fn pack(tokens: &[String], width: usize) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut cur = String::new();
+    for (k, t) in tokens.iter().enumerate() {
+        let piece = format!("{t}{}", if k + 1 == tokens.len() { ';' } else { ',' });
+        if !cur.is_empty() && cur.len() + piece.len() > width {
+            lines.push(std::mem::take(&mut cur));
+        }
+        cur.push_str(&piece);
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines
+}
+
+/// Splits a parameter text at `delim` outside Hollerith strings, up to the record delimiter.
+fn fields(text: &str, delim: char, record: char) -> Vec<String> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c.is_ascii_digit() && cur.trim().chars().all(|d| d.is_ascii_digit()) {
+            // a Hollerith string nHxxx: digits then H then n characters
+            let mut j = i;
+            while j < chars.len() && chars[j].is_ascii_digit() {
+                j += 1;
+            }
+            if j < chars.len() && chars[j] == 'H' && cur.trim().is_empty() {
+                let n: usize = chars[i..j].iter().collect::<String>().parse().unwrap_or(0);
+                let end = (j + 1 + n).min(chars.len());
+                cur = chars[j + 1..end].iter().collect();
+                i = end;
+                continue;
+            }
+        }
+        if c == delim {
+            out.push(std::mem::take(&mut cur));
+        } else if c == record {
+            out.push(std::mem::take(&mut cur));
+            return out;
+        } else {
+            cur.push(c);
+        }
+        i += 1;
+    }
+    out.push(cur);
+    out
+}
+
+fn real(s: &str) -> Option<f64> {
+    let t = s.trim().replace(['D', 'd'], "E");
+    if t.is_empty() {
+        return Some(0.0);
+    }
+    t.parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
+fn count(s: &str) -> Option<usize> {
+    let t = s.trim();
+    if t.is_empty() {
+        return Some(0);
+    }
+    t.parse::<usize>().ok()
+}
+
+/// The unit of flag `f` (IGES 5.3 §2.2.4.3, field 14) in millimetres, and its name.
+fn unit(flag: usize, name: &str) -> Option<(String, f64)> {
+    let mm = match flag {
+        1 => 25.4,
+        2 => 1.0,
+        4 => 304.8,
+        5 => 1_609_344.0,
+        6 => 1000.0,
+        7 => 1e6,
+        8 => 0.0254,
+        9 => 1e-3,
+        10 => 10.0,
+        11 => 2.54e-5,
+        3 => match name.trim().to_ascii_uppercase().as_str() {
+            "MM" => 1.0,
+            "IN" | "INCH" => 25.4,
+            "M" => 1000.0,
+            "CM" => 10.0,
+            _ => return None,
+        },
+        _ => return None,
+    };
+    Some((name.trim().to_string(), mm))
+}
+
+/// Reads the rational B-spline curves (126) and surfaces (128) of an IGES file.
+///
+/// ```
+/// use lekalo_io::{read_iges, IgesWriter, Object, Shape};
+/// let c = lekalo::NurbsCurve::circle(&[0.0, 0.0, 0.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 2.0)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::Nurbs(c.clone()))?;
+/// let r = read_iges(&w.finish("circle", "20000101.000000"), "circle.igs")?;
+/// assert_eq!(r.shapes[0].1, Shape::Curve(Object::Nurbs(c)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// [`IoError::Syntax`] with the line for records that are not IGES, pointers outside the file
+/// and entities whose numbers do not fit their counts or that the library rejects.
+pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
+    let mut g = String::new();
+    let mut d: Vec<(usize, &str)> = Vec::new();
+    let mut p: Vec<(usize, &str)> = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let l = raw.trim_end_matches('\r');
+        if l.trim().is_empty() {
+            continue;
+        }
+        let section = l.get(72..73).ok_or_else(|| {
+            IoError::syntax(
+                Location::new(source).at_line(i + 1),
+                "an IGES record has 80 columns with the section letter in column 73; this line is shorter",
+            )
+        })?;
+        match section {
+            "G" => g.push_str(&l[..72]),
+            "D" => d.push((i + 1, l)),
+            "P" => p.push((i + 1, l)),
+            "S" | "T" => {}
+            other => {
+                return Err(IoError::syntax(
+                    Location::new(source).at_line(i + 1),
+                    format!("section letter \"{other}\" in column 73: expected S, G, D, P or T"),
+                ))
+            }
+        }
+    }
+    let (delim, record) = {
+        let t = g.trim_start();
+        let pd = if t.starts_with("1H") {
+            t.chars().nth(2).unwrap_or(',')
+        } else {
+            ','
+        };
+        let rest = if t.starts_with("1H") { &t[3..] } else { t };
+        let rest = rest.trim_start_matches(pd).trim_start();
+        let rd = if rest.starts_with("1H") {
+            rest.chars().nth(2).unwrap_or(';')
+        } else {
+            ';'
+        };
+        (pd, rd)
+    };
+    let gf = fields(&g, delim, record);
+    let flag = gf.get(13).and_then(|s| count(s)).unwrap_or(2);
+    let name = gf.get(14).cloned().unwrap_or_default();
+    let scale_field = gf
+        .get(12)
+        .and_then(|s| real(s))
+        .filter(|s| *s > 0.0)
+        .unwrap_or(1.0);
+    let (length_unit, unit_mm) =
+        unit(flag, &name).unwrap_or_else(|| (format!("{name} (assumed MM)"), 1.0));
+    // model space scale: model units per drawing unit; coordinates are in model units
+    let _ = scale_field;
+    let mut shapes = Vec::new();
+    let mut skipped = Vec::new();
+    for pair in d.chunks(2) {
+        let [(line, a), (_, b)] = pair else {
+            return Err(IoError::syntax(
+                Location::new(source).at_line(pair[0].0),
+                "the directory section has an odd number of records",
+            ));
+        };
+        let field = |s: &str, k: usize| s.get(8 * k..8 * k + 8).unwrap_or("").trim().to_string();
+        let ty = field(a, 0);
+        let seq: u64 = a
+            .get(73..80)
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or(0);
+        if ty != "126" && ty != "128" {
+            if matches!(
+                ty.as_str(),
+                "100"
+                    | "102"
+                    | "104"
+                    | "106"
+                    | "110"
+                    | "112"
+                    | "114"
+                    | "118"
+                    | "120"
+                    | "122"
+                    | "140"
+                    | "143"
+                    | "144"
+            ) {
+                skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity {ty}"),
+                    reason: "not a rational B-spline (lekalo reads entities 126 and 128)".into(),
+                });
+            }
+            continue;
+        }
+        let at = Location::new(source).at_line(*line);
+        if !matches!(field(a, 6).as_str(), "" | "0") {
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity {ty}"),
+                reason: "has a transformation matrix (entity 124), which is not applied".into(),
+            });
+            continue;
+        }
+        let start = count(&field(a, 1)).unwrap_or(0);
+        let n = count(&field(b, 3)).unwrap_or(0);
+        if start == 0 || start + n - 1 > p.len() || n == 0 {
+            return Err(IoError::syntax(at, format!("entity {ty}: parameter data pointer {start} (+{n} lines) is outside the P section")));
+        }
+        let body: String = p[start - 1..start - 1 + n]
+            .iter()
+            .map(|(_, l)| l.get(..64).unwrap_or(l))
+            .collect();
+        let f = fields(&body, delim, record);
+        let bad = |why: String| {
+            IoError::syntax(
+                Location::new(source).at_line(p[start - 1].0),
+                format!("entity {ty} (D{seq}): {why}"),
+            )
+        };
+        let r = |k: usize| {
+            f.get(k)
+                .and_then(|s| real(s))
+                .ok_or_else(|| bad(format!("parameter {k} is missing or not a number")))
+        };
+        let c = |k: usize| {
+            f.get(k)
+                .and_then(|s| count(s))
+                .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
+        };
+        let lib = |e: lekalo::Error| bad(e.to_string());
+        if ty == "126" {
+            let (k, m, poly) = (c(1)?, c(2)?, c(5)? == 1);
+            let nk = k + m + 2;
+            if nk > lekalo::MAX_SCALARS {
+                return Err(bad(format!("{nk} knots is more than the library accepts")));
+            }
+            let base = 7;
+            let knots = (0..nk).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
+            let w = (0..=k)
+                .map(|i| r(base + nk + i))
+                .collect::<IoResult<Vec<_>>>()?;
+            let pb = base + nk + k + 1;
+            let mut data = Vec::with_capacity(3 * (k + 1));
+            for i in 0..3 * (k + 1) {
+                data.push(r(pb + i)? * unit_mm);
+            }
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
+            let obj = if poly {
+                Object::BSpline(BSplineCurve::new(m, knots, ctrl).map_err(lib)?)
+            } else {
+                Object::Nurbs(NurbsCurve::new(m, knots, ctrl, w).map_err(lib)?)
+            };
+            shapes.push((seq, Shape::Curve(obj)));
+        } else {
+            let (k1, k2, m1, m2, poly) = (c(1)?, c(2)?, c(3)?, c(4)?, c(7)? == 1);
+            let (nu, nv) = (k1 + 1, k2 + 1);
+            let (n1, n2) = (k1 + m1 + 2, k2 + m2 + 2);
+            if n1
+                .saturating_add(n2)
+                .saturating_add(nu.saturating_mul(nv).saturating_mul(4))
+                > lekalo::MAX_SCALARS
+            {
+                return Err(bad("the surface is larger than the library accepts".into()));
+            }
+            let base = 10;
+            let ku = (0..n1).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
+            let kv = (0..n2)
+                .map(|i| r(base + n1 + i))
+                .collect::<IoResult<Vec<_>>>()?;
+            let wb = base + n1 + n2;
+            let pb = wb + nu * nv;
+            let mut w = vec![0.0; nu * nv];
+            let mut data = vec![0.0; 3 * nu * nv];
+            for j in 0..nv {
+                for i in 0..nu {
+                    let src = j * nu + i;
+                    w[i * nv + j] = r(wb + src)?;
+                    for x in 0..3 {
+                        data[3 * (i * nv + j) + x] = r(pb + 3 * src + x)? * unit_mm;
+                    }
+                }
+            }
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
+            let s = if poly {
+                Surface::BSpline(BSplineSurface::new(m1, m2, ku, kv, ctrl, (nu, nv)).map_err(lib)?)
+            } else {
+                Surface::Nurbs(NurbsSurface::new(m1, m2, ku, kv, ctrl, w, (nu, nv)).map_err(lib)?)
+            };
+            shapes.push((seq, Shape::Surface(s)));
+        }
+    }
+    Ok(IgesRead {
+        shapes,
+        skipped,
+        length_unit,
+        scale_to_mm: unit_mm,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip_every_kind_bit_for_bit() {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let ctrl =
+            Points::from_3d(&[[1.0, 0.0, 0.1], [1.0, 1.0, 1.0 / 3.0], [0.0, 1.0, 1e-300]]).unwrap();
+        let nurbs = Object::Nurbs(
+            NurbsCurve::new(
+                2,
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                ctrl.clone(),
+                vec![1.0, w, 1.0],
+            )
+            .unwrap(),
+        );
+        let bs = Object::BSpline(
+            BSplineCurve::new(2, vec![0.5, 0.5, 0.5, 2.0, 2.0, 2.0], ctrl).unwrap(),
+        );
+        let net = Points::from_3d(&[
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.7],
+            [0.0, 2.0, 0.1],
+            [1.0, 0.0, -0.3],
+            [1.0, 1.0, 1.0 / 7.0],
+            [1.0, 2.0, 0.0],
+        ])
+        .unwrap();
+        let s = Surface::BSpline(
+            BSplineSurface::new(
+                1,
+                2,
+                vec![0.0, 0.0, 2.0, 2.0],
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                net.clone(),
+                (2, 3),
+            )
+            .unwrap(),
+        );
+        let n = Surface::Nurbs(
+            NurbsSurface::new(
+                1,
+                2,
+                vec![0.0, 0.0, 2.0, 2.0],
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                net,
+                vec![1.0, 0.5, 2.0, 1.5, 1.0, 0.25],
+                (2, 3),
+            )
+            .unwrap(),
+        );
+        let mut wr = IgesWriter::new();
+        wr.add_object(&nurbs).unwrap();
+        wr.add_object(&bs).unwrap();
+        wr.add_surface(&s).unwrap();
+        wr.add_surface(&n).unwrap();
+        let text = wr.finish("t", "20000101.000000");
+        for l in text.lines() {
+            assert_eq!(l.len(), 80, "{l}");
+        }
+        let r = read_iges(&text, "t.igs").unwrap();
+        let got: Vec<Shape> = r.shapes.into_iter().map(|(_, s)| s).collect();
+        assert_eq!(got[0], Shape::Curve(nurbs));
+        assert_eq!(got[1], Shape::Curve(bs));
+        assert_eq!(got[2], Shape::Surface(s));
+        let (Shape::Surface(Surface::Nurbs(a)), Surface::Nurbs(b)) = (&got[3], &n) else {
+            panic!("a NURBS surface")
+        };
+        assert_eq!(a.weights(), b.weights());
+        assert_eq!(a.control_points(), b.control_points());
+        assert_eq!(r.scale_to_mm, 1.0);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let e = read_iges("short line\n", "x.igs").unwrap_err().to_string();
+        assert!(e.starts_with("x.igs:1:"), "{e}");
+        let mut wr = IgesWriter::new();
+        let c = Object::BSpline(
+            BSplineCurve::new(
+                1,
+                vec![0.0, 0.0, 1.0, 1.0],
+                Points::from_2d(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
+            )
+            .unwrap(),
+        );
+        wr.add_object(&c).unwrap();
+        let text = wr.finish("t", "20000101.000000").replace(
+            "126,1,1,1,0,1,0,0.,0.,1.,1.,",
+            "126,1,1,1,0,1,0,0.,2.,1.,1.,",
+        );
+        assert!(text.contains("0.,2.,1.,1."), "{text}");
+        let e = read_iges(&text, "x.igs").unwrap_err().to_string();
+        assert!(e.contains("entity 126"), "{e}");
+    }
+}

@@ -1,0 +1,471 @@
+//! Weighted least squares with given knots, with end points and end derivatives imposed exactly
+//! (`docs/theory/fitting.md#least-squares`, `#constraints`).
+
+use super::banded::GivensQr;
+use super::data::{check_in_domain, CurveFit, FitData, FitReport};
+use crate::basis::{basis_funs_into, BasisScratch};
+use crate::error::{check_degree_bound, check_finite, Error, Result};
+use crate::knots::KnotVector;
+use crate::points::Points;
+use crate::BSplineCurve;
+
+/// End conditions imposed exactly on a least-squares fit (Piegl & Tiller §9.4.1, A9.6/A9.7):
+/// the curve starts at the first data point and/or ends at the last, optionally with given
+/// first derivatives there. Each condition fixes a control point of the clamped curve,
+/// `P_0 = Q_0`, `P_1 = Q_0 + D_0 (t_{p+1} − t_1)/p`, `P_n = Q_m`,
+/// `P_{n−1} = Q_m − D_m (t_{n+p} − t_n)/p`, which is then eliminated from the problem.
+///
+/// ```
+/// use lekalo::fit::EndConstraints;
+/// let ends = EndConstraints::points().with_start_derivative(vec![1.0, 0.0]);
+/// assert!(ends.start_point && ends.end_point);
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EndConstraints {
+    /// `C(a) = Q_0`, the first data point.
+    pub start_point: bool,
+    /// `C(b) = Q_m`, the last data point.
+    pub end_point: bool,
+    /// `C'(a) = D_0` (needs `start_point`).
+    pub start_derivative: Option<Vec<f64>>,
+    /// `C'(b) = D_m` (needs `end_point`).
+    pub end_derivative: Option<Vec<f64>>,
+}
+
+impl EndConstraints {
+    /// No constraint: the plain least-squares problem.
+    #[must_use]
+    pub fn none() -> Self {
+        Self::default()
+    }
+
+    /// Both end points interpolated (P&T A9.6).
+    #[must_use]
+    pub fn points() -> Self {
+        EndConstraints {
+            start_point: true,
+            end_point: true,
+            ..Self::default()
+        }
+    }
+
+    /// Adds `C'(a) = d` (and the start point).
+    #[must_use]
+    pub fn with_start_derivative(mut self, d: Vec<f64>) -> Self {
+        self.start_point = true;
+        self.start_derivative = Some(d);
+        self
+    }
+
+    /// Adds `C'(b) = d` (and the end point).
+    #[must_use]
+    pub fn with_end_derivative(mut self, d: Vec<f64>) -> Self {
+        self.end_point = true;
+        self.end_derivative = Some(d);
+        self
+    }
+}
+
+/// The weighted least-squares B-spline of `degree` on `knots`: minimises
+/// `Σ_k w_k |C(ū_k) − Q_k|²` over the control points (SciPy's `make_lsq_spline`; P&T §9.4.1),
+/// subject to `ends`, which are imposed exactly by eliminating the control points they fix.
+///
+/// Solved by banded QR with Givens rotations, one data row at a time (FITPACK `fpgivs`/`fprota`;
+/// `docs/theory/fitting.md#banded-qr`): no normal equations, no dense matrix; O(N·p·(p + dim))
+/// time and O(n·(p + dim)) memory for `N` points and `n` control points. The data are shifted by
+/// their first point before the solve (exact by partition of unity), so data far from the origin
+/// keep their digits.
+///
+/// ```
+/// use lekalo::fit::{least_squares, EndConstraints, FitData};
+/// use lekalo::{KnotVector, PointsRef};
+/// // samples of a cubic polynomial are reproduced exactly by any cubic spline space
+/// let x: Vec<f64> = (0..20).map(|k| k as f64 / 19.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| 1.0 - 2.0 * t + t * t * t).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0])?;
+/// let fit = least_squares(&data, 3, &kv, &EndConstraints::none())?;
+/// assert!(fit.report.max_residual < 1e-14);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Degree`] and the knot errors of [`KnotVector::validate_for`];
+/// [`Error::ParameterOutOfDomain`] for a data parameter outside the knots' domain;
+/// [`Error::SchoenbergWhitney`] when the data leave a basis function without support (a knot
+/// span without data, or more control points than distinct parameters);
+/// [`Error::Dimension`] / [`Error::NonFinite`] for a bad end derivative;
+/// [`Error::InvalidArgument`] for an end condition on an end that is not clamped, or a derivative
+/// without its end point; [`Error::TooFew`] when the end conditions fix more control points than
+/// there are.
+pub fn least_squares(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+) -> Result<CurveFit> {
+    check_degree_bound(degree)?;
+    let n_ctrl = knots
+        .len()
+        .checked_sub(degree + 1)
+        .ok_or_else(|| Error::Degree {
+            degree,
+            reason: format!("{} knots carry no spline of this degree", knots.len()),
+        })?;
+    knots.validate_for(degree, n_ctrl)?;
+    check_in_domain(data.params(), knots.domain(degree))?;
+    let fixed = Fixed::new(data, degree, knots, n_ctrl, ends)?;
+    if fixed.count() == 0 {
+        super::knot_placement::check_schoenberg_whitney(data.params(), degree, knots)?;
+    }
+    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, degree + 1);
+    let control = solve_control(&qr, data, degree, knots, n_ctrl, &fixed)?;
+    let curve = BSplineCurve::from_raw(degree, knots.as_slice().to_vec(), control);
+    let report = FitReport::new(&curve, data, None);
+    Ok(CurveFit { curve, report })
+}
+
+/// Control points fixed by end conditions, relative to the reference point `center`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Fixed {
+    /// The data's reference point (the first data point).
+    pub(crate) center: Vec<f64>,
+    /// `P_0, P_1, …` fixed at the start, flat, minus `center`.
+    pub(crate) start: Vec<f64>,
+    /// `…, P_{n−1}, P_n` fixed at the end, flat, minus `center`.
+    pub(crate) end: Vec<f64>,
+}
+
+impl Fixed {
+    /// No fixed control point; the reference point is the first data point.
+    pub(crate) fn free(data: &FitData<'_>) -> Self {
+        Fixed {
+            center: data.points().point(0).to_vec(),
+            ..Fixed::default()
+        }
+    }
+
+    fn new(
+        data: &FitData<'_>,
+        degree: usize,
+        knots: &KnotVector,
+        n_ctrl: usize,
+        ends: &EndConstraints,
+    ) -> Result<Self> {
+        let mut f = Fixed::free(data);
+        let pts = data.points();
+        let dim = pts.dim();
+        let t = knots.as_slice();
+        let p = degree;
+        let check_derivative = |d: &Option<Vec<f64>>, has_point: bool, end: &str| -> Result<()> {
+            if let Some(d) = d {
+                if d.len() != dim {
+                    return Err(Error::Dimension {
+                        what: "end derivative of a least-squares fit",
+                        expected: dim,
+                        got: d.len(),
+                    });
+                }
+                check_finite("end derivative", d)?;
+                if !has_point {
+                    return Err(Error::InvalidArgument {
+                        what: "end constraints",
+                        reason: format!(
+                            "a derivative at the {end} needs the {end} point interpolated too \
+                             (set the point constraint)"
+                        ),
+                    });
+                }
+            }
+            Ok(())
+        };
+        check_derivative(&ends.start_derivative, ends.start_point, "start")?;
+        check_derivative(&ends.end_derivative, ends.end_point, "end")?;
+        let clamped_start = t[..=p].iter().all(|&v| v == t[0]);
+        let clamped_end = t[n_ctrl..].iter().all(|&v| v == t[t.len() - 1]);
+        let unclamped = |end: &str| Error::InvalidArgument {
+            what: "end constraints",
+            reason: format!(
+                "the knots are not clamped at the {end} (degree + 1 equal end knots), so the \
+                 {end} point is not a control point; use clamped knots"
+            ),
+        };
+        if ends.start_point {
+            if !clamped_start {
+                return Err(unclamped("start"));
+            }
+            let q0 = pts.point(0);
+            f.start.extend(q0.iter().zip(&f.center).map(|(q, c)| q - c));
+            if let Some(d) = &ends.start_derivative {
+                let h = (t[p + 1] - t[1]) / p.max(1) as f64;
+                let p1: Vec<f64> = (0..dim).map(|c| f.start[c] + d[c] * h).collect();
+                f.start.extend(p1);
+            }
+        }
+        if ends.end_point {
+            if !clamped_end {
+                return Err(unclamped("end"));
+            }
+            let qm = pts.point(pts.len() - 1);
+            let pn: Vec<f64> = qm.iter().zip(&f.center).map(|(q, c)| q - c).collect();
+            if let Some(d) = &ends.end_derivative {
+                let h = (t[n_ctrl + p - 1] - t[n_ctrl - 1]) / p.max(1) as f64;
+                f.end.extend((0..dim).map(|c| pn[c] - d[c] * h));
+            }
+            f.end.extend(pn);
+        }
+        if p == 0 && (ends.start_derivative.is_some() || ends.end_derivative.is_some()) {
+            return Err(Error::InvalidArgument {
+                what: "end constraints",
+                reason: "a piecewise constant curve has no end derivative; use degree ≥ 1".into(),
+            });
+        }
+        if f.count() > n_ctrl {
+            return Err(Error::TooFew {
+                what: "control points for the end conditions (each fixes one or two)",
+                min: f.count(),
+                got: n_ctrl,
+            });
+        }
+        Ok(f)
+    }
+
+    /// Number of fixed control points.
+    pub(crate) fn count(&self) -> usize {
+        let dim = self.center.len().max(1);
+        (self.start.len() + self.end.len()) / dim
+    }
+}
+
+/// Rotates every data row into a banded QR of the free control points (band `bw ≥ p + 1`).
+/// Rows with zero weight are skipped; weights are divided by the largest one (the minimiser is
+/// unchanged) so that no square overflows.
+pub(crate) fn accumulate(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    n_ctrl: usize,
+    fixed: &Fixed,
+    bw: usize,
+) -> GivensQr {
+    let pts = data.points();
+    let dim = pts.dim();
+    let ks = fixed.start.len() / dim;
+    let ke = fixed.end.len() / dim;
+    let n_free = n_ctrl - ks - ke;
+    let mut qr = GivensQr::new(n_free, bw, dim);
+    let wmax = data
+        .weights()
+        .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
+    let t = knots.as_slice();
+    let mut cursor = knots.span_cursor(degree);
+    let mut scratch = BasisScratch::new(degree);
+    let mut nb = vec![0.0; degree + 1];
+    let mut h = vec![0.0; degree + 1];
+    let mut y = vec![0.0; dim];
+    let params = data.params();
+    let mut row = |k: usize, qr: &mut GivensQr| {
+        let w = data.weight(k) / wmax;
+        if w == 0.0 {
+            return;
+        }
+        let sw = w.sqrt();
+        let u = params[k];
+        let span = cursor.find_unchecked(u);
+        basis_funs_into(t, degree, span, u, &mut scratch, &mut nb);
+        let first = span - degree;
+        for (yc, (q, o)) in y.iter_mut().zip(pts.point(k).iter().zip(&fixed.center)) {
+            *yc = sw * (q - o);
+        }
+        for (a, &b) in nb.iter().enumerate() {
+            let col = first + a;
+            let fixed_point = if col < ks {
+                Some(&fixed.start[col * dim..(col + 1) * dim])
+            } else if col >= n_ctrl - ke {
+                let e = col - (n_ctrl - ke);
+                Some(&fixed.end[e * dim..(e + 1) * dim])
+            } else {
+                None
+            };
+            if let Some(pf) = fixed_point {
+                for (yc, pc) in y.iter_mut().zip(pf) {
+                    *yc -= sw * b * pc;
+                }
+            }
+        }
+        let lo = first.max(ks);
+        let hi = (first + degree + 1).min(n_ctrl - ke);
+        if lo < hi {
+            let len = hi - lo;
+            for (hv, &b) in h[..len].iter_mut().zip(&nb[lo - first..hi - first]) {
+                *hv = sw * b;
+            }
+            qr.add_row(lo - ks, &mut h[..len], &mut y);
+        } else {
+            qr.rss += y.iter().map(|v| v * v).sum::<f64>();
+        }
+    };
+    match data.order() {
+        None => (0..data.len()).for_each(|k| row(k, &mut qr)),
+        Some(order) => order.into_iter().for_each(|k| row(k, &mut qr)),
+    }
+    qr
+}
+
+/// Back-substitutes the free control points and assembles all of them (plus the reference
+/// point).
+///
+/// # Errors
+/// [`Error::SchoenbergWhitney`] naming the basis function whose column is rank-deficient.
+pub(crate) fn solve_control(
+    qr: &GivensQr,
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    n_ctrl: usize,
+    fixed: &Fixed,
+) -> Result<Points> {
+    let dim = data.points().dim();
+    let ks = fixed.start.len() / dim;
+    let mut x = vec![0.0; qr.n() * dim];
+    if let Err(col) = qr.solve(&mut x) {
+        let t = knots.as_slice();
+        let j = col + ks;
+        return Err(Error::SchoenbergWhitney {
+            basis: j,
+            start: t[j],
+            end: t[j + degree + 1],
+        });
+    }
+    Ok(assemble(&x, fixed, n_ctrl, dim))
+}
+
+/// `[fixed start, free, fixed end] + center` as control points.
+pub(crate) fn assemble(free: &[f64], fixed: &Fixed, n_ctrl: usize, dim: usize) -> Points {
+    let mut all = Vec::with_capacity(n_ctrl * dim);
+    all.extend_from_slice(&fixed.start);
+    all.extend_from_slice(free);
+    all.extend_from_slice(&fixed.end);
+    for p in all.chunks_exact_mut(dim) {
+        for (v, c) in p.iter_mut().zip(&fixed.center) {
+            *v += c;
+        }
+    }
+    Points::from_raw(all, dim)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::points::PointsRef;
+
+    fn sample(curve: &BSplineCurve, u: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; u.len() * curve.dim()];
+        curve.eval_batch(u, &mut out).unwrap();
+        out
+    }
+
+    #[test]
+    fn end_constraints_hold_exactly() {
+        let u: Vec<f64> = (0..50).map(|k| k as f64 / 49.0).collect();
+        let q: Vec<f64> = u
+            .iter()
+            .flat_map(|&t| [(3.0 * t).sin() + 0.01 * (40.0 * t).cos(), t * t])
+            .collect();
+        let data = FitData::new(PointsRef::from_flat(2, &q).unwrap(), &u).unwrap();
+        let kv = KnotVector::clamped_uniform(3, 8).unwrap();
+        let ends = EndConstraints::points()
+            .with_start_derivative(vec![3.0, 0.0])
+            .with_end_derivative(vec![-2.0, 2.0]);
+        let fit = least_squares(&data, 3, &kv, &ends).unwrap();
+        let c = &fit.curve;
+        let d0 = c.eval_derivatives(0.0, 1).unwrap();
+        let d1 = c.eval_derivatives(1.0, 1).unwrap();
+        for k in 0..2 {
+            assert!((d0.point(0)[k] - q[k]).abs() < 1e-14, "start point");
+            assert!((d1.point(0)[k] - q[98 + k]).abs() < 1e-14, "end point");
+        }
+        assert!(
+            (d0.point(1)[0] - 3.0).abs() < 1e-12 && d0.point(1)[1].abs() < 1e-12,
+            "start derivative {:?}",
+            d0.point(1)
+        );
+        assert!(
+            (d1.point(1)[0] + 2.0).abs() < 1e-12 && (d1.point(1)[1] - 2.0).abs() < 1e-12,
+            "end derivative {:?}",
+            d1.point(1)
+        );
+        // the constrained fit is no better than the free one
+        let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+        assert!(
+            free.report.weighted_rss <= fit.report.weighted_rss,
+            "free fit is optimal"
+        );
+    }
+
+    #[test]
+    fn unsorted_parameters_give_the_same_fit() {
+        let u: Vec<f64> = (0..40).map(|k| ((k * 17) % 40) as f64 / 39.0).collect();
+        let q: Vec<f64> = u.iter().map(|&t| (5.0 * t).sin()).collect();
+        let data = FitData::new(PointsRef::from_flat(1, &q).unwrap(), &u).unwrap();
+        let kv = KnotVector::clamped_uniform(3, 9).unwrap();
+        let a = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+        let mut pairs: Vec<(f64, f64)> = u.iter().copied().zip(q.iter().copied()).collect();
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (us, qs): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
+        let data = FitData::new(PointsRef::from_flat(1, &qs).unwrap(), &us).unwrap();
+        let b = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+        let (ea, eb) = (sample(&a.curve, &us), sample(&b.curve, &us));
+        for (x, y) in ea.iter().zip(&eb) {
+            assert!((x - y).abs() < 1e-13, "{x} vs {y}");
+        }
+    }
+
+    #[test]
+    fn constraint_errors_are_named() {
+        let u = [0.0, 0.25, 0.5, 0.75, 1.0];
+        let q = [0.0, 1.0, 0.0, 1.0, 0.0];
+        let data = FitData::new(PointsRef::from_flat(1, &q).unwrap(), &u).unwrap();
+        let kv = KnotVector::clamped_uniform(2, 4).unwrap();
+        let bad_dim = EndConstraints::points().with_start_derivative(vec![1.0, 2.0]);
+        assert!(
+            matches!(
+                least_squares(&data, 2, &kv, &bad_dim),
+                Err(Error::Dimension { .. })
+            ),
+            "dimension"
+        );
+        let no_point = EndConstraints {
+            start_derivative: Some(vec![1.0]),
+            ..EndConstraints::none()
+        };
+        assert!(
+            matches!(
+                least_squares(&data, 2, &kv, &no_point),
+                Err(Error::InvalidArgument { .. })
+            ),
+            "derivative without point"
+        );
+        let uniform = KnotVector::new(vec![-0.5, -0.25, 0.0, 0.5, 1.0, 1.25, 1.5]).unwrap();
+        let e = least_squares(&data, 2, &uniform, &EndConstraints::points()).unwrap_err();
+        assert!(
+            matches!(e, Error::InvalidArgument { .. }),
+            "unclamped: {e:?}"
+        );
+        let kv1 = KnotVector::clamped_uniform(1, 2).unwrap();
+        let all = EndConstraints::points().with_start_derivative(vec![1.0]);
+        let e = least_squares(&data, 1, &kv1, &all).unwrap_err();
+        assert!(matches!(e, Error::TooFew { .. }), "over-constrained: {e:?}");
+        let e = least_squares(
+            &data,
+            2,
+            &KnotVector::clamped_uniform(2, 6).unwrap(),
+            &EndConstraints::none(),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::SchoenbergWhitney { .. }),
+            "too many control points: {e:?}"
+        );
+    }
+}

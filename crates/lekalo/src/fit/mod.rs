@@ -1,0 +1,59 @@
+//! Fitting: least squares, smoothing and fitting to a tolerance, for curves and surfaces.
+//!
+//! Interpolation passes through every point; fitting approximates many noisy points with fewer
+//! control points, a smooth curve or a known error. The theory of every method, with the
+//! anchors cited below, is in `docs/theory/fitting.md`.
+//!
+//! | file | what it does | theory |
+//! |---|---|---|
+//! | `banded.rs` | banded QR by Givens rotations; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
+//! | `data.rs` | [`FitData`] (points, parameters, weights, validated once) and the [`FitReport`] of every fit | [#residuals] |
+//! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
+//! | `lsq.rs` | [`least_squares`]: weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
+//! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
+//! | `smoothing_condition.rs` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style) | [#smoothing-condition] |
+//! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
+//! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
+//! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
+//!
+//! [#banded-qr]: ../../docs/theory/fitting.md#banded-qr
+//! [#gcv]: ../../docs/theory/fitting.md#gcv
+//! [#residuals]: ../../docs/theory/fitting.md#residuals
+//! [#knot-placement]: ../../docs/theory/fitting.md#knot-placement
+//! [#least-squares]: ../../docs/theory/fitting.md#least-squares
+//! [#constraints]: ../../docs/theory/fitting.md#constraints
+//! [#penalised]: ../../docs/theory/fitting.md#penalised
+//! [#smoothing-condition]: ../../docs/theory/fitting.md#smoothing-condition
+//! [#tolerance]: ../../docs/theory/fitting.md#tolerance
+//! [#robust]: ../../docs/theory/fitting.md#robust
+//! [#surfaces]: ../../docs/theory/fitting.md#surfaces
+//!
+//! ## Conventions
+//! - Data are points `Q_k` (any dimension, [`PointsRef`](crate::PointsRef)) with parameters
+//!   `ū_k` and optional weights `w_k ≥ 0` ([`FitData`]). Functions `y(x)` are 1-D points with
+//!   `ū_k = x_k`.
+//! - Every solver works on the data minus a reference point (the first data point) and adds it
+//!   back to the control points: by partition of unity the fit is the same, and data far from
+//!   the origin (a 1e8 offset) lose no digits in the solve.
+//! - No dense matrix is formed: curves use banded QR or banded `UᵀDU`, O(N·p²) for `N` points.
+
+mod banded;
+mod data;
+mod knot_placement;
+mod lsq;
+mod robust;
+mod smoothing;
+mod smoothing_condition;
+mod surface;
+mod tolerance;
+
+pub use data::{CurveFit, FitData, FitReport};
+pub use knot_placement::{check_schoenberg_whitney, place_knots};
+pub use lsq::{least_squares, EndConstraints};
+pub use robust::{robust_least_squares, RobustFit, RobustLoss};
+pub use smoothing::{gcv_score, smoothing_spline, Lambda};
+pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
+pub use surface::{
+    surface_grid_least_squares, surface_scattered_least_squares, ScatteredSurfaceFit,
+};
+pub use tolerance::{fit_tolerance, Deviation, ToleranceFit, ToleranceOptions};

@@ -1,0 +1,365 @@
+//! Fitting to a tolerance: a B-spline within `tol` of every point with few control points
+//! (`docs/theory/fitting.md#tolerance`).
+
+use super::data::FitData;
+use super::lsq::{least_squares, EndConstraints};
+use crate::error::{Error, Result};
+use crate::interpolate::{parametrize, Parametrization};
+use crate::knots::KnotVector;
+use crate::points::PointsRef;
+use crate::BSplineCurve;
+
+/// How the deviation of a data point from the curve is measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Deviation {
+    /// The distance to the curve: `min_u |C(u) − Q_k|`, by a closest-point projection (Newton's
+    /// method on `(C(u) − Q_k)·C'(u) = 0` from the data parameter, kept in the domain).
+    #[default]
+    Distance,
+    /// The distance at the data parameter, `|C(ū_k) − Q_k|` (larger or equal).
+    Parameter,
+}
+
+/// Options of [`fit_tolerance`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToleranceOptions {
+    /// Degree of the curve.
+    pub degree: usize,
+    /// Largest accepted deviation, a distance in the data's units (`> 0`).
+    pub tol: f64,
+    /// How the deviation is measured.
+    pub deviation: Deviation,
+    /// Data parameters.
+    pub parametrization: Parametrization,
+}
+
+impl ToleranceOptions {
+    /// Degree and tolerance; distance deviation and chord-length parameters.
+    #[must_use]
+    pub fn new(degree: usize, tol: f64) -> Self {
+        ToleranceOptions {
+            degree,
+            tol,
+            deviation: Deviation::Distance,
+            parametrization: Parametrization::ChordLength,
+        }
+    }
+}
+
+/// The result of [`fit_tolerance`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToleranceFit {
+    /// The curve; it starts at the first point and ends at the last.
+    pub curve: BSplineCurve,
+    /// The data parameters used.
+    pub params: Vec<f64>,
+    /// Deviation of every point (as measured by [`ToleranceOptions::deviation`]).
+    pub deviations: Vec<f64>,
+    /// The largest deviation (`≤ tol`).
+    pub max_deviation: f64,
+    /// Index of the point where it occurs.
+    pub worst_index: usize,
+    /// Curve parameter of the closest point to that data point.
+    pub worst_param: f64,
+}
+
+/// A B-spline of the requested degree within `tol` of every point, with few control points (the
+/// operation of Open CASCADE's `GeomAPI_PointsToBSpline` and geomdl's `approximate_curve`).
+///
+/// 1. Parameters by [`ToleranceOptions::parametrization`]; start with a single Bezier piece.
+/// 2. Least squares with both end points interpolated ([`least_squares`]); measure every
+///    deviation; split every knot span holding a point with deviation `> tol` at its middle data
+///    parameter; repeat. Each split keeps data in every span (Schoenberg–Whitney), and at worst
+///    the knots reach the data parameters, where the fit interpolates.
+/// 3. Remove knots while the bound holds: with `m` the largest deviation, every knot whose
+///    removal moves the curve by at most `tol − m` is removed
+///    ([`BSplineCurve::remove_all_removable_knots`], whose bound is exact), so by the triangle
+///    inequality the deviation stays `≤ tol`; then each remaining interior knot is tried once
+///    more by refitting without it, kept out when the refit is still within `tol`.
+///
+/// Deviation is the distance to the curve ([`Deviation::Distance`], a closest-point projection
+/// per point) or at the data parameter ([`Deviation::Parameter`]). O(rounds·N·p²) plus the
+/// projections.
+///
+/// ```
+/// use lekalo::fit::{fit_tolerance, ToleranceOptions};
+/// use lekalo::PointsRef;
+/// let q: Vec<f64> = (0..200).flat_map(|k| { let t = k as f64 / 199.0 * 3.0; [t, t.sin()] }).collect();
+/// let fit = fit_tolerance(PointsRef::from_flat(2, &q)?, &ToleranceOptions::new(3, 1e-4))?;
+/// assert!(fit.max_deviation <= 1e-4);
+/// assert!(fit.curve.control_points().len() < 20);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonPositiveTolerance`] for `tol ≤ 0` or NaN; [`Error::Degree`] for degree 0;
+/// [`Error::TooFew`] for fewer than `degree + 1` points; the parametrisation's errors (e.g.
+/// [`Error::CoincidentPoints`] for chord-length parameters of repeated points);
+/// [`Error::IllConditioned`] if even interpolation misses `tol` (a tolerance below the data's
+/// rounding).
+pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<ToleranceFit> {
+    let tol = opts.tol;
+    if !(tol > 0.0 && tol.is_finite()) {
+        return Err(Error::NonPositiveTolerance { value: tol });
+    }
+    let p = opts.degree;
+    crate::error::check_degree_bound(p)?;
+    if p == 0 {
+        return Err(Error::Degree {
+            degree: p,
+            reason: "a tolerance fit needs degree ≥ 1".into(),
+        });
+    }
+    if points.len() < p + 1 {
+        return Err(Error::TooFew {
+            what: "points for a tolerance fit (degree + 1)",
+            min: p + 1,
+            got: points.len(),
+        });
+    }
+    let params = parametrize(points, opts.parametrization)?;
+    let data = FitData::new(points, &params)?;
+    let (a, b) = (params[0], params[params.len() - 1]);
+    let ends = EndConstraints::points();
+    let mut interior: Vec<f64> = Vec::new();
+    // knot sites that keep the Schoenberg–Whitney conditions (see smoothing_condition)
+    let mut distinct = params.clone();
+    distinct.dedup();
+    if distinct.len() < p + 1 {
+        return Err(Error::TooFew {
+            what: "distinct data parameters for a tolerance fit (degree + 1)",
+            min: p + 1,
+            got: distinct.len(),
+        });
+    }
+    let sites = &distinct[p.div_ceil(2)..distinct.len() - (p + 2) / 2];
+    let fit = |interior: &[f64]| -> Result<(BSplineCurve, Vec<f64>)> {
+        let kv = clamped(a, b, p, interior);
+        let f = least_squares(&data, p, &kv, &ends)?;
+        let dev = deviations(
+            &f.curve,
+            points,
+            &params,
+            &f.report.residuals,
+            opts.deviation,
+            tol,
+        );
+        Ok((f.curve, dev))
+    };
+    let (mut curve, mut dev) = fit(&interior)?;
+    loop {
+        let bad = bad_spans(&params, &dev, tol, a, b, &interior);
+        if bad.is_empty() {
+            break;
+        }
+        let before = interior.len();
+        for (lo, hi) in bad {
+            // the middle knot site strictly inside the span
+            let i = sites.partition_point(|&v| v <= lo);
+            let j = sites.partition_point(|&v| v < hi);
+            if i < j {
+                interior.push(sites[(i + j - 1) / 2]);
+            } else {
+                // no site inside (an end span): the nearest unused sites on either side
+                let right = sites[j..].iter().find(|c| !interior.contains(c));
+                let left = sites[..i].iter().rev().find(|c| !interior.contains(c));
+                interior.extend(right.into_iter().chain(left).copied());
+            }
+        }
+        if interior.len() == before {
+            break;
+        }
+        interior.sort_by(f64::total_cmp);
+        interior.dedup();
+        (curve, dev) = fit(&interior)?;
+    }
+    // removal: first within the remaining budget (exact bound), then by refitting
+    let worst = dev.iter().fold(0.0_f64, |m, &v| m.max(v));
+    if worst < tol && !interior.is_empty() {
+        let (removed_curve, removed) = curve.remove_all_removable_knots(tol - worst)?;
+        if removed > 0 {
+            let d = deviations_full(&removed_curve, points, &params, opts.deviation, tol);
+            if d.iter().all(|&v| v <= tol) {
+                curve = removed_curve;
+                dev = d;
+                interior = interior_knots(&curve);
+            }
+        }
+    }
+    let mut k = 0;
+    while k < interior.len() {
+        let mut trial = interior.clone();
+        trial.remove(k);
+        match fit(&trial) {
+            Ok((c, d)) if d.iter().all(|&v| v <= tol) => {
+                (curve, dev, interior) = (c, d, trial);
+            }
+            _ => k += 1,
+        }
+    }
+    // the exact distances of the final curve (the rounds kept upper bounds below tol)
+    if opts.deviation == Deviation::Distance {
+        dev = deviations_full(&curve, points, &params, opts.deviation, -1.0);
+    }
+    let (mut worst_index, mut max_deviation) = (0, 0.0);
+    for (i, &d) in dev.iter().enumerate() {
+        if d > max_deviation {
+            (worst_index, max_deviation) = (i, d);
+        }
+    }
+    if max_deviation > tol || max_deviation.is_nan() {
+        // every site carries a knot (interpolation) and rounding still exceeds tol
+        return Err(Error::IllConditioned {
+            reason: format!(
+                "the closest fit found deviates by {max_deviation} at point {worst_index}, more \
+                 than the tolerance {tol}; raise the tolerance above the data's rounding"
+            ),
+        });
+    }
+    let worst_param = project(&curve, points.point(worst_index), params[worst_index]).0;
+    Ok(ToleranceFit {
+        curve,
+        params,
+        deviations: dev,
+        max_deviation,
+        worst_index,
+        worst_param,
+    })
+}
+
+fn clamped(a: f64, b: f64, p: usize, interior: &[f64]) -> KnotVector {
+    let mut k = Vec::with_capacity(interior.len() + 2 * p + 2);
+    k.extend(std::iter::repeat_n(a, p + 1));
+    k.extend_from_slice(interior);
+    k.extend(std::iter::repeat_n(b, p + 1));
+    KnotVector::from_raw(k)
+}
+
+fn interior_knots(curve: &BSplineCurve) -> Vec<f64> {
+    let t = curve.knots().as_slice();
+    let p = curve.degree();
+    t[p + 1..t.len() - p - 1].to_vec()
+}
+
+/// Spans `[lo, hi)` (between consecutive breakpoints) that hold a point with deviation `> tol`.
+fn bad_spans(
+    params: &[f64],
+    dev: &[f64],
+    tol: f64,
+    a: f64,
+    b: f64,
+    interior: &[f64],
+) -> Vec<(f64, f64)> {
+    let mut bps = Vec::with_capacity(interior.len() + 2);
+    bps.push(a);
+    bps.extend_from_slice(interior);
+    bps.push(b);
+    let mut bad = vec![false; bps.len() - 1];
+    for (&u, &d) in params.iter().zip(dev) {
+        if d > tol {
+            let j = (bps.partition_point(|&v| v <= u).max(1) - 1).min(bad.len() - 1);
+            bad[j] = true;
+        }
+    }
+    (0..bad.len())
+        .filter(|&j| bad[j])
+        .map(|j| (bps[j], bps[j + 1]))
+        .collect()
+}
+
+/// Deviations of every point. The distance is at most the deviation at the parameter, so only
+/// points beyond `skip_below` there are projected (the others keep that upper bound);
+/// `skip_below = 0` projects every point.
+fn deviations(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    at_param: &[f64],
+    how: Deviation,
+    skip_below: f64,
+) -> Vec<f64> {
+    match how {
+        Deviation::Parameter => at_param.to_vec(),
+        Deviation::Distance => points
+            .iter()
+            .zip(params)
+            .zip(at_param)
+            .map(|((q, &u), &d)| {
+                if d <= skip_below {
+                    d
+                } else {
+                    project(curve, q, u).1.min(d)
+                }
+            })
+            .collect(),
+    }
+}
+
+fn deviations_full(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    how: Deviation,
+    skip_below: f64,
+) -> Vec<f64> {
+    let dim = points.dim();
+    let mut out = vec![0.0; params.len() * dim];
+    if curve.eval_batch(params, &mut out).is_err() {
+        return vec![f64::INFINITY; params.len()];
+    }
+    let at: Vec<f64> = out
+        .chunks_exact(dim)
+        .zip(points.iter())
+        .map(|(c, q)| {
+            c.iter()
+                .zip(q)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    deviations(curve, points, params, &at, how, skip_below)
+}
+
+/// Closest point on `curve` to `q` by Newton's method from `u0` (at most 8 steps, kept in the
+/// domain): returns the parameter and the distance.
+fn project(curve: &BSplineCurve, q: &[f64], u0: f64) -> (f64, f64) {
+    let (a, b) = curve.domain();
+    let dist = |u: f64| -> f64 {
+        curve.eval(u).map_or(f64::INFINITY, |c| {
+            c.iter()
+                .zip(q)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+    };
+    let mut u = u0;
+    let mut best = (u0, dist(u0));
+    for _ in 0..8 {
+        let Ok(d) = curve.eval_derivatives(u, 2) else {
+            break;
+        };
+        let (c, c1, c2) = (d.point(0), d.point(1), d.point(2));
+        let mut f = 0.0;
+        let mut df = 0.0;
+        for k in 0..q.len() {
+            let r = c[k] - q[k];
+            f += r * c1[k];
+            df += c1[k] * c1[k] + r * c2[k];
+        }
+        if df <= 0.0 || df.is_nan() {
+            break;
+        }
+        let next = (u - f / df).clamp(a, b);
+        if (next - u).abs() <= 1e-15 * (b - a) {
+            break;
+        }
+        u = next;
+        let du = dist(u);
+        if du < best.1 {
+            best = (u, du);
+        }
+    }
+    best
+}
