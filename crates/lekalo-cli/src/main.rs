@@ -95,6 +95,14 @@ enum Command {
     /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
     /// surfaces through grids and scattered data.
     Fit(cmd::fit::FitArgs),
+    /// Length, parameter at length, exact bounding box and curvature extrema of a curve.
+    Measure(cmd::measure::MeasureArgs),
+    /// Closest points on a curve or a surface (single points or batches).
+    Project(cmd::project::ProjectArgs),
+    /// Intersections of planar curves, self-intersections, curve–plane.
+    Intersect(cmd::intersect::IntersectArgs),
+    /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
+    Mesh(cmd::mesh::MeshArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -159,6 +167,10 @@ fn main() -> ExitCode {
         Command::Pp(a) => cmd::pp::run(&a, verbosity),
         Command::Knot(a) => cmd::knot::run(&a, verbosity),
         Command::Fit(a) => cmd::fit::run(&a, verbosity),
+        Command::Measure(a) => cmd::measure::run(&a, verbosity),
+        Command::Project(a) => cmd::project::run(&a, verbosity),
+        Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
+        Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

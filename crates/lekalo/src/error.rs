@@ -402,6 +402,47 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+
+    // (geometric queries)
+    /// A query point lies so far from the object (more than
+    /// [`MAX_QUERY_RANGE`](crate::query::MAX_QUERY_RANGE) times its size) that squared
+    /// distances would keep no digit of the object's shape.
+    ///
+    /// ```
+    /// use lekalo::{BezierCurve, Error, Points, QueryCurve};
+    /// let c = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 1.0]]).unwrap()).unwrap();
+    /// let e = QueryCurve::from_bezier(&c).unwrap().project(&[1e300, 0.0]).unwrap_err();
+    /// assert!(matches!(e, Error::QueryOutOfRange { .. }));
+    /// ```
+    #[error(
+        "the query point is {ratio:e} object sizes away, beyond {max:e}: move the point or \
+         the object closer to the origin of the other"
+    )]
+    QueryOutOfRange {
+        /// Distance of the point from the object's centre in object sizes.
+        ratio: f64,
+        /// The largest accepted ratio.
+        max: f64,
+    },
+
+    /// Point inversion was asked for a point that is not on the curve within the tolerance.
+    ///
+    /// ```
+    /// use lekalo::{BezierCurve, Error, Points, QueryCurve};
+    /// let c = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 0.0]]).unwrap()).unwrap();
+    /// let e = QueryCurve::from_bezier(&c).unwrap().invert(&[0.5, 0.1], 1e-9).unwrap_err();
+    /// assert!(matches!(e, Error::NotOnCurve { .. }));
+    /// ```
+    #[error(
+        "the point is {distance:e} from the curve, more than the tolerance {tolerance:e}: \
+         project it instead of inverting, or raise the tolerance"
+    )]
+    NotOnCurve {
+        /// Distance from the point to the curve.
+        distance: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
 }
 
 /// Checks that every number in `values` is finite.

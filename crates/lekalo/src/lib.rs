@@ -136,3 +136,10 @@ pub use fit::{
 mod numeric;
 #[cfg(test)]
 mod oracle;
+
+// -- geometric queries: length, closest points, intersections, offsets, tessellation, curvature --
+pub mod query;
+
+pub use query::{
+    ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection, MAX_QUERY_DEGREE,
+};

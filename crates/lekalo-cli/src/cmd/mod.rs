@@ -23,3 +23,8 @@ pub(crate) mod make_surface;
 pub(crate) mod surface_eval;
 // fitting: least squares, smoothing, tolerance
 pub(crate) mod fit;
+// geometric queries
+pub(crate) mod intersect;
+pub(crate) mod measure;
+pub(crate) mod mesh;
+pub(crate) mod project;

@@ -20,6 +20,8 @@ mod doc003;
 mod doc004;
 #[path = "fitting.rs"]
 mod fitting;
+#[path = "queries.rs"]
+mod queries;
 
 /// A gallery entry: identity and the function that builds it.
 pub(crate) struct Entry {
@@ -130,6 +132,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         title: "Fitting noisy points: least squares, smoothing, tolerance",
         source: "docs/theory/fitting.md; P&T §9.4.1",
         build: fitting::fitting,
+    },
+    Entry {
+        id: "queries",
+        title: "Geometric queries: intersections, closest points, offsets, curvature",
+        source: "docs/theory/queries.md",
+        build: queries::queries,
     },
 ];
 

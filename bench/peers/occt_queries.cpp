@@ -1,0 +1,157 @@
+// Open CASCADE side of the geometric-query benchmarks (crates/lekalo/benches/query.rs): the same
+// objects, built from the same formulas, timed in C++ (median of REPEATS runs, steady clock).
+//
+//   project_1e5        GeomAPI_ProjectPointOnCurve, 10^5 points onto a 3-D cubic with 1,000 poles
+//   length_1e-12       GCPnts_AbscissaPoint::Length to 1e-12
+//   param_at_1e5       GCPnts_AbscissaPoint (length -> parameter), 10^5 lengths
+//   intersect_100x100  Geom2dAPI_InterCurveCurve of two planar cubics with 100 pieces each
+//   mesh_50x50         BRepMesh_IncrementalMesh of a bicubic 50x50-patch face, deflection 1e-4
+//
+// Build (Debian: libocct-modeling-algorithms-dev libocct-modeling-data-dev):
+//   g++ -O2 -std=c++17 -I/usr/include/opencascade bench/peers/occt_queries.cpp -o occt_queries \
+//     -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
+// Usage: occt_queries [REPEATS] [PROJECT_POINTS]
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <Geom2dAPI_InterCurveCurve.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS_Face.hxx>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+
+static double median_s(int repeats, const std::function<void()> &f) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    auto a = std::chrono::steady_clock::now();
+    f();
+    auto b = std::chrono::steady_clock::now();
+    t.push_back(std::chrono::duration<double>(b - a).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+// clamped uniform knots of a degree-3 spline with n poles: distinct values and multiplicities
+static void clamped(int n, TColStd_Array1OfReal &k, TColStd_Array1OfInteger &m) {
+  int pieces = n - 3;
+  for (int i = 0; i <= pieces; ++i) {
+    k.SetValue(i + 1, double(i) / pieces);
+    m.SetValue(i + 1, (i == 0 || i == pieces) ? 4 : 1);
+  }
+}
+
+int main(int argc, char **argv) {
+  int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
+  int nproj = argc > 2 ? std::atoi(argv[2]) : 100000;
+
+  // the 3-D curve
+  const int n = 1000;
+  TColgp_Array1OfPnt poles(1, n);
+  for (int i = 0; i < n; ++i) {
+    double x = i;
+    poles.SetValue(i + 1, gp_Pnt(0.01 * x + 0.3 * std::sin(0.37 * x),
+                                 0.5 * std::cos(0.23 * x) + 0.2 * std::sin(1.7 * x),
+                                 0.3 * std::sin(0.05 * x) + 0.1 * std::cos(0.9 * x)));
+  }
+  TColStd_Array1OfReal k(1, n - 2);
+  TColStd_Array1OfInteger m(1, n - 2);
+  clamped(n, k, m);
+  Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(poles, k, m, 3);
+
+  std::vector<gp_Pnt> q;
+  for (int i = 0; i < nproj; ++i) {
+    double x = i;
+    auto fr = [](double v) { return v - std::floor(v); };
+    q.emplace_back(11.0 * fr(0.618033988749895 * x), 1.6 * fr(0.754877666246693 * x) - 0.8,
+                   1.0 * fr(0.569840290998053 * x) - 0.5);
+  }
+  double dsum = 0.0;
+  double t_proj = median_s(repeats, [&] {
+    GeomAPI_ProjectPointOnCurve proj;
+    dsum = 0.0;
+    for (auto &p : q) {
+      proj.Init(p, curve);
+      dsum += proj.NbPoints() > 0 ? proj.LowerDistance() : 0.0;
+    }
+  });
+  std::printf("project_1e5 %.6e s per %d points (%.3e s per point) sum of distances %.12e\n",
+              t_proj, nproj, t_proj / nproj, dsum);
+
+  GeomAdaptor_Curve ad(curve);
+  double total = 0.0;
+  double t_len = median_s(repeats, [&] { total = GCPnts_AbscissaPoint::Length(ad, 1e-12); });
+  std::printf("length_1e-12 %.6e s length %.15e\n", t_len, total);
+
+  int nparam = nproj;
+  double psum = 0.0;
+  double t_param = median_s(repeats, [&] {
+    psum = 0.0;
+    for (int i = 0; i < nparam; ++i) {
+      double f = 0.618033988749895 * i;
+      double s = total * (f - std::floor(f));
+      GCPnts_AbscissaPoint ap(1e-12, ad, s, ad.FirstParameter());
+      psum += ap.Parameter();
+    }
+  });
+  std::printf("param_at_1e5 %.6e s per %d lengths (%.3e s each) sum %.12e\n", t_param, nparam,
+              t_param / nparam, psum);
+
+  // the planar curves
+  const int n2 = 103;
+  TColgp_Array1OfPnt2d pa(1, n2), pb(1, n2);
+  for (int i = 0; i < n2; ++i) {
+    double x = i;
+    pa.SetValue(i + 1, gp_Pnt2d(0.1 * x, std::sin(0.31 * x)));
+    pb.SetValue(i + 1, gp_Pnt2d(0.1 * x + 0.05 * std::cos(0.7 * x), 0.8 * std::cos(0.27 * x + 1.0)));
+  }
+  TColStd_Array1OfReal k2(1, n2 - 2);
+  TColStd_Array1OfInteger m2(1, n2 - 2);
+  clamped(n2, k2, m2);
+  Handle(Geom2d_BSplineCurve) ca = new Geom2d_BSplineCurve(pa, k2, m2, 3);
+  Handle(Geom2d_BSplineCurve) cb = new Geom2d_BSplineCurve(pb, k2, m2, 3);
+  int hits = 0;
+  double t_int = median_s(repeats, [&] {
+    Geom2dAPI_InterCurveCurve inter(ca, cb, 1e-9);
+    hits = inter.NbPoints();
+  });
+  std::printf("intersect_100x100 %.6e s points %d\n", t_int, hits);
+
+  // the surface
+  const int ns = 53;
+  TColgp_Array2OfPnt net(1, ns, 1, ns);
+  for (int i = 0; i < ns; ++i)
+    for (int j = 0; j < ns; ++j) {
+      double x = i, y = j;
+      net.SetValue(i + 1, j + 1,
+                   gp_Pnt(x / (ns - 1), y / (ns - 1),
+                          0.3 * std::sin(0.4 * x) * std::cos(0.3 * y) + 0.1 * std::sin(0.9 * x + 0.5 * y)));
+    }
+  TColStd_Array1OfReal ks(1, ns - 2);
+  TColStd_Array1OfInteger ms(1, ns - 2);
+  clamped(ns, ks, ms);
+  Handle(Geom_BSplineSurface) surf = new Geom_BSplineSurface(net, ks, ks, ms, ms, 3, 3);
+  // (the triangle count is read by bench/peers/occt_queries.py through OCP: Debian's
+  // Poly_Triangulation.hxx includes a header its package does not ship)
+  double t_mesh = median_s(repeats, [&] {
+    TopoDS_Face face = BRepBuilderAPI_MakeFace(surf, 1e-7);
+    BRepMesh_IncrementalMesh mesher(face, 1e-4, Standard_False, 0.5, Standard_False);
+  });
+  std::printf("mesh_50x50 %.6e s\n", t_mesh);
+  return 0;
+}

@@ -1,0 +1,148 @@
+//! `lekalo measure`: length, parameters at lengths, exact bounding box and curvature extrema of a
+//! curve (the library's `QueryCurve`).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::Args;
+use lekalo::QueryCurve;
+use lekalo_io::Object;
+use serde_json::json;
+
+use crate::io::{bad_input, emit, load_one, numbers, BadInput};
+use crate::Verbosity;
+
+/// Arguments of `lekalo measure`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Prints the length (with its error estimate), the exact bounding box of the curve (not of its
+control points), its curvature extrema and, for --at-length or --lengths, the parameter at each
+length from the start.
+
+Examples:
+  lekalo measure curve.json
+  lekalo measure curve.json --at-length 1,2.5 --json
+  lekalo measure curve.json --lengths lengths.txt -o params.csv")]
+pub(crate) struct MeasureArgs {
+    /// Curve file (JSON; `-` for standard input).
+    input: PathBuf,
+    /// Lengths from the start whose parameters are wanted, comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    at_length: Option<String>,
+    /// File of lengths (numbers separated by commas, spaces or newlines): a batch.
+    #[arg(long, value_name = "FILE")]
+    lengths: Option<PathBuf>,
+    /// Relative tolerance of the arc length.
+    #[arg(long, default_value_t = 1e-12)]
+    tolerance: f64,
+    /// Output JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+/// The curve of an object, prepared for queries.
+pub(crate) fn query_curve(obj: &Object, path: &Path) -> Result<QueryCurve> {
+    let q = match obj {
+        Object::Bezier(c) => QueryCurve::from_bezier(c),
+        Object::BSpline(c) => QueryCurve::from_bspline(c),
+        Object::Nurbs(c) => QueryCurve::from_nurbs(c),
+        _ => {
+            return bad_input(format!(
+                "{}: not a curve kind this command knows",
+                path.display()
+            ))
+        }
+    };
+    q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+}
+
+/// The surface of a shape file, prepared for queries.
+pub(crate) fn query_surface(s: &lekalo_io::Surface, path: &Path) -> Result<lekalo::QuerySurface> {
+    use lekalo_io::Surface;
+    let q = match s {
+        Surface::Bezier(b) => lekalo::QuerySurface::from_bspline(&b.to_bspline()),
+        Surface::BSpline(b) => lekalo::QuerySurface::from_bspline(b),
+        Surface::Nurbs(n) => lekalo::QuerySurface::from_nurbs(n),
+        _ => {
+            return bad_input(format!(
+                "{}: not a surface kind this command knows",
+                path.display()
+            ))
+        }
+    };
+    q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+}
+
+/// Reads a file of numbers (commas, spaces, newlines).
+pub(crate) fn number_file(path: &Path) -> Result<Vec<f64>> {
+    let (text, name) = lekalo_io::read_input(path)?;
+    Ok(lekalo_io::parse_number_list(&text, &name)?)
+}
+
+pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
+    let obj = load_one(&a.input, v)?;
+    let q = query_curve(&obj, &a.input)?;
+    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
+    let table = q.arc_length(a.tolerance).map_err(bad)?;
+    let mut lengths = Vec::new();
+    if let Some(s) = &a.at_length {
+        lengths.extend(numbers(s, "--at-length")?);
+    }
+    if let Some(f) = &a.lengths {
+        lengths.extend(number_file(f)?);
+    }
+    let params = table.param_at_batch(&lengths).map_err(bad)?;
+    let (lo, hi) = q.bounding_box();
+    let ext = q.curvature_extrema().map_err(bad)?;
+    let text = if a.json {
+        let j = json!({
+            "length": table.total(),
+            "error_estimate": table.error_estimate(),
+            "domain": [q.domain().0, q.domain().1],
+            "bounding_box": {"min": lo, "max": hi},
+            "curvature_extrema": ext.iter().map(|e| json!({
+                "t": e.t, "curvature": e.curvature,
+                "kind": if e.maximum { "max" } else { "min" }})).collect::<Vec<_>>(),
+            "at_length": lengths.iter().zip(&params)
+                .map(|(l, t)| json!({"length": l, "t": t})).collect::<Vec<_>>(),
+        });
+        format!("{j:#}\n")
+    } else {
+        let mut s = format!(
+            "length {} (error estimate {:.1e})\ndomain [{}, {}]\nbounding box min {:?} max {:?}\n",
+            table.total(),
+            table.error_estimate(),
+            q.domain().0,
+            q.domain().1,
+            lo,
+            hi
+        );
+        for e in &ext {
+            s.push_str(&format!(
+                "curvature {} {} at t = {}\n",
+                if e.maximum { "max" } else { "min" },
+                e.curvature,
+                e.t
+            ));
+        }
+        if !lengths.is_empty() {
+            s.push_str("length,t\n");
+            for (l, t) in lengths.iter().zip(&params) {
+                s.push_str(&format!("{l},{t}\n"));
+            }
+        }
+        s
+    };
+    if lengths.is_empty() && a.lengths.is_some() {
+        return bad_input("--lengths: the file holds no numbers");
+    }
+    emit(
+        a.output.as_deref(),
+        text.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
+}

@@ -1,0 +1,153 @@
+//! `lekalo project`: closest points of query points on a curve or a surface.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+use lekalo::Points;
+use lekalo_io::Shape;
+use serde_json::json;
+
+use crate::cmd::measure::{query_curve, query_surface};
+use crate::io::{bad_input, emit, numbers, BadInput};
+use crate::Verbosity;
+
+/// Arguments of `lekalo project`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Projects points onto a curve (any dimension) or a surface: the closest point, its parameter(s)
+and distance. A batch of points comes from --points (CSV, whitespace columns or JSON, as for
+`make`); batches run in parallel with results independent of the thread count. With --all TOL
+every local minimum within TOL of the least distance is listed (one row each).
+
+Output CSV columns: index, t (or u, v), the point, distance.
+
+Examples:
+  lekalo project curve.json --point 1,2
+  lekalo project curve.json --points queries.csv -o closest.csv
+  lekalo project curve.json --point 0,2 --all 1e-9 --json
+  lekalo project surface.json --points queries.csv")]
+pub(crate) struct ProjectArgs {
+    /// Curve or surface file (JSON; `-` for standard input).
+    input: PathBuf,
+    /// One query point, comma-separated coordinates.
+    #[arg(long, allow_hyphen_values = true)]
+    point: Option<String>,
+    /// File of query points (a batch).
+    #[arg(long, value_name = "FILE")]
+    points: Option<PathBuf>,
+    /// List every local minimum within this distance of the least (curves only).
+    #[arg(long, value_name = "TOL")]
+    all: Option<f64>,
+    /// Output JSON instead of CSV.
+    #[arg(long)]
+    json: bool,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+}
+
+pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
+    let (text, name) = lekalo_io::read_input(&a.input)?;
+    let shape = Shape::from_json_str(&text, &name)?;
+    let mut rows: Vec<f64> = Vec::new();
+    if let Some(p) = &a.point {
+        rows.extend(numbers(p, "--point")?);
+    }
+    let file_points = match &a.points {
+        Some(f) => {
+            let (t, n) = lekalo_io::read_input(f)?;
+            Some(lekalo_io::read_points(&t, &n)?)
+        }
+        None => None,
+    };
+    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
+    let mut out_rows: Vec<(usize, Vec<f64>, Vec<f64>, f64)> = Vec::new();
+    match shape {
+        Shape::Curve(obj) => {
+            let q = query_curve(&obj, &a.input)?;
+            let mut pts = Vec::new();
+            if !rows.is_empty() {
+                pts.push(rows.clone());
+            }
+            if let Some(fp) = &file_points {
+                pts.extend(fp.iter().map(<[f64]>::to_vec));
+            }
+            if pts.is_empty() {
+                return bad_input("give --point or --points");
+            }
+            if let Some(tol) = a.all {
+                for (i, p) in pts.iter().enumerate() {
+                    for r in q.project_all(p, tol).map_err(bad)? {
+                        out_rows.push((i, vec![r.t], r.point, r.distance));
+                    }
+                }
+            } else {
+                let dim = q.dim();
+                if let Some(bad_pt) = pts.iter().find(|p| p.len() != dim) {
+                    return bad_input(format!(
+                        "query point {:?} has dimension {}, the curve {dim}",
+                        bad_pt,
+                        bad_pt.len()
+                    ));
+                }
+                let flat = Points::from_flat(dim, pts.concat()).map_err(bad)?;
+                for (i, r) in q
+                    .project_batch(flat.as_view())
+                    .map_err(bad)?
+                    .into_iter()
+                    .enumerate()
+                {
+                    out_rows.push((i, vec![r.t], r.point, r.distance));
+                }
+            }
+        }
+        Shape::Surface(s) => {
+            let q = query_surface(&s, &a.input)?;
+            let mut pts = Vec::new();
+            if !rows.is_empty() {
+                pts.push(rows.clone());
+            }
+            if let Some(fp) = &file_points {
+                pts.extend(fp.iter().map(<[f64]>::to_vec));
+            }
+            if pts.is_empty() {
+                return bad_input("give --point or --points");
+            }
+            for (i, p) in pts.iter().enumerate() {
+                let r = q.project(p).map_err(bad)?;
+                out_rows.push((i, vec![r.uv.0, r.uv.1], r.point, r.distance));
+            }
+        }
+        _ => {
+            return bad_input(format!(
+                "{}: project onto curves and surfaces",
+                a.input.display()
+            ))
+        }
+    }
+    let text = if a.json {
+        let j: Vec<_> = out_rows
+            .iter()
+            .map(|(i, par, p, d)| json!({"index": i, "parameters": par, "point": p, "distance": d}))
+            .collect();
+        format!("{:#}\n", json!(j))
+    } else {
+        let mut s = String::new();
+        for (i, par, p, d) in &out_rows {
+            let cols: Vec<String> = std::iter::once(i.to_string())
+                .chain(par.iter().chain(p).map(f64::to_string))
+                .chain(std::iter::once(d.to_string()))
+                .collect();
+            s.push_str(&cols.join(","));
+            s.push('\n');
+        }
+        s
+    };
+    emit(
+        a.output.as_deref(),
+        text.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
+}

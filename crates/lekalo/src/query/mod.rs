@@ -1,0 +1,46 @@
+//! Geometric queries on curves and surfaces: how long, where is the closest point, where do two
+//! objects meet, what lies at a distance, which polyline or mesh is within a tolerance, how
+//! curved, how big (`docs/theory/queries.md`).
+//!
+//! Every query works on the object's Bezier pieces (rational for NURBS), because on a piece the
+//! convex-hull property bounds the geometry and the Bernstein coefficients count roots, so no
+//! answer depends on sampling luck. A curve is prepared once as a [`QueryCurve`] (pieces
+//! normalised to the unit box, a tree of their boxes), a surface as a [`QuerySurface`].
+//!
+//! | file | subject |
+//! |---|---|
+//! | `pieces.rs` | [`QueryCurve`]: the pieces, their tree, evaluation; scalar Bernstein polynomials and their roots |
+//! | `surface.rs` | [`QuerySurface`]: the patches, their evaluation and subdivision |
+//! | `length.rs` | arc length by adaptive Gauss–Legendre, its inverse, equal arc-length steps, the arc-length spline ([`ArcLength`]) |
+//! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
+//! | `intersect.rs` | curve–curve (planar), self-intersection, curve–plane and curve–surface intersections |
+//! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
+//! | `tessellate.rs` | polylines and triangle meshes within a proved deviation |
+//! | `curvature.rs` | curvature and torsion, inflections and curvature extrema; surface curvatures |
+//! | `bbox.rs` | exact bounding boxes from the pieces' extrema |
+//!
+//! Every iteration in here has a bound (stated where it is), and every query validates its
+//! input: NaN queries, bad tolerances and degrees beyond [`MAX_QUERY_DEGREE`] are named errors.
+
+// Every negated comparison in here (`!(x > 0.0)`) is deliberate: NaN must fail the test it
+// guards, which the un-negated opposite (`x <= 0.0`) would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod bbox;
+mod curvature;
+mod intersect;
+mod length;
+mod offset;
+mod pieces;
+mod project;
+mod surface;
+mod tessellate;
+
+pub use curvature::{CurvatureExtremum, SurfaceCurvature};
+pub use intersect::{CurveIntersection, SurfaceHit};
+pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
+pub use offset::Offset;
+pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
+pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
+pub use surface::QuerySurface;
+pub use tessellate::{Mesh, Polyline, MAX_MESH_VERTICES, MIN_RELATIVE_TOLERANCE};

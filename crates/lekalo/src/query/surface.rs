@@ -1,0 +1,314 @@
+//! The surface as the queries see it: its (rational) Bezier patches, normalised to the unit box,
+//! with evaluation of points and second derivatives and subdivision of patch nets
+//! (`docs/theory/queries.md#bezier-pieces`).
+
+use super::pieces::MAX_QUERY_DEGREE;
+use crate::error::{check_finite, Error, Result};
+use crate::{BSplineSurface, NurbsSurface};
+
+/// A surface prepared for geometric queries: its Bezier patches (P&T A5.7), translated and
+/// scaled so that the control points fill `[−1, 1]^dim`. Build it once with
+/// [`QuerySurface::from_bspline`] or [`QuerySurface::from_nurbs`]; parameters are the
+/// surface's, points and distances in its coordinates.
+#[derive(Debug, Clone)]
+pub struct QuerySurface {
+    pub(crate) dim: usize,
+    pub(crate) p: usize,
+    pub(crate) q: usize,
+    pub(crate) rational: bool,
+    pub(crate) hd: usize,
+    /// `u` and `v` intervals of each patch.
+    pub(crate) ranges: Vec<((f64, f64), (f64, f64))>,
+    /// Normalised homogeneous nets, `(p + 1)(q + 1)·hd` per patch, row-major in `u`.
+    pub(crate) nets: Vec<f64>,
+    pub(crate) centre: Vec<f64>,
+    pub(crate) scale: f64,
+}
+
+impl QuerySurface {
+    /// Prepares a B-spline surface.
+    ///
+    /// # Errors
+    /// [`Error::Degree`] above [`MAX_QUERY_DEGREE`].
+    pub fn from_bspline(s: &BSplineSurface) -> Result<Self> {
+        let mut ranges = Vec::new();
+        let mut nets = Vec::new();
+        for (u, v, patch) in s.to_bezier_patches() {
+            ranges.push((u, v));
+            nets.extend_from_slice(patch.control_points().as_slice());
+        }
+        Self::build(s.dim(), s.degree_u(), s.degree_v(), false, ranges, nets)
+    }
+
+    /// Prepares a NURBS surface (rational patches of its homogeneous net).
+    ///
+    /// # Errors
+    /// [`Error::Degree`] above [`MAX_QUERY_DEGREE`].
+    pub fn from_nurbs(s: &NurbsSurface) -> Result<Self> {
+        let mut ranges = Vec::new();
+        let mut nets = Vec::new();
+        for (u, v, patch) in s.homogeneous().to_bezier_patches() {
+            ranges.push((u, v));
+            nets.extend_from_slice(patch.control_points().as_slice());
+        }
+        Self::build(s.dim(), s.degree_u(), s.degree_v(), true, ranges, nets)
+    }
+
+    fn build(
+        dim: usize,
+        p: usize,
+        q: usize,
+        rational: bool,
+        ranges: Vec<((f64, f64), (f64, f64))>,
+        mut nets: Vec<f64>,
+    ) -> Result<Self> {
+        if p.max(q) > MAX_QUERY_DEGREE {
+            return Err(Error::Degree {
+                degree: p.max(q),
+                reason: format!(
+                    "geometric queries accept degree at most {MAX_QUERY_DEGREE} \
+                     (lekalo::MAX_QUERY_DEGREE)"
+                ),
+            });
+        }
+        check_finite("control points", &nets)?;
+        let hd = dim + usize::from(rational);
+        let mut lo = vec![f64::INFINITY; dim];
+        let mut hi = vec![f64::NEG_INFINITY; dim];
+        for c in nets.chunks_exact(hd) {
+            let w = if rational { c[dim] } else { 1.0 };
+            for d in 0..dim {
+                lo[d] = lo[d].min(c[d] / w);
+                hi[d] = hi[d].max(c[d] / w);
+            }
+        }
+        let centre: Vec<f64> = (0..dim).map(|d| 0.5 * lo[d] + 0.5 * hi[d]).collect();
+        let half = (0..dim)
+            .map(|d| 0.5 * hi[d] - 0.5 * lo[d])
+            .fold(0.0_f64, f64::max);
+        let scale = if half > 0.0 && half.is_finite() {
+            half
+        } else {
+            1.0
+        };
+        for c in nets.chunks_exact_mut(hd) {
+            let w = if rational { c[dim] } else { 1.0 };
+            for d in 0..dim {
+                c[d] = (c[d] - w * centre[d]) / scale;
+            }
+        }
+        Ok(QuerySurface {
+            dim,
+            p,
+            q,
+            rational,
+            hd,
+            ranges,
+            nets,
+            centre,
+            scale,
+        })
+    }
+
+    /// Number of Bezier patches.
+    #[must_use]
+    pub fn patch_count(&self) -> usize {
+        self.ranges.len()
+    }
+
+    /// Dimension of the surface's points.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Half the largest extent of the control net (the size tolerances are relative to).
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    pub(crate) fn patch(&self, k: usize) -> &[f64] {
+        let stride = (self.p + 1) * (self.q + 1) * self.hd;
+        &self.nets[k * stride..(k + 1) * stride]
+    }
+
+    pub(crate) fn normalise(&self, x: &[f64], out: &mut [f64]) {
+        for d in 0..self.dim {
+            out[d] = (x[d] - self.centre[d]) / self.scale;
+        }
+    }
+
+    pub(crate) fn denormalise(&self, x: &[f64], out: &mut [f64]) {
+        for d in 0..self.dim {
+            out[d] = self.centre[d] + self.scale * x[d];
+        }
+    }
+
+    pub(crate) fn global_uv(&self, k: usize, u: f64, v: f64) -> (f64, f64) {
+        let ((u0, u1), (v0, v1)) = self.ranges[k];
+        (
+            if u >= 1.0 { u1 } else { u0 + u * (u1 - u0) },
+            if v >= 1.0 { v1 } else { v0 + v * (v1 - v0) },
+        )
+    }
+
+    /// Box of the Cartesian points of a (sub-)patch net: minima then maxima.
+    pub(crate) fn net_box(&self, net: &[f64]) -> Vec<f64> {
+        let dim = self.dim;
+        let mut b = vec![f64::INFINITY; dim];
+        b.extend(std::iter::repeat_n(f64::NEG_INFINITY, dim));
+        for c in net.chunks_exact(self.hd) {
+            let w = if self.rational { c[dim] } else { 1.0 };
+            for d in 0..dim {
+                let x = c[d] / w;
+                b[d] = b[d].min(x);
+                b[dim + d] = b[dim + d].max(x);
+            }
+        }
+        b
+    }
+
+    /// Normalised point and the derivatives `S_u, S_v, S_uu, S_uv, S_vv` (local parameters) of
+    /// patch `k` at local `(u, v)`: the `v` curve of every row with its derivatives, then the
+    /// `u` curves through those (P&T §3.4), then the rational quotient rule (P&T eq. 4.20).
+    pub(crate) fn eval_patch(&self, k: usize, u: f64, v: f64) -> (Vec<f64>, Vec<f64>) {
+        self.eval_net(self.patch(k), u, v)
+    }
+
+    pub(crate) fn eval_net(&self, net: &[f64], u: f64, v: f64) -> (Vec<f64>, Vec<f64>) {
+        let (p, q, hd, dim) = (self.p, self.q, self.hd, self.dim);
+        let mut rows = [
+            vec![0.0; (p + 1) * hd],
+            vec![0.0; (p + 1) * hd],
+            vec![0.0; (p + 1) * hd],
+        ];
+        let mut tmp = Vec::new();
+        for i in 0..=p {
+            let row = &net[i * (q + 1) * hd..(i + 1) * (q + 1) * hd];
+            let (a, a1, a2) = bezier_ders(row, hd, v, &mut tmp);
+            rows[0][i * hd..(i + 1) * hd].copy_from_slice(&a);
+            rows[1][i * hd..(i + 1) * hd].copy_from_slice(&a1);
+            rows[2][i * hd..(i + 1) * hd].copy_from_slice(&a2);
+        }
+        let (s, su, suu) = bezier_ders(&rows[0], hd, u, &mut tmp);
+        let (sv, suv, _) = bezier_ders(&rows[1], hd, u, &mut tmp);
+        let (svv, _, _) = bezier_ders(&rows[2], hd, u, &mut tmp);
+        if !self.rational {
+            let mut der = Vec::with_capacity(5 * dim);
+            for x in [&su, &sv, &suu, &suv, &svv] {
+                der.extend_from_slice(&x[..dim]);
+            }
+            return (s[..dim].to_vec(), der);
+        }
+        let w = s[dim];
+        let (wu, wv, wuu, wuv, wvv) = (su[dim], sv[dim], suu[dim], suv[dim], svv[dim]);
+        let pt: Vec<f64> = (0..dim).map(|d| s[d] / w).collect();
+        let pu: Vec<f64> = (0..dim).map(|d| (su[d] - wu * pt[d]) / w).collect();
+        let pv: Vec<f64> = (0..dim).map(|d| (sv[d] - wv * pt[d]) / w).collect();
+        let mut der = Vec::with_capacity(5 * dim);
+        der.extend_from_slice(&pu);
+        der.extend_from_slice(&pv);
+        for d in 0..dim {
+            der.push((suu[d] - 2.0 * wu * pu[d] - wuu * pt[d]) / w);
+        }
+        for d in 0..dim {
+            der.push((suv[d] - wu * pv[d] - wv * pu[d] - wuv * pt[d]) / w);
+        }
+        for d in 0..dim {
+            der.push((svv[d] - 2.0 * wv * pv[d] - wvv * pt[d]) / w);
+        }
+        (pt, der)
+    }
+
+    /// The four quarters of a sub-patch net covering local `u` and `v` ranges (split at the
+    /// middle of each, de Casteljau in `u` on the rows, then in `v`).
+    pub(crate) fn split4(&self, net: &[f64], u: (f64, f64), v: (f64, f64)) -> Vec<SubNet> {
+        let (p, q, hd) = (self.p, self.q, self.hd);
+        let (um, vm) = (0.5 * (u.0 + u.1), 0.5 * (v.0 + v.1));
+        // split in u: the rows form a curve of (q + 1)·hd-points
+        let (a, b) = split_curve(net, (q + 1) * hd, p);
+        let mut out = Vec::with_capacity(4);
+        for (ur, half) in [((u.0, um), a), ((um, u.1), b)] {
+            // split in v: each row separately
+            let mut lo = Vec::with_capacity(half.len());
+            let mut hi = Vec::with_capacity(half.len());
+            for row in half.chunks_exact((q + 1) * hd) {
+                let (l, h) = split_curve(row, hd, q);
+                lo.extend(l);
+                hi.extend(h);
+            }
+            out.push((ur, (v.0, vm), lo));
+            out.push((ur, (vm, v.1), hi));
+        }
+        out
+    }
+}
+
+/// A sub-patch: its local `u` and `v` ranges and its net.
+pub(crate) type SubNet = ((f64, f64), (f64, f64), Vec<f64>);
+
+/// Halves of a Bezier curve of degree `n` with `stride`-scalar points, split at 1/2.
+pub(crate) fn split_curve(ctrl: &[f64], stride: usize, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut b = ctrl.to_vec();
+    let mut left = Vec::with_capacity(ctrl.len());
+    let mut right = vec![0.0; ctrl.len()];
+    left.extend_from_slice(&b[..stride]);
+    right[n * stride..].copy_from_slice(&b[n * stride..]);
+    for level in 1..=n {
+        for i in 0..=n - level {
+            for d in 0..stride {
+                b[i * stride + d] = 0.5 * (b[i * stride + d] + b[(i + 1) * stride + d]);
+            }
+        }
+        left.extend_from_slice(&b[..stride]);
+        let j = n - level;
+        right[j * stride..(j + 1) * stride].copy_from_slice(&b[j * stride..(j + 1) * stride]);
+    }
+    (left, right)
+}
+
+/// Point, first and second derivative of a Bezier curve of `stride`-scalar points at `s`.
+pub(crate) fn bezier_ders(
+    ctrl: &[f64],
+    stride: usize,
+    s: f64,
+    tmp: &mut Vec<f64>,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = ctrl.len() / stride - 1;
+    tmp.clear();
+    tmp.extend_from_slice(ctrl);
+    let keep = n.min(2);
+    for level in 0..n - keep {
+        for i in 0..n - level {
+            for d in 0..stride {
+                tmp[i * stride + d] =
+                    (1.0 - s) * tmp[i * stride + d] + s * tmp[(i + 1) * stride + d];
+            }
+        }
+    }
+    let nf = n as f64;
+    let mut a = vec![0.0; stride];
+    let mut a1 = vec![0.0; stride];
+    let mut a2 = vec![0.0; stride];
+    for d in 0..stride {
+        let b0 = tmp[d];
+        match keep {
+            0 => a[d] = b0,
+            1 => {
+                let b1 = tmp[stride + d];
+                a[d] = (1.0 - s) * b0 + s * b1;
+                a1[d] = b1 - b0;
+            }
+            _ => {
+                let (b1, b2) = (tmp[stride + d], tmp[2 * stride + d]);
+                let l0 = (1.0 - s) * b0 + s * b1;
+                let l1 = (1.0 - s) * b1 + s * b2;
+                a[d] = (1.0 - s) * l0 + s * l1;
+                a1[d] = nf * (l1 - l0);
+                a2[d] = nf * (nf - 1.0) * (b2 - 2.0 * b1 + b0);
+            }
+        }
+    }
+    (a, a1, a2)
+}
