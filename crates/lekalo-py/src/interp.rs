@@ -3,7 +3,6 @@
 //! the library's enums (the parsers are shared with the batch API).
 
 use lekalo::{
-    interpolate_surface as lk_interpolate_surface, interpolate_surface_max_condition,
     natural_cubic_spline as lk_natural, CubicHermite, CurveInterpolation, EndCondition,
     KnotPlacement, Parametrization, TangentEstimate,
 };
@@ -211,15 +210,14 @@ pub(crate) fn interpolate_surface(
     }
     let (nu, nv) = (s[0], s[1]);
     let pts = lekalo::PointsRef::from_flat(s[2], ga.data()).map_err(lib_err)?;
-    let r = py
-        .detach(|| match max_condition {
-            Some(mc) => interpolate_surface_max_condition(pts, nu, nv, degree_u, degree_v, m, mc),
-            None => lk_interpolate_surface(pts, nu, nv, degree_u, degree_v, m),
-        })
+    let mut interp = lekalo::SurfaceInterpolation::new(degree_u, degree_v).parametrization(m);
+    if let Some(mc) = max_condition {
+        interp = interp.max_condition(mc);
+    }
+    let inner = py
+        .detach(|| interp.interpolate(pts, nu, nv))
         .map_err(lib_err)?;
-    Ok(PyBSplineSurface {
-        inner: r.into_surface(),
-    })
+    Ok(PyBSplineSurface { inner })
 }
 
 /// The cubic Bezier curve through four points at parameters 0, 1/3, 2/3, 1.

@@ -447,7 +447,11 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     }
     if let (Some(t), Some(p)) = (a.hermite, &a.params) {
         let ts = crate::cmd::explicit::parameters(p, "--params")?;
-        let h = CubicHermite::with_estimated_tangents(ts, pts.as_view(), tangents(t, a.tension.unwrap_or(0.0)))?;
+        let h = CubicHermite::with_estimated_tangents(
+            ts,
+            pts.as_view(),
+            tangents(t, a.tension.unwrap_or(0.0)),
+        )?;
         return write_curve(
             &Object::BSpline(h.to_bspline()),
             Some(&pts),

@@ -101,7 +101,12 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
         let mut fig = basis_figure(
             &obj.knots(),
             obj.degree(),
-            in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
+            in_range(
+                a.samples.unwrap_or(CURVE_SAMPLES),
+                2,
+                PLOT_SAMPLES,
+                "--samples",
+            )?,
         )?;
         if let Some(t) = &a.title {
             fig.title.clone_from(t);
@@ -112,7 +117,12 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
         obj,
         &CurvePlot {
             title: a.title.clone(),
-            samples: in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
+            samples: in_range(
+                a.samples.unwrap_or(CURVE_SAMPLES),
+                2,
+                PLOT_SAMPLES,
+                "--samples",
+            )?,
             control_polygon: !a.no_control,
             knot_marks: !a.no_knots,
             data_points: data,
@@ -155,7 +165,12 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 }
                 Shape::Surface(s) => shapes::surface_figure(
                     s,
-                    in_range(a.samples.unwrap_or(SURFACE_SAMPLES), 2, 1000, "--samples (per direction of a surface)")?,
+                    in_range(
+                        a.samples.unwrap_or(SURFACE_SAMPLES),
+                        2,
+                        1000,
+                        "--samples (per direction of a surface)",
+                    )?,
                     a.net,
                     &SurfacePlot {
                         title: a.title.as_deref().unwrap_or(s.display_name()).to_string(),
@@ -170,7 +185,12 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 )?,
                 Shape::Pp(p) => shapes::pp_figure(
                     p,
-                    in_range(a.samples.unwrap_or(CURVE_SAMPLES), 2, PLOT_SAMPLES, "--samples")?,
+                    in_range(
+                        a.samples.unwrap_or(CURVE_SAMPLES),
+                        2,
+                        PLOT_SAMPLES,
+                        "--samples",
+                    )?,
                     a.title.as_deref(),
                 )?,
                 other => return not_a_curve(&a.input, other),

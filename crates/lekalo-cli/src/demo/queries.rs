@@ -7,7 +7,7 @@ use lekalo::{BSplineCurve, NurbsCurve, Points, QueryCurve};
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
 use super::doc000::add_curve;
-use crate::demo::Section;
+use crate::demo::{Caption, Section};
 
 pub(super) fn queries(s: &mut Section) -> Result<()> {
     s.caption = "A cubic B-spline and a circle: their intersections (crossing points, with \
@@ -110,6 +110,8 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         paths: feet,
         style: Style::Line,
         color: PALETTE[3].into(),
+        dash: None,
+        marker: None,
     });
     fig.series.push(Series::new(
         Some("intersections"),
@@ -129,13 +131,16 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         Style::Markers,
         PALETTE[5],
     ));
-    s.figures.push((
+    s.figure(
         fig,
-        format!(
-            "{} cusps of the offset where 0.3·κ = 1; {} loop(s) trimmed.",
+        Caption::new(format!(
+            "A planar cubic with its offset at d = 0.3, the closest points of a few query points, \
+             its intersections with a second curve and its curvature maxima. The offset has {} \
+             cusps where 0.3·κ = 1; {} loop(s) between them are trimmed.",
             off.cusps.len(),
             off.loops.len()
-        ),
-    ));
+        ))
+        .theory("queries.md#offsets"),
+    );
     Ok(())
 }
