@@ -9,6 +9,7 @@
 //! | versioned JSON envelope `{"lekalo": 1, "type": …}` (docs/formats.md) | yes | yes | [`Shape`]: curves [`Object`], [`Surface`], pp-forms |
 //! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
+//! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
@@ -34,6 +35,7 @@ mod figure_check;
 mod flat;
 mod iges;
 mod layout;
+mod npy;
 mod numfmt;
 mod obj;
 mod object;
@@ -59,6 +61,7 @@ pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use layout::{text_extent, text_width};
+pub use npy::{npy_bytes, read_npy_file, read_npy_points};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};

@@ -1,0 +1,421 @@
+//! NumPy `.npy` files: an `(n, d)` or `(n,)` float64 array as points in, sample tables out.
+//!
+//! The format (numpy's `NEP 1`, "A simple file format for NumPy arrays") is a 6-byte magic
+//! `\x93NUMPY`, a version `major.minor` (1.0, 2.0 or 3.0), the header length (`u16` little-endian
+//! for 1.0, `u32` for 2.0 and 3.0), a header that is a Python dict literal
+//! `{'descr': '<f8', 'fortran_order': False, 'shape': (n, d), }` padded with spaces to a
+//! multiple of 64 bytes and ending in `\n`, then the raw array data.
+//!
+//! Written by hand rather than with a crate: the whole format is these few lines, and reading it
+//! here lets every malformed file (bad magic, truncated header, a dtype that is not float64, a
+//! 3-D shape, data shorter than the shape, NaN) give an error that names the file and the header
+//! field, as every other reader of this crate does; only float64 arrays are read or written, so
+//! a general dtype layer would add a dependency and nothing the points need.
+//!
+//! Reading accepts `'<f8'` and `'>f8'` (either endianness), C and Fortran order, shapes `(n, d)`
+//! and `(n,)` (one coordinate per point). Writing produces version 1.0, `'<f8'`, C order: what
+//! `np.save` writes, read back by `np.load` bit for bit.
+
+use std::path::{Path, PathBuf};
+
+use lekalo::Points;
+
+use crate::error::{IoError, IoResult, Location};
+use crate::samples::SampleTable;
+
+/// The magic bytes at the start of every `.npy` file.
+const MAGIC: &[u8; 6] = b"\x93NUMPY";
+
+/// Bytes per float64 element.
+const F8: usize = 8;
+
+/// The parsed header of a float64 `.npy` file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct NpyHeader {
+    big_endian: bool,
+    fortran: bool,
+    rows: usize,
+    cols: usize,
+    /// Offset of the array data from the start of the file.
+    data_start: usize,
+}
+
+fn err(source: &str, field: &str, message: impl Into<String>) -> IoError {
+    IoError::syntax(Location::new(source).at_field(field), message)
+}
+
+/// Reads an `(n, d)` or `(n,)` float64 `.npy` array from `bytes` as `n` points of dimension `d`
+/// (1 for `(n,)`); `source` names the input in messages.
+///
+/// ```
+/// let bytes = lekalo_io::npy_bytes(2, 2, &[0.0, 0.0, 3.0, 4.0]).unwrap();
+/// let p = lekalo_io::read_npy_points(&bytes, "pts.npy").unwrap();
+/// assert_eq!(p.point(1), &[3.0, 4.0]);
+/// let e = lekalo_io::read_npy_points(b"PK\x03\x04", "pts.npy").unwrap_err();
+/// assert!(e.to_string().starts_with("pts.npy: field `magic`"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`IoError::Syntax`] naming the file and the field (`magic`, `version`, `header`, `descr`,
+/// `fortran_order`, `shape`, `data`, or the element `[i, j]`) for a file that is not `.npy`, a
+/// truncated or malformed header, a dtype other than float64, a shape that is not 1-D or 2-D or
+/// is empty, data shorter or longer than the shape says, or a value that is not finite;
+/// [`IoError::Invalid`] if the library rejects the points.
+pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
+    let h = parse_header(bytes, source)?;
+    let (n, d) = (h.rows, h.cols);
+    let count = n.checked_mul(d).filter(|c| c.checked_mul(F8).is_some());
+    let Some(count) = count else {
+        return Err(err(
+            source,
+            "shape",
+            format!("shape ({n}, {d}) is too large to address"),
+        ));
+    };
+    let data = &bytes[h.data_start..];
+    if data.len() != count * F8 {
+        return Err(err(
+            source,
+            "data",
+            format!(
+                "the header's shape ({n}, {d}) needs {} bytes of float64 data, the file has {}; the file is truncated or its header is wrong",
+                count * F8,
+                data.len()
+            ),
+        ));
+    }
+    let mut flat = Vec::new();
+    flat.try_reserve_exact(count)
+        .map_err(|_| IoError::TooLarge {
+            what: format!("{source}: cannot reserve memory for {count} numbers"),
+        })?;
+    for i in 0..n {
+        for j in 0..d {
+            let k = if h.fortran { j * n + i } else { i * d + j };
+            let mut b = [0u8; F8];
+            b.copy_from_slice(&data[k * F8..(k + 1) * F8]);
+            let v = if h.big_endian {
+                f64::from_be_bytes(b)
+            } else {
+                f64::from_le_bytes(b)
+            };
+            if !v.is_finite() {
+                return Err(err(
+                    source,
+                    &format!("[{i}, {j}]"),
+                    format!("{v} is not finite; every coordinate must be a finite number"),
+                ));
+            }
+            flat.push(v);
+        }
+    }
+    Points::from_flat(d, flat).map_err(|e| IoError::Invalid {
+        at: Location::new(source),
+        error: e,
+    })
+}
+
+/// Reads a `.npy` points file from `path` (see [`read_npy_points`]); returns the points and the
+/// name used in messages.
+///
+/// # Errors
+/// [`IoError::Read`] if the file cannot be read; otherwise as [`read_npy_points`].
+pub fn read_npy_file(path: &Path) -> IoResult<(Points, String)> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|error| IoError::Read {
+        path: PathBuf::from(path),
+        error,
+    })?;
+    Ok((read_npy_points(&bytes, &name)?, name))
+}
+
+fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
+    if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
+        return Err(err(
+            source,
+            "magic",
+            "not a NumPy .npy file: it does not start with \\x93NUMPY; save the array with numpy.save",
+        ));
+    }
+    let Some(&[major, minor]) = bytes.get(6..8) else {
+        return Err(err(
+            source,
+            "version",
+            "the file ends inside the header (no version)",
+        ));
+    };
+    let (len_bytes, utf8) = match (major, minor) {
+        (1, 0) => (2, false),
+        (2 | 3, 0) => (4, major == 3),
+        _ => return Err(err(
+            source,
+            "version",
+            format!(
+                "format version {major}.{minor} is not supported; versions 1.0, 2.0 and 3.0 are"
+            ),
+        )),
+    };
+    let start = 8 + len_bytes;
+    let Some(len_field) = bytes.get(8..start) else {
+        return Err(err(
+            source,
+            "header",
+            "the file ends inside the header (no header length)",
+        ));
+    };
+    let len = len_field
+        .iter()
+        .rev()
+        .fold(0usize, |acc, &b| (acc << 8) | usize::from(b));
+    let Some(raw) = start.checked_add(len).and_then(|end| bytes.get(start..end)) else {
+        return Err(err(
+            source,
+            "header",
+            format!(
+                "the header is {len} bytes long but the file ends after {} bytes; the file is truncated",
+                bytes.len().saturating_sub(start)
+            ),
+        ));
+    };
+    let text = if utf8 {
+        std::str::from_utf8(raw).ok()
+    } else {
+        raw.is_ascii()
+            .then(|| std::str::from_utf8(raw).ok())
+            .flatten()
+    };
+    let Some(text) = text else {
+        return Err(err(source, "header", "the header is not text"));
+    };
+    let entries = parse_dict(text).map_err(|m| err(source, "header", m))?;
+    let get = |key: &str| {
+        entries
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v)
+            .ok_or_else(|| err(source, key, format!("the header has no '{key}' entry")))
+    };
+    let big_endian = match get("descr")? {
+        Value::Str(s) if s == "<f8" => false,
+        Value::Str(s) if s == ">f8" => true,
+        other => return Err(err(
+            source,
+            "descr",
+            format!(
+                "dtype {} is not float64; save the array as float64 (arr.astype(numpy.float64))",
+                other.describe()
+            ),
+        )),
+    };
+    let fortran = match get("fortran_order")? {
+        Value::Bool(b) => *b,
+        other => {
+            return Err(err(
+                source,
+                "fortran_order",
+                format!("{} is not True or False", other.describe()),
+            ))
+        }
+    };
+    let (rows, cols) = match get("shape")? {
+        Value::Tuple(s) if s.len() == 2 => (s[0], s[1]),
+        Value::Tuple(s) if s.len() == 1 => (s[0], 1),
+        other => {
+            return Err(err(
+                source,
+                "shape",
+                format!(
+                    "shape {} is not (n, d) or (n,); points are a 2-D array, one row per point",
+                    other.describe()
+                ),
+            ))
+        }
+    };
+    if rows == 0 || cols == 0 {
+        return Err(err(
+            source,
+            "shape",
+            format!("shape ({rows}, {cols}) holds no points; at least one point with one coordinate is needed"),
+        ));
+    }
+    Ok(NpyHeader {
+        big_endian,
+        fortran,
+        rows,
+        cols,
+        data_start: start + len,
+    })
+}
+
+/// A value of the header dict.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Value {
+    Str(String),
+    Bool(bool),
+    Tuple(Vec<usize>),
+    /// Anything else (a list-of-fields dtype, a number, None), kept as written.
+    Other(String),
+}
+
+impl Value {
+    fn describe(&self) -> String {
+        match self {
+            Value::Str(s) => format!("'{s}'"),
+            Value::Bool(b) => if *b { "True" } else { "False" }.to_string(),
+            Value::Tuple(v) => {
+                let items: Vec<String> = v.iter().map(ToString::to_string).collect();
+                if items.len() == 1 {
+                    format!("({},)", items[0])
+                } else {
+                    format!("({})", items.join(", "))
+                }
+            }
+            Value::Other(s) => s.clone(),
+        }
+    }
+}
+
+/// Parses the header's dict literal `{'key': value, …}` with string keys and values that are
+/// strings, `True`/`False`, tuples of integers, or anything else kept as text.
+fn parse_dict(text: &str) -> Result<Vec<(String, Value)>, String> {
+    let s = text.trim();
+    let inner = s
+        .strip_prefix('{')
+        .and_then(|r| r.strip_suffix('}'))
+        .ok_or_else(|| format!("the header is not a dict literal {{…}}: {s:?}"))?;
+    let mut out = Vec::new();
+    let mut rest = inner.trim_start();
+    while !rest.is_empty() {
+        let (key, r) =
+            parse_str(rest).ok_or_else(|| format!("expected a quoted key at {rest:?}"))?;
+        let r = r
+            .trim_start()
+            .strip_prefix(':')
+            .ok_or_else(|| format!("expected ':' after '{key}'"))?
+            .trim_start();
+        let (value, r) =
+            parse_value(r).ok_or_else(|| format!("cannot read the value of '{key}'"))?;
+        let r = r.trim_start();
+        rest = match r.strip_prefix(',') {
+            Some(r) => r.trim_start(),
+            None if r.is_empty() => r,
+            None => return Err(format!("expected ',' or '}}' after the value of '{key}'")),
+        };
+        out.push((key, value));
+    }
+    Ok(out)
+}
+
+/// A quoted string (`'…'` or `"…"`, no escapes: numpy's keys and dtypes need none) and the rest.
+fn parse_str(s: &str) -> Option<(String, &str)> {
+    let q = s.chars().next().filter(|c| *c == '\'' || *c == '"')?;
+    let body = &s[1..];
+    let end = body.find(q)?;
+    Some((body[..end].to_string(), &body[end + 1..]))
+}
+
+fn parse_value(s: &str) -> Option<(Value, &str)> {
+    if let Some((v, r)) = parse_str(s) {
+        return Some((Value::Str(v), r));
+    }
+    if let Some(r) = s.strip_prefix("True") {
+        return Some((Value::Bool(true), r));
+    }
+    if let Some(r) = s.strip_prefix("False") {
+        return Some((Value::Bool(false), r));
+    }
+    if let Some(r) = s.strip_prefix('(') {
+        let end = r.find(')')?;
+        let items: Option<Vec<usize>> = r[..end]
+            .split(',')
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+            .map(|t| t.trim_end_matches('L').parse().ok())
+            .collect();
+        return Some((Value::Tuple(items?), &r[end + 1..]));
+    }
+    // Anything else (e.g. a structured dtype `[('x', '<f8')]`): up to the bracket-balanced
+    // next comma, kept as text for the message.
+    let mut depth = 0i32;
+    for (i, c) in s.char_indices() {
+        match c {
+            '[' | '(' | '{' => depth += 1,
+            ']' | ')' | '}' => depth -= 1,
+            ',' if depth == 0 => return Some((Value::Other(s[..i].trim().to_string()), &s[i..])),
+            _ => {}
+        }
+        if depth < 0 {
+            return None;
+        }
+    }
+    Some((Value::Other(s.trim().to_string()), ""))
+}
+
+/// A version 1.0, `'<f8'`, C-order `.npy` file of a `rows` × `cols` array whose elements are
+/// `data` in row-major order (what `np.save` writes for a float64 array).
+///
+/// ```
+/// let b = lekalo_io::npy_bytes(1, 2, &[1.5, -2.0]).unwrap();
+/// assert_eq!(&b[..8], b"\x93NUMPY\x01\x00");
+/// assert_eq!(b.len() % 64, 16 % 64, "header padded to 64 bytes, then 16 data bytes");
+/// ```
+///
+/// # Errors
+/// [`IoError::Unsupported`] if `data` does not hold `rows * cols` numbers.
+pub fn npy_bytes(rows: usize, cols: usize, data: &[f64]) -> IoResult<Vec<u8>> {
+    if rows.checked_mul(cols) != Some(data.len()) {
+        return Err(IoError::Unsupported {
+            what: format!(
+                "a {rows} x {cols} array needs {} numbers, {} were given",
+                rows.saturating_mul(cols),
+                data.len()
+            ),
+        });
+    }
+    let mut header =
+        format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    // magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64
+    let unpadded = 10 + header.len() + 1;
+    header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
+    header.push('\n');
+    let Ok(len) = u16::try_from(header.len()) else {
+        return Err(IoError::Unsupported {
+            what: format!("a header for shape ({rows}, {cols}) is too long"),
+        });
+    };
+    let mut out = Vec::with_capacity(10 + header.len() + data.len() * F8);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&[1, 0]);
+    out.extend_from_slice(&len.to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    for v in data {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    Ok(out)
+}
+
+impl SampleTable {
+    /// The table as a `.npy` file: an `(rows, columns)` float64 array in the column order of
+    /// [`SampleTable::header`] (`t`, coordinates, derivatives, curvature), undefined values
+    /// (the curvature where `C' = 0`) as NaN, NumPy's missing value.
+    ///
+    /// # Errors
+    /// [`IoError::Unsupported`] if the rows are not all as long as the header.
+    pub fn to_npy(&self) -> IoResult<Vec<u8>> {
+        let cols = self.header.len();
+        let mut data = Vec::with_capacity(self.rows.len() * cols);
+        for row in &self.rows {
+            if row.len() != cols {
+                return Err(IoError::Unsupported {
+                    what: format!("a row of {} values under {cols} columns", row.len()),
+                });
+            }
+            data.extend(row.iter().map(|v| v.unwrap_or(f64::NAN)));
+        }
+        npy_bytes(self.rows.len(), cols, &data)
+    }
+}
+
+#[cfg(test)]
+#[path = "npy_tests.rs"]
+mod tests;
