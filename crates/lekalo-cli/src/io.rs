@@ -161,8 +161,15 @@ pub(crate) fn check_memory<T>(n: usize, option: &str) -> Result<()> {
     Ok(())
 }
 
-/// Reads a points file (CSV, whitespace text, JSON; `-` is standard input) with `--header`.
+/// Reads a points file (CSV, whitespace text, JSON; `-` is standard input) with `--header`,
+/// or a NumPy `.npy` float64 array (by the extension).
 pub(crate) fn read_points(path: &Path) -> Result<(lekalo::Points, String)> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+    {
+        return Ok(lekalo_io::read_npy_file(path)?);
+    }
     let (text, name) = lekalo_io::read_input(path)?;
     let header = match settings().header {
         HeaderArg::Auto => lekalo_io::Header::Auto,

@@ -147,13 +147,15 @@ fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
     let (len_bytes, utf8) = match (major, minor) {
         (1, 0) => (2, false),
         (2 | 3, 0) => (4, major == 3),
-        _ => return Err(err(
-            source,
-            "version",
-            format!(
+        _ => {
+            return Err(err(
+                source,
+                "version",
+                format!(
                 "format version {major}.{minor} is not supported; versions 1.0, 2.0 and 3.0 are"
             ),
-        )),
+            ))
+        }
     };
     let start = 8 + len_bytes;
     let Some(len_field) = bytes.get(8..start) else {
@@ -198,14 +200,16 @@ fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
     let big_endian = match get("descr")? {
         Value::Str(s) if s == "<f8" => false,
         Value::Str(s) if s == ">f8" => true,
-        other => return Err(err(
-            source,
-            "descr",
-            format!(
+        other => {
+            return Err(err(
+                source,
+                "descr",
+                format!(
                 "dtype {} is not float64; save the array as float64 (arr.astype(numpy.float64))",
                 other.describe()
             ),
-        )),
+            ))
+        }
     };
     let fortran = match get("fortran_order")? {
         Value::Bool(b) => *b,

@@ -27,6 +27,7 @@ Examples:
   lekalo eval curve.json --at 1,1.5,2
   lekalo eval curve.json --samples 5 --derivatives 2 --curvature -o samples.csv
   lekalo eval curve.json --at 0.5 --format json
+  lekalo eval curve.json --samples 1000 -o samples.npy   # NumPy: np.load('samples.npy')
   lekalo eval many.jsonl --samples 100 -o samples.jsonl
   lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
   lekalo eval surface.json --grid 5x7 -o grid.csv
@@ -52,7 +53,8 @@ pub(crate) struct EvalArgs {
     /// Output the curvature |C' × C''| / |C'|³.
     #[arg(long)]
     curvature: bool,
-    /// Output format: csv or json (default: from the output's extension, else csv).
+    /// Output format: csv, json or npy (a NumPy float64 array, one row per sample, the CSV's
+    /// columns) (default: from the output's extension, else csv).
     #[arg(long)]
     format: Option<String>,
     /// Treat the input as JSON Lines.
@@ -138,12 +140,13 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
             }
             let table = sample_table(&obj, &ts, spec)
                 .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
-            let text = match fmt.as_str() {
-                "csv" => table.to_csv(),
-                "json" => format!("{:#}\n", table.to_json()),
-                other => return bad_input(format!("--format {other}: use csv or json")),
+            let bytes = match fmt.as_str() {
+                "csv" => table.to_csv().into_bytes(),
+                "json" => format!("{:#}\n", table.to_json()).into_bytes(),
+                "npy" => table.to_npy()?,
+                other => return bad_input(format!("--format {other}: use csv, json or npy")),
             };
-            emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+            emit(a.output.as_deref(), &bytes, &inputs, v)
         }
         Loaded::Many(items) => {
             let bar = progress(items.len(), v);
