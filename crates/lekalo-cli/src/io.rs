@@ -257,6 +257,17 @@ pub(crate) enum Loaded {
 /// Reads an object file or JSON Lines (`-` is standard input).
 pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
     let start = Instant::now();
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npz"))
+    {
+        let bytes = std::fs::read(path).map_err(|error| IoError::Read {
+            path: path.to_path_buf(),
+            error,
+        })?;
+        let name = path.display().to_string();
+        return Ok(Loaded::One(lekalo_io::read_npz_curve(&bytes, &name)?));
+    }
     let (text, name) = lekalo_io::read_input(path)?;
     let loaded = if is_json_lines(path, jsonl) {
         Loaded::Many(lekalo_io::read_json_lines(&text, &name))

@@ -242,3 +242,63 @@ fn malformed_npy_inputs_are_named_errors() {
         .code(2)
         .stderr(contains("missing.npy"));
 }
+
+#[test]
+fn csv_to_curve_to_npz_to_curve_is_exact() {
+    let d = tempfile::tempdir().unwrap();
+    let csv: String = Q
+        .chunks(2)
+        .map(|p| format!("{},{}\n", p[0], p[1]))
+        .collect();
+    fs::write(d.path().join("q.csv"), csv).unwrap();
+    let run = |args: &[&str]| {
+        lekalo().current_dir(d.path()).args(args).assert().success();
+    };
+    run(&["interpolate", "q.csv", "-o", "curve.json"]);
+    run(&["convert", "curve.json", "-o", "curve.npz"]);
+    run(&["convert", "curve.npz", "-o", "back.json"]);
+    let read = |f: &str| fs::read_to_string(d.path().join(f)).unwrap();
+    assert_eq!(read("back.json"), read("curve.json"));
+    // a rational curve keeps its weights
+    fs::write(
+        d.path().join("arc.json"),
+        r#"{"lekalo":1,"type":"nurbs_curve","degree":2,"knots":[0,0,0,1,1,1],"control":[[1,0],[1,1],[0,1]],"weights":[1,0.5,1]}"#,
+    )
+    .unwrap();
+    run(&["convert", "arc.json", "-o", "arc.npz"]);
+    run(&["convert", "arc.npz", "-o", "arc-back.json"]);
+    let back: serde_json::Value = serde_json::from_str(&read("arc-back.json")).unwrap();
+    assert_eq!(back["type"], "nurbs_curve");
+    assert_eq!(back["weights"], serde_json::json!([1.0, 0.5, 1.0]));
+    // an .npz curve evaluates as its JSON does
+    let eval = |f: &str| {
+        lekalo()
+            .current_dir(d.path())
+            .args(["eval", f, "--samples", "9"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    assert_eq!(eval("curve.npz"), eval("curve.json"));
+}
+
+#[test]
+fn malformed_npz_inputs_are_named_errors() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("text.npz"), "not a zip").unwrap();
+    lekalo()
+        .current_dir(d.path())
+        .args(["convert", "text.npz", "-o", "out.json"])
+        .assert()
+        .code(2)
+        .stderr(contains("text.npz: not a NumPy .npz archive"));
+    lekalo()
+        .current_dir(d.path())
+        .args(["eval", "missing.npz"])
+        .assert()
+        .code(2)
+        .stderr(contains("missing.npz"));
+    assert!(!d.path().join("out.json").exists());
+}

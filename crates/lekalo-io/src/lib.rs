@@ -10,6 +10,7 @@
 //! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
+//! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
@@ -36,6 +37,7 @@ mod flat;
 mod iges;
 mod layout;
 mod npy;
+mod npz;
 mod numfmt;
 mod obj;
 mod object;
@@ -62,6 +64,7 @@ pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use layout::{text_extent, text_width};
 pub use npy::{npy_bytes, read_npy_file, read_npy_points};
+pub use npz::{curve_to_npz, read_npz_curve};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};

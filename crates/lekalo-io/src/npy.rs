@@ -29,13 +29,14 @@ const MAGIC: &[u8; 6] = b"\x93NUMPY";
 /// Bytes per float64 element.
 const F8: usize = 8;
 
-/// The parsed header of a float64 `.npy` file.
+/// The parsed header of a float64 (or, for `.npz` integer scalars, int64) `.npy` file.
 #[derive(Debug, Clone, PartialEq, Eq)]
 struct NpyHeader {
     big_endian: bool,
+    /// `'<i8'` / `'>i8'` rather than float64 (accepted only where the caller allows it).
+    integer: bool,
     fortran: bool,
-    rows: usize,
-    cols: usize,
+    shape: Vec<usize>,
     /// Offset of the array data from the start of the file.
     data_start: usize,
 }
@@ -62,14 +63,58 @@ fn err(source: &str, field: &str, message: impl Into<String>) -> IoError {
 /// is empty, data shorter or longer than the shape says, or a value that is not finite;
 /// [`IoError::Invalid`] if the library rejects the points.
 pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
-    let h = parse_header(bytes, source)?;
-    let (n, d) = (h.rows, h.cols);
-    let count = n.checked_mul(d).filter(|c| c.checked_mul(F8).is_some());
+    let (shape, flat) = read_array(bytes, source, false)?;
+    let d = match shape[..] {
+        [_, d] => d,
+        [_] => 1,
+        _ => {
+            return Err(err(
+                source,
+                "shape",
+                format!(
+                    "shape {} is not (n, d) or (n,); points are a 2-D array, one row per point",
+                    Value::Tuple(shape).describe()
+                ),
+            ))
+        }
+    };
+    if flat.is_empty() {
+        return Err(err(
+            source,
+            "shape",
+            format!(
+                "shape {} holds no points; at least one point with one coordinate is needed",
+                Value::Tuple(shape).describe()
+            ),
+        ));
+    }
+    Points::from_flat(d, flat).map_err(|e| IoError::Invalid {
+        at: Location::new(source),
+        error: e,
+    })
+}
+
+/// Reads a float64 `.npy` array of any shape (int64 too if `integer` is allowed): its shape and
+/// its elements in C (row-major) order, every one finite.
+pub(crate) fn read_array(
+    bytes: &[u8],
+    source: &str,
+    integer: bool,
+) -> IoResult<(Vec<usize>, Vec<f64>)> {
+    let h = parse_header(bytes, source, integer)?;
+    let count = h
+        .shape
+        .iter()
+        .try_fold(1usize, |acc, &k| acc.checked_mul(k))
+        .filter(|c| c.checked_mul(F8).is_some());
     let Some(count) = count else {
         return Err(err(
             source,
             "shape",
-            format!("shape ({n}, {d}) is too large to address"),
+            format!(
+                "shape {} is too large to address",
+                Value::Tuple(h.shape).describe()
+            ),
         ));
     };
     let data = &bytes[h.data_start..];
@@ -78,8 +123,10 @@ pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
             source,
             "data",
             format!(
-                "the header's shape ({n}, {d}) needs {} bytes of float64 data, the file has {}; the file is truncated or its header is wrong",
+                "the header's shape {} needs {} bytes of {} data, the file has {}; the file is truncated or its header is wrong",
+                Value::Tuple(h.shape.clone()).describe(),
                 count * F8,
+                if h.integer { "int64" } else { "float64" },
                 data.len()
             ),
         ));
@@ -89,30 +136,53 @@ pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
         .map_err(|_| IoError::TooLarge {
             what: format!("{source}: cannot reserve memory for {count} numbers"),
         })?;
-    for i in 0..n {
-        for j in 0..d {
-            let k = if h.fortran { j * n + i } else { i * d + j };
-            let mut b = [0u8; F8];
-            b.copy_from_slice(&data[k * F8..(k + 1) * F8]);
-            let v = if h.big_endian {
-                f64::from_be_bytes(b)
-            } else {
-                f64::from_le_bytes(b)
-            };
-            if !v.is_finite() {
-                return Err(err(
-                    source,
-                    &format!("[{i}, {j}]"),
-                    format!("{v} is not finite; every coordinate must be a finite number"),
-                ));
+    // C order: element k of the output is index (i_0, …, i_{r-1}) with the last index fastest;
+    // Fortran order stores the first index fastest, so the offset is the reversed strides'.
+    let rank = h.shape.len();
+    let mut index = vec![0usize; rank];
+    for _ in 0..count {
+        let k = if h.fortran {
+            index
+                .iter()
+                .zip(&h.shape)
+                .rev()
+                .fold(0, |acc, (&i, &n)| acc * n + i)
+        } else {
+            index
+                .iter()
+                .zip(&h.shape)
+                .fold(0, |acc, (&i, &n)| acc * n + i)
+        };
+        let mut b = [0u8; F8];
+        b.copy_from_slice(&data[k * F8..(k + 1) * F8]);
+        let v = match (h.integer, h.big_endian) {
+            (false, false) => f64::from_le_bytes(b),
+            (false, true) => f64::from_be_bytes(b),
+            // int64 is read for small integers such as a degree; the caller checks the range
+            #[allow(clippy::cast_precision_loss)]
+            (true, false) => i64::from_le_bytes(b) as f64,
+            #[allow(clippy::cast_precision_loss)]
+            (true, true) => i64::from_be_bytes(b) as f64,
+        };
+        if !v.is_finite() {
+            let at: Vec<String> = index.iter().map(ToString::to_string).collect();
+            return Err(err(
+                source,
+                &format!("[{}]", at.join(", ")),
+                format!("{v} is not finite; every value must be a finite number"),
+            ));
+        }
+        flat.push(v);
+        // next C-order index
+        for r in (0..rank).rev() {
+            index[r] += 1;
+            if index[r] < h.shape[r] {
+                break;
             }
-            flat.push(v);
+            index[r] = 0;
         }
     }
-    Points::from_flat(d, flat).map_err(|e| IoError::Invalid {
-        at: Location::new(source),
-        error: e,
-    })
+    Ok((h.shape, flat))
 }
 
 /// Reads a `.npy` points file from `path` (see [`read_npy_points`]); returns the points and the
@@ -129,7 +199,7 @@ pub fn read_npy_file(path: &Path) -> IoResult<(Points, String)> {
     Ok((read_npy_points(&bytes, &name)?, name))
 }
 
-fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
+fn parse_header(bytes: &[u8], source: &str, integer: bool) -> IoResult<NpyHeader> {
     if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
         return Err(err(
             source,
@@ -197,9 +267,11 @@ fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
             .map(|(_, v)| v)
             .ok_or_else(|| err(source, key, format!("the header has no '{key}' entry")))
     };
-    let big_endian = match get("descr")? {
-        Value::Str(s) if s == "<f8" => false,
-        Value::Str(s) if s == ">f8" => true,
+    let (big_endian, is_int) = match get("descr")? {
+        Value::Str(s) if s == "<f8" => (false, false),
+        Value::Str(s) if s == ">f8" => (true, false),
+        Value::Str(s) if integer && s == "<i8" => (false, true),
+        Value::Str(s) if integer && s == ">i8" => (true, true),
         other => {
             return Err(err(
                 source,
@@ -221,32 +293,21 @@ fn parse_header(bytes: &[u8], source: &str) -> IoResult<NpyHeader> {
             ))
         }
     };
-    let (rows, cols) = match get("shape")? {
-        Value::Tuple(s) if s.len() == 2 => (s[0], s[1]),
-        Value::Tuple(s) if s.len() == 1 => (s[0], 1),
+    let shape = match get("shape")? {
+        Value::Tuple(s) => s.clone(),
         other => {
             return Err(err(
                 source,
                 "shape",
-                format!(
-                    "shape {} is not (n, d) or (n,); points are a 2-D array, one row per point",
-                    other.describe()
-                ),
+                format!("shape {} is not a tuple of sizes", other.describe()),
             ))
         }
     };
-    if rows == 0 || cols == 0 {
-        return Err(err(
-            source,
-            "shape",
-            format!("shape ({rows}, {cols}) holds no points; at least one point with one coordinate is needed"),
-        ));
-    }
     Ok(NpyHeader {
         big_endian,
+        integer: is_int,
         fortran,
-        rows,
-        cols,
+        shape,
         data_start: start + len,
     })
 }
@@ -376,25 +437,30 @@ pub fn npy_bytes(rows: usize, cols: usize, data: &[f64]) -> IoResult<Vec<u8>> {
             ),
         });
     }
-    let mut header =
-        format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    let raw: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
+    write_npy("<f8", &[rows, cols], &raw)
+}
+
+/// A version 1.0, C-order `.npy` file of dtype `descr` and `shape` holding the little-endian
+/// element bytes `raw`.
+pub(crate) fn write_npy(descr: &str, shape: &[usize], raw: &[u8]) -> IoResult<Vec<u8>> {
+    let shape = Value::Tuple(shape.to_vec()).describe();
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
     // magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64
     let unpadded = 10 + header.len() + 1;
     header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
     header.push('\n');
     let Ok(len) = u16::try_from(header.len()) else {
         return Err(IoError::Unsupported {
-            what: format!("a header for shape ({rows}, {cols}) is too long"),
+            what: format!("a header for shape {shape} is too long"),
         });
     };
-    let mut out = Vec::with_capacity(10 + header.len() + data.len() * F8);
+    let mut out = Vec::with_capacity(10 + header.len() + raw.len());
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&[1, 0]);
     out.extend_from_slice(&len.to_le_bytes());
     out.extend_from_slice(header.as_bytes());
-    for v in data {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
+    out.extend_from_slice(raw);
     Ok(out)
 }
 

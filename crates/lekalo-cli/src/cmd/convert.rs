@@ -20,6 +20,7 @@ Formats (chosen by --to or the output's extension):
   step   ISO 10303-21 AP214 (B_SPLINE_CURVE_WITH_KNOTS, rational form for NURBS); every object
          of a JSON Lines input goes into one file
   obj    Wavefront OBJ polyline of the sampled curve
+  npz    NumPy archive: degree, knots, control_points (, weights); np.load reads it
 Surfaces (bezier_surface, bspline_surface, nurbs_surface) convert to json, step
 (B_SPLINE_SURFACE_WITH_KNOTS, rational for NURBS), obj (a √samples × √samples tessellation
 with the surface's normals) and svg/png (wireframe); piecewise polynomials to json, csv
@@ -27,6 +28,8 @@ with the surface's normals) and svg/png (wireframe); piecewise polynomials to js
 
 Examples:
   lekalo convert curve.json -o curve.step
+  lekalo convert curve.json -o curve.npz
+  lekalo convert curve.npz -o from-npz.json
   lekalo convert many.jsonl -o all.step
   lekalo convert curve.json -o curve.csv --samples 200
   lekalo convert curve.json --to jsonl
@@ -198,11 +201,10 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             w.finish(STEP_TIMESTAMP).into_bytes()
         }
         "obj" => lekalo_io::polyline_to_obj(&single()?.sample(samples)?).into_bytes(),
-        other => {
-            return bad_input(format!(
-                "unknown output format \"{other}\": use json, jsonl, csv, svg, png, step or obj"
-            ))
-        }
+        "npz" => lekalo_io::curve_to_npz(single()?)?,
+        other => return bad_input(format!(
+            "unknown output format \"{other}\": use json, jsonl, csv, svg, png, step, obj or npz"
+        )),
     };
     emit(
         a.output.as_deref(),

@@ -1,0 +1,192 @@
+//! NumPy `.npz` archives of curves: one `.npy` member per named array, so that
+//! `c = np.load('curve.npz')` gives `c['degree']`, `c['knots']`, `c['control_points']` and, for
+//! NURBS, `c['weights']`.
+//!
+//! | member | dtype | shape | meaning |
+//! |---|---|---|---|
+//! | `degree.npy` | int64 (float64 with an integer value is read too) | `()` | degree `p` |
+//! | `knots.npy` | float64 | `(n + p + 1,)` | knot vector |
+//! | `control_points.npy` | float64 | `(n, d)` | Euclidean control points, one per row |
+//! | `weights.npy` (NURBS only) | float64 | `(n,)` | positive weights |
+//!
+//! Members are stored uncompressed (as `numpy.savez` writes them); archives of
+//! `numpy.savez_compressed` are refused with a message saying so. A Bezier curve is written as
+//! the B-spline with knots `0^(p+1) 1^(p+1)` (the same curve, docs/theory/curves.md) and reads
+//! back as a B-spline.
+
+use std::io::{Cursor, Read, Write};
+
+use lekalo::{BSplineCurve, NurbsCurve, Points};
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, ZipArchive, ZipWriter};
+
+use crate::error::{IoError, IoResult, Location};
+use crate::npy::{read_array, read_npy_points, write_npy};
+use crate::object::Object;
+
+/// Largest degree read from an archive (a larger one is surely a wrong member, not a curve).
+const MAX_DEGREE: f64 = 1.0e6;
+
+/// The curve `obj` as an `.npz` archive (see the module's table of members).
+///
+/// ```
+/// use lekalo_io::{curve_to_npz, read_npz_curve, Object};
+/// let obj = Object::from_json_str(
+///     r#"{"lekalo":1,"type":"bspline_curve","degree":1,"knots":[0,0,1,1],"control":[[0,0],[1,2]]}"#,
+///     "c.json")?;
+/// let bytes = curve_to_npz(&obj)?;
+/// assert_eq!(read_npz_curve(&bytes, "c.npz")?, obj);
+/// # Ok::<(), lekalo_io::IoError>(())
+/// ```
+///
+/// # Errors
+/// [`IoError::Unsupported`] if the archive cannot be built (an internal failure).
+pub fn curve_to_npz(obj: &Object) -> IoResult<Vec<u8>> {
+    let (degree, knots, control, weights) = match obj {
+        Object::Bezier(c) => {
+            let p = c.degree();
+            let mut knots = vec![0.0; p + 1];
+            knots.extend(std::iter::repeat_n(1.0, p + 1));
+            (p, knots, c.control_points().clone(), None)
+        }
+        Object::BSpline(c) => (
+            c.degree(),
+            c.knots().as_slice().to_vec(),
+            c.control_points().clone(),
+            None,
+        ),
+        Object::Nurbs(c) => (
+            c.degree(),
+            c.knots().as_slice().to_vec(),
+            c.control_points(),
+            Some(c.weights()),
+        ),
+    };
+    let f8 = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    let degree = i64::try_from(degree).map_err(|_| IoError::Unsupported {
+        what: format!("degree {degree} does not fit an int64"),
+    })?;
+    let mut members = vec![
+        ("degree.npy", write_npy("<i8", &[], &degree.to_le_bytes())?),
+        ("knots.npy", write_npy("<f8", &[knots.len()], &f8(&knots))?),
+        (
+            "control_points.npy",
+            write_npy(
+                "<f8",
+                &[control.len(), control.dim()],
+                &f8(control.as_slice()),
+            )?,
+        ),
+    ];
+    if let Some(w) = weights {
+        members.push(("weights.npy", write_npy("<f8", &[w.len()], &f8(&w))?));
+    }
+    let zip_err = |e: &dyn std::fmt::Display| IoError::Unsupported {
+        what: format!("cannot build the .npz archive: {e}"),
+    };
+    let mut z = ZipWriter::new(Cursor::new(Vec::new()));
+    let opts = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Stored)
+        .large_file(false);
+    for (name, bytes) in members {
+        z.start_file(name, opts).map_err(|e| zip_err(&e))?;
+        z.write_all(&bytes).map_err(|e| zip_err(&e))?;
+    }
+    Ok(z.finish().map_err(|e| zip_err(&e))?.into_inner())
+}
+
+/// Reads a curve from an `.npz` archive (see the module's table of members); `source` names
+/// the input in messages.
+///
+/// # Errors
+/// [`IoError::Syntax`] naming the file and the member for an archive that is not a zip, a
+/// compressed or missing member, or a member that is not a valid `.npy` array of the table's
+/// dtype and shape; [`IoError::Invalid`] if the library rejects the curve (knots, weights).
+pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
+    let mut z = ZipArchive::new(Cursor::new(bytes)).map_err(|e| {
+        IoError::syntax(
+            Location::new(source),
+            format!("not a NumPy .npz archive (a zip file): {e}; save the arrays with numpy.savez"),
+        )
+    })?;
+    let mut member = |name: &str, required: bool| -> IoResult<Option<(String, Vec<u8>)>> {
+        let file = format!("{name}.npy");
+        let label = format!("{source}: {file}");
+        let mut f = match z.by_name(&file) {
+            Ok(f) => f,
+            Err(zip::result::ZipError::FileNotFound) if !required => return Ok(None),
+            Err(zip::result::ZipError::FileNotFound) => {
+                return Err(IoError::syntax(
+                    Location::new(source).at_field(name),
+                    format!("the archive has no member {file}; a curve needs degree, knots and control_points (and weights for NURBS)"),
+                ))
+            }
+            Err(e) => {
+                return Err(IoError::syntax(
+                    Location::new(source).at_field(name),
+                    format!("cannot read member {file}: {e}; write the archive with numpy.savez (not savez_compressed)"),
+                ))
+            }
+        };
+        let mut out = Vec::new();
+        (&mut f)
+            .take(u64::try_from(bytes.len()).unwrap_or(u64::MAX))
+            .read_to_end(&mut out)
+            .map_err(|e| {
+                IoError::syntax(
+                    Location::new(source).at_field(name),
+                    format!("cannot read member {file}: {e}"),
+                )
+            })?;
+        Ok(Some((label, out)))
+    };
+    let shape_err =
+        |label: &str, what: &str| IoError::syntax(Location::new(label).at_field("shape"), what);
+    let (label, b) = member("degree", true)?.unwrap_or_default();
+    let (shape, v) = read_array(&b, &label, true)?;
+    let degree = match (shape.len(), v.first()) {
+        (0, Some(&p)) | (1, Some(&p)) if v.len() == 1 => p,
+        _ => {
+            return Err(shape_err(
+                &label,
+                "degree must be a scalar, e.g. np.int64(3)",
+            ))
+        }
+    };
+    if degree < 0.0 || degree.fract() != 0.0 || degree > MAX_DEGREE {
+        return Err(IoError::syntax(
+            Location::new(&label).at_field("[]"),
+            format!("{degree} is not a degree: it must be a whole number from 0 to {MAX_DEGREE}"),
+        ));
+    }
+    // a whole number in [0, 1e6]: exact in usize
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let degree = degree as usize;
+    let (label, b) = member("knots", true)?.unwrap_or_default();
+    let (shape, knots) = read_array(&b, &label, false)?;
+    if shape.len() != 1 {
+        return Err(shape_err(&label, "knots must be a 1-D array (k,)"));
+    }
+    let (label, b) = member("control_points", true)?.unwrap_or_default();
+    let control: Points = read_npy_points(&b, &label)?;
+    let weights = match member("weights", false)? {
+        None => None,
+        Some((label, b)) => {
+            let (shape, w) = read_array(&b, &label, false)?;
+            if shape.len() != 1 {
+                return Err(shape_err(&label, "weights must be a 1-D array (n,)"));
+            }
+            Some(w)
+        }
+    };
+    let at = Location::new(source);
+    let obj = match weights {
+        None => BSplineCurve::new(degree, knots, control).map(Object::BSpline),
+        Some(w) => NurbsCurve::new(degree, knots, control, w).map(Object::Nurbs),
+    };
+    obj.map_err(|error| IoError::Invalid { at, error })
+}
+
+#[cfg(test)]
+#[path = "npz_tests.rs"]
+mod tests;

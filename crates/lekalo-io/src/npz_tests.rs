@@ -1,0 +1,211 @@
+//! Tests of the `.npz` curve archive: round trips bit for bit and named errors.
+
+use super::*;
+
+fn bspline() -> Object {
+    let ctrl =
+        Points::from_2d(&[[0.1, 0.0], [1.0 / 3.0, 2.0], [2.0, -1e-300], [3.5, 1e300]]).unwrap();
+    Object::BSpline(BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 0.7, 1.0, 1.0, 1.0], ctrl).unwrap())
+}
+
+fn nurbs() -> Object {
+    // weights and coordinates exact in binary, so w·P / w gives P back exactly
+    let ctrl = Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap();
+    Object::Nurbs(
+        NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            ctrl,
+            vec![1.0, 0.5, 1.0],
+        )
+        .unwrap(),
+    )
+}
+
+#[test]
+fn npz_round_trips_are_bit_exact() {
+    for obj in [bspline(), nurbs()] {
+        let bytes = curve_to_npz(&obj).unwrap();
+        let back = read_npz_curve(&bytes, "c.npz").unwrap();
+        assert_eq!(back, obj, "{}", obj.type_name());
+        assert_eq!(
+            curve_to_npz(&back).unwrap(),
+            bytes,
+            "the archive is reproducible"
+        );
+    }
+}
+
+#[test]
+fn npz_members_are_the_documented_arrays() {
+    let bytes = curve_to_npz(&nurbs()).unwrap();
+    let mut z = ZipArchive::new(Cursor::new(&bytes[..])).unwrap();
+    let mut names: Vec<String> = z.file_names().map(String::from).collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "control_points.npy",
+            "degree.npy",
+            "knots.npy",
+            "weights.npy"
+        ]
+    );
+    let mut read = |name: &str| {
+        let mut f = z.by_name(name).unwrap();
+        assert_eq!(f.compression(), CompressionMethod::Stored, "{name}");
+        let mut b = Vec::new();
+        f.read_to_end(&mut b).unwrap();
+        b
+    };
+    let degree = read("degree.npy");
+    let header = String::from_utf8_lossy(&degree[10..degree.len() - 8]).to_string();
+    assert!(
+        header.starts_with("{'descr': '<i8', 'fortran_order': False, 'shape': (), }"),
+        "{header}"
+    );
+    assert_eq!(degree[degree.len() - 8..], 2i64.to_le_bytes());
+    let (shape, w) = read_array(&read("weights.npy"), "w", false).unwrap();
+    assert_eq!((shape, w), (vec![3], vec![1.0, 0.5, 1.0]));
+    let (shape, _) = read_array(&read("control_points.npy"), "p", false).unwrap();
+    assert_eq!(shape, vec![3, 2]);
+}
+
+#[test]
+fn npz_bezier_reads_back_as_the_same_curve_in_bspline_form() {
+    let ctrl = Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]]).unwrap();
+    let bez = Object::Bezier(lekalo::BezierCurve::new(ctrl.clone()).unwrap());
+    let back = read_npz_curve(&curve_to_npz(&bez).unwrap(), "b.npz").unwrap();
+    let expect = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], ctrl).unwrap();
+    assert_eq!(back, Object::BSpline(expect));
+}
+
+/// An archive of the given stored members.
+fn archive(members: &[(&str, Vec<u8>)], method: CompressionMethod) -> Vec<u8> {
+    let mut z = ZipWriter::new(Cursor::new(Vec::new()));
+    let opts = SimpleFileOptions::default().compression_method(method);
+    for (name, b) in members {
+        z.start_file(*name, opts).unwrap();
+        z.write_all(b).unwrap();
+    }
+    z.finish().unwrap().into_inner()
+}
+
+#[test]
+fn npz_malformed_archives_give_named_errors() {
+    let f8 = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    let deg = |p: i64| write_npy("<i8", &[], &p.to_le_bytes()).unwrap();
+    let knots = write_npy("<f8", &[4], &f8(&[0.0, 0.0, 1.0, 1.0])).unwrap();
+    let ctrl = write_npy("<f8", &[2, 2], &f8(&[0.0, 0.0, 1.0, 1.0])).unwrap();
+    let stored = CompressionMethod::Stored;
+    let ok = archive(
+        &[
+            ("degree.npy", deg(1)),
+            ("knots.npy", knots.clone()),
+            ("control_points.npy", ctrl.clone()),
+        ],
+        stored,
+    );
+    assert!(
+        read_npz_curve(&ok, "ok.npz").is_ok(),
+        "the reference archive reads"
+    );
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "not zip",
+            b"\x93NUMPY".to_vec(),
+            "c.npz: not a NumPy .npz archive",
+        ),
+        (
+            "no knots",
+            archive(
+                &[("degree.npy", deg(1)), ("control_points.npy", ctrl.clone())],
+                stored,
+            ),
+            "c.npz: field `knots`: the archive has no member knots.npy",
+        ),
+        (
+            "negative degree",
+            archive(
+                &[
+                    ("degree.npy", deg(-1)),
+                    ("knots.npy", knots.clone()),
+                    ("control_points.npy", ctrl.clone()),
+                ],
+                stored,
+            ),
+            "c.npz: degree.npy: field `[]`: -1 is not a degree",
+        ),
+        (
+            "float32 knots",
+            archive(
+                &[
+                    ("degree.npy", deg(1)),
+                    ("knots.npy", write_npy("<f4", &[4], &[0; 16]).unwrap()),
+                    ("control_points.npy", ctrl.clone()),
+                ],
+                stored,
+            ),
+            "c.npz: knots.npy: field `descr`: dtype '<f4' is not float64",
+        ),
+        (
+            "int64 control points",
+            archive(
+                &[
+                    ("degree.npy", deg(1)),
+                    ("knots.npy", knots.clone()),
+                    (
+                        "control_points.npy",
+                        write_npy("<i8", &[2, 2], &[0; 32]).unwrap(),
+                    ),
+                ],
+                stored,
+            ),
+            "c.npz: control_points.npy: field `descr`: dtype '<i8' is not float64",
+        ),
+        (
+            "2-D knots",
+            archive(
+                &[
+                    ("degree.npy", deg(1)),
+                    (
+                        "knots.npy",
+                        write_npy("<f8", &[2, 2], &f8(&[0.0, 0.0, 1.0, 1.0])).unwrap(),
+                    ),
+                    ("control_points.npy", ctrl.clone()),
+                ],
+                stored,
+            ),
+            "c.npz: knots.npy: field `shape`: knots must be a 1-D array",
+        ),
+        (
+            "truncated member",
+            archive(
+                &[
+                    ("degree.npy", deg(1)),
+                    ("knots.npy", knots[..knots.len() - 3].to_vec()),
+                    ("control_points.npy", ctrl.clone()),
+                ],
+                stored,
+            ),
+            "c.npz: knots.npy: field `data`: the header's shape (4,) needs 32 bytes",
+        ),
+        (
+            "wrong knot count",
+            archive(
+                &[
+                    ("degree.npy", deg(2)),
+                    ("knots.npy", knots.clone()),
+                    ("control_points.npy", ctrl.clone()),
+                ],
+                stored,
+            ),
+            "c.npz: ",
+        ),
+    ];
+    for (what, bytes, message) in cases {
+        let e = read_npz_curve(&bytes, "c.npz").unwrap_err();
+        assert!(e.to_string().starts_with(message), "{what}: {e}");
+        assert!(e.is_bad_input(), "{what}");
+    }
+}
