@@ -135,7 +135,7 @@ pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
             .map_err(|e| {
                 IoError::syntax(
                     Location::new(source).at_field(name),
-                    format!("cannot read member {file}: {e}"),
+                    format!("cannot read member {file}: {e}; write the archive with numpy.savez (not savez_compressed)"),
                 )
             })?;
         Ok(Some((label, out)))

@@ -209,3 +209,28 @@ fn npz_malformed_archives_give_named_errors() {
         assert!(e.is_bad_input(), "{what}");
     }
 }
+
+#[test]
+fn npz_compressed_members_are_refused_with_the_fix() {
+    let mut bytes = curve_to_npz(&bspline()).unwrap();
+    // mark every member as deflated (method 8), as numpy.savez_compressed writes them: the
+    // method field is at offset 8 of a local header (PK\x03\x04), 10 of a central one (PK\x01\x02)
+    let mut patched = 0;
+    for i in 0..bytes.len() - 4 {
+        let at = match &bytes[i..i + 4] {
+            b"PK\x03\x04" => i + 8,
+            b"PK\x01\x02" => i + 10,
+            _ => continue,
+        };
+        bytes[at..at + 2].copy_from_slice(&8u16.to_le_bytes());
+        patched += 1;
+    }
+    assert_eq!(patched, 6, "3 local and 3 central headers");
+    let e = read_npz_curve(&bytes, "z.npz").unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.starts_with("z.npz: field `degree`: cannot read member degree.npy"),
+        "{m}"
+    );
+    assert!(m.contains("numpy.savez (not savez_compressed)"), "{m}");
+}

@@ -202,9 +202,11 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
         }
         "obj" => lekalo_io::polyline_to_obj(&single()?.sample(samples)?).into_bytes(),
         "npz" => lekalo_io::curve_to_npz(single()?)?,
-        other => return bad_input(format!(
+        other => {
+            return bad_input(format!(
             "unknown output format \"{other}\": use json, jsonl, csv, svg, png, step, obj or npz"
-        )),
+        ))
+        }
     };
     emit(
         a.output.as_deref(),
