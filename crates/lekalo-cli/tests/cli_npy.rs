@@ -259,6 +259,20 @@ fn csv_to_curve_to_npz_to_curve_is_exact() {
     run(&["convert", "curve.npz", "-o", "back.json"]);
     let read = |f: &str| fs::read_to_string(d.path().join(f)).unwrap();
     assert_eq!(read("back.json"), read("curve.json"));
+    // .npy points straight to an .npz curve
+    fs::write(
+        d.path().join("q.npy"),
+        npy(
+            "{'descr': '<f8', 'fortran_order': False, 'shape': (5, 2), }",
+            &le(&Q),
+        ),
+    )
+    .unwrap();
+    run(&["interpolate", "q.npy", "-o", "direct.npz"]);
+    assert_eq!(
+        fs::read(d.path().join("direct.npz")).unwrap(),
+        fs::read(d.path().join("curve.npz")).unwrap()
+    );
     // a rational curve keeps its weights
     fs::write(
         d.path().join("arc.json"),

@@ -67,9 +67,10 @@ pub(crate) fn write_curve(
             w.finish(STEP_TIMESTAMP).into_bytes()
         }
         "obj" => lekalo_io::polyline_to_obj(&obj.sample(CURVE_SAMPLES)?).into_bytes(),
+        "npz" => lekalo_io::curve_to_npz(obj)?,
         other => {
             return bad_input(format!(
-                "unknown output format \"{other}\": use json, svg, png, step, csv or obj"
+                "unknown output format \"{other}\": use json, svg, png, step, csv, obj or npz"
             ))
         }
     };
