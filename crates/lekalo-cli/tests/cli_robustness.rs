@@ -375,10 +375,13 @@ fn extreme_coordinates_plot_with_finite_ticks() {
         assert!(!svg.contains("NaN") && !svg.contains("inf"), "{f}: {svg}");
         // the curve is drawn, not an empty frame
         assert!(svg.contains("<polyline points=\""), "{f}");
+        // the x axis' tick labels: centred text elements whose body starts with a number
         let labels: Vec<&str> = svg
-            .split("text-anchor=\"middle\">")
+            .split("<text ")
             .skip(1)
-            .filter_map(|s| s.split('<').next())
+            .filter_map(|s| s.split_once('>'))
+            .filter(|(attrs, _)| attrs.contains("text-anchor=\"middle\""))
+            .filter_map(|(_, body)| body.split('<').next())
             .filter(|s| {
                 s.chars()
                     .next()

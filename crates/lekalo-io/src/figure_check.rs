@@ -12,7 +12,9 @@ use resvg::usvg::roxmltree::{Document, Node};
 use crate::png::render_pixmap;
 
 /// A series as drawn: label, line width, vertices, the label it is declared to coincide with.
-type SeriesSeen = (String, f64, Vec<[f64; 2]>, Option<String>);
+/// A labelled series as drawn: label, line width, vertices, the series it declares it
+/// coincides with, and whether it is drawn as lines (markers are separate points).
+type SeriesSeen = (String, f64, Vec<[f64; 2]>, Option<String>, bool);
 
 /// A box `x, y, width, height`.
 type BoxXywh = [f64; 4];
@@ -79,7 +81,7 @@ fn vertices(g: Node<'_, '_>) -> Vec<[f64; 2]> {
 
 /// Does every vertex of `a` lie within `tol` of the vertices of `b` or the segments between
 /// consecutive vertices of `b`?
-fn covered(a: &[[f64; 2]], b: &[[f64; 2]], tol: f64) -> bool {
+fn covered(a: &[[f64; 2]], b: &[[f64; 2]], b_is_line: bool, tol: f64) -> bool {
     let seg = |p: [f64; 2], u: [f64; 2], v: [f64; 2]| {
         let (dx, dy) = (v[0] - u[0], v[1] - u[1]);
         let l2 = dx * dx + dy * dy;
@@ -92,7 +94,7 @@ fn covered(a: &[[f64; 2]], b: &[[f64; 2]], tol: f64) -> bool {
     };
     a.iter().all(|p| {
         b.iter().any(|q| (p[0] - q[0]).hypot(p[1] - q[1]) <= tol)
-            || b.windows(2).any(|w| seg(*p, w[0], w[1]) <= tol)
+            || (b_is_line && b.windows(2).any(|w| seg(*p, w[0], w[1]) <= tol))
     })
 }
 
@@ -182,16 +184,17 @@ pub fn check_svg(svg: &str, caption: Option<&str>) -> Vec<String> {
                 width,
                 vertices(g),
                 g.attribute("data-coincides").map(str::to_string),
+                g.descendants().any(|n| n.tag_name().name() == "polyline"),
             ))
         })
         .collect();
-    for (i, (la, wa, va, _)) in series.iter().enumerate() {
+    for (i, (la, wa, va, _, _)) in series.iter().enumerate() {
         if va.is_empty() {
             problems.push(format!("series {la:?} draws nothing"));
             continue;
         }
-        for (lb, wb, vb, declared) in &series[i + 1..] {
-            if !covered(va, vb, wa.max(*wb)) {
+        for (lb, wb, vb, declared, b_is_line) in &series[i + 1..] {
+            if !covered(va, vb, *b_is_line, wa.max(*wb)) {
                 continue;
             }
             let said = match caption {

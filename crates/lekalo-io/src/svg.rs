@@ -215,12 +215,13 @@ struct Frame {
 }
 
 impl Frame {
+    // differences taken of halves, so that data spanning ±1.8e308 does not overflow
     fn tx(&self, x: f64) -> f64 {
-        self.left + (x - self.x0) / (self.x1 - self.x0) * self.pw
+        self.left + (x / 2.0 - self.x0 / 2.0) / (self.x1 / 2.0 - self.x0 / 2.0) * self.pw
     }
 
     fn ty(&self, y: f64) -> f64 {
-        self.top + (self.y1 - y) / (self.y1 - self.y0) * self.ph
+        self.top + (self.y1 / 2.0 - y / 2.0) / (self.y1 / 2.0 - self.y0 / 2.0) * self.ph
     }
 
     fn page(&self, p: [f64; 2]) -> [f64; 2] {
@@ -382,14 +383,17 @@ impl Figure {
         if !b.0.is_finite() {
             return (0.0, 1.0, 0.0, 1.0);
         }
+        // padded by 5 % of the span, computed from halves and clamped to the finite range so
+        // that coordinates near ±1.8e308 neither overflow nor collapse the frame
         let fix = |lo: f64, hi: f64| {
-            let span = hi - lo;
-            let pad = if span > 0.0 {
-                0.05 * span
+            let half = hi / 2.0 - lo / 2.0;
+            let pad = if half > 0.0 {
+                0.1 * half
             } else {
-                0.5 * lo.abs().max(1.0)
+                0.5 * lo.abs().max(f64::MIN_POSITIVE)
             };
-            (lo - pad, hi + pad)
+            let clamp = |v: f64| v.clamp(-f64::MAX, f64::MAX);
+            (clamp(lo - pad), clamp(hi + pad))
         };
         let (x0, x1) = fix(b.0, b.1);
         let (y0, y1) = fix(b.2, b.3);
@@ -421,12 +425,14 @@ impl Figure {
         let ph = (self.size.1 - MARGIN_TOP - MARGIN_BOTTOM).max(60.0);
         let (mut x0, mut x1, mut y0, mut y1) = (bx0, bx1, by0, by1);
         if self.equal_aspect {
-            let s = ((x1 - x0) / pw).max((y1 - y0) / ph);
-            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-            x0 = cx - 0.5 * s * pw;
-            x1 = cx + 0.5 * s * pw;
-            y0 = cy - 0.5 * s * ph;
-            y1 = cy + 0.5 * s * ph;
+            // half-extents per pixel, from halves so that nothing overflows
+            let s = ((x1 / 2.0 - x0 / 2.0) / pw).max((y1 / 2.0 - y0 / 2.0) / ph);
+            let (cx, cy) = (x0 / 2.0 + x1 / 2.0, y0 / 2.0 + y1 / 2.0);
+            let clamp = |v: f64| v.clamp(-f64::MAX, f64::MAX);
+            x0 = clamp(cx - s * pw);
+            x1 = clamp(cx + s * pw);
+            y0 = clamp(cy - s * ph);
+            y1 = clamp(cy + s * ph);
         }
         let left = if self.axes {
             let labels = nice_ticks(y0, y1)
@@ -904,29 +910,46 @@ pub fn escape(s: &str) -> String {
 
 /// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks).
 pub(crate) fn nice_ticks(lo: f64, hi: f64) -> Vec<f64> {
-    let span = hi - lo;
-    if span.is_nan() || span <= 0.0 || !span.is_finite() {
+    // the span from halves, so that [-1e308, 1e308] does not overflow
+    let half = hi / 2.0 - lo / 2.0;
+    if half.is_nan() || half <= 0.0 || !half.is_finite() {
         return Vec::new();
     }
-    let raw = span / 5.0;
+    let raw = half / 2.5;
     let mag = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
+    if !(step > 0.0 && step.is_finite()) {
+        return Vec::new();
+    }
     let first = (lo / step).ceil();
     let last = (hi / step).floor();
     let mut out = Vec::new();
     let mut k = first;
     while k <= last && out.len() < 50 {
-        out.push(k * step);
+        let v = k * step;
+        if v.is_finite() {
+            out.push(v);
+        }
         k += 1.0;
     }
     out
 }
 
 pub(crate) fn fmt_tick(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-4..1e6).contains(&a) {
+        // exponent notation with up to four significant digits: `1.5e300`, `2e-320`, never
+        // `inf` or a row of zeros
+        let s = format!("{v:.3e}");
+        return match s.split_once('e') {
+            Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            None => s,
+        };
+    }
     let r = (v * 1e9).round() / 1e9;
     let s = format!("{r}");
     if s == "-0" {
@@ -976,7 +999,24 @@ fn to_plane(p: &[f64], projection: &crate::wireframe::Projection) -> [f64; 2] {
     }
 }
 
+/// Most vertices of a control polygon or data series drawn in a curve plot; beyond it every
+/// k-th is drawn (first and last kept), as a picture cannot show more.
+pub(crate) const PLOT_MAX_VERTICES: usize = 20_000;
+/// Most markers (control points, points at knots, data points) drawn per series; beyond it the
+/// markers are left out and the legend says so.
+pub(crate) const PLOT_MAX_MARKERS: usize = 2_000;
+
+/// Every k-th of `n` indices (first and last kept) so that at most `max` remain.
+fn decimated(n: usize, max: usize) -> impl Iterator<Item = usize> {
+    let k = n.div_ceil(max.max(2) - 1).max(1);
+    (0..n)
+        .step_by(k)
+        .chain((n > 0 && (n - 1) % k != 0).then_some(n - 1))
+}
+
 /// Plot of a curve: the curve over its domain, its control polygon, knot marks and data points.
+/// Huge objects are decimated: at most 20,000 vertices of a control polygon and 2,000 markers
+/// per series are drawn.
 ///
 /// # Errors
 /// Evaluation errors of the library (none for a valid object).
@@ -997,29 +1037,38 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         .map(|p| to_plane(p, proj))
         .collect();
     if opts.control_polygon {
-        let ctrl: Vec<[f64; 2]> = obj
-            .control_points()
-            .iter()
-            .map(|p| to_plane(p, proj))
+        let cp = obj.control_points();
+        let n = cp.len();
+        let ctrl: Vec<[f64; 2]> = decimated(n, PLOT_MAX_VERTICES)
+            .map(|i| to_plane(cp.point(i), proj))
             .collect();
-        fig.series.push(Series::new(
-            Some("control polygon"),
-            ctrl.clone(),
-            Style::Dashed,
-            "#777777",
-        ));
+        let label = if ctrl.len() < n {
+            format!("control polygon ({} of {n} points)", ctrl.len())
+        } else {
+            "control polygon".to_string()
+        };
+        let markers = (ctrl.len() <= PLOT_MAX_MARKERS).then(|| ctrl.clone());
         fig.series
-            .push(Series::new(None, ctrl, Style::Markers, "#777777"));
+            .push(Series::new(Some(&label), ctrl, Style::Dashed, "#777777"));
+        if let Some(m) = markers {
+            fig.series
+                .push(Series::new(None, m, Style::Markers, "#777777"));
+        }
     }
     fig.series
         .push(Series::new(Some("curve"), curve, Style::Line, PALETTE[0]));
     if opts.knot_marks {
         let (a, b) = obj.domain();
+        let inside: Vec<f64> = obj
+            .knots()
+            .distinct()
+            .into_iter()
+            .map(|(t, _)| t)
+            .filter(|t| *t >= a && *t <= b)
+            .collect();
         let mut marks = Vec::new();
-        for (t, _) in obj.knots().distinct() {
-            if t >= a && t <= b {
-                marks.push(to_plane(&obj.eval(t)?, proj));
-            }
+        for i in decimated(inside.len(), PLOT_MAX_MARKERS) {
+            marks.push(to_plane(&obj.eval(inside[i])?, proj));
         }
         fig.series.push(Series::new(
             Some("points at knots"),
@@ -1029,7 +1078,9 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
         ));
     }
     if let Some(data) = opts.data_points {
-        let pts = data.iter().map(|p| to_plane(p, proj)).collect();
+        let pts = decimated(data.len(), PLOT_MAX_MARKERS)
+            .map(|i| to_plane(data.point(i), proj))
+            .collect();
         fig.series.push(Series::new(
             Some("data points"),
             pts,

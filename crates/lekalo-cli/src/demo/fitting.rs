@@ -10,7 +10,7 @@ use lekalo::{parametrize, Parametrization, Points};
 use lekalo_io::{Figure, Object, PALETTE};
 
 use super::doc000::{add_curve, add_points};
-use crate::demo::{trim, Section};
+use crate::demo::{trim, Caption, Section};
 
 pub(super) fn fitting(s: &mut Section) -> Result<()> {
     s.caption = "60 noisy points near a spiral (fixed pseudo-noise of amplitude 0.03). Least \
@@ -40,7 +40,6 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
     let tol = 0.02;
     let within = fit_tolerance(q.as_view(), &ToleranceOptions::new(3, tol))?;
     let mut fig = Figure::new("fitting 60 noisy points", true);
-    add_points(&mut fig, &q, "data", PALETTE[2], false);
     add_curve(
         &mut fig,
         &Object::BSpline(lsq.curve.clone()),
@@ -60,10 +59,18 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
         &format!("within {tol}: {n_tol} control points"),
         PALETTE[3],
     )?;
-    s.figures.push((
+    // the data last, so that its markers are drawn over the curves that pass near them
+    add_points(&mut fig, &q, "data", PALETTE[2], false);
+    s.figure(
         fig,
-        "Data, least squares, smoothing spline and the tolerance fit.".into(),
-    ));
+        Caption::new(
+            "Noisy samples of one curve fitted three ways: least squares with given knots, a \
+             smoothing spline with λ chosen by generalised cross-validation, and the fewest \
+             control points that stay within the tolerance. Compare how closely each follows the \
+             noise and how many control points it needs (table below).",
+        )
+        .theory("fitting.md#tolerance"),
+    );
     s.tables.push((
         "Residuals at the data parameters (tolerance fit: distance to the curve).".into(),
         vec![
