@@ -140,7 +140,7 @@ pub(crate) fn read_array(
     // Fortran order stores the first index fastest, so the offset is the reversed strides'.
     let rank = h.shape.len();
     let mut index = vec![0usize; rank];
-    for _ in 0..count {
+    for e in 0..count {
         let k = if h.fortran {
             index
                 .iter()
@@ -148,10 +148,7 @@ pub(crate) fn read_array(
                 .rev()
                 .fold(0, |acc, (&i, &n)| acc * n + i)
         } else {
-            index
-                .iter()
-                .zip(&h.shape)
-                .fold(0, |acc, (&i, &n)| acc * n + i)
+            e
         };
         let mut b = [0u8; F8];
         b.copy_from_slice(&data[k * F8..(k + 1) * F8]);

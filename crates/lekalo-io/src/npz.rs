@@ -84,7 +84,9 @@ pub fn curve_to_npz(obj: &Object) -> IoResult<Vec<u8>> {
     let zip_err = |e: &dyn std::fmt::Display| IoError::Unsupported {
         what: format!("cannot build the .npz archive: {e}"),
     };
-    let mut z = ZipWriter::new(Cursor::new(Vec::new()));
+    // members plus the zip's headers (a few hundred bytes), so the buffer never grows
+    let total: usize = members.iter().map(|(_, b)| b.len() + 256).sum::<usize>() + 1024;
+    let mut z = ZipWriter::new(Cursor::new(Vec::with_capacity(total)));
     let opts = SimpleFileOptions::default()
         .compression_method(CompressionMethod::Stored)
         .large_file(false);
