@@ -101,6 +101,26 @@ fn repository_citations(text: &str, at: &str) -> Vec<Citation> {
     out
 }
 
+/// Gallery captions cite a section with `Caption::theory`, given `<page>.md#<anchor>` of a page under
+/// `docs/theory/`.
+fn caption_citations(text: &str, at: &str) -> Vec<Citation> {
+    const PREFIX: &str = ".theory(\"";
+    let mut out = Vec::new();
+    for (start, _) in text.match_indices(PREFIX) {
+        let rest = &text[start + PREFIX.len()..];
+        let Some(end) = rest.find('"') else { continue };
+        let Some((page, anchor)) = rest[..end].split_once('#') else {
+            continue;
+        };
+        out.push(Citation {
+            page: PathBuf::from(format!("docs/theory/{page}")),
+            anchor: anchor.to_string(),
+            at: at.to_string(),
+        });
+    }
+    out
+}
+
 /// Relative Markdown links with an anchor, `](target#anchor)` or `](#anchor)`, in a Markdown file
 /// at `file` (a path from the repository root), resolved to pages from the root.
 fn markdown_link_citations(text: &str, file: &Path, at: &str) -> Vec<Citation> {
@@ -195,6 +215,7 @@ fn all_citations(root: &Path) -> Vec<Citation> {
         for (k, line) in text.lines().enumerate() {
             let at = format!("{}:{}", file.display(), k + 1);
             out.extend(repository_citations(line, &at));
+            out.extend(caption_citations(line, &at));
             if is_doc {
                 out.extend(markdown_link_citations(line, &file, &at));
             }

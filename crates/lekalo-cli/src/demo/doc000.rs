@@ -312,7 +312,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
              the three curves with given first derivatives leave (0, 0) in the same direction, \
              (1, 2); the conditions on second derivatives leave the direction free.",
         )
-        .theory("interpolation.md#end-conditions"),
+        .theory("interpolation.md#end-derivatives-of-any-degree"),
     );
     s.tables.push((
         "End derivatives of the computed curves (from the library)".into(),

@@ -336,7 +336,7 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
              circular arcs a G² one. The arcs with uniform-angle and with rational quadratic \
              parametrisation trace the same curve.",
         )
-        .theory("blending.md#splines-through-points"),
+        .theory("blending.md#blend-splines"),
     );
     if let Some(fig) = closed_fig {
         s.figure(
@@ -346,7 +346,7 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
                  indices wrap around, so the last segment blends back into the first and the \
                  curve is C² everywhere, with no start or end.",
             )
-            .theory("blending.md#splines-through-points"),
+            .theory("blending.md#blend-splines"),
         );
     }
     Ok(())

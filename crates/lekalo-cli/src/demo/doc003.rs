@@ -107,7 +107,7 @@ pub(super) fn hermite(s: &mut Section) -> Result<()> {
              The first three points are shared; between them the curves differ because the \
              Hermite spline chooses its tangents locally and the single cubic has none to choose.",
         )
-        .theory("interpolation.md#hermite-splines"),
+        .theory("interpolation.md#hermite-splines-and-tangent-estimates"),
     );
     Ok(())
 }

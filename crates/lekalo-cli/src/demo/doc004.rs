@@ -249,7 +249,7 @@ pub(super) fn reduction(s: &mut Section) -> Result<()> {
              real degree is 3. Both polygons hold the curve in their convex hulls; the cubic one \
              is the minimal description.",
         )
-        .theory("degree.md#real-degree-and-exact-reduction"),
+        .theory("degree.md#exact-degree-reduction"),
     );
     Ok(())
 }
@@ -334,7 +334,7 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
             "The Bezier surface on its 5 × 4 control net U_{4,3} (Fig. 5a), shaded by height. \
              The net has five rows in t although the surface is cubic in t: one row is spare.",
         )
-        .theory("degree.md#bezier-surfaces"),
+        .theory("degree.md#degree-change-of-surfaces"),
     );
     s.figure(
         surface_figure(&low.to_bspline(), "The same surface on a 4 × 4 net U_{3,3}")?,
@@ -345,7 +345,7 @@ pub(super) fn surface(s: &mut Section) -> Result<()> {
             low.real_degrees().0,
             low.real_degrees().1
         ))
-        .theory("degree.md#bezier-surfaces"),
+        .theory("degree.md#degree-change-of-surfaces"),
     );
     Ok(())
 }

@@ -435,7 +435,7 @@ fn interpolation_knots(s: &mut Section) -> Result<()> {
     ] {
         let mut fig = basis_figure(kv, 3, 301)?;
         fig.title = title.into();
-        s.figure(fig, Caption::new(caption).theory("interpolation.md#knot-placement"));
+        s.figure(fig, Caption::new(caption).theory("interpolation.md#averaged-knots"));
     }
     // partition of unity on the domain (what makes the knots usable)
     let (_, n) = basis_functions(&chord3, 3, 0.4)?;
@@ -478,7 +478,7 @@ fn curry_schoenberg(s: &mut Section) -> Result<()> {
              interior breakpoint is a single knot, so each function is smooth across it; the \
              shaded domain is where they sum to 1.",
         )
-        .theory("pp.md#the-curry-schoenberg-theorem"),
+        .theory("pp.md#curry-schoenberg-knots"),
     );
     let nu = [2, 1, 2, 0, 2];
     let kv2 = KnotVector::from_breakpoints(&xi, &nu, 3)?;
@@ -501,7 +501,7 @@ fn curry_schoenberg(s: &mut Section) -> Result<()> {
              the next rises from 0 to 1. Beyond seven colours, dashes and markers tell the \
              functions apart.",
         )
-        .theory("pp.md#the-curry-schoenberg-theorem"),
+        .theory("pp.md#curry-schoenberg-knots"),
     );
     let rows = [("ν = 2 everywhere", &kv), ("ν = (2, 1, 2, 0, 2)", &kv2)]
         .iter()
