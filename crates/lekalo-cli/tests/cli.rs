@@ -4,11 +4,13 @@
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 use predicates::str::contains;
+
+mod common;
+use common::{dir_with, lekalo, p};
 
 const LECTURE: &str = r#"{
   "lekalo": 1,
@@ -23,22 +25,6 @@ const HALF_CIRCLE: &str = r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2,
  "knots": [0, 0, 0, 0.5, 0.5, 1, 1, 1],
  "control": [[1, 0, 0.5], [1, 1, 0.5], [0, 1, 0.5], [-1, 1, 0.5], [-1, 0, 0.5]],
  "weights": [1, 0.7071067811865476, 1, 0.7071067811865476, 1]}"#;
-
-fn lekalo() -> Command {
-    Command::cargo_bin("lekalo").unwrap()
-}
-
-fn dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let d = tempfile::tempdir().unwrap();
-    for (name, text) in files {
-        fs::write(d.path().join(name), text).unwrap();
-    }
-    d
-}
-
-fn p(d: &tempfile::TempDir, name: &str) -> PathBuf {
-    d.path().join(name)
-}
 
 #[test]
 fn every_subcommand_has_help_with_examples() {

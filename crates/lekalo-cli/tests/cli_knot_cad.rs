@@ -4,9 +4,7 @@
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
 use std::fs;
-use std::path::PathBuf;
 
-use assert_cmd::Command;
 use lekalo::{BSplineCurve, BSplineSurface, NurbsSurface, Points};
 use lekalo_io::{read_step, Object, Shape, Surface};
 use predicates::str::contains;
@@ -14,22 +12,6 @@ use predicates::str::contains;
 const NET: &str = "0 0 0\n0 1 0\n0 2 0.5\n1 0 0\n1 1 1\n1 2 0\n2 0 0.25\n2 1 0\n2 2 0\n";
 const CURVE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
  "knots": [0, 0, 0, 0.5, 1, 1, 1], "control": [[1, 1], [2, 3], [4, 3], [5, 0]]}"#;
-
-fn lekalo() -> Command {
-    Command::cargo_bin("lekalo").unwrap()
-}
-
-fn dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let d = tempfile::tempdir().unwrap();
-    for (name, text) in files {
-        fs::write(d.path().join(name), text).unwrap();
-    }
-    d
-}
-
-fn p(d: &tempfile::TempDir, name: &str) -> PathBuf {
-    d.path().join(name)
-}
 
 fn library_surface() -> BSplineSurface {
     let rows: Vec<Vec<f64>> = NET
@@ -413,6 +395,9 @@ fn step_from_open_cascade_converts_both_ways() {
 }
 
 use predicates::prelude::PredicateBooleanExt;
+
+mod common;
+use common::{dir_with, lekalo, p};
 
 #[test]
 fn machine_readable_real_degree_and_quasi_error() {

@@ -3,10 +3,11 @@
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
 use std::fs;
-use std::path::PathBuf;
 
-use assert_cmd::Command;
 use predicates::str::contains;
+
+mod common;
+use common::{dir_with, lekalo, p};
 
 /// A polyline (0,0) → (3,4) → (3,0): length 9.
 const POLY: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
@@ -21,22 +22,6 @@ const LOOP: &str =
 const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 1,
  "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "net": [3, 2],
  "control": [[0, 0, 0], [0, 1, 0], [0.5, 0, 0], [0.5, 1, 0], [1, 0, 1], [1, 1, 1]]}"#;
-
-fn lekalo() -> Command {
-    Command::cargo_bin("lekalo").unwrap()
-}
-
-fn dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let d = tempfile::tempdir().unwrap();
-    for (name, text) in files {
-        fs::write(d.path().join(name), text).unwrap();
-    }
-    d
-}
-
-fn p(d: &tempfile::TempDir, name: &str) -> PathBuf {
-    d.path().join(name)
-}
 
 #[test]
 fn measure_length_and_inverse() {

@@ -9,8 +9,10 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
-use assert_cmd::Command;
 use predicates::str::contains;
+
+mod common;
+use common::{dir_with, lekalo, p};
 
 const LECTURE: &str = r#"{
   "lekalo": 1,
@@ -21,24 +23,8 @@ const LECTURE: &str = r#"{
 }
 "#;
 
-fn lekalo() -> Command {
-    Command::cargo_bin("lekalo").unwrap()
-}
-
 fn bin() -> PathBuf {
     assert_cmd::cargo::cargo_bin("lekalo")
-}
-
-fn dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let d = tempfile::tempdir().unwrap();
-    for (name, text) in files {
-        fs::write(d.path().join(name), text).unwrap();
-    }
-    d
-}
-
-fn p(d: &tempfile::TempDir, name: &str) -> PathBuf {
-    d.path().join(name)
 }
 
 /// Files in `dir` other than `keep`: temporary files left behind would show up here.
