@@ -7,7 +7,22 @@ use std::fs;
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsSurface, Points};
 use lekalo_io::{read_step, Object, Shape, Surface};
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
+
+mod common;
+use common::{dir_with, lekalo, p};
+
+/// `lekalo convert INPUT -o OUTPUT` inside `d`, which must succeed.
+fn convert(d: &tempfile::TempDir, input: &str, output: &str) {
+    lekalo()
+        .arg("convert")
+        .arg(p(d, input))
+        .arg("-o")
+        .arg(p(d, output))
+        .assert()
+        .success();
+}
 
 const NET: &str = "0 0 0\n0 1 0\n0 2 0.5\n1 0 0\n1 1 1\n1 2 0\n2 0 0.25\n2 1 0\n2 2 0\n";
 const CURVE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
@@ -147,20 +162,8 @@ fn nurbs_surface_make_and_step_round_trip() {
         .arg(p(&d, "n.json"))
         .assert()
         .success();
-    lekalo()
-        .arg("convert")
-        .arg(p(&d, "n.json"))
-        .arg("-o")
-        .arg(p(&d, "n.step"))
-        .assert()
-        .success();
-    lekalo()
-        .arg("convert")
-        .arg(p(&d, "n.step"))
-        .arg("-o")
-        .arg(p(&d, "back.json"))
-        .assert()
-        .success();
+    convert(&d, "n.json", "n.step");
+    convert(&d, "n.step", "back.json");
     let a = fs::read_to_string(p(&d, "n.json")).unwrap();
     let b = fs::read_to_string(p(&d, "back.json")).unwrap();
     let sa = Shape::from_json_str(&a, "a").unwrap();
@@ -360,13 +363,7 @@ fn step_from_open_cascade_converts_both_ways() {
     for (line, (_, shape)) in text.lines().zip(&direct.shapes) {
         assert_eq!(&Shape::from_json_str(line, "l").unwrap(), shape);
     }
-    lekalo()
-        .arg("convert")
-        .arg(p(&d, "all.jsonl"))
-        .arg("-o")
-        .arg(p(&d, "again.step"))
-        .assert()
-        .success();
+    convert(&d, "all.jsonl", "again.step");
     let again = read_step(&fs::read_to_string(p(&d, "again.step")).unwrap(), "again").unwrap();
     assert_eq!(again.shapes.len(), direct.shapes.len());
     lekalo()
@@ -377,27 +374,10 @@ fn step_from_open_cascade_converts_both_ways() {
         .code(2)
         .stderr(contains("json output takes one"));
     // IGES both ways: the same objects as JSON Lines
-    lekalo()
-        .arg("convert")
-        .arg(p(&d, "all.jsonl"))
-        .arg("-o")
-        .arg(p(&d, "all.igs"))
-        .assert()
-        .success();
-    lekalo()
-        .arg("convert")
-        .arg(p(&d, "all.igs"))
-        .arg("-o")
-        .arg(p(&d, "from-iges.jsonl"))
-        .assert()
-        .success();
+    convert(&d, "all.jsonl", "all.igs");
+    convert(&d, "all.igs", "from-iges.jsonl");
     assert_eq!(fs::read_to_string(p(&d, "from-iges.jsonl")).unwrap(), text);
 }
-
-use predicates::prelude::PredicateBooleanExt;
-
-mod common;
-use common::{dir_with, lekalo, p};
 
 #[test]
 fn machine_readable_real_degree_and_quasi_error() {
