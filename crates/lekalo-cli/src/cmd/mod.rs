@@ -27,4 +27,6 @@ pub(crate) mod fit;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
+// Parquet batches in interpolate, eval and convert
+pub(crate) mod parquet_batch;
 pub(crate) mod project;
