@@ -95,6 +95,20 @@ impl Object {
         }
     }
 
+    /// Points at every parameter of `ts` into `out` (`ts.len() × dim`, point-major) by the
+    /// library's batch evaluation (`eval_batch` of each curve type: no allocation per point,
+    /// amortised span search), which agrees with [`Object::eval`] to rounding.
+    ///
+    /// # Errors
+    /// [`lekalo::Error::ParameterOutOfDomain`], [`lekalo::Error::LengthMismatch`].
+    pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> lekalo::Result<()> {
+        match self {
+            Object::Bezier(c) => c.eval_batch(ts, out),
+            Object::BSpline(c) => c.eval_batch(ts, out),
+            Object::Nurbs(c) => c.eval_batch(ts, out),
+        }
+    }
+
     /// `n ≥ 2` parameters evenly spaced over the domain, both ends included.
     #[must_use]
     pub fn uniform_parameters(&self, n: usize) -> Vec<f64> {

@@ -649,6 +649,51 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         self.push(&batch)
     }
 
+    /// Writes points sampled from curves as one row group: per group, its key on each of its
+    /// rows, `t`, and the coordinates `x, y, z` (`x1 … xd` above 3-D) of `points` (point-major,
+    /// `dim` values a parameter), the columns of [`ParquetBatchWriter::write_samples`] without
+    /// derivatives.
+    ///
+    /// # Errors
+    /// The writer's.
+    pub fn write_point_samples(
+        &mut self,
+        key: &str,
+        dim: usize,
+        rows: &[(GroupKey, Vec<f64>, Vec<f64>)],
+    ) -> std::io::Result<()> {
+        let int = rows
+            .first()
+            .is_none_or(|(k, _, _)| matches!(k, GroupKey::Int(_)));
+        let n: usize = rows.iter().map(|(_, ts, _)| ts.len()).sum();
+        let mut keys = KeyBuilder::new(int);
+        let mut t = Vec::with_capacity(n);
+        let mut cols: Vec<Vec<f64>> = (0..dim).map(|_| Vec::with_capacity(n)).collect();
+        for (k, ts, pts) in rows {
+            for _ in 0..ts.len() {
+                keys.append(k);
+            }
+            t.extend_from_slice(ts);
+            for (c, col) in cols.iter_mut().enumerate() {
+                col.extend(pts.iter().skip(c).step_by(dim.max(1)));
+            }
+        }
+        let names = crate::samples::coord_names(dim);
+        let mut columns: Vec<(&str, ArrayRef)> = vec![
+            (key, keys.finish()),
+            ("t", Arc::new(arrow_array::Float64Array::from(t))),
+        ];
+        for (name, col) in names.iter().zip(cols) {
+            columns.push((
+                name.as_str(),
+                Arc::new(arrow_array::Float64Array::from(col)),
+            ));
+        }
+        let batch = RecordBatch::try_from_iter(columns)
+            .map_err(|e| std::io::Error::other(e.to_string()))?;
+        self.push(&batch)
+    }
+
     /// Writes sample tables ([`crate::sample_table`]) as one row group: per group, its key on
     /// each of its rows, then the table's columns (`t`, the point, derivatives, curvature; null
     /// where undefined). Every table has the columns of the first.

@@ -26,7 +26,7 @@ pub struct SampleTable {
 }
 
 /// Coordinate names: `x, y, z` up to 3-D, `x1 … xd` above.
-fn coord_names(dim: usize) -> Vec<String> {
+pub(crate) fn coord_names(dim: usize) -> Vec<String> {
     if dim <= 3 {
         ["x", "y", "z"][..dim]
             .iter()

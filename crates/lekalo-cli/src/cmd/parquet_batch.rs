@@ -136,6 +136,13 @@ pub(crate) fn eval(
             let mut writer = ParquetBatchWriter::new(w);
             lekalo_io::read_curve_groups(input, Some(key), |curves| {
                 total += curves.len();
+                if spec.derivatives == 0 && !spec.curvature {
+                    return point_samples(curves, input, params, &mut writer, &mut header, &mut failed)
+                        .map_err(|error| IoError::Write {
+                            path: out.to_path_buf(),
+                            error,
+                        });
+                }
                 let tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)> = curves
                     .into_par_iter()
                     .map(|(k, obj)| {
@@ -194,6 +201,54 @@ pub(crate) fn eval(
         ));
     }
     finish(&failed, total, input)
+}
+
+/// Points only: each curve's samples by the library's batch evaluation into one flat buffer
+/// (no table rows), written as columns; the first curve's dimension is the file's.
+fn point_samples<W: std::io::Write + Send>(
+    curves: Vec<(GroupKey, Result<Object, IoError>)>,
+    input: &Path,
+    params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
+    writer: &mut ParquetBatchWriter<W>,
+    header: &mut Option<Vec<String>>,
+    failed: &mut Vec<String>,
+) -> std::io::Result<()> {
+    let rows: Vec<(GroupKey, Result<(Vec<f64>, Vec<f64>, usize), String>)> = curves
+        .into_par_iter()
+        .map(|(k, obj)| {
+            let r = obj.map_err(|e| e.to_string()).and_then(|o| {
+                let ts = params(&o).map_err(|e| e.to_string())?;
+                let mut out = vec![0.0; ts.len() * o.dim()];
+                o.eval_batch(&ts, &mut out)
+                    .map_err(|e| format!("{}: group {k}: {e}", input.display()))?;
+                Ok((ts, out, o.dim()))
+            });
+            (k, r)
+        })
+        .collect();
+    let mut ok = Vec::with_capacity(rows.len());
+    let mut dim = None;
+    for (k, r) in rows {
+        match r {
+            Ok((ts, pts, d)) => {
+                let names = header.get_or_insert_with(|| vec![d.to_string()]);
+                if *names == [d.to_string()] {
+                    dim = Some(d);
+                    ok.push((k, ts, pts));
+                } else {
+                    failed.push(format!(
+                        "{}: group {k}: a {d}-D curve among curves of another dimension; a samples file holds one dimension",
+                        input.display()
+                    ));
+                }
+            }
+            Err(e) => failed.push(e),
+        }
+    }
+    match dim {
+        Some(d) => writer.write_point_samples(group_column(), d, &ok),
+        None => Ok(()),
+    }
 }
 
 /// `lekalo convert`: curves between Parquet and JSON Lines.

@@ -1,0 +1,192 @@
+//! End to end: Parquet batches through `interpolate`, `eval` and `convert`, compared with the
+//! single-file path curve by curve, and the errors of bad groups and malformed files.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+mod common;
+
+use std::fs::{self, File};
+use std::path::Path;
+
+use common::{dir_with, lekalo, p};
+use lekalo::Points;
+use lekalo_io::{GroupKey, Object, ParquetBatchWriter};
+use predicates::str::contains;
+
+/// P&T Example 9.1's points (docs/theory/interpolation.md#test-vectors), moved and stretched by
+/// `k`.
+fn points(k: f64) -> Points {
+    let q = [
+        [0.0, 0.0],
+        [3.0, 4.0],
+        [-1.0, 4.0],
+        [-4.0, 0.0],
+        [-4.0, -3.0],
+    ];
+    let rows: Vec<[f64; 2]> = q
+        .iter()
+        .map(|r| [r[0] + k, r[1] * (1.0 + k / 7.0)])
+        .collect();
+    Points::from_rows(&rows).unwrap()
+}
+
+fn curves(path: &Path, key: &str) -> Vec<(GroupKey, Result<Object, String>)> {
+    let mut out = Vec::new();
+    lekalo_io::read_curve_groups(path, Some(key), |c| {
+        out.extend(
+            c.into_iter()
+                .map(|(k, o)| (k, o.map_err(|e| e.to_string()))),
+        );
+        Ok(())
+    })
+    .unwrap();
+    out
+}
+
+#[test]
+fn interpolate_eval_convert_a_batch() {
+    let d = dir_with(&[]);
+    let input = p(&d, "pts.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&input).unwrap());
+    let groups: Vec<(GroupKey, Points)> = (0..4)
+        .map(|k| {
+            (
+                GroupKey::Int(k),
+                points(f64::from(u8::try_from(k).unwrap())),
+            )
+        })
+        .collect();
+    w.write_points("scan", &["x", "y"], &groups[..3]).unwrap();
+    // a group of two points cannot carry a cubic: an error of that group only
+    w.write_points(
+        "scan",
+        &["x", "y"],
+        &[
+            (
+                GroupKey::Int(9),
+                Points::from_rows(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
+            ),
+            groups[3].clone(),
+        ],
+    )
+    .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let out = p(&d, "curves.parquet");
+    lekalo()
+        .args(["--group-column", "scan", "interpolate"])
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(contains("pts.parquet: group 9:"))
+        .stderr(contains("1 of 5 groups failed"));
+    let got = curves(&out, "scan");
+    assert_eq!(got.len(), 5);
+    for (k, pts) in &groups {
+        // the same curve as the single-file path, bit for bit
+        let csv = p(&d, "one.csv");
+        let text: String = pts
+            .iter()
+            .map(|q| format!("{:?},{:?}\n", q[0], q[1]))
+            .collect();
+        fs::write(&csv, text).unwrap();
+        let one = p(&d, "one.json");
+        lekalo()
+            .arg("interpolate")
+            .arg(&csv)
+            .arg("-o")
+            .arg(&one)
+            .assert()
+            .success();
+        let expect = Object::from_json_str(&fs::read_to_string(&one).unwrap(), "one").unwrap();
+        let (_, c) = got.iter().find(|(g, _)| g == k).unwrap();
+        assert_eq!(c.as_ref().unwrap(), &expect, "group {k}");
+    }
+    let (_, bad) = got.iter().find(|(g, _)| *g == GroupKey::Int(9)).unwrap();
+    assert!(
+        bad.as_ref().unwrap_err().contains("group 9: no curve"),
+        "{bad:?}"
+    );
+
+    // curves -> JSON Lines -> Parquet: the same curves
+    let jsonl = p(&d, "curves.jsonl");
+    lekalo()
+        .args(["--group-column", "scan", "convert"])
+        .arg(&out)
+        .arg("-o")
+        .arg(&jsonl)
+        .assert()
+        .code(2);
+    let text = fs::read_to_string(&jsonl).unwrap();
+    assert_eq!(text.lines().count(), 5);
+    assert!(
+        text.lines()
+            .nth(3)
+            .unwrap()
+            .contains("\"scan\":9,\"error\""),
+        "{text}"
+    );
+    let good: String = text
+        .lines()
+        .filter(|l| !l.contains("\"error\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    fs::write(&jsonl, good).unwrap();
+    let back = p(&d, "back.parquet");
+    lekalo()
+        .arg("convert")
+        .arg(&jsonl)
+        .arg("-o")
+        .arg(&back)
+        .assert()
+        .success();
+    let again = curves(&back, "line");
+    let ok: Vec<&Object> = got.iter().filter_map(|(_, c)| c.as_ref().ok()).collect();
+    assert_eq!(again.len(), ok.len());
+    for ((k, c), o) in again.iter().zip(&ok) {
+        assert_eq!(c.as_ref().unwrap(), *o, "line {k}");
+    }
+
+    // samples of every curve
+    let samples = p(&d, "samples.parquet");
+    lekalo()
+        .args(["eval"])
+        .arg(&back)
+        .args(["--samples", "7", "-o"])
+        .arg(&samples)
+        .args(["--group-column", "line"])
+        .assert()
+        .success();
+    assert!(fs::metadata(&samples).unwrap().len() > 0);
+}
+
+#[test]
+fn malformed_inputs_are_named() {
+    let d = dir_with(&[("bad.parquet", "not parquet at all")]);
+    lekalo()
+        .arg("interpolate")
+        .arg(p(&d, "bad.parquet"))
+        .arg("-o")
+        .arg(p(&d, "c.parquet"))
+        .assert()
+        .code(2)
+        .stderr(contains("bad.parquet: not a readable Parquet file"));
+    assert!(!p(&d, "c.parquet").exists(), "nothing half-written");
+    lekalo()
+        .arg("interpolate")
+        .arg(p(&d, "bad.parquet"))
+        .arg("-o")
+        .arg(p(&d, "c.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("give -o FILE.parquet"));
+    lekalo()
+        .arg("interpolate")
+        .arg(p(&d, "bad.parquet"))
+        .args(["--function", "-o"])
+        .arg(p(&d, "c.parquet"))
+        .assert()
+        .code(2)
+        .stderr(contains("--function"));
+}
