@@ -10,8 +10,8 @@ use rayon::prelude::*;
 /// Items formatted by one task.
 pub(crate) const BLOCK: usize = 1 << 14;
 
-/// Appends serde_json's text of `x` (shortest round trip: `1.0`, `0.1`, `1e-7`); the library's
-/// objects hold finite numbers only (`null` is serde_json's text for the others).
+/// Appends the text `serde_json` gives `x` (shortest round trip: `1.0`, `0.1`, `1e-7`); the
+/// library's objects hold finite numbers only (`null` is `serde_json`'s text for the others).
 pub(crate) fn push_json_number(out: &mut Vec<u8>, digits: &mut zmij::Buffer, x: f64) {
     out.extend_from_slice(if x.is_finite() {
         digits.format_finite(x).as_bytes()

@@ -29,7 +29,7 @@ pub fn fmt_number(x: f64) -> String {
 }
 
 /// Appends [`fmt_number`]'s text of `x` to `out`, with no allocation: the shortest digits come
-/// from `zmij` (the formatter serde_json uses, several times faster than `core::fmt`), then are
+/// from `zmij` (the formatter `serde_json` uses, several times faster than `core::fmt`), then are
 /// laid out plain or in exponent notation as [`fmt_number`] does.
 pub(crate) fn push_number(out: &mut Vec<u8>, digits: &mut zmij::Buffer, x: f64) {
     if x == 0.0 || !x.is_finite() {

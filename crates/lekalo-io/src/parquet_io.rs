@@ -803,7 +803,9 @@ pub fn read_curve_groups(
                 .column(ct)
                 .as_string_opt::<i32>()
                 .ok_or_else(|| bad("type"))?;
-            let degrees = Numbers::of(batch.column(cd).as_ref()).ok_or_else(|| bad("degree"))?;
+            let degrees = Keys::of(batch.column(cd).as_ref())
+                .filter(|k| matches!(k, Keys::I32(_) | Keys::I64(_)))
+                .ok_or_else(|| bad("degree"))?;
             let knots = batch
                 .column(ckn)
                 .as_list_opt::<i32>()
@@ -855,13 +857,17 @@ fn floats(a: &dyn Array, at: &Location, what: &str) -> IoResult<Vec<f64>> {
 fn curve_row(
     r: usize,
     kinds: &arrow_array::StringArray,
-    degrees: &Numbers<'_>,
+    degrees: &Keys<'_>,
     knots: &arrow_array::ListArray,
     control: &arrow_array::ListArray,
     weights: &arrow_array::ListArray,
     at: &Location,
 ) -> IoResult<Object> {
-    let kind = kinds.is_valid(r).then(|| kinds.value(r)).unwrap_or("");
+    let kind = if kinds.is_valid(r) {
+        kinds.value(r)
+    } else {
+        ""
+    };
     let rows = control.value(r);
     let rows = rows.as_list_opt::<i32>().ok_or_else(|| {
         IoError::syntax(
@@ -893,11 +899,11 @@ fn curve_row(
     let ctrl =
         lekalo::Points::from_flat(dim.unwrap_or(0), ctrl).map_err(|e| invalid("control", e))?;
     let degree = || {
-        degrees
-            .get(r)
-            .filter(|d| *d >= 0.0 && d.fract() == 0.0)
-            .map(|d| d as usize)
-            .ok_or_else(|| IoError::syntax(at.clone().at_field("degree"), "not a degree"))
+        match degrees.get(r) {
+            Some(GroupKey::Int(d)) => usize::try_from(d).ok(),
+            _ => None,
+        }
+        .ok_or_else(|| IoError::syntax(at.clone().at_field("degree"), "not a degree"))
     };
     let list = |l: &arrow_array::ListArray, what: &str| {
         if l.is_null(r) {

@@ -255,7 +255,7 @@ fn curves_round_trip_bit_for_bit() {
     let nu =
         Object::Nurbs(NurbsCurve::new(2, knots, ctrl.clone(), vec![1.0, 0.5, 2.0, 1e-3]).unwrap());
     let bz = Object::Bezier(lekalo::BezierCurve::new(ctrl).unwrap());
-    let rows = vec![
+    let rows = [
         (GroupKey::Str("b".into()), Ok(bs.clone())),
         (
             GroupKey::Str("bad".into()),

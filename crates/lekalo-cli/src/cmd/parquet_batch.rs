@@ -203,6 +203,9 @@ pub(crate) fn eval(
     finish(&failed, total, input)
 }
 
+/// The parameters, the points (flat) and the dimension of one curve's samples.
+type Sampled = (Vec<f64>, Vec<f64>, usize);
+
 /// Points only: each curve's samples by the library's batch evaluation into one flat buffer
 /// (no table rows), written as columns; the first curve's dimension is the file's.
 fn point_samples<W: std::io::Write + Send>(
@@ -213,7 +216,7 @@ fn point_samples<W: std::io::Write + Send>(
     header: &mut Option<Vec<String>>,
     failed: &mut Vec<String>,
 ) -> std::io::Result<()> {
-    let rows: Vec<(GroupKey, Result<(Vec<f64>, Vec<f64>, usize), String>)> = curves
+    let rows: Vec<(GroupKey, Result<Sampled, String>)> = curves
         .into_par_iter()
         .map(|(k, obj)| {
             let r = obj.map_err(|e| e.to_string()).and_then(|o| {
