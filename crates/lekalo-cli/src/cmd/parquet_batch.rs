@@ -51,6 +51,47 @@ fn finish(failed: &[String], total: usize, input: &Path) -> Result<()> {
     }
 }
 
+/// The Parquet writer of a batch, into the temporary file of an atomic write.
+type Writer<'w> = ParquetBatchWriter<&'w mut (dyn std::io::Write + Send)>;
+
+/// Writes `out` atomically: `fill` reads `input` and writes row groups, `empty` writes the
+/// layout of a batch that had no rows. An error of `fill` keeps its own kind (a bad input is
+/// exit code 2, not a failed write).
+fn write_parquet(
+    input: &Path,
+    out: &Path,
+    fill: impl FnOnce(&mut Writer<'_>) -> lekalo_io::IoResult<()>,
+    empty: impl FnOnce(&mut Writer<'_>) -> std::io::Result<()>,
+) -> Result<()> {
+    let mut input_error: Option<IoError> = None;
+    lekalo_io::write_atomic_send(
+        out,
+        &[input.to_path_buf()],
+        lekalo_io::WriteOptions {
+            force: settings().force,
+        },
+        |w| {
+            let mut writer = ParquetBatchWriter::new(w);
+            fill(&mut writer).map_err(|e| {
+                let msg = e.to_string();
+                input_error = Some(e);
+                std::io::Error::other(msg)
+            })?;
+            writer.close(empty)
+        },
+    )
+    .map_err(|e| input_error.take().unwrap_or(e))?;
+    Ok(())
+}
+
+/// A failed write of `out` as the formats crate's error.
+fn write_error(out: &Path) -> impl Fn(std::io::Error) -> IoError + '_ {
+    move |error| IoError::Write {
+        path: out.to_path_buf(),
+        error,
+    }
+}
+
 /// `lekalo interpolate points.parquet -o curves.parquet`: one curve per group.
 pub(crate) fn interpolate(
     input: &Path,
@@ -62,15 +103,10 @@ pub(crate) fn interpolate(
     let key = group_column();
     let mut failed = Vec::new();
     let mut total = 0usize;
-    let mut input_error: Option<IoError> = None;
-    lekalo_io::write_atomic_send(
+    write_parquet(
+        input,
         out,
-        &[input.to_path_buf()],
-        lekalo_io::WriteOptions {
-            force: settings().force,
-        },
-        |w| {
-            let mut writer = ParquetBatchWriter::new(w);
+        |writer| {
             lekalo_io::read_point_groups(input, Some(key), |groups| {
                 let rows: Vec<(GroupKey, Result<Object, String>)> = groups
                     .into_par_iter()
@@ -86,22 +122,11 @@ pub(crate) fn interpolate(
                     .collect();
                 total += rows.len();
                 failed.extend(rows.iter().filter_map(|(_, r)| r.as_ref().err().cloned()));
-                writer
-                    .write_curves(key, &rows)
-                    .map_err(|error| IoError::Write {
-                        path: out.to_path_buf(),
-                        error,
-                    })
+                writer.write_curves(key, &rows).map_err(write_error(out))
             })
-            .map_err(|e| {
-                let msg = e.to_string();
-                input_error = Some(e);
-                std::io::Error::other(msg)
-            })?;
-            writer.close(|w| w.write_curves(key, &[]))
         },
-    )
-    .map_err(|e| input_error.take().unwrap_or(e))?;
+        |w| w.write_curves(key, &[]),
+    )?;
     if v == Verbosity::Verbose {
         report(&format!(
             "wrote {} curves to {}",
@@ -124,24 +149,16 @@ pub(crate) fn eval(
     let key = group_column();
     let mut failed = Vec::new();
     let mut total = 0usize;
-    let mut input_error: Option<IoError> = None;
     let mut header: Option<Vec<String>> = None;
-    lekalo_io::write_atomic_send(
+    write_parquet(
+        input,
         out,
-        &[input.to_path_buf()],
-        lekalo_io::WriteOptions {
-            force: settings().force,
-        },
-        |w| {
-            let mut writer = ParquetBatchWriter::new(w);
+        |writer| {
             lekalo_io::read_curve_groups(input, Some(key), |curves| {
                 total += curves.len();
                 if spec.derivatives == 0 && !spec.curvature {
-                    return point_samples(curves, input, params, &mut writer, &mut header, &mut failed)
-                        .map_err(|error| IoError::Write {
-                            path: out.to_path_buf(),
-                            error,
-                        });
+                    return point_samples(curves, input, params, writer, &mut header, &mut failed)
+                        .map_err(write_error(out));
                 }
                 let tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)> = curves
                     .into_par_iter()
@@ -168,31 +185,17 @@ pub(crate) fn eval(
                         Err(e) => failed.push(e),
                     }
                 }
-                writer.write_samples(key, &ok).map_err(|error| IoError::Write {
-                    path: out.to_path_buf(),
-                    error,
-                })
-            })
-            .map_err(|e| {
-                let msg = e.to_string();
-                input_error = Some(e);
-                std::io::Error::other(msg)
-            })?;
-            writer.close(|w| {
-                w.write_samples(
-                    key,
-                    &[(
-                        GroupKey::Int(0),
-                        lekalo_io::SampleTable {
-                            header: vec!["t".into()],
-                            rows: Vec::new(),
-                        },
-                    )],
-                )
+                writer.write_samples(key, &ok).map_err(write_error(out))
             })
         },
-    )
-    .map_err(|e| input_error.take().unwrap_or(e))?;
+        |w| {
+            let empty = lekalo_io::SampleTable {
+                header: vec!["t".into()],
+                rows: Vec::new(),
+            };
+            w.write_samples(key, &[(GroupKey::Int(0), empty)])
+        },
+    )?;
     if v == Verbosity::Verbose {
         report(&format!(
             "wrote the samples of {} curves to {}",
@@ -290,17 +293,11 @@ pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<
         .iter()
         .filter_map(|(_, r)| r.as_ref().err().cloned())
         .collect();
-    lekalo_io::write_atomic_send(
+    write_parquet(
+        input,
         out,
-        &inputs,
-        lekalo_io::WriteOptions {
-            force: settings().force,
-        },
-        |w| {
-            let mut writer = ParquetBatchWriter::new(w);
-            writer.write_curves("line", &rows)?;
-            writer.close(|w| w.write_curves("line", &[]))
-        },
+        |writer| writer.write_curves("line", &rows).map_err(write_error(out)),
+        |w| w.write_curves("line", &[]),
     )?;
     finish(&failed, rows.len(), input)
 }
