@@ -103,6 +103,8 @@ enum Command {
     Intersect(cmd::intersect::IntersectArgs),
     /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
     Mesh(cmd::mesh::MeshArgs),
+    /// The browser editor: draw, drag and construct curves, backed by a local JSON API.
+    Serve(cmd::serve::ServeArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -171,6 +173,7 @@ fn main() -> ExitCode {
         Command::Project(a) => cmd::project::run(&a, verbosity),
         Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
         Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
+        Command::Serve(a) => cmd::serve::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

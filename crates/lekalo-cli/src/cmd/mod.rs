@@ -28,3 +28,5 @@ pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
 pub(crate) mod project;
+// the browser editor
+pub(crate) mod serve;
