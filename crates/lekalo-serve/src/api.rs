@@ -79,7 +79,7 @@ fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
 }
 
 /// 2-D points as the library's [`Points`], with the count bounded.
-fn points(rows: &[[f64; 2]], field: &str) -> ApiResult<Points> {
+fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
     if rows.len() > MAX_POINTS {
         return Err(ApiError::bad(
             field,
@@ -89,7 +89,16 @@ fn points(rows: &[[f64; 2]], field: &str) -> ApiResult<Points> {
             ),
         ));
     }
-    Points::from_2d(rows).map_err(|e| ApiError::lib(field, &e))
+    if let Some(i) = rows.iter().position(|r| r.len() != 2) {
+        return Err(ApiError::bad(
+            format!("{field}[{i}]"),
+            format!(
+                "point {i} has {} coordinates; the editor's points are (x, y)",
+                rows[i].len()
+            ),
+        ));
+    }
+    Points::from_rows(rows).map_err(|e| ApiError::lib(field, &e))
 }
 
 fn default_samples() -> usize {
@@ -408,7 +417,7 @@ fn default_degree() -> usize {
 
 #[derive(Debug, Deserialize)]
 struct InterpolateRequest {
-    points: Vec<[f64; 2]>,
+    points: Vec<Vec<f64>>,
     #[serde(default = "default_degree")]
     degree: usize,
     #[serde(default)]
@@ -536,7 +545,7 @@ pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
     let (out, deviation) = match r.op {
         BezierOp::Elevate => {
             let by = r.by.unwrap_or(1);
-            check_degree(c.degree() + by, "by")?;
+            check_degree(c.degree().saturating_add(by), "by")?;
             let e = c.elevate_degree(by).map_err(|e| ApiError::lib("by", &e))?;
             (e, None)
         }
@@ -623,7 +632,7 @@ fn bezier_of(obj: Object, field: &str) -> ApiResult<BezierCurve> {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CornersRequest {
-    points: Vec<[f64; 2]>,
+    points: Vec<Vec<f64>>,
     continuity: usize,
     #[serde(default)]
     closed: bool,
@@ -775,7 +784,7 @@ fn download(text: String, mime: &'static str, name: &str) -> Response {
 
 #[derive(Debug, Deserialize)]
 struct BuildRequest {
-    control: Vec<[f64; 2]>,
+    control: Vec<Vec<f64>>,
     degree: usize,
     #[serde(default)]
     knots: Option<Vec<f64>>,
@@ -821,7 +830,7 @@ pub(crate) async fn bspline(body: Bytes) -> ApiResult<Response> {
 pub(crate) async fn bezier_build(body: Bytes) -> ApiResult<Response> {
     #[derive(Deserialize)]
     struct Req {
-        control: Vec<[f64; 2]>,
+        control: Vec<Vec<f64>>,
         #[serde(flatten)]
         view: ViewOptionsFlat,
     }
