@@ -71,6 +71,22 @@ impl FloatArray<'_> {
     }
 }
 
+/// A grid of points `(nu, nv, dim)` (the last axis is the dimension): the points in grid order
+/// and `(nu, nv)`.
+pub(crate) fn grid_points<'a>(
+    a: &'a FloatArray<'_>,
+    what: &str,
+) -> PyResult<(PointsRef<'a>, (usize, usize))> {
+    let s = a.shape();
+    if s.len() != 3 {
+        return Err(bad(format!(
+            "{what}: expected a 3-D array (nu, nv, dim), got shape {s:?}"
+        )));
+    }
+    let p = PointsRef::from_flat(s[2], a.data()).map_err(lib_err)?;
+    Ok((p, (s[0], s[1])))
+}
+
 /// Refuses NaN and infinity with the index of the first offender.
 pub(crate) fn finite(data: &[f64], what: &str) -> PyResult<()> {
     match data.iter().position(|v| !v.is_finite()) {
