@@ -16,6 +16,24 @@ use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::{PyBSplineSurface, PyBezierSurface, PyNurbsSurface};
 
+/// `Self` prepared from the first listed class that `obj` is an instance of, by that class's
+/// function with the GIL released; a named error for any other object.
+macro_rules! prepare {
+    ($py:expr, $obj:expr, $what:literal, $expected:literal, $($class:ty => $make:expr),+ $(,)?) => {{
+        $(
+            if let Ok(x) = $obj.cast::<$class>() {
+                let x = &x.get().inner;
+                let inner = $py.detach(|| $make(x)).map_err(lib_err)?;
+                return Ok(Self { inner });
+            }
+        )+
+        Err(bad(format!(
+            concat!($what, ": expected ", $expected, ", got {}"),
+            $obj.get_type().name()?
+        )))
+    }};
+}
+
 /// Applies `f` to every number of the array-like `t` (any shape) and returns the results in an
 /// array of `t`'s shape (a Python float for a scalar `t`).
 fn map_params<F>(py: Python<'_>, t: &Bound<'_, PyAny>, what: &str, f: F) -> PyResult<Py<PyAny>>
@@ -96,23 +114,11 @@ pub(crate) struct PyCurveQuery {
 impl PyCurveQuery {
     #[new]
     fn new(py: Python<'_>, curve: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let inner = if let Ok(c) = curve.cast::<PyBSplineCurve>() {
-            let c = &c.get().inner;
-            py.detach(|| QueryCurve::from_bspline(c))
-        } else if let Ok(c) = curve.cast::<PyNurbsCurve>() {
-            let c = &c.get().inner;
-            py.detach(|| QueryCurve::from_nurbs(c))
-        } else if let Ok(c) = curve.cast::<PyBezierCurve>() {
-            let c = &c.get().inner;
-            py.detach(|| QueryCurve::from_bezier(c))
-        } else {
-            return Err(bad(format!(
-                "curve: expected a BezierCurve, BSplineCurve or NurbsCurve, got {}",
-                curve.get_type().name()?
-            )));
-        }
-        .map_err(lib_err)?;
-        Ok(PyCurveQuery { inner })
+        prepare!(py, curve, "curve", "a BezierCurve, BSplineCurve or NurbsCurve",
+            PyBSplineCurve => QueryCurve::from_bspline,
+            PyNurbsCurve => QueryCurve::from_nurbs,
+            PyBezierCurve => QueryCurve::from_bezier,
+        )
     }
 
     /// The parameter domain.
@@ -441,23 +447,11 @@ pub(crate) struct PySurfaceQuery {
 impl PySurfaceQuery {
     #[new]
     fn new(py: Python<'_>, surface: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let inner = if let Ok(s) = surface.cast::<PyBSplineSurface>() {
-            let s = &s.get().inner;
-            py.detach(|| QuerySurface::from_bspline(s))
-        } else if let Ok(s) = surface.cast::<PyNurbsSurface>() {
-            let s = &s.get().inner;
-            py.detach(|| QuerySurface::from_nurbs(s))
-        } else if let Ok(s) = surface.cast::<PyBezierSurface>() {
-            let b = s.get().inner.to_bspline();
-            py.detach(|| QuerySurface::from_bspline(&b))
-        } else {
-            return Err(bad(format!(
-                "surface: expected a BezierSurface, BSplineSurface or NurbsSurface, got {}",
-                surface.get_type().name()?
-            )));
-        }
-        .map_err(lib_err)?;
-        Ok(PySurfaceQuery { inner })
+        prepare!(py, surface, "surface", "a BezierSurface, BSplineSurface or NurbsSurface",
+            PyBSplineSurface => QuerySurface::from_bspline,
+            PyNurbsSurface => QuerySurface::from_nurbs,
+            PyBezierSurface => |s: &lekalo::BezierSurface| QuerySurface::from_bspline(&s.to_bspline()),
+        )
     }
 
     /// The dimension of the points.

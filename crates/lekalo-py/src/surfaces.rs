@@ -50,9 +50,19 @@ fn shape_of(text: &str) -> PyResult<Shape> {
 /// pickling and equality; the `knots` form adds the knot vectors, tensor-grid evaluation, knot
 /// insertion and splitting of the B-spline and NURBS surfaces.
 macro_rules! surface_common {
-    ($ty:ident, $variant:ident, $name:literal, knots, { $($extra:tt)* }) => {
+    ($ty:ident, $variant:ident, $name:literal, knots $curve:ident, { $($extra:tt)* }) => {
         surface_common!($ty, $variant, $name, {
             $($extra)*
+
+            /// The iso-curve `S(·, v)`.
+            fn iso_curve_u(&self, v: f64) -> PyResult<$curve> {
+                Ok($curve::wrap(self.inner.iso_curve_u(v).map_err(lib_err)?))
+            }
+
+            /// The iso-curve `S(u, ·)`.
+            fn iso_curve_v(&self, u: f64) -> PyResult<$curve> {
+                Ok($curve::wrap(self.inner.iso_curve_v(u).map_err(lib_err)?))
+            }
 
             /// The degrees `(p, q)`.
             #[getter]
@@ -350,7 +360,7 @@ pub(crate) struct PyBSplineSurface {
     pub(crate) inner: BSplineSurface,
 }
 
-surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots, {
+surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCurve, {
     #[new]
     fn new(
         degree_u: usize,
@@ -380,20 +390,6 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots, {
                 .map_err(lib_err)?,
         })
     }
-
-    /// The iso-curve `S(·, v)`.
-    fn iso_curve_u(&self, v: f64) -> PyResult<PyBSplineCurve> {
-        Ok(PyBSplineCurve::wrap(
-            self.inner.iso_curve_u(v).map_err(lib_err)?,
-        ))
-    }
-
-    /// The iso-curve `S(u, ·)`.
-    fn iso_curve_v(&self, u: f64) -> PyResult<PyBSplineCurve> {
-        Ok(PyBSplineCurve::wrap(
-            self.inner.iso_curve_v(u).map_err(lib_err)?,
-        ))
-    }
 });
 
 /// A tensor-product NURBS surface (docs/theory/surfaces.md).
@@ -402,7 +398,7 @@ pub(crate) struct PyNurbsSurface {
     pub(crate) inner: NurbsSurface,
 }
 
-surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots, {
+surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
     #[new]
     fn new(
         degree_u: usize,
@@ -440,19 +436,5 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots, {
     fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (nu, nv) = self.inner.net_size();
         array(py, self.inner.weights(), &[nu, nv])
-    }
-
-    /// The iso-curve `S(·, v)`.
-    fn iso_curve_u(&self, v: f64) -> PyResult<PyNurbsCurve> {
-        Ok(PyNurbsCurve::wrap(
-            self.inner.iso_curve_u(v).map_err(lib_err)?,
-        ))
-    }
-
-    /// The iso-curve `S(u, ·)`.
-    fn iso_curve_v(&self, u: f64) -> PyResult<PyNurbsCurve> {
-        Ok(PyNurbsCurve::wrap(
-            self.inner.iso_curve_v(u).map_err(lib_err)?,
-        ))
     }
 });
