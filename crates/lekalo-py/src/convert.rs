@@ -181,6 +181,32 @@ pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
     Ok(n)
 }
 
+/// A caller's output array `out` of exactly `shape`, float64 and C-contiguous, borrowed for
+/// writing (NumPy's `out=`): results go straight into it, with no allocation. An `out` that is
+/// also an input is refused by the borrow check.
+pub(crate) fn out_array<'py>(
+    out: &Bound<'py, PyAny>,
+    shape: &[usize],
+) -> PyResult<numpy::PyReadwriteArrayDyn<'py, f64>> {
+    let a = out
+        .cast::<PyArrayDyn<f64>>()
+        .map_err(|_| bad("out: expected a float64 NumPy array (np.empty(shape))".into()))?;
+    if a.shape() != shape {
+        return Err(bad(format!(
+            "out: expected shape {shape:?}, got {:?}",
+            a.shape()
+        )));
+    }
+    if !a.is_c_contiguous() {
+        return Err(bad("out: the array must be C-contiguous".into()));
+    }
+    a.try_readwrite().map_err(|e| {
+        bad(format!(
+            "out: the array is in use elsewhere, or is also an input ({e}); pass another array"
+        ))
+    })
+}
+
 /// A NumPy array of the given shape over `data` (moved, not copied).
 pub(crate) fn array<'py>(
     py: Python<'py>,

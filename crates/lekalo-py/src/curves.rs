@@ -12,12 +12,13 @@ use lekalo::{
     PiecewisePolynomial, Points,
 };
 use lekalo_io::{Object, Shape};
+use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{
-    array, check_size, floats, owned_points, points_array, points_into_array, vec1, vec_array,
-    FloatArray,
+    array, check_size, floats, out_array, owned_points, points_array, points_into_array, vec1,
+    vec_array, FloatArray,
 };
 use crate::error::{bad, io_err, lib_err};
 use crate::pp::PyPiecewisePolynomial;
@@ -157,6 +158,20 @@ pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, 
 /// of the B-spline and NURBS curves.
 macro_rules! curve_class {
     ($ty:ident, $variant:ident, $name:literal, knots, { $($extra:tt)* }) => {
+        impl $ty {
+            /// Points at `ts` into `out` with the kept evaluator; batches of at least
+            /// [`PAR_MIN`] parameters on the rayon pool (results identical to the sequential
+            /// ones).
+            fn evaluate_into(&self, ts: &[f64], out: &mut [f64]) -> lekalo::Result<()> {
+                let ev = self.evaluator();
+                if ts.len() >= PAR_MIN {
+                    ev.par_eval_batch(ts, out)
+                } else {
+                    ev.eval_batch(ts, out)
+                }
+            }
+        }
+
         curve_class!($ty, $variant, $name, {
             $($extra)*
 
@@ -174,38 +189,53 @@ macro_rules! curve_class {
 
             /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th
             /// derivative. Parameters outside the domain raise `lekalo.Error` (no
-            /// extrapolation).
-            #[pyo3(signature = (t, nu = 0))]
+            /// extrapolation). `out`, a float64 C-contiguous array of the result's shape, receives
+            /// the points without a new allocation (NumPy's `out=`; for repeated evaluation)
+            /// and is returned.
+            #[pyo3(signature = (t, nu = 0, *, out = None))]
             fn __call__(
                 &self,
                 py: Python<'_>,
                 t: &Bound<'_, PyAny>,
                 nu: usize,
+                out: Option<&Bound<'_, PyAny>>,
             ) -> PyResult<Py<PyAny>> {
                 if nu > 0 {
+                    if out.is_some() {
+                        return Err(bad("out: only for points (nu = 0)".into()));
+                    }
                     return pick_order(py, self.derivatives(py, t, nu)?, nu);
                 }
                 let dim = self.inner.dim();
                 let ta = floats(t, "t")?;
                 let ts = ta.data();
+                if let Some(o) = out {
+                    let mut rw = out_array(o, &out_shape(&ta, &[dim]))?;
+                    let buf = rw
+                        .as_slice_mut()
+                        .map_err(|e| bad(format!("out: {e}")))?;
+                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
+                    return Ok(o.clone().unbind());
+                }
                 if ta.scalar {
                     let mut out = vec![0.0; dim];
                     py.detach(|| self.inner.eval_into(ts[0], &mut out))
                         .map_err(lib_err)?;
                     return Ok(array(py, out, &[dim])?.unbind());
                 }
-                let n = check_size("t", &[ts.len(), dim])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
-                    let ev = self.evaluator();
-                    if ts.len() >= PAR_MIN {
-                        ev.par_eval_batch(ts, &mut out)
-                    } else {
-                        ev.eval_batch(ts, &mut out)
-                    }
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+                check_size("t", &[ts.len(), dim])?;
+                // the result is allocated by NumPy in its final shape and written in place
+                // (NumPy's allocator asks for huge pages for large arrays, which makes the
+                // first write of a fresh result several times cheaper than a `Vec`'s pages)
+                let arr = PyArrayDyn::<f64>::zeros(py, out_shape(&ta, &[dim]), false);
+                {
+                    let mut rw = arr.readwrite();
+                    let buf = rw
+                        .as_slice_mut()
+                        .map_err(|e| bad(format!("result: {e}")))?;
+                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
+                }
+                Ok(arr.into_any().unbind())
             }
 
             /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.

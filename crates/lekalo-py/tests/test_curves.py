@@ -264,3 +264,24 @@ def test_nurbs_shares_the_bspline_knot_operations():
     a, b = s.split_v(0.5)
     assert np.allclose(a(0.3, 0.2), s(0.3, 0.2), atol=1e-13) and np.allclose(b(0.3, 0.8), s(0.3, 0.8), atol=1e-13)
     assert repr(s).startswith("NurbsSurface(degrees=(1, 2), net=(2, 3)")
+
+
+def test_out_receives_the_points():
+    c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    b = lekalo.interpolate(np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float))
+    t = np.linspace(0, 1, 37)
+    for curve in (b, c):
+        buf = np.empty((37, 2))
+        got = curve(t, out=buf)
+        assert got is buf and np.array_equal(buf, curve(t))
+    with pytest.raises(lekalo.Error, match="shape"):
+        b(t, out=np.empty((36, 2)))
+    with pytest.raises(lekalo.Error, match="float64"):
+        b(t, out=np.empty((37, 2), dtype=np.float32))
+    with pytest.raises(lekalo.Error, match="C-contiguous"):
+        b(t, out=np.empty((2, 37)).T)
+    # an output that is also the input is refused, not silently overwritten while read
+    buf = np.zeros((4, 1))
+    one_d = lekalo.interpolate(np.array([0.0, 1.0, 0.5, 2.0]))
+    with pytest.raises(lekalo.Error, match="in use"):
+        one_d(buf[:, 0], out=buf)
