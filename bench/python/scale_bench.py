@@ -26,32 +26,27 @@ sys.path.insert(0, str(ROOT / "examples" / "scale"))
 import trajectories  # noqa: E402
 
 
-def dask_runs(data, out, workers):
-    import dask_fit
+def timed_runs(engine, data, out, workers):
+    """Runs of `engine` ("dask" or "spark") with `workers` workers: one warm-up (imports and
+    the first task on every worker), then timed runs, each output checked."""
+    if engine == "dask":
+        import dask_fit
 
-    client = dask_fit.local_client(workers)
+        client = dask_fit.local_client(workers)
+        run, close = (lambda: dask_fit.run(client, data, out)), client.close
+    else:
+        import spark_fit
+
+        spark = spark_fit.session(f"local[{workers}]")
+        run, close = (lambda: spark_fit.run(spark, data, out)), spark.stop
     try:
-        dask_fit.run(client, data, out)  # warm-up: imports and the first task on every worker
+        run()
         while True:
-            n, dt = dask_fit.run(client, data, out)
+            n, dt = run()
             trajectories.check_output(data, out)
             yield n, dt
     finally:
-        client.close()
-
-
-def spark_runs(data, out, workers):
-    import spark_fit
-
-    spark = spark_fit.session(f"local[{workers}]")
-    try:
-        spark_fit.run(spark, data, out)
-        while True:
-            n, dt = spark_fit.run(spark, data, out)
-            trajectories.check_output(data, out)
-            yield n, dt
-    finally:
-        spark.stop()
+        close()
 
 
 def spark_missing():
@@ -64,11 +59,11 @@ def spark_missing():
     return None
 
 
-def measure(name, runs, data, base, repeats):
+def measure(name, data, base, repeats):
     best = {}
     for workers in (1, 2):
         out = os.path.join(base, f"out-{name}-{workers}")
-        gen = runs(data, out, workers)
+        gen = timed_runs(name, data, out, workers)
         times = []
         for _ in range(repeats):
             n, dt = next(gen)
@@ -99,13 +94,13 @@ def main():
     print(f"{os.cpu_count()} processors; load average {os.getloadavg()[0]:.1f}", flush=True)
     engines = a.engines.split(",")
     if "dask" in engines:
-        measure("dask", dask_runs, data, base, a.repeats)
+        measure("dask", data, base, a.repeats)
     if "spark" in engines:
         why = spark_missing()
         if why:
             print(f"spark: skipped ({why})")
         else:
-            measure("spark", spark_runs, data, base, a.repeats)
+            measure("spark", data, base, a.repeats)
     print(f"load average after: {os.getloadavg()[0]:.1f}")
     if not a.keep:
         shutil.rmtree(base, ignore_errors=True)
