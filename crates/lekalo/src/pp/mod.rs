@@ -15,4 +15,6 @@ pub use divided_difference::{
     NewtonForm,
 };
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
-pub use quasi_interpolation::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+pub use quasi_interpolation::{
+    quasi_interpolate, sample_quasi_interpolant, QuasiSamples, Tau, TauRule,
+};
