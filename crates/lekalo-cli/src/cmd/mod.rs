@@ -27,12 +27,9 @@ pub(crate) mod fit;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
-<<<<<<< HEAD
 pub(crate) mod offset;
-=======
 // Parquet batches in interpolate, eval and convert
 pub(crate) mod parquet_batch;
->>>>>>> io
 pub(crate) mod project;
 // the browser editor
 pub(crate) mod serve;
