@@ -45,6 +45,7 @@ mod obj;
 mod object;
 mod object_ext;
 mod palette;
+#[cfg(feature = "parquet")]
 mod parquet_io;
 mod png;
 mod points_in;
@@ -77,6 +78,7 @@ pub use object_ext::{
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
 };
 pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
+#[cfg(feature = "parquet")]
 pub use parquet_io::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
 };
