@@ -101,8 +101,12 @@ enum Command {
     Project(cmd::project::ProjectArgs),
     /// Intersections of planar curves, self-intersections, curve–plane.
     Intersect(cmd::intersect::IntersectArgs),
+    /// The offset of a planar curve at a distance, with its cusps and loops found and trimmed.
+    Offset(cmd::offset::OffsetArgs),
     /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
     Mesh(cmd::mesh::MeshArgs),
+    /// The browser editor: draw, drag and construct curves, backed by a local JSON API.
+    Serve(cmd::serve::ServeArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -170,7 +174,9 @@ fn main() -> ExitCode {
         Command::Measure(a) => cmd::measure::run(&a, verbosity),
         Command::Project(a) => cmd::project::run(&a, verbosity),
         Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
+        Command::Offset(a) => cmd::offset::run(&a, verbosity),
         Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
+        Command::Serve(a) => cmd::serve::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

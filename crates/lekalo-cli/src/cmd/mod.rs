@@ -27,4 +27,7 @@ pub(crate) mod fit;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
+pub(crate) mod offset;
 pub(crate) mod project;
+// the browser editor
+pub(crate) mod serve;
