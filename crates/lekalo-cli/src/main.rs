@@ -47,6 +47,10 @@ pub(crate) struct Cli {
     /// reduction (docs/robustness.md).
     #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
     max_degree: usize,
+    /// The key column of a Parquet batch: the column that groups points into point sets, and
+    /// the key of each curve (docs/formats.md#parquet-batches).
+    #[arg(long, global = true, value_name = "NAME", default_value = lekalo_io::DEFAULT_KEY)]
+    group_column: String,
     #[command(subcommand)]
     command: Command,
 }
@@ -150,6 +154,7 @@ fn main() -> ExitCode {
         max_size: cli.max_size,
         max_degree: cli.max_degree,
     });
+    io::configure_group_column(cli.group_column.clone());
     let verbosity = if cli.quiet {
         Verbosity::Quiet
     } else if cli.verbose {
