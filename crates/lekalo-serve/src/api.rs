@@ -16,8 +16,8 @@ use axum::Json;
 use lekalo::basis::basis_functions;
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
-    EndCondition, EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas,
-    Parametrization, Points, SplineParameters,
+    EndCondition, EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization,
+    Points, SplineParameters,
 };
 use lekalo_io::Object;
 use serde::de::DeserializeOwned;
@@ -49,7 +49,10 @@ pub(crate) fn request_error(e: serde_path_to_error::Error<serde_json::Error>) ->
     if inner.is_syntax() || inner.is_eof() {
         return ApiError::bad("", format!("not valid JSON: {inner}"));
     }
-    ApiError::bad(if path == "." { String::new() } else { path }, inner.to_string())
+    ApiError::bad(
+        if path == "." { String::new() } else { path },
+        inner.to_string(),
+    )
 }
 
 /// A curve object in the CLI's format, read as the CLI reads a file named `field`.
@@ -281,7 +284,11 @@ fn principal_normal(d1: &[f64], d2: &[f64]) -> Option<Vec<f64>> {
     }
     let tangent: Vec<f64> = d1.iter().map(|x| x / len).collect();
     let along: f64 = d2.iter().zip(&tangent).map(|(a, b)| a * b).sum();
-    let n: Vec<f64> = d2.iter().zip(&tangent).map(|(a, b)| a - along * b).collect();
+    let n: Vec<f64> = d2
+        .iter()
+        .zip(&tangent)
+        .map(|(a, b)| a - along * b)
+        .collect();
     let nl = n.iter().map(|x| x * x).sum::<f64>().sqrt();
     (nl > 0.0 && nl.is_finite()).then(|| n.iter().map(|x| x / nl).collect())
 }
@@ -320,8 +327,7 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
     }
     let (active, active_values) = match at {
         Some(x) => {
-            let (span, vals) =
-                basis_functions(knots, p, x).map_err(|e| ApiError::lib("at", &e))?;
+            let (span, vals) = basis_functions(knots, p, x).map_err(|e| ApiError::lib("at", &e))?;
             ((span - p..=span).collect(), vals)
         }
         None => (Vec::new(), Vec::new()),
@@ -551,9 +557,7 @@ pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
         }
         BezierOp::ReduceExact => (c.reduce_degree_exact(), None),
         BezierOp::ReduceApprox => {
-            let target = r
-                .target
-                .unwrap_or_else(|| c.degree().saturating_sub(1));
+            let target = r.target.unwrap_or_else(|| c.degree().saturating_sub(1));
             check_degree(target, "target")?;
             let ends = match r.ends {
                 Ends::Free => EndConditions::Free,
@@ -723,14 +727,16 @@ pub(crate) async fn knot_remove(body: Bytes) -> ApiResult<Response> {
         let tol = r.tolerance.unwrap_or_else(|| c.default_removal_tolerance());
         c.remove_knot(r.t, r.times, tol)
     })?;
-    Ok(answer(json!({ "view": view(&out, &r.view.options())?, "removed": removed })))
+    Ok(answer(
+        json!({ "view": view(&out, &r.view.options())?, "removed": removed }),
+    ))
 }
 
 /// `POST /api/import`: the body is the CLI's JSON text of one curve; answers its drawing, or
 /// the CLI's error for it.
 pub(crate) async fn import(body: Bytes) -> ApiResult<Response> {
-    let text = std::str::from_utf8(&body)
-        .map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
+    let text =
+        std::str::from_utf8(&body).map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
     let obj = Object::from_json_str(text, "file").map_err(|e| ApiError::io("file", &e))?;
     Ok(answer(view(&obj, &ViewOptions::default())?))
 }
@@ -839,5 +845,7 @@ pub(crate) async fn bezier_build(body: Bytes) -> ApiResult<Response> {
         .map_err(|e| ApiError::lib("control", &e))?;
     let real = c.real_degree();
     let v = view(&Object::Bezier(c), &r.view.options())?;
-    Ok(answer(json!({ "view": v, "degree": v.degree, "real_degree": real, "deviation": null })))
+    Ok(answer(
+        json!({ "view": v, "degree": v.degree, "real_degree": real, "deviation": null }),
+    ))
 }

@@ -47,8 +47,8 @@ struct QuasiRequest {
 
 pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
     let de = &mut serde_json::Deserializer::from_slice(&body);
-    let r: QuasiRequest = serde_path_to_error::deserialize(de)
-        .map_err(crate::api::request_error)?;
+    let r: QuasiRequest =
+        serde_path_to_error::deserialize(de).map_err(crate::api::request_error)?;
     if r.breakpoints.len() > MAX_POINTS {
         return Err(ApiError::bad(
             "breakpoints",

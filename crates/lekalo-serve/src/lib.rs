@@ -54,7 +54,10 @@ const APP_CSS: &str = include_str!("../assets/app.css");
 /// The application: editor assets and the API under `/api/`, with the body and time limits.
 pub fn router(limits: Limits) -> Router {
     Router::new()
-        .route("/", get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }))
+        .route(
+            "/",
+            get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }),
+        )
         .route(
             "/app.js",
             get(|| async { asset(APP_JS, "text/javascript; charset=utf-8") }),
@@ -80,7 +83,9 @@ pub fn router(limits: Limits) -> Router {
         .fallback(|| async {
             (
                 StatusCode::NOT_FOUND,
-                axum::Json(serde_json::json!({"error": "no such page or API route", "field": null})),
+                axum::Json(
+                    serde_json::json!({"error": "no such page or API route", "field": null}),
+                ),
             )
         })
         .layer(DefaultBodyLimit::disable())

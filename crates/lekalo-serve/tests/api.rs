@@ -18,7 +18,11 @@ use lekalo_serve::{router, Limits};
 use serde_json::{json, Value};
 use tower::ServiceExt;
 
-async fn call_with(limits: Limits, route: &str, body: Body) -> (StatusCode, Value, Vec<(String, String)>) {
+async fn call_with(
+    limits: Limits,
+    route: &str,
+    body: Body,
+) -> (StatusCode, Value, Vec<(String, String)>) {
     let req = Request::post(route)
         .header(header::ORIGIN, "http://evil.example")
         .body(body)
@@ -31,9 +35,8 @@ async fn call_with(limits: Limits, route: &str, body: Body) -> (StatusCode, Valu
         .map(|(k, v)| (k.to_string(), v.to_str().unwrap_or("").to_string()))
         .collect();
     let bytes = resp.into_body().collect().await.expect("body").to_bytes();
-    let value = serde_json::from_slice(&bytes).unwrap_or(Value::String(
-        String::from_utf8_lossy(&bytes).into_owned(),
-    ));
+    let value = serde_json::from_slice(&bytes)
+        .unwrap_or(Value::String(String::from_utf8_lossy(&bytes).into_owned()));
     (status, value, headers)
 }
 
@@ -86,7 +89,10 @@ async fn evaluate_answers_the_library_s_points_knots_comb_and_basis() {
     let marks = v["knot_marks"].as_array().expect("marks");
     assert_eq!(marks.len(), 3);
     assert_eq!(marks[1]["multiplicity"], 1);
-    assert_eq!(rows(&json!([marks[1]["point"]]))[0], c.eval(1.0).expect("eval"));
+    assert_eq!(
+        rows(&json!([marks[1]["point"]]))[0],
+        c.eval(1.0).expect("eval")
+    );
     // curvature from the library's derivatives
     let d = c.eval_derivatives(0.5, 2).expect("derivatives");
     let k = lekalo::curvature(&d.as_slice()[2..4], &d.as_slice()[4..6]).expect("κ");
@@ -118,12 +124,24 @@ async fn interpolation_is_the_library_s() {
         .expect("interpolation");
     assert_eq!(v["curve"], Object::BSpline(c).to_json_value());
     for end in ["free", "natural", "periodic"] {
-        let v = ok("/api/interpolate", &json!({"points": p, "end": end, "samples": 3})).await;
+        let v = ok(
+            "/api/interpolate",
+            &json!({"points": p, "end": end, "samples": 3}),
+        )
+        .await;
         assert_eq!(v["degree"], 3, "{end}");
     }
-    let (field, msg) = bad("/api/interpolate", json!({"points": p, "end": "derivatives"}).to_string()).await;
+    let (field, msg) = bad(
+        "/api/interpolate",
+        json!({"points": p, "end": "derivatives"}).to_string(),
+    )
+    .await;
     assert_eq!(field, "start_derivative", "{msg}");
-    let (field, msg) = bad("/api/interpolate", json!({"points": p, "degree": 7}).to_string()).await;
+    let (field, msg) = bad(
+        "/api/interpolate",
+        json!({"points": p, "degree": 7}).to_string(),
+    )
+    .await;
     assert_eq!(field, "degree", "{msg}");
 }
 
@@ -132,19 +150,31 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     let ctrl = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]];
     let bez = BezierCurve::new(Points::from_2d(&ctrl).expect("points")).expect("curve");
     let obj = Object::Bezier(bez.clone()).to_json_value();
-    let v = ok("/api/bezier", &json!({"curve": obj, "op": "elevate", "by": 2})).await;
+    let v = ok(
+        "/api/bezier",
+        &json!({"curve": obj, "op": "elevate", "by": 2}),
+    )
+    .await;
     assert_eq!(
         v["view"]["curve"],
         Object::Bezier(bez.elevate_degree(2).expect("elevate")).to_json_value()
     );
-    assert_eq!((v["degree"].clone(), v["real_degree"].clone()), (json!(5), json!(3)));
+    assert_eq!(
+        (v["degree"].clone(), v["real_degree"].clone()),
+        (json!(5), json!(3))
+    );
     let v = ok(
         "/api/bezier",
         &json!({"curve": obj, "op": "reduce_approx", "target": 2, "ends": "points"}),
     )
     .await;
-    let r = bez.reduce_degree_approx(2, EndConditions::Points).expect("reduce");
-    assert_eq!(v["deviation"]["sampled"].as_f64(), Some(r.max_deviation_sampled));
+    let r = bez
+        .reduce_degree_approx(2, EndConditions::Points)
+        .expect("reduce");
+    assert_eq!(
+        v["deviation"]["sampled"].as_f64(),
+        Some(r.max_deviation_sampled)
+    );
     let (field, _) = bad(
         "/api/bezier",
         json!({"curve": obj, "op": "reduce_approx", "target": 1, "ends": "tangents"}).to_string(),
@@ -160,7 +190,10 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     )
     .await;
     let d = Deformation::new(&bez, &second, 2).expect("deformation");
-    assert_eq!(v["curve"], Object::Bezier(d.to_bezier().expect("exact")).to_json_value());
+    assert_eq!(
+        v["curve"],
+        Object::Bezier(d.to_bezier().expect("exact")).to_json_value()
+    );
     let (field, _) = bad(
         "/api/blend/deform",
         json!({"first": obj, "second": obj, "continuity": 0}).to_string(),
@@ -175,11 +208,19 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     assert_eq!(v["curve"]["type"], "nurbs_curve");
 
     let curve: Value = serde_json::from_str(CURVE).expect("json");
-    let v = ok("/api/knot/insert", &json!({"curve": curve, "t": 0.5, "times": 1})).await;
+    let v = ok(
+        "/api/knot/insert",
+        &json!({"curve": curve, "t": 0.5, "times": 1}),
+    )
+    .await;
     assert_eq!(v["control"].as_array().map(Vec::len), Some(5));
     let v = ok("/api/knot/remove", &json!({"curve": v["curve"], "t": 0.5})).await;
     assert_eq!(v["removed"], 1, "the inserted knot is removable");
-    let (field, msg) = bad("/api/knot/remove", json!({"curve": curve, "t": 0.3}).to_string()).await;
+    let (field, msg) = bad(
+        "/api/knot/remove",
+        json!({"curve": curve, "t": 0.3}).to_string(),
+    )
+    .await;
     assert_eq!(field, "t", "{msg}");
 }
 
@@ -209,7 +250,9 @@ async fn quasi_interpolation_of_a_typed_function_matches_the_cli() {
 async fn object_errors_are_the_cli_s_with_the_field() {
     let unsorted = CURVE.replace("[0, 0, 0, 1, 2, 2, 2]", "[0, 0, 0, 3, 2, 2, 2]");
     // the API reads the object from its compact text: the same reader, the same message
-    let compact = serde_json::from_str::<Value>(&unsorted).expect("json").to_string();
+    let compact = serde_json::from_str::<Value>(&unsorted)
+        .expect("json")
+        .to_string();
     let cli = Object::from_json_str(&compact, "curve").expect_err("unsorted");
     let (field, msg) = bad("/api/evaluate", format!("{{\"curve\": {unsorted}}}")).await;
     assert_eq!(field, "curve.knots");
@@ -227,13 +270,13 @@ async fn object_errors_are_the_cli_s_with_the_field() {
 #[tokio::test]
 async fn hostile_json_is_refused_with_a_named_error() {
     for (body, field) in [
-        ("{\"curve\": ", ""),                                          // truncated
-        ("not json", ""),                                              // not JSON
-        ("{\"points\": [[0, NaN]]}", ""),                              // NaN is not JSON
-        ("{\"points\": [[0, 1e999]], \"degree\": 1}", ""),             // overflows to inf
-        ("{\"points\": [[0, 1]], \"degree\": -1}", "degree"),          // negative size
-        ("{\"points\": [[0, 1, 2]]}", "points[0]"),                    // wrong dimension
-        ("{\"points\": \"x\"}", "points"),                             // wrong type
+        ("{\"curve\": ", ""),                                 // truncated
+        ("not json", ""),                                     // not JSON
+        ("{\"points\": [[0, NaN]]}", ""),                     // NaN is not JSON
+        ("{\"points\": [[0, 1e999]], \"degree\": 1}", ""),    // overflows to inf
+        ("{\"points\": [[0, 1]], \"degree\": -1}", "degree"), // negative size
+        ("{\"points\": [[0, 1, 2]]}", "points[0]"),           // wrong dimension
+        ("{\"points\": \"x\"}", "points"),                    // wrong type
     ] {
         let (f, msg) = bad("/api/interpolate", body).await;
         assert_eq!(f, field, "{body}: {msg}");
@@ -247,7 +290,11 @@ async fn hostile_json_is_refused_with_a_named_error() {
 #[tokio::test]
 async fn huge_sizes_are_refused() {
     let curve: Value = serde_json::from_str(CURVE).expect("json");
-    let (field, _) = bad("/api/evaluate", json!({"curve": curve, "samples": 1_000_000_000_u64}).to_string()).await;
+    let (field, _) = bad(
+        "/api/evaluate",
+        json!({"curve": curve, "samples": 1_000_000_000_u64}).to_string(),
+    )
+    .await;
     assert_eq!(field, "samples");
     let many = vec![[0.5, 0.5]; lekalo_serve::api::MAX_POINTS + 1];
     let (field, msg) = bad("/api/interpolate", json!({"points": many}).to_string()).await;
@@ -256,7 +303,8 @@ async fn huge_sizes_are_refused() {
     let (field, _) = bad(
         "/api/bezier",
         json!({"curve": {"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]},
-               "op": "elevate", "by": usize::MAX}).to_string(),
+               "op": "elevate", "by": usize::MAX})
+        .to_string(),
     )
     .await;
     assert_eq!(field, "by");
@@ -304,7 +352,9 @@ impl http_body::Body for Stalled {
             return Poll::Pending;
         }
         self.0 = true;
-        Poll::Ready(Some(Ok(http_body::Frame::data(axum::body::Bytes::from_static(b"{\"points\": [")))))
+        Poll::Ready(Some(Ok(http_body::Frame::data(
+            axum::body::Bytes::from_static(b"{\"points\": ["),
+        ))))
     }
 }
 
@@ -318,14 +368,18 @@ async fn a_slow_client_gets_408_and_others_are_served_meanwhile() {
     assert_eq!(s, StatusCode::REQUEST_TIMEOUT);
 
     // on loopback: a connection that stalls in its body does not block another one
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind");
     let addr = listener.local_addr().expect("addr");
     tokio::spawn(async move { axum::serve(listener, router(limits)).await });
     use tokio::io::{AsyncReadExt, AsyncWriteExt};
     let mut slow = tokio::net::TcpStream::connect(addr).await.expect("connect");
-    slow.write_all(b"POST /api/interpolate HTTP/1.1\r\nhost: x\r\ncontent-length: 100\r\n\r\n{\"po")
-        .await
-        .expect("write");
+    slow.write_all(
+        b"POST /api/interpolate HTTP/1.1\r\nhost: x\r\ncontent-length: 100\r\n\r\n{\"po",
+    )
+    .await
+    .expect("write");
     let mut fast = tokio::net::TcpStream::connect(addr).await.expect("connect");
     fast.write_all(b"GET /api/health HTTP/1.1\r\nhost: x\r\nconnection: close\r\n\r\n")
         .await
@@ -363,7 +417,9 @@ async fn raw(addr: std::net::SocketAddr, route: &str, body: &str) -> u16 {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bounded_load_on_loopback_every_request_answered() {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind");
     let addr = listener.local_addr().expect("addr");
     tokio::spawn(async move { axum::serve(listener, router(Limits::default())).await });
     let pts: Vec<[f64; 2]> = (0..100)

@@ -131,11 +131,7 @@ impl Parser<'_> {
     fn sum(&mut self) -> Result<Node> {
         self.enter()?;
         let mut left = self.product()?;
-        loop {
-            let op = match self.peek() {
-                Some(c @ ('+' | '-')) => c,
-                _ => break,
-            };
+        while let Some(op @ ('+' | '-')) = self.peek() {
             self.pos += 1;
             let right = self.product()?;
             left = Node::Bin(op, Box::new(left), Box::new(right));
@@ -226,7 +222,9 @@ impl Parser<'_> {
                     )));
                 };
                 if !self.eat('(') {
-                    return Err(self.error(&format!("\"{name}\" needs its argument in parentheses")));
+                    return Err(
+                        self.error(&format!("\"{name}\" needs its argument in parentheses"))
+                    );
                 }
                 let arg = self.sum()?;
                 if !self.eat(')') {
@@ -414,10 +412,10 @@ fn pow(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
     if is_const(b) {
         let e = b[0];
         // small non-negative integer powers by products: exact, and defined at a = 0
-        if e >= 0.0 && e.fract() == 0.0 && e <= 64.0 {
+        if let Some(times) = (0..=64u32).find(|&m| f64::from(m) == e) {
             let mut r = vec![0.0; n];
             r[0] = 1.0;
-            for _ in 0..(e as u32) {
+            for _ in 0..times {
                 r = mul(&r, a);
             }
             return Ok(r);
@@ -520,7 +518,11 @@ fn call(f: Func, a: &[f64]) -> Result<Vec<f64>> {
                     reason: format!(
                         "sqrt of {} has no {}; keep its argument positive",
                         a[0],
-                        if a[0] < 0.0 { "real value" } else { "derivative" }
+                        if a[0] < 0.0 {
+                            "real value"
+                        } else {
+                            "derivative"
+                        }
                     ),
                 });
             }
@@ -589,16 +591,33 @@ mod tests {
                     })
                     .collect()
             }),
-            ("exp(2*x)", (0..6).map(|r| 2f64.powi(r) * (2.0 * x).exp()).collect()),
+            (
+                "exp(2*x)",
+                (0..6).map(|r| 2f64.powi(r) * (2.0 * x).exp()).collect(),
+            ),
             (
                 "ln(x)",
-                vec![x.ln(), 1.0 / x, -1.0 / (x * x), 2.0 / x.powi(3), -6.0 / x.powi(4)],
+                vec![
+                    x.ln(),
+                    1.0 / x,
+                    -1.0 / (x * x),
+                    2.0 / x.powi(3),
+                    -6.0 / x.powi(4),
+                ],
             ),
             (
                 "sqrt(x)",
-                vec![x.sqrt(), 0.5 / x.sqrt(), -0.25 * x.powf(-1.5), 0.375 * x.powf(-2.5)],
+                vec![
+                    x.sqrt(),
+                    0.5 / x.sqrt(),
+                    -0.25 * x.powf(-1.5),
+                    0.375 * x.powf(-2.5),
+                ],
             ),
-            ("x^3 - 2*x", vec![x.powi(3) - 2.0 * x, 3.0 * x * x - 2.0, 6.0 * x, 6.0, 0.0]),
+            (
+                "x^3 - 2*x",
+                vec![x.powi(3) - 2.0 * x, 3.0 * x * x - 2.0, 6.0 * x, 6.0, 0.0],
+            ),
             ("1/(1+x^2)", {
                 let q = 1.0 + x * x;
                 vec![1.0 / q, -2.0 * x / (q * q), (6.0 * x * x - 2.0) / q.powi(3)]
@@ -612,9 +631,15 @@ mod tests {
                 vec![t, 1.0 + t * t, 2.0 * t * (1.0 + t * t)]
             }),
             ("x^x", vec![x.powf(x), x.powf(x) * (x.ln() + 1.0)]),
-            ("cosh(x) - sinh(x)", (0..5).map(|r| (-1f64).powi(r) * (-x).exp()).collect()),
+            (
+                "cosh(x) - sinh(x)",
+                (0..5).map(|r| (-1f64).powi(r) * (-x).exp()).collect(),
+            ),
             ("-x^2", vec![-x * x, -2.0 * x, -2.0]),
-            ("2^-1 + e - pi", vec![0.5 + std::f64::consts::E - std::f64::consts::PI, 0.0]),
+            (
+                "2^-1 + e - pi",
+                vec![0.5 + std::f64::consts::E - std::f64::consts::PI, 0.0],
+            ),
         ];
         for (text, want) in cases {
             let f = Expression::parse(text).unwrap();
@@ -651,10 +676,16 @@ mod tests {
         assert!(matches!(e, Error::NonFinite { .. }), "{e}");
         let e = Expression::parse("ln(x)").unwrap().eval(-1.0).unwrap_err();
         assert!(matches!(e, Error::NonFinite { .. }), "{e}");
-        let e = Expression::parse("sqrt(x)").unwrap().derivatives(0.0, 1).unwrap_err();
+        let e = Expression::parse("sqrt(x)")
+            .unwrap()
+            .derivatives(0.0, 1)
+            .unwrap_err();
         assert!(e.to_string().contains("sqrt"), "{e}");
         let f = Expression::parse("x").unwrap();
         assert!(f.eval(f64::NAN).is_err(), "NaN x");
-        assert!(f.derivatives(0.0, MAX_EXPRESSION_ORDER + 1).is_err(), "order limit");
+        assert!(
+            f.derivatives(0.0, MAX_EXPRESSION_ORDER + 1).is_err(),
+            "order limit"
+        );
     }
 }
