@@ -121,7 +121,7 @@ pub mod pp;
 pub use pp::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
     sample_quasi_interpolant, truncated_power, Expression, NewtonForm, PiecewisePolynomial,
-    PpSpace, QuasiSamples, TauRule, DEFAULT_CONTINUITY_RTOL, MAX_EXPRESSION_LEN,
+    PpSpace, QuasiSamples, Tau, TauRule, DEFAULT_CONTINUITY_RTOL, MAX_EXPRESSION_LEN,
     MAX_EXPRESSION_ORDER,
 };
 

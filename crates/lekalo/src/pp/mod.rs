@@ -17,4 +17,6 @@ pub use divided_difference::{
 };
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
-pub use quasi_interpolation::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+pub use quasi_interpolation::{
+    quasi_interpolate, sample_quasi_interpolant, QuasiSamples, Tau, TauRule,
+};
