@@ -92,12 +92,21 @@ test('B-spline: add points, drag one, change the degree; the drawn curve is the 
   await assertCurveIs(page, answer.points, 'after adding points');
 
   const before = await page.getAttribute('#curve', 'd');
+  await page.evaluate(() => {
+    window.__draws = 0;
+    new MutationObserver(() => { window.__draws++; }).observe(document.getElementById('curve'), { attributes: true });
+  });
   const [x, y] = await canvasToPage(page, s.control[2]);
   await page.mouse.move(x, y);
   await page.mouse.down();
-  await page.mouse.move(x + 40, y + 60, { steps: 8 });
+  for (let k = 1; k <= 8; k++) {
+    await page.mouse.move(x + 5 * k, y + 7.5 * k);
+    await idle(page);
+  }
   await page.mouse.up();
   await idle(page);
+  // the curve follows the pointer during the drag, not only at its end
+  assert.ok(await page.evaluate(() => window.__draws) >= 8, 'a redraw per pointer move');
   s = await page.evaluate(() => window.lekaloEditor.state.bspline);
   assert.notDeepEqual(s.control[2], answer.control[2], 'the dragged point moved');
   assert.notEqual(await page.getAttribute('#curve', 'd'), before, 'the curve changed');
@@ -208,11 +217,12 @@ test('Interpolation with end tangents, then periodic; quasi-interpolation with i
   const q = await page.evaluate(() => window.lekaloEditor.last);
   assert.ok(q.max_error > 0 && q.max_error < 0.5, `max error ${q.max_error}`);
   assert.ok((await page.getAttribute('#error-path', 'd')).length > 100, 'error plotted');
+  await shot(page, 'quasi', true);
   await page.fill('#qi-expr', 'sin(');
   await page.dispatchEvent('#qi-expr', 'input');
   await idle(page);
   assert.match(await page.textContent('[data-err="expression"]'), /invalid expression/);
-  await shot(page, 'quasi', true);
+  await shot(page, 'quasi-error', false);
 });
 
 let failed = 0;

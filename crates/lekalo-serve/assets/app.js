@@ -304,14 +304,24 @@ let selected = -1;
 
 function drawPoints() {
   const g = $('points');
-  g.textContent = '';
   const pts = editable();
   const cls = state.mode === 'interpolate' || state.mode === 'corners' ? 'data' : 'cp';
   const na = state.blend.a.length;
+  // the circles are kept while their number is unchanged: the one being dragged keeps its
+  // pointer capture across redraws
+  if (g.children.length !== pts.length) {
+    g.textContent = '';
+    pts.forEach((_, i) => {
+      const c = el('circle', { r: 6, 'data-index': i }, g);
+      c.addEventListener('pointerdown', (e) => startDrag(e, { kind: 'point', index: i }));
+    });
+  }
   pts.forEach((p, i) => {
-    const c = el('circle', { cx: sx(p[0]), cy: sy(p[1]), r: 6, class: cls + (i === selected ? ' selected' : '') +
-      (state.mode === 'blend' && i >= na ? ' second' : ''), 'data-index': i }, g);
-    c.addEventListener('pointerdown', (e) => startDrag(e, { kind: 'point', index: i }));
+    const c = g.children[i];
+    c.setAttribute('cx', sx(p[0]));
+    c.setAttribute('cy', sy(p[1]));
+    c.setAttribute('class', cls + (i === selected ? ' selected' : '') +
+      (state.mode === 'blend' && i >= na ? ' second' : ''));
   });
   const h = $('handles');
   h.textContent = '';
@@ -431,9 +441,9 @@ function startDrag(e, what) {
   if (e.altKey && what.kind === 'point') { deletePoint(what.index); return; }
   drag = what;
   if (what.kind === 'point') { selected = what.index; syncWeight(); }
-  e.target.setPointerCapture(e.pointerId);
-  e.target.addEventListener('pointermove', onDrag);
-  e.target.addEventListener('pointerup', endDrag, { once: true });
+  drag.element = e.target;
+  document.addEventListener('pointermove', onDrag);
+  document.addEventListener('pointerup', endDrag, { once: true });
 }
 
 function onDrag(e) {
@@ -459,14 +469,14 @@ function onDrag(e) {
   } else {
     setEditable(drag.index, p);
     // the dragged point follows the pointer at once; the curve follows the answer
-    e.target.setAttribute('cx', sx(p[0]));
-    e.target.setAttribute('cy', sy(p[1]));
+    drag.element.setAttribute('cx', sx(p[0]));
+    drag.element.setAttribute('cy', sy(p[1]));
   }
   update();
 }
 
-function endDrag(e) {
-  e.target.removeEventListener('pointermove', onDrag);
+function endDrag() {
+  document.removeEventListener('pointermove', onDrag);
   drag = null;
   commit();
 }

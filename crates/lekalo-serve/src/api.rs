@@ -456,12 +456,8 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
     let pair = |what: &str| -> ApiResult<(Vec<f64>, Vec<f64>)> {
         match (&r.start_derivative, &r.end_derivative) {
             (Some(s), Some(e)) => Ok((s.clone(), e.clone())),
-            (None, _) => Err(ApiError::bad(
-                "start_derivative",
-                format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
-            )),
-            (_, None) => Err(ApiError::bad(
-                "end_derivative",
+            (start, _) => Err(ApiError::bad(
+                if start.is_none() { "start_derivative" } else { "end_derivative" },
                 format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
             )),
         }

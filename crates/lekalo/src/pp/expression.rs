@@ -131,11 +131,7 @@ impl Parser<'_> {
     fn sum(&mut self) -> Result<Node> {
         self.enter()?;
         let mut left = self.product()?;
-        loop {
-            let op = match self.peek() {
-                Some(c @ ('+' | '-')) => c,
-                _ => break,
-            };
+        while let Some(op @ ('+' | '-')) = self.peek() {
             self.pos += 1;
             let right = self.product()?;
             left = Node::Bin(op, Box::new(left), Box::new(right));
@@ -416,10 +412,10 @@ fn pow(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
     if is_const(b) {
         let e = b[0];
         // small non-negative integer powers by products: exact, and defined at a = 0
-        if e >= 0.0 && e.fract() == 0.0 && e <= 64.0 {
+        if let Some(times) = (0..=64u32).find(|&m| f64::from(m) == e) {
             let mut r = vec![0.0; n];
             r[0] = 1.0;
-            for _ in 0..(e as u32) {
+            for _ in 0..times {
                 r = mul(&r, a);
             }
             return Ok(r);
