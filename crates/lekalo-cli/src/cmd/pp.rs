@@ -49,7 +49,7 @@ pub(crate) struct TauArgs {
     #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
     rule: Rule,
     /// Explicit τ values instead of a rule, one per B-spline, each inside its support
-    /// [x_i, x_(i+k)]: a comma-separated list or a file of one value per line.
+    /// `[x_i, x_(i+k)]`: a comma-separated list or a file of one value per line.
     #[arg(
         long,
         value_name = "LIST|FILE",
