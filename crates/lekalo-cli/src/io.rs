@@ -185,13 +185,18 @@ pub(crate) fn read_points(path: &Path) -> Result<(lekalo::Points, String)> {
         return Ok(lekalo_io::read_npy_file(path)?);
     }
     let (text, name) = lekalo_io::read_input(path)?;
+    Ok((points_from_text(&text, &name)?, name))
+}
+
+/// The points of the text of a points file named `name` (CSV, whitespace text, JSON), with
+/// `--header`.
+pub(crate) fn points_from_text(text: &str, name: &str) -> Result<lekalo::Points> {
     let header = match settings().header {
         HeaderArg::Auto => lekalo_io::Header::Auto,
         HeaderArg::Yes => lekalo_io::Header::Yes,
         HeaderArg::No => lekalo_io::Header::No,
     };
-    let pts = lekalo_io::read_points_with(&text, &name, header)?;
-    Ok((pts, name))
+    Ok(lekalo_io::read_points_with(text, name, header)?)
 }
 
 /// Exit code for bad input.
@@ -308,7 +313,7 @@ pub(crate) fn load_one(path: &Path, v: Verbosity) -> Result<Object> {
         Loaded::Other(s) => not_a_curve(path, &s),
         Loaded::Many(mut m) if m.len() == 1 => Ok(m.remove(0).1?),
         Loaded::Many(m) => bad_input(format!(
-            "{}: holds {} objects; this command takes one (use `lekalo convert` to split, or `eval`/`info` for batches)",
+            "{}: holds {} objects; this command takes one (keep one line of the file, e.g. `head -n 1 FILE > one.json`; `eval`, `info` and `convert` take whole batches)",
             path.display(),
             m.len()
         )),

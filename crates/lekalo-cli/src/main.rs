@@ -15,6 +15,7 @@ use clap::{Args, Parser, Subcommand};
 mod cmd;
 mod demo;
 mod io;
+mod terms;
 
 /// Construct, convert and analyse spline curves and surfaces.
 ///
@@ -187,7 +188,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if io::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            io::report(&format!("error: {e:#}"));
+            io::report(&terms::cli_terms(&format!("error: {e:#}")));
             ExitCode::from(io::exit_code(&e))
         }
     }

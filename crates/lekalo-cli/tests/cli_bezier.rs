@@ -2,18 +2,16 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
+mod common;
+
 use std::fs;
 
-use assert_cmd::Command;
+use common::lekalo;
 use predicates::str::contains;
 
 /// Document 004, Example 2: a formally quintic cubic.
 const QUINTIC: &str = r#"{"lekalo": 1, "type": "bezier_curve",
  "control": [[10, 0], [22, 6], [19, 12], [11, 15], [8, 12], [20, 0]]}"#;
-
-fn lekalo() -> Command {
-    Command::cargo_bin("lekalo").unwrap()
-}
 
 fn setup() -> tempfile::TempDir {
     let d = tempfile::tempdir().unwrap();
@@ -221,4 +219,40 @@ fn bad_input_exit_code_2_names_the_problem() {
         .assert()
         .code(2)
         .stderr(contains("degree"));
+}
+
+// The control points as a points file (CSV with a header, text, JSON list) give the same results,
+// bit for bit, as the bezier_curve object.
+#[test]
+fn control_points_file_as_input() {
+    let d = setup();
+    let files = [
+        ("q.csv", "x,y\n10,0\n22,6\n19,12\n11,15\n8,12\n20,0\n"),
+        ("q.txt", "10 0\n22 6\n19 12\n11 15\n8 12\n20 0\n"),
+        (
+            "q.points.json",
+            "[[10, 0], [22, 6], [19, 12], [11, 15], [8, 12], [20, 0]]",
+        ),
+    ];
+    let q = d.path().join("quintic.json");
+    for op in [
+        &["bezier", "real-degree", "--json"][..],
+        &["bezier", "reduce"],
+        &["bezier", "elevate", "--by", "2"],
+    ] {
+        let want = common::stdout_of(op, Some(&q));
+        for (name, text) in files {
+            let p = d.path().join(name);
+            fs::write(&p, text).unwrap();
+            assert_eq!(common::stdout_of(op, Some(&p)), want, "{op:?} {name}");
+        }
+    }
+    let one = d.path().join("one.csv");
+    fs::write(&one, "").unwrap();
+    lekalo()
+        .args(["bezier", "real-degree"])
+        .arg(&one)
+        .assert()
+        .code(2)
+        .stderr(contains("one.csv"));
 }

@@ -166,15 +166,7 @@ const KINKED: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
  "knots": [0, 0, 0, 1, 1, 2, 3, 3, 3], "control": [[0, 0], [1, 2], [2, 0], [3, 1], [4, 4], [5, 0]]}"#;
 
 fn curve_json(args: &[&str], input: &std::path::Path) -> serde_json::Value {
-    let out = lekalo()
-        .args(args)
-        .arg(input)
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    serde_json::from_slice(&out).unwrap()
+    serde_json::from_slice(&common::stdout_of(args, Some(input))).unwrap()
 }
 
 // Without --continuity, pp → B-spline infers ν (1 at the kink, 2 at the simple knot, as `info`
@@ -227,17 +219,7 @@ fn explicit_tau_values() {
         "--order",
         "3",
     ];
-    let run = |extra: &[&str]| {
-        lekalo()
-            .args(base)
-            .args(extra)
-            .arg("-q")
-            .assert()
-            .success()
-            .get_output()
-            .stdout
-            .clone()
-    };
+    let run = |extra: &[&str]| common::stdout_of(&[&base[..], extra, &["-q"]].concat(), None);
     // knots 0 0 0 1 2 2 2: first non-empty intervals (0,1) (0,1) (0,1) (1,2)
     let by_rule = run(&["--rule", "first-interval-midpoint"]);
     let by_values = run(&["--tau", "0.5,0.5,0.5,1.5"]);

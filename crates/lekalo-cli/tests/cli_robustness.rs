@@ -9,6 +9,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
+use predicates::prelude::PredicateBooleanExt as _;
 use predicates::str::contains;
 
 mod common;
@@ -639,4 +640,17 @@ fn info_and_convert_of_a_large_curve_stay_within_a_memory_limit() {
         let (code, err) = run_limited(d.path(), kib, args);
         assert_eq!(code, 0, "{args:?}: {err}");
     }
+}
+
+// Hints name the command line's options, not the library's items.
+#[test]
+fn hints_name_options_not_library_items() {
+    let d = dir_with(&[("p.txt", "0 0\n1 1\n2 0\n3 1\n4 4\n")]);
+    lekalo()
+        .args(["interpolate", "--knots", "uniform", "--end", "natural"])
+        .arg(p(&d, "p.txt"))
+        .assert()
+        .code(2)
+        .stderr(contains("use --knots auto"))
+        .stderr(contains("KnotPlacement").not());
 }

@@ -14,8 +14,9 @@ use crate::Verbosity;
 /// The input of a `bezier` operation: a curve object, or a surface net.
 #[derive(Args, Debug)]
 pub(crate) struct BezierInput {
-    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), or nothing with
-    /// --surface.
+    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), or the control
+    /// points of a Bezier curve as a points file (CSV, text, JSON list, .npy; degree = number of
+    /// points − 1), or nothing with --surface.
     input: Option<PathBuf>,
     /// A Bezier surface: its control net as a points file, read row by row (with --net).
     #[arg(long, value_name = "FILE", requires = "net")]
@@ -109,11 +110,13 @@ Examples:
 /// Arguments of `lekalo bezier`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
-Curves are read as Bezier curve objects (make one with `lekalo make bezier --control pts.csv`);
-surfaces as a points file of the control net, row by row, with --net ROWSxCOLS.
+Curves are read as Bezier curve objects, or directly as a points file of their control points
+(CSV, text, JSON list or .npy; the degree is the number of points minus one); surfaces as a
+surface object, or a points file of the control net, row by row, with --net ROWSxCOLS.
 
 Examples:
   lekalo bezier real-degree quintic.json
+  lekalo bezier real-degree control.csv           # the control points of a Bezier curve
   lekalo bezier reduce quintic.json -o cubic.json
   lekalo bezier elevate cubic.json --by 2
   lekalo bezier change --surface net.csv --net 5x4 --degree 3,6 -o s.step")]
@@ -131,12 +134,26 @@ enum Loaded {
 fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
     match (&i.input, &i.surface, &i.net) {
         (Some(p), None, None) => {
-            let (text, name) = lekalo_io::read_input(p)?;
-            if lekalo_io::envelope_type(&text).as_deref() == Some("bezier_surface") {
-                let s = lekalo_io::read_bezier_surface(&text, &name)?;
-                return Ok(Loaded::Surface(s, p.clone()));
+            if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
+                let (pts, _) = crate::io::read_points(p)?;
+                return Ok(Loaded::Curve(BezierCurve::new(pts)?, p.clone()));
             }
-            load_curve(p, v)
+            let (text, name) = lekalo_io::read_input(p)?;
+            match lekalo_io::envelope_type(&text).as_deref() {
+                Some("bezier_surface") => {
+                    let s = lekalo_io::read_bezier_surface(&text, &name)?;
+                    Ok(Loaded::Surface(s, p.clone()))
+                }
+                // not an object: a points file of the control points
+                None if !lekalo_io::strip_bom_str(&text)
+                    .trim_start()
+                    .starts_with('{') =>
+                {
+                    let pts = crate::io::points_from_text(&text, &name)?;
+                    Ok(Loaded::Curve(BezierCurve::new(pts)?, p.clone()))
+                }
+                _ => load_curve(p, v),
+            }
         }
         (None, Some(p), Some(net)) => {
             let (rows, cols) = net_size(net, "--net")?;
@@ -158,7 +175,7 @@ fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
         Object::Bezier(c) => Ok(Loaded::Curve(c, p.to_path_buf())),
         Object::BSpline(c) => Ok(Loaded::BSpline(c, p.to_path_buf())),
         other => bad_input(format!(
-            "{}: is a {}; `lekalo bezier` takes a Bezier curve or surface (or --surface with --net)",
+            "{}: is a {}; `lekalo bezier` takes a Bezier curve or surface, a points file of control points, or --surface with --net",
             p.display(),
             other.display_name()
         )),
@@ -185,7 +202,7 @@ fn guard(l: Loaded, what: &str) -> Result<Loaded> {
 fn not_bezier() -> Result<()> {
     bad_input(
         "this operation takes a Bezier curve or surface; a B-spline curve can only be elevated \
-         (split it into Bezier pieces with `lekalo convert` first)",
+         (split it into Bezier pieces with `lekalo knot decompose` first)",
     )
 }
 

@@ -48,8 +48,9 @@ pub(crate) struct TauArgs {
     /// τ rule of the de Boor–Fix functionals.
     #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
     rule: Rule,
-    /// Explicit τ values instead of a rule, one per B-spline, each inside its support
-    /// `[x_i, x_(i+k)]`: a comma-separated list or a file of one value per line.
+    /// Explicit τ values instead of a rule, one per B-spline, each inside the support of its
+    /// B-spline (from knot i to knot i + k): a comma-separated list or a file of one value per
+    /// line.
     #[arg(
         long,
         value_name = "LIST|FILE",

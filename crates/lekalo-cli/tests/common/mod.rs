@@ -27,3 +27,13 @@ pub(crate) fn dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
 pub(crate) fn p(d: &tempfile::TempDir, name: &str) -> PathBuf {
     d.path().join(name)
 }
+
+/// The standard output of `lekalo ARGS [FILE]`, which must succeed.
+pub(crate) fn stdout_of(args: &[&str], file: Option<&std::path::Path>) -> Vec<u8> {
+    let mut cmd = lekalo();
+    cmd.args(args);
+    if let Some(f) = file {
+        cmd.arg(f);
+    }
+    cmd.assert().success().get_output().stdout.clone()
+}
