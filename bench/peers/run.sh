@@ -64,3 +64,25 @@ fi
 # the mean of the two, so that a slow spell of the shared machine does not fall on one side only
 "$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench \
   "${occt_bench[@]}"
+
+# The geometric queries (crates/lekalo/benches/query.rs) against Open CASCADE in C++:
+# bench/peers/occt_queries.cpp times projection, arc length, parameter at length, intersection and
+# meshing on the same objects. It needs the same headers and, for meshing, TKMesh, TKTopAlgo and
+# TKBRep (Debian: apt-get install libocct-modeling-algorithms-dev libocct-modeling-data-dev);
+# without them it is skipped with a note. Compare with `cargo bench -p lekalo --bench query`.
+if [ -f "$occt_include/GeomAPI_ProjectPointOnCurve.hxx" ] && command -v g++ >/dev/null; then
+  mkdir -p target/peers-occt
+  occt_lib=()
+  if [ -n "${OCCT_LIB:-}" ]; then occt_lib=(-L"$OCCT_LIB" -Wl,-rpath,"$OCCT_LIB"); fi
+  if g++ -O2 -std=c++17 -Wno-deprecated-declarations -I"$occt_include" \
+      bench/peers/occt_queries.cpp -o target/peers-occt/occt_queries "${occt_lib[@]}" \
+      -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
+  then
+    target/peers-occt/occt_queries "$repeats"
+  else
+    echo "peers: occt_queries.cpp did not build against $occt_include; query peers skipped" >&2
+  fi
+else
+  echo "peers: no Open CASCADE headers in $occt_include (Debian: apt-get install" \
+    "libocct-modeling-algorithms-dev libocct-modeling-data-dev); query peers skipped" >&2
+fi
