@@ -43,24 +43,42 @@ cargo build --quiet --release -p lekalo --example peer_bench
 target/release/examples/peer_bench "$data" "$repeats"
 
 occt_include=${OCCT_INCLUDE:-/usr/include/opencascade}
-occt_bench=()
-if [ -f "$occt_include/GeomAPI_Interpolate.hxx" ] && command -v g++ >/dev/null; then
-  mkdir -p target/peers-occt
-  occt_lib=()
-  if [ -n "${OCCT_LIB:-}" ]; then occt_lib=(-L"$OCCT_LIB" -Wl,-rpath,"$OCCT_LIB"); fi
-  if g++ -O2 -std=c++17 -Wno-deprecated-declarations -I"$occt_include" \
-      bench/peers/occt_bench.cpp -o target/peers-occt/occt_bench "${occt_lib[@]}" \
-      -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
-    occt_bench=(target/peers-occt/occt_bench)
-  else
-    echo "peers: occt_bench.cpp did not build against $occt_include; C++ Open CASCADE skipped" >&2
+# occt_build NAME HEADER LIBS...: builds bench/peers/NAME.cpp into target/peers-occt/NAME when
+# HEADER is installed; otherwise (or if it does not build) says why and how, and fails
+occt_build() {
+  local name=$1 header=$2
+  shift 2
+  if ! [ -f "$occt_include/$header" ] || ! command -v g++ >/dev/null; then
+    echo "peers: no Open CASCADE headers in $occt_include (Debian: apt-get install" \
+      "libocct-modeling-algorithms-dev libocct-modeling-data-dev); $name skipped" >&2
+    return 1
   fi
-else
-  echo "peers: no Open CASCADE headers in $occt_include (Debian: apt-get install" \
-    "libocct-modeling-algorithms-dev libocct-modeling-data-dev); C++ Open CASCADE skipped" >&2
+  mkdir -p target/peers-occt
+  local occt_lib=()
+  if [ -n "${OCCT_LIB:-}" ]; then occt_lib=(-L"$OCCT_LIB" -Wl,-rpath,"$OCCT_LIB"); fi
+  g++ -O2 -std=c++17 -Wno-deprecated-declarations -I"$occt_include" \
+    "bench/peers/$name.cpp" -o "target/peers-occt/$name" "${occt_lib[@]}" "$@" || {
+    echo "peers: $name.cpp did not build against $occt_include; $name skipped" >&2
+    return 1
+  }
+}
+occt_bench=()
+if occt_build occt_bench GeomAPI_Interpolate.hxx \
+    -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
+  occt_bench=(target/peers-occt/occt_bench)
 fi
 
 # peers.py times lekalo again just before and just after each workload's peers: the ratios use
 # the mean of the two, so that a slow spell of the shared machine does not fall on one side only
 "$venv/bin/python" bench/peers/peers.py "$data" "$repeats" target/release/examples/peer_bench \
   "${occt_bench[@]}"
+
+# The geometric queries (crates/lekalo/benches/query.rs) against Open CASCADE in C++:
+# bench/peers/occt_queries.cpp times projection, arc length, parameter at length, intersection and
+# meshing on the same objects. It needs the same headers and, for meshing, TKMesh, TKTopAlgo and
+# TKBRep (Debian: apt-get install libocct-modeling-algorithms-dev libocct-modeling-data-dev);
+# without them it is skipped with a note. Compare with `cargo bench -p lekalo --bench query`.
+if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo -lTKBRep \
+    -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
+  target/peers-occt/occt_queries "$repeats"
+fi

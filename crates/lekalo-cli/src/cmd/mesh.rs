@@ -16,8 +16,8 @@ use crate::Verbosity;
 /// Arguments of `lekalo mesh`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
-Surfaces (polynomial): a triangle mesh whose deviation from the surface is at most the
-tolerance, a bound proved from the control net. Curves: a polyline within the tolerance. The
+Surfaces (B-spline, Bezier or NURBS): a triangle mesh whose deviation from the surface is at most
+the tolerance, a bound proved from the control net (and the weights). Curves: a polyline within the tolerance. The
 format follows the output's extension (.obj, .stl, .ply) or --format; --json prints the counts
 and the bound instead of writing geometry to standard output.
 
