@@ -43,15 +43,46 @@ def row(work, ours_s, scipy_s, units, note=""):
     )
 
 
+def mid_sizes(rng, repeats):
+    """Per-call times where the binding's fixed costs show: evaluation of the 1000-control-point
+    cubic at 10^3..10^5 sorted parameters and interpolation through 10^3..10^5 points. The Rust
+    figures to set beside them are criterion's `eval_sorted` (2.6 ns a point, 10^6) and
+    `curve_interpolation_cubic_3d` fresh (18.7 µs / 157 µs / 1.73 ms at 10^3 / 10^4 / 10^5),
+    docs/performance.md."""
+    k = 1000
+    knots = np.concatenate([[0] * 4, np.linspace(0, 1, k - 2)[1:-1], [1] * 4])
+    ctrl = rng.standard_normal((k, 3))
+    c = lekalo.BSplineCurve(3, knots, ctrl)
+    ref = si.BSpline(knots, ctrl, 3)
+    for n in (1_000, 10_000, 100_000):
+        t = np.linspace(0, 1, n)
+        reps = max(repeats, 2_000_000 // n)
+        ours = median_s(lambda: c(t), reps)
+        row(f"eval sorted, {n}, K=1000", ours, median_s(lambda: ref(t), reps), n, f"{ours * 1e6:.1f} us a call")
+    for n in (1_000, 10_000, 100_000):
+        q = np.cumsum(rng.standard_normal((n, 3)), axis=0)
+        u = lekalo.parametrize(q)
+        kn = lekalo.interpolate(q, 3).knots
+        reps = max(repeats, 200_000 // n)
+        ours = median_s(lambda: lekalo.interpolate(q, 3), reps)
+        theirs = median_s(lambda: si.make_interp_spline(u, q, k=3, t=kn), reps)
+        row(f"interpolation {n} (t = ours)", ours, theirs, n, f"{ours * 1e6:.1f} us a call")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--batch", type=int, default=100_000)
     ap.add_argument("--loop", type=int, default=5000)
+    ap.add_argument("--mid-only", action="store_true", help="only the mid-size rows (10^3 to 10^5)")
     a = ap.parse_args()
     rng = np.random.default_rng(1)
     print(f"lekalo {lekalo.__file__}; numpy {np.__version__}; scipy {__import__('scipy').__version__}; "
-          f"{os.cpu_count()} processors; RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', '-')}")
+          f"{os.cpu_count()} processors; RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', '-')}; "
+          f"load average {os.getloadavg()[0]:.1f}")
+    mid_sizes(rng, a.repeats)
+    if a.mid_only:
+        return
 
     # -- scalar evaluation overhead
     k = 1000

@@ -38,6 +38,20 @@ pub(crate) struct Settings {
 
 static SETTINGS: OnceLock<Settings> = OnceLock::new();
 
+static GROUP_COLUMN: OnceLock<String> = OnceLock::new();
+
+/// Records `--group-column` (once, from `main`).
+pub(crate) fn configure_group_column(name: String) {
+    let _ = GROUP_COLUMN.set(name);
+}
+
+/// The key column of Parquet batches (`--group-column`).
+pub(crate) fn group_column() -> &'static str {
+    GROUP_COLUMN
+        .get()
+        .map_or(lekalo_io::DEFAULT_KEY, String::as_str)
+}
+
 /// Records the global options (once, from `main`).
 pub(crate) fn configure(s: Settings) {
     let _ = SETTINGS.set(s);

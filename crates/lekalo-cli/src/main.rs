@@ -47,6 +47,10 @@ pub(crate) struct Cli {
     /// reduction (docs/robustness.md).
     #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
     max_degree: usize,
+    /// The key column of a Parquet batch: the column that groups points into point sets, and
+    /// the key of each curve (docs/formats.md#parquet-batches).
+    #[arg(long, global = true, value_name = "NAME", default_value = lekalo_io::DEFAULT_KEY)]
+    group_column: String,
     #[command(subcommand)]
     command: Command,
 }
@@ -101,8 +105,12 @@ enum Command {
     Project(cmd::project::ProjectArgs),
     /// Intersections of planar curves, self-intersections, curve–plane.
     Intersect(cmd::intersect::IntersectArgs),
+    /// The offset of a planar curve at a distance, with its cusps and loops found and trimmed.
+    Offset(cmd::offset::OffsetArgs),
     /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
     Mesh(cmd::mesh::MeshArgs),
+    /// The browser editor: draw, drag and construct curves, backed by a local JSON API.
+    Serve(cmd::serve::ServeArgs),
 }
 
 /// Arguments of `lekalo demo`.
@@ -146,6 +154,7 @@ fn main() -> ExitCode {
         max_size: cli.max_size,
         max_degree: cli.max_degree,
     });
+    io::configure_group_column(cli.group_column.clone());
     let verbosity = if cli.quiet {
         Verbosity::Quiet
     } else if cli.verbose {
@@ -170,7 +179,9 @@ fn main() -> ExitCode {
         Command::Measure(a) => cmd::measure::run(&a, verbosity),
         Command::Project(a) => cmd::project::run(&a, verbosity),
         Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
+        Command::Offset(a) => cmd::offset::run(&a, verbosity),
         Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
+        Command::Serve(a) => cmd::serve::run(&a, verbosity),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,4 +1,5 @@
-//! End-to-end tests of the geometric-query subcommands: measure, project, intersect, mesh.
+//! End-to-end tests of the geometric-query subcommands: measure, project, intersect, offset,
+//! mesh.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -18,6 +19,15 @@ const LINE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
 /// A cubic with a loop.
 const LOOP: &str =
     r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [3, 2], [-1, 2], [2, 0]]}"#;
+/// The parabola y = x² on [−1, 1] (t = (x + 1)/2): radius of curvature 1/2 at the vertex.
+const PARABOLA: &str =
+    r#"{"lekalo": 1, "type": "bezier_curve", "control": [[-1, 1], [0, -1], [1, 1]]}"#;
+/// A gently curved planar cubic (curvature well below 10 everywhere).
+const WAVE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 3,
+ "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1], "control": [[0, 0], [1, 1], [2, -0.5], [3, 0.5], [4, 0]]}"#;
+/// A space curve (no offset).
+const SPACE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
+ "knots": [0, 0, 1, 1], "control": [[0, 0, 0], [1, 1, 1]]}"#;
 /// z = x² over [0, 1]², bilinear in y.
 const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 1,
  "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "net": [3, 2],
@@ -156,4 +166,157 @@ fn mesh_writes_obj_stl_and_reports_the_bound() {
         .assert()
         .success()
         .stdout(contains("l 1 2 3"));
+}
+
+/// Runs `lekalo args…` and returns its standard output, failing with its standard error.
+fn stdout_of(args: &[&std::ffi::OsStr]) -> Vec<u8> {
+    let out = lekalo().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// The B-spline curve of a JSON object.
+fn curve_of(j: &serde_json::Value) -> lekalo::BSplineCurve {
+    match lekalo_io::Shape::from_json_str(&j.to_string(), "test").unwrap() {
+        lekalo_io::Shape::Curve(lekalo_io::Object::BSpline(c)) => c,
+        other => panic!("not a B-spline curve: {}", other.type_name()),
+    }
+}
+
+#[test]
+fn offset_is_at_the_distance_within_the_tolerance() {
+    let d = dir_with(&[("wave.json", WAVE)]);
+    let wave = curve_of(&serde_json::from_str(WAVE).unwrap());
+    let base = lekalo::QueryCurve::from_bspline(&wave).unwrap();
+    for dist in [0.05_f64, -0.05] {
+        let out = p(&d, "off.json");
+        stdout_of(&[
+            "offset".as_ref(),
+            "--distance".as_ref(),
+            dist.to_string().as_ref(),
+            "--tolerance".as_ref(),
+            "1e-7".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+            p(&d, "wave.json").as_os_str(),
+        ]);
+        let j: serde_json::Value =
+            serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
+        let c = curve_of(&j);
+        let (a, b) = c.domain();
+        for i in 0..=200 {
+            let t = a + (b - a) * f64::from(i) / 200.0;
+            let q = c.eval(t).unwrap();
+            let pr = base.project(&q).unwrap();
+            assert!(
+                (pr.distance - dist.abs()).abs() <= 1e-7 * (1.0 + 1e-9),
+                "d {dist}, t {t}: distance {}",
+                pr.distance
+            );
+            // on the side the sign says: left of the travel direction for d > 0
+            let tan = wave.eval_derivatives(pr.t, 1).unwrap();
+            let tan = tan.point(1);
+            let cross = tan[0] * (q[1] - pr.point[1]) - tan[1] * (q[0] - pr.point[0]);
+            assert!(cross * dist > 0.0, "d {dist}, t {t}: wrong side");
+        }
+        fs::remove_file(&out).unwrap();
+    }
+}
+
+#[test]
+fn offset_reports_cusps_and_trims_the_loop() {
+    let d = dir_with(&[("parabola.json", PARABOLA)]);
+    let input = p(&d, "parabola.json");
+    // d = 1 towards the centre of curvature, twice the vertex's radius: a swallowtail
+    let j: serde_json::Value = serde_json::from_slice(&stdout_of(&[
+        "offset".as_ref(),
+        "--json".as_ref(),
+        "--distance".as_ref(),
+        "1".as_ref(),
+        input.as_os_str(),
+    ]))
+    .unwrap();
+    assert!(j["deviation"].as_f64().unwrap() <= 1e-6, "{j}");
+    // cusps where κ = 2/(1 + 4x²)^{3/2} = 1: x = ±√((2^{2/3} − 1)/4), t = (x + 1)/2
+    let xc = ((2f64.powf(2.0 / 3.0) - 1.0) / 4.0).sqrt();
+    let cusps: Vec<f64> = j["cusps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_f64().unwrap())
+        .collect();
+    assert_eq!(cusps.len(), 2, "{j}");
+    assert!((cusps[0] - (1.0 - xc) / 2.0).abs() < 1e-9, "{cusps:?}");
+    assert!((cusps[1] - (1.0 + xc) / 2.0).abs() < 1e-9, "{cusps:?}");
+    // the loop closes on the axis x = 0: x − 2x/√(1 + 4x²) = 0 at x = ±√3/2
+    let loops = j["loops"].as_array().unwrap();
+    assert_eq!(loops.len(), 1, "{j}");
+    let xl = 3f64.sqrt() / 2.0;
+    assert!(
+        (loops[0][0].as_f64().unwrap() - (1.0 - xl) / 2.0).abs() < 1e-6,
+        "{j}"
+    );
+    assert!(
+        (loops[0][1].as_f64().unwrap() - (1.0 + xl) / 2.0).abs() < 1e-6,
+        "{j}"
+    );
+    let trimmed = j["trimmed"].as_array().unwrap();
+    assert_eq!(trimmed.len(), 2, "{j}");
+    // the two parts meet at the cut point (0, x² + 1/√(1 + 4x²)) = (0, 3/4 + 1/2)
+    let end = curve_of(&trimmed[0])
+        .eval(curve_of(&trimmed[0]).domain().1)
+        .unwrap();
+    let start = curve_of(&trimmed[1])
+        .eval(curve_of(&trimmed[1]).domain().0)
+        .unwrap();
+    for q in [&end, &start] {
+        assert!(q[0].abs() < 1e-6 && (q[1] - 1.25).abs() < 1e-6, "{q:?}");
+    }
+    // --trim writes the two parts as JSON Lines and says why on standard error
+    let out = lekalo()
+        .args(["offset", "--trim", "--distance", "1"])
+        .arg(&input)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 2);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("2 cusp(s)"));
+    // away from the centre of curvature: no cusp, one part
+    let j: serde_json::Value = serde_json::from_slice(&stdout_of(&[
+        "offset".as_ref(),
+        "--json".as_ref(),
+        "--distance".as_ref(),
+        "-1".as_ref(),
+        input.as_os_str(),
+    ]))
+    .unwrap();
+    assert!(j["cusps"].as_array().unwrap().is_empty(), "{j}");
+    assert_eq!(j["trimmed"].as_array().unwrap().len(), 1, "{j}");
+}
+
+#[test]
+fn offset_refuses_bad_input() {
+    let d = dir_with(&[("space.json", SPACE), ("wave.json", WAVE)]);
+    for (file, args, says) in [
+        ("space.json", ["--distance", "1"], "dimension"),
+        ("wave.json", ["--distance", "nan"], "offset distance"),
+        ("wave.json", ["--tolerance", "0"], "offset tolerance"),
+    ] {
+        lekalo()
+            .arg("offset")
+            .args(args)
+            .args(if args[0] == "--distance" {
+                vec![]
+            } else {
+                vec!["--distance", "1"]
+            })
+            .arg(p(&d, file))
+            .assert()
+            .code(2)
+            .stderr(contains(says));
+    }
 }

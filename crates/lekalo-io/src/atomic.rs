@@ -86,6 +86,20 @@ pub fn write_atomic_stream(
     options: WriteOptions,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> IoResult<()> {
+    write_atomic_send(path, inputs, options, |w| fill(w))
+}
+
+/// [`write_atomic_stream`] for a `fill` that needs a writer it can send to other threads (the
+/// Parquet writer).
+///
+/// # Errors
+/// As [`write_atomic_with`]; an error of `fill` as [`IoError::Write`].
+pub fn write_atomic_send(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    fill: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
+) -> IoResult<()> {
     check_not_input(path, inputs)?;
     let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
@@ -222,7 +236,7 @@ pub fn read_input(path: &Path) -> IoResult<(String, String)> {
     let file_meta = (path.as_os_str() != "-")
         .then(|| std::fs::metadata(path).ok())
         .flatten();
-    if let Some(m) = file_meta {
+    if let Some(m) = &file_meta {
         let len = usize::try_from(m.len()).unwrap_or(usize::MAX);
         bytes
             .try_reserve_exact(len)
@@ -233,7 +247,14 @@ pub fn read_input(path: &Path) -> IoResult<(String, String)> {
                 ),
             })?;
     }
-    read_to_end_fallible(read, &mut bytes).map_err(read_err)?;
+    if file_meta.is_some() {
+        // the whole length is reserved: the standard reader fills it in place (no copy through
+        // a chunk buffer) and reports, rather than aborts on, a failure to grow further
+        let mut read = read;
+        read.read_to_end(&mut bytes).map_err(read_err)?;
+    } else {
+        read_to_end_fallible(read, &mut bytes).map_err(read_err)?;
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         read_err(std::io::Error::new(
             std::io::ErrorKind::InvalidData,

@@ -11,6 +11,7 @@
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
 //! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`] |
+//! | batches: Parquet point sets in, curves in and out, samples out (row group by row group) | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
@@ -35,6 +36,7 @@ mod error;
 mod figure_check;
 mod flat;
 mod iges;
+mod json_write;
 mod layout;
 mod npy;
 mod npz;
@@ -43,6 +45,7 @@ mod obj;
 mod object;
 mod object_ext;
 mod palette;
+mod parquet_io;
 mod png;
 mod points_in;
 mod samples;
@@ -52,12 +55,13 @@ mod step_read;
 mod surface_plot;
 mod surface_samples;
 mod svg;
+mod text_points;
 mod wireframe;
 
 pub use analysis::{curvature, uniform};
 pub use atomic::{
     check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
-    write_atomic_stream, write_atomic_with, WriteOptions,
+    write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
 };
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
@@ -73,6 +77,9 @@ pub use object_ext::{
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
 };
 pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
+pub use parquet_io::{
+    read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
+};
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points, read_points_with, Header};
 pub use samples::{sample_table, SampleSpec, SampleTable};

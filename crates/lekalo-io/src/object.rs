@@ -195,102 +195,13 @@ impl Object {
 
     /// Writes the JSON text of [`Object::to_json_pretty`] (or, not `pretty`, of
     /// [`Object::to_json_line`]) to `w` piece by piece, with no `Value` tree and no copy of the
-    /// whole text: a curve of millions of control points costs a small buffer.
+    /// whole text: a curve of millions of control points costs a few megabytes of buffers, its
+    /// long lists formatted in blocks on all cores.
     ///
     /// # Errors
     /// The writer's.
     pub fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()> {
-        let (nl, ind, ind2, sp) = if pretty {
-            ("\n", "  ", "    ", " ")
-        } else {
-            ("", "", "", "")
-        };
-        let mut out = String::new();
-        let num = |out: &mut String, x: f64| {
-            // serde_json's shortest round-trip form (`1.0`, `0.1`, `1e-7`)
-            out.push_str(&serde_json::Value::from(x).to_string());
-        };
-        let list = |out: &mut String, w: &mut dyn std::io::Write, xs: &[f64]| {
-            out.push('[');
-            for (i, &x) in xs.iter().enumerate() {
-                if out.len() > 1 << 16 {
-                    w.write_all(out.as_bytes())?;
-                    out.clear();
-                }
-                if i > 0 {
-                    out.push(',');
-                    out.push_str(sp);
-                }
-                num(out, x);
-            }
-            out.push(']');
-            std::io::Result::Ok(())
-        };
-        let field = |out: &mut String, key: &str, first: bool| {
-            if !first {
-                out.push(',');
-                out.push_str(nl);
-            }
-            out.push_str(ind);
-            out.push('"');
-            out.push_str(key);
-            out.push_str("\":");
-            out.push_str(sp);
-        };
-        out.push('{');
-        out.push_str(nl);
-        field(&mut out, "lekalo", true);
-        out.push_str(&FORMAT_VERSION.to_string());
-        field(&mut out, "type", false);
-        out.push('"');
-        out.push_str(self.type_name());
-        out.push('"');
-        let (degree, knots, weights) = match self {
-            Object::Bezier(_) => (None, None, None),
-            Object::BSpline(c) => (Some(c.degree()), Some(c.knots().as_slice()), None),
-            Object::Nurbs(c) => (
-                Some(c.degree()),
-                Some(c.knots().as_slice()),
-                Some(c.weights()),
-            ),
-        };
-        if let Some(d) = degree {
-            field(&mut out, "degree", false);
-            out.push_str(&d.to_string());
-        }
-        if let Some(k) = knots {
-            field(&mut out, "knots", false);
-            list(&mut out, w, k)?;
-        }
-        field(&mut out, "control", false);
-        out.push('[');
-        out.push_str(nl);
-        let control = self.control_points();
-        for (i, p) in control.iter().enumerate() {
-            if out.len() > 1 << 16 {
-                w.write_all(out.as_bytes())?;
-                out.clear();
-            }
-            if i > 0 {
-                out.push(',');
-                out.push_str(nl);
-            }
-            out.push_str(ind2);
-            list(&mut out, w, p)?;
-        }
-        out.push_str(nl);
-        out.push_str(ind);
-        out.push(']');
-        if let Some(weights) = weights {
-            field(&mut out, "weights", false);
-            list(&mut out, w, &weights)?;
-        }
-        out.push_str(nl);
-        out.push('}');
-        if pretty {
-            out.push('\n');
-        }
-        w.write_all(out.as_bytes())
+        crate::json_write::write_object(self, w, pretty, crate::json_write::BLOCK)
     }
 
     /// Reads one object from JSON text. `source` names the input in error messages.

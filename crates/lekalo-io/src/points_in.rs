@@ -65,75 +65,7 @@ pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResu
     if matches!(first, Some('[' | '{')) {
         return read_points_json(text, source);
     }
-    let mut header: Option<Vec<String>> = None;
-    let mut dim: Option<(usize, usize)> = None; // (dim, line where it was set)
-    let mut data = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line_no = i + 1;
-        let line = raw.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> = if line.contains(',') || line.contains(';') {
-            line.split([',', ';']).map(str::trim).collect()
-        } else {
-            line.split_whitespace().collect()
-        };
-        let first_line = dim.is_none() && header.is_none();
-        let is_header = first_line
-            && match header_rule {
-                Header::Yes => true,
-                Header::No => false,
-                Header::Auto => fields.iter().all(|f| f.parse::<f64>().is_err()),
-            };
-        if is_header {
-            header = Some(fields.iter().map(|f| f.to_string()).collect());
-            continue;
-        }
-        let at = Location::new(source).at_line(line_no);
-        match dim {
-            None => dim = Some((fields.len(), line_no)),
-            Some((d, first_line)) if d != fields.len() => {
-                return Err(IoError::syntax(
-                    at,
-                    format!(
-                        "{} fields, but line {first_line} has {d}; every point needs the same number of coordinates",
-                        fields.len()
-                    ),
-                ))
-            }
-            Some(_) => {}
-        }
-        for (k, f) in fields.iter().enumerate() {
-            let name = header
-                .as_ref()
-                .and_then(|h| h.get(k).cloned())
-                .unwrap_or_else(|| format!("{}", k + 1));
-            let v: f64 = f.parse().map_err(|_| {
-                IoError::syntax(
-                    at.clone().at_field(name.clone()),
-                    format!("cannot read \"{f}\" as a number"),
-                )
-            })?;
-            if !v.is_finite() {
-                return Err(IoError::syntax(
-                    at.clone().at_field(name),
-                    format!("\"{f}\" is not finite; every coordinate must be a finite number"),
-                ));
-            }
-            data.push(v);
-        }
-    }
-    let Some((dim, _)) = dim else {
-        return Err(IoError::syntax(
-            Location::new(source),
-            "no points found; write one point per line, e.g. `1.0, 2.0`",
-        ));
-    };
-    Points::from_flat(dim, data).map_err(|e| IoError::Invalid {
-        at: Location::new(source),
-        error: e,
-    })
+    crate::text_points::read_delimited(text, source, header_rule)
 }
 
 fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
@@ -183,6 +115,81 @@ pub fn parse_number_list(text: &str, what: &str) -> IoResult<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The line-by-line reader the one-pass reader replaced: the reference its results and
+    /// messages are compared with.
+    pub(super) fn reference(text: &str, source: &str, header_rule: Header) -> IoResult<Points> {
+        let text = crate::atomic::strip_bom_str(text);
+        let mut header: Option<Vec<String>> = None;
+        let mut dim: Option<(usize, usize)> = None; // (dim, line where it was set)
+        let mut data = Vec::new();
+        for (i, raw) in text.lines().enumerate() {
+            let line_no = i + 1;
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let fields: Vec<&str> = if line.contains(',') || line.contains(';') {
+                line.split([',', ';']).map(str::trim).collect()
+            } else {
+                line.split_whitespace().collect()
+            };
+            let first_line = dim.is_none() && header.is_none();
+            let is_header = first_line
+                && match header_rule {
+                    Header::Yes => true,
+                    Header::No => false,
+                    Header::Auto => fields.iter().all(|f| f.parse::<f64>().is_err()),
+                };
+            if is_header {
+                header = Some(fields.iter().map(|f| f.to_string()).collect());
+                continue;
+            }
+            let at = Location::new(source).at_line(line_no);
+            match dim {
+            None => dim = Some((fields.len(), line_no)),
+            Some((d, first_line)) if d != fields.len() => {
+                return Err(IoError::syntax(
+                    at,
+                    format!(
+                        "{} fields, but line {first_line} has {d}; every point needs the same number of coordinates",
+                        fields.len()
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
+            for (k, f) in fields.iter().enumerate() {
+                let name = header
+                    .as_ref()
+                    .and_then(|h| h.get(k).cloned())
+                    .unwrap_or_else(|| format!("{}", k + 1));
+                let v: f64 = f.parse().map_err(|_| {
+                    IoError::syntax(
+                        at.clone().at_field(name.clone()),
+                        format!("cannot read \"{f}\" as a number"),
+                    )
+                })?;
+                if !v.is_finite() {
+                    return Err(IoError::syntax(
+                        at.clone().at_field(name),
+                        format!("\"{f}\" is not finite; every coordinate must be a finite number"),
+                    ));
+                }
+                data.push(v);
+            }
+        }
+        let Some((dim, _)) = dim else {
+            return Err(IoError::syntax(
+                Location::new(source),
+                "no points found; write one point per line, e.g. `1.0, 2.0`",
+            ));
+        };
+        Points::from_flat(dim, data).map_err(|e| IoError::Invalid {
+            at: Location::new(source),
+            error: e,
+        })
+    }
 
     #[test]
     fn csv_whitespace_and_json_agree() {
@@ -272,5 +279,51 @@ mod tests {
         );
         let e = parse_number_list("0, x", "--at").unwrap_err().to_string();
         assert_eq!(e, "--at: field `2`: cannot read \"x\" as a finite number");
+    }
+}
+
+#[cfg(test)]
+mod one_pass {
+    use super::tests::reference;
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Lines of numbers, words, blanks, comments and separators, joined by `\n` or `\r\n`.
+    fn text() -> impl Strategy<Value = String> {
+        let field = prop_oneof![
+            (-1e6f64..1e6).prop_map(|v| v.to_string()),
+            Just("1e400".to_string()),
+            Just("x".to_string()),
+            Just("NaN".to_string()),
+            Just(" 2.5 ".to_string()),
+            Just(String::new()),
+            Just("# c".to_string()),
+            Just("\u{a0}3".to_string()),
+        ];
+        let line = (
+            proptest::collection::vec(field, 0..4),
+            prop_oneof![Just(","), Just(";"), Just(" "), Just("\t")],
+        )
+            .prop_map(|(f, sep)| f.join(sep));
+        (
+            proptest::collection::vec(line, 0..40),
+            prop_oneof![Just("\n"), Just("\r\n")],
+        )
+            .prop_map(|(l, nl)| l.join(nl))
+    }
+
+    proptest! {
+        #[test]
+        fn same_points_and_messages_as_the_line_reader(t in text(), rule in 0..3u8) {
+            let rule = [Header::Auto, Header::Yes, Header::No][usize::from(rule)];
+            let fast = read_points_with(&t, "p.csv", rule).map_err(|e| e.to_string());
+            let slow = reference(&t, "p.csv", rule).map_err(|e| e.to_string());
+            prop_assert_eq!(&fast, &slow, "{:?}", t);
+            // the same text cut in parts read on several threads
+            let text = crate::atomic::strip_bom_str(&t);
+            let parts = crate::text_points::read_delimited_from(text, "p.csv", rule, 0)
+                .map_err(|e| e.to_string());
+            prop_assert_eq!(&parts, &slow, "in parts: {:?}", t);
+        }
     }
 }

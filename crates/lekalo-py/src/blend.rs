@@ -164,6 +164,53 @@ impl PyJumpPolynomial {
     }
 }
 
+/// The methods the blended-curve classes share, written once: pickling by their constructor's
+/// arguments, the domain, evaluation and derivatives through the shared `ParametricCurve`.
+/// `$t` names the parameter in Python (`u`, or `s` for a blend spline).
+macro_rules! blend_class {
+    ($ty:ident, $t:ident, { $($extra:tt)* }) => {
+        #[pymethods]
+        impl $ty {
+            $($extra)*
+
+            fn __reduce__<'py>(
+                &self,
+                py: Python<'py>,
+            ) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
+                (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
+            }
+
+            /// The parameter domain.
+            #[getter]
+            fn domain(&self) -> (f64, f64) {
+                self.inner.domain()
+            }
+
+            /// Points at the parameters (any shape): `shape + (dim,)`; `nu > 0` gives the
+            /// `nu`-th derivative.
+            #[pyo3(signature = ($t, nu = 0))]
+            fn __call__(
+                &self,
+                py: Python<'_>,
+                $t: &Bound<'_, PyAny>,
+                nu: usize,
+            ) -> PyResult<Py<PyAny>> {
+                eval_curve(py, &*self.shared, $t, nu)
+            }
+
+            /// Derivatives `0..=order`: `shape + (order + 1, dim)`.
+            fn derivatives(
+                &self,
+                py: Python<'_>,
+                $t: &Bound<'_, PyAny>,
+                order: usize,
+            ) -> PyResult<Py<PyAny>> {
+                derivatives_curve(py, &*self.shared, $t, order)
+            }
+        }
+    };
+}
+
 /// The deformation of `first` into `second` with continuity degree `k`:
 /// `c(u) = (1 − w_{k−1}(u))·first(u) + w_{k−1}(u)·second(u)`, each curve mapped to `[0, 1]`
 /// (document 001 §B.1).
@@ -175,8 +222,7 @@ pub(crate) struct PyDeformation {
     shared: SharedCurve,
 }
 
-#[pymethods]
-impl PyDeformation {
+blend_class!(PyDeformation, u, {
     #[new]
     #[pyo3(signature = (first, second, continuity = 2))]
     fn new(
@@ -206,32 +252,6 @@ impl PyDeformation {
         })
     }
 
-    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
-        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
-    }
-
-    /// The parameter domain `(0, 1)`.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        self.inner.domain()
-    }
-
-    /// Points at `u` (any shape): `u.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (u, nu = 0))]
-    fn __call__(&self, py: Python<'_>, u: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
-        eval_curve(py, &*self.shared, u, nu)
-    }
-
-    /// Derivatives `0..=order`: `u.shape + (order + 1, dim)`.
-    fn derivatives(
-        &self,
-        py: Python<'_>,
-        u: &Bound<'_, PyAny>,
-        order: usize,
-    ) -> PyResult<Py<PyAny>> {
-        derivatives_curve(py, &*self.shared, u, order)
-    }
-
     /// The exact Bezier form when both curves are single polynomial pieces.
     fn to_bezier(&self) -> PyResult<PyBezierCurve> {
         Ok(PyBezierCurve::wrap(
@@ -243,7 +263,7 @@ impl PyDeformation {
     fn to_nurbs(&self) -> PyResult<PyNurbsCurve> {
         Ok(PyNurbsCurve::wrap(self.inner.to_nurbs().map_err(lib_err)?))
     }
-}
+});
 
 fn spline_parameters(s: &str) -> PyResult<SplineParameters> {
     match s {
@@ -272,8 +292,7 @@ pub(crate) struct PyBlendSpline {
     shared: SharedCurve,
 }
 
-#[pymethods]
-impl PyBlendSpline {
+blend_class!(PyBlendSpline, s, {
     #[new]
     #[pyo3(signature = (points, local = "parabolas", continuity = 2, closed = false,
                         parameters = "uniform", arcs = "uniform_angle"))]
@@ -326,16 +345,6 @@ impl PyBlendSpline {
         })
     }
 
-    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
-        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
-    }
-
-    /// The parameter domain.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        self.inner.domain()
-    }
-
     /// The parameters of the points.
     #[getter]
     fn parameters(&self) -> Vec<f64> {
@@ -348,29 +357,13 @@ impl PyBlendSpline {
         self.inner.segment_count()
     }
 
-    /// Points at `s` (any shape): `s.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (s, nu = 0))]
-    fn __call__(&self, py: Python<'_>, s: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
-        eval_curve(py, &*self.shared, s, nu)
-    }
-
-    /// Derivatives `0..=order`: `s.shape + (order + 1, dim)`.
-    fn derivatives(
-        &self,
-        py: Python<'_>,
-        s: &Bound<'_, PyAny>,
-        order: usize,
-    ) -> PyResult<Py<PyAny>> {
-        derivatives_curve(py, &*self.shared, s, order)
-    }
-
     /// The exact NURBS form (parabolas, or arcs with `arcs='rational_quadratic'`).
     fn to_nurbs(&self, py: Python<'_>) -> PyResult<PyNurbsCurve> {
         Ok(PyNurbsCurve::wrap(
             py.detach(|| self.inner.to_nurbs()).map_err(lib_err)?,
         ))
     }
-}
+});
 
 /// A `C^k` transition replacing the corner where `before` (from `t_start`) meets `after` (up
 /// to `t_end`): the deformation of one into the other over the window (document 001 §B.2).
@@ -382,8 +375,7 @@ pub(crate) struct PyCornerTransition {
     shared: SharedCurve,
 }
 
-#[pymethods]
-impl PyCornerTransition {
+blend_class!(PyCornerTransition, u, {
     #[new]
     #[pyo3(signature = (before, t_start, after, t_end, continuity = 2))]
     fn new(
@@ -411,35 +403,9 @@ impl PyCornerTransition {
         })
     }
 
-    fn __reduce__<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyTuple>) {
-        (py.get_type::<Self>().into_any(), self.args.bind(py).clone())
-    }
-
-    /// The parameter domain.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        self.inner.domain()
-    }
-
     /// The window `(t_start, t_end)`.
     #[getter]
     fn window(&self) -> (f64, f64) {
         self.inner.window()
     }
-
-    /// Points at `u` (any shape): `u.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (u, nu = 0))]
-    fn __call__(&self, py: Python<'_>, u: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
-        eval_curve(py, &*self.shared, u, nu)
-    }
-
-    /// Derivatives `0..=order`: `u.shape + (order + 1, dim)`.
-    fn derivatives(
-        &self,
-        py: Python<'_>,
-        u: &Bound<'_, PyAny>,
-        order: usize,
-    ) -> PyResult<Py<PyAny>> {
-        derivatives_curve(py, &*self.shared, u, order)
-    }
-}
+});

@@ -71,6 +71,22 @@ impl FloatArray<'_> {
     }
 }
 
+/// A grid of points `(nu, nv, dim)` (the last axis is the dimension): the points in grid order
+/// and `(nu, nv)`.
+pub(crate) fn grid_points<'a>(
+    a: &'a FloatArray<'_>,
+    what: &str,
+) -> PyResult<(PointsRef<'a>, (usize, usize))> {
+    let s = a.shape();
+    if s.len() != 3 {
+        return Err(bad(format!(
+            "{what}: expected a 3-D array (nu, nv, dim), got shape {s:?}"
+        )));
+    }
+    let p = PointsRef::from_flat(s[2], a.data()).map_err(lib_err)?;
+    Ok((p, (s[0], s[1])))
+}
+
 /// Refuses NaN and infinity with the index of the first offender.
 pub(crate) fn finite(data: &[f64], what: &str) -> PyResult<()> {
     match data.iter().position(|v| !v.is_finite()) {
@@ -163,6 +179,32 @@ pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
         .map_err(|e: PyErr| bad(format!("{what}: {e}")));
     }
     Ok(n)
+}
+
+/// A caller's output array `out` of exactly `shape`, float64 and C-contiguous, borrowed for
+/// writing (NumPy's `out=`): results go straight into it, with no allocation. An `out` that is
+/// also an input is refused by the borrow check.
+pub(crate) fn out_array<'py>(
+    out: &Bound<'py, PyAny>,
+    shape: &[usize],
+) -> PyResult<numpy::PyReadwriteArrayDyn<'py, f64>> {
+    let a = out
+        .cast::<PyArrayDyn<f64>>()
+        .map_err(|_| bad("out: expected a float64 NumPy array (np.empty(shape))".into()))?;
+    if a.shape() != shape {
+        return Err(bad(format!(
+            "out: expected shape {shape:?}, got {:?}",
+            a.shape()
+        )));
+    }
+    if !a.is_c_contiguous() {
+        return Err(bad("out: the array must be C-contiguous".into()));
+    }
+    a.try_readwrite().map_err(|e| {
+        bad(format!(
+            "out: the array is in use elsewhere, or is also an input ({e}); pass another array"
+        ))
+    })
 }
 
 /// A NumPy array of the given shape over `data` (moved, not copied).

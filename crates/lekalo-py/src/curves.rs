@@ -12,12 +12,13 @@ use lekalo::{
     PiecewisePolynomial, Points,
 };
 use lekalo_io::{Object, Shape};
+use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{
-    array, check_size, floats, owned_points, points_array, points_into_array, vec1, vec_array,
-    FloatArray,
+    array, check_size, floats, out_array, owned_points, points_array, points_into_array, vec1,
+    vec_array, FloatArray,
 };
 use crate::error::{bad, io_err, lib_err};
 use crate::pp::PyPiecewisePolynomial;
@@ -150,6 +151,212 @@ pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, 
     PyTuple::new(py, [f.into_any(), PyTuple::new(py, [json])?.into_any()])
 }
 
+/// The methods every curve class shares, written once (docs/theory/curves.md):
+/// `curve_class!(Type, Variant, "json_type", { class-specific methods })` makes the class's one
+/// `#[pymethods]` block from its own methods plus degree, dimension, splitting, JSON, pickling
+/// and equality; the `knots` form adds the knot operations and the evaluator-backed `__call__`
+/// of the B-spline and NURBS curves.
+macro_rules! curve_class {
+    ($ty:ident, $variant:ident, $name:literal, knots, { $($extra:tt)* }) => {
+        impl $ty {
+            /// Points at `ts` into `out` with the kept evaluator; batches of at least
+            /// [`PAR_MIN`] parameters on the rayon pool (results identical to the sequential
+            /// ones).
+            fn evaluate_into(&self, ts: &[f64], out: &mut [f64]) -> lekalo::Result<()> {
+                let ev = self.evaluator();
+                if ts.len() >= PAR_MIN {
+                    ev.par_eval_batch(ts, out)
+                } else {
+                    ev.eval_batch(ts, out)
+                }
+            }
+        }
+
+        curve_class!($ty, $variant, $name, {
+            $($extra)*
+
+            /// The knot vector, a 1-D array of `n + p + 2` numbers.
+            #[getter]
+            fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+                vec_array(py, self.inner.knots().as_slice())
+            }
+
+            /// The parameter domain `(t_p, t_{n+1})`.
+            #[getter]
+            fn domain(&self) -> (f64, f64) {
+                self.inner.domain()
+            }
+
+            /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th
+            /// derivative. Parameters outside the domain raise `lekalo.Error` (no
+            /// extrapolation). `out`, a float64 C-contiguous array of the result's shape, receives
+            /// the points without a new allocation (NumPy's `out=`; for repeated evaluation)
+            /// and is returned.
+            #[pyo3(signature = (t, nu = 0, *, out = None))]
+            fn __call__(
+                &self,
+                py: Python<'_>,
+                t: &Bound<'_, PyAny>,
+                nu: usize,
+                out: Option<&Bound<'_, PyAny>>,
+            ) -> PyResult<Py<PyAny>> {
+                if nu > 0 {
+                    if out.is_some() {
+                        return Err(bad("out: only for points (nu = 0)".into()));
+                    }
+                    return pick_order(py, self.derivatives(py, t, nu)?, nu);
+                }
+                let dim = self.inner.dim();
+                let ta = floats(t, "t")?;
+                let ts = ta.data();
+                if let Some(o) = out {
+                    let mut rw = out_array(o, &out_shape(&ta, &[dim]))?;
+                    let buf = rw
+                        .as_slice_mut()
+                        .map_err(|e| bad(format!("out: {e}")))?;
+                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
+                    return Ok(o.clone().unbind());
+                }
+                if ta.scalar {
+                    let mut out = vec![0.0; dim];
+                    py.detach(|| self.inner.eval_into(ts[0], &mut out))
+                        .map_err(lib_err)?;
+                    return Ok(array(py, out, &[dim])?.unbind());
+                }
+                check_size("t", &[ts.len(), dim])?;
+                // the result is allocated by NumPy in its final shape and written in place
+                // (NumPy's allocator asks for huge pages for large arrays, which makes the
+                // first write of a fresh result several times cheaper than a `Vec`'s pages)
+                let arr = PyArrayDyn::<f64>::zeros(py, out_shape(&ta, &[dim]), false);
+                {
+                    let mut rw = arr.readwrite();
+                    let buf = rw
+                        .as_slice_mut()
+                        .map_err(|e| bad(format!("result: {e}")))?;
+                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
+                }
+                Ok(arr.into_any().unbind())
+            }
+
+            /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
+            #[pyo3(signature = (t, times = 1))]
+            fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
+                Ok(Self::wrap(
+                    py.detach(|| self.inner.insert_knot(t, times))
+                        .map_err(lib_err)?,
+                ))
+            }
+
+            /// Inserts all knots of the sorted array `x` at once (P&T A5.4).
+            fn refine_knots(&self, py: Python<'_>, x: &Bound<'_, PyAny>) -> PyResult<Self> {
+                let x = vec1(x, "x")?;
+                Ok(Self::wrap(
+                    py.detach(|| self.inner.refine_knots(&x)).map_err(lib_err)?,
+                ))
+            }
+
+            /// Removes knot `t` up to `times` times while the curve moves less than
+            /// `tolerance` (default: relative to the control net's size; P&T A5.8). Returns
+            /// `(curve, removed)`.
+            #[pyo3(signature = (t, times = 1, tolerance = None))]
+            fn remove_knot(
+                &self,
+                py: Python<'_>,
+                t: f64,
+                times: usize,
+                tolerance: Option<f64>,
+            ) -> PyResult<(Self, usize)> {
+                let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
+                let (c, k) = py
+                    .detach(|| self.inner.remove_knot(t, times, tol))
+                    .map_err(lib_err)?;
+                Ok((Self::wrap(c), k))
+            }
+
+            /// Removes every knot that can go within `tolerance`; returns `(curve, removed)`.
+            #[pyo3(signature = (tolerance = None))]
+            fn remove_all_removable_knots(
+                &self,
+                py: Python<'_>,
+                tolerance: Option<f64>,
+            ) -> PyResult<(Self, usize)> {
+                let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
+                let (c, k) = py
+                    .detach(|| self.inner.remove_all_removable_knots(tol))
+                    .map_err(lib_err)?;
+                Ok((Self::wrap(c), k))
+            }
+
+            /// The same curve traversed backwards on the same domain.
+            fn reverse(&self, py: Python<'_>) -> PyResult<Self> {
+                Ok(Self::wrap(
+                    py.detach(|| self.inner.reverse()).map_err(lib_err)?,
+                ))
+            }
+
+            /// The same curve on the domain `[a, b]` (an affine change of parameter).
+            fn reparametrize(&self, py: Python<'_>, a: f64, b: f64) -> PyResult<Self> {
+                Ok(Self::wrap(
+                    py.detach(|| self.inner.reparametrize(a, b))
+                        .map_err(lib_err)?,
+                ))
+            }
+        });
+    };
+    ($ty:ident, $variant:ident, $name:literal, { $($extra:tt)* }) => {
+        #[pymethods]
+        impl $ty {
+            $($extra)*
+
+            /// The degree.
+            #[getter]
+            fn degree(&self) -> usize {
+                self.inner.degree()
+            }
+
+            /// The dimension of the (Euclidean) points.
+            #[getter]
+            fn dim(&self) -> usize {
+                self.inner.dim()
+            }
+
+            /// Splits at `t` into the curves before and after it (a Bezier curve's halves are
+            /// reparametrised to `[0, 1]`, a B-spline's and NURBS's keep their parameters).
+            fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
+                let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
+                Ok((Self::wrap(a), Self::wrap(b)))
+            }
+
+            /// JSON text in the command-line tool's format (`{"lekalo": 1, "type": …}`).
+            fn to_json(&self) -> String {
+                Object::$variant(self.inner.clone()).to_json_pretty()
+            }
+
+            /// Reads the curve from JSON text.
+            #[staticmethod]
+            fn from_json(text: &str) -> PyResult<Self> {
+                match from_json_shape(text)? {
+                    Shape::Curve(Object::$variant(c)) => Ok(Self::wrap(c)),
+                    other => Err(bad(format!(
+                        concat!("expected a ", $name, ", got {}"),
+                        other.type_name()
+                    ))),
+                }
+            }
+
+            fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+                reduce(py, self.to_json())
+            }
+
+            fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+                other
+                    .cast::<Self>()
+                    .is_ok_and(|o| o.get().inner == self.inner)
+            }
+        }
+    };
+}
+
 // ---------------------------------------------------------------------------------------------
 
 /// A Bezier curve `C(t) = Σ B_{i,n}(t) P_i`, `t ∈ [0, 1]` (docs/theory/curves.md#bezier-curves).
@@ -158,8 +365,7 @@ pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, 
 /// >>> c = lekalo.BezierCurve([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
 /// >>> c(0.5)
 /// array([1., 1.])
-#[pyclass(module = "lekalo", name = "BezierCurve", frozen, eq)]
-#[derive(PartialEq)]
+#[pyclass(module = "lekalo", name = "BezierCurve", frozen)]
 pub(crate) struct PyBezierCurve {
     pub(crate) inner: BezierCurve,
 }
@@ -170,24 +376,11 @@ impl PyBezierCurve {
     }
 }
 
-#[pymethods]
-impl PyBezierCurve {
+curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
     #[new]
     fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
         let p = owned_points(control, "control")?;
         Ok(Self::wrap(BezierCurve::new(p).map_err(lib_err)?))
-    }
-
-    /// The degree `n` (control points minus one).
-    #[getter]
-    fn degree(&self) -> usize {
-        self.inner.degree()
-    }
-
-    /// The dimension of the points.
-    #[getter]
-    fn dim(&self) -> usize {
-        self.inner.dim()
     }
 
     /// The control points, `(n + 1, dim)`.
@@ -226,13 +419,6 @@ impl PyBezierCurve {
     /// The hodograph `C'` as a Bezier curve of degree `n − 1`.
     fn derivative(&self, py: Python<'_>) -> Self {
         Self::wrap(py.detach(|| self.inner.derivative()))
-    }
-
-    /// de Casteljau subdivision at `t`: the curves on `[0, t]` and `[t, 1]`, each
-    /// reparametrised to `[0, 1]`.
-    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
-        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
-        Ok((Self::wrap(a), Self::wrap(b)))
     }
 
     /// Degree elevation by `by` (document 004): the same curve with more control points.
@@ -291,27 +477,6 @@ impl PyBezierCurve {
         PyBSplineCurve::wrap(self.inner.to_bspline())
     }
 
-    /// JSON text in the command-line tool's format (`{"lekalo": 1, "type": "bezier_curve", …}`).
-    fn to_json(&self) -> String {
-        Object::Bezier(self.inner.clone()).to_json_pretty()
-    }
-
-    /// Reads a Bezier curve from JSON text.
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<Self> {
-        match from_json_shape(text)? {
-            Shape::Curve(Object::Bezier(c)) => Ok(Self::wrap(c)),
-            other => Err(bad(format!(
-                "expected a bezier_curve, got {}",
-                other.type_name()
-            ))),
-        }
-    }
-
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        reduce(py, self.to_json())
-    }
-
     fn __repr__(&self) -> String {
         format!(
             "BezierCurve(degree={}, dim={})",
@@ -319,7 +484,7 @@ impl PyBezierCurve {
             self.inner.dim()
         )
     }
-}
+});
 
 // ---------------------------------------------------------------------------------------------
 
@@ -352,8 +517,7 @@ impl PyBSplineCurve {
     }
 }
 
-#[pymethods]
-impl PyBSplineCurve {
+curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     #[new]
     fn new(degree: usize, knots: &Bound<'_, PyAny>, control: &Bound<'_, PyAny>) -> PyResult<Self> {
         let k = vec1(knots, "knots")?;
@@ -373,64 +537,10 @@ impl PyBSplineCurve {
         ))
     }
 
-    /// The degree `p`.
-    #[getter]
-    fn degree(&self) -> usize {
-        self.inner.degree()
-    }
-
-    /// The dimension of the points.
-    #[getter]
-    fn dim(&self) -> usize {
-        self.inner.dim()
-    }
-
-    /// The knot vector, a 1-D array of `n + p + 2` numbers.
-    #[getter]
-    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots().as_slice())
-    }
-
     /// The control points, `(n + 1, dim)`.
     #[getter]
     fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         points_array(py, self.inner.control_points())
-    }
-
-    /// The parameter domain `(t_p, t_{n+1})`.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        self.inner.domain()
-    }
-
-    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    /// Parameters outside the domain raise `lekalo.Error` (no extrapolation).
-    #[pyo3(signature = (t, nu = 0))]
-    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
-        if nu > 0 {
-            return pick_order(py, self.derivatives(py, t, nu)?, nu);
-        }
-        let dim = self.inner.dim();
-        let ta = floats(t, "t")?;
-        let ts = ta.data();
-        if ta.scalar {
-            let mut out = vec![0.0; dim];
-            py.detach(|| self.inner.eval_into(ts[0], &mut out))
-                .map_err(lib_err)?;
-            return Ok(array(py, out, &[dim])?.unbind());
-        }
-        let n = check_size("t", &[ts.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| {
-            let ev = self.evaluator();
-            if ts.len() >= PAR_MIN {
-                ev.par_eval_batch(ts, &mut out)
-            } else {
-                ev.eval_batch(ts, &mut out)
-            }
-        })
-        .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
     }
 
     /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)` (right-hand at
@@ -471,81 +581,12 @@ impl PyBSplineCurve {
         ))
     }
 
-    /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
-    #[pyo3(signature = (t, times = 1))]
-    fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.insert_knot(t, times))
-                .map_err(lib_err)?,
-        ))
-    }
-
-    /// Inserts all knots of the sorted array `x` at once (P&T A5.4).
-    fn refine_knots(&self, py: Python<'_>, x: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let x = vec1(x, "x")?;
-        Ok(Self::wrap(
-            py.detach(|| self.inner.refine_knots(&x)).map_err(lib_err)?,
-        ))
-    }
-
-    /// Removes knot `t` up to `times` times while the curve moves less than `tolerance`
-    /// (default: relative to the control net's size; P&T A5.8). Returns `(curve, removed)`.
-    #[pyo3(signature = (t, times = 1, tolerance = None))]
-    fn remove_knot(
-        &self,
-        py: Python<'_>,
-        t: f64,
-        times: usize,
-        tolerance: Option<f64>,
-    ) -> PyResult<(Self, usize)> {
-        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
-        let (c, k) = py
-            .detach(|| self.inner.remove_knot(t, times, tol))
-            .map_err(lib_err)?;
-        Ok((Self::wrap(c), k))
-    }
-
-    /// Removes every knot that can go within `tolerance`; returns `(curve, removed)`.
-    #[pyo3(signature = (tolerance = None))]
-    fn remove_all_removable_knots(
-        &self,
-        py: Python<'_>,
-        tolerance: Option<f64>,
-    ) -> PyResult<(Self, usize)> {
-        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
-        let (c, k) = py
-            .detach(|| self.inner.remove_all_removable_knots(tol))
-            .map_err(lib_err)?;
-        Ok((Self::wrap(c), k))
-    }
-
-    /// Splits at `t` into the curves on `[t_min, t]` and `[t, t_max]` (parameters kept).
-    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
-        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
-        Ok((Self::wrap(a), Self::wrap(b)))
-    }
-
     /// The Bezier pieces: a list of `(start, end, BezierCurve)`.
     fn to_bezier_segments(&self, py: Python<'_>) -> Vec<(f64, f64, PyBezierCurve)> {
         py.detach(|| self.inner.to_bezier_segments())
             .into_iter()
             .map(|s| (s.start, s.end, PyBezierCurve::wrap(s.curve)))
             .collect()
-    }
-
-    /// The same curve traversed backwards on the same domain.
-    fn reverse(&self, py: Python<'_>) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.reverse()).map_err(lib_err)?,
-        ))
-    }
-
-    /// The same curve on the domain `[a, b]` (an affine change of parameter).
-    fn reparametrize(&self, py: Python<'_>, a: f64, b: f64) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.reparametrize(a, b))
-                .map_err(lib_err)?,
-        ))
     }
 
     /// Degree elevation by `by`, piece by piece (document 004).
@@ -584,33 +625,6 @@ impl PyBSplineCurve {
         PyNurbsCurve::wrap(NurbsCurve::from_bspline(&self.inner))
     }
 
-    /// JSON text in the command-line tool's format (`{"lekalo": 1, "type": "bspline_curve", …}`).
-    fn to_json(&self) -> String {
-        Object::BSpline(self.inner.clone()).to_json_pretty()
-    }
-
-    /// Reads a B-spline curve from JSON text.
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<Self> {
-        match from_json_shape(text)? {
-            Shape::Curve(Object::BSpline(c)) => Ok(Self::wrap(c)),
-            other => Err(bad(format!(
-                "expected a bspline_curve, got {}",
-                other.type_name()
-            ))),
-        }
-    }
-
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        reduce(py, self.to_json())
-    }
-
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        other
-            .cast::<Self>()
-            .is_ok_and(|o| o.get().inner == self.inner)
-    }
-
     fn __repr__(&self) -> String {
         let (a, b) = self.inner.domain();
         format!(
@@ -620,7 +634,7 @@ impl PyBSplineCurve {
             self.inner.dim()
         )
     }
-}
+});
 
 // ---------------------------------------------------------------------------------------------
 
@@ -644,10 +658,14 @@ impl PyNurbsCurve {
             evaluator: OnceLock::new(),
         }
     }
+
+    /// The fast evaluator, built on first use and kept.
+    fn evaluator(&self) -> &NurbsEvaluator {
+        self.evaluator.get_or_init(|| self.inner.evaluator())
+    }
 }
 
-#[pymethods]
-impl PyNurbsCurve {
+curve_class!(PyNurbsCurve, Nurbs, "nurbs_curve", knots, {
     #[new]
     fn new(
         degree: usize,
@@ -695,24 +713,6 @@ impl PyNurbsCurve {
         ))
     }
 
-    /// The degree `p`.
-    #[getter]
-    fn degree(&self) -> usize {
-        self.inner.degree()
-    }
-
-    /// The dimension of the (Euclidean) points.
-    #[getter]
-    fn dim(&self) -> usize {
-        self.inner.dim()
-    }
-
-    /// The knot vector.
-    #[getter]
-    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots().as_slice())
-    }
-
     /// The Euclidean control points, `(n + 1, dim)`.
     #[getter]
     fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -725,44 +725,9 @@ impl PyNurbsCurve {
         vec_array(py, &self.inner.weights())
     }
 
-    /// The parameter domain.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        self.inner.domain()
-    }
-
     /// The homogeneous B-spline `(w·P, w)`.
     fn homogeneous(&self) -> PyBSplineCurve {
         PyBSplineCurve::wrap(self.inner.homogeneous().clone())
-    }
-
-    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (t, nu = 0))]
-    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
-        if nu > 0 {
-            return pick_order(py, self.derivatives(py, t, nu)?, nu);
-        }
-        let dim = self.inner.dim();
-        let ta = floats(t, "t")?;
-        let ts = ta.data();
-        if ta.scalar {
-            let mut out = vec![0.0; dim];
-            py.detach(|| self.inner.eval_into(ts[0], &mut out))
-                .map_err(lib_err)?;
-            return Ok(array(py, out, &[dim])?.unbind());
-        }
-        let n = check_size("t", &[ts.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| {
-            let ev = self.evaluator.get_or_init(|| self.inner.evaluator());
-            if ts.len() >= PAR_MIN {
-                ev.par_eval_batch(ts, &mut out)
-            } else {
-                ev.eval_batch(ts, &mut out)
-            }
-        })
-        .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
     }
 
     /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)`.
@@ -776,93 +741,12 @@ impl PyNurbsCurve {
         derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
     }
 
-    /// Inserts `t` `times` times.
-    #[pyo3(signature = (t, times = 1))]
-    fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.insert_knot(t, times))
-                .map_err(lib_err)?,
-        ))
-    }
-
-    /// Inserts all knots of the sorted array `x`.
-    fn refine_knots(&self, py: Python<'_>, x: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let x = vec1(x, "x")?;
-        Ok(Self::wrap(
-            py.detach(|| self.inner.refine_knots(&x)).map_err(lib_err)?,
-        ))
-    }
-
-    /// Removes knot `t` up to `times` times within `tolerance`; returns `(curve, removed)`.
-    #[pyo3(signature = (t, times = 1, tolerance = None))]
-    fn remove_knot(
-        &self,
-        py: Python<'_>,
-        t: f64,
-        times: usize,
-        tolerance: Option<f64>,
-    ) -> PyResult<(Self, usize)> {
-        let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
-        let (c, k) = py
-            .detach(|| self.inner.remove_knot(t, times, tol))
-            .map_err(lib_err)?;
-        Ok((Self::wrap(c), k))
-    }
-
-    /// Splits at `t` (parameters kept).
-    fn split(&self, py: Python<'_>, t: f64) -> PyResult<(Self, Self)> {
-        let (a, b) = py.detach(|| self.inner.split_at(t)).map_err(lib_err)?;
-        Ok((Self::wrap(a), Self::wrap(b)))
-    }
-
     /// The rational Bezier pieces as NURBS curves.
     fn to_bezier_segments(&self, py: Python<'_>) -> Vec<Self> {
         py.detach(|| self.inner.to_bezier_segments())
             .into_iter()
             .map(Self::wrap)
             .collect()
-    }
-
-    /// The same curve traversed backwards.
-    fn reverse(&self, py: Python<'_>) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.reverse()).map_err(lib_err)?,
-        ))
-    }
-
-    /// The same curve on the domain `[a, b]`.
-    fn reparametrize(&self, py: Python<'_>, a: f64, b: f64) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.reparametrize(a, b))
-                .map_err(lib_err)?,
-        ))
-    }
-
-    /// JSON text in the command-line tool's format.
-    fn to_json(&self) -> String {
-        Object::Nurbs(self.inner.clone()).to_json_pretty()
-    }
-
-    /// Reads a NURBS curve from JSON text.
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<Self> {
-        match from_json_shape(text)? {
-            Shape::Curve(Object::Nurbs(c)) => Ok(Self::wrap(c)),
-            other => Err(bad(format!(
-                "expected a nurbs_curve, got {}",
-                other.type_name()
-            ))),
-        }
-    }
-
-    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        reduce(py, self.to_json())
-    }
-
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        other
-            .cast::<Self>()
-            .is_ok_and(|o| o.get().inner == self.inner)
     }
 
     fn __repr__(&self) -> String {
@@ -873,4 +757,4 @@ impl PyNurbsCurve {
             self.inner.dim()
         )
     }
-}
+});

@@ -9,7 +9,9 @@ use lekalo::{
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
-use crate::convert::{array, check_size, floats, owned_points, points_array, vec1, vec_array};
+use crate::convert::{
+    array, check_size, floats, grid_points, owned_points, points_array, vec1, vec_array,
+};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::PyBSplineSurface;
@@ -31,6 +33,13 @@ pub(crate) fn parametrization_arg(obj: &Bound<'_, PyAny>) -> PyResult<Parametriz
             "parametrization: unknown value {s:?}; use 'uniform', 'chord', 'centripetal' or an exponent"
         ))),
     }
+}
+
+/// `parametrization_arg` of the argument when given, chord length otherwise.
+pub(crate) fn parametrization_or_chord(
+    obj: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Parametrization> {
+    obj.map_or(Ok(Parametrization::ChordLength), parametrization_arg)
 }
 
 /// `"auto"`, `"averaged"`, `"uniform"`, `"at_parameters"`.
@@ -159,10 +168,7 @@ pub(crate) fn parametrize<'py>(
     points: &Bound<'py, PyAny>,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let m = match parametrization {
-        Some(p) => parametrization_arg(p)?,
-        None => Parametrization::ChordLength,
-    };
+    let m = parametrization_or_chord(parametrization)?;
     let pa = floats(points, "points")?;
     let pts = pa.points("points")?;
     let t = py.detach(|| lekalo::parametrize(pts, m)).map_err(lib_err)?;
@@ -197,19 +203,9 @@ pub(crate) fn interpolate_surface(
     parametrization: Option<&Bound<'_, PyAny>>,
     max_condition: Option<f64>,
 ) -> PyResult<PyBSplineSurface> {
-    let m = match parametrization {
-        Some(p) => parametrization_arg(p)?,
-        None => Parametrization::ChordLength,
-    };
+    let m = parametrization_or_chord(parametrization)?;
     let ga = floats(grid, "grid")?;
-    let s = ga.shape();
-    if s.len() != 3 {
-        return Err(bad(format!(
-            "grid: expected a 3-D array (nu, nv, dim), got shape {s:?}"
-        )));
-    }
-    let (nu, nv) = (s[0], s[1]);
-    let pts = lekalo::PointsRef::from_flat(s[2], ga.data()).map_err(lib_err)?;
+    let (pts, (nu, nv)) = grid_points(&ga, "grid")?;
     let mut interp = lekalo::SurfaceInterpolation::new(degree_u, degree_v).parametrization(m);
     if let Some(mc) = max_condition {
         interp = interp.max_condition(mc);

@@ -9,6 +9,8 @@
 //!   arrays are borrowed, not copied);
 //! - errors: `error` (`lekalo.Error`, a `ValueError`, with the library's message);
 //! - classes: `curves`, `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
+//! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
+//! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`.
 
 mod batch;
@@ -16,8 +18,10 @@ mod blend;
 mod convert;
 mod curves;
 mod error;
+mod fit;
 mod interp;
 mod pp;
+mod query;
 mod surfaces;
 
 use pyo3::prelude::*;
@@ -48,5 +52,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
     blend::register(m)?;
+    fit::register(m)?;
+    query::register(m)?;
     Ok(())
 }

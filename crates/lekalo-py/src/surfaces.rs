@@ -7,21 +7,15 @@ use lekalo_io::{Shape, Surface};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats, vec1, vec_array, FloatArray};
+use crate::convert::{array, check_size, floats, grid_points, vec1, vec_array, FloatArray};
 use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
 /// A control net `(nu, nv, dim)` as points and its size.
 pub(crate) fn net_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Points, (usize, usize))> {
     let a = floats(obj, what)?;
-    let s = a.shape();
-    if s.len() != 3 {
-        return Err(bad(format!(
-            "{what}: expected a 3-D array (nu, nv, dim), got shape {s:?}"
-        )));
-    }
-    let p = Points::from_flat(s[2], a.data().to_vec()).map_err(lib_err)?;
-    Ok((p, (s[0], s[1])))
+    let (p, size) = grid_points(&a, what)?;
+    Ok((p.to_owned(), size))
 }
 
 fn net_array<'py>(
@@ -52,7 +46,102 @@ fn shape_of(text: &str) -> PyResult<Shape> {
     Shape::from_json_str(text, "json").map_err(io_err)
 }
 
+/// The methods every surface class shares, written once: evaluation, derivatives, normals, JSON,
+/// pickling and equality; the `knots` form adds the knot vectors, tensor-grid evaluation, knot
+/// insertion and splitting of the B-spline and NURBS surfaces.
 macro_rules! surface_common {
+    ($ty:ident, $variant:ident, $name:literal, knots $curve:ident, { $($extra:tt)* }) => {
+        surface_common!($ty, $variant, $name, {
+            $($extra)*
+
+            /// The iso-curve `S(·, v)`.
+            fn iso_curve_u(&self, v: f64) -> PyResult<$curve> {
+                Ok($curve::wrap(self.inner.iso_curve_u(v).map_err(lib_err)?))
+            }
+
+            /// The iso-curve `S(u, ·)`.
+            fn iso_curve_v(&self, u: f64) -> PyResult<$curve> {
+                Ok($curve::wrap(self.inner.iso_curve_v(u).map_err(lib_err)?))
+            }
+
+            /// The degrees `(p, q)`.
+            #[getter]
+            fn degrees(&self) -> (usize, usize) {
+                (self.inner.degree_u(), self.inner.degree_v())
+            }
+
+            /// The knot vector in `u`.
+            #[getter]
+            fn knots_u<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+                vec_array(py, self.inner.knots_u().as_slice())
+            }
+
+            /// The knot vector in `v`.
+            #[getter]
+            fn knots_v<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+                vec_array(py, self.inner.knots_v().as_slice())
+            }
+
+            /// Points on the tensor grid `us × vs`: `(len(us), len(vs), dim)`.
+            fn grid(
+                &self,
+                py: Python<'_>,
+                us: &Bound<'_, PyAny>,
+                vs: &Bound<'_, PyAny>,
+            ) -> PyResult<Py<PyAny>> {
+                let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
+                let (u, v) = (ua.vector("us")?, va.vector("vs")?);
+                let dim = self.inner.dim();
+                let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
+                let mut out = vec![0.0; n];
+                py.detach(|| self.inner.eval_grid(u, v, &mut out))
+                    .map_err(lib_err)?;
+                Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
+            }
+
+            /// Inserts `u` into the `u` knots `times` times (P&T A5.3).
+            #[pyo3(signature = (u, times = 1))]
+            fn insert_knot_u(&self, py: Python<'_>, u: f64, times: usize) -> PyResult<Self> {
+                let inner = py
+                    .detach(|| self.inner.insert_knot_u(u, times))
+                    .map_err(lib_err)?;
+                Ok(Self { inner })
+            }
+
+            /// Inserts `v` into the `v` knots `times` times (P&T A5.3).
+            #[pyo3(signature = (v, times = 1))]
+            fn insert_knot_v(&self, py: Python<'_>, v: f64, times: usize) -> PyResult<Self> {
+                let inner = py
+                    .detach(|| self.inner.insert_knot_v(v, times))
+                    .map_err(lib_err)?;
+                Ok(Self { inner })
+            }
+
+            /// Splits at `u` into two surfaces (parameters kept).
+            fn split_u(&self, py: Python<'_>, u: f64) -> PyResult<(Self, Self)> {
+                let (a, b) = py.detach(|| self.inner.split_at_u(u)).map_err(lib_err)?;
+                Ok((Self { inner: a }, Self { inner: b }))
+            }
+
+            /// Splits at `v` into two surfaces (parameters kept).
+            fn split_v(&self, py: Python<'_>, v: f64) -> PyResult<(Self, Self)> {
+                let (a, b) = py.detach(|| self.inner.split_at_v(v)).map_err(lib_err)?;
+                Ok((Self { inner: a }, Self { inner: b }))
+            }
+
+            fn __repr__(&self) -> String {
+                let (nu, nv) = self.inner.net_size();
+                format!(
+                    concat!(stringify!($variant), "Surface(degrees=({}, {}), net=({}, {}), dim={})"),
+                    self.inner.degree_u(),
+                    self.inner.degree_v(),
+                    nu,
+                    nv,
+                    self.inner.dim()
+                )
+            }
+        });
+    };
     ($ty:ident, $variant:ident, $name:literal, { $($extra:tt)* }) => {
         #[pymethods]
         impl $ty {
@@ -271,7 +360,7 @@ pub(crate) struct PyBSplineSurface {
     pub(crate) inner: BSplineSurface,
 }
 
-surface_common!(PyBSplineSurface, BSpline, "bspline_surface", {
+surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCurve, {
     #[new]
     fn new(
         degree_u: usize,
@@ -287,77 +376,10 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", {
         })
     }
 
-    /// The degrees `(p, q)`.
-    #[getter]
-    fn degrees(&self) -> (usize, usize) {
-        (self.inner.degree_u(), self.inner.degree_v())
-    }
-
-    /// The knot vector in `u`.
-    #[getter]
-    fn knots_u<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots_u().as_slice())
-    }
-
-    /// The knot vector in `v`.
-    #[getter]
-    fn knots_v<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots_v().as_slice())
-    }
-
     /// The control net `(nu, nv, dim)`.
     #[getter]
     fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         net_array(py, self.inner.control_points(), self.inner.net_size())
-    }
-
-    /// Points on the tensor grid `us × vs`: `(len(us), len(vs), dim)`.
-    fn grid(
-        &self,
-        py: Python<'_>,
-        us: &Bound<'_, PyAny>,
-        vs: &Bound<'_, PyAny>,
-    ) -> PyResult<Py<PyAny>> {
-        let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
-        let (u, v) = (ua.vector("us")?, va.vector("vs")?);
-        let dim = self.inner.dim();
-        let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| self.inner.eval_grid(u, v, &mut out))
-            .map_err(lib_err)?;
-        Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
-    }
-
-    /// Inserts `u` into the `u` knots `times` times.
-    #[pyo3(signature = (u, times = 1))]
-    fn insert_knot_u(&self, py: Python<'_>, u: f64, times: usize) -> PyResult<Self> {
-        Ok(Self {
-            inner: py
-                .detach(|| self.inner.insert_knot_u(u, times))
-                .map_err(lib_err)?,
-        })
-    }
-
-    /// Inserts `v` into the `v` knots `times` times.
-    #[pyo3(signature = (v, times = 1))]
-    fn insert_knot_v(&self, py: Python<'_>, v: f64, times: usize) -> PyResult<Self> {
-        Ok(Self {
-            inner: py
-                .detach(|| self.inner.insert_knot_v(v, times))
-                .map_err(lib_err)?,
-        })
-    }
-
-    /// Splits at `u` into two surfaces.
-    fn split_u(&self, py: Python<'_>, u: f64) -> PyResult<(Self, Self)> {
-        let (a, b) = py.detach(|| self.inner.split_at_u(u)).map_err(lib_err)?;
-        Ok((Self { inner: a }, Self { inner: b }))
-    }
-
-    /// Splits at `v` into two surfaces.
-    fn split_v(&self, py: Python<'_>, v: f64) -> PyResult<(Self, Self)> {
-        let (a, b) = py.detach(|| self.inner.split_at_v(v)).map_err(lib_err)?;
-        Ok((Self { inner: a }, Self { inner: b }))
     }
 
     /// Degree elevation by `(by_u, by_v)`.
@@ -368,30 +390,6 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", {
                 .map_err(lib_err)?,
         })
     }
-
-    /// The iso-curve `S(·, v)`.
-    fn iso_curve_u(&self, v: f64) -> PyResult<PyBSplineCurve> {
-        Ok(PyBSplineCurve::wrap(
-            self.inner.iso_curve_u(v).map_err(lib_err)?,
-        ))
-    }
-
-    /// The iso-curve `S(u, ·)`.
-    fn iso_curve_v(&self, u: f64) -> PyResult<PyBSplineCurve> {
-        Ok(PyBSplineCurve::wrap(
-            self.inner.iso_curve_v(u).map_err(lib_err)?,
-        ))
-    }
-
-    fn __repr__(&self) -> String {
-        let (nu, nv) = self.inner.net_size();
-        format!(
-            "BSplineSurface(degrees=({}, {}), net=({nu}, {nv}), dim={})",
-            self.inner.degree_u(),
-            self.inner.degree_v(),
-            self.inner.dim()
-        )
-    }
 });
 
 /// A tensor-product NURBS surface (docs/theory/surfaces.md).
@@ -400,7 +398,7 @@ pub(crate) struct PyNurbsSurface {
     pub(crate) inner: NurbsSurface,
 }
 
-surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", {
+surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
     #[new]
     fn new(
         degree_u: usize,
@@ -427,24 +425,6 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", {
         })
     }
 
-    /// The degrees `(p, q)`.
-    #[getter]
-    fn degrees(&self) -> (usize, usize) {
-        (self.inner.degree_u(), self.inner.degree_v())
-    }
-
-    /// The knot vector in `u`.
-    #[getter]
-    fn knots_u<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots_u().as_slice())
-    }
-
-    /// The knot vector in `v`.
-    #[getter]
-    fn knots_v<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, self.inner.knots_v().as_slice())
-    }
-
     /// The Euclidean control net `(nu, nv, dim)`.
     #[getter]
     fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -456,46 +436,5 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", {
     fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (nu, nv) = self.inner.net_size();
         array(py, self.inner.weights(), &[nu, nv])
-    }
-
-    /// Points on the tensor grid `us × vs`: `(len(us), len(vs), dim)`.
-    fn grid(
-        &self,
-        py: Python<'_>,
-        us: &Bound<'_, PyAny>,
-        vs: &Bound<'_, PyAny>,
-    ) -> PyResult<Py<PyAny>> {
-        let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
-        let (u, v) = (ua.vector("us")?, va.vector("vs")?);
-        let dim = self.inner.dim();
-        let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| self.inner.eval_grid(u, v, &mut out))
-            .map_err(lib_err)?;
-        Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
-    }
-
-    /// The iso-curve `S(·, v)`.
-    fn iso_curve_u(&self, v: f64) -> PyResult<PyNurbsCurve> {
-        Ok(PyNurbsCurve::wrap(
-            self.inner.iso_curve_u(v).map_err(lib_err)?,
-        ))
-    }
-
-    /// The iso-curve `S(u, ·)`.
-    fn iso_curve_v(&self, u: f64) -> PyResult<PyNurbsCurve> {
-        Ok(PyNurbsCurve::wrap(
-            self.inner.iso_curve_v(u).map_err(lib_err)?,
-        ))
-    }
-
-    fn __repr__(&self) -> String {
-        let (nu, nv) = self.inner.net_size();
-        format!(
-            "NurbsSurface(degrees=({}, {}), net=({nu}, {nv}), dim={})",
-            self.inner.degree_u(),
-            self.inner.degree_v(),
-            self.inner.dim()
-        )
     }
 });

@@ -244,3 +244,44 @@ def test_json_errors_are_named():
         lekalo.BezierCurve.from_json(lecture_curve().to_json())
     with pytest.raises(lekalo.Error, match="not valid JSON"):
         lekalo.from_json("{")
+
+
+def test_nurbs_shares_the_bspline_knot_operations():
+    # the knot operations are written once for B-spline and NURBS classes: NURBS curves gain
+    # remove_all_removable_knots, NURBS surfaces knot insertion and splitting
+    c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    refined = c.insert_knot(0.3, 2)
+    back, removed = refined.remove_all_removable_knots()
+    assert removed == 2 and len(back.knots) == len(c.knots)
+    t = np.linspace(0, 1, 50)
+    assert np.allclose(back(t), c(t), atol=1e-12)
+    net = np.array([[[0, 0, 0], [0, 1, 0], [0, 2, 1]], [[1, 0, 0], [1, 1, 1], [1, 2, 0]]], dtype=float)
+    w = np.array([[1.0, 2.0, 1.0], [1.0, 0.5, 1.0]])
+    s = lekalo.NurbsSurface(1, 2, [0, 0, 1, 1], [0, 0, 0, 1, 1, 1], net, w)
+    u, v = np.linspace(0, 1, 7), np.linspace(0, 1, 7)
+    assert np.allclose(s.insert_knot_u(0.4)(u, v), s(u, v), atol=1e-13)
+    assert np.allclose(s.insert_knot_v(0.6, 2)(u, v), s(u, v), atol=1e-13)
+    a, b = s.split_v(0.5)
+    assert np.allclose(a(0.3, 0.2), s(0.3, 0.2), atol=1e-13) and np.allclose(b(0.3, 0.8), s(0.3, 0.8), atol=1e-13)
+    assert repr(s).startswith("NurbsSurface(degrees=(1, 2), net=(2, 3)")
+
+
+def test_out_receives_the_points():
+    c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    b = lekalo.interpolate(np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float))
+    t = np.linspace(0, 1, 37)
+    for curve in (b, c):
+        buf = np.empty((37, 2))
+        got = curve(t, out=buf)
+        assert got is buf and np.array_equal(buf, curve(t))
+    with pytest.raises(lekalo.Error, match="shape"):
+        b(t, out=np.empty((36, 2)))
+    with pytest.raises(lekalo.Error, match="float64"):
+        b(t, out=np.empty((37, 2), dtype=np.float32))
+    with pytest.raises(lekalo.Error, match="C-contiguous"):
+        b(t, out=np.empty((2, 37)).T)
+    # an output that is also the input is refused, not silently overwritten while read
+    buf = np.zeros((4, 1))
+    one_d = lekalo.interpolate(np.array([0.0, 1.0, 0.5, 2.0]))
+    with pytest.raises(lekalo.Error, match="in use"):
+        one_d(buf[:, 0], out=buf)

@@ -120,8 +120,9 @@ pub mod pp;
 
 pub use pp::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
+    Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER,
     sample_quasi_interpolant, truncated_power, NewtonForm, PiecewisePolynomial, PpSpace,
-    QuasiSamples, TauRule, DEFAULT_CONTINUITY_RTOL,
+    QuasiSamples, Tau, TauRule, DEFAULT_CONTINUITY_RTOL,
 };
 
 // -- fitting: least squares, smoothing, fitting to a tolerance --

@@ -10,11 +10,12 @@ use lekalo::{
 };
 use proptest::prelude::*;
 
-const RULES: [TauRule; 4] = [
+const RULES: [TauRule; 5] = [
     TauRule::FirstKnotAfter,
     TauRule::LeftEndOfSupport,
     TauRule::Midpoint,
     TauRule::Greville,
+    TauRule::FirstIntervalMidpoint,
 ];
 
 // f(x) = x cos x and its derivatives (document 003, eq. 12).
@@ -36,7 +37,8 @@ fn thesis_space() -> PpSpace {
 
 // Document 003 §5.3: knots, n = 8, and the maximum errors on the 61-point grid of step 0.05.
 // Reference figures: an independent Python implementation (Cox–de Boor by the recursive
-// definition, ψ_i expanded as a polynomial, grid j·0.05), which agrees with these to 1e-15.
+// definition, ψ_i expanded as a polynomial, grid j·0.05; tests/data/quasi_tau_rules.py), which
+// agrees with these to 1e-15.
 // Thesis's printed figure: 0.204831.
 #[test]
 fn thesis_practical_task() {
@@ -52,6 +54,11 @@ fn thesis_practical_task() {
         (TauRule::LeftEndOfSupport, 0.204_831_219_164_730_35, 2.75),
         (TauRule::Midpoint, 0.026_644_954_337_416_76, 2.55),
         (TauRule::Greville, 0.012_633_072_704_255_177, 2.6),
+        (
+            TauRule::FirstIntervalMidpoint,
+            0.031_743_745_560_113_28,
+            2.75,
+        ),
     ];
     for (rule, want, at) in cases {
         let s = sample_quasi_interpolant(&space, rule, xcosx, 60).unwrap();

@@ -80,6 +80,10 @@ fn step_name(a: &ConvertArgs) -> String {
 }
 
 pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
+    let parquet = crate::cmd::parquet_batch::is_parquet;
+    if parquet(&a.input) || a.output.as_deref().is_some_and(parquet) {
+        return crate::cmd::parquet_batch::convert(&a.input, a.output.as_deref(), v);
+    }
     if shapes::surface_csv_wanted(a.to.as_deref(), a.output.as_deref()) {
         if let Ok(Loaded::Other(Shape::Surface(s))) = load(&a.input, false, Verbosity::Quiet) {
             let side = a.samples.clamp(2, 10_000_000).isqrt().max(2);

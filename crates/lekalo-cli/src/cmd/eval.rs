@@ -109,6 +109,10 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
     };
     let inputs = vec![a.input.clone()];
     check_derivatives(a)?;
+    if crate::cmd::parquet_batch::is_parquet(&a.input) {
+        let params = |o: &Object| parameters(a, o);
+        return crate::cmd::parquet_batch::eval(&a.input, a.output.as_deref(), &params, spec, v);
+    }
     match load(&a.input, a.jsonl, v)? {
         Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {

@@ -373,9 +373,26 @@ pub(crate) struct InterpolateArgs {
 }
 
 pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
+    let param = a.param.to_lib(a.exponent);
+    if crate::cmd::parquet_batch::is_parquet(&a.points) {
+        if a.grid.is_some()
+            || a.function
+            || a.hermite.is_some()
+            || a.tangents.is_some()
+            || a.params.is_some()
+        {
+            return bad_input("a Parquet batch is interpolated by B-spline curves: --grid, --function, --hermite, --tangents and --params are for one points file");
+        }
+        let interp = curve_interpolation(a, param)?;
+        return crate::cmd::parquet_batch::interpolate(
+            &a.points,
+            &interp,
+            a.out.output.as_deref(),
+            v,
+        );
+    }
     let (pts, name) = crate::io::read_points(&a.points)?;
     let inputs = vec![a.points.clone()];
-    let param = a.param.to_lib(a.exponent);
     if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
         return bad_input(
             "--tension is used only with --hermite cardinal; give --hermite cardinal or drop --tension",
@@ -467,6 +484,26 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
         let obj = Object::BSpline(h.to_bspline());
         return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
     }
+    let interp = curve_interpolation(a, param)?;
+    let bar = crate::io::spinner(
+        format!("interpolating {} points", pts.len()),
+        pts.len() > 100_000,
+        v,
+    );
+    let curve = match &a.params {
+        Some(p) => interp.interpolate_at(
+            pts.as_view(),
+            &crate::cmd::explicit::parameters(p, "--params")?,
+        ),
+        None => interp.interpolate(pts.as_view()),
+    };
+    bar.finish_and_clear();
+    let curve = curve?;
+    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
+}
+
+/// The B-spline interpolation of the options (end conditions, knots, condition limit).
+fn curve_interpolation(a: &InterpolateArgs, param: Parametrization) -> Result<CurveInterpolation> {
     let pair = |what: &str| -> Result<(Vec<f64>, Vec<f64>)> {
         match (&a.d0, &a.dn) {
             (Some(s), Some(e)) => Ok((
@@ -509,21 +546,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     if let Some(limit) = a.max_condition {
         interp = interp.max_condition(limit);
     }
-    let bar = crate::io::spinner(
-        format!("interpolating {} points", pts.len()),
-        pts.len() > 100_000,
-        v,
-    );
-    let curve = match &a.params {
-        Some(p) => interp.interpolate_at(
-            pts.as_view(),
-            &crate::cmd::explicit::parameters(p, "--params")?,
-        ),
-        None => interp.interpolate(pts.as_view()),
-    };
-    bar.finish_and_clear();
-    let curve = curve?;
-    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
+    Ok(interp)
 }
 
 fn tangents(t: Tangents, tension: f64) -> TangentEstimate {

@@ -27,4 +27,9 @@ pub(crate) mod fit;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
+pub(crate) mod offset;
+// Parquet batches in interpolate, eval and convert
+pub(crate) mod parquet_batch;
 pub(crate) mod project;
+// the browser editor
+pub(crate) mod serve;

@@ -4,7 +4,10 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
-use lekalo::{quasi_interpolate, sample_quasi_interpolant, PiecewisePolynomial, PpSpace, TauRule};
+use lekalo::{
+    quasi_interpolate, sample_quasi_interpolant, PiecewisePolynomial, PpSpace, Tau, TauRule,
+    DEFAULT_CONTINUITY_RTOL,
+};
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
 use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
@@ -23,6 +26,8 @@ pub(crate) enum Rule {
     Midpoint,
     /// Tau = the Greville abscissa.
     Greville,
+    /// Tau = the middle of the first non-empty knot interval of the support (never a knot).
+    FirstIntervalMidpoint,
 }
 
 impl Rule {
@@ -32,6 +37,41 @@ impl Rule {
             Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
             Rule::Midpoint => TauRule::Midpoint,
             Rule::Greville => TauRule::Greville,
+            Rule::FirstIntervalMidpoint => TauRule::FirstIntervalMidpoint,
+        }
+    }
+}
+
+/// The τ choice of `pp convert` and `pp quasi`: a rule, or explicit values.
+#[derive(Args, Debug)]
+pub(crate) struct TauArgs {
+    /// τ rule of the de Boor–Fix functionals.
+    #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
+    rule: Rule,
+    /// Explicit τ values instead of a rule, one per B-spline, each inside its support
+    /// [x_i, x_(i+k)]: a comma-separated list or a file of one value per line.
+    #[arg(
+        long,
+        value_name = "LIST|FILE",
+        allow_hyphen_values = true,
+        conflicts_with = "rule"
+    )]
+    tau: Option<String>,
+}
+
+impl TauArgs {
+    /// The explicit values, read once (the caller borrows them as a [`Tau`]).
+    fn values(&self) -> Result<Option<Vec<f64>>> {
+        self.tau
+            .as_deref()
+            .map(|t| crate::cmd::explicit::parameters(t, "--tau"))
+            .transpose()
+    }
+
+    fn choice<'a>(&self, values: &'a Option<Vec<f64>>) -> Tau<'a> {
+        match values {
+            Some(v) => Tau::Values(v),
+            None => Tau::Rule(self.rule.to_lib()),
         }
     }
 }
@@ -88,24 +128,26 @@ fn runge_derivative(x: f64, r: usize) -> f64 {
 #[derive(Subcommand, Debug)]
 pub(crate) enum PpOp {
     /// B-spline curve → pp-form (local power coefficients), or pp-form → B-spline on the
-    /// Curry–Schoenberg knots of --continuity (document 003 §5.1).
+    /// Curry–Schoenberg knots of --continuity, inferred from the pp-form when not given
+    /// (document 003 §5.1).
     #[command(after_help = "\
 The pp-form JSON: {\"lekalo\": 1, \"type\": \"piecewise_polynomial\", \"breakpoints\": [...],
 \"order\": k, \"dim\": d, \"coefficients\": [...]} with, for each piece j, c_{j,r} = f^(r)(ξ_j+)/r!.
 
 Examples:
   lekalo pp convert curve.json -o curve.pp.json
+  lekalo pp convert curve.pp.json -o curve.json       # ν inferred, as `lekalo info` shows it
   lekalo pp convert curve.pp.json --continuity 2,2,2 --rule midpoint -o curve.json")]
     Convert {
         /// A B-spline curve object, or a piecewise polynomial (JSON).
         input: PathBuf,
         /// ν at each interior breakpoint for pp → B-spline: how many derivatives, counting the
-        /// value, are continuous there (default k − 1 everywhere, i.e. C^(k−2)).
+        /// value, are continuous there (default: inferred from the pp-form, the continuity that
+        /// `lekalo info` reports, so the knots are as few as the pp-form allows).
         #[arg(long)]
         continuity: Option<String>,
-        /// τ rule of the de Boor–Fix functionals.
-        #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
-        rule: Rule,
+        #[command(flatten)]
+        tau: TauArgs,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -118,7 +160,8 @@ Examples:
   lekalo pp quasi --function 'x*cos(x)' --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --order 3 \\
       --continuity 2,2,2,2,2 --rule left-end-of-support -o fig1.svg    # max error 0.204831
   lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json
-  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 --json   # error and curve")]
+  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 --json   # error and curve
+  lekalo pp quasi --function sin --breakpoints 0,1,2 --order 2 --tau 0,0.5,1.5,2   # explicit τ")]
     Quasi {
         /// The function.
         #[arg(long, value_enum)]
@@ -132,9 +175,8 @@ Examples:
         /// ν at each interior breakpoint (default: k − 1 everywhere).
         #[arg(long)]
         continuity: Option<String>,
-        /// τ rule.
-        #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
-        rule: Rule,
+        #[command(flatten)]
+        tau: TauArgs,
         /// Intervals of the error grid.
         #[arg(long, default_value_t = 60)]
         intervals: usize,
@@ -158,7 +200,12 @@ pub(crate) struct PpArgs {
     op: PpOp,
 }
 
-fn continuity(text: Option<&String>, n_breakpoints: usize, order: usize) -> Result<Vec<usize>> {
+/// ν from `--continuity`, or `default` when it is not given.
+fn continuity(
+    text: Option<&String>,
+    n_breakpoints: usize,
+    default: impl FnOnce() -> Vec<usize>,
+) -> Result<Vec<usize>> {
     let interior = n_breakpoints.saturating_sub(2);
     match text {
         Some(t) => {
@@ -171,7 +218,7 @@ fn continuity(text: Option<&String>, n_breakpoints: usize, order: usize) -> Resu
             }
             Ok(nu)
         }
-        None => Ok(vec![order.saturating_sub(1); interior]),
+        None => Ok(default()),
     }
 }
 
@@ -180,15 +227,21 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
         PpOp::Convert {
             input,
             continuity: cont,
-            rule,
+            tau,
             out,
         } => {
             let (text, name) = lekalo_io::read_input(input)?;
             if lekalo_io::envelope_type(&text).as_deref() == Some("piecewise_polynomial") {
                 let p = lekalo_io::read_piecewise_polynomial(&text, &name)?;
-                let nu = continuity(cont.as_ref(), p.breakpoints().len(), p.order())?;
+                let nu = continuity(cont.as_ref(), p.breakpoints().len(), || {
+                    p.continuity(DEFAULT_CONTINUITY_RTOL)
+                })?;
+                if cont.is_none() && v == Verbosity::Verbose {
+                    eprintln!("continuity ν inferred from the pp-form: {nu:?}");
+                }
                 let space = PpSpace::new(p.breakpoints(), &nu, p.order())?;
-                let c = p.to_bspline(&space, rule.to_lib())?;
+                let values = tau.values()?;
+                let c = p.to_bspline(&space, tau.choice(&values))?;
                 return write_curve(
                     &Object::BSpline(c),
                     None,
@@ -227,19 +280,22 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             breakpoints,
             order,
             continuity: cont,
-            rule,
+            tau,
             intervals,
             json,
             out,
         } => {
             let xi = numbers(breakpoints, "--breakpoints")?;
-            let nu = continuity(cont.as_ref(), xi.len(), *order)?;
+            let nu = continuity(cont.as_ref(), xi.len(), || {
+                vec![order.saturating_sub(1); xi.len().saturating_sub(2)]
+            })?;
             let space = PpSpace::new(&xi, &nu, *order)?;
             let f = |x: f64, r: usize| function.eval(x, r);
-            let q = quasi_interpolate(&space, rule.to_lib(), f)?;
+            let values = tau.values()?;
+            let q = quasi_interpolate(&space, tau.choice(&values), f)?;
             crate::io::check_size(*intervals, "--intervals")?;
             crate::io::check_memory::<f64>(intervals.saturating_mul(4), "--intervals")?;
-            let samples = sample_quasi_interpolant(&space, rule.to_lib(), f, *intervals)?;
+            let samples = sample_quasi_interpolant(&space, tau.choice(&values), f, *intervals)?;
             if v != Verbosity::Quiet {
                 eprintln!(
                     "max |f − q| on {} intervals: {}",

@@ -14,11 +14,6 @@ use serde_json::{json, Value};
 
 use crate::io::bad_input;
 
-/// Relative tolerance for "this derivative does not jump": `|D^r f(ξ+) − D^r f(ξ−)| ≤
-/// CONTINUITY_RTOL · max(1, |D^r f(ξ+)|, |D^r f(ξ−)|)` (max norm). Coefficients computed in
-/// floating point from a smooth spline agree to a few ulps of the derivative's size.
-const CONTINUITY_RTOL: f64 = 1e-9;
-
 fn bbox(p: &Points) -> Value {
     p.bounding_box()
         .map_or(Value::Null, |(lo, hi)| json!({"min": lo, "max": hi}))
@@ -67,34 +62,14 @@ pub(crate) fn surface_info_json(s: &Surface, samples: usize) -> lekalo::Result<V
     }))
 }
 
-/// Order of continuity at interior breakpoint `x`: the number `m` of derivatives
-/// `D^0 … D^(m−1)` that do not jump (document 003 eq. (9)), so the pp is `C^(m−1)` there
-/// (`m = k`: no break at all).
-fn continuity_at(p: &PiecewisePolynomial, x: f64) -> lekalo::Result<usize> {
-    let k = p.order();
-    let right = p.eval_derivatives(x, k - 1)?;
-    let left = p.eval_derivatives_left(x, k - 1)?;
-    for r in 0..k {
-        let (a, b) = (right.point(r), left.point(r));
-        let scale = a.iter().chain(b).fold(1.0_f64, |m, v| m.max(v.abs()));
-        let jump = a
-            .iter()
-            .zip(b)
-            .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
-        if jump > CONTINUITY_RTOL * scale {
-            return Ok(r);
-        }
-    }
-    Ok(k)
-}
-
 /// The facts about a pp-form: order, breakpoints, dimension, continuity at each interior
 /// breakpoint, sampled box.
 pub(crate) fn pp_info_json(p: &PiecewisePolynomial, samples: usize) -> lekalo::Result<Value> {
     let xi = p.breakpoints();
     let mut cont = Vec::new();
-    for &x in &xi[1..xi.len() - 1] {
-        let m = continuity_at(p, x)?;
+    // ν at each interior breakpoint, by the library's test (also `pp convert`'s default)
+    let nu = p.continuity(lekalo::DEFAULT_CONTINUITY_RTOL);
+    for (&x, &m) in xi[1..xi.len() - 1].iter().zip(&nu) {
         cont.push(json!({"breakpoint": x, "continuous_derivatives": m,
             "smoothness": if m >= p.order() { "C^inf".to_string() } else if m == 0 { "discontinuous".to_string() } else { format!("C^{}", m - 1) }}));
     }

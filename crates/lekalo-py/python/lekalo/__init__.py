@@ -2,9 +2,11 @@
 
 Bezier, B-spline and NURBS curves and surfaces; interpolation with every parametrisation, knot
 placement and end condition; natural and Hermite splines; piecewise polynomials and
-quasi-interpolation; many small curves at once from flat arrays (``interpolate_batch``,
-``evaluate_batch``). The computations are the Rust library ``lekalo``'s, run with the GIL
-released.
+quasi-interpolation; fitting (``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep``,
+``fit_tolerance``, robust and surface fits); geometric queries (``CurveQuery``, ``SurfaceQuery``:
+length, closest points, intersections, offsets, tessellation, curvature); many small curves at
+once from flat arrays (``interpolate_batch``, ``evaluate_batch``). The computations are the Rust
+library ``lekalo``'s, run with the GIL released.
 
 Conventions (see the package README, "SciPy users start here"):
 
@@ -35,9 +37,24 @@ from ._lekalo import (
     NurbsSurface,
     PiecewisePolynomial,
     PpSpace,
+    CurveQuery,
+    SurfaceQuery,
     cubic_through_four_points,
     evaluate_batch,
+    fit_least_squares,
+    fit_robust,
+    fit_smoothing,
+    fit_smoothing_condition,
+    fit_surface_grid,
+    fit_surface_scattered,
+    fit_tolerance,
     from_json,
+    gcv_score,
+    make_lsq_spline,
+    make_smoothing_spline,
+    make_splprep,
+    make_splrep,
+    place_knots,
     interpolate,
     interpolate_batch,
     interpolate_surface,
@@ -69,12 +86,27 @@ __all__ = [
     "NurbsSurface",
     "PiecewisePolynomial",
     "PpSpace",
+    "CurveQuery",
+    "SurfaceQuery",
     "cubic_through_four_points",
     "curves_from_batch",
     "curves_to_batch",
     "evaluate_batch",
+    "fit_least_squares",
+    "fit_robust",
+    "fit_smoothing",
+    "fit_smoothing_condition",
+    "fit_surface_grid",
+    "fit_surface_scattered",
+    "fit_tolerance",
     "from_geomdl",
     "from_json",
+    "gcv_score",
+    "make_lsq_spline",
+    "make_smoothing_spline",
+    "make_splprep",
+    "make_splrep",
+    "place_knots",
     "from_scipy",
     "interpolate",
     "interpolate_batch",

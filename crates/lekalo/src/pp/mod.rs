@@ -7,6 +7,7 @@
 //!   conversion and [`quasi_interpolate`].
 
 mod divided_difference;
+mod expression;
 pub(crate) mod ppform;
 mod quasi_interpolation;
 
@@ -14,5 +15,8 @@ pub use divided_difference::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
     NewtonForm,
 };
+pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
-pub use quasi_interpolation::{quasi_interpolate, sample_quasi_interpolant, QuasiSamples, TauRule};
+pub use quasi_interpolation::{
+    quasi_interpolate, sample_quasi_interpolant, QuasiSamples, Tau, TauRule,
+};

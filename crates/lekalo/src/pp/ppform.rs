@@ -349,6 +349,68 @@ impl PiecewisePolynomial {
         Ok(right.iter().zip(&left).map(|(r, l)| r - l).collect())
     }
 
+    /// The continuity `ν_2 … ν_l` of `self` at its interior breakpoints
+    /// (docs/theory/pp.md#continuity-conditions): `ν_i` is the number of derivatives
+    /// `D^0 … D^{ν_i − 1}` that do not jump at `ξ_i` (document 003 eq. (9)), so `self` is
+    /// `C^{ν_i − 1}` there (`ν_i = k`: no break at all). A jump counts as zero by the test of
+    /// [`PpSpace::contains`] with the same `rtol`, so `self` always belongs to
+    /// `PpSpace::new(breakpoints, &continuity, order)`: the smallest space of its breakpoints and
+    /// order that holds it. O(l·k²·dim).
+    ///
+    /// ```
+    /// use lekalo::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+    /// // |x| on [−1, 1]: continuous, with a kink at 0
+    /// let f = PiecewisePolynomial::new(vec![-1.0, 0.0, 1.0], 2, 1, vec![1.0, -1.0, 0.0, 1.0])?;
+    /// let nu = f.continuity(DEFAULT_CONTINUITY_RTOL);
+    /// assert_eq!(nu, vec![1]);
+    /// assert!(PpSpace::new(f.breakpoints(), &nu, 2)?.contains(&f, DEFAULT_CONTINUITY_RTOL));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn continuity(&self, rtol: f64) -> Vec<usize> {
+        let dim = self.dim;
+        let interior = self.n_pieces().saturating_sub(1);
+        // ν_i grows while the derivatives keep agreeing; `open[m]` is false once one jumped
+        let mut nu = vec![0; interior];
+        let mut open = vec![true; interior];
+        let mut left = vec![0.0; dim];
+        let mut right = vec![0.0; dim];
+        for j in 0..self.order {
+            let scale = self.derivative_scale(j);
+            for m in 0..interior {
+                if !open[m] {
+                    continue;
+                }
+                let i = m + 1;
+                let x = self.breakpoints[i];
+                self.piece_derivative_into(i, x, j, &mut right);
+                self.piece_derivative_into(i - 1, x, j, &mut left);
+                if (0..dim).any(|d| (right[d] - left[d]).abs() > rtol * scale[d]) {
+                    open[m] = false;
+                } else {
+                    nu[m] = j + 1;
+                }
+            }
+        }
+        nu
+    }
+
+    /// The largest `|D^j f|` at the ends of the pieces, per coordinate: the scale of the
+    /// continuity test of [`PpSpace::contains`] and [`PiecewisePolynomial::continuity`].
+    fn derivative_scale(&self, j: usize) -> Vec<f64> {
+        let mut scale = vec![0.0f64; self.dim];
+        let mut value = vec![0.0; self.dim];
+        for p in 0..self.n_pieces() {
+            for x in [self.breakpoints[p], self.breakpoints[p + 1]] {
+                self.piece_derivative_into(p, x, j, &mut value);
+                for (s, v) in scale.iter_mut().zip(&value) {
+                    *s = s.max(v.abs());
+                }
+            }
+        }
+        scale
+    }
+
     /// The pp-form of a B-spline curve (docs/theory/pp.md#from-b-spline-to-pp-form): the
     /// breakpoints are the distinct knots of the domain `[x_k, x_{n+1}]`, the order `k = p + 1`,
     /// and the coefficients of piece `j` are the right-hand derivatives at its left breakpoint,
@@ -549,16 +611,7 @@ impl PpSpace {
         let mut left = vec![0.0; dim];
         let mut right = vec![0.0; dim];
         for j in 0..max_nu.min(f.order) {
-            // scale of D^j f: largest magnitude at the piece ends
-            let mut scale = vec![0.0f64; dim];
-            for p in 0..f.n_pieces() {
-                for x in [f.breakpoints[p], f.breakpoints[p + 1]] {
-                    f.piece_derivative_into(p, x, j, &mut left);
-                    for (s, v) in scale.iter_mut().zip(&left) {
-                        *s = s.max(v.abs());
-                    }
-                }
-            }
+            let scale = f.derivative_scale(j);
             for (m, &nu) in self.continuity.iter().enumerate() {
                 if j >= nu {
                     continue;

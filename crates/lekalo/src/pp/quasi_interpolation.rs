@@ -30,6 +30,7 @@ use crate::pp::ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 /// | [`TauRule::LeftEndOfSupport`] | **0.2048312** (at x = 2.75), the thesis's printed 0.204831 |
 /// | [`TauRule::Midpoint`] | 0.0266450 |
 /// | [`TauRule::Greville`] | 0.0126331 |
+/// | [`TauRule::FirstIntervalMidpoint`] | 0.0317437 |
 ///
 /// The printed figure is reproduced by `τ_i = x_i`, i.e. the thesis's rule read with `≥`
 /// (`min{x_j : x_j ≥ x_i}`), or equivalently (the same figure to 1e-15) by the thesis's rule
@@ -54,6 +55,93 @@ pub enum TauRule {
     Midpoint,
     /// `τ_i = (x_{i+1} + … + x_{i+k−1})/(k − 1)`, the Greville abscissa (`x_i` for `k = 1`).
     Greville,
+    /// `τ_i = (x_j + x_{j+1})/2` for the first `j ≥ i` with `x_j < x_{j+1}`: the middle of the
+    /// first non-empty knot interval of the support, so `τ_i` is never a knot and both sides of
+    /// a spline agree there (docs/theory/pp.md#the-two-tau-rules).
+    FirstIntervalMidpoint,
+}
+
+/// Where the points `τ_i` of the de Boor–Fix functionals come from: a [`TauRule`], or one value
+/// per B-spline given by the caller (each in its support `[x_i, x_{i+k}]`;
+/// docs/theory/pp.md#explicit-tau-values).
+///
+/// A [`TauRule`] converts into it, so every function taking `impl Into<Tau>` accepts a rule:
+///
+/// ```
+/// use lekalo::{quasi_interpolate, PpSpace, Tau, TauRule};
+/// let space = PpSpace::new(&[0.0, 1.0, 2.0], &[2], 3)?; // knots 0 0 0 1 2 2 2
+/// let f = |x: f64, r: usize| [x.exp(), x.exp(), x.exp()][r];
+/// let by_rule = quasi_interpolate(&space, TauRule::Greville, f)?;
+/// let taus = TauRule::Greville.points(space.knots(), 3)?;
+/// let by_values = quasi_interpolate(&space, Tau::Values(&taus), f)?;
+/// assert_eq!(by_rule, by_values);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tau<'a> {
+    /// `τ_i` by a rule.
+    Rule(TauRule),
+    /// `τ_1 … τ_n`, one per B-spline, `τ_i ∈ [x_i, x_{i+k}]`.
+    Values(&'a [f64]),
+}
+
+impl From<TauRule> for Tau<'_> {
+    fn from(rule: TauRule) -> Self {
+        Tau::Rule(rule)
+    }
+}
+
+impl<'a> From<&'a [f64]> for Tau<'a> {
+    fn from(values: &'a [f64]) -> Self {
+        Tau::Values(values)
+    }
+}
+
+impl Tau<'_> {
+    /// The points `τ_1 … τ_n` for the `n` B-splines of order `k` on `knots`: the rule's, or the
+    /// given values after checking them.
+    ///
+    /// # Errors
+    /// As [`TauRule::points`]; for [`Tau::Values`] also [`Error::LengthMismatch`] if there is not
+    /// one value per B-spline, [`Error::NonFinite`] for NaN or infinity and
+    /// [`Error::InvalidArgument`] for a value outside its support `[x_i, x_{i+k}]`.
+    pub fn points(self, knots: &KnotVector, order: usize) -> Result<Vec<f64>> {
+        let values = match self {
+            Tau::Rule(rule) => return rule.points(knots, order),
+            Tau::Values(v) => v,
+        };
+        let n = check_knots(knots, order)?;
+        if values.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "τ values (one per B-spline)",
+                expected: n,
+                got: values.len(),
+            });
+        }
+        let x = knots.as_slice();
+        for (i, &t) in values.iter().enumerate() {
+            if !t.is_finite() {
+                return Err(Error::NonFinite {
+                    what: "τ value (index = position in the list)",
+                    index: i,
+                    value: t,
+                });
+            }
+            if !(x[i]..=x[i + order]).contains(&t) {
+                return Err(Error::InvalidArgument {
+                    what: "τ value",
+                    reason: format!(
+                        "τ number {} is {t}, outside the support [{}, {}] of its B-spline; each \
+                         τ_i must lie in [x_i, x_(i+k)]",
+                        i + 1,
+                        x[i],
+                        x[i + order]
+                    ),
+                });
+            }
+        }
+        Ok(values.to_vec())
+    }
 }
 
 impl TauRule {
@@ -74,6 +162,14 @@ impl TauRule {
                 } else {
                     x[i + 1..i + order].iter().sum::<f64>() / (order - 1) as f64
                 }
+            }
+            TauRule::FirstIntervalMidpoint => {
+                // x_i < x_{i+k} in a valid knot vector, so some interval of the support is
+                // non-empty
+                let j = (i..i + order)
+                    .find(|&j| x[j] < x[j + 1])
+                    .unwrap_or(i + order - 1);
+                0.5 * (x[j] + x[j + 1])
             }
         };
         tau.clamp(x[i], x[i + order])
@@ -142,19 +238,20 @@ fn de_boor_fix<D>(
     knots: &KnotVector,
     order: usize,
     dim: usize,
-    rule: TauRule,
+    tau: Tau<'_>,
     mut derivs: D,
 ) -> Result<Points>
 where
     D: FnMut(f64, bool, &mut [f64]) -> Result<()>,
 {
-    let n = check_knots(knots, order)?;
+    let taus = tau.points(knots, order)?;
+    let n = taus.len();
     let x = knots.as_slice();
     let mut w = vec![0.0; order];
     let mut d = vec![0.0; order * dim];
     let mut coef = vec![0.0; n * dim];
     for (i, c) in coef.chunks_exact_mut(dim).enumerate() {
-        let tau = rule.tau(x, i, order);
+        let tau = taus[i];
         dual_weights(x, i, order, tau, &mut w);
         let from_left = tau == x[i + order] && x[i] < tau;
         derivs(tau, from_left, &mut d)?;
@@ -170,8 +267,9 @@ where
 impl PiecewisePolynomial {
     /// The B-spline form of `self ∈ P_{k,ξ,ν}` on the Curry–Schoenberg knots of `space`
     /// (document 003 §5.1; docs/theory/pp.md#de-boor-fix-functionals): `c_i = λ_i f` with the de
-    /// Boor–Fix functionals at `τ_i` chosen by `rule`, one-sided derivatives as in the module docs.
-    /// Exact for every rule (to rounding) because `f` is in the space. O(n·k·(k + dim)).
+    /// Boor–Fix functionals at the points `tau` (a [`TauRule`] or explicit [`Tau::Values`]),
+    /// one-sided derivatives as in the module docs. Exact for every choice (to rounding) because
+    /// `f` is in the space. O(n·k·(k + dim)).
     ///
     /// ```
     /// use lekalo::{PiecewisePolynomial, PpSpace, TauRule};
@@ -189,8 +287,9 @@ impl PiecewisePolynomial {
     /// # Errors
     /// [`Error::InvalidArgument`] if `self` is not in the space (other breakpoints, higher
     /// order, or a continuity condition violated beyond [`DEFAULT_CONTINUITY_RTOL`]); use
-    /// [`quasi_interpolate`] to approximate a function outside the space.
-    pub fn to_bspline(&self, space: &PpSpace, rule: TauRule) -> Result<BSplineCurve> {
+    /// [`quasi_interpolate`] to approximate a function outside the space; errors of
+    /// [`Tau::points`].
+    pub fn to_bspline<'a>(&self, space: &PpSpace, tau: impl Into<Tau<'a>>) -> Result<BSplineCurve> {
         if !space.contains(self, DEFAULT_CONTINUITY_RTOL) {
             return Err(Error::InvalidArgument {
                 what: "piecewise polynomial",
@@ -205,7 +304,7 @@ impl PiecewisePolynomial {
             });
         }
         let (k, dim) = (space.order(), self.dim());
-        let coef = de_boor_fix(space.knots(), k, dim, rule, |tau, from_left, out| {
+        let coef = de_boor_fix(space.knots(), k, dim, tau.into(), |tau, from_left, out| {
             let piece = if from_left {
                 self.piece_index_left(tau)?
             } else {
@@ -223,7 +322,8 @@ impl PiecewisePolynomial {
 /// The de Boor–Fix quasi-interpolant `Σ_i (λ_i f) b_{i,k}` of a smooth scalar function on the
 /// Curry–Schoenberg knots of `space` (document 003 §5.1–5.3). `f(x, r)` returns `f^{(r)}(x)` for
 /// `r = 0 … k − 1`. It reproduces every `f ∈ P_{k,ξ,ν}`; for other `f` the result depends on
-/// `rule` (see [`TauRule`] for the thesis's practical task). O(n·k²) plus `n·k` calls of `f`.
+/// `tau`, a [`TauRule`] (see its table for the thesis's practical task) or explicit
+/// [`Tau::Values`]. O(n·k²) plus `n·k` calls of `f`.
 ///
 /// ```
 /// use lekalo::{quasi_interpolate, PpSpace, TauRule};
@@ -240,14 +340,14 @@ impl PiecewisePolynomial {
 /// ```
 ///
 /// # Errors
-/// [`Error::NonFinite`] if `f` returns NaN or infinity.
-pub fn quasi_interpolate<F: FnMut(f64, usize) -> f64>(
+/// [`Error::NonFinite`] if `f` returns NaN or infinity; errors of [`Tau::points`].
+pub fn quasi_interpolate<'a, F: FnMut(f64, usize) -> f64>(
     space: &PpSpace,
-    rule: TauRule,
+    tau: impl Into<Tau<'a>>,
     mut f: F,
 ) -> Result<BSplineCurve> {
     let k = space.order();
-    let coef = de_boor_fix(space.knots(), k, 1, rule, |tau, _left, out| {
+    let coef = de_boor_fix(space.knots(), k, 1, tau.into(), |tau, _left, out| {
         for (r, o) in out.iter_mut().enumerate() {
             let v = f(tau, r);
             if !v.is_finite() {
@@ -294,9 +394,9 @@ impl QuasiSamples {
 ///
 /// # Errors
 /// [`Error::TooFew`] if `n_intervals == 0`; errors of [`quasi_interpolate`].
-pub fn sample_quasi_interpolant<F: FnMut(f64, usize) -> f64>(
+pub fn sample_quasi_interpolant<'a, F: FnMut(f64, usize) -> f64>(
     space: &PpSpace,
-    rule: TauRule,
+    tau: impl Into<Tau<'a>>,
     mut f: F,
     n_intervals: usize,
 ) -> Result<QuasiSamples> {
@@ -307,7 +407,7 @@ pub fn sample_quasi_interpolant<F: FnMut(f64, usize) -> f64>(
             got: 0,
         });
     }
-    let q = quasi_interpolate(space, rule, &mut f)?;
+    let q = quasi_interpolate(space, tau, &mut f)?;
     let (a, b) = q.domain();
     let t: Vec<f64> = (0..=n_intervals)
         .map(|j| {
@@ -406,6 +506,7 @@ mod tests {
             TauRule::LeftEndOfSupport,
             TauRule::Midpoint,
             TauRule::Greville,
+            TauRule::FirstIntervalMidpoint,
         ] {
             for j in 0..8 {
                 let mut unit = vec![0.0; 8];
@@ -470,5 +571,69 @@ mod tests {
             TauRule::Midpoint.points(&kv, 0),
             Err(Error::Degree { .. })
         ));
+        // explicit τ: one per B-spline, finite, inside its support
+        let f = |x: f64, _r: usize| x;
+        let seven = [0.5; 7];
+        assert!(matches!(
+            quasi_interpolate(&space, Tau::Values(&seven), f),
+            Err(Error::LengthMismatch {
+                expected: 8,
+                got: 7,
+                ..
+            })
+        ));
+        let mut taus = TauRule::Greville.points(space.knots(), 3).unwrap();
+        taus[3] = f64::NAN;
+        assert!(matches!(
+            quasi_interpolate(&space, Tau::Values(&taus), f),
+            Err(Error::NonFinite { index: 3, .. })
+        ));
+        // b_4's support is [x_3, x_6] = [0.5, 2.1]
+        taus[3] = 2.2;
+        let e = quasi_interpolate(&space, Tau::Values(&taus), f).unwrap_err();
+        assert!(e.to_string().contains("τ number 4 is 2.2"), "{e}");
+        taus[3] = 2.1; // the end of the support is allowed
+        assert!(
+            quasi_interpolate(&space, Tau::Values(&taus), f).is_ok(),
+            "τ on x_(i+k)"
+        );
+    }
+
+    // The middle of the first non-empty interval: for the practical task's clamped knots the
+    // first three B-splines share the first interval (0, 0.5), and τ is never a knot.
+    #[test]
+    fn first_interval_midpoint_points() {
+        let space = thesis_space();
+        let tau = TauRule::FirstIntervalMidpoint
+            .points(space.knots(), 3)
+            .unwrap();
+        // first non-empty intervals: (0, 0.5) three times, then (x_i, x_{i+1})
+        let mid = |a: f64, b: f64| 0.5 * (a + b);
+        let want = [
+            mid(0.0, 0.5),
+            mid(0.0, 0.5),
+            mid(0.0, 0.5),
+            mid(0.5, 0.9),
+            mid(0.9, 1.4),
+            mid(1.4, 2.1),
+            mid(2.1, 2.7),
+            mid(2.7, 3.0),
+        ];
+        assert_eq!(tau, want);
+        let x = space.knots().as_slice();
+        assert!(tau.iter().all(|t| !x.contains(t)), "no τ on a knot");
+    }
+
+    // Explicit values equal to a rule's points give that rule's coefficients bit for bit, for
+    // the exact conversion and for quasi-interpolation.
+    #[test]
+    fn explicit_values_match_rule() {
+        let space = thesis_space();
+        for rule in [TauRule::FirstKnotAfter, TauRule::Midpoint] {
+            let taus = rule.points(space.knots(), 3).unwrap();
+            let a = quasi_interpolate(&space, rule, xcosx).unwrap();
+            let b = quasi_interpolate(&space, taus.as_slice(), xcosx).unwrap();
+            assert_eq!(a, b, "{rule:?}");
+        }
     }
 }

@@ -1,0 +1,255 @@
+//! Parquet batches for `interpolate`, `eval` and `convert` (docs/formats.md#parquet-batches):
+//! read one row group at a time, the groups of a row group processed in parallel, one output
+//! row group written per input row group, so memory is bounded by the row-group size. A bad
+//! group is written with its `error`, reported on stderr with its key, and does not stop the
+//! others; the exit code is then 2.
+
+use std::path::Path;
+
+use anyhow::Result;
+use lekalo::CurveInterpolation;
+use lekalo_io::{GroupKey, IoError, Object, ParquetBatchWriter, SampleSpec};
+use rayon::prelude::*;
+
+use crate::io::{bad_input, group_column, report, settings, BadInput};
+use crate::Verbosity;
+
+/// True for a `.parquet` (or `.pq`) path.
+pub(crate) fn is_parquet(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("parquet") || e.eq_ignore_ascii_case("pq"))
+}
+
+/// The output path of a batch: a `.parquet` file (batches are not written to stdout).
+fn parquet_output<'a>(out: Option<&'a Path>, what: &str) -> Result<&'a Path> {
+    match out {
+        Some(p) if is_parquet(p) => Ok(p),
+        _ => bad_input(format!(
+            "a Parquet input gives {what} as Parquet: give -o FILE.parquet"
+        )),
+    }
+}
+
+/// Reports the failed groups on stderr; `Err(BadInput)` if there were any.
+fn finish(failed: &[String], total: usize, input: &Path) -> Result<()> {
+    for f in failed.iter().take(20) {
+        report(f);
+    }
+    if failed.len() > 20 {
+        report(&format!("... and {} more", failed.len() - 20));
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(BadInput(format!(
+            "{}: {} of {total} groups failed (written with their error in the `error` column)",
+            input.display(),
+            failed.len()
+        ))
+        .into())
+    }
+}
+
+/// `lekalo interpolate points.parquet -o curves.parquet`: one curve per group.
+pub(crate) fn interpolate(
+    input: &Path,
+    interp: &CurveInterpolation,
+    out: Option<&Path>,
+    v: Verbosity,
+) -> Result<()> {
+    let out = parquet_output(out, "curves")?;
+    let key = group_column();
+    let mut failed = Vec::new();
+    let mut total = 0usize;
+    let mut input_error: Option<IoError> = None;
+    lekalo_io::write_atomic_send(
+        out,
+        &[input.to_path_buf()],
+        lekalo_io::WriteOptions {
+            force: settings().force,
+        },
+        |w| {
+            let mut writer = ParquetBatchWriter::new(w);
+            lekalo_io::read_point_groups(input, Some(key), |groups| {
+                let rows: Vec<(GroupKey, Result<Object, String>)> = groups
+                    .into_par_iter()
+                    .map(|(k, pts)| {
+                        let curve = pts.map_err(|e| e.to_string()).and_then(|p| {
+                            interp
+                                .interpolate(p.as_view())
+                                .map(Object::BSpline)
+                                .map_err(|e| format!("{}: group {k}: {e}", input.display()))
+                        });
+                        (k, curve)
+                    })
+                    .collect();
+                total += rows.len();
+                failed.extend(rows.iter().filter_map(|(_, r)| r.as_ref().err().cloned()));
+                writer
+                    .write_curves(key, &rows)
+                    .map_err(|error| IoError::Write {
+                        path: out.to_path_buf(),
+                        error,
+                    })
+            })
+            .map_err(|e| {
+                let msg = e.to_string();
+                input_error = Some(e);
+                std::io::Error::other(msg)
+            })?;
+            writer.close(|w| w.write_curves(key, &[]))
+        },
+    )
+    .map_err(|e| input_error.take().unwrap_or(e))?;
+    if v == Verbosity::Verbose {
+        report(&format!(
+            "wrote {} curves to {}",
+            total - failed.len(),
+            out.display()
+        ));
+    }
+    finish(&failed, total, input)
+}
+
+/// `lekalo eval curves.parquet -o samples.parquet`: the samples of every curve.
+pub(crate) fn eval(
+    input: &Path,
+    out: Option<&Path>,
+    params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
+    spec: SampleSpec,
+    v: Verbosity,
+) -> Result<()> {
+    let out = parquet_output(out, "samples")?;
+    let key = group_column();
+    let mut failed = Vec::new();
+    let mut total = 0usize;
+    let mut input_error: Option<IoError> = None;
+    let mut header: Option<Vec<String>> = None;
+    lekalo_io::write_atomic_send(
+        out,
+        &[input.to_path_buf()],
+        lekalo_io::WriteOptions {
+            force: settings().force,
+        },
+        |w| {
+            let mut writer = ParquetBatchWriter::new(w);
+            lekalo_io::read_curve_groups(input, Some(key), |curves| {
+                total += curves.len();
+                let tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)> = curves
+                    .into_par_iter()
+                    .map(|(k, obj)| {
+                        let t = obj.map_err(|e| e.to_string()).and_then(|o| {
+                            let ts = params(&o).map_err(|e| e.to_string())?;
+                            lekalo_io::sample_table(&o, &ts, spec)
+                                .map_err(|e| format!("{}: group {k}: {e}", input.display()))
+                        });
+                        (k, t)
+                    })
+                    .collect();
+                let mut ok = Vec::with_capacity(tables.len());
+                for (k, t) in tables {
+                    match t {
+                        Ok(t) if header.get_or_insert_with(|| t.header.clone()) == &t.header => {
+                            ok.push((k, t));
+                        }
+                        Ok(t) => failed.push(format!(
+                            "{}: group {k}: a {}-D curve among curves of another dimension; a samples file holds one dimension",
+                            input.display(),
+                            t.header.len().saturating_sub(1)
+                        )),
+                        Err(e) => failed.push(e),
+                    }
+                }
+                writer.write_samples(key, &ok).map_err(|error| IoError::Write {
+                    path: out.to_path_buf(),
+                    error,
+                })
+            })
+            .map_err(|e| {
+                let msg = e.to_string();
+                input_error = Some(e);
+                std::io::Error::other(msg)
+            })?;
+            writer.close(|w| {
+                w.write_samples(
+                    key,
+                    &[(
+                        GroupKey::Int(0),
+                        lekalo_io::SampleTable {
+                            header: vec!["t".into()],
+                            rows: Vec::new(),
+                        },
+                    )],
+                )
+            })
+        },
+    )
+    .map_err(|e| input_error.take().unwrap_or(e))?;
+    if v == Verbosity::Verbose {
+        report(&format!(
+            "wrote the samples of {} curves to {}",
+            total - failed.len(),
+            out.display()
+        ));
+    }
+    finish(&failed, total, input)
+}
+
+/// `lekalo convert`: curves between Parquet and JSON Lines.
+pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<()> {
+    let key = group_column();
+    let inputs = [input.to_path_buf()];
+    if is_parquet(input) {
+        let mut lines = Vec::new();
+        lekalo_io::read_curve_groups(input, Some(key), |curves| {
+            for (k, o) in curves {
+                // the objects alone, in the file's order (an object line has no key field)
+                let line = match o {
+                    Ok(o) => (true, o.to_json_line()),
+                    Err(e) => (
+                        false,
+                        serde_json::json!({"line": lines.len() + 1, key: key_json(&k), "error": e.to_string()})
+                            .to_string(),
+                    ),
+                };
+                lines.push(line);
+            }
+            Ok(())
+        })?;
+        return crate::cmd::eval::finish_batch(lines, out, &inputs, v);
+    }
+    let out = parquet_output(out, "curves")?;
+    let (text, name) = lekalo_io::read_input(input)?;
+    let rows: Vec<(GroupKey, Result<Object, String>)> = lekalo_io::read_json_lines(&text, &name)
+        .into_iter()
+        .map(|(line, o)| {
+            let line = i64::try_from(line).unwrap_or(i64::MAX);
+            (GroupKey::Int(line), o.map_err(|e| e.to_string()))
+        })
+        .collect();
+    let failed: Vec<String> = rows
+        .iter()
+        .filter_map(|(_, r)| r.as_ref().err().cloned())
+        .collect();
+    lekalo_io::write_atomic_send(
+        out,
+        &inputs,
+        lekalo_io::WriteOptions {
+            force: settings().force,
+        },
+        |w| {
+            let mut writer = ParquetBatchWriter::new(w);
+            writer.write_curves("line", &rows)?;
+            writer.close(|w| w.write_curves("line", &[]))
+        },
+    )?;
+    finish(&failed, rows.len(), input)
+}
+
+fn key_json(k: &GroupKey) -> serde_json::Value {
+    match k {
+        GroupKey::Int(i) => serde_json::Value::from(*i),
+        GroupKey::Str(s) => serde_json::Value::from(s.as_str()),
+    }
+}

@@ -1,0 +1,304 @@
+//! Tests of the Parquet batches: round trips through files written here with the writer (and
+//! with the arrow writer directly for the layouts and the malformed cases).
+
+use super::*;
+use lekalo::{BSplineCurve, NurbsCurve, Points};
+
+fn tmp(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join(name);
+    (dir, p)
+}
+
+/// Writes `batches` as one row group each with the arrow writer.
+fn write_batches(path: &Path, batches: &[RecordBatch]) {
+    let f = File::create(path).unwrap();
+    let mut w = ArrowWriter::try_new(f, batches[0].schema(), None).unwrap();
+    for b in batches {
+        w.write(b).unwrap();
+        w.flush().unwrap();
+    }
+    w.close().unwrap();
+}
+
+fn batch(cols: Vec<(&str, ArrayRef)>) -> RecordBatch {
+    RecordBatch::try_from_iter(cols).unwrap()
+}
+
+fn f64s(v: &[f64]) -> ArrayRef {
+    Arc::new(arrow_array::Float64Array::from(v.to_vec()))
+}
+
+fn read_all(path: &Path, key: Option<&str>) -> IoResult<Vec<(GroupKey, Result<Points, String>)>> {
+    let mut out = Vec::new();
+    read_point_groups(path, key, |g| {
+        out.extend(
+            g.into_iter()
+                .map(|(k, p)| (k, p.map_err(|e| e.to_string()))),
+        );
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+#[test]
+fn points_round_trip_across_row_groups() {
+    let (_d, path) = tmp("pts.parquet");
+    let a = Points::from_rows(&[[0.0, 1.0], [0.5, -2.0], [1.0, 0.1 + 0.2]]).unwrap();
+    let b = Points::from_rows(&[[3.0, 4.0], [5.0, 6.0]]).unwrap();
+    let c = Points::from_rows(&[[7.0, 8.0]]).unwrap();
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    // group 2 runs on from the first row group into the second
+    w.write_points(
+        "group",
+        &["x", "y"],
+        &[(GroupKey::Int(1), a.clone()), (GroupKey::Int(2), b.clone())],
+    )
+    .unwrap();
+    w.write_points("group", &["x", "y"], &[(GroupKey::Int(2), c.clone())])
+        .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let got = read_all(&path, None).unwrap();
+    let mut bc = b.as_slice().to_vec();
+    bc.extend_from_slice(c.as_slice());
+    assert_eq!(got.len(), 2, "{got:?}");
+    assert_eq!(got[0], (GroupKey::Int(1), Ok(a)), "bit for bit");
+    assert_eq!(
+        got[1],
+        (GroupKey::Int(2), Ok(Points::from_flat(2, bc).unwrap())),
+        "joined across row groups"
+    );
+}
+
+#[test]
+fn lists_layout_and_string_keys() {
+    let (_d, path) = tmp("lists.parquet");
+    let list = |rows: Vec<Option<Vec<Option<f64>>>>| -> ArrayRef {
+        Arc::new(arrow_array::ListArray::from_iter_primitive::<
+            Float64Type,
+            _,
+            _,
+        >(rows))
+    };
+    write_batches(
+        &path,
+        &[batch(vec![
+            (
+                "id",
+                Arc::new(arrow_array::StringArray::from(vec!["a", "b", "c"])),
+            ),
+            (
+                "x",
+                list(vec![
+                    Some(vec![Some(0.0), Some(1.0)]),
+                    Some(vec![Some(2.0)]),
+                    Some(vec![Some(1.0), None]),
+                ]),
+            ),
+            (
+                "y",
+                list(vec![
+                    Some(vec![Some(5.0), Some(6.0)]),
+                    Some(vec![Some(2.0), Some(3.0)]),
+                    Some(vec![Some(1.0), Some(1.0)]),
+                ]),
+            ),
+        ])],
+    );
+    let got = read_all(&path, Some("id")).unwrap();
+    assert_eq!(
+        got[0],
+        (
+            GroupKey::Str("a".into()),
+            Ok(Points::from_rows(&[[0.0, 5.0], [1.0, 6.0]]).unwrap())
+        ),
+        "rows of the lists"
+    );
+    let e = got[1].1.as_ref().unwrap_err();
+    assert!(
+        e.contains("group \"b\": field `y`: 2 values, but `x` has 1"),
+        "{e}"
+    );
+    let e = got[2].1.as_ref().unwrap_err();
+    assert!(e.contains("group \"c\": field `x`: value 1 is null"), "{e}");
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(
+        e.contains("no key column `group` (columns: id, x, y)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_groups_are_reported_and_the_others_read() {
+    let (_d, path) = tmp("bad.parquet");
+    let keys: ArrayRef = Arc::new(arrow_array::Int64Array::from(vec![1, 1, 2, 2, 1, 3]));
+    let x: ArrayRef = Arc::new(arrow_array::Float64Array::from(vec![
+        Some(0.0),
+        Some(1.0),
+        Some(f64::NAN),
+        Some(2.0),
+        Some(4.0),
+        Some(9.0),
+    ]));
+    let y: ArrayRef = Arc::new(arrow_array::Float32Array::from(vec![
+        Some(0.5f32),
+        None,
+        Some(1.0),
+        Some(1.0),
+        Some(1.0),
+        Some(2.0),
+    ]));
+    write_batches(&path, &[batch(vec![("group", keys), ("x", x), ("y", y)])]);
+    let got = read_all(&path, None).unwrap();
+    assert_eq!(got.len(), 4, "{got:?}");
+    let e = got[0].1.as_ref().unwrap_err();
+    assert!(
+        e.ends_with("group 1: field `y`: row 2: null; every coordinate must be a finite number"),
+        "{e}"
+    );
+    let e = got[1].1.as_ref().unwrap_err();
+    assert!(e.contains("group 2: field `x`: row 3: NaN"), "{e}");
+    let e = got[2].1.as_ref().unwrap_err();
+    assert!(e.contains("group 1: appears again at row 5"), "{e}");
+    assert_eq!(
+        got[3],
+        (
+            GroupKey::Int(3),
+            Ok(Points::from_rows(&[[9.0, 2.0]]).unwrap())
+        ),
+        "the good group"
+    );
+}
+
+#[test]
+fn malformed_files_give_named_errors() {
+    let (_d, path) = tmp("m.parquet");
+    std::fs::write(&path, b"PAR1 not really").unwrap();
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(e.contains("m.parquet: not a readable Parquet file"), "{e}");
+    let e = read_all(&path.with_extension("missing"), None).unwrap_err();
+    assert!(matches!(e, IoError::Read { .. }), "{e}");
+    // a text column among the coordinates
+    write_batches(
+        &path,
+        &[batch(vec![
+            ("group", Arc::new(arrow_array::Int32Array::from(vec![1]))),
+            ("x", f64s(&[1.0])),
+            ("label", Arc::new(arrow_array::StringArray::from(vec!["a"]))),
+        ])],
+    );
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(
+        e.contains("field `label`: the column is Utf8, not numbers"),
+        "{e}"
+    );
+    // a key that is neither an integer nor a string
+    write_batches(
+        &path,
+        &[batch(vec![("group", f64s(&[1.0])), ("x", f64s(&[1.0]))])],
+    );
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(
+        e.contains("field `group`: the key column is Float64"),
+        "{e}"
+    );
+    // no coordinates
+    write_batches(
+        &path,
+        &[batch(vec![(
+            "group",
+            Arc::new(arrow_array::Int64Array::from(vec![1])) as ArrayRef,
+        )])],
+    );
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(
+        e.contains("no coordinate columns besides the key `group`"),
+        "{e}"
+    );
+    // a null key
+    write_batches(
+        &path,
+        &[batch(vec![
+            (
+                "group",
+                Arc::new(arrow_array::Int64Array::from(vec![Some(1), None])),
+            ),
+            ("x", f64s(&[1.0, 2.0])),
+        ])],
+    );
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(e.contains("row 2: the key is null"), "{e}");
+    // empty row groups and an empty file: no groups, no error
+    let empty = batch(vec![
+        (
+            "group",
+            Arc::new(arrow_array::Int64Array::from(Vec::<i64>::new())),
+        ),
+        ("x", f64s(&[])),
+    ]);
+    write_batches(&path, &[empty.clone(), empty]);
+    assert!(read_all(&path, None).unwrap().is_empty(), "no groups");
+}
+
+#[test]
+fn curves_round_trip_bit_for_bit() {
+    let (_d, path) = tmp("curves.parquet");
+    let ctrl = Points::from_rows(&[
+        [0.0, 0.0, 1.0],
+        [1.0, 2.0, 0.3],
+        [2.0, 0.0, 1.0 / 3.0],
+        [3.0, 1.0, 0.0],
+    ])
+    .unwrap();
+    let knots = vec![0.0, 0.0, 0.0, 0.1 + 0.2, 1.0, 1.0, 1.0];
+    let bs = Object::BSpline(BSplineCurve::new(2, knots.clone(), ctrl.clone()).unwrap());
+    let nu =
+        Object::Nurbs(NurbsCurve::new(2, knots, ctrl.clone(), vec![1.0, 0.5, 2.0, 1e-3]).unwrap());
+    let bz = Object::Bezier(lekalo::BezierCurve::new(ctrl).unwrap());
+    let rows = vec![
+        (GroupKey::Str("b".into()), Ok(bs.clone())),
+        (
+            GroupKey::Str("bad".into()),
+            Err("degree 9 is too high".to_string()),
+        ),
+        (GroupKey::Str("n".into()), Ok(nu.clone())),
+        (GroupKey::Str("z".into()), Ok(bz.clone())),
+    ];
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    w.write_curves("name", &rows[..2]).unwrap();
+    w.write_curves("name", &rows[2..]).unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let mut got = Vec::new();
+    read_curve_groups(&path, Some("name"), |c| {
+        got.extend(c);
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(got.len(), 4, "every row");
+    assert_eq!(got[0].1.as_ref().unwrap(), &bs, "B-spline bit for bit");
+    let e = got[1].1.as_ref().unwrap_err().to_string();
+    assert!(
+        e.ends_with("group \"bad\": no curve: degree 9 is too high"),
+        "{e}"
+    );
+    assert_eq!(got[2].1.as_ref().unwrap(), &nu, "NURBS bit for bit");
+    assert_eq!(got[3].1.as_ref().unwrap(), &bz, "Bezier");
+    let e = read_curve_groups(&path, None, |_| Ok(()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no column `group`"), "{e}");
+}
+
+#[test]
+fn an_empty_batch_still_has_the_layout() {
+    let (_d, path) = tmp("e.parquet");
+    let w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    w.close(|w| w.write_curves("group", &[])).unwrap();
+    let mut n = 0;
+    read_curve_groups(&path, None, |c| {
+        n += c.len();
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(n, 0, "no curves");
+}

@@ -1,0 +1,211 @@
+"""Fitting, cross-checked against SciPy inside the tests where SciPy solves the same problem.
+
+Tolerances are relative to the data's scale (values of order 1 here): the same least-squares or
+penalised problem solved by two stable methods agrees to ~1e-10 of the data (QR by Givens
+rotations here, FITPACK's / SciPy's own factorisations there); smaller differences would be
+rounding of a particular factorisation, not a different answer.
+"""
+
+import numpy as np
+import pytest
+from scipy import interpolate as si
+
+import lekalo
+
+RNG = np.random.default_rng(23)
+RTOL = 1e-10  # relative to max |y|, see the module docstring
+
+
+def noisy(n=200, dim=None):
+    x = np.sort(RNG.random(n))
+    x[0], x[-1] = 0.0, 1.0
+    y = np.sin(6 * x) + 0.05 * RNG.standard_normal(n)
+    if dim == 2:
+        y = np.column_stack([y, np.cos(3 * x) + 0.05 * RNG.standard_normal(n)])
+    return x, y
+
+
+def close(a, b, scale):
+    return np.abs(np.asarray(a) - np.asarray(b)).max() <= RTOL * scale
+
+
+def test_make_lsq_spline_is_scipys():
+    x, y = noisy(dim=2)
+    w = RNG.random(len(x)) + 0.5
+    t = np.r_[[0.0] * 4, np.linspace(0, 1, 9)[1:-1], [1.0] * 4]
+    c = lekalo.make_lsq_spline(x, y, t, k=3, w=w)
+    ref = si.make_lsq_spline(x, y, t, k=3, w=w)
+    assert np.array_equal(c.knots, t)
+    assert close(c.control, ref.c, np.abs(y).max())
+    xx = np.linspace(0, 1, 301)
+    assert close(c(xx), ref(xx), np.abs(y).max())
+    # one-dimensional data come back as (n, 1)
+    y0 = np.ascontiguousarray(y[:, 0])  # strided views are refused, see the README
+    c1 = lekalo.make_lsq_spline(x, y0, t, k=3)
+    assert close(c1(xx)[:, 0], si.make_lsq_spline(x, y[:, 0], t, k=3)(xx), np.abs(y).max())
+
+
+def test_fit_least_squares_report_and_end_constraints():
+    x, y = noisy(dim=2)
+    t = lekalo.place_knots(x, 8, 3)
+    assert len(t) == 8 + 4 and t[0] == 0.0 and t[-1] == 1.0
+    c, rep = lekalo.fit_least_squares(y, x, t, 3)
+    res = np.linalg.norm(c(x) - y, axis=1)
+    assert np.allclose(rep["residuals"], res, rtol=0, atol=1e-13)
+    assert np.isclose(rep["max_residual"], res.max(), rtol=1e-14) and rep["max_index"] == int(res.argmax())
+    assert rep["n_ctrl"] == 8 and rep["lam"] is None
+    assert np.isclose(rep["weighted_rss"], (res**2).sum(), rtol=1e-12)
+    # clamped ends pass exactly through the first and last point; derivatives as asked
+    d0, d1 = np.array([1.0, 0.0]), np.array([0.0, -1.0])
+    cc, _ = lekalo.fit_least_squares(y, x, t, 3, clamp_ends=True, d_start=d0, d_end=d1)
+    assert np.allclose(cc(0.0), y[0], atol=1e-13) and np.allclose(cc(1.0), y[-1], atol=1e-13)
+    assert np.allclose(cc(0.0, nu=1), d0, atol=1e-11) and np.allclose(cc(1.0, nu=1), d1, atol=1e-11)
+    # the unconstrained fit has the smaller residual
+    assert rep["weighted_rss"] <= lekalo.fit_least_squares(y, x, t, 3, clamp_ends=True)[1]["weighted_rss"]
+
+
+@pytest.mark.parametrize("lam", [1e-6, 1e-3, 1.0])
+def test_make_smoothing_spline_given_lambda_is_scipys(lam):
+    x, y = noisy(150)
+    w = RNG.random(len(x)) + 0.5
+    c = lekalo.make_smoothing_spline(x, y, w=w, lam=lam)
+    ref = si.make_smoothing_spline(x, y, w=w, lam=lam)
+    xx = np.linspace(0, 1, 401)
+    # the same curve to 1e-6 of the data; SciPy solves the penalised normal equations, whose
+    # rounding grows with λ, so the two differ in the last digits by up to ~1e-7 of the data
+    assert np.abs(c(xx)[:, 0] - ref(xx)).max() <= 1e-6 * np.abs(y).max()
+    # and lekalo's is the better minimiser of the common objective (to rounding)
+    ours = objective(lambda t: c(t)[:, 0], lambda t: c(t, nu=2)[:, 0], x, y, w, lam)
+    theirs = objective(ref, lambda t: ref(t, 2), x, y, w, lam)
+    assert ours <= theirs * (1 + 1e-12)
+
+
+def objective(f, f2, x, y, w, lam):
+    # Σ w (y − f)² + λ ∫ f''²; f'' is linear between the data (the knots), so two-point
+    # Gauss–Legendre on each interval integrates f''² exactly
+    a, b = x[:-1], x[1:]
+    h, m = (b - a) / 2, (a + b) / 2
+    g = 1 / np.sqrt(3)
+    integral = (h * (f2(m - g * h) ** 2 + f2(m + g * h) ** 2)).sum()
+    return (w * (y - f(x)) ** 2).sum() + lam * integral
+
+
+def test_smoothing_spline_gcv_minimises_the_score():
+    x, y = noisy(120)
+    c, rep = lekalo.fit_smoothing(x, y)
+    lam = rep["lam"]
+    assert lam > 0
+    best = lekalo.gcv_score(x, y, lam)
+    for f in (0.5, 2.0):
+        assert best <= lekalo.gcv_score(x, y, lam * f)
+    # the GCV fit is close to SciPy's GCV fit (the two choose λ by different minimisers of the
+    # same score, so the curves agree to the noise level's fraction, not to rounding)
+    ref = si.make_smoothing_spline(x, y)
+    xx = np.linspace(0, 1, 201)
+    assert np.abs(c(xx)[:, 0] - ref(xx)).max() < 0.02
+    assert np.allclose(lekalo.make_smoothing_spline(x, y)(xx), c(xx), rtol=0, atol=0)
+
+
+def test_make_splrep_meets_the_smoothing_condition():
+    x, y = noisy(300)
+    for s in (0.5, 0.8, 2.0):
+        c, rep = lekalo.fit_smoothing_condition(x, y, s=s)
+        rss = ((c(x)[:, 0] - y) ** 2).sum()
+        assert rss <= s * (1 + 1e-12) and np.isclose(rss, rep["weighted_rss"], rtol=1e-10)
+        # about as few knots as FITPACK (different knot positions: within 25 %)
+        t_ref, _, _ = si.splrep(x, y, s=s)
+        assert len(c.knots) <= 1.25 * len(t_ref)
+    # SciPy's weights multiply the residual before squaring, in make_splrep as in splrep
+    w = RNG.random(len(x)) + 0.5
+    cw = lekalo.make_splrep(x, y, w=w, s=0.8)
+    assert ((w * (cw(x)[:, 0] - y)) ** 2).sum() <= 0.8 * (1 + 1e-12)
+    # s = 0 interpolates, like splrep(s=0)
+    xs, ys = x[::10].copy(), y[::10].copy()
+    c0 = lekalo.make_splrep(xs, ys, s=0.0)
+    assert np.abs(c0(xs)[:, 0] - ys).max() < 1e-12
+
+
+def test_make_splprep_parametric():
+    th = np.linspace(0, 1.5 * np.pi, 120)
+    pts = np.column_stack([np.cos(th), np.sin(th)]) + 0.01 * RNG.standard_normal((120, 2))
+    c, u = lekalo.make_splprep(pts, s=120 * 0.01**2 * 2)
+    assert u[0] == 0 and u[-1] == 1 and np.all(np.diff(u) > 0)
+    assert np.allclose(u, lekalo.parametrize(pts, "chord"), rtol=0, atol=0)
+    assert ((c(u) - pts) ** 2).sum() <= 120 * 0.01**2 * 2 * (1 + 1e-12)
+    assert c.control.shape[0] < 30
+
+
+def test_fit_tolerance():
+    t = np.linspace(0, 3, 400)
+    pts = np.column_stack([t, np.sin(t)])
+    for dev in ("distance", "parameter"):
+        c, rep = lekalo.fit_tolerance(pts, 1e-4, 3, deviation=dev)
+        assert rep["max_deviation"] <= 1e-4
+        assert c.control.shape[0] < 25
+        assert np.allclose(c(0.0), pts[0]) and np.allclose(c(1.0), pts[-1])
+    # the "parameter" deviation is the distance at the data parameter, checked here directly
+    assert np.allclose(np.linalg.norm(c(rep["params"]) - pts, axis=1), rep["deviations"], atol=1e-13)
+
+
+def test_fit_robust_rejects_an_outlier():
+    x = np.linspace(0, 1, 60)
+    y = 2 * x
+    y[30] = 50.0
+    t = np.r_[[0.0] * 4, [1 / 3, 2 / 3], [1.0] * 4]
+    c, rep = lekalo.fit_robust(x, y, t, 3, loss="tukey")
+    assert rep["robust_weights"][30] == 0.0
+    assert abs(c(0.5)[0] - 1.0) < 1e-6
+    assert rep["iterations"] >= 1 and rep["scale"] >= 0
+    # the plain least squares is pulled by the outlier
+    assert abs(lekalo.make_lsq_spline(x, y, t)(0.5)[0] - 1.0) > 0.1
+    h, _ = lekalo.fit_robust(x, y, t, 3, loss="huber")
+    assert abs(h(0.5)[0] - 1.0) < abs(lekalo.make_lsq_spline(x, y, t)(0.5)[0] - 1.0)
+
+
+def test_fit_surface_grid_and_scattered():
+    i, j = np.meshgrid(np.arange(20.0), np.arange(15.0), indexing="ij")
+    grid = np.stack([i, j, np.sin(0.3 * i) * np.cos(0.2 * j)], axis=-1)
+    s = lekalo.fit_surface_grid(grid, (8, 6), (3, 3))
+    assert s.control.shape == (8, 6, 3)
+    # scattered values z(u, v) on given knots: SciPy's LSQBivariateSpline, same knots
+    u, v = RNG.random(400), RNG.random(400)
+    z = np.sin(3 * u) * np.cos(2 * v)
+    ti = np.array([0.25, 0.5, 0.75])
+    tk = np.r_[[0.0] * 4, ti, [1.0] * 4]
+    surf, res, rss = lekalo.fit_surface_scattered(np.column_stack([u, v, z]), tk, tk, (3, 3))
+    ref = si.LSQBivariateSpline(u, v, z, ti, ti, bbox=[0, 1, 0, 1], kx=3, ky=3)
+    uu, vv = RNG.random(50), RNG.random(50)
+    assert np.abs(surf(uu, vv)[:, 0] - ref.ev(uu, vv)).max() <= 1e-9
+    assert np.isclose(rss, (res**2).sum(), rtol=1e-10)
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda x, y: lekalo.make_smoothing_spline(x, y, lam=-1.0), "λ"),
+        (lambda x, y: lekalo.make_splrep(x, y, s=-1.0), "s"),
+        (lambda x, y: lekalo.make_lsq_spline(x, y, [0, 0, 1, 1], k=5), "degree"),
+        (lambda x, y: lekalo.fit_tolerance(np.column_stack([x, y]), 0.0), "tolerance"),
+        (lambda x, y: lekalo.fit_robust(x, y, [0, 0, 0, 0, 1, 1, 1, 1], loss="cauchy"), "loss"),
+        (lambda x, y: lekalo.fit_tolerance(np.column_stack([x, y]), 1e-3, deviation="x"), "deviation"),
+        (lambda x, y: lekalo.make_lsq_spline(x, y[:-1].copy(), [0, 0, 0, 0, 1, 1, 1, 1]), "one per data point"),
+        (lambda x, y: lekalo.make_lsq_spline(x.astype(np.float32), y, [0, 0, 0, 0, 1, 1, 1, 1]), "float64"),
+    ],
+)
+def test_bad_input_is_a_named_error(call, match):
+    x, y = noisy(40)
+    with pytest.raises(lekalo.Error, match=match):
+        call(x, y)
+
+
+def test_nan_and_schoenberg_whitney_are_errors():
+    x, y = noisy(40)
+    y[3] = np.nan
+    with pytest.raises(lekalo.Error, match="finite|NaN"):
+        lekalo.make_smoothing_spline(x, y)
+    x, y = noisy(40)
+    # a knot span without data
+    x = x * 0.4
+    x[-1] = 1.0
+    with pytest.raises(lekalo.Error):
+        lekalo.make_lsq_spline(x, y, [0, 0, 0, 0, 0.5, 0.6, 0.7, 1, 1, 1, 1])

@@ -1,0 +1,843 @@
+//! The JSON API: one handler per construction, each a thin call of the library.
+//!
+//! Requests and answers carry curves in the CLI's object format (`docs/formats.md`,
+//! `{"lekalo": 1, "type": "bspline_curve", ...}`), read by [`Object::from_json_str`], so the
+//! same validation and the same messages apply as in `lekalo`. Every answer that returns a
+//! curve also returns its drawing ([`CurveView`]): samples, control polygon, knots on the
+//! curve and, when asked, the curvature comb and the basis functions.
+//!
+//! Sizes are bounded twice: by the body limit of the server (`docs/serve.md`) and by the
+//! explicit limits below, so that a small request cannot ask for a huge computation.
+
+use axum::body::Bytes;
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use lekalo::basis::basis_functions;
+use lekalo::{
+    BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
+    EndCondition, EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas,
+    Parametrization, Points, SplineParameters,
+};
+use lekalo_io::Object;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+
+use crate::error::{ApiError, ApiResult};
+
+/// Most samples of a curve or of the basis panel one request may ask for.
+pub const MAX_SAMPLES: usize = 10_000;
+/// Most points (data points, polyline corners) one request may carry.
+pub const MAX_POINTS: usize = 10_000;
+/// Highest degree the API builds (elevation target, interpolation degree): the editor draws
+/// every basis function, whose count grows with the degree.
+pub const MAX_API_DEGREE: usize = 64;
+
+/// Reads a request body: JSON of type `T`, with the field of a type error named
+/// (`points[3]`, `degree`).
+fn parse<T: DeserializeOwned>(body: &Bytes) -> ApiResult<T> {
+    let de = &mut serde_json::Deserializer::from_slice(body);
+    serde_path_to_error::deserialize(de).map_err(request_error)
+}
+
+/// The answer to a body that is not the request's JSON: the field of a type error, or
+/// "not valid JSON" for the body as a whole (field `""`).
+pub(crate) fn request_error(e: serde_path_to_error::Error<serde_json::Error>) -> ApiError {
+    let path = e.path().to_string();
+    let inner = e.into_inner();
+    if inner.is_syntax() || inner.is_eof() {
+        return ApiError::bad("", format!("not valid JSON: {inner}"));
+    }
+    ApiError::bad(if path == "." { String::new() } else { path }, inner.to_string())
+}
+
+/// A curve object in the CLI's format, read as the CLI reads a file named `field`.
+fn curve(value: &Value, field: &str) -> ApiResult<Object> {
+    let text = value.to_string();
+    Object::from_json_str(&text, field).map_err(|e| ApiError::io(field, &e))
+}
+
+fn check_samples(n: usize, field: &str) -> ApiResult<usize> {
+    if !(2..=MAX_SAMPLES).contains(&n) {
+        return Err(ApiError::bad(
+            field,
+            format!("{field} = {n}: give between 2 and {MAX_SAMPLES} samples"),
+        ));
+    }
+    Ok(n)
+}
+
+fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
+    if p > MAX_API_DEGREE {
+        return Err(ApiError::bad(
+            field,
+            format!("{field} = {p} is above the server's limit {MAX_API_DEGREE}; use the CLI for higher degrees"),
+        ));
+    }
+    Ok(p)
+}
+
+/// 2-D points as the library's [`Points`], with the count bounded.
+fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
+    if rows.len() > MAX_POINTS {
+        return Err(ApiError::bad(
+            field,
+            format!(
+                "{} points: at most {MAX_POINTS} per request (use the CLI for more)",
+                rows.len()
+            ),
+        ));
+    }
+    if let Some(i) = rows.iter().position(|r| r.len() != 2) {
+        return Err(ApiError::bad(
+            format!("{field}[{i}]"),
+            format!(
+                "point {i} has {} coordinates; the editor's points are (x, y)",
+                rows[i].len()
+            ),
+        ));
+    }
+    Points::from_rows(rows).map_err(|e| ApiError::lib(field, &e))
+}
+
+fn default_samples() -> usize {
+    400
+}
+
+/// What to draw of a curve.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewOptions {
+    /// Samples along the curve (2 ..= [`MAX_SAMPLES`]).
+    #[serde(default = "default_samples")]
+    pub samples: usize,
+    /// Also the curvature comb (curvature and principal normal at each sample).
+    #[serde(default)]
+    pub comb: bool,
+    /// Samples of each basis function over the domain (none when absent).
+    #[serde(default)]
+    pub basis_samples: Option<usize>,
+    /// Parameter at which the active basis functions are reported.
+    #[serde(default)]
+    pub at: Option<f64>,
+}
+
+impl Default for ViewOptions {
+    fn default() -> Self {
+        ViewOptions {
+            samples: default_samples(),
+            comb: false,
+            basis_samples: None,
+            at: None,
+        }
+    }
+}
+
+/// The drawing of a curve: everything the editor paints, computed by the library.
+#[derive(Debug, Clone, Serialize)]
+pub struct CurveView {
+    /// The curve in the CLI's object format.
+    pub curve: Value,
+    /// Degree.
+    pub degree: usize,
+    /// Parameter domain `[a, b]`.
+    pub domain: [f64; 2],
+    /// Sample parameters.
+    pub t: Vec<f64>,
+    /// Points at `t` (rows).
+    pub points: Vec<Vec<f64>>,
+    /// Control points (rows).
+    pub control: Vec<Vec<f64>>,
+    /// Weights of a NURBS curve.
+    pub weights: Option<Vec<f64>>,
+    /// The full knot vector (Bezier curves: the equivalent clamped one on `[0, 1]`).
+    pub knots: Vec<f64>,
+    /// Distinct knots inside the domain (ends included) with multiplicity and point on the curve.
+    pub knot_marks: Vec<KnotMark>,
+    /// Curvature comb, when asked.
+    pub comb: Option<Comb>,
+    /// Basis functions, when asked.
+    pub basis: Option<BasisView>,
+}
+
+/// A knot shown on the curve and on the ruler.
+#[derive(Debug, Clone, Serialize)]
+pub struct KnotMark {
+    /// Knot value.
+    pub t: f64,
+    /// Multiplicity.
+    pub multiplicity: usize,
+    /// Point of the curve at the knot.
+    pub point: Vec<f64>,
+}
+
+/// Curvature comb: `κ` and the unit principal normal at each sample (`null` where `C' = 0`).
+#[derive(Debug, Clone, Serialize)]
+pub struct Comb {
+    /// Curvature `κ ≥ 0` (`lekalo::curvature`).
+    pub curvature: Vec<Option<f64>>,
+    /// Unit principal normal (towards the centre of curvature).
+    pub normal: Vec<Option<Vec<f64>>>,
+}
+
+/// The B-spline basis `N_{i,p}` over the knot vector, sampled.
+#[derive(Debug, Clone, Serialize)]
+pub struct BasisView {
+    /// Sample parameters (shared by every function).
+    pub t: Vec<f64>,
+    /// One entry per basis function: its index, the first sample of its support and the
+    /// values from there (zero outside).
+    pub functions: Vec<BasisFunction>,
+    /// Indices `i` of the functions non-zero at `at` (`span − p ..= span`).
+    pub active: Vec<usize>,
+    /// Their values at `at`.
+    pub active_values: Vec<f64>,
+}
+
+/// One basis function's non-zero samples.
+#[derive(Debug, Clone, Serialize)]
+pub struct BasisFunction {
+    /// Index `i` of `N_{i,p}`.
+    pub i: usize,
+    /// Index of the first sample in `t` with a value.
+    pub from: usize,
+    /// Values at `t[from..from + values.len()]`.
+    pub values: Vec<f64>,
+}
+
+/// Rows of a [`Points`].
+fn rows(p: &Points) -> Vec<Vec<f64>> {
+    p.iter().map(<[f64]>::to_vec).collect()
+}
+
+/// The drawing of `obj` (see [`CurveView`]).
+///
+/// # Errors
+/// Evaluation errors of the library (none for valid curves), bad sample counts.
+pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
+    let n = check_samples(opt.samples, "samples")?;
+    let t = obj.uniform_parameters(n);
+    let pts = obj.sample(n).map_err(|e| ApiError::lib("curve", &e))?;
+    let knots = obj.knots();
+    let (a, b) = obj.domain();
+    let mut knot_marks = Vec::new();
+    for (k, m) in knots.distinct() {
+        if k >= a && k <= b {
+            let point = obj.eval(k).map_err(|e| ApiError::lib("curve", &e))?;
+            knot_marks.push(KnotMark {
+                t: k,
+                multiplicity: m,
+                point,
+            });
+        }
+    }
+    let comb = if opt.comb {
+        let mut curvature = Vec::with_capacity(n);
+        let mut normal = Vec::with_capacity(n);
+        for &ti in &t {
+            let d = obj
+                .derivatives(ti, 2)
+                .map_err(|e| ApiError::lib("curve", &e))?;
+            let rows: Vec<&[f64]> = d.iter().collect();
+            let (d1, d2) = (rows[1], rows[2]);
+            curvature.push(lekalo::curvature(d1, d2));
+            normal.push(principal_normal(d1, d2));
+        }
+        Some(Comb { curvature, normal })
+    } else {
+        None
+    };
+    let basis = match opt.basis_samples {
+        Some(m) => Some(basis_view(
+            &knots,
+            obj.degree(),
+            check_samples(m, "basis_samples")?,
+            opt.at,
+        )?),
+        None => None,
+    };
+    Ok(CurveView {
+        curve: obj.to_json_value(),
+        degree: obj.degree(),
+        domain: [a, b],
+        t,
+        points: rows(&pts),
+        control: rows(&obj.control_points()),
+        weights: obj.weights(),
+        knots: knots.as_slice().to_vec(),
+        knot_marks,
+        comb,
+        basis,
+    })
+}
+
+/// Unit principal normal `N = (C'' − (C''·T)T)/|…|` with `T = C'/|C'|` (do Carmo §1-5);
+/// `None` where `C' = 0` or the curve is straight there.
+fn principal_normal(d1: &[f64], d2: &[f64]) -> Option<Vec<f64>> {
+    let len = d1.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let tangent: Vec<f64> = d1.iter().map(|x| x / len).collect();
+    let along: f64 = d2.iter().zip(&tangent).map(|(a, b)| a * b).sum();
+    let n: Vec<f64> = d2.iter().zip(&tangent).map(|(a, b)| a - along * b).collect();
+    let nl = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+    (nl > 0.0 && nl.is_finite()).then(|| n.iter().map(|x| x / nl).collect())
+}
+
+/// The basis functions of degree `p` over `knots`, sampled at `m` parameters
+/// (`lekalo::basis::basis_functions`, P&T A2.2), and those active at `at`.
+fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiResult<BasisView> {
+    let (a, b) = knots.domain(p);
+    let count = knots.len().saturating_sub(p + 1);
+    let t = lekalo_io::uniform(a, b, m);
+    let mut functions: Vec<BasisFunction> = (0..count)
+        .map(|i| BasisFunction {
+            i,
+            from: usize::MAX,
+            values: Vec::new(),
+        })
+        .collect();
+    for (j, &tj) in t.iter().enumerate() {
+        let (span, vals) = basis_functions(knots, p, tj).map_err(|e| ApiError::lib("knots", &e))?;
+        for (r, v) in vals.into_iter().enumerate() {
+            let Some(f) = functions.get_mut(span + r - p) else {
+                continue;
+            };
+            if f.from == usize::MAX {
+                f.from = j;
+            }
+            // fill zeros inside the support (a function can vanish at an interior sample)
+            f.values.resize(j - f.from, 0.0);
+            f.values.push(v);
+        }
+    }
+    for f in &mut functions {
+        if f.from == usize::MAX {
+            f.from = 0;
+        }
+    }
+    let (active, active_values) = match at {
+        Some(x) => {
+            let (span, vals) =
+                basis_functions(knots, p, x).map_err(|e| ApiError::lib("at", &e))?;
+            ((span - p..=span).collect(), vals)
+        }
+        None => (Vec::new(), Vec::new()),
+    };
+    Ok(BasisView {
+        t,
+        functions,
+        active,
+        active_values,
+    })
+}
+
+fn answer(v: impl Serialize) -> Response {
+    Json(v).into_response()
+}
+
+/// `POST /api/evaluate`: the drawing of a curve.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EvaluateRequest {
+    curve: Value,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+/// [`ViewOptions`] as fields of a request (serde's `flatten` and `deny_unknown_fields` do not
+/// combine, so the fields are repeated here and in the other requests through this struct).
+#[derive(Debug, Default, Deserialize)]
+struct ViewOptionsFlat {
+    #[serde(default)]
+    samples: Option<usize>,
+    #[serde(default)]
+    comb: bool,
+    #[serde(default)]
+    basis_samples: Option<usize>,
+    #[serde(default)]
+    at: Option<f64>,
+}
+
+impl ViewOptionsFlat {
+    fn options(&self) -> ViewOptions {
+        ViewOptions {
+            samples: self.samples.unwrap_or_else(default_samples),
+            comb: self.comb,
+            basis_samples: self.basis_samples,
+            at: self.at,
+        }
+    }
+}
+
+pub(crate) async fn evaluate(body: Bytes) -> ApiResult<Response> {
+    let r: EvaluateRequest = parse(&body)?;
+    let obj = curve(&r.curve, "curve")?;
+    Ok(answer(view(&obj, &r.view.options())?))
+}
+
+/// Parametrisation names (document 000 §1).
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+enum Param {
+    Uniform,
+    #[default]
+    Chord,
+    Centripetal,
+}
+
+/// Knot placement names (document 000 eqs. 2, 3, 4, 8).
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+enum Placement {
+    #[default]
+    Auto,
+    Averaged,
+    Uniform,
+    AtParams,
+}
+
+/// End condition names (document 000 §1–4).
+#[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+enum End {
+    #[default]
+    Free,
+    Derivatives,
+    Second,
+    Natural,
+    Periodic,
+}
+
+fn default_degree() -> usize {
+    3
+}
+
+#[derive(Debug, Deserialize)]
+struct InterpolateRequest {
+    points: Vec<Vec<f64>>,
+    #[serde(default = "default_degree")]
+    degree: usize,
+    #[serde(default)]
+    parametrization: Param,
+    #[serde(default)]
+    exponent: Option<f64>,
+    #[serde(default)]
+    knots: Placement,
+    #[serde(default)]
+    end: End,
+    #[serde(default)]
+    start_derivative: Option<Vec<f64>>,
+    #[serde(default)]
+    end_derivative: Option<Vec<f64>>,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+/// `POST /api/interpolate`: global interpolation (`lekalo interpolate`).
+pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
+    let r: InterpolateRequest = parse(&body)?;
+    let pts = points(&r.points, "points")?;
+    let degree = check_degree(r.degree, "degree")?;
+    let param = match (r.exponent, r.parametrization) {
+        (Some(e), _) => Parametrization::Exponent(e),
+        (None, Param::Uniform) => Parametrization::Uniform,
+        (None, Param::Chord) => Parametrization::ChordLength,
+        (None, Param::Centripetal) => Parametrization::Centripetal,
+    };
+    let pair = |what: &str| -> ApiResult<(Vec<f64>, Vec<f64>)> {
+        match (&r.start_derivative, &r.end_derivative) {
+            (Some(s), Some(e)) => Ok((s.clone(), e.clone())),
+            (None, _) => Err(ApiError::bad(
+                "start_derivative",
+                format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
+            )),
+            (_, None) => Err(ApiError::bad(
+                "end_derivative",
+                format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
+            )),
+        }
+    };
+    let end = match r.end {
+        End::Free => EndCondition::Free,
+        End::Derivatives => {
+            let (start, end) = pair("derivatives")?;
+            EndCondition::FirstDerivatives { start, end }
+        }
+        End::Second => {
+            let (start, end) = pair("second")?;
+            EndCondition::SecondDerivatives { start, end }
+        }
+        End::Natural => EndCondition::Natural,
+        End::Periodic => EndCondition::Periodic,
+    };
+    let knots = match r.knots {
+        Placement::Auto => KnotPlacement::Auto,
+        Placement::Averaged => KnotPlacement::Averaged,
+        Placement::Uniform => KnotPlacement::Uniform,
+        Placement::AtParams => KnotPlacement::AtParameters,
+    };
+    let c = CurveInterpolation::new(degree)
+        .parametrization(param)
+        .knot_placement(knots)
+        .end_condition(end)
+        .interpolate(pts.as_view())
+        .map_err(|e| ApiError::lib(interpolation_field(&e), &e))?;
+    Ok(answer(view(&Object::BSpline(c), &r.view.options())?))
+}
+
+/// The request field an interpolation error is about.
+fn interpolation_field(e: &lekalo::Error) -> &'static str {
+    use lekalo::Error as E;
+    match e {
+        E::Degree { .. } => "degree",
+        E::LengthMismatch { what, .. } | E::Dimension { what, .. } if what.contains("deriv") => {
+            "start_derivative"
+        }
+        E::NonFinite { what, .. } if what.contains("expon") => "exponent",
+        E::InvalidArgument { what, .. } if what.contains("expon") => "exponent",
+        _ => "points",
+    }
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+enum BezierOp {
+    Elevate,
+    ReduceExact,
+    ReduceApprox,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+enum Ends {
+    Free,
+    #[default]
+    Points,
+    Tangents,
+}
+
+#[derive(Debug, Deserialize)]
+struct BezierRequest {
+    curve: Value,
+    op: BezierOp,
+    #[serde(default)]
+    by: Option<usize>,
+    #[serde(default)]
+    target: Option<usize>,
+    #[serde(default)]
+    ends: Ends,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+/// `POST /api/bezier`: order change of a Bezier curve (`lekalo bezier`, document 004).
+pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
+    let r: BezierRequest = parse(&body)?;
+    let Object::Bezier(c) = curve(&r.curve, "curve")? else {
+        return Err(ApiError::bad(
+            "curve.type",
+            "order change works on a bezier_curve; convert the curve first",
+        ));
+    };
+    let (out, deviation) = match r.op {
+        BezierOp::Elevate => {
+            let by = r.by.unwrap_or(1);
+            check_degree(c.degree().saturating_add(by), "by")?;
+            let e = c.elevate_degree(by).map_err(|e| ApiError::lib("by", &e))?;
+            (e, None)
+        }
+        BezierOp::ReduceExact => (c.reduce_degree_exact(), None),
+        BezierOp::ReduceApprox => {
+            let target = r
+                .target
+                .unwrap_or_else(|| c.degree().saturating_sub(1));
+            check_degree(target, "target")?;
+            let ends = match r.ends {
+                Ends::Free => EndConditions::Free,
+                Ends::Points => EndConditions::Points,
+                Ends::Tangents => EndConditions::Tangents,
+            };
+            let red = c
+                .reduce_degree_approx(target, ends)
+                .map_err(|e| ApiError::lib("target", &e))?;
+            (
+                red.curve,
+                Some(json!({
+                    "sampled": red.max_deviation_sampled,
+                    "bound": red.max_deviation_bound,
+                })),
+            )
+        }
+    };
+    let real_degree = out.real_degree();
+    let v = view(&Object::Bezier(out), &r.view.options())?;
+    Ok(answer(json!({
+        "view": v,
+        "degree": v.degree,
+        "real_degree": real_degree,
+        "deviation": deviation,
+    })))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DeformRequest {
+    first: Value,
+    second: Value,
+    continuity: usize,
+    #[serde(default)]
+    samples: Option<usize>,
+}
+
+/// `POST /api/blend/deform`: two curves with common end points joined by the deformation of
+/// document 001 with continuity `k` (`lekalo blend deform`); the exact Bezier form is returned.
+pub(crate) async fn blend_deform(body: Bytes) -> ApiResult<Response> {
+    let r: DeformRequest = parse(&body)?;
+    let first = bezier_of(curve(&r.first, "first")?, "first")?;
+    let second = bezier_of(curve(&r.second, "second")?, "second")?;
+    let d = Deformation::new(&first, &second, r.continuity)
+        .map_err(|e| ApiError::lib(deform_field(&e), &e))?;
+    let b = d.to_bezier().map_err(|e| ApiError::lib("first", &e))?;
+    let opts = ViewOptions {
+        samples: r.samples.unwrap_or_else(default_samples),
+        ..ViewOptions::default()
+    };
+    Ok(answer(view(&Object::Bezier(b), &opts)?))
+}
+
+fn deform_field(e: &lekalo::Error) -> &'static str {
+    match e {
+        lekalo::Error::InvalidArgument { .. } => "continuity",
+        _ => "second",
+    }
+}
+
+/// A Bezier curve (a B-spline without interior knots counts too).
+fn bezier_of(obj: Object, field: &str) -> ApiResult<BezierCurve> {
+    match obj {
+        Object::Bezier(c) => Ok(c),
+        other => Err(ApiError::bad(
+            format!("{field}.type"),
+            format!(
+                "the editor blends Bezier curves; {field} is a {}",
+                other.display_name()
+            ),
+        )),
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CornersRequest {
+    points: Vec<Vec<f64>>,
+    continuity: usize,
+    #[serde(default)]
+    closed: bool,
+    #[serde(default)]
+    samples: Option<usize>,
+}
+
+/// `POST /api/blend/corners`: a polyline whose corners are smoothed by blending local
+/// parabolas with continuity `k` (`lekalo blend spline --local parabolas`, document 001).
+pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
+    let r: CornersRequest = parse(&body)?;
+    let pts = points(&r.points, "points")?;
+    let options = BlendSplineOptions {
+        continuity: r.continuity,
+        closed: r.closed,
+        parameters: SplineParameters::Uniform,
+    };
+    let s = BlendSpline::new(pts.as_view(), &Parabolas, options).map_err(|e| {
+        let field = if matches!(e, lekalo::Error::InvalidArgument { .. }) {
+            "continuity"
+        } else {
+            "points"
+        };
+        ApiError::lib(field, &e)
+    })?;
+    let n = s.to_nurbs().map_err(|e| ApiError::lib("points", &e))?;
+    let opts = ViewOptions {
+        samples: r.samples.unwrap_or_else(default_samples),
+        ..ViewOptions::default()
+    };
+    Ok(answer(view(&Object::Nurbs(n), &opts)?))
+}
+
+#[derive(Debug, Deserialize)]
+struct KnotRequest {
+    curve: Value,
+    t: f64,
+    #[serde(default = "one")]
+    times: usize,
+    #[serde(default)]
+    tolerance: Option<f64>,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+fn one() -> usize {
+    1
+}
+
+/// A B-spline, or the homogeneous B-spline of a NURBS curve, changed by `op` (knot operations
+/// are exact on the homogeneous form, P&T §5.2).
+fn knot_op(
+    obj: Object,
+    op: impl Fn(&BSplineCurve) -> lekalo::Result<(BSplineCurve, usize)>,
+) -> ApiResult<(Object, usize)> {
+    let map = |e: lekalo::Error| ApiError::lib("t", &e);
+    match obj {
+        Object::BSpline(c) => op(&c).map(|(c, k)| (Object::BSpline(c), k)).map_err(map),
+        Object::Nurbs(n) => {
+            let (h, k) = op(n.homogeneous()).map_err(map)?;
+            let n = NurbsCurve::from_homogeneous(h).map_err(map)?;
+            Ok((Object::Nurbs(n), k))
+        }
+        other => Err(ApiError::bad(
+            "curve.type",
+            format!(
+                "knot operations work on B-spline and NURBS curves; this is a {}",
+                other.display_name()
+            ),
+        )),
+    }
+}
+
+/// `POST /api/knot/insert` (P&T A5.1, `lekalo knot insert`).
+pub(crate) async fn knot_insert(body: Bytes) -> ApiResult<Response> {
+    let r: KnotRequest = parse(&body)?;
+    let obj = curve(&r.curve, "curve")?;
+    let (out, _) = knot_op(obj, |c| c.insert_knot(r.t, r.times).map(|c| (c, r.times)))?;
+    Ok(answer(view(&out, &r.view.options())?))
+}
+
+/// `POST /api/knot/remove` (Tiller's removal, P&T A5.8, `lekalo knot remove`); answers the
+/// curve and how many times the knot was removed within the tolerance.
+pub(crate) async fn knot_remove(body: Bytes) -> ApiResult<Response> {
+    let r: KnotRequest = parse(&body)?;
+    let obj = curve(&r.curve, "curve")?;
+    let (out, removed) = knot_op(obj, |c| {
+        let tol = r.tolerance.unwrap_or_else(|| c.default_removal_tolerance());
+        c.remove_knot(r.t, r.times, tol)
+    })?;
+    Ok(answer(json!({ "view": view(&out, &r.view.options())?, "removed": removed })))
+}
+
+/// `POST /api/import`: the body is the CLI's JSON text of one curve; answers its drawing, or
+/// the CLI's error for it.
+pub(crate) async fn import(body: Bytes) -> ApiResult<Response> {
+    let text = std::str::from_utf8(&body)
+        .map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
+    let obj = Object::from_json_str(text, "file").map_err(|e| ApiError::io("file", &e))?;
+    Ok(answer(view(&obj, &ViewOptions::default())?))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExportRequest {
+    curve: Value,
+}
+
+/// `POST /api/export/json`: the curve as the CLI writes it, as a download.
+pub(crate) async fn export_json(body: Bytes) -> ApiResult<Response> {
+    let r: ExportRequest = parse(&body)?;
+    let obj = curve(&r.curve, "curve")?;
+    Ok(download(
+        obj.to_json_pretty(),
+        "application/json",
+        "curve.json",
+    ))
+}
+
+/// Fixed STEP timestamp, so that the same curve gives the same file (as in the CLI).
+const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
+
+/// `POST /api/export/step`: the curve as an ISO 10303-21 file (`lekalo convert -o x.step`).
+pub(crate) async fn export_step(body: Bytes) -> ApiResult<Response> {
+    let r: ExportRequest = parse(&body)?;
+    let obj = curve(&r.curve, "curve")?;
+    let mut w = lekalo_io::StepWriter::new("curve");
+    w.add_object(&obj).map_err(|e| ApiError::io("curve", &e))?;
+    Ok(download(
+        w.finish(STEP_TIMESTAMP),
+        "application/step",
+        "curve.step",
+    ))
+}
+
+fn download(text: String, mime: &'static str, name: &str) -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, mime.to_string()),
+            (
+                header::CONTENT_DISPOSITION,
+                format!("attachment; filename=\"{name}\""),
+            ),
+        ],
+        text,
+    )
+        .into_response()
+}
+
+#[derive(Debug, Deserialize)]
+struct BuildRequest {
+    control: Vec<Vec<f64>>,
+    degree: usize,
+    #[serde(default)]
+    knots: Option<Vec<f64>>,
+    #[serde(default)]
+    weights: Option<Vec<f64>>,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+/// `POST /api/bspline`: a B-spline (or, with `weights`, NURBS) curve from control points and
+/// degree, with the given knots or the clamped uniform ones (`lekalo make bspline`); the
+/// library's constructor validates (P&T eq. 2.1 conditions: sorted knots, `m = n + p + 1`).
+pub(crate) async fn bspline(body: Bytes) -> ApiResult<Response> {
+    let r: BuildRequest = parse(&body)?;
+    let control = points(&r.control, "control")?;
+    let degree = check_degree(r.degree, "degree")?;
+    let field = |e: &lekalo::Error| match e {
+        lekalo::Error::Degree { .. } => "degree",
+        lekalo::Error::TooFew { .. } => "control",
+        lekalo::Error::NonPositiveWeight { .. } => "weights",
+        lekalo::Error::LengthMismatch { what, .. } | lekalo::Error::NonFinite { what, .. }
+            if what.contains("weight") =>
+        {
+            "weights"
+        }
+        _ => "knots",
+    };
+    let knots = match r.knots {
+        Some(k) => k,
+        None => KnotVector::clamped_uniform(degree, control.len())
+            .map_err(|e| ApiError::lib(field(&e), &e))?
+            .into_vec(),
+    };
+    let obj = match r.weights {
+        Some(w) => NurbsCurve::new(degree, knots, control, w).map(Object::Nurbs),
+        None => BSplineCurve::new(degree, knots, control).map(Object::BSpline),
+    }
+    .map_err(|e| ApiError::lib(field(&e), &e))?;
+    Ok(answer(view(&obj, &r.view.options())?))
+}
+
+/// `POST /api/bezier/build`: a Bezier curve from its control points, drawn.
+pub(crate) async fn bezier_build(body: Bytes) -> ApiResult<Response> {
+    #[derive(Deserialize)]
+    struct Req {
+        control: Vec<Vec<f64>>,
+        #[serde(flatten)]
+        view: ViewOptionsFlat,
+    }
+    let r: Req = parse(&body)?;
+    let c = BezierCurve::new(points(&r.control, "control")?)
+        .map_err(|e| ApiError::lib("control", &e))?;
+    let real = c.real_degree();
+    let v = view(&Object::Bezier(c), &r.view.options())?;
+    Ok(answer(json!({ "view": v, "degree": v.degree, "real_degree": real, "deviation": null })))
+}

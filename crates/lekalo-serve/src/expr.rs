@@ -1,0 +1,136 @@
+//! `POST /api/quasi`: quasi-interpolation of a typed function (document 003, de Boor–Fix
+//! functionals; `lekalo pp quasi`). The text is parsed by [`lekalo::Expression`] (a parser
+//! and Taylor-arithmetic derivatives; nothing is executed) and the interpolant and its error
+//! come from [`lekalo::sample_quasi_interpolant`].
+
+use axum::body::Bytes;
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use lekalo::{sample_quasi_interpolant, Expression, PpSpace, TauRule};
+use lekalo_io::Object;
+use serde::Deserialize;
+use serde_json::json;
+
+use crate::api::{view, ViewOptions, MAX_POINTS, MAX_SAMPLES};
+use crate::error::{ApiError, ApiResult};
+
+/// τ rules of the de Boor–Fix functionals.
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+enum Rule {
+    #[default]
+    FirstKnotAfter,
+    LeftEndOfSupport,
+    Midpoint,
+    Greville,
+}
+
+fn default_intervals() -> usize {
+    200
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct QuasiRequest {
+    expression: String,
+    breakpoints: Vec<f64>,
+    order: usize,
+    #[serde(default)]
+    continuity: Option<Vec<usize>>,
+    #[serde(default)]
+    rule: Rule,
+    #[serde(default = "default_intervals")]
+    intervals: usize,
+    #[serde(default)]
+    basis_samples: Option<usize>,
+}
+
+pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
+    let de = &mut serde_json::Deserializer::from_slice(&body);
+    let r: QuasiRequest = serde_path_to_error::deserialize(de)
+        .map_err(crate::api::request_error)?;
+    if r.breakpoints.len() > MAX_POINTS {
+        return Err(ApiError::bad(
+            "breakpoints",
+            format!("{} breakpoints: at most {MAX_POINTS}", r.breakpoints.len()),
+        ));
+    }
+    if !(1..MAX_SAMPLES).contains(&r.intervals) {
+        return Err(ApiError::bad(
+            "intervals",
+            format!("intervals = {}: give 1 to {}", r.intervals, MAX_SAMPLES - 1),
+        ));
+    }
+    let f = Expression::parse(&r.expression).map_err(|e| ApiError::lib("expression", &e))?;
+    // as `lekalo pp quasi`: ν = k − 1 continuous derivatives (C^(k−2)) at every interior
+    // breakpoint unless `continuity` says otherwise
+    let interior = r.breakpoints.len().saturating_sub(2);
+    let nu = match &r.continuity {
+        Some(nu) if nu.len() != interior => {
+            return Err(ApiError::bad(
+                "continuity",
+                format!(
+                    "{} values given; the {} breakpoints have {interior} interior ones",
+                    nu.len(),
+                    r.breakpoints.len()
+                ),
+            ))
+        }
+        Some(nu) => nu.clone(),
+        None => vec![r.order.saturating_sub(1); interior],
+    };
+    let space = PpSpace::new(&r.breakpoints, &nu, r.order).map_err(|e| {
+        let field = if matches!(e, lekalo::Error::Degree { .. }) {
+            "order"
+        } else {
+            "breakpoints"
+        };
+        ApiError::lib(field, &e)
+    })?;
+    let rule = match r.rule {
+        Rule::FirstKnotAfter => TauRule::FirstKnotAfter,
+        Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
+        Rule::Midpoint => TauRule::Midpoint,
+        Rule::Greville => TauRule::Greville,
+    };
+    // the closure cannot return the parser's error: keep the first and report it
+    let mut failure: Option<lekalo::Error> = None;
+    let mut order_cache: (f64, Vec<f64>) = (f64::NAN, Vec::new());
+    let k = r.order;
+    let fx = |x: f64, d: usize| -> f64 {
+        if order_cache.0.to_bits() != x.to_bits() || order_cache.1.len() <= d {
+            match f.derivatives(x, k.max(d + 1) - 1) {
+                Ok(v) => order_cache = (x, v),
+                Err(e) => {
+                    failure.get_or_insert(e);
+                    return f64::NAN;
+                }
+            }
+        }
+        order_cache.1[d]
+    };
+    let result = sample_quasi_interpolant(&space, rule, fx, r.intervals);
+    if let Some(e) = failure {
+        return Err(ApiError::lib("expression", &e));
+    }
+    let s = result.map_err(|e| ApiError::lib("breakpoints", &e))?;
+    let q = lekalo::quasi_interpolate(&space, rule, |x, d| {
+        f.derivatives(x, d).map(|v| v[d]).unwrap_or(f64::NAN)
+    })
+    .map_err(|e| ApiError::lib("expression", &e))?;
+    let opts = ViewOptions {
+        samples: r.intervals + 1,
+        basis_samples: r.basis_samples,
+        ..ViewOptions::default()
+    };
+    let error: Vec<f64> = s.exact.iter().zip(&s.approx).map(|(a, b)| a - b).collect();
+    Ok(Json(json!({
+        "view": view(&Object::BSpline(q), &opts)?,
+        "t": s.t,
+        "exact": s.exact,
+        "approx": s.approx,
+        "error": error,
+        "max_error": s.max_error(),
+    }))
+    .into_response())
+}

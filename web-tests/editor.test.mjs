@@ -1,0 +1,246 @@
+// End-to-end tests of the `lekalo serve` editor in headless Chromium (Debian's /usr/bin/chromium),
+// driven by playwright-core. The server is started by scripts/test-browser.sh, which passes its
+// address in LEKALO_URL. Each test acts as a person would (clicks, drags, typed values) and checks
+// the drawn SVG paths against the API's own answer for the same construction.
+//
+// Environment: LEKALO_URL (required), ARTIFACTS (screenshots; default ../target/browser-artifacts),
+// SCREENSHOTS_FOR_DOCS=1 also writes the README's pictures to ../docs/img/.
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const base = process.env.LEKALO_URL;
+if (!base) throw new Error('set LEKALO_URL to the address printed by `lekalo serve`');
+const artifacts = process.env.ARTIFACTS || path.join(here, '..', 'target', 'browser-artifacts');
+const docsImg = path.join(here, '..', 'docs', 'img');
+mkdirSync(artifacts, { recursive: true });
+
+export const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+async function api(route, body) {
+  const r = await fetch(new URL(route, base), { method: 'POST', body: JSON.stringify(body) });
+  const data = await r.json();
+  assert.ok(r.ok, `${route}: ${JSON.stringify(data)}`);
+  return data;
+}
+
+// vertices of an SVG path "M x y L x y ..."
+function vertices(d) {
+  const nums = (d.match(/-?\d+(\.\d+)?(e-?\d+)?/g) || []).map(Number);
+  const out = [];
+  for (let i = 0; i + 1 < nums.length; i += 2) out.push([nums[i], nums[i + 1]]);
+  return out;
+}
+
+// the drawn #curve equals the API's points, mapped to the screen by the page's own transform
+async function assertCurveIs(page, points, what) {
+  const d = await page.getAttribute('#curve', 'd');
+  const drawn = vertices(d);
+  const expected = await page.evaluate((pts) => pts.map((p) => window.lekaloEditor.toScreen(p)), points);
+  assert.equal(drawn.length, expected.length, `${what}: vertex count`);
+  for (let i = 0; i < drawn.length; i++) {
+    const err = Math.hypot(drawn[i][0] - expected[i][0], drawn[i][1] - expected[i][1]);
+    assert.ok(err < 0.02, `${what}: vertex ${i} drawn at ${drawn[i]} but the API says ${expected[i]}`);
+  }
+}
+
+async function idle(page) {
+  await page.evaluate(() => window.lekaloEditor.idle());
+}
+
+async function shot(page, name, forDocs) {
+  await page.screenshot({ path: path.join(artifacts, `${name}.png`) });
+  if (forDocs && process.env.SCREENSHOTS_FOR_DOCS === '1') {
+    mkdirSync(docsImg, { recursive: true });
+    await page.locator('main').screenshot({ path: path.join(docsImg, `serve-${name}.png`) });
+  }
+}
+
+async function canvasToPage(page, p) {
+  return page.evaluate((q) => {
+    const [x, y] = window.lekaloEditor.toScreen(q);
+    const r = document.getElementById('canvas').getBoundingClientRect();
+    return [r.left + x * r.width / 800, r.top + y * r.height / 500];
+  }, p);
+}
+
+async function setValue(page, selector, value) {
+  await page.fill(selector, String(value));
+  await page.dispatchEvent(selector, 'change');
+  await idle(page);
+}
+
+const tests = [];
+const test = (name, fn) => tests.push({ name, fn });
+
+test('B-spline: add points, drag one, change the degree; the drawn curve is the API\'s', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  const n0 = await page.locator('#points circle').count();
+  for (const p of [[2, 1], [4, 0.6]]) {
+    const [x, y] = await canvasToPage(page, p);
+    await page.mouse.click(x, y);
+    await idle(page);
+  }
+  assert.equal(await page.locator('#points circle').count(), n0 + 2, 'two control points added');
+  let s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  let answer = await api('/api/bspline', { control: s.control, degree: s.degree, samples: 400 });
+  await assertCurveIs(page, answer.points, 'after adding points');
+
+  const before = await page.getAttribute('#curve', 'd');
+  const [x, y] = await canvasToPage(page, s.control[2]);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x + 40, y + 60, { steps: 8 });
+  await page.mouse.up();
+  await idle(page);
+  s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.notDeepEqual(s.control[2], answer.control[2], 'the dragged point moved');
+  assert.notEqual(await page.getAttribute('#curve', 'd'), before, 'the curve changed');
+  answer = await api('/api/bspline', { control: s.control, degree: s.degree, samples: 400 });
+  await assertCurveIs(page, answer.points, 'after the drag');
+
+  await setValue(page, '#bs-degree', 2);
+  answer = await api('/api/bspline', { control: s.control, degree: 2, samples: 400 });
+  assert.equal(answer.degree, 2);
+  await assertCurveIs(page, answer.points, 'degree 2');
+  // knot marks on the curve: one per distinct knot
+  assert.equal(await page.locator('#knot-marks rect').count(), answer.knot_marks.length, 'knot marks');
+  // the basis panel: one path per basis function, the active ones highlighted at the cursor
+  assert.equal(await page.locator('#basis-paths path').count(), s.control.length, 'basis functions');
+  const box = await page.locator('#basis').boundingBox();
+  await page.mouse.move(box.x + box.width * 0.5, box.y + 80);
+  await idle(page);
+  assert.equal(await page.locator('#basis-paths path.active').count(), 3, 'p + 1 = 3 active functions');
+  await shot(page, 'bspline', true);
+});
+
+test('B-spline: an invalid degree shows the library\'s message next to the degree field; undo restores', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await setValue(page, '#bs-degree', 9);
+  const msg = await page.textContent('[data-mode="bspline"] [data-err="degree"]');
+  const direct = await fetch(new URL('/api/bspline', base), { method: 'POST',
+    body: JSON.stringify({ control: [[1, 1], [2.5, 4.5], [5, 5], [7, 1.5], [9, 4]], degree: 9 }) });
+  assert.equal(direct.status, 400);
+  const body = await direct.json();
+  assert.equal(body.field, 'degree');
+  assert.equal(msg, body.error, 'the page shows the API\'s message');
+  await page.click('#undo');
+  await idle(page);
+  assert.equal(await page.textContent('[data-mode="bspline"] [data-err="degree"]'), '', 'error cleared');
+  assert.equal(await page.inputValue('#bs-degree'), '3');
+});
+
+test('the state lives in the URL: a reload shows the same construction', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await setValue(page, '#bs-degree', 4);
+  const url = page.url();
+  assert.ok(url.includes('#'), 'hash written');
+  const d = await page.getAttribute('#curve', 'd');
+  const other = await page.context().newPage();
+  await other.goto(url);
+  await idle(other);
+  assert.equal(await other.getAttribute('#curve', 'd'), d);
+  await other.close();
+});
+
+test('Bezier: elevate keeps the curve and the real degree; approximate reduction shows the deviation', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'bezier');
+  await idle(page);
+  const before = await page.evaluate(() => window.lekaloEditor.last.view);
+  await page.click('#bz-elevate');
+  await idle(page);
+  const after = await page.evaluate(() => window.lekaloEditor.last);
+  assert.equal(after.view.degree, before.degree + 1, 'degree + 1');
+  assert.equal(after.real_degree, 3, 'real degree unchanged');
+  const expected = await api('/api/bezier', { curve: before.curve, op: 'elevate', by: 1, samples: 400 });
+  assert.deepEqual(after.view.control, expected.view.control);
+  await assertCurveIs(page, expected.view.points, 'elevated');
+  await setValue(page, '#bz-target', 2);
+  await page.click('#bz-approx');
+  await idle(page);
+  const info = await page.textContent('#bz-info');
+  assert.match(info, /max deviation \d\.\d+e[-+]\d+/, info);
+  await shot(page, 'bezier', false);
+});
+
+test('Blending: C^k deformation drawn as the API computes it', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'blend');
+  await idle(page);
+  await setValue(page, '#bl-k', 3);
+  const s = await page.evaluate(() => window.lekaloEditor.state.blend);
+  const a = s.a;
+  const expected = await api('/api/blend/deform', {
+    first: { lekalo: 1, type: 'bezier_curve', control: a },
+    second: { lekalo: 1, type: 'bezier_curve', control: [a[0], ...s.b, a[a.length - 1]] },
+    continuity: 3, samples: 400 });
+  await assertCurveIs(page, expected.points, 'blend k = 3');
+  await shot(page, 'blend', true);
+});
+
+test('Interpolation with end tangents, then periodic; quasi-interpolation with its error', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'interpolate');
+  await page.selectOption('#in-end', 'derivatives');
+  await idle(page);
+  assert.equal(await page.locator('#handles circle').count(), 2, 'two tangent handles');
+  const s = await page.evaluate(() => window.lekaloEditor.state.interpolate);
+  const expected = await api('/api/interpolate', { points: s.points, degree: 3, parametrization: 'chord',
+    knots: 'auto', end: 'derivatives', start_derivative: s.d0, end_derivative: s.d1, samples: 400 });
+  await assertCurveIs(page, expected.points, 'end tangents');
+  await shot(page, 'interpolate', true);
+  await page.selectOption('#in-end', 'periodic');
+  await idle(page);
+  const v = await page.evaluate(() => window.lekaloEditor.last.view);
+  const p = v.points;
+  assert.ok(Math.hypot(p[0][0] - p[p.length - 1][0], p[0][1] - p[p.length - 1][1]) < 1e-9, 'closed');
+
+  await page.selectOption('#mode', 'quasi');
+  await idle(page);
+  const q = await page.evaluate(() => window.lekaloEditor.last);
+  assert.ok(q.max_error > 0 && q.max_error < 0.5, `max error ${q.max_error}`);
+  assert.ok((await page.getAttribute('#error-path', 'd')).length > 100, 'error plotted');
+  await page.fill('#qi-expr', 'sin(');
+  await page.dispatchEvent('#qi-expr', 'input');
+  await idle(page);
+  assert.match(await page.textContent('[data-err="expression"]'), /invalid expression/);
+  await shot(page, 'quasi', true);
+});
+
+let failed = 0;
+const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: CHROMIUM_ARGS, headless: true });
+try {
+  for (const t of tests) {
+    const context = await browser.newContext({ viewport: { width: 1200, height: 820 } });
+    const page = await context.newPage();
+    const problems = [];
+    page.on('console', (m) => { if (m.type() === 'error') problems.push(m.text()); });
+    page.on('pageerror', (e) => problems.push(String(e)));
+    const started = Date.now();
+    try {
+      await t.fn(page);
+      // a 400 answer is a shown error, not a console error; the console must stay clean otherwise
+      const real = problems.filter((p) => !p.includes('400 (Bad Request)'));
+      assert.deepEqual(real, [], 'console errors');
+      console.log(`ok   ${t.name} (${Date.now() - started} ms)`);
+    } catch (e) {
+      failed++;
+      console.log(`FAIL ${t.name}\n     ${e.stack}`);
+      await page.screenshot({ path: path.join(artifacts, `failed-${tests.indexOf(t)}.png`) }).catch(() => {});
+    }
+    await context.close();
+  }
+} finally {
+  await browser.close();
+}
+console.log(`${tests.length - failed} passed, ${failed} failed; screenshots in ${artifacts}`);
+process.exit(failed ? 1 : 0);
