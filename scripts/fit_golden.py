@@ -60,7 +60,31 @@ yr = np.sin(8 * xr) * np.exp(-xr) + 0.05 * noise(xr.size, 17)
 sr = 400 * 0.05 ** 2 / 12  # about the noise's sum of squares
 tck, fp, ier, msg = splrep(xr, yr, k=3, s=sr, full_output=True)
 out["splrep"] = {"x": xr.tolist(), "y": yr.tolist(), "s": sr, "fp": float(fp),
-                 "n_knots": int(len(tck[0])), "n_interior": int(len(tck[0]) - 8)}
+                 "n_knots": int(len(tck[0])), "n_interior": int(len(tck[0]) - 8),
+                 "t": tck[0].tolist(), "c": tck[1][:len(tck[0]) - 4].tolist()}
+
+# 3b. the same data, s = 0 (interpolation), quadratic (midpoint knots) and a weighted quintic
+tck0 = splrep(xr[:40], yr[:40], k=2, s=0.0)
+wr = 1.0 + 0.5 * np.abs(noise(xr.size, 29))
+tck5, fp5, _, _ = splrep(xr, yr, w=wr, k=5, s=sr, full_output=True)
+out["splrep_more"] = {"interp_k2": {"t": tck0[0].tolist(), "c": tck0[1][:len(tck0[0]) - 3].tolist()},
+                      "weighted_k5": {"w": wr.tolist(), "fp": float(fp5), "t": tck5[0].tolist(),
+                                      "c": tck5[1][:len(tck5[0]) - 6].tolist()}}
+
+# 3c. periodic: splrep(per=1), least squares with given interior knots and smoothing with s
+xp = np.linspace(0.0, 2 * np.pi, 121) + 0.01 * noise(121, 31)
+xp[0], xp[-1] = 0.0, 2 * np.pi
+xp.sort()
+yp = np.cos(xp) + 0.5 * np.sin(2 * xp) + 0.05 * noise(xp.size, 37)
+yp[-1] = yp[0]
+tp_in = [0.7, 1.5, 2.2, 3.0, 3.9, 4.6, 5.5]
+tckp = splrep(xp, yp, k=3, t=tp_in, per=1)
+sp = 120 * 0.05 ** 2 / 12
+tcks, fps, _, _ = splrep(xp, yp, k=3, s=sp, per=1, full_output=True)
+out["splrep_periodic"] = {"x": xp.tolist(), "y": yp.tolist(), "interior": tp_in,
+                          "lsq_t": tckp[0].tolist(), "lsq_c": tckp[1][:len(tckp[0]) - 4].tolist(),
+                          "s": sp, "fp": float(fps), "t": tcks[0].tolist(),
+                          "c": tcks[1][:len(tcks[0]) - 4].tolist()}
 
 # 4. LSQBivariateSpline on scattered data
 m = 400

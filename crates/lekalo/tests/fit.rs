@@ -131,30 +131,46 @@ fn smoothing_matches_scipy_make_smoothing_spline() {
     }
 }
 
+/// `smoothing_condition` against `splrep` on `(x, y)` with FITPACK weights `w_fp`: the same
+/// knots and coefficients, and the residual within `s`.
+fn check_splrep(x: &[f64], y: &[f64], w_fp: Option<&[f64]>, k: usize, s: f64, entry: &Value) {
+    let w: Vec<f64> = w_fp.map_or_else(Vec::new, |w| w.iter().map(|v| v * v).collect());
+    let mut data = FitData::new(PointsRef::from_flat(1, y).unwrap(), x).unwrap();
+    if w_fp.is_some() {
+        data = data.with_weights(&w).unwrap();
+    }
+    let fit = smoothing_condition(&data, k, s).unwrap();
+    let rss = fit.report.weighted_rss;
+    // s = 0 interpolates: the residual is rounding
+    assert!(rss <= s.max(1e-24), "rss {rss} > s {s}");
+    if s > 0.0 {
+        assert!(rss >= 0.999 * s, "smoothed up to s: {rss}");
+    }
+    assert_close(
+        fit.curve.knots().as_slice(),
+        &vec_of(&entry["t"]),
+        1e-14,
+        &format!("degree {k}, s {s}: knots"),
+    );
+    let c: Vec<f64> = fit.curve.control_points().iter().map(|p| p[0]).collect();
+    assert_close(
+        &c,
+        &vec_of(&entry["c"]),
+        1e-9,
+        &format!("degree {k}, s {s}: coefficients"),
+    );
+}
+
 #[test]
-fn smoothing_condition_against_scipy_splrep() {
+fn smoothing_condition_matches_scipy_splrep() {
     let g = golden();
     let r = &g["splrep"];
     let (x, y, s) = (vec_of(&r["x"]), vec_of(&r["y"]), r["s"].as_f64().unwrap());
-    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
-    let fit = smoothing_condition(&data, 3, s).unwrap();
-    assert!(
-        fit.report.weighted_rss <= s,
-        "rss {} > s {s}",
-        fit.report.weighted_rss
-    );
-    assert!(
-        fit.report.weighted_rss >= 0.99 * s,
-        "smoothed up to s: {}",
-        fit.report.weighted_rss
-    );
-    let interior = fit.report.n_ctrl - 4;
-    let scipy_interior = usize::try_from(r["n_interior"].as_u64().unwrap()).unwrap();
-    // the knot count is of the same order as FITPACK's (see docs/theory/fitting.md)
-    assert!(
-        interior <= 2 * scipy_interior,
-        "{interior} interior knots vs FITPACK's {scipy_interior}"
-    );
+    check_splrep(&x, &y, None, 3, s, r);
+    let more = &g["splrep_more"];
+    check_splrep(&x[..40], &y[..40], None, 2, 0.0, &more["interp_k2"]);
+    let w5 = &more["weighted_k5"];
+    check_splrep(&x, &y, Some(&vec_of(&w5["w"])), 5, s, w5);
 }
 
 #[test]

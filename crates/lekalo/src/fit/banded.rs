@@ -49,23 +49,6 @@ impl GivensQr {
         self.n
     }
 
-    /// The same triangle in a band of `bw ≥ self.bw` (for rows with more non-zeros).
-    pub(crate) fn widened(&self, bw: usize) -> Self {
-        debug_assert!(bw >= self.bw, "a band can only be widened");
-        let mut r = vec![0.0; self.n * bw];
-        for i in 0..self.n {
-            r[i * bw..i * bw + self.bw].copy_from_slice(&self.r[i * self.bw..(i + 1) * self.bw]);
-        }
-        GivensQr {
-            n: self.n,
-            bw,
-            ncols: self.ncols,
-            r,
-            z: self.z.clone(),
-            rss: self.rss,
-        }
-    }
-
     /// Rotates the row `h` (non-zeros in columns `first .. first + h.len()`, `h.len() ≤ bw`) with
     /// right-hand side `y` into the triangle. `h` and `y` are overwritten. FITPACK `fpgivs` +
     /// `fprota`: `d = √(piv² + r²)`, `cos = r/d`, `sin = piv/d`.

@@ -4,37 +4,49 @@
 
 use super::banded::GivensQr;
 use super::data::{CurveFit, FitData, FitReport};
-use super::lsq::{accumulate, solve_control, Fixed};
-use crate::basis::{basis_ders_into, BasisScratch};
+use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{check_degree_bound, Error, Result};
-use crate::knots::KnotVector;
+use crate::points::Points;
 use crate::BSplineCurve;
 
 /// Relative accuracy of the final residual: the result has
-/// `(1 − SMOOTHING_RTOL)·s ≤ Σ w_k |C(ū_k) − Q_k|² ≤ s` when it is smoothed (FITPACK's 0.001).
+/// `(1 − SMOOTHING_RTOL)·s ≤ Σ w_k |C(ū_k) − Q_k|² ≤ s` when it is smoothed (FITPACK's
+/// `tol = 0.001`, which SciPy's `splrep` keeps).
 pub const SMOOTHING_RTOL: f64 = 1e-3;
+
+/// Iterations of the smoothing weight `p` on the final knots (FITPACK's `maxit`, 20 in SciPy).
+const MAX_P_ITERATIONS: usize = 20;
 
 /// The B-spline of `degree` with the fewest interior knots found whose weighted residual sum of
 /// squares `Σ_k w_k |C(ū_k) − Q_k|²` is at most `s` (Dierckx 1975, 1993 ch. 5; FITPACK `curfit`
 /// for functions and `parcur` for parametric curves, as in SciPy's `splrep(s=…)`/`splprep`).
+/// FITPACK's weights multiply the residual, ours its square: `w_k = w_FITPACK²`.
 ///
 /// 1. Start with no interior knot: the least-squares polynomial. If its residual is `≤ s`, it is
 ///    the answer.
-/// 2. Otherwise add knots where the residual is largest: the span with the largest residual sum
-///    that holds data strictly inside is split at its middle data parameter. The number of knots
-///    added per round grows as in FITPACK (`nplus = min(2·nplus, max(nplus·fpms/Δfp, nplus/2, 1))`),
-///    and each round refits by least squares ([`least_squares`](super::least_squares)), until the
-///    residual is `≤ s` (at the latest when the knots are the data parameters: interpolation).
-/// 3. On this final knot set, smooth: minimise `Σ w |C − Q|² + λ Σ_j (jump of C^{(p)} at t_j)²`
-///    (FITPACK's discontinuity penalty; its null space is the polynomials of degree `p`), with
-///    λ found by a secant (Illinois) iteration in `log λ` so that the residual is `s` within
-///    [`SMOOTHING_RTOL`]`·s`, never above `s`. The penalty rows are rotated into the data's banded
-///    QR, so each λ costs O(n·p²), not a pass over the data.
+/// 2. Otherwise add knots where the residual is largest, as FITPACK's `fpcurf`/`fpknot`: the
+///    residual is summed per knot span (a point on a knot counts half to each side), and the span
+///    with the largest sum among those with a distinct parameter strictly inside is split at its
+///    middle such parameter, the sum shared in proportion. The number added per round starts at
+///    1 and follows `nplus = min(2·nplus, max(⌊nplus·(fp − s)/(fp_old − fp)⌋, nplus/2, 1))`.
+///    Each round is one least-squares pass: every data row is rotated into a banded triangle
+///    `R` by Givens rotations and forgotten. The round stops when `fp ≤ s`, or when the knots are
+///    those of interpolation (`s = 0` starts there).
+/// 3. On this final knot set, smooth: add the rows `b_j / p` of FITPACK's `fpdisc` (the jumps of
+///    the `p`-th derivative at the interior knots, scaled by `k!·(spans/length)^k`) and find `p`
+///    with `|fp(p) − s| < SMOOTHING_RTOL·s` by FITPACK's rational interpolation (`fprati`),
+///    starting from `p = n / trace R`. Each `p` rotates only the penalty rows into a copy of
+///    the data's `R` and reads the data residual off `R` (`fp = rss₀ + ‖R c − Qᵀy‖²`): O(n·k²),
+///    no pass over the data.
 ///
-/// It differs from FITPACK in the knot position (the middle data point of the span, where FITPACK
-/// balances the residual halves by its `fpint` estimates), in recomputing the span residuals after
-/// each round instead of updating estimates, and in the root finder (FITPACK interpolates `p = 1/λ`
-/// rationally, `fprati`). `s = 0` interpolates. Cost: O(rounds·N·p²).
+/// On data with distinct parameters this is FITPACK's algorithm step for step, so the knots and
+/// coefficients are SciPy's to rounding (tested on stored SciPy values). It differs where FITPACK
+/// would return a residual above `s`: a least-squares fit with `s < fp < s + SMOOTHING_RTOL·s`
+/// gets more knots instead of being accepted, and a smoothed fit with `fp > s` continues the
+/// same iteration towards `s − SMOOTHING_RTOL·s/2`, so the result never exceeds `s`.
+/// Repeated parameters are allowed: knots are placed among the distinct ones. The reported λ
+/// is the weight of `Σ_j (jump of C^{(k)} at t_j)²`, `λ = (p·k!·(spans/length)^k)^{-2}`.
+/// Cost: O(rounds·N·k²) for `N` points, the rounds growing like the logarithm of the knot count.
 ///
 /// ```
 /// use lekalo::fit::{smoothing_condition, FitData};
@@ -51,7 +63,8 @@ pub const SMOOTHING_RTOL: f64 = 1e-3;
 ///
 /// # Errors
 /// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
-/// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters.
+/// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
+/// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
     if !(s >= 0.0 && s.is_finite()) {
         return Err(Error::NegativeSmoothing {
@@ -66,252 +79,537 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
             reason: "the smoothing condition needs degree ≥ 1".into(),
         });
     }
-    let p = degree;
-    let mut x = data.params().to_vec();
-    x.sort_by(f64::total_cmp);
-    x.dedup();
-    if x.len() < p + 1 {
+    let k = degree;
+    let obs = Observations::new(data);
+    let md = obs.sites.len();
+    if md < k + 1 {
         return Err(Error::TooFew {
             what: "distinct data parameters for the smoothing condition (degree + 1)",
-            min: p + 1,
-            got: x.len(),
+            min: k + 1,
+            got: md,
         });
     }
-    let (a, b) = (x[0], x[x.len() - 1]);
-    // knot sites: the distinct parameters x_i, ⌈p/2⌉ ≤ i ≤ N − 1 − (p+2)/2 (FITPACK's
-    // interpolation knots for s = 0); any subset keeps the Schoenberg–Whitney conditions
-    let sites = &x[p.div_ceil(2)..x.len() - (p + 2) / 2];
-    let wmax = data
-        .weights()
-        .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
-    let fixed = Fixed::free(data);
-    let mut interior: Vec<f64> = Vec::new();
-    let (mut nplus, mut fpold) = (1usize, f64::INFINITY);
-    let (kv, qr, mut fit) = loop {
-        let kv = clamped(a, b, p, &interior);
-        let n_ctrl = interior.len() + p + 1;
-        let qr = accumulate(data, p, &kv, n_ctrl, &fixed, p + 2);
-        let control = solve_control(&qr, data, p, &kv, n_ctrl, &fixed)?;
-        let curve = BSplineCurve::from_raw(p, kv.as_slice().to_vec(), control);
-        let fp = qr.rss * wmax;
-        let report = FitReport::new(&curve, data, None);
-        let fit = CurveFit { curve, report };
-        // interpolation reached: every distinct parameter carries a control point
-        if fp <= s || interior.len() >= sites.len() {
-            break (kv, qr, fit);
+    let acc = SMOOTHING_RTOL * s;
+    // knot counts of the polynomial and of interpolation
+    let (nmin, nmax) = (2 * k + 2, md + k + 1);
+    let mut knots = Knots::new(&obs.sites, k);
+    if s == 0.0 {
+        knots.interpolation(&obs.sites);
+    }
+    let (mut fp0, mut fpold, mut nplus) = (f64::INFINITY, 0.0, 0usize);
+    let mut pass = LsqPass::new(&obs, k);
+    let smooth = loop {
+        let t = knots.vector();
+        let n = t.len();
+        let qr = pass.run(&obs, &t)?;
+        let c = back_substitute(&qr)?;
+        let fp = qr.rss;
+        if n == nmin {
+            fp0 = fp;
         }
-        // FITPACK's rule for the number of knots to add
-        if fpold.is_finite() {
-            let npl1 = if fpold - fp > SMOOTHING_RTOL * s {
-                let v = nplus as f64 * (fp - s) / (fpold - fp);
+        let fpms = fp - s;
+        if fpms < 0.0 || (fpms == 0.0 && s > 0.0) {
+            if -fpms < acc || n == nmin {
+                return Ok(finish(data, &obs, k, t, &c, None));
+            }
+            break (t, qr, fp);
+        }
+        if n >= nmax {
+            // interpolation: no knot left to add
+            return Ok(finish(data, &obs, k, t, &c, None));
+        }
+        nplus = if n == nmin {
+            1
+        } else {
+            let npl1 = if fpold - fp > acc {
+                // FITPACK truncates the real quotient to an integer
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                let v = v.min(1e9) as usize;
+                let v = (nplus as f64 * fpms / (fpold - fp)).min(1e9) as usize;
                 v
             } else {
                 nplus * 2
             };
-            nplus = (nplus * 2).min(npl1.max(nplus / 2).max(1));
-        }
+            (nplus * 2).min(npl1.max(nplus / 2).max(1))
+        };
         fpold = fp;
-        let added = add_knots(data, &fit, &kv, p, sites, &mut interior, nplus);
-        if added == 0 {
-            break (kv, qr, fit);
+        knots.span_sums(&obs, &pass, &t, &c);
+        let before = knots.count();
+        for _ in 0..nplus {
+            if !knots.add_one(&obs.sites) || knots.count() + 2 * k + 2 >= nmax {
+                break;
+            }
+        }
+        if knots.count() + 2 * k + 2 >= nmax {
+            knots.interpolation(&obs.sites);
+        } else if knots.count() == before {
+            // no span holds a parameter strictly inside: as close to interpolation as it gets
+            return Ok(finish(data, &obs, k, t, &c, None));
         }
     };
-    let fp0 = fit.report.weighted_rss;
-    if fp0 >= (1.0 - SMOOTHING_RTOL) * s || interior.is_empty() {
-        return Ok(fit);
-    }
-    // smooth on the final knots: RSS(λ) increases from fp0 < s to the polynomial fit's residual
-    let pen = jump_rows(&kv, p);
-    let n_ctrl = interior.len() + p + 1;
-    let wide = qr.widened(p + 2);
-    let solve = |lam: f64| -> Option<(Vec<f64>, f64)> {
-        let mut q = wide.clone();
-        let sl = lam.sqrt();
-        let mut y = vec![0.0; data.points().dim()];
-        for (first, row) in &pen {
-            let mut h: Vec<f64> = row.iter().map(|v| v * sl).collect();
-            y.iter_mut().for_each(|v| *v = 0.0);
-            q.add_row(*first, &mut h, &mut y);
+    let (t, qr, fp_inf) = smooth;
+    let pen = jump_rows(&t, k);
+    // the triangle of [R; B/p] from scratch in column order (R's row j, then the penalty row
+    // starting at column j): O(n·k²) per p, no pass over the data
+    let (n, k1, k2, dim) = (qr.n(), k + 1, k + 2, obs.dim);
+    let n8 = pen.rows.len() / k2;
+    let solve = |p: f64| -> Result<(Vec<f64>, f64)> {
+        let mut g = GivensQr::new(n, k2, dim);
+        let mut h = vec![0.0; k2];
+        let mut y = vec![0.0; dim];
+        for j in 0..n {
+            let len = k1.min(n - j);
+            h[..len].copy_from_slice(&qr.r[j * k1..j * k1 + len]);
+            y.copy_from_slice(&qr.z[j * dim..(j + 1) * dim]);
+            g.add_row(j, &mut h[..len], &mut y);
+            if j < n8 {
+                for (hv, v) in h.iter_mut().zip(&pen.rows[j * k2..(j + 1) * k2]) {
+                    *hv = v / p;
+                }
+                y.fill(0.0);
+                g.add_row(j, &mut h, &mut y);
+            }
         }
-        let mut c = vec![0.0; n_ctrl * y.len()];
-        q.solve(&mut c).ok()?;
-        let rss = (qr.rss + qr.residual_of(&c)) * wmax;
-        Some((c, rss))
+        let c = back_substitute(&g)?;
+        let fp = qr.rss + qr.residual_of(&c);
+        Ok((c, fp))
     };
-    let lam = find_lambda(&solve, &qr, &pen, s)?;
-    if let Some((c, _)) = solve(lam) {
-        let control = super::lsq::assemble(&c, &fixed, n_ctrl, data.points().dim());
-        let curve = BSplineCurve::from_raw(p, kv.as_slice().to_vec(), control);
-        let report = FitReport::new(&curve, data, Some(lam));
-        fit = CurveFit { curve, report };
+    // p → 0: the least-squares polynomial (fp0); p → ∞: the least-squares spline (fp_inf)
+    let trace: f64 = qr.r.chunks_exact(k + 1).map(|row| row[0]).sum();
+    let mut it = PIteration {
+        p: n as f64 / trace,
+        limit: s,
+        low: (0.0, fp0),
+        high: (-1.0, fp_inf),
+    };
+    let mut below = None;
+    let last = it.run(&solve, s, acc, &mut below)?;
+    if last.1 > s {
+        it.run(&solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
     }
-    Ok(fit)
+    match below {
+        Some((p, _, c)) => {
+            let lambda = (p * pen.scale).powi(-2);
+            Ok(finish(data, &obs, k, t, &c, Some(lambda)))
+        }
+        // no weight reached s from below: the least-squares spline on these knots (fp < s)
+        None => Ok(finish(data, &obs, k, t, &back_substitute(&qr)?, None)),
+    }
 }
 
-fn clamped(a: f64, b: f64, p: usize, interior: &[f64]) -> KnotVector {
-    let mut k = Vec::with_capacity(interior.len() + 2 * p + 2);
-    k.extend(std::iter::repeat_n(a, p + 1));
-    k.extend_from_slice(interior);
-    k.extend(std::iter::repeat_n(b, p + 1));
-    KnotVector::from_raw(k)
+/// The data sorted by parameter, relative to the first point and weighted for the rows of the
+/// least-squares problem.
+struct Observations {
+    /// Parameters, increasing.
+    x: Vec<f64>,
+    /// `√w` (FITPACK's weight).
+    wf: Vec<f64>,
+    /// `√w·(Q − Q_first)`, `dim` per point.
+    y: Vec<f64>,
+    dim: usize,
+    center: Vec<f64>,
+    /// The distinct parameters.
+    sites: Vec<f64>,
 }
 
-/// Adds up to `count` knots, each in the span with the largest weighted residual sum among the
-/// spans with a knot site `x` strictly inside, at the middle such site. Returns how many were
-/// added.
-fn add_knots(
+impl Observations {
+    fn new(data: &FitData<'_>) -> Self {
+        let pts = data.points();
+        let dim = pts.dim();
+        let center = pts.point(0).to_vec();
+        let order: Vec<usize> = data.order().unwrap_or_else(|| (0..data.len()).collect());
+        let params = data.params();
+        let x: Vec<f64> = order.iter().map(|&i| params[i]).collect();
+        let wf: Vec<f64> = order.iter().map(|&i| data.weight(i).sqrt()).collect();
+        let mut y = Vec::with_capacity(x.len() * dim);
+        for (&i, &w) in order.iter().zip(&wf) {
+            y.extend(pts.point(i).iter().zip(&center).map(|(q, o)| w * (q - o)));
+        }
+        let mut sites = x.clone();
+        sites.dedup();
+        Observations {
+            x,
+            wf,
+            y,
+            dim,
+            center,
+            sites,
+        }
+    }
+}
+
+/// One least-squares pass over the data for a knot vector, keeping each row's first column and
+/// weighted basis values for the span residuals.
+struct LsqPass {
+    k: usize,
+    first: Vec<usize>,
+    rows: Vec<f64>,
+}
+
+impl LsqPass {
+    fn new(obs: &Observations, k: usize) -> Self {
+        LsqPass {
+            k,
+            first: vec![0; obs.x.len()],
+            rows: vec![0.0; obs.x.len() * (k + 1)],
+        }
+    }
+
+    /// The banded triangle of `min Σ w |C(ū) − Q|²` for the clamped knots `t` (FITPACK's
+    /// observation matrix, reduced by Givens rotations as it is built).
+    fn run(&mut self, obs: &Observations, t: &[f64]) -> Result<GivensQr> {
+        let k = self.k;
+        let nk1 = t.len() - k - 1;
+        let mut qr = GivensQr::new(nk1, k + 1, obs.dim);
+        let mut scratch = BasisScratch::new(k);
+        let mut y = vec![0.0; obs.dim];
+        let mut span = k;
+        for (i, &u) in obs.x.iter().enumerate() {
+            while span + 1 < nk1 && u >= t[span + 1] {
+                span += 1;
+            }
+            let h = &mut self.rows[i * (k + 1)..(i + 1) * (k + 1)];
+            basis_funs_into(t, k, span, u, &mut scratch, h);
+            let w = obs.wf[i];
+            h.iter_mut().for_each(|v| *v *= w);
+            self.first[i] = span - k;
+            y.copy_from_slice(&obs.y[i * obs.dim..(i + 1) * obs.dim]);
+            let mut row = [0.0; 16];
+            if k < 16 {
+                row[..=k].copy_from_slice(h);
+                qr.add_row(span - k, &mut row[..=k], &mut y);
+            } else {
+                let mut row = h.to_vec();
+                qr.add_row(span - k, &mut row, &mut y);
+            }
+        }
+        Ok(qr)
+    }
+
+    /// `Σ_d (√w_i·(C_d(ū_i) − Q_{i,d}))²` for point `i` and coefficients `c`.
+    fn residual2(&self, obs: &Observations, i: usize, c: &[f64]) -> f64 {
+        let (k, dim) = (self.k, obs.dim);
+        let h = &self.rows[i * (k + 1)..(i + 1) * (k + 1)];
+        let f = self.first[i];
+        (0..dim)
+            .map(|d| {
+                let v: f64 = h
+                    .iter()
+                    .enumerate()
+                    .map(|(j, b)| b * c[(f + j) * dim + d])
+                    .sum();
+                let r = v - obs.y[i * dim + d];
+                r * r
+            })
+            .sum()
+    }
+}
+
+/// The interior knots of the rounds with FITPACK's bookkeeping per span: the residual sum
+/// `fpint` and the number of distinct parameters strictly inside, `nrdata`.
+struct Knots {
+    k: usize,
+    a: f64,
+    b: f64,
+    interior: Vec<f64>,
+    fpint: Vec<f64>,
+    nrdata: Vec<usize>,
+}
+
+impl Knots {
+    fn new(sites: &[f64], k: usize) -> Self {
+        Knots {
+            k,
+            a: sites[0],
+            b: sites[sites.len() - 1],
+            interior: Vec::new(),
+            fpint: vec![0.0],
+            nrdata: vec![sites.len().saturating_sub(2)],
+        }
+    }
+
+    fn count(&self) -> usize {
+        self.interior.len()
+    }
+
+    /// The clamped knot vector.
+    fn vector(&self) -> Vec<f64> {
+        let k = self.k;
+        let mut t = Vec::with_capacity(self.interior.len() + 2 * k + 2);
+        t.extend(std::iter::repeat_n(self.a, k + 1));
+        t.extend_from_slice(&self.interior);
+        t.extend(std::iter::repeat_n(self.b, k + 1));
+        t
+    }
+
+    /// The knots of interpolation at the distinct parameters (FITPACK's choice for `s = 0`):
+    /// the parameters themselves for odd degree, the midpoints for even degree, leaving out
+    /// `⌈(k+1)/2⌉`-ish at each end so that there are `sites − k − 1` of them.
+    fn interpolation(&mut self, sites: &[f64]) {
+        let k = self.k;
+        let count = sites.len().saturating_sub(k + 1);
+        let j0 = k / 2 + 1;
+        self.interior = (0..count)
+            .map(|l| {
+                let j = j0 + l;
+                if k % 2 == 1 {
+                    sites[j]
+                } else {
+                    0.5 * (sites[j] + sites[j - 1])
+                }
+            })
+            .collect();
+    }
+
+    /// `fpint`: the residual of each span, a point on a knot counting half to each side.
+    fn span_sums(&mut self, obs: &Observations, pass: &LsqPass, t: &[f64], c: &[f64]) {
+        let k = self.k;
+        let nk1 = t.len() - k - 1;
+        self.fpint.clear();
+        let (mut l, mut part) = (k + 1, 0.0);
+        for (i, &u) in obs.x.iter().enumerate() {
+            let new = l < nk1 && u >= t[l];
+            if new {
+                l += 1;
+            }
+            let term = pass.residual2(obs, i, c);
+            part += term;
+            if new {
+                self.fpint.push(part - 0.5 * term);
+                part = 0.5 * term;
+            }
+        }
+        self.fpint.push(part);
+    }
+
+    /// Adds one knot at the middle distinct parameter of the span with the largest residual
+    /// sum among those with a parameter strictly inside (FITPACK `fpknot`). Returns `false`
+    /// when no span can be split.
+    fn add_one(&mut self, sites: &[f64]) -> bool {
+        let (mut best, mut fpmax, mut begin) = (None, 0.0, 0usize);
+        for (j, (&f, &nd)) in self.fpint.iter().zip(&self.nrdata).enumerate() {
+            if nd > 0 && f > fpmax {
+                fpmax = f;
+                best = Some((j, begin));
+            }
+            begin += nd + 1;
+        }
+        let Some((j, begin)) = best else {
+            return false;
+        };
+        let maxpt = self.nrdata[j];
+        let ihalf = maxpt / 2 + 1;
+        let knot = sites[begin + ihalf];
+        self.interior.insert(j, knot);
+        self.nrdata[j] = ihalf - 1;
+        self.nrdata.insert(j + 1, maxpt - ihalf);
+        let am = maxpt as f64;
+        self.fpint[j] = fpmax * (ihalf - 1) as f64 / am;
+        self.fpint
+            .insert(j + 1, fpmax * (maxpt - ihalf) as f64 / am);
+        true
+    }
+}
+
+/// Back substitution in the triangle, a zero pivot (a coefficient without data) as an error.
+fn back_substitute(qr: &GivensQr) -> Result<Vec<f64>> {
+    let mut c = vec![0.0; qr.z.len()];
+    qr.solve(&mut c).map_err(|col| Error::SingularSystem {
+        reason: format!(
+            "control point {col} has no data of positive weight under its basis function; \
+             give those points a positive weight or remove them"
+        ),
+    })?;
+    Ok(c)
+}
+
+/// FITPACK's discontinuity rows (`fpdisc`): for each interior knot `t_l`, the jump of the
+/// `k`-th derivative of the `k + 2` B-splines `N_{l−k−1..=l}` there, divided by `scale`.
+struct JumpRows {
+    /// `k + 2` entries per interior knot; row `j` starts at coefficient `j`.
+    rows: Vec<f64>,
+    /// `k!·(spans/length)^k`.
+    scale: f64,
+}
+
+fn jump_rows(t: &[f64], k: usize) -> JumpRows {
+    let n = t.len();
+    let nk1 = n - k - 1;
+    let spans = nk1 - k;
+    let fac = spans as f64 / (t[nk1] - t[k]);
+    let mut rows = Vec::with_capacity((nk1 - k - 1) * (k + 2));
+    let mut h = vec![0.0; 2 * k + 2];
+    for l in k + 1..nk1 {
+        // differences from t_l to the k + 1 knots before it and the k + 1 after it
+        for i in 0..=k {
+            h[i] = t[l] - t[l - k - 1 + i];
+            h[k + 1 + i] = t[l] - t[l + 1 + i];
+        }
+        let r = l - k - 1;
+        for j in 0..k + 2 {
+            let prod = h[j..=j + k].iter().skip(1).fold(h[j], |a, v| a * v * fac);
+            rows.push((t[r + j + k + 1] - t[r + j]) / prod);
+        }
+    }
+    let factorial: f64 = (1..=k).map(|v| v as f64).product();
+    JumpRows {
+        rows,
+        scale: factorial * fac.powi(i32::try_from(k).unwrap_or(i32::MAX)),
+    }
+}
+
+/// A smoothed result `(p, fp, c)`.
+type Below = (f64, f64, Vec<f64>);
+
+/// FITPACK's iteration for the smoothing weight `p`: `fp(p)` decreases from the polynomial's
+/// residual (`p = 0`) to the least-squares spline's (`p = ∞`, marked `-1`); `low`/`high` hold
+/// `(p, fp)` with `fp` above/below the target.
+struct PIteration {
+    p: f64,
+    /// Results above `limit` (the caller's `s`) are never kept.
+    limit: f64,
+    low: (f64, f64),
+    high: (f64, f64),
+}
+
+impl PIteration {
+    /// Iterates until `|fp − target| < acc` or [`MAX_P_ITERATIONS`]; returns the last
+    /// `(p, fp)` and keeps in `below` the result with the largest `fp ≤ limit`.
+    fn run(
+        &mut self,
+        solve: &impl Fn(f64) -> Result<(Vec<f64>, f64)>,
+        target: f64,
+        acc: f64,
+        below: &mut Option<Below>,
+    ) -> Result<(f64, f64)> {
+        const SHRINK: f64 = 0.04;
+        let (mut f1, mut f3) = (self.low.1 - target, self.high.1 - target);
+        let (mut p1, mut p3) = (self.low.0, self.high.0);
+        let (mut ich1, mut ich3) = (false, false);
+        let mut last = None;
+        for iter in 1..=MAX_P_ITERATIONS {
+            let p = self.p;
+            let (c, fp) = solve(p)?;
+            let f2 = fp - target;
+            last = Some((p, fp));
+            if fp <= self.limit && below.as_ref().is_none_or(|b| fp > b.1) {
+                *below = Some((p, fp, c));
+            }
+            if f2.abs() < acc || iter == MAX_P_ITERATIONS {
+                break;
+            }
+            if !ich3 {
+                if f2 - f3 <= acc {
+                    // p too large
+                    (p3, f3) = (p, f2);
+                    self.p = p * SHRINK;
+                    if self.p <= p1 {
+                        self.p = p1 * 0.9 + p * 0.1;
+                    }
+                    continue;
+                }
+                ich3 = f2 < 0.0;
+            }
+            if !ich1 {
+                if f1 - f2 <= acc {
+                    // p too small
+                    (p1, f1) = (p, f2);
+                    self.p = p / SHRINK;
+                    if p3 >= 0.0 && self.p >= p3 {
+                        self.p = p * 0.1 + p3 * 0.9;
+                    }
+                    continue;
+                }
+                ich1 = f2 > 0.0;
+            }
+            if f2 >= f1 || f2 <= f3 {
+                // not the expected convex decrease (rounding): keep the last value
+                break;
+            }
+            self.p = rational_root(p1, f1, p, f2, p3, f3);
+            if f2 < 0.0 {
+                (p3, f3) = (p, f2);
+            } else {
+                (p1, f1) = (p, f2);
+            }
+        }
+        self.low = (p1, f1 + target);
+        self.high = (p3, f3 + target);
+        last.ok_or_else(|| Error::SingularSystem {
+            reason: "the smoothing iteration made no step".into(),
+        })
+    }
+}
+
+/// The zero of the rational function `r(p) = (u·p + v)/(p + w)` through `(p1, f1)`,
+/// `(p2, f2)`, `(p3, f3)`; `p3 < 0` stands for `p3 = ∞` (FITPACK `fprati`).
+fn rational_root(p1: f64, f1: f64, p2: f64, f2: f64, p3: f64, f3: f64) -> f64 {
+    if p3 < 0.0 {
+        return (p1 * (f1 - f3) * f2 - p2 * (f2 - f3) * f1) / ((f1 - f2) * f3);
+    }
+    let h1 = f1 * (f2 - f3);
+    let h2 = f2 * (f3 - f1);
+    let h3 = f3 * (f1 - f2);
+    -(p1 * p2 * h3 + p2 * p3 * h1 + p3 * p1 * h2) / (p1 * h1 + p2 * h2 + p3 * h3)
+}
+
+/// The curve from the coefficients (relative to the reference point) and its report.
+fn finish(
     data: &FitData<'_>,
-    fit: &CurveFit,
-    kv: &KnotVector,
-    p: usize,
-    x: &[f64],
-    interior: &mut Vec<f64>,
-    count: usize,
-) -> usize {
-    let t = kv.as_slice();
-    // breakpoints and residual sums per span
-    let mut bps: Vec<f64> = Vec::with_capacity(interior.len() + 2);
-    bps.push(t[p]);
-    bps.extend_from_slice(interior);
-    bps.push(t[t.len() - 1 - p]);
-    let mut sums = vec![0.0; bps.len() - 1];
-    for (k, &u) in data.params().iter().enumerate() {
-        let r = fit.report.residuals[k];
-        let j = (bps.partition_point(|&v| v <= u).max(1) - 1).min(sums.len() - 1);
-        sums[j] += data.weight(k) * r * r;
+    obs: &Observations,
+    k: usize,
+    t: Vec<f64>,
+    c: &[f64],
+    lambda: Option<f64>,
+) -> CurveFit {
+    let mut flat = c.to_vec();
+    for p in flat.chunks_exact_mut(obs.dim) {
+        p.iter_mut().zip(&obs.center).for_each(|(v, o)| *v += o);
     }
-    let mut added = 0;
-    for _ in 0..count {
-        // the span with the largest sum that has a distinct parameter strictly inside
-        let mut best: Option<(usize, f64)> = None;
-        for j in 0..sums.len() {
-            let lo = x.partition_point(|&v| v <= bps[j]);
-            let hi = x.partition_point(|&v| v < bps[j + 1]);
-            if lo < hi && best.is_none_or(|(_, s)| sums[j] > s) {
-                best = Some((j, sums[j]));
-            }
-        }
-        let Some((j, _)) = best else { break };
-        let lo = x.partition_point(|&v| v <= bps[j]);
-        let hi = x.partition_point(|&v| v < bps[j + 1]);
-        let knot = x[(lo + hi - 1) / 2];
-        // split the span's sum in proportion to the parameters on each side
-        let left = ((lo + hi - 1) / 2 - lo + 1) as f64 / (hi - lo + 1) as f64;
-        let total = sums[j];
-        sums[j] = total * left;
-        sums.insert(j + 1, total * (1.0 - left));
-        bps.insert(j + 1, knot);
-        added += 1;
-    }
-    interior.clear();
-    interior.extend_from_slice(&bps[1..bps.len() - 1]);
-    added
+    let curve = BSplineCurve::from_raw(k, t, Points::from_raw(flat, obs.dim));
+    let report = FitReport::new(&curve, data, lambda);
+    CurveFit { curve, report }
 }
 
-/// The rows of the discontinuity penalty: for each interior knot `t_l` (simple), the jump of
-/// the `p`-th derivative, a functional of the `p + 2` coefficients `l − p − 1 ..= l`.
-fn jump_rows(kv: &KnotVector, p: usize) -> Vec<(usize, Vec<f64>)> {
-    let t = kv.as_slice();
-    let n_ctrl = t.len() - p - 1;
-    let mut scratch = BasisScratch::new(p);
-    let mut ders = vec![0.0; (p + 1) * (p + 1)];
-    let mut dp = |span: usize| -> Vec<f64> {
-        let mid = 0.5 * (t[span] + t[span + 1]);
-        basis_ders_into(t, p, span, mid, p, &mut scratch, &mut ders);
-        ders[p * (p + 1)..].to_vec()
-    };
-    let mut rows = Vec::new();
-    for l in p + 1..n_ctrl {
-        let (left, right) = (dp(l - 1), dp(l));
-        // coefficients l−p−1 ..= l: left covers l−p−1 ..= l−1, right covers l−p ..= l
-        let mut row = vec![0.0; p + 2];
-        for i in 0..=p {
-            row[i] -= left[i];
-            row[i + 1] += right[i];
-        }
-        rows.push((l - p - 1, row));
-    }
-    rows
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::basis::basis_ders_into;
 
-/// λ with `(1 − SMOOTHING_RTOL)·s ≤ RSS(λ) ≤ s`, by bracketing in `log λ` and the Illinois
-/// variant of regula falsi.
-fn find_lambda(
-    solve: &impl Fn(f64) -> Option<(Vec<f64>, f64)>,
-    qr: &GivensQr,
-    pen: &[(usize, Vec<f64>)],
-    s: f64,
-) -> Result<f64> {
-    let f = |z: f64| solve(10f64.powf(z)).map(|(_, r)| r - s);
-    let fail = || Error::SingularSystem {
-        reason: "the smoothing iteration found no weight with the residual at s".into(),
-    };
-    // scale: the data matrix's diagonal against the penalty's
-    let bw = qr.r.len() / qr.n().max(1);
-    let td: f64 = (0..qr.n()).map(|i| qr.r[i * bw] * qr.r[i * bw]).sum();
-    let tp: f64 = pen.iter().flat_map(|(_, r)| r.iter().map(|v| v * v)).sum();
-    let mut z0 = (td / tp.max(f64::MIN_POSITIVE)).log10();
-    let mut f0 = f(z0).ok_or_else(fail)?;
-    let mut step = 2.0;
-    // bracket: f(lo) ≤ 0 < f(hi)
-    let (mut lo, mut flo, mut hi, mut fhi);
-    if f0 > 0.0 {
-        (hi, fhi) = (z0, f0);
-        loop {
-            z0 -= step;
-            f0 = f(z0).ok_or_else(fail)?;
-            if f0 <= 0.0 {
-                (lo, flo) = (z0, f0);
-                break;
-            }
-            (hi, fhi) = (z0, f0);
-            step *= 2.0;
-            if step > 1e3 {
-                return Err(fail());
-            }
-        }
-    } else {
-        (lo, flo) = (z0, f0);
-        loop {
-            z0 += step;
-            f0 = f(z0).ok_or_else(fail)?;
-            if f0 > 0.0 {
-                (hi, fhi) = (z0, f0);
-                break;
-            }
-            (lo, flo) = (z0, f0);
-            step *= 2.0;
-            if step > 1e3 {
-                // the residual never reaches s: the smoothest fit is still within it
-                return Ok(10f64.powf(lo));
+    #[test]
+    fn jump_rows_are_the_scaled_jumps_of_the_top_derivative() {
+        let k = 3;
+        let t = [0.0, 0.0, 0.0, 0.0, 0.3, 0.45, 1.1, 2.0, 2.0, 2.0, 2.0];
+        let rows = jump_rows(&t, k);
+        let mut scratch = BasisScratch::new(k);
+        let mut ders = vec![0.0; (k + 1) * (k + 1)];
+        let mut top = |span: usize| {
+            let mid = 0.5 * (t[span] + t[span + 1]);
+            basis_ders_into(&t, k, span, mid, k, &mut scratch, &mut ders);
+            ders[k * (k + 1)..].to_vec()
+        };
+        for (r, row) in rows.rows.chunks_exact(k + 2).enumerate() {
+            let l = r + k + 1;
+            let (left, right) = (top(l - 1), top(l));
+            // one sign for the whole row
+            let sign = (row[0] * (-left[0])).signum();
+            for j in 0..k + 2 {
+                let jl = if j <= k { left[j] } else { 0.0 };
+                let jr = if j >= 1 { right[j - 1] } else { 0.0 };
+                let jump = jr - jl;
+                let got = sign * row[j] * rows.scale;
+                assert!(
+                    (got - jump).abs() <= 1e-9 * jump.abs().max(1.0),
+                    "knot {l}, B-spline {j}: {got} vs jump {jump}"
+                );
             }
         }
     }
-    let mut side = 0i8;
-    // the true residual excess at `lo` (`flo` is halved by the Illinois rule)
-    let mut at_lo = flo;
-    for _ in 0..200 {
-        if -at_lo <= SMOOTHING_RTOL * s || hi - lo < 1e-12 {
-            break;
-        }
-        let z = (lo * fhi - hi * flo) / (fhi - flo);
-        let z = if z > lo && z < hi { z } else { 0.5 * (lo + hi) };
-        let fz = f(z).ok_or_else(fail)?;
-        if fz <= 0.0 {
-            (lo, flo, at_lo) = (z, fz, fz);
-            if side == -1 {
-                fhi *= 0.5;
-            }
-            side = -1;
-        } else {
-            (hi, fhi) = (z, fz);
-            if side == 1 {
-                flo *= 0.5;
-            }
-            side = 1;
-        }
+
+    #[test]
+    fn rational_root_of_a_rational_function_is_exact() {
+        // r(p) = (2p − 3)/(p + 1): zero at 1.5
+        let r = |p: f64| (2.0 * p - 3.0) / (p + 1.0);
+        let got = rational_root(0.5, r(0.5), 1.0, r(1.0), 4.0, r(4.0));
+        assert!((got - 1.5).abs() < 1e-12, "root {got}");
     }
-    Ok(10f64.powf(lo))
 }
