@@ -216,7 +216,7 @@ impl PyCurveQuery {
     /// Closest points of the curve to `points` (`(n, dim)`, in parallel, or one point `(dim,)`):
     /// `(t, closest, distance)` with shapes `(n,)`, `(n, dim)`, `(n,)` (a float, `(dim,)`, a
     /// float for one point). The global minimum, by subdivision of the pieces and Newton's
-    /// method (`docs/theory/queries.md#closest-point`).
+    /// method (`docs/theory/queries.md#closest-points`).
     fn project<'py>(
         &self,
         py: Python<'py>,
