@@ -10,8 +10,9 @@
 //!     row per group.
 //! - **Curves** are one row per curve: the key (same name and type as in the input), `type`,
 //!   `degree`, `dim`, `knots` (list of double), `control` (list of lists of double, one inner
-//!   list per control point), `weights` (list of double, null unless rational) and `error`
-//!   (null, or why the group gave no curve; the other columns are then null).
+//!   list per control point), `weights` (list of double, empty unless rational) and `error`
+//!   (null, or why the group gave no curve; `type`, `degree` and `dim` are then null and the
+//!   lists empty). Lists are never null: see [`ParquetBatchWriter::write_curves`].
 //! - **Samples** are one row per sample: the key, then the columns of `lekalo eval` (`t`, the
 //!   coordinates `x, y, z` or `x1 … xd` above 3-D, derivatives, curvature).
 //!
@@ -566,7 +567,7 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
                             knots.values().append_slice(kn);
                             knots.append(true);
                         }
-                        None => knots.append(false),
+                        None => knots.append(true),
                     }
                     let cp = obj.control_points();
                     for p in cp.iter() {
@@ -579,7 +580,7 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
                             weights.values().append_slice(&w);
                             weights.append(true);
                         }
-                        None => weights.append(false),
+                        None => weights.append(true),
                     }
                     error.append_null();
                 }
@@ -587,9 +588,12 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
                     kind.append_null();
                     degree.append_null();
                     dim.append_null();
-                    knots.append(false);
-                    control.append(false);
-                    weights.append(false);
+                    // empty lists, never nulls, in the list columns: parquet 57's writer
+                    // computes negative levels for a list column that is null in every row of
+                    // a row group after one where it was not (and panics)
+                    knots.append(true);
+                    control.append(true);
+                    weights.append(true);
                     error.append_value(e);
                 }
             }

@@ -302,3 +302,42 @@ fn an_empty_batch_still_has_the_layout() {
     .unwrap();
     assert_eq!(n, 0, "no curves");
 }
+
+/// A row group in which every curve lacks knots (Bezier), weights or everything (errors), after
+/// one with all of them: the list columns are written empty, never null (parquet 57 panics on a
+/// list column that is null in every row of a later row group), and read back as before.
+#[test]
+fn row_groups_without_knots_or_curves_after_full_ones() {
+    let ctrl = Points::from_rows(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0], [3.0, 1.0]]).unwrap();
+    let knots = vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0];
+    let nu = Object::Nurbs(
+        NurbsCurve::new(2, knots.clone(), ctrl.clone(), vec![1.0, 2.0, 0.5, 1.0]).unwrap(),
+    );
+    let bs = Object::BSpline(BSplineCurve::new(2, knots, ctrl.clone()).unwrap());
+    let bz = Object::Bezier(lekalo::BezierCurve::new(ctrl).unwrap());
+    let failed = || Err("too few points".to_string());
+    let groups = [
+        vec![(GroupKey::Int(1), Ok(nu.clone()))],
+        vec![(GroupKey::Int(2), Ok(bz.clone()))],
+        vec![(GroupKey::Int(3), failed())],
+        vec![(GroupKey::Int(4), Ok(bs.clone()))],
+    ];
+    let (_d, path) = tmp("later.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    for g in &groups {
+        w.write_curves("g", g).unwrap();
+    }
+    w.close(|_| Ok(())).unwrap();
+    let mut got = Vec::new();
+    read_curve_groups(&path, Some("g"), |c| {
+        got.extend(c);
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(got.len(), 4, "every row");
+    assert_eq!(got[0].1.as_ref().unwrap(), &nu, "NURBS");
+    assert_eq!(got[1].1.as_ref().unwrap(), &bz, "Bezier");
+    let e = got[2].1.as_ref().unwrap_err().to_string();
+    assert!(e.ends_with("no curve: too few points"), "{e}");
+    assert_eq!(got[3].1.as_ref().unwrap(), &bs, "B-spline");
+}

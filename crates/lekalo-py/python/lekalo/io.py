@@ -82,10 +82,13 @@ def read_curves_parquet(path: str) -> list[dict[str, Any]]:
     rows = pq.read_table(path).to_pylist()
     out = []
     for r in rows:
+        # absent lists are written empty (older files: null); both read as None
+        failed = r.get("error") is not None
         control = r.pop("control")
-        r["control_points"] = None if control is None else np.array(control, dtype=np.float64)
-        r["knots"] = None if r["knots"] is None else np.array(r["knots"], dtype=np.float64)
-        if r["weights"] is not None:
-            r["weights"] = np.array(r["weights"], dtype=np.float64)
+        r["control_points"] = (
+            None if failed or control is None else np.array(control, dtype=np.float64)
+        )
+        r["knots"] = np.array(r["knots"], dtype=np.float64) if r["knots"] else None
+        r["weights"] = np.array(r["weights"], dtype=np.float64) if r["weights"] else None
         out.append(r)
     return out
