@@ -123,32 +123,7 @@ impl QueryCurve {
         }
         check_finite("control points", &ctrl)?;
         let hd = dim + usize::from(rational);
-        // normalisation: centre and half-extent of the Cartesian control points
-        let mut lo = vec![f64::INFINITY; dim];
-        let mut hi = vec![f64::NEG_INFINITY; dim];
-        for p in ctrl.chunks_exact(hd) {
-            let w = if rational { p[dim] } else { 1.0 };
-            for d in 0..dim {
-                let x = p[d] / w;
-                lo[d] = lo[d].min(x);
-                hi[d] = hi[d].max(x);
-            }
-        }
-        let centre: Vec<f64> = (0..dim).map(|d| 0.5 * lo[d] + 0.5 * hi[d]).collect();
-        let half = (0..dim)
-            .map(|d| 0.5 * hi[d] - 0.5 * lo[d])
-            .fold(0.0_f64, f64::max);
-        let scale = if half > 0.0 && half.is_finite() {
-            half
-        } else {
-            1.0
-        };
-        for p in ctrl.chunks_exact_mut(hd) {
-            let w = if rational { p[dim] } else { 1.0 };
-            for d in 0..dim {
-                p[d] = (p[d] - w * centre[d]) / scale;
-            }
-        }
+        let (centre, scale) = normalise(&mut ctrl, dim, rational);
         let stride = (degree + 1) * hd;
         let mut boxes = Vec::with_capacity(spans.len() * 2 * dim);
         for piece in ctrl.chunks_exact(stride) {
@@ -661,6 +636,39 @@ pub(crate) fn check_tolerance(what: &'static str, tol: f64) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// Centres the Cartesian control points (homogeneous when `rational`, weight last) of `ctrl` on
+/// the middle of their bounding box and divides by its largest half-extent (1 when that is zero
+/// or not finite), in place; returns the centre and the scale.
+pub(crate) fn normalise(ctrl: &mut [f64], dim: usize, rational: bool) -> (Vec<f64>, f64) {
+    let hd = dim + usize::from(rational);
+    let mut lo = vec![f64::INFINITY; dim];
+    let mut hi = vec![f64::NEG_INFINITY; dim];
+    for p in ctrl.chunks_exact(hd) {
+        let w = if rational { p[dim] } else { 1.0 };
+        for d in 0..dim {
+            let x = p[d] / w;
+            lo[d] = lo[d].min(x);
+            hi[d] = hi[d].max(x);
+        }
+    }
+    let centre: Vec<f64> = (0..dim).map(|d| 0.5 * lo[d] + 0.5 * hi[d]).collect();
+    let half = (0..dim)
+        .map(|d| 0.5 * hi[d] - 0.5 * lo[d])
+        .fold(0.0_f64, f64::max);
+    let scale = if half > 0.0 && half.is_finite() {
+        half
+    } else {
+        1.0
+    };
+    for p in ctrl.chunks_exact_mut(hd) {
+        let w = if rational { p[dim] } else { 1.0 };
+        for d in 0..dim {
+            p[d] = (p[d] - w * centre[d]) / scale;
+        }
+    }
+    (centre, scale)
 }
 
 #[cfg(test)]

@@ -73,30 +73,7 @@ impl QuerySurface {
         }
         check_finite("control points", &nets)?;
         let hd = dim + usize::from(rational);
-        let mut lo = vec![f64::INFINITY; dim];
-        let mut hi = vec![f64::NEG_INFINITY; dim];
-        for c in nets.chunks_exact(hd) {
-            let w = if rational { c[dim] } else { 1.0 };
-            for d in 0..dim {
-                lo[d] = lo[d].min(c[d] / w);
-                hi[d] = hi[d].max(c[d] / w);
-            }
-        }
-        let centre: Vec<f64> = (0..dim).map(|d| 0.5 * lo[d] + 0.5 * hi[d]).collect();
-        let half = (0..dim)
-            .map(|d| 0.5 * hi[d] - 0.5 * lo[d])
-            .fold(0.0_f64, f64::max);
-        let scale = if half > 0.0 && half.is_finite() {
-            half
-        } else {
-            1.0
-        };
-        for c in nets.chunks_exact_mut(hd) {
-            let w = if rational { c[dim] } else { 1.0 };
-            for d in 0..dim {
-                c[d] = (c[d] - w * centre[d]) / scale;
-            }
-        }
+        let (centre, scale) = super::pieces::normalise(&mut nets, dim, rational);
         Ok(QuerySurface {
             dim,
             p,
