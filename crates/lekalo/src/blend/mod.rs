@@ -4,6 +4,8 @@
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
 //! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `pieces.rs`: [`BlendSplinePieces`], the exact NURBS form of a blend spline segment by
+//!   segment, for splines through millions of points.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
 //! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
@@ -16,6 +18,7 @@ mod corner;
 pub(crate) mod deformation;
 mod jump;
 mod local_curves;
+mod pieces;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -26,4 +29,5 @@ pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
     SharedCurve,
 };
+pub use pieces::BlendSplinePieces;
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};
