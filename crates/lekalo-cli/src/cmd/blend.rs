@@ -7,14 +7,15 @@ use std::sync::Arc;
 use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{
-    ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions, CircularArcs,
-    CornerTransition, Deformation, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
-    SplineParameters,
+    ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions, BlendSplinePieces,
+    CircularArcs, CornerTransition, Deformation, LocalCurves, Parabolas, ParametricCurve,
+    SharedCurve, SplineParameters,
 };
 use lekalo_io::Object;
 
+use crate::cancel::with_progress;
 use crate::cmd::interpolate::{write_curve, OutArgs};
-use crate::io::{bad_input, load_one, numbers};
+use crate::io::{bad_input, format_of, load_one, numbers};
 use crate::Verbosity;
 
 /// Local curves of a blended spline.
@@ -163,6 +164,34 @@ fn form_object(f: BezierForm) -> Object {
     }
 }
 
+/// A blend spline with an exact NURBS form, made segment by segment: JSON is streamed from the
+/// points (memory a few numbers a point, whatever the output's size), other formats get the
+/// whole NURBS. Both with a progress bar and Ctrl-C.
+fn exact_spline(
+    pts: &lekalo::Points,
+    local: &(dyn LocalCurves + Sync),
+    options: BlendSplineOptions,
+    out: &OutArgs,
+    input: &Path,
+    v: Verbosity,
+) -> Result<()> {
+    let large = pts.len() > 100_000;
+    let what = format!("blending through {} points", pts.len());
+    let pieces = with_progress(&what, large, v, |p| {
+        BlendSplinePieces::new(pts.as_view(), local, options, p)
+    })?;
+    let inputs = [input.to_path_buf()];
+    if format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
+        return with_progress("writing", large, v, |p| {
+            crate::io::emit_stream(out.output.as_deref(), &inputs, v, |w| {
+                lekalo_io::write_blend_nurbs_json(&pieces, w, true, p)
+            })
+        });
+    }
+    let nurbs = with_progress(&what, large, v, |p| pieces.to_nurbs(p))?;
+    write_curve(&Object::Nurbs(nurbs), Some(pts), out, &inputs, v)
+}
+
 fn one_number(text: &str, what: &str) -> Result<f64> {
     match numbers(text, what)?.as_slice() {
         [x] => Ok(*x),
@@ -204,14 +233,6 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             out,
         } => {
             let (pts, _) = crate::io::read_points(points)?;
-            let family: Box<dyn LocalCurves> = match local {
-                Local::Arcs => Box::new(CircularArcs::new(ArcParametrization::UniformAngle)),
-                Local::RationalArcs => {
-                    Box::new(CircularArcs::new(ArcParametrization::RationalQuadratic))
-                }
-                Local::GlobalArcs => Box::new(CircularArcs::new(ArcParametrization::GlobalAngle)),
-                Local::Parabolas => Box::new(Parabolas),
-            };
             let options = BlendSplineOptions {
                 continuity: *k,
                 closed: *closed,
@@ -221,18 +242,27 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     SplineParams::Centripetal => SplineParameters::Centripetal,
                 },
             };
-            let bar = crate::io::spinner(
-                format!("blending through {} points", pts.len()),
-                pts.len() > 100_000,
-                v,
-            );
-            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
-            bar.finish_and_clear();
-            let s = s?;
+            let large = pts.len() > 100_000;
+            let what = format!("blending through {} points", pts.len());
             let obj = match local {
-                Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
+                Local::Parabolas => {
+                    return exact_spline(&pts, &Parabolas, options, out, points, v);
+                }
+                Local::RationalArcs => {
+                    let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+                    return exact_spline(&pts, &arcs, options, out, points, v);
+                }
                 Local::Arcs | Local::GlobalArcs => {
-                    let approx = s.approximate(*tolerance)?;
+                    let family = CircularArcs::new(if *local == Local::Arcs {
+                        ArcParametrization::UniformAngle
+                    } else {
+                        ArcParametrization::GlobalAngle
+                    });
+                    let bar = crate::io::spinner(what, large, v);
+                    let s = BlendSpline::new(pts.as_view(), &family, options);
+                    let approx = s.and_then(|s| s.approximate(*tolerance));
+                    bar.finish_and_clear();
+                    let approx = approx?;
                     if v != Verbosity::Quiet {
                         eprintln!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \
