@@ -24,6 +24,8 @@ use tower_http::timeout::TimeoutLayer;
 pub mod api;
 pub mod error;
 pub mod expr;
+pub mod fit;
+pub mod query;
 
 pub use error::{ApiError, ApiResult};
 
@@ -75,6 +77,9 @@ pub fn router(limits: Limits) -> Router {
         .route("/api/blend/deform", post(api::blend_deform))
         .route("/api/blend/corners", post(api::blend_corners))
         .route("/api/quasi", post(expr::quasi))
+        .route("/api/fit", post(fit::fit))
+        .route("/api/project", post(query::project))
+        .route("/api/measure", post(query::measure))
         .route("/api/knot/insert", post(api::knot_insert))
         .route("/api/knot/remove", post(api::knot_remove))
         .route("/api/import", post(api::import))
