@@ -462,7 +462,7 @@ function showError(e) {
   const panel = document.querySelector(`.panel[data-mode="${state.mode}"]`);
   for (const f of candidates) {
     if (!f) continue;
-    const target = (panel && panel.querySelector(`[data-err="${f}"]`)) || document.querySelector(`aside > [data-err="${f}"], header [data-err="${f}"], .views [data-err="${f}"]`);
+    const target = (panel && panel.querySelector(`[data-err="${f}"]`)) || document.querySelector(`aside > [data-err="${f}"], #query-panel [data-err="${f}"], header [data-err="${f}"], .views [data-err="${f}"]`);
     if (target) { target.textContent = e.message; return; }
   }
   $('error-other').textContent = e.message;
@@ -590,7 +590,7 @@ function syncControls() {
   $('query-length').value = s.queryLength;
   $('query-panel').hidden = !s.query || s.mode === 'quasi';
   if (!s.query) hideProjection();
-  document.querySelectorAll('.panel').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
+  document.querySelectorAll('.panel[data-mode]').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
   $('help').textContent = HELP[s.mode];
   syncWeight();
 }
@@ -816,7 +816,10 @@ async function importFile() {
       state.bspline = { degree: v.degree, control: v.control, knots: v.knots, weights: v.weights };
     }
     commit(); syncControls(); update();
-  } catch (e) { showError(Object.assign(e, { field: e.field || 'file' })); }
+  } catch (e) {
+    // the message names the file's field; it is shown next to the import control
+    showError(Object.assign(e, { field: 'file' }));
+  }
   $('import').value = '';
 }
 
