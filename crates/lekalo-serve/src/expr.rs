@@ -99,14 +99,21 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         Rule::FirstIntervalMidpoint => TauRule::FirstIntervalMidpoint,
     };
     if r.tau.as_ref().is_some_and(|t| t.len() > MAX_POINTS) {
-        return Err(ApiError::bad("tau", format!("at most {MAX_POINTS} τ values")));
+        return Err(ApiError::bad(
+            "tau",
+            format!("at most {MAX_POINTS} τ values"),
+        ));
     }
     // explicit values win over the rule (as `lekalo pp quasi --tau`)
     let tau = || match &r.tau {
         Some(v) => Tau::Values(v),
         None => Tau::Rule(rule),
     };
-    let tau_field = if r.tau.is_some() { "tau" } else { "breakpoints" };
+    let tau_field = if r.tau.is_some() {
+        "tau"
+    } else {
+        "breakpoints"
+    };
     // the closure cannot return the parser's error: keep the first and report it
     let mut failure: Option<lekalo::Error> = None;
     let mut order_cache: (f64, Vec<f64>) = (f64::NAN, Vec::new());

@@ -61,7 +61,9 @@ pub(crate) async fn project(body: Bytes) -> ApiResult<Response> {
             ),
         ));
     }
-    let p = q.project(&r.point).map_err(|e| ApiError::lib("point", &e))?;
+    let p = q
+        .project(&r.point)
+        .map_err(|e| ApiError::lib("point", &e))?;
     Ok(answer(Projection {
         t: p.t,
         point: p.point,
