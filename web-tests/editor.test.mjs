@@ -365,6 +365,45 @@ test('JSON export, reload, import: the same curve; STEP download; undo and redo'
   assert.ok(decodeURIComponent(page.url()).includes('"control":'), 'the state is in the URL');
 });
 
+test('Dragging a point of a 200-point B-spline: frame rate by the Performance API (reported, not asserted)', async (page) => {
+  const control = Array.from({ length: 200 }, (_, i) => [0.5 + 9 * i / 199, 3 + 2 * Math.sin(i / 7)]);
+  const state = { mode: 'bspline', comb: false, bspline: { degree: 3, control, knots: null, weights: null } };
+  await page.goto(base + '#' + encodeURIComponent(JSON.stringify(state)));
+  await idle(page);
+  assert.equal(await page.locator('#points circle').count(), 200);
+  const [x, y] = await canvasToPage(page, control[100]);
+  await page.evaluate(() => {
+    window.__frames = [];
+    window.__draws = 0;
+    new MutationObserver(() => { window.__draws++; }).observe(document.getElementById('curve'), { attributes: true });
+    const tick = (t) => { window.__frames.push(t); if (!window.__stop) requestAnimationFrame(tick); };
+    requestAnimationFrame(tick);
+  });
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  const start = Date.now();
+  let moves = 0;
+  while (Date.now() - start < 1500) {
+    moves++;
+    await page.mouse.move(x + 80 * Math.sin(moves / 20), y + 60 * Math.cos(moves / 15));
+  }
+  await page.mouse.up();
+  await idle(page);
+  const r = await page.evaluate(() => {
+    window.__stop = true;
+    const f = window.__frames;
+    const gaps = f.slice(1).map((t, k) => t - f[k]).sort((a, b) => a - b);
+    const secs = (f[f.length - 1] - f[0]) / 1000;
+    return { fps: (f.length - 1) / secs, p95: gaps[Math.floor(0.95 * gaps.length)], draws: window.__draws, secs };
+  });
+  console.log(`     drag with 200 control points: ${r.fps.toFixed(1)} frames/s (95th-percentile frame gap ${r.p95.toFixed(1)} ms), ` +
+    `${moves} pointer moves, ${(r.draws / r.secs).toFixed(1)} curve redraws/s`);
+  assert.ok(r.draws > 0, 'the curve followed the drag');
+  const s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  const expected = await api('/api/bspline', { control: s.control, degree: 3, samples: 400 });
+  await assertCurveIs(page, expected.points, 'after the drag');
+});
+
 let failed = 0;
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   args: CHROMIUM_ARGS, headless: true });

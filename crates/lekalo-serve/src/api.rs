@@ -16,10 +16,10 @@ use axum::Json;
 use lekalo::basis::basis_functions;
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
-    EndCondition, EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization,
-    Points, SplineParameters,
+    EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization, Points,
+    SplineParameters,
 };
-use lekalo_io::Object;
+use lekalo_io::{EndName, Object};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -417,18 +417,6 @@ enum Placement {
     AtParams,
 }
 
-/// End condition names (document 000 §1–4).
-#[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-enum End {
-    #[default]
-    Free,
-    Derivatives,
-    Second,
-    Natural,
-    Periodic,
-}
-
 fn default_degree() -> usize {
     3
 }
@@ -444,8 +432,9 @@ struct InterpolateRequest {
     exponent: Option<f64>,
     #[serde(default)]
     knots: Placement,
+    /// End condition by name ([`EndName`], the names of `lekalo interpolate --end`).
     #[serde(default)]
-    end: End,
+    end: Option<String>,
     #[serde(default)]
     start_derivative: Option<Vec<f64>>,
     #[serde(default)]
@@ -460,27 +449,25 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
     let pts = points(&r.points, "points")?;
     let degree = check_degree(r.degree, "degree")?;
     let param = r.parametrization.to_lib(r.exponent);
-    let pair = |what: &str| -> ApiResult<(Vec<f64>, Vec<f64>)> {
-        match (&r.start_derivative, &r.end_derivative) {
-            (Some(s), Some(e)) => Ok((s.clone(), e.clone())),
-            (start, _) => Err(ApiError::bad(
-                if start.is_none() { "start_derivative" } else { "end_derivative" },
-                format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
-            )),
-        }
+    let name: EndName = match &r.end {
+        Some(n) => n.parse().map_err(|m: String| ApiError::bad("end", m))?,
+        None => EndName::Free,
     };
-    let end = match r.end {
-        End::Free => EndCondition::Free,
-        End::Derivatives => {
-            let (start, end) = pair("derivatives")?;
-            EndCondition::FirstDerivatives { start, end }
-        }
-        End::Second => {
-            let (start, end) = pair("second")?;
-            EndCondition::SecondDerivatives { start, end }
-        }
-        End::Natural => EndCondition::Natural,
-        End::Periodic => EndCondition::Periodic,
+    let derivatives = match (&r.start_derivative, &r.end_derivative) {
+        (Some(s), Some(e)) => Some((s.clone(), e.clone())),
+        _ => None,
+    };
+    let Some(end) = name.condition(derivatives) else {
+        return Err(ApiError::bad(
+            if r.start_derivative.is_none() {
+                "start_derivative"
+            } else {
+                "end_derivative"
+            },
+            format!(
+                "end = {name} needs start_derivative and end_derivative (one value per coordinate)"
+            ),
+        ));
     };
     let knots = match r.knots {
         Placement::Auto => KnotPlacement::Auto,
