@@ -293,9 +293,9 @@ test('Queries: the closest point follows the pointer, the arc length and the par
     assert.ok(Math.abs(Number(await page.getAttribute('#proj-line', 'y2')) - fy) < 1e-6, 'line ends at the foot point');
     assert.equal(await page.getAttribute('#proj-line', 'visibility'), 'visible');
   }
+  await shot(page, 'query', true);
   await setValue(page, '#query-length', 1e6);
   assert.match(await page.textContent('[data-err="at_length"]'), /invalid arc length/);
-  await shot(page, 'query', true);
 });
 
 test('Knots dragged on the ruler and a weight edited (NURBS): the curve is the API\'s', async (page) => {
