@@ -1,6 +1,9 @@
 """Curves, surfaces, pp-forms: evaluation against SciPy, operations, JSON and pickle."""
 
+import json
+import math
 import pickle
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -205,6 +208,39 @@ def test_pp_form():
     with pytest.raises(ZeroDivisionError):
         lekalo.quasi_interpolate(space, lambda t, r: 1 / 0)
     assert len(space.truncated_power_basis()) == space.dimension
+
+
+def xcosx(t, r):
+    """The r-th derivative of x cos x, by the command-line tool's formula."""
+    h = math.pi / 2
+    return t * math.cos(t + r * h) + r * math.cos(t + (r - 1) * h)
+
+
+def test_quasi_tau_like_cli():
+    """Every τ choice (the first-interval-midpoint rule, a rule, explicit values) gives the
+    command-line tool's coefficients; data/make_pp_quasi_cli.py wrote them."""
+    ref = json.loads((Path(__file__).parent / "data" / "pp_quasi_cli.json").read_text())
+    space = lekalo.PpSpace(ref["breakpoints"], ref["order"], ref["continuity"])
+    for case in ref["cases"]:
+        flag, value = case["choice"]
+        rule = value.replace("-", "_") if flag == "--rule" else np.array(value.split(","), dtype=float)
+        q = lekalo.quasi_interpolate(space, xcosx, rule=rule)
+        want = lekalo.from_json(json.dumps(case["curve"]))
+        assert np.array_equal(q.knots, want.knots), case["command"]
+        np.testing.assert_allclose(q.control, want.control, rtol=0, atol=1e-15, err_msg=case["command"])
+    # the rules differ on these repeated knots, so the test tells them apart
+    q = lekalo.quasi_interpolate(space, xcosx, rule="first_interval_midpoint")
+    assert not np.allclose(q.control, lekalo.quasi_interpolate(space, xcosx).control)
+    # τ never on a knot: a member of the space comes back from its pp-form exactly, even across
+    # the discontinuity at the triple knot
+    back = q.to_pp().to_bspline(space, "first_interval_midpoint")
+    np.testing.assert_allclose(back.control, q.control, rtol=0, atol=1e-14)
+    with pytest.raises(lekalo.Error, match="first_interval_midpoint"):
+        lekalo.quasi_interpolate(space, xcosx, rule="first-interval")
+    with pytest.raises(lekalo.Error):
+        lekalo.quasi_interpolate(space, xcosx, rule=np.zeros(3))
+    with pytest.raises(lekalo.Error, match="rule"):
+        lekalo.quasi_interpolate(space, xcosx, rule=np.full(11, np.nan))
 
 
 def all_objects():
