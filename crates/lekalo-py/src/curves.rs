@@ -12,13 +12,12 @@ use lekalo::{
     PiecewisePolynomial, Points,
 };
 use lekalo_io::{Object, Shape};
-use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{
-    array, check_size, floats, out_array, owned_points, points_array, points_into_array, vec1,
-    vec_array, FloatArray,
+    array, check_size, filled, floats, out_array, owned_points, points_array, points_into_array,
+    vec1, vec_array, FloatArray,
 };
 use crate::error::{bad, io_err, lib_err};
 use crate::pp::PyPiecewisePolynomial;
@@ -51,15 +50,13 @@ where
 {
     let ta = floats(t, "t")?;
     let ts = ta.data();
-    let n = check_size("t", &[ts.len(), dim])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), dim])?;
+    let out = filled(py, &out_shape(&ta, &[dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(dim))
             .try_for_each(|(&t, o)| f(t, o))
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Derivatives up to `order` at every parameter with a per-point function returning rows.
@@ -76,9 +73,8 @@ where
     let ta = floats(t, "t")?;
     let ts = ta.data();
     let row = check_size("order", &[order.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), row])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), row])?;
+    let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(row))
             .try_for_each(|(&t, o)| {
@@ -86,9 +82,8 @@ where
                 o.copy_from_slice(d.as_slice());
                 Ok(())
             })
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Picks row `nu` out of a derivative result `t.shape + (order + 1, dim)`.
@@ -224,18 +219,9 @@ macro_rules! curve_class {
                     return Ok(array(py, out, &[dim])?.unbind());
                 }
                 check_size("t", &[ts.len(), dim])?;
-                // the result is allocated by NumPy in its final shape and written in place
-                // (NumPy's allocator asks for huge pages for large arrays, which makes the
-                // first write of a fresh result several times cheaper than a `Vec`'s pages)
-                let arr = PyArrayDyn::<f64>::zeros(py, out_shape(&ta, &[dim]), false);
-                {
-                    let mut rw = arr.readwrite();
-                    let buf = rw
-                        .as_slice_mut()
-                        .map_err(|e| bad(format!("result: {e}")))?;
-                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
-                }
-                Ok(arr.into_any().unbind())
+                // allocated by NumPy in its final shape and written in place
+                let out = filled(py, &out_shape(&ta, &[dim]), |buf| self.evaluate_into(ts, buf))?;
+                Ok(out.unbind())
             }
 
             /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
@@ -555,7 +541,7 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         let ta = floats(t, "t")?;
         let ts = ta.data();
         let row = check_size("order", &[order.saturating_add(1), dim])?;
-        let n = check_size("t", &[ts.len(), row])?;
+        check_size("t", &[ts.len(), row])?;
         if order > lekalo::MAX_DERIVATIVE_ORDER {
             // the library's own message for the limit
             return Err(lib_err(
@@ -568,10 +554,10 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
                     }),
             ));
         }
-        let mut out = vec![0.0; n];
-        py.detach(|| self.evaluator().eval_derivatives_batch(ts, order, &mut out))
-            .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+        let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
+            self.evaluator().eval_derivatives_batch(ts, order, out)
+        })?;
+        Ok(out.unbind())
     }
 
     /// The derivative curve `C'` (degree `p − 1`).

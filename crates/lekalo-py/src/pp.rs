@@ -6,7 +6,7 @@ use lekalo_io::Shape;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats, vec1, vec_array};
+use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
 use crate::curves::{out_shape, reduce, PyBSplineCurve};
 use crate::error::{bad, io_err, lib_err};
 
@@ -131,9 +131,8 @@ impl PyPiecewisePolynomial {
         let xa = floats(x, "x")?;
         let xs = xa.data();
         let dim = self.inner.dim();
-        let n = check_size("x", &[xs.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| {
+        check_size("x", &[xs.len(), dim])?;
+        let out = filled(py, &out_shape(&xa, &[dim]), |out| {
             let d;
             let f = if nu == 0 {
                 &self.inner
@@ -144,9 +143,8 @@ impl PyPiecewisePolynomial {
             xs.iter()
                 .zip(out.chunks_exact_mut(dim))
                 .try_for_each(|(&x, o)| f.eval_into(x, o))
-        })
-        .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&xa, &[dim]))?.unbind())
+        })?;
+        Ok(out.unbind())
     }
 
     /// The `j`-th derivative as a piecewise polynomial.

@@ -7,7 +7,7 @@ use lekalo_io::{Shape, Surface};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats, grid_points, vec1, vec_array, FloatArray};
+use crate::convert::{array, check_size, filled, floats, grid_points, vec1, vec_array, FloatArray};
 use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
@@ -92,11 +92,11 @@ macro_rules! surface_common {
                 let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
                 let (u, v) = (ua.vector("us")?, va.vector("vs")?);
                 let dim = self.inner.dim();
-                let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| self.inner.eval_grid(u, v, &mut out))
-                    .map_err(lib_err)?;
-                Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
+                check_size("us, vs", &[u.len(), v.len(), dim])?;
+                let out = filled(py, &[u.len(), v.len(), dim], |out| {
+                    self.inner.eval_grid(u, v, out)
+                })?;
+                Ok(out.unbind())
             }
 
             /// Inserts `u` into the `u` knots `times` times (P&T A5.3).
@@ -175,15 +175,13 @@ macro_rules! surface_common {
                 let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
                 let uv = uv_pairs(&ua, &va)?;
                 let dim = self.inner.dim();
-                let n = check_size("u, v", &[uv.len(), dim])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                check_size("u, v", &[uv.len(), dim])?;
+                let out = filled(py, &out_shape(&ua, &[dim]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(dim))
                         .try_for_each(|(&[u, v], o)| self.inner.eval_into(u, v, o))
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[dim]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// Partial derivatives `∂^{a+b} S / ∂u^a ∂v^b` for `a, b ≤ order` at `(u, v)`:
@@ -200,9 +198,8 @@ macro_rules! surface_common {
                 let dim = self.inner.dim();
                 let k = order.saturating_add(1);
                 let row = check_size("order", &[k, k, dim])?;
-                let n = check_size("u, v", &[uv.len(), row])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                check_size("u, v", &[uv.len(), row])?;
+                let out = filled(py, &out_shape(&ua, &[k, k, dim]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(row))
                         .try_for_each(|(&[u, v], o)| {
@@ -210,9 +207,8 @@ macro_rules! surface_common {
                             o.copy_from_slice(d.as_slice());
                             Ok(())
                         })
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[k, k, dim]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// Unit normals at `(u, v)` (3-D surfaces): `shape + (3,)`.
@@ -224,18 +220,16 @@ macro_rules! surface_common {
             ) -> PyResult<Py<PyAny>> {
                 let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
                 let uv = uv_pairs(&ua, &va)?;
-                let n = check_size("u, v", &[uv.len(), 3])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                check_size("u, v", &[uv.len(), 3])?;
+                let out = filled(py, &out_shape(&ua, &[3]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(3))
                         .try_for_each(|(&[u, v], o)| {
                             o.copy_from_slice(&self.inner.normal(u, v)?);
                             Ok(())
                         })
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[3]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// JSON text in the command-line tool's format.

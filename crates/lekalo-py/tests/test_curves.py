@@ -210,6 +210,32 @@ def test_pp_form():
     assert len(space.truncated_power_basis()) == space.dimension
 
 
+def test_large_results_written_in_full():
+    """Results of 2^15 numbers and more are NumPy arrays allocated without zeros: every entry
+    must be written (compared with SciPy everywhere, NaN-free), for points, derivatives and
+    surfaces, and an error found late in a batch still raises."""
+    t = np.concatenate([[0] * 4, np.sort(RNG.random(30)), [1] * 4])
+    ctrl = RNG.standard_normal((34, 3))
+    c, ref = lekalo.BSplineCurve(3, t, ctrl), si.BSpline(t, ctrl, 3)
+    for _ in range(3):  # reused memory from the allocator, too
+        x = RNG.random(40_000)
+        np.testing.assert_allclose(c(x), ref(x), rtol=0, atol=1e-12)
+        d = c.derivatives(x, 2)
+        for k in range(3):
+            np.testing.assert_allclose(d[:, k], ref(x, nu=k), rtol=1e-10, atol=1e-9)
+        np.testing.assert_allclose(c(x.reshape(200, 200)), ref(x).reshape(200, 200, 3), rtol=0, atol=1e-12)
+    bad = RNG.random(40_000)
+    bad[-1] = 1.5
+    with pytest.raises(lekalo.Error):
+        c(bad)
+    s = lekalo.interpolate_surface(RNG.standard_normal((6, 7, 3)), 3, 3)
+    u, v = RNG.random(20_000), RNG.random(20_000)
+    got = s(u, v)
+    assert got.shape == (20_000, 3) and np.isfinite(got).all()
+    np.testing.assert_allclose(got[:50], np.array([s(a, b) for a, b in zip(u[:50], v[:50])]), rtol=0, atol=1e-13)
+    np.testing.assert_allclose(s.grid(u[:200], v[:200])[7, 11], s(u[7], v[11]), rtol=0, atol=1e-13)
+
+
 def xcosx(t, r):
     """The r-th derivative of x cos x, by the command-line tool's formula."""
     h = math.pi / 2
