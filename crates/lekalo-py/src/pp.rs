@@ -162,8 +162,8 @@ impl PyPiecewisePolynomial {
     }
 
     /// The B-spline form in `space` by the de Boor–Fix functionals at the points `τ` of
-    /// `rule`: 'first_knot_after' (default), 'left_end', 'midpoint', 'greville',
-    /// 'first_interval_midpoint' (docs/theory/pp.md#the-two-tau-rules), or an array of τ
+    /// `rule`: `'first_knot_after'` (default), `'left_end'`, `'midpoint'`, `'greville'`,
+    /// `'first_interval_midpoint'` (docs/theory/pp.md#the-two-tau-rules), or an array of τ
     /// values, one per B-spline, each in its support.
     #[pyo3(signature = (space, rule = None))]
     fn to_bspline(
