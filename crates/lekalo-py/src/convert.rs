@@ -87,6 +87,25 @@ pub(crate) fn grid_points<'a>(
     Ok((p, (s[0], s[1])))
 }
 
+/// Surface parameters from two arguments `u`, `v` of one shape (arrays or numbers): the pairs
+/// `(u, v)` in C order, and `u`'s array, whose shape the result takes.
+pub(crate) fn uv_args<'py>(
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<(FloatArray<'py>, Vec<[f64; 2]>)> {
+    let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
+    if ua.shape() != va.shape() {
+        return Err(bad(format!(
+            "u and v: shapes differ ({:?} and {:?}); pass arrays of one shape (np.meshgrid for a tensor grid)",
+            ua.shape(),
+            va.shape()
+        )));
+    }
+    let pairs = ua.data().iter().zip(va.data()).map(|(&a, &b)| [a, b]);
+    let pairs = pairs.collect();
+    Ok((ua, pairs))
+}
+
 /// Refuses NaN and infinity with the index of the first offender.
 pub(crate) fn finite(data: &[f64], what: &str) -> PyResult<()> {
     match data.iter().position(|v| !v.is_finite()) {

@@ -11,7 +11,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::convert::{array, check_size, floats, points_into_array, vec1, vec_array};
+use crate::convert::{array, check_size, floats, points_into_array, uv_args, vec1, vec_array};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::{PyBSplineSurface, PyBezierSurface, PyNurbsSurface};
@@ -537,22 +537,13 @@ impl PySurfaceQuery {
         Bound<'py, PyAny>,
         Bound<'py, PyAny>,
     )> {
-        let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-        if ua.shape() != va.shape() {
-            return Err(bad(format!(
-                "u and v: shapes differ ({:?} and {:?})",
-                ua.shape(),
-                va.shape()
-            )));
-        }
-        let n = check_size("u", &[ua.data().len(), 4])?;
+        let (ua, uv) = uv_args(u, v)?;
+        let n = check_size("u", &[uv.len(), 4])?;
         let mut out = vec![0.0; n];
-        let (us, vs) = (ua.data(), va.data());
         py.detach(|| {
-            us.iter()
-                .zip(vs)
+            uv.iter()
                 .zip(out.chunks_exact_mut(4))
-                .try_for_each(|((&u, &v), o)| {
+                .try_for_each(|(&[u, v], o)| {
                     let c = self.inner.curvature(u, v)?;
                     o.copy_from_slice(&[c.gaussian, c.mean, c.principal.0, c.principal.1]);
                     Ok(())

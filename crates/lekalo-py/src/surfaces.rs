@@ -7,7 +7,7 @@ use lekalo_io::{Shape, Surface};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, grid_points, vec1, vec_array, FloatArray};
+use crate::convert::{array, check_size, filled, floats, grid_points, uv_args, vec1, vec_array};
 use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
@@ -24,22 +24,6 @@ fn net_array<'py>(
     (nu, nv): (usize, usize),
 ) -> PyResult<Bound<'py, PyAny>> {
     array(py, p.as_slice().to_vec(), &[nu, nv, p.dim()])
-}
-
-/// Pairs `(u, v)` from two arrays of one shape.
-fn uv_pairs<'a>(u: &FloatArray<'a>, v: &FloatArray<'a>) -> PyResult<Vec<[f64; 2]>> {
-    if u.shape() != v.shape() {
-        return Err(bad(format!(
-            "u and v: shapes differ ({:?} and {:?}); use grid(us, vs) for a tensor grid",
-            u.shape(),
-            v.shape()
-        )));
-    }
-    Ok(u.data()
-        .iter()
-        .zip(v.data())
-        .map(|(&a, &b)| [a, b])
-        .collect())
 }
 
 fn shape_of(text: &str) -> PyResult<Shape> {
@@ -172,8 +156,7 @@ macro_rules! surface_common {
                 u: &Bound<'_, PyAny>,
                 v: &Bound<'_, PyAny>,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
+                let (ua, uv) = uv_args(u, v)?;
                 let dim = self.inner.dim();
                 check_size("u, v", &[uv.len(), dim])?;
                 let out = filled(py, &out_shape(&ua, &[dim]), |out| {
@@ -193,8 +176,7 @@ macro_rules! surface_common {
                 v: &Bound<'_, PyAny>,
                 order: usize,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
+                let (ua, uv) = uv_args(u, v)?;
                 let dim = self.inner.dim();
                 let k = order.saturating_add(1);
                 let row = check_size("order", &[k, k, dim])?;
@@ -218,8 +200,7 @@ macro_rules! surface_common {
                 u: &Bound<'_, PyAny>,
                 v: &Bound<'_, PyAny>,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
+                let (ua, uv) = uv_args(u, v)?;
                 check_size("u, v", &[uv.len(), 3])?;
                 let out = filled(py, &out_shape(&ua, &[3]), |out| {
                     uv.iter()
