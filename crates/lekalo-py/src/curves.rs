@@ -165,6 +165,29 @@ macro_rules! curve_class {
                     ev.eval_batch(ts, out)
                 }
             }
+
+            /// The `nu`-th derivative at `ts` into `out` (`dim` numbers a parameter), through
+            /// `derivatives_into` on blocks of parameters, so that the lower orders are never
+            /// stored for the whole batch. `nu` is at most `MAX_DERIVATIVE_ORDER`.
+            fn nth_derivative_into(
+                &self,
+                ts: &[f64],
+                nu: usize,
+                out: &mut [f64],
+            ) -> lekalo::Result<()> {
+                const BLOCK: usize = 1024;
+                let dim = self.inner.dim();
+                let row = (nu + 1) * dim;
+                let mut scratch = vec![0.0; BLOCK.min(ts.len()) * row];
+                for (tb, ob) in ts.chunks(BLOCK).zip(out.chunks_mut(BLOCK * dim)) {
+                    let s = &mut scratch[..tb.len() * row];
+                    self.derivatives_into(tb, nu, s)?;
+                    for (r, o) in s.chunks_exact(row).zip(ob.chunks_exact_mut(dim)) {
+                        o.copy_from_slice(&r[nu * dim..]);
+                    }
+                }
+                Ok(())
+            }
         }
 
         curve_class!($ty, $variant, $name, {
@@ -195,15 +218,23 @@ macro_rules! curve_class {
                 nu: usize,
                 out: Option<&Bound<'_, PyAny>>,
             ) -> PyResult<Py<PyAny>> {
-                if nu > 0 {
-                    if out.is_some() {
-                        return Err(bad("out: only for points (nu = 0)".into()));
-                    }
+                if nu > 0 && out.is_some() {
+                    return Err(bad("out: only for points (nu = 0)".into()));
+                }
+                if nu > lekalo::MAX_DERIVATIVE_ORDER {
+                    // the library's error for the order
                     return pick_order(py, self.derivatives(py, t, nu)?, nu);
                 }
                 let dim = self.inner.dim();
                 let ta = floats(t, "t")?;
                 let ts = ta.data();
+                if nu > 0 {
+                    check_size("t", &[ts.len(), nu + 1, dim])?;
+                    let d = filled(py, &out_shape(&ta, &[dim]), |buf| {
+                        self.nth_derivative_into(ts, nu, buf)
+                    })?;
+                    return Ok(d.unbind());
+                }
                 if let Some(o) = out {
                     let mut rw = out_array(o, &out_shape(&ta, &[dim]))?;
                     let buf = rw
@@ -501,6 +532,12 @@ impl PyBSplineCurve {
     fn evaluator(&self) -> &CurveEvaluator {
         self.evaluator.get_or_init(|| self.inner.evaluator())
     }
+
+    /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
+    /// parameter.
+    fn derivatives_into(&self, ts: &[f64], order: usize, out: &mut [f64]) -> lekalo::Result<()> {
+        self.evaluator().eval_derivatives_batch(ts, order, out)
+    }
 }
 
 curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
@@ -648,6 +685,18 @@ impl PyNurbsCurve {
     /// The fast evaluator, built on first use and kept.
     fn evaluator(&self) -> &NurbsEvaluator {
         self.evaluator.get_or_init(|| self.inner.evaluator())
+    }
+
+    /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
+    /// parameter.
+    fn derivatives_into(&self, ts: &[f64], order: usize, out: &mut [f64]) -> lekalo::Result<()> {
+        let row = (order + 1) * self.inner.dim();
+        ts.iter()
+            .zip(out.chunks_exact_mut(row))
+            .try_for_each(|(&t, o)| {
+                o.copy_from_slice(self.inner.eval_derivatives(t, order)?.as_slice());
+                Ok(())
+            })
     }
 }
 

@@ -223,11 +223,19 @@ def test_large_results_written_in_full():
         d = c.derivatives(x, 2)
         for k in range(3):
             np.testing.assert_allclose(d[:, k], ref(x, nu=k), rtol=1e-10, atol=1e-9)
+            # c(x, nu=k) goes through blocks of derivatives: the same numbers
+            assert np.array_equal(c(x, nu=k), d[:, k])
         np.testing.assert_allclose(c(x.reshape(200, 200)), ref(x).reshape(200, 200, 3), rtol=0, atol=1e-12)
     bad = RNG.random(40_000)
     bad[-1] = 1.5
     with pytest.raises(lekalo.Error):
         c(bad)
+    with pytest.raises(lekalo.Error):
+        c(bad, nu=1)
+    circle = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    x = np.linspace(*circle.domain, 5000).reshape(50, 100)
+    assert np.array_equal(circle(x, nu=2), circle.derivatives(x, 2)[..., 2, :])
+    assert circle(0.3, nu=1).shape == (2,)
     s = lekalo.interpolate_surface(RNG.standard_normal((6, 7, 3)), 3, 3)
     u, v = RNG.random(20_000), RNG.random(20_000)
     got = s(u, v)
