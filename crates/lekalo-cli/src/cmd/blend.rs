@@ -91,6 +91,10 @@ Examples:
         /// Tolerance of the approximation for arcs.
         #[arg(long, default_value_t = 1e-8)]
         tolerance: f64,
+        /// Write `{"max_error", "degree", "curve"}` (the approximation's measured error for
+        /// arcs; 0 for exact output) instead of the curve alone.
+        #[command(flatten)]
+        json: crate::report::JsonFlag,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -243,6 +247,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             closed,
             params,
             tolerance,
+            json,
             out,
         } => {
             let (pts, _) = crate::io::read_points(points)?;
@@ -271,21 +276,36 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
             bar.finish_and_clear();
             let s = s?;
-            let obj = match local {
-                Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
+            let (obj, max_error) = match local {
+                Local::Parabolas | Local::RationalArcs => (Object::Nurbs(s.to_nurbs()?), 0.0),
                 Local::Arcs | Local::GlobalArcs => {
                     let approx = s.approximate(*tolerance)?;
-                    if v != Verbosity::Quiet {
+                    if v != Verbosity::Quiet && !json.json {
                         eprintln!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \
-                             degree {} with max error {:.3e}",
+                             degree {} with max error {}",
                             approx.curve().degree(),
-                            approx.max_error()
+                            crate::report::number(approx.max_error())
                         );
                     }
-                    Object::BSpline(approx.curve().clone())
+                    (Object::BSpline(approx.curve().clone()), approx.max_error())
                 }
             };
+            if json.json {
+                let report = serde_json::json!({
+                    "max_error": max_error,
+                    "degree": obj.degree(),
+                    "curve": obj.to_json_value(),
+                });
+                return crate::report::print_report(
+                    true,
+                    &report,
+                    crate::report::text_of,
+                    out.output.as_deref(),
+                    std::slice::from_ref(points),
+                    v,
+                );
+            }
             write_curve(&obj, Some(&pts), out, std::slice::from_ref(points), v)
         }
         BlendOp::Corners {
