@@ -6,9 +6,9 @@
 use std::sync::Arc;
 
 use lekalo::{
-    ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, CornerTransition,
-    Deformation, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
-    SplineParameters,
+    smooth_polyline_corners as smooth_polyline_corners_lib, ArcParametrization, BlendSpline,
+    BlendSplineOptions, CircularArcs, CornerTransition, CornerWindow, Deformation, JumpPolynomial,
+    LocalCurves, Parabolas, ParametricCurve, SharedCurve, SplineParameters,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -23,6 +23,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyDeformation>()?;
     m.add_class::<PyBlendSpline>()?;
     m.add_class::<PyCornerTransition>()?;
+    m.add_function(wrap_pyfunction!(smooth_polyline_corners, m)?)?;
     Ok(())
 }
 
@@ -405,3 +406,32 @@ blend_class!(PyCornerTransition, u, {
         self.inner.window()
     }
 });
+
+/// Every corner of a polyline smoothed with continuity `C^k` into one B-spline of degree `4k`
+/// (docs/theory/blending.md#polyline-corners): give the window as `fraction` (of the shorter
+/// segment at each corner, in (0, 0.5]; 0.25 when neither is given) or as `length`.
+#[pyfunction]
+#[pyo3(signature = (points, *, fraction = None, length = None, continuity = 2))]
+fn smooth_polyline_corners(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    fraction: Option<f64>,
+    length: Option<f64>,
+    continuity: usize,
+) -> PyResult<PyBSplineCurve> {
+    let window = match (fraction, length) {
+        (Some(_), Some(_)) => {
+            return Err(bad(
+                "give the window as fraction or as length, not both".into()
+            ))
+        }
+        (_, Some(r)) => CornerWindow::Length(r),
+        (f, None) => CornerWindow::Fraction(f.unwrap_or(0.25)),
+    };
+    let pa = floats(points, "points")?;
+    let pts = pa.points("points")?;
+    let s = py
+        .detach(|| smooth_polyline_corners_lib(pts, window, continuity))
+        .map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(s.into_curve()))
+}

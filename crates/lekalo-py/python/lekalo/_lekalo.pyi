@@ -268,6 +268,13 @@ def interpolate_surface(
     grid: ArrayLike, degree_u: int = 3, degree_v: int = 3, *, parametrization: Optional[Param] = None, max_condition: Optional[float] = None
 ) -> BSplineSurface: ...
 def cubic_through_four_points(points: ArrayLike) -> BezierCurve: ...
+def smooth_polyline_corners(
+    points: ArrayLike,
+    *,
+    fraction: float | None = None,
+    length: float | None = None,
+    continuity: int = 2,
+) -> BSplineCurve: ...
 def quasi_interpolate(space: PpSpace, f: Callable[[float, int], float], rule: Optional[TauChoice] = None) -> BSplineCurve: ...
 def interpolate_batch(
     points: ArrayLike,

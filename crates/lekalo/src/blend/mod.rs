@@ -6,6 +6,8 @@
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
+//! - `polyline.rs`: [`smooth_polyline_corners`], every corner of a polyline smoothed into one
+//!   curve.
 //! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
 //!   measured error.
 //! - `bernstein.rs`: Bernstein-form derivatives and products used by the above.
@@ -16,6 +18,7 @@ mod corner;
 pub(crate) mod deformation;
 mod jump;
 mod local_curves;
+mod polyline;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -25,5 +28,8 @@ pub use jump::JumpPolynomial;
 pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
     SharedCurve,
+};
+pub use polyline::{
+    smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
 };
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};
