@@ -4,6 +4,8 @@
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
 //! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `pieces.rs`: [`BlendSplinePieces`], the exact NURBS form of a blend spline segment by
+//!   segment, for splines through millions of points.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
 //! - `polyline.rs`: [`smooth_polyline_corners`], every corner of a polyline smoothed into one
@@ -19,6 +21,7 @@ pub(crate) mod deformation;
 mod jump;
 mod local_curves;
 mod polyline;
+mod pieces;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -32,4 +35,5 @@ pub use local_curves::{
 pub use polyline::{
     smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
 };
+pub use pieces::BlendSplinePieces;
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};
