@@ -14,8 +14,14 @@ use common::{help_of, leaf_subcommands, lekalo};
 
 /// Examples that are not run, with the reason.
 const NOT_RUN: &[(&str, &str)] = &[
-    ("serve", "starts a server that runs until stopped (the browser tests cover it)"),
-    ("demo", "runs every construction of the documents (the demo smoke step covers it)"),
+    (
+        "serve",
+        "starts a server that runs until stopped (the browser tests cover it)",
+    ),
+    (
+        "demo",
+        "runs every construction of the documents (the demo smoke step covers it)",
+    ),
     (
         "bezier change quintic.json --degree 2",
         "shows a refusal: the real degree is 3",
@@ -90,13 +96,21 @@ fn fixtures(d: &Path) {
     w("data.csv", "1,1\n4,3\n5,0\n");
     w("polyline.csv", "0,0\n3,0\n4,2.5\n7,1\n7.5,6\n");
     w("tangents.csv", "1,0\n1,1\n1,-1\n0,-1\n");
-    w("grid.csv", &rows(12, &|i| format!("{},{},{}", (i / 3.0).floor(), i % 3.0, (i * 0.3).sin())));
+    w(
+        "grid.csv",
+        &rows(12, &|i| {
+            format!("{},{},{}", (i / 3.0).floor(), i % 3.0, (i * 0.3).sin())
+        }),
+    );
     w("xy.csv", &rows(12, &|i| format!("{i},{}", (i * 0.7).sin())));
     w("lengths.txt", "0.5\n1\n2\n");
     for (name, control) in [
         ("quad.json", "[[0, 0], [1, 2], [2, 0]]"),
         ("cubic.json", "[[0, 0], [1, 2], [3, 2], [4, 0]]"),
-        ("quintic.json", "[[10, 0], [22, 6], [26, 10.4], [16.4, 14.4], [8, 14], [20, 0]]"),
+        (
+            "quintic.json",
+            "[[10, 0], [22, 6], [26, 10.4], [16.4, 14.4], [8, 14], [20, 0]]",
+        ),
         ("quartic.json", "[[0, 0], [1, 3], [2, -1], [3, 2], [4, 0]]"),
         ("up.json", "[[0, 0], [1, 2], [2, 0]]"),
         ("down.json", "[[0, 0], [1, -2], [2, 0]]"),
@@ -111,7 +125,11 @@ fn fixtures(d: &Path) {
         );
     }
     for (name, control, weights) in [
-        ("arc1.json", "[[1, 0], [1, 1], [0, 1]]", "[1, 0.7071067811865476, 1]"),
+        (
+            "arc1.json",
+            "[[1, 0], [1, 1], [0, 1]]",
+            "[1, 0.7071067811865476, 1]",
+        ),
         ("arc2.json", "[[1, 0], [0.2, 0.2], [0, 1]]", "[1, 2, 1]"),
     ] {
         w(
@@ -136,7 +154,14 @@ fn fixtures(d: &Path) {
         .success();
     lekalo()
         .current_dir(d)
-        .args(["make", "bspline-surface", "--control", "net.csv", "--net", "3x3"])
+        .args([
+            "make",
+            "bspline-surface",
+            "--control",
+            "net.csv",
+            "--net",
+            "3x3",
+        ])
         .args(["--degree", "2", "-o", "surface.json"])
         .assert()
         .success();

@@ -20,8 +20,8 @@ mod corner;
 pub(crate) mod deformation;
 mod jump;
 mod local_curves;
-mod polyline;
 mod pieces;
+mod polyline;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -32,8 +32,8 @@ pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
     SharedCurve,
 };
+pub use pieces::BlendSplinePieces;
 pub use polyline::{
     smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
 };
-pub use pieces::BlendSplinePieces;
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};
