@@ -17,6 +17,7 @@ mod cancel;
 mod cmd;
 mod demo;
 mod io;
+mod report;
 mod terms;
 
 /// Construct, convert and analyse spline curves and surfaces.

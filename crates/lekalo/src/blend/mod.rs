@@ -8,6 +8,8 @@
 //!   segment, for splines through millions of points.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
+//! - `polyline.rs`: [`smooth_polyline_corners`], every corner of a polyline smoothed into one
+//!   curve.
 //! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
 //!   measured error.
 //! - `bernstein.rs`: Bernstein-form derivatives and products used by the above.
@@ -19,6 +21,7 @@ pub(crate) mod deformation;
 mod jump;
 mod local_curves;
 mod pieces;
+mod polyline;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -30,4 +33,7 @@ pub use local_curves::{
     SharedCurve,
 };
 pub use pieces::BlendSplinePieces;
+pub use polyline::{
+    smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
+};
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};
