@@ -272,5 +272,5 @@ fn fit_a_batch_as_one_file_each() {
         .arg(p(&d, "x.parquet"))
         .assert()
         .code(2)
-        .stderr(contains("a Parquet batch is fitted by curves"));
+        .stderr(contains("a Parquet batch is fitted by open curves"));
 }
