@@ -332,6 +332,24 @@ def fit_robust(
     c: Optional[float] = None,
     max_iter: int = 50,
 ) -> Tuple[BSplineCurve, dict]: ...
+def fit_periodic(
+    x: ArrayLike,
+    y: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    t: Optional[ArrayLike] = None,
+) -> Tuple[BSplineCurve, dict]: ...
+def fit_closed(
+    points: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    t: Optional[ArrayLike] = None,
+    parametrization: Optional[Param] = None,
+) -> Tuple[BSplineCurve, Array]: ...
 def gcv_score(x: ArrayLike, y: ArrayLike, lam: float, w: Optional[ArrayLike] = None) -> float: ...
 def place_knots(params: ArrayLike, n_ctrl: int, k: int = 3) -> Array: ...
 def fit_surface_grid(
