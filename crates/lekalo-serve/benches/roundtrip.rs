@@ -41,17 +41,18 @@ fn body(i: usize) -> String {
 
 fn quantiles(what: &str, mut times: Vec<Duration>) {
     times.sort();
-    let q = |p: f64| {
-        let i = ((p * times.len() as f64) as usize).min(times.len() - 1);
+    // the sample at rank ⌊n·per_mille/1000⌋ (the largest for 1000)
+    let q = |per_mille: usize| {
+        let i = (times.len() * per_mille / 1000).min(times.len() - 1);
         times[i].as_secs_f64() * 1e3
     };
     println!(
         "{what}: n={} p50={:.3} ms p90={:.3} ms p99={:.3} ms max={:.3} ms",
         times.len(),
-        q(0.5),
-        q(0.9),
-        q(0.99),
-        q(1.0)
+        q(500),
+        q(900),
+        q(990),
+        q(1000)
     );
 }
 

@@ -66,13 +66,30 @@ fn check_report(v: &Value, fit: &CurveFit) {
     let r = &v["report"];
     assert_eq!(
         v["view"]["curve"],
-        Object::BSpline(fit.curve.clone()).to_json_value()
+        Object::BSpline(fit.curve.clone()).to_json_value(),
+        "the library's curve"
     );
-    assert_eq!(r["rms"].as_f64(), Some(fit.report.rms));
-    assert_eq!(r["max_residual"].as_f64(), Some(fit.report.max_residual));
-    assert_eq!(r["weighted_rss"].as_f64(), Some(fit.report.weighted_rss));
-    assert_eq!(r["control_points"].as_u64(), Some(fit.report.n_ctrl as u64));
-    assert_eq!(r["knots"].as_u64(), Some(fit.curve.knots().len() as u64));
+    assert_eq!(r["rms"].as_f64(), Some(fit.report.rms), "RMS");
+    assert_eq!(
+        r["max_residual"].as_f64(),
+        Some(fit.report.max_residual),
+        "max residual"
+    );
+    assert_eq!(
+        r["weighted_rss"].as_f64(),
+        Some(fit.report.weighted_rss),
+        "weighted RSS"
+    );
+    assert_eq!(
+        r["control_points"].as_u64(),
+        Some(fit.report.n_ctrl as u64),
+        "control points"
+    );
+    assert_eq!(
+        r["knots"].as_u64(),
+        Some(fit.curve.knots().len() as u64),
+        "knots"
+    );
 }
 
 #[tokio::test]

@@ -1,4 +1,4 @@
-//! The OpenAPI description (`docs/openapi.json`, served at `/api/openapi.json`) and the router
+//! The `OpenAPI` description (`docs/openapi.json`, served at `/api/openapi.json`) and the router
 //! agree: every route of the router is described with its method, and every described route
 //! answers (not 404, not 405).
 
@@ -13,7 +13,7 @@ use tower::ServiceExt;
 
 fn described() -> BTreeSet<(String, String)> {
     let doc: Value = serde_json::from_str(OPENAPI).expect("docs/openapi.json is JSON");
-    assert_eq!(doc["openapi"], "3.1.0");
+    assert_eq!(doc["openapi"], "3.1.0", "an OpenAPI 3.1 document");
     let paths = doc["paths"].as_object().expect("paths");
     paths
         .iter()
