@@ -13,7 +13,7 @@ use lekalo::{
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats};
+use crate::convert::{array, check_size, filled, floats};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 
@@ -64,9 +64,8 @@ fn eval_curve(
     let ts = ta.data();
     let dim = c.dim();
     let row = check_size("nu", &[nu.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), dim])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), dim])?;
+    let out = filled(py, &out_shape(&ta, &[dim]), |out| {
         let mut scratch = vec![0.0; row];
         ts.iter()
             .zip(out.chunks_exact_mut(dim))
@@ -75,9 +74,8 @@ fn eval_curve(
                 o.copy_from_slice(&scratch[nu * dim..]);
                 Ok(())
             })
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Derivatives `0..=order` at `t`: `t.shape + (order + 1, dim)`.
@@ -91,15 +89,13 @@ fn derivatives_curve(
     let ts = ta.data();
     let dim = c.dim();
     let row = check_size("order", &[order.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), row])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), row])?;
+    let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(row))
             .try_for_each(|(&t, o)| c.eval_derivatives_into(t, order, o))
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// The jump polynomial `w_k` of document 001: `w_k(0) = 0`, `w_k(1) = 1`, derivatives

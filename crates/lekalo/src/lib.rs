@@ -110,8 +110,8 @@ pub mod blend;
 
 pub use blend::{
     approximate_curve, Approximation, ArcParametrization, BezierForm, BlendSpline,
-    BlendSplineOptions, CircularArcs, Continuity, CornerTransition, Deformation, FnCurve,
-    FnLocalCurves, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
+    BlendSplineOptions, BlendSplinePieces, CircularArcs, Continuity, CornerTransition, Deformation,
+    FnCurve, FnLocalCurves, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
     SplineParameters, ENDPOINT_TOLERANCE,
 };
 pub use blend::{smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY};
@@ -136,6 +136,9 @@ pub use fit::{
 
 // -- numerical building blocks (crate-private) and the test oracle --
 mod numeric;
+
+/// Progress reports and cancellation of long computations.
+pub use numeric::progress::Progress;
 #[cfg(test)]
 mod oracle;
 

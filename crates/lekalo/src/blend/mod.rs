@@ -4,6 +4,8 @@
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
 //! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `pieces.rs`: [`BlendSplinePieces`], the exact NURBS form of a blend spline segment by
+//!   segment, for splines through millions of points.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
 //! - `polyline.rs`: [`smooth_polyline_corners`], every corner of a polyline smoothed into one
@@ -18,6 +20,7 @@ mod corner;
 pub(crate) mod deformation;
 mod jump;
 mod local_curves;
+mod pieces;
 mod polyline;
 mod spline;
 
@@ -29,6 +32,7 @@ pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
     SharedCurve,
 };
+pub use pieces::BlendSplinePieces;
 pub use polyline::{
     smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
 };
