@@ -12,16 +12,16 @@ use std::path::Path;
 
 use common::{help_of, leaf_subcommands, lekalo};
 
+/// Commands whose examples start a server that runs until stopped (the browser tests cover it).
+const SERVERS: &[&str] = &["serve"];
+
 /// Examples that are not run, with the reason.
 const NOT_RUN: &[(&str, &str)] = &[
-    (
-        "serve",
-        "starts a server that runs until stopped (the browser tests cover it)",
-    ),
     (
         "demo",
         "runs every construction of the documents (the demo smoke step covers it)",
     ),
+    ("demo --out gallery", "the same, with every figure rendered"),
     (
         "bezier change quintic.json --degree 2",
         "shows a refusal: the real degree is 3",
@@ -289,7 +289,7 @@ fn every_help_example_runs() {
     }
     for path in &leaves {
         let name = path.join(" ");
-        if NOT_RUN.iter().any(|(n, _)| *n == name) {
+        if SERVERS.contains(&name.as_str()) {
             continue;
         }
         let list = examples(&help_of(path));
@@ -301,4 +301,52 @@ fn every_help_example_runs() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(ran >= 100, "{ran} examples");
+}
+
+/// The README's command-line tour runs as written: its `printf … > FILE` lines write their
+/// files, its `lekalo …` lines run in order (`demo` and `serve` as in [`NOT_RUN`]); the files
+/// it reads without making them (`many.jsonl`, `scan.csv`) are given.
+#[test]
+fn readme_tour_runs() {
+    let readme = include_str!("../../../README.md");
+    let tour = readme
+        .split("## A short tour of the command line")
+        .nth(1)
+        .and_then(|t| t.split("```sh").nth(1))
+        .and_then(|t| t.split("```").next())
+        .expect("README has a command-line tour");
+    let d = tempfile::tempdir().unwrap();
+    let curve = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[1, 1], [2, 3], [4, 3]]}"#;
+    fs::write(d.path().join("many.jsonl"), format!("{curve}\n{curve}\n")).unwrap();
+    let scan = rows(80, &|i| format!("{},{}", i * 0.05, (i * 0.05).sin()));
+    fs::write(d.path().join("scan.csv"), scan).unwrap();
+    let mut ran = 0;
+    for line in tour.lines() {
+        if let Some(rest) = line.strip_prefix("printf '") {
+            let (text, file) = rest.split_once("' > ").expect("printf '…' > FILE");
+            fs::write(d.path().join(file.trim()), text.replace("\\n", "\n")).unwrap();
+            continue;
+        }
+        let Some(cmd) = line.strip_prefix("lekalo ") else {
+            continue;
+        };
+        let args: Vec<&str> = cmd
+            .split(" #")
+            .next()
+            .unwrap_or(cmd)
+            .split_whitespace()
+            .collect();
+        let whole = args.join(" ");
+        if NOT_RUN.iter().any(|(n, _)| *n == whole) || SERVERS.contains(&args[0]) {
+            continue;
+        }
+        let o = lekalo().current_dir(d.path()).args(&args).output().unwrap();
+        assert!(
+            o.status.success(),
+            "README: `{line}` failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        ran += 1;
+    }
+    assert!(ran >= 20, "{ran} README commands");
 }

@@ -42,6 +42,8 @@ fn body(i: usize) -> String {
 fn quantiles(what: &str, mut times: Vec<Duration>) {
     times.sort();
     let q = |p: f64| {
+        // p ∈ [0, 1]: the product is a non-negative index at most the length
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let i = ((p * times.len() as f64) as usize).min(times.len() - 1);
         times[i].as_secs_f64() * 1e3
     };

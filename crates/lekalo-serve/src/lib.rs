@@ -53,7 +53,7 @@ const INDEX_HTML: &str = include_str!("../assets/index.html");
 const APP_JS: &str = include_str!("../assets/app.js");
 const APP_CSS: &str = include_str!("../assets/app.css");
 
-/// The OpenAPI 3.1 description of the routes (`docs/openapi.json`), served at
+/// The `OpenAPI` 3.1 description of the routes (`docs/openapi.json`), served at
 /// `/api/openapi.json`.
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
 

@@ -1,6 +1,8 @@
-//! The OpenAPI description (`docs/openapi.json`, served at `/api/openapi.json`) and the router
+//! The `OpenAPI` description (`docs/openapi.json`, served at `/api/openapi.json`) and the router
 //! agree: every route of the router is described with its method, and every described route
 //! answers (not 404, not 405).
+
+#![allow(clippy::missing_assert_message)] // assert_eq! prints both sides
 
 use std::collections::BTreeSet;
 

@@ -323,7 +323,7 @@ mod tests {
 
     #[test]
     fn progress_reaches_the_total_and_cancel_stops() {
-        let n = 3 * Progress::STRIDE as usize;
+        let n = 3 * usize::try_from(Progress::STRIDE).unwrap_or(usize::MAX);
         let pts = wavy(n);
         let seen = Mutex::new(Vec::new());
         let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));
