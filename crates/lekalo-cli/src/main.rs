@@ -124,6 +124,7 @@ Examples:
   lekalo demo                 # print the summary table of every construction and check
   lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
   lekalo demo --only doc000-ends --out gallery   # one entry's figures
+  lekalo demo --only doc000-ends --json          # its tables and checks as JSON
 
 Exit code 3 if a construction does not reproduce its document's numbers.")]
 pub(crate) struct DemoArgs {
@@ -133,6 +134,8 @@ pub(crate) struct DemoArgs {
     /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids.
     #[arg(long, value_name = "ID")]
     only: Option<String>,
+    #[command(flatten)]
+    json: crate::report::JsonFlag,
 }
 
 /// How much to say on standard error.
@@ -173,7 +176,7 @@ fn main() -> ExitCode {
         Command::Knots(a) => cmd::knots::run(&a, verbosity),
         Command::Convert(a) => cmd::convert::run(&a, verbosity),
         Command::Plot(a) => cmd::plot::run(&a, verbosity),
-        Command::Demo(a) => demo::run(a.out.as_deref(), a.only.as_deref(), verbosity),
+        Command::Demo(a) => demo::run(a.out.as_deref(), a.only.as_deref(), a.json.json, verbosity),
         Command::Interpolate(a) => cmd::interpolate::run(&a, verbosity),
         Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
         Command::Blend(a) => cmd::blend::run(&a, verbosity),

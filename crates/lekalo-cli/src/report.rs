@@ -59,8 +59,8 @@ pub(crate) fn value_text(v: &Value) -> String {
     }
 }
 
-/// A flat report as `key: value` lines, keys with underscores as words ("max_error" → "max
-/// error"); nested objects are written as JSON.
+/// A flat report as `key: value` lines, keys with underscores as words (`max_error` becomes
+/// "max error"); nested objects are written as JSON.
 pub(crate) fn text_of(report: &Value) -> String {
     let mut s = String::new();
     if let Value::Object(map) = report {

@@ -12,16 +12,16 @@ use std::path::Path;
 
 use common::{help_of, leaf_subcommands, lekalo};
 
+/// Commands whose examples start a server that runs until stopped (the browser tests cover it).
+const SERVERS: &[&str] = &["serve"];
+
 /// Examples that are not run, with the reason.
 const NOT_RUN: &[(&str, &str)] = &[
-    (
-        "serve",
-        "starts a server that runs until stopped (the browser tests cover it)",
-    ),
     (
         "demo",
         "runs every construction of the documents (the demo smoke step covers it)",
     ),
+    ("demo --out gallery", "the same, with every figure rendered"),
     (
         "bezier change quintic.json --degree 2",
         "shows a refusal: the real degree is 3",
@@ -69,14 +69,79 @@ fn examples(help: &str) -> Vec<Vec<String>> {
         .collect()
 }
 
-/// Writes the fixture files the examples name.
-fn fixtures(d: &Path) {
-    let w = |name: &str, text: &str| fs::write(d.join(name), text).unwrap();
-    let rows = |n: usize, f: &dyn Fn(f64) -> String| -> String {
-        (0..n)
-            .map(|i| f(f64::from(u32::try_from(i).unwrap())) + "\n")
-            .collect()
+/// Text of `n` rows made by `f(i)`.
+fn rows(n: usize, f: &dyn Fn(f64) -> String) -> String {
+    (0..n)
+        .map(|i| f(f64::from(u32::try_from(i).unwrap())) + "\n")
+        .collect()
+}
+
+fn bezier(control: &str) -> String {
+    format!(r#"{{"lekalo": 1, "type": "bezier_curve", "control": {control}}}"#)
+}
+
+/// Files that differ between commands (a grid of another size, curves with common ends).
+fn overrides(path: &str) -> Vec<(&'static str, String)> {
+    // nets of 3 or 5 rows, 4 columns, bilinear (real degree 1 in u and v)
+    let net = |n: usize| {
+        rows(n, &|i| {
+            format!(
+                "{} {} {}",
+                (i / 4.0).floor(),
+                i % 4.0,
+                (i / 4.0).floor() * (i % 4.0)
+            )
+        })
     };
+    match path {
+        "interpolate" => vec![("pts.csv", "1,1\n2,3\n4,3\n5,0\n".into())],
+        "bezier elevate" => vec![("net.csv", net(12))],
+        "bezier" | "bezier reduce" | "bezier real-degree" | "bezier change" => {
+            vec![("net.csv", net(20))]
+        }
+        "blend deform" | "blend" => vec![
+            ("a.json", bezier("[[0, 0], [1, 2], [2, 0]]")),
+            ("b.json", bezier("[[0, 0], [1, -1], [2, 0]]")),
+        ],
+        "blend corner" => vec![
+            ("a.json", bezier("[[0, 0], [2, 0]]")),
+            ("b.json", bezier("[[2, 0], [2, 2]]")),
+        ],
+        "pp convert" | "pp" => vec![(
+            "curve.json",
+            r#"{"lekalo": 1, "type": "bspline_curve", "degree": 3, "knots": [0, 0, 0, 0, 1, 2, 3, 4, 4, 4, 4], "control": [[0, 0], [1, 2], [2, 3], [3, 1], [4, 0], [5, 2], [6, 1]]}"#.into(),
+        )],
+        "fit" => vec![
+            ("scan.csv", rows(60, &|i| format!("{},{}", i * 0.1, (i * 0.1).sin()))),
+            ("track.csv", rows(40, &|i| format!("{},{}", (i * 0.15).cos(), (i * 0.15).sin()))),
+            ("xy.csv", rows(30, &|i| format!("{i},{}", (i * 0.3).sin()))),
+            ("w.txt", rows(30, &|_| "1".into())),
+            ("grid.csv", rows(600, &|i| format!("{},{},{}", (i / 20.0).floor(), i % 20.0, (i * 0.01).sin()))),
+            ("uvz.csv", rows(300, &|i| format!("{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.1).sin()))),
+        ],
+        // a plane surface in 2-D, so that 2-D queries suit the curve and the surface
+        "project" => vec![
+            (
+                "surface-net.csv",
+                "0 0\n1 0\n2 0\n0 1\n1 1\n2 1\n0 2\n1 2\n2 2\n".into(),
+            ),
+            ("queries.csv", "1,1\n0.5,0.2\n".into()),
+        ],
+        "intersect" => vec![
+            ("loop.json", bezier("[[0, 0], [3, 3], [0, 3], [3, 0]]")),
+            ("space.json", bezier("[[0, 0, 0], [1, 1, 2], [2, 0, 2]]")),
+        ],
+        "offset" => vec![(
+            "ellipse.json",
+            r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[2, 0], [2, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}"#.into(),
+        )],
+        _ => Vec::new(),
+    }
+}
+
+/// Writes the fixture files the examples of `path` name.
+fn fixtures(d: &Path, path: &str) {
+    let w = |name: &str, text: &str| fs::write(d.join(name), text).unwrap();
     w("pts.csv", "1,1\n2,3\n4,3\n");
     w("pts4.csv", "1,1\n2,3\n4,3\n5,0\n");
     w(
@@ -106,11 +171,7 @@ fn fixtures(d: &Path) {
     w("lengths.txt", "0.5\n1\n2\n");
     for (name, control) in [
         ("quad.json", "[[0, 0], [1, 2], [2, 0]]"),
-        ("cubic.json", "[[0, 0], [1, 2], [3, 2], [4, 0]]"),
-        (
-            "quintic.json",
-            "[[10, 0], [22, 6], [26, 10.4], [16.4, 14.4], [8, 14], [20, 0]]",
-        ),
+        ("cubic.json", "[[10, 0], [30, 10], [0, 20], [20, 0]]"),
         ("quartic.json", "[[0, 0], [1, 3], [2, -1], [3, 2], [4, 0]]"),
         ("up.json", "[[0, 0], [1, 2], [2, 0]]"),
         ("down.json", "[[0, 0], [1, -2], [2, 0]]"),
@@ -119,10 +180,7 @@ fn fixtures(d: &Path) {
         ("a.json", "[[0, 0], [2, 2]]"),
         ("b.json", "[[0, 2], [2, 0]]"),
     ] {
-        w(
-            name,
-            &format!(r#"{{"lekalo": 1, "type": "bezier_curve", "control": {control}}}"#),
-        );
+        w(name, &bezier(control));
     }
     for (name, control, weights) in [
         (
@@ -147,6 +205,28 @@ fn fixtures(d: &Path) {
         d.join("part.step"),
     )
     .unwrap();
+    w("control.csv", "0,0\n1,2\n3,2\n4,0\n");
+    w(
+        "surface-net.csv",
+        "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 0\n2 0 0\n2 1 0\n2 2 0\n",
+    );
+    for (name, text) in overrides(path) {
+        w(name, &text);
+    }
+    // document 004's Example 2: the cubic elevated to degree 5 (real degree 3)
+    lekalo()
+        .current_dir(d)
+        .args([
+            "bezier",
+            "elevate",
+            "cubic.json",
+            "--by",
+            "2",
+            "-o",
+            "quintic.json",
+        ])
+        .assert()
+        .success();
     lekalo()
         .current_dir(d)
         .args(["pp", "convert", "curve.json", "-o", "spline.pp.json"])
@@ -158,7 +238,7 @@ fn fixtures(d: &Path) {
             "make",
             "bspline-surface",
             "--control",
-            "net.csv",
+            "surface-net.csv",
             "--net",
             "3x3",
         ])
@@ -167,46 +247,106 @@ fn fixtures(d: &Path) {
         .success();
 }
 
+/// Runs `list` in a fresh folder of fixtures for `path`; failures are collected.
+fn run_all(path: &str, list: &[Vec<String>], failures: &mut Vec<String>) -> usize {
+    let d = tempfile::tempdir().unwrap();
+    fixtures(d.path(), path);
+    let mut ran = 0;
+    for args in list {
+        let line = args.join(" ");
+        if NOT_RUN.iter().any(|(n, _)| *n == line) {
+            continue;
+        }
+        let o = lekalo().current_dir(d.path()).args(args).output().unwrap();
+        if !o.status.success() {
+            failures.push(format!(
+                "`lekalo {line}` failed: {}",
+                String::from_utf8_lossy(&o.stderr)
+            ));
+        }
+        ran += 1;
+    }
+    ran
+}
+
 #[test]
 fn every_help_example_runs() {
     let mut ran = 0;
     let mut failures = Vec::new();
-    for path in leaf_subcommands() {
+    let leaves = leaf_subcommands();
+    // the groups' own examples (`lekalo knot --help`), each group in order in one folder
+    let mut groups: Vec<Vec<String>> = leaves
+        .iter()
+        .filter(|p| p.len() > 1)
+        .map(|p| p[..1].to_vec())
+        .collect();
+    groups.dedup();
+    let mut shown: Vec<Vec<String>> = Vec::new();
+    for group in &groups {
+        let list = examples(&help_of(group));
+        ran += run_all(&group.join(" "), &list, &mut failures);
+        shown.extend(list);
+    }
+    for path in &leaves {
         let name = path.join(" ");
-        if NOT_RUN.iter().any(|(n, _)| *n == name) {
+        if SERVERS.contains(&name.as_str()) {
             continue;
         }
-        // a subcommand's own help, and its group's (where the group shows the examples)
-        let mut list = examples(&help_of(&path));
-        if path.len() > 1 {
-            list.extend(
-                examples(&help_of(&path[..1]))
-                    .into_iter()
-                    .filter(|a| a.starts_with(&path)),
-            );
-        }
-        list.dedup();
-        if list.iter().all(|a| !a.starts_with(&path)) {
+        let list = examples(&help_of(path));
+        ran += run_all(&name, &list, &mut failures);
+        shown.extend(list);
+        if !shown.iter().any(|a| a.starts_with(path)) {
             failures.push(format!("`lekalo {name} --help` shows no example of it"));
-            continue;
-        }
-        let d = tempfile::tempdir().unwrap();
-        fixtures(d.path());
-        for args in list {
-            let line = args.join(" ");
-            if NOT_RUN.iter().any(|(n, _)| *n == line) {
-                continue;
-            }
-            let o = lekalo().current_dir(d.path()).args(&args).output().unwrap();
-            if !o.status.success() {
-                failures.push(format!(
-                    "`lekalo {line}` failed: {}",
-                    String::from_utf8_lossy(&o.stderr)
-                ));
-            }
-            ran += 1;
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(ran >= 100, "{ran} examples");
+}
+
+/// The README's command-line tour runs as written: its `printf … > FILE` lines write their
+/// files, its `lekalo …` lines run in order (`demo` and `serve` as in [`NOT_RUN`]); the files
+/// it reads without making them (`many.jsonl`, `scan.csv`) are given.
+#[test]
+fn readme_tour_runs() {
+    let readme = include_str!("../../../README.md");
+    let tour = readme
+        .split("## A short tour of the command line")
+        .nth(1)
+        .and_then(|t| t.split("```sh").nth(1))
+        .and_then(|t| t.split("```").next())
+        .expect("README has a command-line tour");
+    let d = tempfile::tempdir().unwrap();
+    let curve = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[1, 1], [2, 3], [4, 3]]}"#;
+    fs::write(d.path().join("many.jsonl"), format!("{curve}\n{curve}\n")).unwrap();
+    let scan = rows(80, &|i| format!("{},{}", i * 0.05, (i * 0.05).sin()));
+    fs::write(d.path().join("scan.csv"), scan).unwrap();
+    let mut ran = 0;
+    for line in tour.lines() {
+        if let Some(rest) = line.strip_prefix("printf '") {
+            let (text, file) = rest.split_once("' > ").expect("printf '…' > FILE");
+            fs::write(d.path().join(file.trim()), text.replace("\\n", "\n")).unwrap();
+            continue;
+        }
+        let Some(cmd) = line.strip_prefix("lekalo ") else {
+            continue;
+        };
+        let args: Vec<&str> = cmd
+            .split(" #")
+            .next()
+            .unwrap_or(cmd)
+            .split_whitespace()
+            .collect();
+        let whole = args.join(" ");
+        if NOT_RUN.iter().any(|(n, _)| *n == whole) || SERVERS.contains(&args[0]) {
+            continue;
+        }
+        let o = lekalo().current_dir(d.path()).args(&args).output().unwrap();
+        assert!(
+            o.status.success(),
+            "README: `{line}` failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        ran += 1;
+    }
+    assert!(ran >= 20, "{ran} README commands");
 }

@@ -14,7 +14,6 @@ const WRITE_OBJECTS: &[&str] = &[
     "make",
     "convert",
     "plot",
-    "demo",
     "interpolate",
     "serve",
     "bezier elevate",
@@ -35,6 +34,7 @@ const WRITE_OBJECTS: &[&str] = &[
 /// One `--json` run per subcommand that reports a result.
 const TABLE: &[&[&str]] = &[
     &["info", "curve.json", "--json"],
+    &["demo", "--only", "doc000-ends", "--json"],
     &["eval", "curve.json", "--samples", "3", "--json"],
     &[
         "knots", "uniform", "--degree", "3", "--count", "5", "--json",

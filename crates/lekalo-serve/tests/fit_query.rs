@@ -2,6 +2,8 @@
 //! λ given or by GCV, smoothing condition s), `/api/project`, `/api/measure`, and the τ rules
 //! and explicit τ values of `/api/quasi`.
 
+#![allow(clippy::missing_assert_message)] // assert_eq! prints both sides
+
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use http_body_util::BodyExt;

@@ -2,6 +2,8 @@
 //! agree: every route of the router is described with its method, and every described route
 //! answers (not 404, not 405).
 
+#![allow(clippy::missing_assert_message)] // assert_eq! prints both sides
+
 use std::collections::BTreeSet;
 
 use axum::body::Body;

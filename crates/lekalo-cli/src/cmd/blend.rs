@@ -166,7 +166,7 @@ Examples:
 Examples:
   lekalo blend deform a.json b.json --continuity 2
   lekalo blend spline pts.csv --continuity 2 --local parabolas
-  lekalo blend corner a.json b.json --from 0.8 --until 0.2
+  lekalo blend corner before.json after.json --from 0.8 --until 0.2
   lekalo blend corners polyline.csv --window 25% --continuity 2")]
 pub(crate) struct BlendArgs {
     #[command(subcommand)]

@@ -162,7 +162,7 @@ Examples:
       --continuity 2,2,2,2,2 --rule left-end-of-support -o fig1.svg    # max error 0.204831
   lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json
   lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 --json   # error and curve
-  lekalo pp quasi --function sin --breakpoints 0,1,2 --order 2 --tau 0,0.5,1.5,2   # explicit τ")]
+  lekalo pp quasi --function sin --breakpoints 0,1,2 --order 2 --continuity 0 --tau 0,0.5,1.5,2")]
     Quasi {
         /// The function.
         #[arg(long, value_enum)]

@@ -148,7 +148,7 @@ pub(crate) fn trim(x: f64) -> String {
 
 /// Runs every entry (or the one named by `only`), prints the summary table, writes the gallery
 /// if `out` is given: `index.html` and every figure as SVG and PNG.
-pub(crate) fn run(out: Option<&Path>, only: Option<&str>, v: Verbosity) -> Result<()> {
+pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosity) -> Result<()> {
     if let Some(id) = only {
         if !registry::ENTRIES.iter().any(|e| e.id == id) {
             let ids: Vec<&str> = registry::ENTRIES.iter().map(|e| e.id).collect();
@@ -178,8 +178,14 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, v: Verbosity) -> Resul
         sections.push(s);
     }
     bar.finish_and_clear();
-    let mut stdout = std::io::stdout().lock();
-    std::io::Write::write_all(&mut stdout, summary(&sections, v).as_bytes())?;
+    crate::report::print_report(
+        json,
+        &summary_json(&sections),
+        |_| summary(&sections, v),
+        None,
+        &[],
+        v,
+    )?;
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).map_err(|error| lekalo_io::IoError::Write {
             path: dir.to_path_buf(),
@@ -301,6 +307,33 @@ fn group_of(id: &str) -> String {
         .iter()
         .find(|(p, _)| *p == prefix)
         .map_or_else(|| format!("More: {prefix}"), |(_, h)| (*h).to_string())
+}
+
+/// The summary as JSON (`--json`): every entry's tables and checks, and the count of checks
+/// that reproduce the documents.
+fn summary_json(sections: &[Section]) -> serde_json::Value {
+    let entries: Vec<serde_json::Value> = sections
+        .iter()
+        .map(|sec| {
+            serde_json::json!({
+                "id": sec.id,
+                "title": sec.title,
+                "source": sec.source,
+                "tables": sec.tables.iter().map(|(caption, header, rows)| {
+                    serde_json::json!({"caption": caption, "header": header, "rows": rows})
+                }).collect::<Vec<_>>(),
+                "checks": sec.checks.iter().map(|c| serde_json::json!({
+                    "what": c.what, "ours": c.ours, "expected": c.expected, "ok": c.ok,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let checks = sections.iter().flat_map(|s| &s.checks);
+    serde_json::json!({
+        "entries": entries,
+        "checks": checks.clone().count(),
+        "reproduced": checks.filter(|c| c.ok).count(),
+    })
 }
 
 /// The printed summary: every entry's tables and checks.
