@@ -116,6 +116,10 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
             ("track.csv", rows(40, &|i| format!("{},{}", (i * 0.15).cos(), (i * 0.15).sin()))),
             ("xy.csv", rows(30, &|i| format!("{i},{}", (i * 0.3).sin()))),
             ("w.txt", rows(30, &|_| "1".into())),
+            (
+                "loop.csv",
+                rows(40, &|i| format!("{},{}", (i * 0.157).cos(), 0.5 * (i * 0.157).sin())),
+            ),
             ("grid.csv", rows(600, &|i| format!("{},{},{}", (i / 20.0).floor(), i % 20.0, (i * 0.01).sin()))),
             ("uvz.csv", rows(300, &|i| format!("{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.1).sin()))),
         ],
@@ -324,7 +328,8 @@ fn readme_tour_runs() {
     for line in tour.lines() {
         if let Some(rest) = line.strip_prefix("printf '") {
             let (text, file) = rest.split_once("' > ").expect("printf '…' > FILE");
-            fs::write(d.path().join(file.trim()), text.replace("\\n", "\n")).unwrap();
+            let file = file.split_whitespace().next().expect("a file name");
+            fs::write(d.path().join(file), text.replace("\\n", "\n")).unwrap();
             continue;
         }
         let Some(cmd) = line.strip_prefix("lekalo ") else {
