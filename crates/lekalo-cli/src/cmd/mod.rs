@@ -24,6 +24,7 @@ pub(crate) mod surface_eval;
 // fitting: least squares, smoothing, tolerance
 pub(crate) mod fit;
 // geometric queries
+pub(crate) mod comb;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;
