@@ -225,6 +225,185 @@ test('Interpolation with end tangents, then periodic; quasi-interpolation with i
   await shot(page, 'quasi-error', false);
 });
 
+// a range input moved by the user: its value, then the events the page listens to
+async function slide(page, selector, value) {
+  await page.evaluate(([sel, v]) => {
+    const e = document.querySelector(sel);
+    e.value = String(v);
+    e.dispatchEvent(new Event('input'));
+    e.dispatchEvent(new Event('change'));
+  }, [selector, value]);
+  await idle(page);
+}
+
+async function downloadText(page, button) {
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+  const chunks = [];
+  for await (const c of await dl.createReadStream()) chunks.push(c);
+  return { name: dl.suggestedFilename(), text: Buffer.concat(chunks).toString('utf8') };
+}
+
+test('Fitting: the smoothing slider changes λ and s; curve, residual and knot count are the API\'s', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'fit');
+  await idle(page);
+  const pts = await page.evaluate(() => window.lekaloEditor.state.fit.points);
+  assert.equal(await page.locator('#points circle').count(), pts.length, 'one circle per noisy point');
+  let expected = await api('/api/fit', { points: pts, smoothing: 'lambda', lambda: 1e-4, samples: 400 });
+  await assertCurveIs(page, expected.view.points, 'λ = 1e-4');
+  let info = await page.textContent('#fit-info');
+  assert.ok(info.includes(`RMS ${expected.report.rms.toPrecision(4)}`), info);
+  const rough = expected.report.rms;
+  await slide(page, '#fit-slider', -1);
+  expected = await api('/api/fit', { points: pts, smoothing: 'lambda', lambda: 0.1, samples: 400 });
+  await assertCurveIs(page, expected.view.points, 'λ = 0.1');
+  assert.ok(expected.report.rms > rough, 'more smoothing, larger residual');
+  info = await page.textContent('#fit-info');
+  assert.ok(info.includes(`residual max ${expected.report.max_residual.toPrecision(4)}`), info);
+  await page.selectOption('#fit-mode', 's');
+  await idle(page);
+  await slide(page, '#fit-slider', 0);
+  expected = await api('/api/fit', { points: pts, smoothing: 's', s: 1, samples: 400 });
+  await assertCurveIs(page, expected.view.points, 's = 1');
+  info = await page.textContent('#fit-info');
+  assert.ok(info.includes(`${expected.report.interior_knots} interior knots`), info);
+  assert.ok(expected.report.weighted_rss <= 1, 'the smoothing condition holds');
+  assert.equal(await page.locator('#ruler-knots rect').count(), expected.view.knots.length, 'knots on the ruler');
+  await shot(page, 'fit', true);
+});
+
+test('Queries: the closest point follows the pointer, the arc length and the parameter at a length are the API\'s', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await page.check('#query');
+  await idle(page);
+  const curve = await page.evaluate(() => window.lekaloEditor.last.view.curve);
+  const m = await api('/api/measure', { curve, at_length: [1] });
+  assert.match(await page.textContent('#query-info'), new RegExp(`arc length ${m.length.toPrecision(8)}`));
+  assert.match(await page.textContent('#query-at'), new RegExp(`t = ${m.at_length[0].t.toPrecision(8)}`));
+  for (const q of [[5, 1], [2, 5.5]]) {
+    const [x, y] = await canvasToPage(page, q);
+    await page.mouse.move(x, y);
+    await idle(page);
+    const shown = JSON.parse(await page.getAttribute('#query-info', 'data-projection'));
+    const p = await api('/api/project', { curve, point: shown.from });
+    assert.deepEqual([shown.t, shown.distance], [p.t, p.distance], 'the projection is the API\'s');
+    const [fx, fy] = await page.evaluate((pt) => window.lekaloEditor.toScreen(pt), p.point);
+    assert.ok(Math.abs(Number(await page.getAttribute('#proj-line', 'x2')) - fx) < 1e-6, 'line ends at the foot point');
+    assert.ok(Math.abs(Number(await page.getAttribute('#proj-line', 'y2')) - fy) < 1e-6, 'line ends at the foot point');
+    assert.equal(await page.getAttribute('#proj-line', 'visibility'), 'visible');
+  }
+  await shot(page, 'query', true);
+  await setValue(page, '#query-length', 1e6);
+  assert.match(await page.textContent('[data-err="at_length"]'), /invalid arc length/);
+});
+
+test('Knots dragged on the ruler and a weight edited (NURBS): the curve is the API\'s', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  const knot = page.locator('#ruler-knots rect[data-knot="4"]');
+  const box = await knot.boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  for (let k = 1; k <= 4; k++) { await page.mouse.move(box.x + box.width / 2 + 30 * k, box.y + 3); await idle(page); }
+  await page.mouse.up();
+  await idle(page);
+  let s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.ok(s.knots[4] > 0.6 && s.knots[4] < 1, `knot moved right: ${s.knots[4]}`);
+  let expected = await api('/api/bspline', { control: s.control, degree: s.degree, knots: s.knots, samples: 400 });
+  await assertCurveIs(page, expected.points, 'knot dragged');
+  const [x, y] = await canvasToPage(page, s.control[2]);
+  await page.mouse.click(x, y);
+  await idle(page);
+  await setValue(page, '#bs-weight', 4);
+  s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.deepEqual(s.weights, [1, 1, 4, 1, 1]);
+  expected = await api('/api/bspline', { control: s.control, degree: s.degree, knots: s.knots, weights: s.weights, samples: 400 });
+  assert.equal(expected.curve.type, 'nurbs_curve');
+  await assertCurveIs(page, expected.points, 'weight 4');
+  await setValue(page, '#bs-weight', -1);
+  assert.match(await page.textContent('[data-mode="bspline"] [data-err="weights"]'), /weight/);
+});
+
+test('JSON export, reload, import: the same curve; STEP download; undo and redo', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await setValue(page, '#bs-degree', 2);
+  const d = await page.getAttribute('#curve', 'd');
+  const json = await downloadText(page, '#export-json');
+  assert.equal(json.name, 'curve.json');
+  assert.equal(JSON.parse(json.text).type, 'bspline_curve');
+  const step = await downloadText(page, '#export-step');
+  assert.ok(step.text.startsWith('ISO-10303-21;'), step.text.slice(0, 40));
+  assert.match(step.text, /B_SPLINE_CURVE_WITH_KNOTS/);
+
+  await page.goto(base + '#');
+  await page.reload();
+  await idle(page);
+  assert.notEqual(await page.getAttribute('#curve', 'd'), d, 'a fresh page shows the default curve');
+  await page.setInputFiles('#import', { name: 'curve.json', mimeType: 'application/json', buffer: Buffer.from(json.text) });
+  await idle(page);
+  assert.equal(await page.getAttribute('#curve', 'd'), d, 'the imported curve is drawn as before the export');
+  await page.setInputFiles('#import', { name: 'bad.json', mimeType: 'application/json', buffer: Buffer.from('{"lekalo": 1, "type": "bspline_curve"}') });
+  await idle(page);
+  assert.match(await page.textContent('header [data-err="file"]'), /field/);
+
+  const n = await page.locator('#points circle').count();
+  const [x, y] = await canvasToPage(page, [5, 0.5]);
+  await page.mouse.click(x, y);
+  await idle(page);
+  const added = await page.getAttribute('#curve', 'd');
+  assert.equal(await page.locator('#points circle').count(), n + 1);
+  await page.keyboard.press('Control+z');
+  await idle(page);
+  assert.equal(await page.locator('#points circle').count(), n, 'undo removes the point');
+  assert.equal(await page.getAttribute('#curve', 'd'), d, 'undo restores the curve');
+  await page.click('#redo');
+  await idle(page);
+  assert.equal(await page.locator('#points circle').count(), n + 1, 'redo adds it again');
+  assert.equal(await page.getAttribute('#curve', 'd'), added);
+  assert.ok(decodeURIComponent(page.url()).includes('"control":'), 'the state is in the URL');
+});
+
+test('Dragging a point of a 200-point B-spline: frame rate by the Performance API (reported, not asserted)', async (page) => {
+  const control = Array.from({ length: 200 }, (_, i) => [0.5 + 9 * i / 199, 3 + 2 * Math.sin(i / 7)]);
+  const state = { mode: 'bspline', comb: false, bspline: { degree: 3, control, knots: null, weights: null } };
+  await page.goto(base + '#' + encodeURIComponent(JSON.stringify(state)));
+  await idle(page);
+  assert.equal(await page.locator('#points circle').count(), 200);
+  const [x, y] = await canvasToPage(page, control[100]);
+  await page.evaluate(() => {
+    window.__frames = [];
+    window.__draws = 0;
+    new MutationObserver(() => { window.__draws++; }).observe(document.getElementById('curve'), { attributes: true });
+    const tick = (t) => { window.__frames.push(t); if (!window.__stop) requestAnimationFrame(tick); };
+    requestAnimationFrame(tick);
+  });
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  const start = Date.now();
+  let moves = 0;
+  while (Date.now() - start < 1500) {
+    moves++;
+    await page.mouse.move(x + 80 * Math.sin(moves / 20), y + 60 * Math.cos(moves / 15));
+  }
+  await page.mouse.up();
+  await idle(page);
+  const r = await page.evaluate(() => {
+    window.__stop = true;
+    const f = window.__frames;
+    const gaps = f.slice(1).map((t, k) => t - f[k]).sort((a, b) => a - b);
+    const secs = (f[f.length - 1] - f[0]) / 1000;
+    return { fps: (f.length - 1) / secs, p95: gaps[Math.floor(0.95 * gaps.length)], draws: window.__draws, secs };
+  });
+  console.log(`     drag with 200 control points: ${r.fps.toFixed(1)} frames/s (95th-percentile frame gap ${r.p95.toFixed(1)} ms), ` +
+    `${moves} pointer moves, ${(r.draws / r.secs).toFixed(1)} curve redraws/s`);
+  assert.ok(r.draws > 0, 'the curve followed the drag');
+  const s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  const expected = await api('/api/bspline', { control: s.control, degree: 3, samples: 400 });
+  await assertCurveIs(page, expected.points, 'after the drag');
+});
+
 let failed = 0;
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   args: CHROMIUM_ARGS, headless: true });

@@ -102,6 +102,45 @@ def main():
     # the written text reads back to the same numbers
     back = pd.read_csv(w, dtype=np.float64).to_numpy()
     assert np.array_equal(back, table), "lekalo's CSV does not read back exactly"
+    batches(a, out, row)
+
+
+def batches(a, out, row):
+    """20,000 curves x 100 points: interpolated and evaluated Parquet to Parquet, against the
+    same curves evaluated as JSON Lines (100 samples each)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    groups, per = 20_000, 100
+    pts = os.path.join(a.data, "groups.parquet")
+    if not os.path.exists(pts):
+        g = np.repeat(np.arange(groups, dtype=np.int64), per)
+        s = np.tile(np.linspace(0, 1, per), groups)
+        phase = np.repeat(np.arange(groups) * 1e-3, per)
+        table = pa.table(
+            {"group": g, "x": np.cos(3 * s + phase), "y": np.sin(2 * s + phase), "z": s + phase}
+        )
+        pq.write_table(table, pts, row_group_size=1 << 20)
+    curves = f"{out}/curves.parquet"
+    jsonl = f"{out}/curves.jsonl"
+    t_int = best(a.repeats, lambda: run(a.lekalo, "interpolate", pts, "-o", curves))
+    row("batch: interpolate groups.parquet -> curves.parquet", t_int)
+    t_eval = best(
+        a.repeats,
+        lambda: run(a.lekalo, "eval", curves, "--samples", str(per), "-o", f"{out}/s.parquet"),
+    )
+    row("batch: eval curves.parquet --samples 100 -> parquet", t_eval)
+    run(a.lekalo, "convert", curves, "-o", jsonl, "--force")
+    t_jsonl = best(
+        a.repeats,
+        lambda: run(a.lekalo, "eval", jsonl, "--samples", str(per), "-o", f"{out}/s.jsonl"),
+    )
+    row("batch: eval curves.jsonl --samples 100 -> jsonl", t_jsonl)
+    row(
+        "batch: Parquet interpolate + eval vs JSON Lines eval",
+        t_int + t_eval,
+        f"{t_jsonl / (t_int + t_eval):.1f}x faster",
+    )
 
 
 if __name__ == "__main__":

@@ -1,6 +1,18 @@
-"""lekalo from Python, side by side with SciPy on the same arrays, in one run.
+"""lekalo from Python, side by side with the Rust library and with SciPy on the same arrays, in
+one run.
 
     python bench/python/bench.py [--repeats 7] [--batch 100000] [--loop 5000]
+                                 [--rust-only | --no-rust] [--rust PEER_BENCH_BINARY]
+
+Python against Rust (first, unless --no-rust): the Rust figures are timed in the same run by the
+peer benchmark program (`cargo build --release -p lekalo --example peer_bench`, built here
+unless --rust names the binary), which writes its workload data (a cubic 3-D curve of 1000
+control points and 10^6 sorted and random parameters; helices of 10^3..10^6 points; 100x100 to
+400x400 grids) to a temporary folder; the package is timed on those very arrays, its results
+compared with the Rust ones bit for bit, and each Rust figure is the mean of a timing just
+before and one just after the Python timing of the same workload (as bench/peers does), so
+that a busy spell of a shared machine weighs on both sides. Both sides time a call the same
+way: repeated to at least 20 ms a sample, median of --repeats samples.
 
 Workloads (cubic, 3-D, as in bench/peers): evaluation of a 1000-control-point B-spline at
 10^6 sorted and random parameters; interpolation through 10^6 points; bicubic interpolation of
@@ -14,10 +26,15 @@ docs/performance.md (criterion and peer_bench on the same machine).
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import os
 import statistics
+import subprocess
+import tempfile
 import time
 import timeit
+from pathlib import Path
 
 import numpy as np
 from scipy import interpolate as si
@@ -33,6 +50,96 @@ def median_s(fn, repeats):
         fn()
         out.append(time.perf_counter() - t0)
     return statistics.median(out)
+
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def median_ns(fn, units, repeats):
+    """ns per unit of `fn`, timed as peer_bench times the Rust side: the warm-up call sets how
+    many calls make one sample of at least 20 ms; the median of `repeats` samples."""
+    t0 = time.perf_counter()
+    fn()
+    inner = max(1, math.ceil(0.02 / max(time.perf_counter() - t0, 1e-9)))
+    samples = []
+    for _ in range(max(repeats, 1)):
+        t0 = time.perf_counter()
+        for _ in range(inner):
+            fn()
+        samples.append((time.perf_counter() - t0) / inner)
+    samples.sort()
+    return samples[len(samples) // 2] * 1e9 / units
+
+
+def peer_bench(binary):
+    """The Rust timing program: `binary`, or built here in release mode."""
+    if binary:
+        return binary
+    subprocess.run(["cargo", "build", "--quiet", "--release", "-p", "lekalo", "--example", "peer_bench"],
+                   cwd=ROOT, check=True)
+    return str(ROOT / "target" / "release" / "examples" / "peer_bench")
+
+
+def rust_times(binary, data, repeats, works):
+    """peer_bench's medians (ns per unit) for the named workloads, timings only."""
+    subprocess.run([binary, str(data), str(repeats), "rust_bracket.json", ",".join(works)],
+                   check=True, stdout=subprocess.DEVNULL)
+    return json.loads((data / "rust_bracket.json").read_text())["results"]
+
+
+def python_vs_rust(binary, repeats):
+    """The Python/Rust table: each workload of peer_bench timed from Python on its own data,
+    between two Rust timings of the same workload."""
+    data = Path(tempfile.mkdtemp(prefix="lekalo-pybench-"))
+    subprocess.run([binary, str(data), "1"], check=True, stdout=subprocess.DEVNULL)
+    meta = json.loads((data / "ours.json").read_text())
+    f64 = lambda name: np.fromfile(data / name, dtype="<f8")  # noqa: E731
+    p, dim, k, n = meta["degree"], meta["dim"], meta["n_ctrl"], meta["n"]
+    curve = lekalo.BSplineCurve(p, f64("knots.bin"), f64("ctrl.bin").reshape(k, dim))
+    out = np.empty((n, dim))
+    rows = []
+
+    def check(got, want_file):
+        return "bit for bit" if np.array_equal(got, f64(want_file).reshape(got.shape)) else "DIFFERS"
+
+    # (workloads timed together by peer_bench, [(label, workload, Rust key, Python call, units, check)])
+    groups = []
+    ev = []
+    for order in ("sorted", "random"):
+        t = f64(f"ts_{order}.bin")
+        note = check(curve(t), f"ours_eval_{order}.bin")
+        ev.append((f"evaluation {order}, 10^6, K={k}: c(t)", f"eval_{order}", "parallel_2_unpinned",
+                   lambda t=t: curve(t), n, note))
+        ev.append((f"evaluation {order}, 10^6: c(t, out=buf)", f"eval_{order}", "parallel_2_unpinned",
+                   lambda t=t: curve(t, out=out), n, note))
+    ts = f64("ts_sorted.bin")
+    d1 = np.ascontiguousarray(curve.derivatives(ts, 1)[:, 1])
+    ev.append(("point + 1st derivative, sorted, 10^6", "deriv1_sorted", "fast",
+               lambda: curve.derivatives(ts, 1), n, check(d1, "ours_deriv1_sorted.bin")))
+    groups.append((["eval_sorted", "eval_random", "deriv1_sorted"], ev))
+    for m in meta["interp_sizes"]:
+        q = f64(f"interp_q_{m}.bin").reshape(m, 3)
+        note = check(lekalo.interpolate(q, 3).control, f"interp_ctrl_{m}.bin")
+        groups.append(([f"interp_{m}"], [(f"interpolation, {m} points", f"interp_{m}", "fresh",
+                                          lambda q=q: lekalo.interpolate(q, 3), m, note)]))
+    for m in meta["surface_sizes"]:
+        g = f64(f"surf_q_{m}.bin").reshape(m, m, 3)
+        note = check(lekalo.interpolate_surface(g, 3, 3).control, f"surf_ctrl_{m}.bin")
+        groups.append(([f"surface_{m}"], [(f"surface interpolation, {m}x{m}", f"surface_{m}", "fresh",
+                                           lambda g=g: lekalo.interpolate_surface(g, 3, 3), m * m, note)]))
+    for works, items in groups:
+        before = rust_times(binary, data, repeats, works)
+        ours = [median_ns(call, units, repeats) for _, _, _, call, units, _ in items]
+        after = rust_times(binary, data, repeats, works)
+        for (label, work, key, _, _, note), py_ns in zip(items, ours):
+            b, a = before[work][key], after[work][key]
+            rows.append((label, (a + b) / 2, abs(a - b) / min(a, b), py_ns, f"{work}/{key}", note))
+    print(f"\n{'workload':<42} {'Rust ns':>9} {'Python ns':>10} {'Py/Rust':>8}   Rust bench (change before/after); result")
+    for label, rust, change, py, key, note in rows:
+        print(f"{label:<42} {rust:9.2f} {py:10.2f} {py / rust:7.2f}x   {key} ({change:.0%}); {note}")
+    for f in data.iterdir():
+        f.unlink()
+    data.rmdir()
 
 
 def row(work, ours_s, scipy_s, units, note=""):
@@ -75,11 +182,19 @@ def main():
     ap.add_argument("--batch", type=int, default=100_000)
     ap.add_argument("--loop", type=int, default=5000)
     ap.add_argument("--mid-only", action="store_true", help="only the mid-size rows (10^3 to 10^5)")
+    ap.add_argument("--rust", help="the peer_bench binary (default: built here with cargo)")
+    ap.add_argument("--no-rust", action="store_true", help="skip the Python/Rust table")
+    ap.add_argument("--rust-only", action="store_true", help="only the Python/Rust table")
     a = ap.parse_args()
     rng = np.random.default_rng(1)
     print(f"lekalo {lekalo.__file__}; numpy {np.__version__}; scipy {__import__('scipy').__version__}; "
           f"{os.cpu_count()} processors; RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', '-')}; "
           f"load average {os.getloadavg()[0]:.1f}")
+    if not a.no_rust:
+        python_vs_rust(peer_bench(a.rust), a.repeats)
+        print(f"load average {os.getloadavg()[0]:.1f}")
+        if a.rust_only:
+            return
     mid_sizes(rng, a.repeats)
     if a.mid_only:
         return

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The editor's speed, by hand (not in CI): release build, a server on a free port, then the
-# round-trip latency (p99 target 5 ms), a bounded load with hostile requests, and the frame
+# round-trip latency (p99 target 5 ms, a Rust client), a bounded load with hostile requests, and the frame
 # rate of dragging a point of a 200-point curve in headless Chromium.
 #
 # Usage: bench/serve/run.sh       (needs web-tests/node_modules: npm ci in web-tests/)
@@ -16,6 +16,6 @@ for _ in $(seq 1 100); do
   sleep 0.1
 done
 export LEKALO_URL="http://127.0.0.1:$port/"
-node bench/serve/latency.mjs 2000
+cargo bench -q -p lekalo-serve --bench roundtrip -- 2000   # the Rust client on keep-alive sockets
 node bench/serve/load.mjs 16 200
 node bench/serve/fps.mjs

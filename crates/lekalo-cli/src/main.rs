@@ -15,6 +15,7 @@ use clap::{Args, Parser, Subcommand};
 mod cmd;
 mod demo;
 mod io;
+mod report;
 mod terms;
 
 /// Construct, convert and analyse spline curves and surfaces.

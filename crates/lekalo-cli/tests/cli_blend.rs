@@ -53,7 +53,7 @@ fn setup() -> tempfile::TempDir {
 
 #[test]
 fn help_has_examples() {
-    for op in ["deform", "spline", "corner"] {
+    for op in ["deform", "spline", "corner", "corners"] {
         lekalo()
             .args(["blend", op, "--help"])
             .assert()

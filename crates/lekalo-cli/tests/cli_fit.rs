@@ -254,3 +254,67 @@ fn bad_inputs_exit_2_with_the_reason() {
             .stderr(contains(needle));
     }
 }
+
+/// 90 points of a noisy closed curve (a rounded triangle).
+fn closed_loop() -> String {
+    let mut s = String::new();
+    for k in 0..90 {
+        let t = std::f64::consts::TAU * f64::from(k) / 90.0;
+        let r = 2.0 + 0.3 * (3.0 * t).cos() + 0.01 * ((f64::from(k) * 0.618).fract() - 0.5);
+        writeln!(s, "{} {}", r * t.cos(), r * t.sin()).unwrap();
+    }
+    s
+}
+
+#[test]
+fn periodic_fits_close_the_curve() {
+    let data = closed_loop();
+    for args in [
+        vec!["fit", "-", "--periodic", "--s", "0.01", "--json"],
+        vec!["fit", "-", "--periodic", "--ctrl", "12", "--json"],
+    ] {
+        let v = run_json(&args, &data);
+        let r = &v["report"];
+        assert_eq!(r["periodic"], true);
+        assert!(r["max_residual"].as_f64().unwrap() < 0.2, "{r}");
+        let obj = &v["object"];
+        let ctrl = obj["control"].as_array().unwrap();
+        let p = obj["degree"].as_u64().unwrap() as usize;
+        // the last `degree` control points repeat the first
+        let n = ctrl.len();
+        assert_eq!(ctrl[..p], ctrl[n - p..], "{obj}");
+    }
+    let v = run_json(&["fit", "-", "--periodic", "--s", "0.01", "--json"], &data);
+    assert!(v["report"]["weighted_rss"].as_f64().unwrap() <= 0.01);
+    // a periodic function: the last row repeats the first and is left out
+    let mut f = String::new();
+    for k in 0..=60 {
+        let x = std::f64::consts::TAU * f64::from(k) / 60.0;
+        writeln!(f, "{x} {}", x.cos()).unwrap();
+    }
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--periodic",
+            "--function",
+            "--ctrl",
+            "10",
+            "--json",
+        ],
+        &f,
+    );
+    assert!(v["report"]["max_residual"].as_f64().unwrap() < 1e-3);
+    for (args, why) in [
+        (vec!["fit", "-", "--periodic", "--tol", "0.1"], "--periodic"),
+        (vec!["fit", "-", "--periodic", "--clamp-ends"], "no ends"),
+        (vec!["fit", "-", "--periodic", "--s", "-1"], "s"),
+    ] {
+        lekalo()
+            .args(&args)
+            .write_stdin(data.clone())
+            .assert()
+            .code(2)
+            .stderr(contains(why));
+    }
+}

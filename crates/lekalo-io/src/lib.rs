@@ -32,6 +32,7 @@
 
 mod analysis;
 mod atomic;
+mod end_names;
 mod error;
 mod figure_check;
 mod flat;
@@ -64,6 +65,7 @@ pub use atomic::{
     check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
     write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
 };
+pub use end_names::EndName;
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};

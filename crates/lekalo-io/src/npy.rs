@@ -136,23 +136,11 @@ pub(crate) fn read_array(
         .map_err(|_| IoError::TooLarge {
             what: format!("{source}: cannot reserve memory for {count} numbers"),
         })?;
-    // C order: element k of the output is index (i_0, …, i_{r-1}) with the last index fastest;
-    // Fortran order stores the first index fastest, so the offset is the reversed strides'.
-    let rank = h.shape.len();
-    let mut index = vec![0usize; rank];
-    for e in 0..count {
-        let k = if h.fortran {
-            index
-                .iter()
-                .zip(&h.shape)
-                .rev()
-                .fold(0, |acc, (&i, &n)| acc * n + i)
-        } else {
-            e
-        };
-        let mut b = [0u8; F8];
-        b.copy_from_slice(&data[k * F8..(k + 1) * F8]);
-        let v = match (h.integer, h.big_endian) {
+    // one pass over the bytes, element by element in file order (`chunks_exact` compiles to
+    // plain loads, and to a copy on a little-endian machine), then Fortran order transposed
+    let decode = |b: &[u8]| -> f64 {
+        let b: [u8; F8] = b.try_into().unwrap_or([0; F8]);
+        match (h.integer, h.big_endian) {
             (false, false) => f64::from_le_bytes(b),
             (false, true) => f64::from_be_bytes(b),
             // int64 is read for small integers such as a degree; the caller checks the range
@@ -160,26 +148,57 @@ pub(crate) fn read_array(
             (true, false) => i64::from_le_bytes(b) as f64,
             #[allow(clippy::cast_precision_loss)]
             (true, true) => i64::from_be_bytes(b) as f64,
-        };
-        if !v.is_finite() {
-            let at: Vec<String> = index.iter().map(ToString::to_string).collect();
-            return Err(err(
-                source,
-                &format!("[{}]", at.join(", ")),
-                format!("{v} is not finite; every value must be a finite number"),
-            ));
         }
-        flat.push(v);
+    };
+    flat.extend(data.chunks_exact(F8).map(decode));
+    if h.fortran && h.shape.len() > 1 {
+        flat = fortran_to_c(&flat, &h.shape);
+    }
+    // the index of the first value that is not finite, only when there is one
+    if let Some(e) = flat.iter().position(|v| !v.is_finite()) {
+        let mut at = Vec::with_capacity(h.shape.len());
+        let mut rest = e;
+        for &n in h.shape.iter().rev() {
+            at.push((rest % n).to_string());
+            rest /= n;
+        }
+        at.reverse();
+        return Err(err(
+            source,
+            &format!("[{}]", at.join(", ")),
+            format!(
+                "{} is not finite; every value must be a finite number",
+                flat[e]
+            ),
+        ));
+    }
+    Ok((h.shape, flat))
+}
+
+/// The C-order (last index fastest) copy of `f`, the elements of an array of `shape` in Fortran
+/// order (first index fastest): C element `(i_0, …, i_{r-1})` is Fortran element
+/// `i_0 + n_0 (i_1 + n_1 (…))`.
+fn fortran_to_c(f: &[f64], shape: &[usize]) -> Vec<f64> {
+    let rank = shape.len();
+    let mut index = vec![0usize; rank];
+    let mut out = Vec::with_capacity(f.len());
+    for _ in 0..f.len() {
+        let k = index
+            .iter()
+            .zip(shape)
+            .rev()
+            .fold(0, |acc, (&i, &n)| acc * n + i);
+        out.push(f[k]);
         // next C-order index
         for r in (0..rank).rev() {
             index[r] += 1;
-            if index[r] < h.shape[r] {
+            if index[r] < shape[r] {
                 break;
             }
             index[r] = 0;
         }
     }
-    Ok((h.shape, flat))
+    out
 }
 
 /// Reads a `.npy` points file from `path` (see [`read_npy_points`]); returns the points and the
@@ -434,8 +453,17 @@ pub fn npy_bytes(rows: usize, cols: usize, data: &[f64]) -> IoResult<Vec<u8>> {
             ),
         });
     }
-    let raw: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
-    write_npy("<f8", &[rows, cols], &raw)
+    write_npy("<f8", &[rows, cols], &le_bytes(data))
+}
+
+/// The little-endian bytes of `v`, 8 a number, in one pre-sized buffer (a copy on a
+/// little-endian machine).
+pub(crate) fn le_bytes(v: &[f64]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(v.len() * F8);
+    for x in v {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    out
 }
 
 /// A version 1.0, C-order `.npy` file of dtype `descr` and `shape` holding the little-endian

@@ -21,7 +21,7 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipArchive, ZipWriter};
 
 use crate::error::{IoError, IoResult, Location};
-use crate::npy::{read_array, read_npy_points, write_npy};
+use crate::npy::{le_bytes, read_array, read_npy_points, write_npy};
 use crate::object::Object;
 
 /// Largest degree read from an archive (a larger one is surely a wrong member, not a curve).
@@ -62,7 +62,7 @@ pub fn curve_to_npz(obj: &Object) -> IoResult<Vec<u8>> {
             Some(c.weights()),
         ),
     };
-    let f8 = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    let f8 = le_bytes;
     let degree = i64::try_from(degree).map_err(|_| IoError::Unsupported {
         what: format!("degree {degree} does not fit an int64"),
     })?;

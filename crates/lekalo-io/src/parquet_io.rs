@@ -308,6 +308,11 @@ pub fn read_point_groups(
                     "unreadable key column",
                 )
             })?;
+            let numbers: Vec<Option<Numbers<'_>>> = lay
+                .coords
+                .iter()
+                .map(|(c, _)| Numbers::of(batch.column(*c).as_ref()))
+                .collect();
             for r in 0..batch.num_rows() {
                 let row = row0 + r + 1;
                 let k = keys.get(r).ok_or_else(|| {
@@ -344,8 +349,8 @@ pub fn read_point_groups(
                     open = Some(o);
                 }
                 if let Some(o) = open.as_mut().filter(|o| o.error.is_none()) {
-                    for (c, name) in &lay.coords {
-                        let v = Numbers::of(batch.column(*c).as_ref()).and_then(|n| n.get(r));
+                    for ((_, name), n) in lay.coords.iter().zip(&numbers) {
+                        let v = n.as_ref().and_then(|n| n.get(r));
                         match v {
                             Some(v) if v.is_finite() => o.data.push(v),
                             _ => {
@@ -493,7 +498,7 @@ pub struct ParquetBatchWriter<W: Write + Send> {
 }
 
 impl<W: Write + Send> ParquetBatchWriter<W> {
-    /// A writer into `out` (snappy-compressed pages).
+    /// A writer into `out` (uncompressed pages).
     pub fn new(out: W) -> Self {
         ParquetBatchWriter {
             writer: None,
@@ -505,10 +510,12 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         let to_io = |e: parquet::errors::ParquetError| std::io::Error::other(e.to_string());
         if self.writer.is_none() {
             // no dictionaries: hashing every double costs more than it saves on samples and
-            // control points; the key column (repeated on every sample) keeps its dictionary
+            // control points; the key column (repeated on every sample) keeps its dictionary.
+            // No compression: the doubles of curves and samples hardly compress (snappy saved
+            // a few percent of their size and took more time than the rest of the batch)
             let key = batch.schema().field(0).name().clone();
             let props = WriterProperties::builder()
-                .set_compression(Compression::SNAPPY)
+                .set_compression(Compression::UNCOMPRESSED)
                 .set_dictionary_enabled(false)
                 .set_column_dictionary_enabled(ColumnPath::from(key), true)
                 .build();
@@ -858,6 +865,60 @@ fn floats(a: &dyn Array, at: &Location, what: &str) -> IoResult<Vec<f64>> {
         .collect()
 }
 
+/// The control points of row `r` of `control` (a list of lists of numbers): their dimension
+/// and their coordinates. The inner lists of one row lie end to end in the inner values, so the
+/// coordinates are one slice of them, copied at once (no array or vector per point).
+fn control_row(
+    control: &arrow_array::ListArray,
+    r: usize,
+    at: &Location,
+) -> IoResult<(usize, Vec<f64>)> {
+    let bad = |m: String| IoError::syntax(at.clone().at_field("control"), m);
+    let inner = control
+        .values()
+        .as_list_opt::<i32>()
+        .ok_or_else(|| bad("not a list of lists of numbers".into()))?;
+    let index = |o: i32| usize::try_from(o).unwrap_or(0);
+    let outer = control.value_offsets();
+    let (p0, p1) = (index(outer[r]), index(outer[r + 1]));
+    let offsets = inner.value_offsets();
+    let mut dim = None;
+    for i in p0..p1 {
+        if inner.is_null(i) {
+            return Err(bad(format!("point {} is null", i - p0)));
+        }
+        let len = index(offsets[i + 1]) - index(offsets[i]);
+        if let Some(d) = dim.filter(|&d| d != len) {
+            return Err(bad(format!(
+                "point {} has {len} coordinates, point 0 has {d}",
+                i - p0
+            )));
+        }
+        dim = Some(len);
+    }
+    let (a, b) = (index(offsets[p0]), index(offsets[p1]));
+    let values = inner.values();
+    let n =
+        Numbers::of(values.as_ref()).ok_or_else(|| bad("not a list of lists of numbers".into()))?;
+    let d = dim.unwrap_or(0);
+    let ctrl = match &n {
+        Numbers::F64(x) if x.null_count() == 0 => x.values()[a..b].to_vec(),
+        _ => (a..b)
+            .map(|j| {
+                n.get(j).ok_or_else(|| {
+                    let k = j - a;
+                    bad(format!(
+                        "point {} value {} is null",
+                        k / d.max(1),
+                        k % d.max(1)
+                    ))
+                })
+            })
+            .collect::<IoResult<_>>()?,
+    };
+    Ok((d, ctrl))
+}
+
 fn curve_row(
     r: usize,
     kinds: &arrow_array::StringArray,
@@ -872,36 +933,12 @@ fn curve_row(
     } else {
         ""
     };
-    let rows = control.value(r);
-    let rows = rows.as_list_opt::<i32>().ok_or_else(|| {
-        IoError::syntax(
-            at.clone().at_field("control"),
-            "not a list of lists of numbers",
-        )
-    })?;
-    let mut ctrl = Vec::new();
-    let mut dim = None;
-    for i in 0..rows.len() {
-        let p = floats(rows.value(i).as_ref(), at, "control")?;
-        if dim.is_some_and(|d| d != p.len()) {
-            return Err(IoError::syntax(
-                at.clone().at_field("control"),
-                format!(
-                    "point {i} has {} coordinates, point 0 has {}",
-                    p.len(),
-                    dim.unwrap_or(0)
-                ),
-            ));
-        }
-        dim = Some(p.len());
-        ctrl.extend(p);
-    }
+    let (dim, ctrl) = control_row(control, r, at)?;
     let invalid = |field: &str, error| IoError::Invalid {
         at: at.clone().at_field(field),
         error,
     };
-    let ctrl =
-        lekalo::Points::from_flat(dim.unwrap_or(0), ctrl).map_err(|e| invalid("control", e))?;
+    let ctrl = lekalo::Points::from_flat(dim, ctrl).map_err(|e| invalid("control", e))?;
     let degree = || {
         match degrees.get(r) {
             Some(GroupKey::Int(d)) => usize::try_from(d).ok(),

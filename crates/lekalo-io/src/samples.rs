@@ -6,6 +6,12 @@ use serde_json::{Map, Value};
 use crate::analysis::curvature;
 use crate::object::Object;
 
+/// From this many parameters on, a sample table is evaluated on all cores.
+const PARALLEL_ROWS: usize = 4096;
+
+/// Rows of CSV formatted by one task.
+const CSV_BLOCK: usize = 1 << 13;
+
 /// What to compute at each parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SampleSpec {
@@ -57,18 +63,36 @@ pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Resul
     } else {
         spec.derivatives
     };
-    let mut rows = Vec::with_capacity(ts.len());
-    for &t in ts {
+    let row = |t: f64| -> lekalo::Result<Vec<Option<f64>>> {
         let d = obj.derivatives(t, order)?;
-        let mut row = vec![Some(t)];
+        let mut row = Vec::with_capacity(1 + (spec.derivatives + 1) * dim + 1);
+        row.push(Some(t));
         for k in 0..=spec.derivatives {
             row.extend(d.point(k).iter().map(|v| Some(*v)));
         }
         if spec.curvature {
             row.push(curvature(d.point(1), d.point(2)));
         }
-        rows.push(row);
-    }
+        Ok(row)
+    };
+    // long samplings on all cores, rows in order; an error is then looked for again in order,
+    // so that the first parameter outside the domain is the one reported
+    let parallel = (ts.len() >= PARALLEL_ROWS)
+        .then(|| {
+            use rayon::prelude::*;
+            ts.par_iter()
+                .map(|&t| row(t))
+                .collect::<lekalo::Result<Vec<_>>>()
+                .ok()
+        })
+        .flatten();
+    let rows = match parallel {
+        Some(rows) => rows,
+        None => ts
+            .iter()
+            .map(|&t| row(t))
+            .collect::<lekalo::Result<Vec<_>>>()?,
+    };
     Ok(SampleTable { header, rows })
 }
 
@@ -85,34 +109,36 @@ impl SampleTable {
     }
 
     /// Writes the CSV of [`SampleTable::to_csv`] to `w`, the header line only if `header`, so
-    /// that a long sampling can be written chunk by chunk. The text is made in a buffer of
-    /// about 1 MB with no allocation per number, then handed to `w` whole.
+    /// that a long sampling can be written chunk by chunk. Rows are formatted with no
+    /// allocation per number, in blocks on all cores, and the blocks handed to `w` in order
+    /// (memory bounded by one round of blocks, see `json_write::write_list`).
     ///
     /// # Errors
     /// The writer's.
     pub fn write_csv(&self, w: &mut dyn std::io::Write, header: bool) -> std::io::Result<()> {
-        const FLUSH: usize = 1 << 20;
-        let mut out = Vec::with_capacity(FLUSH + 4096);
-        let mut digits = zmij::Buffer::new();
+        let mut out = Vec::with_capacity(4096);
         if header {
             out.extend_from_slice(self.header.join(",").as_bytes());
             out.push(b'\n');
         }
-        for row in &self.rows {
-            for (i, v) in row.iter().enumerate() {
-                if i > 0 {
-                    out.push(b',');
+        crate::json_write::write_list(
+            w,
+            &mut out,
+            self.rows.len(),
+            b"",
+            CSV_BLOCK,
+            |out, digits, r| {
+                for (i, v) in self.rows[r].iter().enumerate() {
+                    if i > 0 {
+                        out.push(b',');
+                    }
+                    if let Some(x) = v {
+                        crate::numfmt::push_number(out, digits, *x);
+                    }
                 }
-                if let Some(x) = v {
-                    crate::numfmt::push_number(&mut out, &mut digits, *x);
-                }
-            }
-            out.push(b'\n');
-            if out.len() >= FLUSH {
-                w.write_all(&out)?;
-                out.clear();
-            }
-        }
+                out.push(b'\n');
+            },
+        )?;
         w.write_all(&out)
     }
 

@@ -6,14 +6,14 @@
 use std::sync::Arc;
 
 use lekalo::{
-    ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs, CornerTransition,
-    Deformation, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
-    SplineParameters,
+    smooth_polyline_corners as smooth_polyline_corners_lib, ArcParametrization, BlendSpline,
+    BlendSplineOptions, CircularArcs, CornerTransition, CornerWindow, Deformation, JumpPolynomial,
+    LocalCurves, Parabolas, ParametricCurve, SharedCurve, SplineParameters,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats};
+use crate::convert::{array, check_size, filled, floats};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 
@@ -23,6 +23,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyDeformation>()?;
     m.add_class::<PyBlendSpline>()?;
     m.add_class::<PyCornerTransition>()?;
+    m.add_function(wrap_pyfunction!(smooth_polyline_corners, m)?)?;
     Ok(())
 }
 
@@ -63,9 +64,8 @@ fn eval_curve(
     let ts = ta.data();
     let dim = c.dim();
     let row = check_size("nu", &[nu.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), dim])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), dim])?;
+    let out = filled(py, &out_shape(&ta, &[dim]), |out| {
         let mut scratch = vec![0.0; row];
         ts.iter()
             .zip(out.chunks_exact_mut(dim))
@@ -74,9 +74,8 @@ fn eval_curve(
                 o.copy_from_slice(&scratch[nu * dim..]);
                 Ok(())
             })
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Derivatives `0..=order` at `t`: `t.shape + (order + 1, dim)`.
@@ -90,15 +89,13 @@ fn derivatives_curve(
     let ts = ta.data();
     let dim = c.dim();
     let row = check_size("order", &[order.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), row])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), row])?;
+    let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(row))
             .try_for_each(|(&t, o)| c.eval_derivatives_into(t, order, o))
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// The jump polynomial `w_k` of document 001: `w_k(0) = 0`, `w_k(1) = 1`, derivatives
@@ -409,3 +406,32 @@ blend_class!(PyCornerTransition, u, {
         self.inner.window()
     }
 });
+
+/// Every corner of a polyline smoothed with continuity `C^k` into one B-spline of degree `4k`
+/// (docs/theory/blending.md#polyline-corners): give the window as `fraction` (of the shorter
+/// segment at each corner, in (0, 0.5]; 0.25 when neither is given) or as `length`.
+#[pyfunction]
+#[pyo3(signature = (points, *, fraction = None, length = None, continuity = 2))]
+fn smooth_polyline_corners(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    fraction: Option<f64>,
+    length: Option<f64>,
+    continuity: usize,
+) -> PyResult<PyBSplineCurve> {
+    let window = match (fraction, length) {
+        (Some(_), Some(_)) => {
+            return Err(bad(
+                "give the window as fraction or as length, not both".into()
+            ))
+        }
+        (_, Some(r)) => CornerWindow::Length(r),
+        (f, None) => CornerWindow::Fraction(f.unwrap_or(0.25)),
+    };
+    let pa = floats(points, "points")?;
+    let pts = pa.points("points")?;
+    let s = py
+        .detach(|| smooth_polyline_corners_lib(pts, window, continuity))
+        .map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(s.into_curve()))
+}

@@ -12,7 +12,7 @@ use numpy::{
     PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
-use pyo3::types::{PyFloat, PyInt};
+use pyo3::types::{PyFloat, PyInt, PyTuple};
 
 use crate::error::{bad, lib_err};
 
@@ -85,6 +85,25 @@ pub(crate) fn grid_points<'a>(
     }
     let p = PointsRef::from_flat(s[2], a.data()).map_err(lib_err)?;
     Ok((p, (s[0], s[1])))
+}
+
+/// Surface parameters from two arguments `u`, `v` of one shape (arrays or numbers): the pairs
+/// `(u, v)` in C order, and `u`'s array, whose shape the result takes.
+pub(crate) fn uv_args<'py>(
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<(FloatArray<'py>, Vec<[f64; 2]>)> {
+    let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
+    if ua.shape() != va.shape() {
+        return Err(bad(format!(
+            "u and v: shapes differ ({:?} and {:?}); pass arrays of one shape (np.meshgrid for a tensor grid)",
+            ua.shape(),
+            va.shape()
+        )));
+    }
+    let pairs = ua.data().iter().zip(va.data()).map(|(&a, &b)| [a, b]);
+    let pairs = pairs.collect();
+    Ok((ua, pairs))
 }
 
 /// Refuses NaN and infinity with the index of the first offender.
@@ -205,6 +224,40 @@ pub(crate) fn out_array<'py>(
             "out: the array is in use elsewhere, or is also an input ({e}); pass another array"
         ))
     })
+}
+
+/// Results of at least this many numbers (256 KiB) are allocated by `numpy.empty`, smaller ones
+/// by the C API's zeros (which saves a Python call).
+const EMPTY_MIN: usize = 1 << 15;
+
+/// A new float64 array of `shape`, owned by NumPy from the start and written in place by `fill`
+/// (the whole array in C order) with the GIL released; `fill` must write every number. A large
+/// result comes from `numpy.empty`, so memory about to be overwritten is not first swept with
+/// zeros (a block the allocator reuses is not cleared at all; fresh memory costs its page
+/// faults only, on huge pages from 4 MiB, which NumPy asks for), and nothing is copied after.
+pub(crate) fn filled<'py, F>(
+    py: Python<'py>,
+    shape: &[usize],
+    fill: F,
+) -> PyResult<Bound<'py, PyAny>>
+where
+    F: FnOnce(&mut [f64]) -> lekalo::Result<()> + Send,
+{
+    let n = shape.iter().product::<usize>();
+    let arr = if n >= EMPTY_MIN {
+        let empty = py.import("numpy")?.getattr("empty")?;
+        empty
+            .call1((PyTuple::new(py, shape)?,))?
+            .cast_into::<PyArrayDyn<f64>>()?
+    } else {
+        PyArrayDyn::<f64>::zeros(py, shape, false)
+    };
+    {
+        let mut rw = arr.readwrite();
+        let buf = rw.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
+        py.detach(|| fill(buf)).map_err(lib_err)?;
+    }
+    Ok(arr.into_any())
 }
 
 /// A NumPy array of the given shape over `data` (moved, not copied).

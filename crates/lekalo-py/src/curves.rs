@@ -12,13 +12,12 @@ use lekalo::{
     PiecewisePolynomial, Points,
 };
 use lekalo_io::{Object, Shape};
-use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{
-    array, check_size, floats, out_array, owned_points, points_array, points_into_array, vec1,
-    vec_array, FloatArray,
+    array, check_size, filled, floats, out_array, owned_points, points_array, points_into_array,
+    vec1, vec_array, FloatArray,
 };
 use crate::error::{bad, io_err, lib_err};
 use crate::pp::PyPiecewisePolynomial;
@@ -51,15 +50,13 @@ where
 {
     let ta = floats(t, "t")?;
     let ts = ta.data();
-    let n = check_size("t", &[ts.len(), dim])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), dim])?;
+    let out = filled(py, &out_shape(&ta, &[dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(dim))
             .try_for_each(|(&t, o)| f(t, o))
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Derivatives up to `order` at every parameter with a per-point function returning rows.
@@ -76,9 +73,8 @@ where
     let ta = floats(t, "t")?;
     let ts = ta.data();
     let row = check_size("order", &[order.saturating_add(1), dim])?;
-    let n = check_size("t", &[ts.len(), row])?;
-    let mut out = vec![0.0; n];
-    py.detach(|| {
+    check_size("t", &[ts.len(), row])?;
+    let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
         ts.iter()
             .zip(out.chunks_exact_mut(row))
             .try_for_each(|(&t, o)| {
@@ -86,9 +82,8 @@ where
                 o.copy_from_slice(d.as_slice());
                 Ok(())
             })
-    })
-    .map_err(lib_err)?;
-    Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+    })?;
+    Ok(out.unbind())
 }
 
 /// Picks row `nu` out of a derivative result `t.shape + (order + 1, dim)`.
@@ -170,6 +165,29 @@ macro_rules! curve_class {
                     ev.eval_batch(ts, out)
                 }
             }
+
+            /// The `nu`-th derivative at `ts` into `out` (`dim` numbers a parameter), through
+            /// `derivatives_into` on blocks of parameters, so that the lower orders are never
+            /// stored for the whole batch. `nu` is at most `MAX_DERIVATIVE_ORDER`.
+            fn nth_derivative_into(
+                &self,
+                ts: &[f64],
+                nu: usize,
+                out: &mut [f64],
+            ) -> lekalo::Result<()> {
+                const BLOCK: usize = 1024;
+                let dim = self.inner.dim();
+                let row = (nu + 1) * dim;
+                let mut scratch = vec![0.0; BLOCK.min(ts.len()) * row];
+                for (tb, ob) in ts.chunks(BLOCK).zip(out.chunks_mut(BLOCK * dim)) {
+                    let s = &mut scratch[..tb.len() * row];
+                    self.derivatives_into(tb, nu, s)?;
+                    for (r, o) in s.chunks_exact(row).zip(ob.chunks_exact_mut(dim)) {
+                        o.copy_from_slice(&r[nu * dim..]);
+                    }
+                }
+                Ok(())
+            }
         }
 
         curve_class!($ty, $variant, $name, {
@@ -200,15 +218,23 @@ macro_rules! curve_class {
                 nu: usize,
                 out: Option<&Bound<'_, PyAny>>,
             ) -> PyResult<Py<PyAny>> {
-                if nu > 0 {
-                    if out.is_some() {
-                        return Err(bad("out: only for points (nu = 0)".into()));
-                    }
+                if nu > 0 && out.is_some() {
+                    return Err(bad("out: only for points (nu = 0)".into()));
+                }
+                if nu > lekalo::MAX_DERIVATIVE_ORDER {
+                    // the library's error for the order
                     return pick_order(py, self.derivatives(py, t, nu)?, nu);
                 }
                 let dim = self.inner.dim();
                 let ta = floats(t, "t")?;
                 let ts = ta.data();
+                if nu > 0 {
+                    check_size("t", &[ts.len(), nu + 1, dim])?;
+                    let d = filled(py, &out_shape(&ta, &[dim]), |buf| {
+                        self.nth_derivative_into(ts, nu, buf)
+                    })?;
+                    return Ok(d.unbind());
+                }
                 if let Some(o) = out {
                     let mut rw = out_array(o, &out_shape(&ta, &[dim]))?;
                     let buf = rw
@@ -224,18 +250,9 @@ macro_rules! curve_class {
                     return Ok(array(py, out, &[dim])?.unbind());
                 }
                 check_size("t", &[ts.len(), dim])?;
-                // the result is allocated by NumPy in its final shape and written in place
-                // (NumPy's allocator asks for huge pages for large arrays, which makes the
-                // first write of a fresh result several times cheaper than a `Vec`'s pages)
-                let arr = PyArrayDyn::<f64>::zeros(py, out_shape(&ta, &[dim]), false);
-                {
-                    let mut rw = arr.readwrite();
-                    let buf = rw
-                        .as_slice_mut()
-                        .map_err(|e| bad(format!("result: {e}")))?;
-                    py.detach(|| self.evaluate_into(ts, buf)).map_err(lib_err)?;
-                }
-                Ok(arr.into_any().unbind())
+                // allocated by NumPy in its final shape and written in place
+                let out = filled(py, &out_shape(&ta, &[dim]), |buf| self.evaluate_into(ts, buf))?;
+                Ok(out.unbind())
             }
 
             /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
@@ -515,6 +532,12 @@ impl PyBSplineCurve {
     fn evaluator(&self) -> &CurveEvaluator {
         self.evaluator.get_or_init(|| self.inner.evaluator())
     }
+
+    /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
+    /// parameter.
+    fn derivatives_into(&self, ts: &[f64], order: usize, out: &mut [f64]) -> lekalo::Result<()> {
+        self.evaluator().eval_derivatives_batch(ts, order, out)
+    }
 }
 
 curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
@@ -555,7 +578,7 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         let ta = floats(t, "t")?;
         let ts = ta.data();
         let row = check_size("order", &[order.saturating_add(1), dim])?;
-        let n = check_size("t", &[ts.len(), row])?;
+        check_size("t", &[ts.len(), row])?;
         if order > lekalo::MAX_DERIVATIVE_ORDER {
             // the library's own message for the limit
             return Err(lib_err(
@@ -568,10 +591,10 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
                     }),
             ));
         }
-        let mut out = vec![0.0; n];
-        py.detach(|| self.evaluator().eval_derivatives_batch(ts, order, &mut out))
-            .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&ta, &[order + 1, dim]))?.unbind())
+        let out = filled(py, &out_shape(&ta, &[order + 1, dim]), |out| {
+            self.evaluator().eval_derivatives_batch(ts, order, out)
+        })?;
+        Ok(out.unbind())
     }
 
     /// The derivative curve `C'` (degree `p − 1`).
@@ -662,6 +685,18 @@ impl PyNurbsCurve {
     /// The fast evaluator, built on first use and kept.
     fn evaluator(&self) -> &NurbsEvaluator {
         self.evaluator.get_or_init(|| self.inner.evaluator())
+    }
+
+    /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
+    /// parameter.
+    fn derivatives_into(&self, ts: &[f64], order: usize, out: &mut [f64]) -> lekalo::Result<()> {
+        let row = (order + 1) * self.inner.dim();
+        ts.iter()
+            .zip(out.chunks_exact_mut(row))
+            .try_for_each(|(&t, o)| {
+                o.copy_from_slice(self.inner.eval_derivatives(t, order)?.as_slice());
+                Ok(())
+            })
     }
 }
 

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
 use crate::convert::{
-    array, check_size, floats, grid_points, owned_points, points_array, vec1, vec_array,
+    check_size, filled, floats, grid_points, owned_points, points_array, vec1, vec_array,
 };
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
 use crate::error::{bad, lib_err};
@@ -337,18 +337,16 @@ impl PyCubicHermite {
         let ta = floats(t, "t")?;
         let ts = ta.data();
         let dim = self.inner.points().dim();
-        let n = check_size("t", &[ts.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| {
+        check_size("t", &[ts.len(), dim])?;
+        let out = filled(py, &out_shape(&ta, &[dim]), |out| {
             ts.iter()
                 .zip(out.chunks_exact_mut(dim))
                 .try_for_each(|(&t, o)| {
                     o.copy_from_slice(&self.inner.eval(t)?);
                     Ok(())
                 })
-        })
-        .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&ta, &[dim]))?.unbind())
+        })?;
+        Ok(out.unbind())
     }
 
     /// The same curve as a B-spline (knots of multiplicity 2 at the parameters).

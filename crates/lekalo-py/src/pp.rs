@@ -1,24 +1,52 @@
 //! Piecewise polynomials in pp-form, the spaces `P_{k,ξ,ν}` and quasi-interpolation
 //! (document 003, docs/theory/pp.md).
 
-use lekalo::{PiecewisePolynomial, PpSpace, TauRule};
+use lekalo::{PiecewisePolynomial, PpSpace, Tau, TauRule};
 use lekalo_io::Shape;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats, vec1, vec_array};
+use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
 use crate::curves::{out_shape, reduce, PyBSplineCurve};
 use crate::error::{bad, io_err, lib_err};
 
-fn rule_arg(s: &str) -> PyResult<TauRule> {
-    match s {
-        "first_knot_after" => Ok(TauRule::FirstKnotAfter),
-        "left_end" => Ok(TauRule::LeftEndOfSupport),
-        "midpoint" => Ok(TauRule::Midpoint),
-        "greville" => Ok(TauRule::Greville),
-        _ => Err(bad(format!(
-            "rule: unknown value {s:?}; use 'first_knot_after', 'left_end', 'midpoint' or 'greville'"
-        ))),
+/// A `rule` argument: the name of a τ rule, or explicit τ values (one per B-spline, each in
+/// its support `[x_i, x_{i+k}]`; docs/theory/pp.md#explicit-tau-values).
+enum TauArg {
+    Rule(TauRule),
+    Values(Vec<f64>),
+}
+
+impl TauArg {
+    /// Reads the argument; absent, the default rule (document 003's first knot after `x_i`).
+    fn read(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let Some(obj) = obj else {
+            return Ok(Self::Rule(TauRule::FirstKnotAfter));
+        };
+        if let Ok(s) = obj.extract::<String>() {
+            return Ok(Self::Rule(match s.as_str() {
+                "first_knot_after" => TauRule::FirstKnotAfter,
+                "left_end" => TauRule::LeftEndOfSupport,
+                "midpoint" => TauRule::Midpoint,
+                "greville" => TauRule::Greville,
+                "first_interval_midpoint" => TauRule::FirstIntervalMidpoint,
+                _ => {
+                    return Err(bad(format!(
+                        "rule: unknown value {s:?}; use 'first_knot_after', 'left_end', \
+                         'midpoint', 'greville', 'first_interval_midpoint' or an array of τ values"
+                    )))
+                }
+            }));
+        }
+        Ok(Self::Values(vec1(obj, "rule")?))
+    }
+
+    /// The library's view of the choice.
+    fn tau(&self) -> Tau<'_> {
+        match self {
+            Self::Rule(r) => Tau::Rule(*r),
+            Self::Values(v) => Tau::Values(v),
+        }
     }
 }
 
@@ -103,9 +131,8 @@ impl PyPiecewisePolynomial {
         let xa = floats(x, "x")?;
         let xs = xa.data();
         let dim = self.inner.dim();
-        let n = check_size("x", &[xs.len(), dim])?;
-        let mut out = vec![0.0; n];
-        py.detach(|| {
+        check_size("x", &[xs.len(), dim])?;
+        let out = filled(py, &out_shape(&xa, &[dim]), |out| {
             let d;
             let f = if nu == 0 {
                 &self.inner
@@ -116,9 +143,8 @@ impl PyPiecewisePolynomial {
             xs.iter()
                 .zip(out.chunks_exact_mut(dim))
                 .try_for_each(|(&x, o)| f.eval_into(x, o))
-        })
-        .map_err(lib_err)?;
-        Ok(array(py, out, &out_shape(&xa, &[dim]))?.unbind())
+        })?;
+        Ok(out.unbind())
     }
 
     /// The `j`-th derivative as a piecewise polynomial.
@@ -135,17 +161,20 @@ impl PyPiecewisePolynomial {
         Ok(vec_array(py, &self.inner.jump(i, j).map_err(lib_err)?))
     }
 
-    /// The B-spline form in `space` by the de Boor–Fix functionals at the points of `rule`.
-    #[pyo3(signature = (space, rule = "first_knot_after"))]
+    /// The B-spline form in `space` by the de Boor–Fix functionals at the points `τ` of
+    /// `rule`: `'first_knot_after'` (default), `'left_end'`, `'midpoint'`, `'greville'`,
+    /// `'first_interval_midpoint'` (docs/theory/pp.md#the-two-tau-rules), or an array of τ
+    /// values, one per B-spline, each in its support.
+    #[pyo3(signature = (space, rule = None))]
     fn to_bspline(
         &self,
         py: Python<'_>,
         space: &PyPpSpace,
-        rule: &str,
+        rule: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyBSplineCurve> {
-        let r = rule_arg(rule)?;
+        let r = TauArg::read(rule)?;
         let c = py
-            .detach(|| self.inner.to_bspline(&space.inner, r))
+            .detach(|| self.inner.to_bspline(&space.inner, r.tau()))
             .map_err(lib_err)?;
         Ok(PyBSplineCurve::wrap(c))
     }
@@ -286,16 +315,18 @@ impl PyPpSpace {
 /// Quasi-interpolation (de Boor–Fix, document 003 §D.5): the B-spline in `space` whose
 /// coefficients are the dual functionals applied to `f`, where `f(t, r)` returns the `r`-th
 /// derivative of the function at `t`. `f` is Python code, so the GIL is held while it runs.
+/// `rule` chooses the points `τ` as in `PiecewisePolynomial.to_bspline`: a rule's name or an
+/// array of τ values.
 #[pyfunction]
-#[pyo3(signature = (space, f, rule = "first_knot_after"))]
+#[pyo3(signature = (space, f, rule = None))]
 pub(crate) fn quasi_interpolate(
     space: &PyPpSpace,
     f: &Bound<'_, PyAny>,
-    rule: &str,
+    rule: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
-    let r = rule_arg(rule)?;
+    let r = TauArg::read(rule)?;
     let mut failure: Option<PyErr> = None;
-    let c = lekalo::quasi_interpolate(&space.inner, r, |t, k| {
+    let c = lekalo::quasi_interpolate(&space.inner, r.tau(), |t, k| {
         if failure.is_some() {
             return 0.0;
         }

@@ -11,7 +11,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::convert::{array, check_size, floats, points_into_array, vec1, vec_array};
+use crate::convert::{array, check_size, floats, points_into_array, uv_args, vec1, vec_array};
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::{PyBSplineSurface, PyBezierSurface, PyNurbsSurface};
@@ -67,6 +67,39 @@ fn query_points(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<(Poi
         )));
     }
     Ok((a.points(what)?.to_owned(), false))
+}
+
+/// Three arrays.
+type Arrays3<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>);
+
+/// The result of `project` for `n` query points: the parameters (`width` numbers a point: 1
+/// for a curve's `t`, 2 for a surface's `(u, v)`), the closest points (`dim` numbers a point)
+/// and the distances, as arrays `(n,)` or `(n, width)`, `(n, dim)`, `(n,)`; for one query
+/// point (`one`) without the `n` axis, a lone parameter or distance as a float.
+fn projections(
+    py: Python<'_>,
+    (params, width): (Vec<f64>, usize),
+    (closest, dim): (Vec<f64>, usize),
+    distances: Vec<f64>,
+    one: bool,
+) -> PyResult<Arrays3<'_>> {
+    let n = distances.len();
+    let params = match (one, width) {
+        (true, 1) => params[0].into_pyobject(py)?.into_any(),
+        (true, _) | (false, 1) => vec_array(py, &params),
+        (false, _) => array(py, params, &[n, width])?,
+    };
+    let closest = if one {
+        vec_array(py, &closest)
+    } else {
+        array(py, closest, &[n, dim])?
+    };
+    let distances = if one {
+        distances[0].into_pyobject(py)?.into_any()
+    } else {
+        vec_array(py, &distances)
+    };
+    Ok((params, closest, distances))
 }
 
 /// `(t_a, t_b)` pairs and points of curve intersections, overlaps as intervals.
@@ -217,11 +250,7 @@ impl PyCurveQuery {
     /// `(t, closest, distance)` with shapes `(n,)`, `(n, dim)`, `(n,)` (a float, `(dim,)`, a
     /// float for one point). The global minimum, by subdivision of the pieces and Newton's
     /// method (`docs/theory/queries.md#closest-points`).
-    fn project<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    fn project<'py>(&self, py: Python<'py>, points: &Bound<'py, PyAny>) -> PyResult<Arrays3<'py>> {
         let dim = self.inner.dim();
         let (pts, one) = query_points(points, "points", dim)?;
         let r = py
@@ -230,19 +259,7 @@ impl PyCurveQuery {
         let t: Vec<f64> = r.iter().map(|p| p.t).collect();
         let d: Vec<f64> = r.iter().map(|p| p.distance).collect();
         let c: Vec<f64> = r.iter().flat_map(|p| p.point.iter().copied()).collect();
-        if one {
-            return Ok((
-                t[0].into_pyobject(py)?.into_any(),
-                vec_array(py, &c),
-                d[0].into_pyobject(py)?.into_any(),
-            ));
-        }
-        let n = t.len();
-        Ok((
-            vec_array(py, &t),
-            array(py, c, &[n, dim])?,
-            vec_array(py, &d),
-        ))
+        projections(py, (t, 1), (c, dim), d, one)
     }
 
     /// Every local minimum of the distance to `point` within `tolerance` of the least, sorted
@@ -468,11 +485,7 @@ impl PySurfaceQuery {
 
     /// Closest points of the surface to `points` (`(n, dim)` or one point `(dim,)`):
     /// `(uv, closest, distance)` with shapes `(n, 2)`, `(n, dim)`, `(n,)`.
-    fn project<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    fn project<'py>(&self, py: Python<'py>, points: &Bound<'py, PyAny>) -> PyResult<Arrays3<'py>> {
         let dim = self.inner.dim();
         let (pts, one) = query_points(points, "points", dim)?;
         let r = py
@@ -485,19 +498,7 @@ impl PySurfaceQuery {
         let uv: Vec<f64> = r.iter().flat_map(|p| [p.uv.0, p.uv.1]).collect();
         let d: Vec<f64> = r.iter().map(|p| p.distance).collect();
         let c: Vec<f64> = r.iter().flat_map(|p| p.point.iter().copied()).collect();
-        if one {
-            return Ok((
-                vec_array(py, &uv),
-                vec_array(py, &c),
-                d[0].into_pyobject(py)?.into_any(),
-            ));
-        }
-        let n = d.len();
-        Ok((
-            array(py, uv, &[n, 2])?,
-            array(py, c, &[n, dim])?,
-            vec_array(py, &d),
-        ))
+        projections(py, (uv, 2), (c, dim), d, one)
     }
 
     /// A triangle mesh within `tolerance` (absolute) of the surface: `(vertices (m, dim),
@@ -536,22 +537,13 @@ impl PySurfaceQuery {
         Bound<'py, PyAny>,
         Bound<'py, PyAny>,
     )> {
-        let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-        if ua.shape() != va.shape() {
-            return Err(bad(format!(
-                "u and v: shapes differ ({:?} and {:?})",
-                ua.shape(),
-                va.shape()
-            )));
-        }
-        let n = check_size("u", &[ua.data().len(), 4])?;
+        let (ua, uv) = uv_args(u, v)?;
+        let n = check_size("u", &[uv.len(), 4])?;
         let mut out = vec![0.0; n];
-        let (us, vs) = (ua.data(), va.data());
         py.detach(|| {
-            us.iter()
-                .zip(vs)
+            uv.iter()
                 .zip(out.chunks_exact_mut(4))
-                .try_for_each(|((&u, &v), o)| {
+                .try_for_each(|(&[u, v], o)| {
                     let c = self.inner.curvature(u, v)?;
                     o.copy_from_slice(&[c.gaussian, c.mean, c.principal.0, c.principal.1]);
                     Ok(())

@@ -7,7 +7,7 @@ use lekalo_io::{Shape, Surface};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, floats, grid_points, vec1, vec_array, FloatArray};
+use crate::convert::{array, check_size, filled, floats, grid_points, uv_args, vec1, vec_array};
 use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
@@ -24,22 +24,6 @@ fn net_array<'py>(
     (nu, nv): (usize, usize),
 ) -> PyResult<Bound<'py, PyAny>> {
     array(py, p.as_slice().to_vec(), &[nu, nv, p.dim()])
-}
-
-/// Pairs `(u, v)` from two arrays of one shape.
-fn uv_pairs<'a>(u: &FloatArray<'a>, v: &FloatArray<'a>) -> PyResult<Vec<[f64; 2]>> {
-    if u.shape() != v.shape() {
-        return Err(bad(format!(
-            "u and v: shapes differ ({:?} and {:?}); use grid(us, vs) for a tensor grid",
-            u.shape(),
-            v.shape()
-        )));
-    }
-    Ok(u.data()
-        .iter()
-        .zip(v.data())
-        .map(|(&a, &b)| [a, b])
-        .collect())
 }
 
 fn shape_of(text: &str) -> PyResult<Shape> {
@@ -92,11 +76,11 @@ macro_rules! surface_common {
                 let (ua, va) = (floats(us, "us")?, floats(vs, "vs")?);
                 let (u, v) = (ua.vector("us")?, va.vector("vs")?);
                 let dim = self.inner.dim();
-                let n = check_size("us, vs", &[u.len(), v.len(), dim])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| self.inner.eval_grid(u, v, &mut out))
-                    .map_err(lib_err)?;
-                Ok(array(py, out, &[u.len(), v.len(), dim])?.unbind())
+                check_size("us, vs", &[u.len(), v.len(), dim])?;
+                let out = filled(py, &[u.len(), v.len(), dim], |out| {
+                    self.inner.eval_grid(u, v, out)
+                })?;
+                Ok(out.unbind())
             }
 
             /// Inserts `u` into the `u` knots `times` times (P&T A5.3).
@@ -172,18 +156,15 @@ macro_rules! surface_common {
                 u: &Bound<'_, PyAny>,
                 v: &Bound<'_, PyAny>,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
+                let (ua, uv) = uv_args(u, v)?;
                 let dim = self.inner.dim();
-                let n = check_size("u, v", &[uv.len(), dim])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                check_size("u, v", &[uv.len(), dim])?;
+                let out = filled(py, &out_shape(&ua, &[dim]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(dim))
                         .try_for_each(|(&[u, v], o)| self.inner.eval_into(u, v, o))
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[dim]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// Partial derivatives `∂^{a+b} S / ∂u^a ∂v^b` for `a, b ≤ order` at `(u, v)`:
@@ -195,14 +176,12 @@ macro_rules! surface_common {
                 v: &Bound<'_, PyAny>,
                 order: usize,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
+                let (ua, uv) = uv_args(u, v)?;
                 let dim = self.inner.dim();
                 let k = order.saturating_add(1);
                 let row = check_size("order", &[k, k, dim])?;
-                let n = check_size("u, v", &[uv.len(), row])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                check_size("u, v", &[uv.len(), row])?;
+                let out = filled(py, &out_shape(&ua, &[k, k, dim]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(row))
                         .try_for_each(|(&[u, v], o)| {
@@ -210,9 +189,8 @@ macro_rules! surface_common {
                             o.copy_from_slice(d.as_slice());
                             Ok(())
                         })
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[k, k, dim]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// Unit normals at `(u, v)` (3-D surfaces): `shape + (3,)`.
@@ -222,20 +200,17 @@ macro_rules! surface_common {
                 u: &Bound<'_, PyAny>,
                 v: &Bound<'_, PyAny>,
             ) -> PyResult<Py<PyAny>> {
-                let (ua, va) = (floats(u, "u")?, floats(v, "v")?);
-                let uv = uv_pairs(&ua, &va)?;
-                let n = check_size("u, v", &[uv.len(), 3])?;
-                let mut out = vec![0.0; n];
-                py.detach(|| {
+                let (ua, uv) = uv_args(u, v)?;
+                check_size("u, v", &[uv.len(), 3])?;
+                let out = filled(py, &out_shape(&ua, &[3]), |out| {
                     uv.iter()
                         .zip(out.chunks_exact_mut(3))
                         .try_for_each(|(&[u, v], o)| {
                             o.copy_from_slice(&self.inner.normal(u, v)?);
                             Ok(())
                         })
-                })
-                .map_err(lib_err)?;
-                Ok(array(py, out, &out_shape(&ua, &[3]))?.unbind())
+                })?;
+                Ok(out.unbind())
             }
 
             /// JSON text in the command-line tool's format.

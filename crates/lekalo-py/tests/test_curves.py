@@ -1,6 +1,9 @@
 """Curves, surfaces, pp-forms: evaluation against SciPy, operations, JSON and pickle."""
 
+import json
+import math
 import pickle
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -205,6 +208,73 @@ def test_pp_form():
     with pytest.raises(ZeroDivisionError):
         lekalo.quasi_interpolate(space, lambda t, r: 1 / 0)
     assert len(space.truncated_power_basis()) == space.dimension
+
+
+def test_large_results_written_in_full():
+    """Results of 2^15 numbers and more are NumPy arrays allocated without zeros: every entry
+    must be written (compared with SciPy everywhere, NaN-free), for points, derivatives and
+    surfaces, and an error found late in a batch still raises."""
+    t = np.concatenate([[0] * 4, np.sort(RNG.random(30)), [1] * 4])
+    ctrl = RNG.standard_normal((34, 3))
+    c, ref = lekalo.BSplineCurve(3, t, ctrl), si.BSpline(t, ctrl, 3)
+    for _ in range(3):  # reused memory from the allocator, too
+        x = RNG.random(40_000)
+        np.testing.assert_allclose(c(x), ref(x), rtol=0, atol=1e-12)
+        d = c.derivatives(x, 2)
+        for k in range(3):
+            np.testing.assert_allclose(d[:, k], ref(x, nu=k), rtol=1e-10, atol=1e-9)
+            # c(x, nu=k) goes through blocks of derivatives: the same numbers
+            assert np.array_equal(c(x, nu=k), d[:, k])
+        np.testing.assert_allclose(c(x.reshape(200, 200)), ref(x).reshape(200, 200, 3), rtol=0, atol=1e-12)
+    bad = RNG.random(40_000)
+    bad[-1] = 1.5
+    with pytest.raises(lekalo.Error):
+        c(bad)
+    with pytest.raises(lekalo.Error):
+        c(bad, nu=1)
+    circle = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
+    x = np.linspace(*circle.domain, 5000).reshape(50, 100)
+    assert np.array_equal(circle(x, nu=2), circle.derivatives(x, 2)[..., 2, :])
+    assert circle(0.3, nu=1).shape == (2,)
+    s = lekalo.interpolate_surface(RNG.standard_normal((6, 7, 3)), 3, 3)
+    u, v = RNG.random(20_000), RNG.random(20_000)
+    got = s(u, v)
+    assert got.shape == (20_000, 3) and np.isfinite(got).all()
+    np.testing.assert_allclose(got[:50], np.array([s(a, b) for a, b in zip(u[:50], v[:50])]), rtol=0, atol=1e-13)
+    np.testing.assert_allclose(s.grid(u[:200], v[:200])[7, 11], s(u[7], v[11]), rtol=0, atol=1e-13)
+
+
+def xcosx(t, r):
+    """The r-th derivative of x cos x, by the command-line tool's formula."""
+    h = math.pi / 2
+    return t * math.cos(t + r * h) + r * math.cos(t + (r - 1) * h)
+
+
+def test_quasi_tau_like_cli():
+    """Every τ choice (the first-interval-midpoint rule, a rule, explicit values) gives the
+    command-line tool's coefficients; data/make_pp_quasi_cli.py wrote them."""
+    ref = json.loads((Path(__file__).parent / "data" / "pp_quasi_cli.json").read_text())
+    space = lekalo.PpSpace(ref["breakpoints"], ref["order"], ref["continuity"])
+    for case in ref["cases"]:
+        flag, value = case["choice"]
+        rule = value.replace("-", "_") if flag == "--rule" else np.array(value.split(","), dtype=float)
+        q = lekalo.quasi_interpolate(space, xcosx, rule=rule)
+        want = lekalo.from_json(json.dumps(case["curve"]))
+        assert np.array_equal(q.knots, want.knots), case["command"]
+        np.testing.assert_allclose(q.control, want.control, rtol=0, atol=1e-15, err_msg=case["command"])
+    # the rules differ on these repeated knots, so the test tells them apart
+    q = lekalo.quasi_interpolate(space, xcosx, rule="first_interval_midpoint")
+    assert not np.allclose(q.control, lekalo.quasi_interpolate(space, xcosx).control)
+    # τ never on a knot: a member of the space comes back from its pp-form exactly, even across
+    # the discontinuity at the triple knot
+    back = q.to_pp().to_bspline(space, "first_interval_midpoint")
+    np.testing.assert_allclose(back.control, q.control, rtol=0, atol=1e-14)
+    with pytest.raises(lekalo.Error, match="first_interval_midpoint"):
+        lekalo.quasi_interpolate(space, xcosx, rule="first-interval")
+    with pytest.raises(lekalo.Error):
+        lekalo.quasi_interpolate(space, xcosx, rule=np.zeros(3))
+    with pytest.raises(lekalo.Error, match="rule"):
+        lekalo.quasi_interpolate(space, xcosx, rule=np.full(11, np.nan))
 
 
 def all_objects():

@@ -18,8 +18,24 @@ function defaultState() {
     bezier: { control: [[1, 1], [3, 5], [7, 5], [9, 1]] },
     blend: { k: 2, a: [[1, 2], [3, 5.5], [7, 5.5], [9, 2]], b: [[3, 0.5], [7, 0.5]] },
     corners: { k: 2, closed: false, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
-    quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first_knot_after' },
+    quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first_knot_after', tau: '' },
+    fit: { smoothing: 'lambda', lambda: -4, s: 0, points: noisyPoints(1) },
+    query: false,
+    queryLength: 1,
   };
+}
+
+// 40 samples of a wave with deterministic noise (a linear congruential generator seeded by
+// `seed`), so that a shared link shows the same points
+function noisyPoints(seed) {
+  let r = seed >>> 0;
+  const rand = () => { r = (Math.imul(r, 1664525) + 1013904223) >>> 0; return r / 4294967296 - 0.5; };
+  const out = [];
+  for (let i = 0; i < 40; i++) {
+    const x = 0.6 + i * 8.8 / 39;
+    out.push([r4(x + 0.1 * rand()), r4(3.1 + 1.8 * Math.sin(0.9 * x) + 0.7 * rand())]);
+  }
+  return out;
 }
 
 let state = loadHash() || defaultState();
@@ -103,6 +119,10 @@ async function pump() {
     inFlight++;
     try {
       const answer = await compute();
+      if (state.query && state.mode !== 'quasi') {
+        answer.measure = await post('/api/measure', { curve: answer.view.curve, at_length: [state.queryLength] })
+          .catch((e) => ({ error: e }));
+      }
       clearErrors();
       draw(answer);
     } catch (e) {
@@ -159,13 +179,28 @@ function compute() {
     return post('/api/blend/corners', { points: c.points, continuity: c.k, closed: c.closed, samples: 400 })
       .then((v) => ({ view: v }));
   }
-  const q = s.quasi;
-  const breaks = q.breaks.split(/[\s,;]+/).filter((x) => x !== '').map(Number);
-  if (breaks.some((x) => !Number.isFinite(x))) {
-    return Promise.reject(Object.assign(new Error('breakpoints: give numbers separated by commas'), { field: 'breakpoints' }));
+  if (m === 'fit') {
+    const f = s.fit;
+    const req = Object.assign({ points: f.points, smoothing: f.smoothing }, view);
+    if (f.smoothing === 'lambda') req.lambda = Math.pow(10, f.lambda);
+    if (f.smoothing === 's') req.s = Math.pow(10, f.s);
+    return post('/api/fit', req);
   }
-  return post('/api/quasi', { expression: q.expr, breakpoints: breaks, order: q.order, rule: q.rule,
-    intervals: 200, basis_samples: 300 });
+  const q = s.quasi;
+  const breaks = numberList(q.breaks, 'breakpoints');
+  const req = { expression: q.expr, breakpoints: breaks, order: q.order, intervals: 200, basis_samples: 300 };
+  if (q.rule === 'explicit') req.tau = numberList(q.tau, 'tau');
+  else req.rule = q.rule;
+  return post('/api/quasi', req);
+}
+
+// numbers typed in a text field, separated by commas, spaces or semicolons
+function numberList(text, field) {
+  const v = text.split(/[\s,;]+/).filter((x) => x !== '').map(Number);
+  if (v.some((x) => !Number.isFinite(x))) {
+    throw Object.assign(new Error(`${field}: give numbers separated by commas`), { field });
+  }
+  return v;
 }
 
 function bezierObject(control) { return { lekalo: 1, type: 'bezier_curve', control }; }
@@ -209,6 +244,7 @@ function draw(answer) {
   const curvePts = m === 'quasi' ? v.points.map((p, i) => [v.t[i], p[0]]) : v.points;
   $('curve').setAttribute('d', pathOf(curvePts));
   const showPolygon = m === 'bspline' || m === 'bezier' || m === 'blend';
+  drawQuery(answer);
   $('polygon').setAttribute('d', showPolygon ? pathOf(m === 'blend' ? state.blend.a : v.control) : '');
   $('exact').setAttribute('d', m === 'quasi' ? pathOf(answer.t.map((t, i) => [t, answer.exact[i]])) : '');
   if (m === 'blend') {
@@ -284,6 +320,7 @@ function editable() {
     case 'bezier': return s.bezier.control;
     case 'blend': return s.blend.a.concat(s.blend.b);
     case 'corners': return s.corners.points;
+    case 'fit': return s.fit.points;
     default: return [];
   }
 }
@@ -305,7 +342,7 @@ let selected = -1;
 function drawPoints() {
   const g = $('points');
   const pts = editable();
-  const cls = state.mode === 'interpolate' || state.mode === 'corners' ? 'data' : 'cp';
+  const cls = { interpolate: 'data', corners: 'data', fit: 'data fit-data' }[state.mode] || 'cp';
   const na = state.blend.a.length;
   // the circles are kept while their number is unchanged: the one being dragged keeps its
   // pointer capture across redraws
@@ -387,6 +424,12 @@ function drawInfo(answer) {
     $('bz-info').textContent = `degree ${answer.degree}, real degree ${answer.real_degree}` +
       (bezierDeviation ? `; last approximate reduction: max deviation ${bezierDeviation.sampled.toExponential(3)} (bound ${bezierDeviation.bound.toExponential(3)})` : '');
   }
+  if (answer.report) {
+    const r = answer.report;
+    $('fit-info').textContent = `residual max ${r.max_residual.toPrecision(4)} (point ${r.max_index}), RMS ${r.rms.toPrecision(4)}; ` +
+      `${r.interior_knots} interior knots, ${r.control_points} control points` +
+      (r.lambda !== null ? `; λ = ${r.lambda.toPrecision(4)}` : '');
+  }
   if (answer.max_error !== undefined) {
     $('qi-info').textContent = `max |f − q| on 200 intervals: ${answer.max_error.toExponential(4)}`;
     drawError(answer);
@@ -419,7 +462,7 @@ function showError(e) {
   const panel = document.querySelector(`.panel[data-mode="${state.mode}"]`);
   for (const f of candidates) {
     if (!f) continue;
-    const target = (panel && panel.querySelector(`[data-err="${f}"]`)) || document.querySelector(`aside > [data-err="${f}"], header [data-err="${f}"], .views [data-err="${f}"]`);
+    const target = (panel && panel.querySelector(`[data-err="${f}"]`)) || document.querySelector(`aside > [data-err="${f}"], #query-panel [data-err="${f}"], header [data-err="${f}"], .views [data-err="${f}"]`);
     if (target) { target.textContent = e.message; return; }
   }
   $('error-other').textContent = e.message;
@@ -533,7 +576,21 @@ function syncControls() {
   $('qi-breaks').value = s.quasi.breaks;
   $('qi-order').value = s.quasi.order;
   $('qi-rule').value = s.quasi.rule;
-  document.querySelectorAll('.panel').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
+  $('qi-tau').value = s.quasi.tau || '';
+  $('qi-tau-label').hidden = s.quasi.rule !== 'explicit';
+  $('fit-mode').value = s.fit.smoothing;
+  $('fit-slider-label').hidden = s.fit.smoothing === 'gcv';
+  $('fit-name').textContent = s.fit.smoothing === 's' ? 's' : 'λ';
+  // log10 λ from -9 to 1 (λ weighs ∫|f''|² against the squared residuals), log10 s from -2 to 2
+  $('fit-slider').min = s.fit.smoothing === 's' ? -2 : -9;
+  $('fit-slider').max = s.fit.smoothing === 's' ? 2 : 1;
+  $('fit-slider').value = s.fit.smoothing === 's' ? s.fit.s : s.fit.lambda;
+  $('fit-value').textContent = '= ' + Math.pow(10, Number($('fit-slider').value)).toPrecision(3);
+  $('query').checked = s.query;
+  $('query-length').value = s.queryLength;
+  $('query-panel').hidden = !s.query || s.mode === 'quasi';
+  if (!s.query) hideProjection();
+  document.querySelectorAll('.panel[data-mode]').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
   $('help').textContent = HELP[s.mode];
   syncWeight();
 }
@@ -550,6 +607,7 @@ const HELP = {
   blend: 'Curve A (filled points) and curve B (open points) share their end points; the solid curve is the C^k deformation of A into B. Click to add a point to B.',
   corners: 'Click to add a corner, drag to move, Alt+click to delete; the corners are smoothed with C^k.',
   quasi: 'Type f(x); the quasi-interpolant q (solid) and f (dashed); the lower panel plots f − q.',
+  fit: 'Noisy points (click to add, drag, Alt+click to delete) smoothed by the library: move the slider to trade the residual against smoothness.',
 };
 
 function bindNumber(id, get, set) {
@@ -600,7 +658,27 @@ function bind() {
   $('qi-expr').addEventListener('change', commit);
   $('qi-breaks').addEventListener('change', () => { state.quasi.breaks = $('qi-breaks').value; commit(); update(); });
   bindNumber('qi-order', null, (v) => { state.quasi.order = v; });
-  $('qi-rule').addEventListener('change', () => { state.quasi.rule = $('qi-rule').value; commit(); update(); });
+  $('qi-rule').addEventListener('change', () => { state.quasi.rule = $('qi-rule').value; commit(); syncControls(); update(); });
+  $('qi-tau').addEventListener('change', () => { state.quasi.tau = $('qi-tau').value; commit(); update(); });
+  $('fit-mode').addEventListener('change', () => { state.fit.smoothing = $('fit-mode').value; commit(); syncControls(); update(); });
+  $('fit-slider').addEventListener('input', () => {
+    state.fit[state.fit.smoothing === 's' ? 's' : 'lambda'] = Number($('fit-slider').value);
+    $('fit-value').textContent = '= ' + Math.pow(10, Number($('fit-slider').value)).toPrecision(3);
+    update();
+  });
+  $('fit-slider').addEventListener('change', commit);
+  $('fit-noise').addEventListener('click', () => {
+    state.fit.points = noisyPoints(1 + Math.floor(Math.random() * 1e9));
+    commit(); update();
+  });
+  $('query').addEventListener('change', () => { state.query = $('query').checked; commit(); syncControls(); update(); });
+  $('query-length').addEventListener('change', () => { state.queryLength = Number($('query-length').value); commit(); update(); });
+  $('canvas').addEventListener('pointermove', (e) => {
+    if (!state.query || drag || state.mode === 'quasi') return;
+    const [px, py] = svgPoint(e, $('canvas'));
+    projectTo([wx(px), wy(py)]);
+  });
+  $('canvas').addEventListener('pointerleave', () => { projTarget = null; hideProjection(); });
   $('canvas').addEventListener('pointerdown', addPoint);
   $('canvas').addEventListener('contextmenu', (e) => e.preventDefault());
   $('basis').addEventListener('pointermove', (e) => {
@@ -620,6 +698,81 @@ function bind() {
 }
 
 let bezierDeviation = null;
+
+// ---------- queries: closest point to the pointer, arc length ----------
+
+// at most one projection in flight; pointer moves during it collapse into the next one
+let projTarget = null, projRunning = false, projection = null;
+
+function projectTo(p) {
+  projTarget = p;
+  if (projRunning) return;
+  projRunning = true;
+  busy++;
+  (async () => {
+    try {
+      while (projTarget) {
+        const q = projTarget;
+        projTarget = null;
+        if (!last || !last.view) break;
+        try {
+          const r = await post('/api/project', { curve: last.view.curve, point: q });
+          projection = { from: q, ...r };
+          drawProjection();
+        } catch (e) { showError(e); }
+      }
+    } finally { projRunning = false; busy--; wakeIdle(); }
+  })();
+}
+
+function hideProjection() {
+  projection = null;
+  for (const id of ['proj-line', 'proj-foot']) $(id).setAttribute('visibility', 'hidden');
+}
+
+function drawProjection() {
+  if (!projection || !state.query) { hideProjection(); return; }
+  const { from, point } = projection;
+  const line = $('proj-line');
+  line.setAttribute('x1', sx(from[0])); line.setAttribute('y1', sy(from[1]));
+  line.setAttribute('x2', sx(point[0])); line.setAttribute('y2', sy(point[1]));
+  line.setAttribute('visibility', 'visible');
+  const foot = $('proj-foot');
+  foot.setAttribute('cx', sx(point[0])); foot.setAttribute('cy', sy(point[1]));
+  foot.setAttribute('visibility', 'visible');
+  $('query-info').dataset.projection = JSON.stringify(projection);
+  drawQueryText();
+}
+
+// the measure answer of the last drawing and the closest point, as text
+function drawQueryText() {
+  const m = last && last.measure;
+  let text = '';
+  if (m && !m.error) text = `arc length ${m.length.toPrecision(8)} (error estimate ${m.error_estimate.toExponential(1)})`;
+  if (projection) {
+    text += `${text ? '; ' : ''}closest point t = ${projection.t.toPrecision(6)} at (${projection.point.map((x) => x.toFixed(4)).join(', ')}), distance ${projection.distance.toPrecision(4)}`;
+  }
+  $('query-info').textContent = text;
+}
+
+function drawQuery(answer) {
+  const mark = $('length-mark');
+  const m = answer.measure;
+  if (!m || state.mode === 'quasi') { mark.setAttribute('visibility', 'hidden'); hideProjection(); $('query-at').textContent = ''; return; }
+  if (m.error) {
+    mark.setAttribute('visibility', 'hidden');
+    $('query-at').textContent = '';
+    showError(m.error);
+  } else {
+    const a = m.at_length[0];
+    mark.setAttribute('cx', sx(a.point[0])); mark.setAttribute('cy', sy(a.point[1]));
+    mark.setAttribute('visibility', 'visible');
+    $('query-at').textContent = `length ${a.length} from the start at t = ${a.t.toPrecision(8)}`;
+  }
+  // the curve changed: the closest point is stale until the pointer moves again
+  hideProjection();
+  drawQueryText();
+}
 
 function bezierOp(op) { return tracked(() => bezierOpNow(op)); }
 
@@ -663,7 +816,10 @@ async function importFile() {
       state.bspline = { degree: v.degree, control: v.control, knots: v.knots, weights: v.weights };
     }
     commit(); syncControls(); update();
-  } catch (e) { showError(Object.assign(e, { field: e.field || 'file' })); }
+  } catch (e) {
+    // the message names the file's field; it is shown next to the import control
+    showError(Object.assign(e, { field: 'file' }));
+  }
   $('import').value = '';
 }
 

@@ -16,10 +16,10 @@ use axum::Json;
 use lekalo::basis::basis_functions;
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
-    EndCondition, EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization,
-    Points, SplineParameters,
+    EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization, Points,
+    SplineParameters,
 };
-use lekalo_io::Object;
+use lekalo_io::{EndName, Object};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -36,7 +36,7 @@ pub const MAX_API_DEGREE: usize = 64;
 
 /// Reads a request body: JSON of type `T`, with the field of a type error named
 /// (`points[3]`, `degree`).
-fn parse<T: DeserializeOwned>(body: &Bytes) -> ApiResult<T> {
+pub(crate) fn parse<T: DeserializeOwned>(body: &Bytes) -> ApiResult<T> {
     let de = &mut serde_json::Deserializer::from_slice(body);
     serde_path_to_error::deserialize(de).map_err(request_error)
 }
@@ -56,7 +56,7 @@ pub(crate) fn request_error(e: serde_path_to_error::Error<serde_json::Error>) ->
 }
 
 /// A curve object in the CLI's format, read as the CLI reads a file named `field`.
-fn curve(value: &Value, field: &str) -> ApiResult<Object> {
+pub(crate) fn curve(value: &Value, field: &str) -> ApiResult<Object> {
     let text = value.to_string();
     Object::from_json_str(&text, field).map_err(|e| ApiError::io(field, &e))
 }
@@ -71,7 +71,7 @@ fn check_samples(n: usize, field: &str) -> ApiResult<usize> {
     Ok(n)
 }
 
-fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
+pub(crate) fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
     if p > MAX_API_DEGREE {
         return Err(ApiError::bad(
             field,
@@ -82,7 +82,7 @@ fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
 }
 
 /// 2-D points as the library's [`Points`], with the count bounded.
-fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
+pub(crate) fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
     if rows.len() > MAX_POINTS {
         return Err(ApiError::bad(
             field,
@@ -104,7 +104,7 @@ fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
     Points::from_rows(rows).map_err(|e| ApiError::lib(field, &e))
 }
 
-fn default_samples() -> usize {
+pub(crate) fn default_samples() -> usize {
     400
 }
 
@@ -340,7 +340,7 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
     })
 }
 
-fn answer(v: impl Serialize) -> Response {
+pub(crate) fn answer(v: impl Serialize) -> Response {
     Json(v).into_response()
 }
 
@@ -356,7 +356,7 @@ struct EvaluateRequest {
 /// [`ViewOptions`] as fields of a request (serde's `flatten` and `deny_unknown_fields` do not
 /// combine, so the fields are repeated here and in the other requests through this struct).
 #[derive(Debug, Default, Deserialize)]
-struct ViewOptionsFlat {
+pub(crate) struct ViewOptionsFlat {
     #[serde(default)]
     samples: Option<usize>,
     #[serde(default)]
@@ -368,7 +368,7 @@ struct ViewOptionsFlat {
 }
 
 impl ViewOptionsFlat {
-    fn options(&self) -> ViewOptions {
+    pub(crate) fn options(&self) -> ViewOptions {
         ViewOptions {
             samples: self.samples.unwrap_or_else(default_samples),
             comb: self.comb,
@@ -387,11 +387,23 @@ pub(crate) async fn evaluate(body: Bytes) -> ApiResult<Response> {
 /// Parametrisation names (document 000 §1).
 #[derive(Debug, Clone, Copy, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
-enum Param {
+pub(crate) enum Param {
     Uniform,
     #[default]
     Chord,
     Centripetal,
+}
+
+impl Param {
+    /// The library's parametrisation, or the exponent `e` of `|ΔQ|^e` when given.
+    pub(crate) fn to_lib(self, exponent: Option<f64>) -> Parametrization {
+        match (exponent, self) {
+            (Some(e), _) => Parametrization::Exponent(e),
+            (None, Param::Uniform) => Parametrization::Uniform,
+            (None, Param::Chord) => Parametrization::ChordLength,
+            (None, Param::Centripetal) => Parametrization::Centripetal,
+        }
+    }
 }
 
 /// Knot placement names (document 000 eqs. 2, 3, 4, 8).
@@ -403,18 +415,6 @@ enum Placement {
     Averaged,
     Uniform,
     AtParams,
-}
-
-/// End condition names (document 000 §1–4).
-#[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-enum End {
-    #[default]
-    Free,
-    Derivatives,
-    Second,
-    Natural,
-    Periodic,
 }
 
 fn default_degree() -> usize {
@@ -432,8 +432,9 @@ struct InterpolateRequest {
     exponent: Option<f64>,
     #[serde(default)]
     knots: Placement,
+    /// End condition by name ([`EndName`], the names of `lekalo interpolate --end`).
     #[serde(default)]
-    end: End,
+    end: Option<String>,
     #[serde(default)]
     start_derivative: Option<Vec<f64>>,
     #[serde(default)]
@@ -447,33 +448,26 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
     let r: InterpolateRequest = parse(&body)?;
     let pts = points(&r.points, "points")?;
     let degree = check_degree(r.degree, "degree")?;
-    let param = match (r.exponent, r.parametrization) {
-        (Some(e), _) => Parametrization::Exponent(e),
-        (None, Param::Uniform) => Parametrization::Uniform,
-        (None, Param::Chord) => Parametrization::ChordLength,
-        (None, Param::Centripetal) => Parametrization::Centripetal,
+    let param = r.parametrization.to_lib(r.exponent);
+    let name: EndName = match &r.end {
+        Some(n) => n.parse().map_err(|m: String| ApiError::bad("end", m))?,
+        None => EndName::Free,
     };
-    let pair = |what: &str| -> ApiResult<(Vec<f64>, Vec<f64>)> {
-        match (&r.start_derivative, &r.end_derivative) {
-            (Some(s), Some(e)) => Ok((s.clone(), e.clone())),
-            (start, _) => Err(ApiError::bad(
-                if start.is_none() { "start_derivative" } else { "end_derivative" },
-                format!("end = {what} needs start_derivative and end_derivative (one value per coordinate)"),
-            )),
-        }
+    let derivatives = match (&r.start_derivative, &r.end_derivative) {
+        (Some(s), Some(e)) => Some((s.clone(), e.clone())),
+        _ => None,
     };
-    let end = match r.end {
-        End::Free => EndCondition::Free,
-        End::Derivatives => {
-            let (start, end) = pair("derivatives")?;
-            EndCondition::FirstDerivatives { start, end }
-        }
-        End::Second => {
-            let (start, end) = pair("second")?;
-            EndCondition::SecondDerivatives { start, end }
-        }
-        End::Natural => EndCondition::Natural,
-        End::Periodic => EndCondition::Periodic,
+    let Some(end) = name.condition(derivatives) else {
+        return Err(ApiError::bad(
+            if r.start_derivative.is_none() {
+                "start_derivative"
+            } else {
+                "end_derivative"
+            },
+            format!(
+                "end = {name} needs start_derivative and end_derivative (one value per coordinate)"
+            ),
+        ));
     };
     let knots = match r.knots {
         Placement::Auto => KnotPlacement::Auto,

@@ -6,7 +6,7 @@
 use axum::body::Bytes;
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use lekalo::{sample_quasi_interpolant, Expression, PpSpace, TauRule};
+use lekalo::{sample_quasi_interpolant, Expression, PpSpace, Tau, TauRule};
 use lekalo_io::Object;
 use serde::Deserialize;
 use serde_json::json;
@@ -23,6 +23,7 @@ enum Rule {
     LeftEndOfSupport,
     Midpoint,
     Greville,
+    FirstIntervalMidpoint,
 }
 
 fn default_intervals() -> usize {
@@ -39,6 +40,9 @@ struct QuasiRequest {
     continuity: Option<Vec<usize>>,
     #[serde(default)]
     rule: Rule,
+    /// Explicit `τ_i`, one per B-spline (instead of `rule`).
+    #[serde(default)]
+    tau: Option<Vec<f64>>,
     #[serde(default = "default_intervals")]
     intervals: usize,
     #[serde(default)]
@@ -92,6 +96,23 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
         Rule::Midpoint => TauRule::Midpoint,
         Rule::Greville => TauRule::Greville,
+        Rule::FirstIntervalMidpoint => TauRule::FirstIntervalMidpoint,
+    };
+    if r.tau.as_ref().is_some_and(|t| t.len() > MAX_POINTS) {
+        return Err(ApiError::bad(
+            "tau",
+            format!("at most {MAX_POINTS} τ values"),
+        ));
+    }
+    // explicit values win over the rule (as `lekalo pp quasi --tau`)
+    let tau = || match &r.tau {
+        Some(v) => Tau::Values(v),
+        None => Tau::Rule(rule),
+    };
+    let tau_field = if r.tau.is_some() {
+        "tau"
+    } else {
+        "breakpoints"
     };
     // the closure cannot return the parser's error: keep the first and report it
     let mut failure: Option<lekalo::Error> = None;
@@ -109,12 +130,12 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         }
         order_cache.1[d]
     };
-    let result = sample_quasi_interpolant(&space, rule, fx, r.intervals);
+    let result = sample_quasi_interpolant(&space, tau(), fx, r.intervals);
     if let Some(e) = failure {
         return Err(ApiError::lib("expression", &e));
     }
-    let s = result.map_err(|e| ApiError::lib("breakpoints", &e))?;
-    let q = lekalo::quasi_interpolate(&space, rule, |x, d| {
+    let s = result.map_err(|e| ApiError::lib(tau_field, &e))?;
+    let q = lekalo::quasi_interpolate(&space, tau(), |x, d| {
         f.derivatives(x, d).map(|v| v[d]).unwrap_or(f64::NAN)
     })
     .map_err(|e| ApiError::lib("expression", &e))?;

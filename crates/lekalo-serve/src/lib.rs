@@ -14,9 +14,9 @@ use std::net::SocketAddr;
 use std::time::Duration;
 
 use axum::extract::DefaultBodyLimit;
-use axum::http::{header, StatusCode};
+use axum::http::{header, Method, StatusCode};
 use axum::response::IntoResponse;
-use axum::routing::{get, post};
+use axum::routing::{get, post, MethodRouter};
 use axum::Router;
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::timeout::TimeoutLayer;
@@ -24,6 +24,8 @@ use tower_http::timeout::TimeoutLayer;
 pub mod api;
 pub mod error;
 pub mod expr;
+pub mod fit;
+pub mod query;
 
 pub use error::{ApiError, ApiResult};
 
@@ -51,35 +53,64 @@ const INDEX_HTML: &str = include_str!("../assets/index.html");
 const APP_JS: &str = include_str!("../assets/app.js");
 const APP_CSS: &str = include_str!("../assets/app.css");
 
-/// The application: editor assets and the API under `/api/`, with the body and time limits.
-pub fn router(limits: Limits) -> Router {
-    Router::new()
-        .route(
+/// The OpenAPI 3.1 description of the routes (`docs/openapi.json`), served at
+/// `/api/openapi.json`.
+pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
+
+/// Every route of the application: path, method and handler. The router is built from this
+/// table, and a test checks it against [`OPENAPI`] both ways.
+pub fn routes() -> Vec<(&'static str, Method, MethodRouter)> {
+    let page =
+        |body: &'static str, mime: &'static str| get(move || async move { asset(body, mime) });
+    vec![
+        (
             "/",
-            get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }),
-        )
-        .route(
+            Method::GET,
+            page(INDEX_HTML, "text/html; charset=utf-8"),
+        ),
+        (
             "/app.js",
-            get(|| async { asset(APP_JS, "text/javascript; charset=utf-8") }),
-        )
-        .route(
+            Method::GET,
+            page(APP_JS, "text/javascript; charset=utf-8"),
+        ),
+        (
             "/app.css",
-            get(|| async { asset(APP_CSS, "text/css; charset=utf-8") }),
-        )
-        .route("/api/health", get(|| async { "ok" }))
-        .route("/api/evaluate", post(api::evaluate))
-        .route("/api/interpolate", post(api::interpolate))
-        .route("/api/bspline", post(api::bspline))
-        .route("/api/bezier", post(api::bezier))
-        .route("/api/bezier/build", post(api::bezier_build))
-        .route("/api/blend/deform", post(api::blend_deform))
-        .route("/api/blend/corners", post(api::blend_corners))
-        .route("/api/quasi", post(expr::quasi))
-        .route("/api/knot/insert", post(api::knot_insert))
-        .route("/api/knot/remove", post(api::knot_remove))
-        .route("/api/import", post(api::import))
-        .route("/api/export/json", post(api::export_json))
-        .route("/api/export/step", post(api::export_step))
+            Method::GET,
+            page(APP_CSS, "text/css; charset=utf-8"),
+        ),
+        ("/api/health", Method::GET, get(|| async { "ok" })),
+        (
+            "/api/openapi.json",
+            Method::GET,
+            get(|| async { ([(header::CONTENT_TYPE, "application/json")], OPENAPI) }),
+        ),
+        ("/api/evaluate", Method::POST, post(api::evaluate)),
+        ("/api/interpolate", Method::POST, post(api::interpolate)),
+        ("/api/bspline", Method::POST, post(api::bspline)),
+        ("/api/bezier", Method::POST, post(api::bezier)),
+        ("/api/bezier/build", Method::POST, post(api::bezier_build)),
+        ("/api/blend/deform", Method::POST, post(api::blend_deform)),
+        ("/api/blend/corners", Method::POST, post(api::blend_corners)),
+        ("/api/quasi", Method::POST, post(expr::quasi)),
+        ("/api/fit", Method::POST, post(fit::fit)),
+        ("/api/project", Method::POST, post(query::project)),
+        ("/api/measure", Method::POST, post(query::measure)),
+        ("/api/knot/insert", Method::POST, post(api::knot_insert)),
+        ("/api/knot/remove", Method::POST, post(api::knot_remove)),
+        ("/api/import", Method::POST, post(api::import)),
+        ("/api/export/json", Method::POST, post(api::export_json)),
+        ("/api/export/step", Method::POST, post(api::export_step)),
+    ]
+}
+
+/// The application: editor assets and the API under `/api/` ([`routes`]), with the body and
+/// time limits.
+pub fn router(limits: Limits) -> Router {
+    routes()
+        .into_iter()
+        .fold(Router::new(), |r, (path, _, handler)| {
+            r.route(path, handler)
+        })
         .fallback(|| async {
             (
                 StatusCode::NOT_FOUND,

@@ -443,6 +443,25 @@ pub enum Error {
         /// The tolerance it was compared with.
         tolerance: f64,
     },
+    // -- long computations --
+    /// A long computation stopped because its caller asked it to (the cancel flag of its
+    /// [`Progress`](crate::Progress) was set, e.g. by Ctrl-C); nothing partial is returned.
+    ///
+    /// ```
+    /// use std::sync::atomic::AtomicBool;
+    /// use lekalo::{BlendSplineOptions, BlendSplinePieces, Error, Parabolas, Points, Progress};
+    /// let pts = Points::from_2d(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap();
+    /// let stop = AtomicBool::new(true);
+    /// let progress = Progress::new().with_cancel(&stop);
+    /// let e = BlendSplinePieces::new(pts.as_view(), &Parabolas, BlendSplineOptions::default(), &progress)
+    ///     .unwrap_err();
+    /// assert!(matches!(e, Error::Cancelled { .. }));
+    /// ```
+    #[error("{what}: cancelled")]
+    Cancelled {
+        /// The computation that stopped.
+        what: &'static str,
+    },
 }
 
 /// Checks that every number in `values` is finite.

@@ -16,7 +16,7 @@
 //! | surfaces ([`surface`]) | [`BezierSurface`], [`BSplineSurface`], [`NurbsSurface`] | P&T ch. 3–4 |
 //! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; document 002, four-point cubic and Hermite segment |
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
-//! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`] | doc 001 |
+//! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`], [`smooth_polyline_corners`] | doc 001 |
 //! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
 //! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
@@ -110,10 +110,11 @@ pub mod blend;
 
 pub use blend::{
     approximate_curve, Approximation, ArcParametrization, BezierForm, BlendSpline,
-    BlendSplineOptions, CircularArcs, Continuity, CornerTransition, Deformation, FnCurve,
-    FnLocalCurves, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
+    BlendSplineOptions, BlendSplinePieces, CircularArcs, Continuity, CornerTransition, Deformation,
+    FnCurve, FnLocalCurves, JumpPolynomial, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
     SplineParameters, ENDPOINT_TOLERANCE,
 };
+pub use blend::{smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY};
 
 // -- piecewise polynomials: divided differences, pp-form, quasi-interpolation --
 pub mod pp;
@@ -135,6 +136,9 @@ pub use fit::{
 
 // -- numerical building blocks (crate-private) and the test oracle --
 mod numeric;
+
+/// Progress reports and cancellation of long computations.
+pub use numeric::progress::Progress;
 #[cfg(test)]
 mod oracle;
 

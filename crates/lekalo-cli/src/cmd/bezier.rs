@@ -8,7 +8,7 @@ use lekalo::{BSplineCurve, BezierCurve, BezierSurface, EndConditions};
 use lekalo_io::Object;
 
 use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
-use crate::io::{bad_input, emit, integers, load_one};
+use crate::io::{bad_input, integers, load_one};
 use crate::Verbosity;
 
 /// The input of a `bezier` operation: a curve object, or a surface net.
@@ -63,7 +63,8 @@ Examples:
 Examples:
   lekalo bezier reduce quintic.json               # Example 2: the cubic (10,0),(30,10),(0,20),(20,0)
   lekalo bezier reduce --surface net.csv --net 5x4 -o minimal.json
-  lekalo bezier reduce quartic.json --approx 3 --ends tangents   # prints the deviation")]
+  lekalo bezier reduce quartic.json --approx 3 --ends tangents   # prints the deviation
+  lekalo bezier reduce quartic.json --approx 3 --json            # deviation and curve")]
     Reduce {
         #[command(flatten)]
         input: BezierInput,
@@ -73,6 +74,10 @@ Examples:
         /// What the approximate reduction keeps at the ends.
         #[arg(long, value_enum, default_value_t = Ends::Points)]
         ends: Ends,
+        /// Write `{"max_deviation_sampled", "max_deviation_bound", "curve"}` (0 for exact
+        /// reduction) instead of the curve alone.
+        #[command(flatten)]
+        json: crate::report::JsonFlag,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -183,6 +188,23 @@ fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
 }
 
 /// Refuses degrees above `--max-degree` for the operations whose cost grows as the degree
+/// `bezier reduce --json`: the deviation `(sampled, bound)` and the curve.
+fn reduction_report(
+    obj: &Object,
+    (sampled, bound): (f64, f64),
+    out: &OutArgs,
+    input: PathBuf,
+    v: Verbosity,
+) -> Result<()> {
+    let report = serde_json::json!({
+        "max_deviation_sampled": sampled,
+        "max_deviation_bound": bound,
+        "curve": obj.to_json_value(),
+    });
+    let to = out.output.as_deref();
+    crate::report::print_report(true, &report, crate::report::text_of, to, &[input], v)
+}
+
 /// squared (real degree, exact reduction, change) or cubed (approximate reduction).
 fn guard(l: Loaded, what: &str) -> Result<Loaded> {
     let limit = crate::io::settings().max_degree;
@@ -241,10 +263,17 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             input,
             approx,
             ends,
+            json,
             out,
         } => match guard(load(input, v)?, "reduction")? {
             Loaded::Curve(c, p) => match approx {
-                None => write_curve(&Object::Bezier(c.reduce_degree_exact()), None, out, &[p], v),
+                None => {
+                    let obj = Object::Bezier(c.reduce_degree_exact());
+                    if json.json {
+                        return reduction_report(&obj, (0.0, 0.0), out, p, v);
+                    }
+                    write_curve(&obj, None, out, &[p], v)
+                }
                 Some(target) => {
                     let limit = crate::io::settings().max_degree / 4;
                     if c.degree() > limit {
@@ -267,13 +296,19 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                     let r = c.reduce_degree_approx(*target, ends);
                     bar.finish_and_clear();
                     let r = r?;
+                    let obj = Object::Bezier(r.curve);
+                    if json.json {
+                        let d = (r.max_deviation_sampled, r.max_deviation_bound);
+                        return reduction_report(&obj, d, out, p, v);
+                    }
                     if v != Verbosity::Quiet {
                         eprintln!(
-                            "max deviation {:.6e} (sampled), bound {:.6e}",
-                            r.max_deviation_sampled, r.max_deviation_bound
+                            "max deviation {} (sampled), bound {}",
+                            crate::report::number(r.max_deviation_sampled),
+                            crate::report::number(r.max_deviation_bound)
                         );
                     }
-                    write_curve(&Object::Bezier(r.curve), None, out, &[p], v)
+                    write_curve(&obj, None, out, &[p], v)
                 }
             },
             Loaded::BSpline(..) => not_bezier(),
@@ -286,45 +321,37 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             }
         },
         BezierOp::RealDegree { input, json } => {
-            if *json {
-                let j = match guard(load(input, v)?, "the real degree")? {
-                    Loaded::Curve(c, _) => serde_json::json!({
-                        "degree": c.degree(),
-                        "real_degree": c.real_degree(),
-                        "defect": c.degree_defect(),
-                    }),
-                    Loaded::BSpline(..) => return not_bezier(),
-                    Loaded::Surface(s, _) => {
-                        let (n, m) = s.real_degrees();
-                        serde_json::json!({
-                            "degree": [s.degree_u(), s.degree_v()],
-                            "real_degree": [n, m],
-                            "defect": [s.degree_u() - n, s.degree_v() - m],
-                        })
-                    }
-                };
-                return emit(None, format!("{j}\n").as_bytes(), &[], v);
-            }
-            let text = match guard(load(input, v)?, "the real degree")? {
-                Loaded::Curve(c, _) => format!(
-                    "degree {}\nreal degree {}\ndefect {}\n",
-                    c.degree(),
-                    c.real_degree(),
-                    c.degree_defect()
-                ),
+            let report = match guard(load(input, v)?, "the real degree")? {
+                Loaded::Curve(c, _) => serde_json::json!({
+                    "degree": c.degree(),
+                    "real_degree": c.real_degree(),
+                    "defect": c.degree_defect(),
+                }),
                 Loaded::BSpline(..) => return not_bezier(),
                 Loaded::Surface(s, _) => {
                     let (n, m) = s.real_degrees();
-                    format!(
-                        "degrees {} {}\nreal degrees {n} {m}\ndefects {} {}\n",
-                        s.degree_u(),
-                        s.degree_v(),
-                        s.degree_u() - n,
-                        s.degree_v() - m
-                    )
+                    serde_json::json!({
+                        "degree": [s.degree_u(), s.degree_v()],
+                        "real_degree": [n, m],
+                        "defect": [s.degree_u() - n, s.degree_v() - m],
+                    })
                 }
             };
-            emit(None, text.as_bytes(), &[], v)
+            // text: "degree 5" / "degrees 5 4", one line per figure
+            let text = |r: &serde_json::Value| {
+                let plural = if r["degree"].is_array() { "s" } else { "" };
+                ["degree", "real_degree", "defect"]
+                    .iter()
+                    .map(|k| {
+                        format!(
+                            "{}{plural} {}\n",
+                            k.replace('_', " "),
+                            crate::report::value_text(&r[*k])
+                        )
+                    })
+                    .collect()
+            };
+            crate::report::print_report(*json, &report, text, None, &[], v)
         }
         BezierOp::Change { input, degree, out } => match guard(load(input, v)?, "degree change")? {
             Loaded::Curve(c, p) => {

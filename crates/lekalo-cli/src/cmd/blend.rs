@@ -7,9 +7,9 @@ use std::sync::Arc;
 use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{
-    ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions, CircularArcs,
-    CornerTransition, Deformation, LocalCurves, Parabolas, ParametricCurve, SharedCurve,
-    SplineParameters,
+    smooth_polyline_corners, ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions,
+    CircularArcs, CornerTransition, CornerWindow, Deformation, LocalCurves, Parabolas,
+    ParametricCurve, SharedCurve, SplineParameters,
 };
 use lekalo_io::Object;
 
@@ -91,6 +91,10 @@ Examples:
         /// Tolerance of the approximation for arcs.
         #[arg(long, default_value_t = 1e-8)]
         tolerance: f64,
+        /// Write `{"max_error", "degree", "curve"}` (the approximation's measured error for
+        /// arcs; 0 for exact output) instead of the curve alone.
+        #[command(flatten)]
+        json: crate::report::JsonFlag,
         #[command(flatten)]
         out: OutArgs,
     },
@@ -119,6 +123,33 @@ Examples:
         #[command(flatten)]
         out: OutArgs,
     },
+    /// Smooth every corner of a polyline with continuity degree k; the result is one curve.
+    #[command(after_help = "\
+Each corner is replaced by the `blend corner` transition of its two segments over a window cut on
+both sides; outside the windows the segments are kept exactly. The result is one B-spline of
+degree 4k, C^k everywhere, parametrised by length along the straight parts
+(docs/theory/blending.md#polyline-corners).
+
+--window takes a length (the same at every corner; each segment must hold the windows of its two
+corners) or a percentage of the shorter segment at each corner, at most 50%.
+
+Examples:
+  lekalo blend corners polyline.csv --window 25% --continuity 2 -o smooth.json
+  lekalo blend corners polyline.csv --window 0.4 --continuity 3 -o smooth.svg")]
+    Corners {
+        /// The polyline: points file (CSV, text or JSON; `-` for standard input), at least three
+        /// points.
+        polyline: PathBuf,
+        /// Window at each corner: a length (`0.4`) or a percentage of the shorter adjacent
+        /// segment (`25%`, at most 50%).
+        #[arg(long, default_value = "25%", allow_hyphen_values = true)]
+        window: String,
+        /// Continuity degree k ≥ 1 (the curve has degree 4k).
+        #[arg(long = "continuity", short_alias = 'k', default_value_t = 2)]
+        k: usize,
+        #[command(flatten)]
+        out: OutArgs,
+    },
     /// The jump-smoothing polynomial `w_k` (document 001): exact monomial and Bernstein
     /// coefficients and samples.
     #[command(after_help = "\
@@ -134,7 +165,8 @@ Examples:
 Examples:
   lekalo blend deform a.json b.json --continuity 2
   lekalo blend spline pts.csv --continuity 2 --local parabolas
-  lekalo blend corner a.json b.json --from 0.8 --until 0.2")]
+  lekalo blend corner a.json b.json --from 0.8 --until 0.2
+  lekalo blend corners polyline.csv --window 25% --continuity 2")]
 pub(crate) struct BlendArgs {
     #[command(subcommand)]
     op: BlendOp,
@@ -161,6 +193,20 @@ fn form_object(f: BezierForm) -> Object {
         BezierForm::Polynomial(b) => Object::Bezier(b),
         BezierForm::Rational(n) => Object::Nurbs(n),
     }
+}
+
+/// `--window`: a length, or a percentage of the shorter segment at each corner.
+fn corner_window(text: &str) -> Result<CornerWindow> {
+    let (number, percent) = match text.trim().strip_suffix('%') {
+        Some(p) => (p, true),
+        None => (text, false),
+    };
+    let x = one_number(number, "--window")?;
+    Ok(if percent {
+        CornerWindow::Fraction(x / 100.0)
+    } else {
+        CornerWindow::Length(x)
+    })
 }
 
 fn one_number(text: &str, what: &str) -> Result<f64> {
@@ -201,6 +247,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             closed,
             params,
             tolerance,
+            json,
             out,
         } => {
             let (pts, _) = crate::io::read_points(points)?;
@@ -229,22 +276,54 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
             bar.finish_and_clear();
             let s = s?;
-            let obj = match local {
-                Local::Parabolas | Local::RationalArcs => Object::Nurbs(s.to_nurbs()?),
+            let (obj, max_error) = match local {
+                Local::Parabolas | Local::RationalArcs => (Object::Nurbs(s.to_nurbs()?), 0.0),
                 Local::Arcs | Local::GlobalArcs => {
                     let approx = s.approximate(*tolerance)?;
-                    if v != Verbosity::Quiet {
+                    if v != Verbosity::Quiet && !json.json {
                         eprintln!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \
-                             degree {} with max error {:.3e}",
+                             degree {} with max error {}",
                             approx.curve().degree(),
-                            approx.max_error()
+                            crate::report::number(approx.max_error())
                         );
                     }
-                    Object::BSpline(approx.curve().clone())
+                    (Object::BSpline(approx.curve().clone()), approx.max_error())
                 }
             };
+            if json.json {
+                let report = serde_json::json!({
+                    "max_error": max_error,
+                    "degree": obj.degree(),
+                    "curve": obj.to_json_value(),
+                });
+                return crate::report::print_report(
+                    true,
+                    &report,
+                    crate::report::text_of,
+                    out.output.as_deref(),
+                    std::slice::from_ref(points),
+                    v,
+                );
+            }
             write_curve(&obj, Some(&pts), out, std::slice::from_ref(points), v)
+        }
+        BlendOp::Corners {
+            polyline,
+            window,
+            k,
+            out,
+        } => {
+            let window = corner_window(window)?;
+            let (pts, _) = crate::io::read_points(polyline)?;
+            let s = smooth_polyline_corners(pts.as_view(), window, *k)?;
+            write_curve(
+                &Object::BSpline(s.into_curve()),
+                Some(&pts),
+                out,
+                std::slice::from_ref(polyline),
+                v,
+            )
         }
         BlendOp::Corner {
             before,

@@ -27,6 +27,7 @@ Examples:
   lekalo eval curve.json --at 1,1.5,2
   lekalo eval curve.json --samples 5 --derivatives 2 --curvature -o samples.csv
   lekalo eval curve.json --at 0.5 --format json
+  lekalo eval curve.json --samples 3 --json
   lekalo eval curve.json --samples 1000 -o samples.npy   # NumPy: np.load('samples.npy')
   lekalo eval many.jsonl --samples 100 -o samples.jsonl
   lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
@@ -57,6 +58,9 @@ pub(crate) struct EvalArgs {
     /// columns) (default: from the output's extension, else csv).
     #[arg(long)]
     format: Option<String>,
+    /// The same as `--format json`: `{"columns", "rows"}` with full-precision numbers.
+    #[arg(long, conflicts_with = "format")]
+    json: bool,
     /// Treat the input as JSON Lines.
     #[arg(long)]
     jsonl: bool,
@@ -124,7 +128,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                 derivatives: a.derivatives,
                 normals: a.normals,
                 curvature: a.curvature,
-                format: a.format.as_deref(),
+                format: if a.json { Some("json") } else { a.format.as_deref() },
                 output: a.output.as_deref(),
             },
             &s,
@@ -138,7 +142,11 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         }
         Loaded::One(obj) => {
             let ts = parameters(a, &obj)?;
-            let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "csv");
+            let fmt = if a.json {
+                "json".to_string()
+            } else {
+                format_of(a.format.as_deref(), a.output.as_deref(), "csv")
+            };
             if fmt == "csv" && ts.len() > CHUNK {
                 return eval_csv_streamed(a, &obj, &ts, spec, &inputs, v);
             }

@@ -36,6 +36,7 @@ Modes (one of them; least squares by default):
   --s S              fewest knots with weighted residual sum of squares <= S (like splrep)
   --tol TOL          within TOL of every point (distance), few control points
   --robust huber|tukey   least squares that resists outliers (final weights in the report)
+  --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
 Surfaces: --grid ROWSxCOLS with --ctrl-grid NUxNV; --scattered (rows u,v,z) with --ctrl-grid.
 
 The report (residual max and RMS, λ or s, control points) goes to standard error, or with
@@ -48,6 +49,7 @@ Examples:
   lekalo fit xy.csv --function --s 0.05 --weights w.txt
   lekalo fit track.csv --tol 0.01 -o track.svg
   lekalo fit xy.csv --function --ctrl 12 --robust tukey --json
+  lekalo fit loop.csv --periodic --s 0.01 -o loop.json
   lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
   lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3")]
 pub(crate) struct FitArgs {
@@ -58,47 +60,51 @@ pub(crate) struct FitArgs {
     lsq: bool,
     /// Penalised smoothing: λ ≥ 0, or `gcv`.
     #[arg(long, value_name = "LAMBDA|gcv", allow_hyphen_values = true)]
-    smooth: Option<String>,
+    pub(crate) smooth: Option<String>,
     /// Smoothing condition: the weighted residual sum of squares target.
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
-    s: Option<f64>,
+    pub(crate) s: Option<f64>,
     /// Fit within this distance of every point.
     #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
-    tol: Option<f64>,
+    pub(crate) tol: Option<f64>,
     /// With --tol: measure the deviation at the data parameters instead of the distance.
     #[arg(long)]
     parameter_deviation: bool,
     /// Iteratively reweighted least squares with this loss.
     #[arg(long, value_enum)]
-    robust: Option<Robust>,
+    pub(crate) robust: Option<Robust>,
     /// The points are (x, y...) samples of a function y(x): x is the parameter.
     #[arg(long)]
-    function: bool,
+    pub(crate) function: bool,
     /// Degree (curves; both directions of surfaces).
     #[arg(long, short = 'p', default_value_t = 3)]
-    degree: usize,
+    pub(crate) degree: usize,
     /// Number of control points (least squares, robust; default: a tenth of the points, at
     /// least degree + 1).
     #[arg(long)]
-    ctrl: Option<usize>,
+    pub(crate) ctrl: Option<usize>,
     /// Interior knots (comma-separated, inside the parameter range) instead of --ctrl.
     #[arg(long, value_name = "LIST")]
-    knots: Option<String>,
+    pub(crate) knots: Option<String>,
     /// Weights file: one number per point.
     #[arg(long, value_name = "FILE")]
     weights: Option<PathBuf>,
     /// Interpolate the first and last points exactly.
     #[arg(long)]
-    clamp_ends: bool,
+    pub(crate) clamp_ends: bool,
     /// First derivative at the start (with --clamp-ends), comma-separated.
     #[arg(long, allow_hyphen_values = true)]
-    d0: Option<String>,
+    pub(crate) d0: Option<String>,
     /// First derivative at the end (with --clamp-ends), comma-separated.
     #[arg(long, allow_hyphen_values = true)]
-    dn: Option<String>,
+    pub(crate) dn: Option<String>,
     /// Parametrisation of parametric curves.
     #[arg(long, value_enum, default_value_t = Param::Chord)]
-    param: Param,
+    pub(crate) param: Param,
+    /// A closed curve (periodic spline; with --function, a periodic function whose last row
+    /// repeats the first).
+    #[arg(long)]
+    pub(crate) periodic: bool,
     /// A grid of points (rows x columns) fitted by a surface.
     #[arg(long, value_name = "ROWSxCOLS")]
     grid: Option<String>,
@@ -144,6 +150,9 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
     };
     if a.grid.is_some() || a.scattered {
         return run_surface(a, &pts, weights.as_deref(), &inputs, v);
+    }
+    if a.periodic {
+        return super::fit_periodic::run(a, &pts, weights.as_deref(), &inputs, v);
     }
     // data: function samples (x, y…) or parametric points
     let (values, params) = if a.function {
@@ -255,7 +264,7 @@ fn least_squares_report(curve: &lekalo::BSplineCurve, d: &FitData<'_>) -> Result
     })
 }
 
-fn finish(
+pub(super) fn finish(
     a: &FitArgs,
     obj: Object,
     shown: &Points,

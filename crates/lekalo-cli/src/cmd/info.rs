@@ -12,7 +12,7 @@ use serde_json::{json, Value};
 
 use crate::cmd::eval::finish_batch;
 use crate::cmd::shapes;
-use crate::io::{emit, load, not_a_curve, progress, Loaded};
+use crate::io::{load, not_a_curve, progress, Loaded};
 use crate::Verbosity;
 
 /// Arguments of `lekalo info`.
@@ -178,22 +178,19 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
                 Shape::Pp(p) => shapes::pp_info_json(p, samples)?,
                 other => return not_a_curve(&a.input, other),
             };
-            let text = if a.json {
-                format!("{j:#}\n")
-            } else {
-                shapes::info_text(&j)
-            };
-            emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+            crate::report::print_report(
+                a.json,
+                &j,
+                shapes::info_text,
+                a.output.as_deref(),
+                &inputs,
+                v,
+            )
         }
         Loaded::One(obj) => {
             crate::io::check_bezier_degree(&obj, "sampling")?;
             let j = info_json(&obj, samples)?;
-            let text = if a.json {
-                format!("{j:#}\n")
-            } else {
-                info_text(&j)
-            };
-            emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+            crate::report::print_report(a.json, &j, info_text, a.output.as_deref(), &inputs, v)
         }
         Loaded::Many(items) => {
             let bar = progress(items.len(), v);

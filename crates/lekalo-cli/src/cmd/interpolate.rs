@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use lekalo::{
-    natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, EndCondition,
-    KnotPlacement, Parametrization, Points, SurfaceInterpolation, TangentEstimate,
+    natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, KnotPlacement,
+    Parametrization, Points, SurfaceInterpolation, TangentEstimate,
 };
 use lekalo_io::{
     curve_figure, sample_table, CurvePlot, Figure, Grid, Object, SampleSpec, Series, Style,
@@ -16,7 +16,7 @@ use lekalo_io::{
 };
 
 use crate::cmd::plot::encode;
-use crate::io::{bad_input, emit, format_of, numbers};
+use crate::io::{bad_input, emit, format_of, numbers, BadInput};
 use crate::Verbosity;
 
 /// Output options shared by the construction subcommands.
@@ -515,24 +515,22 @@ fn curve_interpolation(a: &InterpolateArgs, param: Parametrization) -> Result<Cu
             )),
         }
     };
-    let end = match a.end {
-        End::Free => EndCondition::Free,
-        End::Derivatives => {
-            let (start, end) = pair("derivatives")?;
-            EndCondition::FirstDerivatives { start, end }
-        }
-        End::Second => {
-            let (start, end) = pair("second")?;
-            EndCondition::SecondDerivatives { start, end }
-        }
-        End::Natural => EndCondition::Natural,
-        End::Periodic => EndCondition::Periodic,
+    // the option's name, through the one name table shared with `lekalo serve`
+    let name: lekalo_io::EndName = match a.end.to_possible_value() {
+        Some(v) => v.get_name().parse().map_err(BadInput)?,
+        None => lekalo_io::EndName::Free,
     };
-    if matches!(a.end, End::Free | End::Natural | End::Periodic)
-        && (a.d0.is_some() || a.dn.is_some())
-    {
+    if !name.takes_derivatives() && (a.d0.is_some() || a.dn.is_some()) {
         return bad_input("--start-derivative/--end-derivative are used only with --end derivatives or --end second");
     }
+    let derivatives = if name.takes_derivatives() {
+        Some(pair(name.name())?)
+    } else {
+        None
+    };
+    let Some(end) = name.condition(derivatives) else {
+        return bad_input(format!("--end {name} needs its derivatives"));
+    };
     let knots = match a.knots {
         Knots::Auto => KnotPlacement::Auto,
         Knots::Averaged => KnotPlacement::Averaged,

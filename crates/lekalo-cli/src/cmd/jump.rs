@@ -9,7 +9,7 @@ use clap::Args;
 use lekalo::JumpPolynomial;
 use lekalo_io::fmt_number;
 
-use crate::io::{bad_input, emit};
+use crate::io::bad_input;
 use crate::Verbosity;
 
 /// Arguments of `lekalo blend jump`.
@@ -57,16 +57,14 @@ pub(crate) fn run(a: &JumpArgs, v: Verbosity) -> Result<()> {
         };
         rows.push((u, w.eval(u)?));
     }
-    let text = if a.json {
-        let j = serde_json::json!({
-            "k": a.k,
-            "degree": w.degree(),
-            "monomial": mono,
-            "bernstein": bern,
-            "samples": rows.iter().map(|(u, y)| serde_json::json!({"u": u, "w": y})).collect::<Vec<_>>(),
-        });
-        format!("{j:#}\n")
-    } else {
+    let report = serde_json::json!({
+        "k": a.k,
+        "degree": w.degree(),
+        "monomial": mono,
+        "bernstein": bern,
+        "samples": rows.iter().map(|(u, y)| serde_json::json!({"u": u, "w": y})).collect::<Vec<_>>(),
+    });
+    let text = |_: &serde_json::Value| {
         let mut s = String::new();
         let _ = writeln!(s, "w_{} (degree {})", a.k, w.degree());
         let _ = writeln!(s, "monomial   a_0 … a_{}: {}", w.degree(), mono.join(" "));
@@ -77,5 +75,5 @@ pub(crate) fn run(a: &JumpArgs, v: Verbosity) -> Result<()> {
         }
         s
     };
-    emit(a.output.as_deref(), text.as_bytes(), &[], v)
+    crate::report::print_report(a.json, &report, text, a.output.as_deref(), &[], v)
 }

@@ -104,6 +104,9 @@ enum KnotOp {
         /// of the control polygon).
         #[arg(long)]
         tolerance: Option<f64>,
+        /// Write `{"removed", "tolerance", "knots_removed", "curve"}` instead of the curve alone.
+        #[command(flatten)]
+        json: crate::report::JsonFlag,
     },
     /// Split at a parameter into two objects (JSON Lines).
     Split {
@@ -266,6 +269,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
             times,
             all,
             tolerance,
+            json,
         } => {
             let o = match load_shape(&c.input, v)? {
                 Shape::Curve(o) => o,
@@ -303,13 +307,33 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                     (Curve::N(n2), n)
                 }
             };
-            if v != Verbosity::Quiet {
-                eprintln!(
-                    "{}",
-                    removal_report(&before, &knots_of(&after), removed, tol)
+            let gone = removed_knots(&before, &knots_of(&after));
+            let shape = curve_shape(after);
+            if let (true, Shape::Curve(obj)) = (json.json, &shape) {
+                let report = serde_json::json!({
+                    "removed": removed,
+                    "tolerance": tol,
+                    "knots_removed": gone
+                        .iter()
+                        .map(|(t, m)| serde_json::json!({"knot": t, "copies": m}))
+                        .collect::<Vec<_>>(),
+                    "curve": obj.to_json_value(),
+                });
+                let inputs = std::slice::from_ref(&c.input);
+                let out = c.output.as_deref();
+                return crate::report::print_report(
+                    true,
+                    &report,
+                    crate::report::text_of,
+                    out,
+                    inputs,
+                    v,
                 );
             }
-            write_one(c, &curve_shape(after), v)
+            if v != Verbosity::Quiet {
+                eprintln!("{}", removal_report(&gone, removed, tol));
+            }
+            write_one(c, &shape, v)
         }
         KnotOp::Split { c, at } => {
             let t = one(at, "--at")?;
@@ -464,9 +488,8 @@ fn knots_of(c: &Curve) -> Vec<f64> {
     }
 }
 
-/// "removed 2 knot copies (tolerance 1e-9): 0.5×2" — the knots that were in `before` and are
-/// not in `after`, with how many copies went.
-fn removal_report(before: &[f64], after: &[f64], removed: usize, tol: f64) -> String {
+/// The knots that were in `before` and are not in `after`, with how many copies went.
+fn removed_knots(before: &[f64], after: &[f64]) -> Vec<(f64, usize)> {
     let mut gone: Vec<(f64, usize)> = Vec::new();
     let (mut i, mut j) = (0, 0);
     while i < before.len() {
@@ -481,6 +504,11 @@ fn removal_report(before: &[f64], after: &[f64], removed: usize, tol: f64) -> St
             i += 1;
         }
     }
+    gone
+}
+
+/// "removed 2 knot copies (tolerance 1e-9): 0.5×2".
+fn removal_report(gone: &[(f64, usize)], removed: usize, tol: f64) -> String {
     let list: Vec<String> = gone
         .iter()
         .map(|(x, m)| format!("{}×{m}", fmt_number(*x)))
@@ -555,14 +583,11 @@ mod tests {
 
     #[test]
     fn removal_report_lists_what_went() {
-        let r = removal_report(
-            &[0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
-            &[0.0, 0.0, 1.0, 1.0],
-            2,
-            1e-9,
-        );
+        let gone = removed_knots(&[0.0, 0.0, 0.5, 0.5, 1.0, 1.0], &[0.0, 0.0, 1.0, 1.0]);
+        assert_eq!(gone, [(0.5, 2)]);
+        let r = removal_report(&gone, 2, 1e-9);
         assert_eq!(r, "removed 2 knot copies (tolerance 1e-9): 0.5×2");
-        let r = removal_report(&[0.0, 1.0], &[0.0, 1.0], 0, 0.5);
+        let r = removal_report(&removed_knots(&[0.0, 1.0], &[0.0, 1.0]), 0, 0.5);
         assert!(r.starts_with("removed no knot"), "{r}");
     }
 }

@@ -23,6 +23,7 @@ pub(crate) mod make_surface;
 pub(crate) mod surface_eval;
 // fitting: least squares, smoothing, tolerance
 pub(crate) mod fit;
+pub(crate) mod fit_periodic;
 // geometric queries
 pub(crate) mod comb;
 pub(crate) mod intersect;

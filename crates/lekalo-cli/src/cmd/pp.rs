@@ -311,7 +311,14 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                     "intervals": intervals,
                     "curve": obj.to_json_value(),
                 });
-                return emit(out.output.as_deref(), format!("{j:#}\n").as_bytes(), &[], v);
+                return crate::report::print_report(
+                    true,
+                    &j,
+                    crate::report::text_of,
+                    out.output.as_deref(),
+                    &[],
+                    v,
+                );
             }
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
             let obj = Object::BSpline(q);

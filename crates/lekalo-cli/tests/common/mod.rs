@@ -37,3 +37,47 @@ pub(crate) fn stdout_of(args: &[&str], file: Option<&std::path::Path>) -> Vec<u8
     }
     cmd.assert().success().get_output().stdout.clone()
 }
+
+/// The help text of `lekalo <path…> --help`.
+pub(crate) fn help_of(path: &[String]) -> String {
+    let out = lekalo().args(path).arg("--help").output().unwrap();
+    assert!(
+        out.status.success(),
+        "`lekalo {} --help` failed",
+        path.join(" ")
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Every leaf subcommand of `lekalo`, as argument paths (`["knot", "insert"]`), read from the
+/// `Commands:` sections of the help texts, so that a new command is found without a list.
+pub(crate) fn leaf_subcommands() -> Vec<Vec<String>> {
+    fn walk(path: Vec<String>, out: &mut Vec<Vec<String>>) {
+        let help = help_of(&path);
+        let children: Vec<String> = help
+            .lines()
+            .skip_while(|l| l.trim() != "Commands:")
+            .skip(1)
+            .take_while(|l| !l.trim().is_empty())
+            .filter_map(|l| {
+                l.strip_prefix("  ")?
+                    .split_whitespace()
+                    .next()
+                    .map(String::from)
+            })
+            .filter(|name| name != "help")
+            .collect();
+        if children.is_empty() {
+            out.push(path);
+        } else {
+            for c in children {
+                let mut p = path.clone();
+                p.push(c);
+                walk(p, out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(Vec::new(), &mut out);
+    out
+}

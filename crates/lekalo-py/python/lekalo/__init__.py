@@ -69,7 +69,7 @@ from ._batch import curves_from_batch, curves_to_batch, ragged_offsets
 Error.__module__ = "lekalo"
 
 # blending (document 001), when the native module has it
-for _name in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition"):
+for _name in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition", "smooth_polyline_corners"):
     if hasattr(_lekalo, _name):
         globals()[_name] = getattr(_lekalo, _name)
 
@@ -117,4 +117,4 @@ __all__ = [
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",
-] + [n for n in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition") if n in globals()]
+] + [n for n in ("JumpPolynomial", "Deformation", "BlendSpline", "CornerTransition", "smooth_polyline_corners") if n in globals()]

@@ -4,8 +4,12 @@
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
 //! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
+//! - `pieces.rs`: [`BlendSplinePieces`], the exact NURBS form of a blend spline segment by
+//!   segment, for splines through millions of points.
 //! - `local_curves.rs`: the local curves: [`Parabolas`], [`CircularArcs`], [`FnLocalCurves`].
 //! - `corner.rs`: [`CornerTransition`], corner smoothing by a deformation.
+//! - `polyline.rs`: [`smooth_polyline_corners`], every corner of a polyline smoothed into one
+//!   curve.
 //! - `approximation.rs`: [`approximate_curve`], piecewise Hermite–Bezier approximation with
 //!   measured error.
 //! - `bernstein.rs`: Bernstein-form derivatives and products used by the above.
@@ -16,6 +20,8 @@ mod corner;
 pub(crate) mod deformation;
 mod jump;
 mod local_curves;
+mod pieces;
+mod polyline;
 mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
@@ -25,5 +31,9 @@ pub use jump::JumpPolynomial;
 pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,
     SharedCurve,
+};
+pub use pieces::BlendSplinePieces;
+pub use polyline::{
+    smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POLYLINE_CONTINUITY,
 };
 pub use spline::{BlendSpline, BlendSplineOptions, SplineParameters};

@@ -43,7 +43,7 @@ impl Default for BlendSplineOptions {
     }
 }
 
-type Segment = Deformation<SharedCurve, SharedCurve>;
+pub(crate) type Segment = Deformation<SharedCurve, SharedCurve>;
 
 /// An interpolating spline curve built by blending local three-point curves (document 001 §3;
 /// docs/theory/blending.md#blend-splines): the construction, the end rule and which continuity each
@@ -156,74 +156,27 @@ impl BlendSpline {
         local: &dyn LocalCurves,
         options: BlendSplineOptions,
     ) -> Result<Self> {
+        let deltas = spline_deltas(points, options)?;
         let n = points.len();
-        let min = if options.closed { 3 } else { 2 };
-        if n < min {
-            return Err(Error::TooFew {
-                what: "spline points",
-                min,
-                got: n,
-            });
-        }
-        if options.continuity == 0 {
-            return Err(Error::InvalidArgument {
-                what: "continuity degree k",
-                reason: "must be at least 1 (k = 1: tangent continuity with w_0(u) = u)".into(),
-            });
-        }
-        let dim = points.dim();
-        let n_seg = if options.closed { n } else { n - 1 };
-        let mut deltas = Vec::with_capacity(n_seg);
-        for i in 0..n_seg {
-            let j = (i + 1) % n;
-            let chord = dot_diff(points.point(i), points.point(j)).sqrt();
-            if chord <= f64::MIN_POSITIVE {
-                return Err(Error::CoincidentPoints {
-                    first: i,
-                    second: j,
-                });
-            }
-            deltas.push(match options.parameters {
-                SplineParameters::Uniform => 1.0,
-                SplineParameters::ChordLength => chord,
-                SplineParameters::Centripetal => chord.sqrt(),
-            });
-        }
-        let mut params = Vec::with_capacity(n_seg + 1);
-        params.push(0.0);
-        for d in &deltas {
-            params.push(params[params.len() - 1] + d);
-        }
+        let n_seg = deltas.len();
+        let params = parameters_of(&deltas);
         // local curves L_j at the points that have both neighbours
-        let mut locals: Vec<Option<[SharedCurve; 2]>> = Vec::with_capacity(n);
-        for j in 0..n {
-            let has_both = options.closed || (j > 0 && j + 1 < n);
-            if !has_both {
-                locals.push(None);
-                continue;
-            }
-            let jm = (j + n - 1) % n;
-            let jp = (j + 1) % n;
-            let pieces = local.pieces(
-                [points.point(jm), points.point(j), points.point(jp)],
-                (deltas[(j + n_seg - 1) % n_seg], deltas[j % n_seg]),
-            )?;
-            locals.push(Some(pieces));
-        }
+        let locals = (0..n)
+            .map(|j| local_at(points, local, &deltas, options.closed, j))
+            .collect::<Result<Vec<_>>>()?;
         let mut segments = Vec::with_capacity(n_seg);
         for i in 0..n_seg {
             let j = (i + 1) % n;
-            let (first, second) = match (&locals[i], &locals[j]) {
-                (Some(li), Some(lj)) => (li[1].clone(), lj[0].clone()),
-                (None, Some(lj)) => (lj[0].clone(), lj[0].clone()),
-                (Some(li), None) => (li[1].clone(), li[1].clone()),
-                (None, None) => {
-                    let line = line_piece(points.point(i), points.point(j), 0.0, deltas[i])?;
-                    (line.clone(), line)
-                }
-            };
-            segments.push(Deformation::new(first, second, options.continuity)?);
+            segments.push(blend_segment(
+                points,
+                &deltas,
+                options.continuity,
+                i,
+                &locals[i],
+                &locals[j],
+            )?);
         }
+        let dim = points.dim();
         Ok(BlendSpline {
             dim,
             params,
@@ -328,17 +281,7 @@ impl BlendSpline {
     /// [`Error::InvalidArgument`] if a local curve has no Bezier form (angle-parametrised arcs,
     /// closures).
     pub fn to_bezier_segments(&self) -> Result<Vec<BezierForm>> {
-        self.segments
-            .iter()
-            .map(|s| {
-                s.bezier_form().ok_or_else(|| Error::InvalidArgument {
-                    what: "local curves",
-                    reason: "the exact form needs polynomial or rational Bezier local curves \
-                             (Parabolas or RationalQuadratic arcs)"
-                        .into(),
-                })
-            })
-            .collect()
+        self.segments.iter().map(exact_form).collect()
     }
 
     /// The whole spline as one NURBS curve in the global parameter `s`, exactly: the segments'
@@ -357,13 +300,7 @@ impl BlendSpline {
         let mut ctrl: Vec<f64> = Vec::new();
         let mut knots = vec![self.params[0]; q + 1];
         for (i, form) in forms.iter().enumerate() {
-            let n = form.to_nurbs();
-            let h = n.homogeneous().control_points().as_slice();
-            let mut h = if form.degree() < q {
-                crate::blend::bernstein::product(&vec![1.0; q - form.degree() + 1], h, hd)
-            } else {
-                h.to_vec()
-            };
+            let mut h = elevated_homogeneous(form, q, hd);
             if i > 0 {
                 // scale so the first weight equals the previous segment's last
                 let prev_w = ctrl[ctrl.len() - 1];
@@ -379,6 +316,128 @@ impl BlendSpline {
         }
         let hom = BSplineCurve::new(q, knots, Points::from_flat(hd, ctrl)?)?;
         NurbsCurve::from_homogeneous(hom)
+    }
+}
+
+/// The validated `Δ_i` of a spline through `points` (one per segment).
+///
+/// # Errors
+/// As [`BlendSpline::new`]: too few points, `k = 0`, coincident consecutive points.
+pub(crate) fn spline_deltas(
+    points: PointsRef<'_>,
+    options: BlendSplineOptions,
+) -> Result<Vec<f64>> {
+    let n = points.len();
+    let min = if options.closed { 3 } else { 2 };
+    if n < min {
+        return Err(Error::TooFew {
+            what: "spline points",
+            min,
+            got: n,
+        });
+    }
+    if options.continuity == 0 {
+        return Err(Error::InvalidArgument {
+            what: "continuity degree k",
+            reason: "must be at least 1 (k = 1: tangent continuity with w_0(u) = u)".into(),
+        });
+    }
+    let n_seg = if options.closed { n } else { n - 1 };
+    let mut deltas = Vec::with_capacity(n_seg);
+    for i in 0..n_seg {
+        let j = (i + 1) % n;
+        let chord = dot_diff(points.point(i), points.point(j)).sqrt();
+        if chord <= f64::MIN_POSITIVE {
+            return Err(Error::CoincidentPoints {
+                first: i,
+                second: j,
+            });
+        }
+        deltas.push(match options.parameters {
+            SplineParameters::Uniform => 1.0,
+            SplineParameters::ChordLength => chord,
+            SplineParameters::Centripetal => chord.sqrt(),
+        });
+    }
+    Ok(deltas)
+}
+
+/// The global parameters `s_0 = 0, s_{i+1} = s_i + Δ_i`.
+pub(crate) fn parameters_of(deltas: &[f64]) -> Vec<f64> {
+    let mut params = Vec::with_capacity(deltas.len() + 1);
+    params.push(0.0);
+    for d in deltas {
+        params.push(params[params.len() - 1] + d);
+    }
+    params
+}
+
+/// The local curve `L_j` (its left and right pieces), or `None` at the ends of an open curve.
+pub(crate) fn local_at(
+    points: PointsRef<'_>,
+    local: &dyn LocalCurves,
+    deltas: &[f64],
+    closed: bool,
+    j: usize,
+) -> Result<Option<[SharedCurve; 2]>> {
+    let n = points.len();
+    let n_seg = deltas.len();
+    if !(closed || (j > 0 && j + 1 < n)) {
+        return Ok(None);
+    }
+    let jm = (j + n - 1) % n;
+    let jp = (j + 1) % n;
+    local
+        .pieces(
+            [points.point(jm), points.point(j), points.point(jp)],
+            (deltas[(j + n_seg - 1) % n_seg], deltas[j % n_seg]),
+        )
+        .map(Some)
+}
+
+/// Segment `i` from the local curves at its ends (`li` at `P_i`, `lj` at `P_{i+1}`).
+pub(crate) fn blend_segment(
+    points: PointsRef<'_>,
+    deltas: &[f64],
+    continuity: usize,
+    i: usize,
+    li: &Option<[SharedCurve; 2]>,
+    lj: &Option<[SharedCurve; 2]>,
+) -> Result<Segment> {
+    let (first, second) = match (li, lj) {
+        (Some(li), Some(lj)) => (li[1].clone(), lj[0].clone()),
+        (None, Some(lj)) => (lj[0].clone(), lj[0].clone()),
+        (Some(li), None) => (li[1].clone(), li[1].clone()),
+        (None, None) => {
+            let j = (i + 1) % points.len();
+            let line = line_piece(points.point(i), points.point(j), 0.0, deltas[i])?;
+            (line.clone(), line)
+        }
+    };
+    Deformation::new(first, second, continuity)
+}
+
+/// A segment's exact (rational) Bezier form.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] if its local curves have none.
+pub(crate) fn exact_form(segment: &Segment) -> Result<BezierForm> {
+    segment.bezier_form().ok_or_else(|| Error::InvalidArgument {
+        what: "local curves",
+        reason: "the exact form needs polynomial or rational Bezier local curves \
+                 (Parabolas or RationalQuadratic arcs)"
+            .into(),
+    })
+}
+
+/// The homogeneous control points (`hd = dim + 1` per point) of `form` elevated to degree `q`.
+pub(crate) fn elevated_homogeneous(form: &BezierForm, q: usize, hd: usize) -> Vec<f64> {
+    let n = form.to_nurbs();
+    let h = n.homogeneous().control_points().as_slice();
+    if form.degree() < q {
+        crate::blend::bernstein::product(&vec![1.0; q - form.degree() + 1], h, hd)
+    } else {
+        h.to_vec()
     }
 }
 

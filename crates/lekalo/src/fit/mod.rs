@@ -13,6 +13,8 @@
 //! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
 //! | `smoothing_condition.rs` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style) | [#smoothing-condition] |
 //! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
+//! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`]: closed fits (FITPACK `fpperi`) | [#periodic] |
+//! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
@@ -25,6 +27,7 @@
 //! [#penalised]: ../../docs/theory/fitting.md#penalised
 //! [#smoothing-condition]: ../../docs/theory/fitting.md#smoothing-condition
 //! [#tolerance]: ../../docs/theory/fitting.md#tolerance
+//! [#periodic]: ../../docs/theory/fitting.md#periodic
 //! [#robust]: ../../docs/theory/fitting.md#robust
 //! [#surfaces]: ../../docs/theory/fitting.md#surfaces
 //!
@@ -38,9 +41,11 @@
 //! - No dense matrix is formed: curves use banded QR or banded `UᵀDU`, O(N·p²) for `N` points.
 
 mod banded;
+mod cyclic;
 mod data;
 mod knot_placement;
 mod lsq;
+mod periodic;
 mod robust;
 mod smoothing;
 mod smoothing_condition;
@@ -50,6 +55,7 @@ mod tolerance;
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
+pub use periodic::{closed_parameters, periodic_least_squares, periodic_smoothing_condition};
 pub use robust::{robust_least_squares, RobustFit, RobustLoss};
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
 pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};

@@ -121,29 +121,15 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         nplus = if n == nmin {
             1
         } else {
-            let npl1 = if fpold - fp > acc {
-                // FITPACK truncates the real quotient to an integer
-                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                let v = (nplus as f64 * fpms / (fpold - fp)).min(1e9) as usize;
-                v
-            } else {
-                nplus * 2
-            };
-            (nplus * 2).min(npl1.max(nplus / 2).max(1))
+            next_nplus(nplus, fpms, fpold - fp, acc)
         };
         fpold = fp;
         knots.span_sums(&obs, &pass, &t, &c);
-        let before = knots.count();
-        for _ in 0..nplus {
-            if !knots.add_one(&obs.sites) || knots.count() + 2 * k + 2 >= nmax {
-                break;
-            }
-        }
-        if knots.count() + 2 * k + 2 >= nmax {
-            knots.interpolation(&obs.sites);
-        } else if knots.count() == before {
+        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2) {
+            Added::Some => {}
+            Added::Full => knots.interpolation(&obs.sites),
             // no span holds a parameter strictly inside: as close to interpolation as it gets
-            return Ok(finish(data, &obs, k, t, &c, None));
+            Added::None => return Ok(finish(data, &obs, k, t, &c, None)),
         }
     };
     let (t, qr, fp_inf) = smooth;
@@ -175,18 +161,7 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
     };
     // p → 0: the least-squares polynomial (fp0); p → ∞: the least-squares spline (fp_inf)
     let trace: f64 = qr.r.chunks_exact(k + 1).map(|row| row[0]).sum();
-    let mut it = PIteration {
-        p: n as f64 / trace,
-        limit: s,
-        low: (0.0, fp0),
-        high: (-1.0, fp_inf),
-    };
-    let mut below = None;
-    let last = it.run(&solve, s, acc, &mut below)?;
-    if last.1 > s {
-        it.run(&solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
-    }
-    match below {
+    match smooth_weight(&solve, n as f64 / trace, s, fp0, fp_inf)? {
         Some((p, _, c)) => {
             let lambda = (p * pen.scale).powi(-2);
             Ok(finish(data, &obs, k, t, &c, Some(lambda)))
@@ -198,21 +173,21 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
 
 /// The data sorted by parameter, relative to the first point and weighted for the rows of the
 /// least-squares problem.
-struct Observations {
+pub(super) struct Observations {
     /// Parameters, increasing.
-    x: Vec<f64>,
+    pub(super) x: Vec<f64>,
     /// `√w` (FITPACK's weight).
-    wf: Vec<f64>,
+    pub(super) wf: Vec<f64>,
     /// `√w·(Q − Q_first)`, `dim` per point.
-    y: Vec<f64>,
-    dim: usize,
-    center: Vec<f64>,
+    pub(super) y: Vec<f64>,
+    pub(super) dim: usize,
+    pub(super) center: Vec<f64>,
     /// The distinct parameters.
-    sites: Vec<f64>,
+    pub(super) sites: Vec<f64>,
 }
 
 impl Observations {
-    fn new(data: &FitData<'_>) -> Self {
+    pub(super) fn new(data: &FitData<'_>) -> Self {
         let pts = data.points();
         let dim = pts.dim();
         let center = pts.point(0).to_vec();
@@ -239,14 +214,14 @@ impl Observations {
 
 /// One least-squares pass over the data for a knot vector, keeping each row's first column and
 /// weighted basis values for the span residuals.
-struct LsqPass {
-    k: usize,
-    first: Vec<usize>,
-    rows: Vec<f64>,
+pub(super) struct LsqPass {
+    pub(super) k: usize,
+    pub(super) first: Vec<usize>,
+    pub(super) rows: Vec<f64>,
 }
 
 impl LsqPass {
-    fn new(obs: &Observations, k: usize) -> Self {
+    pub(super) fn new(obs: &Observations, k: usize) -> Self {
         LsqPass {
             k,
             first: vec![0; obs.x.len()],
@@ -286,7 +261,7 @@ impl LsqPass {
     }
 
     /// `Σ_d (√w_i·(C_d(ū_i) − Q_{i,d}))²` for point `i` and coefficients `c`.
-    fn residual2(&self, obs: &Observations, i: usize, c: &[f64]) -> f64 {
+    pub(super) fn residual2(&self, obs: &Observations, i: usize, c: &[f64]) -> f64 {
         let (k, dim) = (self.k, obs.dim);
         let h = &self.rows[i * (k + 1)..(i + 1) * (k + 1)];
         let f = self.first[i];
@@ -304,15 +279,25 @@ impl LsqPass {
     }
 }
 
+/// What [`Knots::add_up_to`] did.
+pub(super) enum Added {
+    /// Knots were added.
+    Some,
+    /// The knot count of interpolation is reached.
+    Full,
+    /// No span holds a distinct parameter strictly inside.
+    None,
+}
+
 /// The interior knots of the rounds with FITPACK's bookkeeping per span: the residual sum
 /// `fpint` and the number of distinct parameters strictly inside, `nrdata`.
-struct Knots {
-    k: usize,
-    a: f64,
-    b: f64,
-    interior: Vec<f64>,
-    fpint: Vec<f64>,
-    nrdata: Vec<usize>,
+pub(super) struct Knots {
+    pub(super) k: usize,
+    pub(super) a: f64,
+    pub(super) b: f64,
+    pub(super) interior: Vec<f64>,
+    pub(super) fpint: Vec<f64>,
+    pub(super) nrdata: Vec<usize>,
 }
 
 impl Knots {
@@ -327,7 +312,7 @@ impl Knots {
         }
     }
 
-    fn count(&self) -> usize {
+    pub(super) fn count(&self) -> usize {
         self.interior.len()
     }
 
@@ -381,6 +366,25 @@ impl Knots {
         self.fpint.push(part);
     }
 
+    /// Adds up to `nplus` knots (FITPACK `fpknot`, one at a time) while fewer than `full`
+    /// interior knots: [`Added::Full`] when `full` is reached (the caller places the knots of
+    /// interpolation), [`Added::None`] when no span could be split.
+    pub(super) fn add_up_to(&mut self, sites: &[f64], nplus: usize, full: usize) -> Added {
+        let before = self.count();
+        for _ in 0..nplus {
+            if !self.add_one(sites) || self.count() >= full {
+                break;
+            }
+        }
+        if self.count() >= full {
+            Added::Full
+        } else if self.count() == before {
+            Added::None
+        } else {
+            Added::Some
+        }
+    }
+
     /// Adds one knot at the middle distinct parameter of the span with the largest residual
     /// sum among those with a parameter strictly inside (FITPACK `fpknot`). Returns `false`
     /// when no span can be split.
@@ -410,8 +414,48 @@ impl Knots {
     }
 }
 
+/// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
+/// nplus/2, 1))`, doubling when the last round decreased the residual by less than `acc`.
+pub(super) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> usize {
+    let npl1 = if decrease > acc {
+        // FITPACK truncates the real quotient to an integer
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let v = (nplus as f64 * fpms / decrease).min(1e9) as usize;
+        v
+    } else {
+        nplus * 2
+    };
+    (nplus * 2).min(npl1.max(nplus / 2).max(1))
+}
+
+/// The smoothing weight `p` on the final knots (step 3): FITPACK's iteration from `p0`, between
+/// the polynomial's residual `fp0` (`p = 0`) and the least-squares spline's `fp_inf`
+/// (`p = ∞`), continued towards `s − SMOOTHING_RTOL·s/2` if it ends above `s`. Returns the
+/// result with the largest residual `≤ s`, if any.
+pub(super) fn smooth_weight(
+    solve: &impl Fn(f64) -> Result<(Vec<f64>, f64)>,
+    p0: f64,
+    s: f64,
+    fp0: f64,
+    fp_inf: f64,
+) -> Result<Option<Below>> {
+    let acc = SMOOTHING_RTOL * s;
+    let mut it = PIteration {
+        p: p0,
+        limit: s,
+        low: (0.0, fp0),
+        high: (-1.0, fp_inf),
+    };
+    let mut below = None;
+    let last = it.run(solve, s, acc, &mut below)?;
+    if last.1 > s {
+        it.run(solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
+    }
+    Ok(below)
+}
+
 /// Back substitution in the triangle, a zero pivot (a coefficient without data) as an error.
-fn back_substitute(qr: &GivensQr) -> Result<Vec<f64>> {
+pub(super) fn back_substitute(qr: &GivensQr) -> Result<Vec<f64>> {
     let mut c = vec![0.0; qr.z.len()];
     qr.solve(&mut c).map_err(|col| Error::SingularSystem {
         reason: format!(
@@ -424,14 +468,14 @@ fn back_substitute(qr: &GivensQr) -> Result<Vec<f64>> {
 
 /// FITPACK's discontinuity rows (`fpdisc`): for each interior knot `t_l`, the jump of the
 /// `k`-th derivative of the `k + 2` B-splines `N_{l−k−1..=l}` there, divided by `scale`.
-struct JumpRows {
+pub(super) struct JumpRows {
     /// `k + 2` entries per interior knot; row `j` starts at coefficient `j`.
-    rows: Vec<f64>,
+    pub(super) rows: Vec<f64>,
     /// `k!·(spans/length)^k`.
-    scale: f64,
+    pub(super) scale: f64,
 }
 
-fn jump_rows(t: &[f64], k: usize) -> JumpRows {
+pub(super) fn jump_rows(t: &[f64], k: usize) -> JumpRows {
     let n = t.len();
     let nk1 = n - k - 1;
     let spans = nk1 - k;
@@ -458,7 +502,7 @@ fn jump_rows(t: &[f64], k: usize) -> JumpRows {
 }
 
 /// A smoothed result `(p, fp, c)`.
-type Below = (f64, f64, Vec<f64>);
+pub(super) type Below = (f64, f64, Vec<f64>);
 
 /// FITPACK's iteration for the smoothing weight `p`: `fp(p)` decreases from the polynomial's
 /// residual (`p = 0`) to the least-squares spline's (`p = ∞`, marked `-1`); `low`/`high` hold
@@ -553,7 +597,7 @@ fn rational_root(p1: f64, f1: f64, p2: f64, f2: f64, p3: f64, f3: f64) -> f64 {
 }
 
 /// The curve from the coefficients (relative to the reference point) and its report.
-fn finish(
+pub(super) fn finish(
     data: &FitData<'_>,
     obs: &Observations,
     k: usize,

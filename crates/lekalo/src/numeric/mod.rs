@@ -4,7 +4,10 @@
 //!   and scaled norms.
 //! - `isa.rs`: run-time choice of the instruction set for kernels compiled twice.
 //! - `large_buffer.rs`: zeroed buffers for large results, on huge pages where available.
+//! - `progress.rs`: [`Progress`](crate::Progress), progress reports and cancellation of long
+//!   computations.
 
 pub(crate) mod isa;
 pub(crate) mod large_buffer;
 pub(crate) mod linalg;
+pub(crate) mod progress;

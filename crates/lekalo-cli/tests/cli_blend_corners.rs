@@ -1,0 +1,96 @@
+//! End-to-end tests of `lekalo blend corners`: a polyline smoothed at every corner into one
+//! curve, the same bits as the library's `smooth_polyline_corners`.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+
+use assert_cmd::Command;
+use lekalo::{smooth_polyline_corners, CornerWindow, Points};
+use lekalo_io::Object;
+use predicates::str::contains;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+const ZIGZAG: [[f64; 2]; 5] = [[0.0, 0.0], [3.0, 0.0], [4.0, 2.5], [7.0, 1.0], [7.5, 6.0]];
+
+fn zigzag_csv() -> String {
+    ZIGZAG.iter().map(|[x, y]| format!("{x},{y}\n")).collect()
+}
+
+#[test]
+fn corners_agree_with_the_library_to_the_last_bit() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("zigzag.csv"), zigzag_csv()).unwrap();
+    let pts = Points::from_2d(&ZIGZAG).unwrap();
+    for (arg, window, k) in [
+        ("25%", CornerWindow::Fraction(0.25), "2"),
+        ("0.8", CornerWindow::Length(0.8), "3"),
+        ("50%", CornerWindow::Fraction(0.5), "1"),
+    ] {
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(["blend", "corners", "zigzag.csv", "--window", arg])
+            .args(["--continuity", k])
+            .assert()
+            .success();
+        let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+        let Ok(Object::BSpline(c)) = Object::from_json_str(&text, "stdout") else {
+            panic!("not a B-spline: {text}");
+        };
+        let want = smooth_polyline_corners(pts.as_view(), window, k.parse().unwrap()).unwrap();
+        assert_eq!(&c, want.curve(), "--window {arg} --continuity {k}");
+    }
+}
+
+#[test]
+fn corners_write_plots_and_samples() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("zigzag.csv"), zigzag_csv()).unwrap();
+    for out in ["smooth.svg", "smooth.png", "smooth.csv"] {
+        lekalo()
+            .current_dir(d.path())
+            .args(["blend", "corners", "zigzag.csv", "-o", out])
+            .assert()
+            .success();
+        assert!(
+            fs::metadata(d.path().join(out)).unwrap().len() > 100,
+            "{out}"
+        );
+    }
+}
+
+#[test]
+fn corners_bad_input_names_the_problem() {
+    let d = tempfile::tempdir().unwrap();
+    let cases = [
+        ("two.csv", "0,0\n1,0\n", "25%", "at least 3"),
+        (
+            "repeat.csv",
+            "0,0\n1,0\n1,0\n1,1\n",
+            "25%",
+            "points 1 and 2 coincide",
+        ),
+        ("nan.csv", "0,0\n1,nan\n2,0\n", "25%", "nan"),
+        (
+            "zigzag.csv",
+            &zigzag_csv(),
+            "1.6",
+            "segment 1 (points 1 to 2)",
+        ),
+        ("zigzag.csv", &zigzag_csv(), "60%", "(0, 0.5]"),
+        ("zigzag.csv", &zigzag_csv(), "-1", "must be positive"),
+        ("zigzag.csv", &zigzag_csv(), "wide", "--window"),
+    ];
+    for (name, text, window, message) in cases {
+        fs::write(d.path().join(name), text).unwrap();
+        lekalo()
+            .current_dir(d.path())
+            .args(["blend", "corners", name, "--window", window])
+            .assert()
+            .code(2)
+            .stderr(contains(message));
+    }
+}

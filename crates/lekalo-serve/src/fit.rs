@@ -1,0 +1,134 @@
+//! `POST /api/fit`: smoothing of noisy points (`lekalo fit --smooth` and `--s`), a thin call of
+//! [`lekalo::fit`] (`docs/theory/fitting.md`): the cubic smoothing spline with λ given or chosen
+//! by generalised cross-validation, or the fewest knots whose weighted residual sum of squares
+//! is at most `s` (FITPACK's smoothing condition).
+
+use axum::body::Bytes;
+use axum::response::Response;
+use lekalo::fit::{smoothing_condition, smoothing_spline, CurveFit, FitData, Lambda};
+use lekalo::{parametrize, Points};
+use lekalo_io::Object;
+use serde::{Deserialize, Serialize};
+
+use crate::api::{answer, check_degree, parse, points, view, CurveView, Param, ViewOptionsFlat};
+use crate::error::{ApiError, ApiResult};
+
+/// How the amount of smoothing is given.
+#[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+enum Smoothing {
+    /// The penalty weight λ of `∫|f''|²` (`lekalo fit --smooth λ`).
+    #[default]
+    Lambda,
+    /// λ by generalised cross-validation (`lekalo fit --smooth gcv`).
+    Gcv,
+    /// Fewest knots with weighted residual sum of squares `≤ s` (`lekalo fit --s S`).
+    S,
+}
+
+fn default_degree() -> usize {
+    3
+}
+
+#[derive(Debug, Deserialize)]
+struct FitRequest {
+    points: Vec<Vec<f64>>,
+    #[serde(default)]
+    smoothing: Smoothing,
+    #[serde(default)]
+    lambda: Option<f64>,
+    #[serde(default)]
+    s: Option<f64>,
+    /// Degree of the smoothing condition (the smoothing spline is cubic).
+    #[serde(default = "default_degree")]
+    degree: usize,
+    /// The points are samples `(x, y)` of a function: `x` is the parameter.
+    #[serde(default)]
+    function: bool,
+    #[serde(default)]
+    parametrization: Param,
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
+}
+
+/// The fit's figures, named as in `lekalo fit --json`.
+#[derive(Debug, Serialize)]
+struct FitAnswer {
+    view: CurveView,
+    report: Report,
+}
+
+#[derive(Debug, Serialize)]
+struct Report {
+    max_residual: f64,
+    max_index: usize,
+    rms: f64,
+    weighted_rss: f64,
+    control_points: usize,
+    /// Length of the knot vector (as `lekalo fit`).
+    knots: usize,
+    /// Distinct knots inside the domain.
+    interior_knots: usize,
+    lambda: Option<f64>,
+    s: Option<f64>,
+}
+
+/// `POST /api/fit`: the smoothed curve, its drawing and its residuals.
+pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
+    let r: FitRequest = parse(&body)?;
+    let pts = points(&r.points, "points")?;
+    let (values, params) = if r.function {
+        let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+        let y = Points::from_flat(1, pts.iter().map(|p| p[1]).collect())
+            .map_err(|e| ApiError::lib("points", &e))?;
+        (y, x)
+    } else {
+        let u = parametrize(pts.as_view(), r.parametrization.to_lib(None))
+            .map_err(|e| ApiError::lib("points", &e))?;
+        (pts, u)
+    };
+    let data = FitData::new(values.as_view(), &params).map_err(|e| ApiError::lib("points", &e))?;
+    let given = |v: Option<f64>, name: &str| {
+        v.ok_or_else(|| ApiError::bad(name, format!("smoothing = {name} needs the value {name}")))
+    };
+    let fit: CurveFit = match r.smoothing {
+        Smoothing::Lambda => smoothing_spline(&data, Lambda::Given(given(r.lambda, "lambda")?))
+            .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
+        Smoothing::Gcv => smoothing_spline(&data, Lambda::Gcv)
+            .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
+        Smoothing::S => {
+            let degree = check_degree(r.degree, "degree")?;
+            smoothing_condition(&data, degree, given(r.s, "s")?)
+                .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
+        }
+    };
+    let rep = &fit.report;
+    let knots = fit.curve.knots();
+    let (a, b) = fit.curve.domain();
+    let report = Report {
+        max_residual: rep.max_residual,
+        max_index: rep.max_index,
+        rms: rep.rms,
+        weighted_rss: rep.weighted_rss,
+        control_points: rep.n_ctrl,
+        knots: knots.len(),
+        interior_knots: knots
+            .distinct()
+            .iter()
+            .filter(|&&(k, _)| k > a && k < b)
+            .count(),
+        lambda: rep.lambda,
+        s: (r.smoothing == Smoothing::S).then_some(r.s).flatten(),
+    };
+    let view = view(&Object::BSpline(fit.curve), &r.view.options())?;
+    Ok(answer(FitAnswer { view, report }))
+}
+
+/// The request field a fitting error is about: the smoothing value, the degree or the points.
+fn fit_field(e: &lekalo::Error, value: &'static str) -> &'static str {
+    match e {
+        lekalo::Error::NegativeSmoothing { .. } => value,
+        lekalo::Error::Degree { .. } => "degree",
+        _ => "points",
+    }
+}

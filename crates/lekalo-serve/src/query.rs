@@ -1,0 +1,137 @@
+//! `POST /api/project` and `POST /api/measure`: the closest point of a curve to a point and
+//! the arc length with parameters at given lengths (`lekalo project`, `lekalo measure`), thin
+//! calls of [`lekalo::QueryCurve`] (`docs/theory/queries.md`).
+
+use axum::body::Bytes;
+use axum::response::Response;
+use lekalo::QueryCurve;
+use lekalo_io::Object;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use crate::api::{answer, curve, parse, MAX_POINTS};
+use crate::error::{ApiError, ApiResult};
+
+/// The curve of an object, prepared for queries (as `lekalo measure` and `lekalo project`).
+fn query_curve(obj: &Object) -> ApiResult<QueryCurve> {
+    match obj {
+        Object::Bezier(c) => QueryCurve::from_bezier(c),
+        Object::BSpline(c) => QueryCurve::from_bspline(c),
+        Object::Nurbs(c) => QueryCurve::from_nurbs(c),
+        other => {
+            return Err(ApiError::bad(
+                "curve.type",
+                format!(
+                    "queries work on Bezier, B-spline and NURBS curves; this is a {}",
+                    other.display_name()
+                ),
+            ))
+        }
+    }
+    .map_err(|e| ApiError::lib("curve", &e))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ProjectRequest {
+    curve: Value,
+    point: Vec<f64>,
+}
+
+/// The closest point, as `lekalo project --json` names it.
+#[derive(Debug, Serialize)]
+struct Projection {
+    t: f64,
+    point: Vec<f64>,
+    distance: f64,
+}
+
+/// `POST /api/project`: the point of the curve closest to `point` (global: every piece whose
+/// bounding box could hold a closer point is searched, `QueryCurve::project`).
+pub(crate) async fn project(body: Bytes) -> ApiResult<Response> {
+    let r: ProjectRequest = parse(&body)?;
+    let q = query_curve(&curve(&r.curve, "curve")?)?;
+    if r.point.len() != q.dim() {
+        return Err(ApiError::bad(
+            "point",
+            format!(
+                "the query point has dimension {}, the curve {}",
+                r.point.len(),
+                q.dim()
+            ),
+        ));
+    }
+    let p = q
+        .project(&r.point)
+        .map_err(|e| ApiError::lib("point", &e))?;
+    Ok(answer(Projection {
+        t: p.t,
+        point: p.point,
+        distance: p.distance,
+    }))
+}
+
+fn default_tolerance() -> f64 {
+    1e-12
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeasureRequest {
+    curve: Value,
+    #[serde(default)]
+    at_length: Vec<f64>,
+    #[serde(default = "default_tolerance")]
+    tolerance: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct AtLength {
+    length: f64,
+    t: f64,
+    point: Vec<f64>,
+}
+
+#[derive(Debug, Serialize)]
+struct Measure {
+    length: f64,
+    error_estimate: f64,
+    domain: [f64; 2],
+    at_length: Vec<AtLength>,
+}
+
+/// `POST /api/measure`: the arc length (with its error estimate) and the parameter, and the
+/// point, at each length of `at_length` from the start (`lekalo measure --at-length`).
+pub(crate) async fn measure(body: Bytes) -> ApiResult<Response> {
+    let r: MeasureRequest = parse(&body)?;
+    if r.at_length.len() > MAX_POINTS {
+        return Err(ApiError::bad(
+            "at_length",
+            format!("{} lengths: at most {MAX_POINTS}", r.at_length.len()),
+        ));
+    }
+    let obj = curve(&r.curve, "curve")?;
+    let q = query_curve(&obj)?;
+    let table = q
+        .arc_length(r.tolerance)
+        .map_err(|e| ApiError::lib("tolerance", &e))?;
+    let params = table
+        .param_at_batch(&r.at_length)
+        .map_err(|e| ApiError::lib("at_length", &e))?;
+    let at_length = r
+        .at_length
+        .iter()
+        .zip(params)
+        .map(|(&length, t)| {
+            let point = obj.eval(t).map_err(|e| ApiError::lib("curve", &e))?;
+            Ok(AtLength { length, t, point })
+        })
+        .collect::<ApiResult<Vec<_>>>()?;
+    let (a, b) = q.domain();
+    Ok(answer(Measure {
+        length: table.total(),
+        error_estimate: table.error_estimate(),
+        domain: [a, b],
+        at_length,
+    }))
+}

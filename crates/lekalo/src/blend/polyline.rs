@@ -1,0 +1,553 @@
+//! Smoothing every corner of a polyline into one curve
+//! (docs/theory/blending.md#polyline-corners); the construction is documented on
+//! [`smooth_polyline_corners`].
+
+use crate::blend::corner::CornerTransition;
+use crate::blend::deformation::{BezierForm, ParametricCurve};
+use crate::error::{check_finite, Error, Result};
+use crate::points::{Points, PointsRef};
+use crate::{BSplineCurve, BezierCurve, BezierSegment};
+
+/// The largest continuity degree [`smooth_polyline_corners`] accepts. The curve has degree `4k`,
+/// and 16 (degree 64) is far beyond any practical rounding while keeping the Bernstein
+/// coefficients of the transitions accurate in `f64`.
+pub const MAX_POLYLINE_CONTINUITY: usize = 16;
+
+/// How much of the two segments at a corner its transition replaces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CornerWindow {
+    /// A fraction `f ∈ (0, 1/2]` of the shorter of the corner's two segments, cut on both
+    /// sides. Never too large: two windows on one segment take at most all of it.
+    Fraction(f64),
+    /// The same length `r > 0` on both sides of every corner; each segment must be at least as
+    /// long as the windows of its corners together.
+    Length(f64),
+}
+
+/// A polyline with its corners smoothed: one B-spline and where its parts lie.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SmoothedPolyline {
+    curve: BSplineCurve,
+    windows: Vec<f64>,
+    straight: Vec<(f64, f64)>,
+}
+
+impl SmoothedPolyline {
+    /// The curve: degree `4k`, knots at the ends of the straight parts and transitions with
+    /// multiplicity `4k` (piecewise Bezier form; the curve is `C^k` there).
+    #[must_use]
+    pub fn curve(&self) -> &BSplineCurve {
+        &self.curve
+    }
+
+    /// The curve, owned.
+    #[must_use]
+    pub fn into_curve(self) -> BSplineCurve {
+        self.curve
+    }
+
+    /// The window length `r_j` at each interior point `j = 1 … n−2` (index `j − 1`): the
+    /// transition starts `r_j` before the corner and ends `r_j` after it.
+    #[must_use]
+    pub fn windows(&self) -> &[f64] {
+        &self.windows
+    }
+
+    /// The parameter interval of the straight part of each segment `i` (points `i` to `i+1`),
+    /// where the curve is that segment, traversed at unit speed. Empty (`start == end`) when the
+    /// windows take the whole segment.
+    #[must_use]
+    pub fn straight_spans(&self) -> &[(f64, f64)] {
+        &self.straight
+    }
+}
+
+/// Smooths every interior corner of the polyline `points` (at least three points, any
+/// dimension) with continuity degree `continuity = k ≥ 1`, and returns the result as one curve
+/// (docs/theory/blending.md#polyline-corners).
+///
+/// Construction: corner `j` (point `X = P_j`, unit directions `d_{j−1}` in and `d_j` out) gets a
+/// window `r_j` (see [`CornerWindow`]). Segments are kept exactly outside the windows, on
+/// parameter intervals equal to their length (unit speed). The pieces
+/// `[X − r_j d_{j−1}, X]` and `[X, X + r_j d_j]` are replaced by the [`CornerTransition`] of the
+/// lines `X − 2 r_j d_{j−1} → X` and `X → X + 2 r_j d_j` at parameters `1/2` and `1/2`: equal
+/// parameter windows `h_1 = h_2 = 1/2`, so the transition has contact of order `k` with both
+/// lines, and its derivatives there are `r_j^l` times the lines' unit-speed ones. Placed on a
+/// parameter interval of length `r_j`, it is therefore `C^k` with the straight parts (not only
+/// `G^k`). The transition is a polynomial Bezier piece of degree
+/// `(2k − 1) + (2k + 1) = 4k`; the straight parts are elevated to it, and the pieces are joined
+/// by [`BSplineCurve::from_bezier_segments`] with their common end points stored once. The
+/// domain is `[0, Σ L_i − Σ r_j]`.
+///
+/// ```
+/// use lekalo::{smooth_polyline_corners, CornerWindow, Points};
+/// let square = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])?;
+/// let s = smooth_polyline_corners(square.as_view(), CornerWindow::Fraction(0.25), 2)?;
+/// assert_eq!(s.curve().degree(), 8);
+/// assert_eq!(s.windows(), &[0.5, 0.5]);
+/// // the middle segment's straight part: x = 2, y from 0.5 to 1.5, at unit speed
+/// let (a, _) = s.straight_spans()[1];
+/// let p = s.curve().eval(a + 0.5)?;
+/// assert!((p[0] - 2.0).abs() < 1e-14 && (p[1] - 1.0).abs() < 1e-14);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::TooFew`] for fewer than three points; [`Error::InvalidArgument`] for a continuity
+/// outside `1..=`[`MAX_POLYLINE_CONTINUITY`], for repeated consecutive points (a segment no
+/// longer than rounding of the data's scale), for a window fraction outside `(0, 1/2]` or a
+/// window length that is not positive, and for a window length too large for a segment (the
+/// message names the segment and the largest length that fits); [`Error::NonFinite`] for a NaN
+/// or infinite coordinate or window.
+pub fn smooth_polyline_corners(
+    points: PointsRef<'_>,
+    window: CornerWindow,
+    continuity: usize,
+) -> Result<SmoothedPolyline> {
+    let n = points.len();
+    if n < 3 {
+        return Err(Error::TooFew {
+            what: "polyline points (a corner needs three)",
+            min: 3,
+            got: n,
+        });
+    }
+    if continuity == 0 || continuity > MAX_POLYLINE_CONTINUITY {
+        return Err(Error::InvalidArgument {
+            what: "continuity degree k",
+            reason: format!("got {continuity}; must be in 1..={MAX_POLYLINE_CONTINUITY}"),
+        });
+    }
+    check_finite("polyline coordinates", points.as_slice())?;
+    let dim = points.dim();
+    let lengths = segment_lengths(points)?;
+    let windows = corner_windows(&lengths, window)?;
+    // window of the corner at point i (0 at the end points)
+    let r_at = |i: usize| {
+        if i == 0 || i == n - 1 {
+            0.0
+        } else {
+            windows[i - 1]
+        }
+    };
+    let dir = |i: usize| -> Vec<f64> {
+        let (a, b) = (points.point(i), points.point(i + 1));
+        a.iter().zip(b).map(|(x, y)| (y - x) / lengths[i]).collect()
+    };
+    let along = |x: &[f64], d: &[f64], t: f64| -> Vec<f64> {
+        x.iter()
+            .zip(d)
+            .map(|(x, d)| x + t * d)
+            .collect::<Vec<f64>>()
+    };
+    let degree = 4 * continuity;
+    let mut segments = Vec::with_capacity(2 * n);
+    let mut straight = Vec::with_capacity(n - 1);
+    let mut s = 0.0;
+    for i in 0..n - 1 {
+        let d = dir(i);
+        let (p, q) = (points.point(i), points.point(i + 1));
+        let start = if i == 0 {
+            p.to_vec()
+        } else {
+            along(p, &d, r_at(i))
+        };
+        let end = if i == n - 2 {
+            q.to_vec()
+        } else {
+            along(q, &d, -r_at(i + 1))
+        };
+        let len = lengths[i] - r_at(i) - r_at(i + 1);
+        if len > 0.0 {
+            segments.push(BezierSegment {
+                start: s,
+                end: s + len,
+                curve: straight_piece(&start, &end, degree)?,
+            });
+            straight.push((s, s + len));
+            s += len;
+        } else {
+            straight.push((s, s));
+        }
+        if i + 1 < n - 1 {
+            let r = r_at(i + 1);
+            let next = dir(i + 1);
+            let after_end = along(q, &next, r);
+            let mut piece = transition(q, &d, &next, r, continuity)?;
+            pin_ends(&mut piece, &end, &after_end, dim);
+            segments.push(BezierSegment {
+                start: s,
+                end: s + r,
+                curve: BezierCurve::new(Points::from_flat(dim, piece)?)?,
+            });
+            s += r;
+        }
+    }
+    Ok(SmoothedPolyline {
+        curve: BSplineCurve::from_bezier_segments(&segments)?,
+        windows,
+        straight,
+    })
+}
+
+/// Segment lengths, refusing repeated points (length within rounding of the data's scale).
+fn segment_lengths(points: PointsRef<'_>) -> Result<Vec<f64>> {
+    let scale = points
+        .as_slice()
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    (0..points.len() - 1)
+        .map(|i| {
+            let len = crate::blend::deformation::dist(points.point(i), points.point(i + 1));
+            if len <= 4.0 * f64::EPSILON * scale || len == 0.0 {
+                return Err(Error::InvalidArgument {
+                    what: "polyline points",
+                    reason: format!(
+                        "points {i} and {} coincide (segment length {len:e}); remove the \
+                         repeated point",
+                        i + 1
+                    ),
+                });
+            }
+            if !len.is_finite() {
+                return Err(Error::NonFinite {
+                    what: "polyline segment length (index = segment; rescale the points)",
+                    index: i,
+                    value: len,
+                });
+            }
+            Ok(len)
+        })
+        .collect()
+}
+
+/// The window `r_j` of each interior corner, checked against the segments.
+fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
+    let corners = lengths.len() - 1;
+    let windows: Vec<f64> = match window {
+        CornerWindow::Fraction(f) => {
+            check_finite("corner window fraction", &[f])?;
+            if !(f > 0.0 && f <= 0.5) {
+                return Err(Error::InvalidArgument {
+                    what: "corner window fraction",
+                    reason: format!(
+                        "got {f}; it must lie in (0, 0.5] (a fraction of the shorter segment at \
+                         each corner)"
+                    ),
+                });
+            }
+            (0..corners)
+                .map(|j| f * lengths[j].min(lengths[j + 1]))
+                .collect()
+        }
+        CornerWindow::Length(r) => {
+            check_finite("corner window length", &[r])?;
+            if r <= 0.0 {
+                return Err(Error::InvalidArgument {
+                    what: "corner window length",
+                    reason: format!("got {r}; it must be positive"),
+                });
+            }
+            vec![r; corners]
+        }
+    };
+    let last = lengths.len() - 1;
+    for (i, &len) in lengths.iter().enumerate() {
+        let left = if i == 0 { 0.0 } else { windows[i - 1] };
+        let right = if i == last { 0.0 } else { windows[i] };
+        if left + right > len {
+            let fits = lengths
+                .iter()
+                .enumerate()
+                .map(|(i, l)| if i == 0 || i == last { *l } else { l / 2.0 })
+                .fold(f64::INFINITY, f64::min);
+            return Err(Error::InvalidArgument {
+                what: "corner window",
+                reason: format!(
+                    "segment {i} (points {i} to {}) is {len} long but its corner windows take \
+                     {}; the largest window length that fits every segment is {fits} (or give \
+                     a fraction)",
+                    i + 1,
+                    left + right
+                ),
+            });
+        }
+    }
+    Ok(windows)
+}
+
+/// The segment `start → end` as a Bezier curve of `degree` (evenly spaced control points, the
+/// ends exact).
+fn straight_piece(start: &[f64], end: &[f64], degree: usize) -> Result<BezierCurve> {
+    let mut ctrl = Vec::with_capacity((degree + 1) * start.len());
+    for m in 0..=degree {
+        if m == degree {
+            ctrl.extend_from_slice(end);
+        } else {
+            #[allow(clippy::cast_precision_loss)] // degree ≤ 64
+            let t = m as f64 / degree as f64;
+            ctrl.extend(start.iter().zip(end).map(|(a, b)| a + t * (b - a)));
+        }
+    }
+    BezierCurve::new(Points::from_flat(start.len(), ctrl)?)
+}
+
+/// The transition at corner `x` (directions `d_in`, `d_out`, window `r`) as flat Bezier control
+/// points: [`CornerTransition`] of the lines `x − 2r d_in → x` and `x → x + 2r d_out` at `1/2`.
+fn transition(
+    x: &[f64],
+    d_in: &[f64],
+    d_out: &[f64],
+    r: f64,
+    continuity: usize,
+) -> Result<Vec<f64>> {
+    let dim = x.len();
+    let line = |from: Vec<f64>, to: Vec<f64>| {
+        BezierCurve::new(Points::from_flat(dim, [from, to].concat())?)
+    };
+    let before = line(
+        x.iter().zip(d_in).map(|(x, d)| x - 2.0 * r * d).collect(),
+        x.to_vec(),
+    )?;
+    let after = line(
+        x.to_vec(),
+        x.iter().zip(d_out).map(|(x, d)| x + 2.0 * r * d).collect(),
+    )?;
+    match CornerTransition::new(before, 0.5, after, 0.5, continuity)?.bezier_form() {
+        Some(BezierForm::Polynomial(b)) => Ok(b.control_points().as_slice().to_vec()),
+        _ => Err(Error::InvalidArgument {
+            what: "corner transition",
+            reason: "two lines gave no polynomial Bezier form".into(),
+        }),
+    }
+}
+
+/// Sets the transition's end control points to the straight parts' end points, so that the
+/// pieces share them bit for bit (they agree to rounding already).
+fn pin_ends(ctrl: &mut [f64], start: &[f64], end: &[f64], dim: usize) {
+    let n = ctrl.len();
+    ctrl[..dim].copy_from_slice(start);
+    ctrl[n - dim..].copy_from_slice(end);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn smooth(rows: &[[f64; 2]], window: CornerWindow, k: usize) -> Result<SmoothedPolyline> {
+        smooth_polyline_corners(Points::from_2d(rows)?.as_view(), window, k)
+    }
+
+    /// Largest jump of the derivatives `0..=order` (in the curve's parameter) over the joins of
+    /// the Bezier pieces, relative to the size rounding gives them: `|P| (p / h)^l` for control
+    /// points of size `|P|`, degree `p` and the shorter piece length `h` (the l-th derivative is
+    /// `p!/(p−l)! Δ^l P / h^l`).
+    fn max_relative_jump(curve: &BSplineCurve, order: usize) -> f64 {
+        let pieces = curve.to_bezier_segments();
+        let size = curve.control_points().max_abs();
+        #[allow(clippy::cast_precision_loss)]
+        let p = curve.degree() as f64;
+        let mut worst = 0.0_f64;
+        for w in pieces.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            let left = a
+                .curve
+                .eval_derivatives(1.0, order)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let right = b
+                .curve
+                .eval_derivatives(0.0, order)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let (ha, hb) = (a.end - a.start, b.end - b.start);
+            for l in 0..=order {
+                let l = i32::try_from(l).unwrap_or(i32::MAX);
+                let rows = left.point(l as usize).iter().zip(right.point(l as usize));
+                let jump = rows.fold(0.0_f64, |m, (x, y)| {
+                    m.max((x / ha.powi(l) - y / hb.powi(l)).abs())
+                });
+                worst = worst.max(jump / (size * (p / ha.min(hb)).powi(l)));
+            }
+        }
+        worst
+    }
+
+    const ZIGZAG: [[f64; 2]; 5] = [[0.0, 0.0], [3.0, 0.0], [4.0, 2.5], [7.0, 1.0], [7.5, 6.0]];
+
+    #[test]
+    fn passes_through_segment_midpoints_and_keeps_segments_straight() -> Result<()> {
+        for (window, k) in [
+            (CornerWindow::Fraction(0.3), 1),
+            (CornerWindow::Fraction(0.5), 2),
+            (CornerWindow::Length(0.8), 3),
+        ] {
+            let s = smooth(&ZIGZAG, window, k)?;
+            assert_eq!(s.curve().degree(), 4 * k, "degree 4k for k = {k}");
+            for (i, &(a, b)) in s.straight_spans().iter().enumerate() {
+                let (p, q) = (ZIGZAG[i], ZIGZAG[i + 1]);
+                let len = (q[0] - p[0]).hypot(q[1] - p[1]);
+                let r_left = if i == 0 { 0.0 } else { s.windows()[i - 1] };
+                let mid = a + len / 2.0 - r_left;
+                if mid > a && mid < b {
+                    let m = s.curve().eval(mid)?;
+                    let want = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0];
+                    for (x, y) in m.iter().zip(want) {
+                        assert!(
+                            (x - y).abs() <= 1e-14 * 7.5,
+                            "{window:?} k={k} mid {i}: {m:?}"
+                        );
+                    }
+                }
+                // unit speed along the segment's direction on the straight part
+                if b > a {
+                    let d = s.curve().eval_derivatives((a + b) / 2.0, 2)?;
+                    let dir = [(q[0] - p[0]) / len, (q[1] - p[1]) / len];
+                    for c in 0..2 {
+                        assert!(
+                            (d.point(1)[c] - dir[c]).abs() < 1e-12,
+                            "speed on segment {i}"
+                        );
+                        assert!(d.point(2)[c].abs() < 1e-10, "segment {i} is straight");
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn is_c_k_at_every_join_and_not_smoother() -> Result<()> {
+        for k in 1..=4 {
+            let s = smooth(&ZIGZAG, CornerWindow::Fraction(0.4), k)?;
+            let jump = max_relative_jump(s.curve(), k);
+            assert!(jump < 1e-13, "k = {k}: derivative jump {jump:e}");
+            // the (k+1)-th derivative jumps at a corner: the check above can fail
+            let next = max_relative_jump(s.curve(), k + 1);
+            assert!(
+                next > 1e-6,
+                "k = {k}: order k+1 jump {next:e} should be visible"
+            );
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn windows_by_fraction_and_length() -> Result<()> {
+        let s = smooth(&ZIGZAG, CornerWindow::Fraction(0.25), 2)?;
+        let l = |i: usize| (ZIGZAG[i + 1][0] - ZIGZAG[i][0]).hypot(ZIGZAG[i + 1][1] - ZIGZAG[i][1]);
+        for j in 0..3 {
+            assert_eq!(
+                s.windows()[j],
+                0.25 * l(j).min(l(j + 1)),
+                "corner {}",
+                j + 1
+            );
+        }
+        let total: f64 = (0..4).map(l).sum::<f64>() - s.windows().iter().sum::<f64>();
+        let (_, end) = s.curve().domain();
+        assert!((end - total).abs() < 1e-13, "domain end {end} vs {total}");
+        let s = smooth(&ZIGZAG, CornerWindow::Length(1.0), 1)?;
+        assert_eq!(s.windows(), &[1.0, 1.0, 1.0]);
+        Ok(())
+    }
+
+    #[test]
+    fn works_in_3d_and_on_collinear_points() -> Result<()> {
+        let p = Points::from_3d(&[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [2.0, 1.0, 1.0],
+        ])?;
+        let s = smooth_polyline_corners(p.as_view(), CornerWindow::Fraction(0.3), 2)?;
+        assert!(max_relative_jump(s.curve(), 2) < 1e-13, "3d C^2");
+        let s = smooth(
+            &[[0.0, 0.0], [1.0, 0.0], [3.0, 0.0]],
+            CornerWindow::Fraction(0.5),
+            2,
+        )?;
+        for t in [0.2, 0.7, 1.1, 2.0] {
+            let y = s.curve().eval(t)?[1];
+            assert!(
+                y.abs() < 1e-15,
+                "a straight corner stays on the line, y = {y}"
+            );
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn bad_input_gives_named_errors() {
+        let e = smooth(&[[0.0, 0.0], [1.0, 0.0]], CornerWindow::Fraction(0.2), 2);
+        assert!(
+            matches!(e, Err(Error::TooFew { min: 3, got: 2, .. })),
+            "{e:?}"
+        );
+        let e = smooth(
+            &[[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 1.0]],
+            CornerWindow::Fraction(0.2),
+            2,
+        );
+        assert!(
+            matches!(&e, Err(Error::InvalidArgument { what: "polyline points", reason }) if reason.contains("points 1 and 2 coincide")),
+            "{e:?}"
+        );
+        let e = smooth(&ZIGZAG, CornerWindow::Length(1.6), 2);
+        assert!(
+            matches!(&e, Err(Error::InvalidArgument { what: "corner window", reason }) if reason.contains("segment 1 (points 1 to 2)")),
+            "{e:?}"
+        );
+        for f in [0.0, -0.1, 0.6] {
+            let e = smooth(&ZIGZAG, CornerWindow::Fraction(f), 2);
+            assert!(
+                matches!(
+                    e,
+                    Err(Error::InvalidArgument {
+                        what: "corner window fraction",
+                        ..
+                    })
+                ),
+                "{f}: {e:?}"
+            );
+        }
+        let e = smooth(&ZIGZAG, CornerWindow::Length(f64::NAN), 2);
+        assert!(matches!(e, Err(Error::NonFinite { .. })), "{e:?}");
+        for k in [0, MAX_POLYLINE_CONTINUITY + 1] {
+            let e = smooth(&ZIGZAG, CornerWindow::Fraction(0.2), k);
+            assert!(
+                matches!(
+                    e,
+                    Err(Error::InvalidArgument {
+                        what: "continuity degree k",
+                        ..
+                    })
+                ),
+                "{k}: {e:?}"
+            );
+        }
+        let e = Points::from_flat(2, vec![0.0, 0.0, 1.0, f64::NAN, 2.0, 0.0]);
+        assert!(matches!(e, Err(Error::NonFinite { index: 3, .. })), "{e:?}");
+    }
+
+    proptest! {
+        #[test]
+        fn random_polylines_are_c_k(
+            raw in proptest::collection::vec((-10.0..10.0_f64, -10.0..10.0_f64), 3..8),
+            f in 0.05..0.5_f64,
+            k in 1usize..4,
+        ) {
+            let rows: Vec<[f64; 2]> = raw.iter().map(|&(x, y)| [x, y]).collect();
+            let distinct = rows.windows(2).all(|w| (w[0][0] - w[1][0]).hypot(w[0][1] - w[1][1]) > 1e-3);
+            prop_assume!(distinct);
+            let s = smooth(&rows, CornerWindow::Fraction(f), k).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let jump = max_relative_jump(s.curve(), k);
+            prop_assert!(jump < 1e-13, "jump {:e}", jump);
+            // the ends are the polyline's end points (to rounding of the evaluation)
+            let (a, b) = s.curve().domain();
+            for (t, want) in [(a, rows[0]), (b, rows[rows.len() - 1])] {
+                let p = s.curve().eval(t).map_err(|e| TestCaseError::fail(e.to_string()))?;
+                prop_assert!((p[0] - want[0]).abs() < 1e-14 && (p[1] - want[1]).abs() < 1e-14, "{:?} vs {:?}", p, want);
+            }
+        }
+    }
+}
