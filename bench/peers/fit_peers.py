@@ -9,12 +9,16 @@ ratio SciPy / lekalo and agreement checks:
 - smooth_lam: make_smoothing_spline with lam given, 10^5 points;
 - splrep: splrep(s=N sigma^2), 10^5 points: residual and knot count beside SciPy's;
 - surface: LSQBivariateSpline, 10^5 scattered points, 30 x 30 cubic net.
-(The tolerance fit has no SciPy peer; its control-point count and deviation are printed.)
+- tolerance: Open CASCADE's GeomAPI_PointsToBSpline in C++ (bench/peers/occt_fit.cpp, built here
+  with g++ when the headers are in /usr/include/opencascade or $OCCT_INCLUDE), 10^5 points, the
+  same tolerance: time, control points and maximum distance side by side.
 
 Usage: bench/peers/fit_peers.py [REPEATS] [--no-build]   (from the repository root; needs numpy and scipy:
 python3 -m venv target/fitvenv && target/fitvenv/bin/pip install numpy scipy)
 """
 import json
+import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -100,5 +104,28 @@ for name, peer, key, peer_secs, note in rows:
     print(f"{name:34} {peer:34} {ours:10.4f} {peer_secs:10.4f} {peer_secs / ours:7.1f}  "
           f"{note}; lekalo {extra}")
 tol = after["tolerance"]
-print(f"tolerance fit 10^5 (no SciPy peer): {tol['secs']:.3f} s, {tol['n_ctrl']} control points, "
-      f"max deviation {tol['max_deviation']:.3g} <= {tol['tol']}")
+ours = 0.5 * (before["tolerance"]["secs"] + tol["secs"])
+occt = None
+inc = os.environ.get("OCCT_INCLUDE", "/usr/include/opencascade")
+if os.path.exists(f"{inc}/GeomAPI_PointsToBSpline.hxx") and shutil.which("g++"):
+    os.makedirs("target/peers-occt", exist_ok=True)
+    libs = ["-lTKGeomAlgo", "-lTKGeomBase", "-lTKG3d", "-lTKG2d", "-lTKMath", "-lTKernel"]
+    if os.environ.get("OCCT_LIB"):
+        libs = [f"-L{os.environ['OCCT_LIB']}", f"-Wl,-rpath,{os.environ['OCCT_LIB']}"] + libs
+    built = subprocess.run(["g++", "-O2", "-std=c++17", "-Wno-deprecated-declarations", f"-I{inc}",
+                            "bench/peers/occt_fit.cpp", "-o", "target/peers-occt/occt_fit"] + libs)
+    if built.returncode == 0:
+        occt = json.loads(subprocess.run(["target/peers-occt/occt_fit", DIR, str(repeats),
+                                          str(tol["tol"])], check=True, capture_output=True,
+                                         text=True).stdout)
+else:
+    print("tolerance: no Open CASCADE headers (Debian: apt-get install "
+          "libocct-modeling-algorithms-dev libocct-modeling-data-dev); OCCT peer skipped")
+if occt:
+    print(f"{'tolerance fit 10^5, tol ' + str(tol['tol']):34} {'GeomAPI_PointsToBSpline (C++)':34} "
+          f"{ours:10.4f} {occt['secs']:10.4f} {occt['secs'] / ours:7.1f}  control points "
+          f"{tol['n_ctrl']} vs {occt['n_ctrl']}; max distance {tol['max_deviation']:.3g} vs "
+          f"{occt['max_deviation']:.3g}")
+else:
+    print(f"tolerance fit 10^5: {ours:.3f} s, {tol['n_ctrl']} control points, "
+          f"max deviation {tol['max_deviation']:.3g} <= {tol['tol']}")

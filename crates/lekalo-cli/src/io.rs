@@ -71,12 +71,8 @@ pub(crate) fn report(line: &str) {
     let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
 
-/// Exit code of an interrupted run (128 + SIGINT), as shells report it.
-const EXIT_INTERRUPTED: i32 = 130;
-
-/// The last-resort handlers: a panic prints a short report and exits with code 3 (it is a bug;
-/// every input error has its own message); SIGINT, SIGTERM and SIGHUP remove the temporary
-/// files of outputs being written and exit with code 130, so no partial file is left.
+/// The last-resort handler: a panic prints a short report and exits with code 3 (it is a bug;
+/// every input error has its own message). Signals are handled by [`crate::cancel`].
 pub(crate) fn install_handlers() {
     std::panic::set_hook(Box::new(|info| {
         lekalo_io::remove_temporary_files();
@@ -95,18 +91,7 @@ pub(crate) fn install_handlers() {
         ));
         std::process::exit(i32::from(EXIT_INTERNAL));
     }));
-    let _ = ctrlc::set_handler(|| {
-        let n = lekalo_io::remove_temporary_files();
-        report(&format!(
-            "interrupted{}",
-            if n > 0 {
-                "; the partial output was removed"
-            } else {
-                ""
-            }
-        ));
-        std::process::exit(EXIT_INTERRUPTED);
-    });
+    crate::cancel::install();
 }
 
 /// True if the error is a write to a closed pipe (`lekalo eval … | head`): the reader has
@@ -401,7 +386,7 @@ pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
     }
     let bar = indicatif::ProgressBar::new(n as u64);
     bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} ({eta} left)")
+        indicatif::ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} ({eta} left)")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     bar

@@ -5,13 +5,15 @@
 //!
 //! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
 //! outside the domain — the message names the file, line and field); 3 internal failure
-//! (cannot write the output, rendering failed, a demo check did not reproduce its document).
+//! (cannot write the output, rendering failed, a demo check did not reproduce its document);
+//! 128 + the signal when interrupted (130 for Ctrl-C, 143 for SIGTERM).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+mod cancel;
 mod cmd;
 mod demo;
 mod io;
@@ -188,6 +190,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if io::is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(_) if cancel::exit_code().is_some() => cancel::exit_interrupted(),
         Err(e) => {
             io::report(&terms::cli_terms(&format!("error: {e:#}")));
             ExitCode::from(io::exit_code(&e))

@@ -279,7 +279,7 @@ fn periodic_fits_close_the_curve() {
         assert!(r["max_residual"].as_f64().unwrap() < 0.2, "{r}");
         let obj = &v["object"];
         let ctrl = obj["control"].as_array().unwrap();
-        let p = obj["degree"].as_u64().unwrap() as usize;
+        let p = usize::try_from(obj["degree"].as_u64().unwrap()).unwrap();
         // the last `degree` control points repeat the first
         let n = ctrl.len();
         assert_eq!(ctrl[..p], ctrl[n - p..], "{obj}");

@@ -188,3 +188,89 @@ fn malformed_inputs_are_named() {
         .code(2)
         .stderr(contains("--function"));
 }
+
+/// Points of a noisy helix arc, 40 of them, moved by `k`.
+fn arc(k: f64) -> Points {
+    let rows: Vec<[f64; 3]> = (0..40)
+        .map(|i| {
+            let t = f64::from(i) * 0.1;
+            let noise = 1e-3 * ((f64::from(i) * 7.3).sin());
+            [t.cos() + k, t.sin() + noise, t * 0.3]
+        })
+        .collect();
+    Points::from_rows(&rows).unwrap()
+}
+
+#[test]
+fn fit_a_batch_as_one_file_each() {
+    let d = dir_with(&[]);
+    let input = p(&d, "arcs.parquet");
+    let groups: Vec<(GroupKey, Points)> = ["a", "b", "c"]
+        .iter()
+        .zip([0.0, 1.0, 2.5])
+        .map(|(k, s)| (GroupKey::Str((*k).to_string()), arc(s)))
+        .collect();
+    let mut w = ParquetBatchWriter::new(File::create(&input).unwrap());
+    w.write_points("group", &["x", "y", "z"], &groups).unwrap();
+    // two points: too few for 8 control points, an error of that group only
+    w.write_points(
+        "group",
+        &["x", "y", "z"],
+        &[(
+            GroupKey::Str("short".into()),
+            Points::from_rows(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]).unwrap(),
+        )],
+    )
+    .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    for mode in [
+        &["--ctrl", "8"][..],
+        &["--smooth", "1e-4"],
+        &["--tol", "0.01"],
+    ] {
+        let out = p(&d, "fitted.parquet");
+        lekalo()
+            .arg("fit")
+            .arg(&input)
+            .args(mode)
+            .arg("-o")
+            .arg(&out)
+            .arg("--force")
+            .assert()
+            .code(2)
+            .stderr(contains("arcs.parquet: group \"short\":"))
+            .stderr(contains("1 of 4 groups failed"));
+        let got = curves(&out, "group");
+        assert_eq!(got.len(), 4, "{mode:?}");
+        for (k, pts) in &groups {
+            let csv = p(&d, "one.csv");
+            let text: String = pts
+                .iter()
+                .map(|q| format!("{:?},{:?},{:?}\n", q[0], q[1], q[2]))
+                .collect();
+            fs::write(&csv, text).unwrap();
+            let one = p(&d, "one.json");
+            lekalo()
+                .args(["--quiet", "fit"])
+                .arg(&csv)
+                .args(mode)
+                .arg("-o")
+                .arg(&one)
+                .arg("--force")
+                .assert()
+                .success();
+            let expect = Object::from_json_str(&fs::read_to_string(&one).unwrap(), "one").unwrap();
+            let (_, c) = got.iter().find(|(g, _)| g == k).unwrap();
+            assert_eq!(c.as_ref().unwrap(), &expect, "group {k} {mode:?}");
+        }
+    }
+    // options for one points file are refused
+    lekalo()
+        .arg("fit")
+        .arg(&input)
+        .args(["--json", "-o"])
+        .arg(p(&d, "x.parquet"))
+        .assert()
+        .code(2)
+        .stderr(contains("a Parquet batch is fitted by open curves"));
+}

@@ -537,42 +537,133 @@ fn json_lines_are_handled_alike_in_every_command() {
     assert_eq!(step.matches("B_SPLINE_CURVE_WITH_KNOTS").count(), 2);
 }
 
+/// Starts `lekalo args` in `dir`, waits until its temporary output file appears (it is
+/// writing), sends `signal` and returns the exit code, or `None` if the command finished first.
+#[cfg(unix)]
+fn interrupt_while_writing(dir: &Path, args: &[&str], signal: &str) -> Option<i32> {
+    let mut child = std::process::Command::new(bin())
+        .args(args)
+        .current_dir(dir)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let writing = || {
+        fs::read_dir(dir)
+            .unwrap()
+            .any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+    };
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            return None;
+        }
+        if writing() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let _ = std::process::Command::new("kill")
+        .args([format!("-{signal}"), child.id().to_string()])
+        .status();
+    let sent = std::time::Instant::now();
+    let status = child.wait().unwrap();
+    // the handler's grace period is 0.7 s; the bound leaves room for a loaded machine
+    assert!(
+        sent.elapsed() < std::time::Duration::from_secs(5),
+        "{signal}: stopped after {:?}",
+        sent.elapsed()
+    );
+    status.code()
+}
+
 #[cfg(unix)]
 #[test]
 fn an_interrupt_leaves_no_temporary_file() {
     let d = dir_with(&[("t.json", LECTURE)]);
-    for signal in ["INT", "TERM"] {
-        let mut child = std::process::Command::new(bin())
-            .args([
-                "eval",
-                "t.json",
-                "--samples",
-                "10000000",
-                "-d",
-                "2",
-                "-o",
-                "out.csv",
-            ])
-            .current_dir(d.path())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(std::time::Duration::from_millis(700));
-        let _ = std::process::Command::new("kill")
-            .args([format!("-{signal}"), child.id().to_string()])
-            .status();
-        let status = child.wait().unwrap();
-        // stopped (130), or finished before the signal came
-        assert!(
-            status.code() == Some(130) || status.success(),
-            "{signal}: {status:?}"
-        );
-        let left = debris(d.path(), &["t.json", "out.csv"]);
-        assert_eq!(left, Vec::<String>::new(), "{signal}");
-        if status.code() == Some(130) {
+    let eval = [
+        "eval",
+        "t.json",
+        "--samples",
+        "10000000",
+        "-d",
+        "2",
+        "-o",
+        "out.csv",
+    ];
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        let got = interrupt_while_writing(d.path(), &eval, signal);
+        if let Some(got) = got {
+            assert_eq!(got, code, "{signal}");
             assert!(!p(&d, "out.csv").exists(), "no partial output");
         }
+        let left = debris(d.path(), &["t.json", "out.csv"]);
+        assert_eq!(left, Vec::<String>::new(), "{signal}");
     }
+}
+
+/// A blend spline of parabolas through `p.csv` into `s.json`.
+const BLEND_PARABOLAS: [&str; 7] = [
+    "blend",
+    "spline",
+    "p.csv",
+    "--local",
+    "parabolas",
+    "-o",
+    "s.json",
+];
+
+/// `n` points of a wavy line as CSV.
+fn wavy_csv(n: usize) -> String {
+    let mut s = String::new();
+    for i in 0..n {
+        let t = i as f64 * 0.01;
+        let _ = writeln!(s, "{},{}", t + 0.3 * (7.0 * t).sin(), (3.0 * t).cos());
+    }
+    s
+}
+
+#[cfg(unix)]
+#[test]
+fn an_interrupted_blend_spline_stops_cleanly_with_the_signal_code() {
+    // the blend is computed and written segment by segment and checks the cancel flag
+    let d = dir_with(&[("p.csv", &wavy_csv(300_000))]);
+    let args = BLEND_PARABOLAS;
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        if let Some(got) = interrupt_while_writing(d.path(), &args, signal) {
+            assert_eq!(got, code, "{signal}");
+            assert!(!p(&d, "s.json").exists(), "no partial output");
+        }
+        let left = debris(d.path(), &["p.csv", "s.json"]);
+        assert_eq!(left, Vec::<String>::new(), "{signal}");
+    }
+}
+
+#[test]
+fn a_large_blend_spline_stays_within_a_memory_limit_and_draws_no_bar_off_a_terminal() {
+    // 150,000 points (4 MB of CSV): the whole NURBS alone would take 24 MB and the blend
+    // spline's segments 31 times the input; streamed, a few numbers a point are held
+    let text = wavy_csv(150_000);
+    let d = dir_with(&[("p.csv", &text)]);
+    let kib = 400_000 + 3 * text.len() as u64 / 1024;
+    let args = BLEND_PARABOLAS;
+    let (code, err) = run_limited(d.path(), kib, &args);
+    assert_eq!(code, 0, "{err}");
+    // standard error is a pipe here: no progress bar, not a byte of it
+    assert!(
+        !err.contains('\r') && !err.contains('\u{1b}'),
+        "bar drawn off a terminal: {err:?}"
+    );
+    let back = fs::read_to_string(p(&d, "s.json")).unwrap();
+    assert!(
+        back.starts_with("{\n  \"lekalo\": 1,\n  \"type\": \"nurbs_curve\",\n  \"degree\": 5,")
+            && back.ends_with("]\n}\n"),
+        "a whole NURBS"
+    );
+    // 5 control points a segment and one more
+    assert_eq!(
+        back.matches("\n    [").count(),
+        5 * 149_999 + 1,
+        "control points"
+    );
 }
 
 #[cfg(unix)]

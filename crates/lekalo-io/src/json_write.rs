@@ -163,6 +163,163 @@ pub(crate) fn write_object(
     w.write_all(&out)
 }
 
+/// Writes the JSON envelope of the NURBS form of `pieces` (what
+/// [`crate::Object::write_json`] writes for `Object::Nurbs(pieces.to_nurbs())`, byte for byte)
+/// without holding it: knots, control points and weights are made segment by segment, a round of
+/// blocks at a time; `progress` is told `0 … 2m` for `m` segments (control points, then
+/// weights) and can cancel between rounds.
+///
+/// # Errors
+/// A write error, or the library's error (e.g. [`lekalo::Error::Cancelled`]) wrapped in an
+/// [`std::io::Error`] of kind `Other`.
+pub fn write_blend_nurbs_json(
+    pieces: &lekalo::BlendSplinePieces<'_>,
+    w: &mut dyn Write,
+    pretty: bool,
+    progress: &lekalo::Progress<'_>,
+) -> std::io::Result<()> {
+    write_pieces(pieces, w, pretty, BLOCK, progress)
+}
+
+/// Formats one segment's homogeneous points.
+type SegmentText<'a> = dyn Fn(&mut Vec<u8>, &mut zmij::Buffer, &[f64]) + Sync + 'a;
+
+fn write_pieces(
+    pieces: &lekalo::BlendSplinePieces<'_>,
+    w: &mut dyn Write,
+    pretty: bool,
+    block: usize,
+    progress: &lekalo::Progress<'_>,
+) -> std::io::Result<()> {
+    let (nl, ind, ind2, sp): (&[u8], &[u8], &[u8], &[u8]) = if pretty {
+        (b"\n", b"  ", b"    ", b" ")
+    } else {
+        (b"", b"", b"", b"")
+    };
+    let comma_sp = [b",".as_slice(), sp].concat();
+    let row_sep = [b",".as_slice(), nl].concat();
+    let field = |out: &mut Vec<u8>, key: &str| {
+        out.push(b',');
+        out.extend_from_slice(nl);
+        out.extend_from_slice(ind);
+        out.push(b'"');
+        out.extend_from_slice(key.as_bytes());
+        out.extend_from_slice(b"\":");
+        out.extend_from_slice(sp);
+    };
+    let hd = pieces.dim() + 1;
+    let m = pieces.segment_count();
+    // a segment is `q` rows: blocks of segments as long as blocks of rows
+    let seg_block = (block / pieces.degree().max(1)).max(1);
+    let total = 2 * m as u64;
+    let failed: std::sync::Mutex<Option<lekalo::Error>> = std::sync::Mutex::new(None);
+    // segment i's homogeneous points (an empty list after a failure, which is then reported)
+    let segment = |i: usize| {
+        let mut h = Vec::new();
+        if let Err(e) = pieces.segment_control(i, &mut h) {
+            if let Ok(mut f) = failed.lock() {
+                f.get_or_insert(e);
+            }
+            h.clear();
+        }
+        h
+    };
+    let check = |done: u64| -> std::io::Result<()> {
+        if let Some(e) = failed.lock().ok().and_then(|mut f| f.take()) {
+            return Err(std::io::Error::other(e));
+        }
+        progress
+            .step("blend spline output", done, total)
+            .map_err(std::io::Error::other)
+    };
+    // every segment, in rounds of `round` segments, each formatted by `item` after a `sep`
+    let segments = |w: &mut dyn Write,
+                    out: &mut Vec<u8>,
+                    sep: &[u8],
+                    done: u64,
+                    item: &SegmentText<'_>|
+     -> std::io::Result<()> {
+        let round = seg_block * 4 * rayon::current_num_threads().max(1);
+        let mut start = 0;
+        while start < m {
+            let end = (start + round).min(m);
+            if start > 0 {
+                out.extend_from_slice(sep);
+            }
+            write_list(w, out, end - start, sep, seg_block, |o, d, i| {
+                item(o, d, &segment(start + i));
+            })?;
+            start = end;
+            check(done + end as u64)?;
+        }
+        Ok(())
+    };
+    let mut out: Vec<u8> = Vec::with_capacity(4096);
+    out.push(b'{');
+    out.extend_from_slice(nl);
+    out.extend_from_slice(ind);
+    out.extend_from_slice(b"\"lekalo\":");
+    out.extend_from_slice(sp);
+    out.extend_from_slice(crate::FORMAT_VERSION.to_string().as_bytes());
+    field(&mut out, "type");
+    out.extend_from_slice(b"\"nurbs_curve\"");
+    field(&mut out, "degree");
+    out.extend_from_slice(pieces.degree().to_string().as_bytes());
+    field(&mut out, "knots");
+    out.push(b'[');
+    write_list(
+        w,
+        &mut out,
+        pieces.knot_count(),
+        &comma_sp,
+        block,
+        |o, d, j| {
+            push_json_number(o, d, pieces.knot(j));
+        },
+    )?;
+    out.push(b']');
+    field(&mut out, "control");
+    out.push(b'[');
+    out.extend_from_slice(nl);
+    segments(w, &mut out, &row_sep, 0, &|o, d, h| {
+        for (r, p) in h.chunks_exact(hd).enumerate() {
+            if r > 0 {
+                o.extend_from_slice(&row_sep);
+            }
+            o.extend_from_slice(ind2);
+            o.push(b'[');
+            let wgt = p[hd - 1];
+            for (k, &x) in p[..hd - 1].iter().enumerate() {
+                if k > 0 {
+                    o.extend_from_slice(&comma_sp);
+                }
+                push_json_number(o, d, x / wgt);
+            }
+            o.push(b']');
+        }
+    })?;
+    out.extend_from_slice(nl);
+    out.extend_from_slice(ind);
+    out.push(b']');
+    field(&mut out, "weights");
+    out.push(b'[');
+    segments(w, &mut out, &comma_sp, m as u64, &|o, d, h| {
+        for (r, p) in h.chunks_exact(hd).enumerate() {
+            if r > 0 {
+                o.extend_from_slice(&comma_sp);
+            }
+            push_json_number(o, d, p[hd - 1]);
+        }
+    })?;
+    out.push(b']');
+    out.extend_from_slice(nl);
+    out.push(b'}');
+    if pretty {
+        out.push(b'\n');
+    }
+    w.write_all(&out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -206,5 +363,61 @@ mod tests {
             head.contains("\"control\": [\n    [0.0, 1.0],\n    [0.1, 0.5],\n"),
             "{head}"
         );
+    }
+
+    #[test]
+    fn blend_pieces_are_written_as_the_whole_nurbs() {
+        use lekalo::{
+            ArcParametrization, BlendSpline, BlendSplineOptions, BlendSplinePieces, CircularArcs,
+            LocalCurves, Parabolas, Progress,
+        };
+        let rows: Vec<[f64; 2]> = (0..23)
+            .map(|i| {
+                let a = f64::from(i) * std::f64::consts::TAU / 23.0;
+                let r = 1.0 + 0.1 * (3.0 * a).sin();
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        let pts = Points::from_2d(&rows).unwrap();
+        let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+        let families: [&(dyn LocalCurves + Sync); 2] = [&Parabolas, &arcs];
+        for local in families {
+            for closed in [false, true] {
+                let opts = BlendSplineOptions {
+                    closed,
+                    ..BlendSplineOptions::default()
+                };
+                let whole = crate::Object::Nurbs(
+                    BlendSpline::new(pts.as_view(), local, opts)
+                        .unwrap()
+                        .to_nurbs()
+                        .unwrap(),
+                );
+                let pieces =
+                    BlendSplinePieces::new(pts.as_view(), local, opts, &Progress::new()).unwrap();
+                for pretty in [true, false] {
+                    let expected = text(&whole, pretty, usize::MAX);
+                    for block in [1, 2, 5, 1000] {
+                        let mut bytes = Vec::new();
+                        write_pieces(&pieces, &mut bytes, pretty, block, &Progress::new()).unwrap();
+                        assert_eq!(
+                            String::from_utf8(bytes).unwrap(),
+                            expected,
+                            "closed {closed} pretty {pretty} block {block}"
+                        );
+                    }
+                }
+                let stop = std::sync::atomic::AtomicBool::new(true);
+                let e = write_pieces(
+                    &pieces,
+                    &mut Vec::new(),
+                    true,
+                    1,
+                    &Progress::new().with_cancel(&stop),
+                )
+                .unwrap_err();
+                assert!(e.to_string().contains("cancelled"), "{e}");
+            }
+        }
     }
 }

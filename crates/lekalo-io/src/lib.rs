@@ -69,6 +69,7 @@ pub use end_names::EndName;
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};
+pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use npy::{npy_bytes, read_npy_file, read_npy_points};
 pub use npz::{curve_to_npz, read_npz_curve};

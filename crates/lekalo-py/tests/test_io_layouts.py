@@ -1,13 +1,18 @@
 """The NPZ and Parquet layouts of docs/formats.md from Python, and the same curves as the
-library's (when the ``lekalo`` binary and pyarrow are at hand)."""
+library's: the command-line tool's Parquet output read by pyarrow, pandas and DuckDB with no
+help (the ``lekalo`` binary: ``LEKALO_BIN``, the PATH, or the workspace's own build)."""
 
 import os
 import shutil
 import subprocess
+from pathlib import Path
 
+import duckdb
 import numpy as np
+import pandas as pd
 import pytest
 
+import lekalo
 from lekalo import io
 
 
@@ -27,14 +32,20 @@ def test_npz_round_trip_is_exact(tmp_path):
 
 def _binary():
     exe = os.environ.get("LEKALO_BIN") or shutil.which("lekalo")
-    return exe if exe and os.path.exists(exe) else None
+    if not exe:
+        # the workspace's build (scripts/test.sh runs cargo test, which builds it, first)
+        root = Path(__file__).resolve().parents[3]
+        built = [root / "target" / p / "lekalo" for p in ("debug", "release")]
+        built = [b for b in built if b.exists()]
+        exe = str(max(built, key=lambda b: b.stat().st_mtime)) if built else None
+    assert exe and os.path.exists(exe), (
+        "no lekalo binary: build it (cargo build -p lekalo-cli) or set LEKALO_BIN"
+    )
+    return exe
 
 
 def test_parquet_batch_through_the_cli(tmp_path):
-    pytest.importorskip("pyarrow")
     exe = _binary()
-    if exe is None:
-        pytest.skip("no lekalo binary (set LEKALO_BIN)")
     t = np.linspace(0, 1, 6)
     groups = {k: np.column_stack([t + k, np.sin(t * (k + 1))]) for k in range(3)}
     pts = tmp_path / "pts.parquet"
@@ -53,3 +64,60 @@ def test_parquet_batch_through_the_cli(tmp_path):
         assert r["degree"] == one["degree"]
         assert np.array_equal(r["knots"], one["knots"])
         assert np.array_equal(r["control_points"], one["control_points"])
+
+
+def _groups():
+    """Four 3-D point sets of different sizes, keyed 10, 11, 12, 13."""
+    rng = np.random.default_rng(7)
+    out = {}
+    for k, n in zip(range(10, 14), (5, 9, 17, 40)):
+        t = np.sort(rng.random(n)) * 3
+        out[k] = np.column_stack([np.cos(t * k), np.sin(t), t + rng.random(n) * 1e-3])
+    return out
+
+
+def test_duckdb_and_pandas_read_the_curves_and_samples(tmp_path):
+    exe = _binary()
+    groups = _groups()
+    pts = tmp_path / "pts.parquet"
+    io.write_points_parquet(str(pts), groups)
+    curves, samples = tmp_path / "curves.parquet", tmp_path / "samples.parquet"
+    subprocess.run([exe, "interpolate", str(pts), "-o", str(curves)], check=True)
+    subprocess.run([exe, "eval", str(curves), "--samples", "9", "-o", str(samples)], check=True)
+    lib = {k: lekalo.interpolate(p) for k, p in groups.items()}
+
+    frame = pd.read_parquet(curves)
+    assert list(frame["group"]) == sorted(groups)
+    for r in frame.itertuples():
+        c = lib[r.group]
+        assert r.type == "bspline_curve" and r.degree == c.degree and r.dim == 3
+        assert pd.isna(r.error) and len(r.weights) == 0
+        assert np.array_equal(np.asarray(r.knots), c.knots)
+        assert np.array_equal(np.stack(r.control), c.control)
+
+    con = duckdb.connect()
+    rows = con.execute(
+        'SELECT "group", degree, knots, control, error FROM read_parquet(?) ORDER BY "group"',
+        [str(curves)],
+    ).fetchall()
+    assert [r[0] for r in rows] == sorted(groups)
+    for key, degree, knots, control, error in rows:
+        c = lib[key]
+        assert error is None and degree == c.degree
+        assert np.array_equal(np.array(knots), c.knots)
+        assert np.array_equal(np.array(control), c.control)
+
+    s = con.execute(
+        'SELECT "group", t, x, y, z FROM read_parquet(?) ORDER BY "group", t', [str(samples)]
+    ).fetchnumpy()
+    assert sorted(set(s["group"].tolist())) == sorted(groups)
+    for key, c in lib.items():
+        m = s["group"] == key
+        t = s["t"][m]
+        a, b = c.domain
+        assert len(t) == 9 and t[0] == a and t[-1] == b
+        got = np.column_stack([s["x"][m], s["y"][m], s["z"][m]])
+        want = c(t)
+        scale = np.abs(c.control).max()
+        assert np.allclose(got, want, rtol=0, atol=1e-13 * scale), np.abs(got - want).max()
+    assert pd.read_parquet(samples).shape == (9 * len(groups), 5)

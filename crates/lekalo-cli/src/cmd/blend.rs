@@ -8,13 +8,14 @@ use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{
     smooth_polyline_corners, ArcParametrization, BezierForm, BlendSpline, BlendSplineOptions,
-    CircularArcs, CornerTransition, CornerWindow, Deformation, LocalCurves, Parabolas,
-    ParametricCurve, SharedCurve, SplineParameters,
+    BlendSplinePieces, CircularArcs, CornerTransition, CornerWindow, Deformation, LocalCurves,
+    Parabolas, ParametricCurve, SharedCurve, SplineParameters,
 };
 use lekalo_io::Object;
 
+use crate::cancel::with_progress;
 use crate::cmd::interpolate::{write_curve, OutArgs};
-use crate::io::{bad_input, load_one, numbers};
+use crate::io::{bad_input, format_of, load_one, numbers};
 use crate::Verbosity;
 
 /// Local curves of a blended spline.
@@ -195,6 +196,37 @@ fn form_object(f: BezierForm) -> Object {
     }
 }
 
+/// A blend spline with an exact NURBS form, made segment by segment: JSON is streamed from the
+/// points (memory a few numbers a point, whatever the output's size), other formats get the
+/// whole NURBS (returned, as with `--json`). Both with a progress bar and Ctrl-C.
+fn exact_spline(
+    pts: &lekalo::Points,
+    local: &(dyn LocalCurves + Sync),
+    options: BlendSplineOptions,
+    out: &OutArgs,
+    input: &Path,
+    json: bool,
+    v: Verbosity,
+) -> Result<Option<lekalo::NurbsCurve>> {
+    let large = pts.len() > 100_000;
+    let what = format!("blending through {} points", pts.len());
+    let pieces = with_progress(&what, large, v, |p| {
+        BlendSplinePieces::new(pts.as_view(), local, options, p)
+    })?;
+    let inputs = [input.to_path_buf()];
+    if !json && format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
+        with_progress("writing", large, v, |p| {
+            crate::io::emit_stream(out.output.as_deref(), &inputs, v, |w| {
+                lekalo_io::write_blend_nurbs_json(&pieces, w, true, p)
+            })
+        })?;
+        return Ok(None);
+    }
+    Ok(Some(with_progress(&what, large, v, |p| {
+        pieces.to_nurbs(p)
+    })?))
+}
+
 /// `--window`: a length, or a percentage of the shorter segment at each corner.
 fn corner_window(text: &str) -> Result<CornerWindow> {
     let (number, percent) = match text.trim().strip_suffix('%') {
@@ -251,14 +283,6 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             out,
         } => {
             let (pts, _) = crate::io::read_points(points)?;
-            let family: Box<dyn LocalCurves> = match local {
-                Local::Arcs => Box::new(CircularArcs::new(ArcParametrization::UniformAngle)),
-                Local::RationalArcs => {
-                    Box::new(CircularArcs::new(ArcParametrization::RationalQuadratic))
-                }
-                Local::GlobalArcs => Box::new(CircularArcs::new(ArcParametrization::GlobalAngle)),
-                Local::Parabolas => Box::new(Parabolas),
-            };
             let options = BlendSplineOptions {
                 continuity: *k,
                 closed: *closed,
@@ -268,18 +292,32 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     SplineParams::Centripetal => SplineParameters::Centripetal,
                 },
             };
-            let bar = crate::io::spinner(
-                format!("blending through {} points", pts.len()),
-                pts.len() > 100_000,
-                v,
-            );
-            let s = BlendSpline::new(pts.as_view(), family.as_ref(), options);
-            bar.finish_and_clear();
-            let s = s?;
+            let large = pts.len() > 100_000;
+            let what = format!("blending through {} points", pts.len());
             let (obj, max_error) = match local {
-                Local::Parabolas | Local::RationalArcs => (Object::Nurbs(s.to_nurbs()?), 0.0),
+                Local::Parabolas | Local::RationalArcs => {
+                    let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
+                    let family: &(dyn LocalCurves + Sync) = if *local == Local::Parabolas {
+                        &Parabolas
+                    } else {
+                        &arcs
+                    };
+                    match exact_spline(&pts, family, options, out, points, json.json, v)? {
+                        Some(nurbs) => (Object::Nurbs(nurbs), 0.0),
+                        None => return Ok(()),
+                    }
+                }
                 Local::Arcs | Local::GlobalArcs => {
-                    let approx = s.approximate(*tolerance)?;
+                    let family = CircularArcs::new(if *local == Local::Arcs {
+                        ArcParametrization::UniformAngle
+                    } else {
+                        ArcParametrization::GlobalAngle
+                    });
+                    let bar = crate::io::spinner(what, large, v);
+                    let s = BlendSpline::new(pts.as_view(), &family, options);
+                    let approx = s.and_then(|s| s.approximate(*tolerance));
+                    bar.finish_and_clear();
+                    let approx = approx?;
                     if v != Verbosity::Quiet && !json.json {
                         eprintln!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \

@@ -128,8 +128,6 @@ pub(crate) struct FitArgs {
 }
 
 pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
-    let (pts, name) = crate::io::read_points(&a.points)?;
-    let mut inputs = vec![a.points.clone()];
     let modes = [
         a.lsq,
         a.smooth.is_some(),
@@ -140,6 +138,28 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
     if modes.iter().filter(|&&m| m).count() > 1 {
         return bad_input("choose one mode: --lsq, --smooth, --s, --tol or --robust");
     }
+    if crate::cmd::parquet_batch::is_parquet(&a.points) {
+        if a.grid.is_some()
+            || a.scattered
+            || a.periodic
+            || a.weights.is_some()
+            || a.json
+            || a.per_point
+        {
+            return bad_input("a Parquet batch is fitted by open curves, one per group: --grid, --scattered, --periodic, --weights, --json and --per-point are for one points file");
+        }
+        return crate::cmd::parquet_batch::curves_of_groups(
+            &a.points,
+            a.out.output.as_deref(),
+            v,
+            &|pts: &Points| -> Result<Object> {
+                let (fit, _, _) = fit_curve(a, pts, None, "the group")?;
+                Ok(Object::BSpline(fit.curve))
+            },
+        );
+    }
+    let (pts, name) = crate::io::read_points(&a.points)?;
+    let mut inputs = vec![a.points.clone()];
     let weights = match &a.weights {
         Some(p) => {
             let (t, n) = lekalo_io::read_input(p)?;
@@ -154,6 +174,26 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
     if a.periodic {
         return super::fit_periodic::run(a, &pts, weights.as_deref(), &inputs, v);
     }
+    let (fit, report, shown) = fit_curve(a, &pts, weights.as_deref(), &name)?;
+    finish(
+        a,
+        Object::BSpline(fit.curve.clone()),
+        &shown,
+        &fit,
+        report,
+        &inputs,
+        v,
+    )
+}
+
+/// The curve fitted to `pts` (named `name` in messages) in the mode of `a`, its report's
+/// mode-specific entries and the points to show in plots.
+fn fit_curve(
+    a: &FitArgs,
+    pts: &Points,
+    weights: Option<&[f64]>,
+    name: &str,
+) -> Result<(CurveFit, Value, Points)> {
     // data: function samples (x, y…) or parametric points
     let (values, params) = if a.function {
         if pts.dim() < 2 {
@@ -172,7 +212,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
         (pts.clone(), u)
     };
     let mut data = FitData::new(values.as_view(), &params)?;
-    if let Some(w) = &weights {
+    if let Some(w) = weights {
         data = data.with_weights(w)?;
     }
     let mut report = json!({});
@@ -212,15 +252,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
         }
         let d = FitData::new(pts.as_view(), &t.params)?;
         let fit = least_squares_report(&t.curve, &d)?;
-        return finish(
-            a,
-            Object::BSpline(fit.curve.clone()),
-            &pts,
-            &fit,
-            report,
-            &inputs,
-            v,
-        );
+        return Ok((fit, report, pts.clone()));
     } else {
         let knots = curve_knots(a, &params)?;
         let ends = constraints(a)?;
@@ -244,16 +276,8 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
             None => least_squares(&data, a.degree, &knots, &ends)?,
         }
     };
-    let shown = if a.function { &pts } else { &values };
-    finish(
-        a,
-        Object::BSpline(fit.curve.clone()),
-        shown,
-        &fit,
-        report,
-        &inputs,
-        v,
-    )
+    let shown = if a.function { pts.clone() } else { values };
+    Ok((fit, report, shown))
 }
 
 /// The report of a curve that is already fitted (tolerance mode).

@@ -1,4 +1,4 @@
-//! Parquet batches for `interpolate`, `eval` and `convert` (docs/formats.md#parquet-batches):
+//! Parquet batches for `interpolate`, `fit`, `eval` and `convert` (docs/formats.md#parquet-batches):
 //! read one row group at a time, the groups of a row group processed in parallel, one output
 //! row group written per input row group, so memory is bounded by the row-group size. A bad
 //! group is written with its `error`, reported on stderr with its key, and does not stop the
@@ -99,6 +99,18 @@ pub(crate) fn interpolate(
     out: Option<&Path>,
     v: Verbosity,
 ) -> Result<()> {
+    curves_of_groups(input, out, v, &|p: &lekalo::Points| -> Result<Object> {
+        Ok(Object::BSpline(interp.interpolate(p.as_view())?))
+    })
+}
+
+/// `lekalo interpolate` or `lekalo fit` of a Parquet batch: `make` gives each group's curve.
+pub(crate) fn curves_of_groups(
+    input: &Path,
+    out: Option<&Path>,
+    v: Verbosity,
+    make: &(dyn Fn(&lekalo::Points) -> Result<Object> + Sync),
+) -> Result<()> {
     let out = parquet_output(out, "curves")?;
     let key = group_column();
     let mut failed = Vec::new();
@@ -112,10 +124,7 @@ pub(crate) fn interpolate(
                     .into_par_iter()
                     .map(|(k, pts)| {
                         let curve = pts.map_err(|e| e.to_string()).and_then(|p| {
-                            interp
-                                .interpolate(p.as_view())
-                                .map(Object::BSpline)
-                                .map_err(|e| format!("{}: group {k}: {e}", input.display()))
+                            make(&p).map_err(|e| format!("{}: group {k}: {e:#}", input.display()))
                         });
                         (k, curve)
                     })

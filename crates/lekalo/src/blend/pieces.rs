@@ -3,10 +3,10 @@
 //! [`BlendSpline`](crate::BlendSpline) (every segment a deformation of two shared local curves)
 //! and whole NURBS would not fit in memory beside the points.
 
-use crate::blend::local_curves::LocalCurves;
+use crate::blend::local_curves::{LocalCurves, SharedCurve};
 use crate::blend::spline::{
     blend_segment, elevated_homogeneous, exact_form, local_at, parameters_of, spline_deltas,
-    BlendSplineOptions,
+    BlendSplineOptions, Segment,
 };
 use crate::curve::bspline::BSplineCurve;
 use crate::curve::nurbs::NurbsCurve;
@@ -16,7 +16,7 @@ use crate::points::{Points, PointsRef};
 use crate::BezierForm;
 
 /// The NURBS form of [`BlendSpline::to_nurbs`](crate::BlendSpline::to_nurbs), made segment by
-/// segment on demand from the points: memory is three numbers a point (the `Δ_i`, the `s_i` and
+/// segment on demand from the points (segments may be made on several threads at once): memory is three numbers a point (the `Δ_i`, the `s_i` and
 /// each segment's weight scale), whatever the degree, and the same control points, knots and
 /// weights, bit for bit.
 ///
@@ -37,7 +37,7 @@ use crate::BezierForm;
 /// ```
 pub struct BlendSplinePieces<'a> {
     points: PointsRef<'a>,
-    local: &'a dyn LocalCurves,
+    local: &'a (dyn LocalCurves + Sync),
     options: BlendSplineOptions,
     deltas: Vec<f64>,
     params: Vec<f64>,
@@ -72,7 +72,7 @@ impl<'a> BlendSplinePieces<'a> {
     /// `progress` is cancelled.
     pub fn new(
         points: PointsRef<'a>,
-        local: &'a dyn LocalCurves,
+        local: &'a (dyn LocalCurves + Sync),
         options: BlendSplineOptions,
         progress: &Progress<'_>,
     ) -> Result<Self> {
@@ -100,13 +100,14 @@ impl<'a> BlendSplinePieces<'a> {
         let mut scales = Vec::with_capacity(m);
         let mut prev_w = 1.0;
         pieces.for_each_form(progress, m as u64, total, |i, form| {
-            let h = elevated_homogeneous(form, q, hd);
+            let mut h = elevated_homogeneous(form, q, hd);
             let factor = if i > 0 { prev_w / h[hd - 1] } else { 1.0 };
-            prev_w = if i > 0 {
-                h[h.len() - 1] * factor
-            } else {
-                h[h.len() - 1]
-            };
+            if i > 0 {
+                h.iter_mut().for_each(|x| *x *= factor);
+            }
+            // the checks `NurbsCurve::from_homogeneous` makes on the whole form
+            crate::points::check_homogeneous(&Points::from_raw(h.clone(), hd))?;
+            prev_w = h[h.len() - 1];
             scales.push(factor);
             Ok(())
         })?;
@@ -124,31 +125,43 @@ impl<'a> BlendSplinePieces<'a> {
         mut f: impl FnMut(usize, &BezierForm) -> Result<()>,
     ) -> Result<()> {
         let n = self.points.len();
-        let local = |j| {
-            local_at(
-                self.points,
-                self.local,
-                &self.deltas,
-                self.options.closed,
-                j,
-            )
-        };
-        let mut left = local(0)?;
+        let mut left = self.local(0)?;
         for i in 0..self.deltas.len() {
-            let right = local((i + 1) % n)?;
-            let seg = blend_segment(
-                self.points,
-                &self.deltas,
-                self.options.continuity,
-                i,
-                &left,
-                &right,
-            )?;
+            let right = self.local((i + 1) % n)?;
+            let seg = self.segment(i, &left, &right)?;
             f(i, &exact_form(&seg)?)?;
             left = right;
             progress.every(WHAT, start + i as u64 + 1, total)?;
         }
         Ok(())
+    }
+
+    /// The local curve at point `j` (see [`local_at`]).
+    fn local(&self, j: usize) -> Result<Option<[SharedCurve; 2]>> {
+        local_at(
+            self.points,
+            self.local,
+            &self.deltas,
+            self.options.closed,
+            j,
+        )
+    }
+
+    /// Segment `i` between the local curves `left` (at `P_i`) and `right` (at `P_{i+1}`).
+    fn segment(
+        &self,
+        i: usize,
+        left: &Option<[SharedCurve; 2]>,
+        right: &Option<[SharedCurve; 2]>,
+    ) -> Result<Segment> {
+        blend_segment(
+            self.points,
+            &self.deltas,
+            self.options.continuity,
+            i,
+            left,
+            right,
+        )
     }
 
     /// The NURBS degree `q`.
@@ -216,23 +229,7 @@ impl<'a> BlendSplinePieces<'a> {
             });
         }
         let n = self.points.len();
-        let local = |j| {
-            local_at(
-                self.points,
-                self.local,
-                &self.deltas,
-                self.options.closed,
-                j,
-            )
-        };
-        let seg = blend_segment(
-            self.points,
-            &self.deltas,
-            self.options.continuity,
-            i,
-            &local(i)?,
-            &local((i + 1) % n)?,
-        )?;
+        let seg = self.segment(i, &self.local(i)?, &self.local((i + 1) % n)?)?;
         let hd = self.dim() + 1;
         let mut h = elevated_homogeneous(&exact_form(&seg)?, self.degree, hd);
         out.clear();
@@ -286,7 +283,7 @@ mod tests {
     #[test]
     fn pieces_equal_the_whole_nurbs_bit_for_bit() {
         let arcs = CircularArcs::new(ArcParametrization::RationalQuadratic);
-        let families: [&dyn LocalCurves; 2] = [&Parabolas, &arcs];
+        let families: [&(dyn LocalCurves + Sync); 2] = [&Parabolas, &arcs];
         for n in [2, 3, 4, 9] {
             let pts = wavy(n);
             for local in families {
@@ -323,7 +320,7 @@ mod tests {
 
     #[test]
     fn progress_reaches_the_total_and_cancel_stops() {
-        let n = 3 * Progress::STRIDE as usize;
+        let n = 3 * 4096;
         let pts = wavy(n);
         let seen = Mutex::new(Vec::new());
         let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));

@@ -190,7 +190,7 @@ pub fn periodic_smoothing_condition(
         return Ok(finish(data, &obs, k, t, &c, None));
     }
     // one knot at the middle parameter (FITPACK: x((m + 1)/2))
-    let mid = (m + 1) / 2 - 1;
+    let mid = m.div_ceil(2) - 1;
     knots.interior.push(sites[mid]);
     knots.nrdata = vec![mid - 1, m - 2 - mid];
     let (mut fpold, mut nplus) = (fp0, 1usize);

@@ -179,6 +179,17 @@ pub fn surface_scattered_least_squares(
         }
     }
     let m = nu * nv;
+    // Solver choice. The candidates were faer's sparse Cholesky and sparse QR. QR of the
+    // N × m observation matrix would not square the condition number, but it stores or streams
+    // N rows of (p+1)(q+1) entries through a multifrontal factor, several times the work of
+    // assembling the normal matrix once (each point adds (p+1)²(q+1)² products and is
+    // forgotten); B-spline normal matrices are well conditioned when every cell holds data, and
+    // the data are shifted by their first value, so the squaring costs few digits here. A
+    // general sparse Cholesky (faer, with a fill-reducing ordering) would beat the band only for
+    // large nets: in the order i·n_v + j the factor fills the band anyway, and for the nets of
+    // interest (30 × 30: m = 900, band 93) the banded UᵀDU is about m·b² ≈ 8·10⁶ flops, below
+    // the assembly, with no symbolic analysis and no dependency. Nested dissection would pay
+    // from nets of a few hundred per side.
     // the second differences along u couple rows i and i + 2
     let band = if penalty > 0.0 {
         (p * nv + q).max(2 * nv)
