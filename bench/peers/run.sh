@@ -75,10 +75,14 @@ fi
 
 # The geometric queries (crates/lekalo/benches/query.rs) against Open CASCADE in C++:
 # bench/peers/occt_queries.cpp times projection, arc length, parameter at length, intersection and
-# meshing on the same objects. It needs the same headers and, for meshing, TKMesh, TKTopAlgo and
+# meshing on the same objects (and counts the mesh's triangles). It needs the same headers and, for meshing, TKMesh, TKTopAlgo and
 # TKBRep (Debian: apt-get install libocct-modeling-algorithms-dev libocct-modeling-data-dev);
 # without them it is skipped with a note. Compare with `cargo bench -p lekalo --bench query`.
+# examples/query_peer.rs prints lekalo's side of the same workloads in the same line format just
+# before (ratio = Open CASCADE's seconds / lekalo's; the mesh lines carry both triangle counts).
 if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo -lTKBRep \
     -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
+  cargo build --quiet --release -p lekalo --example query_peer
+  target/release/examples/query_peer "$repeats"
   target/peers-occt/occt_queries "$repeats"
 fi

@@ -61,6 +61,72 @@ fn measure_length_and_inverse() {
 }
 
 #[test]
+fn measure_surface_box_is_the_surface_not_its_net() {
+    // z = 4u(1 − u): the net reaches z = 2, the surface z = 1
+    let arch = SURFACE.replace(
+        "[0.5, 0, 0], [0.5, 1, 0], [1, 0, 1], [1, 1, 1]",
+        "[0.5, 0, 2], [0.5, 1, 2], [1, 0, 0], [1, 1, 0]",
+    );
+    let d = dir_with(&[("arch.json", arch.as_str())]);
+    let out = lekalo()
+        .args(["measure", "--json"])
+        .arg(p(&d, "arch.json"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let b = &j["bounding_box"];
+    assert!((b["max"][2].as_f64().unwrap() - 1.0).abs() <= b["tolerance"].as_f64().unwrap());
+    assert_eq!(b["min"][2].as_f64().unwrap(), 0.0);
+    assert_eq!(j["domain"]["v"][1].as_f64().unwrap(), 1.0);
+    lekalo()
+        .args(["measure", "--at-length", "1"])
+        .arg(p(&d, "arch.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("measure curves"));
+}
+
+#[test]
+fn plot_comb_draws_teeth_for_planar_curves_only() {
+    let d = dir_with(&[
+        ("p.json", PARABOLA),
+        ("space.json", SPACE),
+        ("s.json", SURFACE),
+    ]);
+    let out = lekalo()
+        .args(["plot", "--comb", "--comb-teeth", "5"])
+        .arg(p(&d, "p.json"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert!(svg.contains("curvature comb"), "no comb legend");
+    let plain = lekalo().arg("plot").arg(p(&d, "p.json")).output().unwrap();
+    assert!(svg.len() > plain.stdout.len(), "the comb adds nothing");
+    for bad in ["space.json", "s.json"] {
+        lekalo()
+            .args(["plot", "--comb"])
+            .arg(p(&d, bad))
+            .assert()
+            .code(2);
+    }
+    lekalo()
+        .args(["plot", "--comb", "--comb-teeth", "1"])
+        .arg(p(&d, "p.json"))
+        .assert()
+        .code(2);
+}
+
+#[test]
 fn project_single_batch_and_all() {
     let d = dir_with(&[("poly.json", POLY), ("q.csv", "3.5,2\n-1,-1\n")]);
     lekalo()

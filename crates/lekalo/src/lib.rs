@@ -147,4 +147,5 @@ pub mod query;
 
 pub use query::{
     ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection, MAX_QUERY_DEGREE,
+    SURFACE_BOX_RTOL,
 };

@@ -1,5 +1,5 @@
 //! `lekalo measure`: length, parameters at lengths, exact bounding box and curvature extrema of a
-//! curve (the library's `QueryCurve`).
+//! curve (the library's `QueryCurve`); the exact bounding box of a surface (`QuerySurface`).
 
 use std::path::{Path, PathBuf};
 
@@ -17,14 +17,16 @@ use crate::Verbosity;
 #[command(after_help = "\
 Prints the length (with its error estimate), the exact bounding box of the curve (not of its
 control points), its curvature extrema and, for --at-length or --lengths, the parameter at each
-length from the start.
+length from the start. For a surface: its domain and exact bounding box (of the surface, to 1e-12
+of its size; lekalo::SURFACE_BOX_RTOL).
 
 Examples:
   lekalo measure curve.json
   lekalo measure curve.json --at-length 1,2.5 --json
-  lekalo measure curve.json --lengths lengths.txt -o params.csv")]
+  lekalo measure curve.json --lengths lengths.txt -o params.csv
+  lekalo measure surface.json --json")]
 pub(crate) struct MeasureArgs {
-    /// Curve file (JSON; `-` for standard input).
+    /// Curve or surface file (JSON; `-` for standard input).
     input: PathBuf,
     /// Lengths from the start whose parameters are wanted, comma-separated.
     #[arg(long, allow_hyphen_values = true)]
@@ -83,6 +85,10 @@ pub(crate) fn number_file(path: &Path) -> Result<Vec<f64>> {
 }
 
 pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
+    let (text, name) = lekalo_io::read_input(&a.input)?;
+    if let Ok(lekalo_io::Shape::Surface(s)) = lekalo_io::Shape::from_json_str(&text, &name) {
+        return run_surface(a, &s, v);
+    }
     let obj = load_one(&a.input, v)?;
     let q = query_curve(&obj, &a.input)?;
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
@@ -139,6 +145,34 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
     if lengths.is_empty() && a.lengths.is_some() {
         return bad_input("--lengths: the file holds no numbers");
     }
+    emit(
+        a.output.as_deref(),
+        text.as_bytes(),
+        std::slice::from_ref(&a.input),
+        v,
+    )
+}
+
+/// `measure` of a surface: its domain and exact bounding box.
+fn run_surface(a: &MeasureArgs, s: &lekalo_io::Surface, v: Verbosity) -> Result<()> {
+    if a.at_length.is_some() || a.lengths.is_some() {
+        return bad_input("--at-length and --lengths measure curves; the input is a surface");
+    }
+    let q = query_surface(s, &a.input)?;
+    let (lo, hi) = q.bounding_box();
+    let (u, w) = q.domain();
+    let text = if a.json {
+        let j = json!({
+            "domain": {"u": [u.0, u.1], "v": [w.0, w.1]},
+            "bounding_box": {"min": lo, "max": hi, "tolerance": lekalo::SURFACE_BOX_RTOL * q.scale()},
+        });
+        format!("{j:#}\n")
+    } else {
+        format!(
+            "domain u [{}, {}] v [{}, {}]\nbounding box min {lo:?} max {hi:?}\n",
+            u.0, u.1, w.0, w.1
+        )
+    };
     emit(
         a.output.as_deref(),
         text.as_bytes(),

@@ -25,6 +25,7 @@ pub(crate) mod surface_eval;
 pub(crate) mod fit;
 pub(crate) mod fit_periodic;
 // geometric queries
+pub(crate) mod comb;
 pub(crate) mod intersect;
 pub(crate) mod measure;
 pub(crate) mod mesh;

@@ -54,6 +54,13 @@ pub(crate) struct PlotArgs {
     /// (default 33).
     #[arg(long)]
     samples: Option<usize>,
+    /// Curves: draw the curvature comb (teeth of length proportional to the curvature, away
+    /// from the centre of curvature) at `--comb-teeth` points.
+    #[arg(long)]
+    comb: bool,
+    /// Teeth of the curvature comb.
+    #[arg(long, default_value_t = 120, value_name = "N")]
+    comb_teeth: usize,
     /// Surfaces: draw a hidden-line wireframe of every sampled grid line instead of the
     /// shaded surface.
     #[arg(long)]
@@ -156,9 +163,9 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         Loaded::One(o) => o,
         Loaded::Other(shape) => {
             let fig = match &shape {
-                _ if a.basis || a.points.is_some() => {
+                _ if a.basis || a.points.is_some() || a.comb => {
                     return bad_input(format!(
-                        "--basis and --points are for curves; {} is a {}",
+                        "--basis, --points and --comb are for curves; {} is a {}",
                         a.input.display(),
                         shape.type_name()
                     ))
@@ -216,7 +223,12 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
     if !a.basis {
         crate::io::check_bezier_degree(&obj, "plotting")?;
     }
-    let fig = figure(&obj, a, data.as_ref())?;
+    let mut fig = figure(&obj, a, data.as_ref())?;
+    if a.comb && !a.basis {
+        let teeth = in_range(a.comb_teeth, 2, 100_000, "--comb-teeth")?;
+        fig.series
+            .extend(crate::cmd::comb::comb_series(&obj, &a.input, teeth)?);
+    }
     let bytes = encode(&fig, &format, a.scale)?;
     emit(
         a.output.as_deref().filter(|p| *p != Path::new("-")),

@@ -103,6 +103,43 @@ impl QueryCurve {
         Ok(crate::curvature(&d[1], &d[2]).map(|x| x / self.scale))
     }
 
+    /// Curvature vector `κN = (C''|C'|² − C'(C'·C''))/|C'|⁴` at `t`: length the curvature,
+    /// pointing to the centre of curvature (`docs/theory/queries.md#curvature`); the teeth of a
+    /// curvature comb. `None` where `C' = 0`.
+    ///
+    /// ```
+    /// use lekalo::{NurbsCurve, QueryCurve};
+    /// // a circle of radius 2 about (1, 0): κN = (centre − C)/r²
+    /// let c = NurbsCurve::circle(&[1.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 2.0)?;
+    /// let q = QueryCurve::from_nurbs(&c)?;
+    /// let k = q.curvature_vector_at(0.3)?.unwrap();
+    /// let p = q.point(0.3)?;
+    /// for d in 0..2 {
+    ///     assert!((k[d] - ([1.0, 0.0][d] - p[d]) / 4.0).abs() < 1e-13);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`] outside the domain or for NaN.
+    pub fn curvature_vector_at(&self, t: f64) -> Result<Option<Vec<f64>>> {
+        self.check_t(t)?;
+        let k = self.piece_of(t);
+        let d = self.ders3(k, self.local(k, t));
+        let (a, b) = (&d[1], &d[2]);
+        let aa: f64 = a.iter().map(|x| x * x).sum();
+        if !(aa > 0.0) {
+            return Ok(None);
+        }
+        let ab: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+        Ok(Some(
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (y * aa - x * ab) / (aa * aa) / self.scale)
+                .collect(),
+        ))
+    }
+
     /// Torsion `(C' × C'')·C''' / |C' × C''|²` of a 3-D curve at `t`; `None` where the
     /// curvature is zero.
     ///

@@ -15,7 +15,8 @@
 //! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
 //! | `intersect.rs` | curve–curve (planar), self-intersection, curve–plane and curve–surface intersections |
 //! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
-//! | `tessellate.rs` | polylines and triangle meshes within a proved deviation |
+//! | `tessellate.rs` | polylines within a proved deviation; the mesh type |
+//! | `mesh.rs` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |
 //! | `curvature.rs` | curvature and torsion, inflections and curvature extrema; surface curvatures |
 //! | `bbox.rs` | exact bounding boxes from the pieces' extrema |
 //!
@@ -30,12 +31,14 @@ mod bbox;
 mod curvature;
 mod intersect;
 mod length;
+mod mesh;
 mod offset;
 mod pieces;
 mod project;
 mod surface;
 mod tessellate;
 
+pub use bbox::SURFACE_BOX_RTOL;
 pub use curvature::{CurvatureExtremum, SurfaceCurvature};
 pub use intersect::{CurveIntersection, SurfaceHit};
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};

@@ -99,6 +99,22 @@ impl QuerySurface {
         self.dim
     }
 
+    /// The parameter domain `((u_min, u_max), (v_min, v_max))`: the union of the patches'.
+    #[must_use]
+    pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
+        let mut d = (
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (f64::INFINITY, f64::NEG_INFINITY),
+        );
+        for &(u, v) in &self.ranges {
+            d = (
+                (d.0 .0.min(u.0), d.0 .1.max(u.1)),
+                (d.1 .0.min(v.0), d.1 .1.max(v.1)),
+            );
+        }
+        d
+    }
+
     /// Half the largest extent of the control net (the size tolerances are relative to).
     #[must_use]
     pub fn scale(&self) -> f64 {
@@ -219,6 +235,25 @@ impl QuerySurface {
             out.push((ur, (vm, v.1), hi));
         }
         out
+    }
+}
+
+impl QuerySurface {
+    /// Halves of a patch net at `u = 1/2` (de Casteljau; the rows form a curve of
+    /// `(q + 1)·hd`-scalar points).
+    pub(crate) fn halve_u(&self, net: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        split_curve(net, (self.q + 1) * self.hd, self.p)
+    }
+
+    /// Halves of a patch net at `v = 1/2` (de Casteljau on each row).
+    pub(crate) fn halve_v(&self, net: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi) = (Vec::with_capacity(net.len()), Vec::with_capacity(net.len()));
+        for row in net.chunks_exact((self.q + 1) * self.hd) {
+            let (l, h) = split_curve(row, self.hd, self.q);
+            lo.extend(l);
+            hi.extend(h);
+        }
+        (lo, hi)
     }
 }
 

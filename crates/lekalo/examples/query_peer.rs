@@ -1,0 +1,86 @@
+//! Our side of the Open CASCADE query comparison (`bench/peers/run.sh`, just before
+//! `bench/peers/occt_queries.cpp` on the same objects): the median of `REPEATS` runs of each
+//! workload of `benches/query.rs`, printed in the peer's line format with the facts to compare
+//! (intersection count, triangle count and the mesh's proved deviation).
+//!
+//! `cargo run --release --example query_peer -- [REPEATS [PROJECT_POINTS]]`
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use lekalo::{Points, QueryCurve, QuerySurface};
+
+#[path = "../benches/query_workloads/mod.rs"]
+mod query_workloads;
+use query_workloads::{plane_curve, query_point, space_curve, surface};
+
+/// Median wall time in seconds of `repeats` runs of `f`.
+fn median_s(repeats: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..repeats.max(1))
+        .map(|_| {
+            let a = Instant::now();
+            f();
+            a.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
+fn main() -> Result<(), lekalo::Error> {
+    let mut args = std::env::args().skip(1);
+    let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
+    let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);
+
+    let curve = QueryCurve::from_bspline(&space_curve())?;
+    let pts = Points::from_flat(3, (0..n).flat_map(query_point).collect())?;
+    let mut dsum = 0.0;
+    let t = median_s(repeats, || {
+        let r = curve
+            .project_batch(black_box(pts.as_view()))
+            .expect("projections");
+        dsum = r.iter().map(|p| p.distance).sum();
+    });
+    println!("lekalo project_1e5 {t:.6e} s per {n} points sum of distances {dsum:.12e}");
+    let mut total = 0.0;
+    let t = median_s(repeats, || {
+        total = curve.arc_length(1e-12).expect("length").total();
+    });
+    println!("lekalo length_1e-12 {t:.6e} s length {total:.15e}");
+    let table = curve.arc_length(1e-12)?;
+    let lengths: Vec<f64> = (0..n)
+        .map(|k| total * (0.618_033_988_749_895 * k as f64).fract())
+        .collect();
+    let mut psum = 0.0;
+    let t = median_s(repeats, || {
+        psum = table
+            .param_at_batch(black_box(&lengths))
+            .expect("params")
+            .iter()
+            .sum();
+    });
+    println!("lekalo param_at_1e5 {t:.6e} s per {n} lengths sum {psum:.12e}");
+    let (a, b) = (
+        QueryCurve::from_bspline(&plane_curve(0))?,
+        QueryCurve::from_bspline(&plane_curve(1))?,
+    );
+    let mut hits = 0;
+    let t = median_s(repeats, || {
+        hits = black_box(&a)
+            .intersect(&b, 1e-9)
+            .expect("intersections")
+            .len();
+    });
+    println!("lekalo intersect_100x100 {t:.6e} s points {hits}");
+    let s = QuerySurface::from_bspline(&surface())?;
+    let mut facts = (0, 0, 0.0);
+    let t = median_s(repeats, || {
+        let m = black_box(&s).mesh(1e-4).expect("mesh");
+        facts = (m.triangles.len(), m.uv.len(), m.deviation);
+    });
+    println!(
+        "lekalo mesh_50x50 {t:.6e} s triangles {} nodes {} proved deviation {:.3e}",
+        facts.0, facts.1, facts.2
+    );
+    Ok(())
+}
