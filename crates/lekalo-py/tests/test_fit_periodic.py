@@ -1,8 +1,9 @@
 """Closed fits, cross-checked against SciPy's ``splrep(per=1)`` inside the tests.
 
 The periodic least-squares and smoothing-condition problems have unique answers, solved here by
-a cyclic banded QR and in FITPACK by its own rotations: knots agree to rounding (1e-14 of the
-period) and coefficients to 1e-9 of the data's scale (values of order 1).
+a cyclic banded QR and in FITPACK by its own rotations. With given knots the coefficients agree to
+1e-9 of the data's scale (values of order 1); the smoothing condition's knots agree to rounding
+(1e-14 of the period), and its curves as far as the two stopping rules allow (see that test).
 """
 
 import numpy as np
@@ -38,14 +39,24 @@ def test_fit_periodic_with_knots_is_scipys_splrep_per():
 
 
 def test_fit_periodic_smoothing_condition_is_scipys_splrep_per():
+    # Both stop the search for the smoothing parameter on the same final knots once the residual
+    # is near s: FITPACK within 0.1% of s on either side, lekalo within [(1 - 0.1%) s, s]. The
+    # knots are the same to rounding; the two smoothing parameters may differ inside that band,
+    # so the curves are compared at the size such a residual change allows: an RMS difference at
+    # the data within sqrt(0.2% of s / n) (of order 1e-3 here, against values of order 1).
     x, y = periodic_data()
     s = 0.025
     curve, report = lekalo.fit_periodic(x, y, s=s)
-    t, c = scipy_coefficients(si.splrep(x, y, s=s, per=1))
-    assert report["weighted_rss"] <= s
+    tck, fp, ier, _ = si.splrep(x, y, s=s, per=1, full_output=1)
+    t, c = scipy_coefficients(tck)
+    assert ier <= 0 and abs(fp - s) <= 1e-3 * s
+    assert (1 - 1e-3) * s <= report["weighted_rss"] <= s
     assert len(curve.knots) == len(t)
     assert np.abs(curve.knots - t).max() <= 1e-14 * 2 * np.pi
-    assert np.abs(curve.control[:, 0] - c).max() <= 1e-9
+    assert len(curve.control) == len(c)
+    n = len(x) - 1
+    diff = curve(x[:n])[:, 0] - si.splev(x[:n], tck)
+    assert np.sqrt((diff**2).mean()) <= np.sqrt(2e-3 * s / n)
 
 
 def closure_gap(curve, a, b):
