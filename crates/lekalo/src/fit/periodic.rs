@@ -11,8 +11,8 @@
 use super::cyclic::CyclicQr;
 use super::data::{check_in_domain, CurveFit, FitData};
 use super::smoothing_condition::{
-    finish, jump_rows, next_nplus, smooth_weight, Added, Knots, LsqPass, Observations,
-    SMOOTHING_RTOL,
+    check_condition_args, finish, jump_rows, next_nplus, smooth_weight, Added, Knots, LsqPass,
+    Observations, SMOOTHING_RTOL,
 };
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{check_degree_bound, check_finite, Error, Result};
@@ -127,19 +127,7 @@ pub fn periodic_smoothing_condition(
     s: f64,
     domain: (f64, f64),
 ) -> Result<CurveFit> {
-    if !(s >= 0.0 && s.is_finite()) {
-        return Err(Error::NegativeSmoothing {
-            what: "s",
-            value: s,
-        });
-    }
-    check_degree_bound(degree)?;
-    if degree == 0 {
-        return Err(Error::Degree {
-            degree,
-            reason: "the smoothing condition needs degree ≥ 1".into(),
-        });
-    }
+    check_condition_args(degree, s)?;
     let k = degree;
     let (a, b) = domain;
     check_breaks(&[a, b])?;

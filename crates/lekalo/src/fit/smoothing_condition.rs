@@ -66,19 +66,7 @@ const MAX_P_ITERATIONS: usize = 20;
 /// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
-    if !(s >= 0.0 && s.is_finite()) {
-        return Err(Error::NegativeSmoothing {
-            what: "s",
-            value: s,
-        });
-    }
-    check_degree_bound(degree)?;
-    if degree == 0 {
-        return Err(Error::Degree {
-            degree,
-            reason: "the smoothing condition needs degree ≥ 1".into(),
-        });
-    }
+    check_condition_args(degree, s)?;
     let k = degree;
     let obs = Observations::new(data);
     let md = obs.sites.len();
@@ -612,6 +600,25 @@ pub(super) fn finish(
     let curve = BSplineCurve::from_raw(k, t, Points::from_raw(flat, obs.dim));
     let report = FitReport::new(&curve, data, lambda);
     CurveFit { curve, report }
+}
+
+/// The arguments every smoothing condition (open and closed) refuses: `s` negative or not finite,
+/// a degree of 0 or beyond the library's bound.
+pub(super) fn check_condition_args(degree: usize, s: f64) -> Result<()> {
+    if !(s >= 0.0 && s.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: "s",
+            value: s,
+        });
+    }
+    check_degree_bound(degree)?;
+    if degree == 0 {
+        return Err(Error::Degree {
+            degree,
+            reason: "the smoothing condition needs degree ≥ 1".into(),
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]
