@@ -72,6 +72,16 @@ where
     Ok(())
 }
 
+/// The pieces of the object envelope's layout: newline, indents of one and two levels, and the
+/// space after a colon or comma; all empty when the output is compact.
+fn layout(pretty: bool) -> (&'static [u8], &'static [u8], &'static [u8], &'static [u8]) {
+    if pretty {
+        (b"\n", b"  ", b"    ", b" ")
+    } else {
+        (b"", b"", b"", b"")
+    }
+}
+
 /// The envelope of `obj` (see [`crate::Object::write_json`]), lists cut in blocks of `block`
 /// items.
 pub(crate) fn write_object(
@@ -81,11 +91,7 @@ pub(crate) fn write_object(
     block: usize,
 ) -> std::io::Result<()> {
     use crate::Object;
-    let (nl, ind, ind2, sp): (&[u8], &[u8], &[u8], &[u8]) = if pretty {
-        (b"\n", b"  ", b"    ", b" ")
-    } else {
-        (b"", b"", b"", b"")
-    };
+    let (nl, ind, ind2, sp) = layout(pretty);
     let comma_sp = [b",".as_slice(), sp].concat();
     let mut out: Vec<u8> = Vec::with_capacity(4096);
     let field = |out: &mut Vec<u8>, key: &str, first: bool| {
@@ -191,11 +197,7 @@ fn write_pieces(
     block: usize,
     progress: &lekalo::Progress<'_>,
 ) -> std::io::Result<()> {
-    let (nl, ind, ind2, sp): (&[u8], &[u8], &[u8], &[u8]) = if pretty {
-        (b"\n", b"  ", b"    ", b" ")
-    } else {
-        (b"", b"", b"", b"")
-    };
+    let (nl, ind, ind2, sp) = layout(pretty);
     let comma_sp = [b",".as_slice(), sp].concat();
     let row_sep = [b",".as_slice(), nl].concat();
     let field = |out: &mut Vec<u8>, key: &str| {
