@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""STEP test files written by an independent kernel (Open CASCADE, through PyPI's cadquery-ocp),
-and the check that Open CASCADE reads lekalo's STEP output back.
+"""STEP and IGES test files written by an independent kernel (Open CASCADE, through PyPI's
+cadquery-ocp), and the check that Open CASCADE reads lekalo's STEP and IGES output back.
 
     python3 -m venv target/occ-venv && target/occ-venv/bin/pip install cadquery-ocp
     target/occ-venv/bin/python scripts/occ_step_files.py write   # test data (run once)
@@ -10,8 +10,10 @@ and the check that Open CASCADE reads lekalo's STEP output back.
 STEPControl_Writer (AP214 in millimetres, AP242 in metres; curves as a geometric curve set,
 surfaces as faces), reads each file back with STEPControl_Reader and stores what Open CASCADE
 read (degree, knots, control points, weights, in millimetres) next to the files as
-`<name>.expect.json`: crates/lekalo-io/tests/data/occ/. The Rust tests read the files and
-compare with these values bit for bit (both sides parse the same decimal text).
+`<name>.expect.json`: crates/lekalo-io/tests/data/occ/. It does the same for IGES with
+IGESControl_Writer (curves as entity 126, faces as entity 144 over entity 128, in millimetres and
+in metres) and IGESControl_Reader. The Rust tests read the files and compare with these values bit
+for bit (both sides parse the same decimal text).
 
 `check LEKALO` runs the round trip through the command line: lekalo reads each file, inserts a
 knot into every curve (a modification that keeps the geometry), writes STEP and IGES; Open
@@ -21,6 +23,7 @@ parameters: the largest distance must be below 1e-12 of the object's size.
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -124,8 +127,24 @@ def write_step(path, schema, unit, curves_, surfaces_):
     assert w.Write(path) == IFSelect_RetDone, path
 
 
+def write_iges(path, unit, curves_, surfaces_):
+    from OCP.IGESControl import IGESControl_Controller, IGESControl_Writer
+    IGESControl_Controller.Init_s()
+    w = IGESControl_Writer(unit, 0)  # mode 0: faces (entity 144 over 128), not BRep solids
+    for c in curves_:
+        assert w.AddShape(BRepBuilderAPI_MakeEdge(c).Edge())
+    for s in surfaces_:
+        assert w.AddShape(BRepBuilderAPI_MakeFace(s, 1e-9).Face())
+    w.ComputeModel()
+    assert w.Write(path), path
+
+
 def read_step(path):
-    r = STEPControl_Reader()
+    if path.endswith(".igs"):
+        from OCP.IGESControl import IGESControl_Reader
+        r = IGESControl_Reader()
+    else:
+        r = STEPControl_Reader()
     assert r.ReadFile(path) == IFSelect_RetDone, path
     r.TransferRoots()
     shape = r.OneShape()
@@ -188,6 +207,8 @@ FILES = [
     ("surfaces_ap214_mm", "AP214CD", "MM", False, True),
     ("mixed_ap242_m", "AP242DIS", "M", True, True),
 ]
+# IGES files: (name, unit)
+IGES_FILES = [("mixed_iges_mm", "MM"), ("mixed_iges_m", "M")]
 
 
 def write():
@@ -201,6 +222,17 @@ def write():
         date = text.index("'", text.index(",", start) + 1)
         end = text.index("'", date + 1)
         text = text[:date + 1] + "2000-01-01T00:00:00" + text[end:]
+        open(path, "w").write(text)
+        expect = read_step(path)
+        with open(os.path.join(DATA, name + ".expect.json"), "w") as f:
+            json.dump(expect, f, indent=1)
+        print(f"{path}: {len(expect)} objects")
+    for name, unit in IGES_FILES:
+        path = os.path.join(DATA, name + ".igs")
+        write_iges(path, unit, curves(), surfaces())
+        # the global section's dates (YYYYMMDD.HHNNSS) fixed, at the same width so that the
+        # 80-column layout holds
+        text = re.sub(r"\d{8}\.\d{6}", "20000101.000000", open(path).read())
         open(path, "w").write(text)
         expect = read_step(path)
         with open(os.path.join(DATA, name + ".expect.json"), "w") as f:

@@ -1,15 +1,17 @@
-//! STEP files written by Open CASCADE (`scripts/occ_step_files.py write`): every B-spline and
-//! NURBS curve and surface Open CASCADE reads from them is read here too, bit for bit (both
-//! parse the same decimal text, correctly rounded), including the file in metres (scaled to
-//! millimetres as Open CASCADE does). Then read-modify-write-read: a knot inserted into every
-//! curve, a surface split, written by `StepWriter`, read back unchanged.
+//! STEP and IGES files written by Open CASCADE (`scripts/occ_step_files.py write`): every
+//! B-spline and NURBS curve and surface Open CASCADE reads from them is read here too, bit for
+//! bit (both parse the same decimal text, correctly rounded), including the files in metres
+//! (scaled to millimetres as Open CASCADE does). Then read-modify-write-read: a knot inserted
+//! into every curve, a surface split, written by `StepWriter`, read back unchanged.
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
-use lekalo_io::{read_step, Object, Shape, StepWriter, Surface};
+use lekalo_io::{read_iges, read_step, Object, Shape, StepWriter, Surface};
 use serde_json::Value;
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/occ");
 const FILES: [&str; 3] = ["curves_ap214_mm", "surfaces_ap214_mm", "mixed_ap242_m"];
+/// IGES files: curves as entity 126, faces as entity 144 over entity 128.
+const IGES_FILES: [&str; 2] = ["mixed_iges_mm", "mixed_iges_m"];
 
 fn floats(v: &Value) -> Vec<f64> {
     v.as_array()
@@ -53,20 +55,48 @@ fn expected(e: &Value) -> Shape {
     })
 }
 
-fn read(name: &str) -> (lekalo_io::StepRead, Vec<Shape>) {
-    let text = std::fs::read_to_string(format!("{DATA}/{name}.step")).expect("test data");
+/// What Open CASCADE read from the file `name`.
+fn expectations(name: &str) -> Vec<Shape> {
     let expect: Value = serde_json::from_str(
         &std::fs::read_to_string(format!("{DATA}/{name}.expect.json")).expect("expectations"),
     )
     .expect("json");
-    let r = read_step(&text, name).expect("read");
-    let e = expect
+    expect
         .as_array()
         .expect("list")
         .iter()
         .map(expected)
-        .collect();
-    (r, e)
+        .collect()
+}
+
+fn read(name: &str) -> (lekalo_io::StepRead, Vec<Shape>) {
+    let text = std::fs::read_to_string(format!("{DATA}/{name}.step")).expect("test data");
+    (read_step(&text, name).expect("read"), expectations(name))
+}
+
+#[test]
+fn what_open_cascade_reads_from_its_iges_files_we_read_bit_for_bit() {
+    for name in IGES_FILES {
+        let text = std::fs::read_to_string(format!("{DATA}/{name}.igs")).expect("test data");
+        let r = read_iges(&text, name).expect("read");
+        let expect = expectations(name);
+        assert_eq!(expect.len(), 5, "{name}: three curves and two surfaces");
+        // the same objects in the same order, nothing more: the faces (entity 144) are
+        // reported as skipped, their surfaces (entity 128) read
+        let got: Vec<&Shape> = r.shapes.iter().map(|(_, s)| s).collect();
+        assert_eq!(got, expect.iter().collect::<Vec<_>>(), "{name}");
+        assert_eq!(
+            r.skipped
+                .iter()
+                .map(|s| s.entity.as_str())
+                .collect::<Vec<_>>(),
+            ["IGES entity 144", "IGES entity 144"],
+            "{name}"
+        );
+        let metres = name.ends_with("_m");
+        assert_eq!(r.scale_to_mm, if metres { 1000.0 } else { 1.0 }, "{name}");
+        assert_eq!(r.length_unit, if metres { "M" } else { "MM" }, "{name}");
+    }
 }
 
 #[test]
