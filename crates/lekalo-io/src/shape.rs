@@ -200,6 +200,31 @@ impl Shape {
             Shape::Pp(p) => piecewise_polynomial_to_json(p),
         }
     }
+
+    /// JSON text of the envelope on one line, as JSON Lines hold it (no space after a colon or
+    /// comma, as [`Object::to_json_line`]).
+    ///
+    /// ```
+    /// use lekalo_io::{Shape, Surface};
+    /// let net = lekalo::Points::from_3d(&[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 1.0]])?;
+    /// let s = Shape::Surface(Surface::Bezier(lekalo::BezierSurface::new(net, (2, 2))?));
+    /// assert_eq!(
+    ///     s.to_json_line(),
+    ///     r#"{"lekalo":1,"type":"bezier_surface","net":[2,2],"control":[[0.0,0.0,0.0],[0.0,1.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0]]}"#
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn to_json_line(&self) -> String {
+        match self {
+            Shape::Curve(c) => c.to_json_line(),
+            // the pretty text's only white space is its layout: no number or name holds any
+            other => other
+                .to_json_pretty()
+                .split_ascii_whitespace()
+                .collect::<String>(),
+        }
+    }
 }
 
 impl Surface {

@@ -80,19 +80,6 @@ pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
     Ok(out)
 }
 
-/// One line of JSON Lines for any shape (the pretty envelope with its newlines removed; the
-/// numbers are unchanged).
-pub(crate) fn shape_line(s: &Shape) -> String {
-    match s {
-        Shape::Curve(o) => o.to_json_line(),
-        other => other
-            .to_json_pretty()
-            .lines()
-            .map(str::trim)
-            .collect::<String>(),
-    }
-}
-
 fn report_step(name: &str, r: &lekalo_io::StepRead, v: Verbosity) {
     if v == Verbosity::Quiet {
         return;
@@ -139,7 +126,7 @@ pub(crate) fn convert_shapes(
     let bytes = match format.as_str() {
         "jsonl" => shapes
             .iter()
-            .map(|s| shape_line(s) + "\n")
+            .map(|s| s.to_json_line() + "\n")
             .collect::<String>(),
         "json" => match shapes.as_slice() {
             [one] => one.to_json_pretty(),

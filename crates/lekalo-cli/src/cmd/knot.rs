@@ -10,7 +10,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, NurbsCurve};
 use lekalo_io::{fmt_number, Object, Shape, Surface};
 
-use crate::cmd::cad::{load_shape, load_shapes, shape_line};
+use crate::cmd::cad::{load_shape, load_shapes};
 use crate::io::{bad_input, emit, numbers};
 use crate::Verbosity;
 
@@ -217,7 +217,7 @@ fn write_one(c: &Common, s: &Shape, v: Verbosity) -> Result<()> {
 }
 
 fn write_many(out: Option<&Path>, input: &Path, shapes: &[Shape], v: Verbosity) -> Result<()> {
-    let text: String = shapes.iter().map(|s| shape_line(s) + "\n").collect();
+    let text: String = shapes.iter().map(|s| s.to_json_line() + "\n").collect();
     emit(out, text.as_bytes(), &[input.to_path_buf()], v)
 }
 

@@ -9,7 +9,6 @@ use lekalo::query::Offset;
 use lekalo_io::{Object, Shape};
 use serde_json::json;
 
-use crate::cmd::cad::shape_line;
 use crate::cmd::measure::query_curve;
 use crate::io::{emit, load_one, report, BadInput};
 use crate::Verbosity;
@@ -90,7 +89,7 @@ pub(crate) fn run(a: &OffsetArgs, v: Verbosity) -> Result<()> {
         if a.trim {
             off.trimmed
                 .iter()
-                .map(|c| shape_line(&Shape::Curve(Object::BSpline(c.clone()))) + "\n")
+                .map(|c| Object::BSpline(c.clone()).to_json_line() + "\n")
                 .collect()
         } else {
             Shape::Curve(Object::BSpline(off.curve)).to_json_pretty()
