@@ -2,7 +2,7 @@
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+use std::sync::RwLock;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
@@ -36,34 +36,49 @@ pub(crate) struct Settings {
     pub(crate) max_degree: usize,
 }
 
-static SETTINGS: OnceLock<Settings> = OnceLock::new();
+const DEFAULT_SETTINGS: Settings = Settings {
+    header: HeaderArg::Auto,
+    force: false,
+    max_size: DEFAULT_MAX_SIZE,
+    max_degree: DEFAULT_MAX_DEGREE,
+};
 
-static GROUP_COLUMN: OnceLock<String> = OnceLock::new();
+/// The global options of the command being run (set by [`configure`] at the start of every
+/// command, read by the helpers on any thread).
+static SETTINGS: RwLock<Settings> = RwLock::new(DEFAULT_SETTINGS);
 
-/// Records `--group-column` (once, from `main`).
+static GROUP_COLUMN: RwLock<String> = RwLock::new(String::new());
+
+/// Records `--group-column` for the command being run.
 pub(crate) fn configure_group_column(name: String) {
-    let _ = GROUP_COLUMN.set(name);
+    *GROUP_COLUMN
+        .write()
+        .unwrap_or_else(std::sync::PoisonError::into_inner) = name;
 }
 
 /// The key column of Parquet batches (`--group-column`).
-pub(crate) fn group_column() -> &'static str {
-    GROUP_COLUMN
-        .get()
-        .map_or(lekalo_io::DEFAULT_KEY, String::as_str)
+pub(crate) fn group_column() -> String {
+    let name = GROUP_COLUMN
+        .read()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if name.is_empty() {
+        lekalo_io::DEFAULT_KEY.to_string()
+    } else {
+        name.clone()
+    }
 }
 
-/// Records the global options (once, from `main`).
+/// Records the global options for the command being run.
 pub(crate) fn configure(s: Settings) {
-    let _ = SETTINGS.set(s);
+    *SETTINGS
+        .write()
+        .unwrap_or_else(std::sync::PoisonError::into_inner) = s;
 }
 
 pub(crate) fn settings() -> Settings {
-    SETTINGS.get().copied().unwrap_or(Settings {
-        header: HeaderArg::Auto,
-        force: false,
-        max_size: DEFAULT_MAX_SIZE,
-        max_degree: DEFAULT_MAX_DEGREE,
-    })
+    *SETTINGS
+        .read()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 /// Writes a line to standard error, ignoring a closed stderr (never panics).

@@ -112,7 +112,7 @@ pub(crate) fn curves_of_groups(
     make: &(dyn Fn(&lekalo::Points) -> Result<Object> + Sync),
 ) -> Result<()> {
     let out = parquet_output(out, "curves")?;
-    let key = group_column();
+    let key = &group_column();
     let mut failed = Vec::new();
     let mut total = 0usize;
     write_parquet(
@@ -155,7 +155,7 @@ pub(crate) fn eval(
     v: Verbosity,
 ) -> Result<()> {
     let out = parquet_output(out, "samples")?;
-    let key = group_column();
+    let key = &group_column();
     let mut failed = Vec::new();
     let mut total = 0usize;
     let mut header: Option<Vec<String>> = None;
@@ -261,14 +261,14 @@ fn point_samples<W: std::io::Write + Send>(
         }
     }
     match dim {
-        Some(d) => writer.write_point_samples(group_column(), d, &ok),
+        Some(d) => writer.write_point_samples(&group_column(), d, &ok),
         None => Ok(()),
     }
 }
 
 /// `lekalo convert`: curves between Parquet and JSON Lines.
 pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<()> {
-    let key = group_column();
+    let key = &group_column();
     let inputs = [input.to_path_buf()];
     if is_parquet(input) {
         let mut lines = Vec::new();

@@ -1,0 +1,241 @@
+//! The command line of the lekalo spline kernel, as a library: [`run`] parses an argument
+//! vector and carries out the command; the `lekalo` binary (`main.rs`) only installs the
+//! signal and panic handlers ([`install_handlers`]) and calls it. The library form lets the
+//! fuzz target `cli_args` drive argument parsing and every command in one process.
+//!
+//! Thin by design: parse arguments, call the library (`lekalo`) and the formats crate
+//! (`lekalo-io`), write output. No mathematics here.
+//!
+//! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
+//! outside the domain — the message names the file, line and field); 3 internal failure
+//! (cannot write the output, rendering failed, a demo check did not reproduce its document);
+//! 128 + the signal when interrupted (130 for Ctrl-C, 143 for SIGTERM).
+
+use std::ffi::OsString;
+use std::path::PathBuf;
+
+use clap::{Args, CommandFactory, Parser, Subcommand};
+
+mod cancel;
+mod cmd;
+mod demo;
+mod io;
+mod report;
+mod terms;
+
+/// Construct, convert and analyse spline curves and surfaces.
+///
+/// Objects are read from the versioned JSON format (docs/formats.md) or JSON Lines of many
+/// objects; `-` reads standard input. Outputs are written atomically and never over an input.
+///
+/// Exit codes: 0 success, 2 bad input, 3 internal failure.
+#[derive(Parser, Debug)]
+#[command(name = "lekalo", version, about, long_about, after_help = EXAMPLES)]
+pub(crate) struct Cli {
+    /// Print nothing but the results (no progress, no notes).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    quiet: bool,
+    /// Print what is read and written, with timings, to standard error.
+    #[arg(short, long, global = true)]
+    verbose: bool,
+    /// Whether the first line of a CSV or text points file is a header: auto (only if no field
+    /// on it is a number), yes or no.
+    #[arg(long, global = true, value_enum, default_value_t = io::HeaderArg::Auto)]
+    header: io::HeaderArg,
+    /// Replace a write-protected output file too (it is refused otherwise, as by a shell's `>`).
+    #[arg(long, global = true)]
+    force: bool,
+    /// Largest number of samples, knots, intervals or grid points a command may create from its
+    /// arguments (docs/robustness.md).
+    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
+    max_size: usize,
+    /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
+    /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
+    /// reduction (docs/robustness.md).
+    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
+    max_degree: usize,
+    /// The key column of a Parquet batch: the column that groups points into point sets, and
+    /// the key of each curve (docs/formats.md#parquet-batches).
+    #[arg(long, global = true, value_name = "NAME", default_value = lekalo_io::DEFAULT_KEY)]
+    group_column: String,
+    #[command(subcommand)]
+    command: Command,
+}
+
+const EXAMPLES: &str = "\
+Examples:
+  lekalo demo --out gallery            # the documents' constructions, as an HTML gallery
+  lekalo make bspline --control pts.csv --degree 3 -o curve.json
+  lekalo info curve.json
+  lekalo eval curve.json --samples 5 --derivatives 1 --curvature
+  lekalo knots averaged --degree 3 --params 0,5/17,9/17,14/17,1
+  lekalo plot curve.json -o curve.svg --basis
+  lekalo convert curve.json -o curve.step
+
+Exit codes: 0 success, 2 bad input, 3 internal failure.";
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Build a curve or surface object from control points (and knots, weights).
+    Make(cmd::make::MakeArgs),
+    /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
+    Eval(cmd::eval::EvalArgs),
+    /// Show degree, knots, domain, bounding box of a curve (or of every curve of a batch).
+    Info(cmd::info::InfoArgs),
+    /// Build knot vectors (uniform, averaged, from parameters, Curry–Schoenberg) or inspect one.
+    Knots(cmd::knots::KnotsArgs),
+    /// Convert between formats: JSON, JSON Lines, CSV samples, SVG, PNG, STEP, OBJ.
+    Convert(cmd::convert::ConvertArgs),
+    /// Plot a curve (control polygon, knots, data points) or its basis functions to SVG/PNG.
+    Plot(cmd::plot::PlotArgs),
+    /// Run the documents' constructions on built-in data; print a summary table and optionally
+    /// write an HTML gallery.
+    Demo(DemoArgs),
+    /// Interpolate points by a curve (every parametrisation, knot placement, end condition),
+    /// a grid by a surface, a function y(x) by a natural or Hermite spline.
+    Interpolate(cmd::interpolate::InterpolateArgs),
+    /// Bezier order change: elevate, reduce, real-degree, change (curves and surfaces).
+    Bezier(cmd::bezier::BezierArgs),
+    /// Blending: deformation of curves, splines through points, corner smoothing.
+    Blend(cmd::blend::BlendArgs),
+    /// Piecewise polynomials: pp-form ↔ B-spline, quasi-interpolation.
+    Pp(cmd::pp::PpArgs),
+    /// Knot operations on curves and surfaces: insert, refine, remove, split, reverse,
+    /// reparam, decompose into Bezier pieces, join.
+    Knot(cmd::knot::KnotArgs),
+    /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
+    /// surfaces through grids and scattered data.
+    Fit(cmd::fit::FitArgs),
+    /// Length, parameter at length, exact bounding box and curvature extrema of a curve.
+    Measure(cmd::measure::MeasureArgs),
+    /// Closest points on a curve or a surface (single points or batches).
+    Project(cmd::project::ProjectArgs),
+    /// Intersections of planar curves, self-intersections, curve–plane.
+    Intersect(cmd::intersect::IntersectArgs),
+    /// The offset of a planar curve at a distance, with its cusps and loops found and trimmed.
+    Offset(cmd::offset::OffsetArgs),
+    /// A surface as a triangle mesh (OBJ/STL/PLY) or a curve as a polyline, within a tolerance.
+    Mesh(cmd::mesh::MeshArgs),
+    /// The browser editor: draw, drag and construct curves, backed by a local JSON API.
+    Serve(cmd::serve::ServeArgs),
+}
+
+/// Arguments of `lekalo demo`.
+#[derive(Args, Debug)]
+#[command(after_help = "\
+Examples:
+  lekalo demo                 # print the summary table of every construction and check
+  lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
+  lekalo demo --only doc000-ends --out gallery   # one entry's figures
+  lekalo demo --only doc000-ends --json          # its tables and checks as JSON
+
+Exit code 3 if a construction does not reproduce its document's numbers.")]
+pub(crate) struct DemoArgs {
+    /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids.
+    #[arg(long, value_name = "ID")]
+    only: Option<String>,
+    #[command(flatten)]
+    json: crate::report::JsonFlag,
+}
+
+/// How much to say on standard error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Verbosity {
+    Quiet,
+    Normal,
+    Verbose,
+}
+
+/// The last-resort panic hook (a short report, exit code 3) and the signal handlers (SIGINT,
+/// SIGTERM, SIGHUP stop the command cleanly, docs/robustness.md). Called once by the binary
+/// before [`run`].
+pub fn install_handlers() {
+    io::install_handlers();
+}
+
+/// The whole argument grammar (every subcommand, option and value set) as clap describes it:
+/// for help generators, shell completions and the fuzz target that builds hostile command
+/// lines from it.
+pub fn command() -> clap::Command {
+    Cli::command()
+}
+
+/// Parses `args` (the program name first) and runs the command; returns the exit code: 0
+/// success (and `--help`, `--version`), 2 bad input or bad arguments, 3 internal failure,
+/// `128 +` the signal when interrupted.
+///
+/// The global options (`--header`, `--force`, `--max-size`, `--max-degree`,
+/// `--group-column`) are set anew by every call, so that one process may run several
+/// commands in turn.
+pub fn run<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let args: Vec<OsString> = args.into_iter().map(Into::into).collect();
+    let words: Vec<String> = args
+        .iter()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let cli = match Cli::try_parse_from(&args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // clap's own report: usage errors on standard error (exit 2), help and version on
+            // standard output (exit 0)
+            let _ = e.print();
+            return u8::try_from(e.exit_code()).unwrap_or(io::EXIT_BAD_INPUT);
+        }
+    };
+    if !cli.quiet {
+        for w in cmd::deprecated::warnings(&words) {
+            io::report(&format!("warning: {w}"));
+        }
+    }
+    io::configure(io::Settings {
+        header: cli.header,
+        force: cli.force,
+        max_size: cli.max_size,
+        max_degree: cli.max_degree,
+    });
+    io::configure_group_column(cli.group_column.clone());
+    let verbosity = if cli.quiet {
+        Verbosity::Quiet
+    } else if cli.verbose {
+        Verbosity::Verbose
+    } else {
+        Verbosity::Normal
+    };
+    let result = match cli.command {
+        Command::Make(a) => cmd::make::run(&a, verbosity),
+        Command::Eval(a) => cmd::eval::run(&a, verbosity),
+        Command::Info(a) => cmd::info::run(&a, verbosity),
+        Command::Knots(a) => cmd::knots::run(&a, verbosity),
+        Command::Convert(a) => cmd::convert::run(&a, verbosity),
+        Command::Plot(a) => cmd::plot::run(&a, verbosity),
+        Command::Demo(a) => demo::run(a.out.as_deref(), a.only.as_deref(), a.json.json, verbosity),
+        Command::Interpolate(a) => cmd::interpolate::run(&a, verbosity),
+        Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
+        Command::Blend(a) => cmd::blend::run(&a, verbosity),
+        Command::Pp(a) => cmd::pp::run(&a, verbosity),
+        Command::Knot(a) => cmd::knot::run(&a, verbosity),
+        Command::Fit(a) => cmd::fit::run(&a, verbosity),
+        Command::Measure(a) => cmd::measure::run(&a, verbosity),
+        Command::Project(a) => cmd::project::run(&a, verbosity),
+        Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
+        Command::Offset(a) => cmd::offset::run(&a, verbosity),
+        Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
+        Command::Serve(a) => cmd::serve::run(&a, verbosity),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) if io::is_broken_pipe(&e) => 0,
+        Err(_) if cancel::exit_code().is_some() => cancel::exit_interrupted(),
+        Err(e) => {
+            io::report(&terms::cli_terms(&format!("error: {e:#}")));
+            io::exit_code(&e)
+        }
+    }
+}
