@@ -1,7 +1,7 @@
 //! Weighted least squares with given knots, with end points and end derivatives imposed exactly
 //! (`docs/theory/fitting.md#least-squares`, `#constraints`).
 
-use super::banded::GivensQr;
+use super::banded::{BandedQr, QrRows};
 use super::data::{check_in_domain, CurveFit, FitData, FitReport};
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{check_degree_bound, check_finite, Error, Result};
@@ -70,8 +70,9 @@ impl EndConstraints {
 /// `Σ_k w_k |C(ū_k) − Q_k|²` over the control points (SciPy's `make_lsq_spline`; P&T §9.4.1),
 /// subject to `ends`, which are imposed exactly by eliminating the control points they fix.
 ///
-/// Solved by banded QR with Givens rotations, one data row at a time (FITPACK `fpgivs`/`fprota`;
-/// `docs/theory/fitting.md#banded-qr`): no normal equations, no dense matrix; O(N·p·(p + dim))
+/// Solved by banded QR as the rows arrive, Householder reflections of blocks of rows with the
+/// same non-zero columns (`docs/theory/fitting.md#banded-qr`; FITPACK rotates each row in by
+/// Givens rotations, `fpgivs`/`fprota`): no normal equations, no dense matrix; O(N·p·(p + dim))
 /// time and O(n·(p + dim)) memory for `N` points and `n` control points. The data are shifted by
 /// their first point before the solve (exact by partition of unity), so data far from the origin
 /// keep their digits.
@@ -247,13 +248,13 @@ pub(crate) fn accumulate(
     n_ctrl: usize,
     fixed: &Fixed,
     bw: usize,
-) -> GivensQr {
+) -> BandedQr {
     let pts = data.points();
     let dim = pts.dim();
     let ks = fixed.start.len() / dim;
     let ke = fixed.end.len() / dim;
     let n_free = n_ctrl - ks - ke;
-    let mut qr = GivensQr::new(n_free, bw, dim);
+    let mut qr = QrRows::new(n_free, bw, dim);
     let wmax = data
         .weights()
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
@@ -264,7 +265,7 @@ pub(crate) fn accumulate(
     let mut h = vec![0.0; degree + 1];
     let mut y = vec![0.0; dim];
     let params = data.params();
-    let mut row = |k: usize, qr: &mut GivensQr| {
+    let mut row = |k: usize, qr: &mut QrRows| {
         let w = data.weight(k) / wmax;
         if w == 0.0 {
             return;
@@ -300,16 +301,16 @@ pub(crate) fn accumulate(
             for (hv, &b) in h[..len].iter_mut().zip(&nb[lo - first..hi - first]) {
                 *hv = sw * b;
             }
-            qr.add_row(lo - ks, &mut h[..len], &mut y);
+            qr.push(lo - ks, &h[..len], &y);
         } else {
-            qr.rss += y.iter().map(|v| v * v).sum::<f64>();
+            qr.add_residual(&y);
         }
     };
     match data.order() {
         None => (0..data.len()).for_each(|k| row(k, &mut qr)),
         Some(order) => order.into_iter().for_each(|k| row(k, &mut qr)),
     }
-    qr
+    qr.finish()
 }
 
 /// Back-substitutes the free control points and assembles all of them (plus the reference
@@ -318,7 +319,7 @@ pub(crate) fn accumulate(
 /// # Errors
 /// [`Error::SchoenbergWhitney`] naming the basis function whose column is rank-deficient.
 pub(crate) fn solve_control(
-    qr: &GivensQr,
+    qr: &BandedQr,
     data: &FitData<'_>,
     degree: usize,
     knots: &KnotVector,

@@ -6,7 +6,7 @@
 //!
 //! | file | what it does | theory |
 //! |---|---|---|
-//! | `banded.rs` | banded QR by Givens rotations; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
+//! | `banded.rs` | banded QR by Givens rotations or Householder blocks; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
 //! | `data.rs` | [`FitData`] (points, parameters, weights, validated once) and the [`FitReport`] of every fit | [#residuals] |
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
 //! | `lsq.rs` | [`least_squares`]: weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
