@@ -56,7 +56,7 @@ pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
 pub use periodic::{closed_parameters, periodic_least_squares, periodic_smoothing_condition};
-pub use robust::{robust_least_squares, RobustFit, RobustLoss};
+pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
 pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
 pub use surface::{
