@@ -1,5 +1,6 @@
 //! The data of a fit and the report of its residuals (`docs/theory/fitting.md#residuals`).
 
+use super::rows::for_each_row;
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
 use crate::BSplineCurve;
@@ -169,21 +170,33 @@ impl FitReport {
     /// The report of `curve` against `data`.
     pub(crate) fn new(curve: &BSplineCurve, data: &FitData<'_>, lambda: Option<f64>) -> Self {
         let dim = data.points.dim();
-        let mut out = vec![0.0; data.len() * dim];
+        let ctrl = curve.control_points().as_slice();
+        let p = curve.degree();
+        let mut residuals = vec![0.0; data.len()];
+        let mut c = vec![0.0; dim];
         // parameters were checked against the domain by every fitting method
-        let evaluated = curve.eval_batch(data.params, &mut out).is_ok();
-        debug_assert!(evaluated, "fit data parameters lie in the curve's domain");
-        let residuals: Vec<f64> = out
-            .chunks_exact(dim)
-            .zip(data.points.iter())
-            .map(|(c, q)| {
-                c.iter()
-                    .zip(q)
+        for_each_row(
+            curve.knots(),
+            p,
+            data.params,
+            0..data.len(),
+            |_| 1.0,
+            |k, span, nb| {
+                c.fill(0.0);
+                for (j, &b) in nb.iter().enumerate() {
+                    let base = (span - p + j) * dim;
+                    c.iter_mut()
+                        .zip(&ctrl[base..base + dim])
+                        .for_each(|(o, x)| *o += b * x);
+                }
+                residuals[k] = c
+                    .iter()
+                    .zip(data.points.point(k))
                     .map(|(a, b)| (a - b) * (a - b))
                     .sum::<f64>()
-                    .sqrt()
-            })
-            .collect();
+                    .sqrt();
+            },
+        );
         let (mut max_residual, mut max_index, mut sum2, mut weighted_rss) = (0.0, 0, 0.0, 0.0);
         for (k, &r) in residuals.iter().enumerate() {
             if r > max_residual {

@@ -3,7 +3,7 @@
 
 use super::banded::{BandedQr, QrRows};
 use super::data::{check_in_domain, CurveFit, FitData, FitReport};
-use crate::basis::{basis_funs_into, BasisScratch};
+use super::rows::for_each_row;
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
@@ -258,26 +258,19 @@ pub(crate) fn accumulate(
     let wmax = data
         .weights()
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
-    let t = knots.as_slice();
-    let mut cursor = knots.span_cursor(degree);
-    let mut scratch = BasisScratch::new(degree);
-    let mut nb = vec![0.0; degree + 1];
-    let mut h = vec![0.0; degree + 1];
     let mut y = vec![0.0; dim];
-    let params = data.params();
-    let mut row = |k: usize, qr: &mut QrRows| {
-        let w = data.weight(k) / wmax;
-        if w == 0.0 {
+    let mut h = vec![0.0; degree + 1];
+    let scale = |k: usize| (data.weight(k) / wmax).sqrt();
+    let mut on_row = |k: usize, span: usize, nb: &[f64]| {
+        let sw = scale(k);
+        if sw == 0.0 {
             return;
         }
-        let sw = w.sqrt();
-        let u = params[k];
-        let span = cursor.find_unchecked(u);
-        basis_funs_into(t, degree, span, u, &mut scratch, &mut nb);
         let first = span - degree;
         for (yc, (q, o)) in y.iter_mut().zip(pts.point(k).iter().zip(&fixed.center)) {
             *yc = sw * (q - o);
         }
+        // nb = √w·N: the fixed control points' share of the row
         for (a, &b) in nb.iter().enumerate() {
             let col = first + a;
             let fixed_point = if col < ks {
@@ -290,7 +283,7 @@ pub(crate) fn accumulate(
             };
             if let Some(pf) = fixed_point {
                 for (yc, pc) in y.iter_mut().zip(pf) {
-                    *yc -= sw * b * pc;
+                    *yc -= b * pc;
                 }
             }
         }
@@ -298,17 +291,16 @@ pub(crate) fn accumulate(
         let hi = (first + degree + 1).min(n_ctrl - ke);
         if lo < hi {
             let len = hi - lo;
-            for (hv, &b) in h[..len].iter_mut().zip(&nb[lo - first..hi - first]) {
-                *hv = sw * b;
-            }
+            h[..len].copy_from_slice(&nb[lo - first..hi - first]);
             qr.push(lo - ks, &h[..len], &y);
         } else {
             qr.add_residual(&y);
         }
     };
+    let params = data.params();
     match data.order() {
-        None => (0..data.len()).for_each(|k| row(k, &mut qr)),
-        Some(order) => order.into_iter().for_each(|k| row(k, &mut qr)),
+        None => for_each_row(knots, degree, params, 0..data.len(), scale, &mut on_row),
+        Some(order) => for_each_row(knots, degree, params, order, scale, &mut on_row),
     }
     qr.finish()
 }

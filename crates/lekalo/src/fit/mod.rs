@@ -15,6 +15,7 @@
 //! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
+//! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
@@ -47,6 +48,7 @@ mod knot_placement;
 mod lsq;
 mod periodic;
 mod robust;
+mod rows;
 mod smoothing;
 mod smoothing_condition;
 mod surface;
