@@ -173,7 +173,6 @@ impl FitReport {
         let ctrl = curve.control_points().as_slice();
         let p = curve.degree();
         let mut residuals = vec![0.0; data.len()];
-        let mut c = vec![0.0; dim];
         // parameters were checked against the domain by every fitting method
         for_each_row(
             curve.knots(),
@@ -182,19 +181,18 @@ impl FitReport {
             0..data.len(),
             |_| 1.0,
             |k, span, nb| {
-                c.fill(0.0);
-                for (j, &b) in nb.iter().enumerate() {
-                    let base = (span - p + j) * dim;
-                    c.iter_mut()
-                        .zip(&ctrl[base..base + dim])
-                        .for_each(|(o, x)| *o += b * x);
+                let cs = &ctrl[(span - p) * dim..(span + 1) * dim];
+                let q = data.points.point(k);
+                let mut r2 = 0.0;
+                for (d, &qd) in q.iter().enumerate() {
+                    // C_d(ū_k) in a register
+                    let mut v = 0.0;
+                    for (j, &b) in nb.iter().enumerate() {
+                        v += b * cs[j * dim + d];
+                    }
+                    r2 += (v - qd) * (v - qd);
                 }
-                residuals[k] = c
-                    .iter()
-                    .zip(data.points.point(k))
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum::<f64>()
-                    .sqrt();
+                residuals[k] = r2.sqrt();
             },
         );
         let (mut max_residual, mut max_index, mut sum2, mut weighted_rss) = (0.0, 0, 0.0, 0.0);

@@ -270,8 +270,9 @@ pub(crate) fn accumulate(
         for (yc, (q, o)) in y.iter_mut().zip(pts.point(k).iter().zip(&fixed.center)) {
             *yc = sw * (q - o);
         }
-        // nb = √w·N: the fixed control points' share of the row
-        for (a, &b) in nb.iter().enumerate() {
+        // nb = √w·N: the fixed control points' share of the row (first and last spans only)
+        let touches_fixed = first < ks || first + degree + 1 > n_ctrl - ke;
+        for (a, &b) in nb.iter().enumerate().filter(|_| touches_fixed) {
             let col = first + a;
             let fixed_point = if col < ks {
                 Some(&fixed.start[col * dim..(col + 1) * dim])

@@ -75,7 +75,8 @@ pub struct ToleranceFit {
 ///    removal moves the curve by at most `tol − m` is removed
 ///    ([`BSplineCurve::remove_all_removable_knots`], whose bound is exact), so by the triangle
 ///    inequality the deviation stays `≤ tol`; then each remaining interior knot is tried once
-///    more by refitting without it, kept out when the refit is still within `tol`.
+///    more by refitting without it, kept out when the refit is still within `tol` (a trial
+///    stops at its first point beyond `tol`, looking near the removed knot first).
 ///
 /// Deviation is the distance to the curve ([`Deviation::Distance`], a closest-point projection
 /// per point) or at the data parameter ([`Deviation::Parameter`]). O(rounds·N·p²) plus the
@@ -189,12 +190,25 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     let mut k = 0;
     while k < interior.len() {
         let mut trial = interior.clone();
-        trial.remove(k);
-        match fit(&trial) {
-            Ok((c, d)) if d.iter().all(|&v| v <= tol) => {
-                (curve, dev, interior) = (c, d, trial);
-            }
-            _ => k += 1,
+        let removed = trial.remove(k);
+        let kv = clamped(a, b, p, &trial);
+        // a fit that fails (a span without data) keeps the knot, as one beyond tol does
+        let kept = least_squares(&data, p, &kv, &ends).ok().and_then(|f| {
+            let d = deviations_within(
+                &f.curve,
+                points,
+                &params,
+                &f.report.residuals,
+                opts.deviation,
+                tol,
+                removed,
+            );
+            d.transpose().map(|d| d.map(|d| (f.curve, d)))
+        });
+        match kept {
+            Some(Ok((c, d))) => (curve, dev, interior) = (c, d, trial),
+            Some(Err(e)) => return Err(e),
+            None => k += 1,
         }
     }
     // the exact distances of the final curve (the rounds kept upper bounds below tol)
@@ -289,6 +303,44 @@ fn deviations(
     Ok(dev)
 }
 
+/// Points projected per block by [`deviations_within`] before it looks for one beyond `tol`.
+const TRIAL_BLOCK: usize = 4096;
+
+/// [`deviations`] with `skip_below = tol` for a trial curve, or `None` as soon as one is beyond
+/// `tol`: the points are projected in blocks, those with parameters nearest `near` (the removed
+/// knot, around which the curve changed most) first. The same deviations as [`deviations`] when
+/// all are within `tol` (each projection depends only on its point).
+fn deviations_within(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    at_param: &[f64],
+    how: Deviation,
+    tol: f64,
+    near: f64,
+) -> Result<Option<Vec<f64>>> {
+    let mut dev = at_param.to_vec();
+    if how == Deviation::Parameter {
+        return Ok(dev.iter().all(|&v| v <= tol).then_some(dev));
+    }
+    let mut todo: Vec<usize> = (0..dev.len()).filter(|&i| dev[i] > tol).collect();
+    todo.sort_by(|&i, &j| {
+        (params[i] - near)
+            .abs()
+            .total_cmp(&(params[j] - near).abs())
+    });
+    for block in todo.chunks(TRIAL_BLOCK) {
+        let feet = project(curve, points, params, block)?;
+        for (&i, &(_, d)) in block.iter().zip(&feet) {
+            dev[i] = dev[i].min(d);
+            if dev[i] > tol || dev[i].is_nan() {
+                return Ok(None);
+            }
+        }
+    }
+    Ok(dev.iter().all(|&v| v <= tol).then_some(dev))
+}
+
 fn deviations_full(
     curve: &BSplineCurve,
     points: PointsRef<'_>,
@@ -381,9 +433,11 @@ mod tests {
     use super::*;
     use crate::Points;
 
-    #[test]
-    fn projection_finds_the_foot_of_points_off_the_curve_along_its_normal() {
-        // a plane cubic turning by about a quarter circle, radius of curvature near 1
+    /// A plane cubic turning by about a quarter circle (radius of curvature near 1), and points
+    /// `Q = C(u) + δ·n(u)` off it along the normal, `|δ| ≤ 1e-3`: their feet `u`, data parameters
+    /// off by up to 1 % of the domain, and `|δ|`.
+    #[allow(clippy::type_complexity)]
+    fn offset_points() -> (BSplineCurve, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
         let ctrl = Points::from_2d(&[
             [1.0, 0.0],
             [1.0, 0.3],
@@ -395,7 +449,6 @@ mod tests {
         .unwrap();
         let kv = KnotVector::clamped_uniform(3, 6).unwrap();
         let curve = BSplineCurve::from_knot_vector(3, kv, ctrl).unwrap();
-        // Q = C(u) + δ·n(u): for |δ| below the radius of curvature the foot is C(u), at |δ|
         let (mut q, mut feet, mut start, mut offsets) = (vec![], vec![], vec![], vec![]);
         for k in 1..40 {
             let u = f64::from(k) / 40.0;
@@ -409,6 +462,13 @@ mod tests {
             start.push(u + 0.01 * (f64::from(k % 5) - 2.0) / 2.0);
             offsets.push(delta.abs());
         }
+        (curve, q, feet, start, offsets)
+    }
+
+    #[test]
+    fn projection_finds_the_foot_of_points_off_the_curve_along_its_normal() {
+        // for |δ| below the radius of curvature the foot is C(u), at |δ|
+        let (curve, q, feet, start, offsets) = offset_points();
         let todo: Vec<usize> = (0..feet.len()).collect();
         let points = PointsRef::from_flat(2, &q).unwrap();
         let got = project(&curve, points, &start, &todo).unwrap();
@@ -424,5 +484,39 @@ mod tests {
         // only the listed points, in their order
         let some = project(&curve, points, &start, &[5, 2]).unwrap();
         assert_eq!(some, vec![got[5], got[2]], "subset in the order given");
+    }
+
+    #[test]
+    fn a_trial_stops_at_a_point_beyond_tol_and_otherwise_measures_every_point() {
+        let (curve, q, _, start, offsets) = offset_points();
+        let points = PointsRef::from_flat(2, &q).unwrap();
+        let mut at = vec![0.0; start.len() * 2];
+        curve.eval_batch(&start, &mut at).unwrap();
+        let at: Vec<f64> = at
+            .chunks_exact(2)
+            .zip(points.iter())
+            .map(|(c, p)| (c[0] - p[0]).hypot(c[1] - p[1]))
+            .collect();
+        let how = Deviation::Distance;
+        // every |δ| ≤ 1e-3 < tol: the deviations of a full measurement
+        let tol = 2e-3;
+        let all = deviations(&curve, points, &start, &at, how, tol).unwrap();
+        let within = deviations_within(&curve, points, &start, &at, how, tol, 0.5).unwrap();
+        assert_eq!(within.as_ref(), Some(&all), "all within tol");
+        for (k, ((&d, &a), &o)) in all.iter().zip(&at).zip(&offsets).enumerate() {
+            // projected beyond tol at the parameter, kept as the upper bound below it
+            let want = if a > tol { o } else { a };
+            assert!((d - want).abs() <= 1e-13, "point {k}: {d} vs {want}");
+        }
+        // tol below the largest offset: refused
+        let tol = 0.9 * offsets.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let within = deviations_within(&curve, points, &start, &at, how, tol, 0.5).unwrap();
+        assert!(within.is_none(), "a point beyond tol refuses the trial");
+        let at_only =
+            deviations_within(&curve, points, &start, &at, Deviation::Parameter, tol, 0.5);
+        assert!(
+            at_only.unwrap().is_none(),
+            "parameter deviations beyond tol refuse it too"
+        );
     }
 }
