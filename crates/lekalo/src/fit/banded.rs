@@ -1,12 +1,16 @@
 //! The two banded kernels of the fitting methods (crate-private; hand-written because they are
 //! the product: every fit is a pass of one of them over the data).
 //!
-//! - [`GivensQr`]: a least-squares problem `min ‖A x − y‖²` whose rows have at most `bw`
-//!   consecutive non-zeros, reduced row by row to a banded upper triangle `R` by Givens rotations,
-//!   as FITPACK's `fpgivs`/`fprota` do (Dierckx, *Curve and Surface Fitting with Splines*, 1993,
-//!   §4.1). The matrix `A` is never stored: each data row is rotated into `R` as it arrives, in
-//!   O(bw·(bw + ncols)) time. Rows must arrive with non-decreasing first columns (then no fill-in
-//!   leaves the band: `docs/theory/fitting.md#banded-qr`).
+//! - [`BandedQr`]: a least-squares problem `min ‖A x − y‖²` whose rows have at most `bw`
+//!   consecutive non-zeros, reduced to a banded upper triangle `R` as the rows arrive (the matrix
+//!   `A` is never stored). A single row is rotated in by Givens rotations, as FITPACK's
+//!   `fpgivs`/`fprota` do (Dierckx, *Curve and Surface Fitting with Splines*, 1993, §4.1), in
+//!   O(bw·(bw + ncols)) time. Many rows are gathered by [`QrRows`] into blocks of one first
+//!   column and length and reflected in by Householder transformations (Golub & Van Loan,
+//!   *Matrix Computations*, 4th ed., §5.2.2), the same triangle for a fraction of the time:
+//!   a row rotation waits on a square root and a division per column, a block needs them once
+//!   per column for the whole block. Rows must arrive with non-decreasing first and last
+//!   columns (then no fill-in leaves the band: `docs/theory/fitting.md#banded-qr`).
 //! - [`SymBand`]: a symmetric positive definite banded matrix factored as `Uᵀ D U` (`U` unit
 //!   upper triangular, half-bandwidth `b`), with the entries of the inverse inside the band by
 //!   the recursion of Hutchinson & de Hoog (1985), for the trace of the smoother matrix in
@@ -15,9 +19,13 @@
 /// Relative size below which a diagonal entry of `R` or `D` counts as zero (≈ 64 ulp).
 pub(crate) const RANK_RTOL: f64 = 64.0 * f64::EPSILON;
 
-/// Banded QR by Givens rotations; see the module documentation.
+/// Rows per Householder block of [`QrRows`]: the block (`bw + ncols` columns) stays in the
+/// first-level cache, and the square roots and divisions are paid once per block and column.
+const BLOCK_ROWS: usize = 128;
+
+/// Banded QR by Givens rotations or Householder blocks; see the module documentation.
 #[derive(Debug, Clone)]
-pub(crate) struct GivensQr {
+pub(crate) struct BandedQr {
     n: usize,
     bw: usize,
     ncols: usize,
@@ -30,11 +38,11 @@ pub(crate) struct GivensQr {
     pub(crate) rss: f64,
 }
 
-impl GivensQr {
+impl BandedQr {
     /// An empty triangle for `n` unknowns, rows of at most `bw` consecutive non-zeros and `ncols`
     /// right-hand sides.
     pub(crate) fn new(n: usize, bw: usize, ncols: usize) -> Self {
-        GivensQr {
+        BandedQr {
             n,
             bw,
             ncols,
@@ -109,7 +117,7 @@ impl GivensQr {
         Ok(())
     }
 
-    /// `‖R x − z‖²` summed over the columns: with [`GivensQr::rss`], the squared residual of `x`
+    /// `‖R x − z‖²` summed over the columns: with [`BandedQr::rss`], the squared residual of `x`
     /// for the rows rotated in so far.
     pub(crate) fn residual_of(&self, x: &[f64]) -> f64 {
         let (n, bw, nc) = (self.n, self.bw, self.ncols);
@@ -125,6 +133,160 @@ impl GivensQr {
             }
         }
         sum
+    }
+}
+
+impl BandedQr {
+    /// Reflects `m` rows with non-zeros in columns `first .. first + len` into the triangle by
+    /// `len` Householder transformations of the stacked matrix `[R_sub; H]`, `R_sub` the
+    /// `len × len` triangle of `R` at `first` (Golub & Van Loan §5.2.2). `h` holds the rows
+    /// column by column (`h[c·stride + i]`, entry `c` of row `i`), `y` their right-hand sides
+    /// the same way; both are overwritten. By the column order of the rows, the rows of
+    /// `R_sub` have no non-zero right of column `first + len − 1` yet, so nothing leaves the
+    /// band. Each reflection is `v = (r − β, x)` with `β = +√(r² + ‖x‖²)` and
+    /// `r − β = −‖x‖²/(r + β)` for `r ≥ 0` (Parlett's form, no cancellation): the diagonal stays
+    /// positive, as with [`BandedQr::add_row`], and the triangle is the same to rounding.
+    fn reflect_block(
+        &mut self,
+        first: usize,
+        len: usize,
+        m: usize,
+        h: &mut [f64],
+        y: &mut [f64],
+        stride: usize,
+    ) {
+        let (bw, nc) = (self.bw, self.ncols);
+        let len = len.min(self.n.saturating_sub(first));
+        for i in 0..len {
+            let (x, rest) = h[i * stride..].split_at_mut(stride);
+            let x = &x[..m];
+            let sigma = dot(x, x);
+            if sigma == 0.0 {
+                continue;
+            }
+            let j = first + i;
+            let rj = &mut self.r[j * bw..(j + 1) * bw];
+            let alpha = rj[0];
+            let beta = (alpha * alpha + sigma).sqrt();
+            let v0 = if alpha > 0.0 {
+                -sigma / (alpha + beta)
+            } else {
+                alpha - beta
+            };
+            // H = I − g v vᵀ, g = 2/(vᵀv)
+            let g = 2.0 / (v0 * v0 + sigma);
+            rj[0] = beta;
+            let reflect = |top: &mut f64, col: &mut [f64]| {
+                let f = g * (v0 * *top + dot(x, col));
+                *top -= f * v0;
+                col.iter_mut().zip(x).for_each(|(b, a)| *b -= f * a);
+            };
+            for c in i + 1..len {
+                let col = &mut rest[(c - i - 1) * stride..][..m];
+                reflect(&mut rj[c - i], col);
+            }
+            let zj = &mut self.z[j * nc..(j + 1) * nc];
+            for (d, top) in zj.iter_mut().enumerate() {
+                reflect(top, &mut y[d * stride..][..m]);
+            }
+        }
+        self.rss += (0..nc)
+            .map(|d| {
+                let yd = &y[d * stride..][..m];
+                dot(yd, yd)
+            })
+            .sum::<f64>();
+    }
+}
+
+/// `Σ a_i b_i` in four interleaved partial sums (the additions of one sum wait on each other;
+/// four run side by side).
+#[inline]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ac.zip(bc) {
+        for l in 0..4 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// Rows gathered for a [`BandedQr`]: consecutive rows of one first column and length are
+/// reflected in together ([`BandedQr::reflect_block`], up to [`BLOCK_ROWS`] at a time); a change
+/// of first column or length, a full block or [`QrRows::finish`] reflects the rows waiting.
+#[derive(Debug, Clone)]
+pub(crate) struct QrRows {
+    qr: BandedQr,
+    first: usize,
+    len: usize,
+    m: usize,
+    /// `h[c·BLOCK_ROWS + i]`: entry `c` of waiting row `i`.
+    h: Vec<f64>,
+    /// `y[d·BLOCK_ROWS + i]`: right-hand side `d` of waiting row `i`.
+    y: Vec<f64>,
+}
+
+impl QrRows {
+    /// An empty triangle for `n` unknowns, rows of at most `bw` consecutive non-zeros and `ncols`
+    /// right-hand sides.
+    pub(crate) fn new(n: usize, bw: usize, ncols: usize) -> Self {
+        QrRows {
+            qr: BandedQr::new(n, bw, ncols),
+            first: 0,
+            len: 0,
+            m: 0,
+            h: vec![0.0; bw * BLOCK_ROWS],
+            y: vec![0.0; ncols * BLOCK_ROWS],
+        }
+    }
+
+    /// Adds the row `h` (non-zeros in columns `first .. first + h.len()`, `h.len() ≤ bw`) with
+    /// right-hand side `y`; `first` and `first + h.len()` must not decrease from row to row.
+    #[inline]
+    pub(crate) fn push(&mut self, first: usize, h: &[f64], y: &[f64]) {
+        debug_assert!(h.len() <= self.qr.bw, "row longer than the band");
+        if self.m == BLOCK_ROWS || (self.m > 0 && (first != self.first || h.len() != self.len)) {
+            self.flush();
+        }
+        if self.m == 0 {
+            (self.first, self.len) = (first, h.len());
+        }
+        let i = self.m;
+        for (c, &v) in h.iter().enumerate() {
+            self.h[c * BLOCK_ROWS + i] = v;
+        }
+        for (d, &v) in y.iter().enumerate() {
+            self.y[d * BLOCK_ROWS + i] = v;
+        }
+        self.m += 1;
+    }
+
+    /// Adds `Σ y²` of a row without unknowns to the residual.
+    pub(crate) fn add_residual(&mut self, y: &[f64]) {
+        self.qr.rss += y.iter().map(|v| v * v).sum::<f64>();
+    }
+
+    fn flush(&mut self) {
+        if self.m > 0 {
+            let (first, len, m) = (self.first, self.len, self.m);
+            self.qr
+                .reflect_block(first, len, m, &mut self.h, &mut self.y, BLOCK_ROWS);
+            self.m = 0;
+        }
+    }
+
+    /// The triangle of all rows added.
+    pub(crate) fn finish(mut self) -> BandedQr {
+        self.flush();
+        self.qr
     }
 }
 
@@ -243,6 +405,85 @@ impl SymBand {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    /// Rows `(first, h, y)` of a banded problem with `n` unknowns, band `bw` and `nc` right-hand
+    /// sides, sorted by first and last column: runs of equal rows longer than a block, shorter
+    /// rows at both ends (as end conditions make them) and an all-zero row.
+    fn banded_rows(
+        n: usize,
+        bw: usize,
+        nc: usize,
+        per_col: usize,
+        seed: u64,
+    ) -> Vec<(usize, Vec<f64>, Vec<f64>)> {
+        let mut state = seed;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut rows = Vec::new();
+        for first in 0..=n - bw {
+            let count = if first == 1 { BLOCK_ROWS + 7 } else { per_col };
+            for i in 0..count {
+                // a short row before the full ones at the start, truncated ones at the end
+                let len = if first == 0 && i < per_col / 2 {
+                    bw - 1
+                } else {
+                    bw
+                };
+                let h: Vec<f64> = (0..len).map(|_| next()).collect();
+                rows.push((first, h, (0..nc).map(|_| next()).collect()));
+            }
+        }
+        rows.push((n - bw, vec![0.0; bw], (0..nc).map(|_| next()).collect()));
+        for len in (1..bw).rev() {
+            for _ in 0..per_col {
+                let h: Vec<f64> = (0..len).map(|_| next()).collect();
+                rows.push((n - len, h, (0..nc).map(|_| next()).collect()));
+            }
+        }
+        rows
+    }
+
+    proptest! {
+        /// The Householder blocks give the triangle of the Givens rotations: the same `R`
+        /// (positive diagonal), `Qᵀy` and residual, to rounding.
+        #[test]
+        fn blocks_give_the_triangle_of_row_rotations(
+            n in 4usize..12,
+            bw in 1usize..5,
+            nc in 1usize..3,
+            per_col in 1usize..20,
+            seed in 0u64..1000,
+        ) {
+            let bw = bw.min(n);
+            let rows = banded_rows(n, bw, nc, per_col, seed);
+            let mut givens = BandedQr::new(n, bw, nc);
+            let mut blocks = QrRows::new(n, bw, nc);
+            for (first, h, y) in &rows {
+                blocks.push(*first, h, y);
+                let (mut h, mut y) = (h.clone(), y.clone());
+                givens.add_row(*first, &mut h, &mut y);
+            }
+            let blocks = blocks.finish();
+            let scale = givens.r.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for (i, (a, b)) in blocks.r.iter().zip(&givens.r).enumerate() {
+                prop_assert!((a - b).abs() <= 1e-13 * scale, "R entry {i}: {a} vs {b}");
+            }
+            let zscale = givens.z.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+            for (i, (a, b)) in blocks.z.iter().zip(&givens.z).enumerate() {
+                prop_assert!((a - b).abs() <= 1e-13 * zscale, "z entry {i}: {a} vs {b}");
+            }
+            let total: f64 = rows.iter().flat_map(|r| r.2.iter()).map(|v| v * v).sum();
+            prop_assert!(
+                (blocks.rss - givens.rss).abs() <= 1e-13 * total,
+                "rss {} vs {}", blocks.rss, givens.rss
+            );
+        }
+    }
 
     /// Dense reference: `A` from its upper band.
     fn dense(m: &SymBand) -> Vec<f64> {
@@ -308,7 +549,7 @@ mod tests {
             (2, [1.0, 0.0], 3.0),
         ];
         let n = 3;
-        let mut qr = GivensQr::new(n, 2, 1);
+        let mut qr = BandedQr::new(n, 2, 1);
         let mut ata = [0.0; 9];
         let mut aty = [0.0; 3];
         for &(first, h, y) in &rows {

@@ -1,5 +1,6 @@
 //! The data of a fit and the report of its residuals (`docs/theory/fitting.md#residuals`).
 
+use super::rows::for_each_row;
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
 use crate::BSplineCurve;
@@ -169,21 +170,31 @@ impl FitReport {
     /// The report of `curve` against `data`.
     pub(crate) fn new(curve: &BSplineCurve, data: &FitData<'_>, lambda: Option<f64>) -> Self {
         let dim = data.points.dim();
-        let mut out = vec![0.0; data.len() * dim];
+        let ctrl = curve.control_points().as_slice();
+        let p = curve.degree();
+        let mut residuals = vec![0.0; data.len()];
         // parameters were checked against the domain by every fitting method
-        let evaluated = curve.eval_batch(data.params, &mut out).is_ok();
-        debug_assert!(evaluated, "fit data parameters lie in the curve's domain");
-        let residuals: Vec<f64> = out
-            .chunks_exact(dim)
-            .zip(data.points.iter())
-            .map(|(c, q)| {
-                c.iter()
-                    .zip(q)
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum::<f64>()
-                    .sqrt()
-            })
-            .collect();
+        for_each_row(
+            curve.knots(),
+            p,
+            data.params,
+            0..data.len(),
+            |_| 1.0,
+            |k, span, nb| {
+                let cs = &ctrl[(span - p) * dim..(span + 1) * dim];
+                let q = data.points.point(k);
+                let mut r2 = 0.0;
+                for (d, &qd) in q.iter().enumerate() {
+                    // C_d(ū_k) in a register
+                    let mut v = 0.0;
+                    for (j, &b) in nb.iter().enumerate() {
+                        v += b * cs[j * dim + d];
+                    }
+                    r2 += (v - qd) * (v - qd);
+                }
+                residuals[k] = r2.sqrt();
+            },
+        );
         let (mut max_residual, mut max_index, mut sum2, mut weighted_rss) = (0.0, 0, 0.0, 0.0);
         for (k, &r) in residuals.iter().enumerate() {
             if r > max_residual {

@@ -1,9 +1,9 @@
 //! Weighted least squares with given knots, with end points and end derivatives imposed exactly
 //! (`docs/theory/fitting.md#least-squares`, `#constraints`).
 
-use super::banded::GivensQr;
+use super::banded::{BandedQr, QrRows};
 use super::data::{check_in_domain, CurveFit, FitData, FitReport};
-use crate::basis::{basis_funs_into, BasisScratch};
+use super::rows::for_each_row;
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
@@ -70,8 +70,9 @@ impl EndConstraints {
 /// `Σ_k w_k |C(ū_k) − Q_k|²` over the control points (SciPy's `make_lsq_spline`; P&T §9.4.1),
 /// subject to `ends`, which are imposed exactly by eliminating the control points they fix.
 ///
-/// Solved by banded QR with Givens rotations, one data row at a time (FITPACK `fpgivs`/`fprota`;
-/// `docs/theory/fitting.md#banded-qr`): no normal equations, no dense matrix; O(N·p·(p + dim))
+/// Solved by banded QR as the rows arrive, Householder reflections of blocks of rows with the
+/// same non-zero columns (`docs/theory/fitting.md#banded-qr`; FITPACK rotates each row in by
+/// Givens rotations, `fpgivs`/`fprota`): no normal equations, no dense matrix; O(N·p·(p + dim))
 /// time and O(n·(p + dim)) memory for `N` points and `n` control points. The data are shifted by
 /// their first point before the solve (exact by partition of unity), so data far from the origin
 /// keep their digits.
@@ -247,37 +248,31 @@ pub(crate) fn accumulate(
     n_ctrl: usize,
     fixed: &Fixed,
     bw: usize,
-) -> GivensQr {
+) -> BandedQr {
     let pts = data.points();
     let dim = pts.dim();
     let ks = fixed.start.len() / dim;
     let ke = fixed.end.len() / dim;
     let n_free = n_ctrl - ks - ke;
-    let mut qr = GivensQr::new(n_free, bw, dim);
+    let mut qr = QrRows::new(n_free, bw, dim);
     let wmax = data
         .weights()
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
-    let t = knots.as_slice();
-    let mut cursor = knots.span_cursor(degree);
-    let mut scratch = BasisScratch::new(degree);
-    let mut nb = vec![0.0; degree + 1];
-    let mut h = vec![0.0; degree + 1];
     let mut y = vec![0.0; dim];
-    let params = data.params();
-    let mut row = |k: usize, qr: &mut GivensQr| {
-        let w = data.weight(k) / wmax;
-        if w == 0.0 {
+    let mut h = vec![0.0; degree + 1];
+    let scale = |k: usize| (data.weight(k) / wmax).sqrt();
+    let mut on_row = |k: usize, span: usize, nb: &[f64]| {
+        let sw = scale(k);
+        if sw == 0.0 {
             return;
         }
-        let sw = w.sqrt();
-        let u = params[k];
-        let span = cursor.find_unchecked(u);
-        basis_funs_into(t, degree, span, u, &mut scratch, &mut nb);
         let first = span - degree;
         for (yc, (q, o)) in y.iter_mut().zip(pts.point(k).iter().zip(&fixed.center)) {
             *yc = sw * (q - o);
         }
-        for (a, &b) in nb.iter().enumerate() {
+        // nb = √w·N: the fixed control points' share of the row (first and last spans only)
+        let touches_fixed = first < ks || first + degree + 1 > n_ctrl - ke;
+        for (a, &b) in nb.iter().enumerate().filter(|_| touches_fixed) {
             let col = first + a;
             let fixed_point = if col < ks {
                 Some(&fixed.start[col * dim..(col + 1) * dim])
@@ -289,7 +284,7 @@ pub(crate) fn accumulate(
             };
             if let Some(pf) = fixed_point {
                 for (yc, pc) in y.iter_mut().zip(pf) {
-                    *yc -= sw * b * pc;
+                    *yc -= b * pc;
                 }
             }
         }
@@ -297,19 +292,18 @@ pub(crate) fn accumulate(
         let hi = (first + degree + 1).min(n_ctrl - ke);
         if lo < hi {
             let len = hi - lo;
-            for (hv, &b) in h[..len].iter_mut().zip(&nb[lo - first..hi - first]) {
-                *hv = sw * b;
-            }
-            qr.add_row(lo - ks, &mut h[..len], &mut y);
+            h[..len].copy_from_slice(&nb[lo - first..hi - first]);
+            qr.push(lo - ks, &h[..len], &y);
         } else {
-            qr.rss += y.iter().map(|v| v * v).sum::<f64>();
+            qr.add_residual(&y);
         }
     };
+    let params = data.params();
     match data.order() {
-        None => (0..data.len()).for_each(|k| row(k, &mut qr)),
-        Some(order) => order.into_iter().for_each(|k| row(k, &mut qr)),
+        None => for_each_row(knots, degree, params, 0..data.len(), scale, &mut on_row),
+        Some(order) => for_each_row(knots, degree, params, order, scale, &mut on_row),
     }
-    qr
+    qr.finish()
 }
 
 /// Back-substitutes the free control points and assembles all of them (plus the reference
@@ -318,7 +312,7 @@ pub(crate) fn accumulate(
 /// # Errors
 /// [`Error::SchoenbergWhitney`] naming the basis function whose column is rank-deficient.
 pub(crate) fn solve_control(
-    qr: &GivensQr,
+    qr: &BandedQr,
     data: &FitData<'_>,
     degree: usize,
     knots: &KnotVector,

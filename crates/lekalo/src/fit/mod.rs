@@ -6,7 +6,7 @@
 //!
 //! | file | what it does | theory |
 //! |---|---|---|
-//! | `banded.rs` | banded QR by Givens rotations; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
+//! | `banded.rs` | banded QR by Givens rotations or Householder blocks; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
 //! | `data.rs` | [`FitData`] (points, parameters, weights, validated once) and the [`FitReport`] of every fit | [#residuals] |
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
 //! | `lsq.rs` | [`least_squares`]: weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
@@ -15,6 +15,7 @@
 //! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
+//! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
@@ -47,6 +48,7 @@ mod knot_placement;
 mod lsq;
 mod periodic;
 mod robust;
+mod rows;
 mod smoothing;
 mod smoothing_condition;
 mod surface;
@@ -56,7 +58,7 @@ pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
 pub use periodic::{closed_parameters, periodic_least_squares, periodic_smoothing_condition};
-pub use robust::{robust_least_squares, RobustFit, RobustLoss};
+pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
 pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
 pub use surface::{

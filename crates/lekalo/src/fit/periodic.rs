@@ -14,7 +14,6 @@ use super::smoothing_condition::{
     check_condition_args, finish, jump_rows, next_nplus, smooth_weight, Added, Knots, LsqPass,
     Observations, SMOOTHING_RTOL,
 };
-use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
 use crate::points::PointsRef;
@@ -198,7 +197,8 @@ pub fn periodic_smoothing_condition(
         }
         nplus = next_nplus(nplus, fpms, fpold - fp, acc);
         fpold = fp;
-        span_sums(&mut knots, &obs, &pass, &t, &c);
+        pass.residuals(&obs, &c);
+        span_sums(&mut knots, &obs, &pass, &t);
         match knots.add_up_to(&sites, nplus, full) {
             Added::Some => {}
             Added::Full => knots.interior = interpolation_knots(&sites, k),
@@ -333,17 +333,7 @@ fn fit_on(
     let t = periodic_knots(breaks, k);
     let np = breaks.len() - 1;
     let mut qr = CyclicQr::new(np, k + 1, k, obs.dim);
-    let mut scratch = BasisScratch::new(k);
-    let mut span = k;
-    for (i, &u) in obs.x.iter().enumerate() {
-        while span + 1 < k + np && u >= t[span + 1] {
-            span += 1;
-        }
-        let h = &mut pass.rows[i * (k + 1)..(i + 1) * (k + 1)];
-        basis_funs_into(&t, k, span, u, &mut scratch, h);
-        h.iter_mut().for_each(|v| *v *= obs.wf[i]);
-        pass.first[i] = span - k;
-    }
+    pass.fill(obs, &t, |_, _, _| {});
     // rows that wrap around the corner first, so that first band columns never decrease
     let mut y = vec![0.0; obs.dim];
     for wraps in [true, false] {
@@ -390,16 +380,15 @@ fn repeat(c: &[f64], np: usize, k: usize, dim: usize) -> Vec<f64> {
 
 /// FITPACK's per-span residual sums of a periodic fit: a point on a knot counts half to each
 /// side, and the first point (at `a ≡ b`) counts whole in the first and in the last span.
-fn span_sums(knots: &mut Knots, obs: &Observations, pass: &LsqPass, t: &[f64], c: &[f64]) {
+fn span_sums(knots: &mut Knots, obs: &Observations, pass: &LsqPass, t: &[f64]) {
     let k = knots.k;
     knots.fpint.clear();
     let (mut l, mut part, mut wrap) = (k, 0.0, 0.0);
-    for (i, &u) in obs.x.iter().enumerate() {
+    for (&u, &term) in obs.x.iter().zip(&pass.res) {
         let new = u >= t[l];
         if new {
             l += 1;
         }
-        let term = pass.residual2(obs, i, c);
         part += term;
         if new {
             if l <= k + 1 {

@@ -39,6 +39,12 @@ impl RobustLoss {
     }
 }
 
+/// Smallest robust scale, relative to the largest absolute data coordinate: residuals below it
+/// are the rounding of a fit that reproduces the data (about `1e-16` relative), not noise. Without
+/// this floor such a fit's rounding became the scale `σ`, and the next round rejected inliers at
+/// random, down to a span without data.
+pub const ROBUST_SCALE_RTOL: f64 = 1e-12;
+
 /// The result of [`robust_least_squares`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobustFit {
@@ -55,7 +61,8 @@ pub struct RobustFit {
 /// Least squares with given knots that resists outliers: iteratively reweighted least squares
 /// (Holland & Welsch 1977). Each round fits by [`least_squares`] with weights `w_k·ρ_k`, where
 /// `ρ_k` is the loss's weight of the residual `|C(ū_k) − Q_k|/σ`, and stops when no `ρ_k`
-/// changes by more than `1e-6` or after `max_iter` rounds.
+/// changes by more than `1e-6` or after `max_iter` rounds. `σ` is at least
+/// [`ROBUST_SCALE_RTOL`] times the largest absolute data coordinate.
 ///
 /// ```
 /// use lekalo::fit::{robust_least_squares, FitData, RobustLoss};
@@ -97,12 +104,18 @@ pub fn robust_least_squares(
     let base: Vec<f64> = (0..n).map(|k| data.weight(k)).collect();
     let mut rho = vec![1.0; n];
     let mut fit = least_squares(data, degree, knots, &ends)?;
+    let floor = ROBUST_SCALE_RTOL
+        * data
+            .points()
+            .as_slice()
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
     let mut scale = 0.0;
     let mut iterations = 1;
     while iterations < max_iter.max(1) {
         let mut abs: Vec<f64> = fit.report.residuals.clone();
         abs.sort_by(f64::total_cmp);
-        scale = 1.4826 * abs[n / 2];
+        scale = (1.4826 * abs[n / 2]).max(floor);
         if scale <= 0.0 || scale.is_nan() {
             break;
         }

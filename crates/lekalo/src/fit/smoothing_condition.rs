@@ -2,9 +2,9 @@
 //! squares is at most `s` (FITPACK `curfit`/`parcur`, behind SciPy's `splrep`/`splprep`;
 //! `docs/theory/fitting.md#smoothing-condition`).
 
-use super::banded::GivensQr;
+use super::banded::{BandedQr, QrRows};
 use super::data::{CurveFit, FitData, FitReport};
-use crate::basis::{basis_funs_into, BasisScratch};
+use crate::basis::{basis_funs_into, BasisScratch, SpanBasis};
 use crate::error::{check_degree_bound, Error, Result};
 use crate::points::Points;
 use crate::BSplineCurve;
@@ -29,8 +29,9 @@ const MAX_P_ITERATIONS: usize = 20;
 ///    with the largest sum among those with a distinct parameter strictly inside is split at its
 ///    middle such parameter, the sum shared in proportion. The number added per round starts at
 ///    1 and follows `nplus = min(2·nplus, max(⌊nplus·(fp − s)/(fp_old − fp)⌋, nplus/2, 1))`.
-///    Each round is one least-squares pass: every data row is rotated into a banded triangle
-///    `R` by Givens rotations and forgotten. The round stops when `fp ≤ s`, or when the knots are
+///    Each round is one least-squares pass: the data rows are reduced into a banded triangle
+///    `R` (Householder blocks of the rows of one knot span, `docs/theory/fitting.md#banded-qr`)
+///    and kept only for the span residuals. The round stops when `fp ≤ s`, or when the knots are
 ///    those of interpolation (`s = 0` starts there).
 /// 3. On this final knot set, smooth: add the rows `b_j / p` of FITPACK's `fpdisc` (the jumps of
 ///    the `p`-th derivative at the interior knots, scaled by `k!·(spans/length)^k`) and find `p`
@@ -89,7 +90,7 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
     let smooth = loop {
         let t = knots.vector();
         let n = t.len();
-        let qr = pass.run(&obs, &t)?;
+        let qr = pass.run(&obs, &t);
         let c = back_substitute(&qr)?;
         let fp = qr.rss;
         if n == nmin {
@@ -112,7 +113,8 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
             next_nplus(nplus, fpms, fpold - fp, acc)
         };
         fpold = fp;
-        knots.span_sums(&obs, &pass, &t, &c);
+        pass.residuals(&obs, &c);
+        knots.span_sums(&obs, &pass, &t);
         match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2) {
             Added::Some => {}
             Added::Full => knots.interpolation(&obs.sites),
@@ -127,7 +129,7 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
     let (n, k1, k2, dim) = (qr.n(), k + 1, k + 2, obs.dim);
     let n8 = pen.rows.len() / k2;
     let solve = |p: f64| -> Result<(Vec<f64>, f64)> {
-        let mut g = GivensQr::new(n, k2, dim);
+        let mut g = BandedQr::new(n, k2, dim);
         let mut h = vec![0.0; k2];
         let mut y = vec![0.0; dim];
         for j in 0..n {
@@ -206,6 +208,8 @@ pub(super) struct LsqPass {
     pub(super) k: usize,
     pub(super) first: Vec<usize>,
     pub(super) rows: Vec<f64>,
+    /// `Σ_d (√w_i·(C_d(ū_i) − Q_{i,d}))²` per point, from [`LsqPass::residuals`].
+    pub(super) res: Vec<f64>,
 }
 
 impl LsqPass {
@@ -214,56 +218,102 @@ impl LsqPass {
             k,
             first: vec![0; obs.x.len()],
             rows: vec![0.0; obs.x.len() * (k + 1)],
+            res: vec![0.0; obs.x.len()],
         }
     }
 
     /// The banded triangle of `min Σ w |C(ū) − Q|²` for the clamped knots `t` (FITPACK's
-    /// observation matrix, reduced by Givens rotations as it is built).
-    fn run(&mut self, obs: &Observations, t: &[f64]) -> Result<GivensQr> {
+    /// observation matrix, reduced as it is built: [`QrRows`]).
+    fn run(&mut self, obs: &Observations, t: &[f64]) -> BandedQr {
         let k = self.k;
-        let nk1 = t.len() - k - 1;
-        let mut qr = GivensQr::new(nk1, k + 1, obs.dim);
-        let mut scratch = BasisScratch::new(k);
-        let mut y = vec![0.0; obs.dim];
-        let mut span = k;
-        for (i, &u) in obs.x.iter().enumerate() {
-            while span + 1 < nk1 && u >= t[span + 1] {
-                span += 1;
-            }
-            let h = &mut self.rows[i * (k + 1)..(i + 1) * (k + 1)];
-            basis_funs_into(t, k, span, u, &mut scratch, h);
-            let w = obs.wf[i];
-            h.iter_mut().for_each(|v| *v *= w);
-            self.first[i] = span - k;
-            y.copy_from_slice(&obs.y[i * obs.dim..(i + 1) * obs.dim]);
-            let mut row = [0.0; 16];
-            if k < 16 {
-                row[..=k].copy_from_slice(h);
-                qr.add_row(span - k, &mut row[..=k], &mut y);
-            } else {
-                let mut row = h.to_vec();
-                qr.add_row(span - k, &mut row, &mut y);
-            }
-        }
-        Ok(qr)
+        let mut qr = QrRows::new(t.len() - k - 1, k + 1, obs.dim);
+        self.fill(obs, t, |i, first, h| {
+            qr.push(first, h, &obs.y[i * obs.dim..(i + 1) * obs.dim]);
+        });
+        qr.finish()
     }
 
-    /// `Σ_d (√w_i·(C_d(ū_i) − Q_{i,d}))²` for point `i` and coefficients `c`.
-    pub(super) fn residual2(&self, obs: &Observations, i: usize, c: &[f64]) -> f64 {
-        let (k, dim) = (self.k, obs.dim);
-        let h = &self.rows[i * (k + 1)..(i + 1) * (k + 1)];
-        let f = self.first[i];
-        (0..dim)
-            .map(|d| {
-                let v: f64 = h
-                    .iter()
-                    .enumerate()
-                    .map(|(j, b)| b * c[(f + j) * dim + d])
-                    .sum();
-                let r = v - obs.y[i * dim + d];
-                r * r
-            })
-            .sum()
+    /// Every row `√w_i·N_{first..first+k}(ū_i)` for the knots `t` (`t.len() − k − 1` basis
+    /// functions, spans found by walking the sorted parameters), kept and passed to
+    /// `sink(i, first, row)`. The degrees up to 5 get an unrolled kernel ([`SpanBasis`]).
+    pub(super) fn fill(
+        &mut self,
+        obs: &Observations,
+        t: &[f64],
+        sink: impl FnMut(usize, usize, &[f64]),
+    ) {
+        match self.k + 1 {
+            2 => self.fill_order::<2>(obs, t, sink),
+            3 => self.fill_order::<3>(obs, t, sink),
+            4 => self.fill_order::<4>(obs, t, sink),
+            5 => self.fill_order::<5>(obs, t, sink),
+            6 => self.fill_order::<6>(obs, t, sink),
+            _ => self.fill_order::<0>(obs, t, sink),
+        }
+    }
+
+    /// [`LsqPass::fill`] with the order `W = k + 1` known at compile time (`0`: any order).
+    fn fill_order<const W: usize>(
+        &mut self,
+        obs: &Observations,
+        t: &[f64],
+        mut sink: impl FnMut(usize, usize, &[f64]),
+    ) {
+        let k = self.k;
+        let w = if W == 0 { k + 1 } else { W };
+        let nk1 = t.len() - k - 1;
+        let mut basis = SpanBasis::<W>::new();
+        let mut scratch = BasisScratch::new(if W == 0 { k } else { 0 });
+        let mut span = k;
+        basis.set_span(t, span);
+        let rows = self.rows.chunks_exact_mut(w);
+        for (i, ((h, first), (&u, &wf))) in rows
+            .zip(self.first.iter_mut())
+            .zip(obs.x.iter().zip(&obs.wf))
+            .enumerate()
+        {
+            if span + 1 < nk1 && u >= t[span + 1] {
+                while span + 1 < nk1 && u >= t[span + 1] {
+                    span += 1;
+                }
+                basis.set_span(t, span);
+            }
+            if W == 0 {
+                basis_funs_into(t, k, span, u, &mut scratch, h);
+                h.iter_mut().for_each(|v| *v *= wf);
+            } else {
+                basis.eval(u, wf, h);
+            }
+            *first = span - k;
+            sink(i, span - k, h);
+        }
+    }
+
+    /// [`LsqPass::res`] for the coefficients `c` (`dim` per basis function; for closed fits the
+    /// repeated ones included).
+    pub(super) fn residuals(&mut self, obs: &Observations, c: &[f64]) {
+        match self.k + 1 {
+            2 => self.residuals_order::<2>(obs, c),
+            3 => self.residuals_order::<3>(obs, c),
+            4 => self.residuals_order::<4>(obs, c),
+            5 => self.residuals_order::<5>(obs, c),
+            6 => self.residuals_order::<6>(obs, c),
+            _ => self.residuals_order::<0>(obs, c),
+        }
+    }
+
+    fn residuals_order<const W: usize>(&mut self, obs: &Observations, c: &[f64]) {
+        let (w, dim) = (if W == 0 { self.k + 1 } else { W }, obs.dim);
+        let rows = self.rows.chunks_exact(w).zip(&self.first);
+        for ((r, (h, &f)), y) in self.res.iter_mut().zip(rows).zip(obs.y.chunks_exact(dim)) {
+            let cs = &c[f * dim..(f + w) * dim];
+            *r = (0..dim)
+                .map(|d| {
+                    let v: f64 = h.iter().enumerate().map(|(j, b)| b * cs[j * dim + d]).sum();
+                    (v - y[d]) * (v - y[d])
+                })
+                .sum();
+        }
     }
 }
 
@@ -334,17 +384,16 @@ impl Knots {
     }
 
     /// `fpint`: the residual of each span, a point on a knot counting half to each side.
-    fn span_sums(&mut self, obs: &Observations, pass: &LsqPass, t: &[f64], c: &[f64]) {
+    fn span_sums(&mut self, obs: &Observations, pass: &LsqPass, t: &[f64]) {
         let k = self.k;
         let nk1 = t.len() - k - 1;
         self.fpint.clear();
         let (mut l, mut part) = (k + 1, 0.0);
-        for (i, &u) in obs.x.iter().enumerate() {
+        for (&u, &term) in obs.x.iter().zip(&pass.res) {
             let new = l < nk1 && u >= t[l];
             if new {
                 l += 1;
             }
-            let term = pass.residual2(obs, i, c);
             part += term;
             if new {
                 self.fpint.push(part - 0.5 * term);
@@ -443,7 +492,7 @@ pub(super) fn smooth_weight(
 }
 
 /// Back substitution in the triangle, a zero pivot (a coefficient without data) as an error.
-pub(super) fn back_substitute(qr: &GivensQr) -> Result<Vec<f64>> {
+pub(super) fn back_substitute(qr: &BandedQr) -> Result<Vec<f64>> {
     let mut c = vec![0.0; qr.z.len()];
     qr.solve(&mut c).map_err(|col| Error::SingularSystem {
         reason: format!(

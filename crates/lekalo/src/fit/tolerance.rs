@@ -75,7 +75,8 @@ pub struct ToleranceFit {
 ///    removal moves the curve by at most `tol − m` is removed
 ///    ([`BSplineCurve::remove_all_removable_knots`], whose bound is exact), so by the triangle
 ///    inequality the deviation stays `≤ tol`; then each remaining interior knot is tried once
-///    more by refitting without it, kept out when the refit is still within `tol`.
+///    more by refitting without it, kept out when the refit is still within `tol` (a trial
+///    stops at its first point beyond `tol`, looking near the removed knot first).
 ///
 /// Deviation is the distance to the curve ([`Deviation::Distance`], a closest-point projection
 /// per point) or at the data parameter ([`Deviation::Parameter`]). O(rounds·N·p²) plus the
@@ -143,7 +144,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             &f.report.residuals,
             opts.deviation,
             tol,
-        );
+        )?;
         Ok((f.curve, dev))
     };
     let (mut curve, mut dev) = fit(&interior)?;
@@ -178,7 +179,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     if worst < tol && !interior.is_empty() {
         let (removed_curve, removed) = curve.remove_all_removable_knots(tol - worst)?;
         if removed > 0 {
-            let d = deviations_full(&removed_curve, points, &params, opts.deviation, tol);
+            let d = deviations_full(&removed_curve, points, &params, opts.deviation, tol)?;
             if d.iter().all(|&v| v <= tol) {
                 curve = removed_curve;
                 dev = d;
@@ -189,17 +190,30 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     let mut k = 0;
     while k < interior.len() {
         let mut trial = interior.clone();
-        trial.remove(k);
-        match fit(&trial) {
-            Ok((c, d)) if d.iter().all(|&v| v <= tol) => {
-                (curve, dev, interior) = (c, d, trial);
-            }
-            _ => k += 1,
+        let removed = trial.remove(k);
+        let kv = clamped(a, b, p, &trial);
+        // a fit that fails (a span without data) keeps the knot, as one beyond tol does
+        let kept = least_squares(&data, p, &kv, &ends).ok().and_then(|f| {
+            let d = deviations_within(
+                &f.curve,
+                points,
+                &params,
+                &f.report.residuals,
+                opts.deviation,
+                tol,
+                removed,
+            );
+            d.transpose().map(|d| d.map(|d| (f.curve, d)))
+        });
+        match kept {
+            Some(Ok((c, d))) => (curve, dev, interior) = (c, d, trial),
+            Some(Err(e)) => return Err(e),
+            None => k += 1,
         }
     }
     // the exact distances of the final curve (the rounds kept upper bounds below tol)
     if opts.deviation == Deviation::Distance {
-        dev = deviations_full(&curve, points, &params, opts.deviation, -1.0);
+        dev = deviations_full(&curve, points, &params, opts.deviation, -1.0)?;
     }
     let (mut worst_index, mut max_deviation) = (0, 0.0);
     for (i, &d) in dev.iter().enumerate() {
@@ -216,7 +230,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             ),
         });
     }
-    let worst_param = project(&curve, points.point(worst_index), params[worst_index]).0;
+    let worst_param = project(&curve, points, &params, &[worst_index])?[0].0;
     Ok(ToleranceFit {
         curve,
         params,
@@ -269,7 +283,7 @@ fn bad_spans(
 
 /// Deviations of every point. The distance is at most the deviation at the parameter, so only
 /// points beyond `skip_below` there are projected (the others keep that upper bound);
-/// `skip_below = 0` projects every point.
+/// `skip_below < 0` projects every point.
 fn deviations(
     curve: &BSplineCurve,
     points: PointsRef<'_>,
@@ -277,22 +291,54 @@ fn deviations(
     at_param: &[f64],
     how: Deviation,
     skip_below: f64,
-) -> Vec<f64> {
-    match how {
-        Deviation::Parameter => at_param.to_vec(),
-        Deviation::Distance => points
-            .iter()
-            .zip(params)
-            .zip(at_param)
-            .map(|((q, &u), &d)| {
-                if d <= skip_below {
-                    d
-                } else {
-                    project(curve, q, u).1.min(d)
-                }
-            })
-            .collect(),
+) -> Result<Vec<f64>> {
+    let mut dev = at_param.to_vec();
+    if how == Deviation::Distance {
+        let todo: Vec<usize> = (0..dev.len()).filter(|&i| dev[i] > skip_below).collect();
+        let feet = project(curve, points, params, &todo)?;
+        for (&i, &(_, d)) in todo.iter().zip(&feet) {
+            dev[i] = dev[i].min(d);
+        }
     }
+    Ok(dev)
+}
+
+/// Points projected per block by [`deviations_within`] before it looks for one beyond `tol`.
+const TRIAL_BLOCK: usize = 4096;
+
+/// [`deviations`] with `skip_below = tol` for a trial curve, or `None` as soon as one is beyond
+/// `tol`: the points are projected in blocks, those with parameters nearest `near` (the removed
+/// knot, around which the curve changed most) first. The same deviations as [`deviations`] when
+/// all are within `tol` (each projection depends only on its point).
+fn deviations_within(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    at_param: &[f64],
+    how: Deviation,
+    tol: f64,
+    near: f64,
+) -> Result<Option<Vec<f64>>> {
+    let mut dev = at_param.to_vec();
+    if how == Deviation::Parameter {
+        return Ok(dev.iter().all(|&v| v <= tol).then_some(dev));
+    }
+    let mut todo: Vec<usize> = (0..dev.len()).filter(|&i| dev[i] > tol).collect();
+    todo.sort_by(|&i, &j| {
+        (params[i] - near)
+            .abs()
+            .total_cmp(&(params[j] - near).abs())
+    });
+    for block in todo.chunks(TRIAL_BLOCK) {
+        let feet = project(curve, points, params, block)?;
+        for (&i, &(_, d)) in block.iter().zip(&feet) {
+            dev[i] = dev[i].min(d);
+            if dev[i] > tol || dev[i].is_nan() {
+                return Ok(None);
+            }
+        }
+    }
+    Ok(dev.iter().all(|&v| v <= tol).then_some(dev))
 }
 
 fn deviations_full(
@@ -301,12 +347,10 @@ fn deviations_full(
     params: &[f64],
     how: Deviation,
     skip_below: f64,
-) -> Vec<f64> {
+) -> Result<Vec<f64>> {
     let dim = points.dim();
     let mut out = vec![0.0; params.len() * dim];
-    if curve.eval_batch(params, &mut out).is_err() {
-        return vec![f64::INFINITY; params.len()];
-    }
+    curve.evaluator().eval_batch(params, &mut out)?;
     let at: Vec<f64> = out
         .chunks_exact(dim)
         .zip(points.iter())
@@ -321,45 +365,158 @@ fn deviations_full(
     deviations(curve, points, params, &at, how, skip_below)
 }
 
-/// Closest point on `curve` to `q` by Newton's method from `u0` (at most 8 steps, kept in the
-/// domain): returns the parameter and the distance.
-fn project(curve: &BSplineCurve, q: &[f64], u0: f64) -> (f64, f64) {
+/// Newton steps of [`project`].
+const NEWTON_STEPS: usize = 8;
+
+/// Closest points on `curve` to the points `todo` by Newton's method on
+/// `(C(u) − Q)·C'(u) = 0` from their data parameters (at most [`NEWTON_STEPS`] steps, kept in
+/// the domain, stopped when the step vanishes or the second derivative of the squared
+/// distance is not positive): per point the parameter and distance of the closest iterate.
+/// All points take their steps together, one batch evaluation of `C, C', C''` per step
+/// ([`CurveEvaluator`](crate::CurveEvaluator), no allocation per point).
+fn project(
+    curve: &BSplineCurve,
+    points: PointsRef<'_>,
+    params: &[f64],
+    todo: &[usize],
+) -> Result<Vec<(f64, f64)>> {
     let (a, b) = curve.domain();
-    let dist = |u: f64| -> f64 {
-        curve.eval(u).map_or(f64::INFINITY, |c| {
-            c.iter()
-                .zip(q)
-                .map(|(x, y)| (x - y) * (x - y))
-                .sum::<f64>()
-                .sqrt()
-        })
-    };
-    let mut u = u0;
-    let mut best = (u0, dist(u0));
-    for _ in 0..8 {
-        let Ok(d) = curve.eval_derivatives(u, 2) else {
-            break;
-        };
-        let (c, c1, c2) = (d.point(0), d.point(1), d.point(2));
-        let mut f = 0.0;
-        let mut df = 0.0;
-        for k in 0..q.len() {
-            let r = c[k] - q[k];
-            f += r * c1[k];
-            df += c1[k] * c1[k] + r * c2[k];
+    let dim = points.dim();
+    let eval = curve.evaluator();
+    let mut u: Vec<f64> = todo.iter().map(|&i| params[i]).collect();
+    let mut best = vec![(0.0, f64::INFINITY); todo.len()];
+    let mut active: Vec<usize> = (0..todo.len()).collect();
+    let (mut ts, mut ders) = (Vec::new(), Vec::new());
+    for step in 0..=NEWTON_STEPS {
+        ts.clear();
+        ts.extend(active.iter().map(|&j| u[j]));
+        ders.resize(ts.len() * 3 * dim, 0.0);
+        eval.eval_derivatives_batch(&ts, 2, &mut ders)?;
+        let mut kept = 0;
+        for slot in 0..active.len() {
+            let j = active[slot];
+            let d = &ders[slot * 3 * dim..(slot + 1) * 3 * dim];
+            let (c, c1, c2) = (&d[..dim], &d[dim..2 * dim], &d[2 * dim..]);
+            let q = points.point(todo[j]);
+            let (mut dist2, mut f, mut df) = (0.0, 0.0, 0.0);
+            for k in 0..dim {
+                let r = c[k] - q[k];
+                dist2 += r * r;
+                f += r * c1[k];
+                df += c1[k] * c1[k] + r * c2[k];
+            }
+            let dist = dist2.sqrt();
+            if dist < best[j].1 || best[j].1.is_infinite() {
+                best[j] = (u[j], dist);
+            }
+            if step == NEWTON_STEPS || df <= 0.0 || df.is_nan() {
+                continue;
+            }
+            let next = (u[j] - f / df).clamp(a, b);
+            if (next - u[j]).abs() <= 1e-15 * (b - a) {
+                continue;
+            }
+            u[j] = next;
+            active[kept] = j;
+            kept += 1;
         }
-        if df <= 0.0 || df.is_nan() {
+        active.truncate(kept);
+        if active.is_empty() {
             break;
-        }
-        let next = (u - f / df).clamp(a, b);
-        if (next - u).abs() <= 1e-15 * (b - a) {
-            break;
-        }
-        u = next;
-        let du = dist(u);
-        if du < best.1 {
-            best = (u, du);
         }
     }
-    best
+    Ok(best)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Points;
+
+    /// A plane cubic turning by about a quarter circle (radius of curvature near 1), and points
+    /// `Q = C(u) + δ·n(u)` off it along the normal, `|δ| ≤ 1e-3`: their feet `u`, data parameters
+    /// off by up to 1 % of the domain, and `|δ|`.
+    #[allow(clippy::type_complexity)]
+    fn offset_points() -> (BSplineCurve, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+        let ctrl = Points::from_2d(&[
+            [1.0, 0.0],
+            [1.0, 0.3],
+            [0.9, 0.6],
+            [0.6, 0.9],
+            [0.3, 1.0],
+            [0.0, 1.0],
+        ])
+        .unwrap();
+        let kv = KnotVector::clamped_uniform(3, 6).unwrap();
+        let curve = BSplineCurve::from_knot_vector(3, kv, ctrl).unwrap();
+        let (mut q, mut feet, mut start, mut offsets) = (vec![], vec![], vec![], vec![]);
+        for k in 1..40 {
+            let u = f64::from(k) / 40.0;
+            let d = curve.eval_derivatives(u, 1).unwrap();
+            let (c, c1) = (d.point(0), d.point(1));
+            let len = c1[0].hypot(c1[1]);
+            let delta = 1e-3 * (f64::from(k % 7) - 3.0) / 3.0;
+            q.extend([c[0] - delta * c1[1] / len, c[1] + delta * c1[0] / len]);
+            feet.push(u);
+            // the data parameter is off by up to 1 % of the domain
+            start.push(u + 0.01 * (f64::from(k % 5) - 2.0) / 2.0);
+            offsets.push(delta.abs());
+        }
+        (curve, q, feet, start, offsets)
+    }
+
+    #[test]
+    fn projection_finds_the_foot_of_points_off_the_curve_along_its_normal() {
+        // for |δ| below the radius of curvature the foot is C(u), at |δ|
+        let (curve, q, feet, start, offsets) = offset_points();
+        let todo: Vec<usize> = (0..feet.len()).collect();
+        let points = PointsRef::from_flat(2, &q).unwrap();
+        let got = project(&curve, points, &start, &todo).unwrap();
+        for (k, (&(u, dist), (&foot, &delta))) in
+            got.iter().zip(feet.iter().zip(&offsets)).enumerate()
+        {
+            assert!(
+                (dist - delta).abs() <= 1e-13,
+                "point {k}: distance {dist} vs {delta}"
+            );
+            assert!((u - foot).abs() <= 1e-9, "point {k}: foot {u} vs {foot}");
+        }
+        // only the listed points, in their order
+        let some = project(&curve, points, &start, &[5, 2]).unwrap();
+        assert_eq!(some, vec![got[5], got[2]], "subset in the order given");
+    }
+
+    #[test]
+    fn a_trial_stops_at_a_point_beyond_tol_and_otherwise_measures_every_point() {
+        let (curve, q, _, start, offsets) = offset_points();
+        let points = PointsRef::from_flat(2, &q).unwrap();
+        let mut at = vec![0.0; start.len() * 2];
+        curve.eval_batch(&start, &mut at).unwrap();
+        let at: Vec<f64> = at
+            .chunks_exact(2)
+            .zip(points.iter())
+            .map(|(c, p)| (c[0] - p[0]).hypot(c[1] - p[1]))
+            .collect();
+        let how = Deviation::Distance;
+        // every |δ| ≤ 1e-3 < tol: the deviations of a full measurement
+        let tol = 2e-3;
+        let all = deviations(&curve, points, &start, &at, how, tol).unwrap();
+        let within = deviations_within(&curve, points, &start, &at, how, tol, 0.5).unwrap();
+        assert_eq!(within.as_ref(), Some(&all), "all within tol");
+        for (k, ((&d, &a), &o)) in all.iter().zip(&at).zip(&offsets).enumerate() {
+            // projected beyond tol at the parameter, kept as the upper bound below it
+            let want = if a > tol { o } else { a };
+            assert!((d - want).abs() <= 1e-13, "point {k}: {d} vs {want}");
+        }
+        // tol below the largest offset: refused
+        let tol = 0.9 * offsets.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let within = deviations_within(&curve, points, &start, &at, how, tol, 0.5).unwrap();
+        assert!(within.is_none(), "a point beyond tol refuses the trial");
+        let at_only =
+            deviations_within(&curve, points, &start, &at, Deviation::Parameter, tol, 0.5);
+        assert!(
+            at_only.unwrap().is_none(),
+            "parameter deviations beyond tol refuse it too"
+        );
+    }
 }
