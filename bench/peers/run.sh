@@ -18,7 +18,8 @@
 # libocct-modeling-data-dev; elsewhere set OCCT_INCLUDE and OCCT_LIB) and skipped otherwise.
 #
 # Usage: bench/peers/run.sh [REPEATS]     (default 7 repeats per measurement; ~1-2 minutes
-#                                          after the build and the first-time venv)
+#                                          after the build and the first-time venv, plus 1-3
+#                                          minutes a repeat for Open CASCADE's query side)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 repeats=${1:-7}
