@@ -1,5 +1,6 @@
 // Open CASCADE side of the geometric-query benchmarks (crates/lekalo/benches/query.rs): the same
-// objects, built from the same formulas, timed in C++ (median of REPEATS runs, steady clock).
+// objects, built from the same formulas, timed in C++ (median of REPEATS runs, more for a fast
+// workload; steady clock).
 //
 //   project_1e5        GeomAPI_ProjectPointOnCurve, 10^5 points onto a 3-D cubic with 1,000 poles
 //   length_1e-12       GCPnts_AbscissaPoint::Length to 1e-12
@@ -10,12 +11,16 @@
 // Build (Debian: libocct-modeling-algorithms-dev libocct-modeling-data-dev):
 //   g++ -O2 -std=c++17 -I/usr/include/opencascade bench/peers/occt_queries.cpp -o occt_queries \
 //     -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
-// Usage: occt_queries [REPEATS] [PROJECT_POINTS]
+// Usage: occt_queries [REPEATS] [PROJECT_POINTS] [ANSWERS_DIR]
+// With ANSWERS_DIR, the answers are written there for bench/peers/compare_queries.py:
+// occt_project.txt (the distance of each projected point) and occt_intersect.txt (t_a t_b x y
+// of each intersection point).
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
 #include <Geom2dAPI_InterCurveCurve.hxx>
+#include <IntRes2d_IntersectionPoint.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <GeomAdaptor_Curve.hxx>
@@ -38,9 +43,15 @@
 #include <functional>
 #include <vector>
 
+// median wall time of REPEATS runs, then more while they have taken less than a second in all
+// (at most 1,001), as in examples/query_peer.rs
 static double median_s(int repeats, const std::function<void()> &f) {
   std::vector<double> t;
-  for (int r = 0; r < repeats; ++r) {
+  auto start = std::chrono::steady_clock::now();
+  auto since = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  while ((int)t.size() < std::max(repeats, 1) || (since() < 1.0 && t.size() < 1001)) {
     auto a = std::chrono::steady_clock::now();
     f();
     auto b = std::chrono::steady_clock::now();
@@ -62,6 +73,7 @@ static void clamped(int n, TColStd_Array1OfReal &k, TColStd_Array1OfInteger &m) 
 int main(int argc, char **argv) {
   int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
   int nproj = argc > 2 ? std::atoi(argv[2]) : 100000;
+  std::string answers = argc > 3 ? argv[3] : "";
 
   // the 3-D curve
   const int n = 1000;
@@ -85,14 +97,21 @@ int main(int argc, char **argv) {
                    1.0 * fr(0.569840290998053 * x) - 0.5);
   }
   double dsum = 0.0;
+  std::vector<double> dist(q.size(), -1.0);
   double t_proj = median_s(repeats, [&] {
     GeomAPI_ProjectPointOnCurve proj;
     dsum = 0.0;
-    for (auto &p : q) {
-      proj.Init(p, curve);
+    for (size_t i = 0; i < q.size(); ++i) {
+      proj.Init(q[i], curve);
+      dist[i] = proj.NbPoints() > 0 ? proj.LowerDistance() : -1.0;
       dsum += proj.NbPoints() > 0 ? proj.LowerDistance() : 0.0;
     }
   });
+  if (!answers.empty()) {
+    std::FILE *f = std::fopen((answers + "/occt_project.txt").c_str(), "w");
+    for (double d : dist) std::fprintf(f, "%.17g\n", d);
+    std::fclose(f);
+  }
   std::printf("project_1e5 %.6e s per %d points (%.3e s per point) sum of distances %.12e\n",
               t_proj, nproj, t_proj / nproj, dsum);
 
@@ -134,6 +153,17 @@ int main(int argc, char **argv) {
     hits = inter.NbPoints();
   });
   std::printf("intersect_100x100 %.6e s points %d\n", t_int, hits);
+  if (!answers.empty()) {
+    Geom2dAPI_InterCurveCurve inter(ca, cb, 1e-9);
+    std::FILE *f = std::fopen((answers + "/occt_intersect.txt").c_str(), "w");
+    for (int i = 1; i <= inter.NbPoints(); ++i) {
+      const IntRes2d_IntersectionPoint &ip = inter.Intersector().Point(i);
+      gp_Pnt2d p = ip.Value();
+      std::fprintf(f, "%.17g %.17g %.17g %.17g\n", ip.ParamOnFirst(), ip.ParamOnSecond(), p.X(),
+                   p.Y());
+    }
+    std::fclose(f);
+  }
 
   // the surface
   const int ns = 53;

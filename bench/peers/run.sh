@@ -18,7 +18,8 @@
 # libocct-modeling-data-dev; elsewhere set OCCT_INCLUDE and OCCT_LIB) and skipped otherwise.
 #
 # Usage: bench/peers/run.sh [REPEATS]     (default 7 repeats per measurement; ~1-2 minutes
-#                                          after the build and the first-time venv)
+#                                          after the build and the first-time venv, plus 1-3
+#                                          minutes a repeat for Open CASCADE's query side)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 repeats=${1:-7}
@@ -79,10 +80,20 @@ fi
 # TKBRep (Debian: apt-get install libocct-modeling-algorithms-dev libocct-modeling-data-dev);
 # without them it is skipped with a note. Compare with `cargo bench -p lekalo --bench query`.
 # examples/query_peer.rs prints lekalo's side of the same workloads in the same line format just
-# before (ratio = Open CASCADE's seconds / lekalo's; the mesh lines carry both triangle counts).
+# before and just after, on one thread and on all (ratio = Open CASCADE's seconds / lekalo's; the
+# mesh lines carry both triangle counts). Open CASCADE projects OCCT_QUERY_POINTS points (default
+# 1,000: it takes milliseconds a point) and as many parameter-at-length queries; compare per
+# query. compare_queries.py then checks the answers: projections point by point, intersections.
 if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo -lTKBRep \
     -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
   cargo build --quiet --release -p lekalo --example query_peer
-  target/release/examples/query_peer "$repeats"
-  target/peers-occt/occt_queries "$repeats"
+  answers=target/peers-occt/answers
+  mkdir -p "$answers"
+  uptime
+  RAYON_NUM_THREADS=1 target/release/examples/query_peer "$repeats" | sed 's/^lekalo /lekalo-1-thread /'
+  target/release/examples/query_peer "$repeats" 100000 "$answers"
+  target/peers-occt/occt_queries "$repeats" "${OCCT_QUERY_POINTS:-1000}" "$answers"
+  target/release/examples/query_peer "$repeats" | sed 's/^lekalo /lekalo-after /'
+  uptime
+  python3 bench/peers/compare_queries.py "$answers"
 fi

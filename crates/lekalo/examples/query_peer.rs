@@ -1,10 +1,14 @@
 //! Our side of the Open CASCADE query comparison (`bench/peers/run.sh`, just before
 //! `bench/peers/occt_queries.cpp` on the same objects): the median of `REPEATS` runs of each
-//! workload of `benches/query.rs`, printed in the peer's line format with the facts to compare
-//! (intersection count, triangle count and the mesh's proved deviation).
+//! workload of `benches/query.rs` (more runs for fast ones, see `median_s`), printed in the peer's line format with the facts to compare
+//! (intersection count, triangle count and the mesh's proved deviation). With `ANSWERS_DIR` it
+//! writes its answers there for `bench/peers/compare_queries.py`: `lekalo_project.txt` (the
+//! distance of each projected point) and `lekalo_intersect.txt` (`t_a t_b x y` of each
+//! intersection point).
 //!
-//! `cargo run --release --example query_peer -- [REPEATS [PROJECT_POINTS]]`
+//! `cargo run --release --example query_peer -- [REPEATS [PROJECT_POINTS [ANSWERS_DIR]]]`
 
+use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -14,15 +18,17 @@ use lekalo::{Points, QueryCurve, QuerySurface};
 mod query_workloads;
 use query_workloads::{plane_curve, query_point, space_curve, surface};
 
-/// Median wall time in seconds of `repeats` runs of `f`.
+/// Median wall time in seconds of the runs of `f`: `repeats` runs, then more while they have
+/// taken less than a second in all (at most 1,001), so that a fast workload is timed over many
+/// runs on a noisy machine. `occt_queries.cpp` follows the same rule.
 fn median_s(repeats: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..repeats.max(1))
-        .map(|_| {
-            let a = Instant::now();
-            f();
-            a.elapsed().as_secs_f64()
-        })
-        .collect();
+    let start = Instant::now();
+    let mut t: Vec<f64> = Vec::new();
+    while t.len() < repeats.max(1) || (start.elapsed().as_secs_f64() < 1.0 && t.len() < 1001) {
+        let a = Instant::now();
+        f();
+        t.push(a.elapsed().as_secs_f64());
+    }
     t.sort_by(f64::total_cmp);
     t[t.len() / 2]
 }
@@ -31,16 +37,31 @@ fn main() -> Result<(), lekalo::Error> {
     let mut args = std::env::args().skip(1);
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);
+    let answers = args.next();
+    let write = |name: &str, text: String| {
+        if let Some(dir) = &answers {
+            std::fs::write(format!("{dir}/{name}"), text).expect("answers file");
+        }
+    };
 
     let curve = QueryCurve::from_bspline(&space_curve())?;
     let pts = Points::from_flat(3, (0..n).flat_map(query_point).collect())?;
     let mut dsum = 0.0;
+    let mut dist = Vec::new();
     let t = median_s(repeats, || {
         let r = curve
             .project_batch(black_box(pts.as_view()))
             .expect("projections");
         dsum = r.iter().map(|p| p.distance).sum();
+        dist = r;
     });
+    write(
+        "lekalo_project.txt",
+        dist.iter().fold(String::new(), |mut s, p| {
+            let _ = writeln!(s, "{:e}", p.distance);
+            s
+        }),
+    );
     println!("lekalo project_1e5 {t:.6e} s per {n} points sum of distances {dsum:.12e}");
     let mut total = 0.0;
     let t = median_s(repeats, || {
@@ -64,14 +85,22 @@ fn main() -> Result<(), lekalo::Error> {
         QueryCurve::from_bspline(&plane_curve(0))?,
         QueryCurve::from_bspline(&plane_curve(1))?,
     );
-    let mut hits = 0;
+    let mut hits = Vec::new();
     let t = median_s(repeats, || {
-        hits = black_box(&a)
-            .intersect(&b, 1e-9)
-            .expect("intersections")
-            .len();
+        hits = black_box(&a).intersect(&b, 1e-9).expect("intersections");
     });
-    println!("lekalo intersect_100x100 {t:.6e} s points {hits}");
+    println!("lekalo intersect_100x100 {t:.6e} s points {}", hits.len());
+    write(
+        "lekalo_intersect.txt",
+        hits.iter().fold(String::new(), |mut s, h| {
+            if let lekalo::query::CurveIntersection::Point { t_a, t_b, point } = h {
+                let _ = writeln!(s, "{t_a:e} {t_b:e} {:e} {:e}", point[0], point[1]);
+            } else {
+                let _ = writeln!(s, "overlap {h:?}");
+            }
+            s
+        }),
+    );
     let s = QuerySurface::from_bspline(&surface())?;
     let mut facts = (0, 0, 0.0);
     let t = median_s(repeats, || {

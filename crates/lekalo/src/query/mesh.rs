@@ -1,7 +1,8 @@
 //! Adaptive triangle meshes of surfaces within a proved deviation
-//! (`docs/theory/queries.md#tessellation`): each patch is halved, in `u`, in `v` or in both, until
-//! the bound of every part is within the tolerance; the parts' sides are then matched across
-//! parts and patches, so the mesh has no cracks.
+//! (`docs/theory/queries.md#tessellation`): each patch is halved, in `u` or in `v`, or near the
+//! end cut into a few equal parts, until the bound of every part is within the tolerance; the parts' sides are then matched across
+//! parts and patches, so the mesh has no cracks, and a part with extra points on its sides is a
+//! strip (polynomial) or a fan (rational) through them.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -177,7 +178,9 @@ impl QuerySurface {
 
     /// The parts of patch `k` within the normalised tolerance `tol`: halved (de Casteljau at the
     /// middle) in the direction whose terms dominate the bound, at most [`MAX_LEVELS`] times
-    /// in each direction. `count` is the number of parts of every patch so far: past
+    /// in each direction; on a polynomial surface a part that halving would leave above the
+    /// tolerance but a cut into at most [`MAX_DIRECT_PARTS`] equal parts would not is cut so
+    /// ([`direct_split`]). `count` is the number of parts of every patch so far: past
     /// [`MAX_MESH_VERTICES`] this stops with [`Error::TooLarge`].
     fn patch_leaves(&self, k: usize, tol: f64, count: &AtomicUsize) -> Result<Vec<Leaf>> {
         let (p, q, hd, dim) = (self.p, self.q, self.hd, self.dim);
@@ -224,6 +227,20 @@ impl QuerySurface {
                 });
                 continue;
             }
+            if !self.rational {
+                if let Some((ku, kv)) = direct_split((a, b, c), tol, (u.1 - u.0, v.1 - v.0)) {
+                    let mut parts = Vec::with_capacity(ku * kv);
+                    for (n_u, pu) in self.split_evenly(net, u, ku, true) {
+                        parts.extend(
+                            self.split_evenly(n_u, v, kv, false)
+                                .into_iter()
+                                .map(|(n, pv)| (n, pu, pv)),
+                        );
+                    }
+                    stack.extend(parts);
+                    continue;
+                }
+            }
             let mut parts = vec![(net, u, v)];
             if split_u {
                 parts = parts
@@ -250,15 +267,48 @@ impl QuerySurface {
         Ok(out)
     }
 
+    /// A net over the integer range `r` cut into `k` parts at `r.0 + i·(r.1 − r.0)/k` (integer
+    /// division; de Casteljau at each cut in turn), along `u` or `v`: the parts with their
+    /// ranges, in order.
+    fn split_evenly(
+        &self,
+        net: Vec<f64>,
+        r: (u64, u64),
+        k: usize,
+        along_u: bool,
+    ) -> Vec<(Vec<f64>, (u64, u64))> {
+        let mut out = Vec::with_capacity(k);
+        let (mut rest, mut from) = (net, r.0);
+        let w = r.1 - r.0;
+        for i in 1..k as u64 {
+            let cut = r.0 + i * w / k as u64;
+            let t = (cut - from) as f64 / (r.1 - from) as f64;
+            let (lo, hi) = if along_u {
+                self.split_u_at(&rest, t)
+            } else {
+                self.split_v_at(&rest, t)
+            };
+            out.push((lo, (from, cut)));
+            rest = hi;
+            from = cut;
+        }
+        out.push((rest, (from, r.1)));
+        out
+    }
+
     /// A triangle mesh within `tolerance` of a surface, polynomial or rational, adaptive: each
     /// patch is halved — in `u` where the `u` terms of its bound dominate, in `v` where the `v`
-    /// terms do — until every part's bound
+    /// terms do; on a polynomial surface cut into the fewest equal parts (at most nine) once
+    /// that reaches the tolerance and halving would not — until every part's bound
     /// `(A + 2B + C) / 8` from its own net's differences is within `tolerance`
     /// (`docs/theory/queries.md#tessellation`), so flat regions get large triangles and curved
     /// ones small. Parts are matched along their sides, across patches too: a part whose sides
-    /// carry corners of smaller neighbours is meshed as a fan about its centre through all of
-    /// them, any other as two triangles, so the mesh has no cracks and no T-junctions. Vertices
-    /// are the parts' corner control points (points of the surface) and the fans' centres.
+    /// carry corners of smaller neighbours is meshed through all of them, any other as two
+    /// triangles, so the mesh has no cracks and no T-junctions. On a polynomial surface such a
+    /// part is a strip of triangles between its sides with no interior point (every triangle
+    /// inside a part's rectangle is within its bound); on a rational one, whose bound needs
+    /// triangles no steeper than the part's diagonal, a fan about its centre. Vertices are the
+    /// parts' corner control points (points of the surface) and the fans' centres.
     /// Patches are split in parallel; the mesh does not depend on the thread count.
     ///
     /// ```
@@ -383,6 +433,18 @@ impl QuerySurface {
                 triangles.push([ring[0], ring[2], ring[3]]);
                 continue;
             }
+            if !self.rational {
+                // any triangle in the part's rectangle is within its bound: a strip without
+                // the centre (docs/theory/queries.md#tessellation)
+                let (du, dv) = ((u1 - u0) as f64, (v1 - v0) as f64);
+                let progress = |i: u32| {
+                    let k = &keys[i as usize];
+                    (k.0 - u0) as f64 / du + (k.1 - v0) as f64 / dv
+                };
+                let tr = by_v_range(v0, u0, u1).count() + by_u_range(u1, v0, v1).len();
+                strip(&ring, tr, progress, &mut triangles);
+                continue;
+            }
             let centre = u32::try_from(uv.len()).map_err(|_| Error::TooLarge {
                 what: "mesh vertices",
                 size: uv.len(),
@@ -411,5 +473,175 @@ impl QuerySurface {
             triangles,
             deviation: deviation * self.scale,
         })
+    }
+}
+
+/// Most parts a part is cut into at once by [`direct_split`].
+const MAX_DIRECT_PARTS: usize = 9;
+
+/// The cut of a part with bound terms `(A, B, C)` into `k_u × k_v` equal parts, `2 < k_u·k_v ≤`
+/// [`MAX_DIRECT_PARTS`], fewest first, whose bounds `(A/k_u² + 2B/(k_u k_v) + C/k_v²)/8` are
+/// within `tol`: the parts' second-derivative nets lie in the convex hull of the part's, scaled
+/// by `1/k_u²`, `1/(k_u k_v)`, `1/k_v²`, so each part's own bound is at most that. Where halving
+/// would leave parts above the tolerance and a cut into three (or a few more) would not, this
+/// gives fewer parts than halving twice. `None` when two parts suffice (halving), when no such
+/// cut exists, or when a part would be under two integer units wide (`widths`).
+fn direct_split(abc: (f64, f64, f64), tol: f64, widths: (u64, u64)) -> Option<(usize, usize)> {
+    let (a, b, c) = abc;
+    let mut best: Option<(usize, usize)> = None;
+    for ku in 1..=MAX_DIRECT_PARTS {
+        for kv in 1..=MAX_DIRECT_PARTS / ku {
+            let n = ku * kv;
+            let (fu, fv) = (ku as f64, kv as f64);
+            let bound = (a / (fu * fu) + 2.0 * b / (fu * fv) + c / (fv * fv)) / 8.0;
+            let fits = 2 * ku as u64 <= widths.0 && 2 * kv as u64 <= widths.1;
+            if fits && bound <= tol && best.is_none_or(|(bu, bv)| n < bu * bv) {
+                best = Some((ku, kv));
+            }
+        }
+    }
+    best.filter(|&(ku, kv)| ku * kv > 2)
+}
+
+/// Triangles of a rectangle whose boundary `ring` (counter-clockwise from the bottom-left
+/// corner, the top-right corner at index `tr`) carries extra points on its sides, without an
+/// interior point: the chains from the bottom-left to the top-right corner, along the bottom
+/// and right sides and along the left and top sides, are joined by a strip whose triangles
+/// each have one edge on a chain, advancing on the chain whose next point comes first along the
+/// diagonal (`progress`: `(u − u0)/(u1 − u0) + (v − v0)/(v1 − v0)`), with one triangle at
+/// each corner. `ring.len() − 2` counter-clockwise triangles, none degenerate: the interior
+/// points of one chain lie on neither side of the other.
+fn strip(ring: &[u32], tr: usize, progress: impl Fn(u32) -> f64, out: &mut Vec<[u32; 3]>) {
+    let n = ring.len();
+    debug_assert!(tr >= 2 && n >= tr + 2, "both chains have an interior point");
+    // interior points of the chains: a along the bottom and right, b along the left and top
+    let a = &ring[1..tr];
+    let b: Vec<u32> = ring[tr + 1..].iter().rev().copied().collect();
+    out.push([ring[0], a[0], b[0]]);
+    let (mut i, mut j) = (0, 0);
+    while i + 1 < a.len() || j + 1 < b.len() {
+        let take_a =
+            j + 1 >= b.len() || (i + 1 < a.len() && progress(a[i + 1]) <= progress(b[j + 1]));
+        if take_a {
+            out.push([a[i], a[i + 1], b[j]]);
+            i += 1;
+        } else {
+            out.push([b[j + 1], b[j], a[i]]);
+            j += 1;
+        }
+    }
+    out.push([a[a.len() - 1], ring[tr], b[b.len() - 1]]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{direct_split, strip};
+    use crate::{BSplineSurface, Points, QuerySurface};
+
+    #[test]
+    fn direct_split_takes_three_where_halving_leaves_too_much() {
+        // A = 2 alone: halves have bound 2/32 = 0.0625, thirds 2/72 ≈ 0.028
+        assert_eq!(
+            direct_split((2.0, 0.0, 0.0), 0.03, (1 << 20, 1 << 20)),
+            Some((3, 1))
+        );
+        assert_eq!(
+            direct_split((0.0, 0.0, 2.0), 0.03, (1 << 20, 1 << 20)),
+            Some((1, 3))
+        );
+        // halving is enough: no direct cut
+        assert_eq!(
+            direct_split((2.0, 0.0, 0.0), 0.07, (1 << 20, 1 << 20)),
+            None
+        );
+        // both directions: A = C = 2, B = 0.5: 3 × 3 parts (bound ≈ 0.0694 · 8 / 8)
+        assert_eq!(
+            direct_split((2.0, 0.5, 2.0), 0.0721, (1 << 20, 1 << 20)),
+            Some((3, 3))
+        );
+        // too narrow to cut into three
+        assert_eq!(direct_split((2.0, 0.0, 0.0), 0.03, (5, 1 << 20)), None);
+        // nothing within nine parts reaches the tolerance
+        assert_eq!(
+            direct_split((2.0, 0.0, 0.0), 1e-4, (1 << 20, 1 << 20)),
+            None
+        );
+    }
+
+    #[test]
+    fn a_parabolic_cylinder_is_cut_into_thirds() {
+        // z = x² on [0, 1]²: A = 2, B = C = 0; at tolerance 0.03 halving leaves 0.0625 and
+        // thirds 2/72: three parts, six triangles, vertices at u = 1/3 and 2/3
+        let net = Points::from_3d(&[
+            [0., 0., 0.],
+            [0., 1., 0.],
+            [0.5, 0., 0.],
+            [0.5, 1., 0.],
+            [1., 0., 1.],
+            [1., 1., 1.],
+        ])
+        .unwrap();
+        let s = BSplineSurface::new(
+            2,
+            1,
+            vec![0., 0., 0., 1., 1., 1.],
+            vec![0., 0., 1., 1.],
+            net,
+            (3, 2),
+        )
+        .unwrap();
+        let mesh = QuerySurface::from_bspline(&s).unwrap().mesh(0.03).unwrap();
+        assert_eq!(mesh.triangles.len(), 6, "{mesh:?}");
+        assert!(
+            mesh.deviation <= 0.03 && mesh.deviation > 0.02,
+            "{}",
+            mesh.deviation
+        );
+        for third in [1.0 / 3.0, 2.0 / 3.0] {
+            assert!(
+                mesh.uv.iter().any(|p| (p[0] - third).abs() < 1e-12),
+                "no vertex at u = {third}: {:?}",
+                mesh.uv
+            );
+        }
+        // the vertices lie on the surface
+        for (p, uv) in mesh.vertices.iter().zip(&mesh.uv) {
+            assert!((p[2] - uv[0] * uv[0]).abs() < 1e-15, "{p:?} at {uv:?}");
+        }
+    }
+
+    #[test]
+    fn strip_covers_the_rectangle_with_proper_triangles() {
+        // the unit square's boundary, counter-clockwise from (0, 0), with extra side points
+        let sides: [&[f64]; 4] = [&[0.25, 0.5], &[0.5], &[0.8, 0.3, 0.1], &[]];
+        let mut pts: Vec<[f64; 2]> = vec![[0.0, 0.0]];
+        pts.extend(sides[0].iter().map(|&u| [u, 0.0]));
+        pts.push([1.0, 0.0]);
+        pts.extend(sides[1].iter().map(|&v| [1.0, v]));
+        let tr = pts.len();
+        pts.push([1.0, 1.0]);
+        pts.extend(sides[2].iter().map(|&u| [u, 1.0]));
+        pts.push([0.0, 1.0]);
+        pts.extend(sides[3].iter().map(|&v| [0.0, v]));
+        let ring: Vec<u32> = (0..u32::try_from(pts.len()).unwrap()).collect();
+        let mut tris = Vec::new();
+        strip(
+            &ring,
+            tr,
+            |i| pts[i as usize][0] + pts[i as usize][1],
+            &mut tris,
+        );
+        assert_eq!(tris.len(), ring.len() - 2, "{tris:?}");
+        let mut area = 0.0;
+        for t in &tris {
+            let [a, b, c] = t.map(|i| pts[i as usize]);
+            let twice = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+            assert!(
+                twice > 1e-3,
+                "{t:?} is not a proper counter-clockwise triangle"
+            );
+            area += 0.5 * twice;
+        }
+        assert!((area - 1.0).abs() < 1e-14, "area {area}");
     }
 }

@@ -13,7 +13,7 @@
 //! | `surface.rs` | [`QuerySurface`]: the patches, their evaluation and subdivision |
 //! | `length.rs` | arc length by adaptive Gauss–Legendre, its inverse, equal arc-length steps, the arc-length spline ([`ArcLength`]) |
 //! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
-//! | `intersect.rs` | curve–curve (planar), self-intersection, curve–plane and curve–surface intersections |
+//! | `intersect/` | curve–curve (planar: sweep, Bezier clipping, Newton), self-intersection, curve–plane and curve–surface intersections |
 //! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
 //! | `tessellate.rs` | polylines within a proved deviation; the mesh type |
 //! | `mesh.rs` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |

@@ -245,6 +245,22 @@ impl QuerySurface {
         split_curve(net, (self.q + 1) * self.hd, self.p)
     }
 
+    /// The parts of a patch net below and above `u = t` (de Casteljau).
+    pub(crate) fn split_u_at(&self, net: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
+        split_curve_at(net, (self.q + 1) * self.hd, self.p, t)
+    }
+
+    /// The parts of a patch net below and above `v = t` (de Casteljau on each row).
+    pub(crate) fn split_v_at(&self, net: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi) = (Vec::with_capacity(net.len()), Vec::with_capacity(net.len()));
+        for row in net.chunks_exact((self.q + 1) * self.hd) {
+            let (l, h) = split_curve_at(row, self.hd, self.q, t);
+            lo.extend(l);
+            hi.extend(h);
+        }
+        (lo, hi)
+    }
+
     /// Halves of a patch net at `v = 1/2` (de Casteljau on each row).
     pub(crate) fn halve_v(&self, net: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let (mut lo, mut hi) = (Vec::with_capacity(net.len()), Vec::with_capacity(net.len()));
@@ -272,6 +288,30 @@ pub(crate) fn split_curve(ctrl: &[f64], stride: usize, n: usize) -> (Vec<f64>, V
             for d in 0..stride {
                 b[i * stride + d] = 0.5 * (b[i * stride + d] + b[(i + 1) * stride + d]);
             }
+        }
+        left.extend_from_slice(&b[..stride]);
+        let j = n - level;
+        right[j * stride..(j + 1) * stride].copy_from_slice(&b[j * stride..(j + 1) * stride]);
+    }
+    (left, right)
+}
+
+/// The parts `[0, t]` and `[t, 1]` of a Bezier curve of degree `n` with `stride`-scalar points
+/// (de Casteljau at `t`).
+pub(crate) fn split_curve_at(
+    ctrl: &[f64],
+    stride: usize,
+    n: usize,
+    t: f64,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut b = ctrl.to_vec();
+    let mut left = Vec::with_capacity(ctrl.len());
+    let mut right = vec![0.0; ctrl.len()];
+    left.extend_from_slice(&b[..stride]);
+    right[n * stride..].copy_from_slice(&b[n * stride..]);
+    for level in 1..=n {
+        for i in 0..(n + 1 - level) * stride {
+            b[i] = (1.0 - t) * b[i] + t * b[i + stride];
         }
         left.extend_from_slice(&b[..stride]);
         let j = n - level;

@@ -1,0 +1,623 @@
+//! Planar curve–curve intersections and self-intersections: the search of `planar.rs`, then
+//! its solutions grouped into answers (`docs/theory/queries.md#intersections`).
+
+use super::super::pieces::{check_tolerance, dist, QueryCurve};
+use super::super::project::CurveProjection;
+use super::planar::{overlapping_pairs, PlaneNets, Raw, Search, Sub};
+use super::CurveIntersection;
+use crate::error::{Error, Result};
+
+/// Step of the probes beside a solution, as a fraction of the first curve's domain: the gap
+/// there tells a crossing from a contact or an overlap.
+const PROBE: f64 = 1e-6;
+
+/// A solution in the curves' parameters: `t_a`, `t_b`, the gap, and, for a transversal
+/// crossing (see [`QueryCurve::assemble`]), the point in the search's frame.
+type Solution = (f64, f64, f64, Option<[f64; 2]>);
+
+impl QueryCurve {
+    /// The common frame of two curves (the first one's centre, the larger scale) and both
+    /// curves' pieces in it.
+    fn planar_frame(&self, other: &QueryCurve) -> (PlaneNets, PlaneNets, f64) {
+        let scale = self.scale.max(other.scale);
+        (
+            PlaneNets::new(self, &self.centre, scale),
+            PlaneNets::new(other, &self.centre, scale),
+            scale,
+        )
+    }
+
+    /// Every intersection of this planar curve with `other`, in the order of this curve's
+    /// parameter. Points closer than `tolerance` (absolute, in the curves' units) count as
+    /// common; a tangential contact is one [`CurveIntersection::Point`] (where the gap is least);
+    /// stretches where the curves coincide to rounding are [`CurveIntersection::Overlap`]s.
+    ///
+    /// The pairs of pieces whose boxes overlap are found by sort and sweep, then searched by
+    /// Bezier clipping (Sederberg–Nishita 1990), halving and Newton's method
+    /// (`docs/theory/queries.md#intersections`).
+    ///
+    /// ```
+    /// use lekalo::query::CurveIntersection;
+    /// use lekalo::{BSplineCurve, NurbsCurve, Points, QueryCurve};
+    /// let circle = QueryCurve::from_nurbs(&NurbsCurve::circle(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0)?)?;
+    /// let line = BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], Points::from_2d(&[[-2.0, 0.5], [2.0, 0.5]])?)?;
+    /// let hits = circle.intersect(&QueryCurve::from_bspline(&line)?, 1e-10)?;
+    /// assert_eq!(hits.len(), 2);
+    /// if let CurveIntersection::Point { point, .. } = &hits[0] {
+    ///     assert!((point[0] - 0.75f64.sqrt()).abs() < 1e-12 && (point[1] - 0.5).abs() < 1e-12);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] unless both curves are planar; [`Error::InvalidArgument`] for a bad
+    /// tolerance; [`Error::TooLarge`] if more than 2^20 sub-curve pairs would be examined.
+    pub fn intersect(&self, other: &QueryCurve, tolerance: f64) -> Result<Vec<CurveIntersection>> {
+        self.check_planar(other)?;
+        check_tolerance("intersection tolerance", tolerance)?;
+        let (na, nb, scale) = self.planar_frame(other);
+        let tol = tolerance / scale;
+        let boxes = |n: &PlaneNets| -> Vec<[f64; 4]> {
+            (0..n.piece_count())
+                .map(|k| super::planar::net_box(n.piece(k)))
+                .collect()
+        };
+        let pairs = overlapping_pairs(&boxes(&na), &boxes(&nb), tol, false);
+        let mut search = Search::new(&na, &nb, tol);
+        let subs: Vec<(Sub, Sub)> = pairs
+            .into_iter()
+            .map(|(i, j)| (search.piece(false, i), search.piece(true, j)))
+            .collect();
+        let raw = search.run(subs)?;
+        // a crossing is transversal when the first-order gap at the probes, |A'|·h·sin θ, is
+        // ten times the tolerance (a thousand times what the probes test for)
+        let h = PROBE * (self.domain().1 - self.domain().0);
+        let solutions = raw
+            .into_iter()
+            .map(|r: Raw| {
+                let (a0, a1) = self.spans[r.ka];
+                let speed = r.speed_a / (a1 - a0) * scale;
+                let transversal = speed * h * r.sin >= 10.0 * tolerance;
+                (
+                    self.global(r.ka, r.s),
+                    other.global(r.kb, r.u),
+                    r.gap,
+                    transversal.then_some(r.point),
+                )
+            })
+            .collect();
+        Ok(self.assemble(other, solutions, tolerance, tol))
+    }
+
+    /// Self-intersections of a planar curve: each point where two different parameters meet,
+    /// as [`CurveIntersection::Point`] with `t_a < t_b` (and overlaps of the curve with itself
+    /// as intervals). Pieces whose hodograph does not lie in an open half-plane (which may loop)
+    /// are halved until it does, so every loop is found; the shared ends of consecutive
+    /// sub-curves, and a closed curve's start and end, are not intersections.
+    ///
+    /// # Errors
+    /// As [`QueryCurve::intersect`].
+    pub fn self_intersections(&self, tolerance: f64) -> Result<Vec<CurveIntersection>> {
+        self.check_planar(self)?;
+        check_tolerance("intersection tolerance", tolerance)?;
+        let (na, _, scale) = self.planar_frame(self);
+        let tol = tolerance / scale;
+        let mut search = Search::new(&na, &na, tol);
+        let mut subs = Vec::new();
+        for k in 0..self.piece_count() {
+            let mut stack = vec![(search.piece(false, k), 0_u32)];
+            let mut done = Vec::new();
+            while let Some((s, depth)) = stack.pop() {
+                if depth >= 12 || Search::turns_less_than_pi(&s) {
+                    done.push(s);
+                } else {
+                    let (l, r) = search.halve(s);
+                    stack.push((r, depth + 1));
+                    stack.push((l, depth + 1));
+                }
+            }
+            subs.extend(done);
+        }
+        let boxes: Vec<[f64; 4]> = subs.iter().map(Search::sub_box).collect();
+        let copy = |x: &Sub| Sub {
+            k: x.k,
+            s: x.s,
+            net: x.net.clone(),
+        };
+        let pairs: Vec<(Sub, Sub)> = overlapping_pairs(&boxes, &boxes, tol, true)
+            .into_iter()
+            .map(|(i, j)| (copy(&subs[i]), copy(&subs[j])))
+            .collect();
+        let raw = search.run(pairs)?;
+        let (lo, hi) = self.domain();
+        let closed = dist(&self.point(lo)?, &self.point(hi)?) <= tolerance;
+        let span = hi - lo;
+        let keep = |&(ta, tb, _): &(f64, f64, f64)| {
+            // a meeting of neighbouring parameters is the curve itself, not a crossing
+            let (ta, tb) = (ta.min(tb), ta.max(tb));
+            let trivial = tb - ta <= 1e-9 * span
+                || (closed && ta - lo <= 1e-9 * span && hi - tb <= 1e-9 * span);
+            !trivial
+        };
+        let mut raw: Vec<(f64, f64, f64)> = raw
+            .into_iter()
+            .map(|r| (self.global(r.ka, r.s), self.global(r.kb, r.u), r.gap))
+            .filter(|x| keep(x))
+            .map(|(ta, tb, g)| (ta.min(tb), ta.max(tb), g))
+            .collect();
+        // one answer per crossing: solutions from several sub-curve pairs that meet at the same
+        // pair of parameters (the gap to the curve itself cannot group them, it is zero)
+        raw.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+        let mut out: Vec<(f64, f64, f64)> = Vec::new();
+        for r in raw {
+            if let Some(o) = out
+                .iter_mut()
+                .find(|o| (o.0 - r.0).abs() <= 1e-6 * span && (o.1 - r.1).abs() <= 1e-6 * span)
+            {
+                if r.2 < o.2 {
+                    *o = r;
+                }
+                continue;
+            }
+            out.push(r);
+        }
+        Ok(out
+            .into_iter()
+            .map(|(t_a, t_b, _)| CurveIntersection::Point {
+                t_a,
+                t_b,
+                point: self.point(t_a).unwrap_or_default(),
+            })
+            .collect())
+    }
+
+    fn check_planar(&self, other: &QueryCurve) -> Result<()> {
+        for c in [self, other] {
+            if c.dim != 2 {
+                return Err(Error::Dimension {
+                    what: "curves for a planar intersection",
+                    expected: 2,
+                    got: c.dim,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Groups solutions `(t_a, t_b, gap, transversal)` into answers. Sorted by `t_a`,
+    /// neighbours are joined when they are the same crossing (both transversal and their points
+    /// within `tolerance`, `frame_tol` in the frame of their points) or, when either is not transversal, when the curve between them stays
+    /// within `tolerance` of `other` (its middle is projected). A group of transversal
+    /// solutions is its point of least gap. Any other group, and a single solution whose gap
+    /// stays below `tolerance / 100` at the probes either side of it, is grown to where the gap
+    /// exceeds the tolerance: an overlap if the gap stays below `tolerance / 100` across it,
+    /// otherwise one contact at its least gap. A transversal crossing (angle `θ` between the
+    /// tangents) needs no probe: the gap there is `|A'|·h·sin θ` to first order, which the
+    /// caller has found to be at least `1000·tolerance / 100`.
+    fn assemble(
+        &self,
+        other: &QueryCurve,
+        mut raw: Vec<Solution>,
+        tolerance: f64,
+        frame_tol: f64,
+    ) -> Vec<CurveIntersection> {
+        raw.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+        let gap = |t: f64| -> (f64, CurveProjection) {
+            let p = self.point(t).unwrap_or_default();
+            match other.project(&p) {
+                Ok(pr) => (pr.distance, pr),
+                Err(_) => (
+                    f64::INFINITY,
+                    CurveProjection {
+                        t: 0.0,
+                        point: p,
+                        distance: f64::INFINITY,
+                    },
+                ),
+            }
+        };
+        let half_b = 0.5 * (other.domain().1 - other.domain().0);
+        let mut groups: Vec<Vec<Solution>> = Vec::new();
+        for r in raw {
+            if let Some(g) = groups.last_mut() {
+                let last = g[g.len() - 1];
+                let same_b = (last.1 - r.1).abs() <= half_b;
+                let joined = same_b
+                    && match (last.3, r.3) {
+                        (Some(p), Some(q)) => dist(&p, &q) <= frame_tol,
+                        _ => gap(0.5 * (last.0 + r.0)).0 <= tolerance,
+                    };
+                if joined {
+                    g.push(r);
+                    continue;
+                }
+            }
+            groups.push(vec![r]);
+        }
+        let (lo, hi) = self.domain();
+        let mut out = Vec::new();
+        for (gi, g) in groups.iter().enumerate() {
+            let (mut a0, mut a1) = (g[0].0, g[g.len() - 1].0);
+            let transversal = g.iter().all(|r| r.3.is_some());
+            // a single solution may still sit in an overlap or a tangential contact: the gap
+            // stays tiny a little way to either side
+            let probe = || {
+                let h = PROBE * (hi - lo);
+                [a0 - h, a1 + h]
+                    .iter()
+                    .filter(|t| **t >= lo && **t <= hi)
+                    .all(|&t| gap(t).0 <= tolerance / 100.0)
+            };
+            if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
+                // grow to where the gap exceeds the tolerance (bisection, 60 steps each side)
+                let left_lim = if gi > 0 {
+                    groups[gi - 1][groups[gi - 1].len() - 1].0
+                } else {
+                    lo
+                };
+                let right_lim = groups.get(gi + 1).map_or(hi, |n| n[0].0);
+                a0 = grow(a0, left_lim, |t| gap(t).0 <= tolerance);
+                a1 = grow(a1, right_lim, |t| gap(t).0 <= tolerance);
+                let coincide = (1..10).all(|i| {
+                    let t = a0 + (a1 - a0) * f64::from(i) / 10.0;
+                    gap(t).0 <= tolerance / 100.0
+                });
+                if coincide {
+                    let (b0, b1) = (gap(a0).1.t, gap(a1).1.t);
+                    out.push(CurveIntersection::Overlap {
+                        a: (a0, a1),
+                        b: (b0, b1),
+                    });
+                    continue;
+                }
+                // one contact: the least gap, by golden-section search on [a0, a1] (80 steps)
+                let t = golden_min(a0, a1, |t| gap(t).0);
+                let (_, pr) = gap(t);
+                out.push(CurveIntersection::Point {
+                    t_a: t,
+                    t_b: pr.t,
+                    point: self.point(t).unwrap_or_default(),
+                });
+                continue;
+            }
+            let best = g.iter().fold(g[0], |b, r| if r.2 < b.2 { *r } else { b });
+            out.push(CurveIntersection::Point {
+                t_a: best.0,
+                t_b: best.1,
+                point: self.point(best.0).unwrap_or_default(),
+            });
+        }
+        out
+    }
+}
+
+/// Moves `from` towards `limit` while `ok` holds: steps doubling from `1e-12·|limit − from|`
+/// (at most 64) find the first point where it fails, then bisection (60 steps) the last point
+/// where it holds. Returns `from` when it fails at once.
+fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    let span = limit - from;
+    if span == 0.0 {
+        return from;
+    }
+    let mut good = from;
+    let mut h = 1e-12 * span;
+    let mut bad = limit;
+    let mut reached = true;
+    for _ in 0..64 {
+        let t = from + h;
+        if (span > 0.0 && t >= limit) || (span < 0.0 && t <= limit) {
+            break;
+        }
+        if ok(t) {
+            good = t;
+            h *= 2.0;
+        } else {
+            bad = t;
+            reached = false;
+            break;
+        }
+    }
+    if reached && ok(limit) {
+        return limit;
+    }
+    for _ in 0..60 {
+        let m = 0.5 * (good + bad);
+        if m == good || m == bad {
+            break;
+        }
+        if ok(m) {
+            good = m;
+        } else {
+            bad = m;
+        }
+    }
+    good
+}
+
+/// Minimum of `f` on `[a, b]` by golden-section search, 80 steps.
+fn golden_min(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (a, b);
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if fc <= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+        if b - a <= 1e-16 * (1.0 + a.abs()) {
+            break;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::pieces::dist;
+    use super::*;
+    use crate::{BSplineCurve, NurbsCurve, Points};
+
+    fn line(a: [f64; 2], b: [f64; 2]) -> QueryCurve {
+        let c = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[a, b]).unwrap(),
+        )
+        .unwrap();
+        QueryCurve::from_bspline(&c).unwrap()
+    }
+
+    fn circle(r: f64) -> QueryCurve {
+        QueryCurve::from_nurbs(
+            &NurbsCurve::circle(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], r).unwrap(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn tangent_line_gives_one_point() {
+        let hits = circle(1.0)
+            .intersect(&line([-2.0, 1.0], [2.0, 1.0]), 1e-9)
+            .unwrap();
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        match &hits[0] {
+            CurveIntersection::Point { point, .. } => {
+                assert!(
+                    point[0].abs() < 1e-4 && (point[1] - 1.0).abs() < 1e-8,
+                    "{point:?}"
+                );
+            }
+            CurveIntersection::Overlap { .. } => panic!("tangency reported as overlap"),
+        }
+    }
+
+    #[test]
+    fn overlapping_lines_give_an_interval() {
+        let hits = line([0.0, 0.0], [2.0, 0.0])
+            .intersect(&line([1.0, 0.0], [3.0, 0.0]), 1e-9)
+            .unwrap();
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        match hits[0] {
+            CurveIntersection::Overlap { a, b } => {
+                assert!(
+                    (a.0 - 0.5).abs() < 1e-9 && (a.1 - 1.0).abs() < 1e-12,
+                    "{a:?}"
+                );
+                assert!(b.0.abs() < 1e-9 && (b.1 - 0.5).abs() < 1e-9, "{b:?}");
+            }
+            CurveIntersection::Point { .. } => panic!("overlap reported as a point"),
+        }
+    }
+
+    #[test]
+    fn crossing_points_lie_on_both() {
+        let a = circle(1.0);
+        let b = circle(1.2);
+        assert!(a.intersect(&b, 1e-9).unwrap().is_empty(), "concentric");
+        let shifted = QueryCurve::from_nurbs(
+            &NurbsCurve::circle(&[1.0, 0.3], &[1.0, 0.0], &[0.0, 1.0], 1.0).unwrap(),
+        )
+        .unwrap();
+        let hits = a.intersect(&shifted, 1e-10).unwrap();
+        assert_eq!(hits.len(), 2, "{hits:?}");
+        for h in hits {
+            let CurveIntersection::Point { t_a, t_b, point } = h else {
+                panic!("not a point")
+            };
+            assert!(dist(&a.point(t_a).unwrap(), &point) < 1e-12, "on a");
+            assert!(dist(&shifted.point(t_b).unwrap(), &point) < 1e-10, "on b");
+        }
+    }
+
+    #[test]
+    fn loop_of_a_cubic() {
+        let c = BSplineCurve::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [3.0, 2.0], [-1.0, 2.0], [2.0, 0.0]]).unwrap(),
+        )
+        .unwrap();
+        let q = QueryCurve::from_bspline(&c).unwrap();
+        let hits = q.self_intersections(1e-10).unwrap();
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let CurveIntersection::Point { t_a, t_b, .. } = hits[0] else {
+            panic!("not a point")
+        };
+        assert!(t_a < t_b, "ordered");
+        assert!(
+            dist(&q.point(t_a).unwrap(), &q.point(t_b).unwrap()) < 1e-9,
+            "same point"
+        );
+        // a circle does not cross itself
+        assert!(
+            circle(1.0).self_intersections(1e-10).unwrap().is_empty(),
+            "circle"
+        );
+    }
+
+    fn bezier(pts: &[[f64; 2]]) -> QueryCurve {
+        let n = pts.len();
+        let mut knots = vec![0.0; n];
+        knots.extend(vec![1.0; n]);
+        QueryCurve::from_bspline(
+            &BSplineCurve::new(n - 1, knots, Points::from_2d(pts).unwrap()).unwrap(),
+        )
+        .unwrap()
+    }
+
+    fn points(hits: &[CurveIntersection]) -> Vec<(f64, f64, Vec<f64>)> {
+        hits.iter()
+            .map(|h| match h {
+                CurveIntersection::Point { t_a, t_b, point } => (*t_a, *t_b, point.clone()),
+                CurveIntersection::Overlap { .. } => {
+                    panic!("overlap where a point is expected: {hits:?}")
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn crossing_at_shared_piece_ends_is_one_answer() {
+        // both diagonals of the square [0, 2]² in two pieces each: the crossing (1, 1) is the
+        // end of two pieces on each curve, so four piece pairs reach it
+        let two = |a: [f64; 2], b: [f64; 2]| {
+            let c = BSplineCurve::new(
+                1,
+                vec![0.0, 0.0, 0.5, 1.0, 1.0],
+                Points::from_2d(&[a, [1.0, 1.0], b]).unwrap(),
+            )
+            .unwrap();
+            QueryCurve::from_bspline(&c).unwrap()
+        };
+        let hits = points(
+            &two([0.0, 0.0], [2.0, 2.0])
+                .intersect(&two([0.0, 2.0], [2.0, 0.0]), 1e-9)
+                .unwrap(),
+        );
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let (t_a, t_b, p) = &hits[0];
+        assert!(
+            (t_a - 0.5).abs() < 1e-15 && (t_b - 0.5).abs() < 1e-15,
+            "{hits:?}"
+        );
+        assert!(
+            (p[0] - 1.0).abs() < 1e-15 && (p[1] - 1.0).abs() < 1e-15,
+            "{p:?}"
+        );
+    }
+
+    #[test]
+    fn touching_parabolas_give_one_point() {
+        // y = x² and y = −x² touch at the origin (the gap is 2x²)
+        let up = bezier(&[[-1.0, 1.0], [0.0, -1.0], [1.0, 1.0]]);
+        let down = bezier(&[[-1.0, -1.0], [0.0, 1.0], [1.0, -1.0]]);
+        for tol in [1e-9, 1e-6] {
+            let hits = points(&up.intersect(&down, tol).unwrap());
+            assert_eq!(hits.len(), 1, "tol {tol}: {hits:?}");
+            let (_, _, p) = &hits[0];
+            // within the contact the gap 2x² is at most the tolerance
+            assert!(
+                2.0 * p[0] * p[0] <= tol && p[1].abs() <= tol,
+                "tol {tol}: {p:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn triple_root_is_one_point() {
+        // y = x³ on [−1, 1] (x linear in the parameter) against the x axis: a crossing of
+        // multiplicity 3, with parallel tangents
+        let cubic = bezier(&[
+            [-1.0, -1.0],
+            [-1.0 / 3.0, 1.0],
+            [1.0 / 3.0, -1.0],
+            [1.0, 1.0],
+        ]);
+        let axis = bezier(&[[-2.0, 0.0], [2.0, 0.0]]);
+        let hits = points(&cubic.intersect(&axis, 1e-9).unwrap());
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let (t_a, _, p) = &hits[0];
+        assert!(p[0].abs().powi(3) <= 1e-9 && p[1].abs() <= 1e-9, "{p:?}");
+        assert!((t_a - 0.5).abs() <= 1e-3, "{t_a}");
+    }
+
+    #[test]
+    fn parabola_arcs_overlap_on_their_common_part() {
+        // y = x² for x ∈ [−1, 1] and for x ∈ [0, 2]: they coincide for x ∈ [0, 1]
+        let a = bezier(&[[-1.0, 1.0], [0.0, -1.0], [1.0, 1.0]]);
+        let b = bezier(&[[0.0, 0.0], [1.0, 0.0], [2.0, 4.0]]);
+        let hits = a.intersect(&b, 1e-9).unwrap();
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let CurveIntersection::Overlap { a: ia, b: ib } = hits[0] else {
+            panic!("a point where the arcs overlap: {hits:?}")
+        };
+        assert!(
+            (ia.0 - 0.5).abs() < 1e-6 && (ia.1 - 1.0).abs() < 1e-12,
+            "{ia:?}"
+        );
+        assert!(ib.0.abs() < 1e-6 && (ib.1 - 0.5).abs() < 1e-6, "{ib:?}");
+    }
+
+    #[test]
+    fn rational_crossings_are_exact() {
+        // a unit circle and a circle of radius 1 about (1, 0) meet at (1/2, ±√3/2)
+        let moved = QueryCurve::from_nurbs(
+            &NurbsCurve::circle(&[1.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0).unwrap(),
+        )
+        .unwrap();
+        let hits = points(&circle(1.0).intersect(&moved, 1e-12).unwrap());
+        assert_eq!(hits.len(), 2, "{hits:?}");
+        let mut ys: Vec<f64> = hits.iter().map(|h| h.2[1]).collect();
+        ys.sort_by(f64::total_cmp);
+        for (h, y) in hits.iter().zip([0.75f64.sqrt(), -(0.75f64.sqrt())]) {
+            assert!((h.2[0] - 0.5).abs() < 1e-14, "{h:?}");
+            assert!(ys.iter().any(|v| (v - y).abs() < 1e-14), "{ys:?} lacks {y}");
+        }
+    }
+
+    proptest::proptest! {
+        /// Every transversal root of `y(t) = c` (found by the curve–plane root finder, an
+        /// independent method) is one crossing with the line `y = c`, and nothing else is found.
+        #[test]
+        fn crossings_with_a_line_are_the_roots_of_the_height(
+            ctrl in proptest::collection::vec(proptest::array::uniform2(-10.0..10.0_f64), 4..9),
+            c in -8.0..8.0_f64,
+        ) {
+            let n = ctrl.len();
+            let mut knots = vec![0.0; 4];
+            knots.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+            knots.extend([1.0; 4]);
+            let curve = QueryCurve::from_bspline(
+                &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
+            )
+            .unwrap();
+            let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+            // only clear crossings: slope of y well away from zero, roots apart
+            let slope = |t: f64| {
+                let h = 1e-7;
+                let (a, b) = (curve.point((t - h).max(0.0)).unwrap(), curve.point((t + h).min(1.0)).unwrap());
+                (b[1] - a[1]) / (2.0 * h)
+            };
+            proptest::prop_assume!(roots.iter().all(|(t, _)| slope(*t).abs() > 1e-2));
+            proptest::prop_assume!(roots.windows(2).all(|w| w[1].0 - w[0].0 > 1e-6));
+            let line = bezier(&[[-30.0, c], [30.0, c]]);
+            let hits = points(&curve.intersect(&line, 1e-9).unwrap());
+            proptest::prop_assert_eq!(hits.len(), roots.len(), "{:?} vs {:?}", hits, roots);
+            for ((t, _, p), (r, _)) in hits.iter().zip(&roots) {
+                proptest::prop_assert!((t - r).abs() <= 1e-9, "{} vs {}", t, r);
+                proptest::prop_assert!((p[1] - c).abs() <= 1e-9, "{:?} off y = {}", p, c);
+            }
+        }
+    }
+}
