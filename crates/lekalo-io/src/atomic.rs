@@ -2,7 +2,7 @@
 //! target, so a reader never sees a half-written file and a failed run leaves no debris. Inputs
 //! are never overwritten.
 
-use std::io::Write;
+use std::io::{Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -100,6 +100,55 @@ pub fn write_atomic_send(
     options: WriteOptions,
     fill: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
 ) -> IoResult<()> {
+    write_atomic_core(path, inputs, options, false, |w| fill(&mut Writes(w)))
+}
+
+/// A writer that can also seek and be sent to other threads: what [`write_atomic_seek`] gives
+/// its `fill`.
+pub trait WriteSeek: Write + Seek + Send {}
+
+impl<T: Write + Seek + Send> WriteSeek for T {}
+
+/// [`write_atomic_stream`] for a `fill` that seeks back in what it wrote (a zip archive fills in
+/// each member's size and checksum after the member), so that such a file is written straight
+/// into its temporary file rather than built in memory first. A target that cannot seek (a pipe,
+/// a device) is given the file made in memory.
+///
+/// # Errors
+/// As [`write_atomic_with`]; an error of `fill` as [`IoError::Write`].
+pub fn write_atomic_seek(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    fill: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
+) -> IoResult<()> {
+    write_atomic_core(path, inputs, options, true, fill)
+}
+
+/// `&mut dyn WriteSeek` as a `dyn Write + Send` (no trait upcasting at the crate's Rust version).
+struct Writes<'a>(&'a mut dyn WriteSeek);
+
+impl Write for Writes<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.write(buf)
+    }
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.0.write_all(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.0.flush()
+    }
+}
+
+/// The atomic write behind the public functions; `seeks` says that `fill` may seek, so that a
+/// target that cannot is given the output made in memory.
+fn write_atomic_core(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    seeks: bool,
+    fill: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
+) -> IoResult<()> {
     check_not_input(path, inputs)?;
     let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
@@ -112,6 +161,13 @@ pub fn write_atomic_send(
                 .open(path)
                 .map_err(write_err)?;
             let mut w = std::io::BufWriter::new(f);
+            if seeks {
+                let mut made = std::io::Cursor::new(Vec::new());
+                return fill(&mut made)
+                    .and_then(|()| w.write_all(made.get_ref()))
+                    .and_then(|()| w.flush())
+                    .map_err(write_err);
+            }
             return fill(&mut w).and_then(|()| w.flush()).map_err(write_err);
         }
         Target::Directory => {
@@ -149,7 +205,8 @@ pub fn write_atomic_send(
     };
     let tmp_path = tmp.path().to_path_buf();
     let result = (|| {
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp);
+        // small enough that the large blocks of the list writers go to the file without a copy
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, tmp);
         fill(&mut w)?;
         let tmp = w
             .into_inner()
