@@ -323,15 +323,17 @@ pub(crate) fn read_delimited_from(
         .iter()
         .try_fold(1usize, |t, (rows, _)| t.checked_add(*rows))
         .and_then(|rows| rows.checked_mul(fields))
-        .filter(|&n| Vec::<f64>::new().try_reserve_exact(n).is_ok())
         .ok_or_else(|| IoError::TooLarge {
             what: format!(
                 "{source}: cannot reserve memory for the points of {} bytes of text",
                 text.len()
             ),
         })?;
-    // zeroed memory straight from the system: its pages are touched first by the part that
-    // fills them, on that part's core
+    // zeroed memory straight from the system (no probe allocated and freed before it, which
+    // would make the allocator serve this one from its heap and clear it first): its pages are
+    // touched first by the part that fills them, on that part's core. It is at most half a
+    // number a byte of the text already held (`row_bound`), and for a plain CSV file the points
+    // themselves.
     let mut data = vec![0.0; total];
     let (first_room, mut room) = data.split_at_mut(fields);
     let header = header.as_deref();
