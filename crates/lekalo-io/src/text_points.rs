@@ -1,8 +1,9 @@
 //! The one-pass reader of CSV and whitespace points files behind [`crate::read_points_with`].
 //!
-//! The text is scanned once, and every coordinate goes straight into one flat `Vec<f64>`
-//! reserved from the size of the first row; nothing is allocated per line or per point (the only
-//! allocations are the header names and the flat buffer). A row in the common layout — numbers
+//! The text is scanned once, and every coordinate goes straight into one flat buffer sized from
+//! the lines of the text ([`row_bound`]); nothing is allocated per line or per point (the only
+//! allocations are the header names and the flat buffer), and a long text is read in parts on
+//! all cores, each into its own stretch of that buffer. A row in the common layout — numbers
 //! separated by single commas, as many as the first row's, then the end of the line — is read
 //! by [`plain_row`] without looking for its separators first: `fast_float2::parse_partial` reads
 //! each number and says where it ends, and the byte there must be the comma or the line's end.
