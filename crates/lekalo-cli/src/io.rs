@@ -394,6 +394,37 @@ pub(crate) fn emit_stream(
     Ok(())
 }
 
+/// [`emit`] for output that seeks back in what it wrote (an `.npz` archive): written straight
+/// into the temporary file; standard output is given it made in memory.
+pub(crate) fn emit_seek(
+    out: Option<&Path>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+    fill: impl FnOnce(&mut dyn lekalo_io::WriteSeek) -> std::io::Result<()>,
+) -> Result<()> {
+    match out {
+        Some(p) if p.as_os_str() != "-" => {
+            lekalo_io::write_atomic_seek(
+                p,
+                inputs,
+                lekalo_io::WriteOptions {
+                    force: settings().force,
+                },
+                fill,
+            )?;
+            if v == Verbosity::Verbose {
+                report(&format!("wrote {}", p.display()));
+            }
+            Ok(())
+        }
+        _ => {
+            let mut made = std::io::Cursor::new(Vec::new());
+            fill(&mut made).context("cannot make the output")?;
+            emit(out, made.get_ref(), inputs, v)
+        }
+    }
+}
+
 /// A progress bar on standard error, shown only if stderr is a terminal and not `--quiet`.
 pub(crate) fn progress(n: usize, v: Verbosity) -> indicatif::ProgressBar {
     if v == Verbosity::Quiet || !std::io::stderr().is_terminal() {

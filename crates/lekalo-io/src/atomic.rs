@@ -2,7 +2,7 @@
 //! target, so a reader never sees a half-written file and a failed run leaves no debris. Inputs
 //! are never overwritten.
 
-use std::io::Write;
+use std::io::{Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -100,6 +100,55 @@ pub fn write_atomic_send(
     options: WriteOptions,
     fill: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
 ) -> IoResult<()> {
+    write_atomic_core(path, inputs, options, false, |w| fill(&mut Writes(w)))
+}
+
+/// A writer that can also seek and be sent to other threads: what [`write_atomic_seek`] gives
+/// its `fill`.
+pub trait WriteSeek: Write + Seek + Send {}
+
+impl<T: Write + Seek + Send> WriteSeek for T {}
+
+/// [`write_atomic_stream`] for a `fill` that seeks back in what it wrote (a zip archive fills in
+/// each member's size and checksum after the member), so that such a file is written straight
+/// into its temporary file rather than built in memory first. A target that cannot seek (a pipe,
+/// a device) is given the file made in memory.
+///
+/// # Errors
+/// As [`write_atomic_with`]; an error of `fill` as [`IoError::Write`].
+pub fn write_atomic_seek(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    fill: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
+) -> IoResult<()> {
+    write_atomic_core(path, inputs, options, true, fill)
+}
+
+/// `&mut dyn WriteSeek` as a `dyn Write + Send` (no trait upcasting at the crate's Rust version).
+struct Writes<'a>(&'a mut dyn WriteSeek);
+
+impl Write for Writes<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.write(buf)
+    }
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.0.write_all(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.0.flush()
+    }
+}
+
+/// The atomic write behind the public functions; `seeks` says that `fill` may seek, so that a
+/// target that cannot is given the output made in memory.
+fn write_atomic_core(
+    path: &Path,
+    inputs: &[PathBuf],
+    options: WriteOptions,
+    seeks: bool,
+    fill: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
+) -> IoResult<()> {
     check_not_input(path, inputs)?;
     let write_err = |error| IoError::Write {
         path: path.to_path_buf(),
@@ -112,6 +161,13 @@ pub fn write_atomic_send(
                 .open(path)
                 .map_err(write_err)?;
             let mut w = std::io::BufWriter::new(f);
+            if seeks {
+                let mut made = std::io::Cursor::new(Vec::new());
+                return fill(&mut made)
+                    .and_then(|()| w.write_all(made.get_ref()))
+                    .and_then(|()| w.flush())
+                    .map_err(write_err);
+            }
             return fill(&mut w).and_then(|()| w.flush()).map_err(write_err);
         }
         Target::Directory => {
@@ -149,11 +205,7 @@ pub fn write_atomic_send(
     };
     let tmp_path = tmp.path().to_path_buf();
     let result = (|| {
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp);
-        fill(&mut w)?;
-        let tmp = w
-            .into_inner()
-            .map_err(std::io::IntoInnerError::into_error)?;
+        let tmp = fill_syncing(tmp, SYNC_EVERY, fill)?;
         if let Some(perm) = existing {
             tmp.as_file().set_permissions(perm)?;
         }
@@ -163,6 +215,87 @@ pub fn write_atomic_send(
     pending().retain(|p| *p != tmp_path);
     // on failure the temporary file was dropped (and removed) inside the closure
     result.map_err(write_err)
+}
+
+/// Bytes written to a temporary file between two requests to flush it to the disk.
+const SYNC_EVERY: u64 = 16 << 20;
+
+/// Runs `fill` on `tmp` (buffered) while a helper thread flushes what has been written so far
+/// to the disk (`sync_data`) each time another `every` bytes have gone in, so that the disk
+/// works while the output is still being made and the final `fsync` waits for the last part
+/// only. A failed flush fails the write: the helper shares the file's open description, so an
+/// error it was told of would not be told again to the final `fsync`.
+fn fill_syncing(
+    tmp: tempfile::NamedTempFile,
+    every: u64,
+    fill: impl FnOnce(&mut dyn WriteSeek) -> std::io::Result<()>,
+) -> std::io::Result<tempfile::NamedTempFile> {
+    let file = tmp.as_file().try_clone()?;
+    let failed: Mutex<Option<std::io::Error>> = Mutex::new(None);
+    let (ask, asked) = std::sync::mpsc::sync_channel::<()>(1);
+    let tmp = std::thread::scope(|s| {
+        let (file, failed) = (&file, &failed);
+        s.spawn(move || {
+            while asked.recv().is_ok() {
+                if let Err(e) = file.sync_data() {
+                    if let Ok(mut f) = failed.lock() {
+                        f.get_or_insert(e);
+                    }
+                }
+            }
+        });
+        // small enough that the large blocks of the list writers go to the file without a copy
+        let mut w = std::io::BufWriter::with_capacity(
+            1 << 16,
+            Syncing {
+                file: tmp,
+                since: 0,
+                every,
+                ask: Some(ask),
+            },
+        );
+        fill(&mut w)?;
+        // the request channel closes with the writer, which ends the helper
+        w.into_inner()
+            .map_err(std::io::IntoInnerError::into_error)
+            .map(|s| s.file)
+    })?;
+    if let Some(e) = failed.into_inner().ok().flatten() {
+        return Err(e);
+    }
+    Ok(tmp)
+}
+
+/// A temporary file that asks for a flush to the disk every `every` bytes written.
+struct Syncing {
+    file: tempfile::NamedTempFile,
+    since: u64,
+    every: u64,
+    ask: Option<std::sync::mpsc::SyncSender<()>>,
+}
+
+impl Write for Syncing {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.file.write(buf)?;
+        self.since += n as u64;
+        if self.since >= self.every {
+            self.since = 0;
+            // a request already waiting covers this one too
+            if let Some(ask) = &self.ask {
+                let _ = ask.try_send(());
+            }
+        }
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
+    }
+}
+
+impl Seek for Syncing {
+    fn seek(&mut self, pos: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.file.seek(pos)
+    }
 }
 
 /// What an output path names.
@@ -326,6 +459,37 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&real).unwrap(), "new");
         let e = write_atomic(&link, b"x", std::slice::from_ref(&real)).unwrap_err();
         assert!(matches!(e, IoError::WouldOverwriteInput { .. }), "{e}");
+    }
+
+    /// Output flushed to the disk while it is written is the output written: every byte in
+    /// order, seeks back included, and the temporary file renamed into place.
+    #[test]
+    fn flushing_while_writing_keeps_every_byte() {
+        let dir = tempfile::tempdir().unwrap();
+        let tmp = tempfile::NamedTempFile::new_in(dir.path()).unwrap();
+        let text: Vec<u8> = (0..300_000u32).flat_map(u32::to_le_bytes).collect();
+        let tmp = fill_syncing(tmp, 4096, |w| {
+            for piece in text.chunks(7919) {
+                w.write_all(piece)?;
+            }
+            w.seek(std::io::SeekFrom::Start(4))?;
+            w.write_all(b"seek")
+        })
+        .unwrap();
+        let path = dir.path().join("out.bin");
+        tmp.persist(&path).unwrap();
+        let mut want = text.clone();
+        want[4..8].copy_from_slice(b"seek");
+        assert_eq!(std::fs::read(&path).unwrap(), want);
+        // a failing fill leaves its error, and no file in place
+        let tmp = tempfile::NamedTempFile::new_in(dir.path()).unwrap();
+        let e = fill_syncing(tmp, 1, |w| {
+            w.write_all(&text)?;
+            Err(std::io::Error::other("stopped"))
+        })
+        .unwrap_err();
+        assert_eq!(e.to_string(), "stopped");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[test]

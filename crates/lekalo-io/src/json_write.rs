@@ -22,6 +22,11 @@ pub(crate) fn push_json_number(out: &mut Vec<u8>, digits: &mut zmij::Buffer, x: 
 
 /// Writes `n` items separated by `sep`: `item(out, digits, i)` appends item `i`. `out` holds
 /// the text before the list; it is flushed to `w` as it grows past a block's text.
+///
+/// A long list is formatted in rounds of a few blocks per thread, so memory is bounded by two
+/// rounds' text: while this thread writes one round to `w`, a helper thread has the next round
+/// formatted on all cores, so the writing (a copy into the page cache) overlaps formatting. The
+/// buffers of a round are kept for the round after next, so their memory is touched only once.
 pub(crate) fn write_list<F>(
     w: &mut dyn Write,
     out: &mut Vec<u8>,
@@ -47,29 +52,41 @@ where
         format(0..n, out);
         return Ok(());
     }
-    // rounds of a few blocks per thread, so memory is bounded by one round
     let per_round = block * 4 * rayon::current_num_threads().max(1);
-    let mut start = 0;
-    while start < n {
+    // formats items `range` into `bufs`, one block each, on all cores
+    let round = |range: std::ops::Range<usize>, bufs: &mut Vec<Vec<u8>>| {
+        let starts: Vec<usize> = range.clone().step_by(block).collect();
+        bufs.resize_with(starts.len(), Vec::new);
+        bufs.par_iter_mut().zip(starts).for_each(|(buf, b)| {
+            buf.clear();
+            format(b..(b + block).min(range.end), buf);
+        });
+    };
+    let mut ready: Vec<Vec<u8>> = Vec::new();
+    let mut next: Vec<Vec<u8>> = Vec::new();
+    round(0..per_round.min(n), &mut ready);
+    let mut start = per_round.min(n);
+    loop {
         let end = (start + per_round).min(n);
-        let parts: Vec<Vec<u8>> = (start..end)
-            .step_by(block)
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .map(|b| {
-                let mut buf = Vec::with_capacity(block * 24);
-                format(b..(b + block).min(end), &mut buf);
-                buf
-            })
-            .collect();
-        w.write_all(out)?;
-        out.clear();
-        for p in &parts {
-            w.write_all(p)?;
+        let written = std::thread::scope(|s| {
+            let helper = (start < end).then(|| s.spawn(|| round(start..end, &mut next)));
+            let written = w.write_all(out).and_then(|()| {
+                out.clear();
+                ready.iter().try_for_each(|p| w.write_all(p))
+            });
+            let formatted = helper.map_or(Ok(()), |h| {
+                h.join()
+                    .map_err(|_| std::io::Error::other("formatting a list of numbers failed"))
+            });
+            written.and(formatted)
+        });
+        written?;
+        if start >= end {
+            return Ok(());
         }
+        std::mem::swap(&mut ready, &mut next);
         start = end;
     }
-    Ok(())
 }
 
 /// The pieces of the object envelope's layout: newline, indents of one and two levels, and the

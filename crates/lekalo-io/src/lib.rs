@@ -10,7 +10,7 @@
 //! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
-//! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`] |
+//! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`], [`write_npz_curve`] |
 //! | batches: Parquet point sets in, curves in and out, samples out (row group by row group) | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
@@ -63,7 +63,8 @@ mod wireframe;
 pub use analysis::{curvature, uniform};
 pub use atomic::{
     check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
-    write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
+    write_atomic_seek, write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
+    WriteSeek,
 };
 pub use end_names::EndName;
 pub use error::{IoError, IoResult, Location};
@@ -72,7 +73,7 @@ pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use npy::{npy_bytes, read_npy_file, read_npy_points};
-pub use npz::{curve_to_npz, read_npz_curve};
+pub use npz::{curve_to_npz, read_npz_curve, write_npz_curve};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
 pub use object::{read_json_lines, Object, FORMAT_VERSION};

@@ -16,6 +16,7 @@
 //! and `(n,)` (one coordinate per point). Writing produces version 1.0, `'<f8'`, C order: what
 //! `np.save` writes, read back by `np.load` bit for bit.
 
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
 use lekalo::Points;
@@ -64,6 +65,11 @@ fn err(source: &str, field: &str, message: impl Into<String>) -> IoError {
 /// [`IoError::Invalid`] if the library rejects the points.
 pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
     let (shape, flat) = read_array(bytes, source, false)?;
+    points_of(&shape, flat, source)
+}
+
+/// The points of an array of `shape` whose elements (C order) are `flat`.
+fn points_of(shape: &[usize], flat: Vec<f64>, source: &str) -> IoResult<Points> {
     let d = match shape[..] {
         [_, d] => d,
         [_] => 1,
@@ -73,7 +79,7 @@ pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
                 "shape",
                 format!(
                     "shape {} is not (n, d) or (n,); points are a 2-D array, one row per point",
-                    Value::Tuple(shape).describe()
+                    Value::Tuple(shape.to_vec()).describe()
                 ),
             ))
         }
@@ -84,7 +90,7 @@ pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
             "shape",
             format!(
                 "shape {} holds no points; at least one point with one coordinate is needed",
-                Value::Tuple(shape).describe()
+                Value::Tuple(shape.to_vec()).describe()
             ),
         ));
     }
@@ -102,6 +108,15 @@ pub(crate) fn read_array(
     integer: bool,
 ) -> IoResult<(Vec<usize>, Vec<f64>)> {
     let h = parse_header(bytes, source, integer)?;
+    let data = &bytes[h.data_start..];
+    let mut flat = room_for(&h, data.len(), source)?;
+    decode(&h, data, &mut flat);
+    finish(h, flat, source)
+}
+
+/// An empty vector with room for the elements of the array of header `h`, after checking that
+/// the file's `data_len` bytes after the header are exactly those elements.
+fn room_for(h: &NpyHeader, data_len: usize, source: &str) -> IoResult<Vec<f64>> {
     let count = h
         .shape
         .iter()
@@ -113,12 +128,11 @@ pub(crate) fn read_array(
             "shape",
             format!(
                 "shape {} is too large to address",
-                Value::Tuple(h.shape).describe()
+                Value::Tuple(h.shape.clone()).describe()
             ),
         ));
     };
-    let data = &bytes[h.data_start..];
-    if data.len() != count * F8 {
+    if data_len != count * F8 {
         return Err(err(
             source,
             "data",
@@ -127,7 +141,7 @@ pub(crate) fn read_array(
                 Value::Tuple(h.shape.clone()).describe(),
                 count * F8,
                 if h.integer { "int64" } else { "float64" },
-                data.len()
+                data_len
             ),
         ));
     }
@@ -136,8 +150,12 @@ pub(crate) fn read_array(
         .map_err(|_| IoError::TooLarge {
             what: format!("{source}: cannot reserve memory for {count} numbers"),
         })?;
-    // one pass over the bytes, element by element in file order (`chunks_exact` compiles to
-    // plain loads, and to a copy on a little-endian machine), then Fortran order transposed
+    Ok(flat)
+}
+
+/// Appends the elements in `data` (whole elements, in file order) to `flat`: one pass of 8-byte
+/// loads (`chunks_exact` compiles to plain loads, and to a copy on a little-endian machine).
+fn decode(h: &NpyHeader, data: &[u8], flat: &mut Vec<f64>) {
     let decode = |b: &[u8]| -> f64 {
         let b: [u8; F8] = b.try_into().unwrap_or([0; F8]);
         match (h.integer, h.big_endian) {
@@ -151,6 +169,11 @@ pub(crate) fn read_array(
         }
     };
     flat.extend(data.chunks_exact(F8).map(decode));
+}
+
+/// The shape and the C-order elements of the array of header `h` whose elements in file order
+/// are `flat`; an error naming the first element that is not finite.
+fn finish(h: NpyHeader, mut flat: Vec<f64>, source: &str) -> IoResult<(Vec<usize>, Vec<f64>)> {
     if h.fortran && h.shape.len() > 1 {
         flat = fortran_to_c(&flat, &h.shape);
     }
@@ -201,18 +224,59 @@ fn fortran_to_c(f: &[f64], shape: &[usize]) -> Vec<f64> {
     out
 }
 
+/// Bytes of a `.npy` file read at a time: the header (all but the longest) and then the data
+/// in pieces of this size, decoded as they come, so the file is never held whole in memory.
+const READ_CHUNK: usize = 1 << 16;
+
 /// Reads a `.npy` points file from `path` (see [`read_npy_points`]); returns the points and the
-/// name used in messages.
+/// name used in messages. The data are decoded as they are read, a cache-sized piece at a time.
 ///
 /// # Errors
 /// [`IoError::Read`] if the file cannot be read; otherwise as [`read_npy_points`].
 pub fn read_npy_file(path: &Path) -> IoResult<(Points, String)> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| IoError::Read {
+    let read_err = |error| IoError::Read {
         path: PathBuf::from(path),
         error,
-    })?;
-    Ok((read_npy_points(&bytes, &name)?, name))
+    };
+    let mut f = std::fs::File::open(path).map_err(read_err)?;
+    let len = f.metadata().map_err(read_err)?.len();
+    let len = usize::try_from(len).unwrap_or(usize::MAX);
+    let mut head = Vec::with_capacity(READ_CHUNK.min(len));
+    (&mut f)
+        .take(READ_CHUNK as u64)
+        .read_to_end(&mut head)
+        .map_err(read_err)?;
+    let h = match parse_header(&head, &name, false) {
+        Ok(h) => h,
+        // a header longer than the first piece: the file read whole
+        Err(_) if head.len() < len => {
+            head.clear();
+            std::io::Seek::rewind(&mut f).map_err(read_err)?;
+            f.read_to_end(&mut head).map_err(read_err)?;
+            return Ok((read_npy_points(&head, &name)?, name));
+        }
+        Err(e) => return Err(e),
+    };
+    let data_len = len.saturating_sub(h.data_start);
+    let mut flat = room_for(&h, data_len, &name)?;
+    // the data in the first piece, then the rest piece by piece (whole elements each)
+    let first = &head[h.data_start.min(head.len())..];
+    let whole = first.len() - first.len() % F8;
+    decode(&h, &first[..whole], &mut flat);
+    let mut piece = first[whole..].to_vec();
+    let mut left = data_len - whole;
+    while left > 0 {
+        let want = left.min(READ_CHUNK);
+        let have = piece.len();
+        piece.resize(want, 0);
+        f.read_exact(&mut piece[have..]).map_err(read_err)?;
+        decode(&h, &piece, &mut flat);
+        left -= want;
+        piece.clear();
+    }
+    let (shape, flat) = finish(h, flat, &name)?;
+    Ok((points_of(&shape, flat, &name)?, name))
 }
 
 fn parse_header(bytes: &[u8], source: &str, integer: bool) -> IoResult<NpyHeader> {
@@ -466,9 +530,26 @@ pub(crate) fn le_bytes(v: &[f64]) -> Vec<u8> {
     out
 }
 
-/// A version 1.0, C-order `.npy` file of dtype `descr` and `shape` holding the little-endian
-/// element bytes `raw`.
-pub(crate) fn write_npy(descr: &str, shape: &[usize], raw: &[u8]) -> IoResult<Vec<u8>> {
+/// Numbers converted to bytes by [`write_le`] at a time (64 KiB, held in the cache).
+const LE_CHUNK: usize = 8192;
+
+/// Writes the little-endian bytes of `v` to `w` a cache-sized chunk at a time, so that a large
+/// array is never copied whole.
+pub(crate) fn write_le(w: &mut dyn Write, v: &[f64]) -> std::io::Result<()> {
+    let mut bytes = Vec::with_capacity(LE_CHUNK.min(v.len()) * F8);
+    for chunk in v.chunks(LE_CHUNK) {
+        bytes.clear();
+        for x in chunk {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+        w.write_all(&bytes)?;
+    }
+    Ok(())
+}
+
+/// The header of a version 1.0, C-order `.npy` file of dtype `descr` and `shape`: magic,
+/// version, length and the dict padded so that the data start at a multiple of 64 bytes.
+pub(crate) fn npy_header(descr: &str, shape: &[usize]) -> IoResult<Vec<u8>> {
     let shape = Value::Tuple(shape.to_vec()).describe();
     let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
     // magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64
@@ -480,11 +561,19 @@ pub(crate) fn write_npy(descr: &str, shape: &[usize], raw: &[u8]) -> IoResult<Ve
             what: format!("a header for shape {shape} is too long"),
         });
     };
-    let mut out = Vec::with_capacity(10 + header.len() + raw.len());
+    let mut out = Vec::with_capacity(10 + header.len());
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&[1, 0]);
     out.extend_from_slice(&len.to_le_bytes());
     out.extend_from_slice(header.as_bytes());
+    Ok(out)
+}
+
+/// A version 1.0, C-order `.npy` file of dtype `descr` and `shape` holding the little-endian
+/// element bytes `raw`.
+pub(crate) fn write_npy(descr: &str, shape: &[usize], raw: &[u8]) -> IoResult<Vec<u8>> {
+    let mut out = npy_header(descr, shape)?;
+    out.reserve_exact(raw.len());
     out.extend_from_slice(raw);
     Ok(out)
 }

@@ -312,3 +312,65 @@ fn npy_file_errors_name_the_path() {
     assert_eq!(p.as_slice(), &ROWS);
     assert!(name.ends_with("p.npy"), "{name}");
 }
+
+/// A file read piece by piece gives what its bytes read whole give: points or the same error,
+/// for data spread over many pieces (a piece boundary inside an element), either endianness and
+/// order, a header longer than the first piece, and files cut short or too long.
+#[test]
+fn npy_file_read_in_pieces_is_the_file_read_whole() {
+    let n: usize = 30_001; // 30_001 × 3 × 8 bytes: many pieces, the first ending inside an element
+    let values: Vec<f64> = (0..3 * 30_001u32)
+        .map(|i| f64::from(i) * 0.37 - 5.0)
+        .collect();
+    let long_dict = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({n}, 3), }}{}",
+        " ".repeat(70_000)
+    );
+    let bad = {
+        let mut v = values.clone();
+        v[3 * n - 2] = f64::NAN;
+        v
+    };
+    let files = [
+        npy_bytes(n, 3, &values).unwrap(),
+        fixture(
+            1,
+            &format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({n}, 3), }}"),
+            &le(&values),
+        ),
+        fixture(
+            2,
+            &format!("{{'descr': '>f8', 'fortran_order': True, 'shape': ({n}, 3), }}"),
+            &be(&values),
+        ),
+        fixture(3, &long_dict, &le(&values)),
+        fixture(
+            1,
+            &format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({n}, 3), }}"),
+            &le(&bad),
+        ),
+        fixture(
+            1,
+            &format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({n}, 3), }}"),
+            &le(&values[1..]),
+        ),
+        fixture(
+            1,
+            &format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({n}, 3), }}"),
+            &le(&[values.as_slice(), &[1.0]].concat()),
+        ),
+        b"\x93NUMPY\x09\x00".to_vec(),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("p.npy");
+    for (k, bytes) in files.iter().enumerate() {
+        std::fs::write(&path, bytes).unwrap();
+        let name = path.display().to_string();
+        let whole = read_npy_points(bytes, &name).map_err(|e| e.to_string());
+        let pieces = read_npy_file(&path)
+            .map(|(p, _)| p)
+            .map_err(|e| e.to_string());
+        assert_eq!(pieces, whole, "file {k}");
+        assert_eq!(whole.is_ok(), k < 4, "file {k}: {whole:?}");
+    }
+}

@@ -14,20 +14,21 @@
 //! the B-spline with knots `0^(p+1) 1^(p+1)` (the same curve, docs/theory/curves.md) and reads
 //! back as a B-spline.
 
-use std::io::{Cursor, Read, Write};
+use std::io::{Cursor, Read, Seek, Write};
 
 use lekalo::{BSplineCurve, NurbsCurve, Points};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipArchive, ZipWriter};
 
 use crate::error::{IoError, IoResult, Location};
-use crate::npy::{le_bytes, read_array, read_npy_points, write_npy};
+use crate::npy::{npy_header, read_array, read_npy_points, write_le};
 use crate::object::Object;
 
 /// Largest degree read from an archive (a larger one is surely a wrong member, not a curve).
 const MAX_DEGREE: f64 = 1.0e6;
 
-/// The curve `obj` as an `.npz` archive (see the module's table of members).
+/// The curve `obj` as an `.npz` archive (see the module's table of members), made in memory;
+/// [`write_npz_curve`] writes it to a file without holding it.
 ///
 /// ```
 /// use lekalo_io::{curve_to_npz, read_npz_curve, Object};
@@ -42,59 +43,69 @@ const MAX_DEGREE: f64 = 1.0e6;
 /// # Errors
 /// [`IoError::Unsupported`] if the archive cannot be built (an internal failure).
 pub fn curve_to_npz(obj: &Object) -> IoResult<Vec<u8>> {
-    let (degree, knots, control, weights) = match obj {
+    let mut out = Cursor::new(Vec::new());
+    write_npz_curve(obj, &mut out).map_err(|e| IoError::Unsupported {
+        what: format!("cannot build the .npz archive: {e}"),
+    })?;
+    Ok(out.into_inner())
+}
+
+/// Writes the curve `obj` as an `.npz` archive to `w`, each array converted to bytes a chunk at
+/// a time straight into its member (no copy of the curve, no archive in memory): the members of
+/// [`curve_to_npz`], byte for byte.
+///
+/// # Errors
+/// The writer's; the archive's (as [`std::io::ErrorKind::Other`]), e.g. a degree too large for
+/// an int64.
+pub fn write_npz_curve<W: Write + Seek>(obj: &Object, w: W) -> std::io::Result<()> {
+    let owned_control;
+    let bezier_knots;
+    let (degree, knots, control, weights): (usize, &[f64], &Points, Option<Vec<f64>>) = match obj {
         Object::Bezier(c) => {
             let p = c.degree();
-            let mut knots = vec![0.0; p + 1];
-            knots.extend(std::iter::repeat_n(1.0, p + 1));
-            (p, knots, c.control_points().clone(), None)
+            bezier_knots = [vec![0.0; p + 1], vec![1.0; p + 1]].concat();
+            (p, &bezier_knots, c.control_points(), None)
         }
-        Object::BSpline(c) => (
-            c.degree(),
-            c.knots().as_slice().to_vec(),
-            c.control_points().clone(),
-            None,
-        ),
-        Object::Nurbs(c) => (
-            c.degree(),
-            c.knots().as_slice().to_vec(),
-            c.control_points(),
-            Some(c.weights()),
-        ),
+        Object::BSpline(c) => (c.degree(), c.knots().as_slice(), c.control_points(), None),
+        Object::Nurbs(c) => {
+            owned_control = c.control_points();
+            (
+                c.degree(),
+                c.knots().as_slice(),
+                &owned_control,
+                Some(c.weights()),
+            )
+        }
     };
-    let f8 = le_bytes;
-    let degree = i64::try_from(degree).map_err(|_| IoError::Unsupported {
-        what: format!("degree {degree} does not fit an int64"),
-    })?;
-    let mut members = vec![
-        ("degree.npy", write_npy("<i8", &[], &degree.to_le_bytes())?),
-        ("knots.npy", write_npy("<f8", &[knots.len()], &f8(&knots))?),
+    let other = |e: &dyn std::fmt::Display| std::io::Error::other(e.to_string());
+    let degree = i64::try_from(degree)
+        .map_err(|_| other(&format!("degree {degree} does not fit an int64")))?;
+    let mut members: Vec<(&str, &str, Vec<usize>, &[f64])> = vec![
+        ("knots.npy", "<f8", vec![knots.len()], knots),
         (
             "control_points.npy",
-            write_npy(
-                "<f8",
-                &[control.len(), control.dim()],
-                &f8(control.as_slice()),
-            )?,
+            "<f8",
+            vec![control.len(), control.dim()],
+            control.as_slice(),
         ),
     ];
-    if let Some(w) = weights {
-        members.push(("weights.npy", write_npy("<f8", &[w.len()], &f8(&w))?));
+    if let Some(wt) = &weights {
+        members.push(("weights.npy", "<f8", vec![wt.len()], wt));
     }
-    let zip_err = |e: &dyn std::fmt::Display| IoError::Unsupported {
-        what: format!("cannot build the .npz archive: {e}"),
-    };
-    // members plus the zip's headers (a few hundred bytes), so the buffer never grows
-    let total: usize = members.iter().map(|(_, b)| b.len() + 256).sum::<usize>() + 1024;
-    let mut z = ZipWriter::new(Cursor::new(Vec::with_capacity(total)));
+    let mut z = ZipWriter::new(w);
     let opts = SimpleFileOptions::default()
         .compression_method(CompressionMethod::Stored)
         .large_file(false);
-    for (name, bytes) in members {
-        z.start_file(name, opts).map_err(|e| zip_err(&e))?;
-        z.write_all(&bytes).map_err(|e| zip_err(&e))?;
+    z.start_file("degree.npy", opts).map_err(|e| other(&e))?;
+    z.write_all(&npy_header("<i8", &[]).map_err(|e| other(&e))?)?;
+    z.write_all(&degree.to_le_bytes())?;
+    for (name, descr, shape, values) in members {
+        z.start_file(name, opts).map_err(|e| other(&e))?;
+        z.write_all(&npy_header(descr, &shape).map_err(|e| other(&e))?)?;
+        write_le(&mut z, values)?;
     }
-    Ok(z.finish().map_err(|e| zip_err(&e))?.into_inner())
+    z.finish().map_err(|e| other(&e))?;
+    Ok(())
 }
 
 /// Reads a curve from an `.npz` archive (see the module's table of members); `source` names

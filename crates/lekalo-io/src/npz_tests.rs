@@ -1,6 +1,7 @@
 //! Tests of the `.npz` curve archive: round trips bit for bit and named errors.
 
 use super::*;
+use crate::npy::{le_bytes, write_npy};
 
 fn bspline() -> Object {
     let ctrl =
@@ -233,4 +234,94 @@ fn npz_compressed_members_are_refused_with_the_fix() {
         "{m}"
     );
     assert!(m.contains("numpy.savez (not savez_compressed)"), "{m}");
+}
+
+/// The archive made whole in memory, member by member: what the streamed writer must give.
+fn archive_in_memory(obj: &Object) -> Vec<u8> {
+    let (degree, knots, control, weights) = match obj {
+        Object::Bezier(c) => {
+            let p = c.degree();
+            let knots = [vec![0.0; p + 1], vec![1.0; p + 1]].concat();
+            (p, knots, c.control_points().clone(), None)
+        }
+        Object::BSpline(c) => (
+            c.degree(),
+            c.knots().as_slice().to_vec(),
+            c.control_points().clone(),
+            None,
+        ),
+        Object::Nurbs(c) => (
+            c.degree(),
+            c.knots().as_slice().to_vec(),
+            c.control_points(),
+            Some(c.weights()),
+        ),
+    };
+    let degree = i64::try_from(degree).unwrap();
+    let mut members = vec![
+        (
+            "degree.npy",
+            write_npy("<i8", &[], &degree.to_le_bytes()).unwrap(),
+        ),
+        (
+            "knots.npy",
+            write_npy("<f8", &[knots.len()], &le_bytes(&knots)).unwrap(),
+        ),
+        (
+            "control_points.npy",
+            write_npy(
+                "<f8",
+                &[control.len(), control.dim()],
+                &le_bytes(control.as_slice()),
+            )
+            .unwrap(),
+        ),
+    ];
+    if let Some(w) = weights {
+        members.push((
+            "weights.npy",
+            write_npy("<f8", &[w.len()], &le_bytes(&w)).unwrap(),
+        ));
+    }
+    let mut z = ZipWriter::new(Cursor::new(Vec::new()));
+    let opts = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Stored)
+        .large_file(false);
+    for (name, bytes) in members {
+        z.start_file(name, opts).unwrap();
+        z.write_all(&bytes).unwrap();
+    }
+    z.finish().unwrap().into_inner()
+}
+
+#[test]
+fn streamed_archive_is_the_archive_made_in_memory() {
+    // a curve long enough that its arrays are written in several chunks
+    let n = 20_000;
+    let pts: Vec<[f64; 3]> = (0..n)
+        .map(|i| {
+            let t = f64::from(i) * 1e-3;
+            [t.cos(), t.sin(), t / 7.0]
+        })
+        .collect();
+    let ctrl = Points::from_3d(&pts).unwrap();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..n - 3).map(f64::from));
+    knots.extend([f64::from(n - 3); 4]);
+    let long = Object::BSpline(BSplineCurve::new(3, knots, ctrl).unwrap());
+    let bezier = Object::Bezier(
+        lekalo::BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [3.0, 1.0]]).unwrap())
+            .unwrap(),
+    );
+    for obj in [bspline(), nurbs(), long, bezier] {
+        let want = archive_in_memory(&obj);
+        assert_eq!(curve_to_npz(&obj).unwrap(), want, "{}", obj.type_name());
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.npz");
+        crate::write_atomic_seek(&path, &[], crate::WriteOptions::default(), |w| {
+            write_npz_curve(&obj, w)
+        })
+        .unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), want, "{}", obj.type_name());
+    }
 }

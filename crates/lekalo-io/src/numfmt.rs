@@ -29,9 +29,11 @@ pub fn fmt_number(x: f64) -> String {
 }
 
 /// Appends [`fmt_number`]'s text of `x` to `out` (in an exact tie between two shortest decimals
-/// the last digit may differ by one; both read back to `x`), with no allocation: the shortest
+/// the last digit may differ by one; both read back to `x`), with no allocation. The shortest
 /// digits come from `zmij` (the formatter `serde_json` uses, several times faster than
-/// `core::fmt`), then are laid out plain or in exponent notation as [`fmt_number`] does.
+/// `core::fmt`), which already switches to exponent notation exactly where [`fmt_number`] does
+/// (a shortest decimal exponent outside `-5..=15`, i.e. `|x|` outside `[1e-5, 1e16)`); only its
+/// spelling differs: `3.0` for `3` and `1e+16` for `1e16`, mended here.
 pub(crate) fn push_number(out: &mut Vec<u8>, digits: &mut zmij::Buffer, x: f64) {
     if x == 0.0 || !x.is_finite() {
         out.extend_from_slice(match x {
@@ -44,98 +46,16 @@ pub(crate) fn push_number(out: &mut Vec<u8>, digits: &mut zmij::Buffer, x: f64) 
         return;
     }
     let text = digits.format_finite(x).as_bytes();
-    let (negative, text) = match text.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        _ => (false, text),
-    };
-    // `text` is `d.ddd`, `ddd` or `0.000ddd`, with an optional `e±n`
-    let (mantissa, exp) = match text.iter().position(|&b| b == b'e') {
-        Some(i) => (&text[..i], parse_exponent(&text[i + 1..])),
-        None => (text, 0),
-    };
-    // significant digits `sig` and the exponent `e` of the first: x = d0.d1d2… × 10^e
-    let mut sig = [0u8; 24];
-    let mut n = 0usize;
-    let mut point = mantissa.len();
-    let mut lead = 0i32; // zeros before the first significant digit, after the point
-    for (i, &b) in mantissa.iter().enumerate() {
-        if b == b'.' {
-            point = i;
-        } else if n == 0 && b == b'0' {
-            if point < i {
-                lead += 1;
-            }
-        } else if n < sig.len() {
-            sig[n] = b;
-            n += 1;
-        }
-    }
-    while n > 1 && sig[n - 1] == b'0' {
-        n -= 1;
-    }
-    let int_digits = i32::try_from(point).unwrap_or(0);
-    let e = if int_digits > 0 && mantissa[0] != b'0' {
-        exp + int_digits - 1
-    } else {
-        exp - lead - 1
-    };
-    let sig = &sig[..n];
-    if negative {
-        out.push(b'-');
-    }
     if (SMALL..LARGE).contains(&x.abs()) {
-        match usize::try_from(e) {
-            Ok(e) if sig.len() <= e + 1 => {
-                out.extend_from_slice(sig);
-                out.resize(out.len() + e + 1 - sig.len(), b'0');
-            }
-            Ok(e) => {
-                out.extend_from_slice(&sig[..=e]);
-                out.push(b'.');
-                out.extend_from_slice(&sig[e + 1..]);
-            }
-            Err(_) => {
-                out.extend_from_slice(b"0.");
-                let zeros = usize::try_from(-e - 1).unwrap_or(0);
-                out.resize(out.len() + zeros, b'0');
-                out.extend_from_slice(sig);
-            }
-        }
+        out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
     } else {
-        out.push(sig[0]);
-        if sig.len() > 1 {
-            out.push(b'.');
-            out.extend_from_slice(&sig[1..]);
-        }
-        out.push(b'e');
-        let mut itoa = [0u8; 8];
-        let mut k = itoa.len();
-        let mut m = e.unsigned_abs();
-        loop {
-            k -= 1;
-            itoa[k] = b'0' + u8::try_from(m % 10).unwrap_or(0);
-            m /= 10;
-            if m == 0 {
-                break;
+        // `d.ddde+n` or `d.ddde-n`: the `+` is dropped
+        for &b in text {
+            if b != b'+' {
+                out.push(b);
             }
         }
-        if e < 0 {
-            out.push(b'-');
-        }
-        out.extend_from_slice(&itoa[k..]);
     }
-}
-
-/// The exponent after `e` in the formatter's output (`-7`, `+20`, `300`).
-fn parse_exponent(text: &[u8]) -> i32 {
-    let (sign, digits) = match text.split_first() {
-        Some((b'-', rest)) => (-1, rest),
-        Some((b'+', rest)) => (1, rest),
-        _ => (1, text),
-    };
-    sign * digits
-        .iter()
-        .fold(0i32, |acc, &d| acc * 10 + i32::from(d - b'0'))
 }
 
 #[cfg(test)]

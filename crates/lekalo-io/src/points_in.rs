@@ -299,6 +299,11 @@ mod one_pass {
             Just(String::new()),
             Just("# c".to_string()),
             Just("\u{a0}3".to_string()),
+            // every number the parsers may read, in every spelling, and near-numbers
+            any::<u64>().prop_map(|b| f64::from_bits(b).to_string()),
+            any::<u64>().prop_map(|b| format!("{:e}", f64::from_bits(b))),
+            "[-+]?[0-9]{0,3}[.]?[0-9]{0,3}([eE][-+]?[0-9]{0,4})?",
+            "[-+]?(inf|infinity|nan|NaN|INF|0x1|1_0|1\\.2\\.3|1e|\\.|-)",
         ];
         let line = (
             proptest::collection::vec(field, 0..4),

@@ -67,7 +67,12 @@ pub(crate) fn write_curve(
             w.finish(STEP_TIMESTAMP).into_bytes()
         }
         "obj" => lekalo_io::polyline_to_obj(&obj.sample(CURVE_SAMPLES)?).into_bytes(),
-        "npz" => lekalo_io::curve_to_npz(obj)?,
+        // streamed: the arrays go into the archive's members without a copy in memory
+        "npz" => {
+            return crate::io::emit_seek(out.output.as_deref(), inputs, v, |w| {
+                lekalo_io::write_npz_curve(obj, w)
+            })
+        }
         other => {
             return bad_input(format!(
                 "unknown output format \"{other}\": use json, svg, png, step, csv, obj or npz"
