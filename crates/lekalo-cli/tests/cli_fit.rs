@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use std::fs;
 
 use assert_cmd::Command;
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 
 fn lekalo() -> Command {
@@ -92,11 +93,36 @@ fn least_squares_with_constraints_reports_residuals() {
             "--ctrl",
             "10",
             "--clamp-ends",
-            "--d0",
+            "--start-derivative",
             "3,10",
             "--json",
         ],
         &spiral(),
+    );
+    // the former spelling gives the same curve, with a warning naming the new one
+    let old = lekalo()
+        .args([
+            "fit",
+            "-",
+            "--ctrl",
+            "10",
+            "--clamp-ends",
+            "--d0",
+            "3,10",
+            "--json",
+        ])
+        .write_stdin(spiral())
+        .assert()
+        .success()
+        .stderr(contains(
+            "`--d0` of `lekalo fit` is deprecated; write `--start-derivative`",
+        ))
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(
+        serde_json::from_slice::<serde_json::Value>(&old).unwrap(),
+        v
     );
     let o = &v["object"];
     let t = |i: usize| o["knots"][i].as_f64().unwrap();
@@ -317,4 +343,101 @@ fn periodic_fits_close_the_curve() {
             .code(2)
             .stderr(contains(why));
     }
+}
+
+/// The legend's two figures `max` and `RMS` of `plot --residuals`.
+fn legend_figures(svg: &str) -> (f64, f64) {
+    let at = svg.find("deviations: max ").expect("a deviations legend") + 16;
+    let rest = &svg[at..];
+    let (max, rest) = rest.split_once(", RMS ").expect("RMS");
+    let end = rest.find(['<', '"']).expect("end");
+    (max.parse().unwrap(), rest[..end].parse().unwrap())
+}
+
+#[test]
+fn plot_residuals_draws_the_data_the_fit_and_its_deviations() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    fs::write(p("spiral.txt"), spiral()).unwrap();
+    lekalo()
+        .args(["fit", &p("spiral.txt"), "--ctrl", "8", "-o", &p("fit.json")])
+        .assert()
+        .success();
+    lekalo()
+        .args([
+            "plot",
+            &p("fit.json"),
+            "--points",
+            &p("spiral.txt"),
+            "--residuals",
+            "-o",
+            &p("res.svg"),
+        ])
+        .assert()
+        .success();
+    let svg = fs::read_to_string(p("res.svg")).unwrap();
+    assert!(
+        svg.contains("data points") && svg.contains(">curve<"),
+        "data and fit drawn"
+    );
+    // the legend's figures are the closest-point distances `lekalo project` gives
+    let out = lekalo()
+        .args(["project", &p("fit.json"), "--points", &p("spiral.txt")])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let d: Vec<f64> = String::from_utf8(out)
+        .unwrap()
+        .lines()
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(d.len(), 120, "one projection a point");
+    let max = d.iter().copied().fold(0.0, f64::max);
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / 120.0).sqrt();
+    let (lmax, lrms) = legend_figures(&svg);
+    assert!(
+        max > 1e-3,
+        "an 8-point fit of the spiral deviates visibly: {max}"
+    );
+    // four significant digits in the legend
+    assert!((lmax - max).abs() <= 5e-4 * max, "{lmax} vs {max}");
+    assert!((lrms - rms).abs() <= 5e-4 * rms, "{lrms} vs {rms}");
+    // the segments: one polyline of two vertices a point, in the deviations' series group
+    let start = svg.find("data-label=\"deviations").unwrap();
+    let group = &svg[start..start + svg[start..].find("</g>").unwrap()];
+    assert_eq!(group.matches("<polyline").count(), 120, "a segment a point");
+    assert!(
+        group
+            .split("points=\"")
+            .skip(1)
+            .all(|q| q[..q.find('"').unwrap()].split(' ').count() == 2),
+        "two vertices a segment"
+    );
+
+    // refusals name the option and the files
+    lekalo()
+        .args(["plot", &p("fit.json"), "--residuals", "-o", &p("x.svg")])
+        .assert()
+        .code(2)
+        .stderr(contains("--points"));
+    fs::write(p("p3.txt"), "1 2 3\n4 5 6\n").unwrap();
+    lekalo()
+        .args([
+            "plot",
+            &p("fit.json"),
+            "--points",
+            &p("p3.txt"),
+            "--residuals",
+            "-o",
+            &p("x.svg"),
+        ])
+        .assert()
+        .code(2)
+        .stderr(contains("3-D").and(contains("2-D")));
+    assert!(
+        !dir.path().join("x.svg").exists(),
+        "nothing written on a refusal"
+    );
 }

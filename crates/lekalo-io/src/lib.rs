@@ -95,7 +95,7 @@ pub use step_read::{read_step, StepRead, StepSkipped};
 pub use surface_plot::{surface_plot, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{
-    basis_figure, curve_figure, escape, knots_figure, Annotation, Coincidence, ColorBar, CurvePlot,
-    Face, Figure, Series, Style,
+    basis_figure, curve_figure, escape, knots_figure, residual_series, Annotation, Coincidence,
+    ColorBar, CurvePlot, Face, Figure, Series, Style,
 };
 pub use wireframe::{wireframe_figure, Grid, Projection};

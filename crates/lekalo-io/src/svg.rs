@@ -959,6 +959,27 @@ pub(crate) fn fmt_tick(v: f64) -> String {
     }
 }
 
+/// A figure in a legend: four significant digits (`0.1189`, `3.957e-7`), exponent notation
+/// outside `[1e-4, 1e6)` as on the ticks.
+fn fmt_legend(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !(1e-4..1e6).contains(&a) {
+        return fmt_tick(v);
+    }
+    // a is in [1e-4, 1e6): three decimals from 1 on, one more for each power of ten below
+    let (mut decimals, mut bound) = (0, 1000.0);
+    while a < bound && decimals < 7 {
+        decimals += 1;
+        bound /= 10.0;
+    }
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// What to draw besides the curve.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurvePlot<'a> {
@@ -989,14 +1010,9 @@ impl Default for CurvePlot<'_> {
     }
 }
 
-/// Maps a point of any dimension to the plane: 1-D as `(index-free) (x, 0)`, 2-D as is, 3-D or
-/// more through `projection` (first three coordinates).
+/// Maps a point of any dimension to the plane ([`crate::Projection::to_plane`]).
 fn to_plane(p: &[f64], projection: &crate::wireframe::Projection) -> [f64; 2] {
-    match p.len() {
-        1 => [p[0], 0.0],
-        2 => [p[0], p[1]],
-        _ => projection.project([p[0], p[1], p[2]]),
-    }
+    projection.to_plane(p)
 }
 
 /// Most vertices of a control polygon or data series drawn in a curve plot; beyond it every
@@ -1097,6 +1113,74 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
     Ok(fig)
 }
 
+/// The deviations of data points from a curve: a segment from each point `Q_k` to `feet[k]`, its
+/// closest point on the curve (found by the library, `docs/theory/queries.md#closest-points`),
+/// in the curve plot's coordinates. The legend gives the largest and the root-mean-square
+/// distance `|Q_k − feet[k]|` over every point; the segments are decimated like the data
+/// markers (at most 2,000, the same indices), and the segment of the largest distance is always
+/// drawn.
+///
+/// # Errors
+/// [`lekalo::Error::Dimension`] if `feet` and `data` differ in dimension or count.
+pub fn residual_series(
+    data: &Points,
+    feet: &Points,
+    projection: &crate::wireframe::Projection,
+) -> lekalo::Result<Series> {
+    if feet.dim() != data.dim() || feet.len() != data.len() {
+        return Err(lekalo::Error::Dimension {
+            what: "closest points of the data points",
+            expected: data.dim() * data.len(),
+            got: feet.dim() * feet.len(),
+        });
+    }
+    let dist = |i: usize| {
+        data.point(i)
+            .iter()
+            .zip(feet.point(i))
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let (mut worst, mut max, mut sum_sq) = (0, 0.0_f64, 0.0_f64);
+    for i in 0..data.len() {
+        let d = dist(i);
+        sum_sq += d * d;
+        if d > max {
+            (worst, max) = (i, d);
+        }
+    }
+    let rms = if data.is_empty() {
+        0.0
+    } else {
+        (sum_sq / data.len() as f64).sqrt()
+    };
+    let mut drawn: Vec<usize> = decimated(data.len(), PLOT_MAX_MARKERS).collect();
+    if !data.is_empty() && !drawn.contains(&worst) {
+        drawn.push(worst);
+    }
+    let mut series = Series::new(
+        Some(&format!(
+            "deviations: max {}, RMS {}",
+            fmt_legend(max),
+            fmt_legend(rms)
+        )),
+        Vec::new(),
+        Style::Line,
+        PALETTE[3],
+    );
+    series.paths = drawn
+        .into_iter()
+        .map(|i| {
+            vec![
+                projection.to_plane(data.point(i)),
+                projection.to_plane(feet.point(i)),
+            ]
+        })
+        .collect();
+    Ok(series)
+}
+
 /// Graphs of the B-spline basis functions `N_{i,p}(t)`, `i = 0 … n`, over the whole knot range
 /// `[t_0, t_m]` by the Cox–de Boor recursion (document 002, B-splines; P&T eq. 2.5), with the valid
 /// domain `[t_p, t_{n+1}]` shaded (there, and only there, `Σ N_{i,p} = 1`).
@@ -1165,6 +1249,71 @@ pub fn knots_figure(title: &str, knots: &KnotVector) -> Figure {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn legend_figures_have_four_significant_digits() {
+        for (v, want) in [
+            (0.118_924_521, "0.1189"),
+            (0.039_569_3, "0.03957"),
+            (1234.56, "1235"),
+            (2.0, "2"),
+            (0.0, "0"),
+            (3.956_931_7e-7, "3.957e-7"),
+            (1.5e300, "1.5e300"),
+        ] {
+            assert_eq!(fmt_legend(v), want, "{v}");
+        }
+    }
+
+    #[test]
+    fn residual_segments_join_points_to_their_feet() {
+        let data = Points::from_2d(&[[0.0, 1.0], [1.0, -2.0], [2.0, 0.5]]).expect("points");
+        let feet = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]).expect("points");
+        let s = residual_series(&data, &feet, &crate::Projection::default()).expect("series");
+        assert_eq!(s.paths.len(), 3, "one segment a point");
+        assert_eq!(s.paths[1], vec![[1.0, -2.0], [1.0, 0.0]], "point to foot");
+        // max 2, RMS sqrt((1 + 4 + 0.25) / 3)
+        assert_eq!(
+            s.label.as_deref(),
+            Some("deviations: max 2, RMS 1.323"),
+            "legend"
+        );
+        let short = Points::from_2d(&[[0.0, 0.0]]).expect("points");
+        assert!(
+            residual_series(&data, &short, &crate::Projection::default()).is_err(),
+            "counts differ"
+        );
+    }
+
+    #[test]
+    fn the_largest_residual_is_drawn_among_decimated_ones() {
+        let n = 10_001;
+        let data =
+            Points::from_flat(2, (0..n).flat_map(|i| [i as f64, 1.0]).collect()).expect("points");
+        let mut feet = data.as_slice().to_vec();
+        for i in 0..n {
+            feet[2 * i + 1] = if i == 4_567 { -9.0 } else { 0.0 };
+        }
+        let feet = Points::from_flat(2, feet).expect("points");
+        let s = residual_series(&data, &feet, &crate::Projection::default()).expect("series");
+        assert!(
+            s.paths.len() <= PLOT_MAX_MARKERS + 1,
+            "decimated: {}",
+            s.paths.len()
+        );
+        assert!(
+            s.paths.iter().any(|p| p[1] == [4_567.0, -9.0]),
+            "the largest deviation is drawn"
+        );
+        assert_eq!(
+            s.label
+                .as_deref()
+                .map(|l| l.starts_with("deviations: max 10,")),
+            Some(true),
+            "{:?}",
+            s.label
+        );
+    }
 
     #[test]
     fn ticks_are_nice() {

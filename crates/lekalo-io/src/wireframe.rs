@@ -97,6 +97,18 @@ impl Projection {
         [dot(r, p), dot(u, p)]
     }
 
+    /// Plot coordinates of a point of any dimension, as curve plots place it: 1-D as `(x, 0)`,
+    /// 2-D as is, 3-D or more through [`Projection::project`] of the first three coordinates.
+    #[must_use]
+    pub fn to_plane(&self, p: &[f64]) -> [f64; 2] {
+        match p {
+            [] => [0.0, 0.0],
+            [x] => [*x, 0.0],
+            [x, y] => [*x, *y],
+            [x, y, z, ..] => self.project([*x, *y, *z]),
+        }
+    }
+
     /// Distance toward the eye (larger is nearer): the sort key of the painter's algorithm.
     #[must_use]
     pub fn depth(&self, p: [f64; 3]) -> f64 {

@@ -5,6 +5,8 @@
 const DEPRECATED: &[(&[&str], &str, &str)] = &[
     (&["interpolate"], "--d0", "--start-derivative"),
     (&["interpolate"], "--dn", "--end-derivative"),
+    (&["fit"], "--d0", "--start-derivative"),
+    (&["fit"], "--dn", "--end-derivative"),
     (&["blend", "spline"], "--params", "--param"),
     (&["blend", "deform"], "-k", "--continuity"),
     (&["blend", "spline"], "-k", "--continuity"),

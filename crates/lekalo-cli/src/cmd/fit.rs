@@ -44,7 +44,7 @@ The report (residual max and RMS, λ or s, control points) goes to standard erro
 
 Examples:
   lekalo fit scan.csv --ctrl 20 -o fit.json
-  lekalo fit scan.csv --lsq --knots 0.25,0.5,0.75 --clamp-ends --d0 1,0 --dn 0,-1
+  lekalo fit scan.csv --lsq --knots 0.25,0.5,0.75 --clamp-ends --start-derivative 1,0 --end-derivative 0,-1
   lekalo fit xy.csv --function --smooth gcv --json
   lekalo fit xy.csv --function --s 0.05 --weights w.txt
   lekalo fit track.csv --tol 0.01 -o track.svg
@@ -92,11 +92,11 @@ pub(crate) struct FitArgs {
     /// Interpolate the first and last points exactly.
     #[arg(long)]
     pub(crate) clamp_ends: bool,
-    /// First derivative at the start (with --clamp-ends), comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// First derivative at the start (with --clamp-ends), comma-separated. Formerly `--d0`.
+    #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
     pub(crate) d0: Option<String>,
-    /// First derivative at the end (with --clamp-ends), comma-separated.
-    #[arg(long, allow_hyphen_values = true)]
+    /// First derivative at the end (with --clamp-ends), comma-separated. Formerly `--dn`.
+    #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     pub(crate) dn: Option<String>,
     /// Parametrisation of parametric curves.
     #[arg(long, value_enum, default_value_t = Param::Chord)]
@@ -260,7 +260,7 @@ fn fit_curve(
             Some(r) => {
                 if ends != EndConstraints::none() {
                     return bad_input(
-                        "--robust fits without end constraints; drop --clamp-ends/--d0/--dn",
+                        "--robust fits without end constraints; drop --clamp-ends/--start-derivative/--end-derivative",
                     );
                 }
                 let loss = match r {
@@ -363,13 +363,13 @@ fn constraints(a: &FitArgs) -> Result<EndConstraints> {
         EndConstraints::none()
     };
     if (a.d0.is_some() || a.dn.is_some()) && !a.clamp_ends {
-        return bad_input("--d0/--dn need --clamp-ends (the end points are interpolated too)");
+        return bad_input("--start-derivative/--end-derivative need --clamp-ends (the end points are interpolated too)");
     }
     if let Some(d) = &a.d0 {
-        e = e.with_start_derivative(numbers(d, "--d0")?);
+        e = e.with_start_derivative(numbers(d, "--start-derivative")?);
     }
     if let Some(d) = &a.dn {
-        e = e.with_end_derivative(numbers(d, "--dn")?);
+        e = e.with_end_derivative(numbers(d, "--end-derivative")?);
     }
     Ok(e)
 }

@@ -23,6 +23,7 @@ an orthographic view (--azimuth, --elevation).
 Examples:
   lekalo plot curve.json -o curve.svg
   lekalo plot curve.json -o curve.png --points data.csv --title 'Interpolated'
+  lekalo plot curve.json -o residuals.svg --points data.csv --residuals   # deviations from the curve
   lekalo plot curve.json -o basis.svg --basis
   lekalo plot curve3d.json -o view.svg --azimuth 30 --elevation 20
   lekalo plot surface.json -o surface.svg                  # shaded, 33 × 33 points, axes
@@ -44,6 +45,11 @@ pub(crate) struct PlotArgs {
     /// Data points to show (CSV, text or JSON).
     #[arg(long, value_name = "FILE")]
     points: Option<PathBuf>,
+    /// With `--points`: draw each point's deviation from the curve, a segment to its closest
+    /// point on the curve, with the largest and the RMS distance in the legend (for a fit:
+    /// the data, the fit and its deviations).
+    #[arg(long, requires = "points")]
+    residuals: bool,
     /// Leave out the control polygon.
     #[arg(long)]
     no_control: bool,
@@ -165,7 +171,7 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
             let fig = match &shape {
                 _ if a.basis || a.points.is_some() || a.comb => {
                     return bad_input(format!(
-                        "--basis, --points and --comb are for curves; {} is a {}",
+                        "--basis, --points, --residuals and --comb are for curves; {} is a {}",
                         a.input.display(),
                         shape.type_name()
                     ))
@@ -228,6 +234,18 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         let teeth = in_range(a.comb_teeth, 2, 100_000, "--comb-teeth")?;
         fig.series
             .extend(crate::cmd::comb::comb_series(&obj, &a.input, teeth)?);
+    }
+    if let (true, Some(data), Some(path)) = (a.residuals, &data, &a.points) {
+        if a.basis {
+            return bad_input("--residuals draws a curve's deviations; it cannot go with --basis");
+        }
+        let feet = crate::cmd::project::closest_points(&obj, &a.input, data, path)?;
+        let projection = Projection {
+            azimuth: a.azimuth,
+            elevation: a.elevation,
+        };
+        fig.series
+            .push(lekalo_io::residual_series(data, &feet, &projection)?);
     }
     let bytes = encode(&fig, &format, a.scale)?;
     emit(

@@ -1,11 +1,11 @@
 //! `lekalo project`: closest points of query points on a curve or a surface.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
 use lekalo::Points;
-use lekalo_io::Shape;
+use lekalo_io::{Object, Shape};
 use serde_json::json;
 
 use crate::cmd::measure::{query_curve, query_surface};
@@ -45,6 +45,31 @@ pub(crate) struct ProjectArgs {
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
+}
+
+/// The closest point on the curve `obj` (read from `path`) of every point of `data` (read from
+/// `data_path`), in parallel (`QueryCurve::project_batch`,
+/// docs/theory/queries.md#closest-points).
+pub(crate) fn closest_points(
+    obj: &Object,
+    path: &Path,
+    data: &Points,
+    data_path: &Path,
+) -> Result<Points> {
+    let q = query_curve(obj, path)?;
+    if data.dim() != q.dim() {
+        return bad_input(format!(
+            "{}: the points are {}-D, the curve {} is {}-D",
+            data_path.display(),
+            data.dim(),
+            path.display(),
+            q.dim()
+        ));
+    }
+    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", path.display()));
+    let feet = q.project_batch(data.as_view()).map_err(bad)?;
+    Points::from_flat(q.dim(), feet.into_iter().flat_map(|r| r.point).collect())
+        .map_err(|e| bad(e).into())
 }
 
 pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
