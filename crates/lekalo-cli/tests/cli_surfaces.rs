@@ -230,3 +230,90 @@ fn step_surface_reads_back_with_ruststep() {
         }
     }
 }
+
+/// The `data-range` of the SVG's colour bar, and its label.
+fn colorbar(svg: &str) -> (String, f64, f64) {
+    let g = &svg[svg.find("<g class=\"colorbar\"").expect("a colour bar")..];
+    let attr = |name: &str| {
+        let at = g.find(&format!("{name}=\"")).expect(name) + name.len() + 2;
+        g[at..at + g[at..].find('"').expect("quote")].to_string()
+    };
+    let range = attr("data-range");
+    let (lo, hi) = range.split_once(' ').expect("two numbers");
+    (attr("data-label"), lo.parse().unwrap(), hi.parse().unwrap())
+}
+
+#[test]
+fn a_curvature_map_spans_the_library_curvatures_on_its_grid() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    fs::write(&s, SURFACE).unwrap();
+    for (kind, column, label) in [
+        ("gaussian", 2, "Gaussian curvature"),
+        ("mean", 3, "mean curvature"),
+        ("k1", 0, "principal curvature k1"),
+        ("k2", 1, "principal curvature k2"),
+    ] {
+        let svg = d.path().join(format!("{kind}.svg"));
+        lekalo()
+            .arg("plot")
+            .arg(&s)
+            .args(["--curvature", kind, "--samples", "9", "-o"])
+            .arg(&svg)
+            .assert()
+            .success();
+        let (got_label, lo, hi) = colorbar(&fs::read_to_string(&svg).unwrap());
+        assert_eq!(got_label, label);
+        // the same 9 × 9 grid through `eval --curvature`: the bar spans its column exactly
+        let out = lekalo()
+            .arg("eval")
+            .arg(&s)
+            .args(["--grid", "9x9", "--curvature"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let values: Vec<f64> = String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                f[f.len() - 4 + column].parse().unwrap()
+            })
+            .collect();
+        assert_eq!(values.len(), 81);
+        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!((lo, hi), (min, max), "{kind}");
+        assert!(hi > lo, "{kind}: the NURBS bump's curvature varies");
+    }
+    // a curvature map is for shaded 3-D surfaces
+    let x = d.path().join("x.svg");
+    for (args, why) in [
+        (vec!["--curvature", "mean", "--wireframe"], "--wireframe"),
+        (vec!["--curvature", "teal"], "teal"),
+    ] {
+        lekalo()
+            .arg("plot")
+            .arg(&s)
+            .args(&args)
+            .arg("-o")
+            .arg(&x)
+            .assert()
+            .code(2)
+            .stderr(contains(why));
+    }
+    let p = d.path().join("p.json");
+    fs::write(&p, PP).unwrap();
+    lekalo()
+        .arg("plot")
+        .arg(&p)
+        .args(["--curvature", "mean", "-o"])
+        .arg(&x)
+        .assert()
+        .code(2)
+        .stderr(contains("--curvature colours a surface"));
+    assert!(!x.exists(), "nothing written on a refusal");
+}

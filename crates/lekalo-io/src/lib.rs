@@ -92,7 +92,7 @@ pub use samples::{sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{read_step, StepRead, StepSkipped};
-pub use surface_plot::{surface_plot, SurfacePlot, SURFACE_SAMPLES};
+pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{
     basis_figure, curve_figure, escape, knots_figure, residual_series, Annotation, Coincidence,

@@ -25,6 +25,21 @@ pub struct SurfacePlot {
     pub iso_lines: usize,
     /// 3-D axes with ticks along the bounding box.
     pub axes: bool,
+    /// Values at the grid's points that colour the shaded faces instead of the height (a
+    /// curvature map); `None` colours by height.
+    pub colors: Option<ColorField>,
+}
+
+/// A scalar field on the plotted grid, one value a grid point (`u` outer, as the grid), that
+/// colours a shaded surface: each face takes the mean of its four corners' values on the
+/// colour bar from the least to the largest finite value. A face with an undefined corner
+/// (`None` or not finite: a curvature where the normal is undefined) is drawn grey.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColorField {
+    /// The colour bar's label, e.g. `Gaussian curvature`.
+    pub label: String,
+    /// One value a grid point.
+    pub values: Vec<Option<f64>>,
 }
 
 impl SurfacePlot {
@@ -37,6 +52,7 @@ impl SurfacePlot {
             shaded: true,
             iso_lines: 8,
             axes: true,
+            colors: None,
         }
     }
 }
@@ -117,6 +133,34 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
         });
     let zspan = zhi - zlo;
     let height = |z: f64| if zspan > 0.0 { (z - zlo) / zspan } else { 0.5 };
+    // a colour field given for every grid point, and the range of its finite values
+    let field = opts
+        .colors
+        .as_ref()
+        .filter(|f| f.values.len() == nu * nv)
+        .map(|f| {
+            let (lo, hi) = f
+                .values
+                .iter()
+                .flatten()
+                .filter(|x| x.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(*x), b.max(*x))
+                });
+            (f, lo, hi)
+        });
+    let face_value = |i: usize, j: usize| -> Option<f64> {
+        let (f, _, _) = field?;
+        let mut sum = 0.0;
+        for (a, b) in [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)] {
+            let x = f.values[a * nv + b]?;
+            if !x.is_finite() {
+                return None;
+            }
+            sum += x;
+        }
+        Some(0.25 * sum)
+    };
     let [r, u, t] = proj.frame();
     let light = {
         let l = [
@@ -149,9 +193,16 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
                 1.0
             };
             let mean_z = 0.25 * (c[0][2] + c[1][2] + c[2][2] + c[3][2]);
-            let fill = fill_plain
-                .clone()
-                .unwrap_or_else(|| hex(height_rgb(height(mean_z)), 0.45 + 0.6 * lambert));
+            let shade = 0.45 + 0.6 * lambert;
+            let fill = match (&fill_plain, field) {
+                (Some(plain), _) => plain.clone(),
+                (None, Some((_, lo, hi))) => match face_value(i, j) {
+                    Some(x) if hi > lo => hex(height_rgb((x - lo) / (hi - lo)), shade),
+                    Some(_) => hex(height_rgb(0.5), shade),
+                    None => hex([190.0, 190.0, 190.0], shade),
+                },
+                (None, None) => hex(height_rgb(height(mean_z)), shade),
+            };
             let p: Vec<[f64; 2]> = c.iter().map(|q| proj.project(*q)).collect();
             let mut edges = Vec::new();
             if iso_u[i] {
@@ -187,11 +238,20 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
         axes_3d(&mut fig, proj, lo, hi);
     }
     fig.faces.extend(faces.into_iter().map(|(_, f)| f));
-    if opts.shaded && zspan > 0.0 {
-        fig.colorbar = Some(ColorBar {
-            label: "z".into(),
-            range: (zlo, zhi),
-        });
+    match field {
+        Some((f, lo, hi)) if opts.shaded && lo <= hi => {
+            fig.colorbar = Some(ColorBar {
+                label: f.label.clone(),
+                range: (lo, hi),
+            });
+        }
+        _ if opts.shaded && zspan > 0.0 => {
+            fig.colorbar = Some(ColorBar {
+                label: "z".into(),
+                range: (zlo, zhi),
+            });
+        }
+        _ => {}
     }
     if let Some(n) = net {
         let mut paths = Vec::with_capacity(n.nu + n.nv);

@@ -858,7 +858,15 @@ impl Figure {
 fn colorbar_svg(s: &mut String, bar: &ColorBar, x: f64, top: f64, height: f64) {
     let (lo, hi) = bar.range;
     let steps = 48;
-    let _ = writeln!(s, r#"<g class="colorbar">"#);
+    // the range in full (shortest round-trip) precision for readers of the SVG; the ticks are
+    // rounded for the eye
+    let _ = writeln!(
+        s,
+        r#"<g class="colorbar" data-label="{}" data-range="{} {}">"#,
+        escape(&bar.label),
+        crate::fmt_number(lo),
+        crate::fmt_number(hi)
+    );
     for k in 0..steps {
         let a = f64::from(k) / f64::from(steps);
         let y = top + height * (1.0 - a - 1.0 / f64::from(steps));

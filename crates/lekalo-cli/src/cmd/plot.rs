@@ -6,12 +6,14 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::Args;
 use lekalo_io::{
-    basis_figure, curve_figure, CurvePlot, Figure, Object, Projection, Shape, SurfacePlot,
-    SURFACE_SAMPLES,
+    basis_figure, curve_figure, ColorField, CurvePlot, Figure, Object, Projection, Shape,
+    SurfacePlot, SURFACE_SAMPLES,
 };
 
 use crate::cmd::shapes;
-use crate::io::{bad_input, emit, format_of, in_range, load, load_one, not_a_curve, Loaded};
+use crate::io::{
+    bad_input, emit, format_of, in_range, load, load_one, not_a_curve, BadInput, Loaded,
+};
 use crate::Verbosity;
 
 /// Arguments of `lekalo plot`.
@@ -29,6 +31,7 @@ Examples:
   lekalo plot surface.json -o surface.svg                  # shaded, 33 × 33 points, axes
   lekalo plot surface.json -o surface.png --net --iso 4     # with its control net
   lekalo plot surface.json -o surface.svg --wireframe --samples 20   # 20 × 20 hidden-line mesh
+  lekalo plot surface.json -o gauss.svg --curvature gaussian   # a curvature map
   lekalo plot spline.pp.json -o spline.png")]
 pub(crate) struct PlotArgs {
     /// Object file (JSON; `-` for standard input).
@@ -74,6 +77,10 @@ pub(crate) struct PlotArgs {
     /// Surfaces: draw the control net.
     #[arg(long)]
     net: bool,
+    /// Surfaces: colour the shaded surface by a curvature (3-D surfaces) instead of the height:
+    /// a curvature map with its colour bar.
+    #[arg(long, value_enum, value_name = "KIND")]
+    curvature: Option<CurvatureMap>,
     /// Surfaces: isoparametric lines drawn on the shaded surface, per direction (0: none).
     #[arg(long, default_value_t = 8, value_name = "N")]
     iso: usize,
@@ -89,6 +96,31 @@ pub(crate) struct PlotArgs {
     /// PNG scale factor (1 = 640 × 420 pixels).
     #[arg(long, default_value_t = 2.0)]
     scale: f32,
+}
+
+/// The curvature a surface plot is coloured by (`--curvature`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum CurvatureMap {
+    /// Gaussian curvature K = κ₁κ₂.
+    Gaussian,
+    /// Mean curvature H = (κ₁ + κ₂)/2.
+    Mean,
+    /// The larger principal curvature κ₁.
+    K1,
+    /// The smaller principal curvature κ₂.
+    K2,
+}
+
+impl CurvatureMap {
+    /// The column of `eval --curvature` and the colour bar's label.
+    fn column_and_label(self) -> (&'static str, &'static str) {
+        match self {
+            CurvatureMap::Gaussian => ("gaussian", "Gaussian curvature"),
+            CurvatureMap::Mean => ("mean", "mean curvature"),
+            CurvatureMap::K1 => ("k1", "principal curvature k1"),
+            CurvatureMap::K2 => ("k2", "principal curvature k2"),
+        }
+    }
 }
 
 /// Evaluation points along a curve, a basis function or a pp-form by default.
@@ -150,6 +182,44 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
 /// Most samples along a plotted curve (far more than a picture can show).
 const PLOT_SAMPLES: usize = 1_000_000;
 
+/// The curvature `kind` at the plot's `side × side` grid points: the `eval --curvature` column
+/// of the library's curvatures (`lekalo::surface_curvature`), undefined where the normal is.
+fn curvature_field(
+    s: &lekalo_io::Surface,
+    side: usize,
+    kind: CurvatureMap,
+    a: &PlotArgs,
+) -> Result<ColorField> {
+    if a.wireframe {
+        return bad_input("--curvature colours the shaded surface; it cannot go with --wireframe");
+    }
+    if s.dim() != 3 {
+        return bad_input(format!(
+            "--curvature needs a surface in 3-D; {} is a {}-D {}",
+            a.input.display(),
+            s.dim(),
+            s.display_name()
+        ));
+    }
+    let spec = lekalo_io::SurfaceSampleSpec {
+        derivatives: 0,
+        normals: false,
+        curvature: true,
+    };
+    let table = lekalo_io::surface_sample_table(s, &s.grid_parameters(side, side), spec)
+        .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
+    let (column, label) = kind.column_and_label();
+    let at = table
+        .header
+        .iter()
+        .position(|h| h == column)
+        .ok_or_else(|| BadInput(format!("no {column} column in the curvature table")))?;
+    Ok(ColorField {
+        label: label.to_string(),
+        values: table.rows.iter().map(|r| r[at]).collect(),
+    })
+}
+
 /// `Err(BadInput)` unless the view angles are finite numbers.
 fn check_view(a: &PlotArgs) -> Result<()> {
     for (name, v) in [("--azimuth", a.azimuth), ("--elevation", a.elevation)] {
@@ -176,26 +246,41 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                         shape.type_name()
                     ))
                 }
-                Shape::Surface(s) => shapes::surface_figure(
-                    s,
-                    in_range(
+                Shape::Surface(s) => {
+                    let side = in_range(
                         a.samples.unwrap_or(SURFACE_SAMPLES),
                         2,
                         1000,
                         "--samples (per direction of a surface)",
-                    )?,
-                    a.net,
-                    &SurfacePlot {
-                        title: a.title.as_deref().unwrap_or(s.display_name()).to_string(),
-                        projection: Projection {
-                            azimuth: a.azimuth,
-                            elevation: a.elevation,
+                    )?;
+                    let colors = match a.curvature {
+                        Some(kind) => Some(curvature_field(s, side, kind, a)?),
+                        None => None,
+                    };
+                    shapes::surface_figure(
+                        s,
+                        side,
+                        a.net,
+                        &SurfacePlot {
+                            title: a.title.as_deref().unwrap_or(s.display_name()).to_string(),
+                            projection: Projection {
+                                azimuth: a.azimuth,
+                                elevation: a.elevation,
+                            },
+                            shaded: !a.wireframe,
+                            iso_lines: a.iso,
+                            axes: true,
+                            colors,
                         },
-                        shaded: !a.wireframe,
-                        iso_lines: a.iso,
-                        axes: true,
-                    },
-                )?,
+                    )?
+                }
+                _ if a.curvature.is_some() => {
+                    return bad_input(format!(
+                        "--curvature colours a surface; {} is a {} (a curve's curvature: --comb)",
+                        a.input.display(),
+                        shape.type_name()
+                    ))
+                }
                 Shape::Pp(p) => shapes::pp_figure(
                     p,
                     in_range(
@@ -218,6 +303,12 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         }
         Loaded::Many(_) => return load_one(&a.input, v).map(|_| ()),
     };
+    if a.curvature.is_some() {
+        return bad_input(format!(
+            "--curvature colours a surface; {} is a curve (its curvature: --comb)",
+            a.input.display()
+        ));
+    }
     let mut inputs = vec![a.input.clone()];
     let data = match &a.points {
         Some(p) => {
