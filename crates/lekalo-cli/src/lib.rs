@@ -106,7 +106,8 @@ enum Command {
     /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
     /// surfaces through grids and scattered data.
     Fit(cmd::fit::FitArgs),
-    /// Length, parameter at length, exact bounding box and curvature extrema of a curve.
+    /// Length, parameter at length, exact bounding box, curvature extrema and inflections of a
+    /// curve; the exact bounding box of a surface.
     Measure(cmd::measure::MeasureArgs),
     /// Closest points on a curve or a surface (single points or batches).
     Project(cmd::project::ProjectArgs),

@@ -60,6 +60,56 @@ fn measure_length_and_inverse() {
         .stderr(contains("arc length"));
 }
 
+/// An S-shaped cubic: x = 3t, y = 3t(1 − t)(1 − 2t), whose `C' × C'' = 3y''` changes sign at
+/// t = 1/2 only.
+const S_CURVE: &str =
+    r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1], [2, -1], [3, 0]]}"#;
+
+#[test]
+fn measure_reports_the_inflections_of_planar_curves() {
+    let d = dir_with(&[
+        ("s.json", S_CURVE),
+        ("parabola.json", PARABOLA),
+        ("space.json", SPACE),
+    ]);
+    let json = |name: &str| -> serde_json::Value {
+        let out = lekalo()
+            .args(["measure", "--json"])
+            .arg(p(&d, name))
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let t: Vec<f64> = json("s.json")["inflections"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(t.len(), 1, "{t:?}");
+    assert!((t[0] - 0.5).abs() < 1e-12, "{t:?}");
+    assert_eq!(json("parabola.json")["inflections"], serde_json::json!([]));
+    // a space curve has no signed curvature: no inflections key
+    assert!(json("space.json").get("inflections").is_none());
+    lekalo()
+        .arg("measure")
+        .arg(p(&d, "s.json"))
+        .assert()
+        .success()
+        .stdout(contains("inflections at t = 0.5"));
+    lekalo()
+        .arg("measure")
+        .arg(p(&d, "parabola.json"))
+        .assert()
+        .success()
+        .stdout(contains("inflections none"));
+}
+
 #[test]
 fn measure_surface_box_is_the_surface_not_its_net() {
     // z = 4u(1 − u): the net reaches z = 2, the surface z = 1

@@ -1,5 +1,6 @@
-//! `lekalo measure`: length, parameters at lengths, exact bounding box and curvature extrema of a
-//! curve (the library's `QueryCurve`); the exact bounding box of a surface (`QuerySurface`).
+//! `lekalo measure`: length, parameters at lengths, exact bounding box, curvature extrema and
+//! (planar curves) inflections of a curve (the library's `QueryCurve`); the exact bounding box of
+//! a surface (`QuerySurface`).
 
 use std::path::{Path, PathBuf};
 
@@ -16,9 +17,10 @@ use crate::Verbosity;
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Prints the length (with its error estimate), the exact bounding box of the curve (not of its
-control points), its curvature extrema and, for --at-length or --lengths, the parameter at each
-length from the start. For a surface: its domain and exact bounding box (of the surface, to 1e-12
-of its size; lekalo::SURFACE_BOX_RTOL).
+control points), its curvature extrema, for a planar curve its inflections (where the signed
+curvature changes sign; none is missed), and, for --at-length or --lengths, the parameter at
+each length from the start. For a surface: its domain and exact bounding box (of the surface,
+each side within 1e-12 of its size of the true extreme).
 
 Examples:
   lekalo measure curve.json
@@ -103,8 +105,14 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
     let params = table.param_at_batch(&lengths).map_err(bad)?;
     let (lo, hi) = q.bounding_box();
     let ext = q.curvature_extrema().map_err(bad)?;
+    // inflections: planar curves only (where the signed curvature C' × C'' changes sign)
+    let inflections = if q.dim() == 2 {
+        Some(q.inflections().map_err(bad)?)
+    } else {
+        None
+    };
     let text = if a.json {
-        let j = json!({
+        let mut j = json!({
             "length": table.total(),
             "error_estimate": table.error_estimate(),
             "domain": [q.domain().0, q.domain().1],
@@ -115,6 +123,9 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
             "at_length": lengths.iter().zip(&params)
                 .map(|(l, t)| json!({"length": l, "t": t})).collect::<Vec<_>>(),
         });
+        if let Some(t) = &inflections {
+            j["inflections"] = json!(t);
+        }
         format!("{j:#}\n")
     } else {
         let mut s = format!(
@@ -133,6 +144,14 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
                 e.curvature,
                 e.t
             ));
+        }
+        if let Some(t) = &inflections {
+            let list: Vec<String> = t.iter().map(|x| lekalo_io::fmt_number(*x)).collect();
+            s.push_str(&if list.is_empty() {
+                "inflections none\n".to_string()
+            } else {
+                format!("inflections at t = {}\n", list.join(", "))
+            });
         }
         if !lengths.is_empty() {
             s.push_str("length,t\n");
