@@ -436,3 +436,61 @@ fn offset_refuses_bad_input() {
             .stderr(contains(says));
     }
 }
+
+/// The twisted cubic (t, t², t³) on [0, 1]: torsion 3 / (9t⁴ + 9t² + 1).
+const TWISTED: &str = r#"{"lekalo": 1, "type": "bezier_curve",
+ "control": [[0, 0, 0], [0.3333333333333333, 0, 0], [0.6666666666666666, 0.3333333333333333, 0], [1, 1, 1]]}"#;
+
+#[test]
+fn eval_torsion_of_a_space_curve_and_refusals() {
+    let d = dir_with(&[
+        ("twisted.json", TWISTED),
+        ("parabola.json", PARABOLA),
+        ("surface.json", SURFACE),
+        ("space_line.json", SPACE),
+    ]);
+    let out = lekalo()
+        .args(["eval", "--at", "0,0.5,1", "--torsion", "--json"])
+        .arg(p(&d, "twisted.json"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for (row, t) in j.as_array().unwrap().iter().zip([0.0f64, 0.5, 1.0]) {
+        let exact = 3.0 / (9.0 * t.powi(4) + 9.0 * t * t + 1.0);
+        let tau = row["torsion"].as_f64().unwrap();
+        assert!((tau - exact).abs() < 1e-12, "τ({t}) = {tau}, exact {exact}");
+    }
+    // CSV: the column is last, after the curvature
+    lekalo()
+        .args(["eval", "--at", "0", "--curvature", "--torsion"])
+        .arg(p(&d, "twisted.json"))
+        .assert()
+        .success()
+        .stdout(contains("t,x,y,z,curvature,torsion\n0,0,0,0,2,3\n"));
+    // a straight line has no osculating plane: the field is empty, not a number
+    lekalo()
+        .args(["eval", "--at", "0.5", "--torsion"])
+        .arg(p(&d, "space_line.json"))
+        .assert()
+        .success()
+        .stdout("t,x,y,z,torsion\n0.5,0.5,0.5,0.5,\n");
+    // a planar curve and a surface are refused, saying what to do
+    lekalo()
+        .args(["eval", "--at", "0.5", "--torsion"])
+        .arg(p(&d, "parabola.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("needs a 3-D curve and this one is 2-D"))
+        .stderr(contains("drop --torsion"));
+    lekalo()
+        .args(["eval", "--torsion"])
+        .arg(p(&d, "surface.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("--torsion is for 3-D curves"));
+}

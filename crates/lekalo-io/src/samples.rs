@@ -1,10 +1,11 @@
-//! Tables of samples of a curve: parameter, point, derivatives, curvature; written as CSV or
-//! JSON.
+//! Tables of samples of a curve: parameter, point, derivatives, curvature, torsion; written as
+//! CSV or JSON.
 
 use serde_json::{Map, Value};
 
 use crate::analysis::curvature;
 use crate::object::Object;
+use lekalo::torsion;
 
 /// From this many parameters on, a sample table is evaluated on all cores.
 const PARALLEL_ROWS: usize = 4096;
@@ -19,13 +20,16 @@ pub struct SampleSpec {
     pub derivatives: usize,
     /// Add the curvature column (needs derivatives up to order 2, computed internally).
     pub curvature: bool,
+    /// Add the torsion column ([`lekalo::torsion`]; 3-D curves only, derivatives up to order 3
+    /// computed internally).
+    pub torsion: bool,
 }
 
 /// A table of samples: column names and rows of numbers (`None` where undefined, e.g. the
-/// curvature where `C' = 0`).
+/// curvature where `C' = 0`, the torsion where the curvature is zero).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SampleTable {
-    /// Column names: `t`, `x`, `y`, …, `d1x`, …, `curvature`.
+    /// Column names: `t`, `x`, `y`, …, `d1x`, …, `curvature`, `torsion`.
     pub header: Vec<String>,
     /// One row per parameter.
     pub rows: Vec<Vec<Option<f64>>>,
@@ -46,9 +50,17 @@ pub(crate) fn coord_names(dim: usize) -> Vec<String> {
 /// Evaluates `obj` at every parameter of `ts`.
 ///
 /// # Errors
-/// [`lekalo::Error::ParameterOutOfDomain`] for a parameter outside the domain.
+/// [`lekalo::Error::ParameterOutOfDomain`] for a parameter outside the domain;
+/// [`lekalo::Error::Dimension`] for the torsion of a curve that is not 3-D.
 pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Result<SampleTable> {
     let dim = obj.dim();
+    if spec.torsion && dim != 3 {
+        return Err(lekalo::Error::Dimension {
+            what: "curve for torsion",
+            expected: 3,
+            got: dim,
+        });
+    }
     let names = coord_names(dim);
     let mut header = vec!["t".to_string()];
     header.extend(names.iter().cloned());
@@ -58,20 +70,28 @@ pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Resul
     if spec.curvature {
         header.push("curvature".into());
     }
-    let order = if spec.curvature {
+    if spec.torsion {
+        header.push("torsion".into());
+    }
+    let order = if spec.torsion {
+        spec.derivatives.max(3)
+    } else if spec.curvature {
         spec.derivatives.max(2)
     } else {
         spec.derivatives
     };
     let row = |t: f64| -> lekalo::Result<Vec<Option<f64>>> {
         let d = obj.derivatives(t, order)?;
-        let mut row = Vec::with_capacity(1 + (spec.derivatives + 1) * dim + 1);
+        let mut row = Vec::with_capacity(1 + (spec.derivatives + 1) * dim + 2);
         row.push(Some(t));
         for k in 0..=spec.derivatives {
             row.extend(d.point(k).iter().map(|v| Some(*v)));
         }
         if spec.curvature {
             row.push(curvature(d.point(1), d.point(2)));
+        }
+        if spec.torsion {
+            row.push(torsion(d.point(1), d.point(2), d.point(3)));
         }
         Ok(row)
     };
@@ -176,6 +196,7 @@ mod tests {
         let spec = SampleSpec {
             derivatives: 1,
             curvature: true,
+            torsion: false,
         };
         let t = sample_table(&c, &[1.0, 1.5], spec).unwrap();
         assert_eq!(t.header, ["t", "x", "y", "d1x", "d1y", "curvature"]);
@@ -193,5 +214,71 @@ mod tests {
         assert_eq!(j[1]["x"], Value::from(2.125));
         assert!(sample_table(&c, &[2.5], spec).is_err());
         assert_eq!(coord_names(4), ["x1", "x2", "x3", "x4"]);
+    }
+    #[test]
+    fn torsion_column_matches_the_query_curve_and_needs_3d() {
+        // a cubic that leaves its osculating plane: C(t) = (t, t², t³) on [0, 1] as a Bezier
+        // curve, τ(t) = 3 / (9t⁴ + 9t² + 1)
+        let ctrl = Points::new(
+            vec![
+                0.0,
+                0.0,
+                0.0, //
+                1.0 / 3.0,
+                0.0,
+                0.0, //
+                2.0 / 3.0,
+                1.0 / 3.0,
+                0.0, //
+                1.0,
+                1.0,
+                1.0,
+            ],
+            3,
+        )
+        .unwrap();
+        let c = Object::BSpline(
+            BSplineCurve::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0], ctrl).unwrap(),
+        );
+        let spec = SampleSpec {
+            derivatives: 0,
+            curvature: true,
+            torsion: true,
+        };
+        let ts = [0.0, 0.25, 0.5, 1.0];
+        let table = sample_table(&c, &ts, spec).unwrap();
+        assert_eq!(table.header, ["t", "x", "y", "z", "curvature", "torsion"]);
+        for (row, &t) in table.rows.iter().zip(&ts) {
+            let exact = 3.0 / (9.0 * t.powi(4) + 9.0 * t * t + 1.0);
+            let tau = row[5].unwrap();
+            assert!(
+                (tau - exact).abs() < 1e-13 * exact.max(1.0),
+                "τ({t}) = {tau} vs {exact}"
+            );
+        }
+        // a 2-D curve has no torsion: a precise error, not a column of blanks
+        let flat = Object::BSpline(
+            BSplineCurve::new(
+                1,
+                vec![0.0, 0.0, 1.0, 1.0],
+                Points::from_2d(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
+            )
+            .unwrap(),
+        );
+        let err = sample_table(&flat, &[0.5], spec).unwrap_err();
+        assert!(err.to_string().contains("torsion"), "{err}");
+        // a straight 3-D line: curvature 0, torsion undefined
+        let line = Object::BSpline(
+            BSplineCurve::new(
+                1,
+                vec![0.0, 0.0, 1.0, 1.0],
+                Points::new(vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0], 3).unwrap(),
+            )
+            .unwrap(),
+        );
+        let t = sample_table(&line, &[0.5], spec).unwrap();
+        assert_eq!(t.rows[0][4], Some(0.0));
+        assert_eq!(t.rows[0][5], None);
+        assert!(t.to_csv().ends_with(",0,\n"), "{}", t.to_csv());
     }
 }

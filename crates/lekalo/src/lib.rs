@@ -65,8 +65,8 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, BSplineCurve, BezierCurve, BezierSegment, CurveEvaluator, EvalKernel, NurbsCurve,
-    NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
+    curvature, torsion, BSplineCurve, BezierCurve, BezierSegment, CurveEvaluator, EvalKernel,
+    NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --

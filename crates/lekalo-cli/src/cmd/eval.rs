@@ -1,4 +1,5 @@
-//! `lekalo eval`: points, derivatives and curvature at parameters or on a uniform sampling.
+//! `lekalo eval`: points, derivatives, curvature and torsion at parameters or on a uniform
+//! sampling.
 
 use std::path::PathBuf;
 
@@ -19,13 +20,14 @@ use crate::Verbosity;
 #[command(after_help = "\
 Without --at, the curve is sampled at --samples parameters spread evenly over its domain.
 Output columns: t, the point (x, y, z or x1 … xd), derivatives d1x, d1y, … up to
---derivatives, and curvature. A JSON Lines input (.jsonl, or --jsonl) is evaluated in
+--derivatives, curvature and, for a 3-D curve, torsion. A JSON Lines input (.jsonl, or --jsonl) is evaluated in
 parallel and gives one JSON line per object with the fields line, columns and rows (a bad
 line gives line and error instead, is reported on stderr, and the exit code is 2).
 
 Examples:
   lekalo eval curve.json --at 1,1.5,2
   lekalo eval curve.json --samples 5 --derivatives 2 --curvature -o samples.csv
+  lekalo eval helix.json --samples 50 --curvature --torsion
   lekalo eval curve.json --at 0.5 --format json
   lekalo eval curve.json --samples 3 --json
   lekalo eval curve.json --samples 1000 -o samples.npy   # NumPy: np.load('samples.npy')
@@ -54,6 +56,10 @@ pub(crate) struct EvalArgs {
     /// Output the curvature |C' × C''| / |C'|³.
     #[arg(long)]
     curvature: bool,
+    /// Output the torsion (C' × C'')·C''' / |C' × C''|² of a 3-D curve (empty where the
+    /// curvature is zero).
+    #[arg(long)]
+    torsion: bool,
     /// Output format: csv, json or npy (a NumPy float64 array, one row per sample, the CSV's
     /// columns) (default: from the output's extension, else csv).
     #[arg(long)]
@@ -110,6 +116,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
     let spec = SampleSpec {
         derivatives: a.derivatives,
         curvature: a.curvature,
+        torsion: a.torsion,
     };
     let inputs = vec![a.input.clone()];
     check_derivatives(a)?;
@@ -118,6 +125,9 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         return crate::cmd::parquet_batch::eval(&a.input, a.output.as_deref(), &params, spec, v);
     }
     match load(&a.input, a.jsonl, v)? {
+        Loaded::Other(lekalo_io::Shape::Surface(_)) if a.torsion => bad_input(
+            "--torsion is for 3-D curves; a surface's principal, Gaussian and mean curvatures come with --curvature",
+        ),
         Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {
                 input: &a.input,
@@ -140,6 +150,11 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         {
             bad_input("--uv, --uv-file, --grid and --normals are for surfaces; a curve takes --at or --samples")
         }
+        Loaded::One(obj) if a.torsion && obj.dim() != 3 => bad_input(format!(
+            "{}: --torsion needs a 3-D curve and this one is {}-D (a planar curve's torsion is zero everywhere); drop --torsion",
+            a.input.display(),
+            obj.dim()
+        )),
         Loaded::One(obj) => {
             let ts = parameters(a, &obj)?;
             let fmt = if a.json {

@@ -165,7 +165,7 @@ pub(crate) fn eval(
         |writer| {
             lekalo_io::read_curve_groups(input, Some(key), |curves| {
                 total += curves.len();
-                if spec.derivatives == 0 && !spec.curvature {
+                if spec.derivatives == 0 && !spec.curvature && !spec.torsion {
                     return point_samples(curves, input, params, writer, &mut header, &mut failed)
                         .map_err(write_error(out));
                 }

@@ -26,6 +26,34 @@ pub fn curvature(d1: &[f64], d2: &[f64]) -> Option<f64> {
     Some(cross2.sqrt() / (aa * aa.sqrt()))
 }
 
+/// Torsion `τ = (C' × C'')·C''' / |C' × C''|²` of a 3-D curve from its first three derivatives
+/// (do Carmo, *Differential Geometry of Curves and Surfaces*, §1-5; `docs/theory/queries.md#curvature`): the rate at which the
+/// osculating plane turns, positive for a right-handed helix. It does not depend on the
+/// parametrisation. `None` where the curvature is zero (`C' × C'' = 0`: no osculating plane) or
+/// unless all three slices have length 3.
+///
+/// ```
+/// use lekalo::torsion;
+/// // helix (cos t, sin t, t): τ = 1/2
+/// let (d1, d2, d3) = ([0.0, 1.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]);
+/// assert!((torsion(&d1, &d2, &d3).unwrap() - 0.5).abs() < 1e-15);
+/// // a planar curve has none; a straight line has no osculating plane
+/// assert_eq!(torsion(&[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], &[1.0, 1.0, 0.0]), Some(0.0));
+/// assert_eq!(torsion(&[1.0, 0.0, 0.0], &[2.0, 0.0, 0.0], &[0.0, 0.0, 1.0]), None);
+/// ```
+#[must_use]
+pub fn torsion(d1: &[f64], d2: &[f64], d3: &[f64]) -> Option<f64> {
+    let (&[a0, a1, a2], &[b0, b1, b2], &[c0, c1, c2]) = (d1, d2, d3) else {
+        return None;
+    };
+    let x = [a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0];
+    let xx = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    if !(xx > 0.0 && xx.is_finite()) {
+        return None;
+    }
+    Some((x[0] * c0 + x[1] * c1 + x[2] * c2) / xx)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -41,5 +69,28 @@ mod tests {
         assert_eq!(curvature(&[1.0], &[1.0, 2.0]), None);
         // a straight line has zero curvature
         assert_eq!(curvature(&[1.0, 1.0], &[2.0, 2.0]), Some(0.0));
+    }
+
+    #[test]
+    fn helix_torsion_and_its_sign() {
+        // helix (a cos t, a sin t, b t): τ = b / (a² + b²), negative when mirrored
+        let (a, b, t): (f64, f64, f64) = (3.0, 4.0, 0.7);
+        let d1 = [-a * t.sin(), a * t.cos(), b];
+        let d2 = [-a * t.cos(), -a * t.sin(), 0.0];
+        let d3 = [a * t.sin(), -a * t.cos(), 0.0];
+        let tau = torsion(&d1, &d2, &d3).unwrap();
+        assert!((tau - b / (a * a + b * b)).abs() < 1e-15, "τ = {tau}");
+        let mirrored = |v: [f64; 3]| [v[0], v[1], -v[2]];
+        let tau_m = torsion(&mirrored(d1), &mirrored(d2), &mirrored(d3)).unwrap();
+        assert!(
+            (tau_m + b / (a * a + b * b)).abs() < 1e-15,
+            "mirror τ = {tau_m}"
+        );
+        // independent of the parametrisation: t = 2s scales C^(k) by 2^k
+        let sc = |v: [f64; 3], f: f64| v.map(|x| x * f);
+        let tau_s = torsion(&sc(d1, 2.0), &sc(d2, 4.0), &sc(d3, 8.0)).unwrap();
+        assert!((tau_s - tau).abs() < 1e-15);
+        // not 3-D
+        assert_eq!(torsion(&[1.0, 0.0], &[0.0, 1.0], &[0.0, 0.0]), None);
     }
 }

@@ -156,18 +156,7 @@ impl QueryCurve {
         self.check_t(t)?;
         let k = self.piece_of(t);
         let [_, a, b, c] = self.ders3(k, self.local(k, t));
-        let x = [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ];
-        let xx = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-        if !(xx > 0.0) {
-            return Ok(None);
-        }
-        Ok(Some(
-            (x[0] * c[0] + x[1] * c[1] + x[2] * c[2]) / xx / self.scale,
-        ))
+        Ok(crate::curve::torsion(&a, &b, &c).map(|tau| tau / self.scale))
     }
 
     fn coord_polys(&self, k: usize) -> (Vec<Bern>, Option<Bern>) {
