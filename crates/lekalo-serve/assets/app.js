@@ -263,11 +263,18 @@ function draw(answer) {
   drawKnots(v, m === 'quasi' ? (p, t) => [t, p[0]] : (p) => p);
   drawPoints();
   drawRuler(v);
-  drawBasis(v.basis, v.domain);
+  drawBasis(v.basis, v.domain, v);
   drawInfo(answer);
 }
 
+// What the grid, the ruler and the basis panel were last drawn from: while it is unchanged
+// (a control point dragged moves neither the knots nor the view) they are left as they are.
+const drawnFrom = { grid: null, ruler: null, basis: null };
+
 function drawGrid() {
+  const key = [world.x0, world.x1, world.y0, world.y1].join(',');
+  if (drawnFrom.grid === key) return;
+  drawnFrom.grid = key;
   const g = $('grid');
   g.textContent = '';
   const step = niceStep((world.x1 - world.x0) / 10);
@@ -304,11 +311,14 @@ function drawComb(v, pts) {
 
 function drawKnots(v, map) {
   const g = $('knot-marks');
-  g.textContent = '';
-  for (const k of v.knot_marks) {
+  // the marks are moved, and only added or removed when their number changes
+  while (g.children.length > v.knot_marks.length) g.lastChild.remove();
+  while (g.children.length < v.knot_marks.length) el('rect', { width: 6, height: 6, class: 'knot' }, g);
+  v.knot_marks.forEach((k, i) => {
     const p = map(k.point, k.t);
-    el('rect', { x: sx(p[0]) - 3, y: sy(p[1]) - 3, width: 6, height: 6, class: 'knot' }, g);
-  }
+    g.children[i].setAttribute('x', sx(p[0]) - 3);
+    g.children[i].setAttribute('y', sy(p[1]) - 3);
+  });
 }
 
 // the editable points of the current mode
@@ -377,15 +387,19 @@ function drawPoints() {
 const HANDLE = 0.25;
 
 function drawRuler(v) {
+  const editableKnots = state.mode === 'bspline';
+  const key = [editableKnots, v.degree, v.domain.join(','), v.knots.join(',')].join('|');
+  if (drawnFrom.ruler === key) return;
+  drawnFrom.ruler = key;
   const g = $('ruler-knots');
   g.textContent = '';
   const [a, b] = v.domain;
   const rx = (t) => 20 + (t - a) / (b - a || 1) * 760;
-  const editableKnots = state.mode === 'bspline';
   let index = 0;
+  let mult = 0; // copies of this knot before it (the knots are sorted)
   v.knots.forEach((t, i) => {
     const interior = i > v.degree && i < v.knots.length - v.degree - 1;
-    const mult = v.knots.slice(0, i).filter((u) => u === t).length;
+    mult = i > 0 && v.knots[i - 1] === t ? mult + 1 : 0;
     const m = el('rect', { x: rx(t) - 4, y: 14 - mult * 7, width: 8, height: 6,
       class: 'ruler-knot' + (interior && editableKnots ? ' movable' : ''), 'data-knot': i }, g);
     if (interior && editableKnots) m.addEventListener('pointerdown', (e) => startDrag(e, { kind: 'knot', index: i, rx, a, b }));
@@ -397,7 +411,11 @@ function drawRuler(v) {
 
 const BASIS_COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22', '#17becf'];
 
-function drawBasis(basis, domain) {
+function drawBasis(basis, domain, v) {
+  // the functions depend on the knots, the degree and the sampling; their colours on `active`
+  const key = basis ? [v.degree, domain.join(','), v.knots.join(','), basis.t.length, basis.active.join(',')].join('|') : '';
+  if (drawnFrom.basis === key) return;
+  drawnFrom.basis = key;
   const g = $('basis-paths');
   g.textContent = '';
   if (!basis) return;
@@ -447,6 +465,7 @@ function drawError(answer) {
   answer.error.forEach((e, i) => { d += (i ? 'L' : 'M') + bx(answer.t[i]).toFixed(2) + ' ' + (80 - e / emax * 70).toFixed(2); });
   el('path', { d, class: 'error-plot', id: 'error-path' }, g);
   el('text', { x: 24, y: 14, class: 'ruler-label' }, g).textContent = `f − q (scaled to ±${emax.toExponential(2)})`;
+  drawnFrom.basis = null; // the panel now holds more than the basis: drawn anew next time
 }
 
 // ---------- errors next to controls ----------

@@ -1,6 +1,11 @@
-//! Round-trip latency of the editor's heaviest frequent request on loopback: interpolate 100
-//! points, answer 1,000 samples of the curve and the basis panel (300 samples per function and
-//! the functions active at a parameter), about 110 kB of JSON.
+//! Round-trip latency of the editor's requests on loopback, two workloads:
+//!
+//! - the edit of a drag: `POST /api/bspline` with the 200 control points of a cubic B-spline,
+//!   one of them moved a little each request, answered with 400 samples and the basis panel
+//!   (300 samples per function), as the editor sends on every pointer move (about 60 kB of
+//!   JSON);
+//! - the heaviest frequent request: interpolate 100 points, answer 1,000 samples of the curve
+//!   and the basis panel with the functions active at a parameter (about 110 kB).
 //!
 //! The client is the smallest HTTP/1.1 client on tokio's sockets: keep-alive connections, a
 //! request written in one piece, the answer read by its `Content-Length` (axum answers JSON with
@@ -10,8 +15,8 @@
 //! hide the server's. The server is `lekalo serve`
 //! at `LEKALO_URL` when that is set (`bench/serve/run.sh` starts the release binary), otherwise
 //! the same router in this process on a free port with the server's two worker threads.
-//! Printed: p50/p90/p99/max of the round trip on one connection, the same with `CLIENTS`
-//! connections at once, the handler alone (no socket), and the load average beside them.
+//! Printed for each workload: p50/p90/p99/max of the round trip on one connection, the same
+//! with `CLIENTS` connections at once, the handler alone (no socket), and the load average.
 //!
 //! Usage: `cargo bench -p lekalo-serve --bench roundtrip [-- N]` (N requests, default 2000).
 
@@ -27,16 +32,84 @@ use tower::ServiceExt;
 /// Connections of the concurrent run.
 const CLIENTS: usize = 4;
 
-fn body(i: usize) -> String {
+/// Distinct request bodies of a workload, sent in turn.
+const BODIES: usize = 97;
+
+/// One kind of request: its route, its bodies and what its first answer must hold.
+struct Workload {
+    name: &'static str,
+    path: &'static str,
+    bodies: Vec<String>,
+    check: fn(&serde_json::Value),
+}
+
+fn k_f64(k: usize) -> f64 {
+    f64::from(u32::try_from(k).unwrap_or(0))
+}
+
+/// The drag: point 100 of a 200-point cubic B-spline (the curve of `bench/serve/fps.mjs`)
+/// moved along a small loop, with the editor's view options.
+fn drag() -> Workload {
+    let bodies = (0..BODIES)
+        .map(|i| {
+            let mut control: Vec<[f64; 2]> = (0..200)
+                .map(|k| {
+                    let x = k_f64(k);
+                    [0.5 + 9.0 * x / 199.0, 3.0 + 2.0 * (x / 7.0).sin()]
+                })
+                .collect();
+            let s = k_f64(i);
+            control[100][0] += 0.5 * (s / 20.0).sin();
+            control[100][1] += 0.4 * (s / 15.0).cos();
+            serde_json::json!({"control": control, "degree": 3, "samples": 400,
+                "comb": false, "basis_samples": 300})
+            .to_string()
+        })
+        .collect();
+    Workload {
+        name: "drag edit (bspline, 200 control points, 400 samples + basis panel)",
+        path: "/api/bspline",
+        bodies,
+        check: |v| {
+            assert_eq!(
+                v["points"].as_array().map(Vec::len),
+                Some(400),
+                "400 samples"
+            );
+            assert_eq!(v["control"].as_array().map(Vec::len), Some(200), "control");
+            assert!(v["basis"]["functions"].is_array(), "the basis panel");
+        },
+    }
+}
+
+/// Interpolation of 100 points with 1,000 samples and the basis panel.
+fn interpolate() -> Workload {
     let points: Vec<[f64; 2]> = (0..100)
         .map(|k| {
-            let x = f64::from(u32::try_from(k).unwrap_or(0)) / 10.0;
+            let x = k_f64(k) / 10.0;
             [x, x.sin() + 0.1 * (10.0 * x).cos()]
         })
         .collect();
-    serde_json::json!({"points": points, "degree": 3, "parametrization": "centripetal",
-        "samples": 1000, "basis_samples": 300, "at": (i % 97) as f64 / 97.0})
-    .to_string()
+    let bodies = (0..BODIES)
+        .map(|i| {
+            serde_json::json!({"points": points, "degree": 3, "parametrization": "centripetal",
+                "samples": 1000, "basis_samples": 300, "at": k_f64(i) / 97.0})
+            .to_string()
+        })
+        .collect();
+    Workload {
+        name: "interpolate 100 points (1,000 samples + basis panel)",
+        path: "/api/interpolate",
+        bodies,
+        check: |v| {
+            assert_eq!(
+                v["points"].as_array().map(Vec::len),
+                Some(1000),
+                "1,000 samples"
+            );
+            assert!(v["basis"]["functions"].is_array(), "the basis panel");
+        },
+    }
 }
 
 fn quantiles(what: &str, mut times: Vec<Duration>) {
@@ -95,19 +168,26 @@ async fn read_answer(
     status
 }
 
-/// One keep-alive connection: `n` requests one after the other, each timed from the first
-/// byte sent to the last byte of the answer read; the first answer's content is checked.
-async fn connection(addr: String, n: usize, offset: usize) -> Vec<Duration> {
+/// One keep-alive connection: `n` requests of `w` one after the other, each timed from the
+/// first byte sent to the last byte of the answer read; the first answer's content is checked.
+async fn connection(
+    addr: String,
+    w: std::sync::Arc<Workload>,
+    n: usize,
+    offset: usize,
+) -> Vec<Duration> {
     let stream = tokio::net::TcpStream::connect(&addr)
         .await
         .expect("connect");
     stream.set_nodelay(true).expect("nodelay");
     let mut r = BufReader::with_capacity(1 << 18, stream);
-    let requests: Vec<Vec<u8>> = (0..97)
-        .map(|i| {
-            let b = body(i);
+    let requests: Vec<Vec<u8>> = w
+        .bodies
+        .iter()
+        .map(|b| {
             format!(
-                "POST /api/interpolate HTTP/1.1\r\nhost: {addr}\r\ncontent-type: application/json\r\ncontent-length: {}\r\n\r\n{b}",
+                "POST {} HTTP/1.1\r\nhost: {addr}\r\ncontent-type: application/json\r\ncontent-length: {}\r\n\r\n{b}",
+                w.path,
                 b.len()
             )
             .into_bytes()
@@ -118,20 +198,14 @@ async fn connection(addr: String, n: usize, offset: usize) -> Vec<Duration> {
     for i in 0..n {
         let t0 = Instant::now();
         r.get_mut()
-            .write_all(&requests[(i + offset) % 97])
+            .write_all(&requests[(i + offset) % requests.len()])
             .await
             .expect("send");
         let status = read_answer(&mut r, &mut line, &mut answer).await;
         times.push(t0.elapsed());
         assert_eq!(status, 200, "{}", String::from_utf8_lossy(&answer));
         if i == 0 {
-            let v: serde_json::Value = serde_json::from_slice(&answer).expect("json");
-            assert_eq!(
-                v["points"].as_array().map(Vec::len),
-                Some(1000),
-                "1,000 samples"
-            );
-            assert!(v["basis"]["functions"].is_array(), "the basis panel");
+            (w.check)(&serde_json::from_slice(&answer).expect("json"));
         }
     }
     times
@@ -170,33 +244,38 @@ fn main() {
         }
     };
     println!("server {addr}; load average before: {}", load_average());
-    client.block_on(async {
-        connection(addr.clone(), 200, 0).await; // warm-up
-        quantiles(
-            "round trip, one keep-alive connection",
-            connection(addr.clone(), n, 0).await,
-        );
-        let tasks: Vec<_> = (0..CLIENTS)
-            .map(|c| tokio::spawn(connection(addr.clone(), n / CLIENTS, c * 13)))
-            .collect();
-        let mut all = Vec::new();
-        for t in tasks {
-            all.extend(t.await.expect("client"));
-        }
-        quantiles(&format!("round trip, {CLIENTS} connections at once"), all);
-        // the handler alone: routing, parsing, interpolation, sampling, basis, JSON
-        let app = router(Limits::default());
-        let mut times = Vec::with_capacity(n);
-        for i in 0..n {
-            let req = Request::post("/api/interpolate")
-                .body(Body::from(body(i % 97)))
-                .expect("request");
-            let t0 = Instant::now();
-            let resp = app.clone().oneshot(req).await.expect("answer");
-            let _ = resp.into_body().collect().await.expect("body");
-            times.push(t0.elapsed());
-        }
-        quantiles("handler alone (no socket)", times);
-    });
-    println!("load average after: {}", load_average());
+    for w in [drag(), interpolate()] {
+        let w = std::sync::Arc::new(w);
+        let len = w.bodies.first().map_or(0, String::len);
+        println!("{} ({len} bytes a request):", w.name);
+        client.block_on(async {
+            connection(addr.clone(), w.clone(), 200, 0).await; // warm-up
+            quantiles(
+                "  round trip, one keep-alive connection",
+                connection(addr.clone(), w.clone(), n, 0).await,
+            );
+            let tasks: Vec<_> = (0..CLIENTS)
+                .map(|c| tokio::spawn(connection(addr.clone(), w.clone(), n / CLIENTS, c * 13)))
+                .collect();
+            let mut all = Vec::new();
+            for t in tasks {
+                all.extend(t.await.expect("client"));
+            }
+            quantiles(&format!("  round trip, {CLIENTS} connections at once"), all);
+            // the handler alone: routing, parsing, the library's construction, drawing, JSON
+            let app = router(Limits::default());
+            let mut times = Vec::with_capacity(n);
+            for i in 0..n {
+                let req = Request::post(w.path)
+                    .body(Body::from(w.bodies[i % w.bodies.len()].clone()))
+                    .expect("request");
+                let t0 = Instant::now();
+                let resp = app.clone().oneshot(req).await.expect("answer");
+                let _ = resp.into_body().collect().await.expect("body");
+                times.push(t0.elapsed());
+            }
+            quantiles("  handler alone (no socket)", times);
+        });
+        println!("load average after: {}", load_average());
+    }
 }

@@ -12,7 +12,6 @@
 use axum::body::Bytes;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
-use axum::Json;
 use lekalo::basis::basis_functions;
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
@@ -22,8 +21,9 @@ use lekalo::{
 use lekalo_io::{EndName, Object};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
-use serde_json::{json, Value};
+use serde_json::Value;
 
+use crate::answer::{answer, SMALL};
 use crate::error::{ApiError, ApiResult};
 
 /// Most samples of a curve or of the basis panel one request may ask for.
@@ -140,8 +140,9 @@ impl Default for ViewOptions {
 /// The drawing of a curve: everything the editor paints, computed by the library.
 #[derive(Debug, Clone, Serialize)]
 pub struct CurveView {
-    /// The curve in the CLI's object format.
-    pub curve: Value,
+    /// The curve in the CLI's object format (the text of [`Object::to_json_line`]).
+    #[serde(serialize_with = "crate::answer::object")]
+    pub curve: Object,
     /// Degree.
     pub degree: usize,
     /// Parameter domain `[a, b]`.
@@ -149,9 +150,11 @@ pub struct CurveView {
     /// Sample parameters.
     pub t: Vec<f64>,
     /// Points at `t` (rows).
-    pub points: Vec<Vec<f64>>,
+    #[serde(serialize_with = "crate::answer::rows")]
+    pub points: Points,
     /// Control points (rows).
-    pub control: Vec<Vec<f64>>,
+    #[serde(serialize_with = "crate::answer::rows")]
+    pub control: Points,
     /// Weights of a NURBS curve.
     pub weights: Option<Vec<f64>>,
     /// The full knot vector (Bezier curves: the equivalent clamped one on `[0, 1]`).
@@ -162,6 +165,35 @@ pub struct CurveView {
     pub comb: Option<Comb>,
     /// Basis functions, when asked.
     pub basis: Option<BasisView>,
+}
+
+impl CurveView {
+    /// Bytes to reserve for the view's JSON text: its numbers (an upper bound for most
+    /// curves; the buffer grows if a view needs more).
+    #[must_use]
+    pub fn size_hint(&self) -> usize {
+        use crate::answer::NUMBER_BYTES;
+        // the curve's text repeats the control points, knots and weights
+        let numbers = self.t.len()
+            + self.points.as_slice().len()
+            + 2 * (self.control.as_slice().len()
+                + self.weights.as_ref().map_or(0, Vec::len)
+                + self.knots.len())
+            + self.knot_marks.len() * (2 + self.points.dim())
+            + self
+                .comb
+                .as_ref()
+                .map_or(0, |c| c.curvature.len() * (1 + self.points.dim()))
+            + self.basis.as_ref().map_or(0, |b| {
+                b.t.len()
+                    + 2 * b.active.len()
+                    + b.functions
+                        .iter()
+                        .map(|f| 2 + f.values.len())
+                        .sum::<usize>()
+            });
+        numbers * NUMBER_BYTES + 512
+    }
 }
 
 /// A knot shown on the curve and on the ruler.
@@ -209,11 +241,6 @@ pub struct BasisFunction {
     pub values: Vec<f64>,
 }
 
-/// Rows of a [`Points`].
-fn rows(p: &Points) -> Vec<Vec<f64>> {
-    p.iter().map(<[f64]>::to_vec).collect()
-}
-
 /// The drawing of `obj` (see [`CurveView`]).
 ///
 /// # Errors
@@ -221,20 +248,25 @@ fn rows(p: &Points) -> Vec<Vec<f64>> {
 pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
     let n = check_samples(opt.samples, "samples")?;
     let t = obj.uniform_parameters(n);
-    let pts = obj.sample(n).map_err(|e| ApiError::lib("curve", &e))?;
+    let points = eval_batch(obj, &t)?;
     let knots = obj.knots();
     let (a, b) = obj.domain();
-    let mut knot_marks = Vec::new();
-    for (k, m) in knots.distinct() {
-        if k >= a && k <= b {
-            let point = obj.eval(k).map_err(|e| ApiError::lib("curve", &e))?;
-            knot_marks.push(KnotMark {
-                t: k,
-                multiplicity: m,
-                point,
-            });
-        }
-    }
+    let (marks, multiplicity): (Vec<f64>, Vec<usize>) = knots
+        .distinct()
+        .into_iter()
+        .filter(|&(k, _)| k >= a && k <= b)
+        .unzip();
+    let at_marks = eval_batch(obj, &marks)?;
+    let knot_marks = marks
+        .iter()
+        .zip(multiplicity)
+        .zip(at_marks.iter())
+        .map(|((&t, multiplicity), p)| KnotMark {
+            t,
+            multiplicity,
+            point: p.to_vec(),
+        })
+        .collect();
     let comb = if opt.comb {
         let mut curvature = Vec::with_capacity(n);
         let mut normal = Vec::with_capacity(n);
@@ -261,18 +293,28 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
         None => None,
     };
     Ok(CurveView {
-        curve: obj.to_json_value(),
+        curve: obj.clone(),
         degree: obj.degree(),
         domain: [a, b],
         t,
-        points: rows(&pts),
-        control: rows(&obj.control_points()),
+        points,
+        control: obj.control_points(),
         weights: obj.weights(),
-        knots: knots.as_slice().to_vec(),
+        knots: knots.into_vec(),
         knot_marks,
         comb,
         basis,
     })
+}
+
+/// The points of `obj` at the sorted parameters `ts`, by the library's batch evaluation (one
+/// span search moving forward, no allocation per point).
+fn eval_batch(obj: &Object, ts: &[f64]) -> ApiResult<Points> {
+    let dim = obj.dim();
+    let mut out = vec![0.0; ts.len() * dim];
+    obj.eval_batch(ts, &mut out)
+        .map_err(|e| ApiError::lib("curve", &e))?;
+    Points::from_flat(dim, out).map_err(|e| ApiError::lib("curve", &e))
 }
 
 /// Unit principal normal `N = (C'' − (C''·T)T)/|…|` with `T = C'/|C'|` (do Carmo §1-5);
@@ -340,8 +382,37 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
     })
 }
 
-pub(crate) fn answer(v: impl Serialize) -> Response {
-    Json(v).into_response()
+/// The 200 answer of a view.
+pub(crate) fn view_answer(v: &CurveView) -> Response {
+    answer(v, v.size_hint())
+}
+
+/// The answer of an order change: the view with its degree, real degree and the deviation of
+/// an approximate reduction.
+#[derive(Debug, Serialize)]
+struct BezierAnswer {
+    view: CurveView,
+    degree: usize,
+    real_degree: usize,
+    deviation: Option<Deviation>,
+}
+
+/// Deviation of an approximate degree reduction (`lekalo bezier`).
+#[derive(Debug, Serialize)]
+struct Deviation {
+    sampled: f64,
+    bound: f64,
+}
+
+fn bezier_answer(view: CurveView, real_degree: usize, deviation: Option<Deviation>) -> Response {
+    let size = view.size_hint() + SMALL;
+    let a = BezierAnswer {
+        degree: view.degree,
+        view,
+        real_degree,
+        deviation,
+    };
+    answer(&a, size)
 }
 
 /// `POST /api/evaluate`: the drawing of a curve.
@@ -381,7 +452,7 @@ impl ViewOptionsFlat {
 pub(crate) async fn evaluate(body: Bytes) -> ApiResult<Response> {
     let r: EvaluateRequest = parse(&body)?;
     let obj = curve(&r.curve, "curve")?;
-    Ok(answer(view(&obj, &r.view.options())?))
+    Ok(view_answer(&view(&obj, &r.view.options())?))
 }
 
 /// Parametrisation names (document 000 §1).
@@ -481,7 +552,7 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
         .end_condition(end)
         .interpolate(pts.as_view())
         .map_err(|e| ApiError::lib(interpolation_field(&e), &e))?;
-    Ok(answer(view(&Object::BSpline(c), &r.view.options())?))
+    Ok(view_answer(&view(&Object::BSpline(c), &r.view.options())?))
 }
 
 /// The request field an interpolation error is about.
@@ -559,21 +630,16 @@ pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
                 .map_err(|e| ApiError::lib("target", &e))?;
             (
                 red.curve,
-                Some(json!({
-                    "sampled": red.max_deviation_sampled,
-                    "bound": red.max_deviation_bound,
-                })),
+                Some(Deviation {
+                    sampled: red.max_deviation_sampled,
+                    bound: red.max_deviation_bound,
+                }),
             )
         }
     };
     let real_degree = out.real_degree();
     let v = view(&Object::Bezier(out), &r.view.options())?;
-    Ok(answer(json!({
-        "view": v,
-        "degree": v.degree,
-        "real_degree": real_degree,
-        "deviation": deviation,
-    })))
+    Ok(bezier_answer(v, real_degree, deviation))
 }
 
 #[derive(Debug, Deserialize)]
@@ -599,7 +665,7 @@ pub(crate) async fn blend_deform(body: Bytes) -> ApiResult<Response> {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
     };
-    Ok(answer(view(&Object::Bezier(b), &opts)?))
+    Ok(view_answer(&view(&Object::Bezier(b), &opts)?))
 }
 
 fn deform_field(e: &lekalo::Error) -> &'static str {
@@ -657,7 +723,7 @@ pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
     };
-    Ok(answer(view(&Object::Nurbs(n), &opts)?))
+    Ok(view_answer(&view(&Object::Nurbs(n), &opts)?))
 }
 
 #[derive(Debug, Deserialize)]
@@ -705,7 +771,7 @@ pub(crate) async fn knot_insert(body: Bytes) -> ApiResult<Response> {
     let r: KnotRequest = parse(&body)?;
     let obj = curve(&r.curve, "curve")?;
     let (out, _) = knot_op(obj, |c| c.insert_knot(r.t, r.times).map(|c| (c, r.times)))?;
-    Ok(answer(view(&out, &r.view.options())?))
+    Ok(view_answer(&view(&out, &r.view.options())?))
 }
 
 /// `POST /api/knot/remove` (Tiller's removal, P&T A5.8, `lekalo knot remove`); answers the
@@ -717,9 +783,14 @@ pub(crate) async fn knot_remove(body: Bytes) -> ApiResult<Response> {
         let tol = r.tolerance.unwrap_or_else(|| c.default_removal_tolerance());
         c.remove_knot(r.t, r.times, tol)
     })?;
-    Ok(answer(
-        json!({ "view": view(&out, &r.view.options())?, "removed": removed }),
-    ))
+    #[derive(Serialize)]
+    struct Removed {
+        view: CurveView,
+        removed: usize,
+    }
+    let view = view(&out, &r.view.options())?;
+    let size = view.size_hint() + SMALL;
+    Ok(answer(&Removed { view, removed }, size))
 }
 
 /// `POST /api/import`: the body is the CLI's JSON text of one curve; answers its drawing, or
@@ -728,7 +799,7 @@ pub(crate) async fn import(body: Bytes) -> ApiResult<Response> {
     let text =
         std::str::from_utf8(&body).map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
     let obj = Object::from_json_str(text, "file").map_err(|e| ApiError::io("file", &e))?;
-    Ok(answer(view(&obj, &ViewOptions::default())?))
+    Ok(view_answer(&view(&obj, &ViewOptions::default())?))
 }
 
 #[derive(Debug, Deserialize)]
@@ -819,7 +890,7 @@ pub(crate) async fn bspline(body: Bytes) -> ApiResult<Response> {
         None => BSplineCurve::new(degree, knots, control).map(Object::BSpline),
     }
     .map_err(|e| ApiError::lib(field(&e), &e))?;
-    Ok(answer(view(&obj, &r.view.options())?))
+    Ok(view_answer(&view(&obj, &r.view.options())?))
 }
 
 /// `POST /api/bezier/build`: a Bezier curve from its control points, drawn.
@@ -835,7 +906,72 @@ pub(crate) async fn bezier_build(body: Bytes) -> ApiResult<Response> {
         .map_err(|e| ApiError::lib("control", &e))?;
     let real = c.real_degree();
     let v = view(&Object::Bezier(c), &r.view.options())?;
-    Ok(answer(
-        json!({ "view": v, "degree": v.degree, "real_degree": real, "deviation": null }),
-    ))
+    Ok(bezier_answer(v, real, None))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A curve through 100 points of a wave (the editor's round-trip benchmark), and a NURBS
+    /// curve in 3-D.
+    fn curves() -> Vec<Object> {
+        let rows: Vec<Vec<f64>> = (0..100)
+            .map(|k| {
+                let x = f64::from(k) / 10.0;
+                vec![x, x.sin() + 0.1 * (10.0 * x).cos()]
+            })
+            .collect();
+        let c = CurveInterpolation::new(3)
+            .parametrization(Parametrization::Centripetal)
+            .interpolate(points(&rows, "points").expect("points").as_view())
+            .expect("interpolation");
+        let p = Points::from_flat(
+            3,
+            vec![0.0, 0.0, 0.0, 1.0, 2.0, 0.5, 3.0, 2.0, 1.0, 4.0, 0.0, 2.0],
+        )
+        .expect("points");
+        let n = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0],
+            p,
+            vec![1.0, 2.0, 0.5, 1.0],
+        )
+        .expect("nurbs");
+        vec![Object::BSpline(c), Object::Nurbs(n)]
+    }
+
+    #[test]
+    fn the_size_hint_of_a_view_holds_its_text_without_waste() {
+        for obj in curves() {
+            for (samples, comb, basis_samples) in [(1000, false, Some(300)), (10, true, None)] {
+                let opt = ViewOptions {
+                    samples,
+                    comb,
+                    basis_samples,
+                    at: Some(0.5),
+                };
+                let v = view(&obj, &opt).expect("view");
+                let text = serde_json::to_vec(&v).expect("text");
+                let hint = v.size_hint();
+                assert!(
+                    text.len() <= hint && hint <= 2 * text.len() + 1024,
+                    "{} with {opt:?}: {} bytes, hint {hint}",
+                    obj.type_name(),
+                    text.len()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_view_s_curve_reads_back_to_the_curve() {
+        for obj in curves() {
+            let v = view(&obj, &ViewOptions::default()).expect("view");
+            let text = serde_json::to_string(&v).expect("text");
+            let back: Value = serde_json::from_str(&text).expect("json");
+            let read = Object::from_json_str(&back["curve"].to_string(), "curve").expect("curve");
+            assert_eq!(read, obj);
+        }
+    }
 }

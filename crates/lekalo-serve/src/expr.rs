@@ -4,14 +4,13 @@
 //! come from [`lekalo::sample_quasi_interpolant`].
 
 use axum::body::Bytes;
-use axum::response::{IntoResponse, Response};
-use axum::Json;
+use axum::response::Response;
 use lekalo::{sample_quasi_interpolant, Expression, PpSpace, Tau, TauRule};
 use lekalo_io::Object;
-use serde::Deserialize;
-use serde_json::json;
+use serde::{Deserialize, Serialize};
 
-use crate::api::{view, ViewOptions, MAX_POINTS, MAX_SAMPLES};
+use crate::answer::{answer, NUMBER_BYTES, SMALL};
+use crate::api::{view, CurveView, ViewOptions, MAX_POINTS, MAX_SAMPLES};
 use crate::error::{ApiError, ApiResult};
 
 /// τ rules of the de Boor–Fix functionals.
@@ -47,6 +46,17 @@ struct QuasiRequest {
     intervals: usize,
     #[serde(default)]
     basis_samples: Option<usize>,
+}
+
+/// The interpolant's view, and `f`, `q` and `f − q` at the sample parameters `t`.
+#[derive(Debug, Serialize)]
+struct QuasiAnswer {
+    view: CurveView,
+    t: Vec<f64>,
+    exact: Vec<f64>,
+    approx: Vec<f64>,
+    error: Vec<f64>,
+    max_error: f64,
 }
 
 pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
@@ -145,13 +155,15 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         ..ViewOptions::default()
     };
     let error: Vec<f64> = s.exact.iter().zip(&s.approx).map(|(a, b)| a - b).collect();
-    Ok(Json(json!({
-        "view": view(&Object::BSpline(q), &opts)?,
-        "t": s.t,
-        "exact": s.exact,
-        "approx": s.approx,
-        "error": error,
-        "max_error": s.max_error(),
-    }))
-    .into_response())
+    let view = view(&Object::BSpline(q), &opts)?;
+    let size = view.size_hint() + 4 * error.len() * NUMBER_BYTES + SMALL;
+    let a = QuasiAnswer {
+        view,
+        max_error: s.max_error(),
+        t: s.t,
+        exact: s.exact,
+        approx: s.approx,
+        error,
+    };
+    Ok(answer(&a, size))
 }

@@ -10,7 +10,8 @@ use lekalo::{parametrize, Points};
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
-use crate::api::{answer, check_degree, parse, points, view, CurveView, Param, ViewOptionsFlat};
+use crate::answer::{answer, SMALL};
+use crate::api::{check_degree, parse, points, view, CurveView, Param, ViewOptionsFlat};
 use crate::error::{ApiError, ApiResult};
 
 /// How the amount of smoothing is given.
@@ -121,7 +122,8 @@ pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
         s: (r.smoothing == Smoothing::S).then_some(r.s).flatten(),
     };
     let view = view(&Object::BSpline(fit.curve), &r.view.options())?;
-    Ok(answer(FitAnswer { view, report }))
+    let size = view.size_hint() + SMALL;
+    Ok(answer(&FitAnswer { view, report }, size))
 }
 
 /// The request field a fitting error is about: the smoothing value, the degree or the points.

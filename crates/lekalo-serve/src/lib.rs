@@ -21,6 +21,7 @@ use axum::Router;
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::timeout::TimeoutLayer;
 
+mod answer;
 pub mod api;
 pub mod error;
 pub mod expr;

@@ -9,7 +9,8 @@ use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::api::{answer, curve, parse, MAX_POINTS};
+use crate::answer::{answer, NUMBER_BYTES, SMALL};
+use crate::api::{curve, parse, MAX_POINTS};
 use crate::error::{ApiError, ApiResult};
 
 /// The curve of an object, prepared for queries (as `lekalo measure` and `lekalo project`).
@@ -64,11 +65,14 @@ pub(crate) async fn project(body: Bytes) -> ApiResult<Response> {
     let p = q
         .project(&r.point)
         .map_err(|e| ApiError::lib("point", &e))?;
-    Ok(answer(Projection {
-        t: p.t,
-        point: p.point,
-        distance: p.distance,
-    }))
+    Ok(answer(
+        &Projection {
+            t: p.t,
+            point: p.point,
+            distance: p.distance,
+        },
+        SMALL,
+    ))
 }
 
 fn default_tolerance() -> f64 {
@@ -128,10 +132,14 @@ pub(crate) async fn measure(body: Bytes) -> ApiResult<Response> {
         })
         .collect::<ApiResult<Vec<_>>>()?;
     let (a, b) = q.domain();
-    Ok(answer(Measure {
-        length: table.total(),
-        error_estimate: table.error_estimate(),
-        domain: [a, b],
-        at_length,
-    }))
+    let size = SMALL + at_length.len() * 4 * NUMBER_BYTES;
+    Ok(answer(
+        &Measure {
+            length: table.total(),
+            error_estimate: table.error_estimate(),
+            domain: [a, b],
+            at_length,
+        },
+        size,
+    ))
 }
