@@ -47,7 +47,7 @@ mod object;
 mod object_ext;
 mod palette;
 #[cfg(feature = "parquet")]
-mod parquet_io;
+mod parquet;
 mod png;
 mod points_in;
 mod samples;
@@ -83,7 +83,7 @@ pub use object_ext::{
 };
 pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
 #[cfg(feature = "parquet")]
-pub use parquet_io::{
+pub use parquet::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
 };
 pub use png::svg_to_png;

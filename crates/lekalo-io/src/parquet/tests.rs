@@ -1,7 +1,17 @@
 //! Tests of the Parquet batches: round trips through files written here with the writer (and
 //! with the arrow writer directly for the layouts and the malformed cases).
 
+use std::fs::File;
+use std::path::Path;
+use std::sync::Arc;
+
+use arrow_array::types::Float64Type;
+use arrow_array::{ArrayRef, RecordBatch};
+use parquet::arrow::ArrowWriter;
+
 use super::*;
+use crate::error::{IoError, IoResult};
+use crate::object::Object;
 use lekalo::{BSplineCurve, NurbsCurve, Points};
 
 fn tmp(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {

@@ -1,0 +1,130 @@
+//! Reading a Parquet file's row groups, and its numeric and key columns whatever their Arrow
+//! types.
+
+use std::fs::File;
+use std::path::Path;
+
+use arrow_array::cast::AsArray;
+use arrow_array::types::{Float32Type, Float64Type, Int32Type, Int64Type};
+use arrow_array::{Array, RecordBatch};
+use parquet::arrow::arrow_reader::{
+    ArrowReaderMetadata, ArrowReaderOptions, ParquetRecordBatchReaderBuilder,
+};
+
+use super::GroupKey;
+use crate::error::{IoError, IoResult, Location};
+
+pub(super) fn parquet_err(source: &str, e: impl std::fmt::Display) -> IoError {
+    IoError::syntax(
+        Location::new(source),
+        format!("not a readable Parquet file: {e}"),
+    )
+}
+
+/// A file's row groups, read one at a time.
+pub(super) struct RowGroups {
+    file: File,
+    meta: ArrowReaderMetadata,
+    pub(super) source: String,
+}
+
+impl RowGroups {
+    pub(super) fn open(path: &Path) -> IoResult<Self> {
+        let source = path.display().to_string();
+        let file = File::open(path).map_err(|error| IoError::Read {
+            path: path.to_path_buf(),
+            error,
+        })?;
+        let meta = ArrowReaderMetadata::load(&file, ArrowReaderOptions::new())
+            .map_err(|e| parquet_err(&source, e))?;
+        Ok(RowGroups { file, meta, source })
+    }
+
+    pub(super) fn count(&self) -> usize {
+        self.meta.metadata().num_row_groups()
+    }
+
+    pub(super) fn schema(&self) -> &arrow_schema::Schema {
+        self.meta.schema()
+    }
+
+    /// The batches of row group `i` (one, unless the group is very large).
+    pub(super) fn read(&self, i: usize) -> IoResult<Vec<RecordBatch>> {
+        let rows = self.meta.metadata().row_group(i).num_rows();
+        let file = self.file.try_clone().map_err(|error| IoError::Read {
+            path: self.source.clone().into(),
+            error,
+        })?;
+        ParquetRecordBatchReaderBuilder::new_with_metadata(file, self.meta.clone())
+            .with_row_groups(vec![i])
+            .with_batch_size(usize::try_from(rows).unwrap_or(1).clamp(1, 1 << 20))
+            .build()
+            .map_err(|e| parquet_err(&self.source, e))?
+            .map(|b| b.map_err(|e| parquet_err(&self.source, e)))
+            .collect()
+    }
+}
+
+/// A numeric column (or the values of a list column) as `f64`s.
+pub(super) enum Numbers<'a> {
+    F64(&'a arrow_array::Float64Array),
+    F32(&'a arrow_array::Float32Array),
+    I64(&'a arrow_array::Int64Array),
+    I32(&'a arrow_array::Int32Array),
+}
+
+impl<'a> Numbers<'a> {
+    pub(super) fn of(a: &'a dyn Array) -> Option<Self> {
+        if let Some(x) = a.as_primitive_opt::<Float64Type>() {
+            Some(Numbers::F64(x))
+        } else if let Some(x) = a.as_primitive_opt::<Float32Type>() {
+            Some(Numbers::F32(x))
+        } else if let Some(x) = a.as_primitive_opt::<Int64Type>() {
+            Some(Numbers::I64(x))
+        } else {
+            a.as_primitive_opt::<Int32Type>().map(Numbers::I32)
+        }
+    }
+
+    /// Value `i`, `None` if null.
+    #[allow(clippy::cast_precision_loss)] // integers are read as the nearest f64
+    pub(super) fn get(&self, i: usize) -> Option<f64> {
+        match self {
+            Numbers::F64(a) => a.is_valid(i).then(|| a.value(i)),
+            Numbers::F32(a) => a.is_valid(i).then(|| f64::from(a.value(i))),
+            Numbers::I64(a) => a.is_valid(i).then(|| a.value(i) as f64),
+            Numbers::I32(a) => a.is_valid(i).then(|| f64::from(a.value(i))),
+        }
+    }
+}
+
+/// The key column.
+pub(super) enum Keys<'a> {
+    I64(&'a arrow_array::Int64Array),
+    I32(&'a arrow_array::Int32Array),
+    Str(&'a arrow_array::StringArray),
+    LargeStr(&'a arrow_array::LargeStringArray),
+}
+
+impl<'a> Keys<'a> {
+    pub(super) fn of(a: &'a dyn Array) -> Option<Self> {
+        if let Some(x) = a.as_primitive_opt::<Int64Type>() {
+            Some(Keys::I64(x))
+        } else if let Some(x) = a.as_primitive_opt::<Int32Type>() {
+            Some(Keys::I32(x))
+        } else if let Some(x) = a.as_string_opt::<i32>() {
+            Some(Keys::Str(x))
+        } else {
+            a.as_string_opt::<i64>().map(Keys::LargeStr)
+        }
+    }
+
+    pub(super) fn get(&self, i: usize) -> Option<GroupKey> {
+        match self {
+            Keys::I64(a) => a.is_valid(i).then(|| GroupKey::Int(a.value(i))),
+            Keys::I32(a) => a.is_valid(i).then(|| GroupKey::Int(i64::from(a.value(i)))),
+            Keys::Str(a) => a.is_valid(i).then(|| GroupKey::Str(a.value(i).to_string())),
+            Keys::LargeStr(a) => a.is_valid(i).then(|| GroupKey::Str(a.value(i).to_string())),
+        }
+    }
+}
