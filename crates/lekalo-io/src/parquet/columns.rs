@@ -86,6 +86,33 @@ impl<'a> Numbers<'a> {
         }
     }
 
+    /// Appends values `range` to `out`; `Err(i)` at the first null, value `i`. Doubles without
+    /// nulls are copied as one slice.
+    pub(super) fn extend_range(
+        &self,
+        range: std::ops::Range<usize>,
+        out: &mut Vec<f64>,
+    ) -> Result<(), usize> {
+        if let Numbers::F64(a) = self {
+            if a.null_count() == 0 {
+                out.extend_from_slice(&a.values()[range]);
+                return Ok(());
+            }
+        }
+        for i in range {
+            out.push(self.get(i).ok_or(i)?);
+        }
+        Ok(())
+    }
+
+    /// The values as a slice if they are doubles without nulls.
+    pub(super) fn as_f64s(&self) -> Option<&'a [f64]> {
+        match self {
+            Numbers::F64(a) if a.null_count() == 0 => Some(a.values()),
+            _ => None,
+        }
+    }
+
     /// Value `i`, `None` if null.
     #[allow(clippy::cast_precision_loss)] // integers are read as the nearest f64
     pub(super) fn get(&self, i: usize) -> Option<f64> {
@@ -116,6 +143,38 @@ impl<'a> Keys<'a> {
             Some(Keys::Str(x))
         } else {
             a.as_string_opt::<i64>().map(Keys::LargeStr)
+        }
+    }
+
+    /// The first null key's row, if any.
+    pub(super) fn first_null(&self) -> Option<usize> {
+        let nulls = match self {
+            Keys::I64(a) => a.nulls(),
+            Keys::I32(a) => a.nulls(),
+            Keys::Str(a) => a.nulls(),
+            Keys::LargeStr(a) => a.nulls(),
+        };
+        nulls.and_then(|n| (0..n.len()).find(|&i| n.is_null(i)))
+    }
+
+    /// The end of the run of equal keys that starts at row `r` (the first row after it with
+    /// another key, or the length). Nulls are not compared: see [`Keys::first_null`].
+    pub(super) fn run_end(&self, r: usize) -> usize {
+        fn end<T: PartialEq>(r: usize, len: usize, at: impl Fn(usize) -> T) -> usize {
+            let k = at(r);
+            (r + 1..len).find(|&i| at(i) != k).unwrap_or(len)
+        }
+        match self {
+            Keys::I64(a) => {
+                let v = a.values();
+                end(r, v.len(), |i| v[i])
+            }
+            Keys::I32(a) => {
+                let v = a.values();
+                end(r, v.len(), |i| v[i])
+            }
+            Keys::Str(a) => end(r, a.len(), |i| a.value(i)),
+            Keys::LargeStr(a) => end(r, a.len(), |i| a.value(i)),
         }
     }
 

@@ -142,13 +142,19 @@ pub fn read_point_groups(
                 .iter()
                 .map(|(c, _)| Numbers::of(batch.column(*c).as_ref()))
                 .collect();
-            for r in 0..batch.num_rows() {
-                let row = row0 + r + 1;
+            if let Some(r) = keys.first_null() {
+                return Err(IoError::syntax(
+                    Location::new(&source).at_field(key),
+                    format!(
+                        "row {}: the key is null; every row needs a key",
+                        row0 + r + 1
+                    ),
+                ));
+            }
+            let mut r = 0;
+            while r < batch.num_rows() {
                 let k = keys.get(r).ok_or_else(|| {
-                    IoError::syntax(
-                        Location::new(&source).at_field(key),
-                        format!("row {row}: the key is null; every row needs a key"),
-                    )
+                    IoError::syntax(Location::new(&source).at_field(key), "unreadable key")
                 })?;
                 if lay.lists {
                     let mut o = Open {
@@ -158,8 +164,11 @@ pub fn read_point_groups(
                     };
                     o.error = read_list_row(&batch, &lay, r, &mut o.data, &source, &o.key).err();
                     done.push(o.finish(dim));
+                    r += 1;
                     continue;
                 }
+                // the rows r..end have the key k: one group, or the part of one in this batch
+                let end = keys.run_end(r);
                 if open.as_ref().is_none_or(|o| o.key != k) {
                     if let Some(o) = open.take() {
                         done.push(o.finish(dim));
@@ -172,30 +181,22 @@ pub fn read_point_groups(
                     if !seen.insert(k) {
                         o.error = Some(IoError::syntax(
                             Location::new(format!("{source}: group {}", o.key)),
-                            format!("appears again at row {row}; the rows of a group must be consecutive (sort the file by `{key}`)"),
+                            format!("appears again at row {}; the rows of a group must be consecutive (sort the file by `{key}`)", row0 + r + 1),
                         ));
                     }
                     open = Some(o);
                 }
                 if let Some(o) = open.as_mut().filter(|o| o.error.is_none()) {
-                    for ((_, name), n) in lay.coords.iter().zip(&numbers) {
-                        let v = n.as_ref().and_then(|n| n.get(r));
-                        match v {
-                            Some(v) if v.is_finite() => o.data.push(v),
-                            _ => {
-                                o.error = Some(IoError::syntax(
-                                    Location::new(format!("{source}: group {}", o.key))
-                                        .at_field(name.clone()),
-                                    format!(
-                                        "row {row}: {}; every coordinate must be a finite number",
-                                        v.map_or("null".to_string(), |v| v.to_string())
-                                    ),
-                                ));
-                                break;
-                            }
-                        }
-                    }
+                    let at = || Location::new(format!("{source}: group {}", o.key));
+                    let rows = Rows {
+                        numbers: &numbers,
+                        names: &lay.coords,
+                        range: r..end,
+                        row0,
+                    };
+                    o.error = rows.append_to(&mut o.data, at).err();
                 }
+                r = end;
             }
             row0 += batch.num_rows();
         }
@@ -209,6 +210,75 @@ pub fn read_point_groups(
         }
     }
     Ok(())
+}
+
+/// Consecutive rows of one group in the long layout.
+struct Rows<'a, 'b> {
+    /// The coordinate columns (`None`: not numbers).
+    numbers: &'a [Option<Numbers<'b>>],
+    /// The coordinate columns' indices and names.
+    names: &'a [(usize, String)],
+    /// The rows in the batch.
+    range: std::ops::Range<usize>,
+    /// The rows of the file before the batch.
+    row0: usize,
+}
+
+impl Rows<'_, '_> {
+    /// Appends the rows' coordinates to `data` (point-major). Columns of doubles without
+    /// nulls are interleaved from their slices and checked at once; otherwise, or if a number
+    /// is not finite, value by value, so that the error names the first bad value's row and
+    /// column (`at` the group's location).
+    fn append_to(&self, data: &mut Vec<f64>, at: impl Fn() -> Location) -> IoResult<()> {
+        let start = data.len();
+        let range = self.range.clone();
+        data.reserve(range.len() * self.numbers.len());
+        let slices: Option<Vec<&[f64]>> = self
+            .numbers
+            .iter()
+            .map(|n| {
+                n.as_ref()
+                    .and_then(Numbers::as_f64s)
+                    .map(|v| &v[range.clone()])
+            })
+            .collect();
+        if let Some(slices) = slices {
+            match slices.as_slice() {
+                [x, y, z] => {
+                    for ((x, y), z) in x.iter().zip(*y).zip(*z) {
+                        data.extend_from_slice(&[*x, *y, *z]);
+                    }
+                }
+                _ => {
+                    for i in 0..range.len() {
+                        data.extend(slices.iter().map(|s| s[i]));
+                    }
+                }
+            }
+            if data[start..].iter().all(|v| v.is_finite()) {
+                return Ok(());
+            }
+            data.truncate(start);
+        }
+        for r in range {
+            for ((_, name), n) in self.names.iter().zip(self.numbers) {
+                match n.as_ref().and_then(|n| n.get(r)) {
+                    Some(v) if v.is_finite() => data.push(v),
+                    v => {
+                        return Err(IoError::syntax(
+                            at().at_field(name.clone()),
+                            format!(
+                                "row {}: {}; every coordinate must be a finite number",
+                                self.row0 + r + 1,
+                                v.map_or("null".to_string(), |v| v.to_string())
+                            ),
+                        ))
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The points of row `r` in the lists layout, appended to `data`.

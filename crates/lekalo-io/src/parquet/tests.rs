@@ -351,3 +351,289 @@ fn row_groups_without_knots_or_curves_after_full_ones() {
     assert!(e.ends_with("no curve: too few points"), "{e}");
     assert_eq!(got[3].1.as_ref().unwrap(), &bs, "B-spline");
 }
+
+/// Curves written by another writer (nullable lists built point by point, with or without the
+/// `dim` column): read as the same curves, and a point of another dimension named.
+#[test]
+fn control_lists_of_other_writers_are_read() {
+    use arrow_array::builder::{Float64Builder, ListBuilder};
+    let ctrl =
+        Points::from_rows(&[[0.0, 0.5, 1.0], [1.0, 2.0, 0.3], [2.0, 0.0, 1.0 / 3.0]]).unwrap();
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    let want = Object::BSpline(BSplineCurve::new(2, knots.to_vec(), ctrl.clone()).unwrap());
+    let mut control = ListBuilder::new(ListBuilder::new(Float64Builder::new()));
+    for p in ctrl.iter() {
+        control.values().values().append_slice(p);
+        control.values().append(true);
+    }
+    control.append(true);
+    // a point with two coordinates among points with three
+    control.values().values().append_slice(&[0.0, 1.0, 2.0]);
+    control.values().append(true);
+    control.values().values().append_slice(&[0.0, 1.0]);
+    control.values().append(true);
+    control.append(true);
+    let mut kn = ListBuilder::new(Float64Builder::new());
+    for _ in 0..2 {
+        kn.values().append_slice(&knots);
+        kn.append(true);
+    }
+    let mut weights = ListBuilder::new(Float64Builder::new());
+    weights.append(true);
+    weights.append(true);
+    let columns = |with_dim: bool| {
+        let mut c: Vec<(&str, ArrayRef)> = vec![
+            ("group", Arc::new(arrow_array::Int64Array::from(vec![7, 8]))),
+            (
+                "type",
+                Arc::new(arrow_array::StringArray::from(vec!["bspline_curve"; 2])),
+            ),
+            (
+                "degree",
+                Arc::new(arrow_array::Int32Array::from(vec![2, 2])),
+            ),
+        ];
+        if with_dim {
+            c.push(("dim", Arc::new(arrow_array::Int32Array::from(vec![3, 3]))));
+        }
+        c
+    };
+    let (control, kn, weights): (ArrayRef, ArrayRef, ArrayRef) = (
+        Arc::new(control.finish()),
+        Arc::new(kn.finish()),
+        Arc::new(weights.finish()),
+    );
+    for with_dim in [true, false] {
+        let mut cols = columns(with_dim);
+        cols.extend([
+            ("knots", kn.clone()),
+            ("control", control.clone()),
+            ("weights", weights.clone()),
+        ]);
+        let (_d, path) = tmp("nested.parquet");
+        write_batches(&path, &[batch(cols)]);
+        let mut got = Vec::new();
+        read_curve_groups(&path, None, |c| {
+            got.extend(c);
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(got[0].1.as_ref().unwrap(), &want, "bit for bit");
+        let e = got[1].1.as_ref().unwrap_err().to_string();
+        assert!(
+            e.ends_with("group 8: field `control`: point 1 has 2 coordinates, point 0 has 3"),
+            "{e}"
+        );
+    }
+}
+
+/// Columns of doubles without nulls are read a group at a time: a NaN or an infinity there is
+/// still named with its row and column, and the groups around it are read.
+#[test]
+fn non_finite_doubles_are_named_with_their_row() {
+    let (_d, path) = tmp("nan.parquet");
+    let keys: ArrayRef = Arc::new(arrow_array::Int64Array::from(vec![1, 1, 2, 2, 2, 3]));
+    let x = f64s(&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
+    let y = f64s(&[0.0, 1.0, 2.0, f64::INFINITY, 4.0, 5.0]);
+    let z = f64s(&[0.0, 1.0, 2.0, 3.0, f64::NAN, 5.0]);
+    write_batches(
+        &path,
+        &[batch(vec![("group", keys), ("x", x), ("y", y), ("z", z)])],
+    );
+    let got = read_all(&path, None).unwrap();
+    assert_eq!(got.len(), 3, "{got:?}");
+    assert_eq!(
+        got[0].1,
+        Ok(Points::from_rows(&[[0.0; 3], [1.0; 3]]).unwrap()),
+        "the group before"
+    );
+    let e = got[1].1.as_ref().unwrap_err();
+    assert!(
+        e.ends_with("group 2: field `y`: row 4: inf; every coordinate must be a finite number"),
+        "{e}"
+    );
+    assert_eq!(
+        got[2].1,
+        Ok(Points::from_rows(&[[5.0; 3]]).unwrap()),
+        "the group after"
+    );
+}
+
+/// The written file's settings: no dictionary but on a string key, a delta-encoded integer
+/// key with statistics, no statistics on the doubles, and the control points as lists of
+/// points, each a list of doubles.
+#[test]
+fn written_columns_have_the_documented_encodings() {
+    use parquet::basic::Encoding;
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let ctrl = Points::from_rows(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]]).unwrap();
+    let bz = Object::Bezier(lekalo::BezierCurve::new(ctrl.clone()).unwrap());
+    let (_d, path) = tmp("enc.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    w.write_curves("group", &[(GroupKey::Int(4), Ok(bz))])
+        .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let r = SerializedFileReader::new(File::open(&path).unwrap()).unwrap();
+    let rg = r.metadata().row_group(0);
+    let col = |name: &str| {
+        (0..rg.num_columns())
+            .map(|i| rg.column(i))
+            .find(|c| c.column_path().string() == name)
+            .unwrap_or_else(|| panic!("no column {name}"))
+    };
+    let key = col("group");
+    assert!(
+        key.encodings().any(|e| e == Encoding::DELTA_BINARY_PACKED),
+        "delta key"
+    );
+    assert!(key.statistics().is_some(), "the key has statistics");
+    let control = col("control.list.item.list.item");
+    assert!(
+        control.statistics().is_none(),
+        "no statistics on the doubles"
+    );
+    assert!(
+        control
+            .encodings()
+            .all(|e| e != Encoding::PLAIN_DICTIONARY && e != Encoding::RLE_DICTIONARY),
+        "no dictionary"
+    );
+    let schema = r.metadata().file_metadata().schema_descr();
+    assert_eq!(
+        schema.column(5).path().string(),
+        "control.list.item.list.item",
+        "a list of lists"
+    );
+    let e = ParquetBatchWriter::new(Vec::new())
+        .write_curves(
+            "group",
+            &[
+                (GroupKey::Int(1), Err("x".into())),
+                (GroupKey::Str("a".into()), Err("y".into())),
+            ],
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("group \"a\": a string key among integer keys"),
+        "{e}"
+    );
+}
+
+/// Random curves of every kind, dimension and degree, in random row groups: read back bit for
+/// bit, in order, with the failed rows where they were.
+mod round_trip {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn curve() -> impl Strategy<Value = Result<Object, String>> {
+        (1usize..5, 1usize..5, 0usize..6, 0u8..4).prop_flat_map(|(dim, degree, extra, kind)| {
+            let n = degree + 1 + extra;
+            (
+                proptest::collection::vec(-1e3f64..1e3, n * dim),
+                proptest::collection::vec(0.01f64..1.0, extra + 1),
+                proptest::collection::vec(0.1f64..10.0, n),
+            )
+                .prop_map(move |(c, gaps, w)| {
+                    let ctrl = Points::from_flat(dim, c).unwrap();
+                    let mut knots = vec![0.0; degree + 1];
+                    let mut t = 0.0;
+                    for g in &gaps[..extra] {
+                        t += g;
+                        knots.push(t);
+                    }
+                    knots.extend(vec![t + gaps[extra]; degree + 1]);
+                    match kind {
+                        0 => Ok(Object::BSpline(
+                            BSplineCurve::new(degree, knots, ctrl).unwrap(),
+                        )),
+                        1 => Ok(Object::Nurbs(
+                            NurbsCurve::new(degree, knots, ctrl, w).unwrap(),
+                        )),
+                        2 => Ok(Object::Bezier(lekalo::BezierCurve::new(ctrl).unwrap())),
+                        _ => Err(format!("failed with {dim} {degree}")),
+                    }
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn curves_come_back_bit_for_bit(
+            curves in proptest::collection::vec(curve(), 1..12),
+            cuts in proptest::collection::vec(0usize..12, 0..3),
+        ) {
+            let rows: Vec<(GroupKey, Result<Object, String>)> = curves
+                .into_iter()
+                .enumerate()
+                .map(|(i, c)| (GroupKey::Int(i as i64 * 3 - 5), c))
+                .collect();
+            let mut cuts: Vec<usize> = cuts.into_iter().map(|c| c.min(rows.len())).collect();
+            cuts.extend([0, rows.len()]);
+            cuts.sort_unstable();
+            let (_d, path) = tmp("rt.parquet");
+            let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+            for part in cuts.windows(2) {
+                w.write_curves("group", &rows[part[0]..part[1]]).unwrap();
+            }
+            w.close(|w| w.write_curves("group", &[])).unwrap();
+            let mut got = Vec::new();
+            read_curve_groups(&path, None, |c| {
+                got.extend(c);
+                Ok(())
+            })
+            .unwrap();
+            prop_assert_eq!(got.len(), rows.len());
+            for ((k, want), (gk, g)) in rows.iter().zip(&got) {
+                prop_assert_eq!(k, gk);
+                match (want, g) {
+                    (Ok(w), Ok(g)) => prop_assert_eq!(w, g),
+                    (Err(w), Err(g)) => prop_assert!(g.to_string().ends_with(w.as_str()), "{}", g),
+                    _ => prop_assert!(false, "{:?} read as {:?}", want, g),
+                }
+            }
+        }
+
+        /// Point sets of random sizes in the long layout, cut into row groups anywhere (a
+        /// group may run on into the next): the same points, in order.
+        #[test]
+        fn point_groups_come_back_across_row_groups(
+            sizes in proptest::collection::vec(1usize..9, 1..8),
+            dim in 1usize..5,
+            cut in proptest::collection::vec(0usize..40, 0..3),
+        ) {
+            let names = ["a", "b", "c", "d"];
+            let groups: Vec<(GroupKey, Points)> = sizes
+                .iter()
+                .enumerate()
+                .map(|(g, &n)| {
+                    let data = (0..n * dim).map(|i| (g * 100 + i) as f64 * 0.1).collect();
+                    (GroupKey::Int(g as i64), Points::from_flat(dim, data).unwrap())
+                })
+                .collect();
+            // the same points as rows, cut at the row numbers `cut` into row groups
+            let rows: Vec<(GroupKey, Vec<f64>)> = groups
+                .iter()
+                .flat_map(|(k, p)| p.iter().map(move |r| (k.clone(), r.to_vec())))
+                .collect();
+            let mut cuts: Vec<usize> = cut.into_iter().map(|c| c.min(rows.len())).collect();
+            cuts.extend([0, rows.len()]);
+            cuts.sort_unstable();
+            let (_d, path) = tmp("pts.parquet");
+            let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+            for part in cuts.windows(2).filter(|p| p[0] < p[1]) {
+                let chunk: Vec<(GroupKey, Points)> = rows[part[0]..part[1]]
+                    .iter()
+                    .map(|(k, r)| (k.clone(), Points::from_flat(dim, r.clone()).unwrap()))
+                    .collect();
+                w.write_points("group", &names[..dim], &chunk).unwrap();
+            }
+            w.close(|_| Ok(())).unwrap();
+            let got = read_all(&path, None).unwrap();
+            let want: Vec<(GroupKey, Result<Points, String>)> =
+                groups.into_iter().map(|(k, p)| (k, Ok(p))).collect();
+            prop_assert_eq!(got, want);
+        }
+    }
+}

@@ -1,48 +1,242 @@
 //! The writer of curves, point sets and samples, one row group per call.
+//!
+//! Every column is built from flat vectors filled a slice at a time (no builder call per
+//! number), against a schema stated here rather than guessed from the batch, so that every row
+//! group of a file has the same schema. Pages are uncompressed and without dictionaries, and
+//! only the key column has statistics: see [`properties`].
 
 use std::io::Write;
 use std::sync::Arc;
 
-use arrow_array::builder::{
-    Float64Builder, Int32Builder, Int64Builder, ListBuilder, StringBuilder,
+use arrow_array::builder::{Float64Builder, StringBuilder};
+use arrow_array::{
+    ArrayRef, Float64Array, Int32Array, Int64Array, ListArray, RecordBatch, StringArray,
 };
-use arrow_array::{ArrayRef, RecordBatch};
+use arrow_buffer::OffsetBuffer;
+use arrow_schema::{DataType, Field, Schema};
 use parquet::arrow::ArrowWriter;
-use parquet::basic::Compression;
-use parquet::file::properties::WriterProperties;
+use parquet::basic::{Compression, Encoding};
+use parquet::file::properties::{EnabledStatistics, WriterProperties};
 use parquet::schema::types::ColumnPath;
 
 use super::GroupKey;
 use crate::object::Object;
 
-/// Builders of a key column of the input's type.
-enum KeyBuilder {
-    Int(Int64Builder),
-    Str(StringBuilder),
+fn other(e: impl std::fmt::Display) -> std::io::Error {
+    std::io::Error::other(e.to_string())
 }
 
-impl KeyBuilder {
-    fn new(int: bool) -> Self {
-        if int {
-            KeyBuilder::Int(Int64Builder::new())
-        } else {
-            KeyBuilder::Str(StringBuilder::new())
+/// The writer's settings for a file whose key column is `schema`'s first field.
+///
+/// - No compression: writing is then a copy of the doubles, which are mostly the mantissa
+///   noise of curves and samples (a general codec finds little to remove).
+/// - No dictionaries: hashing every double costs more than it saves. An integer key (repeated
+///   on every sample of a curve) is delta-encoded instead, which stores a run of equal keys in
+///   a few bits without hashing them; a string key keeps its dictionary.
+/// - Statistics (min/max per page) on the key only, so that a reader can skip to a group;
+///   on the doubles they would cost a comparison per number and serve no query.
+fn properties(schema: &Schema) -> WriterProperties {
+    let key = schema.field(0);
+    let path = ColumnPath::from(key.name().as_str());
+    let b = WriterProperties::builder()
+        .set_compression(Compression::UNCOMPRESSED)
+        .set_dictionary_enabled(false)
+        .set_statistics_enabled(EnabledStatistics::None)
+        .set_column_statistics_enabled(path.clone(), EnabledStatistics::Page);
+    match key.data_type() {
+        DataType::Int64 => b.set_column_encoding(path, Encoding::DELTA_BINARY_PACKED),
+        _ => b.set_column_dictionary_enabled(path, true),
+    }
+    .build()
+}
+
+/// The key column of a batch: each key repeated `n` times, integers if `int` (a string key is
+/// then an error), strings otherwise (an integer key written as its decimal text).
+fn key_column<'k>(
+    int: bool,
+    keys: impl Iterator<Item = (&'k GroupKey, usize)>,
+) -> std::io::Result<ArrayRef> {
+    if int {
+        let mut out = Vec::new();
+        for (k, n) in keys {
+            match k {
+                GroupKey::Int(i) => out.extend(std::iter::repeat_n(*i, n)),
+                GroupKey::Str(s) => {
+                    return Err(other(format!(
+                        "group {s:?}: a string key among integer keys"
+                    )))
+                }
+            }
+        }
+        Ok(Arc::new(Int64Array::from(out)))
+    } else {
+        let mut b = StringBuilder::new();
+        for (k, n) in keys {
+            let text = match k {
+                GroupKey::Int(i) => i.to_string(),
+                GroupKey::Str(s) => s.clone(),
+            };
+            for _ in 0..n {
+                b.append_value(&text);
+            }
+        }
+        Ok(Arc::new(b.finish()))
+    }
+}
+
+fn key_field(name: &str, int: bool) -> Field {
+    Field::new(
+        name,
+        if int { DataType::Int64 } else { DataType::Utf8 },
+        false,
+    )
+}
+
+/// The item field of the list columns of curves: a double that is never null.
+fn float_item() -> Arc<Field> {
+    Arc::new(Field::new_list_field(DataType::Float64, false))
+}
+
+/// The type of the list columns of curves: a list that is never null of doubles that are
+/// never null.
+fn float_list() -> DataType {
+    DataType::List(float_item())
+}
+
+/// The type of `control`: a list of points, each a list of doubles (none of them null).
+fn point_list() -> DataType {
+    DataType::List(Arc::new(Field::new_list_field(float_list(), false)))
+}
+
+/// An `i32` offset of a list column, or an error if a row group holds too many values.
+fn offset(n: usize) -> std::io::Result<i32> {
+    i32::try_from(n).map_err(|_| {
+        other(format!(
+            "{n} values in one row group; a Parquet list column holds at most 2^31 - 1"
+        ))
+    })
+}
+
+/// A list column being filled one row (one slice) at a time: the values end to end and the
+/// offsets of the rows, turned into an Arrow array without a copy.
+struct FloatLists {
+    values: Vec<f64>,
+    offsets: Vec<i32>,
+}
+
+impl FloatLists {
+    fn with_capacity(rows: usize, values: usize) -> Self {
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        FloatLists {
+            values: Vec::with_capacity(values),
+            offsets,
         }
     }
 
-    fn append(&mut self, k: &GroupKey) {
-        match (self, k) {
-            (KeyBuilder::Int(b), GroupKey::Int(k)) => b.append_value(*k),
-            (KeyBuilder::Str(b), GroupKey::Str(k)) => b.append_value(k),
-            (KeyBuilder::Int(b), GroupKey::Str(_)) => b.append_null(),
-            (KeyBuilder::Str(b), GroupKey::Int(k)) => b.append_value(k.to_string()),
+    fn push(&mut self, row: &[f64]) -> std::io::Result<()> {
+        self.values.extend_from_slice(row);
+        self.offsets.push(offset(self.values.len())?);
+        Ok(())
+    }
+
+    fn array(values: Vec<f64>, offsets: Vec<i32>) -> std::io::Result<ListArray> {
+        ListArray::try_new(
+            float_item(),
+            OffsetBuffer::new(offsets.into()),
+            Arc::new(Float64Array::from(values)),
+            None,
+        )
+        .map_err(other)
+    }
+
+    fn finish(self) -> std::io::Result<ArrayRef> {
+        Ok(Arc::new(Self::array(self.values, self.offsets)?))
+    }
+}
+
+/// The `control` column being filled: per row a list of points, each a list of `dim`
+/// doubles; the coordinates end to end (as the curves hold them), with the offsets of the
+/// points and of the rows.
+struct PointLists {
+    points: FloatLists,
+    rows: Vec<i32>,
+}
+
+impl PointLists {
+    fn with_capacity(rows: usize, points: usize, values: usize) -> Self {
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        PointLists {
+            points: FloatLists::with_capacity(points, values),
+            rows: offsets,
         }
     }
 
-    fn finish(&mut self) -> ArrayRef {
-        match self {
-            KeyBuilder::Int(b) => Arc::new(b.finish()),
-            KeyBuilder::Str(b) => Arc::new(b.finish()),
+    /// Appends a row of point-major coordinates, `dim` a point (`coords` holds whole points).
+    fn push(&mut self, coords: &[f64], dim: usize) -> std::io::Result<()> {
+        let d = offset(dim.max(1))?;
+        let mut o = offset(self.points.values.len())?;
+        offset(self.points.values.len() + coords.len())?;
+        self.points.values.extend_from_slice(coords);
+        let n = coords.len() / dim.max(1);
+        self.points
+            .offsets
+            .extend(std::iter::repeat_n((), n).map(|()| {
+                o += d;
+                o
+            }));
+        self.rows.push(offset(self.points.offsets.len() - 1)?);
+        Ok(())
+    }
+
+    fn finish(self) -> std::io::Result<ArrayRef> {
+        let points = FloatLists::array(self.points.values, self.points.offsets)?;
+        let list = ListArray::try_new(
+            Arc::new(Field::new_list_field(float_list(), false)),
+            OffsetBuffer::new(self.rows.into()),
+            Arc::new(points),
+            None,
+        )
+        .map_err(other)?;
+        Ok(Arc::new(list))
+    }
+}
+
+/// The parts of a curve that its row holds.
+struct CurveRow<'a> {
+    degree: usize,
+    dim: usize,
+    knots: &'a [f64],
+    control: std::borrow::Cow<'a, [f64]>,
+    weights: Option<Vec<f64>>,
+}
+
+impl<'a> CurveRow<'a> {
+    fn of(obj: &'a Object) -> Self {
+        let dim = obj.dim();
+        match obj {
+            Object::Bezier(c) => CurveRow {
+                degree: c.degree(),
+                dim,
+                knots: &[],
+                control: c.control_points().as_slice().into(),
+                weights: None,
+            },
+            Object::BSpline(c) => CurveRow {
+                degree: c.degree(),
+                dim,
+                knots: c.knots().as_slice(),
+                control: c.control_points().as_slice().into(),
+                weights: None,
+            },
+            Object::Nurbs(c) => CurveRow {
+                degree: c.degree(),
+                dim,
+                knots: c.knots().as_slice(),
+                control: c.control_points().into_vec().into(),
+                weights: Some(c.weights()),
+            },
         }
     }
 }
@@ -51,49 +245,50 @@ impl KeyBuilder {
 pub struct ParquetBatchWriter<W: Write + Send> {
     writer: Option<ArrowWriter<W>>,
     out: Option<W>,
+    /// In [`ParquetBatchWriter::close`]: a batch without rows is then written, for the layout.
+    closing: bool,
 }
 
 impl<W: Write + Send> ParquetBatchWriter<W> {
-    /// A writer into `out` (uncompressed pages).
+    /// A writer into `out` (uncompressed pages, see the module's documentation).
     pub fn new(out: W) -> Self {
         ParquetBatchWriter {
             writer: None,
             out: Some(out),
+            closing: false,
         }
     }
 
-    fn push(&mut self, batch: &RecordBatch) -> std::io::Result<()> {
-        let to_io = |e: parquet::errors::ParquetError| std::io::Error::other(e.to_string());
+    /// Writes `columns` under `fields` as one row group (the first call sets the file's
+    /// schema and settings).
+    fn push(&mut self, fields: Vec<Field>, columns: Vec<ArrayRef>) -> std::io::Result<()> {
+        let schema = Arc::new(Schema::new(fields));
+        let batch = RecordBatch::try_new(schema.clone(), columns).map_err(other)?;
+        if batch.num_rows() == 0 && !self.closing {
+            // nothing to write, and the schema (the key's type) is left to the first rows
+            return Ok(());
+        }
         if self.writer.is_none() {
-            // no dictionaries: hashing every double costs more than it saves on samples and
-            // control points; the key column (repeated on every sample) keeps its dictionary.
-            // No compression: writing is then a copy of the doubles, which are mostly the
-            // mantissa noise of curves and samples (a general codec finds little to remove)
-            let key = batch.schema().field(0).name().clone();
-            let props = WriterProperties::builder()
-                .set_compression(Compression::UNCOMPRESSED)
-                .set_dictionary_enabled(false)
-                .set_column_dictionary_enabled(ColumnPath::from(key), true)
-                .build();
             let out = self
                 .out
                 .take()
-                .ok_or_else(|| std::io::Error::other("the Parquet writer was closed"))?;
-            self.writer =
-                Some(ArrowWriter::try_new(out, batch.schema(), Some(props)).map_err(to_io)?);
+                .ok_or_else(|| other("the Parquet writer was closed"))?;
+            let props = properties(&schema);
+            self.writer = Some(ArrowWriter::try_new(out, schema, Some(props)).map_err(other)?);
         }
         if let Some(w) = self.writer.as_mut() {
-            w.write(batch).map_err(to_io)?;
-            w.flush().map_err(to_io)?;
+            w.write(&batch).map_err(other)?;
+            w.flush().map_err(other)?;
         }
         Ok(())
     }
 
     /// Writes curves (or the errors of the groups that gave none) as one row group; `key`
-    /// names the key column.
+    /// names the key column. The control points are a list of points per curve, each a list
+    /// of `dim` doubles, as docs/formats.md#parquet-batches says.
     ///
     /// # Errors
-    /// The writer's.
+    /// The writer's; a string key among integer keys.
     pub fn write_curves(
         &mut self,
         key: &str,
@@ -102,82 +297,75 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         let int = rows
             .first()
             .is_some_and(|(k, _)| matches!(k, GroupKey::Int(_)));
-        let mut keys = KeyBuilder::new(int);
-        let mut kind = StringBuilder::new();
-        let mut degree = Int32Builder::new();
-        let mut dim = Int32Builder::new();
-        let mut knots = ListBuilder::new(Float64Builder::new());
-        let mut control = ListBuilder::new(ListBuilder::new(Float64Builder::new()));
-        let mut weights = ListBuilder::new(Float64Builder::new());
-        let mut error = StringBuilder::new();
-        let small = |n: usize| i32::try_from(n).unwrap_or(i32::MAX);
-        for (k, r) in rows {
-            keys.append(k);
-            match r {
-                Ok(obj) => {
-                    kind.append_value(obj.type_name());
-                    let (d, kn, w) = match obj {
-                        Object::Bezier(c) => (c.degree(), None, None),
-                        Object::BSpline(c) => (c.degree(), Some(c.knots().as_slice()), None),
-                        Object::Nurbs(c) => {
-                            (c.degree(), Some(c.knots().as_slice()), Some(c.weights()))
-                        }
-                    };
-                    degree.append_value(small(d));
-                    dim.append_value(small(obj.dim()));
-                    match kn {
-                        Some(kn) => {
-                            knots.values().append_slice(kn);
-                            knots.append(true);
-                        }
-                        None => knots.append(true),
-                    }
-                    let cp = obj.control_points();
-                    for p in cp.iter() {
-                        control.values().values().append_slice(p);
-                        control.values().append(true);
-                    }
-                    control.append(true);
-                    match w {
-                        Some(w) => {
-                            weights.values().append_slice(&w);
-                            weights.append(true);
-                        }
-                        None => weights.append(true),
-                    }
-                    error.append_null();
+        let n = rows.len();
+        let parts: Vec<Option<CurveRow<'_>>> = rows
+            .iter()
+            .map(|(_, r)| r.as_ref().ok().map(CurveRow::of))
+            .collect();
+        let sum = |f: fn(&CurveRow<'_>) -> usize| parts.iter().flatten().map(f).sum::<usize>();
+        let mut kind: Vec<Option<&str>> = Vec::with_capacity(n);
+        let mut degree: Vec<Option<i32>> = Vec::with_capacity(n);
+        let mut dim: Vec<Option<i32>> = Vec::with_capacity(n);
+        let mut error: Vec<Option<&str>> = Vec::with_capacity(n);
+        let mut knots = FloatLists::with_capacity(n, sum(|c| c.knots.len()));
+        let mut control = PointLists::with_capacity(
+            n,
+            sum(|c| c.control.len() / c.dim.max(1)),
+            sum(|c| c.control.len()),
+        );
+        let mut weights =
+            FloatLists::with_capacity(n, sum(|c| c.weights.as_ref().map_or(0, Vec::len)));
+        let small = |what: &str, v: usize| {
+            i32::try_from(v).map_err(|_| other(format!("{what} {v} does not fit a Parquet int32")))
+        };
+        for ((_, r), c) in rows.iter().zip(&parts) {
+            match (r, c) {
+                (Ok(obj), Some(c)) => {
+                    kind.push(Some(obj.type_name()));
+                    degree.push(Some(small("degree", c.degree)?));
+                    dim.push(Some(small("dimension", c.dim)?));
+                    knots.push(c.knots)?;
+                    control.push(&c.control, c.dim)?;
+                    weights.push(c.weights.as_deref().unwrap_or(&[]))?;
+                    error.push(None);
                 }
-                Err(e) => {
-                    kind.append_null();
-                    degree.append_null();
-                    dim.append_null();
-                    // empty lists, never nulls, in the list columns: parquet 57's writer
-                    // computes negative levels for a list column that is null in every row of
-                    // a row group after one where it was not (and panics)
-                    knots.append(true);
-                    control.append(true);
-                    weights.append(true);
-                    error.append_value(e);
+                (r, _) => {
+                    kind.push(None);
+                    degree.push(None);
+                    dim.push(None);
+                    knots.push(&[])?;
+                    control.push(&[], 1)?;
+                    weights.push(&[])?;
+                    error.push(r.as_ref().err().map(String::as_str));
                 }
             }
         }
-        let batch = RecordBatch::try_from_iter([
-            (key, keys.finish()),
-            ("type", Arc::new(kind.finish()) as ArrayRef),
-            ("degree", Arc::new(degree.finish())),
-            ("dim", Arc::new(dim.finish())),
-            ("knots", Arc::new(knots.finish())),
-            ("control", Arc::new(control.finish())),
-            ("weights", Arc::new(weights.finish())),
-            ("error", Arc::new(error.finish())),
-        ])
-        .map_err(|e| std::io::Error::other(e.to_string()))?;
-        self.push(&batch)
+        let fields = vec![
+            key_field(key, int),
+            Field::new("type", DataType::Utf8, true),
+            Field::new("degree", DataType::Int32, true),
+            Field::new("dim", DataType::Int32, true),
+            Field::new("knots", float_list(), false),
+            Field::new("control", point_list(), false),
+            Field::new("weights", float_list(), false),
+            Field::new("error", DataType::Utf8, true),
+        ];
+        let columns: Vec<ArrayRef> = vec![
+            key_column(int, rows.iter().map(|(k, _)| (k, 1)))?,
+            Arc::new(StringArray::from(kind)),
+            Arc::new(Int32Array::from(degree)),
+            Arc::new(Int32Array::from(dim)),
+            knots.finish()?,
+            control.finish()?,
+            weights.finish()?,
+            Arc::new(StringArray::from(error)),
+        ];
+        self.push(fields, columns)
     }
 
     /// Writes point sets in the long layout as one row group: the key `key` on each point's
     /// row, then one double column per coordinate, named `names` (the layout
-    /// [`read_point_groups`] reads).
+    /// [`super::read_point_groups`] reads).
     ///
     /// # Errors
     /// The writer's; a point set whose dimension is not `names.len()`.
@@ -190,30 +378,25 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         let int = groups
             .first()
             .is_none_or(|(k, _)| matches!(k, GroupKey::Int(_)));
-        let mut keys = KeyBuilder::new(int);
-        let mut cols: Vec<Float64Builder> = names.iter().map(|_| Float64Builder::new()).collect();
-        for (k, pts) in groups {
-            if pts.dim() != names.len() {
-                return Err(std::io::Error::other(format!(
-                    "group {k} has points of dimension {}, the columns are {}",
-                    pts.dim(),
-                    names.join(",")
-                )));
-            }
-            for p in pts.iter() {
-                keys.append(k);
-                for (c, v) in cols.iter_mut().zip(p) {
-                    c.append_value(*v);
-                }
-            }
+        if let Some((k, pts)) = groups.iter().find(|(_, p)| p.dim() != names.len()) {
+            return Err(other(format!(
+                "group {k} has points of dimension {}, the columns are {}",
+                pts.dim(),
+                names.join(",")
+            )));
         }
-        let mut columns: Vec<(&str, ArrayRef)> = vec![(key, keys.finish())];
-        for (n, c) in names.iter().zip(cols.iter_mut()) {
-            columns.push((n, Arc::new(c.finish())));
+        let n: usize = groups.iter().map(|(_, p)| p.len()).sum();
+        let mut cols: Vec<Vec<f64>> = names.iter().map(|_| Vec::with_capacity(n)).collect();
+        for (_, pts) in groups {
+            split_columns(pts.as_slice(), &mut cols);
         }
-        let batch = RecordBatch::try_from_iter(columns)
-            .map_err(|e| std::io::Error::other(e.to_string()))?;
-        self.push(&batch)
+        let mut fields = vec![key_field(key, int)];
+        let mut columns = vec![key_column(int, groups.iter().map(|(k, p)| (k, p.len())))?];
+        for (name, col) in names.iter().zip(cols) {
+            fields.push(Field::new(*name, DataType::Float64, false));
+            columns.push(Arc::new(Float64Array::from(col)));
+        }
+        self.push(fields, columns)
     }
 
     /// Writes points sampled from curves as one row group: per group, its key on each of its
@@ -222,7 +405,7 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
     /// derivatives.
     ///
     /// # Errors
-    /// The writer's.
+    /// The writer's; a string key among integer keys.
     pub fn write_point_samples(
         &mut self,
         key: &str,
@@ -233,32 +416,25 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
             .first()
             .is_none_or(|(k, _, _)| matches!(k, GroupKey::Int(_)));
         let n: usize = rows.iter().map(|(_, ts, _)| ts.len()).sum();
-        let mut keys = KeyBuilder::new(int);
         let mut t = Vec::with_capacity(n);
         let mut cols: Vec<Vec<f64>> = (0..dim).map(|_| Vec::with_capacity(n)).collect();
-        for (k, ts, pts) in rows {
-            for _ in 0..ts.len() {
-                keys.append(k);
-            }
+        for (_, ts, pts) in rows {
             t.extend_from_slice(ts);
-            for (c, col) in cols.iter_mut().enumerate() {
-                col.extend(pts.iter().skip(c).step_by(dim.max(1)));
-            }
+            split_columns(pts, &mut cols);
         }
-        let names = crate::samples::coord_names(dim);
-        let mut columns: Vec<(&str, ArrayRef)> = vec![
-            (key, keys.finish()),
-            ("t", Arc::new(arrow_array::Float64Array::from(t))),
+        let mut fields = vec![
+            key_field(key, int),
+            Field::new("t", DataType::Float64, false),
         ];
-        for (name, col) in names.iter().zip(cols) {
-            columns.push((
-                name.as_str(),
-                Arc::new(arrow_array::Float64Array::from(col)),
-            ));
+        let mut columns = vec![
+            key_column(int, rows.iter().map(|(k, ts, _)| (k, ts.len())))?,
+            Arc::new(Float64Array::from(t)) as ArrayRef,
+        ];
+        for (name, col) in crate::samples::coord_names(dim).iter().zip(cols) {
+            fields.push(Field::new(name, DataType::Float64, false));
+            columns.push(Arc::new(Float64Array::from(col)));
         }
-        let batch = RecordBatch::try_from_iter(columns)
-            .map_err(|e| std::io::Error::other(e.to_string()))?;
-        self.push(&batch)
+        self.push(fields, columns)
     }
 
     /// Writes sample tables ([`crate::sample_table`]) as one row group: per group, its key on
@@ -275,31 +451,37 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         let Some((first_key, first)) = rows.first() else {
             return Ok(());
         };
-        let mut keys = KeyBuilder::new(matches!(first_key, GroupKey::Int(_)));
-        let mut cols: Vec<Float64Builder> =
-            first.header.iter().map(|_| Float64Builder::new()).collect();
+        let int = matches!(first_key, GroupKey::Int(_));
+        let n: usize = rows.iter().map(|(_, t)| t.rows.len()).sum();
+        let mut cols: Vec<Float64Builder> = first
+            .header
+            .iter()
+            .map(|_| Float64Builder::with_capacity(n))
+            .collect();
         for (k, table) in rows {
             if table.header != first.header {
-                return Err(std::io::Error::other(format!(
+                return Err(other(format!(
                     "group {k} has the columns {}, group {first_key} has {}; a samples file holds curves of one dimension",
                     table.header.join(","),
                     first.header.join(",")
                 )));
             }
             for row in &table.rows {
-                keys.append(k);
                 for (c, v) in cols.iter_mut().zip(row) {
                     c.append_option(*v);
                 }
             }
         }
-        let mut columns: Vec<(&str, ArrayRef)> = vec![(key, keys.finish())];
-        for (n, c) in first.header.iter().zip(cols.iter_mut()) {
-            columns.push((n.as_str(), Arc::new(c.finish())));
+        let mut fields = vec![key_field(key, int)];
+        let mut columns = vec![key_column(
+            int,
+            rows.iter().map(|(k, t)| (k, t.rows.len())),
+        )?];
+        for (name, mut c) in first.header.iter().zip(cols) {
+            fields.push(Field::new(name, DataType::Float64, true));
+            columns.push(Arc::new(c.finish()));
         }
-        let batch = RecordBatch::try_from_iter(columns)
-            .map_err(|e| std::io::Error::other(e.to_string()))?;
-        self.push(&batch)
+        self.push(fields, columns)
     }
 
     /// Writes the footer (an empty file of the layout if nothing was written: `empty` gives
@@ -312,14 +494,32 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         empty: impl FnOnce(&mut Self) -> std::io::Result<()>,
     ) -> std::io::Result<()> {
         if self.writer.is_none() {
+            self.closing = true;
             empty(&mut self)?;
         }
         match self.writer.take() {
-            Some(w) => w
-                .close()
-                .map(|_| ())
-                .map_err(|e| std::io::Error::other(e.to_string())),
+            Some(w) => w.close().map(|_| ()).map_err(other),
             None => Ok(()),
+        }
+    }
+}
+
+/// Appends the coordinates of point-major `points` to one vector per coordinate.
+fn split_columns(points: &[f64], cols: &mut [Vec<f64>]) {
+    match cols {
+        [x, y, z] => {
+            for p in points.chunks_exact(3) {
+                x.push(p[0]);
+                y.push(p[1]);
+                z.push(p[2]);
+            }
+        }
+        _ => {
+            for p in points.chunks_exact(cols.len().max(1)) {
+                for (c, v) in cols.iter_mut().zip(p) {
+                    c.push(*v);
+                }
+            }
         }
     }
 }
