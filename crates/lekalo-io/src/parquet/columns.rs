@@ -48,21 +48,42 @@ impl RowGroups {
         self.meta.schema()
     }
 
-    /// The batches of row group `i` (one, unless the group is very large).
-    pub(super) fn read(&self, i: usize) -> IoResult<Vec<RecordBatch>> {
-        let rows = self.meta.metadata().row_group(i).num_rows();
+    /// The batches of row group `i`, decoded as they are iterated, each of about
+    /// [`BATCH_BYTES`] (by the row group's uncompressed size per row) and at most
+    /// [`BATCH_ROWS`] rows: memory follows the batch, not the row group, and a batch's columns
+    /// stay in the caches from decoding to writing.
+    pub(super) fn read(
+        &self,
+        i: usize,
+    ) -> IoResult<impl Iterator<Item = IoResult<RecordBatch>> + '_> {
+        let meta = self.meta.metadata().row_group(i);
+        let rows = usize::try_from(meta.num_rows()).unwrap_or(0);
+        let bytes = usize::try_from(meta.total_byte_size()).unwrap_or(0);
         let file = self.file.try_clone().map_err(|error| IoError::Read {
             path: self.source.clone().into(),
             error,
         })?;
-        ParquetRecordBatchReaderBuilder::new_with_metadata(file, self.meta.clone())
-            .with_row_groups(vec![i])
-            .with_batch_size(usize::try_from(rows).unwrap_or(1).clamp(1, 1 << 20))
-            .build()
-            .map_err(|e| parquet_err(&self.source, e))?
-            .map(|b| b.map_err(|e| parquet_err(&self.source, e)))
-            .collect()
+        Ok(
+            ParquetRecordBatchReaderBuilder::new_with_metadata(file, self.meta.clone())
+                .with_row_groups(vec![i])
+                .with_batch_size(batch_rows(rows, bytes))
+                .build()
+                .map_err(|e| parquet_err(&self.source, e))?
+                .map(|b| b.map_err(|e| parquet_err(&self.source, e))),
+        )
     }
+}
+
+/// The uncompressed size aimed at for one batch of rows.
+pub(super) const BATCH_BYTES: usize = 4 << 20;
+
+/// The most rows of one batch.
+pub(super) const BATCH_ROWS: usize = 1 << 16;
+
+/// The rows of a batch of a row group of `rows` rows and `bytes` uncompressed bytes.
+fn batch_rows(rows: usize, bytes: usize) -> usize {
+    let per_row = bytes.div_ceil(rows.max(1)).max(1);
+    (BATCH_BYTES / per_row).clamp(1, BATCH_ROWS)
 }
 
 /// A numeric column (or the values of a list column) as `f64`s.

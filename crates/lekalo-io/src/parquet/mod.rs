@@ -1,6 +1,6 @@
 //! Parquet batches (docs/formats.md#parquet-batches): many point sets in, many curves out, and
-//! curves in, samples out, streamed one row group at a time so that memory is bounded by the
-//! row-group size whatever the file size.
+//! curves in, samples out, streamed a batch of a few MiB at a time (a row group or a part of
+//! one) so that memory is bounded by the batch, not the file.
 //!
 //! - **Point sets** come in one of two layouts:
 //!   - *long*: a key column (`group` unless named otherwise) and one numeric column per

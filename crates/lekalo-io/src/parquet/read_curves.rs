@@ -15,8 +15,8 @@ use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 
 /// Reads the curves of a Parquet file written by
-/// [`ParquetBatchWriter::write_curves`](super::ParquetBatchWriter::write_curves) one row group
-/// at a time; `each` gets `(key, curve)` pairs, a row with an `error` or an invalid curve as an
+/// [`ParquetBatchWriter::write_curves`](super::ParquetBatchWriter::write_curves) a batch of
+/// rows at a time (a few MiB, within a row group); `each` gets the batch's `(key, curve)` pairs, a row with an `error` or an invalid curve as an
 /// error naming its key. The control points of a row are read as one slice of the inner
 /// lists' values (no array or vector per point).
 ///
@@ -50,12 +50,11 @@ pub fn read_curve_groups(
         error: schema.index_of("error").ok(),
     };
     for g in 0..rg.count() {
-        let mut out = Vec::new();
         for batch in rg.read(g)? {
-            out.extend(cols.curves(&batch, key, &source)?);
-        }
-        if !out.is_empty() {
-            each(out)?;
+            let out = cols.curves(&batch?, key, &source)?;
+            if !out.is_empty() {
+                each(out)?;
+            }
         }
     }
     Ok(())

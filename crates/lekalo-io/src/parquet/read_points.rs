@@ -107,9 +107,9 @@ impl Open {
     }
 }
 
-/// Reads the point sets of a Parquet file one row group at a time, calling `each` with the
-/// groups completed by each row group (a group running on into the next row group is passed
-/// with that one). `key` names the key column ([`DEFAULT_KEY`] if `None`).
+/// Reads the point sets of a Parquet file a batch of rows at a time (a few MiB, within a row
+/// group), calling `each` with the groups completed by each batch (a group running on into
+/// the next batch or row group is passed with the batch where it ends). `key` names the key column ([`DEFAULT_KEY`] if `None`).
 ///
 /// # Errors
 /// [`IoError::Read`] if the file cannot be opened; [`IoError::Syntax`] for a file that is not
@@ -128,9 +128,12 @@ pub fn read_point_groups(
     let mut seen = std::collections::HashSet::new();
     let mut open: Option<Open> = None;
     let mut row0 = 0usize; // rows before the current batch
+    let last = rg.count().checked_sub(1);
     for g in 0..rg.count() {
-        let mut done = Vec::new();
-        for batch in rg.read(g)? {
+        let mut batches = rg.read(g)?.peekable();
+        while let Some(batch) = batches.next() {
+            let batch = batch?;
+            let mut done = Vec::new();
             let keys = Keys::of(batch.column(lay.key).as_ref()).ok_or_else(|| {
                 IoError::syntax(
                     Location::new(&source).at_field(key),
@@ -199,15 +202,19 @@ pub fn read_point_groups(
                 r = end;
             }
             row0 += batch.num_rows();
-        }
-        if g + 1 == rg.count() {
-            if let Some(o) = open.take() {
-                done.push(o.finish(dim));
+            if Some(g) == last && batches.peek().is_none() {
+                if let Some(o) = open.take() {
+                    done.push(o.finish(dim));
+                }
+            }
+            if !done.is_empty() {
+                each(done)?;
             }
         }
-        if !done.is_empty() {
-            each(done)?;
-        }
+    }
+    // a last row group without rows
+    if let Some(o) = open.take() {
+        each(vec![o.finish(dim)])?;
     }
     Ok(())
 }

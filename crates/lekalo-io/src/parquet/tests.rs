@@ -637,3 +637,69 @@ mod round_trip {
         }
     }
 }
+
+/// A row group larger than one batch of the reader: the groups that cross from batch to batch
+/// come back whole and in order, and `each` is called more than once within the row group.
+/// Written with row groups of a size in bytes, the calls of the writer share row groups.
+#[test]
+fn groups_cross_the_batches_of_a_row_group() {
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let (_d, path) = tmp("big.parquet");
+    // 3 groups of 30,000 points: the first batch (BATCH_ROWS rows) ends inside group 2
+    let n = 30_000;
+    let groups: Vec<(GroupKey, Points)> = (0..3)
+        .map(|g| {
+            let data = (0..n * 2)
+                .map(|i| (g * 1_000_000 + i) as f64 * 0.5)
+                .collect();
+            (GroupKey::Int(g as i64), Points::from_flat(2, data).unwrap())
+        })
+        .collect();
+    assert!(3 * n > super::columns::BATCH_ROWS, "more rows than a batch");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap()).with_row_group_bytes(8 << 20);
+    w.write_points("group", &["x", "y"], &groups[..1]).unwrap();
+    w.write_points("group", &["x", "y"], &groups[1..]).unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let r = SerializedFileReader::new(File::open(&path).unwrap()).unwrap();
+    assert_eq!(
+        r.metadata().num_row_groups(),
+        1,
+        "both calls in one row group"
+    );
+    let mut calls = 0;
+    let mut got = Vec::new();
+    read_point_groups(&path, None, |g| {
+        calls += 1;
+        got.extend(g.into_iter().map(|(k, p)| (k, p.unwrap())));
+        Ok(())
+    })
+    .unwrap();
+    assert!(calls > 1, "one call per batch, {calls}");
+    assert_eq!(got, groups, "bit for bit, in order");
+}
+
+/// Row groups of a size in bytes: a new row group starts once the open one's pages reach it.
+#[test]
+fn row_groups_of_a_size_in_bytes() {
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let (_d, path) = tmp("sized.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap()).with_row_group_bytes(1 << 16);
+    let mut want = Vec::new();
+    for g in 0..8 {
+        // 2,000 points of 2 doubles: 32 KB of pages a call
+        let data = (0..4_000).map(|i| f64::from(g * 4_000 + i)).collect();
+        let p = Points::from_flat(2, data).unwrap();
+        w.write_points(
+            "group",
+            &["x", "y"],
+            &[(GroupKey::Int(g.into()), p.clone())],
+        )
+        .unwrap();
+        want.push((GroupKey::Int(g.into()), Ok(p)));
+    }
+    w.close(|_| Ok(())).unwrap();
+    let r = SerializedFileReader::new(File::open(&path).unwrap()).unwrap();
+    let rgs = r.metadata().num_row_groups();
+    assert!((2..8).contains(&rgs), "{rgs} row groups for 8 calls");
+    assert_eq!(read_all(&path, None).unwrap(), want, "the same points");
+}

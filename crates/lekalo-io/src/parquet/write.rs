@@ -1,4 +1,5 @@
-//! The writer of curves, point sets and samples, one row group per call.
+//! The writer of curves, point sets and samples: one row group per call, or row groups of a
+//! given size (see [`ParquetBatchWriter::with_row_group_bytes`]).
 //!
 //! Every column is built from flat vectors filled a slice at a time (no builder call per
 //! number), against a schema stated here rather than guessed from the batch, so that every row
@@ -241,12 +242,15 @@ impl<'a> CurveRow<'a> {
     }
 }
 
-/// A Parquet writer of batches: one row group per call of `write`.
+/// A Parquet writer of batches: one row group per call of a `write_` method, or, with
+/// [`ParquetBatchWriter::with_row_group_bytes`], row groups of about a given size.
 pub struct ParquetBatchWriter<W: Write + Send> {
     writer: Option<ArrowWriter<W>>,
     out: Option<W>,
     /// In [`ParquetBatchWriter::close`]: a batch without rows is then written, for the layout.
     closing: bool,
+    /// The encoded size at which a row group is written; `None`: at every call.
+    row_group_bytes: Option<usize>,
 }
 
 impl<W: Write + Send> ParquetBatchWriter<W> {
@@ -256,11 +260,22 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
             writer: None,
             out: Some(out),
             closing: false,
+            row_group_bytes: None,
         }
     }
 
-    /// Writes `columns` under `fields` as one row group (the first call sets the file's
-    /// schema and settings).
+    /// The same writer, but the calls add their rows to a row group that is written when its
+    /// encoded pages reach `bytes` (and at [`ParquetBatchWriter::close`]): the file's row
+    /// groups are then of that size whatever the size of the calls, and memory is bounded by
+    /// it (the row groups of docs/formats.md#parquet-batches).
+    #[must_use]
+    pub fn with_row_group_bytes(mut self, bytes: usize) -> Self {
+        self.row_group_bytes = Some(bytes);
+        self
+    }
+
+    /// Writes `columns` under `fields` as one row group, or adds them to the open one (the
+    /// first call sets the file's schema and settings).
     fn push(&mut self, fields: Vec<Field>, columns: Vec<ArrayRef>) -> std::io::Result<()> {
         let schema = Arc::new(Schema::new(fields));
         let batch = RecordBatch::try_new(schema.clone(), columns).map_err(other)?;
@@ -278,7 +293,12 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         }
         if let Some(w) = self.writer.as_mut() {
             w.write(&batch).map_err(other)?;
-            w.flush().map_err(other)?;
+            if self
+                .row_group_bytes
+                .is_none_or(|b| w.in_progress_size() >= b)
+            {
+                w.flush().map_err(other)?;
+            }
         }
         Ok(())
     }
