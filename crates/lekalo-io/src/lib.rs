@@ -11,7 +11,7 @@
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
 //! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`], [`write_npz_curve`] |
-//! | batches: Parquet point sets in, curves in and out, samples out (row group by row group) | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`] |
+//! | batches: Parquet point sets in, curves in and out, samples out (batch by batch) | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
@@ -47,7 +47,7 @@ mod object;
 mod object_ext;
 mod palette;
 #[cfg(feature = "parquet")]
-mod parquet_io;
+mod parquet;
 mod png;
 mod points_in;
 mod samples;
@@ -83,7 +83,7 @@ pub use object_ext::{
 };
 pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
 #[cfg(feature = "parquet")]
-pub use parquet_io::{
+pub use parquet::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
 };
 pub use png::svg_to_png;

@@ -1,6 +1,7 @@
 //! Parquet batches for `interpolate`, `fit`, `eval` and `convert` (docs/formats.md#parquet-batches):
-//! read one row group at a time, the groups of a row group processed in parallel, one output
-//! row group written per input row group, so memory is bounded by the row-group size. A bad
+//! read a batch of a few MiB at a time, decoding, the groups' work (in parallel) and encoding
+//! overlapped (`pipeline`), row groups written by size, so memory is bounded by a few batches
+//! and one output row group. A bad
 //! group is written with its `error`, reported on stderr with its key, and does not stop the
 //! others; the exit code is then 2.
 
@@ -51,6 +52,10 @@ fn finish(failed: &[String], total: usize, input: &Path) -> Result<()> {
     }
 }
 
+/// The encoded size of the row groups written: a few input batches each, few enough row groups
+/// for readers, and the bound of the writer's memory.
+const ROW_GROUP_BYTES: usize = 32 << 20;
+
 /// The Parquet writer of a batch, into the temporary file of an atomic write.
 type Writer<'w> = ParquetBatchWriter<&'w mut (dyn std::io::Write + Send)>;
 
@@ -71,7 +76,7 @@ fn write_parquet(
             force: settings().force,
         },
         |w| {
-            let mut writer = ParquetBatchWriter::new(w);
+            let mut writer = ParquetBatchWriter::new(w).with_row_group_bytes(ROW_GROUP_BYTES);
             fill(&mut writer).map_err(|e| {
                 let msg = e.to_string();
                 input_error = Some(e);
@@ -90,6 +95,54 @@ fn write_error(out: &Path) -> impl Fn(std::io::Error) -> IoError + '_ {
         path: out.to_path_buf(),
         error,
     }
+}
+
+/// Runs a batch as three stages on their own threads, joined by channels that hold one batch
+/// each: `read` (the caller's thread) decodes the input and hands over its batches, `compute`
+/// turns a batch into output rows (on the rayon pool), `write` encodes them. Decoding, the
+/// groups' work and encoding then overlap, and at most a few batches are in memory at once.
+/// The first error stops the others: a failed write before the read that it stopped.
+fn pipeline<T: Send, U: Send>(
+    read: impl FnOnce(&mut dyn FnMut(T) -> lekalo_io::IoResult<()>) -> lekalo_io::IoResult<()>,
+    compute: impl Fn(T) -> U + Sync,
+    mut write: impl FnMut(U) -> lekalo_io::IoResult<()> + Send,
+) -> lekalo_io::IoResult<()> {
+    use std::sync::mpsc::sync_channel;
+    std::thread::scope(|s| {
+        let (to_compute, computing) = sync_channel::<T>(1);
+        let (to_write, writing) = sync_channel::<U>(1);
+        let compute = &compute;
+        let computer = s.spawn(move || {
+            for batch in computing {
+                if to_write.send(compute(batch)).is_err() {
+                    break;
+                }
+            }
+        });
+        let writer = s.spawn(move || {
+            for rows in writing {
+                write(rows)?;
+            }
+            Ok(())
+        });
+        let read = read(&mut |batch| {
+            to_compute.send(batch).map_err(|_| IoError::Write {
+                path: "(the Parquet writer)".into(),
+                error: std::io::Error::other("stopped"),
+            })
+        });
+        drop(to_compute);
+        let joined = |r: std::thread::Result<()>| {
+            if let Err(p) = r {
+                std::panic::resume_unwind(p)
+            }
+        };
+        joined(computer.join());
+        let written = writer
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        written.and(read)
+    })
 }
 
 /// `lekalo interpolate points.parquet -o curves.parquet`: one curve per group.
@@ -119,20 +172,26 @@ pub(crate) fn curves_of_groups(
         input,
         out,
         |writer| {
-            lekalo_io::read_point_groups(input, Some(key), |groups| {
-                let rows: Vec<(GroupKey, Result<Object, String>)> = groups
-                    .into_par_iter()
-                    .map(|(k, pts)| {
-                        let curve = pts.map_err(|e| e.to_string()).and_then(|p| {
-                            make(&p).map_err(|e| format!("{}: group {k}: {e:#}", input.display()))
-                        });
-                        (k, curve)
-                    })
-                    .collect();
-                total += rows.len();
-                failed.extend(rows.iter().filter_map(|(_, r)| r.as_ref().err().cloned()));
-                writer.write_curves(key, &rows).map_err(write_error(out))
-            })
+            pipeline(
+                |each| lekalo_io::read_point_groups(input, Some(key), each),
+                |groups: Vec<lekalo_io::PointGroup>| -> Vec<(GroupKey, Result<Object, String>)> {
+                    groups
+                        .into_par_iter()
+                        .map(|(k, pts)| {
+                            let curve = pts.map_err(|e| e.to_string()).and_then(|p| {
+                                make(&p)
+                                    .map_err(|e| format!("{}: group {k}: {e:#}", input.display()))
+                            });
+                            (k, curve)
+                        })
+                        .collect()
+                },
+                |rows| {
+                    total += rows.len();
+                    failed.extend(rows.iter().filter_map(|(_, r)| r.as_ref().err().cloned()));
+                    writer.write_curves(key, &rows).map_err(write_error(out))
+                },
+            )
         },
         |w| w.write_curves(key, &[]),
     )?;
@@ -159,43 +218,34 @@ pub(crate) fn eval(
     let mut failed = Vec::new();
     let mut total = 0usize;
     let mut header: Option<Vec<String>> = None;
+    let points_only = spec.derivatives == 0 && !spec.curvature && !spec.torsion;
     write_parquet(
         input,
         out,
         |writer| {
-            lekalo_io::read_curve_groups(input, Some(key), |curves| {
-                total += curves.len();
-                if spec.derivatives == 0 && !spec.curvature && !spec.torsion {
-                    return point_samples(curves, input, params, writer, &mut header, &mut failed)
-                        .map_err(write_error(out));
-                }
-                let tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)> = curves
-                    .into_par_iter()
-                    .map(|(k, obj)| {
-                        let t = obj.map_err(|e| e.to_string()).and_then(|o| {
-                            let ts = params(&o).map_err(|e| e.to_string())?;
-                            lekalo_io::sample_table(&o, &ts, spec)
-                                .map_err(|e| format!("{}: group {k}: {e}", input.display()))
-                        });
-                        (k, t)
-                    })
-                    .collect();
-                let mut ok = Vec::with_capacity(tables.len());
-                for (k, t) in tables {
-                    match t {
-                        Ok(t) if header.get_or_insert_with(|| t.header.clone()) == &t.header => {
-                            ok.push((k, t));
-                        }
-                        Ok(t) => failed.push(format!(
-                            "{}: group {k}: a {}-D curve among curves of another dimension; a samples file holds one dimension",
-                            input.display(),
-                            t.header.len().saturating_sub(1)
-                        )),
-                        Err(e) => failed.push(e),
+            pipeline(
+                |each| lekalo_io::read_curve_groups(input, Some(key), each),
+                |curves: Vec<(GroupKey, Result<Object, IoError>)>| {
+                    if points_only {
+                        Samples::Points(sample_points(curves, input, params))
+                    } else {
+                        Samples::Tables(sample_tables(curves, input, params, spec))
                     }
-                }
-                writer.write_samples(key, &ok).map_err(write_error(out))
-            })
+                },
+                |samples| {
+                    let written = match samples {
+                        Samples::Points(rows) => {
+                            total += rows.len();
+                            write_points(rows, input, writer, &mut header, &mut failed)
+                        }
+                        Samples::Tables(tables) => {
+                            total += tables.len();
+                            write_tables(tables, input, writer, &mut header, &mut failed)
+                        }
+                    };
+                    written.map_err(write_error(out))
+                },
+            )
         },
         |w| {
             let empty = lekalo_io::SampleTable {
@@ -218,17 +268,22 @@ pub(crate) fn eval(
 /// The parameters, the points (flat) and the dimension of one curve's samples.
 type Sampled = (Vec<f64>, Vec<f64>, usize);
 
+/// The samples of a batch of curves, or why a curve has none.
+enum Samples {
+    /// Points only.
+    Points(Vec<(GroupKey, Result<Sampled, String>)>),
+    /// With derivatives or curvature.
+    Tables(Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)>),
+}
+
 /// Points only: each curve's samples by the library's batch evaluation into one flat buffer
-/// (no table rows), written as columns; the first curve's dimension is the file's.
-fn point_samples<W: std::io::Write + Send>(
+/// (no table rows), the curves in parallel.
+fn sample_points(
     curves: Vec<(GroupKey, Result<Object, IoError>)>,
     input: &Path,
     params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
-    writer: &mut ParquetBatchWriter<W>,
-    header: &mut Option<Vec<String>>,
-    failed: &mut Vec<String>,
-) -> std::io::Result<()> {
-    let rows: Vec<(GroupKey, Result<Sampled, String>)> = curves
+) -> Vec<(GroupKey, Result<Sampled, String>)> {
+    curves
         .into_par_iter()
         .map(|(k, obj)| {
             let r = obj.map_err(|e| e.to_string()).and_then(|o| {
@@ -240,7 +295,46 @@ fn point_samples<W: std::io::Write + Send>(
             });
             (k, r)
         })
-        .collect();
+        .collect()
+}
+
+/// With derivatives or curvature: each curve's sample table, the curves in parallel.
+fn sample_tables(
+    curves: Vec<(GroupKey, Result<Object, IoError>)>,
+    input: &Path,
+    params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
+    spec: SampleSpec,
+) -> Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)> {
+    curves
+        .into_par_iter()
+        .map(|(k, obj)| {
+            let t = obj.map_err(|e| e.to_string()).and_then(|o| {
+                let ts = params(&o).map_err(|e| e.to_string())?;
+                lekalo_io::sample_table(&o, &ts, spec)
+                    .map_err(|e| format!("{}: group {k}: {e}", input.display()))
+            });
+            (k, t)
+        })
+        .collect()
+}
+
+/// A curve of another dimension than the file's first.
+fn other_dimension(input: &Path, k: &GroupKey, d: usize) -> String {
+    format!(
+        "{}: group {k}: a {d}-D curve among curves of another dimension; a samples file holds one dimension",
+        input.display()
+    )
+}
+
+/// Writes the sampled points of a batch as columns; the first curve's dimension is the
+/// file's.
+fn write_points<W: std::io::Write + Send>(
+    rows: Vec<(GroupKey, Result<Sampled, String>)>,
+    input: &Path,
+    writer: &mut ParquetBatchWriter<W>,
+    header: &mut Option<Vec<String>>,
+    failed: &mut Vec<String>,
+) -> std::io::Result<()> {
     let mut ok = Vec::with_capacity(rows.len());
     let mut dim = None;
     for (k, r) in rows {
@@ -251,10 +345,7 @@ fn point_samples<W: std::io::Write + Send>(
                     dim = Some(d);
                     ok.push((k, ts, pts));
                 } else {
-                    failed.push(format!(
-                        "{}: group {k}: a {d}-D curve among curves of another dimension; a samples file holds one dimension",
-                        input.display()
-                    ));
+                    failed.push(other_dimension(input, &k, d));
                 }
             }
             Err(e) => failed.push(e),
@@ -264,6 +355,27 @@ fn point_samples<W: std::io::Write + Send>(
         Some(d) => writer.write_point_samples(&group_column(), d, &ok),
         None => Ok(()),
     }
+}
+
+/// Writes the sample tables of a batch; the first curve's columns are the file's.
+fn write_tables<W: std::io::Write + Send>(
+    tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)>,
+    input: &Path,
+    writer: &mut ParquetBatchWriter<W>,
+    header: &mut Option<Vec<String>>,
+    failed: &mut Vec<String>,
+) -> std::io::Result<()> {
+    let mut ok = Vec::with_capacity(tables.len());
+    for (k, t) in tables {
+        match t {
+            Ok(t) if header.get_or_insert_with(|| t.header.clone()) == &t.header => {
+                ok.push((k, t));
+            }
+            Ok(t) => failed.push(other_dimension(input, &k, t.header.len().saturating_sub(1))),
+            Err(e) => failed.push(e),
+        }
+    }
+    writer.write_samples(&group_column(), &ok)
 }
 
 /// `lekalo convert`: curves between Parquet and JSON Lines.
@@ -315,5 +427,68 @@ fn key_json(k: &GroupKey) -> serde_json::Value {
     match k {
         GroupKey::Int(i) => serde_json::Value::from(*i),
         GroupKey::Str(s) => serde_json::Value::from(s.as_str()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stop(what: &str) -> IoError {
+        IoError::Write {
+            path: what.into(),
+            error: std::io::Error::other(what.to_string()),
+        }
+    }
+
+    /// Every batch goes through in order; a failed read after some batches is the result,
+    /// once the batches before it are written.
+    #[test]
+    fn the_pipeline_keeps_order_and_reports_a_failed_read() {
+        let mut written = Vec::new();
+        let r = pipeline(
+            |each| {
+                for i in 0..50 {
+                    each(i)?;
+                }
+                Err(stop("read"))
+            },
+            |i: i32| i * 2,
+            |x| {
+                written.push(x);
+                Ok(())
+            },
+        );
+        assert!(
+            r.unwrap_err().to_string().contains("read"),
+            "the read's error"
+        );
+        assert_eq!(
+            written,
+            (0..50).map(|i| i * 2).collect::<Vec<_>>(),
+            "in order"
+        );
+    }
+
+    /// A failed write stops the read, and is the error reported.
+    #[test]
+    fn a_failed_write_stops_the_read() {
+        let mut read = 0;
+        let r = pipeline(
+            |each| {
+                for i in 0..1000 {
+                    read += 1;
+                    each(i)?;
+                }
+                Ok(())
+            },
+            |i: i32| i,
+            |x| if x == 3 { Err(stop("write")) } else { Ok(()) },
+        );
+        assert!(
+            r.unwrap_err().to_string().contains("write"),
+            "the write's error"
+        );
+        assert!(read < 1000, "the read stopped after {read} batches");
     }
 }
