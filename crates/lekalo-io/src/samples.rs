@@ -219,22 +219,23 @@ mod tests {
     fn torsion_column_matches_the_query_curve_and_needs_3d() {
         // a cubic that leaves its osculating plane: C(t) = (t, t², t³) on [0, 1] as a Bezier
         // curve, τ(t) = 3 / (9t⁴ + 9t² + 1)
-        let ctrl = Points::new(
+        let third = 1.0 / 3.0;
+        let ctrl = Points::from_flat(
+            3,
             vec![
                 0.0,
                 0.0,
-                0.0, //
-                1.0 / 3.0,
                 0.0,
-                0.0, //
-                2.0 / 3.0,
-                1.0 / 3.0,
-                0.0, //
+                third,
+                0.0,
+                0.0,
+                2.0 * third,
+                third,
+                0.0,
                 1.0,
                 1.0,
                 1.0,
             ],
-            3,
         )
         .unwrap();
         let c = Object::BSpline(
@@ -272,7 +273,7 @@ mod tests {
             BSplineCurve::new(
                 1,
                 vec![0.0, 0.0, 1.0, 1.0],
-                Points::new(vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0], 3).unwrap(),
+                Points::from_flat(3, vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0]).unwrap(),
             )
             .unwrap(),
         );
