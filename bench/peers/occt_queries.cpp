@@ -14,7 +14,8 @@
 // Usage: occt_queries [REPEATS] [PROJECT_POINTS] [ANSWERS_DIR]
 // With ANSWERS_DIR, the answers are written there for bench/peers/compare_queries.py:
 // occt_project.txt (the distance of each projected point) and occt_intersect.txt (t_a t_b x y
-// of each intersection point).
+// of each intersection point); and the meshed face, occt_mesh.brep, for
+// bench/peers/occt_mesh_deviation.py.
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
@@ -187,9 +188,10 @@ int main(int argc, char **argv) {
   // the triangle count, read back from the face written in BRep format (untimed): Debian's
   // Poly_Triangulation.hxx includes a header its package does not ship, so the triangulation
   // cannot be asked directly; the file's "Triangulations" section lists nodes and triangles
+  // the face is kept in ANSWERS_DIR as occt_mesh.brep for bench/peers/occt_mesh_deviation.py
   long nodes = -1, tris = -1;
-  const char *brep = "occt_queries_mesh.brep";
-  if (BRepTools::Write(face, brep)) {
+  std::string brep = answers.empty() ? "occt_queries_mesh.brep" : answers + "/occt_mesh.brep";
+  if (BRepTools::Write(face, brep.c_str())) {
     std::ifstream in(brep);
     std::string word;
     while (in >> word)
@@ -199,7 +201,7 @@ int main(int argc, char **argv) {
         if (n == 1) in >> nodes >> tris;
         break;
       }
-    std::remove(brep);
+    if (answers.empty()) std::remove(brep.c_str());
   }
   std::printf("mesh_50x50 %.6e s triangles %ld nodes %ld\n", t_mesh, tris, nodes);
   return 0;

@@ -83,7 +83,8 @@ fi
 # before and just after, on one thread and on all (ratio = Open CASCADE's seconds / lekalo's; the
 # mesh lines carry both triangle counts). Open CASCADE projects OCCT_QUERY_POINTS points (default
 # 1,000: it takes milliseconds a point) and as many parameter-at-length queries; compare per
-# query. compare_queries.py then checks the answers: projections point by point, intersections.
+# query. compare_queries.py then checks the answers: projections point by point, intersections;
+# occt_mesh_deviation.py measures Open CASCADE's mesh against the surface (a few minutes).
 if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo -lTKBRep \
     -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel; then
   cargo build --quiet --release -p lekalo --example query_peer
@@ -96,4 +97,9 @@ if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo 
   target/release/examples/query_peer "$repeats" | sed 's/^lekalo /lekalo-after /'
   uptime
   python3 bench/peers/compare_queries.py "$answers"
+  # the true deviation of Open CASCADE's mesh (the face occt_queries wrote to $answers), and
+  # lekalo's triangle count at the deviation that mesh reaches (the release CLI)
+  cargo build --quiet --release -p lekalo-cli
+  "$venv/bin/python" bench/peers/occt_mesh_deviation.py --brep "$answers/occt_mesh.brep" \
+    --lekalo target/release/lekalo
 fi
