@@ -297,7 +297,8 @@ impl Smoother {
         } else {
             scale + 6.0
         };
-        // two points a decade; the bounds are finite (`tg`, `to`, `wsum` > 0 for valid data)
+        // two points a decade; the count is clamped to [2, 400] first, so the cast is exact
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let steps = ((hi - lo) * 2.0).ceil().clamp(2.0, 400.0) as usize;
         let f = |z: f64| self.gcv(10f64.powf(z)).unwrap_or(f64::INFINITY);
         let mut best = (f64::INFINITY, 0);
