@@ -135,6 +135,11 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
             ("loop.json", bezier("[[0, 0], [3, 3], [0, 3], [3, 0]]")),
             ("space.json", bezier("[[0, 0, 0], [1, 1, 2], [2, 0, 2]]")),
         ],
+        // a twisted cubic: a space curve with torsion
+        "eval" => vec![(
+            "helix.json",
+            bezier("[[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]"),
+        )],
         "offset" => vec![(
             "ellipse.json",
             r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[2, 0], [2, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}"#.into(),

@@ -30,8 +30,9 @@ pub enum Lambda {
 /// `UᵀDU`. The natural end conditions come out of the minimisation. O(N) time and memory.
 ///
 /// With [`Lambda::Gcv`], λ minimises [`gcv_score`], whose trace term uses the band of the
-/// inverse (Hutchinson & de Hoog 1985): a coarse scan over 18 decades around the scale
-/// `tr(BᵀWB)/tr(Ω)` followed by Brent's minimisation in `log λ`.
+/// inverse (Hutchinson & de Hoog 1985): a coarse scan in `log λ` from all but interpolation
+/// (twelve decades below `tr(BᵀWB)/tr(Ω)`) to all but the least-squares line (two decades above
+/// `Σw·L³`), followed by Brent's minimisation (`docs/theory/fitting.md#gcv`).
 ///
 /// ```
 /// use lekalo::fit::{smoothing_spline, FitData, Lambda};
