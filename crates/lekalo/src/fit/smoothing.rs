@@ -274,7 +274,7 @@ impl Smoother {
         Ok((rss / (n * self.dim as f64)) / (denom * denom))
     }
 
-    /// λ minimising the GCV score: a scan in `log λ`, two points a decade, then Brent's method
+    /// λ minimising the GCV score: a scan in `log λ`, a point a decade, then Brent's method
     /// between the neighbours of the scan's best point (`docs/theory/fitting.md#gcv`).
     ///
     /// The scan runs from twelve decades below `tr(BᵀWB)/tr(Ω)`, where the penalty weighs like
@@ -298,9 +298,10 @@ impl Smoother {
         } else {
             scale + 6.0
         };
-        // two points a decade; the count is clamped to [2, 400] first, so the cast is exact
+        // a point a decade (the score's minima are decades wide in log λ; Brent refines within
+        // the two decades around the best point); clamped to [2, 400] first, so the cast is exact
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let steps = ((hi - lo) * 2.0).ceil().clamp(2.0, 400.0) as usize;
+        let steps = (hi - lo).ceil().clamp(2.0, 400.0) as usize;
         let f = |z: f64| self.gcv(10f64.powf(z)).unwrap_or(f64::INFINITY);
         let mut best = (f64::INFINITY, 0);
         let grid: Vec<f64> = (0..=steps)
