@@ -42,6 +42,7 @@ fn every_subcommand_has_help_with_examples() {
         "from-parameters",
         "curry-schoenberg",
         "inspect",
+        "basis",
     ] {
         lekalo()
             .args(["knots", rule, "--help"])
@@ -216,6 +217,56 @@ fn internal_failure_is_exit_code_3() {
         .assert()
         .code(3)
         .stderr(contains("cannot write"));
+}
+
+#[test]
+fn knots_basis_at_parameters() {
+    // P&T Example 2.3: degree 2 over {0,0,0,1,2,3,4,4,5,5,5} at 2.5, span 4, values 1/8, 3/4, 1/8
+    // (docs/theory/foundations.md#cox-de-boor-recursion); and the right end of the domain
+    let out = lekalo()
+        .args([
+            "knots",
+            "basis",
+            "--knots",
+            "0,0,0,1,2,3,4,4,5,5,5",
+            "--degree",
+            "2",
+            "--at",
+            "2.5,5",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["degree"], 2);
+    assert_eq!(j["basis"][0]["span"], 4);
+    assert_eq!(j["basis"][0]["first"], 2);
+    assert_eq!(
+        j["basis"][0]["values"],
+        serde_json::json!([0.125, 0.75, 0.125])
+    );
+    assert_eq!(j["basis"][1]["span"], 7);
+    assert_eq!(j["basis"][1]["values"], serde_json::json!([0.0, 0.0, 1.0]));
+    // outside the domain, NaN, a degree the knots cannot carry, no degree: named errors
+    for (args, message) in [
+        (vec!["--degree", "2", "--at", "5.5"], "outside the domain"),
+        (vec!["--degree", "2", "--at", "nan"], "--at"),
+        (vec!["--degree", "9", "--at", "1"], "degree"),
+        (vec!["--at", "1"], "--knots needs --degree"),
+    ] {
+        lekalo()
+            .args(["knots", "basis", "--knots", "0,0,0,1,2,3,4,4,5,5,5"])
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(message));
+    }
 }
 
 #[test]

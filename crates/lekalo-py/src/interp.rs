@@ -175,6 +175,31 @@ pub(crate) fn parametrize<'py>(
     Ok(vec_array(py, &t))
 }
 
+/// The non-zero B-spline basis functions of `degree` over the knots `t` at each parameter of
+/// `x`: `(spans, values)`, `spans[j]` the knot span of `x[j]` and `values[j]` the `degree + 1`
+/// values `N_{spans[j]−degree..=spans[j]}(x[j])` (`lekalo::basis::basis_functions_many`, P&T
+/// A2.2): the banded design matrix. Parameters outside the domain are an error.
+#[pyfunction]
+pub(crate) fn basis_functions<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    degree: usize,
+    x: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let knots = lekalo::KnotVector::new(vec1(t, "t")?).map_err(lib_err)?;
+    let xa = floats(x, "x")?;
+    let xs = xa.vector("x")?;
+    let (spans, values) = py
+        .detach(|| lekalo::basis::basis_functions_many(&knots, degree, xs))
+        .map_err(lib_err)?;
+    let m = spans.len();
+    let spans = numpy::PyArray1::from_vec(py, spans.into_iter().map(|s| s as i64).collect());
+    Ok((
+        spans.into_any(),
+        crate::convert::array(py, values, &[m, degree + 1])?,
+    ))
+}
+
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` (zero second derivatives at the ends;
 /// document 002 §C.2), as a B-spline with knots at the `x_k`.
 #[pyfunction]

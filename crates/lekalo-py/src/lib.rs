@@ -45,6 +45,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(curves::from_json, m)?)?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::basis_functions, m)?)?;
     m.add_function(wrap_pyfunction!(interp::natural_cubic_spline, m)?)?;
     m.add_function(wrap_pyfunction!(interp::interpolate_surface, m)?)?;
     m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;

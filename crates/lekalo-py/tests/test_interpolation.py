@@ -177,3 +177,34 @@ def test_geomdl_dict_round_trip():
             assert np.allclose(back.grid([0, 0.5, 1], [0, 1]), o.grid([0, 0.5, 1], [0, 1]), atol=1e-14)
         else:
             assert back == o
+
+
+def test_design_matrix_is_scipys():
+    # the banded basis values at sorted and unsorted parameters, against SciPy's design matrix
+    # (P&T A2.2 on both sides; the same values to rounding)
+    t = np.r_[[0.0] * 4, np.sort(RNG.random(20)), [1.0] * 4]
+    for x in (np.linspace(0, 1, 301), RNG.random(200)):
+        ours = lekalo.design_matrix(x, t, 3)
+        ref = si.BSpline.design_matrix(x, t, 3)
+        assert ours.shape == ref.shape == (len(x), len(t) - 4)
+        assert np.allclose(ours.toarray(), ref.toarray(), rtol=0, atol=4e-16)
+        assert np.allclose(ours.sum(axis=1), 1.0, rtol=0, atol=1e-15)
+    spans, values = lekalo.basis_functions(t, 3, np.array([0.0, 0.5, 1.0]))
+    assert spans.dtype == np.int64 and values.shape == (3, 4)
+    # the first span, and at the right end the last non-empty one (n = len(t) - 5)
+    assert spans[0] == 3 and spans[-1] == len(t) - 5
+    assert values[0].tolist() == [1.0, 0.0, 0.0, 0.0] and values[-1].tolist() == [0.0, 0.0, 0.0, 1.0]
+
+
+@pytest.mark.parametrize(
+    "x, degree, match",
+    [
+        (np.array([0.5, np.nan]), 3, r"x\[1\] is NaN"),
+        (np.array([1.5]), 3, "outside"),
+        (np.array([0.5]), 40, "degree"),
+    ],
+)
+def test_basis_functions_refuse_bad_input(x, degree, match):
+    t = np.r_[[0.0] * 4, 0.5, [1.0] * 4]
+    with pytest.raises(lekalo.Error, match=match):
+        lekalo.basis_functions(t, degree, x)

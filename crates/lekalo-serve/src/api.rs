@@ -12,7 +12,7 @@
 use axum::body::Bytes;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
-use lekalo::basis::basis_functions;
+use lekalo::basis::{basis_functions, basis_functions_many};
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
     EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization, Points,
@@ -336,7 +336,7 @@ fn principal_normal(d1: &[f64], d2: &[f64]) -> Option<Vec<f64>> {
 }
 
 /// The basis functions of degree `p` over `knots`, sampled at `m` parameters
-/// (`lekalo::basis::basis_functions`, P&T A2.2), and those active at `at`.
+/// (`lekalo::basis::basis_functions_many`, P&T A2.2), and those active at `at`.
 fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiResult<BasisView> {
     let (a, b) = knots.domain(p);
     let count = knots.len().saturating_sub(p + 1);
@@ -348,9 +348,10 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
             values: Vec::new(),
         })
         .collect();
-    for (j, &tj) in t.iter().enumerate() {
-        let (span, vals) = basis_functions(knots, p, tj).map_err(|e| ApiError::lib("knots", &e))?;
-        for (r, v) in vals.into_iter().enumerate() {
+    let (spans, values) =
+        basis_functions_many(knots, p, &t).map_err(|e| ApiError::lib("knots", &e))?;
+    for (j, (&span, vals)) in spans.iter().zip(values.chunks_exact(p + 1)).enumerate() {
+        for (r, &v) in vals.iter().enumerate() {
             let Some(f) = functions.get_mut(span + r - p) else {
                 continue;
             };

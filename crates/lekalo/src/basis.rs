@@ -337,6 +337,54 @@ pub fn basis_functions(knots: &KnotVector, degree: usize, t: f64) -> Result<(usi
     Ok((span, out))
 }
 
+/// The non-zero basis functions of `degree` at many parameters: for each `t[j]` its span
+/// `spans[j]` and `values[j·(p+1)..(j+1)·(p+1)] = [N_{span−p,p}(t_j), …, N_{span,p}(t_j)]`, the
+/// banded form of the collocation ("design") matrix `N_{i,p}(t_j)`. The same Cox–de Boor scheme
+/// as [`basis_functions`] (P&T Algorithm A2.2), bit for bit, with one scratch space for the
+/// batch and a [`SpanCursor`](crate::SpanCursor): amortised O(1) span search for sorted
+/// parameters, O(log n) otherwise, and no allocation per parameter.
+///
+/// ```
+/// use lekalo::{basis::{basis_functions, basis_functions_many}, KnotVector};
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 5.0, 5.0, 5.0]).unwrap();
+/// let (spans, values) = basis_functions_many(&kv, 2, &[0.5, 2.5, 5.0]).unwrap();
+/// assert_eq!(spans, [2, 4, 7]);
+/// assert_eq!(values[3..6], basis_functions(&kv, 2, 2.5).unwrap().1[..]); // P&T Example 2.3
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`basis_functions`] for the first parameter outside the domain (or NaN), or a degree the
+/// knots cannot carry; [`Error::TooLarge`] beyond [`MAX_SCALARS`](crate::error::MAX_SCALARS)
+/// values.
+pub fn basis_functions_many(
+    knots: &KnotVector,
+    degree: usize,
+    t: &[f64],
+) -> Result<(Vec<usize>, Vec<f64>)> {
+    // the degree is checked against the knots before anything is sized from it
+    knots.check_degree(degree)?;
+    let w = degree + 1;
+    let total = t.len().saturating_mul(w);
+    if total > crate::error::MAX_SCALARS {
+        return Err(Error::TooLarge {
+            what: "basis values",
+            size: total,
+            max: crate::error::MAX_SCALARS,
+        });
+    }
+    let mut cursor = knots.span_cursor(degree);
+    let mut scratch = BasisScratch::new(degree);
+    let mut spans = Vec::with_capacity(t.len());
+    let mut values = vec![0.0; total];
+    for (&tj, out) in t.iter().zip(values.chunks_exact_mut(w)) {
+        let span = cursor.find(tj)?;
+        basis_funs_into(knots.as_slice(), degree, span, tj, &mut scratch, out);
+        spans.push(span);
+    }
+    Ok((spans, values))
+}
+
 /// Derivatives of orders `0..=n_ders` of the non-zero basis functions at `t` (P&T Algorithm
 /// A2.3): returns the span `i` and `(n_ders + 1) × (p + 1)` values row by row; row `k` holds
 /// `N^{(k)}_{i−p..=i,p}(t)`. Orders above `p` are zero. At a knot the derivatives are the
@@ -556,6 +604,27 @@ mod tests {
         assert!(basis_function_recursive(&kv, 0, 2, 3.5).is_err());
     }
 
+    #[test]
+    fn many_parameters_refuse_what_one_parameter_refuses() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 2.0]).unwrap();
+        assert_eq!(basis_functions_many(&kv, 1, &[]).unwrap(), (vec![], vec![]));
+        assert!(matches!(
+            basis_functions_many(&kv, 1, &[0.5, f64::NAN]),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        assert!(matches!(
+            basis_functions_many(&kv, 1, &[2.5]),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
+        // a degree the knots cannot carry is refused before anything is sized from it
+        for degree in [2, usize::MAX] {
+            assert!(matches!(
+                basis_functions_many(&kv, degree, &[0.5]),
+                Err(Error::Degree { .. })
+            ));
+        }
+    }
+
     /// A case where the two schemes differ by exactly 4ε (found by the property test below):
     /// degree 5, one interior knot, a parameter near the start.
     #[test]
@@ -646,6 +715,29 @@ mod tests {
             let bound = (5 * p).max(1) as f64 * f64::EPSILON;
             for j in 0..=p {
                 prop_assert!((out[j] - n[j]).abs() <= bound, "j={} span basis={} kernel={}", j, out[j], n[j]);
+            }
+        }
+
+        #[test]
+        fn many_parameters_give_the_single_kernel_bit_for_bit(
+            (kv, p) in knot_vector_strategy(),
+            mut ts in proptest::collection::vec(0.0f64..=1.0, 0..40),
+            sorted in proptest::bool::ANY,
+        ) {
+            // sorted (the cursor walks) or in any order (it searches)
+            if sorted {
+                ts.sort_by(f64::total_cmp);
+            }
+            ts.push(1.0);
+            let (spans, values) = basis_functions_many(&kv, p, &ts).unwrap();
+            prop_assert_eq!(spans.len(), ts.len());
+            prop_assert_eq!(values.len(), ts.len() * (p + 1));
+            for (j, &t) in ts.iter().enumerate() {
+                let (span, n) = basis_functions(&kv, p, t).unwrap();
+                prop_assert_eq!(spans[j], span);
+                let row: Vec<u64> = values[j * (p + 1)..][..=p].iter().map(|v| v.to_bits()).collect();
+                let one: Vec<u64> = n.iter().map(|v| v.to_bits()).collect();
+                prop_assert_eq!(row, one);
             }
         }
 

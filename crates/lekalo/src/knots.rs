@@ -385,6 +385,20 @@ impl KnotVector {
     /// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_p, t_{n+1}]` or NaN;
     /// [`Error::Degree`] if the knots are too few for `degree`.
     pub fn find_span(&self, degree: usize, t: f64) -> Result<usize> {
+        self.check_degree(degree)?;
+        let (min, max) = self.domain(degree);
+        if !(t >= min && t <= max) || min >= max {
+            return Err(Error::ParameterOutOfDomain { t, min, max });
+        }
+        Ok(self.span_unchecked(degree, t))
+    }
+
+    /// `Ok` if the knots carry a spline of `degree`: at least `2·degree + 2` of them (a single
+    /// control point of that degree).
+    ///
+    /// # Errors
+    /// [`Error::Degree`] naming the largest degree the knots carry.
+    pub(crate) fn check_degree(&self, degree: usize) -> Result<()> {
         // len < 2·degree + 2, without overflow
         if self.knots.len() / 2 <= degree {
             return Err(Error::Degree {
@@ -392,15 +406,11 @@ impl KnotVector {
                 reason: format!(
                     "{} knots carry a degree of at most {}",
                     self.knots.len(),
-                    self.knots.len() / 2 - 1
+                    (self.knots.len() / 2).saturating_sub(1)
                 ),
             });
         }
-        let (min, max) = self.domain(degree);
-        if !(t >= min && t <= max) || min >= max {
-            return Err(Error::ParameterOutOfDomain { t, min, max });
-        }
-        Ok(self.span_unchecked(degree, t))
+        Ok(())
     }
 
     /// Span search without domain checks; `t` must lie in the non-empty domain.

@@ -93,6 +93,25 @@ enum Rule {
         #[arg(long, short = 'p')]
         degree: Option<usize>,
     },
+    /// The non-zero basis functions N(i,p) at parameters: each parameter's span and its p + 1
+    /// values (Cox–de Boor, P&T A2.2; docs/theory/foundations.md#cox-de-boor-recursion).
+    #[command(
+        after_help = "Examples (P&T Example 2.3: span 4, values 1/8, 3/4, 1/8):\n  lekalo knots basis --knots 0,0,0,1,2,3,4,4,5,5,5 --degree 2 --at 2.5\n  lekalo knots basis curve.json --at 0,0.25,0.5 --json"
+    )]
+    Basis {
+        /// A curve file whose knots and degree to use.
+        #[arg(conflicts_with = "knots")]
+        input: Option<PathBuf>,
+        /// A knot vector, comma-separated.
+        #[arg(long, allow_hyphen_values = true)]
+        knots: Option<String>,
+        /// Degree p (required with --knots; a curve file's own degree otherwise).
+        #[arg(long, short = 'p')]
+        degree: Option<usize>,
+        /// Parameters in the domain [t(p), t(n+1)], comma-separated (fractions like 5/17 allowed).
+        #[arg(long, allow_hyphen_values = true)]
+        at: String,
+    },
 }
 
 #[derive(Args, Debug)]
@@ -141,6 +160,12 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
             )?,
             order.checked_sub(1),
         ),
+        Rule::Basis {
+            input,
+            knots,
+            degree,
+            at,
+        } => return basis(a, input.as_deref(), knots.as_deref(), *degree, at, v),
         Rule::Inspect {
             input,
             knots,
@@ -157,6 +182,56 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
     };
     let text = describe(&kv, degree, a.json)?;
     emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+}
+
+/// `lekalo knots basis`: the knots and degree of a curve file or of `--knots`/`--degree`, the
+/// basis at the parameters of `--at`.
+fn basis(
+    a: &KnotsArgs,
+    input: Option<&std::path::Path>,
+    knots: Option<&str>,
+    degree: Option<usize>,
+    at: &str,
+    v: Verbosity,
+) -> Result<()> {
+    let mut inputs = Vec::new();
+    let (kv, p) = match (input, knots, degree) {
+        (Some(path), _, _) => {
+            let obj = load_one(path, v)?;
+            inputs.push(path.to_path_buf());
+            (obj.knots(), degree.unwrap_or(obj.degree()))
+        }
+        (None, Some(k), Some(p)) => (KnotVector::new(numbers(k, "--knots")?)?, p),
+        (None, Some(_), None) => return bad_input("--knots needs --degree"),
+        (None, None, _) => return bad_input("give a curve file or --knots"),
+    };
+    let t = numbers(at, "--at")?;
+    let text = basis_table(&kv, p, &t, a.json)?;
+    emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+}
+
+/// The non-zero basis functions of degree `p` at each parameter of `t`
+/// (`lekalo::basis::basis_functions_many`), as text (a line per parameter) or JSON.
+fn basis_table(kv: &KnotVector, p: usize, t: &[f64], as_json: bool) -> Result<String> {
+    let (spans, values) = lekalo::basis::basis_functions_many(kv, p, t)?;
+    let rows = t.iter().zip(&spans).zip(values.chunks_exact(p + 1));
+    if as_json {
+        let rows: Vec<_> = rows
+            .map(|((t, span), n)| json!({"t": t, "span": span, "first": span - p, "values": n}))
+            .collect();
+        return Ok(format!("{:#}\n", json!({"degree": p, "basis": rows})));
+    }
+    let mut s = String::new();
+    for ((t, span), n) in rows {
+        let ns: Vec<String> = n.iter().map(|x| format!("{x}")).collect();
+        let _ = writeln!(
+            s,
+            "t = {t}  span {span}  N({}..={span}, {p}) = [{}]",
+            span - p,
+            ns.join(", ")
+        );
+    }
+    Ok(s)
 }
 
 /// The knot vector with its multiplicities (and domain for a degree), as text or JSON.

@@ -39,6 +39,7 @@ from ._lekalo import (
     PpSpace,
     CurveQuery,
     SurfaceQuery,
+    basis_functions,
     cubic_through_four_points,
     evaluate_batch,
     fit_least_squares,
@@ -65,7 +66,7 @@ from ._lekalo import (
     quasi_interpolate,
 )
 from . import _lekalo
-from ._interop import from_geomdl, from_scipy, to_geomdl, to_scipy
+from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
 from ._batch import curves_from_batch, curves_to_batch, ragged_offsets
 
 Error.__module__ = "lekalo"
@@ -90,9 +91,11 @@ __all__ = [
     "PpSpace",
     "CurveQuery",
     "SurfaceQuery",
+    "basis_functions",
     "cubic_through_four_points",
     "curves_from_batch",
     "curves_to_batch",
+    "design_matrix",
     "evaluate_batch",
     "fit_least_squares",
     "fit_robust",

@@ -18,6 +18,7 @@ from ._lekalo import (
     NurbsCurve,
     NurbsSurface,
     PiecewisePolynomial,
+    basis_functions,
 )
 
 
@@ -25,6 +26,22 @@ def _values(c: np.ndarray, what: str) -> np.ndarray:
     """Coefficients with a trailing value axis: ``(..., dim)``."""
     c = np.asarray(c, dtype=np.float64)
     return c
+
+
+def design_matrix(x: Any, t: Any, k: int):
+    """The B-spline design matrix ``N_{i,k}(x_j)`` as a ``scipy.sparse.csr_array`` of shape
+    ``(len(x), len(t) - k - 1)``, as ``scipy.interpolate.BSpline.design_matrix(x, t, k)``: row
+    ``j`` holds the ``k + 1`` values of ``basis_functions(t, k, x)`` at columns
+    ``span_j - k .. span_j``. Parameters outside ``[t[k], t[-k-1]]`` raise ``lekalo.Error``.
+    """
+    from scipy.sparse import csr_array
+
+    spans, values = basis_functions(t, k, x)
+    m, w = values.shape
+    indices = (spans - k)[:, None] + np.arange(w)
+    indptr = np.arange(0, m * w + 1, w)
+    n = len(np.asarray(t)) - k - 1
+    return csr_array((values.ravel(), indices.ravel(), indptr), shape=(m, n))
 
 
 def from_scipy(obj: Any):
