@@ -329,6 +329,31 @@ pub(crate) fn not_a_curve<T>(path: &Path, s: &Shape) -> Result<T> {
     ))
 }
 
+/// The file an `-o` names: `None` for standard output (no `-o`, or `-`).
+fn output_file(out: Option<&Path>) -> Option<&Path> {
+    out.filter(|p| p.as_os_str() != "-")
+}
+
+/// The atomic write of one output file with the run's `--force`, then the `--verbose` report:
+/// the frame of [`emit`], [`emit_stream`] and [`emit_seek`], whose `write` picks the writer.
+fn write_file<E>(
+    p: &Path,
+    v: Verbosity,
+    what: &str,
+    write: impl FnOnce(lekalo_io::WriteOptions) -> std::result::Result<(), E>,
+) -> Result<()>
+where
+    anyhow::Error: From<E>,
+{
+    write(lekalo_io::WriteOptions {
+        force: settings().force,
+    })?;
+    if v == Verbosity::Verbose {
+        report(&format!("wrote {}{what}", p.display()));
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to `out` atomically, or to standard output when `out` is `None` or `-`.
 pub(crate) fn emit(
     out: Option<&Path>,
@@ -336,29 +361,18 @@ pub(crate) fn emit(
     inputs: &[PathBuf],
     v: Verbosity,
 ) -> Result<()> {
-    match out {
-        Some(p) if p.as_os_str() != "-" => {
-            lekalo_io::write_atomic_with(
-                p,
-                bytes,
-                inputs,
-                lekalo_io::WriteOptions {
-                    force: settings().force,
-                },
-            )?;
-            if v == Verbosity::Verbose {
-                eprintln!("wrote {} ({} bytes)", p.display(), bytes.len());
-            }
-        }
-        _ => {
-            let mut stdout = std::io::stdout().lock();
-            stdout
-                .write_all(bytes)
-                .and_then(|()| stdout.flush())
-                .context("cannot write to standard output")?;
-            // (a closed pipe is recognised by `is_broken_pipe` in the chain of this error)
-        }
+    if let Some(p) = output_file(out) {
+        let size = format!(" ({} bytes)", bytes.len());
+        return write_file(p, v, &size, |o| {
+            lekalo_io::write_atomic_with(p, bytes, inputs, o)
+        });
     }
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(bytes)
+        .and_then(|()| stdout.flush())
+        .context("cannot write to standard output")?;
+    // (a closed pipe is recognised by `is_broken_pipe` in the chain of this error)
     Ok(())
 }
 
@@ -370,27 +384,15 @@ pub(crate) fn emit_stream(
     v: Verbosity,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
-    match out {
-        Some(p) if p.as_os_str() != "-" => {
-            lekalo_io::write_atomic_stream(
-                p,
-                inputs,
-                lekalo_io::WriteOptions {
-                    force: settings().force,
-                },
-                fill,
-            )?;
-            if v == Verbosity::Verbose {
-                report(&format!("wrote {}", p.display()));
-            }
-        }
-        _ => {
-            let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
-            fill(&mut stdout)
-                .and_then(|()| stdout.flush())
-                .context("cannot write to standard output")?;
-        }
+    if let Some(p) = output_file(out) {
+        return write_file(p, v, "", |o| {
+            lekalo_io::write_atomic_stream(p, inputs, o, fill)
+        });
     }
+    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    fill(&mut stdout)
+        .and_then(|()| stdout.flush())
+        .context("cannot write to standard output")?;
     Ok(())
 }
 
@@ -402,27 +404,14 @@ pub(crate) fn emit_seek(
     v: Verbosity,
     fill: impl FnOnce(&mut dyn lekalo_io::WriteSeek) -> std::io::Result<()>,
 ) -> Result<()> {
-    match out {
-        Some(p) if p.as_os_str() != "-" => {
-            lekalo_io::write_atomic_seek(
-                p,
-                inputs,
-                lekalo_io::WriteOptions {
-                    force: settings().force,
-                },
-                fill,
-            )?;
-            if v == Verbosity::Verbose {
-                report(&format!("wrote {}", p.display()));
-            }
-            Ok(())
-        }
-        _ => {
-            let mut made = std::io::Cursor::new(Vec::new());
-            fill(&mut made).context("cannot make the output")?;
-            emit(out, made.get_ref(), inputs, v)
-        }
+    if let Some(p) = output_file(out) {
+        return write_file(p, v, "", |o| {
+            lekalo_io::write_atomic_seek(p, inputs, o, fill)
+        });
     }
+    let mut made = std::io::Cursor::new(Vec::new());
+    fill(&mut made).context("cannot make the output")?;
+    emit(out, made.get_ref(), inputs, v)
 }
 
 /// A progress bar on standard error, shown only if stderr is a terminal and not `--quiet`.
