@@ -2,11 +2,13 @@
 //!
 //! - `linalg.rs`: banded linear systems (Crout elimination without pivoting, cyclic systems)
 //!   and scaled norms.
+//! - `damped.rs`: Levenberg–Marquardt refinement of small least-squares problems on a box.
 //! - `isa.rs`: run-time choice of the instruction set for kernels compiled twice.
 //! - `large_buffer.rs`: zeroed buffers for large results, on huge pages where available.
 //! - `progress.rs`: [`Progress`](crate::Progress), progress reports and cancellation of long
 //!   computations.
 
+pub(crate) mod damped;
 pub(crate) mod isa;
 pub(crate) mod large_buffer;
 pub(crate) mod linalg;

@@ -8,6 +8,7 @@
 use super::super::pieces::QueryCurve;
 use super::{MAX_DEPTH, MAX_PAIRS};
 use crate::error::{Error, Result};
+use crate::numeric::damped::{levenberg_marquardt, Residual};
 
 /// Scalars per homogeneous planar point: `x·w, y·w, w`.
 const H: usize = 3;
@@ -595,59 +596,25 @@ impl<'a> Search<'a> {
         })
     }
 
-    /// Levenberg–Marquardt for `A(s) = B(u)` on pieces `ka`, `kb` from `(s0, u0)`, clamped to
-    /// `[0, 1]²`, at most 60 steps of at most 20 damping trials; returns `(s, u, gap)`.
+    /// Levenberg–Marquardt for `A(s) = B(u)` on pieces `ka`, `kb` from `(s0, u0)`, in `[0, 1]²`
+    /// (`numeric::damped`, with its bounds on steps and trials); returns `(s, u, gap)`.
     fn least_squares(&mut self, ka: usize, kb: usize, s0: f64, u0: f64) -> (f64, f64, f64) {
         let mut scratch = std::mem::take(&mut self.scratch);
-        let mut at = |s: f64, u: f64| {
+        let ([s, u], gap) = levenberg_marquardt([s0, u0], |&[s, u]| {
             let (pa, da) = self.a.eval(ka, s, &mut scratch);
             let (pb, db) = self.b.eval(kb, u, &mut scratch);
-            ([pa[0] - pb[0], pa[1] - pb[1]], da, db)
-        };
-        let (mut s, mut u) = (s0, u0);
-        let (r, ..) = at(s, u);
-        let mut gap = norm(r);
-        let mut lambda = 1e-12;
-        for _ in 0..60 {
-            let (r, da, db) = at(s, u);
-            // J = [da, −db]; normal equations (JᵀJ + λ diag) δ = −Jᵀ r
-            let (a11, a12, a22) = (
-                da[0] * da[0] + da[1] * da[1],
-                -(da[0] * db[0] + da[1] * db[1]),
-                db[0] * db[0] + db[1] * db[1],
-            );
-            let (g1, g2) = (da[0] * r[0] + da[1] * r[1], -(db[0] * r[0] + db[1] * r[1]));
-            let mut improved = false;
-            for _ in 0..20 {
-                let (b11, b22) = (a11 * (1.0 + lambda) + 1e-300, a22 * (1.0 + lambda) + 1e-300);
-                let det = b11 * b22 - a12 * a12;
-                if !(det > 0.0) {
-                    lambda *= 10.0;
-                    continue;
-                }
-                let ds = -(b22 * g1 - a12 * g2) / det;
-                let du = -(b11 * g2 - a12 * g1) / det;
-                let (ns, nu) = ((s + ds).clamp(0.0, 1.0), (u + du).clamp(0.0, 1.0));
-                let (q, ..) = at(ns, nu);
-                let g = norm(q);
-                if g < gap {
-                    let moved = (ns - s).abs() + (nu - u).abs();
-                    s = ns;
-                    u = nu;
-                    gap = g;
-                    lambda = (lambda * 0.1).max(1e-15);
-                    improved = moved > 1e-16;
-                    break;
-                }
-                lambda *= 10.0;
-                if lambda > 1e12 {
-                    break;
-                }
+            let r = [pa[0] - pb[0], pa[1] - pb[1]];
+            // J = [da, −db]
+            let cross = -(da[0] * db[0] + da[1] * db[1]);
+            Residual {
+                gap: norm(r),
+                normal: [
+                    [da[0] * da[0] + da[1] * da[1], cross],
+                    [cross, db[0] * db[0] + db[1] * db[1]],
+                ],
+                gradient: [da[0] * r[0] + da[1] * r[1], -(db[0] * r[0] + db[1] * r[1])],
             }
-            if !improved || gap == 0.0 {
-                break;
-            }
-        }
+        });
         self.scratch = scratch;
         (s, u, gap)
     }

@@ -5,6 +5,7 @@ use super::super::project::check_query;
 use super::super::surface::{split_curve, QuerySurface};
 use super::{boxes_overlap, SurfaceHit, MAX_DEPTH, MAX_PAIRS};
 use crate::error::{Error, Result};
+use crate::numeric::damped::{levenberg_marquardt, Residual};
 
 impl QueryCurve {
     /// Points where the curve meets the plane (hyperplane) through `origin` with normal
@@ -161,8 +162,8 @@ impl QueryCurve {
         Ok(out)
     }
 
-    /// Levenberg–Marquardt for `C(s) = S(u, v)` (local parameters of piece `k` and patch `pk`),
-    /// at most 60 steps; returns the global `t`, local `(u, v)` and both points (original
+    /// Levenberg–Marquardt for `C(s) = S(u, v)` (local parameters of piece `k` and patch `pk`;
+    /// `numeric::damped`, with its bounds on steps and trials); returns the global `t`, local `(u, v)` and both points (original
     /// coordinates).
     #[allow(clippy::type_complexity)]
     fn curve_surface_newton(
@@ -187,85 +188,32 @@ impl QueryCurve {
             let sv: Vec<f64> = sd[dim..2 * dim].iter().map(|v| v * surf.scale).collect();
             (c, s, dc, su, sv)
         };
-        let mut x = x0;
-        let (c, s, ..) = eval(&x, scratch);
-        let mut gap = dist(&c, &s);
-        let mut lambda = 1e-12;
-        for _ in 0..60 {
-            let (c, s, dc, su, sv) = eval(&x, scratch);
+        let (x, _) = levenberg_marquardt(x0, |x| {
+            let (c, s, dc, su, sv) = eval(x, scratch);
             let r: Vec<f64> = c.iter().zip(&s).map(|(a, b)| a - b).collect();
+            // J = [C', −S_u, −S_v]
             let cols = [
                 dc,
                 su.iter().map(|v| -v).collect::<Vec<_>>(),
                 sv.iter().map(|v| -v).collect(),
             ];
-            let mut a = [[0.0; 3]; 3];
-            let mut g = [0.0; 3];
+            let mut normal = [[0.0; 3]; 3];
+            let mut gradient = [0.0; 3];
             for i in 0..3 {
                 for j in 0..3 {
-                    a[i][j] = dot(&cols[i], &cols[j]);
+                    normal[i][j] = dot(&cols[i], &cols[j]);
                 }
-                g[i] = dot(&cols[i], &r);
+                gradient[i] = dot(&cols[i], &r);
             }
-            let mut improved = false;
-            for _ in 0..20 {
-                let mut m = a;
-                for i in 0..3 {
-                    m[i][i] = a[i][i] * (1.0 + lambda) + 1e-300;
-                }
-                let Some(d) = solve3(m, [-g[0], -g[1], -g[2]]) else {
-                    lambda *= 10.0;
-                    continue;
-                };
-                let nx = [
-                    (x[0] + d[0]).clamp(0.0, 1.0),
-                    (x[1] + d[1]).clamp(0.0, 1.0),
-                    (x[2] + d[2]).clamp(0.0, 1.0),
-                ];
-                let (c2, s2, ..) = eval(&nx, scratch);
-                let g2 = dist(&c2, &s2);
-                if g2 < gap {
-                    let moved: f64 = (0..3).map(|i| (nx[i] - x[i]).abs()).sum();
-                    x = nx;
-                    gap = g2;
-                    lambda = (lambda * 0.1).max(1e-15);
-                    improved = moved > 1e-16;
-                    break;
-                }
-                lambda *= 10.0;
-                if lambda > 1e12 {
-                    break;
-                }
+            Residual {
+                gap: dist(&c, &s),
+                normal,
+                gradient,
             }
-            if !improved || gap == 0.0 {
-                break;
-            }
-        }
+        });
         let (c, s, ..) = eval(&x, scratch);
         Some((self.global(k, x[0]), x[1], x[2], (c, s)))
     }
-}
-
-/// Solves a 3×3 system by Cramer's rule (None when singular).
-fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(&m);
-    if !(d.abs() > 0.0) || !d.is_finite() {
-        return None;
-    }
-    let mut x = [0.0; 3];
-    for i in 0..3 {
-        let mut mi = m;
-        for r in 0..3 {
-            mi[r][i] = b[r];
-        }
-        x[i] = det(&mi) / d;
-    }
-    Some(x)
 }
 
 fn to_original(
