@@ -8,7 +8,7 @@ use std::fs;
 use predicates::str::contains;
 
 mod common;
-use common::{dir_with, lekalo, p};
+use common::{dir_with, json_of, lekalo, output_of, p};
 
 /// A polyline (0,0) → (3,4) → (3,0): length 9.
 const POLY: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
@@ -36,17 +36,11 @@ const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2,
 #[test]
 fn measure_length_and_inverse() {
     let d = dir_with(&[("poly.json", POLY)]);
-    let out = lekalo()
-        .args(["measure", "--json", "--at-length", "5,7"])
-        .arg(p(&d, "poly.json"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let j = json_of(
+        lekalo()
+            .args(["measure", "--json", "--at-length", "5,7"])
+            .arg(p(&d, "poly.json")),
     );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!((j["length"].as_f64().unwrap() - 9.0).abs() < 1e-13);
     // length 7 is 2 along the second leg of length 4: t = 1.5
     assert!((j["at_length"][1]["t"].as_f64().unwrap() - 1.5).abs() < 1e-12);
@@ -72,19 +66,7 @@ fn measure_reports_the_inflections_of_planar_curves() {
         ("parabola.json", PARABOLA),
         ("space.json", SPACE),
     ]);
-    let json = |name: &str| -> serde_json::Value {
-        let out = lekalo()
-            .args(["measure", "--json"])
-            .arg(p(&d, name))
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        serde_json::from_slice(&out.stdout).unwrap()
-    };
+    let json = |name: &str| json_of(lekalo().args(["measure", "--json"]).arg(p(&d, name)));
     let t: Vec<f64> = json("s.json")["inflections"]
         .as_array()
         .unwrap()
@@ -118,17 +100,7 @@ fn measure_surface_box_is_the_surface_not_its_net() {
         "[0.5, 0, 2], [0.5, 1, 2], [1, 0, 0], [1, 1, 0]",
     );
     let d = dir_with(&[("arch.json", arch.as_str())]);
-    let out = lekalo()
-        .args(["measure", "--json"])
-        .arg(p(&d, "arch.json"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of(lekalo().args(["measure", "--json"]).arg(p(&d, "arch.json")));
     let b = &j["bounding_box"];
     assert!((b["max"][2].as_f64().unwrap() - 1.0).abs() <= b["tolerance"].as_f64().unwrap());
     assert_eq!(b["min"][2].as_f64().unwrap(), 0.0);
@@ -148,17 +120,12 @@ fn plot_comb_draws_teeth_for_planar_curves_only() {
         ("space.json", SPACE),
         ("s.json", SURFACE),
     ]);
-    let out = lekalo()
-        .args(["plot", "--comb", "--comb-teeth", "5"])
-        .arg(p(&d, "p.json"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let svg = String::from_utf8(out.stdout).unwrap();
+    let svg = String::from_utf8(output_of(
+        lekalo()
+            .args(["plot", "--comb", "--comb-teeth", "5"])
+            .arg(p(&d, "p.json")),
+    ))
+    .unwrap();
     assert!(svg.contains("curvature comb"), "no comb legend");
     let plain = lekalo().arg("plot").arg(p(&d, "p.json")).output().unwrap();
     assert!(svg.len() > plain.stdout.len(), "the comb adds nothing");
@@ -185,14 +152,12 @@ fn project_single_batch_and_all() {
         .assert()
         .success()
         .stdout(contains("0,1.5,3,2,1\n"));
-    let out = lekalo()
-        .args(["project", "--json", "--points"])
-        .arg(p(&d, "q.csv"))
-        .arg(p(&d, "poly.json"))
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of(
+        lekalo()
+            .args(["project", "--json", "--points"])
+            .arg(p(&d, "q.csv"))
+            .arg(p(&d, "poly.json")),
+    );
     assert_eq!(j.as_array().unwrap().len(), 2);
     assert!((j[1]["distance"].as_f64().unwrap() - 2f64.sqrt()).abs() < 1e-14);
     lekalo()
@@ -209,18 +174,12 @@ fn intersect_pairs_self_and_plane() {
         ("line.json", LINE),
         ("loop.json", LOOP),
     ]);
-    let out = lekalo()
-        .args(["intersect", "--json"])
-        .arg(p(&d, "poly.json"))
-        .arg(p(&d, "line.json"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let j = json_of(
+        lekalo()
+            .args(["intersect", "--json"])
+            .arg(p(&d, "poly.json"))
+            .arg(p(&d, "line.json")),
     );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let hits = j.as_array().unwrap();
     assert_eq!(hits.len(), 2, "{j}");
     assert!((hits[0]["point"][0].as_f64().unwrap() - 0.75).abs() < 1e-12);
@@ -264,12 +223,11 @@ fn mesh_writes_obj_stl_and_reports_the_bound() {
     assert!(fs::read_to_string(p(&d, "s.stl"))
         .unwrap()
         .starts_with("solid lekalo"));
-    let out = lekalo()
-        .args(["mesh", "--json", "--tolerance", "1e-3"])
-        .arg(p(&d, "s.json"))
-        .output()
-        .unwrap();
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of(
+        lekalo()
+            .args(["mesh", "--json", "--tolerance", "1e-3"])
+            .arg(p(&d, "s.json")),
+    );
     assert!(j["deviation"].as_f64().unwrap() <= 1e-3);
     lekalo()
         .args(["mesh", "--tolerance", "0"])
@@ -282,17 +240,6 @@ fn mesh_writes_obj_stl_and_reports_the_bound() {
         .assert()
         .success()
         .stdout(contains("l 1 2 3"));
-}
-
-/// Runs `lekalo args…` and returns its standard output, failing with its standard error.
-fn stdout_of(args: &[&std::ffi::OsStr]) -> Vec<u8> {
-    let out = lekalo().args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
 }
 
 /// The B-spline curve of a JSON object.
@@ -310,16 +257,19 @@ fn offset_is_at_the_distance_within_the_tolerance() {
     let base = lekalo::QueryCurve::from_bspline(&wave).unwrap();
     for dist in [0.05_f64, -0.05] {
         let out = p(&d, "off.json");
-        stdout_of(&[
-            "offset".as_ref(),
-            "--distance".as_ref(),
-            dist.to_string().as_ref(),
-            "--tolerance".as_ref(),
-            "1e-7".as_ref(),
-            "-o".as_ref(),
-            out.as_os_str(),
-            p(&d, "wave.json").as_os_str(),
-        ]);
+        output_of(
+            lekalo()
+                .args([
+                    "offset",
+                    "--distance",
+                    &dist.to_string(),
+                    "--tolerance",
+                    "1e-7",
+                    "-o",
+                ])
+                .arg(&out)
+                .arg(p(&d, "wave.json")),
+        );
         let j: serde_json::Value =
             serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
         let c = curve_of(&j);
@@ -348,14 +298,11 @@ fn offset_reports_cusps_and_trims_the_loop() {
     let d = dir_with(&[("parabola.json", PARABOLA)]);
     let input = p(&d, "parabola.json");
     // d = 1 towards the centre of curvature, twice the vertex's radius: a swallowtail
-    let j: serde_json::Value = serde_json::from_slice(&stdout_of(&[
-        "offset".as_ref(),
-        "--json".as_ref(),
-        "--distance".as_ref(),
-        "1".as_ref(),
-        input.as_os_str(),
-    ]))
-    .unwrap();
+    let j = json_of(
+        lekalo()
+            .args(["offset", "--json", "--distance", "1"])
+            .arg(&input),
+    );
     assert!(j["deviation"].as_f64().unwrap() <= 1e-6, "{j}");
     // cusps where κ = 2/(1 + 4x²)^{3/2} = 1: x = ±√((2^{2/3} − 1)/4), t = (x + 1)/2
     let xc = ((2f64.powf(2.0 / 3.0) - 1.0) / 4.0).sqrt();
@@ -402,14 +349,11 @@ fn offset_reports_cusps_and_trims_the_loop() {
     assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 2);
     assert!(String::from_utf8_lossy(&out.stderr).contains("2 cusp(s)"));
     // away from the centre of curvature: no cusp, one part
-    let j: serde_json::Value = serde_json::from_slice(&stdout_of(&[
-        "offset".as_ref(),
-        "--json".as_ref(),
-        "--distance".as_ref(),
-        "-1".as_ref(),
-        input.as_os_str(),
-    ]))
-    .unwrap();
+    let j = json_of(
+        lekalo()
+            .args(["offset", "--json", "--distance", "-1"])
+            .arg(&input),
+    );
     assert!(j["cusps"].as_array().unwrap().is_empty(), "{j}");
     assert_eq!(j["trimmed"].as_array().unwrap().len(), 1, "{j}");
 }
@@ -449,17 +393,11 @@ fn eval_torsion_of_a_space_curve_and_refusals() {
         ("surface.json", SURFACE),
         ("space_line.json", SPACE),
     ]);
-    let out = lekalo()
-        .args(["eval", "--at", "0,0.5,1", "--torsion", "--json"])
-        .arg(p(&d, "twisted.json"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let j = json_of(
+        lekalo()
+            .args(["eval", "--at", "0,0.5,1", "--torsion", "--json"])
+            .arg(p(&d, "twisted.json")),
     );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for (row, t) in j.as_array().unwrap().iter().zip([0.0f64, 0.5, 1.0]) {
         let exact = 3.0 / (9.0 * t.powi(4) + 9.0 * t * t + 1.0);
         let tau = row["torsion"].as_f64().unwrap();

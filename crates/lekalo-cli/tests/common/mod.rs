@@ -38,6 +38,23 @@ pub(crate) fn stdout_of(args: &[&str], file: Option<&std::path::Path>) -> Vec<u8
     cmd.assert().success().get_output().stdout.clone()
 }
 
+/// The standard output of a command, which must succeed (its standard error is the failure's
+/// message).
+pub(crate) fn output_of(cmd: &mut Command) -> Vec<u8> {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// The JSON a command writes to standard output, which must succeed.
+pub(crate) fn json_of(cmd: &mut Command) -> serde_json::Value {
+    serde_json::from_slice(&output_of(cmd)).unwrap()
+}
+
 /// The help text of `lekalo <path…> --help`.
 pub(crate) fn help_of(path: &[String]) -> String {
     let out = lekalo().args(path).arg("--help").output().unwrap();
