@@ -82,36 +82,48 @@ enum Rule {
     #[command(
         after_help = "Examples:\n  lekalo knots inspect --knots 0,0,1,2,3,3 --degree 2\n  lekalo knots inspect curve.json"
     )]
-    Inspect {
-        /// A curve file whose knots to inspect.
-        #[arg(conflicts_with = "knots")]
-        input: Option<PathBuf>,
-        /// A knot vector, comma-separated.
-        #[arg(long, allow_hyphen_values = true)]
-        knots: Option<String>,
-        /// Degree, for the domain [t(p), t(n+1)] and the clamped test.
-        #[arg(long, short = 'p')]
-        degree: Option<usize>,
-    },
+    Inspect(KnotSource),
     /// The non-zero basis functions N(i,p) at parameters: each parameter's span and its p + 1
     /// values (Cox–de Boor, P&T A2.2; docs/theory/foundations.md#cox-de-boor-recursion).
     #[command(
         after_help = "Examples (P&T Example 2.3: span 4, values 1/8, 3/4, 1/8):\n  lekalo knots basis --knots 0,0,0,1,2,3,4,4,5,5,5 --degree 2 --at 2.5\n  lekalo knots basis curve.json --at 0,0.25,0.5 --json"
     )]
     Basis {
-        /// A curve file whose knots and degree to use.
-        #[arg(conflicts_with = "knots")]
-        input: Option<PathBuf>,
-        /// A knot vector, comma-separated.
-        #[arg(long, allow_hyphen_values = true)]
-        knots: Option<String>,
-        /// Degree p (required with --knots; a curve file's own degree otherwise).
-        #[arg(long, short = 'p')]
-        degree: Option<usize>,
+        #[command(flatten)]
+        source: KnotSource,
         /// Parameters in the domain [t(p), t(n+1)], comma-separated (fractions like 5/17 allowed).
         #[arg(long, allow_hyphen_values = true)]
         at: String,
     },
+}
+
+/// The knot vector of `inspect` and `basis`: a curve file's, or `--knots` with `--degree`.
+#[derive(Args, Debug)]
+struct KnotSource {
+    /// A curve file whose knots (and degree) to use.
+    #[arg(conflicts_with = "knots")]
+    input: Option<PathBuf>,
+    /// A knot vector, comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    knots: Option<String>,
+    /// Degree p, for the domain [t(p), t(n+1)] (a curve file's own degree by default).
+    #[arg(long, short = 'p')]
+    degree: Option<usize>,
+}
+
+impl KnotSource {
+    /// The knots and the degree (given, or the curve file's), the file added to `inputs`.
+    fn read(&self, inputs: &mut Vec<PathBuf>, v: Verbosity) -> Result<(KnotVector, Option<usize>)> {
+        match (&self.input, &self.knots) {
+            (Some(path), _) => {
+                let obj = load_one(path, v)?;
+                inputs.push(path.clone());
+                Ok((obj.knots(), Some(self.degree.unwrap_or(obj.degree()))))
+            }
+            (None, Some(k)) => Ok((KnotVector::new(numbers(k, "--knots")?)?, self.degree)),
+            (None, None) => bad_input("give a curve file or --knots"),
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -160,25 +172,8 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
             )?,
             order.checked_sub(1),
         ),
-        Rule::Basis {
-            input,
-            knots,
-            degree,
-            at,
-        } => return basis(a, input.as_deref(), knots.as_deref(), *degree, at, v),
-        Rule::Inspect {
-            input,
-            knots,
-            degree,
-        } => match (input, knots) {
-            (Some(path), _) => {
-                let obj = load_one(path, v)?;
-                inputs.push(path.clone());
-                (obj.knots(), Some(degree.unwrap_or(obj.degree())))
-            }
-            (None, Some(k)) => (KnotVector::new(numbers(k, "--knots")?)?, *degree),
-            (None, None) => return bad_input("give a curve file or --knots"),
-        },
+        Rule::Basis { source, at } => return basis(a, source, at, v),
+        Rule::Inspect(source) => source.read(&mut inputs, v)?,
     };
     let text = describe(&kv, degree, a.json)?;
     emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
@@ -186,24 +181,10 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
 
 /// `lekalo knots basis`: the knots and degree of a curve file or of `--knots`/`--degree`, the
 /// basis at the parameters of `--at`.
-fn basis(
-    a: &KnotsArgs,
-    input: Option<&std::path::Path>,
-    knots: Option<&str>,
-    degree: Option<usize>,
-    at: &str,
-    v: Verbosity,
-) -> Result<()> {
+fn basis(a: &KnotsArgs, source: &KnotSource, at: &str, v: Verbosity) -> Result<()> {
     let mut inputs = Vec::new();
-    let (kv, p) = match (input, knots, degree) {
-        (Some(path), _, _) => {
-            let obj = load_one(path, v)?;
-            inputs.push(path.to_path_buf());
-            (obj.knots(), degree.unwrap_or(obj.degree()))
-        }
-        (None, Some(k), Some(p)) => (KnotVector::new(numbers(k, "--knots")?)?, p),
-        (None, Some(_), None) => return bad_input("--knots needs --degree"),
-        (None, None, _) => return bad_input("give a curve file or --knots"),
+    let (kv, Some(p)) = source.read(&mut inputs, v)? else {
+        return bad_input("--knots needs --degree");
     };
     let t = numbers(at, "--at")?;
     let text = basis_table(&kv, p, &t, a.json)?;
