@@ -4,7 +4,8 @@
 //! tolerance; the parts' sides are then matched across parts and patches, so the mesh has no
 //! cracks, and a part with extra points on its sides is a strip (polynomial, its triangles'
 //! own bounds checked, the part split again where none of its triangulations is within the
-//! tolerance) or a fan (rational) through them.
+//! tolerance) or a fan (rational) through them; the polynomial mesh is then thinned by removing
+//! vertices where the fan of the polygon around one stays within the tolerance.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -883,11 +884,14 @@ impl QuerySurface {
     /// above the tolerance the strip whose largest bound is least is taken (of either
     /// diagonal), else a fan about the part's centre, else the part is split and the sides
     /// matched again (at most [`MAX_ROUNDS`] rounds, then every part is cut until
-    /// `(A + 2B + C)/8`, which holds for any triangle inside it, is within the tolerance). On a
-    /// rational one, whose bound needs triangles no steeper than the part's diagonal, a fan
-    /// about its centre. Vertices are the parts' corner control points (points of the surface)
-    /// and the fans' centres. The reported deviation is the largest triangle bound. Patches
-    /// are split in parallel; the mesh does not depend on the thread count.
+    /// `(A + 2B + C)/8`, which holds for any triangle inside it, is within the tolerance). The
+    /// polynomial mesh is then thinned: a vertex is removed, its polygon fanned from one corner,
+    /// where every new triangle is within the tolerance with `M_e` the largest of the parts it
+    /// covers ([`QuerySurface::decimate`]). On a rational surface, whose bound needs triangles
+    /// no steeper than the part's diagonal, such a part is a fan about its centre. Vertices are
+    /// the parts' corner control points (points of the surface) and the fans' centres. The
+    /// reported deviation is the largest triangle bound. Patches are split in parallel; the
+    /// mesh does not depend on the thread count.
     ///
     /// ```
     /// use lekalo::{BSplineSurface, Points, QuerySurface};
@@ -1244,7 +1248,8 @@ impl QuerySurface {
     /// counter-clockwise with positive area (the fan then covers the same polygon) and within
     /// `tol`. A new triangle lies inside the removed ones, hence inside their parts, so
     /// `M_e` over it is at most the largest of those parts' `M_e` ([`SecondNets`]); its parts
-    /// are theirs. Returns the largest bound of a new triangle.
+    /// are theirs (`docs/theory/queries.md#tessellation`). Returns the largest bound of a new
+    /// triangle.
     // triangles, parts and vertices: each below 4·MAX_MESH_VERTICES < 2^32, and a removal
     // adds at most ten
     #[allow(clippy::cast_possible_truncation)]
