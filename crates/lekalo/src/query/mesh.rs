@@ -1424,7 +1424,7 @@ impl QuerySurface {
 
 #[cfg(test)]
 mod tests {
-    use super::{chains, triangle_bound, zip, Rule, PATCH_WIDTH};
+    use super::{best_zip, chains, triangle_bound, zip, Rule, PATCH_WIDTH};
     use crate::query::tessellate::tests::assert_watertight;
     use crate::{BSplineSurface, Points, QuerySurface};
     use std::sync::atomic::AtomicUsize;
@@ -1573,6 +1573,77 @@ mod tests {
     }
 
     #[test]
+    fn random_surfaces_are_meshed_within_their_bound_without_cracks() {
+        // bicubic 3 × 4-patch surfaces with random heights and a random twist: strips, the
+        // best strips and vertex removal all occur; every triangle, densely sampled, within
+        // the reported bound, the mesh closed and its parameter triangles tiling the domain
+        let mut rng = Rng(7);
+        let grid = barycentric(6);
+        for case in 0..6 {
+            let (nu, nv) = (6, 7);
+            let twist = 4.0 * rng.next() - 2.0;
+            let mut net = Vec::new();
+            for i in 0..nu {
+                for j in 0..nv {
+                    let (x, y) = (i as f64 / 5.0, j as f64 / 6.0);
+                    net.extend([x, y, twist * (x - 0.5) * (y - 0.5) + 0.3 * rng.next()]);
+                }
+            }
+            let ku = vec![0., 0., 0., 0., 0.3, 0.5, 1., 1., 1., 1.];
+            let kv = vec![0., 0., 0., 0., 0.2, 0.5, 0.7, 1., 1., 1., 1.];
+            let s = BSplineSurface::new(3, 3, ku, kv, Points::from_flat(3, net).unwrap(), (nu, nv))
+                .unwrap();
+            let q = QuerySurface::from_bspline(&s).unwrap();
+            let tol = [1e-3, 3e-4][case % 2];
+            let mesh = q.mesh(tol).unwrap();
+            assert!(mesh.deviation <= tol, "case {case}: {}", mesh.deviation);
+            for t in &mesh.triangles {
+                let uv = t.map(|i| mesh.uv[i as usize]);
+                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+                for l in &grid {
+                    let x = [0, 1].map(|d| {
+                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
+                    });
+                    let sx = s.eval(x[0], x[1]).unwrap();
+                    let dev = (0..3)
+                        .map(|d| {
+                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
+                        })
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!(
+                        dev <= mesh.deviation * (1.0 + 1e-9),
+                        "case {case}: {dev} > {} in {t:?}",
+                        mesh.deviation
+                    );
+                }
+            }
+            assert_watertight(&mesh);
+            let area: f64 = mesh
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
+                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+                })
+                .inspect(|&a| assert!(a > 0.0, "case {case}: a triangle is not counter-clockwise"))
+                .sum();
+            assert!(
+                (area - 1.0).abs() < 1e-12,
+                "case {case}: parameter area {area}"
+            );
+            // every vertex is used
+            let mut used = vec![false; mesh.uv.len()];
+            for t in &mesh.triangles {
+                for &i in t {
+                    used[i as usize] = true;
+                }
+            }
+            assert!(used.iter().all(|&u| u), "case {case}: an unused vertex");
+        }
+    }
+
+    #[test]
     fn a_twisted_surface_takes_the_cancelling_diagonal() {
         // heights 0.2 (x² + y² − 3xy) at the Greville points of a bicubic 4 × 4-patch spline:
         // S_uv dominates and has the sign opposite S_uu and S_vv, so |S_uu + 2S_uv + S_vv| is
@@ -1628,7 +1699,8 @@ mod tests {
             let uv = t.map(|i| mesh.uv[i as usize]);
             let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
             for l in &grid {
-                let x = [0, 1].map(|d| l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]);
+                let x = [0, 1]
+                    .map(|d| (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0));
                 let sx = s.eval(x[0], x[1]).unwrap();
                 let dev = (0..3)
                     .map(|d| (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2))
@@ -1714,6 +1786,45 @@ mod tests {
                 let mut tris = Vec::new();
                 zip(ring[s], ring[t], &a, &b, &moves, &mut tris);
                 assert_proper_cover(&pts, &tris, ring.len());
+            }
+        }
+    }
+
+    #[test]
+    fn best_zip_finds_the_least_largest_cost() {
+        // random costs of triangles (a function of their vertex sets): the dynamic programme's
+        // strip against every order of the moves
+        let mut rng = Rng(3);
+        for case in 0..50_u32 {
+            let (na, nb) = (1 + case % 4, 1 + (case / 4) % 4);
+            let a: Vec<u32> = (1..=na).collect();
+            let b: Vec<u32> = (100..100 + nb).collect();
+            let (s, t) = (0_u32, 50_u32);
+            let salt = rng.next();
+            let cost = |x: u32, y: u32, z: u32| {
+                let mut v = [x, y, z];
+                v.sort_unstable();
+                let h = v
+                    .iter()
+                    .fold(salt, |h, &k| (h * 7.31 + f64::from(k) * 0.123).fract());
+                h
+            };
+            let (moves, best) = best_zip(s, t, &a, &b, &cost);
+            let largest = |moves: &[bool]| {
+                let mut tris = Vec::new();
+                zip(s, t, &a, &b, moves, &mut tris);
+                tris.iter()
+                    .map(|t| cost(t[0], t[1], t[2]))
+                    .fold(0.0, f64::max)
+            };
+            assert_eq!(moves.len(), (na + nb - 2) as usize, "case {case}");
+            assert_eq!(largest(&moves), best, "case {case}");
+            let steps = na + nb - 2;
+            for order in 0..1_u32 << steps {
+                let m: Vec<bool> = (0..steps).map(|k| order >> k & 1 == 1).collect();
+                if m.iter().filter(|&&x| x).count() == (na - 1) as usize {
+                    assert!(largest(&m) >= best, "case {case}: {m:?} beats {moves:?}");
+                }
             }
         }
     }
