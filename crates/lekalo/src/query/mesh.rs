@@ -916,7 +916,7 @@ impl QuerySurface {
         if self.rational {
             self.mesh_rational(tol, &grid)
         } else {
-            self.mesh_polynomial(tol, &grid)
+            self.mesh_polynomial(tol, &grid, 0)
         }
     }
 
@@ -1022,8 +1022,9 @@ impl QuerySurface {
     /// The polynomial mesh: parts under [`Rule::Edges`], their sides matched, each part planned
     /// ([`QuerySurface::plan_part`]); the parts to split are split (at least once each) and
     /// the round repeated, at most [`MAX_ROUNDS`] times, then every part is refined under
-    /// [`Rule::Any`], whose strips are all within the tolerance, for a last round.
-    fn mesh_polynomial(&self, tol: f64, grid: &PatchGrid) -> Result<Mesh> {
+    /// [`Rule::Any`], whose strips are all within the tolerance, for a last round. In the first
+    /// `forced` rounds every part with points on its sides is split (tests of the rounds).
+    fn mesh_polynomial(&self, tol: f64, grid: &PatchGrid, forced: usize) -> Result<Mesh> {
         let count = AtomicUsize::new(0);
         let whole = ((0, PATCH_WIDTH), (0, PATCH_WIDTH));
         let mut leaves: Vec<Leaf> = (0..self.patch_count())
@@ -1040,9 +1041,10 @@ impl QuerySurface {
         for round in 0..=MAX_ROUNDS {
             let lat = Lattice::new(leaves.iter().map(|l| grid.rect(l)))?;
             let may_split = rule == Rule::Edges;
+            let force = may_split && round < forced;
             let plans: Vec<(Plan, f64)> = leaves
                 .par_iter()
-                .map(|l| self.plan_part(l, grid.rect(l), &lat, tol, may_split))
+                .map(|l| self.plan_part(l, grid.rect(l), &lat, tol, may_split, force))
                 .collect();
             let split: Vec<bool> = plans.iter().map(|p| matches!(p.0, Plan::Split)).collect();
             if !split.contains(&true) {
@@ -1077,7 +1079,8 @@ impl QuerySurface {
     /// [`triangle_bound`] with its own edge vectors (`M_e` from the part's [`SecondNets`]) and
     /// `(A + 2B + C)/8`; if one is above `tol`, the strip of least largest bound of either
     /// diagonal ([`best_zip`]), else a fan about the centre, else ([`Plan::Split`], if
-    /// `may_split` and the part is more than two units wide) a split.
+    /// `may_split` and the part is more than two units wide) a split; a split whenever it can
+    /// if `force` (tests).
     fn plan_part(
         &self,
         l: &Leaf,
@@ -1085,17 +1088,21 @@ impl QuerySurface {
         lat: &Lattice,
         tol: f64,
         may_split: bool,
+        force: bool,
     ) -> (Plan, f64) {
         let mut ring = Vec::new();
         let [br, tr, tl] = lat.ring(r, &mut ring);
         if ring.len() == 4 {
             return (Plan::Two, l.bound);
         }
+        let ((u0, u1), (v0, v1)) = r;
+        if force && (u1 - u0 > 2 || v1 - v0 > 2) {
+            return (Plan::Split, f64::INFINITY);
+        }
         let net = self.sub_net(l.patch, l.u, l.v);
         let sn = self.second_nets(&net);
         let (a, b, c) = self.net_bounds(&net).unwrap_or((0.0, 0.0, 0.0));
         let any = (a + 2.0 * b + c) / 8.0;
-        let ((u0, u1), (v0, v1)) = r;
         let (du, dv) = ((u1 - u0) as f64, (v1 - v0) as f64);
         let at = |u: u64, v: u64| ((u - u0) as f64 / du, (v - v0) as f64 / dv);
         let local = |i: u32| {
@@ -1580,19 +1587,8 @@ mod tests {
         let mut rng = Rng(7);
         let grid = barycentric(6);
         for case in 0..6 {
-            let (nu, nv) = (6, 7);
             let twist = 4.0 * rng.next() - 2.0;
-            let mut net = Vec::new();
-            for i in 0..nu {
-                for j in 0..nv {
-                    let (x, y) = (i as f64 / 5.0, j as f64 / 6.0);
-                    net.extend([x, y, twist * (x - 0.5) * (y - 0.5) + 0.3 * rng.next()]);
-                }
-            }
-            let ku = vec![0., 0., 0., 0., 0.3, 0.5, 1., 1., 1., 1.];
-            let kv = vec![0., 0., 0., 0., 0.2, 0.5, 0.7, 1., 1., 1., 1.];
-            let s = BSplineSurface::new(3, 3, ku, kv, Points::from_flat(3, net).unwrap(), (nu, nv))
-                .unwrap();
+            let s = random_surface(&mut rng, twist);
             let q = QuerySurface::from_bspline(&s).unwrap();
             let tol = [1e-3, 3e-4][case % 2];
             let mesh = q.mesh(tol).unwrap();
@@ -1640,6 +1636,79 @@ mod tests {
                 }
             }
             assert!(used.iter().all(|&u| u), "case {case}: an unused vertex");
+        }
+    }
+
+    /// A bicubic 3 × 4-patch surface with random heights and twist `twist`.
+    fn random_surface(rng: &mut Rng, twist: f64) -> BSplineSurface {
+        let (nu, nv) = (6, 7);
+        let mut net = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let (x, y) = (i as f64 / 5.0, j as f64 / 6.0);
+                net.extend([x, y, twist * (x - 0.5) * (y - 0.5) + 0.3 * rng.next()]);
+            }
+        }
+        let ku = vec![0., 0., 0., 0., 0.3, 0.5, 1., 1., 1., 1.];
+        let kv = vec![0., 0., 0., 0., 0.2, 0.5, 0.7, 1., 1., 1., 1.];
+        BSplineSurface::new(3, 3, ku, kv, Points::from_flat(3, net).unwrap(), (nu, nv)).unwrap()
+    }
+
+    #[test]
+    fn parts_split_in_later_rounds_keep_the_mesh_closed_and_bounded() {
+        // every part with points on its sides split in the first rounds (as if none of its
+        // triangulations were within the tolerance), then, past the last round, every part
+        // refined to (A + 2B + C)/8: the sides are matched again each round
+        let mut rng = Rng(11);
+        let s = random_surface(&mut rng, 1.5);
+        let q = QuerySurface::from_bspline(&s).unwrap();
+        let grid = super::PatchGrid::new(&q);
+        let tol = 3e-3;
+        let plain = q.mesh(tol).unwrap();
+        for forced in [2, super::MAX_ROUNDS + 1] {
+            let mesh = q.mesh_polynomial(tol / q.scale(), &grid, forced).unwrap();
+            assert!(mesh.deviation <= tol, "forced {forced}: {}", mesh.deviation);
+            assert!(
+                mesh.triangles.len() > plain.triangles.len(),
+                "forced {forced}: no part was split"
+            );
+            assert_watertight(&mesh);
+            let area: f64 = mesh
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
+                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+                })
+                .inspect(|&a| assert!(a > 0.0, "forced {forced}: a clockwise triangle"))
+                .sum();
+            assert!((area - 1.0).abs() < 1e-12, "forced {forced}: area {area}");
+            // (past the last round, 46,710 triangles against 817: every 7th)
+            let samples = barycentric(4);
+            for t in mesh
+                .triangles
+                .iter()
+                .step_by(if forced > 2 { 7 } else { 1 })
+            {
+                let uv = t.map(|i| mesh.uv[i as usize]);
+                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+                for l in &samples {
+                    let x = [0, 1].map(|d| {
+                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
+                    });
+                    let sx = s.eval(x[0], x[1]).unwrap();
+                    let dev = (0..3)
+                        .map(|d| {
+                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
+                        })
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!(
+                        dev <= mesh.deviation * (1.0 + 1e-9),
+                        "forced {forced}: {dev}"
+                    );
+                }
+            }
         }
     }
 
