@@ -1331,17 +1331,18 @@ impl QuerySurface {
                 .find(|&v| v as usize != h)
                 .expect("a triangle has other vertices");
             let mut cur = start;
-            for _ in 0..m {
+            for k in 0..m {
                 poly.push(cur);
                 match next.get(&cur) {
-                    Some(&n) => cur = n,
-                    None => {
+                    // one cycle through all m: back at the start only after the last
+                    Some(&n) if (n == start) == (k + 1 == m) => cur = n,
+                    _ => {
                         ok = false;
                         break;
                     }
                 }
             }
-            if !ok || cur != start {
+            if !ok {
                 continue;
             }
             if cache.len() > 4096 {
