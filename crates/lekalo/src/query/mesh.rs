@@ -1164,7 +1164,8 @@ impl QuerySurface {
         let fan = (0..ring.len())
             .map(|i| tri(centre, local(ring[i]), local(ring[(i + 1) % ring.len()])))
             .fold(0.0, f64::max);
-        if fan < best.1 {
+        // the centre strictly inside (a part one unit wide, after odd cuts, has none)
+        if fan < best.1 && u1 - u0 >= 2 && v1 - v0 >= 2 {
             best = (Plan::Fan, fan);
         }
         if best.1 <= tol || !may_split || (u1 - u0 <= 2 && v1 - v0 <= 2) {
