@@ -28,6 +28,11 @@ importable, its mesh at the deflection is measured the same way on 2*10^5 of its
 a check of the measurement ((a) within its proved bound) and for its (b).
 
     python bench/peers/occt_mesh_deviation.py [--brep FILE] [--lekalo target/release/lekalo]
+    python bench/peers/occt_mesh_deviation.py --lekalo-mesh target/answers/lekalo_mesh.txt
+
+With --lekalo-mesh FILE (written by `cargo run --release --example query_peer -- 1 1000 DIR`
+as DIR/lekalo_mesh.txt) only lekalo's mesh of the surface is measured, at the ten points of
+every one of its triangles and on the fine grid of its worst ones, without Open CASCADE's.
 
 Without --brep the face is meshed here with OCP (cadquery-ocp; 1-3 minutes); with it, the
 meshed face is read from FILE, e.g. target/peers-occt/answers/occt_mesh.brep, which
@@ -297,6 +302,41 @@ def fine_grid(k):
     return np.array([p for p in pts if max(p) < 1.0])  # without the vertices
 
 
+def measure_lekalo_mesh(path, deflection):
+    """(a) and (b) at the ten points of every triangle of lekalo's mesh read from `path`
+    (query_peer's lekalo_mesh.txt), then on the fine grid of the worst ones: (a) must stay
+    within the proved deviation the file states."""
+    with open(path) as f:
+        nv, nt, bound = f.readline().split()
+        nv, nt, bound = int(nv), int(nt), float(bound)
+        verts = np.loadtxt(f, max_rows=nv)
+        tris = np.loadtxt(f, dtype=np.intp, max_rows=nt)
+    xyz, uv = verts[:, :3], np.ascontiguousarray(verts[:, 3:])
+    surf = Surface()
+    node_err = np.linalg.norm(surf.eval(uv) - xyz, axis=1).max()
+    print(f"lekalo mesh ({path}): {nt} triangles, {nv} vertices, proved deviation {bound:.4e}; "
+          f"vertices vs S(uv): {node_err:.1e}")
+    t0 = time.perf_counter()
+    par, dist, left = deviations(surf, xyz, uv, tris, SAMPLES, 0.5 * deflection)
+    print(f"{len(SAMPLES)} barycentric points of each triangle ({time.perf_counter() - t0:.0f} s; "
+          f"projections not converged: {left}):")
+    for name, per in (("(a) parametric |S(uv) - L|", par.max(axis=1)),
+                      ("(b) distance to the surface", dist.max(axis=1))):
+        q = np.quantile(per, [0.5, 0.99])
+        print(f"  {name}: max {per.max():.4e}; median {q[0]:.3e}, 99% {q[1]:.3e}; triangles "
+              f"above {deflection:g}: {np.count_nonzero(per > deflection)}")
+    worst = np.unique(np.concatenate([np.argsort(par.max(axis=1))[-WORST:],
+                                      np.argsort(dist.max(axis=1))[-WORST:]]))
+    fpar, fdist, _ = deviations(surf, xyz, uv, tris[worst], fine_grid(FINE), 0.5 * deflection,
+                                chunk=1000)
+    max_par = max(fpar.max(), par.max())
+    print(f"the {len(worst)} worst triangles on a barycentric grid of step 1/{FINE}: (a) max "
+          f"{max_par:.4e} ({max_par / bound:.4f} of the proved {bound:.4e}), (b) max "
+          f"{max(fdist.max(), dist.max()):.4e}")
+    if max_par > bound * (1 + 1e-9):
+        sys.exit("lekalo's mesh is above its proved deviation")
+
+
 def lekalo_counts(cli, tolerances):
     """Triangle count and proved deviation of lekalo's mesh (`cli mesh --json`) per tolerance."""
     net = control_net()
@@ -332,8 +372,13 @@ def main():
     ap.add_argument("--deflection", type=float, default=TOL)
     ap.add_argument("--lekalo", help="lekalo CLI, for its counts at the measured deviations")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--lekalo-mesh", help="lekalo's mesh written by the example query_peer "
+                    "(lekalo_mesh.txt): measure it alone")
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
+    if args.lekalo_mesh:
+        measure_lekalo_mesh(args.lekalo_mesh, args.deflection)
+        return
 
     surf = Surface()
     geom = occ_surface()

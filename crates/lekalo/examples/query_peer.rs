@@ -4,7 +4,9 @@
 //! (intersection count, triangle count and the mesh's proved deviation). With `ANSWERS_DIR` it
 //! writes its answers there for `bench/peers/compare_queries.py`: `lekalo_project.txt` (the
 //! distance of each projected point) and `lekalo_intersect.txt` (`t_a t_b x y` of each
-//! intersection point).
+//! intersection point), and `lekalo_mesh.txt` (the mesh of the surface at 1e-4 for
+//! `bench/peers/occt_mesh_deviation.py --lekalo-mesh`: a line `vertices triangles deviation`,
+//! then `x y z u v` of each vertex and the vertex indices of each triangle).
 //!
 //! `cargo run --release --example query_peer -- [REPEATS [PROJECT_POINTS [ANSWERS_DIR]]]`
 
@@ -111,5 +113,20 @@ fn main() -> Result<(), lekalo::Error> {
         "lekalo mesh_50x50 {t:.6e} s triangles {} nodes {} proved deviation {:.3e}",
         facts.0, facts.1, facts.2
     );
+    if answers.is_some() {
+        let m = s.mesh(1e-4)?;
+        let mut text = format!("{} {} {:e}\n", m.uv.len(), m.triangles.len(), m.deviation);
+        for (p, uv) in m.vertices.iter().zip(&m.uv) {
+            let _ = writeln!(
+                text,
+                "{:e} {:e} {:e} {:e} {:e}",
+                p[0], p[1], p[2], uv[0], uv[1]
+            );
+        }
+        for t in &m.triangles {
+            let _ = writeln!(text, "{} {} {}", t[0], t[1], t[2]);
+        }
+        write("lekalo_mesh.txt", text);
+    }
     Ok(())
 }

@@ -1,8 +1,11 @@
 //! Adaptive triangle meshes of surfaces within a proved deviation
-//! (`docs/theory/queries.md#tessellation`): each patch is halved, in `u` or in `v`, or near the
-//! end cut into a few equal parts, until the bound of every part is within the tolerance; the parts' sides are then matched across
-//! parts and patches, so the mesh has no cracks, and a part with extra points on its sides is a
-//! strip (polynomial) or a fan (rational) through them.
+//! (`docs/theory/queries.md#tessellation`): each patch is cut into parts, halved in `u` or in
+//! `v` or near the end cut into a few equal parts, until the bound of every part is within the
+//! tolerance; the parts' sides are then matched across parts and patches, so the mesh has no
+//! cracks, and a part with extra points on its sides is a strip (polynomial, its triangles'
+//! own bounds checked, the part split again where none of its triangulations is within the
+//! tolerance) or a fan (rational) through them; the polynomial mesh is then thinned by removing
+//! vertices where the fan of the polygon around one stays within the tolerance.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -19,16 +22,322 @@ use crate::Points;
 const MAX_LEVELS: u32 = 40;
 /// Integer width of a patch along each direction.
 const PATCH_WIDTH: u64 = 1 << (MAX_LEVELS + 1);
+/// Most parts a part is cut into at once ([`QuerySurface::poly_leaves`]).
+const MAX_DIRECT_PARTS: usize = 9;
+/// Most rounds of matching the parts' sides and splitting the parts none of whose
+/// triangulations is within the tolerance, before every part is refined to the bound that
+/// holds for any triangle inside it ([`QuerySurface::mesh_polynomial`]).
+const MAX_ROUNDS: usize = 12;
+
+/// A part's integer ranges on the global lattice: `((u0, u1), (v0, v1))`.
+type Rect = ((u64, u64), (u64, u64));
 
 /// A part of a patch that is meshed as a whole: its patch, its integer ranges inside the patch,
-/// its deviation bound and its four corners (`(u0, v0)`, `(u1, v0)`, `(u1, v1)`, `(u0, v1)`,
-/// normalised Cartesian points).
+/// its deviation bound as two triangles, the diagonal of those (`anti`: from `(u1, v0)` to
+/// `(u0, v1)`, otherwise from `(u0, v0)` to `(u1, v1)`), and its four corners (`(u0, v0)`,
+/// `(u1, v0)`, `(u1, v1)`, `(u0, v1)`, normalised Cartesian points).
 struct Leaf {
     patch: usize,
     u: (u64, u64),
     v: (u64, u64),
     bound: f64,
+    anti: bool,
     corners: Vec<f64>,
+}
+
+/// Which bound a polynomial part must meet to be accepted.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Rule {
+    /// Its two triangles' edge bound ([`triangle_bound`]), along the better diagonal.
+    Edges,
+    /// `(A + 2B + C)/8` ([`QuerySurface::net_bounds`]), which holds for every triangle inside
+    /// the part.
+    Any,
+}
+
+/// The Bezier nets of `S_uu`, `S_uv`, `S_vv` of a polynomial (sub-)patch in its own parameters
+/// `[0, 1]²`, each degree-elevated to `(p, q)` and interleaved per control point
+/// (`[U_ij, W_ij, V_ij]`, `dim` scalars each). The directional second derivative
+/// `D²S[e, e] = e_u² S_uu + 2 e_u e_v S_uv + e_v² S_vv` is then the Bezier patch with net
+/// `e_u² U_ij + 2 e_u e_v W_ij + e_v² V_ij`, so the largest norm of those points bounds
+/// `|D²S[e, e]|` over the part (convex hull), for any `e`, with the cancellation between the
+/// terms kept (`docs/theory/queries.md#tessellation`).
+pub(crate) struct SecondNets {
+    dim: usize,
+    pts: Vec<f64>,
+}
+
+impl SecondNets {
+    /// `M(e) ≥ max |D²S[e, e]|` over the part: the largest norm of the points
+    /// `e_u² U_ij + 2 e_u e_v W_ij + e_v² V_ij`.
+    pub(crate) fn along(&self, eu: f64, ev: f64) -> f64 {
+        let (a, b, c) = (eu * eu, 2.0 * eu * ev, ev * ev);
+        let dim = self.dim;
+        let mut m = 0.0_f64;
+        for x in self.pts.chunks_exact(3 * dim) {
+            let mut s = 0.0;
+            for d in 0..dim {
+                let t = a * x[d] + b * x[dim + d] + c * x[2 * dim + d];
+                s += t * t;
+            }
+            m = m.max(s);
+        }
+        m.sqrt()
+    }
+
+    /// The bound of the part as the two triangles of its diagonal along `(1, ±1)` (the `−`
+    /// one, `anti`, when its bound is the smaller): [`triangle_bound`] of
+    /// `M(1, 0)`, `M(0, 1)`, `M(1, ±1)`.
+    fn two_triangles(&self) -> (f64, bool) {
+        let (a, c) = (self.along(1.0, 0.0), self.along(0.0, 1.0));
+        let main = triangle_bound([a, c, self.along(1.0, 1.0)]);
+        let anti = triangle_bound([a, c, self.along(1.0, -1.0)]);
+        if anti < main {
+            (anti, true)
+        } else {
+            (main, false)
+        }
+    }
+
+    /// The bound of every part of a cut into `k_u × k_v` equal parts as two triangles, from
+    /// this net: a part's second-derivative nets lie in the convex hull of these with `e`
+    /// scaled by `(1/k_u, 1/k_v)`, so its `M(1, 0) ≤ M(1, 0)/k_u²`, `M(0, 1) ≤ M(0, 1)/k_v²` and
+    /// `M(1, ±1) ≤ M(1/k_u, ±1/k_v)`. `ac` is `(M(1, 0), M(0, 1))`.
+    fn cut_bound(&self, ac: (f64, f64), ku: usize, kv: usize, tol: f64) -> f64 {
+        let (fu, fv) = (ku as f64, kv as f64);
+        let (a, c) = (ac.0 / (fu * fu), ac.1 / (fv * fv));
+        // every triangle bound is at least a quarter of its largest side term, halved
+        if a.max(c) / 8.0 > tol {
+            return a.max(c) / 8.0;
+        }
+        let main = triangle_bound([a, c, self.along(1.0 / fu, 1.0 / fv)]);
+        if main <= tol {
+            return main;
+        }
+        main.min(triangle_bound([a, c, self.along(1.0 / fu, -1.0 / fv)]))
+    }
+}
+
+/// `½ max (λ0 λ1 m01 + λ0 λ2 m02 + λ1 λ2 m12)` over the barycentric coordinates of a
+/// triangle, for `m = [m01, m02, m12]` (any order): with `m_ij ≥ max |D²S[e_ij, e_ij]|` over
+/// the triangle for its edge vectors `e_ij = P_j − P_i`, a bound on `|S − L|` over it, `L` the
+/// linear interpolant at the vertices (`docs/theory/queries.md#tessellation`). The maximum is
+/// at an edge's midpoint, `max m / 4`, unless with `a ≥ b, c` the three are "acute"
+/// (`d = b + c − a > 0`), where it is the interior critical point, `abc / (4bc − d²)` (half the
+/// squared circumradius of a triangle with squared sides `a, b, c`; `4bc − d² ≥ 3bc` there, so
+/// the quotient loses no accuracy).
+pub(crate) fn triangle_bound(m: [f64; 3]) -> f64 {
+    let [x, y, z] = m;
+    let (a, b, c) = if x >= y && x >= z {
+        (x, y, z)
+    } else if y >= z {
+        (y, x, z)
+    } else {
+        (z, x, y)
+    };
+    let d = b + c - a;
+    if d > 0.0 {
+        0.5 * a * b * c / (4.0 * b * c - d * d)
+    } else {
+        a / 8.0
+    }
+}
+
+/// Weights of the degree elevation of a Bezier curve from degree `n` to `n + r`:
+/// `Q_k = Σ_j C(n, j) C(r, k − j) / C(n + r, k) P_j` (Farin §6.1), row `k`, column `j`; each
+/// row is a convex combination.
+fn elevation_weights(n: usize, r: usize) -> Vec<f64> {
+    let binom = |n: usize, k: usize| (0..k).fold(1.0, |b, i| b * (n - i) as f64 / (i + 1) as f64);
+    let mut w = vec![0.0; (n + r + 1) * (n + 1)];
+    for k in 0..=n + r {
+        for j in k.saturating_sub(r)..=n.min(k) {
+            w[k * (n + 1) + j] = binom(n, j) * binom(r, k - j) / binom(n + r, k);
+        }
+    }
+    w
+}
+
+/// A tensor Bezier net of degree `n = (n_u, n_v)` (row-major in `u`, `dim` scalars a point)
+/// elevated by `r = (r_u, r_v)`.
+fn elevate(net: &[f64], n: (usize, usize), r: (usize, usize), dim: usize) -> Vec<f64> {
+    let (mu, mv) = (n.0 + r.0, n.1 + r.1);
+    let (wu, wv) = (elevation_weights(n.0, r.0), elevation_weights(n.1, r.1));
+    let mut rows = vec![0.0; (n.0 + 1) * (mv + 1) * dim];
+    for i in 0..=n.0 {
+        for l in 0..=mv {
+            let out = &mut rows[(i * (mv + 1) + l) * dim..][..dim];
+            for j in 0..=n.1 {
+                let w = wv[l * (n.1 + 1) + j];
+                if w != 0.0 {
+                    let x = &net[(i * (n.1 + 1) + j) * dim..][..dim];
+                    for d in 0..dim {
+                        out[d] += w * x[d];
+                    }
+                }
+            }
+        }
+    }
+    let mut out = vec![0.0; (mu + 1) * (mv + 1) * dim];
+    for k in 0..=mu {
+        for i in 0..=n.0 {
+            let w = wu[k * (n.0 + 1) + i];
+            if w != 0.0 {
+                for l in 0..(mv + 1) * dim {
+                    out[k * (mv + 1) * dim + l] += w * rows[i * (mv + 1) * dim + l];
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The parts' corners on the global integer lattice: the mesh's vertices, one a point, each
+/// with the part and corner it comes from, sorted by `(u, v)`, and the same sorted by `(v, u)`,
+/// from which each part's boundary with every corner on its sides is read.
+struct Lattice {
+    keys: Vec<(u64, u64, u32, u8)>,
+    by_v: Vec<(u64, u64, u32)>,
+}
+
+impl Lattice {
+    #[allow(clippy::cast_possible_truncation)] // vertex indices: below MAX_MESH_VERTICES < 2^32
+    fn new(rects: impl Iterator<Item = Rect>) -> Result<Self> {
+        let mut keys: Vec<(u64, u64, u32, u8)> = Vec::new();
+        for (n, (gu, gv)) in rects.enumerate() {
+            let n = u32::try_from(n).map_err(|_| Error::TooLarge {
+                what: "mesh vertices",
+                size: n,
+                max: MAX_MESH_VERTICES,
+            })?;
+            for (c, (u, v)) in [(gu.0, gv.0), (gu.1, gv.0), (gu.1, gv.1), (gu.0, gv.1)]
+                .into_iter()
+                .enumerate()
+            {
+                keys.push((u, v, n, c as u8));
+            }
+        }
+        keys.sort_unstable();
+        keys.dedup_by_key(|k| (k.0, k.1));
+        let mut by_v: Vec<(u64, u64, u32)> = keys
+            .iter()
+            .enumerate()
+            .map(|(i, k)| (k.1, k.0, i as u32))
+            .collect();
+        by_v.sort_unstable();
+        Ok(Lattice { keys, by_v })
+    }
+
+    /// The boundary of the part `(u, v)`, counter-clockwise from `(u0, v0)`, every lattice
+    /// vertex on it, into `ring`; the indices in `ring` of its corners `(u1, v0)`, `(u1, v1)`,
+    /// `(u0, v1)` (the first is at 0).
+    #[allow(clippy::cast_possible_truncation)] // vertex indices: below MAX_MESH_VERTICES < 2^32
+    fn ring(&self, ((u0, u1), (v0, v1)): Rect, ring: &mut Vec<u32>) -> [usize; 3] {
+        let by_u_range = |u: u64, a: u64, b: u64| {
+            let i = self.keys.partition_point(|k| (k.0, k.1) < (u, a));
+            let j = self.keys.partition_point(|k| (k.0, k.1) < (u, b));
+            (i..j).map(|i| i as u32)
+        };
+        let by_v_range = |v: u64, a: u64, b: u64| {
+            let i = self.by_v.partition_point(|k| (k.0, k.1) < (v, a));
+            let j = self.by_v.partition_point(|k| (k.0, k.1) < (v, b));
+            self.by_v[i..j].iter().map(|k| k.2)
+        };
+        // each side without its last vertex
+        ring.clear();
+        ring.extend(by_v_range(v0, u0, u1));
+        let br = ring.len();
+        ring.extend(by_u_range(u1, v0, v1));
+        let tr = ring.len();
+        ring.extend(by_v_range(v1, u0 + 1, u1 + 1));
+        ring[tr..].reverse();
+        let tl = ring.len();
+        ring.extend(by_u_range(u0, v0 + 1, v1 + 1));
+        ring[tl..].reverse();
+        [br, tr, tl]
+    }
+}
+
+/// The two chains of `ring` between its corners at `s` and `t` (interior points, both
+/// non-empty): from `s` forwards to `t`, and from `s` backwards to `t`.
+fn chains(ring: &[u32], s: usize, t: usize) -> (Vec<u32>, Vec<u32>) {
+    let n = ring.len();
+    let fwd = (t + n - s) % n - 1;
+    let bwd = (s + n - t) % n - 1;
+    (
+        (1..=fwd).map(|i| ring[(s + i) % n]).collect(),
+        (1..=bwd).map(|i| ring[(s + n - i) % n]).collect(),
+    )
+}
+
+/// A strip between the chains `a` and `b` of a convex polygon's boundary from the corner `s` to
+/// the corner `t` ([`chains`]): `[s, a_0, b_0]`, then at each step `[a_i, a_{i+1}, b_j]`
+/// (`moves[k]`, advance on `a`) or `[b_{j+1}, b_j, a_i]`, then `[a_last, t, b_last]`;
+/// `a.len() + b.len()` counter-clockwise triangles. Any order of the moves gives a
+/// triangulation with no degenerate triangle when the points of each chain lie on at most two
+/// sides of a rectangle, the chains' corners being `s` and `t` opposite each other: three
+/// vertices of a triangle are never on one side.
+fn zip(s: u32, t: u32, a: &[u32], b: &[u32], moves: &[bool], out: &mut Vec<[u32; 3]>) {
+    out.push([s, a[0], b[0]]);
+    let (mut i, mut j) = (0, 0);
+    for &take_a in moves {
+        if take_a {
+            out.push([a[i], a[i + 1], b[j]]);
+            i += 1;
+        } else {
+            out.push([b[j + 1], b[j], a[i]]);
+            j += 1;
+        }
+    }
+    out.push([a[a.len() - 1], t, b[b.len() - 1]]);
+}
+
+/// The moves of [`zip`] whose largest triangle `cost` is least (dynamic programming over the
+/// rungs `(a_i, b_j)`, `O(|a|·|b|)` costs), with that cost.
+fn best_zip(
+    s: u32,
+    t: u32,
+    a: &[u32],
+    b: &[u32],
+    cost: &impl Fn(u32, u32, u32) -> f64,
+) -> (Vec<bool>, f64) {
+    let (na, nb) = (a.len(), b.len());
+    // best[i·nb + j]: least largest cost of a strip up to the rung (a_i, b_j); from_a: its last
+    // move advanced on a
+    let mut best = vec![f64::INFINITY; na * nb];
+    let mut from_a = vec![false; na * nb];
+    best[0] = cost(s, a[0], b[0]);
+    for i in 0..na {
+        for j in 0..nb {
+            if i > 0 {
+                let c = best[(i - 1) * nb + j].max(cost(a[i - 1], a[i], b[j]));
+                if c < best[i * nb + j] {
+                    best[i * nb + j] = c;
+                    from_a[i * nb + j] = true;
+                }
+            }
+            if j > 0 {
+                let c = best[i * nb + j - 1].max(cost(b[j], b[j - 1], a[i]));
+                if c < best[i * nb + j] {
+                    best[i * nb + j] = c;
+                    from_a[i * nb + j] = false;
+                }
+            }
+        }
+    }
+    let total = best[na * nb - 1].max(cost(a[na - 1], t, b[nb - 1]));
+    let mut moves = Vec::with_capacity(na + nb - 2);
+    let (mut i, mut j) = (na - 1, nb - 1);
+    while i + j > 0 {
+        let m = from_a[i * nb + j];
+        moves.push(m);
+        if m {
+            i -= 1;
+        } else {
+            j -= 1;
+        }
+    }
+    moves.reverse();
+    (moves, total)
 }
 
 impl QuerySurface {
@@ -175,14 +484,322 @@ impl QuerySurface {
             (pd[2] + wd[2] * radius + 2.0 * wd[4] * gv) / w_min,
         ))
     }
+}
 
-    /// The parts of patch `k` within the normalised tolerance `tol`: halved (de Casteljau at the
-    /// middle) in the direction whose terms dominate the bound, at most [`MAX_LEVELS`] times
-    /// in each direction; on a polynomial surface a part that halving would leave above the
-    /// tolerance but a cut into at most [`MAX_DIRECT_PARTS`] equal parts would not is cut so
-    /// ([`direct_split`]). `count` is the number of parts of every patch so far: past
+impl QuerySurface {
+    /// The nets of `S_uu`, `S_uv`, `S_vv` of the polynomial (sub-)patch with net `net`
+    /// (`p(p−1) Δ²_u P`, `pq Δ_uΔ_v P`, `q(q−1) Δ²_v P`), each elevated to degree `(p, q)`
+    /// ([`SecondNets`]).
+    pub(crate) fn second_nets(&self, net: &[f64]) -> SecondNets {
+        let (p, q, dim) = (self.p, self.q, self.dim);
+        let at = |i: usize, j: usize, d: usize| net[(i * (q + 1) + j) * dim + d];
+        let (pf, qf) = (p as f64, q as f64);
+        let mut pts = vec![0.0; (p + 1) * (q + 1) * 3 * dim];
+        let mut put = |slot: usize, elevated: Vec<f64>| {
+            for (k, x) in elevated.chunks_exact(dim).enumerate() {
+                pts[(3 * k + slot) * dim..][..dim].copy_from_slice(x);
+            }
+        };
+        if p >= 2 {
+            let mut uu = Vec::with_capacity((p - 1) * (q + 1) * dim);
+            for i in 0..=p - 2 {
+                for j in 0..=q {
+                    for d in 0..dim {
+                        uu.push(
+                            pf * (pf - 1.0)
+                                * (at(i + 2, j, d) - 2.0 * at(i + 1, j, d) + at(i, j, d)),
+                        );
+                    }
+                }
+            }
+            put(0, elevate(&uu, (p - 2, q), (2, 0), dim));
+        }
+        if p >= 1 && q >= 1 {
+            let mut uv = Vec::with_capacity(p * q * dim);
+            for i in 0..p {
+                for j in 0..q {
+                    for d in 0..dim {
+                        uv.push(
+                            pf * qf
+                                * (at(i + 1, j + 1, d) - at(i + 1, j, d) - at(i, j + 1, d)
+                                    + at(i, j, d)),
+                        );
+                    }
+                }
+            }
+            put(1, elevate(&uv, (p - 1, q - 1), (1, 1), dim));
+        }
+        if q >= 2 {
+            let mut vv = Vec::with_capacity((p + 1) * (q - 1) * dim);
+            for i in 0..=p {
+                for j in 0..=q - 2 {
+                    for d in 0..dim {
+                        vv.push(
+                            qf * (qf - 1.0)
+                                * (at(i, j + 2, d) - 2.0 * at(i, j + 1, d) + at(i, j, d)),
+                        );
+                    }
+                }
+            }
+            put(2, elevate(&vv, (p, q - 2), (0, 2), dim));
+        }
+        SecondNets { dim, pts }
+    }
+
+    /// The net of the part `u × v` (integer ranges) of patch `k` (de Casteljau at its ends).
+    fn sub_net(&self, k: usize, u: (u64, u64), v: (u64, u64)) -> Vec<f64> {
+        let mut net = self.patch(k).to_vec();
+        let w = PATCH_WIDTH;
+        if u.0 > 0 {
+            net = self.split_u_at(&net, u.0 as f64 / w as f64).1;
+        }
+        if u.1 < w {
+            net = self
+                .split_u_at(&net, (u.1 - u.0) as f64 / (w - u.0) as f64)
+                .0;
+        }
+        if v.0 > 0 {
+            net = self.split_v_at(&net, v.0 as f64 / w as f64).1;
+        }
+        if v.1 < w {
+            net = self
+                .split_v_at(&net, (v.1 - v.0) as f64 / (w - v.0) as f64)
+                .0;
+        }
+        net
+    }
+
+    /// The parts of the polynomial (sub-)patch `net` over the integer ranges `u × v` of patch
+    /// `k` within the normalised tolerance `tol` under `rule`, split at least once if `force`.
+    /// A part whose bound is above `tol` is cut into the fewest equal parts, three to
+    /// [`MAX_DIRECT_PARTS`] (not four or eight, which halving reaches with the parts' own,
+    /// tighter nets), whose bounds from this net ([`SecondNets::cut_bound`]) are within `tol`
+    /// when halving's are not; otherwise halved (de Casteljau at the middle) in the direction
+    /// whose halves' bound is the smaller; at most [`MAX_LEVELS`] times in each direction.
+    /// `count` is the number of parts so far: past [`MAX_MESH_VERTICES`] this stops with
+    /// [`Error::TooLarge`].
+    #[allow(clippy::too_many_arguments)]
+    fn poly_leaves(
+        &self,
+        k: usize,
+        net: Vec<f64>,
+        range: ((u64, u64), (u64, u64)),
+        tol: f64,
+        rule: Rule,
+        force: bool,
+        count: &AtomicUsize,
+    ) -> Result<Vec<Leaf>> {
+        let (p, q, dim) = (self.p, self.q, self.dim);
+        let mut out = Vec::new();
+        let mut stack = vec![(net, range.0, range.1, force)];
+        while let Some((net, u, v, force)) = stack.pop() {
+            let sn = self.second_nets(&net);
+            let (two, anti) = sn.two_triangles();
+            let (can_u, can_v) = (u.1 - u.0 > 2, v.1 - v.0 > 2);
+            let (bound, accept) = match rule {
+                Rule::Edges => (two, two <= tol),
+                Rule::Any => {
+                    let (a, b, c) = self.net_bounds(&net).unwrap_or((0.0, 0.0, 0.0));
+                    let any = (a + 2.0 * b + c) / 8.0;
+                    (two.min(any), any <= tol)
+                }
+            };
+            if (accept && !force) || !(can_u || can_v) {
+                let n = count.fetch_add(1, Ordering::Relaxed) + 1;
+                if n > MAX_MESH_VERTICES {
+                    return Err(Error::TooLarge {
+                        what: "mesh vertices",
+                        size: n,
+                        max: MAX_MESH_VERTICES,
+                    });
+                }
+                let mut corners = Vec::with_capacity(4 * dim);
+                for (i, j) in [(0, 0), (p, 0), (p, q), (0, q)] {
+                    corners.extend_from_slice(&net[(i * (q + 1) + j) * dim..][..dim]);
+                }
+                out.push(Leaf {
+                    patch: k,
+                    u,
+                    v,
+                    bound,
+                    anti,
+                    corners,
+                });
+                continue;
+            }
+            let (ku, kv) = match rule {
+                Rule::Edges => self.choose_cut(&sn, tol, (u.1 - u.0, v.1 - v.0)),
+                Rule::Any => {
+                    let (a, b, c) = self.net_bounds(&net).unwrap_or((0.0, 0.0, 0.0));
+                    if (a + b >= c + b && can_u) || !can_v {
+                        (2, 1)
+                    } else {
+                        (1, 2)
+                    }
+                }
+            };
+            let mut parts = Vec::with_capacity(ku * kv);
+            for (n_u, pu) in self.split_evenly(net, u, ku, true) {
+                parts.extend(
+                    self.split_evenly(n_u, v, kv, false)
+                        .into_iter()
+                        .map(|(n, pv)| (n, pu, pv, false)),
+                );
+            }
+            stack.extend(parts);
+        }
+        Ok(out)
+    }
+
+    /// The cut `k_u × k_v` of a part above the tolerance with second-derivative nets `sn` and
+    /// integer widths `widths`: halving in the direction whose halves' bound is the smaller,
+    /// unless both are above `tol` and a cut into 3, 5, 6, 7 or 9 equal parts (the fewest, then
+    /// the smallest bound) is within it; no part under two units wide.
+    fn choose_cut(&self, sn: &SecondNets, tol: f64, widths: (u64, u64)) -> (usize, usize) {
+        let ac = (sn.along(1.0, 0.0), sn.along(0.0, 1.0));
+        let fits = |ku: usize, kv: usize| 2 * ku as u64 <= widths.0 && 2 * kv as u64 <= widths.1;
+        let bu = if fits(2, 1) {
+            sn.cut_bound(ac, 2, 1, tol)
+        } else {
+            f64::INFINITY
+        };
+        let bv = if fits(1, 2) {
+            sn.cut_bound(ac, 1, 2, tol)
+        } else {
+            f64::INFINITY
+        };
+        let halve = if bu <= bv { (2, 1) } else { (1, 2) };
+        if bu.min(bv) <= tol {
+            return halve;
+        }
+        for n in [3, 4, 5, 6, 7, 8, 9] {
+            if n > MAX_DIRECT_PARTS {
+                break;
+            }
+            let mut best: Option<((usize, usize), f64)> = None;
+            for ku in (1..=n).filter(|ku| n % ku == 0) {
+                let kv = n / ku;
+                if !fits(ku, kv) {
+                    continue;
+                }
+                let b = sn.cut_bound(ac, ku, kv, tol);
+                if b <= tol && best.is_none_or(|(_, x)| b < x) {
+                    best = Some(((ku, kv), b));
+                }
+            }
+            if let Some((cut, _)) = best {
+                // four and eight parts: halving gets there with the halves' own nets
+                return if n == 4 || n == 8 { halve } else { cut };
+            }
+        }
+        halve
+    }
+
+    /// A net over the integer range `r` cut into `k` parts at `r.0 + i·(r.1 − r.0)/k` (integer
+    /// division; de Casteljau at each cut in turn), along `u` or `v`: the parts with their
+    /// ranges, in order.
+    fn split_evenly(
+        &self,
+        net: Vec<f64>,
+        r: (u64, u64),
+        k: usize,
+        along_u: bool,
+    ) -> Vec<(Vec<f64>, (u64, u64))> {
+        let mut out = Vec::with_capacity(k);
+        let (mut rest, mut from) = (net, r.0);
+        let w = r.1 - r.0;
+        for i in 1..k as u64 {
+            let cut = r.0 + i * w / k as u64;
+            let t = (cut - from) as f64 / (r.1 - from) as f64;
+            let (lo, hi) = if along_u {
+                self.halve_or_split(&rest, t, true)
+            } else {
+                self.halve_or_split(&rest, t, false)
+            };
+            out.push((lo, (from, cut)));
+            rest = hi;
+            from = cut;
+        }
+        out.push((rest, (from, r.1)));
+        out
+    }
+
+    fn halve_or_split(&self, net: &[f64], t: f64, along_u: bool) -> (Vec<f64>, Vec<f64>) {
+        match (t == 0.5, along_u) {
+            (true, true) => self.halve_u(net),
+            (true, false) => self.halve_v(net),
+            (false, true) => self.split_u_at(net, t),
+            (false, false) => self.split_v_at(net, t),
+        }
+    }
+}
+
+/// The patches' places on the global lattice: patch `(i, j)` (the `i`-th `u` interval, the
+/// `j`-th `v` interval) covers the integers `[i, i + 1]·PATCH_WIDTH × [j, j + 1]·PATCH_WIDTH`.
+struct PatchGrid {
+    us: Vec<(f64, f64)>,
+    vs: Vec<(f64, f64)>,
+    origin: Vec<(u64, u64)>,
+}
+
+impl PatchGrid {
+    fn new(s: &QuerySurface) -> Self {
+        let mut us: Vec<(f64, f64)> = s.ranges.iter().map(|r| r.0).collect();
+        us.sort_by(|a, b| a.0.total_cmp(&b.0));
+        us.dedup();
+        let mut vs: Vec<(f64, f64)> = s.ranges.iter().map(|r| r.1).collect();
+        vs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        vs.dedup();
+        let origin = s
+            .ranges
+            .iter()
+            .map(|(u, v)| {
+                let i = us.partition_point(|x| x.0 < u.0) as u64;
+                let j = vs.partition_point(|x| x.0 < v.0) as u64;
+                (i * PATCH_WIDTH, j * PATCH_WIDTH)
+            })
+            .collect();
+        PatchGrid { us, vs, origin }
+    }
+
+    fn rect(&self, l: &Leaf) -> Rect {
+        let (ou, ov) = self.origin[l.patch];
+        ((ou + l.u.0, ou + l.u.1), (ov + l.v.0, ov + l.v.1))
+    }
+
+    /// The surface parameters of the lattice point `(u, v)`.
+    fn param(&self, u: u64, v: u64) -> [f64; 2] {
+        let at = |g: u64, ranges: &[(f64, f64)]| {
+            let i = usize::try_from(g / PATCH_WIDTH).unwrap_or(usize::MAX);
+            let f = (g % PATCH_WIDTH) as f64 / PATCH_WIDTH as f64;
+            match ranges.get(i) {
+                Some(r) => r.0 + (r.1 - r.0) * f,
+                None => ranges[ranges.len() - 1].1,
+            }
+        };
+        [at(u, &self.us), at(v, &self.vs)]
+    }
+}
+
+/// How a polynomial part is triangulated, with the largest bound of its triangles.
+enum Plan {
+    /// Two triangles (no extra point on its sides), along its diagonal.
+    Two,
+    /// A strip through the extra points on its sides.
+    Strip(Vec<[u32; 3]>),
+    /// A fan about its centre (a new vertex) through the points on its sides.
+    Fan,
+    /// None is within the tolerance: the part is split and the sides matched again.
+    Split,
+}
+
+impl QuerySurface {
+    /// The parts of patch `k` of a rational surface within the normalised tolerance `tol`:
+    /// halved (de Casteljau at the middle) in the direction whose terms dominate the bound
+    /// `(A + 2B + C)/8` ([`QuerySurface::net_bounds`]), at most [`MAX_LEVELS`] times in each
+    /// direction. `count` is the number of parts of every patch so far: past
     /// [`MAX_MESH_VERTICES`] this stops with [`Error::TooLarge`].
-    fn patch_leaves(&self, k: usize, tol: f64, count: &AtomicUsize) -> Result<Vec<Leaf>> {
+    fn rational_leaves(&self, k: usize, tol: f64, count: &AtomicUsize) -> Result<Vec<Leaf>> {
         let (p, q, hd, dim) = (self.p, self.q, self.hd, self.dim);
         let mut out = Vec::new();
         let mut stack = vec![(self.patch(k).to_vec(), (0, PATCH_WIDTH), (0, PATCH_WIDTH))];
@@ -215,105 +832,71 @@ impl QuerySurface {
                 let mut corners = Vec::with_capacity(4 * dim);
                 for (i, j) in [(0, 0), (p, 0), (p, q), (0, q)] {
                     let x = &net[(i * (q + 1) + j) * hd..][..hd];
-                    let w = if self.rational { x[dim] } else { 1.0 };
-                    corners.extend(x[..dim].iter().map(|c| c / w));
+                    corners.extend(x[..dim].iter().map(|c| c / x[dim]));
                 }
                 out.push(Leaf {
                     patch: k,
                     u,
                     v,
                     bound,
+                    anti: false,
                     corners,
                 });
                 continue;
             }
-            if !self.rational {
-                if let Some((ku, kv)) = direct_split((a, b, c), tol, (u.1 - u.0, v.1 - v.0)) {
-                    let mut parts = Vec::with_capacity(ku * kv);
-                    for (n_u, pu) in self.split_evenly(net, u, ku, true) {
-                        parts.extend(
-                            self.split_evenly(n_u, v, kv, false)
-                                .into_iter()
-                                .map(|(n, pv)| (n, pu, pv)),
-                        );
-                    }
-                    stack.extend(parts);
-                    continue;
-                }
-            }
-            let mut parts = vec![(net, u, v)];
-            if split_u {
-                parts = parts
-                    .into_iter()
-                    .flat_map(|(n, u, v)| {
-                        let m = (u.0 + u.1) / 2;
-                        let (l, h) = self.halve_u(&n);
-                        [(l, (u.0, m), v), (h, (m, u.1), v)]
-                    })
-                    .collect();
-            }
-            if split_v {
-                parts = parts
-                    .into_iter()
-                    .flat_map(|(n, u, v)| {
-                        let m = (v.0 + v.1) / 2;
-                        let (l, h) = self.halve_v(&n);
-                        [(l, u, (v.0, m)), (h, u, (m, v.1))]
-                    })
-                    .collect();
-            }
-            stack.extend(parts);
+            let (l, h, u_parts, v_parts) = if split_u {
+                let m = (u.0 + u.1) / 2;
+                let (l, h) = self.halve_u(&net);
+                (l, h, [(u.0, m), (m, u.1)], [v, v])
+            } else {
+                let m = (v.0 + v.1) / 2;
+                let (l, h) = self.halve_v(&net);
+                (l, h, [u, u], [(v.0, m), (m, v.1)])
+            };
+            stack.push((l, u_parts[0], v_parts[0]));
+            stack.push((h, u_parts[1], v_parts[1]));
         }
         Ok(out)
     }
 
-    /// A net over the integer range `r` cut into `k` parts at `r.0 + i·(r.1 − r.0)/k` (integer
-    /// division; de Casteljau at each cut in turn), along `u` or `v`: the parts with their
-    /// ranges, in order.
-    fn split_evenly(
-        &self,
-        net: Vec<f64>,
-        r: (u64, u64),
-        k: usize,
-        along_u: bool,
-    ) -> Vec<(Vec<f64>, (u64, u64))> {
-        let mut out = Vec::with_capacity(k);
-        let (mut rest, mut from) = (net, r.0);
-        let w = r.1 - r.0;
-        for i in 1..k as u64 {
-            let cut = r.0 + i * w / k as u64;
-            let t = (cut - from) as f64 / (r.1 - from) as f64;
-            let (lo, hi) = if along_u {
-                self.split_u_at(&rest, t)
-            } else {
-                self.split_v_at(&rest, t)
-            };
-            out.push((lo, (from, cut)));
-            rest = hi;
-            from = cut;
-        }
-        out.push((rest, (from, r.1)));
-        out
-    }
-
-    /// A triangle mesh within `tolerance` of a surface, polynomial or rational, adaptive: each
-    /// patch is halved — in `u` where the `u` terms of its bound dominate, in `v` where the `v`
-    /// terms do; on a polynomial surface cut into the fewest equal parts (at most nine) once
-    /// that reaches the tolerance and halving would not — until every part's bound
-    /// `(A + 2B + C) / 8` from its own net's differences is within `tolerance`
+    /// A triangle mesh within `tolerance` of a surface, polynomial or rational, adaptive
     /// (`docs/theory/queries.md#tessellation`), so flat regions get large triangles and curved
-    /// ones small. Parts are matched along their sides, across patches too: a part whose sides
-    /// carry corners of smaller neighbours is meshed through all of them, any other as two
+    /// ones small. Each patch is cut into parts until every part is within `tolerance` as two
+    /// triangles:
+    ///
+    /// * polynomial: a triangle whose edge vectors `e` have `M_e ≥ max |D²S[e, e]|` over it
+    ///   deviates by at most `½ max (λ0 λ1 M01 + λ0 λ2 M02 + λ1 λ2 M12)` over its barycentric
+    ///   coordinates ([`triangle_bound`]), and `M_e` comes for any `e` from the part's nets of
+    ///   `S_uu`, `S_uv`, `S_vv` elevated to one degree ([`SecondNets`]), so the cross term
+    ///   cancels where it can: each part takes the diagonal, `(1, 1)` or `(1, −1)`, with the
+    ///   smaller bound; it is halved in the direction whose halves' bound is the smaller, or
+    ///   cut into the fewest equal parts (at most nine) once that reaches the tolerance and
+    ///   halving would not;
+    /// * rational: `(A + 2B + C)/8` from its own net's differences (Leibniz for the weight,
+    ///   [`QuerySurface::net_bounds`]), halved in `u` where the `u` terms dominate, in `v`
+    ///   otherwise.
+    ///
+    /// Parts are matched along their sides, across patches too: a part whose sides carry
+    /// corners of smaller neighbours is meshed through all of them, any other as two
     /// triangles, so the mesh has no cracks and no T-junctions. On a polynomial surface such a
-    /// part is a strip of triangles between its sides with no interior point (every triangle
-    /// inside a part's rectangle is within its bound); on a rational one, whose bound needs
-    /// triangles no steeper than the part's diagonal, a fan about its centre. Vertices are the
-    /// parts' corner control points (points of the surface) and the fans' centres.
-    /// Patches are split in parallel; the mesh does not depend on the thread count.
+    /// part is a strip of triangles between its sides with no interior point, its rungs along
+    /// its diagonal, each triangle's bound computed from its own edge vectors; where one is
+    /// above the tolerance the strip whose largest bound is least is taken (of either
+    /// diagonal), else a fan about the part's centre, else the part is split and the sides
+    /// matched again (at most [`MAX_ROUNDS`] rounds, then every part is cut until
+    /// `(A + 2B + C)/8`, which holds for any triangle inside it, is within the tolerance). The
+    /// polynomial mesh is then thinned: a vertex is removed, its polygon fanned from one corner,
+    /// where every new triangle is within the tolerance with `M_e` the largest of the parts it
+    /// covers ([`QuerySurface::decimate`]). On a rational surface, whose bound needs triangles
+    /// no steeper than the part's diagonal, such a part is a fan about its centre. Vertices are
+    /// the parts' corner control points (points of the surface) and the fans' centres. The
+    /// reported deviation is the largest triangle bound. Patches are split in parallel; the
+    /// mesh does not depend on the thread count.
     ///
     /// ```
     /// use lekalo::{BSplineSurface, Points, QuerySurface};
-    /// // z = x² on [0, 1]²: A = 2, so 2/(8·4^k) ≤ 1e-3 after k = 4 halvings in u, none in v
+    /// // z = x² on [0, 1]²: M along (1, 0) and the diagonals 2, along (0, 1) 0: two triangles
+    /// // deviate by 2/8, so 2/(8·4^k) ≤ 1e-3 after k = 4 halvings in u, none in v
     /// let net = Points::from_3d(&[[0., 0., 0.], [0., 1., 0.], [0.5, 0., 0.], [0.5, 1., 0.], [1., 0., 1.], [1., 1., 1.]])?;
     /// let s = BSplineSurface::new(2, 1, vec![0., 0., 0., 1., 1., 1.], vec![0., 0., 1., 1.], net, (3, 2))?;
     /// let mesh = QuerySurface::from_bspline(&s)?.mesh(1e-3)?;
@@ -326,140 +909,70 @@ impl QuerySurface {
     /// [`Error::InvalidArgument`] for a rational surface with a weight that is not positive, or
     /// a tolerance below [`super::MIN_RELATIVE_TOLERANCE`] times the size; [`Error::TooLarge`]
     /// beyond [`MAX_MESH_VERTICES`].
-    #[allow(clippy::cast_possible_truncation)] // vertex indices: at most 4·MAX_MESH_VERTICES < 2^32
     pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
         check_tol(tolerance, self.scale)?;
         let tol = tolerance / self.scale;
-        let dim = self.dim;
-        // the patches' ranges in order: patch (i, j) covers integers [i, i + 1]·PATCH_WIDTH
-        let mut us: Vec<(f64, f64)> = self.ranges.iter().map(|r| r.0).collect();
-        us.sort_by(|a, b| a.0.total_cmp(&b.0));
-        us.dedup();
-        let mut vs: Vec<(f64, f64)> = self.ranges.iter().map(|r| r.1).collect();
-        vs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        vs.dedup();
-        let origin = |k: usize| {
-            let (u, v) = self.ranges[k];
-            let i = us.partition_point(|x| x.0 < u.0) as u64;
-            let j = vs.partition_point(|x| x.0 < v.0) as u64;
-            (i * PATCH_WIDTH, j * PATCH_WIDTH)
-        };
-        let count = AtomicUsize::new(0);
-        let leaves: Vec<Leaf> = (0..self.patch_count())
-            .into_par_iter()
-            .map(|k| self.patch_leaves(k, tol, &count))
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .flatten()
-            .collect();
-        // global integer corners, each with the leaf and corner it comes from
-        let global = |l: &Leaf| {
-            let (ou, ov) = origin(l.patch);
-            ((ou + l.u.0, ou + l.u.1), (ov + l.v.0, ov + l.v.1))
-        };
-        let mut keys: Vec<(u64, u64, u32, u8)> = Vec::with_capacity(4 * leaves.len());
-        for (n, l) in leaves.iter().enumerate() {
-            let (gu, gv) = global(l);
-            let n = u32::try_from(n).map_err(|_| Error::TooLarge {
-                what: "mesh vertices",
-                size: n,
-                max: MAX_MESH_VERTICES,
-            })?;
-            for (c, (u, v)) in [(gu.0, gv.0), (gu.1, gv.0), (gu.1, gv.1), (gu.0, gv.1)]
-                .into_iter()
-                .enumerate()
-            {
-                keys.push((u, v, n, c as u8));
-            }
+        let grid = PatchGrid::new(self);
+        if self.rational {
+            self.mesh_rational(tol, &grid)
+        } else {
+            self.mesh_polynomial(tol, &grid, 0)
         }
-        keys.sort_unstable();
-        keys.dedup_by_key(|k| (k.0, k.1));
-        // vertices sorted by (u, v); the same by (v, u) for the horizontal sides
-        let by_v = {
-            let mut t: Vec<(u64, u64, u32)> = keys
-                .iter()
-                .enumerate()
-                .map(|(i, k)| (k.1, k.0, i as u32))
-                .collect();
-            t.sort_unstable();
-            t
-        };
-        let param = |g: u64, ranges: &[(f64, f64)]| {
-            let i = usize::try_from(g / PATCH_WIDTH).unwrap_or(usize::MAX);
-            let f = (g % PATCH_WIDTH) as f64 / PATCH_WIDTH as f64;
-            match ranges.get(i) {
-                Some(r) => r.0 + (r.1 - r.0) * f,
-                None => ranges[ranges.len() - 1].1,
-            }
-        };
-        let mut verts = Vec::with_capacity(dim * (keys.len() + leaves.len() / 4));
-        let mut uv = Vec::with_capacity(keys.len() + leaves.len() / 4);
+    }
+
+    /// The vertices of the lattice (the corners of the parts they come from) and their
+    /// parameters.
+    fn lattice_vertices(
+        &self,
+        grid: &PatchGrid,
+        lat: &Lattice,
+        leaves: &[Leaf],
+    ) -> (Vec<f64>, Vec<[f64; 2]>) {
+        let dim = self.dim;
+        let mut verts = Vec::with_capacity(dim * (lat.keys.len() + leaves.len() / 4));
+        let mut uv = Vec::with_capacity(lat.keys.len() + leaves.len() / 4);
         let mut buf = vec![0.0; dim];
-        for &(u, v, n, c) in &keys {
+        for &(u, v, n, c) in &lat.keys {
             let l = &leaves[n as usize];
             self.denormalise(&l.corners[c as usize * dim..][..dim], &mut buf);
             verts.extend_from_slice(&buf);
-            uv.push([param(u, &us), param(v, &vs)]);
+            uv.push(grid.param(u, v));
         }
-        let by_u_range = |u: u64, v0: u64, v1: u64| {
-            let a = keys.partition_point(|k| (k.0, k.1) < (u, v0));
-            let b = keys.partition_point(|k| (k.0, k.1) < (u, v1));
-            (a..b).map(|i| i as u32)
-        };
-        let by_v_range = |v: u64, u0: u64, u1: u64| {
-            let a = by_v.partition_point(|k| (k.0, k.1) < (v, u0));
-            let b = by_v.partition_point(|k| (k.0, k.1) < (v, u1));
-            by_v[a..b].iter().map(|k| k.2)
-        };
-        let mut triangles = Vec::with_capacity(2 * leaves.len());
-        let mut ring: Vec<u32> = Vec::new();
+        (verts, uv)
+    }
+
+    /// A new vertex at the centre of part `l` (integer, so on the lattice): its index.
+    fn centre_vertex(
+        &self,
+        grid: &PatchGrid,
+        l: &Leaf,
+        verts: &mut Vec<f64>,
+        uv: &mut Vec<[f64; 2]>,
+    ) -> Result<u32> {
+        let centre = u32::try_from(uv.len()).map_err(|_| Error::TooLarge {
+            what: "mesh vertices",
+            size: uv.len(),
+            max: MAX_MESH_VERTICES,
+        })?;
+        let ((u0, u1), (v0, v1)) = grid.rect(l);
+        let (cu, cv) = ((u0 + u1) / 2, (v0 + v1) / 2);
+        let local = |g: u64| (g % PATCH_WIDTH) as f64 / PATCH_WIDTH as f64;
         let mut scratch = Vec::new();
-        let mut deviation = 0.0_f64;
-        for l in &leaves {
-            deviation = deviation.max(l.bound);
-            let ((u0, u1), (v0, v1)) = global(l);
-            // the boundary counter-clockwise, each side without its last vertex
-            ring.clear();
-            ring.extend(by_v_range(v0, u0, u1));
-            ring.extend(by_u_range(u1, v0, v1));
-            let top = ring.len();
-            ring.extend(by_v_range(v1, u0 + 1, u1 + 1));
-            ring[top..].reverse();
-            let left = ring.len();
-            ring.extend(by_u_range(u0, v0 + 1, v1 + 1));
-            ring[left..].reverse();
-            if ring.len() == 4 {
-                triangles.push([ring[0], ring[1], ring[2]]);
-                triangles.push([ring[0], ring[2], ring[3]]);
-                continue;
-            }
-            if !self.rational {
-                // any triangle in the part's rectangle is within its bound: a strip without
-                // the centre (docs/theory/queries.md#tessellation)
-                let (du, dv) = ((u1 - u0) as f64, (v1 - v0) as f64);
-                let progress = |i: u32| {
-                    let k = &keys[i as usize];
-                    (k.0 - u0) as f64 / du + (k.1 - v0) as f64 / dv
-                };
-                let tr = by_v_range(v0, u0, u1).count() + by_u_range(u1, v0, v1).len();
-                strip(&ring, tr, progress, &mut triangles);
-                continue;
-            }
-            let centre = u32::try_from(uv.len()).map_err(|_| Error::TooLarge {
-                what: "mesh vertices",
-                size: uv.len(),
-                max: MAX_MESH_VERTICES,
-            })?;
-            let (cu, cv) = ((u0 + u1) / 2, (v0 + v1) / 2);
-            let local = |g: u64| (g % PATCH_WIDTH) as f64 / PATCH_WIDTH as f64;
-            let pt = self.point_on(l.patch, local(cu), local(cv), &mut scratch);
-            self.denormalise(&pt, &mut buf);
-            verts.extend_from_slice(&buf);
-            uv.push([param(cu, &us), param(cv, &vs)]);
-            for i in 0..ring.len() {
-                triangles.push([centre, ring[i], ring[(i + 1) % ring.len()]]);
-            }
-        }
+        let pt = self.point_on(l.patch, local(cu), local(cv), &mut scratch);
+        let mut buf = vec![0.0; self.dim];
+        self.denormalise(&pt, &mut buf);
+        verts.extend_from_slice(&buf);
+        uv.push(grid.param(cu, cv));
+        Ok(centre)
+    }
+
+    fn finish(
+        &self,
+        verts: Vec<f64>,
+        uv: Vec<[f64; 2]>,
+        triangles: Vec<[u32; 3]>,
+        deviation: f64,
+    ) -> Result<Mesh> {
         if uv.len() > MAX_MESH_VERTICES {
             return Err(Error::TooLarge {
                 what: "mesh vertices",
@@ -468,104 +981,810 @@ impl QuerySurface {
             });
         }
         Ok(Mesh {
-            vertices: Points::from_flat(dim, verts)?,
+            vertices: Points::from_flat(self.dim, verts)?,
             uv,
             triangles,
             deviation: deviation * self.scale,
         })
     }
-}
 
-/// Most parts a part is cut into at once by [`direct_split`].
-const MAX_DIRECT_PARTS: usize = 9;
-
-/// The cut of a part with bound terms `(A, B, C)` into `k_u × k_v` equal parts, `2 < k_u·k_v ≤`
-/// [`MAX_DIRECT_PARTS`], fewest first, whose bounds `(A/k_u² + 2B/(k_u k_v) + C/k_v²)/8` are
-/// within `tol`: the parts' second-derivative nets lie in the convex hull of the part's, scaled
-/// by `1/k_u²`, `1/(k_u k_v)`, `1/k_v²`, so each part's own bound is at most that. Where halving
-/// would leave parts above the tolerance and a cut into three (or a few more) would not, this
-/// gives fewer parts than halving twice. `None` when two parts suffice (halving), when no such
-/// cut exists, or when a part would be under two integer units wide (`widths`).
-fn direct_split(abc: (f64, f64, f64), tol: f64, widths: (u64, u64)) -> Option<(usize, usize)> {
-    let (a, b, c) = abc;
-    let mut best: Option<(usize, usize)> = None;
-    for ku in 1..=MAX_DIRECT_PARTS {
-        for kv in 1..=MAX_DIRECT_PARTS / ku {
-            let n = ku * kv;
-            let (fu, fv) = (ku as f64, kv as f64);
-            let bound = (a / (fu * fu) + 2.0 * b / (fu * fv) + c / (fv * fv)) / 8.0;
-            let fits = 2 * ku as u64 <= widths.0 && 2 * kv as u64 <= widths.1;
-            if fits && bound <= tol && best.is_none_or(|(bu, bv)| n < bu * bv) {
-                best = Some((ku, kv));
+    fn mesh_rational(&self, tol: f64, grid: &PatchGrid) -> Result<Mesh> {
+        let count = AtomicUsize::new(0);
+        let leaves: Vec<Leaf> = (0..self.patch_count())
+            .into_par_iter()
+            .map(|k| self.rational_leaves(k, tol, &count))
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
+        let lat = Lattice::new(leaves.iter().map(|l| grid.rect(l)))?;
+        let (mut verts, mut uv) = self.lattice_vertices(grid, &lat, &leaves);
+        let mut triangles = Vec::with_capacity(2 * leaves.len());
+        let mut ring: Vec<u32> = Vec::new();
+        let mut deviation = 0.0_f64;
+        for l in &leaves {
+            deviation = deviation.max(l.bound);
+            lat.ring(grid.rect(l), &mut ring);
+            if ring.len() == 4 {
+                triangles.push([ring[0], ring[1], ring[2]]);
+                triangles.push([ring[0], ring[2], ring[3]]);
+                continue;
+            }
+            // the bound needs triangles no steeper than the diagonal: a fan about the centre
+            let centre = self.centre_vertex(grid, l, &mut verts, &mut uv)?;
+            for i in 0..ring.len() {
+                triangles.push([centre, ring[i], ring[(i + 1) % ring.len()]]);
             }
         }
+        self.finish(verts, uv, triangles, deviation)
     }
-    best.filter(|&(ku, kv)| ku * kv > 2)
-}
 
-/// Triangles of a rectangle whose boundary `ring` (counter-clockwise from the bottom-left
-/// corner, the top-right corner at index `tr`) carries extra points on its sides, without an
-/// interior point: the chains from the bottom-left to the top-right corner, along the bottom
-/// and right sides and along the left and top sides, are joined by a strip whose triangles
-/// each have one edge on a chain, advancing on the chain whose next point comes first along the
-/// diagonal (`progress`: `(u − u0)/(u1 − u0) + (v − v0)/(v1 − v0)`), with one triangle at
-/// each corner. `ring.len() − 2` counter-clockwise triangles, none degenerate: the interior
-/// points of one chain lie on neither side of the other.
-fn strip(ring: &[u32], tr: usize, progress: impl Fn(u32) -> f64, out: &mut Vec<[u32; 3]>) {
-    let n = ring.len();
-    debug_assert!(tr >= 2 && n >= tr + 2, "both chains have an interior point");
-    // interior points of the chains: a along the bottom and right, b along the left and top
-    let a = &ring[1..tr];
-    let b: Vec<u32> = ring[tr + 1..].iter().rev().copied().collect();
-    out.push([ring[0], a[0], b[0]]);
-    let (mut i, mut j) = (0, 0);
-    while i + 1 < a.len() || j + 1 < b.len() {
-        let take_a =
-            j + 1 >= b.len() || (i + 1 < a.len() && progress(a[i + 1]) <= progress(b[j + 1]));
-        if take_a {
-            out.push([a[i], a[i + 1], b[j]]);
-            i += 1;
-        } else {
-            out.push([b[j + 1], b[j], a[i]]);
-            j += 1;
+    /// The polynomial mesh: parts under [`Rule::Edges`], their sides matched, each part planned
+    /// ([`QuerySurface::plan_part`]); the parts to split are split (at least once each) and
+    /// the round repeated, at most [`MAX_ROUNDS`] times, then every part is refined under
+    /// [`Rule::Any`], whose strips are all within the tolerance, for a last round. In the first
+    /// `forced` rounds every part with points on its sides is split (tests of the rounds).
+    fn mesh_polynomial(&self, tol: f64, grid: &PatchGrid, forced: usize) -> Result<Mesh> {
+        let count = AtomicUsize::new(0);
+        let whole = ((0, PATCH_WIDTH), (0, PATCH_WIDTH));
+        let mut leaves: Vec<Leaf> = (0..self.patch_count())
+            .into_par_iter()
+            .map(|k| {
+                let net = self.patch(k).to_vec();
+                self.poly_leaves(k, net, whole, tol, Rule::Edges, false, &count)
+            })
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
+        let mut rule = Rule::Edges;
+        for round in 0..=MAX_ROUNDS {
+            let lat = Lattice::new(leaves.iter().map(|l| grid.rect(l)))?;
+            let may_split = rule == Rule::Edges;
+            let force = may_split && round < forced;
+            let plans: Vec<(Plan, f64)> = leaves
+                .par_iter()
+                .map(|l| self.plan_part(l, grid.rect(l), &lat, tol, may_split, force))
+                .collect();
+            let split: Vec<bool> = plans.iter().map(|p| matches!(p.0, Plan::Split)).collect();
+            if !split.contains(&true) {
+                return self.emit(grid, &lat, &leaves, plans, tol);
+            }
+            let refine_all = round + 1 >= MAX_ROUNDS;
+            if refine_all {
+                rule = Rule::Any;
+            }
+            let old = std::mem::take(&mut leaves);
+            let refined: Vec<Vec<Leaf>> = old
+                .into_par_iter()
+                .zip(split.into_par_iter())
+                .map(|(l, s)| {
+                    if !(s || refine_all) {
+                        return Ok(vec![l]);
+                    }
+                    count.fetch_sub(1, Ordering::Relaxed);
+                    let net = self.sub_net(l.patch, l.u, l.v);
+                    self.poly_leaves(l.patch, net, (l.u, l.v), tol, rule, s, &count)
+                })
+                .collect::<Result<_>>()?;
+            leaves = refined.into_iter().flatten().collect();
         }
+        unreachable!("the last round (Rule::Any) splits no part")
     }
-    out.push([a[a.len() - 1], ring[tr], b[b.len() - 1]]);
+
+    /// How part `l` (global integer ranges `r`) is triangulated through the lattice points on
+    /// its sides, and the largest bound of its triangles. Two triangles where there are none;
+    /// otherwise a strip ([`zip`]) with rungs along the part's diagonal, advancing on the chain
+    /// whose next point comes first along that diagonal; each triangle's bound is the least of
+    /// [`triangle_bound`] with its own edge vectors (`M_e` from the part's [`SecondNets`]) and
+    /// `(A + 2B + C)/8`; if one is above `tol`, the strip of least largest bound of either
+    /// diagonal ([`best_zip`]), else a fan about the centre, else ([`Plan::Split`], if
+    /// `may_split` and the part is more than two units wide) a split; a split whenever it can
+    /// if `force` (tests).
+    fn plan_part(
+        &self,
+        l: &Leaf,
+        r: Rect,
+        lat: &Lattice,
+        tol: f64,
+        may_split: bool,
+        force: bool,
+    ) -> (Plan, f64) {
+        let mut ring = Vec::new();
+        let [br, tr, tl] = lat.ring(r, &mut ring);
+        if ring.len() == 4 {
+            return (Plan::Two, l.bound);
+        }
+        let ((u0, u1), (v0, v1)) = r;
+        if force && (u1 - u0 > 2 || v1 - v0 > 2) {
+            return (Plan::Split, f64::INFINITY);
+        }
+        let net = self.sub_net(l.patch, l.u, l.v);
+        let sn = self.second_nets(&net);
+        let (a, b, c) = self.net_bounds(&net).unwrap_or((0.0, 0.0, 0.0));
+        let any = (a + 2.0 * b + c) / 8.0;
+        let (du, dv) = ((u1 - u0) as f64, (v1 - v0) as f64);
+        let at = |u: u64, v: u64| ((u - u0) as f64 / du, (v - v0) as f64 / dv);
+        let local = |i: u32| {
+            let k = &lat.keys[i as usize];
+            at(k.0, k.1)
+        };
+        let tri = |x: (f64, f64), y: (f64, f64), z: (f64, f64)| {
+            let m = |p: (f64, f64), q: (f64, f64)| sn.along(q.0 - p.0, q.1 - p.1);
+            any.min(triangle_bound([m(x, y), m(x, z), m(y, z)]))
+        };
+        let cost = |i: u32, j: u32, k: u32| tri(local(i), local(j), local(k));
+        // the strip with rungs along the part's diagonal: from (u0, v0) to (u1, v1) for the
+        // diagonal (1, −1), from (u1, v0) to (u0, v1) for (1, 1)
+        let (s, t) = if l.anti { (0, tr) } else { (br, tl) };
+        let progress = |i: u32| {
+            let (x, y) = local(i);
+            if l.anti {
+                x + y
+            } else {
+                1.0 - x + y
+            }
+        };
+        let (ca, cb) = chains(&ring, s, t);
+        let mut moves = Vec::with_capacity(ca.len() + cb.len());
+        let (mut i, mut j) = (0, 0);
+        while i + 1 < ca.len() || j + 1 < cb.len() {
+            let take_a = j + 1 >= cb.len()
+                || (i + 1 < ca.len() && progress(ca[i + 1]) <= progress(cb[j + 1]));
+            moves.push(take_a);
+            if take_a {
+                i += 1;
+            } else {
+                j += 1;
+            }
+        }
+        let mut tris = Vec::with_capacity(ring.len() - 2);
+        zip(ring[s], ring[t], &ca, &cb, &moves, &mut tris);
+        let bound = tris
+            .iter()
+            .map(|t| cost(t[0], t[1], t[2]))
+            .fold(0.0, f64::max);
+        if bound <= tol {
+            return (Plan::Strip(tris), bound);
+        }
+        let mut best = (Plan::Strip(tris), bound);
+        for (s, t) in [(0, tr), (br, tl)] {
+            let (ca, cb) = chains(&ring, s, t);
+            let (moves, b) = best_zip(ring[s], ring[t], &ca, &cb, &cost);
+            if b < best.1 {
+                let mut tris = Vec::with_capacity(ring.len() - 2);
+                zip(ring[s], ring[t], &ca, &cb, &moves, &mut tris);
+                best = (Plan::Strip(tris), b);
+            }
+        }
+        if best.1 <= tol {
+            return best;
+        }
+        let centre = at((u0 + u1) / 2, (v0 + v1) / 2);
+        let fan = (0..ring.len())
+            .map(|i| tri(centre, local(ring[i]), local(ring[(i + 1) % ring.len()])))
+            .fold(0.0, f64::max);
+        // the centre strictly inside (a part one unit wide, after odd cuts, has none)
+        if fan < best.1 && u1 - u0 >= 2 && v1 - v0 >= 2 {
+            best = (Plan::Fan, fan);
+        }
+        if best.1 <= tol || !may_split || (u1 - u0 <= 2 && v1 - v0 <= 2) {
+            return best;
+        }
+        (Plan::Split, best.1)
+    }
+
+    /// The mesh of the planned parts, then [`QuerySurface::decimate`]d.
+    fn emit(
+        &self,
+        grid: &PatchGrid,
+        lat: &Lattice,
+        leaves: &[Leaf],
+        plans: Vec<(Plan, f64)>,
+        tol: f64,
+    ) -> Result<Mesh> {
+        let (mut verts, mut uv) = self.lattice_vertices(grid, lat, leaves);
+        let mut at: Vec<(u64, u64)> = lat.keys.iter().map(|k| (k.0, k.1)).collect();
+        let mut triangles = Vec::with_capacity(2 * leaves.len());
+        let mut owner: Vec<u32> = Vec::with_capacity(2 * leaves.len());
+        let mut ring: Vec<u32> = Vec::new();
+        let mut deviation = 0.0_f64;
+        for (n, (l, (plan, bound))) in leaves.iter().zip(plans).enumerate() {
+            deviation = deviation.max(bound);
+            match plan {
+                Plan::Two => {
+                    lat.ring(grid.rect(l), &mut ring);
+                    let [a, b, c, d] = [ring[0], ring[1], ring[2], ring[3]];
+                    if l.anti {
+                        triangles.extend([[a, b, d], [b, c, d]]);
+                    } else {
+                        triangles.extend([[a, b, c], [a, c, d]]);
+                    }
+                }
+                Plan::Strip(t) => triangles.extend(t),
+                Plan::Fan => {
+                    let r = grid.rect(l);
+                    lat.ring(r, &mut ring);
+                    let centre = self.centre_vertex(grid, l, &mut verts, &mut uv)?;
+                    at.push(((r.0 .0 + r.0 .1) / 2, (r.1 .0 + r.1 .1) / 2));
+                    for i in 0..ring.len() {
+                        triangles.push([centre, ring[i], ring[(i + 1) % ring.len()]]);
+                    }
+                }
+                Plan::Split => unreachable!("emitted only when no part is to be split"),
+            }
+            #[allow(clippy::cast_possible_truncation)] // parts: below MAX_MESH_VERTICES < 2^32
+            owner.resize(triangles.len(), n as u32);
+        }
+        {
+            let worst = self.decimate(leaves, &at, &mut triangles, &owner, tol);
+            deviation = deviation.max(worst);
+            // drop the vertices no triangle uses any more
+            let mut map = vec![u32::MAX; uv.len()];
+            for t in &triangles {
+                for &i in t {
+                    map[i as usize] = 0;
+                }
+            }
+            let mut next = 0_u32;
+            let dim = self.dim;
+            let mut kept_v = Vec::with_capacity(verts.len());
+            let mut kept_uv = Vec::with_capacity(uv.len());
+            for i in 0..uv.len() {
+                if map[i] == 0 {
+                    map[i] = next;
+                    next += 1;
+                    kept_v.extend_from_slice(&verts[i * dim..(i + 1) * dim]);
+                    kept_uv.push(uv[i]);
+                }
+            }
+            for t in &mut triangles {
+                for i in t.iter_mut() {
+                    *i = map[*i as usize];
+                }
+            }
+            verts = kept_v;
+            uv = kept_uv;
+        }
+        self.finish(verts, uv, triangles, deviation)
+    }
+
+    /// Removes vertices while the mesh stays within `tol`: for each vertex in turn whose
+    /// triangles all lie in parts of one patch (`owner`: the part of each triangle) and close
+    /// around it, the fan of the polygon around it from the corner whose fan has the least
+    /// largest bound replaces them (two triangles fewer) if every fan triangle is
+    /// counter-clockwise with positive area (the fan then covers the same polygon) and within
+    /// `tol`. A new triangle lies inside the removed ones, hence inside their parts, so
+    /// `M_e` over it is at most the largest of those parts' `M_e` ([`SecondNets`]); its parts
+    /// are theirs (`docs/theory/queries.md#tessellation`). Returns the largest bound of a new
+    /// triangle.
+    // triangles, parts and vertices: each below 4·MAX_MESH_VERTICES < 2^32, and a removal
+    // adds at most ten
+    #[allow(clippy::cast_possible_truncation)]
+    fn decimate(
+        &self,
+        leaves: &[Leaf],
+        at: &[(u64, u64)],
+        triangles: &mut Vec<[u32; 3]>,
+        owner: &[u32],
+        tol: f64,
+    ) -> f64 {
+        use std::collections::HashMap;
+        let nl = leaves.len();
+        // the parts of each triangle: its owner, or a set in `unions` for new triangles
+        let mut part: Vec<u32> = owner.to_vec();
+        let mut unions: Vec<Vec<u32>> = Vec::new();
+        let mut alive = vec![true; triangles.len()];
+        let mut inc: Vec<Vec<u32>> = vec![Vec::new(); at.len()];
+        for (t, tri) in triangles.iter().enumerate() {
+            for &v in tri {
+                inc[v as usize].push(t as u32);
+            }
+        }
+        let mut cache: HashMap<u32, SecondNets> = HashMap::new();
+        let mut worst = 0.0_f64;
+        let mut parts: Vec<u32> = Vec::new();
+        let mut next: HashMap<u32, u32> = HashMap::new();
+        for h in 0..at.len() {
+            let ts = &inc[h];
+            if ts.len() < 3 || ts.len() > 12 {
+                continue;
+            }
+            parts.clear();
+            for &t in ts {
+                let p = part[t as usize] as usize;
+                if p < nl {
+                    parts.push(p as u32);
+                } else {
+                    parts.extend_from_slice(&unions[p - nl]);
+                }
+            }
+            parts.sort_unstable();
+            parts.dedup();
+            let patch = leaves[parts[0] as usize].patch;
+            if parts.len() > 16 || parts.iter().any(|&p| leaves[p as usize].patch != patch) {
+                continue;
+            }
+            // the polygon around h, counter-clockwise
+            next.clear();
+            let mut ok = true;
+            for &t in ts {
+                let [a, b, c] = triangles[t as usize];
+                let h32 = h as u32;
+                let (x, y) = if a == h32 {
+                    (b, c)
+                } else if b == h32 {
+                    (c, a)
+                } else {
+                    (a, b)
+                };
+                if next.insert(x, y).is_some() {
+                    ok = false;
+                }
+            }
+            if !ok {
+                continue;
+            }
+            let m = ts.len();
+            let mut poly = Vec::with_capacity(m);
+            let start = triangles[ts[0] as usize]
+                .into_iter()
+                .find(|&v| v as usize != h)
+                .expect("a triangle has other vertices");
+            let mut cur = start;
+            for k in 0..m {
+                poly.push(cur);
+                match next.get(&cur) {
+                    // one cycle through all m: back at the start only after the last
+                    Some(&n) if (n == start) == (k + 1 == m) => cur = n,
+                    _ => {
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+            if !ok {
+                continue;
+            }
+            if cache.len() > 4096 {
+                cache.clear();
+            }
+            for &p in &parts {
+                cache.entry(p).or_insert_with(|| {
+                    let l = &leaves[p as usize];
+                    self.second_nets(&self.sub_net(l.patch, l.u, l.v))
+                });
+            }
+            let sns: Vec<(&SecondNets, f64, f64)> = parts
+                .iter()
+                .map(|p| {
+                    let l = &leaves[*p as usize];
+                    (&cache[p], (l.u.1 - l.u.0) as f64, (l.v.1 - l.v.0) as f64)
+                })
+                .collect();
+            // M along each segment between two corners of the polygon, on demand
+            let mut memo = vec![f64::NAN; m * m];
+            let mut edge = |i: usize, j: usize| {
+                let (i, j) = (i.min(j), i.max(j));
+                if memo[i * m + j].is_nan() {
+                    let (a, b) = (at[poly[i] as usize], at[poly[j] as usize]);
+                    let (du, dv) = (b.0 as f64 - a.0 as f64, b.1 as f64 - a.1 as f64);
+                    memo[i * m + j] = sns
+                        .iter()
+                        .map(|(sn, wu, wv)| sn.along(du / wu, dv / wv))
+                        .fold(0.0, f64::max);
+                }
+                memo[i * m + j]
+            };
+            let area = |i: u32, j: u32, k: u32| {
+                let (a, b, c) = (at[i as usize], at[j as usize], at[k as usize]);
+                let d = |x: u64, y: u64| i128::from(x) - i128::from(y);
+                d(b.0, a.0) * d(c.1, a.1) - d(c.0, a.0) * d(b.1, a.1)
+            };
+            let mut best: Option<(usize, f64)> = None;
+            'apex: for i in 0..m {
+                let mut worst_here = 0.0_f64;
+                for j in 1..m - 1 {
+                    let (x, y, z) = (poly[i], poly[(i + j) % m], poly[(i + j + 1) % m]);
+                    if area(x, y, z) <= 0 {
+                        continue 'apex;
+                    }
+                }
+                for j in 1..m - 1 {
+                    let (y, z) = ((i + j) % m, (i + j + 1) % m);
+                    let b = triangle_bound([edge(i, y), edge(i, z), edge(y, z)]);
+                    worst_here = worst_here.max(b);
+                    if worst_here > tol || best.is_some_and(|(_, w)| worst_here >= w) {
+                        continue 'apex;
+                    }
+                }
+                best = Some((i, worst_here));
+            }
+            let Some((i, b)) = best else { continue };
+            worst = worst.max(b);
+            let old: Vec<u32> = inc[h].drain(..).collect();
+            for &t in &old {
+                alive[t as usize] = false;
+                for v in triangles[t as usize] {
+                    inc[v as usize].retain(|&x| x != t);
+                }
+            }
+            unions.push(parts.clone());
+            let id = (nl + unions.len() - 1) as u32;
+            for j in 1..m - 1 {
+                let tri = [poly[i], poly[(i + j) % m], poly[(i + j + 1) % m]];
+                let t = triangles.len() as u32;
+                triangles.push(tri);
+                alive.push(true);
+                part.push(id);
+                for v in tri {
+                    inc[v as usize].push(t);
+                }
+            }
+        }
+        let mut k = 0;
+        triangles.retain(|_| {
+            k += 1;
+            alive[k - 1]
+        });
+        worst
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{direct_split, strip};
+    use super::{best_zip, chains, triangle_bound, zip, Rule, PATCH_WIDTH};
+    use crate::query::tessellate::tests::assert_watertight;
     use crate::{BSplineSurface, Points, QuerySurface};
+    use std::sync::atomic::AtomicUsize;
+
+    /// A small deterministic generator of numbers in `[0, 1)` (xorshift).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1_u64 << 53) as f64
+        }
+    }
+
+    /// Barycentric points of a triangle on a grid of step `1/n`.
+    fn barycentric(n: usize) -> Vec<[f64; 3]> {
+        let mut out = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let (a, b) = (i as f64 / n as f64, j as f64 / n as f64);
+                out.push([a, b, 1.0 - a - b]);
+            }
+        }
+        out
+    }
 
     #[test]
-    fn direct_split_takes_three_where_halving_leaves_too_much() {
-        // A = 2 alone: halves have bound 2/32 = 0.0625, thirds 2/72 ≈ 0.028
-        assert_eq!(
-            direct_split((2.0, 0.0, 0.0), 0.03, (1 << 20, 1 << 20)),
-            Some((3, 1))
+    fn triangle_bound_is_attained_by_convex_quadratics_and_never_exceeded() {
+        // S(x) = ½ xᵀ H_d x per coordinate d: D²S[e, e] = eᵀ H_d e is constant and
+        // S − L = −½ Σ λiλj D²S[e_ij, e_ij] exactly; with one coordinate and H positive
+        // definite every term has the same sign, so the bound is the maximum itself
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let grid = barycentric(60);
+        for case in 0..200 {
+            let dim = if case % 2 == 0 { 1 } else { 3 };
+            let hs: Vec<[f64; 3]> = (0..dim)
+                .map(|_| {
+                    let (a, c) = (rng.next() * 4.0, rng.next() * 4.0);
+                    let b = if dim == 1 {
+                        (2.0 * rng.next() - 1.0) * (a * c).sqrt() // positive semi-definite
+                    } else {
+                        4.0 * rng.next() - 2.0 // indefinite too
+                    };
+                    [a, b, c]
+                })
+                .collect();
+            let s = |x: [f64; 2]| -> Vec<f64> {
+                hs.iter()
+                    .map(|h| {
+                        0.5 * (h[0] * x[0] * x[0] + 2.0 * h[1] * x[0] * x[1] + h[2] * x[1] * x[1])
+                    })
+                    .collect()
+            };
+            let m = |e: [f64; 2]| {
+                hs.iter()
+                    .map(|h| {
+                        (h[0] * e[0] * e[0] + 2.0 * h[1] * e[0] * e[1] + h[2] * e[1] * e[1]).powi(2)
+                    })
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            let v: Vec<[f64; 2]> = (0..3).map(|_| [rng.next(), rng.next()]).collect();
+            let e = |i: usize, j: usize| [v[j][0] - v[i][0], v[j][1] - v[i][1]];
+            let bound = triangle_bound([m(e(0, 1)), m(e(0, 2)), m(e(1, 2))]);
+            let sv: Vec<Vec<f64>> = v.iter().map(|&x| s(x)).collect();
+            let mut worst = 0.0_f64;
+            for l in &grid {
+                let x = [0, 1].map(|d| l[0] * v[0][d] + l[1] * v[1][d] + l[2] * v[2][d]);
+                let sx = s(x);
+                let dev = (0..dim)
+                    .map(|d| {
+                        (sx[d] - (l[0] * sv[0][d] + l[1] * sv[1][d] + l[2] * sv[2][d])).powi(2)
+                    })
+                    .sum::<f64>()
+                    .sqrt();
+                worst = worst.max(dev);
+            }
+            assert!(
+                worst <= bound * (1.0 + 1e-12) + 1e-15,
+                "case {case}: {worst} > {bound}"
+            );
+            if dim == 1 {
+                // the grid's best point is within 1/60 of the maximum's: nearly attained
+                assert!(
+                    worst >= 0.99 * bound,
+                    "case {case}: {worst} far below {bound}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn triangle_bound_holds_on_random_cubic_patches() {
+        // random bicubic patches, random triangles inside them: M_e from the patch's combined
+        // second-derivative net, the deviation sampled densely
+        let mut rng = Rng(42);
+        let grid = barycentric(24);
+        for case in 0..40 {
+            let net: Vec<f64> = (0..16)
+                .flat_map(|k| [(k / 4) as f64 / 3.0, (k % 4) as f64 / 3.0, 0.0])
+                .zip(std::iter::repeat_with(|| rng.next()))
+                .map(|(x, r)| x + 0.6 * (r - 0.5))
+                .collect();
+            let knots = vec![0., 0., 0., 0., 1., 1., 1., 1.];
+            let surf = BSplineSurface::new(
+                3,
+                3,
+                knots.clone(),
+                knots,
+                Points::from_flat(3, net).unwrap(),
+                (4, 4),
+            )
+            .unwrap();
+            let q = QuerySurface::from_bspline(&surf).unwrap();
+            let sn = q.second_nets(q.patch(0));
+            for _ in 0..10 {
+                let size = 0.05 + 0.9 * rng.next();
+                let o = [rng.next() * (1.0 - size), rng.next() * (1.0 - size)];
+                let v: Vec<[f64; 2]> = (0..3)
+                    .map(|_| [o[0] + size * rng.next(), o[1] + size * rng.next()])
+                    .collect();
+                let e = |i: usize, j: usize| sn.along(v[j][0] - v[i][0], v[j][1] - v[i][1]);
+                let bound = triangle_bound([e(0, 1), e(0, 2), e(1, 2)]);
+                let pts: Vec<Vec<f64>> = v
+                    .iter()
+                    .map(|x| q.point_on(0, x[0], x[1], &mut Vec::new()))
+                    .collect();
+                for l in &grid {
+                    let x = [0, 1].map(|d| l[0] * v[0][d] + l[1] * v[1][d] + l[2] * v[2][d]);
+                    let sx = q.point_on(0, x[0], x[1], &mut Vec::new());
+                    let dev = (0..3)
+                        .map(|d| {
+                            (sx[d] - (l[0] * pts[0][d] + l[1] * pts[1][d] + l[2] * pts[2][d]))
+                                .powi(2)
+                        })
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!(
+                        dev <= bound * (1.0 + 1e-9) + 1e-14,
+                        "case {case}: {dev} > {bound}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn random_surfaces_are_meshed_within_their_bound_without_cracks() {
+        // bicubic 3 × 4-patch surfaces with random heights and a random twist: strips, the
+        // best strips and vertex removal all occur; every triangle, densely sampled, within
+        // the reported bound, the mesh closed and its parameter triangles tiling the domain
+        let mut rng = Rng(7);
+        let grid = barycentric(6);
+        for case in 0..6 {
+            let twist = 4.0 * rng.next() - 2.0;
+            let s = random_surface(&mut rng, twist);
+            let q = QuerySurface::from_bspline(&s).unwrap();
+            let tol = [1e-3, 3e-4][case % 2];
+            let mesh = q.mesh(tol).unwrap();
+            assert!(mesh.deviation <= tol, "case {case}: {}", mesh.deviation);
+            for t in &mesh.triangles {
+                let uv = t.map(|i| mesh.uv[i as usize]);
+                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+                for l in &grid {
+                    let x = [0, 1].map(|d| {
+                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
+                    });
+                    let sx = s.eval(x[0], x[1]).unwrap();
+                    let dev = (0..3)
+                        .map(|d| {
+                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
+                        })
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!(
+                        dev <= mesh.deviation * (1.0 + 1e-9),
+                        "case {case}: {dev} > {} in {t:?}",
+                        mesh.deviation
+                    );
+                }
+            }
+            assert_watertight(&mesh);
+            let area: f64 = mesh
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
+                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+                })
+                .inspect(|&a| assert!(a > 0.0, "case {case}: a triangle is not counter-clockwise"))
+                .sum();
+            assert!(
+                (area - 1.0).abs() < 1e-12,
+                "case {case}: parameter area {area}"
+            );
+            // every vertex is used
+            let mut used = vec![false; mesh.uv.len()];
+            for t in &mesh.triangles {
+                for &i in t {
+                    used[i as usize] = true;
+                }
+            }
+            assert!(used.iter().all(|&u| u), "case {case}: an unused vertex");
+        }
+    }
+
+    /// A bicubic 3 × 4-patch surface with random heights and twist `twist`.
+    fn random_surface(rng: &mut Rng, twist: f64) -> BSplineSurface {
+        let (nu, nv) = (6, 7);
+        let mut net = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let (x, y) = (i as f64 / 5.0, j as f64 / 6.0);
+                net.extend([x, y, twist * (x - 0.5) * (y - 0.5) + 0.3 * rng.next()]);
+            }
+        }
+        let ku = vec![0., 0., 0., 0., 0.3, 0.5, 1., 1., 1., 1.];
+        let kv = vec![0., 0., 0., 0., 0.2, 0.5, 0.7, 1., 1., 1., 1.];
+        BSplineSurface::new(3, 3, ku, kv, Points::from_flat(3, net).unwrap(), (nu, nv)).unwrap()
+    }
+
+    #[test]
+    fn parts_split_in_later_rounds_keep_the_mesh_closed_and_bounded() {
+        // every part with points on its sides split in the first rounds (as if none of its
+        // triangulations were within the tolerance), then, past the last round, every part
+        // refined to (A + 2B + C)/8: the sides are matched again each round
+        let mut rng = Rng(11);
+        let s = random_surface(&mut rng, 1.5);
+        let q = QuerySurface::from_bspline(&s).unwrap();
+        let grid = super::PatchGrid::new(&q);
+        let tol = 3e-3;
+        let plain = q.mesh(tol).unwrap();
+        for forced in [2, super::MAX_ROUNDS + 1] {
+            let mesh = q.mesh_polynomial(tol / q.scale(), &grid, forced).unwrap();
+            assert!(mesh.deviation <= tol, "forced {forced}: {}", mesh.deviation);
+            assert!(
+                mesh.triangles.len() > plain.triangles.len(),
+                "forced {forced}: no part was split"
+            );
+            assert_watertight(&mesh);
+            let area: f64 = mesh
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
+                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+                })
+                .inspect(|&a| assert!(a > 0.0, "forced {forced}: a clockwise triangle"))
+                .sum();
+            assert!((area - 1.0).abs() < 1e-12, "forced {forced}: area {area}");
+            // (past the last round, 46,710 triangles against 817: every 7th)
+            let samples = barycentric(4);
+            for t in mesh
+                .triangles
+                .iter()
+                .step_by(if forced > 2 { 7 } else { 1 })
+            {
+                let uv = t.map(|i| mesh.uv[i as usize]);
+                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+                for l in &samples {
+                    let x = [0, 1].map(|d| {
+                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
+                    });
+                    let sx = s.eval(x[0], x[1]).unwrap();
+                    let dev = (0..3)
+                        .map(|d| {
+                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
+                        })
+                        .sum::<f64>()
+                        .sqrt();
+                    assert!(
+                        dev <= mesh.deviation * (1.0 + 1e-9),
+                        "forced {forced}: {dev}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_twisted_surface_takes_the_cancelling_diagonal() {
+        // heights 0.2 (x² + y² − 3xy) at the Greville points of a bicubic 4 × 4-patch spline:
+        // S_uv dominates and has the sign opposite S_uu and S_vv, so |S_uu + 2S_uv + S_vv| is
+        // far below |S_uu| + 2|S_uv| + |S_vv|
+        let n = 7;
+        let knots = vec![0., 0., 0., 0., 0.25, 0.5, 0.75, 1., 1., 1., 1.];
+        let greville: Vec<f64> = (0..n)
+            .map(|i| (knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0)
+            .collect();
+        let net: Vec<f64> = greville
+            .iter()
+            .flat_map(|&x| {
+                greville
+                    .iter()
+                    .flat_map(move |&y| [x, y, 0.2 * (x * x + y * y - 3.0 * x * y)])
+            })
+            .collect();
+        let s = BSplineSurface::new(
+            3,
+            3,
+            knots.clone(),
+            knots,
+            Points::from_flat(3, net).unwrap(),
+            (n, n),
+        )
+        .unwrap();
+        let q = QuerySurface::from_bspline(&s).unwrap();
+        let tol = 2e-5;
+        let mesh = q.mesh(tol).unwrap();
+        assert!(mesh.deviation <= tol, "{}", mesh.deviation);
+        // the rule with the cross term at its worst sign, (A + 2B + C)/8 for every part
+        // (halving), needs at least two triangles a part; this mesh, fewer than half as many
+        // (8,192 triangles against 16,384 parts)
+        let count = AtomicUsize::new(0);
+        let whole = ((0, PATCH_WIDTH), (0, PATCH_WIDTH));
+        let any: usize = (0..q.patch_count())
+            .map(|k| {
+                let t = tol / q.scale();
+                q.poly_leaves(k, q.patch(k).to_vec(), whole, t, Rule::Any, false, &count)
+                    .unwrap()
+                    .len()
+            })
+            .sum();
+        assert!(
+            mesh.triangles.len() < any,
+            "{} triangles against {} parts of the any-triangle rule",
+            mesh.triangles.len(),
+            any
         );
-        assert_eq!(
-            direct_split((0.0, 0.0, 2.0), 0.03, (1 << 20, 1 << 20)),
-            Some((1, 3))
-        );
-        // halving is enough: no direct cut
-        assert_eq!(
-            direct_split((2.0, 0.0, 0.0), 0.07, (1 << 20, 1 << 20)),
-            None
-        );
-        // both directions: A = C = 2, B = 0.5: 3 × 3 parts (bound ≈ 0.0694 · 8 / 8)
-        assert_eq!(
-            direct_split((2.0, 0.5, 2.0), 0.0721, (1 << 20, 1 << 20)),
-            Some((3, 3))
-        );
-        // too narrow to cut into three
-        assert_eq!(direct_split((2.0, 0.0, 0.0), 0.03, (5, 1 << 20)), None);
-        // nothing within nine parts reaches the tolerance
-        assert_eq!(
-            direct_split((2.0, 0.0, 0.0), 1e-4, (1 << 20, 1 << 20)),
-            None
-        );
+        // every triangle, densely sampled, within the bound
+        let grid = barycentric(8);
+        for t in &mesh.triangles {
+            let uv = t.map(|i| mesh.uv[i as usize]);
+            let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+            for l in &grid {
+                let x = [0, 1]
+                    .map(|d| (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0));
+                let sx = s.eval(x[0], x[1]).unwrap();
+                let dev = (0..3)
+                    .map(|d| (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                assert!(
+                    dev <= mesh.deviation * (1.0 + 1e-9),
+                    "{dev} > {} in {t:?}",
+                    mesh.deviation
+                );
+            }
+        }
+        assert_watertight(&mesh);
     }
 
     #[test]
@@ -611,7 +1830,7 @@ mod tests {
     }
 
     #[test]
-    fn strip_covers_the_rectangle_with_proper_triangles() {
+    fn strips_cover_the_rectangle_with_proper_triangles() {
         // the unit square's boundary, counter-clockwise from (0, 0), with extra side points
         let sides: [&[f64]; 4] = [&[0.25, 0.5], &[0.5], &[0.8, 0.3, 0.1], &[]];
         let mut pts: Vec<[f64; 2]> = vec![[0.0, 0.0]];
@@ -624,21 +1843,74 @@ mod tests {
         pts.push([0.0, 1.0]);
         pts.extend(sides[3].iter().map(|&v| [0.0, v]));
         let ring: Vec<u32> = (0..u32::try_from(pts.len()).unwrap()).collect();
-        let mut tris = Vec::new();
-        strip(
-            &ring,
-            tr,
-            |i| pts[i as usize][0] + pts[i as usize][1],
-            &mut tris,
-        );
-        assert_eq!(tris.len(), ring.len() - 2, "{tris:?}");
+        // both pairs of opposite corners, with the moves in every order
+        let br = 1 + sides[0].len();
+        let tl = tr + 1 + sides[2].len();
+        for (s, t) in [(0, tr), (br, tl)] {
+            let (a, b) = chains(&ring, s, t);
+            let steps = a.len() + b.len() - 2;
+            for order in 0..1_u32 << steps {
+                let moves: Vec<bool> = (0..steps).map(|k| order >> k & 1 == 1).collect();
+                if moves.iter().filter(|&&m| m).count() != a.len() - 1 {
+                    continue;
+                }
+                let mut tris = Vec::new();
+                zip(ring[s], ring[t], &a, &b, &moves, &mut tris);
+                assert_proper_cover(&pts, &tris, ring.len());
+            }
+        }
+    }
+
+    #[test]
+    fn best_zip_finds_the_least_largest_cost() {
+        // random costs of triangles (a function of their vertex sets): the dynamic programme's
+        // strip against every order of the moves
+        let mut rng = Rng(3);
+        for case in 0..50_u32 {
+            let (na, nb) = (1 + case % 4, 1 + (case / 4) % 4);
+            let a: Vec<u32> = (1..=na).collect();
+            let b: Vec<u32> = (100..100 + nb).collect();
+            let (s, t) = (0_u32, 50_u32);
+            let salt = rng.next();
+            let cost = |x: u32, y: u32, z: u32| {
+                let mut v = [x, y, z];
+                v.sort_unstable();
+                let h = v
+                    .iter()
+                    .fold(salt, |h, &k| (h * 7.31 + f64::from(k) * 0.123).fract());
+                h
+            };
+            let (moves, best) = best_zip(s, t, &a, &b, &cost);
+            let largest = |moves: &[bool]| {
+                let mut tris = Vec::new();
+                zip(s, t, &a, &b, moves, &mut tris);
+                tris.iter()
+                    .map(|t| cost(t[0], t[1], t[2]))
+                    .fold(0.0, f64::max)
+            };
+            assert_eq!(moves.len(), (na + nb - 2) as usize, "case {case}");
+            assert_eq!(largest(&moves), best, "case {case}");
+            let steps = na + nb - 2;
+            for order in 0..1_u32 << steps {
+                let m: Vec<bool> = (0..steps).map(|k| order >> k & 1 == 1).collect();
+                if m.iter().filter(|&&x| x).count() == (na - 1) as usize {
+                    assert!(largest(&m) >= best, "case {case}: {m:?} beats {moves:?}");
+                }
+            }
+        }
+    }
+
+    /// `tris` are `n − 2` counter-clockwise triangles, none degenerate, covering the unit
+    /// square.
+    fn assert_proper_cover(pts: &[[f64; 2]], tris: &[[u32; 3]], n: usize) {
+        assert_eq!(tris.len(), n - 2, "{tris:?}");
         let mut area = 0.0;
-        for t in &tris {
+        for t in tris {
             let [a, b, c] = t.map(|i| pts[i as usize]);
             let twice = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
             assert!(
                 twice > 1e-3,
-                "{t:?} is not a proper counter-clockwise triangle"
+                "{t:?} is not a proper counter-clockwise triangle in {tris:?}"
             );
             area += 0.5 * twice;
         }

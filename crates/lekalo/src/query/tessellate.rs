@@ -155,7 +155,7 @@ impl QuerySurface {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{BSplineCurve, BSplineSurface};
 
@@ -274,7 +274,7 @@ mod tests {
 
     /// Every edge is shared by two triangles except those on the boundary of the parameter
     /// rectangle, and no two vertices have the same parameters: no cracks, no T-junctions.
-    fn assert_watertight(mesh: &Mesh) {
+    pub(crate) fn assert_watertight(mesh: &Mesh) {
         use std::collections::HashMap;
         let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
         for t in &mesh.triangles {
