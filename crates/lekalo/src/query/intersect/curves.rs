@@ -586,6 +586,106 @@ mod tests {
         }
     }
 
+    /// A shallow dip through a line (found by the property test below): the piece is flat to
+    /// 1% of its size, yet crosses `y = c` twice, 0.0075 apart in the parameter; each crossing
+    /// is found.
+    #[test]
+    fn a_flat_piece_that_crosses_a_line_twice_gives_both_crossings() {
+        let ctrl = [
+            [0.0, 0.0],
+            [-7.939298392427483, 8.475966024050374],
+            [0.0, 0.18057993752048637],
+            [7.364495452110797, 8.772201555088136],
+            [0.0, 0.0],
+            [0.0, 0.0],
+        ];
+        let c = 3.592_837_653_954_960_7;
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0, 1.0];
+        let curve = QueryCurve::from_bspline(
+            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
+        )
+        .unwrap();
+        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+        assert_eq!(roots.len(), 4, "{roots:?}");
+        let hits = points(
+            &curve
+                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
+                .unwrap(),
+        );
+        assert_eq!(hits.len(), 4, "{hits:?}");
+        for ((t, _, p), (r, _)) in hits.iter().zip(&roots) {
+            assert!(
+                (t - r).abs() <= 1e-9 && (p[1] - c).abs() <= 1e-9,
+                "{t} vs {r}: {p:?}"
+            );
+        }
+    }
+
+    /// A shallow crossing near a piece's end (found by the property test below): the curve runs
+    /// within 0.002 of `y = c` before it crosses at 2.5e-4 rad, so Newton's method from the
+    /// flat pair's chords starts far off and stalls at the end; the pair is halved again and
+    /// the crossing found.
+    #[test]
+    fn a_shallow_crossing_near_an_end_is_found() {
+        let ctrl = [
+            [7.422339813839777, -1.3923007278852106],
+            [-6.360489991617422, -1.563441890391513],
+            [0.0, 0.0],
+            [0.0, 0.0],
+        ];
+        let c = -1.390_700_982_248_104;
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+        let curve = QueryCurve::from_bspline(
+            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
+        )
+        .unwrap();
+        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+        assert_eq!(roots.len(), 1, "{roots:?}");
+        let hits = points(
+            &curve
+                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
+                .unwrap(),
+        );
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        assert!(
+            (hits[0].0 - roots[0].0).abs() <= 1e-9,
+            "{hits:?} vs {roots:?}"
+        );
+    }
+
+    /// Two crossings of one piece 0.09 apart in its parameter (found by the property test
+    /// below): Newton's method from a pair around the second converges to the first, outside
+    /// the pair's intervals; that is not the pair's answer, and the second is found.
+    #[test]
+    fn a_pair_does_not_answer_with_a_neighbours_crossing() {
+        let ctrl = [
+            [0.0, 0.0],
+            [0.0, 0.0],
+            [0.0, 7.233800935733193],
+            [-8.383876178193463, 2.875942544947581],
+            [0.0, 5.25604298076829],
+            [0.0, -2.976700161953739],
+            [0.0, 0.0],
+        ];
+        let c = 3.911_905_096_333_211_6;
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0];
+        let curve = QueryCurve::from_bspline(
+            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
+        )
+        .unwrap();
+        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+        assert_eq!(roots.len(), 4, "{roots:?}");
+        let hits = points(
+            &curve
+                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
+                .unwrap(),
+        );
+        assert_eq!(hits.len(), 4, "{hits:?}");
+        for ((t, _, p), (r, q)) in hits.iter().zip(&roots) {
+            assert!((t - r).abs() <= 1e-9 && dist(p, q) <= 1e-9, "{t} vs {r}");
+        }
+    }
+
     proptest::proptest! {
         /// Every transversal root of `y(t) = c` (found by the curve–plane root finder, an
         /// independent method) is one crossing with the line `y = c`, and nothing else is found.

@@ -20,6 +20,10 @@ const CLIP_KEEP: f64 = 0.8;
 const ROUND: f64 = 1e-13;
 /// Newton steps from a flat pair before the Levenberg–Marquardt fallback.
 const NEWTON_STEPS: usize = 12;
+/// How far (in a piece's parameter) a solution may lie outside the intervals of a pair that
+/// must hold a crossing and still count as the pair's: the rounding of a crossing at their
+/// shared end (such a crossing is transversal, so its parameters are accurate).
+const IN_PAIR: f64 = 1e-9;
 /// Nets of up to this many points (degree 7) are evaluated on the stack.
 const STACK_POINTS: usize = 8;
 
@@ -179,6 +183,101 @@ fn fat_line(net: &[f64], slack: f64) -> Option<([f64; 2], f64, f64, f64)> {
         hi = hi.max(d);
     }
     Some((nrm, c, lo - slack, hi + slack))
+}
+
+/// The axis (unit chord) of a net and the half-angle of a cone about it that holds every
+/// difference `P_j − P_i` (`i < j`) of its Cartesian control points, hence every tangent of its
+/// sub-curve (a positive combination of those differences, polynomial or rational: Floater,
+/// "Derivatives of rational Bézier curves", CAGD 9, 1992). `None` when a difference points
+/// against the chord (no such cone under a right angle) or the end points coincide.
+fn tangent_cone(net: &[f64]) -> Option<([f64; 2], f64)> {
+    let n = net.len() / H - 1;
+    let (a, b) = (cart(net, 0), cart(net, n));
+    let len = norm([b[0] - a[0], b[1] - a[1]]);
+    if !(len > 0.0) {
+        return None;
+    }
+    let axis = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+    let mut half = 0.0_f64;
+    for i in 0..n {
+        let p = cart(net, i);
+        for j in i + 1..=n {
+            let q = cart(net, j);
+            let d = [q[0] - p[0], q[1] - p[1]];
+            let along = d[0] * axis[0] + d[1] * axis[1];
+            let across = (d[0] * axis[1] - d[1] * axis[0]).abs();
+            if along <= 0.0 {
+                if along == 0.0 && across == 0.0 {
+                    continue; // a repeated control point
+                }
+                return None;
+            }
+            half = half.max(across.atan2(along));
+        }
+    }
+    Some((axis, half))
+}
+
+/// True when two sub-curves cross at most once: their tangent cones, taken as double cones
+/// (lines), are apart. Two crossings would make the chord between them a direction of both.
+fn at_most_one_crossing(x: &[f64], y: &[f64]) -> bool {
+    let (Some((ex, hx)), Some((ey, hy))) = (tangent_cone(x), tangent_cone(y)) else {
+        return false;
+    };
+    let between = (ex[0] * ey[1] - ex[1] * ey[0])
+        .abs()
+        .atan2((ex[0] * ey[0] + ex[1] * ey[1]).abs());
+    between > hx + hy
+}
+
+/// True when the control points of `net` leave the fat line of `other` (widened by `slack`)
+/// on one side, then the other, then the first again: the sub-curve may cross the band, and
+/// so the other sub-curve, twice or more (variation diminishing; points inside the band do not
+/// count, so coinciding sub-curves are not split for it).
+fn crosses_band_twice(net: &[f64], other: &[f64], slack: f64) -> bool {
+    let Some((nrm, c, lo, hi)) = fat_line(other, slack) else {
+        return false;
+    };
+    let mut changes = 0;
+    let mut last = 0_i8;
+    for i in 0..net.len() / H {
+        let w = net[i * H + 2];
+        let e = nrm[0] * net[i * H] + nrm[1] * net[i * H + 1] + c * w;
+        let side = if e > hi * w {
+            1
+        } else if e < lo * w {
+            -1
+        } else {
+            0
+        };
+        if side != 0 {
+            if last != 0 && side != last {
+                changes += 1;
+            }
+            last = side;
+        }
+    }
+    changes >= 2
+}
+
+/// True when the end points of `net` lie on opposite sides outside the fat line of `other`
+/// (widened by `slack`): the sub-curve crosses that band.
+fn ends_apart(net: &[f64], other: &[f64], slack: f64) -> bool {
+    let Some((nrm, c, lo, hi)) = fat_line(other, slack) else {
+        return false;
+    };
+    let side = |p: [f64; 2]| {
+        let d = nrm[0] * p[0] + nrm[1] * p[1] + c;
+        if d > hi {
+            1
+        } else if d < lo {
+            -1
+        } else {
+            0
+        }
+    };
+    let (a, b) = (side(cart(net, 0)), side(cart(net, net.len() / H - 1)));
+    a * b < 0
 }
 
 /// The abscissae `[lo, hi]` where the convex hull of the points `(i/m, f(i))`, `i = 0..=m`,
@@ -446,7 +545,12 @@ impl<'a> Search<'a> {
     /// a fifth of the interval, and then clipped again); when neither clip bites the larger
     /// sub-curve that is not flat is halved; once both are flat (every control point within 1%
     /// of the box's diagonal from the chord, or the box within the tolerance) or at depth
-    /// [`MAX_DEPTH`], Newton's method runs from the chords' crossing.
+    /// [`MAX_DEPTH`], Newton's method runs from the chords' crossing. Two flat sub-curves are
+    /// halved further when they may cross twice (their tangent cones meet and one leaves the
+    /// other's fat line on both sides and comes back), and when Newton's method and its
+    /// fallback fail from their chords although one runs from one side of the other's fat line
+    /// to the other (a shallow crossing, whose chords meet far from it), until a sub-curve is
+    /// within the tolerance or at [`MAX_DEPTH`].
     ///
     /// # Errors
     /// [`Error::TooLarge`] beyond [`MAX_PAIRS`] examined pairs.
@@ -506,17 +610,44 @@ impl<'a> Search<'a> {
                 }
             }
             let (xd, yd) = (diagonal(&xb), diagonal(&yb));
-            let x_flat = xd <= tol || flatness(&x.net) <= 1e-2 * xd;
-            let y_flat = yd <= tol || flatness(&y.net) <= 1e-2 * yd;
-            if (x_flat && y_flat) || depth >= MAX_DEPTH {
-                if let Some(r) = self.solve(&x, &y) {
-                    out.push(r);
+            let mut x_flat = xd <= tol || flatness(&x.net) <= 1e-2 * xd;
+            let mut y_flat = yd <= tol || flatness(&y.net) <= 1e-2 * yd;
+            if x_flat && y_flat && depth < MAX_DEPTH && !at_most_one_crossing(&x.net, &y.net) {
+                // flat, but one may cross the other's band twice (a shallow dip through a
+                // line): halved until each crossing has a pair of its own
+                x_flat = x_flat && !(xd > tol && crosses_band_twice(&x.net, &y.net, slack));
+                y_flat = y_flat && !(yd > tol && crosses_band_twice(&y.net, &x.net, slack));
+            }
+            let halve_x = if (x_flat && y_flat) || depth >= MAX_DEPTH {
+                let must_cross =
+                    ends_apart(&x.net, &y.net, slack) || ends_apart(&y.net, &x.net, slack);
+                // Newton's method is not confined to the pair's intervals: where the pair must
+                // hold a crossing, a solution outside them is another pair's, not its own
+                let inside = |v: f64, r: (f64, f64)| v >= r.0 - IN_PAIR && v <= r.1 + IN_PAIR;
+                let solved = self
+                    .solve(&x, &y)
+                    .filter(|r| !must_cross || (inside(r.s, x.s) && inside(r.u, y.s)));
+                let found = solved.is_some();
+                out.extend(solved);
+                if found || !must_cross || depth >= MAX_DEPTH || xd.max(yd) <= tol {
+                    self.recycle(x);
+                    self.recycle(y);
+                    continue;
                 }
-                self.recycle(x);
-                self.recycle(y);
+                // Newton's method and the least-squares fallback found no crossing of the pair
+                // from the chords' crossing, yet one sub-curve runs from one side of the other's fat line to the
+                // other side: at a shallow crossing a flat sub-curve's chord can put that start
+                // far from the root, so the pair is halved again (clipping then narrows it)
+                // rather than given up. (A near miss, a contact or an overlap has no such
+                // sub-curve, and is not halved for it.)
+                xd >= yd
             } else if clipped {
                 stack.push((x, y, depth + 1));
-            } else if !x_flat && (y_flat || xd >= yd) {
+                continue;
+            } else {
+                !x_flat && (y_flat || xd >= yd)
+            };
+            if halve_x {
                 let (l, r) = self.halve(x);
                 let y2 = self.copy(&y);
                 stack.push((l, y, depth + 1));
