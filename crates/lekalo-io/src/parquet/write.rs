@@ -567,10 +567,38 @@ enum Inner<W: Write + Send> {
     Points(PointSamples<W>),
 }
 
-/// The key column of the row group being gathered.
+/// The key column of the row group being gathered, as runs (a key and its rows): an integer
+/// key repeated on every row would take as much memory as a column of doubles.
 enum KeyValues {
-    Int(Vec<i64>),
-    Str(Vec<ByteArray>),
+    Int(Vec<(i64, usize)>),
+    Str(Vec<(ByteArray, usize)>),
+}
+
+/// The rows of the key column given to the column writer at once.
+const KEY_CHUNK: usize = 1 << 13;
+
+/// Writes a key column given as runs, `KEY_CHUNK` rows at a time from one vector.
+fn write_runs<T: parquet::data_type::DataType>(
+    col: &mut parquet::column::writer::ColumnWriterImpl<'_, T>,
+    runs: &[(T::T, usize)],
+) -> parquet::errors::Result<()> {
+    let mut chunk: Vec<T::T> = Vec::with_capacity(KEY_CHUNK);
+    for (key, n) in runs {
+        let mut left = *n;
+        while left > 0 {
+            let take = left.min(KEY_CHUNK - chunk.len());
+            chunk.extend(std::iter::repeat_n(key.clone(), take));
+            left -= take;
+            if chunk.len() == KEY_CHUNK {
+                col.write_batch(&chunk, None, None)?;
+                chunk.clear();
+            }
+        }
+    }
+    if !chunk.is_empty() {
+        col.write_batch(&chunk, None, None)?;
+    }
+    Ok(())
 }
 
 /// The writer of point samples (`t` and the coordinates, never null): the rows of the open row
@@ -624,9 +652,9 @@ impl<W: Write + Send> PointSamples<W> {
             file,
             key: (key.to_string(), int),
             keys: if int {
-                KeyValues::Int(Vec::with_capacity(limit))
+                KeyValues::Int(Vec::new())
             } else {
-                KeyValues::Str(Vec::with_capacity(limit))
+                KeyValues::Str(Vec::new())
             },
             t: Vec::with_capacity(limit),
             coords: (0..dim).map(|_| Vec::with_capacity(limit)).collect(),
@@ -667,9 +695,7 @@ impl<W: Write + Send> PointSamples<W> {
                 )));
             }
             match (&mut self.keys, k) {
-                (KeyValues::Int(v), GroupKey::Int(i)) => {
-                    v.extend(std::iter::repeat_n(*i, ts.len()))
-                }
+                (KeyValues::Int(v), GroupKey::Int(i)) => v.push((*i, ts.len())),
                 (KeyValues::Int(_), GroupKey::Str(s)) => {
                     return Err(other(format!(
                         "group {s:?}: a string key among integer keys"
@@ -680,8 +706,7 @@ impl<W: Write + Send> PointSamples<W> {
                         GroupKey::Int(i) => i.to_string(),
                         GroupKey::Str(s) => s.clone(),
                     };
-                    let text = ByteArray::from(text.into_bytes());
-                    v.extend(std::iter::repeat_n(text, ts.len()));
+                    v.push((ByteArray::from(text.into_bytes()), ts.len()));
                 }
             }
             self.t.extend_from_slice(ts);
@@ -700,8 +725,8 @@ impl<W: Write + Send> PointSamples<W> {
         let missing = || other("fewer columns than the schema");
         let mut col = rg.next_column().map_err(other)?.ok_or_else(missing)?;
         match &self.keys {
-            KeyValues::Int(k) => col.typed::<Int64Type>().write_batch(k, None, None),
-            KeyValues::Str(k) => col.typed::<ByteArrayType>().write_batch(k, None, None),
+            KeyValues::Int(k) => write_runs(col.typed::<Int64Type>(), k),
+            KeyValues::Str(k) => write_runs(col.typed::<ByteArrayType>(), k),
         }
         .map_err(other)?;
         col.close().map_err(other)?;
