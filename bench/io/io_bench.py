@@ -130,6 +130,11 @@ def batches(a, out, row):
         lambda: run(a.lekalo, "eval", curves, "--samples", str(per), "-o", f"{out}/s.parquet"),
     )
     row("batch: eval curves.parquet --samples 100 -> parquet", t_eval)
+    t_fused = best(
+        a.repeats,
+        lambda: run(a.lekalo, "interpolate", pts, "--samples", str(per), "-o", f"{out}/f.parquet"),
+    )
+    row("batch: interpolate groups.parquet --samples 100 -> parquet (one pass)", t_fused)
     run(a.lekalo, "convert", curves, "-o", jsonl, "--force")
     t_jsonl = best(
         a.repeats,
@@ -140,6 +145,11 @@ def batches(a, out, row):
         "batch: Parquet interpolate + eval vs JSON Lines eval",
         t_int + t_eval,
         f"{t_jsonl / (t_int + t_eval):.1f}x faster",
+    )
+    row(
+        "batch: Parquet interpolate --samples (one pass) vs JSON Lines eval",
+        t_fused,
+        f"{t_jsonl / t_fused:.1f}x faster",
     )
 
 

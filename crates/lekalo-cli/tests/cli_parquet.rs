@@ -274,3 +274,117 @@ fn fit_a_batch_as_one_file_each() {
         .code(2)
         .stderr(contains("a Parquet batch is fitted by open curves"));
 }
+
+/// `interpolate --samples N` of a batch: in one pass, the file that `interpolate` and then
+/// `eval --samples N` write, byte for byte (so every sample bit for bit); a bad group is
+/// reported with its key and the others are written.
+#[test]
+fn interpolate_and_sample_in_one_pass() {
+    let d = dir_with(&[]);
+    let input = p(&d, "pts.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&input).unwrap());
+    let groups: Vec<(GroupKey, Points)> = (0..4)
+        .map(|k| {
+            (
+                GroupKey::Int(k),
+                points(f64::from(u8::try_from(k).unwrap())),
+            )
+        })
+        .collect();
+    w.write_points("scan", &["x", "y"], &groups[..2]).unwrap();
+    // two points cannot carry a cubic: an error of group 9 only
+    w.write_points(
+        "scan",
+        &["x", "y"],
+        &[
+            (
+                GroupKey::Int(9),
+                Points::from_rows(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
+            ),
+            groups[2].clone(),
+            groups[3].clone(),
+        ],
+    )
+    .unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let curves = p(&d, "curves.parquet");
+    lekalo()
+        .args(["--group-column", "scan", "interpolate"])
+        .arg(&input)
+        .arg("-o")
+        .arg(&curves)
+        .assert()
+        .code(2);
+    let two = p(&d, "two.parquet");
+    lekalo()
+        .args(["--group-column", "scan", "eval"])
+        .arg(&curves)
+        .args(["--samples", "9", "-o"])
+        .arg(&two)
+        .assert()
+        .code(2);
+    let one = p(&d, "one.parquet");
+    lekalo()
+        .args(["--group-column", "scan", "interpolate"])
+        .arg(&input)
+        .args(["--samples", "9", "-o"])
+        .arg(&one)
+        .assert()
+        .code(2)
+        .stderr(contains("pts.parquet: group 9:"))
+        .stderr(contains("1 of 5 groups failed"));
+    let bytes = fs::read(&one).unwrap();
+    assert!(bytes.len() > 4 * 9 * 3 * 8, "the samples of 4 curves");
+    assert!(
+        bytes == fs::read(&two).unwrap(),
+        "the same file as interpolate, then eval"
+    );
+
+    // the same file whatever the row groups of the input: one group a row group
+    let split = p(&d, "split.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&split).unwrap());
+    for g in &groups {
+        w.write_points("scan", &["x", "y"], std::slice::from_ref(g))
+            .unwrap();
+    }
+    w.close(|_| Ok(())).unwrap();
+    lekalo()
+        .args(["--group-column", "scan", "interpolate"])
+        .arg(&split)
+        .args(["--samples", "9", "-o"])
+        .arg(&one)
+        .arg("--force")
+        .assert()
+        .success();
+    lekalo()
+        .args(["--group-column", "scan", "eval"])
+        .arg(&curves)
+        .args(["--samples", "9", "-o"])
+        .arg(&two)
+        .arg("--force")
+        .assert()
+        .code(2);
+    assert!(
+        fs::read(&one).unwrap() == fs::read(&two).unwrap(),
+        "the good groups' samples"
+    );
+
+    // samples are written as Parquet, and only for a batch
+    lekalo()
+        .arg("interpolate")
+        .arg(&input)
+        .args(["--samples", "9", "-o"])
+        .arg(p(&d, "s.csv"))
+        .assert()
+        .code(2)
+        .stderr(contains("give -o FILE.parquet"));
+    let csv = p(&d, "one.csv");
+    fs::write(&csv, "0,0\n1,1\n2,0\n3,1\n").unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&csv)
+        .args(["--samples", "9"])
+        .assert()
+        .code(2)
+        .stderr(contains("--samples samples the curves of a Parquet batch"));
+}

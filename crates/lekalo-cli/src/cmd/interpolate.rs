@@ -373,6 +373,11 @@ pub(crate) struct InterpolateArgs {
     /// per data point (same dimension). Parameters from --params or --param.
     #[arg(long, value_name = "FILE", conflicts_with = "hermite")]
     tangents: Option<PathBuf>,
+    /// Parquet batches: write each group's curve sampled at N evenly spaced parameters over
+    /// its domain, in one pass (the samples layout of `lekalo eval curves.parquet --samples
+    /// N`), instead of the curves.
+    #[arg(long, short = 'n', value_name = "N")]
+    samples: Option<usize>,
     #[command(flatten)]
     out: OutArgs,
 }
@@ -389,11 +394,26 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             return bad_input("a Parquet batch is interpolated by B-spline curves: --grid, --function, --hermite, --tangents and --params are for one points file");
         }
         let interp = curve_interpolation(a, param)?;
+        if let Some(n) = a.samples {
+            let n = crate::io::in_range(n, 1, usize::MAX, "--samples")?;
+            return crate::cmd::parquet_batch::interpolate_samples(
+                &a.points,
+                &interp,
+                n,
+                a.out.output.as_deref(),
+                v,
+            );
+        }
         return crate::cmd::parquet_batch::interpolate(
             &a.points,
             &interp,
             a.out.output.as_deref(),
             v,
+        );
+    }
+    if a.samples.is_some() {
+        return bad_input(
+            "--samples samples the curves of a Parquet batch; for one points file, write the curve and sample it with `lekalo eval curve.json --samples N`",
         );
     }
     let (pts, name) = crate::io::read_points(&a.points)?;

@@ -157,6 +157,80 @@ pub(crate) fn interpolate(
     })
 }
 
+/// `lekalo interpolate points.parquet --samples N -o samples.parquet`: each group's curve
+/// sampled at `n` evenly spaced parameters, in one pass (no curve file in between): the
+/// samples layout of `lekalo eval curves.parquet --samples N`, bit for bit.
+pub(crate) fn interpolate_samples(
+    input: &Path,
+    interp: &CurveInterpolation,
+    n: usize,
+    out: Option<&Path>,
+    v: Verbosity,
+) -> Result<()> {
+    let out = parquet_output(out, "samples")?;
+    let key = &group_column();
+    let mut failed = Vec::new();
+    let mut total = 0usize;
+    let mut header: Option<Vec<String>> = None;
+    write_parquet(
+        input,
+        out,
+        |writer| {
+            pipeline(
+                |each| lekalo_io::read_point_groups(input, Some(key), each),
+                |groups: Vec<lekalo_io::PointGroup>| -> Vec<(GroupKey, Result<Sampled, String>)> {
+                    groups
+                        .into_par_iter()
+                        .map(|(k, pts)| {
+                            let sampled = pts.map_err(|e| e.to_string()).and_then(|p| {
+                                let at = |e: lekalo::Error| {
+                                    format!(
+                                        "{}: group {k}: {:#}",
+                                        input.display(),
+                                        anyhow::Error::from(e)
+                                    )
+                                };
+                                let curve = interp.interpolate(p.as_view()).map_err(at)?;
+                                let o = Object::BSpline(curve);
+                                let ts = o.uniform_parameters(n);
+                                let mut pts = vec![0.0; ts.len() * o.dim()];
+                                o.eval_batch(&ts, &mut pts).map_err(at)?;
+                                Ok((ts, pts, o.dim()))
+                            });
+                            (k, sampled)
+                        })
+                        .collect()
+                },
+                |rows| {
+                    total += rows.len();
+                    write_points(rows, input, writer, &mut header, &mut failed)
+                        .map_err(write_error(out))
+                },
+            )
+        },
+        empty_samples(key),
+    )?;
+    if v == Verbosity::Verbose {
+        report(&format!(
+            "wrote the samples of {} curves to {}",
+            total - failed.len(),
+            out.display()
+        ));
+    }
+    finish(&failed, total, input)
+}
+
+/// The layout of a samples file without rows (a batch that had none).
+fn empty_samples(key: &str) -> impl FnOnce(&mut Writer<'_>) -> std::io::Result<()> + '_ {
+    move |w| {
+        let empty = lekalo_io::SampleTable {
+            header: vec!["t".into()],
+            rows: Vec::new(),
+        };
+        w.write_samples(key, &[(GroupKey::Int(0), empty)])
+    }
+}
+
 /// `lekalo interpolate` or `lekalo fit` of a Parquet batch: `make` gives each group's curve.
 pub(crate) fn curves_of_groups(
     input: &Path,
@@ -247,13 +321,7 @@ pub(crate) fn eval(
                 },
             )
         },
-        |w| {
-            let empty = lekalo_io::SampleTable {
-                header: vec!["t".into()],
-                rows: Vec::new(),
-            };
-            w.write_samples(key, &[(GroupKey::Int(0), empty)])
-        },
+        empty_samples(key),
     )?;
     if v == Verbosity::Verbose {
         report(&format!(

@@ -703,3 +703,196 @@ fn row_groups_of_a_size_in_bytes() {
     assert!((2..8).contains(&rgs), "{rgs} row groups for 8 calls");
     assert_eq!(read_all(&path, None).unwrap(), want, "the same points");
 }
+
+/// The point samples of `path` as (key, t, coordinates) rows, keys as text, numbers as bits.
+fn read_point_samples(path: &Path) -> (arrow_schema::SchemaRef, Vec<(String, Vec<u64>)>) {
+    use arrow_array::cast::AsArray;
+    use arrow_array::Array;
+    use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+    let b = ParquetRecordBatchReaderBuilder::try_new(File::open(path).unwrap()).unwrap();
+    let schema = b.schema().clone();
+    let mut rows = Vec::new();
+    for batch in b.build().unwrap() {
+        let batch = batch.unwrap();
+        for r in 0..batch.num_rows() {
+            let key = batch.column(0);
+            let k = match key.as_primitive_opt::<arrow_array::types::Int64Type>() {
+                Some(a) => a.value(r).to_string(),
+                None => key.as_string::<i32>().value(r).to_string(),
+            };
+            let bits = (1..batch.num_columns())
+                .map(|c| {
+                    let col = batch.column(c).as_primitive::<Float64Type>();
+                    assert!(col.is_valid(r), "never null");
+                    col.value(r).to_bits()
+                })
+                .collect();
+            rows.push((k, bits));
+        }
+    }
+    (schema, rows)
+}
+
+/// Samples of 3-D curves: per group, parameters and point-major points.
+fn samples_of(groups: &[(i64, usize)]) -> Vec<(GroupKey, Vec<f64>, Vec<f64>)> {
+    groups
+        .iter()
+        .map(|&(k, n)| {
+            let ts: Vec<f64> = (0..n).map(|i| i as f64 / 7.0 + k as f64).collect();
+            let pts = ts
+                .iter()
+                .flat_map(|t| [t.sin(), -t.cos() * 1e300, 0.1 + t])
+                .collect();
+            (GroupKey::Int(k), ts, pts)
+        })
+        .collect()
+}
+
+/// Point samples go through Parquet's column writers: across calls and row groups of a size,
+/// they come back bit for bit, in order, in never-null columns of the documented names, with
+/// the Arrow schema in the file's metadata (so that pandas and the Arrow readers see it).
+#[test]
+fn point_samples_round_trip_bit_for_bit() {
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let (_d, path) = tmp("samples.parquet");
+    let calls = [
+        samples_of(&[(3, 5), (4, 1000)]),
+        samples_of(&[(5, 0)]),
+        samples_of(&[(6, 2500), (7, 3)]),
+        samples_of(&[(8, 4000)]),
+    ];
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap()).with_row_group_bytes(1 << 17);
+    for rows in &calls {
+        w.write_point_samples("scan", 3, rows).unwrap();
+    }
+    w.close(|_| panic!("rows were written")).unwrap();
+    let r = SerializedFileReader::new(File::open(&path).unwrap()).unwrap();
+    let meta = r.metadata();
+    // 1,005 + 0 + 2,503 rows, then 4,000 would pass the 4,096 rows of 128 KiB
+    assert_eq!(meta.num_row_groups(), 2, "row groups of 128 KiB");
+    for g in meta.row_groups() {
+        assert!(
+            g.num_rows() * 32 <= 1 << 17,
+            "a row group within its size: {} rows",
+            g.num_rows()
+        );
+    }
+    let kv = meta.file_metadata().key_value_metadata().unwrap();
+    assert!(
+        kv.iter().any(|k| k.key == "ARROW:schema"),
+        "the Arrow schema is stored"
+    );
+    let (schema, got) = read_point_samples(&path);
+    let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
+    assert_eq!(names, ["scan", "t", "x", "y", "z"], "the columns");
+    assert!(
+        schema.fields().iter().all(|f| !f.is_nullable()),
+        "{schema:?}"
+    );
+    let want: Vec<(String, Vec<u64>)> = calls
+        .iter()
+        .flatten()
+        .flat_map(|(k, ts, pts)| {
+            ts.iter().zip(pts.chunks_exact(3)).map(move |(t, p)| {
+                let mut bits = vec![t.to_bits()];
+                bits.extend(p.iter().map(|v| v.to_bits()));
+                (k.to_string(), bits)
+            })
+        })
+        .collect();
+    assert_eq!(got.len(), 7508, "every sample");
+    assert!(got == want, "bit for bit, in order");
+}
+
+/// String keys (and integer keys among them, as their text), 4-D samples (`x1 … x4`), and a
+/// row group per call without a size.
+#[test]
+fn point_samples_with_string_keys() {
+    let (_d, path) = tmp("s.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    let rows = vec![
+        (
+            GroupKey::Str("a".into()),
+            vec![0.0, 1.0],
+            (0..8).map(f64::from).collect(),
+        ),
+        (GroupKey::Int(12), vec![0.5], vec![-1.0, -2.0, -3.0, -4.0]),
+    ];
+    w.write_point_samples("name", 4, &rows).unwrap();
+    w.write_point_samples("name", 4, &rows[..1]).unwrap();
+    w.close(|_| Ok(())).unwrap();
+    let (schema, got) = read_point_samples(&path);
+    let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
+    assert_eq!(names, ["name", "t", "x1", "x2", "x3", "x4"], "the columns");
+    let keys: Vec<&str> = got.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(keys, ["a", "a", "12", "a", "a"], "the keys, in order");
+    assert_eq!(
+        got[2].1,
+        [0.5, -1.0, -2.0, -3.0, -4.0].map(f64::to_bits),
+        "row 2"
+    );
+    assert_eq!(
+        got[1].1,
+        [1.0, 4.0, 5.0, 6.0, 7.0].map(f64::to_bits),
+        "row 1"
+    );
+}
+
+/// Calls without samples write nothing; a file that never had any is the empty layout that
+/// `close` is given.
+#[test]
+fn point_samples_of_an_empty_batch() {
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let (_d, path) = tmp("e.parquet");
+    let mut w = ParquetBatchWriter::new(File::create(&path).unwrap());
+    w.write_point_samples("group", 3, &[]).unwrap();
+    w.write_point_samples("group", 3, &samples_of(&[(1, 0)]))
+        .unwrap();
+    w.close(|w| w.write_point_samples("group", 2, &[])).unwrap();
+    let r = SerializedFileReader::new(File::open(&path).unwrap()).unwrap();
+    assert_eq!(r.metadata().num_row_groups(), 0, "no rows");
+    let (schema, got) = read_point_samples(&path);
+    assert!(got.is_empty(), "no samples");
+    let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
+    assert_eq!(names, ["group", "t", "x", "y"], "the layout");
+}
+
+/// A call that does not fit the file's layout is refused, saying why.
+#[test]
+fn point_samples_refuse_another_layout() {
+    let err = |calls: &dyn Fn(&mut ParquetBatchWriter<Vec<u8>>) -> std::io::Result<()>| {
+        let mut w = ParquetBatchWriter::new(Vec::new());
+        calls(&mut w).unwrap_err().to_string()
+    };
+    let e = err(&|w| {
+        let mut rows = samples_of(&[(1, 2)]);
+        rows.push((GroupKey::Str("b".into()), vec![0.0], vec![0.0; 3]));
+        w.write_point_samples("group", 3, &rows)
+    });
+    assert!(
+        e.contains("group \"b\": a string key among integer keys"),
+        "{e}"
+    );
+    let e = err(&|w| {
+        w.write_point_samples("group", 3, &samples_of(&[(1, 2)]))?;
+        w.write_point_samples("group", 2, &[(GroupKey::Int(2), vec![0.0], vec![0.0; 2])])
+    });
+    assert!(
+        e.contains("samples of 2-D curves keyed by `group` after samples of 3-D curves"),
+        "{e}"
+    );
+    let e =
+        err(&|w| w.write_point_samples("group", 3, &[(GroupKey::Int(2), vec![0.0], vec![0.0; 2])]));
+    assert!(
+        e.contains("group 2: 2 coordinates for 1 parameters of a 3-D curve"),
+        "{e}"
+    );
+    let e = err(&|w| {
+        w.write_curves("group", &[(GroupKey::Int(1), Err("x".into()))])?;
+        w.write_point_samples("group", 3, &samples_of(&[(1, 2)]))
+    });
+    assert!(
+        e.contains("point samples and other layouts in one Parquet file"),
+        "{e}"
+    );
+}

@@ -15,9 +15,11 @@ use arrow_array::{
 };
 use arrow_buffer::OffsetBuffer;
 use arrow_schema::{DataType, Field, Schema};
-use parquet::arrow::ArrowWriter;
+use parquet::arrow::{add_encoded_arrow_schema_to_metadata, ArrowSchemaConverter, ArrowWriter};
 use parquet::basic::{Compression, Encoding};
+use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type};
 use parquet::file::properties::{EnabledStatistics, WriterProperties};
+use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::ColumnPath;
 
 use super::GroupKey;
@@ -245,7 +247,7 @@ impl<'a> CurveRow<'a> {
 /// A Parquet writer of batches: one row group per call of a `write_` method, or, with
 /// [`ParquetBatchWriter::with_row_group_bytes`], row groups of about a given size.
 pub struct ParquetBatchWriter<W: Write + Send> {
-    writer: Option<ArrowWriter<W>>,
+    writer: Option<Inner<W>>,
     out: Option<W>,
     /// In [`ParquetBatchWriter::close`]: a batch without rows is then written, for the layout.
     closing: bool,
@@ -284,14 +286,15 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
             return Ok(());
         }
         if self.writer.is_none() {
-            let out = self
-                .out
-                .take()
-                .ok_or_else(|| other("the Parquet writer was closed"))?;
+            let out = self.take_out()?;
             let props = properties(&schema);
-            self.writer = Some(ArrowWriter::try_new(out, schema, Some(props)).map_err(other)?);
+            let w = ArrowWriter::try_new(out, schema, Some(props)).map_err(other)?;
+            self.writer = Some(Inner::Arrow(w));
         }
         if let Some(w) = self.writer.as_mut() {
+            let Inner::Arrow(w) = w else {
+                return Err(other(MIXED));
+            };
             w.write(&batch).map_err(other)?;
             if self
                 .row_group_bytes
@@ -435,26 +438,35 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
         let int = rows
             .first()
             .is_none_or(|(k, _, _)| matches!(k, GroupKey::Int(_)));
+        if rows.iter().all(|(_, ts, _)| ts.is_empty()) && !self.closing {
+            // nothing to write, and the schema (the key's type) is left to the first rows
+            return Ok(());
+        }
+        if self.writer.is_none() {
+            let out = self.take_out()?;
+            let w = PointSamples::new(out, key, dim, int, self.row_group_bytes)?;
+            self.writer = Some(Inner::Points(w));
+        }
+        let Some(Inner::Points(w)) = self.writer.as_mut() else {
+            return Err(other(MIXED));
+        };
         let n: usize = rows.iter().map(|(_, ts, _)| ts.len()).sum();
-        let mut t = Vec::with_capacity(n);
-        let mut cols: Vec<Vec<f64>> = (0..dim).map(|_| Vec::with_capacity(n)).collect();
-        for (_, ts, pts) in rows {
-            t.extend_from_slice(ts);
-            split_columns(pts, &mut cols);
+        if w.rows() > 0 && w.rows() + n > w.limit {
+            // a row group stays within its size (and the vectors within their capacity)
+            w.write_row_group()?;
         }
-        let mut fields = vec![
-            key_field(key, int),
-            Field::new("t", DataType::Float64, false),
-        ];
-        let mut columns = vec![
-            key_column(int, rows.iter().map(|(k, ts, _)| (k, ts.len())))?,
-            Arc::new(Float64Array::from(t)) as ArrayRef,
-        ];
-        for (name, col) in crate::samples::coord_names(dim).iter().zip(cols) {
-            fields.push(Field::new(name, DataType::Float64, false));
-            columns.push(Arc::new(Float64Array::from(col)));
+        w.append(key, dim, rows)?;
+        if w.rows() >= w.limit {
+            w.write_row_group()?;
         }
-        self.push(fields, columns)
+        Ok(())
+    }
+
+    /// The output, for the first write; an error once the writer is closed.
+    fn take_out(&mut self) -> std::io::Result<W> {
+        self.out
+            .take()
+            .ok_or_else(|| other("the Parquet writer was closed"))
     }
 
     /// Writes sample tables ([`crate::sample_table`]) as one row group: per group, its key on
@@ -518,7 +530,8 @@ impl<W: Write + Send> ParquetBatchWriter<W> {
             empty(&mut self)?;
         }
         match self.writer.take() {
-            Some(w) => w.close().map(|_| ()).map_err(other),
+            Some(Inner::Arrow(w)) => w.close().map(|_| ()).map_err(other),
+            Some(Inner::Points(w)) => w.close(),
             None => Ok(()),
         }
     }
@@ -541,5 +554,204 @@ fn split_columns(points: &[f64], cols: &mut [Vec<f64>]) {
                 }
             }
         }
+    }
+}
+
+/// The message of a write whose layout is not the file's.
+const MIXED: &str = "point samples and other layouts in one Parquet file";
+
+/// The writer of a file: Arrow's for curves, point sets and sample tables, or Parquet's column
+/// writers for point samples ([`PointSamples`]).
+enum Inner<W: Write + Send> {
+    Arrow(ArrowWriter<W>),
+    Points(PointSamples<W>),
+}
+
+/// The key column of the row group being gathered, as runs (a key and its rows): an integer
+/// key repeated on every row would take as much memory as a column of doubles.
+enum KeyValues {
+    Int(Vec<(i64, usize)>),
+    Str(Vec<(ByteArray, usize)>),
+}
+
+/// The rows of the key column given to the column writer at once.
+const KEY_CHUNK: usize = 1 << 13;
+
+/// Writes a key column given as runs, `KEY_CHUNK` rows at a time from one vector.
+fn write_runs<T: parquet::data_type::DataType>(
+    col: &mut parquet::column::writer::ColumnWriterImpl<'_, T>,
+    runs: &[(T::T, usize)],
+) -> parquet::errors::Result<()> {
+    let mut chunk: Vec<T::T> = Vec::with_capacity(KEY_CHUNK);
+    for (key, n) in runs {
+        let mut left = *n;
+        while left > 0 {
+            let take = left.min(KEY_CHUNK - chunk.len());
+            chunk.extend(std::iter::repeat_n(key.clone(), take));
+            left -= take;
+            if chunk.len() == KEY_CHUNK {
+                col.write_batch(&chunk, None, None)?;
+                chunk.clear();
+            }
+        }
+    }
+    if !chunk.is_empty() {
+        col.write_batch(&chunk, None, None)?;
+    }
+    Ok(())
+}
+
+/// The writer of point samples (`t` and the coordinates, never null): the rows of the open row
+/// group gathered into one vector per column, reused from row group to row group, and written
+/// by Parquet's column writers, whose pages go straight to the output. No column is nullable
+/// or nested, so there are no levels to compute, and no copy of the row group is held in
+/// pages (Arrow's writer keeps the encoded pages of the open row group in memory).
+struct PointSamples<W: Write + Send> {
+    file: SerializedFileWriter<W>,
+    /// The key column's name, and whether it is an integer one.
+    key: (String, bool),
+    keys: KeyValues,
+    t: Vec<f64>,
+    /// One vector per coordinate.
+    coords: Vec<Vec<f64>>,
+    /// The rows of a row group: those of the size asked for (at most the writer's most rows),
+    /// 0 for a row group per call.
+    limit: usize,
+}
+
+impl<W: Write + Send> PointSamples<W> {
+    /// The schema and settings of [`ParquetBatchWriter::write_point_samples`] (and the Arrow
+    /// schema in the file's metadata, as Arrow's writer stores it).
+    fn new(
+        out: W,
+        key: &str,
+        dim: usize,
+        int: bool,
+        row_group_bytes: Option<usize>,
+    ) -> std::io::Result<Self> {
+        let mut fields = vec![
+            key_field(key, int),
+            Field::new("t", DataType::Float64, false),
+        ];
+        for name in crate::samples::coord_names(dim) {
+            fields.push(Field::new(name, DataType::Float64, false));
+        }
+        let schema = Schema::new(fields);
+        let parquet_schema = ArrowSchemaConverter::new()
+            .convert(&schema)
+            .map_err(other)?;
+        let mut props = properties(&schema);
+        add_encoded_arrow_schema_to_metadata(&schema, &mut props);
+        // the size of a row as written (an integer key takes a few bits)
+        let row = 8 * (dim + 1) + if int { 0 } else { 8 };
+        let limit = row_group_bytes.map_or(0, |b| (b / row).clamp(1, props.max_row_group_size()));
+        let file =
+            SerializedFileWriter::new(out, parquet_schema.root_schema_ptr(), Arc::new(props))
+                .map_err(other)?;
+        Ok(PointSamples {
+            file,
+            key: (key.to_string(), int),
+            keys: if int {
+                KeyValues::Int(Vec::new())
+            } else {
+                KeyValues::Str(Vec::new())
+            },
+            t: Vec::with_capacity(limit),
+            coords: (0..dim).map(|_| Vec::with_capacity(limit)).collect(),
+            limit,
+        })
+    }
+
+    /// The rows gathered.
+    fn rows(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Adds the rows of `rows` (as [`ParquetBatchWriter::write_point_samples`]).
+    fn append(
+        &mut self,
+        key: &str,
+        dim: usize,
+        rows: &[(GroupKey, Vec<f64>, Vec<f64>)],
+    ) -> std::io::Result<()> {
+        if key != self.key.0 || dim != self.coords.len() {
+            return Err(other(format!(
+                "samples of {dim}-D curves keyed by `{key}` after samples of {}-D curves keyed by `{}`; a samples file holds one layout",
+                self.coords.len(),
+                self.key.0
+            )));
+        }
+        let n: usize = rows.iter().map(|(_, ts, _)| ts.len()).sum();
+        self.t.reserve(n);
+        for c in &mut self.coords {
+            c.reserve(n);
+        }
+        for (k, ts, pts) in rows {
+            if pts.len() != ts.len() * dim {
+                return Err(other(format!(
+                    "group {k}: {} coordinates for {} parameters of a {dim}-D curve",
+                    pts.len(),
+                    ts.len()
+                )));
+            }
+            match (&mut self.keys, k) {
+                (KeyValues::Int(v), GroupKey::Int(i)) => v.push((*i, ts.len())),
+                (KeyValues::Int(_), GroupKey::Str(s)) => {
+                    return Err(other(format!(
+                        "group {s:?}: a string key among integer keys"
+                    )))
+                }
+                (KeyValues::Str(v), k) => {
+                    let text = match k {
+                        GroupKey::Int(i) => i.to_string(),
+                        GroupKey::Str(s) => s.clone(),
+                    };
+                    v.push((ByteArray::from(text.into_bytes()), ts.len()));
+                }
+            }
+            self.t.extend_from_slice(ts);
+            split_columns(pts, &mut self.coords);
+        }
+        Ok(())
+    }
+
+    /// Writes the gathered rows as one row group (nothing if there are none), column by column,
+    /// and empties the vectors (keeping their memory for the next row group).
+    fn write_row_group(&mut self) -> std::io::Result<()> {
+        if self.t.is_empty() {
+            return Ok(());
+        }
+        let mut rg = self.file.next_row_group().map_err(other)?;
+        let missing = || other("fewer columns than the schema");
+        let mut col = rg.next_column().map_err(other)?.ok_or_else(missing)?;
+        match &self.keys {
+            KeyValues::Int(k) => write_runs(col.typed::<Int64Type>(), k),
+            KeyValues::Str(k) => write_runs(col.typed::<ByteArrayType>(), k),
+        }
+        .map_err(other)?;
+        col.close().map_err(other)?;
+        for values in std::iter::once(&self.t).chain(&self.coords) {
+            let mut col = rg.next_column().map_err(other)?.ok_or_else(missing)?;
+            col.typed::<DoubleType>()
+                .write_batch(values, None, None)
+                .map_err(other)?;
+            col.close().map_err(other)?;
+        }
+        rg.close().map_err(other)?;
+        match &mut self.keys {
+            KeyValues::Int(k) => k.clear(),
+            KeyValues::Str(k) => k.clear(),
+        }
+        self.t.clear();
+        for c in &mut self.coords {
+            c.clear();
+        }
+        Ok(())
+    }
+
+    /// Writes the last row group and the footer.
+    fn close(mut self) -> std::io::Result<()> {
+        self.write_row_group()?;
+        self.file.close().map(|_| ()).map_err(other)
     }
 }
