@@ -586,6 +586,31 @@ mod tests {
         }
     }
 
+    /// The crossings of the uniform cubic B-spline with control points `ctrl` and the line
+    /// `y = c`, against the roots of its height (the curve–plane root finder): `expected` of
+    /// each, the same parameters and points.
+    fn line_crossings_are_the_roots(ctrl: &[[f64; 2]], c: f64, expected: usize) {
+        let n = ctrl.len();
+        let mut knots = vec![0.0; 4];
+        knots.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+        knots.extend([1.0; 4]);
+        let curve = QueryCurve::from_bspline(
+            &BSplineCurve::new(3, knots, Points::from_2d(ctrl).unwrap()).unwrap(),
+        )
+        .unwrap();
+        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+        assert_eq!(roots.len(), expected, "{roots:?}");
+        let line = bezier(&[[-30.0, c], [30.0, c]]);
+        let hits = points(&curve.intersect(&line, 1e-9).unwrap());
+        assert_eq!(hits.len(), expected, "{hits:?}");
+        for ((t, _, p), (r, q)) in hits.iter().zip(&roots) {
+            assert!(
+                (t - r).abs() <= 1e-9 && dist(p, q) <= 1e-9,
+                "{t} vs {r}: {p:?}"
+            );
+        }
+    }
+
     /// A shallow dip through a line (found by the property test below): the piece is flat to
     /// 1% of its size, yet crosses `y = c` twice, 0.0075 apart in the parameter; each crossing
     /// is found.
@@ -599,26 +624,7 @@ mod tests {
             [0.0, 0.0],
             [0.0, 0.0],
         ];
-        let c = 3.592_837_653_954_960_7;
-        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0, 1.0];
-        let curve = QueryCurve::from_bspline(
-            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
-        )
-        .unwrap();
-        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
-        assert_eq!(roots.len(), 4, "{roots:?}");
-        let hits = points(
-            &curve
-                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
-                .unwrap(),
-        );
-        assert_eq!(hits.len(), 4, "{hits:?}");
-        for ((t, _, p), (r, _)) in hits.iter().zip(&roots) {
-            assert!(
-                (t - r).abs() <= 1e-9 && (p[1] - c).abs() <= 1e-9,
-                "{t} vs {r}: {p:?}"
-            );
-        }
+        line_crossings_are_the_roots(&ctrl, 3.592_837_653_954_960_7, 4);
     }
 
     /// A shallow crossing near a piece's end (found by the property test below): the curve runs
@@ -633,24 +639,7 @@ mod tests {
             [0.0, 0.0],
             [0.0, 0.0],
         ];
-        let c = -1.390_700_982_248_104;
-        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
-        let curve = QueryCurve::from_bspline(
-            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
-        )
-        .unwrap();
-        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
-        assert_eq!(roots.len(), 1, "{roots:?}");
-        let hits = points(
-            &curve
-                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
-                .unwrap(),
-        );
-        assert_eq!(hits.len(), 1, "{hits:?}");
-        assert!(
-            (hits[0].0 - roots[0].0).abs() <= 1e-9,
-            "{hits:?} vs {roots:?}"
-        );
+        line_crossings_are_the_roots(&ctrl, -1.390_700_982_248_104, 1);
     }
 
     /// Two crossings of one piece 0.09 apart in its parameter (found by the property test
@@ -667,23 +656,7 @@ mod tests {
             [0.0, -2.976700161953739],
             [0.0, 0.0],
         ];
-        let c = 3.911_905_096_333_211_6;
-        let knots = vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0];
-        let curve = QueryCurve::from_bspline(
-            &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
-        )
-        .unwrap();
-        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
-        assert_eq!(roots.len(), 4, "{roots:?}");
-        let hits = points(
-            &curve
-                .intersect(&bezier(&[[-30.0, c], [30.0, c]]), 1e-9)
-                .unwrap(),
-        );
-        assert_eq!(hits.len(), 4, "{hits:?}");
-        for ((t, _, p), (r, q)) in hits.iter().zip(&roots) {
-            assert!((t - r).abs() <= 1e-9 && dist(p, q) <= 1e-9, "{t} vs {r}");
-        }
+        line_crossings_are_the_roots(&ctrl, 3.911_905_096_333_211_6, 4);
     }
 
     proptest::proptest! {
