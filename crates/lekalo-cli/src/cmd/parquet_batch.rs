@@ -145,6 +145,24 @@ fn pipeline<T: Send, U: Send>(
     })
 }
 
+/// `make` applied to each group of a batch, in parallel: its result, or why the group has none
+/// (a bad group's own error, or `make`'s with the file and the group's key).
+fn each_group<T: Send>(
+    groups: Vec<lekalo_io::PointGroup>,
+    input: &Path,
+    make: impl Fn(&lekalo::Points) -> Result<T> + Sync,
+) -> Vec<(GroupKey, Result<T, String>)> {
+    groups
+        .into_par_iter()
+        .map(|(k, pts)| {
+            let r = pts.map_err(|e| e.to_string()).and_then(|p| {
+                make(&p).map_err(|e| format!("{}: group {k}: {e:#}", input.display()))
+            });
+            (k, r)
+        })
+        .collect()
+}
+
 /// `lekalo interpolate points.parquet -o curves.parquet`: one curve per group.
 pub(crate) fn interpolate(
     input: &Path,
@@ -178,28 +196,14 @@ pub(crate) fn interpolate_samples(
         |writer| {
             pipeline(
                 |each| lekalo_io::read_point_groups(input, Some(key), each),
-                |groups: Vec<lekalo_io::PointGroup>| -> Vec<(GroupKey, Result<Sampled, String>)> {
-                    groups
-                        .into_par_iter()
-                        .map(|(k, pts)| {
-                            let sampled = pts.map_err(|e| e.to_string()).and_then(|p| {
-                                let at = |e: lekalo::Error| {
-                                    format!(
-                                        "{}: group {k}: {:#}",
-                                        input.display(),
-                                        anyhow::Error::from(e)
-                                    )
-                                };
-                                let curve = interp.interpolate(p.as_view()).map_err(at)?;
-                                let o = Object::BSpline(curve);
-                                let ts = o.uniform_parameters(n);
-                                let mut pts = vec![0.0; ts.len() * o.dim()];
-                                o.eval_batch(&ts, &mut pts).map_err(at)?;
-                                Ok((ts, pts, o.dim()))
-                            });
-                            (k, sampled)
-                        })
-                        .collect()
+                |groups: Vec<lekalo_io::PointGroup>| {
+                    each_group(groups, input, |p| -> Result<Sampled> {
+                        let o = Object::BSpline(interp.interpolate(p.as_view())?);
+                        let ts = o.uniform_parameters(n);
+                        let mut pts = vec![0.0; ts.len() * o.dim()];
+                        o.eval_batch(&ts, &mut pts)?;
+                        Ok((ts, pts, o.dim()))
+                    })
                 },
                 |rows| {
                     total += rows.len();
@@ -248,18 +252,7 @@ pub(crate) fn curves_of_groups(
         |writer| {
             pipeline(
                 |each| lekalo_io::read_point_groups(input, Some(key), each),
-                |groups: Vec<lekalo_io::PointGroup>| -> Vec<(GroupKey, Result<Object, String>)> {
-                    groups
-                        .into_par_iter()
-                        .map(|(k, pts)| {
-                            let curve = pts.map_err(|e| e.to_string()).and_then(|p| {
-                                make(&p)
-                                    .map_err(|e| format!("{}: group {k}: {e:#}", input.display()))
-                            });
-                            (k, curve)
-                        })
-                        .collect()
-                },
+                |groups: Vec<lekalo_io::PointGroup>| each_group(groups, input, make),
                 |rows| {
                     total += rows.len();
                     failed.extend(rows.iter().filter_map(|(_, r)| r.as_ref().err().cloned()));
