@@ -86,6 +86,7 @@ const TABLE: &[&[&str]] = &[
         "2",
         "--json",
     ],
+    &["knots", "basis", "curve.json", "--at", "0,0.5,1", "--json"],
     &["bezier", "real-degree", "quintic.json", "--json"],
     &["bezier", "reduce", "quintic.json", "--json"],
     &[
