@@ -43,11 +43,11 @@ fn curves(path: &Path, key: &str) -> Vec<(GroupKey, Result<Object, String>)> {
     out
 }
 
-#[test]
-fn interpolate_eval_convert_a_batch() {
-    let d = dir_with(&[]);
-    let input = p(&d, "pts.parquet");
-    let mut w = ParquetBatchWriter::new(File::create(&input).unwrap());
+/// Groups 0 to 3 (keyed `scan`) in two row groups, the first holding the first `split` of them,
+/// the second starting with group 9, whose two points cannot carry a cubic: an error of that
+/// group only. Returns the good groups.
+fn scans_with_a_bad_group(path: &std::path::Path, split: usize) -> Vec<(GroupKey, Points)> {
+    let mut w = ParquetBatchWriter::new(File::create(path).unwrap());
     let groups: Vec<(GroupKey, Points)> = (0..4)
         .map(|k| {
             (
@@ -56,21 +56,23 @@ fn interpolate_eval_convert_a_batch() {
             )
         })
         .collect();
-    w.write_points("scan", &["x", "y"], &groups[..3]).unwrap();
-    // a group of two points cannot carry a cubic: an error of that group only
-    w.write_points(
-        "scan",
-        &["x", "y"],
-        &[
-            (
-                GroupKey::Int(9),
-                Points::from_rows(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
-            ),
-            groups[3].clone(),
-        ],
-    )
-    .unwrap();
+    w.write_points("scan", &["x", "y"], &groups[..split])
+        .unwrap();
+    let mut rest = vec![(
+        GroupKey::Int(9),
+        Points::from_rows(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
+    )];
+    rest.extend_from_slice(&groups[split..]);
+    w.write_points("scan", &["x", "y"], &rest).unwrap();
     w.close(|_| Ok(())).unwrap();
+    groups
+}
+
+#[test]
+fn interpolate_eval_convert_a_batch() {
+    let d = dir_with(&[]);
+    let input = p(&d, "pts.parquet");
+    let groups = scans_with_a_bad_group(&input, 3);
     let out = p(&d, "curves.parquet");
     lekalo()
         .args(["--group-column", "scan", "interpolate"])
@@ -282,31 +284,7 @@ fn fit_a_batch_as_one_file_each() {
 fn interpolate_and_sample_in_one_pass() {
     let d = dir_with(&[]);
     let input = p(&d, "pts.parquet");
-    let mut w = ParquetBatchWriter::new(File::create(&input).unwrap());
-    let groups: Vec<(GroupKey, Points)> = (0..4)
-        .map(|k| {
-            (
-                GroupKey::Int(k),
-                points(f64::from(u8::try_from(k).unwrap())),
-            )
-        })
-        .collect();
-    w.write_points("scan", &["x", "y"], &groups[..2]).unwrap();
-    // two points cannot carry a cubic: an error of group 9 only
-    w.write_points(
-        "scan",
-        &["x", "y"],
-        &[
-            (
-                GroupKey::Int(9),
-                Points::from_rows(&[[0.0, 0.0], [1.0, 1.0]]).unwrap(),
-            ),
-            groups[2].clone(),
-            groups[3].clone(),
-        ],
-    )
-    .unwrap();
-    w.close(|_| Ok(())).unwrap();
+    let groups = scans_with_a_bad_group(&input, 2);
     let curves = p(&d, "curves.parquet");
     lekalo()
         .args(["--group-column", "scan", "interpolate"])

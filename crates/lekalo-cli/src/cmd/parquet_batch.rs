@@ -214,6 +214,17 @@ pub(crate) fn interpolate_samples(
         },
         empty_samples(key),
     )?;
+    finish_samples(&failed, total, input, out, v)
+}
+
+/// [`finish`] for a samples file, after the `--verbose` report of what it holds.
+fn finish_samples(
+    failed: &[String],
+    total: usize,
+    input: &Path,
+    out: &Path,
+    v: Verbosity,
+) -> Result<()> {
     if v == Verbosity::Verbose {
         report(&format!(
             "wrote the samples of {} curves to {}",
@@ -221,7 +232,7 @@ pub(crate) fn interpolate_samples(
             out.display()
         ));
     }
-    finish(&failed, total, input)
+    finish(failed, total, input)
 }
 
 /// The layout of a samples file without rows (a batch that had none).
@@ -316,14 +327,7 @@ pub(crate) fn eval(
         },
         empty_samples(key),
     )?;
-    if v == Verbosity::Verbose {
-        report(&format!(
-            "wrote the samples of {} curves to {}",
-            total - failed.len(),
-            out.display()
-        ));
-    }
-    finish(&failed, total, input)
+    finish_samples(&failed, total, input, out, v)
 }
 
 /// The parameters, the points (flat) and the dimension of one curve's samples.

@@ -1285,6 +1285,7 @@ impl QuerySurface {
         let mut worst = 0.0_f64;
         let mut parts: Vec<u32> = Vec::new();
         let mut next: HashMap<u32, u32> = HashMap::new();
+        let mut memo: Vec<f64> = Vec::new();
         for h in 0..at.len() {
             let ts = &inc[h];
             if ts.len() < 3 || ts.len() > 12 {
@@ -1363,7 +1364,8 @@ impl QuerySurface {
                 })
                 .collect();
             // M along each segment between two corners of the polygon, on demand
-            let mut memo = vec![f64::NAN; m * m];
+            memo.clear();
+            memo.resize(m * m, f64::NAN);
             let mut edge = |i: usize, j: usize| {
                 let (i, j) = (i.min(j), i.max(j));
                 if memo[i * m + j].is_nan() {
@@ -1434,9 +1436,24 @@ impl QuerySurface {
 #[cfg(test)]
 mod tests {
     use super::{best_zip, chains, triangle_bound, zip, Rule, PATCH_WIDTH};
-    use crate::query::tessellate::tests::assert_watertight;
+    use crate::query::tessellate::tests::{assert_covers_the_domain, assert_watertight};
+    use crate::query::tessellate::Mesh;
     use crate::{BSplineSurface, Points, QuerySurface};
     use std::sync::atomic::AtomicUsize;
+
+    /// `|S(Σ λ_i uv_i) − Σ λ_i P_i|` at the barycentric point `l` of triangle `t` of `mesh`: the
+    /// parametric deviation the mesh's bound is about.
+    fn sampled_deviation(s: &BSplineSurface, mesh: &Mesh, t: &[u32; 3], l: &[f64; 3]) -> f64 {
+        let uv = t.map(|i| mesh.uv[i as usize]);
+        let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
+        let x =
+            [0, 1].map(|d| (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0));
+        let sx = s.eval(x[0], x[1]).unwrap();
+        (0..3)
+            .map(|d| (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
 
     /// A small deterministic generator of numbers in `[0, 1)` (xorshift).
     struct Rng(u64);
@@ -1596,19 +1613,8 @@ mod tests {
             let mesh = q.mesh(tol).unwrap();
             assert!(mesh.deviation <= tol, "case {case}: {}", mesh.deviation);
             for t in &mesh.triangles {
-                let uv = t.map(|i| mesh.uv[i as usize]);
-                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
                 for l in &grid {
-                    let x = [0, 1].map(|d| {
-                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
-                    });
-                    let sx = s.eval(x[0], x[1]).unwrap();
-                    let dev = (0..3)
-                        .map(|d| {
-                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
-                        })
-                        .sum::<f64>()
-                        .sqrt();
+                    let dev = sampled_deviation(&s, &mesh, t, l);
                     assert!(
                         dev <= mesh.deviation * (1.0 + 1e-9),
                         "case {case}: {dev} > {} in {t:?}",
@@ -1617,19 +1623,7 @@ mod tests {
                 }
             }
             assert_watertight(&mesh);
-            let area: f64 = mesh
-                .triangles
-                .iter()
-                .map(|t| {
-                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
-                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
-                })
-                .inspect(|&a| assert!(a > 0.0, "case {case}: a triangle is not counter-clockwise"))
-                .sum();
-            assert!(
-                (area - 1.0).abs() < 1e-12,
-                "case {case}: parameter area {area}"
-            );
+            assert_covers_the_domain(&mesh, &format!("case {case}"));
             // every vertex is used
             let mut used = vec![false; mesh.uv.len()];
             for t in &mesh.triangles {
@@ -1675,16 +1669,7 @@ mod tests {
                 "forced {forced}: no part was split"
             );
             assert_watertight(&mesh);
-            let area: f64 = mesh
-                .triangles
-                .iter()
-                .map(|t| {
-                    let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
-                    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
-                })
-                .inspect(|&a| assert!(a > 0.0, "forced {forced}: a clockwise triangle"))
-                .sum();
-            assert!((area - 1.0).abs() < 1e-12, "forced {forced}: area {area}");
+            assert_covers_the_domain(&mesh, &format!("forced {forced}"));
             // (past the last round, 46,710 triangles against 817: every 7th)
             let samples = barycentric(4);
             for t in mesh
@@ -1692,19 +1677,8 @@ mod tests {
                 .iter()
                 .step_by(if forced > 2 { 7 } else { 1 })
             {
-                let uv = t.map(|i| mesh.uv[i as usize]);
-                let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
                 for l in &samples {
-                    let x = [0, 1].map(|d| {
-                        (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0)
-                    });
-                    let sx = s.eval(x[0], x[1]).unwrap();
-                    let dev = (0..3)
-                        .map(|d| {
-                            (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2)
-                        })
-                        .sum::<f64>()
-                        .sqrt();
+                    let dev = sampled_deviation(&s, &mesh, t, l);
                     assert!(
                         dev <= mesh.deviation * (1.0 + 1e-9),
                         "forced {forced}: {dev}"
@@ -1767,16 +1741,8 @@ mod tests {
         // every triangle, densely sampled, within the bound
         let grid = barycentric(8);
         for t in &mesh.triangles {
-            let uv = t.map(|i| mesh.uv[i as usize]);
-            let p = t.map(|i| mesh.vertices.point(i as usize).to_vec());
             for l in &grid {
-                let x = [0, 1]
-                    .map(|d| (l[0] * uv[0][d] + l[1] * uv[1][d] + l[2] * uv[2][d]).clamp(0.0, 1.0));
-                let sx = s.eval(x[0], x[1]).unwrap();
-                let dev = (0..3)
-                    .map(|d| (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
+                let dev = sampled_deviation(&s, &mesh, t, l);
                 assert!(
                     dev <= mesh.deviation * (1.0 + 1e-9),
                     "{dev} > {} in {t:?}",

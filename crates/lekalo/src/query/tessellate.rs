@@ -226,16 +226,7 @@ pub(crate) mod tests {
         assert!(mesh.triangles.iter().any(|t| lines(t) == 1), "no fan");
         assert!(mesh.triangles.iter().any(|t| lines(t) == 2), "no grid part");
         // no two triangles overlap: their parameter areas add up to the domain's
-        let area: f64 = mesh
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
-                0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
-            })
-            .inspect(|&a| assert!(a > 0.0, "a triangle is not counter-clockwise"))
-            .sum();
-        assert!((area - 1.0).abs() < 1e-12, "parameter area {area}");
+        assert_covers_the_domain(&mesh, "");
         // the same mesh on one thread
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
@@ -274,6 +265,21 @@ pub(crate) mod tests {
 
     /// Every edge is shared by two triangles except those on the boundary of the parameter
     /// rectangle, and no two vertices have the same parameters: no cracks, no T-junctions.
+    /// Every triangle counter-clockwise in the parameters and their areas adding up to the unit
+    /// domain's: no two overlap and none is missing. `what` names the case in a failure.
+    pub(crate) fn assert_covers_the_domain(mesh: &Mesh, what: &str) {
+        let area: f64 = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| mesh.uv[i as usize]);
+                0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+            })
+            .inspect(|&a| assert!(a > 0.0, "{what}: a triangle is not counter-clockwise"))
+            .sum();
+        assert!((area - 1.0).abs() < 1e-12, "{what}: parameter area {area}");
+    }
+
     pub(crate) fn assert_watertight(mesh: &Mesh) {
         use std::collections::HashMap;
         let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
