@@ -166,6 +166,29 @@ pub(crate) fn basis_funs_into(
     }
 }
 
+/// [`basis_funs_into`] for a degree known at compile time (`W = p + 1`): the same operations
+/// in the same order (P&T Algorithm A2.2), so the same bits, with the scratch on the stack and
+/// the loops unrolled. Batch evaluation of low-degree curves spends most of its time here.
+#[inline]
+pub(crate) fn basis_funs_fixed<const W: usize>(knots: &[f64], span: usize, t: f64) -> [f64; W] {
+    let mut left = [0.0; W];
+    let mut right = [0.0; W];
+    let mut out = [0.0; W];
+    out[0] = 1.0;
+    for j in 1..W {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = out[r] / (right[r + 1] + left[j - r]);
+            out[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        out[j] = saved;
+    }
+    out
+}
+
 /// The non-zero basis functions of order `W` (degree `p = W − 1`) on one knot span, for many
 /// parameters in it: the Cox–de Boor scheme of [`basis_funs_into`] (P&T A2.2) with the
 /// reciprocals of its denominators `t_{span+r+1} − t_{span+r+1−j}` (`1 ≤ j ≤ p`, `0 ≤ r < j`),

@@ -11,7 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
+use crate::basis::{basis_ders_into, basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
 use crate::knots::KnotVector;
 use crate::points::Points;
@@ -217,12 +217,55 @@ impl BSplineCurve {
                 got: out.len(),
             });
         }
+        match (self.degree, dim) {
+            (1, 2) => self.eval_batch_fixed::<2, 2>(ts, out),
+            (1, 3) => self.eval_batch_fixed::<2, 3>(ts, out),
+            (2, 2) => self.eval_batch_fixed::<3, 2>(ts, out),
+            (2, 3) => self.eval_batch_fixed::<3, 3>(ts, out),
+            (3, 1) => self.eval_batch_fixed::<4, 1>(ts, out),
+            (3, 2) => self.eval_batch_fixed::<4, 2>(ts, out),
+            (3, 3) => self.eval_batch_fixed::<4, 3>(ts, out),
+            (3, 4) => self.eval_batch_fixed::<4, 4>(ts, out),
+            _ => self.eval_batch_generic(ts, out),
+        }
+    }
+
+    /// [`BSplineCurve::eval_batch`] for any degree and dimension.
+    fn eval_batch_generic(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
         let mut cursor = self.knots.span_cursor(self.degree);
         let mut scratch = BasisScratch::new(self.degree);
         let mut n = vec![0.0; self.degree + 1];
-        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(dim)) {
+        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(self.dim())) {
             let span = cursor.find(t)?;
             self.eval_span(span, t, &mut scratch, &mut n, o);
+        }
+        Ok(())
+    }
+
+    /// [`BSplineCurve::eval_batch`] for order `W` (degree `W − 1`) and dimension `D` known at
+    /// compile time: the generic path's operations in its order ([`basis_funs_fixed`], then
+    /// the sum from zero over the control points), so the same bits, without the loops'
+    /// bounds. Many small curves sampled a few times each (a Parquet batch) spend most of their
+    /// evaluation here rather than in a per-curve set-up such as [`crate::CurveEvaluator`]'s.
+    fn eval_batch_fixed<const W: usize, const D: usize>(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+    ) -> Result<()> {
+        let mut cursor = self.knots.span_cursor(W - 1);
+        let knots = self.knots.as_slice();
+        let ctrl = self.control.as_slice();
+        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(D)) {
+            let span = cursor.find(t)?;
+            let n = basis_funs_fixed::<W>(knots, span, t);
+            let net = &ctrl[(span + 1 - W) * D..(span + 1) * D];
+            let mut p = [0.0; D];
+            for (nj, c) in n.iter().zip(net.chunks_exact(D)) {
+                for (x, y) in p.iter_mut().zip(c) {
+                    *x += nj * y;
+                }
+            }
+            o.copy_from_slice(&p);
         }
         Ok(())
     }
@@ -491,6 +534,48 @@ mod tests {
             c.eval(0.5),
             Err(Error::ParameterOutOfDomain { .. })
         ));
+    }
+
+    proptest::proptest! {
+        /// The monomorphised batch kernels give the generic kernel's bits for every degree and
+        /// dimension they serve (and the generic cases stay generic), on random knots with
+        /// repeated interior knots, at random parameters, the knots themselves and both ends.
+        #[test]
+        fn fixed_batch_kernels_give_the_generic_bits(
+            degree in 1usize..=4,
+            dim in 1usize..=4,
+            grid in proptest::collection::vec(0u8..=8, 0..8),
+            coords in proptest::collection::vec(-100.0f64..100.0, 64),
+            random_ts in proptest::collection::vec(-1.0f64..2.0, 50),
+        ) {
+            // interior knots on a grid of eighths, so that some repeat
+            let mut interior: Vec<f64> = grid.iter().map(|&g| f64::from(g) / 8.0 * 3.0 - 1.0).collect();
+            interior.retain(|&k| k > -1.0 && k < 2.0);
+            interior.sort_by(f64::total_cmp);
+            let mut knots = vec![-1.0; degree + 1];
+            knots.extend(&interior);
+            knots.extend(std::iter::repeat_n(2.0, degree + 1));
+            let n = knots.len() - degree - 1;
+            let ctrl = coords[..n * dim].to_vec();
+            let Ok(c) = BSplineCurve::new(degree, knots.clone(), Points::from_flat(dim, ctrl).unwrap()) else {
+                return Ok(()); // an interior knot of multiplicity above the degree + 1
+            };
+            let mut ts = random_ts;
+            ts.extend(&knots);
+            ts.sort_by(f64::total_cmp);
+            let (mut fast, mut generic) = (vec![0.0; ts.len() * dim], vec![0.0; ts.len() * dim]);
+            c.eval_batch(&ts, &mut fast).unwrap();
+            c.eval_batch_generic(&ts, &mut generic).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&fast), bits(&generic));
+            let before = ts.iter().copied().fold(f64::INFINITY, f64::min) - 1.0;
+            let outside = c.eval_batch(&[0.5, before], &mut fast[..2 * dim]);
+            proptest::prop_assert!(
+                matches!(outside, Err(Error::ParameterOutOfDomain { .. })),
+                "a parameter before the domain: {:?}",
+                outside
+            );
+        }
     }
 
     #[test]
