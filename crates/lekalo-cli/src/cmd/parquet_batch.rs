@@ -54,7 +54,7 @@ fn finish(failed: &[String], total: usize, input: &Path) -> Result<()> {
 
 /// The encoded size of the row groups written: a few input batches each, few enough row groups
 /// for readers, and the bound of the writer's memory.
-const ROW_GROUP_BYTES: usize = 32 << 20;
+const ROW_GROUP_BYTES: usize = 4 << 20;
 
 /// The Parquet writer of a batch, into the temporary file of an atomic write.
 type Writer<'w> = ParquetBatchWriter<&'w mut (dyn std::io::Write + Send)>;
