@@ -5,7 +5,7 @@
 
 use lekalo_io::{
     envelope_type, parse_number_list, read_bezier_surface, read_bspline_surface, read_json_lines,
-    read_piecewise_polynomial, read_points, Object,
+    read_piecewise_polynomial, read_points, read_points_bytes, Header, Object,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -24,7 +24,20 @@ fn check_object(o: &Object) {
 }
 
 fuzz_target!(|data: &[u8]| {
-    // the parsers take `&str`; invalid UTF-8 is refused before them by the CLI
+    // the points reader of files takes the bytes, and checks them as UTF-8 as it parses: it
+    // accepts exactly the UTF-8 texts the reader of `&str` accepts, with the same points
+    let from_bytes = read_points_bytes(data, "fuzz", Header::Auto);
+    match std::str::from_utf8(data) {
+        Ok(t) => assert_eq!(
+            from_bytes.as_ref().map_err(ToString::to_string),
+            lekalo_io::read_points_with(t, "fuzz", Header::Auto)
+                .as_ref()
+                .map_err(ToString::to_string),
+            "read_points_bytes and read_points_with differ"
+        ),
+        Err(_) => assert!(from_bytes.is_err(), "read_points_bytes accepted bytes that are not UTF-8"),
+    }
+    // the other parsers take `&str`; invalid UTF-8 is refused before them by the CLI
     let text = String::from_utf8_lossy(data);
     if let Ok(p) = read_points(&text, "fuzz") {
         assert_finite("read_points", p.as_slice());

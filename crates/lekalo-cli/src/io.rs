@@ -184,19 +184,25 @@ pub(crate) fn read_points(path: &Path) -> Result<(lekalo::Points, String)> {
     {
         return Ok(lekalo_io::read_npy_file(path)?);
     }
-    let (text, name) = lekalo_io::read_input(path)?;
-    Ok((points_from_text(&text, &name)?, name))
+    // bytes, checked as UTF-8 by the parallel parse part by part (not whole before it)
+    let (bytes, name) = lekalo_io::read_input_bytes(path)?;
+    let points = lekalo_io::read_points_bytes(&bytes, &name, header_rule())?;
+    Ok((points, name))
+}
+
+/// The header rule of `--header`.
+fn header_rule() -> lekalo_io::Header {
+    match settings().header {
+        HeaderArg::Auto => lekalo_io::Header::Auto,
+        HeaderArg::Yes => lekalo_io::Header::Yes,
+        HeaderArg::No => lekalo_io::Header::No,
+    }
 }
 
 /// The points of the text of a points file named `name` (CSV, whitespace text, JSON), with
 /// `--header`.
 pub(crate) fn points_from_text(text: &str, name: &str) -> Result<lekalo::Points> {
-    let header = match settings().header {
-        HeaderArg::Auto => lekalo_io::Header::Auto,
-        HeaderArg::Yes => lekalo_io::Header::Yes,
-        HeaderArg::No => lekalo_io::Header::No,
-    };
-    Ok(lekalo_io::read_points_with(text, name, header)?)
+    Ok(lekalo_io::read_points_with(text, name, header_rule())?)
 }
 
 /// Exit code for bad input.

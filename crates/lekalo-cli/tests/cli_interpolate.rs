@@ -288,3 +288,58 @@ fn max_condition_refuses_crowded_points_and_passes_the_others() {
         .code(2)
         .stderr(contains("condition limit"));
 }
+
+/// A CSV file large enough to be read by all cores (positioned reads of its parts) gives the
+/// curve that the same text gives through standard input (read by one thread); a byte that is
+/// not UTF-8 far into it is named by its place, as for standard input.
+#[test]
+fn a_large_file_read_in_parallel_is_read_as_standard_input() {
+    let d = tempfile::tempdir().unwrap();
+    let mut text = String::from("x,y,z\n");
+    let mut i = 0u32;
+    while text.len() < (9 << 20) {
+        let t = f64::from(i) * 1e-3;
+        text.push_str(&format!("{},{},{}\n", t.cos(), t.sin(), t / 10.0));
+        i += 1;
+    }
+    let big = d.path().join("big.csv");
+    fs::write(&big, &text).unwrap();
+    let from_file = lekalo()
+        .args(["interpolate", "--to", "json"])
+        .arg(&big)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let from_stdin = lekalo()
+        .args(["interpolate", "--to", "json", "-"])
+        .write_stdin(text.clone())
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert!(
+        from_file == from_stdin,
+        "the same curve from a file and from stdin"
+    );
+    assert_eq!(
+        json(&from_file)["control"].as_array().unwrap().len(),
+        i as usize
+    );
+    let mut bytes = text.into_bytes();
+    let at = bytes.len() - 1000;
+    bytes[at] = 0xff;
+    fs::write(&big, &bytes).unwrap();
+    let message = |cmd: &mut Command| {
+        String::from_utf8_lossy(&cmd.assert().code(2).get_output().stderr).into_owned()
+    };
+    let file = message(lekalo().arg("interpolate").arg(&big));
+    let stdin = message(lekalo().args(["interpolate", "-"]).write_stdin(bytes));
+    let want = format!("not UTF-8 text (byte {at})");
+    assert!(
+        file.contains(&want) && stdin.contains(&want),
+        "{file}\n{stdin}"
+    );
+}

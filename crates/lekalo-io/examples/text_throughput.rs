@@ -29,8 +29,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let path = std::path::Path::new(arg(2)?);
             let repeats: usize = arg(3)?.parse()?;
             let (secs, n) = best_of(repeats, || {
-                let (text, name) = lekalo_io::read_input(path)?;
-                lekalo_io::read_points(&text, &name).map(|p| p.len())
+                // the command line's path: bytes, checked as UTF-8 part by part while parsed
+                let (bytes, name) = lekalo_io::read_input_bytes(path)?;
+                lekalo_io::read_points_bytes(&bytes, &name, lekalo_io::Header::Auto)
+                    .map(|p| p.len())
             });
             let bytes = std::fs::metadata(path)?.len() as f64;
             println!(

@@ -62,9 +62,9 @@ mod wireframe;
 
 pub use analysis::{curvature, uniform};
 pub use atomic::{
-    check_not_input, read_input, remove_temporary_files, strip_bom, strip_bom_str, write_atomic,
-    write_atomic_seek, write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions,
-    WriteSeek,
+    check_not_input, read_input, read_input_bytes, remove_temporary_files, strip_bom,
+    strip_bom_str, write_atomic, write_atomic_seek, write_atomic_send, write_atomic_stream,
+    write_atomic_with, WriteOptions, WriteSeek,
 };
 pub use end_names::EndName;
 pub use error::{IoError, IoResult, Location};
@@ -87,7 +87,7 @@ pub use parquet::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
 };
 pub use png::svg_to_png;
-pub use points_in::{parse_number_list, read_points, read_points_with, Header};
+pub use points_in::{parse_number_list, read_points, read_points_bytes, read_points_with, Header};
 pub use samples::{sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};

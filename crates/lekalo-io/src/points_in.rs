@@ -65,7 +65,37 @@ pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResu
     if matches!(first, Some('[' | '{')) {
         return read_points_json(text, source);
     }
-    crate::text_points::read_delimited(text, source, header_rule)
+    crate::text_points::read_delimited(text.as_bytes(), source, header_rule)
+}
+
+/// [`read_points_with`] from the bytes of a file (as [`crate::read_input_bytes`] gives them):
+/// CSV and whitespace text are checked as UTF-8 part by part while they are parsed on all cores,
+/// instead of whole before; the result, and the error of text that is not UTF-8, are those of
+/// [`crate::read_input`] and [`read_points_with`].
+///
+/// ```
+/// use lekalo_io::{read_points_bytes, Header};
+/// let p = read_points_bytes(b"\xef\xbb\xbfx,y\n0,1\n2,3\n", "p.csv", Header::Auto).unwrap();
+/// assert_eq!(p.point(1), &[2.0, 3.0]);
+/// let e = read_points_bytes(b"0,1\n2,\xff\n", "p.csv", Header::Auto).unwrap_err();
+/// assert!(e.to_string().contains("not UTF-8 text (byte 6)"), "{e}");
+/// ```
+///
+/// # Errors
+/// As [`read_points_with`], and [`IoError::Read`] for text that is not UTF-8.
+pub fn read_points_bytes(bytes: &[u8], source: &str, header_rule: Header) -> IoResult<Points> {
+    let whole = || {
+        let text = std::str::from_utf8(bytes)
+            .map_err(|e| crate::atomic::not_utf8(source, e.valid_up_to()))?;
+        read_points_with(text, source, header_rule)
+    };
+    // the white space of `str::trim_start` in ASCII (with the vertical tab)
+    match bytes.iter().find(|b| !matches!(b, b' ' | b'\t'..=b'\r')) {
+        // JSON, a byte-order mark, or text starting with a character outside ASCII: checked
+        // whole, as read_input does
+        Some(b'[' | b'{' | 128..) => whole(),
+        _ => crate::text_points::read_delimited(bytes, source, header_rule),
+    }
 }
 
 fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
@@ -324,9 +354,16 @@ mod one_pass {
             let fast = read_points_with(&t, "p.csv", rule).map_err(|e| e.to_string());
             let slow = reference(&t, "p.csv", rule).map_err(|e| e.to_string());
             prop_assert_eq!(&fast, &slow, "{:?}", t);
+            // from the bytes of a file, after white space that decides between CSV and JSON
+            for lead in ["", " \x0b\t", "\x0b[", "\u{feff}", "\u{a0}"] {
+                let t = format!("{lead}{t}");
+                let bytes = read_points_bytes(t.as_bytes(), "p.csv", rule).map_err(|e| e.to_string());
+                let text = read_points_with(&t, "p.csv", rule).map_err(|e| e.to_string());
+                prop_assert_eq!(&bytes, &text, "from bytes: {:?}", t);
+            }
             // the same text cut in parts read on several threads
             let text = crate::atomic::strip_bom_str(&t);
-            let parts = crate::text_points::read_delimited_from(text, "p.csv", rule, 0)
+            let parts = crate::text_points::read_delimited_from(text.as_bytes(), "p.csv", rule, 0)
                 .map_err(|e| e.to_string());
             prop_assert_eq!(&parts, &slow, "in parts: {:?}", t);
         }

@@ -3,7 +3,9 @@
 //! The text is scanned once, and every coordinate goes straight into one flat buffer sized from
 //! the lines of the text ([`row_bound`]); nothing is allocated per line or per point (the only
 //! allocations are the header names and the flat buffer), and a long text is read in parts on
-//! all cores, each into its own stretch of that buffer. A row in the common layout — numbers
+//! all cores, each into its own stretch of that buffer. The text comes as bytes: each part is
+//! checked as UTF-8 by the thread that parses it, and the lines that bound the parts' rows are
+//! counted in parallel too, so that little of the work happens before the parts start. A row in the common layout — numbers
 //! separated by single commas, as many as the first row's, then the end of the line — is read
 //! by [`plain_row`] without looking for its separators first: `fast_float2::parse_partial` reads
 //! each number and says where it ends, and the byte there must be the comma or the line's end.
@@ -149,6 +151,13 @@ impl Reader<'_, '_> {
             match parsed {
                 Ok(v) if v.is_finite() && !too_many => {
                     if !self.data.push(v) {
+                        // the room holds every row of the first row's length (`row_bound`):
+                        // only a shorter row, such as one field of a few bytes, runs out of it
+                        self.data.truncate(start);
+                        let n = k + 1 + fields.count();
+                        if self.dim.is_some_and(|(d, _)| d != n) {
+                            return Err(self.wrong_count(line_no, n));
+                        }
                         return Err(IoError::TooLarge {
                             what: format!(
                                 "{}:{line_no}: more coordinates than the text was measured to hold",
@@ -219,6 +228,12 @@ impl Reader<'_, '_> {
     }
 }
 
+/// `bytes`, which start at byte `offset` of the text, as UTF-8 text.
+fn utf8<'t>(bytes: &'t [u8], offset: usize, source: &str) -> IoResult<&'t str> {
+    std::str::from_utf8(bytes)
+        .map_err(|e| crate::atomic::not_utf8(source, offset + e.valid_up_to()))
+}
+
 /// Below this many bytes after the first point, the rest is read on one thread.
 const PARALLEL_MIN: usize = 1 << 22;
 
@@ -249,15 +264,20 @@ fn cut(rest: &[u8], parts: usize) -> Vec<usize> {
     cuts
 }
 
-/// A part of the text after the first point: its text, its first line's number and its room.
+/// A part of the text after the first point: its bytes (checked as UTF-8 by the thread that
+/// reads them), where they start in the text, its first line's number and its room.
 struct Part<'t, 'b> {
-    text: &'t str,
+    text: &'t [u8],
+    offset: usize,
     first_line: usize,
     room: &'b mut [f64],
 }
 
-/// Reads CSV or whitespace-separated points (the text has no byte-order mark).
-pub(crate) fn read_delimited(text: &str, source: &str, header_rule: Header) -> IoResult<Points> {
+/// Reads CSV or whitespace-separated points from bytes that should be UTF-8 text (without a
+/// byte-order mark): each part is checked as it is read, so a file is never checked whole
+/// before the parallel parse starts; text that is not UTF-8 is the error of
+/// [`crate::read_input`], at the same byte.
+pub(crate) fn read_delimited(text: &[u8], source: &str, header_rule: Header) -> IoResult<Points> {
     read_delimited_from(text, source, header_rule, PARALLEL_MIN)
 }
 
@@ -270,16 +290,15 @@ pub(crate) fn read_delimited(text: &str, source: &str, header_rule: Header) -> I
 /// can hold ([`row_bound`]), and each part is read into its own stretch of it. Parts that held
 /// blank or comment lines leave gaps, closed afterwards by moving the following parts down.
 pub(crate) fn read_delimited_from(
-    text: &str,
+    bytes: &[u8],
     source: &str,
     header_rule: Header,
     parallel_min: usize,
 ) -> IoResult<Points> {
-    let bytes = text.as_bytes();
     let mut header: Option<Vec<String>> = None;
     let mut first: Option<(&str, usize, usize)> = None; // line, its number, where the rest starts
     for (n, (a, b)) in line_ranges(bytes).enumerate() {
-        let line = trim(&text[a..b]);
+        let line = trim(utf8(&bytes[a..b], a, source)?);
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
@@ -304,19 +323,22 @@ pub(crate) fn read_delimited_from(
         ));
     };
     let fields = Fields::of(line).count();
-    let rest = &text[rest_at..];
+    let rest = &bytes[rest_at..];
     let threads = rayon::current_num_threads();
     let parts = if rest.len() < parallel_min || threads < 2 {
         1
     } else {
         threads * 2
     };
-    let cuts = cut(rest.as_bytes(), parts);
-    // each part's room in rows and its first line's number
-    let mut rooms = Vec::with_capacity(cuts.len());
+    let cuts = cut(rest, parts);
+    // each part's room in rows and its first line's number (the lines counted in parallel)
+    let bounds: Vec<(usize, usize)> = cuts
+        .par_windows(2)
+        .map(|w| row_bound(&rest[w[0]..w[1]], fields))
+        .collect();
+    let mut rooms = Vec::with_capacity(bounds.len());
     let mut next_line = line_no + 1;
-    for w in cuts.windows(2) {
-        let (rows, newlines) = row_bound(&rest.as_bytes()[w[0]..w[1]], fields);
+    for (rows, newlines) in bounds {
         rooms.push((rows, next_line));
         next_line += newlines;
     }
@@ -327,7 +349,7 @@ pub(crate) fn read_delimited_from(
         .ok_or_else(|| IoError::TooLarge {
             what: format!(
                 "{source}: cannot reserve memory for the points of {} bytes of text",
-                text.len()
+                bytes.len()
             ),
         })?;
     // zeroed memory straight from the system (no probe allocated and freed before it, which
@@ -355,6 +377,7 @@ pub(crate) fn read_delimited_from(
         room = after;
         work.push(Part {
             text: &rest[w[0]..w[1]],
+            offset: rest_at + w[0],
             first_line: *first_line,
             room: mine,
         });
@@ -369,7 +392,7 @@ pub(crate) fn read_delimited_from(
                 len: 0,
             },
         };
-        r.lines(p.text, p.first_line)?;
+        r.lines(utf8(p.text, p.offset, source)?, p.first_line)?;
         Ok(r.data.len)
     };
     let filled: Vec<IoResult<usize>> = if work.len() > 1 {
@@ -506,6 +529,32 @@ mod tests {
             }
         }
 
+        /// A byte that is not UTF-8 is reported at its place in the text, as the whole-text
+        /// check of `read_input` reports it, wherever it falls: in the header, the first point
+        /// (both checked line by line) or any of the parts read in parallel (each checked by its
+        /// thread), including in place of a line's end.
+        #[test]
+        fn a_byte_that_is_not_utf8_is_reported_at_its_place(
+            rows in 2usize..300,
+            header in any::<bool>(),
+            place in any::<proptest::sample::Index>(),
+            bad in 0x80u8..=0xff,
+        ) {
+            let mut text = if header { "x, y\n".to_string() } else { String::new() };
+            for i in 0..rows {
+                text.push_str(&format!("{}.5,{}\n", i, 2 * i));
+            }
+            let mut bytes = text.into_bytes();
+            let at = place.index(bytes.len());
+            bytes[at] = bad;
+            let want = std::str::from_utf8(&bytes).unwrap_err().valid_up_to();
+            for parallel_min in [0, usize::MAX] {
+                let e = read_delimited_from(&bytes, "p.csv", Header::Auto, parallel_min).unwrap_err();
+                let message = format!("p.csv: not UTF-8 text (byte {want})");
+                prop_assert!(e.to_string().contains(&message), "{} (want {})", e, message);
+            }
+        }
+
         /// A row of the common layout is taken whole, with the general reader's numbers; a row
         /// with anything else is left whole to the general reader.
         #[test]
@@ -567,12 +616,12 @@ mod tests {
         assert_eq!(row_bound(b"1\n2\n3\n", 1), (3, 3));
         // blank and comment lines in every part leave gaps that are closed in order
         let text = "x,y\n0,0\n\n1,1\n# c\n2,2\n\n\n3,3\n4,4\n";
-        let p = read_delimited_from(text, "p.csv", Header::Auto, 0).unwrap();
+        let p = read_delimited_from(text.as_bytes(), "p.csv", Header::Auto, 0).unwrap();
         assert_eq!(
             p.as_slice(),
             &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0]
         );
-        let e = read_delimited_from("0,0\n\n1,1\n2,2,2\n", "p.csv", Header::Auto, 0)
+        let e = read_delimited_from(b"0,0\n\n1,1\n2,2,2\n", "p.csv", Header::Auto, 0)
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("p.csv:4: 3 fields, but line 1 has 2"), "{e}");
