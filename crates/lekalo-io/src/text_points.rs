@@ -5,9 +5,10 @@
 //! allocations are the header names and the flat buffer), and a long text is read in parts on
 //! all cores, each into its own stretch of that buffer. The text comes as bytes: each part is
 //! checked as UTF-8 by the thread that parses it, and the lines that bound the parts' rows are
-//! counted in parallel too, so that little of the work happens before the parts start. A row in the common layout — numbers
-//! separated by single commas, as many as the first row's, then the end of the line — is read
-//! by [`plain_row`] without looking for its separators first: `fast_float2::parse_partial` reads
+//! counted in parallel too, so that little of the work happens before the parts start.
+//!
+//! A row in the common layout — numbers separated by single commas, as many as the first
+//! row's, then the end of the line — is read by [`plain_row`] without looking for its separators first: `fast_float2::parse_partial` reads
 //! each number and says where it ends, and the byte there must be the comma or the line's end.
 //! Any other line (blanks, `;`, a comment, a wrong field) goes to the general reader, which finds
 //! lines with `memchr`, splits fields as string slices and parses them with the standard
