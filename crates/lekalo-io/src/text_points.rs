@@ -8,8 +8,9 @@
 //! counted in parallel too, so that little of the work happens before the parts start.
 //!
 //! A row in the common layout — numbers separated by single commas, as many as the first
-//! row's, then the end of the line — is read by [`plain_row`] without looking for its separators first: `fast_float2::parse_partial` reads
-//! each number and says where it ends, and the byte there must be the comma or the line's end.
+//! row's, then the end of the line — is read by [`plain_row`] without looking for its
+//! separators first: `fast_float2::parse_partial` reads each number and says where it ends,
+//! and the byte there must be the comma or the line's end.
 //! Any other line (blanks, `;`, a comment, a wrong field) goes to the general reader, which finds
 //! lines with `memchr`, splits fields as string slices and parses them with the standard
 //! library's `f64::from_str`; that parser defines which texts are numbers (for the header rule
