@@ -74,8 +74,10 @@ impl RowGroups {
     }
 }
 
-/// The uncompressed size aimed at for one batch of rows.
-pub(super) const BATCH_BYTES: usize = 4 << 20;
+/// The uncompressed size aimed at for one batch of rows: small enough that a batch's decoded
+/// columns stay in the caches until its groups are gathered and worked on (4 MiB measured 13%
+/// slower for `eval` of a curves file, and no faster for points).
+pub(super) const BATCH_BYTES: usize = 1 << 20;
 
 /// The most rows of one batch.
 pub(super) const BATCH_ROWS: usize = 1 << 16;
