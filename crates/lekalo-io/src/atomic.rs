@@ -576,6 +576,26 @@ mod tests {
         assert!(e.to_string().contains("missing.json"), "{e}");
     }
 
+    /// A file that has grown or shrunk between the size taken and the parallel read is still
+    /// read to exactly its bytes (the rest read on, or the whole read again).
+    #[cfg(unix)]
+    #[test]
+    fn a_file_that_changed_size_is_read_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("changing.txt");
+        let bytes: Vec<u8> = (0..3 * READ_PART + 5).map(|i| b"lekalo\n"[i % 7]).collect();
+        std::fs::write(&path, &bytes).unwrap();
+        for taken in [bytes.len() - READ_PART - 3, bytes.len() + READ_PART + 3] {
+            let mut read = Vec::new();
+            read_parallel(&path, taken, &mut read).unwrap();
+            assert!(
+                read == bytes,
+                "size taken {taken}: {} bytes read",
+                read.len()
+            );
+        }
+    }
+
     /// A file above the parallel threshold, and not a whole number of parts long, is read in
     /// parallel to exactly its bytes; text that is not UTF-8 is named with its byte.
     #[test]
