@@ -121,3 +121,10 @@ def test_duckdb_and_pandas_read_the_curves_and_samples(tmp_path):
         scale = np.abs(c.control).max()
         assert np.allclose(got, want, rtol=0, atol=1e-13 * scale), np.abs(got - want).max()
     assert pd.read_parquet(samples).shape == (9 * len(groups), 5)
+
+    # the one pass (interpolate and sample, no curves file) writes the same samples, bit for bit
+    fused = tmp_path / "fused.parquet"
+    subprocess.run(
+        [exe, "interpolate", str(pts), "--samples", "9", "-o", str(fused)], check=True
+    )
+    assert pd.read_parquet(fused).equals(pd.read_parquet(samples))
