@@ -2,7 +2,7 @@
 //! types.
 
 use std::fs::File;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use arrow_array::cast::AsArray;
 use arrow_array::types::{Float32Type, Float64Type, Int32Type, Int64Type};
@@ -23,6 +23,7 @@ pub(super) fn parquet_err(source: &str, e: impl std::fmt::Display) -> IoError {
 
 /// A file's row groups, read one at a time.
 pub(super) struct RowGroups {
+    path: PathBuf,
     file: File,
     meta: ArrowReaderMetadata,
     pub(super) source: String,
@@ -37,7 +38,42 @@ impl RowGroups {
         })?;
         let meta = ArrowReaderMetadata::load(&file, ArrowReaderOptions::new())
             .map_err(|e| parquet_err(&source, e))?;
-        Ok(RowGroups { file, meta, source })
+        Ok(RowGroups {
+            path: path.to_path_buf(),
+            file,
+            meta,
+            source,
+        })
+    }
+
+    /// The Parquet schema (the leaf columns, their levels and physical types).
+    pub(super) fn parquet_schema(&self) -> &parquet::schema::types::SchemaDescriptor {
+        self.meta.parquet_schema()
+    }
+
+    /// Parquet's own reader of the doubles of leaf column `leaf` in row group `i` (values and
+    /// levels, no Arrow arrays), with its own handle of the file.
+    pub(super) fn double_column(
+        &self,
+        i: usize,
+        leaf: usize,
+    ) -> IoResult<parquet::column::reader::ColumnReaderImpl<parquet::data_type::DoubleType>> {
+        use parquet::column::reader::ColumnReader;
+        use parquet::file::reader::FileReader;
+        let file = File::open(&self.path).map_err(|error| IoError::Read {
+            path: self.path.clone(),
+            error,
+        })?;
+        let reader = parquet::file::serialized_reader::SerializedFileReader::new(file)
+            .map_err(|e| parquet_err(&self.source, e))?;
+        let column = reader
+            .get_row_group(i)
+            .and_then(|g| g.get_column_reader(leaf))
+            .map_err(|e| parquet_err(&self.source, e))?;
+        match column {
+            ColumnReader::DoubleColumnReader(r) => Ok(r),
+            _ => Err(parquet_err(&self.source, "the column is not of doubles")),
+        }
     }
 
     pub(super) fn count(&self) -> usize {
@@ -56,21 +92,36 @@ impl RowGroups {
         &self,
         i: usize,
     ) -> IoResult<impl Iterator<Item = IoResult<RecordBatch>> + '_> {
+        self.read_without(i, None)
+    }
+
+    /// [`RowGroups::read`] without the root column `skip` (if any): the batches hold the other
+    /// columns, in order.
+    pub(super) fn read_without(
+        &self,
+        i: usize,
+        skip: Option<usize>,
+    ) -> IoResult<impl Iterator<Item = IoResult<RecordBatch>> + '_> {
         let meta = self.meta.metadata().row_group(i);
         let rows = usize::try_from(meta.num_rows()).unwrap_or(0);
         let bytes = usize::try_from(meta.total_byte_size()).unwrap_or(0);
         let file = self.file.try_clone().map_err(|error| IoError::Read {
-            path: self.source.clone().into(),
+            path: self.path.clone(),
             error,
         })?;
-        Ok(
+        let mut builder =
             ParquetRecordBatchReaderBuilder::new_with_metadata(file, self.meta.clone())
                 .with_row_groups(vec![i])
-                .with_batch_size(batch_rows(rows, bytes))
-                .build()
-                .map_err(|e| parquet_err(&self.source, e))?
-                .map(|b| b.map_err(|e| parquet_err(&self.source, e))),
-        )
+                .with_batch_size(batch_rows(rows, bytes));
+        if let Some(skip) = skip {
+            let roots = (0..self.schema().fields().len()).filter(|&c| c != skip);
+            let mask = parquet::arrow::ProjectionMask::roots(self.meta.parquet_schema(), roots);
+            builder = builder.with_projection(mask);
+        }
+        Ok(builder
+            .build()
+            .map_err(|e| parquet_err(&self.source, e))?
+            .map(|b| b.map_err(|e| parquet_err(&self.source, e))))
     }
 }
 

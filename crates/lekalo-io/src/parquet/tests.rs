@@ -51,6 +51,38 @@ fn read_all(path: &Path, key: Option<&str>) -> IoResult<Vec<(GroupKey, Result<Po
     Ok(out)
 }
 
+/// The curves of a file as the reader gives them, checked against the same file read with
+/// the control points always through Arrow's nested lists (the reader decodes them from their
+/// levels where the layout allows): both give the same curves and the same errors.
+fn read_curves_both(path: &Path, key: Option<&str>) -> Vec<(GroupKey, Result<Object, String>)> {
+    let read = |levels: bool| {
+        let mut got = Vec::new();
+        super::read_curves::read_curves(path, key, levels, |c| {
+            got.extend(
+                c.into_iter()
+                    .map(|(k, r)| (k, r.map_err(|e| e.to_string()))),
+            );
+            Ok(())
+        })
+        .unwrap();
+        got
+    };
+    let from_levels = read(true);
+    assert_eq!(
+        from_levels,
+        read(false),
+        "control points from their levels and from Arrow's lists"
+    );
+    from_levels
+}
+
+/// Whether the reader decodes the control points of the file at `path` from their levels.
+fn control_from_levels(path: &Path) -> bool {
+    let rg = super::columns::RowGroups::open(path).unwrap();
+    let root = rg.schema().index_of("control").unwrap();
+    super::read_curves::control_leaf(&rg, root).is_some()
+}
+
 #[test]
 fn points_round_trip_across_row_groups() {
     let (_d, path) = tmp("pts.parquet");
@@ -354,74 +386,106 @@ fn row_groups_without_knots_or_curves_after_full_ones() {
 
 /// Curves written by another writer (nullable lists built point by point, with or without the
 /// `dim` column): read as the same curves, and a point of another dimension named.
+/// Control points written by other writers: Arrow's default nested lists (nullable at every
+/// level, read through Arrow) and lists declared never null (the writer's layout, decoded from
+/// their levels). Both give the same curves, and the same error for a point with fewer
+/// coordinates than the first, for a row without points and for a point without coordinates.
 #[test]
 fn control_lists_of_other_writers_are_read() {
     use arrow_array::builder::{Float64Builder, ListBuilder};
+    use arrow_schema::{DataType, Field};
     let ctrl =
         Points::from_rows(&[[0.0, 0.5, 1.0], [1.0, 2.0, 0.3], [2.0, 0.0, 1.0 / 3.0]]).unwrap();
     let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
     let want = Object::BSpline(BSplineCurve::new(2, knots.to_vec(), ctrl.clone()).unwrap());
-    let mut control = ListBuilder::new(ListBuilder::new(Float64Builder::new()));
-    for p in ctrl.iter() {
-        control.values().values().append_slice(p);
+    let rows = 4;
+    let control = |never_null: bool| -> ArrayRef {
+        let inner = Field::new_list_field(DataType::Float64, !never_null);
+        let outer = Field::new_list_field(DataType::List(Arc::new(inner.clone())), !never_null);
+        let mut control =
+            ListBuilder::new(ListBuilder::new(Float64Builder::new()).with_field(inner))
+                .with_field(outer);
+        for p in ctrl.iter() {
+            control.values().values().append_slice(p);
+            control.values().append(true);
+        }
+        control.append(true);
+        // a point with two coordinates between points with three
+        control.values().values().append_slice(&[0.0, 1.0, 2.0]);
         control.values().append(true);
-    }
-    control.append(true);
-    // a point with two coordinates among points with three
-    control.values().values().append_slice(&[0.0, 1.0, 2.0]);
-    control.values().append(true);
-    control.values().values().append_slice(&[0.0, 1.0]);
-    control.values().append(true);
-    control.append(true);
+        control.values().values().append_slice(&[0.0, 1.0]);
+        control.values().append(true);
+        control.values().values().append_slice(&[3.0, 4.0, 5.0]);
+        control.values().append(true);
+        control.append(true);
+        // a row without points
+        control.append(true);
+        // a point without coordinates after one with three
+        control.values().values().append_slice(&[0.0, 1.0, 2.0]);
+        control.values().append(true);
+        control.values().append(true);
+        control.append(true);
+        Arc::new(control.finish())
+    };
     let mut kn = ListBuilder::new(Float64Builder::new());
-    for _ in 0..2 {
+    let mut weights = ListBuilder::new(Float64Builder::new());
+    for _ in 0..rows {
         kn.values().append_slice(&knots);
         kn.append(true);
+        weights.append(true);
     }
-    let mut weights = ListBuilder::new(Float64Builder::new());
-    weights.append(true);
-    weights.append(true);
-    let columns = |with_dim: bool| {
-        let mut c: Vec<(&str, ArrayRef)> = vec![
-            ("group", Arc::new(arrow_array::Int64Array::from(vec![7, 8]))),
+    let (kn, weights): (ArrayRef, ArrayRef) = (Arc::new(kn.finish()), Arc::new(weights.finish()));
+    for (with_dim, never_null) in [(true, false), (false, false), (true, true)] {
+        let mut cols: Vec<(&str, ArrayRef, bool)> = vec![
+            (
+                "group",
+                Arc::new(arrow_array::Int64Array::from(vec![7, 8, 9, 10])),
+                false,
+            ),
             (
                 "type",
-                Arc::new(arrow_array::StringArray::from(vec!["bspline_curve"; 2])),
+                Arc::new(arrow_array::StringArray::from(vec!["bspline_curve"; rows])),
+                true,
             ),
             (
                 "degree",
-                Arc::new(arrow_array::Int32Array::from(vec![2, 2])),
+                Arc::new(arrow_array::Int32Array::from(vec![2; rows])),
+                true,
             ),
         ];
         if with_dim {
-            c.push(("dim", Arc::new(arrow_array::Int32Array::from(vec![3, 3]))));
+            cols.push((
+                "dim",
+                Arc::new(arrow_array::Int32Array::from(vec![3; rows])),
+                true,
+            ));
         }
-        c
-    };
-    let (control, kn, weights): (ArrayRef, ArrayRef, ArrayRef) = (
-        Arc::new(control.finish()),
-        Arc::new(kn.finish()),
-        Arc::new(weights.finish()),
-    );
-    for with_dim in [true, false] {
-        let mut cols = columns(with_dim);
         cols.extend([
-            ("knots", kn.clone()),
-            ("control", control.clone()),
-            ("weights", weights.clone()),
+            ("knots", kn.clone(), true),
+            ("control", control(never_null), !never_null),
+            ("weights", weights.clone(), true),
         ]);
         let (_d, path) = tmp("nested.parquet");
-        write_batches(&path, &[batch(cols)]);
-        let mut got = Vec::new();
-        read_curve_groups(&path, None, |c| {
-            got.extend(c);
-            Ok(())
-        })
-        .unwrap();
+        write_batches(
+            &path,
+            &[RecordBatch::try_from_iter_with_nullable(cols).unwrap()],
+        );
+        assert_eq!(
+            control_from_levels(&path),
+            never_null,
+            "the way the control points are read"
+        );
+        let got = read_curves_both(&path, None);
         assert_eq!(got[0].1.as_ref().unwrap(), &want, "bit for bit");
-        let e = got[1].1.as_ref().unwrap_err().to_string();
+        let e = got[1].1.as_ref().unwrap_err();
         assert!(
             e.ends_with("group 8: field `control`: point 1 has 2 coordinates, point 0 has 3"),
+            "{e}"
+        );
+        assert!(got[2].1.is_err() && got[3].1.is_err(), "{got:?}");
+        let e = got[3].1.as_ref().unwrap_err();
+        assert!(
+            e.contains("point 1 has 0 coordinates, point 0 has 3"),
             "{e}"
         );
     }
@@ -578,18 +642,14 @@ mod round_trip {
                 w.write_curves("group", &rows[part[0]..part[1]]).unwrap();
             }
             w.close(|w| w.write_curves("group", &[])).unwrap();
-            let mut got = Vec::new();
-            read_curve_groups(&path, None, |c| {
-                got.extend(c);
-                Ok(())
-            })
-            .unwrap();
+            prop_assert!(control_from_levels(&path), "the writer's layout is read from its levels");
+            let got = read_curves_both(&path, None);
             prop_assert_eq!(got.len(), rows.len());
             for ((k, want), (gk, g)) in rows.iter().zip(&got) {
                 prop_assert_eq!(k, gk);
                 match (want, g) {
                     (Ok(w), Ok(g)) => prop_assert_eq!(w, g),
-                    (Err(w), Err(g)) => prop_assert!(g.to_string().ends_with(w.as_str()), "{}", g),
+                    (Err(w), Err(g)) => prop_assert!(g.ends_with(w.as_str()), "{}", g),
                     _ => prop_assert!(false, "{:?} read as {:?}", want, g),
                 }
             }
