@@ -386,6 +386,23 @@ fn row_groups_without_knots_or_curves_after_full_ones() {
 
 /// Curves written by another writer (nullable lists built point by point, with or without the
 /// `dim` column): read as the same curves, and a point of another dimension named.
+/// A footer whose list length overflows when the Parquet crate reserves room for it (found by
+/// the `parquet_batches` fuzz target: parquet 57 panicked with "capacity overflow", and 60
+/// checks the length): a named error from both readers, not a panic.
+#[test]
+fn a_footer_with_an_absurd_list_length_is_an_error() {
+    let bytes =
+        include_bytes!("../../../../fuzz/seeds/parquet_batches/footer-list-size-overflow.parquet");
+    let (_d, path) = tmp("footer.parquet");
+    std::fs::write(&path, bytes).unwrap();
+    let e = read_all(&path, None).unwrap_err().to_string();
+    assert!(e.contains("not a readable Parquet file"), "{e}");
+    let e = read_curve_groups(&path, None, |_| Ok(()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not a readable Parquet file"), "{e}");
+}
+
 /// Control points written by other writers: Arrow's default nested lists (nullable at every
 /// level, read through Arrow) and lists declared never null (the writer's layout, decoded from
 /// their levels). Both give the same curves, and the same error for a point with fewer

@@ -644,7 +644,8 @@ impl<W: Write + Send> PointSamples<W> {
         add_encoded_arrow_schema_to_metadata(&schema, &mut props);
         // the size of a row as written (an integer key takes a few bits)
         let row = 8 * (dim + 1) + if int { 0 } else { 8 };
-        let limit = row_group_bytes.map_or(0, |b| (b / row).clamp(1, props.max_row_group_size()));
+        let most = props.max_row_group_row_count().unwrap_or(usize::MAX);
+        let limit = row_group_bytes.map_or(0, |b| (b / row).clamp(1, most));
         let file =
             SerializedFileWriter::new(out, parquet_schema.root_schema_ptr(), Arc::new(props))
                 .map_err(other)?;
