@@ -199,10 +199,7 @@ pub(crate) fn interpolate_samples(
                 |groups: Vec<lekalo_io::PointGroup>| {
                     each_group(groups, input, |p| -> Result<Sampled> {
                         let o = Object::BSpline(interp.interpolate(p.as_view())?);
-                        let ts = o.uniform_parameters(n);
-                        let mut pts = vec![0.0; ts.len() * o.dim()];
-                        o.eval_batch(&ts, &mut pts)?;
-                        Ok((ts, pts, o.dim()))
+                        Ok(sampled(&o, o.uniform_parameters(n))?)
                     })
                 },
                 |rows| {
@@ -333,6 +330,13 @@ pub(crate) fn eval(
 /// The parameters, the points (flat) and the dimension of one curve's samples.
 type Sampled = (Vec<f64>, Vec<f64>, usize);
 
+/// `o` at the parameters `ts`, by the library's batch evaluation into one flat buffer.
+fn sampled(o: &Object, ts: Vec<f64>) -> lekalo::Result<Sampled> {
+    let mut pts = vec![0.0; ts.len() * o.dim()];
+    o.eval_batch(&ts, &mut pts)?;
+    Ok((ts, pts, o.dim()))
+}
+
 /// The samples of a batch of curves, or why a curve has none.
 enum Samples {
     /// Points only.
@@ -353,10 +357,7 @@ fn sample_points(
         .map(|(k, obj)| {
             let r = obj.map_err(|e| e.to_string()).and_then(|o| {
                 let ts = params(&o).map_err(|e| e.to_string())?;
-                let mut out = vec![0.0; ts.len() * o.dim()];
-                o.eval_batch(&ts, &mut out)
-                    .map_err(|e| format!("{}: group {k}: {e}", input.display()))?;
-                Ok((ts, out, o.dim()))
+                sampled(&o, ts).map_err(|e| format!("{}: group {k}: {e}", input.display()))
             });
             (k, r)
         })

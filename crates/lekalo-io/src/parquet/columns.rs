@@ -52,25 +52,28 @@ impl RowGroups {
     }
 
     /// Parquet's own reader of the doubles of leaf column `leaf` in row group `i` (values and
-    /// levels, no Arrow arrays), with its own handle of the file.
+    /// levels, no Arrow arrays), from the metadata already read, with its own handle of the file.
     pub(super) fn double_column(
         &self,
         i: usize,
         leaf: usize,
     ) -> IoResult<parquet::column::reader::ColumnReaderImpl<parquet::data_type::DoubleType>> {
-        use parquet::column::reader::ColumnReader;
-        use parquet::file::reader::FileReader;
+        use parquet::column::reader::{get_column_reader, ColumnReader};
         let file = File::open(&self.path).map_err(|error| IoError::Read {
             path: self.path.clone(),
             error,
         })?;
-        let reader = parquet::file::serialized_reader::SerializedFileReader::new(file)
-            .map_err(|e| parquet_err(&self.source, e))?;
-        let column = reader
-            .get_row_group(i)
-            .and_then(|g| g.get_column_reader(leaf))
-            .map_err(|e| parquet_err(&self.source, e))?;
-        match column {
+        let group = self.meta.metadata().row_group(i);
+        let rows = usize::try_from(group.num_rows()).unwrap_or(0);
+        let pages = parquet::file::serialized_reader::SerializedPageReader::new(
+            std::sync::Arc::new(file),
+            group.column(leaf),
+            rows,
+            None,
+        )
+        .map_err(|e| parquet_err(&self.source, e))?;
+        let descr = self.parquet_schema().column(leaf);
+        match get_column_reader(descr, Box::new(pages)) {
             ColumnReader::DoubleColumnReader(r) => Ok(r),
             _ => Err(parquet_err(&self.source, "the column is not of doubles")),
         }
