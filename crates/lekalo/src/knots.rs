@@ -169,6 +169,20 @@ impl KnotVector {
         Ok(KnotVector::from_raw(knots))
     }
 
+    /// The clamped knots `[0]·(p+1) ++ [1]·(p+1)` of a single Bezier segment of degree `p`
+    /// (document 002: the Bernstein polynomials of degree `p` are the B-splines on these knots).
+    ///
+    /// ```
+    /// use lekalo::KnotVector;
+    /// assert_eq!(KnotVector::clamped_bezier(2).as_slice(), &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+    /// ```
+    #[must_use]
+    pub fn clamped_bezier(degree: usize) -> Self {
+        let mut knots = vec![0.0; degree + 1];
+        knots.extend(std::iter::repeat_n(1.0, degree + 1));
+        KnotVector::from_raw(knots)
+    }
+
     /// Knots by averaging the parameters, document 000 eq. (3) (P&T eq. 9.8): for parameters
     /// `t̄_0 … t̄_n` and degree `p`, `p + 1` copies of `t̄_0`, then
     /// `t_{j+p} = (1/p) Σ_{i=j}^{j+p−1} t̄_i` for `j = 1 … n − p`, then `p + 1` copies of `t̄_n`.
@@ -540,6 +554,30 @@ pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
         breakpoints[0],
         breakpoints[breakpoints.len() - 1],
     )
+}
+
+/// `n` values evenly spaced from `a` to `b`, both ends exact (`n = 1` gives `[a]`, `n = 0`
+/// nothing): `a + (b − a)·k/(n − 1)` for `k < n − 1`, and `b` itself last, so that sampling a
+/// curve's domain never steps outside it by rounding.
+///
+/// ```
+/// assert_eq!(lekalo::uniform_parameters(1.0, 2.0, 3), vec![1.0, 1.5, 2.0]);
+/// ```
+#[must_use]
+pub fn uniform_parameters(a: f64, b: f64, n: usize) -> Vec<f64> {
+    match n {
+        0 => Vec::new(),
+        1 => vec![a],
+        _ => (0..n)
+            .map(|k| {
+                if k == n - 1 {
+                    b
+                } else {
+                    a + (b - a) * (k as f64 / (n - 1) as f64)
+                }
+            })
+            .collect(),
+    }
 }
 
 /// Checks parameters for the knot constructors: at least two, finite, non-decreasing, with

@@ -58,23 +58,23 @@ mod points;
 pub use error::{
     Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
 };
-pub use knots::{check_parameters, KnotVector, SpanCursor};
+pub use knots::{check_parameters, uniform_parameters, KnotVector, SpanCursor};
 pub use points::{Points, PointsRef};
 
 // -- curves: Bezier, B-spline, NURBS, knot operations, fast evaluation --
 pub mod curve;
 
 pub use curve::{
-    curvature, torsion, BSplineCurve, BezierCurve, BezierSegment, CurveEvaluator, EvalKernel,
-    NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
+    curvature, torsion, BSplineCurve, BezierCurve, BezierSegment, Curve, CurveEvaluator,
+    EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --
 pub mod surface;
 
 pub use surface::{
-    surface_curvature, BSplineSurface, BezierPatch, BezierSurface, NurbsSurface,
-    RationalBezierPatch, SurfaceCurvature,
+    surface_curvature, BSplineSurface, BezierPatch, BezierSurface, Direction, NurbsSurface,
+    RationalBezierPatch, Surface, SurfaceCurvature,
 };
 
 // -- interpolation: curves and surfaces through points, natural and Hermite splines --

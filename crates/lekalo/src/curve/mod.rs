@@ -1,5 +1,7 @@
 //! Curves: Bezier, B-spline and NURBS curves, their knot operations and fast evaluation.
 //!
+//! - `any.rs`: [`Curve`], a curve of any of the three kinds with their shared capabilities
+//!   delegated once (what every front end holds).
 //! - `bezier.rs`: [`BezierCurve`] (de Casteljau, Bernstein form) and [`BezierSegment`].
 //! - `bspline.rs`: [`BSplineCurve`]: evaluation, derivatives, the derivative curve, reversal,
 //!   reparametrisation.
@@ -14,6 +16,7 @@
 //!   `fast_eval/`: `locate.rs` (piece location), `kernels.rs` (fixed-size kernels), `nurbs.rs`
 //!   ([`NurbsEvaluator`]), `tests.rs`.
 
+mod any;
 pub(crate) mod bezier;
 pub(crate) mod bspline;
 mod conics;
@@ -24,6 +27,7 @@ pub(crate) mod knot_removal;
 pub(crate) mod nurbs;
 mod nurbs_ops;
 
+pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
 pub use curvature::{curvature, torsion};

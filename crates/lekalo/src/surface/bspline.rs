@@ -22,6 +22,7 @@ use crate::error::{
 };
 use crate::knots::KnotVector;
 use crate::points::Points;
+use crate::surface::Direction;
 
 /// A unit normal is refused where `|S_u × S_v| ≤ NORMAL_DEGENERACY_TOL · |S_u| · |S_v|`, i.e.
 /// where the sine of the angle between the partial derivatives is below `1e-12` (or one of them
@@ -166,13 +167,7 @@ fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) 
     knots.validate_for(degree, n)
 }
 
-/// A parametric direction, for error messages.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Direction {
-    U,
-    V,
-}
-
+// the names of a direction in the constructor's error messages
 impl Direction {
     fn name(self) -> &'static str {
         match self {

@@ -1,5 +1,7 @@
 //! Tensor-product surfaces: Bezier, B-spline and NURBS, and their knot operations.
 //!
+//! - `any.rs`: [`Surface`], a surface of any of the three kinds with their shared
+//!   capabilities delegated once, and [`Direction`] (`u` or `v`).
 //! - `bspline.rs`: [`BSplineSurface`] and the conventions shared by all surfaces (net layout,
 //!   derivative tables).
 //! - `bezier.rs`: [`BezierSurface`] on `[0, 1]²`.
@@ -8,12 +10,14 @@
 //!   [`RationalBezierPatch`]), transposition and reversal.
 //! - `curvature.rs`: Gaussian, mean and principal curvatures ([`surface_curvature`]).
 
+mod any;
 pub(crate) mod bezier;
 pub(crate) mod bspline;
 mod curvature;
 mod knot_ops;
 pub(crate) mod nurbs;
 
+pub use any::{Direction, Surface};
 pub use bezier::BezierSurface;
 pub use bspline::BSplineSurface;
 pub use curvature::{surface_curvature, SurfaceCurvature};
