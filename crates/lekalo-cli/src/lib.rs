@@ -22,6 +22,7 @@ mod demo;
 mod io;
 mod report;
 mod terms;
+mod words;
 
 /// Construct, convert and analyse spline curves and surfaces.
 ///

@@ -5,10 +5,11 @@
 //! nothing to the user; [`cli_terms`] replaces each by the command or option that does the same.
 
 /// `(library wording, CLI wording)`, longest first where one contains another.
-const TERMS: [(&str, &str); 9] = [
-    ("use KnotPlacement::Auto", "use --knots auto"),
+const TERMS: [(&str, &str); 10] = [
+    ("invalid knots: ", "--knots: "),
+    ("use the placement auto", "use --knots auto"),
     (
-        "use quasi_interpolate to approximate it instead",
+        "approximate it by quasi-interpolation instead",
         "give a lower --continuity, or leave --continuity out to infer it from the pp-form; \
          `lekalo pp quasi` approximates a function instead",
     ),
@@ -45,8 +46,8 @@ mod tests {
     #[test]
     fn no_library_item_survives() {
         let messages = [
-            "5 knots do not go with natural end conditions; use KnotPlacement::Auto",
-            "invalid piecewise polynomial: not in the space; use quasi_interpolate to approximate it instead",
+            "invalid knots: 5 knots do not go with natural end conditions; use the placement auto",
+            "invalid piecewise polynomial: not in the space; approximate it by quasi-interpolation instead",
             "control net (net_size.0 × net_size.1) has 6 points",
             "knots_u (net_size.0 + degree_u + 1): expected 7, got 6",
             "control net rows (net_size.0) and columns (net_size.1)",
@@ -55,8 +56,8 @@ mod tests {
         for m in messages {
             let t = cli_terms(m);
             for item in [
-                "KnotPlacement",
-                "quasi_interpolate",
+                "placement auto",
+                "quasi-interpolation instead",
                 "net_size",
                 "degree_u",
                 "degree_v",

@@ -3,6 +3,7 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
+use lekalo_io::CurveJson;
 use std::fs;
 
 use assert_cmd::Command;

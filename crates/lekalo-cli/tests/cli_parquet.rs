@@ -5,6 +5,7 @@
 
 mod common;
 
+use lekalo_io::CurveJson;
 use std::fs::{self, File};
 use std::path::Path;
 

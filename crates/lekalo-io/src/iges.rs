@@ -127,7 +127,12 @@ impl IgesWriter {
             ]
             .map(|x| x.to_string()),
         );
-        t.extend(ku.iter().chain(&kv).map(|&x| step_real(x)));
+        t.extend(
+            ku.as_slice()
+                .iter()
+                .chain(kv.as_slice())
+                .map(|&x| step_real(x)),
+        );
         // u varies fastest
         for j in 0..nv {
             for i in 0..nu {

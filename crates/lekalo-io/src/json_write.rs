@@ -369,7 +369,7 @@ mod tests {
                 for block in [1, 3, 7, 16] {
                     assert_eq!(text(obj, pretty, block), whole, "block {block}");
                 }
-                let back = crate::Object::from_json_str(&whole, "t").unwrap();
+                let back = <crate::Object as crate::CurveJson>::from_json_str(&whole, "t").unwrap();
                 assert_eq!(&back, obj, "round trip");
             }
         }

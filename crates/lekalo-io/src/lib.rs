@@ -76,7 +76,7 @@ pub use npy::{npy_bytes, read_npy_file, read_npy_points};
 pub use npz::{curve_to_npz, read_npz_curve, write_npz_curve};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
-pub use object::{read_json_lines, Object, FORMAT_VERSION};
+pub use object::{read_json_lines, CurveJson, Object, FORMAT_VERSION};
 pub use object_ext::{
     bezier_surface_to_json, bspline_surface_to_json, envelope_type, piecewise_polynomial_to_json,
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
@@ -89,7 +89,7 @@ pub use parquet::{
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points, read_points_bytes, read_points_with, Header};
 pub use samples::{sample_table, SampleSpec, SampleTable};
-pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface};
+pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{read_step, StepRead, StepSkipped};
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};

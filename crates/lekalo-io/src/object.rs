@@ -15,7 +15,7 @@
 //! a `type` name, a repr struct and two match arms; readers of older versions reject unknown
 //! types by name.
 
-use lekalo::{BSplineCurve, BezierCurve, NurbsCurve, Points};
+use lekalo::{BSplineCurve, BezierCurve, Curve, NurbsCurve, Points};
 use serde::de::IgnoredAny;
 use serde::Deserialize;
 use serde_json::{Map, Value};
@@ -26,17 +26,8 @@ use crate::flat::{self, FlatPoints};
 /// The current format version, the value of the `"lekalo"` field.
 pub const FORMAT_VERSION: u64 = 1;
 
-/// Any object lekalo reads and writes.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub enum Object {
-    /// `"type": "bezier_curve"`.
-    Bezier(BezierCurve),
-    /// `"type": "bspline_curve"`.
-    BSpline(BSplineCurve),
-    /// `"type": "nurbs_curve"`.
-    Nurbs(NurbsCurve),
-}
+/// A curve of any kind as the JSON envelope holds it: the library's [`lekalo::Curve`].
+pub type Object = lekalo::Curve;
 
 // The readers take the envelope's `lekalo` and `type` too (checked before, by `Head`), so
 // that one typed pass reads the object straight from the text: no `serde_json::Value` tree,
@@ -126,30 +117,60 @@ impl Head {
 /// The `type` names this version reads, for error messages.
 const KNOWN_TYPES: &str = "bezier_curve, bspline_curve, nurbs_curve";
 
-impl Object {
-    /// The `type` name in the envelope.
-    #[must_use]
-    pub fn type_name(&self) -> &'static str {
-        match self {
-            Object::Bezier(_) => "bezier_curve",
-            Object::BSpline(_) => "bspline_curve",
-            Object::Nurbs(_) => "nurbs_curve",
-        }
-    }
-
-    /// Name for people: "Bezier curve", "B-spline curve", "NURBS curve".
-    #[must_use]
-    pub fn display_name(&self) -> &'static str {
-        match self {
-            Object::Bezier(_) => "Bezier curve",
-            Object::BSpline(_) => "B-spline curve",
-            Object::Nurbs(_) => "NURBS curve",
-        }
-    }
-
+/// The versioned JSON envelope of a curve (`docs/formats.md`): written and read with the file,
+/// line and field of every error. Implemented for [`lekalo::Curve`].
+pub trait CurveJson: Sized {
     /// The envelope as a JSON value (control points as rows).
     #[must_use]
-    pub fn to_json_value(&self) -> Value {
+    fn to_json_value(&self) -> Value;
+
+    /// JSON text of the envelope, fields in a fixed order (`lekalo`, `type`, then the object's
+    /// fields as in `docs/formats.md`), one control point per line, final newline.
+    #[must_use]
+    fn to_json_pretty(&self) -> String;
+
+    /// One-line JSON (for JSON Lines), same field order.
+    #[must_use]
+    fn to_json_line(&self) -> String;
+
+    /// Writes the JSON text of [`CurveJson::to_json_pretty`] (or, not `pretty`, of
+    /// [`CurveJson::to_json_line`]) to `w` piece by piece, with no `Value` tree and no copy of
+    /// the whole text: a curve of millions of control points costs a few megabytes of buffers,
+    /// its long lists formatted in blocks on all cores.
+    ///
+    /// # Errors
+    /// The writer's.
+    fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()>;
+
+    /// Reads one curve from JSON text. `source` names the input in error messages.
+    ///
+    /// ```
+    /// use lekalo_io::{CurveJson, Object};
+    /// let text = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
+    ///                "knots": [0, 0, 1, 2, 3, 3], "control": [[1, 1], [2, 3], [4, 3]]}"#;
+    /// let obj = Object::from_json_str(text, "example.json").unwrap();
+    /// assert_eq!(obj.type_name(), "bspline_curve");
+    /// let bad = text.replace("[0, 0, 1, 2, 3, 3]", "[0, 0, 2, 1, 3, 3]");
+    /// let e = Object::from_json_str(&bad, "example.json").unwrap_err().to_string();
+    /// assert!(e.starts_with("example.json:2: field `knots`"), "{e}");
+    /// ```
+    ///
+    /// # Errors
+    /// [`IoError::Syntax`] for malformed JSON, a missing or unsupported version, an unknown
+    /// type, missing or unknown fields; [`IoError::Invalid`] when the library's constructor
+    /// rejects the data (the field is named).
+    fn from_json_str(text: &str, source: &str) -> IoResult<Self>;
+
+    /// Reads one curve from a parsed JSON value; `text` (the value's source text, possibly
+    /// empty) is used to find the line of a field named in an error.
+    ///
+    /// # Errors
+    /// As [`CurveJson::from_json_str`].
+    fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Self>;
+}
+
+impl CurveJson for Curve {
+    fn to_json_value(&self) -> Value {
         let mut m = Map::new();
         m.insert("lekalo".into(), Value::from(FORMAT_VERSION));
         m.insert("type".into(), Value::from(self.type_name()));
@@ -173,163 +194,26 @@ impl Object {
         Value::Object(m)
     }
 
-    /// JSON text of the envelope, fields in a fixed order (`lekalo`, `type`, then the object's
-    /// fields as in `docs/formats.md`), one control point per line, final newline.
-    #[must_use]
-    pub fn to_json_pretty(&self) -> String {
-        self.format_json(true)
+    fn to_json_pretty(&self) -> String {
+        format_json(self, true)
     }
 
-    /// One-line JSON (for JSON Lines), same field order.
-    #[must_use]
-    pub fn to_json_line(&self) -> String {
-        self.format_json(false)
+    fn to_json_line(&self) -> String {
+        format_json(self, false)
     }
 
-    fn format_json(&self, pretty: bool) -> String {
-        let mut bytes = Vec::new();
-        // writing into a Vec cannot fail
-        let _ = self.write_json(&mut bytes, pretty);
-        String::from_utf8(bytes).unwrap_or_default()
-    }
-
-    /// Writes the JSON text of [`Object::to_json_pretty`] (or, not `pretty`, of
-    /// [`Object::to_json_line`]) to `w` piece by piece, with no `Value` tree and no copy of the
-    /// whole text: a curve of millions of control points costs a few megabytes of buffers, its
-    /// long lists formatted in blocks on all cores.
-    ///
-    /// # Errors
-    /// The writer's.
-    pub fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()> {
+    fn write_json(&self, w: &mut dyn std::io::Write, pretty: bool) -> std::io::Result<()> {
         crate::json_write::write_object(self, w, pretty, crate::json_write::BLOCK)
     }
 
-    /// Reads one object from JSON text. `source` names the input in error messages.
-    ///
-    /// ```
-    /// use lekalo_io::Object;
-    /// let text = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
-    ///                "knots": [0, 0, 1, 2, 3, 3], "control": [[1, 1], [2, 3], [4, 3]]}"#;
-    /// let obj = Object::from_json_str(text, "example.json").unwrap();
-    /// assert_eq!(obj.type_name(), "bspline_curve");
-    /// let bad = text.replace("[0, 0, 1, 2, 3, 3]", "[0, 0, 2, 1, 3, 3]");
-    /// let e = Object::from_json_str(&bad, "example.json").unwrap_err().to_string();
-    /// assert!(e.starts_with("example.json:2: field `knots`"), "{e}");
-    /// ```
-    ///
-    /// # Errors
-    /// [`IoError::Syntax`] for malformed JSON, a missing or unsupported version, an unknown
-    /// type, missing or unknown fields; [`IoError::Invalid`] when the library's constructor
-    /// rejects the data (the field is named).
-    pub fn from_json_str(text: &str, source: &str) -> IoResult<Object> {
+    fn from_json_str(text: &str, source: &str) -> IoResult<Curve> {
         let text = crate::atomic::strip_bom_str(text);
         let at = Location::new(source);
         let head = Head::read(text, &at)?;
-        Object::from_head(text, &at, &head)
+        curve_from_head(text, &at, &head)
     }
 
-    /// Reads the object of `text` whose envelope `head` has been read; `at` may carry the line
-    /// where `text` starts (JSON Lines).
-    pub(crate) fn from_head(text: &str, at: &Location, head: &Head) -> IoResult<Object> {
-        let field_at = |field: &str| {
-            let mut loc = at.clone().at_field(field);
-            if let Some(line) = line_of_field(text, field) {
-                loc.line = Some(at.line.unwrap_or(1) + line - 1);
-            }
-            loc
-        };
-        match &head.lekalo {
-            Some(v) if v.as_u64() == Some(FORMAT_VERSION) => {}
-            Some(v) => {
-                return Err(IoError::syntax(
-                    field_at("lekalo"),
-                    format!(
-                        "format version {v} is not supported; this lekalo reads version {FORMAT_VERSION}"
-                    ),
-                ))
-            }
-            None => {
-                return Err(IoError::syntax(
-                    at.clone().at_field("lekalo"),
-                    format!("missing the format version; add \"lekalo\": {FORMAT_VERSION}"),
-                ))
-            }
-        }
-        let Some(kind) = head.kind() else {
-            return Err(IoError::syntax(
-                at.clone().at_field("type"),
-                format!("missing or non-string object type; use one of {KNOWN_TYPES}"),
-            ));
-        };
-        let decode_err = |e: serde_json::Error| {
-            let msg = flat::message(&e);
-            let loc = match backticked(&msg) {
-                // the second occurrence, where the parser stopped
-                Some(f) if msg.starts_with("duplicate field") => {
-                    let mut loc = at.clone().at_field(f);
-                    loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
-                    loc
-                }
-                Some(f) if !f.contains('[') && !f.contains('.') => field_at(&f),
-                Some(f) => {
-                    let top = f.split(['[', '.']).next().unwrap_or_default().to_string();
-                    let mut loc = at.clone().at_field(top);
-                    loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
-                    loc
-                }
-                None => at.clone(),
-            };
-            // the location names the field; say it once
-            let msg = match msg.strip_prefix("field `") {
-                Some(rest) => rest
-                    .split_once("`: ")
-                    .map_or(msg.clone(), |(_, m)| m.to_string()),
-                None => msg,
-            };
-            IoError::syntax(loc, format!("{kind}: {msg}"))
-        };
-        let invalid = |e: lekalo::Error| IoError::Invalid {
-            at: field_of(&e).map_or_else(|| at.clone(), field_at),
-            error: e,
-        };
-        let control = |p: FlatPoints| {
-            p.into_points().map_err(|e| IoError::Invalid {
-                at: field_at("control"),
-                error: e,
-            })
-        };
-        match kind {
-            "bezier_curve" => {
-                let r: BezierJson = serde_json::from_str(text).map_err(decode_err)?;
-                BezierCurve::new(control(r.control)?)
-                    .map(Object::Bezier)
-                    .map_err(invalid)
-            }
-            "bspline_curve" => {
-                let r: BSplineJson = serde_json::from_str(text).map_err(decode_err)?;
-                BSplineCurve::new(r.degree, r.knots, control(r.control)?)
-                    .map(Object::BSpline)
-                    .map_err(invalid)
-            }
-            "nurbs_curve" => {
-                let r: NurbsJson = serde_json::from_str(text).map_err(decode_err)?;
-                NurbsCurve::new(r.degree, r.knots, control(r.control)?, r.weights)
-                    .map(Object::Nurbs)
-                    .map_err(invalid)
-            }
-            other => Err(IoError::syntax(
-                at.clone().at_field("type"),
-                format!("unknown object type \"{other}\"; this lekalo reads {KNOWN_TYPES}"),
-            )),
-        }
-    }
-
-    /// Reads one object from a parsed JSON value; `text` (the value's source text, possibly
-    /// empty) is used to find the line of a field named in an error.
-    ///
-    /// # Errors
-    /// As [`Object::from_json_str`].
-    pub fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Object> {
+    fn from_json_value(value: Value, at: &Location, text: &str) -> IoResult<Curve> {
         if !value.is_object() {
             return Err(IoError::syntax(
                 at.clone(),
@@ -338,7 +222,7 @@ impl Object {
         }
         let own = value.to_string();
         let head = Head::read(&own, &at.clone())?;
-        Object::from_head(&own, at, &head).map_err(|e| match e {
+        curve_from_head(&own, at, &head).map_err(|e| match e {
             // point messages at the lines of the original text
             IoError::Syntax {
                 at: mut loc,
@@ -357,6 +241,109 @@ impl Object {
             }
             other => other,
         })
+    }
+}
+
+fn format_json(c: &Curve, pretty: bool) -> String {
+    let mut bytes = Vec::new();
+    // writing into a Vec cannot fail
+    let _ = c.write_json(&mut bytes, pretty);
+    String::from_utf8(bytes).unwrap_or_default()
+}
+
+/// Reads the object of `text` whose envelope `head` has been read; `at` may carry the line
+/// where `text` starts (JSON Lines).
+pub(crate) fn curve_from_head(text: &str, at: &Location, head: &Head) -> IoResult<Curve> {
+    let field_at = |field: &str| {
+        let mut loc = at.clone().at_field(field);
+        if let Some(line) = line_of_field(text, field) {
+            loc.line = Some(at.line.unwrap_or(1) + line - 1);
+        }
+        loc
+    };
+    match &head.lekalo {
+        Some(v) if v.as_u64() == Some(FORMAT_VERSION) => {}
+        Some(v) => {
+            return Err(IoError::syntax(
+                field_at("lekalo"),
+                format!(
+                "format version {v} is not supported; this lekalo reads version {FORMAT_VERSION}"
+            ),
+            ))
+        }
+        None => {
+            return Err(IoError::syntax(
+                at.clone().at_field("lekalo"),
+                format!("missing the format version; add \"lekalo\": {FORMAT_VERSION}"),
+            ))
+        }
+    }
+    let Some(kind) = head.kind() else {
+        return Err(IoError::syntax(
+            at.clone().at_field("type"),
+            format!("missing or non-string object type; use one of {KNOWN_TYPES}"),
+        ));
+    };
+    let decode_err = |e: serde_json::Error| {
+        let msg = flat::message(&e);
+        let loc = match backticked(&msg) {
+            // the second occurrence, where the parser stopped
+            Some(f) if msg.starts_with("duplicate field") => {
+                let mut loc = at.clone().at_field(f);
+                loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
+                loc
+            }
+            Some(f) if !f.contains('[') && !f.contains('.') => field_at(&f),
+            Some(f) => {
+                let top = f.split(['[', '.']).next().unwrap_or_default().to_string();
+                let mut loc = at.clone().at_field(top);
+                loc.line = Some(at.line.unwrap_or(1) + e.line().max(1) - 1);
+                loc
+            }
+            None => at.clone(),
+        };
+        // the location names the field; say it once
+        let msg = match msg.strip_prefix("field `") {
+            Some(rest) => rest
+                .split_once("`: ")
+                .map_or(msg.clone(), |(_, m)| m.to_string()),
+            None => msg,
+        };
+        IoError::syntax(loc, format!("{kind}: {msg}"))
+    };
+    let invalid = |e: lekalo::Error| IoError::Invalid {
+        at: field_of(&e).map_or_else(|| at.clone(), field_at),
+        error: e,
+    };
+    let control = |p: FlatPoints| {
+        p.into_points().map_err(|e| IoError::Invalid {
+            at: field_at("control"),
+            error: e,
+        })
+    };
+    match kind {
+        "bezier_curve" => {
+            let r: BezierJson = serde_json::from_str(text).map_err(decode_err)?;
+            BezierCurve::new(control(r.control)?)
+                .map(Object::Bezier)
+                .map_err(invalid)
+        }
+        "bspline_curve" => {
+            let r: BSplineJson = serde_json::from_str(text).map_err(decode_err)?;
+            BSplineCurve::new(r.degree, r.knots, control(r.control)?)
+                .map(Object::BSpline)
+                .map_err(invalid)
+        }
+        "nurbs_curve" => {
+            let r: NurbsJson = serde_json::from_str(text).map_err(decode_err)?;
+            NurbsCurve::new(r.degree, r.knots, control(r.control)?, r.weights)
+                .map(Object::Nurbs)
+                .map_err(invalid)
+        }
+        other => Err(IoError::syntax(
+            at.clone().at_field("type"),
+            format!("unknown object type \"{other}\"; this lekalo reads {KNOWN_TYPES}"),
+        )),
     }
 }
 
@@ -412,7 +399,7 @@ pub fn read_json_lines(text: &str, source: &str) -> Vec<(usize, IoResult<Object>
         })
         .map(|(i, l)| {
             let at = Location::new(source).at_line(i + 1);
-            let obj = Head::read(l, &at).and_then(|head| Object::from_head(l, &at, &head));
+            let obj = Head::read(l, &at).and_then(|head| curve_from_head(l, &at, &head));
             (i + 1, obj)
         })
         .collect()

@@ -81,7 +81,7 @@ pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Resul
         spec.derivatives
     };
     let row = |t: f64| -> lekalo::Result<Vec<Option<f64>>> {
-        let d = obj.derivatives(t, order)?;
+        let d = obj.eval_derivatives(t, order)?;
         let mut row = Vec::with_capacity(1 + (spec.derivatives + 1) * dim + 2);
         row.push(Some(t));
         for k in 0..=spec.derivatives {

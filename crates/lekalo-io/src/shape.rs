@@ -8,11 +8,11 @@
 //!  "control": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]], "weights": [1, 2, 2, 1]}
 //! ```
 
-use lekalo::{BSplineSurface, BezierSurface, NurbsSurface, PiecewisePolynomial, Points};
+use lekalo::{NurbsSurface, PiecewisePolynomial, Points};
 use serde::Deserialize;
 
 use crate::error::{IoError, IoResult, Location};
-use crate::object::{Object, FORMAT_VERSION};
+use crate::object::{CurveJson, Object, FORMAT_VERSION};
 use crate::object_ext::{
     bezier_surface_to_json, bspline_surface_to_json, envelope_type, piecewise_polynomial_to_json,
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
@@ -20,17 +20,8 @@ use crate::object_ext::{
 use crate::step::SurfaceNet;
 use crate::wireframe::Grid;
 
-/// A tensor-product surface of any kind.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub enum Surface {
-    /// `"type": "bezier_surface"`.
-    Bezier(BezierSurface),
-    /// `"type": "bspline_surface"`.
-    BSpline(BSplineSurface),
-    /// `"type": "nurbs_surface"`.
-    Nurbs(NurbsSurface),
-}
+/// A tensor-product surface of any kind: the library's [`lekalo::Surface`].
+pub use lekalo::Surface;
 
 /// Any object of any kind.
 #[derive(Debug, Clone, PartialEq)]
@@ -227,202 +218,42 @@ impl Shape {
     }
 }
 
-impl Surface {
-    /// The `type` name in the envelope.
-    #[must_use]
-    pub fn type_name(&self) -> &'static str {
-        match self {
-            Surface::Bezier(_) => "bezier_surface",
-            Surface::BSpline(_) => "bspline_surface",
-            Surface::Nurbs(_) => "nurbs_surface",
-        }
-    }
-
-    /// Name for people.
-    #[must_use]
-    pub fn display_name(&self) -> &'static str {
-        match self {
-            Surface::Bezier(_) => "Bezier surface",
-            Surface::BSpline(_) => "B-spline surface",
-            Surface::Nurbs(_) => "NURBS surface",
-        }
-    }
-
+/// The versioned JSON envelope of a surface (`docs/formats.md`). Implemented for
+/// [`lekalo::Surface`].
+pub trait SurfaceJson {
     /// JSON text of the envelope.
     #[must_use]
-    pub fn to_json_pretty(&self) -> String {
+    fn to_json_pretty(&self) -> String;
+}
+
+impl SurfaceJson for Surface {
+    fn to_json_pretty(&self) -> String {
         match self {
             Surface::Bezier(s) => bezier_surface_to_json(s),
             Surface::BSpline(s) => bspline_surface_to_json(s),
             Surface::Nurbs(s) => nurbs_surface_to_json(s),
         }
     }
+}
 
-    /// Degrees `(p_u, p_v)`.
-    #[must_use]
-    pub fn degrees(&self) -> (usize, usize) {
-        match self {
-            Surface::Bezier(s) => (s.degree_u(), s.degree_v()),
-            Surface::BSpline(s) => (s.degree_u(), s.degree_v()),
-            Surface::Nurbs(s) => (s.degree_u(), s.degree_v()),
-        }
-    }
-
-    /// Control net size `(nu, nv)`.
-    #[must_use]
-    pub fn net_size(&self) -> (usize, usize) {
-        match self {
-            Surface::Bezier(s) => s.net_size(),
-            Surface::BSpline(s) => s.net_size(),
-            Surface::Nurbs(s) => s.net_size(),
-        }
-    }
-
-    /// Dimension of the points.
-    #[must_use]
-    pub fn dim(&self) -> usize {
-        match self {
-            Surface::Bezier(s) => s.dim(),
-            Surface::BSpline(s) => s.dim(),
-            Surface::Nurbs(s) => s.dim(),
-        }
-    }
-
-    /// Parameter domain `((u0, u1), (v0, v1))`.
-    #[must_use]
-    pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
-        match self {
-            Surface::Bezier(s) => s.domain(),
-            Surface::BSpline(s) => s.domain(),
-            Surface::Nurbs(s) => s.domain(),
-        }
-    }
-
-    /// Knot vectors `(U, V)` (a Bezier surface's are the clamped `[0…0, 1…1]`).
-    #[must_use]
-    pub fn knots(&self) -> (Vec<f64>, Vec<f64>) {
-        match self {
-            Surface::Bezier(s) => {
-                let b = s.to_bspline();
-                (
-                    b.knots_u().as_slice().to_vec(),
-                    b.knots_v().as_slice().to_vec(),
-                )
-            }
-            Surface::BSpline(s) => (
-                s.knots_u().as_slice().to_vec(),
-                s.knots_v().as_slice().to_vec(),
-            ),
-            Surface::Nurbs(s) => (
-                s.knots_u().as_slice().to_vec(),
-                s.knots_v().as_slice().to_vec(),
-            ),
-        }
-    }
-
-    /// Cartesian control points, row by row.
-    #[must_use]
-    pub fn control_points(&self) -> Points {
-        match self {
-            Surface::Bezier(s) => s.control_points().clone(),
-            Surface::BSpline(s) => s.control_points().clone(),
-            Surface::Nurbs(s) => s.control_points(),
-        }
-    }
-
-    /// Weights of a NURBS surface, row by row.
-    #[must_use]
-    pub fn weights(&self) -> Option<Vec<f64>> {
-        match self {
-            Surface::Nurbs(s) => Some(s.weights()),
-            _ => None,
-        }
-    }
-
-    /// The point at `(u, v)`.
-    ///
-    /// # Errors
-    /// As the surface's `eval` (a parameter outside the domain).
-    pub fn eval(&self, u: f64, v: f64) -> lekalo::Result<Vec<f64>> {
-        match self {
-            Surface::Bezier(s) => s.eval(u, v),
-            Surface::BSpline(s) => s.eval(u, v),
-            Surface::Nurbs(s) => s.eval(u, v),
-        }
-    }
-
-    /// Unit normal at `(u, v)` (3-D surfaces).
-    ///
-    /// # Errors
-    /// As the surface's `normal` (not 3-D, degenerate point).
-    pub fn normal(&self, u: f64, v: f64) -> lekalo::Result<[f64; 3]> {
-        match self {
-            Surface::Bezier(s) => s.normal(u, v),
-            Surface::BSpline(s) => s.normal(u, v),
-            Surface::Nurbs(s) => s.normal(u, v),
-        }
-    }
-
-    /// Samples an `nu × nv` grid of points evenly in the domain, point `(i, j)` at
-    /// `(i·nv + j)·dim` (the layout of [`Grid`]); with `normals`, also the unit normals
-    /// (3 values per point).
-    ///
-    /// # Errors
-    /// [`lekalo::Error::TooFew`] for fewer than 2 samples per direction; the surface's errors.
-    pub fn sample_grid(
-        &self,
-        nu: usize,
-        nv: usize,
-        normals: bool,
-    ) -> lekalo::Result<(Vec<f64>, Option<Vec<f64>>)> {
-        if nu < 2 || nv < 2 {
-            return Err(lekalo::Error::TooFew {
-                what: "samples per direction",
-                min: 2,
-                got: nu.min(nv),
-            });
-        }
-        let ((u0, u1), (v0, v1)) = self.domain();
-        let at = |a: f64, b: f64, k: usize, n: usize| {
-            if k + 1 == n {
-                b
-            } else {
-                a + (b - a) * (k as f64) / ((n - 1) as f64)
-            }
-        };
-        let dim = self.dim();
-        let mut pts = Vec::with_capacity(nu * nv * dim);
-        let mut nrm = normals.then(|| Vec::with_capacity(nu * nv * 3));
-        for i in 0..nu {
-            let u = at(u0, u1, i, nu);
-            for j in 0..nv {
-                let v = at(v0, v1, j, nv);
-                pts.extend(self.eval(u, v)?);
-                if let Some(n) = nrm.as_mut() {
-                    n.extend(self.normal(u, v)?);
-                }
-            }
-        }
-        Ok((pts, nrm))
-    }
-
-    /// Writes the surface into a STEP writer (Bezier surfaces as B-splines on clamped knots;
-    /// NURBS in the rational form). Returns the entity id.
+impl crate::StepWriter {
+    /// Writes a surface of any kind (Bezier surfaces as B-splines on clamped knots; NURBS in
+    /// the rational form). Returns the entity id.
     ///
     /// # Errors
     /// As [`crate::StepWriter::add_surface`].
-    pub fn add_to_step(&self, w: &mut crate::StepWriter) -> IoResult<usize> {
-        let (ku, kv) = self.knots();
-        let ctrl = self.control_points();
-        let (nu, nv) = self.net_size();
-        let weights = self.weights();
+    pub fn add_any_surface(&mut self, s: &Surface) -> IoResult<usize> {
+        let (ku, kv) = s.knots();
+        let ctrl = s.control_points();
+        let (nu, nv) = s.net_size();
+        let weights = s.weights();
         let net = Grid::new(nu, nv, ctrl.dim(), ctrl.as_slice()).map_err(|e| IoError::Invalid {
             at: Location::new("surface").at_field("control"),
             error: e,
         })?;
-        w.add_surface(&SurfaceNet {
-            degrees: self.degrees(),
-            knots: (&ku, &kv),
+        self.add_surface(&SurfaceNet {
+            degrees: s.degrees(),
+            knots: (ku.as_slice(), kv.as_slice()),
             net,
             weights: weights.as_deref(),
         })

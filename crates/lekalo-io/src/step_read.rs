@@ -1019,8 +1019,8 @@ END-ISO-10303-21;
         .unwrap();
         let mut wr = StepWriter::new("t");
         wr.add_object(&curve).unwrap();
-        Surface::BSpline(surf.clone()).add_to_step(&mut wr).unwrap();
-        Surface::Nurbs(nurbs.clone()).add_to_step(&mut wr).unwrap();
+        wr.add_any_surface(&Surface::BSpline(surf.clone())).unwrap();
+        wr.add_any_surface(&Surface::Nurbs(nurbs.clone())).unwrap();
         let r = read_step(&wr.finish("2000-01-01T00:00:00"), "t.step").unwrap();
         let got: Vec<Shape> = r.shapes.into_iter().map(|(_, s)| s).collect();
         assert_eq!(

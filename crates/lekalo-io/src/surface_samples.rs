@@ -5,8 +5,6 @@
 //! its `eval_derivatives`, normals from its `normal`, curvatures from
 //! [`lekalo::surface_curvature`] on those derivatives.
 
-use lekalo::Points;
-
 use crate::samples::SampleTable;
 use crate::shape::Surface;
 
@@ -19,44 +17,6 @@ pub struct SurfaceSampleSpec {
     pub normals: bool,
     /// Add the principal curvatures `k1 ≥ k2`, `gaussian` and `mean` (3-D surfaces).
     pub curvature: bool,
-}
-
-impl Surface {
-    /// Partial derivatives `S_{u^k v^l}` for `0 ≤ k, l ≤ order`, point `k·(order + 1) + l`, as
-    /// the surface's `eval_derivatives`.
-    ///
-    /// # Errors
-    /// As the surface's `eval_derivatives`.
-    pub fn eval_derivatives(&self, u: f64, v: f64, order: usize) -> lekalo::Result<Points> {
-        match self {
-            Surface::Bezier(s) => s.eval_derivatives(u, v, order),
-            Surface::BSpline(s) => s.eval_derivatives(u, v, order),
-            Surface::Nurbs(s) => s.eval_derivatives(u, v, order),
-        }
-    }
-
-    /// The `nu × nv` parameter grid of [`Surface::sample_grid`], `u` outer: `(u_i, v_j)` at
-    /// `i·nv + j`, each direction from its domain start to exactly its end.
-    #[must_use]
-    pub fn grid_parameters(&self, nu: usize, nv: usize) -> Vec<[f64; 2]> {
-        let ((u0, u1), (v0, v1)) = self.domain();
-        let at = |a: f64, b: f64, k: usize, n: usize| {
-            if k + 1 == n {
-                b
-            } else if n < 2 {
-                a
-            } else {
-                a + (b - a) * (k as f64) / ((n - 1) as f64)
-            }
-        };
-        let mut out = Vec::with_capacity(nu.saturating_mul(nv));
-        for i in 0..nu {
-            for j in 0..nv {
-                out.push([at(u0, u1, i, nu), at(v0, v1, j, nv)]);
-            }
-        }
-        out
-    }
 }
 
 /// Column names of the coordinates: `x, y, z` up to 3-D, `x1 … xd` above.
@@ -154,7 +114,7 @@ fn push_normal(s: &Surface, u: f64, v: f64, row: &mut Vec<Option<f64>>) -> lekal
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lekalo::{BSplineSurface, BezierSurface, NurbsSurface};
+    use lekalo::{BSplineSurface, BezierSurface, NurbsSurface, Points};
 
     fn bilinear() -> BSplineSurface {
         let net = Points::from_3d(&[

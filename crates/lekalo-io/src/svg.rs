@@ -1257,6 +1257,7 @@ pub fn knots_figure(title: &str, knots: &KnotVector) -> Figure {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::CurveJson;
 
     #[test]
     fn legend_figures_have_four_significant_digits() {

@@ -95,7 +95,7 @@ fn write(shapes: &[Shape]) -> String {
                 w.add_object(o).expect("curve");
             }
             Shape::Surface(f) => {
-                f.add_to_step(&mut w).expect("surface");
+                w.add_any_surface(f).expect("surface");
             }
             _ => unreachable!("STEP gives curves and surfaces"),
         }

@@ -201,7 +201,7 @@ fn write(name: &str, shapes: &[Shape]) -> String {
                 w.add_object(o).expect("curve");
             }
             Shape::Surface(f) => {
-                f.add_to_step(&mut w).expect("surface");
+                w.add_any_surface(f).expect("surface");
             }
             _ => unreachable!("STEP gives curves and surfaces"),
         }

@@ -3,6 +3,7 @@
 
 #![allow(clippy::missing_assert_message)] // test helpers: the values in the failure say enough
 use lekalo::{BSplineCurve, NurbsCurve, Points};
+use lekalo_io::CurveJson;
 use lekalo_io::{CurveNet, Grid, Object, StepWriter, SurfaceNet};
 use ruststep::ast::{EntityInstance, Name, Parameter, Record};
 use std::collections::HashMap;

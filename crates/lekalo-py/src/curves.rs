@@ -5,6 +5,7 @@
 //! with results identical to the sequential ones (the library's `par_eval_batch`). The GIL is
 //! released around every computation.
 
+use lekalo_io::CurveJson;
 use std::sync::OnceLock;
 
 use lekalo::{

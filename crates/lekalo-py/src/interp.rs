@@ -15,6 +15,8 @@ use crate::convert::{
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::PyBSplineSurface;
+use crate::words::word;
+use lekalo::vocabulary;
 
 /// `"uniform"`, `"chord"` (`"chord_length"`), `"centripetal"`, or a number: the exponent `e`
 /// of `|Δq|^e`.
@@ -23,16 +25,12 @@ pub(crate) fn parametrization_arg(obj: &Bound<'_, PyAny>) -> PyResult<Parametriz
         return Ok(Parametrization::Exponent(obj.extract()?));
     }
     let s: String = obj.extract().map_err(|_| {
-        bad("parametrization: expected 'uniform', 'chord', 'centripetal' or an exponent".into())
+        bad(format!(
+            "parametrization: expected one of {} or an exponent",
+            vocabulary::PARAMETRIZATION.one_of()
+        ))
     })?;
-    match s.as_str() {
-        "uniform" => Ok(Parametrization::Uniform),
-        "chord" | "chord_length" => Ok(Parametrization::ChordLength),
-        "centripetal" => Ok(Parametrization::Centripetal),
-        _ => Err(bad(format!(
-            "parametrization: unknown value {s:?}; use 'uniform', 'chord', 'centripetal' or an exponent"
-        ))),
-    }
+    word(&vocabulary::PARAMETRIZATION, "parametrization", &s)
 }
 
 /// `parametrization_arg` of the argument when given, chord length otherwise.
@@ -42,68 +40,30 @@ pub(crate) fn parametrization_or_chord(
     obj.map_or(Ok(Parametrization::ChordLength), parametrization_arg)
 }
 
-/// `"auto"`, `"averaged"`, `"uniform"`, `"at_parameters"`.
+/// A knot placement of the vocabulary (`"auto"`, `"averaged"`, `"uniform"`, `"at-params"`).
 pub(crate) fn knots_arg(s: &str) -> PyResult<KnotPlacement> {
-    match s {
-        "auto" => Ok(KnotPlacement::Auto),
-        "averaged" => Ok(KnotPlacement::Averaged),
-        "uniform" => Ok(KnotPlacement::Uniform),
-        "at_parameters" => Ok(KnotPlacement::AtParameters),
-        _ => Err(bad(format!(
-            "knots: unknown value {s:?}; use 'auto', 'averaged', 'uniform' or 'at_parameters'"
-        ))),
-    }
+    word(&vocabulary::KNOT_PLACEMENT, "knots", s)
 }
 
-/// `"free"`, `"natural"`, `"periodic"`, `"first"` (first derivatives `d_start`, `d_end`),
-/// `"second"` (second derivatives).
+/// An end condition of the vocabulary (`"free"`, `"derivatives"`, `"second"`, `"natural"`,
+/// `"periodic"`) with its derivatives `d_start`, `d_end` where it takes them
+/// ([`lekalo::vocabulary::EndKind::condition`]).
 pub(crate) fn end_arg(
     s: &str,
     d_start: Option<Vec<f64>>,
     d_end: Option<Vec<f64>>,
 ) -> PyResult<EndCondition> {
-    let both = |name: &str| match (d_start.clone(), d_end.clone()) {
-        (Some(a), Some(b)) => Ok((a, b)),
-        _ => Err(bad(format!(
-            "end={name:?} needs both d_start and d_end (vectors of the points' dimension)"
-        ))),
-    };
-    let e = match s {
-        "free" => EndCondition::Free,
-        "natural" => EndCondition::Natural,
-        "periodic" => EndCondition::Periodic,
-        "first" | "first_derivatives" | "clamped" => {
-            let (start, end) = both(s)?;
-            EndCondition::FirstDerivatives { start, end }
-        }
-        "second" | "second_derivatives" => {
-            let (start, end) = both(s)?;
-            EndCondition::SecondDerivatives { start, end }
-        }
-        _ => {
-            return Err(bad(format!(
-                "end: unknown value {s:?}; use 'free', 'natural', 'periodic', 'first' or 'second'"
-            )))
-        }
-    };
-    if matches!(
-        e,
-        EndCondition::Free | EndCondition::Natural | EndCondition::Periodic
-    ) && (d_start.is_some() || d_end.is_some())
-    {
-        return Err(bad(format!(
-            "d_start/d_end are only used with end='first' or end='second', not end={s:?}"
-        )));
-    }
-    Ok(e)
+    word(&vocabulary::END_CONDITION, "end", s)?
+        .condition(d_start, d_end)
+        .map_err(lib_err)
 }
 
 /// Global B-spline interpolation through `points` (`(n, dim)`, or `(n,)` values): document
 /// 000 and docs/theory/interpolation.md.
 ///
 /// - `parametrization`: 'uniform', 'chord' (default), 'centripetal' or an exponent;
-/// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at_parameters'`;
-/// - `end`: 'free' (default), 'natural', 'periodic', 'first' / 'second' with `d_start`,
+/// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at-params'`;
+/// - `end`: 'free' (default), 'natural', 'periodic', 'derivatives' / 'second' with `d_start`,
 ///   `d_end`;
 /// - `params`: explicit parameters (strictly increasing; one more than the points for
 ///   'periodic'), replacing `parametrization`;

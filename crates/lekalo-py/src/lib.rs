@@ -23,6 +23,7 @@ mod interp;
 mod pp;
 mod query;
 mod surfaces;
+mod words;
 
 use pyo3::prelude::*;
 

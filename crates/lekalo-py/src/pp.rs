@@ -9,6 +9,7 @@ use pyo3::types::PyTuple;
 use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
 use crate::curves::{out_shape, reduce, PyBSplineCurve};
 use crate::error::{bad, io_err, lib_err};
+use crate::words::word;
 
 /// A `rule` argument: the name of a τ rule, or explicit τ values (one per B-spline, each in
 /// its support `[x_i, x_{i+k}]`; docs/theory/pp.md#explicit-tau-values).
@@ -24,19 +25,7 @@ impl TauArg {
             return Ok(Self::Rule(TauRule::FirstKnotAfter));
         };
         if let Ok(s) = obj.extract::<String>() {
-            return Ok(Self::Rule(match s.as_str() {
-                "first_knot_after" => TauRule::FirstKnotAfter,
-                "left_end" => TauRule::LeftEndOfSupport,
-                "midpoint" => TauRule::Midpoint,
-                "greville" => TauRule::Greville,
-                "first_interval_midpoint" => TauRule::FirstIntervalMidpoint,
-                _ => {
-                    return Err(bad(format!(
-                        "rule: unknown value {s:?}; use 'first_knot_after', 'left_end', \
-                         'midpoint', 'greville', 'first_interval_midpoint' or an array of τ values"
-                    )))
-                }
-            }));
+            return word(&lekalo::vocabulary::TAU_RULE, "rule", &s).map(Self::Rule);
         }
         Ok(Self::Values(vec1(obj, "rule")?))
     }
@@ -162,8 +151,8 @@ impl PyPiecewisePolynomial {
     }
 
     /// The B-spline form in `space` by the de Boor–Fix functionals at the points `τ` of
-    /// `rule`: `'first_knot_after'` (default), `'left_end'`, `'midpoint'`, `'greville'`,
-    /// `'first_interval_midpoint'` (docs/theory/pp.md#the-two-tau-rules), or an array of τ
+    /// `rule`: `'first-knot-after'` (default), `'left-end-of-support'`, `'midpoint'`, `'greville'`,
+    /// `'first-interval-midpoint'` (docs/theory/pp.md#the-two-tau-rules), or an array of τ
     /// values, one per B-spline, each in its support.
     #[pyo3(signature = (space, rule = None))]
     fn to_bspline(

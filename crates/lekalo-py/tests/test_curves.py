@@ -263,13 +263,13 @@ def test_quasi_tau_like_cli():
         assert np.array_equal(q.knots, want.knots), case["command"]
         np.testing.assert_allclose(q.control, want.control, rtol=0, atol=1e-15, err_msg=case["command"])
     # the rules differ on these repeated knots, so the test tells them apart
-    q = lekalo.quasi_interpolate(space, xcosx, rule="first_interval_midpoint")
+    q = lekalo.quasi_interpolate(space, xcosx, rule="first-interval-midpoint")
     assert not np.allclose(q.control, lekalo.quasi_interpolate(space, xcosx).control)
     # τ never on a knot: a member of the space comes back from its pp-form exactly, even across
     # the discontinuity at the triple knot
-    back = q.to_pp().to_bspline(space, "first_interval_midpoint")
+    back = q.to_pp().to_bspline(space, "first-interval-midpoint")
     np.testing.assert_allclose(back.control, q.control, rtol=0, atol=1e-14)
-    with pytest.raises(lekalo.Error, match="first_interval_midpoint"):
+    with pytest.raises(lekalo.Error, match="first-interval-midpoint"):
         lekalo.quasi_interpolate(space, xcosx, rule="first-interval")
     with pytest.raises(lekalo.Error):
         lekalo.quasi_interpolate(space, xcosx, rule=np.zeros(3))

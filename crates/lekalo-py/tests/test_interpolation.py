@@ -26,7 +26,7 @@ def test_make_interp_spline_same_curve():
     nat = lekalo.interpolate(y, 3, params=x, end="natural")
     assert np.allclose(nat(xx), si.make_interp_spline(x, y, k=3, bc_type="natural")(xx), atol=1e-10)
     zero = np.zeros(2)
-    cl = lekalo.interpolate(y, 3, params=x, end="first", d_start=zero, d_end=zero)
+    cl = lekalo.interpolate(y, 3, params=x, end="derivatives", d_start=zero, d_end=zero)
     assert np.allclose(cl(xx), si.make_interp_spline(x, y, k=3, bc_type="clamped")(xx), atol=1e-10)
 
 
@@ -39,7 +39,7 @@ def test_natural_spline_matches_cubic_spline():
     assert np.allclose(c(xx)[:, 0], ref(xx), atol=1e-12)
     assert np.allclose(c(xx, nu=1)[:, 0], ref(xx, 1), atol=1e-9)
     # the same through interpolate(..., end="natural", knots at the parameters)
-    c2 = lekalo.interpolate(y, 3, params=x, end="natural", knots="at_parameters")
+    c2 = lekalo.interpolate(y, 3, params=x, end="natural", knots="at-params")
     assert np.allclose(c2(xx)[:, 0], ref(xx), atol=1e-12)
 
 
@@ -48,12 +48,12 @@ def test_clamped_spline_matches_cubic_spline():
     y = np.column_stack([np.cos(x), x**2])
     d0, d1 = np.array([0.0, 0.0]), np.array([-np.sin(2.0), 4.0])
     ref = si.CubicSpline(x, y, bc_type=((1, d0), (1, d1)))
-    c = lekalo.interpolate(y, 3, params=x, knots="at_parameters", end="first", d_start=d0, d_end=d1)
+    c = lekalo.interpolate(y, 3, params=x, knots="at-params", end="derivatives", d_start=d0, d_end=d1)
     xx = np.linspace(0, 2, 777)
     assert np.allclose(c(xx), ref(xx), atol=1e-12)
     dd0, dd1 = np.array([-1.0, 2.0]), np.array([-np.cos(2.0), 2.0])
     ref2 = si.CubicSpline(x, y, bc_type=((2, dd0), (2, dd1)))
-    c2 = lekalo.interpolate(y, 3, params=x, knots="at_parameters", end="second", d_start=dd0, d_end=dd1)
+    c2 = lekalo.interpolate(y, 3, params=x, knots="at-params", end="second", d_start=dd0, d_end=dd1)
     assert np.allclose(c2(xx), ref2(xx), atol=1e-12)
 
 
@@ -68,7 +68,7 @@ def test_periodic_matches_cubic_spline():
 
 
 @pytest.mark.parametrize("param", ["uniform", "chord", "centripetal", 0.3])
-@pytest.mark.parametrize("knots", ["auto", "averaged", "uniform", "at_parameters"])
+@pytest.mark.parametrize("knots", ["auto", "averaged", "uniform", "at-params"])
 @pytest.mark.parametrize("degree", [1, 2, 3, 5])
 def test_every_configuration_interpolates(param, knots, degree):
     q = RNG.standard_normal((12, 3))
@@ -85,10 +85,10 @@ def test_every_configuration_interpolates(param, knots, degree):
 def test_end_derivatives_any_degree():
     q = RNG.standard_normal((10, 2))
     d0, d1 = np.array([1.0, 0.0]), np.array([0.0, -1.0])
-    c = lekalo.interpolate(q, 4, end="first", d_start=d0, d_end=d1)
+    c = lekalo.interpolate(q, 4, end="derivatives", d_start=d0, d_end=d1)
     assert np.allclose(c(0.0, nu=1), d0, atol=1e-9) and np.allclose(c(1.0, nu=1), d1, atol=1e-9)
     with pytest.raises(lekalo.Error, match="needs both d_start and d_end"):
-        lekalo.interpolate(q, 3, end="first", d_start=d0)
+        lekalo.interpolate(q, 3, end="derivatives", d_start=d0)
 
 
 def test_surface_interpolation():

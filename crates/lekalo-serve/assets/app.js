@@ -18,7 +18,7 @@ function defaultState() {
     bezier: { control: [[1, 1], [3, 5], [7, 5], [9, 1]] },
     blend: { k: 2, a: [[1, 2], [3, 5.5], [7, 5.5], [9, 2]], b: [[3, 0.5], [7, 0.5]] },
     corners: { k: 2, closed: false, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
-    quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first_knot_after', tau: '' },
+    quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first-knot-after', tau: '' },
     fit: { smoothing: 'lambda', lambda: -4, s: 0, points: noisyPoints(1) },
     query: false,
     queryLength: 1,

@@ -12,8 +12,6 @@
 //! Numbers are written by `serde_json`: the shortest text that reads back to the same `f64`,
 //! `null` for a number that is not finite.
 
-use std::borrow::Cow;
-
 use axum::body::Body;
 use axum::http::{header, HeaderValue};
 use axum::response::{IntoResponse, Response};
@@ -78,23 +76,10 @@ pub(crate) fn object<S: Serializer>(obj: &Object, s: S) -> Result<S::Ok, S::Erro
             rows(self.0, s)
         }
     }
-    let (degree, knots, control, weights) = match obj {
-        Object::Bezier(c) => (None, None, Cow::Borrowed(c.control_points()), None),
-        Object::BSpline(c) => (
-            Some(c.degree()),
-            Some(c.knots()),
-            Cow::Borrowed(c.control_points()),
-            None,
-        ),
-        Object::Nurbs(c) => (
-            Some(c.degree()),
-            Some(c.knots()),
-            Cow::Owned(c.control_points()),
-            Some(c.weights()),
-        ),
-        // a type added to the format later: its own envelope
-        other => return other.to_json_value().serialize(s),
-    };
+    let knots = obj.explicit_knots();
+    let degree = knots.map(|_| obj.degree());
+    let control = obj.control_points();
+    let weights = obj.weights();
     let mut m = s.serialize_map(None)?;
     m.serialize_entry("lekalo", &FORMAT_VERSION)?;
     m.serialize_entry("type", obj.type_name())?;
@@ -115,6 +100,7 @@ pub(crate) fn object<S: Serializer>(obj: &Object, s: S) -> Result<S::Ok, S::Erro
 mod tests {
     use super::*;
     use lekalo::{BSplineCurve, BezierCurve, NurbsCurve};
+    use lekalo_io::CurveJson;
 
     struct Curve(Object);
     impl Serialize for Curve {

@@ -13,12 +13,16 @@ use axum::body::Bytes;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use lekalo::basis::{basis_functions, basis_functions_many};
+use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
     BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
     EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization, Points,
     SplineParameters,
 };
-use lekalo_io::{EndName, Object};
+use lekalo_io::CurveJson;
+use lekalo_io::Object;
+
+use crate::words::word;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -272,12 +276,12 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
         let mut normal = Vec::with_capacity(n);
         for &ti in &t {
             let d = obj
-                .derivatives(ti, 2)
+                .eval_derivatives(ti, 2)
                 .map_err(|e| ApiError::lib("curve", &e))?;
             let rows: Vec<&[f64]> = d.iter().collect();
             let (d1, d2) = (rows[1], rows[2]);
             curvature.push(lekalo::curvature(d1, d2));
-            normal.push(principal_normal(d1, d2));
+            normal.push(lekalo::principal_normal(d1, d2));
         }
         Some(Comb { curvature, normal })
     } else {
@@ -298,9 +302,9 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
         domain: [a, b],
         t,
         points,
-        control: obj.control_points(),
+        control: obj.control_points().into_owned(),
         weights: obj.weights(),
-        knots: knots.into_vec(),
+        knots: knots.into_owned().into_vec(),
         knot_marks,
         comb,
         basis,
@@ -315,24 +319,6 @@ fn eval_batch(obj: &Object, ts: &[f64]) -> ApiResult<Points> {
     obj.eval_batch(ts, &mut out)
         .map_err(|e| ApiError::lib("curve", &e))?;
     Points::from_flat(dim, out).map_err(|e| ApiError::lib("curve", &e))
-}
-
-/// Unit principal normal `N = (C'' − (C''·T)T)/|…|` with `T = C'/|C'|` (do Carmo §1-5);
-/// `None` where `C' = 0` or the curve is straight there.
-fn principal_normal(d1: &[f64], d2: &[f64]) -> Option<Vec<f64>> {
-    let len = d1.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if len == 0.0 || !len.is_finite() {
-        return None;
-    }
-    let tangent: Vec<f64> = d1.iter().map(|x| x / len).collect();
-    let along: f64 = d2.iter().zip(&tangent).map(|(a, b)| a * b).sum();
-    let n: Vec<f64> = d2
-        .iter()
-        .zip(&tangent)
-        .map(|(a, b)| a - along * b)
-        .collect();
-    let nl = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-    (nl > 0.0 && nl.is_finite()).then(|| n.iter().map(|x| x / nl).collect())
 }
 
 /// The basis functions of degree `p` over `knots`, sampled at `m` parameters
@@ -456,37 +442,19 @@ pub(crate) async fn evaluate(body: Bytes) -> ApiResult<Response> {
     Ok(view_answer(&view(&obj, &r.view.options())?))
 }
 
-/// Parametrisation names (document 000 §1).
-#[derive(Debug, Clone, Copy, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub(crate) enum Param {
-    Uniform,
-    #[default]
-    Chord,
-    Centripetal,
-}
-
-impl Param {
-    /// The library's parametrisation, or the exponent `e` of `|ΔQ|^e` when given.
-    pub(crate) fn to_lib(self, exponent: Option<f64>) -> Parametrization {
-        match (exponent, self) {
-            (Some(e), _) => Parametrization::Exponent(e),
-            (None, Param::Uniform) => Parametrization::Uniform,
-            (None, Param::Chord) => Parametrization::ChordLength,
-            (None, Param::Centripetal) => Parametrization::Centripetal,
-        }
-    }
-}
-
-/// Knot placement names (document 000 eqs. 2, 3, 4, 8).
-#[derive(Debug, Clone, Copy, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-enum Placement {
-    #[default]
-    Auto,
-    Averaged,
-    Uniform,
-    AtParams,
+/// The parametrisation of a request: a word of [`lekalo::vocabulary::PARAMETRIZATION`]
+/// (chord length when left out), or the exponent `e` of `|ΔQ|^e` when given.
+pub(crate) fn parametrization(
+    word: Option<&str>,
+    exponent: Option<f64>,
+) -> ApiResult<Parametrization> {
+    let p = crate::words::word(
+        &vocabulary::PARAMETRIZATION,
+        "parametrization",
+        word,
+        Parametrization::ChordLength,
+    )?;
+    Ok(exponent.map_or(p, Parametrization::Exponent))
 }
 
 fn default_degree() -> usize {
@@ -498,13 +466,15 @@ struct InterpolateRequest {
     points: Vec<Vec<f64>>,
     #[serde(default = "default_degree")]
     degree: usize,
+    /// A word of [`lekalo::vocabulary::PARAMETRIZATION`].
     #[serde(default)]
-    parametrization: Param,
+    parametrization: Option<String>,
     #[serde(default)]
     exponent: Option<f64>,
+    /// A word of [`lekalo::vocabulary::KNOT_PLACEMENT`].
     #[serde(default)]
-    knots: Placement,
-    /// End condition by name ([`EndName`], the names of `lekalo interpolate --end`).
+    knots: Option<String>,
+    /// A word of [`lekalo::vocabulary::END_CONDITION`].
     #[serde(default)]
     end: Option<String>,
     #[serde(default)]
@@ -520,33 +490,29 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
     let r: InterpolateRequest = parse(&body)?;
     let pts = points(&r.points, "points")?;
     let degree = check_degree(r.degree, "degree")?;
-    let param = r.parametrization.to_lib(r.exponent);
-    let name: EndName = match &r.end {
-        Some(n) => n.parse().map_err(|m: String| ApiError::bad("end", m))?,
-        None => EndName::Free,
-    };
-    let derivatives = match (&r.start_derivative, &r.end_derivative) {
-        (Some(s), Some(e)) => Some((s.clone(), e.clone())),
-        _ => None,
-    };
-    let Some(end) = name.condition(derivatives) else {
-        return Err(ApiError::bad(
-            if r.start_derivative.is_none() {
+    let param = parametrization(r.parametrization.as_deref(), r.exponent)?;
+    let kind = word(
+        &vocabulary::END_CONDITION,
+        "end",
+        r.end.as_deref(),
+        EndKind::Free,
+    )?;
+    let end = kind
+        .condition(r.start_derivative.clone(), r.end_derivative.clone())
+        .map_err(|e| {
+            let field = if r.start_derivative.is_none() {
                 "start_derivative"
             } else {
                 "end_derivative"
-            },
-            format!(
-                "end = {name} needs start_derivative and end_derivative (one value per coordinate)"
-            ),
-        ));
-    };
-    let knots = match r.knots {
-        Placement::Auto => KnotPlacement::Auto,
-        Placement::Averaged => KnotPlacement::Averaged,
-        Placement::Uniform => KnotPlacement::Uniform,
-        Placement::AtParams => KnotPlacement::AtParameters,
-    };
+            };
+            ApiError::lib(field, &e)
+        })?;
+    let knots = word(
+        &vocabulary::KNOT_PLACEMENT,
+        "knots",
+        r.knots.as_deref(),
+        KnotPlacement::Auto,
+    )?;
     let c = CurveInterpolation::new(degree)
         .parametrization(param)
         .knot_placement(knots)

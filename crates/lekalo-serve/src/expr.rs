@@ -13,18 +13,6 @@ use crate::answer::{answer, NUMBER_BYTES, SMALL};
 use crate::api::{view, CurveView, ViewOptions, MAX_POINTS, MAX_SAMPLES};
 use crate::error::{ApiError, ApiResult};
 
-/// τ rules of the de Boor–Fix functionals.
-#[derive(Debug, Clone, Copy, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-enum Rule {
-    #[default]
-    FirstKnotAfter,
-    LeftEndOfSupport,
-    Midpoint,
-    Greville,
-    FirstIntervalMidpoint,
-}
-
 fn default_intervals() -> usize {
     200
 }
@@ -37,8 +25,9 @@ struct QuasiRequest {
     order: usize,
     #[serde(default)]
     continuity: Option<Vec<usize>>,
+    /// A word of [`lekalo::vocabulary::TAU_RULE`].
     #[serde(default)]
-    rule: Rule,
+    rule: Option<String>,
     /// Explicit `τ_i`, one per B-spline (instead of `rule`).
     #[serde(default)]
     tau: Option<Vec<f64>>,
@@ -101,13 +90,12 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         };
         ApiError::lib(field, &e)
     })?;
-    let rule = match r.rule {
-        Rule::FirstKnotAfter => TauRule::FirstKnotAfter,
-        Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
-        Rule::Midpoint => TauRule::Midpoint,
-        Rule::Greville => TauRule::Greville,
-        Rule::FirstIntervalMidpoint => TauRule::FirstIntervalMidpoint,
-    };
+    let rule = crate::words::word(
+        &lekalo::vocabulary::TAU_RULE,
+        "rule",
+        r.rule.as_deref(),
+        TauRule::FirstKnotAfter,
+    )?;
     if r.tau.as_ref().is_some_and(|t| t.len() > MAX_POINTS) {
         return Err(ApiError::bad(
             "tau",

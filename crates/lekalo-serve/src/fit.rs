@@ -11,7 +11,7 @@ use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
 use crate::answer::{answer, SMALL};
-use crate::api::{check_degree, parse, points, view, CurveView, Param, ViewOptionsFlat};
+use crate::api::{check_degree, parametrization, parse, points, view, CurveView, ViewOptionsFlat};
 use crate::error::{ApiError, ApiResult};
 
 /// How the amount of smoothing is given.
@@ -46,8 +46,9 @@ struct FitRequest {
     /// The points are samples `(x, y)` of a function: `x` is the parameter.
     #[serde(default)]
     function: bool,
+    /// A word of [`lekalo::vocabulary::PARAMETRIZATION`].
     #[serde(default)]
-    parametrization: Param,
+    parametrization: Option<String>,
     #[serde(flatten)]
     view: ViewOptionsFlat,
 }
@@ -84,8 +85,11 @@ pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
             .map_err(|e| ApiError::lib("points", &e))?;
         (y, x)
     } else {
-        let u = parametrize(pts.as_view(), r.parametrization.to_lib(None))
-            .map_err(|e| ApiError::lib("points", &e))?;
+        let u = parametrize(
+            pts.as_view(),
+            parametrization(r.parametrization.as_deref(), None)?,
+        )
+        .map_err(|e| ApiError::lib("points", &e))?;
         (pts, u)
     };
     let data = FitData::new(values.as_view(), &params).map_err(|e| ApiError::lib("points", &e))?;

@@ -15,21 +15,7 @@ use crate::error::{ApiError, ApiResult};
 
 /// The curve of an object, prepared for queries (as `lekalo measure` and `lekalo project`).
 fn query_curve(obj: &Object) -> ApiResult<QueryCurve> {
-    match obj {
-        Object::Bezier(c) => QueryCurve::from_bezier(c),
-        Object::BSpline(c) => QueryCurve::from_bspline(c),
-        Object::Nurbs(c) => QueryCurve::from_nurbs(c),
-        other => {
-            return Err(ApiError::bad(
-                "curve.type",
-                format!(
-                    "queries work on Bezier, B-spline and NURBS curves; this is a {}",
-                    other.display_name()
-                ),
-            ))
-        }
-    }
-    .map_err(|e| ApiError::lib("curve", &e))
+    obj.to_query().map_err(|e| ApiError::lib("curve", &e))
 }
 
 #[derive(Debug, Deserialize)]

@@ -2,6 +2,7 @@
 //! NaN, huge arrays and sizes, deep nesting, slow clients), without a port
 //! (`tower::ServiceExt::oneshot`) except for the slow-client test on loopback.
 
+use lekalo_io::CurveJson;
 use std::pin::Pin;
 use std::task::{Context, Poll};
 use std::time::Duration;

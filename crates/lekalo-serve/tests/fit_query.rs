@@ -12,6 +12,7 @@ use lekalo::{
     parametrize, quasi_interpolate, BSplineCurve, Expression, Parametrization, Points, PpSpace,
     QueryCurve, Tau, TauRule,
 };
+use lekalo_io::CurveJson;
 use lekalo_io::Object;
 use lekalo_serve::{router, Limits};
 use serde_json::{json, Value};

@@ -65,8 +65,9 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, torsion, BSplineCurve, BezierCurve, BezierSegment, Curve, CurveEvaluator,
-    EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
+    curvature, principal_normal, torsion, BSplineCurve, BezierCurve, BezierSegment, Curve,
+    CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL,
+    POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --
@@ -149,3 +150,6 @@ pub use query::{
     ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection, MAX_QUERY_DEGREE,
     SURFACE_BOX_RTOL,
 };
+
+// -- the words of the options every front end shares, one canonical spelling each --
+pub mod vocabulary;

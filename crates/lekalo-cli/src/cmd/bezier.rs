@@ -1,5 +1,6 @@
 //! `lekalo bezier`: order change of Bezier curves and surfaces (document 004).
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;

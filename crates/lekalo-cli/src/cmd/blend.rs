@@ -1,6 +1,7 @@
 //! `lekalo blend`: deformation of curves, splines by blending local curves, corner smoothing
 //! (document 001).
 
+use lekalo_io::CurveJson;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -175,25 +176,11 @@ pub(crate) struct BlendArgs {
 
 /// A curve object as a library curve.
 fn curve(path: &Path, v: Verbosity) -> Result<SharedCurve> {
-    Ok(match load_one(path, v)? {
-        Object::Bezier(c) => Arc::new(c),
-        Object::BSpline(c) => Arc::new(c),
-        Object::Nurbs(c) => Arc::new(c),
-        other => {
-            return bad_input(format!(
-                "{}: a {} cannot be blended; give a curve",
-                path.display(),
-                other.display_name()
-            ))
-        }
-    })
+    Ok(Arc::new(load_one(path, v)?))
 }
 
 fn form_object(f: BezierForm) -> Object {
-    match f {
-        BezierForm::Polynomial(b) => Object::Bezier(b),
-        BezierForm::Rational(n) => Object::Nurbs(n),
-    }
+    Object::from(f)
 }
 
 /// A blend spline with an exact NURBS form, made segment by segment: JSON is streamed from the

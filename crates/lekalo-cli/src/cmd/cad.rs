@@ -146,7 +146,7 @@ pub(crate) fn convert_shapes(
                         w.add_object(o)?;
                     }
                     Shape::Surface(f) => {
-                        f.add_to_step(&mut w)?;
+                        w.add_any_surface(f)?;
                     }
                     other => {
                         return bad_input(format!(

@@ -1,5 +1,6 @@
 //! `lekalo convert`: between the formats.
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;

@@ -1,6 +1,7 @@
 //! `lekalo fit`: least squares, smoothing and fitting to a tolerance (curves and surfaces).
 //! Parses arguments, calls `lekalo::fit`, writes the result and its report.
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -14,8 +15,9 @@ use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
 use serde_json::{json, Value};
 
-use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs, Param};
+use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs};
 use crate::io::{bad_input, emit, numbers};
+use crate::words::Words;
 use crate::Verbosity;
 
 /// Robust loss for `--robust`.
@@ -99,8 +101,8 @@ pub(crate) struct FitArgs {
     #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     pub(crate) dn: Option<String>,
     /// Parametrisation of parametric curves.
-    #[arg(long, value_enum, default_value_t = Param::Chord)]
-    pub(crate) param: Param,
+    #[arg(long, value_parser = Words(&lekalo::vocabulary::PARAMETRIZATION), default_value = "chord")]
+    pub(crate) param: lekalo::Parametrization,
     /// A closed curve (periodic spline; with --function, a periodic function whose last row
     /// repeats the first).
     #[arg(long)]
@@ -208,7 +210,7 @@ fn fit_curve(
         )?;
         (y, x)
     } else {
-        let u = parametrize(pts.as_view(), a.param.to_lib(None))?;
+        let u = parametrize(pts.as_view(), a.param)?;
         (pts.clone(), u)
     };
     let mut data = FitData::new(values.as_view(), &params)?;
@@ -238,7 +240,7 @@ fn fit_curve(
             );
         }
         let mut opts = ToleranceOptions::new(a.degree, tol);
-        opts.parametrization = a.param.to_lib(None);
+        opts.parametrization = a.param;
         if a.parameter_deviation {
             opts.deviation = Deviation::Parameter;
         }
@@ -388,13 +390,7 @@ fn run_surface(
     let p = a.degree;
     if let Some(g) = &a.grid {
         let (nu, nv) = net_size(g, "--grid")?;
-        let s = surface_grid_least_squares(
-            pts.as_view(),
-            (nu, nv),
-            (p, p),
-            (ncu, ncv),
-            a.param.to_lib(None),
-        )?;
+        let s = surface_grid_least_squares(pts.as_view(), (nu, nv), (p, p), (ncu, ncv), a.param)?;
         return write_surface(&s, &a.out, inputs, v);
     }
     if pts.dim() < 3 {

@@ -2,10 +2,12 @@
 //! cubic and Hermite segment), plus the output helpers shared by the construction subcommands
 //! (`bezier`, `blend`, `pp`).
 
+use lekalo_io::CurveJson;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
+use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
     natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, KnotPlacement,
     Parametrization, Points, SurfaceInterpolation, TangentEstimate,
@@ -16,7 +18,8 @@ use lekalo_io::{
 };
 
 use crate::cmd::plot::encode;
-use crate::io::{bad_input, emit, format_of, numbers, BadInput};
+use crate::io::{bad_input, emit, format_of, numbers};
+use crate::words::Words;
 use crate::Verbosity;
 
 /// Output options shared by the construction subcommands.
@@ -222,56 +225,10 @@ pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
     }
 }
 
-/// Parameter choice (document 000 §1; P&T eq. 9.4–9.6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Param {
-    /// Parameters k/n.
-    Uniform,
-    /// Chord length (exponent 1).
-    Chord,
-    /// Centripetal (exponent 1/2).
-    Centripetal,
-}
-
-impl Param {
-    pub(crate) fn to_lib(self, exponent: Option<f64>) -> Parametrization {
-        match (exponent, self) {
-            (Some(e), _) => Parametrization::Exponent(e),
-            (None, Param::Uniform) => Parametrization::Uniform,
-            (None, Param::Chord) => Parametrization::ChordLength,
-            (None, Param::Centripetal) => Parametrization::Centripetal,
-        }
-    }
-}
-
-/// Knot placement (document 000 eqs. 2, 3, 4, 8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Knots {
-    /// By degree and end condition: averaging (eq. 3; eq. 4 with end derivatives), and knots
-    /// at the parameters for C² cubics with end conditions (eq. 8).
-    Auto,
-    /// Averaging of the parameters (eq. 3; eq. 4 with end derivatives).
-    Averaged,
-    /// Uniform interior knots (eq. 2).
-    Uniform,
-    /// Knots at the parameters (eq. 8, cubic with end conditions).
-    AtParams,
-}
-
-/// End conditions (document 000 §1–4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum End {
-    /// No extra condition (§1).
-    Free,
-    /// Given first derivatives --start-derivative, --end-derivative (§2; §3 with --knots
-    /// at-params).
-    Derivatives,
-    /// Given second derivatives --start-derivative, --end-derivative (§4, cubic).
-    Second,
-    /// Zero second derivatives: the natural cubic spline.
-    Natural,
-    /// Closed curve, C^(p−1) at the seam.
-    Periodic,
+/// The parametrisation of `--param`, or the exponent of `--exponent` when given (document 000
+/// §1; P&T eq. 9.4–9.6).
+pub(crate) fn parametrization(param: Parametrization, exponent: Option<f64>) -> Parametrization {
+    exponent.map_or(param, Parametrization::Exponent)
 }
 
 /// Tangent estimates for Hermite interpolation.
@@ -319,17 +276,17 @@ pub(crate) struct InterpolateArgs {
     #[arg(long)]
     degree_v: Option<usize>,
     /// Parametrisation.
-    #[arg(long, value_enum, default_value_t = Param::Chord)]
-    param: Param,
+    #[arg(long, value_parser = Words(&vocabulary::PARAMETRIZATION), default_value = "chord")]
+    param: Parametrization,
     /// General parametrisation exponent e ≥ 0 (overrides --param; 0.5 is centripetal).
     #[arg(long)]
     exponent: Option<f64>,
     /// Knot placement.
-    #[arg(long, value_enum, default_value_t = Knots::Auto)]
-    knots: Knots,
+    #[arg(long, value_parser = Words(&vocabulary::KNOT_PLACEMENT), default_value = "auto")]
+    knots: KnotPlacement,
     /// End condition.
-    #[arg(long, value_enum, default_value_t = End::Free)]
-    end: End,
+    #[arg(long, value_parser = Words(&vocabulary::END_CONDITION), default_value = "free")]
+    end: EndKind,
     /// Derivative at the start: the first (`--end derivatives`) or second (`--end second`),
     /// comma-separated. Formerly `--d0`.
     #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
@@ -383,7 +340,7 @@ pub(crate) struct InterpolateArgs {
 }
 
 pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
-    let param = a.param.to_lib(a.exponent);
+    let param = parametrization(a.param, a.exponent);
     if crate::cmd::parquet_batch::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.function
@@ -529,39 +486,16 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
 
 /// The B-spline interpolation of the options (end conditions, knots, condition limit).
 fn curve_interpolation(a: &InterpolateArgs, param: Parametrization) -> Result<CurveInterpolation> {
-    let pair = |what: &str| -> Result<(Vec<f64>, Vec<f64>)> {
-        match (&a.d0, &a.dn) {
-            (Some(s), Some(e)) => Ok((
-                numbers(s, "--start-derivative")?,
-                numbers(e, "--end-derivative")?,
-            )),
-            _ => bad_input(format!(
-                "--end {what} needs --start-derivative and --end-derivative (one value per coordinate, e.g. --start-derivative 1,2)"
-            )),
-        }
-    };
-    // the option's name, through the one name table shared with `lekalo serve`
-    let name: lekalo_io::EndName = match a.end.to_possible_value() {
-        Some(v) => v.get_name().parse().map_err(BadInput)?,
-        None => lekalo_io::EndName::Free,
-    };
-    if !name.takes_derivatives() && (a.d0.is_some() || a.dn.is_some()) {
-        return bad_input("--start-derivative/--end-derivative are used only with --end derivatives or --end second");
-    }
-    let derivatives = if name.takes_derivatives() {
-        Some(pair(name.name())?)
-    } else {
-        None
-    };
-    let Some(end) = name.condition(derivatives) else {
-        return bad_input(format!("--end {name} needs its derivatives"));
-    };
-    let knots = match a.knots {
-        Knots::Auto => KnotPlacement::Auto,
-        Knots::Averaged => KnotPlacement::Averaged,
-        Knots::Uniform => KnotPlacement::Uniform,
-        Knots::AtParams => KnotPlacement::AtParameters,
-    };
+    let start =
+        a.d0.as_deref()
+            .map(|s| numbers(s, "--start-derivative"))
+            .transpose()?;
+    let end =
+        a.dn.as_deref()
+            .map(|s| numbers(s, "--end-derivative"))
+            .transpose()?;
+    let end = a.end.condition(start, end)?;
+    let knots = a.knots;
     let mut interp = CurveInterpolation::new(a.degree)
         .parametrization(param)
         .knot_placement(knots)

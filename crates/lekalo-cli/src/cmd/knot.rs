@@ -3,12 +3,13 @@
 //! the library's own (`BSplineCurve::insert_knot`, `NurbsSurface::split_at_u`, …); this module
 //! only chooses the method by the object's kind and the direction.
 
+use lekalo_io::CurveJson;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::{Args, Subcommand, ValueEnum};
-use lekalo::{BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, NurbsCurve};
-use lekalo_io::{fmt_number, Object, Shape, Surface};
+use lekalo::Direction;
+use lekalo_io::{fmt_number, Object, Shape};
 
 use crate::cmd::cad::{load_shape, load_shapes};
 use crate::io::{bad_input, emit, numbers};
@@ -145,58 +146,12 @@ enum KnotOp {
     },
 }
 
-/// A curve as B-spline or NURBS (a Bezier curve as a B-spline on `[0, 1]`).
-enum Curve {
-    B(BSplineCurve),
-    N(NurbsCurve),
-}
-
-fn as_curve(o: &Object) -> Result<Curve> {
-    Ok(match o {
-        Object::Bezier(c) => Curve::B(c.to_bspline()),
-        Object::BSpline(c) => Curve::B(c.clone()),
-        Object::Nurbs(c) => Curve::N(c.clone()),
-        other => {
-            return bad_input(format!(
-                "knot operations do not take a {} yet",
-                other.type_name()
-            ))
-        }
-    })
-}
-
-fn curve_shape(c: Curve) -> Shape {
-    Shape::Curve(match c {
-        Curve::B(b) => Object::BSpline(b),
-        Curve::N(n) => Object::Nurbs(n),
-    })
-}
-
-/// A surface as B-spline or NURBS.
-enum Surf {
-    B(BSplineSurface),
-    N(lekalo::NurbsSurface),
-}
-
-fn as_surf(s: &Surface) -> Result<Surf> {
-    Ok(match s {
-        Surface::Bezier(b) => Surf::B(b.to_bspline()),
-        Surface::BSpline(b) => Surf::B(b.clone()),
-        Surface::Nurbs(n) => Surf::N(n.clone()),
-        other => {
-            return bad_input(format!(
-                "knot operations do not take a {} yet",
-                other.type_name()
-            ))
-        }
-    })
-}
-
-fn surf_shape(s: Surf) -> Shape {
-    Shape::Surface(match s {
-        Surf::B(b) => Surface::BSpline(b),
-        Surf::N(n) => Surface::Nurbs(n),
-    })
+/// The library's direction of `--dir`.
+fn direction(d: Dir) -> Direction {
+    match d {
+        Dir::U => Direction::U,
+        Dir::V => Direction::V,
+    }
 }
 
 fn one(text: &str, what: &str) -> Result<f64> {
@@ -232,16 +187,8 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
         KnotOp::Insert { c, at, times } => {
             let t = one(at, "--at")?;
             let out = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
-                    Curve::B(b) => Curve::B(b.insert_knot(t, *times)?),
-                    Curve::N(n) => Curve::N(n.insert_knot(t, *times)?),
-                }),
-                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
-                    (Surf::B(b), Dir::U) => Surf::B(b.insert_knot_u(t, *times)?),
-                    (Surf::B(b), Dir::V) => Surf::B(b.insert_knot_v(t, *times)?),
-                    (Surf::N(n), Dir::U) => Surf::N(n.insert_knot_u(t, *times)?),
-                    (Surf::N(n), Dir::V) => Surf::N(n.insert_knot_v(t, *times)?),
-                }),
+                Shape::Curve(o) => Shape::Curve(o.insert_knot(t, *times)?),
+                Shape::Surface(s) => Shape::Surface(s.insert_knot(direction(c.dir), t, *times)?),
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, v)
@@ -249,16 +196,8 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
         KnotOp::Refine { c, knots } => {
             let x = numbers(knots, "--knots")?;
             let out = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
-                    Curve::B(b) => Curve::B(b.refine_knots(&x)?),
-                    Curve::N(n) => Curve::N(n.refine_knots(&x)?),
-                }),
-                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
-                    (Surf::B(b), Dir::U) => Surf::B(b.refine_knots_u(&x)?),
-                    (Surf::B(b), Dir::V) => Surf::B(b.refine_knots_v(&x)?),
-                    (Surf::N(n), Dir::U) => Surf::N(n.refine_knots_u(&x)?),
-                    (Surf::N(n), Dir::V) => Surf::N(n.refine_knots_v(&x)?),
-                }),
+                Shape::Curve(o) => Shape::Curve(o.refine_knots(&x)?),
+                Shape::Surface(s) => Shape::Surface(s.refine_knots(direction(c.dir), &x)?),
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, v)
@@ -271,45 +210,23 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
             tolerance,
             json,
         } => {
-            let o = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => o,
+            let curve = match load_shape(&c.input, v)? {
+                Shape::Curve(o) => o.to_spline(),
                 Shape::Surface(_) => return surface_only_u_v("remove"),
                 other => return not_spline(&c.input, &other),
             };
-            let curve = as_curve(&o)?;
-            let tol = match tolerance {
-                Some(t) => *t,
-                None => match &curve {
-                    Curve::B(b) => b.default_removal_tolerance(),
-                    Curve::N(n) => n.default_removal_tolerance(),
-                },
-            };
-            let before = knots_of(&curve);
-            let (after, removed) = match (&curve, at) {
-                (Curve::B(b), Some(at)) if !*all => {
+            let tol = tolerance.unwrap_or_else(|| curve.default_removal_tolerance());
+            let before = curve.knots().into_owned().into_vec();
+            let (after, removed) = match at {
+                Some(at) if !*all => {
                     let t = one(at, "--at")?;
-                    let r = times.unwrap_or_else(|| b.knots().multiplicity(t));
-                    let (b2, n) = b.remove_knot(t, r, tol)?;
-                    (Curve::B(b2), n)
+                    let r = times.unwrap_or_else(|| curve.knots().multiplicity(t));
+                    curve.remove_knot(t, r, tol)?
                 }
-                (Curve::N(nc), Some(at)) if !*all => {
-                    let t = one(at, "--at")?;
-                    let r = times.unwrap_or_else(|| nc.knots().multiplicity(t));
-                    let (n2, n) = nc.remove_knot(t, r, tol)?;
-                    (Curve::N(n2), n)
-                }
-                (Curve::B(b), _) => {
-                    let (b2, n) = b.remove_all_removable_knots(tol)?;
-                    (Curve::B(b2), n)
-                }
-                (Curve::N(nc), _) => {
-                    let (n2, n) = nc.remove_all_removable_knots(tol)?;
-                    (Curve::N(n2), n)
-                }
+                _ => curve.remove_all_removable_knots(tol)?,
             };
-            let gone = removed_knots(&before, &knots_of(&after));
-            let shape = curve_shape(after);
-            if let (true, Shape::Curve(obj)) = (json.json, &shape) {
+            let gone = removed_knots(&before, after.knots().as_slice());
+            if json.json {
                 let report = serde_json::json!({
                     "removed": removed,
                     "tolerance": tol,
@@ -317,7 +234,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                         .iter()
                         .map(|(t, m)| serde_json::json!({"knot": t, "copies": m}))
                         .collect::<Vec<_>>(),
-                    "curve": obj.to_json_value(),
+                    "curve": after.to_json_value(),
                 });
                 let inputs = std::slice::from_ref(&c.input);
                 let out = c.output.as_deref();
@@ -333,41 +250,18 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
             if v != Verbosity::Quiet {
                 eprintln!("{}", removal_report(&gone, removed, tol));
             }
-            write_one(c, &shape, v)
+            write_one(c, &Shape::Curve(after), v)
         }
         KnotOp::Split { c, at } => {
             let t = one(at, "--at")?;
             let pieces = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => match as_curve(&o)? {
-                    Curve::B(b) => {
-                        let (l, r) = b.split_at(t)?;
-                        vec![curve_shape(Curve::B(l)), curve_shape(Curve::B(r))]
-                    }
-                    Curve::N(n) => {
-                        let (l, r) = n.split_at(t)?;
-                        vec![curve_shape(Curve::N(l)), curve_shape(Curve::N(r))]
-                    }
-                },
+                Shape::Curve(o) => {
+                    let (l, r) = o.split_at(t)?;
+                    vec![Shape::Curve(l), Shape::Curve(r)]
+                }
                 Shape::Surface(s) => {
-                    let (l, r) = match (as_surf(&s)?, c.dir) {
-                        (Surf::B(b), Dir::U) => {
-                            let (l, r) = b.split_at_u(t)?;
-                            (Surf::B(l), Surf::B(r))
-                        }
-                        (Surf::B(b), Dir::V) => {
-                            let (l, r) = b.split_at_v(t)?;
-                            (Surf::B(l), Surf::B(r))
-                        }
-                        (Surf::N(n), Dir::U) => {
-                            let (l, r) = n.split_at_u(t)?;
-                            (Surf::N(l), Surf::N(r))
-                        }
-                        (Surf::N(n), Dir::V) => {
-                            let (l, r) = n.split_at_v(t)?;
-                            (Surf::N(l), Surf::N(r))
-                        }
-                    };
-                    vec![surf_shape(l), surf_shape(r)]
+                    let (l, r) = s.split_at(direction(c.dir), t)?;
+                    vec![Shape::Surface(l), Shape::Surface(r)]
                 }
                 other => return not_spline(&c.input, &other),
             };
@@ -375,16 +269,8 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
         }
         KnotOp::Reverse { c } => {
             let out = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
-                    Curve::B(b) => Curve::B(b.reverse()?),
-                    Curve::N(n) => Curve::N(n.reverse()?),
-                }),
-                Shape::Surface(s) => surf_shape(match (as_surf(&s)?, c.dir) {
-                    (Surf::B(b), Dir::U) => Surf::B(b.reverse_u()?),
-                    (Surf::B(b), Dir::V) => Surf::B(b.reverse_v()?),
-                    (Surf::N(n), Dir::U) => Surf::N(n.reverse_u()?),
-                    (Surf::N(n), Dir::V) => Surf::N(n.reverse_v()?),
-                }),
+                Shape::Curve(o) => Shape::Curve(o.reverse()?),
+                Shape::Surface(s) => Shape::Surface(s.reverse(direction(c.dir))?),
                 other => return not_spline(&c.input, &other),
             };
             write_one(c, &out, v)
@@ -398,10 +284,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                 ));
             };
             let out = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => curve_shape(match as_curve(&o)? {
-                    Curve::B(b) => Curve::B(b.reparametrize(lo, hi)?),
-                    Curve::N(n) => Curve::N(n.reparametrize(lo, hi)?),
-                }),
+                Shape::Curve(o) => Shape::Curve(o.reparametrize(lo, hi)?),
                 Shape::Surface(_) => {
                     return bad_input(
                         "`lekalo knot reparam` works on curves; surfaces keep their domain",
@@ -413,49 +296,16 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
         }
         KnotOp::Decompose { c } => {
             let pieces: Vec<Shape> = match load_shape(&c.input, v)? {
-                Shape::Curve(o) => match as_curve(&o)? {
-                    Curve::B(b) => b
-                        .to_bezier_segments()
-                        .into_iter()
-                        .map(|seg| {
-                            BSplineCurve::from_bezier_segments(std::slice::from_ref(&seg))
-                                .map(|c| curve_shape(Curve::B(c)))
-                        })
-                        .collect::<lekalo::Result<_>>()?,
-                    Curve::N(n) => n
-                        .to_bezier_segments()
-                        .into_iter()
-                        .map(|c| curve_shape(Curve::N(c)))
-                        .collect(),
-                },
-                Shape::Surface(s) => match as_surf(&s)? {
-                    Surf::B(b) => b
-                        .to_bezier_patches()
-                        .into_iter()
-                        .map(|((u0, u1), (v0, v1), patch)| {
-                            let (p, q) = (patch.degree_u(), patch.degree_v());
-                            let clamp = |a: f64, b: f64, d: usize| {
-                                let mut k = vec![a; d + 1];
-                                k.extend(std::iter::repeat_n(b, d + 1));
-                                k
-                            };
-                            BSplineSurface::new(
-                                p,
-                                q,
-                                clamp(u0, u1, p),
-                                clamp(v0, v1, q),
-                                patch.control_points().clone(),
-                                patch.net_size(),
-                            )
-                            .map(|b| surf_shape(Surf::B(b)))
-                        })
-                        .collect::<lekalo::Result<_>>()?,
-                    Surf::N(n) => n
-                        .to_bezier_patches()
-                        .into_iter()
-                        .map(|(_, _, patch)| surf_shape(Surf::N(patch)))
-                        .collect(),
-                },
+                Shape::Curve(o) => o
+                    .to_bezier_pieces()?
+                    .into_iter()
+                    .map(Shape::Curve)
+                    .collect(),
+                Shape::Surface(s) => s
+                    .to_bezier_pieces()?
+                    .into_iter()
+                    .map(Shape::Surface)
+                    .collect(),
                 other => return not_spline(&c.input, &other),
             };
             write_many(c.output.as_deref(), &c.input, &pieces, v)
@@ -479,13 +329,6 @@ fn not_spline<T>(path: &Path, s: &Shape) -> Result<T> {
         path.display(),
         s.type_name()
     ))
-}
-
-fn knots_of(c: &Curve) -> Vec<f64> {
-    match c {
-        Curve::B(b) => b.knots().as_slice().to_vec(),
-        Curve::N(n) => n.knots().as_slice().to_vec(),
-    }
 }
 
 /// The knots that were in `before` and are not in `after`, with how many copies went.
@@ -528,10 +371,9 @@ fn removal_report(gone: &[(f64, usize)], removed: usize, tol: f64) -> String {
     }
 }
 
-/// One curve from single-segment pieces in order.
+/// One curve from single-segment pieces in order ([`lekalo::Curve::join`]).
 fn join(shapes: &[Shape], input: &Path) -> Result<Shape> {
-    let mut segs = Vec::with_capacity(shapes.len());
-    let mut rational = None;
+    let mut curves = Vec::with_capacity(shapes.len());
     for (k, s) in shapes.iter().enumerate() {
         let Shape::Curve(o) = s else {
             return bad_input(format!(
@@ -541,40 +383,12 @@ fn join(shapes: &[Shape], input: &Path) -> Result<Shape> {
                 s.type_name()
             ));
         };
-        let (hom, is_rational) = match as_curve(o)? {
-            Curve::B(b) => (b, false),
-            Curve::N(n) => (n.homogeneous().clone(), true),
-        };
-        if *rational.get_or_insert(is_rational) != is_rational {
-            return bad_input(format!(
-                "{}: piece {} mixes rational and polynomial pieces; make them all NURBS",
-                input.display(),
-                k + 1
-            ));
-        }
-        let p = hom.degree();
-        let kv = hom.knots().as_slice();
-        let n = hom.control_points().len();
-        let (a, b) = hom.domain();
-        if n != p + 1 || kv.len() != 2 * (p + 1) {
-            return bad_input(format!(
-                "{}: piece {} is not a single Bezier segment ({n} control points for degree {p}); split it with `lekalo knot decompose` first",
-                input.display(),
-                k + 1
-            ));
-        }
-        segs.push(BezierSegment {
-            start: a,
-            end: b,
-            curve: BezierCurve::new(hom.control_points().clone())?,
-        });
+        curves.push(o.clone());
     }
-    let joined = BSplineCurve::from_bezier_segments(&segs)?;
-    Ok(if rational == Some(true) {
-        Shape::Curve(Object::Nurbs(NurbsCurve::from_homogeneous(joined)?))
-    } else {
-        Shape::Curve(Object::BSpline(joined))
-    })
+    match Object::join(&curves) {
+        Ok(c) => Ok(Shape::Curve(c)),
+        Err(e) => bad_input(format!("{}: {e}", input.display())),
+    }
 }
 
 #[cfg(test)]

@@ -118,7 +118,10 @@ impl KnotSource {
             (Some(path), _) => {
                 let obj = load_one(path, v)?;
                 inputs.push(path.clone());
-                Ok((obj.knots(), Some(self.degree.unwrap_or(obj.degree()))))
+                Ok((
+                    obj.knots().into_owned(),
+                    Some(self.degree.unwrap_or(obj.degree())),
+                ))
             }
             (None, Some(k)) => Ok((KnotVector::new(numbers(k, "--knots")?)?, self.degree)),
             (None, None) => bad_input("give a curve file or --knots"),

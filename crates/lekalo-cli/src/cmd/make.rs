@@ -1,5 +1,6 @@
 //! `lekalo make`: a curve object from control points, knots and weights.
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;

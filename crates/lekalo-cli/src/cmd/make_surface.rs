@@ -1,5 +1,6 @@
 //! `lekalo make bezier-surface|bspline-surface|nurbs-surface`: a surface from a control net.
 
+use lekalo_io::SurfaceJson;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;

@@ -47,37 +47,16 @@ pub(crate) struct MeasureArgs {
     output: Option<PathBuf>,
 }
 
-/// The curve of an object, prepared for queries.
+/// The curve of an object, prepared for queries ([`lekalo::Curve::to_query`]).
 pub(crate) fn query_curve(obj: &Object, path: &Path) -> Result<QueryCurve> {
-    let q = match obj {
-        Object::Bezier(c) => QueryCurve::from_bezier(c),
-        Object::BSpline(c) => QueryCurve::from_bspline(c),
-        Object::Nurbs(c) => QueryCurve::from_nurbs(c),
-        _ => {
-            return bad_input(format!(
-                "{}: not a curve kind this command knows",
-                path.display()
-            ))
-        }
-    };
-    q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+    obj.to_query()
+        .map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
 }
 
-/// The surface of a shape file, prepared for queries.
+/// The surface of a shape file, prepared for queries ([`lekalo::Surface::to_query`]).
 pub(crate) fn query_surface(s: &lekalo_io::Surface, path: &Path) -> Result<lekalo::QuerySurface> {
-    use lekalo_io::Surface;
-    let q = match s {
-        Surface::Bezier(b) => lekalo::QuerySurface::from_bspline(&b.to_bspline()),
-        Surface::BSpline(b) => lekalo::QuerySurface::from_bspline(b),
-        Surface::Nurbs(n) => lekalo::QuerySurface::from_nurbs(n),
-        _ => {
-            return bad_input(format!(
-                "{}: not a surface kind this command knows",
-                path.display()
-            ))
-        }
-    };
-    q.map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+    s.to_query()
+        .map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
 }
 
 /// Reads a file of numbers (commas, spaces, newlines).

@@ -1,6 +1,7 @@
 //! `lekalo offset`: the offset of a planar curve at a distance, within a tolerance, with its
 //! cusps and loops reported and the loops trimmed (the library's `QueryCurve::offset`).
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;

@@ -5,6 +5,7 @@
 //! group is written with its `error`, reported on stderr with its key, and does not stop the
 //! others; the exit code is then 2.
 
+use lekalo_io::CurveJson;
 use std::path::Path;
 
 use anyhow::Result;

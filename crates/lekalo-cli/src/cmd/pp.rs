@@ -1,5 +1,6 @@
 //! `lekalo pp`: piecewise polynomials ↔ B-splines and quasi-interpolation (document 003).
 
+use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;

@@ -54,8 +54,8 @@ pub(crate) fn surface_info_json(s: &Surface, samples: usize) -> lekalo::Result<V
         "weights": s.weights(),
         "knots_u": ku,
         "knots_v": kv,
-        "distinct_knots_u": distinct(&ku),
-        "distinct_knots_v": distinct(&kv),
+        "distinct_knots_u": distinct(ku.as_slice()),
+        "distinct_knots_v": distinct(kv.as_slice()),
         "domain": [[u0, u1], [v0, v1]],
         "control_box": bbox(&s.control_points()),
         "sampled_box": bbox(&sampled),
@@ -283,7 +283,7 @@ pub(crate) fn surface_obj(s: &Surface, n: usize) -> Result<String> {
 /// One-object STEP file of a surface.
 pub(crate) fn surface_step(s: &Surface, name: &str, timestamp: &str) -> Result<String> {
     let mut w = StepWriter::new(name);
-    s.add_to_step(&mut w)?;
+    w.add_any_surface(s)?;
     Ok(w.finish(timestamp))
 }
 

@@ -8,8 +8,8 @@ import numpy.typing as npt
 ArrayLike = Union[npt.NDArray[np.float64], Sequence[Any], float]
 Array = npt.NDArray[np.float64]
 Param = Union[str, float]
-# a τ rule's name ('first_knot_after', 'left_end', 'midpoint', 'greville',
-# 'first_interval_midpoint') or one τ value per B-spline
+# a τ rule's name ('first-knot-after', 'left-end-of-support', 'midpoint', 'greville',
+# 'first-interval-midpoint') or one τ value per B-spline
 TauChoice = Union[str, ArrayLike]
 
 MAX_SCALARS: int

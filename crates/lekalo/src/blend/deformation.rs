@@ -128,6 +128,40 @@ pub(crate) fn check_out_len(out: &[f64], order: usize, dim: usize) -> Result<()>
     Ok(())
 }
 
+/// A curve of any kind is a [`ParametricCurve`] through its kind's implementation.
+impl ParametricCurve for crate::Curve {
+    fn dim(&self) -> usize {
+        crate::Curve::dim(self)
+    }
+    fn domain(&self) -> (f64, f64) {
+        crate::Curve::domain(self)
+    }
+    fn eval_derivatives_into(&self, t: f64, order: usize, out: &mut [f64]) -> Result<()> {
+        match self {
+            crate::Curve::Bezier(c) => c.eval_derivatives_into(t, order, out),
+            crate::Curve::BSpline(c) => c.eval_derivatives_into(t, order, out),
+            crate::Curve::Nurbs(c) => c.eval_derivatives_into(t, order, out),
+        }
+    }
+    fn bezier_form(&self) -> Option<BezierForm> {
+        match self {
+            crate::Curve::Bezier(c) => c.bezier_form(),
+            crate::Curve::BSpline(c) => c.bezier_form(),
+            crate::Curve::Nurbs(c) => c.bezier_form(),
+        }
+    }
+}
+
+/// An exact Bezier form as a curve: a Bezier curve, or a single-segment NURBS.
+impl From<BezierForm> for crate::Curve {
+    fn from(f: BezierForm) -> Self {
+        match f {
+            BezierForm::Polynomial(b) => crate::Curve::Bezier(b),
+            BezierForm::Rational(n) => crate::Curve::Nurbs(n),
+        }
+    }
+}
+
 impl ParametricCurve for BezierCurve {
     fn dim(&self) -> usize {
         BezierCurve::dim(self)

@@ -35,7 +35,6 @@ use crate::{Error, KnotVector, Points, QueryCurve, Result};
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type")]
-#[non_exhaustive]
 pub enum Curve {
     /// A Bezier curve on `[0, 1]`.
     #[serde(rename = "bezier_curve")]
@@ -169,6 +168,17 @@ impl Curve {
             Curve::Bezier(c) => Cow::Owned(KnotVector::clamped_bezier(c.degree())),
             Curve::BSpline(c) => Cow::Borrowed(c.knots()),
             Curve::Nurbs(c) => Cow::Borrowed(c.knots()),
+        }
+    }
+
+    /// The knot vector when the kind stores one (B-spline, NURBS); `None` for a Bezier curve,
+    /// whose knots are implied by its degree (what the file formats write).
+    #[must_use]
+    pub fn explicit_knots(&self) -> Option<&KnotVector> {
+        match self {
+            Curve::Bezier(_) => None,
+            Curve::BSpline(c) => Some(c.knots()),
+            Curve::Nurbs(c) => Some(c.knots()),
         }
     }
 

@@ -26,6 +26,37 @@ pub fn curvature(d1: &[f64], d2: &[f64]) -> Option<f64> {
     Some(cross2.sqrt() / (aa * aa.sqrt()))
 }
 
+/// Unit principal normal `N = (C'' − (C''·T)T) / |C'' − (C''·T)T|` with `T = C'/|C'|`: the
+/// direction towards the centre of curvature, in any dimension (do Carmo §1-5, the Frenet
+/// frame; the curvature comb draws `−κN`). `None` where `C' = 0` or `C''` is parallel to `C'`
+/// (a straight piece has no principal normal) or the slices differ in length.
+///
+/// ```
+/// use lekalo::principal_normal;
+/// // circle C(t) = 2(cos t, sin t) at t = 0: the normal points to the centre
+/// assert_eq!(principal_normal(&[0.0, 2.0], &[-2.0, 0.0]), Some(vec![-1.0, 0.0]));
+/// assert_eq!(principal_normal(&[1.0, 0.0], &[3.0, 0.0]), None);
+/// ```
+#[must_use]
+pub fn principal_normal(d1: &[f64], d2: &[f64]) -> Option<Vec<f64>> {
+    if d1.len() != d2.len() {
+        return None;
+    }
+    let len = d1.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let tangent: Vec<f64> = d1.iter().map(|x| x / len).collect();
+    let along: f64 = d2.iter().zip(&tangent).map(|(a, b)| a * b).sum();
+    let n: Vec<f64> = d2
+        .iter()
+        .zip(&tangent)
+        .map(|(a, b)| a - along * b)
+        .collect();
+    let nl = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+    (nl > 0.0 && nl.is_finite()).then(|| n.iter().map(|x| x / nl).collect())
+}
+
 /// Torsion `τ = (C' × C'')·C''' / |C' × C''|²` of a 3-D curve from its first three derivatives
 /// (do Carmo, *Differential Geometry of Curves and Surfaces*, §1-5; `docs/theory/queries.md#curvature`): the rate at which the
 /// osculating plane turns, positive for a right-handed helix. It does not depend on the

@@ -11,7 +11,8 @@
 //! - `conics.rs`: exact circles and circular arcs as rational quadratics.
 //! - `nurbs_ops.rs`: knot operations on NURBS curves through their homogeneous B-spline.
 //! - `knot_removal.rs`: knot removal with a tolerance and curve simplification.
-//! - `curvature.rs`: [`curvature`] from the first two derivatives, [`torsion`] from three.
+//! - `curvature.rs`: [`curvature`] and [`principal_normal`] from the first two derivatives,
+//!   [`torsion`] from three.
 //! - `fast_eval.rs`: [`CurveEvaluator`], batch evaluation by polynomial pieces; in
 //!   `fast_eval/`: `locate.rs` (piece location), `kernels.rs` (fixed-size kernels), `nurbs.rs`
 //!   ([`NurbsEvaluator`]), `tests.rs`.
@@ -30,7 +31,7 @@ mod nurbs_ops;
 pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
-pub use curvature::{curvature, torsion};
+pub use curvature::{curvature, principal_normal, torsion};
 pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;

@@ -563,9 +563,9 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
 
 fn unsupported(knots: &str, end: &str) -> Error {
     Error::InvalidArgument {
-        what: "knot placement",
+        what: "knots",
         reason: format!(
-            "{knots} knots do not go with {end} end conditions; use KnotPlacement::Auto"
+            "{knots} knots do not go with {end} end conditions; use the placement auto"
         ),
     }
 }

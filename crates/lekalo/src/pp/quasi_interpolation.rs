@@ -296,7 +296,7 @@ impl PiecewisePolynomial {
                 reason: format!(
                     "not in the space P_{{k,ξ,ν}} with k = {}, {} breakpoints and ν = {:?}: it \
                      needs the same breakpoints, order at most k and the continuity \
-                     conditions; use quasi_interpolate to approximate it instead",
+                     conditions; approximate it by quasi-interpolation instead",
                     space.order(),
                     space.breakpoints().len(),
                     space.continuity()

@@ -14,7 +14,8 @@ use crate::{Curve, Error, KnotVector, Points, QuerySurface, Result};
 
 /// A parameter direction of a surface: `u` (the first, rows of the net) or `v` (the second).
 ///
-/// Spelled `u` and `v` in every front end (`FromStr`, `Display`, serde).
+/// Spelled `u` and `v` in every front end (`FromStr`, `Display` by
+/// [`crate::vocabulary::DIRECTION`], serde).
 ///
 /// ```
 /// use lekalo::Direction;
@@ -31,29 +32,6 @@ pub enum Direction {
     U,
     /// The second parameter, `v`.
     V,
-}
-
-impl std::fmt::Display for Direction {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Direction::U => "u",
-            Direction::V => "v",
-        })
-    }
-}
-
-impl std::str::FromStr for Direction {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "u" => Ok(Direction::U),
-            "v" => Ok(Direction::V),
-            other => Err(Error::InvalidArgument {
-                what: "direction",
-                reason: format!("\"{other}\" is not a parameter direction; use u or v"),
-            }),
-        }
-    }
 }
 
 /// A tensor-product surface of any kind.
@@ -73,7 +51,6 @@ impl std::str::FromStr for Direction {
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type")]
-#[non_exhaustive]
 pub enum Surface {
     /// A Bezier surface on `[0, 1]²`.
     #[serde(rename = "bezier_surface")]
@@ -266,6 +243,19 @@ impl Surface {
             (Surface::Nurbs(s), Direction::U) => s.iso_curve_u(value).map(Curve::Nurbs),
             (Surface::Nurbs(s), Direction::V) => s.iso_curve_v(value).map(Curve::Nurbs),
         }
+    }
+
+    /// The `n_u × n_v` parameter grid of [`Surface::sample_grid`], `u` outer: `(u_i, v_j)` at
+    /// `i·n_v + j`, each direction from its domain start to exactly its end
+    /// ([`crate::uniform_parameters`]).
+    #[must_use]
+    pub fn grid_parameters(&self, nu: usize, nv: usize) -> Vec<[f64; 2]> {
+        let ((u0, u1), (v0, v1)) = self.domain();
+        let vs = crate::uniform_parameters(v0, v1, nv);
+        crate::uniform_parameters(u0, u1, nu)
+            .into_iter()
+            .flat_map(|u| vs.iter().map(move |&v| [u, v]))
+            .collect()
     }
 
     /// Samples an `n_u × n_v` grid of points evenly over the domain (ends exact,

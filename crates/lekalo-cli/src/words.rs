@@ -1,0 +1,68 @@
+//! The options that every front end shares, read from the library's vocabulary
+//! ([`lekalo::vocabulary`]): `--knots at-params`, `--param centripetal`, `--end natural`,
+//! `--rule greville`, `--dir v`. The possible values in `--help` are the vocabulary's canonical
+//! words with their meanings; an older spelling is still read, with a note on standard error
+//! naming the canonical one.
+
+use std::ffi::OsStr;
+
+use clap::builder::{PossibleValue, TypedValueParser};
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+use lekalo::vocabulary::Vocabulary;
+
+/// A clap value parser of one vocabulary.
+#[derive(Clone, Copy)]
+pub(crate) struct Words<T: 'static>(pub(crate) &'static Vocabulary<T>);
+
+impl<T> TypedValueParser for Words<T>
+where
+    T: Copy + PartialEq + Send + Sync + 'static,
+{
+    type Value = T;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &OsStr,
+    ) -> Result<T, clap::Error> {
+        let text = value.to_string_lossy();
+        let option = arg.map_or_else(|| self.0.key.to_string(), ToString::to_string);
+        match self.0.parse(&text) {
+            Ok(w) => {
+                if w.old_spelling {
+                    if let Some(name) = self.0.name(w.value) {
+                        eprintln!(
+                            "note: {option} {text} is an older spelling; write {option} {name}"
+                        );
+                    }
+                }
+                Ok(w.value)
+            }
+            Err(_) => {
+                let mut e = clap::Error::new(ErrorKind::InvalidValue).with_cmd(cmd);
+                e.insert(ContextKind::InvalidArg, ContextValue::String(option));
+                e.insert(
+                    ContextKind::InvalidValue,
+                    ContextValue::String(text.into_owned()),
+                );
+                e.insert(
+                    ContextKind::ValidValue,
+                    ContextValue::Strings(
+                        self.0.names().iter().map(|s| (*s).to_string()).collect(),
+                    ),
+                );
+                Err(e)
+            }
+        }
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(
+            self.0
+                .words
+                .iter()
+                .map(|w| PossibleValue::new(w.name).help(w.meaning)),
+        ))
+    }
+}
