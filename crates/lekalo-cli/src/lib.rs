@@ -236,7 +236,7 @@ where
         Err(e) if io::is_broken_pipe(&e) => 0,
         Err(_) if cancel::exit_code().is_some() => cancel::exit_interrupted(),
         Err(e) => {
-            io::report(&terms::cli_terms(&format!("error: {e:#}")));
+            io::report(&terms::cli_terms(&words::message(&e)));
             io::exit_code(&e)
         }
     }

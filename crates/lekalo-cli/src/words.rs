@@ -9,6 +9,7 @@ use std::ffi::OsStr;
 use clap::builder::{PossibleValue, TypedValueParser};
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use lekalo::vocabulary::Vocabulary;
+use lekalo::Error;
 
 /// A clap value parser of one vocabulary.
 #[derive(Clone, Copy)]
@@ -64,5 +65,58 @@ where
                 .iter()
                 .map(|w| PossibleValue::new(w.name).help(w.meaning)),
         ))
+    }
+}
+
+/// The command line's name of each argument key of the library's errors (the `what` of
+/// [`Error::InvalidArgument`]): the one table from the library's keys to the options.
+const OPTIONS: [(&str, &str); 7] = [
+    ("knots", "--knots"),
+    ("parametrization", "--param"),
+    ("end", "--end"),
+    ("end derivatives", "--start-derivative/--end-derivative"),
+    ("rule", "--rule"),
+    ("direction", "--dir"),
+    ("expression", "--function"),
+];
+
+/// The option of a library argument key, if the command line has one.
+pub(crate) fn option_of(key: &str) -> Option<&'static str> {
+    OPTIONS.iter().find(|(k, _)| *k == key).map(|(_, o)| *o)
+}
+
+/// The message of a failed command: a library error about an argument the command line has
+/// an option for is written with that option (`--knots: …`), any other as it is, with its
+/// context (`file: …`).
+pub(crate) fn message(e: &anyhow::Error) -> String {
+    if e.chain().len() == 1 {
+        if let Some(Error::InvalidArgument { what, reason }) = e.downcast_ref::<Error>() {
+            if let Some(option) = option_of(what) {
+                return format!("error: {option}: {reason}");
+            }
+        }
+    }
+    format!("error: {e:#}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_vocabulary_key_has_an_option() {
+        for (key, _, _) in lekalo::vocabulary::all() {
+            assert!(option_of(key).is_some(), "no option for the key {key}");
+        }
+        let e = anyhow::Error::from(Error::InvalidArgument {
+            what: "knots",
+            reason: "use the placement auto".into(),
+        });
+        assert_eq!(message(&e), "error: --knots: use the placement auto");
+        let other = anyhow::Error::from(Error::InvalidArgument {
+            what: "something else",
+            reason: "why".into(),
+        });
+        assert_eq!(message(&other), "error: invalid something else: why");
     }
 }

@@ -172,11 +172,11 @@ fn bad_input_exit_code_2_names_the_problem() {
     };
     bad(
         &["--end", "derivatives"],
-        "needs --start-derivative and --end-derivative",
+        "--start-derivative/--end-derivative: the end condition derivatives needs a derivative at the start and at the end",
     );
     bad(
         &["--start-derivative", "1,2"],
-        "--start-derivative/--end-derivative are used only",
+        "--start-derivative/--end-derivative: end derivatives are used by the end conditions derivatives and second, not by free",
     );
     bad(
         &[

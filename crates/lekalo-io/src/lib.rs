@@ -32,7 +32,6 @@
 
 mod analysis;
 mod atomic;
-mod end_names;
 mod error;
 mod figure_check;
 mod flat;
@@ -66,7 +65,6 @@ pub use atomic::{
     strip_bom_str, write_atomic, write_atomic_seek, write_atomic_send, write_atomic_stream,
     write_atomic_with, WriteOptions, WriteSeek,
 };
-pub use end_names::EndName;
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};

@@ -5,7 +5,7 @@
 
 use axum::body::Bytes;
 use axum::response::Response;
-use lekalo::{sample_quasi_interpolant, Expression, PpSpace, Tau, TauRule};
+use lekalo::{sample_quasi_interpolant_expression, Expression, PpSpace, Tau, TauRule};
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
@@ -112,31 +112,22 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
     } else {
         "breakpoints"
     };
-    // the closure cannot return the parser's error: keep the first and report it
-    let mut failure: Option<lekalo::Error> = None;
-    let mut order_cache: (f64, Vec<f64>) = (f64::NAN, Vec::new());
-    let k = r.order;
-    let fx = |x: f64, d: usize| -> f64 {
-        if order_cache.0.to_bits() != x.to_bits() || order_cache.1.len() <= d {
-            match f.derivatives(x, k.max(d + 1) - 1) {
-                Ok(v) => order_cache = (x, v),
-                Err(e) => {
-                    failure.get_or_insert(e);
-                    return f64::NAN;
-                }
+    let s = sample_quasi_interpolant_expression(&space, tau(), &f, r.intervals).map_err(|e| {
+        // the expression's own errors name it in their key (`what`)
+        let field = match &e {
+            lekalo::Error::NonFinite { what, .. }
+            | lekalo::Error::InvalidArgument { what, .. }
+            | lekalo::Error::TooLarge { what, .. }
+                if what.contains("expression") =>
+            {
+                "expression"
             }
-        }
-        order_cache.1[d]
-    };
-    let result = sample_quasi_interpolant(&space, tau(), fx, r.intervals);
-    if let Some(e) = failure {
-        return Err(ApiError::lib("expression", &e));
-    }
-    let s = result.map_err(|e| ApiError::lib(tau_field, &e))?;
-    let q = lekalo::quasi_interpolate(&space, tau(), |x, d| {
-        f.derivatives(x, d).map(|v| v[d]).unwrap_or(f64::NAN)
-    })
-    .map_err(|e| ApiError::lib("expression", &e))?;
+            _ => tau_field,
+        };
+        ApiError::lib(field, &e)
+    })?;
+    let q = lekalo::quasi_interpolate_expression(&space, tau(), &f)
+        .map_err(|e| ApiError::lib("expression", &e))?;
     let opts = ViewOptions {
         samples: r.intervals + 1,
         basis_samples: r.basis_samples,

@@ -122,9 +122,9 @@ pub mod pp;
 
 pub use pp::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
-    sample_quasi_interpolant, truncated_power, Expression, NewtonForm, PiecewisePolynomial,
-    PpSpace, QuasiSamples, Tau, TauRule, DEFAULT_CONTINUITY_RTOL, MAX_EXPRESSION_LEN,
-    MAX_EXPRESSION_ORDER,
+    quasi_interpolate_expression, sample_quasi_interpolant, sample_quasi_interpolant_expression,
+    truncated_power, Expression, NewtonForm, PiecewisePolynomial, PpSpace, QuasiSamples, Tau,
+    TauRule, DEFAULT_CONTINUITY_RTOL, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER,
 };
 
 // -- fitting: least squares, smoothing, fitting to a tolerance --

@@ -1,54 +1,27 @@
 //! `lekalo pp`: piecewise polynomials ↔ B-splines and quasi-interpolation (document 003).
 
-use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 use lekalo::{
-    quasi_interpolate, sample_quasi_interpolant, PiecewisePolynomial, PpSpace, Tau, TauRule,
-    DEFAULT_CONTINUITY_RTOL,
+    quasi_interpolate_expression, sample_quasi_interpolant_expression, Expression,
+    PiecewisePolynomial, PpSpace, Tau, TauRule, DEFAULT_CONTINUITY_RTOL,
 };
-use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+use lekalo_io::{CurveJson, Figure, Object, Series, Style, PALETTE};
 
 use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
 use crate::cmd::plot::encode;
-use crate::io::{bad_input, emit, format_of, integers, load_one, numbers};
+use crate::io::{bad_input, emit, format_of, integers, load_one, numbers, BadInput};
+use crate::words::Words;
 use crate::Verbosity;
-
-/// The τ rule of the de Boor–Fix functionals (document 003 §5.1, step 5).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Rule {
-    /// Tau = the first knot after the left end of the support (the thesis's rule).
-    FirstKnotAfter,
-    /// Tau = the left end of the support (reproduces the thesis's printed error 0.204831).
-    LeftEndOfSupport,
-    /// Tau = the middle of the support.
-    Midpoint,
-    /// Tau = the Greville abscissa.
-    Greville,
-    /// Tau = the middle of the first non-empty knot interval of the support (never a knot).
-    FirstIntervalMidpoint,
-}
-
-impl Rule {
-    pub(crate) fn to_lib(self) -> TauRule {
-        match self {
-            Rule::FirstKnotAfter => TauRule::FirstKnotAfter,
-            Rule::LeftEndOfSupport => TauRule::LeftEndOfSupport,
-            Rule::Midpoint => TauRule::Midpoint,
-            Rule::Greville => TauRule::Greville,
-            Rule::FirstIntervalMidpoint => TauRule::FirstIntervalMidpoint,
-        }
-    }
-}
 
 /// The τ choice of `pp convert` and `pp quasi`: a rule, or explicit values.
 #[derive(Args, Debug)]
 pub(crate) struct TauArgs {
     /// τ rule of the de Boor–Fix functionals.
-    #[arg(long, value_enum, default_value_t = Rule::FirstKnotAfter)]
-    rule: Rule,
+    #[arg(long, value_parser = Words(&lekalo::vocabulary::TAU_RULE), default_value = "first-knot-after")]
+    rule: TauRule,
     /// Explicit τ values instead of a rule, one per B-spline, each inside the support of its
     /// B-spline (from knot i to knot i + k): a comma-separated list or a file of one value per
     /// line.
@@ -73,57 +46,23 @@ impl TauArgs {
     fn choice<'a>(&self, values: &'a Option<Vec<f64>>) -> Tau<'a> {
         match values {
             Some(v) => Tau::Values(v),
-            None => Tau::Rule(self.rule.to_lib()),
+            None => Tau::Rule(self.rule),
         }
     }
 }
 
-/// Built-in functions for quasi-interpolation, with their derivatives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum Function {
-    /// x·cos(x), the thesis's example.
-    #[value(name = "x*cos(x)", alias = "xcosx")]
-    XCosX,
-    /// sin(x).
-    Sin,
-    /// cos(x).
-    Cos,
-    /// exp(x).
-    Exp,
-    /// 1/(1 + x²) (Runge).
-    Runge,
-}
-
-impl Function {
-    /// The r-th derivative at x.
-    pub(crate) fn eval(self, x: f64, r: usize) -> f64 {
-        let (s, c) = x.sin_cos();
-        match self {
-            // (x cos x)^(r) = x cos(x + rπ/2) + r cos(x + (r−1)π/2)
-            Function::XCosX => {
-                let rf = r as f64;
-                let h = std::f64::consts::FRAC_PI_2;
-                x * (x + rf * h).cos() + rf * (x + (rf - 1.0) * h).cos()
-            }
-            Function::Sin => [s, c, -s, -c][r % 4],
-            Function::Cos => [c, -s, -c, s][r % 4],
-            Function::Exp => x.exp(),
-            Function::Runge => runge_derivative(x, r),
-        }
-    }
-}
-
-/// (1 + x²)^{-1} derivatives by the recurrence of (1 + x²) f = 1:
-/// (1 + x²) f^(r) + 2 r x f^(r−1) + r(r−1) f^(r−2) = 0.
-fn runge_derivative(x: f64, r: usize) -> f64 {
-    let q = 1.0 + x * x;
-    let mut d = vec![1.0 / q];
-    for m in 1..=r {
-        let mf = m as f64;
-        let prev2 = if m >= 2 { d[m - 2] } else { 0.0 };
-        d.push(-(2.0 * mf * x * d[m - 1] + mf * (mf - 1.0) * prev2) / q);
-    }
-    d[r]
+/// The function of `--function`: a typed expression in `x` ([`lekalo::Expression`]), or one of
+/// the names that earlier versions offered (`xcosx`, `sin`, `cos`, `exp`, `runge`).
+fn function(text: &str) -> Result<Expression> {
+    let expression = match text.trim() {
+        "xcosx" => "x*cos(x)",
+        "sin" => "sin(x)",
+        "cos" => "cos(x)",
+        "exp" => "exp(x)",
+        "runge" => "1/(1 + x^2)",
+        other => other,
+    };
+    Expression::parse(expression).map_err(|e| BadInput(format!("--function: {e}")).into())
 }
 
 /// `lekalo pp` operations.
@@ -161,13 +100,14 @@ plots f and its quasi-interpolant, like the thesis's Figure 1.
 Examples:
   lekalo pp quasi --function 'x*cos(x)' --breakpoints 0,0.5,0.9,1.4,2.1,2.7,3 --order 3 \\
       --continuity 2,2,2,2,2 --rule left-end-of-support -o fig1.svg    # max error 0.204831
-  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 -o exp.json
-  lekalo pp quasi --function exp --breakpoints 0,1,2 --order 4 --json   # error and curve
-  lekalo pp quasi --function sin --breakpoints 0,1,2 --order 2 --continuity 0 --tau 0,0.5,1.5,2")]
+  lekalo pp quasi --function 'exp(x)' --breakpoints 0,1,2 --order 4 -o exp.json
+  lekalo pp quasi --function 'exp(x)' --breakpoints 0,1,2 --order 4 --json   # error and curve
+  lekalo pp quasi --function 'sin(x)' --breakpoints 0,1,2 --order 2 --continuity 0 --tau 0,0.5,1.5,2")]
     Quasi {
-        /// The function.
-        #[arg(long, value_enum)]
-        function: Function,
+        /// The function of x: an expression such as 'x*cos(x)', '1/(1 + x^2)', 'exp(-x)*sin(3*x)'
+        /// (+ − * / ^, sin cos tan exp ln sqrt abs …, pi, e).
+        #[arg(long, allow_hyphen_values = true)]
+        function: String,
         /// Breakpoints, strictly increasing.
         #[arg(long, allow_hyphen_values = true)]
         breakpoints: String,
@@ -278,7 +218,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             )
         }
         PpOp::Quasi {
-            function,
+            function: function_text,
             breakpoints,
             order,
             continuity: cont,
@@ -292,12 +232,13 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                 vec![order.saturating_sub(1); xi.len().saturating_sub(2)]
             })?;
             let space = PpSpace::new(&xi, &nu, *order)?;
-            let f = |x: f64, r: usize| function.eval(x, r);
+            let f = function(function_text)?;
             let values = tau.values()?;
-            let q = quasi_interpolate(&space, tau.choice(&values), f)?;
+            let q = quasi_interpolate_expression(&space, tau.choice(&values), &f)?;
             crate::io::check_size(*intervals, "--intervals")?;
             crate::io::check_memory::<f64>(intervals.saturating_mul(4), "--intervals")?;
-            let samples = sample_quasi_interpolant(&space, tau.choice(&values), f, *intervals)?;
+            let samples =
+                sample_quasi_interpolant_expression(&space, tau.choice(&values), &f, *intervals)?;
             if v != Verbosity::Quiet {
                 eprintln!(
                     "max |f − q| on {} intervals: {}",
@@ -324,7 +265,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
             let obj = Object::BSpline(q);
             if format == "svg" || format == "png" {
-                let fig = quasi_figure(&obj, &samples, &format!("{function:?}"))?;
+                let fig = quasi_figure(&obj, &samples, function_text)?;
                 return emit(out.output.as_deref(), &encode(&fig, &format, 2.0)?, &[], v);
             }
             write_curve(&obj, None, out, &[], v)

@@ -18,5 +18,6 @@ pub use divided_difference::{
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi_interpolation::{
-    quasi_interpolate, sample_quasi_interpolant, QuasiSamples, Tau, TauRule,
+    quasi_interpolate, quasi_interpolate_expression, sample_quasi_interpolant,
+    sample_quasi_interpolant_expression, QuasiSamples, Tau, TauRule,
 };
