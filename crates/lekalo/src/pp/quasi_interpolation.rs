@@ -425,6 +425,96 @@ pub fn sample_quasi_interpolant<'a, F: FnMut(f64, usize) -> f64>(
     Ok(QuasiSamples { t, exact, approx })
 }
 
+/// A typed function's derivatives as the callback of [`quasi_interpolate`]: `f^(r)(x)` from one
+/// Taylor expansion per point ([`Expression::derivatives`] up to `order − 1`, kept while `x`
+/// stays the same), the first error kept for the caller and NaN returned in its place (which
+/// stops the construction).
+struct ExpressionDerivatives<'e> {
+    f: &'e Expression,
+    order: usize,
+    at: f64,
+    values: Vec<f64>,
+    failure: Option<Error>,
+}
+
+impl ExpressionDerivatives<'_> {
+    fn value(&mut self, x: f64, r: usize) -> f64 {
+        if self.at.to_bits() != x.to_bits() || self.values.len() <= r {
+            match self.f.derivatives(x, self.order.max(r + 1) - 1) {
+                Ok(v) => {
+                    self.at = x;
+                    self.values = v;
+                }
+                Err(e) => {
+                    self.failure.get_or_insert(e);
+                    return f64::NAN;
+                }
+            }
+        }
+        self.values[r]
+    }
+}
+
+/// [`quasi_interpolate`] of a typed function ([`Expression`], e.g. `x*cos(x)`), its derivatives
+/// by Taylor arithmetic (`docs/theory/pp.md`).
+///
+/// ```
+/// use lekalo::{quasi_interpolate_expression, Expression, PpSpace, TauRule};
+/// let space = PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3)?;
+/// let f = Expression::parse("x*cos(x)")?;
+/// let q = quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &f)?;
+/// assert_eq!(q.control_points().len(), 8);
+/// let pole = Expression::parse("1/(x - 1)")?;
+/// assert!(quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &pole).is_err());
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// The expression's first error where it is undefined (a pole, a logarithm of a non-positive
+/// number); errors of [`quasi_interpolate`].
+pub fn quasi_interpolate_expression<'a>(
+    space: &PpSpace,
+    tau: impl Into<Tau<'a>>,
+    f: &Expression,
+) -> Result<BSplineCurve> {
+    let mut d = ExpressionDerivatives {
+        f,
+        order: space.order(),
+        at: f64::NAN,
+        values: Vec::new(),
+        failure: None,
+    };
+    let q = quasi_interpolate(space, tau, |x, r| d.value(x, r));
+    match d.failure {
+        Some(e) => Err(e),
+        None => q,
+    }
+}
+
+/// [`sample_quasi_interpolant`] of a typed function ([`Expression`]).
+///
+/// # Errors
+/// As [`quasi_interpolate_expression`]; [`Error::TooFew`] if `n_intervals == 0`.
+pub fn sample_quasi_interpolant_expression<'a>(
+    space: &PpSpace,
+    tau: impl Into<Tau<'a>>,
+    f: &Expression,
+    n_intervals: usize,
+) -> Result<QuasiSamples> {
+    let mut d = ExpressionDerivatives {
+        f,
+        order: space.order(),
+        at: f64::NAN,
+        values: Vec::new(),
+        failure: None,
+    };
+    let s = sample_quasi_interpolant(space, tau, |x, r| d.value(x, r), n_intervals);
+    match d.failure {
+        Some(e) => Err(e),
+        None => s,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -636,95 +726,5 @@ mod tests {
             let b = quasi_interpolate(&space, taus.as_slice(), xcosx).unwrap();
             assert_eq!(a, b, "{rule:?}");
         }
-    }
-}
-
-/// A typed function's derivatives as the callback of [`quasi_interpolate`]: `f^(r)(x)` from one
-/// Taylor expansion per point ([`Expression::derivatives`] up to `order − 1`, kept while `x`
-/// stays the same), the first error kept for the caller and NaN returned in its place (which
-/// stops the construction).
-struct ExpressionDerivatives<'e> {
-    f: &'e Expression,
-    order: usize,
-    at: f64,
-    values: Vec<f64>,
-    failure: Option<Error>,
-}
-
-impl ExpressionDerivatives<'_> {
-    fn value(&mut self, x: f64, r: usize) -> f64 {
-        if self.at.to_bits() != x.to_bits() || self.values.len() <= r {
-            match self.f.derivatives(x, self.order.max(r + 1) - 1) {
-                Ok(v) => {
-                    self.at = x;
-                    self.values = v;
-                }
-                Err(e) => {
-                    self.failure.get_or_insert(e);
-                    return f64::NAN;
-                }
-            }
-        }
-        self.values[r]
-    }
-}
-
-/// [`quasi_interpolate`] of a typed function ([`Expression`], e.g. `x*cos(x)`), its derivatives
-/// by Taylor arithmetic (`docs/theory/pp.md`).
-///
-/// ```
-/// use lekalo::{quasi_interpolate_expression, Expression, PpSpace, TauRule};
-/// let space = PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3)?;
-/// let f = Expression::parse("x*cos(x)")?;
-/// let q = quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &f)?;
-/// assert_eq!(q.control_points().len(), 8);
-/// let pole = Expression::parse("1/(x - 1)")?;
-/// assert!(quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &pole).is_err());
-/// # Ok::<(), lekalo::Error>(())
-/// ```
-///
-/// # Errors
-/// The expression's first error where it is undefined (a pole, a logarithm of a non-positive
-/// number); errors of [`quasi_interpolate`].
-pub fn quasi_interpolate_expression<'a>(
-    space: &PpSpace,
-    tau: impl Into<Tau<'a>>,
-    f: &Expression,
-) -> Result<BSplineCurve> {
-    let mut d = ExpressionDerivatives {
-        f,
-        order: space.order(),
-        at: f64::NAN,
-        values: Vec::new(),
-        failure: None,
-    };
-    let q = quasi_interpolate(space, tau, |x, r| d.value(x, r));
-    match d.failure {
-        Some(e) => Err(e),
-        None => q,
-    }
-}
-
-/// [`sample_quasi_interpolant`] of a typed function ([`Expression`]).
-///
-/// # Errors
-/// As [`quasi_interpolate_expression`]; [`Error::TooFew`] if `n_intervals == 0`.
-pub fn sample_quasi_interpolant_expression<'a>(
-    space: &PpSpace,
-    tau: impl Into<Tau<'a>>,
-    f: &Expression,
-    n_intervals: usize,
-) -> Result<QuasiSamples> {
-    let mut d = ExpressionDerivatives {
-        f,
-        order: space.order(),
-        at: f64::NAN,
-        values: Vec::new(),
-        failure: None,
-    };
-    let s = sample_quasi_interpolant(space, tau, |x, r| d.value(x, r), n_intervals);
-    match d.failure {
-        Some(e) => Err(e),
-        None => s,
     }
 }
