@@ -1,0 +1,18 @@
+//! Tensor-product splines in any number of parameters: B-splines and NURBS in `N ≥ 1`
+//! directions, their evaluation at points and on grids, operations along one direction, and
+//! interpolation of grids by sweeps of banded solves. The formulas, costs and memory are in
+//! `docs/theory/tensor.md`. For `N = 1` and `N = 2` they are the curves and surfaces of
+//! [`curve`](crate::curve) and [`surface`](crate::surface), with which they convert bit for bit.
+//!
+//! - `spline.rs`: [`TensorBSpline`], the type and its validation (net layout: first direction
+//!   slowest), evaluation at a point, partial derivatives, sequential and parallel batches.
+//! - `grid_eval.rs`: evaluation on the outer product of per-direction parameter lists
+//!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
+//! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
+//!   from [`BSplineCurve`](crate::BSplineCurve) and [`BSplineSurface`](crate::BSplineSurface).
+
+mod grid_eval;
+mod slice;
+mod spline;
+
+pub use spline::TensorBSpline;
