@@ -10,9 +10,12 @@
 //!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
 //! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
 //!   from [`BSplineCurve`](crate::BSplineCurve) and [`BSplineSurface`](crate::BSplineSurface).
+//! - `nurbs.rs`: [`TensorNurbs`], the B-spline of homogeneous points, and its quotient rule.
 
 mod grid_eval;
+mod nurbs;
 mod slice;
 mod spline;
 
+pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use spline::TensorBSpline;
