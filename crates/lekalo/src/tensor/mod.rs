@@ -11,11 +11,15 @@
 //! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
 //!   from [`BSplineCurve`](crate::BSplineCurve) and [`BSplineSurface`](crate::BSplineSurface).
 //! - `nurbs.rs`: [`TensorNurbs`], the B-spline of homogeneous points, and its quotient rule.
+//! - `interpolate.rs`: [`TensorInterpolation`], grid interpolation by one factorisation and one
+//!   sweep of solves per direction.
 
 mod grid_eval;
+mod interpolate;
 mod nurbs;
 mod slice;
 mod spline;
 
+pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use spline::TensorBSpline;
