@@ -23,3 +23,6 @@ mod spline;
 pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use spline::TensorBSpline;
+
+#[cfg(test)]
+mod tests;
