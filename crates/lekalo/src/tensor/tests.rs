@@ -661,3 +661,81 @@ fn every_error_is_named() {
     let e = s.eval_partial(&[0.5, 0.5], &[1, usize::MAX]).unwrap_err();
     assert!(matches!(e, Error::TooLarge { .. }), "{e:?}");
 }
+
+#[test]
+fn grid_least_squares_is_the_interpolation_with_as_many_control_points() {
+    let lists: Vec<Vec<f64>> = [6usize, 5, 7]
+        .iter()
+        .map(|&m| {
+            (0..m)
+                .map(|k| (k as f64 / (m - 1) as f64).powf(1.3))
+                .collect()
+        })
+        .collect();
+    let xs = grid_points(&lists);
+    let values: Vec<f64> = xs.chunks_exact(3).map(|x| field(x, 1e3)).collect();
+    let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let q = PointsRef::from_flat(1, &values).unwrap();
+    let interp = TensorInterpolation::new(vec![3, 2, 3])
+        .interpolate_at(&axes, q)
+        .unwrap();
+    let lsq =
+        crate::tensor::tensor_grid_least_squares(&axes, q, &[3, 2, 3], interp.knots().to_vec())
+            .unwrap();
+    assert_near(
+        lsq.control_points().as_slice(),
+        interp.control_points().as_slice(),
+        1e-12,
+        1e3,
+        "least squares with n = m interpolates",
+    );
+}
+
+#[test]
+fn grid_least_squares_agrees_with_the_surface_fit() {
+    let (nu, nv) = (14, 11);
+    let mut data = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, y) = (i as f64, j as f64);
+            data.extend([x, y, (x * 0.3).sin() * (y * 0.2).cos()]);
+        }
+    }
+    let grid = PointsRef::from_flat(3, &data).unwrap();
+    let surf = crate::fit::surface_grid_least_squares(
+        grid,
+        (nu, nv),
+        (3, 2),
+        (7, 5),
+        Parametrization::Uniform,
+    )
+    .unwrap();
+    let uu: Vec<f64> = (0..nu).map(|k| k as f64 / (nu - 1) as f64).collect();
+    let vv: Vec<f64> = (0..nv).map(|k| k as f64 / (nv - 1) as f64).collect();
+    let t = crate::tensor::tensor_grid_least_squares(
+        &[&uu, &vv],
+        grid,
+        &[3, 2],
+        vec![surf.knots_u().clone(), surf.knots_v().clone()],
+    )
+    .unwrap();
+    assert_near(
+        t.control_points().as_slice(),
+        surf.control_points().as_slice(),
+        1e-12,
+        14.0,
+        "tensor and surface least squares",
+    );
+    // more control points than coordinates in a direction
+    let e = crate::tensor::tensor_grid_least_squares(
+        &[&uu, &vv],
+        grid,
+        &[3, 2],
+        vec![
+            KnotVector::clamped_uniform(3, 15).unwrap(),
+            surf.knots_v().clone(),
+        ],
+    )
+    .unwrap_err();
+    assert!(matches!(e, Error::SchoenbergWhitney { .. }), "{e:?}");
+}
