@@ -3,9 +3,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::curve::nurbs::NurbsCurve;
 use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::{check_homogeneous, homogenize, with_unit_weights, Points};
+use crate::surface::nurbs::NurbsSurface;
 use crate::tensor::spline::{check_len, TensorBSpline};
 
 /// Largest number of partial derivatives `Π_a (k_a + 1)` that
@@ -108,6 +110,39 @@ impl TensorNurbs {
                 with_unit_weights(s.control_points()),
             ),
         }
+    }
+
+    /// The NURBS curve as a NURBS in one parameter: the same homogeneous B-spline, bit for bit.
+    #[must_use]
+    pub fn from_nurbs_curve(curve: &NurbsCurve) -> Self {
+        TensorNurbs {
+            homogeneous: TensorBSpline::from_curve(curve.homogeneous()),
+        }
+    }
+
+    /// The NURBS surface as a NURBS in two parameters `(u, v)`: the same homogeneous
+    /// B-spline, bit for bit.
+    #[must_use]
+    pub fn from_nurbs_surface(surface: &NurbsSurface) -> Self {
+        TensorNurbs {
+            homogeneous: TensorBSpline::from_surface(surface.homogeneous()),
+        }
+    }
+
+    /// The NURBS in one parameter as a [`NurbsCurve`], bit for bit.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `N ≠ 1`.
+    pub fn to_nurbs_curve(&self) -> Result<NurbsCurve> {
+        NurbsCurve::from_homogeneous(self.homogeneous.to_curve()?)
+    }
+
+    /// The NURBS in two parameters as a [`NurbsSurface`], bit for bit.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `N ≠ 2`.
+    pub fn to_nurbs_surface(&self) -> Result<NurbsSurface> {
+        NurbsSurface::from_homogeneous(self.homogeneous.to_surface()?)
     }
 
     /// The homogeneous B-spline `A`.

@@ -446,9 +446,16 @@ impl TensorBSpline {
             offsets,
             stages,
             odometer,
+            strides,
             ..
         } = scratch;
-        contract_window(self, spans, values, offsets, stages, odometer, out);
+        let window = Window {
+            spans,
+            values,
+            offsets,
+            strides,
+        };
+        contract_window(self, &window, stages, odometer, out);
     }
 }
 
@@ -469,6 +476,8 @@ pub(crate) struct TensorScratch {
     /// Stage `a` of the contraction: `Π_{b > a}(p_b + 1)·dim` numbers.
     stages: Vec<Vec<f64>>,
     odometer: Vec<usize>,
+    /// [`TensorBSpline::stride`] of every direction.
+    strides: Vec<usize>,
 }
 
 impl TensorScratch {
@@ -503,6 +512,7 @@ impl TensorScratch {
             offsets,
             stages,
             odometer: vec![0; n],
+            strides: (0..n).map(|a| s.stride(a)).collect(),
         })
     }
 
@@ -567,6 +577,16 @@ pub(crate) fn accumulate(acc: &mut [f64], n: f64, x: &[f64], first: bool) {
     }
 }
 
+/// The point's window: spans, basis vectors (direction `a` at `offsets[a]..`) and the net's
+/// strides.
+#[derive(Clone, Copy)]
+struct Window<'a> {
+    spans: &'a [usize],
+    values: &'a [f64],
+    offsets: &'a [usize],
+    strides: &'a [usize],
+}
+
 /// Sum factorisation over the window of the spans: stage 1 contracts direction 0 straight
 /// from the net, `B_1[r] = Σ_j N_0[j]·P[(s_0 − p_0 + j), r]` for `r` in the window of
 /// directions `1…N−1` (walked by an odometer, the last direction contiguous); stage `a + 1`
@@ -574,20 +594,24 @@ pub(crate) fn accumulate(acc: &mut [f64], n: f64, x: &[f64], first: bool) {
 /// on each number (`grid_eval.rs`).
 fn contract_window(
     s: &TensorBSpline,
-    spans: &[usize],
-    values: &[f64],
-    offsets: &[usize],
+    w: &Window<'_>,
     stages: &mut [Vec<f64>],
     odometer: &mut [usize],
     out: &mut [f64],
 ) {
+    let Window {
+        spans,
+        values,
+        offsets,
+        strides,
+    } = *w;
     let n = s.n_vars();
     let dim = s.dim();
     let net = s.control.as_slice();
     let p0 = s.degrees[0];
     let n0 = &values[offsets[0]..offsets[0] + p0 + 1];
     let first0 = spans[0] - p0;
-    let stride0 = s.stride(0);
+    let stride0 = strides[0];
     if n == 1 {
         for (j, &v) in n0.iter().enumerate() {
             let at = (first0 + j) * dim;
@@ -606,7 +630,7 @@ fn contract_window(
     loop {
         let mut base = run_start;
         for b in 1..last {
-            base += (spans[b] - s.degrees[b] + odometer[b]) * s.stride(b);
+            base += (spans[b] - s.degrees[b] + odometer[b]) * strides[b];
         }
         let acc = &mut stage1[pos..pos + run];
         for (j, &v) in n0.iter().enumerate() {

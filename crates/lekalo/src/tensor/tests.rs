@@ -739,3 +739,39 @@ fn grid_least_squares_agrees_with_the_surface_fit() {
     .unwrap_err();
     assert!(matches!(e, Error::SchoenbergWhitney { .. }), "{e:?}");
 }
+
+#[test]
+fn nurbs_converts_with_the_surface_and_agrees_with_its_derivatives() {
+    use crate::surface::nurbs::NurbsSurface;
+    let net = Points::from_flat(
+        3,
+        (0..4 * 3)
+            .flat_map(|k| {
+                let (i, j) = (f64::from(k / 3), f64::from(k % 3));
+                [i, j, (i * j).sin()]
+            })
+            .collect(),
+    )
+    .unwrap();
+    let weights: Vec<f64> = (0..12).map(|k| 1.0 + 0.25 * f64::from(k % 5)).collect();
+    let ku = KnotVector::clamped_uniform(2, 4).unwrap().into_vec();
+    let kv = KnotVector::clamped_uniform(1, 3).unwrap().into_vec();
+    let surf = NurbsSurface::new(2, 1, ku, kv, net, weights, (4, 3)).unwrap();
+    let t = TensorNurbs::from_nurbs_surface(&surf);
+    assert_eq!(t.to_nurbs_surface().unwrap(), surf, "surface round trip");
+    assert!(t.to_nurbs_curve().is_err(), "a surface is no curve");
+    for (u, v) in [(0.0, 0.0), (0.3, 0.8), (1.0, 0.45)] {
+        let d = surf.eval_derivatives(u, v, 2).unwrap();
+        for k in 0..=2 {
+            for l in 0..=2 {
+                assert_near(
+                    &t.eval_partial(&[u, v], &[k, l]).unwrap(),
+                    d.point(k * 3 + l),
+                    1e-12,
+                    100.0,
+                    "rational partials against the surface",
+                );
+            }
+        }
+    }
+}
