@@ -44,9 +44,14 @@ const PAR_SWEEP: usize = 1 << 16;
 /// `O(Σ_a m_a·p_a)` for the factors).
 ///
 /// For `N = 1` the interpolation is [`CurveInterpolation`] with the same options (the result is
-/// its curve, bit for bit, every end condition included); for `N = 2`
+/// its curve, bit for bit, every end condition included); for `N = 2` with free ends
 /// [`TensorInterpolation::interpolate`] returns the net of [`SurfaceInterpolation`](crate::SurfaceInterpolation)
-/// bit for bit (tested). For `N ≥ 2` the end conditions are free (no derivative data).
+/// bit for bit (tested). For `N ≥ 2` a direction has free, natural or periodic ends (conditions
+/// that hold for every grid line alike); a natural or periodic direction is swept by
+/// [`CurveInterpolation::interpolate_at`] on each block of the grid, read as one curve whose
+/// points are the block's columns, and gains the curve's extra control points (2 for natural
+/// cubics, `p` for periodic splines, whose knots are not clamped). End derivatives would need
+/// one vector per grid line and are refused.
 ///
 /// ```
 /// use lekalo::{PointsRef, TensorInterpolation};
@@ -101,8 +106,11 @@ impl TensorInterpolation {
     }
 
     /// Sets the end conditions of each direction (one per direction). Every
-    /// [`EndCondition`] of [`CurveInterpolation`] for `N = 1`; [`EndCondition::Free`] only for
-    /// `N ≥ 2`.
+    /// [`EndCondition`] of [`CurveInterpolation`] for `N = 1`; [`EndCondition::Free`],
+    /// [`EndCondition::Natural`] (cubic) and [`EndCondition::Periodic`] for `N ≥ 2`. A periodic
+    /// direction's grid does not repeat its first line: the return to it is implied (its
+    /// parameters, given to [`TensorInterpolation::interpolate_at`], have one entry more than
+    /// its values, the last for the return).
     #[must_use]
     pub fn end_conditions(mut self, ends: Vec<EndCondition>) -> Self {
         self.ends = Some(ends);
@@ -132,10 +140,11 @@ impl TensorInterpolation {
     ///   not have one entry per direction, or if `values` does not hold `Π_a shape[a]` values;
     /// - [`Error::TooLarge`] if `Π_a shape[a]·dim` overflows or exceeds
     ///   [`MAX_SCALARS`](crate::MAX_SCALARS) (before anything is allocated);
-    /// - [`Error::Degree`] if a degree is 0 or not below its direction's number of values;
+    /// - [`Error::Degree`] if a degree is 0 or not below its direction's number of values
+    ///   (free ends; the curve interpolation's rules for natural and periodic ends);
     /// - [`Error::CoincidentPoints`] (flat value indices) / [`Error::InvalidArgument`] for
     ///   parameters that do not increase along a line; [`Error::InvalidArgument`] for an
-    ///   unsupported knot placement or end condition;
+    ///   unsupported knot placement or end condition (end derivatives for `N ≥ 2`);
     /// - [`Error::SingularSystem`] / [`Error::IllConditioned`] from the solves (also when a
     ///   control point overflows);
     /// - for `N = 1`, the errors of [`CurveInterpolation::interpolate`].
@@ -166,13 +175,18 @@ impl TensorInterpolation {
         params: &[&[f64]],
         values: PointsRef<'_>,
     ) -> Result<TensorBSpline> {
-        let shape: Vec<usize> = params.iter().map(|p| p.len()).collect();
-        self.check_options(shape.len())?;
-        check_grid(values, &shape)?;
-        if shape.len() == 1 {
+        self.check_options(params.len())?;
+        if params.len() == 1 {
             let curve = self.curve()?.interpolate_at(values, params[0])?;
             return Ok(TensorBSpline::from_curve(&curve));
         }
+        // a periodic direction has one parameter more than values (the return to the first)
+        let shape: Vec<usize> = params
+            .iter()
+            .enumerate()
+            .map(|(a, p)| p.len().saturating_sub(usize::from(self.is_periodic(a))))
+            .collect();
+        check_grid(values, &shape)?;
         self.check_directions(&shape)?;
         for p in params {
             check_strictly_increasing(p)?;
@@ -207,14 +221,16 @@ impl TensorInterpolation {
             let m = shape[a];
             let outer: usize = shape[..a].iter().product();
             let inner: usize = shape[a + 1..].iter().product();
-            let mut params = vec![0.0; m];
-            let mut tmp = vec![0.0; m];
+            // a periodic direction's lines are closed: one step more, back to the first value
+            let steps = m - 1 + usize::from(self.is_periodic(a));
+            let mut params = vec![0.0; steps + 1];
+            let mut tmp = vec![0.0; steps + 1];
             // lines in the order of the grid: outer index slowest, then inner
             for o in 0..outer {
                 for i in 0..inner {
-                    let index = |k: usize| (o * m + k) * inner + i;
+                    let index = |k: usize| (o * m + k % m) * inner + i;
                     parametrize_into(
-                        m - 1,
+                        steps,
                         |k| &data[index(k) * dim..(index(k) + 1) * dim],
                         e,
                         |k| (index(k), index(k + 1)),
@@ -230,7 +246,7 @@ impl TensorInterpolation {
                 *t *= inv;
             }
             params[0] = 0.0;
-            params[m - 1] = 1.0;
+            params[steps] = 1.0;
             check_strictly_increasing(&params)?;
             all.push(params);
         }
@@ -262,27 +278,40 @@ impl TensorInterpolation {
         Ok(())
     }
 
-    /// Counts, degrees and options of every direction, `N ≥ 2`.
+    /// The end condition of direction `a`.
+    fn end(&self, a: usize) -> &EndCondition {
+        self.ends.as_ref().map_or(&EndCondition::Free, |e| &e[a])
+    }
+
+    fn is_periodic(&self, a: usize) -> bool {
+        *self.end(a) == EndCondition::Periodic
+    }
+
+    /// Counts, degrees and options of every direction, `N ≥ 2` (the curve interpolation checks
+    /// the directions with natural or periodic ends).
     fn check_directions(&self, shape: &[usize]) -> Result<()> {
         for (a, (&m, &p)) in shape.iter().zip(&self.degrees).enumerate() {
             check_count(a, m)?;
-            if p == 0 || p >= m {
-                return Err(Error::Degree {
-                    degree: p,
-                    reason: format!(
-                        "direction {a} has {m} values and takes a degree from 1 to {}",
-                        m - 1
-                    ),
-                });
-            }
-            if let Some(e) = &self.ends {
-                if e[a] != EndCondition::Free {
+            match self.end(a) {
+                EndCondition::Free => {
+                    if p == 0 || p >= m {
+                        return Err(Error::Degree {
+                            degree: p,
+                            reason: format!(
+                                "direction {a} has {m} values and takes a degree from 1 to {}",
+                                m - 1
+                            ),
+                        });
+                    }
+                }
+                EndCondition::Natural | EndCondition::Periodic => {}
+                EndCondition::FirstDerivatives { .. } | EndCondition::SecondDerivatives { .. } => {
                     return Err(Error::InvalidArgument {
                         what: "end conditions",
                         reason: format!(
-                            "direction {a}: only free ends are available on grids of two or \
-                             more directions (end derivatives would need data on the grid's \
-                             faces); use EndCondition::Free"
+                            "direction {a}: prescribed end derivatives are one vector per end, \
+                             but a grid of two or more directions would need one per grid line \
+                             (data on the grid's faces); use Free, Natural or Periodic"
                         ),
                     });
                 }
@@ -298,12 +327,17 @@ impl TensorInterpolation {
         shape: &[usize],
         params: &[Vec<f64>],
     ) -> Result<TensorBSpline> {
-        let mut knots = Vec::with_capacity(shape.len());
-        let mut factors = Vec::with_capacity(shape.len());
+        let n = shape.len();
+        let mut knots = Vec::with_capacity(n);
+        let mut factors = Vec::with_capacity(n);
         for (a, t) in params.iter().enumerate() {
+            if *self.end(a) != EndCondition::Free {
+                knots.push(None);
+                factors.push(None);
+                continue;
+            }
             let p = self.degrees[a];
-            let placement = self.knots.as_ref().map_or(KnotPlacement::Auto, |k| k[a]);
-            let kv = match placement {
+            let kv = match self.placement(a) {
                 KnotPlacement::Auto | KnotPlacement::Averaged => KnotVector::averaged(t, p)?,
                 KnotPlacement::Uniform => {
                     let u = KnotVector::clamped_uniform(p, t.len())?;
@@ -314,21 +348,81 @@ impl TensorInterpolation {
                     return Err(Error::InvalidArgument {
                         what: "knot placements",
                         reason: format!(
-                            "direction {a}: knots at the parameters need end derivatives, which \
-                             grids of two or more directions do not take; use Averaged or Uniform"
+                            "direction {a}: knots at the parameters go with end derivatives or \
+                             natural ends; use Averaged or Uniform with free ends"
                         ),
                     })
                 }
             };
-            factors.push(factor_collocation(&kv, p, t, Factors::Keep)?);
-            knots.push(kv);
+            factors.push(Some(factor_collocation(&kv, p, t, Factors::Keep)?));
+            knots.push(Some(kv));
         }
-        let control = solve_sweeps(values.as_slice(), shape, values.dim(), &factors)?;
+        let dim = values.dim();
+        let control = if factors.iter().all(Option::is_some) {
+            let lus: Vec<BandedCrout> = factors.into_iter().flatten().collect();
+            solve_sweeps(values.as_slice(), shape, dim, &lus)?
+        } else {
+            self.solve_mixed(values, shape, params, &factors, &mut knots)?
+        };
         Ok(TensorBSpline::from_raw(
             self.degrees.clone(),
-            knots,
-            Points::from_raw(control, values.dim()),
+            knots.into_iter().flatten().collect(),
+            Points::from_raw(control, dim),
         ))
+    }
+
+    fn placement(&self, a: usize) -> KnotPlacement {
+        self.knots.as_ref().map_or(KnotPlacement::Auto, |k| k[a])
+    }
+
+    /// The sweeps when some directions have natural or periodic ends: those directions are
+    /// swept by [`CurveInterpolation::interpolate_at`] on each block of the grid, read as one
+    /// curve whose points are the block's columns (the end conditions hold for every column;
+    /// the direction grows to the curve's number of control points); the free ones as in
+    /// [`solve_sweeps`]. The knots of the swept directions are filled in.
+    fn solve_mixed(
+        &self,
+        values: PointsRef<'_>,
+        shape: &[usize],
+        params: &[Vec<f64>],
+        factors: &[Option<BandedCrout>],
+        knots: &mut [Option<KnotVector>],
+    ) -> Result<Vec<f64>> {
+        let dim = values.dim();
+        let data = values.as_slice();
+        let reference = &data[..dim];
+        let mut grid = Vec::with_capacity(data.len());
+        for q in data.chunks_exact(dim) {
+            grid.extend(q.iter().zip(reference).map(|(x, r)| x - r));
+        }
+        let mut shape = shape.to_vec();
+        for a in (0..shape.len()).rev() {
+            let inner = shape[a + 1..].iter().product::<usize>() * dim;
+            let m = shape[a];
+            if let Some(lu) = &factors[a] {
+                for b in grid.chunks_exact_mut(m * inner) {
+                    lu.solve(b, inner);
+                }
+                continue;
+            }
+            let fit = CurveInterpolation::new(self.degrees[a])
+                .knot_placement(self.placement(a))
+                .end_condition(self.end(a).clone());
+            let outer = grid.len() / (m * inner);
+            let mut next = Vec::new();
+            for block in grid.chunks_exact(m * inner) {
+                let curve = fit.interpolate_at(PointsRef::from_flat(inner, block)?, &params[a])?;
+                next.extend_from_slice(curve.control_points().as_slice());
+                if knots[a].is_none() {
+                    knots[a] = Some(curve.knots().clone());
+                }
+            }
+            shape[a] = next.len() / (outer * inner);
+            checked_size("control net (product of the net sizes × dim)", &shape, dim)?;
+            grid = next;
+        }
+        uncentre(&mut grid, reference)?;
+        Ok(grid)
     }
 }
 
@@ -401,7 +495,16 @@ fn solve_sweeps(
             }
         }
     }
-    for c in control.chunks_exact_mut(dim) {
+    uncentre(&mut control, reference)?;
+    Ok(control)
+}
+
+/// Adds the reference value back to every point of the net.
+///
+/// # Errors
+/// [`Error::IllConditioned`] if a control-net number overflowed.
+fn uncentre(control: &mut [f64], reference: &[f64]) -> Result<()> {
+    for c in control.chunks_exact_mut(reference.len()) {
         for (x, r) in c.iter_mut().zip(reference) {
             *x += r;
         }
@@ -415,5 +518,5 @@ fn solve_sweeps(
             ),
         });
     }
-    Ok(control)
+    Ok(())
 }

@@ -588,7 +588,13 @@ fn every_error_is_named() {
     assert!(matches!(e, Error::TooFew { .. }), "{e:?}");
     let e = fit
         .clone()
-        .end_conditions(vec![EndCondition::Natural, EndCondition::Free])
+        .end_conditions(vec![
+            EndCondition::FirstDerivatives {
+                start: vec![0.0],
+                end: vec![0.0],
+            },
+            EndCondition::Free,
+        ])
         .interpolate(values, &[4, 3])
         .unwrap_err();
     assert!(
@@ -774,4 +780,75 @@ fn nurbs_converts_with_the_surface_and_agrees_with_its_derivatives() {
             }
         }
     }
+}
+
+#[test]
+fn natural_and_periodic_directions_on_grids() {
+    use std::f64::consts::TAU;
+    // f(x, θ, z): periodic in θ (direction 1), natural cubic in x (direction 0)
+    let xs: Vec<f64> = (0..7)
+        .map(|k| f64::from(k) * 0.4 + 0.05 * f64::from(k * k))
+        .collect();
+    let m = 9;
+    let thetas: Vec<f64> = (0..=m).map(|k| TAU * k as f64 / m as f64).collect();
+    let zs = [0.0, 0.5, 1.5, 2.0];
+    let f = |x: f64, t: f64, z: f64| (1.0 + 0.3 * x) * t.cos() + 0.5 * (2.0 * t).sin() * z + x * z;
+    let mut values = Vec::new();
+    for &x in &xs {
+        for &t in &thetas[..m] {
+            for &z in &zs {
+                values.push(f(x, t, z));
+            }
+        }
+    }
+    let q = PointsRef::from_flat(1, &values).unwrap();
+    let s = TensorInterpolation::new(vec![3, 3, 2])
+        .end_conditions(vec![
+            EndCondition::Natural,
+            EndCondition::Periodic,
+            EndCondition::Free,
+        ])
+        .interpolate_at(&[&xs, &thetas, &zs], q)
+        .unwrap();
+    assert_eq!(
+        s.shape(),
+        &[7 + 2, m + 3, 4],
+        "natural adds 2, periodic adds p"
+    );
+    let scale = values.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let mut at = vec![0.0; values.len()];
+    s.eval_grid(&[&xs, &thetas[..m], &zs], None, &mut at)
+        .unwrap();
+    assert_near(&at, &values, 1e-12, scale, "nodes");
+    for &x in &[xs[0], xs[3], xs[6]] {
+        for &z in &zs {
+            // periodic: the value and the first two θ-derivatives close up
+            for k in 0..=2 {
+                let a = s.eval_partial(&[x, thetas[0], z], &[0, k, 0]).unwrap();
+                let b = s.eval_partial(&[x, thetas[m], z], &[0, k, 0]).unwrap();
+                assert_near(&a, &b, 1e-11, scale, "periodic closure");
+            }
+        }
+    }
+    for &t in &[0.3, 2.0, 5.0] {
+        for &z in &zs {
+            // natural: the second x-derivative vanishes at both x ends
+            for &x in &[xs[0], xs[6]] {
+                let d2 = s.eval_partial(&[x, t, z], &[2, 0, 0]).unwrap();
+                assert!(d2[0].abs() < 1e-10 * scale, "natural end: {d2:?}");
+            }
+        }
+    }
+    // computed parameters close the periodic lines too
+    let p = TensorInterpolation::new(vec![3, 3, 2])
+        .parametrization(Parametrization::Uniform)
+        .end_conditions(vec![
+            EndCondition::Natural,
+            EndCondition::Periodic,
+            EndCondition::Free,
+        ])
+        .grid_parameters(q, &[7, m, 4])
+        .unwrap();
+    assert_eq!(p[1].len(), m + 1, "one parameter more for the return");
+    assert_eq!(p[0].len(), 7, "natural direction");
 }
