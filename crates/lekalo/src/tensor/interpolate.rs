@@ -198,13 +198,14 @@ impl TensorInterpolation {
     /// The parameters [`TensorInterpolation::interpolate`] gives the grid: for direction `a`,
     /// the [`Parametrization`] of every line of the grid along `a`, summed in the order of the
     /// lines (the first direction slowest) and divided by their number, the ends pinned to
-    /// 0 and 1. `O(Π_a m_a·dim·N)`.
+    /// 0 and 1; a periodic direction's lines are closed (one parameter more, for the return to
+    /// the first value). `O(Π_a m_a·dim·N)`.
     ///
     /// # Errors
     /// As [`TensorInterpolation::interpolate`] for the shape and the values; the
     /// parametrisation's errors.
     pub fn grid_parameters(&self, values: PointsRef<'_>, shape: &[usize]) -> Result<Vec<Vec<f64>>> {
-        check_n_vars(shape.len())?;
+        self.check_options(shape.len())?;
         check_grid(values, shape)?;
         for (a, &m) in shape.iter().enumerate() {
             check_count(a, m)?;

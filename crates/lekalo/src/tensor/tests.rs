@@ -607,6 +607,22 @@ fn every_error_is_named() {
         ),
         "{e:?}"
     );
+    let e = fit
+        .clone()
+        .end_conditions(vec![EndCondition::Free])
+        .grid_parameters(values, &[4, 3])
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::LengthMismatch {
+                expected: 2,
+                got: 1,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     // the spline's own checks
     let k = vec![0.0, 0.0, 1.0, 1.0];
     let e = TensorBSpline::new(
