@@ -868,3 +868,35 @@ fn natural_and_periodic_directions_on_grids() {
     assert_eq!(p[1].len(), m + 1, "one parameter more for the return");
     assert_eq!(p[0].len(), 7, "natural direction");
 }
+
+proptest! {
+    #![proptest_config(proptest_config(48))]
+
+    #[test]
+    fn interpolants_hit_random_grids(
+        dirs in prop::collection::vec((2usize..=6, 1usize..=4, 0.2f64..2.0), 2..=4),
+        dim in 1usize..=2,
+        offset in prop_oneof![Just(0.0), Just(1e8), -1e3f64..1e3],
+        seed in prop::collection::vec(-1.0f64..1.0, 64),
+    ) {
+        // coordinates with uneven steps, degrees below the counts, values from the seed
+        let lists: Vec<Vec<f64>> = dirs
+            .iter()
+            .map(|&(m, _, s)| (0..m).map(|k| (k as f64).powf(s)).collect())
+            .collect();
+        let degrees: Vec<usize> = dirs.iter().map(|&(m, p, _)| p.min(m - 1)).collect();
+        let count: usize = dirs.iter().map(|d| d.0).product();
+        let values: Vec<f64> = (0..count * dim)
+            .map(|i| offset + seed[i % seed.len()] * (1.0 + (i / seed.len()) as f64))
+            .collect();
+        let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+        let q = PointsRef::from_flat(dim, &values).unwrap();
+        let s = TensorInterpolation::new(degrees).interpolate_at(&axes, q).unwrap();
+        let mut at = vec![0.0; values.len()];
+        s.eval_grid(&axes, None, &mut at).unwrap();
+        let scale = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (a, v) in at.iter().zip(&values) {
+            prop_assert!((a - v).abs() <= 1e-12 * scale, "{a} against {v}");
+        }
+    }
+}
