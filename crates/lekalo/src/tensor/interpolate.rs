@@ -5,7 +5,9 @@
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
-use crate::interpolate::collocation::{factor_collocation, Factors};
+use crate::interpolate::collocation::{
+    check_condition_limit, condition_exceeded, factor_collocation, Factors,
+};
 use crate::interpolate::parametrization::{
     check_strictly_increasing, parametrize_into, Parametrization,
 };
@@ -40,8 +42,8 @@ const PAR_SWEEP: usize = 1 << 16;
 /// block. The data are centred on the first value first (affine invariance, no cancellation
 /// for data far from the origin) and the value added back at the end. Cost
 /// `O(Σ_a m_a·p_a²)` for the factorisations and `O(Π_a m_a·dim·Σ_a (p_a + 1))` for the
-/// sweeps, in place in the result (memory: the control net, `Π_a m_a·dim` numbers, and
-/// `O(Σ_a m_a·p_a)` for the factors).
+/// sweeps, in place in the result when every direction has free ends (memory: the control net,
+/// `Π_a m_a·dim` numbers, and `O(Σ_a m_a·p_a)` for the factors).
 ///
 /// For `N = 1` the interpolation is [`CurveInterpolation`] with the same options (the result is
 /// its curve, bit for bit, every end condition included); for `N = 2` with free ends
@@ -73,6 +75,7 @@ pub struct TensorInterpolation {
     parametrization: Parametrization,
     knots: Option<Vec<KnotPlacement>>,
     ends: Option<Vec<EndCondition>>,
+    max_condition: Option<f64>,
 }
 
 impl TensorInterpolation {
@@ -85,6 +88,7 @@ impl TensorInterpolation {
             parametrization: Parametrization::ChordLength,
             knots: None,
             ends: None,
+            max_condition: None,
         }
     }
 
@@ -95,10 +99,12 @@ impl TensorInterpolation {
         self
     }
 
-    /// Sets the knot placement of each direction (one per direction):
+    /// Sets the knot placement of each direction (one per direction). With free ends
     /// [`KnotPlacement::Auto`] and [`KnotPlacement::Averaged`] average the parameters (eq. 3),
     /// [`KnotPlacement::Uniform`] spaces the interior knots evenly over the parameters' range
-    /// (eq. 2). [`KnotPlacement::AtParameters`] needs end derivatives and is for `N = 1`.
+    /// (eq. 2); [`KnotPlacement::AtParameters`] is refused. A direction with natural or
+    /// periodic ends (and `N = 1`) takes the placement as [`CurveInterpolation::knot_placement`]
+    /// does.
     #[must_use]
     pub fn knot_placements(mut self, knots: Vec<KnotPlacement>) -> Self {
         self.knots = Some(knots);
@@ -114,6 +120,34 @@ impl TensorInterpolation {
     #[must_use]
     pub fn end_conditions(mut self, ends: Vec<EndCondition>) -> Self {
         self.ends = Some(ends);
+        self
+    }
+
+    /// Refuses, with [`Error::IllConditioned`], a system whose 1-norm condition number is
+    /// estimated above `limit` (a number ≥ 1, e.g. `1e8`). The system is the Kronecker product
+    /// of the directions' collocation matrices and `κ_1(A_0 ⊗ ⋯ ⊗ A_{N−1}) = Π_a κ_1(A_a)`
+    /// (Horn & Johnson, *Topics in Matrix Analysis*, §4.2), so the estimate is the product of
+    /// the directions' estimates (Higham's refinement of Hager's method, as
+    /// [`SurfaceInterpolation::max_condition`](crate::SurfaceInterpolation::max_condition)). The
+    /// spline, when there is one, is the same bit for bit as without the limit. For `N = 1` it
+    /// is [`CurveInterpolation::max_condition`]; for `N ≥ 2` only grids whose directions all have
+    /// free ends take a limit.
+    ///
+    /// ```
+    /// use lekalo::{Error, PointsRef, TensorInterpolation};
+    /// // two coordinates of the first direction nearly coincide
+    /// let xs = [0.0, 1.0, 2.0, 2.0 + 1e-10, 3.0, 4.0];
+    /// let (ys, zs) = ([0.0, 1.0, 2.0], [0.0, 1.0]);
+    /// let values: Vec<f64> = (0..6 * 3 * 2).map(|k| f64::from(k).sin()).collect();
+    /// let q = PointsRef::from_flat(1, &values)?;
+    /// let strict = TensorInterpolation::new(vec![3, 2, 1]).max_condition(1e8);
+    /// let e = strict.interpolate_at(&[&xs, &ys, &zs], q).unwrap_err();
+    /// assert!(matches!(e, Error::IllConditioned { .. }));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn max_condition(mut self, limit: f64) -> Self {
+        self.max_condition = Some(limit);
         self
     }
 
@@ -144,9 +178,11 @@ impl TensorInterpolation {
     ///   (free ends; the curve interpolation's rules for natural and periodic ends);
     /// - [`Error::CoincidentPoints`] (flat value indices) / [`Error::InvalidArgument`] for
     ///   parameters that do not increase along a line; [`Error::InvalidArgument`] for an
-    ///   unsupported knot placement or end condition (end derivatives for `N ≥ 2`);
+    ///   unsupported knot placement or end condition (end derivatives for `N ≥ 2`), for a
+    ///   condition limit that is NaN or below 1, or one set with natural or periodic ends;
     /// - [`Error::SingularSystem`] / [`Error::IllConditioned`] from the solves (also when a
-    ///   control point overflows);
+    ///   control point overflows, or the condition estimate exceeds
+    ///   [`TensorInterpolation::max_condition`]);
     /// - for `N = 1`, the errors of [`CurveInterpolation::interpolate`].
     pub fn interpolate(&self, values: PointsRef<'_>, shape: &[usize]) -> Result<TensorBSpline> {
         self.check_options(shape.len())?;
@@ -263,6 +299,9 @@ impl TensorInterpolation {
         if let Some(e) = &self.ends {
             c = c.end_condition(e[0].clone());
         }
+        if let Some(limit) = self.max_condition {
+            c = c.max_condition(limit);
+        }
         Ok(c)
     }
 
@@ -329,6 +368,22 @@ impl TensorInterpolation {
         params: &[Vec<f64>],
     ) -> Result<TensorBSpline> {
         let n = shape.len();
+        let all_free = (0..n).all(|a| *self.end(a) == EndCondition::Free);
+        let kind = match self.max_condition {
+            None => Factors::Keep,
+            Some(limit) => {
+                check_condition_limit(limit)?;
+                if !all_free {
+                    return Err(Error::InvalidArgument {
+                        what: "condition limit (max_condition)",
+                        reason: "available for grids whose directions all have free ends; drop \
+                                 max_condition with natural or periodic ends"
+                            .into(),
+                    });
+                }
+                Factors::Estimate
+            }
+        };
         let mut knots = Vec::with_capacity(n);
         let mut factors = Vec::with_capacity(n);
         for (a, t) in params.iter().enumerate() {
@@ -355,12 +410,22 @@ impl TensorInterpolation {
                     })
                 }
             };
-            factors.push(Some(factor_collocation(&kv, p, t, Factors::Keep)?));
+            factors.push(Some(factor_collocation(&kv, p, t, kind)?));
             knots.push(Some(kv));
         }
         let dim = values.dim();
-        let control = if factors.iter().all(Option::is_some) {
+        let control = if all_free {
             let lus: Vec<BandedCrout> = factors.into_iter().flatten().collect();
+            if let Some(limit) = self.max_condition {
+                let kappa: f64 = lus
+                    .iter()
+                    .map(|lu| lu.condition_estimate().unwrap_or(1.0))
+                    .product();
+                // an infinite estimate exceeds every limit
+                if kappa > limit {
+                    return Err(condition_exceeded(kappa, limit));
+                }
+            }
             solve_sweeps(values.as_slice(), shape, dim, &lus)?
         } else {
             self.solve_mixed(values, shape, params, &factors, &mut knots)?

@@ -900,3 +900,45 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_condition_limit_leaves_the_spline_unchanged_or_refuses_it() {
+    let lists: Vec<Vec<f64>> = [6usize, 5, 4]
+        .iter()
+        .map(|&m| (0..m).map(|k| (k as f64).powf(1.2)).collect())
+        .collect();
+    let xs = grid_points(&lists);
+    let values: Vec<f64> = xs.chunks_exact(3).map(|x| field(x, 3.0)).collect();
+    let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let q = PointsRef::from_flat(1, &values).unwrap();
+    let fit = TensorInterpolation::new(vec![3, 2, 3]);
+    let free = fit.interpolate_at(&axes, q).unwrap();
+    let limited = fit
+        .clone()
+        .max_condition(1e6)
+        .interpolate_at(&axes, q)
+        .unwrap();
+    assert_eq!(free, limited, "a limit that is not reached changes nothing");
+    let e = fit
+        .clone()
+        .max_condition(1.0)
+        .interpolate_at(&axes, q)
+        .unwrap_err();
+    assert!(matches!(e, Error::IllConditioned { .. }), "{e:?}");
+    let e = fit
+        .clone()
+        .max_condition(f64::NAN)
+        .interpolate_at(&axes, q)
+        .unwrap_err();
+    assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+    let e = fit
+        .max_condition(1e6)
+        .end_conditions(vec![
+            EndCondition::Natural,
+            EndCondition::Free,
+            EndCondition::Free,
+        ])
+        .interpolate_at(&axes, q)
+        .unwrap_err();
+    assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+}
