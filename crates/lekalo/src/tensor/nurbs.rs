@@ -222,13 +222,26 @@ impl TensorNurbs {
         Ok(())
     }
 
-    /// `R` at every point of `xs` (`N` coordinates a point) into `out` (`dim` a point); with
-    /// `parallel`, on the rayon pool ([`TensorBSpline::par_eval_batch`]). The same bits as
-    /// [`TensorNurbs::eval`] at each point.
+    /// `R` at every point of `xs` (`N` coordinates a point) into `out` (`dim` a point): the
+    /// homogeneous batch ([`TensorBSpline::eval_batch`]), then one division a value. The same
+    /// bits as [`TensorNurbs::eval`] at each point.
     ///
     /// # Errors
     /// As [`TensorBSpline::eval_batch`].
-    pub fn eval_batch(&self, xs: &[f64], out: &mut [f64], parallel: bool) -> Result<()> {
+    pub fn eval_batch(&self, xs: &[f64], out: &mut [f64]) -> Result<()> {
+        self.batch(xs, out, false)
+    }
+
+    /// [`TensorNurbs::eval_batch`] on the rayon pool ([`TensorBSpline::par_eval_batch`]); the
+    /// same bits.
+    ///
+    /// # Errors
+    /// As [`TensorBSpline::eval_batch`].
+    pub fn par_eval_batch(&self, xs: &[f64], out: &mut [f64]) -> Result<()> {
+        self.batch(xs, out, true)
+    }
+
+    fn batch(&self, xs: &[f64], out: &mut [f64], parallel: bool) -> Result<()> {
         let hd = self.homogeneous.dim();
         let n = self.n_vars();
         let points = xs.len() / n;

@@ -518,6 +518,12 @@ fn nurbs_is_the_rational_quotient_and_its_partials_match_differences() {
         s.eval(&[0.9, 0.5]).unwrap().as_slice(),
         "grid point"
     );
+    let pts = [0.1, 0.0, 0.9, 0.5, 0.35, 1.0];
+    let (mut seq, mut par) = (vec![0.0; 9], vec![0.0; 9]);
+    s.eval_batch(&pts, &mut seq).unwrap();
+    s.par_eval_batch(&pts, &mut par).unwrap();
+    assert_eq!(seq, par, "parallel batch");
+    assert_eq!(&seq[3..6], &grid[3 * 4..3 * 5], "batch and grid");
     let json = serde_json::to_string(&s).unwrap();
     let back: TensorNurbs = serde_json::from_str(&json).unwrap();
     assert_near(
@@ -941,4 +947,42 @@ fn a_condition_limit_leaves_the_spline_unchanged_or_refuses_it() {
         .interpolate_at(&axes, q)
         .unwrap_err();
     assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+}
+
+#[test]
+fn both_grid_paths_give_the_point_values_bitwise() {
+    // a fine grid on a small net takes the shared contraction, a coarse grid on a large net
+    // goes point by point; each value must be the point kernel's
+    let net = |shape: &[usize], dim: usize| -> Points {
+        let count: usize = shape.iter().product::<usize>() * dim;
+        Points::from_flat(dim, (0..count).map(|k| (k as f64 * 0.37).sin()).collect()).unwrap()
+    };
+    let make = |shape: [usize; 3], p: usize| {
+        let knots = shape
+            .iter()
+            .map(|&n| KnotVector::clamped_uniform(p, n).unwrap())
+            .collect();
+        TensorBSpline::from_knot_vectors(vec![p; 3], knots, net(&shape, 2)).unwrap()
+    };
+    for (s, m) in [(make([5, 4, 6], 3), 12usize), (make([40, 30, 35], 2), 2)] {
+        let lists: Vec<Vec<f64>> = (0..3)
+            .map(|a| {
+                (0..m + a)
+                    .map(|k| (k as f64 / (m + a - 1) as f64).powi(2))
+                    .collect()
+            })
+            .collect();
+        let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+        let xs = grid_points(&lists);
+        let mut grid = vec![0.0; xs.len() / 3 * 2];
+        s.eval_grid(&axes, Some(&[0, 1, 2]), &mut grid).unwrap();
+        for (x, g) in xs.chunks_exact(3).zip(grid.chunks_exact(2)) {
+            let v = s.eval_partial(x, &[0, 1, 2]).unwrap();
+            assert_eq!(
+                g.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+                v.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+                "grid value at {x:?}"
+            );
+        }
+    }
 }
