@@ -1,0 +1,213 @@
+//! Evaluation of a [`TensorBSpline`] on the grid `X_0 × ⋯ × X_{N−1}` (the outer product of
+//! one parameter list per direction) without forming the grid's points:
+//! `docs/theory/tensor.md#evaluation-on-grids`.
+
+use crate::error::{Error, Result};
+use crate::tensor::spline::{accumulate, basis_vector, checked_size, TensorBSpline, TensorScratch};
+
+/// Basis vectors and spans of one direction at every parameter of its list.
+struct AxisTable {
+    spans: Vec<usize>,
+    /// `(p + 1)` numbers a parameter.
+    values: Vec<f64>,
+}
+
+impl TensorBSpline {
+    /// `S` (or the partial derivative of `orders`, see [`TensorBSpline::eval_partial`]) at every
+    /// point of the grid `axes[0] × ⋯ × axes[N−1]` into `out`, point `(i_0, …, i_{N−1})` at
+    /// `((…(i_0·m_1 + i_1)…)·m_{N−1} + i_{N−1})·dim` (`m_a = axes[a].len()`, the first direction
+    /// slowest, as the control net). The parameter lists may come in any order.
+    ///
+    /// The basis vectors of each direction are computed once per parameter (`Σ_a m_a`
+    /// evaluations instead of `N·Π_a m_a`). Then, when it is cheaper than point by point, sum
+    /// factorisation over the whole net, depth first: for each `i_0`, direction 0 is contracted
+    /// into `C_1 = Σ_j N_{0,j}(x_{0,i_0})·P_{j,·}` (`Π_{a≥1} n_a·dim` numbers), for each `i_1`
+    /// direction 1 of `C_1` into `C_2`, and so on; cost `Σ_a (Π_{b≤a} m_b)·(p_a + 1)·Π_{b>a} n_b·dim`
+    /// against `Π_a m_a·Π_a (p_a + 1)·dim` point by point, memory `Σ_a Π_{b>a} n_b·dim`
+    /// (`docs/theory/tensor.md#evaluation-on-grids`). Either way each value is computed by the
+    /// same operations on the same numbers as [`TensorBSpline::eval`] (or `eval_partial`) at that
+    /// point: the result is the same bit for bit (tested).
+    ///
+    /// ```
+    /// use lekalo::{Points, TensorBSpline};
+    /// // f(x, y, z) = x + 2y + 3z, trilinear on [0, 1]³
+    /// let mut net = Vec::new();
+    /// for i in 0..2 { for j in 0..2 { for k in 0..2 { net.push(f64::from(i + 2 * j + 3 * k)); } } }
+    /// let k = vec![0.0, 0.0, 1.0, 1.0];
+    /// let s = TensorBSpline::new(vec![1, 1, 1], vec![k.clone(), k.clone(), k], Points::from_flat(1, net)?)?;
+    /// let (xs, ys, zs) = ([0.0, 0.5, 1.0], [0.25, 0.75], [0.5]);
+    /// let mut out = vec![0.0; 3 * 2 * 1];
+    /// s.eval_grid(&[&xs, &ys, &zs], None, &mut out)?;
+    /// assert_eq!(out[1 * 2 + 1], 0.5 + 2.0 * 0.75 + 3.0 * 0.5);
+    /// assert_eq!(out[1 * 2 + 1], s.eval(&[0.5, 0.75, 0.5])?[0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `axes.len() != N`, `orders.len() != N` or `out` does not
+    /// hold `Π_a m_a·dim` numbers; [`Error::TooLarge`] if that product overflows or exceeds
+    /// [`MAX_SCALARS`](crate::MAX_SCALARS) (checked before anything is computed);
+    /// [`Error::ParameterOutOfDomain`] for a parameter outside its direction's domain;
+    /// [`Error::TooLarge`] for a derivative order above
+    /// [`MAX_DERIVATIVE_ORDER`](crate::MAX_DERIVATIVE_ORDER).
+    pub fn eval_grid(
+        &self,
+        axes: &[&[f64]],
+        orders: Option<&[usize]>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let n = self.n_vars();
+        let dim = self.dim();
+        if axes.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "grid parameter lists (one per direction)",
+                expected: n,
+                got: axes.len(),
+            });
+        }
+        let m: Vec<usize> = axes.iter().map(|a| a.len()).collect();
+        let size = checked_size("grid values (product of the list lengths × dim)", &m, dim)?;
+        if out.len() != size {
+            return Err(Error::LengthMismatch {
+                what: "grid output (product of the list lengths × dim)",
+                expected: size,
+                got: out.len(),
+            });
+        }
+        let mut scratch = TensorScratch::new(self, orders)?;
+        if size == 0 {
+            return Ok(());
+        }
+        let tables = self.axis_tables(axes, orders)?;
+        if self.grid_cost(&m) < self.pointwise_cost(&m) {
+            let mut buffers: Vec<Vec<f64>> =
+                (1..n).map(|a| vec![0.0; self.stride(a - 1)]).collect();
+            grid_rec(self, 0, self.control.as_slice(), &tables, &mut buffers, out);
+        } else {
+            self.grid_pointwise(&m, &tables, &mut scratch, out);
+        }
+        Ok(())
+    }
+
+    /// Spans and basis vectors of every direction at its parameters.
+    fn axis_tables(&self, axes: &[&[f64]], orders: Option<&[usize]>) -> Result<Vec<AxisTable>> {
+        let mut tables = Vec::with_capacity(axes.len());
+        for (a, xs) in axes.iter().enumerate() {
+            let p = self.degrees[a];
+            let knots = self.knots[a].as_slice();
+            let mut cursor = self.knots[a].span_cursor(p);
+            let mut spans = Vec::with_capacity(xs.len());
+            let mut values = vec![0.0; xs.len() * (p + 1)];
+            let k = orders.map_or(0, |k| k[a]);
+            let mut basis = crate::basis::BasisScratch::new(p);
+            let mut ders = vec![0.0; (k.min(p) + 1) * (p + 1)];
+            for (&x, v) in xs.iter().zip(values.chunks_exact_mut(p + 1)) {
+                let span = cursor.find(x)?;
+                basis_vector(knots, p, span, x, k, &mut basis, &mut ders, v);
+                spans.push(span);
+            }
+            tables.push(AxisTable { spans, values });
+        }
+        Ok(tables)
+    }
+
+    /// Multiply-adds of the depth-first sum factorisation (saturating: an estimate).
+    fn grid_cost(&self, m: &[usize]) -> usize {
+        let mut points = 1usize;
+        let mut cost = 0usize;
+        for a in 0..m.len() {
+            points = points.saturating_mul(m[a]);
+            cost = cost.saturating_add(
+                points
+                    .saturating_mul(self.degrees[a] + 1)
+                    .saturating_mul(self.stride(a)),
+            );
+        }
+        cost
+    }
+
+    /// Multiply-adds point by point (saturating: an estimate).
+    fn pointwise_cost(&self, m: &[usize]) -> usize {
+        let window: usize = self
+            .degrees
+            .iter()
+            .fold(self.dim(), |w, p| w.saturating_mul(p + 1));
+        m.iter().fold(window, |c, &k| c.saturating_mul(k))
+    }
+
+    /// The grid point by point with the tabulated bases (the kernel of
+    /// [`TensorBSpline::eval`]).
+    fn grid_pointwise(
+        &self,
+        m: &[usize],
+        tables: &[AxisTable],
+        scratch: &mut TensorScratch,
+        out: &mut [f64],
+    ) {
+        let n = self.n_vars();
+        let mut index = vec![0usize; n];
+        for o in out.chunks_exact_mut(self.dim()) {
+            for a in 0..n {
+                let w = self.degrees[a] + 1;
+                scratch.spans[a] = tables[a].spans[index[a]];
+                let at = scratch.offsets[a];
+                scratch.values[at..at + w]
+                    .copy_from_slice(&tables[a].values[index[a] * w..(index[a] + 1) * w]);
+            }
+            self.contract_prepared(scratch, o);
+            for a in (0..n).rev() {
+                index[a] += 1;
+                if index[a] < m[a] {
+                    break;
+                }
+                index[a] = 0;
+            }
+        }
+    }
+}
+
+/// Contracts direction `a` of `src` (the net of directions `a…N−1`, full size) at every
+/// parameter of the direction, recursing into the next direction; at the last direction the
+/// values go to `out` (the sub-grid of directions `a…N−1`).
+fn grid_rec(
+    s: &TensorBSpline,
+    a: usize,
+    src: &[f64],
+    tables: &[AxisTable],
+    buffers: &mut [Vec<f64>],
+    out: &mut [f64],
+) {
+    let p = s.degrees[a];
+    let table = &tables[a];
+    let len = s.stride(a);
+    let points = table.spans.len();
+    let sub = out.len() / points.max(1);
+    for (i, (&span, nv)) in table
+        .spans
+        .iter()
+        .zip(table.values.chunks_exact(p + 1))
+        .enumerate()
+    {
+        let first = span - p;
+        if let Some((buf, rest)) = buffers.split_first_mut() {
+            for (j, &v) in nv.iter().enumerate() {
+                let at = (first + j) * len;
+                accumulate(buf, v, &src[at..at + len], j == 0);
+            }
+            grid_rec(
+                s,
+                a + 1,
+                buf,
+                tables,
+                rest,
+                &mut out[i * sub..(i + 1) * sub],
+            );
+        } else {
+            let o = &mut out[i * sub..(i + 1) * sub];
+            for (j, &v) in nv.iter().enumerate() {
+                let at = (first + j) * len;
+                accumulate(o, v, &src[at..at + len], j == 0);
+            }
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! Tensor-product splines in any number of parameters: B-splines and NURBS in `N ≥ 1`
+//! directions, their evaluation at points and on grids, operations along one direction, and
+//! interpolation of grids by sweeps of banded solves. The formulas, costs and memory are in
+//! `docs/theory/tensor.md`. For `N = 1` and `N = 2` they are the curves and surfaces of
+//! [`curve`](crate::curve) and [`surface`](crate::surface), with which they convert bit for bit.
+//!
+//! - `spline.rs`: [`TensorBSpline`], the type and its validation (net layout: first direction
+//!   slowest), evaluation at a point, partial derivatives, sequential and parallel batches.
+//! - `grid_eval.rs`: evaluation on the outer product of per-direction parameter lists
+//!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
+//! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
+//!   from [`BSplineCurve`](crate::BSplineCurve) and [`BSplineSurface`](crate::BSplineSurface).
+//! - `nurbs.rs`: [`TensorNurbs`], the B-spline of homogeneous points, and its quotient rule.
+//! - `interpolate.rs`: [`TensorInterpolation`], grid interpolation by one factorisation and one
+//!   sweep of solves per direction.
+//! - `fit.rs`: [`tensor_grid_least_squares`], least squares on a grid with given knots by one
+//!   sweep of curve fits per direction.
+
+mod fit;
+mod grid_eval;
+mod interpolate;
+mod nurbs;
+mod slice;
+mod spline;
+
+pub use fit::tensor_grid_least_squares;
+pub use interpolate::TensorInterpolation;
+pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
+pub use spline::TensorBSpline;
+
+#[cfg(test)]
+mod tests;
