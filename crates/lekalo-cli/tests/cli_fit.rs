@@ -391,6 +391,7 @@ fn plot_residuals_draws_the_data_the_fit_and_its_deviations() {
     let d: Vec<f64> = String::from_utf8(out)
         .unwrap()
         .lines()
+        .skip(1) // the header
         .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
         .collect();
     assert_eq!(d.len(), 120, "one projection a point");

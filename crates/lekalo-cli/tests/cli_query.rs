@@ -151,7 +151,34 @@ fn project_single_batch_and_all() {
         .arg(p(&d, "poly.json"))
         .assert()
         .success()
-        .stdout(contains("0,1.5,3,2,1\n"));
+        .stdout("index,t,x,y,distance\n0,1.5,3,2,1\n");
+    // a surface's rows have u, v; the header names them as `eval` does
+    let surf = dir_with(&[(
+        "net.csv",
+        "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 0\n2 0 0\n2 1 0\n2 2 0\n",
+    )]);
+    lekalo()
+        .args([
+            "make",
+            "bspline-surface",
+            "--net",
+            "3x3",
+            "--degree",
+            "2",
+            "--control",
+        ])
+        .arg(p(&surf, "net.csv"))
+        .arg("-o")
+        .arg(p(&surf, "s.json"))
+        .assert()
+        .success();
+    let out = output_of(
+        lekalo()
+            .args(["project", "--point", "1,1,2"])
+            .arg(p(&surf, "s.json")),
+    );
+    let out = String::from_utf8(out).unwrap();
+    assert!(out.starts_with("index,u,v,x,y,z,distance\n0,"), "{out}");
     let j = json_of(
         lekalo()
             .args(["project", "--json", "--points"])
