@@ -127,7 +127,7 @@ enum Command {
 Examples:
   lekalo demo                 # print the summary table of every construction and check
   lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
-  lekalo demo --only doc000-ends --out gallery   # one entry's figures
+  lekalo demo --only doc000-ends --out gallery   # redraw one entry in the gallery
   lekalo demo --only doc000-ends --json          # its tables and checks as JSON
 
 Exit code 3 if a construction does not reproduce its document's numbers.")]
@@ -135,7 +135,9 @@ pub(crate) struct DemoArgs {
     /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids.
+    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids. With
+    /// --out, its figures are redrawn and its section of an existing gallery's index.html is
+    /// replaced; the other entries stay.
     #[arg(long, value_name = "ID")]
     only: Option<String>,
     #[command(flatten)]
