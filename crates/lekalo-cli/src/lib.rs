@@ -155,8 +155,30 @@ pub(crate) enum Verbosity {
 /// The last-resort panic hook (a short report, exit code 3) and the signal handlers (SIGINT,
 /// SIGTERM, SIGHUP stop the command cleanly, docs/robustness.md). Called once by the binary
 /// before [`run`].
+///
+/// A closed standard output or error is not an internal failure: `println!` and `eprintln!`
+/// panic when the reader has gone (`lekalo demo 2>&1 | head`), and the command then ends
+/// quietly with exit code 0, as a write error on standard output does ([`run`]).
 pub fn install_handlers() {
     io::install_handlers();
+    let internal = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map_or("", String::as_str);
+        if is_closed_pipe_panic(message) {
+            lekalo_io::remove_temporary_files();
+            std::process::exit(0);
+        }
+        internal(info);
+    }));
+}
+
+/// True for the panic message of the standard library's printing macros on a closed pipe
+/// (`failed printing to stdout: Broken pipe (os error 32)`).
+fn is_closed_pipe_panic(message: &str) -> bool {
+    message.starts_with("failed printing to std") && message.contains("Broken pipe")
 }
 
 /// The whole argument grammar (every subcommand, option and value set) as clap describes it:

@@ -724,3 +724,27 @@ fn step_reads_back_with_an_independent_parser() {
         assert!((q[0].hypot(q[1]) - 1.0).abs() < 1e-14 && q[2] == 0.5);
     }
 }
+
+/// A closed pipe is not an internal failure: `lekalo demo --out DIR 2>&1 | head -n 1` ends
+/// quietly with 0 (the gallery's note on standard error comes after `head` has gone).
+#[test]
+fn closed_output_pipes_end_quietly() {
+    let d = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_lekalo");
+    for cmd in [
+        format!("'{bin}' demo --out gallery 2>&1 | head -n 1"),
+        format!("'{bin}' demo 2>&1 | head -n 1"),
+    ] {
+        let o = std::process::Command::new("bash")
+            .args(["-c", &format!("set -o pipefail; {cmd}")])
+            .current_dir(d.path())
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "`{cmd}`: {}: {}",
+            o.status,
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

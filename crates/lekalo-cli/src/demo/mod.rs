@@ -222,11 +222,13 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosi
         }
         lekalo_io::write_atomic(&index, html.as_bytes(), &[])?;
         if v != Verbosity::Quiet {
-            eprintln!(
+            // a note: a closed standard error (`lekalo demo --out g 2>&1 | head`) does not stop
+            // the command
+            crate::io::report(&format!(
                 "gallery: {} ({} figures, SVG and PNG); open it in a browser",
                 index.display(),
                 figures.len()
-            );
+            ));
         }
     }
     let failed: Vec<String> = sections
