@@ -725,6 +725,20 @@ fn step_reads_back_with_an_independent_parser() {
     }
 }
 
+/// `lekalo info` on a points file (a new user's first try) says it holds points and which
+/// commands make an object of them.
+#[test]
+fn info_of_a_points_file_names_the_commands_that_make_an_object() {
+    let d = dir_with(&[("pts.txt", "1 1\n2 3\n4 3\n")]);
+    lekalo()
+        .current_dir(d.path())
+        .args(["info", "pts.txt"])
+        .assert()
+        .code(2)
+        .stderr(contains("pts.txt holds points (3 of dimension 2)"))
+        .stderr(contains("lekalo interpolate pts.txt -o curve.json"));
+}
+
 /// A closed pipe is not an internal failure: `lekalo demo --out DIR 2>&1 | head -n 1` ends
 /// quietly with 0 (the gallery's note on standard error comes after `head` has gone).
 #[test]
