@@ -158,6 +158,22 @@ def test_scipy_round_trips_bit_for_bit():
         lekalo.from_scipy(broken)
 
 
+def test_from_scipy_bpoly_of_a_cubic_spline_joins_up_to_rounding():
+    # BPoly.from_power_basis of a CubicSpline: neighbouring pieces meet up to an ulp or so
+    x = np.linspace(0, 2 * np.pi, 12)
+    bp = si.BPoly.from_power_basis(si.CubicSpline(x, np.sin(x)))
+    jumps = np.abs(bp.c[-1, :-1] - bp.c[0, 1:])
+    assert jumps.max() > 0, "the case needs pieces that differ by rounding"
+    c = lekalo.from_scipy(bp)
+    xx = np.linspace(0, 2 * np.pi, 200)
+    assert np.allclose(c(xx)[:, 0], bp(xx), atol=1e-13)
+    # a jump of a millionth of the data's size is still refused, with the numbers
+    broken = si.BPoly(bp.c.copy(), bp.x)
+    broken.c[0, 6] += 1e-6
+    with pytest.raises(lekalo.Error, match="pieces 5 and 6 do not join .* differ by 1e-06"):
+        lekalo.from_scipy(broken)
+
+
 def test_geomdl_dict_round_trip():
     objs = [
         lekalo.interpolate(RNG.standard_normal((6, 3))),
