@@ -156,9 +156,11 @@ pub(crate) enum Verbosity {
 /// SIGTERM, SIGHUP stop the command cleanly, docs/robustness.md). Called once by the binary
 /// before [`run`].
 ///
-/// A closed standard output or error is not an internal failure: `println!` and `eprintln!`
-/// panic when the reader has gone (`lekalo demo 2>&1 | head`), and the command then ends
-/// quietly with exit code 0, as a write error on standard output does ([`run`]).
+/// A closed standard output is not an internal failure: `println!` panics when the reader has
+/// gone (`lekalo … | head`), and the command then ends quietly with exit code 0, as a write
+/// error on standard output does ([`run`]). Notes on standard error go through
+/// `io::report`, which ignores a closed standard error, so that the command still writes its
+/// output files (`lekalo demo --out g 2>&1 | head`).
 pub fn install_handlers() {
     io::install_handlers();
     let internal = std::panic::take_hook();
@@ -175,10 +177,11 @@ pub fn install_handlers() {
     }));
 }
 
-/// True for the panic message of the standard library's printing macros on a closed pipe
-/// (`failed printing to stdout: Broken pipe (os error 32)`).
+/// True for the panic message of `println!` on a closed pipe (`failed printing to stdout:
+/// Broken pipe (os error 32)`). Standard error is left out: a command that stopped there
+/// might not have written its output yet, and exit code 0 would hide that.
 fn is_closed_pipe_panic(message: &str) -> bool {
-    message.starts_with("failed printing to std") && message.contains("Broken pipe")
+    message.starts_with("failed printing to stdout") && message.contains("Broken pipe")
 }
 
 /// The whole argument grammar (every subcommand, option and value set) as clap describes it:

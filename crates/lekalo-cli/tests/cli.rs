@@ -761,4 +761,25 @@ fn closed_output_pipes_end_quietly() {
             String::from_utf8_lossy(&o.stderr)
         );
     }
+    // a note on a standard error already closed does not stop the command before its output
+    fs::write(
+        d.path().join("scan.csv"),
+        (0..40)
+            .map(|i| format!("{},{}\n", f64::from(i) * 0.1, (f64::from(i) * 0.1).sin()))
+            .collect::<String>(),
+    )
+    .unwrap();
+    let mut child = std::process::Command::new(bin)
+        .args(["fit", "scan.csv", "--tol", "0.01", "-o", "fit.json"])
+        .current_dir(d.path())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    let status = child.wait().unwrap();
+    assert!(
+        status.success(),
+        "fit with a closed standard error: {status}"
+    );
+    assert!(d.path().join("fit.json").exists(), "the fit was written");
 }

@@ -316,7 +316,7 @@ pub(super) fn finish(
         return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
     }
     if v != Verbosity::Quiet {
-        eprintln!("{}", report_line(&report));
+        crate::io::report(&report_line(&report));
     }
     write_curve(&obj, Some(shown), &a.out, inputs, v)
 }
@@ -444,7 +444,9 @@ fn run_surface(
         return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
     }
     if v != Verbosity::Quiet {
-        eprintln!("fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}");
+        crate::io::report(&format!(
+            "fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}"
+        ));
     }
     write_surface(&f.surface, &a.out, inputs, v)
 }
