@@ -128,7 +128,7 @@ enum Command {
 Examples:
   lekalo demo                 # print the summary table of every construction and check
   lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
-  lekalo demo --only doc000-ends --out gallery   # one entry's figures
+  lekalo demo --only doc000-ends --out gallery   # redraw one entry in the gallery
   lekalo demo --only doc000-ends --json          # its tables and checks as JSON
 
 Exit code 3 if a construction does not reproduce its document's numbers.")]
@@ -136,7 +136,9 @@ pub(crate) struct DemoArgs {
     /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids.
+    /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids. With
+    /// --out, its figures are redrawn and its section of an existing gallery's index.html is
+    /// replaced; the other entries stay.
     #[arg(long, value_name = "ID")]
     only: Option<String>,
     #[command(flatten)]
@@ -154,8 +156,33 @@ pub(crate) enum Verbosity {
 /// The last-resort panic hook (a short report, exit code 3) and the signal handlers (SIGINT,
 /// SIGTERM, SIGHUP stop the command cleanly, docs/robustness.md). Called once by the binary
 /// before [`run`].
+///
+/// A closed standard output is not an internal failure: `println!` panics when the reader has
+/// gone (`lekalo … | head`), and the command then ends quietly with exit code 0, as a write
+/// error on standard output does ([`run`]). Notes on standard error go through
+/// `io::report`, which ignores a closed standard error, so that the command still writes its
+/// output files (`lekalo demo --out g 2>&1 | head`).
 pub fn install_handlers() {
     io::install_handlers();
+    let internal = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map_or("", String::as_str);
+        if is_closed_pipe_panic(message) {
+            lekalo_io::remove_temporary_files();
+            std::process::exit(0);
+        }
+        internal(info);
+    }));
+}
+
+/// True for the panic message of `println!` on a closed pipe (`failed printing to stdout:
+/// Broken pipe (os error 32)`). Standard error is left out: a command that stopped there
+/// might not have written its output yet, and exit code 0 would hide that.
+fn is_closed_pipe_panic(message: &str) -> bool {
+    message.starts_with("failed printing to stdout") && message.contains("Broken pipe")
 }
 
 /// The whole argument grammar (every subcommand, option and value set) as clap describes it:

@@ -724,3 +724,62 @@ fn step_reads_back_with_an_independent_parser() {
         assert!((q[0].hypot(q[1]) - 1.0).abs() < 1e-14 && q[2] == 0.5);
     }
 }
+
+/// `lekalo info` on a points file (a new user's first try) says it holds points and which
+/// commands make an object of them.
+#[test]
+fn info_of_a_points_file_names_the_commands_that_make_an_object() {
+    let d = dir_with(&[("pts.txt", "1 1\n2 3\n4 3\n")]);
+    lekalo()
+        .current_dir(d.path())
+        .args(["info", "pts.txt"])
+        .assert()
+        .code(2)
+        .stderr(contains("pts.txt holds points (3 of dimension 2)"))
+        .stderr(contains("lekalo interpolate pts.txt -o curve.json"));
+}
+
+/// A closed pipe is not an internal failure: `lekalo demo --out DIR 2>&1 | head -n 1` ends
+/// quietly with 0 (the gallery's note on standard error comes after `head` has gone).
+#[test]
+fn closed_output_pipes_end_quietly() {
+    let d = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_lekalo");
+    for cmd in [
+        format!("'{bin}' demo --out gallery 2>&1 | head -n 1"),
+        format!("'{bin}' demo 2>&1 | head -n 1"),
+    ] {
+        let o = std::process::Command::new("bash")
+            .args(["-c", &format!("set -o pipefail; {cmd}")])
+            .current_dir(d.path())
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "`{cmd}`: {}: {}",
+            o.status,
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    // a note on a standard error already closed does not stop the command before its output
+    fs::write(
+        d.path().join("scan.csv"),
+        (0..40)
+            .map(|i| format!("{},{}\n", f64::from(i) * 0.1, (f64::from(i) * 0.1).sin()))
+            .collect::<String>(),
+    )
+    .unwrap();
+    let mut child = std::process::Command::new(bin)
+        .args(["fit", "scan.csv", "--tol", "0.01", "-o", "fit.json"])
+        .current_dir(d.path())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    let status = child.wait().unwrap();
+    assert!(
+        status.success(),
+        "fit with a closed standard error: {status}"
+    );
+    assert!(d.path().join("fit.json").exists(), "the fit was written");
+}

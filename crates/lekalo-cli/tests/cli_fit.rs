@@ -279,6 +279,27 @@ fn bad_inputs_exit_2_with_the_reason() {
             .code(2)
             .stderr(contains(needle));
     }
+    // two points and no mode: the message says what the default needs and how to fit them
+    let out = lekalo()
+        .args(["fit", "-"])
+        .write_stdin("0,0\n1,1\n")
+        .assert()
+        .code(2)
+        .get_output()
+        .stderr
+        .clone();
+    let msg = String::from_utf8(out).unwrap();
+    assert!(
+        msg.contains("2 data points are too few for a fit of degree 3")
+            && msg.contains("--degree 1")
+            && !msg.contains("asked for"),
+        "{msg}"
+    );
+    lekalo()
+        .args(["fit", "-", "--degree", "1"])
+        .write_stdin("0,0\n1,1\n")
+        .assert()
+        .success();
 }
 
 /// 90 points of a noisy closed curve (a rounded triangle).
@@ -391,6 +412,7 @@ fn plot_residuals_draws_the_data_the_fit_and_its_deviations() {
     let d: Vec<f64> = String::from_utf8(out)
         .unwrap()
         .lines()
+        .skip(1) // the header
         .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
         .collect();
     assert_eq!(d.len(), 120, "one projection a point");

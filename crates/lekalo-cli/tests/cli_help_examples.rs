@@ -1,11 +1,13 @@
 //! The examples in `--help` run as written. Every subcommand is found from the help texts (not
 //! from a list), must show at least one example, and each example line is parsed from its help
 //! text and run in a directory with the fixture files it names. A subcommand's examples run in
-//! order, so later ones use what earlier ones wrote, as a reader following them would.
+//! order, so later ones use what earlier ones wrote, as a reader following them would. The
+//! `sh` blocks of the README and of `docs/cli.md` run as written too ([`doc_blocks`]).
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
 mod common;
+mod doc_blocks;
 
 use std::fs;
 use std::path::Path;
@@ -310,53 +312,4 @@ fn every_help_example_runs() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(ran >= 100, "{ran} examples");
-}
-
-/// The README's command-line tour runs as written: its `printf … > FILE` lines write their
-/// files, its `lekalo …` lines run in order (`demo` and `serve` as in [`NOT_RUN`]); the files
-/// it reads without making them (`many.jsonl`, `scan.csv`) are given.
-#[test]
-fn readme_tour_runs() {
-    let readme = include_str!("../../../README.md");
-    let tour = readme
-        .split("## A short tour of the command line")
-        .nth(1)
-        .and_then(|t| t.split("```sh").nth(1))
-        .and_then(|t| t.split("```").next())
-        .expect("README has a command-line tour");
-    let d = tempfile::tempdir().unwrap();
-    let curve = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control": [[1, 1], [2, 3], [4, 3]]}"#;
-    fs::write(d.path().join("many.jsonl"), format!("{curve}\n{curve}\n")).unwrap();
-    let scan = rows(80, &|i| format!("{},{}", i * 0.05, (i * 0.05).sin()));
-    fs::write(d.path().join("scan.csv"), scan).unwrap();
-    let mut ran = 0;
-    for line in tour.lines() {
-        if let Some(rest) = line.strip_prefix("printf '") {
-            let (text, file) = rest.split_once("' > ").expect("printf '…' > FILE");
-            let file = file.split_whitespace().next().expect("a file name");
-            fs::write(d.path().join(file), text.replace("\\n", "\n")).unwrap();
-            continue;
-        }
-        let Some(cmd) = line.strip_prefix("lekalo ") else {
-            continue;
-        };
-        let args: Vec<&str> = cmd
-            .split(" #")
-            .next()
-            .unwrap_or(cmd)
-            .split_whitespace()
-            .collect();
-        let whole = args.join(" ");
-        if NOT_RUN.iter().any(|(n, _)| *n == whole) || SERVERS.contains(&args[0]) {
-            continue;
-        }
-        let o = lekalo().current_dir(d.path()).args(&args).output().unwrap();
-        assert!(
-            o.status.success(),
-            "README: `{line}` failed: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        ran += 1;
-    }
-    assert!(ran >= 20, "{ran} README commands");
 }

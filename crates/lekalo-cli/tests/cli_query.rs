@@ -59,6 +59,28 @@ fn measure_length_and_inverse() {
 const S_CURVE: &str =
     r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1], [2, -1], [3, 0]]}"#;
 
+/// The exact quarter circle of `lekalo make nurbs --help`: its curvature is constant, so it
+/// has no curvature extrema (rounding once made 22 of them).
+#[test]
+fn measure_of_an_exact_arc_reports_no_curvature_extrema() {
+    let arc = r#"{"lekalo": 1, "type": "nurbs_curve", "degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+        "control": [[1, 0], [1, 1], [0, 1]], "weights": [1, 0.7071067811865476, 1]}"#;
+    let d = dir_with(&[("arc.json", arc), ("parabola.json", PARABOLA)]);
+    let j = json_of(lekalo().args(["measure", "--json"]).arg(p(&d, "arc.json")));
+    assert_eq!(j["curvature_extrema"], serde_json::json!([]), "{j}");
+    // a real extremum stays: the parabola's vertex
+    let j = json_of(
+        lekalo()
+            .args(["measure", "--json"])
+            .arg(p(&d, "parabola.json")),
+    );
+    assert_eq!(
+        j["curvature_extrema"].as_array().map(Vec::len),
+        Some(1),
+        "{j}"
+    );
+}
+
 #[test]
 fn measure_reports_the_inflections_of_planar_curves() {
     let d = dir_with(&[
@@ -151,7 +173,34 @@ fn project_single_batch_and_all() {
         .arg(p(&d, "poly.json"))
         .assert()
         .success()
-        .stdout(contains("0,1.5,3,2,1\n"));
+        .stdout("index,t,x,y,distance\n0,1.5,3,2,1\n");
+    // a surface's rows have u, v; the header names them as `eval` does
+    let surf = dir_with(&[(
+        "net.csv",
+        "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 0\n2 0 0\n2 1 0\n2 2 0\n",
+    )]);
+    lekalo()
+        .args([
+            "make",
+            "bspline-surface",
+            "--net",
+            "3x3",
+            "--degree",
+            "2",
+            "--control",
+        ])
+        .arg(p(&surf, "net.csv"))
+        .arg("-o")
+        .arg(p(&surf, "s.json"))
+        .assert()
+        .success();
+    let out = output_of(
+        lekalo()
+            .args(["project", "--point", "1,1,2"])
+            .arg(p(&surf, "s.json")),
+    );
+    let out = String::from_utf8(out).unwrap();
+    assert!(out.starts_with("index,u,v,x,y,z,distance\n0,"), "{out}");
     let j = json_of(
         lekalo()
             .args(["project", "--json", "--points"])

@@ -86,7 +86,7 @@ pub use parquet::{
 };
 pub use png::svg_to_png;
 pub use points_in::{parse_number_list, read_points, read_points_bytes, read_points_with, Header};
-pub use samples::{sample_table, SampleSpec, SampleTable};
+pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{read_step, StepRead, StepSkipped};

@@ -176,6 +176,9 @@ mod tests {
                 continue;
             }
             let at = Location::new(source).at_line(line_no);
+            if dim.is_none() && line.contains(';') && line.contains(',') {
+                return Err(crate::text_points::decimal_commas(source, line_no, line));
+            }
             match dim {
             None => dim = Some((fields.len(), line_no)),
             Some((d, first_line)) if d != fields.len() => {
@@ -219,6 +222,24 @@ mod tests {
             at: Location::new(source),
             error: e,
         })
+    }
+
+    #[test]
+    fn decimal_commas_are_refused_with_the_fix() {
+        let e = read_points("x;y\n1,5;2,0\n3,0;4,5\n", "eu.csv").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "eu.csv:2: `1,5;2,0` has both `;` and `,`: decimal commas? lekalo reads `.` as the \
+             decimal point and `,`, `;` or blanks between coordinates; write `1.5;2.0` or `1.5,2.0`"
+        );
+        let slow = reference("1,5;2,0\n", "eu.csv", Header::Auto).unwrap_err();
+        assert_eq!(
+            read_points("1,5;2,0\n", "eu.csv").unwrap_err().to_string(),
+            slow.to_string(),
+            "the line reader agrees"
+        );
+        // one separator a line is read as before
+        assert_eq!(read_points("1.5;2\n3;4\n", "p.csv").unwrap().dim(), 2);
     }
 
     #[test]

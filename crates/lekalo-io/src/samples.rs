@@ -35,8 +35,8 @@ pub struct SampleTable {
     pub rows: Vec<Vec<Option<f64>>>,
 }
 
-/// Coordinate names: `x, y, z` up to 3-D, `x1 … xd` above.
-pub(crate) fn coord_names(dim: usize) -> Vec<String> {
+/// Coordinate names of CSV columns: `x, y, z` up to 3-D, `x1 … xd` above.
+pub fn coord_names(dim: usize) -> Vec<String> {
     if dim <= 3 {
         ["x", "y", "z"][..dim]
             .iter()

@@ -279,6 +279,19 @@ struct Part<'t, 'b> {
 /// byte-order mark): each part is checked as it is read, so a file is never checked whole
 /// before the parallel parse starts; text that is not UTF-8 is the error of
 /// [`crate::read_input`], at the same byte.
+/// The error of a first point `line` that has both `;` and `,`: the mark of decimal commas
+/// (`1,5;2,0` is the point (1.5, 2.0) in much of Europe), which would otherwise be read as
+/// more coordinates than the file has.
+pub(crate) fn decimal_commas(source: &str, line_no: usize, line: &str) -> IoError {
+    IoError::syntax(
+        Location::new(source).at_line(line_no),
+        format!(
+            "`{line}` has both `;` and `,`: decimal commas? lekalo reads `.` as the decimal point \
+             and `,`, `;` or blanks between coordinates; write `1.5;2.0` or `1.5,2.0`"
+        ),
+    )
+}
+
 pub(crate) fn read_delimited(text: &[u8], source: &str, header_rule: Header) -> IoResult<Points> {
     read_delimited_from(text, source, header_rule, PARALLEL_MIN)
 }
@@ -324,6 +337,9 @@ pub(crate) fn read_delimited_from(
             "no points found; write one point per line, e.g. `1.0, 2.0`",
         ));
     };
+    if line.contains(';') && line.contains(',') {
+        return Err(decimal_commas(source, line_no, line));
+    }
     let fields = Fields::of(line).count();
     let rest = &bytes[rest_at..];
     let threads = rayon::current_num_threads();

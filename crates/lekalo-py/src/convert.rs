@@ -183,6 +183,48 @@ pub(crate) fn vec1(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     Ok(floats(obj, what)?.vector(what)?.to_vec())
 }
 
+/// An integer argument (a degree), read without failing so that the function can say what
+/// went wrong in its own words ([`IntArg::get`]): SciPy users pass arrays where lekalo takes
+/// the degree (`BSpline(t, c, k)` against `BSplineCurve(k, t, c)`), which NumPy would report as
+/// "only integer scalar arrays can be converted to a scalar index".
+pub(crate) struct IntArg(Result<usize, String>);
+
+impl IntArg {
+    /// The default value `n`.
+    pub(crate) const fn of(n: usize) -> Self {
+        Self(Ok(n))
+    }
+
+    /// The integer, or `lekalo.Error` naming the argument, what was given and `hint` (the
+    /// lekalo call, and SciPy's where they differ).
+    pub(crate) fn get(&self, name: &str, hint: &str) -> PyResult<usize> {
+        self.0.clone().map_err(|got| {
+            bad(format!(
+                "{name} must be a non-negative integer, got {got}; {hint}"
+            ))
+        })
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(n) = obj.extract::<usize>() {
+            return Ok(Self(Ok(n)));
+        }
+        let got = if let Ok(shape) = obj.getattr("shape") {
+            format!("an array of shape {}", shape.str()?)
+        } else if let Ok(n) = obj.len() {
+            format!("a {} of {n} items", obj.get_type().name()?)
+        } else {
+            let r = obj.repr()?.to_string();
+            r.chars().take(40).collect()
+        };
+        Ok(Self(Err(got)))
+    }
+}
+
 /// Refuses outputs past the library's size limit before allocating them.
 pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
     let mut n: usize = 1;

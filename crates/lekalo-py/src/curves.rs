@@ -18,7 +18,7 @@ use pyo3::types::PyTuple;
 
 use crate::convert::{
     array, check_size, filled, floats, out_array, owned_points, points_array, points_into_array,
-    vec1, vec_array, FloatArray,
+    vec1, vec_array, FloatArray, IntArg,
 };
 use crate::error::{bad, io_err, lib_err};
 use crate::pp::PyPiecewisePolynomial;
@@ -379,6 +379,9 @@ macro_rules! curve_class {
 
 /// A Bezier curve `C(t) = Σ B_{i,n}(t) P_i`, `t ∈ [0, 1]` (docs/theory/curves.md#bezier-curves).
 ///
+/// Call: `c(t, nu=0)`: the points at `t` (any shape), `t.shape + (dim,)`; `nu > 0` gives the
+/// `nu`-th derivative.
+///
 /// >>> import numpy as np, lekalo
 /// >>> c = lekalo.BezierCurve([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
 /// >>> c(0.5)
@@ -509,6 +512,10 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
 /// A B-spline curve `C(t) = Σ N_{i,p}(t) P_i` on the domain `[t_p, t_{n+1}]`
 /// (docs/theory/curves.md#b-spline-curves).
 ///
+/// Call: `c(t, nu=0, *, out=None)`: the points at `t` (any shape), `t.shape + (dim,)`; `nu > 0`
+/// gives the `nu`-th derivative; `out`, a float64 C-contiguous array of that shape, receives
+/// the points (NumPy's `out=`). Outside the domain `lekalo.Error` (no extrapolation).
+///
 /// >>> import lekalo
 /// >>> c = lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], [[1, 1], [2, 3], [4, 3]])
 /// >>> c.domain
@@ -543,7 +550,12 @@ impl PyBSplineCurve {
 
 curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     #[new]
-    fn new(degree: usize, knots: &Bound<'_, PyAny>, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+    fn new(degree: IntArg, knots: &Bound<'_, PyAny>, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let degree = degree.get(
+            "BSplineCurve: degree",
+            "lekalo's call is BSplineCurve(degree, knots, control): SciPy's BSpline(t, c, k) is \
+             lekalo.BSplineCurve(k, t, c)",
+        )?;
         let k = vec1(knots, "knots")?;
         let p = owned_points(control, "control")?;
         Ok(Self::wrap(
@@ -664,6 +676,10 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
 
 /// A NURBS curve `C(t) = Σ N_{i,p}(t) w_i P_i / Σ N_{i,p}(t) w_i`
 /// (docs/theory/curves.md#nurbs-curves).
+///
+/// Call: `c(t, nu=0, *, out=None)`: the points at `t` (any shape), `t.shape + (dim,)`; `nu > 0`
+/// gives the `nu`-th derivative; `out`, a float64 C-contiguous array of that shape, receives
+/// the points (NumPy's `out=`). Outside the domain `lekalo.Error` (no extrapolation).
 ///
 /// >>> import lekalo
 /// >>> c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)

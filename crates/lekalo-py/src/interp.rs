@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
 use crate::convert::{
-    check_size, filled, floats, grid_points, owned_points, points_array, vec1, vec_array,
+    check_size, filled, floats, grid_points, owned_points, points_array, vec1, vec_array, IntArg,
 };
 use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
 use crate::error::{bad, lib_err};
@@ -75,14 +75,14 @@ pub(crate) fn end_arg(
 /// >>> np.allclose(c(9 / 17), [-1, 4])
 /// True
 #[pyfunction]
-#[pyo3(signature = (points, degree = 3, *, parametrization = None, knots = "auto", end = "free",
+#[pyo3(signature = (points, degree = IntArg::of(3), *, parametrization = None, knots = "auto", end = "free",
                     d_start = None, d_end = None, params = None, max_condition = None,
                     drop_duplicates = false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn interpolate(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
-    degree: usize,
+    degree: IntArg,
     parametrization: Option<&Bound<'_, PyAny>>,
     knots: &str,
     end: &str,
@@ -92,6 +92,11 @@ pub(crate) fn interpolate(
     max_condition: Option<f64>,
     drop_duplicates: bool,
 ) -> PyResult<PyBSplineCurve> {
+    let degree = degree.get(
+        "interpolate: degree",
+        "lekalo's call is interpolate(points, degree, params=x): SciPy's \
+         make_interp_spline(x, y, k) is lekalo.interpolate(y, k, params=x)",
+    )?;
     let mut ci = CurveInterpolation::new(degree)
         .knot_placement(knots_arg(knots)?)
         .end_condition(end_arg(
@@ -143,9 +148,14 @@ pub(crate) fn parametrize<'py>(
 pub(crate) fn basis_functions<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
-    degree: usize,
+    degree: IntArg,
     x: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.get(
+        "basis_functions: degree",
+        "lekalo's call is basis_functions(t, degree, x): SciPy's \
+         BSpline.design_matrix(x, t, k) is lekalo.design_matrix(x, t, k)",
+    )?;
     let knots = lekalo::KnotVector::new(vec1(t, "t")?).map_err(lib_err)?;
     let xa = floats(x, "x")?;
     let xs = xa.vector("x")?;

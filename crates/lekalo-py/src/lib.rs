@@ -34,6 +34,8 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("Error", py.get_type::<error::Error>())?;
     m.add("MAX_SCALARS", lekalo::MAX_SCALARS)?;
     m.add("MAX_DEGREE", lekalo::MAX_DEGREE)?;
+    // the package's version is the crate's (pyproject.toml takes it from Cargo.toml)
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<curves::PyBezierCurve>()?;
     m.add_class::<curves::PyBSplineCurve>()?;
     m.add_class::<curves::PyNurbsCurve>()?;

@@ -245,6 +245,8 @@ macro_rules! surface_common {
 
 /// A tensor-product Bezier surface on `[0, 1]²` (docs/theory/surfaces.md).
 ///
+/// Call: `s(u, v)`: the points at `(u, v)` (arrays of one shape, or numbers), `shape + (dim,)`.
+///
 /// >>> import numpy as np, lekalo
 /// >>> net = np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]], dtype=float)
 /// >>> lekalo.BezierSurface(net)(0.5, 0.25)
@@ -330,6 +332,8 @@ surface_common!(PyBezierSurface, Bezier, "bezier_surface", {
 });
 
 /// A tensor-product B-spline surface (docs/theory/surfaces.md).
+///
+/// Call: `s(u, v)`: the points at `(u, v)` (arrays of one shape, or numbers), `shape + (dim,)`.
 #[pyclass(module = "lekalo", name = "BSplineSurface", frozen)]
 pub(crate) struct PyBSplineSurface {
     pub(crate) inner: BSplineSurface,
@@ -368,6 +372,8 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCur
 });
 
 /// A tensor-product NURBS surface (docs/theory/surfaces.md).
+///
+/// Call: `s(u, v)`: the points at `(u, v)` (arrays of one shape, or numbers), `shape + (dim,)`.
 #[pyclass(module = "lekalo", name = "NurbsSurface", frozen)]
 pub(crate) struct PyNurbsSurface {
     pub(crate) inner: NurbsSurface,

@@ -355,3 +355,19 @@ def test_out_receives_the_points():
     one_d = lekalo.interpolate(np.array([0.0, 1.0, 0.5, 2.0]))
     with pytest.raises(lekalo.Error, match="in use"):
         one_d(buf[:, 0], out=buf)
+
+
+def test_help_shows_how_to_call_curves_and_surfaces():
+    # `__call__` is a slot, whose own help is Python's "Call self as a function": the class
+    # docstring, which help() shows first, gives the call
+    import pydoc
+
+    for cls, call in [
+        (lekalo.BezierCurve, "c(t, nu=0)"),
+        (lekalo.BSplineCurve, "c(t, nu=0, *, out=None)"),
+        (lekalo.NurbsCurve, "c(t, nu=0, *, out=None)"),
+        (lekalo.BezierSurface, "s(u, v)"),
+        (lekalo.BSplineSurface, "s(u, v)"),
+        (lekalo.NurbsSurface, "s(u, v)"),
+    ]:
+        assert call in pydoc.render_doc(cls, renderer=pydoc.plaintext), cls.__name__

@@ -1,5 +1,8 @@
 """Interpolation and interop, cross-checked against SciPy inside the tests."""
 
+import re
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy import interpolate as si
@@ -158,6 +161,22 @@ def test_scipy_round_trips_bit_for_bit():
         lekalo.from_scipy(broken)
 
 
+def test_from_scipy_bpoly_of_a_cubic_spline_joins_up_to_rounding():
+    # BPoly.from_power_basis of a CubicSpline: neighbouring pieces meet up to an ulp or so
+    x = np.linspace(0, 2 * np.pi, 12)
+    bp = si.BPoly.from_power_basis(si.CubicSpline(x, np.sin(x)))
+    jumps = np.abs(bp.c[-1, :-1] - bp.c[0, 1:])
+    assert jumps.max() > 0, "the case needs pieces that differ by rounding"
+    c = lekalo.from_scipy(bp)
+    xx = np.linspace(0, 2 * np.pi, 200)
+    assert np.allclose(c(xx)[:, 0], bp(xx), atol=1e-13)
+    # a jump of a millionth of the data's size is still refused, with the numbers
+    broken = si.BPoly(bp.c.copy(), bp.x)
+    broken.c[0, 6] += 1e-6
+    with pytest.raises(lekalo.Error, match="pieces 5 and 6 do not join .* differ by 1e-06"):
+        lekalo.from_scipy(broken)
+
+
 def test_geomdl_dict_round_trip():
     objs = [
         lekalo.interpolate(RNG.standard_normal((6, 3))),
@@ -208,3 +227,39 @@ def test_basis_functions_refuse_bad_input(x, degree, match):
     t = np.r_[[0.0] * 4, 0.5, [1.0] * 4]
     with pytest.raises(lekalo.Error, match=match):
         lekalo.basis_functions(t, degree, x)
+
+
+def test_scipy_argument_order_is_refused_with_the_lekalo_call():
+    x = np.linspace(0, 1, 12)
+    y = np.sin(x)
+    t = np.r_[[0.0] * 4, np.linspace(0, 1, 6)[1:-1], [1.0] * 4]
+    c = RNG.standard_normal(8)
+    # SciPy's BSpline(t, c, k), make_interp_spline(x, y) and design_matrix(x, t, k) orders
+    with pytest.raises(lekalo.Error, match=r"got an array of shape \(12,\).*lekalo\.BSplineCurve\(k, t, c\)"):
+        lekalo.BSplineCurve(t, c, 3)
+    with pytest.raises(lekalo.Error, match=r"lekalo\.interpolate\(y, k, params=x\)"):
+        lekalo.interpolate(x, y)
+    with pytest.raises(lekalo.Error, match=r"lekalo\.design_matrix\(x, t, k\)"):
+        lekalo.basis_functions(x, t, 3)
+    # lekalo's own orders work
+    curve = lekalo.BSplineCurve(3, t, c)
+    assert np.allclose(curve(x)[:, 0], si.BSpline(t, c, 3)(x), atol=1e-14)
+    assert lekalo.interpolate(y, 3, params=x).degree == 3
+    assert lekalo.basis_functions(t, 3, x)[1].shape == (12, 4)
+
+
+def test_messages_name_python_spellings_not_rust_items():
+    pts = RNG.standard_normal((6, 2))
+    with pytest.raises(lekalo.Error) as e:
+        lekalo.interpolate(pts, 3, knots="at_parameters", end="free")
+    assert "KnotPlacement" not in str(e.value) and "knots='auto'" in str(e.value), str(e.value)
+    net = RNG.standard_normal((4, 3, 3))
+    with pytest.raises(lekalo.Error) as e:
+        lekalo.BSplineSurface(2, 2, [0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1], net)
+    assert "net_size" not in str(e.value) and "control.shape[0]" in str(e.value), str(e.value)
+
+
+def test_version_is_the_crates():
+    cargo = (Path(__file__).resolve().parents[3] / "Cargo.toml").read_text()
+    version = re.search(r'^version = "([^"]+)"', cargo, flags=re.M).group(1)
+    assert lekalo.__version__ == version

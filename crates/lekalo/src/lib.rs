@@ -156,8 +156,8 @@ mod oracle;
 pub mod query;
 
 pub use query::{
-    ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection, MAX_QUERY_DEGREE,
-    SURFACE_BOX_RTOL,
+    ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection,
+    CURVATURE_EXTREMUM_RTOL, MAX_QUERY_DEGREE, SURFACE_BOX_RTOL,
 };
 
 // -- the words of the options every front end shares, one canonical spelling each --

@@ -303,11 +303,11 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                         return reduction_report(&obj, d, out, p, v);
                     }
                     if v != Verbosity::Quiet {
-                        eprintln!(
+                        crate::io::report(&format!(
                             "max deviation {} (sampled), bound {}",
                             crate::report::number(r.max_deviation_sampled),
                             crate::report::number(r.max_deviation_bound)
-                        );
+                        ));
                     }
                     write_curve(&obj, None, out, &[p], v)
                 }

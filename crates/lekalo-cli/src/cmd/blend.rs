@@ -306,12 +306,12 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     bar.finish_and_clear();
                     let approx = approx?;
                     if v != Verbosity::Quiet && !json.json {
-                        eprintln!(
+                        crate::io::report(&format!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \
                              degree {} with max error {}",
                             approx.curve().degree(),
                             crate::report::number(approx.max_error())
-                        );
+                        ));
                     }
                     (Object::BSpline(approx.curve().clone()), approx.max_error())
                 }

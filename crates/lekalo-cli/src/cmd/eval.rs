@@ -268,7 +268,7 @@ pub(crate) fn finish_batch(
     }
     if v != Verbosity::Quiet {
         for e in &failed {
-            eprintln!("  {e}");
+            crate::io::report(&format!("  {e}"));
         }
     }
     bad_input(format!(

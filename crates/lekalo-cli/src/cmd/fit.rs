@@ -318,7 +318,7 @@ pub(super) fn finish(
         return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
     }
     if v != Verbosity::Quiet {
-        eprintln!("{}", report_line(&report));
+        crate::io::report(&report_line(&report));
     }
     write_curve(&obj, Some(shown), &a.out, inputs, v)
 }
@@ -353,6 +353,23 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
         return Ok(KnotVector::new(all)?);
     }
     let n = a.ctrl.unwrap_or((params.len() / 10).max(a.degree + 1));
+    if a.ctrl.is_none() && params.len() < n {
+        // no count was asked for: say what the default asks and how to fit these points
+        let fix = if params.len() >= 2 {
+            format!(
+                "give --degree {} or lower, or more points",
+                params.len() - 1
+            )
+        } else {
+            "give at least two points".to_string()
+        };
+        return bad_input(format!(
+            "{} data points are too few for a fit of degree {}: it needs degree + 1 = {n} \
+             control points and at least as many points; {fix}",
+            params.len(),
+            a.degree
+        ));
+    }
     let mut sorted = params.to_vec();
     sorted.sort_by(f64::total_cmp);
     Ok(place_knots(&sorted, a.degree, n)?)
@@ -423,7 +440,9 @@ fn run_surface(
         return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
     }
     if v != Verbosity::Quiet {
-        eprintln!("fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}");
+        crate::io::report(&format!(
+            "fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}"
+        ));
     }
     write_surface(&f.surface, &a.out, inputs, v)
 }

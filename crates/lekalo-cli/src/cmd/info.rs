@@ -168,10 +168,32 @@ fn info_text(j: &Value) -> String {
     s
 }
 
+/// `e`, an object file's read error, with a hint when the file holds points instead (a
+/// reader's first `lekalo info pts.txt`): which commands make an object of them.
+fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
+    let points = lekalo_io::read_input(path)
+        .ok()
+        .and_then(|(text, name)| lekalo_io::read_points(&text, &name).ok());
+    match points {
+        Some(p) => {
+            let f = path.display();
+            e.context(format!(
+                "{f} holds points ({} of dimension {}), not a curve or surface object: `lekalo \
+                 interpolate {f} -o curve.json` or `lekalo make bspline --control {f} --degree 2 \
+                 -o curve.json` makes one",
+                p.len(),
+                p.dim()
+            ))
+        }
+        None => e,
+    }
+}
+
 pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
     let inputs = vec![a.input.clone()];
     let samples = crate::io::in_range(a.samples, 2, 1_000_000, "--samples")?;
-    match load(&a.input, a.jsonl, v)? {
+    let loaded = load(&a.input, a.jsonl, v).map_err(|e| points_file_hint(&a.input, e))?;
+    match loaded {
         Loaded::Other(shape) => {
             let j = match &shape {
                 Shape::Surface(s) => shapes::surface_info_json(s, samples)?,

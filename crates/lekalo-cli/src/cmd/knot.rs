@@ -248,7 +248,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                 );
             }
             if v != Verbosity::Quiet {
-                eprintln!("{}", removal_report(&gone, removed, tol));
+                crate::io::report(&removal_report(&gone, removed, tol));
             }
             write_one(c, &Shape::Curve(after), v)
         }

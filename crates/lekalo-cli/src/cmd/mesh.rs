@@ -151,7 +151,7 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
         );
     }
     if a.json {
-        eprintln!("{summary}");
+        crate::io::report(&summary.to_string());
     }
     emit(
         a.output.as_deref(),

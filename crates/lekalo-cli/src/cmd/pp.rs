@@ -179,7 +179,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                     p.continuity(DEFAULT_CONTINUITY_RTOL)
                 })?;
                 if cont.is_none() && v == Verbosity::Verbose {
-                    eprintln!("continuity ν inferred from the pp-form: {nu:?}");
+                    crate::io::report(&format!("continuity ν inferred from the pp-form: {nu:?}"));
                 }
                 let space = PpSpace::new(p.breakpoints(), &nu, p.order())?;
                 let values = tau.values()?;
@@ -240,11 +240,11 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             let samples =
                 sample_quasi_interpolant_expression(&space, tau.choice(&values), &f, *intervals)?;
             if v != Verbosity::Quiet {
-                eprintln!(
+                crate::io::report(&format!(
                     "max |f − q| on {} intervals: {}",
                     intervals,
                     lekalo_io::fmt_number(samples.max_error())
-                );
+                ));
             }
             if *json {
                 let obj = Object::BSpline(q);

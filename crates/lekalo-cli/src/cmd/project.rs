@@ -20,7 +20,8 @@ and distance. A batch of points comes from --points (CSV, whitespace columns or 
 `make`); batches run in parallel with results independent of the thread count. With --all TOL
 every local minimum within TOL of the least distance is listed (one row each).
 
-Output CSV columns: index, t (or u, v), the point, distance.
+Output CSV: a header row, then the columns index (of the query point), t (or u, v), the closest
+point's coordinates, distance: `index,t,x,y,distance` for a planar curve.
 
 Examples:
   lekalo project curve.json --point 1,2
@@ -158,7 +159,19 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
             .collect();
         format!("{:#}\n", json!(j))
     } else {
+        // a header row, as `eval` writes: index, t (or u, v), the coordinates, distance
         let mut s = String::new();
+        if let Some((_, par, p, _)) = out_rows.first() {
+            let params: &[&str] = if par.len() == 1 { &["t"] } else { &["u", "v"] };
+            let names: Vec<String> = std::iter::once("index")
+                .chain(params.iter().copied())
+                .map(String::from)
+                .chain(lekalo_io::coord_names(p.len()))
+                .chain(std::iter::once("distance".to_string()))
+                .collect();
+            s.push_str(&names.join(","));
+            s.push('\n');
+        }
         for (i, par, p, d) in &out_rows {
             let cols: Vec<String> = std::iter::once(i.to_string())
                 .chain(par.iter().chain(p).map(f64::to_string))

@@ -147,7 +147,8 @@ pub(crate) fn trim(x: f64) -> String {
 }
 
 /// Runs every entry (or the one named by `only`), prints the summary table, writes the gallery
-/// if `out` is given: `index.html` and every figure as SVG and PNG.
+/// if `out` is given: `index.html` and every figure as SVG and PNG. With `only`, an existing
+/// `index.html` keeps its other entries: only the entry's section is replaced.
 pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosity) -> Result<()> {
     if let Some(id) = only {
         if !registry::ENTRIES.iter().any(|e| e.id == id) {
@@ -212,17 +213,22 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosi
             })?;
         let index = dir.join("index.html");
         let theory = theory_base(dir);
-        lekalo_io::write_atomic(
-            &index,
-            gallery(&sections, theory.as_deref()).as_bytes(),
-            &[],
-        )?;
+        let mut html = gallery(&sections, theory.as_deref());
+        // `--only` redraws one entry: in an existing gallery, only its section is replaced
+        if let (Some(id), Ok(old)) = (only, std::fs::read_to_string(&index)) {
+            if let Some(updated) = replace_section(&old, &html, id) {
+                html = updated;
+            }
+        }
+        lekalo_io::write_atomic(&index, html.as_bytes(), &[])?;
         if v != Verbosity::Quiet {
-            eprintln!(
+            // a note: a closed standard error (`lekalo demo --out g 2>&1 | head`) does not stop
+            // the command
+            crate::io::report(&format!(
                 "gallery: {} ({} figures, SVG and PNG); open it in a browser",
                 index.display(),
                 figures.len()
-            );
+            ));
         }
     }
     let failed: Vec<String> = sections
@@ -244,6 +250,26 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosi
         ))
         .into())
     }
+}
+
+/// The gallery `old` with the section of entry `id` taken from the gallery `fresh` (in place,
+/// or before the end of the page if `old` has none); `None` if `old` is not a gallery or
+/// `fresh` has no such section.
+fn replace_section(old: &str, fresh: &str, id: &str) -> Option<String> {
+    let open = format!("<section id=\"{id}\">");
+    let close = "</section>\n";
+    let span = |h: &str| -> Option<(usize, usize)> {
+        let start = h.find(&open)?;
+        let end = start + h[start..].find(close)? + close.len();
+        Some((start, end))
+    };
+    let (fs, fe) = span(fresh)?;
+    let section = &fresh[fs..fe];
+    if let Some((os, oe)) = span(old) {
+        return Some(format!("{}{section}{}", &old[..os], &old[oe..]));
+    }
+    let end = old.rfind("</body>")?;
+    Some(format!("{}{section}{}", &old[..end], &old[end..]))
 }
 
 /// Scale of the gallery's PNGs (2: sharp on slides and high-density screens).
@@ -496,6 +522,24 @@ fn gallery(sections: &[Section], theory: Option<&str>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn redrawing_one_entry_keeps_the_others() {
+        let page = |sections: &str| format!("<html><body>\n<h1>g</h1>\n{sections}</body></html>\n");
+        let old = page("<section id=\"a\">A1</section>\n<section id=\"b\">B1</section>\n<section id=\"c\">C1</section>\n");
+        let fresh = page("<section id=\"b\">B2</section>\n");
+        assert_eq!(
+            replace_section(&old, &fresh, "b").unwrap(),
+            page("<section id=\"a\">A1</section>\n<section id=\"b\">B2</section>\n<section id=\"c\">C1</section>\n")
+        );
+        // an entry the old gallery lacks goes at the end
+        let fresh_d = page("<section id=\"d\">D</section>\n");
+        assert!(replace_section(&old, &fresh_d, "d").unwrap().ends_with(
+            "<section id=\"c\">C1</section>\n<section id=\"d\">D</section>\n</body></html>\n"
+        ));
+        // not a gallery: the fresh page is written as it is
+        assert_eq!(replace_section("notes", &fresh, "b"), None);
+    }
 
     #[test]
     fn every_entry_reproduces_its_document() {

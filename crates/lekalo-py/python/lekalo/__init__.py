@@ -25,6 +25,7 @@ Conventions (see the package README, "SciPy users start here"):
 from __future__ import annotations
 
 from ._lekalo import (
+    __version__,
     MAX_DEGREE,
     MAX_SCALARS,
     BezierCurve,

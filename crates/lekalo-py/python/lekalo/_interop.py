@@ -44,6 +44,12 @@ def design_matrix(x: Any, t: Any, k: int):
     return csr_array((values.ravel(), indices.ravel(), indptr), shape=(m, n))
 
 
+_JOIN_RTOL = 1e-12
+"""Relative tolerance of ``from_scipy`` for a ``BPoly``'s pieces to join: the end coefficient of
+one piece and the start coefficient of the next may differ by this much times the largest
+coefficient magnitude (rounding, not a jump)."""
+
+
 def from_scipy(obj: Any):
     """A lekalo object with the same numbers as a SciPy spline.
 
@@ -52,8 +58,9 @@ def from_scipy(obj: Any):
     - ``PPoly`` (and ``CubicSpline``, ``Akima1DInterpolator``, ...) -> ``PiecewisePolynomial``
       (SciPy's highest-power-first coefficients reordered to lekalo's lowest-first);
     - ``BPoly`` -> ``BSplineCurve`` whose Bezier pieces are the ``BPoly`` pieces (interior
-      knots of multiplicity ``k``); the pieces must join (equal end and start coefficients),
-      otherwise ``lekalo.Error``.
+      knots of multiplicity ``k``); the pieces must join (end and start coefficients equal up to
+      ``1e-12`` times the largest coefficient magnitude: rounding, as in a ``CubicSpline``
+      converted with ``BPoly.from_power_basis``), otherwise ``lekalo.Error``.
 
     Scalar-valued SciPy splines become dimension 1; ``to_scipy`` gives them back 1-D.
     """
@@ -79,11 +86,18 @@ def from_scipy(obj: Any):
         order, m, dim = c.shape
         p = order - 1
         if p > 0 and m > 1:
-            gaps = np.nonzero(np.any(c[-1, :-1] != c[0, 1:], axis=-1))[0]
+            # pieces join when the end and start coefficients agree up to rounding, relative to
+            # the size of the coefficients (a CubicSpline's BPoly differs there by an ulp or so)
+            tol = _JOIN_RTOL * max(float(np.max(np.abs(c))), np.finfo(np.float64).tiny)
+            jump = np.max(np.abs(c[-1, :-1] - c[0, 1:]), axis=-1)
+            gaps = np.nonzero(~(jump <= tol))[0]
             if gaps.size:
+                g = gaps[0]
                 raise Error(
-                    f"BPoly: pieces {gaps[0]} and {gaps[0] + 1} do not join at x = {x[gaps[0] + 1]}; "
-                    "a B-spline curve is continuous (convert each piece with BezierCurve(c[:, j]))"
+                    f"BPoly: pieces {g} and {g + 1} do not join at x = {x[g + 1]} "
+                    f"(the coefficients differ by {jump[g]:.3g}, more than {tol:.3g}, "
+                    f"{_JOIN_RTOL:g} of their largest magnitude); a B-spline curve is continuous "
+                    "(convert each piece with BezierCurve(c[:, j]))"
                 )
         if p == 0:
             knots = x

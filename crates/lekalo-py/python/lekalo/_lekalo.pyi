@@ -12,6 +12,7 @@ Param = Union[str, float]
 # 'first-interval-midpoint') or one τ value per B-spline
 TauChoice = Union[str, ArrayLike]
 
+__version__: str
 MAX_SCALARS: int
 MAX_DEGREE: int
 

@@ -6,6 +6,12 @@ use super::pieces::{bern_roots, Bern, QueryCurve};
 use super::surface::QuerySurface;
 use crate::error::{Error, Result};
 
+/// Relative tolerance below which [`QueryCurve::curvature_extrema`] treats two curvatures as
+/// equal: extrema that differ from their neighbours by at most this times the curve's largest
+/// curvature are rounding, not extrema. `1e-10`: the curvature of an exact NURBS arc varies by
+/// a few ulps (`~1e-15` relative), a real extremum by far more.
+pub const CURVATURE_EXTREMUM_RTOL: f64 = 1e-10;
+
 /// A local extremum of a curve's curvature `|κ|`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurvatureExtremum {
@@ -240,6 +246,13 @@ impl QueryCurve {
     /// its changes bisected (an extremum narrower than 1/64 of a piece can be missed there).
     /// Stationary points (`C' = 0`) are skipped. Sorted by `t`.
     ///
+    /// An extremum must stand out from rounding: a root whose curvature is within
+    /// [`CURVATURE_EXTREMUM_RTOL`] `× κ_max` of the curvature at a neighbouring root (or at the
+    /// curve's end on that side), `κ_max` the largest curvature at the roots and the ends, is
+    /// dropped. So a curve of constant curvature (an exact circular arc, whose `d(κ²)/dt` is
+    /// rounding noise that changes sign many times) has no extrema, and a flat stretch of
+    /// curvature between two real extrema adds none.
+    ///
     /// ```
     /// use lekalo::{BSplineCurve, Points, QueryCurve};
     /// // the parabola y = x² on x ∈ [−1, 1]: curvature 2 at its vertex, the maximum
@@ -310,7 +323,42 @@ impl QueryCurve {
                 });
             }
         }
-        Ok(out)
+        Ok(self.drop_rounding_extrema(out))
+    }
+
+    /// The extrema of `found` that differ from both neighbours (the neighbouring extrema, or
+    /// the curve's ends) by more than [`CURVATURE_EXTREMUM_RTOL`] `× κ_max`.
+    fn drop_rounding_extrema(&self, found: Vec<CurvatureExtremum>) -> Vec<CurvatureExtremum> {
+        if found.is_empty() {
+            return found;
+        }
+        let end = |k: usize, s: f64| {
+            let d = self.ders3(k, s);
+            crate::curvature(&d[1], &d[2]).map(|x| x / self.scale)
+        };
+        let first = end(0, 0.0);
+        let last = end(self.piece_count() - 1, 1.0);
+        let scale = found
+            .iter()
+            .map(|e| e.curvature)
+            .chain(first)
+            .chain(last)
+            .fold(0.0_f64, f64::max);
+        let tol = CURVATURE_EXTREMUM_RTOL * scale;
+        let near = |a: f64, b: Option<f64>| b.is_some_and(|b| (a - b).abs() <= tol);
+        (0..found.len())
+            .filter(|&i| {
+                let k = found[i].curvature;
+                let before = if i == 0 {
+                    first
+                } else {
+                    Some(found[i - 1].curvature)
+                };
+                let after = found.get(i + 1).map(|e| e.curvature).or(last);
+                !near(k, before) && !near(k, after)
+            })
+            .map(|i| found[i])
+            .collect()
     }
 
     /// `d(κ²)/ds` up to a positive factor, from the derivatives.
@@ -458,6 +506,45 @@ mod tests {
             NurbsCurve::circle(&[0.0, 0.0, 1.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 2.0).unwrap();
         let q3 = QueryCurve::from_nurbs(&c3).unwrap();
         assert!(q3.torsion_at(0.4).unwrap().unwrap().abs() < 1e-12, "planar");
+    }
+
+    #[test]
+    fn exact_arcs_have_no_curvature_extrema() {
+        // the arc of `lekalo make nurbs --help`: d(κ²)/dt is rounding noise there
+        let arc = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap(),
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+        )
+        .unwrap();
+        let ext = QueryCurve::from_nurbs(&arc)
+            .unwrap()
+            .curvature_extrema()
+            .unwrap();
+        assert!(ext.is_empty(), "{ext:?}");
+        // a full circle of four pieces, radius 3, and a scaled-up one
+        for r in [3.0, 1e6] {
+            let c = NurbsCurve::circle(&[1.0, 2.0], &[1.0, 0.0], &[0.0, 1.0], r).unwrap();
+            let ext = QueryCurve::from_nurbs(&c)
+                .unwrap()
+                .curvature_extrema()
+                .unwrap();
+            assert!(ext.is_empty(), "{r}: {ext:?}");
+        }
+        // an elliptic arc keeps its extremum
+        let ellipse = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            Points::from_2d(&[[2.0, -1.0], [4.0, 0.3], [2.0, 1.0]]).unwrap(),
+            vec![1.0, 0.5, 1.0],
+        )
+        .unwrap();
+        let ext = QueryCurve::from_nurbs(&ellipse)
+            .unwrap()
+            .curvature_extrema()
+            .unwrap();
+        assert_eq!(ext.len(), 1, "{ext:?}");
     }
 
     #[test]

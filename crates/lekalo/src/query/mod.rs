@@ -39,7 +39,7 @@ mod surface;
 mod tessellate;
 
 pub use bbox::SURFACE_BOX_RTOL;
-pub use curvature::{CurvatureExtremum, SurfaceCurvature};
+pub use curvature::{CurvatureExtremum, SurfaceCurvature, CURVATURE_EXTREMUM_RTOL};
 pub use intersect::{CurveIntersection, SurfaceHit};
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use offset::Offset;
