@@ -119,4 +119,38 @@ mod tests {
         });
         assert_eq!(message(&other), "error: invalid something else: why");
     }
+
+    /// Every option of every subcommand that chooses among the words of a vocabulary offers
+    /// exactly the vocabulary's canonical words: a command that spells one differently (its
+    /// own `ValueEnum`, a renamed value) fails here.
+    #[test]
+    fn the_options_speak_the_vocabulary() {
+        use clap::CommandFactory;
+        let vocabularies = lekalo::vocabulary::all();
+        let mut checked = 0;
+        let mut stack = vec![crate::Cli::command()];
+        while let Some(cmd) = stack.pop() {
+            for arg in cmd.get_arguments() {
+                let Some(long) = arg.get_long() else { continue };
+                let Some((_, words, _)) = vocabularies
+                    .iter()
+                    .find(|(key, _, _)| option_of(key) == Some(&format!("--{long}")))
+                else {
+                    continue;
+                };
+                let offered: Vec<String> = arg
+                    .get_possible_values()
+                    .iter()
+                    .map(|v| v.get_name().to_string())
+                    .collect();
+                if offered.is_empty() {
+                    continue; // the same option name taking numbers (`make bspline --knots 0,0,1,1`)
+                }
+                assert_eq!(offered, *words, "{} --{long}", cmd.get_name());
+                checked += 1;
+            }
+            stack.extend(cmd.get_subcommands().cloned());
+        }
+        assert!(checked >= 5, "only {checked} options checked");
+    }
 }

@@ -107,22 +107,38 @@ fn from_json_shape(text: &str) -> PyResult<Shape> {
     Shape::from_json_str(text, "json").map_err(io_err)
 }
 
+/// The Python object of a curve of any kind: the class of its kind.
+pub(crate) fn curve_to_py(py: Python<'_>, c: lekalo::Curve) -> PyResult<Py<PyAny>> {
+    Ok(match c {
+        lekalo::Curve::Bezier(c) => Py::new(py, PyBezierCurve::wrap(c))?.into_any(),
+        lekalo::Curve::BSpline(c) => Py::new(py, PyBSplineCurve::wrap(c))?.into_any(),
+        lekalo::Curve::Nurbs(c) => Py::new(py, PyNurbsCurve::wrap(c))?.into_any(),
+    })
+}
+
+/// The library's curve of an object of any of the three curve classes (`what` names the
+/// argument in the error for any other object).
+pub(crate) fn curve_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<lekalo::Curve> {
+    if let Ok(c) = obj.cast::<PyBSplineCurve>() {
+        return Ok(lekalo::Curve::BSpline(c.get().inner.clone()));
+    }
+    if let Ok(c) = obj.cast::<PyNurbsCurve>() {
+        return Ok(lekalo::Curve::Nurbs(c.get().inner.clone()));
+    }
+    if let Ok(c) = obj.cast::<PyBezierCurve>() {
+        return Ok(lekalo::Curve::Bezier(c.get().inner.clone()));
+    }
+    Err(bad(format!(
+        "{what}: expected a BezierCurve, BSplineCurve or NurbsCurve, got {}",
+        obj.get_type().name()?
+    )))
+}
+
 /// Python object for any shape read from JSON.
 pub(crate) fn shape_to_py(py: Python<'_>, shape: Shape) -> PyResult<Py<PyAny>> {
-    use lekalo_io::Surface;
     Ok(match shape {
-        Shape::Curve(Object::Bezier(c)) => Py::new(py, PyBezierCurve::wrap(c))?.into_any(),
-        Shape::Curve(Object::BSpline(c)) => Py::new(py, PyBSplineCurve::wrap(c))?.into_any(),
-        Shape::Curve(Object::Nurbs(c)) => Py::new(py, PyNurbsCurve::wrap(c))?.into_any(),
-        Shape::Surface(Surface::Bezier(s)) => {
-            Py::new(py, crate::surfaces::PyBezierSurface { inner: s })?.into_any()
-        }
-        Shape::Surface(Surface::BSpline(s)) => {
-            Py::new(py, crate::surfaces::PyBSplineSurface { inner: s })?.into_any()
-        }
-        Shape::Surface(Surface::Nurbs(s)) => {
-            Py::new(py, crate::surfaces::PyNurbsSurface { inner: s })?.into_any()
-        }
+        Shape::Curve(c) => curve_to_py(py, c)?,
+        Shape::Surface(s) => crate::surfaces::surface_to_py(py, s)?,
         Shape::Pp(p) => Py::new(py, PyPiecewisePolynomial { inner: p })?.into_any(),
         other => {
             return Err(bad(format!(

@@ -1,26 +1,107 @@
-//! `lekalo.Error`, a subclass of `ValueError` carrying the library's message.
+//! `lekalo.Error` and its two kinds, as SciPy's users expect them:
+//! - `lekalo.InputError(lekalo.Error, ValueError)`: bad input (a value, a shape, a choice);
+//! - `lekalo.NumericalError(lekalo.Error, numpy.linalg.LinAlgError)`: a numerical failure on
+//!   valid input (a singular or ill-conditioned system), as SciPy raises `LinAlgError`.
+//!
+//! Both are `ValueError`s (NumPy's `LinAlgError` is one), so code that caught the old
+//! `lekalo.Error(ValueError)` still catches every error.
 
 use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
-use pyo3::PyErr;
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyTuple, PyType};
 
 create_exception!(
     lekalo,
     Error,
-    PyValueError,
-    "Bad input or a numerical failure reported by lekalo; the message names the problem and the fix."
+    PyException,
+    "Bad input (lekalo.InputError) or a numerical failure (lekalo.NumericalError) reported by \
+     lekalo; the message names the problem and the fix."
 );
 
-/// The library's error as `lekalo.Error`, with its message in Python's words
-/// ([`python_terms`]).
+static INPUT_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+static NUMERICAL_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+/// Makes `InputError` and `NumericalError` (classes with two bases, which Python builds with
+/// `type(name, bases, namespace)`) and adds the three classes to the module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    let base = py.get_type::<Error>();
+    m.add("Error", &base)?;
+    let make = |name: &str, other: Bound<'_, PyAny>, doc: &str| -> PyResult<Py<PyType>> {
+        let namespace = PyDict::new(py);
+        namespace.set_item("__module__", "lekalo")?;
+        namespace.set_item("__doc__", doc)?;
+        let bases = PyTuple::new(py, [base.clone().into_any(), other])?;
+        let ty = py
+            .get_type::<PyType>()
+            .call1((name, bases, namespace))?
+            .cast_into::<PyType>()?;
+        m.add(name, &ty)?;
+        Ok(ty.unbind())
+    };
+    let input = make(
+        "InputError",
+        py.get_type::<PyValueError>().into_any(),
+        "Bad input: a value, shape or choice lekalo cannot use; the message names the argument and the fix.",
+    )?;
+    let linalg = py.import("numpy.linalg")?.getattr("LinAlgError")?;
+    let numerical = make(
+        "NumericalError",
+        linalg,
+        "A numerical failure on valid input (a singular or ill-conditioned system), as SciPy's LinAlgError.",
+    )?;
+    let _ = INPUT_ERROR.set(py, input);
+    let _ = NUMERICAL_ERROR.set(py, numerical);
+    Ok(())
+}
+
+/// An error of the kind `numerical` (else bad input) with `message`.
+fn raise(numerical: bool, message: String) -> PyErr {
+    Python::attach(|py| {
+        let cell = if numerical {
+            &NUMERICAL_ERROR
+        } else {
+            &INPUT_ERROR
+        };
+        match cell.get(py) {
+            Some(ty) => PyErr::from_type(ty.bind(py).clone(), message),
+            None => Error::new_err(message),
+        }
+    })
+}
+
+/// The Python name of each argument key of the library's errors (the `what` of
+/// `InvalidArgument`): the one table from the library's keys to the keyword arguments.
+const ARGUMENTS: [(&str, &str); 6] = [
+    ("knots", "knots"),
+    ("parametrization", "parametrization"),
+    ("end", "end"),
+    ("end derivatives", "d_start/d_end"),
+    ("rule", "rule"),
+    ("expression", "f"),
+];
+
+/// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system) or
+/// `lekalo.InputError` (everything else), an argument named by its keyword
+/// ([`ARGUMENTS`]) and the other messages in Python's words ([`python_terms`]).
 pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
-    Error::new_err(python_terms(&e.to_string()))
+    let numerical = matches!(
+        e,
+        lekalo::Error::SingularSystem { .. } | lekalo::Error::IllConditioned { .. }
+    );
+    if let lekalo::Error::InvalidArgument { what, reason } = &e {
+        if let Some((_, name)) = ARGUMENTS.iter().find(|(k, _)| k == what) {
+            return raise(false, format!("{name}: {reason}"));
+        }
+    }
+    raise(numerical, python_terms(&e.to_string()))
 }
 
 /// `(library wording, Python wording)`: the few library messages that name Rust items, as
 /// the Python package spells them (the command line has its own table).
-const TERMS: [(&str, &str); 3] = [
-    ("use KnotPlacement::Auto", "use knots='auto'"),
+const TERMS: [(&str, &str); 2] = [
     ("net_size.0", "control.shape[0]"),
     ("net_size.1", "control.shape[1]"),
 ];
@@ -36,12 +117,13 @@ pub(crate) fn python_terms(message: &str) -> String {
     out
 }
 
-/// The file-format crate's error as `lekalo.Error`.
+/// The file-format crate's error as `lekalo.InputError`.
 pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
-    Error::new_err(e.to_string())
+    raise(false, e.to_string())
 }
 
-/// An argument error found by the binding itself (dtype, layout, shape).
+/// An argument error found by the binding itself (dtype, layout, shape), as
+/// `lekalo.InputError`.
 pub(crate) fn bad(msg: String) -> PyErr {
-    Error::new_err(msg)
+    raise(false, msg)
 }

@@ -7,7 +7,8 @@
 //!
 //! - arrays: `convert` (float64, C- or F-ordered, the last axis is the dimension; C-ordered
 //!   arrays are borrowed, not copied);
-//! - errors: `error` (`lekalo.Error`, a `ValueError`, with the library's message);
+//! - errors: `error` (`lekalo.Error`, with `lekalo.InputError`, a `ValueError`, and
+//!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
 //! - classes: `curves`, `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
@@ -30,8 +31,7 @@ use pyo3::prelude::*;
 /// The native module.
 #[pymodule]
 fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    let py = m.py();
-    m.add("Error", py.get_type::<error::Error>())?;
+    error::register(m)?;
     m.add("MAX_SCALARS", lekalo::MAX_SCALARS)?;
     m.add("MAX_DEGREE", lekalo::MAX_DEGREE)?;
     // the package's version is the crate's (pyproject.toml takes it from Cargo.toml)

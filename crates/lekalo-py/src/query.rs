@@ -12,27 +12,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert::{array, check_size, floats, points_into_array, uv_args, vec1, vec_array};
-use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
+use crate::curves::{curve_of, out_shape, PyBSplineCurve};
 use crate::error::{bad, lib_err};
-use crate::surfaces::{PyBSplineSurface, PyBezierSurface, PyNurbsSurface};
-
-/// `Self` prepared from the first listed class that `obj` is an instance of, by that class's
-/// function with the GIL released; a named error for any other object.
-macro_rules! prepare {
-    ($py:expr, $obj:expr, $what:literal, $expected:literal, $($class:ty => $make:expr),+ $(,)?) => {{
-        $(
-            if let Ok(x) = $obj.cast::<$class>() {
-                let x = &x.get().inner;
-                let inner = $py.detach(|| $make(x)).map_err(lib_err)?;
-                return Ok(Self { inner });
-            }
-        )+
-        Err(bad(format!(
-            concat!($what, ": expected ", $expected, ", got {}"),
-            $obj.get_type().name()?
-        )))
-    }};
-}
+use crate::surfaces::surface_of;
 
 /// Applies `f` to every number of the array-like `t` (any shape) and returns the results in an
 /// array of `t`'s shape (a Python float for a scalar `t`).
@@ -147,11 +129,9 @@ pub(crate) struct PyCurveQuery {
 impl PyCurveQuery {
     #[new]
     fn new(py: Python<'_>, curve: &Bound<'_, PyAny>) -> PyResult<Self> {
-        prepare!(py, curve, "curve", "a BezierCurve, BSplineCurve or NurbsCurve",
-            PyBSplineCurve => QueryCurve::from_bspline,
-            PyNurbsCurve => QueryCurve::from_nurbs,
-            PyBezierCurve => QueryCurve::from_bezier,
-        )
+        let c = curve_of(curve, "curve")?;
+        let inner = py.detach(|| c.to_query()).map_err(lib_err)?;
+        Ok(Self { inner })
     }
 
     /// The parameter domain.
@@ -464,11 +444,9 @@ pub(crate) struct PySurfaceQuery {
 impl PySurfaceQuery {
     #[new]
     fn new(py: Python<'_>, surface: &Bound<'_, PyAny>) -> PyResult<Self> {
-        prepare!(py, surface, "surface", "a BezierSurface, BSplineSurface or NurbsSurface",
-            PyBSplineSurface => QuerySurface::from_bspline,
-            PyNurbsSurface => QuerySurface::from_nurbs,
-            PyBezierSurface => |s: &lekalo::BezierSurface| QuerySurface::from_bspline(&s.to_bspline()),
-        )
+        let s = surface_of(surface, "surface")?;
+        let inner = py.detach(|| s.to_query()).map_err(lib_err)?;
+        Ok(Self { inner })
     }
 
     /// The dimension of the points.

@@ -419,3 +419,30 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
         array(py, self.inner.weights(), &[nu, nv])
     }
 });
+
+/// The Python object of a surface of any kind: the class of its kind.
+pub(crate) fn surface_to_py(py: Python<'_>, s: lekalo::Surface) -> PyResult<Py<PyAny>> {
+    Ok(match s {
+        lekalo::Surface::Bezier(inner) => Py::new(py, PyBezierSurface { inner })?.into_any(),
+        lekalo::Surface::BSpline(inner) => Py::new(py, PyBSplineSurface { inner })?.into_any(),
+        lekalo::Surface::Nurbs(inner) => Py::new(py, PyNurbsSurface { inner })?.into_any(),
+    })
+}
+
+/// The library's surface of an object of any of the three surface classes (`what` names the
+/// argument in the error for any other object).
+pub(crate) fn surface_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<lekalo::Surface> {
+    if let Ok(s) = obj.cast::<PyBSplineSurface>() {
+        return Ok(lekalo::Surface::BSpline(s.get().inner.clone()));
+    }
+    if let Ok(s) = obj.cast::<PyNurbsSurface>() {
+        return Ok(lekalo::Surface::Nurbs(s.get().inner.clone()));
+    }
+    if let Ok(s) = obj.cast::<PyBezierSurface>() {
+        return Ok(lekalo::Surface::Bezier(s.get().inner.clone()));
+    }
+    Err(crate::error::bad(format!(
+        "{what}: expected a BezierSurface, BSplineSurface or NurbsSurface, got {}",
+        obj.get_type().name()?
+    )))
+}

@@ -1,7 +1,6 @@
 //! `lekalo mesh`: a surface as a triangle mesh (OBJ, ASCII STL or PLY) or a curve as a polyline
 //! (OBJ), within a proved deviation.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -52,67 +51,13 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
             let m = q.mesh(a.tolerance).map_err(bad)?;
-            if m.vertices.dim() != 3 {
-                return bad_input("meshes are written for 3-D surfaces");
-            }
-            let body = match fmt.as_str() {
-                "obj" => {
-                    let mut s = format!("# lekalo mesh: deviation <= {:e}\n", m.deviation);
-                    for p in m.vertices.iter() {
-                        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
-                    }
-                    for t in &m.triangles {
-                        let _ = writeln!(s, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
-                    }
-                    s
-                }
-                "stl" => {
-                    let mut s = String::from("solid lekalo\n");
-                    for t in &m.triangles {
-                        let [a, b, c] = t.map(|i| m.vertices.point(i as usize).to_vec());
-                        let (u, w) = (
-                            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-                            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-                        );
-                        let n = [
-                            u[1] * w[2] - u[2] * w[1],
-                            u[2] * w[0] - u[0] * w[2],
-                            u[0] * w[1] - u[1] * w[0],
-                        ];
-                        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-                            .sqrt()
-                            .max(f64::MIN_POSITIVE);
-                        let _ = writeln!(
-                            s,
-                            "facet normal {} {} {}\n outer loop",
-                            n[0] / l,
-                            n[1] / l,
-                            n[2] / l
-                        );
-                        for p in [&a, &b, &c] {
-                            let _ = writeln!(s, "  vertex {} {} {}", p[0], p[1], p[2]);
-                        }
-                        s.push_str(" endloop\nendfacet\n");
-                    }
-                    s.push_str("endsolid lekalo\n");
-                    s
-                }
-                "ply" => {
-                    let mut s = format!(
-                        "ply\nformat ascii 1.0\ncomment lekalo mesh, deviation <= {:e}\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
-                        m.deviation,
-                        m.vertices.len(),
-                        m.triangles.len()
-                    );
-                    for p in m.vertices.iter() {
-                        let _ = writeln!(s, "{} {} {}", p[0], p[1], p[2]);
-                    }
-                    for t in &m.triangles {
-                        let _ = writeln!(s, "3 {} {} {}", t[0], t[1], t[2]);
-                    }
-                    s
-                }
-                other => return bad_input(format!("--format {other}: use obj, stl or ply")),
+            let format = match lekalo_io::MeshFormat::from_name(&fmt) {
+                Ok(f) => f,
+                Err(_) => return bad_input(format!("--format {fmt}: use obj, stl or ply")),
+            };
+            let body = match lekalo_io::mesh_text(&m, format) {
+                Ok(b) => b,
+                Err(_) => return bad_input("meshes are written for 3-D surfaces"),
             };
             let summary = json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
             (body, summary)
@@ -125,18 +70,7 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
                     "--format {fmt}: a curve is written as an OBJ polyline"
                 ));
             }
-            let mut s = format!("# lekalo polyline: deviation <= {:e}\n", poly.deviation);
-            for p in poly.points.iter() {
-                let c: Vec<String> = (0..3)
-                    .map(|d| p.get(d).copied().unwrap_or(0.0).to_string())
-                    .collect();
-                let _ = writeln!(s, "v {}", c.join(" "));
-            }
-            s.push('l');
-            for i in 1..=poly.points.len() {
-                let _ = write!(s, " {i}");
-            }
-            s.push('\n');
+            let s = lekalo_io::polyline_text(&poly);
             let summary = json!({"vertices": poly.points.len(), "deviation": poly.deviation});
             (s, summary)
         }

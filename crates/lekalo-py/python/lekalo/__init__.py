@@ -14,7 +14,9 @@ Conventions (see the package README, "SciPy users start here"):
   is ``n`` values (dimension 1); C-ordered arrays are used in place, F-ordered ones copied once;
 - evaluation returns ``t.shape + (dim,)``, also for dimension 1;
 - parameters outside a curve's domain raise ``lekalo.Error`` (no extrapolation);
-- every error is ``lekalo.Error``, a subclass of ``ValueError``, with the library's message.
+- every error is a ``lekalo.Error`` with the library's message: ``lekalo.InputError`` (also a
+  ``ValueError``) for bad input, ``lekalo.NumericalError`` (also NumPy's ``LinAlgError``, as
+  SciPy raises) for a numerical failure on valid input.
 
 >>> import numpy as np, lekalo
 >>> c = lekalo.interpolate(np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float))
@@ -34,6 +36,8 @@ from ._lekalo import (
     BSplineSurface,
     CubicHermite,
     Error,
+    InputError,
+    NumericalError,
     NurbsCurve,
     NurbsSurface,
     PiecewisePolynomial,
@@ -86,6 +90,8 @@ __all__ = [
     "BSplineSurface",
     "CubicHermite",
     "Error",
+    "InputError",
+    "NumericalError",
     "NurbsCurve",
     "NurbsSurface",
     "PiecewisePolynomial",

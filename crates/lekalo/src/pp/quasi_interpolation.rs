@@ -464,8 +464,8 @@ impl ExpressionDerivatives<'_> {
 /// let f = Expression::parse("x*cos(x)")?;
 /// let q = quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &f)?;
 /// assert_eq!(q.control_points().len(), 8);
-/// let pole = Expression::parse("1/(x - 1)")?;
-/// assert!(quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &pole).is_err());
+/// let undefined = Expression::parse("ln(x - 5)")?; // no logarithm of a negative number
+/// assert!(quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &undefined).is_err());
 /// # Ok::<(), lekalo::Error>(())
 /// ```
 ///

@@ -38,6 +38,47 @@ pub struct Mesh {
     pub deviation: f64,
 }
 
+impl Mesh {
+    /// Unit normal of triangle `k` with vertices `a, b, c`: `(b − a) × (c − a) / |…|`, pointing
+    /// to the side from which the triangle is counter-clockwise (for a mesh of a surface, the
+    /// side of `S_u × S_v`). `None` for a degenerate triangle, an index outside the mesh, or
+    /// vertices that are not 3-D.
+    ///
+    /// ```
+    /// use lekalo::query::Mesh;
+    /// use lekalo::Points;
+    /// let m = Mesh {
+    ///     vertices: Points::from_3d(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])?,
+    ///     uv: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+    ///     triangles: vec![[0, 1, 2]],
+    ///     deviation: 0.0,
+    /// };
+    /// assert_eq!(m.facet_normal(0), Some([0.0, 0.0, 1.0]));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn facet_normal(&self, k: usize) -> Option<[f64; 3]> {
+        if self.vertices.dim() != 3 {
+            return None;
+        }
+        let t = self.triangles.get(k)?;
+        let p = |i: u32| -> Option<&[f64]> {
+            let i = usize::try_from(i).ok()?;
+            (i < self.vertices.len()).then(|| self.vertices.point(i))
+        };
+        let (a, b, c) = (p(t[0])?, p(t[1])?, p(t[2])?);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        (l > 0.0 && l.is_finite()).then(|| [n[0] / l, n[1] / l, n[2] / l])
+    }
+}
+
 pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
     check_finite("tessellation tolerance", &[tol])?;
     if !(tol >= MIN_RELATIVE_TOLERANCE * scale) {

@@ -1,0 +1,91 @@
+"""The option words Python shares with the command line and the editor, and the error kinds.
+
+The canonical words are the library's vocabulary (`lekalo::vocabulary`); the command line's
+`--help` lists the same words, and `crates/lekalo-cli` tests them against the same table. Each
+word is accepted here; each older Python spelling still works with a DeprecationWarning.
+"""
+
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+import lekalo
+
+Q = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0], [5.0, 1.0]])
+
+# the canonical words of the vocabulary, as the library defines them
+KNOTS = ["auto", "averaged", "uniform", "at-params"]
+PARAMETRIZATION = ["uniform", "chord", "centripetal"]
+END = ["free", "derivatives", "second", "natural", "periodic"]
+RULE = ["first-knot-after", "left-end-of-support", "midpoint", "greville", "first-interval-midpoint"]
+
+
+def quiet(f, *args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return f(*args, **kwargs)
+
+
+@pytest.mark.parametrize("word", PARAMETRIZATION)
+def test_every_parametrization_word(word):
+    quiet(lekalo.interpolate, Q, 3, parametrization=word)
+
+
+@pytest.mark.parametrize("word", KNOTS)
+def test_every_knot_word(word):
+    end = {"end": "natural"} if word == "at-params" else {}
+    quiet(lekalo.interpolate, Q, 3, knots=word, **end)
+
+
+@pytest.mark.parametrize("word", END)
+def test_every_end_word(word):
+    d = {"d_start": [1.0, 0.0], "d_end": [1.0, 0.0]} if word in ("derivatives", "second") else {}
+    quiet(lekalo.interpolate, Q, 3, end=word, **d)
+
+
+@pytest.mark.parametrize("word", RULE)
+def test_every_rule_word(word):
+    space = lekalo.PpSpace([0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], [2] * 5, 3)
+    quiet(lekalo.quasi_interpolate, space, lambda x, r: np.cos(x) if r == 0 else 0.0, rule=word)
+
+
+@pytest.mark.parametrize(
+    "kwargs, canonical",
+    [
+        ({"knots": "at_parameters", "end": "natural"}, "at-params"),
+        ({"parametrization": "chord_length"}, "chord"),
+        ({"end": "first", "d_start": [1.0, 0.0], "d_end": [1.0, 0.0]}, "derivatives"),
+    ],
+)
+def test_older_spellings_warn_and_name_the_word(kwargs, canonical):
+    with pytest.warns(DeprecationWarning, match=canonical):
+        lekalo.interpolate(Q, 3, **kwargs)
+
+
+def test_an_unknown_word_lists_the_words():
+    with pytest.raises(lekalo.InputError, match="knots: unknown value 'everywhere'; use one of 'auto'"):
+        lekalo.interpolate(Q, 3, knots="everywhere")
+
+
+def test_the_cli_offers_the_same_words():
+    """`lekalo interpolate --help` lists exactly the vocabulary's words (when the binary is built)."""
+    import os
+    import shutil
+
+    exe = os.environ.get("LEKALO_BIN") or shutil.which("lekalo")
+    if exe is None:
+        pytest.skip("no lekalo binary on PATH or in LEKALO_BIN")
+    text = subprocess.run([exe, "interpolate", "--help"], capture_output=True, text=True, check=True).stdout
+    for words in (KNOTS, PARAMETRIZATION, END):
+        for w in words:
+            assert f"{w}:" in text or f"{w} " in text, (w, text)
+
+
+def test_error_kinds():
+    assert issubclass(lekalo.InputError, lekalo.Error) and issubclass(lekalo.InputError, ValueError)
+    assert issubclass(lekalo.NumericalError, lekalo.Error)
+    assert issubclass(lekalo.NumericalError, np.linalg.LinAlgError)
+    with pytest.raises(lekalo.InputError):
+        lekalo.interpolate(np.array([[0.0, np.nan], [1.0, 1.0]]), 1)
