@@ -446,6 +446,13 @@ fn parse_dict(text: &str) -> Result<Vec<(String, Value)>, String> {
             None if r.is_empty() => r,
             None => return Err(format!("expected ',' or '}}' after the value of '{key}'")),
         };
+        if out.iter().any(|(k, _)| *k == key) {
+            // Python keeps the last of repeated keys in a dict literal, and NumPy's own reader
+            // then refuses or accepts by that one; no writer repeats a key, so refuse it
+            return Err(format!(
+                "the key '{key}' appears twice; a .npy header names each key once, save the array again with numpy.save"
+            ));
+        }
         out.push((key, value));
     }
     Ok(out)
