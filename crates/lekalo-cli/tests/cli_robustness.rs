@@ -88,6 +88,92 @@ fn bezier(n: usize) -> String {
     )
 }
 
+const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 1, "degree_v": 1,
+ "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1], "net": [2, 2],
+ "control": [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 1]]}"#;
+
+#[test]
+fn no_option_writes_over_a_file_the_command_reads() {
+    // Each command reads a second file through an option. Only the main input used to be
+    // protected: naming the second one as the output replaced it with exit 0.
+    let d = dir_with(&[
+        ("c.json", LECTURE),
+        ("s.json", SURFACE),
+        ("uv.csv", "0.5,0.5\n0.25,0.75\n"),
+        ("q.csv", "1,2\n3,3\n"),
+        ("pts.csv", "0,0\n1,1\n2,0\n3,1\n4,0\n"),
+        ("w.json", "[[1], [1], [1], [1], [1]]\n"),
+        ("tan.json", "[[1, 0], [1, 0], [1, 0], [1, 0], [1, 0]]\n"),
+        ("over.svg", "1,2\n3,3\n"),
+        ("len.txt", "0.5\n1\n"),
+    ]);
+    let cases: [&[&str]; 6] = [
+        &["eval", "s.json", "--uv-file", "uv.csv", "-o", "uv.csv"],
+        &["project", "c.json", "--points", "q.csv", "-o", "q.csv"],
+        &[
+            "fit",
+            "pts.csv",
+            "--weights",
+            "w.json",
+            "--ctrl",
+            "4",
+            "-o",
+            "w.json",
+        ],
+        &[
+            "interpolate",
+            "pts.csv",
+            "--tangents",
+            "tan.json",
+            "-o",
+            "tan.json",
+        ],
+        &["plot", "c.json", "--points", "over.svg", "-o", "over.svg"],
+        &["measure", "c.json", "--lengths", "len.txt", "-o", "len.txt"],
+    ];
+    for args in cases {
+        let file = args[args.len() - 1];
+        let before = fs::read(p(&d, file)).unwrap();
+        let out = lekalo().current_dir(d.path()).args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("refusing to write {file}: it is an input file")),
+            "{args:?}: {err}"
+        );
+        assert_eq!(
+            fs::read(p(&d, file)).unwrap(),
+            before,
+            "{args:?} changed {file}"
+        );
+        assert_eq!(
+            debris(d.path(), &[])
+                .iter()
+                .filter(|n| n.contains(".tmp"))
+                .count(),
+            0
+        );
+        // the same command with another output succeeds, so the refusal is the protection
+        let mut other: Vec<String> = args.iter().map(ToString::to_string).collect();
+        let ext = Path::new(file)
+            .extension()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        *other.last_mut().unwrap() = format!("fresh.{ext}");
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(&other)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{other:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
 #[test]
 fn plots_of_one_dimensional_points_do_not_panic() {
     let d = dir_with(&[("p.txt", "0\n1\n3\n4\n")]);

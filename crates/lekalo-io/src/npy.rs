@@ -240,6 +240,7 @@ pub fn read_npy_file(path: &Path) -> IoResult<(Points, String)> {
         error,
     };
     let mut f = std::fs::File::open(path).map_err(read_err)?;
+    crate::atomic::note_read(path);
     let len = f.metadata().map_err(read_err)?.len();
     let len = usize::try_from(len).unwrap_or(usize::MAX);
     let mut head = Vec::with_capacity(READ_CHUNK.min(len));
