@@ -12,6 +12,11 @@ use crate::Points;
 pub const MIN_RELATIVE_TOLERANCE: f64 = 1e-12;
 /// Largest number of mesh vertices (a bound on the memory of [`QuerySurface::mesh`]).
 pub const MAX_MESH_VERTICES: usize = 1 << 26;
+/// Largest number of triangles [`QuerySurface::mesh`] sets out to make: the count is estimated
+/// from the control net and the tolerance before any part is made, and a tolerance whose
+/// estimate is larger is refused with the tolerance that would fit (about 100 bytes of working
+/// memory per triangle: 3 GiB at the limit).
+pub const MAX_MESH_TRIANGLES: usize = 1 << 25;
 
 /// A polyline approximating a curve.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,7 +49,7 @@ pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
         return Err(Error::InvalidArgument {
             what: "tessellation tolerance",
             reason: format!(
-                "{tol} is below {MIN_RELATIVE_TOLERANCE:e} times the object's size {scale}; \
+                "{tol:e} is below {MIN_RELATIVE_TOLERANCE:e} times the object's size {scale:e}; \
                  rounding would decide the bound"
             ),
         });
