@@ -263,16 +263,20 @@ fn fields(text: &str, delim: char, record: char) -> Vec<String> {
     let chars: Vec<char> = text.chars().collect();
     let mut out = Vec::new();
     let mut cur = String::new();
+    // whether `cur` holds only blanks so far: a Hollerith count can start only there. Kept as
+    // a flag so that a long field is not scanned again for every character (that was
+    // quadratic in the field's length).
+    let mut blank = true;
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
-        if c.is_ascii_digit() && cur.trim().chars().all(|d| d.is_ascii_digit()) {
+        if c.is_ascii_digit() && blank {
             // a Hollerith string nHxxx: digits then H then n characters
             let mut j = i;
             while j < chars.len() && chars[j].is_ascii_digit() {
                 j += 1;
             }
-            if j < chars.len() && chars[j] == 'H' && cur.trim().is_empty() {
+            if j < chars.len() && chars[j] == 'H' {
                 let n: usize = chars[i..j]
                     .iter()
                     .collect::<String>()
@@ -280,17 +284,20 @@ fn fields(text: &str, delim: char, record: char) -> Vec<String> {
                     .unwrap_or(usize::MAX);
                 let end = (j + 1).saturating_add(n).min(chars.len());
                 cur = chars[j + 1..end].iter().collect();
+                blank = cur.trim().is_empty();
                 i = end;
                 continue;
             }
         }
         if c == delim {
             out.push(std::mem::take(&mut cur));
+            blank = true;
         } else if c == record {
             out.push(std::mem::take(&mut cur));
             return out;
         } else {
             cur.push(c);
+            blank &= c.is_whitespace();
         }
         i += 1;
     }
@@ -409,6 +416,9 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
     let _ = scale_field;
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
+    // parameter lines read so far: each entity owns its own lines, so more than the section
+    // holds means entities share lines, which a file could use to make the reading quadratic
+    let mut lines_read = 0usize;
     for pair in d.chunks(2) {
         let [(line, a), (_, b)] = pair else {
             return Err(IoError::syntax(
@@ -460,6 +470,13 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
         let n = count(&field(b, 3)).unwrap_or(0);
         if start == 0 || n == 0 || start.checked_add(n - 1).is_none_or(|last| last > p.len()) {
             return Err(IoError::syntax(at, format!("entity {ty}: parameter data pointer {start} (+{n} lines) is outside the P section")));
+        }
+        lines_read = lines_read.saturating_add(n);
+        if lines_read > p.len() {
+            return Err(IoError::syntax(
+                at,
+                format!("entity {ty}: its parameter data (lines {start} to {}) are also another entity's; each entity has its own lines of the P section", start + n - 1),
+            ));
         }
         let body: String = p[start - 1..start - 1 + n]
             .iter()
@@ -761,6 +778,31 @@ mod tests {
         let text = one_entity("1H,,1H;;", 126, "126,18446744073709551615H1,1;");
         let e = read_iges(&text, "p.igs").unwrap_err().to_string();
         assert!(e.starts_with("p.igs:5: entity 126"), "{e}");
+    }
+
+    #[test]
+    fn reading_is_linear_in_long_fields_and_shared_parameter_lines() {
+        // a field of 200,000 digits was scanned again for every digit (quadratic)
+        let long = format!(
+            "126,{}1,1,0,0,1,0;",
+            " ".repeat(100_000) + &"7".repeat(200_000)
+        );
+        let start = std::time::Instant::now();
+        let e = read_iges(&one_entity("1H,,1H;;", 126, &long), "long.igs").unwrap_err();
+        assert!(start.elapsed().as_secs() < 5, "{:?}", start.elapsed());
+        assert!(e.to_string().contains("parameter 1"), "{e}");
+        // many directory entries pointing at the same parameter lines would read them once
+        // per entry: refused
+        let one = one_entity("1H,,1H;;", 126, SEGMENT);
+        let d: Vec<&str> = one.lines().filter(|l| l.get(72..73) == Some("D")).collect();
+        let again: String = d
+            .iter()
+            .enumerate()
+            .map(|(k, l)| format!("{}{:>7}\n", &l[..73], k + 3))
+            .collect();
+        let shared = one.replacen(&format!("{}\n", d[1]), &format!("{}\n{again}", d[1]), 1);
+        let e = read_iges(&shared, "shared.igs").unwrap_err().to_string();
+        assert!(e.contains("also another entity's"), "{e}");
     }
 
     #[test]
