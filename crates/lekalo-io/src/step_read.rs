@@ -742,8 +742,10 @@ impl Reader<'_> {
         })
     }
 
-    /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values.
-    fn trimmed(&self, r: &[P]) -> Result<(u64, Object), Why> {
+    /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values. `budget` is the
+    /// number of basis control points trims may still read: a basis is read once per trim, so
+    /// without it a file of many short trims of one long curve would be read in quadratic time.
+    fn trimmed(&self, r: &[P], budget: &mut usize) -> Result<(u64, Object), Why> {
         if r.len() < 5 {
             return Err(
                 "TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into(),
@@ -763,6 +765,19 @@ impl Reader<'_> {
                 inst.type_name()
             ));
         }
+        let size = ["B_SPLINE_CURVE_WITH_KNOTS", "B_SPLINE_CURVE"]
+            .iter()
+            .find_map(|name| {
+                let r = inst.get(name)?;
+                let at = usize::from(*name == "B_SPLINE_CURVE_WITH_KNOTS") + 1;
+                r.get(at).and_then(list).map(<[P]>::len)
+            })
+            .unwrap_or(0);
+        *budget = budget.checked_sub(size).ok_or_else(|| {
+            format!(
+                "the basis curve #{basis} ({size} control points) is one of bases trimmed more often than the file's size allows to read"
+            )
+        })?;
         let curve = self.curve(inst)?;
         let trim = |p: &P| -> Option<f64> {
             list(p)?.iter().find_map(|x| match x {
@@ -968,10 +983,13 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
     let mut skipped = Vec::new();
     let mut trimmed_bases = HashSet::new();
     let mut trimmed = Vec::new();
+    // the basis control points all trims may read: four times the instances of the file (each
+    // control point is an instance), so that reading stays linear in the file's size
+    let mut budget = parsed.instances.len().saturating_mul(4);
     for &id in &ids {
         let inst = &parsed.instances[&id];
         if let Some(r) = inst.get("TRIMMED_CURVE") {
-            match rd.trimmed(r) {
+            match rd.trimmed(r, &mut budget) {
                 Ok((basis, piece)) => {
                     trimmed_bases.insert(basis);
                     trimmed.push((id, Shape::Curve(piece)));
@@ -1263,6 +1281,44 @@ ENDSEC;\n";
         assert!(
             e.starts_with("h.step:4: entity #2") && e.contains("v knot multiplicities add up to"),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn many_trims_of_one_long_basis_are_read_in_linear_time() {
+        // 20,000 trims of one curve of 20,000 control points: each trim read the whole basis
+        let n = 20_000;
+        let mut text = String::from("ISO-10303-21;\nDATA;\n");
+        let mut refs = Vec::with_capacity(n);
+        for i in 0..n {
+            text += &format!("#{}=CARTESIAN_POINT('',({i}.,0.,0.));\n", i + 1);
+            refs.push(format!("#{}", i + 1));
+        }
+        let basis = n + 1;
+        text += &format!(
+            "#{basis}=B_SPLINE_CURVE_WITH_KNOTS('',1,({}),.UNSPECIFIED.,.F.,.F.,(2,{}2),(0.,{}1.),.UNSPECIFIED.);\n",
+            refs.join(","),
+            "1,".repeat(n - 2),
+            (1..n - 1).map(|k| format!("{k}e-5,")).collect::<String>()
+        );
+        for k in 0..n {
+            text += &format!(
+                "#{}=TRIMMED_CURVE('',#{basis},(PARAMETER_VALUE(0.1)),(PARAMETER_VALUE(0.2)),.T.,.PARAMETER.);\n",
+                basis + 1 + k
+            );
+        }
+        text += "ENDSEC;\n";
+        let start = std::time::Instant::now();
+        let r = read_step(&text, "trims.step").unwrap();
+        assert!(start.elapsed().as_secs() < 20, "{:?}", start.elapsed());
+        // the first trims are read, the rest are listed as skipped with the reason
+        let read = r.shapes.len();
+        assert!(read > 0 && read < 10, "{read} trims read");
+        assert_eq!(r.skipped.len(), n - read, "every other trim is listed");
+        assert!(
+            r.skipped[0].reason.contains("trimmed more often"),
+            "{:?}",
+            r.skipped[0]
         );
     }
 
