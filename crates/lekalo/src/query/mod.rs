@@ -47,5 +47,6 @@ pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use surface::QuerySurface;
 pub use tessellate::{
-    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MIN_RELATIVE_TOLERANCE,
+    Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS,
+    MIN_RELATIVE_TOLERANCE,
 };
