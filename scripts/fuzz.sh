@@ -21,7 +21,7 @@ rss_mb="${FUZZ_RSS_MB:-2048}"
 jobs="${FUZZ_JOBS:-1}"
 parallel=()
 [ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
-all_targets=(json_load knots curves surfaces ppform interpolation degree blending io_parsers cli_inputs cli_args parquet_batches)
+all_targets=(json_load knots curves surfaces ppform interpolation degree blending io_parsers cli_inputs cli_args parquet_batches step_read iges_read npy_header)
 if [ "$#" -gt 0 ]; then targets=("$@"); else targets=("${all_targets[@]}"); fi
 
 cargo fuzz build

@@ -290,6 +290,7 @@ pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
             path: path.to_path_buf(),
             error,
         })?;
+        lekalo_io::note_read(path);
         let name = path.display().to_string();
         return Ok(Loaded::One(lekalo_io::read_npz_curve(&bytes, &name)?));
     }

@@ -223,6 +223,8 @@ where
             io::report(&format!("warning: {w}"));
         }
     }
+    // whatever this command reads, through any option, no output of it may replace
+    lekalo_io::protect_files_read();
     io::configure(io::Settings {
         header: cli.header,
         force: cli.force,

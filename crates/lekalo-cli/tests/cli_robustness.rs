@@ -88,6 +88,169 @@ fn bezier(n: usize) -> String {
     )
 }
 
+const SURFACE: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 1, "degree_v": 1,
+ "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1], "net": [2, 2],
+ "control": [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 1]]}"#;
+
+/// z = x² + y² on [0, 1]² (a paraboloid: curved in both directions).
+const BOWL: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 2,
+ "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1], "net": [3, 3],
+ "control": [[0, 0, 0], [0, 0.5, 0], [0, 1, 1], [0.5, 0, 0], [0.5, 0.5, 0], [0.5, 1, 1],
+             [1, 0, 1], [1, 0.5, 1], [1, 1, 2]]}"#;
+
+#[test]
+fn no_option_writes_over_a_file_the_command_reads() {
+    // Each command reads a second file through an option. Only the main input used to be
+    // protected: naming the second one as the output replaced it with exit 0.
+    let d = dir_with(&[
+        ("c.json", LECTURE),
+        ("s.json", SURFACE),
+        ("uv.csv", "0.5,0.5\n0.25,0.75\n"),
+        ("q.csv", "1,2\n3,3\n"),
+        ("pts.csv", "0,0\n1,1\n2,0\n3,1\n4,0\n"),
+        ("w.json", "[[1], [1], [1], [1], [1]]\n"),
+        ("tan.json", "[[1, 0], [1, 0], [1, 0], [1, 0], [1, 0]]\n"),
+        ("over.svg", "1,2\n3,3\n"),
+        ("len.txt", "0.5\n1\n"),
+    ]);
+    let cases: [&[&str]; 6] = [
+        &["eval", "s.json", "--uv-file", "uv.csv", "-o", "uv.csv"],
+        &["project", "c.json", "--points", "q.csv", "-o", "q.csv"],
+        &[
+            "fit",
+            "pts.csv",
+            "--weights",
+            "w.json",
+            "--ctrl",
+            "4",
+            "-o",
+            "w.json",
+        ],
+        &[
+            "interpolate",
+            "pts.csv",
+            "--tangents",
+            "tan.json",
+            "-o",
+            "tan.json",
+        ],
+        &["plot", "c.json", "--points", "over.svg", "-o", "over.svg"],
+        &["measure", "c.json", "--lengths", "len.txt", "-o", "len.txt"],
+    ];
+    for args in cases {
+        let file = args[args.len() - 1];
+        let before = fs::read(p(&d, file)).unwrap();
+        let out = lekalo().current_dir(d.path()).args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("refusing to write {file}: it is an input file")),
+            "{args:?}: {err}"
+        );
+        assert_eq!(
+            fs::read(p(&d, file)).unwrap(),
+            before,
+            "{args:?} changed {file}"
+        );
+        assert_eq!(
+            debris(d.path(), &[])
+                .iter()
+                .filter(|n| n.contains(".tmp"))
+                .count(),
+            0
+        );
+        // the same command with another output succeeds, so the refusal is the protection
+        let mut other: Vec<String> = args.iter().map(ToString::to_string).collect();
+        let ext = Path::new(file)
+            .extension()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        *other.last_mut().unwrap() = format!("fresh.{ext}");
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(&other)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{other:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+/// Exit code and standard error of `lekalo ARGS` run in `dir`.
+fn code_and_stderr(dir: &Path, args: &[&str]) -> (i32, String) {
+    let out = lekalo().current_dir(dir).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn sizes_set_by_an_option_are_refused_before_allocation_naming_it() {
+    let d = dir_with(&[
+        ("s.json", BOWL),
+        ("c.json", LECTURE),
+        ("uvz.csv", "0,0,0\n1,0,1\n0,1,1\n1,1,2\n0.5,0.5,1\n"),
+    ]);
+    // a 3000 x 3000 net asked for 648 GB and aborted
+    let (code, err) = code_and_stderr(
+        d.path(),
+        &["fit", "uvz.csv", "--scattered", "--ctrl-grid", "3000x3000"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--ctrl-grid 3000x3000") && err.contains("--max-size"),
+        "{err}"
+    );
+    // a tolerance of 1e-8 aborted on memory; 1e-300 was printed as a 300-digit decimal
+    for (tol, says) in [
+        ("1e-8", "use a tolerance of at least"),
+        ("1e-300", "rounding would decide the bound"),
+    ] {
+        let (code, err) = code_and_stderr(d.path(), &["mesh", "s.json", "-t", tol, "-o", "m.obj"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains(&format!("--tolerance {tol}: ")) && err.contains(says),
+            "{err}"
+        );
+        assert!(err.len() < 400, "numbers in exponent notation: {err}");
+        assert!(!p(&d, "m.obj").exists());
+    }
+    // a table of samples × columns held in memory
+    let (code, err) = code_and_stderr(
+        d.path(),
+        &[
+            "eval",
+            "c.json",
+            "--samples",
+            "3000000",
+            "--curvature",
+            "-o",
+            "e.npy",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--samples 3000000: 3000000 samples of 4 columns are 12000000 values"),
+        "{err}"
+    );
+    assert_eq!(
+        debris(d.path(), &["s.json", "c.json", "uvz.csv"]),
+        Vec::<String>::new()
+    );
+    // an interval of ±1e308 was reported as "knots[0] is NaN"
+    let (code, err) = code_and_stderr(
+        d.path(),
+        &["knot", "reparam", "c.json", "--interval=-1e308,1e308"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--interval -1e308,1e308: "), "{err}");
+}
+
 #[test]
 fn plots_of_one_dimensional_points_do_not_panic() {
     let d = dir_with(&[("p.txt", "0\n1\n3\n4\n")]);

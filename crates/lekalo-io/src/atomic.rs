@@ -26,6 +26,41 @@ fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
+/// The files this process has read, once [`protect_files_read`] has turned the record on
+/// (`None` until then): every atomic write refuses them as it refuses its `inputs`.
+static READ: Mutex<Option<Vec<PathBuf>>> = Mutex::new(None);
+
+fn files_read() -> std::sync::MutexGuard<'static, Option<Vec<PathBuf>>> {
+    READ.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// From now on, every file that the readers of this crate open by path ([`read_input`],
+/// [`read_input_bytes`], the `.npy` and Parquet file readers), and every path given to
+/// [`note_read`], is protected from the atomic writes of this process as if it were among
+/// their `inputs`. A command-line tool that reads files through several options calls this at
+/// the start of each command (each call starts an empty record), so that no option can name an
+/// output that replaces one of the command's inputs; a program that reads a file, changes it
+/// and saves it on purpose does not call it.
+pub fn protect_files_read() {
+    *files_read() = Some(Vec::new());
+}
+
+/// Records `path` as read, for [`protect_files_read`] (nothing happens while the record is
+/// off). Standard input (`-`) is not a file and is not recorded.
+pub fn note_read(path: &Path) {
+    if path.as_os_str() == "-" {
+        return;
+    }
+    if let Some(read) = files_read().as_mut() {
+        // resolved now, while it exists, so that a later relative or linked name still matches
+        let p = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        if !read.contains(&p) {
+            read.push(p);
+        }
+    }
+}
+
 /// Removes every temporary file that a [`write_atomic`] in progress has created and not yet
 /// renamed into place, and keeps the registry locked so that no new one is started: call it
 /// from a SIGINT/SIGTERM handler just before the process exits. Returns how many were removed.
@@ -322,13 +357,15 @@ impl Target {
     }
 }
 
-/// [`IoError::WouldOverwriteInput`] if `path` names the same file as one of `inputs`.
+/// [`IoError::WouldOverwriteInput`] if `path` names the same file as one of `inputs`, or as a
+/// file this process has read (see [`protect_files_read`]).
 ///
 /// # Errors
 /// As described.
 pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
     let target = std::fs::canonicalize(path).ok();
-    for input in inputs {
+    let read = files_read().clone().unwrap_or_default();
+    for input in inputs.iter().chain(&read) {
         let same = match (&target, std::fs::canonicalize(input).ok()) {
             (Some(a), Some(b)) => *a == b,
             _ => path == input.as_path(),
@@ -392,6 +429,7 @@ pub fn read_input_bytes(path: &Path) -> IoResult<(Vec<u8>, String)> {
             path: path.to_path_buf(),
             error,
         })?;
+        note_read(path);
         (path.display().to_string(), Box::new(f))
     };
     let read_err = |error| IoError::Read {

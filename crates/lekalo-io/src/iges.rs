@@ -262,34 +262,47 @@ fn pack(tokens: &[String], width: usize) -> Vec<String> {
 }
 
 /// Splits a parameter text at `delim` outside Hollerith strings, up to the record delimiter.
+/// A Hollerith count beyond the text (up to 2^64 − 1, or more digits than that) takes the rest
+/// of the text.
 fn fields(text: &str, delim: char, record: char) -> Vec<String> {
     let chars: Vec<char> = text.chars().collect();
     let mut out = Vec::new();
     let mut cur = String::new();
+    // whether `cur` holds only blanks so far: a Hollerith count can start only there. Kept as
+    // a flag so that a long field is not scanned again for every character (that was
+    // quadratic in the field's length).
+    let mut blank = true;
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
-        if c.is_ascii_digit() && cur.trim().chars().all(|d| d.is_ascii_digit()) {
+        if c.is_ascii_digit() && blank {
             // a Hollerith string nHxxx: digits then H then n characters
             let mut j = i;
             while j < chars.len() && chars[j].is_ascii_digit() {
                 j += 1;
             }
-            if j < chars.len() && chars[j] == 'H' && cur.trim().is_empty() {
-                let n: usize = chars[i..j].iter().collect::<String>().parse().unwrap_or(0);
-                let end = (j + 1 + n).min(chars.len());
+            if j < chars.len() && chars[j] == 'H' {
+                let n: usize = chars[i..j]
+                    .iter()
+                    .collect::<String>()
+                    .parse()
+                    .unwrap_or(usize::MAX);
+                let end = (j + 1).saturating_add(n).min(chars.len());
                 cur = chars[j + 1..end].iter().collect();
+                blank = cur.trim().is_empty();
                 i = end;
                 continue;
             }
         }
         if c == delim {
             out.push(std::mem::take(&mut cur));
+            blank = true;
         } else if c == record {
             out.push(std::mem::take(&mut cur));
             return out;
         } else {
             cur.push(c);
+            blank &= c.is_whitespace();
         }
         i += 1;
     }
@@ -382,19 +395,16 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
         }
     }
     let (delim, record) = {
+        // `1H,` and `1H;` name the delimiters; the character after `1H` may take several bytes
+        let hollerith = |t: &str, default: char| -> (char, usize) {
+            t.strip_prefix("1H")
+                .and_then(|r| r.chars().next())
+                .map_or((default, 0), |c| (c, 2 + c.len_utf8()))
+        };
         let t = g.trim_start();
-        let pd = if t.starts_with("1H") {
-            t.chars().nth(2).unwrap_or(',')
-        } else {
-            ','
-        };
-        let rest = if t.starts_with("1H") { &t[3..] } else { t };
-        let rest = rest.trim_start_matches(pd).trim_start();
-        let rd = if rest.starts_with("1H") {
-            rest.chars().nth(2).unwrap_or(';')
-        } else {
-            ';'
-        };
+        let (pd, used) = hollerith(t, ',');
+        let rest = t[used..].trim_start_matches(pd).trim_start();
+        let (rd, _) = hollerith(rest, ';');
         (pd, rd)
     };
     let gf = fields(&g, delim, record);
@@ -411,6 +421,9 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
     let _ = scale_field;
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
+    // parameter lines read so far: each entity owns its own lines, so more than the section
+    // holds means entities share lines, which a file could use to make the reading quadratic
+    let mut lines_read = 0usize;
     for pair in d.chunks(2) {
         let [(line, a), (_, b)] = pair else {
             return Err(IoError::syntax(
@@ -460,8 +473,15 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
         }
         let start = count(&field(a, 1)).unwrap_or(0);
         let n = count(&field(b, 3)).unwrap_or(0);
-        if start == 0 || start + n - 1 > p.len() || n == 0 {
+        if start == 0 || n == 0 || start.checked_add(n - 1).is_none_or(|last| last > p.len()) {
             return Err(IoError::syntax(at, format!("entity {ty}: parameter data pointer {start} (+{n} lines) is outside the P section")));
+        }
+        lines_read = lines_read.saturating_add(n);
+        if lines_read > p.len() {
+            return Err(IoError::syntax(
+                at,
+                format!("entity {ty}: its parameter data (lines {start} to {}) are also another entity's; each entity has its own lines of the P section", start + n - 1),
+            ));
         }
         let body: String = p[start - 1..start - 1 + n]
             .iter()
@@ -485,12 +505,33 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                 .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
         };
         let lib = |e: lekalo::Error| bad(e.to_string());
+        // The counts are checked against the parameters the entity holds before anything is
+        // allocated: a declared size the file cannot back (a 23170 × 23170 net in a few lines)
+        // is refused, and so is one whose arithmetic would overflow.
+        let needs = |what: String, sizes: &[Option<usize>]| -> IoResult<()> {
+            let total = sizes.iter().try_fold(0usize, |sum, &x| sum.checked_add(x?));
+            match total {
+                Some(t) if t <= f.len() => Ok(()),
+                Some(t) => Err(bad(format!(
+                    "{what} need {t} parameters, the entity has {}; the counts or the parameter data are wrong",
+                    f.len()
+                ))),
+                None => Err(bad(format!(
+                    "{what} need more parameters than any file holds; the counts are wrong"
+                ))),
+            }
+        };
         if ty == "126" {
             let (k, m, poly) = (c(1)?, c(2)?, c(5)? == 1);
-            let nk = k + m + 2;
-            if nk > lekalo::MAX_SCALARS {
-                return Err(bad(format!("{nk} knots is more than the library accepts")));
-            }
+            let n = k.checked_add(1);
+            let nk = k.checked_add(m).and_then(|x| x.checked_add(2));
+            needs(
+                format!("K = {k}, M = {m} (upper index and degree)"),
+                &[Some(7), nk, n, n.and_then(|n| n.checked_mul(3)), Some(2)],
+            )?;
+            let (Some(nk), Some(_)) = (nk, n) else {
+                return Err(bad("the counts overflow".into()));
+            };
             let base = 7;
             let knots = (0..nk).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
             let w = (0..=k)
@@ -510,15 +551,27 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
             shapes.push((seq, Shape::Curve(obj)));
         } else {
             let (k1, k2, m1, m2, poly) = (c(1)?, c(2)?, c(3)?, c(4)?, c(7)? == 1);
+            let plus = |a: usize, b: usize| a.checked_add(b);
+            let net = plus(k1, 1)
+                .zip(plus(k2, 1))
+                .and_then(|(a, b)| a.checked_mul(b));
+            let n1 = plus(k1, m1).and_then(|x| plus(x, 2));
+            let n2 = plus(k2, m2).and_then(|x| plus(x, 2));
+            needs(
+                format!("K1 = {k1}, K2 = {k2}, M1 = {m1}, M2 = {m2} (upper indices and degrees)"),
+                &[
+                    Some(10),
+                    n1,
+                    n2,
+                    net.and_then(|x| x.checked_mul(4)),
+                    Some(4),
+                ],
+            )?;
+            let (Some(n1), Some(n2)) = (n1, n2) else {
+                return Err(bad("the counts overflow".into()));
+            };
+            // both below the parameter count (checked above), so k + 1 does not overflow
             let (nu, nv) = (k1 + 1, k2 + 1);
-            let (n1, n2) = (k1 + m1 + 2, k2 + m2 + 2);
-            if n1
-                .saturating_add(n2)
-                .saturating_add(nu.saturating_mul(nv).saturating_mul(4))
-                > lekalo::MAX_SCALARS
-            {
-                return Err(bad("the surface is larger than the library accepts".into()));
-            }
             let base = 10;
             let ku = (0..n1).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
             let kv = (0..n2)
@@ -650,5 +703,145 @@ mod tests {
         assert!(text.contains("0.,2.,1.,1."), "{text}");
         let e = read_iges(&text, "x.igs").unwrap_err().to_string();
         assert!(e.contains("entity 126"), "{e}");
+    }
+
+    /// An IGES file with the Global section `global` and one entity of type `ty` whose parameter
+    /// data is `params`, laid out in 80-column records as a writer would.
+    fn one_entity(global: &str, ty: u32, params: &str) -> String {
+        let mut out = format!("{:<72}S{:>7}\n", "hostile", 1);
+        // padded by bytes: the reader finds the section letter at byte 72
+        let pad = 72usize.saturating_sub(global.len());
+        out += &format!("{global}{}G{:>7}\n", " ".repeat(pad), 1);
+        let lines: Vec<&str> = params
+            .as_bytes()
+            .chunks(64)
+            .map(|c| std::str::from_utf8(c).unwrap())
+            .collect();
+        let d = |fields: [String; 9], seq: usize| {
+            let mut l: String = fields.iter().map(|f| format!("{f:>8}")).collect();
+            l += &format!("D{seq:>7}\n");
+            l
+        };
+        let s = |x: usize| x.to_string();
+        out += &d(
+            [
+                ty.to_string(),
+                s(1),
+                s(0),
+                s(0),
+                s(0),
+                s(0),
+                s(0),
+                s(0),
+                "00000000".into(),
+            ],
+            1,
+        );
+        out += &d(
+            [
+                ty.to_string(),
+                s(0),
+                s(0),
+                s(lines.len()),
+                s(0),
+                String::new(),
+                String::new(),
+                String::new(),
+                s(0),
+            ],
+            2,
+        );
+        for (i, l) in lines.iter().enumerate() {
+            out += &format!("{l:<64}{:>8}P{:>7}\n", 1, i + 1);
+        }
+        out += &format!("{:<72}T{:>7}\n", "S      1G      1D      2P      1", 1);
+        out
+    }
+
+    const SEGMENT: &str = "126,1,1,0,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,1.,1.,0.,0.,1.,0.,0.,1.;";
+
+    #[test]
+    fn hostile_global_sections_are_read_without_panics() {
+        let r = read_iges(&one_entity("1H,,1H;;", 126, SEGMENT), "ok.igs").unwrap();
+        assert_eq!(r.shapes.len(), 1, "the file of the tests below reads");
+        // a Hollerith count of 2^64 - 1 overflowed the end index; one with more digits than
+        // that parsed as 0; a multi-byte delimiter after 1H was sliced inside its bytes
+        for global in [
+            "18446744073709551615Habc;",
+            "1H,,1H;,99999999999999999999999Habc;",
+            "1H,,1Hé,3Habc;",
+            "é,1H;;",
+        ] {
+            let r = read_iges(&one_entity(global, 126, SEGMENT), "g.igs");
+            assert!(r.is_ok(), "{global}: {r:?}");
+        }
+        // é as the parameter delimiter: read as such (here the data use ',', so entity 126
+        // has no readable counts, a named error)
+        let e = read_iges(&one_entity("1Hé,1H;;", 126, SEGMENT), "g.igs").unwrap_err();
+        assert!(e.to_string().starts_with("g.igs:5: entity 126"), "{e}");
+        // in the parameter data too
+        let text = one_entity("1H,,1H;;", 126, "126,18446744073709551615H1,1;");
+        let e = read_iges(&text, "p.igs").unwrap_err().to_string();
+        assert!(e.starts_with("p.igs:5: entity 126"), "{e}");
+    }
+
+    #[test]
+    fn reading_is_linear_in_long_fields_and_shared_parameter_lines() {
+        // a field of 200,000 digits was scanned again for every digit (quadratic)
+        let long = format!(
+            "126,{}1,1,0,0,1,0;",
+            " ".repeat(100_000) + &"7".repeat(200_000)
+        );
+        let start = std::time::Instant::now();
+        let e = read_iges(&one_entity("1H,,1H;;", 126, &long), "long.igs").unwrap_err();
+        assert!(start.elapsed().as_secs() < 5, "{:?}", start.elapsed());
+        assert!(e.to_string().contains("parameter 1"), "{e}");
+        // many directory entries pointing at the same parameter lines would read them once
+        // per entry: refused
+        let one = one_entity("1H,,1H;;", 126, SEGMENT);
+        let d: Vec<&str> = one.lines().filter(|l| l.get(72..73) == Some("D")).collect();
+        let again: String = d
+            .iter()
+            .enumerate()
+            .map(|(k, l)| format!("{}{:>7}\n", &l[..73], k + 3))
+            .collect();
+        let shared = one.replacen(&format!("{}\n", d[1]), &format!("{}\n{again}", d[1]), 1);
+        let e = read_iges(&shared, "shared.igs").unwrap_err().to_string();
+        assert!(e.contains("also another entity's"), "{e}");
+    }
+
+    #[test]
+    fn declared_sizes_the_file_cannot_hold_are_refused_before_allocation() {
+        let refused = |ty: u32, params: &str| {
+            read_iges(&one_entity("1H,,1H;;", ty, params), "h.igs")
+                .unwrap_err()
+                .to_string()
+        };
+        // a 23170 x 23170 net (2^31 points) in a few bytes aborted on allocation
+        let e = refused(128, "128,23169,23169,1,1,0,0,1,0,0,0.,0.,1.,1.;");
+        assert!(
+            e.starts_with("h.igs:5: entity 128")
+                && e.contains("need 2147441958 parameters, the entity has 14"),
+            "{e}"
+        );
+        // counts whose sums or products overflow
+        for (ty, params) in [
+            (128, "128,18446744073709551615,1,1,1,0,0,1,0,0;"),
+            (128, "128,4294967296,4294967296,1,1,0,0,1,0,0;"),
+            (126, "126,18446744073709551615,1,0,0,1,0;"),
+            (126, "126,1,18446744073709551614,0,0,1,0;"),
+        ] {
+            let e = refused(ty, params);
+            assert!(
+                e.contains("more parameters than any file holds"),
+                "{params}: {e}"
+            );
+        }
+        // a curve whose counts promise more numbers than it has
+        let e = refused(126, "126,3,1,0,0,1,0,0.,0.,1.,1.;");
+        assert!(
+            e.contains("K = 3, M = 1") && e.contains("need 31 parameters"),
+            "{e}"
+        );
     }
 }

@@ -62,9 +62,9 @@ mod wireframe;
 
 pub use analysis::{curvature, uniform};
 pub use atomic::{
-    check_not_input, read_input, read_input_bytes, remove_temporary_files, strip_bom,
-    strip_bom_str, write_atomic, write_atomic_seek, write_atomic_send, write_atomic_stream,
-    write_atomic_with, WriteOptions, WriteSeek,
+    check_not_input, note_read, protect_files_read, read_input, read_input_bytes,
+    remove_temporary_files, strip_bom, strip_bom_str, write_atomic, write_atomic_seek,
+    write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions, WriteSeek,
 };
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;

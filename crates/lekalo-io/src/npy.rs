@@ -240,6 +240,7 @@ pub fn read_npy_file(path: &Path) -> IoResult<(Points, String)> {
         error,
     };
     let mut f = std::fs::File::open(path).map_err(read_err)?;
+    crate::atomic::note_read(path);
     let len = f.metadata().map_err(read_err)?.len();
     let len = usize::try_from(len).unwrap_or(usize::MAX);
     let mut head = Vec::with_capacity(READ_CHUNK.min(len));
@@ -446,6 +447,13 @@ fn parse_dict(text: &str) -> Result<Vec<(String, Value)>, String> {
             None if r.is_empty() => r,
             None => return Err(format!("expected ',' or '}}' after the value of '{key}'")),
         };
+        if out.iter().any(|(k, _)| *k == key) {
+            // Python keeps the last of repeated keys in a dict literal, and NumPy's own reader
+            // then refuses or accepts by that one; no writer repeats a key, so refuse it
+            return Err(format!(
+                "the key '{key}' appears twice; a .npy header names each key once, save the array again with numpy.save"
+            ));
+        }
         out.push((key, value));
     }
     Ok(out)

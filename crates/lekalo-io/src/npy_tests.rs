@@ -293,6 +293,24 @@ fn npy_malformed_files_give_named_errors() {
 }
 
 #[test]
+fn npy_repeated_header_key_is_refused_by_name() {
+    // Python keeps the last of repeated keys; reading the first would give another array than
+    // NumPy's, so neither is taken
+    for dict in [
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), 'shape': (2, 3), }",
+        "{'descr': '>f8', 'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }",
+    ] {
+        let e = read_npy_points(&fixture(1, dict, &le(&ROWS)), "twice.npy").unwrap_err();
+        assert_eq!(
+            syntax_field(&e),
+            ("twice.npy".to_string(), Some("header".to_string())),
+            "{e}"
+        );
+        assert!(e.to_string().contains("appears twice"), "{e}");
+    }
+}
+
+#[test]
 fn npy_writer_rejects_a_wrong_count() {
     assert!(
         matches!(npy_bytes(2, 2, &[1.0]), Err(IoError::Unsupported { .. })),

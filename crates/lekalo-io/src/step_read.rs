@@ -21,6 +21,7 @@
 //! The grammar needed (ISO 10303-21 §6–7: keywords, the six token kinds, lists, typed
 //! parameters, simple and complex instances) is small.
 
+use std::cell::Cell;
 use std::collections::{HashMap, HashSet};
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
@@ -100,19 +101,37 @@ impl Instance {
     }
 }
 
+/// Deepest nesting of parameter lists read. Geometry nests two or three deep (a surface's
+/// control net, a typed measure in a list); a deeper file is refused with a syntax error instead
+/// of building values whose walk and drop would recurse as deep as the file says.
+const MAX_NESTING: usize = 64;
+
 struct Lexer<'a> {
     s: &'a [u8],
     pos: usize,
     source: &'a str,
+    /// The last position whose line was counted, and its line: the count resumes there, so
+    /// that asking the line of every instance costs one pass over the file, not one per instance.
+    line_at: Cell<(usize, usize)>,
 }
 
 impl<'a> Lexer<'a> {
+    fn new(text: &'a str, source: &'a str) -> Self {
+        Lexer {
+            s: text.as_bytes(),
+            pos: 0,
+            source,
+            line_at: Cell::new((0, 1)),
+        }
+    }
+
     fn line(&self) -> usize {
-        self.s[..self.pos.min(self.s.len())]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1
+        let pos = self.pos.min(self.s.len());
+        let (at, line) = self.line_at.get();
+        let (from, base) = if pos >= at { (at, line) } else { (0, 1) };
+        let line = base + memchr::memchr_iter(b'\n', &self.s[from..pos]).count();
+        self.line_at.set((pos, line));
+        line
     }
 
     fn err<T>(&self, msg: impl Into<String>) -> IoResult<T> {
@@ -201,29 +220,91 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// A parameter list `( … )` with its nested lists and typed parameters, read with an
+    /// explicit stack of the lists open (no recursion, so the file's nesting cannot exhaust the
+    /// thread's stack), at most [`MAX_NESTING`] deep.
     fn params(&mut self) -> IoResult<Vec<P>> {
         self.expect(b'(')?;
-        let mut out = Vec::new();
-        self.skip_ws()?;
-        if self.peek() == Some(b')') {
-            self.pos += 1;
-            return Ok(out);
-        }
-        loop {
-            out.push(self.param()?);
+        // the lists open, innermost last: the keyword of a typed parameter (`None` for a plain
+        // list) and the parameters read in it so far
+        let mut open: Vec<(Option<String>, Vec<P>)> = vec![(None, Vec::new())];
+        let mut just_opened = true;
+        'param: loop {
             self.skip_ws()?;
-            match self.peek() {
-                Some(b',') => self.pos += 1,
-                Some(b')') => {
-                    self.pos += 1;
-                    return Ok(out);
+            if just_opened && self.peek() == Some(b')') {
+                self.pos += 1;
+            } else {
+                let kind = match self.peek() {
+                    Some(b'(') => {
+                        self.pos += 1;
+                        Some(None)
+                    }
+                    Some(b) if b.is_ascii_alphabetic() || b == b'!' => {
+                        let k = self.keyword()?;
+                        self.expect(b'(')?;
+                        Some(Some(k))
+                    }
+                    _ => None,
+                };
+                if let Some(kind) = kind {
+                    if open.len() >= MAX_NESTING {
+                        return self.err(format!(
+                            "parameter lists nested more than {MAX_NESTING} deep; no STEP entity nests lists that deep"
+                        ));
+                    }
+                    open.push((kind, Vec::new()));
+                    just_opened = true;
+                    continue;
                 }
-                _ => return self.err("expected ',' or ')' in a parameter list"),
+                let p = self.scalar()?;
+                if let Some((_, items)) = open.last_mut() {
+                    items.push(p);
+                }
+                if self.separator()? {
+                    just_opened = false;
+                    continue;
+                }
+            }
+            // a ')' closed the innermost list
+            loop {
+                let Some((kind, items)) = open.pop() else {
+                    return self.err("unbalanced parentheses in a parameter list");
+                };
+                let Some((_, parent)) = open.last_mut() else {
+                    return Ok(items);
+                };
+                parent.push(match kind {
+                    None => P::List(items),
+                    Some(k) => P::Typed(k, items),
+                });
+                if self.separator()? {
+                    just_opened = false;
+                    continue 'param;
+                }
             }
         }
     }
 
-    fn param(&mut self) -> IoResult<P> {
+    /// After a parameter: `true` for a `,` (another parameter follows), `false` for a `)` (the
+    /// list ends), both consumed.
+    fn separator(&mut self) -> IoResult<bool> {
+        self.skip_ws()?;
+        match self.peek() {
+            Some(b',') => {
+                self.pos += 1;
+                Ok(true)
+            }
+            Some(b')') => {
+                self.pos += 1;
+                Ok(false)
+            }
+            _ => self.err("expected ',' or ')' in a parameter list"),
+        }
+    }
+
+    /// A parameter that is not a list: `$`, `*`, a reference, a string, an enumeration or a
+    /// number.
+    fn scalar(&mut self) -> IoResult<P> {
         self.skip_ws()?;
         let Some(b) = self.peek() else {
             return self.err("the file ends inside a parameter list");
@@ -241,7 +322,6 @@ impl<'a> Lexer<'a> {
                 self.pos += 1;
                 Ok(P::Ref(self.entity_ref()?))
             }
-            b'(' => Ok(P::List(self.params()?)),
             b'\'' => {
                 self.pos += 1;
                 let mut text = Vec::new();
@@ -306,11 +386,6 @@ impl<'a> Lexer<'a> {
                     Err(_) => self.err(format!("\"{text}\" is not a number")),
                 }
             }
-            _ if b.is_ascii_alphabetic() || b == b'!' => {
-                let k = self.keyword()?;
-                let inner = self.params()?;
-                Ok(P::Typed(k, inner))
-            }
             _ => self.err(format!(
                 "unexpected character '{}' in a parameter",
                 b as char
@@ -326,11 +401,7 @@ struct Parsed {
 }
 
 fn parse(text: &str, source: &str) -> IoResult<Parsed> {
-    let mut lx = Lexer {
-        s: text.as_bytes(),
-        pos: 0,
-        source,
-    };
+    let mut lx = Lexer::new(text, source);
     let mut instances = HashMap::new();
     let mut schema = None;
     let mut in_data = false;
@@ -481,23 +552,48 @@ fn numbers(p: &P, what: &str) -> Result<Vec<f64>, Why> {
         .ok_or_else(|| format!("{what} is not a list of numbers"))
 }
 
-fn expand_knots(mults: &P, knots: &P) -> Result<Vec<f64>, Why> {
+/// The knots of one direction, each repeated by its multiplicity, for `n` control points of
+/// degree `degree` (`dir` is `""`, `"u "` or `"v "` in messages). Those need `n + degree + 1`
+/// knots: a degree or a sum of multiplicities that does not fit is refused before anything is
+/// allocated, so that a multiplicity of 2^31 in a 300-byte file asks for no memory, and a sum
+/// beyond the range of the integers is an error rather than a wrap.
+fn expand_knots(mults: &P, knots: &P, n: usize, degree: usize, dir: &str) -> Result<Vec<f64>, Why> {
     let m: Vec<usize> = list(mults)
         .and_then(|l| l.iter().map(int).collect::<Option<Vec<_>>>())
-        .ok_or("knot_multiplicities is not a list of non-negative integers")?;
-    let k = numbers(knots, "knots")?;
+        .ok_or_else(|| {
+            format!("{dir}knot_multiplicities is not a list of non-negative integers")
+        })?;
+    let k = numbers(knots, &format!("{dir}knots"))?;
     if m.len() != k.len() {
         return Err(format!(
-            "{} knot multiplicities for {} knots",
+            "{} {dir}knot multiplicities for {} knots",
             m.len(),
             k.len()
         ));
     }
-    let total: usize = m.iter().sum();
-    if total > lekalo::MAX_SCALARS {
-        return Err(format!("{total} knots is more than the library accepts"));
+    if degree >= n {
+        return Err(format!(
+            "{dir}degree {degree} needs at least {} control points, there are {n}",
+            degree.saturating_add(1)
+        ));
     }
-    let mut out = Vec::with_capacity(total);
+    // n and degree < n come from lists of the file, so this sum is far below usize::MAX
+    let expected = n + degree + 1;
+    let total = m.iter().try_fold(0usize, |sum, &x| sum.checked_add(x));
+    match total {
+        Some(t) if t == expected => {}
+        Some(t) => {
+            return Err(format!(
+                "the {dir}knot multiplicities add up to {t} knots; {n} control points of degree {degree} need {expected}"
+            ))
+        }
+        None => {
+            return Err(format!(
+                "the {dir}knot multiplicities add up to more than 2^64 knots; {n} control points of degree {degree} need {expected}"
+            ))
+        }
+    }
+    let mut out = Vec::with_capacity(expected);
     for (x, n) in k.iter().zip(&m) {
         out.extend(std::iter::repeat_n(*x, *n));
     }
@@ -571,7 +667,7 @@ impl Reader<'_> {
         };
         let degree = int(degree).ok_or("degree is not a non-negative integer")?;
         let ctrl = self.points(ctrl)?;
-        let knots = expand_knots(mults, knots)?;
+        let knots = expand_knots(mults, knots, ctrl.len(), degree, "")?;
         let obj = match weights {
             None => {
                 Object::BSpline(BSplineCurve::new(degree, knots, ctrl).map_err(|e| e.to_string())?)
@@ -627,8 +723,8 @@ impl Reader<'_> {
             flat.extend_from_slice(pts.as_slice());
         }
         let ctrl = Points::from_flat(dim.max(1), flat).map_err(|e| e.to_string())?;
-        let ku = expand_knots(um, uk)?;
-        let kv = expand_knots(vm, vk)?;
+        let ku = expand_knots(um, uk, nu, du, "u ")?;
+        let kv = expand_knots(vm, vk, nv, dv, "v ")?;
         Ok(match weights {
             None => Surface::BSpline(
                 BSplineSurface::new(du, dv, ku, kv, ctrl, (nu, nv)).map_err(|e| e.to_string())?,
@@ -646,8 +742,10 @@ impl Reader<'_> {
         })
     }
 
-    /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values.
-    fn trimmed(&self, r: &[P]) -> Result<(u64, Object), Why> {
+    /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values. `budget` is the
+    /// number of basis control points trims may still read: a basis is read once per trim, so
+    /// without it a file of many short trims of one long curve would be read in quadratic time.
+    fn trimmed(&self, r: &[P], budget: &mut usize) -> Result<(u64, Object), Why> {
         if r.len() < 5 {
             return Err(
                 "TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into(),
@@ -667,6 +765,19 @@ impl Reader<'_> {
                 inst.type_name()
             ));
         }
+        let size = ["B_SPLINE_CURVE_WITH_KNOTS", "B_SPLINE_CURVE"]
+            .iter()
+            .find_map(|name| {
+                let r = inst.get(name)?;
+                let at = usize::from(*name == "B_SPLINE_CURVE_WITH_KNOTS") + 1;
+                r.get(at).and_then(list).map(<[P]>::len)
+            })
+            .unwrap_or(0);
+        *budget = budget.checked_sub(size).ok_or_else(|| {
+            format!(
+                "the basis curve #{basis} ({size} control points) is one of bases trimmed more often than the file's size allows to read"
+            )
+        })?;
         let curve = self.curve(inst)?;
         let trim = |p: &P| -> Option<f64> {
             list(p)?.iter().find_map(|x| match x {
@@ -745,7 +856,12 @@ fn is_bspline_surface(i: &Instance) -> bool {
 }
 
 /// The length unit of the file and its factor to millimetres.
-fn length_unit(p: &Parsed) -> (String, f64) {
+///
+/// # Errors
+/// [`IoError::Syntax`] naming the unit's entity when its factor is zero, negative or beyond the
+/// range of a double: such a unit would turn every point into the origin, mirror the geometry
+/// or make it infinite.
+fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
     // the unit assigned by the (first) global unit context, else any length unit of the file
     let mut ids: Vec<u64> = p.instances.keys().copied().collect();
     ids.sort_unstable();
@@ -763,8 +879,23 @@ fn length_unit(p: &Parsed) -> (String, f64) {
             .copied()
             .find(|id| p.instances[id].has("LENGTH_UNIT"))
     });
-    unit.and_then(|u| unit_factor(p, u, 0))
-        .unwrap_or_else(|| ("millimetre (assumed)".to_string(), 1.0))
+    let Some((u, (name, mm))) = unit.and_then(|u| Some((u, unit_factor(p, u, 0)?))) else {
+        return Ok(("millimetre (assumed)".to_string(), 1.0));
+    };
+    if !(mm.is_finite() && mm > 0.0) {
+        let mut at = Location::new(source);
+        if let Some(i) = p.instances.get(&u) {
+            at = at.at_line(i.line);
+        }
+        return Err(IoError::syntax(
+            at,
+            format!(
+                "entity #{u}: the length unit {name} is {} mm; a unit must be a positive finite length, correct its conversion factor",
+                crate::fmt_number(mm)
+            ),
+        ));
+    }
+    Ok((name, mm))
 }
 
 fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
@@ -776,6 +907,11 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
         };
         let f = match prefix {
             None => 1000.0,
+            Some("EXA") => 1e21,
+            Some("PETA") => 1e18,
+            Some("TERA") => 1e15,
+            Some("GIGA") => 1e12,
+            Some("MEGA") => 1e9,
             Some("KILO") => 1e6,
             Some("HECTO") => 1e5,
             Some("DECA") => 1e4,
@@ -784,6 +920,9 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
             Some("MILLI") => 1.0,
             Some("MICRO") => 1e-3,
             Some("NANO") => 1e-6,
+            Some("PICO") => 1e-9,
+            Some("FEMTO") => 1e-12,
+            Some("ATTO") => 1e-15,
             Some(_) => return None,
         };
         let name = prefix.map_or_else(
@@ -808,7 +947,7 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
     };
     let (_, f) = unit_factor(p, *base, depth + 1)?;
     let mm = value * f;
-    Some((format!("{name} ({mm} mm)"), mm))
+    Some((format!("{name} ({} mm)", crate::fmt_number(mm)), mm))
 }
 
 /// Reads the B-spline and NURBS curves and surfaces of a STEP file. `source` names the file in
@@ -832,7 +971,7 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
 /// library's constructor (unsorted knots, wrong counts, non-positive weights).
 pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
     let parsed = parse(text, source)?;
-    let (length_unit, scale) = length_unit(&parsed);
+    let (length_unit, scale) = length_unit(&parsed, source)?;
     let rd = Reader {
         p: &parsed,
         source,
@@ -844,10 +983,13 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
     let mut skipped = Vec::new();
     let mut trimmed_bases = HashSet::new();
     let mut trimmed = Vec::new();
+    // the basis control points all trims may read: four times the instances of the file (each
+    // control point is an instance), so that reading stays linear in the file's size
+    let mut budget = parsed.instances.len().saturating_mul(4);
     for &id in &ids {
         let inst = &parsed.instances[&id];
         if let Some(r) = inst.get("TRIMMED_CURVE") {
-            match rd.trimmed(r) {
+            match rd.trimmed(r, &mut budget) {
                 Ok((basis, piece)) => {
                     trimmed_bases.insert(basis);
                     trimmed.push((id, Shape::Curve(piece)));
@@ -1062,6 +1204,156 @@ END-ISO-10303-21;
         assert!(e.contains("#99999999999999999999999"), "{e}");
         for cut in [10, 200, 600, 900] {
             let _ = read_step(&OCC_STYLE[..cut], "cut");
+        }
+    }
+
+    /// `text` with its message, for the tests of hostile files below.
+    fn refused(text: &str) -> String {
+        read_step(text, "h.step").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn deep_nesting_is_refused_without_recursion() {
+        // a million '(' overflowed the stack of a recursive reader (abort, exit 134)
+        let deep = format!(
+            "ISO-10303-21;\nDATA;\n#1=FOO({}1{});\nENDSEC;\n",
+            "(".repeat(1_000_000),
+            ")".repeat(1_000_000)
+        );
+        let e = refused(&deep);
+        assert!(
+            e.starts_with("h.step:3:") && e.contains("nested more than"),
+            "{e}"
+        );
+        // as deep as the limit is still read, typed parameters included
+        let ok = format!(
+            "ISO-10303-21;\nDATA;\n#1=FOO({}1{},A(B((2))));\nENDSEC;\n",
+            "(".repeat(MAX_NESTING - 2),
+            ")".repeat(MAX_NESTING - 2)
+        );
+        assert!(read_step(&ok, "ok.step").is_ok());
+        // unbalanced or unterminated lists are syntax errors, not panics
+        for bad in [
+            "#1=FOO((1,2);",
+            "#1=FOO(1,(2)));",
+            "#1=FOO(A(",
+            "#1=FOO(,);",
+        ] {
+            let e = refused(&format!("ISO-10303-21;\nDATA;\n{bad}\nENDSEC;\n"));
+            assert!(e.starts_with("h.step:"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn knot_counts_are_checked_before_allocation() {
+        let with = |mults: &str, knots: &str, degree: &str| {
+            OCC_STYLE.replace(
+                "2,(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,(3,1,3),(0.,0.5,1.)",
+                &format!("{degree},(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,{mults},{knots}"),
+            )
+        };
+        // one multiplicity of 2^31 - 3 asked for 16 GiB and aborted
+        let e = refused(&with("(3,2147483645,3)", "(0.,0.5,1.)", "2"));
+        assert!(
+            e.starts_with("h.step:13: entity #5") && e.contains("add up to 2147483651 knots"),
+            "{e}"
+        );
+        // multiplicities whose sum overflows 64 bits (8e15 bytes were asked for)
+        let n = 20_000;
+        let mults = format!("({})", vec!["999999999999999"; n].join(","));
+        let knots = format!(
+            "({})",
+            (0..n)
+                .map(|i| format!("{i}."))
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+        let e = refused(&with(&mults, &knots, "2"));
+        assert!(e.contains("more than 2^64 knots"), "{e}");
+        // a degree far beyond the control points
+        let e = refused(&with("(3,1,3)", "(0.,0.5,1.)", "99999999999999"));
+        assert!(e.contains("degree 99999999999999 needs at least"), "{e}");
+        // the same for a surface's two directions
+        let surface = "ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=B_SPLINE_SURFACE_WITH_KNOTS('',1,1,((#1,#1),(#1,#1)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,4294967295),(0.,1.),(0.,1.),.UNSPECIFIED.);
+ENDSEC;\n";
+        let e = refused(surface);
+        assert!(
+            e.starts_with("h.step:4: entity #2") && e.contains("v knot multiplicities add up to"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn many_trims_of_one_long_basis_are_read_in_linear_time() {
+        // 20,000 trims of one curve of 20,000 control points: each trim read the whole basis
+        let n = 20_000;
+        let mut text = String::from("ISO-10303-21;\nDATA;\n");
+        let mut refs = Vec::with_capacity(n);
+        for i in 0..n {
+            text += &format!("#{}=CARTESIAN_POINT('',({i}.,0.,0.));\n", i + 1);
+            refs.push(format!("#{}", i + 1));
+        }
+        let basis = n + 1;
+        text += &format!(
+            "#{basis}=B_SPLINE_CURVE_WITH_KNOTS('',1,({}),.UNSPECIFIED.,.F.,.F.,(2,{}2),(0.,{}1.),.UNSPECIFIED.);\n",
+            refs.join(","),
+            "1,".repeat(n - 2),
+            (1..n - 1).map(|k| format!("{k}e-5,")).collect::<String>()
+        );
+        for k in 0..n {
+            text += &format!(
+                "#{}=TRIMMED_CURVE('',#{basis},(PARAMETER_VALUE(0.1)),(PARAMETER_VALUE(0.2)),.T.,.PARAMETER.);\n",
+                basis + 1 + k
+            );
+        }
+        text += "ENDSEC;\n";
+        let start = std::time::Instant::now();
+        let r = read_step(&text, "trims.step").unwrap();
+        assert!(start.elapsed().as_secs() < 20, "{:?}", start.elapsed());
+        // the first trims are read, the rest are listed as skipped with the reason
+        let read = r.shapes.len();
+        assert!(read > 0 && read < 10, "{read} trims read");
+        assert_eq!(r.skipped.len(), n - read, "every other trim is listed");
+        assert!(
+            r.skipped[0].reason.contains("trimmed more often"),
+            "{:?}",
+            r.skipped[0]
+        );
+    }
+
+    #[test]
+    fn units_that_are_not_positive_lengths_are_refused() {
+        let with_unit = |factor: &str| {
+            OCC_STYLE.replace(
+                "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );",
+                &format!(
+                    "#11 = ( CONVERSION_BASED_UNIT('INCH',#13) LENGTH_UNIT() NAMED_UNIT(*) );
+#13 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE({factor}),#14);
+#14 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );"
+                ),
+            )
+        };
+        let r = read_step(&with_unit("25.4"), "in.step").unwrap();
+        assert_eq!(
+            (r.length_unit.as_str(), r.scale_to_mm),
+            ("INCH (25.4 mm)", 25.4)
+        );
+        // 0 turned every point into the origin, a negative unit mirrored the geometry
+        for (factor, shown) in [("0.", "0 mm"), ("-25.4", "-25.4 mm"), ("1.E308", "inf mm")] {
+            let text = with_unit(factor);
+            let text = if factor == "1.E308" {
+                // a finite factor whose product with the base unit is not
+                text.replace("SI_UNIT(.MILLI.,.METRE.)", "SI_UNIT(.KILO.,.METRE.)")
+            } else {
+                text
+            };
+            let e = refused(&text);
+            assert!(
+                e.starts_with("h.step:22: entity #11") && e.contains("positive finite length"),
+                "{factor}: {e}"
+            );
+            assert!(e.contains(shown), "{factor}: {e}");
         }
     }
 }

@@ -23,7 +23,10 @@ use crate::convert::{array, floats};
 use crate::error::bad;
 use crate::interp::{end_arg, knots_arg, parametrization_arg};
 
-/// Runs `f` on a pool of `threads` workers (kept for reuse), or on the global pool.
+/// Runs `f` on a pool of `threads` workers (kept for reuse), or on the global pool. A count
+/// above the machine's processors is lowered to them: the work is computation, so more
+/// workers would only wait, and `threads=2**40` would start threads until the machine stops
+/// answering (and keep one pool per distinct count).
 pub(crate) fn on_pool<R: Send>(
     threads: Option<usize>,
     f: impl FnOnce() -> R + Send,
@@ -32,6 +35,7 @@ pub(crate) fn on_pool<R: Send>(
     if n == 0 {
         return Err(bad("threads: must be at least 1".into()));
     }
+    let n = n.min(std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get));
     static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
     let pool = {
         let mut pools = POOLS
@@ -174,7 +178,8 @@ pub(crate) fn ragged_dict<'py>(
 /// points of curve `i`. Options as in `interpolate`. Returns the curves as a dict of flat
 /// arrays: `degree`, `knots`, `knot_offsets`, `control` `(total, dim)`, `control_offsets`.
 /// `threads` runs the batch on a pool of that many workers (default: all processors, or
-/// `RAYON_NUM_THREADS`); the result is the same for every thread count.
+/// `RAYON_NUM_THREADS`; more than the processors are lowered to them); the result is the same
+/// for every thread count.
 #[pyfunction]
 #[pyo3(signature = (points, offsets, degree = 3, *, parametrization = None, knots = "auto",
                     end = "free", threads = None))]

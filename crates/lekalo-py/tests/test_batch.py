@@ -92,3 +92,41 @@ def test_batch_names_the_failing_curve():
     pts[13] = pts[11]
     with pytest.raises(lekalo.Error, match=r"curve 1 \(rows 10\.\.20\): points 1 and 2 coincide"):
         lekalo.interpolate_batch(pts, [0, 10, 20], 3)
+
+
+def test_thread_counts_above_the_machine_are_lowered():
+    # threads=2**40 started threads until the machine stopped answering
+    pts, off = ragged(20)
+    want = lekalo.interpolate_batch(pts, off, 3, threads=1)
+    got = lekalo.interpolate_batch(pts, off, 3, threads=2**40)
+    for key in ("knots", "knot_offsets", "control", "control_offsets"):
+        assert np.array_equal(got[key], want[key])
+
+
+@pytest.mark.parametrize(
+    "lengths, match",
+    [
+        ([3, 2.5], r"lengths\[1\] is 2\.5: a group length is a whole number"),
+        (np.array([1.0, np.nan]), r"lengths\[1\] is nan"),
+        ([1, -2], r"lengths\[1\] is -2: every group length must be >= 0"),
+        (np.array([4, -1], dtype=np.int64), r"lengths\[1\] is -1"),
+        ([2**62, 2**62], r"the total 9223372036854775808 is beyond"),
+        (np.array([2**63, 1], dtype=np.uint64), r"is beyond the largest int64 offset"),
+        ([2**70], r"is beyond the largest int64 offset"),
+        ([True, 2], r"lengths\[0\] is True"),
+        (np.zeros((2, 2), dtype=np.int64), r"1-D sequence"),
+    ],
+)
+def test_ragged_offsets_refuses_what_it_cannot_represent(lengths, match):
+    # huge lengths wrapped around to negative offsets and 2.5 was silently truncated to 2
+    with pytest.raises(lekalo.Error, match=match):
+        lekalo.ragged_offsets(lengths)
+
+
+def test_ragged_offsets_accepts_whole_numbers_of_any_form():
+    want = [0, 3, 5, 5]
+    assert lekalo.ragged_offsets([3, 2, 0]).tolist() == want
+    assert lekalo.ragged_offsets([3.0, 2.0, 0.0]).tolist() == want
+    assert lekalo.ragged_offsets(np.array([3, 2, 0], dtype=np.uint8)).tolist() == want
+    assert lekalo.ragged_offsets(x for x in (3, 2, 0)).tolist() == want
+    assert lekalo.ragged_offsets([]).tolist() == [0]

@@ -111,8 +111,11 @@ pub enum Error {
     /// assert!(matches!(e, Error::KnotsNotSorted { index: 2, .. }));
     /// ```
     #[error(
-        "knots must be non-decreasing, but knot {index} = {value} is less than knot {} = {previous}; \
-         sort them (lekalo never reorders your knots)", index - 1
+        "knots must be non-decreasing, but knot {index} = {} is less than knot {} = {}; \
+         sort them (lekalo never reorders your knots)",
+        readable(.value),
+        index - 1,
+        readable(.previous)
     )]
     KnotsNotSorted {
         /// Index of the first knot smaller than its predecessor.
@@ -133,8 +136,9 @@ pub enum Error {
     /// assert!(matches!(e, Error::KnotMultiplicity { multiplicity: 4, max: 3, .. }));
     /// ```
     #[error(
-        "knot {knot} has multiplicity {multiplicity}, more than {max} (degree + 1) allowed; \
-         remove repeated copies of it"
+        "knot {} has multiplicity {multiplicity}, more than {max} (degree + 1) allowed; \
+         remove repeated copies of it",
+        readable(.knot)
     )]
     KnotMultiplicity {
         /// The knot value.
@@ -154,7 +158,9 @@ pub enum Error {
     /// assert!(matches!(e, Error::EmptyDomain { .. }));
     /// ```
     #[error(
-        "the domain [{min}, {max}] is empty: the knots must span an interval of positive length"
+        "the domain [{}, {}] is empty: the knots must span an interval of positive length",
+        readable(.min),
+        readable(.max)
     )]
     EmptyDomain {
         /// Start of the domain.
@@ -171,7 +177,12 @@ pub enum Error {
     /// let e = c.eval(1.5).unwrap_err();
     /// assert!(matches!(e, Error::ParameterOutOfDomain { .. }));
     /// ```
-    #[error("parameter {t} is outside the domain [{min}, {max}]")]
+    #[error(
+        "parameter {} is outside the domain [{}, {}]",
+        readable(.t),
+        readable(.min),
+        readable(.max)
+    )]
     ParameterOutOfDomain {
         /// The parameter given.
         t: f64,
@@ -189,7 +200,7 @@ pub enum Error {
     /// let e = NurbsCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], ctrl, vec![1.0, -1.0]).unwrap_err();
     /// assert!(matches!(e, Error::NonPositiveWeight { index: 1, .. }));
     /// ```
-    #[error("weight {index} is {weight}: NURBS weights must be positive")]
+    #[error("weight {index} is {}: NURBS weights must be positive", readable(.weight))]
     NonPositiveWeight {
         /// Index of the weight.
         index: usize,
@@ -306,8 +317,10 @@ pub enum Error {
     /// assert!(matches!(e, Error::EndPointMismatch { end: "end (u = 1)", .. }));
     /// ```
     #[error(
-        "the curves do not share their {end} point: distance {distance} exceeds the tolerance \
-         {tolerance}; deform only curves with common end points (move one curve's end point)"
+        "the curves do not share their {end} point: distance {} exceeds the tolerance \
+         {}; deform only curves with common end points (move one curve's end point)",
+        readable(.distance),
+        readable(.tolerance)
     )]
     EndPointMismatch {
         /// Which end ("start (u = 0)", "end (u = 1)" or the corner).
@@ -358,8 +371,9 @@ pub enum Error {
     /// # Ok::<(), lekalo::Error>(())
     /// ```
     #[error(
-        "data weight {index} is {weight}: weights must be finite and ≥ 0, with at least one \
-         positive"
+        "data weight {index} is {}: weights must be finite and ≥ 0, with at least one \
+         positive",
+        readable(.weight)
     )]
     InvalidDataWeight {
         /// Index of the weight (0 when all are zero).
@@ -379,7 +393,10 @@ pub enum Error {
     /// assert!(matches!(e, Error::NegativeSmoothing { what: "λ", .. }));
     /// # Ok::<(), lekalo::Error>(())
     /// ```
-    #[error("smoothing {what} = {value}: it must be finite and ≥ 0 (0 interpolates)")]
+    #[error(
+        "smoothing {what} = {}: it must be finite and ≥ 0 (0 interpolates)",
+        readable(.value)
+    )]
     NegativeSmoothing {
         /// "λ" (penalty weight) or "s" (residual target).
         what: &'static str,
@@ -397,7 +414,10 @@ pub enum Error {
     /// assert!(matches!(e, Error::NonPositiveTolerance { .. }));
     /// # Ok::<(), lekalo::Error>(())
     /// ```
-    #[error("tolerance {value}: it must be finite and > 0 (a distance in the data's units)")]
+    #[error(
+        "tolerance {}: it must be finite and > 0 (a distance in the data's units)",
+        readable(.value)
+    )]
     NonPositiveTolerance {
         /// The value given.
         value: f64,
@@ -494,6 +514,28 @@ pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
 }
 
+/// A number as error messages write it: as Rust writes it for `1e-5 ≤ |x| < 1e16`, zero and
+/// non-finite values (`0.25`, `3`, `NaN`), in exponent notation otherwise (`1e-300`, `2.5e300`),
+/// so that no message holds a 300-digit decimal.
+pub(crate) struct Readable(f64);
+
+impl std::fmt::Display for Readable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
+/// [`Readable`] of a field (the messages above take their fields by reference).
+#[allow(clippy::trivially_copy_pass_by_ref)] // called with the `&f64` thiserror passes
+pub(crate) fn readable(x: &f64) -> Readable {
+    Readable(*x)
+}
+
 /// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
 /// refused with [`Error::TooLarge`] instead of being allocated.
 pub const MAX_SCALARS: usize = 1 << 31;
@@ -584,5 +626,55 @@ mod tests {
             s.contains("knot 3 = 0.5") && s.contains("knot 2 = 0.7"),
             "{s}"
         );
+    }
+
+    #[test]
+    fn numbers_of_any_size_are_written_readably() {
+        // a tolerance of 1e-300 was written as a 300-digit decimal, 1e300 as 301 digits
+        let cases = [
+            (
+                Error::NonPositiveTolerance { value: -1e-300 },
+                "tolerance -1e-300: it must",
+            ),
+            (
+                Error::ParameterOutOfDomain {
+                    t: 1e300,
+                    min: 0.0,
+                    max: 0.25,
+                },
+                "parameter 1e300 is outside the domain [0, 0.25]",
+            ),
+            (
+                Error::EmptyDomain { min: 3.0, max: 3.0 },
+                "the domain [3, 3] is empty",
+            ),
+            (
+                Error::KnotMultiplicity {
+                    knot: 1.5e-9,
+                    multiplicity: 5,
+                    max: 4,
+                },
+                "knot 1.5e-9 has multiplicity 5",
+            ),
+            (
+                Error::EndPointMismatch {
+                    end: "start (u = 0)",
+                    distance: 2e20,
+                    tolerance: 1e-12,
+                },
+                "distance 2e20 exceeds the tolerance 1e-12",
+            ),
+            (
+                Error::NonPositiveWeight {
+                    index: 0,
+                    weight: f64::NEG_INFINITY,
+                },
+                "weight 0 is -inf",
+            ),
+        ];
+        for (e, want) in cases {
+            let s = e.to_string();
+            assert!(s.contains(want) && s.len() < 200, "{s}");
+        }
     }
 }

@@ -96,9 +96,36 @@ fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
         (Some(at), _) => numbers(at, "--at"),
         (None, n) => {
             let n = in_range(n.unwrap_or(DEFAULT_SAMPLES), 1, usize::MAX, "--samples")?;
+            check_table(a, obj, n)?;
             Ok(obj.uniform_parameters(n))
         }
     }
+}
+
+/// Refuses, before it is made, a table of samples held whole in memory (JSON, NumPy, JSON
+/// Lines, Parquet) whose samples × columns are above `--max-size`: 3·10^6 samples with
+/// curvature in a Parquet batch ran out of memory. One curve's CSV is written chunk by chunk
+/// and only `--samples` itself is limited.
+fn check_table(a: &EvalArgs, obj: &Object, n: usize) -> Result<()> {
+    let streamed = !crate::cmd::parquet_batch::is_parquet(&a.input)
+        && !crate::io::is_json_lines(&a.input, a.jsonl)
+        && !a.json
+        && format_of(a.format.as_deref(), a.output.as_deref(), "csv") == "csv";
+    if streamed {
+        return Ok(());
+    }
+    let columns = obj
+        .dim()
+        .saturating_mul(a.derivatives.saturating_add(1))
+        .saturating_add(1 + usize::from(a.curvature) + usize::from(a.torsion));
+    let values = n.saturating_mul(columns);
+    let limit = crate::io::settings().max_size;
+    if values > limit {
+        return bad_input(format!(
+            "--samples {n}: {n} samples of {columns} columns are {values} values, above the size limit {limit}; take fewer samples or columns, write one curve's samples as CSV (streamed), or raise the limit with --max-size {values} if the machine has the memory"
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses a derivative order whose column names alone would not fit in memory.

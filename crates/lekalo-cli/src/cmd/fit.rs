@@ -413,6 +413,22 @@ fn run_surface(
     if pts.dim() < 3 {
         return bad_input("--scattered needs rows u, v, z (three columns or more)");
     }
+    // The system solved is banded: NU·NV rows of about p·NV + p + 1 numbers (twice NV with a
+    // penalty). Its size is refused here, before the library allocates it.
+    let band = p
+        .saturating_mul(ncv)
+        .saturating_add(p)
+        .max(ncv.saturating_mul(2));
+    let entries = ncu
+        .saturating_mul(ncv)
+        .saturating_mul(band.saturating_add(1));
+    let limit = crate::io::settings().max_size;
+    if entries > limit {
+        return bad_input(format!(
+            "--ctrl-grid {ncu}x{ncv}: the scattered fit's least-squares system holds {entries} numbers ({} bytes), above the size limit {limit}; use a smaller control net, or raise the limit with --max-size {entries} if the machine has the memory",
+            lekalo_io::fmt_number(entries as f64 * 8.0)
+        ));
+    }
     let bounds = |c: usize| {
         pts.iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {

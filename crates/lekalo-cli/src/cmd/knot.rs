@@ -283,6 +283,14 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                     ab.len()
                 ));
             };
+            if !(lo < hi && (hi - lo).is_finite()) {
+                // ±1e308 used to reach the library as an infinite width ("knots[0] is NaN")
+                return bad_input(format!(
+                    "--interval {},{}: give a < b whose difference b − a is a finite number",
+                    lekalo_io::fmt_number(lo),
+                    lekalo_io::fmt_number(hi)
+                ));
+            }
             let out = match load_shape(&c.input, v)? {
                 Shape::Curve(o) => Shape::Curve(o.reparametrize(lo, hi)?),
                 Shape::Surface(_) => {

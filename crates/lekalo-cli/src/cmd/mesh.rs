@@ -45,7 +45,14 @@ pub(crate) struct MeshArgs {
 pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
     let (text, name) = lekalo_io::read_input(&a.input)?;
     let shape = Shape::from_json_str(&text, &name)?;
-    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
+    // the tolerance alone sets the size of the result: its refusals name the option
+    let bad = |e: lekalo::Error| {
+        BadInput(format!(
+            "{}: --tolerance {}: {e}",
+            a.input.display(),
+            lekalo_io::fmt_number(a.tolerance)
+        ))
+    };
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
     let (body, summary) = match shape {
         Shape::Surface(s) => {

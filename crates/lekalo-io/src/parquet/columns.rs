@@ -36,6 +36,7 @@ impl RowGroups {
             path: path.to_path_buf(),
             error,
         })?;
+        crate::atomic::note_read(path);
         let meta = ArrowReaderMetadata::load(&file, ArrowReaderOptions::new())
             .map_err(|e| parquet_err(&source, e))?;
         Ok(RowGroups {

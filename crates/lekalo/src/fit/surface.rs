@@ -127,7 +127,9 @@ pub struct ScatteredSurfaceFit {
 /// [`Error::Dimension`] for rows with fewer than 3 numbers; [`Error::LengthMismatch`] /
 /// [`Error::InvalidDataWeight`] for bad weights; [`Error::ParameterOutOfDomain`] for a point
 /// outside the knots' domain; [`Error::NegativeSmoothing`] for a negative penalty;
-/// [`Error::SchoenbergWhitney`] as above; the knot errors of [`KnotVector::validate_for`].
+/// [`Error::SchoenbergWhitney`] as above; the knot errors of [`KnotVector::validate_for`];
+/// [`Error::TooLarge`] when the banded normal matrix (`n_u n_v × (p n_v + q + 1)` numbers)
+/// would hold more than [`MAX_SCALARS`](crate::error::MAX_SCALARS).
 pub fn surface_scattered_least_squares(
     data: PointsRef<'_>,
     weights: Option<&[f64]>,
@@ -178,7 +180,7 @@ pub fn surface_scattered_least_squares(
             });
         }
     }
-    let m = nu * nv;
+    let m = nu.saturating_mul(nv);
     // Solver choice. The candidates were faer's sparse Cholesky and sparse QR. QR of the
     // N × m observation matrix would not square the condition number, but it stores or streams
     // N rows of (p+1)(q+1) entries through a multifrontal factor, several times the work of
@@ -196,6 +198,15 @@ pub fn surface_scattered_least_squares(
     } else {
         p * nv + q
     };
+    // the band is m × (band + 1) numbers: a net of 3000 × 3000 asked for 648 GB and aborted
+    let size = m.saturating_mul(band.saturating_add(1));
+    if size > crate::error::MAX_SCALARS {
+        return Err(Error::TooLarge {
+            what: "normal matrix of the scattered fit (control points × band width)",
+            size,
+            max: crate::error::MAX_SCALARS,
+        });
+    }
     let mut a = SymBand::zeros(m, band);
     let mut rhs = vec![0.0; m * vd];
     let center: Vec<f64> = data.point(0)[2..].to_vec();

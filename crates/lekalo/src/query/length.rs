@@ -164,7 +164,9 @@ impl QueryCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for a tolerance that is not positive and finite.
+    /// [`Error::InvalidArgument`] for a tolerance that is not positive and finite, or for a
+    /// curve whose length is beyond the range of a double (a curve near ±1e308), which would
+    /// otherwise be reported as infinite.
     pub fn arc_length(&self, rtol: f64) -> Result<ArcLength<'_>> {
         check_tolerance("arc-length tolerance", rtol)?;
         let rtol = rtol.max(1e-15);
@@ -192,6 +194,17 @@ impl QueryCurve {
                 let last = cum[cum.len() - 1];
                 cum.push(last + len);
             }
+        }
+        let total = cum[cum.len() - 1] * self.scale;
+        if !total.is_finite() {
+            return Err(Error::InvalidArgument {
+                what: "curve for its arc length",
+                reason: format!(
+                    "the length is {total}, beyond the largest double (about 1.8e308); \
+                     scale the curve down (its size is {:e}) and scale the length back",
+                    self.scale
+                ),
+            });
         }
         Ok(ArcLength {
             curve: self,
@@ -505,6 +518,32 @@ mod tests {
             .sum();
         let l = QueryCurve::from_bspline(&c).unwrap().length().unwrap();
         assert!((l - sum).abs() <= 4.0 * f64::EPSILON * sum, "{l} vs {sum}");
+    }
+
+    #[test]
+    fn a_length_beyond_the_doubles_is_an_error_not_infinity() {
+        // a segment from -1e308 to 1e308 is 2e308 long: reported as `null` (infinity in JSON)
+        let c = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[[-1e308, 0.0], [1e308, 0.0]]).unwrap(),
+        )
+        .unwrap();
+        let q = QueryCurve::from_bspline(&c).unwrap();
+        let e = q.length().unwrap_err().to_string();
+        assert!(
+            e.contains("the length is inf") && e.contains("scale the curve down"),
+            "{e}"
+        );
+        // half of it still has a length
+        let half = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [1e308, 0.0]]).unwrap(),
+        )
+        .unwrap();
+        let l = QueryCurve::from_bspline(&half).unwrap().length().unwrap();
+        assert!((l - 1e308).abs() <= 1e295, "{l}");
     }
 
     #[test]

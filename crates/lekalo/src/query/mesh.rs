@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 
 use super::surface::QuerySurface;
-use super::tessellate::{check_tol, Mesh, MAX_MESH_VERTICES};
+use super::tessellate::{check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES};
 use crate::error::{Error, Result};
 use crate::Points;
 
@@ -907,17 +907,47 @@ impl QuerySurface {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a rational surface with a weight that is not positive, or
-    /// a tolerance below [`super::MIN_RELATIVE_TOLERANCE`] times the size; [`Error::TooLarge`]
-    /// beyond [`MAX_MESH_VERTICES`].
+    /// a tolerance below [`super::MIN_RELATIVE_TOLERANCE`] times the size, or a tolerance whose
+    /// mesh is estimated (before meshing) at more than [`MAX_MESH_TRIANGLES`] triangles;
+    /// [`Error::TooLarge`] beyond [`MAX_MESH_VERTICES`].
     pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
         check_tol(tolerance, self.scale)?;
         let tol = tolerance / self.scale;
+        self.check_mesh_size(tolerance, tol)?;
         let grid = PatchGrid::new(self);
         if self.rational {
             self.mesh_rational(tol, &grid)
         } else {
             self.mesh_polynomial(tol, &grid, 0)
         }
+    }
+
+    /// Refuses a tolerance whose mesh would be too large to make, before any part is made:
+    /// each patch is estimated at the `(A + 2B + C) / (8·tol)` parts (two triangles each) of
+    /// its uniform split within the normalised tolerance `tol`, the bounds of
+    /// [`Self::net_bounds`] shrinking with the square of a part's size. The adaptive split
+    /// needs no more than a few times fewer where the curvature is concentrated.
+    fn check_mesh_size(&self, tolerance: f64, tol: f64) -> Result<()> {
+        let parts: f64 = (0..self.patch_count())
+            .map(|k| {
+                self.net_bounds(self.patch(k))
+                    .map_or(1.0, |(a, b, c)| ((a + 2.0 * b + c) / (8.0 * tol)).max(1.0))
+            })
+            .sum();
+        let triangles = 2.0 * parts;
+        #[allow(clippy::cast_precision_loss)] // 2^25 is exact
+        let max = MAX_MESH_TRIANGLES as f64;
+        if triangles > max {
+            return Err(Error::InvalidArgument {
+                what: "tessellation tolerance",
+                reason: format!(
+                    "{tolerance:e} needs about {triangles:.1e} triangles, more than the \
+                     {MAX_MESH_TRIANGLES} a mesh may have; use a tolerance of at least {:.1e}",
+                    tolerance * triangles / max
+                ),
+            });
+        }
+        Ok(())
     }
 
     /// The vertices of the lattice (the corners of the parts they come from) and their
@@ -1453,6 +1483,44 @@ mod tests {
             .map(|d| (sx[d] - (l[0] * p[0][d] + l[1] * p[1][d] + l[2] * p[2][d])).powi(2))
             .sum::<f64>()
             .sqrt()
+    }
+
+    #[test]
+    fn tiny_tolerances_are_refused_before_meshing() {
+        // z = x² + y² on [0, 1]²: a tolerance of 1e-8 asked for ~10^8 triangles and the process
+        // was killed for its memory; the estimate refuses it at once, naming the tolerance
+        let net = Points::from_3d(&[
+            [0.0, 0.0, 0.0],
+            [0.0, 0.5, 0.0],
+            [0.0, 1.0, 1.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.5, 1.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 0.5, 1.0],
+            [1.0, 1.0, 2.0],
+        ])
+        .unwrap();
+        let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let s = BSplineSurface::new(2, 2, knots.clone(), knots, net, (3, 3)).unwrap();
+        let q = QuerySurface::from_bspline(&s).unwrap();
+        let start = std::time::Instant::now();
+        let e = q.mesh(1e-8).unwrap_err().to_string();
+        assert!(start.elapsed().as_secs() < 5, "refused before meshing");
+        assert!(
+            e.contains("tessellation tolerance")
+                && e.contains("1e-8 needs about")
+                && e.contains("use a tolerance of at least"),
+            "{e}"
+        );
+        // the tolerance the message suggests is accepted, and meshes below the limit
+        let at_least: f64 = e.rsplit(' ').next().unwrap().parse().unwrap();
+        assert!(at_least > 1e-8 && at_least < 1e-4, "{at_least}");
+        let m = q.mesh(1e-3).unwrap();
+        assert!(
+            m.triangles.len() < super::MAX_MESH_TRIANGLES,
+            "a small mesh is made"
+        );
     }
 
     /// A small deterministic generator of numbers in `[0, 1)` (xorshift).

@@ -12,6 +12,15 @@ use crate::Points;
 pub const MIN_RELATIVE_TOLERANCE: f64 = 1e-12;
 /// Largest number of mesh vertices (a bound on the memory of [`QuerySurface::mesh`]).
 pub const MAX_MESH_VERTICES: usize = 1 << 26;
+/// Largest number of triangles [`QuerySurface::mesh`] sets out to make: the count is estimated
+/// from the control net and the tolerance before any part is made, and a tolerance whose
+/// estimate is larger is refused with the tolerance that would fit (about 100 bytes of working
+/// memory per triangle: 3 GiB at the limit).
+pub const MAX_MESH_TRIANGLES: usize = 1 << 25;
+/// Largest number of vertices [`QueryCurve::polyline`] sets out to make, estimated from the
+/// control points and the tolerance before any is made (as [`MAX_MESH_TRIANGLES`]; the
+/// halving may make up to twice the estimate).
+pub const MAX_POLYLINE_POINTS: usize = 1 << 24;
 
 /// A polyline approximating a curve.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,7 +94,7 @@ pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
         return Err(Error::InvalidArgument {
             what: "tessellation tolerance",
             reason: format!(
-                "{tol} is below {MIN_RELATIVE_TOLERANCE:e} times the object's size {scale}; \
+                "{tol:e} is below {MIN_RELATIVE_TOLERANCE:e} times the object's size {scale:e}; \
                  rounding would decide the bound"
             ),
         });
@@ -112,10 +121,12 @@ impl QueryCurve {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a tolerance below [`MIN_RELATIVE_TOLERANCE`] times the
-    /// curve's size, or NaN.
+    /// curve's size, or NaN, or one whose polyline is estimated (before any point is made) at
+    /// more than [`MAX_POLYLINE_POINTS`] vertices.
     pub fn polyline(&self, tolerance: f64) -> Result<Polyline> {
         check_tol(tolerance, self.scale)?;
         let tol = tolerance / self.scale;
+        self.check_polyline_size(tolerance, tol)?;
         let (dim, hd, n) = (self.dim, self.hd, self.degree);
         let cart = |p: &[f64]| -> Vec<f64> {
             let w = if self.rational { p[dim] } else { 1.0 };
@@ -160,6 +171,62 @@ impl QueryCurve {
             points: Points::from_flat(dim, pts)?,
             deviation: worst * self.scale,
         })
+    }
+}
+
+impl QueryCurve {
+    /// Refuses a tolerance whose polyline would be too large to make, before any point is
+    /// made: a piece whose Cartesian control points have second differences up to `D` needs
+    /// about `sqrt(p(p−1)·D / (4·tol))` chords (a part of relative length `h` has its control
+    /// points about `p(p−1)·D·h²/4` from its chord; exactly `D·h²/2` for `p = 2`). Smooth
+    /// curves need about `sqrt(1/tol)` in all; a curve of many wiggly pieces at a tiny
+    /// tolerance needs far more than memory holds.
+    fn check_polyline_size(&self, tolerance: f64, tol: f64) -> Result<()> {
+        let (dim, hd, p) = (self.dim, self.hd, self.degree);
+        if p < 2 {
+            return Ok(()); // one chord per piece
+        }
+        #[allow(clippy::cast_precision_loss)] // degrees are small
+        let pf = p as f64;
+        let mut points = 0.0_f64;
+        let mut cart = vec![0.0; (p + 1) * dim];
+        for k in 0..self.piece_count() {
+            for (q, c) in self
+                .piece(k)
+                .chunks_exact(hd)
+                .zip(cart.chunks_exact_mut(dim))
+            {
+                let w = if self.rational { q[dim] } else { 1.0 };
+                for d in 0..dim {
+                    c[d] = q[d] / w;
+                }
+            }
+            let mut second = 0.0_f64;
+            for i in 0..p - 1 {
+                let s: f64 = (0..dim)
+                    .map(|d| {
+                        let t = cart[(i + 2) * dim + d] - 2.0 * cart[(i + 1) * dim + d]
+                            + cart[i * dim + d];
+                        t * t
+                    })
+                    .sum();
+                second = second.max(s.sqrt());
+            }
+            points += (pf * (pf - 1.0) * second / (4.0 * tol)).sqrt().max(1.0);
+        }
+        #[allow(clippy::cast_precision_loss)] // 2^25 is exact
+        let max = MAX_POLYLINE_POINTS as f64;
+        if points > max {
+            return Err(Error::InvalidArgument {
+                what: "tessellation tolerance",
+                reason: format!(
+                    "{tolerance:e} needs about {points:.1e} polyline points, more than the \
+                     {MAX_POLYLINE_POINTS} a polyline may have; use a tolerance of at least {:.1e}",
+                    tolerance * (points / max).powi(2)
+                ),
+            });
+        }
+        Ok(())
     }
 }
 
@@ -224,6 +291,38 @@ pub(crate) mod tests {
         assert!(
             q.polyline(0.0).is_err() && q.polyline(f64::NAN).is_err(),
             "bad tolerances"
+        );
+    }
+
+    #[test]
+    fn polylines_too_large_to_make_are_refused_before_any_point() {
+        // 4,096 zigzag points of degree 2: at twice the smallest tolerance accepted each of
+        // the 4,094 pieces needs ~10^4 chords, 4.5·10^7 points in all (gigabytes with the
+        // work list); refused at once
+        let pts: Vec<[f64; 2]> = (0..4096)
+            .map(|i| [f64::from(i), f64::from(i % 2)])
+            .collect();
+        let c = BSplineCurve::from_knot_vector(
+            2,
+            crate::KnotVector::clamped_uniform(2, pts.len()).unwrap(),
+            Points::from_2d(&pts).unwrap(),
+        )
+        .unwrap();
+        let q = QueryCurve::from_bspline(&c).unwrap();
+        let tiny = 2e-12 * q.scale();
+        let start = std::time::Instant::now();
+        let e = q.polyline(tiny).unwrap_err().to_string();
+        assert!(start.elapsed().as_secs() < 5, "refused before the polyline");
+        assert!(
+            e.contains("tessellation tolerance") && e.contains("polyline points"),
+            "{e}"
+        );
+        // a tolerance that fits is meshed
+        let poly = q.polyline(1e-3).unwrap();
+        assert!(
+            poly.points.len() < MAX_POLYLINE_POINTS,
+            "{}",
+            poly.points.len()
         );
     }
 
