@@ -22,7 +22,7 @@
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.
 //!
 //! ```
-//! use lekalo_io::{Object, sample_table, SampleSpec};
+//! use lekalo_io::{CurveJson, Object, sample_table, SampleSpec};
 //! let obj = Object::from_json_str(
 //!     r#"{"lekalo":1,"type":"bezier_curve","control":[[0,0],[1,2],[2,0]]}"#, "inline")?;
 //! let table = sample_table(&obj, &[0.5], SampleSpec::default()).unwrap();

@@ -31,7 +31,7 @@ const MAX_DEGREE: f64 = 1.0e6;
 /// [`write_npz_curve`] writes it to a file without holding it.
 ///
 /// ```
-/// use lekalo_io::{curve_to_npz, read_npz_curve, Object};
+/// use lekalo_io::{curve_to_npz, read_npz_curve, CurveJson, Object};
 /// let obj = Object::from_json_str(
 ///     r#"{"lekalo":1,"type":"bspline_curve","degree":1,"knots":[0,0,1,1],"control":[[0,0],[1,2]]}"#,
 ///     "c.json")?;
