@@ -64,8 +64,9 @@ impl QuerySurface {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a rational surface with a weight that is not positive, or
-    /// a tolerance below [`super::MIN_RELATIVE_TOLERANCE`] times the size, or a tolerance whose
-    /// mesh is estimated (before meshing) at more than [`MAX_MESH_TRIANGLES`] triangles;
+    /// a tolerance below [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) times
+    /// the size, or a tolerance whose mesh is estimated (before meshing) at more than
+    /// [`MAX_MESH_TRIANGLES`] triangles;
     /// [`Error::TooLarge`] beyond [`MAX_MESH_VERTICES`].
     pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
         check_tol(tolerance, self.scale)?;

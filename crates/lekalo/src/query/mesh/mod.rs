@@ -9,7 +9,7 @@
 //!
 //! | file | subject |
 //! |---|---|
-//! | `bounds.rs` | deviation bounds: the second-derivative nets of a part ([`SecondNets`]), the bound of one triangle ([`triangle_bound`]), `(A + 2B + C)/8` of a net, degree elevation |
+//! | `bounds.rs` | deviation bounds: the second-derivative nets of a part ([`SecondNets`](bounds::SecondNets)), the bound of one triangle ([`triangle_bound`](bounds::triangle_bound)), `(A + 2B + C)/8` of a net, degree elevation |
 //! | `parts.rs` | the parts of a polynomial patch: halved, or cut into a few equal parts, until within the tolerance |
 //! | `rational.rs` | the parts of a rational patch, halved until within the tolerance |
 //! | `strips.rs` | the parts' corners on the global lattice, each part's boundary, and strips of triangles between two chains of it |
