@@ -16,7 +16,7 @@
 //! | `intersect/` | curve–curve (planar: sweep, Bezier clipping, Newton), self-intersection, curve–plane and curve–surface intersections |
 //! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
 //! | `tessellate.rs` | polylines within a proved deviation; the mesh type |
-//! | `mesh.rs` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |
+//! | `mesh/` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |
 //! | `curvature.rs` | curvature and torsion, inflections and curvature extrema; surface curvatures |
 //! | `bbox.rs` | exact bounding boxes from the pieces' extrema |
 //!

@@ -1,0 +1,301 @@
+use lekalo::{BSplineSurface, NurbsCurve, NurbsSurface, Points};
+
+use super::parse::MAX_NESTING;
+use super::*;
+use crate::object::Object;
+use crate::shape::Surface;
+use crate::StepWriter;
+
+const OCC_STYLE: &str = "ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION(('Open CASCADE Model'),'2;1');
+FILE_NAME('x','2024-01-01T00:00:00',('Author'),(''),'Open CASCADE STEP processor 7.7','Open CASCADE 7.7','Unknown');
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));
+ENDSEC;
+DATA;
+#1 = CARTESIAN_POINT('',(0.,0.,0.));
+#2 = CARTESIAN_POINT('',(1.,2.,0.));
+#3 = CARTESIAN_POINT('',(3.,2.,0.));
+#4 = CARTESIAN_POINT('',(4.,0.,0.));
+/* a comment */
+#5 = B_SPLINE_CURVE_WITH_KNOTS('',2,(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,(3,1,3),(0.,0.5,1.),
+  .UNSPECIFIED.);
+#6 = ( BOUNDED_CURVE() B_SPLINE_CURVE(2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.)
+B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.PIECEWISE_BEZIER_KNOTS.) CURVE()
+GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE((1.,0.5,1.)) REPRESENTATION_ITEM('') );
+#7 = TRIMMED_CURVE('',#8,(PARAMETER_VALUE(0.25)),(PARAMETER_VALUE(0.75)),.T.,.PARAMETER.);
+#8 = B_SPLINE_CURVE_WITH_KNOTS('',1,(#1,#4),.UNSPECIFIED.,.F.,.F.,(2,2),(0.,1.),.UNSPECIFIED.);
+#9 = CIRCLE('',#10,2.);
+#10 = AXIS2_PLACEMENT_3D('',#1,$,$);
+#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );
+#12 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#11)) REPRESENTATION_CONTEXT('',''));
+ENDSEC;
+END-ISO-10303-21;
+";
+
+#[test]
+fn reads_occ_style_entities_with_units_and_trims() {
+    let r = read_step(OCC_STYLE, "occ.step").unwrap();
+    assert_eq!(r.length_unit, "metre");
+    assert_eq!(r.scale_to_mm, 1000.0);
+    assert_eq!(
+        r.schema.as_deref(),
+        Some("AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }")
+    );
+    let ids: Vec<u64> = r.shapes.iter().map(|(i, _)| *i).collect();
+    assert_eq!(ids, [5, 6, 7]);
+    let Shape::Curve(Object::BSpline(c)) = &r.shapes[0].1 else {
+        panic!("#5 is a B-spline curve")
+    };
+    assert_eq!(c.knots().as_slice(), &[0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]);
+    assert_eq!(c.control_points().point(1), &[1000.0, 2000.0, 0.0]);
+    let Shape::Curve(Object::Nurbs(n)) = &r.shapes[1].1 else {
+        panic!("#6 is a NURBS curve")
+    };
+    assert_eq!(n.weights(), vec![1.0, 0.5, 1.0]);
+    let Shape::Curve(t) = &r.shapes[2].1 else {
+        panic!("#7 is a curve")
+    };
+    assert_eq!(t.domain(), (0.25, 0.75));
+    assert_eq!(t.control_points().point(0), &[1000.0, 0.0, 0.0]);
+    assert_eq!(r.skipped.len(), 1);
+    assert_eq!(r.skipped[0].entity, "CIRCLE");
+}
+
+#[test]
+fn our_own_files_round_trip_bit_for_bit() {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let ctrl =
+        Points::from_3d(&[[1.0, 0.0, 0.1], [1.0, 1.0, 1.0 / 3.0], [0.0, 1.0, 1e-300]]).unwrap();
+    let curve = Object::Nurbs(
+        NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            ctrl,
+            vec![1.0, w, 1.0],
+        )
+        .unwrap(),
+    );
+    let net = Points::from_3d(&[
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.7],
+        [1.0, 0.0, -0.3],
+        [1.0, 1.0, 1.0 / 7.0],
+    ])
+    .unwrap();
+    let surf = BSplineSurface::new(
+        1,
+        1,
+        vec![0.0, 0.0, 2.0, 2.0],
+        vec![0.0, 0.0, 1.0, 1.0],
+        net,
+        (2, 2),
+    )
+    .unwrap();
+    let nurbs = NurbsSurface::new(
+        1,
+        1,
+        vec![0.0, 0.0, 2.0, 2.0],
+        vec![0.0, 0.0, 1.0, 1.0],
+        surf.control_points().clone(),
+        vec![1.0, 0.3, 2.5, 1.0],
+        (2, 2),
+    )
+    .unwrap();
+    let mut wr = StepWriter::new("t");
+    wr.add_object(&curve).unwrap();
+    wr.add_any_surface(&Surface::BSpline(surf.clone())).unwrap();
+    wr.add_any_surface(&Surface::Nurbs(nurbs.clone())).unwrap();
+    let r = read_step(&wr.finish("2000-01-01T00:00:00"), "t.step").unwrap();
+    let got: Vec<Shape> = r.shapes.into_iter().map(|(_, s)| s).collect();
+    assert_eq!(
+        got,
+        vec![
+            Shape::Curve(curve),
+            Shape::Surface(Surface::BSpline(surf)),
+            Shape::Surface(Surface::Nurbs(nurbs))
+        ]
+    );
+    assert!(r.skipped.is_empty(), "{:?}", r.skipped);
+    assert_eq!(r.scale_to_mm, 1.0);
+}
+
+#[test]
+fn errors_name_the_line_and_never_panic() {
+    let e = read_step(
+        "ISO-10303-21;\nDATA;\n#1=FOO(1.0E99999999999999999999);\nENDSEC;",
+        "x",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("x:3:"), "{e}");
+    let e = read_step("hello", "x").unwrap_err().to_string();
+    assert!(e.starts_with("x:1:"), "{e}");
+    let e = read_step("ISO-10303-21;\nDATA;\n#1=FOO('abc);\n", "x")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("never closed"), "{e}");
+    let bad = OCC_STYLE.replace("(3,1,3),(0.,0.5,1.)", "(3,1,3),(0.,1.5,1.)");
+    let e = read_step(&bad, "b.step").unwrap_err().to_string();
+    assert!(e.starts_with("b.step:13: entity #5"), "{e}");
+    let e = read_step(
+        "ISO-10303-21;\nDATA;\n#1=A(#99999999999999999999999);\n",
+        "x",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("#99999999999999999999999"), "{e}");
+    for cut in [10, 200, 600, 900] {
+        let _ = read_step(&OCC_STYLE[..cut], "cut");
+    }
+}
+
+/// `text` with its message, for the tests of hostile files below.
+fn refused(text: &str) -> String {
+    read_step(text, "h.step").unwrap_err().to_string()
+}
+
+#[test]
+fn deep_nesting_is_refused_without_recursion() {
+    // a million '(' overflowed the stack of a recursive reader (abort, exit 134)
+    let deep = format!(
+        "ISO-10303-21;\nDATA;\n#1=FOO({}1{});\nENDSEC;\n",
+        "(".repeat(1_000_000),
+        ")".repeat(1_000_000)
+    );
+    let e = refused(&deep);
+    assert!(
+        e.starts_with("h.step:3:") && e.contains("nested more than"),
+        "{e}"
+    );
+    // as deep as the limit is still read, typed parameters included
+    let ok = format!(
+        "ISO-10303-21;\nDATA;\n#1=FOO({}1{},A(B((2))));\nENDSEC;\n",
+        "(".repeat(MAX_NESTING - 2),
+        ")".repeat(MAX_NESTING - 2)
+    );
+    assert!(read_step(&ok, "ok.step").is_ok());
+    // unbalanced or unterminated lists are syntax errors, not panics
+    for bad in [
+        "#1=FOO((1,2);",
+        "#1=FOO(1,(2)));",
+        "#1=FOO(A(",
+        "#1=FOO(,);",
+    ] {
+        let e = refused(&format!("ISO-10303-21;\nDATA;\n{bad}\nENDSEC;\n"));
+        assert!(e.starts_with("h.step:"), "{bad}: {e}");
+    }
+}
+
+#[test]
+fn knot_counts_are_checked_before_allocation() {
+    let with = |mults: &str, knots: &str, degree: &str| {
+        OCC_STYLE.replace(
+            "2,(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,(3,1,3),(0.,0.5,1.)",
+            &format!("{degree},(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,{mults},{knots}"),
+        )
+    };
+    // one multiplicity of 2^31 - 3 asked for 16 GiB and aborted
+    let e = refused(&with("(3,2147483645,3)", "(0.,0.5,1.)", "2"));
+    assert!(
+        e.starts_with("h.step:13: entity #5") && e.contains("add up to 2147483651 knots"),
+        "{e}"
+    );
+    // multiplicities whose sum overflows 64 bits (8e15 bytes were asked for)
+    let n = 20_000;
+    let mults = format!("({})", vec!["999999999999999"; n].join(","));
+    let knots = format!(
+        "({})",
+        (0..n)
+            .map(|i| format!("{i}."))
+            .collect::<Vec<_>>()
+            .join(",")
+    );
+    let e = refused(&with(&mults, &knots, "2"));
+    assert!(e.contains("more than 2^64 knots"), "{e}");
+    // a degree far beyond the control points
+    let e = refused(&with("(3,1,3)", "(0.,0.5,1.)", "99999999999999"));
+    assert!(e.contains("degree 99999999999999 needs at least"), "{e}");
+    // the same for a surface's two directions
+    let surface = "ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=B_SPLINE_SURFACE_WITH_KNOTS('',1,1,((#1,#1),(#1,#1)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,4294967295),(0.,1.),(0.,1.),.UNSPECIFIED.);
+ENDSEC;\n";
+    let e = refused(surface);
+    assert!(
+        e.starts_with("h.step:4: entity #2") && e.contains("v knot multiplicities add up to"),
+        "{e}"
+    );
+}
+
+#[test]
+fn many_trims_of_one_long_basis_are_read_in_linear_time() {
+    // 20,000 trims of one curve of 20,000 control points: each trim read the whole basis
+    let n = 20_000;
+    let mut text = String::from("ISO-10303-21;\nDATA;\n");
+    let mut refs = Vec::with_capacity(n);
+    for i in 0..n {
+        text += &format!("#{}=CARTESIAN_POINT('',({i}.,0.,0.));\n", i + 1);
+        refs.push(format!("#{}", i + 1));
+    }
+    let basis = n + 1;
+    text += &format!(
+        "#{basis}=B_SPLINE_CURVE_WITH_KNOTS('',1,({}),.UNSPECIFIED.,.F.,.F.,(2,{}2),(0.,{}1.),.UNSPECIFIED.);\n",
+        refs.join(","),
+        "1,".repeat(n - 2),
+        (1..n - 1).map(|k| format!("{k}e-5,")).collect::<String>()
+    );
+    for k in 0..n {
+        text += &format!(
+            "#{}=TRIMMED_CURVE('',#{basis},(PARAMETER_VALUE(0.1)),(PARAMETER_VALUE(0.2)),.T.,.PARAMETER.);\n",
+            basis + 1 + k
+        );
+    }
+    text += "ENDSEC;\n";
+    let start = std::time::Instant::now();
+    let r = read_step(&text, "trims.step").unwrap();
+    assert!(start.elapsed().as_secs() < 20, "{:?}", start.elapsed());
+    // the first trims are read, the rest are listed as skipped with the reason
+    let read = r.shapes.len();
+    assert!(read > 0 && read < 10, "{read} trims read");
+    assert_eq!(r.skipped.len(), n - read, "every other trim is listed");
+    assert!(
+        r.skipped[0].reason.contains("trimmed more often"),
+        "{:?}",
+        r.skipped[0]
+    );
+}
+
+#[test]
+fn units_that_are_not_positive_lengths_are_refused() {
+    let with_unit = |factor: &str| {
+        OCC_STYLE.replace(
+            "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );",
+            &format!(
+                "#11 = ( CONVERSION_BASED_UNIT('INCH',#13) LENGTH_UNIT() NAMED_UNIT(*) );
+#13 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE({factor}),#14);
+#14 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );"
+            ),
+        )
+    };
+    let r = read_step(&with_unit("25.4"), "in.step").unwrap();
+    assert_eq!(
+        (r.length_unit.as_str(), r.scale_to_mm),
+        ("INCH (25.4 mm)", 25.4)
+    );
+    // 0 turned every point into the origin, a negative unit mirrored the geometry
+    for (factor, shown) in [("0.", "0 mm"), ("-25.4", "-25.4 mm"), ("1.E308", "inf mm")] {
+        let text = with_unit(factor);
+        let text = if factor == "1.E308" {
+            // a finite factor whose product with the base unit is not
+            text.replace("SI_UNIT(.MILLI.,.METRE.)", "SI_UNIT(.KILO.,.METRE.)")
+        } else {
+            text
+        };
+        let e = refused(&text);
+        assert!(
+            e.starts_with("h.step:22: entity #11") && e.contains("positive finite length"),
+            "{factor}: {e}"
+        );
+        assert!(e.contains(shown), "{factor}: {e}");
+    }
+}

@@ -1,0 +1,100 @@
+//! The length unit of the file, from its unit context, and its factor to millimetres.
+
+use super::parse::Parsed;
+use super::{list, num, P};
+use crate::error::{IoError, IoResult, Location};
+
+/// The length unit of the file and its factor to millimetres.
+///
+/// # Errors
+/// [`IoError::Syntax`] naming the unit's entity when its factor is zero, negative or beyond the
+/// range of a double: such a unit would turn every point into the origin, mirror the geometry
+/// or make it infinite.
+pub(super) fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
+    // the unit assigned by the (first) global unit context, else any length unit of the file
+    let mut ids: Vec<u64> = p.instances.keys().copied().collect();
+    ids.sort_unstable();
+    let from_context = ids.iter().find_map(|id| {
+        let refs = p.instances[id]
+            .get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?
+            .first()?;
+        list(refs)?.iter().find_map(|r| match r {
+            P::Ref(u) if p.instances.get(u).is_some_and(|i| i.has("LENGTH_UNIT")) => Some(*u),
+            _ => None,
+        })
+    });
+    let unit = from_context.or_else(|| {
+        ids.iter()
+            .copied()
+            .find(|id| p.instances[id].has("LENGTH_UNIT"))
+    });
+    let Some((u, (name, mm))) = unit.and_then(|u| Some((u, unit_factor(p, u, 0)?))) else {
+        return Ok(("millimetre (assumed)".to_string(), 1.0));
+    };
+    if !(mm.is_finite() && mm > 0.0) {
+        let mut at = Location::new(source);
+        if let Some(i) = p.instances.get(&u) {
+            at = at.at_line(i.line);
+        }
+        return Err(IoError::syntax(
+            at,
+            format!(
+                "entity #{u}: the length unit {name} is {} mm; a unit must be a positive finite length, correct its conversion factor",
+                crate::fmt_number(mm)
+            ),
+        ));
+    }
+    Ok((name, mm))
+}
+
+fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
+    let inst = p.instances.get(&id)?;
+    if let Some(si) = inst.get("SI_UNIT") {
+        let prefix = match si.first() {
+            Some(P::Enum(e)) => Some(e.as_str()),
+            _ => None,
+        };
+        let f = match prefix {
+            None => 1000.0,
+            Some("EXA") => 1e21,
+            Some("PETA") => 1e18,
+            Some("TERA") => 1e15,
+            Some("GIGA") => 1e12,
+            Some("MEGA") => 1e9,
+            Some("KILO") => 1e6,
+            Some("HECTO") => 1e5,
+            Some("DECA") => 1e4,
+            Some("DECI") => 100.0,
+            Some("CENTI") => 10.0,
+            Some("MILLI") => 1.0,
+            Some("MICRO") => 1e-3,
+            Some("NANO") => 1e-6,
+            Some("PICO") => 1e-9,
+            Some("FEMTO") => 1e-12,
+            Some("ATTO") => 1e-15,
+            Some(_) => return None,
+        };
+        let name = prefix.map_or_else(
+            || "metre".to_string(),
+            |p| format!("{}metre", p.to_ascii_lowercase()),
+        );
+        return Some((name, f));
+    }
+    if depth > 4 {
+        return None;
+    }
+    let cb = inst.get("CONVERSION_BASED_UNIT")?;
+    let name = match cb.first() {
+        Some(P::Str(s)) => s.clone(),
+        _ => "conversion-based unit".to_string(),
+    };
+    let P::Ref(m) = cb.get(1)? else { return None };
+    let measure = p.instances.get(m)?.records.first()?;
+    let value = num(measure.1.first()?)?;
+    let P::Ref(base) = measure.1.get(1)? else {
+        return None;
+    };
+    let (_, f) = unit_factor(p, *base, depth + 1)?;
+    let mm = value * f;
+    Some((format!("{name} ({} mm)", crate::fmt_number(mm)), mm))
+}
