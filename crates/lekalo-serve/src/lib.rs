@@ -27,6 +27,7 @@ pub mod error;
 pub mod expr;
 pub mod fit;
 pub mod query;
+pub mod view;
 mod words;
 
 pub use error::{ApiError, ApiResult};

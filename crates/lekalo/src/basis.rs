@@ -439,6 +439,88 @@ pub fn basis_derivatives(
     Ok((span, out))
 }
 
+/// Every B-spline `N_{i,p}(t)`, `i = 0 … m − p − 1`, at `t` anywhere on the whole knot range
+/// `[t_0, t_m]` (not only the spline's domain, where they sum to 1): the Cox–de Boor recursion
+/// of the lecture (document 002) evaluated as a triangular table from degree 0 upwards over the
+/// non-zero functions only (de Boor, *A Practical Guide to Splines*, `BSPLVB`), terms with a
+/// zero denominator taken as 0 and the last non-empty interval closed at `t_m`, as
+/// [`basis_function_recursive`]. O(p²) per `t`, where the recursion is O(2^p); what figures of
+/// the basis functions over all their knots draw.
+///
+/// ```
+/// use lekalo::{basis::{basis_function_recursive, basis_functions_full_range}, KnotVector};
+/// let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
+/// let all = basis_functions_full_range(&kv, 2, 0.5).unwrap();
+/// assert_eq!(all.len(), 3);
+/// assert!((all[0] - basis_function_recursive(&kv, 0, 2, 0.5).unwrap()).abs() < 1e-15);
+/// ```
+///
+/// # Errors
+/// [`Error::Degree`] if the knots carry no function of degree `p`;
+/// [`Error::ParameterOutOfDomain`] if `t` is outside `[t_0, t_m]` or NaN.
+pub fn basis_functions_full_range(knots: &KnotVector, p: usize, t: f64) -> Result<Vec<f64>> {
+    let k = knots.as_slice();
+    let m = k.len() - 1;
+    let count = m
+        .checked_sub(p)
+        .filter(|c| *c > 0)
+        .ok_or_else(|| Error::Degree {
+            degree: p,
+            reason: format!("{} knots carry no basis function of this degree", k.len()),
+        })?;
+    let (min, max) = (k[0], k[m]);
+    if !(t >= min && t <= max) {
+        return Err(Error::ParameterOutOfDomain { t, min, max });
+    }
+    // the interval [t_j, t_{j+1}) holding t (the last non-empty one at t = t_m)
+    let j = if t == max {
+        (0..m).rev().find(|&j| k[j] < k[j + 1])
+    } else {
+        (0..m).rev().find(|&j| k[j] <= t && t < k[j + 1])
+    };
+    let mut out = vec![0.0; count];
+    let Some(j) = j else {
+        return Ok(out); // all knots equal: every function is 0
+    };
+    // n[d][r] = N_{j−d+r, d}(t), r = 0 … d; indices outside 0 … m − d − 1 are 0
+    let mut row = vec![1.0];
+    for d in 1..=p {
+        let mut next = vec![0.0; d + 1];
+        for (r, slot) in next.iter_mut().enumerate() {
+            let Some(i) = (j + r).checked_sub(d) else {
+                continue;
+            };
+            if i + d + 1 > m {
+                continue;
+            }
+            let mut v = 0.0;
+            // N_{i,d−1} is row[r − 1] when r ≥ 1, N_{i+1,d−1} is row[r] when r < d
+            if r >= 1 {
+                let den = k[i + d] - k[i];
+                if den != 0.0 {
+                    v += (t - k[i]) / den * row[r - 1];
+                }
+            }
+            if r < d {
+                let den = k[i + d + 1] - k[i + 1];
+                if den != 0.0 {
+                    v += (k[i + d + 1] - t) / den * row[r];
+                }
+            }
+            *slot = v;
+        }
+        row = next;
+    }
+    for (r, v) in row.into_iter().enumerate() {
+        if let Some(i) = (j + r).checked_sub(p) {
+            if i < count {
+                out[i] = v;
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// One B-spline `N_{i,p}(t)` by the recursive definition of the lecture (document 002, B-splines,
 /// Cox–de Boor):
 /// `N_{i,0}(t) = 1` on `[t_i, t_{i+1})`,
@@ -506,6 +588,29 @@ fn cox_de_boor(k: &[f64], i: usize, p: usize, t: f64) -> f64 {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn the_full_range_table_is_the_recursion(
+            gaps in prop::collection::vec(prop_oneof![Just(0.0), 0.1..2.0_f64], 3..12),
+            p in 0usize..5,
+            s in 0.0..=1.0_f64,
+        ) {
+            let mut knots = vec![0.0];
+            for g in &gaps {
+                knots.push(knots[knots.len() - 1] + g);
+            }
+            prop_assume!(knots.len() > p + 1 && knots[knots.len() - 1] > knots[0]);
+            let kv = KnotVector::new(knots.clone()).unwrap();
+            let t = knots[0] + s * (knots[knots.len() - 1] - knots[0]);
+            let all = basis_functions_full_range(&kv, p, t).unwrap();
+            prop_assert_eq!(all.len(), knots.len() - p - 1);
+            for (i, v) in all.iter().enumerate() {
+                let r = basis_function_recursive(&kv, i, p, t).unwrap();
+                prop_assert!((v - r).abs() <= 1e-14, "N_{{{},{}}}({}) = {} against {}", i, p, t, v, r);
+            }
+        }
+    }
 
     fn binom(n: usize, k: usize) -> f64 {
         (0..k).fold(1.0, |acc, j| acc * (n - j) as f64 / (j + 1) as f64)

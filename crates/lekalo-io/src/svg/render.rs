@@ -1,0 +1,529 @@
+//! A figure on the page as SVG text: axes and nice ticks, series, legend, colour bar.
+use std::fmt::Write as _;
+
+use super::figure::{ColorBar, Figure, Series, Style};
+use super::page::*;
+use crate::layout::{
+    text_extent, text_width, LegendPlace, LEGEND_FONT, LEGEND_GAP, LEGEND_ROW, LEGEND_SAMPLE,
+};
+use crate::palette::{height_color, Marker};
+
+/// Writes a `<text>` element with its estimated box as `data-bbox="x y w h"`.
+pub(super) fn text(
+    s: &mut String,
+    x: f64,
+    y: f64,
+    anchor: &str,
+    size: f64,
+    body: &str,
+    extra: &str,
+) {
+    let w = text_width(body, size);
+    let (asc, desc) = text_extent(size);
+    let x0 = match anchor {
+        "middle" => x - 0.5 * w,
+        "end" => x - w,
+        _ => x,
+    };
+    let size_attr = if (size - FONT).abs() > f64::EPSILON {
+        format!(r#" font-size="{size}""#)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        s,
+        r#"<text x="{x:.2}" y="{y:.2}" text-anchor="{anchor}"{size_attr}{extra} data-bbox="{x0:.2} {:.2} {w:.2} {:.2}">{}</text>"#,
+        y - asc,
+        asc + desc,
+        escape(body)
+    );
+}
+
+/// A marker of `shape` centred at `(x, y)`.
+pub(super) fn marker(
+    s: &mut String,
+    shape: Marker,
+    x: f64,
+    y: f64,
+    r: f64,
+    color: &str,
+    fill: &str,
+) {
+    let common = format!(r#"fill="{fill}" stroke="{color}" stroke-width="1.8""#);
+    let _ = match shape {
+        Marker::Circle => writeln!(s, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{r}" {common}/>"#),
+        Marker::Square => writeln!(
+            s,
+            r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" {common}/>"#,
+            x - 0.85 * r,
+            y - 0.85 * r,
+            1.7 * r,
+            1.7 * r
+        ),
+        Marker::Triangle => writeln!(
+            s,
+            r#"<polygon points="{x:.2},{:.2} {:.2},{:.2} {:.2},{:.2}" {common}/>"#,
+            y - 1.1 * r,
+            x - r,
+            y + 0.8 * r,
+            x + r,
+            y + 0.8 * r
+        ),
+        Marker::Diamond => writeln!(
+            s,
+            r#"<polygon points="{x:.2},{:.2} {:.2},{y:.2} {x:.2},{:.2} {:.2},{y:.2}" {common}/>"#,
+            y - 1.2 * r,
+            x + 1.2 * r,
+            y + 1.2 * r,
+            x - 1.2 * r
+        ),
+    };
+}
+
+impl Figure {
+    /// The figure as a standalone SVG document. Text elements and legend entries carry their
+    /// boxes as `data-bbox="x y width height"`, series groups their label, so that tests can
+    /// check the layout without a font.
+    #[must_use]
+    pub fn to_svg(&self) -> String {
+        let f = self.frame();
+        let (w, h, left, top, pw, ph) = (f.w, f.h, f.left, f.top, f.pw, f.ph);
+        let hidden = self.hidden_pairs(&f);
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Arial, sans-serif" font-size="12">"#
+        );
+        let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+        text(
+            &mut s,
+            w / 2.0,
+            TITLE_Y,
+            "middle",
+            TITLE_FONT,
+            &self.title,
+            "",
+        );
+        if let Some((a, b, label)) = &self.band {
+            let _ = writeln!(
+                s,
+                r##"<rect x="{:.2}" y="{top}" width="{:.2}" height="{ph}" fill="#fff3c4"/>"##,
+                f.tx(*a),
+                f.tx(*b) - f.tx(*a),
+            );
+            text(
+                &mut s,
+                0.5 * (f.tx(*a) + f.tx(*b)),
+                top + 14.0,
+                "middle",
+                FONT,
+                label,
+                r##" fill="#8a6d00""##,
+            );
+        }
+        if self.axes {
+            self.axes_svg(&mut s, &f);
+        }
+        if !self.faces.is_empty() {
+            s.push_str("<g class=\"surface\" stroke-linejoin=\"round\">\n");
+            for face in &self.faces {
+                if face.points.len() >= 3 {
+                    let pts: Vec<String> = face
+                        .points
+                        .iter()
+                        .map(|p| format!("{:.2},{:.2}", f.tx(p[0]), f.ty(p[1])))
+                        .collect();
+                    let _ = writeln!(
+                        s,
+                        r#"<polygon points="{}" fill="{c}" stroke="{c}" stroke-width="0.7"/>"#,
+                        pts.join(" "),
+                        c = face.fill
+                    );
+                }
+                let (ec, ew) = &face.edge_style;
+                for e in &face.edges {
+                    let _ = writeln!(
+                        s,
+                        r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="{ec}" stroke-width="{ew}" stroke-linecap="round"/>"#,
+                        f.tx(e[0][0]),
+                        f.ty(e[0][1]),
+                        f.tx(e[1][0]),
+                        f.ty(e[1][1])
+                    );
+                }
+            }
+            s.push_str("</g>\n");
+        }
+        for (k, series) in self.series.iter().enumerate() {
+            let over = hidden.iter().find(|(_, j)| *j == k).map(|(i, _)| *i);
+            self.series_svg(&mut s, &f, series, over);
+        }
+        for a in &self.annotations {
+            text(
+                &mut s,
+                f.tx(a.at[0]) + a.offset.0,
+                f.ty(a.at[1]) + a.offset.1,
+                a.anchor,
+                FONT,
+                &a.text,
+                r##" fill="#444""##,
+            );
+        }
+        if let Some(bar) = &self.colorbar {
+            colorbar_svg(&mut s, bar, left + pw + 20.0, top + 20.0, ph - 20.0);
+        }
+        self.legend_svg(&mut s, &f, &hidden);
+        s.push_str("</svg>\n");
+        s
+    }
+
+    /// Frame, ticks and axis names.
+    pub(super) fn axes_svg(&self, s: &mut String, f: &Frame) {
+        let (left, top, pw, ph) = (f.left, f.top, f.pw, f.ph);
+        let _ = writeln!(
+            s,
+            r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
+        );
+        for v in nice_ticks(f.x0, f.x1) {
+            let x = f.tx(v);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="#888"/>"##,
+                top + ph,
+                top + ph + 5.0,
+            );
+            text(s, x, top + ph + 18.0, "middle", FONT, &fmt_tick(v), "");
+        }
+        for v in nice_ticks(f.y0, f.y1) {
+            let y = f.ty(v);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{:.2}" y1="{y:.2}" x2="{left}" y2="{y:.2}" stroke="#888"/>"##,
+                left - 5.0,
+            );
+            text(s, left - 8.0, y + 4.0, "end", FONT, &fmt_tick(v), "");
+        }
+        let (xl, yl) = &self.axis_labels;
+        if !xl.is_empty() {
+            text(s, left + pw / 2.0, top + ph + 36.0, "middle", FONT, xl, "");
+        }
+        if !yl.is_empty() {
+            // rotated: the box of the turned text, for the checks
+            let cy = top + ph / 2.0;
+            let wl = text_width(yl, FONT);
+            let (asc, desc) = text_extent(FONT);
+            let _ = writeln!(
+                s,
+                r#"<text x="16" y="{cy:.2}" text-anchor="middle" transform="rotate(-90 16 {cy:.2})" data-bbox="{:.2} {:.2} {:.2} {wl:.2}">{}</text>"#,
+                16.0 - asc,
+                cy - wl / 2.0,
+                asc + desc,
+                escape(yl)
+            );
+        }
+    }
+
+    /// One series; `over` is the series it would hide, if any (then it is drawn dashed).
+    pub(super) fn series_svg(
+        &self,
+        s: &mut String,
+        f: &Frame,
+        series: &Series,
+        over: Option<usize>,
+    ) {
+        let c = &series.color;
+        let label = series.label.as_deref().unwrap_or_default();
+        let note = over
+            .and_then(|i| self.series[i].label.as_deref())
+            .map(|l| format!(r#" data-coincides="{}""#, escape(l)))
+            .unwrap_or_default();
+        let _ = writeln!(
+            s,
+            r#"<g class="series" data-label="{}" data-width="{}"{note}>"#,
+            escape(label),
+            series.width()
+        );
+        let dash = if over.is_some() && series.style != Style::Markers {
+            "5 5"
+        } else {
+            series.dash_pattern()
+        };
+        let dash_attr = if dash.is_empty() {
+            String::new()
+        } else {
+            format!(r#" stroke-dasharray="{dash}""#)
+        };
+        for path in &series.paths {
+            match series.style {
+                Style::Line | Style::Dashed => {
+                    let pts: Vec<String> = path
+                        .iter()
+                        .map(|p| format!("{:.2},{:.2}", f.tx(p[0]), f.ty(p[1])))
+                        .collect();
+                    let _ = writeln!(
+                        s,
+                        r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="{}"{dash_attr} stroke-linejoin="round"/>"#,
+                        pts.join(" "),
+                        series.width()
+                    );
+                    if let (Some(m), true) = (series.marker, path.len() > 1) {
+                        // three markers where the line is its own: off its lowest level (the
+                        // zero line a family of basis functions shares), staggered by label so
+                        // that lines of one family put theirs at different abscissae
+                        let low = path.iter().fold(f64::INFINITY, |m, p| m.min(p[1]));
+                        let own: Vec<&[f64; 2]> = path.iter().filter(|p| p[1] > low).collect();
+                        let own = if own.is_empty() {
+                            path.iter().collect()
+                        } else {
+                            own
+                        };
+                        let shift = 1 + label.len() % 3;
+                        for q in 0..3 {
+                            let p = own[((2 * q + shift) * own.len() / 8).min(own.len() - 1)];
+                            marker(s, m, f.tx(p[0]), f.ty(p[1]), 3.5, c, "white");
+                        }
+                    }
+                }
+                Style::Markers => {
+                    let (r, fill) = if over.is_some() {
+                        (2.2, c.as_str())
+                    } else {
+                        (4.0, "white")
+                    };
+                    for p in path {
+                        let m = series.marker.unwrap_or(Marker::Circle);
+                        marker(s, m, f.tx(p[0]), f.ty(p[1]), r, c, fill);
+                    }
+                }
+                Style::Ticks => {
+                    for p in path {
+                        let (x, y) = (f.tx(p[0]), f.ty(p[1]));
+                        let _ = writeln!(
+                            s,
+                            r#"<line x1="{x:.2}" y1="{:.2}" x2="{x:.2}" y2="{:.2}" stroke="{c}" stroke-width="2"/>"#,
+                            y - 7.0,
+                            y + 7.0
+                        );
+                    }
+                }
+            }
+        }
+        s.push_str("</g>\n");
+    }
+
+    /// The legend: rows under the title, or a column right of the plot.
+    pub(super) fn legend_svg(&self, s: &mut String, f: &Frame, hidden: &[(usize, usize)]) {
+        let place = |s: &mut String, k: usize, x: f64, y: f64| {
+            let (i, width) = f.entries[k];
+            let series = &self.series[i];
+            let c = &series.color;
+            let (asc, desc) = text_extent(LEGEND_FONT);
+            let _ = writeln!(
+                s,
+                r#"<g class="legend" data-bbox="{x:.2} {:.2} {width:.2} {:.2}">"#,
+                y + 4.0 - asc,
+                asc + desc
+            );
+            let over = hidden.iter().any(|(_, j)| *j == i);
+            match series.style {
+                Style::Markers => {
+                    let m = series.marker.unwrap_or(Marker::Circle);
+                    let (r, fill) = if over {
+                        (2.2, c.as_str())
+                    } else {
+                        (4.0, "white")
+                    };
+                    marker(s, m, x + 11.0, y, r, c, fill);
+                }
+                _ => {
+                    let dash = if over { "5 5" } else { series.dash_pattern() };
+                    let dash = if dash.is_empty() {
+                        String::new()
+                    } else {
+                        format!(r#" stroke-dasharray="{dash}""#)
+                    };
+                    let _ = writeln!(
+                        s,
+                        r#"<line x1="{x:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{c}" stroke-width="{}"{dash}/>"#,
+                        x + 22.0,
+                        series.width()
+                    );
+                    if let Some(m) = series.marker {
+                        marker(s, m, x + 11.0, y, 3.5, c, "white");
+                    }
+                }
+            }
+            let label = series.label.as_deref().unwrap_or_default();
+            text(
+                s,
+                x + LEGEND_SAMPLE,
+                y + 4.0,
+                "start",
+                LEGEND_FONT,
+                label,
+                "",
+            );
+            s.push_str("</g>\n");
+        };
+        match &f.legend {
+            LegendPlace::None => {}
+            LegendPlace::Rows(rows) => {
+                for (r, row) in rows.iter().enumerate() {
+                    let used: f64 = row.iter().map(|k| f.entries[*k].1).sum::<f64>()
+                        + LEGEND_GAP * (row.len() as f64 - 1.0);
+                    // aligned with the plot if the row fits there, else from the left edge
+                    let mut x = if f.left + used <= f.w - 12.0 {
+                        f.left
+                    } else {
+                        12.0
+                    };
+                    let y = LEGEND_Y + LEGEND_ROW * r as f64;
+                    for k in row {
+                        place(s, *k, x, y);
+                        x += f.entries[*k].1 + LEGEND_GAP;
+                    }
+                }
+            }
+            LegendPlace::Column(_) => {
+                let x = f.w - f.entries.iter().fold(0.0_f64, |m, e| m.max(e.1)) - 12.0;
+                for k in 0..f.entries.len() {
+                    place(s, k, x, f.top + 8.0 + LEGEND_ROW * k as f64);
+                }
+            }
+        }
+    }
+}
+
+/// A vertical colour bar with ticks at `(x, top)`, `height` pixels tall.
+pub(super) fn colorbar_svg(s: &mut String, bar: &ColorBar, x: f64, top: f64, height: f64) {
+    let (lo, hi) = bar.range;
+    let steps = 48;
+    // the range in full (shortest round-trip) precision for readers of the SVG; the ticks are
+    // rounded for the eye
+    let _ = writeln!(
+        s,
+        r#"<g class="colorbar" data-label="{}" data-range="{} {}">"#,
+        escape(&bar.label),
+        crate::fmt_number(lo),
+        crate::fmt_number(hi)
+    );
+    for k in 0..steps {
+        let a = f64::from(k) / f64::from(steps);
+        let y = top + height * (1.0 - a - 1.0 / f64::from(steps));
+        let _ = writeln!(
+            s,
+            r#"<rect x="{x:.2}" y="{y:.2}" width="{BAR}" height="{:.2}" fill="{}"/>"#,
+            height / f64::from(steps) + 0.5,
+            height_color(a + 0.5 / f64::from(steps))
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{x:.2}" y="{top:.2}" width="{BAR}" height="{height:.2}" fill="none" stroke="#888"/>"##
+    );
+    if hi > lo {
+        for v in nice_ticks(lo, hi) {
+            let y = top + height * (hi - v) / (hi - lo);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#888"/>"##,
+                x + BAR,
+                x + BAR + 4.0
+            );
+            text(s, x + BAR + 6.0, y + 4.0, "start", FONT, &fmt_tick(v), "");
+        }
+    } else {
+        text(
+            s,
+            x + BAR + 6.0,
+            top + height / 2.0 + 4.0,
+            "start",
+            FONT,
+            &fmt_tick(lo),
+            "",
+        );
+    }
+    text(s, x, top - 8.0, "start", FONT, &bar.label, "");
+    s.push_str("</g>\n");
+}
+
+/// Escapes text for SVG/HTML.
+#[must_use]
+pub fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Tick values at 1, 2 or 5 × 10^k covering `[lo, hi]` (about five ticks).
+pub(crate) fn nice_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    // the span from halves, so that [-1e308, 1e308] does not overflow
+    let half = hi / 2.0 - lo / 2.0;
+    if half.is_nan() || half <= 0.0 || !half.is_finite() {
+        return Vec::new();
+    }
+    let raw = half / 2.5;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * mag);
+    if !(step > 0.0 && step.is_finite()) {
+        return Vec::new();
+    }
+    let first = (lo / step).ceil();
+    let last = (hi / step).floor();
+    let mut out = Vec::new();
+    let mut k = first;
+    while k <= last && out.len() < 50 {
+        let v = k * step;
+        if v.is_finite() {
+            out.push(v);
+        }
+        k += 1.0;
+    }
+    out
+}
+
+pub(crate) fn fmt_tick(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-4..1e6).contains(&a) {
+        // exponent notation with up to four significant digits: `1.5e300`, `2e-320`, never
+        // `inf` or a row of zeros
+        let s = format!("{v:.3e}");
+        return match s.split_once('e') {
+            Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            None => s,
+        };
+    }
+    let r = (v * 1e9).round() / 1e9;
+    let s = format!("{r}");
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+/// A figure in a legend: four significant digits (`0.1189`, `3.957e-7`), exponent notation
+/// outside `[1e-4, 1e6)` as on the ticks.
+pub(super) fn fmt_legend(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !(1e-4..1e6).contains(&a) {
+        return fmt_tick(v);
+    }
+    // a is in [1e-4, 1e6): three decimals from 1 on, one more for each power of ten below
+    let (mut decimals, mut bound) = (0, 1000.0);
+    while a < bound && decimals < 7 {
+        decimals += 1;
+        bound /= 10.0;
+    }
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}

@@ -1,0 +1,136 @@
+//! Tests of the figures and the standard plots.
+
+use super::plots::PLOT_MAX_MARKERS;
+use super::render::fmt_legend;
+use super::*;
+use crate::object::Object;
+use crate::CurveJson;
+use lekalo::{KnotVector, Points};
+
+#[test]
+fn legend_figures_have_four_significant_digits() {
+    for (v, want) in [
+        (0.118_924_521, "0.1189"),
+        (0.039_569_3, "0.03957"),
+        (1234.56, "1235"),
+        (2.0, "2"),
+        (0.0, "0"),
+        (3.956_931_7e-7, "3.957e-7"),
+        (1.5e300, "1.5e300"),
+    ] {
+        assert_eq!(fmt_legend(v), want, "{v}");
+    }
+}
+
+#[test]
+fn residual_segments_join_points_to_their_feet() {
+    let data = Points::from_2d(&[[0.0, 1.0], [1.0, -2.0], [2.0, 0.5]]).expect("points");
+    let feet = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]).expect("points");
+    let s = residual_series(&data, &feet, &crate::Projection::default()).expect("series");
+    assert_eq!(s.paths.len(), 3, "one segment a point");
+    assert_eq!(s.paths[1], vec![[1.0, -2.0], [1.0, 0.0]], "point to foot");
+    // max 2, RMS sqrt((1 + 4 + 0.25) / 3)
+    assert_eq!(
+        s.label.as_deref(),
+        Some("deviations: max 2, RMS 1.323"),
+        "legend"
+    );
+    let short = Points::from_2d(&[[0.0, 0.0]]).expect("points");
+    assert!(
+        residual_series(&data, &short, &crate::Projection::default()).is_err(),
+        "counts differ"
+    );
+}
+
+#[test]
+fn the_largest_residual_is_drawn_among_decimated_ones() {
+    let n = 10_001;
+    let data =
+        Points::from_flat(2, (0..n).flat_map(|i| [i as f64, 1.0]).collect()).expect("points");
+    let mut feet = data.as_slice().to_vec();
+    for i in 0..n {
+        feet[2 * i + 1] = if i == 4_567 { -9.0 } else { 0.0 };
+    }
+    let feet = Points::from_flat(2, feet).expect("points");
+    let s = residual_series(&data, &feet, &crate::Projection::default()).expect("series");
+    assert!(
+        s.paths.len() <= PLOT_MAX_MARKERS + 1,
+        "decimated: {}",
+        s.paths.len()
+    );
+    assert!(
+        s.paths.iter().any(|p| p[1] == [4_567.0, -9.0]),
+        "the largest deviation is drawn"
+    );
+    assert_eq!(
+        s.label
+            .as_deref()
+            .map(|l| l.starts_with("deviations: max 10,")),
+        Some(true),
+        "{:?}",
+        s.label
+    );
+}
+
+#[test]
+fn ticks_are_nice() {
+    assert_eq!(
+        nice_ticks(0.0, 1.0),
+        vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
+    );
+    assert_eq!(nice_ticks(-3.0, 3.0), vec![-2.0, 0.0, 2.0]);
+    assert!(nice_ticks(1.0, 1.0).is_empty());
+    assert_eq!(fmt_tick(0.6000000000000001), "0.6");
+}
+
+#[test]
+fn knot_and_curve_figures() {
+    let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0]).unwrap();
+    let fig = knots_figure("k", &kv);
+    // one marker per knot, stacked by multiplicity: 0 three times, 0.5 twice
+    let marks = &fig.series[1].paths[0];
+    assert_eq!(marks.len(), 8);
+    assert_eq!(marks[4], [0.5, 2.0]);
+    let obj = Object::from_json_str(
+        r#"{"lekalo":1,"type":"nurbs_curve","degree":2,"knots":[0,0,0,0.5,0.5,1,1,1],
+           "control":[[1,0,0],[1,1,0],[0,1,0],[-1,1,0],[-1,0,0]],"weights":[1,0.5,1,0.5,1]}"#,
+        "t",
+    )
+    .unwrap();
+    let data = Points::from_3d(&[[1.0, 0.0, 0.0]]).unwrap();
+    let fig = curve_figure(
+        &obj,
+        &CurvePlot {
+            data_points: Some(&data),
+            samples: 11,
+            ..CurvePlot::default()
+        },
+    )
+    .unwrap();
+    assert!(!fig.axes, "no axes in a projected 3-D view");
+    let labels: Vec<_> = fig.series.iter().filter_map(|s| s.label.clone()).collect();
+    assert_eq!(
+        labels,
+        ["control polygon", "curve", "points at knots", "data points"]
+    );
+    // knot marks at the distinct knots 0, 0.5, 1 of the domain
+    assert_eq!(fig.series[3].paths[0].len(), 3);
+    assert_eq!(fig.series[2].paths[0].len(), 11);
+    assert!(fig.to_svg().contains("NURBS curve of degree 2"));
+}
+
+#[test]
+fn basis_plot_of_the_lecture() {
+    let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
+    let fig = basis_figure(&kv, 2, 31).unwrap();
+    // three basis functions, the knot ticks, the shaded domain [1, 2]
+    assert_eq!(fig.series.len(), 4);
+    assert_eq!(fig.band.as_ref().map(|b| (b.0, b.1)), Some((1.0, 2.0)));
+    // N_{1,2}(1.5) = 3/4 (document 002, B-splines): sample 15 is t = 1.5
+    assert_eq!(fig.series[1].paths[0][15], [1.5, 0.75]);
+    let svg = fig.to_svg();
+    assert!(svg.starts_with("<svg") && svg.ends_with("</svg>\n"));
+    assert_eq!(svg.matches("<polyline").count(), 3);
+    assert!(basis_figure(&kv, 5, 10).is_err());
+    assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+}
