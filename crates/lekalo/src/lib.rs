@@ -99,7 +99,7 @@ pub use interpolate::{
 pub mod tensor;
 
 pub use tensor::{
-    tensor_grid_least_squares, TensorBSpline, TensorInterpolation, TensorNurbs,
+    tensor_grid_least_squares, Tensor, TensorBSpline, TensorInterpolation, TensorNurbs,
     MAX_TENSOR_DERIVATIVE_TABLE,
 };
 
