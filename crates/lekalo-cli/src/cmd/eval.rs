@@ -34,6 +34,7 @@ Examples:
   lekalo eval many.jsonl --samples 100 -o samples.jsonl
   lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
   lekalo eval surface.json --grid 5x7 -o grid.csv
+  lekalo eval tensor.json --at 0.5,0.25,1 --at-file points.csv
 
 Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
 of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
@@ -82,6 +83,10 @@ pub(crate) struct EvalArgs {
     /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`).
     #[arg(long, value_name = "NUxNV", conflicts_with_all = ["uv", "uv_file"])]
     grid: Option<String>,
+    /// Splines in N ≥ 3 parameters: a file of points, N columns (with or instead of --at
+    /// x1,…,xN).
+    #[arg(long, value_name = "FILE")]
+    at_file: Option<PathBuf>,
     /// Surfaces: output the unit normal nx, ny, nz.
     #[arg(long)]
     normals: bool,
@@ -128,6 +133,9 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         Loaded::Other(lekalo_io::Shape::Surface(_)) if a.torsion => bad_input(
             "--torsion is for 3-D curves; a surface's principal, Gaussian and mean curvatures come with --curvature",
         ),
+        Loaded::Other(lekalo_io::Shape::Surface(_)) if a.at_file.is_some() => bad_input(
+            "--at-file is for splines in 3 or more parameters; a surface takes --uv-file",
+        ),
         Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {
                 input: &a.input,
@@ -144,11 +152,26 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
             &s,
             v,
         ),
+        Loaded::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
+            &crate::cmd::tensor::TensorEval {
+                input: &a.input,
+                at: a.at.as_deref(),
+                at_file: a.at_file.as_deref(),
+                format: if a.json { Some("json") } else { a.format.as_deref() },
+                output: a.output.as_deref(),
+            },
+            &t,
+            v,
+        ),
         Loaded::Other(s) => not_a_curve(&a.input, &s),
         Loaded::One(_) | Loaded::Many(_)
-            if !a.uv.is_empty() || a.uv_file.is_some() || a.grid.is_some() || a.normals =>
+            if !a.uv.is_empty()
+                || a.uv_file.is_some()
+                || a.grid.is_some()
+                || a.normals
+                || a.at_file.is_some() =>
         {
-            bad_input("--uv, --uv-file, --grid and --normals are for surfaces; a curve takes --at or --samples")
+            bad_input("--uv, --uv-file, --grid and --normals are for surfaces, --at-file for splines in 3 or more parameters; a curve takes --at or --samples")
         }
         Loaded::One(obj) if a.torsion && obj.dim() != 3 => bad_input(format!(
             "{}: --torsion needs a 3-D curve and this one is {}-D (a planar curve's torsion is zero everywhere); drop --torsion",
