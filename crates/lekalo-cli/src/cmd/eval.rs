@@ -152,6 +152,18 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
             &s,
             v,
         ),
+        Loaded::Other(lekalo_io::Shape::Tensor(_))
+            if a.samples.is_some()
+                || a.derivatives > 0
+                || a.curvature
+                || a.torsion
+                || a.normals
+                || a.grid.is_some()
+                || !a.uv.is_empty()
+                || a.uv_file.is_some() =>
+        {
+            bad_input("a spline in N parameters is evaluated at --at x1,…,xN or --at-file FILE; --samples, --derivatives, --curvature, --torsion, --normals, --grid, --uv and --uv-file are for curves and surfaces (partial derivatives: the Python TensorBSpline's nu=)")
+        }
         Loaded::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
             &crate::cmd::tensor::TensorEval {
                 input: &a.input,

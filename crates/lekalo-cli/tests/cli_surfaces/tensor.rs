@@ -179,6 +179,10 @@ fn bad_points_and_files_exit_2() {
     eval(&["--at", "0.5,0.5"], "--at: 2 values");
     eval(&["--at", "0.5,0.5,2"], "tensor.json");
     eval(&[], "--at-file");
+    eval(
+        &["--at", "0.5,0.5,0.5", "--derivatives", "1"],
+        "--derivatives",
+    );
     let text = fs::read_to_string(&t).unwrap();
     let bad = d.path().join("bad.json");
     fs::write(
