@@ -9,7 +9,21 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, filled, floats, vec1};
-use crate::error::{bad, lib_err};
+use crate::error::{bad, lib_err, python_terms};
+
+/// The library's error as `lekalo.Error`, prefixed with the Python argument at fault.
+fn named(what: &str, e: &lekalo::Error) -> PyErr {
+    bad(format!("{what}: {}", python_terms(&e.to_string())))
+}
+
+/// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
+fn constructor_arg(e: &lekalo::Error) -> &'static str {
+    match e {
+        lekalo::Error::LengthMismatch { .. } | lekalo::Error::TooLarge { .. } => "c",
+        lekalo::Error::Degree { .. } => "k",
+        _ => "t",
+    }
+}
 
 /// A tensor-product B-spline in `N` variables (SciPy's `NdBSpline`, with the library's
 /// validation and evaluation).
@@ -106,8 +120,9 @@ impl PyTensorBSpline {
                 )));
             }
         }
-        let control = Points::from_flat(dim, ca.data().to_vec()).map_err(lib_err)?;
-        let inner = TensorBSpline::new(degrees, knots, control).map_err(lib_err)?;
+        let control = Points::from_flat(dim, ca.data().to_vec()).map_err(|e| named("c", &e))?;
+        let inner = TensorBSpline::new(degrees, knots, control)
+            .map_err(|e| named(constructor_arg(&e), &e))?;
         Ok(Self { inner, trailing })
     }
 
@@ -231,11 +246,17 @@ impl PyTensorBSpline {
         }
         let trailing = shape[n..].to_vec();
         let dim: usize = trailing.iter().product();
-        let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(lib_err)?;
+        let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
         let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
         let inner = py
             .detach(|| TensorInterpolation::new(degrees).interpolate_at(&refs, pts))
-            .map_err(lib_err)?;
+            .map_err(|e| match e {
+                lekalo::Error::Degree { .. } => named("degrees", &e),
+                lekalo::Error::KnotsNotSorted { .. }
+                | lekalo::Error::InvalidArgument { .. }
+                | lekalo::Error::NonFinite { .. } => named("axes", &e),
+                other => lib_err(other),
+            })?;
         Ok(Self { inner, trailing })
     }
 

@@ -116,10 +116,15 @@ def test_errors_name_the_argument():
         s(np.array([[0.5, 0.5, 2.0]]))
     bad = c.copy()
     bad[0, 0, 0] = np.nan
-    with pytest.raises(lekalo.Error):
+    with pytest.raises(lekalo.Error, match="^c: "):
         lekalo.TensorBSpline(t, bad, k)
+    unsorted = (t[0][::-1].copy(), t[1], t[2])
+    with pytest.raises(lekalo.Error, match="^t: "):
+        lekalo.TensorBSpline(unsorted, c, k)
     axes = [np.arange(4.0), np.arange(3.0), np.arange(2.0)]
     with pytest.raises(lekalo.Error, match="values: shape"):
         lekalo.TensorBSpline.interpolate_grid(axes, np.zeros((4, 3, 3)))
-    with pytest.raises(lekalo.Error):
+    with pytest.raises(lekalo.Error, match="^degrees: "):
         lekalo.TensorBSpline.interpolate_grid(axes, np.zeros((4, 3, 2)), degrees=(3, 3, 3))
+    with pytest.raises(lekalo.Error, match="^axes: "):
+        lekalo.TensorBSpline.interpolate_grid([axes[0][::-1].copy(), axes[1], axes[2]], np.zeros((4, 3, 2)), degrees=1)
