@@ -72,7 +72,7 @@ pub use figure_check::check_svg;
 pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
-pub use npy::{npy_bytes, read_npy_file, read_npy_points};
+pub use npy::{npy_bytes, read_npy_array, read_npy_file, read_npy_points};
 pub use npz::{curve_to_npz, read_npz_curve, write_npz_curve};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};

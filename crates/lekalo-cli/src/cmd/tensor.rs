@@ -72,7 +72,7 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) 
         ));
     };
     crate::io::check_size(nodes, "--grid")?;
-    let (values, name) = crate::io::read_points(file)?;
+    let (values, name) = grid_values(file, &g.factors)?;
     if values.len() != nodes {
         return bad_input(format!(
             "--grid {}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
@@ -94,6 +94,34 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) 
         })?;
     let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
     emit(g.output, text.as_bytes(), &[file.to_path_buf()], v)
+}
+
+/// The values of a grid file: rows of a points file, or a `.npy` array of shape
+/// `(A, B, C, …[, d…])` whose first axes are the grid's (or `(n, d)` / `(n,)` rows).
+fn grid_values(file: &Path, factors: &[usize]) -> Result<(Points, String)> {
+    let npy = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    if !npy {
+        return crate::io::read_points(file);
+    }
+    let (bytes, name) = lekalo_io::read_input_bytes(file)?;
+    let (shape, flat) = lekalo_io::read_npy_array(&bytes, &name)?;
+    let n = factors.len();
+    let dim = if shape.len() >= n && shape[..n] == *factors {
+        shape[n..].iter().product::<usize>()
+    } else {
+        match shape[..] {
+            [_] => 1,
+            [_, d] => d,
+            _ => {
+                return bad_input(format!(
+                    "{name}: shape {shape:?} is neither the grid's {factors:?} (with value axes after it) nor rows (n, d)"
+                ))
+            }
+        }
+    };
+    Ok((Points::from_flat(dim.max(1), flat)?, name))
 }
 
 /// What `eval` asks of a tensor spline.

@@ -100,6 +100,60 @@ fn a_grid_of_values_interpolates_evaluates_and_reports() {
         .stderr(contains("converts to json only"));
 }
 
+/// A float64 `.npy` file of `shape` holding `data` (C order).
+fn npy(shape: &[usize], data: &[f64]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({},), }}",
+        dims.join(", ")
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend(u16::try_from(header.len()).unwrap().to_le_bytes());
+    out.extend(header.as_bytes());
+    for v in data {
+        out.extend(v.to_le_bytes());
+    }
+    out
+}
+
+#[test]
+fn a_npy_grid_is_read_with_its_shape_or_as_rows() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let expected = fs::read_to_string(&t).unwrap();
+    let data: Vec<f64> = values([5, 4, 3])
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    for shape in [vec![5, 4, 3], vec![60], vec![60, 1], vec![5, 4, 3, 1]] {
+        let f = d.path().join("values.npy");
+        fs::write(&f, npy(&shape, &data)).unwrap();
+        let out = lekalo()
+            .arg("interpolate")
+            .arg(&f)
+            .args(["--grid", "5x4x3", "--degree", "3,3,2", "--param", "uniform"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        assert_eq!(String::from_utf8(out).unwrap(), expected, "{shape:?}");
+    }
+    let f = d.path().join("values.npy");
+    fs::write(&f, npy(&[3, 4, 5], &data)).unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&f)
+        .args(["--grid", "5x4x3"])
+        .assert()
+        .code(2)
+        .stderr(contains("neither the grid's"));
+}
+
 #[test]
 fn two_sizes_keep_the_surface_and_a_degree_list_is_u_then_v() {
     let d = tempfile::tempdir().unwrap();
