@@ -41,7 +41,10 @@ of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 
 u, v, the point, the partial derivatives du{a}v{b}x … of every total order up to
 --derivatives (du1v0x is ∂x/∂u), with --normals the unit normal nx, ny, nz, with --curvature
 the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the surface bends
-towards the normal (S_u × S_v)/|S_u × S_v|).")]
+towards the normal (S_u × S_v)/|S_u × S_v|).
+
+Splines in N ≥ 3 parameters (bspline_tensor, nurbs_tensor): evaluated at --at x1,…,xN (several
+points in a row) and the rows of --at-file (N columns). Columns: x1 … xN, then y (y1 … yd).")]
 pub(crate) struct EvalArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,

@@ -249,6 +249,9 @@ pub(crate) enum Tangents {
 #[command(after_help = "\
 Curves (document 000): global B-spline interpolation, any degree, every parametrisation,
 knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
+Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
+slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
+takes one degree or one per direction.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
 --hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 

@@ -251,3 +251,32 @@ fn bad_points_and_files_exit_2() {
         .code(2)
         .stderr(contains("field `shape`"));
 }
+
+#[test]
+fn a_nurbs_tensor_evaluates_with_its_weights() {
+    let d = tempfile::tempdir().unwrap();
+    let t = d.path().join("n.json");
+    // the trilinear net x + 2y + 4z, weight 3 at the corner (1, 1, 1)
+    fs::write(
+        &t,
+        r#"{"lekalo": 1, "type": "nurbs_tensor", "degrees": [1, 1, 1],
+        "knots": [[0, 0, 1, 1], [0, 0, 1, 1], [0, 0, 1, 1]], "shape": [2, 2, 2],
+        "control": [[0], [4], [2], [6], [1], [5], [3], [7]],
+        "weights": [1, 1, 1, 1, 1, 1, 1, 3]}"#,
+    )
+    .unwrap();
+    // at a corner: the control point; at the centre: Σ w P / Σ w = (28 + 14) / 10
+    lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--at", "1,1,1,0.5,0.5,0.5"])
+        .assert()
+        .success()
+        .stdout(contains("1,1,1,7\n0.5,0.5,0.5,4.2\n"));
+    lekalo()
+        .arg("info")
+        .arg(&t)
+        .assert()
+        .success()
+        .stdout(contains("nurbs_tensor"));
+}
