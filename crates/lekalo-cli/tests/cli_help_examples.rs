@@ -179,6 +179,16 @@ fn fixtures(d: &Path, path: &str) {
         }),
     );
     w("xy.csv", &rows(12, &|i| format!("{i},{}", (i * 0.7).sin())));
+    // a 6 × 5 × 4 grid of values, a trilinear spline in 3 parameters and points for it
+    w(
+        "values.csv",
+        &rows(120, &|i| format!("{}", (i * 0.1).sin())),
+    );
+    w(
+        "tensor.json",
+        r#"{"lekalo": 1, "type": "bspline_tensor", "degrees": [1, 1, 1], "knots": [[0, 0, 1, 1], [0, 0, 1, 1], [0, 0, 1, 1]], "shape": [2, 2, 2], "control": [[0], [1], [2], [3], [4], [5], [6], [7]]}"#,
+    );
+    w("points.csv", "0,0,0\n0.5,0.5,0.5\n");
     w("lengths.txt", "0.5\n1\n2\n");
     for (name, control) in [
         ("quad.json", "[[0, 0], [1, 2], [2, 0]]"),

@@ -317,3 +317,6 @@ fn a_curvature_map_spans_the_library_curvatures_on_its_grid() {
         .stderr(contains("--curvature colours a surface"));
     assert!(!x.exists(), "nothing written on a refusal");
 }
+
+#[path = "cli_surfaces/tensor.rs"]
+mod tensor;

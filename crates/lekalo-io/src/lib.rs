@@ -7,6 +7,7 @@
 //! | format | read | write | module |
 //! |---|---|---|---|
 //! | versioned JSON envelope `{"lekalo": 1, "type": …}` (docs/formats.md) | yes | yes | [`Shape`]: curves [`Object`], [`Surface`], pp-forms |
+//! | tensor splines in N parameters `bspline_tensor`, `nurbs_tensor` (docs/formats.md) | yes | yes | [`read_tensor`], [`tensor_to_json`] |
 //! | JSON Lines of objects (batches) | yes | yes | [`read_json_lines`] |
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
@@ -57,6 +58,7 @@ mod step_read;
 mod surface_plot;
 mod surface_samples;
 mod svg;
+mod tensor_json;
 mod text_points;
 mod wireframe;
 
@@ -72,7 +74,7 @@ pub use iges::{read_iges, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use mesh_files::{mesh_text, polyline_text, MeshFormat};
-pub use npy::{npy_bytes, read_npy_file, read_npy_points};
+pub use npy::{npy_bytes, read_npy_array, read_npy_file, read_npy_points};
 pub use npz::{curve_to_npz, read_npz_curve, write_npz_curve};
 pub use numfmt::fmt_number;
 pub use obj::{grid_to_obj, polyline_to_obj};
@@ -98,4 +100,5 @@ pub use svg::{
     basis_figure, curve_figure, escape, knots_figure, residual_series, Annotation, Coincidence,
     ColorBar, CurvePlot, Face, Figure, Series, Style,
 };
+pub use tensor_json::{read_tensor, tensor_to_json, tensor_type_name};
 pub use wireframe::{wireframe_figure, Grid, Projection};

@@ -68,6 +68,16 @@ pub fn read_npy_points(bytes: &[u8], source: &str) -> IoResult<Points> {
     points_of(&shape, flat, source)
 }
 
+/// Reads a float64 `.npy` array of any shape: the shape and the elements in C (row-major)
+/// order (a Fortran-ordered file is reordered), every one finite; e.g. a grid of values
+/// `(m_1, …, m_N[, d])`.
+///
+/// # Errors
+/// As [`read_npy_points`], except that any shape is accepted.
+pub fn read_npy_array(bytes: &[u8], source: &str) -> IoResult<(Vec<usize>, Vec<f64>)> {
+    read_array(bytes, source, false)
+}
+
 /// The points of an array of `shape` whose elements (C order) are `flat`.
 fn points_of(shape: &[usize], flat: Vec<f64>, source: &str) -> IoResult<Points> {
     let d = match shape[..] {

@@ -33,6 +33,8 @@ pub enum Shape {
     Surface(Surface),
     /// `"type": "piecewise_polynomial"`.
     Pp(PiecewisePolynomial),
+    /// A tensor-product spline in `N` parameters (`"bspline_tensor"`, `"nurbs_tensor"`).
+    Tensor(lekalo::Tensor),
 }
 
 #[derive(Deserialize)]
@@ -168,6 +170,9 @@ impl Shape {
                 Shape::Surface(Surface::Nurbs(read_nurbs_surface(text, source)?))
             }
             Some("piecewise_polynomial") => Shape::Pp(read_piecewise_polynomial(text, source)?),
+            Some("bspline_tensor" | "nurbs_tensor") => {
+                Shape::Tensor(crate::tensor_json::read_tensor(text, source)?)
+            }
             _ => Shape::Curve(Object::from_json_str(text, source)?),
         })
     }
@@ -179,6 +184,7 @@ impl Shape {
             Shape::Curve(c) => c.type_name(),
             Shape::Surface(s) => s.type_name(),
             Shape::Pp(_) => "piecewise_polynomial",
+            Shape::Tensor(t) => crate::tensor_json::tensor_type_name(t),
         }
     }
 
@@ -189,6 +195,7 @@ impl Shape {
             Shape::Curve(c) => c.to_json_pretty(),
             Shape::Surface(s) => s.to_json_pretty(),
             Shape::Pp(p) => piecewise_polynomial_to_json(p),
+            Shape::Tensor(t) => crate::tensor_json::tensor_to_json(t),
         }
     }
 

@@ -9,7 +9,8 @@
 //!   arrays are borrowed, not copied);
 //! - errors: `error` (`lekalo.Error`, with `lekalo.InputError`, a `ValueError`, and
 //!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
-//! - classes: `curves`, `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
+//! - classes: `curves`, `surfaces`, `tensor` (N variables, SciPy's `NdBSpline`), `interp`
+//!   (interpolation, Hermite), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`.
@@ -24,6 +25,7 @@ mod interp;
 mod pp;
 mod query;
 mod surfaces;
+mod tensor;
 mod words;
 
 use pyo3::prelude::*;
@@ -45,6 +47,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<interp::PyCubicHermite>()?;
     m.add_class::<pp::PyPiecewisePolynomial>()?;
     m.add_class::<pp::PyPpSpace>()?;
+    m.add_class::<tensor::PyTensorBSpline>()?;
     m.add_function(wrap_pyfunction!(curves::from_json, m)?)?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;

@@ -68,6 +68,8 @@ def stub_params(fn, method):
         positional = positional[1:]
     defaults = [inspect.Parameter.empty] * (len(positional) - len(a.defaults)) + [default_of(d) for d in a.defaults]
     out = [(p.arg, False, d) for p, d in zip(positional, defaults)]
+    if a.vararg is not None:  # `*axes`: positional, no default
+        out.append((a.vararg.arg, False, inspect.Parameter.empty))
     kw = [inspect.Parameter.empty if d is None else default_of(d) for d in a.kw_defaults]
     return out + [(p.arg, True, d) for p, d in zip(a.kwonlyargs, kw)]
 

@@ -34,13 +34,17 @@ Examples:
   lekalo eval many.jsonl --samples 100 -o samples.jsonl
   lekalo eval surface.json --uv 0.3,0.7 --derivatives 2 --normals --curvature
   lekalo eval surface.json --grid 5x7 -o grid.csv
+  lekalo eval tensor.json --at 0.5,0.25,1 --at-file points.csv
 
 Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
 of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
 u, v, the point, the partial derivatives du{a}v{b}x … of every total order up to
 --derivatives (du1v0x is ∂x/∂u), with --normals the unit normal nx, ny, nz, with --curvature
 the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the surface bends
-towards the normal (S_u × S_v)/|S_u × S_v|).")]
+towards the normal (S_u × S_v)/|S_u × S_v|).
+
+Splines in N ≥ 3 parameters (bspline_tensor, nurbs_tensor): evaluated at --at x1,…,xN (several
+points in a row) and the rows of --at-file (N columns). Columns: x1 … xN, then y (y1 … yd).")]
 pub(crate) struct EvalArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -82,6 +86,10 @@ pub(crate) struct EvalArgs {
     /// Surfaces: an evenly spaced `NUxNV` parameter grid over the domain (e.g. `5x7`).
     #[arg(long, value_name = "NUxNV", conflicts_with_all = ["uv", "uv_file"])]
     grid: Option<String>,
+    /// Splines in N ≥ 3 parameters: a file of points, N columns (with or instead of --at
+    /// x1,…,xN).
+    #[arg(long, value_name = "FILE")]
+    at_file: Option<PathBuf>,
     /// Surfaces: output the unit normal nx, ny, nz.
     #[arg(long)]
     normals: bool,
@@ -155,6 +163,9 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         Loaded::Other(lekalo_io::Shape::Surface(_)) if a.torsion => bad_input(
             "--torsion is for 3-D curves; a surface's principal, Gaussian and mean curvatures come with --curvature",
         ),
+        Loaded::Other(lekalo_io::Shape::Surface(_)) if a.at_file.is_some() => bad_input(
+            "--at-file is for splines in 3 or more parameters; a surface takes --uv-file",
+        ),
         Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {
                 input: &a.input,
@@ -171,11 +182,38 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
             &s,
             v,
         ),
+        Loaded::Other(lekalo_io::Shape::Tensor(_))
+            if a.samples.is_some()
+                || a.derivatives > 0
+                || a.curvature
+                || a.torsion
+                || a.normals
+                || a.grid.is_some()
+                || !a.uv.is_empty()
+                || a.uv_file.is_some() =>
+        {
+            bad_input("a spline in N parameters is evaluated at --at x1,…,xN or --at-file FILE; --samples, --derivatives, --curvature, --torsion, --normals, --grid, --uv and --uv-file are for curves and surfaces (partial derivatives: the Python TensorBSpline's nu=)")
+        }
+        Loaded::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
+            &crate::cmd::tensor::TensorEval {
+                input: &a.input,
+                at: a.at.as_deref(),
+                at_file: a.at_file.as_deref(),
+                format: if a.json { Some("json") } else { a.format.as_deref() },
+                output: a.output.as_deref(),
+            },
+            &t,
+            v,
+        ),
         Loaded::Other(s) => not_a_curve(&a.input, &s),
         Loaded::One(_) | Loaded::Many(_)
-            if !a.uv.is_empty() || a.uv_file.is_some() || a.grid.is_some() || a.normals =>
+            if !a.uv.is_empty()
+                || a.uv_file.is_some()
+                || a.grid.is_some()
+                || a.normals
+                || a.at_file.is_some() =>
         {
-            bad_input("--uv, --uv-file, --grid and --normals are for surfaces; a curve takes --at or --samples")
+            bad_input("--uv, --uv-file, --grid and --normals are for surfaces, --at-file for splines in 3 or more parameters; a curve takes --at or --samples")
         }
         Loaded::One(obj) if a.torsion && obj.dim() != 3 => bad_input(format!(
             "{}: --torsion needs a 3-D curve and this one is {}-D (a planar curve's torsion is zero everywhere); drop --torsion",

@@ -194,6 +194,14 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
     let samples = crate::io::in_range(a.samples, 2, 1_000_000, "--samples")?;
     let loaded = load(&a.input, a.jsonl, v).map_err(|e| points_file_hint(&a.input, e))?;
     match loaded {
+        Loaded::Other(Shape::Tensor(t)) => crate::report::print_report(
+            a.json,
+            &crate::cmd::tensor::info_json(&t),
+            crate::cmd::tensor::info_text,
+            a.output.as_deref(),
+            &inputs,
+            v,
+        ),
         Loaded::Other(shape) => {
             let j = match &shape {
                 Shape::Surface(s) => shapes::surface_info_json(s, samples)?,

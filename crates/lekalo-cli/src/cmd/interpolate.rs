@@ -249,6 +249,9 @@ pub(crate) enum Tangents {
 #[command(after_help = "\
 Curves (document 000): global B-spline interpolation, any degree, every parametrisation,
 knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
+Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
+slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
+takes one degree or one per direction.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
 --hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 
@@ -261,6 +264,7 @@ Examples:
   lekalo interpolate pts.csv --end natural -o natural.step
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
+  lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,1 --param uniform -o tensor.json
   lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
   lekalo interpolate xy.csv --function --hermite monotone
   lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json
@@ -269,9 +273,10 @@ Examples:
 pub(crate) struct InterpolateArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     points: PathBuf,
-    /// Degree (curves and the u direction of surfaces).
-    #[arg(long, short = 'p', default_value_t = 3)]
-    degree: usize,
+    /// Degree (curves and the u direction of surfaces); for a grid, one degree per direction
+    /// may be listed (`3,3,1`).
+    #[arg(long, short = 'p', value_delimiter = ',', default_value = "3")]
+    degree: Vec<usize>,
     /// Degree in v of a surface (default: --degree, at most columns − 1).
     #[arg(long)]
     degree_v: Option<usize>,
@@ -294,10 +299,12 @@ pub(crate) struct InterpolateArgs {
     /// Derivative at the end, as --start-derivative. Formerly `--dn`.
     #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     dn: Option<String>,
-    /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface.
+    /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface; with three or
+    /// more sizes (e.g. 5x4x3), a grid of values by a tensor-product spline in as many
+    /// parameters (rows: the first direction slowest).
     #[arg(
         long,
-        value_name = "ROWSxCOLS",
+        value_name = "ROWSxCOLS[x…]",
         conflicts_with_all = ["end", "knots", "d0", "dn", "function", "hermite"]
     )]
     grid: Option<String>,
@@ -373,6 +380,26 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             "--samples samples the curves of a Parquet batch; for one points file, write the curve and sample it with `lekalo eval curve.json --samples N`",
         );
     }
+    // three sizes or more: a tensor spline; one or two keep the surface's path and messages
+    if let Some(g) = a
+        .grid
+        .as_deref()
+        .filter(|g| g.split(['x', 'X', '×']).count() >= 3)
+    {
+        if a.degree_v.is_some() {
+            return bad_input("--degree-v is for surfaces; a grid in 3 or more directions takes its degrees from --degree (one, or one per direction: --degree 3,3,1)");
+        }
+        let g = crate::cmd::tensor::GridInterpolation {
+            grid: g,
+            factors: crate::cmd::tensor::grid_factors(g)?,
+            degree: &a.degree,
+            param,
+            max_condition: a.max_condition,
+            output: a.out.output.as_deref(),
+            to: a.out.to.as_deref(),
+        };
+        return crate::cmd::tensor::interpolate(&g, &a.points, v);
+    }
     let (pts, name) = crate::io::read_points(&a.points)?;
     let inputs = vec![a.points.clone()];
     if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
@@ -391,10 +418,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
     }
     if let Some(g) = &a.grid {
         let (nu, nv) = net_size(g, "--grid")?;
-        let degree_v = a
-            .degree_v
-            .unwrap_or(a.degree.min(nv.saturating_sub(1)).max(1));
-        let mut fit = SurfaceInterpolation::new(a.degree, degree_v).parametrization(param);
+        let (degree, listed_v) = match a.degree.as_slice() {
+            [p, q] if a.degree_v.is_none() => (*p, Some(*q)),
+            _ => (single_degree(a)?, a.degree_v),
+        };
+        let degree_v = listed_v.unwrap_or(degree.min(nv.saturating_sub(1)).max(1));
+        let mut fit = SurfaceInterpolation::new(degree, degree_v).parametrization(param);
         if let Some(limit) = a.max_condition {
             fit = fit.max_condition(limit);
         }
@@ -496,7 +525,7 @@ fn curve_interpolation(a: &InterpolateArgs, param: Parametrization) -> Result<Cu
             .transpose()?;
     let end = a.end.condition(start, end)?;
     let knots = a.knots;
-    let mut interp = CurveInterpolation::new(a.degree)
+    let mut interp = CurveInterpolation::new(single_degree(a)?)
         .parametrization(param)
         .knot_placement(knots)
         .end_condition(end);
@@ -504,6 +533,17 @@ fn curve_interpolation(a: &InterpolateArgs, param: Parametrization) -> Result<Cu
         interp = interp.max_condition(limit);
     }
     Ok(interp)
+}
+
+/// The one degree of a curve (a list of degrees is for grids).
+fn single_degree(a: &InterpolateArgs) -> Result<usize> {
+    match a.degree.as_slice() {
+        [p] => Ok(*p),
+        list => bad_input(format!(
+            "--degree: {} degrees given; a list of degrees is for grids (--grid), one per direction, and a curve takes one",
+            list.len()
+        )),
+    }
 }
 
 fn tangents(t: Tangents, tension: f64) -> TangentEstimate {

@@ -21,6 +21,7 @@ pub(crate) mod jump;
 pub(crate) mod knot;
 pub(crate) mod make_surface;
 pub(crate) mod surface_eval;
+pub(crate) mod tensor;
 // fitting: least squares, smoothing, tolerance
 pub(crate) mod fit;
 pub(crate) mod fit_periodic;

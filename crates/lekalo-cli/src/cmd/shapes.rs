@@ -308,6 +308,10 @@ pub(crate) fn convert(
         )?),
         (Shape::Pp(p), "csv") => Ok(pp_csv(p, samples)?.into_bytes()),
         (Shape::Pp(p), "svg" | "png") => plot(&pp_figure(p, samples, None)?),
+        (Shape::Tensor(t), other) => bad_input(format!(
+            "a spline in {} parameters converts to json only, not \"{other}\"",
+            t.n_vars()
+        )),
         (Shape::Surface(_), other) => bad_input(format!(
             "a surface converts to json, csv, step, obj, svg or png, not \"{other}\""
         )),

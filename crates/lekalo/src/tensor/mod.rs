@@ -13,9 +13,11 @@
 //! - `nurbs.rs`: [`TensorNurbs`], the B-spline of homogeneous points, and its quotient rule.
 //! - `interpolate.rs`: [`TensorInterpolation`], grid interpolation by one factorisation and one
 //!   sweep of solves per direction.
+//! - `any.rs`: [`Tensor`], one value for either kind.
 //! - `fit.rs`: [`tensor_grid_least_squares`], least squares on a grid with given knots by one
 //!   sweep of curve fits per direction.
 
+mod any;
 mod fit;
 mod grid_eval;
 mod interpolate;
@@ -23,6 +25,7 @@ mod nurbs;
 mod slice;
 mod spline;
 
+pub use any::Tensor;
 pub use fit::tensor_grid_least_squares;
 pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};

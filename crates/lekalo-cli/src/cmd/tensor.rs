@@ -1,0 +1,280 @@
+//! Tensor-product splines in `N ≥ 3` parameters in the CLI: `interpolate --grid AxBxC…`,
+//! `eval` at points and `info` of a `bspline_tensor` / `nurbs_tensor` file. Parsing and
+//! presentation only; the spline work is the library's ([`lekalo::TensorInterpolation`],
+//! [`lekalo::Tensor`]).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use lekalo::{Parametrization, Points, Tensor, TensorInterpolation};
+use serde_json::{json, Value};
+
+use crate::io::{bad_input, emit, format_of, numbers, BadInput};
+use crate::Verbosity;
+
+/// The factors of a `--grid` size `AxBxC…` (also `×`), each at least 1.
+pub(crate) fn grid_factors(text: &str) -> Result<Vec<usize>> {
+    text.split(['x', 'X', '×'])
+        .map(|s| match s.trim().parse::<usize>() {
+            Ok(n) if n >= 1 => Ok(n),
+            _ => bad_input(format!(
+                "--grid: \"{}\" in \"{text}\" is not a positive integer; write the grid's size in each direction, e.g. 5x4x3",
+                s.trim()
+            )),
+        })
+        .collect()
+}
+
+/// The degree of each of `n` directions from `--degree` (one value for all, or one each).
+pub(crate) fn degrees_for(degree: &[usize], n: usize) -> Result<Vec<usize>> {
+    match degree.len() {
+        1 => Ok(vec![degree[0]; n]),
+        k if k == n => Ok(degree.to_vec()),
+        k => bad_input(format!(
+            "--degree: {k} degrees for a grid of {n} directions; give one degree, or one per direction (e.g. --degree {})",
+            vec!["3"; n].join(",")
+        )),
+    }
+}
+
+/// What `interpolate --grid` with three or more factors asks.
+pub(crate) struct GridInterpolation<'a> {
+    pub(crate) grid: &'a str,
+    pub(crate) factors: Vec<usize>,
+    pub(crate) degree: &'a [usize],
+    pub(crate) param: Parametrization,
+    pub(crate) max_condition: Option<f64>,
+    pub(crate) output: Option<&'a Path>,
+    pub(crate) to: Option<&'a str>,
+}
+
+/// The tensor spline through the values of `file` (one row a grid node, the first direction
+/// slowest), written as JSON.
+pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) -> Result<()> {
+    let format = format_of(g.to, g.output, "json");
+    if format != "json" {
+        return bad_input(format!(
+            "a spline in {} parameters is written as json, not \"{format}\"",
+            g.factors.len()
+        ));
+    }
+    let degrees = degrees_for(g.degree, g.factors.len())?;
+    // the size, refused before the values are read
+    let Some(nodes) = g
+        .factors
+        .iter()
+        .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+    else {
+        return bad_input(format!(
+            "--grid {}: the number of grid nodes overflows; give a smaller grid",
+            g.grid
+        ));
+    };
+    crate::io::check_size(nodes, "--grid")?;
+    let (values, name) = grid_values(file, &g.factors)?;
+    if values.len() != nodes {
+        return bad_input(format!(
+            "--grid {}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
+            g.grid,
+            values.len()
+        ));
+    }
+    let mut interp = TensorInterpolation::new(degrees).parametrization(g.param);
+    if let Some(limit) = g.max_condition {
+        interp = interp.max_condition(limit);
+    }
+    let s = interp
+        .interpolate(values.as_view(), &g.factors)
+        .map_err(|e| match e {
+            lekalo::Error::Degree { .. } => {
+                BadInput(format!("--degree (grid {}): {e}", g.grid)).into()
+            }
+            other => anyhow::Error::from(other),
+        })?;
+    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
+    emit(g.output, text.as_bytes(), &[file.to_path_buf()], v)
+}
+
+/// The values of a grid file: rows of a points file, or a `.npy` array of shape
+/// `(A, B, C, …[, d…])` whose first axes are the grid's (or `(n, d)` / `(n,)` rows).
+fn grid_values(file: &Path, factors: &[usize]) -> Result<(Points, String)> {
+    let npy = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    if !npy {
+        return crate::io::read_points(file);
+    }
+    let (bytes, name) = lekalo_io::read_input_bytes(file)?;
+    let (shape, flat) = lekalo_io::read_npy_array(&bytes, &name)?;
+    let n = factors.len();
+    let dim = if shape.len() >= n && shape[..n] == *factors {
+        shape[n..].iter().product::<usize>()
+    } else {
+        match shape[..] {
+            [_] => 1,
+            [_, d] => d,
+            _ => {
+                return bad_input(format!(
+                    "{name}: shape {shape:?} is neither the grid's {factors:?} (with value axes after it) nor rows (n, d)"
+                ))
+            }
+        }
+    };
+    Ok((Points::from_flat(dim.max(1), flat)?, name))
+}
+
+/// What `eval` asks of a tensor spline.
+pub(crate) struct TensorEval<'a> {
+    pub(crate) input: &'a Path,
+    /// `--at x1,…,xN[,x1,…]`.
+    pub(crate) at: Option<&'a str>,
+    /// `--at-file FILE`: N columns.
+    pub(crate) at_file: Option<&'a Path>,
+    pub(crate) format: Option<&'a str>,
+    pub(crate) output: Option<&'a Path>,
+}
+
+/// Evaluates at the points of `--at` and `--at-file`: columns `x1 … xN`, then the value
+/// (`y`, or `y1 … yd`).
+pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, v: Verbosity) -> Result<()> {
+    let n = t.n_vars();
+    let mut xs = Vec::new();
+    if let Some(at) = e.at {
+        let p = numbers(at, "--at")?;
+        if p.len() % n != 0 {
+            return bad_input(format!(
+                "--at: {} values for a spline in {n} parameters; give {n} coordinates a point",
+                p.len()
+            ));
+        }
+        xs.extend(p);
+    }
+    if let Some(f) = e.at_file {
+        let (pts, name) = crate::io::read_points(f)?;
+        if pts.dim() != n {
+            return bad_input(format!(
+                "{name}: --at-file needs {n} columns, one per parameter; found {}",
+                pts.dim()
+            ));
+        }
+        xs.extend_from_slice(pts.as_slice());
+    }
+    if xs.is_empty() {
+        return bad_input(format!(
+            "{}: a spline in {n} parameters is evaluated at --at x1,…,x{n} or at the rows of --at-file FILE",
+            e.input.display()
+        ));
+    }
+    let dim = t.dim();
+    let m = xs.len() / n;
+    crate::io::check_memory::<f64>(m.saturating_mul(dim), "--at")?;
+    let mut out = vec![0.0; m * dim];
+    t.eval_batch(&xs, &mut out)
+        .map_err(|err| BadInput(format!("{}: {err}", e.input.display())))?;
+    let mut columns: Vec<String> = (1..=n).map(|a| format!("x{a}")).collect();
+    if dim == 1 {
+        columns.push("y".into());
+    } else {
+        columns.extend((1..=dim).map(|k| format!("y{k}")));
+    }
+    let rows = xs.chunks_exact(n).zip(out.chunks_exact(dim));
+    let text = match format_of(e.format, e.output, "csv").as_str() {
+        "csv" => {
+            let mut s = columns.join(",");
+            s.push('\n');
+            for (x, y) in rows {
+                let cells: Vec<String> = x
+                    .iter()
+                    .chain(y)
+                    .map(|&z| lekalo_io::fmt_number(z))
+                    .collect();
+                s.push_str(&cells.join(","));
+                s.push('\n');
+            }
+            s
+        }
+        "json" => {
+            let rows: Vec<Vec<f64>> = rows.map(|(x, y)| [x, y].concat()).collect();
+            format!("{:#}\n", json!({"columns": columns, "rows": rows}))
+        }
+        other => return bad_input(format!("--format {other}: use csv or json")),
+    };
+    let inputs: Vec<PathBuf> = vec![e.input.to_path_buf()];
+    emit(e.output, text.as_bytes(), &inputs, v)
+}
+
+/// The facts `info` reports of a tensor spline.
+pub(crate) fn info_json(t: &Tensor) -> Value {
+    let control = t.control_points();
+    let bbox = |p: &Points| {
+        p.bounding_box()
+            .map_or(Value::Null, |(lo, hi)| json!({"min": lo, "max": hi}))
+    };
+    let knots: Vec<&[f64]> = t.knots().iter().map(|k| k.as_slice()).collect();
+    let domain: Vec<[f64; 2]> = t.domain().into_iter().map(|(a, b)| [a, b]).collect();
+    json!({
+        "type": lekalo_io::tensor_type_name(t),
+        "parameters": t.n_vars(),
+        "dim": t.dim(),
+        "degrees": t.degrees(),
+        "shape": t.shape(),
+        "control_points": control.len(),
+        "rational": t.weights().is_some(),
+        "knots": knots,
+        "domain": domain,
+        "control_box": bbox(&control),
+    })
+}
+
+/// The text form of [`info_json`].
+pub(crate) fn info_text(j: &Value) -> String {
+    let list = |v: &Value| {
+        v.as_array()
+            .map(|a| {
+                a.iter()
+                    .map(Value::to_string)
+                    .collect::<Vec<_>>()
+                    .join(" × ")
+            })
+            .unwrap_or_default()
+    };
+    let mut s = String::new();
+    let _ = writeln!(s, "type            {}", j["type"].as_str().unwrap_or(""));
+    let _ = writeln!(s, "parameters      {}", j["parameters"]);
+    let _ = writeln!(s, "dimension       {}", j["dim"]);
+    let _ = writeln!(s, "degrees         {}", list(&j["degrees"]));
+    let _ = writeln!(
+        s,
+        "net             {} = {} control points",
+        list(&j["shape"]),
+        j["control_points"]
+    );
+    let domain: Vec<String> = j["domain"]
+        .as_array()
+        .map(|a| a.iter().map(|d| format!("[{}, {}]", d[0], d[1])).collect())
+        .unwrap_or_default();
+    let _ = writeln!(s, "domain          {}", domain.join(" × "));
+    let _ = writeln!(
+        s,
+        "control box     {} .. {}",
+        j["control_box"]["min"], j["control_box"]["max"]
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_factors_and_degrees() {
+        assert_eq!(grid_factors("5x4×3").unwrap(), vec![5, 4, 3]);
+        assert!(grid_factors("5x0x3").is_err());
+        assert!(grid_factors("5xax3").is_err());
+        assert_eq!(degrees_for(&[2], 3).unwrap(), vec![2, 2, 2]);
+        assert_eq!(degrees_for(&[3, 3, 1], 3).unwrap(), vec![3, 3, 1]);
+        let e = degrees_for(&[3, 1], 3).unwrap_err().to_string();
+        assert!(e.contains("--degree"), "{e}");
+    }
+}

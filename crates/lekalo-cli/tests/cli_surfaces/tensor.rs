@@ -1,0 +1,282 @@
+//! Splines in three or more parameters: `interpolate --grid AxBxC`, `eval`, `info`,
+//! `convert`, and their errors (exit code 2, naming the option or field).
+
+use std::fs;
+use std::path::Path;
+
+use predicates::str::contains;
+
+use super::lekalo;
+
+/// `f(x, y, z) = x·y + z²` on the uniform grid of `[0, 1]³` with `shape` nodes, one value a
+/// row, the first direction slowest.
+fn values(shape: [u32; 3]) -> String {
+    let mut s = String::new();
+    let at = |k: u32, n: u32| f64::from(k) / f64::from(n - 1);
+    for i in 0..shape[0] {
+        for j in 0..shape[1] {
+            for k in 0..shape[2] {
+                let (x, y, z) = (at(i, shape[0]), at(j, shape[1]), at(k, shape[2]));
+                s.push_str(&format!("{:?}\n", x * y + z * z));
+            }
+        }
+    }
+    s
+}
+
+fn interpolated(dir: &Path) -> std::path::PathBuf {
+    let v = dir.join("values.txt");
+    fs::write(&v, values([5, 4, 3])).unwrap();
+    let t = dir.join("tensor.json");
+    lekalo()
+        .args(["interpolate"])
+        .arg(&v)
+        .args([
+            "--grid", "5x4x3", "--degree", "3,3,2", "--param", "uniform", "-o",
+        ])
+        .arg(&t)
+        .assert()
+        .success();
+    t
+}
+
+#[test]
+fn a_grid_of_values_interpolates_evaluates_and_reports() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let text = fs::read_to_string(&t).unwrap();
+    assert!(text.contains("\"type\": \"bspline_tensor\""), "{text}");
+    assert!(text.contains("\"shape\": [5,4,3]"), "{text}");
+    // the spline space holds the polynomial: it is reproduced everywhere
+    let out = lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--at", "0.3,0.7,0.45,1,1,1", "--json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(j["columns"], serde_json::json!(["x1", "x2", "x3", "y"]));
+    let y0 = j["rows"][0][3].as_f64().unwrap();
+    assert!((y0 - (0.3 * 0.7 + 0.45 * 0.45)).abs() < 1e-12, "{y0}");
+    assert!((j["rows"][1][3].as_f64().unwrap() - 2.0).abs() < 1e-12);
+    // a file of points, CSV out
+    let p = d.path().join("points.csv");
+    fs::write(&p, "0,0,0\n0.5,0.5,0.5\n").unwrap();
+    lekalo()
+        .arg("eval")
+        .arg(&t)
+        .arg("--at-file")
+        .arg(&p)
+        .assert()
+        .success()
+        .stdout(contains("x1,x2,x3,y\n0,0,0,"))
+        .stdout(contains("0.5,0.5,0.5,0.5"));
+    lekalo()
+        .arg("info")
+        .arg(&t)
+        .assert()
+        .success()
+        .stdout(contains("parameters      3"))
+        .stdout(contains("degrees         3 × 3 × 2"))
+        .stdout(contains("net             5 × 4 × 3 = 60 control points"));
+    let copy = d.path().join("copy.json");
+    lekalo()
+        .arg("convert")
+        .arg(&t)
+        .arg("-o")
+        .arg(&copy)
+        .assert()
+        .success();
+    assert_eq!(fs::read_to_string(&copy).unwrap(), text);
+    lekalo()
+        .arg("convert")
+        .arg(&t)
+        .args(["--to", "step"])
+        .assert()
+        .code(2)
+        .stderr(contains("converts to json only"));
+}
+
+/// A float64 `.npy` file of `shape` holding `data` (C order).
+fn npy(shape: &[usize], data: &[f64]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({},), }}",
+        dims.join(", ")
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend(u16::try_from(header.len()).unwrap().to_le_bytes());
+    out.extend(header.as_bytes());
+    for v in data {
+        out.extend(v.to_le_bytes());
+    }
+    out
+}
+
+#[test]
+fn a_npy_grid_is_read_with_its_shape_or_as_rows() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let expected = fs::read_to_string(&t).unwrap();
+    let data: Vec<f64> = values([5, 4, 3])
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    for shape in [vec![5, 4, 3], vec![60], vec![60, 1], vec![5, 4, 3, 1]] {
+        let f = d.path().join("values.npy");
+        fs::write(&f, npy(&shape, &data)).unwrap();
+        let out = lekalo()
+            .arg("interpolate")
+            .arg(&f)
+            .args(["--grid", "5x4x3", "--degree", "3,3,2", "--param", "uniform"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        assert_eq!(String::from_utf8(out).unwrap(), expected, "{shape:?}");
+    }
+    let f = d.path().join("values.npy");
+    fs::write(&f, npy(&[3, 4, 5], &data)).unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&f)
+        .args(["--grid", "5x4x3"])
+        .assert()
+        .code(2)
+        .stderr(contains("neither the grid's"));
+}
+
+#[test]
+fn two_sizes_keep_the_surface_and_a_degree_list_is_u_then_v() {
+    let d = tempfile::tempdir().unwrap();
+    let pts = d.path().join("grid.csv");
+    let mut s = String::new();
+    for i in 0..4 {
+        for j in 0..3 {
+            s.push_str(&format!("{i},{j},{}\n", i * j + j * j));
+        }
+    }
+    fs::write(&pts, s).unwrap();
+    let run = |args: &[&str]| {
+        lekalo()
+            .arg("interpolate")
+            .arg(&pts)
+            .args(["--grid", "4x3"])
+            .args(args)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    let a = run(&["--degree", "3", "--degree-v", "2"]);
+    assert_eq!(a, run(&["--degree", "3,2"]));
+    assert!(String::from_utf8_lossy(&a).contains("\"bspline_surface\""));
+}
+
+#[test]
+fn bad_grids_exit_2_naming_the_option() {
+    let d = tempfile::tempdir().unwrap();
+    let v = d.path().join("values.txt");
+    fs::write(&v, values([5, 4, 3])).unwrap();
+    let fails = |args: &[&str], needle: &str| {
+        lekalo()
+            .arg("interpolate")
+            .arg(&v)
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    };
+    fails(&["--grid", "5x4x4"], "--grid 5x4x4: 80 grid nodes");
+    fails(&["--grid", "5x4x3", "--degree", "3,3,3"], "--degree");
+    fails(
+        &["--grid", "5x4x3", "--degree", "3,3"],
+        "--degree: 2 degrees",
+    );
+    fails(&["--grid", "5x0x3"], "--grid");
+    fails(&["--grid", "100000x100000x100000"], "--grid");
+    fails(&["--grid", "99999999999x99999999999x9999999"], "overflows");
+    fails(&["--degree", "3,2"], "--degree: 2 degrees given");
+    let nan = d.path().join("nan.txt");
+    fs::write(&nan, "1\nnan\n1\n1\n").unwrap();
+    lekalo()
+        .arg("interpolate")
+        .arg(&nan)
+        .args(["--grid", "1x2x2"])
+        .assert()
+        .code(2)
+        .stderr(contains("not finite"));
+}
+
+#[test]
+fn bad_points_and_files_exit_2() {
+    let d = tempfile::tempdir().unwrap();
+    let t = interpolated(d.path());
+    let eval = |args: &[&str], needle: &str| {
+        lekalo()
+            .arg("eval")
+            .arg(&t)
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    };
+    eval(&["--at", "0.5,0.5"], "--at: 2 values");
+    eval(&["--at", "0.5,0.5,2"], "tensor.json");
+    eval(&[], "--at-file");
+    eval(
+        &["--at", "0.5,0.5,0.5", "--derivatives", "1"],
+        "--derivatives",
+    );
+    let text = fs::read_to_string(&t).unwrap();
+    let bad = d.path().join("bad.json");
+    fs::write(
+        &bad,
+        text.replace("\"shape\": [5,4,3]", "\"shape\": [5,4,4]"),
+    )
+    .unwrap();
+    lekalo()
+        .arg("info")
+        .arg(&bad)
+        .assert()
+        .code(2)
+        .stderr(contains("field `shape`"));
+}
+
+#[test]
+fn a_nurbs_tensor_evaluates_with_its_weights() {
+    let d = tempfile::tempdir().unwrap();
+    let t = d.path().join("n.json");
+    // the trilinear net x + 2y + 4z, weight 3 at the corner (1, 1, 1)
+    fs::write(
+        &t,
+        r#"{"lekalo": 1, "type": "nurbs_tensor", "degrees": [1, 1, 1],
+        "knots": [[0, 0, 1, 1], [0, 0, 1, 1], [0, 0, 1, 1]], "shape": [2, 2, 2],
+        "control": [[0], [4], [2], [6], [1], [5], [3], [7]],
+        "weights": [1, 1, 1, 1, 1, 1, 1, 3]}"#,
+    )
+    .unwrap();
+    // at a corner: the control point; at the centre: Σ w P / Σ w = (28 + 14) / 10
+    lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--at", "1,1,1,0.5,0.5,0.5"])
+        .assert()
+        .success()
+        .stdout(contains("1,1,1,7\n0.5,0.5,0.5,4.2\n"));
+    lekalo()
+        .arg("info")
+        .arg(&t)
+        .assert()
+        .success()
+        .stdout(contains("nurbs_tensor"));
+}

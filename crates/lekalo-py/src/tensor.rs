@@ -1,0 +1,293 @@
+//! `TensorBSpline`: tensor-product B-splines in `N` variables with SciPy's `NdBSpline`
+//! conventions: knots `t` (one 1-D array per variable), coefficients `c` of shape
+//! `(n_1, …, n_N, *trailing)` in C order (the library's net, first variable slowest, with
+//! `dim = prod(trailing)`), degrees `k`. Evaluation at `(..., N)` arrays gives
+//! `(..., *trailing)`.
+
+use lekalo::{Points, PointsRef, TensorBSpline, TensorInterpolation};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{array, check_size, filled, floats, vec1};
+use crate::error::{bad, lib_err, python_terms};
+
+/// The library's error as `lekalo.Error`, prefixed with the Python argument at fault.
+fn named(what: &str, e: &lekalo::Error) -> PyErr {
+    bad(format!("{what}: {}", python_terms(&e.to_string())))
+}
+
+/// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
+fn constructor_arg(e: &lekalo::Error) -> &'static str {
+    match e {
+        lekalo::Error::LengthMismatch { .. } | lekalo::Error::TooLarge { .. } => "c",
+        lekalo::Error::Degree { .. } => "k",
+        _ => "t",
+    }
+}
+
+/// A tensor-product B-spline in `N` variables (SciPy's `NdBSpline`, with the library's
+/// validation and evaluation).
+#[pyclass(name = "TensorBSpline", module = "lekalo", frozen)]
+pub(crate) struct PyTensorBSpline {
+    inner: TensorBSpline,
+    /// The coefficients' axes after the `N` net axes (`()` for scalar values).
+    trailing: Vec<usize>,
+}
+
+/// Degrees from `k`: one integer for every variable, or one per variable.
+fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
+    if let Ok(p) = k.extract::<usize>() {
+        return Ok(vec![p; n]);
+    }
+    let list: Vec<usize> = k.extract().map_err(|_| {
+        bad("k: expected a non-negative integer or one per variable (a tuple of ints)".into())
+    })?;
+    if list.len() != n {
+        return Err(bad(format!(
+            "k: {} degrees for {n} variables; give one integer, or one per variable",
+            list.len()
+        )));
+    }
+    Ok(list)
+}
+
+/// One 1-D float array per variable.
+fn axes_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
+    let items: Vec<Bound<'_, PyAny>> = obj
+        .try_iter()
+        .map_err(|_| {
+            bad(format!(
+                "{what}: expected a sequence of 1-D arrays, one per variable"
+            ))
+        })?
+        .collect::<PyResult<_>>()?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(a, x)| vec1(x, &format!("{what}[{a}]")))
+        .collect()
+}
+
+impl PyTensorBSpline {
+    fn out_shape(&self, lead: &[usize]) -> Vec<usize> {
+        [lead, &self.trailing].concat()
+    }
+
+    fn orders(&self, nu: Option<Vec<usize>>) -> PyResult<Option<Vec<usize>>> {
+        match nu {
+            Some(v) if v.len() != self.inner.n_vars() => Err(bad(format!(
+                "nu: {} orders for {} variables; give one derivative order per variable",
+                v.len(),
+                self.inner.n_vars()
+            ))),
+            Some(v) if v.iter().all(|&o| o == 0) => Ok(None),
+            other => Ok(other),
+        }
+    }
+}
+
+#[pymethods]
+impl PyTensorBSpline {
+    /// `TensorBSpline(t, c, k)`: knots `t` (one 1-D array per variable), coefficients `c` of
+    /// shape `(n_1, …, n_N, *trailing)` with `n_a = len(t[a]) - k[a] - 1`, degrees `k` (one
+    /// integer, or one per variable) — SciPy's `NdBSpline(t, c, k)`.
+    #[new]
+    fn new(t: &Bound<'_, PyAny>, c: &Bound<'_, PyAny>, k: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let knots = axes_arg(t, "t")?;
+        let n = knots.len();
+        let degrees = degrees_arg(k, n)?;
+        let ca = floats(c, "c")?;
+        let shape = ca.shape();
+        if shape.len() < n {
+            return Err(bad(format!(
+                "c: shape {shape:?} has fewer axes than the {n} variables; c has shape (n_1, …, n_N, *trailing)"
+            )));
+        }
+        let trailing = shape[n..].to_vec();
+        let dim: usize = trailing.iter().product();
+        if dim == 0 {
+            return Err(bad(format!(
+                "c: a trailing axis of shape {shape:?} is empty"
+            )));
+        }
+        for (a, (kv, &p)) in knots.iter().zip(&degrees).enumerate() {
+            let want = kv.len().saturating_sub(p + 1);
+            if shape[a] != want {
+                return Err(bad(format!(
+                    "c: axis {a} has {} coefficients, but t[{a}] ({} knots) and k[{a}] = {p} give {want}",
+                    shape[a],
+                    kv.len()
+                )));
+            }
+        }
+        let control = Points::from_flat(dim, ca.data().to_vec()).map_err(|e| named("c", &e))?;
+        let inner = TensorBSpline::new(degrees, knots, control)
+            .map_err(|e| named(constructor_arg(&e), &e))?;
+        Ok(Self { inner, trailing })
+    }
+
+    /// The knot vectors, one 1-D array per variable.
+    #[getter]
+    fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let arrays: Vec<Bound<'py, PyAny>> = self
+            .inner
+            .knots()
+            .iter()
+            .map(|k| crate::convert::vec_array(py, k.as_slice()))
+            .collect();
+        PyTuple::new(py, arrays)
+    }
+
+    /// The coefficients, shape `(n_1, …, n_N, *trailing)`.
+    #[getter]
+    fn c<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let shape = [self.inner.shape(), &self.trailing].concat();
+        array(py, self.inner.control_points().as_slice().to_vec(), &shape)
+    }
+
+    /// The degrees, one per variable.
+    #[getter]
+    fn k(&self) -> Vec<usize> {
+        self.inner.degrees().to_vec()
+    }
+
+    /// The number of variables `N`.
+    #[getter]
+    fn ndim(&self) -> usize {
+        self.inner.n_vars()
+    }
+
+    /// The domain `((a_1, b_1), …, (a_N, b_N))`.
+    #[getter]
+    fn domain(&self) -> Vec<(f64, f64)> {
+        self.inner.domain()
+    }
+
+    /// The spline (or, with `nu`, the partial derivative of orders `nu`, one per variable) at
+    /// the points `x` of shape `(..., N)`: shape `(..., *trailing)`.
+    #[pyo3(signature = (x, nu = None))]
+    fn __call__(
+        &self,
+        py: Python<'_>,
+        x: &Bound<'_, PyAny>,
+        nu: Option<Vec<usize>>,
+    ) -> PyResult<Py<PyAny>> {
+        let n = self.inner.n_vars();
+        let xa = floats(x, "x")?;
+        let shape = xa.shape();
+        if shape.last() != Some(&n) {
+            return Err(bad(format!(
+                "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
+            )));
+        }
+        let orders = self.orders(nu)?;
+        let lead = &shape[..shape.len() - 1];
+        let out_shape = self.out_shape(lead);
+        check_size("x", &[lead.iter().product(), self.inner.dim()])?;
+        let xs = xa.data();
+        let out = filled(py, &out_shape, |out| {
+            self.inner.par_eval_batch(xs, orders.as_deref(), out)
+        })?;
+        Ok(out.unbind())
+    }
+
+    /// The spline (or the partial derivative of orders `nu`) on the grid `axes[0] × … ×
+    /// axes[N-1]`: shape `(len(axes[0]), …, len(axes[N-1]), *trailing)`.
+    #[pyo3(signature = (*axes, nu = None))]
+    fn grid(
+        &self,
+        py: Python<'_>,
+        axes: &Bound<'_, PyTuple>,
+        nu: Option<Vec<usize>>,
+    ) -> PyResult<Py<PyAny>> {
+        let lists = axes_arg(axes.as_any(), "axes")?;
+        let n = self.inner.n_vars();
+        if lists.len() != n {
+            return Err(bad(format!(
+                "axes: {} parameter lists for {n} variables; pass one 1-D array per variable",
+                lists.len()
+            )));
+        }
+        let orders = self.orders(nu)?;
+        let lead: Vec<usize> = lists.iter().map(Vec::len).collect();
+        check_size("axes", &[&lead[..], &[self.inner.dim()]].concat())?;
+        let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+        let out = filled(py, &self.out_shape(&lead), |out| {
+            self.inner.eval_grid(&refs, orders.as_deref(), out)
+        })?;
+        Ok(out.unbind())
+    }
+
+    /// The interpolating spline of the grid `values` (shape `(m_1, …, m_N, *trailing)`) at the
+    /// coordinates `axes` (one strictly increasing 1-D array per variable), of the given degrees
+    /// (one integer or one per variable; free ends, averaged knots): SciPy's `make_ndbspl`
+    /// up to the choice of knots.
+    #[staticmethod]
+    #[pyo3(signature = (axes, values, degrees = None))]
+    fn interpolate_grid(
+        py: Python<'_>,
+        axes: &Bound<'_, PyAny>,
+        values: &Bound<'_, PyAny>,
+        degrees: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let lists = axes_arg(axes, "axes")?;
+        let n = lists.len();
+        let degrees = match degrees {
+            Some(d) => degrees_arg(d, n)?,
+            None => vec![3; n],
+        };
+        let va = floats(values, "values")?;
+        let shape = va.shape();
+        let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
+        if shape.len() < n || shape[..n] != sizes[..] {
+            return Err(bad(format!(
+                "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
+            )));
+        }
+        let trailing = shape[n..].to_vec();
+        let dim: usize = trailing.iter().product();
+        let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+        let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+        let inner = py
+            .detach(|| TensorInterpolation::new(degrees).interpolate_at(&refs, pts))
+            .map_err(|e| match e {
+                lekalo::Error::Degree { .. } => named("degrees", &e),
+                lekalo::Error::KnotsNotSorted { .. }
+                | lekalo::Error::InvalidArgument { .. }
+                | lekalo::Error::NonFinite { .. } => named("axes", &e),
+                other => lib_err(other),
+            })?;
+        Ok(Self { inner, trailing })
+    }
+
+    /// The same spline from a `scipy.interpolate.NdBSpline` (its `t`, `c`, `k`, bit for bit).
+    #[staticmethod]
+    fn from_scipy(spline: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let c = spline.getattr("c")?;
+        let c = spline
+            .py()
+            .import("numpy")?
+            .call_method1("ascontiguousarray", (c, "float64"))?;
+        Self::new(&spline.getattr("t")?, &c, &spline.getattr("k")?)
+    }
+
+    /// The same spline as a `scipy.interpolate.NdBSpline` (bit for bit; no extrapolation).
+    fn to_scipy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let nd = py.import("scipy.interpolate")?.getattr("NdBSpline")?;
+        let kw = pyo3::types::PyDict::new(py);
+        kw.set_item("extrapolate", false)?;
+        nd.call(
+            (self.t(py)?, self.c(py)?, PyTuple::new(py, self.k())?),
+            Some(&kw),
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "TensorBSpline(k={:?}, shape={:?}, trailing={:?})",
+            self.inner.degrees(),
+            self.inner.shape(),
+            self.trailing
+        )
+    }
+}

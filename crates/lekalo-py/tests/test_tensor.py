@@ -1,0 +1,130 @@
+"""``TensorBSpline``: SciPy's ``NdBSpline`` layout, evaluation at points and on grids, partial
+derivatives, grid interpolation, and the round trip with SciPy, checked against
+``scipy.interpolate.NdBSpline`` and ``make_ndbspl`` in 3 variables."""
+
+import numpy as np
+import pytest
+
+import lekalo
+
+interpolate = pytest.importorskip("scipy.interpolate")
+if not hasattr(interpolate, "NdBSpline"):
+    pytest.skip("scipy.interpolate.NdBSpline needs SciPy >= 1.12", allow_module_level=True)
+
+# public from SciPy 1.18 on; earlier versions (from 1.12) have it in the private module
+make_ndbspl = getattr(interpolate, "make_ndbspl", None)
+if make_ndbspl is None:
+    from scipy.interpolate._ndbspline import make_ndbspl
+
+from scipy.sparse.linalg import spsolve
+
+RTOL = 1e-12
+
+
+def scipy_interpolant(axes, values, k):
+    """``make_ndbspl`` with a direct solve (its default, GCROT(m,k), stops at ~1e-5)."""
+    return make_ndbspl(axes, values, k=k, solver=spsolve)
+
+
+def close(a, b):
+    scale = max(1.0, float(np.max(np.abs(b))))
+    np.testing.assert_allclose(a, b, rtol=0, atol=RTOL * scale)
+
+
+def random_spline(rng, trailing=()):
+    k = (3, 2, 1)
+    t = []
+    for p, n in zip(k, (6, 5, 4)):
+        inner = np.sort(rng.uniform(0.0, 1.0, n - p - 1))
+        t.append(np.concatenate([np.zeros(p + 1), inner, np.ones(p + 1)]))
+    c = rng.standard_normal((6, 5, 4) + trailing)
+    return tuple(t), c, k
+
+
+def test_matches_ndbspline_at_points_on_grids_and_in_derivatives():
+    rng = np.random.default_rng(7)
+    t, c, k = random_spline(rng)
+    ours = lekalo.TensorBSpline(t, c, k)
+    ref = interpolate.NdBSpline(t, c, k)
+    assert ours.ndim == 3 and list(ours.k) == [3, 2, 1]
+    x = rng.uniform(0.0, 1.0, (4, 7, 3))
+    close(ours(x), ref(x))
+    assert ours(x).shape == (4, 7)
+    for nu in [(1, 0, 0), (0, 2, 0), (1, 1, 1), (2, 0, 1)]:
+        close(ours(x, nu=nu), ref(x, nu=nu))
+    axes = [np.linspace(0, 1, 5), np.linspace(0.1, 0.9, 3), np.array([0.0, 0.5, 1.0])]
+    g = ours.grid(*axes)
+    mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
+    close(g, ref(mesh))
+    close(ours.grid(*axes, nu=(1, 1, 0)), ref(mesh, nu=(1, 1, 0)))
+
+
+def test_vector_values_and_the_scipy_round_trip_are_bit_for_bit():
+    rng = np.random.default_rng(3)
+    t, c, k = random_spline(rng, trailing=(2,))
+    ref = interpolate.NdBSpline(t, c, k)
+    ours = lekalo.TensorBSpline.from_scipy(ref)
+    assert ours.c.shape == (6, 5, 4, 2)
+    assert np.array_equal(ours.c, ref.c)
+    for a in range(3):
+        assert np.array_equal(ours.t[a], ref.t[a])
+    back = ours.to_scipy()
+    assert np.array_equal(back.c, ref.c) and tuple(back.k) == tuple(ref.k)
+    x = rng.uniform(0.0, 1.0, (10, 3))
+    close(ours(x), ref(x))
+    assert ours(x).shape == (10, 2)
+
+
+def test_interpolate_grid_agrees_with_make_ndbspl():
+    xs = np.array([0.0, 0.3, 0.5, 0.9, 1.2, 2.0])
+    ys = np.array([-1.0, 0.0, 0.4, 1.0, 2.5])
+    zs = np.array([0.0, 1.0, 1.5, 3.0])
+    X, Y, Z = np.meshgrid(xs, ys, zs, indexing="ij")
+    # a polynomial each spline space holds: both interpolants are that polynomial
+    f = lambda x, y, z: x**3 - 2 * x * y + y**2 * z + z**3  # noqa: E731
+    values = f(X, Y, Z)
+    ours = lekalo.TensorBSpline.interpolate_grid([xs, ys, zs], values, degrees=3)
+    ref = scipy_interpolant((xs, ys, zs), values, 3)
+    rng = np.random.default_rng(1)
+    p = np.stack([rng.uniform(0, 2, 50), rng.uniform(-1, 2.5, 50), rng.uniform(0, 3, 50)], axis=-1)
+    close(ours(p), ref(p))
+    close(ours(p), f(p[:, 0], p[:, 1], p[:, 2]))
+    # any data: both pass through the nodes
+    noisy = np.sin(3 * X) * np.cos(Y) + Z
+    ours = lekalo.TensorBSpline.interpolate_grid([xs, ys, zs], noisy, degrees=(3, 3, 1))
+    ref = scipy_interpolant((xs, ys, zs), noisy, (3, 3, 1))
+    nodes = np.stack([X, Y, Z], axis=-1)
+    close(ours(nodes), ref(nodes))
+    close(ours.grid(xs, ys, zs), noisy)
+
+
+def test_errors_name_the_argument():
+    rng = np.random.default_rng(0)
+    t, c, k = random_spline(rng)
+    s = lekalo.TensorBSpline(t, c, k)
+    with pytest.raises(lekalo.Error, match="x: shape"):
+        s(np.zeros((4, 2)))
+    with pytest.raises(lekalo.Error, match="nu: 2 orders"):
+        s(np.zeros((1, 3)), nu=(1, 0))
+    with pytest.raises(lekalo.Error, match="axes: 2 parameter lists"):
+        s.grid([0.5], [0.5])
+    with pytest.raises(lekalo.Error, match="c: axis 1"):
+        lekalo.TensorBSpline(t, np.ascontiguousarray(c[:, :4]), k)
+    with pytest.raises(lekalo.Error, match="k: 2 degrees"):
+        lekalo.TensorBSpline(t, c, (3, 2))
+    with pytest.raises(lekalo.Error):
+        s(np.array([[0.5, 0.5, 2.0]]))
+    bad = c.copy()
+    bad[0, 0, 0] = np.nan
+    with pytest.raises(lekalo.Error, match="^c: "):
+        lekalo.TensorBSpline(t, bad, k)
+    unsorted = (t[0][::-1].copy(), t[1], t[2])
+    with pytest.raises(lekalo.Error, match="^t: "):
+        lekalo.TensorBSpline(unsorted, c, k)
+    axes = [np.arange(4.0), np.arange(3.0), np.arange(2.0)]
+    with pytest.raises(lekalo.Error, match="values: shape"):
+        lekalo.TensorBSpline.interpolate_grid(axes, np.zeros((4, 3, 3)))
+    with pytest.raises(lekalo.Error, match="^degrees: "):
+        lekalo.TensorBSpline.interpolate_grid(axes, np.zeros((4, 3, 2)), degrees=(3, 3, 3))
+    with pytest.raises(lekalo.Error, match="^axes: "):
+        lekalo.TensorBSpline.interpolate_grid([axes[0][::-1].copy(), axes[1], axes[2]], np.zeros((4, 3, 2)), degrees=1)
