@@ -8,13 +8,14 @@
 //! - arrays: `convert` (float64, C- or F-ordered, the last axis is the dimension; C-ordered
 //!   arrays are borrowed, not copied);
 //! - errors: `error` (`lekalo.Error`, a `ValueError`, with the library's message);
-//! - classes: `curves`, `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
+//! - classes: `curves` (their calculus in `calculus`), `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`.
 
 mod batch;
 mod blend;
+mod calculus;
 mod convert;
 mod curves;
 mod error;
