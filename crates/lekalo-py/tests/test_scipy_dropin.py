@@ -13,7 +13,7 @@ def close(a, b, rtol=1e-12):
     a, b = np.asarray(a), np.asarray(b)
     assert a.shape == b.shape, (a.shape, b.shape)
     assert a.dtype == b.dtype, (a.dtype, b.dtype)
-    scale = max(np.nanmax(np.abs(a), initial=0.0), np.nanmax(np.abs(b), initial=0.0), 1e-300)
+    scale = max(np.abs(np.nan_to_num(a)).max(initial=0.0), np.abs(np.nan_to_num(b)).max(initial=0.0), 1e-300)
     np.testing.assert_allclose(a, b, rtol=rtol, atol=rtol * scale, equal_nan=True)
 
 
@@ -228,3 +228,54 @@ def test_interp_errors_match():
         with pytest.raises(ValueError) as eb:
             ls.make_interp_spline(**bad)
         assert type(eb.value) is type(ea.value)
+
+
+def spaced(n=9, tail=(2,), seed=1):
+    rng = np.random.default_rng(seed)
+    x = np.linspace(0.0, 4.0, n) + rng.uniform(-0.1, 0.1, n)
+    return x, rng.standard_normal((n,) + tail), rng.standard_normal((n,) + tail)
+
+
+@pytest.mark.parametrize("bc", ["not-a-knot", "natural", "clamped", "d1", "d2"])
+@pytest.mark.parametrize("tail", [(), (2,)])
+def test_cubic_spline(bc, tail):
+    x, y, _ = spaced(tail=tail)
+    if bc == "d1":
+        bc = ((1, np.ones(tail)), (1, np.zeros(tail)))
+    elif bc == "d2":
+        bc = ((2, np.full(tail, 0.5)), (2, np.zeros(tail)))
+    a, b = si.CubicSpline(x, y, bc_type=bc), ls.CubicSpline(x, y, bc_type=bc)
+    close(b.x, a.x)
+    close(b.c, a.c)
+    for nu in range(5):
+        close(b(XX, nu), a(XX, nu))
+    close(b(XX, extrapolate=False), a(XX, extrapolate=False))
+    close(b.integrate(-1.0, 5.0), a.integrate(-1.0, 5.0))
+    close(b.integrate(0.5, 3.0), a.integrate(0.5, 3.0))
+    close(b.integrate(-1.0, 3.0, extrapolate=False), a.integrate(-1.0, 3.0, extrapolate=False))
+    for nu in (1, 2):
+        close(b.derivative(nu).c, a.derivative(nu).c)
+        close(b.antiderivative(nu).c, a.antiderivative(nu).c)
+        close(b.antiderivative(nu)(XX), a.antiderivative(nu)(XX))
+
+
+def test_cubic_spline_short_data_and_axis():
+    x, y, _ = spaced(tail=(2,))
+    for n in (2, 3):
+        a, b = si.CubicSpline(x[:n], y[:n]), ls.CubicSpline(x[:n], y[:n])
+        close(b.c, a.c)
+        close(b(XX), a(XX))
+    yt = np.ascontiguousarray(y.T)
+    a, b = si.CubicSpline(x, yt, axis=1), ls.CubicSpline(x, yt, axis=1)
+    assert b.axis == a.axis
+    close(b.c, a.c)
+    close(b(XX[:5]), a(XX[:5]))
+
+
+def test_cubic_hermite_spline():
+    x, y, d = spaced()
+    a, b = si.CubicHermiteSpline(x, y, d), ls.CubicHermiteSpline(x, y, d)
+    close(b.c, a.c)
+    for nu in range(4):
+        close(b(XX, nu), a(XX, nu))
+    close(b.integrate(-0.5, 4.5), a.integrate(-0.5, 4.5))
