@@ -8,7 +8,8 @@
 //! - arrays: `convert` (float64, C- or F-ordered, the last axis is the dimension; C-ordered
 //!   arrays are borrowed, not copied);
 //! - errors: `error` (`lekalo.Error`, a `ValueError`, with the library's message);
-//! - classes: `curves` (their calculus in `calculus`), `surfaces`, `interp` (interpolation, Hermite), `pp`, `blend`;
+//! - classes: `curves` (their calculus in `calculus`), `surfaces`, `interp` (interpolation, Hermite;
+//!   SciPy's Hermite slopes in `slopes`), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`.
@@ -23,6 +24,7 @@ mod fit;
 mod interp;
 mod pp;
 mod query;
+mod slopes;
 mod surfaces;
 mod words;
 
@@ -59,5 +61,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     blend::register(m)?;
     fit::register(m)?;
     query::register(m)?;
+    slopes::register(m)?;
     Ok(())
 }

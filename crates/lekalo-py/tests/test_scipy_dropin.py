@@ -279,3 +279,18 @@ def test_cubic_hermite_spline():
     for nu in range(4):
         close(b(XX, nu), a(XX, nu))
     close(b.integrate(-0.5, 4.5), a.integrate(-0.5, 4.5))
+
+
+@pytest.mark.parametrize("tail", [(), (3,)])
+def test_pchip(tail):
+    rng = np.random.default_rng(4)
+    x = np.sort(rng.uniform(0.0, 4.0, 12))
+    y = np.cumsum(rng.uniform(-0.2, 1.0, (12,) + tail), axis=0)
+    y[4:6] = y[4]  # a flat stretch
+    a, b = si.PchipInterpolator(x, y), ls.PchipInterpolator(x, y)
+    close(b.c, a.c)
+    for nu in range(4):
+        close(b(XX, nu), a(XX, nu))
+    close(b.integrate(0.2, 3.9), a.integrate(0.2, 3.9))
+    a, b = si.PchipInterpolator(x[:2], y[:2]), ls.PchipInterpolator(x[:2], y[:2])
+    close(b.c, a.c)

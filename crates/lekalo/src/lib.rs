@@ -84,8 +84,8 @@ pub mod interpolate;
 
 pub use interpolate::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    natural_cubic_spline, parametrize, CubicHermite, CurveInterpolation, EndCondition,
-    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
+    natural_cubic_spline, parametrize, pchip_slopes, CubicHermite, CurveInterpolation,
+    EndCondition, InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
     SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
 };
 // the grid interpolation functions before `SurfaceInterpolation`, kept for existing code

@@ -63,6 +63,7 @@ from ._lekalo import (
     interpolate_batch,
     interpolate_surface,
     natural_cubic_spline,
+    pchip_slopes,
     parametrize,
     quasi_interpolate,
 )
@@ -120,6 +121,7 @@ __all__ = [
     "interpolate_batch",
     "interpolate_surface",
     "natural_cubic_spline",
+    "pchip_slopes",
     "parametrize",
     "quasi_interpolate",
     "ragged_offsets",

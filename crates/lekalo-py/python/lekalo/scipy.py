@@ -37,6 +37,7 @@ __all__ = [
     "splantider",
     "CubicSpline",
     "CubicHermiteSpline",
+    "PchipInterpolator",
 ]
 
 
@@ -848,3 +849,27 @@ def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -
     curve = _lekalo.CubicHermite(x, yy, dd).to_bspline()
     c = _from_columns(np.ascontiguousarray(curve.control), complex_).reshape((-1,) + tail)
     return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
+
+
+class PchipInterpolator(_SplinePPoly):
+    """``scipy.interpolate.PchipInterpolator``: the monotonicity-preserving piecewise cubic,
+    with lekalo's ``pchip_slopes`` (Fritsch–Butland, Moler's ends) and ``CubicHermite``."""
+
+    def __init__(self, x: Any, y: Any, axis: int = 0, extrapolate: Any = None) -> None:
+        if extrapolate is None:
+            extrapolate = True
+        x, _, y, axis = _prepare_input(x, y, axis)
+        if np.iscomplexobj(y):
+            msg = (
+                "`PchipInterpolator` only works with real values for `y`. If you are trying to "
+                "use the real components of the passed array, use `np.real` on the array before "
+                "passing to `PchipInterpolator`."
+            )
+            raise ValueError(msg)
+        n = x.shape[0]
+        yy = _real_columns(y, n)
+        if yy.shape[1] == 0:
+            dydx = np.zeros_like(y)
+        else:
+            dydx = _lekalo.pchip_slopes(x, yy).reshape(y.shape)
+        super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)

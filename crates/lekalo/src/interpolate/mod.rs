@@ -15,6 +15,7 @@
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
 //! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
+//! - `pchip.rs`: [`pchip_slopes`], shape-preserving slopes for Hermite interpolation (PCHIP).
 
 pub(crate) mod collocation;
 mod cubic_sweep;
@@ -23,6 +24,7 @@ mod end_conditions;
 mod fast;
 pub(crate) mod hermite;
 pub(crate) mod parametrization;
+mod pchip;
 mod periodic;
 mod surface;
 
@@ -36,6 +38,7 @@ pub use hermite::{
     CubicHermite, TangentEstimate, HERMITE_MATRIX,
 };
 pub use parametrization::{parametrize, Parametrization};
+pub use pchip::pchip_slopes;
 #[allow(deprecated)]
 pub use surface::{
     interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,
