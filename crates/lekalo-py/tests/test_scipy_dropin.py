@@ -294,3 +294,25 @@ def test_pchip(tail):
     close(b.integrate(0.2, 3.9), a.integrate(0.2, 3.9))
     a, b = si.PchipInterpolator(x[:2], y[:2]), ls.PchipInterpolator(x[:2], y[:2])
     close(b.c, a.c)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("tail", [(), (2,)])
+def test_periodic_interpolation(k, tail):
+    rng = np.random.default_rng(8)
+    x = np.sort(np.r_[0.0, rng.uniform(0.0, 6.0, 9), 6.0])
+    y = rng.standard_normal((11,) + tail)
+    y[-1] = y[0]
+    a = si.make_interp_spline(x, y, k=k, bc_type="periodic")
+    b = ls.make_interp_spline(x, y, k=k, bc_type="periodic")
+    assert b.extrapolate == a.extrapolate
+    close(b.t, a.t)
+    close(b.c, a.c, 1e-11)
+    for nu in range(k + 1):
+        close(b(XX * 3, nu), a(XX * 3, nu), 1e-11)
+    close(b.integrate(-4.0, 17.0), a.integrate(-4.0, 17.0), 1e-11)
+    if k == 3:
+        a, b = si.CubicSpline(x, y, bc_type="periodic"), ls.CubicSpline(x, y, bc_type="periodic")
+        assert b.extrapolate == a.extrapolate
+        close(b.c, a.c, 1e-11)
+        close(b(XX * 3), a(XX * 3), 1e-11)

@@ -433,8 +433,12 @@ def make_interp_spline(
         c = np.ascontiguousarray(y, dtype=_get_dtype(y.dtype))
         return BSpline.construct_fast(t, c, k, axis=axis)
     k = operator.index(k)
+    if bc_type == "periodic" and t is not None:
+        raise NotImplementedError(
+            "For periodic case t is constructed automatically and can not be passed manually"
+        )
     if bc_type == "periodic":
-        raise NotImplementedError("lekalo.scipy: periodic make_interp_spline is not available yet")
+        return _make_periodic_spline(x, y, k, axis)
     if t is None:
         t = _not_a_knot(x, k) if deriv_l is None and deriv_r is None else _augknt(x, k)
     t = _as_float_array(t, check_finite)
@@ -505,6 +509,42 @@ def make_interp_spline(
         )
     c = _from_columns(ctrl, complex_).reshape((nt,) + tail)
     return BSpline.construct_fast(t, c, k, axis=axis)
+
+
+def _make_periodic_spline(x: np.ndarray, y: np.ndarray, k: int, axis: int) -> BSpline:
+    """The periodic interpolant on SciPy's periodic knots (interior knots at the data for odd
+    ``k``, at the mid-points for even ``k``, continued by the period), solved by lekalo's
+    ``fit_periodic`` with ``s = 0`` on those interior knots (its cyclic banded system)."""
+    n = x.shape[0]
+    xc = x.copy()
+    if k % 2 == 0:
+        xc[1:-1] -= np.diff(x)[:-1] / 2
+    tail = y.shape[1:]
+    nt = n + k - 1
+    if y.size == 0:
+        t = _periodic_knots(x, k)
+        return BSpline.construct_fast(t, np.zeros((nt,) + tail), k, extrapolate="periodic", axis=axis)
+    complex_ = np.iscomplexobj(y)
+    curve, _ = _lekalo.fit_periodic(x, _real_columns(y, n), k=k, s=0.0, t=xc[1:-1])
+    t = np.ascontiguousarray(curve.knots)
+    c = _from_columns(curve.control, complex_).reshape((nt,) + tail)
+    return BSpline.construct_fast(t, c, k, extrapolate="periodic", axis=axis)
+
+
+def _periodic_knots(x: np.ndarray, k: int) -> np.ndarray:
+    """SciPy's periodic knot vector (``_periodic_knots``)."""
+    xc = np.copy(x)
+    n = len(xc)
+    if k % 2 == 0:
+        dx = np.diff(xc)
+        xc[1:-1] -= dx[:-1] / 2
+    dx = np.diff(xc)
+    t = np.zeros(n + 2 * k)
+    t[k:-k] = xc
+    for i in range(0, k):
+        t[k - i - 1] = t[k - i] - dx[-(i % (n - 1)) - 1]
+        t[-k + i] = t[-k + i - 1] + dx[i % (n - 1)]
+    return t
 
 
 def make_lsq_spline(
@@ -783,7 +823,17 @@ class CubicSpline(_SplinePPoly):
         if extrapolate is None:
             extrapolate = "periodic" if bc_type == "periodic" else True
         if bc_type == "periodic":
-            raise NotImplementedError("lekalo.scipy: periodic CubicSpline is not available yet")
+            if not np.allclose(y[0], y[-1], rtol=1e-15, atol=1e-15):
+                raise ValueError(
+                    f"The first and last `y` point along axis {axis} must be identical (within "
+                    "machine precision) when bc_type='periodic'."
+                )
+            if n < 4:
+                raise NotImplementedError("lekalo.scipy: periodic CubicSpline needs 4 points or more")
+            spline = make_interp_spline(x, y, k=3, bc_type="periodic", axis=0)
+            spline = BSpline.construct_fast(spline.t, spline.c, 3, axis=axis)
+            super().__init__(spline, x, extrapolate, axis)
+            return
         if isinstance(bc_type, str):
             if bc_type not in ("not-a-knot", "clamped", "natural"):
                 raise ValueError(f"bc_type={bc_type} is not allowed.")
