@@ -1,5 +1,5 @@
 //! Slopes for Hermite interpolation of functions `y(x)` that SciPy's interpolators use:
-//! `pchip_slopes` (the library's `interpolate/pchip.rs`).
+//! `pchip_slopes` and `akima_slopes` (the library's `interpolate/pchip.rs`, `interpolate/akima.rs`).
 
 use pyo3::prelude::*;
 
@@ -25,8 +25,39 @@ pub(crate) fn pchip_slopes<'py>(
     points_into_array(py, d)
 }
 
+/// Akima slopes at `x` for values `y` (`(n,)` or `(n, d)`): `method="akima"` (Akima 1970) or
+/// `"makima"` (Moler's modified weights), `lekalo::akima_slopes`, the slopes of SciPy's
+/// `Akima1DInterpolator`. Returns `(n, d)`.
+#[pyfunction]
+#[pyo3(signature = (x, y, method = "akima"))]
+pub(crate) fn akima_slopes<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    method: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let modified = match method {
+        "akima" => false,
+        "makima" => true,
+        other => {
+            return Err(crate::error::bad(format!(
+                "method: expected 'akima' or 'makima', got {other:?}"
+            )))
+        }
+    };
+    let xa = floats(x, "x")?;
+    let xs = xa.vector("x")?;
+    let ya = floats(y, "y")?;
+    let ys = ya.points("y")?;
+    let d = py
+        .detach(|| lekalo::akima_slopes(xs, ys, modified))
+        .map_err(lib_err)?;
+    points_into_array(py, d)
+}
+
 /// Registers the functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pchip_slopes, m)?)?;
+    m.add_function(wrap_pyfunction!(akima_slopes, m)?)?;
     Ok(())
 }

@@ -316,3 +316,23 @@ def test_periodic_interpolation(k, tail):
         assert b.extrapolate == a.extrapolate
         close(b.c, a.c, 1e-11)
         close(b(XX * 3), a(XX * 3), 1e-11)
+
+
+@pytest.mark.parametrize("method", ["akima", "makima"])
+@pytest.mark.parametrize("tail", [(), (3,)])
+def test_akima(method, tail):
+    rng = np.random.default_rng(6)
+    x = np.sort(rng.uniform(0.0, 4.0, 12))
+    y = rng.standard_normal((12,) + tail)
+    y[3:6] = 1.0  # a flat stretch
+    a = si.Akima1DInterpolator(x, y, method=method)
+    b = ls.Akima1DInterpolator(x, y, method=method)
+    assert b.extrapolate == a.extrapolate
+    close(b.c, a.c)
+    for nu in range(4):
+        close(b(XX, nu), a(XX, nu))
+        close(b(XX, nu, extrapolate=True), a(XX, nu, extrapolate=True))
+    close(b.integrate(0.5, 3.5), a.integrate(0.5, 3.5))
+    a = si.Akima1DInterpolator(x[:2], y[:2], method=method)
+    b = ls.Akima1DInterpolator(x[:2], y[:2], method=method)
+    close(b.c, a.c)

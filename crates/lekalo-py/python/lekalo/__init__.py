@@ -64,6 +64,7 @@ from ._lekalo import (
     interpolate_surface,
     natural_cubic_spline,
     pchip_slopes,
+    akima_slopes,
     parametrize,
     quasi_interpolate,
 )
@@ -122,6 +123,7 @@ __all__ = [
     "interpolate_surface",
     "natural_cubic_spline",
     "pchip_slopes",
+    "akima_slopes",
     "parametrize",
     "quasi_interpolate",
     "ragged_offsets",

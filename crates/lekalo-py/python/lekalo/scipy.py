@@ -12,7 +12,9 @@ Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``inte
 ``construct_fast``, ``basis_element``, ``design_matrix``, ``tck``), ``make_interp_spline``
 (``bc_type`` None / ``"not-a-knot"``, ``"clamped"``, ``"natural"`` for cubics, pairs of
 first-derivative conditions; explicit ``t``; ``k = 0, 1``), ``make_lsq_spline``, ``splrep``
-(``s = 0`` or given ``t``), ``splev``, ``splint``, ``splder``, ``splantider``. The theory is in
+(``s = 0`` or given ``t``), ``splev``, ``splint``, ``splder``, ``splantider``, and in SciPy's
+``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``,
+``Akima1DInterpolator``. The theory is in
 ``docs/theory/curves.md`` ("Antiderivatives, integrals and extrapolation").
 """
 
@@ -38,6 +40,7 @@ __all__ = [
     "CubicSpline",
     "CubicHermiteSpline",
     "PchipInterpolator",
+    "Akima1DInterpolator",
 ]
 
 
@@ -922,4 +925,30 @@ class PchipInterpolator(_SplinePPoly):
             dydx = np.zeros_like(y)
         else:
             dydx = _lekalo.pchip_slopes(x, yy).reshape(y.shape)
+        super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+
+
+class Akima1DInterpolator(_SplinePPoly):
+    """``scipy.interpolate.Akima1DInterpolator``: the local Akima (``method="akima"``) or
+    modified Akima (``"makima"``) piecewise cubic, with lekalo's ``akima_slopes`` and
+    ``CubicHermite``. Extrapolation is off by default, as in SciPy."""
+
+    def __init__(self, x: Any, y: Any, axis: int = 0, *, method: str = "akima", extrapolate: Any = None) -> None:
+        if method not in {"akima", "makima"}:
+            raise NotImplementedError(f"`method`={method} is unsupported.")
+        x, _, y, axis = _prepare_input(x, y, axis)
+        if np.iscomplexobj(y):
+            msg = (
+                "`Akima1DInterpolator` only works with real values for `y`. If you are trying to "
+                "use the real components of the passed array, use `np.real` on the array before "
+                "passing to `Akima1DInterpolator`."
+            )
+            raise ValueError(msg)
+        extrapolate = False if extrapolate is None else extrapolate
+        n = x.shape[0]
+        yy = _real_columns(y, n)
+        if yy.shape[1] == 0:
+            dydx = np.zeros_like(y)
+        else:
+            dydx = _lekalo.akima_slopes(x, yy, method).reshape(y.shape)
         super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)

@@ -15,8 +15,10 @@
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
 //! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
+//! - `akima.rs`: [`akima_slopes`], Akima's and the modified Akima (makima) slopes.
 //! - `pchip.rs`: [`pchip_slopes`], shape-preserving slopes for Hermite interpolation (PCHIP).
 
+mod akima;
 pub(crate) mod collocation;
 mod cubic_sweep;
 pub(crate) mod curve;
@@ -28,6 +30,7 @@ mod pchip;
 mod periodic;
 mod surface;
 
+pub use akima::akima_slopes;
 pub use curve::{
     natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
 };
