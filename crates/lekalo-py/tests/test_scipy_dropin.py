@@ -336,3 +336,25 @@ def test_akima(method, tail):
     a = si.Akima1DInterpolator(x[:2], y[:2], method=method)
     b = ls.Akima1DInterpolator(x[:2], y[:2], method=method)
     close(b.c, a.c)
+
+
+def test_smoothing():
+    rng = np.random.default_rng(0)
+    x = np.linspace(0.0, 6.0, 60)
+    y = np.sin(x) + 0.1 * rng.standard_normal(60)
+    w = rng.uniform(0.5, 2.0, 60)
+    for k in (1, 3, 5):
+        for s in (0.1, 0.5, 3.0):
+            ta, tb = si.splrep(x, y, w=w, s=s, k=k), ls.splrep(x, y, w=w, s=s, k=k)
+            close(tb[0], ta[0])  # FITPACK's knots
+            assert tb[1].shape == ta[1].shape
+            # both meet FITPACK's tolerance on the smoothing condition
+            fp = np.sum((w * (ls.splev(x, tb) - y)) ** 2)
+            assert abs(fp - s) <= 0.001 * s + 1e-12 or len(tb[0]) == 2 * k + 2, (k, s, fp)
+    for lam in (1e-3, 0.1):
+        a = si.make_smoothing_spline(x, y, lam=lam)
+        b = ls.make_smoothing_spline(x, y, lam=lam)
+        close(b.t, a.t)
+        close(b.c, a.c, 1e-10)
+    a, b = si.make_smoothing_spline(x, y), ls.make_smoothing_spline(x, y)
+    close(b(XX), a(XX), 1e-5)  # lam by generalised cross-validation: two minimisers

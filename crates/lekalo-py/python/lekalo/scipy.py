@@ -9,13 +9,15 @@ lekalo's native API deliberately differs from SciPy (it refuses parameters outsi
 returns ``t.shape + (dim,)``), this module does what SciPy does.
 
 Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``integrate``,
-``construct_fast``, ``basis_element``, ``design_matrix``, ``tck``), ``make_interp_spline``
-(``bc_type`` None / ``"not-a-knot"``, ``"clamped"``, ``"natural"`` for cubics, pairs of
-first-derivative conditions; explicit ``t``; ``k = 0, 1``), ``make_lsq_spline``, ``splrep``
-(``s = 0`` or given ``t``), ``splev``, ``splint``, ``splder``, ``splantider``, and in SciPy's
-``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``,
-``Akima1DInterpolator``. The theory is in
-``docs/theory/curves.md`` ("Antiderivatives, integrals and extrapolation").
+``construct_fast``, ``basis_element``, ``design_matrix``, ``tck``, periodic extrapolation),
+``make_interp_spline`` (not-a-knot, periodic, ``"clamped"``, first-derivative pairs, second
+derivatives for cubics, explicit ``t``, ``k = 0 … 5``), ``make_lsq_spline``,
+``make_smoothing_spline``, ``splrep`` (FITPACK's knots for ``s > 0``), ``splev``, ``splint``,
+``splder``, ``splantider``; in SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``,
+``PchipInterpolator``, ``Akima1DInterpolator``. Not yet: mixed end conditions, ``splrep``
+with ``per``/``task``/``xb``/``xe``, ``PPoly.roots``/``solve``, the 2-D FITPACK classes and
+``NdBSpline``. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ __all__ = [
     "BSpline",
     "make_interp_spline",
     "make_lsq_spline",
+    "make_smoothing_spline",
     "splrep",
     "splev",
     "splint",
@@ -588,6 +591,30 @@ def make_lsq_spline(
     return BSpline.construct_fast(t, c, k, axis=axis)
 
 
+def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axis: int = 0) -> BSpline:
+    """``scipy.interpolate.make_smoothing_spline``: the penalised cubic smoothing spline with
+    knots at the data, ``lam`` given or chosen by generalised cross-validation, lekalo's
+    ``make_smoothing_spline`` (with ``lam`` the same spline to rounding; the GCV ``lam`` is
+    found by lekalo's own minimiser, so it agrees to the minimiser's tolerance)."""
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.asarray(y)
+    axis = _normalize_axis(axis, y.ndim)
+    y = np.moveaxis(np.ascontiguousarray(y, dtype=float), axis, 0)
+    if any(x[1:] - x[:-1] <= 0):
+        raise ValueError("``x`` should be an ascending array")
+    if x.ndim != 1 or x.shape[0] != y.shape[0]:
+        raise ValueError(f"``x`` should be 1D and {x.shape = } == {y.shape = }")
+    if x.shape[0] < 5:
+        raise ValueError("``x`` and ``y`` length must be at least 5")
+    tail = y.shape[1:]
+    n = x.shape[0]
+    if y.ndim > 2:
+        raise NotImplementedError("lekalo.scipy.make_smoothing_spline: y with more than 2 dimensions")
+    curve = _lekalo.make_smoothing_spline(x, _real_columns(y, n), w, lam)
+    c = np.ascontiguousarray(curve.control).reshape((-1,) + tail)
+    return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
+
+
 # -- the FITPACK-style functions -----------------------------------------------------------
 
 
@@ -614,10 +641,13 @@ def splrep(
     if t is not None:
         tt = np.r_[(x[0],) * (k + 1), np.asarray(t, dtype=np.float64), (x[-1],) * (k + 1)]
         spl = make_lsq_spline(x, y, tt, k, w=w)
-    elif s == 0:
+    elif s == 0 and w is None:
         spl = make_interp_spline(x, y, k=k)
     else:
-        raise NotImplementedError("lekalo.scipy.splrep: smoothing (s > 0) is not available yet")
+        # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
+        # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits
+        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s))
+        spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
     if full_output:
         return tck, 0.0, 0, ""
