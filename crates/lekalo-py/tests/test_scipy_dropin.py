@@ -358,3 +358,19 @@ def test_smoothing():
         close(b.c, a.c, 1e-10)
     a, b = si.make_smoothing_spline(x, y), ls.make_smoothing_spline(x, y)
     close(b(XX), a(XX), 1e-5)  # lam by generalised cross-validation: two minimisers
+
+
+def test_insert_knot_and_zero_dimensional_integrals():
+    x, y = data(n=10, tail=(2,), seed=2)
+    a, b = si.make_interp_spline(x, y), ls.make_interp_spline(x, y)
+    for at, m in [(1.3, 1), (2.0, 2), (x[4], 1)]:
+        ia, ib = a.insert_knot(at, m), b.insert_knot(at, m)
+        close(ib.t, ia.t)
+        close(ib.c, ia.c)
+        close(ib(XX), ia(XX), 1e-11)
+    with pytest.raises(ValueError):
+        b.insert_knot(x[-1] + 1.0)
+    e = ls.BSpline.basis_element([0.0, 1.0, 2.0])
+    for ext in (True, False):
+        r = e.integrate(0.0, 1.0, extrapolate=ext)
+        assert isinstance(r, np.ndarray) and r.ndim == 0

@@ -292,7 +292,23 @@ class BSpline:
         else:
             total = piece(a, b, True)
         total = _from_columns(np.asarray(total, dtype=np.float64).reshape(1, -1), complex_)
-        return total.reshape(tail) * sign
+        return np.asarray(total.reshape(tail) * sign)
+
+    def insert_knot(self, x: float, m: int = 1) -> "BSpline":
+        """The same spline with the knot ``x`` inserted ``m`` times (Boehm), lekalo's
+        ``insert_knot``; the coefficients grow by ``m``."""
+        x = float(x)
+        if x < self.t[self.k] or x > self.t[-self.k - 1]:
+            raise ValueError(f"Cannot insert a knot at {x}.")
+        if m <= 0:
+            raise ValueError(f"`m` must be positive, got {m = }.")
+        if self.extrapolate == "periodic":
+            raise NotImplementedError("lekalo.scipy: periodic knot insertion is not available yet")
+        n = self._n()
+        complex_ = np.iscomplexobj(self.c)
+        curve = _curve(self.t, _real_columns(self.c, n), self.k).insert_knot(x, m)
+        cc = _from_columns(curve.control, complex_).reshape((n + m,) + self.c.shape[1:])
+        return self.construct_fast(np.ascontiguousarray(curve.knots), cc, self.k, self.extrapolate, self.axis)
 
 
 def _pad_rows(c: np.ndarray, rows: int, fill: np.ndarray | None = None) -> np.ndarray:
@@ -579,7 +595,7 @@ def make_lsq_spline(
         raise ValueError(f"Out of bounds w/ x = {x}.")
     if x.size != w.size:
         raise ValueError(f"Shapes of x {x.shape} and w {w.shape} are incompatible")
-    if method != "qr":
+    if method not in ("qr", "norm-eq"):
         raise ValueError(f"method={method} is not understood.")
     if np.any(x[1:] - x[:-1] < 0):
         raise ValueError("Expect x to be a sorted 1D sequence.")
