@@ -1,6 +1,6 @@
 //! Calculus of B-spline curves for Python: antiderivatives, definite integrals and evaluation
 //! continued beyond the domain (the library's `curve/integral.rs`,
-//! `docs/theory/curves.md`, "Antiderivatives, integrals and extrapolation"). The methods of
+//! `docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`). The methods of
 //! `BSplineCurve` that call these are one line each in `curves.rs`.
 
 use lekalo::BSplineCurve;

@@ -1,5 +1,5 @@
 //! Antiderivatives, definite integrals and extrapolation of B-spline curves
-//! (`docs/theory/curves.md`, "Antiderivatives, integrals and extrapolation").
+//! (`docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`).
 //!
 //! - [`BSplineCurve::antiderivative`]: the spline of degree `p + 1` whose derivative is the
 //!   curve (de Boor, *A Practical Guide to Splines*, ch. X, eq. (31); the same coefficients as

@@ -1,4 +1,5 @@
-//! Akima's slopes for Hermite interpolation of functions `y(x)`: [`akima_slopes`], the local rule
+//! Akima's slopes for Hermite interpolation of functions `y(x)`: [`akima_slopes`]
+//! (`docs/theory/interpolation.md#akima-slopes`), the local rule
 //! of Akima (J. ACM 17, 1970) and its modified form ("makima", Moler 2019), as SciPy's
 //! `Akima1DInterpolator` computes them. The Hermite cubic with these slopes is
 //! [`crate::CubicHermite`].

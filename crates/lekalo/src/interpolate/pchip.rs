@@ -1,5 +1,5 @@
 //! Shape-preserving slopes for piecewise cubic Hermite interpolation of functions `y(x)`:
-//! [`pchip_slopes`], the PCHIP rule of Fritsch & Butland with Moler's one-sided ends (what
+//! [`pchip_slopes`] (`docs/theory/interpolation.md#pchip-slopes`), the PCHIP rule of Fritsch & Butland with Moler's one-sided ends (what
 //! SciPy's `PchipInterpolator` and MATLAB's `pchip` use). The Hermite cubic through the data
 //! with these slopes is [`crate::CubicHermite`].
 
