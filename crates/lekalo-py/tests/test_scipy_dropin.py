@@ -374,3 +374,20 @@ def test_insert_knot_and_zero_dimensional_integrals():
     for ext in (True, False):
         r = e.integrate(0.0, 1.0, extrapolate=ext)
         assert isinstance(r, np.ndarray) and r.ndim == 0
+
+
+def test_periodic_splrep_and_smoothing_of_3d_values():
+    rng = np.random.default_rng(1)
+    x = np.linspace(0.0, 2 * np.pi, 40)
+    y = np.cos(x) + 0.05 * rng.standard_normal(40)
+    y[-1] = y[0]
+    for k in (1, 3, 5):
+        a, b = si.splrep(x, y, per=1, k=k), ls.splrep(x, y, per=1, k=k)
+        close(b[0], a[0])
+        close(b[1], a[1], 1e-11)
+        close(ls.splev(XX, b), si.splev(XX, a), 1e-11)
+        a, b = si.splrep(x, y, per=1, k=k, s=0.02), ls.splrep(x, y, per=1, k=k, s=0.02)
+        close(b[0], a[0])  # FITPACK's periodic knots
+    y3 = rng.standard_normal((40, 2, 2))
+    a, b = si.make_smoothing_spline(x, y3, lam=0.1), ls.make_smoothing_spline(x, y3, lam=0.1)
+    close(b.c, a.c, 1e-11)

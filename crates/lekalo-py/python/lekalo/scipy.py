@@ -624,8 +624,6 @@ def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axi
         raise ValueError("``x`` and ``y`` length must be at least 5")
     tail = y.shape[1:]
     n = x.shape[0]
-    if y.ndim > 2:
-        raise NotImplementedError("lekalo.scipy.make_smoothing_spline: y with more than 2 dimensions")
     curve = _lekalo.make_smoothing_spline(x, _real_columns(y, n), w, lam)
     c = np.ascontiguousarray(curve.control).reshape((-1,) + tail)
     return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
@@ -648,13 +646,20 @@ def splrep(
         s = 0.0 if w is None else m - np.sqrt(2 * m)
     if not (1 <= k <= 5):
         raise TypeError(f"1 <= k= {k} <=5 must hold")
-    if per or task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
-        raise NotImplementedError("lekalo.scipy.splrep: per, task and xb/xe are not available yet")
+    if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
+        raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
     if y.ndim != 1 or len(y) != m:
         raise TypeError("Lengths of the first three arguments (x,y,w) must be equal")
     if m <= k:
-        raise TypeError(f"m > k must hold")
-    if t is not None:
+        raise TypeError("m > k must hold")
+    if per:
+        # lekalo's periodic fit is splrep(per=1)'s: the last point closes the period, FITPACK's
+        # knots and smoothing condition, or least squares on the interior knots t
+        curve, _ = _lekalo.fit_periodic(
+            x, y, w=w, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
+        )
+        spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
+    elif t is not None:
         tt = np.r_[(x[0],) * (k + 1), np.asarray(t, dtype=np.float64), (x[-1],) * (k + 1)]
         spl = make_lsq_spline(x, y, tt, k, w=w)
     elif s == 0 and w is None:
