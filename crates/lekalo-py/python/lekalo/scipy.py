@@ -143,6 +143,16 @@ class BSpline:
         self.axis = axis
         return self
 
+    # SciPy keeps the arrays as ``_t`` and ``_c`` behind the ``t`` and ``c`` properties; code
+    # (and SciPy's own tests) that reads the private names finds the same arrays here
+    @property
+    def _t(self) -> np.ndarray:
+        return self.t
+
+    @property
+    def _c(self) -> np.ndarray:
+        return self.c
+
     @property
     def tck(self):
         """Equivalent to ``(self.t, self.c, self.k)`` (read-only)."""
