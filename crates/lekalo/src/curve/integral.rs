@@ -328,6 +328,37 @@ mod tests {
         assert_eq!(c.integral(0.5, 1.5).unwrap(), vec![2.0]);
     }
 
+    #[test]
+    fn curves_of_any_kind_delegate_and_rational_ones_refuse() {
+        use crate::{BezierCurve, Curve, NurbsCurve};
+        // the Bezier curve t ↦ t² on [0, 1] (control 0, 0, 1): ∫_0^1 = 1/3
+        let b = Curve::from(
+            BezierCurve::new(Points::from_flat(1, vec![0.0, 0.0, 1.0]).unwrap()).unwrap(),
+        );
+        let i = b.integral(0.0, 1.0).unwrap();
+        assert!((i[0] - 1.0 / 3.0).abs() < 1e-15, "{i:?}");
+        let a = b.antiderivative(1).unwrap();
+        assert_eq!(a.degree(), 3);
+        assert!((a.eval(1.0).unwrap()[0] - 1.0 / 3.0).abs() < 1e-15);
+        let n = Curve::from(
+            NurbsCurve::new(
+                1,
+                vec![0.0, 0.0, 1.0, 1.0],
+                Points::from_flat(1, vec![0.0, 1.0]).unwrap(),
+                vec![1.0, 2.0],
+            )
+            .unwrap(),
+        );
+        assert!(matches!(
+            n.integral(0.0, 1.0),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            n.antiderivative(1),
+            Err(Error::InvalidArgument { .. })
+        ));
+    }
+
     proptest::proptest! {
         /// On random (possibly unclamped, with repeated knots) splines of degree 0..=5 and
         /// dimension 1..=3: the derivative of the antiderivative is the curve, the integral
