@@ -633,6 +633,35 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         ))
     }
 
+    /// The `n`-th antiderivative, degree `p + n` (de Boor ch. X; SciPy's `splantider`).
+    #[pyo3(signature = (n = 1))]
+    fn antiderivative(&self, py: Python<'_>, n: usize) -> PyResult<Self> {
+        crate::calculus::antiderivative(py, &self.inner, n)
+    }
+
+    /// `∫_a^b C(t) dt`, shape `(dim,)`; `extrapolate=True` continues the end polynomials.
+    #[pyo3(signature = (a, b, extrapolate = false))]
+    fn integrate<'py>(
+        &self,
+        py: Python<'py>,
+        a: f64,
+        b: f64,
+        extrapolate: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        crate::calculus::integrate(py, &self.inner, a, b, extrapolate)
+    }
+
+    /// The `nu`-th derivative at `t` (`t.shape + (dim,)`), continued beyond the domain.
+    #[pyo3(signature = (t, nu = 0))]
+    fn eval_extrapolated<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        nu: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        crate::calculus::eval_extrapolated(py, &self.inner, t, nu)
+    }
+
     /// The Bezier pieces: a list of `(start, end, BezierCurve)`.
     fn to_bezier_segments(&self, py: Python<'_>) -> Vec<(f64, f64, PyBezierCurve)> {
         py.detach(|| self.inner.to_bezier_segments())

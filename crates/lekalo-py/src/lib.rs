@@ -9,14 +9,16 @@
 //!   arrays are borrowed, not copied);
 //! - errors: `error` (`lekalo.Error`, with `lekalo.InputError`, a `ValueError`, and
 //!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
-//! - classes: `curves`, `surfaces`, `tensor` (N variables, SciPy's `NdBSpline`), `interp`
-//!   (interpolation, Hermite), `pp`, `blend`;
+//! - classes: `curves` (their calculus in `calculus`), `surfaces`, `tensor` (N variables,
+//!   SciPy's `NdBSpline`), `interp` (interpolation, Hermite; SciPy's Hermite slopes in
+//!   `slopes`), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`.
 
 mod batch;
 mod blend;
+mod calculus;
 mod convert;
 mod curves;
 mod error;
@@ -24,6 +26,7 @@ mod fit;
 mod interp;
 mod pp;
 mod query;
+mod slopes;
 mod surfaces;
 mod tensor;
 mod words;
@@ -61,5 +64,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     blend::register(m)?;
     fit::register(m)?;
     query::register(m)?;
+    slopes::register(m)?;
     Ok(())
 }

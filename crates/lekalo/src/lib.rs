@@ -83,10 +83,11 @@ pub use surface::{
 pub mod interpolate;
 
 pub use interpolate::{
-    cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
-    natural_cubic_spline, parametrize, CubicHermite, CurveInterpolation, EndCondition,
-    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
-    SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
+    akima_slopes, cubic_through_four_points, four_point_cubic_coefficients,
+    hermite_segment_coefficients, natural_cubic_spline, parametrize, pchip_slopes, CubicHermite,
+    CurveInterpolation, EndCondition, InterpolationWorkspace, KnotPlacement, Parametrization,
+    SurfaceInterpolation, SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX,
+    INTERPOLATION_RESIDUAL_RTOL,
 };
 // the grid interpolation functions before `SurfaceInterpolation`, kept for existing code
 #[allow(deprecated)]

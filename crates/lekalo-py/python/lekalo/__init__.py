@@ -68,6 +68,8 @@ from ._lekalo import (
     interpolate_batch,
     interpolate_surface,
     natural_cubic_spline,
+    pchip_slopes,
+    akima_slopes,
     parametrize,
     quasi_interpolate,
 )
@@ -128,6 +130,8 @@ __all__ = [
     "interpolate_batch",
     "interpolate_surface",
     "natural_cubic_spline",
+    "pchip_slopes",
+    "akima_slopes",
     "parametrize",
     "quasi_interpolate",
     "ragged_offsets",

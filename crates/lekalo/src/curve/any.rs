@@ -316,6 +316,30 @@ impl Curve {
         }
     }
 
+    /// The `order`-th antiderivative as a B-spline of degree `p + order`
+    /// ([`BSplineCurve::antiderivative`]; a Bezier curve as its B-spline on `[0, 1]`).
+    ///
+    /// # Errors
+    /// As [`BSplineCurve::antiderivative`]; [`Error::InvalidArgument`] for a NURBS curve (the
+    /// integral of a rational function is not a spline).
+    pub fn antiderivative(&self, order: usize) -> Result<Curve> {
+        match self.spline() {
+            Spline::Poly(c) => c.antiderivative(order).map(Curve::BSpline),
+            Spline::Rational(_) => Err(rational_integral()),
+        }
+    }
+
+    /// `∫_a^b C(t) dt` for `a`, `b` in the domain ([`BSplineCurve::integral`]).
+    ///
+    /// # Errors
+    /// As [`BSplineCurve::integral`]; [`Error::InvalidArgument`] for a NURBS curve.
+    pub fn integral(&self, a: f64, b: f64) -> Result<Vec<f64>> {
+        match self.spline() {
+            Spline::Poly(c) => c.integral(a, b),
+            Spline::Rational(_) => Err(rational_integral()),
+        }
+    }
+
     /// Inserts the knot `t` `times` times (Boehm; P&T A5.1), the shape unchanged.
     ///
     /// # Errors
@@ -497,6 +521,16 @@ impl Curve {
         } else {
             Ok(Curve::BSpline(joined))
         }
+    }
+}
+
+/// The refusal of antiderivatives and integrals of rational curves.
+fn rational_integral() -> Error {
+    Error::InvalidArgument {
+        what: "curve",
+        reason: "the integral of a NURBS (rational) curve is not a spline; integrate a \
+                 polynomial (Bezier or B-spline) curve"
+            .into(),
     }
 }
 

@@ -5,6 +5,8 @@
 //! - `bezier.rs`: [`BezierCurve`] (de Casteljau, Bernstein form) and [`BezierSegment`].
 //! - `bspline.rs`: [`BSplineCurve`]: evaluation, derivatives, the derivative curve, reversal,
 //!   reparametrisation.
+//! - `integral.rs`: antiderivatives, definite integrals and extrapolation by the end
+//!   polynomials of [`BSplineCurve`].
 //! - `knot_insertion.rs`: knot insertion and refinement, splitting, Bezier decomposition and
 //!   its inverse.
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
@@ -23,6 +25,7 @@ pub(crate) mod bspline;
 mod conics;
 mod curvature;
 mod fast_eval;
+mod integral;
 mod knot_insertion;
 pub(crate) mod knot_removal;
 pub(crate) mod nurbs;

@@ -15,7 +15,10 @@
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
 //! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
+//! - `akima.rs`: [`akima_slopes`], Akima's and the modified Akima (makima) slopes.
+//! - `pchip.rs`: [`pchip_slopes`], shape-preserving slopes for Hermite interpolation (PCHIP).
 
+mod akima;
 pub(crate) mod collocation;
 mod cubic_sweep;
 pub(crate) mod curve;
@@ -23,9 +26,11 @@ mod end_conditions;
 mod fast;
 pub(crate) mod hermite;
 pub(crate) mod parametrization;
+mod pchip;
 mod periodic;
 mod surface;
 
+pub use akima::akima_slopes;
 pub use curve::{
     natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
 };
@@ -36,6 +41,7 @@ pub use hermite::{
     CubicHermite, TangentEstimate, HERMITE_MATRIX,
 };
 pub use parametrization::{parametrize, Parametrization};
+pub use pchip::pchip_slopes;
 #[allow(deprecated)]
 pub use surface::{
     interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,

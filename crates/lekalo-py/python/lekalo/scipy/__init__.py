@@ -1,0 +1,44 @@
+"""``lekalo.scipy``: the spline part of ``scipy.interpolate`` computed by lekalo.
+
+Same names, signatures, defaults, return types, shapes, axis handling and errors as SciPy, so
+that ``from lekalo.scipy import BSpline, make_interp_spline`` replaces the SciPy import. This
+module converts arguments and arranges arrays only; every number comes from lekalo's kernel
+(``BSplineCurve`` evaluation, ``eval_extrapolated``, ``derivative``, ``antiderivative``,
+``integrate``, ``make_lsq_spline``, ``fit_least_squares``, ``interpolate``). Where
+lekalo's native API deliberately differs from SciPy (it refuses parameters outside the domain,
+returns ``t.shape + (dim,)``), this module does what SciPy does.
+
+Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``integrate``,
+``construct_fast``, ``basis_element``, ``design_matrix``, ``tck``, periodic extrapolation),
+``make_interp_spline`` (not-a-knot, periodic, ``"clamped"``, first-derivative pairs, second
+derivatives for cubics, explicit ``t``, ``k = 0 … 5``), ``make_lsq_spline``,
+``make_smoothing_spline``, ``splrep`` (FITPACK's knots for ``s > 0``), ``splev``, ``splint``,
+``splder``, ``splantider``; in SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``,
+``PchipInterpolator``, ``Akima1DInterpolator``. Not yet: mixed end conditions, ``splrep``
+with ``per``/``task``/``xb``/``xe``, ``PPoly.roots``/``solve``, the 2-D FITPACK classes and
+``NdBSpline``. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
+"""
+
+from __future__ import annotations
+
+from ._bspline import BSpline
+from ._fitpack import splantider, splder, splev, splint, splrep
+from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
+from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator
+
+__all__ = [
+    "BSpline",
+    "make_interp_spline",
+    "make_lsq_spline",
+    "make_smoothing_spline",
+    "splrep",
+    "splev",
+    "splint",
+    "splder",
+    "splantider",
+    "CubicSpline",
+    "CubicHermiteSpline",
+    "PchipInterpolator",
+    "Akima1DInterpolator",
+]

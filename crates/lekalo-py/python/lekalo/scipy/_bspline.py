@@ -1,0 +1,343 @@
+"""``BSpline`` and the coefficient helpers of ``lekalo.scipy``: SciPy's interface, lekalo's
+``BSplineCurve`` underneath (evaluation with extrapolation, derivative and antiderivative curves,
+integrals, knot insertion)."""
+
+from __future__ import annotations
+
+import operator
+from typing import Any
+
+import numpy as np
+
+from .. import _lekalo
+
+
+def _normalize_axis(axis: int, ndim: int) -> int:
+    if not -ndim <= axis < ndim:
+        raise np.exceptions.AxisError(axis, ndim)
+    return axis % ndim
+
+
+def _get_dtype(dtype: Any) -> Any:
+    """SciPy's rule: complex stays complex, everything else becomes float64."""
+    return np.complex128 if np.issubdtype(dtype, np.complexfloating) else np.float64
+
+
+def _as_float_array(x: Any, check_finite: bool = False) -> np.ndarray:
+    x = np.ascontiguousarray(x)
+    x = np.ascontiguousarray(x, dtype=_get_dtype(x.dtype))
+    if check_finite and not np.isfinite(x).all():
+        raise ValueError("Array must not contain infs or nans.")
+    return x
+
+
+def _real_columns(c: np.ndarray, n: int) -> np.ndarray:
+    """The first ``n`` coefficients as an ``(n, m)`` float64 array (complex: real and imaginary
+    parts as separate columns, so that lekalo computes with real points)."""
+    cc = np.ascontiguousarray(c[:n].reshape(n, -1))
+    if np.iscomplexobj(cc):
+        cc = np.ascontiguousarray(cc.view(np.float64))
+    return cc
+
+
+def _from_columns(a: np.ndarray, complex_: bool) -> np.ndarray:
+    """Inverse of :func:`_real_columns` on the last axis."""
+    a = np.ascontiguousarray(a)
+    return a.view(np.complex128) if complex_ else a
+
+
+def _kept(t: np.ndarray, k: int) -> np.ndarray:
+    """Which of the ``n`` B-splines have support: SciPy accepts knots of multiplicity above
+    ``k + 1`` (``make_interp_spline(k=0)`` ends on one), whose B-splines vanish identically."""
+    n = t.shape[0] - k - 1
+    return t[k + 1 : k + 1 + n] > t[:n]
+
+
+def _curve(t: np.ndarray, cc: np.ndarray, k: int):
+    """lekalo's curve for the spline, without the B-splines that vanish identically (one copy
+    of their knot each), the same function (lekalo refuses such knot vectors)."""
+    kept = _kept(t, k)
+    if not kept.all():
+        drop = np.flatnonzero(~kept)
+        t = np.delete(t, drop)
+        cc = np.ascontiguousarray(cc[kept])
+    return _lekalo.BSplineCurve(k, t, cc)
+
+
+class BSpline:
+    """Univariate spline in the B-spline basis, ``S(x) = sum_j c_j B_{j,k;t}(x)``, as
+    ``scipy.interpolate.BSpline``; evaluation, derivatives and integrals by lekalo."""
+
+    def __init__(self, t: Any, c: Any, k: int, extrapolate: Any = True, axis: int = 0) -> None:
+        self.k = operator.index(k)
+        self.c = np.asarray(c)
+        self.t = np.ascontiguousarray(t, dtype=np.float64)
+        if extrapolate == "periodic":
+            self.extrapolate = extrapolate
+        else:
+            self.extrapolate = bool(extrapolate)
+        n = self.t.shape[0] - self.k - 1
+        axis = _normalize_axis(axis, self.c.ndim)
+        self.axis = axis
+        if axis != 0:
+            self.c = np.moveaxis(self.c, axis, 0)
+        if k < 0:
+            raise ValueError("Spline order cannot be negative.")
+        if self.t.ndim != 1:
+            raise ValueError("Knot vector must be one-dimensional.")
+        if n < self.k + 1:
+            raise ValueError(f"Need at least {2 * k + 2} knots for degree {k}")
+        if (np.diff(self.t) < 0).any():
+            raise ValueError("Knots must be in a non-decreasing order.")
+        if len(np.unique(self.t[k : n + 1])) < 2:
+            raise ValueError("Need at least two internal knots.")
+        if not np.isfinite(self.t).all():
+            raise ValueError("Knots should not have nans or infs.")
+        if self.c.ndim < 1:
+            raise ValueError("Coefficients must be at least 1-dimensional.")
+        if self.c.shape[0] < n:
+            raise ValueError("Knots, coefficients and degree are inconsistent.")
+        self.c = np.ascontiguousarray(self.c, dtype=_get_dtype(self.c.dtype))
+
+    @classmethod
+    def construct_fast(cls, t: Any, c: Any, k: int, extrapolate: Any = True, axis: int = 0) -> "BSpline":
+        """Construct a spline without making checks (SciPy's ``construct_fast``)."""
+        self = object.__new__(cls)
+        self.t, self.c, self.k = t, c, k
+        self.extrapolate = extrapolate
+        self.axis = axis
+        return self
+
+    # SciPy keeps the arrays as ``_t`` and ``_c`` behind the ``t`` and ``c`` properties; code
+    # (and SciPy's own tests) that reads the private names finds the same arrays here
+    @property
+    def _t(self) -> np.ndarray:
+        return self.t
+
+    @property
+    def _c(self) -> np.ndarray:
+        return self.c
+
+    @property
+    def tck(self):
+        """Equivalent to ``(self.t, self.c, self.k)`` (read-only)."""
+        return self.t, self.c, self.k
+
+    @classmethod
+    def basis_element(cls, t: Any, extrapolate: Any = True) -> "BSpline":
+        """The B-spline on the knots ``t`` (degree ``len(t) - 2``), SciPy's construction."""
+        k = len(t) - 2
+        t = _as_float_array(t)
+        t = np.r_[(t[0] - 1,) * k, t, (t[-1] + 1,) * k]
+        c = np.zeros_like(t)
+        c[k] = 1.0
+        return cls.construct_fast(t, c, k, extrapolate)
+
+    @classmethod
+    def design_matrix(cls, x: Any, t: Any, k: int, extrapolate: bool = False):
+        """The sparse matrix ``B_{j,k}(x_i)`` (``scipy.sparse.csr_array``), lekalo's basis
+        functions at each ``x`` (``basis_functions``); with ``extrapolate``, the end spans'
+        basis polynomials continue beyond ``[t[k], t[n]]``."""
+        from scipy.sparse import csr_array
+
+        x = _as_float_array(x, True)
+        t = _as_float_array(t, True)
+        if extrapolate != "periodic":
+            extrapolate = bool(extrapolate)
+        if k < 0:
+            raise ValueError("Spline order cannot be negative.")
+        if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+            raise ValueError(f"Expect t to be a 1-D sorted array_like, but got t={t}.")
+        if len(t) < 2 * k + 2:
+            raise ValueError(f"Length t is not enough for k={k}.")
+        n = t.shape[0] - k - 1
+        if extrapolate == "periodic":
+            x = t[k] + (x - t[k]) % (t[n] - t[k])
+            extrapolate = False
+        elif not extrapolate and ((min(x) < t[k]) or (max(x) > t[n])):
+            raise ValueError(f"Out of bounds: x = {x}.")
+        spans, rows = _lekalo.basis_functions(t, k, np.clip(x, t[k], t[n]))
+        outside = (x < t[k]) | (x > t[n])
+        if outside.any():
+            # the end spans' basis polynomials at x: the curve whose control points are the
+            # unit vectors of R^n, continued beyond the domain
+            eye = _lekalo.BSplineCurve(k, t, np.eye(n))
+            full = eye.eval_extrapolated(x[outside])
+            cols = (spans[outside] - k)[:, None] + np.arange(k + 1)
+            rows = np.array(rows, copy=True)
+            rows[outside] = np.take_along_axis(full, cols, axis=1)
+        indices = (spans - k)[:, None] + np.arange(k + 1)
+        indptr = np.arange(0, len(x) * (k + 1) + 1, k + 1)
+        return csr_array((rows.ravel(), indices.ravel(), indptr), shape=(len(x), n))
+
+    def _n(self) -> int:
+        return self.t.shape[0] - self.k - 1
+
+    def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
+        """Evaluate the spline or its ``nu``-th derivative at ``x`` (SciPy's shapes: ``x.shape``
+        followed by the coefficients' trailing shape, the interpolation axis at ``axis``)."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        x = np.asarray(x)
+        x_shape, x_ndim = x.shape, x.ndim
+        x = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+        n = self._n()
+        if extrapolate == "periodic":
+            x = self.t[self.k] + (x - self.t[self.k]) % (self.t[n] - self.t[self.k])
+            extrapolate = False
+        out = self._evaluate(x, nu, bool(extrapolate))
+        out = out.reshape(x_shape + self.c.shape[1:])
+        if self.axis != 0:
+            axes = list(range(out.ndim))
+            axes = axes[x_ndim : x_ndim + self.axis] + axes[:x_ndim] + axes[x_ndim + self.axis :]
+            out = out.transpose(axes)
+        return out
+
+    def _evaluate(self, x: np.ndarray, nu: int, extrapolate: bool) -> np.ndarray:
+        nu = operator.index(nu)
+        if nu < 0:
+            raise ValueError(f"Cannot do derivative order {nu}.")
+        n = self._n()
+        m = int(np.prod(self.c.shape[1:], dtype=np.int64))
+        complex_ = np.iscomplexobj(self.c)
+        out = np.full((x.shape[0], m), np.nan, dtype=self.c.dtype)
+        if m == 0 or x.shape[0] == 0:
+            return out
+        ok = np.isfinite(x)
+        if not extrapolate:
+            ok &= (x >= self.t[self.k]) & (x <= self.t[n])
+        curve = _curve(self.t, _real_columns(self.c, n), self.k)
+        vals = curve.eval_extrapolated(x[ok], nu)
+        out[ok] = _from_columns(vals, complex_)
+        if self.k == 0 and nu == 0 and self.t[n - 1] == self.t[n]:
+            # SciPy's span search ends in the last interval even when it is empty: a
+            # piecewise constant (make_interp_spline(k=0)) takes its last value from x[-1] on
+            out[ok & (x >= self.t[n])] = self.c[n - 1].reshape(-1)
+        return out
+
+    def derivative(self, nu: int = 1) -> "BSpline":
+        """The derivative spline of order ``nu`` (SciPy's ``splder`` knots ``t[nu:-nu]``, the
+        coefficients zero-padded to the knots' length), from lekalo's derivative curve."""
+        t, c = _derivative_tc(self.t, self.c, self.k, nu)
+        return self.construct_fast(t, c, self.k - nu, extrapolate=self.extrapolate, axis=self.axis)
+
+    def antiderivative(self, nu: int = 1) -> "BSpline":
+        """The antiderivative of order ``nu`` (SciPy's ``splantider``: degree ``k + nu``, end
+        knots repeated), lekalo's ``antiderivative``. A periodic spline's antiderivative does
+        not extrapolate (it is not periodic)."""
+        t, c = _antiderivative_tc(self.t, self.c, self.k, nu)
+        extrapolate = False if self.extrapolate == "periodic" else self.extrapolate
+        return self.construct_fast(t, c, self.k + nu, extrapolate=extrapolate, axis=self.axis)
+
+    def integrate(self, a: float, b: float, extrapolate: Any = None):
+        """``∫_a^b S(x) dx`` (SciPy's rules: outside the base interval zero unless
+        extrapolating; periodic splines integrate whole periods), lekalo's ``integrate``."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        sign = 1
+        if b < a:
+            a, b = b, a
+            sign = -1
+        n = self._n()
+        tail = self.c.shape[1:]
+        m = int(np.prod(tail, dtype=np.int64))
+        if m == 0:
+            return np.zeros(tail, dtype=self.c.dtype) * sign
+        complex_ = np.iscomplexobj(self.c)
+        curve = _curve(self.t, _real_columns(self.c, n), self.k)
+        ts, te = self.t[self.k], self.t[n]
+
+        def piece(lo: float, hi: float, ext: bool) -> np.ndarray:
+            return curve.integrate(float(lo), float(hi), ext)
+
+        if extrapolate == "periodic":
+            period = te - ts
+            n_periods, left = divmod(b - a, period)
+            total = piece(ts, te, False) * n_periods if n_periods > 0 else 0.0
+            a = ts + (a - ts) % period
+            b = a + left
+            if b <= te:
+                total = total + piece(a, b, False)
+            else:
+                total = total + piece(a, te, False) + piece(ts, ts + b - te, False)
+        elif not extrapolate:
+            a = max(a, ts)
+            b = min(b, te)
+            total = piece(a, b, False) if a < b else np.zeros(curve.dim)
+        else:
+            total = piece(a, b, True)
+        total = _from_columns(np.asarray(total, dtype=np.float64).reshape(1, -1), complex_)
+        return np.asarray(total.reshape(tail) * sign)
+
+    def insert_knot(self, x: float, m: int = 1) -> "BSpline":
+        """The same spline with the knot ``x`` inserted ``m`` times (Boehm), lekalo's
+        ``insert_knot``; the coefficients grow by ``m``."""
+        x = float(x)
+        if x < self.t[self.k] or x > self.t[-self.k - 1]:
+            raise ValueError(f"Cannot insert a knot at {x}.")
+        if m <= 0:
+            raise ValueError(f"`m` must be positive, got {m = }.")
+        if self.extrapolate == "periodic":
+            raise NotImplementedError("lekalo.scipy: periodic knot insertion is not available yet")
+        n = self._n()
+        complex_ = np.iscomplexobj(self.c)
+        curve = _curve(self.t, _real_columns(self.c, n), self.k).insert_knot(x, m)
+        cc = _from_columns(curve.control, complex_).reshape((n + m,) + self.c.shape[1:])
+        return self.construct_fast(np.ascontiguousarray(curve.knots), cc, self.k, self.extrapolate, self.axis)
+
+
+def _pad_rows(c: np.ndarray, rows: int, fill: np.ndarray | None = None) -> np.ndarray:
+    """``c`` with rows appended up to ``rows``: zeros, or copies of ``fill``."""
+    extra = rows - c.shape[0]
+    if extra <= 0:
+        return c
+    if fill is None:
+        pad = np.zeros((extra,) + c.shape[1:], dtype=c.dtype)
+    else:
+        pad = np.broadcast_to(fill, (extra,) + c.shape[1:])
+    return np.ascontiguousarray(np.concatenate([c, pad]))
+
+
+def _derivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
+    nu = operator.index(nu)
+    if nu < 0:
+        return _antiderivative_tc(t, c, k, -nu)
+    if nu > k:
+        raise ValueError(f"Order of derivative (n = {nu!r}) must be <= order of spline (k = {k!r})")
+    if nu == 0:
+        return t, c
+    n = t.shape[0] - k - 1
+    tail = c.shape[1:]
+    complex_ = np.iscomplexobj(c)
+    curve = _curve(t, _real_columns(c, n), k)
+    for _ in range(nu):
+        curve = curve.derivative()
+    t_new = t[nu:-nu] if nu > 0 else t
+    if curve.knots.shape[0] != t_new.shape[0]:
+        raise ValueError(f"The spline has internal repeated knots and is not differentiable {nu} times")
+    cn = _from_columns(curve.control, complex_).reshape((n - nu,) + tail)
+    return t_new, _pad_rows(cn, t_new.shape[0])
+
+
+def _antiderivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
+    nu = operator.index(nu)
+    if nu < 0:
+        return _derivative_tc(t, c, k, -nu)
+    if nu == 0:
+        return t, c
+    n = t.shape[0] - k - 1
+    tail = c.shape[1:]
+    complex_ = np.iscomplexobj(c)
+    kept = _kept(t, k)
+    if not kept.all():
+        # one step on the B-splines with support; those without add nothing to the cumulative
+        # sum, so their antiderivative coefficients repeat the previous one (SciPy's layout)
+        ctrl = _curve(t, _real_columns(c, n), k).antiderivative(1).control
+        full = ctrl[np.r_[0, np.cumsum(kept)]]
+        cn = _from_columns(full, complex_).reshape((n + 1,) + tail)
+        t1 = np.r_[t[0], t, t[-1]]
+        return _antiderivative_tc(t1, _pad_rows(cn, t1.shape[0], cn[-1]), k + 1, nu - 1)
+    curve = _curve(t, _real_columns(c, n), k).antiderivative(nu)
+    t_new = np.ascontiguousarray(curve.knots)
+    cn = _from_columns(curve.control, complex_).reshape((n + nu,) + tail)
+    return t_new, _pad_rows(cn, t_new.shape[0], cn[-1])

@@ -1,0 +1,156 @@
+"""The FITPACK-style functions of ``lekalo.scipy`` (``splrep``, ``splev``, ``splint``, ``splder``,
+``splantider``) on ``(t, c, k)`` tuples and ``BSpline`` objects."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import _lekalo
+from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _pad_rows
+from ._interpolate import make_interp_spline, make_lsq_spline
+
+
+def splrep(
+    x: Any, y: Any, w: Any = None, xb: Any = None, xe: Any = None, k: int = 3, task: int = 0,
+    s: Any = None, t: Any = None, full_output: int = 0, per: int = 0, quiet: int = 1,
+):
+    """``scipy.interpolate.splrep`` for interpolation (``s = 0``, the default without weights;
+    FITPACK's knots are SciPy's not-a-knot ones) and for least squares on given interior knots
+    ``t``. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    x = np.atleast_1d(np.asarray(x, dtype=np.float64))
+    y = np.atleast_1d(np.asarray(y, dtype=np.float64))
+    m = len(x)
+    if s is None:
+        s = 0.0 if w is None else m - np.sqrt(2 * m)
+    if not (1 <= k <= 5):
+        raise TypeError(f"1 <= k= {k} <=5 must hold")
+    if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
+        raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
+    if y.ndim != 1 or len(y) != m:
+        raise TypeError("Lengths of the first three arguments (x,y,w) must be equal")
+    if m <= k:
+        raise TypeError("m > k must hold")
+    if per:
+        # lekalo's periodic fit is splrep(per=1)'s: the last point closes the period, FITPACK's
+        # knots and smoothing condition, or least squares on the interior knots t
+        curve, _ = _lekalo.fit_periodic(
+            x, y, w=w, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
+        )
+        spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
+    elif t is not None:
+        tt = np.r_[(x[0],) * (k + 1), np.asarray(t, dtype=np.float64), (x[-1],) * (k + 1)]
+        spl = make_lsq_spline(x, y, tt, k, w=w)
+    elif s == 0 and w is None:
+        spl = make_interp_spline(x, y, k=k)
+    else:
+        # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
+        # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits
+        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s))
+        spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
+    tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
+    if full_output:
+        return tck, 0.0, 0, ""
+    return tck
+
+
+def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
+    """``scipy.interpolate.splev``: the spline (or its ``der``-th derivative) at ``x``;
+    ``ext`` 0 extrapolates, 1 gives zero, 2 raises ``ValueError``, 3 gives the boundary value
+    outside the base interval."""
+    if isinstance(tck, BSpline):
+        if tck.c.ndim > 1:
+            raise ValueError(
+                "Calling splev() with BSpline objects with c.ndim > 1 is not allowed. "
+                "Use BSpline.__call__(x) instead."
+            )
+        try:
+            extrapolate = {0: True}[ext]
+        except KeyError as e:
+            raise ValueError(f"Extrapolation mode {ext} is not supported by BSpline.") from e
+        return tck(x, der, extrapolate=extrapolate)
+    t, c, k = tck
+    try:
+        c[0][0]
+        parametric = True
+    except Exception:
+        parametric = False
+    if parametric:
+        return list(map(lambda c, x=x, t=t, k=k: splev(x, [t, c, k], der, ext), c))
+    if not (0 <= der <= k):
+        raise ValueError(f"0<=der={der}<=k={k} must hold")
+    if ext not in (0, 1, 2, 3):
+        raise ValueError(f"ext = {ext} not in (0, 1, 2, 3) ")
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    x = np.asarray(x)
+    shape = x.shape
+    x = np.atleast_1d(x).ravel().astype(np.float64)
+    n = t.shape[0] - k - 1
+    lo, hi = t[k], t[n]
+    outside = (x < lo) | (x > hi)
+    if ext == 2 and outside.any():
+        raise ValueError("Error code returned by splev: 1")
+    # FITPACK clips to the boundary value for ext=3 only for the function itself; its
+    # derivatives (splder) extrapolate
+    xx = np.clip(x, lo, hi) if ext == 3 and der == 0 else x
+    y = BSpline.construct_fast(t, c, k)._evaluate(xx, der, True)[:, 0]
+    if ext == 1:
+        y[outside] = 0.0
+    return y.reshape(shape)
+
+
+def splint(a: float, b: float, tck: Any, full_output: int = 0):
+    """``scipy.interpolate.splint``: ``∫_a^b`` of the spline over the base interval (limits
+    clipped to it, as FITPACK), lekalo's ``integrate``."""
+    if isinstance(tck, BSpline):
+        if tck.c.ndim > 1:
+            raise ValueError(
+                "Calling splint() with BSpline objects with c.ndim > 1 is not allowed. "
+                "Use BSpline.integrate() instead."
+            )
+        if full_output != 0:
+            raise ValueError("full_output = True is not supported with BSpline objects.")
+        return tck.integrate(a, b, extrapolate=False)
+    t, c, k = tck
+    try:
+        c[0][0]
+        return list(map(lambda c, a=a, b=b, t=t, k=k: splint(a, b, [t, c, k]), c))
+    except Exception:
+        pass
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    val = BSpline.construct_fast(t, c, k, extrapolate=False).integrate(a, b, extrapolate=False)
+    val = float(val)
+    if full_output:
+        return val, None
+    return val
+
+
+def splder(tck: Any, n: int = 1):
+    """``scipy.interpolate.splder``: the derivative spline, lekalo's derivative curve."""
+    if isinstance(tck, BSpline):
+        return tck.derivative(n)
+    t, c, k = tck
+    if n < 0:
+        return splantider(tck, -n)
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    if n > k:
+        raise ValueError(f"Order of derivative (n = {n!r}) must be <= order of spline (k = {k!r})")
+    t2, c2 = _derivative_tc(t, c, k, n)
+    return t2, c2, k - n
+
+
+def splantider(tck: Any, n: int = 1):
+    """``scipy.interpolate.splantider``: the antiderivative spline, lekalo's antiderivative."""
+    if isinstance(tck, BSpline):
+        return tck.antiderivative(n)
+    t, c, k = tck
+    if n < 0:
+        return splder(tck, -n)
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    t2, c2 = _antiderivative_tc(t, c, k, n)
+    return t2, c2, k + n

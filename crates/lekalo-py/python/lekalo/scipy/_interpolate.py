@@ -1,0 +1,277 @@
+"""The interpolating and fitting constructors of ``lekalo.scipy``: SciPy's knot choices and
+boundary conditions, lekalo's solves."""
+
+from __future__ import annotations
+
+import operator
+from typing import Any
+
+import numpy as np
+
+from .. import _lekalo
+from ._bspline import (
+    BSpline,
+    _as_float_array,
+    _from_columns,
+    _get_dtype,
+    _normalize_axis,
+    _real_columns,
+)
+
+
+def _not_a_knot(x: np.ndarray, k: int) -> np.ndarray:
+    """SciPy's not-a-knot knots (de Boor XIII(12)): data sites for odd ``k`` and mid-points for
+    even ``k``, without the ``(k+1)//2`` (``k//2``) first and last, end knots of multiplicity
+    ``k + 1`` (FITPACK's choice for ``s = 0``, too)."""
+    if k % 2 == 1:
+        k2 = (k + 1) // 2
+        t = x.copy()
+    else:
+        k2 = k // 2
+        t = (x[1:] + x[:-1]) / 2
+    t = t[k2:-k2]
+    return np.r_[(x[0],) * (k + 1), t, (x[-1],) * (k + 1)]
+
+
+def _augknt(x: np.ndarray, k: int) -> np.ndarray:
+    """The data sites with end knots of multiplicity ``k + 1``."""
+    return np.r_[(x[0],) * k, x, (x[-1],) * k]
+
+
+def _convert_string_aliases(deriv: Any, target_shape: tuple) -> Any:
+    if isinstance(deriv, str):
+        if deriv == "clamped":
+            deriv = [(1, np.zeros(target_shape))]
+        elif deriv == "natural":
+            deriv = [(2, np.zeros(target_shape))]
+        else:
+            raise ValueError(f"Unknown boundary condition : {deriv}")
+    return deriv
+
+
+def _process_deriv_spec(deriv: Any):
+    if deriv is not None:
+        try:
+            ords, vals = zip(*deriv)
+        except TypeError as e:
+            msg = "Derivatives, `bc_type`, should be specified as a pair of iterables of pairs of (order, value)."
+            raise ValueError(msg) from e
+    else:
+        ords, vals = [], []
+    return np.atleast_1d(ords, vals)
+
+
+def make_interp_spline(
+    x: Any, y: Any, k: int = 3, t: Any = None, bc_type: Any = None, axis: int = 0, check_finite: bool = True
+) -> BSpline:
+    """The interpolating B-spline of degree ``k`` (``scipy.interpolate.make_interp_spline``):
+    SciPy's knots and boundary conditions, solved by lekalo (``make_lsq_spline`` on as many
+    coefficients as conditions, a square banded QR; ``fit_least_squares`` with end
+    derivatives; ``interpolate`` with second derivatives at the ends)."""
+    if bc_type is None or bc_type == "not-a-knot" or bc_type == "periodic":
+        deriv_l, deriv_r = None, None
+    elif isinstance(bc_type, str):
+        deriv_l, deriv_r = bc_type, bc_type
+    else:
+        try:
+            deriv_l, deriv_r = bc_type
+        except TypeError as e:
+            raise ValueError(f"Unknown boundary condition: {bc_type}") from e
+    y = np.asarray(y)
+    axis = _normalize_axis(axis, y.ndim)
+    x = _as_float_array(x, check_finite)
+    y = _as_float_array(y, check_finite)
+    y = np.moveaxis(y, axis, 0)
+    if bc_type == "periodic" and not np.allclose(y[0], y[-1], atol=1e-15):
+        raise ValueError("First and last points does not match while periodic case expected")
+    if x.size != y.shape[0]:
+        raise ValueError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
+    if np.any(x[1:] == x[:-1]):
+        raise ValueError("Expect x to not have duplicates")
+    if x.ndim != 1 or np.any(x[1:] < x[:-1]):
+        raise ValueError("Expect x to be a 1D strictly increasing sequence.")
+    if k == 0:
+        if any(v is not None for v in (t, deriv_l, deriv_r)):
+            raise ValueError("Too much info for k=0: t and bc_type can only be None.")
+        t = np.r_[x, x[-1]]
+        c = np.ascontiguousarray(y, dtype=_get_dtype(y.dtype))
+        return BSpline.construct_fast(t, c, k, axis=axis)
+    if k == 1 and t is None:
+        if not (deriv_l is None and deriv_r is None):
+            raise ValueError("Too much info for k=1: bc_type can only be None.")
+        t = np.r_[x[0], x, x[-1]]
+        c = np.ascontiguousarray(y, dtype=_get_dtype(y.dtype))
+        return BSpline.construct_fast(t, c, k, axis=axis)
+    k = operator.index(k)
+    if bc_type == "periodic" and t is not None:
+        raise NotImplementedError(
+            "For periodic case t is constructed automatically and can not be passed manually"
+        )
+    if bc_type == "periodic":
+        return _make_periodic_spline(x, y, k, axis)
+    if t is None:
+        t = _not_a_knot(x, k) if deriv_l is None and deriv_r is None else _augknt(x, k)
+    t = _as_float_array(t, check_finite)
+    if k < 0:
+        raise ValueError("Expect non-negative k.")
+    if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+        raise ValueError("Expect t to be a 1-D sorted array_like.")
+    if t.size < x.size + k + 1:
+        raise ValueError(f"Got {t.size} knots, need at least {x.size + k + 1}.")
+    if (x[0] < t[k]) or (x[-1] > t[-k]):
+        raise ValueError(f"Out of bounds w/ x = {x}.")
+    deriv_l = _convert_string_aliases(deriv_l, y.shape[1:])
+    deriv_l_ords, deriv_l_vals = _process_deriv_spec(deriv_l)
+    nleft = deriv_l_ords.shape[0]
+    deriv_r = _convert_string_aliases(deriv_r, y.shape[1:])
+    deriv_r_ords, deriv_r_vals = _process_deriv_spec(deriv_r)
+    nright = deriv_r_ords.shape[0]
+    if not all(0 <= i <= k for i in deriv_l_ords):
+        raise ValueError(f"Bad boundary conditions at {t[0]}.")
+    if not all(0 <= i <= k for i in deriv_r_ords):
+        raise ValueError(f"Bad boundary conditions at {t[-1]}.")
+    n = x.size
+    nt = t.size - k - 1
+    if nt - n != nleft + nright:
+        raise ValueError(
+            f"The number of derivatives at boundaries does not match: expected {nt - n}, got {nleft}+{nright}"
+        )
+    tail = y.shape[1:]
+    if y.size == 0:
+        c = np.zeros((nt,) + tail, dtype=float)
+        return BSpline.construct_fast(t, c, k, axis=axis)
+    complex_ = np.iscomplexobj(y)
+    yy = _real_columns(y, n)
+    if nleft == 0 and nright == 0:
+        ctrl = _lekalo.make_lsq_spline(x, yy, t, k).control
+    elif (
+        nleft == 1
+        and nright == 1
+        and deriv_l_ords[0] == 1
+        and deriv_r_ords[0] == 1
+        and t[0] == t[k]
+        and t[-1] == t[-k - 1]
+        and x[0] == t[0]
+        and x[-1] == t[-1]
+    ):
+        d0 = _real_columns(np.asarray(deriv_l_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
+        d1 = _real_columns(np.asarray(deriv_r_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
+        curve, _ = _lekalo.fit_least_squares(yy, x, t, k, clamp_ends=True, d_start=d0, d_end=d1)
+        ctrl = curve.control
+    elif (
+        k == 3
+        and nleft == 1
+        and nright == 1
+        and deriv_l_ords[0] == 2
+        and deriv_r_ords[0] == 2
+        and np.array_equal(t, _augknt(x, k))
+    ):
+        d0 = _real_columns(np.asarray(deriv_l_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
+        d1 = _real_columns(np.asarray(deriv_r_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
+        curve = _lekalo.interpolate(yy, 3, params=x, knots="at-params", end="second", d_start=d0, d_end=d1)
+        if not np.array_equal(curve.knots, t):
+            raise NotImplementedError("lekalo.scipy: second-derivative ends on these knots are not available yet")
+        ctrl = curve.control
+    else:
+        raise NotImplementedError(
+            f"lekalo.scipy: bc_type={bc_type!r} with k={k} is not available yet "
+            "(supported: not-a-knot, clamped/first derivatives, natural cubics)"
+        )
+    c = _from_columns(ctrl, complex_).reshape((nt,) + tail)
+    return BSpline.construct_fast(t, c, k, axis=axis)
+
+
+def _make_periodic_spline(x: np.ndarray, y: np.ndarray, k: int, axis: int) -> BSpline:
+    """The periodic interpolant on SciPy's periodic knots (interior knots at the data for odd
+    ``k``, at the mid-points for even ``k``, continued by the period), solved by lekalo's
+    ``fit_periodic`` with ``s = 0`` on those interior knots (its cyclic banded system)."""
+    n = x.shape[0]
+    xc = x.copy()
+    if k % 2 == 0:
+        xc[1:-1] -= np.diff(x)[:-1] / 2
+    tail = y.shape[1:]
+    nt = n + k - 1
+    if y.size == 0:
+        t = _periodic_knots(x, k)
+        return BSpline.construct_fast(t, np.zeros((nt,) + tail), k, extrapolate="periodic", axis=axis)
+    complex_ = np.iscomplexobj(y)
+    curve, _ = _lekalo.fit_periodic(x, _real_columns(y, n), k=k, s=0.0, t=xc[1:-1])
+    t = np.ascontiguousarray(curve.knots)
+    c = _from_columns(curve.control, complex_).reshape((nt,) + tail)
+    return BSpline.construct_fast(t, c, k, extrapolate="periodic", axis=axis)
+
+
+def _periodic_knots(x: np.ndarray, k: int) -> np.ndarray:
+    """SciPy's periodic knot vector (``_periodic_knots``)."""
+    xc = np.copy(x)
+    n = len(xc)
+    if k % 2 == 0:
+        dx = np.diff(xc)
+        xc[1:-1] -= dx[:-1] / 2
+    dx = np.diff(xc)
+    t = np.zeros(n + 2 * k)
+    t[k:-k] = xc
+    for i in range(0, k):
+        t[k - i - 1] = t[k - i] - dx[-(i % (n - 1)) - 1]
+        t[-k + i] = t[-k + i - 1] + dx[i % (n - 1)]
+    return t
+
+
+def make_lsq_spline(
+    x: Any, y: Any, t: Any, k: int = 3, w: Any = None, axis: int = 0, check_finite: bool = True, *, method: str = "qr"
+) -> BSpline:
+    """The weighted least-squares spline on the knots ``t`` (``scipy.interpolate.make_lsq_spline``),
+    lekalo's banded-QR ``make_lsq_spline``."""
+    x = _as_float_array(x, check_finite)
+    y = _as_float_array(y, check_finite)
+    t = _as_float_array(t, check_finite)
+    w = np.ones_like(x) if w is None else _as_float_array(w, check_finite)
+    k = operator.index(k)
+    axis = _normalize_axis(axis, y.ndim)
+    y = np.moveaxis(y, axis, 0)
+    if x.ndim != 1:
+        raise ValueError("Expect x to be a 1-D sequence.")
+    if x.shape[0] < k + 1:
+        raise ValueError("Need more x points.")
+    if k < 0:
+        raise ValueError("Expect non-negative k.")
+    if t.ndim != 1 or np.any(t[1:] - t[:-1] < 0):
+        raise ValueError("Expect t to be a 1D strictly increasing sequence.")
+    if x.size != y.shape[0]:
+        raise ValueError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
+    if k > 0 and np.any((x < t[k]) | (x > t[-k])):
+        raise ValueError(f"Out of bounds w/ x = {x}.")
+    if x.size != w.size:
+        raise ValueError(f"Shapes of x {x.shape} and w {w.shape} are incompatible")
+    if method not in ("qr", "norm-eq"):
+        raise ValueError(f"method={method} is not understood.")
+    if np.any(x[1:] - x[:-1] < 0):
+        raise ValueError("Expect x to be a sorted 1D sequence.")
+    n = t.size - k - 1
+    tail = y.shape[1:]
+    complex_ = np.iscomplexobj(y)
+    ctrl = _lekalo.make_lsq_spline(x, _real_columns(y, x.size), t, k, w).control
+    c = _from_columns(ctrl, complex_).reshape((n,) + tail)
+    return BSpline.construct_fast(t, c, k, axis=axis)
+
+
+def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axis: int = 0) -> BSpline:
+    """``scipy.interpolate.make_smoothing_spline``: the penalised cubic smoothing spline with
+    knots at the data, ``lam`` given or chosen by generalised cross-validation, lekalo's
+    ``make_smoothing_spline`` (with ``lam`` the same spline to rounding; the GCV ``lam`` is
+    found by lekalo's own minimiser, so it agrees to the minimiser's tolerance)."""
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.asarray(y)
+    axis = _normalize_axis(axis, y.ndim)
+    y = np.moveaxis(np.ascontiguousarray(y, dtype=float), axis, 0)
+    if any(x[1:] - x[:-1] <= 0):
+        raise ValueError("``x`` should be an ascending array")
+    if x.ndim != 1 or x.shape[0] != y.shape[0]:
+        raise ValueError(f"``x`` should be 1D and {x.shape = } == {y.shape = }")
+    if x.shape[0] < 5:
+        raise ValueError("``x`` and ``y`` length must be at least 5")
+    tail = y.shape[1:]
+    n = x.shape[0]
+    curve = _lekalo.make_smoothing_spline(x, _real_columns(y, n), w, lam)
+    c = np.ascontiguousarray(curve.control).reshape((-1,) + tail)
+    return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)

@@ -1,0 +1,167 @@
+//! Shape-preserving slopes for piecewise cubic Hermite interpolation of functions `y(x)`:
+//! [`pchip_slopes`] (`docs/theory/interpolation.md#pchip-slopes`), the PCHIP rule of Fritsch & Butland with Moler's one-sided ends (what
+//! SciPy's `PchipInterpolator` and MATLAB's `pchip` use). The Hermite cubic through the data
+//! with these slopes is [`crate::CubicHermite`].
+
+use crate::error::{check_finite, Error, Result};
+use crate::points::{Points, PointsRef};
+
+/// PCHIP slopes `d_k` at the abscissae `x` (strictly increasing, at least 2) for the values `y`
+/// (one point per abscissa, any dimension; each coordinate on its own). With the steps
+/// `h_k = x_{k+1} − x_k` and secants `δ_k = (y_{k+1} − y_k)/h_k`:
+///
+/// - interior: `d_k = 0` where `δ_{k−1}`, `δ_k` differ in sign or one is zero, otherwise the
+///   weighted harmonic mean `(w_1 + w_2)/d_k = w_1/δ_{k−1} + w_2/δ_k` with
+///   `w_1 = 2h_k + h_{k−1}`, `w_2 = h_k + 2h_{k−1}` (Fritsch & Butland, SIAM J. Sci. Stat.
+///   Comput. 5, 1984);
+/// - ends: the one-sided three-point estimate `d_0 = ((2h_0 + h_1)δ_0 − h_0 δ_1)/(h_0 + h_1)`,
+///   set to zero if its sign differs from `δ_0`'s, and to `3δ_0` if `δ_0`, `δ_1` differ in sign
+///   and `|d_0| > 3|δ_0|` (Moler, *Numerical Computing with MATLAB*, §3.6, `pchiptx`); the
+///   same mirrored at the right end;
+/// - two points: both slopes the secant.
+///
+/// Monotone data give a monotone interpolant. These are the slopes of SciPy's
+/// `PchipInterpolator` (`_find_derivatives`, `_edge_case`).
+///
+/// ```
+/// use lekalo::{pchip_slopes, PointsRef};
+/// let x = [0.0, 1.0, 2.0, 3.0];
+/// let y = [0.0, 1.0, 1.0, 3.0];
+/// let d = pchip_slopes(&x, PointsRef::from_flat(1, &y)?)?;
+/// assert_eq!(d.as_slice()[1], 0.0); // a flat secant next to the point: a flat slope
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::TooFew`] for fewer than 2 points; [`Error::LengthMismatch`] if `x` and `y` differ
+/// in length; [`Error::NonFinite`] for a NaN or infinite number; [`Error::InvalidArgument`] if
+/// `x` is not strictly increasing.
+pub fn pchip_slopes(x: &[f64], y: PointsRef<'_>) -> Result<Points> {
+    let n = x.len();
+    if n < 2 {
+        return Err(Error::TooFew {
+            what: "points (x)",
+            min: 2,
+            got: n,
+        });
+    }
+    if y.len() != n {
+        return Err(Error::LengthMismatch {
+            what: "y (one value per x)",
+            expected: n,
+            got: y.len(),
+        });
+    }
+    check_finite("x", x)?;
+    check_finite("y", y.as_slice())?;
+    if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(Error::InvalidArgument {
+            what: "x",
+            reason: format!(
+                "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
+                 and merge repeated abscissae",
+                i + 1,
+                x[i + 1],
+                x[i]
+            ),
+        });
+    }
+    let dim = y.dim();
+    let ys = y.as_slice();
+    let mut d = vec![0.0; n * dim];
+    let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    for c in 0..dim {
+        let m: Vec<f64> = (0..n - 1)
+            .map(|k| (ys[(k + 1) * dim + c] - ys[k * dim + c]) / h[k])
+            .collect();
+        if n == 2 {
+            d[c] = m[0];
+            d[dim + c] = m[0];
+            continue;
+        }
+        for k in 1..n - 1 {
+            let (m0, m1) = (m[k - 1], m[k]);
+            if sign(m0) != sign(m1) || m0 == 0.0 || m1 == 0.0 {
+                continue;
+            }
+            let w1 = 2.0 * h[k] + h[k - 1];
+            let w2 = h[k] + 2.0 * h[k - 1];
+            let whmean = (w1 / m0 + w2 / m1) / (w1 + w2);
+            d[k * dim + c] = 1.0 / whmean;
+        }
+        d[c] = edge(h[0], h[1], m[0], m[1]);
+        d[(n - 1) * dim + c] = edge(h[n - 2], h[n - 3], m[n - 2], m[n - 3]);
+    }
+    check_finite("PCHIP slopes (overflow: rescale the data)", &d)?;
+    Points::from_flat(dim, d)
+}
+
+/// NumPy's `sign`: −1, 0 or 1.
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// Moler's shape-preserving one-sided three-point end slope (see [`pchip_slopes`]).
+fn edge(h0: f64, h1: f64, m0: f64, m1: f64) -> f64 {
+    let d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1);
+    if sign(d) != sign(m0) {
+        0.0
+    } else if sign(m0) != sign(m1) && d.abs() > 3.0 * m0.abs() {
+        3.0 * m0
+    } else {
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn monotone_data_keep_monotone_slopes_and_errors_are_reported() {
+        let x = [0.0, 0.5, 2.0, 3.0, 4.5];
+        let y = [0.0, 0.1, 2.0, 2.0, 5.0];
+        let d = pchip_slopes(&x, PointsRef::from_flat(1, &y).unwrap()).unwrap();
+        assert!(d.as_slice().iter().all(|&s| s >= 0.0), "{d:?}");
+        assert_eq!(d.as_slice()[2], 0.0, "flat secant on the right");
+        assert_eq!(d.as_slice()[3], 0.0, "flat secant on the left");
+        // two points: the secant
+        let d = pchip_slopes(&[0.0, 2.0], PointsRef::from_flat(1, &[1.0, 5.0]).unwrap()).unwrap();
+        assert_eq!(d.as_slice(), &[2.0, 2.0]);
+        assert!(matches!(
+            pchip_slopes(&[0.0], PointsRef::from_flat(1, &[1.0]).unwrap()),
+            Err(Error::TooFew { .. })
+        ));
+        assert!(matches!(
+            pchip_slopes(
+                &[0.0, 0.0, 1.0],
+                PointsRef::from_flat(1, &[1.0, 2.0, 3.0]).unwrap()
+            ),
+            Err(Error::InvalidArgument { what: "x", .. })
+        ));
+        assert!(matches!(
+            pchip_slopes(
+                &[0.0, f64::NAN],
+                PointsRef::from_flat(1, &[1.0, 2.0]).unwrap()
+            ),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+
+    #[test]
+    fn harmonic_mean_on_equal_steps() {
+        // equal steps: w1 = w2, d = 2 δ0 δ1 / (δ0 + δ1)
+        let d = pchip_slopes(
+            &[0.0, 1.0, 2.0],
+            PointsRef::from_flat(1, &[0.0, 1.0, 4.0]).unwrap(),
+        )
+        .unwrap();
+        assert!((d.as_slice()[1] - 2.0 * 3.0 / 4.0).abs() < 1e-15);
+    }
+}
