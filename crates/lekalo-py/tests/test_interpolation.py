@@ -90,7 +90,7 @@ def test_end_derivatives_any_degree():
     d0, d1 = np.array([1.0, 0.0]), np.array([0.0, -1.0])
     c = lekalo.interpolate(q, 4, end="derivatives", d_start=d0, d_end=d1)
     assert np.allclose(c(0.0, nu=1), d0, atol=1e-9) and np.allclose(c(1.0, nu=1), d1, atol=1e-9)
-    with pytest.raises(lekalo.Error, match="needs both d_start and d_end"):
+    with pytest.raises(lekalo.InputError, match="d_start/d_end: the end condition derivatives needs a derivative at the start and at the end"):
         lekalo.interpolate(q, 3, end="derivatives", d_start=d0)
 
 
@@ -250,9 +250,10 @@ def test_scipy_argument_order_is_refused_with_the_lekalo_call():
 
 def test_messages_name_python_spellings_not_rust_items():
     pts = RNG.standard_normal((6, 2))
-    with pytest.raises(lekalo.Error) as e:
-        lekalo.interpolate(pts, 3, knots="at_parameters", end="free")
-    assert "KnotPlacement" not in str(e.value) and "knots='auto'" in str(e.value), str(e.value)
+    with pytest.raises(lekalo.InputError) as e:
+        lekalo.interpolate(pts, 3, knots="at-params", end="free")
+    message = str(e.value)
+    assert "KnotPlacement" not in message and message.startswith("knots: ") and "auto" in message, message
     net = RNG.standard_normal((4, 3, 3))
     with pytest.raises(lekalo.Error) as e:
         lekalo.BSplineSurface(2, 2, [0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1], net)

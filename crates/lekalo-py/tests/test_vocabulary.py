@@ -47,7 +47,7 @@ def test_every_end_word(word):
 
 @pytest.mark.parametrize("word", RULE)
 def test_every_rule_word(word):
-    space = lekalo.PpSpace([0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], [2] * 5, 3)
+    space = lekalo.PpSpace([0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], 3, [2] * 5)
     quiet(lekalo.quasi_interpolate, space, lambda x, r: np.cos(x) if r == 0 else 0.0, rule=word)
 
 
@@ -65,7 +65,7 @@ def test_older_spellings_warn_and_name_the_word(kwargs, canonical):
 
 
 def test_an_unknown_word_lists_the_words():
-    with pytest.raises(lekalo.InputError, match="knots: unknown value 'everywhere'; use one of 'auto'"):
+    with pytest.raises(lekalo.InputError, match="knots: unknown value \"everywhere\"; use one of 'auto', 'averaged', 'uniform', 'at-params'"):
         lekalo.interpolate(Q, 3, knots="everywhere")
 
 
