@@ -87,7 +87,7 @@ pub(crate) fn report(line: &str) {
 }
 
 /// The last-resort handler: a panic prints a short report and exits with code 3 (it is a bug;
-/// every input error has its own message). Signals are handled by [`crate::cancel`].
+/// every input error has its own message); the signal handlers are `cancel`'s.
 pub(crate) fn install_handlers() {
     std::panic::set_hook(Box::new(|info| {
         lekalo_io::remove_temporary_files();
@@ -106,7 +106,6 @@ pub(crate) fn install_handlers() {
         ));
         std::process::exit(i32::from(EXIT_INTERNAL));
     }));
-    crate::cancel::install();
 }
 
 /// True if the error is a write to a closed pipe (`lekalo eval … | head`): the reader has
@@ -516,6 +515,54 @@ pub(crate) fn integers(text: &str, what: &str) -> Result<Vec<usize>> {
             })
         })
         .collect()
+}
+
+/// Encodes a figure as SVG or PNG bytes.
+pub(crate) fn encode(fig: &lekalo_io::Figure, format: &str, scale: f32) -> Result<Vec<u8>> {
+    match format {
+        "svg" => Ok(fig.to_svg().into_bytes()),
+        "png" => {
+            if !(scale > 0.0 && scale <= 16.0) {
+                return bad_input("--scale must be in (0, 16]");
+            }
+            Ok(lekalo_io::svg_to_png(&fig.to_svg(), scale)?)
+        }
+        other => bad_input(format!("cannot plot to {other}: use .svg or .png")),
+    }
+}
+
+/// Writes the JSON lines of a batch, then reports failed lines (exit code 2 if any).
+pub(crate) fn finish_batch(
+    lines: Vec<(bool, String)>,
+    out: Option<&std::path::Path>,
+    inputs: &[PathBuf],
+    v: Verbosity,
+) -> Result<()> {
+    let failed: Vec<String> = lines
+        .iter()
+        .filter(|(ok, _)| !ok)
+        .filter_map(|(_, l)| serde_json::from_str::<serde_json::Value>(l).ok())
+        .filter_map(|j| j["error"].as_str().map(str::to_string))
+        .collect();
+    let mut text = String::new();
+    for (_, l) in &lines {
+        text.push_str(l);
+        text.push('\n');
+    }
+    emit(out, text.as_bytes(), inputs, v)?;
+    if failed.is_empty() {
+        return Ok(());
+    }
+    if v != Verbosity::Quiet {
+        for e in &failed {
+            crate::io::report(&format!("  {e}"));
+        }
+    }
+    bad_input(format!(
+        "{} of {} objects failed (listed above and as \"error\" lines in the output)",
+        failed.len(),
+        lines.len()
+    ))
 }
 
 #[cfg(test)]

@@ -164,6 +164,7 @@ pub(crate) enum Verbosity {
 /// output files (`lekalo demo --out g 2>&1 | head`).
 pub fn install_handlers() {
     io::install_handlers();
+    cancel::install();
     let internal = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         let message = info

@@ -31,36 +31,24 @@
 //! # Ok::<(), lekalo_io::IoError>(())
 //! ```
 
-mod analysis;
 mod atomic;
+mod cad;
+mod envelope;
 mod error;
-mod figure_check;
-mod flat;
-mod iges;
-mod json_write;
-mod layout;
-mod mesh_files;
-mod npy;
-mod npz;
-mod numfmt;
-mod obj;
-mod object;
-mod object_ext;
-mod palette;
+mod mesh;
 #[cfg(feature = "parquet")]
 mod parquet;
-mod png;
-mod points_in;
-mod samples;
-mod shape;
-mod step;
-mod step_read;
-mod surface_plot;
-mod surface_samples;
-mod svg;
-mod tensor_json;
-mod text_points;
-mod wireframe;
+mod plot;
+mod points;
+mod tables;
+
+// each subject's files keep their short paths inside the crate (`crate::object`, `crate::svg`)
+use cad::{iges, step, step_read};
+use envelope::{analysis, flat, json_write, object, object_ext, shape, tensor_json};
+use mesh::{mesh_files, obj};
+use plot::{figure_check, layout, palette, png, surface_plot, svg, wireframe};
+use points::{npy, npz, points_in, text_points};
+use tables::{numfmt, samples, surface_samples};
 
 pub use analysis::{curvature, uniform};
 pub use atomic::{

@@ -13,8 +13,9 @@ use lekalo::{
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
+use crate::convert::out_shape;
 use crate::convert::{array, check_size, filled, floats};
-use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
+use crate::curves::{PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, lib_err};
 
 /// Adds the blending classes to the module.

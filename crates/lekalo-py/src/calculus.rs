@@ -6,18 +6,13 @@
 use lekalo::BSplineCurve;
 use pyo3::prelude::*;
 
+use crate::convert::out_shape;
 use crate::convert::{array, check_size, filled, floats};
-use crate::curves::{out_shape, PyBSplineCurve};
 use crate::error::lib_err;
 
 /// The `n`-th antiderivative (degree `p + n`, vanishing at the first knot).
-pub(crate) fn antiderivative(
-    py: Python<'_>,
-    c: &BSplineCurve,
-    n: usize,
-) -> PyResult<PyBSplineCurve> {
-    let a = py.detach(|| c.antiderivative(n)).map_err(lib_err)?;
-    Ok(PyBSplineCurve::wrap(a))
+pub(crate) fn antiderivative(py: Python<'_>, c: &BSplineCurve, n: usize) -> PyResult<BSplineCurve> {
+    py.detach(|| c.antiderivative(n)).map_err(lib_err)
 }
 
 /// `∫_a^b C(t) dt` as a `(dim,)` array; with `extrapolate`, the end polynomials continue the

@@ -330,3 +330,21 @@ pub(crate) fn points_into_array(py: Python<'_>, p: Points) -> PyResult<Bound<'_,
 pub(crate) fn vec_array<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyAny> {
     PyArray1::from_slice(py, v).into_any()
 }
+
+/// `t.shape + tail` for an evaluation result.
+pub(crate) fn out_shape(t: &FloatArray<'_>, tail: &[usize]) -> Vec<usize> {
+    let mut s = t.shape().to_vec();
+    s.extend_from_slice(tail);
+    s
+}
+
+/// `__reduce__` for pickling: `(lekalo._lekalo.from_json, (json,))`. The JSON holds every
+/// number with its shortest round-trip text, so the object comes back bit for bit.
+pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, PyTuple>> {
+    let f = py.import("lekalo._lekalo")?.getattr("from_json")?;
+    PyTuple::new(py, [f.into_any(), PyTuple::new(py, [json])?.into_any()])
+}
+
+pub(crate) fn from_json_shape(text: &str) -> PyResult<lekalo_io::Shape> {
+    lekalo_io::Shape::from_json_str(text, "json").map_err(crate::error::io_err)
+}

@@ -17,21 +17,14 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{
-    array, check_size, filled, floats, out_array, owned_points, points_array, points_into_array,
-    vec1, vec_array, FloatArray, IntArg,
+    array, check_size, filled, floats, from_json_shape, out_array, out_shape, owned_points,
+    points_array, points_into_array, reduce, vec1, vec_array, IntArg,
 };
-use crate::error::{bad, io_err, lib_err};
+use crate::error::{bad, lib_err};
 use crate::pp::PyPiecewisePolynomial;
 
 /// Batches at least this long are split over the rayon pool.
 pub(crate) const PAR_MIN: usize = 1 << 14;
-
-/// `t.shape + tail` for an evaluation result.
-pub(crate) fn out_shape(t: &FloatArray<'_>, tail: &[usize]) -> Vec<usize> {
-    let mut s = t.shape().to_vec();
-    s.extend_from_slice(tail);
-    s
-}
 
 pub(crate) fn ends_arg(ends: &str) -> PyResult<EndConditions> {
     match ends {
@@ -103,10 +96,6 @@ fn pick_order(py: Python<'_>, d: Py<PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
         .unbind())
 }
 
-fn from_json_shape(text: &str) -> PyResult<Shape> {
-    Shape::from_json_str(text, "json").map_err(io_err)
-}
-
 /// The Python object of a curve of any kind: the class of its kind.
 pub(crate) fn curve_to_py(py: Python<'_>, c: lekalo::Curve) -> PyResult<Py<PyAny>> {
     Ok(match c {
@@ -132,35 +121,6 @@ pub(crate) fn curve_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<lekalo::C
         "{what}: expected a BezierCurve, BSplineCurve or NurbsCurve, got {}",
         obj.get_type().name()?
     )))
-}
-
-/// Python object for any shape read from JSON.
-pub(crate) fn shape_to_py(py: Python<'_>, shape: Shape) -> PyResult<Py<PyAny>> {
-    Ok(match shape {
-        Shape::Curve(c) => curve_to_py(py, c)?,
-        Shape::Surface(s) => crate::surfaces::surface_to_py(py, s)?,
-        Shape::Pp(p) => Py::new(py, PyPiecewisePolynomial { inner: p })?.into_any(),
-        other => {
-            return Err(bad(format!(
-                "JSON object of type {:?} has no Python class",
-                other.type_name()
-            )))
-        }
-    })
-}
-
-/// Reads any lekalo object from its JSON text (the CLI's format, `docs/formats.md`).
-#[pyfunction]
-pub(crate) fn from_json(py: Python<'_>, text: &str) -> PyResult<Py<PyAny>> {
-    let shape = py.detach(|| from_json_shape(text))?;
-    shape_to_py(py, shape)
-}
-
-/// `__reduce__` for pickling: `(lekalo._lekalo.from_json, (json,))`. The JSON holds every
-/// number with its shortest round-trip text, so the object comes back bit for bit.
-pub(crate) fn reduce<'py>(py: Python<'py>, json: String) -> PyResult<Bound<'py, PyTuple>> {
-    let f = py.import("lekalo._lekalo")?.getattr("from_json")?;
-    PyTuple::new(py, [f.into_any(), PyTuple::new(py, [json])?.into_any()])
 }
 
 /// The methods every curve class shares, written once (docs/theory/curves.md):
@@ -636,7 +596,7 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     /// The `n`-th antiderivative, degree `p + n` (de Boor ch. X; SciPy's `splantider`).
     #[pyo3(signature = (n = 1))]
     fn antiderivative(&self, py: Python<'_>, n: usize) -> PyResult<Self> {
-        crate::calculus::antiderivative(py, &self.inner, n)
+        crate::calculus::antiderivative(py, &self.inner, n).map(Self::wrap)
     }
 
     /// `∫_a^b C(t) dt`, shape `(dim,)`; `extrapolate=True` continues the end polynomials.

@@ -9,10 +9,11 @@ use lekalo::{
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
+use crate::convert::out_shape;
 use crate::convert::{
     check_size, filled, floats, grid_points, owned_points, points_array, vec1, vec_array, IntArg,
 };
-use crate::curves::{out_shape, PyBSplineCurve, PyBezierCurve};
+use crate::curves::{PyBSplineCurve, PyBezierCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::PyBSplineSurface;
 use crate::words::word;

@@ -24,6 +24,7 @@ mod curves;
 mod error;
 mod fit;
 mod interp;
+mod objects;
 mod pp;
 mod query;
 mod slopes;
@@ -51,7 +52,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pp::PyPiecewisePolynomial>()?;
     m.add_class::<pp::PyPpSpace>()?;
     m.add_class::<tensor::PyTensorBSpline>()?;
-    m.add_function(wrap_pyfunction!(curves::from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(objects::from_json, m)?)?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
     m.add_function(wrap_pyfunction!(interp::basis_functions, m)?)?;

@@ -7,7 +7,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
-use crate::curves::{out_shape, reduce, PyBSplineCurve};
+use crate::convert::{out_shape, reduce};
+use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
 use crate::words::word;
 

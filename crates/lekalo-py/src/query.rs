@@ -11,8 +11,9 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
+use crate::convert::out_shape;
 use crate::convert::{array, check_size, floats, points_into_array, uv_args, vec1, vec_array};
-use crate::curves::{curve_of, out_shape, PyBSplineCurve};
+use crate::curves::{curve_of, PyBSplineCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::surface_of;
 

@@ -8,7 +8,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, filled, floats, grid_points, uv_args, vec1, vec_array};
-use crate::curves::{out_shape, reduce, PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
+use crate::convert::{out_shape, reduce};
+use crate::curves::{PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
 /// A control net `(nu, nv, dim)` as points and its size.

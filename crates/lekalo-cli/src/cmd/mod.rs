@@ -1,38 +1,26 @@
-//! One module per subcommand: arguments (clap derive, with examples) and `run`.
+//! The subcommands, grouped by subject; each module holds one subcommand's arguments (clap
+//! derive, with examples) and its `run`.
+//!
+//! - `construct/`: building objects (make, interpolate, bezier, blend, pp, knots, knot);
+//! - `inspect/`: looking at objects (info, eval, plot);
+//! - `fitting/`: `lekalo fit`;
+//! - `queries/`: geometric queries (measure, project, intersect, offset, mesh);
+//! - `files/`: conversion, CAD files, Parquet batches;
+//! - `deprecated.rs`: the older spellings of options; `serve.rs`: `lekalo serve`.
 
-pub(crate) mod convert;
-pub(crate) mod eval;
-pub(crate) mod info;
-pub(crate) mod knots;
-pub(crate) mod make;
-pub(crate) mod plot;
-// surfaces and pp-forms in info, convert and plot
-pub(crate) mod shapes;
-// construction subcommands
-pub(crate) mod bezier;
-pub(crate) mod blend;
-pub(crate) mod interpolate;
-pub(crate) mod pp;
-// knot operations, surfaces in make/eval, CAD files in convert
-pub(crate) mod cad;
+mod construct;
 pub(crate) mod deprecated;
-pub(crate) mod explicit;
-pub(crate) mod jump;
-pub(crate) mod knot;
-pub(crate) mod make_surface;
-pub(crate) mod surface_eval;
-pub(crate) mod tensor;
-// fitting: least squares, smoothing, tolerance
-pub(crate) mod fit;
-pub(crate) mod fit_periodic;
-// geometric queries
-pub(crate) mod comb;
-pub(crate) mod intersect;
-pub(crate) mod measure;
-pub(crate) mod mesh;
-pub(crate) mod offset;
-// Parquet batches in interpolate, eval and convert
-pub(crate) mod parquet_batch;
-pub(crate) mod project;
-// the browser editor
+mod files;
+mod fitting;
+mod inspect;
+mod queries;
 pub(crate) mod serve;
+
+// each subcommand keeps its short path (`crate::cmd::make`)
+pub(crate) use construct::{
+    bezier, blend, explicit, interpolate, jump, knot, knots, make, make_surface, pp, tensor,
+};
+pub(crate) use files::{cad, convert, parquet_batch};
+pub(crate) use fitting::fit;
+pub(crate) use inspect::{comb, eval, info, plot, shapes, surface_eval};
+pub(crate) use queries::{intersect, measure, mesh, offset, project};

@@ -2,7 +2,7 @@
 //! maps it to the page, with the room the legend and colour bar take.
 
 use super::figure::Figure;
-use super::render::{fmt_tick, nice_ticks};
+use super::ticks::{fmt_tick, nice_ticks};
 use crate::layout::{
     place_legend, text_width, LegendPlace, LEGEND_FONT, LEGEND_ROW, LEGEND_SAMPLE,
 };

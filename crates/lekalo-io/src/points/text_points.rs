@@ -25,7 +25,18 @@ use lekalo::Points;
 use rayon::prelude::*;
 
 use crate::error::{IoError, IoResult, Location};
-use crate::points_in::Header;
+
+/// Whether the first line of a CSV or whitespace points file is a header naming the columns.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Header {
+    /// A header if no field on the first line parses as a number.
+    #[default]
+    Auto,
+    /// The first line is a header, whatever it holds.
+    Yes,
+    /// There is no header: the first line is a point.
+    No,
+}
 
 /// The fields of one (trimmed, non-empty) line, without allocating.
 enum Fields<'a> {

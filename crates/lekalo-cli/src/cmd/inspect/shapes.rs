@@ -295,7 +295,7 @@ pub(crate) fn convert(
     step_name: &str,
     timestamp: &str,
 ) -> Result<Vec<u8>> {
-    let plot = |fig: &Figure| crate::cmd::plot::encode(fig, format, 2.0);
+    let plot = |fig: &Figure| crate::io::encode(fig, format, 2.0);
     match (shape, format) {
         (_, "json") => Ok(shape.to_json_pretty().into_bytes()),
         (Shape::Surface(s), "step") => Ok(surface_step(s, step_name, timestamp)?.into_bytes()),

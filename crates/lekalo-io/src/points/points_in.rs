@@ -18,17 +18,7 @@ use serde::de::DeserializeSeed;
 use crate::error::{IoError, IoResult, Location};
 use crate::flat::{self, PointsSeed};
 
-/// Whether the first line of a CSV or whitespace points file is a header naming the columns.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum Header {
-    /// A header if no field on the first line parses as a number.
-    #[default]
-    Auto,
-    /// The first line is a header, whatever it holds.
-    Yes,
-    /// There is no header: the first line is a point.
-    No,
-}
+pub use crate::text_points::Header;
 
 /// Reads points from `text`; `source` names the input in messages (a path or `<stdin>`).
 ///

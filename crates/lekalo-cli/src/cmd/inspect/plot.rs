@@ -126,20 +126,6 @@ impl CurvatureMap {
 /// Evaluation points along a curve, a basis function or a pp-form by default.
 const CURVE_SAMPLES: usize = 400;
 
-/// Encodes a figure as SVG or PNG bytes.
-pub(crate) fn encode(fig: &Figure, format: &str, scale: f32) -> Result<Vec<u8>> {
-    match format {
-        "svg" => Ok(fig.to_svg().into_bytes()),
-        "png" => {
-            if !(scale > 0.0 && scale <= 16.0) {
-                return bad_input("--scale must be in (0, 16]");
-            }
-            Ok(lekalo_io::svg_to_png(&fig.to_svg(), scale)?)
-        }
-        other => bad_input(format!("cannot plot to {other}: use .svg or .png")),
-    }
-}
-
 /// The figure `plot` draws for one object.
 pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) -> Result<Figure> {
     if a.basis {
@@ -293,7 +279,7 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 )?,
                 other => return not_a_curve(&a.input, other),
             };
-            let bytes = encode(&fig, &format, a.scale)?;
+            let bytes = crate::io::encode(&fig, &format, a.scale)?;
             return emit(
                 a.output.as_deref().filter(|p| *p != Path::new("-")),
                 &bytes,
@@ -338,7 +324,7 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         fig.series
             .push(lekalo_io::residual_series(data, &feet, &projection)?);
     }
-    let bytes = encode(&fig, &format, a.scale)?;
+    let bytes = crate::io::encode(&fig, &format, a.scale)?;
     emit(
         a.output.as_deref().filter(|p| *p != Path::new("-")),
         &bytes,

@@ -10,8 +10,8 @@ use lekalo_io::{Object, Shape};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
-use crate::cmd::eval::finish_batch;
 use crate::cmd::shapes;
+use crate::io::finish_batch;
 use crate::io::{load, not_a_curve, progress, Loaded};
 use crate::Verbosity;
 

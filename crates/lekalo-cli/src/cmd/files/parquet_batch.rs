@@ -466,7 +466,7 @@ pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<
             }
             Ok(())
         })?;
-        return crate::cmd::eval::finish_batch(lines, out, &inputs, v);
+        return crate::io::finish_batch(lines, out, &inputs, v);
     }
     let out = parquet_output(out, "curves")?;
     let (text, name) = lekalo_io::read_input(input)?;

@@ -11,7 +11,7 @@ use lekalo::{
 use lekalo_io::{CurveJson, Figure, Object, Series, Style, PALETTE};
 
 use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
-use crate::cmd::plot::encode;
+use crate::io::encode;
 use crate::io::{bad_input, emit, format_of, integers, load_one, numbers, BadInput};
 use crate::words::Words;
 use crate::Verbosity;

@@ -17,7 +17,7 @@ use lekalo_io::{
     SurfaceNet, PALETTE,
 };
 
-use crate::cmd::plot::encode;
+use crate::io::encode;
 use crate::io::{bad_input, emit, format_of, numbers};
 use crate::words::Words;
 use crate::Verbosity;

@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use lekalo_io::{sample_table, Object, SampleSpec};
 use rayon::prelude::*;
-use serde_json::{json, Value};
+use serde_json::json;
 
 use crate::io::{
     bad_input, emit, emit_stream, format_of, in_range, load, not_a_curve, numbers, progress,
@@ -261,7 +261,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                 })
                 .collect();
             bar.finish_and_clear();
-            finish_batch(lines, a.output.as_deref(), &inputs, v)
+            crate::io::finish_batch(lines, a.output.as_deref(), &inputs, v)
         }
     }
 }
@@ -307,38 +307,4 @@ fn eval_csv_streamed(
         return Err(BadInput(format!("{}: {e}", a.input.display())).into());
     }
     r
-}
-
-/// Writes the JSON lines of a batch, then reports failed lines (exit code 2 if any).
-pub(crate) fn finish_batch(
-    lines: Vec<(bool, String)>,
-    out: Option<&std::path::Path>,
-    inputs: &[PathBuf],
-    v: Verbosity,
-) -> Result<()> {
-    let failed: Vec<String> = lines
-        .iter()
-        .filter(|(ok, _)| !ok)
-        .filter_map(|(_, l)| serde_json::from_str::<Value>(l).ok())
-        .filter_map(|j| j["error"].as_str().map(str::to_string))
-        .collect();
-    let mut text = String::new();
-    for (_, l) in &lines {
-        text.push_str(l);
-        text.push('\n');
-    }
-    emit(out, text.as_bytes(), inputs, v)?;
-    if failed.is_empty() {
-        return Ok(());
-    }
-    if v != Verbosity::Quiet {
-        for e in &failed {
-            crate::io::report(&format!("  {e}"));
-        }
-    }
-    bad_input(format!(
-        "{} of {} objects failed (listed above and as \"error\" lines in the output)",
-        failed.len(),
-        lines.len()
-    ))
 }

@@ -7,8 +7,8 @@ use anyhow::Result;
 use clap::Args;
 use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, Shape, StepWriter};
 
-use crate::cmd::plot::encode;
 use crate::cmd::shapes;
+use crate::io::encode;
 use crate::io::{bad_input, emit, format_of, in_range, load, Loaded};
 use crate::Verbosity;
 

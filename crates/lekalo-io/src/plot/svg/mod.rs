@@ -9,7 +9,8 @@
 //!   [`ColorBar`]);
 //! - `page.rs`: margins, fonts, the world window and the frame mapping it to the page;
 //! - `overlap.rs`: series that hide one another ([`Coincidence`]);
-//! - `render.rs`: [`Figure::to_svg`]: axes and ticks, series, legend, colour bar;
+//! - `render.rs`: [`Figure::to_svg`]: axes, series, legend, colour bar;
+//! - `ticks.rs`: ticks at round numbers and the numbers shown;
 //! - `plots.rs`: the standard plots ([`curve_figure`], [`residual_series`], [`basis_figure`],
 //!   [`knots_figure`], [`CurvePlot`]);
 //! - `tests.rs`.
@@ -21,8 +22,9 @@ mod plots;
 mod render;
 #[cfg(test)]
 mod tests;
+mod ticks;
 
 pub use figure::{Annotation, Coincidence, ColorBar, Face, Figure, Series, Style};
 pub use plots::{basis_figure, curve_figure, knots_figure, residual_series, CurvePlot};
 pub use render::escape;
-pub(crate) use render::{fmt_tick, nice_ticks};
+pub(crate) use ticks::{fmt_tick, nice_ticks};

@@ -4,7 +4,7 @@
 use lekalo::{basis::basis_functions_full_range, KnotVector, Points};
 
 use super::figure::{Figure, Series, Style};
-use super::render::fmt_legend;
+use super::ticks::fmt_legend;
 use crate::object::Object;
 use crate::palette::PALETTE;
 

@@ -1,7 +1,7 @@
 //! Tests of the figures and the standard plots.
 
 use super::plots::PLOT_MAX_MARKERS;
-use super::render::fmt_legend;
+use super::ticks::fmt_legend;
 use super::*;
 use crate::object::Object;
 use crate::CurveJson;
