@@ -550,19 +550,29 @@ pub(crate) fn finish_batch(
         text.push('\n');
     }
     emit(out, text.as_bytes(), inputs, v)?;
+    failures(
+        &failed,
+        format!(
+            "{} of {} objects failed (listed above and as \"error\" lines in the output)",
+            failed.len(),
+            lines.len()
+        ),
+        v,
+    )
+}
+
+/// After a batch is written: each failure on its own line (unless quiet), then the batch's
+/// error with `summary` (exit code 2); nothing when every object went through.
+pub(crate) fn failures(failed: &[String], summary: String, v: Verbosity) -> Result<()> {
     if failed.is_empty() {
         return Ok(());
     }
     if v != Verbosity::Quiet {
-        for e in &failed {
-            crate::io::report(&format!("  {e}"));
+        for e in failed {
+            report(&format!("  {e}"));
         }
     }
-    bad_input(format!(
-        "{} of {} objects failed (listed above and as \"error\" lines in the output)",
-        failed.len(),
-        lines.len()
-    ))
+    bad_input(summary)
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 //! `Akima1DInterpolator` computes them. The Hermite cubic with these slopes is
 //! [`crate::CubicHermite`].
 
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_finite, Result};
 use crate::points::{Points, PointsRef};
 
 /// Akima slopes `d_k` at the abscissae `x` (strictly increasing, at least 2) for the values `y`
@@ -36,35 +36,8 @@ use crate::points::{Points, PointsRef};
 /// in length; [`Error::NonFinite`] for a NaN or infinite number (or an overflowing slope);
 /// [`Error::InvalidArgument`] if `x` is not strictly increasing.
 pub fn akima_slopes(x: &[f64], y: PointsRef<'_>, modified: bool) -> Result<Points> {
+    crate::interpolate::pchip::check_function_data(x, y)?;
     let n = x.len();
-    if n < 2 {
-        return Err(Error::TooFew {
-            what: "points (x)",
-            min: 2,
-            got: n,
-        });
-    }
-    if y.len() != n {
-        return Err(Error::LengthMismatch {
-            what: "y (one value per x)",
-            expected: n,
-            got: y.len(),
-        });
-    }
-    check_finite("x", x)?;
-    check_finite("y", y.as_slice())?;
-    if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
-        return Err(Error::InvalidArgument {
-            what: "x",
-            reason: format!(
-                "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
-                 and merge repeated abscissae",
-                i + 1,
-                x[i + 1],
-                x[i]
-            ),
-        });
-    }
     let dim = y.dim();
     let ys = y.as_slice();
     // extended secants m[0 .. n + 3) per coordinate (index j + 2 is the secant of interval j)
@@ -131,6 +104,7 @@ pub fn akima_slopes(x: &[f64], y: PointsRef<'_>, modified: bool) -> Result<Point
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     #[test]
     fn flat_data_stay_flat_and_errors_are_reported() {

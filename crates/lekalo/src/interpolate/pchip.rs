@@ -37,35 +37,8 @@ use crate::points::{Points, PointsRef};
 /// in length; [`Error::NonFinite`] for a NaN or infinite number; [`Error::InvalidArgument`] if
 /// `x` is not strictly increasing.
 pub fn pchip_slopes(x: &[f64], y: PointsRef<'_>) -> Result<Points> {
+    check_function_data(x, y)?;
     let n = x.len();
-    if n < 2 {
-        return Err(Error::TooFew {
-            what: "points (x)",
-            min: 2,
-            got: n,
-        });
-    }
-    if y.len() != n {
-        return Err(Error::LengthMismatch {
-            what: "y (one value per x)",
-            expected: n,
-            got: y.len(),
-        });
-    }
-    check_finite("x", x)?;
-    check_finite("y", y.as_slice())?;
-    if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
-        return Err(Error::InvalidArgument {
-            what: "x",
-            reason: format!(
-                "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
-                 and merge repeated abscissae",
-                i + 1,
-                x[i + 1],
-                x[i]
-            ),
-        });
-    }
     let dim = y.dim();
     let ys = y.as_slice();
     let mut d = vec![0.0; n * dim];
@@ -117,6 +90,41 @@ fn edge(h0: f64, h1: f64, m0: f64, m1: f64) -> f64 {
     } else {
         d
     }
+}
+
+/// The checks of function data `y(x)` that the slope rules share: at least two points, one
+/// value per abscissa, finite numbers, strictly increasing `x`.
+pub(crate) fn check_function_data(x: &[f64], y: PointsRef<'_>) -> Result<()> {
+    let n = x.len();
+    if n < 2 {
+        return Err(Error::TooFew {
+            what: "points (x)",
+            min: 2,
+            got: n,
+        });
+    }
+    if y.len() != n {
+        return Err(Error::LengthMismatch {
+            what: "y (one value per x)",
+            expected: n,
+            got: y.len(),
+        });
+    }
+    check_finite("x", x)?;
+    check_finite("y", y.as_slice())?;
+    if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(Error::InvalidArgument {
+            what: "x",
+            reason: format!(
+                "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
+                 and merge repeated abscissae",
+                i + 1,
+                x[i + 1],
+                x[i]
+            ),
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -219,17 +219,13 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
         std::slice::from_ref(&a.input),
         v,
     )?;
-    if failed.is_empty() {
-        return Ok(());
-    }
-    if v != Verbosity::Quiet {
-        for e in &failed {
-            crate::io::report(&format!("  {e}"));
-        }
-    }
-    bad_input(format!(
-        "{} of {total} objects failed (listed above); the other {} were written",
-        failed.len(),
-        total - failed.len()
-    ))
+    crate::io::failures(
+        &failed,
+        format!(
+            "{} of {total} objects failed (listed above); the other {} were written",
+            failed.len(),
+            total - failed.len()
+        ),
+        v,
+    )
 }
