@@ -28,7 +28,9 @@ where
         value: &OsStr,
     ) -> Result<T, clap::Error> {
         let text = value.to_string_lossy();
-        let option = arg.map_or_else(|| self.0.key.to_string(), ToString::to_string);
+        let option = arg
+            .and_then(clap::Arg::get_long)
+            .map_or_else(|| self.0.key.to_string(), |long| format!("--{long}"));
         match self.0.parse(&text) {
             Ok(w) => {
                 if w.old_spelling {
