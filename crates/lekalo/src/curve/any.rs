@@ -2,7 +2,7 @@
 //! capability delegated once, so that no layer above the library matches on curve kinds to
 //! perform an operation.
 //!
-//! Conventions (`docs/theory.md`, "Curves of any kind"):
+//! Conventions (`docs/theory.md`, "Curves and surfaces of any kind"):
 //! - A Bezier curve of degree `n` is the B-spline on the clamped knots `[0]·(n+1) ++ [1]·(n+1)`
 //!   (document 002: the Bernstein polynomials are the B-splines on these knots), so its domain
 //!   is `[0, 1]` and [`Curve::knots`] gives those knots.
