@@ -34,30 +34,36 @@ mod words;
 #[command(name = "lekalo", version, about, long_about, after_help = EXAMPLES)]
 pub(crate) struct Cli {
     /// Print nothing but the results (no progress, no notes).
-    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    #[arg(
+        short,
+        long,
+        global = true,
+        help_heading = "Global options",
+        conflicts_with = "verbose"
+    )]
     quiet: bool,
     /// Print what is read and written, with timings, to standard error.
-    #[arg(short, long, global = true)]
+    #[arg(short, long, global = true, help_heading = "Global options")]
     verbose: bool,
     /// Whether the first line of a CSV or text points file is a header: auto (only if no field
     /// on it is a number), yes or no.
-    #[arg(long, global = true, value_enum, default_value_t = io::HeaderArg::Auto)]
+    #[arg(long, global = true, help_heading = "Global options", value_enum, default_value_t = io::HeaderArg::Auto)]
     header: io::HeaderArg,
     /// Replace a write-protected output file too (it is refused otherwise, as by a shell's `>`).
-    #[arg(long, global = true)]
+    #[arg(long, global = true, help_heading = "Global options")]
     force: bool,
     /// Largest number of samples, knots, intervals or grid points a command may create from its
     /// arguments (docs/robustness.md).
-    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
+    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
     max_size: usize,
     /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
     /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
     /// reduction (docs/robustness.md).
-    #[arg(long, global = true, value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
+    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
     max_degree: usize,
     /// The key column of a Parquet batch: the column that groups points into point sets, and
     /// the key of each curve (docs/formats.md#parquet-batches).
-    #[arg(long, global = true, value_name = "NAME", default_value = lekalo_io::DEFAULT_KEY)]
+    #[arg(long, global = true, help_heading = "Global options", value_name = "NAME", default_value = lekalo_io::DEFAULT_KEY)]
     group_column: String,
     #[command(subcommand)]
     command: Command,
@@ -65,7 +71,7 @@ pub(crate) struct Cli {
 
 const EXAMPLES: &str = "\
 Examples:
-  lekalo demo --out gallery            # the documents' constructions, as an HTML gallery
+  lekalo demo -o gallery               # the documents' constructions, as an HTML gallery
   lekalo make bspline --control pts.csv --degree 3 -o curve.json
   lekalo info curve.json
   lekalo eval curve.json --samples 5 --derivatives 1 --curvature
@@ -127,17 +133,18 @@ enum Command {
 #[command(after_help = "\
 Examples:
   lekalo demo                 # print the summary table of every construction and check
-  lekalo demo --out gallery   # also write gallery/index.html with SVG and PNG figures
-  lekalo demo --only doc000-ends --out gallery   # redraw one entry in the gallery
+  lekalo demo -o gallery      # also write gallery/index.html with SVG and PNG figures
+  lekalo demo --only doc000-ends -o gallery      # redraw one entry in the gallery
   lekalo demo --only doc000-ends --json          # its tables and checks as JSON
 
 Exit code 3 if a construction does not reproduce its document's numbers.")]
 pub(crate) struct DemoArgs {
-    /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure.
-    #[arg(long, value_name = "DIR")]
+    /// Directory for the HTML gallery (created if missing): index.html and one SVG per figure
+    /// (`--out` is the same option).
+    #[arg(short, long = "output", visible_alias = "out", value_name = "DIR")]
     out: Option<PathBuf>,
     /// Run only the entry of this id (e.g. `doc000-ends`); the summary lists the ids. With
-    /// --out, its figures are redrawn and its section of an existing gallery's index.html is
+    /// --output, its figures are redrawn and its section of an existing gallery's index.html is
     /// replaced; the other entries stay.
     #[arg(long, value_name = "ID")]
     only: Option<String>,

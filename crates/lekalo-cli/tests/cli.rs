@@ -57,6 +57,31 @@ fn every_subcommand_has_help_with_examples() {
     lekalo().args(["eval"]).assert().code(2);
 }
 
+/// A subcommand's help lists its own options first and the global ones apart, under their
+/// own heading; `demo` takes `-o/--output` as every other command (and `--out` still).
+#[test]
+fn help_keeps_global_options_apart_and_demo_takes_output() {
+    let out = lekalo().args(["knot", "insert", "-h"]).output().unwrap();
+    let help = String::from_utf8(out.stdout).unwrap();
+    let own = help.find("Options:").expect("own options");
+    let global = help
+        .find("Global options:")
+        .expect("a heading for the global options");
+    let max_size = help.find("--max-size").expect("--max-size listed");
+    let at = own + help[own..].find("--at <AT>").expect("--at listed");
+    assert!(at < global && global < max_size, "{help}");
+    let d = tempfile::tempdir().unwrap();
+    for flag in ["-o", "--out"] {
+        let dir = d.path().join(flag.trim_start_matches('-'));
+        lekalo()
+            .args(["demo", "--only", "doc002-bspline", flag])
+            .arg(&dir)
+            .assert()
+            .success();
+        assert!(dir.join("index.html").is_file(), "{flag}: no gallery");
+    }
+}
+
 #[test]
 fn make_info_eval_the_lecture_curve() {
     let d = dir_with(&[("pts.csv", "x,y\n1,1\n2,3\n4,3\n")]);

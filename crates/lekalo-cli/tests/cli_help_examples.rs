@@ -23,7 +23,7 @@ const NOT_RUN: &[(&str, &str)] = &[
         "demo",
         "runs every construction of the documents (the demo smoke step covers it)",
     ),
-    ("demo --out gallery", "the same, with every figure rendered"),
+    ("demo -o gallery", "the same, with every figure rendered"),
     (
         "bezier change quintic.json --degree 2",
         "shows a refusal: the real degree is 3",

@@ -305,7 +305,7 @@ pub(crate) fn command_of(id: &str, caption: &Caption) -> String {
     caption
         .command
         .clone()
-        .unwrap_or_else(|| format!("lekalo demo --only {id} --out gallery"))
+        .unwrap_or_else(|| format!("lekalo demo --only {id} -o gallery"))
 }
 
 /// The gallery's document groups: (id prefix, heading).
@@ -416,7 +416,7 @@ fn summary(sections: &[Section], v: Verbosity) -> String {
 /// figures, captions, tables and checks.
 fn gallery(sections: &[Section], theory: Option<&str>) -> String {
     let mut h = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>lekalo gallery</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}figure{margin:1.5em 0}figure img{max-width:100%;height:auto}figcaption{color:#444;font-size:92%;max-width:760px}figcaption .meta{display:block;margin-top:.3em;color:#666}table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right;font-family:monospace}.ok{color:#080}.fail{color:#c00;font-weight:bold}.thumbs{display:flex;flex-wrap:wrap;gap:12px}.thumbs a{width:230px;text-decoration:none;color:#333;font-size:85%}.thumbs img{width:230px;height:auto;border:1px solid #ddd;display:block}code{background:#f4f4f4;padding:0 3px}</style></head><body>\n<h1>lekalo gallery</h1>\n<p>The constructions of the source documents, built by the library on built-in data, with the documents' numbers checked. Every figure is here as SVG and as PNG. Regenerate with <code>lekalo demo --out DIR</code>.</p>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>lekalo gallery</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}figure{margin:1.5em 0}figure img{max-width:100%;height:auto}figcaption{color:#444;font-size:92%;max-width:760px}figcaption .meta{display:block;margin-top:.3em;color:#666}table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right;font-family:monospace}.ok{color:#080}.fail{color:#c00;font-weight:bold}.thumbs{display:flex;flex-wrap:wrap;gap:12px}.thumbs a{width:230px;text-decoration:none;color:#333;font-size:85%}.thumbs img{width:230px;height:auto;border:1px solid #ddd;display:block}code{background:#f4f4f4;padding:0 3px}</style></head><body>\n<h1>lekalo gallery</h1>\n<p>The constructions of the source documents, built by the library on built-in data, with the documents' numbers checked. Every figure is here as SVG and as PNG. Regenerate with <code>lekalo demo -o DIR</code>.</p>\n",
     );
     // thumbnails, grouped by document
     let mut groups: Vec<(String, Vec<&Section>)> = Vec::new();
