@@ -9,8 +9,7 @@ use lekalo_io::CurveJson;
 use std::sync::OnceLock;
 
 use lekalo::{
-    BSplineCurve, BezierCurve, CurveEvaluator, EndConditions, NurbsCurve, NurbsEvaluator,
-    PiecewisePolynomial, Points,
+    BSplineCurve, BezierCurve, CurveEvaluator, EndConditions, NurbsCurve, NurbsEvaluator, Points,
 };
 use lekalo_io::{Object, Shape};
 use pyo3::prelude::*;
@@ -21,7 +20,6 @@ use crate::convert::{
     points_array, points_into_array, reduce, vec1, vec_array, IntArg,
 };
 use crate::error::{bad, lib_err};
-use crate::pp::PyPiecewisePolynomial;
 
 /// Batches at least this long are split over the rayon pool.
 pub(crate) const PAR_MIN: usize = 1 << 14;
@@ -593,35 +591,6 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         ))
     }
 
-    /// The `n`-th antiderivative, degree `p + n` (de Boor ch. X; SciPy's `splantider`).
-    #[pyo3(signature = (n = 1))]
-    fn antiderivative(&self, py: Python<'_>, n: usize) -> PyResult<Self> {
-        crate::calculus::antiderivative(py, &self.inner, n).map(Self::wrap)
-    }
-
-    /// `∫_a^b C(t) dt`, shape `(dim,)`; `extrapolate=True` continues the end polynomials.
-    #[pyo3(signature = (a, b, extrapolate = false))]
-    fn integrate<'py>(
-        &self,
-        py: Python<'py>,
-        a: f64,
-        b: f64,
-        extrapolate: bool,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        crate::calculus::integrate(py, &self.inner, a, b, extrapolate)
-    }
-
-    /// The `nu`-th derivative at `t` (`t.shape + (dim,)`), continued beyond the domain.
-    #[pyo3(signature = (t, nu = 0))]
-    fn eval_extrapolated<'py>(
-        &self,
-        py: Python<'py>,
-        t: &Bound<'py, PyAny>,
-        nu: usize,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        crate::calculus::eval_extrapolated(py, &self.inner, t, nu)
-    }
-
     /// The Bezier pieces: a list of `(start, end, BezierCurve)`.
     fn to_bezier_segments(&self, py: Python<'_>) -> Vec<(f64, f64, PyBezierCurve)> {
         py.detach(|| self.inner.to_bezier_segments())
@@ -651,14 +620,6 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     fn bounding_box<'py>(&self, py: Python<'py>) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
         let (lo, hi) = self.inner.bounding_box();
         (vec_array(py, &lo), vec_array(py, &hi))
-    }
-
-    /// The piecewise-polynomial (pp) form over the distinct knots of the domain.
-    fn to_pp(&self, py: Python<'_>) -> PyResult<PyPiecewisePolynomial> {
-        let p = py
-            .detach(|| PiecewisePolynomial::from_bspline(&self.inner))
-            .map_err(lib_err)?;
-        Ok(PyPiecewisePolynomial { inner: p })
     }
 
     /// The same curve as a NURBS with unit weights.

@@ -209,6 +209,19 @@ impl PyPiecewisePolynomial {
     }
 }
 
+// the pp-form of a B-spline curve is a method of `BSplineCurve` written here, beside the
+// conversion back, so that the curve classes need not know the pp-form's class
+#[pymethods]
+impl PyBSplineCurve {
+    /// The piecewise-polynomial (pp) form over the distinct knots of the domain.
+    fn to_pp(&self, py: Python<'_>) -> PyResult<PyPiecewisePolynomial> {
+        let p = py
+            .detach(|| PiecewisePolynomial::from_bspline(&self.inner))
+            .map_err(lib_err)?;
+        Ok(PyPiecewisePolynomial { inner: p })
+    }
+}
+
 /// The space `P_{k,ξ,ν}` of piecewise polynomials of order `k` on breakpoints `ξ` with
 /// `ν_i` continuity conditions at interior breakpoint `i` (Curry–Schoenberg; document 003).
 #[pyclass(module = "lekalo", name = "PpSpace", frozen, eq)]

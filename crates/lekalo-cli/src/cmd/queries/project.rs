@@ -89,19 +89,20 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
     };
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
     let mut out_rows: Vec<(usize, Vec<f64>, Vec<f64>, f64)> = Vec::new();
+    // the query points: --point first, then the rows of --points
+    let mut pts = Vec::new();
+    if !rows.is_empty() {
+        pts.push(rows.clone());
+    }
+    if let Some(fp) = &file_points {
+        pts.extend(fp.iter().map(<[f64]>::to_vec));
+    }
+    if pts.is_empty() && matches!(shape, Shape::Curve(_) | Shape::Surface(_)) {
+        return bad_input("give --point or --points");
+    }
     match shape {
         Shape::Curve(obj) => {
             let q = query_curve(&obj, &a.input)?;
-            let mut pts = Vec::new();
-            if !rows.is_empty() {
-                pts.push(rows.clone());
-            }
-            if let Some(fp) = &file_points {
-                pts.extend(fp.iter().map(<[f64]>::to_vec));
-            }
-            if pts.is_empty() {
-                return bad_input("give --point or --points");
-            }
             if let Some(tol) = a.all {
                 for (i, p) in pts.iter().enumerate() {
                     for r in q.project_all(p, tol).map_err(bad)? {
@@ -130,16 +131,6 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
         }
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
-            let mut pts = Vec::new();
-            if !rows.is_empty() {
-                pts.push(rows.clone());
-            }
-            if let Some(fp) = &file_points {
-                pts.extend(fp.iter().map(<[f64]>::to_vec));
-            }
-            if pts.is_empty() {
-                return bad_input("give --point or --points");
-            }
             for (i, p) in pts.iter().enumerate() {
                 let r = q.project(p).map_err(bad)?;
                 out_rows.push((i, vec![r.uv.0, r.uv.1], r.point, r.distance));
