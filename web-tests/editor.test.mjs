@@ -74,6 +74,11 @@ async function setValue(page, selector, value) {
   await idle(page);
 }
 
+// every message shown next to a control, joined (empty when none is shown)
+async function shownErrors(page) {
+  return page.evaluate(() => [...document.querySelectorAll('.err')].map((e) => e.textContent).filter((t) => t).join(' | '));
+}
+
 const tests = [];
 const test = (name, fn) => tests.push({ name, fn });
 
@@ -128,21 +133,34 @@ test('B-spline: add points, drag one, change the degree; the drawn curve is the 
   await shot(page, 'bspline', true);
 });
 
-test('B-spline: an invalid degree shows the library\'s message next to the degree field; undo restores', async (page) => {
+test('Interpolation: a refused degree shows the library\'s message next to the degree field; undo restores', async (page) => {
   await page.goto(base);
+  await page.selectOption('#mode', 'interpolate');
   await idle(page);
-  await setValue(page, '#bs-degree', 9);
-  const msg = await page.textContent('[data-mode="bspline"] [data-err="degree"]');
-  const direct = await fetch(new URL('/api/bspline', base), { method: 'POST',
-    body: JSON.stringify({ control: [[1, 1], [2.5, 4.5], [5, 5], [7, 1.5], [9, 4]], degree: 9 }) });
+  await page.selectOption('#in-end', 'natural');
+  await idle(page);
+  await setValue(page, '#in-degree', 2);
+  const msg = await page.textContent('[data-mode="interpolate"] [data-err="degree"]');
+  const s = await page.evaluate(() => window.lekaloEditor.state.interpolate);
+  const direct = await fetch(new URL('/api/interpolate', base), { method: 'POST',
+    body: JSON.stringify({ points: s.points, degree: 2, parametrization: s.param, knots: s.knots, end: 'natural' }) });
   assert.equal(direct.status, 400);
   const body = await direct.json();
   assert.equal(body.field, 'degree');
   assert.equal(msg, body.error, 'the page shows the API\'s message');
   await page.click('#undo');
   await idle(page);
-  assert.equal(await page.textContent('[data-mode="bspline"] [data-err="degree"]'), '', 'error cleared');
-  assert.equal(await page.inputValue('#bs-degree'), '3');
+  assert.equal(await page.textContent('[data-mode="interpolate"] [data-err="degree"]'), '', 'error cleared');
+  assert.equal(await page.inputValue('#in-degree'), '3');
+});
+
+test('B-spline: a degree above what the points allow draws the highest they allow and says so', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await setValue(page, '#bs-degree', 9);
+  assert.equal(await shownErrors(page), '');
+  assert.equal(await page.evaluate(() => window.lekaloEditor.last.view.degree), 4);
+  assert.match(await page.textContent('#info'), /5 control points allow degree 4 at most: drawn with degree 4; place 5 more for degree 9/);
 });
 
 test('the state lives in the URL: a reload shows the same construction', async (page) => {
@@ -402,6 +420,101 @@ test('Dragging a point of a 200-point B-spline: frame rate by the Performance AP
   const s = await page.evaluate(() => window.lekaloEditor.state.bspline);
   const expected = await api('/api/bspline', { control: s.control, degree: 3, samples: 400 });
   await assertCurveIs(page, expected.points, 'after the drag');
+});
+
+test('From an empty canvas in every mode: Clear, then each placed point is drawn with the best curve it allows', async (page) => {
+  const spots = [[1, 1], [3, 4.5], [5, 2], [7, 5], [9, 1.5]];
+  for (const mode of ['bspline', 'interpolate', 'bezier', 'corners', 'fit', 'blend', 'quasi']) {
+    await page.goto(base);
+    await page.selectOption('#mode', mode);
+    await idle(page);
+    const before = await page.evaluate(() => window.lekaloEditor.state);
+    await page.click('#clear');
+    await idle(page);
+    assert.equal(await shownErrors(page), '', `${mode}: no error after Clear`);
+    if (mode === 'quasi') {
+      assert.deepEqual(await page.evaluate(() => window.lekaloEditor.state.quasi), before.quasi, 'quasi: Clear returns to the example');
+      assert.ok((await page.getAttribute('#curve', 'd')).length > 0, 'quasi: the example is drawn');
+      assert.equal(await page.locator('#basis-paths line.zero-line').count(), 1, 'quasi: the error panel has its zero line');
+      continue;
+    }
+    const fixed = mode === 'blend' ? before.blend.a.length : 0;
+    if (mode === 'blend') {
+      // curve B is the chord of A: the deformation is drawn at once, and there is no basis panel
+      assert.ok((await page.getAttribute('#curve', 'd')).length > 0, 'blend: drawn after Clear');
+      assert.ok(!(await page.isVisible('#basis')) && !(await page.isVisible('#basis-caption')), 'blend: no empty basis panel');
+    } else {
+      assert.equal(await page.getAttribute('#curve', 'd'), '', `${mode}: the old curve is gone`);
+      assert.match(await page.textContent('#info'), /place the first point/, `${mode}: says what to do`);
+    }
+    for (let k = 1; k <= spots.length; k++) {
+      const [x, y] = await canvasToPage(page, spots[k - 1]);
+      await page.mouse.click(x, y);
+      await idle(page);
+      const what = `${mode}, ${k} point(s)`;
+      assert.equal(await page.locator('#points circle').count(), fixed + k, `${what}: every placed point is drawn`);
+      assert.equal(await shownErrors(page), '', `${what}: no error`);
+      const d = await page.getAttribute('#curve', 'd');
+      const fewest = { bspline: 1, interpolate: 2, bezier: 1, corners: 2, fit: 3, blend: 0 }[mode];
+      if (k < fewest) {
+        assert.equal(d, '', `${what}: nothing drawn yet`);
+        assert.match(await page.textContent('#info'), /Place \d more point/, `${what}: says how many more`);
+      } else {
+        assert.ok(d.length > 0, `${what}: a curve is drawn`);
+      }
+      if (mode === 'bspline') {
+        const s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+        const degree = Math.min(s.degree, k - 1);
+        const answer = await api('/api/bspline', { control: s.control, degree, samples: 400 });
+        await assertCurveIs(page, answer.points, what);
+        const info = await page.textContent('#info');
+        if (degree < s.degree) assert.match(info, new RegExp(`drawn with degree ${degree}`), `${what}: ${info}`);
+        else assert.doesNotMatch(info, /drawn with degree/, `${what}: ${info}`);
+        assert.match(info, new RegExp(`${k} control point${k === 1 ? '' : 's'},`), `${what}: ${info}`);
+      }
+    }
+    // the settings survive Clear: the last curve has the degree asked for
+    if (mode === 'bspline' || mode === 'interpolate') {
+      assert.equal(await page.evaluate(() => window.lekaloEditor.last.view.degree), 3, `${mode}: degree 3 with 5 points`);
+    }
+  }
+  await shot(page, 'from-empty', false);
+});
+
+test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates', async (page) => {
+  for (const viewport of [{ width: 800, height: 900 }, { width: 390, height: 844 }]) {
+    await page.setViewportSize(viewport);
+    for (const mode of ['bspline', 'interpolate', 'bezier', 'blend', 'corners', 'quasi', 'fit']) {
+      await page.goto(base);
+      await page.selectOption('#mode', mode);
+      await idle(page);
+      const what = `${mode} at ${viewport.width} px`;
+      const box = await page.evaluate(() => {
+        const r = (id) => document.getElementById(id).getBoundingClientRect();
+        const panel = document.querySelector(`.panel[data-mode="${window.lekaloEditor.state.mode}"]`).getBoundingClientRect();
+        return { canvas: r('canvas'), aside: document.querySelector('aside').getBoundingClientRect(), panel,
+          scroll: document.documentElement.scrollWidth, inner: window.innerWidth };
+      });
+      assert.ok(box.scroll <= box.inner, `${what}: no horizontal scrolling (${box.scroll} > ${box.inner})`);
+      assert.ok(box.aside.right <= box.inner + 0.5 && box.panel.right <= box.inner + 0.5, `${what}: the side panel is not cut off`);
+      assert.ok(box.panel.width >= 200, `${what}: the side panel is readable (${box.panel.width} px)`);
+      assert.ok(Math.abs(box.canvas.width / box.canvas.height - 800 / 500) < 0.01, `${what}: canvas aspect ${box.canvas.width}×${box.canvas.height}`);
+      const labels = await page.locator('#grid text.grid-label').allTextContents();
+      assert.ok(labels.length >= 8 && (mode === 'quasi' || labels.includes('5')), `${what}: grid coordinates ${labels}`);
+    }
+    // a click lands where the pointer is, whatever the drawing's scale
+    await page.goto(base);
+    await idle(page);
+    await page.click('#clear');
+    await idle(page);
+    const [x, y] = await canvasToPage(page, [4, 3]);
+    await page.mouse.click(x, y);
+    await idle(page);
+    const p = await page.evaluate(() => window.lekaloEditor.state.bspline.control[0]);
+    const tol = 10 / viewport.width * 10; // about one screen pixel in world units, with margin
+    assert.ok(Math.abs(p[0] - 4) < tol && Math.abs(p[1] - 3) < tol, `${viewport.width} px: point placed at ${p}`);
+    await shot(page, `narrow-${viewport.width}`, false);
+  }
 });
 
 let failed = 0;

@@ -119,7 +119,7 @@ async function pump() {
     inFlight++;
     try {
       const answer = await compute();
-      if (state.query && state.mode !== 'quasi') {
+      if (state.query && state.mode !== 'quasi' && answer.view) {
         answer.measure = await post('/api/measure', { curve: answer.view.curve, at_length: [state.queryLength] })
           .catch((e) => ({ error: e }));
       }
@@ -148,23 +148,52 @@ function wakeIdle() {
 
 function basisAt() { return cursorT; }
 
+// Fewest points each mode draws a curve from; with fewer, the points alone and a note.
+const FEWEST = { bspline: 1, interpolate: 2, bezier: 1, corners: 2, fit: 3 };
+const WHAT = { bspline: 'control point', interpolate: 'data point', bezier: 'control point', corners: 'corner',
+  fit: 'data point' };
+
+function plural(n, word) { return `${n} ${word}${n === 1 ? '' : 's'}`; }
+
+// While a curve is being placed point by point, the degree asked for may need more points than
+// there are: the curve is drawn with the highest degree the points allow, and the note says so.
+function degreeNote(n, asked, used) {
+  return used < asked
+    ? `${plural(n, WHAT[state.mode])} allow${n === 1 ? 's' : ''} degree ${used} at most: drawn with degree ${used}; place ${asked + 1 - n} more for degree ${asked}.`
+    : '';
+}
+
 function compute() {
   const s = state, m = s.mode;
   const view = { samples: 400, comb: s.comb, basis_samples: 300 };
   if (cursorT !== null) view.at = cursorT;
+  const n = editable().length;
+  if (FEWEST[m] !== undefined && n < FEWEST[m]) {
+    const more = FEWEST[m] - n;
+    const note = n === 0
+      ? 'Click on the canvas to place the first point.'
+      : `Place ${plural(more, 'more point')} to draw a curve (${plural(n, WHAT[m])} so far).`;
+    return Promise.resolve({ empty: true, note });
+  }
   if (m === 'bspline') {
     const b = s.bspline;
-    const req = Object.assign({ control: b.control, degree: b.degree }, view);
-    if (b.knots) req.knots = b.knots;
+    const degree = Math.min(b.degree, n - 1);
+    const req = Object.assign({ control: b.control, degree }, view);
+    if (b.knots && degree === b.degree) req.knots = b.knots;
     if (b.weights) req.weights = b.weights;
-    return post('/api/bspline', req).then((v) => ({ view: v }));
+    return post('/api/bspline', req).then((v) => ({ view: v, note: degreeNote(n, b.degree, degree) }));
   }
   if (m === 'interpolate') {
     const it = s.interpolate;
-    const req = Object.assign({ points: it.points, degree: it.degree, parametrization: it.param,
-      knots: it.knots, end: it.end }, view);
-    if (it.end === 'derivatives') { req.start_derivative = it.d0; req.end_derivative = it.d1; }
-    return post('/api/interpolate', req).then((v) => ({ view: v }));
+    const degree = Math.min(it.degree, n - 1);
+    // natural and end-tangent conditions are for cubics: a lower degree is drawn with free ends
+    const end = degree < it.degree && (it.end === 'natural' || it.end === 'derivatives') ? 'free' : it.end;
+    const req = Object.assign({ points: it.points, degree, parametrization: it.param,
+      knots: it.knots, end }, view);
+    if (end === 'derivatives') { req.start_derivative = it.d0; req.end_derivative = it.d1; }
+    const note = degreeNote(n, it.degree, degree) +
+      (end !== it.end ? ` The ${it.end} end condition applies from degree ${it.degree}.` : '');
+    return post('/api/interpolate', req).then((v) => ({ view: v, note }));
   }
   if (m === 'bezier') {
     return post('/api/bezier/build', Object.assign({ control: s.bezier.control }, view));
@@ -231,7 +260,26 @@ function fitWorld(points) {
   world = { x0, x1, y0: y0 - py, y1: y1 + py };
 }
 
+// nothing to draw yet: the points placed so far and a note
+function drawEmpty(answer) {
+  last = answer;
+  world = { x0: 0, x1: 10, y0: 0, y1: 6.25 };
+  drawGrid();
+  for (const id of ['curve', 'polygon', 'exact', 'other', 'other2', 'comb-path']) $(id).setAttribute('d', '');
+  $('knot-marks').textContent = '';
+  $('ruler-knots').textContent = '';
+  $('basis-paths').textContent = '';
+  drawnFrom.ruler = null;
+  drawnFrom.basis = null;
+  drawPoints();
+  hideProjection();
+  $('length-mark').setAttribute('visibility', 'hidden');
+  for (const id of ['fit-info', 'bz-info', 'qi-info', 'query-info', 'query-at']) $(id).textContent = '';
+  $('info').textContent = answer.note;
+}
+
 function draw(answer) {
+  if (answer.empty) { drawEmpty(answer); return; }
   last = answer;
   const m = state.mode;
   const v = answer.view;
@@ -272,18 +320,25 @@ function draw(answer) {
 const drawnFrom = { grid: null, ruler: null, basis: null };
 
 function drawGrid() {
-  const key = [world.x0, world.x1, world.y0, world.y1].join(',');
+  // the coordinates keep a readable size on screen however the drawing is scaled
+  const shown = $('canvas').getBoundingClientRect().width || W;
+  const font = Math.min(24, 11 * W / shown).toFixed(1);
+  const key = [world.x0, world.x1, world.y0, world.y1, font].join(',');
   if (drawnFrom.grid === key) return;
   drawnFrom.grid = key;
   const g = $('grid');
   g.textContent = '';
+  // grid lines with their coordinates: x along the bottom edge, y along the left edge
+  const label = (v, step) => String(Number(v.toFixed(Math.max(0, -Math.floor(Math.log10(step))))));
   const step = niceStep((world.x1 - world.x0) / 10);
   for (let x = Math.ceil(world.x0 / step) * step; x <= world.x1; x += step) {
     el('line', { x1: sx(x), x2: sx(x), y1: 0, y2: H, class: 'gridline' }, g);
+    if (sx(x) > 24) el('text', { x: sx(x), y: H - 4, class: 'grid-label', 'font-size': font, 'text-anchor': 'middle' }, g).textContent = label(x, step);
   }
   const ystep = niceStep((world.y1 - world.y0) / 6);
   for (let y = Math.ceil(world.y0 / ystep) * ystep; y <= world.y1; y += ystep) {
     el('line', { x1: 0, x2: W, y1: sy(y), y2: sy(y), class: 'gridline' }, g);
+    if (sy(y) < H - 2 * font) el('text', { x: 4, y: sy(y) - 3, class: 'grid-label', 'font-size': font }, g).textContent = label(y, ystep);
   }
 }
 
@@ -436,7 +491,8 @@ function drawBasis(basis, domain, v) {
 
 function drawInfo(answer) {
   const v = answer.view;
-  let text = `${v.curve.type.replace('_curve', '')} curve of degree ${v.degree}, ${v.control.length} control points, ${v.knots.length} knots`;
+  const kind = { bezier_curve: 'Bezier', bspline_curve: 'B-spline', nurbs_curve: 'NURBS' }[v.curve.type] || v.curve.type;
+  let text = `${kind} curve of degree ${v.degree}, ${plural(v.control.length, 'control point')}, ${plural(v.knots.length, 'knot')}`;
   if (answer.real_degree !== undefined) {
     text += `; real degree ${answer.real_degree}`;
     $('bz-info').textContent = `degree ${answer.degree}, real degree ${answer.real_degree}` +
@@ -452,7 +508,7 @@ function drawInfo(answer) {
     $('qi-info').textContent = `max |f − q| on 200 intervals: ${answer.max_error.toExponential(4)}`;
     drawError(answer);
   }
-  $('info').textContent = text;
+  $('info').textContent = answer.note ? `${text}. ${answer.note}` : text;
 }
 
 // quasi-interpolation: the error f − q in the basis panel's place, over the basis functions
@@ -463,6 +519,8 @@ function drawError(answer) {
   const bx = (t) => 20 + (t - a) / (b - a || 1) * 760;
   let d = '';
   answer.error.forEach((e, i) => { d += (i ? 'L' : 'M') + bx(answer.t[i]).toFixed(2) + ' ' + (80 - e / emax * 70).toFixed(2); });
+  el('line', { x1: 20, x2: 780, y1: 80, y2: 80, class: 'axis zero-line' }, g);
+  el('text', { x: 784, y: 84, class: 'ruler-label' }, g).textContent = '0';
   el('path', { d, class: 'error-plot', id: 'error-path' }, g);
   el('text', { x: 24, y: 14, class: 'ruler-label' }, g).textContent = `f − q (scaled to ±${emax.toExponential(2)})`;
   drawnFrom.basis = null; // the panel now holds more than the basis: drawn anew next time
@@ -610,6 +668,14 @@ function syncControls() {
   $('query-panel').hidden = !s.query || s.mode === 'quasi';
   if (!s.query) hideProjection();
   document.querySelectorAll('.panel[data-mode]').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
+  // the lower panel: the basis functions, or for quasi-interpolation its error over them; the
+  // blending modes have no basis to show
+  const basis = !['blend', 'corners'].includes(s.mode);
+  $('basis').toggleAttribute('hidden', !basis);
+  $('basis-caption').hidden = !basis;
+  $('basis-caption').innerHTML = s.mode === 'quasi'
+    ? 'The error f − q (red; scaled to the panel, with its zero line) over the basis functions.'
+    : 'Basis functions N<sub>i,p</sub>: move the pointer over this panel to see which are active.';
   $('help').textContent = HELP[s.mode];
   syncWeight();
 }
@@ -643,10 +709,19 @@ function bind() {
   $('comb').addEventListener('change', () => { state.comb = $('comb').checked; commit(); update(); });
   $('undo').addEventListener('click', undo);
   $('redo').addEventListener('click', redo);
+  // Clear empties the canvas of the current mode, keeping its settings: points are then placed
+  // one by one. Blending keeps curve A (the curve to deform) and clears curve B to the chord;
+  // quasi-interpolation, which has no points, returns to its example.
   $('clear').addEventListener('click', () => {
-    const fresh = defaultState()[state.mode];
-    state[state.mode] = fresh;
-    if (state.mode === 'bspline') state.bspline.control = [];
+    const s = state, m = s.mode;
+    if (m === 'quasi') s.quasi = defaultState().quasi;
+    else if (m === 'blend') s.blend.b = [];
+    else {
+      editable().length = 0;
+      if (m === 'bspline') { s.bspline.knots = null; s.bspline.weights = null; }
+    }
+    selected = -1;
+    cursorT = null;
     commit(); syncControls(); update();
   });
   document.addEventListener('keydown', (e) => {
@@ -701,7 +776,7 @@ function bind() {
   $('canvas').addEventListener('pointerdown', addPoint);
   $('canvas').addEventListener('contextmenu', (e) => e.preventDefault());
   $('basis').addEventListener('pointermove', (e) => {
-    if (!last) return;
+    if (!last || !last.view) return;
     const [px] = svgPoint(e, $('basis'));
     const [a, b] = last.view.domain;
     cursorT = Math.min(b, Math.max(a, a + (px - 20) / 760 * (b - a)));
@@ -797,6 +872,7 @@ function bezierOp(op) { return tracked(() => bezierOpNow(op)); }
 
 async function bezierOpNow(op) {
   try {
+    currentCurve('by');
     const answer = await post('/api/bezier', Object.assign({ curve: bezierObject(state.bezier.control) }, op));
     bezierDeviation = answer.deviation;
     state.bezier.control = answer.view.control;
@@ -807,9 +883,15 @@ async function bezierOpNow(op) {
 
 function knotOp(path) { return tracked(() => knotOpNow(path)); }
 
+// the current curve, or an error shown at `field` when there is none yet
+function currentCurve(field) {
+  if (last && last.view) return last.view.curve;
+  throw Object.assign(new Error('There is no curve yet: place points on the canvas first.'), { field });
+}
+
 async function knotOpNow(path) {
   try {
-    const answer = await post(path, { curve: last.view.curve, t: Number($('knot-t').value) });
+    const answer = await post(path, { curve: currentCurve('t'), t: Number($('knot-t').value) });
     const v = answer.view || answer;
     const b = state.bspline;
     b.control = v.control;
@@ -844,7 +926,7 @@ async function importFile() {
 
 async function exportCurve(path, name) {
   try {
-    const r = await fetch(path, { method: 'POST', body: JSON.stringify({ curve: last.view.curve }) });
+    const r = await fetch(path, { method: 'POST', body: JSON.stringify({ curve: currentCurve('file') }) });
     if (!r.ok) throw Object.assign(new Error((await r.json()).error), { field: 'file' });
     download(await r.blob(), name);
   } catch (e) { showError(e); }
@@ -901,3 +983,5 @@ window.lekaloEditor = {
 bind();
 syncControls();
 update();
+// a resized window redraws the grid's coordinates at their on-screen size
+window.addEventListener('resize', () => { if (last && last.view) drawGrid(); });
