@@ -213,6 +213,26 @@ test('Blending: C^k deformation drawn as the API computes it', async (page) => {
   await shot(page, 'blend', true);
 });
 
+test('Polyline corners: the corners rounded over the window as `lekalo blend corners`, turning one way; the curve through the points is its own mode', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'corners');
+  await idle(page);
+  const pts = await page.evaluate(() => window.lekaloEditor.state.corners.points);
+  for (const window of [25, 50]) {
+    await setValue(page, '#co-window', window);
+    const expected = await api('/api/blend/corners', { points: pts, continuity: 2, fraction: window / 100, samples: 400 });
+    assert.equal(expected.degree, 5);
+    await assertCurveIs(page, expected.points, `corners, window ${window}%`);
+  }
+  await setValue(page, '#co-window', 80);
+  assert.match(await page.textContent('[data-mode="corners"] [data-err="fraction"]'), /\(0, 0\.5\]/, 'a window above 50% is refused next to its field');
+  await page.selectOption('#mode', 'spline');
+  await idle(page);
+  const s = await page.evaluate(() => window.lekaloEditor.state.spline);
+  const through = await api('/api/blend/spline', { points: s.points, continuity: 2, closed: false, samples: 400 });
+  await assertCurveIs(page, through.points, 'curve through the points');
+});
+
 test('Interpolation with end tangents, then periodic; quasi-interpolation with its error', async (page) => {
   await page.goto(base);
   await page.selectOption('#mode', 'interpolate');
@@ -424,7 +444,7 @@ test('Dragging a point of a 200-point B-spline: frame rate by the Performance AP
 
 test('From an empty canvas in every mode: Clear, then each placed point is drawn with the best curve it allows', async (page) => {
   const spots = [[1, 1], [3, 4.5], [5, 2], [7, 5], [9, 1.5]];
-  for (const mode of ['bspline', 'interpolate', 'bezier', 'corners', 'fit', 'blend', 'quasi']) {
+  for (const mode of ['bspline', 'interpolate', 'bezier', 'corners', 'spline', 'fit', 'blend', 'quasi']) {
     await page.goto(base);
     await page.selectOption('#mode', mode);
     await idle(page);
@@ -455,7 +475,7 @@ test('From an empty canvas in every mode: Clear, then each placed point is drawn
       assert.equal(await page.locator('#points circle').count(), fixed + k, `${what}: every placed point is drawn`);
       assert.equal(await shownErrors(page), '', `${what}: no error`);
       const d = await page.getAttribute('#curve', 'd');
-      const fewest = { bspline: 1, interpolate: 2, bezier: 1, corners: 2, fit: 3, blend: 0 }[mode];
+      const fewest = { bspline: 1, interpolate: 2, bezier: 1, corners: 3, spline: 2, fit: 3, blend: 0 }[mode];
       if (k < fewest) {
         assert.equal(d, '', `${what}: nothing drawn yet`);
         assert.match(await page.textContent('#info'), /Place \d more point/, `${what}: says how many more`);
@@ -484,7 +504,7 @@ test('From an empty canvas in every mode: Clear, then each placed point is drawn
 test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates', async (page) => {
   for (const viewport of [{ width: 800, height: 900 }, { width: 390, height: 844 }]) {
     await page.setViewportSize(viewport);
-    for (const mode of ['bspline', 'interpolate', 'bezier', 'blend', 'corners', 'quasi', 'fit']) {
+    for (const mode of ['bspline', 'interpolate', 'bezier', 'blend', 'corners', 'spline', 'quasi', 'fit']) {
       await page.goto(base);
       await page.selectOption('#mode', mode);
       await idle(page);

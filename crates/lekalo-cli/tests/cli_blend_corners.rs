@@ -95,3 +95,35 @@ fn corners_bad_input_names_the_problem() {
             .stderr(contains(message));
     }
 }
+
+/// The README tour's corner: `measure` finds one curvature maximum and no inflection (a
+/// rounded corner turns one way).
+#[test]
+fn the_tour_corner_is_fair() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("pts.txt"), "1 1\n2 3\n4 3\n").unwrap();
+    lekalo()
+        .current_dir(d.path())
+        .args([
+            "blend",
+            "corners",
+            "pts.txt",
+            "--window",
+            "25%",
+            "--continuity",
+            "2",
+        ])
+        .args(["-o", "rounded.json"])
+        .assert()
+        .success();
+    let out = lekalo()
+        .current_dir(d.path())
+        .args(["measure", "rounded.json", "--json"])
+        .assert()
+        .success();
+    let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    assert_eq!(v["inflections"], serde_json::json!([]), "{v}");
+    let extrema = v["curvature_extrema"].as_array().unwrap();
+    assert_eq!(extrema.len(), 1, "{v}");
+    assert_eq!(extrema[0]["kind"], "max");
+}

@@ -408,7 +408,8 @@ blend_class!(PyCornerTransition, u, {
     }
 });
 
-/// Every corner of a polyline smoothed with continuity `C^k` into one B-spline of degree `4k`
+/// Every corner of a polyline smoothed with continuity `C^k` into one fair B-spline of degree
+/// `2k + 1`, no inflection inside a corner
 /// (docs/theory/blending.md#polyline-corners): give the window as `fraction` (of the shorter
 /// segment at each corner, in (0, 0.5]; 0.25 when neither is given) or as `length`.
 #[pyfunction]

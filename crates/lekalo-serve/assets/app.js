@@ -17,7 +17,8 @@ function defaultState() {
       points: [[1, 2], [3, 4.5], [5, 2.5], [7, 4], [9, 2]], d0: [2, 2], d1: [2, -2] },
     bezier: { control: [[1, 1], [3, 5], [7, 5], [9, 1]] },
     blend: { k: 2, a: [[1, 2], [3, 5.5], [7, 5.5], [9, 2]], b: [[3, 0.5], [7, 0.5]] },
-    corners: { k: 2, closed: false, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
+    corners: { k: 2, window: 25, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
+    spline: { k: 2, closed: false, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
     quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first-knot-after', tau: '' },
     fit: { smoothing: 'lambda', lambda: -4, s: 0, points: noisyPoints(1) },
     query: false,
@@ -149,9 +150,9 @@ function wakeIdle() {
 function basisAt() { return cursorT; }
 
 // Fewest points each mode draws a curve from; with fewer, the points alone and a note.
-const FEWEST = { bspline: 1, interpolate: 2, bezier: 1, corners: 2, fit: 3 };
-const WHAT = { bspline: 'control point', interpolate: 'data point', bezier: 'control point', corners: 'corner',
-  fit: 'data point' };
+const FEWEST = { bspline: 1, interpolate: 2, bezier: 1, corners: 3, spline: 2, fit: 3 };
+const WHAT = { bspline: 'control point', interpolate: 'data point', bezier: 'control point', corners: 'point',
+  spline: 'point', fit: 'data point' };
 
 function plural(n, word) { return `${n} ${word}${n === 1 ? '' : 's'}`; }
 
@@ -205,7 +206,12 @@ function compute() {
   }
   if (m === 'corners') {
     const c = s.corners;
-    return post('/api/blend/corners', { points: c.points, continuity: c.k, closed: c.closed, samples: 400 })
+    return post('/api/blend/corners', { points: c.points, continuity: c.k, fraction: c.window / 100, samples: 400 })
+      .then((v) => ({ view: v }));
+  }
+  if (m === 'spline') {
+    const c = s.spline;
+    return post('/api/blend/spline', { points: c.points, continuity: c.k, closed: c.closed, samples: 400 })
       .then((v) => ({ view: v }));
   }
   if (m === 'fit') {
@@ -299,9 +305,9 @@ function draw(answer) {
     const [a, b] = blendCurves();
     $('other').setAttribute('d', pathOf(b.control));
     $('other2').setAttribute('d', '');
-  } else if (m === 'corners' || m === 'interpolate') {
-    const pts = m === 'corners' ? state.corners.points : state.interpolate.points;
-    $('other').setAttribute('d', m === 'corners' ? pathOf(pts, state.corners.closed) : '');
+  } else if (m === 'corners' || m === 'spline') {
+    // the polyline, dashed
+    $('other').setAttribute('d', pathOf(state[m].points, m === 'spline' && state.spline.closed));
     $('other2').setAttribute('d', '');
   } else {
     $('other').setAttribute('d', '');
@@ -385,6 +391,7 @@ function editable() {
     case 'bezier': return s.bezier.control;
     case 'blend': return s.blend.a.concat(s.blend.b);
     case 'corners': return s.corners.points;
+    case 'spline': return s.spline.points;
     case 'fit': return s.fit.points;
     default: return [];
   }
@@ -407,7 +414,7 @@ let selected = -1;
 function drawPoints() {
   const g = $('points');
   const pts = editable();
-  const cls = { interpolate: 'data', corners: 'data', fit: 'data fit-data' }[state.mode] || 'cp';
+  const cls = { interpolate: 'data', corners: 'data', spline: 'data', fit: 'data fit-data' }[state.mode] || 'cp';
   const na = state.blend.a.length;
   // the circles are kept while their number is unchanged: the one being dragged keeps its
   // pointer capture across redraws
@@ -648,7 +655,9 @@ function syncControls() {
   $('in-end').value = s.interpolate.end;
   $('bl-k').value = s.blend.k;
   $('co-k').value = s.corners.k;
-  $('co-closed').checked = s.corners.closed;
+  $('co-window').value = s.corners.window;
+  $('sp-k').value = s.spline.k;
+  $('sp-closed').checked = s.spline.closed;
   $('qi-expr').value = s.quasi.expr;
   $('qi-breaks').value = s.quasi.breaks;
   $('qi-order').value = s.quasi.order;
@@ -670,7 +679,7 @@ function syncControls() {
   document.querySelectorAll('.panel[data-mode]').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
   // the lower panel: the basis functions, or for quasi-interpolation its error over them; the
   // blending modes have no basis to show
-  const basis = !['blend', 'corners'].includes(s.mode);
+  const basis = !['blend', 'corners', 'spline'].includes(s.mode);
   $('basis').toggleAttribute('hidden', !basis);
   $('basis-caption').hidden = !basis;
   $('basis-caption').innerHTML = s.mode === 'quasi'
@@ -690,7 +699,8 @@ const HELP = {
   interpolate: 'Click to add a data point, drag to move, Alt+click to delete. With end tangents, drag the two handles.',
   bezier: 'Click to add a control point, drag to move, Alt+click to delete; then change the order.',
   blend: 'Curve A (filled points) and curve B (open points) share their end points; the solid curve is the C^k deformation of A into B. Click to add a point to B.',
-  corners: 'Click to add a corner, drag to move, Alt+click to delete; the corners are smoothed with C^k.',
+  corners: 'Click to add a point of the polyline (dashed), drag to move, Alt+click to delete; each corner is rounded over a window with C^k, turning one way.',
+  spline: 'Click to add a point, drag to move, Alt+click to delete; the curve through the points blends local parabolas with C^k.',
   quasi: 'Type f(x); the quasi-interpolant q (solid) and f (dashed); the lower panel plots f − q.',
   fit: 'Noisy points (click to add, drag, Alt+click to delete) smoothed by the library: move the slider to trade the residual against smoothness.',
 };
@@ -747,7 +757,9 @@ function bind() {
   $('bz-approx').addEventListener('click', () => bezierOp({ op: 'reduce_approx', target: Number($('bz-target').value), ends: $('bz-ends').value }));
   bindNumber('bl-k', null, (v) => { state.blend.k = v; });
   bindNumber('co-k', null, (v) => { state.corners.k = v; });
-  $('co-closed').addEventListener('change', () => { state.corners.closed = $('co-closed').checked; commit(); update(); });
+  bindNumber('co-window', null, (v) => { state.corners.window = v; });
+  bindNumber('sp-k', null, (v) => { state.spline.k = v; });
+  $('sp-closed').addEventListener('change', () => { state.spline.closed = $('sp-closed').checked; commit(); update(); });
   $('qi-expr').addEventListener('input', () => { state.quasi.expr = $('qi-expr').value; update(); });
   $('qi-expr').addEventListener('change', commit);
   $('qi-breaks').addEventListener('change', () => { state.quasi.breaks = $('qi-breaks').value; commit(); update(); });

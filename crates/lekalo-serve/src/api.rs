@@ -14,9 +14,9 @@ use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
-    BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions, CurveInterpolation, Deformation,
-    EndConditions, KnotPlacement, KnotVector, NurbsCurve, Parabolas, Parametrization, Points,
-    SplineParameters,
+    smooth_polyline_corners, BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions,
+    CornerWindow, CurveInterpolation, Deformation, EndConditions, KnotPlacement, KnotVector,
+    NurbsCurve, Parabolas, Parametrization, Points, SplineParameters,
 };
 use lekalo_io::CurveJson;
 use lekalo_io::Object;
@@ -387,15 +387,65 @@ struct CornersRequest {
     points: Vec<Vec<f64>>,
     continuity: usize,
     #[serde(default)]
+    fraction: Option<f64>,
+    #[serde(default)]
+    length: Option<f64>,
+    #[serde(default)]
+    samples: Option<usize>,
+}
+
+/// `POST /api/blend/corners`: every corner of a polyline smoothed with continuity `k` over a
+/// window given as a `fraction` of the shorter segment (0.25 when neither is given) or a
+/// `length` (`lekalo blend corners`, [`lekalo::smooth_polyline_corners`]).
+pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
+    let r: CornersRequest = parse(&body)?;
+    let pts = points(&r.points, "points")?;
+    let (window, field) = match (r.fraction, r.length) {
+        (Some(_), Some(_)) => {
+            return Err(ApiError::bad(
+                "length",
+                "give the corner window as fraction or as length, not both",
+            ))
+        }
+        (None, Some(l)) => (CornerWindow::Length(l), "length"),
+        (f, None) => (CornerWindow::Fraction(f.unwrap_or(0.25)), "fraction"),
+    };
+    // the library names the argument an error is about (`what`): the field is the request's
+    let s = smooth_polyline_corners(pts.as_view(), window, r.continuity).map_err(|e| {
+        let field = match &e {
+            lekalo::Error::InvalidArgument { what, .. } | lekalo::Error::NonFinite { what, .. } => {
+                match *what {
+                    "continuity degree k" => "continuity",
+                    "corner window" | "corner window fraction" | "corner window length" => field,
+                    _ => "points",
+                }
+            }
+            _ => "points",
+        };
+        ApiError::lib(field, &e)
+    })?;
+    let opts = ViewOptions {
+        samples: r.samples.unwrap_or_else(default_samples),
+        ..ViewOptions::default()
+    };
+    Ok(view_answer(&view(&Object::BSpline(s.into_curve()), &opts)?))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BlendSplineRequest {
+    points: Vec<Vec<f64>>,
+    continuity: usize,
+    #[serde(default)]
     closed: bool,
     #[serde(default)]
     samples: Option<usize>,
 }
 
-/// `POST /api/blend/corners`: a polyline whose corners are smoothed by blending local
-/// parabolas with continuity `k` (`lekalo blend spline --local parabolas`, document 001).
-pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
-    let r: CornersRequest = parse(&body)?;
+/// `POST /api/blend/spline`: the curve through the points by blending local parabolas with
+/// continuity `k` (`lekalo blend spline --local parabolas`, document 001).
+pub(crate) async fn blend_spline(body: Bytes) -> ApiResult<Response> {
+    let r: BlendSplineRequest = parse(&body)?;
     let pts = points(&r.points, "points")?;
     let options = BlendSplineOptions {
         continuity: r.continuity,

@@ -94,6 +94,7 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter)> {
         ("/api/bezier/build", Method::POST, post(api::bezier_build)),
         ("/api/blend/deform", Method::POST, post(api::blend_deform)),
         ("/api/blend/corners", Method::POST, post(api::blend_corners)),
+        ("/api/blend/spline", Method::POST, post(api::blend_spline)),
         ("/api/quasi", Method::POST, post(expr::quasi)),
         ("/api/fit", Method::POST, post(fit::fit)),
         ("/api/project", Method::POST, post(query::project)),

@@ -201,9 +201,37 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     )
     .await;
     assert_eq!(field, "continuity");
+    // corners smoothed over a window (as `lekalo blend corners`), the curve through the points
+    // by blended parabolas (as `lekalo blend spline`)
+    let zigzag = json!([[0, 0], [1, 2], [2, 0], [3, 2]]);
     let v = ok(
         "/api/blend/corners",
-        &json!({"points": [[0, 0], [1, 2], [2, 0], [3, 2]], "continuity": 2}),
+        &json!({"points": zigzag, "continuity": 2, "fraction": 0.3}),
+    )
+    .await;
+    assert_eq!(v["curve"]["type"], "bspline_curve");
+    assert_eq!(v["degree"], 5, "degree 2k + 1");
+    for (body, want) in [
+        (json!({"points": zigzag, "continuity": 0}), "continuity"),
+        (
+            json!({"points": zigzag, "continuity": 2, "fraction": 0.7}),
+            "fraction",
+        ),
+        (
+            json!({"points": zigzag, "continuity": 2, "length": 5.0}),
+            "length",
+        ),
+        (
+            json!({"points": [[0, 0], [1, 1]], "continuity": 2}),
+            "points",
+        ),
+    ] {
+        let (field, msg) = bad("/api/blend/corners", body.to_string()).await;
+        assert_eq!(field, want, "{msg}");
+    }
+    let v = ok(
+        "/api/blend/spline",
+        &json!({"points": zigzag, "continuity": 2, "closed": true}),
     )
     .await;
     assert_eq!(v["curve"]["type"], "nurbs_curve");

@@ -2,8 +2,9 @@
 
 use anyhow::Result;
 use lekalo::{
-    ArcParametrization, BezierCurve, BlendSpline, BlendSplineOptions, CircularArcs, Continuity,
-    CornerTransition, Deformation, JumpPolynomial, NurbsCurve, Parabolas, ParametricCurve, Points,
+    smooth_polyline_corners, ArcParametrization, BlendSpline, BlendSplineOptions, CircularArcs,
+    Continuity, CornerWindow, Deformation, JumpPolynomial, NurbsCurve, Parabolas, ParametricCurve,
+    Points,
 };
 use lekalo_io::{Figure, Object, Series, PALETTE};
 
@@ -353,41 +354,31 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
 }
 
 pub(super) fn corner(s: &mut Section) -> Result<()> {
-    s.caption = "Smoothing a corner (named in document 001's conclusion; construction \
-        documented in lekalo's CornerTransition): the last part of the curve before the corner \
-        and the first part after it are replaced by a deformation with contact of order k at \
-        both ends. For two segments the transition is one Bezier curve of degree 4k."
+    s.caption = "Smoothing a corner (named in document 001's conclusion): the last part of the \
+        segment before the corner and the first part after it are replaced by one Bezier curve \
+        of degree 2k + 1 with contact of order k at both ends, whose control points lie on the \
+        two legs; its curvature keeps one sign (document 001's deformation of the legs, \
+        CornerTransition, has the same contact but inflects twice)."
         .into();
-    let before = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [2.0, 0.0]])?)?;
-    let after = BezierCurve::new(Points::from_2d(&[[2.0, 0.0], [2.0, 2.0]])?)?;
+    let corner = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]])?;
     let mut fig = Figure::new("Corner smoothing of a right angle", true);
-    add_points(
-        &mut fig,
-        &Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]])?,
-        "corner",
-        "#777777",
-        true,
-    );
+    add_points(&mut fig, &corner, "corner", "#777777", true);
     let mut rows = Vec::new();
     for k in 1..=3 {
-        let c = CornerTransition::new(&before, 0.5, &after, 0.5, k)?;
-        let Some(form) = c.bezier_form() else {
-            continue;
-        };
-        let obj = match form {
-            lekalo::BezierForm::Polynomial(b) => Object::Bezier(b),
-            lekalo::BezierForm::Rational(n) => Object::Nurbs(n),
-        };
+        let smooth = smooth_polyline_corners(corner.as_view(), CornerWindow::Length(1.0), k)?;
+        let curve = smooth.curve();
         s.check(
-            &format!("k = {k}: degree of the transition"),
-            obj.degree() as f64,
-            (4 * k) as f64,
-            &format!("(2k − 1) + (2k + 1) = {}", 4 * k),
+            &format!("k = {k}: degree of the curve"),
+            curve.degree() as f64,
+            (2 * k + 1) as f64,
+            &format!("2k + 1 = {}", 2 * k + 1),
             0.0,
         );
-        // contact: p^(l)(0) = h1^l before^(l)(t1), p^(l)(1) = h2^l after^(l)(t2), h = 0.5·1
-        let d0 = c.eval_derivatives(0.0, k)?;
-        let d1 = c.eval_derivatives(1.0, k)?;
+        // the transition runs over [1, 3] (arc length 1 to the corner's window end), from
+        // (1, 0) to (2, 1): unit-speed contact of order k with the legs at both ends
+        let (t0, t1) = (smooth.straight_spans()[0].1, smooth.straight_spans()[1].0);
+        let d0 = curve.eval_derivatives(t0, k)?;
+        let d1 = curve.eval_derivatives(t1, k)?;
         let dev = (d0.point(1)[0] - 1.0)
             .abs()
             .max(d0.point(1)[1].abs())
@@ -400,35 +391,60 @@ pub(super) fn corner(s: &mut Section) -> Result<()> {
                     .fold(0.0_f64, |m, x| m.max(x.abs())),
             );
         s.check(
-            &format!("k = {k}: contact with the lines (C′ = h·dir, higher = 0)"),
+            &format!("k = {k}: contact with the legs (C′ = direction, higher = 0)"),
             dev,
             0.0,
             "0",
             ROUNDING,
         );
-        let m = c.eval(0.5)?;
+        // fair: the curvature x′y″ − x″y′ of the left turn is never negative in the window
+        let least = (0..=200)
+            .map(|i| {
+                let t = t0 + (t1 - t0) * f64::from(i) / 200.0;
+                curve.eval_derivatives(t, 2).map(|d| {
+                    let (a, b) = (d.point(1), d.point(2));
+                    a[0] * b[1] - a[1] * b[0]
+                })
+            })
+            .collect::<lekalo::Result<Vec<f64>>>()?
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        s.check(
+            &format!("k = {k}: no inflection (least curvature in the window ≥ 0)"),
+            least.min(0.0),
+            0.0,
+            "0",
+            ROUNDING,
+        );
+        let m = curve.eval((t0 + t1) / 2.0)?;
         rows.push(vec![
             k.to_string(),
-            obj.degree().to_string(),
+            curve.degree().to_string(),
             format!("({}, {})", trim(m[0]), trim(m[1])),
         ]);
-        add_curve(&mut fig, &obj, &format!("k = {k}"), PALETTE[k - 1])?;
+        add_curve(
+            &mut fig,
+            &Object::BSpline(curve.clone()),
+            &format!("k = {k}"),
+            PALETTE[k - 1],
+        )?;
     }
     s.tables.push((
         "Transitions on the window [1, 2] × [0, 1] (computed)".into(),
-        vec!["k".into(), "Bezier degree".into(), "midpoint".into()],
+        vec!["k".into(), "degree".into(), "midpoint".into()],
         rows,
     ));
     s.figure(
         fig,
         Caption::new(
             "A right-angle corner (grey, dashed) smoothed over the last half of the first leg \
-             and the first half of the second by one Bezier transition of degree 4k, for \
-             k = 1, 2, 3: it leaves the first leg at (1, 0) and joins the second at (2, 1). The \
-             larger k, the higher the order of contact at both ends: the transition clings to \
-             the legs longer and crosses between them more steeply.",
+             and the first half of the second by one Bezier transition of degree 2k + 1, for \
+             k = 1, 2, 3: it leaves the first leg at (1, 0) and joins the second at (2, 1), \
+             turning one way throughout. The larger k, the higher the order of contact at both \
+             ends: the transition clings to the legs longer and turns more sharply at the \
+             corner.",
         )
-        .theory("blending.md#corner-smoothing"),
+        .theory("blending.md#polyline-corners"),
     );
     Ok(())
 }

@@ -2,14 +2,12 @@
 //! (docs/theory/blending.md#polyline-corners); the construction is documented on
 //! [`smooth_polyline_corners`].
 
-use crate::blend::corner::CornerTransition;
-use crate::blend::deformation::{BezierForm, ParametricCurve};
 use crate::error::{check_finite, Error, Result};
 use crate::points::{Points, PointsRef};
 use crate::{BSplineCurve, BezierCurve, BezierSegment};
 
-/// The largest continuity degree [`smooth_polyline_corners`] accepts. The curve has degree `4k`,
-/// and 16 (degree 64) is far beyond any practical rounding while keeping the Bernstein
+/// The largest continuity degree [`smooth_polyline_corners`] accepts. The curve has degree
+/// `2k + 1`, and 16 (degree 33) is far beyond any practical rounding while keeping the Bernstein
 /// coefficients of the transitions accurate in `f64`.
 pub const MAX_POLYLINE_CONTINUITY: usize = 16;
 
@@ -33,8 +31,8 @@ pub struct SmoothedPolyline {
 }
 
 impl SmoothedPolyline {
-    /// The curve: degree `4k`, knots at the ends of the straight parts and transitions with
-    /// multiplicity `4k` (piecewise Bezier form; the curve is `C^k` there).
+    /// The curve: degree `2k + 1`, knots at the ends of the straight parts and transitions with
+    /// multiplicity `2k + 1` (piecewise Bezier form; the curve is `C^k` there).
     #[must_use]
     pub fn curve(&self) -> &BSplineCurve {
         &self.curve
@@ -47,7 +45,8 @@ impl SmoothedPolyline {
     }
 
     /// The window length `r_j` at each interior point `j = 1 … n−2` (index `j − 1`): the
-    /// transition starts `r_j` before the corner and ends `r_j` after it.
+    /// transition starts `r_j` before the corner and ends `r_j` after it, on a parameter
+    /// interval of length `2 r_j`.
     #[must_use]
     pub fn windows(&self) -> &[f64] {
         &self.windows
@@ -62,6 +61,9 @@ impl SmoothedPolyline {
     }
 }
 
+#[allow(unused_imports)] // named in the documentation
+use crate::blend::corner::CornerTransition;
+
 /// Smooths every interior corner of the polyline `points` (at least three points, any
 /// dimension) with continuity degree `continuity = k ≥ 1`, and returns the result as one curve
 /// (docs/theory/blending.md#polyline-corners).
@@ -69,21 +71,25 @@ impl SmoothedPolyline {
 /// Construction: corner `j` (point `X = P_j`, unit directions `d_{j−1}` in and `d_j` out) gets a
 /// window `r_j` (see [`CornerWindow`]). Segments are kept exactly outside the windows, on
 /// parameter intervals equal to their length (unit speed). The pieces
-/// `[X − r_j d_{j−1}, X]` and `[X, X + r_j d_j]` are replaced by the [`CornerTransition`] of the
-/// lines `X − 2 r_j d_{j−1} → X` and `X → X + 2 r_j d_j` at parameters `1/2` and `1/2`: equal
-/// parameter windows `h_1 = h_2 = 1/2`, so the transition has contact of order `k` with both
-/// lines, and its derivatives there are `r_j^l` times the lines' unit-speed ones. Placed on a
-/// parameter interval of length `r_j`, it is therefore `C^k` with the straight parts (not only
-/// `G^k`). The transition is a polynomial Bezier piece of degree
-/// `(2k − 1) + (2k + 1) = 4k`; the straight parts are elevated to it, and the pieces are joined
-/// by [`BSplineCurve::from_bezier_segments`] with their common end points stored once. The
-/// domain is `[0, Σ L_i − Σ r_j]`.
+/// `[X − r_j d_{j−1}, X]` and `[X, X + r_j d_j]` are replaced by one Bezier curve of degree
+/// `n = 2k + 1` on a parameter interval of length `2 r_j`, whose control points are `k + 1`
+/// evenly spaced points (spacing `δ = 2 r_j / n`) on each leg, `P_i = X − (r_j − iδ) d_{j−1}` and
+/// `P_{n−i} = X + (r_j − iδ) d_j` for `i = 0 … k`. Equal spacing makes the derivatives of orders
+/// `2 … k` vanish at both ends and the first derivative the legs' unit-speed one, so the curve is
+/// `C^k` with the straight parts (not only `G^k`); the control polygon turns one way only, so
+/// by variation diminishing the transition has no inflection: its curvature keeps one sign
+/// through the corner (a fair corner). The straight parts are elevated to degree `2k + 1` and
+/// the pieces are joined by [`BSplineCurve::from_bezier_segments`] with their common end points
+/// stored once. The domain is `[0, Σ L_i]`, the polyline's length.
+///
+/// Document 001's deformation ([`CornerTransition`]) of the two legs is `C^k` too but inflects
+/// twice inside every corner window, for every `k` (docs/theory/blending.md#polyline-corners).
 ///
 /// ```
 /// use lekalo::{smooth_polyline_corners, CornerWindow, Points};
 /// let square = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])?;
 /// let s = smooth_polyline_corners(square.as_view(), CornerWindow::Fraction(0.25), 2)?;
-/// assert_eq!(s.curve().degree(), 8);
+/// assert_eq!(s.curve().degree(), 5);
 /// assert_eq!(s.windows(), &[0.5, 0.5]);
 /// // the middle segment's straight part: x = 2, y from 0.5 to 1.5, at unit speed
 /// let (a, _) = s.straight_spans()[1];
@@ -140,7 +146,7 @@ pub fn smooth_polyline_corners(
             .map(|(x, d)| x + t * d)
             .collect::<Vec<f64>>()
     };
-    let degree = 4 * continuity;
+    let degree = 2 * continuity + 1;
     let mut segments = Vec::with_capacity(2 * n);
     let mut straight = Vec::with_capacity(n - 1);
     let mut s = 0.0;
@@ -173,14 +179,14 @@ pub fn smooth_polyline_corners(
             let r = r_at(i + 1);
             let next = dir(i + 1);
             let after_end = along(q, &next, r);
-            let mut piece = transition(q, &d, &next, r, continuity)?;
+            let mut piece = transition(q, &d, &next, r, continuity);
             pin_ends(&mut piece, &end, &after_end, dim);
             segments.push(BezierSegment {
                 start: s,
-                end: s + r,
+                end: s + 2.0 * r,
                 curve: BezierCurve::new(Points::from_flat(dim, piece)?)?,
             });
-            s += r;
+            s += 2.0 * r;
         }
     }
     Ok(SmoothedPolyline {
@@ -293,33 +299,24 @@ fn straight_piece(start: &[f64], end: &[f64], degree: usize) -> Result<BezierCur
 }
 
 /// The transition at corner `x` (directions `d_in`, `d_out`, window `r`) as flat Bezier control
-/// points: [`CornerTransition`] of the lines `x − 2r d_in → x` and `x → x + 2r d_out` at `1/2`.
-fn transition(
-    x: &[f64],
-    d_in: &[f64],
-    d_out: &[f64],
-    r: f64,
-    continuity: usize,
-) -> Result<Vec<f64>> {
-    let dim = x.len();
-    let line = |from: Vec<f64>, to: Vec<f64>| {
-        BezierCurve::new(Points::from_flat(dim, [from, to].concat())?)
-    };
-    let before = line(
-        x.iter().zip(d_in).map(|(x, d)| x - 2.0 * r * d).collect(),
-        x.to_vec(),
-    )?;
-    let after = line(
-        x.to_vec(),
-        x.iter().zip(d_out).map(|(x, d)| x + 2.0 * r * d).collect(),
-    )?;
-    match CornerTransition::new(before, 0.5, after, 0.5, continuity)?.bezier_form() {
-        Some(BezierForm::Polynomial(b)) => Ok(b.control_points().as_slice().to_vec()),
-        _ => Err(Error::InvalidArgument {
-            what: "corner transition",
-            reason: "two lines gave no polynomial Bezier form".into(),
-        }),
+/// points of degree `n = 2k + 1`: `k + 1` points spaced `δ = 2r/n` on each leg, starting `r` from
+/// the corner (docs/theory/blending.md#polyline-corners).
+fn transition(x: &[f64], d_in: &[f64], d_out: &[f64], r: f64, continuity: usize) -> Vec<f64> {
+    let n = 2 * continuity + 1;
+    #[allow(clippy::cast_precision_loss)] // n ≤ 33
+    let delta = 2.0 * r / n as f64;
+    let mut ctrl = Vec::with_capacity((n + 1) * x.len());
+    for i in 0..=continuity {
+        #[allow(clippy::cast_precision_loss)]
+        let back = r - i as f64 * delta;
+        ctrl.extend(x.iter().zip(d_in).map(|(x, d)| x - back * d));
     }
+    for i in (0..=continuity).rev() {
+        #[allow(clippy::cast_precision_loss)]
+        let ahead = r - i as f64 * delta;
+        ctrl.extend(x.iter().zip(d_out).map(|(x, d)| x + ahead * d));
+    }
+    ctrl
 }
 
 /// Sets the transition's end control points to the straight parts' end points, so that the
@@ -372,6 +369,64 @@ mod tests {
         worst
     }
 
+    /// Length of the polyline up to point `i`.
+    fn lengths_before(rows: &[[f64; 2]], i: usize) -> f64 {
+        rows.windows(2)
+            .take(i)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .sum()
+    }
+
+    /// Signed curvature numerators `x'y'' − x''y'` of a planar curve at `m` parameters per
+    /// Bezier piece, with the piece's start parameter.
+    fn turning(curve: &BSplineCurve, m: usize) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        for piece in curve.to_bezier_segments() {
+            for j in 1..m {
+                #[allow(clippy::cast_precision_loss)]
+                let u = j as f64 / m as f64;
+                let d = piece
+                    .curve
+                    .eval_derivatives(u, 2)
+                    .unwrap_or_else(|e| panic!("{e}"));
+                let (d1, d2) = (d.point(1), d.point(2));
+                out.push((piece.start, d1[0] * d2[1] - d1[1] * d2[0]));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn corners_turn_one_way() -> Result<()> {
+        // every corner of the zigzag, and the tour's three-point polyline: the curvature inside a
+        // corner window keeps the sign of the corner's turn (document 001's deformation of the two
+        // legs changes sign twice there)
+        for rows in [&ZIGZAG[..], &[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]][..]] {
+            for k in 1..=4 {
+                for f in [0.25, 0.5] {
+                    let s = smooth(rows, CornerWindow::Fraction(f), k)?;
+                    let spans = s.straight_spans();
+                    for (j, w) in spans.windows(2).enumerate() {
+                        let (from, to) = (w[0].1, w[1].0);
+                        let (a, b, c) = (rows[j], rows[j + 1], rows[j + 2]);
+                        let turn = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+                        let size = s.curve().control_points().max_abs();
+                        for (start, cross) in turning(s.curve(), 16) {
+                            if start >= from && start < to {
+                                assert!(
+                                    cross * turn.signum() > -1e-12 * size,
+                                    "k = {k}, f = {f}, corner {}: curvature {cross:e} against the turn",
+                                    j + 1
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     const ZIGZAG: [[f64; 2]; 5] = [[0.0, 0.0], [3.0, 0.0], [4.0, 2.5], [7.0, 1.0], [7.5, 6.0]];
 
     #[test]
@@ -382,12 +437,17 @@ mod tests {
             (CornerWindow::Length(0.8), 3),
         ] {
             let s = smooth(&ZIGZAG, window, k)?;
-            assert_eq!(s.curve().degree(), 4 * k, "degree 4k for k = {k}");
+            assert_eq!(s.curve().degree(), 2 * k + 1, "degree 2k + 1 for k = {k}");
             for (i, &(a, b)) in s.straight_spans().iter().enumerate() {
                 let (p, q) = (ZIGZAG[i], ZIGZAG[i + 1]);
                 let len = (q[0] - p[0]).hypot(q[1] - p[1]);
                 let r_left = if i == 0 { 0.0 } else { s.windows()[i - 1] };
                 let mid = a + len / 2.0 - r_left;
+                let at = lengths_before(&ZIGZAG, i) + r_left;
+                assert!(
+                    (a - at).abs() < 1e-14 * 20.0,
+                    "straight part {i} starts at its arc length {at}, not {a}"
+                );
                 if mid > a && mid < b {
                     let m = s.curve().eval(mid)?;
                     let want = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0];
@@ -443,7 +503,7 @@ mod tests {
                 j + 1
             );
         }
-        let total: f64 = (0..4).map(l).sum::<f64>() - s.windows().iter().sum::<f64>();
+        let total: f64 = (0..4).map(l).sum::<f64>();
         let (_, end) = s.curve().domain();
         assert!((end - total).abs() < 1e-13, "domain end {end} vs {total}");
         let s = smooth(&ZIGZAG, CornerWindow::Length(1.0), 1)?;

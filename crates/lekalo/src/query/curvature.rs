@@ -225,6 +225,18 @@ impl QueryCurve {
                 }
             };
             let mag = x.0.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            // A piece straight to rounding (a segment of a polyline kept exactly, elevated) has
+            // `C' × C''` of the size of the rounding of its control points: with coordinates of
+            // size `s`, the derivatives of order j are of size `p^j s`, so the products are of
+            // size `p³ s²` (`p³ s³` for the homogeneous determinant), and their rounding noise
+            // changes sign at random. Such a piece has no inflection.
+            let size = self.piece(k).iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            #[allow(clippy::cast_precision_loss)] // a degree
+            let p3 = (self.degree as f64).powi(3);
+            let scale = p3 * size * size * if w.is_some() { size } else { 1.0 };
+            if mag <= 1e3 * f64::EPSILON * scale {
+                continue;
+            }
             for s in bern_roots(&x, 1e3 * f64::EPSILON * mag) {
                 // a sign change, not a touching zero
                 let (l, r) = ((s - 1e-6).max(0.0), (s + 1e-6).min(1.0));
@@ -545,6 +557,18 @@ mod tests {
             .curvature_extrema()
             .unwrap();
         assert_eq!(ext.len(), 1, "{ext:?}");
+    }
+
+    #[test]
+    fn straight_stretches_have_no_inflection() {
+        // a line elevated to degree 5 and joined to a bend: the straight pieces' C' × C'' is
+        // rounding noise; only real sign changes count (this curve turns one way)
+        let pts = crate::Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]]).unwrap();
+        let s =
+            crate::smooth_polyline_corners(pts.as_view(), crate::CornerWindow::Fraction(0.25), 2)
+                .unwrap();
+        let q = QueryCurve::from_bspline(s.curve()).unwrap();
+        assert_eq!(q.inflections().unwrap(), Vec::<f64>::new());
     }
 
     #[test]

@@ -127,10 +127,10 @@ Examples:
     },
     /// Smooth every corner of a polyline with continuity degree k; the result is one curve.
     #[command(after_help = "\
-Each corner is replaced by the `blend corner` transition of its two segments over a window cut on
-both sides; outside the windows the segments are kept exactly. The result is one B-spline of
-degree 4k, C^k everywhere, parametrised by length along the straight parts
-(docs/theory/blending.md#polyline-corners).
+Each corner is replaced by one Bezier curve over a window cut on both sides; outside the windows
+the segments are kept exactly. The result is one B-spline of degree 2k + 1, C^k everywhere,
+parametrised by arc length along the straight parts, and fair: inside each corner window the
+curvature keeps the sign of the corner's turn (docs/theory/blending.md#polyline-corners).
 
 --window takes a length (the same at every corner; each segment must hold the windows of its two
 corners) or a percentage of the shorter segment at each corner, at most 50%.
@@ -146,7 +146,7 @@ Examples:
         /// segment (`25%`, at most 50%).
         #[arg(long, default_value = "25%", allow_hyphen_values = true)]
         window: String,
-        /// Continuity degree k ≥ 1 (the curve has degree 4k).
+        /// Continuity degree k ≥ 1 (the curve has degree 2k + 1).
         #[arg(long = "continuity", short_alias = 'k', default_value_t = 2)]
         k: usize,
         #[command(flatten)]
