@@ -391,3 +391,71 @@ def test_periodic_splrep_and_smoothing_of_3d_values():
     y3 = rng.standard_normal((40, 2, 2))
     a, b = si.make_smoothing_spline(x, y3, lam=0.1), ls.make_smoothing_spline(x, y3, lam=0.1)
     close(b.c, a.c, 1e-11)
+
+
+def test_make_splrep_and_make_splprep():
+    rng = np.random.default_rng(3)
+    x = np.linspace(0.0, 6.0, 50)
+    y = np.sin(x) + 0.1 * rng.standard_normal(50)
+    w = rng.uniform(0.5, 2.0, 50)
+    for k in (1, 3, 5):
+        b = ls.make_splrep(x, y, w=w, k=k, s=0.5)
+        assert type(b) is ls.BSpline and b.c.shape == (len(b.t) - k - 1,)
+        # FITPACK's knots (SciPy's own make_splrep places others with unequal weights)
+        close(b.t, si.splrep(x, y, w=w, k=k, s=0.5)[0])
+        fp = np.sum((w * (b(x) - y)) ** 2)
+        assert abs(fp - 0.5) <= 0.001 * 0.5, (k, fp)
+    close(ls.make_splrep(x, y).c, si.make_splrep(x, y).c)  # s = 0 interpolates
+    with pytest.raises(ValueError, match="interpolation only"):
+        ls.make_splrep(x, y, w=w)
+    with pytest.raises(ValueError, match="boundary conditions"):
+        ls.make_splrep(x, y, s=1.0, bc_type="natural")
+    with pytest.raises(NotImplementedError, match="given knots"):
+        ls.make_splrep(x, y, s=1.0, t=[0, 0, 0, 0, 3, 6, 6, 6, 6])
+    # periodic: FITPACK's knots and residual (the last point closes the period and is not
+    # counted), with SciPy's weights squared into lekalo's
+    yp = np.cos(x) + 0.05 * rng.standard_normal(50)
+    yp[-1] = yp[0]
+    (ta, fpa, _, _), tb = si.splrep(x, yp, w=w, s=0.05, per=1, full_output=1), ls.splrep(x, yp, w=w, s=0.05, per=1)
+    close(tb[0], ta[0])
+    close(np.sum((w * (ls.splev(x, tb) - yp))[:-1] ** 2), fpa, 1e-8)
+    close(ls.make_splrep(x, yp, w=w, s=0.05, bc_type="periodic").t, ta[0])
+    pts = [np.cos(x), np.sin(2 * x) + 0.01 * rng.standard_normal(50)]
+    (a, ua), (b, ub) = si.make_splprep(pts, s=0.01), ls.make_splprep(pts, s=0.01)
+    close(ub, ua)
+    close(b.t, si.splprep(pts, s=0.01)[0][0])  # FITPACK's parcur knots
+    assert b.c.shape == (len(b.t) - 4, 2) and b(ub).shape == np.shape(pts)
+
+
+def test_insert_pchip_interpolate_and_from_power_basis():
+    x, y = data(n=12, seed=4)
+    tck = si.splrep(x, y)
+    ta, tb = si.insert(1.7, tck, m=2), ls.insert(1.7, tck, m=2)
+    close(tb[0], ta[0])
+    close(tb[1], ta[1])
+    ib = ls.insert(1.7, ls.make_interp_spline(x, y))
+    assert type(ib) is ls.BSpline
+    close(ib(XX), si.insert(1.7, si.make_interp_spline(x, y))(XX), 1e-11)
+    assert ls.pchip is ls.PchipInterpolator
+    for der in (0, 1, [0, 2]):
+        close(ls.pchip_interpolate(x, y, XX, der=der), si.pchip_interpolate(x, y, XX, der=der), 1e-11)
+    for bc in ("not-a-knot", "natural", "clamped"):
+        b = ls.BSpline.from_power_basis(ls.CubicSpline(x, y, bc_type=bc), bc_type=bc)
+        close(b.t, si.make_interp_spline(x, y, bc_type=bc).t)
+        close(b.c, si.make_interp_spline(x, y, bc_type=bc).c, 1e-10)
+    # a not-a-knot spline on the knots of a natural one: lekalo inserts the two knots it lacks
+    b = ls.BSpline.from_power_basis(ls.CubicSpline(x, y), bc_type="natural")
+    close(b(XX), ls.CubicSpline(x, y)(XX), 1e-11)
+    with pytest.raises(NotImplementedError):
+        ls.BSpline.from_power_basis(ls.PchipInterpolator(x, y))
+
+
+def test_batched_gcv_smoothing_chooses_a_weight_per_column():
+    rng = np.random.default_rng(5)
+    x = np.linspace(0.0, 10.0, 30)
+    y = np.sin(x)[:, None] * [1.0, 0.1] + 0.2 * rng.standard_normal((30, 2))
+    b = ls.make_smoothing_spline(x, y)
+    for j in range(2):
+        close(b.c[:, j], ls.make_smoothing_spline(x, y[:, j]).c)
+    with pytest.raises(ValueError, match="too many axes"):
+        ls.splrep(x, y)

@@ -28,7 +28,9 @@ def splrep(
         raise TypeError(f"1 <= k= {k} <=5 must hold")
     if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
         raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
-    if y.ndim != 1 or len(y) != m:
+    if y.ndim != 1:
+        raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
+    if len(y) != m:
         raise TypeError("Lengths of the first three arguments (x,y,w) must be equal")
     if m <= k:
         raise TypeError("m > k must hold")
@@ -36,7 +38,7 @@ def splrep(
         # lekalo's periodic fit is splrep(per=1)'s: the last point closes the period, FITPACK's
         # knots and smoothing condition, or least squares on the interior knots t
         curve, _ = _lekalo.fit_periodic(
-            x, y, w=w, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
+            x, y, w=None if w is None else np.asarray(w, dtype=np.float64) ** 2, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
         )
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
@@ -154,3 +156,31 @@ def splantider(tck: Any, n: int = 1):
     c = np.asarray(c, dtype=np.float64)
     t2, c2 = _antiderivative_tc(t, c, k, n)
     return t2, c2, k + n
+
+
+def insert(x: float, tck: Any, m: int = 1, per: int = 0):
+    """``scipy.interpolate.insert``: the knot ``x`` inserted ``m`` times (Boehm), lekalo's
+    ``insert_knot`` through ``BSpline.insert_knot``; a ``(t, c, k)`` tuple gives a tuple with
+    ``c`` zero-padded to ``len(t)``, a ``BSpline`` a ``BSpline``."""
+    if isinstance(tck, BSpline):
+        spl = BSpline(tck.t, tck.c, tck.k, extrapolate="periodic" if per else tck.extrapolate, axis=tck.axis)
+        out = spl.insert_knot(x, m)
+        return BSpline(out.t, out.c, out.k)
+    t, c, k = tck
+    try:
+        c[0][0]
+        parametric = True
+    except Exception:
+        parametric = False
+    if parametric:
+        cc = []
+        for c_vals in c:
+            tt, cc_val, kk = insert(x, [t, c_vals, k], m, per)
+            cc.append(cc_val)
+        return (tt, cc, kk)
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    n = t.shape[0] - k - 1
+    spl = BSpline.construct_fast(t, c[:n], k, extrapolate="periodic" if per else True)
+    out = spl.insert_knot(x, m)
+    return out.t, _pad_rows(out.c, out.t.shape[0]), k
