@@ -459,3 +459,50 @@ def test_batched_gcv_smoothing_chooses_a_weight_per_column():
         close(b.c[:, j], ls.make_smoothing_spline(x, y[:, j]).c)
     with pytest.raises(ValueError, match="too many axes"):
         ls.splrep(x, y)
+
+
+def test_spalde_and_splprep():
+    x, y = data(n=15, seed=6)
+    tck = si.splrep(x, y)
+    for at in (x[0], 1.3, x[-1]):
+        close(ls.spalde(at, tck), si.spalde(at, tck), 1e-11)
+    assert len(ls.spalde([1.0, 2.0], tck)) == 2
+    with pytest.raises(TypeError):
+        ls.spalde(1.0, ls.BSpline(*tck))
+    a = np.linspace(0.0, 2 * np.pi, 30)
+    pts = [np.cos(a), 0.5 * np.sin(a)]
+    for per in (0, 1):
+        for s in (0.0, 1e-3, None):  # None: FITPACK's default m - sqrt(2m)
+            (ta, ua), (tb, ub) = si.splprep(pts, s=s, per=per), ls.splprep(pts, s=s, per=per)
+            close(tb[0], ta[0])
+            close(ub, ua)
+            assert len(tb[1]) == 2 and tb[1][0].shape == ta[1][0].shape
+            # FITPACK's tolerance on the smoothing condition, relative to the data (amplitude 1)
+            np.testing.assert_allclose(np.array(ls.splev(ub, tb)), np.array(si.splev(ua, ta)), rtol=0, atol=1e-5)
+    (tb, ub), fp, ier, msg = ls.splprep(pts, s=1e-3, full_output=1)
+    assert ier == 0 and abs(fp - 1e-3) <= 1e-6
+    with pytest.raises(ValueError, match="Invalid inputs"):
+        ls.splprep([[1.0, 3.0, 2.0, 4.0]], u=[0, 0.3, 0.2, 1])
+
+
+def test_univariate_spline_family():
+    rng = np.random.default_rng(7)
+    x = np.linspace(0.0, 5.0, 40)
+    y = np.sin(x) + 0.05 * rng.standard_normal(40)
+    for cls_args in [("UnivariateSpline", dict(s=0.1)), ("InterpolatedUnivariateSpline", {}),
+                     ("LSQUnivariateSpline", dict(t=[1.0, 2.5, 4.0]))]:
+        name, kw = cls_args
+        args = (x, y, kw.pop("t")) if "t" in kw else (x, y)
+        a, b = getattr(si, name)(*args, **kw), getattr(ls, name)(*args, **kw)
+        close(b.get_knots(), a.get_knots())
+        close(b.get_coeffs(), a.get_coeffs(), 1e-6)
+        close(b(XX), a(XX), 1e-6)
+        close(b(XX, ext="const"), a(XX, ext="const"), 1e-6)
+        close(b.integral(0.5, 4.0), a.integral(0.5, 4.0), 1e-6)
+        close(b.derivatives(2.0), a.derivatives(2.0), 1e-5)
+        close(b.derivative()(XX[5:30]), a.derivative()(XX[5:30]), 1e-5)
+        close(b.get_residual(), a.get_residual(), 1e-3)
+    with pytest.raises(ValueError, match="Schoenberg-Whitney"):
+        ls.LSQUnivariateSpline(x, y, [1.0], bbox=(3.0, 0.0))
+    with pytest.raises(ValueError, match="x must be increasing"):
+        ls.UnivariateSpline(x[::-1], y)

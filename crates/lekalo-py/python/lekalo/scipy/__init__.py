@@ -25,7 +25,8 @@ extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 from __future__ import annotations
 
 from ._bspline import BSpline
-from ._fitpack import insert, splantider, splder, splev, splint, splrep
+from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep
+from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator, pchip, pchip_interpolate
 from ._splrep import make_splprep, make_splrep
@@ -38,11 +39,16 @@ __all__ = [
     "make_splrep",
     "make_splprep",
     "splrep",
+    "splprep",
     "splev",
     "splint",
     "splder",
     "splantider",
     "insert",
+    "spalde",
+    "UnivariateSpline",
+    "InterpolatedUnivariateSpline",
+    "LSQUnivariateSpline",
     "CubicSpline",
     "CubicHermiteSpline",
     "PchipInterpolator",
