@@ -506,3 +506,23 @@ def test_univariate_spline_family():
         ls.LSQUnivariateSpline(x, y, [1.0], bbox=(3.0, 0.0))
     with pytest.raises(ValueError, match="x must be increasing"):
         ls.UnivariateSpline(x[::-1], y)
+
+
+def test_ndbspline():
+    rng = np.random.default_rng(8)
+    t = (np.r_[[0.0] * 4, 1.0, 2.5, [4.0] * 4], np.r_[[0.0] * 3, 2.0, [3.0] * 3])
+    k = (3, 2)
+    for tail, dtype in [((), float), ((2,), float), ((), complex)]:
+        c = rng.standard_normal((6, 4) + tail)
+        if dtype is complex:
+            c = c + 1j * rng.standard_normal((6, 4) + tail)
+        a, b = si.NdBSpline(t, c, k), ls.NdBSpline(t, c, k)
+        xi = np.stack([rng.uniform(0, 4, (5, 3)), rng.uniform(0, 3, (5, 3))], axis=-1)
+        close(b(xi), a(xi), 1e-11)
+        close(b(xi, nu=(1, 2)), a(xi, nu=(1, 2)), 1e-10)
+    out = ls.NdBSpline(t, c, k, extrapolate=False)([[5.0, 1.0], [1.0, 1.0], [np.nan, 1.0]])
+    assert np.isnan(out[0]) and np.isfinite(out[1]) and np.isnan(out[2])
+    with pytest.raises(NotImplementedError, match="extrapolation"):
+        ls.NdBSpline(t, c, k)([[5.0, 1.0]])
+    with pytest.raises(ValueError, match="inconsistent"):
+        ls.NdBSpline(t, c[:5], k)

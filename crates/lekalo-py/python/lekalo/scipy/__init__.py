@@ -28,6 +28,7 @@ from ._bspline import BSpline
 from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep
 from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
+from ._ndbspline import NdBSpline
 from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator, pchip, pchip_interpolate
 from ._splrep import make_splprep, make_splrep
 
@@ -49,6 +50,7 @@ __all__ = [
     "UnivariateSpline",
     "InterpolatedUnivariateSpline",
     "LSQUnivariateSpline",
+    "NdBSpline",
     "CubicSpline",
     "CubicHermiteSpline",
     "PchipInterpolator",
