@@ -526,3 +526,15 @@ def test_ndbspline():
         ls.NdBSpline(t, c, k)([[5.0, 1.0]])
     with pytest.raises(ValueError, match="inconsistent"):
         ls.NdBSpline(t, c[:5], k)
+
+
+def test_derivatives_and_antiderivatives_of_empty_values():
+    x = np.linspace(0.0, 3.0, 7)
+    y = np.zeros((7, 0))
+    for name in ("PchipInterpolator", "CubicSpline"):
+        a, b = getattr(si, name)(x, y), getattr(ls, name)(x, y)
+        for f in (lambda p: p.derivative(), lambda p: p.derivative(2), lambda p: p.antiderivative(2)):
+            assert f(b)(XX).shape == f(a)(XX).shape == (XX.size, 0)
+    s = ls.make_interp_spline(x, y)
+    assert s.derivative().c.shape[1:] == s.antiderivative().c.shape[1:] == (0,)
+    close(s.antiderivative().t, si.make_interp_spline(x, y).antiderivative().t)

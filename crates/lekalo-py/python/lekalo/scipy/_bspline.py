@@ -335,6 +335,13 @@ def _knots_to_add(t0: np.ndarray, t: np.ndarray) -> np.ndarray | None:
     return np.repeat(v, [b - have.get(a, 0) for a, b in zip(v.tolist(), m.tolist())])
 
 
+def _empty_values(op, t: np.ndarray, c: np.ndarray, k: int, nu: int):
+    """``op`` on values with an empty trailing shape (SciPy's ``n × 0`` arrays): the knots of one
+    zero column, and coefficients of the same empty trailing shape."""
+    t_new, _ = op(t, np.zeros(c.shape[0]), k, nu)
+    return t_new, np.zeros((t_new.shape[0],) + c.shape[1:], dtype=c.dtype)
+
+
 def _pad_rows(c: np.ndarray, rows: int, fill: np.ndarray | None = None) -> np.ndarray:
     """``c`` with rows appended up to ``rows``: zeros, or copies of ``fill``."""
     extra = rows - c.shape[0]
@@ -355,6 +362,8 @@ def _derivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
         raise ValueError(f"Order of derivative (n = {nu!r}) must be <= order of spline (k = {k!r})")
     if nu == 0:
         return t, c
+    if c.ndim > 1 and 0 in c.shape[1:]:
+        return _empty_values(_derivative_tc, t, c, k, nu)
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
@@ -374,6 +383,8 @@ def _antiderivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
         return _derivative_tc(t, c, k, -nu)
     if nu == 0:
         return t, c
+    if c.ndim > 1 and 0 in c.shape[1:]:
+        return _empty_values(_antiderivative_tc, t, c, k, nu)
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
