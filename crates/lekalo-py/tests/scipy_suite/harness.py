@@ -80,6 +80,7 @@ def _differences() -> list[dict]:
 _DIFFERENCES = _differences()
 _PATTERNS = [re.compile(re.escape(e["test"]).replace(r"\*", ".*")) for e in _DIFFERENCES]
 _used: set[str] = set()
+_listed: list[str] = []  # ids of the collected tests marked as differences
 
 
 def pytest_collection_modifyitems(config, items):
@@ -87,6 +88,7 @@ def pytest_collection_modifyitems(config, items):
         for entry, pattern in zip(_DIFFERENCES, _PATTERNS):
             if pattern.fullmatch(item.nodeid):
                 _used.add(entry["test"])
+                _listed.append(item.nodeid)
                 item.add_marker(pytest.mark.xfail(strict=True, reason=f"{entry['category']}: {entry['reason']}"))
                 break
 
@@ -98,6 +100,12 @@ def _stale(config) -> list[str]:
 
 
 def pytest_terminal_summary(terminalreporter):
+    passed = len(terminalreporter.stats.get("passed", []))
+    if passed + len(_listed):
+        terminalreporter.write_line(
+            f"lekalo.scipy passes {passed} of the {passed + len(_listed)} selected SciPy tests that reach it "
+            f"({100 * passed / (passed + len(_listed)):.1f}%); {len(_listed)} are listed in differences.toml"
+        )
     stale = _stale(terminalreporter.config)
     if stale:
         terminalreporter.write_line("differences.toml entries that match no test: " + ", ".join(stale), red=True)
