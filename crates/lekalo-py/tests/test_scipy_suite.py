@@ -77,3 +77,20 @@ def test_the_pin_is_read_from_the_requirements(tmp_path, monkeypatch, pin):
     req.write_text(pin)
     monkeypatch.setattr(run, "REQUIREMENTS", req)
     assert run.pinned_version() == pin.split("scipy==")[1].split()[0]
+
+
+def test_another_scipy_than_the_pinned_one_is_refused(tmp_path, monkeypatch):
+    pytest.importorskip("scipy")
+    req = tmp_path / "requirements-test.txt"
+    req.write_text("scipy==0.0.1\n")
+    monkeypatch.setattr(run, "REQUIREMENTS", req)
+    with pytest.raises(SystemExit, match="pins 0.0.1"):
+        run.source_files()
+
+
+def test_a_foreign_build_directory_is_not_deleted(tmp_path):
+    pytest.importorskip("scipy")
+    (tmp_path / "precious.txt").write_text("keep me")
+    with pytest.raises(SystemExit, match="not made by this script"):
+        run.build(tmp_path)
+    assert (tmp_path / "precious.txt").read_text() == "keep me"

@@ -130,8 +130,10 @@ def rewrite(source: str, provided: set[str]) -> str:
 def build(directory: Path) -> None:
     import lekalo.scipy
 
+    if directory.exists() and any(directory.iterdir()) and not (directory / "_lekalo_missing.py").exists():
+        fail(f"{directory} is not empty and was not made by this script: choose another --build directory")
     provided = set(lekalo.scipy.__all__)
-    tests, files = source_files()
+    _, files = source_files()
     if directory.exists():
         shutil.rmtree(directory)
     (directory / "data").mkdir(parents=True)
