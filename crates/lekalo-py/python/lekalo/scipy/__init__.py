@@ -13,12 +13,14 @@ Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``inte
 ``from_power_basis``, ``tck``, periodic extrapolation), ``make_interp_spline`` (not-a-knot,
 periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, explicit ``t``,
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
-``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splev``, ``splint``, ``splder``,
-``splantider``, ``insert``; in SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``,
-``PchipInterpolator`` (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet:
-mixed end conditions, smoothing on given knots, ``splrep`` with ``task``/``xb``/``xe``,
-``PPoly``/``BPoly`` themselves, ``PPoly.roots``/``solve``, periodic knot insertion, the 2-D
-FITPACK classes and ``NdBSpline``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
+``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box); in
+SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
+(``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
+smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly``
+themselves, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
+``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
 
