@@ -9,7 +9,9 @@
 # 3. the package built in release mode and installed into it (pip install ./crates/lekalo-py,
 #    the command users run), and its pytest suite, which includes the Dask and Spark examples
 #    at a small size (Spark is skipped, saying why, when Java is missing);
-# 4. scripts/test-browser.sh, when it exists.
+# 4. SciPy's own spline tests at the pinned version, run against lekalo.scipy
+#    (crates/lekalo-py/tests/scipy_suite/run.py; docs/scipy.md);
+# 5. scripts/test-browser.sh, when it exists.
 #
 # Usage: scripts/test.sh [pytest arguments...]
 set -euo pipefail
@@ -42,6 +44,9 @@ export PATH="$venv/bin:$PATH"
 cd "$root/crates/lekalo-py/tests"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider "$@" .
 cd "$root"
+
+echo "== SciPy's spline tests against lekalo.scipy"
+"$venv/bin/python" crates/lekalo-py/tests/scipy_suite/run.py -q
 
 if [ -x scripts/test-browser.sh ]; then
   echo "== browser tests"

@@ -391,3 +391,150 @@ def test_periodic_splrep_and_smoothing_of_3d_values():
     y3 = rng.standard_normal((40, 2, 2))
     a, b = si.make_smoothing_spline(x, y3, lam=0.1), ls.make_smoothing_spline(x, y3, lam=0.1)
     close(b.c, a.c, 1e-11)
+
+
+def test_make_splrep_and_make_splprep():
+    rng = np.random.default_rng(3)
+    x = np.linspace(0.0, 6.0, 50)
+    y = np.sin(x) + 0.1 * rng.standard_normal(50)
+    w = rng.uniform(0.5, 2.0, 50)
+    for k in (1, 3, 5):
+        b = ls.make_splrep(x, y, w=w, k=k, s=0.5)
+        assert type(b) is ls.BSpline and b.c.shape == (len(b.t) - k - 1,)
+        # FITPACK's knots (SciPy's own make_splrep places others with unequal weights)
+        close(b.t, si.splrep(x, y, w=w, k=k, s=0.5)[0])
+        fp = np.sum((w * (b(x) - y)) ** 2)
+        assert abs(fp - 0.5) <= 0.001 * 0.5, (k, fp)
+    close(ls.make_splrep(x, y).c, si.make_splrep(x, y).c)  # s = 0 interpolates
+    with pytest.raises(ValueError, match="interpolation only"):
+        ls.make_splrep(x, y, w=w)
+    with pytest.raises(ValueError, match="boundary conditions"):
+        ls.make_splrep(x, y, s=1.0, bc_type="natural")
+    with pytest.raises(NotImplementedError, match="given knots"):
+        ls.make_splrep(x, y, s=1.0, t=[0, 0, 0, 0, 3, 6, 6, 6, 6])
+    # periodic: FITPACK's knots and residual (the last point closes the period and is not
+    # counted), with SciPy's weights squared into lekalo's
+    yp = np.cos(x) + 0.05 * rng.standard_normal(50)
+    yp[-1] = yp[0]
+    (ta, fpa, _, _), tb = si.splrep(x, yp, w=w, s=0.05, per=1, full_output=1), ls.splrep(x, yp, w=w, s=0.05, per=1)
+    close(tb[0], ta[0])
+    close(np.sum((w * (ls.splev(x, tb) - yp))[:-1] ** 2), fpa, 1e-8)
+    close(ls.make_splrep(x, yp, w=w, s=0.05, bc_type="periodic").t, ta[0])
+    pts = [np.cos(x), np.sin(2 * x) + 0.01 * rng.standard_normal(50)]
+    (a, ua), (b, ub) = si.make_splprep(pts, s=0.01), ls.make_splprep(pts, s=0.01)
+    close(ub, ua)
+    close(b.t, si.splprep(pts, s=0.01)[0][0])  # FITPACK's parcur knots
+    assert b.c.shape == (len(b.t) - 4, 2) and b(ub).shape == np.shape(pts)
+
+
+def test_insert_pchip_interpolate_and_from_power_basis():
+    x, y = data(n=12, seed=4)
+    tck = si.splrep(x, y)
+    ta, tb = si.insert(1.7, tck, m=2), ls.insert(1.7, tck, m=2)
+    close(tb[0], ta[0])
+    close(tb[1], ta[1])
+    ib = ls.insert(1.7, ls.make_interp_spline(x, y))
+    assert type(ib) is ls.BSpline
+    close(ib(XX), si.insert(1.7, si.make_interp_spline(x, y))(XX), 1e-11)
+    assert ls.pchip is ls.PchipInterpolator
+    for der in (0, 1, [0, 2]):
+        close(ls.pchip_interpolate(x, y, XX, der=der), si.pchip_interpolate(x, y, XX, der=der), 1e-11)
+    for bc in ("not-a-knot", "natural", "clamped"):
+        b = ls.BSpline.from_power_basis(ls.CubicSpline(x, y, bc_type=bc), bc_type=bc)
+        close(b.t, si.make_interp_spline(x, y, bc_type=bc).t)
+        close(b.c, si.make_interp_spline(x, y, bc_type=bc).c, 1e-10)
+    # a not-a-knot spline on the knots of a natural one: lekalo inserts the two knots it lacks
+    b = ls.BSpline.from_power_basis(ls.CubicSpline(x, y), bc_type="natural")
+    close(b(XX), ls.CubicSpline(x, y)(XX), 1e-11)
+    with pytest.raises(NotImplementedError):
+        ls.BSpline.from_power_basis(ls.PchipInterpolator(x, y))
+
+
+def test_batched_gcv_smoothing_chooses_a_weight_per_column():
+    rng = np.random.default_rng(5)
+    x = np.linspace(0.0, 10.0, 30)
+    y = np.sin(x)[:, None] * [1.0, 0.1] + 0.2 * rng.standard_normal((30, 2))
+    b = ls.make_smoothing_spline(x, y)
+    for j in range(2):
+        close(b.c[:, j], ls.make_smoothing_spline(x, y[:, j]).c)
+    with pytest.raises(ValueError, match="too many axes"):
+        ls.splrep(x, y)
+
+
+def test_spalde_and_splprep():
+    x, y = data(n=15, seed=6)
+    tck = si.splrep(x, y)
+    for at in (x[0], 1.3, x[-1]):
+        close(ls.spalde(at, tck), si.spalde(at, tck), 1e-11)
+    assert len(ls.spalde([1.0, 2.0], tck)) == 2
+    with pytest.raises(TypeError):
+        ls.spalde(1.0, ls.BSpline(*tck))
+    a = np.linspace(0.0, 2 * np.pi, 30)
+    pts = [np.cos(a), 0.5 * np.sin(a)]
+    for per in (0, 1):
+        for s in (0.0, 1e-3, None):  # None: FITPACK's default m - sqrt(2m)
+            (ta, ua), (tb, ub) = si.splprep(pts, s=s, per=per), ls.splprep(pts, s=s, per=per)
+            close(tb[0], ta[0])
+            close(ub, ua)
+            assert len(tb[1]) == 2 and tb[1][0].shape == ta[1][0].shape
+            # FITPACK's tolerance on the smoothing condition, relative to the data (amplitude 1)
+            np.testing.assert_allclose(np.array(ls.splev(ub, tb)), np.array(si.splev(ua, ta)), rtol=0, atol=1e-5)
+    (tb, ub), fp, ier, msg = ls.splprep(pts, s=1e-3, full_output=1)
+    assert ier == 0 and abs(fp - 1e-3) <= 1e-6
+    with pytest.raises(ValueError, match="Invalid inputs"):
+        ls.splprep([[1.0, 3.0, 2.0, 4.0]], u=[0, 0.3, 0.2, 1])
+
+
+def test_univariate_spline_family():
+    rng = np.random.default_rng(7)
+    x = np.linspace(0.0, 5.0, 40)
+    y = np.sin(x) + 0.05 * rng.standard_normal(40)
+    for cls_args in [("UnivariateSpline", dict(s=0.1)), ("InterpolatedUnivariateSpline", {}),
+                     ("LSQUnivariateSpline", dict(t=[1.0, 2.5, 4.0]))]:
+        name, kw = cls_args
+        args = (x, y, kw.pop("t")) if "t" in kw else (x, y)
+        a, b = getattr(si, name)(*args, **kw), getattr(ls, name)(*args, **kw)
+        close(b.get_knots(), a.get_knots())
+        close(b.get_coeffs(), a.get_coeffs(), 1e-6)
+        close(b(XX), a(XX), 1e-6)
+        close(b(XX, ext="const"), a(XX, ext="const"), 1e-6)
+        close(b.integral(0.5, 4.0), a.integral(0.5, 4.0), 1e-6)
+        close(b.derivatives(2.0), a.derivatives(2.0), 1e-5)
+        close(b.derivative()(XX[5:30]), a.derivative()(XX[5:30]), 1e-5)
+        close(b.get_residual(), a.get_residual(), 1e-3)
+    with pytest.raises(ValueError, match="Schoenberg-Whitney"):
+        ls.LSQUnivariateSpline(x, y, [1.0], bbox=(3.0, 0.0))
+    with pytest.raises(ValueError, match="x must be increasing"):
+        ls.UnivariateSpline(x[::-1], y)
+
+
+def test_ndbspline():
+    rng = np.random.default_rng(8)
+    t = (np.r_[[0.0] * 4, 1.0, 2.5, [4.0] * 4], np.r_[[0.0] * 3, 2.0, [3.0] * 3])
+    k = (3, 2)
+    for tail, dtype in [((), float), ((2,), float), ((), complex)]:
+        c = rng.standard_normal((6, 4) + tail)
+        if dtype is complex:
+            c = c + 1j * rng.standard_normal((6, 4) + tail)
+        a, b = si.NdBSpline(t, c, k), ls.NdBSpline(t, c, k)
+        xi = np.stack([rng.uniform(0, 4, (5, 3)), rng.uniform(0, 3, (5, 3))], axis=-1)
+        close(b(xi), a(xi), 1e-11)
+        close(b(xi, nu=(1, 2)), a(xi, nu=(1, 2)), 1e-10)
+    out = ls.NdBSpline(t, c, k, extrapolate=False)([[5.0, 1.0], [1.0, 1.0], [np.nan, 1.0]])
+    assert np.isnan(out[0]) and np.isfinite(out[1]) and np.isnan(out[2])
+    with pytest.raises(NotImplementedError, match="extrapolation"):
+        ls.NdBSpline(t, c, k)([[5.0, 1.0]])
+    with pytest.raises(ValueError, match="inconsistent"):
+        ls.NdBSpline(t, c[:5], k)
+
+
+def test_derivatives_and_antiderivatives_of_empty_values():
+    x = np.linspace(0.0, 3.0, 7)
+    y = np.zeros((7, 0))
+    for name in ("PchipInterpolator", "CubicSpline"):
+        a, b = getattr(si, name)(x, y), getattr(ls, name)(x, y)
+        for f in (lambda p: p.derivative(), lambda p: p.derivative(2), lambda p: p.antiderivative(2)):
+            assert f(b)(XX).shape == f(a)(XX).shape == (XX.size, 0)
+    s = ls.make_interp_spline(x, y)
+    assert s.derivative().c.shape[1:] == s.antiderivative().c.shape[1:] == (0,)
+    close(s.antiderivative().t, si.make_interp_spline(x, y).antiderivative().t)

@@ -9,36 +9,54 @@ lekalo's native API deliberately differs from SciPy (it refuses parameters outsi
 returns ``t.shape + (dim,)``), this module does what SciPy does.
 
 Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``integrate``,
-``construct_fast``, ``basis_element``, ``design_matrix``, ``tck``, periodic extrapolation),
-``make_interp_spline`` (not-a-knot, periodic, ``"clamped"``, first-derivative pairs, second
-derivatives for cubics, explicit ``t``, ``k = 0 … 5``), ``make_lsq_spline``,
-``make_smoothing_spline``, ``splrep`` (FITPACK's knots for ``s > 0``), ``splev``, ``splint``,
-``splder``, ``splantider``; in SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``,
-``PchipInterpolator``, ``Akima1DInterpolator``. Not yet: mixed end conditions, ``splrep``
-with ``per``/``task``/``xb``/``xe``, ``PPoly.roots``/``solve``, the 2-D FITPACK classes and
-``NdBSpline``. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+``construct_fast``, ``basis_element``, ``design_matrix``, ``insert_knot``,
+``from_power_basis``, ``tck``, periodic extrapolation), ``make_interp_spline`` (not-a-knot,
+periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, explicit ``t``,
+``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
+``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
+``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box); in
+SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
+(``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
+smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly``
+themselves, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
+``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
 
 from __future__ import annotations
 
 from ._bspline import BSpline
-from ._fitpack import splantider, splder, splev, splint, splrep
+from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep
+from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
-from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator
+from ._ndbspline import NdBSpline
+from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator, pchip, pchip_interpolate
+from ._splrep import make_splprep, make_splrep
 
 __all__ = [
     "BSpline",
     "make_interp_spline",
     "make_lsq_spline",
     "make_smoothing_spline",
+    "make_splrep",
+    "make_splprep",
     "splrep",
+    "splprep",
     "splev",
     "splint",
     "splder",
     "splantider",
+    "insert",
+    "spalde",
+    "UnivariateSpline",
+    "InterpolatedUnivariateSpline",
+    "LSQUnivariateSpline",
+    "NdBSpline",
     "CubicSpline",
     "CubicHermiteSpline",
     "PchipInterpolator",
+    "pchip",
+    "pchip_interpolate",
     "Akima1DInterpolator",
 ]

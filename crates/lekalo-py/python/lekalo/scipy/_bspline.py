@@ -269,6 +269,42 @@ class BSpline:
         total = _from_columns(np.asarray(total, dtype=np.float64).reshape(1, -1), complex_)
         return np.asarray(total.reshape(tail) * sign)
 
+    @classmethod
+    def from_power_basis(cls, pp: Any, bc_type: str = "not-a-knot") -> "BSpline":
+        """``BSpline.from_power_basis``: the B-spline form of a ``CubicSpline`` on SciPy's knots
+        for ``bc_type``. lekalo's ``CubicSpline`` is a B-spline already; on the same knots its
+        coefficients are returned, on a refinement of them lekalo inserts the missing knots
+        (``refine_knots``, Boehm)."""
+        from ._interpolate import _augknt, _not_a_knot, _periodic_knots
+        from ._ppoly import CubicSpline
+
+        if not isinstance(pp, CubicSpline):
+            raise NotImplementedError(f"Only CubicSpline objects are accepted for now. Got {type(pp)} instead.")
+        x, spline = pp.x, pp._spline
+        k = spline.k
+        if bc_type == "not-a-knot":
+            t = _not_a_knot(x, k)
+        elif bc_type in ("natural", "clamped"):
+            t = _augknt(x, k)
+        elif bc_type == "periodic":
+            t = _periodic_knots(x, k)
+        else:
+            raise TypeError(f"Unknown boundary condition: {bc_type}")
+        t0 = spline.t
+        if t.shape == t0.shape and np.array_equal(t, t0):
+            return cls.construct_fast(t, spline.c, k, pp.extrapolate, pp.axis)
+        extra = _knots_to_add(t0, t)
+        if extra is None:
+            raise NotImplementedError(
+                f"lekalo.scipy: from_power_basis with bc_type={bc_type!r} on a spline whose knots are "
+                "not a subset of SciPy's knots for it is not available yet"
+            )
+        n = spline._n()
+        complex_ = np.iscomplexobj(spline.c)
+        curve = _curve(t0, _real_columns(spline.c, n), k).refine_knots(extra)
+        c = _from_columns(curve.control, complex_).reshape((t.shape[0] - k - 1,) + spline.c.shape[1:])
+        return cls.construct_fast(t, c, k, pp.extrapolate, pp.axis)
+
     def insert_knot(self, x: float, m: int = 1) -> "BSpline":
         """The same spline with the knot ``x`` inserted ``m`` times (Boehm), lekalo's
         ``insert_knot``; the coefficients grow by ``m``."""
@@ -284,6 +320,26 @@ class BSpline:
         curve = _curve(self.t, _real_columns(self.c, n), self.k).insert_knot(x, m)
         cc = _from_columns(curve.control, complex_).reshape((n + m,) + self.c.shape[1:])
         return self.construct_fast(np.ascontiguousarray(curve.knots), cc, self.k, self.extrapolate, self.axis)
+
+
+def _knots_to_add(t0: np.ndarray, t: np.ndarray) -> np.ndarray | None:
+    """The knots of ``t`` missing from ``t0`` (with multiplicity), or ``None`` when ``t0`` is not
+    a sub-multiset of ``t`` or the ends differ."""
+    if t0[0] != t[0] or t0[-1] != t[-1]:
+        return None
+    v0, m0 = np.unique(t0, return_counts=True)
+    v, m = np.unique(t, return_counts=True)
+    have = dict(zip(v0.tolist(), m0.tolist()))
+    if any(have.get(a, 0) > b for a, b in zip(v.tolist(), m.tolist())) or not set(have) <= set(v.tolist()):
+        return None
+    return np.repeat(v, [b - have.get(a, 0) for a, b in zip(v.tolist(), m.tolist())])
+
+
+def _empty_values(op, t: np.ndarray, c: np.ndarray, k: int, nu: int):
+    """``op`` on values with an empty trailing shape (SciPy's ``n × 0`` arrays): the knots of one
+    zero column, and coefficients of the same empty trailing shape."""
+    t_new, _ = op(t, np.zeros(c.shape[0]), k, nu)
+    return t_new, np.zeros((t_new.shape[0],) + c.shape[1:], dtype=c.dtype)
 
 
 def _pad_rows(c: np.ndarray, rows: int, fill: np.ndarray | None = None) -> np.ndarray:
@@ -306,6 +362,8 @@ def _derivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
         raise ValueError(f"Order of derivative (n = {nu!r}) must be <= order of spline (k = {k!r})")
     if nu == 0:
         return t, c
+    if c.ndim > 1 and 0 in c.shape[1:]:
+        return _empty_values(_derivative_tc, t, c, k, nu)
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
@@ -325,6 +383,8 @@ def _antiderivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
         return _derivative_tc(t, c, k, -nu)
     if nu == 0:
         return t, c
+    if c.ndim > 1 and 0 in c.shape[1:]:
+        return _empty_values(_antiderivative_tc, t, c, k, nu)
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)

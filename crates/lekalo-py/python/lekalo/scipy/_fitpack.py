@@ -28,7 +28,9 @@ def splrep(
         raise TypeError(f"1 <= k= {k} <=5 must hold")
     if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
         raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
-    if y.ndim != 1 or len(y) != m:
+    if y.ndim != 1:
+        raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
+    if len(y) != m:
         raise TypeError("Lengths of the first three arguments (x,y,w) must be equal")
     if m <= k:
         raise TypeError("m > k must hold")
@@ -36,7 +38,7 @@ def splrep(
         # lekalo's periodic fit is splrep(per=1)'s: the last point closes the period, FITPACK's
         # knots and smoothing condition, or least squares on the interior knots t
         curve, _ = _lekalo.fit_periodic(
-            x, y, w=w, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
+            x, y, w=None if w is None else np.asarray(w, dtype=np.float64) ** 2, k=k, s=float(s), t=None if t is None else np.asarray(t, dtype=np.float64)
         )
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
@@ -154,3 +156,114 @@ def splantider(tck: Any, n: int = 1):
     c = np.asarray(c, dtype=np.float64)
     t2, c2 = _antiderivative_tc(t, c, k, n)
     return t2, c2, k + n
+
+
+def insert(x: float, tck: Any, m: int = 1, per: int = 0):
+    """``scipy.interpolate.insert``: the knot ``x`` inserted ``m`` times (Boehm), lekalo's
+    ``insert_knot`` through ``BSpline.insert_knot``; a ``(t, c, k)`` tuple gives a tuple with
+    ``c`` zero-padded to ``len(t)``, a ``BSpline`` a ``BSpline``."""
+    if isinstance(tck, BSpline):
+        spl = BSpline(tck.t, tck.c, tck.k, extrapolate="periodic" if per else tck.extrapolate, axis=tck.axis)
+        out = spl.insert_knot(x, m)
+        return BSpline(out.t, out.c, out.k)
+    t, c, k = tck
+    try:
+        c[0][0]
+        parametric = True
+    except Exception:
+        parametric = False
+    if parametric:
+        cc = []
+        for c_vals in c:
+            tt, cc_val, kk = insert(x, [t, c_vals, k], m, per)
+            cc.append(cc_val)
+        return (tt, cc, kk)
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    n = t.shape[0] - k - 1
+    spl = BSpline.construct_fast(t, c[:n], k, extrapolate="periodic" if per else True)
+    out = spl.insert_knot(x, m)
+    return out.t, _pad_rows(out.c, out.t.shape[0]), k
+
+
+def spalde(x: Any, tck: Any):
+    """``scipy.interpolate.spalde``: the spline's derivatives of orders ``0 … k`` at ``x``
+    (lekalo's ``derivatives``); a list of such arrays for several ``x`` or parametric ``c``."""
+    if isinstance(tck, BSpline):
+        raise TypeError("spalde does not accept BSpline instances.")
+    t, c, k = tck
+    try:
+        c[0][0]
+        parametric = True
+    except Exception:
+        parametric = False
+    if parametric:
+        return list(map(lambda c, x=x, t=t, k=k: spalde(x, [t, c, k]), c))
+    x = np.atleast_1d(x)
+    if len(x) > 1:
+        return list(map(lambda x, tck=tck: spalde(x, tck), x))
+    t = np.asarray(t, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    n = t.shape[0] - k - 1
+    if not (t[k] <= x[0] <= t[n]):
+        raise ValueError("Invalid input data. t(k)<=x<=t(n-k+1) must hold.")
+    curve = _lekalo.BSplineCurve(k, t, np.ascontiguousarray(c[:n].reshape(n, 1)))
+    return curve.derivatives(np.asarray([float(x[0])]), k)[0, :, 0]
+
+
+_PARCUR_MESSAGES = {
+    0: "The spline has a residual sum of squares fp such that abs(fp-s)/s<=0.001",
+    -1: "The spline is an interpolating spline (fp=0)",
+}
+
+
+def splprep(
+    x: Any, w: Any = None, u: Any = None, ub: Any = None, ue: Any = None, k: int = 3, task: int = 0,
+    s: Any = None, t: Any = None, full_output: int = 0, nest: Any = None, per: int = 0, quiet: int = 1,
+):
+    """``scipy.interpolate.splprep``: the parametric spline of FITPACK's ``parcur``/``clocur``
+    (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
+    ``fit_closed`` on FITPACK's knots. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
+    ``msg`` for ``full_output``)."""
+    x = np.array(np.atleast_1d(x), dtype=np.float64)
+    idim, m = x.shape
+    if per:
+        x[:, -1] = x[:, 0]
+    if not 0 < idim < 11:
+        raise TypeError("0 < idim < 11 must hold")
+    w = np.ones(m) if w is None else np.atleast_1d(np.asarray(w, dtype=np.float64))
+    if not (1 <= k <= 5):
+        raise TypeError(f"1 <= k= {k} <=5 must hold")
+    if not (-1 <= task <= 1):
+        raise TypeError("task must be -1, 0 or 1")
+    if len(w) != m or (u is not None and len(u) != m):
+        raise TypeError("Mismatch of input dimensions")
+    if s is None:
+        s = m - np.sqrt(2 * m)
+    if t is None and task == -1:
+        raise TypeError("Knots must be given for task=-1")
+    if m <= k:
+        raise TypeError("m > k must hold")
+    if task != 0 or t is not None or ub is not None or ue is not None:
+        raise NotImplementedError("lekalo.scipy.splprep: task, t and ub/ue are not available yet")
+    pts = np.ascontiguousarray(x.T)
+    if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
+        # two consecutive points coincide: the chord-length parameters do not increase
+        raise ValueError("Invalid inputs")
+    if u is not None and np.any(np.diff(np.asarray(u, dtype=np.float64)) <= 0):
+        raise ValueError("Invalid inputs")
+    if per:
+        if u is not None:
+            raise NotImplementedError("lekalo.scipy.splprep: u with per=1 is not available yet")
+        curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))
+    else:
+        curve, uu = _lekalo.make_splprep(pts, w=w, u=None if u is None else np.asarray(u, dtype=np.float64), k=k, s=float(s))
+    tt = np.ascontiguousarray(curve.knots)
+    c = np.ascontiguousarray(np.asarray(curve.control).T)
+    tcku = [tt, list(c), k], np.asarray(uu)
+    if full_output:
+        rows = slice(None, -1) if per else slice(None)
+        fp = float(np.sum((w[rows, None] * (curve(np.asarray(uu))[rows] - pts[rows])) ** 2))
+        ier = -1 if s == 0 else 0
+        return tcku, fp, ier, _PARCUR_MESSAGES[ier]
+    return tcku

@@ -272,6 +272,14 @@ def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axi
         raise ValueError("``x`` and ``y`` length must be at least 5")
     tail = y.shape[1:]
     n = x.shape[0]
-    curve = _lekalo.make_smoothing_spline(x, _real_columns(y, n), w, lam)
-    c = np.ascontiguousarray(curve.control).reshape((-1,) + tail)
-    return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
+    cols = _real_columns(y, n)
+    if lam is None and cols.shape[1] > 1:
+        # SciPy chooses the GCV weight for each column of a batch on its own
+        fits = [_lekalo.make_smoothing_spline(x, np.ascontiguousarray(cols[:, j]), w, None) for j in range(cols.shape[1])]
+        knots = fits[0].knots
+        control = np.concatenate([f.control for f in fits], axis=1)
+    else:
+        curve = _lekalo.make_smoothing_spline(x, cols, w, lam)
+        knots, control = curve.knots, curve.control
+    c = np.ascontiguousarray(control).reshape((-1,) + tail)
+    return BSpline.construct_fast(np.ascontiguousarray(knots), c, 3, axis=axis)

@@ -137,8 +137,13 @@ class CubicSpline(_SplinePPoly):
             if bc == "not-a-knot":
                 return None
             if isinstance(bc, str):
+                if bc not in ("clamped", "natural"):
+                    raise ValueError(f"bc_type={bc} is not allowed.")
                 return bc
-            order, value = bc
+            try:
+                order, value = bc
+            except Exception as e:
+                raise ValueError("A specified derivative value must be given in the form (order, value).") from e
             if order not in (1, 2):
                 raise ValueError("The specified derivative order must be 1 or 2.")
             value = np.asarray(value)
@@ -237,3 +242,17 @@ class Akima1DInterpolator(_SplinePPoly):
         else:
             dydx = _lekalo.akima_slopes(x, yy, method).reshape(y.shape)
         super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+
+
+pchip = PchipInterpolator
+
+
+def pchip_interpolate(xi: Any, yi: Any, x: Any, der: Any = 0, axis: int = 0):
+    """``scipy.interpolate.pchip_interpolate``: ``PchipInterpolator(xi, yi, axis)`` (or its
+    derivatives of the orders ``der``) at ``x``."""
+    p = PchipInterpolator(xi, yi, axis=axis)
+    if der == 0:
+        return p(x)
+    if np.ndim(der) == 0:
+        return p.derivative(der)(x)
+    return [p.derivative(nu)(x) for nu in der]

@@ -1,0 +1,96 @@
+"""``NdBSpline`` of ``lekalo.scipy``: SciPy's tensor-product B-spline in N variables, evaluated by
+lekalo's ``TensorBSpline`` (the same ``(t, c, k)`` layout, ``docs/theory/tensor.md``)."""
+
+from __future__ import annotations
+
+import operator
+from typing import Any
+
+import numpy as np
+
+from .. import _lekalo
+from ._bspline import _get_dtype
+
+
+class NdBSpline:
+    """``scipy.interpolate.NdBSpline(t, c, k, extrapolate=None)``: values and partial
+    derivatives at points ``xi`` of shape ``(..., ndim)``, lekalo's ``TensorBSpline``. Outside
+    the base box, ``extrapolate=False`` gives ``nan`` as SciPy; lekalo does not extrapolate
+    tensor splines yet, so ``extrapolate=True`` refuses such points."""
+
+    def __init__(self, t: Any, c: Any, k: Any, *, extrapolate: Any = None) -> None:
+        ndim = len(t)
+        if np.ndim(k) == 0:
+            k = (operator.index(k),) * ndim
+        if len(k) != ndim:
+            raise ValueError(f"{len(t) = } != {len(k) = }.")
+        self._k = tuple(operator.index(kd) for kd in k)
+        self._t = tuple(np.ascontiguousarray(td, dtype=float) for td in t)
+        for d, (td, kd) in enumerate(zip(self._t, self._k)):
+            if td.ndim != 1 or td.shape[0] < 2 * kd + 2 or np.any(np.diff(td) < 0):
+                raise ValueError(f"Knots in dimension {d} must be a sorted 1D array of at least {2 * kd + 2} values.")
+        self.extrapolate = True if extrapolate is None else bool(extrapolate)
+        c = np.asarray(c)
+        if c.ndim < ndim:
+            raise ValueError(f"Coefficients must be at least {ndim}-dimensional.")
+        for d in range(ndim):
+            n = self._t[d].shape[0] - self._k[d] - 1
+            if c.shape[d] != n:
+                raise ValueError(
+                    f"Knots, coefficients and degree in dimension {d} are inconsistent: got "
+                    f"{c.shape[d]} coefficients for {len(self._t[d])} knots, need at least {n} for k={k}."
+                )
+        self._c = np.ascontiguousarray(c, dtype=_get_dtype(c.dtype))
+
+    @property
+    def k(self) -> tuple:
+        return self._k
+
+    @property
+    def t(self) -> tuple:
+        return self._t
+
+    @property
+    def c(self) -> np.ndarray:
+        return self._c
+
+    def __call__(self, xi: Any, *, nu: Any = None, extrapolate: Any = None) -> np.ndarray:
+        ndim = len(self._t)
+        extrapolate = self.extrapolate if extrapolate is None else bool(extrapolate)
+        if nu is None:
+            nu = np.zeros((ndim,), dtype=np.int64)
+        else:
+            nu = np.asarray(nu, dtype=np.int64)
+            if nu.ndim != 1 or nu.shape[0] != ndim:
+                raise ValueError(f"invalid number of derivative orders {nu = } for ndim = {ndim}.")
+            if any(nu < 0):
+                raise ValueError(f"derivatives must be positive, got {nu = }")
+        xi = np.asarray(xi, dtype=float)
+        shape = xi.shape
+        if shape[-1] != ndim:
+            raise ValueError(f"Shapes: xi.shape={shape} and ndim={ndim}")
+        xi = np.ascontiguousarray(xi.reshape(-1, ndim))
+        lo = np.array([td[kd] for td, kd in zip(self._t, self._k)])
+        hi = np.array([td[-kd - 1] for td, kd in zip(self._t, self._k)])
+        undefined = np.isnan(xi).any(axis=1)  # nan, as SciPy
+        outside = np.any((xi < lo) | (xi > hi), axis=1)
+        if extrapolate and outside.any():
+            raise NotImplementedError("lekalo.scipy: NdBSpline extrapolation is not available yet")
+        complex_ = self._c.dtype.kind == "c"
+        cc = self._c[..., None] if complex_ and self._c.ndim == ndim else self._c
+        cc = np.ascontiguousarray(cc.view(float) if complex_ else cc)
+        tail = cc.shape[ndim:]
+        cc = cc.reshape(cc.shape[:ndim] + (-1,))
+        spline = _lekalo.TensorBSpline(self._t, cc, list(self._k))
+        out = np.full((xi.shape[0], cc.shape[-1]), np.nan)
+        inside = ~outside & ~undefined
+        if inside.any():
+            out[inside] = np.asarray(spline(np.ascontiguousarray(xi[inside]), nu=[int(v) for v in nu])).reshape(-1, cc.shape[-1])
+        out = out.reshape((xi.shape[0],) + tail)
+        if complex_:
+            out = np.ascontiguousarray(out).view(np.complex128)
+        return out.reshape(shape[:-1] + self._c.shape[ndim:])
+
+    @classmethod
+    def design_matrix(cls, xvals: Any, t: Any, k: Any, extrapolate: bool = True):
+        raise NotImplementedError("lekalo.scipy: NdBSpline.design_matrix is not available yet")
