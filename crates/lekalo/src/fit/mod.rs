@@ -64,4 +64,6 @@ pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
 pub use surface::{
     surface_grid_least_squares, surface_scattered_least_squares, ScatteredSurfaceFit,
 };
-pub use tolerance::{fit_tolerance, Deviation, ToleranceFit, ToleranceOptions};
+pub use tolerance::{
+    fit_tolerance, fit_tolerance_with_progress, Deviation, ToleranceFit, ToleranceOptions,
+};

@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::interpolate::{parametrize, Parametrization};
 use crate::knots::KnotVector;
 use crate::numeric::linalg::solve_dense;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::points::PointsRef;
 use crate::BSplineCurve;
@@ -104,6 +105,21 @@ pub struct ToleranceFit {
 /// [`Error::IllConditioned`] if even interpolation misses `tol` (a tolerance below the data's
 /// rounding).
 pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<ToleranceFit> {
+    fit_tolerance_with_progress(points, opts, &Progress::new())
+}
+
+/// [`fit_tolerance`] reporting to `progress` after each round of knot insertion (`done` the
+/// round, `total` one more: the rounds' number is not known ahead) and after each knot tried for
+/// removal (`done` of `total` knots), and stopping with [`Error::Cancelled`] when its cancel flag
+/// is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`fit_tolerance`], and [`Error::Cancelled`].
+pub fn fit_tolerance_with_progress(
+    points: PointsRef<'_>,
+    opts: &ToleranceOptions,
+    progress: &Progress<'_>,
+) -> Result<ToleranceFit> {
     let tol = opts.tol;
     if !(tol > 0.0 && tol.is_finite()) {
         return Err(Error::NonPositiveTolerance { value: tol });
@@ -153,7 +169,10 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
         Ok((f.curve, dev))
     };
     let (mut curve, mut dev) = fit(&interior)?;
+    let mut round = 0;
     loop {
+        round += 1;
+        progress.step("tolerance fit (knot insertion)", round, round + 1)?;
         let bad = bad_spans(&params, &dev, tol, a, b, &interior);
         if bad.is_empty() {
             break;
@@ -194,7 +213,10 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
     // removal by local refits: each knot once, in order
     let mut tracked = Tracked::new(&curve, points, &params, opts.deviation, tol)?;
     let mut k = 0;
+    let (mut tried, to_try) = (0, interior.len() as u64);
     while k < interior.len() {
+        progress.step("tolerance fit (knot removal)", tried, to_try)?;
+        tried += 1;
         match remove_locally(&curve, p + 1 + k, points, &params)? {
             Some((trial, changed)) => {
                 if tracked.accept(&trial, changed, points, &params, tol)? {
@@ -207,6 +229,7 @@ pub fn fit_tolerance(points: PointsRef<'_>, opts: &ToleranceOptions) -> Result<T
             None => k += 1,
         }
     }
+    progress.step("tolerance fit (knot removal)", to_try, to_try)?;
     dev = tracked.dev;
     // the distances of the final curve from every data parameter; the removal kept upper
     // bounds (distances to points of this same curve), so each point keeps the smaller
@@ -748,6 +771,36 @@ mod tests {
         let dev = at_parameter(&trial, points, &params).unwrap();
         let worst = dev.iter().fold(0.0_f64, |m, &d| m.max(d));
         assert!(worst < 1e-3, "{worst}");
+    }
+
+    #[test]
+    fn progress_reports_and_cancels_without_changing_the_fit() {
+        use std::sync::atomic::AtomicBool;
+        use std::sync::Mutex;
+        let q: Vec<f64> = (0..4000)
+            .flat_map(|k| {
+                let x = f64::from(k) / 3999.0 * 6.0;
+                [x, (3.0 * x).sin()]
+            })
+            .collect();
+        let points = PointsRef::from_flat(2, &q).unwrap();
+        let opts = ToleranceOptions::new(3, 1e-5);
+        let plain = fit_tolerance(points, &opts).unwrap();
+        let seen = Mutex::new(Vec::new());
+        let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));
+        let hooked =
+            fit_tolerance_with_progress(points, &opts, &Progress::new().with_report(&report))
+                .unwrap();
+        assert_eq!(hooked, plain, "the hook changes nothing");
+        let seen = seen.into_inner().unwrap();
+        let last = *seen.last().unwrap();
+        assert!(
+            last.0 == last.1 && last.1 > 0,
+            "ends at its total: {last:?}"
+        );
+        let stop = AtomicBool::new(true);
+        let e = fit_tolerance_with_progress(points, &opts, &Progress::new().with_cancel(&stop));
+        assert!(matches!(e, Err(Error::Cancelled { .. })), "{e:?}");
     }
 
     #[test]
