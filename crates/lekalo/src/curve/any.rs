@@ -15,7 +15,7 @@ use std::borrow::Cow;
 use serde::{Deserialize, Serialize};
 
 use crate::curve::{BSplineCurve, BezierCurve, BezierSegment, NurbsCurve};
-use crate::{Error, KnotVector, Points, QueryCurve, Result};
+use crate::{Error, KnotVector, Points, Progress, QueryCurve, Result};
 
 /// A curve of any kind.
 ///
@@ -229,6 +229,25 @@ impl Curve {
             Curve::Bezier(c) => c.eval_batch(ts, out),
             Curve::BSpline(c) => c.eval_batch(ts, out),
             Curve::Nurbs(c) => c.eval_batch(ts, out),
+        }
+    }
+
+    /// [`Curve::eval_batch`] reporting to `progress` and stopping when it is cancelled (the
+    /// kind's `eval_batch_with_progress`); the points are bit-for-bit those of
+    /// [`Curve::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`Curve::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
+        match self {
+            Curve::Bezier(c) => c.eval_batch_with_progress(ts, out, progress),
+            Curve::BSpline(c) => c.eval_batch_with_progress(ts, out, progress),
+            Curve::Nurbs(c) => c.eval_batch_with_progress(ts, out, progress),
         }
     }
 
