@@ -265,6 +265,16 @@ impl Curve {
     /// # Errors
     /// [`Error::TooLarge`] when `n × dim` values cannot be held.
     pub fn sample(&self, n: usize) -> Result<Points> {
+        self.sample_with_progress(n, &Progress::new())
+    }
+
+    /// [`Curve::sample`] reporting to `progress` and stopping when it is cancelled
+    /// ([`Curve::eval_batch_with_progress`]); the points are bit-for-bit those of
+    /// [`Curve::sample`].
+    ///
+    /// # Errors
+    /// As [`Curve::sample`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn sample_with_progress(&self, n: usize, progress: &Progress<'_>) -> Result<Points> {
         if n > crate::MAX_SCALARS {
             return Err(Error::TooLarge {
                 what: "curve samples",
@@ -282,7 +292,7 @@ impl Curve {
             });
         }
         let mut data = vec![0.0; len];
-        self.eval_batch(&ts, &mut data)?;
+        self.eval_batch_with_progress(&ts, &mut data, progress)?;
         Points::from_flat(self.dim(), data)
     }
 

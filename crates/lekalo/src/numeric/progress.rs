@@ -229,6 +229,10 @@ mod tests {
                 Some(&(n as u64, n as u64)),
                 "reaches the total"
             );
+            let sampled = c
+                .sample_with_progress(n, &Progress::new().with_cancel(&stop))
+                .unwrap();
+            assert_eq!(sampled, c.sample(n).unwrap(), "{}: sampling", c.type_name());
         }
         let net = wave(6 * 5, 3);
         let s = BSplineSurface::new(3, 2, knots(3, 6), knots(2, 5), net.clone(), (6, 5)).unwrap();
@@ -266,6 +270,8 @@ mod tests {
                 "{}: {e:?}",
                 c.type_name()
             );
+            let e = c.sample_with_progress(n, &cancelled);
+            assert!(matches!(e, Err(Error::Cancelled { .. })), "{e:?}");
         }
         for eval in surfaces {
             let mut out = vec![0.0; n * 3];
