@@ -7,14 +7,17 @@
 //! curve and, when asked, the curvature comb and the basis functions.
 //!
 //! Sizes are bounded twice: by the body limit of the server (`docs/serve.md`) and by the
-//! explicit limits below, so that a small request cannot ask for a huge computation.
+//! budget of [`Limits`](crate::Limits) ([`crate::budget`]), checked for every curve a request
+//! sends or asks for before anything is computed, so that a small request cannot ask for a
+//! huge computation. The handlers run in the [`crate::pool`], and their drawings are stopped
+//! at the deadline through the job's progress hook.
 
 use axum::body::Bytes;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
-    smooth_polyline_corners, BSplineCurve, BezierCurve, BlendSpline, BlendSplineOptions,
+    smooth_polyline_corners, BSplineCurve, BezierCurve, BlendSplineOptions, BlendSplinePieces,
     CornerWindow, CurveInterpolation, Deformation, EndConditions, KnotPlacement, KnotVector,
     NurbsCurve, Parabolas, Parametrization, Points, SplineParameters,
 };
@@ -29,14 +32,18 @@ use serde_json::Value;
 use crate::answer::{answer, SMALL};
 use crate::error::{ApiError, ApiResult};
 
+use crate::error::field_of;
+use crate::pool::Job;
 pub(crate) use crate::view::{default_samples, view_answer};
 pub use crate::view::{
-    view, BasisFunction, BasisView, Comb, CurveView, KnotMark, ViewOptions, MAX_SAMPLES,
+    view, view_in, BasisFunction, BasisView, Comb, CurveView, KnotMark, ViewOptions, MAX_SAMPLES,
 };
-/// Most points (data points, polyline corners) one request may carry.
+/// Most points (data points, control points, polyline corners) one request may carry (the
+/// default of [`Limits::max_points`](crate::Limits::max_points)).
 pub const MAX_POINTS: usize = 10_000;
-/// Highest degree the API builds (elevation target, interpolation degree): the editor draws
-/// every basis function, whose count grows with the degree.
+/// Highest degree of a curve the API reads or builds (the default of
+/// [`Limits::max_degree`](crate::Limits::max_degree)): the editor draws every basis function,
+/// whose count grows with the degree.
 pub const MAX_API_DEGREE: usize = 64;
 
 /// Reads a request body: JSON of type `T`, with the field of a type error named
@@ -60,33 +67,18 @@ pub(crate) fn request_error(e: serde_path_to_error::Error<serde_json::Error>) ->
     )
 }
 
-/// A curve object in the CLI's format, read as the CLI reads a file named `field`.
-pub(crate) fn curve(value: &Value, field: &str) -> ApiResult<Object> {
+/// A curve object in the CLI's format, read as the CLI reads a file named `field`, with its
+/// degree and control points within the job's limits ([`Limits::check_curve`](crate::Limits::check_curve)).
+pub(crate) fn curve(job: &Job<'_>, value: &Value, field: &str) -> ApiResult<Object> {
     let text = value.to_string();
-    Object::from_json_str(&text, field).map_err(|e| ApiError::io(field, &e))
-}
-
-pub(crate) fn check_degree(p: usize, field: &str) -> ApiResult<usize> {
-    if p > MAX_API_DEGREE {
-        return Err(ApiError::bad(
-            field,
-            format!("{field} = {p} is above the server's limit {MAX_API_DEGREE}; use the CLI for higher degrees"),
-        ));
-    }
-    Ok(p)
+    let obj = Object::from_json_str(&text, field).map_err(|e| ApiError::io(field, &e))?;
+    job.limits.check_curve(&obj, field)?;
+    Ok(obj)
 }
 
 /// 2-D points as the library's [`Points`], with the count bounded.
-pub(crate) fn points(rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
-    if rows.len() > MAX_POINTS {
-        return Err(ApiError::bad(
-            field,
-            format!(
-                "{} points: at most {MAX_POINTS} per request (use the CLI for more)",
-                rows.len()
-            ),
-        ));
-    }
+pub(crate) fn points(job: &Job<'_>, rows: &[Vec<f64>], field: &str) -> ApiResult<Points> {
+    job.limits.check_points(rows.len(), field)?;
     if let Some(i) = rows.iter().position(|r| r.len() != 2) {
         return Err(ApiError::bad(
             format!("{field}[{i}]"),
@@ -161,10 +153,15 @@ impl ViewOptionsFlat {
     }
 }
 
-pub(crate) async fn evaluate(body: Bytes) -> ApiResult<Response> {
-    let r: EvaluateRequest = parse(&body)?;
-    let obj = curve(&r.curve, "curve")?;
-    Ok(view_answer(&view(&obj, &r.view.options())?))
+pub(crate) fn evaluate(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: EvaluateRequest = parse(body)?;
+    let obj = curve(job, &r.curve, "curve")?;
+    Ok(view_answer(&view_in(
+        job,
+        &obj,
+        &r.view.options(),
+        "curve",
+    )?))
 }
 
 /// The parametrisation of a request: a word of [`lekalo::vocabulary::PARAMETRIZATION`]
@@ -211,10 +208,10 @@ struct InterpolateRequest {
 }
 
 /// `POST /api/interpolate`: global interpolation (`lekalo interpolate`).
-pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
-    let r: InterpolateRequest = parse(&body)?;
-    let pts = points(&r.points, "points")?;
-    let degree = check_degree(r.degree, "degree")?;
+pub(crate) fn interpolate(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: InterpolateRequest = parse(body)?;
+    let pts = points(job, &r.points, "points")?;
+    let degree = job.limits.check_degree(r.degree, "degree")?;
     let param = parametrization(r.parametrization.as_deref(), r.exponent)?;
     let kind = word(
         &vocabulary::END_CONDITION,
@@ -225,7 +222,14 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
     let end = kind
         .condition(r.start_derivative.clone(), r.end_derivative.clone())
         .map_err(|e| {
-            let field = if r.start_derivative.is_none() {
+            // a kind that needs both derivatives lacks one; any other was given one
+            let needs_both = matches!(kind, EndKind::Derivatives | EndKind::Second);
+            let at_fault = if needs_both {
+                r.start_derivative.is_none()
+            } else {
+                r.start_derivative.is_some()
+            };
+            let field = if at_fault {
                 "start_derivative"
             } else {
                 "end_derivative"
@@ -244,20 +248,21 @@ pub(crate) async fn interpolate(body: Bytes) -> ApiResult<Response> {
         .end_condition(end)
         .interpolate(pts.as_view())
         .map_err(|e| ApiError::lib(interpolation_field(&e), &e))?;
-    Ok(view_answer(&view(&Object::BSpline(c), &r.view.options())?))
+    let out = Object::BSpline(c);
+    Ok(view_answer(&view_in(
+        job,
+        &out,
+        &r.view.options(),
+        "points",
+    )?))
 }
 
-/// The request field an interpolation error is about.
+/// The request field an interpolation error is about: the degree, the field of the error's
+/// key (knots, exponent, a derivative), or the points.
 fn interpolation_field(e: &lekalo::Error) -> &'static str {
-    use lekalo::Error as E;
     match e {
-        E::Degree { .. } => "degree",
-        E::LengthMismatch { what, .. } | E::Dimension { what, .. } if what.contains("deriv") => {
-            "start_derivative"
-        }
-        E::NonFinite { what, .. } if what.contains("expon") => "exponent",
-        E::InvalidArgument { what, .. } if what.contains("expon") => "exponent",
-        _ => "points",
+        lekalo::Error::Degree { .. } => "degree",
+        _ => field_of(e).unwrap_or("points"),
     }
 }
 
@@ -293,9 +298,9 @@ struct BezierRequest {
 }
 
 /// `POST /api/bezier`: order change of a Bezier curve (`lekalo bezier`, document 004).
-pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
-    let r: BezierRequest = parse(&body)?;
-    let Object::Bezier(c) = curve(&r.curve, "curve")? else {
+pub(crate) fn bezier(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: BezierRequest = parse(body)?;
+    let Object::Bezier(c) = curve(job, &r.curve, "curve")? else {
         return Err(ApiError::bad(
             "curve.type",
             "order change works on a bezier_curve; convert the curve first",
@@ -304,14 +309,15 @@ pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
     let (out, deviation) = match r.op {
         BezierOp::Elevate => {
             let by = r.by.unwrap_or(1);
-            check_degree(c.degree().saturating_add(by), "by")?;
+            job.limits
+                .check_degree(c.degree().saturating_add(by), "by")?;
             let e = c.elevate_degree(by).map_err(|e| ApiError::lib("by", &e))?;
             (e, None)
         }
         BezierOp::ReduceExact => (c.reduce_degree_exact(), None),
         BezierOp::ReduceApprox => {
             let target = r.target.unwrap_or_else(|| c.degree().saturating_sub(1));
-            check_degree(target, "target")?;
+            job.limits.check_degree(target, "target")?;
             let ends = match r.ends {
                 Ends::Free => EndConditions::Free,
                 Ends::Points => EndConditions::Points,
@@ -330,7 +336,7 @@ pub(crate) async fn bezier(body: Bytes) -> ApiResult<Response> {
         }
     };
     let real_degree = out.real_degree();
-    let v = view(&Object::Bezier(out), &r.view.options())?;
+    let v = view_in(job, &Object::Bezier(out), &r.view.options(), "curve")?;
     Ok(bezier_answer(v, real_degree, deviation))
 }
 
@@ -346,23 +352,32 @@ struct DeformRequest {
 
 /// `POST /api/blend/deform`: two curves with common end points joined by the deformation of
 /// document 001 with continuity `k` (`lekalo blend deform`); the exact Bezier form is returned.
-pub(crate) async fn blend_deform(body: Bytes) -> ApiResult<Response> {
-    let r: DeformRequest = parse(&body)?;
-    let first = bezier_of(curve(&r.first, "first")?, "first")?;
-    let second = bezier_of(curve(&r.second, "second")?, "second")?;
+pub(crate) fn blend_deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: DeformRequest = parse(body)?;
+    let first = bezier_of(curve(job, &r.first, "first")?, "first")?;
+    let second = bezier_of(curve(job, &r.second, "second")?, "second")?;
+    // the blend's degree grows with k (document 001): bounded before it is built
+    job.limits.check_degree(r.continuity, "continuity")?;
     let d = Deformation::new(&first, &second, r.continuity)
         .map_err(|e| ApiError::lib(deform_field(&e), &e))?;
-    let b = d.to_bezier().map_err(|e| ApiError::lib("first", &e))?;
+    let b = d.to_bezier().map_err(|e| ApiError::lib("continuity", &e))?;
     let opts = ViewOptions {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
     };
-    Ok(view_answer(&view(&Object::Bezier(b), &opts)?))
+    Ok(view_answer(&view_in(
+        job,
+        &Object::Bezier(b),
+        &opts,
+        "continuity",
+    )?))
 }
 
+/// The field of a deformation error: the continuity (its range, the derivatives it needs),
+/// the first curve's dimension, or the second curve (its end points must meet the first's).
 fn deform_field(e: &lekalo::Error) -> &'static str {
     match e {
-        lekalo::Error::InvalidArgument { .. } => "continuity",
+        lekalo::Error::InvalidArgument { .. } | lekalo::Error::Degree { .. } => "continuity",
         _ => "second",
     }
 }
@@ -397,9 +412,12 @@ struct CornersRequest {
 /// `POST /api/blend/corners`: every corner of a polyline smoothed with continuity `k` over a
 /// window given as a `fraction` of the shorter segment (0.25 when neither is given) or a
 /// `length` (`lekalo blend corners`, [`lekalo::smooth_polyline_corners`]).
-pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
-    let r: CornersRequest = parse(&body)?;
-    let pts = points(&r.points, "points")?;
+pub(crate) fn blend_corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: CornersRequest = parse(body)?;
+    let pts = points(job, &r.points, "points")?;
+    // the curve has degree 2k + 1: bounded before it is built
+    job.limits
+        .check_degree(2 * r.continuity + 1, "continuity")?;
     let (window, field) = match (r.fraction, r.length) {
         (Some(_), Some(_)) => {
             return Err(ApiError::bad(
@@ -428,7 +446,12 @@ pub(crate) async fn blend_corners(body: Bytes) -> ApiResult<Response> {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
     };
-    Ok(view_answer(&view(&Object::BSpline(s.into_curve()), &opts)?))
+    Ok(view_answer(&view_in(
+        job,
+        &Object::BSpline(s.into_curve()),
+        &opts,
+        "points",
+    )?))
 }
 
 #[derive(Debug, Deserialize)]
@@ -444,28 +467,39 @@ struct BlendSplineRequest {
 
 /// `POST /api/blend/spline`: the curve through the points by blending local parabolas with
 /// continuity `k` (`lekalo blend spline --local parabolas`, document 001).
-pub(crate) async fn blend_spline(body: Bytes) -> ApiResult<Response> {
-    let r: BlendSplineRequest = parse(&body)?;
-    let pts = points(&r.points, "points")?;
+pub(crate) fn blend_spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: BlendSplineRequest = parse(body)?;
+    let pts = points(job, &r.points, "points")?;
+    // the blend's degree grows with k (document 001): bounded before it is built
+    job.limits.check_degree(r.continuity, "continuity")?;
     let options = BlendSplineOptions {
         continuity: r.continuity,
         closed: r.closed,
         parameters: SplineParameters::Uniform,
     };
-    let s = BlendSpline::new(pts.as_view(), &Parabolas, options).map_err(|e| {
-        let field = if matches!(e, lekalo::Error::InvalidArgument { .. }) {
-            "continuity"
-        } else {
-            "points"
-        };
-        ApiError::lib(field, &e)
-    })?;
-    let n = s.to_nurbs().map_err(|e| ApiError::lib("points", &e))?;
+    let field = |e: &lekalo::Error| match e {
+        lekalo::Error::InvalidArgument { .. } | lekalo::Error::Degree { .. } => "continuity",
+        _ => "points",
+    };
+    // piece by piece, so that the deadline stops it and the size is known before the NURBS
+    // is assembled
+    let pieces = BlendSplinePieces::new(pts.as_view(), &Parabolas, options, &job.progress)
+        .map_err(|e| ApiError::lib(field(&e), &e))?;
+    job.limits.check_degree(pieces.degree(), "continuity")?;
+    job.limits.check_points(pieces.control_count(), "points")?;
+    let n = pieces
+        .to_nurbs(&job.progress)
+        .map_err(|e| ApiError::lib("points", &e))?;
     let opts = ViewOptions {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
     };
-    Ok(view_answer(&view(&Object::Nurbs(n), &opts)?))
+    Ok(view_answer(&view_in(
+        job,
+        &Object::Nurbs(n),
+        &opts,
+        "points",
+    )?))
 }
 
 #[derive(Debug, Deserialize)]
@@ -485,43 +519,59 @@ fn one() -> usize {
 }
 
 /// `POST /api/knot/insert` (P&T A5.1, `lekalo knot insert`).
-pub(crate) async fn knot_insert(body: Bytes) -> ApiResult<Response> {
-    let r: KnotRequest = parse(&body)?;
-    let obj = curve(&r.curve, "curve")?;
+pub(crate) fn knot_insert(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: KnotRequest = parse(body)?;
+    let obj = curve(job, &r.curve, "curve")?;
     let out = obj
         .insert_knot(r.t, r.times)
-        .map_err(|e| ApiError::lib("t", &e))?;
-    Ok(view_answer(&view(&out, &r.view.options())?))
+        .map_err(|e| ApiError::lib(knot_field(&e), &e))?;
+    Ok(view_answer(&view_in(
+        job,
+        &out,
+        &r.view.options(),
+        "times",
+    )?))
 }
 
 /// `POST /api/knot/remove` (Tiller's removal, P&T A5.8, `lekalo knot remove`); answers the
 /// curve and how many times the knot was removed within the tolerance.
-pub(crate) async fn knot_remove(body: Bytes) -> ApiResult<Response> {
-    let r: KnotRequest = parse(&body)?;
-    let obj = curve(&r.curve, "curve")?;
+pub(crate) fn knot_remove(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: KnotRequest = parse(body)?;
+    let obj = curve(job, &r.curve, "curve")?;
     let tol = r
         .tolerance
         .unwrap_or_else(|| obj.default_removal_tolerance());
     let (out, removed) = obj
         .remove_knot(r.t, r.times, tol)
-        .map_err(|e| ApiError::lib("t", &e))?;
+        .map_err(|e| ApiError::lib(knot_field(&e), &e))?;
     #[derive(Serialize)]
     struct Removed {
         view: CurveView,
         removed: usize,
     }
-    let view = view(&out, &r.view.options())?;
+    let view = view_in(job, &out, &r.view.options(), "curve")?;
     let size = view.size_hint() + SMALL;
     Ok(answer(&Removed { view, removed }, size))
 }
 
+/// The field of a knot insertion or removal error: the count (`times`), the removal
+/// tolerance, or the knot `t` (by the error's key, [`field_of`]).
+fn knot_field(e: &lekalo::Error) -> &'static str {
+    field_of(e).unwrap_or("t")
+}
+
 /// `POST /api/import`: the body is the CLI's JSON text of one curve; answers its drawing, or
 /// the CLI's error for it.
-pub(crate) async fn import(body: Bytes) -> ApiResult<Response> {
+pub(crate) fn import(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let text =
-        std::str::from_utf8(&body).map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
+        std::str::from_utf8(body).map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
     let obj = Object::from_json_str(text, "file").map_err(|e| ApiError::io("file", &e))?;
-    Ok(view_answer(&view(&obj, &ViewOptions::default())?))
+    Ok(view_answer(&view_in(
+        job,
+        &obj,
+        &ViewOptions::default(),
+        "file",
+    )?))
 }
 
 #[derive(Debug, Deserialize)]
@@ -531,9 +581,9 @@ struct ExportRequest {
 }
 
 /// `POST /api/export/json`: the curve as the CLI writes it, as a download.
-pub(crate) async fn export_json(body: Bytes) -> ApiResult<Response> {
-    let r: ExportRequest = parse(&body)?;
-    let obj = curve(&r.curve, "curve")?;
+pub(crate) fn export_json(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: ExportRequest = parse(body)?;
+    let obj = curve(job, &r.curve, "curve")?;
     Ok(download(
         obj.to_json_pretty(),
         "application/json",
@@ -545,9 +595,9 @@ pub(crate) async fn export_json(body: Bytes) -> ApiResult<Response> {
 const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
 
 /// `POST /api/export/step`: the curve as an ISO 10303-21 file (`lekalo convert -o x.step`).
-pub(crate) async fn export_step(body: Bytes) -> ApiResult<Response> {
-    let r: ExportRequest = parse(&body)?;
-    let obj = curve(&r.curve, "curve")?;
+pub(crate) fn export_step(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: ExportRequest = parse(body)?;
+    let obj = curve(job, &r.curve, "curve")?;
     let mut w = lekalo_io::StepWriter::new("curve");
     w.add_object(&obj).map_err(|e| ApiError::io("curve", &e))?;
     Ok(download(
@@ -586,20 +636,18 @@ struct BuildRequest {
 /// `POST /api/bspline`: a B-spline (or, with `weights`, NURBS) curve from control points and
 /// degree, with the given knots or the clamped uniform ones (`lekalo make bspline`); the
 /// library's constructor validates (P&T eq. 2.1 conditions: sorted knots, `m = n + p + 1`).
-pub(crate) async fn bspline(body: Bytes) -> ApiResult<Response> {
-    let r: BuildRequest = parse(&body)?;
-    let control = points(&r.control, "control")?;
-    let degree = check_degree(r.degree, "degree")?;
+pub(crate) fn bspline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: BuildRequest = parse(body)?;
+    let control = points(job, &r.control, "control")?;
+    let degree = job.limits.check_degree(r.degree, "degree")?;
+    if let Some(k) = &r.knots {
+        job.limits.check_points(k.len(), "knots")?;
+    }
     let field = |e: &lekalo::Error| match e {
         lekalo::Error::Degree { .. } => "degree",
         lekalo::Error::TooFew { .. } => "control",
         lekalo::Error::NonPositiveWeight { .. } => "weights",
-        lekalo::Error::LengthMismatch { what, .. } | lekalo::Error::NonFinite { what, .. }
-            if what.contains("weight") =>
-        {
-            "weights"
-        }
-        _ => "knots",
+        _ => field_of(e).unwrap_or("knots"),
     };
     let knots = match r.knots {
         Some(k) => k,
@@ -612,22 +660,27 @@ pub(crate) async fn bspline(body: Bytes) -> ApiResult<Response> {
         None => BSplineCurve::new(degree, knots, control).map(Object::BSpline),
     }
     .map_err(|e| ApiError::lib(field(&e), &e))?;
-    Ok(view_answer(&view(&obj, &r.view.options())?))
+    Ok(view_answer(&view_in(
+        job,
+        &obj,
+        &r.view.options(),
+        "control",
+    )?))
 }
 
 /// `POST /api/bezier/build`: a Bezier curve from its control points, drawn.
-pub(crate) async fn bezier_build(body: Bytes) -> ApiResult<Response> {
+pub(crate) fn bezier_build(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     #[derive(Deserialize)]
     struct Req {
         control: Vec<Vec<f64>>,
         #[serde(flatten)]
         view: ViewOptionsFlat,
     }
-    let r: Req = parse(&body)?;
-    let c = BezierCurve::new(points(&r.control, "control")?)
+    let r: Req = parse(body)?;
+    let c = BezierCurve::new(points(job, &r.control, "control")?)
         .map_err(|e| ApiError::lib("control", &e))?;
     let real = c.real_degree();
-    let v = view(&Object::Bezier(c), &r.view.options())?;
+    let v = view_in(job, &Object::Bezier(c), &r.view.options(), "control")?;
     Ok(bezier_answer(v, real, None))
 }
 
@@ -646,7 +699,11 @@ mod tests {
             .collect();
         let c = CurveInterpolation::new(3)
             .parametrization(Parametrization::Centripetal)
-            .interpolate(points(&rows, "points").expect("points").as_view())
+            .interpolate(
+                points(&Job::unbounded(&crate::Limits::default()), &rows, "points")
+                    .expect("points")
+                    .as_view(),
+            )
             .expect("interpolation");
         let p = Points::from_flat(
             3,

@@ -10,8 +10,9 @@ use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
 use crate::answer::{answer, NUMBER_BYTES, SMALL};
-use crate::api::{view, CurveView, ViewOptions, MAX_POINTS, MAX_SAMPLES};
-use crate::error::{ApiError, ApiResult};
+use crate::api::{view_in, CurveView, ViewOptions};
+use crate::error::{field_of, ApiError, ApiResult};
+use crate::pool::Job;
 
 fn default_intervals() -> usize {
     200
@@ -48,22 +49,24 @@ struct QuasiAnswer {
     max_error: f64,
 }
 
-pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
-    let de = &mut serde_json::Deserializer::from_slice(&body);
+pub(crate) fn quasi(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let limits = job.limits;
+    let de = &mut serde_json::Deserializer::from_slice(body);
     let r: QuasiRequest =
         serde_path_to_error::deserialize(de).map_err(crate::api::request_error)?;
-    if r.breakpoints.len() > MAX_POINTS {
-        return Err(ApiError::bad(
-            "breakpoints",
-            format!("{} breakpoints: at most {MAX_POINTS}", r.breakpoints.len()),
-        ));
-    }
-    if !(1..MAX_SAMPLES).contains(&r.intervals) {
+    limits.check_points(r.breakpoints.len(), "breakpoints")?;
+    if !(1..limits.max_samples).contains(&r.intervals) {
         return Err(ApiError::bad(
             "intervals",
-            format!("intervals = {}: give 1 to {}", r.intervals, MAX_SAMPLES - 1),
+            format!(
+                "intervals = {}: give 1 to {} (lekalo serve --max-samples)",
+                r.intervals,
+                limits.max_samples - 1
+            ),
         ));
     }
+    // the interpolant's degree is order − 1
+    limits.check_degree(r.order.saturating_sub(1), "order")?;
     let f = Expression::parse(&r.expression).map_err(|e| ApiError::lib("expression", &e))?;
     // as `lekalo pp quasi`: ν = k − 1 continuous derivatives (C^(k−2)) at every interior
     // breakpoint unless `continuity` says otherwise
@@ -86,21 +89,22 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         let field = if matches!(e, lekalo::Error::Degree { .. }) {
             "order"
         } else {
-            "breakpoints"
+            field_of(&e).unwrap_or("breakpoints")
         };
         ApiError::lib(field, &e)
     })?;
+    // one de Boor–Fix functional per B-spline, each O(order²): the size and the work of the
+    // interpolant, before it is computed
+    limits.check_points(space.dimension(), "breakpoints")?;
+    limits.check_work(space.dimension(), r.order.saturating_sub(1), "breakpoints")?;
     let rule = crate::words::word(
         &lekalo::vocabulary::TAU_RULE,
         "rule",
         r.rule.as_deref(),
         TauRule::FirstKnotAfter,
     )?;
-    if r.tau.as_ref().is_some_and(|t| t.len() > MAX_POINTS) {
-        return Err(ApiError::bad(
-            "tau",
-            format!("at most {MAX_POINTS} τ values"),
-        ));
+    if let Some(t) = &r.tau {
+        limits.check_points(t.len(), "tau")?;
     }
     // explicit values win over the rule (as `lekalo pp quasi --tau`)
     let tau = || match &r.tau {
@@ -112,20 +116,9 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
     } else {
         "breakpoints"
     };
-    let s = sample_quasi_interpolant_expression(&space, tau(), &f, r.intervals).map_err(|e| {
-        // the expression's own errors name it in their key (`what`)
-        let field = match &e {
-            lekalo::Error::NonFinite { what, .. }
-            | lekalo::Error::InvalidArgument { what, .. }
-            | lekalo::Error::TooLarge { what, .. }
-                if what.contains("expression") =>
-            {
-                "expression"
-            }
-            _ => tau_field,
-        };
-        ApiError::lib(field, &e)
-    })?;
+    // the expression's own errors name it in their key (`what`)
+    let s = sample_quasi_interpolant_expression(&space, tau(), &f, r.intervals)
+        .map_err(|e| ApiError::lib_or(tau_field, &e))?;
     let q = lekalo::quasi_interpolate_expression(&space, tau(), &f)
         .map_err(|e| ApiError::lib("expression", &e))?;
     let opts = ViewOptions {
@@ -134,7 +127,7 @@ pub(crate) async fn quasi(body: Bytes) -> ApiResult<Response> {
         ..ViewOptions::default()
     };
     let error: Vec<f64> = s.exact.iter().zip(&s.approx).map(|(a, b)| a - b).collect();
-    let view = view(&Object::BSpline(q), &opts)?;
+    let view = view_in(job, &Object::BSpline(q), &opts, "breakpoints")?;
     let size = view.size_hint() + 4 * error.len() * NUMBER_BYTES + SMALL;
     let a = QuasiAnswer {
         view,

@@ -11,8 +11,9 @@ use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
 use crate::answer::{answer, SMALL};
-use crate::api::{check_degree, parametrization, parse, points, view, CurveView, ViewOptionsFlat};
-use crate::error::{ApiError, ApiResult};
+use crate::api::{parametrization, parse, points, view_in, CurveView, ViewOptionsFlat};
+use crate::error::{field_of, ApiError, ApiResult};
+use crate::pool::Job;
 
 /// How the amount of smoothing is given.
 #[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
@@ -76,9 +77,9 @@ struct Report {
 }
 
 /// `POST /api/fit`: the smoothed curve, its drawing and its residuals.
-pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
-    let r: FitRequest = parse(&body)?;
-    let pts = points(&r.points, "points")?;
+pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: FitRequest = parse(body)?;
+    let pts = points(job, &r.points, "points")?;
     let (values, params) = if r.function {
         let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
         let y = Points::from_flat(1, pts.iter().map(|p| p[1]).collect())
@@ -102,7 +103,7 @@ pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
         Smoothing::Gcv => smoothing_spline(&data, Lambda::Gcv)
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
         Smoothing::S => {
-            let degree = check_degree(r.degree, "degree")?;
+            let degree = job.limits.check_degree(r.degree, "degree")?;
             smoothing_condition(&data, degree, given(r.s, "s")?)
                 .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
         }
@@ -125,7 +126,12 @@ pub(crate) async fn fit(body: Bytes) -> ApiResult<Response> {
         lambda: rep.lambda,
         s: (r.smoothing == Smoothing::S).then_some(r.s).flatten(),
     };
-    let view = view(&Object::BSpline(fit.curve), &r.view.options())?;
+    let view = view_in(
+        job,
+        &Object::BSpline(fit.curve),
+        &r.view.options(),
+        "points",
+    )?;
     let size = view.size_hint() + SMALL;
     Ok(answer(&FitAnswer { view, report }, size))
 }
@@ -135,6 +141,6 @@ fn fit_field(e: &lekalo::Error, value: &'static str) -> &'static str {
     match e {
         lekalo::Error::NegativeSmoothing { .. } => value,
         lekalo::Error::Degree { .. } => "degree",
-        _ => "points",
+        _ => field_of(e).unwrap_or("points"),
     }
 }

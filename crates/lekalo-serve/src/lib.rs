@@ -6,48 +6,94 @@
 //! its drawing. The editor's HTML, CSS and JavaScript are embedded in the binary; nothing else
 //! of the file system is served and nothing is fetched from the network.
 //!
-//! Limits (all in [`Limits`]): request body size, time per request, and the explicit size
-//! limits of [`api`] (samples, points, degree). Answers carry no CORS headers, so pages of
-//! other origins cannot read them.
+//! Limits (all in [`Limits`], `docs/serve.md`): request body size and time, a budget per
+//! request (degree, samples, points and total work, checked for every curve a request sends or
+//! asks for before anything is computed: [`budget`]), and a bounded pool for the computations
+//! ([`pool`]): they run on blocking threads, never on the runtime's workers, so that
+//! `/api/health` and the editor's files are answered while the pool is full; a request that
+//! finds the pool and its queue full gets 503, and one whose computation passes the deadline
+//! gets 504, the computation being stopped through the library's [`lekalo::Progress`] hook.
+//! Answers carry no CORS headers, so pages of other origins cannot read them.
 
 use std::net::SocketAddr;
+use std::sync::Arc;
 use std::time::Duration;
 
 use axum::extract::DefaultBodyLimit;
 use axum::http::{header, Method, StatusCode};
 use axum::response::IntoResponse;
-use axum::routing::{get, post, MethodRouter};
+use axum::routing::{get, MethodRouter};
 use axum::Router;
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::timeout::TimeoutLayer;
 
 mod answer;
 pub mod api;
+pub mod budget;
 pub mod error;
 pub mod expr;
 pub mod fit;
+pub mod pool;
 pub mod query;
 pub mod view;
 mod words;
 
 pub use error::{ApiError, ApiResult};
+pub use pool::{Job, Pool};
 
-/// Limits of one request.
+/// Limits of the server and of one request, with the defaults of `lekalo serve`
+/// (`docs/serve.md`, section "Security and limits"). Every field has an option of
+/// `lekalo serve` (`--max-body`, `--timeout`, `--deadline`, `--workers`, `--queue`,
+/// `--max-degree`, `--max-samples`, `--max-points`, `--max-work`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
-    /// Largest request body in bytes (413 above it).
+    /// Largest request body in bytes (413 above it). Default 2 MiB.
     pub body_bytes: usize,
-    /// Longest time to read a request and compute its answer (408 after it), which also
-    /// bounds a client that sends its body slowly.
+    /// Longest time to read a request and answer it (408 after it), which also bounds a
+    /// client that sends its body slowly. Default 10 s.
     pub timeout: Duration,
+    /// Longest time a computation may wait for the pool and run (504 after it, and the
+    /// computation is cancelled). Default 5 s; keep it below `timeout`.
+    pub deadline: Duration,
+    /// Computations that run at once, each on a blocking thread. Default: the machine's
+    /// available parallelism.
+    pub workers: usize,
+    /// Computations that may wait for a worker; one more is refused with 503 and
+    /// `Retry-After`. Default 64.
+    pub queue: usize,
+    /// Highest degree of any curve a request sends or asks for (a Bezier curve of `n + 1`
+    /// control points has degree `n`), and the order − 1 of a quasi-interpolant. Default
+    /// [`api::MAX_API_DEGREE`] (64).
+    pub max_degree: usize,
+    /// Most samples of a curve, of the basis panel or of a quasi-interpolant's error. Default
+    /// [`api::MAX_SAMPLES`] (10,000).
+    pub max_samples: usize,
+    /// Most points a request sends (data points, control points of a curve, breakpoints,
+    /// lengths) or asks for (control points of a constructed curve). Default
+    /// [`api::MAX_POINTS`] (10,000).
+    pub max_points: usize,
+    /// Most work of one request, in evaluations times `(degree + 1)²` (the cost of one point
+    /// by de Casteljau or Cox–de Boor): a drawing of `s` samples (twice with the comb), `b`
+    /// basis samples and `k` knots of a degree-`p` curve costs `(s + b + k)·(p + 1)²`.
+    /// Default [`budget::MAX_WORK`] (2^27, about 0.1 s): every request inside the other
+    /// defaults fits; it bounds requests once those are raised.
+    pub max_work: u64,
 }
 
 impl Default for Limits {
-    /// 2 MiB and 10 s: an editor request is a few kilobytes and a few milliseconds.
+    /// An editor request is a few kilobytes and a few milliseconds: the values in the field
+    /// docs.
     fn default() -> Self {
         Limits {
             body_bytes: 2 << 20,
             timeout: Duration::from_secs(10),
+            deadline: Duration::from_secs(5),
+            workers: std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+            queue: 64,
+            max_degree: api::MAX_API_DEGREE,
+            max_samples: api::MAX_SAMPLES,
+            max_points: api::MAX_POINTS,
+            max_work: budget::MAX_WORK,
         }
     }
 }
@@ -61,8 +107,10 @@ const APP_CSS: &str = include_str!("../assets/app.css");
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
 
 /// Every route of the application: path, method and handler. The router is built from this
-/// table, and a test checks it against [`OPENAPI`] both ways.
-pub fn routes() -> Vec<(&'static str, Method, MethodRouter)> {
+/// table, and a test checks it against [`OPENAPI`] both ways. The pages, `/api/health` and
+/// `/api/openapi.json` are answered on the runtime's workers; every other route computes in
+/// the [`Pool`].
+pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
     let page =
         |body: &'static str, mime: &'static str| get(move || async move { asset(body, mime) });
     vec![
@@ -87,28 +135,64 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter)> {
             Method::GET,
             get(|| async { ([(header::CONTENT_TYPE, "application/json")], OPENAPI) }),
         ),
-        ("/api/evaluate", Method::POST, post(api::evaluate)),
-        ("/api/interpolate", Method::POST, post(api::interpolate)),
-        ("/api/bspline", Method::POST, post(api::bspline)),
-        ("/api/bezier", Method::POST, post(api::bezier)),
-        ("/api/bezier/build", Method::POST, post(api::bezier_build)),
-        ("/api/blend/deform", Method::POST, post(api::blend_deform)),
-        ("/api/blend/corners", Method::POST, post(api::blend_corners)),
-        ("/api/blend/spline", Method::POST, post(api::blend_spline)),
-        ("/api/quasi", Method::POST, post(expr::quasi)),
-        ("/api/fit", Method::POST, post(fit::fit)),
-        ("/api/project", Method::POST, post(query::project)),
-        ("/api/measure", Method::POST, post(query::measure)),
-        ("/api/knot/insert", Method::POST, post(api::knot_insert)),
-        ("/api/knot/remove", Method::POST, post(api::knot_remove)),
-        ("/api/import", Method::POST, post(api::import)),
-        ("/api/export/json", Method::POST, post(api::export_json)),
-        ("/api/export/step", Method::POST, post(api::export_step)),
+        ("/api/evaluate", Method::POST, pool::post(api::evaluate)),
+        (
+            "/api/interpolate",
+            Method::POST,
+            pool::post(api::interpolate),
+        ),
+        ("/api/bspline", Method::POST, pool::post(api::bspline)),
+        ("/api/bezier", Method::POST, pool::post(api::bezier)),
+        (
+            "/api/bezier/build",
+            Method::POST,
+            pool::post(api::bezier_build),
+        ),
+        (
+            "/api/blend/deform",
+            Method::POST,
+            pool::post(api::blend_deform),
+        ),
+        (
+            "/api/blend/corners",
+            Method::POST,
+            pool::post(api::blend_corners),
+        ),
+        (
+            "/api/blend/spline",
+            Method::POST,
+            pool::post(api::blend_spline),
+        ),
+        ("/api/quasi", Method::POST, pool::post(expr::quasi)),
+        ("/api/fit", Method::POST, pool::post(fit::fit)),
+        ("/api/project", Method::POST, pool::post(query::project)),
+        ("/api/measure", Method::POST, pool::post(query::measure)),
+        (
+            "/api/knot/insert",
+            Method::POST,
+            pool::post(api::knot_insert),
+        ),
+        (
+            "/api/knot/remove",
+            Method::POST,
+            pool::post(api::knot_remove),
+        ),
+        ("/api/import", Method::POST, pool::post(api::import)),
+        (
+            "/api/export/json",
+            Method::POST,
+            pool::post(api::export_json),
+        ),
+        (
+            "/api/export/step",
+            Method::POST,
+            pool::post(api::export_step),
+        ),
     ]
 }
 
 /// The application: editor assets and the API under `/api/` ([`routes`]), with the body and
-/// time limits.
+/// time limits and a [`Pool`] sized by `limits`.
 pub fn router(limits: Limits) -> Router {
     routes()
         .into_iter()
@@ -123,6 +207,7 @@ pub fn router(limits: Limits) -> Router {
                 ),
             )
         })
+        .with_state(Arc::new(Pool::new(limits)))
         .layer(DefaultBodyLimit::disable())
         .layer(RequestBodyLimitLayer::new(limits.body_bytes))
         .layer(TimeoutLayer::with_status_code(

@@ -10,8 +10,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::answer::{answer, NUMBER_BYTES, SMALL};
-use crate::api::{curve, parse, MAX_POINTS};
+use crate::api::{curve, parse};
 use crate::error::{ApiError, ApiResult};
+use crate::pool::Job;
 
 /// The curve of an object, prepared for queries (as `lekalo measure` and `lekalo project`).
 fn query_curve(obj: &Object) -> ApiResult<QueryCurve> {
@@ -35,9 +36,9 @@ struct Projection {
 
 /// `POST /api/project`: the point of the curve closest to `point` (global: every piece whose
 /// bounding box could hold a closer point is searched, `QueryCurve::project`).
-pub(crate) async fn project(body: Bytes) -> ApiResult<Response> {
-    let r: ProjectRequest = parse(&body)?;
-    let q = query_curve(&curve(&r.curve, "curve")?)?;
+pub(crate) fn project(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: ProjectRequest = parse(body)?;
+    let q = query_curve(&curve(job, &r.curve, "curve")?)?;
     if r.point.len() != q.dim() {
         return Err(ApiError::bad(
             "point",
@@ -92,19 +93,14 @@ struct Measure {
 
 /// `POST /api/measure`: the arc length (with its error estimate) and the parameter, and the
 /// point, at each length of `at_length` from the start (`lekalo measure --at-length`).
-pub(crate) async fn measure(body: Bytes) -> ApiResult<Response> {
-    let r: MeasureRequest = parse(&body)?;
-    if r.at_length.len() > MAX_POINTS {
-        return Err(ApiError::bad(
-            "at_length",
-            format!("{} lengths: at most {MAX_POINTS}", r.at_length.len()),
-        ));
-    }
-    let obj = curve(&r.curve, "curve")?;
+pub(crate) fn measure(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: MeasureRequest = parse(body)?;
+    job.limits.check_points(r.at_length.len(), "at_length")?;
+    let obj = curve(job, &r.curve, "curve")?;
     let q = query_curve(&obj)?;
     let table = q
         .arc_length(r.tolerance)
-        .map_err(|e| ApiError::lib("tolerance", &e))?;
+        .map_err(|e| ApiError::lib_or("curve", &e))?;
     let params = table
         .param_at_batch(&r.at_length)
         .map_err(|e| ApiError::lib("at_length", &e))?;

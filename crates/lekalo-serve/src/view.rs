@@ -4,25 +4,17 @@
 
 use axum::response::Response;
 use lekalo::basis::{basis_functions, basis_functions_many};
-use lekalo::{KnotVector, Points};
+use lekalo::{KnotVector, Points, Progress};
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
 
 use crate::answer::answer;
 use crate::error::{ApiError, ApiResult};
+use crate::pool::Job;
 
-/// Most samples of a curve or of the basis panel one request may ask for.
+/// Most samples of a curve or of the basis panel one request may ask for (the default of
+/// [`Limits::max_samples`](crate::Limits::max_samples)).
 pub const MAX_SAMPLES: usize = 10_000;
-
-fn check_samples(n: usize, field: &str) -> ApiResult<usize> {
-    if !(2..=MAX_SAMPLES).contains(&n) {
-        return Err(ApiError::bad(
-            field,
-            format!("{field} = {n}: give between 2 and {MAX_SAMPLES} samples"),
-        ));
-    }
-    Ok(n)
-}
 
 pub(crate) fn default_samples() -> usize {
     400
@@ -32,7 +24,7 @@ pub(crate) fn default_samples() -> usize {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ViewOptions {
-    /// Samples along the curve (2 ..= [`MAX_SAMPLES`]).
+    /// Samples along the curve (2 ..= [`Limits::max_samples`](crate::Limits::max_samples)).
     #[serde(default = "default_samples")]
     pub samples: usize,
     /// Also the curvature comb (curvature and principal normal at each sample).
@@ -161,14 +153,38 @@ pub struct BasisFunction {
     pub values: Vec<f64>,
 }
 
-/// The drawing of `obj` (see [`CurveView`]).
+/// The drawing of `obj` (see [`CurveView`]) within the default [`Limits`](crate::Limits).
 ///
 /// # Errors
-/// Evaluation errors of the library (none for valid curves), bad sample counts.
+/// Evaluation errors of the library (none for valid curves), a drawing above the limits
+/// ([`Limits::check_view`](crate::Limits::check_view)).
 pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
-    let n = check_samples(opt.samples, "samples")?;
+    view_in(
+        &Job::unbounded(&crate::Limits::default()),
+        obj,
+        opt,
+        "curve",
+    )
+}
+
+/// The drawing of `obj`, sent in or built from the request field `field`, within the job's
+/// limits and stopped by its progress hook: the budget is checked first
+/// ([`Limits::check_view`](crate::Limits::check_view)), then the samples, the knot marks and
+/// the comb are computed by the library's cancellable batch evaluation.
+///
+/// # Errors
+/// As [`view`]; 504 when the job is cancelled.
+pub fn view_in(
+    job: &Job<'_>,
+    obj: &Object,
+    opt: &ViewOptions,
+    field: &str,
+) -> ApiResult<CurveView> {
+    job.limits.check_view(obj, opt, field)?;
+    let n = opt.samples;
+    let progress = &job.progress;
     let t = obj.uniform_parameters(n);
-    let points = eval_batch(obj, &t)?;
+    let points = eval_batch(obj, &t, progress)?;
     let knots = obj.knots();
     let (a, b) = obj.domain();
     let (marks, multiplicity): (Vec<f64>, Vec<usize>) = knots
@@ -176,7 +192,7 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
         .into_iter()
         .filter(|&(k, _)| k >= a && k <= b)
         .unzip();
-    let at_marks = eval_batch(obj, &marks)?;
+    let at_marks = eval_batch(obj, &marks, progress)?;
     let knot_marks = marks
         .iter()
         .zip(multiplicity)
@@ -190,7 +206,14 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
     let comb = if opt.comb {
         let mut curvature = Vec::with_capacity(n);
         let mut normal = Vec::with_capacity(n);
-        for &ti in &t {
+        // the per-sample derivatives are stopped by the same hook
+        let per_step = Progress::items_per_step((obj.degree() as u64 + 1).pow(2));
+        for (i, &ti) in t.iter().enumerate() {
+            if i % per_step == 0 {
+                progress
+                    .step("curvature comb", i as u64, n as u64)
+                    .map_err(|e| ApiError::lib("curve", &e))?;
+            }
             let d = obj
                 .eval_derivatives(ti, 2)
                 .map_err(|e| ApiError::lib("curve", &e))?;
@@ -204,12 +227,7 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
         None
     };
     let basis = match opt.basis_samples {
-        Some(m) => Some(basis_view(
-            &knots,
-            obj.degree(),
-            check_samples(m, "basis_samples")?,
-            opt.at,
-        )?),
+        Some(m) => Some(basis_view(&knots, obj.degree(), m, opt.at)?),
         None => None,
     };
     Ok(CurveView {
@@ -229,10 +247,10 @@ pub fn view(obj: &Object, opt: &ViewOptions) -> ApiResult<CurveView> {
 
 /// The points of `obj` at the sorted parameters `ts`, by the library's batch evaluation (one
 /// span search moving forward, no allocation per point).
-fn eval_batch(obj: &Object, ts: &[f64]) -> ApiResult<Points> {
+fn eval_batch(obj: &Object, ts: &[f64], progress: &Progress<'_>) -> ApiResult<Points> {
     let dim = obj.dim();
     let mut out = vec![0.0; ts.len() * dim];
-    obj.eval_batch(ts, &mut out)
+    obj.eval_batch_with_progress(ts, &mut out, progress)
         .map_err(|e| ApiError::lib("curve", &e))?;
     Points::from_flat(dim, out).map_err(|e| ApiError::lib("curve", &e))
 }

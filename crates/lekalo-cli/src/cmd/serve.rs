@@ -2,8 +2,11 @@
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 
+use std::time::Duration;
+
 use anyhow::{Context, Result};
 use clap::Args;
+use lekalo_serve::Limits;
 
 use crate::Verbosity;
 
@@ -13,10 +16,17 @@ use crate::Verbosity;
 The editor and the API answer on http://127.0.0.1:PORT/ (the API under /api/, docs/serve.md).
 Only this machine can reach it unless --bind names another address.
 
+Computations run on --workers threads, --queue more wait, and any further request gets 503
+with Retry-After; a computation past --deadline is stopped and answered with 504, while
+/api/health and the editor's files are answered throughout. Each request is checked against
+--max-degree, --max-samples, --max-points and --max-work before anything is computed (400
+naming the field and the option).
+
 Examples:
   lekalo serve                    # http://127.0.0.1:8737/
   lekalo serve --port 0           # a free port, printed
-  lekalo serve --open             # and open it in the default browser")]
+  lekalo serve --open             # and open it in the default browser
+  lekalo serve --max-degree 256 --deadline 30   # higher degrees, more time per request")]
 pub(crate) struct ServeArgs {
     /// TCP port (0 picks a free one).
     #[arg(long, default_value_t = 8737)]
@@ -29,11 +39,42 @@ pub(crate) struct ServeArgs {
     #[arg(long)]
     open: bool,
     /// Largest request body in bytes.
-    #[arg(long, value_name = "BYTES", default_value_t = lekalo_serve::Limits::default().body_bytes)]
+    #[arg(long, value_name = "BYTES", default_value_t = Limits::default().body_bytes)]
     max_body: usize,
-    /// Longest time for one request, in seconds.
+    /// Longest time for one request, in seconds, reading its body included (408 after it).
     #[arg(long, value_name = "SECONDS", default_value_t = 10)]
     timeout: u64,
+    /// Longest time for one computation, in seconds, waiting for a worker included: it is then
+    /// stopped and answered with 504. Keep it below --timeout.
+    #[arg(long, value_name = "SECONDS", default_value_t = Limits::default().deadline.as_secs_f64(),
+          value_parser = seconds)]
+    deadline: f64,
+    /// Computations that run at once [default: the number of CPUs].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    workers: Option<u32>,
+    /// Computations that may wait for a worker; one more gets 503 with Retry-After.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().queue)]
+    queue: usize,
+    /// Highest degree of a curve a request sends or asks for.
+    #[arg(long, value_name = "P", default_value_t = Limits::default().max_degree)]
+    max_degree: usize,
+    /// Most samples of a drawing (curve, basis panel, quasi-interpolation error).
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_samples)]
+    max_samples: usize,
+    /// Most points a request sends or asks for (data, control points, breakpoints).
+    #[arg(long, value_name = "N", default_value_t = Limits::default().max_points)]
+    max_points: usize,
+    /// Most work of one request, in evaluations × (degree + 1)².
+    #[arg(long, value_name = "OPS", default_value_t = Limits::default().max_work)]
+    max_work: u64,
+}
+
+/// A positive, finite number of seconds (at most a day).
+fn seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s > 0.0 && s <= 86_400.0 => Ok(s),
+        _ => Err(format!("{text:?}: give a number of seconds in (0, 86400]")),
+    }
 }
 
 pub(crate) fn run(a: &ServeArgs, v: Verbosity) -> Result<()> {
@@ -44,9 +85,17 @@ pub(crate) fn run(a: &ServeArgs, v: Verbosity) -> Result<()> {
             a.bind
         );
     }
-    let limits = lekalo_serve::Limits {
+    let defaults = Limits::default();
+    let limits = Limits {
         body_bytes: a.max_body,
-        timeout: std::time::Duration::from_secs(a.timeout.max(1)),
+        timeout: Duration::from_secs(a.timeout.max(1)),
+        deadline: Duration::from_secs_f64(a.deadline),
+        workers: a.workers.map_or(defaults.workers, |w| w as usize),
+        queue: a.queue,
+        max_degree: a.max_degree,
+        max_samples: a.max_samples,
+        max_points: a.max_points,
+        max_work: a.max_work,
     };
     let open = a.open;
     lekalo_serve::run(SocketAddr::new(a.bind, a.port), limits, |addr| {

@@ -15,7 +15,7 @@ use std::borrow::Cow;
 use serde::{Deserialize, Serialize};
 
 use crate::curve::{BSplineCurve, BezierCurve, BezierSegment, NurbsCurve};
-use crate::{Error, KnotVector, Points, QueryCurve, Result};
+use crate::{Error, KnotVector, Points, Progress, QueryCurve, Result};
 
 /// A curve of any kind.
 ///
@@ -232,6 +232,25 @@ impl Curve {
         }
     }
 
+    /// [`Curve::eval_batch`] reporting to `progress` and stopping when it is cancelled (the
+    /// kind's `eval_batch_with_progress`); the points are bit-for-bit those of
+    /// [`Curve::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`Curve::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
+        match self {
+            Curve::Bezier(c) => c.eval_batch_with_progress(ts, out, progress),
+            Curve::BSpline(c) => c.eval_batch_with_progress(ts, out, progress),
+            Curve::Nurbs(c) => c.eval_batch_with_progress(ts, out, progress),
+        }
+    }
+
     /// `n` parameters evenly spaced over the domain, both ends included exactly (`n = 1` gives
     /// the start, `n = 0` nothing).
     #[must_use]
@@ -246,6 +265,16 @@ impl Curve {
     /// # Errors
     /// [`Error::TooLarge`] when `n × dim` values cannot be held.
     pub fn sample(&self, n: usize) -> Result<Points> {
+        self.sample_with_progress(n, &Progress::new())
+    }
+
+    /// [`Curve::sample`] reporting to `progress` and stopping when it is cancelled
+    /// ([`Curve::eval_batch_with_progress`]); the points are bit-for-bit those of
+    /// [`Curve::sample`].
+    ///
+    /// # Errors
+    /// As [`Curve::sample`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn sample_with_progress(&self, n: usize, progress: &Progress<'_>) -> Result<Points> {
         if n > crate::MAX_SCALARS {
             return Err(Error::TooLarge {
                 what: "curve samples",
@@ -263,7 +292,7 @@ impl Curve {
             });
         }
         let mut data = vec![0.0; len];
-        self.eval_batch(&ts, &mut data)?;
+        self.eval_batch_with_progress(&ts, &mut data, progress)?;
         Points::from_flat(self.dim(), data)
     }
 

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::basis::bernstein_all_unchecked;
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 
 /// A Bezier curve of degree `n` with control points `P_0 … P_n` on the domain `[0, 1]`.
@@ -136,6 +137,33 @@ impl BezierCurve {
     /// [`Error::ParameterOutOfDomain`] at the first parameter outside `[0, 1]` (nothing is
     /// guaranteed about `out` then).
     pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        self.eval_batch_with_progress(ts, out, &Progress::new())
+    }
+
+    /// [`BezierCurve::eval_batch`] reporting to `progress` (`done` of `ts.len()` parameters)
+    /// and stopping when it is cancelled. De Casteljau costs `(n + 1)²·dim / 2` operations per
+    /// point, so the hook is called about every [`Progress::STRIDE`] of them: after every point
+    /// for high degrees. The points are bit-for-bit those of [`BezierCurve::eval_batch`].
+    ///
+    /// ```
+    /// use std::sync::atomic::AtomicBool;
+    /// use lekalo::{BezierCurve, Error, Points, Progress};
+    /// let c = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])?)?;
+    /// let stop = AtomicBool::new(true);
+    /// let mut out = vec![0.0; 6];
+    /// let e = c.eval_batch_with_progress(&[0.0, 0.5, 1.0], &mut out, &Progress::new().with_cancel(&stop));
+    /// assert!(matches!(e, Err(Error::Cancelled { .. })));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`BezierCurve::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let dim = self.dim();
         let expected = ts.len().saturating_mul(dim);
         if out.len() != expected {
@@ -145,12 +173,17 @@ impl BezierCurve {
                 got: out.len(),
             });
         }
-        let mut scratch = vec![0.0; self.control.as_slice().len()];
-        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(dim)) {
-            check_unit(t)?;
-            de_casteljau_into(self.control.as_slice(), dim, t, &mut scratch, o);
-        }
-        Ok(())
+        let control = self.control.as_slice();
+        let mut scratch = vec![0.0; control.len()];
+        let mut outs = out.chunks_exact_mut(dim);
+        let cost = (control.len() as u64).saturating_mul(self.control.len() as u64) / 2;
+        progress.chunks("Bezier curve evaluation", ts, cost, |ts| {
+            for (&t, o) in ts.iter().zip(&mut outs) {
+                check_unit(t)?;
+                de_casteljau_into(control, dim, t, &mut scratch, o);
+            }
+            Ok(())
+        })
     }
 
     /// Point `P(t)` by the Bernstein sum `Σ b_{n,i}(t) P_i` (document 002, Bezier curves), into

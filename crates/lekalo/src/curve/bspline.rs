@@ -14,7 +14,11 @@ use serde::{Deserialize, Serialize};
 use crate::basis::{basis_ders_into, basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
+
+/// What the progress reports and cancellation of a batch evaluation name.
+const WHAT: &str = "B-spline curve evaluation";
 
 /// A B-spline curve of degree `p` with control points `P_0 … P_n` on a knot vector of
 /// `n + p + 2` knots. The degree is stored explicitly only to allow serialisation; it always
@@ -209,6 +213,23 @@ impl BSplineCurve {
     /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain (nothing is
     /// guaranteed about `out` then).
     pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        self.eval_batch_with_progress(ts, out, &Progress::new())
+    }
+
+    /// [`BSplineCurve::eval_batch`] reporting to `progress` (`done` of `ts.len()` parameters)
+    /// and stopping when it is cancelled. A point costs about `(p + 1)² + (p + 1)·dim`
+    /// operations (P&T A2.2 and the sum), so the hook is called about every
+    /// [`Progress::STRIDE`] of them. The points are bit-for-bit those of
+    /// [`BSplineCurve::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`BSplineCurve::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let dim = self.dim();
         if out.len() != ts.len() * dim {
             return Err(Error::LengthMismatch {
@@ -218,28 +239,43 @@ impl BSplineCurve {
             });
         }
         match (self.degree, dim) {
-            (1, 2) => self.eval_batch_fixed::<2, 2>(ts, out),
-            (1, 3) => self.eval_batch_fixed::<2, 3>(ts, out),
-            (2, 2) => self.eval_batch_fixed::<3, 2>(ts, out),
-            (2, 3) => self.eval_batch_fixed::<3, 3>(ts, out),
-            (3, 1) => self.eval_batch_fixed::<4, 1>(ts, out),
-            (3, 2) => self.eval_batch_fixed::<4, 2>(ts, out),
-            (3, 3) => self.eval_batch_fixed::<4, 3>(ts, out),
-            (3, 4) => self.eval_batch_fixed::<4, 4>(ts, out),
-            _ => self.eval_batch_generic(ts, out),
+            (1, 2) => self.eval_batch_fixed::<2, 2>(ts, out, progress),
+            (1, 3) => self.eval_batch_fixed::<2, 3>(ts, out, progress),
+            (2, 2) => self.eval_batch_fixed::<3, 2>(ts, out, progress),
+            (2, 3) => self.eval_batch_fixed::<3, 3>(ts, out, progress),
+            (3, 1) => self.eval_batch_fixed::<4, 1>(ts, out, progress),
+            (3, 2) => self.eval_batch_fixed::<4, 2>(ts, out, progress),
+            (3, 3) => self.eval_batch_fixed::<4, 3>(ts, out, progress),
+            (3, 4) => self.eval_batch_fixed::<4, 4>(ts, out, progress),
+            _ => self.eval_batch_generic(ts, out, progress),
         }
     }
 
+    /// Operations per point of a batch evaluation, `(p + 1)² + (p + 1)·dim`, for
+    /// [`Progress::items_per_step`].
+    pub(crate) fn point_cost(&self) -> u64 {
+        let w = self.degree as u64 + 1;
+        w.saturating_mul(w.saturating_add(self.dim() as u64))
+    }
+
     /// [`BSplineCurve::eval_batch`] for any degree and dimension.
-    fn eval_batch_generic(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+    fn eval_batch_generic(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let mut cursor = self.knots.span_cursor(self.degree);
         let mut scratch = BasisScratch::new(self.degree);
         let mut n = vec![0.0; self.degree + 1];
-        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(self.dim())) {
-            let span = cursor.find(t)?;
-            self.eval_span(span, t, &mut scratch, &mut n, o);
-        }
-        Ok(())
+        let mut outs = out.chunks_exact_mut(self.dim());
+        progress.chunks(WHAT, ts, self.point_cost(), |ts| {
+            for (&t, o) in ts.iter().zip(&mut outs) {
+                let span = cursor.find(t)?;
+                self.eval_span(span, t, &mut scratch, &mut n, o);
+            }
+            Ok(())
+        })
     }
 
     /// [`BSplineCurve::eval_batch`] for order `W` (degree `W − 1`) and dimension `D` known at
@@ -251,23 +287,27 @@ impl BSplineCurve {
         &self,
         ts: &[f64],
         out: &mut [f64],
+        progress: &Progress<'_>,
     ) -> Result<()> {
         let mut cursor = self.knots.span_cursor(W - 1);
         let knots = self.knots.as_slice();
         let ctrl = self.control.as_slice();
-        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(D)) {
-            let span = cursor.find(t)?;
-            let n = basis_funs_fixed::<W>(knots, span, t);
-            let net = &ctrl[(span + 1 - W) * D..(span + 1) * D];
-            let mut p = [0.0; D];
-            for (nj, c) in n.iter().zip(net.chunks_exact(D)) {
-                for (x, y) in p.iter_mut().zip(c) {
-                    *x += nj * y;
+        let mut outs = out.chunks_exact_mut(D);
+        progress.chunks(WHAT, ts, self.point_cost(), |ts| {
+            for (&t, o) in ts.iter().zip(&mut outs) {
+                let span = cursor.find(t)?;
+                let n = basis_funs_fixed::<W>(knots, span, t);
+                let net = &ctrl[(span + 1 - W) * D..(span + 1) * D];
+                let mut p = [0.0; D];
+                for (nj, c) in n.iter().zip(net.chunks_exact(D)) {
+                    for (x, y) in p.iter_mut().zip(c) {
+                        *x += nj * y;
+                    }
                 }
+                o.copy_from_slice(&p);
             }
-            o.copy_from_slice(&p);
-        }
-        Ok(())
+            Ok(())
+        })
     }
 
     /// Derivatives `C^{(k)}(t)` for `k = 0..=order` (P&T Algorithm A3.2): returns
@@ -565,7 +605,7 @@ mod tests {
             ts.sort_by(f64::total_cmp);
             let (mut fast, mut generic) = (vec![0.0; ts.len() * dim], vec![0.0; ts.len() * dim]);
             c.eval_batch(&ts, &mut fast).unwrap();
-            c.eval_batch_generic(&ts, &mut generic).unwrap();
+            c.eval_batch_generic(&ts, &mut generic, &Progress::new()).unwrap();
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             proptest::prop_assert_eq!(bits(&fast), bits(&generic));
             let before = ts.iter().copied().fold(f64::INFINITY, f64::min) - 1.0;

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_derivative_order, Error, Result, MAX_DERIVATIVE_ORDER};
+use crate::numeric::progress::Progress;
 use crate::points::{
     check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
 };
@@ -205,6 +206,21 @@ impl NurbsCurve {
     /// [`Error::ParameterOutOfDomain`] at the first parameter outside the domain (the contents of
     /// `out` are then unspecified).
     pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+        self.eval_batch_with_progress(ts, out, &Progress::new())
+    }
+
+    /// [`NurbsCurve::eval_batch`] reporting to `progress` (`done` of `ts.len()` parameters)
+    /// and stopping when it is cancelled, about every [`Progress::STRIDE`] operations. The
+    /// points are bit-for-bit those of [`NurbsCurve::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        ts: &[f64],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let dim = self.dim();
         if out.len() != ts.len() * dim {
             return Err(Error::LengthMismatch {
@@ -217,11 +233,15 @@ impl NurbsCurve {
         let mut cursor = self.knots().span_cursor(p);
         let mut scratch = BasisScratch::new(p);
         let mut n = vec![0.0; p + 1];
-        for (&t, o) in ts.iter().zip(out.chunks_exact_mut(dim)) {
-            let span = cursor.find(t)?;
-            self.eval_span(span, t, &mut scratch, &mut n, o);
-        }
-        Ok(())
+        let mut outs = out.chunks_exact_mut(dim);
+        let cost = self.homogeneous.point_cost();
+        progress.chunks("NURBS curve evaluation", ts, cost, |ts| {
+            for (&t, o) in ts.iter().zip(&mut outs) {
+                let span = cursor.find(t)?;
+                self.eval_span(span, t, &mut scratch, &mut n, o);
+            }
+            Ok(())
+        })
     }
 
     /// `C(t) = Σ N_i w_i P_i / Σ N_i w_i` at a known span, with caller scratch (no allocation).

@@ -21,6 +21,7 @@ use crate::error::{
     check_derivative_order, Error, Result, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
 };
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::surface::Direction;
 
@@ -533,10 +534,26 @@ impl BSplineSurface {
     /// [`Error::LengthMismatch`] for a wrong buffer length; [`Error::ParameterOutOfDomain`] for
     /// the first pair outside the domain (the contents of `out` are then unspecified).
     pub fn eval_batch(&self, uv: &[[f64; 2]], out: &mut [f64]) -> Result<()> {
+        self.eval_batch_with_progress(uv, out, &Progress::new())
+    }
+
+    /// [`BSplineSurface::eval_batch`] reporting to `progress` (`done` of `uv.len()` pairs) and
+    /// stopping when it is cancelled. A point costs about `(p + 1)(q + 1)·dim` operations plus
+    /// the two bases, so the hook is called about every [`Progress::STRIDE`] of them. The points
+    /// are bit-for-bit those of [`BSplineSurface::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        uv: &[[f64; 2]],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let dim = self.dim();
         check_buffer(out.len(), uv.len().saturating_mul(dim))?;
         let mut chunks = out.chunks_exact_mut(dim);
-        self.batch_with(uv, |point| {
+        self.batch_with(uv, progress, |point| {
             if let Some(o) = chunks.next() {
                 o.copy_from_slice(point);
             }
@@ -544,20 +561,32 @@ impl BSplineSurface {
     }
 
     /// Calls `f` with `S(u, v)` for every pair of `uv` in order (one scratch space, span
-    /// cursors in both directions; nothing allocated per point).
-    pub(crate) fn batch_with(&self, uv: &[[f64; 2]], mut f: impl FnMut(&[f64])) -> Result<()> {
+    /// cursors in both directions; nothing allocated per point), reporting to `progress`.
+    pub(crate) fn batch_with(
+        &self,
+        uv: &[[f64; 2]],
+        progress: &Progress<'_>,
+        mut f: impl FnMut(&[f64]),
+    ) -> Result<()> {
         let dim = self.dim();
         let mut cu = self.knots_u.span_cursor(self.degree_u);
         let mut cv = self.knots_v.span_cursor(self.degree_v);
         let mut scratch = SurfaceScratch::new(self.degree_u, self.degree_v, dim);
         let mut point = vec![0.0; dim];
-        for &[u, v] in uv {
-            let su = cu.find(u)?;
-            let sv = cv.find(v)?;
-            self.eval_span(su, sv, u, v, &mut scratch, &mut point);
-            f(&point);
-        }
-        Ok(())
+        let (wu, wv) = (self.degree_u as u64 + 1, self.degree_v as u64 + 1);
+        let cost = wu
+            .saturating_mul(wv)
+            .saturating_mul(dim as u64)
+            .saturating_add(wu * wu + wv * wv);
+        progress.chunks("B-spline surface evaluation", uv, cost, |uv| {
+            for &[u, v] in uv {
+                let su = cu.find(u)?;
+                let sv = cv.find(v)?;
+                self.eval_span(su, sv, u, v, &mut scratch, &mut point);
+                f(&point);
+            }
+            Ok(())
+        })
     }
 
     /// Partial derivatives `S_{u^k v^l}(u, v)` for `0 ≤ k, l ≤ order`, as `(order + 1)²` points:

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::curve::nurbs::NurbsCurve;
 use crate::error::{Error, Result};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::{
     check_homogeneous, dehomogenize, homogenize, weights_of, with_unit_weights, Points,
 };
@@ -271,10 +272,25 @@ impl NurbsSurface {
     /// # Errors
     /// [`Error::LengthMismatch`]; [`Error::ParameterOutOfDomain`].
     pub fn eval_batch(&self, uv: &[[f64; 2]], out: &mut [f64]) -> Result<()> {
+        self.eval_batch_with_progress(uv, out, &Progress::new())
+    }
+
+    /// [`NurbsSurface::eval_batch`] reporting to `progress` and stopping when it is cancelled
+    /// ([`BSplineSurface::eval_batch_with_progress`] of the homogeneous surface, then the
+    /// projection); the points are bit-for-bit those of [`NurbsSurface::eval_batch`].
+    ///
+    /// # Errors
+    /// As [`NurbsSurface::eval_batch`]; [`Error::Cancelled`] when `progress` is cancelled.
+    pub fn eval_batch_with_progress(
+        &self,
+        uv: &[[f64; 2]],
+        out: &mut [f64],
+        progress: &Progress<'_>,
+    ) -> Result<()> {
         let dim = self.dim();
         check_buffer(out.len(), uv.len().saturating_mul(dim))?;
         let mut chunks = out.chunks_exact_mut(dim);
-        self.homogeneous.batch_with(uv, |h| {
+        self.homogeneous.batch_with(uv, progress, |h| {
             if let Some(o) = chunks.next() {
                 project(h, o);
             }
