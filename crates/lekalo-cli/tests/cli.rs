@@ -501,9 +501,14 @@ fn plot_svg_png_basis_and_data_points() {
         .unwrap();
     let text = String::from_utf8(basis.stdout).unwrap();
     assert_eq!(
-        text.matches("<polyline").count(),
+        text.matches("<g class=\"series\" data-label=\"N").count(),
         3,
         "three basis functions"
+    );
+    assert_eq!(
+        text.matches("<polyline").count(),
+        4,
+        "three basis functions and the zero line"
     );
     let png = p(&d, "n.png");
     lekalo()

@@ -1,8 +1,11 @@
 //! Looks at every figure as a reader would: every SVG of the demo gallery (with its caption)
 //! and the plots of every kind the command line writes. In each, every text and legend box
 //! lies inside the canvas, no two legend entries overlap, no coordinate is NaN or infinite,
-//! every labelled series can be seen (or its caption says it coincides with another), and the
-//! rendered image is not blank ([`lekalo_io::check_svg`]). Every PNG decodes and is not blank.
+//! every labelled series shows past what is drawn over it (or its caption says it coincides
+//! with another), no text overlaps another, a legend entry or a curve, colour bars carry their
+//! ends' values, framed axes are named, the caption's colour and dash words match the lines,
+//! and the rendered image is not blank ([`lekalo_io::check_svg`]). Every PNG decodes and is
+//! not blank.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -120,6 +123,12 @@ const SURFACE: &str = r#"{"lekalo": 1, "type": "nurbs_surface", "degree_u": 2, "
  "control": [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 1], [2, 0, 0], [2, 1, 0.5]],
  "weights": [1, 1, 0.7, 0.7, 1, 1]}"#;
 
+/// The README tour's dome: a flat surface (height 1/4 over a 2 × 2 square).
+const DOME: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 2,
+ "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1], "net": [3, 3],
+ "control": [[0, 0, 0], [0, 1, 0], [0, 2, 0], [1, 0, 0], [1, 1, 1], [1, 2, 0], [2, 0, 0],
+   [2, 1, 0], [2, 2, 0]]}"#;
+
 const PP: &str = r#"{"lekalo": 1, "type": "piecewise_polynomial", "breakpoints": [0, 1, 2, 3],
  "order": 3, "dim": 1, "coefficients": [0, 1, 0.5, 1.5, 2, -1, 2.5, 0, 3]}"#;
 
@@ -137,6 +146,7 @@ fn every_kind_of_cli_plot_reads_well() {
         ("c.json", LECTURE),
         ("n.json", HALF_CIRCLE),
         ("s.json", SURFACE),
+        ("dome.json", DOME),
         ("p.json", PP),
         ("many.json", MANY),
         (
@@ -156,12 +166,16 @@ fn every_kind_of_cli_plot_reads_well() {
     let c = path("c.json");
     let n = path("n.json");
     let s = path("s.json");
+    let dome = path("dome.json");
     let pp = path("p.json");
     let many = path("many.json");
     let quintic = path("quintic.json");
     let data = path("data.csv");
     let q = path("q.txt");
     let grid = path("grid.txt");
+    // the README tour's polyline, whose corner `blend corners` rounds
+    let tour = path("tour.txt");
+    fs::write(&tour, "1 1\n2 3\n4 3\n").unwrap();
     let title =
         "A title long enough to run past the canvas of a default plot, on purpose, to see it grow";
     let runs: Vec<(&str, Vec<&std::ffi::OsStr>)> = vec![
@@ -201,6 +215,19 @@ fn every_kind_of_cli_plot_reads_well() {
             ],
         ),
         ("surface", vec!["plot".as_ref(), s.as_os_str()]),
+        (
+            "dome",
+            vec!["plot".as_ref(), dome.as_os_str(), "--net".as_ref()],
+        ),
+        (
+            "dome-curvature",
+            vec![
+                "plot".as_ref(),
+                dome.as_os_str(),
+                "--curvature".as_ref(),
+                "gaussian".as_ref(),
+            ],
+        ),
         (
             "surface-net",
             vec![
@@ -244,6 +271,18 @@ fn every_kind_of_cli_plot_reads_well() {
         (
             "elevate",
             vec!["bezier".as_ref(), "elevate".as_ref(), quintic.as_os_str()],
+        ),
+        (
+            "tour-corners",
+            vec![
+                "blend".as_ref(),
+                "corners".as_ref(),
+                tour.as_os_str(),
+                "--window".as_ref(),
+                "25%".as_ref(),
+                "--continuity".as_ref(),
+                "2".as_ref(),
+            ],
         ),
         (
             "quasi",

@@ -71,7 +71,9 @@ pub use object_ext::{
     bezier_surface_to_json, bspline_surface_to_json, envelope_type, piecewise_polynomial_to_json,
     read_bezier_surface, read_bspline_surface, read_piecewise_polynomial,
 };
-pub use palette::{height_color, look, Marker, DASHES, LINE_COLORS, PALETTE};
+pub use palette::{
+    color_names, height_color, look, Marker, COLOR_NAMES, COLOR_WORDS, DASHES, LINE_COLORS, PALETTE,
+};
 #[cfg(feature = "parquet")]
 pub use parquet::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,

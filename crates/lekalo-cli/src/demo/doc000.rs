@@ -70,6 +70,7 @@ pub(super) fn curves(s: &mut Section) -> Result<()> {
         .into();
     let q = example_9_1()?;
     let mut fig = Figure::new("Cubic interpolation of P&T Example 9.1", true);
+    fig.axis_labels = ("x".into(), "y".into());
     let mut rows = Vec::new();
     let cases = [
         (
@@ -262,6 +263,7 @@ pub(super) fn end_conditions(s: &mut Section) -> Result<()> {
         ),
     ];
     let mut fig = Figure::new("End conditions on P&T Example 9.1", true);
+    fig.axis_labels = ("x".into(), "y".into());
     let mut rows = Vec::new();
     for (k, (name, p, knots, end, expected, shown)) in cases.into_iter().enumerate() {
         let c = CurveInterpolation::new(p)

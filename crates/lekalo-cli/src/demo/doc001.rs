@@ -122,6 +122,7 @@ pub(super) fn deformation(s: &mut Section) -> Result<()> {
     let a1 = NurbsCurve::arc_through_points(&[0.0, 0.0], &[1.0, 0.4], &[2.0, 0.0])?;
     let a2 = NurbsCurve::arc_through_points(&[0.0, 0.0], &[1.0, -0.35], &[2.0, 0.0])?;
     let mut fig = Figure::new("Deformation of an arc into another arc", true);
+    fig.axis_labels = ("x".into(), "y".into());
     add_curve(
         &mut fig,
         &Object::Nurbs(a1.clone()),
@@ -247,6 +248,7 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
         .into();
     let pts = spline_points()?;
     let mut fig = Figure::new("Open splines by blended arcs and parabolas, k = 2", true);
+    fig.axis_labels = ("x".into(), "y".into());
     let mut closed_fig = None;
     let mut rows = Vec::new();
     let arcs = CircularArcs::new(ArcParametrization::UniformAngle);
@@ -311,6 +313,7 @@ pub(super) fn spline(s: &mut Section) -> Result<()> {
         ]);
         if closed {
             let mut fig = Figure::new("Closed spline by parabolas, k = 2", true);
+            fig.axis_labels = ("x".into(), "y".into());
             add_curve(&mut fig, &obj, name, PALETTE[n])?;
             add_points(&mut fig, &pts, "points", PALETTE[7], false);
             closed_fig = Some(fig);
@@ -362,6 +365,7 @@ pub(super) fn corner(s: &mut Section) -> Result<()> {
         .into();
     let corner = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]])?;
     let mut fig = Figure::new("Corner smoothing of a right angle", true);
+    fig.axis_labels = ("x".into(), "y".into());
     add_points(&mut fig, &corner, "corner", "#777777", true);
     let mut rows = Vec::new();
     for k in 1..=3 {

@@ -134,6 +134,7 @@ pub(super) fn elevation(s: &mut Section) -> Result<()> {
             show(e.control_points()),
         ]);
         let mut fig = Figure::new(&format!("Example 1, {name}"), true);
+        fig.axis_labels = ("x".into(), "y".into());
         add_points(&mut fig, u, "old polygon", "#777777", true);
         add_points(
             &mut fig,
@@ -231,6 +232,7 @@ pub(super) fn reduction(s: &mut Section) -> Result<()> {
         ],
     ));
     let mut fig = Figure::new("Example 2: the quintic is a cubic", true);
+    fig.axis_labels = ("x".into(), "y".into());
     add_points(&mut fig, &u, "quintic polygon", "#777777", true);
     add_points(
         &mut fig,

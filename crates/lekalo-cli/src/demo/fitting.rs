@@ -7,9 +7,9 @@ use lekalo::fit::{
     ToleranceOptions,
 };
 use lekalo::{parametrize, Parametrization, Points};
-use lekalo_io::{Figure, Object, PALETTE};
+use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
-use super::doc000::{add_curve, add_points};
+use super::doc000::add_curve;
 use crate::demo::{trim, Caption, Section};
 
 pub(super) fn fitting(s: &mut Section) -> Result<()> {
@@ -39,37 +39,75 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
     let smooth = smoothing_spline(&data, Lambda::Gcv)?;
     let tol = 0.02;
     let within = fit_tolerance(q.as_view(), &ToleranceOptions::new(3, tol))?;
-    let mut fig = Figure::new("fitting 60 noisy points", true);
-    add_curve(
-        &mut fig,
-        &Object::BSpline(lsq.curve.clone()),
-        "least squares, 10 control points",
-        PALETTE[0],
-    )?;
-    add_curve(
-        &mut fig,
-        &Object::BSpline(smooth.curve.clone()),
-        "smoothing spline (GCV)",
-        PALETTE[1],
-    )?;
     let n_tol = within.curve.control_points().len();
+    // the data as small dots under the fit, so that the curve shows between and over them; at
+    // the spiral's scale the three fits are one line (they differ by less than 0.01), so the
+    // first figure draws one and the second shows how each departs from the data
+    let mut fig = Figure::new("60 noisy points and a fit within 0.02", true);
+    fig.axis_labels = ("x".into(), "y".into());
+    fig.series.push(Series::new(
+        Some("data"),
+        pts.clone(),
+        Style::Dots,
+        PALETTE[2],
+    ));
     add_curve(
         &mut fig,
         &Object::BSpline(within.curve.clone()),
         &format!("within {tol}: {n_tol} control points"),
-        PALETTE[3],
+        PALETTE[0],
     )?;
-    // the data last, so that its markers are drawn over the curves that pass near them
-    add_points(&mut fig, &q, "data", PALETTE[2], false);
     s.figure(
         fig,
-        Caption::new(
-            "Noisy samples of one curve fitted three ways: least squares with given knots, a \
-             smoothing spline with λ chosen by generalised cross-validation, and the fewest \
-             control points that stay within the tolerance. Compare how closely each follows the \
-             noise and how many control points it needs (table below).",
-        )
+        Caption::new(format!(
+            "Sixty noisy samples of a spiral (green dots) and the cubic B-spline with the fewest \
+             control points, {n_tol}, that keeps every sample within {tol} of it (blue). At this \
+             scale the least-squares and smoothing fits of the next figure lie on the same line."
+        ))
         .theory("fitting.md#tolerance"),
+    );
+    let mut res = Figure::new("how far each point lies from each fit", false);
+    res.size = (640.0, 320.0);
+    res.axis_labels = ("data point k".into(), "distance to the fit".into());
+    let by_index = |d: &[f64]| -> Vec<[f64; 2]> {
+        d.iter().enumerate().map(|(k, v)| [k as f64, *v]).collect()
+    };
+    for (i, (label, d)) in [
+        (
+            "least squares, 10 control points".to_string(),
+            by_index(&lsq.report.residuals),
+        ),
+        (
+            "smoothing spline (GCV)".to_string(),
+            by_index(&smooth.report.residuals),
+        ),
+        (
+            format!("within {tol}: {n_tol} control points"),
+            by_index(&within.deviations),
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut line = Series::new(Some(&label), d, Style::Line, PALETTE[[0, 1, 3][i]]);
+        line.dash = Some(["", "9 4", "2 3"][i].to_string());
+        res.series.push(line);
+    }
+    res.series.push(Series::new(
+        Some(&format!("tolerance {tol}")),
+        vec![[0.0, tol], [pts.len() as f64 - 1.0, tol]],
+        Style::Dashed,
+        "#777777",
+    ));
+    s.figure(
+        res,
+        Caption::new(
+            "The distance from each data point to each fit: least squares (blue, solid) and the \
+             smoothing spline (orange-red, dashed) at the point's parameter, the tolerance fit \
+             (pink, dotted) to its closest point. The grey dashed line is the tolerance; the \
+             scatter is the noise, which the fits follow more or less closely (table below).",
+        )
+        .theory("fitting.md#residuals"),
     );
     s.tables.push((
         "Residuals at the data parameters (tolerance fit: distance to the curve).".into(),

@@ -41,6 +41,7 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         1e-13,
     );
     let mut fig = Figure::new("Intersections, closest points, offset", true);
+    fig.axis_labels = ("x".into(), "y".into());
     add_curve(
         &mut fig,
         &Object::BSpline(spline.clone()),

@@ -187,7 +187,7 @@ fn lecture_bspline(s: &mut Section) -> Result<()> {
             "The lecture's quadratic B-spline with control points (1,1), (2,3), (4,3) and knots \
              [0,0,1,2,3,3], on its domain [1, 2] (blue): it runs from the midpoint (3/2, 2) of \
              the first leg to the midpoint (3, 3) of the second (orange: the points at the \
-             knots). The dashed purple curve is Σ N_i,2(t) P_i over all of [0, 3], as the notes \
+             knots). The dashed pink curve is Σ N_i,2(t) P_i over all of [0, 3], as the notes \
              evaluate it: outside the domain the basis no longer sums to 1, and the curve leaves \
              the convex hull and runs to the origin.",
         )

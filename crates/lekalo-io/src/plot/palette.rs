@@ -55,6 +55,89 @@ pub fn look(i: usize) -> (&'static str, &'static str, Option<Marker>) {
     )
 }
 
+/// The names a reader gives each colour of [`PALETTE`] (first the one captions should use):
+/// Okabe and Ito's own names, and the everyday word for how the colour looks on a screen
+/// (their "reddish purple" reads as pink, their "vermillion" as orange-red).
+pub const COLOR_NAMES: [(&str, &[&str]); 8] = [
+    ("#0072B2", &["blue"]),
+    (
+        "#D55E00",
+        &[
+            "vermillion",
+            "vermilion",
+            "orange-red",
+            "red-orange",
+            "red",
+            "orange",
+        ],
+    ),
+    ("#009E73", &["green", "bluish green"]),
+    ("#CC79A7", &["pink", "reddish purple"]),
+    ("#E69F00", &["orange"]),
+    ("#56B4E9", &["sky blue", "light blue"]),
+    ("#F0E442", &["yellow"]),
+    ("#000000", &["black"]),
+];
+
+/// Every colour word the figure check looks for in captions, longer names first so that "sky
+/// blue" is read before "blue".
+pub const COLOR_WORDS: [&str; 21] = [
+    "reddish purple",
+    "bluish green",
+    "orange-red",
+    "red-orange",
+    "sky blue",
+    "light blue",
+    "vermillion",
+    "vermilion",
+    "magenta",
+    "purple",
+    "violet",
+    "yellow",
+    "orange",
+    "black",
+    "green",
+    "brown",
+    "grey",
+    "gray",
+    "pink",
+    "blue",
+    "red",
+];
+
+/// The names a reader may give a drawn CSS colour (`#rrggbb` or `#rgb`): the palette's names
+/// for its colours, "black" for black, "grey"/"gray" for any other neutral colour; none for a
+/// colour that is neither.
+#[must_use]
+pub fn color_names(css: &str) -> &'static [&'static str] {
+    let hex = css.trim().trim_start_matches('#');
+    let full: String = if hex.len() == 3 {
+        hex.chars().flat_map(|c| [c, c]).collect()
+    } else {
+        hex.to_string()
+    };
+    if let Some((_, names)) = COLOR_NAMES
+        .iter()
+        .find(|(c, _)| c[1..].eq_ignore_ascii_case(&full))
+    {
+        return names;
+    }
+    let channel = |k: usize| {
+        full.get(2 * k..2 * k + 2)
+            .and_then(|s| u8::from_str_radix(s, 16).ok())
+    };
+    match (channel(0), channel(1), channel(2)) {
+        (Some(r), Some(g), Some(b)) if r.abs_diff(g) < 16 && g.abs_diff(b) < 16 => {
+            if r < 40 {
+                &["black"]
+            } else {
+                &["grey", "gray"]
+            }
+        }
+        _ => &[],
+    }
+}
+
 /// Viridis at 0, 1/4, 1/2, 3/4 and 1 (sRGB); [`height_color`] interpolates linearly.
 const VIRIDIS: [[f64; 3]; 5] = [
     [68.0, 1.0, 84.0],
@@ -114,6 +197,21 @@ mod tests {
         }
         assert_eq!(look(0), ("#0072B2", "", None));
         assert_eq!(look(7), ("#0072B2", "9 4", Some(Marker::Square)));
+    }
+
+    #[test]
+    fn colours_have_names() {
+        assert_eq!(color_names("#CC79A7")[0], "pink");
+        assert!(!color_names("#cc79a7").contains(&"purple"), "it looks pink");
+        assert_eq!(color_names("#777777"), ["grey", "gray"]);
+        assert_eq!(color_names("#000"), ["black"]);
+        assert!(color_names("#123456").is_empty());
+        for (c, names) in COLOR_NAMES {
+            assert_eq!(color_names(c), names);
+            for n in names {
+                assert!(COLOR_WORDS.contains(n), "{n} is looked for");
+            }
+        }
     }
 
     #[test]

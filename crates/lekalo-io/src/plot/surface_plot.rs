@@ -98,16 +98,16 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
     fig.axes = false;
     fig.size = (560.0, 440.0);
     let (nu, nv) = (grid.nu, grid.nv);
-    let pts: Vec<[f64; 3]> = (0..nu)
+    let mut pts: Vec<[f64; 3]> = (0..nu)
         .flat_map(|i| (0..nv).map(move |j| (i, j)))
         .map(|(i, j)| grid.point3(i, j))
         .collect();
-    let at = |i: usize, j: usize| pts[i * nv + j];
+
     let finite = |p: &[f64; 3]| p.iter().all(|x| x.is_finite());
     // bounding box of the finite points (and of the net)
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    let net_pts: Vec<[f64; 3]> = net
+    let mut net_pts: Vec<[f64; 3]> = net
         .map(|n| {
             (0..n.nu)
                 .flat_map(|i| (0..n.nv).map(move |j| (i, j)))
@@ -124,6 +124,13 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
     if !lo[0].is_finite() {
         return fig;
     }
+    // a flat surface is drawn with its heights stretched (the z ticks keep the true values)
+    let zscale = z_stretch(lo, hi);
+    for p in pts.iter_mut().chain(net_pts.iter_mut()) {
+        p[2] *= zscale;
+    }
+    lo[2] *= zscale;
+    hi[2] *= zscale;
     // colours span the surface's heights (the net may reach beyond them)
     let (zlo, zhi) = pts
         .iter()
@@ -161,6 +168,7 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
         }
         Some(0.25 * sum)
     };
+    let at = |i: usize, j: usize| pts[i * nv + j];
     let [r, u, t] = proj.frame();
     let light = {
         let l = [
@@ -235,7 +243,7 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
     }
     faces.sort_by(|a, b| a.0.total_cmp(&b.0));
     if opts.axes {
-        axes_3d(&mut fig, proj, lo, hi);
+        axes_3d(&mut fig, proj, lo, hi, zscale);
     }
     fig.faces.extend(faces.into_iter().map(|(_, f)| f));
     match field {
@@ -248,18 +256,19 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
         _ if opts.shaded && zspan > 0.0 => {
             fig.colorbar = Some(ColorBar {
                 label: "z".into(),
-                range: (zlo, zhi),
+                range: (zlo / zscale, zhi / zscale),
             });
         }
         _ => {}
     }
     if let Some(n) = net {
         let mut paths = Vec::with_capacity(n.nu + n.nv);
+        let at = |i: usize, j: usize| proj.project(net_pts[i * n.nv + j]);
         for i in 0..n.nu {
-            paths.push((0..n.nv).map(|j| proj.project(n.point3(i, j))).collect());
+            paths.push((0..n.nv).map(|j| at(i, j)).collect());
         }
         for j in 0..n.nv {
-            paths.push((0..n.nu).map(|i| proj.project(n.point3(i, j))).collect());
+            paths.push((0..n.nu).map(|i| at(i, j)).collect());
         }
         let mut s = Series::new(Some("control net"), Vec::new(), Style::Dashed, "#555555");
         s.paths = paths;
@@ -271,9 +280,36 @@ pub fn surface_plot(grid: &Grid<'_>, net: Option<&Grid<'_>>, opts: &SurfacePlot)
     fig
 }
 
+/// The factor that stretches the heights of a flat surface so that its box is at least
+/// [`MIN_BOX_HEIGHT`] as tall as it is wide: 1, or a round 1, 2, 2.5, 4 or 5 × 10^k (matplotlib's
+/// 3-D axes, by comparison, scale every axis to a cube).
+fn z_stretch(lo: [f64; 3], hi: [f64; 3]) -> f64 {
+    let wide = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let tall = hi[2] - lo[2];
+    if !(tall > 0.0 && wide.is_finite()) || tall >= MIN_BOX_HEIGHT * wide {
+        return 1.0;
+    }
+    let want = MIN_BOX_HEIGHT * wide / tall;
+    let mag = 10f64.powf(want.log10().floor());
+    [1.0, 2.0, 2.5, 4.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|f| *f >= want)
+        .filter(|f| f.is_finite())
+        .unwrap_or(1.0)
+}
+
+/// Least height of the plotted box relative to its width ([`z_stretch`]).
+const MIN_BOX_HEIGHT: f64 = 0.4;
+
+/// Least distance on the page between two tick labels of the vertical axis, pixels (a line
+/// of the 12 px font).
+const TICK_GAP: f64 = 18.0;
+
 /// The floor of the bounding box, its vertical edge at the back, ticks with values on the
 /// front floor edges and on the vertical edge, and the axis names; drawn behind the surface.
-fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3]) {
+/// Heights are drawn `zscale` times their value ([`z_stretch`]); the ticks show the values.
+fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3], zscale: f64) {
     let t = proj.frame()[2];
     // the back corner is the one farther from the eye
     let back = |k: usize| if t[k] > 0.0 { lo[k] } else { hi[k] };
@@ -344,14 +380,61 @@ fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3]) {
             (xz - 0.5 * (lo[0] + hi[0])).signum() * d,
             (yz - 0.5 * (lo[1] + hi[1])).signum() * d,
         );
-        for v in nice_ticks(lo[2], hi[2]) {
-            let (a, b) = (pr([xz, yz, v]), pr([xz + dx, yz + dy, v]));
+        // pixels per unit on the page, as the figure will be laid out (the plot's width and
+        // height over the projected box, padded by 5 % a side)
+        let corners: Vec<[f64; 2]> = (0..8)
+            .map(|k| {
+                pr([
+                    if k & 1 == 0 { lo[0] } else { hi[0] },
+                    if k & 2 == 0 { lo[1] } else { hi[1] },
+                    if k & 4 == 0 { lo[2] } else { hi[2] },
+                ])
+            })
+            .collect();
+        let extent = |k: usize| {
+            let (a, b) = corners
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p[k]), b.max(p[k]))
+                });
+            (b - a).max(1e-300)
+        };
+        let (pw, ph) = (fig.size.0 - 80.0, fig.size.1 - 98.0);
+        let px = (pw / extent(0)).min(ph / extent(1)) / 1.1;
+        // page distance of a height above the floor
+        let rise = |v: f64| (v * zscale - lo[2]) * proj.frame()[1][2] * px;
+        let ticks = nice_ticks(lo[2] / zscale, hi[2] / zscale);
+        let step = if ticks.len() > 1 {
+            rise(ticks[1]) - rise(ticks[0])
+        } else {
+            f64::INFINITY
+        };
+        // every k-th round value, a line apart; none at the floor, where the floor's own tick
+        // labels stand
+        let every = (TICK_GAP / step.max(f64::MIN_POSITIVE))
+            .ceil()
+            .clamp(1.0, 64.0);
+        // at most 64, so the cast is exact
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let every = every as usize;
+        let top_index = ticks.len().saturating_sub(1);
+        for (k, v) in ticks.iter().enumerate() {
+            // the highest tick is kept, the others counted down from it
+            if (top_index - k) % every != 0 || rise(*v) < TICK_GAP {
+                continue;
+            }
+            let (a, b) = (pr([xz, yz, v * zscale]), pr([xz + dx, yz + dy, v * zscale]));
             edges.push([a, b]);
             let (anchor, offset) = place(b);
-            notes.push((b, (offset.0, 4.0), fmt_tick(v), anchor));
+            notes.push((b, (offset.0, 4.0), fmt_tick(*v), anchor));
         }
         let m = pr([xz, yz, hi[2]]);
-        notes.push((m, (0.0, -8.0), "z".into(), "middle"));
+        let name = if zscale == 1.0 {
+            "z".to_string()
+        } else {
+            format!("z (drawn ×{})", fmt_tick(zscale))
+        };
+        notes.push((m, (0.0, -8.0 - TICK_GAP / 2.0), name, "middle"));
     }
     fig.faces.push(Face {
         points: Vec::new(),

@@ -342,13 +342,24 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             let window = corner_window(window)?;
             let (pts, _) = crate::io::read_points(polyline)?;
             let s = smooth_polyline_corners(pts.as_view(), window, *k)?;
-            write_curve(
-                &Object::BSpline(s.into_curve()),
-                Some(&pts),
-                out,
-                std::slice::from_ref(polyline),
-                v,
-            )
+            let obj = Object::BSpline(s.into_curve());
+            let inputs = std::slice::from_ref(polyline);
+            let format = crate::io::format_of(out.to.as_deref(), out.output.as_deref(), "json");
+            if format == "svg" || format == "png" {
+                // the control polygon runs along the straight parts, under the curve: the figure
+                // shows the curve over its polyline instead
+                let fig = lekalo_io::curve_figure(
+                    &obj,
+                    &lekalo_io::CurvePlot {
+                        control_polygon: false,
+                        data_points: Some(&pts),
+                        ..lekalo_io::CurvePlot::default()
+                    },
+                )?;
+                let bytes = crate::io::encode(&fig, &format, 2.0)?;
+                return crate::io::emit(out.output.as_deref(), &bytes, inputs, v);
+            }
+            write_curve(&obj, Some(&pts), out, inputs, v)
         }
         BlendOp::Corner {
             before,

@@ -12,6 +12,9 @@ pub enum Style {
     Dashed,
     /// A marker at every point (data and control points).
     Markers,
+    /// A small filled dot at every point: many data points under the curves fitted to them,
+    /// drawn first so that the curves stay visible over them.
+    Dots,
     /// Short vertical ticks at every point (knots on a number line).
     Ticks,
 }
@@ -69,6 +72,7 @@ impl Series {
             Style::Line | Style::Ticks => 2.0,
             Style::Dashed => 1.2,
             Style::Markers => 1.8,
+            Style::Dots => 1.0,
         }
     }
 

@@ -41,6 +41,32 @@ pub(super) fn one_sided(a: &[Vec<[f64; 2]>], b: &[Vec<[f64; 2]>], lines: bool, s
     worst
 }
 
+/// Does the segment `[a, b]` meet the box `[x0, y0, x1, y1]`? (Liang–Barsky clipping.)
+pub(super) fn seg_hits_box(a: [f64; 2], b: [f64; 2], bx: [f64; 4]) -> bool {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-dx, a[0] - bx[0]),
+        (dx, bx[2] - a[0]),
+        (-dy, a[1] - bx[1]),
+        (dy, bx[3] - a[1]),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    t0 <= t1
+}
+
 /// Bounding box `(xmin, xmax, ymin, ymax)` of paths.
 pub(super) fn bbox(paths: &[Vec<[f64; 2]>]) -> (f64, f64, f64, f64) {
     paths.iter().flatten().fold(
@@ -65,7 +91,7 @@ impl Figure {
             .into_iter()
             .map(|(i, j)| {
                 let (a, b) = (&self.series[i], &self.series[j]);
-                let lines = b.style != Style::Markers;
+                let lines = !matches!(b.style, Style::Markers | Style::Dots);
                 Coincidence {
                     hidden: a.label.clone().unwrap_or_default(),
                     over: b.label.clone().unwrap_or_default(),
@@ -91,7 +117,7 @@ impl Figure {
         let boxes: Vec<_> = page.iter().map(|p| bbox(p)).collect();
         let kind = |s: &Series| match s.style {
             Style::Line | Style::Dashed => Some(true),
-            Style::Markers => Some(false),
+            Style::Markers | Style::Dots => Some(false),
             Style::Ticks => None,
         };
         let mut out = Vec::new();

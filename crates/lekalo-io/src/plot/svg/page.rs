@@ -2,7 +2,7 @@
 //! maps it to the page, with the room the legend and colour bar take.
 
 use super::figure::Figure;
-use super::ticks::{fmt_tick, nice_ticks};
+use super::ticks::{fmt_legend, fmt_tick, nice_ticks};
 use crate::layout::{
     place_legend, text_width, LegendPlace, LEGEND_FONT, LEGEND_ROW, LEGEND_SAMPLE,
 };
@@ -106,6 +106,11 @@ impl Figure {
             let labels = nice_ticks(c.range.0, c.range.1)
                 .into_iter()
                 .map(|v| text_width(&fmt_tick(v), FONT))
+                .chain(
+                    [c.range.0, c.range.1]
+                        .into_iter()
+                        .map(|v| text_width(&fmt_legend(v), FONT)),
+                )
                 .chain([text_width(&c.label, FONT) - BAR - 6.0])
                 .fold(0.0_f64, f64::max);
             20.0 + BAR + 6.0 + labels + 8.0

@@ -50,6 +50,9 @@ pub(crate) const PLOT_MAX_VERTICES: usize = 20_000;
 /// markers are left out and the legend says so.
 pub(crate) const PLOT_MAX_MARKERS: usize = 2_000;
 
+/// Most data points drawn as open markers; more are drawn as small dots.
+pub(crate) const MAX_OPEN_MARKERS: usize = 20;
+
 /// Every k-th of `n` indices (first and last kept) so that at most `max` remain.
 pub(super) fn decimated(n: usize, max: usize) -> impl Iterator<Item = usize> {
     let k = n.div_ceil(max.max(2) - 1).max(1);
@@ -58,7 +61,8 @@ pub(super) fn decimated(n: usize, max: usize) -> impl Iterator<Item = usize> {
         .chain((n > 0 && (n - 1) % k != 0).then_some(n - 1))
 }
 
-/// Plot of a curve: the curve over its domain, its control polygon, knot marks and data points.
+/// Plot of a curve: the curve over its domain, its control polygon, knot marks and data points
+/// (drawn under the curve: open markers, or small dots beyond 20 points).
 /// Huge objects are decimated: at most 20,000 vertices of a control polygon and 2,000 markers
 /// per series are drawn.
 ///
@@ -99,6 +103,20 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
                 .push(Series::new(None, m, Style::Markers, "#777777"));
         }
     }
+    if let Some(data) = opts.data_points {
+        // under the curve, so that the curve shows over them; many as small dots, so that
+        // they do not cover it between them
+        let pts: Vec<[f64; 2]> = decimated(data.len(), PLOT_MAX_MARKERS)
+            .map(|i| to_plane(data.point(i), proj))
+            .collect();
+        let style = if pts.len() > MAX_OPEN_MARKERS {
+            Style::Dots
+        } else {
+            Style::Markers
+        };
+        fig.series
+            .push(Series::new(Some("data points"), pts, style, PALETTE[2]));
+    }
     fig.series
         .push(Series::new(Some("curve"), curve, Style::Line, PALETTE[0]));
     if opts.knot_marks {
@@ -119,17 +137,6 @@ pub fn curve_figure(obj: &Object, opts: &CurvePlot<'_>) -> lekalo::Result<Figure
             marks,
             Style::Markers,
             PALETTE[1],
-        ));
-    }
-    if let Some(data) = opts.data_points {
-        let pts = decimated(data.len(), PLOT_MAX_MARKERS)
-            .map(|i| to_plane(data.point(i), proj))
-            .collect();
-        fig.series.push(Series::new(
-            Some("data points"),
-            pts,
-            Style::Markers,
-            PALETTE[2],
         ));
     }
     fig.axis_labels = if obj.dim() == 2 {
@@ -212,7 +219,8 @@ pub fn residual_series(
 /// Graphs of the B-spline basis functions `N_{i,p}(t)`, `i = 0 … n`, over the whole knot range
 /// `[t_0, t_m]` by the Cox–de Boor table ([`basis_functions_full_range`]; document 002, B-splines;
 /// P&T eq. 2.5), with the valid
-/// domain `[t_p, t_{n+1}]` shaded (there, and only there, `Σ N_{i,p} = 1`).
+/// domain `[t_p, t_{n+1}]` shaded (there, and only there, `Σ N_{i,p} = 1`). Each function is
+/// drawn over its support, the zero line once; the domain's label stands where no graph is.
 ///
 /// # Errors
 /// [`lekalo::Error::Degree`] if the knots are too few for `degree`; other errors of
@@ -252,8 +260,19 @@ pub fn basis_figure(knots: &KnotVector, degree: usize, samples: usize) -> lekalo
     }
     for (i, pts) in graphs.into_iter().enumerate() {
         let label = format!("N{i},{degree}");
-        fig.series.push(Series::nth(Some(&label), pts, i));
+        // each function over its support, from and back to the axis: the zero line they all
+        // share outside it is drawn once, under none of them
+        let first = pts.iter().position(|p| p[1] != 0.0).unwrap_or(0);
+        let last = pts
+            .iter()
+            .rposition(|p| p[1] != 0.0)
+            .unwrap_or(pts.len() - 1);
+        let own = pts[first.saturating_sub(1)..=(last + 1).min(pts.len() - 1)].to_vec();
+        fig.series.push(Series::nth(Some(&label), own, i));
     }
+    let mut axis = Series::new(None, vec![[lo, 0.0], [hi, 0.0]], Style::Dashed, "#888888");
+    axis.dash = Some(String::new());
+    fig.series.push(axis);
     let ticks: Vec<[f64; 2]> = k.iter().map(|&t| [t, 0.0]).collect();
     fig.series
         .push(Series::new(None, ticks, Style::Ticks, "#000000"));

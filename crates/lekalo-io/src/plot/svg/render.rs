@@ -3,11 +3,14 @@ use std::fmt::Write as _;
 
 use super::figure::{ColorBar, Figure, Series, Style};
 use super::page::*;
-use super::ticks::{fmt_tick, nice_ticks};
+use super::ticks::{fmt_legend, fmt_tick, nice_ticks};
 use crate::layout::{
     text_extent, text_width, LegendPlace, LEGEND_FONT, LEGEND_GAP, LEGEND_ROW, LEGEND_SAMPLE,
 };
 use crate::palette::{height_color, Marker};
+
+/// The attribute of tick labels, so that the figure check can tell them from other texts.
+const TICK: &str = r#" class="tick""#;
 
 /// Writes a `<text>` element with its estimated box as `data-bbox="x y w h"`.
 pub(super) fn text(
@@ -112,14 +115,15 @@ impl Figure {
                 f.tx(*a),
                 f.tx(*b) - f.tx(*a),
             );
+            let (x, y) = self.free_spot(&f, label, (f.tx(*a), f.tx(*b)));
             text(
                 &mut s,
-                0.5 * (f.tx(*a) + f.tx(*b)),
-                top + 14.0,
+                x,
+                y,
                 "middle",
                 FONT,
                 label,
-                r##" fill="#8a6d00""##,
+                r##" class="note" fill="#8a6d00""##,
             );
         }
         if self.axes {
@@ -167,7 +171,7 @@ impl Figure {
                 a.anchor,
                 FONT,
                 &a.text,
-                r##" fill="#444""##,
+                r##" class="note" fill="#444""##,
             );
         }
         if let Some(bar) = &self.colorbar {
@@ -178,12 +182,55 @@ impl Figure {
         s
     }
 
+    /// Where a label centred between the page abscissae `span` stands clear of every series:
+    /// the baseline `(x, y)` of the first free place, scanning from the top of the plot down
+    /// and from the middle of the span outward (the top middle if none is free).
+    pub(super) fn free_spot(&self, f: &Frame, label: &str, span: (f64, f64)) -> (f64, f64) {
+        let w = text_width(label, FONT);
+        let (asc, desc) = text_extent(FONT);
+        let segs: Vec<([f64; 2], [f64; 2])> = self
+            .series
+            .iter()
+            .flat_map(|s| s.paths.iter())
+            .flat_map(|p| {
+                let pts: Vec<[f64; 2]> = p.iter().map(|q| f.page(*q)).collect();
+                let mut v: Vec<_> = pts.windows(2).map(|w| (w[0], w[1])).collect();
+                if pts.len() == 1 {
+                    v.push((pts[0], pts[0]));
+                }
+                v
+            })
+            .collect();
+        // clear by 3 px of a line's middle (its half width and a little air)
+        let clear = |x0: f64, y0: f64| {
+            let bx = [x0 - 3.0, y0 - 3.0, x0 + w + 3.0, y0 + asc + desc + 3.0];
+            !segs
+                .iter()
+                .any(|(p, q)| super::overlap::seg_hits_box(*p, *q, bx))
+        };
+        let mid = 0.5 * (span.0 + span.1);
+        let room = (0.5 * (span.1 - span.0 - w)).max(0.0);
+        let mut y = f.top + 14.0;
+        while y + desc <= f.top + f.ph - 4.0 {
+            for k in 0..=8 {
+                for side in [1.0, -1.0] {
+                    let x = mid + side * room * f64::from(k) / 8.0;
+                    if clear(x - 0.5 * w, y - asc) {
+                        return (x, y);
+                    }
+                }
+            }
+            y += 6.0;
+        }
+        (mid, f.top + 14.0)
+    }
+
     /// Frame, ticks and axis names.
     pub(super) fn axes_svg(&self, s: &mut String, f: &Frame) {
         let (left, top, pw, ph) = (f.left, f.top, f.pw, f.ph);
         let _ = writeln!(
             s,
-            r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
+            r##"<rect class="frame" x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#888"/>"##
         );
         for v in nice_ticks(f.x0, f.x1) {
             let x = f.tx(v);
@@ -193,7 +240,7 @@ impl Figure {
                 top + ph,
                 top + ph + 5.0,
             );
-            text(s, x, top + ph + 18.0, "middle", FONT, &fmt_tick(v), "");
+            text(s, x, top + ph + 18.0, "middle", FONT, &fmt_tick(v), TICK);
         }
         for v in nice_ticks(f.y0, f.y1) {
             let y = f.ty(v);
@@ -202,11 +249,19 @@ impl Figure {
                 r##"<line x1="{:.2}" y1="{y:.2}" x2="{left}" y2="{y:.2}" stroke="#888"/>"##,
                 left - 5.0,
             );
-            text(s, left - 8.0, y + 4.0, "end", FONT, &fmt_tick(v), "");
+            text(s, left - 8.0, y + 4.0, "end", FONT, &fmt_tick(v), TICK);
         }
         let (xl, yl) = &self.axis_labels;
         if !xl.is_empty() {
-            text(s, left + pw / 2.0, top + ph + 36.0, "middle", FONT, xl, "");
+            text(
+                s,
+                left + pw / 2.0,
+                top + ph + 36.0,
+                "middle",
+                FONT,
+                xl,
+                r#" class="axis-label" data-axis="x""#,
+            );
         }
         if !yl.is_empty() {
             // rotated: the box of the turned text, for the checks
@@ -215,7 +270,7 @@ impl Figure {
             let (asc, desc) = text_extent(FONT);
             let _ = writeln!(
                 s,
-                r#"<text x="16" y="{cy:.2}" text-anchor="middle" transform="rotate(-90 16 {cy:.2})" data-bbox="{:.2} {:.2} {:.2} {wl:.2}">{}</text>"#,
+                r#"<text class="axis-label" data-axis="y" x="16" y="{cy:.2}" text-anchor="middle" transform="rotate(-90 16 {cy:.2})" data-bbox="{:.2} {:.2} {:.2} {wl:.2}">{}</text>"#,
                 16.0 - asc,
                 cy - wl / 2.0,
                 asc + desc,
@@ -244,7 +299,7 @@ impl Figure {
             escape(label),
             series.width()
         );
-        let dash = if over.is_some() && series.style != Style::Markers {
+        let dash = if over.is_some() && !matches!(series.style, Style::Markers | Style::Dots) {
             "5 5"
         } else {
             series.dash_pattern()
@@ -285,8 +340,8 @@ impl Figure {
                         }
                     }
                 }
-                Style::Markers => {
-                    let (r, fill) = if over.is_some() {
+                Style::Markers | Style::Dots => {
+                    let (r, fill) = if over.is_some() || series.style == Style::Dots {
                         (2.2, c.as_str())
                     } else {
                         (4.0, "white")
@@ -327,9 +382,9 @@ impl Figure {
             );
             let over = hidden.iter().any(|(_, j)| *j == i);
             match series.style {
-                Style::Markers => {
+                Style::Markers | Style::Dots => {
                     let m = series.marker.unwrap_or(Marker::Circle);
-                    let (r, fill) = if over {
+                    let (r, fill) = if over || series.style == Style::Dots {
                         (2.2, c.as_str())
                     } else {
                         (4.0, "white")
@@ -403,7 +458,7 @@ pub(super) fn colorbar_svg(s: &mut String, bar: &ColorBar, x: f64, top: f64, hei
     // rounded for the eye
     let _ = writeln!(
         s,
-        r#"<g class="colorbar" data-label="{}" data-range="{} {}">"#,
+        r#"<g class="colorbar" data-label="{}" data-bar="{x:.2} {top:.2} {BAR} {height:.2}" data-range="{} {}">"#,
         escape(&bar.label),
         crate::fmt_number(lo),
         crate::fmt_number(hi)
@@ -422,30 +477,52 @@ pub(super) fn colorbar_svg(s: &mut String, bar: &ColorBar, x: f64, top: f64, hei
         s,
         r##"<rect x="{x:.2}" y="{top:.2}" width="{BAR}" height="{height:.2}" fill="none" stroke="#888"/>"##
     );
-    if hi > lo {
-        for v in nice_ticks(lo, hi) {
-            let y = top + height * (hi - v) / (hi - lo);
-            let _ = writeln!(
-                s,
-                r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#888"/>"##,
-                x + BAR,
-                x + BAR + 4.0
-            );
-            text(s, x + BAR + 6.0, y + 4.0, "start", FONT, &fmt_tick(v), "");
-        }
-    } else {
-        text(
+    for (v, label) in colorbar_ticks(lo, hi, height) {
+        let y = if hi > lo {
+            top + height * (hi - v) / (hi - lo)
+        } else {
+            top + height / 2.0
+        };
+        let _ = writeln!(
             s,
-            x + BAR + 6.0,
-            top + height / 2.0 + 4.0,
-            "start",
-            FONT,
-            &fmt_tick(lo),
-            "",
+            r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#888"/>"##,
+            x + BAR,
+            x + BAR + 4.0
         );
+        text(s, x + BAR + 6.0, y + 4.0, "start", FONT, &label, TICK);
     }
-    text(s, x, top - 8.0, "start", FONT, &bar.label, "");
+    // the name a line above the top value
+    text(s, x, top - 12.0, "start", FONT, &bar.label, "");
     s.push_str("</g>\n");
+}
+
+/// The labelled ticks of a colour bar `height` pixels tall over `[lo, hi]`: both ends with
+/// their values (four significant digits), and the round values between them that stand at
+/// least a line (1.5 × the font size) from the ends and from each other.
+pub(super) fn colorbar_ticks(lo: f64, hi: f64, height: f64) -> Vec<(f64, String)> {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return vec![(lo, fmt_legend(lo))];
+    }
+    let line = 1.5 * FONT;
+    let y = |v: f64| height * (hi - v) / (hi - lo);
+    let mut out = vec![(hi, fmt_legend(hi))];
+    let inner: Vec<f64> = nice_ticks(lo, hi)
+        .into_iter()
+        .filter(|v| y(*v) >= line && y(*v) <= height - line)
+        .collect();
+    // every k-th round value, so that neighbours stand a line apart
+    let gap = if inner.len() > 1 {
+        (y(inner[0]) - y(inner[1])).abs()
+    } else {
+        height
+    };
+    let every = (line / gap.max(f64::MIN_POSITIVE)).ceil().max(1.0);
+    // a count of ticks (at most 50), so the cast is exact
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let every = every.min(64.0) as usize;
+    out.extend(inner.into_iter().step_by(every).map(|v| (v, fmt_tick(v))));
+    out.push((lo, fmt_legend(lo)));
+    out
 }
 
 /// Escapes text for SVG/HTML.

@@ -111,26 +111,35 @@ fn knot_and_curve_figures() {
     let labels: Vec<_> = fig.series.iter().filter_map(|s| s.label.clone()).collect();
     assert_eq!(
         labels,
-        ["control polygon", "curve", "points at knots", "data points"]
+        ["control polygon", "data points", "curve", "points at knots"],
+        "the data under the curve"
     );
     // knot marks at the distinct knots 0, 0.5, 1 of the domain
-    assert_eq!(fig.series[3].paths[0].len(), 3);
-    assert_eq!(fig.series[2].paths[0].len(), 11);
+    assert_eq!(fig.series[4].paths[0].len(), 3);
+    assert_eq!(fig.series[3].paths[0].len(), 11);
     assert!(fig.to_svg().contains("NURBS curve of degree 2"));
+}
+
+/// The figure check of a figure without a caption.
+fn lekalo_io_check(svg: &str) -> Vec<String> {
+    crate::check_svg(svg, None)
 }
 
 #[test]
 fn basis_plot_of_the_lecture() {
     let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]).unwrap();
     let fig = basis_figure(&kv, 2, 31).unwrap();
-    // three basis functions, the knot ticks, the shaded domain [1, 2]
-    assert_eq!(fig.series.len(), 4);
+    // three basis functions, the zero line, the knot ticks, the shaded domain [1, 2]
+    assert_eq!(fig.series.len(), 5);
     assert_eq!(fig.band.as_ref().map(|b| (b.0, b.1)), Some((1.0, 2.0)));
     // N_{1,2}(1.5) = 3/4 (document 002, B-splines): sample 15 is t = 1.5
     assert_eq!(fig.series[1].paths[0][15], [1.5, 0.75]);
     let svg = fig.to_svg();
     assert!(svg.starts_with("<svg") && svg.ends_with("</svg>\n"));
-    assert_eq!(svg.matches("<polyline").count(), 3);
+    assert_eq!(svg.matches("<polyline").count(), 4);
+    // N_{0,2} is drawn over its support [0, 2] only, back to the axis
+    assert_eq!(fig.series[0].paths[0].last(), Some(&[2.0, 0.0]));
+    assert_eq!(lekalo_io_check(&svg), Vec::<String>::new());
     assert!(basis_figure(&kv, 5, 10).is_err());
     assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
 }
