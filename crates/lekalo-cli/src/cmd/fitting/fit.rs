@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use lekalo::fit::{
-    closed_parameters, fit_tolerance, least_squares, periodic_least_squares,
+    closed_parameters, fit_tolerance_with_progress, least_squares, periodic_least_squares,
     periodic_smoothing_condition, place_knots, robust_least_squares, smoothing_condition,
     smoothing_spline, surface_grid_least_squares, surface_scattered_least_squares, CurveFit,
     Deviation, EndConstraints, FitData, Lambda, RobustLoss, ToleranceOptions,
@@ -156,7 +156,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
             a.out.output.as_deref(),
             v,
             &|pts: &Points| -> Result<Object> {
-                let (fit, _, _) = fit_curve(a, pts, None, "the group")?;
+                let (fit, _, _) = fit_curve(a, pts, None, "the group", Verbosity::Quiet)?;
                 Ok(Object::BSpline(fit.curve))
             },
         );
@@ -177,7 +177,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
     if a.periodic {
         return run_periodic(a, &pts, weights.as_deref(), &inputs, v);
     }
-    let (fit, report, shown) = fit_curve(a, &pts, weights.as_deref(), &name)?;
+    let (fit, report, shown) = fit_curve(a, &pts, weights.as_deref(), &name, v)?;
     finish(
         a,
         Object::BSpline(fit.curve.clone()),
@@ -196,6 +196,7 @@ fn fit_curve(
     pts: &Points,
     weights: Option<&[f64]>,
     name: &str,
+    v: Verbosity,
 ) -> Result<(CurveFit, Value, Points)> {
     // data: function samples (x, y…) or parametric points
     let (values, params) = if a.function {
@@ -245,7 +246,11 @@ fn fit_curve(
         if a.parameter_deviation {
             opts.deviation = Deviation::Parameter;
         }
-        let t = fit_tolerance(pts.as_view(), &opts)?;
+        // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
+        let large = pts.len() > 100_000;
+        let t = crate::cancel::with_progress("fitting to the tolerance", large, v, |p| {
+            fit_tolerance_with_progress(pts.as_view(), &opts, p)
+        })?;
         report["tol"] = json!(tol);
         report["max_deviation"] = json!(t.max_deviation);
         report["worst_index"] = json!(t.worst_index);
