@@ -232,24 +232,114 @@ fn intersect_pairs_self_and_plane() {
     let hits = j.as_array().unwrap();
     assert_eq!(hits.len(), 2, "{j}");
     assert!((hits[0]["point"][0].as_f64().unwrap() - 0.75).abs() < 1e-12);
+    assert_eq!(hits[0]["kind"], "crossing", "{j}");
     lekalo()
         .args(["intersect", "--self"])
         .arg(p(&d, "loop.json"))
         .assert()
         .success()
-        .stdout(contains("point,"));
+        .stdout(contains("crossing,"));
     lekalo()
         .args(["intersect", "--plane", "0,2,0,1"])
         .arg(p(&d, "poly.json"))
         .assert()
         .success()
-        .stdout(contains("point,"));
+        .stdout(contains("crossing,"));
     lekalo()
         .arg("intersect")
         .arg(p(&d, "poly.json"))
         .assert()
         .code(2)
         .stderr(contains("second curve"));
+}
+
+/// The tangent of the parabola y = x² at x = 1/2: y = x − 1/4 (exact in binary).
+const TANGENT: &str =
+    r#"{"lekalo": 1, "type": "bezier_curve", "control": [[-1, -1.25], [1, 0.75]]}"#;
+/// A cubic in the plane z = 2.
+const FLAT_CUBIC: &str = r#"{"lekalo": 1, "type": "bezier_curve",
+ "control": [[0, 0, 2], [1, 2, 2], [2, -1, 2], [3, 0.5, 2]]}"#;
+/// The same cubic's part over [1/4, 1] (de Casteljau, exact in binary), on [0, 1].
+const FLAT_PART: &str = r#"{"lekalo": 1, "type": "bezier_curve",
+ "control": [[0.75, 0.7109375, 2], [1.5, 0.78125, 2], [2.25, -0.625, 2], [3, 0.5, 2]]}"#;
+
+#[test]
+fn intersect_names_each_kind_of_contact() {
+    let d = dir_with(&[
+        ("parabola.json", PARABOLA),
+        ("tangent.json", TANGENT),
+        ("line.json", LINE),
+        ("poly.json", POLY),
+        ("flat.json", FLAT_CUBIC),
+        ("part.json", FLAT_PART),
+    ]);
+    // a tangent contact of order 1, exact: t = 3/4 on both
+    let j = json_of(
+        lekalo()
+            .args(["intersect", "--json"])
+            .arg(p(&d, "parabola.json"))
+            .arg(p(&d, "tangent.json")),
+    );
+    assert_eq!(j.as_array().unwrap().len(), 1, "{j}");
+    assert_eq!(j[0]["kind"], "tangent", "{j}");
+    assert_eq!(j[0]["order"], 1, "{j}");
+    assert_eq!(j[0]["t_a"].as_f64().unwrap(), 0.75, "{j}");
+    assert_eq!(j[0]["t_b"].as_f64().unwrap(), 0.75, "{j}");
+    // the text output names the kind in the first column
+    lekalo()
+        .arg("intersect")
+        .arg(p(&d, "parabola.json"))
+        .arg(p(&d, "tangent.json"))
+        .assert()
+        .success()
+        .stdout(contains("tangent,0.75,0.75,0.5,0.25"));
+    // the parabola's ends (∓1, 1) lie on the line y = 1: two contacts at end points
+    let j = json_of(
+        lekalo()
+            .args(["intersect", "--json"])
+            .arg(p(&d, "parabola.json"))
+            .arg(p(&d, "line.json")),
+    );
+    let kinds: Vec<&str> = j
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["end", "end"], "{j}");
+    // a cubic lying in the plane z = 2: one overlap over its whole domain
+    let j = json_of(
+        lekalo()
+            .args(["intersect", "--json", "--plane", "0,0,2,0,0,1"])
+            .arg(p(&d, "flat.json")),
+    );
+    assert_eq!(j, serde_json::json!([{"kind": "overlap", "t": [0.0, 1.0]}]));
+    // space curves sharing a stretch: an overlap with both parameter intervals
+    let j = json_of(
+        lekalo()
+            .args(["intersect", "--json"])
+            .arg(p(&d, "flat.json"))
+            .arg(p(&d, "part.json")),
+    );
+    assert_eq!(j.as_array().unwrap().len(), 1, "{j}");
+    assert_eq!(j[0]["kind"], "overlap", "{j}");
+    let num = |v: &serde_json::Value| v.as_f64().unwrap();
+    assert!(
+        (num(&j[0]["a"][0]) - 0.25).abs() < 1e-14 && num(&j[0]["a"][1]) == 1.0,
+        "{j}"
+    );
+    assert!(
+        num(&j[0]["b"][0]).abs() < 1e-14 && num(&j[0]["b"][1]) == 1.0,
+        "{j}"
+    );
+    // curves of different dimensions are refused
+    lekalo()
+        .arg("intersect")
+        .arg(p(&d, "flat.json"))
+        .arg(p(&d, "line.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("dimension"));
 }
 
 #[test]

@@ -5,7 +5,9 @@
 //! bounding boxes. Batches take and return NumPy arrays; the GIL is released around every
 //! computation.
 
-use lekalo::query::{CurveIntersection, DEFAULT_LENGTH_RTOL};
+use lekalo::query::{
+    Contact, CurveIntersection, PlaneIntersection, SurfaceIntersection, DEFAULT_LENGTH_RTOL,
+};
 use lekalo::{Points, QueryCurve, QuerySurface};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -85,28 +87,57 @@ fn projections(
     Ok((params, closest, distances))
 }
 
-/// `(t_a, t_b)` pairs and points of curve intersections, overlaps as intervals.
+/// A point answer as a dict: `kind` (the library's word for the contact), the parameters, the
+/// point, and `order` for a tangent contact or `gap` for a near miss.
+fn point_dict<'py>(
+    py: Python<'py>,
+    contact: Contact,
+    params: &[(&str, Bound<'py, PyAny>)],
+    point: &[f64],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", contact.name())?;
+    for (k, v) in params {
+        d.set_item(*k, v)?;
+    }
+    d.set_item("point", vec_array(py, point))?;
+    if let Some(order) = contact.order() {
+        d.set_item("order", order)?;
+    }
+    if let Contact::NearMiss { gap } = contact {
+        d.set_item("gap", gap)?;
+    }
+    Ok(d)
+}
+
+/// Curve–curve answers as dicts: points with `t_a`, `t_b`, overlaps with the intervals.
 fn intersections<'py>(
     py: Python<'py>,
     found: Vec<CurveIntersection>,
 ) -> PyResult<Bound<'py, PyList>> {
     let out = PyList::empty(py);
     for x in found {
-        let d = PyDict::new(py);
         match x {
-            CurveIntersection::Point { t_a, t_b, point } => {
-                d.set_item("kind", "point")?;
-                d.set_item("t_a", t_a)?;
-                d.set_item("t_b", t_b)?;
-                d.set_item("point", vec_array(py, &point))?;
+            CurveIntersection::Point {
+                t_a,
+                t_b,
+                point,
+                contact,
+            } => {
+                let params = [
+                    ("t_a", t_a.into_pyobject(py)?.into_any()),
+                    ("t_b", t_b.into_pyobject(py)?.into_any()),
+                ];
+                out.append(point_dict(py, contact, &params, &point)?)?;
             }
             CurveIntersection::Overlap { a, b } => {
-                d.set_item("kind", "overlap")?;
+                let d = PyDict::new(py);
+                d.set_item("kind", Contact::Overlap.name())?;
                 d.set_item("t_a", a)?;
                 d.set_item("t_b", b)?;
+                out.append(d)?;
             }
         }
-        out.append(d)?;
     }
     Ok(out)
 }
@@ -268,9 +299,11 @@ impl PyCurveQuery {
             .map_err(lib_err)
     }
 
-    /// Intersections with another planar curve within `tolerance`: a list of dicts,
-    /// `{"kind": "point", "t_a", "t_b", "point"}` or `{"kind": "overlap", "t_a": (a0, a1),
-    /// "t_b": (b0, b1)}` (`docs/theory/queries.md#intersections`).
+    /// Intersections with another curve of the same dimension within `tolerance`: a list of
+    /// dicts sorted along this curve, `{"kind", "t_a", "t_b", "point"}` with `kind` one of
+    /// `"crossing"`, `"tangent"` (and `"order"`, the order of contact), `"end"` (at an end
+    /// point of either curve) or `"near-miss"` (and `"gap"`), or `{"kind": "overlap", "t_a":
+    /// (a0, a1), "t_b": (b0, b1)}` (`docs/theory/queries.md#kinds-of-contact`).
     #[pyo3(signature = (other, tolerance = 1e-9))]
     fn intersect<'py>(
         &self,
@@ -298,48 +331,77 @@ impl PyCurveQuery {
         intersections(py, r)
     }
 
-    /// Intersections with the plane (a line in 2-D) through `origin` with `normal`:
-    /// `(t, points)` sorted by `t`.
+    /// Intersections with the plane (a line in 2-D) through `origin` with `normal`: a list of
+    /// dicts sorted by `t`, `{"kind", "t", "point"}` (`kind` `"crossing"`, `"tangent"` with
+    /// `"order"`, or `"end"`) or `{"kind": "overlap", "t": (t0, t1)}` where the curve lies in
+    /// the plane.
     fn intersect_plane<'py>(
         &self,
         py: Python<'py>,
         origin: &Bound<'py, PyAny>,
         normal: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    ) -> PyResult<Bound<'py, PyList>> {
         let (o, n) = (vec1(origin, "origin")?, vec1(normal, "normal")?);
         let r = py
             .detach(|| self.inner.intersect_plane(&o, &n))
             .map_err(lib_err)?;
-        let t: Vec<f64> = r.iter().map(|x| x.0).collect();
-        let p: Vec<f64> = r.iter().flat_map(|x| x.1.iter().copied()).collect();
-        Ok((
-            vec_array(py, &t),
-            array(py, p, &[t.len(), self.inner.dim()])?,
-        ))
+        let out = PyList::empty(py);
+        for x in r {
+            match x {
+                PlaneIntersection::Point { t, point, contact } => {
+                    let params = [("t", t.into_pyobject(py)?.into_any())];
+                    out.append(point_dict(py, contact, &params, &point)?)?;
+                }
+                PlaneIntersection::Overlap { t } => {
+                    let d = PyDict::new(py);
+                    d.set_item("kind", Contact::Overlap.name())?;
+                    d.set_item("t", t)?;
+                    out.append(d)?;
+                }
+            }
+        }
+        Ok(out)
     }
 
-    /// Intersections with a surface within `tolerance`: `(t, uv, points)` with shapes `(k,)`,
-    /// `(k, 2)`, `(k, dim)`.
+    /// Intersections with a surface within `tolerance`: a list of dicts sorted by `t`,
+    /// `{"kind", "t", "uv", "point"}` (`kind` as for `intersect`) or `{"kind": "overlap",
+    /// "t": (t0, t1), "uv": ((u0, v0), (u1, v1))}` where the curve lies on the surface.
     #[pyo3(signature = (surface, tolerance = 1e-9))]
     fn intersect_surface<'py>(
         &self,
         py: Python<'py>,
         surface: &Bound<'py, PySurfaceQuery>,
         tolerance: f64,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    ) -> PyResult<Bound<'py, PyList>> {
         let s = &surface.get().inner;
         let r = py
             .detach(|| self.inner.intersect_surface(s, tolerance))
             .map_err(lib_err)?;
-        let t: Vec<f64> = r.iter().map(|x| x.0).collect();
-        let uv: Vec<f64> = r.iter().flat_map(|x| [x.1 .0, x.1 .1]).collect();
-        let p: Vec<f64> = r.iter().flat_map(|x| x.2.iter().copied()).collect();
-        let k = t.len();
-        Ok((
-            vec_array(py, &t),
-            array(py, uv, &[k, 2])?,
-            array(py, p, &[k, self.inner.dim()])?,
-        ))
+        let out = PyList::empty(py);
+        for x in r {
+            match x {
+                SurfaceIntersection::Point {
+                    t,
+                    uv,
+                    point,
+                    contact,
+                } => {
+                    let params = [
+                        ("t", t.into_pyobject(py)?.into_any()),
+                        ("uv", uv.into_pyobject(py)?.into_any()),
+                    ];
+                    out.append(point_dict(py, contact, &params, &point)?)?;
+                }
+                SurfaceIntersection::Overlap { t, uv } => {
+                    let d = PyDict::new(py);
+                    d.set_item("kind", Contact::Overlap.name())?;
+                    d.set_item("t", t)?;
+                    d.set_item("uv", uv)?;
+                    out.append(d)?;
+                }
+            }
+        }
+        Ok(out)
     }
 
     /// The offset of a planar curve at signed distance `d` (to the left of the direction of

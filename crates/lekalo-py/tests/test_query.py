@@ -71,28 +71,6 @@ def test_project_all_and_invert():
         q.invert([0.0, 10.0], 1e-9)
 
 
-def test_intersections():
-    c = lekalo.CurveQuery(CIRCLE)
-    t, p = c.intersect_plane([0.0, 1.0], [0.0, 1.0])
-    assert len(t) == 2 and np.allclose(np.sort(p[:, 0]), [-np.sqrt(3), np.sqrt(3)], atol=1e-12)
-    line = lekalo.CurveQuery(lekalo.BSplineCurve(1, [0, 0, 1, 1], [[-3, 1], [3, 1]]))
-    hits = c.intersect(line)
-    assert len(hits) == 2 and all(h["kind"] == "point" for h in hits)
-    assert np.allclose(sorted(h["point"][0] for h in hits), [-np.sqrt(3), np.sqrt(3)], atol=1e-9)
-    # a figure-of-eight-like loop crosses itself once
-    loop = lekalo.interpolate(np.array([[0, 0], [2, 2], [3, 0], [2, -1], [1, 1], [0, 2]], float), 3)
-    selfx = lekalo.CurveQuery(loop).self_intersections()
-    assert len(selfx) == 1 and selfx[0]["t_a"] < selfx[0]["t_b"]
-    assert np.allclose(loop(selfx[0]["t_a"]), loop(selfx[0]["t_b"]), atol=1e-9)
-    # a vertical line through the plane z = xy
-    net = np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 1]]], float)
-    s = lekalo.SurfaceQuery(lekalo.BSplineSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], net))
-    seg = lekalo.CurveQuery(lekalo.BSplineCurve(1, [0, 0, 1, 1], [[0.5, 0.5, -1], [0.5, 0.5, 1]]))
-    t, uv, p = seg.intersect_surface(s)
-    assert len(t) == 1 and np.allclose(p[0], [0.5, 0.5, 0.25], atol=1e-9)
-    assert np.allclose(uv[0], [0.5, 0.5], atol=1e-9)
-
-
 def test_offset_polyline_curvature_bbox():
     q = lekalo.CurveQuery(CIRCLE)
     off = q.offset(0.5, 1e-6)

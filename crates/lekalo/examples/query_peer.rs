@@ -95,7 +95,10 @@ fn main() -> Result<(), lekalo::Error> {
     write(
         "lekalo_intersect.txt",
         hits.iter().fold(String::new(), |mut s, h| {
-            if let lekalo::query::CurveIntersection::Point { t_a, t_b, point } = h {
+            if let lekalo::query::CurveIntersection::Point {
+                t_a, t_b, point, ..
+            } = h
+            {
                 let _ = writeln!(s, "{t_a:e} {t_b:e} {:e} {:e}", point[0], point[1]);
             } else {
                 let _ = writeln!(s, "overlap {h:?}");

@@ -144,7 +144,10 @@ fn intersections_match_open_cascade() {
         let theirs = i["points"].as_array().expect("points");
         assert_eq!(ours.len(), theirs.len(), "{ours:?}");
         for (o, t) in ours.iter().zip(theirs) {
-            let CurveIntersection::Point { t_a, t_b, point } = o else {
+            let CurveIntersection::Point {
+                t_a, t_b, point, ..
+            } = o
+            else {
                 panic!("overlap where OCCT sees a point")
             };
             assert!(
@@ -225,7 +228,7 @@ proptest! {
     ) {
         let (ca, cb) = (cubic(&a), cubic(&b));
         for h in ca.intersect(&cb, 1e-9).expect("intersection") {
-            if let CurveIntersection::Point { t_a, t_b, point } = h {
+            if let CurveIntersection::Point { t_a, t_b, point, .. } = h {
                 prop_assert!(distance(&ca.point(t_a).expect("a"), &point) <= 1e-9, "on a");
                 prop_assert!(distance(&cb.point(t_b).expect("b"), &point) <= 1e-8, "on b");
             }

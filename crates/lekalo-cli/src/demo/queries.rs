@@ -57,7 +57,10 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
     let mut hits = Vec::new();
     let mut worst = 0.0_f64;
     for h in qs.intersect(&qc, 1e-10)? {
-        if let CurveIntersection::Point { t_a, t_b, point } = h {
+        if let CurveIntersection::Point {
+            t_a, t_b, point, ..
+        } = h
+        {
             let (a, b) = (qs.point(t_a)?, qc.point(t_b)?);
             worst = worst.max((a[0] - b[0]).hypot(a[1] - b[1]));
             hits.push([point[0], point[1]]);

@@ -40,7 +40,9 @@ mod tessellate;
 
 pub use bbox::SURFACE_BOX_RTOL;
 pub use curvature::{CurvatureExtremum, SurfaceCurvature, CURVATURE_EXTREMUM_RTOL};
-pub use intersect::{CurveIntersection, SurfaceHit};
+pub use intersect::{
+    Contact, CurveIntersection, PlaneIntersection, SurfaceIntersection, TOUCH_RTOL,
+};
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};

@@ -1,11 +1,12 @@
-//! `lekalo intersect`: planar curve–curve intersections, self-intersections, curve–plane.
+//! `lekalo intersect`: curve–curve intersections (planar and in space), self-intersections,
+//! curve–plane; every answer with the kind of contact the library names.
 
 use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use lekalo::query::CurveIntersection;
-use serde_json::json;
+use lekalo::query::{Contact, CurveIntersection, PlaneIntersection};
+use serde_json::{json, Map, Value};
 
 use crate::cmd::measure::query_curve;
 use crate::io::{bad_input, emit, load_one, numbers, BadInput};
@@ -14,11 +15,15 @@ use crate::Verbosity;
 /// Arguments of `lekalo intersect`.
 #[derive(Args, Debug)]
 #[command(after_help = "\
-Two planar curves: every crossing and touching point (parameters on both curves and the point)
-and every overlap (an interval on each). One curve with --self: its self-intersections. One curve
-with --plane: where it meets the plane through a point with a normal (any dimension).
+Two curves (planar, or both in space): every crossing, tangent contact, contact at an end point
+and near miss within the tolerance (parameters on both curves and the point), and every overlap
+(an interval on each). One planar curve with --self: its self-intersections. One curve with
+--plane: where it meets the plane through a point with a normal (any dimension), overlaps where
+it lies in the plane. Each answer names its kind: crossing, tangent (with its order of
+contact), end, near-miss (with its gap) or overlap.
 
-Output CSV rows: point,t_a,t_b,x,y  or  overlap,a0,a1,b0,b1.
+Output CSV rows: KIND,t_a,t_b,x,y  or  overlap,a0,a1,b0,b1  (--plane: KIND,t,,x,y,z  or
+overlap,t0,t1). --json adds order (tangent) and gap (near-miss).
 
 Examples:
   lekalo intersect a.json b.json
@@ -28,7 +33,7 @@ Examples:
 pub(crate) struct IntersectArgs {
     /// First curve.
     first: PathBuf,
-    /// Second curve (omit with --self or --plane).
+    /// Second curve, of the first one's dimension (omit with --self or --plane).
     second: Option<PathBuf>,
     /// Self-intersections of the first curve.
     #[arg(long = "self")]
@@ -51,7 +56,7 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
     let qa = query_curve(&load_one(&a.first, v)?, &a.first)?;
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.first.display()));
     let mut inputs = vec![a.first.clone()];
-    let hits: Vec<CurveIntersection> = if let Some(plane) = &a.plane {
+    let hits: Vec<Value> = if let Some(plane) = &a.plane {
         let nums = numbers(plane, "--plane")?;
         let d = qa.dim();
         if nums.len() != 2 * d {
@@ -63,59 +68,92 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
         }
         qa.intersect_plane(&nums[..d], &nums[d..])
             .map_err(bad)?
-            .into_iter()
-            .map(|(t, point)| CurveIntersection::Point {
-                t_a: t,
-                t_b: f64::NAN,
-                point,
-            })
+            .iter()
+            .map(plane_json)
             .collect()
     } else if a.self_ {
-        qa.self_intersections(a.tolerance).map_err(bad)?
+        qa.self_intersections(a.tolerance)
+            .map_err(bad)?
+            .iter()
+            .map(curves_json)
+            .collect()
     } else {
         let Some(second) = &a.second else {
             return bad_input("give a second curve, --self or --plane");
         };
         inputs.push(second.clone());
         let qb = query_curve(&load_one(second, v)?, second)?;
-        qa.intersect(&qb, a.tolerance).map_err(bad)?
+        qa.intersect(&qb, a.tolerance)
+            .map_err(bad)?
+            .iter()
+            .map(curves_json)
+            .collect()
     };
     let text = if a.json {
-        let j: Vec<_> = hits
-            .iter()
-            .map(|h| match h {
-                CurveIntersection::Point { t_a, t_b, point } => {
-                    if t_b.is_nan() {
-                        json!({"kind": "point", "t": t_a, "point": point})
-                    } else {
-                        json!({"kind": "point", "t_a": t_a, "t_b": t_b, "point": point})
-                    }
-                }
-                CurveIntersection::Overlap { a, b } => {
-                    json!({"kind": "overlap", "a": [a.0, a.1], "b": [b.0, b.1]})
-                }
-            })
-            .collect();
-        format!("{:#}\n", json!(j))
+        format!("{:#}\n", json!(hits))
     } else {
-        let mut s = String::new();
-        for h in &hits {
-            match h {
-                CurveIntersection::Point { t_a, t_b, point } => {
-                    let p: Vec<String> = point.iter().map(f64::to_string).collect();
-                    let tb = if t_b.is_nan() {
-                        String::new()
-                    } else {
-                        t_b.to_string()
-                    };
-                    s.push_str(&format!("point,{t_a},{tb},{}\n", p.join(",")));
-                }
-                CurveIntersection::Overlap { a, b } => {
-                    s.push_str(&format!("overlap,{},{},{},{}\n", a.0, a.1, b.0, b.1));
-                }
-            }
-        }
-        s
+        hits.iter().map(csv_row).collect()
     };
     emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+}
+
+/// The JSON object of a point answer: its kind, the given parameter fields and the point, then
+/// the order of a tangent contact or the gap of a near miss.
+fn point_json(contact: Contact, params: &[(&str, f64)], point: &[f64]) -> Value {
+    let mut m = Map::new();
+    m.insert("kind".into(), json!(contact.name()));
+    for (k, t) in params {
+        m.insert((*k).into(), json!(t));
+    }
+    m.insert("point".into(), json!(point));
+    if let Some(order) = contact.order() {
+        m.insert("order".into(), json!(order));
+    }
+    if let Contact::NearMiss { gap } = contact {
+        m.insert("gap".into(), json!(gap));
+    }
+    Value::Object(m)
+}
+
+fn curves_json(h: &CurveIntersection) -> Value {
+    match h {
+        CurveIntersection::Point {
+            t_a,
+            t_b,
+            point,
+            contact,
+        } => point_json(*contact, &[("t_a", *t_a), ("t_b", *t_b)], point),
+        CurveIntersection::Overlap { a, b } => {
+            json!({"kind": h.contact().name(), "a": [a.0, a.1], "b": [b.0, b.1]})
+        }
+    }
+}
+
+fn plane_json(h: &PlaneIntersection) -> Value {
+    match h {
+        PlaneIntersection::Point { t, point, contact } => point_json(*contact, &[("t", *t)], point),
+        PlaneIntersection::Overlap { t } => json!({"kind": h.contact().name(), "t": [t.0, t.1]}),
+    }
+}
+
+/// The CSV row of an answer's JSON object: the kind, then `t_a,t_b` (a plane: `t,`) and the
+/// point, or an overlap's interval ends.
+fn csv_row(h: &Value) -> String {
+    let num = |v: &Value| v.as_f64().map(|x| x.to_string()).unwrap_or_default();
+    let mut cells = vec![h["kind"].as_str().unwrap_or_default().to_string()];
+    if let Some(point) = h["point"].as_array() {
+        if h.get("t").is_some() {
+            cells.extend([num(&h["t"]), String::new()]);
+        } else {
+            cells.extend([num(&h["t_a"]), num(&h["t_b"])]);
+        }
+        cells.extend(point.iter().map(num));
+    } else {
+        for key in ["a", "b", "t"] {
+            if let Some(ends) = h[key].as_array() {
+                cells.extend(ends.iter().map(num));
+            }
+        }
+    }
+    cells.join(",") + "\n"
 }

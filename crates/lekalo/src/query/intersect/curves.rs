@@ -1,19 +1,19 @@
 //! Planar curve–curve intersections and self-intersections: the search of `planar.rs`, then
 //! its solutions grouped into answers (`docs/theory/queries.md#intersections`).
 
-use super::super::pieces::{check_tolerance, dist, QueryCurve};
+use super::super::pieces::{check_tolerance, dist, dot, QueryCurve};
 use super::super::project::CurveProjection;
 use super::planar::{overlapping_pairs, PlaneNets, Raw, Search, Sub};
-use super::CurveIntersection;
+use super::{Contact, CurveIntersection};
 use crate::error::{Error, Result};
 
 /// Step of the probes beside a solution, as a fraction of the first curve's domain: the gap
 /// there tells a crossing from a contact or an overlap.
 const PROBE: f64 = 1e-6;
 
-/// A solution in the curves' parameters: `t_a`, `t_b`, the gap, and, for a transversal
-/// crossing (see [`QueryCurve::assemble`]), the point in the search's frame.
-type Solution = (f64, f64, f64, Option<[f64; 2]>);
+/// A solution in the curves' parameters: `t_a`, `t_b`, the gap, and whether it is a transversal
+/// crossing (see [`QueryCurve::assemble`]).
+pub(super) type Solution = (f64, f64, f64, bool);
 
 impl QueryCurve {
     /// The common frame of two curves (the first one's centre, the larger scale) and both
@@ -53,8 +53,18 @@ impl QueryCurve {
     /// [`Error::Dimension`] unless both curves are planar; [`Error::InvalidArgument`] for a bad
     /// tolerance; [`Error::TooLarge`] if more than 2^20 sub-curve pairs would be examined.
     pub fn intersect(&self, other: &QueryCurve, tolerance: f64) -> Result<Vec<CurveIntersection>> {
-        self.check_planar(other)?;
         check_tolerance("intersection tolerance", tolerance)?;
+        if self.dim != 2 || other.dim != 2 {
+            if self.dim != other.dim {
+                return Err(Error::Dimension {
+                    what: "curves for an intersection",
+                    expected: self.dim,
+                    got: other.dim,
+                });
+            }
+            let solutions = self.space_solutions(other, tolerance)?;
+            return Ok(self.assemble(other, solutions, tolerance));
+        }
         let (na, nb, scale) = self.planar_frame(other);
         let tol = tolerance / scale;
         let boxes = |n: &PlaneNets| -> Vec<[f64; 4]> {
@@ -82,11 +92,11 @@ impl QueryCurve {
                     self.global(r.ka, r.s),
                     other.global(r.kb, r.u),
                     r.gap,
-                    transversal.then_some(r.point),
+                    transversal,
                 )
             })
             .collect();
-        Ok(self.assemble(other, solutions, tolerance, tol))
+        Ok(self.assemble(other, solutions, tolerance))
     }
 
     /// Self-intersections of a planar curve: each point where two different parameters meet,
@@ -161,12 +171,29 @@ impl QueryCurve {
             }
             out.push(r);
         }
+        // transversal as for two curves (the first-order gap at the probes); a contact of the
+        // curve with itself is named tangent, of order 1 (its order is not measured)
+        let h = PROBE * span;
+        let mut scratch = Vec::new();
         Ok(out
             .into_iter()
-            .map(|(t_a, t_b, _)| CurveIntersection::Point {
-                t_a,
-                t_b,
-                point: self.point(t_a).unwrap_or_default(),
+            .map(|(t_a, t_b, _)| {
+                let a = self.eval_global(t_a, 1, &mut scratch);
+                let b = self.eval_global(t_b, 1, &mut scratch);
+                let (da, db) = (&a[2..4], &b[2..4]);
+                let (la, lb) = (dot(da, da).sqrt(), dot(db, db).sqrt());
+                let sin = ((da[0] * db[1] - da[1] * db[0]) / (la * lb)).abs();
+                let contact = if la * h * sin >= 10.0 * tolerance {
+                    Contact::Crossing
+                } else {
+                    Contact::Tangent { order: 1 }
+                };
+                CurveIntersection::Point {
+                    t_a,
+                    t_b,
+                    point: a[..2].to_vec(),
+                    contact,
+                }
             })
             .collect())
     }
@@ -184,22 +211,24 @@ impl QueryCurve {
         Ok(())
     }
 
-    /// Groups solutions `(t_a, t_b, gap, transversal)` into answers. Sorted by `t_a`,
-    /// neighbours are joined when they are the same crossing (both transversal and their points
-    /// within `tolerance`, `frame_tol` in the frame of their points) or, when either is not transversal, when the curve between them stays
-    /// within `tolerance` of `other` (its middle is projected). A group of transversal
-    /// solutions is its point of least gap. Any other group, and a single solution whose gap
-    /// stays below `tolerance / 100` at the probes either side of it, is grown to where the gap
-    /// exceeds the tolerance: an overlap if the gap stays below `tolerance / 100` across it,
-    /// otherwise one contact at its least gap. A transversal crossing (angle `θ` between the
-    /// tangents) needs no probe: the gap there is `|A'|·h·sin θ` to first order, which the
-    /// caller has found to be at least `1000·tolerance / 100`.
-    fn assemble(
+    /// Groups solutions `(t_a, t_b, gap, transversal)` into answers
+    /// (`docs/theory/queries.md#kinds-of-contact`). Sorted by `t_a`, neighbours are joined when
+    /// they are the same crossing (both transversal and their points within `tolerance`) or,
+    /// when either is not transversal, when the curve between them stays within `tolerance` of
+    /// `other` (its middle is projected). A group of transversal solutions is one
+    /// [`Contact::Crossing`] (or [`Contact::End`]) at its least gap. Any other group, and a
+    /// single solution whose gap stays below `tolerance / 100` at the probes either side of it,
+    /// is grown to where the gap exceeds the tolerance: an overlap if the gap stays below
+    /// `tolerance / 100` across it (its ends put on the curves' end points they are at), otherwise
+    /// a contact at its least gap, refined and named by [`QueryCurve::classify_contact`]. A
+    /// transversal crossing (angle `θ` between the tangents) needs no probe: the gap there is
+    /// `|A'|·h·sin θ` to first order, which the caller has found to be at least
+    /// `1000·tolerance / 100`.
+    pub(super) fn assemble(
         &self,
         other: &QueryCurve,
         mut raw: Vec<Solution>,
         tolerance: f64,
-        frame_tol: f64,
     ) -> Vec<CurveIntersection> {
         raw.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
         let gap = |t: f64| -> (f64, CurveProjection) {
@@ -216,29 +245,36 @@ impl QueryCurve {
                 ),
             }
         };
-        let half_b = 0.5 * (other.domain().1 - other.domain().0);
+        let at = |t: f64| self.point(t).unwrap_or_default();
+        let on_b = |t: f64| other.point(t).unwrap_or_default();
+        // the branches: a solution joins the latest group whose last solution is the same
+        // crossing, or runs along the same stretch of both curves (the middles of the two steps,
+        // on each curve, within a quarter of the step, and the first curve between them within
+        // the tolerance of `other`), so that a crossing inside an overlap (a loop of a curve
+        // overlapping itself) stays apart
         let mut groups: Vec<Vec<Solution>> = Vec::new();
         for r in raw {
-            if let Some(g) = groups.last_mut() {
+            let found = groups.iter().rposition(|g| {
                 let last = g[g.len() - 1];
-                let same_b = (last.1 - r.1).abs() <= half_b;
-                let joined = same_b
-                    && match (last.3, r.3) {
-                        (Some(p), Some(q)) => dist(&p, &q) <= frame_tol,
-                        _ => gap(0.5 * (last.0 + r.0)).0 <= tolerance,
-                    };
-                if joined {
-                    g.push(r);
-                    continue;
+                if last.3 && r.3 {
+                    return dist(&at(last.0), &at(r.0)) <= tolerance;
                 }
+                let (ma, mb) = (at(0.5 * (last.0 + r.0)), on_b(0.5 * (last.1 + r.1)));
+                let step = dist(&at(last.0), &at(r.0)) + dist(&on_b(last.1), &on_b(r.1));
+                dist(&ma, &mb) <= 0.125 * step + tolerance
+                    && gap(0.5 * (last.0 + r.0)).0 <= tolerance
+            });
+            match found {
+                Some(i) => groups[i].push(r),
+                None => groups.push(vec![r]),
             }
-            groups.push(vec![r]);
         }
+        groups.sort_by(|x, y| x[0].0.total_cmp(&y[0].0));
         let (lo, hi) = self.domain();
         let mut out = Vec::new();
         for (gi, g) in groups.iter().enumerate() {
             let (mut a0, mut a1) = (g[0].0, g[g.len() - 1].0);
-            let transversal = g.iter().all(|r| r.3.is_some());
+            let transversal = g.iter().all(|r| r.3);
             // a single solution may still sit in an overlap or a tangential contact: the gap
             // stays tiny a little way to either side
             let probe = || {
@@ -250,12 +286,17 @@ impl QueryCurve {
             };
             if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
                 // grow to where the gap exceeds the tolerance (bisection, 60 steps each side)
-                let left_lim = if gi > 0 {
-                    groups[gi - 1][groups[gi - 1].len() - 1].0
-                } else {
-                    lo
-                };
-                let right_lim = groups.get(gi + 1).map_or(hi, |n| n[0].0);
+                // grown up to the nearest other group on either side
+                let others = groups.iter().enumerate().filter(|(i, _)| *i != gi);
+                let left_lim = others
+                    .clone()
+                    .map(|(_, n)| n[n.len() - 1].0)
+                    .filter(|t| *t < a0)
+                    .fold(lo, f64::max);
+                let right_lim = others
+                    .map(|(_, n)| n[0].0)
+                    .filter(|t| *t > a1)
+                    .fold(hi, f64::min);
                 a0 = grow(a0, left_lim, |t| gap(t).0 <= tolerance);
                 a1 = grow(a1, right_lim, |t| gap(t).0 <= tolerance);
                 let coincide = (1..10).all(|i| {
@@ -263,38 +304,166 @@ impl QueryCurve {
                     gap(t).0 <= tolerance / 100.0
                 });
                 if coincide {
-                    let (b0, b1) = (gap(a0).1.t, gap(a1).1.t);
+                    let (a0, b0) = self.overlap_end(other, a0, tolerance);
+                    let (a1, b1) = self.overlap_end(other, a1, tolerance);
                     out.push(CurveIntersection::Overlap {
                         a: (a0, a1),
                         b: (b0, b1),
                     });
                     continue;
                 }
-                // one contact: the least gap, by golden-section search on [a0, a1] (80 steps)
+                // one contact: the least gap, by golden-section search on [a0, a1] (80 steps),
+                // then refined on the tangency system
                 let t = golden_min(a0, a1, |t| gap(t).0);
                 let (_, pr) = gap(t);
-                out.push(CurveIntersection::Point {
-                    t_a: t,
-                    t_b: pr.t,
-                    point: self.point(t).unwrap_or_default(),
-                });
+                for (t_a, t_b, contact) in self.classify_contact(other, t, pr.t, tolerance) {
+                    out.push(CurveIntersection::Point {
+                        t_a,
+                        t_b,
+                        point: at(t_a),
+                        contact,
+                    });
+                }
                 continue;
             }
             let best = g.iter().fold(g[0], |b, r| if r.2 < b.2 { *r } else { b });
+            let point = at(best.0);
+            let contact = if transversal {
+                if self.at_an_end(other, &point, tolerance) {
+                    Contact::End
+                } else {
+                    Contact::Crossing
+                }
+            } else {
+                // a lone contact whose gap grows at once beside it: named as a contact
+                let found = self.classify_contact(other, best.0, best.1, tolerance);
+                for (t_a, t_b, contact) in found {
+                    out.push(CurveIntersection::Point {
+                        t_a,
+                        t_b,
+                        point: at(t_a),
+                        contact,
+                    });
+                }
+                continue;
+            };
             out.push(CurveIntersection::Point {
                 t_a: best.0,
                 t_b: best.1,
-                point: self.point(best.0).unwrap_or_default(),
+                point,
+                contact,
             });
         }
-        out
+        out.sort_by(|x, y| first_t(x).total_cmp(&first_t(y)));
+        merge_overlaps(out, self.domain(), other.domain())
+    }
+
+    /// An end of an overlap, found by bisection at `t` on this curve: put on the end point of
+    /// either curve it is at (within the tolerance along the curve), so that it is exact to
+    /// rounding rather than to the tolerance; returns `(t_a, t_b)`.
+    fn overlap_end(&self, other: &QueryCurve, t: f64, tolerance: f64) -> (f64, f64) {
+        let p = self.point(t).unwrap_or_default();
+        let (lo, hi) = self.domain();
+        let mut best: Option<(f64, f64, f64)> = None; // (distance, t_a, t_b)
+        let mut offer = |d: f64, ta: f64, tb: f64| {
+            if d <= 2.0 * tolerance && best.is_none_or(|b| d < b.0) {
+                best = Some((d, ta, tb));
+            }
+        };
+        for e in [lo, hi] {
+            if let Ok(q) = self.point(e) {
+                if let Ok(pr) = other.project(&q) {
+                    offer(dist(&p, &q), e, pr.t);
+                }
+            }
+        }
+        let (blo, bhi) = other.domain();
+        for e in [blo, bhi] {
+            if let Ok(q) = other.point(e) {
+                if let Ok(pr) = self.project(&q) {
+                    offer(dist(&p, &q), pr.t, e);
+                }
+            }
+        }
+        match best {
+            Some((_, ta, tb)) => (ta, tb),
+            None => (t, other.project(&p).map_or(f64::NAN, |pr| pr.t)),
+        }
+    }
+}
+
+/// Overlaps from several groups joined: two whose intervals meet (within `10⁻⁹` of the domain)
+/// on both curves are one; a point inside an overlap on the first curve whose parameter on the
+/// second is within 1% of that domain from the overlap's (linearly interpolated) is a part of it
+/// and dropped (a crossing of another branch, such as a loop's, stays).
+fn merge_overlaps(
+    answers: Vec<CurveIntersection>,
+    (lo, hi): (f64, f64),
+    (blo, bhi): (f64, f64),
+) -> Vec<CurveIntersection> {
+    let (ea, eb) = (1e-9 * (hi - lo), 1e-9 * (bhi - blo));
+    let meets = |x: (f64, f64), y: (f64, f64), e: f64| {
+        x.0.min(x.1) <= y.0.max(y.1) + e && y.0.min(y.1) <= x.0.max(x.1) + e
+    };
+    let mut overlaps: Vec<((f64, f64), (f64, f64))> = Vec::new();
+    for x in &answers {
+        if let CurveIntersection::Overlap { a, b } = x {
+            if let Some(o) = overlaps
+                .iter_mut()
+                .find(|o| meets(o.0, *a, ea) && meets(o.1, *b, eb))
+            {
+                // sorted by the start on the first curve: the later one extends the end
+                if a.1 > o.0 .1 {
+                    o.0 .1 = a.1;
+                    o.1 .1 = b.1;
+                }
+                continue;
+            }
+            overlaps.push((*a, *b));
+        }
+    }
+    let inside = |t_a: f64, t_b: f64| {
+        overlaps.iter().any(|(a, b)| {
+            if !(t_a >= a.0 - ea && t_a <= a.1 + ea) {
+                return false;
+            }
+            let f = if a.1 > a.0 {
+                (t_a - a.0) / (a.1 - a.0)
+            } else {
+                0.0
+            };
+            (t_b - (b.0 + f * (b.1 - b.0))).abs() <= 1e-2 * (bhi - blo)
+        })
+    };
+    let mut out: Vec<CurveIntersection> = answers
+        .into_iter()
+        .filter(|x| match x {
+            CurveIntersection::Point { t_a, t_b, .. } => !inside(*t_a, *t_b),
+            CurveIntersection::Overlap { .. } => false,
+        })
+        .collect();
+    out.extend(
+        overlaps
+            .into_iter()
+            .map(|(a, b)| CurveIntersection::Overlap { a, b }),
+    );
+    out.sort_by(|x, y| first_t(x).total_cmp(&first_t(y)));
+    out
+}
+
+/// The first parameter of an answer on the first curve (for sorting).
+fn first_t(x: &CurveIntersection) -> f64 {
+    match x {
+        CurveIntersection::Point { t_a, .. } => *t_a,
+        CurveIntersection::Overlap { a, .. } => a.0.min(a.1),
     }
 }
 
 /// Moves `from` towards `limit` while `ok` holds: steps doubling from `1e-12·|limit − from|`
-/// (at most 64) find the first point where it fails, then bisection (60 steps) the last point
-/// where it holds. Returns `from` when it fails at once.
-fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
+/// (at most 64) find the first point where it fails (when they reach the limit, 32 equal steps
+/// from the last good point to it), then bisection (60 steps) the last point where it holds.
+/// Returns `from` when it fails at once.
+pub(super) fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
     let span = limit - from;
     if span == 0.0 {
         return from;
@@ -317,8 +486,16 @@ fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
             break;
         }
     }
-    if reached && ok(limit) {
-        return limit;
+    if reached {
+        // the last step reached the limit: the limit holds only if the stretch before it does
+        // (a meeting of another branch at the limit is not this one), checked at 32 points
+        let first_bad = (1..=32)
+            .map(|i| good + (limit - good) * f64::from(i) / 32.0)
+            .find(|&t| !ok(t));
+        match first_bad {
+            None => return limit,
+            Some(t) => bad = t,
+        }
     }
     for _ in 0..60 {
         let m = 0.5 * (good + bad);
@@ -335,7 +512,7 @@ fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
 }
 
 /// Minimum of `f` on `[a, b]` by golden-section search, 80 steps.
-fn golden_min(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
+pub(super) fn golden_min(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let (mut a, mut b) = (a, b);
     let mut c = b - r * (b - a);
@@ -366,6 +543,7 @@ fn golden_min(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
 mod tests {
     use super::super::super::pieces::dist;
     use super::*;
+    use crate::query::PlaneIntersection;
     use crate::{BSplineCurve, NurbsCurve, Points};
 
     fn line(a: [f64; 2], b: [f64; 2]) -> QueryCurve {
@@ -432,7 +610,10 @@ mod tests {
         let hits = a.intersect(&shifted, 1e-10).unwrap();
         assert_eq!(hits.len(), 2, "{hits:?}");
         for h in hits {
-            let CurveIntersection::Point { t_a, t_b, point } = h else {
+            let CurveIntersection::Point {
+                t_a, t_b, point, ..
+            } = h
+            else {
                 panic!("not a point")
             };
             assert!(dist(&a.point(t_a).unwrap(), &point) < 1e-12, "on a");
@@ -476,10 +657,25 @@ mod tests {
         .unwrap()
     }
 
+    /// The roots of `y(t) = c` by the curve–plane root finder, as `(t, point)`.
+    fn height_roots(curve: &QueryCurve, c: f64) -> Vec<(f64, Vec<f64>)> {
+        curve
+            .intersect_plane(&[0.0, c], &[0.0, 1.0])
+            .unwrap()
+            .into_iter()
+            .map(|h| match h {
+                PlaneIntersection::Point { t, point, .. } => (t, point),
+                PlaneIntersection::Overlap { .. } => panic!("an overlap with y = {c}"),
+            })
+            .collect()
+    }
+
     fn points(hits: &[CurveIntersection]) -> Vec<(f64, f64, Vec<f64>)> {
         hits.iter()
             .map(|h| match h {
-                CurveIntersection::Point { t_a, t_b, point } => (*t_a, *t_b, point.clone()),
+                CurveIntersection::Point {
+                    t_a, t_b, point, ..
+                } => (*t_a, *t_b, point.clone()),
                 CurveIntersection::Overlap { .. } => {
                     panic!("overlap where a point is expected: {hits:?}")
                 }
@@ -598,7 +794,7 @@ mod tests {
             &BSplineCurve::new(3, knots, Points::from_2d(ctrl).unwrap()).unwrap(),
         )
         .unwrap();
-        let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+        let roots = height_roots(&curve, c);
         assert_eq!(roots.len(), expected, "{roots:?}");
         let line = bezier(&[[-30.0, c], [30.0, c]]);
         let hits = points(&curve.intersect(&line, 1e-9).unwrap());
@@ -675,7 +871,7 @@ mod tests {
                 &BSplineCurve::new(3, knots, Points::from_2d(&ctrl).unwrap()).unwrap(),
             )
             .unwrap();
-            let roots = curve.intersect_plane(&[0.0, c], &[0.0, 1.0]).unwrap();
+            let roots = height_roots(&curve, c);
             // only clear crossings: slope of y well away from zero, roots apart
             let slope = |t: f64| {
                 let h = 1e-7;

@@ -377,9 +377,8 @@ impl Sub {
     }
 }
 
-/// A solution of `A(s) = B(u)` on pieces `ka`, `kb` (local parameters), with its gap, the point
-/// `A(s)` (frame), the sine of the angle between the tangents there and `|A'|` (frame units per
-/// local parameter).
+/// A solution of `A(s) = B(u)` on pieces `ka`, `kb` (local parameters), with its gap, the sine
+/// of the angle between the tangents there and `|A'|` (frame units per local parameter).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Raw {
     pub(super) ka: usize,
@@ -387,7 +386,6 @@ pub(super) struct Raw {
     pub(super) kb: usize,
     pub(super) u: f64,
     pub(super) gap: f64,
-    pub(super) point: [f64; 2],
     pub(super) sin: f64,
     pub(super) speed_a: f64,
 }
@@ -707,7 +705,7 @@ impl<'a> Search<'a> {
         if !(gap <= self.tol) {
             return None;
         }
-        let (point, da) = self.a.eval(x.k, s, &mut self.scratch);
+        let (_, da) = self.a.eval(x.k, s, &mut self.scratch);
         let (_, db) = self.b.eval(y.k, u, &mut self.scratch);
         let (la, lb) = (norm(da), norm(db));
         let sin = if la > 0.0 && lb > 0.0 {
@@ -721,7 +719,6 @@ impl<'a> Search<'a> {
             kb: y.k,
             u,
             gap,
-            point,
             sin,
             speed_a: la,
         })
