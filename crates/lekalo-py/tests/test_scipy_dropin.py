@@ -630,3 +630,18 @@ def test_ppoly_conversions_and_from_spline():
         ls.BPoly.from_derivatives([0, 1], [[0, 1], [1]])
     with pytest.raises(NotImplementedError):
         ls.PPoly(c, x[::-1].copy())(0.5)
+
+
+@pytest.mark.parametrize("cls", ["PPoly", "BPoly"])
+def test_ppoly_bpoly_see_coefficients_changed_in_place(cls):
+    c, x = pp_data(tail=(2,))
+    a, b = getattr(si, cls)(c.copy(), x.copy()), getattr(ls, cls)(c.copy(), x.copy())
+    close(b(XX), a(XX), 1e-10)
+    for p in (a, b):
+        p.c[:, 2] *= 3.0
+        p.x += 0.5
+    close(b(XX), a(XX), 1e-10)
+    close(b(XX, 1, extrapolate="periodic"), a(XX, 1, extrapolate="periodic"), 1e-9)
+    d = ls.PPoly(c, x).derivative()
+    d.c[-1] += 1.0
+    close(d(XX), si.PPoly(c, x).derivative()(XX) + 1.0, 1e-12)

@@ -142,6 +142,7 @@ class _PPolyBase:
     def c(self) -> np.ndarray:
         if self._c is None:
             self._c = self._read_coefficients()
+            self._source = (self._c, self.x, self._c.copy(), self.x.copy())
         return self._c
 
     @c.setter
@@ -150,18 +151,39 @@ class _PPolyBase:
         self._degree = value.shape[0] - 1
         self._spline_ = None
 
+    # what the spline was made from (c and x, and copies of them), so that coefficients or
+    # breakpoints changed in place after the first evaluation are seen, as in SciPy
+    _source = None
+    # lekalo's curve of the spline, made on the first evaluation
+    _curve_ = None
+
     @property
     def _spline(self) -> BSpline:
-        if self._spline_ is None:
+        s = self._spline_
+        if s is not None and self._source is not None:
+            c, x, c0, x0 = self._source
+            if not (self._c is c and self.x is x and np.array_equal(c, c0) and np.array_equal(x, x0)):
+                s = None
+        if s is None:
             _check_ascending(self.x, type(self).__name__)
             x, c = _pieces(self.x, self._c)
             tail = c.shape[2:]
             cc, complex_ = _columns(c)
             t, control = self._spline_form(x, cc)
-            self._spline_ = BSpline.construct_fast(
+            s = BSpline.construct_fast(
                 t, _from_columns(control, complex_).reshape((-1,) + tail), self._degree, axis=self.axis
             )
-        return self._spline_
+            self._spline_ = s
+            self._curve_ = None
+            self._source = (self._c, self.x, self._c.copy(), self.x.copy())
+        return s
+
+    def _lekalo_curve(self):
+        """lekalo's B-spline curve of ``_spline`` (real columns), kept between calls."""
+        s = self._spline
+        if self._curve_ is None or self._curve_[0] is not s:
+            self._curve_ = (s, _curve(s.t, _real_columns(s.c, s._n()), s.k))
+        return self._curve_[1]
 
     def _tail(self) -> tuple:
         return self._spline.c.shape[1:] if self._c is None else self._c.shape[2:]
@@ -179,7 +201,23 @@ class _PPolyBase:
             raise ValueError("Order of derivative cannot be negative")
         if nu > self._degree:
             return self.derivative(nu)(x, 0, extrapolate)
-        return self._spline(x, nu, extrapolate)
+        s = self._spline
+        n = s._n()
+        if not (extrapolate is True or extrapolate == "periodic") or s.k == 0 or nu > s.k or s.c.size == 0:
+            return s(x, nu, extrapolate)
+        xf = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+        if not np.isfinite(xf).all():
+            return s(x, nu, extrapolate)
+        # the common case without BSpline's checks: lekalo's curve, kept between calls
+        if extrapolate == "periodic":
+            xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
+        vals = self._lekalo_curve().eval_extrapolated(xf, nu)
+        out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
+        if self.axis != 0:
+            axes = list(range(out.ndim))
+            axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
+            out = out.transpose(axes)
+        return out
 
     def derivative(self, nu: int = 1):
         """The ``nu``-th derivative as a piecewise polynomial of the same class (order reduced
