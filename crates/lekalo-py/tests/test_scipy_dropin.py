@@ -645,3 +645,13 @@ def test_ppoly_bpoly_see_coefficients_changed_in_place(cls):
     d = ls.PPoly(c, x).derivative()
     d.c[-1] += 1.0
     close(d(XX), si.PPoly(c, x).derivative()(XX) + 1.0, 1e-12)
+
+
+@pytest.mark.parametrize("cls", ["PPoly", "BPoly"])
+def test_ppoly_bpoly_of_empty_values(cls):
+    x = np.array([0.0, 1.0, 2.0, 3.0])
+    a, b = getattr(si, cls)(np.zeros((4, 3, 0)), x), getattr(ls, cls)(np.zeros((4, 3, 0)), x)
+    close(b(XX), a(XX))
+    close(b.derivative().c, a.derivative().c)
+    close(b.antiderivative().c, a.antiderivative().c)
+    close(b.integrate(0.0, 2.0), a.integrate(0.0, 2.0))

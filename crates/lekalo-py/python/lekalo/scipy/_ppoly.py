@@ -48,7 +48,8 @@ def _spline_derivative(s: BSpline, nu: int) -> BSpline:
     curve = _curve(s.t, cols, s.k)
     for _ in range(nu):
         curve = curve.derivative()
-    c = _from_columns(np.asarray(curve.control), complex_).reshape((-1,) + s.c.shape[1:])
+    control = np.asarray(curve.control)
+    c = _from_columns(control, complex_).reshape((control.shape[0],) + s.c.shape[1:])
     return BSpline.construct_fast(np.asarray(curve.knots), c, s.k - nu, s.extrapolate, s.axis)
 
 
@@ -171,7 +172,7 @@ class _PPolyBase:
             cc, complex_ = _columns(c)
             t, control = self._spline_form(x, cc)
             s = BSpline.construct_fast(
-                t, _from_columns(control, complex_).reshape((-1,) + tail), self._degree, axis=self.axis
+                t, _from_columns(control, complex_).reshape((control.shape[0],) + tail), self._degree, axis=self.axis
             )
             self._spline_ = s
             self._curve_ = None
@@ -421,7 +422,7 @@ class BPoly(_PPolyBase):
     def _spline_form(x: np.ndarray, cc: np.ndarray):
         order = cc.shape[0]
         t = np.repeat(x, order)
-        return t, np.ascontiguousarray(cc.transpose(1, 0, 2)).reshape(-1, cc.shape[2])
+        return t, np.ascontiguousarray(cc.transpose(1, 0, 2)).reshape(cc.shape[0] * cc.shape[1], cc.shape[2])
 
     def _read_coefficients(self) -> np.ndarray:
         _check_ascending(self.x, "BPoly")
