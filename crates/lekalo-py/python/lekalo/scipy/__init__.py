@@ -15,11 +15,13 @@ periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, 
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
 ``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
 ``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
-``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box); in
-SciPy's ``PPoly`` form ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box);
+``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``,
+``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
+SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
-smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly``
-themselves, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
+smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
+breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
 ``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
@@ -31,7 +33,16 @@ from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep
 from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ndbspline import NdBSpline
-from ._ppoly import Akima1DInterpolator, CubicHermiteSpline, CubicSpline, PchipInterpolator, pchip, pchip_interpolate
+from ._ppoly import (
+    Akima1DInterpolator,
+    BPoly,
+    CubicHermiteSpline,
+    CubicSpline,
+    PchipInterpolator,
+    PPoly,
+    pchip,
+    pchip_interpolate,
+)
 from ._splrep import make_splprep, make_splrep
 
 __all__ = [
@@ -59,4 +70,6 @@ __all__ = [
     "pchip",
     "pchip_interpolate",
     "Akima1DInterpolator",
+    "PPoly",
+    "BPoly",
 ]

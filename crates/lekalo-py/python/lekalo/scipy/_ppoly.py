@@ -1,76 +1,501 @@
-"""The piecewise cubics of ``lekalo.scipy`` in SciPy's ``PPoly`` form: ``CubicSpline``,
-``CubicHermiteSpline``, ``PchipInterpolator``, ``Akima1DInterpolator``."""
+"""SciPy's piecewise polynomials in ``lekalo.scipy``: ``PPoly`` (local power basis),
+``BPoly`` (Bernstein basis) and the piecewise cubics in ``PPoly`` form, ``CubicSpline``,
+``CubicHermiteSpline``, ``PchipInterpolator``, ``Akima1DInterpolator``. Each is a lekalo
+B-spline underneath; this module only rearranges arrays."""
 
 from __future__ import annotations
 
 import math
+import operator
 from typing import Any
 
 import numpy as np
 
 from .. import _lekalo
-from ._bspline import BSpline, _as_float_array, _from_columns, _real_columns
+from ._bspline import BSpline, _as_float_array, _curve, _from_columns, _get_dtype, _real_columns
 from ._interpolate import make_interp_spline
 
 
-class _SplinePPoly:
-    """SciPy's ``PPoly`` interface (``x``, ``c``, ``axis``, ``extrapolate``, ``__call__``,
-    ``derivative``, ``antiderivative``, ``integrate``) over a lekalo B-spline that is the same
-    piecewise polynomial: evaluation, derivatives and integrals are lekalo's, and ``c`` (local
-    power coefficients, highest degree first) is read off lekalo's derivatives at the
-    breakpoints, ``c[k - m, i] = S^{(m)}(x_i+) / m!``."""
+def _pieces(x: np.ndarray, c: np.ndarray):
+    """The breakpoints and the coefficients of the pieces of positive length (SciPy accepts
+    repeated breakpoints, whose empty pieces are never evaluated; lekalo's are strictly
+    increasing)."""
+    keep = np.diff(x) > 0
+    if keep.all():
+        return x, c
+    return x[np.r_[True, keep]], c[:, keep]
 
-    def __init__(self, spline: BSpline, x: np.ndarray, extrapolate: Any, axis: int, degree: int = 3) -> None:
-        self._spline = spline
-        self._degree = degree
+
+def _columns(c: np.ndarray) -> tuple[np.ndarray, bool]:
+    """``c`` of shape ``(order, pieces) + tail`` as ``(order, pieces, columns)`` float64 (a
+    complex value is two columns, its real and imaginary parts)."""
+    complex_ = np.iscomplexobj(c)
+    cc = np.ascontiguousarray(c.reshape(c.shape[0], c.shape[1], -1))
+    if complex_:
+        cc = np.ascontiguousarray(cc.view(np.float64))
+    return cc, complex_
+
+
+def _spline_derivative(s: BSpline, nu: int) -> BSpline:
+    """lekalo's derivative of the spline on lekalo's knots (a piecewise polynomial may jump at
+    its breakpoints, which SciPy's ``splder`` layout refuses)."""
+    n = s._n()
+    complex_ = np.iscomplexobj(s.c)
+    cols = _real_columns(s.c, n)
+    if cols.shape[1] == 0:
+        t = s.t[nu:-nu]
+        return BSpline.construct_fast(t, np.zeros((t.size - s.k + nu - 1,) + s.c.shape[1:]), s.k - nu, s.extrapolate, s.axis)
+    curve = _curve(s.t, cols, s.k)
+    for _ in range(nu):
+        curve = curve.derivative()
+    control = np.asarray(curve.control)
+    c = _from_columns(control, complex_).reshape((control.shape[0],) + s.c.shape[1:])
+    return BSpline.construct_fast(np.asarray(curve.knots), c, s.k - nu, s.extrapolate, s.axis)
+
+
+def _check_ascending(x: np.ndarray, name: str) -> None:
+    if x[-1] < x[0]:
+        raise NotImplementedError(
+            f"lekalo.scipy: {name} with decreasing breakpoints is not available (lekalo's "
+            "piecewise polynomials have increasing breakpoints)"
+        )
+
+
+class _PPolyBase:
+    """What ``PPoly`` and ``BPoly`` share, as in SciPy: the attributes ``c`` (coefficients,
+    shape ``(order, pieces) + tail``), ``x`` (breakpoints), ``extrapolate`` and ``axis``; a
+    lekalo B-spline that is the same piecewise polynomial does the evaluation, the derivatives,
+    the antiderivatives and the integrals (SciPy's conventions: right-continuous pieces, the
+    end pieces continued when extrapolating, ``"periodic"`` wrapping into ``[x[0], x[-1]]``).
+    Objects made by lekalo (derivatives, conversions) read their coefficients off the B-spline
+    when ``c`` is first asked for."""
+
+    def __init__(self, c: Any, x: Any, extrapolate: Any = None, axis: int = 0) -> None:
+        c = np.asarray(c)
+        x = np.ascontiguousarray(x, dtype=np.float64)
+        if extrapolate is None:
+            extrapolate = True
+        elif extrapolate != "periodic":
+            extrapolate = bool(extrapolate)
+        if c.ndim < 2:
+            raise ValueError("Coefficients array must be at least 2-dimensional.")
+        if not (0 <= axis < c.ndim - 1):
+            raise ValueError(f"axis={axis} must be between 0 and {c.ndim - 1}")
+        c = np.moveaxis(c, axis + 1, 0)
+        c = np.moveaxis(c, axis + 1, 0)
+        if x.ndim != 1:
+            raise ValueError("x must be 1-dimensional")
+        if x.size < 2:
+            raise ValueError("at least 2 breakpoints are needed")
+        if c.shape[0] == 0:
+            raise ValueError("polynomial must be at least of order 0")
+        if c.shape[1] == 0:
+            raise ValueError("number of intervals must be positive")
+        if c.shape[1] != x.size - 1:
+            raise ValueError("number of coefficients != len(x)-1")
+        dx = np.diff(x)
+        if not (np.all(dx >= 0) or np.all(dx <= 0)):
+            raise ValueError("`x` must be strictly increasing or decreasing.")
+        dtype = complex if np.iscomplexobj(c) else float
+        self._c = np.ascontiguousarray(c, dtype=dtype)
         self.x = x
         self.extrapolate = extrapolate
         self.axis = axis
+        self._degree = c.shape[0] - 1
+        self._spline_ = None
+
+    @classmethod
+    def construct_fast(cls, c: Any, x: Any, extrapolate: Any = None, axis: int = 0):
+        """Construct without checks (SciPy's ``construct_fast``): ``c`` and ``x`` must have the
+        right shapes and dtypes, ``c`` with the interpolation axes first."""
+        self = object.__new__(cls)
+        self._c = c
+        self.x = x
+        self.axis = axis
+        self.extrapolate = True if extrapolate is None else extrapolate
+        self._degree = c.shape[0] - 1
+        self._spline_ = None
+        return self
+
+    @classmethod
+    def _from_spline_lazy(cls, spline: BSpline, x: np.ndarray, extrapolate: Any, axis: int, degree: int):
+        """The piecewise polynomial that is ``spline`` on the breakpoints ``x`` (its
+        coefficients read off the spline when asked for)."""
+        self = object.__new__(cls)
         self._c = None
+        self.x = x
+        self.axis = axis
+        self.extrapolate = extrapolate
+        self._degree = degree
+        self._spline_ = spline
+        return self
+
+    def _init_from_spline(self, spline: BSpline, x: np.ndarray, extrapolate: Any, axis: int, degree: int = 3) -> None:
+        """Initialise a subclass (``CubicSpline``, ...) from lekalo's spline."""
+        self._c = None
+        self.x = x
+        self.axis = axis
+        self.extrapolate = extrapolate
+        self._degree = degree
+        self._spline_ = spline
 
     @property
     def c(self) -> np.ndarray:
         if self._c is None:
-            s = self._spline
-            k = self._degree
-            xs = self.x[:-1]
-            rows = [
-                BSpline.construct_fast(s.t, s.c, s.k)._evaluate(xs, m, True).reshape((xs.size,) + s.c.shape[1:])
-                / math.factorial(m)
-                for m in range(k, -1, -1)
-            ]
-            self._c = np.ascontiguousarray(np.stack(rows))
+            self._c = self._read_coefficients()
+            self._source = (self._c, self.x, self._c.copy(), self.x.copy())
         return self._c
 
+    @c.setter
+    def c(self, value: Any) -> None:
+        self._c = value
+        self._degree = value.shape[0] - 1
+        self._spline_ = None
+
+    # what the spline was made from (c and x, and copies of them), so that coefficients or
+    # breakpoints changed in place after the first evaluation are seen, as in SciPy
+    _source = None
+    # lekalo's curve of the spline, made on the first evaluation
+    _curve_ = None
+
+    @property
+    def _spline(self) -> BSpline:
+        s = self._spline_
+        if s is not None and self._source is not None:
+            c, x, c0, x0 = self._source
+            if not (self._c is c and self.x is x and np.array_equal(c, c0) and np.array_equal(x, x0)):
+                s = None
+        if s is None:
+            _check_ascending(self.x, type(self).__name__)
+            x, c = _pieces(self.x, self._c)
+            tail = c.shape[2:]
+            cc, complex_ = _columns(c)
+            t, control = self._spline_form(x, cc)
+            s = BSpline.construct_fast(
+                t, _from_columns(control, complex_).reshape((control.shape[0],) + tail), self._degree, axis=self.axis
+            )
+            self._spline_ = s
+            self._curve_ = None
+            self._source = (self._c, self.x, self._c.copy(), self.x.copy())
+        return s
+
+    def _lekalo_curve(self):
+        """lekalo's B-spline curve of ``_spline`` (real columns), kept between calls."""
+        s = self._spline
+        if self._curve_ is None or self._curve_[0] is not s:
+            self._curve_ = (s, _curve(s.t, _real_columns(s.c, s._n()), s.k))
+        return self._curve_[1]
+
+    def _tail(self) -> tuple:
+        return self._spline.c.shape[1:] if self._c is None else self._c.shape[2:]
+
     def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
+        """The value (or ``nu``-th derivative) at ``x``, shape ``x.shape`` inserted at ``axis``
+        into the coefficients' trailing shape."""
         if extrapolate is None:
             extrapolate = self.extrapolate
+        x = np.asarray(x)
+        if x.dtype == object:
+            x = x.astype(np.float64)
+        nu = operator.index(nu)
         if nu < 0:
-            return self.antiderivative(-nu)(x, 0, extrapolate)
-        return self._spline(x, nu, extrapolate)
+            raise ValueError("Order of derivative cannot be negative")
+        if nu > self._degree:
+            return self.derivative(nu)(x, 0, extrapolate)
+        s = self._spline
+        n = s._n()
+        if not (extrapolate is True or extrapolate == "periodic") or s.k == 0 or nu > s.k or s.c.size == 0:
+            return s(x, nu, extrapolate)
+        xf = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+        if not np.isfinite(xf).all():
+            return s(x, nu, extrapolate)
+        # the common case without BSpline's checks: lekalo's curve, kept between calls
+        if extrapolate == "periodic":
+            xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
+        vals = self._lekalo_curve().eval_extrapolated(xf, nu)
+        out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
+        if self.axis != 0:
+            axes = list(range(out.ndim))
+            axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
+            out = out.transpose(axes)
+        return out
 
-    def derivative(self, nu: int = 1) -> "_SplinePPoly":
+    def derivative(self, nu: int = 1):
+        """The ``nu``-th derivative as a piecewise polynomial of the same class (order reduced
+        by ``nu``; zero of order 1 beyond the degree), lekalo's B-spline derivative."""
+        nu = operator.index(nu)
         if nu < 0:
             return self.antiderivative(-nu)
-        s = self._spline
-        if nu > s.k:
-            z = BSpline.construct_fast(np.r_[self.x[0], self.x[-1]], np.zeros((1,) + s.c.shape[1:]), 0, axis=s.axis)
-            return _SplinePPoly(z, self.x, self.extrapolate, self.axis, max(self._degree - nu, 0))
-        return _SplinePPoly(s.derivative(nu), self.x, self.extrapolate, self.axis, self._degree - nu)
+        if nu == 0:
+            return self._from_spline_lazy(self._spline, self.x, self.extrapolate, self.axis, self._degree)
+        if nu > self._degree or nu > self._spline.k:
+            # zero: of order 1 beyond the degree (SciPy's shape), else of the reduced order
+            order = 1 if nu > self._degree else self._degree - nu + 1
+            z = np.zeros((order, self.x.size - 1) + self._tail(), dtype=self._spline.c.dtype)
+            return self.construct_fast(z, self.x, self.extrapolate, self.axis)
+        return self._from_spline_lazy(_spline_derivative(self._spline, nu), self.x, self.extrapolate, self.axis, self._degree - nu)
 
-    def antiderivative(self, nu: int = 1) -> "_SplinePPoly":
+    def antiderivative(self, nu: int = 1):
+        """The ``nu``-th antiderivative (zero at ``x[0]``, continuous), of the same class;
+        lekalo's B-spline antiderivative. A periodic one does not extrapolate."""
+        nu = operator.index(nu)
         if nu < 0:
             return self.derivative(-nu)
-        return _SplinePPoly(self._spline.antiderivative(nu), self.x, self.extrapolate, self.axis, self._degree + nu)
+        if nu == 0:
+            return self.derivative(0)
+        s = self._spline.antiderivative(nu)
+        return self._from_spline_lazy(s, self.x, s.extrapolate, self.axis, self._degree + nu)
 
     def integrate(self, a: float, b: float, extrapolate: Any = None) -> np.ndarray:
+        """``∫_a^b`` of the piecewise polynomial (NaN outside ``[x[0], x[-1]]`` unless
+        extrapolating; periodic: whole periods), lekalo's B-spline integral."""
         if extrapolate is None:
             extrapolate = self.extrapolate
-        if extrapolate is False or extrapolate == 0:
+        if extrapolate != "periodic" and not extrapolate:
             lo, hi = self.x[0], self.x[-1]
             if min(a, b) < lo or max(a, b) > hi:
-                return np.full(self._spline.c.shape[1:], np.nan)
-        return self._spline.integrate(a, b, extrapolate=bool(extrapolate) if extrapolate != "periodic" else extrapolate)
+                return np.full(self._tail(), np.nan, dtype=self._spline.c.dtype)
+            extrapolate = False
+        return self._spline.integrate(a, b, extrapolate=extrapolate)
+
+    def extend(self, c: Any, x: Any) -> None:
+        """Add pieces ``c`` on breakpoints ``x`` (all to the right or all to the left of the
+        present ones; the orders made equal first)."""
+        c = np.asarray(c)
+        x = np.asarray(x, dtype=np.float64)
+        if c.ndim < 2:
+            raise ValueError("invalid dimensions for c")
+        if x.ndim != 1:
+            raise ValueError("invalid dimensions for x")
+        if x.shape[0] != c.shape[1]:
+            raise ValueError(f"Shapes of x {x.shape} and c {c.shape} are incompatible")
+        if c.shape[2:] != self.c.shape[2:] or c.ndim != self.c.ndim:
+            raise ValueError(f"Shapes of c {c.shape} and self.c {self.c.shape} are incompatible")
+        if c.size == 0:
+            return
+        dx = np.diff(x)
+        if not (np.all(dx >= 0) or np.all(dx <= 0)):
+            raise ValueError("`x` is not sorted.")
+        if self.x[-1] >= self.x[0]:
+            if not x[-1] >= x[0]:
+                raise ValueError("`x` is in the different order than `self.x`.")
+            if x[0] >= self.x[-1]:
+                action = "append"
+            elif x[-1] <= self.x[0]:
+                action = "prepend"
+            else:
+                raise ValueError("`x` is neither on the left or on the right from `self.x`.")
+        else:
+            if not x[-1] <= x[0]:
+                raise ValueError("`x` is in the different order than `self.x`.")
+            if x[0] <= self.x[-1]:
+                action = "append"
+            elif x[-1] >= self.x[0]:
+                action = "prepend"
+            else:
+                raise ValueError("`x` is neither on the left or on the right from `self.x`.")
+        mine, theirs = self._same_order(self.c, c)
+        dtype = np.result_type(mine.dtype, theirs.dtype)
+        if action == "append":
+            self._c = np.ascontiguousarray(np.concatenate([mine, theirs], axis=1), dtype=dtype)
+            self.x = np.r_[self.x, x]
+        else:
+            self._c = np.ascontiguousarray(np.concatenate([theirs, mine], axis=1), dtype=dtype)
+            self.x = np.r_[x, self.x]
+        self._degree = self._c.shape[0] - 1
+        self._spline_ = None
+
+
+class PPoly(_PPolyBase):
+    """``scipy.interpolate.PPoly``: a piecewise polynomial in the local power basis,
+    ``S(x) = sum_m c[m, i] (x - x[i])^(k-m)`` on ``x[i] <= x < x[i+1]``. lekalo's
+    ``PiecewisePolynomial`` with its B-spline form (``to_bspline`` on the unconstrained space,
+    de Boor–Fix) computes every number."""
+
+    @staticmethod
+    def _spline_form(x: np.ndarray, cc: np.ndarray):
+        order = cc.shape[0]
+        space = _lekalo.PpSpace(x, order)
+        if cc.shape[2] == 0:
+            return np.asarray(space.knots), np.zeros((space.dimension, 0))
+        # lekalo stores the local power coefficients lowest power first, (pieces, order, dim)
+        pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2)))
+        curve = pp.to_bspline(space)
+        return np.asarray(curve.knots), np.asarray(curve.control)
+
+    def derivative(self, nu: int = 1) -> "PPoly":
+        """The ``nu``-th derivative. With coefficients given (not read off a spline) and
+        increasing breakpoints, lekalo's ``PiecewisePolynomial.derivative`` on the pp-form
+        itself, as SciPy does; otherwise lekalo's B-spline derivative."""
+        nu = operator.index(nu)
+        if nu <= 0 or nu > self._degree or self._c is None or not self.x[-1] > self.x[0]:
+            return super().derivative(nu)
+        x, c = _pieces(self.x, self._c)
+        cc, complex_ = _columns(c)
+        if cc.shape[2] == 0 or x.size != self.x.size:
+            return super().derivative(nu)
+        pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2))).derivative(nu)
+        d = np.asarray(pp.coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
+        d = _from_columns(np.ascontiguousarray(d), complex_).reshape(d.shape[:2] + self._c.shape[2:])
+        return self.construct_fast(np.ascontiguousarray(d), self.x, self.extrapolate, self.axis)
+
+    def _read_coefficients(self) -> np.ndarray:
+        s = self._spline
+        k = self._degree
+        n = s._n()
+        tail = s.c.shape[1:]
+        cols = _real_columns(s.c, n)
+        if cols.shape[1] > 0 and s.k <= k:
+            # lekalo's pp-form of the spline, when its breakpoints are ours
+            pp = _curve(s.t, cols, s.k).to_pp()
+            xb = np.asarray(pp.breakpoints)
+            if xb.shape == self.x.shape and np.array_equal(xb, self.x):
+                cc = np.asarray(pp.coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
+                c = _from_columns(np.ascontiguousarray(cc), np.iscomplexobj(s.c))
+                c = c.reshape(cc.shape[:2] + tail)
+                if c.shape[0] < k + 1:
+                    c = np.concatenate([np.zeros((k + 1 - c.shape[0],) + c.shape[1:], dtype=c.dtype), c])
+                return np.ascontiguousarray(c)
+        # elsewhere (repeated breakpoints, breakpoints that are not knots):
+        # c[k - m, i] = S^(m)(x_i+) / m!, lekalo's derivatives at the left breakpoints
+        xs = self.x[:-1]
+        rows = [
+            BSpline.construct_fast(s.t, s.c, s.k)._evaluate(xs, m, True).reshape((xs.size,) + s.c.shape[1:])
+            / math.factorial(m)
+            for m in range(k, -1, -1)
+        ]
+        return np.ascontiguousarray(np.stack(rows))
+
+    @staticmethod
+    def _same_order(a: np.ndarray, b: np.ndarray):
+        # zero leading (highest-power) coefficients raise the order of a power form exactly
+        k = max(a.shape[0], b.shape[0])
+        pad = lambda c: np.concatenate([np.zeros((k - c.shape[0],) + c.shape[1:], dtype=c.dtype), c])  # noqa: E731
+        return pad(a), pad(b)
+
+    def solve(self, y: float = 0.0, discontinuity: bool = True, extrapolate: Any = None):
+        raise NotImplementedError(
+            "lekalo.scipy: PPoly.solve is not available (lekalo's core has no root finder for "
+            "piecewise polynomials)"
+        )
+
+    def roots(self, discontinuity: bool = True, extrapolate: Any = None):
+        return self.solve(0, discontinuity, extrapolate)
+
+    @classmethod
+    def from_spline(cls, tck: Any, extrapolate: Any = None) -> "PPoly":
+        """The piecewise polynomial of a spline (``BSpline`` or ``(t, c, k)``) on the
+        breakpoints ``t``, SciPy's form; lekalo evaluates it."""
+        if isinstance(tck, BSpline):
+            t, c, k = tck.tck
+            if extrapolate is None:
+                extrapolate = tck.extrapolate
+        else:
+            t, c, k = tck
+            if extrapolate is None:
+                extrapolate = True
+        t = np.ascontiguousarray(t, dtype=np.float64)
+        c = np.asarray(c)
+        n = t.size - k - 1
+        spline = BSpline.construct_fast(t, np.ascontiguousarray(c[:n], dtype=_get_dtype(c.dtype)), k)
+        return cls._from_spline_lazy(spline, t, extrapolate, 0, k)
+
+    @classmethod
+    def from_bernstein_basis(cls, bp: "BPoly", extrapolate: Any = None) -> "PPoly":
+        """The power form of a ``BPoly`` (lekalo's B-spline of it, its derivatives at the
+        breakpoints)."""
+        if not isinstance(bp, BPoly):
+            raise TypeError(f".from_bernstein_basis only accepts BPoly instances. Got {type(bp)} instead.")
+        if extrapolate is None:
+            extrapolate = bp.extrapolate
+        return cls._from_spline_lazy(bp._spline, bp.x, extrapolate, bp.axis, bp._degree)
+
+
+class BPoly(_PPolyBase):
+    """``scipy.interpolate.BPoly``: a piecewise polynomial in the Bernstein basis of each piece,
+    ``S(x) = sum_a c[a, i] b_{a,k}((x - x[i]) / (x[i+1] - x[i]))``. Those coefficients are the
+    B-spline coefficients of the same function on knots of multiplicity ``k + 1`` at every
+    breakpoint, so lekalo's B-spline computes every number; coefficients of results are
+    lekalo's Bézier pieces (``to_bezier_segments``)."""
+
+    @staticmethod
+    def _spline_form(x: np.ndarray, cc: np.ndarray):
+        order = cc.shape[0]
+        t = np.repeat(x, order)
+        return t, np.ascontiguousarray(cc.transpose(1, 0, 2)).reshape(cc.shape[0] * cc.shape[1], cc.shape[2])
+
+    def _read_coefficients(self) -> np.ndarray:
+        _check_ascending(self.x, "BPoly")
+        s = self._spline
+        n = s._n()
+        tail = s.c.shape[1:]
+        complex_ = np.iscomplexobj(s.c)
+        cols = _real_columns(s.c, n)
+        pieces = self.x.size - 1
+        if cols.shape[1] == 0:
+            return np.zeros((s.k + 1, pieces) + tail, dtype=s.c.dtype)
+        curve = _curve(s.t, cols, s.k)
+        x, _ = _pieces(self.x, np.zeros((1, pieces)))
+        missing = np.setdiff1d(x[1:-1], s.t)
+        if missing.size:
+            curve = curve.refine_knots(missing)
+        segments = curve.to_bezier_segments()
+        ctrl = np.stack([np.asarray(seg[2].control) for seg in segments])  # (pieces, order, columns)
+        if ctrl.shape[0] != x.size - 1:
+            raise NotImplementedError("lekalo.scipy: BPoly coefficients of a spline with knots outside its breakpoints")
+        c = _from_columns(np.ascontiguousarray(ctrl.transpose(1, 0, 2)), complex_)
+        c = c.reshape((ctrl.shape[1], ctrl.shape[0]) + tail)
+        if x.size != self.x.size:
+            full = np.zeros((c.shape[0], pieces) + tail, dtype=c.dtype)
+            full[:, np.diff(self.x) > 0] = c
+            c = full
+        return np.ascontiguousarray(c)
+
+    @staticmethod
+    def _raise_degree(c: np.ndarray, d: int) -> np.ndarray:
+        """The Bernstein coefficients of the same pieces at degree ``k + d`` (lekalo's degree
+        elevation of the B-spline with every breakpoint of full multiplicity)."""
+        c = np.asarray(c)
+        if d == 0:
+            return c
+        order, pieces = c.shape[0], c.shape[1]
+        tail = c.shape[2:]
+        cc, complex_ = _columns(c)
+        if cc.shape[2] == 0:
+            return np.zeros((order + d, pieces) + tail, dtype=c.dtype)
+        x = np.arange(pieces + 1, dtype=np.float64)
+        t, control = BPoly._spline_form(x, cc)
+        curve = _curve(t, control, order - 1).elevate_degree(d)
+        up = np.asarray(curve.control).reshape(pieces, order + d, -1).transpose(1, 0, 2)
+        return _from_columns(np.ascontiguousarray(up), complex_).reshape((order + d, pieces) + tail)
+
+    @classmethod
+    def _same_order(cls, a: np.ndarray, b: np.ndarray):
+        k = max(a.shape[0], b.shape[0])
+        return cls._raise_degree(a, k - a.shape[0]), cls._raise_degree(b, k - b.shape[0])
+
+    @classmethod
+    def from_power_basis(cls, pp: PPoly, extrapolate: Any = None) -> "BPoly":
+        """The Bernstein form of a ``PPoly`` (lekalo's B-spline of it cut into Bézier pieces)."""
+        if not isinstance(pp, PPoly):
+            raise TypeError(f".from_power_basis only accepts PPoly instances. Got {type(pp)} instead.")
+        if extrapolate is None:
+            extrapolate = pp.extrapolate
+        return cls._from_spline_lazy(pp._spline, pp.x, extrapolate, pp.axis, pp._degree)
+
+    @classmethod
+    def from_derivatives(cls, xi: Any, yi: Any, orders: Any = None, extrapolate: Any = None) -> "BPoly":
+        raise NotImplementedError(
+            "lekalo.scipy: BPoly.from_derivatives is not available (lekalo's core has no Hermite "
+            "interpolation with derivatives of any order at the breakpoints)"
+        )
+
+    @staticmethod
+    def _construct_from_derivatives(xa: float, xb: float, ya: Any, yb: Any):
+        raise NotImplementedError(
+            "lekalo.scipy: BPoly._construct_from_derivatives is not available (lekalo's core has no "
+            "Hermite interpolation with derivatives of any order at the breakpoints)"
+        )
 
 
 def _prepare_input(x: Any, y: Any, axis: int):
@@ -99,7 +524,7 @@ def _prepare_input(x: Any, y: Any, axis: int):
     return x, dx, y, axis
 
 
-class CubicSpline(_SplinePPoly):
+class CubicSpline(PPoly):
     """``scipy.interpolate.CubicSpline``: the C² cubic through the data with SciPy's end
     conditions (``"not-a-knot"``, ``"clamped"``, ``"natural"``, ``((order, value), (order,
     value))`` with equal orders), the solve by lekalo (:func:`make_interp_spline`'s engines);
@@ -120,7 +545,7 @@ class CubicSpline(_SplinePPoly):
                 raise NotImplementedError("lekalo.scipy: periodic CubicSpline needs 4 points or more")
             spline = make_interp_spline(x, y, k=3, bc_type="periodic", axis=0)
             spline = BSpline.construct_fast(spline.t, spline.c, 3, axis=axis)
-            super().__init__(spline, x, extrapolate, axis)
+            self._init_from_spline(spline, x, extrapolate, axis)
             return
         if isinstance(bc_type, str):
             if bc_type not in ("not-a-knot", "clamped", "natural"):
@@ -160,10 +585,10 @@ class CubicSpline(_SplinePPoly):
         else:
             spline = make_interp_spline(x, y, k=3, bc_type=(dl, dr), axis=0)
         spline = BSpline.construct_fast(spline.t, spline.c, spline.k, axis=axis)
-        super().__init__(spline, x, extrapolate, axis)
+        self._init_from_spline(spline, x, extrapolate, axis)
 
 
-class CubicHermiteSpline(_SplinePPoly):
+class CubicHermiteSpline(PPoly):
     """``scipy.interpolate.CubicHermiteSpline``: the cubic with values ``y`` and slopes
     ``dydx`` at ``x``, lekalo's ``CubicHermite`` written as a B-spline (double knots)."""
 
@@ -176,7 +601,7 @@ class CubicHermiteSpline(_SplinePPoly):
             raise ValueError("The shapes of `y` and `dydx` must be identical.")
         if not np.all(np.isfinite(dydx)):
             raise ValueError("`dydx` must contain only finite values.")
-        super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+        self._init_from_spline(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
 
 
 def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -> BSpline:
@@ -194,7 +619,7 @@ def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -
     return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
 
 
-class PchipInterpolator(_SplinePPoly):
+class PchipInterpolator(PPoly):
     """``scipy.interpolate.PchipInterpolator``: the monotonicity-preserving piecewise cubic,
     with lekalo's ``pchip_slopes`` (Fritsch–Butland, Moler's ends) and ``CubicHermite``."""
 
@@ -215,10 +640,10 @@ class PchipInterpolator(_SplinePPoly):
             dydx = np.zeros_like(y)
         else:
             dydx = _lekalo.pchip_slopes(x, yy).reshape(y.shape)
-        super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+        self._init_from_spline(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
 
 
-class Akima1DInterpolator(_SplinePPoly):
+class Akima1DInterpolator(PPoly):
     """``scipy.interpolate.Akima1DInterpolator``: the local Akima (``method="akima"``) or
     modified Akima (``"makima"``) piecewise cubic, with lekalo's ``akima_slopes`` and
     ``CubicHermite``. Extrapolation is off by default, as in SciPy."""
@@ -241,7 +666,10 @@ class Akima1DInterpolator(_SplinePPoly):
             dydx = np.zeros_like(y)
         else:
             dydx = _lekalo.akima_slopes(x, yy, method).reshape(y.shape)
-        super().__init__(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+        self._init_from_spline(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+
+    def extend(self, c: Any, x: Any) -> None:
+        raise NotImplementedError("Extending a 1-D Akima interpolator is not yet implemented")
 
 
 pchip = PchipInterpolator
