@@ -294,6 +294,35 @@ pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
         return Ok(Loaded::One(lekalo_io::read_npz_curve(&bytes, &name)?));
     }
     let (text, name) = lekalo_io::read_input(path)?;
+    // a CAD file: one shape as the JSON of that shape, several curves as a batch
+    if let Some(mut shapes) = read_cad(path, &text, &name, v)? {
+        return match shapes.len() {
+            0 => bad_input(format!("{name}: no curve or surface lekalo reads")),
+            1 => Ok(match shapes.remove(0) {
+                Shape::Curve(o) => Loaded::One(o),
+                other => Loaded::Other(other),
+            }),
+            n => {
+                let curves: Vec<(usize, std::result::Result<Object, IoError>)> = shapes
+                    .into_iter()
+                    .enumerate()
+                    .filter_map(|(i, s)| match s {
+                        Shape::Curve(o) => Some((i + 1, Ok(o))),
+                        _ => None,
+                    })
+                    .collect();
+                if curves.len() < n {
+                    return bad_input(format!(
+                        "{name}: holds {n} shapes, {} of them surfaces; this command takes one \
+                         surface or a batch of curves (`lekalo convert {name} -o shapes.jsonl` \
+                         writes one shape a line)",
+                        n - curves.len()
+                    ));
+                }
+                Ok(Loaded::Many(curves))
+            }
+        };
+    }
     let loaded = if is_json_lines(path, jsonl) {
         Loaded::Many(lekalo_io::read_json_lines(&text, &name))
     } else {
@@ -310,6 +339,84 @@ pub(crate) fn load(path: &Path, jsonl: bool, v: Verbosity) -> Result<Loaded> {
         eprintln!("read {n} object(s) from {name} in {:.1?}", start.elapsed());
     }
     Ok(loaded)
+}
+
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+/// True for a STEP input (`.step`, `.stp`, `.p21`).
+pub(crate) fn is_step(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("step" | "stp" | "p21"))
+}
+
+/// True for an IGES input (`.igs`, `.iges`).
+pub(crate) fn is_iges(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("igs" | "iges"))
+}
+
+/// What a STEP file gave: curves, surfaces, schema, unit, skipped entities (not with `-q`).
+fn report_step(name: &str, r: &lekalo_io::StepRead, v: Verbosity) {
+    if v == Verbosity::Quiet {
+        return;
+    }
+    let curves = r
+        .shapes
+        .iter()
+        .filter(|(_, s)| matches!(s, lekalo_io::Shape::Curve(_)))
+        .count();
+    eprintln!(
+        "{name}: read {curves} curve(s) and {} surface(s); schema {}; length unit {}{}",
+        r.shapes.len() - curves,
+        r.schema.as_deref().unwrap_or("not named"),
+        r.length_unit,
+        if r.scale_to_mm == 1.0 {
+            String::new()
+        } else {
+            format!(
+                " (coordinates × {} to millimetres)",
+                lekalo_io::fmt_number(r.scale_to_mm)
+            )
+        }
+    );
+    if !r.skipped.is_empty() {
+        eprintln!("{name}: skipped {} entities:", r.skipped.len());
+        for s in &r.skipped {
+            eprintln!("  #{} {}: {}", s.id, s.entity, s.reason);
+        }
+    }
+}
+
+/// The curves and surfaces of a STEP or IGES file, by its extension (`None` for any other
+/// file), with what was read and skipped reported on standard error (not with `-q`).
+pub(crate) fn read_cad(
+    path: &Path,
+    text: &str,
+    name: &str,
+    v: Verbosity,
+) -> Result<Option<Vec<lekalo_io::Shape>>> {
+    if is_step(path) {
+        let r = lekalo_io::read_step(text, name)?;
+        report_step(name, &r, v);
+        return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
+    }
+    if is_iges(path) {
+        let r = lekalo_io::read_iges(text, name)?;
+        if v != Verbosity::Quiet {
+            eprintln!(
+                "{name}: read {} object(s); length unit {}",
+                r.shapes.len(),
+                r.length_unit
+            );
+            for s in &r.skipped {
+                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
+            }
+        }
+        return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
+    }
+    Ok(None)
 }
 
 /// Reads exactly one object (JSON Lines with one line is accepted too).

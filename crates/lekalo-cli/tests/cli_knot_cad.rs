@@ -447,3 +447,34 @@ fn blend_jump_prints_exact_coefficients_and_samples() {
         .assert()
         .code(2);
 }
+
+/// A STEP or IGES file is read by every command that reads a curve: `info`, `eval` and
+/// `measure` of the curve a STEP file holds give what they give for its JSON.
+#[test]
+fn commands_read_a_curve_from_step_and_iges() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(
+        d.path().join("c.json"),
+        r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2, "knots": [0, 0, 1, 2, 3, 3], "control": [[1, 1, 0], [2, 3, 0], [4, 3, 0]]}"#,
+    )
+    .unwrap();
+    convert(&d, "c.json", "c.step");
+    convert(&d, "c.json", "c.igs");
+    let run = |args: &[&str]| {
+        let out = lekalo().current_dir(d.path()).args(args).assert().success();
+        String::from_utf8(out.get_output().stdout.clone()).unwrap()
+    };
+    for file in ["c.step", "c.igs"] {
+        assert_eq!(
+            run(&["eval", file, "--at", "1.5"]),
+            run(&["eval", "c.json", "--at", "1.5"]),
+            "{file}"
+        );
+        assert!(run(&["info", file]).contains("control points  3"), "{file}");
+        assert_eq!(
+            run(&["measure", file]),
+            run(&["measure", "c.json"]),
+            "{file}"
+        );
+    }
+}

@@ -4,26 +4,12 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use lekalo_io::{fmt_number, read_step, Shape, StepWriter};
+use lekalo_io::{Shape, StepWriter};
 
-use crate::io::{bad_input, emit, format_of, is_json_lines, load, Loaded};
+use crate::io::{
+    bad_input, emit, format_of, is_iges, is_json_lines, is_step, load, read_cad, Loaded,
+};
 use crate::Verbosity;
-
-fn extension(path: &Path) -> Option<String> {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-}
-
-/// True for a STEP input (`.step`, `.stp`, `.p21`).
-pub(crate) fn is_step(path: &Path) -> bool {
-    matches!(extension(path).as_deref(), Some("step" | "stp" | "p21"))
-}
-
-/// True for an IGES input (`.igs`, `.iges`).
-pub(crate) fn is_iges(path: &Path) -> bool {
-    matches!(extension(path).as_deref(), Some("igs" | "iges"))
-}
 
 /// Reads exactly one object of any kind (curve, surface, piecewise polynomial).
 pub(crate) fn load_shape(path: &Path, v: Verbosity) -> Result<Shape> {
@@ -43,24 +29,8 @@ pub(crate) fn load_shape(path: &Path, v: Verbosity) -> Result<Shape> {
 /// comments), a STEP file's curves and surfaces, or a single JSON object.
 pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
     let (text, name) = lekalo_io::read_input(path)?;
-    if is_step(path) {
-        let r = read_step(&text, &name)?;
-        report_step(&name, &r, v);
-        return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
-    }
-    if is_iges(path) {
-        let r = lekalo_io::read_iges(&text, &name)?;
-        if v != Verbosity::Quiet {
-            eprintln!(
-                "{name}: read {} object(s); length unit {}",
-                r.shapes.len(),
-                r.length_unit
-            );
-            for s in &r.skipped {
-                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
-            }
-        }
-        return Ok(r.shapes.into_iter().map(|(_, s)| s).collect());
+    if let Some(shapes) = read_cad(path, &text, &name, v)? {
+        return Ok(shapes);
     }
     if !is_json_lines(path, false) {
         return Ok(vec![Shape::from_json_str(&text, &name)?]);
@@ -78,37 +48,6 @@ pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
         return bad_input(format!("{name}: no objects"));
     }
     Ok(out)
-}
-
-fn report_step(name: &str, r: &lekalo_io::StepRead, v: Verbosity) {
-    if v == Verbosity::Quiet {
-        return;
-    }
-    let curves = r
-        .shapes
-        .iter()
-        .filter(|(_, s)| matches!(s, Shape::Curve(_)))
-        .count();
-    eprintln!(
-        "{name}: read {curves} curve(s) and {} surface(s); schema {}; length unit {}{}",
-        r.shapes.len() - curves,
-        r.schema.as_deref().unwrap_or("not named"),
-        r.length_unit,
-        if r.scale_to_mm == 1.0 {
-            String::new()
-        } else {
-            format!(
-                " (coordinates × {} to millimetres)",
-                fmt_number(r.scale_to_mm)
-            )
-        }
-    );
-    if !r.skipped.is_empty() {
-        eprintln!("{name}: skipped {} entities:", r.skipped.len());
-        for s in &r.skipped {
-            eprintln!("  #{} {}: {}", s.id, s.entity, s.reason);
-        }
-    }
 }
 
 /// `convert` of a file of several shapes (STEP, or JSON Lines holding surfaces) to json (one
