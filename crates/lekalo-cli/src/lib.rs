@@ -112,7 +112,7 @@ enum Command {
     Knot(cmd::knot::KnotArgs),
     /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
     /// surfaces through grids and scattered data.
-    Fit(cmd::fit::FitArgs),
+    Fit(Box<cmd::fit::FitArgs>),
     /// Length, parameter at length, exact bounding box, curvature extrema and inflections of a
     /// curve; the exact bounding box of a surface.
     Measure(cmd::measure::MeasureArgs),

@@ -463,3 +463,109 @@ fn plot_residuals_draws_the_data_the_fit_and_its_deviations() {
         "nothing written on a refusal"
     );
 }
+
+/// Shape constraints: the options reach the library (the report lists them, the fit keeps a
+/// bound and a point), and misuse exits 2 with the reason.
+#[test]
+fn shape_constraints_from_options() {
+    let data = function_samples();
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--ctrl",
+            "12",
+            "--increasing=0:0.5",
+            "--max",
+            "0.9",
+            "--min",
+            "-0.5@1:3",
+            "--through",
+            "0=0",
+            "--json",
+        ],
+        &data,
+    );
+    let names: Vec<&str> = v["report"]["constraints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "increasing on [0, 0.5]",
+            "min -0.5 on [1, 3]",
+            "max 0.9",
+            "y(0) = 0"
+        ]
+    );
+    // a cubic B-spline lies below its largest control point: the bound shows in the control
+    // points up to the solver's rounding, and the first one is y(0) = 0
+    let ctrl: Vec<f64> = v["object"]["control"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[0].as_f64().unwrap())
+        .collect();
+    assert!(ctrl[0].abs() < 1e-12, "{ctrl:?}");
+    let unconstrained = run_json(&["fit", "-", "--function", "--ctrl", "12", "--json"], &data);
+    assert!(
+        v["report"]["weighted_rss"].as_f64().unwrap()
+            > unconstrained["report"]["weighted_rss"].as_f64().unwrap()
+    );
+    lekalo()
+        .args([
+            "fit",
+            "-",
+            "--function",
+            "--smooth",
+            "1e-3",
+            "--convex",
+            "--json",
+        ])
+        .write_stdin(data.clone())
+        .assert()
+        .success()
+        .stdout(contains("\"convex\""));
+    for (args, reason) in [
+        (
+            &["fit", "-", "--ctrl", "12", "--increasing"][..],
+            "add --function",
+        ),
+        (
+            &["fit", "-", "--function", "--s", "0.1", "--convex"][..],
+            "drop --s, --tol and --robust",
+        ),
+        (
+            &["fit", "-", "--function", "--min", "0@1"][..],
+            "is not an interval A:B",
+        ),
+        (
+            &["fit", "-", "--function", "--through", "1"][..],
+            "is not X=V",
+        ),
+        (
+            &[
+                "fit",
+                "-",
+                "--function",
+                "--increasing",
+                "--through",
+                "0=1",
+                "--through",
+                "3=0",
+            ][..],
+            "cannot all hold",
+        ),
+    ] {
+        lekalo()
+            .args(args)
+            .write_stdin(data.clone())
+            .assert()
+            .failure()
+            .stderr(contains(reason));
+    }
+}

@@ -8,11 +8,11 @@
 //! runs with the GIL released.
 
 use lekalo::fit::{
-    closed_parameters, gcv_score as lk_gcv, least_squares, periodic_least_squares,
-    periodic_smoothing_condition, place_knots as lk_place_knots, robust_least_squares,
-    smoothing_condition, smoothing_spline, surface_grid_least_squares,
-    surface_scattered_least_squares, CurveFit, Deviation, EndConstraints, FitData, FitReport,
-    Lambda, RobustLoss, ToleranceOptions,
+    closed_parameters, constrained_least_squares, constrained_smoothing_spline,
+    gcv_score as lk_gcv, least_squares, periodic_least_squares, periodic_smoothing_condition,
+    place_knots as lk_place_knots, robust_least_squares, smoothing_condition, smoothing_spline,
+    surface_grid_least_squares, surface_scattered_least_squares, CurveFit, Deviation,
+    EndConstraints, FitData, FitReport, Lambda, RobustLoss, ToleranceOptions,
 };
 use lekalo::{KnotVector, PointsRef};
 use pyo3::prelude::*;
@@ -22,6 +22,7 @@ use crate::convert::{floats, grid_points, vec1, vec_array, FloatArray};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err};
 use crate::interp::{parametrization_arg, parametrization_or_chord};
+use crate::shape::ShapeArgs;
 use crate::surfaces::PyBSplineSurface;
 
 /// How a weight argument enters the sum of squares.
@@ -130,8 +131,19 @@ fn ends_constraints(
 /// >>> c = lekalo.make_lsq_spline(x, y, [0, 0, 0, 0, 0.5, 1, 1, 1, 1], k=3)
 /// >>> bool(np.abs(c(x)[:, 0] - y).max() < 1e-12)
 /// True
+///
+/// Shape constraints (keyword arguments; `y` 1-D) make it the best fit that keeps its shape for
+/// every `x`, not only at the data (`docs/theory/fitting.md#shape-constraints`): `increasing`,
+/// `decreasing`, `convex`, `concave` are `True`, an interval `(a, b)` or a list of intervals;
+/// `min`, `max` are a number, `(v, a, b)` or a list of those; `through` and `slope_at` are
+/// `(x, v)` or a list of pairs (`y(x) = v`, `y'(x) = v`).
+///
+/// >>> c = lekalo.make_lsq_spline(x, np.sin(6 * x), [0, 0, 0, 0, 0.5, 1, 1, 1, 1], increasing=True)
+/// >>> bool((np.diff(c(np.linspace(0, 1, 200))[:, 0]) >= -1e-12).all())
+/// True
 #[pyfunction]
-#[pyo3(signature = (x, y, t, k = 3, w = None))]
+#[pyo3(signature = (x, y, t, k = 3, w = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn make_lsq_spline<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
@@ -139,12 +151,37 @@ pub(crate) fn make_lsq_spline<'py>(
     t: &Bound<'py, PyAny>,
     k: usize,
     w: Option<&Bound<'py, PyAny>>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let fd = data.fit_data("x")?;
     let kv = knot_vector(t)?;
     let f = py
-        .detach(|| least_squares(&fd, k, &kv, &EndConstraints::none()))
+        .detach(|| {
+            if shape.is_empty() {
+                least_squares(&fd, k, &kv, &EndConstraints::none())
+            } else {
+                constrained_least_squares(&fd, k, &kv, &shape)
+            }
+        })
         .map_err(lib_err)?;
     Ok(PyBSplineCurve::wrap(f.curve))
 }
@@ -153,9 +190,10 @@ pub(crate) fn make_lsq_spline<'py>(
 /// `clamp_ends` makes the curve start at the first point and end at the last; `d_start` /
 /// `d_end` also fix the end derivatives (P&T A9.6/A9.7, `docs/theory/fitting.md#constraints`).
 /// `params` are the data parameters (1-D, inside the knots' domain); the weights are the
-/// library's, `Σ w_k |C(ū_k) − Q_k|²`.
+/// library's, `Σ w_k |C(ū_k) − Q_k|²`. The shape constraints are those of `make_lsq_spline`
+/// (for 1-D `points`, without `clamp_ends`: give end values as `through`).
 #[pyfunction]
-#[pyo3(signature = (points, params, t, k = 3, *, w = None, clamp_ends = false, d_start = None, d_end = None))]
+#[pyo3(signature = (points, params, t, k = 3, *, w = None, clamp_ends = false, d_start = None, d_end = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_least_squares<'py>(
     py: Python<'py>,
@@ -167,13 +205,45 @@ pub(crate) fn fit_least_squares<'py>(
     clamp_ends: bool,
     d_start: Option<&Bound<'py, PyAny>>,
     d_end: Option<&Bound<'py, PyAny>>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
     let data = Data::read(params, points, w, "params", WeightsAre::Squared)?;
     let fd = data.fit_data("params")?;
     let kv = knot_vector(t)?;
     let ends = ends_constraints(clamp_ends, d_start, d_end)?;
+    if !shape.is_empty() && ends != EndConstraints::none() {
+        return Err(bad(
+            "clamp_ends/d_start/d_end: with shape constraints give end values and slopes as \
+             through=(x, v) and slope_at=(x, v)"
+                .into(),
+        ));
+    }
     let f = py
-        .detach(|| least_squares(&fd, k, &kv, &ends))
+        .detach(|| {
+            if shape.is_empty() {
+                least_squares(&fd, k, &kv, &ends)
+            } else {
+                constrained_least_squares(&fd, k, &kv, &shape)
+            }
+        })
         .map_err(lib_err)?;
     with_report(py, f)
 }
@@ -191,32 +261,74 @@ fn lambda_arg(lam: Option<f64>) -> Lambda {
 /// >>> c = lekalo.make_smoothing_spline(x, y)
 /// >>> bool(np.abs(c(x)[:, 0] - y).max() < 0.05)
 /// True
+///
+/// The shape constraints of `make_lsq_spline` (keyword arguments) keep the spline's shape over
+/// the cubic splines with knots at the data; with `lam=None`, λ is the unconstrained spline's
+/// GCV choice.
 #[pyfunction]
-#[pyo3(signature = (x, y, w = None, lam = None))]
-pub(crate) fn make_smoothing_spline(
-    py: Python<'_>,
-    x: &Bound<'_, PyAny>,
-    y: &Bound<'_, PyAny>,
-    w: Option<&Bound<'_, PyAny>>,
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn make_smoothing_spline<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
     lam: Option<f64>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
-    Ok(fit_smoothing(py, x, y, w, lam)?.0)
+    Ok(fit_smoothing(
+        py, x, y, w, lam, increasing, decreasing, convex, concave, min, max, through, slope_at,
+    )?
+    .0)
 }
 
 /// As `make_smoothing_spline`, returning `(curve, report)`; `report["lam"]` is the λ used.
 #[pyfunction]
-#[pyo3(signature = (x, y, w = None, lam = None))]
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
     lam: Option<f64>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let fd = data.fit_data("x")?;
     let f = py
-        .detach(|| smoothing_spline(&fd, lambda_arg(lam)))
+        .detach(|| {
+            if shape.is_empty() {
+                smoothing_spline(&fd, lambda_arg(lam))
+            } else {
+                constrained_smoothing_spline(&fd, lambda_arg(lam), &shape)
+            }
+        })
         .map_err(lib_err)?;
     with_report(py, f)
 }

@@ -27,6 +27,7 @@ mod interp;
 mod objects;
 mod pp;
 mod query;
+mod shape;
 mod slopes;
 mod surfaces;
 mod tensor;

@@ -253,6 +253,38 @@ pub enum Error {
         reason: String,
     },
 
+    /// Shape constraints of a fit that no spline of the space satisfies together: the
+    /// constraints named carry the solver's certificate of infeasibility (a combination of them
+    /// that is contradictory; not always the smallest such set).
+    ///
+    /// ```
+    /// use lekalo::fit::{constrained_least_squares, FitData, Shape, ShapeConstraints};
+    /// use lekalo::{Error, KnotVector, PointsRef};
+    /// let x = [0.0, 0.25, 0.5, 0.75, 1.0];
+    /// let y = [0.0, 1.0, 0.5, 2.0, 1.5];
+    /// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+    /// let kv = KnotVector::clamped_uniform(2, 4)?;
+    /// // increasing, with y(0) = 1 and y(1) = 0: impossible
+    /// let c = ShapeConstraints::new()
+    ///     .with(Shape::Increasing)
+    ///     .with_point(0.0, 0, 1.0)
+    ///     .with_point(1.0, 0, 0.0);
+    /// let e = constrained_least_squares(&data, 2, &kv, &c).unwrap_err();
+    /// assert!(matches!(e, Error::InfeasibleConstraints { .. }));
+    /// assert!(e.to_string().contains("increasing"));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error(
+        "the shape constraints cannot all hold: {} contradict each other; drop or widen one \
+         of them",
+        conflicting.join(", ")
+    )]
+    InfeasibleConstraints {
+        /// The conflicting constraints, in words (`"increasing"`, `"max 1 on [0, 2]"`,
+        /// `"y(0) = 1"`).
+        conflicting: Vec<String>,
+    },
+
     /// An argument with a value the operation cannot use (the message says which and why).
     ///
     /// ```

@@ -329,8 +329,37 @@ def evaluate_batch(
 ) -> Array: ...
 
 # -- fitting (docs/theory/fitting.md); the fit_* functions return (curve, report dict)
-def make_lsq_spline(x: ArrayLike, y: ArrayLike, t: ArrayLike, k: int = 3, w: Optional[ArrayLike] = None) -> BSplineCurve: ...
-def make_smoothing_spline(x: ArrayLike, y: ArrayLike, w: Optional[ArrayLike] = None, lam: Optional[float] = None) -> BSplineCurve: ...
+def make_lsq_spline(
+    x: ArrayLike,
+    y: ArrayLike,
+    t: ArrayLike,
+    k: int = 3,
+    w: Optional[ArrayLike] = None,
+    *,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+) -> BSplineCurve: ...
+def make_smoothing_spline(
+    x: ArrayLike,
+    y: ArrayLike,
+    w: Optional[ArrayLike] = None,
+    lam: Optional[float] = None,
+    *,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+) -> BSplineCurve: ...
 def make_splrep(x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0) -> BSplineCurve: ...
 def make_splprep(
     points: ArrayLike, *, w: Optional[ArrayLike] = None, u: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, parametrization: Optional[Param] = None
@@ -345,8 +374,30 @@ def fit_least_squares(
     clamp_ends: bool = False,
     d_start: Optional[ArrayLike] = None,
     d_end: Optional[ArrayLike] = None,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
-def fit_smoothing(x: ArrayLike, y: ArrayLike, w: Optional[ArrayLike] = None, lam: Optional[float] = None) -> Tuple[BSplineCurve, dict]: ...
+def fit_smoothing(
+    x: ArrayLike,
+    y: ArrayLike,
+    w: Optional[ArrayLike] = None,
+    lam: Optional[float] = None,
+    *,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+) -> Tuple[BSplineCurve, dict]: ...
 def fit_smoothing_condition(x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0) -> Tuple[BSplineCurve, dict]: ...
 def fit_tolerance(
     points: ArrayLike, tol: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None

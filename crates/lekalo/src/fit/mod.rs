@@ -16,6 +16,7 @@
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
+//! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
@@ -31,6 +32,7 @@
 //! [#periodic]: ../../docs/theory/fitting.md#periodic
 //! [#robust]: ../../docs/theory/fitting.md#robust
 //! [#surfaces]: ../../docs/theory/fitting.md#surfaces
+//! [#shape-constraints]: ../../docs/theory/fitting.md#shape-constraints
 //!
 //! ## Conventions
 //! - Data are points `Q_k` (any dimension, [`PointsRef`](crate::PointsRef)) with parameters
@@ -49,6 +51,7 @@ mod lsq;
 mod periodic;
 mod robust;
 mod rows;
+mod shape;
 mod smoothing;
 mod smoothing_condition;
 mod surface;
@@ -59,6 +62,10 @@ pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
 pub use periodic::{closed_parameters, periodic_least_squares, periodic_smoothing_condition};
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
+pub use shape::{
+    constrained_least_squares, constrained_smoothing_spline, shape_violations, PointCondition,
+    Shape, ShapeConstraint, ShapeConstraints, SHAPE_RTOL,
+};
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
 pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
 pub use surface::{

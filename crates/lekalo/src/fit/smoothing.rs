@@ -99,24 +99,26 @@ pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
 /// to interpolation both its numerator and denominator vanish and rounding decides the value.
 const GCV_MIN_DOF: f64 = 0.5;
 
-/// The banded pieces of the problem, assembled once for all λ.
-struct Smoother {
+/// The banded pieces of the problem, assembled once for all λ (also the objective of the
+/// shape-constrained smoothing spline, `super::shape`).
+pub(super) struct Smoother {
     n: usize,
     dim: usize,
-    knots: Vec<f64>,
+    pub(super) knots: Vec<f64>,
     /// Per data point: the 4 non-zero basis values.
     basis: Vec<[f64; 4]>,
     weights: Vec<f64>,
     /// `Q − center`, flat.
     y: Vec<f64>,
-    center: Vec<f64>,
-    gram: SymBand,
-    omega: SymBand,
-    rhs: Vec<f64>,
+    pub(super) center: Vec<f64>,
+    pub(super) gram: SymBand,
+    pub(super) omega: SymBand,
+    /// `BᵀW(Q − center)`, flat.
+    pub(super) rhs: Vec<f64>,
 }
 
 impl Smoother {
-    fn new(data: &FitData<'_>) -> Result<Self> {
+    pub(super) fn new(data: &FitData<'_>) -> Result<Self> {
         let x = data.params();
         let n = x.len();
         if n < 3 {
@@ -285,7 +287,7 @@ impl Smoother {
     /// bound, so the scan covers the whole range rather than a fixed width around either end.
     /// λ where the banded system cannot be factored (beyond about 10¹⁶ times the first bound)
     /// score `+∞`.
-    fn minimise_gcv(&self) -> Result<f64> {
+    pub(super) fn minimise_gcv(&self) -> Result<f64> {
         let tg: f64 = (0..self.gram.n).map(|i| self.gram.a[i * 4]).sum();
         let to: f64 = (0..self.omega.n).map(|i| self.omega.a[i * 4]).sum();
         let scale = (tg / to).log10();

@@ -546,9 +546,7 @@ impl Tracked {
             return Ok(false);
         }
         let saved: Vec<f64> = todo.iter().map(|&i| self.at[i]).collect();
-        for i in c0..c1 {
-            self.at[i] = fresh[i - c0];
-        }
+        self.at[c0..c1].copy_from_slice(&fresh);
         // measured in blocks from the middle of the change outwards (where the curve moved
         // most): a refused trial usually stops in its first block
         let middle = 0.5 * (changed.0 + changed.1);

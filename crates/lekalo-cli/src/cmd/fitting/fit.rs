@@ -5,12 +5,14 @@ use lekalo_io::CurveJson;
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Args, ValueEnum};
+use clap::{ArgAction, Args, ValueEnum};
 use lekalo::fit::{
-    closed_parameters, fit_tolerance_with_progress, least_squares, periodic_least_squares,
+    closed_parameters, constrained_least_squares, constrained_smoothing_spline,
+    fit_tolerance_with_progress, least_squares, periodic_least_squares,
     periodic_smoothing_condition, place_knots, robust_least_squares, smoothing_condition,
     smoothing_spline, surface_grid_least_squares, surface_scattered_least_squares, CurveFit,
-    Deviation, EndConstraints, FitData, Lambda, RobustLoss, ToleranceOptions,
+    Deviation, EndConstraints, FitData, Lambda, RobustLoss, Shape, ShapeConstraints,
+    ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -42,6 +44,11 @@ Modes (one of them; least squares by default):
   --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
 Surfaces: --grid ROWSxCOLS with --ctrl-grid NUxNV; --scattered (rows u,v,z) with --ctrl-grid.
 
+Shape constraints (--function fits by --lsq or --smooth; each holds for every x, not only at
+the data; repeat an option for several intervals):
+  --increasing[=A:B] --decreasing[=A:B] --convex[=A:B] --concave[=A:B]
+  --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
+
 The report (residual max and RMS, λ or s, control points) goes to standard error, or with
 --json the output is {\"object\": …, \"report\": …}; --per-point adds every residual.
 
@@ -52,6 +59,8 @@ Examples:
   lekalo fit xy.csv --function --s 0.05 --weights w.txt
   lekalo fit track.csv --tol 0.01 -o track.svg
   lekalo fit xy.csv --function --ctrl 12 --robust tukey --json
+  lekalo fit xy.csv --function --ctrl 10 --increasing --convex=0:15 --min 0
+  lekalo fit xy.csv --function --smooth 1 --max 0.9 --concave=5:20 --through 0=0
   lekalo fit loop.csv --periodic --s 0.01 -o loop.json
   lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
   lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3")]
@@ -120,6 +129,30 @@ pub(crate) struct FitArgs {
     /// Smoothing penalty of scattered surfaces (second differences of the net).
     #[arg(long, default_value_t = 0.0)]
     penalty: f64,
+    /// Keep y(x) increasing (y' ≥ 0) everywhere, or with `=A:B` on [A, B].
+    #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
+    increasing: Vec<String>,
+    /// Keep y(x) decreasing (y' ≤ 0) everywhere, or with `=A:B` on [A, B].
+    #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
+    decreasing: Vec<String>,
+    /// Keep y(x) convex (y'' ≥ 0) everywhere, or with `=A:B` on [A, B].
+    #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
+    convex: Vec<String>,
+    /// Keep y(x) concave (y'' ≤ 0) everywhere, or with `=A:B` on [A, B].
+    #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
+    concave: Vec<String>,
+    /// Lower bound y ≥ V everywhere, or `V@A:B` on [A, B].
+    #[arg(long, value_name = "V[@A:B]", allow_hyphen_values = true, action = ArgAction::Append)]
+    min: Vec<String>,
+    /// Upper bound y ≤ V everywhere, or `V@A:B` on [A, B].
+    #[arg(long, value_name = "V[@A:B]", allow_hyphen_values = true, action = ArgAction::Append)]
+    max: Vec<String>,
+    /// A point the fit passes through: `X=V` for y(X) = V.
+    #[arg(long, value_name = "X=V", allow_hyphen_values = true, action = ArgAction::Append)]
+    through: Vec<String>,
+    /// The slope at a point: `X=V` for y'(X) = V.
+    #[arg(long, value_name = "X=V", allow_hyphen_values = true, action = ArgAction::Append)]
+    slope_at: Vec<String>,
     /// Write {"object", "report"} as JSON instead of the object alone.
     #[arg(long)]
     json: bool,
@@ -220,6 +253,27 @@ fn fit_curve(
         data = data.with_weights(w)?;
     }
     let mut report = json!({});
+    let shape = shape_constraints(a)?;
+    if !shape.is_empty() {
+        if !a.function {
+            return bad_input(
+                "shape constraints (--increasing, --convex, --min, --through, …) are for functions y(x): add --function",
+            );
+        }
+        if a.s.is_some() || a.tol.is_some() || a.robust.is_some() {
+            return bad_input(
+                "shape constraints go with least squares (--lsq, the default) or --smooth; drop --s, --tol and --robust",
+            );
+        }
+        if a.clamp_ends || a.d0.is_some() || a.dn.is_some() {
+            return bad_input(
+                "with shape constraints, give end values and slopes as --through X=V and --slope-at X=V instead of --clamp-ends/--start-derivative/--end-derivative",
+            );
+        }
+        report["constraints"] = json!((0..shape.len())
+            .map(|i| shape.describe(i))
+            .collect::<Vec<_>>());
+    }
     let fit: CurveFit = if let Some(sm) = &a.smooth {
         let lambda = if sm.eq_ignore_ascii_case("gcv") {
             Lambda::Gcv
@@ -231,7 +285,11 @@ fn fit_curve(
                 }
             }
         };
-        smoothing_spline(&data, lambda)?
+        if shape.is_empty() {
+            smoothing_spline(&data, lambda)?
+        } else {
+            constrained_smoothing_spline(&data, lambda, &shape)?
+        }
     } else if let Some(s) = a.s {
         report["s"] = json!(s);
         smoothing_condition(&data, a.degree, s)?
@@ -266,9 +324,9 @@ fn fit_curve(
         let ends = constraints(a)?;
         match a.robust {
             Some(r) => {
-                if ends != EndConstraints::none() {
+                if ends != EndConstraints::none() || !shape.is_empty() {
                     return bad_input(
-                        "--robust fits without end constraints; drop --clamp-ends/--start-derivative/--end-derivative",
+                        "--robust fits without end or shape constraints; drop --clamp-ends/--start-derivative/--end-derivative",
                     );
                 }
                 let loss = match r {
@@ -280,6 +338,9 @@ fn fit_curve(
                 report["robust_scale"] = json!(r.scale);
                 report["iterations"] = json!(r.iterations);
                 r.fit
+            }
+            None if !shape.is_empty() => {
+                constrained_least_squares(&data, a.degree, &knots, &shape)?
             }
             None => least_squares(&data, a.degree, &knots, &ends)?,
         }
@@ -379,6 +440,67 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
     let mut sorted = params.to_vec();
     sorted.sort_by(f64::total_cmp);
     Ok(place_knots(&sorted, a.degree, n)?)
+}
+
+/// The shape constraints of the options, in the order of the options' kinds.
+fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
+    let mut c = ShapeConstraints::new();
+    let interval = |text: &str, option: &str| -> Result<Option<(f64, f64)>> {
+        if text.is_empty() {
+            return Ok(None);
+        }
+        let ab = numbers(&text.replacen(':', ",", 1), option)?;
+        match ab[..] {
+            [a, b] => Ok(Some((a, b))),
+            _ => bad_input(format!("{option}: \"{text}\" is not an interval A:B")),
+        }
+    };
+    let kinds: [(&[String], Shape, &str); 4] = [
+        (&a.increasing, Shape::Increasing, "--increasing"),
+        (&a.decreasing, Shape::Decreasing, "--decreasing"),
+        (&a.convex, Shape::Convex, "--convex"),
+        (&a.concave, Shape::Concave, "--concave"),
+    ];
+    for (list, shape, option) in kinds {
+        for text in list {
+            c = match interval(text, option)? {
+                None => c.with(shape),
+                Some((lo, hi)) => c.with_on(shape, lo, hi),
+            };
+        }
+    }
+    for (list, option) in [(&a.min, "--min"), (&a.max, "--max")] {
+        for text in list {
+            let (v, on) = text.split_once('@').unwrap_or((text, ""));
+            let v = match numbers(v, option)?[..] {
+                [v] => v,
+                _ => return bad_input(format!("{option}: \"{text}\" is not V or V@A:B")),
+            };
+            let shape = if option == "--min" {
+                Shape::AtLeast(v)
+            } else {
+                Shape::AtMost(v)
+            };
+            c = match interval(on, option)? {
+                None => c.with(shape),
+                Some((lo, hi)) => c.with_on(shape, lo, hi),
+            };
+        }
+    }
+    for (list, order, option) in [(&a.through, 0, "--through"), (&a.slope_at, 1, "--slope-at")] {
+        for text in list {
+            let parsed = text
+                .split_once('=')
+                .map(|(x, v)| (numbers(x, option), numbers(v, option)));
+            match parsed {
+                Some((Ok(x), Ok(v))) if x.len() == 1 && v.len() == 1 => {
+                    c = c.with_point(x[0], order, v[0]);
+                }
+                _ => return bad_input(format!("{option}: \"{text}\" is not X=V")),
+            }
+        }
+    }
+    Ok(c)
 }
 
 fn constraints(a: &FitArgs) -> Result<EndConstraints> {

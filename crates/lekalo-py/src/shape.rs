@@ -1,0 +1,91 @@
+//! The shape-constraint keyword arguments of the fit functions (`increasing`, `decreasing`,
+//! `convex`, `concave`, `min`, `max`, `through`, `slope_at`), read into the library's
+//! [`ShapeConstraints`] (`docs/theory/fitting.md#shape-constraints`). Conversions only.
+
+use lekalo::fit::{Shape, ShapeConstraints};
+use pyo3::prelude::*;
+
+use crate::error::bad;
+
+/// The keyword arguments as given (each `None` when absent).
+#[derive(Default)]
+pub(crate) struct ShapeArgs<'a, 'py> {
+    pub(crate) increasing: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) decreasing: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) convex: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) concave: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) min: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) max: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) through: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) slope_at: Option<&'a Bound<'py, PyAny>>,
+}
+
+impl ShapeArgs<'_, '_> {
+    /// The constraints: a derivative shape is `True` (the whole domain), an interval `(a, b)`
+    /// or a list of intervals; a bound is a number `v` (everywhere), `(v, a, b)` or a list of
+    /// those; `through` and `slope_at` are `(x, v)` or a list of pairs.
+    pub(crate) fn constraints(&self) -> PyResult<ShapeConstraints> {
+        let mut c = ShapeConstraints::new();
+        let kinds = [
+            (self.increasing, Shape::Increasing, "increasing"),
+            (self.decreasing, Shape::Decreasing, "decreasing"),
+            (self.convex, Shape::Convex, "convex"),
+            (self.concave, Shape::Concave, "concave"),
+        ];
+        for (arg, shape, name) in kinds {
+            let Some(arg) = arg else { continue };
+            if let Ok(on) = arg.extract::<bool>() {
+                if on {
+                    c = c.with(shape);
+                }
+            } else if let Ok((a, b)) = arg.extract::<(f64, f64)>() {
+                c = c.with_on(shape, a, b);
+            } else if let Ok(list) = arg.extract::<Vec<(f64, f64)>>() {
+                for (a, b) in list {
+                    c = c.with_on(shape, a, b);
+                }
+            } else {
+                return Err(bad(format!(
+                    "{name}: give True, an interval (a, b) or a list of intervals"
+                )));
+            }
+        }
+        for (arg, name) in [(self.min, "min"), (self.max, "max")] {
+            let Some(arg) = arg else { continue };
+            let bound = |v: f64| {
+                if name == "min" {
+                    Shape::AtLeast(v)
+                } else {
+                    Shape::AtMost(v)
+                }
+            };
+            if let Ok(v) = arg.extract::<f64>() {
+                c = c.with(bound(v));
+            } else if let Ok((v, a, b)) = arg.extract::<(f64, f64, f64)>() {
+                c = c.with_on(bound(v), a, b);
+            } else if let Ok(list) = arg.extract::<Vec<(f64, f64, f64)>>() {
+                for (v, a, b) in list {
+                    c = c.with_on(bound(v), a, b);
+                }
+            } else {
+                return Err(bad(format!(
+                    "{name}: give a number v, (v, a, b) for [a, b] or a list of (v, a, b)"
+                )));
+            }
+        }
+        for (arg, order, name) in [(self.through, 0, "through"), (self.slope_at, 1, "slope_at")] {
+            let Some(arg) = arg else { continue };
+            let points = if let Ok(p) = arg.extract::<(f64, f64)>() {
+                vec![p]
+            } else if let Ok(list) = arg.extract::<Vec<(f64, f64)>>() {
+                list
+            } else {
+                return Err(bad(format!("{name}: give (x, v) or a list of (x, v)")));
+            };
+            for (x, v) in points {
+                c = c.with_point(x, order, v);
+            }
+        }
+        Ok(c)
+    }
+}

@@ -1,0 +1,73 @@
+"""Shape-constrained fits from Python: the keyword arguments reach the library and return the
+usual curve types; bad arguments and contradictory constraints raise lekalo.InputError. (The
+mathematics is tested in the Rust core.)"""
+
+import numpy as np
+import pytest
+
+import lekalo
+
+X = np.linspace(0.0, 1.0, 60)
+Y = X + 0.15 * np.sin(12 * X)
+T = [0, 0, 0, 0, 0.2, 0.4, 0.6, 0.8, 1, 1, 1, 1]
+FINE = np.linspace(0.0, 1.0, 2001)
+
+
+def values(c, x=FINE):
+    return c(x)[:, 0]
+
+
+def test_lsq_increasing_keeps_its_shape_and_type():
+    free = lekalo.make_lsq_spline(X, Y, T)
+    assert (np.diff(values(free)) < 0).any()
+    c = lekalo.make_lsq_spline(X, Y, T, increasing=True)
+    assert isinstance(c, lekalo.BSplineCurve)
+    assert (np.diff(values(c)) >= -1e-12).all()
+
+
+def test_intervals_bounds_and_points():
+    c, report = lekalo.fit_least_squares(
+        Y, X, T, convex=[(0.0, 0.3)], max=(0.9, 0.5, 1.0), min=0.0, through=(0.0, 0.05), slope_at=(1.0, 1.0)
+    )
+    v = values(c)
+    assert v.min() >= -1e-12
+    assert v[FINE >= 0.5].max() <= 0.9 + 1e-12
+    assert abs(values(c, [0.0])[0] - 0.05) < 1e-12
+    assert abs(c(np.array([1.0]), 1)[0, 0] - 1.0) < 1e-12
+    assert report["n_ctrl"] == 8
+
+
+def test_smoothing_with_and_without_lambda():
+    c = lekalo.make_smoothing_spline(X, Y, lam=1e-4, decreasing=[(0.9, 1.0)])
+    assert (np.diff(values(c)[FINE >= 0.9]) <= 1e-12).all()
+    c, report = lekalo.fit_smoothing(X, Y, concave=True)
+    assert report["lam"] > 0
+    assert (c(FINE, 2)[:, 0] <= 1e-9).all()
+
+
+def test_inactive_constraints_give_the_unconstrained_fit():
+    free = lekalo.make_lsq_spline(X, Y, T)
+    c = lekalo.make_lsq_spline(X, Y, T, min=-10.0, max=10.0)
+    assert np.array_equal(c.control, free.control)
+
+
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        ({"increasing": "yes"}, "increasing: give True"),
+        ({"min": "low"}, "min: give a number"),
+        ({"through": 1.0}, "through: give (x, v)"),
+        ({"increasing": (0.5, 0.2)}, "is empty"),
+        ({"increasing": True, "through": [(0.0, 1.0), (1.0, 0.0)]}, "cannot all hold"),
+    ],
+)
+def test_bad_arguments_raise_input_error(kwargs, words):
+    with pytest.raises(lekalo.InputError, match=words.replace("(", r"\(").replace(")", r"\)")):
+        lekalo.make_lsq_spline(X, Y, T, **kwargs)
+
+
+def test_shape_constraints_need_values_not_points():
+    with pytest.raises(lekalo.InputError, match="dimension"):
+        lekalo.fit_least_squares(np.c_[X, Y], X, T, increasing=True)
+    with pytest.raises(lekalo.InputError, match="through"):
+        lekalo.fit_least_squares(Y, X, T, clamp_ends=True, increasing=True)

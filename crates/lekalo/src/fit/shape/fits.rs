@@ -1,0 +1,415 @@
+//! Least squares and smoothing splines of functions `y(x)` that keep their shape, and the exact
+//! check of a curve against shape constraints (`docs/theory/fitting.md#shape-constraints`).
+
+use super::bernstein::{bernstein_rows, min_on_unit, pieces};
+use super::constraints::ShapeConstraints;
+use super::program::{failure_error, gram_of_triangle, triangle_transpose_times, ConeProgram, Row};
+use crate::basis::{basis_ders_into, BasisScratch};
+use crate::error::{check_degree_bound, Error, Result};
+use crate::fit::banded::SymBand;
+use crate::fit::data::{check_in_domain, CurveFit, FitData, FitReport};
+use crate::fit::knot_placement::check_schoenberg_whitney;
+use crate::fit::lsq::{accumulate, least_squares, EndConstraints, Fixed};
+use crate::fit::smoothing::Smoother;
+use crate::fit::{smoothing_spline, Lambda};
+use crate::knots::KnotVector;
+use crate::points::Points;
+use crate::BSplineCurve;
+
+/// Violation, relative to the data's scale, below which a constraint counts as holding when the
+/// unconstrained fit is tested (then it is returned unchanged) and when the constrained one is
+/// checked. The scale of `y⁽ʳ⁾` is `Y / L^r`, `Y` the largest `|y_k − y_0|` and `L` the length
+/// of the domain.
+pub const SHAPE_RTOL: f64 = 5e-13;
+
+/// The weighted least-squares spline of `degree` on `knots` (as [`least_squares`]) that keeps
+/// `constraints`: the minimiser of `Σ_k w_k (y(x_k) − y_k)²` over the splines satisfying every
+/// shape on its interval for **every** `x` (not only at samples) and every point equality.
+///
+/// Each shape `σ(y⁽ʳ⁾ − v) ≥ 0` becomes conditions on the Bernstein coefficients of `y⁽ʳ⁾` on
+/// each piece of a knot span inside its interval (linear in the control points), exact where
+/// the constrained derivative has degree `d = p − r ≤ 2`: `d ≤ 1` by the coefficients' signs, `d = 2`
+/// by a rotated second-order cone `b₁ + √(b₀b₂) ≥ 0`. For `d ≥ 3` the coefficient signs are
+/// sufficient only (the fit is feasible but may be the optimum of a slightly stricter problem).
+/// The data are reduced by banded QR to the triangle `R` (as [`least_squares`]); the cone
+/// program with the banded `RᵀR` is solved by Clarabel (interior point), so the work after the
+/// pass over the data grows with the number of coefficients only.
+///
+/// When the unconstrained fit already satisfies every constraint (to [`SHAPE_RTOL`]) it is
+/// returned unchanged. Functions only: the data are 1-D (`y` over parameters `x`).
+///
+/// ```
+/// use lekalo::fit::{constrained_least_squares, FitData, Shape, ShapeConstraints};
+/// use lekalo::{KnotVector, PointsRef};
+/// let x: Vec<f64> = (0..40).map(|k| k as f64 / 39.0).collect();
+/// // a rising signal with a dip
+/// let y: Vec<f64> = x.iter().map(|t| t + 0.1 * (12.0 * t).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let kv = KnotVector::clamped_uniform(3, 10)?;
+/// let c = ShapeConstraints::new().with(Shape::Increasing);
+/// let fit = constrained_least_squares(&data, 3, &kv, &c)?;
+/// let v = lekalo::fit::shape_violations(&fit.curve, &c)?;
+/// assert!(v[0] <= 1e-12);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`least_squares`]; [`Error::Dimension`] for data that are not 1-D;
+/// [`Error::InvalidArgument`] / [`Error::NonFinite`] for a constraint outside the domain or with
+/// a bad number; [`Error::InfeasibleConstraints`] naming the constraints that contradict each
+/// other; [`Error::IllConditioned`] if the solver stops without an answer.
+pub fn constrained_least_squares(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    constraints: &ShapeConstraints,
+) -> Result<CurveFit> {
+    check_function_data(data)?;
+    check_degree_bound(degree)?;
+    let n_ctrl = knots
+        .len()
+        .checked_sub(degree + 1)
+        .ok_or_else(|| Error::Degree {
+            degree,
+            reason: format!("{} knots carry no spline of this degree", knots.len()),
+        })?;
+    knots.validate_for(degree, n_ctrl)?;
+    let domain = knots.domain(degree);
+    check_in_domain(data.params(), domain)?;
+    constraints.validate(domain, degree)?;
+    check_schoenberg_whitney(data.params(), degree, knots)?;
+    let free = least_squares(data, degree, knots, &EndConstraints::none())?;
+    let scale = Scale::of(data, domain);
+    if holds(&free.curve, constraints, &scale)? {
+        return Ok(free);
+    }
+    let fixed = Fixed::free(data);
+    let bw = degree + 1;
+    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw);
+    // ½‖Rc − z‖² with c and z in units of the data scale
+    let p = gram_of_triangle(&qr.r, n_ctrl, bw);
+    let z: Vec<f64> = qr.z.iter().map(|v| v / scale.y).collect();
+    let q: Vec<f64> = triangle_transpose_times(&qr.r, &z, n_ctrl, bw)
+        .into_iter()
+        .map(|v| -v)
+        .collect();
+    let coef = solve_program(
+        p,
+        q,
+        knots.as_slice(),
+        degree,
+        constraints,
+        &scale,
+        fixed.center[0],
+    )?;
+    let curve = curve_of(
+        degree,
+        knots.as_slice().to_vec(),
+        &coef,
+        &scale,
+        fixed.center[0],
+    );
+    let report = FitReport::new(&curve, data, None);
+    Ok(CurveFit { curve, report })
+}
+
+/// The cubic smoothing spline of [`smoothing_spline`] that keeps `constraints`: the minimiser of
+/// `Σ_k w_k (y(x_k) − y_k)² + λ ∫ y''²` over the cubic splines with knots at the data
+/// (the space of the unconstrained minimiser) satisfying every shape for every `x` of its
+/// interval and every point equality. With [`Lambda::Gcv`], λ is the one generalised
+/// cross-validation chooses for the unconstrained spline. Exactness per shape as in
+/// [`constrained_least_squares`] with `p = 3`: increasing/decreasing (`d = 2`, cone) and
+/// convex/concave (`d = 1`) exact, bounds (`d = 3`) sufficient only.
+///
+/// When the unconstrained spline already satisfies every constraint (to [`SHAPE_RTOL`]) it is
+/// returned unchanged. The objective is the banded `BᵀWB + λΩ` of [`smoothing_spline`].
+///
+/// ```
+/// use lekalo::fit::{constrained_smoothing_spline, FitData, Lambda, Shape, ShapeConstraints};
+/// use lekalo::PointsRef;
+/// let x: Vec<f64> = (0..30).map(|k| k as f64 / 29.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| (t - 0.5).abs() + 0.05 * (20.0 * t).cos()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let c = ShapeConstraints::new().with(Shape::Convex);
+/// let fit = constrained_smoothing_spline(&data, Lambda::Given(1e-4), &c)?;
+/// assert!(lekalo::fit::shape_violations(&fit.curve, &c)?[0] <= 1e-12);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`smoothing_spline`] and of [`constrained_least_squares`]'s constraints;
+/// [`Error::NegativeSmoothing`] for `λ ≤ 0` given (the constrained problem needs the penalty).
+pub fn constrained_smoothing_spline(
+    data: &FitData<'_>,
+    lambda: Lambda,
+    constraints: &ShapeConstraints,
+) -> Result<CurveFit> {
+    check_function_data(data)?;
+    if let Lambda::Given(l) = lambda {
+        if !(l > 0.0 && l.is_finite()) {
+            return Err(Error::NegativeSmoothing {
+                what: "λ (a shape-constrained smoothing spline needs λ > 0)",
+                value: l,
+            });
+        }
+    }
+    let s = Smoother::new(data)?;
+    let lam = match lambda {
+        Lambda::Given(l) => l,
+        Lambda::Gcv => s.minimise_gcv()?,
+    };
+    let n = s.knots.len() - 4;
+    let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
+    constraints.validate(domain, 3)?;
+    let free = smoothing_spline(data, Lambda::Given(lam))?;
+    let scale = Scale::of(data, domain);
+    if holds(&free.curve, constraints, &scale)? {
+        return Ok(free);
+    }
+    let mut p = s.gram.clone();
+    for (a, o) in p.a.iter_mut().zip(&s.omega.a) {
+        *a += lam * o;
+    }
+    debug_assert_eq!(p.n, n, "one coefficient per B-spline");
+    let q: Vec<f64> = s.rhs.iter().map(|v| -v / scale.y).collect();
+    let center = s.center[0];
+    let coef = solve_program(p, q, &s.knots, 3, constraints, &scale, center)?;
+    let curve = curve_of(3, s.knots.clone(), &coef, &scale, center);
+    let report = FitReport::new(&curve, data, Some(lam));
+    Ok(CurveFit { curve, report })
+}
+
+/// For each constraint (shapes, then points), by how much `curve` violates it (0 when it holds):
+/// `max(0, −min σ(y⁽ʳ⁾ − v))` over the interval for a shape, `|y⁽ʳ⁾(x) − value|` for a point.
+/// The minimum on each piece of a knot span is exact for `d = p − r ≤ 3` (end values and the
+/// roots of the derivative by the quadratic formula) and a lower bound for `d ≥ 4` (least
+/// Bernstein coefficient on 64 sub-pieces), so a reported 0 always means the shape holds.
+///
+/// # Errors
+/// [`Error::Dimension`] for a curve that is not 1-D; the constraint errors of
+/// [`constrained_least_squares`].
+pub fn shape_violations(curve: &BSplineCurve, constraints: &ShapeConstraints) -> Result<Vec<f64>> {
+    if curve.dim() != 1 {
+        return Err(Error::Dimension {
+            what: "curve checked against shape constraints (a function y(x))",
+            expected: 1,
+            got: curve.dim(),
+        });
+    }
+    let p = curve.degree();
+    let t = curve.knots().as_slice();
+    let ctrl = curve.control_points().as_slice();
+    let n_ctrl = ctrl.len();
+    let domain = curve.domain();
+    constraints.validate(domain, p)?;
+    let mut scratch = BasisScratch::new(p);
+    let mut out = Vec::with_capacity(constraints.len());
+    for s in &constraints.shapes {
+        let r = s.shape.derivative_order();
+        let (sigma, v) = (s.shape.sign(), s.shape.level());
+        let (a, b) = s.interval.unwrap_or(domain);
+        let mut worst = 0.0_f64;
+        if r > p {
+            // y⁽ʳ⁾ ≡ 0
+            worst = (sigma * v).max(0.0);
+        } else {
+            for (span, lo, hi) in pieces(t, p, n_ctrl, a, b) {
+                let m = bernstein_rows(t, p, span, lo, hi, r, &mut scratch);
+                let bc: Vec<f64> = m
+                    .iter()
+                    .map(|row| {
+                        let y: f64 = row
+                            .iter()
+                            .zip(&ctrl[span - p..=span])
+                            .map(|(a, c)| a * c)
+                            .sum();
+                        sigma * (y - v)
+                    })
+                    .collect();
+                worst = worst.max(-min_on_unit(&bc));
+            }
+        }
+        out.push(worst);
+    }
+    for q in &constraints.points {
+        let y = curve
+            .eval_derivatives(q.x, q.derivative)?
+            .point(q.derivative)[0];
+        out.push((y - q.value).abs());
+    }
+    Ok(out)
+}
+
+/// Refuses data that are not a function `y(x)`.
+fn check_function_data(data: &FitData<'_>) -> Result<()> {
+    if data.points().dim() != 1 {
+        return Err(Error::Dimension {
+            what: "data of a shape-constrained fit (values y over x)",
+            expected: 1,
+            got: data.points().dim(),
+        });
+    }
+    Ok(())
+}
+
+/// The scales of the problem: values in units of `y`, derivatives of order `r` in `y / L^r`.
+struct Scale {
+    y: f64,
+    length: f64,
+}
+
+impl Scale {
+    fn of(data: &FitData<'_>, (lo, hi): (f64, f64)) -> Self {
+        let v = data.points().as_slice();
+        let y = v.iter().fold(0.0_f64, |m, q| m.max((q - v[0]).abs()));
+        Scale {
+            y: if y > 0.0 { y } else { v[0].abs().max(1.0) },
+            length: hi - lo,
+        }
+    }
+
+    /// The scale of `y⁽ʳ⁾`.
+    fn of_derivative(&self, r: usize) -> f64 {
+        (0..r).fold(self.y, |s, _| s / self.length)
+    }
+}
+
+/// Whether `curve` keeps every constraint to [`SHAPE_RTOL`] of the scale.
+fn holds(curve: &BSplineCurve, constraints: &ShapeConstraints, scale: &Scale) -> Result<bool> {
+    let v = shape_violations(curve, constraints)?;
+    let orders = constraints
+        .shapes
+        .iter()
+        .map(|s| s.shape.derivative_order())
+        .chain(constraints.points.iter().map(|q| q.derivative));
+    Ok(v.iter()
+        .zip(orders)
+        .all(|(v, r)| *v <= SHAPE_RTOL * scale.of_derivative(r)))
+}
+
+/// Builds and solves the cone program of the constraints for the objective `½cᵀPc + qᵀc` in
+/// scaled coefficients `c = (control − center)/Y`; returns the scaled coefficients.
+fn solve_program(
+    p: SymBand,
+    q: Vec<f64>,
+    knots: &[f64],
+    degree: usize,
+    constraints: &ShapeConstraints,
+    scale: &Scale,
+    center: f64,
+) -> Result<Vec<f64>> {
+    let n = p.n;
+    let mut prog = ConeProgram::new(p, q);
+    let mut scratch = BasisScratch::new(degree);
+    let domain = (knots[degree], knots[n]);
+    for (owner, s) in constraints.shapes.iter().enumerate() {
+        let r = s.shape.derivative_order();
+        if r > degree {
+            // y⁽ʳ⁾ ≡ 0 satisfies every derivative shape (levels are 0)
+            continue;
+        }
+        let sigma = s.shape.sign();
+        // σ(y⁽ʳ⁾ − v) in scaled units: y⁽ʳ⁾ = Y·c⁽ʳ⁾ + center·[r = 0]
+        let level = (s.shape.level() - if r == 0 { center } else { 0.0 }) / scale.y;
+        let (a, b) = s.interval.unwrap_or(domain);
+        let d = degree - r;
+        for (span, lo, hi) in pieces(knots, degree, n, a, b) {
+            let m = bernstein_rows(knots, degree, span, lo, hi, r, &mut scratch);
+            let first = span - degree;
+            let row = |j: usize| Row {
+                first,
+                coef: m[j].iter().map(|v| sigma * v).collect(),
+                aux: None,
+                constant: -sigma * level,
+            };
+            if d == 2 {
+                prog.quadratics.push(([row(0), row(1), row(2)], owner));
+            } else {
+                for j in 0..=d {
+                    prog.inequalities.push((row(j), owner));
+                }
+            }
+        }
+    }
+    let n_shapes = constraints.shapes.len();
+    let kv = KnotVector::from_raw(knots.to_vec());
+    for (i, c) in constraints.points.iter().enumerate() {
+        let span = kv.find_span(degree, c.x)?;
+        let w = degree + 1;
+        let mut ders = vec![0.0; w * w];
+        basis_ders_into(knots, degree, span, c.x, degree, &mut scratch, &mut ders);
+        let r = c.derivative;
+        let value = (c.value - if r == 0 { center } else { 0.0 }) / scale.y;
+        prog.equalities.push((
+            Row {
+                first: span - degree,
+                coef: ders[r * w..(r + 1) * w].to_vec(),
+                aux: None,
+                constant: -value,
+            },
+            n_shapes + i,
+        ));
+    }
+    let interior = prog
+        .solve(0.0)
+        .map_err(|f| failure_error(f, |i| constraints.describe(i)))?;
+    // polish on the active face (twice more when a touching point of a quadratic moved), kept
+    // only if it keeps every constraint exactly and does not raise the objective
+    let bound = prog.objective(&interior) + POLISH_RTOL * (1.0 + prog.objective(&interior).abs());
+    let mut best = interior;
+    let mut exact = false;
+    let mut current = best.clone();
+    for _ in 0..4 {
+        let Some(c) = prog.polish(&current) else {
+            break;
+        };
+        let moved = c
+            .iter()
+            .zip(&current)
+            .any(|(a, b)| (a - b).abs() > 1e-15 * (1.0 + a.abs()));
+        let curve = curve_of(degree, knots.to_vec(), &c, scale, center);
+        if prog.objective(&c) <= bound && holds(&curve, constraints, scale)? {
+            best.clone_from(&c);
+            exact = true;
+        }
+        current = c;
+        if !moved {
+            break;
+        }
+    }
+    if !exact
+        && !holds(
+            &curve_of(degree, knots.to_vec(), &best, scale, center),
+            constraints,
+            scale,
+        )?
+    {
+        // the interior-point answer misses a constraint by its rounding and the polish found no
+        // face: solve again with every inequality tightened by a margin above that rounding
+        if let Ok(c) = prog.solve(FEASIBILITY_MARGIN) {
+            if holds(
+                &curve_of(degree, knots.to_vec(), &c, scale, center),
+                constraints,
+                scale,
+            )? {
+                best = c;
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// Margin (rows scaled to unit largest coefficient, coefficients in units of the data) by which
+/// inequalities are tightened when neither the interior-point answer nor its polish keeps them
+/// exactly; the answer moves by about this much.
+const FEASIBILITY_MARGIN: f64 = 1e-10;
+
+/// Relative rise of the objective above the interior-point answer's that a polished answer may
+/// show (rounding) and still be taken.
+const POLISH_RTOL: f64 = 1e-11;
+
+/// The curve of scaled coefficients `c`: control points `center + Y·c`.
+fn curve_of(degree: usize, knots: Vec<f64>, c: &[f64], scale: &Scale, center: f64) -> BSplineCurve {
+    let ctrl: Vec<f64> = c.iter().map(|v| center + scale.y * v).collect();
+    BSplineCurve::from_raw(degree, knots, Points::from_raw(ctrl, 1))
+}

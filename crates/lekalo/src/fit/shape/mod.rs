@@ -1,0 +1,29 @@
+//! Fits of functions `y(x)` that keep their shape: increasing or decreasing, convex or concave,
+//! above or below bounds, on the whole domain or on intervals, with equalities of values and
+//! derivatives at points (`docs/theory/fitting.md#shape-constraints`).
+//!
+//! Every shape is a sign condition `σ(y⁽ʳ⁾ − v) ≥ 0` for every `x` of an interval. On each piece
+//! of a knot span it is a condition on the Bernstein coefficients of `y⁽ʳ⁾` there, which are
+//! linear in the control points; the condition is exact (necessary and sufficient) where the
+//! constrained derivative has degree `d = p − r ≤ 2` and sufficient only for `d ≥ 3`. The fit is
+//! the solution of a convex quadratic program with second-order cones, solved by Clarabel.
+//!
+//! | file | what it does |
+//! |---|---|
+//! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
+//! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` (crate-private) |
+//! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, infeasibility certificates mapped back to constraints (crate-private) |
+//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`shape_violations`] |
+
+mod bernstein;
+mod constraints;
+mod fits;
+mod program;
+
+pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
+pub use fits::{
+    constrained_least_squares, constrained_smoothing_spline, shape_violations, SHAPE_RTOL,
+};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,564 @@
+//! The cone program of a shape-constrained fit and its solution by Clarabel
+//! (`docs/theory/fitting.md#shape-constraints`): minimise `½ cᵀPc + qᵀc` over the coefficients
+//! `c` and one auxiliary variable per second-order cone, subject to linear equalities, linear
+//! inequalities and three-dimensional second-order cones, all rows local to a knot span.
+//!
+//! `P` is the banded matrix of the normal equations ([`SymBand`], half-bandwidth `p`), passed to
+//! the solver as a sparse upper triangle: Clarabel's sparse `LDLᵀ` of the KKT matrix then costs
+//! O(n) per interior-point iteration for `n` coefficients, whatever the number of data points.
+
+use super::super::banded::SymBand;
+use crate::error::Error;
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+};
+
+/// A linear function of the variables, `g(x) = Σ coef_i x_{first+i} + aux_coef·x_aux + constant`.
+#[derive(Debug, Clone)]
+pub(crate) struct Row {
+    pub(crate) first: usize,
+    pub(crate) coef: Vec<f64>,
+    /// An auxiliary variable (index among the auxiliaries) and its coefficient.
+    pub(crate) aux: Option<(usize, f64)>,
+    pub(crate) constant: f64,
+}
+
+impl Row {
+    fn scale(&mut self, f: f64) {
+        self.coef.iter_mut().for_each(|v| *v *= f);
+        if let Some((_, a)) = &mut self.aux {
+            *a *= f;
+        }
+        self.constant *= f;
+    }
+
+    fn max_abs(&self) -> f64 {
+        let a = self.aux.map_or(0.0, |(_, a)| a.abs());
+        self.coef.iter().fold(a, |m, v| m.max(v.abs()))
+    }
+
+    /// `g(x)` at the variables `x` (coefficients, then auxiliaries from `n`).
+    pub(crate) fn eval(&self, x: &[f64], n: usize) -> f64 {
+        let mut s = self.constant;
+        for (i, c) in self.coef.iter().enumerate() {
+            s += c * x[self.first + i];
+        }
+        if let Some((k, a)) = self.aux {
+            s += a * x[n + k];
+        }
+        s
+    }
+}
+
+/// The program: objective, rows, and the index of the user's constraint each row comes from.
+#[derive(Debug)]
+pub(crate) struct ConeProgram {
+    /// `P` (upper band).
+    pub(crate) p: SymBand,
+    /// `q`.
+    pub(crate) q: Vec<f64>,
+    /// `g(x) = 0`.
+    pub(crate) equalities: Vec<(Row, usize)>,
+    /// `g(x) ≥ 0`.
+    pub(crate) inequalities: Vec<(Row, usize)>,
+    /// Bernstein coefficients `(b₀, b₁, b₂)` of a quadratic that must be `≥ 0` on `[0, 1]`:
+    /// each becomes `b₁ + s ≥ 0` and the cone `‖(b₀ − b₂, 2s)‖ ≤ b₀ + b₂` with an auxiliary
+    /// variable `s` (so `s² ≤ b₀b₂`, `b₀, b₂ ≥ 0`).
+    pub(crate) quadratics: Vec<([Row; 3], usize)>,
+}
+
+/// How a cone program failed: the constraints whose rows carry the certificate of
+/// infeasibility, or a solver status.
+#[derive(Debug)]
+pub(crate) enum Failure {
+    /// Owners (indices of the user's constraints) that together admit no solution.
+    Infeasible(Vec<usize>),
+    /// Any other status.
+    Status(String),
+}
+
+/// Relative tolerances handed to Clarabel (gap and feasibility), on a problem scaled to unit
+/// data and unit rows; the accepted answer is then checked exactly by the caller.
+const SOLVER_TOL: f64 = 1e-12;
+
+/// Value (rows scaled to unit largest coefficient, coefficients in units of the data) below
+/// which an inequality counts as active for the polish.
+const ACTIVE_TOL: f64 = 1e-7;
+
+/// Share of the largest multiplier by which a multiplier of an inequality made equal may be
+/// negative (rounding) before the polished face is refused.
+const SIGN_RTOL: f64 = 1e-9;
+
+/// Secant steps for the touching points of quadratics in the polish.
+const TOUCH_ROUNDS: usize = 8;
+
+/// First step of the secant method for a touching point (in `τ ∈ [0, 1]`).
+const TOUCH_STEP: f64 = 1e-6;
+
+/// Rounds of the active-set method in the polish (each drops one row).
+const POLISH_ROUNDS: usize = 8;
+
+/// Share of the largest certificate entry above which a row counts as part of the conflict.
+const CERTIFICATE_RTOL: f64 = 1e-6;
+
+impl ConeProgram {
+    /// An empty program with objective `½ cᵀPc + qᵀc`.
+    pub(crate) fn new(p: SymBand, q: Vec<f64>) -> Self {
+        ConeProgram {
+            p,
+            q,
+            equalities: Vec::new(),
+            inequalities: Vec::new(),
+            quadratics: Vec::new(),
+        }
+    }
+
+    /// Solves the program by the interior-point method, every inequality tightened by
+    /// `margin` (`g ≥ margin`; quadratics `≥ margin` on `[0, 1]`); the coefficients or why not.
+    pub(crate) fn solve(&self, margin: f64) -> std::result::Result<Vec<f64>, Failure> {
+        let tighten = |r: &Row| {
+            let mut r = r.clone();
+            r.constant -= margin * r.max_abs();
+            r
+        };
+        let mut inequalities: Vec<(Row, usize)> = self
+            .inequalities
+            .iter()
+            .map(|(r, o)| (tighten(r), *o))
+            .collect();
+        let mut cones = Vec::with_capacity(self.quadratics.len());
+        for (k, (quad, o)) in self.quadratics.iter().enumerate() {
+            // a constant's Bernstein coefficients are that constant: one margin for all three
+            let m = quad.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+            let [b0, b1, b2] = quad.clone().map(|mut r| {
+                r.constant -= margin * m;
+                r
+            });
+            let (b0, b1, b2) = (&b0, &b1, &b2);
+            let mut b1s = b1.clone();
+            b1s.aux = Some((k, 1.0));
+            inequalities.push((b1s, *o));
+            let two_s = Row {
+                first: b0.first,
+                coef: vec![0.0; b0.coef.len()],
+                aux: Some((k, 2.0)),
+                constant: 0.0,
+            };
+            cones.push(([add_rows(b0, b2, 1.0), add_rows(b0, b2, -1.0), two_s], *o));
+        }
+        let mut x = self.run(&self.equalities, &inequalities, &cones)?;
+        x.truncate(self.p.n);
+        Ok(x)
+    }
+
+    /// `½ cᵀPc + qᵀc`.
+    pub(crate) fn objective(&self, c: &[f64]) -> f64 {
+        let (n, b) = (self.p.n, self.p.b);
+        let w = b + 1;
+        let mut s = 0.0;
+        for i in 0..n {
+            s += self.q[i] * c[i] + 0.5 * self.p.a[i * w] * c[i] * c[i];
+            for k in 1..w.min(n - i) {
+                s += self.p.a[i * w + k] * c[i] * c[i + k];
+            }
+        }
+        s
+    }
+
+    /// The exact optimum on the face the interior-point answer `c` lies on (active-set
+    /// polishing): every row within [`ACTIVE_TOL`] of its bound is made an equality, and so is
+    /// every quadratic whose minimum on `[0, 1]` is within it (the Bernstein coefficients that
+    /// vanish at an end, or value and slope at the touching point `τ*` inside), duplicates
+    /// dropped, and the equality-constrained quadratic program solved. `None` when a multiplier of a made-equal row has the wrong sign (the face
+    /// guessed is not the optimal one) or the solve fails; the caller also checks the answer
+    /// against every constraint exactly.
+    pub(crate) fn polish(&self, c: &[f64]) -> Option<Vec<f64>> {
+        let n = self.p.n;
+        let unit = |r: &Row| {
+            let m = r.max_abs();
+            let mut r = r.clone();
+            if m > 0.0 {
+                r.scale(1.0 / m);
+            }
+            r
+        };
+        // (row, from an inequality)
+        let mut fixed: Vec<(Row, bool)> = self
+            .equalities
+            .iter()
+            .map(|(r, _)| (unit(r), false))
+            .collect();
+        for (r, _) in &self.inequalities {
+            let r = unit(r);
+            if r.eval(c, n) <= ACTIVE_TOL {
+                fixed.push((r, true));
+            }
+        }
+        // quadratics touching zero inside: (index, τ*)
+        let mut touches: Vec<(usize, f64)> = Vec::new();
+        for (qi, ([b0, b1, b2], _)) in self.quadratics.iter().enumerate() {
+            let m = b0.max_abs().max(b1.max_abs()).max(b2.max_abs());
+            if m == 0.0 {
+                continue;
+            }
+            let b = [b0.eval(c, n) / m, b1.eval(c, n) / m, b2.eval(c, n) / m];
+            let near = b.map(|v| v.abs() <= ACTIVE_TOL);
+            // zero at an end (b₀ or b₂), with a zero slope there too (b₁), or flat (all three)
+            for (j, r) in [b0, b1, b2].into_iter().enumerate() {
+                if near[j] && (j != 1 || near[0] || near[2]) {
+                    fixed.push((unit(r), true));
+                }
+            }
+            let (tau, value) = quadratic_min(b);
+            if !near[0] && !near[2] && value <= ACTIVE_TOL {
+                touches.push((qi, tau));
+            }
+        }
+        // A double root inside, at the touching point τ: the value there is zero and so is the
+        // slope. For a given τ that is a linear face; the optimal τ is where the slope row's
+        // multiplier vanishes (it is the derivative of the optimum in τ, up to a positive
+        // factor), found by the secant method from the interior-point answer's τ.
+        let mut previous: Vec<Option<(f64, f64)>> = vec![None; touches.len()];
+        let mut answer = None;
+        for _ in 0..TOUCH_ROUNDS {
+            let mut rows = fixed.clone();
+            let mut slope_of = vec![None; rows.len()];
+            for (k, &(qi, tau)) in touches.iter().enumerate() {
+                let (value, slope) = self.touch_rows(qi, tau);
+                rows.push((value, true));
+                slope_of.push(None);
+                rows.push((slope, false));
+                slope_of.push(Some(k));
+            }
+            let (x, nu) = self.solve_face(rows, slope_of)?;
+            let scale = nu.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+            answer = Some(x);
+            if touches.is_empty() || scale == 0.0 {
+                break;
+            }
+            let mut moved = false;
+            for (k, t) in touches.iter_mut().enumerate() {
+                let Some(v) = nu[k] else { continue };
+                let next = match previous[k] {
+                    Some((t0, v0)) if v != v0 => t.1 - v * (t.1 - t0) / (v - v0),
+                    _ => t.1 + TOUCH_STEP,
+                };
+                previous[k] = Some((t.1, v));
+                let next = next.clamp(0.0, 1.0);
+                moved |= (next - t.1).abs() > 1e-15;
+                t.1 = next;
+            }
+            if !moved {
+                break;
+            }
+        }
+        answer
+    }
+
+    /// The rows "value = 0" and "slope = 0" at `τ` of quadratic `qi`, each scaled by the
+    /// quadratic's largest coefficient (the same for every `τ`, so that multipliers compare).
+    fn touch_rows(&self, qi: usize, tau: f64) -> (Row, Row) {
+        let [b0, b1, b2] = &self.quadratics[qi].0;
+        let m = b0.max_abs().max(b1.max_abs()).max(b2.max_abs());
+        let combine = |w: [f64; 3]| {
+            let mut row = b0.clone();
+            row.coef = b0
+                .coef
+                .iter()
+                .zip(&b1.coef)
+                .zip(&b2.coef)
+                .map(|((x0, x1), x2)| (w[0] * x0 + w[1] * x1 + w[2] * x2) / m)
+                .collect();
+            row.constant = (w[0] * b0.constant + w[1] * b1.constant + w[2] * b2.constant) / m;
+            row
+        };
+        let (u, v) = (1.0 - tau, tau);
+        (
+            combine([u * u, 2.0 * u * v, v * v]),
+            combine([-u, u - v, v]),
+        )
+    }
+
+    /// The optimum on the face where every row given is zero, rows equal to an earlier one
+    /// dropped, and rows from inequalities whose multipliers come out negative dropped one at a
+    /// time (the active-set method); the coefficients and, for each slope row tagged, its
+    /// multiplier (`None` if it was dropped).
+    fn solve_face(
+        &self,
+        rows: Vec<(Row, bool)>,
+        tags: Vec<Option<usize>>,
+    ) -> Option<(Vec<f64>, Vec<Option<f64>>)> {
+        let n = self.p.n;
+        let n_tags = tags.iter().flatten().count();
+        let mut kept: Vec<(Row, bool, Option<usize>)> = Vec::with_capacity(rows.len());
+        for ((r, ineq), tag) in rows.into_iter().zip(tags) {
+            if !kept.iter().any(|(k, _, _)| same_row(k, &r)) {
+                kept.push((r, ineq, tag));
+            }
+        }
+        if kept.len() > n {
+            return None;
+        }
+        for _ in 0..POLISH_ROUNDS {
+            let eq: Vec<(Row, usize)> = kept.iter().map(|(r, _, _)| (r.clone(), 0)).collect();
+            let sol = self.run(&eq, &[], &[]).ok()?;
+            let (x, z) = sol.split_at(n);
+            let zmax = z.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let worst = kept
+                .iter()
+                .zip(z)
+                .enumerate()
+                .filter(|(_, ((_, ineq, _), zi))| *ineq && **zi < -SIGN_RTOL * zmax)
+                .min_by(|a, b| a.1 .1.total_cmp(b.1 .1))
+                .map(|(i, _)| i);
+            match worst {
+                None => {
+                    // the solver scaled each row to unit largest coefficient: undo it
+                    let mut nu = vec![None; n_tags];
+                    for ((r, _, tag), zi) in kept.iter().zip(z) {
+                        if let Some(k) = tag {
+                            let m = r.max_abs();
+                            nu[*k] = Some(if m > 0.0 { zi / m } else { 0.0 });
+                        }
+                    }
+                    return Some((x.to_vec(), nu));
+                }
+                Some(i) => {
+                    kept.remove(i);
+                }
+            }
+        }
+        None
+    }
+
+    /// Clarabel on the objective with the rows given; the variables (coefficients, then one
+    /// auxiliary per cone).
+    fn run(
+        &self,
+        equalities: &[(Row, usize)],
+        inequalities: &[(Row, usize)],
+        cone_rows: &[([Row; 3], usize)],
+    ) -> std::result::Result<Vec<f64>, Failure> {
+        let n = self.p.n;
+        let nv = n + cone_rows.len();
+        // P: upper triangle, column by column
+        let (b, w) = (self.p.b, self.p.b + 1);
+        let pmax = (0..n).fold(0.0_f64, |m, i| m.max(self.p.a[i * w].abs()));
+        let pscale = if pmax > 0.0 { 1.0 / pmax } else { 1.0 };
+        let mut colptr = Vec::with_capacity(nv + 1);
+        let mut rowval = Vec::new();
+        let mut nzval = Vec::new();
+        colptr.push(0);
+        for j in 0..nv {
+            if j < n {
+                for i in j.saturating_sub(b)..=j {
+                    let v = self.p.a[i * w + j - i];
+                    if v != 0.0 {
+                        rowval.push(i);
+                        nzval.push(v * pscale);
+                    }
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        let pm = CscMatrix::new(nv, nv, colptr, rowval, nzval);
+        let mut q: Vec<f64> = self.q.iter().map(|v| v * pscale).collect();
+        q.resize(nv, 0.0);
+        // rows: equalities, inequalities, cones; each row (cone) scaled to unit largest entry
+        let mut rows: Vec<Row> = Vec::new();
+        let mut owners = Vec::new();
+        let unit = |mut r: Row| {
+            let m = r.max_abs();
+            if m > 0.0 {
+                r.scale(1.0 / m);
+            }
+            r
+        };
+        for (r, o) in equalities.iter().chain(inequalities) {
+            rows.push(unit(r.clone()));
+            owners.push(*o);
+        }
+        for (cone, o) in cone_rows {
+            let m = cone.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+            for r in cone {
+                let mut r = r.clone();
+                if m > 0.0 {
+                    r.scale(1.0 / m);
+                }
+                rows.push(r);
+                owners.push(*o);
+            }
+        }
+        // A x + s = b with s = g(x): A = −coef, b = constant
+        let mut ii = Vec::new();
+        let mut jj = Vec::new();
+        let mut vv = Vec::new();
+        let mut bvec = Vec::with_capacity(rows.len());
+        for (k, r) in rows.iter().enumerate() {
+            for (i, &c) in r.coef.iter().enumerate() {
+                if c != 0.0 {
+                    ii.push(k);
+                    jj.push(r.first + i);
+                    vv.push(-c);
+                }
+            }
+            if let Some((a, c)) = r.aux {
+                ii.push(k);
+                jj.push(n + a);
+                vv.push(-c);
+            }
+            bvec.push(r.constant);
+        }
+        let am = CscMatrix::new_from_triplets(rows.len(), nv, ii, jj, vv);
+        let mut cones = Vec::new();
+        if !equalities.is_empty() {
+            cones.push(SupportedConeT::ZeroConeT(equalities.len()));
+        }
+        if !inequalities.is_empty() {
+            cones.push(SupportedConeT::NonnegativeConeT(inequalities.len()));
+        }
+        cones.extend(
+            cone_rows
+                .iter()
+                .map(|_| SupportedConeT::SecondOrderConeT(3)),
+        );
+        // an equality-constrained run (the polish) is one Newton step: refine its linear solve
+        // to the last digit
+        let polish = inequalities.is_empty() && cone_rows.is_empty();
+        let refine = if polish { 1e-16 } else { 1e-13 };
+        let settings = DefaultSettingsBuilder::default()
+            .verbose(false)
+            .iterative_refinement_reltol(refine)
+            .iterative_refinement_abstol(refine)
+            .iterative_refinement_max_iter(if polish { 50 } else { 10 })
+            .tol_gap_abs(SOLVER_TOL)
+            .tol_gap_rel(SOLVER_TOL)
+            .tol_feas(SOLVER_TOL)
+            .tol_infeas_abs(1e-10)
+            .tol_infeas_rel(1e-10)
+            .max_iter(400)
+            .build()
+            .map_err(|e| Failure::Status(format!("solver settings: {e:?}")))?;
+        let mut solver = DefaultSolver::new(&pm, &q, &am, &bvec, &cones, settings)
+            .map_err(|e| Failure::Status(format!("solver set-up: {e}")))?;
+        solver.solve();
+        let sol = &solver.solution;
+        match sol.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => {
+                let mut out = sol.x.clone();
+                // the multipliers of the rows, in the order given (for the polish's signs)
+                out.extend(&sol.z);
+                Ok(out)
+            }
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+                let zmax = sol.z.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let mut conflict: Vec<usize> = sol
+                    .z
+                    .iter()
+                    .zip(&owners)
+                    .filter(|(z, _)| z.abs() > CERTIFICATE_RTOL * zmax)
+                    .map(|(_, &o)| o)
+                    .collect();
+                conflict.sort_unstable();
+                conflict.dedup();
+                Err(Failure::Infeasible(conflict))
+            }
+            s => Err(Failure::Status(format!("{s:?}"))),
+        }
+    }
+}
+
+/// `a + f·b` for two rows of the same columns (no auxiliary).
+pub(crate) fn add_rows(a: &Row, b: &Row, f: f64) -> Row {
+    Row {
+        first: a.first,
+        coef: a.coef.iter().zip(&b.coef).map(|(x, y)| x + f * y).collect(),
+        aux: None,
+        constant: a.constant + f * b.constant,
+    }
+}
+
+/// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,
+/// whatever their first columns.
+fn same_row(a: &Row, b: &Row) -> bool {
+    let lo = a.first.min(b.first);
+    let hi = (a.first + a.coef.len()).max(b.first + b.coef.len());
+    let at = |r: &Row, j: usize| {
+        j.checked_sub(r.first)
+            .and_then(|i| r.coef.get(i))
+            .copied()
+            .unwrap_or(0.0)
+    };
+    (lo..hi).all(|j| (at(a, j) - at(b, j)).abs() <= 1e-10)
+        && (a.constant - b.constant).abs() <= 1e-10
+}
+
+/// The minimiser `τ*` on `[0, 1]` of the quadratic with Bernstein coefficients `b`, and the
+/// minimum.
+fn quadratic_min(b: [f64; 3]) -> (f64, f64) {
+    let at = |t: f64| {
+        let u = 1.0 - t;
+        u * u * b[0] + 2.0 * u * t * b[1] + t * t * b[2]
+    };
+    // q'(τ) = 2[(b₁ − b₀)(1 − τ) + (b₂ − b₁)τ] = 0
+    let (d0, d1) = (b[1] - b[0], b[2] - b[1]);
+    let mut best = if b[0] <= b[2] {
+        (0.0, b[0])
+    } else {
+        (1.0, b[2])
+    };
+    if d0 < 0.0 && d1 > 0.0 {
+        let t = d0 / (d0 - d1);
+        let v = at(t);
+        if v < best.1 {
+            best = (t, v);
+        }
+    }
+    best
+}
+
+/// The upper band of `RᵀR` for the banded triangle `R` (`r[i·bw + k] = R[i][i + k]`):
+/// the normal-equations matrix of a least-squares problem, half-bandwidth `bw − 1`. O(n·bw²).
+pub(crate) fn gram_of_triangle(r: &[f64], n: usize, bw: usize) -> SymBand {
+    let mut g = SymBand::zeros(n, bw.saturating_sub(1));
+    // (RᵀR)_ij = Σ_k R_ki R_kj, k ≤ i ≤ j < k + bw
+    for k in 0..n {
+        let row = &r[k * bw..(k + 1) * bw];
+        for a in 0..bw.min(n - k) {
+            for c in a..bw.min(n - k) {
+                let v = row[a] * row[c];
+                if v != 0.0 {
+                    g.add(k + a, k + c, v);
+                }
+            }
+        }
+    }
+    g
+}
+
+/// `Rᵀ z` for the banded triangle `R` and one right-hand side `z`.
+pub(crate) fn triangle_transpose_times(r: &[f64], z: &[f64], n: usize, bw: usize) -> Vec<f64> {
+    let mut out = vec![0.0; n];
+    for k in 0..n {
+        for a in 0..bw.min(n - k) {
+            out[k + a] += r[k * bw + a] * z[k];
+        }
+    }
+    out
+}
+
+/// The error for a failed program: the conflicting constraints by name, or the status.
+pub(crate) fn failure_error(f: Failure, describe: impl Fn(usize) -> String) -> Error {
+    match f {
+        Failure::Infeasible(owners) => Error::InfeasibleConstraints {
+            conflicting: owners.into_iter().map(describe).collect(),
+        },
+        Failure::Status(s) => Error::IllConditioned {
+            reason: format!(
+                "the cone program of the shape constraints stopped without a solution ({s}); \
+                 rescale the data or use fewer knots"
+            ),
+        },
+    }
+}

@@ -1,0 +1,313 @@
+//! Tests of the shape-constrained fits: exactness by independent root finding, inactive
+//! constraints, infeasibility, golden values from an independent conic solver.
+
+use super::*;
+use crate::fit::{least_squares, smoothing_spline, EndConstraints, FitData, Lambda};
+use crate::{BSplineCurve, KnotVector, PointsRef};
+use serde_json::Value;
+
+/// The least value of `σ(y⁽ʳ⁾ − v)` over `[a, b]`, found independently of the fit's Bernstein
+/// rows: on each span, the Taylor polynomial of `y⁽ʳ⁾` (degree ≤ 3) at the span's start from
+/// [`BSplineCurve::eval_derivatives`], minimised at the ends and at the real roots of its
+/// derivative (quadratic formula).
+fn min_by_roots(curve: &BSplineCurve, r: usize, sigma: f64, v: f64, a: f64, b: f64) -> f64 {
+    let p = curve.degree();
+    let t = curve.knots().as_slice();
+    let mut m = f64::INFINITY;
+    for s in p..t.len() - p - 1 {
+        let (lo, hi) = (t[s].max(a), t[s + 1].min(b));
+        if lo >= hi {
+            continue;
+        }
+        // Taylor coefficients of y⁽ʳ⁾ at t[s] (right limits: evaluate just inside is not exact,
+        // so use the polynomial of the span through the derivatives at its midpoint)
+        let mid = 0.5 * (t[s] + t[s + 1]);
+        let ders = curve.eval_derivatives(mid, p).unwrap();
+        let g: Vec<f64> = (r..=p).map(|k| ders.point(k)[0]).collect();
+        let eval = |x: f64| {
+            let h = x - mid;
+            let mut acc = 0.0;
+            let mut f = 1.0;
+            for (k, gk) in g.iter().enumerate() {
+                if k > 0 {
+                    f *= h / k as f64;
+                }
+                acc += gk * f;
+            }
+            sigma * (acc - v)
+        };
+        let mut cand = vec![lo, hi];
+        // roots of the derivative of y⁽ʳ⁾ (degree ≤ 2 in h): g1 + g2 h + g3 h²/2
+        let (c0, c1, c2) = (
+            g.get(1).copied().unwrap_or(0.0),
+            g.get(2).copied().unwrap_or(0.0),
+            0.5 * g.get(3).copied().unwrap_or(0.0),
+        );
+        if c2 != 0.0 {
+            let disc = c1 * c1 - 4.0 * c2 * c0;
+            if disc >= 0.0 {
+                let qq = -0.5 * (c1 + c1.signum() * disc.sqrt());
+                if qq != 0.0 {
+                    cand.push(mid + qq / c2);
+                    cand.push(mid + c0 / qq);
+                }
+            }
+        } else if c1 != 0.0 {
+            cand.push(mid - c0 / c1);
+        }
+        for x in cand.into_iter().filter(|x| *x >= lo && *x <= hi) {
+            m = m.min(eval(x));
+        }
+    }
+    m
+}
+
+fn noisy(n: usize, f: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>) {
+    let x: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    let y = x
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| f(t) + 0.05 * (((k * 7919) % 101) as f64 / 50.0 - 1.0))
+        .collect();
+    (x, y)
+}
+
+#[test]
+fn increasing_cubic_holds_exactly() {
+    let (x, y) = noisy(200, |t| (6.0 * t).sin() * 0.2 + t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 20).unwrap();
+    let c = ShapeConstraints::new().with(Shape::Increasing);
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let m = min_by_roots(&fit.curve, 1, 1.0, 0.0, 0.0, 1.0);
+    let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+    assert!(m >= -1e-12, "min y' = {m}");
+    // the constraint binds: the fit gives up some of the free fit's residual
+    assert!(
+        fit.report.weighted_rss > free.report.weighted_rss,
+        "constraint inactive"
+    );
+}
+
+/// The constraints of a golden case (`tests/data/shape_golden.py`).
+fn golden_constraints(case: &Value) -> ShapeConstraints {
+    let mut c = ShapeConstraints::new();
+    for s in case["shapes"].as_array().unwrap() {
+        let level = s["level"].as_f64().unwrap_or(0.0);
+        let shape = match s["shape"].as_str().unwrap() {
+            "increasing" => Shape::Increasing,
+            "decreasing" => Shape::Decreasing,
+            "convex" => Shape::Convex,
+            "concave" => Shape::Concave,
+            "min" => Shape::AtLeast(level),
+            "max" => Shape::AtMost(level),
+            other => panic!("unknown shape {other}"),
+        };
+        c = match s["interval"].as_array() {
+            Some(ab) => c.with_on(shape, ab[0].as_f64().unwrap(), ab[1].as_f64().unwrap()),
+            None => c.with(shape),
+        };
+    }
+    for q in case["points"].as_array().map_or(&[][..], |v| v.as_slice()) {
+        c = c.with_point(
+            q["x"].as_f64().unwrap(),
+            usize::try_from(q["derivative"].as_u64().unwrap()).unwrap(),
+            q["value"].as_f64().unwrap(),
+        );
+    }
+    c
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// `∫ y''²` of a cubic spline: `y''` is linear on each span, `h/3 (a² + ab + b²)`.
+fn curvature_energy(curve: &BSplineCurve) -> f64 {
+    let t = curve.knots().as_slice();
+    let p = curve.degree();
+    let mut e = 0.0;
+    for s in p..t.len() - p - 1 {
+        let h = t[s + 1] - t[s];
+        if h <= 0.0 {
+            continue;
+        }
+        // exact values at the ends of the span from the midpoint's Taylor expansion
+        let mid = 0.5 * (t[s] + t[s + 1]);
+        let d = curve.eval_derivatives(mid, 3).unwrap();
+        let (m2, m3) = (d.point(2)[0], d.point(3)[0]);
+        let (a, b) = (m2 - 0.5 * h * m3, m2 + 0.5 * h * m3);
+        e += h / 3.0 * (a * a + a * b + b * b);
+    }
+    e
+}
+
+/// Golden values from an independent conic program of the same formulation (CVXPY + Clarabel,
+/// `tests/data/shape_golden.py`): fitted values within 1e-8 of the data's range, an objective
+/// no worse than the reference's by 1e-9 relative, and every shape holding by root finding.
+#[test]
+fn golden_values_from_an_independent_conic_program() {
+    let golden: Value =
+        serde_json::from_str(include_str!("../../../tests/data/shape_golden.json")).unwrap();
+    for case in golden["cases"].as_array().unwrap() {
+        let name = case["name"].as_str().unwrap();
+        let (x, y) = (floats(&case["x"]), floats(&case["y"]));
+        let w = case.get("w").filter(|w| !w.is_null()).map(floats);
+        let mut data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        if let Some(w) = &w {
+            data = data.with_weights(w).unwrap();
+        }
+        let c = golden_constraints(case);
+        let degree = usize::try_from(case["degree"].as_u64().unwrap()).unwrap();
+        let lambda = case["lambda"].as_f64();
+        let fit = match lambda {
+            Some(l) => constrained_smoothing_spline(&data, Lambda::Given(l), &c).unwrap(),
+            None => {
+                let kv = KnotVector::new(floats(&case["knots"])).unwrap();
+                constrained_least_squares(&data, degree, &kv, &c).unwrap()
+            }
+        };
+        let range = y.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
+            - y.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+        let objective =
+            fit.report.weighted_rss + lambda.map_or(0.0, |l| l * curvature_energy(&fit.curve));
+        let reference = case["objective"].as_f64().unwrap();
+        for (xs, want) in [("x", "values_at_x"), ("grid", "values_at_grid")] {
+            let (xs, want) = (floats(&case[xs]), floats(&case[want]));
+            let mut got = vec![0.0; xs.len()];
+            fit.curve.eval_batch(&xs, &mut got).unwrap();
+            let worst = got
+                .iter()
+                .zip(&want)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(
+                worst <= 1e-8 * range,
+                "{name}: values differ by {worst:e} (range {range})"
+            );
+        }
+        assert!(
+            objective <= reference * (1.0 + 1e-9),
+            "{name}: objective {objective} above the reference {reference}"
+        );
+        let (lo, hi) = fit.curve.domain();
+        let scale = y.iter().map(|v| (v - y[0]).abs()).fold(0.0, f64::max);
+        for s in &c.shapes {
+            let r = s.shape.derivative_order();
+            let (a, b) = s.interval.unwrap_or((lo, hi));
+            let m = min_by_roots(&fit.curve, r, s.shape.sign(), s.shape.level(), a, b);
+            let tol = 1e-12 * scale / (hi - lo).powi(i32::try_from(r).unwrap());
+            assert!(m >= -tol, "{name}: {s} violated by {m:e}");
+        }
+        for q in &c.points {
+            let v = fit.curve.eval_derivatives(q.x, q.derivative).unwrap();
+            let err = (v.point(q.derivative)[0] - q.value).abs();
+            assert!(err <= 1e-12 * scale, "{name}: {q} off by {err:e}");
+        }
+    }
+}
+
+#[test]
+fn inactive_constraints_return_the_unconstrained_fit() {
+    let (x, y) = noisy(80, |t| 2.0 * t + t * t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 8).unwrap();
+    let c = ShapeConstraints::new()
+        .with(Shape::Increasing)
+        .with(Shape::AtLeast(-1.0))
+        .with_on(Shape::AtMost(10.0), 0.2, 0.9);
+    let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    assert_eq!(fit, free, "inactive constraints changed the fit");
+    let free = smoothing_spline(&data, Lambda::Given(1e-3)).unwrap();
+    let fit = constrained_smoothing_spline(&data, Lambda::Given(1e-3), &c).unwrap();
+    assert_eq!(
+        fit, free,
+        "inactive constraints changed the smoothing spline"
+    );
+}
+
+#[test]
+fn constraints_on_an_interval_and_gcv_hold_exactly() {
+    let (x, y) = noisy(150, |t| (5.0 * t).sin());
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let c = ShapeConstraints::new()
+        .with_on(Shape::Increasing, 0.0, 0.3)
+        .with_on(Shape::Concave, 0.1, 0.7)
+        .with_on(Shape::AtLeast(0.0), 0.5, 1.0);
+    let fit = constrained_smoothing_spline(&data, Lambda::Gcv, &c).unwrap();
+    assert!(fit.report.lambda.unwrap() > 0.0, "GCV chose no λ");
+    for (s, (r, sigma, v, a, b)) in [
+        (1, 1.0, 0.0, 0.0, 0.3),
+        (2, -1.0, 0.0, 0.1, 0.7),
+        (0, 1.0, 0.0, 0.5, 1.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let m = min_by_roots(&fit.curve, r, sigma, v, a, b);
+        assert!(m >= -1e-12, "constraint {s}: {m:e}");
+    }
+    assert!(shape_violations(&fit.curve, &c)
+        .unwrap()
+        .iter()
+        .all(|v| *v <= 1e-12));
+}
+
+#[test]
+fn contradictory_constraints_are_named() {
+    let (x, y) = noisy(30, |t| t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 6).unwrap();
+    let c = ShapeConstraints::new()
+        .with(Shape::Convex)
+        .with(Shape::AtMost(0.0))
+        .with_point(0.5, 0, 1.0);
+    let e = constrained_least_squares(&data, 3, &kv, &c).unwrap_err();
+    let crate::Error::InfeasibleConstraints { conflicting } = &e else {
+        panic!("expected InfeasibleConstraints, got {e:?}");
+    };
+    assert!(
+        conflicting.iter().any(|s| s == "max 0") && conflicting.iter().any(|s| s == "y(0.5) = 1"),
+        "{conflicting:?}"
+    );
+}
+
+#[test]
+fn bad_constraints_are_refused() {
+    let (x, y) = noisy(30, |t| t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 6).unwrap();
+    for c in [
+        ShapeConstraints::new().with_on(Shape::Increasing, 0.5, 0.2),
+        ShapeConstraints::new().with_on(Shape::Increasing, -1.0, 0.2),
+        ShapeConstraints::new().with_point(2.0, 0, 0.0),
+        ShapeConstraints::new().with_point(0.5, 4, 0.0),
+    ] {
+        let e = constrained_least_squares(&data, 3, &kv, &c).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                crate::Error::InvalidArgument {
+                    what: "shape constraints",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+    }
+    let nan = ShapeConstraints::new().with(Shape::AtLeast(f64::NAN));
+    let e = constrained_least_squares(&data, 3, &kv, &nan).unwrap_err();
+    assert!(matches!(e, crate::Error::NonFinite { .. }), "{e:?}");
+    let two = [0.0, 1.0, 1.0, 2.0];
+    let d2 = FitData::new(PointsRef::from_flat(2, &two).unwrap(), &[0.0, 1.0]).unwrap();
+    let e = constrained_least_squares(&d2, 1, &KnotVector::clamped_uniform(1, 2).unwrap(), &nan)
+        .unwrap_err();
+    assert!(matches!(e, crate::Error::Dimension { .. }), "{e:?}");
+    let e = constrained_smoothing_spline(&data, Lambda::Given(0.0), &nan).unwrap_err();
+    assert!(matches!(e, crate::Error::NegativeSmoothing { .. }), "{e:?}");
+}
