@@ -134,6 +134,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         build: fitting::fitting,
     },
     Entry {
+        id: "fitting-shape",
+        title: "Fits that keep their shape: increasing and bounded",
+        source: "docs/theory/fitting.md#shape-constraints",
+        build: fitting::shape,
+    },
+    Entry {
         id: "queries",
         title: "Geometric queries: intersections, closest points, offsets, curvature",
         source: "docs/theory/queries.md",
