@@ -310,6 +310,27 @@ test('Fitting: the smoothing slider changes λ and s; curve, residual and knot c
   await shot(page, 'fit', true);
 });
 
+test('Fitting with a shape: ticking increasing and y ≥ 0 draws the API\'s constrained fit, which rises', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'fit');
+  await idle(page);
+  await page.check('#fit-increasing');
+  await idle(page);
+  await setValue(page, '#fit-min', 0);
+  assert.equal(await shownErrors(page), '');
+  const f = await page.evaluate(() => window.lekaloEditor.state.fit);
+  const expected = await api('/api/fit', { points: f.points, smoothing: 'lambda', lambda: Math.pow(10, f.lambda),
+    increasing: true, min: 0, samples: 400 });
+  await assertCurveIs(page, expected.view.points, 'increasing fit');
+  const ys = expected.view.points.map((p) => p[1]);
+  assert.ok(ys.every((y, i) => i === 0 || y >= ys[i - 1] - 1e-12), 'the fit rises');
+  // the unconstrained fit of the same points does not
+  const free = await api('/api/fit', { points: f.points, smoothing: 'lambda', lambda: Math.pow(10, f.lambda), samples: 400 });
+  const fy = free.view.points.map((p) => p[1]);
+  assert.ok(fy.some((y, i) => i > 0 && y < fy[i - 1]), 'without the constraint the wave falls somewhere');
+  await shot(page, 'fit-shape', false);
+});
+
 test('Queries: the closest point follows the pointer, the arc length and the parameter at a length are the API\'s', async (page) => {
   await page.goto(base);
   await idle(page);

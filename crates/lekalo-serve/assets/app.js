@@ -20,7 +20,7 @@ function defaultState() {
     corners: { k: 2, window: 25, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
     spline: { k: 2, closed: false, points: [[1, 1], [3, 5], [5, 1.5], [7, 5], [9, 1]] },
     quasi: { expr: 'x*cos(x)', breaks: '0, 0.5, 0.9, 1.4, 2.1, 2.7, 3', order: 3, rule: 'first-knot-after', tau: '' },
-    fit: { smoothing: 'lambda', lambda: -4, s: 0, points: noisyPoints(1) },
+    fit: { smoothing: 'lambda', lambda: -4, s: 0, points: noisyPoints(1), shape: {} },
     query: false,
     queryLength: 1,
   };
@@ -219,6 +219,10 @@ function compute() {
     const req = Object.assign({ points: f.points, smoothing: f.smoothing }, view);
     if (f.smoothing === 'lambda') req.lambda = Math.pow(10, f.lambda);
     if (f.smoothing === 's') req.s = Math.pow(10, f.s);
+    // shape constraints: the points are samples y(x) of a function (the server says so)
+    const shape = f.shape || {};
+    for (const k of ['increasing', 'decreasing', 'convex', 'concave']) if (shape[k]) req[k] = true;
+    for (const k of ['min', 'max']) if (shape[k] !== undefined && shape[k] !== '') req[k] = Number(shape[k]);
     return post('/api/fit', req);
   }
   const q = s.quasi;
@@ -672,6 +676,9 @@ function syncControls() {
   $('fit-slider').max = s.fit.smoothing === 's' ? 2 : 1;
   $('fit-slider').value = s.fit.smoothing === 's' ? s.fit.s : s.fit.lambda;
   $('fit-value').textContent = '= ' + Math.pow(10, Number($('fit-slider').value)).toPrecision(3);
+  const shape = s.fit.shape || {};
+  for (const k of ['increasing', 'decreasing', 'convex', 'concave']) $(`fit-${k}`).checked = !!shape[k];
+  for (const k of ['min', 'max']) $(`fit-${k}`).value = shape[k] === undefined ? '' : shape[k];
   $('query').checked = s.query;
   $('query-length').value = s.queryLength;
   $('query-panel').hidden = !s.query || s.mode === 'quasi';
@@ -702,7 +709,7 @@ const HELP = {
   corners: 'Click to add a point of the polyline (dashed), drag to move, Alt+click to delete; each corner is rounded over a window with C^k, turning one way.',
   spline: 'Click to add a point, drag to move, Alt+click to delete; the curve through the points blends local parabolas with C^k.',
   quasi: 'Type f(x); the quasi-interpolant q (solid) and f (dashed); the lower panel plots f − q.',
-  fit: 'Noisy points (click to add, drag, Alt+click to delete) smoothed by the library: move the slider to trade the residual against smoothness.',
+  fit: 'Noisy points (click to add, drag, Alt+click to delete) smoothed by the library: move the slider to trade the residual against smoothness; tick a shape to make the fit of y(x) keep it everywhere.',
 };
 
 function bindNumber(id, get, set) {
@@ -773,6 +780,18 @@ function bind() {
     update();
   });
   $('fit-slider').addEventListener('change', commit);
+  for (const k of ['increasing', 'decreasing', 'convex', 'concave']) {
+    $(`fit-${k}`).addEventListener('change', () => {
+      state.fit.shape = Object.assign({}, state.fit.shape, { [k]: $(`fit-${k}`).checked });
+      commit(); update();
+    });
+  }
+  for (const k of ['min', 'max']) {
+    $(`fit-${k}`).addEventListener('change', () => {
+      state.fit.shape = Object.assign({}, state.fit.shape, { [k]: $(`fit-${k}`).value });
+      commit(); update();
+    });
+  }
   $('fit-noise').addEventListener('click', () => {
     state.fit.points = noisyPoints(1 + Math.floor(Math.random() * 1e9));
     commit(); update();

@@ -1,11 +1,15 @@
 //! `POST /api/fit`: smoothing of noisy points (`lekalo fit --smooth` and `--s`), a thin call of
 //! [`lekalo::fit`] (`docs/theory/fitting.md`): the cubic smoothing spline with λ given or chosen
 //! by generalised cross-validation, or the fewest knots whose weighted residual sum of squares
-//! is at most `s` (FITPACK's smoothing condition).
+//! is at most `s` (FITPACK's smoothing condition); with shape constraints (increasing,
+//! convex, bounds…) the constrained smoothing spline of a function y(x).
 
 use axum::body::Bytes;
 use axum::response::Response;
-use lekalo::fit::{smoothing_condition, smoothing_spline, CurveFit, FitData, Lambda};
+use lekalo::fit::{
+    constrained_smoothing_spline, smoothing_condition, smoothing_spline, CurveFit, FitData, Lambda,
+    Shape, ShapeConstraints,
+};
 use lekalo::{parametrize, Points};
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
@@ -50,6 +54,22 @@ struct FitRequest {
     /// A word of [`lekalo::vocabulary::PARAMETRIZATION`].
     #[serde(default)]
     parametrization: Option<String>,
+    /// Shape constraints of a function fit (`lekalo fit --increasing …`): the points are then
+    /// samples `(x, y)` of a function, smoothed with λ given or by GCV.
+    #[serde(default)]
+    increasing: bool,
+    #[serde(default)]
+    decreasing: bool,
+    #[serde(default)]
+    convex: bool,
+    #[serde(default)]
+    concave: bool,
+    /// Lower bound of the function (`--min`).
+    #[serde(default)]
+    min: Option<f64>,
+    /// Upper bound of the function (`--max`).
+    #[serde(default)]
+    max: Option<f64>,
     #[serde(flatten)]
     view: ViewOptionsFlat,
 }
@@ -80,7 +100,32 @@ struct Report {
 pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let r: FitRequest = parse(body)?;
     let pts = points(job, &r.points, "points")?;
-    let (values, params) = if r.function {
+    let mut rules = ShapeConstraints::new();
+    for (on, shape) in [
+        (r.increasing, Shape::Increasing),
+        (r.decreasing, Shape::Decreasing),
+        (r.convex, Shape::Convex),
+        (r.concave, Shape::Concave),
+    ] {
+        if on {
+            rules = rules.with(shape);
+        }
+    }
+    if let Some(v) = r.min {
+        rules = rules.with(Shape::AtLeast(v));
+    }
+    if let Some(v) = r.max {
+        rules = rules.with(Shape::AtMost(v));
+    }
+    let constrained = !rules.shapes.is_empty();
+    if constrained && r.smoothing == Smoothing::S {
+        return Err(ApiError::bad(
+            "smoothing",
+            "shape constraints go with smoothing = lambda or gcv, not s",
+        ));
+    }
+    let function = r.function || constrained;
+    let (values, params) = if function {
         let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
         let y = Points::from_flat(1, pts.iter().map(|p| p[1]).collect())
             .map_err(|e| ApiError::lib("points", &e))?;
@@ -98,6 +143,14 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         v.ok_or_else(|| ApiError::bad(name, format!("smoothing = {name} needs the value {name}")))
     };
     let fit: CurveFit = match r.smoothing {
+        Smoothing::Lambda | Smoothing::Gcv if constrained => {
+            let lambda = match r.smoothing {
+                Smoothing::Lambda => Lambda::Given(given(r.lambda, "lambda")?),
+                _ => Lambda::Gcv,
+            };
+            constrained_smoothing_spline(&data, lambda, &rules)
+                .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?
+        }
         Smoothing::Lambda => smoothing_spline(&data, Lambda::Given(given(r.lambda, "lambda")?))
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
         Smoothing::Gcv => smoothing_spline(&data, Lambda::Gcv)
@@ -126,12 +179,13 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         lambda: rep.lambda,
         s: (r.smoothing == Smoothing::S).then_some(r.s).flatten(),
     };
-    let view = view_in(
-        job,
-        &Object::BSpline(fit.curve),
-        &r.view.options(),
-        "points",
-    )?;
+    // a function is drawn as its graph (x, y(x))
+    let curve = if function {
+        fit.curve.graph().map_err(|e| ApiError::lib("points", &e))?
+    } else {
+        fit.curve
+    };
+    let view = view_in(job, &Object::BSpline(curve), &r.view.options(), "points")?;
     let size = view.size_hint() + SMALL;
     Ok(answer(&FitAnswer { view, report }, size))
 }

@@ -135,7 +135,8 @@ async fn fitting_answers_the_library_s_curve_and_report() {
     assert!(v["report"]["weighted_rss"].as_f64().expect("rss") <= 1.0);
     assert_eq!(v["report"]["s"].as_f64(), Some(1.0));
 
-    // samples y(x) of a function: x is the parameter, the curve is one-dimensional
+    // samples y(x) of a function: x is the parameter, the fit is one-dimensional and the view
+    // draws its graph (x, y(x))
     let v = ok(
         "/api/fit",
         &json!({"points": pts, "function": true, "lambda": 1e-3, "samples": 3}),
@@ -144,7 +145,8 @@ async fn fitting_answers_the_library_s_curve_and_report() {
     let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
     let y = Points::from_flat(1, pts.iter().map(|p| p[1]).collect()).expect("y");
     let data = FitData::new(y.as_view(), &x).expect("data");
-    let fit = smoothing_spline(&data, Lambda::Given(1e-3)).expect("fit");
+    let mut fit = smoothing_spline(&data, Lambda::Given(1e-3)).expect("fit");
+    fit.curve = fit.curve.graph().expect("graph");
     check_report(&v, &fit);
 }
 
@@ -357,4 +359,40 @@ async fn quasi_interpolation_takes_every_tau_rule_and_explicit_tau() {
     )
     .await;
     assert_eq!(field, "tau", "{msg}");
+}
+
+/// A shape-constrained smoothing of noisy rising data: the answer is the graph of the library's
+/// constrained spline, and it rises; `s` with constraints is refused at `smoothing`.
+#[tokio::test]
+async fn fitting_with_shape_constraints_is_the_library_s() {
+    use lekalo::fit::{constrained_smoothing_spline, Shape, ShapeConstraints};
+    let pts: Vec<[f64; 2]> = (0..30)
+        .map(|k| {
+            let x = f64::from(k) / 29.0;
+            [x, x + 0.08 * (f64::from(k) * 2.3).sin()]
+        })
+        .collect();
+    let v = ok(
+        "/api/fit",
+        &json!({"points": pts, "smoothing": "lambda", "lambda": 1e-6, "increasing": true, "min": 0.0, "samples": 50}),
+    )
+    .await;
+    let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+    let y: Vec<f64> = pts.iter().map(|p| p[1]).collect();
+    let data = FitData::new(lekalo::PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let rules = ShapeConstraints::new()
+        .with(Shape::Increasing)
+        .with(Shape::AtLeast(0.0));
+    let fit = constrained_smoothing_spline(&data, Lambda::Given(1e-6), &rules).unwrap();
+    let graph = Object::BSpline(fit.curve.graph().unwrap());
+    assert_eq!(v["view"]["curve"], graph.to_json_value());
+    let drawn = v["view"]["points"].as_array().unwrap();
+    let ys: Vec<f64> = drawn.iter().map(|p| p[1].as_f64().unwrap()).collect();
+    assert!(ys.windows(2).all(|w| w[1] >= w[0] - 1e-12), "rises: {ys:?}");
+    let (field, msg) = bad(
+        "/api/fit",
+        &json!({"points": pts, "smoothing": "s", "s": 0.1, "convex": true}),
+    )
+    .await;
+    assert_eq!(field, "smoothing", "{msg}");
 }

@@ -136,6 +136,50 @@ impl BSplineCurve {
         self.control.dim()
     }
 
+    /// The graph `t ↦ (t, y(t))` of a function `y` (this curve, 1-D) as a plane B-spline of the
+    /// same degree and knots: its control points are `(ξ_i, c_i)` with the Greville abscissae
+    /// `ξ_i = (t_{i+1} + … + t_{i+p}) / p`, exact because B-splines reproduce the linear
+    /// function `t = Σ ξ_i N_{i,p}(t)` (de Boor, *A Practical Guide to Splines*, IX (36);
+    /// for `p = 0`, `ξ_i` is the midpoint of the span and the graph is exact at those points only).
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Points};
+    /// let y = BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0],
+    ///     Points::from_flat(1, vec![1.0, 3.0, 0.0, 2.0])?)?;
+    /// let g = y.graph()?;
+    /// let p = g.eval(1.5)?;
+    /// assert!((p[0] - 1.5).abs() < 1e-15 && (p[1] - y.eval(1.5)?[0]).abs() < 1e-15);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] unless the curve is 1-D.
+    pub fn graph(&self) -> Result<BSplineCurve> {
+        if self.dim() != 1 {
+            return Err(Error::Dimension {
+                what: "function for its graph",
+                expected: 1,
+                got: self.dim(),
+            });
+        }
+        let (p, t) = (self.degree, self.knots.as_slice());
+        let mut ctrl = Vec::with_capacity(2 * self.control.len());
+        for (i, c) in self.control.as_slice().iter().enumerate() {
+            #[allow(clippy::cast_precision_loss)] // a degree
+            let xi = if p == 0 {
+                0.5 * (t[i] + t[i + 1])
+            } else {
+                t[i + 1..=i + p].iter().sum::<f64>() / p as f64
+            };
+            ctrl.extend([xi, *c]);
+        }
+        Ok(BSplineCurve::from_raw(
+            p,
+            t.to_vec(),
+            Points::from_flat(2, ctrl)?,
+        ))
+    }
+
     /// Parameter domain `[t_p, t_{n+1}]`.
     #[must_use]
     pub fn domain(&self) -> (f64, f64) {
@@ -693,5 +737,33 @@ mod tests {
         assert_eq!(back, c);
         let bad = s.replace("[0.0,0.0,1.0,2.0,3.0,3.0]", "[0.0,0.0,1.0,2.0,3.0]");
         assert!(serde_json::from_str::<BSplineCurve>(&bad).is_err());
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_graph_of_a_function_is_t_and_its_value(
+            degree in 1usize..5,
+            inner in proptest::collection::vec(0.0..1.0_f64, 0..6),
+            seed in 0u64..1000,
+        ) {
+            let mut t = vec![0.0; degree + 1];
+            let mut inner = inner;
+            inner.sort_by(f64::total_cmp);
+            t.extend(inner);
+            t.extend(vec![1.0; degree + 1]);
+            let n = t.len() - degree - 1;
+            #[allow(clippy::cast_precision_loss)]
+            let c: Vec<f64> = (0..n).map(|i| ((i as u64 * 7919 + seed) % 97) as f64 / 10.0).collect();
+            let Ok(y) = BSplineCurve::new(degree, t, Points::from_flat(1, c).unwrap()) else {
+                return Ok(());
+            };
+            let g = y.graph().unwrap();
+            for k in 0..=20 {
+                let u = f64::from(k) / 20.0;
+                let (p, v) = (g.eval(u).unwrap(), y.eval(u).unwrap()[0]);
+                proptest::prop_assert!((p[0] - u).abs() < 1e-14, "x {} at {}", p[0], u);
+                proptest::prop_assert!((p[1] - v).abs() < 1e-13, "y {} vs {}", p[1], v);
+            }
+        }
     }
 }
