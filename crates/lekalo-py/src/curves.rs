@@ -591,6 +591,14 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         ))
     }
 
+    /// The graph `t ↦ (t, y(t))` of this 1-D curve (a function) as a plane curve of the same
+    /// degree and knots, control points at the Greville abscissae (exact).
+    fn graph(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(Self::wrap(
+            py.detach(|| self.inner.graph()).map_err(lib_err)?,
+        ))
+    }
+
     /// The Bezier pieces: a list of `(start, end, BezierCurve)`.
     fn to_bezier_segments(&self, py: Python<'_>) -> Vec<(f64, f64, PyBezierCurve)> {
         py.detach(|| self.inner.to_bezier_segments())

@@ -371,3 +371,12 @@ def test_help_shows_how_to_call_curves_and_surfaces():
         (lekalo.NurbsSurface, "s(u, v)"),
     ]:
         assert call in pydoc.render_doc(cls, renderer=pydoc.plaintext), cls.__name__
+
+
+def test_graph_of_a_function_is_t_and_its_value():
+    y = lekalo.BSplineCurve(2, [0, 0, 0, 1, 2, 2, 2], [[1.0], [3.0], [0.0], [2.0]])
+    g = y.graph()
+    t = np.linspace(0, 2, 41)
+    np.testing.assert_allclose(g(t), np.column_stack([t, y(t)[:, 0]]), atol=1e-15)
+    with pytest.raises(lekalo.Error):
+        g.graph()  # a plane curve is not a function
