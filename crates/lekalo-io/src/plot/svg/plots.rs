@@ -194,26 +194,63 @@ pub fn residual_series(
     if !data.is_empty() && !drawn.contains(&worst) {
         drawn.push(worst);
     }
-    let mut series = Series::new(
-        Some(&format!(
+    // Deviations far below the drawing's size would be shorter than a pixel: each segment is
+    // then drawn from the foot towards its point stretched by a round factor (1, 2, 5 × 10^k)
+    // that makes the largest about 5 % of the data's extent, and the legend says so.
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for i in 0..data.len() {
+        let q = projection.to_plane(data.point(i));
+        for c in 0..2 {
+            lo[c] = lo[c].min(q[c]);
+            hi[c] = hi[c].max(q[c]);
+        }
+    }
+    let extent = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let stretch = deviation_stretch(max, extent);
+    let label = if stretch > 1.0 {
+        format!(
+            "deviations (drawn ×{}): max {}, RMS {}",
+            fmt_legend(stretch),
+            fmt_legend(max),
+            fmt_legend(rms)
+        )
+    } else {
+        format!(
             "deviations: max {}, RMS {}",
             fmt_legend(max),
             fmt_legend(rms)
-        )),
-        Vec::new(),
-        Style::Line,
-        PALETTE[3],
-    );
+        )
+    };
+    let mut series = Series::new(Some(&label), Vec::new(), Style::Line, PALETTE[3]);
     series.paths = drawn
         .into_iter()
         .map(|i| {
-            vec![
-                projection.to_plane(data.point(i)),
-                projection.to_plane(feet.point(i)),
-            ]
+            let (q, f) = (data.point(i), feet.point(i));
+            let tip: Vec<f64> = q
+                .iter()
+                .zip(f)
+                .map(|(q, f)| f + stretch * (q - f))
+                .collect();
+            vec![projection.to_plane(&tip), projection.to_plane(f)]
         })
         .collect();
     Ok(series)
+}
+
+/// The round factor (1, 2 or 5 times a power of ten, at least 1) that makes a largest deviation
+/// `max` about 5 % of a drawing of size `extent`.
+pub(super) fn deviation_stretch(max: f64, extent: f64) -> f64 {
+    if !(max > 0.0 && extent.is_finite() && extent > 0.0) || max >= 0.02 * extent {
+        return 1.0;
+    }
+    let want = 0.05 * extent / max;
+    let p = 10f64.powf(want.log10().floor());
+    let f = [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&f| f <= want)
+        .unwrap_or(p);
+    f.max(1.0)
 }
 
 /// Graphs of the B-spline basis functions `N_{i,p}(t)`, `i = 0 … n`, over the whole knot range

@@ -1,6 +1,6 @@
 //! Tests of the figures and the standard plots.
 
-use super::plots::PLOT_MAX_MARKERS;
+use super::plots::{deviation_stretch, PLOT_MAX_MARKERS};
 use super::ticks::fmt_legend;
 use super::*;
 use crate::object::Object;
@@ -43,6 +43,40 @@ fn residual_segments_join_points_to_their_feet() {
 }
 
 #[test]
+fn deviations_below_a_pixel_are_drawn_stretched_and_say_so() {
+    // a fit within 1e-3 of points spread over 10 units: the segments are stretched by 500 (the
+    // largest becomes 0.5, 5 % of the extent), from the foot towards the point
+    let data =
+        Points::from_2d(&[[0.0, 0.0], [5.0, 1e-3], [10.0, -5e-4], [10.0, 0.0]]).expect("points");
+    let feet =
+        Points::from_2d(&[[0.0, 0.0], [5.0, 0.0], [10.0, 0.0], [10.0, 0.0]]).expect("points");
+    let s = residual_series(&data, &feet, &crate::Projection::default()).expect("series");
+    assert_eq!(
+        s.paths[1],
+        vec![[5.0, 0.5], [5.0, 0.0]],
+        "stretched from the foot"
+    );
+    assert_eq!(
+        s.paths[2],
+        vec![[10.0, -0.25], [10.0, 0.0]],
+        "the same factor for all"
+    );
+    assert!(
+        s.label
+            .as_deref()
+            .is_some_and(|l| l.starts_with("deviations (drawn ×500): max 0.001,")),
+        "{:?}",
+        s.label
+    );
+    assert_eq!(
+        deviation_stretch(2.0, 3.0),
+        1.0,
+        "visible deviations are drawn as they are"
+    );
+    assert_eq!(deviation_stretch(0.0, 3.0), 1.0, "no deviation");
+}
+
+#[test]
 fn the_largest_residual_is_drawn_among_decimated_ones() {
     let n = 10_001;
     let data =
@@ -65,7 +99,7 @@ fn the_largest_residual_is_drawn_among_decimated_ones() {
     assert_eq!(
         s.label
             .as_deref()
-            .map(|l| l.starts_with("deviations: max 10,")),
+            .map(|l| l.starts_with("deviations (drawn ×50): max 10,")),
         Some(true),
         "{:?}",
         s.label
