@@ -366,9 +366,14 @@ fn periodic_fits_close_the_curve() {
     }
 }
 
-/// The legend's two figures `max` and `RMS` of `plot --residuals`.
+/// The legend's two figures `max` and `RMS` of `plot --residuals` (`deviations: max …` or, when
+/// the segments are drawn stretched, `deviations (drawn ×F): max …`).
 fn legend_figures(svg: &str) -> (f64, f64) {
-    let at = svg.find("deviations: max ").expect("a deviations legend") + 16;
+    let at = svg.find("deviations").expect("a deviations legend");
+    let at = at
+        + svg[at..]
+            .find("): max ")
+            .map_or_else(|| svg[at..].find(": max ").expect("max") + 6, |i| i + 7);
     let rest = &svg[at..];
     let (max, rest) = rest.split_once(", RMS ").expect("RMS");
     let end = rest.find(['<', '"']).expect("end");
