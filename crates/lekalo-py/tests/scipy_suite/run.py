@@ -80,9 +80,9 @@ def source_files() -> tuple[Path, dict[str, Path]]:
         fail(f"no RECORD of scipy {pin} under {site}: SciPy was not installed from its wheel")
     hashes = {}
     for line in records[0].read_text().splitlines():
-        path, digest, _ = line.rsplit(",", 2)
-        if digest:
-            hashes[path] = digest
+        path, recorded, _ = line.rsplit(",", 2)
+        if recorded:
+            hashes[path] = recorded
     tests = site / "scipy" / "interpolate" / "tests"
     files = {name: tests / name for name in MODULES}
     files.update({f"data/{p.name}": p for p in sorted((tests / "data").iterdir()) if p.is_file()})
@@ -91,7 +91,9 @@ def source_files() -> tuple[Path, dict[str, Path]]:
         if key not in hashes:
             fail(f"{key} is not in SciPy {pin}'s RECORD")
         algo, expected = hashes[key].split("=", 1)
-        got = base64.urlsafe_b64encode(hashlib.new(algo, path.read_bytes()).digest()).rstrip(b"=").decode()
+        # RECORD holds the urlsafe base64 of the raw hash (PEP 376 / the wheel format)
+        raw = bytes.fromhex(hashlib.new(algo, path.read_bytes()).hexdigest())
+        got = base64.urlsafe_b64encode(raw).rstrip(b"=").decode()
         if got != expected:
             fail(f"{path} differs from the file SciPy {pin}'s wheel installed: reinstall scipy=={pin}")
     return tests, files
