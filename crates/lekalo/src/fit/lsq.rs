@@ -66,6 +66,23 @@ impl EndConstraints {
     }
 }
 
+/// The number of control points of the splines of `degree` on `knots`, after the checks every
+/// fit on given knots makes: the degree's bound, enough valid knots, and the data parameters in
+/// the domain.
+pub(super) fn spline_space(data: &FitData<'_>, degree: usize, knots: &KnotVector) -> Result<usize> {
+    check_degree_bound(degree)?;
+    let n_ctrl = knots
+        .len()
+        .checked_sub(degree + 1)
+        .ok_or_else(|| Error::Degree {
+            degree,
+            reason: format!("{} knots carry no spline of this degree", knots.len()),
+        })?;
+    knots.validate_for(degree, n_ctrl)?;
+    check_in_domain(data.params(), knots.domain(degree))?;
+    Ok(n_ctrl)
+}
+
 /// The weighted least-squares B-spline of `degree` on `knots`: minimises
 /// `Σ_k w_k |C(ū_k) − Q_k|²` over the control points (SciPy's `make_lsq_spline`; P&T §9.4.1),
 /// subject to `ends`, which are imposed exactly by eliminating the control points they fix.
@@ -105,16 +122,7 @@ pub fn least_squares(
     knots: &KnotVector,
     ends: &EndConstraints,
 ) -> Result<CurveFit> {
-    check_degree_bound(degree)?;
-    let n_ctrl = knots
-        .len()
-        .checked_sub(degree + 1)
-        .ok_or_else(|| Error::Degree {
-            degree,
-            reason: format!("{} knots carry no spline of this degree", knots.len()),
-        })?;
-    knots.validate_for(degree, n_ctrl)?;
-    check_in_domain(data.params(), knots.domain(degree))?;
+    let n_ctrl = spline_space(data, degree, knots)?;
     let fixed = Fixed::new(data, degree, knots, n_ctrl, ends)?;
     if fixed.count() == 0 {
         super::knot_placement::check_schoenberg_whitney(data.params(), degree, knots)?;

@@ -388,7 +388,7 @@ fn remove_locally(
     if i1 - i0 < m {
         return Ok(None);
     }
-    let kv = KnotVector::from_raw(knots.clone());
+    let kv = KnotVector::from_raw(knots);
     let mut scratch = BasisScratch::new(p);
     let mut basis = vec![0.0; p + 1];
     let (mut gram, mut rhs) = (vec![0.0; m * m], vec![0.0; m * dim]);
@@ -396,7 +396,7 @@ fn remove_locally(
     for k in i0..i1 {
         let u = params[k];
         let span = kv.find_span(p, u)?;
-        basis_funs_into(&knots, p, span, u, &mut scratch, &mut basis);
+        basis_funs_into(kv.as_slice(), p, span, u, &mut scratch, &mut basis);
         r.copy_from_slice(points.point(k));
         for (a, &na) in basis.iter().enumerate() {
             let i = span - p + a;

@@ -5,11 +5,11 @@ use super::bernstein::{bernstein_rows, min_on_unit, pieces};
 use super::constraints::ShapeConstraints;
 use super::program::{failure_error, gram_of_triangle, triangle_transpose_times, ConeProgram, Row};
 use crate::basis::{basis_ders_into, BasisScratch};
-use crate::error::{check_degree_bound, Error, Result};
+use crate::error::{Error, Result};
 use crate::fit::banded::SymBand;
-use crate::fit::data::{check_in_domain, CurveFit, FitData, FitReport};
+use crate::fit::data::{CurveFit, FitData, FitReport};
 use crate::fit::knot_placement::check_schoenberg_whitney;
-use crate::fit::lsq::{accumulate, least_squares, EndConstraints, Fixed};
+use crate::fit::lsq::{accumulate, least_squares, spline_space, EndConstraints, Fixed};
 use crate::fit::smoothing::Smoother;
 use crate::fit::{smoothing_spline, Lambda};
 use crate::knots::KnotVector;
@@ -65,17 +65,8 @@ pub fn constrained_least_squares(
     constraints: &ShapeConstraints,
 ) -> Result<CurveFit> {
     check_function_data(data)?;
-    check_degree_bound(degree)?;
-    let n_ctrl = knots
-        .len()
-        .checked_sub(degree + 1)
-        .ok_or_else(|| Error::Degree {
-            degree,
-            reason: format!("{} knots carry no spline of this degree", knots.len()),
-        })?;
-    knots.validate_for(degree, n_ctrl)?;
+    let n_ctrl = spline_space(data, degree, knots)?;
     let domain = knots.domain(degree);
-    check_in_domain(data.params(), domain)?;
     constraints.validate(domain, degree)?;
     check_schoenberg_whitney(data.params(), degree, knots)?;
     let free = least_squares(data, degree, knots, &EndConstraints::none())?;
