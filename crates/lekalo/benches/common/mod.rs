@@ -98,8 +98,8 @@ pub(crate) fn grid(n: usize) -> Points {
 /// Why pin: on the 2-vCPU CI machine, Linux sometimes queues both workers on one processor (the
 /// one that woke the second worker, while the caller's processor was still busy) and, as both
 /// are cache-hot, does not move one for milliseconds, so a 10 ms batch runs at one thread's
-/// speed. Pinned workers cannot share a processor; `docs/performance.md` ("Parallel evaluation
-/// and thread placement") has the measurements of both pools.
+/// speed. Pinned workers cannot share a processor; `docs/performance/kernels.md` ("Parallel
+/// evaluation and thread placement") has the measurements of both pools.
 pub(crate) fn rayon_pool(threads: usize, pinned: bool) -> rayon::ThreadPool {
     let cores = if pinned {
         core_affinity::get_core_ids().unwrap_or_default()

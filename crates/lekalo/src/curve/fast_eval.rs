@@ -20,7 +20,7 @@
 //!   piece), evaluated by Horner's scheme: `p·dim` multiply–adds per point. Expanding about the
 //!   left knot and scaling by the piece's length keeps `|u| ≤ 1` and the coefficients bounded by
 //!   `3^p` times the control net's scale however wide the span or large the knot values, which
-//!   is what keeps this form accurate (see `docs/performance.md` for the measured error).
+//!   is what keeps this form accurate (see `docs/performance/kernels.md` for the measured error).
 //! - **Kernel [`EvalKernel::Basis`]** (default for higher degrees, where the power form's
 //!   rounding grows like `3^p`): Algorithm A2.2 with the reciprocals of the knot differences
 //!   `1 / (t_{i+r+1} − t_{i+r+1−j})` precomputed per piece, so that a point costs no division.
@@ -51,7 +51,7 @@ pub use nurbs::NurbsEvaluator;
 /// Highest degree for which [`EvalKernel::Auto`] chooses the power form. The power form's
 /// rounding error grows like `3^p` times the control net's scale in the worst case; measured
 /// against the reference (random, alternating ±1, offset by 10^6 and geometrically graded
-/// knots, `docs/performance.md`) it stays below `3e-15` relative up to degree 3 but reaches
+/// knots, `docs/performance/kernels.md`) it stays below `3e-15` relative up to degree 3 but reaches
 /// `6.7e-15` at degree 5 and `9e-13` at degree 9, so above degree 3 the basis kernel (below
 /// `1.1e-15` at every degree) is the default.
 pub const POWER_FORM_MAX_DEGREE: usize = 3;
@@ -325,8 +325,8 @@ impl CurveEvaluator {
     /// On machines with few processors, pin the pool's workers to distinct processors
     /// (`ThreadPoolBuilder::start_handler`, e.g. with the `core_affinity` crate): Linux
     /// sometimes queues two freshly woken workers on one processor and leaves them there for
-    /// milliseconds, which costs up to the whole speed-up (`docs/performance.md`, "Parallel
-    /// evaluation and thread placement").
+    /// milliseconds, which costs up to the whole speed-up (`docs/performance/kernels.md`,
+    /// "Parallel evaluation and thread placement").
     ///
     /// # Errors
     /// As [`CurveEvaluator::eval_batch`] (the error of the first failing chunk).
