@@ -57,7 +57,11 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
     let (body, summary) = match shape {
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
-            let m = q.mesh(a.tolerance).map_err(bad)?;
+            // a bar on a terminal; Ctrl-C stops the mesh between two parts of its work
+            let m = crate::cancel::with_progress("meshing", true, v, |p| {
+                q.mesh_with_progress(a.tolerance, p)
+            })
+            .map_err(bad)?;
             let format = match lekalo_io::MeshFormat::from_name(&fmt) {
                 Ok(f) => f,
                 Err(_) => return bad_input(format!("--format {fmt}: use obj, stl or ply")),

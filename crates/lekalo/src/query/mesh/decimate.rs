@@ -2,7 +2,9 @@
 //! stays within the tolerance.
 
 use super::bounds::{triangle_bound, SecondNets};
+use super::driver::MeshProgress;
 use super::Leaf;
+use crate::error::Result;
 use crate::query::surface::QuerySurface;
 
 impl QuerySurface {
@@ -25,7 +27,8 @@ impl QuerySurface {
         triangles: &mut Vec<[u32; 3]>,
         owner: &[u32],
         tol: f64,
-    ) -> f64 {
+        hook: &MeshProgress,
+    ) -> Result<f64> {
         use std::collections::HashMap;
         let nl = leaves.len();
         // the parts of each triangle: its owner, or a set in `unions` for new triangles
@@ -44,6 +47,7 @@ impl QuerySurface {
         let mut next: HashMap<u32, u32> = HashMap::new();
         let mut memo: Vec<f64> = Vec::new();
         for h in 0..at.len() {
+            hook.thinning(h as u64, at.len() as u64)?;
             let ts = &inc[h];
             if ts.len() < 3 || ts.len() > 12 {
                 continue;
@@ -186,6 +190,6 @@ impl QuerySurface {
             k += 1;
             alive[k - 1]
         });
-        worst
+        Ok(worst)
     }
 }

@@ -2,6 +2,7 @@
 //! sides and splitting them, and the mesh's vertices and triangles.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use rayon::prelude::*;
 
@@ -13,7 +14,51 @@ use super::{Leaf, Rule, MAX_ROUNDS, PATCH_WIDTH};
 use crate::error::{Error, Result};
 use crate::query::surface::QuerySurface;
 use crate::query::tessellate::{check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES};
-use crate::Points;
+use crate::{Points, Progress};
+
+/// What a mesh reports to its [`Progress`] hook: the work in thousandths, the first split of
+/// the patches taking `[0, 400)`, the rounds of matching `[400, 600)` and the mesh with its
+/// thinning `[600, 1000]`. The shares are those of the benchmark surface of
+/// `docs/performance.md` (geometric queries), where the first split, the rounds and the
+/// thinning take about 2 : 1 : 2 of the time.
+pub(super) struct MeshProgress<'a, 'p> {
+    progress: &'a Progress<'p>,
+    last: Mutex<u64>,
+}
+
+impl<'a, 'p> MeshProgress<'a, 'p> {
+    const TOTAL: u64 = 1000;
+    const ROUNDS: u64 = 400;
+    const EMIT: u64 = 600;
+
+    pub(super) fn new(progress: &'a Progress<'p>) -> Self {
+        MeshProgress {
+            progress,
+            last: Mutex::new(0),
+        }
+    }
+
+    /// Reports `done` of `total` of the stage `[from, to)`, never going back (the patches
+    /// finish in any order on the pool's threads), and checks the cancel flag.
+    pub(super) fn stage(&self, from: u64, to: u64, done: u64, total: u64) -> Result<()> {
+        let at = from + (to - from) * done / total.max(1);
+        let at = {
+            let mut last = self.last.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            *last = (*last).max(at);
+            *last
+        };
+        self.progress.step("meshing", at, Self::TOTAL)
+    }
+
+    /// Reports `done` of `total` vertices of the thinning, every [`Progress::STRIDE`].
+    pub(super) fn thinning(&self, done: u64, total: u64) -> Result<()> {
+        if done % Progress::STRIDE == 0 {
+            self.stage(Self::EMIT, Self::TOTAL, done, total)
+        } else {
+            Ok(())
+        }
+    }
+}
 
 impl QuerySurface {
     /// A triangle mesh within `tolerance` of a surface, polynomial or rational, adaptive
@@ -69,15 +114,29 @@ impl QuerySurface {
     /// [`MAX_MESH_TRIANGLES`] triangles;
     /// [`Error::TooLarge`] beyond [`MAX_MESH_VERTICES`].
     pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
+        self.mesh_with_progress(tolerance, &Progress::new())
+    }
+
+    /// [`QuerySurface::mesh`] reporting to `progress` (thousandths of the work: the patches'
+    /// first split, the rounds, the mesh and its thinning) and stopping when its cancel flag
+    /// is set. The mesh is the same.
+    ///
+    /// # Errors
+    /// As [`QuerySurface::mesh`]; [`Error::Cancelled`] when cancelled.
+    pub fn mesh_with_progress(&self, tolerance: f64, progress: &Progress<'_>) -> Result<Mesh> {
         check_tol(tolerance, self.scale)?;
         let tol = tolerance / self.scale;
         self.check_mesh_size(tolerance, tol)?;
         let grid = PatchGrid::new(self);
-        if self.rational {
-            self.mesh_rational(tol, &grid)
+        let hook = MeshProgress::new(progress);
+        hook.stage(0, MeshProgress::ROUNDS, 0, 1)?;
+        let mesh = if self.rational {
+            self.mesh_rational(tol, &grid, &hook)
         } else {
-            self.mesh_polynomial(tol, &grid, 0)
-        }
+            self.mesh_polynomial(tol, &grid, 0, &hook)
+        }?;
+        hook.stage(MeshProgress::EMIT, MeshProgress::TOTAL, 1, 1)?;
+        Ok(mesh)
     }
 
     /// Refuses a tolerance whose mesh would be too large to make, before any part is made:
@@ -176,11 +235,18 @@ impl QuerySurface {
         })
     }
 
-    fn mesh_rational(&self, tol: f64, grid: &PatchGrid) -> Result<Mesh> {
+    fn mesh_rational(&self, tol: f64, grid: &PatchGrid, hook: &MeshProgress) -> Result<Mesh> {
         let count = AtomicUsize::new(0);
+        let patches = self.patch_count() as u64;
+        let finished = AtomicUsize::new(0);
         let leaves: Vec<Leaf> = (0..self.patch_count())
             .into_par_iter()
-            .map(|k| self.rational_leaves(k, tol, &count))
+            .map(|k| {
+                let leaves = self.rational_leaves(k, tol, &count)?;
+                let done = finished.fetch_add(1, Ordering::Relaxed) as u64 + 1;
+                hook.stage(0, MeshProgress::EMIT, done, patches)?;
+                Ok(leaves)
+            })
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .flatten()
@@ -217,14 +283,20 @@ impl QuerySurface {
         tol: f64,
         grid: &PatchGrid,
         forced: usize,
+        hook: &MeshProgress,
     ) -> Result<Mesh> {
         let count = AtomicUsize::new(0);
         let whole = ((0, PATCH_WIDTH), (0, PATCH_WIDTH));
+        let patches = self.patch_count() as u64;
+        let finished = AtomicUsize::new(0);
         let mut leaves: Vec<Leaf> = (0..self.patch_count())
             .into_par_iter()
             .map(|k| {
                 let net = self.patch(k).to_vec();
-                self.poly_leaves(k, net, whole, tol, Rule::Edges, false, &count)
+                let leaves = self.poly_leaves(k, net, whole, tol, Rule::Edges, false, &count)?;
+                let done = finished.fetch_add(1, Ordering::Relaxed) as u64 + 1;
+                hook.stage(0, MeshProgress::ROUNDS, done, patches)?;
+                Ok(leaves)
             })
             .collect::<Result<Vec<_>>>()?
             .into_iter()
@@ -232,6 +304,12 @@ impl QuerySurface {
             .collect();
         let mut rule = Rule::Edges;
         for round in 0..=MAX_ROUNDS {
+            hook.stage(
+                MeshProgress::ROUNDS,
+                MeshProgress::EMIT,
+                round as u64,
+                MAX_ROUNDS as u64 + 1,
+            )?;
             let lat = Lattice::new(leaves.iter().map(|l| grid.rect(l)))?;
             let may_split = rule == Rule::Edges;
             let force = may_split && round < forced;
@@ -241,7 +319,7 @@ impl QuerySurface {
                 .collect();
             let split: Vec<bool> = plans.iter().map(|p| matches!(p.0, Plan::Split)).collect();
             if !split.contains(&true) {
-                return self.emit(grid, &lat, &leaves, plans, tol);
+                return self.emit(grid, &lat, &leaves, plans, tol, hook);
             }
             let refine_all = round + 1 >= MAX_ROUNDS;
             if refine_all {
@@ -273,6 +351,7 @@ impl QuerySurface {
         leaves: &[Leaf],
         plans: Vec<(Plan, f64)>,
         tol: f64,
+        hook: &MeshProgress,
     ) -> Result<Mesh> {
         let (mut verts, mut uv) = self.lattice_vertices(grid, lat, leaves);
         let mut at: Vec<(u64, u64)> = lat.keys.iter().map(|k| (k.0, k.1)).collect();
@@ -308,7 +387,7 @@ impl QuerySurface {
             owner.resize(triangles.len(), n as u32);
         }
         {
-            let worst = self.decimate(leaves, &at, &mut triangles, &owner, tol);
+            let worst = self.decimate(leaves, &at, &mut triangles, &owner, tol, hook)?;
             deviation = deviation.max(worst);
             // drop the vertices no triangle uses any more
             let mut map = vec![u32::MAX; uv.len()];

@@ -259,7 +259,11 @@ fn parts_split_in_later_rounds_keep_the_mesh_closed_and_bounded() {
     let tol = 3e-3;
     let plain = q.mesh(tol).unwrap();
     for forced in [2, super::MAX_ROUNDS + 1] {
-        let mesh = q.mesh_polynomial(tol / q.scale(), &grid, forced).unwrap();
+        let progress = crate::Progress::new();
+        let hook = super::driver::MeshProgress::new(&progress);
+        let mesh = q
+            .mesh_polynomial(tol / q.scale(), &grid, forced, &hook)
+            .unwrap();
         assert!(mesh.deviation <= tol, "forced {forced}: {}", mesh.deviation);
         assert!(
             mesh.triangles.len() > plain.triangles.len(),
@@ -478,4 +482,36 @@ fn assert_proper_cover(pts: &[[f64; 2]], tris: &[[u32; 3]], n: usize) {
         area += 0.5 * twice;
     }
     assert!((area - 1.0).abs() < 1e-14, "area {area}");
+}
+
+/// The progress hook sees the work go from 0 to the whole without going back, the mesh is the
+/// same as without it, and a set cancel flag stops the mesh with `Cancelled`, polynomial or
+/// rational.
+#[test]
+fn mesh_progress_is_monotone_and_cancel_stops_it() {
+    use std::sync::atomic::AtomicBool;
+    use std::sync::Mutex;
+    let mut rng = Rng(5);
+    let s = random_surface(&mut rng, 1.5);
+    let q = QuerySurface::from_bspline(&s).unwrap();
+    let rational = QuerySurface::from_nurbs(&crate::NurbsSurface::from_bspline(&s)).unwrap();
+    for q in [q, rational] {
+        let seen = Mutex::new(Vec::new());
+        let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));
+        let plain = q.mesh(3e-3).unwrap();
+        let with = q
+            .mesh_with_progress(3e-3, &crate::Progress::new().with_report(&report))
+            .unwrap();
+        assert_eq!(with, plain);
+        let seen = seen.into_inner().unwrap();
+        assert!(seen.len() > 2, "{seen:?}");
+        assert!(seen.windows(2).all(|w| w[0].0 <= w[1].0), "{seen:?}");
+        assert_eq!(seen.first().unwrap().0, 0);
+        assert_eq!(*seen.last().unwrap(), (1000, 1000));
+        let cancel = AtomicBool::new(true);
+        let e = q
+            .mesh_with_progress(3e-3, &crate::Progress::new().with_cancel(&cancel))
+            .unwrap_err();
+        assert!(matches!(e, crate::Error::Cancelled { .. }), "{e}");
+    }
 }
