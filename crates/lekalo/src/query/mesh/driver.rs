@@ -43,7 +43,10 @@ impl<'a, 'p> MeshProgress<'a, 'p> {
     pub(super) fn stage(&self, from: u64, to: u64, done: u64, total: u64) -> Result<()> {
         let at = from + (to - from) * done / total.max(1);
         let at = {
-            let mut last = self.last.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            let mut last = self
+                .last
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
             *last = (*last).max(at);
             *last
         };
