@@ -4,7 +4,7 @@
 //! `dim = prod(trailing)`), degrees `k`. Evaluation at `(..., N)` arrays gives
 //! `(..., *trailing)`.
 
-use lekalo::{Points, PointsRef, TensorBSpline, TensorInterpolation};
+use lekalo::{KnotVector, Points, PointsRef, TensorBSpline, TensorInterpolation};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
@@ -65,6 +65,34 @@ fn axes_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
         .iter()
         .enumerate()
         .map(|(a, x)| vec1(x, &format!("{what}[{a}]")))
+        .collect()
+}
+
+/// `knots`: one entry per variable, `None` or a 1-D array of knots.
+fn knots_arg(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Option<KnotVector>>> {
+    let items: Vec<Bound<'_, PyAny>> = obj
+        .try_iter()
+        .map_err(|_| {
+            bad("knots: expected a sequence with one knot array (or None) per variable".into())
+        })?
+        .collect::<PyResult<_>>()?;
+    if items.len() != n {
+        return Err(bad(format!(
+            "knots: {} entries for {n} variables; give one knot array (or None) per variable",
+            items.len()
+        )));
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(a, x)| {
+            if x.is_none() {
+                return Ok(None);
+            }
+            let what = format!("knots[{a}]");
+            let t = vec1(x, &what)?;
+            KnotVector::new(t).map(Some).map_err(|e| named(&what, &e))
+        })
         .collect()
 }
 
@@ -220,18 +248,22 @@ impl PyTensorBSpline {
 
     /// The interpolating spline of the grid `values` (shape `(m_1, …, m_N, *trailing)`) at the
     /// coordinates `axes` (one strictly increasing 1-D array per variable), of the given degrees
-    /// (one integer or one per variable; free ends, averaged knots): SciPy's `make_ndbspl`
-    /// up to the choice of knots.
+    /// (one integer or one per variable; free ends) and knots (`knots`: one entry per
+    /// variable, a knot vector of `m_a + k_a + 1` knots or `None` for averaged knots):
+    /// SciPy's `make_ndbspl` with its not-a-knot knots given (`TensorInterpolation::knot_vectors`,
+    /// `docs/theory/tensor.md#interpolation-on-grids`).
     #[staticmethod]
-    #[pyo3(signature = (axes, values, degrees = None))]
+    #[pyo3(signature = (axes, values, degrees = None, knots = None))]
     fn interpolate_grid(
         py: Python<'_>,
         axes: &Bound<'_, PyAny>,
         values: &Bound<'_, PyAny>,
         degrees: Option<&Bound<'_, PyAny>>,
+        knots: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let lists = axes_arg(axes, "axes")?;
         let n = lists.len();
+        let given = knots.map(|k| knots_arg(k, n)).transpose()?;
         let degrees = match degrees {
             Some(d) => degrees_arg(d, n)?,
             None => vec![3; n],
@@ -248,10 +280,19 @@ impl PyTensorBSpline {
         let dim: usize = trailing.iter().product();
         let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
         let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+        let mut interpolation = TensorInterpolation::new(degrees);
+        if let Some(given) = given {
+            interpolation = interpolation.knot_vectors(given);
+        }
         let inner = py
-            .detach(|| TensorInterpolation::new(degrees).interpolate_at(&refs, pts))
+            .detach(|| interpolation.interpolate_at(&refs, pts))
             .map_err(|e| match e {
                 lekalo::Error::Degree { .. } => named("degrees", &e),
+                lekalo::Error::InvalidArgument {
+                    what: "knot vectors",
+                    ..
+                }
+                | lekalo::Error::SingularSystem { .. } => named("knots", &e),
                 lekalo::Error::KnotsNotSorted { .. }
                 | lekalo::Error::InvalidArgument { .. }
                 | lekalo::Error::NonFinite { .. } => named("axes", &e),

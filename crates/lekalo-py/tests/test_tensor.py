@@ -128,3 +128,44 @@ def test_errors_name_the_argument():
         lekalo.TensorBSpline.interpolate_grid(axes, np.zeros((4, 3, 2)), degrees=(3, 3, 3))
     with pytest.raises(lekalo.Error, match="^axes: "):
         lekalo.TensorBSpline.interpolate_grid([axes[0][::-1].copy(), axes[1], axes[2]], np.zeros((4, 3, 2)), degrees=1)
+
+
+def test_given_knots_and_the_make_ndbspl_drop_in_match_scipy_coefficients():
+    from lekalo import scipy as ls
+
+    rng = np.random.default_rng(7)
+    axes = [np.sort(rng.uniform(0, 1, n)) + 1e8 * (d == 2) for d, n in enumerate((9, 7, 8))]
+    values = rng.standard_normal((9, 7, 8, 2))
+    for k in (3, (3, 1, 5)):
+        ref = scipy_interpolant(axes, values, k)
+        ours = ls.make_ndbspl(axes, values, k=k)
+        for a, b in zip(ours.t, ref.t):
+            np.testing.assert_array_equal(a, b)
+        close(ours.c, ref.c)
+        # the native API with the same knots
+        native = lekalo.TensorBSpline.interpolate_grid(axes, values, degrees=k, knots=list(ref.t))
+        close(native.c, ref.c)
+    # None keeps the averaged knots of a direction
+    ref = scipy_interpolant(axes, values, 3)
+    mixed = lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[None, ref.t[1], None])
+    plain = lekalo.TensorBSpline.interpolate_grid(axes, values)
+    np.testing.assert_array_equal(mixed.t[0], plain.t[0])
+    np.testing.assert_array_equal(mixed.t[1], ref.t[1])
+    # complex values: the real and imaginary parts
+    z = values[..., 0] + 1j * values[..., 1]
+    close(ls.make_ndbspl(axes, z).c, scipy_interpolant(axes, z, 3).c)
+    with pytest.raises(ValueError, match="Odd degree"):
+        ls.make_ndbspl(axes, values, k=2)
+
+
+def test_given_knots_errors_name_the_argument():
+    axes = [np.arange(6.0), np.arange(5.0)]
+    values = np.zeros((6, 5))
+    with pytest.raises(lekalo.InputError, match="^knots: 1 entries for 2 variables"):
+        lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[None])
+    with pytest.raises(lekalo.InputError, match=r"^knots: .*direction 0: 9 knots for 6 values"):
+        lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[0.0] * 4, 2.5, [5.0] * 4], None])
+    with pytest.raises(lekalo.InputError, match=r"^knots: .*Schoenberg"):
+        lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[0.0] * 4, 0.1, 0.2, [5.0] * 4], None])
+    with pytest.raises(lekalo.InputError, match=r"^knots\[0\]: "):
+        lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[5.0] * 4, 0.1, 0.2, [0.0] * 4], None])

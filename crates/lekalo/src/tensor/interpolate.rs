@@ -74,6 +74,7 @@ pub struct TensorInterpolation {
     degrees: Vec<usize>,
     parametrization: Parametrization,
     knots: Option<Vec<KnotPlacement>>,
+    given: Option<Vec<Option<KnotVector>>>,
     ends: Option<Vec<EndCondition>>,
     max_condition: Option<f64>,
 }
@@ -87,6 +88,7 @@ impl TensorInterpolation {
             degrees,
             parametrization: Parametrization::ChordLength,
             knots: None,
+            given: None,
             ends: None,
             max_condition: None,
         }
@@ -108,6 +110,35 @@ impl TensorInterpolation {
     #[must_use]
     pub fn knot_placements(mut self, knots: Vec<KnotPlacement>) -> Self {
         self.knots = Some(knots);
+        self
+    }
+
+    /// Sets the knot vector of each direction (one entry per direction): `Some(knots)` is taken
+    /// as given, `None` placed by [`TensorInterpolation::knot_placements`]. A given knot vector
+    /// goes with free ends, has `m_a + p_a + 1` knots for the `m_a` values of its direction, and
+    /// the direction's parameters lie in its domain `[t_p, t_{m_a}]` and satisfy the
+    /// Schoenberg–Whitney condition `t_k < u_k < t_{k+p+1}` (de Boor, *A Practical Guide to
+    /// Splines*, XIII (2); equality allowed at a clamped end), which the factorisation checks.
+    /// SciPy's `make_ndbspl` is this with the not-a-knot knots of every direction (de Boor
+    /// XIII (12)).
+    ///
+    /// ```
+    /// use lekalo::{KnotVector, PointsRef, TensorInterpolation};
+    /// // not-a-knot in x (the knots at the interior sites but the first and last), averaged in y
+    /// let (xs, ys) = ([0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.5, 1.5, 2.0]);
+    /// let mut values = Vec::new();
+    /// for &x in &xs { for &y in &ys { values.push(x * x * x - y * y); } }
+    /// let t = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 2.0, 4.0, 4.0, 4.0, 4.0])?;
+    /// let s = TensorInterpolation::new(vec![3, 3])
+    ///     .knot_vectors(vec![Some(t.clone()), None])
+    ///     .interpolate_at(&[&xs, &ys], PointsRef::from_flat(1, &values)?)?;
+    /// assert_eq!(s.knots()[0], t);
+    /// assert!((s.eval(&[2.5, 1.0])?[0] - (2.5f64.powi(3) - 1.0)).abs() < 1e-12);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[must_use]
+    pub fn knot_vectors(mut self, knots: Vec<Option<KnotVector>>) -> Self {
+        self.given = Some(knots);
         self
     }
 
@@ -212,7 +243,7 @@ impl TensorInterpolation {
         values: PointsRef<'_>,
     ) -> Result<TensorBSpline> {
         self.check_options(params.len())?;
-        if params.len() == 1 {
+        if params.len() == 1 && self.given_knots(0).is_none() {
             let curve = self.curve()?.interpolate_at(values, params[0])?;
             return Ok(TensorBSpline::from_curve(&curve));
         }
@@ -315,6 +346,45 @@ impl TensorInterpolation {
         if let Some(e) = &self.ends {
             check_len("end conditions (one per grid direction)", n, e.len())?;
         }
+        if let Some(g) = &self.given {
+            check_len("knot vectors (one per grid direction)", n, g.len())?;
+        }
+        Ok(())
+    }
+
+    /// The given knot vector of direction `a`, if any.
+    fn given_knots(&self, a: usize) -> Option<&KnotVector> {
+        self.given.as_ref().and_then(|g| g[a].as_ref())
+    }
+
+    /// Direction `a`'s given knots `kv` for its parameters `t` and degree `p`: their count and
+    /// domain (the Schoenberg–Whitney condition is the factorisation's).
+    fn check_given(a: usize, kv: &KnotVector, p: usize, t: &[f64]) -> Result<()> {
+        let expected = t.len() + p + 1;
+        if kv.len() != expected {
+            return Err(Error::InvalidArgument {
+                what: "knot vectors",
+                reason: format!(
+                    "direction {a}: {} knots for {} values of degree {p}; give {expected} \
+                     (values + degree + 1)",
+                    kv.len(),
+                    t.len()
+                ),
+            });
+        }
+        let knots = kv.as_slice();
+        let (lo, hi) = (knots[p], knots[t.len()]);
+        if t[0] < lo || t[t.len() - 1] > hi {
+            return Err(Error::InvalidArgument {
+                what: "knot vectors",
+                reason: format!(
+                    "direction {a}: the coordinates [{}, {}] leave the knots' domain \
+                     [{lo}, {hi}]; give knots whose domain covers the grid",
+                    t[0],
+                    t[t.len() - 1]
+                ),
+            });
+        }
         Ok(())
     }
 
@@ -388,27 +458,25 @@ impl TensorInterpolation {
         let mut factors = Vec::with_capacity(n);
         for (a, t) in params.iter().enumerate() {
             if *self.end(a) != EndCondition::Free {
+                if self.given_knots(a).is_some() {
+                    return Err(Error::InvalidArgument {
+                        what: "knot vectors",
+                        reason: format!(
+                            "direction {a}: given knots go with free ends; drop the knots or \
+                             the natural or periodic end condition"
+                        ),
+                    });
+                }
                 knots.push(None);
                 factors.push(None);
                 continue;
             }
             let p = self.degrees[a];
-            let kv = match self.placement(a) {
-                KnotPlacement::Auto | KnotPlacement::Averaged => KnotVector::averaged(t, p)?,
-                KnotPlacement::Uniform => {
-                    let u = KnotVector::clamped_uniform(p, t.len())?;
-                    let (lo, hi) = (t[0], t[t.len() - 1]);
-                    KnotVector::new(u.as_slice().iter().map(|x| lo + (hi - lo) * x).collect())?
-                }
-                KnotPlacement::AtParameters => {
-                    return Err(Error::InvalidArgument {
-                        what: "knot placements",
-                        reason: format!(
-                            "direction {a}: knots at the parameters go with end derivatives or \
-                             natural ends; use Averaged or Uniform with free ends"
-                        ),
-                    })
-                }
+            let kv = if let Some(kv) = self.given_knots(a) {
+                Self::check_given(a, kv, p, t)?;
+                kv.clone()
+            } else {
+                self.placed_knots(a, p, t)?
             };
             factors.push(Some(factor_collocation(&kv, p, t, kind)?));
             knots.push(Some(kv));
@@ -435,6 +503,28 @@ impl TensorInterpolation {
             knots.into_iter().flatten().collect(),
             Points::from_raw(control, dim),
         ))
+    }
+
+    /// The knots of free direction `a` by its [`KnotPlacement`].
+    fn placed_knots(&self, a: usize, p: usize, t: &[f64]) -> Result<KnotVector> {
+        let kv = match self.placement(a) {
+            KnotPlacement::Auto | KnotPlacement::Averaged => KnotVector::averaged(t, p)?,
+            KnotPlacement::Uniform => {
+                let u = KnotVector::clamped_uniform(p, t.len())?;
+                let (lo, hi) = (t[0], t[t.len() - 1]);
+                KnotVector::new(u.as_slice().iter().map(|x| lo + (hi - lo) * x).collect())?
+            }
+            KnotPlacement::AtParameters => {
+                return Err(Error::InvalidArgument {
+                    what: "knot placements",
+                    reason: format!(
+                        "direction {a}: knots at the parameters go with end derivatives or \
+                         natural ends; use Averaged or Uniform with free ends"
+                    ),
+                })
+            }
+        };
+        Ok(kv)
     }
 
     fn placement(&self, a: usize) -> KnotPlacement {

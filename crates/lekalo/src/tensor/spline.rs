@@ -612,6 +612,12 @@ fn contract_window(
     let n0 = &values[offsets[0]..offsets[0] + p0 + 1];
     let first0 = spans[0] - p0;
     let stride0 = strides[0];
+    if n == 3 && dim == 1 {
+        if let Some(v) = contract3_scalar(s, w) {
+            out[0] = v;
+            return;
+        }
+    }
     if n == 1 {
         for (j, &v) in n0.iter().enumerate() {
             let at = (first0 + j) * dim;
@@ -670,6 +676,85 @@ fn contract_window(
         contract(a, &done[a - 1], &mut next[0]);
     }
     contract(last, &stages[last - 1], out);
+}
+
+/// [`contract_window`] for three directions, scalar values and one degree `p ≤ 5` in every
+/// direction, with the window's sizes known at compile time: the same operations on each
+/// number in the same order (so the same bits), without the odometer and the run-length loops.
+/// Written out by hand because this contraction is the whole cost of a point of a trivariate
+/// lookup table; `None` for the other cases.
+fn contract3_scalar(s: &TensorBSpline, w: &Window<'_>) -> Option<f64> {
+    let d = &s.degrees;
+    if d[1] != d[0] || d[2] != d[0] {
+        return None;
+    }
+    let first = [w.spans[0] - d[0], w.spans[1] - d[1], w.spans[2] - d[2]];
+    let basis = |a: usize| &w.values[w.offsets[a]..w.offsets[a] + d[a] + 1];
+    let (b0, b1, b2) = (basis(0), basis(1), basis(2));
+    let net = s.control.as_slice();
+    let strides = [w.strides[0], w.strides[1]];
+    Some(match d[0] {
+        1 => contract3::<2>(net, first, strides, b0, b1, b2),
+        2 => contract3::<3>(net, first, strides, b0, b1, b2),
+        3 => contract3::<4>(net, first, strides, b0, b1, b2),
+        4 => contract3::<5>(net, first, strides, b0, b1, b2),
+        5 => contract3::<6>(net, first, strides, b0, b1, b2),
+        _ => return None,
+    })
+}
+
+/// The three stages of [`contract_window`] for `Q = p + 1` basis functions per direction and
+/// `dim = 1`: `B_1[i_1][i_2] = Σ_j N_0[j]·P[f_0 + j][f_1 + i_1][f_2 + i_2]`, then
+/// `B_2[i_2] = Σ_j N_1[j]·B_1[j][i_2]`, then `Σ_j N_2[j]·B_2[j]`, each sum from `j = 0` up
+/// ([`accumulate`]'s order).
+#[inline(always)]
+fn contract3<const Q: usize>(
+    net: &[f64],
+    first: [usize; 3],
+    strides: [usize; 2],
+    n0: &[f64],
+    n1: &[f64],
+    n2: &[f64],
+) -> f64 {
+    let (n0, n1, n2): (&[f64; Q], &[f64; Q], &[f64; Q]) = (
+        n0.try_into().expect("Q basis functions"),
+        n1.try_into().expect("Q basis functions"),
+        n2.try_into().expect("Q basis functions"),
+    );
+    let mut b1 = [[0.0; Q]; Q];
+    for (i1, row) in b1.iter_mut().enumerate() {
+        let base = first[2] + (first[1] + i1) * strides[1];
+        for (j, &v) in n0.iter().enumerate() {
+            let at = (first[0] + j) * strides[0] + base;
+            let p: &[f64; Q] = net[at..at + Q].try_into().expect("a run of Q numbers");
+            if j == 0 {
+                for (r, x) in row.iter_mut().zip(p) {
+                    *r = v * x;
+                }
+            } else {
+                for (r, x) in row.iter_mut().zip(p) {
+                    *r += v * x;
+                }
+            }
+        }
+    }
+    let mut b2 = [0.0; Q];
+    for (j, (&v, row)) in n1.iter().zip(&b1).enumerate() {
+        if j == 0 {
+            for (r, x) in b2.iter_mut().zip(row) {
+                *r = v * x;
+            }
+        } else {
+            for (r, x) in b2.iter_mut().zip(row) {
+                *r += v * x;
+            }
+        }
+    }
+    let mut r = n2[0] * b2[0];
+    for j in 1..Q {
+        r += n2[j] * b2[j];
+    }
+    r
 }
 
 /// # Errors

@@ -986,3 +986,164 @@ fn both_grid_paths_give_the_point_values_bitwise() {
         }
     }
 }
+
+/// Not-a-knot knots of degree `p` (odd) at the sites `x` (de Boor XIII (12)).
+fn not_a_knot(x: &[f64], p: usize) -> KnotVector {
+    let half = p.div_ceil(2);
+    let mut t = vec![x[0]; p + 1];
+    t.extend_from_slice(&x[half..x.len() - half]);
+    t.extend(std::iter::repeat_n(x[x.len() - 1], p + 1));
+    KnotVector::new(t).unwrap()
+}
+
+#[test]
+fn given_knot_vectors_are_used_as_given() {
+    let lists = [
+        vec![0.0, 0.4, 1.0, 1.7, 2.0, 3.1, 4.0],
+        vec![-1.0, 0.0, 0.5, 2.0, 2.5],
+        vec![1e8, 1e8 + 1.0, 1e8 + 3.0, 1e8 + 3.5, 1e8 + 5.0, 1e8 + 6.0],
+    ];
+    let xs = grid_points(&lists);
+    let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    // a polynomial of degree (3, 1, 3) in its variables: not-a-knot cubics reproduce it
+    let poly = |x: &[f64]| {
+        let z = x[2] - 1e8;
+        x[0].powi(3) - 2.0 * x[0] * x[1] + 0.5 * x[1] * z * z + z.powi(3) / 10.0
+    };
+    let values: Vec<f64> = xs.chunks_exact(3).map(poly).collect();
+    let q = PointsRef::from_flat(1, &values).unwrap();
+    let degrees = vec![3, 1, 3];
+    let given = vec![
+        Some(not_a_knot(&lists[0], 3)),
+        None,
+        Some(not_a_knot(&lists[2], 3)),
+    ];
+    let s = TensorInterpolation::new(degrees.clone())
+        .knot_vectors(given.clone())
+        .interpolate_at(&axes, q)
+        .unwrap();
+    assert_eq!(s.knots()[0], given[0].clone().unwrap());
+    assert_eq!(s.knots()[2], given[2].clone().unwrap());
+    for x in [
+        [0.3, 0.7, 1e8 + 0.2],
+        [3.9, -0.5, 1e8 + 5.5],
+        [2.2, 2.4, 1e8 + 3.2],
+    ] {
+        let v = s.eval(&x).unwrap()[0];
+        assert!(
+            (v - poly(&x)).abs() < 1e-11 * 70.0,
+            "{x:?}: {v} vs {}",
+            poly(&x)
+        );
+    }
+    // the placed knots, given, give the same spline bit for bit
+    let placed = TensorInterpolation::new(degrees.clone())
+        .interpolate_at(&axes, q)
+        .unwrap();
+    let same = TensorInterpolation::new(degrees.clone())
+        .knot_vectors(placed.knots().iter().cloned().map(Some).collect())
+        .interpolate_at(&axes, q)
+        .unwrap();
+    assert_eq!(same, placed);
+    // one variable: the given knots, as the curve interpolation's own
+    let curve = CurveInterpolation::new(3)
+        .interpolate_at(PointsRef::from_flat(1, &values[..7]).unwrap(), &lists[0])
+        .unwrap();
+    let one = TensorInterpolation::new(vec![3])
+        .knot_vectors(vec![Some(curve.knots().clone())])
+        .interpolate_at(&[&lists[0]], PointsRef::from_flat(1, &values[..7]).unwrap())
+        .unwrap();
+    assert_near(
+        one.control_points().as_slice(),
+        curve.control_points().as_slice(),
+        1e-14,
+        1.0,
+        "one variable",
+    );
+    // errors: count, domain, Schoenberg–Whitney, end condition
+    let wrong = |kv: KnotVector| {
+        TensorInterpolation::new(degrees.clone())
+            .knot_vectors(vec![Some(kv), None, None])
+            .interpolate_at(&axes, q)
+            .unwrap_err()
+            .to_string()
+    };
+    let e = wrong(KnotVector::averaged(&lists[0][..6], 3).unwrap());
+    assert!(
+        e.contains("direction 0: 10 knots for 7 values") && e.contains("give 11"),
+        "{e}"
+    );
+    let mut narrow = vec![0.5; 4];
+    narrow.extend([1.0, 1.7, 2.0]);
+    narrow.extend([4.0; 4]);
+    let e = wrong(KnotVector::new(narrow).unwrap());
+    assert!(e.contains("leave the knots' domain"), "{e}");
+    let mut crowded = vec![0.0; 4];
+    crowded.extend([0.1, 0.2, 0.3]);
+    crowded.extend([4.0; 4]);
+    let e = wrong(KnotVector::new(crowded).unwrap());
+    assert!(e.contains("Schoenberg"), "{e}");
+    let e = TensorInterpolation::new(degrees.clone())
+        .knot_vectors(given.clone())
+        .end_conditions(vec![
+            EndCondition::Natural,
+            EndCondition::Free,
+            EndCondition::Free,
+        ])
+        .interpolate_at(&axes, q)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("given knots go with free ends"), "{e}");
+    let e = TensorInterpolation::new(degrees)
+        .knot_vectors(vec![None])
+        .interpolate_at(&axes, q)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("knot vectors (one per grid direction)"), "{e}");
+}
+
+/// The fixed-size kernel of three scalar directions gives the bits of the general
+/// contraction: the same net as the first column of a 2-D net takes the general path.
+#[test]
+fn the_trivariate_scalar_kernel_has_the_general_bits() {
+    let mut rng = 0x2545_f491_u64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for p in 1..=5 {
+        let sizes = [p + 2, p + 3, p + 1];
+        let knots: Vec<Vec<f64>> = sizes
+            .iter()
+            .map(|&m| {
+                let mut t = vec![0.0; p + 1];
+                let mut inner: Vec<f64> = (0..m - p - 1).map(|_| next()).collect();
+                inner.sort_by(f64::total_cmp);
+                t.extend(inner);
+                t.extend(vec![1.0; p + 1]);
+                t
+            })
+            .collect();
+        let count: usize = sizes.iter().product();
+        let scalar: Vec<f64> = (0..count).map(|_| 1e3 * next() - 500.0).collect();
+        let pair: Vec<f64> = scalar.iter().flat_map(|&v| [v, -v]).collect();
+        let one = TensorBSpline::new(
+            vec![p; 3],
+            knots.clone(),
+            Points::from_flat(1, scalar).unwrap(),
+        )
+        .unwrap();
+        let two =
+            TensorBSpline::new(vec![p; 3], knots, Points::from_flat(2, pair).unwrap()).unwrap();
+        let xs: Vec<f64> = (0..300).map(|_| next()).collect();
+        let mut a = vec![0.0; 100];
+        let mut b = vec![0.0; 200];
+        one.eval_batch(&xs, None, &mut a).unwrap();
+        two.eval_batch(&xs, None, &mut b).unwrap();
+        for (k, (x, y)) in a.iter().zip(b.chunks_exact(2)).enumerate() {
+            assert_eq!(x.to_bits(), y[0].to_bits(), "degree {p}, point {k}");
+        }
+    }
+}

@@ -94,3 +94,38 @@ class NdBSpline:
     @classmethod
     def design_matrix(cls, xvals: Any, t: Any, k: Any, extrapolate: bool = True):
         raise NotImplementedError("lekalo.scipy: NdBSpline.design_matrix is not available yet")
+
+
+def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **solver_args: Any) -> NdBSpline:
+    """``scipy.interpolate.make_ndbspl(points, values, k=3, *, solver=..., **solver_args)``: the
+    tensor-product spline through ``values`` on the grid ``points``, with SciPy's not-a-knot
+    knots in every direction (odd degrees). SciPy assembles the collocation matrix of the whole
+    grid and hands it to a sparse solver; lekalo solves the same system exactly, one banded
+    factorisation per direction and one sweep of solves along each
+    (``TensorInterpolation::knot_vectors``, ``docs/theory/tensor.md``), so ``solver`` and its
+    arguments are accepted and not used."""
+    from ._interpolate import _not_a_knot
+
+    del solver, solver_args
+    ndim = len(points)
+    if np.ndim(k) == 0:
+        k = (k,) * ndim
+    k = tuple(operator.index(kd) for kd in k)
+    if len(k) != ndim:
+        raise ValueError(f"{len(points) = } != {len(k) = }.")
+    axes = [np.ascontiguousarray(p, dtype=float) for p in points]
+    for kd in k:
+        if kd % 2 != 1:
+            raise ValueError(f"Odd degree for now only. Got {kd}.")
+    t = tuple(_not_a_knot(x, kd) for x, kd in zip(axes, k))
+    values = np.asarray(values)
+    complex_ = np.iscomplexobj(values)
+    v = np.ascontiguousarray(values, dtype=complex if complex_ else float)
+    if complex_:
+        # real and imaginary parts as two trailing columns, solved together
+        v = np.stack((v.real, v.imag), axis=-1)
+    spline = _lekalo.TensorBSpline.interpolate_grid(axes, v, degrees=list(k), knots=list(t))
+    c = spline.c
+    if complex_:
+        c = c[..., 0] + 1j * c[..., 1]
+    return NdBSpline(t, c, k)
