@@ -192,13 +192,16 @@ impl PyTensorBSpline {
     }
 
     /// The spline (or, with `nu`, the partial derivative of orders `nu`, one per variable) at
-    /// the points `x` of shape `(..., N)`: shape `(..., *trailing)`.
-    #[pyo3(signature = (x, nu = None))]
+    /// the points `x` of shape `(..., N)`: shape `(..., *trailing)`. A point outside the
+    /// domain is refused, or with `extrapolate=True` evaluated by the end spans' polynomials
+    /// continued (`TensorBSpline::par_eval_batch_extrapolated`).
+    #[pyo3(signature = (x, nu = None, extrapolate = false))]
     fn __call__(
         &self,
         py: Python<'_>,
         x: &Bound<'_, PyAny>,
         nu: Option<Vec<usize>>,
+        extrapolate: bool,
     ) -> PyResult<Py<PyAny>> {
         let n = self.inner.n_vars();
         let xa = floats(x, "x")?;
@@ -214,7 +217,12 @@ impl PyTensorBSpline {
         check_size("x", &[lead.iter().product(), self.inner.dim()])?;
         let xs = xa.data();
         let out = filled(py, &out_shape, |out| {
-            self.inner.par_eval_batch(xs, orders.as_deref(), out)
+            if extrapolate {
+                self.inner
+                    .par_eval_batch_extrapolated(xs, orders.as_deref(), out)
+            } else {
+                self.inner.par_eval_batch(xs, orders.as_deref(), out)
+            }
         })?;
         Ok(out.unbind())
     }

@@ -5,7 +5,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
-use crate::error::{check_derivative_order, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS};
+use crate::error::{
+    check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+};
 use crate::knots::KnotVector;
 use crate::points::Points;
 
@@ -331,7 +333,7 @@ impl TensorBSpline {
     pub fn eval_batch(&self, xs: &[f64], orders: Option<&[usize]>, out: &mut [f64]) -> Result<()> {
         self.check_batch(xs, out)?;
         let mut scratch = TensorScratch::new(self, orders)?;
-        self.batch_slice(xs, orders, &mut scratch, out)
+        self.batch_slice(xs, orders, false, &mut scratch, out)
     }
 
     /// [`TensorBSpline::eval_batch`] split over the current rayon thread pool in chunks of a
@@ -346,7 +348,55 @@ impl TensorBSpline {
         orders: Option<&[usize]>,
         out: &mut [f64],
     ) -> Result<()> {
+        self.par_batch(xs, orders, false, out)
+    }
+
+    /// [`TensorBSpline::par_eval_batch`] at any finite point: outside the domain of direction
+    /// `a` the spline is continued by the polynomial of its first or last non-empty span in
+    /// that direction (the span of the nearest domain end, with the basis polynomials of
+    /// P&T Algorithm A2.2 evaluated at the coordinate itself, as
+    /// [`BSplineCurve::eval_extrapolated`](crate::BSplineCurve::eval_extrapolated) does for
+    /// curves; SciPy's `NdBSpline(..., extrapolate=True)`). Inside the domain the same bits
+    /// as [`TensorBSpline::par_eval_batch`].
+    ///
+    /// ```
+    /// use lekalo::{Points, TensorBSpline};
+    /// // f(x, y) = x² + y on [0, 1]², continued: f(2, -1) = 3
+    /// let net = Points::from_flat(1, vec![0.0, 1.0, 0.0, 1.0, 1.0, 2.0])?;
+    /// let s = TensorBSpline::new(
+    ///     vec![2, 1],
+    ///     vec![vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
+    ///     net,
+    /// )?;
+    /// let mut out = [0.0];
+    /// s.par_eval_batch_extrapolated(&[2.0, -1.0], None, &mut out)?;
+    /// assert!((out[0] - 3.0).abs() < 1e-15);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`TensorBSpline::par_eval_batch`], except that a finite point outside the domain is
+    /// evaluated; [`Error::NonFinite`] for a coordinate that is NaN or infinite.
+    pub fn par_eval_batch_extrapolated(
+        &self,
+        xs: &[f64],
+        orders: Option<&[usize]>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.par_batch(xs, orders, true, out)
+    }
+
+    fn par_batch(
+        &self,
+        xs: &[f64],
+        orders: Option<&[usize]>,
+        extrapolate: bool,
+        out: &mut [f64],
+    ) -> Result<()> {
         self.check_batch(xs, out)?;
+        if extrapolate {
+            check_finite("point coordinates", xs)?;
+        }
         // validates the orders once, before the threads start
         TensorScratch::new(self, orders)?;
         let (n, dim) = (self.n_vars(), self.dim());
@@ -359,7 +409,7 @@ impl TensorBSpline {
             .zip(out.par_chunks_mut(chunk * dim))
             .map(|(x, o)| {
                 let mut scratch = TensorScratch::new(self, orders)?;
-                self.batch_slice(x, orders, &mut scratch, o)
+                self.batch_slice(x, orders, extrapolate, &mut scratch, o)
             })
             .collect();
         results.into_iter().collect()
@@ -381,10 +431,13 @@ impl TensorBSpline {
         )
     }
 
+    /// The points of `xs` in order; outside the domain an error or, with `extrapolate`, the
+    /// polynomial of the nearest end span in each direction.
     fn batch_slice(
         &self,
         xs: &[f64],
         orders: Option<&[usize]>,
+        extrapolate: bool,
         scratch: &mut TensorScratch,
         out: &mut [f64],
     ) -> Result<()> {
@@ -395,9 +448,16 @@ impl TensorBSpline {
             .zip(&self.degrees)
             .map(|(k, &p)| k.span_cursor(p))
             .collect();
+        let domains = self.domain();
         for (x, o) in xs.chunks_exact(n).zip(out.chunks_exact_mut(self.dim())) {
             for (a, c) in cursors.iter_mut().enumerate() {
-                scratch.spans[a] = c.find(x[a])?;
+                scratch.spans[a] = if extrapolate {
+                    // finite (checked by the caller): the span of the nearest domain end
+                    let (lo, hi) = domains[a];
+                    c.find_unchecked(x[a].clamp(lo, hi))
+                } else {
+                    c.find(x[a])?
+                };
             }
             self.eval_spans(x, orders, scratch, o);
         }

@@ -1147,3 +1147,57 @@ fn the_trivariate_scalar_kernel_has_the_general_bits() {
         }
     }
 }
+
+/// Outside the domain the extrapolated batch continues the end polynomials: a spline that is
+/// one cubic polynomial continues as that polynomial, derivatives included; inside it has the
+/// bits of the plain batch; a NaN coordinate is refused.
+#[test]
+fn extrapolation_continues_the_end_polynomials() {
+    let lists = [
+        vec![0.0, 0.3, 0.7, 1.0, 1.4, 2.0],
+        vec![-1.0, 0.0, 0.5, 1.0, 2.0],
+        vec![0.0, 1.0, 1.5, 2.5, 3.0],
+    ];
+    let f = |x: &[f64]| x[0].powi(3) - 2.0 * x[0] * x[1] + x[1] * x[1] * x[2] + x[2].powi(3);
+    let fx = |x: &[f64]| 3.0 * x[0] * x[0] - 2.0 * x[1];
+    let xs = grid_points(&lists);
+    let values: Vec<f64> = xs.chunks_exact(3).map(f).collect();
+    let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let s = TensorInterpolation::new(vec![3, 3, 3])
+        .interpolate_at(&axes, PointsRef::from_flat(1, &values).unwrap())
+        .unwrap();
+    let outside = [
+        -0.5, 0.2, 1.0, 2.5, 3.0, -0.2, 1.0, -2.0, 4.0, 0.1, 0.1, 0.1,
+    ];
+    let mut out = [0.0; 4];
+    s.par_eval_batch_extrapolated(&outside, None, &mut out)
+        .unwrap();
+    let mut d = [0.0; 4];
+    s.par_eval_batch_extrapolated(&outside, Some(&[1, 0, 0]), &mut d)
+        .unwrap();
+    for (k, x) in outside.chunks_exact(3).enumerate() {
+        assert!(
+            (out[k] - f(x)).abs() < 1e-11 * 100.0,
+            "{x:?}: {} vs {}",
+            out[k],
+            f(x)
+        );
+        assert!(
+            (d[k] - fx(x)).abs() < 1e-10 * 100.0,
+            "{x:?}: {} vs {}",
+            d[k],
+            fx(x)
+        );
+    }
+    let inside = [0.1, 0.2, 0.3, 1.9, 1.9, 2.9];
+    let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+    s.par_eval_batch(&inside, None, &mut a).unwrap();
+    s.par_eval_batch_extrapolated(&inside, None, &mut b)
+        .unwrap();
+    assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+    assert!(s.par_eval_batch(&outside[..3], None, &mut a[..1]).is_err());
+    let e = s
+        .par_eval_batch_extrapolated(&[0.1, f64::NAN, 0.2], None, &mut a[..1])
+        .unwrap_err();
+    assert!(matches!(e, Error::NonFinite { index: 1, .. }), "{e}");
+}

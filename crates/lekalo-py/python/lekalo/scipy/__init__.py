@@ -15,15 +15,15 @@ periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, 
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
 ``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
 ``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
-``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box),
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (extrapolating the end polynomials as SciPy),
 ``make_ndbspl`` (solved directly, one banded sweep per direction);
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
 smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes and
-``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
+breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes,
+``NdBSpline.derivative``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
 

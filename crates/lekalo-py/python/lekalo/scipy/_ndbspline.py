@@ -15,8 +15,8 @@ from ._bspline import _get_dtype
 class NdBSpline:
     """``scipy.interpolate.NdBSpline(t, c, k, extrapolate=None)``: values and partial
     derivatives at points ``xi`` of shape ``(..., ndim)``, lekalo's ``TensorBSpline``. Outside
-    the base box, ``extrapolate=False`` gives ``nan`` as SciPy; lekalo does not extrapolate
-    tensor splines yet, so ``extrapolate=True`` refuses such points."""
+    the base box, ``extrapolate=True`` (the default) continues the polynomials of the end spans
+    and ``extrapolate=False`` gives ``nan``, as SciPy."""
 
     def __init__(self, t: Any, c: Any, k: Any, *, extrapolate: Any = None) -> None:
         ndim = len(t)
@@ -74,8 +74,6 @@ class NdBSpline:
         hi = np.array([td[-kd - 1] for td, kd in zip(self._t, self._k)])
         undefined = np.isnan(xi).any(axis=1)  # nan, as SciPy
         outside = np.any((xi < lo) | (xi > hi), axis=1)
-        if extrapolate and outside.any():
-            raise NotImplementedError("lekalo.scipy: NdBSpline extrapolation is not available yet")
         complex_ = self._c.dtype.kind == "c"
         cc = self._c[..., None] if complex_ and self._c.ndim == ndim else self._c
         cc = np.ascontiguousarray(cc.view(float) if complex_ else cc)
@@ -83,9 +81,13 @@ class NdBSpline:
         cc = cc.reshape(cc.shape[:ndim] + (-1,))
         spline = _lekalo.TensorBSpline(self._t, cc, list(self._k))
         out = np.full((xi.shape[0], cc.shape[-1]), np.nan)
-        inside = ~outside & ~undefined
+        # beyond the base box: the end polynomials continued (extrapolate) or nan; a point with
+        # a NaN or infinite coordinate is nan either way
+        inside = np.all(np.isfinite(xi), axis=1) if extrapolate else ~outside & ~undefined
         if inside.any():
-            out[inside] = np.asarray(spline(np.ascontiguousarray(xi[inside]), nu=[int(v) for v in nu])).reshape(-1, cc.shape[-1])
+            out[inside] = np.asarray(
+                spline(np.ascontiguousarray(xi[inside]), nu=[int(v) for v in nu], extrapolate=extrapolate)
+            ).reshape(-1, cc.shape[-1])
         out = out.reshape((xi.shape[0],) + tail)
         if complex_:
             out = np.ascontiguousarray(out).view(np.complex128)
