@@ -122,6 +122,11 @@ pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
     raise(false, e.to_string())
 }
 
+/// The library's error as `lekalo.InputError`, prefixed with the Python argument at fault.
+pub(crate) fn named(what: &str, e: &lekalo::Error) -> PyErr {
+    bad(format!("{what}: {}", python_terms(&e.to_string())))
+}
+
 /// An argument error found by the binding itself (dtype, layout, shape), as
 /// `lekalo.InputError`.
 pub(crate) fn bad(msg: String) -> PyErr {

@@ -9,12 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{array, check_size, filled, floats, vec1};
-use crate::error::{bad, lib_err, python_terms};
-
-/// The library's error as `lekalo.Error`, prefixed with the Python argument at fault.
-fn named(what: &str, e: &lekalo::Error) -> PyErr {
-    bad(format!("{what}: {}", python_terms(&e.to_string())))
-}
+use crate::error::{bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
 fn constructor_arg(e: &lekalo::Error) -> &'static str {

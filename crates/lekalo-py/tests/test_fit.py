@@ -195,6 +195,29 @@ def test_fit_surface_grid_and_scattered():
     assert np.isclose(rss, (res**2).sum(), rtol=1e-10)
 
 
+def test_fit_surface_grid_at_given_parameters_and_knots():
+    i, j = np.meshgrid(np.arange(20.0), np.arange(15.0), indexing="ij")
+    grid = np.stack([i, j, np.sin(0.3 * i) * np.cos(0.2 * j)], axis=-1)
+    s = lekalo.fit_surface_grid(grid, (8, 6), (3, 3))
+    # its own knots, given, give the same surface (the parameters are computed the same way)
+    same = lekalo.fit_surface_grid(grid, degree=(3, 3), tu=s.knots_u, tv=s.knots_v)
+    np.testing.assert_array_equal(same.control, s.control)
+    # given parameters: z = u^2 - u v on a grid at u, v, degree 2 on a coarser net holds it exactly
+    u, v = np.linspace(0.0, 2.0, 11), np.linspace(-1.0, 1.0, 9)
+    U, V = np.meshgrid(u, v, indexing="ij")
+    g = np.stack([U, V, U**2 - U * V], axis=-1)
+    tu = np.r_[[0.0] * 3, 0.5, 1.2, [2.0] * 3]
+    f = lekalo.fit_surface_grid(g, (4, 5), (2, 2), u=u, v=v, tu=tu)
+    assert f.control.shape == (5, 5, 3)
+    np.testing.assert_array_equal(f.knots_u, tu)
+    pt = f(np.array([0.7]), np.array([0.3]))
+    np.testing.assert_allclose(pt[0], [0.7, 0.3, 0.49 - 0.21], atol=1e-13)
+    with pytest.raises(lekalo.InputError, match="^n_ctrl: give the net's size"):
+        lekalo.fit_surface_grid(g, degree=(2, 2), u=u, v=v, tu=tu)
+    with pytest.raises(lekalo.InputError, match="u parameters"):
+        lekalo.fit_surface_grid(g, (4, 5), (2, 2), u=u[:-1], v=v)
+
+
 @pytest.mark.parametrize(
     "call, match",
     [

@@ -435,7 +435,15 @@ def fit_closed(
 def gcv_score(x: ArrayLike, y: ArrayLike, lam: float, w: Optional[ArrayLike] = None) -> float: ...
 def place_knots(params: ArrayLike, n_ctrl: int, k: int = 3) -> Array: ...
 def fit_surface_grid(
-    grid: ArrayLike, n_ctrl: Tuple[int, int], degree: Tuple[int, int] = (3, 3), *, parametrization: Optional[Param] = None
+    grid: ArrayLike,
+    n_ctrl: Optional[Tuple[int, int]] = None,
+    degree: Tuple[int, int] = (3, 3),
+    *,
+    parametrization: Optional[Param] = None,
+    u: Optional[ArrayLike] = None,
+    v: Optional[ArrayLike] = None,
+    tu: Optional[ArrayLike] = None,
+    tv: Optional[ArrayLike] = None,
 ) -> BSplineSurface: ...
 def fit_surface_scattered(
     data: ArrayLike, tu: ArrayLike, tv: ArrayLike, degree: Tuple[int, int] = (3, 3), *, w: Optional[ArrayLike] = None, penalty: float = 0.0

@@ -18,7 +18,7 @@
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
-//! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3), [`surface_scattered_least_squares`] | [#surfaces] |
+//! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3; [`surface_grid_least_squares_at`] at given parameters and knots, [`surface_grid_parameters`]), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
 //! [#banded-qr]: ../../docs/theory/fitting.md#banded-qr
 //! [#gcv]: ../../docs/theory/fitting.md#gcv
@@ -69,7 +69,8 @@ pub use shape::{
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
 pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
 pub use surface::{
-    surface_grid_least_squares, surface_scattered_least_squares, ScatteredSurfaceFit,
+    surface_grid_least_squares, surface_grid_least_squares_at, surface_grid_parameters,
+    surface_scattered_least_squares, ScatteredSurfaceFit,
 };
 pub use tolerance::{
     fit_tolerance, fit_tolerance_with_progress, Deviation, ToleranceFit, ToleranceOptions,

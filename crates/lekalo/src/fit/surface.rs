@@ -40,13 +40,25 @@ pub fn surface_grid_least_squares(
     (ncu, ncv): (usize, usize),
     parametrization: Parametrization,
 ) -> Result<BSplineSurface> {
-    if nu.checked_mul(nv) != Some(grid.len()) || nu < 2 || nv < 2 {
-        return Err(Error::LengthMismatch {
-            what: "grid points (nu · nv, each at least 2)",
-            expected: nu.saturating_mul(nv),
-            got: grid.len(),
-        });
-    }
+    let (uu, vv) = surface_grid_parameters(grid, (nu, nv), parametrization)?;
+    let ku = place_knots(&uu, p, ncu)?;
+    let kv = place_knots(&vv, q, ncv)?;
+    surface_grid_least_squares_at(grid, (nu, nv), (p, q), (&uu, &vv), (&ku, &kv))
+}
+
+/// The parameters [`surface_grid_least_squares`] gives a grid of `nu × nv` points: in each
+/// direction the average over the grid lines of `parametrization`, the ends pinned to 0 and 1
+/// (P&T §9.2.5).
+///
+/// # Errors
+/// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points (each at least 2);
+/// parametrisation errors.
+pub fn surface_grid_parameters(
+    grid: PointsRef<'_>,
+    (nu, nv): (usize, usize),
+    parametrization: Parametrization,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    check_grid(grid, (nu, nv))?;
     let dim = grid.dim();
     let data = grid.as_slice();
     // averaged parameters over the grid lines
@@ -73,15 +85,68 @@ pub fn surface_grid_least_squares(
     let rows_v: Vec<Vec<f64>> = (0..nu)
         .map(|i| data[i * nv * dim..(i + 1) * nv * dim].to_vec())
         .collect();
-    let uu = average(rows_u.clone(), nu)?;
-    let vv = average(rows_v, nv)?;
-    let ku = place_knots(&uu, p, ncu)?;
-    let kv = place_knots(&vv, q, ncv)?;
+    Ok((average(rows_u, nu)?, average(rows_v, nv)?))
+}
+
+/// [`surface_grid_least_squares`] at given parameters `(u, v)` (`nu` and `nv` of them, strictly
+/// increasing) on given knots `(ku, kv)` of degrees `(p, q)`: every grid column (fixed `v`) is
+/// fitted by curve least squares in `u`, then every row of those points in `v` (P&T §9.4.3, the
+/// tensor product of the two projectors). The net has `ku.len() − p − 1` by `kv.len() − q − 1`
+/// control points. `O(nu·nv·(p + q))`.
+///
+/// ```
+/// use lekalo::fit::surface_grid_least_squares_at;
+/// use lekalo::{KnotVector, PointsRef};
+/// // z = u² − uv on a 9 × 7 grid, fitted by a 5 × 4 net of degree 2: recovered
+/// let (u, v): (Vec<f64>, Vec<f64>) = ((0..9).map(|i| i as f64 / 8.0).collect(), (0..7).map(|j| j as f64 / 6.0).collect());
+/// let grid: Vec<f64> = u.iter().flat_map(|&x| v.iter().flat_map(move |&y| [x, y, x * x - x * y])).collect();
+/// let (ku, kv) = (KnotVector::clamped_uniform(2, 5)?, KnotVector::clamped_uniform(2, 4)?);
+/// let s = surface_grid_least_squares_at(PointsRef::from_flat(3, &grid)?, (9, 7), (2, 2), (&u, &v), (&ku, &kv))?;
+/// assert_eq!(s.net_size(), (5, 4));
+/// let z = s.eval(0.3, 0.6)?[2];
+/// assert!((z - (0.09 - 0.18)).abs() < 1e-13);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::LengthMismatch`] if the grid does not hold `nu·nv` points or a parameter list does
+/// not have `nu` (`nv`) entries; the errors of [`least_squares`] per direction (degree,
+/// parameters outside the knots' domain, Schoenberg–Whitney).
+pub fn surface_grid_least_squares_at(
+    grid: PointsRef<'_>,
+    (nu, nv): (usize, usize),
+    (p, q): (usize, usize),
+    (uu, vv): (&[f64], &[f64]),
+    (ku, kv): (&KnotVector, &KnotVector),
+) -> Result<BSplineSurface> {
+    check_grid(grid, (nu, nv))?;
+    for (what, params, n) in [
+        ("u parameters (one per grid row)", uu, nu),
+        ("v parameters (one per grid column)", vv, nv),
+    ] {
+        if params.len() != n {
+            return Err(Error::LengthMismatch {
+                what,
+                expected: n,
+                got: params.len(),
+            });
+        }
+    }
+    let dim = grid.dim();
+    let (ncu, ncv) = (
+        ku.len().saturating_sub(p + 1),
+        kv.len().saturating_sub(q + 1),
+    );
     // u direction: each grid column (fixed j) → ncu points
     let mut mid = vec![0.0; ncu * nv * dim];
-    for (j, line) in rows_u.iter().enumerate() {
-        let d = FitData::new(PointsRef::from_flat(dim, line)?, &uu)?;
-        let f = least_squares(&d, p, &ku, &EndConstraints::none())?;
+    let mut line = Vec::with_capacity(nu * dim);
+    for j in 0..nv {
+        line.clear();
+        for i in 0..nu {
+            line.extend_from_slice(grid.point(i * nv + j));
+        }
+        let d = FitData::new(PointsRef::from_flat(dim, &line)?, uu)?;
+        let f = least_squares(&d, p, ku, &EndConstraints::none())?;
         for (i, c) in f.curve.control_points().iter().enumerate() {
             mid[(i * nv + j) * dim..(i * nv + j + 1) * dim].copy_from_slice(c);
         }
@@ -89,12 +154,31 @@ pub fn surface_grid_least_squares(
     let mut net = vec![0.0; ncu * ncv * dim];
     for i in 0..ncu {
         let line = &mid[i * nv * dim..(i + 1) * nv * dim];
-        let d = FitData::new(PointsRef::from_flat(dim, line)?, &vv)?;
-        let f = least_squares(&d, q, &kv, &EndConstraints::none())?;
+        let d = FitData::new(PointsRef::from_flat(dim, line)?, vv)?;
+        let f = least_squares(&d, q, kv, &EndConstraints::none())?;
         net[i * ncv * dim..(i + 1) * ncv * dim]
             .copy_from_slice(f.curve.control_points().as_slice());
     }
-    BSplineSurface::from_knot_vectors(p, q, ku, kv, Points::from_flat(dim, net)?, (ncu, ncv))
+    BSplineSurface::from_knot_vectors(
+        p,
+        q,
+        ku.clone(),
+        kv.clone(),
+        Points::from_flat(dim, net)?,
+        (ncu, ncv),
+    )
+}
+
+/// A grid of `nu × nv ≥ 2 × 2` points.
+fn check_grid(grid: PointsRef<'_>, (nu, nv): (usize, usize)) -> Result<()> {
+    if nu.checked_mul(nv) != Some(grid.len()) || nu < 2 || nv < 2 {
+        return Err(Error::LengthMismatch {
+            what: "grid points (nu · nv, each at least 2)",
+            expected: nu.saturating_mul(nv),
+            got: grid.len(),
+        });
+    }
+    Ok(())
 }
 
 /// The result of [`surface_scattered_least_squares`].
