@@ -315,6 +315,16 @@ impl PyTensorBSpline {
         Self::new(&spline.getattr("t")?, &c, &spline.getattr("k")?)
     }
 
+    /// The partial-derivative spline of orders `nu` (one per variable): degrees lowered by
+    /// the orders (`TensorBSpline::derivative`, P&T §3.3 direction by direction).
+    fn derivative(&self, nu: Vec<usize>) -> PyResult<Self> {
+        let inner = self.inner.derivative(&nu).map_err(|e| named("nu", &e))?;
+        Ok(Self {
+            inner,
+            trailing: self.trailing.clone(),
+        })
+    }
+
     /// The same spline as a `scipy.interpolate.NdBSpline` (bit for bit; no extrapolation).
     fn to_scipy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let nd = py.import("scipy.interpolate")?.getattr("NdBSpline")?;

@@ -169,3 +169,20 @@ def test_given_knots_errors_name_the_argument():
         lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[0.0] * 4, 0.1, 0.2, [5.0] * 4], None])
     with pytest.raises(lekalo.InputError, match=r"^knots\[0\]: "):
         lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[5.0] * 4, 0.1, 0.2, [0.0] * 4], None])
+
+
+def test_derivative_spline_and_extrapolation_match_scipy():
+    rng = np.random.default_rng(3)
+    t, c, k = random_spline(rng, trailing=(2,))
+    ours = lekalo.TensorBSpline(t, c, k)
+    ref = interpolate.NdBSpline(t, c, k)
+    x = rng.uniform(0.0, 1.0, (40, 3))
+    for nu in ((1, 0, 0), (2, 1, 1), (0, 3, 0)):
+        d = ours.derivative(nu)
+        assert d.k == [max(p - n, 0) for p, n in zip(k, nu)]
+        close(d(x), ref(x, nu=nu))
+    # beyond the box: the end polynomials, as SciPy's extrapolate=True
+    far = rng.uniform(-0.5, 1.5, (40, 3))
+    close(ours(far, extrapolate=True), ref(far))
+    with pytest.raises(lekalo.Error):
+        ours(far)

@@ -1201,3 +1201,41 @@ fn extrapolation_continues_the_end_polynomials() {
         .unwrap_err();
     assert!(matches!(e, Error::NonFinite { index: 1, .. }), "{e}");
 }
+
+/// The derivative spline has the values of the partial derivative, degrees lowered by the
+/// orders; an order above a degree is refused.
+#[test]
+fn derivative_splines_agree_with_partial_derivatives() {
+    let lists = [
+        vec![0.0, 0.3, 0.7, 1.0, 1.4, 2.0, 2.2],
+        vec![-1.0, 0.0, 0.5, 1.0, 2.0, 2.5],
+        vec![0.0, 1.0, 1.5, 2.5, 3.0],
+    ];
+    let xs = grid_points(&lists);
+    let values: Vec<f64> = xs
+        .chunks_exact(3)
+        .flat_map(|x| [field(x, 3.0), x[0] * x[1] - x[2]])
+        .collect();
+    let axes: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let s = TensorInterpolation::new(vec![3, 2, 3])
+        .interpolate_at(&axes, PointsRef::from_flat(2, &values).unwrap())
+        .unwrap();
+    for orders in [[1, 0, 0], [0, 2, 1], [3, 1, 2], [0, 0, 0]] {
+        let d = s.derivative(&orders).unwrap();
+        let want: Vec<usize> = s.degrees().iter().zip(orders).map(|(p, k)| p - k).collect();
+        assert_eq!(d.degrees(), &want[..]);
+        for x in [[0.1, -0.5, 0.2], [1.2, 0.7, 2.9], [2.1, 2.4, 1.1]] {
+            let a = d.eval(&x).unwrap();
+            let b = s.eval_partial(&x, &orders).unwrap();
+            let scale = b.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+            assert_near(&a, &b, 1e-12, scale, "derivative spline");
+        }
+    }
+    // above the degree: zero, of degree 0 on the distinct knots
+    let z = s.derivative(&[0, 3, 1]).unwrap();
+    assert_eq!(z.degrees(), &[3, 0, 2]);
+    assert_eq!(z.domain(), s.domain());
+    assert!(z.control_points().as_slice().iter().all(|&v| v == 0.0));
+    assert_eq!(z.eval(&[1.2, 0.7, 2.9]).unwrap(), vec![0.0, 0.0]);
+    assert!(s.derivative(&[1, 0]).is_err());
+}

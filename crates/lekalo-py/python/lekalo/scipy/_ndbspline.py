@@ -93,6 +93,27 @@ class NdBSpline:
             out = np.ascontiguousarray(out).view(np.complex128)
         return out.reshape(shape[:-1] + self._c.shape[ndim:])
 
+    def derivative(self, nu: Any) -> "NdBSpline":
+        """``NdBSpline.derivative(nu)``: the partial-derivative spline, degrees lowered by
+        ``nu`` (lekalo's ``TensorBSpline.derivative``)."""
+        ndim = len(self._t)
+        nu = np.asarray(nu, dtype=np.int64)
+        if nu.ndim != 1 or nu.shape[0] != ndim:
+            raise ValueError(f"invalid number of derivative orders {nu = } for ndim = {ndim}.")
+        if any(nu < 0):
+            raise ValueError(f"derivative orders must be positive, got {nu = }")
+        complex_ = self._c.dtype.kind == "c"
+        cc = self._c[..., None] if complex_ and self._c.ndim == ndim else self._c
+        cc = np.ascontiguousarray(cc.view(float) if complex_ else cc)
+        tail = self._c.shape[ndim:]
+        spline = _lekalo.TensorBSpline(self._t, cc.reshape(cc.shape[:ndim] + (-1,)), list(self._k))
+        d = spline.derivative([int(v) for v in nu])
+        c = np.ascontiguousarray(d.c)
+        c = c.reshape(c.shape[:ndim] + (-1,))
+        if complex_:
+            c = c.view(np.complex128)
+        return NdBSpline(d.t, c.reshape(c.shape[:ndim] + tail), tuple(d.k), extrapolate=self.extrapolate)
+
     @classmethod
     def design_matrix(cls, xvals: Any, t: Any, k: Any, extrapolate: bool = True):
         raise NotImplementedError("lekalo.scipy: NdBSpline.design_matrix is not available yet")
