@@ -17,10 +17,12 @@ use lekalo_io::{
     SurfaceNet, PALETTE,
 };
 
-use crate::io::encode;
-use crate::io::{bad_input, emit, format_of, numbers};
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::encode;
+use crate::output::{emit, format_of};
+use crate::values::numbers;
 use crate::words::Words;
-use crate::Verbosity;
 
 /// Output options shared by the construction subcommands.
 #[derive(Args, Debug, Clone)]
@@ -46,13 +48,13 @@ pub(crate) fn write_curve(
     data: Option<&Points>,
     out: &OutArgs,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
     let bytes = match format.as_str() {
         // streamed: a curve of millions of control points is never held as text
         "json" => {
-            return crate::io::emit_stream(out.output.as_deref(), inputs, v, |w| {
+            return crate::output::emit_stream(out.output.as_deref(), inputs, cx, |w| {
                 obj.write_json(w, true)
             })
         }
@@ -72,7 +74,7 @@ pub(crate) fn write_curve(
         "obj" => lekalo_io::polyline_to_obj(&obj.sample(CURVE_SAMPLES)?).into_bytes(),
         // streamed: the arrays go into the archive's members without a copy in memory
         "npz" => {
-            return crate::io::emit_seek(out.output.as_deref(), inputs, v, |w| {
+            return crate::output::emit_seek(out.output.as_deref(), inputs, cx, |w| {
                 lekalo_io::write_npz_curve(obj, w)
             })
         }
@@ -82,7 +84,7 @@ pub(crate) fn write_curve(
             ))
         }
     };
-    emit(out.output.as_deref(), &bytes, inputs, v)
+    emit(out.output.as_deref(), &bytes, inputs, cx)
 }
 
 /// A plot of a curve: plane curves with control polygon and data; 1-D curves (functions) as a
@@ -157,7 +159,7 @@ pub(crate) fn write_surface(
     s: &BSplineSurface,
     out: &OutArgs,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
     let title = format!(
@@ -194,7 +196,7 @@ pub(crate) fn write_surface(
             ))
         }
     };
-    emit(out.output.as_deref(), &bytes, inputs, v)
+    emit(out.output.as_deref(), &bytes, inputs, cx)
 }
 
 /// Writes a Bezier surface: its own JSON (`bezier_surface`), other formats as
@@ -203,13 +205,13 @@ pub(crate) fn write_bezier_surface(
     s: &lekalo::BezierSurface,
     out: &OutArgs,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     if format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
         let text = lekalo_io::bezier_surface_to_json(s);
-        return emit(out.output.as_deref(), text.as_bytes(), inputs, v);
+        return emit(out.output.as_deref(), text.as_bytes(), inputs, cx);
     }
-    write_surface(&s.to_bspline(), out, inputs, v)
+    write_surface(&s.to_bspline(), out, inputs, cx)
 }
 
 /// Parses `NUxNV` (e.g. `4x3`).
@@ -346,9 +348,9 @@ pub(crate) struct InterpolateArgs {
     out: OutArgs,
 }
 
-pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
     let param = parametrization(a.param, a.exponent);
-    if crate::cmd::parquet_batch::is_parquet(&a.points) {
+    if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.function
             || a.hermite.is_some()
@@ -358,22 +360,18 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             return bad_input("a Parquet batch is interpolated by B-spline curves: --grid, --function, --hermite, --tangents and --params are for one points file");
         }
         let interp = curve_interpolation(a, param)?;
-        if let Some(n) = a.samples {
-            let n = crate::io::in_range(n, 1, usize::MAX, "--samples")?;
-            return crate::cmd::parquet_batch::interpolate_samples(
-                &a.points,
-                &interp,
-                n,
-                a.out.output.as_deref(),
-                v,
-            );
-        }
-        return crate::cmd::parquet_batch::interpolate(
-            &a.points,
-            &interp,
-            a.out.output.as_deref(),
-            v,
-        );
+        // the work on one group of points
+        let curve = |p: &Points| -> Result<Object> {
+            Ok(Object::BSpline(interp.interpolate(p.as_view())?))
+        };
+        let out = a.out.output.as_deref();
+        return match a.samples {
+            Some(n) => {
+                let n = cx.in_range(n, 1, usize::MAX, "--samples")?;
+                crate::batch::parquet::samples_of_groups(cx, &a.points, out, n, &curve)
+            }
+            None => crate::batch::parquet::curves_of_groups(cx, &a.points, out, &curve),
+        };
     }
     if a.samples.is_some() {
         return bad_input(
@@ -398,9 +396,9 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             output: a.out.output.as_deref(),
             to: a.out.to.as_deref(),
         };
-        return crate::cmd::tensor::interpolate(&g, &a.points, v);
+        return crate::cmd::tensor::interpolate(&g, &a.points, cx);
     }
-    let (pts, name) = crate::io::read_points(&a.points)?;
+    let (pts, name) = crate::items::read_points(cx, &a.points)?;
     let inputs = vec![a.points.clone()];
     if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
         return bad_input(
@@ -428,7 +426,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             fit = fit.max_condition(limit);
         }
         let s = fit.interpolate(pts.as_view(), nu, nv)?;
-        return write_surface(&s, &a.out, &inputs, v);
+        return write_surface(&s, &a.out, &inputs, cx);
     }
     if a.function {
         if pts.dim() < 2 {
@@ -455,12 +453,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             }
             None => natural_cubic_spline(&x, y.as_view())?,
         };
-        return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
+        return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, cx);
     }
     if let Some(file) = &a.tangents {
-        let (tan, _) = crate::io::read_points(file)?;
+        let (tan, _) = crate::items::read_points(cx, file)?;
         let ts = match &a.params {
-            Some(p) => crate::cmd::explicit::parameters(p, "--params")?,
+            Some(p) => crate::cmd::explicit::parameters(cx, p, "--params")?,
             None => lekalo::parametrize(pts.as_view(), param)?,
         };
         let h = CubicHermite::new(ts, pts.clone(), tan)?;
@@ -471,11 +469,11 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             Some(&pts),
             &a.out,
             &inputs,
-            v,
+            cx,
         );
     }
     if let (Some(t), Some(p)) = (a.hermite, &a.params) {
-        let ts = crate::cmd::explicit::parameters(p, "--params")?;
+        let ts = crate::cmd::explicit::parameters(cx, p, "--params")?;
         let h = CubicHermite::with_estimated_tangents(
             ts,
             pts.as_view(),
@@ -486,31 +484,31 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             Some(&pts),
             &a.out,
             &inputs,
-            v,
+            cx,
         );
     }
     if let Some(t) = a.hermite {
         let h =
             CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension.unwrap_or(0.0)))?;
         let obj = Object::BSpline(h.to_bspline());
-        return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
+        return write_curve(&obj, Some(&pts), &a.out, &inputs, cx);
     }
     let interp = curve_interpolation(a, param)?;
-    let bar = crate::io::spinner(
+    let bar = crate::output::spinner(
+        cx,
         format!("interpolating {} points", pts.len()),
         pts.len() > 100_000,
-        v,
     );
     let curve = match &a.params {
         Some(p) => interp.interpolate_at(
             pts.as_view(),
-            &crate::cmd::explicit::parameters(p, "--params")?,
+            &crate::cmd::explicit::parameters(cx, p, "--params")?,
         ),
         None => interp.interpolate(pts.as_view()),
     };
     bar.finish_and_clear();
     let curve = curve?;
-    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
+    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, cx)
 }
 
 /// The B-spline interpolation of the options (end conditions, knots, condition limit).
