@@ -6,6 +6,20 @@
 //! Thin by design: parse arguments, call the library (`lekalo`) and the formats crate
 //! (`lekalo-io`), write output. No mathematics here.
 //!
+//! A request goes down through these modules and never back up:
+//!
+//! - this file: the argument grammar; [`run`] builds the run's `Context` and calls the command;
+//! - `context.rs`: the `Context` (the global options) and the limits it sets;
+//! - `cmd/`: one module per subcommand, grouped as the subcommands are; a command reads its
+//!   items, does its work on one item, and hands the rest on;
+//! - `items.rs`: what a command reads (one object, JSON Lines, CAD curves, a Parquet batch,
+//!   points);
+//! - `batch/`: the batch runner, given the command's work on one item as a closure;
+//! - `output/`: writing results and progress; `report.rs`: `--json` results;
+//! - `exit.rs`: error kinds and exit codes; `values.rs`: number lists in options;
+//! - `cancel.rs`: signals; `words.rs`, `terms.rs`: the shared vocabulary and messages;
+//! - `demo/`: `lekalo demo`.
+//!
 //! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
 //! outside the domain — the message names the file, line and field); 3 internal failure
 //! (cannot write the output, rendering failed, a demo check did not reproduce its document);

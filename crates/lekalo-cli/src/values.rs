@@ -57,6 +57,19 @@ pub(crate) fn integers(text: &str, what: &str) -> Result<Vec<usize>> {
         .collect()
 }
 
+/// Parses `NUxNV` (e.g. `4x3`).
+pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
+    let parsed = text
+        .split_once(['x', 'X', '×'])
+        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
+    match parsed {
+        Some((a, b)) => Ok((a, b)),
+        None => bad_input(format!(
+            "{what}: \"{text}\" is not a grid size; write rows x columns, e.g. 4x3"
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

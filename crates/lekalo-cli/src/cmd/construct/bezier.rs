@@ -8,11 +8,12 @@ use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{BSplineCurve, BezierCurve, BezierSurface, EndConditions};
 use lekalo_io::Object;
 
-use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::items::load_one;
+use crate::output::objects::{write_bezier_surface, write_curve, OutArgs};
 use crate::values::integers;
+use crate::values::net_size;
 
 /// The input of a `bezier` operation: a curve object, or a surface net.
 #[derive(Args, Debug)]

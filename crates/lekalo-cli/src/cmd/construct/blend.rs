@@ -15,11 +15,11 @@ use lekalo::{
 use lekalo_io::Object;
 
 use crate::cancel::with_progress;
-use crate::cmd::interpolate::{write_curve, OutArgs};
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::items::load_one;
 use crate::output::format_of;
+use crate::output::objects::{write_curve, OutArgs};
 use crate::values::numbers;
 
 /// Local curves of a blended spline.

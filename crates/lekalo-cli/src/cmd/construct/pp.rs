@@ -10,11 +10,11 @@ use lekalo::{
 };
 use lekalo_io::{CurveJson, Figure, Object, Series, Style, PALETTE};
 
-use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
 use crate::context::Context;
 use crate::exit::{bad_input, BadInput};
 use crate::items::load_one;
 use crate::output::encode;
+use crate::output::objects::{curve_plot, write_curve, OutArgs};
 use crate::output::{emit, format_of};
 use crate::values::{integers, numbers};
 use crate::words::Words;

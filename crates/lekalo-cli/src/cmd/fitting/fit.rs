@@ -18,10 +18,11 @@ use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
 use serde_json::{json, Value};
 
-use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs};
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::output::emit;
+use crate::output::objects::{write_curve, write_surface, OutArgs};
+use crate::values::net_size;
 use crate::values::numbers;
 use crate::words::Words;
 

@@ -1,6 +1,12 @@
 //! Writing results: to a file atomically (never over an input, `--force` for a write-protected
 //! one) or to standard output; the output format by `--to` or extension; figures as SVG/PNG;
 //! notes, progress bars and spinners on standard error.
+//!
+//! - `mod.rs`: the writes themselves, the format, notes and progress;
+//! - `objects.rs`: one curve or surface in the format asked for (JSON, SVG/PNG, STEP, CSV,
+//!   OBJ, NPZ).
+
+pub(crate) mod objects;
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
