@@ -240,3 +240,45 @@ pub(crate) fn not_a_curve<T>(path: &Path, s: &Shape) -> Result<T> {
         s.type_name()
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::context::HeaderArg;
+
+    /// A Parquet batch is recognised by its name and left to the batch runner unread; a
+    /// command that reads one object says which commands read batches.
+    #[test]
+    fn a_parquet_batch_is_an_item_source_of_its_own() {
+        let cx = Context::default();
+        let path = Path::new("no-such-dir/curves.parquet");
+        assert!(matches!(open(&cx, path, false), Ok(Items::Parquet(p)) if p == path));
+        let e = load_one(&cx, path).unwrap_err();
+        assert_eq!(crate::exit::exit_code(&e), crate::exit::EXIT_BAD_INPUT);
+        assert!(
+            e.to_string().contains("read by interpolate, fit, eval"),
+            "{e}"
+        );
+    }
+
+    /// Points are read with the context's `--header`.
+    #[test]
+    fn points_follow_the_header_of_the_context() {
+        let text = "x,y\n1,2\n3,4\n";
+        let auto = points_from_text(&Context::default(), text, "t").unwrap();
+        assert_eq!(auto.len(), 2);
+        let no = Context {
+            header: HeaderArg::No,
+            ..Context::default()
+        };
+        assert!(
+            points_from_text(&no, text, "t").is_err(),
+            "x is not a number"
+        );
+        let yes = Context {
+            header: HeaderArg::Yes,
+            ..Context::default()
+        };
+        assert_eq!(points_from_text(&yes, "1,2\n3,4\n", "t").unwrap().len(), 1);
+    }
+}
