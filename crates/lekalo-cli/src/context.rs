@@ -1,8 +1,9 @@
 //! The context of one run: the global options (`--quiet`/`--verbose`, `--header`, `--force`,
 //! `--max-size`, `--max-degree`, `--group-column`), built once from the command line by
 //! [`crate::run`] and passed by reference to every command, with the limits they set
-//! (docs/robustness.md). Nothing of a run is kept in process-wide state, so one process may
-//! run several commands in turn (the fuzz target does).
+//! (docs/robustness.md). The command line keeps no option of a run in process-wide state
+//! (the signal flags of `cancel.rs` are the one exception a signal handler needs), so one
+//! process may run several commands in turn (the fuzz target does).
 
 use anyhow::Result;
 use lekalo_io::Object;
