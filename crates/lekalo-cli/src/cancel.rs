@@ -9,6 +9,10 @@ use std::time::Duration;
 
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
+// The two flags below are the only process-wide state of the CLI, and must be: the signal
+// thread sets them, and the handler's exit after [`GRACE`] reads them, outside any command's
+// `Context`.
+
 /// Set when a stopping signal arrives.
 static CANCEL: AtomicBool = AtomicBool::new(false);
 /// The signal that set [`CANCEL`].
@@ -52,7 +56,7 @@ pub(crate) fn exit_code() -> Option<u8> {
 /// code.
 pub(crate) fn exit_interrupted() -> ! {
     let n = lekalo_io::remove_temporary_files();
-    crate::io::report(&format!(
+    crate::output::report(&format!(
         "interrupted{}",
         if n > 0 {
             "; the partial output was removed"
@@ -66,13 +70,13 @@ pub(crate) fn exit_interrupted() -> ! {
 /// Runs `f` with a [`lekalo::Progress`] that draws a bar of `what` on standard error (only on a
 /// terminal, not with `-q`, and only for `large` work) and carries the cancel flag.
 pub(crate) fn with_progress<R>(
+    cx: &crate::context::Context,
     what: &str,
     large: bool,
-    v: crate::Verbosity,
     f: impl FnOnce(&lekalo::Progress<'_>) -> R,
 ) -> R {
     let bar = if large {
-        crate::io::progress(0, v)
+        crate::output::progress(cx, 0)
     } else {
         indicatif::ProgressBar::hidden()
     };

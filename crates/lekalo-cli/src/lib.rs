@@ -6,6 +6,20 @@
 //! Thin by design: parse arguments, call the library (`lekalo`) and the formats crate
 //! (`lekalo-io`), write output. No mathematics here.
 //!
+//! A request goes down through these modules and never back up:
+//!
+//! - this file: the argument grammar; [`run`] builds the run's `Context` and calls the command;
+//! - `context.rs`: the `Context` (the global options) and the limits it sets;
+//! - `cmd/`: one module per subcommand, grouped as the subcommands are; a command reads its
+//!   items, does its work on one item, and hands the rest on;
+//! - `items.rs`: what a command reads (one object, JSON Lines, CAD curves, a Parquet batch,
+//!   points);
+//! - `batch/`: the batch runner, given the command's work on one item as a closure;
+//! - `output/`: writing results and progress; `report.rs`: `--json` results;
+//! - `exit.rs`: error kinds and exit codes; `values.rs`: number lists in options;
+//! - `cancel.rs`: signals; `words.rs`, `terms.rs`: the shared vocabulary and messages;
+//! - `demo/`: `lekalo demo`.
+//!
 //! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
 //! outside the domain — the message names the file, line and field); 3 internal failure
 //! (cannot write the output, rendering failed, a demo check did not reproduce its document);
@@ -16,13 +30,20 @@ use std::path::PathBuf;
 
 use clap::{Args, CommandFactory, Parser, Subcommand};
 
+mod batch;
 mod cancel;
 mod cmd;
+mod context;
 mod demo;
-mod io;
+mod exit;
+mod items;
+mod output;
 mod report;
 mod terms;
+mod values;
 mod words;
+
+use context::{Context, HeaderArg, Verbosity};
 
 /// Construct, convert and analyse spline curves and surfaces.
 ///
@@ -47,19 +68,19 @@ pub(crate) struct Cli {
     verbose: bool,
     /// Whether the first line of a CSV or text points file is a header: auto (only if no field
     /// on it is a number), yes or no.
-    #[arg(long, global = true, help_heading = "Global options", value_enum, default_value_t = io::HeaderArg::Auto)]
-    header: io::HeaderArg,
+    #[arg(long, global = true, help_heading = "Global options", value_enum, default_value_t = HeaderArg::Auto)]
+    header: HeaderArg,
     /// Replace a write-protected output file too (it is refused otherwise, as by a shell's `>`).
     #[arg(long, global = true, help_heading = "Global options")]
     force: bool,
     /// Largest number of samples, knots, intervals or grid points a command may create from its
     /// arguments (docs/robustness.md).
-    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = io::DEFAULT_MAX_SIZE)]
+    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = context::DEFAULT_MAX_SIZE)]
     max_size: usize,
     /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:
     /// evaluating, plotting and inspecting Bezier curves, real degree, exact and approximate
     /// reduction (docs/robustness.md).
-    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = io::DEFAULT_MAX_DEGREE)]
+    #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = context::DEFAULT_MAX_DEGREE)]
     max_degree: usize,
     /// The key column of a Parquet batch: the column that groups points into point sets, and
     /// the key of each curve (docs/formats.md#parquet-batches).
@@ -152,14 +173,6 @@ pub(crate) struct DemoArgs {
     json: crate::report::JsonFlag,
 }
 
-/// How much to say on standard error.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Verbosity {
-    Quiet,
-    Normal,
-    Verbose,
-}
-
 /// The last-resort panic hook (a short report, exit code 3) and the signal handlers (SIGINT,
 /// SIGTERM, SIGHUP stop the command cleanly, docs/robustness.md). Called once by the binary
 /// before [`run`].
@@ -167,10 +180,10 @@ pub(crate) enum Verbosity {
 /// A closed standard output is not an internal failure: `println!` panics when the reader has
 /// gone (`lekalo … | head`), and the command then ends quietly with exit code 0, as a write
 /// error on standard output does ([`run`]). Notes on standard error go through
-/// `io::report`, which ignores a closed standard error, so that the command still writes its
+/// `output::report`, which ignores a closed standard error, so that the command still writes its
 /// output files (`lekalo demo --out g 2>&1 | head`).
 pub fn install_handlers() {
-    io::install_handlers();
+    exit::install_panic_hook();
     cancel::install();
     let internal = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -204,9 +217,10 @@ pub fn command() -> clap::Command {
 /// success (and `--help`, `--version`), 2 bad input or bad arguments, 3 internal failure,
 /// `128 +` the signal when interrupted.
 ///
-/// The global options (`--header`, `--force`, `--max-size`, `--max-degree`,
-/// `--group-column`) are set anew by every call, so that one process may run several
-/// commands in turn.
+/// The global options (`--quiet`, `--verbose`, `--header`, `--force`, `--max-size`,
+/// `--max-degree`, `--group-column`) make the [`Context`] of this call, passed to the command;
+/// nothing stays from one call to the next, so that one process may run several commands in
+/// turn.
 pub fn run<I, T>(args: I) -> u8
 where
     I: IntoIterator<Item = T>,
@@ -223,58 +237,58 @@ where
             // clap's own report: usage errors on standard error (exit 2), help and version on
             // standard output (exit 0)
             let _ = e.print();
-            return u8::try_from(e.exit_code()).unwrap_or(io::EXIT_BAD_INPUT);
+            return u8::try_from(e.exit_code()).unwrap_or(exit::EXIT_BAD_INPUT);
         }
     };
     if !cli.quiet {
         for w in cmd::deprecated::warnings(&words) {
-            io::report(&format!("warning: {w}"));
+            output::report(&format!("warning: {w}"));
         }
     }
     // whatever this command reads, through any option, no output of it may replace
     lekalo_io::protect_files_read();
-    io::configure(io::Settings {
+    let cx = Context {
+        verbosity: if cli.quiet {
+            Verbosity::Quiet
+        } else if cli.verbose {
+            Verbosity::Verbose
+        } else {
+            Verbosity::Normal
+        },
         header: cli.header,
         force: cli.force,
         max_size: cli.max_size,
         max_degree: cli.max_degree,
-    });
-    io::configure_group_column(cli.group_column.clone());
-    let verbosity = if cli.quiet {
-        Verbosity::Quiet
-    } else if cli.verbose {
-        Verbosity::Verbose
-    } else {
-        Verbosity::Normal
+        group_column: cli.group_column,
     };
     let result = match cli.command {
-        Command::Make(a) => cmd::make::run(&a, verbosity),
-        Command::Eval(a) => cmd::eval::run(&a, verbosity),
-        Command::Info(a) => cmd::info::run(&a, verbosity),
-        Command::Knots(a) => cmd::knots::run(&a, verbosity),
-        Command::Convert(a) => cmd::convert::run(&a, verbosity),
-        Command::Plot(a) => cmd::plot::run(&a, verbosity),
-        Command::Demo(a) => demo::run(a.out.as_deref(), a.only.as_deref(), a.json.json, verbosity),
-        Command::Interpolate(a) => cmd::interpolate::run(&a, verbosity),
-        Command::Bezier(a) => cmd::bezier::run(&a, verbosity),
-        Command::Blend(a) => cmd::blend::run(&a, verbosity),
-        Command::Pp(a) => cmd::pp::run(&a, verbosity),
-        Command::Knot(a) => cmd::knot::run(&a, verbosity),
-        Command::Fit(a) => cmd::fit::run(&a, verbosity),
-        Command::Measure(a) => cmd::measure::run(&a, verbosity),
-        Command::Project(a) => cmd::project::run(&a, verbosity),
-        Command::Intersect(a) => cmd::intersect::run(&a, verbosity),
-        Command::Offset(a) => cmd::offset::run(&a, verbosity),
-        Command::Mesh(a) => cmd::mesh::run(&a, verbosity),
-        Command::Serve(a) => cmd::serve::run(&a, verbosity),
+        Command::Make(a) => cmd::make::run(&a, &cx),
+        Command::Eval(a) => cmd::eval::run(&a, &cx),
+        Command::Info(a) => cmd::info::run(&a, &cx),
+        Command::Knots(a) => cmd::knots::run(&a, &cx),
+        Command::Convert(a) => cmd::convert::run(&a, &cx),
+        Command::Plot(a) => cmd::plot::run(&a, &cx),
+        Command::Demo(a) => demo::run(&cx, a.out.as_deref(), a.only.as_deref(), a.json.json),
+        Command::Interpolate(a) => cmd::interpolate::run(&a, &cx),
+        Command::Bezier(a) => cmd::bezier::run(&a, &cx),
+        Command::Blend(a) => cmd::blend::run(&a, &cx),
+        Command::Pp(a) => cmd::pp::run(&a, &cx),
+        Command::Knot(a) => cmd::knot::run(&a, &cx),
+        Command::Fit(a) => cmd::fit::run(&a, &cx),
+        Command::Measure(a) => cmd::measure::run(&a, &cx),
+        Command::Project(a) => cmd::project::run(&a, &cx),
+        Command::Intersect(a) => cmd::intersect::run(&a, &cx),
+        Command::Offset(a) => cmd::offset::run(&a, &cx),
+        Command::Mesh(a) => cmd::mesh::run(&a, &cx),
+        Command::Serve(a) => cmd::serve::run(&a, &cx),
     };
     match result {
         Ok(()) => 0,
-        Err(e) if io::is_broken_pipe(&e) => 0,
+        Err(e) if exit::is_broken_pipe(&e) => 0,
         Err(_) if cancel::exit_code().is_some() => cancel::exit_interrupted(),
         Err(e) => {
-            io::report(&terms::cli_terms(&words::message(&e)));
-            io::exit_code(&e)
+            output::report(&terms::cli_terms(&words::message(&e)));
+            exit::exit_code(&e)
         }
     }
 }

@@ -10,8 +10,8 @@ use anyhow::Result;
 use clap::Args;
 use serde_json::Value;
 
-use crate::io::emit;
-use crate::Verbosity;
+use crate::context::Context;
+use crate::output::emit;
 
 /// `--json`, for every command that computes a figure or a result.
 #[derive(Args, Debug, Clone, Copy, Default)]
@@ -29,14 +29,14 @@ pub(crate) fn print_report(
     text: impl FnOnce(&Value) -> String,
     out: Option<&Path>,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let body = if json {
         format!("{report:#}\n")
     } else {
         text(report)
     };
-    emit(out, body.as_bytes(), inputs, v)
+    emit(out, body.as_bytes(), inputs, cx)
 }
 
 /// A number as text output writes it (see the module docs).

@@ -5,7 +5,7 @@
 //! - `inspect/`: looking at objects (info, eval, plot);
 //! - `fitting/`: `lekalo fit`;
 //! - `queries/`: geometric queries (measure, project, intersect, offset, mesh);
-//! - `files/`: conversion, CAD files, Parquet batches;
+//! - `files/`: conversion, CAD files;
 //! - `deprecated.rs`: the older spellings of options; `serve.rs`: `lekalo serve`.
 
 mod construct;
@@ -20,7 +20,7 @@ pub(crate) mod serve;
 pub(crate) use construct::{
     bezier, blend, explicit, interpolate, jump, knot, knots, make, make_surface, pp, tensor,
 };
-pub(crate) use files::{cad, convert, parquet_batch};
+pub(crate) use files::{cad, convert};
 pub(crate) use fitting::fit;
 pub(crate) use inspect::{comb, eval, info, plot, shapes, surface_eval};
 pub(crate) use queries::{intersect, measure, mesh, offset, project};

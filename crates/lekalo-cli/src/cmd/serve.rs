@@ -4,11 +4,11 @@ use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 
 use std::time::Duration;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
 use clap::Args;
 use lekalo_serve::Limits;
 
-use crate::Verbosity;
+use crate::context::Context;
 
 /// Arguments of `lekalo serve`.
 #[derive(Args, Debug)]
@@ -77,7 +77,7 @@ fn seconds(text: &str) -> Result<f64, String> {
     }
 }
 
-pub(crate) fn run(a: &ServeArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &ServeArgs, cx: &Context) -> Result<()> {
     if !a.bind.is_loopback() {
         eprintln!(
             "warning: listening on {}: other machines can reach the editor and its API; \
@@ -102,7 +102,7 @@ pub(crate) fn run(a: &ServeArgs, v: Verbosity) -> Result<()> {
         let url = format!("http://{addr}/");
         // the address is the result of the command: printed even with --quiet
         println!("lekalo serve: listening on {url}");
-        if v != Verbosity::Quiet {
+        if !cx.is_quiet() {
             eprintln!("press Ctrl-C to stop");
         }
         if open {

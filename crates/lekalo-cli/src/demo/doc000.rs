@@ -8,8 +8,8 @@ use lekalo::{
 };
 use lekalo_io::{Figure, Object, Series, Style, PALETTE};
 
-use crate::cmd::interpolate::surface_figure;
 use crate::demo::{trim, Caption, Section};
+use crate::output::objects::surface_figure;
 
 /// Reference numbers given with 6 decimals (docs/theory/interpolation.md#test-vectors).
 const SIX_DECIMALS: f64 = 5e-7;

@@ -5,8 +5,8 @@ use lekalo::{BezierCurve, BezierSurface, Points};
 use lekalo_io::{Figure, Marker, Object, PALETTE};
 
 use super::doc000::{add_curve, add_points, show};
-use crate::cmd::interpolate::surface_figure;
 use crate::demo::{Caption, Section};
+use crate::output::objects::surface_figure;
 
 /// Exact results computed in floating point (coordinates O(10)).
 const EXACT: f64 = 1e-12;

@@ -14,12 +14,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
 use lekalo_io::{escape, Figure};
 use rayon::prelude::*;
 
-use crate::io::Internal;
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::Internal;
 
 mod registry;
 
@@ -149,18 +149,18 @@ pub(crate) fn trim(x: f64) -> String {
 /// Runs every entry (or the one named by `only`), prints the summary table, writes the gallery
 /// if `out` is given: `index.html` and every figure as SVG and PNG. With `only`, an existing
 /// `index.html` keeps its other entries: only the entry's section is replaced.
-pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosity) -> Result<()> {
+pub(crate) fn run(cx: &Context, out: Option<&Path>, only: Option<&str>, json: bool) -> Result<()> {
     if let Some(id) = only {
         if !registry::ENTRIES.iter().any(|e| e.id == id) {
             let ids: Vec<&str> = registry::ENTRIES.iter().map(|e| e.id).collect();
-            return crate::io::bad_input(format!(
+            return crate::exit::bad_input(format!(
                 "--only {id}: no such demo entry; the entries are {}",
                 ids.join(", ")
             ));
         }
     }
     let mut sections = Vec::new();
-    let bar = crate::io::progress(registry::ENTRIES.len(), v);
+    let bar = crate::output::progress(cx, registry::ENTRIES.len());
     for entry in registry::ENTRIES {
         bar.inc(1);
         if only.is_some_and(|id| id != entry.id) {
@@ -182,10 +182,10 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosi
     crate::report::print_report(
         json,
         &summary_json(&sections),
-        |_| summary(&sections, v),
+        |_| summary(&sections, cx),
         None,
         &[],
-        v,
+        cx,
     )?;
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).map_err(|error| lekalo_io::IoError::Write {
@@ -221,10 +221,10 @@ pub(crate) fn run(out: Option<&Path>, only: Option<&str>, json: bool, v: Verbosi
             }
         }
         lekalo_io::write_atomic(&index, html.as_bytes(), &[])?;
-        if v != Verbosity::Quiet {
+        if !cx.is_quiet() {
             // a note: a closed standard error (`lekalo demo --out g 2>&1 | head`) does not stop
             // the command
-            crate::io::report(&format!(
+            crate::output::report(&format!(
                 "gallery: {} ({} figures, SVG and PNG); open it in a browser",
                 index.display(),
                 figures.len()
@@ -363,12 +363,12 @@ fn summary_json(sections: &[Section]) -> serde_json::Value {
 }
 
 /// The printed summary: every entry's tables and checks.
-fn summary(sections: &[Section], v: Verbosity) -> String {
+fn summary(sections: &[Section], cx: &Context) -> String {
     let mut s = String::from("lekalo demo: the documents' constructions on built-in data\n");
     let (mut n, mut ok) = (0, 0);
     for sec in sections {
         let _ = writeln!(s, "\n{} — {} [{}]", sec.source, sec.title, sec.id);
-        if v == Verbosity::Verbose {
+        if cx.is_verbose() {
             let _ = writeln!(s, "  {}", sec.caption);
         }
         for (caption, header, rows) in &sec.tables {

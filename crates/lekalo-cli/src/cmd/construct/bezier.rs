@@ -8,9 +8,12 @@ use clap::{Args, Subcommand, ValueEnum};
 use lekalo::{BSplineCurve, BezierCurve, BezierSurface, EndConditions};
 use lekalo_io::Object;
 
-use crate::cmd::interpolate::{net_size, write_bezier_surface, write_curve, OutArgs};
-use crate::io::{bad_input, integers, load_one};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::items::load_one;
+use crate::output::objects::{write_bezier_surface, write_curve, OutArgs};
+use crate::values::integers;
+use crate::values::net_size;
 
 /// The input of a `bezier` operation: a curve object, or a surface net.
 #[derive(Args, Debug)]
@@ -137,11 +140,11 @@ enum Loaded {
     Surface(BezierSurface, PathBuf),
 }
 
-fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
+fn load(i: &BezierInput, cx: &Context) -> Result<Loaded> {
     match (&i.input, &i.surface, &i.net) {
         (Some(p), None, None) => {
             if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
-                let (pts, _) = crate::io::read_points(p)?;
+                let (pts, _) = crate::items::read_points(cx, p)?;
                 return Ok(Loaded::Curve(BezierCurve::new(pts)?, p.clone()));
             }
             let (text, name) = lekalo_io::read_input(p)?;
@@ -155,15 +158,15 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
                     .trim_start()
                     .starts_with('{') =>
                 {
-                    let pts = crate::io::points_from_text(&text, &name)?;
+                    let pts = crate::items::points_from_text(cx, &text, &name)?;
                     Ok(Loaded::Curve(BezierCurve::new(pts)?, p.clone()))
                 }
-                _ => load_curve(p, v),
+                _ => load_curve(p, cx),
             }
         }
         (None, Some(p), Some(net)) => {
             let (rows, cols) = net_size(net, "--net")?;
-            let (pts, _) = crate::io::read_points(p)?;
+            let (pts, _) = crate::items::read_points(cx, p)?;
             Ok(Loaded::Surface(
                 BezierSurface::new(pts, (rows, cols))?,
                 p.clone(),
@@ -176,8 +179,8 @@ fn load(i: &BezierInput, v: Verbosity) -> Result<Loaded> {
     }
 }
 
-fn load_curve(p: &std::path::Path, v: Verbosity) -> Result<Loaded> {
-    match load_one(p, v)? {
+fn load_curve(p: &std::path::Path, cx: &Context) -> Result<Loaded> {
+    match load_one(cx, p)? {
         Object::Bezier(c) => Ok(Loaded::Curve(c, p.to_path_buf())),
         Object::BSpline(c) => Ok(Loaded::BSpline(c, p.to_path_buf())),
         other => bad_input(format!(
@@ -195,7 +198,7 @@ fn reduction_report(
     (sampled, bound): (f64, f64),
     out: &OutArgs,
     input: PathBuf,
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let report = serde_json::json!({
         "max_deviation_sampled": sampled,
@@ -203,12 +206,12 @@ fn reduction_report(
         "curve": obj.to_json_value(),
     });
     let to = out.output.as_deref();
-    crate::report::print_report(true, &report, crate::report::text_of, to, &[input], v)
+    crate::report::print_report(true, &report, crate::report::text_of, to, &[input], cx)
 }
 
 /// squared (real degree, exact reduction, change) or cubed (approximate reduction).
-fn guard(l: Loaded, what: &str) -> Result<Loaded> {
-    let limit = crate::io::settings().max_degree;
+fn guard(cx: &Context, l: Loaded, what: &str) -> Result<Loaded> {
+    let limit = cx.max_degree;
     let degree = match &l {
         Loaded::Curve(c, _) => c.degree(),
         Loaded::Surface(s, _) => s.degree_u().max(s.degree_v()),
@@ -242,22 +245,22 @@ fn amounts(text: &str, what: &str, surface: bool) -> Result<(usize, usize)> {
     }
 }
 
-pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
     match &a.op {
-        BezierOp::Elevate { input, by, out } => match load(input, v)? {
+        BezierOp::Elevate { input, by, out } => match load(input, cx)? {
             Loaded::Curve(c, p) => {
                 let (k, _) = amounts(by, "--by", false)?;
-                crate::io::check_size(c.degree().saturating_add(k), "degree after --by")?;
+                cx.check_size(c.degree().saturating_add(k), "degree after --by")?;
                 let r = c.elevate_degree(k)?;
-                write_curve(&Object::Bezier(r), None, out, &[p], v)
+                write_curve(&Object::Bezier(r), None, out, &[p], cx)
             }
             Loaded::BSpline(c, p) => {
                 let (k, _) = amounts(by, "--by", false)?;
-                write_curve(&Object::BSpline(c.elevate_degree(k)?), None, out, &[p], v)
+                write_curve(&Object::BSpline(c.elevate_degree(k)?), None, out, &[p], cx)
             }
             Loaded::Surface(s, p) => {
                 let (du, dv) = amounts(by, "--by", true)?;
-                write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], v)
+                write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], cx)
             }
         },
         BezierOp::Reduce {
@@ -266,17 +269,17 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             ends,
             json,
             out,
-        } => match guard(load(input, v)?, "reduction")? {
+        } => match guard(cx, load(input, cx)?, "reduction")? {
             Loaded::Curve(c, p) => match approx {
                 None => {
                     let obj = Object::Bezier(c.reduce_degree_exact());
                     if json.json {
-                        return reduction_report(&obj, (0.0, 0.0), out, p, v);
+                        return reduction_report(&obj, (0.0, 0.0), out, p, cx);
                     }
-                    write_curve(&obj, None, out, &[p], v)
+                    write_curve(&obj, None, out, &[p], cx)
                 }
                 Some(target) => {
-                    let limit = crate::io::settings().max_degree / 4;
+                    let limit = cx.max_degree / 4;
                     if c.degree() > limit {
                         return bad_input(format!(
                             "approximate reduction of degree {} is above its limit {limit} (a quarter of --max-degree: its cost grows as the degree cubed); raise it with --max-degree {}",
@@ -289,10 +292,10 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                         Ends::Points => EndConditions::Points,
                         Ends::Tangents => EndConditions::Tangents,
                     };
-                    let bar = crate::io::spinner(
+                    let bar = crate::output::spinner(
+                        cx,
                         format!("reducing degree {} to {target}", c.degree()),
                         c.degree() > 200,
-                        v,
                     );
                     let r = c.reduce_degree_approx(*target, ends);
                     bar.finish_and_clear();
@@ -300,16 +303,16 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                     let obj = Object::Bezier(r.curve);
                     if json.json {
                         let d = (r.max_deviation_sampled, r.max_deviation_bound);
-                        return reduction_report(&obj, d, out, p, v);
+                        return reduction_report(&obj, d, out, p, cx);
                     }
-                    if v != Verbosity::Quiet {
-                        crate::io::report(&format!(
+                    if !cx.is_quiet() {
+                        crate::output::report(&format!(
                             "max deviation {} (sampled), bound {}",
                             crate::report::number(r.max_deviation_sampled),
                             crate::report::number(r.max_deviation_bound)
                         ));
                     }
-                    write_curve(&obj, None, out, &[p], v)
+                    write_curve(&obj, None, out, &[p], cx)
                 }
             },
             Loaded::BSpline(..) => not_bezier(),
@@ -318,11 +321,11 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
             ),
             Loaded::Surface(s, p) => {
                 let (n, m) = s.real_degrees();
-                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
+                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], cx)
             }
         },
         BezierOp::RealDegree { input, json } => {
-            let report = match guard(load(input, v)?, "the real degree")? {
+            let report = match guard(cx, load(input, cx)?, "the real degree")? {
                 Loaded::Curve(c, _) => serde_json::json!({
                     "degree": c.degree(),
                     "real_degree": c.real_degree(),
@@ -352,18 +355,20 @@ pub(crate) fn run(a: &BezierArgs, v: Verbosity) -> Result<()> {
                     })
                     .collect()
             };
-            crate::report::print_report(*json, &report, text, None, &[], v)
+            crate::report::print_report(*json, &report, text, None, &[], cx)
         }
-        BezierOp::Change { input, degree, out } => match guard(load(input, v)?, "degree change")? {
-            Loaded::Curve(c, p) => {
-                let (n, _) = amounts(degree, "--degree", false)?;
-                write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], v)
+        BezierOp::Change { input, degree, out } => {
+            match guard(cx, load(input, cx)?, "degree change")? {
+                Loaded::Curve(c, p) => {
+                    let (n, _) = amounts(degree, "--degree", false)?;
+                    write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], cx)
+                }
+                Loaded::BSpline(..) => not_bezier(),
+                Loaded::Surface(s, p) => {
+                    let (n, m) = amounts(degree, "--degree", true)?;
+                    write_bezier_surface(&s.change_degree(n, m)?, out, &[p], cx)
+                }
             }
-            Loaded::BSpline(..) => not_bezier(),
-            Loaded::Surface(s, p) => {
-                let (n, m) = amounts(degree, "--degree", true)?;
-                write_bezier_surface(&s.change_degree(n, m)?, out, &[p], v)
-            }
-        },
+        }
     }
 }

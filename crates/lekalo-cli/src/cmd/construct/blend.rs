@@ -15,9 +15,12 @@ use lekalo::{
 use lekalo_io::Object;
 
 use crate::cancel::with_progress;
-use crate::cmd::interpolate::{write_curve, OutArgs};
-use crate::io::{bad_input, format_of, load_one, numbers};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::items::load_one;
+use crate::output::format_of;
+use crate::output::objects::{write_curve, OutArgs};
+use crate::values::numbers;
 
 /// Local curves of a blended spline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -175,8 +178,8 @@ pub(crate) struct BlendArgs {
 }
 
 /// A curve object as a library curve.
-fn curve(path: &Path, v: Verbosity) -> Result<SharedCurve> {
-    Ok(Arc::new(load_one(path, v)?))
+fn curve(path: &Path, cx: &Context) -> Result<SharedCurve> {
+    Ok(Arc::new(load_one(cx, path)?))
 }
 
 fn form_object(f: BezierForm) -> Object {
@@ -193,23 +196,23 @@ fn exact_spline(
     out: &OutArgs,
     input: &Path,
     json: bool,
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<Option<lekalo::NurbsCurve>> {
     let large = pts.len() > 100_000;
     let what = format!("blending through {} points", pts.len());
-    let pieces = with_progress(&what, large, v, |p| {
+    let pieces = with_progress(cx, &what, large, |p| {
         BlendSplinePieces::new(pts.as_view(), local, options, p)
     })?;
     let inputs = [input.to_path_buf()];
     if !json && format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
-        with_progress("writing", large, v, |p| {
-            crate::io::emit_stream(out.output.as_deref(), &inputs, v, |w| {
+        with_progress(cx, "writing", large, |p| {
+            crate::output::emit_stream(out.output.as_deref(), &inputs, cx, |w| {
                 lekalo_io::write_blend_nurbs_json(&pieces, w, true, p)
             })
         })?;
         return Ok(None);
     }
-    Ok(Some(with_progress(&what, large, v, |p| {
+    Ok(Some(with_progress(cx, &what, large, |p| {
         pieces.to_nurbs(p)
     })?))
 }
@@ -235,16 +238,16 @@ fn one_number(text: &str, what: &str) -> Result<f64> {
     }
 }
 
-pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &BlendArgs, cx: &Context) -> Result<()> {
     match &a.op {
-        BlendOp::Jump(j) => crate::cmd::jump::run(j, v),
+        BlendOp::Jump(j) => crate::cmd::jump::run(j, cx),
         BlendOp::Deform {
             first,
             second,
             k,
             out,
         } => {
-            let d = Deformation::new(curve(first, v)?, curve(second, v)?, *k)?;
+            let d = Deformation::new(curve(first, cx)?, curve(second, cx)?, *k)?;
             let Some(form) = d.bezier_form() else {
                 return bad_input(
                     "the deformation has an exact form only for single Bezier pieces (Bezier \
@@ -256,7 +259,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                 None,
                 out,
                 &[first.clone(), second.clone()],
-                v,
+                cx,
             )
         }
         BlendOp::Spline {
@@ -269,7 +272,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             json,
             out,
         } => {
-            let (pts, _) = crate::io::read_points(points)?;
+            let (pts, _) = crate::items::read_points(cx, points)?;
             let options = BlendSplineOptions {
                 continuity: *k,
                 closed: *closed,
@@ -289,7 +292,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     } else {
                         &arcs
                     };
-                    match exact_spline(&pts, family, options, out, points, json.json, v)? {
+                    match exact_spline(&pts, family, options, out, points, json.json, cx)? {
                         Some(nurbs) => (Object::Nurbs(nurbs), 0.0),
                         None => return Ok(()),
                     }
@@ -300,13 +303,13 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     } else {
                         ArcParametrization::GlobalAngle
                     });
-                    let bar = crate::io::spinner(what, large, v);
+                    let bar = crate::output::spinner(cx, what, large);
                     let s = BlendSpline::new(pts.as_view(), &family, options);
                     let approx = s.and_then(|s| s.approximate(*tolerance));
                     bar.finish_and_clear();
                     let approx = approx?;
-                    if v != Verbosity::Quiet && !json.json {
-                        crate::io::report(&format!(
+                    if !cx.is_quiet() && !json.json {
+                        crate::output::report(&format!(
                             "note: arcs have no exact polynomial form; B-spline approximation of \
                              degree {} with max error {}",
                             approx.curve().degree(),
@@ -328,10 +331,10 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                     crate::report::text_of,
                     out.output.as_deref(),
                     std::slice::from_ref(points),
-                    v,
+                    cx,
                 );
             }
-            write_curve(&obj, Some(&pts), out, std::slice::from_ref(points), v)
+            write_curve(&obj, Some(&pts), out, std::slice::from_ref(points), cx)
         }
         BlendOp::Corners {
             polyline,
@@ -340,11 +343,11 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
             out,
         } => {
             let window = corner_window(window)?;
-            let (pts, _) = crate::io::read_points(polyline)?;
+            let (pts, _) = crate::items::read_points(cx, polyline)?;
             let s = smooth_polyline_corners(pts.as_view(), window, *k)?;
             let obj = Object::BSpline(s.into_curve());
             let inputs = std::slice::from_ref(polyline);
-            let format = crate::io::format_of(out.to.as_deref(), out.output.as_deref(), "json");
+            let format = crate::output::format_of(out.to.as_deref(), out.output.as_deref(), "json");
             if format == "svg" || format == "png" {
                 // the control polygon runs along the straight parts, under the curve: the figure
                 // shows the curve over its polyline instead
@@ -356,10 +359,10 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                         ..lekalo_io::CurvePlot::default()
                     },
                 )?;
-                let bytes = crate::io::encode(&fig, &format, 2.0)?;
-                return crate::io::emit(out.output.as_deref(), &bytes, inputs, v);
+                let bytes = crate::output::encode(&fig, &format, 2.0)?;
+                return crate::output::emit(out.output.as_deref(), &bytes, inputs, cx);
             }
-            write_curve(&obj, Some(&pts), out, inputs, v)
+            write_curve(&obj, Some(&pts), out, inputs, cx)
         }
         BlendOp::Corner {
             before,
@@ -371,7 +374,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
         } => {
             let t1 = one_number(from, "--from")?;
             let t2 = one_number(until, "--until")?;
-            let c = CornerTransition::new(curve(before, v)?, t1, curve(after, v)?, t2, *k)?;
+            let c = CornerTransition::new(curve(before, cx)?, t1, curve(after, cx)?, t2, *k)?;
             let Some(form) = c.bezier_form() else {
                 return bad_input(
                     "the transition has an exact form only when both curves are single Bezier \
@@ -383,7 +386,7 @@ pub(crate) fn run(a: &BlendArgs, v: Verbosity) -> Result<()> {
                 None,
                 out,
                 &[before.clone(), after.clone()],
-                v,
+                cx,
             )
         }
     }

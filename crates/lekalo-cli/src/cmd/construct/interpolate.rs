@@ -1,229 +1,22 @@
 //! `lekalo interpolate`: curves and surfaces through points (document 000; document 002, four-point
-//! cubic and Hermite segment), plus the output helpers shared by the construction subcommands
-//! (`bezier`, `blend`, `pp`).
+//! cubic and Hermite segment).
 
-use lekalo_io::CurveJson;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
-    natural_cubic_spline, BSplineSurface, CubicHermite, CurveInterpolation, KnotPlacement,
-    Parametrization, Points, SurfaceInterpolation, TangentEstimate,
+    natural_cubic_spline, CubicHermite, CurveInterpolation, KnotPlacement, Parametrization, Points,
+    SurfaceInterpolation, TangentEstimate,
 };
-use lekalo_io::{
-    curve_figure, sample_table, CurvePlot, Figure, Grid, Object, SampleSpec, Series, Style,
-    SurfaceNet, PALETTE,
-};
+use lekalo_io::Object;
 
-use crate::io::encode;
-use crate::io::{bad_input, emit, format_of, numbers};
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::objects::{write_curve, write_surface, OutArgs};
+use crate::values::{net_size, numbers};
 use crate::words::Words;
-use crate::Verbosity;
-
-/// Output options shared by the construction subcommands.
-#[derive(Args, Debug, Clone)]
-pub(crate) struct OutArgs {
-    /// Output file (default: standard output); the format follows the extension.
-    #[arg(short, long, value_name = "FILE")]
-    pub(crate) output: Option<PathBuf>,
-    /// Output format: json, svg, png, step, csv (samples) or obj (surfaces: tessellation).
-    #[arg(long, value_name = "FORMAT")]
-    pub(crate) to: Option<String>,
-}
-
-/// Fixed STEP timestamp, so that the same input gives the same file.
-const STEP_TIMESTAMP: &str = "2000-01-01T00:00:00";
-/// Samples along a curve in plots, CSV and OBJ output.
-const CURVE_SAMPLES: usize = 200;
-/// Samples per direction of a surface in plots and OBJ output.
-const SURFACE_SAMPLES: usize = 25;
-
-/// Writes a curve object in the chosen format; `data` are points to show in plots.
-pub(crate) fn write_curve(
-    obj: &Object,
-    data: Option<&Points>,
-    out: &OutArgs,
-    inputs: &[PathBuf],
-    v: Verbosity,
-) -> Result<()> {
-    let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
-    let bytes = match format.as_str() {
-        // streamed: a curve of millions of control points is never held as text
-        "json" => {
-            return crate::io::emit_stream(out.output.as_deref(), inputs, v, |w| {
-                obj.write_json(w, true)
-            })
-        }
-        "svg" | "png" => encode(&curve_plot(obj, data, None)?, &format, 2.0)?,
-        "csv" => sample_table(
-            obj,
-            &obj.uniform_parameters(CURVE_SAMPLES),
-            SampleSpec::default(),
-        )?
-        .to_csv()
-        .into_bytes(),
-        "step" => {
-            let mut w = lekalo_io::StepWriter::new(stem(out.output.as_deref()));
-            w.add_object(obj)?;
-            w.finish(STEP_TIMESTAMP).into_bytes()
-        }
-        "obj" => lekalo_io::polyline_to_obj(&obj.sample(CURVE_SAMPLES)?).into_bytes(),
-        // streamed: the arrays go into the archive's members without a copy in memory
-        "npz" => {
-            return crate::io::emit_seek(out.output.as_deref(), inputs, v, |w| {
-                lekalo_io::write_npz_curve(obj, w)
-            })
-        }
-        other => {
-            return bad_input(format!(
-                "unknown output format \"{other}\": use json, svg, png, step, csv, obj or npz"
-            ))
-        }
-    };
-    emit(out.output.as_deref(), &bytes, inputs, v)
-}
-
-/// A plot of a curve: plane curves with control polygon and data; 1-D curves (functions) as a
-/// graph `(t, y(t))` with the data as `(x_k, y_k)`.
-pub(crate) fn curve_plot(
-    obj: &Object,
-    data: Option<&Points>,
-    title: Option<&str>,
-) -> Result<Figure> {
-    if obj.dim() != 1 {
-        return Ok(curve_figure(
-            obj,
-            &CurvePlot {
-                title: title.map(str::to_string),
-                data_points: data,
-                ..CurvePlot::default()
-            },
-        )?);
-    }
-    let t = obj.uniform_parameters(CURVE_SAMPLES);
-    let y = obj.sample(CURVE_SAMPLES)?;
-    let graph = t.iter().zip(y.iter()).map(|(t, y)| [*t, y[0]]).collect();
-    let mut fig = Figure::new(
-        title.unwrap_or(&format!(
-            "{} y(x) of degree {}",
-            obj.display_name(),
-            obj.degree()
-        )),
-        false,
-    );
-    fig.series
-        .push(Series::new(Some("y(x)"), graph, Style::Line, PALETTE[0]));
-    // (x, y) data of a function; 1-D data are values without their parameters: not drawn
-    if let Some(d) = data.filter(|d| d.dim() >= 2) {
-        let pts = d.iter().map(|p| [p[0], p[1]]).collect();
-        fig.series.push(Series::new(
-            Some("data points"),
-            pts,
-            Style::Markers,
-            PALETTE[2],
-        ));
-    }
-    fig.axis_labels = ("x".into(), "y".into());
-    Ok(fig)
-}
-
-fn stem(out: Option<&Path>) -> &str {
-    out.and_then(|p| p.file_stem())
-        .and_then(|s| s.to_str())
-        .unwrap_or("lekalo")
-}
-
-/// A surface sampled on a `SURFACE_SAMPLES²` grid, shaded, with its control net.
-pub(crate) fn surface_figure(s: &BSplineSurface, title: &str) -> Result<Figure> {
-    let ((u0, u1), (v0, v1)) = s.domain();
-    let us = lekalo_io::uniform(u0, u1, lekalo_io::SURFACE_SAMPLES);
-    let vs = lekalo_io::uniform(v0, v1, lekalo_io::SURFACE_SAMPLES);
-    let mut data = vec![0.0; us.len() * vs.len() * s.dim()];
-    s.eval_grid(&us, &vs, &mut data)?;
-    let grid = Grid::new(us.len(), vs.len(), s.dim(), &data)?;
-    let (nu, nv) = s.net_size();
-    let net = Grid::new(nu, nv, s.dim(), s.control_points().as_slice())?;
-    Ok(lekalo_io::surface_plot(
-        &grid,
-        Some(&net),
-        &lekalo_io::SurfacePlot::new(title),
-    ))
-}
-
-/// Writes a B-spline surface: json, svg/png (wireframe), step, obj (tessellation).
-pub(crate) fn write_surface(
-    s: &BSplineSurface,
-    out: &OutArgs,
-    inputs: &[PathBuf],
-    v: Verbosity,
-) -> Result<()> {
-    let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
-    let title = format!(
-        "B-spline surface of degrees ({}, {})",
-        s.degree_u(),
-        s.degree_v()
-    );
-    let bytes = match format.as_str() {
-        "json" => lekalo_io::bspline_surface_to_json(s).into_bytes(),
-        "svg" | "png" => encode(&surface_figure(s, &title)?, &format, 2.0)?,
-        "step" => {
-            let (nu, nv) = s.net_size();
-            let mut w = lekalo_io::StepWriter::new(stem(out.output.as_deref()));
-            w.add_surface(&SurfaceNet {
-                degrees: (s.degree_u(), s.degree_v()),
-                knots: (s.knots_u().as_slice(), s.knots_v().as_slice()),
-                net: Grid::new(nu, nv, s.dim(), s.control_points().as_slice())?,
-                weights: None,
-            })?;
-            w.finish(STEP_TIMESTAMP).into_bytes()
-        }
-        "obj" => {
-            let ((u0, u1), (v0, v1)) = s.domain();
-            let us = lekalo_io::uniform(u0, u1, SURFACE_SAMPLES);
-            let vs = lekalo_io::uniform(v0, v1, SURFACE_SAMPLES);
-            let mut data = vec![0.0; us.len() * vs.len() * s.dim()];
-            s.eval_grid(&us, &vs, &mut data)?;
-            lekalo_io::grid_to_obj(&Grid::new(us.len(), vs.len(), s.dim(), &data)?, None)?
-                .into_bytes()
-        }
-        other => {
-            return bad_input(format!(
-                "unknown surface output format \"{other}\": use json, svg, png, step or obj"
-            ))
-        }
-    };
-    emit(out.output.as_deref(), &bytes, inputs, v)
-}
-
-/// Writes a Bezier surface: its own JSON (`bezier_surface`), other formats as
-/// [`write_surface`] of its B-spline form.
-pub(crate) fn write_bezier_surface(
-    s: &lekalo::BezierSurface,
-    out: &OutArgs,
-    inputs: &[PathBuf],
-    v: Verbosity,
-) -> Result<()> {
-    if format_of(out.to.as_deref(), out.output.as_deref(), "json") == "json" {
-        let text = lekalo_io::bezier_surface_to_json(s);
-        return emit(out.output.as_deref(), text.as_bytes(), inputs, v);
-    }
-    write_surface(&s.to_bspline(), out, inputs, v)
-}
-
-/// Parses `NUxNV` (e.g. `4x3`).
-pub(crate) fn net_size(text: &str, what: &str) -> Result<(usize, usize)> {
-    let parsed = text
-        .split_once(['x', 'X', '×'])
-        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
-    match parsed {
-        Some((a, b)) => Ok((a, b)),
-        None => bad_input(format!(
-            "{what}: \"{text}\" is not a grid size; write rows x columns, e.g. 4x3"
-        )),
-    }
-}
 
 /// The parametrisation of `--param`, or the exponent of `--exponent` when given (document 000
 /// §1; P&T eq. 9.4–9.6).
@@ -346,9 +139,9 @@ pub(crate) struct InterpolateArgs {
     out: OutArgs,
 }
 
-pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
     let param = parametrization(a.param, a.exponent);
-    if crate::cmd::parquet_batch::is_parquet(&a.points) {
+    if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.function
             || a.hermite.is_some()
@@ -358,22 +151,18 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             return bad_input("a Parquet batch is interpolated by B-spline curves: --grid, --function, --hermite, --tangents and --params are for one points file");
         }
         let interp = curve_interpolation(a, param)?;
-        if let Some(n) = a.samples {
-            let n = crate::io::in_range(n, 1, usize::MAX, "--samples")?;
-            return crate::cmd::parquet_batch::interpolate_samples(
-                &a.points,
-                &interp,
-                n,
-                a.out.output.as_deref(),
-                v,
-            );
-        }
-        return crate::cmd::parquet_batch::interpolate(
-            &a.points,
-            &interp,
-            a.out.output.as_deref(),
-            v,
-        );
+        // the work on one group of points
+        let curve = |p: &Points| -> Result<Object> {
+            Ok(Object::BSpline(interp.interpolate(p.as_view())?))
+        };
+        let out = a.out.output.as_deref();
+        return match a.samples {
+            Some(n) => {
+                let n = cx.in_range(n, 1, usize::MAX, "--samples")?;
+                crate::batch::parquet::samples_of_groups(cx, &a.points, out, n, &curve)
+            }
+            None => crate::batch::parquet::curves_of_groups(cx, &a.points, out, &curve),
+        };
     }
     if a.samples.is_some() {
         return bad_input(
@@ -398,9 +187,9 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             output: a.out.output.as_deref(),
             to: a.out.to.as_deref(),
         };
-        return crate::cmd::tensor::interpolate(&g, &a.points, v);
+        return crate::cmd::tensor::interpolate(&g, &a.points, cx);
     }
-    let (pts, name) = crate::io::read_points(&a.points)?;
+    let (pts, name) = crate::items::read_points(cx, &a.points)?;
     let inputs = vec![a.points.clone()];
     if a.tension.is_some() && a.hermite != Some(Tangents::Cardinal) {
         return bad_input(
@@ -428,7 +217,7 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             fit = fit.max_condition(limit);
         }
         let s = fit.interpolate(pts.as_view(), nu, nv)?;
-        return write_surface(&s, &a.out, &inputs, v);
+        return write_surface(&s, &a.out, &inputs, cx);
     }
     if a.function {
         if pts.dim() < 2 {
@@ -455,12 +244,12 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             }
             None => natural_cubic_spline(&x, y.as_view())?,
         };
-        return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v);
+        return write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, cx);
     }
     if let Some(file) = &a.tangents {
-        let (tan, _) = crate::io::read_points(file)?;
+        let (tan, _) = crate::items::read_points(cx, file)?;
         let ts = match &a.params {
-            Some(p) => crate::cmd::explicit::parameters(p, "--params")?,
+            Some(p) => crate::cmd::explicit::parameters(cx, p, "--params")?,
             None => lekalo::parametrize(pts.as_view(), param)?,
         };
         let h = CubicHermite::new(ts, pts.clone(), tan)?;
@@ -471,11 +260,11 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             Some(&pts),
             &a.out,
             &inputs,
-            v,
+            cx,
         );
     }
     if let (Some(t), Some(p)) = (a.hermite, &a.params) {
-        let ts = crate::cmd::explicit::parameters(p, "--params")?;
+        let ts = crate::cmd::explicit::parameters(cx, p, "--params")?;
         let h = CubicHermite::with_estimated_tangents(
             ts,
             pts.as_view(),
@@ -486,31 +275,31 @@ pub(crate) fn run(a: &InterpolateArgs, v: Verbosity) -> Result<()> {
             Some(&pts),
             &a.out,
             &inputs,
-            v,
+            cx,
         );
     }
     if let Some(t) = a.hermite {
         let h =
             CubicHermite::from_points(pts.as_view(), param, tangents(t, a.tension.unwrap_or(0.0)))?;
         let obj = Object::BSpline(h.to_bspline());
-        return write_curve(&obj, Some(&pts), &a.out, &inputs, v);
+        return write_curve(&obj, Some(&pts), &a.out, &inputs, cx);
     }
     let interp = curve_interpolation(a, param)?;
-    let bar = crate::io::spinner(
+    let bar = crate::output::spinner(
+        cx,
         format!("interpolating {} points", pts.len()),
         pts.len() > 100_000,
-        v,
     );
     let curve = match &a.params {
         Some(p) => interp.interpolate_at(
             pts.as_view(),
-            &crate::cmd::explicit::parameters(p, "--params")?,
+            &crate::cmd::explicit::parameters(cx, p, "--params")?,
         ),
         None => interp.interpolate(pts.as_view()),
     };
     bar.finish_and_clear();
     let curve = curve?;
-    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, v)
+    write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, cx)
 }
 
 /// The B-spline interpolation of the options (end conditions, knots, condition limit).

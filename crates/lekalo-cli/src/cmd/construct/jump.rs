@@ -9,8 +9,8 @@ use clap::Args;
 use lekalo::JumpPolynomial;
 use lekalo_io::fmt_number;
 
-use crate::io::bad_input;
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
 
 /// Arguments of `lekalo blend jump`.
 #[derive(Args, Debug)]
@@ -30,7 +30,7 @@ pub(crate) struct JumpArgs {
     output: Option<PathBuf>,
 }
 
-pub(crate) fn run(a: &JumpArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &JumpArgs, cx: &Context) -> Result<()> {
     if !(2..=10_000_000).contains(&a.samples) {
         return bad_input("--samples must be between 2 and 10000000");
     }
@@ -75,5 +75,5 @@ pub(crate) fn run(a: &JumpArgs, v: Verbosity) -> Result<()> {
         }
         s
     };
-    crate::report::print_report(a.json, &report, text, a.output.as_deref(), &[], v)
+    crate::report::print_report(a.json, &report, text, a.output.as_deref(), &[], cx)
 }

@@ -12,8 +12,10 @@ use lekalo::Direction;
 use lekalo_io::{fmt_number, Object, Shape};
 
 use crate::cmd::cad::{load_shape, load_shapes};
-use crate::io::{bad_input, emit, numbers};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::emit;
+use crate::values::numbers;
 
 /// Arguments of `lekalo knot`.
 #[derive(Args, Debug)]
@@ -162,18 +164,18 @@ fn one(text: &str, what: &str) -> Result<f64> {
     Ok(v[0])
 }
 
-fn write_one(c: &Common, s: &Shape, v: Verbosity) -> Result<()> {
+fn write_one(c: &Common, s: &Shape, cx: &Context) -> Result<()> {
     emit(
         c.output.as_deref(),
         s.to_json_pretty().as_bytes(),
         std::slice::from_ref(&c.input),
-        v,
+        cx,
     )
 }
 
-fn write_many(out: Option<&Path>, input: &Path, shapes: &[Shape], v: Verbosity) -> Result<()> {
+fn write_many(out: Option<&Path>, input: &Path, shapes: &[Shape], cx: &Context) -> Result<()> {
     let text: String = shapes.iter().map(|s| s.to_json_line() + "\n").collect();
-    emit(out, text.as_bytes(), &[input.to_path_buf()], v)
+    emit(out, text.as_bytes(), &[input.to_path_buf()], cx)
 }
 
 fn surface_only_u_v<T>(op: &str) -> Result<T> {
@@ -182,25 +184,25 @@ fn surface_only_u_v<T>(op: &str) -> Result<T> {
     ))
 }
 
-pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &KnotArgs, cx: &Context) -> Result<()> {
     match &a.op {
         KnotOp::Insert { c, at, times } => {
             let t = one(at, "--at")?;
-            let out = match load_shape(&c.input, v)? {
+            let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.insert_knot(t, *times)?),
                 Shape::Surface(s) => Shape::Surface(s.insert_knot(direction(c.dir), t, *times)?),
                 other => return not_spline(&c.input, &other),
             };
-            write_one(c, &out, v)
+            write_one(c, &out, cx)
         }
         KnotOp::Refine { c, knots } => {
             let x = numbers(knots, "--knots")?;
-            let out = match load_shape(&c.input, v)? {
+            let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.refine_knots(&x)?),
                 Shape::Surface(s) => Shape::Surface(s.refine_knots(direction(c.dir), &x)?),
                 other => return not_spline(&c.input, &other),
             };
-            write_one(c, &out, v)
+            write_one(c, &out, cx)
         }
         KnotOp::Remove {
             c,
@@ -210,7 +212,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
             tolerance,
             json,
         } => {
-            let curve = match load_shape(&c.input, v)? {
+            let curve = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => o.to_spline(),
                 Shape::Surface(_) => return surface_only_u_v("remove"),
                 other => return not_spline(&c.input, &other),
@@ -244,17 +246,17 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                     crate::report::text_of,
                     out,
                     inputs,
-                    v,
+                    cx,
                 );
             }
-            if v != Verbosity::Quiet {
-                crate::io::report(&removal_report(&gone, removed, tol));
+            if !cx.is_quiet() {
+                crate::output::report(&removal_report(&gone, removed, tol));
             }
-            write_one(c, &Shape::Curve(after), v)
+            write_one(c, &Shape::Curve(after), cx)
         }
         KnotOp::Split { c, at } => {
             let t = one(at, "--at")?;
-            let pieces = match load_shape(&c.input, v)? {
+            let pieces = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => {
                     let (l, r) = o.split_at(t)?;
                     vec![Shape::Curve(l), Shape::Curve(r)]
@@ -265,15 +267,15 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                 }
                 other => return not_spline(&c.input, &other),
             };
-            write_many(c.output.as_deref(), &c.input, &pieces, v)
+            write_many(c.output.as_deref(), &c.input, &pieces, cx)
         }
         KnotOp::Reverse { c } => {
-            let out = match load_shape(&c.input, v)? {
+            let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.reverse()?),
                 Shape::Surface(s) => Shape::Surface(s.reverse(direction(c.dir))?),
                 other => return not_spline(&c.input, &other),
             };
-            write_one(c, &out, v)
+            write_one(c, &out, cx)
         }
         KnotOp::Reparam { c, interval } => {
             let ab = numbers(interval, "--interval")?;
@@ -291,7 +293,7 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                     lekalo_io::fmt_number(hi)
                 ));
             }
-            let out = match load_shape(&c.input, v)? {
+            let out = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => Shape::Curve(o.reparametrize(lo, hi)?),
                 Shape::Surface(_) => {
                     return bad_input(
@@ -300,10 +302,10 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                 }
                 other => return not_spline(&c.input, &other),
             };
-            write_one(c, &out, v)
+            write_one(c, &out, cx)
         }
         KnotOp::Decompose { c } => {
-            let pieces: Vec<Shape> = match load_shape(&c.input, v)? {
+            let pieces: Vec<Shape> = match load_shape(&c.input, cx)? {
                 Shape::Curve(o) => o
                     .to_bezier_pieces()?
                     .into_iter()
@@ -316,16 +318,16 @@ pub(crate) fn run(a: &KnotArgs, v: Verbosity) -> Result<()> {
                     .collect(),
                 other => return not_spline(&c.input, &other),
             };
-            write_many(c.output.as_deref(), &c.input, &pieces, v)
+            write_many(c.output.as_deref(), &c.input, &pieces, cx)
         }
         KnotOp::Join { input, output } => {
-            let shapes = load_shapes(input, v)?;
+            let shapes = load_shapes(input, cx)?;
             let joined = join(&shapes, input)?;
             emit(
                 output.as_deref(),
                 joined.to_json_pretty().as_bytes(),
                 std::slice::from_ref(input),
-                v,
+                cx,
             )
         }
     }

@@ -8,8 +8,11 @@ use clap::{Args, Subcommand};
 use lekalo::KnotVector;
 use serde_json::json;
 
-use crate::io::{bad_input, emit, integers, load_one, numbers};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::items::load_one;
+use crate::output::emit;
+use crate::values::{integers, numbers};
 
 /// Arguments of `lekalo knots`.
 #[derive(Args, Debug)]
@@ -113,10 +116,10 @@ struct KnotSource {
 
 impl KnotSource {
     /// The knots and the degree (given, or the curve file's), the file added to `inputs`.
-    fn read(&self, inputs: &mut Vec<PathBuf>, v: Verbosity) -> Result<(KnotVector, Option<usize>)> {
+    fn read(&self, inputs: &mut Vec<PathBuf>, cx: &Context) -> Result<(KnotVector, Option<usize>)> {
         match (&self.input, &self.knots) {
             (Some(path), _) => {
-                let obj = load_one(path, v)?;
+                let obj = load_one(cx, path)?;
                 inputs.push(path.clone());
                 Ok((
                     obj.knots().into_owned(),
@@ -139,13 +142,13 @@ struct ParamArgs {
     params: String,
 }
 
-pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &KnotsArgs, cx: &Context) -> Result<()> {
     let mut inputs = Vec::new();
     let (kv, degree) = match &a.rule {
         Rule::Uniform { degree, count } => {
-            crate::io::check_size(*count, "--count")?;
-            crate::io::check_size(*degree, "--degree")?;
-            crate::io::check_memory::<f64>(
+            cx.check_size(*count, "--count")?;
+            cx.check_size(*degree, "--degree")?;
+            crate::context::check_memory::<f64>(
                 count.saturating_add(*degree).saturating_add(1),
                 "--count",
             )?;
@@ -175,23 +178,23 @@ pub(crate) fn run(a: &KnotsArgs, v: Verbosity) -> Result<()> {
             )?,
             order.checked_sub(1),
         ),
-        Rule::Basis { source, at } => return basis(a, source, at, v),
-        Rule::Inspect(source) => source.read(&mut inputs, v)?,
+        Rule::Basis { source, at } => return basis(a, source, at, cx),
+        Rule::Inspect(source) => source.read(&mut inputs, cx)?,
     };
     let text = describe(&kv, degree, a.json)?;
-    emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+    emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
 }
 
 /// `lekalo knots basis`: the knots and degree of a curve file or of `--knots`/`--degree`, the
 /// basis at the parameters of `--at`.
-fn basis(a: &KnotsArgs, source: &KnotSource, at: &str, v: Verbosity) -> Result<()> {
+fn basis(a: &KnotsArgs, source: &KnotSource, at: &str, cx: &Context) -> Result<()> {
     let mut inputs = Vec::new();
-    let (kv, Some(p)) = source.read(&mut inputs, v)? else {
+    let (kv, Some(p)) = source.read(&mut inputs, cx)? else {
         return bad_input("--knots needs --degree");
     };
     let t = numbers(at, "--at")?;
     let text = basis_table(&kv, p, &t, a.json)?;
-    emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+    emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
 }
 
 /// The non-zero basis functions of degree `p` at each parameter of `t`

@@ -8,8 +8,10 @@ use clap::{Args, ValueEnum};
 use lekalo::{BSplineCurve, BezierCurve, KnotVector, NurbsCurve};
 use lekalo_io::Object;
 
-use crate::io::{bad_input, emit, numbers};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::emit;
+use crate::values::numbers;
 
 /// The kind of curve to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -77,7 +79,7 @@ pub(crate) struct MakeArgs {
     output: Option<PathBuf>,
 }
 
-pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &MakeArgs, cx: &Context) -> Result<()> {
     use crate::cmd::make_surface::{SurfaceKind, SurfaceMake};
     let surface = match a.kind {
         Kind::BezierSurface => Some(SurfaceKind::Bezier),
@@ -98,7 +100,7 @@ pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
                 weights: a.weights.as_deref(),
                 output: a.output.as_deref(),
             },
-            v,
+            cx,
         );
     }
     if a.net.is_some() || a.degree_v.is_some() || a.knots_u.is_some() || a.knots_v.is_some() {
@@ -106,7 +108,7 @@ pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
             "--net, --degree-v, --knots-u and --knots-v are for surfaces: use bezier-surface, bspline-surface or nurbs-surface",
         );
     }
-    let (ctrl, _) = crate::io::read_points(&a.control)?;
+    let (ctrl, _) = crate::items::read_points(cx, &a.control)?;
     let degree = || -> Result<usize> {
         match a.degree {
             Some(d) => Ok(d),
@@ -157,6 +159,6 @@ pub(crate) fn run(a: &MakeArgs, v: Verbosity) -> Result<()> {
         a.output.as_deref(),
         obj.to_json_pretty().as_bytes(),
         &inputs,
-        v,
+        cx,
     )
 }

@@ -8,8 +8,10 @@ use lekalo::{BSplineSurface, BezierSurface, KnotVector, NurbsSurface};
 use lekalo_io::Surface;
 
 use crate::cmd::surface_eval::grid_size;
-use crate::io::{bad_input, emit, numbers};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::emit;
+use crate::values::numbers;
 
 /// The kind of surface.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,8 +34,8 @@ pub(crate) struct SurfaceMake<'a> {
     pub(crate) output: Option<&'a Path>,
 }
 
-pub(crate) fn run(m: &SurfaceMake<'_>, v: Verbosity) -> Result<()> {
-    let (ctrl, name) = crate::io::read_points(m.control)?;
+pub(crate) fn run(m: &SurfaceMake<'_>, cx: &Context) -> Result<()> {
+    let (ctrl, name) = crate::items::read_points(cx, m.control)?;
     let Some(net) = m.net else {
         return bad_input(format!(
             "a surface needs --net NUxNV: the {} control points of {name} are rows of the net, NV points per row",
@@ -113,5 +115,5 @@ pub(crate) fn run(m: &SurfaceMake<'_>, v: Verbosity) -> Result<()> {
         }
     };
     let inputs: Vec<PathBuf> = vec![m.control.to_path_buf()];
-    emit(m.output, surface.to_json_pretty().as_bytes(), &inputs, v)
+    emit(m.output, surface.to_json_pretty().as_bytes(), &inputs, cx)
 }

@@ -10,11 +10,14 @@ use lekalo::{
 };
 use lekalo_io::{CurveJson, Figure, Object, Series, Style, PALETTE};
 
-use crate::cmd::interpolate::{curve_plot, write_curve, OutArgs};
-use crate::io::encode;
-use crate::io::{bad_input, emit, format_of, integers, load_one, numbers, BadInput};
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::load_one;
+use crate::output::encode;
+use crate::output::objects::{curve_plot, write_curve, OutArgs};
+use crate::output::{emit, format_of};
+use crate::values::{integers, numbers};
 use crate::words::Words;
-use crate::Verbosity;
 
 /// The τ choice of `pp convert` and `pp quasi`: a rule, or explicit values.
 #[derive(Args, Debug)]
@@ -36,10 +39,10 @@ pub(crate) struct TauArgs {
 
 impl TauArgs {
     /// The explicit values, read once (the caller borrows them as a [`Tau`]).
-    fn values(&self) -> Result<Option<Vec<f64>>> {
+    fn values(&self, cx: &Context) -> Result<Option<Vec<f64>>> {
         self.tau
             .as_deref()
-            .map(|t| crate::cmd::explicit::parameters(t, "--tau"))
+            .map(|t| crate::cmd::explicit::parameters(cx, t, "--tau"))
             .transpose()
     }
 
@@ -164,7 +167,7 @@ fn continuity(
     }
 }
 
-pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &PpArgs, cx: &Context) -> Result<()> {
     match &a.op {
         PpOp::Convert {
             input,
@@ -178,21 +181,23 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                 let nu = continuity(cont.as_ref(), p.breakpoints().len(), || {
                     p.continuity(DEFAULT_CONTINUITY_RTOL)
                 })?;
-                if cont.is_none() && v == Verbosity::Verbose {
-                    crate::io::report(&format!("continuity ν inferred from the pp-form: {nu:?}"));
+                if cont.is_none() && cx.is_verbose() {
+                    crate::output::report(&format!(
+                        "continuity ν inferred from the pp-form: {nu:?}"
+                    ));
                 }
                 let space = PpSpace::new(p.breakpoints(), &nu, p.order())?;
-                let values = tau.values()?;
+                let values = tau.values(cx)?;
                 let c = p.to_bspline(&space, tau.choice(&values))?;
                 return write_curve(
                     &Object::BSpline(c),
                     None,
                     out,
                     std::slice::from_ref(input),
-                    v,
+                    cx,
                 );
             }
-            let c = match load_one(input, v)? {
+            let c = match load_one(cx, input)? {
                 Object::BSpline(c) => c,
                 Object::Bezier(b) => b.to_bspline(),
                 other => {
@@ -214,7 +219,7 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                 out.output.as_deref(),
                 lekalo_io::piecewise_polynomial_to_json(&p).as_bytes(),
                 std::slice::from_ref(input),
-                v,
+                cx,
             )
         }
         PpOp::Quasi {
@@ -233,14 +238,14 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
             })?;
             let space = PpSpace::new(&xi, &nu, *order)?;
             let f = function(function_text)?;
-            let values = tau.values()?;
+            let values = tau.values(cx)?;
             let q = quasi_interpolate_expression(&space, tau.choice(&values), &f)?;
-            crate::io::check_size(*intervals, "--intervals")?;
-            crate::io::check_memory::<f64>(intervals.saturating_mul(4), "--intervals")?;
+            cx.check_size(*intervals, "--intervals")?;
+            crate::context::check_memory::<f64>(intervals.saturating_mul(4), "--intervals")?;
             let samples =
                 sample_quasi_interpolant_expression(&space, tau.choice(&values), &f, *intervals)?;
-            if v != Verbosity::Quiet {
-                crate::io::report(&format!(
+            if !cx.is_quiet() {
+                crate::output::report(&format!(
                     "max |f − q| on {} intervals: {}",
                     intervals,
                     lekalo_io::fmt_number(samples.max_error())
@@ -259,16 +264,16 @@ pub(crate) fn run(a: &PpArgs, v: Verbosity) -> Result<()> {
                     crate::report::text_of,
                     out.output.as_deref(),
                     &[],
-                    v,
+                    cx,
                 );
             }
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");
             let obj = Object::BSpline(q);
             if format == "svg" || format == "png" {
                 let fig = quasi_figure(&obj, &samples, function_text)?;
-                return emit(out.output.as_deref(), &encode(&fig, &format, 2.0)?, &[], v);
+                return emit(out.output.as_deref(), &encode(&fig, &format, 2.0)?, &[], cx);
             }
-            write_curve(&obj, None, out, &[], v)
+            write_curve(&obj, None, out, &[], cx)
         }
     }
 }

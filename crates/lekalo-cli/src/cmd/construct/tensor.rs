@@ -10,8 +10,10 @@ use anyhow::Result;
 use lekalo::{Parametrization, Points, Tensor, TensorInterpolation};
 use serde_json::{json, Value};
 
-use crate::io::{bad_input, emit, format_of, numbers, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::output::{emit, format_of};
+use crate::values::numbers;
 
 /// The factors of a `--grid` size `AxBxC…` (also `×`), each at least 1.
 pub(crate) fn grid_factors(text: &str) -> Result<Vec<usize>> {
@@ -51,7 +53,7 @@ pub(crate) struct GridInterpolation<'a> {
 
 /// The tensor spline through the values of `file` (one row a grid node, the first direction
 /// slowest), written as JSON.
-pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) -> Result<()> {
+pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) -> Result<()> {
     let format = format_of(g.to, g.output, "json");
     if format != "json" {
         return bad_input(format!(
@@ -71,8 +73,8 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) 
             g.grid
         ));
     };
-    crate::io::check_size(nodes, "--grid")?;
-    let (values, name) = grid_values(file, &g.factors)?;
+    cx.check_size(nodes, "--grid")?;
+    let (values, name) = grid_values(cx, file, &g.factors)?;
     if values.len() != nodes {
         return bad_input(format!(
             "--grid {}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
@@ -93,17 +95,17 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, v: Verbosity) 
             other => anyhow::Error::from(other),
         })?;
     let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
-    emit(g.output, text.as_bytes(), &[file.to_path_buf()], v)
+    emit(g.output, text.as_bytes(), &[file.to_path_buf()], cx)
 }
 
 /// The values of a grid file: rows of a points file, or a `.npy` array of shape
 /// `(A, B, C, …[, d…])` whose first axes are the grid's (or `(n, d)` / `(n,)` rows).
-fn grid_values(file: &Path, factors: &[usize]) -> Result<(Points, String)> {
+fn grid_values(cx: &Context, file: &Path, factors: &[usize]) -> Result<(Points, String)> {
     let npy = file
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
     if !npy {
-        return crate::io::read_points(file);
+        return crate::items::read_points(cx, file);
     }
     let (bytes, name) = lekalo_io::read_input_bytes(file)?;
     let (shape, flat) = lekalo_io::read_npy_array(&bytes, &name)?;
@@ -137,7 +139,7 @@ pub(crate) struct TensorEval<'a> {
 
 /// Evaluates at the points of `--at` and `--at-file`: columns `x1 … xN`, then the value
 /// (`y`, or `y1 … yd`).
-pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, v: Verbosity) -> Result<()> {
+pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
     let n = t.n_vars();
     let mut xs = Vec::new();
     if let Some(at) = e.at {
@@ -151,7 +153,7 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, v: Verbosity) -> Result<()> {
         xs.extend(p);
     }
     if let Some(f) = e.at_file {
-        let (pts, name) = crate::io::read_points(f)?;
+        let (pts, name) = crate::items::read_points(cx, f)?;
         if pts.dim() != n {
             return bad_input(format!(
                 "{name}: --at-file needs {n} columns, one per parameter; found {}",
@@ -168,7 +170,7 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, v: Verbosity) -> Result<()> {
     }
     let dim = t.dim();
     let m = xs.len() / n;
-    crate::io::check_memory::<f64>(m.saturating_mul(dim), "--at")?;
+    crate::context::check_memory::<f64>(m.saturating_mul(dim), "--at")?;
     let mut out = vec![0.0; m * dim];
     t.eval_batch(&xs, &mut out)
         .map_err(|err| BadInput(format!("{}: {err}", e.input.display())))?;
@@ -201,7 +203,7 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, v: Verbosity) -> Result<()> {
         other => return bad_input(format!("--format {other}: use csv or json")),
     };
     let inputs: Vec<PathBuf> = vec![e.input.to_path_buf()];
-    emit(e.output, text.as_bytes(), &inputs, v)
+    emit(e.output, text.as_bytes(), &inputs, cx)
 }
 
 /// The facts `info` reports of a tensor spline.

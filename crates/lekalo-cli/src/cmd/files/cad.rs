@@ -6,30 +6,31 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use lekalo_io::{Shape, StepWriter};
 
-use crate::io::{
-    bad_input, emit, format_of, is_iges, is_json_lines, is_step, load, read_cad, Loaded,
-};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::items::{is_iges, is_json_lines, is_step, open, read_cad, Items};
+use crate::output::{emit, format_of};
 
 /// Reads exactly one object of any kind (curve, surface, piecewise polynomial).
-pub(crate) fn load_shape(path: &Path, v: Verbosity) -> Result<Shape> {
-    match load(path, false, v)? {
-        Loaded::One(o) => Ok(Shape::Curve(o)),
-        Loaded::Other(s) => Ok(s),
-        Loaded::Many(mut m) if m.len() == 1 => Ok(Shape::Curve(m.remove(0).1?)),
-        Loaded::Many(m) => bad_input(format!(
+pub(crate) fn load_shape(path: &Path, cx: &Context) -> Result<Shape> {
+    match open(cx, path, false)? {
+        Items::One(o) => Ok(Shape::Curve(o)),
+        Items::Other(s) => Ok(s),
+        Items::Lines(mut m) if m.len() == 1 => Ok(Shape::Curve(m.remove(0).1?)),
+        Items::Lines(m) => bad_input(format!(
             "{}: holds {} objects; this command takes one (`lekalo knot join` joins pieces)",
             path.display(),
             m.len()
         )),
+        Items::Parquet(_) => crate::items::not_a_batch_command(path),
     }
 }
 
 /// Every object of a file: JSON Lines of any kinds (one object per non-blank line, `#`
 /// comments), a STEP file's curves and surfaces, or a single JSON object.
-pub(crate) fn load_shapes(path: &Path, v: Verbosity) -> Result<Vec<Shape>> {
+pub(crate) fn load_shapes(path: &Path, cx: &Context) -> Result<Vec<Shape>> {
     let (text, name) = lekalo_io::read_input(path)?;
-    if let Some(shapes) = read_cad(path, &text, &name, v)? {
+    if let Some(shapes) = read_cad(cx, path, &text, &name)? {
         return Ok(shapes);
     }
     if !is_json_lines(path, false) {
@@ -58,9 +59,9 @@ pub(crate) fn convert_shapes(
     to: Option<&str>,
     step_name: &str,
     timestamp: &str,
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
-    let shapes = load_shapes(input, v)?;
+    let shapes = load_shapes(input, cx)?;
     let format = format_of(to, output, "jsonl");
     let bytes = match format.as_str() {
         "jsonl" => shapes
@@ -121,7 +122,7 @@ pub(crate) fn convert_shapes(
         }
     };
     let inputs: Vec<PathBuf> = vec![input.to_path_buf()];
-    emit(output, bytes.as_bytes(), &inputs, v)
+    emit(output, bytes.as_bytes(), &inputs, cx)
 }
 
 /// True when `convert` should take the many-shapes path: a STEP input, or JSON Lines holding

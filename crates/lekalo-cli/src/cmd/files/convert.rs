@@ -8,9 +8,11 @@ use clap::Args;
 use lekalo_io::{curve_figure, sample_table, CurvePlot, Object, SampleSpec, Shape, StepWriter};
 
 use crate::cmd::shapes;
-use crate::io::encode;
-use crate::io::{bad_input, emit, format_of, in_range, load, Loaded};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::items::{open, Items};
+use crate::output::encode;
+use crate::output::{emit, format_of};
 
 /// Arguments of `lekalo convert`.
 #[derive(Args, Debug)]
@@ -43,7 +45,7 @@ Examples:
   lekalo convert curves.jsonl -o again.igs
   lekalo convert again.igs -o from-iges.jsonl
 
-Surfaces also convert to csv: u, v, x, y, z on a √samples × √samples grid.
+Surfaces also convert to csv: u, cx, x, y, z on a √samples × √samples grid.
 CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and NURBS
 curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
 complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),
@@ -80,13 +82,13 @@ fn step_name(a: &ConvertArgs) -> String {
         .to_string()
 }
 
-pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
-    let parquet = crate::cmd::parquet_batch::is_parquet;
+pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
+    let parquet = crate::items::is_parquet;
     if parquet(&a.input) || a.output.as_deref().is_some_and(parquet) {
-        return crate::cmd::parquet_batch::convert(&a.input, a.output.as_deref(), v);
+        return crate::batch::parquet::convert_curves(cx, &a.input, a.output.as_deref());
     }
     if shapes::surface_csv_wanted(a.to.as_deref(), a.output.as_deref()) {
-        if let Ok(Loaded::Other(Shape::Surface(s))) = load(&a.input, false, Verbosity::Quiet) {
+        if let Ok(Items::Other(Shape::Surface(s))) = open(&cx.quiet(), &a.input, false) {
             let side = a.samples.clamp(2, 10_000_000).isqrt().max(2);
             let table = lekalo_io::surface_sample_table(
                 &s,
@@ -97,7 +99,7 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
                 a.output.as_deref(),
                 table.to_csv().as_bytes(),
                 std::slice::from_ref(&a.input),
-                v,
+                cx,
             );
         }
     }
@@ -112,20 +114,23 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             a.to.as_deref(),
             &step_name(a),
             STEP_TIMESTAMP,
-            v,
+            cx,
         );
     }
     // bad lines of JSON Lines: reported after the good ones are written (exit code 2)
     let mut failed: Vec<String> = Vec::new();
     let mut total = 0;
-    let objects: Vec<Object> = match load(&a.input, a.jsonl, v)? {
-        Loaded::One(o) => vec![o],
-        Loaded::Other(shape) => {
+    let objects: Vec<Object> = match open(cx, &a.input, a.jsonl)? {
+        Items::Parquet(input) => {
+            return crate::batch::parquet::convert_curves(cx, &input, a.output.as_deref())
+        }
+        Items::One(o) => vec![o],
+        Items::Other(shape) => {
             let format = format_of(a.to.as_deref(), a.output.as_deref(), "json");
             let bytes = shapes::convert(
                 &shape,
                 &format,
-                in_range(a.samples, 2, usize::MAX, "--samples")?,
+                cx.in_range(a.samples, 2, usize::MAX, "--samples")?,
                 &step_name(a),
                 STEP_TIMESTAMP,
             )?;
@@ -133,10 +138,10 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
                 a.output.as_deref(),
                 &bytes,
                 std::slice::from_ref(&a.input),
-                v,
+                cx,
             );
         }
-        Loaded::Many(items) => {
+        Items::Lines(items) => {
             total = items.len();
             let mut good = Vec::with_capacity(items.len());
             for (_, o) in items {
@@ -150,7 +155,7 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
     };
     if objects.is_empty() && !failed.is_empty() {
         for e in &failed {
-            crate::io::report(&format!("  {e}"));
+            crate::output::report(&format!("  {e}"));
         }
         return bad_input(format!(
             "{}: all {total} objects failed (listed above); nothing written",
@@ -171,9 +176,9 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
             ))
         }
     };
-    let samples = in_range(a.samples, 2, usize::MAX, "--samples")?;
+    let samples = cx.in_range(a.samples, 2, usize::MAX, "--samples")?;
     if matches!(format.as_str(), "csv" | "svg" | "png" | "obj") {
-        crate::io::check_bezier_degree(first, "sampling")?;
+        cx.check_bezier_degree(first, "sampling")?;
     }
     let bytes: Vec<u8> = match format.as_str() {
         "json" => single()?.to_json_pretty().into_bytes(),
@@ -217,15 +222,15 @@ pub(crate) fn run(a: &ConvertArgs, v: Verbosity) -> Result<()> {
         a.output.as_deref(),
         &bytes,
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )?;
-    crate::io::failures(
+    crate::batch::failures(
         &failed,
         format!(
             "{} of {total} objects failed (listed above); the other {} were written",
             failed.len(),
             total - failed.len()
         ),
-        v,
+        cx,
     )
 }

@@ -18,10 +18,13 @@ use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
 use serde_json::{json, Value};
 
-use crate::cmd::interpolate::{net_size, write_curve, write_surface, OutArgs};
-use crate::io::{bad_input, emit, numbers};
+use crate::context::Context;
+use crate::exit::bad_input;
+use crate::output::emit;
+use crate::output::objects::{write_curve, write_surface, OutArgs};
+use crate::values::net_size;
+use crate::values::numbers;
 use crate::words::Words;
-use crate::Verbosity;
 
 /// Robust loss for `--robust`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -163,7 +166,7 @@ pub(crate) struct FitArgs {
     out: OutArgs,
 }
 
-pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
     let modes = [
         a.lsq,
         a.smooth.is_some(),
@@ -174,7 +177,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
     if modes.iter().filter(|&&m| m).count() > 1 {
         return bad_input("choose one mode: --lsq, --smooth, --s, --tol or --robust");
     }
-    if crate::cmd::parquet_batch::is_parquet(&a.points) {
+    if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.scattered
             || a.periodic
@@ -184,17 +187,20 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
         {
             return bad_input("a Parquet batch is fitted by open curves, one per group: --grid, --scattered, --periodic, --weights, --json and --per-point are for one points file");
         }
-        return crate::cmd::parquet_batch::curves_of_groups(
+        // the work on one group of points
+        let quiet = cx.quiet();
+        let curve = |pts: &Points| -> Result<Object> {
+            let (fit, _, _) = fit_curve(a, pts, None, "the group", &quiet)?;
+            Ok(Object::BSpline(fit.curve))
+        };
+        return crate::batch::parquet::curves_of_groups(
+            cx,
             &a.points,
             a.out.output.as_deref(),
-            v,
-            &|pts: &Points| -> Result<Object> {
-                let (fit, _, _) = fit_curve(a, pts, None, "the group", Verbosity::Quiet)?;
-                Ok(Object::BSpline(fit.curve))
-            },
+            &curve,
         );
     }
-    let (pts, name) = crate::io::read_points(&a.points)?;
+    let (pts, name) = crate::items::read_points(cx, &a.points)?;
     let mut inputs = vec![a.points.clone()];
     let weights = match &a.weights {
         Some(p) => {
@@ -205,12 +211,12 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
         None => None,
     };
     if a.grid.is_some() || a.scattered {
-        return run_surface(a, &pts, weights.as_deref(), &inputs, v);
+        return run_surface(a, &pts, weights.as_deref(), &inputs, cx);
     }
     if a.periodic {
-        return run_periodic(a, &pts, weights.as_deref(), &inputs, v);
+        return run_periodic(a, &pts, weights.as_deref(), &inputs, cx);
     }
-    let (fit, report, shown) = fit_curve(a, &pts, weights.as_deref(), &name, v)?;
+    let (fit, report, shown) = fit_curve(a, &pts, weights.as_deref(), &name, cx)?;
     finish(
         a,
         Object::BSpline(fit.curve.clone()),
@@ -218,7 +224,7 @@ pub(crate) fn run(a: &FitArgs, v: Verbosity) -> Result<()> {
         &fit,
         report,
         &inputs,
-        v,
+        cx,
     )
 }
 
@@ -229,7 +235,7 @@ fn fit_curve(
     pts: &Points,
     weights: Option<&[f64]>,
     name: &str,
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<(CurveFit, Value, Points)> {
     // data: function samples (x, y…) or parametric points
     let (values, params) = if a.function {
@@ -306,7 +312,7 @@ fn fit_curve(
         }
         // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
         let large = pts.len() > 100_000;
-        let t = crate::cancel::with_progress("fitting to the tolerance", large, v, |p| {
+        let t = crate::cancel::with_progress(cx, "fitting to the tolerance", large, |p| {
             fit_tolerance_with_progress(pts.as_view(), &opts, p)
         })?;
         report["tol"] = json!(tol);
@@ -364,7 +370,7 @@ pub(super) fn finish(
     fit: &CurveFit,
     mut report: Value,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let r = &fit.report;
     report["max_residual"] = json!(r.max_residual);
@@ -382,12 +388,12 @@ pub(super) fn finish(
     if a.json {
         let object: Value = serde_json::from_str(&obj.to_json_pretty())?;
         let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
-        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
     }
-    if v != Verbosity::Quiet {
-        crate::io::report(&report_line(&report));
+    if !cx.is_quiet() {
+        crate::output::report(&report_line(&report));
     }
-    write_curve(&obj, Some(shown), &a.out, inputs, v)
+    write_curve(&obj, Some(shown), &a.out, inputs, cx)
 }
 
 fn report_line(r: &Value) -> String {
@@ -526,7 +532,7 @@ fn run_surface(
     pts: &Points,
     weights: Option<&[f64]>,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let Some(cg) = &a.ctrl_grid else {
         return bad_input("surfaces need --ctrl-grid NUxNV (the control net size)");
@@ -536,10 +542,10 @@ fn run_surface(
     if let Some(g) = &a.grid {
         let (nu, nv) = net_size(g, "--grid")?;
         let s = surface_grid_least_squares(pts.as_view(), (nu, nv), (p, p), (ncu, ncv), a.param)?;
-        return write_surface(&s, &a.out, inputs, v);
+        return write_surface(&s, &a.out, inputs, cx);
     }
     if pts.dim() < 3 {
-        return bad_input("--scattered needs rows u, v, z (three columns or more)");
+        return bad_input("--scattered needs rows u, cx, z (three columns or more)");
     }
     // The system solved is banded: NU·NV rows of about p·NV + p + 1 numbers (twice NV with a
     // penalty). Its size is refused here, before the library allocates it.
@@ -550,7 +556,7 @@ fn run_surface(
     let entries = ncu
         .saturating_mul(ncv)
         .saturating_mul(band.saturating_add(1));
-    let limit = crate::io::settings().max_size;
+    let limit = cx.max_size;
     if entries > limit {
         return bad_input(format!(
             "--ctrl-grid {ncu}x{ncv}: the scattered fit's least-squares system holds {entries} numbers ({} bytes), above the size limit {limit}; use a smaller control net, or raise the limit with --max-size {entries} if the machine has the memory",
@@ -581,14 +587,14 @@ fn run_surface(
     if a.json {
         let object: Value = serde_json::from_str(&lekalo_io::bspline_surface_to_json(&f.surface))?;
         let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
-        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, v);
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
     }
-    if v != Verbosity::Quiet {
-        crate::io::report(&format!(
+    if !cx.is_quiet() {
+        crate::output::report(&format!(
             "fit: {ncu}x{ncv} control points, residual max {max}, RMS {rms}"
         ));
     }
-    write_surface(&f.surface, &a.out, inputs, v)
+    write_surface(&f.surface, &a.out, inputs, cx)
 }
 
 // -- closed curves and periodic functions (`lekalo fit --periodic`): least squares with given
@@ -603,7 +609,7 @@ fn run_periodic(
     pts: &Points,
     weights: Option<&[f64]>,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     if a.smooth.is_some() || a.tol.is_some() || a.robust.is_some() {
         return bad_input(
@@ -674,6 +680,6 @@ fn run_periodic(
         &fit,
         report,
         inputs,
-        v,
+        cx,
     )
 }

@@ -5,7 +5,7 @@ use anyhow::Result;
 use lekalo_io::{Object, Series, Style};
 
 use crate::cmd::measure::query_curve;
-use crate::io::bad_input;
+use crate::exit::bad_input;
 
 /// Longest tooth, as a fraction of the larger side of the curve's bounding box.
 const TOOTH: f64 = 0.2;

@@ -6,14 +6,13 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use lekalo_io::{sample_table, Object, SampleSpec};
-use rayon::prelude::*;
 use serde_json::json;
 
-use crate::io::{
-    bad_input, emit, emit_stream, format_of, in_range, load, not_a_curve, numbers, progress,
-    BadInput, Loaded,
-};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::{not_a_curve, open, Items};
+use crate::output::{emit, emit_stream, format_of, progress};
+use crate::values::numbers;
 
 /// Arguments of `lekalo eval`.
 #[derive(Args, Debug)]
@@ -38,7 +37,7 @@ Examples:
 
 Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
 of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
-u, v, the point, the partial derivatives du{a}v{b}x … of every total order up to
+u, cx, the point, the partial derivatives du{a}v{b}x … of every total order up to
 --derivatives (du1v0x is ∂x/∂u), with --normals the unit normal nx, ny, nz, with --curvature
 the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the surface bends
 towards the normal (S_u × S_v)/|S_u × S_v|).
@@ -99,12 +98,13 @@ const DEFAULT_SAMPLES: usize = 11;
 /// Highest `--derivatives` (every derivative above the degree is zero).
 const MAX_DERIVATIVES: usize = 1000;
 
-fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
+/// The parameters of one curve: `--at`, or `--samples` spread evenly over its domain.
+fn parameters(cx: &Context, a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
     match (&a.at, a.samples) {
         (Some(at), _) => numbers(at, "--at"),
         (None, n) => {
-            let n = in_range(n.unwrap_or(DEFAULT_SAMPLES), 1, usize::MAX, "--samples")?;
-            check_table(a, obj, n)?;
+            let n = cx.in_range(n.unwrap_or(DEFAULT_SAMPLES), 1, usize::MAX, "--samples")?;
+            check_table(cx, a, obj, n)?;
             Ok(obj.uniform_parameters(n))
         }
     }
@@ -114,9 +114,9 @@ fn parameters(a: &EvalArgs, obj: &Object) -> Result<Vec<f64>> {
 /// Lines, Parquet) whose samples × columns are above `--max-size`: 3·10^6 samples with
 /// curvature in a Parquet batch ran out of memory. One curve's CSV is written chunk by chunk
 /// and only `--samples` itself is limited.
-fn check_table(a: &EvalArgs, obj: &Object, n: usize) -> Result<()> {
-    let streamed = !crate::cmd::parquet_batch::is_parquet(&a.input)
-        && !crate::io::is_json_lines(&a.input, a.jsonl)
+fn check_table(cx: &Context, a: &EvalArgs, obj: &Object, n: usize) -> Result<()> {
+    let streamed = !crate::items::is_parquet(&a.input)
+        && !crate::items::is_json_lines(&a.input, a.jsonl)
         && !a.json
         && format_of(a.format.as_deref(), a.output.as_deref(), "csv") == "csv";
     if streamed {
@@ -127,7 +127,7 @@ fn check_table(a: &EvalArgs, obj: &Object, n: usize) -> Result<()> {
         .saturating_mul(a.derivatives.saturating_add(1))
         .saturating_add(1 + usize::from(a.curvature) + usize::from(a.torsion));
     let values = n.saturating_mul(columns);
-    let limit = crate::io::settings().max_size;
+    let limit = cx.max_size;
     if values > limit {
         return bad_input(format!(
             "--samples {n}: {n} samples of {columns} columns are {values} values, above the size limit {limit}; take fewer samples or columns, write one curve's samples as CSV (streamed), or raise the limit with --max-size {values} if the machine has the memory"
@@ -147,7 +147,7 @@ fn check_derivatives(a: &EvalArgs) -> Result<()> {
     Ok(())
 }
 
-pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &EvalArgs, cx: &Context) -> Result<()> {
     let spec = SampleSpec {
         derivatives: a.derivatives,
         curvature: a.curvature,
@@ -155,18 +155,21 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
     };
     let inputs = vec![a.input.clone()];
     check_derivatives(a)?;
-    if crate::cmd::parquet_batch::is_parquet(&a.input) {
-        let params = |o: &Object| parameters(a, o);
-        return crate::cmd::parquet_batch::eval(&a.input, a.output.as_deref(), &params, spec, v);
-    }
-    match load(&a.input, a.jsonl, v)? {
-        Loaded::Other(lekalo_io::Shape::Surface(_)) if a.torsion => bad_input(
+    match open(cx, &a.input, a.jsonl)? {
+        Items::Parquet(input) => crate::batch::parquet::samples_of_curves(
+            cx,
+            &input,
+            a.output.as_deref(),
+            spec,
+            &|o: &Object| parameters(cx, a, o),
+        ),
+        Items::Other(lekalo_io::Shape::Surface(_)) if a.torsion => bad_input(
             "--torsion is for 3-D curves; a surface's principal, Gaussian and mean curvatures come with --curvature",
         ),
-        Loaded::Other(lekalo_io::Shape::Surface(_)) if a.at_file.is_some() => bad_input(
+        Items::Other(lekalo_io::Shape::Surface(_)) if a.at_file.is_some() => bad_input(
             "--at-file is for splines in 3 or more parameters; a surface takes --uv-file",
         ),
-        Loaded::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
+        Items::Other(lekalo_io::Shape::Surface(s)) => crate::cmd::surface_eval::run(
             &crate::cmd::surface_eval::SurfaceEval {
                 input: &a.input,
                 uv: &a.uv,
@@ -180,9 +183,9 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                 output: a.output.as_deref(),
             },
             &s,
-            v,
+            cx,
         ),
-        Loaded::Other(lekalo_io::Shape::Tensor(_))
+        Items::Other(lekalo_io::Shape::Tensor(_))
             if a.samples.is_some()
                 || a.derivatives > 0
                 || a.curvature
@@ -194,7 +197,7 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         {
             bad_input("a spline in N parameters is evaluated at --at x1,…,xN or --at-file FILE; --samples, --derivatives, --curvature, --torsion, --normals, --grid, --uv and --uv-file are for curves and surfaces (partial derivatives: the Python TensorBSpline's nu=)")
         }
-        Loaded::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
+        Items::Other(lekalo_io::Shape::Tensor(t)) => crate::cmd::tensor::eval(
             &crate::cmd::tensor::TensorEval {
                 input: &a.input,
                 at: a.at.as_deref(),
@@ -203,10 +206,10 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                 output: a.output.as_deref(),
             },
             &t,
-            v,
+            cx,
         ),
-        Loaded::Other(s) => not_a_curve(&a.input, &s),
-        Loaded::One(_) | Loaded::Many(_)
+        Items::Other(s) => not_a_curve(&a.input, &s),
+        Items::One(_) | Items::Lines(_)
             if !a.uv.is_empty()
                 || a.uv_file.is_some()
                 || a.grid.is_some()
@@ -215,20 +218,20 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
         {
             bad_input("--uv, --uv-file, --grid and --normals are for surfaces, --at-file for splines in 3 or more parameters; a curve takes --at or --samples")
         }
-        Loaded::One(obj) if a.torsion && obj.dim() != 3 => bad_input(format!(
+        Items::One(obj) if a.torsion && obj.dim() != 3 => bad_input(format!(
             "{}: --torsion needs a 3-D curve and this one is {}-D (a planar curve's torsion is zero everywhere); drop --torsion",
             a.input.display(),
             obj.dim()
         )),
-        Loaded::One(obj) => {
-            let ts = parameters(a, &obj)?;
+        Items::One(obj) => {
+            let ts = parameters(cx, a, &obj)?;
             let fmt = if a.json {
                 "json".to_string()
             } else {
                 format_of(a.format.as_deref(), a.output.as_deref(), "csv")
             };
             if fmt == "csv" && ts.len() > CHUNK {
-                return eval_csv_streamed(a, &obj, &ts, spec, &inputs, v);
+                return eval_csv_streamed(a, &obj, &ts, spec, &inputs, cx);
             }
             let table = sample_table(&obj, &ts, spec)
                 .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
@@ -238,30 +241,15 @@ pub(crate) fn run(a: &EvalArgs, v: Verbosity) -> Result<()> {
                 "npy" => table.to_npy()?,
                 other => return bad_input(format!("--format {other}: use csv, json or npy")),
             };
-            emit(a.output.as_deref(), &bytes, &inputs, v)
+            emit(a.output.as_deref(), &bytes, &inputs, cx)
         }
-        Loaded::Many(items) => {
-            let bar = progress(items.len(), v);
-            let lines: Vec<(bool, String)> = items
-                .into_par_iter()
-                .map(|(line, obj)| {
-                    let r = obj.map_err(|e| e.to_string()).and_then(|o| {
-                        let ts = parameters(a, &o).map_err(|e| e.to_string())?;
-                        sample_table(&o, &ts, spec)
-                            .map_err(|e| format!("{}:{line}: {e}", a.input.display()))
-                    });
-                    bar.inc(1);
-                    match r {
-                        Ok(t) => (
-                            true,
-                            json!({"line": line, "columns": t.header, "rows": t.rows}).to_string(),
-                        ),
-                        Err(e) => (false, json!({"line": line, "error": e}).to_string()),
-                    }
-                })
-                .collect();
-            bar.finish_and_clear();
-            crate::io::finish_batch(lines, a.output.as_deref(), &inputs, v)
+        Items::Lines(items) => {
+            crate::batch::lines::run(cx, items, a.output.as_deref(), &inputs, |line, o| {
+                let ts = parameters(cx, a, &o).map_err(|e| e.to_string())?;
+                let t = sample_table(&o, &ts, spec)
+                    .map_err(|e| format!("{}:{line}: {e}", a.input.display()))?;
+                Ok(json!({"line": line, "columns": t.header, "rows": t.rows}))
+            })
         }
     }
 }
@@ -278,7 +266,7 @@ fn eval_csv_streamed(
     ts: &[f64],
     spec: SampleSpec,
     inputs: &[PathBuf],
-    v: Verbosity,
+    cx: &Context,
 ) -> Result<()> {
     let (lo, hi) = obj.domain();
     if let Some(t) = ts.iter().find(|t| !(lo..=hi).contains(*t)) {
@@ -286,9 +274,9 @@ fn eval_csv_streamed(
         sample_table(obj, &[*t], spec)
             .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
     }
-    let bar = progress(ts.len(), v);
+    let bar = progress(cx, ts.len());
     let mut failure: Option<lekalo::Error> = None;
-    let r = emit_stream(a.output.as_deref(), inputs, v, |w| {
+    let r = emit_stream(a.output.as_deref(), inputs, cx, |w| {
         for (k, chunk) in ts.chunks(CHUNK).enumerate() {
             let table = match sample_table(obj, chunk, spec) {
                 Ok(t) => t,

@@ -7,13 +7,11 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use lekalo_io::{Object, Shape};
-use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::cmd::shapes;
-use crate::io::finish_batch;
-use crate::io::{load, not_a_curve, progress, Loaded};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::items::{not_a_curve, open, Items};
 
 /// Arguments of `lekalo info`.
 #[derive(Args, Debug)]
@@ -189,20 +187,20 @@ fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
     }
 }
 
-pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
     let inputs = vec![a.input.clone()];
-    let samples = crate::io::in_range(a.samples, 2, 1_000_000, "--samples")?;
-    let loaded = load(&a.input, a.jsonl, v).map_err(|e| points_file_hint(&a.input, e))?;
+    let samples = cx.in_range(a.samples, 2, 1_000_000, "--samples")?;
+    let loaded = open(cx, &a.input, a.jsonl).map_err(|e| points_file_hint(&a.input, e))?;
     match loaded {
-        Loaded::Other(Shape::Tensor(t)) => crate::report::print_report(
+        Items::Other(Shape::Tensor(t)) => crate::report::print_report(
             a.json,
             &crate::cmd::tensor::info_json(&t),
             crate::cmd::tensor::info_text,
             a.output.as_deref(),
             &inputs,
-            v,
+            cx,
         ),
-        Loaded::Other(shape) => {
+        Items::Other(shape) => {
             let j = match &shape {
                 Shape::Surface(s) => shapes::surface_info_json(s, samples)?,
                 Shape::Pp(p) => shapes::pp_info_json(p, samples)?,
@@ -214,36 +212,23 @@ pub(crate) fn run(a: &InfoArgs, v: Verbosity) -> Result<()> {
                 shapes::info_text,
                 a.output.as_deref(),
                 &inputs,
-                v,
+                cx,
             )
         }
-        Loaded::One(obj) => {
-            crate::io::check_bezier_degree(&obj, "sampling")?;
+        Items::One(obj) => {
+            cx.check_bezier_degree(&obj, "sampling")?;
             let j = info_json(&obj, samples)?;
-            crate::report::print_report(a.json, &j, info_text, a.output.as_deref(), &inputs, v)
+            crate::report::print_report(a.json, &j, info_text, a.output.as_deref(), &inputs, cx)
         }
-        Loaded::Many(items) => {
-            let bar = progress(items.len(), v);
-            let lines: Vec<(bool, String)> = items
-                .into_par_iter()
-                .map(|(line, obj)| {
-                    let r = obj.map_err(|e| e.to_string()).and_then(|o| {
-                        crate::io::check_bezier_degree(&o, "sampling")
-                            .map_err(|e| format!("{}:{line}: {e}", a.input.display()))?;
-                        info_json(&o, samples).map_err(|e| e.to_string())
-                    });
-                    bar.inc(1);
-                    match r {
-                        Ok(mut j) => {
-                            j["line"] = json!(line);
-                            (true, j.to_string())
-                        }
-                        Err(e) => (false, json!({"line": line, "error": e}).to_string()),
-                    }
-                })
-                .collect();
-            bar.finish_and_clear();
-            finish_batch(lines, a.output.as_deref(), &inputs, v)
+        Items::Lines(items) => {
+            crate::batch::lines::run(cx, items, a.output.as_deref(), &inputs, |line, o| {
+                cx.check_bezier_degree(&o, "sampling")
+                    .map_err(|e| format!("{}:{line}: {e}", a.input.display()))?;
+                let mut j = info_json(&o, samples).map_err(|e| e.to_string())?;
+                j["line"] = json!(line);
+                Ok(j)
+            })
         }
+        Items::Parquet(input) => crate::items::not_a_batch_command(&input),
     }
 }

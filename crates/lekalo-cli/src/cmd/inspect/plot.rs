@@ -11,10 +11,10 @@ use lekalo_io::{
 };
 
 use crate::cmd::shapes;
-use crate::io::{
-    bad_input, emit, format_of, in_range, load, load_one, not_a_curve, BadInput, Loaded,
-};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::{load_one, not_a_curve, open, Items};
+use crate::output::{emit, format_of};
 
 /// Arguments of `lekalo plot`.
 #[derive(Args, Debug)]
@@ -127,12 +127,17 @@ impl CurvatureMap {
 const CURVE_SAMPLES: usize = 400;
 
 /// The figure `plot` draws for one object.
-pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) -> Result<Figure> {
+pub(crate) fn figure(
+    cx: &Context,
+    obj: &Object,
+    a: &PlotArgs,
+    data: Option<&lekalo::Points>,
+) -> Result<Figure> {
     if a.basis {
         let mut fig = basis_figure(
             &obj.knots(),
             obj.degree(),
-            in_range(
+            cx.in_range(
                 a.samples.unwrap_or(CURVE_SAMPLES),
                 2,
                 PLOT_SAMPLES,
@@ -148,7 +153,7 @@ pub(crate) fn figure(obj: &Object, a: &PlotArgs, data: Option<&lekalo::Points>) 
         obj,
         &CurvePlot {
             title: a.title.clone(),
-            samples: in_range(
+            samples: cx.in_range(
                 a.samples.unwrap_or(CURVE_SAMPLES),
                 2,
                 PLOT_SAMPLES,
@@ -218,12 +223,12 @@ fn check_view(a: &PlotArgs) -> Result<()> {
     Ok(())
 }
 
-pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &PlotArgs, cx: &Context) -> Result<()> {
     check_view(a)?;
     let format = format_of(a.to.as_deref(), a.output.as_deref(), "svg");
-    let obj = match load(&a.input, false, v)? {
-        Loaded::One(o) => o,
-        Loaded::Other(shape) => {
+    let obj = match open(cx, &a.input, false)? {
+        Items::One(o) => o,
+        Items::Other(shape) => {
             let fig = match &shape {
                 _ if a.basis || a.points.is_some() || a.comb => {
                     return bad_input(format!(
@@ -233,7 +238,7 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                     ))
                 }
                 Shape::Surface(s) => {
-                    let side = in_range(
+                    let side = cx.in_range(
                         a.samples.unwrap_or(SURFACE_SAMPLES),
                         2,
                         1000,
@@ -269,7 +274,7 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 }
                 Shape::Pp(p) => shapes::pp_figure(
                     p,
-                    in_range(
+                    cx.in_range(
                         a.samples.unwrap_or(CURVE_SAMPLES),
                         2,
                         PLOT_SAMPLES,
@@ -279,15 +284,15 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
                 )?,
                 other => return not_a_curve(&a.input, other),
             };
-            let bytes = crate::io::encode(&fig, &format, a.scale)?;
+            let bytes = crate::output::encode(&fig, &format, a.scale)?;
             return emit(
                 a.output.as_deref().filter(|p| *p != Path::new("-")),
                 &bytes,
                 std::slice::from_ref(&a.input),
-                v,
+                cx,
             );
         }
-        Loaded::Many(_) => return load_one(&a.input, v).map(|_| ()),
+        Items::Lines(_) | Items::Parquet(_) => return load_one(cx, &a.input).map(|_| ()),
     };
     if a.curvature.is_some() {
         return bad_input(format!(
@@ -299,16 +304,16 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
     let data = match &a.points {
         Some(p) => {
             inputs.push(p.clone());
-            Some(crate::io::read_points(p)?.0)
+            Some(crate::items::read_points(cx, p)?.0)
         }
         None => None,
     };
     if !a.basis {
-        crate::io::check_bezier_degree(&obj, "plotting")?;
+        cx.check_bezier_degree(&obj, "plotting")?;
     }
-    let mut fig = figure(&obj, a, data.as_ref())?;
+    let mut fig = figure(cx, &obj, a, data.as_ref())?;
     if a.comb && !a.basis {
-        let teeth = in_range(a.comb_teeth, 2, 100_000, "--comb-teeth")?;
+        let teeth = cx.in_range(a.comb_teeth, 2, 100_000, "--comb-teeth")?;
         fig.series
             .extend(crate::cmd::comb::comb_series(&obj, &a.input, teeth)?);
     }
@@ -324,11 +329,11 @@ pub(crate) fn run(a: &PlotArgs, v: Verbosity) -> Result<()> {
         fig.series
             .push(lekalo_io::residual_series(data, &feet, &projection)?);
     }
-    let bytes = crate::io::encode(&fig, &format, a.scale)?;
+    let bytes = crate::output::encode(&fig, &format, a.scale)?;
     emit(
         a.output.as_deref().filter(|p| *p != Path::new("-")),
         &bytes,
         &inputs,
-        v,
+        cx,
     )
 }

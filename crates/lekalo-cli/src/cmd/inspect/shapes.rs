@@ -12,7 +12,7 @@ use lekalo_io::{
 };
 use serde_json::{json, Value};
 
-use crate::io::bad_input;
+use crate::exit::bad_input;
 
 fn bbox(p: &Points) -> Value {
     p.bounding_box()
@@ -295,7 +295,7 @@ pub(crate) fn convert(
     step_name: &str,
     timestamp: &str,
 ) -> Result<Vec<u8>> {
-    let plot = |fig: &Figure| crate::io::encode(fig, format, 2.0);
+    let plot = |fig: &Figure| crate::output::encode(fig, format, 2.0);
     match (shape, format) {
         (_, "json") => Ok(shape.to_json_pretty().into_bytes()),
         (Shape::Surface(s), "step") => Ok(surface_step(s, step_name, timestamp)?.into_bytes()),
@@ -330,5 +330,5 @@ fn samples_side(samples: usize) -> usize {
 
 /// True when `convert` is asked for CSV (by `--to` or the output's extension).
 pub(crate) fn surface_csv_wanted(to: Option<&str>, out: Option<&std::path::Path>) -> bool {
-    crate::io::format_of(to, out, "json") == "csv"
+    crate::output::format_of(to, out, "json") == "csv"
 }

@@ -6,8 +6,10 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use lekalo_io::{surface_sample_table, Surface, SurfaceSampleSpec};
 
-use crate::io::{bad_input, emit, format_of, numbers, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::output::{emit, format_of};
+use crate::values::numbers;
 
 /// What `eval` asks of a surface.
 pub(crate) struct SurfaceEval<'a> {
@@ -57,7 +59,7 @@ pub(crate) fn grid_size(text: &str, what: &str) -> Result<(usize, usize)> {
     Ok((a, b))
 }
 
-fn pairs(e: &SurfaceEval<'_>, s: &Surface) -> Result<Vec<[f64; 2]>> {
+fn pairs(cx: &Context, e: &SurfaceEval<'_>, s: &Surface) -> Result<Vec<[f64; 2]>> {
     let mut out = Vec::new();
     for (k, text) in e.uv.iter().enumerate() {
         let v = numbers(text, &format!("--uv (pair {})", k + 1))?;
@@ -71,7 +73,7 @@ fn pairs(e: &SurfaceEval<'_>, s: &Surface) -> Result<Vec<[f64; 2]>> {
         out.extend(v.chunks_exact(2).map(|c| [c[0], c[1]]));
     }
     if let Some(f) = e.uv_file {
-        let (pts, name) = crate::io::read_points(f)?;
+        let (pts, name) = crate::items::read_points(cx, f)?;
         if pts.dim() != 2 {
             return bad_input(format!(
                 "{name}: --uv-file needs two columns u, v; found {}",
@@ -96,8 +98,8 @@ fn pairs(e: &SurfaceEval<'_>, s: &Surface) -> Result<Vec<[f64; 2]>> {
     Ok(s.grid_parameters(nu, nv))
 }
 
-pub(crate) fn run(e: &SurfaceEval<'_>, s: &Surface, v: Verbosity) -> Result<()> {
-    let uv = pairs(e, s)?;
+pub(crate) fn run(e: &SurfaceEval<'_>, s: &Surface, cx: &Context) -> Result<()> {
+    let uv = pairs(cx, e, s)?;
     let spec = SurfaceSampleSpec {
         derivatives: e.derivatives,
         normals: e.normals,
@@ -112,7 +114,7 @@ pub(crate) fn run(e: &SurfaceEval<'_>, s: &Surface, v: Verbosity) -> Result<()> 
         other => return bad_input(format!("--format {other}: use csv or json")),
     };
     let inputs: Vec<PathBuf> = vec![e.input.to_path_buf()];
-    emit(e.output, text.as_bytes(), &inputs, v)
+    emit(e.output, text.as_bytes(), &inputs, cx)
 }
 
 #[cfg(test)]

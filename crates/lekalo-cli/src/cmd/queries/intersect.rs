@@ -9,8 +9,11 @@ use lekalo::query::{Contact, CurveIntersection, PlaneIntersection};
 use serde_json::{json, Map, Value};
 
 use crate::cmd::measure::query_curve;
-use crate::io::{bad_input, emit, load_one, numbers, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::load_one;
+use crate::output::emit;
+use crate::values::numbers;
 
 /// Arguments of `lekalo intersect`.
 #[derive(Args, Debug)]
@@ -52,8 +55,8 @@ pub(crate) struct IntersectArgs {
     output: Option<PathBuf>,
 }
 
-pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
-    let qa = query_curve(&load_one(&a.first, v)?, &a.first)?;
+pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
+    let qa = query_curve(&load_one(cx, &a.first)?, &a.first)?;
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.first.display()));
     let mut inputs = vec![a.first.clone()];
     let hits: Vec<Value> = if let Some(plane) = &a.plane {
@@ -82,7 +85,7 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
             return bad_input("give a second curve, --self or --plane");
         };
         inputs.push(second.clone());
-        let qb = query_curve(&load_one(second, v)?, second)?;
+        let qb = query_curve(&load_one(cx, second)?, second)?;
         qa.intersect(&qb, a.tolerance)
             .map_err(bad)?
             .iter()
@@ -94,7 +97,7 @@ pub(crate) fn run(a: &IntersectArgs, v: Verbosity) -> Result<()> {
     } else {
         hits.iter().map(csv_row).collect()
     };
-    emit(a.output.as_deref(), text.as_bytes(), &inputs, v)
+    emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
 }
 
 /// The JSON object of a point answer: its kind, the given parameter fields and the point, then

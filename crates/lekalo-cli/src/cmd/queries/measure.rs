@@ -10,8 +10,11 @@ use lekalo::QueryCurve;
 use lekalo_io::Object;
 use serde_json::json;
 
-use crate::io::{bad_input, emit, load_one, numbers, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::load_one;
+use crate::output::emit;
+use crate::values::numbers;
 
 /// Arguments of `lekalo measure`.
 #[derive(Args, Debug)]
@@ -65,12 +68,12 @@ pub(crate) fn number_file(path: &Path) -> Result<Vec<f64>> {
     Ok(lekalo_io::parse_number_list(&text, &name)?)
 }
 
-pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &MeasureArgs, cx: &Context) -> Result<()> {
     let (text, name) = lekalo_io::read_input(&a.input)?;
     if let Ok(lekalo_io::Shape::Surface(s)) = lekalo_io::Shape::from_json_str(&text, &name) {
-        return run_surface(a, &s, v);
+        return run_surface(a, &s, cx);
     }
-    let obj = load_one(&a.input, v)?;
+    let obj = load_one(cx, &a.input)?;
     let q = query_curve(&obj, &a.input)?;
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
     let table = q.arc_length(a.tolerance).map_err(bad)?;
@@ -147,12 +150,12 @@ pub(crate) fn run(a: &MeasureArgs, v: Verbosity) -> Result<()> {
         a.output.as_deref(),
         text.as_bytes(),
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )
 }
 
 /// `measure` of a surface: its domain and exact bounding box.
-fn run_surface(a: &MeasureArgs, s: &lekalo_io::Surface, v: Verbosity) -> Result<()> {
+fn run_surface(a: &MeasureArgs, s: &lekalo_io::Surface, cx: &Context) -> Result<()> {
     if a.at_length.is_some() || a.lengths.is_some() {
         return bad_input("--at-length and --lengths measure curves; the input is a surface");
     }
@@ -175,6 +178,6 @@ fn run_surface(a: &MeasureArgs, s: &lekalo_io::Surface, v: Verbosity) -> Result<
         a.output.as_deref(),
         text.as_bytes(),
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )
 }

@@ -9,8 +9,9 @@ use lekalo_io::Shape;
 use serde_json::json;
 
 use crate::cmd::measure::{query_curve, query_surface};
-use crate::io::{bad_input, emit, format_of, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::output::{emit, format_of};
 
 /// Arguments of `lekalo mesh`.
 #[derive(Args, Debug)]
@@ -42,7 +43,7 @@ pub(crate) struct MeshArgs {
     output: Option<PathBuf>,
 }
 
-pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     let (text, name) = lekalo_io::read_input(&a.input)?;
     let shape = Shape::from_json_str(&text, &name)?;
     // the tolerance alone sets the size of the result: its refusals name the option
@@ -92,16 +93,16 @@ pub(crate) fn run(a: &MeshArgs, v: Verbosity) -> Result<()> {
             None,
             format!("{summary:#}\n").as_bytes(),
             std::slice::from_ref(&a.input),
-            v,
+            cx,
         );
     }
     if a.json {
-        crate::io::report(&summary.to_string());
+        crate::output::report(&summary.to_string());
     }
     emit(
         a.output.as_deref(),
         body.as_bytes(),
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )
 }

@@ -11,8 +11,10 @@ use lekalo_io::{Object, Shape};
 use serde_json::json;
 
 use crate::cmd::measure::query_curve;
-use crate::io::{emit, load_one, report, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::BadInput;
+use crate::items::load_one;
+use crate::output::{emit, report};
 
 /// Arguments of `lekalo offset`.
 #[derive(Args, Debug)]
@@ -66,15 +68,15 @@ fn report_json(a: &OffsetArgs, off: &Offset) -> String {
     format!("{j:#}\n")
 }
 
-pub(crate) fn run(a: &OffsetArgs, v: Verbosity) -> Result<()> {
-    let q = query_curve(&load_one(&a.input, v)?, &a.input)?;
+pub(crate) fn run(a: &OffsetArgs, cx: &Context) -> Result<()> {
+    let q = query_curve(&load_one(cx, &a.input)?, &a.input)?;
     let off = q
         .offset(a.distance, a.tolerance)
         .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
     let text = if a.json {
         report_json(a, &off)
     } else {
-        if v != Verbosity::Quiet && !off.cusps.is_empty() {
+        if !cx.is_quiet() && !off.cusps.is_empty() {
             report(&format!(
                 "note: {} cusp(s) where |d| exceeds the radius of curvature, {} loop(s) cut out \
                  (--json lists them){}",
@@ -100,6 +102,6 @@ pub(crate) fn run(a: &OffsetArgs, v: Verbosity) -> Result<()> {
         a.output.as_deref(),
         text.as_bytes(),
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )
 }

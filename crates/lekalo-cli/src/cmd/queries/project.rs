@@ -9,8 +9,10 @@ use lekalo_io::{Object, Shape};
 use serde_json::json;
 
 use crate::cmd::measure::{query_curve, query_surface};
-use crate::io::{bad_input, emit, numbers, BadInput};
-use crate::Verbosity;
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::output::emit;
+use crate::values::numbers;
 
 /// Arguments of `lekalo project`.
 #[derive(Args, Debug)]
@@ -20,7 +22,7 @@ and distance. A batch of points comes from --points (CSV, whitespace columns or 
 `make`); batches run in parallel with results independent of the thread count. With --all TOL
 every local minimum within TOL of the least distance is listed (one row each).
 
-Output CSV: a header row, then the columns index (of the query point), t (or u, v), the closest
+Output CSV: a header row, then the columns index (of the query point), t (or u, cx), the closest
 point's coordinates, distance: `index,t,x,y,distance` for a planar curve.
 
 Examples:
@@ -73,7 +75,7 @@ pub(crate) fn closest_points(
         .map_err(|e| bad(e).into())
 }
 
-pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
+pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
     let (text, name) = lekalo_io::read_input(&a.input)?;
     let shape = Shape::from_json_str(&text, &name)?;
     let mut rows: Vec<f64> = Vec::new();
@@ -177,6 +179,6 @@ pub(crate) fn run(a: &ProjectArgs, v: Verbosity) -> Result<()> {
         a.output.as_deref(),
         text.as_bytes(),
         std::slice::from_ref(&a.input),
-        v,
+        cx,
     )
 }

@@ -1,27 +1,23 @@
-//! Parquet batches for `interpolate`, `fit`, `eval` and `convert` (docs/formats.md#parquet-batches):
-//! read a batch of a few MiB at a time, decoding, the groups' work (in parallel) and encoding
-//! overlapped (`pipeline`), row groups written by size, so memory is bounded by a few batches
-//! and one output row group. A bad
-//! group is written with its `error`, reported on stderr with its key, and does not stop the
-//! others; the exit code is then 2.
+//! Parquet batches (docs/formats.md#parquet-batches): the command's work on one group of
+//! points ([`curves_of_groups`], [`samples_of_groups`]) or one curve ([`samples_of_curves`])
+//! applied to every group of a batch. A batch is read a few MiB at a time, decoding, the
+//! groups' work (in parallel) and encoding overlapped (`pipeline`), row groups written by
+//! size, so memory is bounded by a few batches and one output row group. A bad group is
+//! written with its `error`, reported on stderr with its key, and does not stop the others;
+//! the exit code is then 2. Also the conversion of curves between Parquet and JSON Lines
+//! ([`convert_curves`]).
 
 use lekalo_io::CurveJson;
 use std::path::Path;
 
 use anyhow::Result;
-use lekalo::CurveInterpolation;
 use lekalo_io::{GroupKey, IoError, Object, ParquetBatchWriter, SampleSpec};
 use rayon::prelude::*;
 
-use crate::io::{bad_input, group_column, report, settings, BadInput};
-use crate::Verbosity;
-
-/// True for a `.parquet` (or `.pq`) path.
-pub(crate) fn is_parquet(path: &Path) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("parquet") || e.eq_ignore_ascii_case("pq"))
-}
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::items::is_parquet;
+use crate::output::report;
 
 /// The output path of a batch: a `.parquet` file (batches are not written to stdout).
 fn parquet_output<'a>(out: Option<&'a Path>, what: &str) -> Result<&'a Path> {
@@ -64,28 +60,22 @@ type Writer<'w> = ParquetBatchWriter<&'w mut (dyn std::io::Write + Send)>;
 /// layout of a batch that had no rows. An error of `fill` keeps its own kind (a bad input is
 /// exit code 2, not a failed write).
 fn write_parquet(
+    cx: &Context,
     input: &Path,
     out: &Path,
     fill: impl FnOnce(&mut Writer<'_>) -> lekalo_io::IoResult<()>,
     empty: impl FnOnce(&mut Writer<'_>) -> std::io::Result<()>,
 ) -> Result<()> {
     let mut input_error: Option<IoError> = None;
-    lekalo_io::write_atomic_send(
-        out,
-        &[input.to_path_buf()],
-        lekalo_io::WriteOptions {
-            force: settings().force,
-        },
-        |w| {
-            let mut writer = ParquetBatchWriter::new(w).with_row_group_bytes(ROW_GROUP_BYTES);
-            fill(&mut writer).map_err(|e| {
-                let msg = e.to_string();
-                input_error = Some(e);
-                std::io::Error::other(msg)
-            })?;
-            writer.close(empty)
-        },
-    )
+    lekalo_io::write_atomic_send(out, &[input.to_path_buf()], cx.write_options(), |w| {
+        let mut writer = ParquetBatchWriter::new(w).with_row_group_bytes(ROW_GROUP_BYTES);
+        fill(&mut writer).map_err(|e| {
+            let msg = e.to_string();
+            input_error = Some(e);
+            std::io::Error::other(msg)
+        })?;
+        writer.close(empty)
+    })
     .map_err(|e| input_error.take().unwrap_or(e))?;
     Ok(())
 }
@@ -164,34 +154,23 @@ fn each_group<T: Send>(
         .collect()
 }
 
-/// `lekalo interpolate points.parquet -o curves.parquet`: one curve per group.
-pub(crate) fn interpolate(
+/// The curve that `make` gives of each group, sampled at `n` evenly spaced parameters over
+/// its domain, in one pass (no curve file in between): the samples layout of [`samples_of_curves`]
+/// at the same parameters, bit for bit (`lekalo interpolate points.parquet --samples N`).
+pub(crate) fn samples_of_groups(
+    cx: &Context,
     input: &Path,
-    interp: &CurveInterpolation,
     out: Option<&Path>,
-    v: Verbosity,
-) -> Result<()> {
-    curves_of_groups(input, out, v, &|p: &lekalo::Points| -> Result<Object> {
-        Ok(Object::BSpline(interp.interpolate(p.as_view())?))
-    })
-}
-
-/// `lekalo interpolate points.parquet --samples N -o samples.parquet`: each group's curve
-/// sampled at `n` evenly spaced parameters, in one pass (no curve file in between): the
-/// samples layout of `lekalo eval curves.parquet --samples N`, bit for bit.
-pub(crate) fn interpolate_samples(
-    input: &Path,
-    interp: &CurveInterpolation,
     n: usize,
-    out: Option<&Path>,
-    v: Verbosity,
+    make: &(dyn Fn(&lekalo::Points) -> Result<Object> + Sync),
 ) -> Result<()> {
     let out = parquet_output(out, "samples")?;
-    let key = &group_column();
+    let key = &cx.group_column;
     let mut failed = Vec::new();
     let mut total = 0usize;
     let mut header: Option<Vec<String>> = None;
     write_parquet(
+        cx,
         input,
         out,
         |writer| {
@@ -199,31 +178,31 @@ pub(crate) fn interpolate_samples(
                 |each| lekalo_io::read_point_groups(input, Some(key), each),
                 |groups: Vec<lekalo_io::PointGroup>| {
                     each_group(groups, input, |p| -> Result<Sampled> {
-                        let o = Object::BSpline(interp.interpolate(p.as_view())?);
+                        let o = make(p)?;
                         Ok(sampled(&o, o.uniform_parameters(n))?)
                     })
                 },
                 |rows| {
                     total += rows.len();
-                    write_points(rows, input, writer, &mut header, &mut failed)
+                    write_points(rows, input, key, writer, &mut header, &mut failed)
                         .map_err(write_error(out))
                 },
             )
         },
         empty_samples(key),
     )?;
-    finish_samples(&failed, total, input, out, v)
+    finish_samples(cx, &failed, total, input, out)
 }
 
 /// [`finish`] for a samples file, after the `--verbose` report of what it holds.
 fn finish_samples(
+    cx: &Context,
     failed: &[String],
     total: usize,
     input: &Path,
     out: &Path,
-    v: Verbosity,
 ) -> Result<()> {
-    if v == Verbosity::Verbose {
+    if cx.is_verbose() {
         report(&format!(
             "wrote the samples of {} curves to {}",
             total - failed.len(),
@@ -244,18 +223,20 @@ fn empty_samples(key: &str) -> impl FnOnce(&mut Writer<'_>) -> std::io::Result<(
     }
 }
 
-/// `lekalo interpolate` or `lekalo fit` of a Parquet batch: `make` gives each group's curve.
+/// The curve that `make` gives of each group of points, written as a batch of curves
+/// (`lekalo interpolate` and `lekalo fit` of a Parquet batch).
 pub(crate) fn curves_of_groups(
+    cx: &Context,
     input: &Path,
     out: Option<&Path>,
-    v: Verbosity,
     make: &(dyn Fn(&lekalo::Points) -> Result<Object> + Sync),
 ) -> Result<()> {
     let out = parquet_output(out, "curves")?;
-    let key = &group_column();
+    let key = &cx.group_column;
     let mut failed = Vec::new();
     let mut total = 0usize;
     write_parquet(
+        cx,
         input,
         out,
         |writer| {
@@ -271,7 +252,7 @@ pub(crate) fn curves_of_groups(
         },
         |w| w.write_curves(key, &[]),
     )?;
-    if v == Verbosity::Verbose {
+    if cx.is_verbose() {
         report(&format!(
             "wrote {} curves to {}",
             total - failed.len(),
@@ -281,21 +262,23 @@ pub(crate) fn curves_of_groups(
     finish(&failed, total, input)
 }
 
-/// `lekalo eval curves.parquet -o samples.parquet`: the samples of every curve.
-pub(crate) fn eval(
+/// The samples of every curve of a batch at the parameters that `params` gives of it: points,
+/// and the derivatives, curvature and torsion of `spec` (`lekalo eval curves.parquet`).
+pub(crate) fn samples_of_curves(
+    cx: &Context,
     input: &Path,
     out: Option<&Path>,
-    params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
     spec: SampleSpec,
-    v: Verbosity,
+    params: &(dyn Fn(&Object) -> Result<Vec<f64>> + Sync),
 ) -> Result<()> {
     let out = parquet_output(out, "samples")?;
-    let key = &group_column();
+    let key = &cx.group_column;
     let mut failed = Vec::new();
     let mut total = 0usize;
     let mut header: Option<Vec<String>> = None;
     let points_only = spec.derivatives == 0 && !spec.curvature && !spec.torsion;
     write_parquet(
+        cx,
         input,
         out,
         |writer| {
@@ -312,11 +295,11 @@ pub(crate) fn eval(
                     let written = match samples {
                         Samples::Points(rows) => {
                             total += rows.len();
-                            write_points(rows, input, writer, &mut header, &mut failed)
+                            write_points(rows, input, key, writer, &mut header, &mut failed)
                         }
                         Samples::Tables(tables) => {
                             total += tables.len();
-                            write_tables(tables, input, writer, &mut header, &mut failed)
+                            write_tables(tables, input, key, writer, &mut header, &mut failed)
                         }
                     };
                     written.map_err(write_error(out))
@@ -325,7 +308,7 @@ pub(crate) fn eval(
         },
         empty_samples(key),
     )?;
-    finish_samples(&failed, total, input, out, v)
+    finish_samples(cx, &failed, total, input, out)
 }
 
 /// The parameters, the points (flat) and the dimension of one curve's samples.
@@ -398,6 +381,7 @@ fn other_dimension(input: &Path, k: &GroupKey, d: usize) -> String {
 fn write_points<W: std::io::Write + Send>(
     rows: Vec<(GroupKey, Result<Sampled, String>)>,
     input: &Path,
+    key: &str,
     writer: &mut ParquetBatchWriter<W>,
     header: &mut Option<Vec<String>>,
     failed: &mut Vec<String>,
@@ -419,7 +403,7 @@ fn write_points<W: std::io::Write + Send>(
         }
     }
     match dim {
-        Some(d) => writer.write_point_samples(&group_column(), d, &ok),
+        Some(d) => writer.write_point_samples(key, d, &ok),
         None => Ok(()),
     }
 }
@@ -428,6 +412,7 @@ fn write_points<W: std::io::Write + Send>(
 fn write_tables<W: std::io::Write + Send>(
     tables: Vec<(GroupKey, Result<lekalo_io::SampleTable, String>)>,
     input: &Path,
+    key: &str,
     writer: &mut ParquetBatchWriter<W>,
     header: &mut Option<Vec<String>>,
     failed: &mut Vec<String>,
@@ -442,12 +427,12 @@ fn write_tables<W: std::io::Write + Send>(
             Err(e) => failed.push(e),
         }
     }
-    writer.write_samples(&group_column(), &ok)
+    writer.write_samples(key, &ok)
 }
 
-/// `lekalo convert`: curves between Parquet and JSON Lines.
-pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<()> {
-    let key = &group_column();
+/// Curves between Parquet and JSON Lines, whichever `input` is (`lekalo convert`).
+pub(crate) fn convert_curves(cx: &Context, input: &Path, out: Option<&Path>) -> Result<()> {
+    let key = &cx.group_column;
     let inputs = [input.to_path_buf()];
     if is_parquet(input) {
         let mut lines = Vec::new();
@@ -466,7 +451,7 @@ pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<
             }
             Ok(())
         })?;
-        return crate::io::finish_batch(lines, out, &inputs, v);
+        return super::lines::finish(cx, lines, out, &inputs);
     }
     let out = parquet_output(out, "curves")?;
     let (text, name) = lekalo_io::read_input(input)?;
@@ -482,6 +467,7 @@ pub(crate) fn convert(input: &Path, out: Option<&Path>, v: Verbosity) -> Result<
         .filter_map(|(_, r)| r.as_ref().err().cloned())
         .collect();
     write_parquet(
+        cx,
         input,
         out,
         |writer| writer.write_curves("line", &rows).map_err(write_error(out)),

@@ -1,0 +1,284 @@
+//! The source of items: what a command reads. One object (a curve, or a surface, tensor or
+//! pp-form), the lines of JSON Lines, the curves of a STEP or IGES file, or a points file;
+//! each read once, by its kind (by the extension, `--jsonl`, `--header`).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::Result;
+use lekalo_io::{IoError, Object, Shape};
+
+use crate::context::Context;
+use crate::exit::bad_input;
+
+/// Reads a points file (CSV, whitespace text, JSON; `-` is standard input) with `--header`,
+/// or a NumPy `.npy` float64 array (by the extension).
+pub(crate) fn read_points(cx: &Context, path: &Path) -> Result<(lekalo::Points, String)> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+    {
+        return Ok(lekalo_io::read_npy_file(path)?);
+    }
+    // bytes, checked as UTF-8 by the parallel parse part by part (not whole before it)
+    let (bytes, name) = lekalo_io::read_input_bytes(path)?;
+    let points = lekalo_io::read_points_bytes(&bytes, &name, cx.header_rule())?;
+    Ok((points, name))
+}
+
+/// The points of the text of a points file named `name` (CSV, whitespace text, JSON), with
+/// `--header`.
+pub(crate) fn points_from_text(cx: &Context, text: &str, name: &str) -> Result<lekalo::Points> {
+    Ok(lekalo_io::read_points_with(text, name, cx.header_rule())?)
+}
+
+/// True for a Parquet batch: a `.parquet` (or `.pq`) path (docs/formats.md#parquet-batches).
+pub(crate) fn is_parquet(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("parquet") || e.eq_ignore_ascii_case("pq"))
+}
+
+/// True for JSON Lines input: a `.jsonl`/`.ndjson` file, or `force`.
+pub(crate) fn is_json_lines(path: &Path, force: bool) -> bool {
+    force
+        || matches!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("jsonl" | "ndjson")
+        )
+}
+
+/// The items of an input: one curve, one surface or pp-form, the curves of JSON Lines or of a
+/// CAD file, or a Parquet batch of curves.
+pub(crate) enum Items {
+    /// One curve.
+    One(Object),
+    /// A single object that is not a curve (surface, tensor spline, piecewise polynomial).
+    Other(Shape),
+    /// Curves numbered by their line (or entity), each read or why it could not be: the lines
+    /// of JSON Lines, the curves of a STEP or IGES file.
+    Lines(Vec<(usize, std::result::Result<Object, IoError>)>),
+    /// A Parquet batch of curves, not read here: the batch runner reads it a few MiB at a
+    /// time (`batch::parquet`).
+    Parquet(PathBuf),
+}
+
+/// Opens an object file, JSON Lines, a STEP or IGES file, or a Parquet batch (`-` is
+/// standard input).
+pub(crate) fn open(cx: &Context, path: &Path, jsonl: bool) -> Result<Items> {
+    let start = Instant::now();
+    if is_parquet(path) {
+        return Ok(Items::Parquet(path.to_path_buf()));
+    }
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npz"))
+    {
+        let bytes = std::fs::read(path).map_err(|error| IoError::Read {
+            path: path.to_path_buf(),
+            error,
+        })?;
+        lekalo_io::note_read(path);
+        let name = path.display().to_string();
+        return Ok(Items::One(lekalo_io::read_npz_curve(&bytes, &name)?));
+    }
+    let (text, name) = lekalo_io::read_input(path)?;
+    // a CAD file: one shape as the JSON of that shape, several curves as a batch
+    if let Some(mut shapes) = read_cad(cx, path, &text, &name)? {
+        return match shapes.len() {
+            0 => bad_input(format!("{name}: no curve or surface lekalo reads")),
+            1 => Ok(match shapes.remove(0) {
+                Shape::Curve(o) => Items::One(o),
+                other => Items::Other(other),
+            }),
+            n => {
+                let curves: Vec<(usize, std::result::Result<Object, IoError>)> = shapes
+                    .into_iter()
+                    .enumerate()
+                    .filter_map(|(i, s)| match s {
+                        Shape::Curve(o) => Some((i + 1, Ok(o))),
+                        _ => None,
+                    })
+                    .collect();
+                if curves.len() < n {
+                    return bad_input(format!(
+                        "{name}: holds {n} shapes, {} of them surfaces; this command takes one \
+                         surface or a batch of curves (`lekalo convert {name} -o shapes.jsonl` \
+                         writes one shape a line)",
+                        n - curves.len()
+                    ));
+                }
+                Ok(Items::Lines(curves))
+            }
+        };
+    }
+    let loaded = if is_json_lines(path, jsonl) {
+        Items::Lines(lekalo_io::read_json_lines(&text, &name))
+    } else {
+        match Shape::from_json_str(&text, &name)? {
+            Shape::Curve(o) => Items::One(o),
+            other => Items::Other(other),
+        }
+    };
+    if cx.is_verbose() {
+        let n = match &loaded {
+            Items::Lines(m) => m.len(),
+            _ => 1,
+        };
+        eprintln!("read {n} object(s) from {name} in {:.1?}", start.elapsed());
+    }
+    Ok(loaded)
+}
+
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+/// True for a STEP input (`.step`, `.stp`, `.p21`).
+pub(crate) fn is_step(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("step" | "stp" | "p21"))
+}
+
+/// True for an IGES input (`.igs`, `.iges`).
+pub(crate) fn is_iges(path: &Path) -> bool {
+    matches!(extension(path).as_deref(), Some("igs" | "iges"))
+}
+
+/// What a STEP file gave: curves, surfaces, schema, unit, skipped entities (not with `-q`).
+fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
+    if cx.is_quiet() {
+        return;
+    }
+    let curves = r
+        .shapes
+        .iter()
+        .filter(|(_, s)| matches!(s, lekalo_io::Shape::Curve(_)))
+        .count();
+    eprintln!(
+        "{name}: read {curves} curve(s) and {} surface(s); schema {}; length unit {}{}",
+        r.shapes.len() - curves,
+        r.schema.as_deref().unwrap_or("not named"),
+        r.length_unit,
+        if r.scale_to_mm == 1.0 {
+            String::new()
+        } else {
+            format!(
+                " (coordinates × {} to millimetres)",
+                lekalo_io::fmt_number(r.scale_to_mm)
+            )
+        }
+    );
+    if !r.skipped.is_empty() {
+        eprintln!("{name}: skipped {} entities:", r.skipped.len());
+        for s in &r.skipped {
+            eprintln!("  #{} {}: {}", s.id, s.entity, s.reason);
+        }
+    }
+}
+
+/// The curves and surfaces of a STEP or IGES file, by its extension (`None` for any other
+/// file), with what was read and skipped reported on standard error (not with `-q`).
+pub(crate) fn read_cad(
+    cx: &Context,
+    path: &Path,
+    text: &str,
+    name: &str,
+) -> Result<Option<Vec<lekalo_io::Shape>>> {
+    if is_step(path) {
+        let r = lekalo_io::read_step(text, name)?;
+        report_step(cx, name, &r);
+        return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
+    }
+    if is_iges(path) {
+        let r = lekalo_io::read_iges(text, name)?;
+        if !cx.is_quiet() {
+            eprintln!(
+                "{name}: read {} object(s); length unit {}",
+                r.shapes.len(),
+                r.length_unit
+            );
+            for s in &r.skipped {
+                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
+            }
+        }
+        return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
+    }
+    Ok(None)
+}
+
+/// Reads exactly one object (JSON Lines with one line is accepted too).
+pub(crate) fn load_one(cx: &Context, path: &Path) -> Result<Object> {
+    match open(cx, path, false)? {
+        Items::One(o) => Ok(o),
+        Items::Other(s) => not_a_curve(path, &s),
+        Items::Lines(mut m) if m.len() == 1 => Ok(m.remove(0).1?),
+        Items::Lines(m) => bad_input(format!(
+            "{}: holds {} objects; this command takes one (keep one line of the file, e.g. `head -n 1 FILE > one.json`; `eval`, `info` and `convert` take whole batches)",
+            path.display(),
+            m.len()
+        )),
+        Items::Parquet(_) => not_a_batch_command(path),
+    }
+}
+
+/// `Err(BadInput)` for a command that reads one object given a Parquet batch.
+pub(crate) fn not_a_batch_command<T>(path: &Path) -> Result<T> {
+    bad_input(format!(
+        "{}: a Parquet batch is read by interpolate, fit, eval and convert; `lekalo convert {} -o curves.jsonl` writes its curves as JSON Lines, which this command reads",
+        path.display(),
+        path.display()
+    ))
+}
+
+/// `Err(BadInput)` for a curve-only command given a surface or pp-form.
+pub(crate) fn not_a_curve<T>(path: &Path, s: &Shape) -> Result<T> {
+    bad_input(format!(
+        "{}: field `type`: \"{}\" is not a curve; this command takes curves (info, convert and plot take surfaces and piecewise polynomials too)",
+        path.display(),
+        s.type_name()
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::context::HeaderArg;
+
+    /// A Parquet batch is recognised by its name and left to the batch runner unread; a
+    /// command that reads one object says which commands read batches.
+    #[test]
+    fn a_parquet_batch_is_an_item_source_of_its_own() {
+        let cx = Context::default();
+        let path = Path::new("no-such-dir/curves.parquet");
+        assert!(matches!(open(&cx, path, false), Ok(Items::Parquet(p)) if p == path));
+        let e = load_one(&cx, path).unwrap_err();
+        assert_eq!(crate::exit::exit_code(&e), crate::exit::EXIT_BAD_INPUT);
+        assert!(
+            e.to_string().contains("read by interpolate, fit, eval"),
+            "{e}"
+        );
+    }
+
+    /// Points are read with the context's `--header`.
+    #[test]
+    fn points_follow_the_header_of_the_context() {
+        let text = "x,y\n1,2\n3,4\n";
+        let auto = points_from_text(&Context::default(), text, "t").unwrap();
+        assert_eq!(auto.len(), 2);
+        let no = Context {
+            header: HeaderArg::No,
+            ..Context::default()
+        };
+        assert!(
+            points_from_text(&no, text, "t").is_err(),
+            "x is not a number"
+        );
+        let yes = Context {
+            header: HeaderArg::Yes,
+            ..Context::default()
+        };
+        assert_eq!(points_from_text(&yes, "1,2\n3,4\n", "t").unwrap().len(), 1);
+    }
+}
