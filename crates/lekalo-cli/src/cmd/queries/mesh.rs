@@ -59,7 +59,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
             // a bar on a terminal; Ctrl-C stops the mesh between two parts of its work
-            let m = crate::cancel::with_progress("meshing", true, v, |p| {
+            let m = crate::cancel::with_progress(cx, "meshing", true, |p| {
                 q.mesh_with_progress(a.tolerance, p)
             })
             .map_err(bad)?;
