@@ -165,7 +165,7 @@ pub use query::{
 // -- derivatives of evaluation for differentiable programs: JVP, VJP, linearisation --
 pub mod derivatives;
 
-pub use derivatives::{CurveLinearization, SurfaceLinearization};
+pub use derivatives::{CurveLinearization, NurbsLinearization, SurfaceLinearization};
 
 // -- the words of the options every front end shares, one canonical spelling each --
 pub mod vocabulary;

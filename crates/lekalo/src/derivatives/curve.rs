@@ -2,7 +2,7 @@
 //! with respect to the control points `P` and the parameters `t` (`docs/theory/derivatives.md`).
 
 use super::checks::{check_input, check_len, check_scalars};
-use crate::basis::{basis_ders_into, BasisScratch};
+use super::slopes::basis_with_slopes;
 use crate::curve::BSplineCurve;
 use crate::error::{check_finite, Result};
 
@@ -27,33 +27,49 @@ pub struct CurveLinearization {
 }
 
 /// Basis values and first derivatives at one parameter, for one curve: scratch sized once.
-struct PointBasis {
-    scratch: BasisScratch,
-    /// Row 0: `N_{span−p..=span}(t)`, row 1: their derivatives (P&T A2.3 with one order).
-    ders: Vec<f64>,
+pub(super) struct PointBasis {
+    left: Vec<f64>,
+    right: Vec<f64>,
+    /// `N_{span−p..=span, p}(t)`.
+    values: Vec<f64>,
+    /// Their derivatives.
+    slopes: Vec<f64>,
 }
 
 impl PointBasis {
-    fn new(degree: usize) -> Self {
+    pub(super) fn new(degree: usize) -> Self {
+        let w = degree + 1;
         PointBasis {
-            scratch: BasisScratch::new(degree),
-            ders: vec![0.0; 2 * (degree + 1)],
+            left: vec![0.0; w],
+            right: vec![0.0; w],
+            values: vec![0.0; w],
+            slopes: vec![0.0; w],
         }
     }
 
-    /// Fills the basis rows at `t` in `span`; returns the index of the first control point.
-    /// Row 0 is bit-for-bit the A2.2 basis of `eval_batch` (A2.3 runs the same triangle).
-    fn at(&mut self, knots: &[f64], degree: usize, span: usize, t: f64) -> usize {
-        basis_ders_into(knots, degree, span, t, 1, &mut self.scratch, &mut self.ders);
+    /// Fills the basis values and derivatives at `t` in `span` ([`basis_with_slopes`]: the
+    /// values bit-for-bit the A2.2 basis of `eval_batch`); returns the index of the first
+    /// control point.
+    pub(super) fn at(&mut self, knots: &[f64], degree: usize, span: usize, t: f64) -> usize {
+        basis_with_slopes(
+            knots,
+            degree,
+            span,
+            t,
+            &mut self.left,
+            &mut self.right,
+            &mut self.values,
+            &mut self.slopes,
+        );
         span - degree
     }
 
-    fn values(&self) -> &[f64] {
-        &self.ders[..self.ders.len() / 2]
+    pub(super) fn values(&self) -> &[f64] {
+        &self.values
     }
 
-    fn slopes(&self) -> &[f64] {
-        &self.ders[self.ders.len() / 2..]
+    pub(super) fn slopes(&self) -> &[f64] {
+        &self.slopes
     }
 }
 

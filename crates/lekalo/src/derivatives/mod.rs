@@ -14,14 +14,20 @@
 //!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
 //!   basis matrix, what an automatic-differentiation framework needs to build its own linear
 //!   map).
+//! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
+//!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
+//! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
 mod checks;
 mod curve;
+mod nurbs;
+mod slopes;
 mod surface;
 #[cfg(test)]
 mod tests;
 
 pub use curve::CurveLinearization;
+pub use nurbs::NurbsLinearization;
 pub use surface::SurfaceLinearization;

@@ -3,7 +3,7 @@
 //! the parameters `(u, v)` (`docs/theory/derivatives.md`).
 
 use super::checks::{check_input, check_len, check_scalars};
-use crate::basis::{basis_ders_into, BasisScratch};
+use super::curve::PointBasis;
 use crate::error::{check_finite, Result};
 use crate::surface::BSplineSurface;
 
@@ -31,34 +31,18 @@ pub struct SurfaceLinearization {
 
 /// Basis values and first derivatives in both directions at one pair.
 struct PairBasis {
-    su: BasisScratch,
-    sv: BasisScratch,
-    /// `u` basis (row 0) and its derivatives (row 1).
-    du: Vec<f64>,
-    /// `v` basis (row 0) and its derivatives (row 1).
-    dv: Vec<f64>,
+    u: PointBasis,
+    v: PointBasis,
     /// One point, the inner sum of the tensor combination.
     tmp: Vec<f64>,
-}
-
-/// The first (`values`) or second (`slopes`) half of a two-row basis table.
-fn row(d: &[f64], second: bool) -> &[f64] {
-    let h = d.len() / 2;
-    if second {
-        &d[h..]
-    } else {
-        &d[..h]
-    }
 }
 
 impl PairBasis {
     fn new(s: &BSplineSurface) -> Self {
         let (p, q) = s.degree();
         PairBasis {
-            su: BasisScratch::new(p),
-            sv: BasisScratch::new(q),
-            du: vec![0.0; 2 * (p + 1)],
-            dv: vec![0.0; 2 * (q + 1)],
+            u: PointBasis::new(p),
+            v: PointBasis::new(q),
             tmp: vec![0.0; s.dim()],
         }
     }
@@ -108,9 +92,10 @@ impl BSplineSurface {
         let (ku, kv) = self.knots();
         let su = cursors.0.find(u)?;
         let sv = cursors.1.find(v)?;
-        basis_ders_into(ku.as_slice(), p, su, u, 1, &mut b.su, &mut b.du);
-        basis_ders_into(kv.as_slice(), q, sv, v, 1, &mut b.sv, &mut b.dv);
-        Ok((su - p, sv - q))
+        Ok((
+            b.u.at(ku.as_slice(), p, su, u),
+            b.v.at(kv.as_slice(), q, sv, v),
+        ))
     }
 
     fn cursors(&self) -> (crate::SpanCursor<'_>, crate::SpanCursor<'_>) {
@@ -170,14 +155,14 @@ impl BSplineSurface {
             .zip(tangent_out.chunks_exact_mut(dim));
         for (i, (&pair, (o, d))) in uv.iter().zip(points).enumerate() {
             let corner = self.pair_basis(&mut cursors, pair, &mut b)?;
-            let (bu, bv) = (row(&b.du, false), row(&b.dv, false));
+            let (bu, bv) = (b.u.values(), b.v.values());
             combine(ctrl, nv, dim, corner, bu, bv, &mut b.tmp, o);
             match control_tangent {
                 Some(dp) => combine(dp, nv, dim, corner, bu, bv, &mut b.tmp, d),
                 None => d.fill(0.0),
             }
             if let Some(dt) = parameter_tangent {
-                let (bu1, bv1) = (row(&b.du, true), row(&b.dv, true));
+                let (bu1, bv1) = (b.u.slopes(), b.v.slopes());
                 combine(ctrl, nv, dim, corner, bu1, bv, &mut b.tmp, &mut su);
                 combine(ctrl, nv, dim, corner, bu, bv1, &mut b.tmp, &mut sv);
                 let [du, dv] = dt[i];
@@ -238,7 +223,7 @@ impl BSplineSurface {
         let (mut su, mut sv) = (vec![0.0; dim], vec![0.0; dim]);
         for (i, (&pair, g)) in uv.iter().zip(cotangent.chunks_exact(dim)).enumerate() {
             let (fu, fv) = self.pair_basis(&mut cursors, pair, &mut b)?;
-            let (bu, bv) = (row(&b.du, false), row(&b.dv, false));
+            let (bu, bv) = (b.u.values(), b.v.values());
             if let Some(gp) = control_cotangent.as_deref_mut() {
                 for (k, &a) in bu.iter().enumerate() {
                     let start = ((fu + k) * nv + fv) * dim;
@@ -252,7 +237,7 @@ impl BSplineSurface {
                 }
             }
             if let Some(gt) = parameter_cotangent.as_deref_mut() {
-                let (bu1, bv1) = (row(&b.du, true), row(&b.dv, true));
+                let (bu1, bv1) = (b.u.slopes(), b.v.slopes());
                 combine(ctrl, nv, dim, (fu, fv), bu1, bv, &mut b.tmp, &mut su);
                 combine(ctrl, nv, dim, (fu, fv), bu, bv1, &mut b.tmp, &mut sv);
                 let dot = |s: &[f64]| s.iter().zip(g).map(|(x, y)| x * y).sum::<f64>();
@@ -305,8 +290,8 @@ impl BSplineSurface {
         let mut b = PairBasis::new(self);
         for (i, &pair) in uv.iter().enumerate() {
             let corner = self.pair_basis(&mut cursors, pair, &mut b)?;
-            let (bu, bv) = (row(&b.du, false), row(&b.dv, false));
-            let (bu1, bv1) = (row(&b.du, true), row(&b.dv, true));
+            let (bu, bv) = (b.u.values(), b.v.values());
+            let (bu1, bv1) = (b.u.slopes(), b.v.slopes());
             let pt = i * dim..(i + 1) * dim;
             combine(
                 ctrl,

@@ -1,11 +1,13 @@
 //! Tests of the derivative kernels: primal values bit for bit against `eval_batch` (every
 //! degree and dimension, so also the fixed-size kernels), JVPs against central finite
-//! differences (relative 1e-7), VJPs as the exact transposes of the JVPs, the linearisation
+//! differences (relative 1e-7) for B-spline curves, NURBS curves (also in the weights) and
+//! surfaces, VJPs as the exact transposes of the JVPs, the linearisation
 //! against the JVP, and a negative test for every error.
 
 use proptest::prelude::*;
 
 use crate::curve::bspline::BSplineCurve;
+use crate::curve::NurbsCurve;
 use crate::error::Error;
 use crate::oracle::proptest_config;
 use crate::points::Points;
@@ -553,4 +555,164 @@ fn surface_bilinear_closed_forms() {
     assert_eq!(g, vec![0.75, 0.75, 0.25, 0.25]);
     // S_u = 2 + (3 − 2 − 1 + 0)·v = 2, S_v = 1 + 0·u: ū = 2·2, v̄ = 2·1
     assert_eq!(guv, vec![[4.0, 2.0]]);
+}
+
+/// A NURBS curve (a curve case with weights in `[0.3, 3]`) and a weight tangent.
+fn nurbs_case() -> impl Strategy<Value = (NurbsCurve, CurveCase, Vec<f64>)> {
+    curve_case().prop_flat_map(|case| {
+        let n = case.0.control_points().len();
+        (
+            prop::collection::vec(0.3f64..3.0, n),
+            prop::collection::vec(-1.0f64..1.0, n),
+        )
+            .prop_map(move |(w, dw)| {
+                let c = &case.0;
+                let nurbs = NurbsCurve::new(
+                    c.degree(),
+                    c.knots().as_slice().to_vec(),
+                    c.control_points().clone(),
+                    w,
+                )
+                .unwrap();
+                (nurbs, case.clone(), dw)
+            })
+    })
+}
+
+fn eval_n(c: &NurbsCurve, ts: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; ts.len() * c.dim()];
+    c.eval_batch(ts, &mut out).unwrap();
+    out
+}
+
+fn rebuilt(c: &NurbsCurve, ctrl: Vec<f64>, w: Vec<f64>) -> NurbsCurve {
+    let k = c.knots().as_slice().to_vec();
+    NurbsCurve::new(c.degree(), k, Points::from_raw(ctrl, c.dim()), w).unwrap()
+}
+
+type Tangents<'a> = (Option<&'a [f64]>, Option<&'a [f64]>, Option<&'a [f64]>);
+
+fn nurbs_jvp(c: &NurbsCurve, ts: &[f64], (dp, dw, dt): Tangents<'_>) -> (Vec<f64>, Vec<f64>) {
+    let mut out = vec![0.0; ts.len() * c.dim()];
+    let mut tan = vec![0.0; ts.len() * c.dim()];
+    c.eval_batch_jvp(ts, dp, dw, dt, &mut out, &mut tan)
+        .unwrap();
+    (out, tan)
+}
+
+proptest! {
+    #![proptest_config(proptest_config(256))]
+
+    #[test]
+    fn nurbs_primal_is_eval_batch_bit_for_bit((c, (_, ts, dp, dt, _), dw) in nurbs_case()) {
+        let plain = eval_n(&c, &ts);
+        let (out, _) = nurbs_jvp(&c, &ts, (Some(&dp), Some(&dw), Some(&dt)));
+        prop_assert_eq!(&out, &plain);
+        prop_assert_eq!(&c.eval_batch_linearize(&ts).unwrap().values, &plain);
+    }
+
+    #[test]
+    fn nurbs_jvp_matches_central_differences((c, (_, ts, dp, dt, _), dw) in nurbs_case()) {
+        let (ctrl, w) = (c.control_points().as_slice().to_vec(), c.weights());
+        let floor = max_abs(&ctrl);
+        let moved = |v: &[f64], d: &[f64], s: f64| v.iter().zip(d).map(|(x, y)| x + s * y).collect::<Vec<_>>();
+        let fd = |plus: Vec<f64>, minus: Vec<f64>, h: f64| {
+            plus.iter().zip(&minus).map(|(a, b)| (a - b) / (2.0 * h)).collect::<Vec<_>>()
+        };
+        let h = 1e-3;
+        let d = fd(eval_n(&rebuilt(&c, moved(&ctrl, &dp, h), w.clone()), &ts),
+                   eval_n(&rebuilt(&c, moved(&ctrl, &dp, -h), w.clone()), &ts), h);
+        let (_, tan) = nurbs_jvp(&c, &ts, (Some(&dp), None, None));
+        assert_rel(&tan, &d, FD_RTOL, floor, "JVP in the control points");
+        let h = FD_STEP;
+        let d = fd(eval_n(&rebuilt(&c, ctrl.clone(), moved(&w, &dw, h)), &ts),
+                   eval_n(&rebuilt(&c, ctrl.clone(), moved(&w, &dw, -h)), &ts), h);
+        let (_, tan) = nurbs_jvp(&c, &ts, (None, Some(&dw), None));
+        assert_rel(&tan, &d, FD_RTOL, floor, "JVP in the weights");
+        let d = fd(eval_n(&c, &moved(&ts, &dt, h)), eval_n(&c, &moved(&ts, &dt, -h)), h);
+        let (_, tan) = nurbs_jvp(&c, &ts, (None, None, Some(&dt)));
+        assert_rel(&tan, &d, FD_RTOL, floor, "JVP in the parameters");
+    }
+
+    #[test]
+    fn nurbs_vjp_is_the_transpose_of_the_jvp((c, (_, ts, dp, dt, g), dw) in nurbs_case()) {
+        let (_, tan) = nurbs_jvp(&c, &ts, (Some(&dp), Some(&dw), Some(&dt)));
+        let (mut gp, mut gw, mut gt) = (vec![0.0; dp.len()], vec![0.0; dw.len()], vec![0.0; ts.len()]);
+        c.eval_batch_vjp(&ts, &g, Some(&mut gp), Some(&mut gw), Some(&mut gt)).unwrap();
+        let lhs = dot(&g, &tan);
+        let rhs = dot(&gp, &dp) + dot(&gw, &dw) + dot(&gt, &dt);
+        let scale = max_abs(&g) * (max_abs(&tan) + 1.0) * g.len() as f64;
+        prop_assert!((lhs - rhs).abs() <= 1e-13 * scale, "<g, J x> = {lhs}, <J^T g, x> = {rhs}");
+    }
+
+    #[test]
+    fn nurbs_linearization_applies_as_the_jvp((c, (_, ts, dp, dt, _), dw) in nurbs_case()) {
+        let lin = c.eval_batch_linearize(&ts).unwrap();
+        let (dim, wd) = (c.dim(), c.degree() + 1);
+        let (ctrl, w) = (c.control_points().as_slice().to_vec(), c.weights());
+        let (_, tan) = nurbs_jvp(&c, &ts, (Some(&dp), Some(&dw), Some(&dt)));
+        let mut applied = vec![0.0; tan.len()];
+        for i in 0..ts.len() {
+            for k in 0..wd {
+                let (j, r) = (lin.first[i] + k, lin.basis[i * wd + k]);
+                for d in 0..dim {
+                    let rel = ctrl[j * dim + d] - lin.values[i * dim + d];
+                    applied[i * dim + d] += r * dp[j * dim + d] + r / w[j] * rel * dw[j];
+                }
+            }
+            for d in 0..dim {
+                applied[i * dim + d] += lin.derivatives[i * dim + d] * dt[i];
+            }
+        }
+        assert_rel(&applied, &tan, 1e-12, max_abs(&tan).max(1.0), "linearisation");
+    }
+}
+
+#[test]
+fn nurbs_errors_name_the_argument() {
+    let c = NurbsCurve::circle(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0], 1.0).unwrap();
+    let n = c.weights().len();
+    let (mut out, mut tan) = (vec![0.0; 2], vec![0.0; 2]);
+    let e = c.eval_batch_jvp(
+        &[0.5],
+        None,
+        Some(&vec![0.0; n + 1]),
+        None,
+        &mut out,
+        &mut tan,
+    );
+    assert!(
+        matches!(e, Err(Error::LengthMismatch { got, .. }) if got == n + 1),
+        "{e:?}"
+    );
+    let e = c.eval_batch_jvp(
+        &[0.5],
+        Some(&[f64::NAN; 1][..0]),
+        None,
+        None,
+        &mut out,
+        &mut tan,
+    );
+    assert!(
+        matches!(e, Err(Error::LengthMismatch { got: 0, .. })),
+        "{e:?}"
+    );
+    let mut dp = vec![0.0; 2 * n];
+    dp[3] = f64::INFINITY;
+    let e = c.eval_batch_jvp(&[0.5], Some(&dp), None, None, &mut out, &mut tan);
+    assert!(matches!(e, Err(Error::NonFinite { index: 3, .. })), "{e:?}");
+    let e = c.eval_batch_jvp(&[2.0], None, None, None, &mut out, &mut tan);
+    assert!(
+        matches!(e, Err(Error::ParameterOutOfDomain { .. })),
+        "{e:?}"
+    );
+    let e = c.eval_batch_vjp(&[0.5], &[1.0, 1.0], None, Some(&mut vec![0.0; n - 1]), None);
+    assert!(matches!(e, Err(Error::LengthMismatch { .. })), "{e:?}");
+    let e = c.eval_batch_vjp(&[0.5], &[1.0, f64::NAN], None, None, None);
+    assert!(matches!(e, Err(Error::NonFinite { .. })), "{e:?}");
+    let e = c.eval_batch_linearize(&[-1.0]);
+    assert!(
+        matches!(e, Err(Error::ParameterOutOfDomain { .. })),
+        "{e:?}"
+    );
 }
