@@ -2,12 +2,13 @@
 //! linearisation kernels of `lekalo::derivatives`, NumPy in and out. The pure-Python
 //! `lekalo.jax` builds its differentiable functions on these.
 //!
-//! Curves take `(degree, knots, control, t)` as `BSplineCurve(degree, knots, control)(t)`;
+//! Curves take `(degree, knots, control, t)` as `BSplineCurve(degree, knots, control)(t)`
+//! (NURBS `(degree, knots, control, weights, t)`);
 //! surfaces `(degree_u, degree_v, knots_u, knots_v, control, u, v)` as `BSplineSurface`. Values
 //! and tangents have the shape `t.shape + (dim,)`; cotangents of the control points the shape
 //! of `control`, of the parameters the shape of `t`.
 
-use lekalo::{BSplineCurve, BSplineSurface};
+use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -21,6 +22,9 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bspline_curve_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_curve_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_linearize, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_linearize, m)?)?;
@@ -157,6 +161,121 @@ pub(crate) fn bspline_curve_linearize<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let ca = floats(control, "control")?;
     let c = curve(degree, knots, &ca)?;
+    let ta = floats(t, "t")?;
+    let ts = ta.data();
+    let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
+    let d = PyDict::new(py);
+    let pts = out_shape(&ta, &[c.dim()]);
+    d.set_item("values", array(py, lin.values, &pts)?)?;
+    d.set_item("derivatives", array(py, lin.derivatives, &pts)?)?;
+    d.set_item("first", index_array(py, lin.first, ta.shape())?)?;
+    d.set_item(
+        "basis",
+        array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
+    )?;
+    Ok(d)
+}
+
+fn nurbs(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    control: &FloatArray<'_>,
+    weights: &Bound<'_, PyAny>,
+) -> PyResult<NurbsCurve> {
+    let k = vec1(knots, "knots")?;
+    let p = control.points("control")?.to_owned();
+    let w = vec1(weights, "weights")?;
+    NurbsCurve::new(degree, k, p, w).map_err(lib_err)
+}
+
+/// Forward-mode derivative of NURBS curve evaluation: returns `(values, tangent)` with
+/// `tangent = R(t) @ control_tangent + ∂C/∂w @ weights_tangent + C'(t) * t_tangent` (any
+/// tangent may be `None`; `R` is the rational basis).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, control_tangent = None,
+                    weights_tangent = None, t_tangent = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_curve_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    control_tangent: Option<&Bound<'py, PyAny>>,
+    weights_tangent: Option<&Bound<'py, PyAny>>,
+    t_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
+    let ta = floats(t, "t")?;
+    let dim = c.dim();
+    let n = check_size("t", &[ta.data().len(), dim])?;
+    let w_shape = [c.weights().len()];
+    let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
+    let dw = same_shape(weights_tangent, "weights_tangent", &w_shape, "weights")?;
+    let dt = same_shape(t_tangent, "t_tangent", ta.shape(), "t")?;
+    let (ts, dc, dw, dt) = (
+        ta.data(),
+        dc.as_ref().map(FloatArray::data),
+        dw.as_ref().map(FloatArray::data),
+        dt.as_ref().map(FloatArray::data),
+    );
+    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| c.eval_batch_jvp(ts, dc, dw, dt, &mut out, &mut tan))
+        .map_err(lib_err)?;
+    let shape = out_shape(&ta, &[dim]);
+    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+}
+
+/// Reverse-mode derivative of NURBS curve evaluation: for `cotangent` of shape
+/// `t.shape + (dim,)`, returns `(control_cotangent, weights_cotangent, t_cotangent)`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, cotangent))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_curve_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
+    let ta = floats(t, "t")?;
+    let shape = out_shape(&ta, &[c.dim()]);
+    let ga = same_shape(Some(cotangent), "cotangent", &shape, "the values")?;
+    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let n_ctrl = c.weights().len();
+    let (mut gc, mut gw) = (vec![0.0; ca.data().len()], vec![0.0; n_ctrl]);
+    let mut gt = vec![0.0; ta.data().len()];
+    let ts = ta.data();
+    py.detach(|| c.eval_batch_vjp(ts, g, Some(&mut gc), Some(&mut gw), Some(&mut gt)))
+        .map_err(lib_err)?;
+    Ok((
+        array(py, gc, ca.shape())?,
+        array(py, gw, &[n_ctrl])?,
+        array(py, gt, ta.shape())?,
+    ))
+}
+
+/// The linearisation of NURBS curve evaluation at `t`: a dict with `values`, `derivatives`,
+/// `first` (int64) and `basis` (the rational basis `R_j = N_j w_j / W`,
+/// `t.shape + (degree + 1,)`); `∂C/∂w_j = R_j (P_j − C) / w_j`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t))]
+pub(crate) fn nurbs_curve_linearize<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
     let ta = floats(t, "t")?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;

@@ -65,3 +65,20 @@ def test_kernels_refuse_bad_input():
         lekalo.bspline_curve_jvp(2, KNOTS, CTRL, t, t_tangent=np.array([np.nan]))
     with pytest.raises(lekalo.InputError, match="knots"):
         lekalo.bspline_curve_vjp(3, KNOTS, CTRL, t, np.zeros((1, 2)))
+
+
+def test_nurbs_kernels_shapes_and_agreement():
+    w = np.array([1.0, 2.0, 0.5, 1.0])
+    t = np.array([0.1, 0.5, 0.9])
+    dc, dw, dt = np.ones_like(CTRL), np.array([0.0, 1.0, 0.0, 0.0]), np.ones(3)
+    values, tangent = lekalo.nurbs_curve_jvp(2, KNOTS, CTRL, w, t, dc, dw, dt)
+    np.testing.assert_allclose(values, lekalo.NurbsCurve(2, KNOTS, CTRL, w)(t), rtol=0, atol=1e-14)
+    lin = lekalo.nurbs_curve_linearize(2, KNOTS, CTRL, w, t)
+    assert np.array_equal(lin["values"], values)
+    np.testing.assert_allclose(lin["basis"].sum(axis=-1), 1.0, rtol=1e-14)  # rational partition of unity
+    g = np.arange(6.0).reshape(3, 2)
+    gc, gw, gt = lekalo.nurbs_curve_vjp(2, KNOTS, CTRL, w, t, g)
+    assert gc.shape == CTRL.shape and gw.shape == w.shape and gt.shape == t.shape
+    assert np.isclose(np.sum(g * tangent), np.sum(gc * dc) + np.sum(gw * dw) + np.sum(gt * dt), rtol=1e-13)
+    with pytest.raises(lekalo.InputError, match="weights_tangent: shape"):
+        lekalo.nurbs_curve_jvp(2, KNOTS, CTRL, w, t, weights_tangent=np.ones(3))

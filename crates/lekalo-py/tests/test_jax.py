@@ -10,7 +10,7 @@ jax = pytest.importorskip("jax")
 import jax.numpy as jnp  # noqa: E402
 
 import lekalo  # noqa: E402
-from lekalo.jax import bspline_eval, bspline_surface_eval  # noqa: E402
+from lekalo.jax import bspline_eval, bspline_surface_eval, nurbs_eval  # noqa: E402
 
 RTOL = 1e-7
 
@@ -128,6 +128,26 @@ def test_vmap_over_curves_and_parameters():
     for i in range(2):
         fd = central(lambda t: lekalo.bspline_curve_jvp(3, knots, batch[i], t)[0], us[i], 1e-6)
         assert_rel(ju[i], fd, "vmap(jacfwd) in u")
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_nurbs_jacobians_match_central_differences(mode):
+    knots, ctrl, u = curve_case()
+    w = np.array([1.0, 0.5, 2.0, 1.5, 0.8, 1.2])
+    f = lambda c, ws, t: nurbs_eval(knots, c, ws, t, 3)  # noqa: E731
+    plain = lambda c, ws, t: lekalo.nurbs_curve_jvp(3, knots, c, ws, t)[0]  # noqa: E731
+    assert np.array_equal(np.asarray(f(ctrl, w, u)), plain(ctrl, w, u))
+    np.testing.assert_allclose(plain(ctrl, w, u), lekalo.NurbsCurve(3, knots, ctrl, w)(u), atol=1e-14)
+    jc, jw, ju = jax.jit(getattr(jax, mode)(f, argnums=(0, 1, 2)))(ctrl, w, u)
+    assert_rel(jc, central(lambda c: plain(c, w, u), ctrl, 1e-3), f"{mode} in the control points")
+    assert_rel(jw, central(lambda ws: plain(ctrl, ws, u), w, 1e-6), f"{mode} in the weights")
+    assert_rel(ju, central(lambda t: plain(ctrl, w, t), u, 1e-6), f"{mode} in u")
+    # vmap of grad over weight sets
+    ws = np.stack([w, w[::-1]])
+    g = jax.vmap(jax.grad(lambda x: jnp.sum(f(ctrl, x, u) ** 2)))(ws)
+    for i in range(2):
+        fd = central(lambda x: np.sum(plain(ctrl, x, u) ** 2), ws[i], 1e-6)
+        assert_rel(g[i], fd, "vmap(grad) over weights")
 
 
 @pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])

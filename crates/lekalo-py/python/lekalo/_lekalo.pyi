@@ -344,6 +344,27 @@ def bspline_curve_vjp(
 def bspline_curve_linearize(
     degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike
 ) -> dict: ...
+def nurbs_curve_jvp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    control_tangent: Optional[ArrayLike] = None,
+    weights_tangent: Optional[ArrayLike] = None,
+    t_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def nurbs_curve_vjp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array, Array]: ...
+def nurbs_curve_linearize(
+    degree: int, knots: ArrayLike, control: ArrayLike, weights: ArrayLike, t: ArrayLike
+) -> dict: ...
 def bspline_surface_jvp(
     degree_u: int,
     degree_v: int,

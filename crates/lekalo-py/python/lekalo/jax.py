@@ -3,6 +3,8 @@
 
 - ``bspline_eval(knots, control_points, u, degree)``: ``C(u)`` of a B-spline curve, shape
   ``u.shape + (dim,)`` (``u.shape`` for 1-D control points);
+- ``nurbs_eval(knots, control_points, weights, u, degree)``: ``C(u)`` of a NURBS curve,
+  differentiable also with respect to the weights;
 - ``bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v)``:
   ``S(u, v)`` of a tensor-product B-spline surface (control net ``(nu, nv, dim)``).
 
@@ -54,7 +56,7 @@ except ImportError as e:  # pragma: no cover - the message is the point
 from . import _lekalo
 from ._lekalo import InputError
 
-__all__ = ["bspline_eval", "bspline_surface_eval"]
+__all__ = ["bspline_eval", "nurbs_eval", "bspline_surface_eval"]
 
 
 def _require_x64(name):
@@ -217,6 +219,95 @@ def bspline_eval(knots, control_points, u, degree):
     out = _curve(degree, knots, c2, u.reshape(-1))
     out = out.reshape(u.shape + c2.shape[-1:])
     return out[..., 0] if scalar_dim else out
+
+
+# -- NURBS curves ------------------------------------------------------------------------------
+
+
+def _nurbs_values_cb(degree, knots, ctrl, w, u):
+    def one(k, c, ws, t):
+        return (_lekalo.nurbs_curve_jvp(degree, k, c, ws, t)[0],)
+
+    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)[0]
+
+
+def _nurbs_linearize_cb(degree, knots, ctrl, w, u):
+    def one(k, c, ws, t):
+        d = _lekalo.nurbs_curve_linearize(degree, k, c, ws, t)
+        return d["values"], d["derivatives"], d["first"], d["basis"]
+
+    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _nurbs(degree, knots, ctrl, w, u):
+    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
+    return jax.pure_callback(
+        partial(_nurbs_values_cb, degree), shape, knots, ctrl, w, u, vmap_method="expand_dims"
+    )
+
+
+@partial(_nurbs.defjvp, symbolic_zeros=True)
+def _nurbs_jvp(degree, primals, tangents):
+    knots, ctrl, w, u = primals
+    dk, dc, dw, du = tangents
+    _no_knot_tangent("nurbs_eval", dk)
+    m, dim, width = u.shape[0], ctrl.shape[-1], degree + 1
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, width), jnp.float64),
+    )
+    guard = partial(_first_order_only, "nurbs_eval")
+    values, slopes, first, basis = jax.pure_callback(
+        partial(_nurbs_linearize_cb, degree),
+        shapes,
+        *(guard(x) for x in (knots, ctrl, w, u)),
+        vmap_method="expand_dims",
+    )
+    rows = first[:, None] + jnp.arange(width)  # (m, p + 1) control-point indices
+    tangent = jnp.zeros((m, dim), jnp.float64)
+    if not isinstance(dc, SymbolicZero):
+        tangent = tangent + jnp.einsum("mk,mkd->md", basis, dc[rows])
+    if not isinstance(dw, SymbolicZero):
+        # dC/dw_j = R_j (P_j - C) / w_j
+        coef = basis * dw[rows] / w[rows]
+        tangent = tangent + jnp.einsum("mk,mkd->md", coef, ctrl[rows] - values[:, None, :])
+    if not isinstance(du, SymbolicZero):
+        tangent = tangent + slopes * du[:, None]
+    return values, tangent
+
+
+def nurbs_eval(knots, control_points, weights, u, degree):
+    """``C(u)`` of the NURBS curve of ``degree`` on ``knots`` with Euclidean ``control_points``
+    (``(n, dim)``) and positive ``weights`` (``(n,)``), at the parameters ``u`` (any shape).
+    Returns ``u.shape + (dim,)``, bit-for-bit lekalo's evaluation.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points``, ``weights`` and ``u``; ``knots`` and ``degree`` are constants.
+    """
+    name = "nurbs_eval"
+    _require_x64(name)
+    degree = _degree(degree, "degree", name)
+    knots = _float64(knots, "knots", name)
+    ctrl = _float64(control_points, "control_points", name)
+    w = _float64(weights, "weights", name)
+    u = _float64(u, "u", name)
+    if ctrl.ndim != 2:
+        raise InputError(f"lekalo.jax.{name}: control_points must be (n, dim), got shape {ctrl.shape}")
+    n = ctrl.shape[0]
+    if w.shape != (n,):
+        raise InputError(
+            f"lekalo.jax.{name}: weights must be one a control point, shape ({n},), got {w.shape}"
+        )
+    if knots.ndim != 1 or knots.shape[0] != n + degree + 1:
+        raise InputError(
+            f"lekalo.jax.{name}: {n} control points of degree {degree} need {n + degree + 1} "
+            f"knots (control points + degree + 1), got shape {knots.shape}"
+        )
+    out = _nurbs(degree, knots, ctrl, w, u.reshape(-1))
+    return out.reshape(u.shape + ctrl.shape[-1:])
 
 
 # -- surfaces ----------------------------------------------------------------------------------
