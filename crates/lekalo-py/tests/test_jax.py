@@ -215,3 +215,12 @@ def test_the_docs_examples_run():
     for code in blocks:
         exec(compile(code, str(doc), "exec"), namespace)
     assert namespace["jac_u"].shape == (7, 2, 7)
+
+
+def test_the_module_docstring_examples_run():
+    import doctest
+
+    import lekalo.jax
+
+    result = doctest.testmod(lekalo.jax)
+    assert result.attempted > 0 and result.failed == 0, result
