@@ -17,11 +17,15 @@
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
+//! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
+//!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
+//!   factorisation).
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
 mod checks;
 mod curve;
+mod interpolation;
 mod nurbs;
 mod slopes;
 mod surface;
@@ -29,5 +33,6 @@ mod surface;
 mod tests;
 
 pub use curve::CurveLinearization;
+pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
 pub use surface::SurfaceLinearization;
