@@ -8,7 +8,8 @@
 //! and tangents have the shape `t.shape + (dim,)`; cotangents of the control points the shape
 //! of `control`, of the parameters the shape of `t`.
 
-use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve};
+use lekalo::derivatives::InterpolationMap;
+use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -25,6 +26,8 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(nurbs_curve_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(nurbs_curve_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(nurbs_curve_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(interpolation_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(interpolation_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_linearize, m)?)?;
@@ -289,6 +292,61 @@ pub(crate) fn nurbs_curve_linearize<'py>(
         array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
     )?;
     Ok(d)
+}
+
+/// The factored collocation map of interpolation, and the data's dimension from `values`
+/// (`(n, dim)`, or `(n,)` for dimension 1).
+fn interpolation_map(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    params: &Bound<'_, PyAny>,
+) -> PyResult<InterpolationMap> {
+    let kv = KnotVector::new(vec1(knots, "knots")?).map_err(lib_err)?;
+    let ts = vec1(params, "params")?;
+    InterpolationMap::new(degree, &kv, &ts).map_err(lib_err)
+}
+
+fn dim_of(a: &FloatArray<'_>, what: &str) -> PyResult<usize> {
+    Ok(a.points(what)?.dim())
+}
+
+/// Forward-mode derivative of interpolation at fixed `params` and `knots` with respect to the
+/// data: the control-point tangent `A⁻¹ @ data_tangent` (shape of `data_tangent`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, data_tangent))]
+pub(crate) fn interpolation_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    data_tangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = interpolation_map(degree, knots, params)?;
+    let a = floats(data_tangent, "data_tangent")?;
+    let dim = dim_of(&a, "data_tangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
+    array(py, out, a.shape())
+}
+
+/// Reverse-mode derivative of interpolation at fixed `params` and `knots` with respect to the
+/// data: the data cotangent `A⁻ᵀ @ control_cotangent` (an adjoint solve with the banded
+/// factors; shape of `control_cotangent`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, control_cotangent))]
+pub(crate) fn interpolation_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    control_cotangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = interpolation_map(degree, knots, params)?;
+    let a = floats(control_cotangent, "control_cotangent")?;
+    let dim = dim_of(&a, "control_cotangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
+    array(py, out, a.shape())
 }
 
 /// `(u, v)` of one shape as pairs, and that shape.

@@ -82,3 +82,20 @@ def test_nurbs_kernels_shapes_and_agreement():
     assert np.isclose(np.sum(g * tangent), np.sum(gc * dc) + np.sum(gw * dw) + np.sum(gt * dt), rtol=1e-13)
     with pytest.raises(lekalo.InputError, match="weights_tangent: shape"):
         lekalo.nurbs_curve_jvp(2, KNOTS, CTRL, w, t, weights_tangent=np.ones(3))
+
+
+def test_interpolation_kernels_against_scipy_and_each_other():
+    x = np.array([0.0, 0.1, 0.35, 0.6, 0.8, 1.0])
+    knots = np.array([0, 0, 0, 0, 0.35, 0.6, 1, 1, 1, 1.0])
+    y = np.sin(3 * x)[:, None] * [1.0, 2.0]
+    # the JVP of a linear map is the map: the interpolant's control points
+    scipy = pytest.importorskip("scipy.interpolate")
+    ref = scipy.make_interp_spline(x, y, k=3, t=knots).c
+    np.testing.assert_allclose(lekalo.interpolation_jvp(3, knots, x, y), ref, rtol=1e-12, atol=1e-13)
+    # the VJP is its transpose: <g, A^-1 y> = <A^-T g, y>
+    g = np.cos(np.arange(12.0)).reshape(6, 2)
+    gy = lekalo.interpolation_vjp(3, knots, x, g)
+    assert gy.shape == g.shape
+    assert np.isclose(np.sum(g * ref), np.sum(gy * y), rtol=1e-12)
+    with pytest.raises(lekalo.InputError, match="knots"):
+        lekalo.interpolation_vjp(3, knots[:-1], x, g)

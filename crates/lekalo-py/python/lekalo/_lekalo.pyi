@@ -365,6 +365,12 @@ def nurbs_curve_vjp(
 def nurbs_curve_linearize(
     degree: int, knots: ArrayLike, control: ArrayLike, weights: ArrayLike, t: ArrayLike
 ) -> dict: ...
+def interpolation_jvp(
+    degree: int, knots: ArrayLike, params: ArrayLike, data_tangent: ArrayLike
+) -> Array: ...
+def interpolation_vjp(
+    degree: int, knots: ArrayLike, params: ArrayLike, control_cotangent: ArrayLike
+) -> Array: ...
 def bspline_surface_jvp(
     degree_u: int,
     degree_v: int,
