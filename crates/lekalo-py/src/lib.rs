@@ -14,13 +14,16 @@
 //!   `slopes`), `pp`, `blend`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
-//! - many curves at once: `batch`.
+//! - many curves at once: `batch`;
+//! - derivatives of evaluation for automatic differentiation: `derivatives` (the kernels under
+//!   `lekalo.jax`).
 
 mod batch;
 mod blend;
 mod calculus;
 mod convert;
 mod curves;
+mod derivatives;
 mod error;
 mod fit;
 mod interp;
@@ -64,6 +67,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
     blend::register(m)?;
+    derivatives::register(m)?;
     fit::register(m)?;
     query::register(m)?;
     slopes::register(m)?;

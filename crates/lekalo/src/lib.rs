@@ -19,6 +19,7 @@
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`], [`smooth_polyline_corners`] | doc 001 |
 //! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | derivatives for automatic differentiation ([`derivatives`]) | [`BSplineCurve::eval_batch_jvp`], [`BSplineCurve::eval_batch_vjp`], [`BSplineCurve::eval_batch_linearize`], the same for [`BSplineSurface`] | P&T A2.3; `docs/theory.md` |
 //! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
 //! ## Conventions
@@ -160,6 +161,11 @@ pub use query::{
     ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection,
     CURVATURE_EXTREMUM_RTOL, MAX_QUERY_DEGREE, SURFACE_BOX_RTOL,
 };
+
+// -- derivatives of evaluation for differentiable programs: JVP, VJP, linearisation --
+pub mod derivatives;
+
+pub use derivatives::{CurveLinearization, NurbsLinearization, SurfaceLinearization};
 
 // -- the words of the options every front end shares, one canonical spelling each --
 pub mod vocabulary;

@@ -5,7 +5,9 @@ placement and end condition; natural and Hermite splines; piecewise polynomials 
 quasi-interpolation; fitting (``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep``,
 ``fit_tolerance``, robust and surface fits); geometric queries (``CurveQuery``, ``SurfaceQuery``:
 length, closest points, intersections, offsets, tessellation, curvature); many small curves at
-once from flat arrays (``interpolate_batch``, ``evaluate_batch``). The computations are the Rust
+once from flat arrays (``interpolate_batch``, ``evaluate_batch``); derivatives of evaluation for
+automatic differentiation (``bspline_curve_jvp``, ``bspline_curve_vjp``, ... and the JAX functions
+of ``lekalo.jax``). The computations are the Rust
 library ``lekalo``'s, run with the GIL released.
 
 Conventions (see the package README, "SciPy users start here"):
@@ -46,6 +48,17 @@ from ._lekalo import (
     CurveQuery,
     SurfaceQuery,
     basis_functions,
+    bspline_curve_jvp,
+    bspline_curve_vjp,
+    bspline_curve_linearize,
+    bspline_surface_jvp,
+    bspline_surface_vjp,
+    bspline_surface_linearize,
+    interpolation_jvp,
+    interpolation_vjp,
+    nurbs_curve_jvp,
+    nurbs_curve_vjp,
+    nurbs_curve_linearize,
     cubic_through_four_points,
     evaluate_batch,
     fit_least_squares,
@@ -103,6 +116,17 @@ __all__ = [
     "CurveQuery",
     "SurfaceQuery",
     "basis_functions",
+    "bspline_curve_jvp",
+    "bspline_curve_vjp",
+    "bspline_curve_linearize",
+    "bspline_surface_jvp",
+    "bspline_surface_vjp",
+    "bspline_surface_linearize",
+    "interpolation_jvp",
+    "interpolation_vjp",
+    "nurbs_curve_jvp",
+    "nurbs_curve_vjp",
+    "nurbs_curve_linearize",
     "cubic_through_four_points",
     "curves_from_batch",
     "curves_to_batch",

@@ -330,6 +330,80 @@ def evaluate_batch(
     threads: Optional[int] = None,
 ) -> Array: ...
 
+# -- derivatives of evaluation for automatic differentiation (docs/theory/derivatives.md)
+def bspline_curve_jvp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    t: ArrayLike,
+    control_tangent: Optional[ArrayLike] = None,
+    t_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def bspline_curve_vjp(
+    degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike, cotangent: ArrayLike
+) -> Tuple[Array, Array]: ...
+def bspline_curve_linearize(
+    degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike
+) -> dict: ...
+def nurbs_curve_jvp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    control_tangent: Optional[ArrayLike] = None,
+    weights_tangent: Optional[ArrayLike] = None,
+    t_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def nurbs_curve_vjp(
+    degree: int,
+    knots: ArrayLike,
+    control: ArrayLike,
+    weights: ArrayLike,
+    t: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array, Array]: ...
+def nurbs_curve_linearize(
+    degree: int, knots: ArrayLike, control: ArrayLike, weights: ArrayLike, t: ArrayLike
+) -> dict: ...
+def interpolation_jvp(
+    degree: int, knots: ArrayLike, params: ArrayLike, data_tangent: ArrayLike
+) -> Array: ...
+def interpolation_vjp(
+    degree: int, knots: ArrayLike, params: ArrayLike, control_cotangent: ArrayLike
+) -> Array: ...
+def bspline_surface_jvp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    control_tangent: Optional[ArrayLike] = None,
+    u_tangent: Optional[ArrayLike] = None,
+    v_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def bspline_surface_vjp(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array, Array]: ...
+def bspline_surface_linearize(
+    degree_u: int,
+    degree_v: int,
+    knots_u: ArrayLike,
+    knots_v: ArrayLike,
+    control: ArrayLike,
+    u: ArrayLike,
+    v: ArrayLike,
+) -> dict: ...
+
 # -- fitting (docs/theory/fitting.md); the fit_* functions return (curve, report dict)
 def make_lsq_spline(
     x: ArrayLike,

@@ -1,0 +1,418 @@
+"""B-spline evaluation as JAX functions: lekalo's kernels inside ``jax.jit``, ``jax.vmap`` and
+``jax.grad`` / ``jax.jacfwd`` / ``jax.jacrev``.
+
+- ``bspline_eval(knots, control_points, u, degree)``: ``C(u)`` of a B-spline curve, shape
+  ``u.shape + (dim,)`` (``u.shape`` for 1-D control points);
+- ``nurbs_eval(knots, control_points, weights, u, degree)``: ``C(u)`` of a NURBS curve,
+  differentiable also with respect to the weights;
+- ``bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v)``:
+  ``S(u, v)`` of a tensor-product B-spline surface (control net ``(nu, nv, dim)``).
+
+Both are differentiable, in forward and reverse mode, with respect to the control points and
+the parameters; the knots and degrees are constants. The values come from lekalo through
+``jax.pure_callback`` (bit-for-bit the library's de Boor evaluation); the derivatives from the
+library's linearisation (``lekalo.bspline_curve_linearize``): the sparse basis matrix, ``p + 1``
+entries a parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for
+VJP), plus ``C'(u)`` times the parameter tangent (``docs/theory/derivatives.md``).
+
+Requirements and limits, each with a clear error:
+
+- float64 only: enable it with ``jax.config.update("jax_enable_x64", True)`` first;
+- first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
+  ``NotImplementedError``;
+- no derivatives with respect to the knots (``NotImplementedError``): pass them as constants;
+- parameters must lie in the domain: outside it, the error raised inside the callback reaches
+  the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's message, which names the
+  parameter and the domain (eagerly and under ``jit``);
+- runs on the CPU (the callback copies device arrays to the host).
+
+>>> import jax, jax.numpy as jnp
+>>> jax.config.update("jax_enable_x64", True)
+>>> from lekalo.jax import bspline_eval
+>>> knots = jnp.array([0, 0, 0, 0, 1, 1, 1, 1.0])
+>>> ctrl = jnp.array([[0, 0], [1, 2], [3, 2], [4, 0.0]])
+>>> bspline_eval(knots, ctrl, jnp.array([0.5]), 3).tolist()
+[[2.0, 1.5]]
+>>> g = jax.grad(lambda c: bspline_eval(knots, c, jnp.array([0.5]), 3)[0, 1])(ctrl)
+>>> g[:, 1].tolist()  # the basis functions at 0.5
+[0.125, 0.375, 0.375, 0.125]
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+try:
+    import jax
+    import jax.numpy as jnp
+    from jax.custom_derivatives import SymbolicZero
+except ImportError as e:  # pragma: no cover - the message is the point
+    raise ImportError(
+        "lekalo.jax needs JAX; install it with `pip install lekalo[jax]` (or `pip install jax`)"
+    ) from e
+
+from . import _lekalo
+from ._lekalo import InputError
+
+__all__ = ["bspline_eval", "nurbs_eval", "bspline_surface_eval"]
+
+
+def _require_x64(name):
+    if not jax.config.jax_enable_x64:
+        raise InputError(
+            f"lekalo.jax.{name} computes in float64: enable it with "
+            "jax.config.update('jax_enable_x64', True) at the start of the program"
+        )
+
+
+def _float64(x, what, name):
+    x = jnp.asarray(x)
+    if not jnp.issubdtype(x.dtype, jnp.floating) and not jnp.issubdtype(x.dtype, jnp.integer):
+        raise InputError(f"lekalo.jax.{name}: {what} must be real numbers, got dtype {x.dtype}")
+    return x.astype(jnp.float64)
+
+
+def _degree(d, what, name):
+    if isinstance(d, (bool, np.bool_)) or not isinstance(d, (int, np.integer)) or d < 0:
+        raise InputError(
+            f"lekalo.jax.{name}: {what} must be a non-negative Python int (a static value), "
+            f"got {d!r}"
+        )
+    return int(d)
+
+
+def _looped(fn, core_ndims, *arrays):
+    """``fn`` on arrays with leading batch axes (``vmap_method="expand_dims"``: an unbatched
+    argument has size-1 batch axes): one call a batch element, the results stacked."""
+    arrays = [np.asarray(a) for a in arrays]
+    batch_shapes = [a.shape[: a.ndim - c] for a, c in zip(arrays, core_ndims)]
+    batch = np.broadcast_shapes(*batch_shapes)
+    if batch == ():
+        return fn(*arrays)
+    results = []
+    for idx in np.ndindex(*batch):
+        parts = []
+        for a, bs in zip(arrays, batch_shapes):
+            off = len(batch) - len(bs)
+            parts.append(a[tuple(0 if s == 1 else idx[off + k] for k, s in enumerate(bs))])
+        results.append(fn(*parts))
+    return tuple(
+        np.stack([r[k] for r in results]).reshape(batch + results[0][k].shape)
+        for k in range(len(results[0]))
+    )
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _first_order_only(name, x):
+    return x
+
+
+@partial(_first_order_only.defjvp, symbolic_zeros=True)
+def _first_order_only_jvp(name, primals, tangents):
+    (x,), (dx,) = primals, tangents
+    if not isinstance(dx, SymbolicZero):
+        raise NotImplementedError(
+            f"lekalo.jax.{name}: only first derivatives are supported (jax.grad, jax.jacfwd, "
+            "jax.jacrev, jax.jvp, jax.vjp); a second derivative (jax.hessian, nested jacfwd/"
+            "jacrev) would differentiate the derivative kernels themselves"
+        )
+    return x, jnp.zeros_like(x)
+
+
+def _no_knot_tangent(name, *tangents):
+    if any(not isinstance(t, SymbolicZero) for t in tangents):
+        raise NotImplementedError(
+            f"lekalo.jax.{name}: derivatives with respect to the knots are not supported; pass "
+            "the knots as constants (close over them, or wrap them in jax.lax.stop_gradient)"
+        )
+
+
+# -- curves ------------------------------------------------------------------------------------
+
+
+def _curve_values_cb(degree, knots, ctrl, u):
+    def one(k, c, t):
+        return (_lekalo.bspline_curve_jvp(degree, k, c, t)[0],)
+
+    return _looped(one, (1, 2, 1), knots, ctrl, u)[0]
+
+
+def _curve_linearize_cb(degree, knots, ctrl, u):
+    def one(k, c, t):
+        d = _lekalo.bspline_curve_linearize(degree, k, c, t)
+        return d["values"], d["derivatives"], d["first"], d["basis"]
+
+    return _looped(one, (1, 2, 1), knots, ctrl, u)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _curve(degree, knots, ctrl, u):
+    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
+    return jax.pure_callback(
+        partial(_curve_values_cb, degree), shape, knots, ctrl, u, vmap_method="expand_dims"
+    )
+
+
+@partial(_curve.defjvp, symbolic_zeros=True)
+def _curve_jvp(degree, primals, tangents):
+    knots, ctrl, u = primals
+    dk, dc, du = tangents
+    _no_knot_tangent("bspline_eval", dk)
+    m, dim, w = u.shape[0], ctrl.shape[-1], degree + 1
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, w), jnp.float64),
+    )
+    guard = partial(_first_order_only, "bspline_eval")
+    values, slopes, first, basis = jax.pure_callback(
+        partial(_curve_linearize_cb, degree),
+        shapes,
+        guard(knots),
+        guard(ctrl),
+        guard(u),
+        vmap_method="expand_dims",
+    )
+    tangent = jnp.zeros((m, dim), jnp.float64)
+    if not isinstance(dc, SymbolicZero):
+        rows = first[:, None] + jnp.arange(w)  # (m, p + 1) control-point indices
+        tangent = tangent + jnp.einsum("mk,mkd->md", basis, dc[rows])
+    if not isinstance(du, SymbolicZero):
+        tangent = tangent + slopes * du[:, None]
+    return values, tangent
+
+
+def bspline_eval(knots, control_points, u, degree):
+    """``C(u)`` of the B-spline curve of ``degree`` on ``knots`` with ``control_points``
+    (``(n, dim)``, or ``(n,)`` for a function), at the parameters ``u`` (any shape, in the
+    domain ``[knots[degree], knots[n]]``). Returns ``u.shape + (dim,)`` (``u.shape`` for 1-D
+    control points), bit-for-bit lekalo's de Boor evaluation.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points`` and ``u``; ``knots`` and ``degree`` are constants (``degree``
+    a Python int). At an interior knot where ``C'`` jumps, the derivative in ``u`` is the
+    right-hand one.
+    """
+    name = "bspline_eval"
+    _require_x64(name)
+    degree = _degree(degree, "degree", name)
+    knots = _float64(knots, "knots", name)
+    ctrl = _float64(control_points, "control_points", name)
+    u = _float64(u, "u", name)
+    if knots.ndim != 1:
+        raise InputError(f"lekalo.jax.{name}: knots must be 1-D, got shape {knots.shape}")
+    if ctrl.ndim not in (1, 2):
+        raise InputError(
+            f"lekalo.jax.{name}: control_points must be (n, dim) or (n,), got shape {ctrl.shape}"
+        )
+    n = ctrl.shape[0]
+    if knots.shape[0] != n + degree + 1:
+        raise InputError(
+            f"lekalo.jax.{name}: {n} control points of degree {degree} need {n + degree + 1} "
+            f"knots (control points + degree + 1), got {knots.shape[0]}"
+        )
+    scalar_dim = ctrl.ndim == 1
+    c2 = ctrl[:, None] if scalar_dim else ctrl
+    out = _curve(degree, knots, c2, u.reshape(-1))
+    out = out.reshape(u.shape + c2.shape[-1:])
+    return out[..., 0] if scalar_dim else out
+
+
+# -- NURBS curves ------------------------------------------------------------------------------
+
+
+def _nurbs_values_cb(degree, knots, ctrl, w, u):
+    def one(k, c, ws, t):
+        return (_lekalo.nurbs_curve_jvp(degree, k, c, ws, t)[0],)
+
+    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)[0]
+
+
+def _nurbs_linearize_cb(degree, knots, ctrl, w, u):
+    def one(k, c, ws, t):
+        d = _lekalo.nurbs_curve_linearize(degree, k, c, ws, t)
+        return d["values"], d["derivatives"], d["first"], d["basis"]
+
+    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _nurbs(degree, knots, ctrl, w, u):
+    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
+    return jax.pure_callback(
+        partial(_nurbs_values_cb, degree), shape, knots, ctrl, w, u, vmap_method="expand_dims"
+    )
+
+
+@partial(_nurbs.defjvp, symbolic_zeros=True)
+def _nurbs_jvp(degree, primals, tangents):
+    knots, ctrl, w, u = primals
+    dk, dc, dw, du = tangents
+    _no_knot_tangent("nurbs_eval", dk)
+    m, dim, width = u.shape[0], ctrl.shape[-1], degree + 1
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, width), jnp.float64),
+    )
+    guard = partial(_first_order_only, "nurbs_eval")
+    values, slopes, first, basis = jax.pure_callback(
+        partial(_nurbs_linearize_cb, degree),
+        shapes,
+        *(guard(x) for x in (knots, ctrl, w, u)),
+        vmap_method="expand_dims",
+    )
+    rows = first[:, None] + jnp.arange(width)  # (m, p + 1) control-point indices
+    tangent = jnp.zeros((m, dim), jnp.float64)
+    if not isinstance(dc, SymbolicZero):
+        tangent = tangent + jnp.einsum("mk,mkd->md", basis, dc[rows])
+    if not isinstance(dw, SymbolicZero):
+        # dC/dw_j = R_j (P_j - C) / w_j
+        coef = basis * dw[rows] / w[rows]
+        tangent = tangent + jnp.einsum("mk,mkd->md", coef, ctrl[rows] - values[:, None, :])
+    if not isinstance(du, SymbolicZero):
+        tangent = tangent + slopes * du[:, None]
+    return values, tangent
+
+
+def nurbs_eval(knots, control_points, weights, u, degree):
+    """``C(u)`` of the NURBS curve of ``degree`` on ``knots`` with Euclidean ``control_points``
+    (``(n, dim)``) and positive ``weights`` (``(n,)``), at the parameters ``u`` (any shape).
+    Returns ``u.shape + (dim,)``, bit-for-bit lekalo's evaluation.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points``, ``weights`` and ``u``; ``knots`` and ``degree`` are constants.
+    """
+    name = "nurbs_eval"
+    _require_x64(name)
+    degree = _degree(degree, "degree", name)
+    knots = _float64(knots, "knots", name)
+    ctrl = _float64(control_points, "control_points", name)
+    w = _float64(weights, "weights", name)
+    u = _float64(u, "u", name)
+    if ctrl.ndim != 2:
+        raise InputError(f"lekalo.jax.{name}: control_points must be (n, dim), got shape {ctrl.shape}")
+    n = ctrl.shape[0]
+    if w.shape != (n,):
+        raise InputError(
+            f"lekalo.jax.{name}: weights must be one a control point, shape ({n},), got {w.shape}"
+        )
+    if knots.ndim != 1 or knots.shape[0] != n + degree + 1:
+        raise InputError(
+            f"lekalo.jax.{name}: {n} control points of degree {degree} need {n + degree + 1} "
+            f"knots (control points + degree + 1), got shape {knots.shape}"
+        )
+    out = _nurbs(degree, knots, ctrl, w, u.reshape(-1))
+    return out.reshape(u.shape + ctrl.shape[-1:])
+
+
+# -- surfaces ----------------------------------------------------------------------------------
+
+
+def _surface_values_cb(degrees, ku, kv, ctrl, u, v):
+    def one(a, b, c, x, y):
+        return (_lekalo.bspline_surface_jvp(*degrees, a, b, c, x, y)[0],)
+
+    return _looped(one, (1, 1, 3, 1, 1), ku, kv, ctrl, u, v)[0]
+
+
+def _surface_linearize_cb(degrees, ku, kv, ctrl, u, v):
+    def one(a, b, c, x, y):
+        d = _lekalo.bspline_surface_linearize(*degrees, a, b, c, x, y)
+        return tuple(
+            d[k]
+            for k in (
+                "values",
+                "derivatives_u",
+                "derivatives_v",
+                "first_u",
+                "first_v",
+                "basis_u",
+                "basis_v",
+            )
+        )
+
+    return _looped(one, (1, 1, 3, 1, 1), ku, kv, ctrl, u, v)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _surface(degrees, ku, kv, ctrl, u, v):
+    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
+    return jax.pure_callback(
+        partial(_surface_values_cb, degrees), shape, ku, kv, ctrl, u, v, vmap_method="expand_dims"
+    )
+
+
+@partial(_surface.defjvp, symbolic_zeros=True)
+def _surface_jvp(degrees, primals, tangents):
+    ku, kv, ctrl, u, v = primals
+    dku, dkv, dc, du, dv = tangents
+    _no_knot_tangent("bspline_surface_eval", dku, dkv)
+    (p, q), m, dim = degrees, u.shape[0], ctrl.shape[-1]
+    f64 = jnp.float64
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), f64),
+        jax.ShapeDtypeStruct((m, dim), f64),
+        jax.ShapeDtypeStruct((m, dim), f64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, p + 1), f64),
+        jax.ShapeDtypeStruct((m, q + 1), f64),
+    )
+    guard = partial(_first_order_only, "bspline_surface_eval")
+    values, su, sv, fu, fv, bu, bv = jax.pure_callback(
+        partial(_surface_linearize_cb, degrees),
+        shapes,
+        *(guard(x) for x in (ku, kv, ctrl, u, v)),
+        vmap_method="expand_dims",
+    )
+    tangent = jnp.zeros((m, dim), f64)
+    if not isinstance(dc, SymbolicZero):
+        rows = (fu[:, None] + jnp.arange(p + 1))[:, :, None]  # (m, p + 1, 1)
+        cols = (fv[:, None] + jnp.arange(q + 1))[:, None, :]  # (m, 1, q + 1)
+        tangent = tangent + jnp.einsum("mk,ml,mkld->md", bu, bv, dc[rows, cols])
+    if not isinstance(du, SymbolicZero):
+        tangent = tangent + su * du[:, None]
+    if not isinstance(dv, SymbolicZero):
+        tangent = tangent + sv * dv[:, None]
+    return values, tangent
+
+
+def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v):
+    """``S(u, v)`` of the tensor-product B-spline surface of degrees ``(degree_u, degree_v)`` on
+    ``knots_u``, ``knots_v`` with the control net ``control_points`` (``(nu, nv, dim)``), at
+    parameters ``u``, ``v`` of one shape. Returns ``u.shape + (dim,)``, bit-for-bit lekalo's
+    evaluation.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points``, ``u`` and ``v``; knots and degrees are constants.
+    """
+    name = "bspline_surface_eval"
+    _require_x64(name)
+    degrees = (_degree(degree_u, "degree_u", name), _degree(degree_v, "degree_v", name))
+    ku = _float64(knots_u, "knots_u", name)
+    kv = _float64(knots_v, "knots_v", name)
+    ctrl = _float64(control_points, "control_points", name)
+    u = _float64(u, "u", name)
+    v = _float64(v, "v", name)
+    if ctrl.ndim != 3:
+        raise InputError(
+            f"lekalo.jax.{name}: control_points must be a net (nu, nv, dim), got shape {ctrl.shape}"
+        )
+    for k, n, d, what in ((ku, ctrl.shape[0], degrees[0], "u"), (kv, ctrl.shape[1], degrees[1], "v")):
+        if k.ndim != 1 or k.shape[0] != n + d + 1:
+            raise InputError(
+                f"lekalo.jax.{name}: knots_{what} must be 1-D with {n + d + 1} knots (net size "
+                f"{n} + degree {d} + 1 along {what}), got shape {k.shape}"
+            )
+    if u.shape != v.shape:
+        raise InputError(
+            f"lekalo.jax.{name}: u and v must have one shape, got {u.shape} and {v.shape} "
+            "(jnp.meshgrid for a grid)"
+        )
+    out = _surface(degrees, ku, kv, ctrl, u.reshape(-1), v.reshape(-1))
+    return out.reshape(u.shape + ctrl.shape[-1:])

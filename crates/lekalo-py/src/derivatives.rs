@@ -1,0 +1,471 @@
+//! Derivatives of evaluation for automatic differentiation (JAX, PyTorch): the JVP, VJP and
+//! linearisation kernels of `lekalo::derivatives`, NumPy in and out. The pure-Python
+//! `lekalo.jax` builds its differentiable functions on these.
+//!
+//! Curves take `(degree, knots, control, t)` as `BSplineCurve(degree, knots, control)(t)`
+//! (NURBS `(degree, knots, control, weights, t)`);
+//! surfaces `(degree_u, degree_v, knots_u, knots_v, control, u, v)` as `BSplineSurface`. Values
+//! and tangents have the shape `t.shape + (dim,)`; cotangents of the control points the shape
+//! of `control`, of the parameters the shape of `t`.
+
+use lekalo::derivatives::InterpolationMap;
+use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{array, check_size, floats, out_shape, vec1, FloatArray};
+use crate::error::{bad, lib_err};
+use crate::surfaces::net_arg;
+
+/// Registers the functions of this module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(bspline_curve_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(bspline_curve_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(bspline_curve_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(nurbs_curve_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(interpolation_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(interpolation_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(bspline_surface_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(bspline_surface_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(bspline_surface_linearize, m)?)?;
+    Ok(())
+}
+
+fn curve(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    control: &FloatArray<'_>,
+) -> PyResult<BSplineCurve> {
+    let k = vec1(knots, "knots")?;
+    let p = control.points("control")?.to_owned();
+    BSplineCurve::new(degree, k, p).map_err(lib_err)
+}
+
+fn surface(
+    (degree_u, degree_v): (usize, usize),
+    knots_u: &Bound<'_, PyAny>,
+    knots_v: &Bound<'_, PyAny>,
+    control: &Bound<'_, PyAny>,
+) -> PyResult<BSplineSurface> {
+    let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
+    let (p, size) = net_arg(control, "control")?;
+    BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)
+}
+
+/// An optional argument of the same shape as `like` (`like_name`).
+fn same_shape<'py>(
+    arg: Option<&Bound<'py, PyAny>>,
+    what: &str,
+    like: &[usize],
+    like_name: &str,
+) -> PyResult<Option<FloatArray<'py>>> {
+    let Some(a) = arg.filter(|a| !a.is_none()) else {
+        return Ok(None);
+    };
+    let a = floats(a, what)?;
+    if a.shape() != like {
+        return Err(bad(format!(
+            "{what}: shape {:?} differs from {like_name}'s {like:?}; a tangent or cotangent has the shape of what it belongs to",
+            a.shape()
+        )));
+    }
+    Ok(Some(a))
+}
+
+/// Indices as an int64 array of the given shape.
+fn index_array<'py>(
+    py: Python<'py>,
+    v: Vec<usize>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let v: Vec<i64> = v
+        .into_iter()
+        .map(|i| i64::try_from(i).unwrap_or(i64::MAX))
+        .collect();
+    Ok(PyArray1::from_vec(py, v)
+        .reshape(shape.to_vec())?
+        .into_any())
+}
+
+/// Forward-mode derivative of B-spline curve evaluation: returns `(values, tangent)` with
+/// `values = C(t)` (bit-for-bit `BSplineCurve.evaluate_batch`'s de Boor evaluation) and
+/// `tangent = B(t) @ control_tangent + C'(t) * t_tangent` (either tangent may be `None`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, t, control_tangent = None, t_tangent = None))]
+pub(crate) fn bspline_curve_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    control_tangent: Option<&Bound<'py, PyAny>>,
+    t_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = curve(degree, knots, &ca)?;
+    let ta = floats(t, "t")?;
+    let dim = c.dim();
+    let n = check_size("t", &[ta.data().len(), dim])?;
+    let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
+    let dt = same_shape(t_tangent, "t_tangent", ta.shape(), "t")?;
+    let (ts, dc, dt) = (
+        ta.data(),
+        dc.as_ref().map(FloatArray::data),
+        dt.as_ref().map(FloatArray::data),
+    );
+    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| c.eval_batch_jvp(ts, dc, dt, &mut out, &mut tan))
+        .map_err(lib_err)?;
+    let shape = out_shape(&ta, &[dim]);
+    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+}
+
+/// Reverse-mode derivative of B-spline curve evaluation: for `cotangent` of shape
+/// `t.shape + (dim,)`, returns `(control_cotangent, t_cotangent)` =
+/// `(B(t).T @ cotangent, sum(cotangent * C'(t), axis=-1))`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, t, cotangent))]
+pub(crate) fn bspline_curve_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = curve(degree, knots, &ca)?;
+    let ta = floats(t, "t")?;
+    let shape = out_shape(&ta, &[c.dim()]);
+    let ga = same_shape(Some(cotangent), "cotangent", &shape, "the values")?;
+    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let (mut gc, mut gt) = (vec![0.0; ca.data().len()], vec![0.0; ta.data().len()]);
+    let ts = ta.data();
+    py.detach(|| c.eval_batch_vjp(ts, g, Some(&mut gc), Some(&mut gt)))
+        .map_err(lib_err)?;
+    Ok((array(py, gc, ca.shape())?, array(py, gt, ta.shape())?))
+}
+
+/// The linearisation of B-spline curve evaluation at `t`: a dict with `values` and
+/// `derivatives` (`C(t)`, `C'(t)`, shape `t.shape + (dim,)`), `first` (int64, `t.shape`: the
+/// first control point with a non-zero basis function) and `basis` (`t.shape + (degree + 1,)`:
+/// those basis functions), so that `C(t) = sum(basis[..., k, None] * control[first + k])`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, t))]
+pub(crate) fn bspline_curve_linearize<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ca = floats(control, "control")?;
+    let c = curve(degree, knots, &ca)?;
+    let ta = floats(t, "t")?;
+    let ts = ta.data();
+    let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
+    let d = PyDict::new(py);
+    let pts = out_shape(&ta, &[c.dim()]);
+    d.set_item("values", array(py, lin.values, &pts)?)?;
+    d.set_item("derivatives", array(py, lin.derivatives, &pts)?)?;
+    d.set_item("first", index_array(py, lin.first, ta.shape())?)?;
+    d.set_item(
+        "basis",
+        array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
+    )?;
+    Ok(d)
+}
+
+fn nurbs(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    control: &FloatArray<'_>,
+    weights: &Bound<'_, PyAny>,
+) -> PyResult<NurbsCurve> {
+    let k = vec1(knots, "knots")?;
+    let p = control.points("control")?.to_owned();
+    let w = vec1(weights, "weights")?;
+    NurbsCurve::new(degree, k, p, w).map_err(lib_err)
+}
+
+/// Forward-mode derivative of NURBS curve evaluation: returns `(values, tangent)` with
+/// `tangent = R(t) @ control_tangent + ∂C/∂w @ weights_tangent + C'(t) * t_tangent` (any
+/// tangent may be `None`; `R` is the rational basis).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, control_tangent = None,
+                    weights_tangent = None, t_tangent = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_curve_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    control_tangent: Option<&Bound<'py, PyAny>>,
+    weights_tangent: Option<&Bound<'py, PyAny>>,
+    t_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
+    let ta = floats(t, "t")?;
+    let dim = c.dim();
+    let n = check_size("t", &[ta.data().len(), dim])?;
+    let w_shape = [c.weights().len()];
+    let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
+    let dw = same_shape(weights_tangent, "weights_tangent", &w_shape, "weights")?;
+    let dt = same_shape(t_tangent, "t_tangent", ta.shape(), "t")?;
+    let (ts, dc, dw, dt) = (
+        ta.data(),
+        dc.as_ref().map(FloatArray::data),
+        dw.as_ref().map(FloatArray::data),
+        dt.as_ref().map(FloatArray::data),
+    );
+    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| c.eval_batch_jvp(ts, dc, dw, dt, &mut out, &mut tan))
+        .map_err(lib_err)?;
+    let shape = out_shape(&ta, &[dim]);
+    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+}
+
+/// Reverse-mode derivative of NURBS curve evaluation: for `cotangent` of shape
+/// `t.shape + (dim,)`, returns `(control_cotangent, weights_cotangent, t_cotangent)`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t, cotangent))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nurbs_curve_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
+    let ta = floats(t, "t")?;
+    let shape = out_shape(&ta, &[c.dim()]);
+    let ga = same_shape(Some(cotangent), "cotangent", &shape, "the values")?;
+    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let n_ctrl = c.weights().len();
+    let (mut gc, mut gw) = (vec![0.0; ca.data().len()], vec![0.0; n_ctrl]);
+    let mut gt = vec![0.0; ta.data().len()];
+    let ts = ta.data();
+    py.detach(|| c.eval_batch_vjp(ts, g, Some(&mut gc), Some(&mut gw), Some(&mut gt)))
+        .map_err(lib_err)?;
+    Ok((
+        array(py, gc, ca.shape())?,
+        array(py, gw, &[n_ctrl])?,
+        array(py, gt, ta.shape())?,
+    ))
+}
+
+/// The linearisation of NURBS curve evaluation at `t`: a dict with `values`, `derivatives`,
+/// `first` (int64) and `basis` (the rational basis `R_j = N_j w_j / W`,
+/// `t.shape + (degree + 1,)`); `∂C/∂w_j = R_j (P_j − C) / w_j`.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, control, weights, t))]
+pub(crate) fn nurbs_curve_linearize<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    weights: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ca = floats(control, "control")?;
+    let c = nurbs(degree, knots, &ca, weights)?;
+    let ta = floats(t, "t")?;
+    let ts = ta.data();
+    let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
+    let d = PyDict::new(py);
+    let pts = out_shape(&ta, &[c.dim()]);
+    d.set_item("values", array(py, lin.values, &pts)?)?;
+    d.set_item("derivatives", array(py, lin.derivatives, &pts)?)?;
+    d.set_item("first", index_array(py, lin.first, ta.shape())?)?;
+    d.set_item(
+        "basis",
+        array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
+    )?;
+    Ok(d)
+}
+
+/// The factored collocation map of interpolation, and the data's dimension from `values`
+/// (`(n, dim)`, or `(n,)` for dimension 1).
+fn interpolation_map(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    params: &Bound<'_, PyAny>,
+) -> PyResult<InterpolationMap> {
+    let kv = KnotVector::new(vec1(knots, "knots")?).map_err(lib_err)?;
+    let ts = vec1(params, "params")?;
+    InterpolationMap::new(degree, &kv, &ts).map_err(lib_err)
+}
+
+fn dim_of(a: &FloatArray<'_>, what: &str) -> PyResult<usize> {
+    Ok(a.points(what)?.dim())
+}
+
+/// Forward-mode derivative of interpolation at fixed `params` and `knots` with respect to the
+/// data: the control-point tangent `A⁻¹ @ data_tangent` (shape of `data_tangent`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, data_tangent))]
+pub(crate) fn interpolation_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    data_tangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = interpolation_map(degree, knots, params)?;
+    let a = floats(data_tangent, "data_tangent")?;
+    let dim = dim_of(&a, "data_tangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
+    array(py, out, a.shape())
+}
+
+/// Reverse-mode derivative of interpolation at fixed `params` and `knots` with respect to the
+/// data: the data cotangent `A⁻ᵀ @ control_cotangent` (an adjoint solve with the banded
+/// factors; shape of `control_cotangent`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, control_cotangent))]
+pub(crate) fn interpolation_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    control_cotangent: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = interpolation_map(degree, knots, params)?;
+    let a = floats(control_cotangent, "control_cotangent")?;
+    let dim = dim_of(&a, "control_cotangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
+    array(py, out, a.shape())
+}
+
+/// `(u, v)` of one shape as pairs, and that shape.
+fn pairs(u: &Bound<'_, PyAny>, v: &Bound<'_, PyAny>) -> PyResult<(Vec<[f64; 2]>, Vec<usize>)> {
+    let (ua, pairs) = crate::convert::uv_args(u, v)?;
+    Ok((pairs, ua.shape().to_vec()))
+}
+
+/// Forward-mode derivative of B-spline surface evaluation at `(u, v)` (arrays of one shape):
+/// returns `(values, tangent)`, `tangent = Σ N_k(u) N_l(v) control_tangent[k, l] + S_u(u, v)
+/// u_tangent + S_v(u, v) v_tangent` (any tangent may be `None`).
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, u, v, control_tangent = None,
+                    u_tangent = None, v_tangent = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn bspline_surface_jvp<'py>(
+    py: Python<'py>,
+    degree_u: usize,
+    degree_v: usize,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    control_tangent: Option<&Bound<'py, PyAny>>,
+    u_tangent: Option<&Bound<'py, PyAny>>,
+    v_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let (uv, shape) = pairs(u, v)?;
+    let dim = s.dim();
+    let n = check_size("u", &[uv.len(), dim])?;
+    let net_shape = floats(control, "control")?.shape().to_vec();
+    let dc = same_shape(control_tangent, "control_tangent", &net_shape, "control")?;
+    let du = same_shape(u_tangent, "u_tangent", &shape, "u")?;
+    let dv = same_shape(v_tangent, "v_tangent", &shape, "v")?;
+    let duv: Option<Vec<[f64; 2]>> = if du.is_some() || dv.is_some() {
+        let get = |a: &Option<FloatArray<'_>>, i: usize| a.as_ref().map_or(0.0, |a| a.data()[i]);
+        Some((0..uv.len()).map(|i| [get(&du, i), get(&dv, i)]).collect())
+    } else {
+        None
+    };
+    let dc = dc.as_ref().map(FloatArray::data);
+    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| s.eval_batch_jvp(&uv, dc, duv.as_deref(), &mut out, &mut tan))
+        .map_err(lib_err)?;
+    let mut pts = shape;
+    pts.push(dim);
+    Ok((array(py, out, &pts)?, array(py, tan, &pts)?))
+}
+
+/// Reverse-mode derivative of B-spline surface evaluation: for `cotangent` of shape
+/// `u.shape + (dim,)`, returns `(control_cotangent, u_cotangent, v_cotangent)`.
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, u, v, cotangent))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn bspline_surface_vjp<'py>(
+    py: Python<'py>,
+    degree_u: usize,
+    degree_v: usize,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let (uv, shape) = pairs(u, v)?;
+    let mut pts = shape.clone();
+    pts.push(s.dim());
+    let ga = same_shape(Some(cotangent), "cotangent", &pts, "the values")?;
+    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let mut gc = vec![0.0; s.control_points().as_slice().len()];
+    let mut guv = vec![[0.0; 2]; uv.len()];
+    py.detach(|| s.eval_batch_vjp(&uv, g, Some(&mut gc), Some(&mut guv)))
+        .map_err(lib_err)?;
+    let (gu, gv): (Vec<f64>, Vec<f64>) = guv.into_iter().map(|[a, b]| (a, b)).unzip();
+    let (nu, nv) = s.net_size();
+    Ok((
+        array(py, gc, &[nu, nv, s.dim()])?,
+        array(py, gu, &shape)?,
+        array(py, gv, &shape)?,
+    ))
+}
+
+/// The linearisation of B-spline surface evaluation at `(u, v)`: a dict with `values`,
+/// `derivatives_u`, `derivatives_v` (`u.shape + (dim,)`), `first_u`, `first_v` (int64,
+/// `u.shape`) and `basis_u`, `basis_v` (`u.shape + (degree + 1,)`), so that
+/// `S = Σ_k Σ_l basis_u[..., k] basis_v[..., l] control[first_u + k, first_v + l]`.
+#[pyfunction]
+#[pyo3(signature = (degree_u, degree_v, knots_u, knots_v, control, u, v))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn bspline_surface_linearize<'py>(
+    py: Python<'py>,
+    degree_u: usize,
+    degree_v: usize,
+    knots_u: &Bound<'py, PyAny>,
+    knots_v: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    u: &Bound<'py, PyAny>,
+    v: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let (uv, shape) = pairs(u, v)?;
+    let lin = py.detach(|| s.eval_batch_linearize(&uv)).map_err(lib_err)?;
+    let tail = |k: usize| {
+        let mut s = shape.clone();
+        s.push(k);
+        s
+    };
+    let d = PyDict::new(py);
+    let pts = tail(s.dim());
+    d.set_item("values", array(py, lin.values, &pts)?)?;
+    d.set_item("derivatives_u", array(py, lin.derivatives_u, &pts)?)?;
+    d.set_item("derivatives_v", array(py, lin.derivatives_v, &pts)?)?;
+    d.set_item("first_u", index_array(py, lin.first_u, &shape)?)?;
+    d.set_item("first_v", index_array(py, lin.first_v, &shape)?)?;
+    d.set_item("basis_u", array(py, lin.basis_u, &tail(degree_u + 1))?)?;
+    d.set_item("basis_v", array(py, lin.basis_v, &tail(degree_v + 1))?)?;
+    Ok(d)
+}

@@ -1,0 +1,226 @@
+"""lekalo.jax: values bit-for-bit lekalo's, Jacobians from jacfwd and jacrev against central
+finite differences (relative 1e-7) eagerly, under jit and under vmap, and the errors for what
+is not supported (float32, knot derivatives, second derivatives, parameters outside the
+domain). The derivative mathematics is tested in the core (crates/lekalo/src/derivatives/)."""
+
+import numpy as np
+import pytest
+
+jax = pytest.importorskip("jax")
+import jax.numpy as jnp  # noqa: E402
+
+import lekalo  # noqa: E402
+from lekalo.jax import bspline_eval, bspline_surface_eval, nurbs_eval  # noqa: E402
+
+RTOL = 1e-7
+
+
+@pytest.fixture(autouse=True)
+def x64():
+    old = jax.config.jax_enable_x64
+    jax.config.update("jax_enable_x64", True)
+    yield
+    jax.config.update("jax_enable_x64", old)
+
+
+def curve_case(dim=3):
+    rng = np.random.default_rng(7)
+    knots = np.array([0, 0, 0, 0, 0.3, 0.55, 1, 1, 1, 1.0])
+    ctrl = rng.uniform(-1, 1, (6, dim))
+    u = np.array([0.05, 0.2, 0.41, 0.5, 0.7, 0.93])  # off the knots
+    return knots, ctrl, u
+
+
+def surface_case():
+    rng = np.random.default_rng(11)
+    ku = np.array([0, 0, 0, 0.4, 1, 1, 1.0])
+    kv = np.array([0, 0, 0, 0, 0.5, 1, 1, 1, 1.0])
+    net = rng.uniform(-1, 1, (4, 5, 3))
+    u = np.array([0.1, 0.3, 0.6, 0.85])
+    v = np.array([0.2, 0.45, 0.7, 0.1])
+    return ku, kv, net, u, v
+
+
+def central(f, x, h):
+    """Jacobian of f at x by central differences, shape f(x).shape + x.shape."""
+    x = np.asarray(x, dtype=float)
+    cols = []
+    for i in range(x.size):
+        e = np.zeros(x.size)
+        e[i] = h
+        e = e.reshape(x.shape)
+        cols.append((np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * h))
+    return np.stack(cols, axis=-1).reshape(np.shape(f(x)) + x.shape)
+
+
+def assert_rel(a, b, what):
+    a, b = np.asarray(a), np.asarray(b)
+    assert a.shape == b.shape, (what, a.shape, b.shape)
+    err = np.max(np.abs(a - b))
+    scale = max(np.max(np.abs(b)), 1.0)
+    assert err <= RTOL * scale, f"{what}: error {err:.3e} above {RTOL} x {scale:.3e}"
+
+
+def test_values_are_lekalos_bit_for_bit_and_agree_with_scipy():
+    knots, ctrl, u = curve_case()
+    got = np.asarray(bspline_eval(knots, ctrl, u, 3))
+    ref = lekalo.bspline_curve_jvp(3, knots, ctrl, u)[0]
+    assert np.array_equal(got, ref)
+    assert np.array_equal(np.asarray(jax.jit(bspline_eval, static_argnums=3)(knots, ctrl, u, 3)), ref)
+    scipy = pytest.importorskip("scipy.interpolate")
+    np.testing.assert_allclose(got, scipy.BSpline(knots, ctrl, 3)(u), rtol=1e-14, atol=1e-15)
+    # any shape of u, and a function (1-D control points)
+    assert bspline_eval(knots, ctrl, u.reshape(2, 3), 3).shape == (2, 3, 3)
+    y = bspline_eval(knots, ctrl[:, 0], u, 3)
+    assert y.shape == u.shape and np.array_equal(np.asarray(y), ref[:, 0])
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+@pytest.mark.parametrize("jit", [False, True])
+def test_curve_jacobians_match_central_differences(mode, jit):
+    knots, ctrl, u = curve_case()
+    jac = getattr(jax, mode)
+    f = lambda c, t: bspline_eval(knots, c, t, 3)  # noqa: E731
+    jc, ju = jac(f, argnums=(0, 1))(ctrl, u) if not jit else jax.jit(jac(f, argnums=(0, 1)))(ctrl, u)
+    plain = lambda c, t: lekalo.bspline_curve_jvp(3, knots, c, t)[0]  # noqa: E731
+    assert_rel(jc, central(lambda c: plain(c, u), ctrl, 1e-3), f"{mode} in the control points")
+    assert_rel(ju, central(lambda t: plain(ctrl, t), u, 1e-6), f"{mode} in u")
+
+
+def test_grad_of_a_loss_and_jvp_vjp():
+    knots, ctrl, u = curve_case()
+    target = np.ones((u.size, 3))
+    loss = lambda c, t: jnp.sum((bspline_eval(knots, c, t, 3) - target) ** 2)  # noqa: E731
+    gc, gu = jax.jit(jax.grad(loss, argnums=(0, 1)))(ctrl, u)
+    f = lambda c, t: np.sum((lekalo.bspline_curve_jvp(3, knots, c, t)[0] - target) ** 2)  # noqa: E731
+    assert_rel(gc, central(lambda c: f(c, u), ctrl, 1e-5), "grad in the control points")
+    assert_rel(gu, central(lambda t: f(ctrl, t), u, 1e-6), "grad in u")
+    # jax.jvp and jax.vjp agree with lekalo's own kernels
+    dc, du = np.full_like(ctrl, 0.5), np.linspace(-1, 1, u.size)
+    _, tan = jax.jvp(lambda c, t: bspline_eval(knots, c, t, 3), (ctrl, u), (dc, du))
+    assert_rel(tan, lekalo.bspline_curve_jvp(3, knots, ctrl, u, dc, du)[1], "jvp")
+    g = np.arange(u.size * 3, dtype=float).reshape(u.size, 3)
+    _, pullback = jax.vjp(lambda c, t: bspline_eval(knots, c, t, 3), ctrl, u)
+    for a, b in zip(pullback(g), lekalo.bspline_curve_vjp(3, knots, ctrl, u, g)):
+        assert_rel(a, b, "vjp")
+
+
+def test_vmap_over_curves_and_parameters():
+    knots, ctrl, u = curve_case()
+    batch = np.stack([ctrl, 2 * ctrl, ctrl[::-1]])
+    us = np.stack([u, u[::-1] * 0.9])
+    f = lambda c, t: bspline_eval(knots, c, t, 3)  # noqa: E731
+    vals = jax.jit(jax.vmap(jax.vmap(f, in_axes=(None, 0)), in_axes=(0, None)))(batch, us)
+    for i, c in enumerate(batch):
+        for j, t in enumerate(us):
+            assert np.array_equal(np.asarray(vals[i, j]), lekalo.bspline_curve_jvp(3, knots, c, t)[0])
+    # gradients per curve: vmap of grad, and grad of vmap
+    loss = lambda c: jnp.sum(f(c, u) ** 3)  # noqa: E731
+    per_curve = jax.jit(jax.vmap(jax.grad(loss)))(batch)
+    summed = jax.jit(jax.grad(lambda b: jnp.sum(jax.vmap(loss)(b))))(batch)
+    loss_np = lambda c: np.sum(lekalo.bspline_curve_jvp(3, knots, c, u)[0] ** 3)  # noqa: E731
+    for i, c in enumerate(batch):
+        fd = central(loss_np, c, 1e-5)
+        assert_rel(per_curve[i], fd, "vmap(grad)")
+        assert_rel(summed[i], fd, "grad(vmap)")
+    # the parameters batched too, forward mode
+    ju = jax.jit(jax.vmap(jax.jacfwd(f, argnums=1), in_axes=(0, 0)))(batch[:2], us)
+    for i in range(2):
+        fd = central(lambda t: lekalo.bspline_curve_jvp(3, knots, batch[i], t)[0], us[i], 1e-6)
+        assert_rel(ju[i], fd, "vmap(jacfwd) in u")
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_nurbs_jacobians_match_central_differences(mode):
+    knots, ctrl, u = curve_case()
+    w = np.array([1.0, 0.5, 2.0, 1.5, 0.8, 1.2])
+    f = lambda c, ws, t: nurbs_eval(knots, c, ws, t, 3)  # noqa: E731
+    plain = lambda c, ws, t: lekalo.nurbs_curve_jvp(3, knots, c, ws, t)[0]  # noqa: E731
+    assert np.array_equal(np.asarray(f(ctrl, w, u)), plain(ctrl, w, u))
+    np.testing.assert_allclose(plain(ctrl, w, u), lekalo.NurbsCurve(3, knots, ctrl, w)(u), atol=1e-14)
+    jc, jw, ju = jax.jit(getattr(jax, mode)(f, argnums=(0, 1, 2)))(ctrl, w, u)
+    assert_rel(jc, central(lambda c: plain(c, w, u), ctrl, 1e-3), f"{mode} in the control points")
+    assert_rel(jw, central(lambda ws: plain(ctrl, ws, u), w, 1e-6), f"{mode} in the weights")
+    assert_rel(ju, central(lambda t: plain(ctrl, w, t), u, 1e-6), f"{mode} in u")
+    # vmap of grad over weight sets
+    ws = np.stack([w, w[::-1]])
+    g = jax.vmap(jax.grad(lambda x: jnp.sum(f(ctrl, x, u) ** 2)))(ws)
+    for i in range(2):
+        fd = central(lambda x: np.sum(plain(ctrl, x, u) ** 2), ws[i], 1e-6)
+        assert_rel(g[i], fd, "vmap(grad) over weights")
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_surface_jacobians_match_central_differences(mode):
+    ku, kv, net, u, v = surface_case()
+    f = lambda c, a, b: bspline_surface_eval(ku, kv, c, a, b, 2, 3)  # noqa: E731
+    plain = lambda c, a, b: lekalo.bspline_surface_jvp(2, 3, ku, kv, c, a, b)[0]  # noqa: E731
+    assert np.array_equal(np.asarray(f(net, u, v)), plain(net, u, v))
+    jn, ju, jv = jax.jit(getattr(jax, mode)(f, argnums=(0, 1, 2)))(net, u, v)
+    assert_rel(jn, central(lambda c: plain(c, u, v), net, 1e-3), f"{mode} in the net")
+    assert_rel(ju, central(lambda a: plain(net, a, v), u, 1e-6), f"{mode} in u")
+    assert_rel(jv, central(lambda b: plain(net, u, b), v, 1e-6), f"{mode} in v")
+    # vmap over nets
+    batch = np.stack([net, -net])
+    g = jax.vmap(jax.grad(lambda c: jnp.sum(f(c, u, v) ** 2)))(batch)
+    for i in range(2):
+        fd = central(lambda c: float(np.sum(plain(c, u, v) ** 2)), batch[i], 1e-5)
+        assert_rel(g[i], fd, "vmap(grad) over nets")
+
+
+def test_unsupported_transformations_say_so():
+    knots, ctrl, u = curve_case()
+    with pytest.raises(NotImplementedError, match="knots"):
+        jax.grad(lambda k: jnp.sum(bspline_eval(k, ctrl, u, 3)))(knots)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda t: jnp.sum(bspline_eval(knots, ctrl, t, 3)))(u)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda c: jnp.sum(bspline_eval(knots, c, u, 3) ** 2))(ctrl)
+    ku, kv, net, su, sv = surface_case()
+    with pytest.raises(NotImplementedError, match="knots"):
+        jax.jacfwd(lambda k: bspline_surface_eval(k, kv, net, su, sv, 2, 3))(ku)
+    # knots behind stop_gradient are constants
+    g = jax.grad(lambda c, k: jnp.sum(bspline_eval(jax.lax.stop_gradient(k), c, u, 3)))(ctrl, knots)
+    assert g.shape == ctrl.shape
+
+
+def test_bad_input_is_refused_with_the_fix():
+    knots, ctrl, u = curve_case()
+    with pytest.raises(lekalo.InputError, match="need 10 knots"):
+        bspline_eval(knots[:-1], ctrl, u, 3)
+    with pytest.raises(lekalo.InputError, match="Python int"):
+        bspline_eval(knots, ctrl, u, 3.0)
+    with pytest.raises(lekalo.InputError, match="one shape"):
+        ku, kv, net, su, sv = surface_case()
+        bspline_surface_eval(ku, kv, net, su, sv[:2], 2, 3)
+    # errors inside the callback reach the caller as JAX's runtime error with lekalo's message
+    with pytest.raises(jax.errors.JaxRuntimeError, match="1.5 is outside the domain"):
+        bspline_eval(knots, ctrl, np.array([0.5, 1.5]), 3).block_until_ready()
+    with pytest.raises(jax.errors.JaxRuntimeError, match="outside the domain"):
+        jax.jit(bspline_eval, static_argnums=3)(knots, ctrl, np.array([-0.5]), 3).block_until_ready()
+    jax.config.update("jax_enable_x64", False)
+    with pytest.raises(lekalo.InputError, match="jax_enable_x64"):
+        bspline_eval(knots, ctrl, u, 3)
+
+
+def test_the_docs_examples_run():
+    """The python blocks of docs/differentiable.md run as written, in one namespace."""
+    import re
+    from pathlib import Path
+
+    doc = Path(__file__).resolve().parents[3] / "docs" / "differentiable.md"
+    blocks = re.findall(r"^```python\n(.*?)^```", doc.read_text(encoding="utf-8"), flags=re.S | re.M)
+    assert blocks, "docs/differentiable.md has no python block"
+    namespace = {"__name__": "docs"}
+    for code in blocks:
+        exec(compile(code, str(doc), "exec"), namespace)
+    assert namespace["jac_u"].shape == (7, 2, 7)
+
+
+def test_the_module_docstring_examples_run():
+    import doctest
+
+    import lekalo.jax
+
+    result = doctest.testmod(lekalo.jax)
+    assert result.attempted > 0 and result.failed == 0, result

@@ -1,0 +1,38 @@
+//! Derivatives of evaluation for differentiable programs: the Jacobian-vector products (JVP,
+//! forward mode) and vector-Jacobian products (VJP, reverse mode) of batch evaluation, with
+//! respect to the control points and to the parameters (`docs/theory/derivatives.md`).
+//!
+//! A spline is linear in its control points: the Jacobian of `C(t_i)` with respect to `P_j` is
+//! the basis matrix `N_{j,p}(t_i)` times the identity, whose row `i` has `p + 1` non-zero
+//! entries (P&T Algorithm A2.2, A2.3). Its Jacobian with respect to `t_i` is the curve's
+//! derivative `C'(t_i)`. Every kernel here walks the parameters once, computes the basis
+//! functions and their first derivatives at each, and applies them sparsely; none forms a
+//! dense matrix. The primal values they return are bit-for-bit those of the plain batch
+//! evaluation (`eval_batch`): the same basis scheme and the same order of sums.
+//!
+//! - `curve.rs`: [`crate::BSplineCurve::eval_batch_jvp`], [`crate::BSplineCurve::eval_batch_vjp`],
+//!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
+//!   basis matrix, what an automatic-differentiation framework needs to build its own linear
+//!   map).
+//! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
+//!   the weights and the parameters.
+//! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
+//! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
+//!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
+//!   factorisation).
+//! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
+//! - `checks.rs`: the length and finiteness checks the kernels share.
+
+mod checks;
+mod curve;
+mod interpolation;
+mod nurbs;
+mod slopes;
+mod surface;
+#[cfg(test)]
+mod tests;
+
+pub use curve::CurveLinearization;
+pub use interpolation::InterpolationMap;
+pub use nurbs::NurbsLinearization;
+pub use surface::SurfaceLinearization;
