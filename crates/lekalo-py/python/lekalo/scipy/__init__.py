@@ -13,14 +13,14 @@ Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``inte
 ``from_power_basis``, ``tck``, periodic extrapolation), ``make_interp_spline`` (not-a-knot,
 periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, explicit ``t``,
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
-``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
+``make_splprep`` (FITPACK's knots for ``s > 0``, or given knots ``t``), ``generate_knots``, ``splrep``, ``splprep``, ``splev``,
 ``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
 ``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box);
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
-smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
+``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
 breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
 ``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
@@ -43,7 +43,7 @@ from ._ppoly import (
     pchip,
     pchip_interpolate,
 )
-from ._splrep import make_splprep, make_splrep
+from ._splrep import generate_knots, make_splprep, make_splrep
 
 __all__ = [
     "BSpline",
@@ -52,6 +52,7 @@ __all__ = [
     "make_smoothing_spline",
     "make_splrep",
     "make_splprep",
+    "generate_knots",
     "splrep",
     "splprep",
     "splev",
