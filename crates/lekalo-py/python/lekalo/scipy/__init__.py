@@ -14,14 +14,14 @@ Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``inte
 periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, explicit ``t``,
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
 ``make_splprep`` (FITPACK's knots for ``s > 0``, or given knots ``t``), ``generate_knots``, ``splrep``, ``splprep``, ``splev``,
-``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
+``splint``, ``sproot``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
 ``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (inside its box);
-``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``,
+``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
 ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
+breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, the 2-D FITPACK classes, ``make_ndbspl`` and
 ``NdBSpline`` extrapolation; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
@@ -29,7 +29,7 @@ extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 from __future__ import annotations
 
 from ._bspline import BSpline
-from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep
+from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep, sproot
 from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ndbspline import NdBSpline
@@ -57,6 +57,7 @@ __all__ = [
     "splprep",
     "splev",
     "splint",
+    "sproot",
     "splder",
     "splantider",
     "insert",
