@@ -152,6 +152,53 @@ fn smoothing_modes_report_lambda_and_s() {
 }
 
 #[test]
+fn smoothing_on_given_knots_meets_s_on_those_knots() {
+    let data = function_samples();
+    let args = [
+        "fit",
+        "-",
+        "--function",
+        "--s",
+        "0.2",
+        "--knots",
+        "0.75,1.5,2.25",
+        "--json",
+    ];
+    let v = run_json(&args, &data);
+    let rss = v["report"]["weighted_rss"].as_f64().unwrap();
+    assert!((0.2 * (1.0 - 1e-3)..=0.2).contains(&rss), "residual {rss}");
+    assert!(v["report"]["lambda"].as_f64().unwrap() > 0.0);
+    let knots: Vec<f64> = v["object"]["knots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_f64().unwrap())
+        .collect();
+    assert_eq!(knots[4..7], [0.75, 1.5, 2.25], "{knots:?}");
+    // closed: on the period's breakpoints (chord length on [0, 1])
+    let breaks: Vec<String> = (1..12).map(|j| (f64::from(j) / 12.0).to_string()).collect();
+    let breaks = breaks.join(",");
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--periodic",
+            "--s",
+            "0.5",
+            "--knots",
+            &breaks,
+            "--json",
+        ],
+        &closed_loop(),
+    );
+    let rss = v["report"]["weighted_rss"].as_f64().unwrap();
+    assert!(
+        (0.5 * (1.0 - 1e-3)..=0.5).contains(&rss),
+        "closed residual {rss}"
+    );
+}
+
+#[test]
 fn tolerance_fit_stays_within_tol_and_writes_a_file() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("spiral.txt");

@@ -10,9 +10,11 @@
 use lekalo::fit::{
     closed_parameters, constrained_least_squares, constrained_smoothing_spline,
     gcv_score as lk_gcv, least_squares, periodic_least_squares, periodic_smoothing_condition,
-    place_knots as lk_place_knots, robust_least_squares, smoothing_condition, smoothing_spline,
-    surface_grid_least_squares_at, surface_grid_parameters, surface_scattered_least_squares,
-    CurveFit, Deviation, EndConstraints, FitData, FitReport, Lambda, RobustLoss, ToleranceOptions,
+    periodic_smoothing_knot_sequence, periodic_smoothing_on_knots, place_knots as lk_place_knots,
+    robust_least_squares, smoothing_condition, smoothing_knot_sequence, smoothing_on_knots,
+    smoothing_spline, surface_grid_least_squares_at, surface_grid_parameters,
+    surface_scattered_least_squares, CurveFit, Deviation, EndConstraints, FitData, FitReport,
+    Lambda, RobustLoss, ToleranceOptions,
 };
 use lekalo::{KnotVector, PointsRef};
 use pyo3::prelude::*;
@@ -352,6 +354,8 @@ pub(crate) fn gcv_score(
 /// The spline of degree `k` with the fewest knots whose weighted residual `Σ w_k |y_k −
 /// f(x_k)|²` is at most `s` (the smoothing condition of SciPy's `splrep`/`make_splrep`,
 /// FITPACK `curfit`; `docs/theory/fitting.md#smoothing-condition`). `s = 0` interpolates.
+/// With a knot vector `t` (SciPy's full vector), the spline on those knots whose `k`-th
+/// derivative jumps least with the residual `s` (`docs/theory/fitting.md#smoothing-on-given-knots`).
 /// Weights as SciPy's: the condition is `Σ (w_k (y_k − f(x_k)))² ≤ s`.
 /// Returns the curve; `fit_smoothing_condition` also returns the report.
 ///
@@ -360,8 +364,12 @@ pub(crate) fn gcv_score(
 /// >>> c = lekalo.make_splrep(x, y, s=1e-4)
 /// >>> bool(((c(x)[:, 0] - y) ** 2).sum() <= 1e-4)
 /// True
+/// >>> t = [0, 0, 0, 0, 0.5, 1, 1, 1, 1]
+/// >>> c = lekalo.make_splrep(x, y, s=0.5, t=t)
+/// >>> bool(abs(((c(x)[:, 0] - y) ** 2).sum() - 0.5) <= 1e-3 * 0.5)
+/// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0))]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None))]
 pub(crate) fn make_splrep(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
@@ -369,21 +377,34 @@ pub(crate) fn make_splrep(
     w: Option<&Bound<'_, PyAny>>,
     k: usize,
     s: f64,
+    t: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
-    Ok(PyBSplineCurve::wrap(condition_fit(py, &data, k, s)?.curve))
+    Ok(PyBSplineCurve::wrap(
+        condition_fit(py, &data, k, s, t)?.curve,
+    ))
 }
 
-fn condition_fit(py: Python<'_>, data: &Data<'_>, k: usize, s: f64) -> PyResult<CurveFit> {
+fn condition_fit(
+    py: Python<'_>,
+    data: &Data<'_>,
+    k: usize,
+    s: f64,
+    t: Option<&Bound<'_, PyAny>>,
+) -> PyResult<CurveFit> {
     let fd = data.fit_data("x")?;
-    py.detach(|| smoothing_condition(&fd, k, s))
-        .map_err(lib_err)
+    let kv = t.map(knot_vector).transpose()?;
+    py.detach(|| match &kv {
+        Some(kv) => smoothing_on_knots(&fd, k, kv, s),
+        None => smoothing_condition(&fd, k, s),
+    })
+    .map_err(lib_err)
 }
 
 /// As `make_splrep`, returning `(curve, report)`, with the library's weights: the condition is
 /// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these).
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0))]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None))]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
@@ -391,10 +412,57 @@ pub(crate) fn fit_smoothing_condition<'py>(
     w: Option<&Bound<'py, PyAny>>,
     k: usize,
     s: f64,
+    t: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
-    let f = condition_fit(py, &data, k, s)?;
+    let f = condition_fit(py, &data, k, s, t)?;
     with_report(py, f)
+}
+
+/// The successive knot vectors of the smoothing condition's rounds (SciPy's `generate_knots`,
+/// FITPACK's knot placement; `docs/theory/fitting.md#smoothing-condition`): a list of knot
+/// arrays, each with more knots than the one before; the last is the knot vector
+/// `make_splrep(x, y, s=s)` smooths on. `nest` stops the rounds once a vector has that many
+/// knots. Weights as SciPy's (`Σ (w_k (y_k − f(x_k)))² ≤ s`). With `periodic=True` the rounds
+/// of `fit_periodic` (the last row of `x`, `y` repeats the first, on the period
+/// `[x[0], x[-1]]`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.arange(8.0); y = np.sin(x * np.pi / 8)
+/// >>> [len(t) for t in lekalo.generate_knots(x, y, s=1e-7)]
+/// [8, 9, 10, 11, 12]
+#[pyfunction]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, nest = None, periodic = false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn generate_knots<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    k: usize,
+    s: f64,
+    nest: Option<usize>,
+    periodic: bool,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
+    let seq = if periodic {
+        let xs = data.x.vector("x")?;
+        let ys = data.y.points("y")?;
+        let n = periodic_rows(xs.len(), ys.len())?;
+        let rows =
+            PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
+        let mut fd = FitData::new(rows, &xs[..n]).map_err(lib_err)?;
+        if let Some(w) = data.w.as_deref() {
+            fd = fd.with_weights(&w[..n.min(w.len())]).map_err(lib_err)?;
+        }
+        let domain = (xs[0], xs[n]);
+        py.detach(|| periodic_smoothing_knot_sequence(&fd, k, s, domain, nest))
+    } else {
+        let fd = data.fit_data("x")?;
+        py.detach(|| smoothing_knot_sequence(&fd, k, s, nest))
+    }
+    .map_err(lib_err)?;
+    Ok(seq.iter().map(|t| vec_array(py, t)).collect())
 }
 
 /// A parametric curve through points `(n, dim)` with the fewest knots within the residual `s`
@@ -403,7 +471,8 @@ pub(crate) fn fit_smoothing_condition<'py>(
 /// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`).
 /// Returns `(curve, u)`.
 #[pyfunction]
-#[pyo3(signature = (points, *, w = None, u = None, k = 3, s = 0.0, parametrization = None))]
+#[pyo3(signature = (points, *, w = None, u = None, k = 3, s = 0.0, t = None, parametrization = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splprep<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
@@ -411,6 +480,7 @@ pub(crate) fn make_splprep<'py>(
     u: Option<&Bound<'py, PyAny>>,
     k: usize,
     s: f64,
+    t: Option<&Bound<'py, PyAny>>,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
     let pa = floats(points, "points")?;
@@ -427,8 +497,12 @@ pub(crate) fn make_splprep<'py>(
     if let Some(wv) = &wv {
         fd = fd.with_weights(wv).map_err(lib_err)?;
     }
+    let kv = t.map(knot_vector).transpose()?;
     let f = py
-        .detach(|| smoothing_condition(&fd, k, s))
+        .detach(|| match &kv {
+            Some(kv) => smoothing_on_knots(&fd, k, kv, s),
+            None => smoothing_condition(&fd, k, s),
+        })
         .map_err(lib_err)?;
     Ok((PyBSplineCurve::wrap(f.curve), vec_array(py, &params)))
 }
@@ -637,8 +711,9 @@ pub(crate) fn fit_surface_scattered<'py>(
 
 /// Registers the fitting functions.
 /// The closed fit of points with parameters `params` (the period `[params[0], params[n]]`, one
-/// parameter more than points): least squares with interior breakpoints `t`, or the fewest knots
-/// within the residual `s` (`docs/theory/fitting.md#periodic`).
+/// parameter more than points): with interior breakpoints `t`, least squares (`s = 0`) or the
+/// least jumps with the residual `s`; without, the fewest knots within the residual `s`
+/// (`docs/theory/fitting.md#periodic`).
 fn closed_fit(
     py: Python<'_>,
     pts: PointsRef<'_>,
@@ -660,7 +735,11 @@ fn closed_fit(
             breaks.push(domain.0);
             breaks.extend(t);
             breaks.push(domain.1);
-            periodic_least_squares(&fd, k, &breaks)
+            if s > 0.0 {
+                periodic_smoothing_on_knots(&fd, k, &breaks, s)
+            } else {
+                periodic_least_squares(&fd, k, &breaks)
+            }
         }
         None => periodic_smoothing_condition(&fd, k, s, domain),
     })
@@ -669,7 +748,9 @@ fn closed_fit(
 
 /// A periodic spline of degree `k` through `(x_k, y_k)` on the period `[x[0], x[-1]]`: the last
 /// row repeats the first and is left out, as SciPy's `splrep(x, y, per=1)` does. With `t` (the
-/// interior breakpoints) it is the weighted least-squares spline on those knots; otherwise the
+/// interior breakpoints) it is the weighted least-squares spline on those knots for `s = 0`, and
+/// for `s > 0` the spline on them whose `k`-th derivative jumps least with the residual `s`
+/// (SciPy's `make_splrep(…, t=…, bc_type="periodic")`); otherwise the
 /// fewest knots with `Σ w_k |y_k − f(x_k)|² ≤ s` (FITPACK's periodic smoothing condition,
 /// `docs/theory/fitting.md#periodic`). `y` is `(n,)` or `(n, dim)`; weights are the library's
 /// (squared into the sum). Returns `(curve, report)`.
@@ -693,20 +774,23 @@ pub(crate) fn fit_periodic<'py>(
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let xs = data.x.vector("x")?;
     let ys = data.y.points("y")?;
-    if xs.len() < 2 || ys.len() != xs.len() {
-        return Err(bad(format!(
-            "fit_periodic: x and y need the same number of rows, two or more (got {} and {}); \
-             the last row repeats the first",
-            xs.len(),
-            ys.len()
-        )));
-    }
-    let n = xs.len() - 1;
+    let n = periodic_rows(xs.len(), ys.len())?;
     let rows = PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
     let w = data.w.as_deref().map(|w| &w[..n.min(w.len())]);
     let t = t.map(|t| vec1(t, "t")).transpose()?;
     let f = closed_fit(py, rows, xs, w, k, s, t)?;
     with_report(py, f)
+}
+
+/// The number of rows of periodic data without the last, which repeats the first.
+fn periodic_rows(nx: usize, ny: usize) -> PyResult<usize> {
+    if nx < 2 || ny != nx {
+        return Err(bad(format!(
+            "periodic data: x and y need the same number of rows, two or more (got {nx} and \
+             {ny}); the last row repeats the first"
+        )));
+    }
+    Ok(nx - 1)
 }
 
 /// A closed curve through the points `(n, dim)` of a closed polygon (the first point is not
@@ -748,6 +832,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_least_squares, m)?)?;
     m.add_function(wrap_pyfunction!(fit_smoothing, m)?)?;
     m.add_function(wrap_pyfunction!(fit_smoothing_condition, m)?)?;
+    m.add_function(wrap_pyfunction!(generate_knots, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tolerance, m)?)?;
     m.add_function(wrap_pyfunction!(fit_robust, m)?)?;
     m.add_function(wrap_pyfunction!(fit_periodic, m)?)?;

@@ -1,6 +1,7 @@
 //! Piecewise polynomials in pp-form, the spaces `P_{k,ξ,ν}` and quasi-interpolation
 //! (document 003, docs/theory/pp.md).
 
+use lekalo::pp::Solution;
 use lekalo::{PiecewisePolynomial, PpSpace, Tau, TauRule};
 use lekalo_io::Shape;
 use pyo3::prelude::*;
@@ -143,6 +144,39 @@ impl PyPiecewisePolynomial {
         Self {
             inner: self.inner.derivative(j),
         }
+    }
+
+    /// The real solutions of `f(x) = y`, one float array per coordinate, increasing piece by
+    /// piece (docs/theory/pp.md#roots): a piece identically equal to `y` appears as its left
+    /// breakpoint followed by `nan` (SciPy's `PPoly.solve` convention); `discontinuity` reports
+    /// breakpoints where `f − y` changes sign across a jump; `extrapolate` searches the first
+    /// and last pieces' polynomials beyond the breakpoints.
+    ///
+    /// >>> import numpy as np, lekalo
+    /// >>> f = lekalo.PiecewisePolynomial([0.0, 1.0, 2.0], np.array([[[-0.5], [1.0]], [[0.5], [-2.0]]]))
+    /// >>> [r.tolist() for r in f.solve(0.0, extrapolate=False)]
+    /// [[0.5, 1.25]]
+    #[pyo3(signature = (y = 0.0, discontinuity = true, extrapolate = true))]
+    fn solve<'py>(
+        &self,
+        py: Python<'py>,
+        y: f64,
+        discontinuity: bool,
+        extrapolate: bool,
+    ) -> Vec<Bound<'py, PyAny>> {
+        let sols = py.detach(|| self.inner.solve(y, discontinuity, extrapolate));
+        sols.iter()
+            .map(|v| {
+                let flat: Vec<f64> = v
+                    .iter()
+                    .flat_map(|s| match *s {
+                        Solution::At(x) => vec![x],
+                        Solution::Piece { start, .. } => vec![start, f64::NAN],
+                    })
+                    .collect();
+                vec_array(py, &flat)
+            })
+            .collect()
     }
 
     /// The jump of the `j`-th derivative at interior breakpoint `i` (1-based as in the

@@ -410,8 +410,9 @@ def test_make_splrep_and_make_splprep():
         ls.make_splrep(x, y, w=w)
     with pytest.raises(ValueError, match="boundary conditions"):
         ls.make_splrep(x, y, s=1.0, bc_type="natural")
-    with pytest.raises(NotImplementedError, match="given knots"):
-        ls.make_splrep(x, y, s=1.0, t=[0, 0, 0, 0, 3, 6, 6, 6, 6])
+    # on given knots (residuals: 0.864 for the cubic, 0.719 on these knots): SciPy's smoothing
+    tk = np.array([0, 0, 0, 0, 3, 6, 6, 6, 6], dtype=float)
+    close(ls.make_splrep(x, y, s=0.8, t=tk).c, si.make_splrep(x, y, s=0.8, t=tk).c)
     # periodic: FITPACK's knots and residual (the last point closes the period and is not
     # counted), with SciPy's weights squared into lekalo's
     yp = np.cos(x) + 0.05 * rng.standard_normal(50)
@@ -623,9 +624,9 @@ def test_ppoly_conversions_and_from_spline():
     spl = ls.make_interp_spline(xs, y)
     assert isinstance(ls.CubicSpline(xs, y), ls.PPoly)
     close(ls.PPoly.from_spline(spl)(XX), spl(XX), 1e-12)
+    # roots: lekalo's PiecewisePolynomial.solve, SciPy's conventions
+    close(pb.roots(), pa.roots(), 1e-12)
     # what the core lacks is refused, never computed in Python
-    with pytest.raises(NotImplementedError):
-        b.roots()
     with pytest.raises(NotImplementedError):
         ls.BPoly.from_derivatives([0, 1], [[0, 1], [1]])
     with pytest.raises(NotImplementedError):

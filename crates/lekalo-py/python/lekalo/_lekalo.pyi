@@ -183,6 +183,7 @@ class PiecewisePolynomial:
     def domain(self) -> Tuple[float, float]: ...
     def __call__(self, x: ArrayLike, nu: int = 0) -> Array: ...
     def derivative(self, j: int = 1) -> PiecewisePolynomial: ...
+    def solve(self, y: float = 0.0, discontinuity: bool = True, extrapolate: bool = True) -> List[Array]: ...
     def jump(self, i: int, j: int) -> Array: ...
     def to_bspline(self, space: PpSpace, rule: Optional[TauChoice] = None) -> BSplineCurve: ...
     @staticmethod
@@ -436,10 +437,29 @@ def make_smoothing_spline(
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> BSplineCurve: ...
-def make_splrep(x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0) -> BSplineCurve: ...
+def make_splrep(
+    x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, t: Optional[ArrayLike] = None
+) -> BSplineCurve: ...
 def make_splprep(
-    points: ArrayLike, *, w: Optional[ArrayLike] = None, u: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, parametrization: Optional[Param] = None
+    points: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    u: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    t: Optional[ArrayLike] = None,
+    parametrization: Optional[Param] = None,
 ) -> Tuple[BSplineCurve, Array]: ...
+def generate_knots(
+    x: ArrayLike,
+    y: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    nest: Optional[int] = None,
+    periodic: bool = False,
+) -> List[Array]: ...
 def fit_least_squares(
     points: ArrayLike,
     params: ArrayLike,
@@ -474,7 +494,9 @@ def fit_smoothing(
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
-def fit_smoothing_condition(x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0) -> Tuple[BSplineCurve, dict]: ...
+def fit_smoothing_condition(
+    x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, t: Optional[ArrayLike] = None
+) -> Tuple[BSplineCurve, dict]: ...
 def fit_tolerance(
     points: ArrayLike, tol: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None
 ) -> Tuple[BSplineCurve, dict]: ...

@@ -11,9 +11,10 @@
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
 //! | `lsq.rs` | [`least_squares`]: weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
 //! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
-//! | `smoothing_condition.rs` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style) | [#smoothing-condition] |
+//! | `smoothing_condition.rs` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style); [`smoothing_knot_sequence`]: its knot vectors round by round | [#smoothing-condition] |
+//! | `smoothing_on_knots.rs` | [`smoothing_on_knots`]: least jumps of the `k`-th derivative on given knots with weighted RSS = s | [#smoothing-on-given-knots] |
 //! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
-//! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`]: closed fits (FITPACK `fpperi`) | [#periodic] |
+//! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`], [`periodic_smoothing_knot_sequence`], [`periodic_smoothing_on_knots`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
@@ -28,6 +29,7 @@
 //! [#constraints]: ../../docs/theory/fitting.md#constraints
 //! [#penalised]: ../../docs/theory/fitting.md#penalised
 //! [#smoothing-condition]: ../../docs/theory/fitting.md#smoothing-condition
+//! [#smoothing-on-given-knots]: ../../docs/theory/fitting.md#smoothing-on-given-knots
 //! [#tolerance]: ../../docs/theory/fitting.md#tolerance
 //! [#periodic]: ../../docs/theory/fitting.md#periodic
 //! [#robust]: ../../docs/theory/fitting.md#robust
@@ -54,20 +56,25 @@ mod rows;
 mod shape;
 mod smoothing;
 mod smoothing_condition;
+mod smoothing_on_knots;
 mod surface;
 mod tolerance;
 
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, EndConstraints};
-pub use periodic::{closed_parameters, periodic_least_squares, periodic_smoothing_condition};
+pub use periodic::{
+    closed_parameters, periodic_least_squares, periodic_smoothing_condition,
+    periodic_smoothing_knot_sequence, periodic_smoothing_on_knots,
+};
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub use shape::{
     constrained_least_squares, constrained_smoothing_spline, shape_violations, PointCondition,
     Shape, ShapeConstraint, ShapeConstraints, SHAPE_RTOL,
 };
 pub use smoothing::{gcv_score, smoothing_spline, Lambda};
-pub use smoothing_condition::{smoothing_condition, SMOOTHING_RTOL};
+pub use smoothing_condition::{smoothing_condition, smoothing_knot_sequence, SMOOTHING_RTOL};
+pub use smoothing_on_knots::smoothing_on_knots;
 pub use surface::{
     surface_grid_least_squares, surface_grid_least_squares_at, surface_grid_parameters,
     surface_scattered_least_squares, ScatteredSurfaceFit,

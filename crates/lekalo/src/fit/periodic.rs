@@ -11,8 +11,8 @@
 use super::cyclic::CyclicQr;
 use super::data::{check_in_domain, CurveFit, FitData};
 use super::smoothing_condition::{
-    check_condition_args, finish, jump_rows, next_nplus, smooth_weight, Added, Knots, LsqPass,
-    Observations, SMOOTHING_RTOL,
+    check_condition_args, check_max_knots, finish, jump_rows, next_nplus, smooth_weight, Added,
+    Knots, LsqPass, Observations, SMOOTHING_RTOL,
 };
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
@@ -128,7 +128,109 @@ pub fn periodic_smoothing_condition(
 ) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
     let k = degree;
-    let (a, b) = domain;
+    let (obs, sites) = periodic_observations(data, k, domain)?;
+    match periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &mut |_| {})? {
+        PeriodicRounds::Done { t, c } => Ok(finish(data, &obs, k, t, &c, None)),
+        PeriodicRounds::Smooth { t, qr, fp0, fp_inf } => {
+            let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf)?;
+            Ok(finish(data, &obs, k, t, &c, lambda))
+        }
+    }
+}
+
+/// The knot vectors of the rounds of [`periodic_smoothing_condition`], in order (SciPy's
+/// `generate_knots(…, bc_type="periodic")`): the constant's knots when the constant is the
+/// answer, otherwise each round's periodic knot vector, starting with one interior knot; for
+/// `s = 0` only the knots of periodic interpolation. `max_knots` (SciPy's `nest`) stops the
+/// rounds once a knot vector has that many knots.
+///
+/// ```
+/// use lekalo::fit::{periodic_smoothing_knot_sequence, FitData};
+/// use lekalo::PointsRef;
+/// use std::f64::consts::TAU;
+/// let x: Vec<f64> = (0..40).map(|k| TAU * k as f64 / 40.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| t.sin() + 0.3 * (3.0 * t).cos()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let seq = periodic_smoothing_knot_sequence(&data, 3, 1e-3, (0.0, TAU), None)?;
+/// assert_eq!(seq[0].len(), 2 * 3 + 3); // one interior knot
+/// assert!(seq.windows(2).all(|w| w[0].len() < w[1].len()));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`periodic_smoothing_condition`]; [`Error::TooFew`] for `max_knots < 2·degree + 2`.
+pub fn periodic_smoothing_knot_sequence(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+    max_knots: Option<usize>,
+) -> Result<Vec<Vec<f64>>> {
+    check_condition_args(degree, s)?;
+    let cap = check_max_knots(degree, max_knots)?;
+    let (obs, sites) = periodic_observations(data, degree, domain)?;
+    let mut seq = Vec::new();
+    periodic_rounds(&obs, &sites, degree, s, domain, cap, &mut |t| {
+        seq.push(t.to_vec());
+    })?;
+    Ok(seq)
+}
+
+/// The closed spline of `degree` on the breakpoints `breaks` (`a = τ_0 < … < τ_np = b`) that
+/// minimises the sum of squared jumps of the `k`-th derivative at the interior breakpoints
+/// subject to a weighted residual sum of squares of `s` (FITPACK `percur` with given knots,
+/// SciPy's `make_splrep(x, y, t=…, s=…, bc_type="periodic")`; Dierckx, "Curve and Surface
+/// Fitting with Splines", 1993, ch. 5 and 6; `docs/theory/fitting.md#smoothing-on-given-knots`). The smoothing weight is found by the
+/// rational iteration of [`periodic_smoothing_condition`]'s last step, between the least-squares
+/// constant and the least-squares spline on `breaks`; with no interior breakpoint the answer is
+/// the least-squares constant. When the least-squares spline's residual is above `s`, no weight
+/// reaches `s` and the result is that spline (its report shows the residual).
+///
+/// ```
+/// use lekalo::fit::{periodic_smoothing_on_knots, FitData};
+/// use lekalo::PointsRef;
+/// use std::f64::consts::TAU;
+/// let x: Vec<f64> = (0..60).map(|k| TAU * k as f64 / 60.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| t.sin() + 0.2 * (5.0 * t).cos()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let breaks: Vec<f64> = (0..=12).map(|j| TAU * j as f64 / 12.0).collect();
+/// let fit = periodic_smoothing_on_knots(&data, 3, &breaks, 0.5)?;
+/// assert!((fit.report.weighted_rss - 0.5).abs() <= 1e-3 * 0.5);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`periodic_least_squares`], and [`Error::NegativeSmoothing`] for `s < 0` or NaN.
+pub fn periodic_smoothing_on_knots(
+    data: &FitData<'_>,
+    degree: usize,
+    breaks: &[f64],
+    s: f64,
+) -> Result<CurveFit> {
+    check_condition_args(degree, s)?;
+    check_breaks(breaks)?;
+    let k = degree;
+    let (a, b) = (breaks[0], breaks[breaks.len() - 1]);
+    let wrapped = wrap_params(data, (a, b))?;
+    let obs = observations(data, &wrapped)?;
+    let mut pass = LsqPass::new(&obs, k);
+    let (t, qr, c) = fit_on(&mut pass, &obs, breaks)?;
+    if breaks.len() == 2 {
+        return Ok(finish(data, &obs, k, t, &c, None));
+    }
+    let fp_inf = qr.rss;
+    let fp0 = fit_on(&mut pass, &obs, &[a, b])?.1.rss;
+    let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf)?;
+    Ok(finish(data, &obs, k, t, &c, lambda))
+}
+
+/// The data of a closed smoothing condition: the observations at the wrapped parameters and
+/// FITPACK's sites `a = x_0 < … < x_{m−1} = b`.
+fn periodic_observations(
+    data: &FitData<'_>,
+    k: usize,
+    (a, b): (f64, f64),
+) -> Result<(Observations, Vec<f64>)> {
     check_breaks(&[a, b])?;
     let wrapped = wrap_params(data, (a, b))?;
     let obs = observations(data, &wrapped)?;
@@ -146,10 +248,37 @@ pub fn periodic_smoothing_condition(
         sites.insert(0, a);
     }
     sites.push(b);
+    Ok((obs, sites))
+}
+
+/// Where the knot rounds of a closed smoothing condition ended.
+enum PeriodicRounds {
+    /// The answer: the knots and the least-squares coefficients (repeated) on them.
+    Done { t: Vec<f64>, c: Vec<f64> },
+    /// Knots whose least-squares residual `fp_inf` is below `s`: smooth on them.
+    Smooth {
+        t: Vec<f64>,
+        qr: CyclicQr,
+        fp0: f64,
+        fp_inf: f64,
+    },
+}
+
+/// The knot rounds of [`periodic_smoothing_condition`], at most `cap` interior knots, each
+/// round's knot vector (and the constant's when it is the answer) passed to `seen`.
+fn periodic_rounds(
+    obs: &Observations,
+    sites: &[f64],
+    k: usize,
+    s: f64,
+    (a, b): (f64, f64),
+    cap: usize,
+    seen: &mut dyn FnMut(&[f64]),
+) -> Result<PeriodicRounds> {
     let m = sites.len();
     let acc = SMOOTHING_RTOL * s;
     let full = m - 2;
-    let mut pass = LsqPass::new(&obs, k);
+    let mut pass = LsqPass::new(obs, k);
     let mut knots = Knots {
         k,
         a,
@@ -166,48 +295,69 @@ pub fn periodic_smoothing_condition(
         v
     };
     if s == 0.0 {
-        knots.interior = interpolation_knots(&sites, k);
-        let (t, _, c) = fit_on(&mut pass, &obs, &breaks(&knots.interior))?;
-        return Ok(finish(data, &obs, k, t, &c, None));
+        knots.interior = interpolation_knots(sites, k);
+        let (t, _, c) = fit_on(&mut pass, obs, &breaks(&knots.interior))?;
+        seen(&t);
+        return Ok(PeriodicRounds::Done { t, c });
     }
     // the least-squares constant
-    let (t, qr, c) = fit_on(&mut pass, &obs, &[a, b])?;
+    let (t, qr, c) = fit_on(&mut pass, obs, &[a, b])?;
     let fp0 = qr.rss;
-    if fp0 <= s || full == 0 {
-        return Ok(finish(data, &obs, k, t, &c, None));
+    if fp0 <= s || full == 0 || cap == 0 {
+        seen(&t);
+        return Ok(PeriodicRounds::Done { t, c });
     }
     // one knot at the middle parameter (FITPACK: x((m + 1)/2))
     let mid = m.div_ceil(2) - 1;
     knots.interior.push(sites[mid]);
     knots.nrdata = vec![mid - 1, m - 2 - mid];
     let (mut fpold, mut nplus) = (fp0, 1usize);
-    let (t, qr, fp_inf) = loop {
-        let (t, qr, c) = fit_on(&mut pass, &obs, &breaks(&knots.interior))?;
+    loop {
+        let (t, qr, c) = fit_on(&mut pass, obs, &breaks(&knots.interior))?;
+        seen(&t);
         let fp = qr.rss;
         let fpms = fp - s;
         if fpms <= 0.0 {
             if -fpms < acc {
-                return Ok(finish(data, &obs, k, t, &c, None));
+                return Ok(PeriodicRounds::Done { t, c });
             }
-            break (t, qr, fp);
+            return Ok(PeriodicRounds::Smooth {
+                t,
+                qr,
+                fp0,
+                fp_inf: fp,
+            });
         }
-        if knots.count() >= full {
-            // interpolation
-            return Ok(finish(data, &obs, k, t, &c, None));
+        if knots.count() >= full || knots.count() >= cap {
+            // interpolation, or as many knots as allowed
+            return Ok(PeriodicRounds::Done { t, c });
         }
         nplus = next_nplus(nplus, fpms, fpold - fp, acc);
         fpold = fp;
-        pass.residuals(&obs, &c);
-        span_sums(&mut knots, &obs, &pass, &t);
-        match knots.add_up_to(&sites, nplus, full) {
+        pass.residuals(obs, &c);
+        span_sums(&mut knots, obs, &pass, &t);
+        match knots.add_up_to(sites, nplus, full, cap) {
             Added::Some => {}
-            Added::Full => knots.interior = interpolation_knots(&sites, k),
-            Added::None => return Ok(finish(data, &obs, k, t, &c, None)),
+            Added::Full => knots.interior = interpolation_knots(sites, k),
+            Added::None => return Ok(PeriodicRounds::Done { t, c }),
         }
-    };
-    // smoothing on the final knots: [R; B/p] with the jump rows of the k-th derivative at the
-    // interior knots, wrapped like the data rows (band k + 2, border k + 1)
-    let pen = jump_rows(&t, k);
+    }
+}
+
+/// The smoothing step of a closed fit on the knots `t` with the data's triangle `qr`
+/// (repeated coefficients and the jump weight λ), as [`smooth_on`](super::smoothing_condition)
+/// for open curves: `[R; B/p]` with the jump rows of the `k`-th derivative at the interior
+/// knots, wrapped like the data rows (band `k + 2`, border `k + 1`).
+fn smooth_periodic(
+    obs: &Observations,
+    k: usize,
+    t: &[f64],
+    qr: &CyclicQr,
+    s: f64,
+    fp0: f64,
+    fp_inf: f64,
+) -> Result<(Vec<f64>, Option<f64>)> {
+    let pen = jump_rows(t, k);
     let (np, k2, dim) = (qr.n(), k + 2, obs.dim);
     let n8 = pen.rows.len() / k2;
     let solve = |p: f64| -> Result<(Vec<f64>, f64)> {
@@ -240,9 +390,9 @@ pub fn periodic_smoothing_condition(
     let trace: f64 = qr.diagonal().sum();
     let (c, lambda) = match smooth_weight(&solve, np as f64 / trace, s, fp0, fp_inf)? {
         Some((p, _, c)) => (c, Some((p * pen.scale).powi(-2))),
-        None => (solve_cyclic(&qr)?, None),
+        None => (solve_cyclic(qr)?, None),
     };
-    Ok(finish(data, &obs, k, t, &repeat(&c, np, k, dim), lambda))
+    Ok((repeat(&c, np, k, dim), lambda))
 }
 
 /// Breakpoints: at least two, finite, strictly increasing.

@@ -68,8 +68,88 @@ const MAX_P_ITERATIONS: usize = 20;
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
-    let k = degree;
     let obs = Observations::new(data);
+    let k = degree;
+    match knot_rounds(&obs, k, s, usize::MAX, &mut |_| {})? {
+        Rounds::Done { t, c } => Ok(finish(data, &obs, k, t, &c, None)),
+        Rounds::Smooth { t, qr, fp0, fp_inf } => {
+            let (c, lambda) = smooth_on(&obs, k, &t, &qr, s, fp0, fp_inf)?;
+            Ok(finish(data, &obs, k, t, &c, lambda))
+        }
+    }
+}
+
+/// The knot vectors of the rounds of [`smoothing_condition`], in order: the clamped knot vector
+/// of each least-squares pass of step 2 (the first without interior knots, unless `s = 0`,
+/// whose only round is on the knots of interpolation). The last is the knot vector the
+/// smoothing condition smooths on. This is SciPy's `generate_knots(x, y, k=…, s=…, nest=…)`
+/// (Dierckx, "Curve and Surface Fitting with Splines", 1993, ch. 5): `max_knots` (SciPy's `nest`, at least `2·degree + 2`) stops the
+/// rounds once a knot vector has that many knots; `None` runs them to the end.
+///
+/// ```
+/// use lekalo::fit::{smoothing_knot_sequence, FitData};
+/// use lekalo::PointsRef;
+/// let x: Vec<f64> = (0..8).map(|k| k as f64).collect();
+/// let y: Vec<f64> = x.iter().map(|v| (v * std::f64::consts::PI / 8.0).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let seq = smoothing_knot_sequence(&data, 3, 1e-7, None)?;
+/// let counts: Vec<usize> = seq.iter().map(Vec::len).collect();
+/// assert_eq!(counts, vec![8, 9, 10, 11, 12]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition`]; [`Error::TooFew`] for `max_knots < 2·degree + 2`.
+pub fn smoothing_knot_sequence(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    max_knots: Option<usize>,
+) -> Result<Vec<Vec<f64>>> {
+    check_condition_args(degree, s)?;
+    let cap = check_max_knots(degree, max_knots)?;
+    let obs = Observations::new(data);
+    let mut seq = Vec::new();
+    knot_rounds(&obs, degree, s, cap, &mut |t| seq.push(t.to_vec()))?;
+    Ok(seq)
+}
+
+/// `max_knots` as a count of interior knots (`usize::MAX` for none), refusing fewer knots than
+/// the polynomial has.
+pub(super) fn check_max_knots(degree: usize, max_knots: Option<usize>) -> Result<usize> {
+    match max_knots {
+        None => Ok(usize::MAX),
+        Some(n) if n < 2 * degree + 2 => Err(Error::TooFew {
+            what: "knots allowed (max_knots, SciPy's nest): the polynomial has 2·degree + 2",
+            min: 2 * degree + 2,
+            got: n,
+        }),
+        Some(n) => Ok(n - 2 * degree - 2),
+    }
+}
+
+/// Where the knot rounds of step 2 ended.
+pub(super) enum Rounds {
+    /// The answer: the knots and the least-squares coefficients on them.
+    Done { t: Vec<f64>, c: Vec<f64> },
+    /// Knots whose least-squares residual `fp_inf` is below `s`: smooth on them (step 3).
+    Smooth {
+        t: Vec<f64>,
+        qr: BandedQr,
+        fp0: f64,
+        fp_inf: f64,
+    },
+}
+
+/// Step 2 of [`smoothing_condition`]: the rounds of least squares and knot addition, at most
+/// `cap` interior knots, each round's knot vector passed to `seen` before its pass.
+fn knot_rounds(
+    obs: &Observations,
+    k: usize,
+    s: f64,
+    cap: usize,
+    seen: &mut dyn FnMut(&[f64]),
+) -> Result<Rounds> {
     let md = obs.sites.len();
     if md < k + 1 {
         return Err(Error::TooFew {
@@ -86,11 +166,12 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         knots.interpolation(&obs.sites);
     }
     let (mut fp0, mut fpold, mut nplus) = (f64::INFINITY, 0.0, 0usize);
-    let mut pass = LsqPass::new(&obs, k);
-    let smooth = loop {
+    let mut pass = LsqPass::new(obs, k);
+    loop {
         let t = knots.vector();
+        seen(&t);
         let n = t.len();
-        let qr = pass.run(&obs, &t);
+        let qr = pass.run(obs, &t);
         let c = back_substitute(&qr)?;
         let fp = qr.rss;
         if n == nmin {
@@ -99,13 +180,18 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
         let fpms = fp - s;
         if fpms < 0.0 || (fpms == 0.0 && s > 0.0) {
             if -fpms < acc || n == nmin {
-                return Ok(finish(data, &obs, k, t, &c, None));
+                return Ok(Rounds::Done { t, c });
             }
-            break (t, qr, fp);
+            return Ok(Rounds::Smooth {
+                t,
+                qr,
+                fp0,
+                fp_inf: fp,
+            });
         }
-        if n >= nmax {
-            // interpolation: no knot left to add
-            return Ok(finish(data, &obs, k, t, &c, None));
+        if n >= nmax || knots.count() >= cap {
+            // interpolation, or as many knots as allowed
+            return Ok(Rounds::Done { t, c });
         }
         nplus = if n == nmin {
             1
@@ -113,17 +199,32 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
             next_nplus(nplus, fpms, fpold - fp, acc)
         };
         fpold = fp;
-        pass.residuals(&obs, &c);
-        knots.span_sums(&obs, &pass, &t);
-        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2) {
+        pass.residuals(obs, &c);
+        knots.span_sums(obs, &pass, &t);
+        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2, cap) {
             Added::Some => {}
             Added::Full => knots.interpolation(&obs.sites),
             // no span holds a parameter strictly inside: as close to interpolation as it gets
-            Added::None => return Ok(finish(data, &obs, k, t, &c, None)),
+            Added::None => return Ok(Rounds::Done { t, c }),
         }
-    };
-    let (t, qr, fp_inf) = smooth;
-    let pen = jump_rows(&t, k);
+    }
+}
+
+/// Step 3 of [`smoothing_condition`] on the knots `t` with the data's least-squares triangle
+/// `qr`: the coefficients whose residual is `s` within [`SMOOTHING_RTOL`] and never above, and
+/// the jump weight λ; the least-squares coefficients and no λ when no weight reaches `s` from
+/// below. `fp0` and `fp_inf` are the residuals of the polynomial (`p = 0`) and of the
+/// least-squares spline (`p = ∞`).
+pub(super) fn smooth_on(
+    obs: &Observations,
+    k: usize,
+    t: &[f64],
+    qr: &BandedQr,
+    s: f64,
+    fp0: f64,
+    fp_inf: f64,
+) -> Result<(Vec<f64>, Option<f64>)> {
+    let pen = jump_rows(t, k);
     // the triangle of [R; B/p] from scratch in column order (R's row j, then the penalty row
     // starting at column j): O(n·k²) per p, no pass over the data
     let (n, k1, k2, dim) = (qr.n(), k + 1, k + 2, obs.dim);
@@ -152,12 +253,9 @@ pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<
     // p → 0: the least-squares polynomial (fp0); p → ∞: the least-squares spline (fp_inf)
     let trace: f64 = qr.r.chunks_exact(k + 1).map(|row| row[0]).sum();
     match smooth_weight(&solve, n as f64 / trace, s, fp0, fp_inf)? {
-        Some((p, _, c)) => {
-            let lambda = (p * pen.scale).powi(-2);
-            Ok(finish(data, &obs, k, t, &c, Some(lambda)))
-        }
-        // no weight reached s from below: the least-squares spline on these knots (fp < s)
-        None => Ok(finish(data, &obs, k, t, &back_substitute(&qr)?, None)),
+        Some((p, _, c)) => Ok((c, Some((p * pen.scale).powi(-2)))),
+        // no weight reached s from below: the least-squares spline on these knots
+        None => Ok((back_substitute(qr)?, None)),
     }
 }
 
@@ -224,7 +322,7 @@ impl LsqPass {
 
     /// The banded triangle of `min Σ w |C(ū) − Q|²` for the clamped knots `t` (FITPACK's
     /// observation matrix, reduced as it is built: [`QrRows`]).
-    fn run(&mut self, obs: &Observations, t: &[f64]) -> BandedQr {
+    pub(super) fn run(&mut self, obs: &Observations, t: &[f64]) -> BandedQr {
         let k = self.k;
         let mut qr = QrRows::new(t.len() - k - 1, k + 1, obs.dim);
         self.fill(obs, t, |i, first, h| {
@@ -404,12 +502,18 @@ impl Knots {
     }
 
     /// Adds up to `nplus` knots (FITPACK `fpknot`, one at a time) while fewer than `full`
-    /// interior knots: [`Added::Full`] when `full` is reached (the caller places the knots of
-    /// interpolation), [`Added::None`] when no span could be split.
-    pub(super) fn add_up_to(&mut self, sites: &[f64], nplus: usize, full: usize) -> Added {
+    /// and `cap` interior knots: [`Added::Full`] when `full` is reached (the caller places the
+    /// knots of interpolation), [`Added::None`] when no span could be split.
+    pub(super) fn add_up_to(
+        &mut self,
+        sites: &[f64],
+        nplus: usize,
+        full: usize,
+        cap: usize,
+    ) -> Added {
         let before = self.count();
         for _ in 0..nplus {
-            if !self.add_one(sites) || self.count() >= full {
+            if !self.add_one(sites) || self.count() >= full || self.count() >= cap {
                 break;
             }
         }

@@ -3,6 +3,7 @@
 //! - `divided_difference.rs`: divided differences ([`divided_difference`], [`NewtonForm`]) and
 //!   the B-spline as a divided difference of truncated powers.
 //! - `ppform.rs`: [`PiecewisePolynomial`] (pp-form) and the spaces [`PpSpace`].
+//! - `roots.rs`: the real solutions of `f(x) = y` ([`PiecewisePolynomial::solve`], [`Solution`]).
 //! - `quasi_interpolation.rs`: the de Boor–Fix dual functionals: pp-form to B-spline
 //!   conversion and [`quasi_interpolate`].
 
@@ -10,6 +11,7 @@ mod divided_difference;
 mod expression;
 pub(crate) mod ppform;
 mod quasi_interpolation;
+mod roots;
 
 pub use divided_difference::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
@@ -21,3 +23,4 @@ pub use quasi_interpolation::{
     quasi_interpolate, quasi_interpolate_expression, sample_quasi_interpolant,
     sample_quasi_interpolant_expression, QuasiSamples, Tau, TauRule,
 };
+pub use roots::Solution;

@@ -9,10 +9,10 @@ use clap::{ArgAction, Args, ValueEnum};
 use lekalo::fit::{
     closed_parameters, constrained_least_squares, constrained_smoothing_spline,
     fit_tolerance_with_progress, least_squares, periodic_least_squares,
-    periodic_smoothing_condition, place_knots, robust_least_squares, smoothing_condition,
-    smoothing_spline, surface_grid_least_squares, surface_scattered_least_squares, CurveFit,
-    Deviation, EndConstraints, FitData, Lambda, RobustLoss, Shape, ShapeConstraints,
-    ToleranceOptions,
+    periodic_smoothing_condition, periodic_smoothing_on_knots, place_knots, robust_least_squares,
+    smoothing_condition, smoothing_on_knots, smoothing_spline, surface_grid_least_squares,
+    surface_scattered_least_squares, CurveFit, Deviation, EndConstraints, FitData, Lambda,
+    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -41,7 +41,8 @@ pub(crate) enum Robust {
 Modes (one of them; least squares by default):
   --lsq              least squares with --ctrl N control points or --knots (interior knots)
   --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation)
-  --s S              fewest knots with weighted residual sum of squares <= S (like splrep)
+  --s S              fewest knots with weighted residual sum of squares <= S (like splrep);
+                     with --knots, the least k-th derivative jumps on those knots with RSS = S
   --tol TOL          within TOL of every point (distance), few control points
   --robust huber|tukey   least squares that resists outliers (final weights in the report)
   --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
@@ -60,6 +61,7 @@ Examples:
   lekalo fit scan.csv --lsq --knots 0.25,0.5,0.75 --clamp-ends --start-derivative 1,0 --end-derivative 0,-1
   lekalo fit xy.csv --function --smooth gcv --json
   lekalo fit xy.csv --function --s 0.05 --weights w.txt
+  lekalo fit xy.csv --function --s 0.5 --knots 10,20
   lekalo fit track.csv --tol 0.01 -o track.svg
   lekalo fit xy.csv --function --ctrl 12 --robust tukey --json
   lekalo fit xy.csv --function --ctrl 10 --increasing --convex=0:15 --min 0
@@ -298,7 +300,11 @@ fn fit_curve(
         }
     } else if let Some(s) = a.s {
         report["s"] = json!(s);
-        smoothing_condition(&data, a.degree, s)?
+        if a.knots.is_some() {
+            smoothing_on_knots(&data, a.degree, &curve_knots(a, &params)?, s)?
+        } else {
+            smoothing_condition(&data, a.degree, s)?
+        }
     } else if let Some(tol) = a.tol {
         if a.function {
             return bad_input(
@@ -652,7 +658,15 @@ fn run_periodic(
     let mut report = json!({ "periodic": true, "period": [domain.0, domain.1] });
     let fit = if let Some(s) = a.s {
         report["s"] = json!(s);
-        periodic_smoothing_condition(&data, a.degree, s, domain)?
+        match &a.knots {
+            Some(k) => {
+                let mut breaks = vec![domain.0];
+                breaks.extend(numbers(k, "--knots")?);
+                breaks.push(domain.1);
+                periodic_smoothing_on_knots(&data, a.degree, &breaks, s)?
+            }
+            None => periodic_smoothing_condition(&data, a.degree, s, domain)?,
+        }
     } else {
         let (lo, hi) = domain;
         let mut breaks = vec![lo];

@@ -13,16 +13,16 @@ Available: ``BSpline`` (``__call__``, ``derivative``, ``antiderivative``, ``inte
 ``from_power_basis``, ``tck``, periodic extrapolation), ``make_interp_spline`` (not-a-knot,
 periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, explicit ``t``,
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
-``make_splprep`` (FITPACK's knots for ``s > 0``), ``splrep``, ``splprep``, ``splev``,
-``splint``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
-``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (extrapolating the end polynomials as SciPy),
+``make_splprep`` (FITPACK's knots for ``s > 0``, or given knots ``t``), ``generate_knots``, ``splrep``, ``splprep``, ``splev``,
+``splint``, ``sproot``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
 ``make_ndbspl`` (solved directly, one banded sweep per direction);
-``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``,
+``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
-smoothing on given knots, ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, roots, periodic knot insertion, the 2-D FITPACK classes,
+``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
+breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, the 2-D FITPACK classes,
 ``NdBSpline.design_matrix``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
@@ -30,7 +30,7 @@ extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 from __future__ import annotations
 
 from ._bspline import BSpline
-from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep
+from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep, sproot
 from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ndbspline import NdBSpline, make_ndbspl
@@ -44,7 +44,7 @@ from ._ppoly import (
     pchip,
     pchip_interpolate,
 )
-from ._splrep import make_splprep, make_splrep
+from ._splrep import generate_knots, make_splprep, make_splrep
 
 __all__ = [
     "BSpline",
@@ -53,10 +53,12 @@ __all__ = [
     "make_smoothing_spline",
     "make_splrep",
     "make_splprep",
+    "generate_knots",
     "splrep",
     "splprep",
     "splev",
     "splint",
+    "sproot",
     "splder",
     "splantider",
     "insert",

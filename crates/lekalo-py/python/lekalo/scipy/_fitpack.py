@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
@@ -184,6 +185,48 @@ def insert(x: float, tck: Any, m: int = 1, per: int = 0):
     spl = BSpline.construct_fast(t, c[:n], k, extrapolate="periodic" if per else True)
     out = spl.insert_knot(x, m)
     return out.t, _pad_rows(out.c, out.t.shape[0]), k
+
+
+def sproot(tck: Any, mest: int = 10):
+    """``scipy.interpolate.sproot``: the zeros of a cubic spline in its base interval (FITPACK's
+    ``sproot``), found by lekalo's ``PiecewisePolynomial.solve`` on the spline's pp-form
+    (no sign changes across jumps; intervals where the spline vanishes give no zero; the base
+    interval widened by rounding, docs/theory/pp.md#roots). At most ``mest`` zeros, with FITPACK's warning when there are more."""
+    if isinstance(tck, BSpline):
+        if tck.c.ndim > 1:
+            raise ValueError("Calling sproot() with BSpline objects with c.ndim > 1 is not allowed.")
+        t, c, k = tck.tck
+    else:
+        t, c, k = tck
+    if k != 3:
+        raise ValueError("sproot works only for cubic (k=3) splines")
+    try:
+        c[0][0]
+        parametric = True
+    except Exception:
+        parametric = False
+    if parametric:
+        return [sproot((t, ci, k), mest) for ci in c]
+    t = np.ascontiguousarray(t, dtype=np.float64)
+    if len(t) < 8:
+        raise TypeError(f"The number of knots {len(t)}>=8")
+    n = len(t) - k - 1
+    cc = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[:n].reshape(n, 1))
+    if not (np.all(np.diff(t) >= 0) and np.all(np.diff(t[k:n + 1]) > 0)):
+        raise TypeError("Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold.")
+    pp = _lekalo.BSplineCurve(k, t, cc).to_pp()
+    z = pp.solve(0.0, discontinuity=False, extrapolate=True)[0]
+    keep = ~np.isnan(z)
+    keep[:-1] &= ~np.isnan(z[1:])  # a vanishing interval is not a zero
+    z = z[keep]
+    # the base interval, widened by rounding: a zero at an end falls on either side of it
+    a, b = t[k], t[n]
+    tol = 4 * np.finfo(float).eps * max(abs(a), abs(b), b - a)
+    z = z[(z >= a - tol) & (z <= b + tol)]
+    if z.size > mest:
+        warnings.warn(RuntimeWarning("The number of zeros exceeds mest"), stacklevel=2)
+        z = z[:mest]
+    return z
 
 
 def spalde(x: Any, tck: Any):

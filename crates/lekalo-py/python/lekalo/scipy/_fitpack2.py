@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ._bspline import _pad_rows
-from ._fitpack import spalde, splantider, splder, splev, splint, splrep
+from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
 
 _EXTRAP_MODES = {0: 0, "extrapolate": 0, 1: 1, "zeros": 1, 2: 2, "raise": 2, 3: 3, "const": 3}
@@ -109,7 +109,12 @@ class UnivariateSpline:
         return spalde(x, self._eval_args)
 
     def roots(self):
-        raise NotImplementedError("lekalo.scipy: UnivariateSpline.roots is not available yet")
+        """The zeros of the spline (cubic only, as FITPACK's ``sproot``)."""
+        k = self._eval_args[2]
+        if k == 3:
+            t = self._eval_args[0]
+            return sproot(self._eval_args, mest=3 * (len(t) - 7))
+        raise NotImplementedError("finding roots unsupported for non-cubic splines")
 
     def derivative(self, n: int = 1) -> "UnivariateSpline":
         tck = splder(self._eval_args, n)

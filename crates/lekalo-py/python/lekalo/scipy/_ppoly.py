@@ -244,7 +244,8 @@ class _PPolyBase:
         if nu == 0:
             return self.derivative(0)
         s = self._spline.antiderivative(nu)
-        return self._from_spline_lazy(s, self.x, s.extrapolate, self.axis, self._degree + nu)
+        extrapolate = False if self.extrapolate == "periodic" else self.extrapolate
+        return self._from_spline_lazy(s, self.x, extrapolate, self.axis, self._degree + nu)
 
     def integrate(self, a: float, b: float, extrapolate: Any = None) -> np.ndarray:
         """``∫_a^b`` of the piecewise polynomial (NaN outside ``[x[0], x[-1]]`` unless
@@ -374,10 +375,33 @@ class PPoly(_PPolyBase):
         return pad(a), pad(b)
 
     def solve(self, y: float = 0.0, discontinuity: bool = True, extrapolate: Any = None):
-        raise NotImplementedError(
-            "lekalo.scipy: PPoly.solve is not available (lekalo's core has no root finder for "
-            "piecewise polynomials)"
-        )
+        """The real solutions of ``S(x) = y`` with SciPy's conventions (lekalo's
+        ``PiecewisePolynomial.solve``): a piece identically ``y`` as ``x_i, nan``, sign changes
+        across jumps with ``discontinuity``, the end pieces extended with ``extrapolate``. One
+        array, or an object array of arrays for trailing dimensions."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        c = self.c
+        if np.issubdtype(c.dtype, np.complexfloating):
+            raise ValueError("Root finding is only for real-valued polynomials")
+        y = float(y)
+        _check_ascending(self.x, "PPoly.solve")
+        tail = c.shape[2:]
+        if c.shape[0] == 0:
+            return np.array([], dtype=float)
+        x, cp = _pieces(self.x, np.asarray(c, dtype=np.float64))
+        cc = np.ascontiguousarray(cp.reshape(cp.shape[0], cp.shape[1], -1))
+        if cc.shape[2] == 0:
+            roots = []
+        else:
+            pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2)))
+            roots = pp.solve(y, discontinuity=bool(discontinuity), extrapolate=bool(extrapolate))
+        if c.ndim == 2:
+            return roots[0]
+        r2 = np.empty(int(np.prod(tail)), dtype=object)
+        for i, r in enumerate(roots):
+            r2[i] = r
+        return r2.reshape(tail)
 
     def roots(self, discontinuity: bool = True, extrapolate: Any = None):
         return self.solve(0, discontinuity, extrapolate)

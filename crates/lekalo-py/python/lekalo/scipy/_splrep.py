@@ -1,6 +1,8 @@
-"""``make_splrep`` and ``make_splprep`` of ``lekalo.scipy``: SciPy's smoothing condition
-(``Σ (w_k (y_k − f(x_k)))² ≤ s`` with FITPACK's knots), solved by lekalo's ``make_splrep``,
-``make_splprep`` and ``fit_periodic`` (``docs/theory/fitting.md#smoothing-condition``)."""
+"""``make_splrep``, ``make_splprep`` and ``generate_knots`` of ``lekalo.scipy``: SciPy's
+smoothing condition (``Σ (w_k (y_k − f(x_k)))² ≤ s`` with FITPACK's knots, or least jumps on
+given knots), solved by lekalo's ``make_splrep``, ``make_splprep``, ``fit_periodic`` and
+``generate_knots`` (``docs/theory/fitting.md#smoothing-condition``,
+``#smoothing-on-given-knots``)."""
 
 from __future__ import annotations
 
@@ -64,28 +66,64 @@ def _validate_inputs(x: Any, y: Any, w: Any, k: Any, s: float, xb: Any, xe: Any,
 
 
 def _smooth(x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, t: Any, nest: Any, periodic: bool):
-    """The curve of the smoothing condition on FITPACK's knots (lekalo's), SciPy's ``nest``
-    checks; ``y`` is ``(m,)`` or ``(m, dim)``."""
-    m = x.size
+    """The curve of the smoothing condition: on the knots ``t`` when given (lekalo's smoothing
+    on given knots), else on FITPACK's knots, the last of ``generate_knots`` (lekalo's
+    smoothing condition); SciPy's ``nest`` checks. ``y`` is ``(m,)`` or ``(m, dim)``."""
     if nest is not None:
         if nest < 2 * (k + 1):
             raise ValueError(f"`nest` too small: {nest = } < 2*(k+1) = {2*(k+1)}.")
         if t is not None:
             raise ValueError("Either supply `t` or `nest`.")
+        # SciPy smooths on the last knot vector of generate_knots, stopped at nest knots
+        t = _knot_sequence(x, y, w, k, s, nest, periodic)[-1]
     if t is not None:
-        raise NotImplementedError("lekalo.scipy: smoothing (s > 0) on given knots t is not available yet")
-    if periodic:
+        t = np.ascontiguousarray(t, dtype=float)
+        if periodic:
+            n = t.shape[0]
+            curve, _ = _lekalo.fit_periodic(x, y, w=w * w, k=k, s=float(s), t=t[k + 1:n - k - 1])
+            if n == 2 * (k + 1):
+                # the least-squares constant, on the given knots as SciPy returns it
+                return t, np.ascontiguousarray(curve.control[: k + 1])
+        else:
+            curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), t=t)
+    elif periodic:
         curve, _ = _lekalo.fit_periodic(x, y, w=w * w, k=k, s=float(s))
     elif y.ndim == 1:
         curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s))
     else:
         curve, _ = _lekalo.make_splprep(y, w=w, u=x, k=k, s=float(s))
-    limit = nest if nest is not None else (max(m + 2 * k, 2 * k + 3) if periodic else max(m + k + 1, 2 * k + 3))
-    if curve.knots.shape[0] > limit:
-        raise NotImplementedError(
-            f"lekalo.scipy: the smoothing condition needs {curve.knots.shape[0]} knots, more than nest={limit}"
-        )
     return np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control)
+
+
+def _knot_sequence(x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, nest: Any, periodic: bool) -> list:
+    """lekalo's rounds of the smoothing condition (``generate_knots``), SciPy's ``nest`` check."""
+    if nest is not None and nest < 2 * (k + 1):
+        raise ValueError(f"`nest` too small: {nest = } < 2*(k+1) = {2*(k+1)}.")
+    return _lekalo.generate_knots(x, y, w=w, k=k, s=float(s), nest=nest, periodic=periodic)
+
+
+def generate_knots(
+    x: Any, y: Any, *, w: Any = None, xb: Any = None, xe: Any = None, k: int = 3, s: float = 0,
+    nest: Any = None, bc_type: Any = None,
+):
+    """``scipy.interpolate.generate_knots``: the knot vectors of FITPACK's rounds of the
+    smoothing condition, each with more knots than the last (lekalo's ``generate_knots``); for
+    ``s = 0`` only the knots of interpolation."""
+    bc_type = _validate_bc_type(bc_type)
+    periodic = bc_type == "periodic"
+    if s == 0:
+        if nest is not None or w is not None:
+            raise ValueError("s == 0 is interpolation only")
+        # SciPy's knots of interpolation: not-a-knot, periodic for k > 1
+        xa = np.asarray(x)
+        t = _knot_sequence(np.ascontiguousarray(xa, dtype=float), np.ascontiguousarray(y, dtype=float), None, k, 0.0, None, periodic and k > 1)[-1]
+        if k % 2 == 1 and not (periodic and k > 1) and xa.dtype.kind in "iu":
+            # the knots are data sites: SciPy keeps the sites' integer dtype
+            t = t.astype(xa.dtype)
+        yield t
+        return
+    x, y, w, k = _validate_inputs(x, y, w, k, s, xb, xe, parametric=np.ndim(y) == 2, periodic=periodic)
+    yield from _knot_sequence(x, y, w, k, s, nest, periodic)
 
 
 def make_splrep(

@@ -1,0 +1,101 @@
+"""Smoothing on given knots and the knot sequence of the smoothing condition, cross-checked
+against SciPy's ``make_splrep(t=…)`` and ``generate_knots`` inside the tests.
+
+On given knots both solve the same problem by the same iteration for the smoothing weight from
+the same start, so where SciPy's iteration ends with a residual at most s the coefficients agree
+to rounding of the banded solves (1e-12 against values of order 1). Where it ends above s (within
+its tolerance of 0.1% of s), lekalo continues the same iteration to a residual in
+[(1 - 0.1%) s, s]. The knot sequences are FITPACK's knot placement: the last is the knot vector
+of SciPy's ``splrep`` (FITPACK itself) exactly. SciPy's own ``generate_knots`` adds the knots of
+a round one at a time with a new least-squares fit between them, so its intermediate vectors (and
+sometimes its last) can differ from FITPACK's; lekalo follows FITPACK.
+"""
+
+import numpy as np
+import pytest
+from scipy import interpolate as si
+
+import lekalo
+
+RNG = np.random.default_rng(11)
+
+
+def noisy(n=60, seed=11):
+    rng = np.random.default_rng(seed)
+    x = np.r_[0, np.sort(rng.uniform(0, 2 * np.pi, n - 2)), 2 * np.pi]
+    y = np.sin(x) + np.cos(2 * x) + 0.05 * rng.standard_normal(n)
+    return x, y
+
+
+@pytest.mark.parametrize("s", [0.5, 1.0, 3.0, 10.0])
+def test_make_splrep_on_given_knots_is_scipys(s):
+    # the least-squares spline's residual is 0.136, the cubic polynomial's 26.3
+    x, y = noisy()
+    t = np.r_[[0.0] * 4, np.linspace(0, 2 * np.pi, 9)[1:-1], [2 * np.pi] * 4]
+    curve = lekalo.make_splrep(x, y, s=s, t=t)
+    ref = si.make_splrep(x, y, s=s, t=t)
+    assert np.array_equal(curve.knots, t)
+    fp, fp_ref = (np.sum((f(x) - y) ** 2) for f in (lambda u: curve(u)[:, 0], ref))
+    if fp_ref <= s:
+        assert np.abs(curve.control[:, 0] - ref.c).max() <= 1e-12
+    else:
+        assert fp_ref <= (1 + 1e-3) * s
+        assert (1 - 1e-3) * s <= fp <= s
+
+
+def test_residual_is_s_between_the_polynomial_and_the_least_squares_spline():
+    x, y = noisy()
+    t = np.r_[[0.0] * 4, np.linspace(0, 2 * np.pi, 7)[1:-1], [2 * np.pi] * 4]
+    w = RNG.uniform(0.5, 2.0, x.size)
+    lsq = si.make_lsq_spline(x, y, t, k=3, w=w)
+    fp_inf = np.sum((w * (lsq(x) - y)) ** 2)
+    s = 4 * fp_inf
+    _, report = lekalo.fit_smoothing_condition(x, y, w=w**2, s=s, t=t)
+    assert (1 - 1e-3) * s <= report["weighted_rss"] <= s
+    assert report["lam"] > 0
+    # below the least-squares spline's residual no weight reaches s: that spline
+    _, report = lekalo.fit_smoothing_condition(x, y, w=w**2, s=fp_inf / 2, t=t)
+    assert report["weighted_rss"] == pytest.approx(fp_inf, rel=1e-10)
+
+
+def test_fit_periodic_with_knots_and_s_is_scipys_periodic_make_splrep():
+    x, y = noisy(80)
+    y[-1] = y[0]
+    interior = np.linspace(0, 2 * np.pi, 11)[1:-1]
+    for s in (0.3, 1.0, 3.0):
+        curve, report = lekalo.fit_periodic(x, y, s=s, t=interior)
+        ref = si.make_splrep(x, y, s=s, t=curve.knots, bc_type="periodic")
+        fp_ref = np.sum((ref(x[:-1]) - y[:-1]) ** 2)
+        assert (1 - 1e-3) * s <= report["weighted_rss"] <= s
+        if fp_ref <= s:
+            assert np.abs(curve.control[:, 0] - ref.c[: len(curve.control)]).max() <= 1e-12
+        else:
+            assert fp_ref <= (1 + 1e-3) * s
+
+
+@pytest.mark.parametrize("s", [1e-3, 0.1, 1.0])
+def test_generate_knots_ends_on_fitpacks_knots(s):
+    x, y = noisy(100)
+    seq = lekalo.generate_knots(x, y, s=s)
+    assert np.array_equal(seq[-1], si.splrep(x, y, s=s)[0])
+    assert all(len(a) < len(b) for a, b in zip(seq, seq[1:]))
+    assert len(seq[0]) == 8  # the polynomial first
+    # the last knot vector is the one the smoothing condition smooths on
+    assert np.array_equal(lekalo.make_splrep(x, y, s=s).knots, seq[-1])
+
+
+def test_generate_knots_stops_at_nest_and_refuses_a_smaller_nest():
+    x = np.arange(8.0)
+    y = np.sin(x * np.pi / 8)
+    seq = lekalo.generate_knots(x, y, s=1e-7, nest=10)
+    assert np.array_equal(seq[-1], [0, 0, 0, 0, 2, 4, 7, 7, 7, 7])
+    with pytest.raises(ValueError, match="max_knots"):
+        lekalo.generate_knots(x, y, s=1e-7, nest=7)
+
+
+def test_periodic_generate_knots_ends_on_fitpacks_knots():
+    x, y = noisy(50)
+    y[-1] = y[0]
+    seq = lekalo.generate_knots(x, y, s=0.2, periodic=True)
+    assert np.array_equal(seq[-1], si.splrep(x, y, s=0.2, per=1)[0])
+    assert len(seq[0]) == 2 * 3 + 3  # one interior knot first
