@@ -523,8 +523,10 @@ def test_ndbspline():
         close(b(xi, nu=(1, 2)), a(xi, nu=(1, 2)), 1e-10)
     out = ls.NdBSpline(t, c, k, extrapolate=False)([[5.0, 1.0], [1.0, 1.0], [np.nan, 1.0]])
     assert np.isnan(out[0]) and np.isfinite(out[1]) and np.isnan(out[2])
-    with pytest.raises(NotImplementedError, match="extrapolation"):
-        ls.NdBSpline(t, c, k)([[5.0, 1.0]])
+    # extrapolation (the default) continues the end polynomials, as SciPy's
+    far = [[5.0, 1.0], [-0.5, 3.5]]
+    close(ls.NdBSpline(t, c, k)(far), si.NdBSpline(t, c, k)(far), 1e-10)
+    close(ls.NdBSpline(t, c, k).derivative((1, 1))(xi), si.NdBSpline(t, c, k).derivative((1, 1))(xi), 1e-10)
     with pytest.raises(ValueError, match="inconsistent"):
         ls.NdBSpline(t, c[:5], k)
 
