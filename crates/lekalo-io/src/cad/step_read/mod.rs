@@ -29,6 +29,10 @@
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped |
 //! | `tests.rs` | tests |
 
+mod analytic;
+#[cfg(test)]
+mod analytic_tests;
+mod bounds;
 mod driver;
 mod entities;
 mod parse;
