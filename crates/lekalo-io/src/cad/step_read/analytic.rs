@@ -353,7 +353,7 @@ impl Reader<'_> {
             let d = self.direction(&v[1])?;
             let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
             let m = self.length(v.get(2), "the vector's magnitude", d.len())?;
-            if d.len() != point.len() || !(n > 0.0) {
+            if d.len() != point.len() || n <= 0.0 || n.is_nan() {
                 return Err(
                     "the LINE's point and direction differ in dimension or the direction is zero"
                         .into(),

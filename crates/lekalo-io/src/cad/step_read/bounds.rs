@@ -206,7 +206,7 @@ pub(super) fn face_bounds(
                     let cp = c.control_points();
                     if cp.dim() == 3 && cp.len() <= budget {
                         budget -= cp.len();
-                        cp.as_slice().chunks_exact(3).for_each(|p| push(p));
+                        cp.as_slice().chunks_exact(3).for_each(&mut push);
                     }
                 }
             }
