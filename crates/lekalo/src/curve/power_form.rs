@@ -48,3 +48,62 @@ impl BSplineCurve {
         pp.to_bspline(&space, TauRule::FirstIntervalMidpoint)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three cubic pieces in 2-D: C² at the first breakpoint, a corner (C⁰) at the second, and
+    /// a gap of 1e-3 at the third, which must all be reproduced.
+    #[test]
+    fn pieces_of_any_smoothness_are_reproduced() {
+        let breaks = vec![0.0, 0.5, 1.5, 2.0, 3.0];
+        // piece 0: (t³, 1 + t); piece 1 continues it with C² and a new cubic term
+        let p0 = [[0.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 0.0]];
+        let at = |c: [f64; 4], s: f64, j: usize| -> f64 {
+            // j-th derivative / j! of the cubic at s
+            match j {
+                0 => c[0] + s * (c[1] + s * (c[2] + s * c[3])),
+                1 => c[1] + s * (2.0 * c[2] + 3.0 * s * c[3]),
+                2 => c[2] + 3.0 * s * c[3],
+                _ => c[3],
+            }
+        };
+        let p1: Vec<[f64; 4]> = p0
+            .iter()
+            .map(|&c| [at(c, 0.5, 0), at(c, 0.5, 1), at(c, 0.5, 2), -2.0])
+            .collect();
+        let p2: Vec<[f64; 4]> = p1
+            .iter()
+            .map(|&c| [at(c, 1.0, 0), 0.25, 1.0, 0.5])
+            .collect();
+        let p3: Vec<[f64; 4]> = p2
+            .iter()
+            .map(|&c| [at(c, 0.5, 0) + 1e-3, -1.0, 0.0, 0.0])
+            .collect();
+        let pieces = [p0.to_vec(), p1, p2, p3];
+        let mut coef = Vec::new();
+        for piece in &pieces {
+            for r in 0..4 {
+                for c in piece {
+                    coef.push(c[r]);
+                }
+            }
+        }
+        let pp = PiecewisePolynomial::new(breaks.clone(), 4, 2, coef).unwrap();
+        let b = BSplineCurve::from_piecewise_polynomial(&pp).unwrap();
+        let k = b.knots();
+        assert_eq!(
+            [0.5, 1.5, 2.0].map(|x| k.multiplicity(x)),
+            [1, 3, 4],
+            "{k:?}"
+        );
+        for i in 0..=300 {
+            let x = 3.0 * f64::from(i) / 300.0;
+            let (got, want) = (b.eval(x).unwrap(), pp.eval(x).unwrap());
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1e-14 * 16.0, "at {x}: {got:?} vs {want:?}");
+            }
+        }
+    }
+}

@@ -55,6 +55,53 @@ pub struct StepSkipped {
     pub reason: String,
 }
 
+/// Entities skipped for one reason: their type, the reason, how many and the first id.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SkippedKind {
+    /// Entity type, e.g. `CIRCLE` or `IGES entity 144`.
+    pub entity: String,
+    /// Why they were skipped.
+    pub reason: String,
+    /// How many entities of the file share the type and the reason.
+    pub count: usize,
+    /// The smallest id among them (`#id` in STEP, the directory entry's sequence number in IGES).
+    pub first_id: u64,
+}
+
+/// The skipped entities of [`StepRead::skipped`] or [`crate::IgesRead::skipped`] grouped by
+/// type and reason: the report of what a file holds that was not read, most frequent first
+/// (then by type). Linear in the number of entries.
+///
+/// ```
+/// use lekalo_io::{skipped_by_kind, StepSkipped};
+/// let s = |id, e: &str| StepSkipped { id, entity: e.into(), reason: "r".into() };
+/// let k = skipped_by_kind(&[s(4, "B"), s(2, "A"), s(7, "B")]);
+/// assert_eq!((k[0].entity.as_str(), k[0].count, k[0].first_id), ("B", 2, 4));
+/// assert_eq!((k[1].entity.as_str(), k[1].count), ("A", 1));
+/// ```
+#[must_use]
+pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
+    let mut at: std::collections::HashMap<(&str, &str), usize> = std::collections::HashMap::new();
+    let mut out: Vec<SkippedKind> = Vec::new();
+    for s in skipped {
+        let k = *at
+            .entry((s.entity.as_str(), s.reason.as_str()))
+            .or_insert_with(|| {
+                out.push(SkippedKind {
+                    entity: s.entity.clone(),
+                    reason: s.reason.clone(),
+                    count: 0,
+                    first_id: s.id,
+                });
+                out.len() - 1
+            });
+        out[k].count += 1;
+        out[k].first_id = out[k].first_id.min(s.id);
+    }
+    out.sort_by(|a, b| b.count.cmp(&a.count).then_with(|| a.entity.cmp(&b.entity)));
+    out
+}
+
 /// What [`read_step`] found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepRead {
