@@ -1,6 +1,6 @@
 //! IGES 5.3 (Initial Graphics Exchange Specification): rational B-spline curves (entity 126)
-//! and surfaces (entity 128), written and read; parametric spline curves (entity 112) and
-//! surfaces (entity 114) read as exact B-splines (`splines.rs`).
+//! and surfaces (entity 128), written and read; lines (entity 110), parametric spline curves
+//! (entity 112) and surfaces (entity 114) read as exact B-splines (`splines.rs`).
 //!
 //! A file is 80-column records in five sections: Start (`S`), Global (`G`: delimiters, units,
 //! precision), Directory Entry (`D`: two records per entity), Parameter Data (`P`: the entity's
@@ -440,7 +440,7 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
             .get(73..80)
             .and_then(|s| s.trim().parse().ok())
             .unwrap_or(0);
-        if !matches!(ty.as_str(), "112" | "114" | "126" | "128") {
+        if !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
             if matches!(
                 ty.as_str(),
                 "100"
@@ -448,7 +448,6 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                     | "104"
                     | "106"
                     | "108"
-                    | "110"
                     | "118"
                     | "120"
                     | "122"
@@ -467,12 +466,20 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not read (lekalo reads entities 112, 114, 126 and 128)".into(),
+                    reason: "not read (lekalo reads entities 110, 112, 114, 126 and 128)".into(),
                 });
             }
             continue;
         }
         let at = Location::new(source).at_line(*line);
+        if ty == "110" && !matches!(field(b, 4).as_str(), "" | "0") {
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity 110 form {}", field(b, 4)),
+                reason: "a ray or an unbounded line (forms 1 and 2), which no NURBS holds".into(),
+            });
+            continue;
+        }
         if !matches!(field(a, 6).as_str(), "" | "0") {
             skipped.push(StepSkipped {
                 id: seq,
@@ -515,13 +522,15 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                 .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
         };
         let lib = |e: lekalo::Error| bad(e.to_string());
-        if ty == "112" || ty == "114" {
+        if ty == "110" || ty == "112" || ty == "114" {
             let num = |k: usize| {
                 f.get(k)
                     .and_then(|s| real(s))
                     .ok_or_else(|| format!("parameter {k} is missing or not a number"))
             };
-            let shape = if ty == "112" {
+            let shape = if ty == "110" {
+                splines::line(&num, unit_mm)
+            } else if ty == "112" {
                 splines::spline_curve(&num, f.len(), unit_mm)
             } else {
                 splines::spline_surface(&num, f.len(), unit_mm)

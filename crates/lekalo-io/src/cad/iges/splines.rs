@@ -43,6 +43,20 @@ fn check_len(needed: Option<usize>, len: usize, what: &str) -> Result<(), String
     }
 }
 
+/// Entity 110 (line, IGES 5.3 §4.13: start `X1 Y1 Z1`, end `X2 Y2 Z2`) as the degree-1
+/// B-spline on `[0, 1]`, the entity's own parametrisation; coordinates times `unit_mm`.
+pub(super) fn line(f: Field<'_>, unit_mm: f64) -> Result<Shape, String> {
+    let p = (1..=3)
+        .map(|k| Ok(f(k)? * unit_mm))
+        .collect::<Result<Vec<_>, String>>()?;
+    let q = (4..=6)
+        .map(|k| Ok(f(k)? * unit_mm))
+        .collect::<Result<Vec<_>, String>>()?;
+    let d: Vec<f64> = q.iter().zip(&p).map(|(a, b)| a - b).collect();
+    let c = BSplineCurve::line_segment(&p, &d, 0.0, 1.0).map_err(|e| e.to_string())?;
+    Ok(Shape::Curve(Object::BSpline(c)))
+}
+
 /// Entity 112 as a 3-D B-spline curve on its own parameter; coordinates times `unit_mm`.
 pub(super) fn spline_curve(f: Field<'_>, len: usize, unit_mm: f64) -> Result<Shape, String> {
     let n = count(f, 4, "the number of segments N")?;
@@ -128,6 +142,18 @@ mod tests {
     /// `x` rounded-trip through the IGES number format (the tests write plain decimals).
     fn num(x: f64) -> String {
         format!("{x:?}")
+    }
+
+    #[test]
+    fn a_line_is_its_segment_on_0_1() {
+        let text = one_entity("1H,,1H;;", 110, "110,1.,2.,3.,4.,6.,3.;");
+        let r = read_iges(&text, "l.igs").unwrap();
+        let Shape::Curve(c) = &r.shapes[0].1 else {
+            panic!("110 is a curve")
+        };
+        assert_eq!(c.domain(), (0.0, 1.0));
+        assert_eq!(c.eval(0.5).unwrap(), vec![2.5, 4.0, 3.0]);
+        assert_eq!(c.eval(1.0).unwrap(), vec![4.0, 6.0, 3.0]);
     }
 
     #[test]

@@ -1,19 +1,23 @@
-//! Reading B-spline and NURBS curves and surfaces from STEP files (ISO 10303-21 exchange
-//! structures of AP203, AP214 and AP242).
+//! Reading curves and surfaces from STEP files (ISO 10303-21 exchange structures of AP203,
+//! AP214 and AP242).
 //!
-//! Read: `B_SPLINE_CURVE_WITH_KNOTS` and `B_SPLINE_SURFACE_WITH_KNOTS`, plain or as the complex
-//! instances that Open CASCADE and FreeCAD write for rational geometry
-//! (`(BOUNDED_CURVE() B_SPLINE_CURVE(…) B_SPLINE_CURVE_WITH_KNOTS(…) … RATIONAL_B_SPLINE_CURVE(…)
-//! …)`, and the surface analogue), and `TRIMMED_CURVE` over a B-spline basis trimmed by
-//! `PARAMETER_VALUE`s (ISO 10303-42 §4.4.7, §4.4.13–15, §4.4.29, §4.4.35–37). The length unit
-//! comes from the unit context: 3-D coordinates are converted to millimetres, the unit
-//! [`crate::StepWriter`] declares, so that a file read and written again describes the same
-//! geometry. A conversion factor of 1 (files in millimetres) leaves every coordinate bit for bit
-//! as written. Curves of dimension 2 (parameter-space curves of faces) are not scaled.
+//! Read: B-spline curves and surfaces with their knots given (`B_SPLINE_*_WITH_KNOTS`) or
+//! implied by their form (`UNIFORM_*`, `QUASI_UNIFORM_*`, `BEZIER_*`), plain or as the complex
+//! instances that rational geometry takes (`(BOUNDED_CURVE() B_SPLINE_CURVE(…) … RATIONAL_B_SPLINE_CURVE(…)
+//! …)`, and the surface analogue); lines, circles, ellipses and polylines, and `TRIMMED_CURVE`s
+//! over any of these, trimmed by parameter values or points; planes, cylinders, cones, spheres,
+//! tori and surfaces of revolution and linear extrusion (ISO 10303-42 §4.3–4.5). Analytic
+//! geometry becomes exact NURBS built by the library; unbounded surfaces take the extent of the
+//! faces on them. The length unit comes from the unit context: 3-D coordinates are converted to
+//! millimetres, the unit [`crate::StepWriter`] declares, so that a file read and written again
+//! describes the same geometry. A conversion factor of 1 (files in millimetres) leaves every
+//! coordinate bit for bit as written. Curves of dimension 2 (parameter-space curves of faces)
+//! are not scaled.
 //!
-//! Everything else that is geometry (lines, conics, elementary and swept surfaces, implicit-knot
-//! B-splines such as `BEZIER_CURVE`, trims by points) is listed in [`StepRead::skipped`] with the
-//! reason, so a caller can tell the user what was left out.
+//! Everything else that is geometry (parabolas, hyperbolas, offsets, composite curves, unbounded
+//! lines and surfaces that nothing bounds, tessellated faces) is listed in [`StepRead::skipped`]
+//! with the reason, so a caller can tell the user what was left out ([`skipped_by_kind`] groups
+//! them).
 //!
 //! The exchange structure is tokenized here rather than with `ruststep`'s parser: that parser
 //! panics on integers and exponents beyond the range of `i64` (`1.0E99999999999999999999`),
@@ -24,10 +28,12 @@
 //! | file | subject |
 //! |---|---|
 //! | `parse.rs` | the exchange structure's lexer and parser: instances by id and the header's schema |
-//! | `entities.rs` | decoding of the B-spline curve and surface entities, trimmed curves and the trims' splitting; the geometry that is skipped |
-//! | `units.rs` | the file's length unit and its factor to millimetres |
+//! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots) and of trimmed curves; the geometry that is skipped |
+//! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library |
+//! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
+//! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped |
-//! | `tests.rs` | tests |
+//! | `tests.rs`, `analytic_tests.rs` | tests |
 
 mod analytic;
 #[cfg(test)]
