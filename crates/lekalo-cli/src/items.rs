@@ -170,10 +170,25 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
             )
         }
     );
-    if !r.skipped.is_empty() {
-        eprintln!("{name}: skipped {} entities:", r.skipped.len());
-        for s in &r.skipped {
-            eprintln!("  #{} {}: {}", s.id, s.entity, s.reason);
+    report_skipped(cx, name, &r.skipped, "#");
+}
+
+/// The entities a CAD file holds that were not read: one line per type and reason with the
+/// count and the first id, and with `-v` every entity.
+fn report_skipped(cx: &Context, name: &str, skipped: &[lekalo_io::StepSkipped], prefix: &str) {
+    if skipped.is_empty() {
+        return;
+    }
+    eprintln!("{name}: skipped {} entities:", skipped.len());
+    for k in lekalo_io::skipped_by_kind(skipped) {
+        eprintln!(
+            "  {:>6} {}: {} (first {prefix}{})",
+            k.count, k.entity, k.reason, k.first_id
+        );
+    }
+    if cx.is_verbose() {
+        for s in skipped {
+            eprintln!("  {prefix}{} {}: {}", s.id, s.entity, s.reason);
         }
     }
 }
@@ -194,14 +209,17 @@ pub(crate) fn read_cad(
     if is_iges(path) {
         let r = lekalo_io::read_iges(text, name)?;
         if !cx.is_quiet() {
+            let curves = r
+                .shapes
+                .iter()
+                .filter(|(_, s)| matches!(s, lekalo_io::Shape::Curve(_)))
+                .count();
             eprintln!(
-                "{name}: read {} object(s); length unit {}",
-                r.shapes.len(),
+                "{name}: read {curves} curve(s) and {} surface(s); length unit {}",
+                r.shapes.len() - curves,
                 r.length_unit
             );
-            for s in &r.skipped {
-                eprintln!("  skipped D{} {}: {}", s.id, s.entity, s.reason);
-            }
+            report_skipped(cx, name, &r.skipped, "D");
         }
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
     }

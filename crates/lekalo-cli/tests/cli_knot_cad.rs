@@ -478,3 +478,42 @@ fn commands_read_a_curve_from_step_and_iges() {
         );
     }
 }
+
+#[test]
+fn step_reports_what_it_skipped_by_kind_and_count() {
+    // a circle and a sphere are read; two planes without a face and a triangulated face are not
+    let step = "ISO-10303-21;
+HEADER;
+FILE_SCHEMA(('AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF'));
+ENDSEC;
+DATA;
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=AXIS2_PLACEMENT_3D('',#1,$,$);
+#3=CIRCLE('',#2,2.);
+#4=SPHERICAL_SURFACE('',#2,1.);
+#5=PLANE('',#2);
+#6=PLANE('',#2);
+#7=COORDINATES_LIST('',3,((0.,0.,0.),(1.,0.,0.),(0.,1.,0.)));
+#8=COMPLEX_TRIANGULATED_FACE('',#7,3,((0.,0.,1.)),$,(),(),((1,2,3)));
+ENDSEC;
+END-ISO-10303-21;
+";
+    let d = dir_with(&[("part.step", step)]);
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "part.step"))
+        .arg("-o")
+        .arg(p(&d, "all.jsonl"))
+        .assert()
+        .success()
+        .stderr(
+            contains("read 1 curve(s) and 1 surface(s)")
+                .and(contains("skipped 3 entities:"))
+                .and(contains(
+                    "2 PLANE: unbounded plane without a face to bound it (first #5)",
+                ))
+                .and(contains("1 COMPLEX_TRIANGULATED_FACE: tessellated")),
+        );
+    let text = fs::read_to_string(p(&d, "all.jsonl")).unwrap();
+    assert_eq!(text.lines().count(), 2);
+}

@@ -83,7 +83,7 @@ pub use points_in::{parse_number_list, read_points, read_points_bytes, read_poin
 pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
-pub use step_read::{read_step, StepRead, StepSkipped};
+pub use step_read::{read_step, skipped_by_kind, SkippedKind, StepRead, StepSkipped};
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{

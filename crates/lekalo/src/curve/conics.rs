@@ -1,5 +1,6 @@
-//! Exact conics: circles and circular arcs of any sweep up to 2π as rational quadratic NURBS
-//! (P&T §7.5, Algorithm A7.1), in any dimension ≥ 2.
+//! Exact conics: circles, circular and elliptic arcs of any sweep up to 2π as rational
+//! quadratic NURBS (P&T §7.5, Algorithm A7.1), in any dimension ≥ 2; straight segments as
+//! linear B-splines.
 
 use crate::curve::bspline::BSplineCurve;
 use crate::curve::nurbs::NurbsCurve;
@@ -317,6 +318,133 @@ impl NurbsCurve {
         h[last..last + dim].copy_from_slice(c);
         homogeneous = BSplineCurve::from_raw(degree, knots.into_vec(), Points::from_raw(h, hd));
         Ok((NurbsCurve { homogeneous }, t_b))
+    }
+}
+
+impl NurbsCurve {
+    /// The elliptic arc `C + a cos θ X + b sin θ Y`, `θ` from `start_angle` to `end_angle`
+    /// (`X`, `Y` the unit axes, `a`, `b` the semi-axes), as an exact rational quadratic on
+    /// `[0, 1]`: the image of the circular arc of [`NurbsCurve::circular_arc`] under the affine
+    /// map `(cos θ, sin θ) ↦ C + a cos θ X + b sin θ Y` (P&T §7.5: NURBS are invariant under
+    /// affine maps, which act on the control points with the weights unchanged). The angle `θ`
+    /// is the eccentric angle of ISO 10303-42 `ellipse` (§4.4.17), not the polar angle.
+    ///
+    /// ```
+    /// use lekalo::NurbsCurve;
+    /// use std::f64::consts::TAU;
+    /// let e = NurbsCurve::elliptic_arc(&[1.0, 2.0], &[0.0, 1.0], &[-1.0, 0.0], 3.0, 1.0, 0.0, TAU)?;
+    /// for k in 0..=64 {
+    ///     let p = e.eval(k as f64 / 64.0)?;
+    ///     // in the frame: u along (0, 1), v along (−1, 0)
+    ///     let (u, v) = (p[1] - 2.0, -(p[0] - 1.0));
+    ///     assert!(((u / 3.0).powi(2) + v.powi(2) - 1.0).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::circular_arc`], with both semi-axes checked as the radius.
+    pub fn elliptic_arc(
+        center: &[f64],
+        x_axis: &[f64],
+        y_axis: &[f64],
+        semi_x: f64,
+        semi_y: f64,
+        start_angle: f64,
+        end_angle: f64,
+    ) -> Result<Self> {
+        let (x, y) = arc_frame(center, x_axis, y_axis)?;
+        check_radius(semi_x)?;
+        check_radius(semi_y)?;
+        check_finite("start_angle", &[start_angle])?;
+        check_finite("end_angle", &[end_angle])?;
+        let sweep = end_angle - start_angle;
+        let full = std::f64::consts::TAU;
+        if sweep == 0.0 || sweep.abs() > full * (1.0 + ARC_SWEEP_SLACK) {
+            return Err(Error::InvalidArgument {
+                what: "arc angles",
+                reason: format!(
+                    "the sweep end_angle − start_angle = {sweep} must be non-zero and at most 2π \
+                     in magnitude"
+                ),
+            });
+        }
+        let closed = sweep.abs() >= full;
+        let sweep = sweep.clamp(-full, full);
+        let xa: Vec<f64> = x.iter().map(|v| v * semi_x).collect();
+        let yb: Vec<f64> = y.iter().map(|v| v * semi_y).collect();
+        let homogeneous = arc_homogeneous(center, &xa, &yb, 1.0, start_angle, sweep, closed)?;
+        Ok(NurbsCurve { homogeneous })
+    }
+
+    /// The full ellipse `C + a cos θ X + b sin θ Y`, `θ ∈ [0, 2π]`: [`NurbsCurve::elliptic_arc`]
+    /// over a full turn (nine control points, four 90° pieces).
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::elliptic_arc`].
+    pub fn ellipse(
+        center: &[f64],
+        x_axis: &[f64],
+        y_axis: &[f64],
+        semi_x: f64,
+        semi_y: f64,
+    ) -> Result<Self> {
+        Self::elliptic_arc(
+            center,
+            x_axis,
+            y_axis,
+            semi_x,
+            semi_y,
+            0.0,
+            std::f64::consts::TAU,
+        )
+    }
+}
+
+impl BSplineCurve {
+    /// The straight segment `P + t D`, `t ∈ [t0, t1]`, as a linear B-spline on the same
+    /// parameter (control points `P + t0 D`, `P + t1 D`, knots `[t0, t0, t1, t1]`): the line of
+    /// ISO 10303-42 §4.4.14 restricted to a trim, exact (a degree-1 B-spline is the linear
+    /// interpolant of its control points, P&T §2.2).
+    ///
+    /// ```
+    /// use lekalo::BSplineCurve;
+    /// let l = BSplineCurve::line_segment(&[1.0, 0.0, 0.0], &[0.0, 2.0, 0.0], -1.0, 3.0)?;
+    /// assert_eq!(l.domain(), (-1.0, 3.0));
+    /// assert_eq!(l.eval(0.5)?, vec![1.0, 1.0, 0.0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] if `point` and `direction` differ in length or are empty;
+    /// [`Error::NonFinite`]; [`Error::InvalidArgument`] for a zero direction;
+    /// [`Error::EmptyDomain`] or [`Error::KnotsNotSorted`] unless `t0 < t1`.
+    pub fn line_segment(point: &[f64], direction: &[f64], t0: f64, t1: f64) -> Result<Self> {
+        if point.is_empty() || direction.len() != point.len() {
+            return Err(Error::Dimension {
+                what: "line direction",
+                expected: point.len().max(1),
+                got: direction.len(),
+            });
+        }
+        check_finite("line point", point)?;
+        check_finite("line direction", direction)?;
+        check_finite("line parameters", &[t0, t1])?;
+        if norm2(direction) == 0.0 {
+            return Err(Error::InvalidArgument {
+                what: "line direction",
+                reason: "the direction is the zero vector; give the direction of the line".into(),
+            });
+        }
+        let mut data = Vec::with_capacity(2 * point.len());
+        for t in [t0, t1] {
+            data.extend(point.iter().zip(direction).map(|(p, d)| p + t * d));
+        }
+        BSplineCurve::new(
+            1,
+            vec![t0, t0, t1, t1],
+            Points::from_flat(point.len(), data)?,
+        )
     }
 }
 

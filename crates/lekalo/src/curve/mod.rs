@@ -10,8 +10,10 @@
 //! - `knot_insertion.rs`: knot insertion and refinement, splitting, Bezier decomposition and
 //!   its inverse.
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
-//! - `conics.rs`: exact circles and circular arcs as rational quadratics.
+//! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
+//!   segments.
 //! - `nurbs_ops.rs`: knot operations on NURBS curves through their homogeneous B-spline.
+//! - `power_form.rs`: piecewise polynomials in power form (IGES 112) as exact B-splines.
 //! - `knot_removal.rs`: knot removal with a tolerance and curve simplification.
 //! - `curvature.rs`: [`curvature`] and [`principal_normal`] from the first two derivatives,
 //!   [`torsion`] from three.
@@ -30,6 +32,7 @@ mod knot_insertion;
 pub(crate) mod knot_removal;
 pub(crate) mod nurbs;
 mod nurbs_ops;
+mod power_form;
 
 pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
@@ -38,3 +41,4 @@ pub use curvature::{curvature, principal_normal, torsion};
 pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;
+pub use power_form::POWER_FORM_CONTINUITY_RTOL;

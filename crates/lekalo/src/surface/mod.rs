@@ -8,15 +8,24 @@
 //! - `nurbs.rs`: [`NurbsSurface`], a B-spline surface over homogeneous points.
 //! - `knot_ops.rs`: knot insertion, refinement, splitting, Bezier patches ([`BezierPatch`],
 //!   [`RationalBezierPatch`]), transposition and reversal.
+//! - `analytic.rs`: [`Placement`] and the elementary surfaces of CAD exchange (plane,
+//!   cylinder, cone, sphere, torus) as exact NURBS patches.
+//! - `revolution.rs`: surfaces of revolution and of linear extrusion of a NURBS curve, exact.
+//! - `power_patches.rs`: grids of polynomial patches in power form (IGES 114) as exact
+//!   B-splines.
 //! - `curvature.rs`: Gaussian, mean and principal curvatures ([`surface_curvature`]).
 
+mod analytic;
 mod any;
 pub(crate) mod bezier;
 pub(crate) mod bspline;
 mod curvature;
 mod knot_ops;
 pub(crate) mod nurbs;
+mod power_patches;
+mod revolution;
 
+pub use analytic::{Placement, FULL_TURN};
 pub use any::{Direction, Surface};
 pub use bezier::BezierSurface;
 pub use bspline::BSplineSurface;

@@ -1,17 +1,23 @@
-//! [`read_step`]: the exchange structure parsed, its length unit found, then each geometric
-//! entity read or listed as skipped.
+//! [`read_step`]: the exchange structure parsed, its units found, then each geometric entity
+//! read or listed as skipped.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
-use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMETRY};
+use super::analytic::{ANALYTIC_CURVES, ANALYTIC_SURFACES};
+use super::bounds::{face_bounds, line_ranges};
+use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMETRY, TESSELLATED};
 use super::parse::parse;
-use super::units::length_unit;
+use super::units::{length_unit, plane_angle_unit};
 use super::{StepRead, StepSkipped, Why};
 use crate::error::{IoError, IoResult};
 use crate::shape::Shape;
 
-/// Reads the B-spline and NURBS curves and surfaces of a STEP file. `source` names the file in
-/// errors.
+/// Reads the curves and surfaces of a STEP file. `source` names the file in errors.
+///
+/// B-splines and NURBS are read as written (knots given or implied by their form); lines,
+/// circles, ellipses, polylines, planes, cylinders, cones, spheres, tori and swept surfaces are
+/// converted to exact NURBS by the library (see the module documentation for the bounds of
+/// unbounded ones). What is not read is listed in [`StepRead::skipped`] with the reason.
 ///
 /// ```
 /// use lekalo_io::{read_step, Object, Shape, StepWriter};
@@ -36,13 +42,22 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
         p: &parsed,
         source,
         scale,
+        angle: plane_angle_unit(&parsed),
     };
     let mut ids: Vec<u64> = parsed.instances.keys().copied().collect();
     ids.sort_unstable();
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
+    let skip = |skipped: &mut Vec<StepSkipped>, id: u64, entity: &str, reason: Why| {
+        skipped.push(StepSkipped {
+            id,
+            entity: entity.to_string(),
+            reason,
+        });
+    };
+    // every curve read, by id (trimmed bases included), for swept surfaces and face bounds
+    let mut curves = HashMap::new();
     let mut trimmed_bases = HashSet::new();
-    let mut trimmed = Vec::new();
     // the basis control points all trims may read: four times the instances of the file (each
     // control point is an instance), so that reading stays linear in the file's size
     let mut budget = parsed.instances.len().saturating_mul(4);
@@ -52,16 +67,15 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
             match rd.trimmed(r, &mut budget) {
                 Ok((basis, piece)) => {
                     trimmed_bases.insert(basis);
-                    trimmed.push((id, Shape::Curve(piece)));
+                    curves.insert(id, piece.clone());
+                    shapes.push((id, Shape::Curve(piece)));
                 }
-                Err(reason) => skipped.push(StepSkipped {
-                    id,
-                    entity: "TRIMMED_CURVE".into(),
-                    reason,
-                }),
+                Err(reason) => skip(&mut skipped, id, "TRIMMED_CURVE", reason),
             }
         }
     }
+    let lines = line_ranges(&rd);
+    let mut unbounded = HashSet::new();
     for &id in &ids {
         let inst = &parsed.instances[&id];
         let bad = |why: Why| {
@@ -71,42 +85,64 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
             )
         };
         if is_bspline_curve(inst) {
-            if trimmed_bases.contains(&id) {
-                continue;
+            let c = rd.curve(inst).map_err(bad)?;
+            curves.insert(id, c.clone());
+            if !trimmed_bases.contains(&id) {
+                shapes.push((id, Shape::Curve(c)));
             }
-            match rd.curve(inst) {
-                Ok(c) => shapes.push((id, Shape::Curve(c))),
-                Err(why) if why.starts_with("implicit knots") => skipped.push(StepSkipped {
-                    id,
-                    entity: inst.type_name(),
-                    reason: why,
-                }),
-                Err(why) => return Err(bad(why)),
+        } else if let Some(name) = first_of(inst, ANALYTIC_CURVES) {
+            let read = rd.basis(id).and_then(|b| match lines.get(&id) {
+                Some(&(t0, t1)) if name == "LINE" => b.piece(t0, t1, true),
+                _ => b.whole(),
+            });
+            match read {
+                Ok(c) => {
+                    curves.insert(id, c.clone());
+                    if !trimmed_bases.contains(&id) {
+                        shapes.push((id, Shape::Curve(c)));
+                    }
+                }
+                // a line that a trim reads is not skipped
+                Err(_) if trimmed_bases.contains(&id) => {}
+                Err(reason) => skip(&mut skipped, id, name, reason),
             }
         } else if is_bspline_surface(inst) {
-            match rd.surface(inst) {
-                Ok(s) => shapes.push((id, Shape::Surface(s))),
-                Err(why) if why.starts_with("implicit knots") => skipped.push(StepSkipped {
-                    id,
-                    entity: inst.type_name(),
-                    reason: why,
-                }),
-                Err(why) => return Err(bad(why)),
+            shapes.push((id, Shape::Surface(rd.surface(inst).map_err(bad)?)));
+        } else if let Some(name) = first_of(inst, ANALYTIC_SURFACES) {
+            if matches!(
+                name,
+                "PLANE" | "CYLINDRICAL_SURFACE" | "CONICAL_SURFACE" | "SURFACE_OF_LINEAR_EXTRUSION"
+            ) {
+                unbounded.insert(id);
             }
-        } else if let Some((name, _)) = inst
-            .records
-            .iter()
-            .find(|(n, _)| OTHER_GEOMETRY.contains(&n.as_str()))
-        {
-            skipped.push(StepSkipped {
+        } else if let Some(name) = first_of(inst, TESSELLATED) {
+            skip(
+                &mut skipped,
                 id,
-                entity: name.clone(),
-                reason: "not a B-spline (lekalo reads B-spline and NURBS curves and surfaces)"
+                name,
+                "tessellated geometry (a mesh of triangles or polylines), not a curve or surface"
                     .into(),
-            });
+            );
+        } else if let Some(name) = first_of(inst, OTHER_GEOMETRY) {
+            skip(
+                &mut skipped,
+                id,
+                name,
+                "not read (lekalo reads B-splines, NURBS, lines, conics, elementary and swept surfaces)".into(),
+            );
         }
     }
-    shapes.extend(trimmed);
+    let bounds = face_bounds(&rd, &unbounded, &curves);
+    for &id in &ids {
+        let inst = &parsed.instances[&id];
+        let Some(name) = first_of(inst, ANALYTIC_SURFACES) else {
+            continue;
+        };
+        match rd.analytic_surface(id, inst, &bounds, &curves) {
+            Ok(s) => shapes.push((id, Shape::Surface(s))),
+            Err(reason) => skip(&mut skipped, id, name, reason),
+        }
+    }
     shapes.sort_by_key(|(id, _)| *id);
     skipped.sort_by_key(|s| s.id);
     Ok(StepRead {
@@ -116,4 +152,11 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
         length_unit,
         scale_to_mm: scale,
     })
+}
+
+/// The first record of `inst` named in `names`.
+fn first_of<'a>(inst: &super::Instance, names: &[&'a str]) -> Option<&'a str> {
+    inst.records
+        .iter()
+        .find_map(|(n, _)| names.iter().find(|m| **m == n.as_str()).copied())
 }

@@ -4,43 +4,46 @@
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
+use super::analytic::Basis;
 use super::parse::Parsed;
 use super::{int, list, num, numbers, Instance, Why, P};
 use crate::error::Location;
 use crate::object::Object;
 use crate::shape::Surface;
 
+/// Tessellated geometry (AP242 meshes: triangulated faces and surface sets, tessellated
+/// shells, solids and curve sets), reported as skipped.
+pub(super) const TESSELLATED: &[&str] = &[
+    "TRIANGULATED_FACE",
+    "COMPLEX_TRIANGULATED_FACE",
+    "TRIANGULATED_SURFACE_SET",
+    "COMPLEX_TRIANGULATED_SURFACE_SET",
+    "TESSELLATED_SHELL",
+    "TESSELLATED_SOLID",
+    "TESSELLATED_CURVE_SET",
+    "TESSELLATED_POINT_SET",
+];
+
 /// Curve and surface entities that are geometry but not read, reported as skipped.
 pub(super) const OTHER_GEOMETRY: &[&str] = &[
-    "LINE",
-    "CIRCLE",
-    "ELLIPSE",
     "PARABOLA",
     "HYPERBOLA",
-    "POLYLINE",
     "OFFSET_CURVE_2D",
     "OFFSET_CURVE_3D",
-    "PLANE",
-    "CYLINDRICAL_SURFACE",
-    "CONICAL_SURFACE",
-    "SPHERICAL_SURFACE",
-    "TOROIDAL_SURFACE",
-    "SURFACE_OF_REVOLUTION",
-    "SURFACE_OF_LINEAR_EXTRUSION",
+    "COMPOSITE_CURVE",
+    "COMPOSITE_CURVE_ON_SURFACE",
+    "BOUNDARY_CURVE",
+    "OUTER_BOUNDARY_CURVE",
     "OFFSET_SURFACE",
     "RECTANGULAR_TRIMMED_SURFACE",
-    "BEZIER_CURVE",
-    "UNIFORM_CURVE",
-    "QUASI_UNIFORM_CURVE",
-    "BEZIER_SURFACE",
-    "UNIFORM_SURFACE",
-    "QUASI_UNIFORM_SURFACE",
 ];
 
 pub(super) struct Reader<'a> {
     pub(super) p: &'a Parsed,
     pub(super) source: &'a str,
     pub(super) scale: f64,
+    /// The plane angle unit in radians (1 for radians, π/180 for degrees).
+    pub(super) angle: f64,
 }
 
 /// The knots of one direction, each repeated by its multiplicity, for `n` control points of
@@ -91,6 +94,94 @@ fn expand_knots(mults: &P, knots: &P, n: usize, degree: usize, dir: &str) -> Res
     Ok(out)
 }
 
+/// The knot forms of ISO 10303-42 whose knots are implied (`knot_type`, §4.3.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum KnotForm {
+    /// `UNIFORM_*`: simple knots with spacing 1, the first at `-degree`.
+    Uniform,
+    /// `QUASI_UNIFORM_*`: simple interior knots with spacing 1 and ends of multiplicity
+    /// `degree + 1`, from 0.
+    QuasiUniform,
+    /// `BEZIER_*` (and `PIECEWISE_BEZIER_*`): knots 0, 1, 2, … of multiplicity `degree`, ends
+    /// `degree + 1`.
+    PiecewiseBezier,
+}
+
+/// The curve entities of an implied knot form.
+const IMPLICIT_CURVES: &[(&str, KnotForm)] = &[
+    ("UNIFORM_CURVE", KnotForm::Uniform),
+    ("QUASI_UNIFORM_CURVE", KnotForm::QuasiUniform),
+    ("BEZIER_CURVE", KnotForm::PiecewiseBezier),
+    ("PIECEWISE_BEZIER_CURVE", KnotForm::PiecewiseBezier),
+];
+
+/// The surface entities of an implied knot form.
+const IMPLICIT_SURFACES: &[(&str, KnotForm)] = &[
+    ("UNIFORM_SURFACE", KnotForm::Uniform),
+    ("QUASI_UNIFORM_SURFACE", KnotForm::QuasiUniform),
+    ("BEZIER_SURFACE", KnotForm::PiecewiseBezier),
+    ("PIECEWISE_BEZIER_SURFACE", KnotForm::PiecewiseBezier),
+];
+
+/// The knots of one direction: given by multiplicities and values, or implied by the form.
+enum Knots<'a> {
+    Given(&'a P, &'a P),
+    Implied(KnotForm),
+}
+
+impl Knots<'_> {
+    fn expand(&self, n: usize, degree: usize, dir: &str) -> Result<Vec<f64>, Why> {
+        match self {
+            Knots::Given(m, k) => expand_knots(m, k, n, degree, dir),
+            Knots::Implied(f) => implicit_knots(*f, n, degree, dir),
+        }
+    }
+}
+
+/// The `n + degree + 1` knots that ISO 10303-42 implies for `n` control points of `degree`
+/// (the functions `default_b_spline_knots` and `default_b_spline_knot_mult` of §4.3.4):
+/// uniform: `−d, −d + 1, …, n` (each once); quasi-uniform: `0, 1, …, n − d`, the ends repeated
+/// `d + 1` times; piecewise Bezier (and Bezier): `0, 1, …, (n − 1)/d`, the ends repeated
+/// `d + 1` times and the interior `d` times, which needs `n − 1` divisible by `d`.
+pub(super) fn implicit_knots(
+    form: KnotForm,
+    n: usize,
+    degree: usize,
+    dir: &str,
+) -> Result<Vec<f64>, Why> {
+    if degree >= n || degree == 0 {
+        return Err(format!(
+            "{dir}degree {degree} of an implicit-knot B-spline needs a degree of at least 1 and at least {} control points, there are {n}",
+            degree.saturating_add(1)
+        ));
+    }
+    // n and degree < n come from lists of the file, so these sums are far below usize::MAX
+    let mut k = Vec::with_capacity(n + degree + 1);
+    match form {
+        KnotForm::Uniform => k.extend((0..n + degree + 1).map(|i| i as f64 - degree as f64)),
+        KnotForm::QuasiUniform => {
+            let last = (n - degree) as f64;
+            k.extend(std::iter::repeat_n(0.0, degree));
+            k.extend((0..=n - degree).map(|i| i as f64));
+            k.extend(std::iter::repeat_n(last, degree));
+        }
+        KnotForm::PiecewiseBezier => {
+            if (n - 1) % degree != 0 {
+                return Err(format!(
+                    "a piecewise Bezier {dir}form of degree {degree} has 1 + {degree}·k control points, there are {n}"
+                ));
+            }
+            let pieces = (n - 1) / degree;
+            k.push(0.0);
+            for i in 0..=pieces {
+                k.extend(std::iter::repeat_n(i as f64, degree));
+            }
+            k.push(pieces as f64);
+        }
+    }
+    Ok(k)
+}
+
 impl Reader<'_> {
     pub(super) fn at(&self, id: u64) -> Location {
         let mut loc = Location::new(self.source);
@@ -137,28 +228,44 @@ impl Reader<'_> {
         Ok(pts)
     }
 
-    /// A B-spline curve instance (simple or complex, rational or not).
+    /// A B-spline curve instance (simple or complex, rational or not), with its knots given
+    /// (`B_SPLINE_CURVE_WITH_KNOTS`) or implied by its form (`UNIFORM_CURVE`,
+    /// `QUASI_UNIFORM_CURVE`, `BEZIER_CURVE`, see [`implicit_knots`]).
     pub(super) fn curve(&self, inst: &Instance) -> Result<Object, Why> {
-        let (degree, ctrl, mults, knots, weights) = if let Some(r) = inst
+        let (degree, ctrl, knots, weights) = if let Some(r) = inst
             .get("B_SPLINE_CURVE_WITH_KNOTS")
             .filter(|r| r.len() >= 9)
         {
-            (&r[1], &r[2], &r[6], &r[7], None)
+            (&r[1], &r[2], Knots::Given(&r[6], &r[7]), None)
+        } else if let Some((form, r)) = IMPLICIT_CURVES
+            .iter()
+            .find_map(|&(n, f)| Some((f, inst.get(n).filter(|r| r.len() >= 3)?)))
+        {
+            (&r[1], &r[2], Knots::Implied(form), None)
         } else {
             let b = inst
                 .get("B_SPLINE_CURVE")
                 .filter(|r| r.len() >= 2)
                 .ok_or("no B_SPLINE_CURVE record with degree and control points")?;
-            let k = inst
+            let knots = match inst
                 .get("B_SPLINE_CURVE_WITH_KNOTS")
                 .filter(|r| r.len() >= 2)
-                .ok_or("implicit knots (only B_SPLINE_CURVE_WITH_KNOTS is read)")?;
+            {
+                Some(k) => Knots::Given(&k[0], &k[1]),
+                None => Knots::Implied(
+                    IMPLICIT_CURVES
+                        .iter()
+                        .find(|(n, _)| inst.has(n))
+                        .map(|&(_, f)| f)
+                        .ok_or("B_SPLINE_CURVE without a knot form (B_SPLINE_CURVE_WITH_KNOTS, UNIFORM_CURVE, QUASI_UNIFORM_CURVE or BEZIER_CURVE)")?,
+                ),
+            };
             let w = inst.get("RATIONAL_B_SPLINE_CURVE").and_then(|r| r.first());
-            (&b[0], &b[1], &k[0], &k[1], w)
+            (&b[0], &b[1], knots, w)
         };
         let degree = int(degree).ok_or("degree is not a non-negative integer")?;
         let ctrl = self.points(ctrl)?;
-        let knots = expand_knots(mults, knots, ctrl.len(), degree, "")?;
+        let knots = knots.expand(ctrl.len(), degree, "")?;
         let obj = match weights {
             None => {
                 Object::BSpline(BSplineCurve::new(degree, knots, ctrl).map_err(|e| e.to_string())?)
@@ -171,26 +278,56 @@ impl Reader<'_> {
         Ok(obj)
     }
 
-    /// A B-spline surface instance (simple or complex, rational or not).
+    /// A B-spline surface instance (simple or complex, rational or not), with its knots given
+    /// or implied by its form as for curves.
     pub(super) fn surface(&self, inst: &Instance) -> Result<Surface, Why> {
         let simple = inst
             .get("B_SPLINE_SURFACE_WITH_KNOTS")
             .filter(|r| r.len() >= 13);
-        let (du, dv, net, um, vm, uk, vk, weights) = if let Some(r) = simple {
-            (&r[1], &r[2], &r[3], &r[8], &r[9], &r[10], &r[11], None)
+        let (du, dv, net, ku, kv, weights) = if let Some(r) = simple {
+            (
+                &r[1],
+                &r[2],
+                &r[3],
+                Knots::Given(&r[8], &r[10]),
+                Knots::Given(&r[9], &r[11]),
+                None,
+            )
+        } else if let Some((form, r)) = IMPLICIT_SURFACES
+            .iter()
+            .find_map(|&(n, f)| Some((f, inst.get(n).filter(|r| r.len() >= 4)?)))
+        {
+            (
+                &r[1],
+                &r[2],
+                &r[3],
+                Knots::Implied(form),
+                Knots::Implied(form),
+                None,
+            )
         } else {
             let b = inst
                 .get("B_SPLINE_SURFACE")
                 .filter(|r| r.len() >= 3)
                 .ok_or("no B_SPLINE_SURFACE record with degrees and control points")?;
-            let k = inst
+            let (ku, kv) = match inst
                 .get("B_SPLINE_SURFACE_WITH_KNOTS")
                 .filter(|r| r.len() >= 4)
-                .ok_or("implicit knots (only B_SPLINE_SURFACE_WITH_KNOTS is read)")?;
+            {
+                Some(k) => (Knots::Given(&k[0], &k[2]), Knots::Given(&k[1], &k[3])),
+                None => {
+                    let form = IMPLICIT_SURFACES
+                        .iter()
+                        .find(|(n, _)| inst.has(n))
+                        .map(|&(_, f)| f)
+                        .ok_or("B_SPLINE_SURFACE without a knot form (B_SPLINE_SURFACE_WITH_KNOTS, UNIFORM_SURFACE, QUASI_UNIFORM_SURFACE or BEZIER_SURFACE)")?;
+                    (Knots::Implied(form), Knots::Implied(form))
+                }
+            };
             let w = inst
                 .get("RATIONAL_B_SPLINE_SURFACE")
                 .and_then(|r| r.first());
-            (&b[0], &b[1], &b[2], &k[0], &k[1], &k[2], &k[3], w)
+            (&b[0], &b[1], &b[2], ku, kv, w)
         };
         let du = int(du).ok_or("u_degree is not a non-negative integer")?;
         let dv = int(dv).ok_or("v_degree is not a non-negative integer")?;
@@ -214,8 +351,8 @@ impl Reader<'_> {
             flat.extend_from_slice(pts.as_slice());
         }
         let ctrl = Points::from_flat(dim.max(1), flat).map_err(|e| e.to_string())?;
-        let ku = expand_knots(um, uk, nu, du, "u ")?;
-        let kv = expand_knots(vm, vk, nv, dv, "v ")?;
+        let ku = ku.expand(nu, du, "u ")?;
+        let kv = kv.expand(nv, dv, "v ")?;
         Ok(match weights {
             None => Surface::BSpline(
                 BSplineSurface::new(du, dv, ku, kv, ctrl, (nu, nv)).map_err(|e| e.to_string())?,
@@ -233,10 +370,22 @@ impl Reader<'_> {
         })
     }
 
-    /// A `TRIMMED_CURVE` over a B-spline curve, trimmed by parameter values. `budget` is the
-    /// number of basis control points trims may still read: a basis is read once per trim, so
-    /// without it a file of many short trims of one long curve would be read in quadratic time.
+    /// A `TRIMMED_CURVE` (ISO 10303-42 §4.4.29) over a B-spline, line, circle, ellipse or
+    /// polyline, trimmed by parameter values or by points (the parameter of a conic is its
+    /// angle, in the file's plane angle unit). `budget` is the number of basis control points
+    /// trims may still read: a basis is read once per trim, so without it a file of many short
+    /// trims of one long curve would be read in quadratic time.
     pub(super) fn trimmed(&self, r: &[P], budget: &mut usize) -> Result<(u64, Object), Why> {
+        self.trimmed_at(r, budget, 0)
+    }
+
+    /// [`Reader::trimmed`] at a depth of curve references (see [`Reader::basis_at`]).
+    pub(super) fn trimmed_at(
+        &self,
+        r: &[P],
+        budget: &mut usize,
+        depth: usize,
+    ) -> Result<(u64, Object), Why> {
         if r.len() < 5 {
             return Err(
                 "TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into(),
@@ -250,17 +399,19 @@ impl Reader<'_> {
             .instances
             .get(basis)
             .ok_or_else(|| format!("basis curve #{basis} is not defined"))?;
-        if !is_bspline_curve(inst) {
-            return Err(format!(
-                "the basis curve #{basis} is a {} (only B-spline bases are read)",
-                inst.type_name()
-            ));
-        }
-        let size = ["B_SPLINE_CURVE_WITH_KNOTS", "B_SPLINE_CURVE"]
+        let size = inst
+            .records
             .iter()
-            .find_map(|name| {
-                let r = inst.get(name)?;
-                let at = usize::from(*name == "B_SPLINE_CURVE_WITH_KNOTS") + 1;
+            .find_map(|(name, r)| {
+                let at = if name == "B_SPLINE_CURVE" {
+                    1
+                } else if name == "B_SPLINE_CURVE_WITH_KNOTS"
+                    || IMPLICIT_CURVES.iter().any(|(n, _)| n == name)
+                {
+                    2
+                } else {
+                    return None;
+                };
                 r.get(at).and_then(list).map(<[P]>::len)
             })
             .unwrap_or(0);
@@ -269,79 +420,50 @@ impl Reader<'_> {
                 "the basis curve #{basis} ({size} control points) is one of bases trimmed more often than the file's size allows to read"
             )
         })?;
-        let curve = self.curve(inst)?;
+        let curve = self.basis_at(*basis, depth + 1)?;
+        let conic = matches!(curve, Basis::Ellipse { .. });
+        let master_points = matches!(r.get(5), Some(P::Enum(e)) if e == "CARTESIAN");
         let trim = |p: &P| -> Option<f64> {
-            list(p)?.iter().find_map(|x| match x {
-                P::Typed(k, v) if k == "PARAMETER_VALUE" => v.first().and_then(num),
+            let items = list(p)?;
+            let by_value = items.iter().find_map(|x| match x {
+                P::Typed(k, v) if k == "PARAMETER_VALUE" => {
+                    v.first()
+                        .and_then(num)
+                        .map(|t| if conic { t * self.angle } else { t })
+                }
                 _ => None,
-            })
+            });
+            let by_point = || {
+                items.iter().find_map(|x| match x {
+                    P::Ref(_) => self.location(x).ok().and_then(|q| curve.parameter_of(&q)),
+                    _ => None,
+                })
+            };
+            match by_value {
+                Some(t) if !master_points => Some(t),
+                _ => by_point().or(by_value),
+            }
         };
         let (Some(t1), Some(t2)) = (trim(&r[2]), trim(&r[3])) else {
-            return Err("trimmed by points, not by PARAMETER_VALUE".into());
+            return Err("not trimmed by parameter values, nor by points on a line or conic".into());
         };
         let sense = match &r[4] {
             P::Enum(e) => e == "T",
             _ => return Err("sense_agreement is not .T. or .F.".into()),
         };
-        if sense != (t1 <= t2) {
-            return Err(format!(
-                "trims {t1} → {t2} with sense_agreement {} wrap around a closed curve",
-                if sense { ".T." } else { ".F." }
-            ));
-        }
-        let (a, b) = (t1.min(t2), t1.max(t2));
-        let piece = restrict(&curve, a, b).map_err(|e| e.to_string())?;
-        let piece = if sense {
-            piece
-        } else {
-            reverse(&piece).map_err(|e| e.to_string())?
-        };
+        let piece = curve.piece(t1, t2, sense)?;
         Ok((*basis, piece))
     }
 }
 
-fn split(o: &Object, t: f64) -> lekalo::Result<(Object, Object)> {
-    Ok(match o {
-        Object::Nurbs(c) => {
-            let (a, b) = c.split_at(t)?;
-            (Object::Nurbs(a), Object::Nurbs(b))
-        }
-        Object::BSpline(c) => {
-            let (a, b) = c.split_at(t)?;
-            (Object::BSpline(a), Object::BSpline(b))
-        }
-        Object::Bezier(c) => {
-            let (a, b) = c.to_bspline().split_at(t)?;
-            (Object::BSpline(a), Object::BSpline(b))
-        }
-    })
-}
-
-/// The piece of `o` over `[a, b]` (the curve itself where a trim is at its end).
-fn restrict(o: &Object, a: f64, b: f64) -> lekalo::Result<Object> {
-    let (lo, hi) = o.domain();
-    let mut c = o.clone();
-    if a > lo {
-        c = split(&c, a)?.1;
-    }
-    if b < hi {
-        c = split(&c, b)?.0;
-    }
-    Ok(c)
-}
-
-fn reverse(o: &Object) -> lekalo::Result<Object> {
-    Ok(match o {
-        Object::Nurbs(c) => Object::Nurbs(c.reverse()?),
-        Object::BSpline(c) => Object::BSpline(c.reverse()?),
-        Object::Bezier(c) => Object::BSpline(c.to_bspline().reverse()?),
-    })
-}
-
 pub(super) fn is_bspline_curve(i: &Instance) -> bool {
-    i.has("B_SPLINE_CURVE_WITH_KNOTS") || i.has("B_SPLINE_CURVE")
+    i.has("B_SPLINE_CURVE_WITH_KNOTS")
+        || i.has("B_SPLINE_CURVE")
+        || IMPLICIT_CURVES.iter().any(|(n, _)| i.has(n))
 }
 
 pub(super) fn is_bspline_surface(i: &Instance) -> bool {
-    i.has("B_SPLINE_SURFACE_WITH_KNOTS") || i.has("B_SPLINE_SURFACE")
+    i.has("B_SPLINE_SURFACE_WITH_KNOTS")
+        || i.has("B_SPLINE_SURFACE")
+        || IMPLICIT_SURFACES.iter().any(|(n, _)| i.has(n))
 }

@@ -1,19 +1,23 @@
-//! Reading B-spline and NURBS curves and surfaces from STEP files (ISO 10303-21 exchange
-//! structures of AP203, AP214 and AP242).
+//! Reading curves and surfaces from STEP files (ISO 10303-21 exchange structures of AP203,
+//! AP214 and AP242).
 //!
-//! Read: `B_SPLINE_CURVE_WITH_KNOTS` and `B_SPLINE_SURFACE_WITH_KNOTS`, plain or as the complex
-//! instances that Open CASCADE and FreeCAD write for rational geometry
-//! (`(BOUNDED_CURVE() B_SPLINE_CURVE(…) B_SPLINE_CURVE_WITH_KNOTS(…) … RATIONAL_B_SPLINE_CURVE(…)
-//! …)`, and the surface analogue), and `TRIMMED_CURVE` over a B-spline basis trimmed by
-//! `PARAMETER_VALUE`s (ISO 10303-42 §4.4.7, §4.4.13–15, §4.4.29, §4.4.35–37). The length unit
-//! comes from the unit context: 3-D coordinates are converted to millimetres, the unit
-//! [`crate::StepWriter`] declares, so that a file read and written again describes the same
-//! geometry. A conversion factor of 1 (files in millimetres) leaves every coordinate bit for bit
-//! as written. Curves of dimension 2 (parameter-space curves of faces) are not scaled.
+//! Read: B-spline curves and surfaces with their knots given (`B_SPLINE_*_WITH_KNOTS`) or
+//! implied by their form (`UNIFORM_*`, `QUASI_UNIFORM_*`, `BEZIER_*`), plain or as the complex
+//! instances that rational geometry takes (`(BOUNDED_CURVE() B_SPLINE_CURVE(…) … RATIONAL_B_SPLINE_CURVE(…)
+//! …)`, and the surface analogue); lines, circles, ellipses and polylines, and `TRIMMED_CURVE`s
+//! over any of these, trimmed by parameter values or points; planes, cylinders, cones, spheres,
+//! tori and surfaces of revolution and linear extrusion (ISO 10303-42 §4.3–4.5). Analytic
+//! geometry becomes exact NURBS built by the library; unbounded surfaces take the extent of the
+//! faces on them. The length unit comes from the unit context: 3-D coordinates are converted to
+//! millimetres, the unit [`crate::StepWriter`] declares, so that a file read and written again
+//! describes the same geometry. A conversion factor of 1 (files in millimetres) leaves every
+//! coordinate bit for bit as written. Curves of dimension 2 (parameter-space curves of faces)
+//! are not scaled.
 //!
-//! Everything else that is geometry (lines, conics, elementary and swept surfaces, implicit-knot
-//! B-splines such as `BEZIER_CURVE`, trims by points) is listed in [`StepRead::skipped`] with the
-//! reason, so a caller can tell the user what was left out.
+//! Everything else that is geometry (parabolas, hyperbolas, offsets, composite curves, unbounded
+//! lines and surfaces that nothing bounds, tessellated faces) is listed in [`StepRead::skipped`]
+//! with the reason, so a caller can tell the user what was left out ([`skipped_by_kind`] groups
+//! them).
 //!
 //! The exchange structure is tokenized here rather than with `ruststep`'s parser: that parser
 //! panics on integers and exponents beyond the range of `i64` (`1.0E99999999999999999999`),
@@ -24,11 +28,17 @@
 //! | file | subject |
 //! |---|---|
 //! | `parse.rs` | the exchange structure's lexer and parser: instances by id and the header's schema |
-//! | `entities.rs` | decoding of the B-spline curve and surface entities, trimmed curves and the trims' splitting; the geometry that is skipped |
-//! | `units.rs` | the file's length unit and its factor to millimetres |
+//! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots) and of trimmed curves; the geometry that is skipped |
+//! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library |
+//! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
+//! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped |
-//! | `tests.rs` | tests |
+//! | `tests.rs`, `analytic_tests.rs` | tests |
 
+mod analytic;
+#[cfg(test)]
+mod analytic_tests;
+mod bounds;
 mod driver;
 mod entities;
 mod parse;
@@ -49,6 +59,53 @@ pub struct StepSkipped {
     pub entity: String,
     /// Why it was skipped.
     pub reason: String,
+}
+
+/// Entities skipped for one reason: their type, the reason, how many and the first id.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SkippedKind {
+    /// Entity type, e.g. `CIRCLE` or `IGES entity 144`.
+    pub entity: String,
+    /// Why they were skipped.
+    pub reason: String,
+    /// How many entities of the file share the type and the reason.
+    pub count: usize,
+    /// The smallest id among them (`#id` in STEP, the directory entry's sequence number in IGES).
+    pub first_id: u64,
+}
+
+/// The skipped entities of [`StepRead::skipped`] or [`crate::IgesRead::skipped`] grouped by
+/// type and reason: the report of what a file holds that was not read, most frequent first
+/// (then by type). Linear in the number of entries.
+///
+/// ```
+/// use lekalo_io::{skipped_by_kind, StepSkipped};
+/// let s = |id, e: &str| StepSkipped { id, entity: e.into(), reason: "r".into() };
+/// let k = skipped_by_kind(&[s(4, "B"), s(2, "A"), s(7, "B")]);
+/// assert_eq!((k[0].entity.as_str(), k[0].count, k[0].first_id), ("B", 2, 4));
+/// assert_eq!((k[1].entity.as_str(), k[1].count), ("A", 1));
+/// ```
+#[must_use]
+pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
+    let mut at: std::collections::HashMap<(&str, &str), usize> = std::collections::HashMap::new();
+    let mut out: Vec<SkippedKind> = Vec::new();
+    for s in skipped {
+        let k = *at
+            .entry((s.entity.as_str(), s.reason.as_str()))
+            .or_insert_with(|| {
+                out.push(SkippedKind {
+                    entity: s.entity.clone(),
+                    reason: s.reason.clone(),
+                    count: 0,
+                    first_id: s.id,
+                });
+                out.len() - 1
+            });
+        out[k].count += 1;
+        out[k].first_id = out[k].first_id.min(s.id);
+    }
+    out.sort_by(|a, b| b.count.cmp(&a.count).then_with(|| a.entity.cmp(&b.entity)));
+    out
 }
 
 /// What [`read_step`] found.

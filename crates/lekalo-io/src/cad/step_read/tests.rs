@@ -43,7 +43,7 @@ fn reads_occ_style_entities_with_units_and_trims() {
         Some("AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }")
     );
     let ids: Vec<u64> = r.shapes.iter().map(|(i, _)| *i).collect();
-    assert_eq!(ids, [5, 6, 7]);
+    assert_eq!(ids, [5, 6, 7, 9]);
     let Shape::Curve(Object::BSpline(c)) = &r.shapes[0].1 else {
         panic!("#5 is a B-spline curve")
     };
@@ -58,8 +58,15 @@ fn reads_occ_style_entities_with_units_and_trims() {
     };
     assert_eq!(t.domain(), (0.25, 0.75));
     assert_eq!(t.control_points().point(0), &[1000.0, 0.0, 0.0]);
-    assert_eq!(r.skipped.len(), 1);
-    assert_eq!(r.skipped[0].entity, "CIRCLE");
+    assert!(r.skipped.is_empty(), "{:?}", r.skipped);
+    // the circle of radius 2 (in metres) about the origin, in millimetres
+    let Shape::Curve(circle) = &r.shapes[3].1 else {
+        panic!("#9 is a curve")
+    };
+    for k in 0..=16 {
+        let p = circle.eval(k as f64 / 16.0).unwrap();
+        assert!((p[0].hypot(p[1]) - 2000.0).abs() < 1e-12 * 2000.0 && p[2] == 0.0);
+    }
 }
 
 #[test]

@@ -98,3 +98,50 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
     let mm = value * f;
     Some((format!("{name} ({} mm)", crate::fmt_number(mm)), mm))
 }
+
+/// The plane angle unit of the file in radians: the `PLANE_ANGLE_UNIT` of the (first) global
+/// unit context, `SI_UNIT(.RADIAN.)` (1) or a conversion-based unit such as `DEGREE`
+/// (its `PLANE_ANGLE_MEASURE_WITH_UNIT`, π/180); 1 when the file declares none or the
+/// declaration cannot be read.
+pub(super) fn plane_angle_unit(p: &Parsed) -> f64 {
+    let mut ids: Vec<u64> = p.instances.keys().copied().collect();
+    ids.sort_unstable();
+    let unit = ids.iter().find_map(|id| {
+        let refs = p.instances[id]
+            .get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?
+            .first()?;
+        list(refs)?.iter().find_map(|r| match r {
+            P::Ref(u)
+                if p.instances
+                    .get(u)
+                    .is_some_and(|i| i.has("PLANE_ANGLE_UNIT")) =>
+            {
+                Some(*u)
+            }
+            _ => None,
+        })
+    });
+    let factor = unit.and_then(|u| angle_factor(p, u, 0));
+    factor.filter(|f| f.is_finite() && *f > 0.0).unwrap_or(1.0)
+}
+
+fn angle_factor(p: &Parsed, id: u64, depth: usize) -> Option<f64> {
+    let inst = p.instances.get(&id)?;
+    if let Some(si) = inst.get("SI_UNIT") {
+        return match si.first() {
+            Some(P::Enum(_)) => None,
+            _ => Some(1.0),
+        };
+    }
+    if depth > 4 {
+        return None;
+    }
+    let cb = inst.get("CONVERSION_BASED_UNIT")?;
+    let P::Ref(m) = cb.get(1)? else { return None };
+    let measure = p.instances.get(m)?.records.first()?;
+    let value = num(measure.1.first()?)?;
+    let P::Ref(base) = measure.1.get(1)? else {
+        return None;
+    };
+    Some(value * angle_factor(p, *base, depth + 1)?)
+}

@@ -1,5 +1,6 @@
 //! IGES 5.3 (Initial Graphics Exchange Specification): rational B-spline curves (entity 126)
-//! and surfaces (entity 128), written and read.
+//! and surfaces (entity 128), written and read; lines (entity 110), parametric spline curves
+//! (entity 112) and surfaces (entity 114) read as exact B-splines (`splines.rs`).
 //!
 //! A file is 80-column records in five sections: Start (`S`), Global (`G`: delimiters, units,
 //! precision), Directory Entry (`D`: two records per entity), Parameter Data (`P`: the entity's
@@ -17,6 +18,8 @@
 use std::fmt::Write as _;
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
+
+mod splines;
 
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
@@ -437,32 +440,46 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
             .get(73..80)
             .and_then(|s| s.trim().parse().ok())
             .unwrap_or(0);
-        if ty != "126" && ty != "128" {
+        if !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
             if matches!(
                 ty.as_str(),
                 "100"
                     | "102"
                     | "104"
                     | "106"
-                    | "110"
-                    | "112"
-                    | "114"
+                    | "108"
                     | "118"
                     | "120"
                     | "122"
+                    | "130"
                     | "140"
+                    | "141"
+                    | "142"
                     | "143"
                     | "144"
+                    | "190"
+                    | "192"
+                    | "194"
+                    | "196"
+                    | "198"
             ) {
                 skipped.push(StepSkipped {
                     id: seq,
                     entity: format!("IGES entity {ty}"),
-                    reason: "not a rational B-spline (lekalo reads entities 126 and 128)".into(),
+                    reason: "not read (lekalo reads entities 110, 112, 114, 126 and 128)".into(),
                 });
             }
             continue;
         }
         let at = Location::new(source).at_line(*line);
+        if ty == "110" && !matches!(field(b, 4).as_str(), "" | "0") {
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity 110 form {}", field(b, 4)),
+                reason: "a ray or an unbounded line (forms 1 and 2), which no NURBS holds".into(),
+            });
+            continue;
+        }
         if !matches!(field(a, 6).as_str(), "" | "0") {
             skipped.push(StepSkipped {
                 id: seq,
@@ -505,6 +522,22 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                 .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
         };
         let lib = |e: lekalo::Error| bad(e.to_string());
+        if ty == "110" || ty == "112" || ty == "114" {
+            let num = |k: usize| {
+                f.get(k)
+                    .and_then(|s| real(s))
+                    .ok_or_else(|| format!("parameter {k} is missing or not a number"))
+            };
+            let shape = if ty == "110" {
+                splines::line(&num, unit_mm)
+            } else if ty == "112" {
+                splines::spline_curve(&num, f.len(), unit_mm)
+            } else {
+                splines::spline_surface(&num, f.len(), unit_mm)
+            };
+            shapes.push((seq, shape.map_err(bad)?));
+            continue;
+        }
         // The counts are checked against the parameters the entity holds before anything is
         // allocated: a declared size the file cannot back (a 23170 × 23170 net in a few lines)
         // is refused, and so is one whose arithmetic would overflow.
@@ -707,7 +740,7 @@ mod tests {
 
     /// An IGES file with the Global section `global` and one entity of type `ty` whose parameter
     /// data is `params`, laid out in 80-column records as a writer would.
-    fn one_entity(global: &str, ty: u32, params: &str) -> String {
+    pub(super) fn one_entity(global: &str, ty: u32, params: &str) -> String {
         let mut out = format!("{:<72}S{:>7}\n", "hostile", 1);
         // padded by bytes: the reader finds the section letter at byte 72
         let pad = 72usize.saturating_sub(global.len());
