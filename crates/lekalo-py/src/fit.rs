@@ -191,7 +191,8 @@ pub(crate) fn make_lsq_spline<'py>(
 /// Least squares on given knots with optional end constraints, returning `(curve, report)`:
 /// `clamp_ends` makes the curve start at the first point and end at the last; `d_start` /
 /// `d_end` also fix the end derivatives (P&T A9.6/A9.7, `docs/theory/fitting.md#constraints`).
-/// `params` are the data parameters (1-D, inside the knots' domain); the weights are the
+/// `params` are the data parameters (1-D, inside the knots' domain); `t` is the full knot
+/// vector, so its end knots set the domain, which may reach beyond the data; the weights are the
 /// library's, `Σ w_k |C(ū_k) − Q_k|²`. The shape constraints are those of `make_lsq_spline`
 /// (for 1-D `points`, without `clamp_ends`: give end values as `through`).
 #[pyfunction]
@@ -680,8 +681,10 @@ pub(crate) fn fit_surface_grid(
 }
 
 /// Least squares over scattered data: rows `(u, v, z...)` of `data` (`(n, 2 + values)`, at
-/// least one value) on the knots `tu`, `tv` with degrees `degree`, optional weights and a
-/// second-difference `penalty` (SciPy's `LSQBivariateSpline` for `penalty = 0`;
+/// least one value) on the full knot vectors `tu`, `tv` with degrees `degree = (p, q)`, optional
+/// weights and a second-difference `penalty` (SciPy's `LSQBivariateSpline(x, y, z, tx, ty,
+/// bbox, kx=p, ky=q)` for `penalty = 0` is `tu` = `p + 1` copies of `bbox[0]`, `tx`, `p + 1`
+/// copies of `bbox[1]`, and `tv` likewise;
 /// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`.
 #[pyfunction]
 #[pyo3(signature = (data, tu, tv, degree = (3, 3), *, w = None, penalty = 0.0))]

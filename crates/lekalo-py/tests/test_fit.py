@@ -195,6 +195,50 @@ def test_fit_surface_grid_and_scattered():
     assert np.isclose(rss, (res**2).sum(), rtol=1e-10)
 
 
+def test_fit_least_squares_on_a_domain_wider_than_the_data():
+    # t is the full knot vector: its end knots are the domain, here beyond the data on [0, 1]
+    rng = np.random.default_rng(31)
+    x = np.sort(rng.random(120))
+    y = np.sin(6 * x) + 0.05 * rng.standard_normal(120)
+    t = np.r_[[-0.5] * 4, [0.2, 0.45, 0.7], [1.6] * 4]
+    c, rep = lekalo.fit_least_squares(y, x, t, 3)
+    assert c.domain == (-0.5, 1.6)
+    ref = si.make_lsq_spline(x, y, t, 3)
+    outside = np.array([-0.5, -0.2, 1.3, 1.6])
+    assert np.abs(c(outside)[:, 0] - ref(outside)).max() <= RTOL * np.abs(ref(outside)).max()
+    assert np.abs(c(x)[:, 0] - ref(x)).max() <= RTOL * np.abs(y).max()
+    # a cubic is reproduced everywhere on the domain, also outside the data
+    def cubic(s):
+        return 1 - 2 * s + 3 * s**3
+
+    exact, rep = lekalo.fit_least_squares(cubic(x), x, t, 3)
+    assert rep["max_residual"] <= 1e-12
+    np.testing.assert_allclose(exact(outside)[:, 0], cubic(outside), rtol=0, atol=1e-11)
+
+
+def test_fit_surface_scattered_bbox_and_degree_per_direction():
+    # SciPy's LSQBivariateSpline(tx, ty, bbox, kx, ky) is the fit on the knot vectors
+    # [bbox ends] * (k + 1) around the interior knots: tu, tv carry both
+    rng = np.random.default_rng(37)
+    u, v = rng.random(400), rng.random(400)
+    z = np.sin(3 * u) * np.cos(2 * v)
+    tx, ty = np.array([0.3, 0.6]), np.array([0.5])
+    bbox = [-0.5, 1.5, -1.0, 2.0]
+    tu = np.r_[[bbox[0]] * 4, tx, [bbox[1]] * 4]
+    tv = np.r_[[bbox[2]] * 3, ty, [bbox[3]] * 3]
+    surf, res, rss = lekalo.fit_surface_scattered(np.column_stack([u, v, z]), tu, tv, (3, 2))
+    assert surf.degrees == (3, 2)
+    assert surf.domain == ((-0.5, 1.5), (-1.0, 2.0))
+    ref = si.LSQBivariateSpline(u, v, z, tx, ty, bbox=bbox, kx=3, ky=2)
+    inside = rng.random((2, 50))
+    assert np.abs(surf(inside[0], inside[1])[:, 0] - ref.ev(inside[0], inside[1])).max() <= 1e-9
+    # outside the data, up to the bbox's corners: the same spline (the corner coefficients, far
+    # from the data, carry the two factorisations' rounding: 1e-10 here, under 1e-9 for 20
+    # other random data sets)
+    ou, ov = np.array([-0.5, -0.3, 1.2, 1.5]), np.array([-1.0, 1.8, -0.4, 2.0])
+    assert np.abs(surf(ou, ov)[:, 0] - ref.ev(ou, ov)).max() <= 1e-9
+
+
 def test_fit_surface_grid_at_given_parameters_and_knots():
     i, j = np.meshgrid(np.arange(20.0), np.arange(15.0), indexing="ij")
     grid = np.stack([i, j, np.sin(0.3 * i) * np.cos(0.2 * j)], axis=-1)

@@ -10,9 +10,9 @@ use lekalo::fit::{
     closed_parameters, constrained_least_squares, constrained_smoothing_spline,
     fit_tolerance_with_progress, least_squares, periodic_least_squares,
     periodic_smoothing_condition, periodic_smoothing_on_knots, place_knots, robust_least_squares,
-    smoothing_condition, smoothing_on_knots, smoothing_spline, surface_grid_least_squares,
-    surface_scattered_least_squares, CurveFit, Deviation, EndConstraints, FitData, Lambda,
-    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
+    smoothing_condition, smoothing_on_knots, smoothing_spline, surface_grid_least_squares_at,
+    surface_grid_parameters, surface_scattered_least_squares, CurveFit, Deviation, EndConstraints,
+    FitData, Lambda, RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -39,14 +39,17 @@ pub(crate) enum Robust {
 #[derive(Args, Debug)]
 #[command(after_help = "\
 Modes (one of them; least squares by default):
-  --lsq              least squares with --ctrl N control points or --knots (interior knots)
+  --lsq              least squares with --ctrl N control points or --knots (interior knots);
+                     --domain A:B sets the end knots (a curve reaching beyond the data)
   --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation)
   --s S              fewest knots with weighted residual sum of squares <= S (like splrep);
                      with --knots, the least k-th derivative jumps on those knots with RSS = S
   --tol TOL          within TOL of every point (distance), few control points
   --robust huber|tukey   least squares that resists outliers (final weights in the report)
   --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
-Surfaces: --grid ROWSxCOLS with --ctrl-grid NUxNV; --scattered (rows u,v,z) with --ctrl-grid.
+Surfaces: --grid ROWSxCOLS or --scattered (rows u,v,z), with --ctrl-grid NUxNV or the interior
+knots of each direction (--knots-u, --knots-v); --degree P,Q per direction; --bbox U0:U1,V0:V1
+the domain (end knots); a grid's parameters --params-u, --params-v (default: from --param).
 
 Shape constraints (--function fits by --lsq or --smooth; each holds for every x, not only at
 the data; repeat an option for several intervals):
@@ -68,7 +71,10 @@ Examples:
   lekalo fit xy.csv --function --smooth 1 --max 0.9 --concave=5:20 --through 0=0
   lekalo fit loop.csv --periodic --s 0.01 -o loop.json
   lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
-  lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3")]
+  lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3
+  lekalo fit xy.csv --function --ctrl 8 --domain -5:35 -o wide.json
+  lekalo fit grid.csv --grid 30x20 --degree 3,2 --knots-u 0.25,0.5,0.75 --knots-v 0.5 -o surface.json
+  lekalo fit uvz.csv --scattered --knots-u 0.3,0.6 --knots-v 0.5 --bbox 0:1,0:1 --degree 3,2")]
 pub(crate) struct FitArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     points: PathBuf,
@@ -93,9 +99,16 @@ pub(crate) struct FitArgs {
     /// The points are (x, y...) samples of a function y(x): x is the parameter.
     #[arg(long)]
     pub(crate) function: bool,
-    /// Degree (curves; both directions of surfaces).
-    #[arg(long, short = 'p', default_value_t = 3)]
-    pub(crate) degree: usize,
+    /// Degree of curves; a surface takes one for both directions or one per direction (`3,2`:
+    /// 3 in u, 2 in v).
+    #[arg(
+        long = "degree",
+        short = 'p',
+        value_name = "P[,Q]",
+        value_delimiter = ',',
+        default_value = "3"
+    )]
+    pub(crate) degrees: Vec<usize>,
     /// Number of control points (least squares, robust; default: a tenth of the points, at
     /// least degree + 1).
     #[arg(long)]
@@ -103,6 +116,11 @@ pub(crate) struct FitArgs {
     /// Interior knots (comma-separated, inside the parameter range) instead of --ctrl.
     #[arg(long, value_name = "LIST")]
     pub(crate) knots: Option<String>,
+    /// The parameter domain A:B of the curve, its end knots: wider than the data's parameters
+    /// (x with --function) for a curve that reaches beyond them (least squares and --robust;
+    /// default: from the first to the last parameter, as splrep's xb, xe).
+    #[arg(long, value_name = "A:B", allow_hyphen_values = true)]
+    domain: Option<String>,
     /// Weights file: one number per point.
     #[arg(long, value_name = "FILE")]
     weights: Option<PathBuf>,
@@ -131,6 +149,25 @@ pub(crate) struct FitArgs {
     /// Surface control net size (e.g. 8x6).
     #[arg(long, value_name = "NUxNV")]
     ctrl_grid: Option<String>,
+    /// Interior knots of a surface in u (comma-separated, inside the u range) instead of the
+    /// u count of --ctrl-grid.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    knots_u: Option<String>,
+    /// Interior knots of a surface in v, as --knots-u.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    knots_v: Option<String>,
+    /// The surface's domain U0:U1,V0:V1, its end knots, as the `bbox` of SciPy's
+    /// `LSQBivariateSpline`
+    /// (default: the range of the data's u and v, or of the grid's parameters).
+    #[arg(long, value_name = "U0:U1,V0:V1", allow_hyphen_values = true)]
+    bbox: Option<String>,
+    /// Parameters of the grid's rows (--grid): one number per row, a list or a file with one
+    /// value per line (default: --param averaged over the grid's columns).
+    #[arg(long, value_name = "LIST|FILE", allow_hyphen_values = true)]
+    params_u: Option<String>,
+    /// Parameters of the grid's columns (--grid), as --params-u.
+    #[arg(long, value_name = "LIST|FILE", allow_hyphen_values = true)]
+    params_v: Option<String>,
     /// Smoothing penalty of scattered surfaces (second differences of the net).
     #[arg(long, default_value_t = 0.0)]
     penalty: f64,
@@ -168,6 +205,97 @@ pub(crate) struct FitArgs {
     out: OutArgs,
 }
 
+impl FitArgs {
+    /// The degree of a curve: `--degree` with one value.
+    fn degree(&self) -> Result<usize> {
+        match self.degrees[..] {
+            [p] => Ok(p),
+            _ => bad_input(format!(
+                "--degree: {} degrees given; a curve takes one (one per direction is for surfaces, \
+                 --grid or --scattered)",
+                self.degrees.len()
+            )),
+        }
+    }
+
+    /// The degrees (u, v) of a surface: `--degree P` for both directions or `--degree P,Q`.
+    fn surface_degrees(&self) -> Result<(usize, usize)> {
+        match self.degrees[..] {
+            [p] => Ok((p, p)),
+            [p, q] => Ok((p, q)),
+            _ => bad_input(format!(
+                "--degree: {} degrees given; a surface takes one, or one per direction (e.g. \
+                 --degree 3,2: 3 in u, 2 in v)",
+                self.degrees.len()
+            )),
+        }
+    }
+
+    /// Refuses the options that the chosen kind of fit does not use, naming them and the fit
+    /// they belong to.
+    fn check_options_used(&self) -> Result<()> {
+        let surface = self.grid.is_some() || self.scattered;
+        if !surface {
+            let given: Vec<&str> = [
+                (self.knots_u.is_some(), "--knots-u"),
+                (self.knots_v.is_some(), "--knots-v"),
+                (self.bbox.is_some(), "--bbox"),
+                (self.params_u.is_some(), "--params-u"),
+                (self.params_v.is_some(), "--params-v"),
+            ]
+            .iter()
+            .filter(|(on, _)| *on)
+            .map(|(_, name)| *name)
+            .collect();
+            if !given.is_empty() {
+                return bad_input(format!(
+                    "{} {} for surfaces: add --grid ROWSxCOLS or --scattered",
+                    given.join(", "),
+                    if given.len() == 1 { "is" } else { "are" }
+                ));
+            }
+        }
+        if self.domain.is_some() {
+            if surface {
+                return bad_input(
+                    "--domain is the interval of a curve; a surface's domain is --bbox U0:U1,V0:V1",
+                );
+            }
+            if self.periodic {
+                return bad_input(
+                    "--domain: a closed fit's period is its data's (--function: from the first x \
+                     to the last); drop --domain",
+                );
+            }
+            if self.smooth.is_some() || self.s.is_some() || self.tol.is_some() {
+                return bad_input(
+                    "--domain sets the end knots of least squares (--lsq, --ctrl, --knots, \
+                     --robust); --smooth, --s and --tol place their own knots: drop --domain",
+                );
+            }
+            if self.clamp_ends {
+                return bad_input(
+                    "--clamp-ends puts the curve's ends on the first and last points, at the ends \
+                     of the domain; with --domain the domain reaches beyond the data: drop one",
+                );
+            }
+        }
+        if surface && self.knots.is_some() {
+            return bad_input(
+                "--knots is the interior knots of a curve; give a surface's as --knots-u and \
+                 --knots-v",
+            );
+        }
+        if self.scattered && (self.params_u.is_some() || self.params_v.is_some()) {
+            return bad_input(
+                "--params-u/--params-v are the parameters of a grid's rows and columns (--grid); \
+                 --scattered reads u and v from the first two columns",
+            );
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
     let modes = [
         a.lsq,
@@ -179,6 +307,7 @@ pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
     if modes.iter().filter(|&&m| m).count() > 1 {
         return bad_input("choose one mode: --lsq, --smooth, --s, --tol or --robust");
     }
+    a.check_options_used()?;
     if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.scattered
@@ -301,9 +430,9 @@ fn fit_curve(
     } else if let Some(s) = a.s {
         report["s"] = json!(s);
         if a.knots.is_some() {
-            smoothing_on_knots(&data, a.degree, &curve_knots(a, &params)?, s)?
+            smoothing_on_knots(&data, a.degree()?, &curve_knots(a, &params)?, s)?
         } else {
-            smoothing_condition(&data, a.degree, s)?
+            smoothing_condition(&data, a.degree()?, s)?
         }
     } else if let Some(tol) = a.tol {
         if a.function {
@@ -311,7 +440,7 @@ fn fit_curve(
                 "--tol fits parametric curves (distance to the curve); drop --function",
             );
         }
-        let mut opts = ToleranceOptions::new(a.degree, tol);
+        let mut opts = ToleranceOptions::new(a.degree()?, tol);
         opts.parametrization = a.param;
         if a.parameter_deviation {
             opts.deviation = Deviation::Parameter;
@@ -345,16 +474,16 @@ fn fit_curve(
                     Robust::Huber => RobustLoss::Huber(1.345),
                     Robust::Tukey => RobustLoss::Tukey(4.685),
                 };
-                let r = robust_least_squares(&data, a.degree, &knots, loss, 50)?;
+                let r = robust_least_squares(&data, a.degree()?, &knots, loss, 50)?;
                 report["robust_weights"] = json!(r.weights);
                 report["robust_scale"] = json!(r.scale);
                 report["iterations"] = json!(r.iterations);
                 r.fit
             }
             None if !shape.is_empty() => {
-                constrained_least_squares(&data, a.degree, &knots, &shape)?
+                constrained_least_squares(&data, a.degree()?, &knots, &shape)?
             }
-            None => least_squares(&data, a.degree, &knots, &ends)?,
+            None => least_squares(&data, a.degree()?, &knots, &ends)?,
         }
     };
     let shown = if a.function { pts.clone() } else { values };
@@ -416,22 +545,43 @@ fn report_line(r: &Value) -> String {
 }
 
 fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
-    let (lo, hi) = params
+    let p = a.degree()?;
+    let data = params
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
             (l.min(u), h.max(u))
         });
+    let domain = match &a.domain {
+        Some(text) => {
+            let (lo, hi) = span(text, "--domain", "--domain -1:2")?;
+            if lo > data.0 || hi < data.1 {
+                let of = if a.function { "x" } else { "parameters" };
+                return bad_input(format!(
+                    "--domain {text} does not hold the data: their {of} run from {} to {}; give \
+                     a domain around them, e.g. --domain {}:{}",
+                    data.0,
+                    data.1,
+                    lo.min(data.0),
+                    hi.max(data.1)
+                ));
+            }
+            Some((lo, hi))
+        }
+        None => None,
+    };
     if let Some(k) = &a.knots {
         if a.ctrl.is_some() {
             return bad_input("give --ctrl or --knots, not both");
         }
         let inner = numbers(k, "--knots")?;
-        let mut all = vec![lo; a.degree + 1];
-        all.extend(inner);
-        all.extend(vec![hi; a.degree + 1]);
-        return Ok(KnotVector::new(all)?);
+        let within = if domain.is_some() {
+            "--domain"
+        } else {
+            "the data's parameters, or --domain"
+        };
+        return clamped(p, domain.unwrap_or(data), &inner, "--knots", within);
     }
-    let n = a.ctrl.unwrap_or((params.len() / 10).max(a.degree + 1));
+    let n = a.ctrl.unwrap_or((params.len() / 10).max(p + 1));
     if a.ctrl.is_none() && params.len() < n {
         // no count was asked for: say what the default asks and how to fit these points
         let fix = if params.len() >= 2 {
@@ -443,15 +593,63 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
             "give at least two points".to_string()
         };
         return bad_input(format!(
-            "{} data points are too few for a fit of degree {}: it needs degree + 1 = {n} \
+            "{} data points are too few for a fit of degree {p}: it needs degree + 1 = {n} \
              control points and at least as many points; {fix}",
             params.len(),
-            a.degree
         ));
     }
     let mut sorted = params.to_vec();
     sorted.sort_by(f64::total_cmp);
-    Ok(place_knots(&sorted, a.degree, n)?)
+    let placed = place_knots(&sorted, p, n)?;
+    match domain {
+        Some(ends) => with_ends(&placed, p, ends),
+        None => Ok(placed),
+    }
+}
+
+/// `A:B` with `A < B` (the value of `option`; `example` shows the spelling in the message).
+fn span(text: &str, option: &str, example: &str) -> Result<(f64, f64)> {
+    let ab = text
+        .split_once(':')
+        .map(|(a, b)| (numbers(a, option), numbers(b, option)));
+    match ab {
+        Some((Ok(a), Ok(b))) if a.len() == 1 && b.len() == 1 && a[0] < b[0] => Ok((a[0], b[0])),
+        _ => bad_input(format!(
+            "{option}: \"{text}\" is not an interval A:B with A < B (e.g. {example})"
+        )),
+    }
+}
+
+/// The clamped knot vector of degree `p` on `[lo, hi]` with the interior knots `inner` (of
+/// `option`, which must lie inside the interval, set by `within`): `p + 1` copies of each end
+/// around them, as the end knots of P&T eq. 9.68.
+fn clamped(
+    p: usize,
+    (lo, hi): (f64, f64),
+    inner: &[f64],
+    option: &str,
+    within: &str,
+) -> Result<KnotVector> {
+    if let Some(t) = inner.iter().find(|&&t| t <= lo || t >= hi) {
+        return bad_input(format!(
+            "{option}: the knot {t} is not inside the domain ({lo}, {hi}) ({within}); give \
+             interior knots strictly between the ends"
+        ));
+    }
+    let mut all = vec![lo; p + 1];
+    all.extend_from_slice(inner);
+    all.extend(vec![hi; p + 1]);
+    Ok(KnotVector::new(all)?)
+}
+
+/// The clamped knots `k` of degree `p` with their `p + 1` end knots moved to `lo` and `hi` (a
+/// domain wider than the data the interior knots were placed over).
+fn with_ends(k: &KnotVector, p: usize, (lo, hi): (f64, f64)) -> Result<KnotVector> {
+    let mut t = k.as_slice().to_vec();
+    let n = t.len();
+    t[..=p].fill(lo);
+    t[n - p - 1..].fill(hi);
+    Ok(KnotVector::new(t)?)
 }
 
 /// The shape constraints of the options, in the order of the options' kinds.
@@ -540,49 +738,126 @@ fn run_surface(
     inputs: &[PathBuf],
     cx: &Context,
 ) -> Result<()> {
-    let Some(cg) = &a.ctrl_grid else {
-        return bad_input("surfaces need --ctrl-grid NUxNV (the control net size)");
+    let (p, q) = a.surface_degrees()?;
+    let counts = match &a.ctrl_grid {
+        Some(cg) => {
+            let (ncu, ncv) = net_size(cg, "--ctrl-grid")?;
+            (Some(ncu), Some(ncv))
+        }
+        None => (None, None),
     };
-    let (ncu, ncv) = net_size(cg, "--ctrl-grid")?;
-    let p = a.degree;
+    let bbox = a.bbox.as_deref().map(bounding_box).transpose()?;
+    let dirs = [
+        Direction {
+            name: "u",
+            degree: p,
+            inner: a
+                .knots_u
+                .as_deref()
+                .map(|t| numbers(t, "--knots-u"))
+                .transpose()?,
+            knots_option: "--knots-u",
+            count: counts.0,
+            range: bbox.map(|b| b.0),
+        },
+        Direction {
+            name: "v",
+            degree: q,
+            inner: a
+                .knots_v
+                .as_deref()
+                .map(|t| numbers(t, "--knots-v"))
+                .transpose()?,
+            knots_option: "--knots-v",
+            count: counts.1,
+            range: bbox.map(|b| b.1),
+        },
+    ];
+    for d in &dirs {
+        d.check_count(counts)?;
+    }
     if let Some(g) = &a.grid {
         let (nu, nv) = net_size(g, "--grid")?;
-        let s = surface_grid_least_squares(pts.as_view(), (nu, nv), (p, p), (ncu, ncv), a.param)?;
+        let given = [
+            (&a.params_u, "--params-u", nu, "rows"),
+            (&a.params_v, "--params-v", nv, "columns"),
+        ]
+        .map(|(text, option, n, lines)| -> Result<Option<Vec<f64>>> {
+            let Some(text) = text else { return Ok(None) };
+            let t = crate::cmd::explicit::parameters(cx, text, option)?;
+            if t.len() != n {
+                return bad_input(format!(
+                    "{option}: {} values for the {n} {lines} of --grid {g}; give one parameter \
+                     per grid line",
+                    t.len()
+                ));
+            }
+            Ok(Some(t))
+        });
+        let [gu, gv] = given;
+        let (gu, gv) = (gu?, gv?);
+        // the parameters not given: --param averaged over the grid lines (P&T §9.2.5)
+        let (uu, vv) = match (gu, gv) {
+            (Some(u), Some(v)) => (u, v),
+            (gu, gv) => {
+                let (cu, cv) = surface_grid_parameters(pts.as_view(), (nu, nv), a.param)?;
+                (gu.unwrap_or(cu), gv.unwrap_or(cv))
+            }
+        };
+        let place = |d: &Direction, params: &[f64], n: usize, range: (f64, f64)| {
+            let mut sorted = params.to_vec();
+            sorted.sort_by(f64::total_cmp);
+            let k = place_knots(&sorted, d.degree, n)?;
+            with_ends(&k, d.degree, range)
+        };
+        let ku = dirs[0].knots(&uu, "u parameters of the grid's rows", &place)?;
+        let kv = dirs[1].knots(&vv, "v parameters of the grid's columns", &place)?;
+        let s =
+            surface_grid_least_squares_at(pts.as_view(), (nu, nv), (p, q), (&uu, &vv), (&ku, &kv))?;
         return write_surface(&s, &a.out, inputs, cx);
     }
     if pts.dim() < 3 {
-        return bad_input("--scattered needs rows u, cx, z (three columns or more)");
+        return bad_input("--scattered needs rows u, v, z (three columns or more)");
     }
-    // The system solved is banded: NU·NV rows of about p·NV + p + 1 numbers (twice NV with a
+    let column = |c: usize| pts.iter().map(|r| r[c]).collect::<Vec<f64>>();
+    let uniform = |d: &Direction, _: &[f64], n: usize, (lo, hi): (f64, f64)| {
+        let k = KnotVector::clamped_uniform(d.degree, n)?;
+        Ok(KnotVector::new(
+            k.as_slice().iter().map(|t| lo + (hi - lo) * t).collect(),
+        )?)
+    };
+    let (ncu, ncv) = (dirs[0].net_count(), dirs[1].net_count());
+    // The system solved is banded: NU·NV rows of about p·NV + q + 1 numbers (twice NV with a
     // penalty). Its size is refused here, before the library allocates it.
     let band = p
         .saturating_mul(ncv)
-        .saturating_add(p)
+        .saturating_add(q)
         .max(ncv.saturating_mul(2));
     let entries = ncu
         .saturating_mul(ncv)
         .saturating_mul(band.saturating_add(1));
     let limit = cx.max_size;
     if entries > limit {
+        let net = match &a.ctrl_grid {
+            Some(cg) if a.knots_u.is_none() && a.knots_v.is_none() => format!("--ctrl-grid {cg}"),
+            _ => format!("a {ncu}x{ncv} control net (--ctrl-grid, --knots-u, --knots-v)"),
+        };
         return bad_input(format!(
-            "--ctrl-grid {ncu}x{ncv}: the scattered fit's least-squares system holds {entries} numbers ({} bytes), above the size limit {limit}; use a smaller control net, or raise the limit with --max-size {entries} if the machine has the memory",
+            "{net}: the scattered fit's least-squares system holds {entries} numbers ({} bytes), above the size limit {limit}; use a smaller control net, or raise the limit with --max-size {entries} if the machine has the memory",
             lekalo_io::fmt_number(entries as f64 * 8.0)
         ));
     }
-    let bounds = |c: usize| {
-        pts.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
-                (l.min(r[c]), h.max(r[c]))
-            })
-    };
-    let uniform = |(lo, hi): (f64, f64), n: usize| -> Result<KnotVector> {
-        let k = KnotVector::clamped_uniform(p, n)?;
-        Ok(KnotVector::new(
-            k.as_slice().iter().map(|t| lo + (hi - lo) * t).collect(),
-        )?)
-    };
-    let (ku, kv) = (uniform(bounds(0), ncu)?, uniform(bounds(1), ncv)?);
-    let f = surface_scattered_least_squares(pts.as_view(), weights, (p, p), (&ku, &kv), a.penalty)?;
+    let ku = dirs[0].knots(
+        &column(0),
+        "u values of the data (the first column)",
+        &uniform,
+    )?;
+    let kv = dirs[1].knots(
+        &column(1),
+        "v values of the data (the second column)",
+        &uniform,
+    )?;
+    let f = surface_scattered_least_squares(pts.as_view(), weights, (p, q), (&ku, &kv), a.penalty)?;
     let max = f.residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
     let rms = (f.residuals.iter().map(|r| r * r).sum::<f64>() / f.residuals.len() as f64).sqrt();
     let mut report = json!({ "max_residual": max, "rms": rms, "weighted_rss": f.weighted_rss,
@@ -601,6 +876,110 @@ fn run_surface(
         ));
     }
     write_surface(&f.surface, &a.out, inputs, cx)
+}
+
+/// How a direction without given knots places `count` of them over its data's parameters,
+/// clamped at the ends of its range: `place(direction, params, count, range)`.
+type PlaceKnots = dyn Fn(&Direction, &[f64], usize, (f64, f64)) -> Result<KnotVector>;
+
+/// One direction of a surface fit: its degree, and its knots given (`inner`, interior) or its
+/// control-point count (`count`, from `--ctrl-grid`), with the domain `range` of `--bbox`.
+struct Direction {
+    name: &'static str,
+    degree: usize,
+    inner: Option<Vec<f64>>,
+    knots_option: &'static str,
+    count: Option<usize>,
+    range: Option<(f64, f64)>,
+}
+
+impl Direction {
+    /// The number of control points in this direction: set by its knots, or its count.
+    fn net_count(&self) -> usize {
+        match &self.inner {
+            Some(k) => k.len() + self.degree + 1,
+            None => self.count.unwrap_or(0),
+        }
+    }
+
+    /// A direction needs interior knots or a count; given both, they must agree.
+    fn check_count(&self, (ncu, ncv): (Option<usize>, Option<usize>)) -> Result<()> {
+        let (name, option, p) = (self.name, self.knots_option, self.degree);
+        match (&self.inner, self.count) {
+            (None, None) => bad_input(format!(
+                "surfaces need the control net's size --ctrl-grid NUxNV, or the interior knots of \
+                 each direction (--knots-u, --knots-v); {name} has neither"
+            )),
+            (Some(k), Some(n)) if k.len() + p + 1 != n => {
+                let implied = k.len() + p + 1;
+                let (u, v) = if name == "u" {
+                    (implied, ncv.unwrap_or(0))
+                } else {
+                    (ncu.unwrap_or(0), implied)
+                };
+                bad_input(format!(
+                    "--ctrl-grid and {option} disagree: {} interior knots of degree {p} make \
+                     {implied} control points in {name}, not {n}; drop --ctrl-grid or write \
+                     --ctrl-grid {u}x{v}",
+                    k.len()
+                ))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The knots of this direction over the data's parameters `params` (named `what` in
+    /// messages): the interior knots given, or `place(self, params, count, range)`, clamped at
+    /// the ends of `--bbox` (which must hold the data) or of the data.
+    fn knots(&self, params: &[f64], what: &str, place: &PlaceKnots) -> Result<KnotVector> {
+        let data = params
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
+                (l.min(u), h.max(u))
+            });
+        let range = match self.range {
+            Some((lo, hi)) => {
+                if lo > data.0 || hi < data.1 {
+                    return bad_input(format!(
+                        "--bbox: the {what} run from {} to {}, outside {lo}:{hi}, the bbox's \
+                         {name} interval; give one around them, e.g. {}:{}",
+                        data.0,
+                        data.1,
+                        lo.min(data.0),
+                        hi.max(data.1),
+                        name = self.name
+                    ));
+                }
+                (lo, hi)
+            }
+            None => data,
+        };
+        match (&self.inner, self.count) {
+            (Some(inner), _) => {
+                let within = if self.range.is_some() {
+                    "--bbox"
+                } else {
+                    "the range of the data's parameters, or --bbox"
+                };
+                clamped(self.degree, range, inner, self.knots_option, within)
+            }
+            (None, Some(n)) => place(self, params, n, range),
+            (None, None) => bad_input("surfaces need --ctrl-grid NUxNV (the control net size)"),
+        }
+    }
+}
+
+/// `U0:U1,V0:V1` of `--bbox`.
+fn bounding_box(text: &str) -> Result<((f64, f64), (f64, f64))> {
+    match text.split_once(',') {
+        Some((u, v)) => Ok((
+            span(u, "--bbox", "--bbox 0:1,-1:2")?,
+            span(v, "--bbox", "--bbox 0:1,-1:2")?,
+        )),
+        None => bad_input(format!(
+            "--bbox: \"{text}\" is not U0:U1,V0:V1 (e.g. --bbox 0:1,-1:2)"
+        )),
+    }
 }
 
 // -- closed curves and periodic functions (`lekalo fit --periodic`): least squares with given
@@ -663,9 +1042,9 @@ fn run_periodic(
                 let mut breaks = vec![domain.0];
                 breaks.extend(numbers(k, "--knots")?);
                 breaks.push(domain.1);
-                periodic_smoothing_on_knots(&data, a.degree, &breaks, s)?
+                periodic_smoothing_on_knots(&data, a.degree()?, &breaks, s)?
             }
-            None => periodic_smoothing_condition(&data, a.degree, s, domain)?,
+            None => periodic_smoothing_condition(&data, a.degree()?, s, domain)?,
         }
     } else {
         let (lo, hi) = domain;
@@ -677,14 +1056,14 @@ fn run_periodic(
             breaks.extend(numbers(k, "--knots")?);
         } else {
             // --ctrl N: N free control points, N equal spans of the period
-            let n = a.ctrl.unwrap_or((params.len() / 10).max(a.degree + 1));
+            let n = a.ctrl.unwrap_or((params.len() / 10).max(a.degree()? + 1));
             if n == 0 {
                 return bad_input("--ctrl: a closed curve needs one control point or more");
             }
             breaks.extend((1..n).map(|j| lo + (hi - lo) * j as f64 / n as f64));
         }
         breaks.push(hi);
-        periodic_least_squares(&data, a.degree, &breaks)?
+        periodic_least_squares(&data, a.degree()?, &breaks)?
     };
     let shown = if a.function { pts } else { &values };
     finish(
