@@ -9,8 +9,7 @@
 //!   compared at many parameters to `1e-12 · max(1, max |P_i|)`.
 //! - [`FD_TOL`]: derivatives against central differences, see [`check_finite_differences`].
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::basis::{basis_function_recursive, basis_functions};
 use lekalo::{BSplineCurve, BezierCurve, BezierSegment, Error, Points};

@@ -55,7 +55,7 @@ fn circle(centre: [f64; 2], r: f64) -> QueryCurve {
 #[test]
 fn golden_cases_to_the_last_bits() {
     let cases: Value =
-        serde_json::from_str(include_str!("data/intersect_exact.json")).expect("golden parses");
+        serde_json::from_str(include_str!("../data/intersect_exact.json")).expect("golden parses");
     let mut worst = (0.0_f64, 0.0_f64);
     for case in cases.as_array().expect("cases") {
         let name = case["name"].as_str().expect("name");
@@ -330,7 +330,7 @@ fn an_iso_curve_overlaps_its_surface() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(lekalo_testkit::config(48))]
 
     /// A cubic and a copy of it moved along itself (its part over [s, 1] against its part over
     /// [0, e], e > s): one overlap, whose ends are the parts' shared stretch.

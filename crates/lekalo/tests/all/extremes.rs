@@ -31,15 +31,14 @@
 //! that bound.
 //!
 //! The property tests at the end draw random curves and compare with the slow recursive oracle
-//! [`basis_function_recursive`] on many cases; their number follows the standard
-//! `PROPTEST_CASES` environment variable (default 64 here), see `docs/robustness.md`.
+//! (`lekalo_testkit::oracle`, the Cox–de Boor recursion) on many cases; their number follows the
+//! standard `PROPTEST_CASES` environment variable (default 64 here), see `docs/robustness.md`.
 
-mod common;
-use common::config;
-
-use lekalo::basis::{basis_derivatives, basis_function_recursive, basis_functions};
+use lekalo::basis::{basis_derivatives, basis_functions};
 use lekalo::{BSplineCurve, BezierCurve, Error, NurbsCurve, Points};
 use proptest::prelude::*;
+
+use lekalo_testkit::{assert_close, config, oracle};
 
 /// The constant `K` of the evaluation bound `K·(p + 1)·ε·max|P_i|` (see the module docs).
 const EVAL_K: f64 = 4.0;
@@ -101,30 +100,15 @@ fn deriv_bound(curve: &BSplineCurve, t: f64, k: usize, scale: f64) -> f64 {
     EVAL_K * (p as f64 + 1.0) * f64::EPSILON * row.max(1.0) * scale
 }
 
-fn assert_close(got: &[f64], want: &[f64], tol: f64, ctx: &str) {
-    assert_eq!(got.len(), want.len(), "{ctx}: lengths");
-    for (i, (g, w)) in got.iter().zip(want).enumerate() {
-        assert!(
-            (g - w).abs() <= tol,
-            "{ctx}: component {i}: got {g:e}, want {w:e}, |diff| {:e} > tol {tol:e}",
-            (g - w).abs()
-        );
-    }
-}
-
 /// The curve through the slow oracle: `Σ_i N_{i,p}(t) P_i` with the recursive definition.
 fn oracle_eval(curve: &BSplineCurve, t: f64) -> Vec<f64> {
-    let p = curve.degree();
-    let dim = curve.dim();
-    let span = curve.knots().find_span(p, t).expect("t in the domain");
-    let mut out = vec![0.0; dim];
-    for i in span - p..=span {
-        let n = basis_function_recursive(curve.knots(), i, p, t).expect("valid index");
-        for (o, x) in out.iter_mut().zip(curve.control_points().point(i)) {
-            *o += n * x;
-        }
-    }
-    out
+    oracle::bspline(
+        curve.knots().as_slice(),
+        curve.degree(),
+        curve.control_points().as_slice(),
+        curve.dim(),
+        t,
+    )
 }
 
 fn transformed(c: &BSplineCurve, f: impl Fn(f64) -> f64) -> BSplineCurve {
@@ -453,20 +437,16 @@ fn bezier_degree_up_to_20_matches_explicit_bernstein_sum() {
 // -------------------------------------------------------------------------------------------
 // NURBS weights from 1e-6 to 1e6
 
+/// The rational curve through the slow oracle: `Σ N_{i,p} w_i P_i / Σ N_{i,p} w_i`.
 fn nurbs_oracle(c: &NurbsCurve, t: f64) -> Vec<f64> {
-    let p = c.degree();
-    let span = c.knots().find_span(p, t).unwrap();
-    let (w, pts) = (c.weights(), c.control_points());
-    let mut num = vec![0.0; c.dim()];
-    let mut den = 0.0;
-    for i in span - p..=span {
-        let nw = basis_function_recursive(c.knots(), i, p, t).unwrap() * w[i];
-        den += nw;
-        for (o, x) in num.iter_mut().zip(pts.point(i)) {
-            *o += nw * x;
-        }
-    }
-    num.iter().map(|x| x / den).collect()
+    oracle::nurbs(
+        c.knots().as_slice(),
+        c.degree(),
+        c.control_points().as_slice(),
+        &c.weights(),
+        c.dim(),
+        t,
+    )
 }
 
 #[test]

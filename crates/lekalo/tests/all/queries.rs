@@ -1,15 +1,13 @@
 //! Geometric queries against Open CASCADE's answers (`tests/data/queries_occt.json`, made by
 //! `tests/data/queries_occt.py`) and their invariants as property tests.
 
-mod common;
-
 use lekalo::query::CurveIntersection;
 use lekalo::{BSplineCurve, NurbsCurve, Points, QueryCurve};
 use proptest::prelude::*;
 use serde_json::Value;
 
 fn golden() -> Value {
-    let text = include_str!("data/queries_occt.json");
+    let text = include_str!("../data/queries_occt.json");
     serde_json::from_str(text).expect("golden file parses")
 }
 
@@ -192,7 +190,7 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(common::config(64))]
+    #![proptest_config(lekalo_testkit::config(64))]
 
     #[test]
     fn projection_is_orthogonal_and_no_sample_is_closer(

@@ -1,8 +1,7 @@
 //! Piecewise polynomials, Curry–Schoenberg bases and the de Boor–Fix functionals (document 003,
 //! §4–5; docs/theory/pp.md): round trips on random spaces and the thesis's practical task.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::{
     quasi_interpolate, sample_quasi_interpolant, BSplineCurve, Error, PiecewisePolynomial, Points,

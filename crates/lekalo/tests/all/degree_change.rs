@@ -6,8 +6,7 @@
 //! one-step elevation equals repeated eq. 6, monomial round trip, reductions below the real
 //! degree are refused.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::{
     bernstein_monomial_matrix, bernstein_monomial_matrix_inverse, bezier_net_change_degree,

@@ -2,8 +2,6 @@
 //! `scripts/fit_golden.py`), the laws of least squares and smoothing as properties, and a named
 //! error for every bad input.
 
-mod common;
-
 use lekalo::fit::{
     check_schoenberg_whitney, fit_tolerance, gcv_score, least_squares, place_knots,
     robust_least_squares, smoothing_condition, smoothing_spline, surface_scattered_least_squares,
@@ -13,8 +11,10 @@ use lekalo::{BSplineCurve, Error, KnotVector, Points, PointsRef};
 use proptest::prelude::*;
 use serde_json::Value;
 
+use lekalo_testkit::assert_close;
+
 fn golden() -> Value {
-    serde_json::from_str(include_str!("data/fit_golden.json")).expect("golden JSON parses")
+    serde_json::from_str(include_str!("../data/fit_golden.json")).expect("golden JSON parses")
 }
 
 fn vec_of(v: &Value) -> Vec<f64> {
@@ -23,13 +23,6 @@ fn vec_of(v: &Value) -> Vec<f64> {
         .iter()
         .map(|x| x.as_f64().expect("number"))
         .collect()
-}
-
-fn assert_close(got: &[f64], want: &[f64], tol: f64, what: &str) {
-    assert_eq!(got.len(), want.len(), "{what}: lengths");
-    for (i, (a, b)) in got.iter().zip(want).enumerate() {
-        assert!((a - b).abs() <= tol, "{what}[{i}]: {a} vs {b} (tol {tol})");
-    }
 }
 
 fn eval_all(curve: &BSplineCurve, ts: &[f64]) -> Vec<f64> {
@@ -392,7 +385,7 @@ fn knots_strategy() -> impl Strategy<Value = (usize, Vec<f64>)> {
 }
 
 proptest! {
-    #![proptest_config(common::config(64))]
+    #![proptest_config(lekalo_testkit::config(64))]
 
     /// Data sampled from a spline of the same space are reproduced exactly, and the fit moves
     /// with an affine map of the data.

@@ -8,12 +8,14 @@ use lekalo::fit::{
 };
 use lekalo::{BSplineCurve, Error, Parametrization, PointsRef};
 use proptest::prelude::*;
+
+use lekalo_testkit::assert_close;
 use serde_json::Value;
 use std::f64::consts::TAU;
 
 fn golden() -> Value {
     let g: Value =
-        serde_json::from_str(include_str!("data/fit_golden.json")).expect("golden JSON parses");
+        serde_json::from_str(include_str!("../data/fit_golden.json")).expect("golden JSON parses");
     g["splrep_periodic"].clone()
 }
 
@@ -23,13 +25,6 @@ fn vec_of(v: &Value) -> Vec<f64> {
         .iter()
         .map(|x| x.as_f64().expect("number"))
         .collect()
-}
-
-fn assert_close(got: &[f64], want: &[f64], tol: f64, what: &str) {
-    assert_eq!(got.len(), want.len(), "{what}: lengths");
-    for (i, (a, b)) in got.iter().zip(want).enumerate() {
-        assert!((a - b).abs() <= tol, "{what}[{i}]: {a} vs {b} (tol {tol})");
-    }
 }
 
 fn coefficients(c: &BSplineCurve) -> Vec<f64> {
@@ -192,7 +187,7 @@ fn closed_fit_errors_are_named() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(32))]
+    #![proptest_config(lekalo_testkit::config(32))]
 
     /// A constant, and data sampled from a closed spline of the same space, are reproduced
     /// exactly, also far from the origin.

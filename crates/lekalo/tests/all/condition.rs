@@ -2,8 +2,7 @@
 //! the dense `κ_1` of the collocation matrix, the limit of `CurveInterpolation::max_condition`,
 //! and what nearly coincident points do to the condition number and to the interpolant.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::basis::basis_functions;
 use lekalo::{

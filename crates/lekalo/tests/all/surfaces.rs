@@ -3,26 +3,14 @@
 //! and rational derivatives against finite differences, normals, affine invariance, iso-curves,
 //! circles and arcs. Randomness only from proptest strategies.
 
-mod common;
-use common::config;
-
 use lekalo::{
     basis::{basis_function_recursive, basis_functions},
     BSplineCurve, BSplineSurface, BezierSurface, Error, NurbsCurve, NurbsSurface, Points,
 };
 use proptest::prelude::*;
-use std::f64::consts::TAU;
 
-/// `|a − b| ≤ abs + rel·|b|` for every coordinate.
-fn assert_near(a: &[f64], b: &[f64], abs: f64, rel: f64, what: &str) {
-    assert_eq!(a.len(), b.len(), "{what}: lengths");
-    for (k, (x, y)) in a.iter().zip(b).enumerate() {
-        assert!(
-            (x - y).abs() <= abs + rel * y.abs(),
-            "{what}[{k}]: {x} vs {y} (abs {abs:e}, rel {rel:e})"
-        );
-    }
-}
+use lekalo_testkit::{assert_near, config};
+use std::f64::consts::TAU;
 
 /// Clamped knots on `[0, 1]` for `degree` and `n` control points, with sorted random interior
 /// knots drawn from `(0.05, 0.95)` and kept at least 0.02 apart (simple knots: the spline is

@@ -3,8 +3,7 @@
 //! unevenly spaced knots, unclamped ends, large offsets) and parameter order; the parallel path
 //! is bit-identical to the sequential one.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::{BSplineCurve, CurveEvaluator, EvalKernel, Points};
 use proptest::prelude::*;

@@ -2,8 +2,7 @@
 //! splines through points, corner smoothing. Continuity is *measured*: derivatives up to order k
 //! agree at the joins, derivative k + 1 in general does not.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::{
     ArcParametrization, BezierCurve, BlendSpline, BlendSplineOptions, CircularArcs, Continuity,

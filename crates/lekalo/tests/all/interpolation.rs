@@ -3,9 +3,6 @@
 //! SciPy), residuals at the data, prescribed derivatives, offset/scale invariance, closed curves,
 //! surfaces, Hermite, one negative test per error, and proptest invariants.
 
-mod common;
-use common::config;
-
 use lekalo::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,
     natural_cubic_spline, parametrize, BSplineCurve, BSplineSurface, CubicHermite,
@@ -14,31 +11,19 @@ use lekalo::{
 };
 use proptest::prelude::*;
 
+use lekalo_testkit::vectors::example_9_1;
+use lekalo_testkit::{assert_close, config};
+
 /// Residual tolerance relative to the data's extent (what an interpolant must meet at its data).
 const REL: f64 = 1e-12;
 
 /// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
 fn example() -> Points {
-    Points::from_2d(&[
-        [0.0, 0.0],
-        [3.0, 4.0],
-        [-1.0, 4.0],
-        [-4.0, 0.0],
-        [-4.0, -3.0],
-    ])
-    .unwrap()
+    Points::from_2d(&example_9_1::POINTS).unwrap()
 }
 
 fn chord() -> Vec<f64> {
-    vec![0.0, 5.0 / 17.0, 9.0 / 17.0, 14.0 / 17.0, 1.0]
-}
-
-/// Compares with a tolerance; the reference numbers are given with 6 decimals.
-fn assert_near(got: &[f64], expect: &[f64], tol: f64, what: &str) {
-    assert_eq!(got.len(), expect.len(), "{what}: length");
-    for (i, (g, e)) in got.iter().zip(expect).enumerate() {
-        assert!((g - e).abs() <= tol, "{what}[{i}]: {g} vs {e} (tol {tol})");
-    }
+    example_9_1::CHORD_PARAMETERS.to_vec()
 }
 
 fn flat(p: &[[f64; 2]]) -> Vec<f64> {
@@ -94,11 +79,11 @@ fn example_9_1_free_cubic_three_parametrisations() {
             .parametrization(method)
             .interpolate(q.as_view())
             .unwrap();
-        assert_near(&c.knots().as_slice()[4..5], &[knot], 1e-6, "interior knot");
+        assert_close(&c.knots().as_slice()[4..5], &[knot], 1e-6, "interior knot");
         let mut expect = vec![[0.0, 0.0]];
         expect.extend(inner);
         expect.push([-4.0, -3.0]);
-        assert_near(
+        assert_close(
             c.control_points().as_slice(),
             &flat(&expect),
             1e-6,
@@ -109,7 +94,7 @@ fn example_9_1_free_cubic_three_parametrisations() {
         assert!(worst <= bound, "{method:?}: residual {worst}");
     }
     let t = parametrize(q.as_view(), Parametrization::Centripetal).unwrap();
-    assert_near(
+    assert_close(
         &t,
         &[0.0, 0.272552, 0.516330, 0.788882, 1.0],
         1e-6,
@@ -120,7 +105,7 @@ fn example_9_1_free_cubic_three_parametrisations() {
         .parametrization(Parametrization::Uniform)
         .interpolate(q.as_view())
         .unwrap();
-    assert_near(
+    assert_close(
         c.knots().as_slice(),
         &[0., 0., 0., 0., 0.5, 1., 1., 1., 1.],
         0.0,
@@ -133,7 +118,7 @@ fn example_9_1_free_cubic_three_parametrisations() {
         [-46.0 / 9.0, -49.0 / 18.0],
         [-4.0, -3.0],
     ];
-    assert_near(
+    assert_close(
         c.control_points().as_slice(),
         &flat(&expect),
         1e-14,
@@ -145,31 +130,20 @@ fn example_9_1_free_cubic_three_parametrisations() {
 fn example_9_1_chord_curve_values_and_quadratic() {
     let q = example();
     let c = CurveInterpolation::new(3).interpolate(q.as_view()).unwrap();
-    for (t, e) in [
-        (0.25, [3.407028, 3.663345]),
-        (0.5, [-0.474156, 4.175193]),
-        (0.75, [-3.627509, 1.253884]),
-    ] {
-        assert_near(&c.eval(t).unwrap(), &e, 1e-6, "r(t)");
+    for (t, e) in example_9_1::CUBIC_CHORD_VALUES {
+        assert_close(&c.eval(t).unwrap(), &e, example_9_1::DECIMALS, "r(t)");
     }
     let c = CurveInterpolation::new(2).interpolate(q.as_view()).unwrap();
-    assert_near(
+    assert_close(
         c.knots().as_slice(),
-        &[0., 0., 0., 7.0 / 17.0, 23.0 / 34.0, 1., 1., 1.],
+        &example_9_1::QUADRATIC_CHORD_KNOTS,
         1e-15,
         "quadratic knots",
     );
-    let expect = [
-        [0.0, 0.0],
-        [5.767270, 4.323172],
-        [-1.627371, 4.418936],
-        [-4.616510, -0.163975],
-        [-4.0, -3.0],
-    ];
-    assert_near(
+    assert_close(
         c.control_points().as_slice(),
-        &flat(&expect),
-        1e-6,
+        &flat(&example_9_1::QUADRATIC_CHORD_CONTROL),
+        example_9_1::DECIMALS,
         "quadratic control",
     );
 }
@@ -241,15 +215,15 @@ fn example_9_1_end_derivatives_any_degree() {
             .knot_placement(KnotPlacement::Averaged)
             .interpolate(q.as_view())
             .unwrap();
-        assert_near(c.knots().as_slice(), &knots, 1e-15, "eq. 4 knots");
-        assert_near(
+        assert_close(c.knots().as_slice(), &knots, 1e-15, "eq. 4 knots");
+        assert_close(
             c.control_points().as_slice(),
             &flat(&ctrl),
             1e-6,
             "A.2 control",
         );
-        assert_near(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-12, "d0");
-        assert_near(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-12, "dn");
+        assert_close(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-12, "d0");
+        assert_close(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-12, "dn");
         let (worst, bound) = residual(&c, &q, &chord());
         assert!(worst <= bound, "A.2 p={p}: residual {worst}");
     }
@@ -266,7 +240,7 @@ fn example_9_1_cubic_knots_at_parameters() {
     let mut knots = vec![0.0; 4];
     knots.extend(&chord()[1..4]);
     knots.extend([1.0; 4]);
-    assert_near(c.knots().as_slice(), &knots, 0.0, "eq. 8 knots");
+    assert_close(c.knots().as_slice(), &knots, 0.0, "eq. 8 knots");
     let expect = [
         [0.0, 0.0],
         [0.098039, 0.196078],
@@ -276,20 +250,20 @@ fn example_9_1_cubic_knots_at_parameters() {
         [-3.823529, -2.941176],
         [-4.0, -3.0],
     ];
-    assert_near(
+    assert_close(
         c.control_points().as_slice(),
         &flat(&expect),
         1e-6,
         "A.3 control",
     );
     // p_1 = q_0 + 5/51 d_0 and p_5 = q_4 − 1/17 d_4 exactly
-    assert_near(
+    assert_close(
         c.control_points().point(1),
         &[5.0 / 51.0, 10.0 / 51.0],
         1e-15,
         "p1",
     );
-    assert_near(
+    assert_close(
         c.control_points().point(5),
         &[-4.0 + 3.0 / 17.0, -3.0 + 1.0 / 17.0],
         1e-15,
@@ -304,16 +278,16 @@ fn example_9_1_cubic_knots_at_parameters() {
     ] {
         let (span, n) = lekalo::basis::basis_functions(kv, 3, chord()[k]).unwrap();
         assert_eq!(span, k + 3, "data parameter {k} starts span k + 3");
-        assert_near(&n[..3], &abc, 1e-6, "a_k, b_k, c_k");
+        assert_close(&n[..3], &abc, 1e-6, "a_k, b_k, c_k");
         assert_eq!(n[3], 0.0, "N_(k+3) vanishes at its first knot");
     }
-    assert_near(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-12, "d0");
-    assert_near(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-12, "dn");
+    assert_close(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-12, "d0");
+    assert_close(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-12, "dn");
     // C² at the interior knots: left and right second derivatives agree
     for &t in &chord()[1..4] {
         let right = derivative(&c, t, 2);
         let left = derivative(&c, t - 1e-12, 2);
-        assert_near(&left, &right, 1e-7, "C² at a knot");
+        assert_close(&left, &right, 1e-7, "C² at a knot");
     }
 }
 
@@ -336,20 +310,20 @@ fn example_9_1_second_derivatives_and_natural() {
         [-4.079724, -2.008700],
         [-4.0, -3.0],
     ];
-    assert_near(
+    assert_close(
         c.control_points().as_slice(),
         &flat(&expect),
         1e-6,
         "A.4 control",
     );
-    assert_near(&derivative(&c, 0.0, 2), &[2.0, -1.0], 1e-11, "d''0");
-    assert_near(&derivative(&c, 1.0, 2), &[0.5, 4.0], 1e-11, "d''n");
+    assert_close(&derivative(&c, 0.0, 2), &[2.0, -1.0], 1e-11, "d''0");
+    assert_close(&derivative(&c, 1.0, 2), &[0.5, 4.0], 1e-11, "d''n");
     let (worst, bound) = residual(&c, &q, &chord());
     assert!(worst <= bound, "A.4 residual {worst}");
     // document 000's b_0, c_0, a_n, b_n are the unscaled rows (13), (14): check via the knots
     let k = c.knots().as_slice();
     let (t4, t5, tn1, tn2) = (k[4], k[5], k[5], k[6]);
-    assert_near(
+    assert_close(
         &[
             -(1.0 / t4 + 1.0 / t5),
             1.0 / t5,
@@ -374,14 +348,14 @@ fn example_9_1_second_derivatives_and_natural() {
         [-4.078249, -1.996248],
         [-4.0, -3.0],
     ];
-    assert_near(
+    assert_close(
         c.control_points().as_slice(),
         &flat(&expect),
         1e-6,
         "natural control",
     );
-    assert_near(&derivative(&c, 0.0, 2), &[0.0, 0.0], 1e-11, "natural start");
-    assert_near(&derivative(&c, 1.0, 2), &[0.0, 0.0], 1e-11, "natural end");
+    assert_close(&derivative(&c, 0.0, 2), &[0.0, 0.0], 1e-11, "natural start");
+    assert_close(&derivative(&c, 1.0, 2), &[0.0, 0.0], 1e-11, "natural end");
 }
 
 #[test]
@@ -404,7 +378,7 @@ fn natural_function_reproduces_lines_and_matches_the_parametric_form() {
         .end_condition(EndCondition::Natural)
         .interpolate(q.as_view())
         .unwrap();
-    assert_near(
+    assert_close(
         f.control_points().as_slice(),
         c.control_points().as_slice(),
         1e-14,
@@ -648,7 +622,7 @@ fn surface_hits_the_grid_and_equals_the_kronecker_solve() {
                 }
             }
             let x = dense_solve(a, g.as_slice().to_vec(), n, 3);
-            assert_near(s.control_points().as_slice(), &x, 1e-12, "Kronecker");
+            assert_close(s.control_points().as_slice(), &x, 1e-12, "Kronecker");
         }
     }
 }
@@ -704,7 +678,7 @@ fn surface_parameters_are_row_and_column_averages() {
             *e += v / nv as f64;
         }
     }
-    assert_near(report.params_u(), &expect, 1e-15, "ū averaged over columns");
+    assert_close(report.params_u(), &expect, 1e-15, "ū averaged over columns");
 }
 
 /// The grid functions kept for code written before `SurfaceInterpolation` give its surface,
@@ -746,7 +720,7 @@ fn four_point_cubic_matches_the_lecture() {
     let c = cubic_through_four_points(p.as_view()).unwrap();
     let coef = four_point_cubic_coefficients(p.as_view()).unwrap();
     for (k, u) in [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0].into_iter().enumerate() {
-        assert_near(&c.eval(u).unwrap(), p.point(k), 1e-14, "through p_k");
+        assert_close(&c.eval(u).unwrap(), p.point(k), 1e-14, "through p_k");
     }
     for k in 0..=10 {
         let u = f64::from(k) / 10.0;
@@ -756,7 +730,7 @@ fn four_point_cubic_matches_the_lecture() {
                 ((a * u + b) * u + cc) * u + dd
             })
             .collect();
-        assert_near(&c.eval(u).unwrap(), &power, 1e-13, "power = Bezier form");
+        assert_close(&c.eval(u).unwrap(), &power, 1e-13, "power = Bezier form");
     }
 }
 
@@ -778,7 +752,7 @@ fn hermite_segment_is_the_lecture_matrix() {
                 ((a * u + b) * u + cc) * u + dd
             })
             .collect();
-        assert_near(&h.eval(u).unwrap(), &power, 1e-14, "Hermite basis = M_H");
+        assert_close(&h.eval(u).unwrap(), &power, 1e-14, "Hermite basis = M_H");
     }
     // P'(1) = 3a + 2b + c = d1 (the corrected forward row [3 2 1 0])
     for d in 0..2 {
@@ -803,10 +777,10 @@ fn hermite_conversions_agree_and_are_c1() {
         for k in 0..=50 {
             let s = f64::from(k) / 50.0;
             let e = h.eval(s).unwrap();
-            assert_near(&b.eval(s).unwrap(), &e, 1e-13, "B-spline form");
+            assert_close(&b.eval(s).unwrap(), &e, 1e-13, "B-spline form");
             let seg = (t.partition_point(|&x| x <= s) - 1).min(3);
             let u = (s - t[seg]) / (t[seg + 1] - t[seg]);
-            assert_near(
+            assert_close(
                 &segs[seg].eval(u.clamp(0.0, 1.0)).unwrap(),
                 &e,
                 1e-13,
@@ -814,8 +788,8 @@ fn hermite_conversions_agree_and_are_c1() {
             );
         }
         for (k, &tk) in t.iter().enumerate() {
-            assert_near(&h.eval(tk).unwrap(), q.point(k), 1e-14, "through the data");
-            assert_near(
+            assert_close(&h.eval(tk).unwrap(), q.point(k), 1e-14, "through the data");
+            assert_close(
                 &derivative(&b, tk, 1),
                 h.tangents().point(k),
                 1e-12,
@@ -830,7 +804,7 @@ fn hermite_conversions_agree_and_are_c1() {
         TangentEstimate::CatmullRom,
     )
     .unwrap();
-    assert_near(
+    assert_close(
         h.tangents().point(2),
         &[(-4.0 - 3.0) * 2.0, (0.0 - 4.0) * 2.0],
         1e-13,
@@ -911,13 +885,13 @@ fn error_coincident_points_and_dropping_them() {
         .parametrization(Parametrization::Uniform)
         .interpolate(q.as_view())
         .unwrap();
-    assert_near(
+    assert_close(
         &c.eval(1.0 / 3.0).unwrap(),
         &[1.0, 1.0],
         1e-14,
         "first visit",
     );
-    assert_near(
+    assert_close(
         &c.eval(2.0 / 3.0).unwrap(),
         &[1.0, 1.0],
         1e-14,
@@ -1503,7 +1477,7 @@ fn scipy_agreement() {
     for (name, interp, values) in cases {
         let c = interp.interpolate(q.as_view()).unwrap();
         for (u, e) in values {
-            assert_near(&c.eval(u).unwrap(), &e, tol, name);
+            assert_close(&c.eval(u).unwrap(), &e, tol, name);
         }
     }
 }
@@ -1522,7 +1496,7 @@ fn end_derivatives_with_the_fewest_points() {
             CubicHermite::new(vec![0.0, 1.0], q.clone(), pts(&[[1.0, 2.0], [-3.0, -1.0]])).unwrap();
         for k in 0..=10 {
             let t = f64::from(k) / 10.0;
-            assert_near(
+            assert_close(
                 &c.eval(t).unwrap(),
                 &h.eval(t).unwrap(),
                 1e-14,
@@ -1535,7 +1509,7 @@ fn end_derivatives_with_the_fewest_points() {
         .end_condition(first_derivatives())
         .interpolate(q.as_view())
         .unwrap();
-    assert_near(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-13, "d0");
-    assert_near(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-13, "dn");
-    assert_near(&c.eval(1.0).unwrap(), &[1.0, 1.0], 0.0, "end");
+    assert_close(&derivative(&c, 0.0, 1), &[1.0, 2.0], 1e-13, "d0");
+    assert_close(&derivative(&c, 1.0, 1), &[-3.0, -1.0], 1e-13, "dn");
+    assert_close(&c.eval(1.0).unwrap(), &[1.0, 1.0], 0.0, "end");
 }

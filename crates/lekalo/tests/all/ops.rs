@@ -2,8 +2,7 @@
 //! (insertion, refinement, splitting, Bezier patches, transposition, reversal). Randomness only
 //! from proptest strategies.
 
-mod common;
-use common::config;
+use lekalo_testkit::config;
 
 use lekalo::{
     BSplineCurve, BSplineSurface, BezierCurve, BezierSegment, Error, KnotVector, NurbsCurve,
