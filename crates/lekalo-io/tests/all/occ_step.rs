@@ -183,14 +183,9 @@ fn read_modify_write_read() {
     }
 }
 
+/// Equal to two rounding units (the written decimal text read back).
 fn close(a: &[f64], b: &[f64]) {
-    assert_eq!(a.len(), b.len(), "lengths");
-    for (x, y) in a.iter().zip(b) {
-        assert!(
-            (x - y).abs() <= 2.0 * f64::EPSILON * x.abs().max(y.abs()),
-            "{x} vs {y}"
-        );
-    }
+    lekalo_testkit::assert_close_relative(a, b, 2.0 * f64::EPSILON, "control points");
 }
 
 fn write(name: &str, shapes: &[Shape]) -> String {
