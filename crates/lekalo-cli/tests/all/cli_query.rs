@@ -7,7 +7,7 @@ use std::fs;
 
 use predicates::str::contains;
 
-mod common;
+use crate::common;
 use common::{dir_with, json_of, lekalo, output_of, p};
 
 /// A polyline (0,0) → (3,4) → (3,0): length 9.

@@ -3,7 +3,7 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
-mod common;
+use crate::common;
 
 use lekalo_io::CurveJson;
 use std::fs::{self, File};
@@ -17,14 +17,7 @@ use predicates::str::contains;
 /// P&T Example 9.1's points (docs/theory/interpolation.md#test-vectors), moved and stretched by
 /// `k`.
 fn points(k: f64) -> Points {
-    let q = [
-        [0.0, 0.0],
-        [3.0, 4.0],
-        [-1.0, 4.0],
-        [-4.0, 0.0],
-        [-4.0, -3.0],
-    ];
-    let rows: Vec<[f64; 2]> = q
+    let rows: Vec<[f64; 2]> = lekalo_testkit::vectors::example_9_1::POINTS
         .iter()
         .map(|r| [r[0] + k, r[1] * (1.0 + k / 7.0)])
         .collect();

@@ -5,7 +5,7 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
-mod common;
+use crate::common;
 
 use common::{dir_with, help_of, leaf_subcommands, lekalo};
 

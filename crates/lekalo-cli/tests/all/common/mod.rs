@@ -1,9 +1,6 @@
 //! Helpers shared by the CLI's end-to-end tests: the binary, and a temporary folder of input
 //! files.
 
-// each test binary uses its own subset of these
-#![allow(dead_code)]
-
 use std::fs;
 use std::path::PathBuf;
 

@@ -13,7 +13,7 @@ fn lekalo() -> Command {
 }
 
 /// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors), row by row.
-const Q: [f64; 10] = [0.0, 0.0, 3.0, 4.0, -1.0, 4.0, -4.0, 0.0, -4.0, -3.0];
+const Q: [f64; 10] = lekalo_testkit::vectors::example_9_1::POINTS_FLAT;
 
 /// Q column by column, as a Fortran-order file stores it.
 const Q_COLS: [f64; 10] = [0.0, 3.0, -1.0, -4.0, -4.0, 0.0, 4.0, 4.0, 0.0, -3.0];

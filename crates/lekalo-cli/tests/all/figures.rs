@@ -155,7 +155,7 @@ fn every_kind_of_cli_plot_reads_well() {
              "control": [[10, 0], [22, 6], [19, 12], [11, 15], [8, 12], [20, 0]]}"#,
         ),
         ("data.csv", "1.5 2\n3 3\n"),
-        ("q.txt", "0 0\n3 4\n-1 4\n-4 0\n-4 -3\n"),
+        ("q.txt", lekalo_testkit::vectors::example_9_1::POINTS_TEXT),
         (
             "grid.txt",
             "0 0 0\n0 1 0\n0 2 0\n1 0 0\n1 1 1\n1 2 2\n2 0 0\n2 1 2\n2 2 4\n3 0 0\n3 1 3\n3 2 6\n",

@@ -6,7 +6,7 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
-mod common;
+use crate::common;
 mod doc_blocks;
 
 use std::fs;

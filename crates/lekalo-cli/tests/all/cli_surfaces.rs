@@ -124,7 +124,7 @@ fn bad_input_exits_2_naming_the_field() {
         .code(2)
         .stderr(contains("field `weights`"));
     fs::write(&s, SURFACE).unwrap();
-    // surfaces are evaluated on (u, v) (tests/cli_knot_cad.rs); a piecewise polynomial is not
+    // surfaces are evaluated on (u, v) (tests/all/cli_knot_cad.rs); a piecewise polynomial is not
     lekalo()
         .arg("eval")
         .arg(&s)

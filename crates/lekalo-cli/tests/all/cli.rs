@@ -9,7 +9,7 @@ use std::path::Path;
 use predicates::prelude::*;
 use predicates::str::contains;
 
-mod common;
+use crate::common;
 use common::{dir_with, lekalo, p};
 
 const LECTURE: &str = r#"{

@@ -12,7 +12,7 @@ use std::process::Stdio;
 use predicates::prelude::PredicateBooleanExt as _;
 use predicates::str::contains;
 
-mod common;
+use crate::common;
 use common::{dir_with, lekalo, p};
 
 const LECTURE: &str = r#"{

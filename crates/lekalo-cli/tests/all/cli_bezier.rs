@@ -2,7 +2,7 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
-mod common;
+use crate::common;
 
 use std::fs;
 

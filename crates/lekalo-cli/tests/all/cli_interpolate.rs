@@ -9,7 +9,7 @@ use assert_cmd::Command;
 use predicates::str::contains;
 
 /// P&T Example 9.1 (docs/theory/interpolation.md#test-vectors).
-const Q: &str = "0 0\n3 4\n-1 4\n-4 0\n-4 -3\n";
+const Q: &str = lekalo_testkit::vectors::example_9_1::POINTS_TEXT;
 
 fn lekalo() -> Command {
     Command::cargo_bin("lekalo").unwrap()

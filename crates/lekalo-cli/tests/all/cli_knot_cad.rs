@@ -10,7 +10,7 @@ use lekalo_io::{read_step, Object, Shape, Surface};
 use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 
-mod common;
+use crate::common;
 use common::{dir_with, lekalo, p};
 
 /// `lekalo convert INPUT -o OUTPUT` inside `d`, which must succeed.
