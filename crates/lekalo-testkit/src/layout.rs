@@ -44,3 +44,59 @@ pub fn assert_every_test_file_is_a_module(dir: &str) {
         missing.join(";`, `mod ")
     );
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fs;
+
+    /// A scratch folder, removed when dropped (also when the test panics).
+    struct Scratch(std::path::PathBuf);
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// A scratch folder of test files: `main.rs` with `main`, and empty `files`.
+    fn folder(name: &str, main: &str, files: &[&str]) -> Scratch {
+        let dir =
+            std::env::temp_dir().join(format!("lekalo-testkit-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(dir.join("sub")).unwrap();
+        fs::create_dir_all(dir.join("helpers")).unwrap();
+        fs::write(dir.join("main.rs"), main).unwrap();
+        for f in files {
+            fs::write(dir.join(f), "").unwrap();
+        }
+        Scratch(dir)
+    }
+
+    #[test]
+    fn declared_files_and_folders_pass() {
+        // `sub/` has no mod.rs: it holds the submodules of `sub.rs`
+        let dir = folder(
+            "ok",
+            "//! tests\n\nmod helpers;\nmod sub;\n",
+            &[
+                "sub.rs",
+                "helpers/mod.rs",
+                "sub/inner.rs",
+                "x.proptest-regressions",
+            ],
+        );
+        assert_every_test_file_is_a_module(dir.0.to_str().unwrap());
+    }
+
+    #[test]
+    #[should_panic(expected = "declare `mod helpers;`, `mod left_out;` in main.rs")]
+    fn a_left_out_file_is_named() {
+        let dir = folder(
+            "missing",
+            "mod sub;\n",
+            &["sub.rs", "left_out.rs", "helpers/mod.rs"],
+        );
+        assert_every_test_file_is_a_module(dir.0.to_str().unwrap());
+    }
+}
