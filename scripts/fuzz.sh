@@ -9,7 +9,7 @@
 # `cargo install cargo-fuzz`. Memory is bounded per run (-rss_limit_mb, -malloc_limit_mb): an
 # attempt to allocate an absurd size is reported as a crash, as is a run longer than
 # FUZZ_TIMEOUT seconds on one input. Crashes land in fuzz/artifacts/<target>/; each one must
-# become a test in crates/lekalo/tests/fuzz_regressions.rs.
+# become a test in crates/lekalo/tests/all/fuzz_regressions.rs.
 set -euo pipefail
 
 cd "$(dirname "$0")/../fuzz"

@@ -1,18 +1,18 @@
-//! Slow, transparent reference evaluators (compiled for tests only).
+//! Slow, transparent reference evaluators (compiled for tests only): the library's curves through
+//! the plain-number oracles of `lekalo_testkit::oracle`, which every crate's tests share.
 //!
 //! - B-spline curves by the lecture's recursive Cox–de Boor definition (document 002, B-splines,
-//!   [`basis_function_recursive`]) summed over **all** control points, with no span search and no
-//!   triangular scheme. At the right end of an unclamped domain (`t = t_{n+1} < t_m`) the
-//!   right-continuous definition would use the span beyond the domain, so there the oracle uses
-//!   the left-continuous variant (`N_{i,0} = 1` on `(t_i, t_{i+1}]`), i.e. the left limit, which
-//!   is the value the library defines at the end of the domain.
+//!   the recursion of `basis::basis_function_recursive`) summed over **all** control points,
+//!   with no span search and no triangular scheme. At the right end of an unclamped domain
+//!   (`t = t_{n+1} < t_m`) the right-continuous definition would use the span beyond the domain,
+//!   so there the oracle uses the left-continuous variant (`N_{i,0} = 1` on `(t_i, t_{i+1}]`),
+//!   i.e. the left limit, which is the value the library defines at the end of the domain.
 //! - Bezier curves by the Bernstein formula with explicit binomial coefficients and powers
 //!   (document 002, Bezier curves): `P(t) = Σ C(n,i) t^i (1 − t)^{n−i} P_i`.
 //!
 //! The fast kernels (P&T A2.1/A2.2/A3.1 and de Casteljau) must agree with these to
 //! [`ORACLE_TOL`] relative to the control net's scale.
 
-use crate::basis::basis_function_recursive;
 use crate::curve::bezier::BezierCurve;
 use crate::curve::bspline::BSplineCurve;
 
@@ -23,76 +23,26 @@ pub(crate) const ORACLE_TOL: f64 = 1e-13;
 /// `C(t)` by the recursive definition summed over all control points (see the module docs).
 /// `t` must lie in the curve's domain.
 pub(crate) fn bspline_naive(curve: &BSplineCurve, t: f64) -> Vec<f64> {
-    let kv = curve.knots();
-    let k = kv.as_slice();
-    let p = curve.degree();
-    let (_, hi) = curve.domain();
-    let left_limit = t == hi && hi < k[k.len() - 1];
-    let ctrl = curve.control_points();
-    let mut out = vec![0.0; curve.dim()];
-    for (i, pt) in ctrl.iter().enumerate() {
-        let n = if left_limit {
-            cox_de_boor_left(k, i, p, t)
-        } else {
-            basis_function_recursive(kv, i, p, t).unwrap_or(f64::NAN)
-        };
-        for (o, x) in out.iter_mut().zip(pt) {
-            *o += n * x;
-        }
-    }
-    out
-}
-
-/// Left-continuous Cox–de Boor recursion: `N_{i,0} = 1` on `(t_i, t_{i+1}]`; zero denominators
-/// give zero terms.
-fn cox_de_boor_left(k: &[f64], i: usize, p: usize, t: f64) -> f64 {
-    if p == 0 {
-        return if k[i] < t && t <= k[i + 1] { 1.0 } else { 0.0 };
-    }
-    let mut v = 0.0;
-    let d1 = k[i + p] - k[i];
-    if d1 != 0.0 {
-        v += (t - k[i]) / d1 * cox_de_boor_left(k, i, p - 1, t);
-    }
-    let d2 = k[i + p + 1] - k[i + 1];
-    if d2 != 0.0 {
-        v += (k[i + p + 1] - t) / d2 * cox_de_boor_left(k, i + 1, p - 1, t);
-    }
-    v
-}
-
-/// Binomial coefficient `C(n, i)` as a float, by the multiplicative formula.
-pub(crate) fn binomial(n: usize, i: usize) -> f64 {
-    (0..i).fold(1.0, |acc, j| acc * (n - j) as f64 / (j + 1) as f64)
+    lekalo_testkit::oracle::bspline(
+        curve.knots().as_slice(),
+        curve.degree(),
+        curve.control_points().as_slice(),
+        curve.dim(),
+        t,
+    )
 }
 
 /// `P(t) = Σ C(n,i) t^i (1 − t)^{n−i} P_i` term by term.
 pub(crate) fn bezier_naive(curve: &BezierCurve, t: f64) -> Vec<f64> {
-    let n = curve.degree();
-    let mut out = vec![0.0; curve.dim()];
-    for (i, pt) in curve.control_points().iter().enumerate() {
-        let b = binomial(n, i) * t.powf(i as f64) * (1.0 - t).powf((n - i) as f64);
-        for (o, x) in out.iter_mut().zip(pt) {
-            *o += b * x;
-        }
-    }
-    out
+    lekalo_testkit::oracle::bezier(curve.control_points().as_slice(), curve.dim(), t)
 }
 
-/// Proptest configuration for the unit tests: `PROPTEST_CASES` if set (the long job of
-/// docs/robustness.md), else `default_cases`.
-pub(crate) fn proptest_config(default_cases: u32) -> proptest::test_runner::Config {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default_cases);
-    // rejected draws (prop_assume) grow with the case count: allow as many as cases, so that
-    // the long job with thousands of cases is not aborted for "too many global rejects"
-    proptest::test_runner::Config {
-        max_global_rejects: cases.max(1024),
-        ..proptest::test_runner::Config::with_cases(cases)
-    }
-}
+// Binomial coefficient `C(n, i)` as a float, by the multiplicative formula.
+pub(crate) use lekalo_testkit::oracle::binomial;
+
+// Proptest configuration for the unit tests: `PROPTEST_CASES` if set (the long job of
+// docs/robustness.md), else `default_cases`; the same as every crate's integration tests use.
+pub(crate) use lekalo_testkit::config as proptest_config;
 
 #[cfg(test)]
 mod tests {

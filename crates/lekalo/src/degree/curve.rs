@@ -38,7 +38,8 @@
 //!   mpmath: 3.2e2 for 20→30, 2.0e5 for 40→60, 1.2e7 for 40→80). Measured (elevate a rough net,
 //!   reduce back, worst of 5): 4e-15 for 20→10, 2e-14 for 30→20, 2e-13 for 40→20, 2e-12 for
 //!   50→30, 2e-11 for 60→40, 2e-10 for 80→60, 6e-10 for 80→40. So 1e-10 holds up to degree 40
-//!   elevated by 20 at least (test `stable_path_degree_40`, proptests in `tests/degree_change.rs`).
+//!   elevated by 20 at least (test `stable_path_degree_40`, proptests in
+//!   `tests/all/degree_change.rs`).
 //! - The real degree depends on the tolerance: a smooth control polygon of high degree is often
 //!   within `1e-10 × scale` of a lower degree, and then that lower degree is its real degree.
 

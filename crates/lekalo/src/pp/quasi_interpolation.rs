@@ -23,7 +23,7 @@ use crate::pp::ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 ///
 /// On the thesis's practical task (f = x·cos x on [0, 3], k = 3, breakpoints
 /// {0, 0.5, 0.9, 1.4, 2.1, 2.7, 3}, 61-point grid of step 0.05), the maximum errors are
-/// (`tests/ppform.rs`):
+/// (`tests/all/ppform.rs`):
 ///
 /// | rule | max error |
 /// |---|---|

@@ -1,4 +1,4 @@
-"""Reference values for crates/lekalo/tests/interpolation.rs (`scipy_agreement`).
+"""Reference values for crates/lekalo/tests/all/interpolation.rs (`scipy_agreement`).
 
 Independent implementation: SciPy's make_interp_spline (banded LU with pivoting, gbsv) and
 CubicSpline. Run with any recent SciPy:  python3 interpolation_scipy.py

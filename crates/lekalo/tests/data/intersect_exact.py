@@ -1,4 +1,4 @@
-"""Exact answers of planar curve-curve intersections for `tests/intersect_exact.rs`.
+"""Exact answers of planar curve-curve intersections for `tests/all/intersect_exact.rs`.
 
 Every input is a Bezier curve (control points exactly representable in binary), so the
 intersections of the curves as stored are algebraic numbers: they are computed here with

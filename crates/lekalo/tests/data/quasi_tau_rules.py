@@ -6,7 +6,7 @@ polynomial with exact products, the grid j*0.05. Pure Python (no dependencies):
 
     python3 crates/lekalo/tests/data/quasi_tau_rules.py
 
-prints one line per rule: name, maximum error, where. crates/lekalo/tests/ppform.rs holds the
+prints one line per rule: name, maximum error, where. crates/lekalo/tests/all/ppform.rs holds the
 figures.
 """
 import math

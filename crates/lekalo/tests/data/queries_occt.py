@@ -3,7 +3,7 @@
 Writes queries_occt.json beside this file: arc lengths and parameters at lengths
 (GCPnts_AbscissaPoint), closest points with every extremum (GeomAPI_ProjectPointOnCurve) and
 planar curve-curve intersections (Geom2dAPI_InterCurveCurve) of the curves defined below; the
-test crates/lekalo/tests/queries.rs rebuilds the same curves in lekalo and compares.
+test crates/lekalo/tests/all/queries.rs rebuilds the same curves in lekalo and compares.
 
     python3 -m venv target/ocp-venv && target/ocp-venv/bin/pip install cadquery-ocp
     target/ocp-venv/bin/python crates/lekalo/tests/data/queries_occt.py

@@ -1,0 +1,322 @@
+//! End-to-end tests of surfaces and pp-forms in `info`, `convert` and `plot`.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+
+use assert_cmd::Command;
+use predicates::str::contains;
+
+const SURFACE: &str = r#"{"lekalo": 1, "type": "nurbs_surface", "degree_u": 2, "degree_v": 1,
+ "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "net": [3, 2],
+ "control": [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 1], [2, 0, 0], [2, 1, 0.5]],
+ "weights": [1, 1, 0.7, 0.7, 1, 1]}"#;
+
+// f = x + x²/2 on [0, 1], continued C¹ (value and slope match at 1 and 2, the second
+// derivative jumps)
+const PP: &str = r#"{"lekalo": 1, "type": "piecewise_polynomial", "breakpoints": [0, 1, 2, 3],
+ "order": 3, "dim": 1, "coefficients": [0, 1, 0.5, 1.5, 2, -1, 2.5, 0, 3]}"#;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+#[test]
+fn info_on_a_surface_and_a_pp() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    let p = d.path().join("p.json");
+    fs::write(&s, SURFACE).unwrap();
+    fs::write(&p, PP).unwrap();
+    lekalo()
+        .arg("info")
+        .arg(&s)
+        .assert()
+        .success()
+        .stdout(contains("NURBS surface"))
+        .stdout(contains("degree          [2, 1]"))
+        .stdout(contains("net             [3, 2]"))
+        .stdout(contains("domain          [[0, 1], [0, 1]]"));
+    lekalo()
+        .arg("info")
+        .arg(&p)
+        .assert()
+        .success()
+        .stdout(contains("order           3"))
+        .stdout(contains("continuity      1: C^1  2: C^1"));
+}
+
+#[test]
+fn convert_and_plot_a_surface_and_a_pp() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    let p = d.path().join("p.json");
+    fs::write(&s, SURFACE).unwrap();
+    fs::write(&p, PP).unwrap();
+    for ext in ["step", "obj", "svg", "png", "json"] {
+        let out = d.path().join(format!("out.{ext}"));
+        lekalo()
+            .arg("convert")
+            .arg(&s)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        assert!(fs::metadata(&out).unwrap().len() > 100, "{ext}");
+    }
+    let step = fs::read_to_string(d.path().join("out.step")).unwrap();
+    assert!(
+        step.contains("RATIONAL_B_SPLINE_SURFACE(((1.,1.),(7.E-1,7.E-1),(1.,1.)))"),
+        "{step}"
+    );
+    let obj = fs::read_to_string(d.path().join("out.obj")).unwrap();
+    assert_eq!(
+        obj.lines().filter(|l| l.starts_with("vn ")).count(),
+        14 * 14
+    );
+    let csv = d.path().join("p.csv");
+    lekalo()
+        .arg("convert")
+        .arg(&p)
+        .arg("-o")
+        .arg(&csv)
+        .args(["--samples", "5"])
+        .assert()
+        .success();
+    // 1.5 lies in the second piece: 1.5 + 2·0.5 − 0.25 = 2.25
+    assert_eq!(
+        fs::read_to_string(&csv).unwrap(),
+        "x,f\n0,0\n0.75,1.03125\n1.5,2.25\n2.25,2.6875\n3,5.5\n"
+    );
+    for (input, name) in [(&s, "s.svg"), (&p, "p.svg")] {
+        let out = d.path().join(format!("plot-{name}"));
+        lekalo()
+            .arg("plot")
+            .arg(input)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        assert!(fs::read_to_string(&out).unwrap().contains("<svg"));
+    }
+    lekalo()
+        .arg("convert")
+        .arg(&p)
+        .args(["--to", "step"])
+        .assert()
+        .code(2)
+        .stderr(contains("piecewise_polynomial converts to"));
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_field() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    fs::write(
+        &s,
+        SURFACE.replace("[1, 1, 0.7, 0.7, 1, 1]", "[1, 1, 0.7, 0.7, 1]"),
+    )
+    .unwrap();
+    lekalo()
+        .arg("info")
+        .arg(&s)
+        .assert()
+        .code(2)
+        .stderr(contains("field `weights`"));
+    fs::write(&s, SURFACE).unwrap();
+    // surfaces are evaluated on (u, v) (tests/all/cli_knot_cad.rs); a piecewise polynomial is not
+    lekalo()
+        .arg("eval")
+        .arg(&s)
+        .assert()
+        .success()
+        .stdout(contains("u,v,x,y,z\n"));
+}
+
+fn real(p: &ruststep::ast::Parameter) -> f64 {
+    use ruststep::ast::Parameter;
+    match p {
+        Parameter::Real(x) => *x,
+        Parameter::Integer(i) => *i as f64,
+        other => panic!("expected a real, got {other:?}"),
+    }
+}
+
+fn list(p: &ruststep::ast::Parameter) -> &[ruststep::ast::Parameter] {
+    match p {
+        ruststep::ast::Parameter::List(v) => v,
+        other => panic!("expected a list, got {other:?}"),
+    }
+}
+
+/// `lekalo convert` to STEP, read back with the independent parser `ruststep`: the rational
+/// surface rebuilt from the parsed degrees, knots, points and weights evaluates to the same
+/// points as the JSON surface.
+#[test]
+fn step_surface_reads_back_with_ruststep() {
+    use ruststep::ast::{EntityInstance, Name, Parameter};
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    let out = d.path().join("s.step");
+    fs::write(&s, SURFACE).unwrap();
+    lekalo()
+        .arg("convert")
+        .arg(&s)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let text = fs::read_to_string(&out).unwrap();
+    let ex = ruststep::parser::parse(&text).unwrap();
+    let mut points = std::collections::HashMap::new();
+    let mut surface = None;
+    for e in &ex.data[0].entities {
+        match e {
+            EntityInstance::Simple { id, record } if record.name == "CARTESIAN_POINT" => {
+                let Parameter::List(p) = &record.parameter else {
+                    panic!()
+                };
+                points.insert(*id, list(&p[1]).iter().map(real).collect::<Vec<f64>>());
+            }
+            EntityInstance::Complex { subsuper, .. } => surface = Some(subsuper.0.clone()),
+            EntityInstance::Simple { .. } => {}
+        }
+    }
+    let recs = surface.expect("the rational surface is a complex instance");
+    let attrs = |name: &str| {
+        let r = recs.iter().find(|r| r.name == name).unwrap();
+        list(&r.parameter).to_vec()
+    };
+    let bs = attrs("B_SPLINE_SURFACE");
+    let wk = attrs("B_SPLINE_SURFACE_WITH_KNOTS");
+    let w = attrs("RATIONAL_B_SPLINE_SURFACE");
+    let deg = |p: &Parameter| match p {
+        Parameter::Integer(i) => usize::try_from(*i).unwrap(),
+        other => panic!("{other:?}"),
+    };
+    let expand = |m: &Parameter, k: &Parameter| -> Vec<f64> {
+        list(m)
+            .iter()
+            .zip(list(k))
+            .flat_map(|(m, k)| std::iter::repeat_n(real(k), deg(m)))
+            .collect()
+    };
+    let mut ctrl = Vec::new();
+    for row in list(&bs[2]) {
+        for p in list(row) {
+            let Parameter::Ref(Name::Entity(id)) = p else {
+                panic!("{p:?}")
+            };
+            ctrl.push(points[id].clone());
+        }
+    }
+    let weights: Vec<f64> = list(&w[0]).iter().flat_map(list).map(real).collect();
+    let nu = list(&bs[2]).len();
+    let back = lekalo::NurbsSurface::new(
+        deg(&bs[0]),
+        deg(&bs[1]),
+        expand(&wk[0], &wk[2]),
+        expand(&wk[1], &wk[3]),
+        lekalo::Points::from_rows(&ctrl).unwrap(),
+        weights,
+        (nu, ctrl.len() / nu),
+    )
+    .unwrap();
+    let ours = lekalo_io::read_nurbs_surface(SURFACE, "s").unwrap();
+    for (u, v) in [(0.0, 0.0), (0.3, 0.7), (0.5, 0.5), (1.0, 0.2), (1.0, 1.0)] {
+        let (a, b) = (ours.eval(u, v).unwrap(), back.eval(u, v).unwrap());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() <= 1e-12, "({u}, {v}): {a:?} vs {b:?}");
+        }
+    }
+}
+
+/// The `data-range` of the SVG's colour bar, and its label.
+fn colorbar(svg: &str) -> (String, f64, f64) {
+    let g = &svg[svg.find("<g class=\"colorbar\"").expect("a colour bar")..];
+    let attr = |name: &str| {
+        let at = g.find(&format!("{name}=\"")).expect(name) + name.len() + 2;
+        g[at..at + g[at..].find('"').expect("quote")].to_string()
+    };
+    let range = attr("data-range");
+    let (lo, hi) = range.split_once(' ').expect("two numbers");
+    (attr("data-label"), lo.parse().unwrap(), hi.parse().unwrap())
+}
+
+#[test]
+fn a_curvature_map_spans_the_library_curvatures_on_its_grid() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    fs::write(&s, SURFACE).unwrap();
+    for (kind, column, label) in [
+        ("gaussian", 2, "Gaussian curvature"),
+        ("mean", 3, "mean curvature"),
+        ("k1", 0, "principal curvature k1"),
+        ("k2", 1, "principal curvature k2"),
+    ] {
+        let svg = d.path().join(format!("{kind}.svg"));
+        lekalo()
+            .arg("plot")
+            .arg(&s)
+            .args(["--curvature", kind, "--samples", "9", "-o"])
+            .arg(&svg)
+            .assert()
+            .success();
+        let (got_label, lo, hi) = colorbar(&fs::read_to_string(&svg).unwrap());
+        assert_eq!(got_label, label);
+        // the same 9 × 9 grid through `eval --curvature`: the bar spans its column exactly
+        let out = lekalo()
+            .arg("eval")
+            .arg(&s)
+            .args(["--grid", "9x9", "--curvature"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let values: Vec<f64> = String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                f[f.len() - 4 + column].parse().unwrap()
+            })
+            .collect();
+        assert_eq!(values.len(), 81);
+        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!((lo, hi), (min, max), "{kind}");
+        assert!(hi > lo, "{kind}: the NURBS bump's curvature varies");
+    }
+    // a curvature map is for shaded 3-D surfaces
+    let x = d.path().join("x.svg");
+    for (args, why) in [
+        (vec!["--curvature", "mean", "--wireframe"], "--wireframe"),
+        (vec!["--curvature", "teal"], "teal"),
+    ] {
+        lekalo()
+            .arg("plot")
+            .arg(&s)
+            .args(&args)
+            .arg("-o")
+            .arg(&x)
+            .assert()
+            .code(2)
+            .stderr(contains(why));
+    }
+    let p = d.path().join("p.json");
+    fs::write(&p, PP).unwrap();
+    lekalo()
+        .arg("plot")
+        .arg(&p)
+        .args(["--curvature", "mean", "-o"])
+        .arg(&x)
+        .assert()
+        .code(2)
+        .stderr(contains("--curvature colours a surface"));
+    assert!(!x.exists(), "nothing written on a refusal");
+}
+
+#[path = "cli_surfaces/tensor.rs"]
+mod tensor;

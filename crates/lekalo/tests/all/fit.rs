@@ -1,0 +1,449 @@
+//! Fitting: golden values from SciPy (`tests/data/fit_golden.json`, made by
+//! `scripts/fit_golden.py`), the laws of least squares and smoothing as properties, and a named
+//! error for every bad input.
+
+use lekalo::fit::{
+    check_schoenberg_whitney, fit_tolerance, gcv_score, least_squares, place_knots,
+    robust_least_squares, smoothing_condition, smoothing_spline, surface_scattered_least_squares,
+    Deviation, EndConstraints, FitData, Lambda, RobustLoss, ToleranceOptions,
+};
+use lekalo::{BSplineCurve, Error, KnotVector, Points, PointsRef};
+use proptest::prelude::*;
+use serde_json::Value;
+
+use lekalo_testkit::assert_close;
+
+fn golden() -> Value {
+    serde_json::from_str(include_str!("../data/fit_golden.json")).expect("golden JSON parses")
+}
+
+fn vec_of(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+fn eval_all(curve: &BSplineCurve, ts: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; ts.len() * curve.dim()];
+    curve.eval_batch(ts, &mut out).expect("in domain");
+    out
+}
+
+#[test]
+fn lsq_matches_scipy_make_lsq_spline() {
+    let g = golden();
+    let l = &g["lsq"];
+    let (x, y, w, t, c) = (
+        vec_of(&l["x"]),
+        vec_of(&l["y"]),
+        vec_of(&l["w"]),
+        vec_of(&l["t"]),
+        vec_of(&l["c"]),
+    );
+    // SciPy's weights multiply the residual (FITPACK's 1/σ), lekalo's its square
+    let w: Vec<f64> = w.iter().map(|v| v * v).collect();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
+        .unwrap()
+        .with_weights(&w)
+        .unwrap();
+    let fit = least_squares(
+        &data,
+        3,
+        &KnotVector::new(t.clone()).unwrap(),
+        &EndConstraints::none(),
+    )
+    .unwrap();
+    assert_close(
+        fit.curve.control_points().as_slice(),
+        &c,
+        1e-12,
+        "lsq coefficients",
+    );
+    // the same problem at a 1e8 offset in x and y: coefficients to the offset's ulp scale
+    let xo: Vec<f64> = x.iter().map(|v| v + 1e8).collect();
+    let yo: Vec<f64> = y.iter().map(|v| v + 1e8).collect();
+    let to: Vec<f64> = t.iter().map(|v| v + 1e8).collect();
+    let data = FitData::new(PointsRef::from_flat(1, &yo).unwrap(), &xo)
+        .unwrap()
+        .with_weights(&w)
+        .unwrap();
+    let fit = least_squares(
+        &data,
+        3,
+        &KnotVector::new(to).unwrap(),
+        &EndConstraints::none(),
+    )
+    .unwrap();
+    let shifted: Vec<f64> = fit
+        .curve
+        .control_points()
+        .as_slice()
+        .iter()
+        .map(|v| v - 1e8)
+        .collect();
+    // lekalo at the offset agrees with the unshifted problem to a few ulp of 1e8 (1.5e-8)
+    assert_close(&shifted, &c, 1e-7, "lsq coefficients at a 1e8 offset");
+}
+
+#[test]
+fn smoothing_matches_scipy_make_smoothing_spline() {
+    let g = golden();
+    let s = &g["smoothing"];
+    let (x, y, w) = (vec_of(&s["x"]), vec_of(&s["y"]), vec_of(&s["w"]));
+    let lam = s["lam"].as_f64().unwrap();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
+        .unwrap()
+        .with_weights(&w)
+        .unwrap();
+    let fit = smoothing_spline(&data, Lambda::Given(lam)).unwrap();
+    assert_close(
+        &eval_all(&fit.curve, &vec_of(&s["at"])),
+        &vec_of(&s["values"]),
+        1e-10,
+        "smoothing values",
+    );
+    // GCV, unit weights: the GCV minimum is flat, so the fits agree to the data's noise scale
+    // only loosely; lekalo's λ must score at least as well as any λ near SciPy's fit
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let fit = smoothing_spline(&data, Lambda::Gcv).unwrap();
+    let lam = fit.report.lambda.unwrap();
+    assert_close(
+        &eval_all(&fit.curve, &x),
+        &vec_of(&s["gcv_values"]),
+        2e-3,
+        "GCV values",
+    );
+    let best = gcv_score(&data, lam).unwrap();
+    for f in [0.5, 0.8, 1.25, 2.0] {
+        assert!(
+            best <= gcv_score(&data, lam * f).unwrap() * (1.0 + 1e-9),
+            "GCV at λ·{f} below the minimum"
+        );
+    }
+}
+
+/// `smoothing_condition` against `splrep` on `(x, y)` with FITPACK weights `w_fp`: the same
+/// knots and coefficients, and the residual within `s`.
+fn check_splrep(x: &[f64], y: &[f64], w_fp: Option<&[f64]>, k: usize, s: f64, entry: &Value) {
+    let w: Vec<f64> = w_fp.map_or_else(Vec::new, |w| w.iter().map(|v| v * v).collect());
+    let mut data = FitData::new(PointsRef::from_flat(1, y).unwrap(), x).unwrap();
+    if w_fp.is_some() {
+        data = data.with_weights(&w).unwrap();
+    }
+    let fit = smoothing_condition(&data, k, s).unwrap();
+    let rss = fit.report.weighted_rss;
+    // s = 0 interpolates: the residual is rounding
+    assert!(rss <= s.max(1e-24), "rss {rss} > s {s}");
+    if s > 0.0 {
+        assert!(rss >= 0.999 * s, "smoothed up to s: {rss}");
+    }
+    assert_close(
+        fit.curve.knots().as_slice(),
+        &vec_of(&entry["t"]),
+        1e-14,
+        &format!("degree {k}, s {s}: knots"),
+    );
+    let c: Vec<f64> = fit.curve.control_points().iter().map(|p| p[0]).collect();
+    assert_close(
+        &c,
+        &vec_of(&entry["c"]),
+        1e-9,
+        &format!("degree {k}, s {s}: coefficients"),
+    );
+}
+
+#[test]
+fn smoothing_condition_matches_scipy_splrep() {
+    let g = golden();
+    let r = &g["splrep"];
+    let (x, y, s) = (vec_of(&r["x"]), vec_of(&r["y"]), r["s"].as_f64().unwrap());
+    check_splrep(&x, &y, None, 3, s, r);
+    let more = &g["splrep_more"];
+    check_splrep(&x[..40], &y[..40], None, 2, 0.0, &more["interp_k2"]);
+    let w5 = &more["weighted_k5"];
+    check_splrep(&x, &y, Some(&vec_of(&w5["w"])), 5, s, w5);
+}
+
+#[test]
+fn scattered_surface_matches_scipy_lsq_bivariate_spline() {
+    let g = golden();
+    let b = &g["lsq_bivariate"];
+    let (u, v, z) = (vec_of(&b["u"]), vec_of(&b["v"]), vec_of(&b["z"]));
+    let bbox = vec_of(&b["bbox"]);
+    let knots = |lo: f64, hi: f64, inner: Vec<f64>| {
+        let mut k = vec![lo; 4];
+        k.extend(inner);
+        k.extend([hi; 4]);
+        KnotVector::new(k).unwrap()
+    };
+    let ku = knots(bbox[0], bbox[1], vec_of(&b["tx"]));
+    let kv = knots(bbox[2], bbox[3], vec_of(&b["ty"]));
+    let rows: Vec<f64> = (0..u.len()).flat_map(|k| [u[k], v[k], z[k]]).collect();
+    let fit = surface_scattered_least_squares(
+        PointsRef::from_flat(3, &rows).unwrap(),
+        None,
+        (3, 3),
+        (&ku, &kv),
+        0.0,
+    )
+    .unwrap();
+    let (gu, gv) = (vec_of(&b["grid_u"]), vec_of(&b["grid_v"]));
+    let mut got = Vec::new();
+    for &a in &gu {
+        for &c in &gv {
+            got.push(fit.surface.eval(a, c).unwrap()[0]);
+        }
+    }
+    assert_close(
+        &got,
+        &vec_of(&b["values"]),
+        1e-9,
+        "LSQBivariateSpline values",
+    );
+    assert!(
+        (fit.weighted_rss - b["fp"].as_f64().unwrap()).abs() < 1e-9,
+        "residual {}",
+        fit.weighted_rss
+    );
+}
+
+#[test]
+fn bad_inputs_are_named_errors() {
+    let x: Vec<f64> = (0..10).map(f64::from).collect();
+    let y: Vec<f64> = x.iter().map(|v| v.sin()).collect();
+    let pts = PointsRef::from_flat(1, &y).unwrap();
+    let data = FitData::new(pts, &x).unwrap();
+    // empty span
+    let kv = KnotVector::new(vec![
+        0.0, 0.0, 0.0, 0.0, 4.1, 4.2, 4.3, 4.4, 4.5, 4.6, 9.0, 9.0, 9.0, 9.0,
+    ])
+    .unwrap();
+    let e = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap_err();
+    assert!(
+        matches!(e, Error::SchoenbergWhitney { basis: 4, .. }),
+        "{e:?}"
+    );
+    // too few points for the control points
+    assert!(
+        matches!(place_knots(&x, 3, 11), Err(Error::TooFew { .. })),
+        "too few"
+    );
+    // NaN weight
+    let mut w = vec![1.0; 10];
+    w[3] = f64::NAN;
+    assert!(
+        matches!(
+            data.with_weights(&w),
+            Err(Error::InvalidDataWeight { index: 3, .. })
+        ),
+        "NaN weight"
+    );
+    // λ < 0, s < 0, tol ≤ 0
+    assert!(
+        matches!(
+            smoothing_spline(&data, Lambda::Given(-1e-3)),
+            Err(Error::NegativeSmoothing { what: "λ", .. })
+        ),
+        "λ<0"
+    );
+    assert!(
+        matches!(
+            smoothing_condition(&data, 3, -1.0),
+            Err(Error::NegativeSmoothing { what: "s", .. })
+        ),
+        "s<0"
+    );
+    let q: Vec<f64> = x.iter().flat_map(|&v| [v, v.sin()]).collect();
+    for tol in [0.0, -1.0, f64::NAN] {
+        let e = fit_tolerance(
+            PointsRef::from_flat(2, &q).unwrap(),
+            &ToleranceOptions::new(3, tol),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, Error::NonPositiveTolerance { .. }),
+            "tol {tol}: {e:?}"
+        );
+    }
+    // parameters outside the knots, mismatched lengths
+    let kv = KnotVector::clamped_uniform(3, 5).unwrap();
+    assert!(
+        matches!(
+            least_squares(&data, 3, &kv, &EndConstraints::none()),
+            Err(Error::ParameterOutOfDomain { .. })
+        ),
+        "domain"
+    );
+    assert!(
+        matches!(
+            FitData::new(pts, &x[..5]),
+            Err(Error::LengthMismatch { .. })
+        ),
+        "lengths"
+    );
+    // an empty knot cell of a scattered surface
+    // data only for u ≤ 0.3: the control points of u ≥ 1/3 have none
+    let rows: Vec<f64> = (0..100)
+        .flat_map(|k| {
+            let (u, v) = (0.3 * f64::from(k / 10) / 9.0, f64::from(k % 10) / 9.0);
+            [u, v, u + v]
+        })
+        .collect();
+    let ku = KnotVector::clamped_uniform(1, 4).unwrap();
+    let e = surface_scattered_least_squares(
+        PointsRef::from_flat(3, &rows).unwrap(),
+        None,
+        (1, 1),
+        (&ku, &ku),
+        0.0,
+    )
+    .unwrap_err();
+    assert!(matches!(e, Error::SchoenbergWhitney { .. }), "{e:?}");
+    // …which a positive penalty fills
+    assert!(
+        surface_scattered_least_squares(
+            PointsRef::from_flat(3, &rows).unwrap(),
+            None,
+            (1, 1),
+            (&ku, &ku),
+            1e-3
+        )
+        .is_ok(),
+        "penalty"
+    );
+}
+
+#[test]
+fn lambda_limits_are_interpolation_and_the_least_squares_line() {
+    let x: Vec<f64> = (0..30).map(|k| f64::from(k) / 29.0).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .enumerate()
+        .map(|(k, t)| (4.0 * t).sin() + 0.1 * f64::from(i32::try_from(k % 3).unwrap() - 1))
+        .collect();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let tiny = smoothing_spline(&data, Lambda::Given(1e-12)).unwrap();
+    assert!(
+        tiny.report.max_residual < 1e-6,
+        "λ→0 interpolates: {}",
+        tiny.report.max_residual
+    );
+    // the least-squares line
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    let slope = sxy / sxx;
+    let from_line = |lam: f64| {
+        let f = smoothing_spline(&data, Lambda::Given(lam)).unwrap();
+        x.iter()
+            .map(|&t| (f.curve.eval(t).unwrap()[0] - (my + slope * (t - mx))).abs())
+            .fold(0.0, f64::max)
+    };
+    let (d2, d3, d5) = (from_line(1e2), from_line(1e3), from_line(1e5));
+    // O(1/λ) until the penalty's conditioning (λ·‖Ω‖/‖BᵀWB‖ ≈ 1e10 at λ = 1e5) takes over
+    assert!(d3 < 0.2 * d2 && d5 < 1e-5, "λ→∞: {d2} {d3} {d5}");
+}
+
+#[test]
+fn robust_fit_rejects_outliers_and_returns_weights() {
+    let x: Vec<f64> = (0..100).map(|k| f64::from(k) / 99.0).collect();
+    let mut y: Vec<f64> = x.iter().map(|t| t * t).collect();
+    for k in [10, 40, 77] {
+        y[k] += 5.0;
+    }
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 8).unwrap();
+    let r = robust_least_squares(&data, 3, &kv, RobustLoss::Tukey(4.685), 50).unwrap();
+    for k in [10, 40, 77] {
+        assert_eq!(r.weights[k], 0.0, "outlier {k} rejected");
+    }
+    assert!(
+        (r.fit.curve.eval(0.5).unwrap()[0] - 0.25).abs() < 1e-9,
+        "clean fit"
+    );
+    let h = robust_least_squares(&data, 3, &kv, RobustLoss::Huber(1.345), 50).unwrap();
+    assert!(
+        h.weights[40] < 0.1 && h.weights[41] == 1.0,
+        "Huber down-weights: {} {}",
+        h.weights[40],
+        h.weights[41]
+    );
+}
+
+fn knots_strategy() -> impl Strategy<Value = (usize, Vec<f64>)> {
+    (1usize..=3, proptest::collection::vec(0.05f64..0.95, 0..5)).prop_map(|(p, mut inner)| {
+        inner.sort_by(f64::total_cmp);
+        inner.dedup_by(|a, b| (*a - *b).abs() < 0.02);
+        let mut k = vec![0.0; p + 1];
+        k.extend(inner);
+        k.extend(vec![1.0; p + 1]);
+        (p, k)
+    })
+}
+
+proptest! {
+    #![proptest_config(lekalo_testkit::config(64))]
+
+    /// Data sampled from a spline of the same space are reproduced exactly, and the fit moves
+    /// with an affine map of the data.
+    #[test]
+    fn reproduces_its_own_space_and_is_affine_invariant(
+        (p, k) in knots_strategy(),
+        coef in proptest::collection::vec(-10.0f64..10.0, 16),
+        m in 0usize..40,
+    ) {
+        let kv = KnotVector::new(k).unwrap();
+        let n = kv.len() - p - 1;
+        let ctrl = Points::from_flat(2, coef[..2 * n].to_vec()).unwrap();
+        let truth = BSplineCurve::from_knot_vector(p, kv.clone(), ctrl).unwrap();
+        let count = 4 * n + m;
+        let u: Vec<f64> = (0..count).map(|i| i as f64 / (count - 1) as f64).collect();
+        let q = eval_all(&truth, &u);
+        let data = FitData::new(PointsRef::from_flat(2, &q).unwrap(), &u).unwrap();
+        prop_assume!(check_schoenberg_whitney(&u, p, &kv).is_ok());
+        let fit = least_squares(&data, p, &kv, &EndConstraints::none()).unwrap();
+        let scale = coef.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+        assert_close(fit.curve.control_points().as_slice(), truth.control_points().as_slice(), 1e-9 * scale, "reproduction");
+        // affine map: rotate by 0.7 rad, scale 3, shift (100, −50)
+        let (c, s) = (0.7f64.cos(), 0.7f64.sin());
+        let mapped: Vec<f64> = q.chunks_exact(2).flat_map(|v| [3.0 * (c * v[0] - s * v[1]) + 100.0, 3.0 * (s * v[0] + c * v[1]) - 50.0]).collect();
+        let noisy: Vec<f64> = mapped.iter().enumerate().map(|(i, v)| v + 0.01 * ((i * 7 % 5) as f64 - 2.0)).collect();
+        let d2 = FitData::new(PointsRef::from_flat(2, &noisy).unwrap(), &u).unwrap();
+        let f2 = least_squares(&d2, p, &kv, &EndConstraints::none()).unwrap();
+        // the inverse map of the fit of mapped data is the fit of the inverse-mapped data
+        let back: Vec<f64> = noisy.chunks_exact(2).flat_map(|v| { let (x, y) = ((v[0] - 100.0) / 3.0, (v[1] + 50.0) / 3.0); [c * x + s * y, -s * x + c * y] }).collect();
+        let d3 = FitData::new(PointsRef::from_flat(2, &back).unwrap(), &u).unwrap();
+        let f3 = least_squares(&d3, p, &kv, &EndConstraints::none()).unwrap();
+        let mapped_ctrl: Vec<f64> = f3.curve.control_points().as_slice().chunks_exact(2).flat_map(|v| [3.0 * (c * v[0] - s * v[1]) + 100.0, 3.0 * (s * v[0] + c * v[1]) - 50.0]).collect();
+        assert_close(f2.curve.control_points().as_slice(), &mapped_ctrl, 1e-8 * (scale * 3.0 + 100.0), "affine invariance");
+    }
+
+    /// The smoothing condition meets its target; the tolerance fit meets its bound.
+    #[test]
+    fn residual_below_s_and_deviation_below_tol(
+        freq in 1.0f64..8.0,
+        amp in 0.01f64..0.2,
+        count in 30usize..200,
+        s_frac in 0.1f64..2.0,
+        tol_exp in -4.0f64..-1.0,
+    ) {
+        let x: Vec<f64> = (0..count).map(|i| i as f64 / (count - 1) as f64).collect();
+        let y: Vec<f64> = x.iter().enumerate().map(|(i, t)| (freq * t).sin() + amp * (((i * 7919) % 11) as f64 / 10.0 - 0.5)).collect();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let s = s_frac * count as f64 * amp * amp / 12.0;
+        let fit = smoothing_condition(&data, 3, s).unwrap();
+        prop_assert!(fit.report.weighted_rss <= s, "rss {} > s {}", fit.report.weighted_rss, s);
+        let q: Vec<f64> = x.iter().zip(&y).flat_map(|(a, b)| [*a, *b]).collect();
+        let tol = 10f64.powf(tol_exp);
+        for how in [Deviation::Distance, Deviation::Parameter] {
+            let mut opts = ToleranceOptions::new(3, tol);
+            opts.deviation = how;
+            let t = fit_tolerance(PointsRef::from_flat(2, &q).unwrap(), &opts).unwrap();
+            prop_assert!(t.max_deviation <= tol, "deviation {} > tol {}", t.max_deviation, tol);
+            prop_assert!(t.deviations.iter().all(|&d| d <= tol), "every deviation within tol");
+        }
+    }
+}
