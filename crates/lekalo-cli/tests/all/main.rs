@@ -8,6 +8,7 @@ mod cli_bezier;
 mod cli_blend;
 mod cli_blend_corners;
 mod cli_fit;
+mod cli_fit_options;
 mod cli_gallery;
 mod cli_help_examples;
 mod cli_interpolate;

@@ -5,10 +5,9 @@
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
-mod common;
-
 use std::fmt::Write as _;
 
+use crate::common;
 use common::{dir_with, json_of, lekalo, p};
 
 /// The cubic y(x) = 1 − 2x + 0.1x³, which every cubic spline space reproduces.
