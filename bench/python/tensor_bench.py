@@ -18,8 +18,9 @@ scripts/test.sh does) and SciPy beside it. Workloads, each on an uneven grid of 
   against SciPy's `NdBSpline` (same t, c, k), and `RegularGridInterpolator(method="cubic")` on
   the same grid (timed on --rgi-points points and reported per point: it builds 1-D splines
   at every call);
-- peak memory of the n3^3 construction, in a fresh process (ru_maxrss after minus before),
-  as a multiple of the input's size.
+- peak memory of the n3^3 construction, in a fresh process (the peak resident size above
+  what the process held just before the call, the peak reset by /proc/self/clear_refs), as a
+  multiple of the input's size.
 
 Every lekalo result is checked against SciPy's before it is timed: coefficients against the
 NumPy sweep's, values against SciPy's NdBSpline. Timing: the median of --repeats samples, each
@@ -104,13 +105,23 @@ def bracket(lekalo_call, peers, repeats):
 
 
 def memory_child(n: int) -> None:
-    """Prints the peak memory of one n^3 construction, in bytes, and the input's size."""
-    import resource
+    """Prints the peak memory of one n^3 construction above the memory held before it, in
+    bytes, and the input's size: the kernel's peak (VmHWM) is reset just before the call
+    (`/proc/self/clear_refs`), so earlier temporaries do not hide it (Linux only)."""
+
+    def status(field: str) -> int:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1]) * 1024
+        raise RuntimeError(f"no {field} in /proc/self/status")
 
     axes, values = grid(n, 3, np.random.default_rng(1))
-    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    with open("/proc/self/clear_refs", "w") as f:
+        f.write("5")
+    before = status("VmRSS")
     spline = ls.make_ndbspl(axes, values, k=3)
-    after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    after = status("VmHWM")
     print(json.dumps({"extra": after - before, "input": values.nbytes, "coefficients": spline.c.nbytes}))
 
 
@@ -180,8 +191,9 @@ def main() -> None:
 
     out = subprocess.run([sys.executable, __file__, "--memory-child", str(a.n3)], capture_output=True, text=True, check=True)
     m = json.loads(out.stdout)
-    print(f"\npeak memory of the {a.n3}^3 construction: {m['extra'] / 2**20:.1f} MiB above the input's {m['input'] / 2**20:.1f} MiB "
-          f"({(m['extra'] + m['input']) / m['input']:.2f}x the input, the result's coefficients included)")
+    print(f"\npeak memory of the {a.n3}^3 construction: {m['extra'] / 2**20:.1f} MiB above what the process held "
+          f"(the input's {m['input'] / 2**20:.1f} MiB included there); input + extra = {(m['extra'] + m['input']) / m['input']:.2f}x the input, "
+          f"the result's {m['coefficients'] / 2**20:.1f} MiB of coefficients included")
 
 
 if __name__ == "__main__":
