@@ -1,12 +1,10 @@
 //! Decoding of the entities read: B-spline curves and surfaces (plain or complex instances,
-//! rational or not), their points and knots, and trimmed curves split at their parameters; the
-//! other geometry, which is listed as skipped.
+//! rational or not), their points and knots; the other geometry, which is listed as skipped.
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
-use super::analytic::Basis;
 use super::parse::Parsed;
-use super::{int, list, num, numbers, Instance, Why, P};
+use super::{int, list, numbers, Instance, Why, P};
 use crate::error::Location;
 use crate::object::Object;
 use crate::shape::Surface;
@@ -108,7 +106,7 @@ pub(super) enum KnotForm {
 }
 
 /// The curve entities of an implied knot form.
-const IMPLICIT_CURVES: &[(&str, KnotForm)] = &[
+pub(super) const IMPLICIT_CURVES: &[(&str, KnotForm)] = &[
     ("UNIFORM_CURVE", KnotForm::Uniform),
     ("QUASI_UNIFORM_CURVE", KnotForm::QuasiUniform),
     ("BEZIER_CURVE", KnotForm::PiecewiseBezier),
@@ -368,91 +366,6 @@ impl Reader<'_> {
                 )
             }
         })
-    }
-
-    /// A `TRIMMED_CURVE` (ISO 10303-42 §4.4.29) over a B-spline, line, circle, ellipse or
-    /// polyline, trimmed by parameter values or by points (the parameter of a conic is its
-    /// angle, in the file's plane angle unit). `budget` is the number of basis control points
-    /// trims may still read: a basis is read once per trim, so without it a file of many short
-    /// trims of one long curve would be read in quadratic time.
-    pub(super) fn trimmed(&self, r: &[P], budget: &mut usize) -> Result<(u64, Object), Why> {
-        self.trimmed_at(r, budget, 0)
-    }
-
-    /// [`Reader::trimmed`] at a depth of curve references (see [`Reader::basis_at`]).
-    pub(super) fn trimmed_at(
-        &self,
-        r: &[P],
-        budget: &mut usize,
-        depth: usize,
-    ) -> Result<(u64, Object), Why> {
-        if r.len() < 5 {
-            return Err(
-                "TRIMMED_CURVE needs name, basis_curve, trim_1, trim_2, sense_agreement".into(),
-            );
-        }
-        let P::Ref(basis) = &r[1] else {
-            return Err("basis_curve is not a reference".into());
-        };
-        let inst = self
-            .p
-            .instances
-            .get(basis)
-            .ok_or_else(|| format!("basis curve #{basis} is not defined"))?;
-        let size = inst
-            .records
-            .iter()
-            .find_map(|(name, r)| {
-                let at = if name == "B_SPLINE_CURVE" {
-                    1
-                } else if name == "B_SPLINE_CURVE_WITH_KNOTS"
-                    || IMPLICIT_CURVES.iter().any(|(n, _)| n == name)
-                {
-                    2
-                } else {
-                    return None;
-                };
-                r.get(at).and_then(list).map(<[P]>::len)
-            })
-            .unwrap_or(0);
-        *budget = budget.checked_sub(size).ok_or_else(|| {
-            format!(
-                "the basis curve #{basis} ({size} control points) is one of bases trimmed more often than the file's size allows to read"
-            )
-        })?;
-        let curve = self.basis_at(*basis, depth + 1)?;
-        let conic = matches!(curve, Basis::Ellipse { .. });
-        let master_points = matches!(r.get(5), Some(P::Enum(e)) if e == "CARTESIAN");
-        let trim = |p: &P| -> Option<f64> {
-            let items = list(p)?;
-            let by_value = items.iter().find_map(|x| match x {
-                P::Typed(k, v) if k == "PARAMETER_VALUE" => {
-                    v.first()
-                        .and_then(num)
-                        .map(|t| if conic { t * self.angle } else { t })
-                }
-                _ => None,
-            });
-            let by_point = || {
-                items.iter().find_map(|x| match x {
-                    P::Ref(_) => self.location(x).ok().and_then(|q| curve.parameter_of(&q)),
-                    _ => None,
-                })
-            };
-            match by_value {
-                Some(t) if !master_points => Some(t),
-                _ => by_point().or(by_value),
-            }
-        };
-        let (Some(t1), Some(t2)) = (trim(&r[2]), trim(&r[3])) else {
-            return Err("not trimmed by parameter values, nor by points on a line or conic".into());
-        };
-        let sense = match &r[4] {
-            P::Enum(e) => e == "T",
-            _ => return Err("sense_agreement is not .T. or .F.".into()),
-        };
-        let piece = curve.piece(t1, t2, sense)?;
-        Ok((*basis, piece))
     }
 }
 

@@ -28,8 +28,8 @@
 //! | file | subject |
 //! |---|---|
 //! | `parse.rs` | the exchange structure's lexer and parser: instances by id and the header's schema |
-//! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots) and of trimmed curves; the geometry that is skipped |
-//! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library |
+//! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots); the geometry that is skipped |
+//! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library; trimmed curves over any of them |
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped |
