@@ -133,7 +133,7 @@ enum Command {
     Knot(cmd::knot::KnotArgs),
     /// Fit points: least squares, smoothing splines, fitting to a tolerance, robust fits;
     /// surfaces through grids and scattered data.
-    Fit(Box<cmd::fit::FitArgs>),
+    Fit(Box<cmd::fit_args::FitArgs>),
     /// Length, parameter at length, exact bounding box, curvature extrema and inflections of a
     /// curve; the exact bounding box of a surface.
     Measure(cmd::measure::MeasureArgs),

@@ -21,6 +21,7 @@ pub(crate) use construct::{
     bezier, blend, explicit, interpolate, jump, knot, knots, make, make_surface, pp, tensor,
 };
 pub(crate) use files::{cad, convert};
+pub(crate) use fitting::args as fit_args;
 pub(crate) use fitting::fit;
 pub(crate) use inspect::{comb, eval, info, plot, shapes, surface_eval};
 pub(crate) use queries::{intersect, measure, mesh, offset, project};

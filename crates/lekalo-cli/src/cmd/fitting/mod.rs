@@ -1,5 +1,13 @@
 //! `lekalo fit`: least squares, smoothing, tolerance, robust, surfaces, closed curves.
 //!
-//! - `fit.rs`: the command and its modes, closed curves and periodic functions among them.
+//! - `args.rs`: the command's arguments, and the domains and knot vectors they give.
+//! - `fit.rs`: the command, dispatching to the curve modes (here), surfaces and closed curves.
+//! - `surface.rs`: grid and scattered surfaces.
+//! - `periodic.rs`: closed curves and periodic functions.
+//! - `report.rs`: a fitted curve written out with its report.
 
+pub(crate) mod args;
 pub(crate) mod fit;
+mod periodic;
+mod report;
+mod surface;

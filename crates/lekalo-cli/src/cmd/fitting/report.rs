@@ -1,0 +1,62 @@
+//! A fitted curve written out with its report (residuals, λ or s, control points), or as
+//! `{"object": …, "report": …}` with `--json`.
+
+use lekalo_io::CurveJson;
+use std::path::PathBuf;
+
+use anyhow::Result;
+use lekalo::fit::CurveFit;
+use lekalo::Points;
+use lekalo_io::Object;
+use serde_json::{json, Value};
+
+use super::args::FitArgs;
+use crate::context::Context;
+use crate::output::emit;
+use crate::output::objects::write_curve;
+
+pub(super) fn finish(
+    a: &FitArgs,
+    obj: Object,
+    shown: &Points,
+    fit: &CurveFit,
+    mut report: Value,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let r = &fit.report;
+    report["max_residual"] = json!(r.max_residual);
+    report["max_index"] = json!(r.max_index);
+    report["rms"] = json!(r.rms);
+    report["weighted_rss"] = json!(r.weighted_rss);
+    report["control_points"] = json!(r.n_ctrl);
+    report["knots"] = json!(fit.curve.knots().len());
+    if let Some(l) = r.lambda {
+        report["lambda"] = json!(l);
+    }
+    if a.per_point {
+        report["residuals"] = json!(r.residuals);
+    }
+    if a.json {
+        let object: Value = serde_json::from_str(&obj.to_json_pretty())?;
+        let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
+    }
+    if !cx.is_quiet() {
+        crate::output::report(&report_line(&report));
+    }
+    write_curve(&obj, Some(shown), &a.out, inputs, cx)
+}
+
+pub(super) fn report_line(r: &Value) -> String {
+    let mut s = format!(
+        "fit: {} control points, residual max {} (point {}), RMS {}, weighted RSS {}",
+        r["control_points"], r["max_residual"], r["max_index"], r["rms"], r["weighted_rss"]
+    );
+    for key in ["lambda", "s", "tol", "max_deviation"] {
+        if !r[key].is_null() {
+            s.push_str(&format!(", {key} {}", r[key]));
+        }
+    }
+    s
+}
