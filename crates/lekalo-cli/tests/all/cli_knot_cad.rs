@@ -516,4 +516,22 @@ END-ISO-10303-21;
         );
     let text = fs::read_to_string(p(&d, "all.jsonl")).unwrap();
     assert_eq!(text.lines().count(), 2);
+    // info describes every shape of the file, a curve and a surface, one JSON line each
+    let out = lekalo()
+        .arg("info")
+        .arg(p(&d, "part.step"))
+        .assert()
+        .success();
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.get_output().stdout.clone())
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    assert_eq!(
+        (lines[0]["line"].as_u64(), lines[1]["line"].as_u64()),
+        (Some(1), Some(2))
+    );
+    assert_eq!(lines[0]["dim"], 3);
+    assert!(lines[1]["degree"].is_array(), "{}", lines[1]);
 }

@@ -11,6 +11,7 @@ use serde_json::{json, Value};
 
 use crate::cmd::shapes;
 use crate::context::Context;
+use crate::exit::bad_input;
 use crate::items::{not_a_curve, open, Items};
 
 /// Arguments of `lekalo info`.
@@ -190,7 +191,26 @@ fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
 pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
     let inputs = vec![a.input.clone()];
     let samples = cx.in_range(a.samples, 2, 1_000_000, "--samples")?;
-    let loaded = open(cx, &a.input, a.jsonl).map_err(|e| points_file_hint(&a.input, e))?;
+    let loaded = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
+        // a CAD file: one shape is described as any object; several (curves and surfaces
+        // mixed) as JSON Lines, one per shape in the file's order
+        let mut shapes = crate::cmd::files::cad::load_shapes(&a.input, cx)?;
+        match shapes.len() {
+            0 => {
+                return bad_input(format!(
+                    "{}: no curve or surface lekalo reads",
+                    a.input.display()
+                ))
+            }
+            1 => match shapes.remove(0) {
+                Shape::Curve(o) => Items::One(o),
+                other => Items::Other(other),
+            },
+            _ => return cad_info(a, cx, &shapes, samples, &inputs),
+        }
+    } else {
+        open(cx, &a.input, a.jsonl).map_err(|e| points_file_hint(&a.input, e))?
+    };
     match loaded {
         Items::Other(Shape::Tensor(t)) => crate::report::print_report(
             a.json,
@@ -231,4 +251,43 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
         }
         Items::Parquet(input) => crate::items::not_a_batch_command(&input),
     }
+}
+
+/// `info` of a CAD file of several shapes: one JSON line each (`"line"`: its place among the
+/// shapes read), curves as [`info_json`], surfaces as the surface summary; a shape that cannot
+/// be described is a line with its error (exit code 2 after the others are written).
+fn cad_info(
+    a: &InfoArgs,
+    cx: &Context,
+    shapes: &[Shape],
+    samples: usize,
+    inputs: &[PathBuf],
+) -> Result<()> {
+    let lines = shapes
+        .iter()
+        .enumerate()
+        .map(|(i, shape)| {
+            let j: Result<Value> = match shape {
+                Shape::Curve(o) => cx
+                    .check_bezier_degree(o, "sampling")
+                    .and_then(|()| Ok(info_json(o, samples)?)),
+                Shape::Surface(s) => shapes::surface_info_json(s, samples).map_err(Into::into),
+                other => Err(anyhow::anyhow!(
+                    "\"{}\" is not read from CAD files",
+                    other.type_name()
+                )),
+            };
+            match j {
+                Ok(mut j) => {
+                    j["line"] = json!(i + 1);
+                    (true, j.to_string())
+                }
+                Err(e) => (
+                    false,
+                    json!({"line": i + 1, "error": e.to_string()}).to_string(),
+                ),
+            }
+        })
+        .collect();
+    crate::batch::lines::finish(cx, lines, a.output.as_deref(), inputs)
 }
