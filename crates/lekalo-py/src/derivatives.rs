@@ -8,7 +8,7 @@
 //! and tangents have the shape `t.shape + (dim,)`; cotangents of the control points the shape
 //! of `control`, of the parameters the shape of `t`.
 
-use lekalo::derivatives::InterpolationMap;
+use lekalo::derivatives::{CurveLinearization, InterpolationMap};
 use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -167,14 +167,27 @@ pub(crate) fn bspline_curve_linearize<'py>(
     let ta = floats(t, "t")?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
+    linearization_dict(py, lin, &ta, c.dim(), degree)
+}
+
+/// A curve's linearisation (B-spline or NURBS) as the dict of NumPy arrays the Python side
+/// reads: `values`, `derivatives` (`t.shape + (dim,)`), `first` (`t.shape`), `basis`
+/// (`t.shape + (degree + 1,)`).
+fn linearization_dict<'py>(
+    py: Python<'py>,
+    lin: CurveLinearization,
+    ta: &FloatArray<'_>,
+    dim: usize,
+    degree: usize,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let pts = out_shape(&ta, &[c.dim()]);
+    let pts = out_shape(ta, &[dim]);
     d.set_item("values", array(py, lin.values, &pts)?)?;
     d.set_item("derivatives", array(py, lin.derivatives, &pts)?)?;
     d.set_item("first", index_array(py, lin.first, ta.shape())?)?;
     d.set_item(
         "basis",
-        array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
+        array(py, lin.basis, &out_shape(ta, &[degree + 1]))?,
     )?;
     Ok(d)
 }
@@ -282,16 +295,7 @@ pub(crate) fn nurbs_curve_linearize<'py>(
     let ta = floats(t, "t")?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
-    let d = PyDict::new(py);
-    let pts = out_shape(&ta, &[c.dim()]);
-    d.set_item("values", array(py, lin.values, &pts)?)?;
-    d.set_item("derivatives", array(py, lin.derivatives, &pts)?)?;
-    d.set_item("first", index_array(py, lin.first, ta.shape())?)?;
-    d.set_item(
-        "basis",
-        array(py, lin.basis, &out_shape(&ta, &[degree + 1]))?,
-    )?;
-    Ok(d)
+    linearization_dict(py, lin, &ta, c.dim(), degree)
 }
 
 /// The factored collocation map of interpolation, and the data's dimension from `values`

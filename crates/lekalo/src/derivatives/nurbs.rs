@@ -8,25 +8,16 @@
 //! - `∂C/∂t = C' = (A' − W' C) / W` (P&T eq. 4.8 with one derivative).
 
 use super::checks::{check_input, check_len, check_scalars};
-use super::curve::PointBasis;
+use super::curve::{CurveLinearization, PointBasis};
 use crate::curve::NurbsCurve;
 use crate::error::{check_finite, Result};
 
 /// The linearisation of a NURBS curve's batch evaluation, what
-/// [`NurbsCurve::eval_batch_linearize`] returns: with `R = basis`,
-/// `C(t_i) = Σ_k R[i·(p+1)+k] · P_{first_i + k}`, and
+/// [`NurbsCurve::eval_batch_linearize`] returns: the fields of a B-spline's
+/// [`CurveLinearization`], with `basis` holding the `p + 1` non-zero rational basis functions
+/// `R_j = N_j w_j / W`: `C(t_i) = Σ_k R[i·(p+1)+k] · P_{first_i + k}`, and
 /// `∂C(t_i)/∂w_j = R_{ij} (P_j − C(t_i)) / w_j`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NurbsLinearization {
-    /// `C(t_i)` (`m × dim`): bit-for-bit [`NurbsCurve::eval_batch`].
-    pub values: Vec<f64>,
-    /// `C'(t_i)` (`m × dim`; right-hand at interior knots).
-    pub derivatives: Vec<f64>,
-    /// Index of the first control point with a non-zero basis function at `t_i`.
-    pub first: Vec<usize>,
-    /// The `p + 1` non-zero rational basis functions `R_j = N_j w_j / W` (`m × (p + 1)`).
-    pub basis: Vec<f64>,
-}
+pub type NurbsLinearization = CurveLinearization;
 
 /// One point's sums: `A`, `W`, `C`, `A'`, `W'`, `C'` from the homogeneous net `h`
 /// (`dim + 1` numbers a point, weight last).
