@@ -107,7 +107,6 @@ pub(crate) fn write_object(
     pretty: bool,
     block: usize,
 ) -> std::io::Result<()> {
-    use crate::Object;
     let (nl, ind, ind2, sp) = layout(pretty);
     let comma_sp = [b",".as_slice(), sp].concat();
     let mut out: Vec<u8> = Vec::with_capacity(4096);
@@ -138,15 +137,9 @@ pub(crate) fn write_object(
     out.push(b'"');
     out.extend_from_slice(obj.type_name().as_bytes());
     out.push(b'"');
-    let (degree, knots, weights) = match obj {
-        Object::Bezier(_) => (None, None, None),
-        Object::BSpline(c) => (Some(c.degree()), Some(c.knots().as_slice()), None),
-        Object::Nurbs(c) => (
-            Some(c.degree()),
-            Some(c.knots().as_slice()),
-            Some(c.weights()),
-        ),
-    };
+    let knots = obj.explicit_knots().map(lekalo::KnotVector::as_slice);
+    let degree = knots.map(|_| obj.degree());
+    let weights = obj.weights();
     if let Some(d) = degree {
         field(&mut out, "degree", false);
         out.extend_from_slice(d.to_string().as_bytes());

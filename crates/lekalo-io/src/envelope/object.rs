@@ -175,21 +175,13 @@ impl CurveJson for Curve {
         m.insert("lekalo".into(), Value::from(FORMAT_VERSION));
         m.insert("type".into(), Value::from(self.type_name()));
         let rows = |p: &Points| Value::from(p.iter().map(Value::from).collect::<Vec<_>>());
-        match self {
-            Object::Bezier(c) => {
-                m.insert("control".into(), rows(c.control_points()));
-            }
-            Object::BSpline(c) => {
-                m.insert("degree".into(), Value::from(c.degree()));
-                m.insert("knots".into(), Value::from(c.knots().as_slice().to_vec()));
-                m.insert("control".into(), rows(c.control_points()));
-            }
-            Object::Nurbs(c) => {
-                m.insert("degree".into(), Value::from(c.degree()));
-                m.insert("knots".into(), Value::from(c.knots().as_slice().to_vec()));
-                m.insert("control".into(), rows(&c.control_points()));
-                m.insert("weights".into(), Value::from(c.weights()));
-            }
+        if let Some(knots) = self.explicit_knots() {
+            m.insert("degree".into(), Value::from(self.degree()));
+            m.insert("knots".into(), Value::from(knots.as_slice().to_vec()));
+        }
+        m.insert("control".into(), rows(&self.control_points()));
+        if let Some(w) = self.weights() {
+            m.insert("weights".into(), Value::from(w));
         }
         Value::Object(m)
     }

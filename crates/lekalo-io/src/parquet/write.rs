@@ -217,29 +217,17 @@ struct CurveRow<'a> {
 
 impl<'a> CurveRow<'a> {
     fn of(obj: &'a Object) -> Self {
-        let dim = obj.dim();
-        match obj {
-            Object::Bezier(c) => CurveRow {
-                degree: c.degree(),
-                dim,
-                knots: &[],
-                control: c.control_points().as_slice().into(),
-                weights: None,
+        CurveRow {
+            degree: obj.degree(),
+            dim: obj.dim(),
+            knots: obj
+                .explicit_knots()
+                .map_or(&[], lekalo::KnotVector::as_slice),
+            control: match obj.control_points() {
+                std::borrow::Cow::Borrowed(p) => p.as_slice().into(),
+                std::borrow::Cow::Owned(p) => p.into_vec().into(),
             },
-            Object::BSpline(c) => CurveRow {
-                degree: c.degree(),
-                dim,
-                knots: c.knots().as_slice(),
-                control: c.control_points().as_slice().into(),
-                weights: None,
-            },
-            Object::Nurbs(c) => CurveRow {
-                degree: c.degree(),
-                dim,
-                knots: c.knots().as_slice(),
-                control: c.control_points().into_vec().into(),
-                weights: Some(c.weights()),
-            },
+            weights: obj.weights(),
         }
     }
 }

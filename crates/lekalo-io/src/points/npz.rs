@@ -58,25 +58,12 @@ pub fn curve_to_npz(obj: &Object) -> IoResult<Vec<u8>> {
 /// The writer's; the archive's (as [`std::io::ErrorKind::Other`]), e.g. a degree too large for
 /// an int64.
 pub fn write_npz_curve<W: Write + Seek>(obj: &Object, w: W) -> std::io::Result<()> {
-    let owned_control;
-    let bezier_knots;
-    let (degree, knots, control, weights): (usize, &[f64], &Points, Option<Vec<f64>>) = match obj {
-        Object::Bezier(c) => {
-            let p = c.degree();
-            bezier_knots = [vec![0.0; p + 1], vec![1.0; p + 1]].concat();
-            (p, &bezier_knots, c.control_points(), None)
-        }
-        Object::BSpline(c) => (c.degree(), c.knots().as_slice(), c.control_points(), None),
-        Object::Nurbs(c) => {
-            owned_control = c.control_points();
-            (
-                c.degree(),
-                c.knots().as_slice(),
-                &owned_control,
-                Some(c.weights()),
-            )
-        }
-    };
+    let degree = obj.degree();
+    let knots = obj.knots();
+    let knots = knots.as_slice();
+    let control = obj.control_points();
+    let control: &Points = &control;
+    let weights = obj.weights();
     let other = |e: &dyn std::fmt::Display| std::io::Error::other(e.to_string());
     let degree = i64::try_from(degree)
         .map_err(|_| other(&format!("degree {degree} does not fit an int64")))?;

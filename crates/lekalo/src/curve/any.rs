@@ -345,6 +345,26 @@ impl Curve {
         }
     }
 
+    /// The same polynomial curve as a B-spline (a Bezier curve on clamped knots over `[0, 1]`,
+    /// [`BezierCurve::to_bspline`]); `None` for a NURBS curve, which is not polynomial.
+    #[must_use]
+    pub fn to_bspline(&self) -> Option<BSplineCurve> {
+        match self.spline() {
+            Spline::Poly(c) => Some(c.into_owned()),
+            Spline::Rational(_) => None,
+        }
+    }
+
+    /// The same curve as a NURBS curve: a polynomial curve is the rational curve with unit
+    /// weights (P&T §4.2, [`NurbsCurve::from_bspline`]); a NURBS curve is returned unchanged.
+    #[must_use]
+    pub fn to_nurbs(&self) -> NurbsCurve {
+        match self.spline() {
+            Spline::Poly(c) => NurbsCurve::from_bspline(&c),
+            Spline::Rational(c) => c.clone(),
+        }
+    }
+
     /// The `order`-th antiderivative as a B-spline of degree `p + order`
     /// ([`BSplineCurve::antiderivative`]; a Bezier curve as its B-spline on `[0, 1]`).
     ///
@@ -631,6 +651,37 @@ mod tests {
             ["bezier_curve", "bspline_curve", "nurbs_curve"],
             "type names"
         );
+    }
+
+    #[test]
+    fn conversions_keep_the_points() {
+        for c in all() {
+            let nurbs = c.to_nurbs();
+            let poly = c.to_bspline();
+            assert_eq!(poly.is_some(), !c.is_rational(), "{}", c.type_name());
+            let (a, b) = c.domain();
+            for k in 0..=8 {
+                let t = a + (b - a) * f64::from(k) / 8.0;
+                let want = c.eval(t).unwrap();
+                let got = nurbs.eval(t).unwrap();
+                for (x, y) in got.iter().zip(&want) {
+                    assert!(
+                        (x - y).abs() <= 1e-15 * (1.0 + y.abs()),
+                        "NURBS of {}",
+                        c.type_name()
+                    );
+                }
+                if let Some(p) = &poly {
+                    for (x, y) in p.eval(t).unwrap().iter().zip(&want) {
+                        assert!(
+                            (x - y).abs() <= 1e-15 * (1.0 + y.abs()),
+                            "B-spline of {}",
+                            c.type_name()
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

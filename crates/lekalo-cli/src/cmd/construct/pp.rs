@@ -197,16 +197,13 @@ pub(crate) fn run(a: &PpArgs, cx: &Context) -> Result<()> {
                     cx,
                 );
             }
-            let c = match load_one(cx, input)? {
-                Object::BSpline(c) => c,
-                Object::Bezier(b) => b.to_bspline(),
-                other => {
-                    return bad_input(format!(
-                        "{}: a {} has no pp-form (rational); give a B-spline or Bezier curve",
-                        input.display(),
-                        other.display_name()
-                    ))
-                }
+            let obj = load_one(cx, input)?;
+            let Some(c) = obj.to_bspline() else {
+                return bad_input(format!(
+                    "{}: a {} has no pp-form (rational); give a B-spline or Bezier curve",
+                    input.display(),
+                    obj.display_name()
+                ));
             };
             let p = PiecewisePolynomial::from_bspline(&c)?;
             let format = format_of(out.to.as_deref(), out.output.as_deref(), "json");

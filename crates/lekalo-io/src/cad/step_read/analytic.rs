@@ -179,15 +179,6 @@ fn restrict(o: &Object, a: f64, b: f64) -> lekalo::Result<Object> {
     Ok(c)
 }
 
-/// The NURBS form of a curve read.
-pub(super) fn to_nurbs(o: &Object) -> NurbsCurve {
-    match o {
-        Object::Nurbs(c) => c.clone(),
-        Object::BSpline(c) => NurbsCurve::from_bspline(c),
-        Object::Bezier(c) => NurbsCurve::from_bspline(&c.to_bspline()),
-    }
-}
-
 /// Points that bound the faces on each unbounded surface, by surface id (millimetres).
 #[derive(Default)]
 pub(super) struct FaceBounds {
@@ -523,7 +514,7 @@ impl Reader<'_> {
             Some(o) => o.clone(),
             None => self.basis(*c)?.whole()?,
         };
-        let n = to_nurbs(&o);
+        let n = o.to_nurbs();
         if n.dim() != 3 {
             return Err(format!("the swept curve #{c} is not 3-D"));
         }
