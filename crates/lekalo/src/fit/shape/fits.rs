@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::fit::banded::SymBand;
 use crate::fit::data::{CurveFit, FitData, FitReport};
 use crate::fit::knot_placement::check_schoenberg_whitney;
-use crate::fit::lsq::{accumulate, least_squares, spline_space, EndConstraints, Fixed};
+use crate::fit::lsq::{accumulate, solve_control, spline_space, Fixed};
 use crate::fit::smoothing::Smoother;
 use crate::fit::{smoothing_spline, Lambda};
 use crate::knots::KnotVector;
@@ -31,9 +31,10 @@ pub const SHAPE_RTOL: f64 = 5e-13;
 /// the constrained derivative has degree `d = p − r ≤ 2`: `d ≤ 1` by the coefficients' signs, `d = 2`
 /// by a rotated second-order cone `b₁ + √(b₀b₂) ≥ 0`. For `d ≥ 3` the coefficient signs are
 /// sufficient only (the fit is feasible but may be the optimum of a slightly stricter problem).
-/// The data are reduced by banded QR to the triangle `R` (as [`least_squares`]); the cone
-/// program with the banded `RᵀR` is solved by Clarabel (interior point), so the work after the
-/// pass over the data grows with the number of coefficients only.
+/// The data are reduced by banded QR to the triangle `R` (one pass, as [`least_squares`]: the
+/// same triangle gives the unconstrained fit); the cone program with the banded `RᵀR` is
+/// solved by Clarabel (interior point), so the work after the pass over the data grows with
+/// the number of coefficients only.
 ///
 /// When the unconstrained fit already satisfies every constraint (to [`SHAPE_RTOL`]) it is
 /// returned unchanged. Functions only: the data are 1-D (`y` over parameters `x`).
@@ -58,6 +59,8 @@ pub const SHAPE_RTOL: f64 = 5e-13;
 /// [`Error::InvalidArgument`] / [`Error::NonFinite`] for a constraint outside the domain or with
 /// a bad number; [`Error::InfeasibleConstraints`] naming the constraints that contradict each
 /// other; [`Error::IllConditioned`] if the solver stops without an answer.
+///
+/// [`least_squares`]: crate::fit::least_squares
 pub fn constrained_least_squares(
     data: &FitData<'_>,
     degree: usize,
@@ -69,14 +72,24 @@ pub fn constrained_least_squares(
     let domain = knots.domain(degree);
     constraints.validate(domain, degree)?;
     check_schoenberg_whitney(data.params(), degree, knots)?;
-    let free = least_squares(data, degree, knots, &EndConstraints::none())?;
-    let scale = Scale::of(data, domain);
-    if holds(&free.curve, constraints, &scale)? {
-        return Ok(free);
-    }
+    // one pass over the data: the triangle gives the unconstrained fit (as `least_squares`,
+    // the same operations) and the objective of the constrained one
     let fixed = Fixed::free(data);
     let bw = degree + 1;
     let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw);
+    let scale = Scale::of(data, domain);
+    let free = BSplineCurve::from_raw(
+        degree,
+        knots.as_slice().to_vec(),
+        solve_control(&qr, data, degree, knots, n_ctrl, &fixed)?,
+    );
+    if holds(&free, constraints, &scale)? {
+        let report = FitReport::new(&free, data, None);
+        return Ok(CurveFit {
+            curve: free,
+            report,
+        });
+    }
     // ½‖Rc − z‖² with c and z in units of the data scale
     let p = gram_of_triangle(&qr.r, n_ctrl, bw);
     let z: Vec<f64> = qr.z.iter().map(|v| v / scale.y).collect();
@@ -187,48 +200,89 @@ pub fn shape_violations(curve: &BSplineCurve, constraints: &ShapeConstraints) ->
             got: curve.dim(),
         });
     }
-    let p = curve.degree();
-    let t = curve.knots().as_slice();
-    let ctrl = curve.control_points().as_slice();
-    let n_ctrl = ctrl.len();
-    let domain = curve.domain();
-    constraints.validate(domain, p)?;
-    let mut scratch = BasisScratch::new(p);
-    let mut out = Vec::with_capacity(constraints.len());
-    for s in &constraints.shapes {
-        let r = s.shape.derivative_order();
-        let (sigma, v) = (s.shape.sign(), s.shape.level());
-        let (a, b) = s.interval.unwrap_or(domain);
-        let mut worst = 0.0_f64;
-        if r > p {
-            // y⁽ʳ⁾ ≡ 0
-            worst = (sigma * v).max(0.0);
-        } else {
-            for (span, lo, hi) in pieces(t, p, n_ctrl, a, b) {
-                let m = bernstein_rows(t, p, span, lo, hi, r, &mut scratch);
-                let bc: Vec<f64> = m
-                    .iter()
-                    .map(|row| {
-                        let y: f64 = row
-                            .iter()
-                            .zip(&ctrl[span - p..=span])
-                            .map(|(a, c)| a * c)
-                            .sum();
-                        sigma * (y - v)
+    constraints.validate(curve.domain(), curve.degree())?;
+    ShapeCheck::new(curve, constraints).violations(curve, constraints)
+}
+
+/// The Bernstein rows of every shape's pieces ([`bernstein_rows`]), computed once from the
+/// degree and knots: the exact check of [`shape_violations`] for any control points on them.
+struct ShapeCheck {
+    shapes: Vec<ShapeRows>,
+}
+
+/// One shape's check: `σ(y⁽ʳ⁾ − v)` with `r` above the degree (`y⁽ʳ⁾ ≡ 0`, the violation
+/// known), or the rows of each piece with the index of its first control point.
+enum ShapeRows {
+    Constant(f64),
+    Pieces {
+        sigma: f64,
+        level: f64,
+        rows: Vec<(usize, Vec<Vec<f64>>)>,
+    },
+}
+
+impl ShapeCheck {
+    fn new(curve: &BSplineCurve, constraints: &ShapeConstraints) -> Self {
+        let p = curve.degree();
+        let t = curve.knots().as_slice();
+        let n_ctrl = curve.control_points().len();
+        let domain = curve.domain();
+        let mut scratch = BasisScratch::new(p);
+        let shapes = constraints
+            .shapes
+            .iter()
+            .map(|s| {
+                let r = s.shape.derivative_order();
+                let (sigma, level) = (s.shape.sign(), s.shape.level());
+                if r > p {
+                    return ShapeRows::Constant((sigma * level).max(0.0));
+                }
+                let (a, b) = s.interval.unwrap_or(domain);
+                let rows = pieces(t, p, n_ctrl, a, b)
+                    .into_iter()
+                    .map(|(span, lo, hi)| {
+                        (
+                            span - p,
+                            bernstein_rows(t, p, span, lo, hi, r, &mut scratch),
+                        )
                     })
                     .collect();
-                worst = worst.max(-min_on_unit(&bc));
-            }
+                ShapeRows::Pieces { sigma, level, rows }
+            })
+            .collect();
+        ShapeCheck { shapes }
+    }
+
+    /// [`shape_violations`] of `curve` (on the degree and knots this check was made for).
+    fn violations(&self, curve: &BSplineCurve, constraints: &ShapeConstraints) -> Result<Vec<f64>> {
+        let ctrl = curve.control_points().as_slice();
+        let mut out = Vec::with_capacity(constraints.len());
+        let mut bc = Vec::new();
+        for s in &self.shapes {
+            out.push(match s {
+                ShapeRows::Constant(v) => *v,
+                ShapeRows::Pieces { sigma, level, rows } => {
+                    let mut worst = 0.0_f64;
+                    for (first, m) in rows {
+                        bc.clear();
+                        bc.extend(m.iter().map(|row| {
+                            let y: f64 = row.iter().zip(&ctrl[*first..]).map(|(a, c)| a * c).sum();
+                            sigma * (y - level)
+                        }));
+                        worst = worst.max(-min_on_unit(&bc));
+                    }
+                    worst
+                }
+            });
         }
-        out.push(worst);
+        for q in &constraints.points {
+            let y = curve
+                .eval_derivatives(q.x, q.derivative)?
+                .point(q.derivative)[0];
+            out.push((y - q.value).abs());
+        }
+        Ok(out)
     }
-    for q in &constraints.points {
-        let y = curve
-            .eval_derivatives(q.x, q.derivative)?
-            .point(q.derivative)[0];
-        out.push((y - q.value).abs());
-    }
-    Ok(out)
 }
 
 /// Refuses data that are not a function `y(x)`.
@@ -267,7 +321,22 @@ impl Scale {
 
 /// Whether `curve` keeps every constraint to [`SHAPE_RTOL`] of the scale.
 fn holds(curve: &BSplineCurve, constraints: &ShapeConstraints, scale: &Scale) -> Result<bool> {
-    let v = shape_violations(curve, constraints)?;
+    holds_by(
+        &ShapeCheck::new(curve, constraints),
+        curve,
+        constraints,
+        scale,
+    )
+}
+
+/// [`holds`] with the rows of a check made once for the curve's degree and knots.
+fn holds_by(
+    check: &ShapeCheck,
+    curve: &BSplineCurve,
+    constraints: &ShapeConstraints,
+    scale: &Scale,
+) -> Result<bool> {
+    let v = check.violations(curve, constraints)?;
     let orders = constraints
         .shapes
         .iter()
@@ -344,50 +413,73 @@ fn solve_program(
     let interior = prog
         .solve(0.0)
         .map_err(|f| failure_error(f, |i| constraints.describe(i)))?;
-    // polish on the active face (twice more when a touching point of a quadratic moved), kept
-    // only if it keeps every constraint exactly and does not raise the objective
+    let rows = ShapeCheck::new(
+        &curve_of(degree, knots.to_vec(), &interior[..n], scale, center),
+        constraints,
+    );
+    let check = |c: &[f64]| {
+        holds_by(
+            &rows,
+            &curve_of(degree, knots.to_vec(), c, scale, center),
+            constraints,
+            scale,
+        )
+    };
+    // polish on the active face, kept only if it keeps every constraint exactly and does not
+    // raise the objective; when the face's own rounding leaves it a few ulps outside a
+    // constraint, polish the same face tightened by the margin
     let bound = prog.objective(&interior) + POLISH_RTOL * (1.0 + prog.objective(&interior).abs());
-    let mut best = interior;
-    let mut exact = false;
-    let mut current = best.clone();
+    let mut start = interior.clone();
+    for margin in [0.0, FEASIBILITY_MARGIN] {
+        let (exact, last) = polish_exact(&prog, &start, margin, bound, &check)?;
+        if let Some(c) = exact {
+            return Ok(c);
+        }
+        // the tightened face is polished from where the first polish ended
+        start = last;
+    }
+    if check(&interior)? {
+        return Ok(interior);
+    }
+    // the interior-point answer misses a constraint by its rounding and the polish found no
+    // face: solve again with every inequality tightened by a margin above that rounding
+    if let Ok(c) = prog.solve(FEASIBILITY_MARGIN) {
+        if check(&c)? {
+            return Ok(c);
+        }
+    }
+    Ok(interior)
+}
+
+/// The polished answer from `start` (up to four rounds while a touching point of a quadratic
+/// moves), if one keeps every constraint exactly (`check`) with an objective at most `bound`;
+/// and the last answer polished (or `start`).
+fn polish_exact(
+    prog: &ConeProgram,
+    start: &[f64],
+    margin: f64,
+    bound: f64,
+    check: &dyn Fn(&[f64]) -> Result<bool>,
+) -> Result<(Option<Vec<f64>>, Vec<f64>)> {
+    let mut best = None;
+    let mut current = start.to_vec();
     for _ in 0..4 {
-        let Some(c) = prog.polish(&current) else {
+        let Some(c) = prog.polish(&current, margin) else {
             break;
         };
         let moved = c
             .iter()
             .zip(&current)
             .any(|(a, b)| (a - b).abs() > 1e-15 * (1.0 + a.abs()));
-        let curve = curve_of(degree, knots.to_vec(), &c, scale, center);
-        if prog.objective(&c) <= bound && holds(&curve, constraints, scale)? {
-            best.clone_from(&c);
-            exact = true;
+        if prog.objective(&c) <= bound && check(&c)? {
+            best = Some(c.clone());
         }
         current = c;
         if !moved {
             break;
         }
     }
-    if !exact
-        && !holds(
-            &curve_of(degree, knots.to_vec(), &best, scale, center),
-            constraints,
-            scale,
-        )?
-    {
-        // the interior-point answer misses a constraint by its rounding and the polish found no
-        // face: solve again with every inequality tightened by a margin above that rounding
-        if let Ok(c) = prog.solve(FEASIBILITY_MARGIN) {
-            if holds(
-                &curve_of(degree, knots.to_vec(), &c, scale, center),
-                constraints,
-                scale,
-            )? {
-                best = c;
-            }
-        }
-    }
-    Ok(best)
+    Ok((best, current))
 }
 
 /// Margin (rows scaled to unit largest coefficient, coefficients in units of the data) by which

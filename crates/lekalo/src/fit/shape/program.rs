@@ -172,8 +172,12 @@ impl ConeProgram {
     /// vanish at an end, or value and slope at the touching point `τ*` inside), duplicates
     /// dropped, and the equality-constrained quadratic program solved. `None` when a multiplier of a made-equal row has the wrong sign (the face
     /// guessed is not the optimal one) or the solve fails; the caller also checks the answer
-    /// against every constraint exactly.
-    pub(crate) fn polish(&self, c: &[f64]) -> Option<Vec<f64>> {
+    /// against every constraint exactly. With `margin > 0` every row made equal that comes from
+    /// an inequality is set to `margin` instead of zero (rows scaled to unit largest
+    /// coefficient): the optimum on the same face of the program tightened as in
+    /// [`ConeProgram::solve`], for answers that the rounding of the face's solve leaves a few
+    /// ulps outside a constraint.
+    pub(crate) fn polish(&self, c: &[f64], margin: f64) -> Option<Vec<f64>> {
         let n = self.p.n;
         let unit = |r: &Row| {
             let m = r.max_abs();
@@ -231,7 +235,7 @@ impl ConeProgram {
                 rows.push((slope, false));
                 slope_of.push(Some(k));
             }
-            let (x, nu) = self.solve_face(rows, slope_of)?;
+            let (x, nu) = self.solve_face(rows, slope_of, margin)?;
             let scale = nu.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
             answer = Some(x);
             if touches.is_empty() || scale == 0.0 {
@@ -283,11 +287,13 @@ impl ConeProgram {
     /// The optimum on the face where every row given is zero, rows equal to an earlier one
     /// dropped, and rows from inequalities whose multipliers come out negative dropped one at a
     /// time (the active-set method); the coefficients and, for each slope row tagged, its
-    /// multiplier (`None` if it was dropped).
+    /// multiplier (`None` if it was dropped). Rows from inequalities are set to `margin`
+    /// instead of zero.
     fn solve_face(
         &self,
         rows: Vec<(Row, bool)>,
         tags: Vec<Option<usize>>,
+        margin: f64,
     ) -> Option<(Vec<f64>, Vec<Option<f64>>)> {
         let n = self.p.n;
         let n_tags = tags.iter().flatten().count();
@@ -299,6 +305,11 @@ impl ConeProgram {
         }
         if kept.len() > n {
             return None;
+        }
+        for (r, ineq, _) in &mut kept {
+            if *ineq {
+                r.constant -= margin;
+            }
         }
         for _ in 0..POLISH_ROUNDS {
             let eq: Vec<(Row, usize)> = kept.iter().map(|(r, _, _)| (r.clone(), 0)).collect();
@@ -426,7 +437,7 @@ impl ConeProgram {
         // an equality-constrained run (the polish) is one Newton step: refine its linear solve
         // to the last digit
         let polish = inequalities.is_empty() && cone_rows.is_empty();
-        let refine = if polish { 1e-16 } else { 1e-13 };
+        let refine = if polish { 1e-16 } else { 1e-10 };
         let settings = DefaultSettingsBuilder::default()
             .verbose(false)
             .iterative_refinement_reltol(refine)
