@@ -10,9 +10,11 @@ use crate::fit::banded::SymBand;
 use crate::fit::data::{CurveFit, FitData, FitReport};
 use crate::fit::knot_placement::check_schoenberg_whitney;
 use crate::fit::lsq::{accumulate, least_squares, spline_space, EndConstraints, Fixed};
+use crate::fit::progress::Steps;
 use crate::fit::smoothing::Smoother;
 use crate::fit::{smoothing_spline, Lambda};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
@@ -76,7 +78,7 @@ pub fn constrained_least_squares(
     }
     let fixed = Fixed::free(data);
     let bw = degree + 1;
-    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw);
+    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw, &Progress::new())?;
     // ½‖Rc − z‖² with c and z in units of the data scale
     let p = gram_of_triangle(&qr.r, n_ctrl, bw);
     let z: Vec<f64> = qr.z.iter().map(|v| v / scale.y).collect();
@@ -147,7 +149,7 @@ pub fn constrained_smoothing_spline(
     let s = Smoother::new(data)?;
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv()?,
+        Lambda::Gcv => s.minimise_gcv(&Steps::new(&Progress::new(), "GCV"))?,
     };
     let n = s.knots.len() - 4;
     let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
