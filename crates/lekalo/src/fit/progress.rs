@@ -9,13 +9,14 @@ use std::cell::Cell;
 use crate::error::{Error, Result};
 use crate::numeric::progress::Progress;
 
-/// A counter of the steps of an iteration of unknown length: step `d` reports `(d, d + 1)`, so
-/// `done` never goes back and `total` stays ahead until [`Steps::finish`] reports
-/// `(done, done)`.
+/// A counter of the steps of an iteration of unknown length: step `d` reports `(d, d + 1)`, or
+/// `(d, e)` while fewer than `e` steps are expected ([`Steps::expect`]), so `done` never goes
+/// back and `total` stays ahead until [`Steps::finish`] reports `(done, done)`.
 pub(super) struct Steps<'a, 'p> {
     progress: &'a Progress<'p>,
     what: &'static str,
     done: Cell<u64>,
+    expected: Cell<u64>,
 }
 
 impl<'a, 'p> Steps<'a, 'p> {
@@ -25,7 +26,14 @@ impl<'a, 'p> Steps<'a, 'p> {
             progress,
             what,
             done: Cell::new(0),
+            expected: Cell::new(0),
         }
+    }
+
+    /// At least `more` steps follow (e.g. the points of a scan): the total reported is that of
+    /// the steps done and expected, for a bar that fills rather than stays at its end.
+    pub(super) fn expect(&self, more: u64) {
+        self.expected.set(self.done.get() + more);
     }
 
     /// One more step: reports it, then checks the cancel flag.
@@ -35,7 +43,8 @@ impl<'a, 'p> Steps<'a, 'p> {
     pub(super) fn tick(&self) -> Result<()> {
         let d = self.done.get() + 1;
         self.done.set(d);
-        self.progress.step(self.what, d, d + 1)
+        self.progress
+            .step(self.what, d, (d + 1).max(self.expected.get()))
     }
 
     /// The work is complete: reports `(done, done)`. A cancel flag set now is not an error (the

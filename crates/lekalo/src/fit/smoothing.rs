@@ -341,6 +341,8 @@ impl Smoother {
         };
         let cancelled = |stopped: &Cell<Option<Error>>| stopped.take().map_or(Ok(()), Err);
         let mut best = (f64::INFINITY, 0);
+        // the scan's scores, then Brent's (about twenty more)
+        steps.expect(n_grid as u64 + 1 + 20);
         let grid: Vec<f64> = (0..=n_grid)
             .map(|i| lo + (hi - lo) * i as f64 / n_grid as f64)
             .collect();
