@@ -202,12 +202,12 @@ pub(crate) fn read_cad(
     name: &str,
 ) -> Result<Option<Vec<lekalo_io::Shape>>> {
     if is_step(path) {
-        let r = lekalo_io::read_step(text, name)?;
+        let r = lekalo_io::read_step_limited(text, name, cx.max_size)?;
         report_step(cx, name, &r);
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
     }
     if is_iges(path) {
-        let r = lekalo_io::read_iges(text, name)?;
+        let r = lekalo_io::read_iges_limited(text, name, cx.max_size)?;
         if !cx.is_quiet() {
             let curves = r
                 .shapes

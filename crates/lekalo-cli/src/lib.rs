@@ -74,7 +74,8 @@ pub(crate) struct Cli {
     #[arg(long, global = true, help_heading = "Global options")]
     force: bool,
     /// Largest number of samples, knots, intervals or grid points a command may create from its
-    /// arguments (docs/robustness.md).
+    /// arguments, and of entities, and of control points and knots together, a STEP or IGES file
+    /// may hold (docs/robustness.md).
     #[arg(long, global = true, help_heading = "Global options", value_name = "N", default_value_t = context::DEFAULT_MAX_SIZE)]
     max_size: usize,
     /// Highest Bezier degree for the work whose cost grows as the degree squared or cubed:

@@ -58,7 +58,7 @@ pub use atomic::{
 };
 pub use error::{IoError, IoResult, Location};
 pub use figure_check::check_svg;
-pub use iges::{read_iges, IgesRead, IgesWriter};
+pub use iges::{read_iges, read_iges_limited, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use mesh_files::{mesh_text, polyline_text, MeshFormat};
@@ -83,7 +83,9 @@ pub use points_in::{parse_number_list, read_points, read_points_bytes, read_poin
 pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
-pub use step_read::{read_step, skipped_by_kind, SkippedKind, StepRead, StepSkipped};
+pub use step_read::{
+    read_step, read_step_limited, skipped_by_kind, SkippedKind, StepRead, StepSkipped,
+};
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
 pub use svg::{

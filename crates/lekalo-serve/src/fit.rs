@@ -3,12 +3,18 @@
 //! by generalised cross-validation, or the fewest knots whose weighted residual sum of squares
 //! is at most `s` (FITPACK's smoothing condition); with shape constraints (increasing,
 //! convex, bounds…) the constrained smoothing spline of a function y(x).
+//!
+//! The smoothing spline and the smoothing condition run with the job's progress hook
+//! ([`lekalo::fit::smoothing_spline_with_progress`],
+//! [`lekalo::fit::smoothing_condition_with_progress`]): at the deadline they stop between two
+//! GCV scores, knot rounds or smoothing weights, and the request is answered with 504 while its
+//! pool thread is freed. The constrained fit is one cone program, bounded by the points' budget.
 
 use axum::body::Bytes;
 use axum::response::Response;
 use lekalo::fit::{
-    constrained_smoothing_spline, smoothing_condition, smoothing_spline, CurveFit, FitData, Lambda,
-    Shape, ShapeConstraints,
+    constrained_smoothing_spline, smoothing_condition_with_progress,
+    smoothing_spline_with_progress, CurveFit, FitData, Lambda, Shape, ShapeConstraints,
 };
 use lekalo::{parametrize, Points};
 use lekalo_io::Object;
@@ -151,13 +157,16 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
             constrained_smoothing_spline(&data, lambda, &rules)
                 .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?
         }
-        Smoothing::Lambda => smoothing_spline(&data, Lambda::Given(given(r.lambda, "lambda")?))
-            .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
-        Smoothing::Gcv => smoothing_spline(&data, Lambda::Gcv)
+        Smoothing::Lambda => {
+            let lambda = Lambda::Given(given(r.lambda, "lambda")?);
+            smoothing_spline_with_progress(&data, lambda, &job.progress)
+                .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?
+        }
+        Smoothing::Gcv => smoothing_spline_with_progress(&data, Lambda::Gcv, &job.progress)
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
         Smoothing::S => {
             let degree = job.limits.check_degree(r.degree, "degree")?;
-            smoothing_condition(&data, degree, given(r.s, "s")?)
+            smoothing_condition_with_progress(&data, degree, given(r.s, "s")?, &job.progress)
                 .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
         }
     };

@@ -535,3 +535,34 @@ END-ISO-10303-21;
     assert_eq!(lines[0]["dim"], 3);
     assert!(lines[1]["degree"].is_array(), "{}", lines[1]);
 }
+
+/// `--max-size` bounds what a STEP or IGES file may hold: a curve of 2,000 control points and
+/// 2,004 knots, written by `convert`, is read back under the default limit and refused under a
+/// smaller one, naming the count and the option, with nothing written.
+#[test]
+fn cad_files_past_max_size_are_refused_naming_the_count() {
+    let n = 2000;
+    let control: Vec<[f64; 3]> = (0..n)
+        .map(|i| [f64::from(i), (f64::from(i) * 0.01).sin(), 0.0])
+        .collect();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..n - 3).map(|i| f64::from(i) / f64::from(n - 3)));
+    knots.extend([1.0; 4]);
+    let curve = serde_json::json!({"lekalo": 1, "type": "bspline_curve", "degree": 3,
+        "knots": knots, "control": control});
+    let d = dir_with(&[("c.json", &curve.to_string())]);
+    for ext in ["step", "igs"] {
+        let cad = format!("c.{ext}");
+        convert(&d, "c.json", &cad);
+        convert(&d, &cad, "back.json");
+        lekalo()
+            .args(["--max-size", "3000", "convert"])
+            .arg(p(&d, &cad))
+            .arg("-o")
+            .arg(p(&d, "small.json"))
+            .assert()
+            .code(2)
+            .stderr(contains("4004 control points and knots").and(contains("--max-size 4004")));
+        assert!(!p(&d, "small.json").exists(), "{ext}: nothing written");
+    }
+}

@@ -800,6 +800,76 @@ fn an_interrupted_blend_spline_stops_cleanly_with_the_signal_code() {
     }
 }
 
+/// Starts `lekalo args` in `dir`, lets it compute for `after` (it writes nothing before its
+/// result), sends `signal` and returns the exit code, or `None` if the command finished first.
+#[cfg(unix)]
+fn interrupt_while_computing(
+    dir: &Path,
+    args: &[&str],
+    signal: &str,
+    after: std::time::Duration,
+) -> Option<i32> {
+    let mut child = std::process::Command::new(bin())
+        .args(args)
+        .current_dir(dir)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while started.elapsed() < after {
+        if child.try_wait().unwrap().is_some() {
+            return None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let _ = std::process::Command::new("kill")
+        .args([format!("-{signal}"), child.id().to_string()])
+        .status();
+    let sent = std::time::Instant::now();
+    let status = child.wait().unwrap();
+    // the handler's grace period is 0.7 s; the bound leaves room for a loaded machine
+    assert!(
+        sent.elapsed() < std::time::Duration::from_secs(5),
+        "{signal}: stopped after {:?}",
+        sent.elapsed()
+    );
+    status.code()
+}
+
+/// Every long fitting mode stops on a signal with its code and writes no output: smoothing by
+/// GCV, the smoothing condition, the tolerance fit, a closed fit (each checks the cancel flag
+/// between steps of its work; seconds of work on 300,000 points, where least squares takes a
+/// fraction of a second).
+#[cfg(unix)]
+#[test]
+fn an_interrupted_fit_stops_cleanly_with_the_signal_code_in_every_mode() {
+    let d = dir_with(&[("p.csv", &wavy_csv(300_000))]);
+    let modes: [&[&str]; 4] = [
+        &["--smooth", "gcv"],
+        &["--s", "1e-9"],
+        &["--tol", "1e-7"],
+        &["--periodic", "--s", "1e-9"],
+    ];
+    let mut interrupted = 0;
+    for mode in modes {
+        let mut args = vec!["fit", "p.csv", "-o", "f.json"];
+        args.extend_from_slice(mode);
+        let after = std::time::Duration::from_millis(700);
+        if let Some(got) = interrupt_while_computing(d.path(), &args, "INT", after) {
+            assert_eq!(got, 130, "{mode:?}");
+            assert!(!p(&d, "f.json").exists(), "{mode:?}: no output");
+            interrupted += 1;
+        }
+        let _ = fs::remove_file(p(&d, "f.json"));
+        let left = debris(d.path(), &["p.csv"]);
+        assert_eq!(left, Vec::<String>::new(), "{mode:?}");
+    }
+    assert!(
+        interrupted >= 3,
+        "only {interrupted} fits ran long enough to be interrupted"
+    );
+}
+
 #[test]
 fn a_large_blend_spline_stays_within_a_memory_limit_and_draws_no_bar_off_a_terminal() {
     // 150,000 points (4 MB of CSV): the whole NURBS alone would take 24 MB and the blend

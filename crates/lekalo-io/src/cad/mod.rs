@@ -2,8 +2,15 @@
 //!
 //! - `step.rs`: the STEP writer;
 //! - `step_read/`: the STEP reader (a folder);
-//! - `iges.rs`: IGES read and write.
+//! - `iges/`: IGES read and write;
+//! - `limits_tests.rs`: the readers' size limit (`--max-size`) on generated files.
+//!
+//! Both readers take a size limit ([`crate::read_step_limited`], [`crate::read_iges_limited`]):
+//! the entities of a file, and the control points and knots of its B-splines together, checked
+//! before they are allocated.
 
 pub(crate) mod iges;
+#[cfg(test)]
+mod limits_tests;
 pub(crate) mod step;
 pub(crate) mod step_read;

@@ -321,10 +321,22 @@ impl SymBand {
     /// Factors in place, `A = Uᵀ D U`, O(n·b²). Returns the first index whose pivot is not
     /// positive (relative to the largest diagonal entry) as `Err`.
     pub(crate) fn factor(&mut self) -> Result<(), usize> {
+        // `before_row` never fails here
+        self.factor_with(|_| Ok(())).unwrap_or(Ok(()))
+    }
+
+    /// [`SymBand::factor`] calling `before_row(i)` before row `i` (a progress hook): its error
+    /// stops the factorisation, leaving the matrix half factored, and is returned as the outer
+    /// `Err`.
+    pub(crate) fn factor_with(
+        &mut self,
+        mut before_row: impl FnMut(usize) -> crate::error::Result<()>,
+    ) -> crate::error::Result<Result<(), usize>> {
         let (n, b) = (self.n, self.b);
         let w = b + 1;
         let dmax = (0..n).fold(0.0_f64, |m, i| m.max(self.a[i * w].abs()));
         for i in 0..n {
+            before_row(i)?;
             // D_i = A_ii − Σ_k U_ki² D_k
             let lo = i.saturating_sub(b);
             let mut d = self.a[i * w];
@@ -333,7 +345,7 @@ impl SymBand {
                 d -= u * u * self.a[k * w];
             }
             if d <= RANK_RTOL * dmax || d.is_nan() {
-                return Err(i);
+                return Ok(Err(i));
             }
             self.a[i * w] = d;
             for j in i + 1..(i + b + 1).min(n) {
@@ -344,7 +356,7 @@ impl SymBand {
                 self.a[i * w + j - i] = s / d;
             }
         }
-        Ok(())
+        Ok(Ok(()))
     }
 
     /// Solves `A x = y` with the factors, `x` overwriting `y` (`n × ncols`).

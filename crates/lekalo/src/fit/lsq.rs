@@ -1,11 +1,15 @@
 //! Weighted least squares with given knots, with end points and end derivatives imposed exactly
 //! (`docs/theory/fitting.md#least-squares`, `#constraints`).
 
+use std::cell::Cell;
+
 use super::banded::{BandedQr, QrRows};
 use super::data::{check_in_domain, CurveFit, FitData, FitReport};
+use super::progress::checked_rows;
 use super::rows::for_each_row;
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
@@ -122,17 +126,40 @@ pub fn least_squares(
     knots: &KnotVector,
     ends: &EndConstraints,
 ) -> Result<CurveFit> {
+    least_squares_with_progress(data, degree, knots, ends, &Progress::new())
+}
+
+/// [`least_squares`] reporting to `progress` as the data rows are rotated in (`done` rows of
+/// `total` data points, a report every few thousand rows, then `(total, total)` once solved),
+/// and stopping with [`Error::Cancelled`] between two blocks of rows when its cancel flag is
+/// set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`least_squares`], and [`Error::Cancelled`].
+pub fn least_squares_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     let n_ctrl = spline_space(data, degree, knots)?;
     let fixed = Fixed::new(data, degree, knots, n_ctrl, ends)?;
     if fixed.count() == 0 {
         super::knot_placement::check_schoenberg_whitney(data.params(), degree, knots)?;
     }
-    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, degree + 1);
+    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, degree + 1, progress)?;
     let control = solve_control(&qr, data, degree, knots, n_ctrl, &fixed)?;
     let curve = BSplineCurve::from_raw(degree, knots.as_slice().to_vec(), control);
     let report = FitReport::new(&curve, data, None);
+    let n = data.len() as u64;
+    // the fit is complete: a flag set this late does not discard it
+    let _ = progress.step(LSQ_WORK, n, n);
     Ok(CurveFit { curve, report })
 }
+
+/// What a least-squares pass reports to a [`Progress`] hook.
+const LSQ_WORK: &str = "least-squares fit (data rows)";
 
 /// Control points fixed by end conditions, relative to the reference point `center`.
 #[derive(Debug, Clone, Default)]
@@ -248,7 +275,11 @@ impl Fixed {
 
 /// Rotates every data row into a banded QR of the free control points (band `bw ≥ p + 1`).
 /// Rows with zero weight are skipped; weights are divided by the largest one (the minimiser is
-/// unchanged) so that no square overflows.
+/// unchanged) so that no square overflows. `progress` is told of the rows done and may stop
+/// the pass between two blocks of rows.
+///
+/// # Errors
+/// [`Error::Cancelled`] when `progress`'s cancel flag is set.
 pub(crate) fn accumulate(
     data: &FitData<'_>,
     degree: usize,
@@ -256,7 +287,8 @@ pub(crate) fn accumulate(
     n_ctrl: usize,
     fixed: &Fixed,
     bw: usize,
-) -> BandedQr {
+    progress: &Progress<'_>,
+) -> Result<BandedQr> {
     let pts = data.points();
     let dim = pts.dim();
     let ks = fixed.start.len() / dim;
@@ -307,11 +339,23 @@ pub(crate) fn accumulate(
         }
     };
     let params = data.params();
+    let stopped = Cell::new(None);
+    let cost = ((degree + 1) * (bw + dim)) as u64;
+    let n = data.len();
     match data.order() {
-        None => for_each_row(knots, degree, params, 0..data.len(), scale, &mut on_row),
-        Some(order) => for_each_row(knots, degree, params, order, scale, &mut on_row),
+        None => {
+            let rows = checked_rows(progress, LSQ_WORK, n, cost, 0..n, &stopped);
+            for_each_row(knots, degree, params, rows, scale, &mut on_row);
+        }
+        Some(order) => {
+            let rows = checked_rows(progress, LSQ_WORK, n, cost, order.into_iter(), &stopped);
+            for_each_row(knots, degree, params, rows, scale, &mut on_row);
+        }
     }
-    qr.finish()
+    match stopped.take() {
+        Some(e) => Err(e),
+        None => Ok(qr.finish()),
+    }
 }
 
 /// Back-substitutes the free control points and assembles all of them (plus the reference

@@ -16,6 +16,7 @@
 //! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`], [`periodic_smoothing_knot_sequence`], [`periodic_smoothing_on_knots`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
+//! | `progress.rs` | how the fits report to a [`Progress`](crate::Progress) hook and stop when cancelled: steps of iterations of unknown length, checked passes over the data rows (crate-private plumbing, no arithmetic) | — |
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
@@ -43,6 +44,10 @@
 //! - Every solver works on the data minus a reference point (the first data point) and adds it
 //!   back to the control points: by partition of unity the fit is the same, and data far from
 //!   the origin (a 1e8 offset) lose no digits in the solve.
+//! - The fits that can run long have a `*_with_progress` variant taking a
+//!   [`Progress`](crate::Progress): it reports between units of work (data rows, knot rounds,
+//!   smoothing weights, GCV scores), stops with [`Error::Cancelled`](crate::Error::Cancelled)
+//!   once the cancel flag is set, and otherwise gives the bits of the plain function.
 //! - No dense matrix is formed: curves use banded QR or banded `UᵀDU`, O(N·p²) for `N` points.
 
 mod banded;
@@ -51,6 +56,7 @@ mod data;
 mod knot_placement;
 mod lsq;
 mod periodic;
+mod progress;
 mod robust;
 mod rows;
 mod shape;
@@ -62,22 +68,27 @@ mod tolerance;
 
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
-pub use lsq::{least_squares, EndConstraints};
+pub use lsq::{least_squares, least_squares_with_progress, EndConstraints};
 pub use periodic::{
-    closed_parameters, periodic_least_squares, periodic_smoothing_condition,
+    closed_parameters, periodic_least_squares, periodic_least_squares_with_progress,
+    periodic_smoothing_condition, periodic_smoothing_condition_with_progress,
     periodic_smoothing_knot_sequence, periodic_smoothing_on_knots,
+    periodic_smoothing_on_knots_with_progress,
 };
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub use shape::{
     constrained_least_squares, constrained_smoothing_spline, shape_violations, PointCondition,
     Shape, ShapeConstraint, ShapeConstraints, SHAPE_RTOL,
 };
-pub use smoothing::{gcv_score, smoothing_spline, Lambda};
-pub use smoothing_condition::{smoothing_condition, smoothing_knot_sequence, SMOOTHING_RTOL};
-pub use smoothing_on_knots::smoothing_on_knots;
+pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
+pub use smoothing_condition::{
+    smoothing_condition, smoothing_condition_with_progress, smoothing_knot_sequence, SMOOTHING_RTOL,
+};
+pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progress};
 pub use surface::{
     surface_grid_least_squares, surface_grid_least_squares_at, surface_grid_parameters,
-    surface_scattered_least_squares, ScatteredSurfaceFit,
+    surface_scattered_least_squares, surface_scattered_least_squares_with_progress,
+    ScatteredSurfaceFit,
 };
 pub use tolerance::{
     fit_tolerance, fit_tolerance_with_progress, Deviation, ToleranceFit, ToleranceOptions,

@@ -10,12 +10,14 @@
 
 use super::cyclic::CyclicQr;
 use super::data::{check_in_domain, CurveFit, FitData};
+use super::progress::Steps;
 use super::smoothing_condition::{
     check_condition_args, check_max_knots, finish, jump_rows, next_nplus, smooth_weight, Added,
     Knots, LsqPass, Observations, SMOOTHING_RTOL,
 };
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
+use crate::numeric::progress::Progress;
 use crate::points::PointsRef;
 use crate::Parametrization;
 
@@ -76,14 +78,32 @@ pub fn periodic_least_squares(
     degree: usize,
     breaks: &[f64],
 ) -> Result<CurveFit> {
+    periodic_least_squares_with_progress(data, degree, breaks, &Progress::new())
+}
+
+/// [`periodic_least_squares`] reporting to `progress` before its pass over the data and at the
+/// end (`(done, done)`), and stopping with [`Error::Cancelled`] before the pass when its cancel
+/// flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`periodic_least_squares`], and [`Error::Cancelled`].
+pub fn periodic_least_squares_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    breaks: &[f64],
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_degree_bound(degree)?;
     check_breaks(breaks)?;
+    let steps = Steps::new(progress, "closed least-squares fit");
     let (a, b) = (breaks[0], breaks[breaks.len() - 1]);
     let wrapped = wrap_params(data, (a, b))?;
     let obs = observations(data, &wrapped)?;
     let mut pass = LsqPass::new(&obs, degree);
-    let (t, _, c) = fit_on(&mut pass, &obs, breaks)?;
-    Ok(finish(data, &obs, degree, t, &c, None))
+    let (t, _, c) = fit_on(&mut pass, &obs, breaks, &steps)?;
+    let fit = finish(data, &obs, degree, t, &c, None);
+    steps.finish();
+    Ok(fit)
 }
 
 /// The closed spline of `degree` with the fewest knots found whose weighted residual sum of
@@ -126,16 +146,39 @@ pub fn periodic_smoothing_condition(
     s: f64,
     domain: (f64, f64),
 ) -> Result<CurveFit> {
+    periodic_smoothing_condition_with_progress(data, degree, s, domain, &Progress::new())
+}
+
+/// [`periodic_smoothing_condition`] reporting to `progress` after each round of knot addition
+/// and each smoothing weight tried (`done` the steps so far, `total` one more: their number is
+/// not known ahead; `(done, done)` at the end), and stopping with [`Error::Cancelled`] between
+/// two steps when its cancel flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`periodic_smoothing_condition`], and [`Error::Cancelled`].
+pub fn periodic_smoothing_condition_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
+    let steps = Steps::new(
+        progress,
+        "closed smoothing condition (knot rounds, weights)",
+    );
     let k = degree;
     let (obs, sites) = periodic_observations(data, k, domain)?;
-    match periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &mut |_| {})? {
-        PeriodicRounds::Done { t, c } => Ok(finish(data, &obs, k, t, &c, None)),
+    let fit = match periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &steps, &mut |_| {})? {
+        PeriodicRounds::Done { t, c } => finish(data, &obs, k, t, &c, None),
         PeriodicRounds::Smooth { t, qr, fp0, fp_inf } => {
-            let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf)?;
-            Ok(finish(data, &obs, k, t, &c, lambda))
+            let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf, &steps)?;
+            finish(data, &obs, k, t, &c, lambda)
         }
-    }
+    };
+    steps.finish();
+    Ok(fit)
 }
 
 /// The knot vectors of the rounds of [`periodic_smoothing_condition`], in order (SciPy's
@@ -170,7 +213,9 @@ pub fn periodic_smoothing_knot_sequence(
     let cap = check_max_knots(degree, max_knots)?;
     let (obs, sites) = periodic_observations(data, degree, domain)?;
     let mut seq = Vec::new();
-    periodic_rounds(&obs, &sites, degree, s, domain, cap, &mut |t| {
+    let quiet = Progress::new();
+    let steps = Steps::new(&quiet, "");
+    periodic_rounds(&obs, &sites, degree, s, domain, cap, &steps, &mut |t| {
         seq.push(t.to_vec());
     })?;
     Ok(seq)
@@ -207,21 +252,42 @@ pub fn periodic_smoothing_on_knots(
     breaks: &[f64],
     s: f64,
 ) -> Result<CurveFit> {
+    periodic_smoothing_on_knots_with_progress(data, degree, breaks, s, &Progress::new())
+}
+
+/// [`periodic_smoothing_on_knots`] reporting to `progress` after its least-squares passes and
+/// each smoothing weight tried (`done` the steps so far, `total` one more; `(done, done)` at
+/// the end), and stopping with [`Error::Cancelled`] between two steps when its cancel flag is
+/// set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`periodic_smoothing_on_knots`], and [`Error::Cancelled`].
+pub fn periodic_smoothing_on_knots_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    breaks: &[f64],
+    s: f64,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
     check_breaks(breaks)?;
+    let steps = Steps::new(progress, "closed smoothing on given knots (weights)");
     let k = degree;
     let (a, b) = (breaks[0], breaks[breaks.len() - 1]);
     let wrapped = wrap_params(data, (a, b))?;
     let obs = observations(data, &wrapped)?;
     let mut pass = LsqPass::new(&obs, k);
-    let (t, qr, c) = fit_on(&mut pass, &obs, breaks)?;
+    let (t, qr, c) = fit_on(&mut pass, &obs, breaks, &steps)?;
     if breaks.len() == 2 {
+        steps.finish();
         return Ok(finish(data, &obs, k, t, &c, None));
     }
     let fp_inf = qr.rss;
-    let fp0 = fit_on(&mut pass, &obs, &[a, b])?.1.rss;
-    let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf)?;
-    Ok(finish(data, &obs, k, t, &c, lambda))
+    let fp0 = fit_on(&mut pass, &obs, &[a, b], &steps)?.1.rss;
+    let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf, &steps)?;
+    let fit = finish(data, &obs, k, t, &c, lambda);
+    steps.finish();
+    Ok(fit)
 }
 
 /// The data of a closed smoothing condition: the observations at the wrapped parameters and
@@ -265,7 +331,9 @@ enum PeriodicRounds {
 }
 
 /// The knot rounds of [`periodic_smoothing_condition`], at most `cap` interior knots, each
-/// round's knot vector (and the constant's when it is the answer) passed to `seen`.
+/// round's knot vector (and the constant's when it is the answer) passed to `seen`, each pass a
+/// step of `steps`.
+#[allow(clippy::too_many_arguments)]
 fn periodic_rounds(
     obs: &Observations,
     sites: &[f64],
@@ -273,6 +341,7 @@ fn periodic_rounds(
     s: f64,
     (a, b): (f64, f64),
     cap: usize,
+    steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
 ) -> Result<PeriodicRounds> {
     let m = sites.len();
@@ -296,12 +365,12 @@ fn periodic_rounds(
     };
     if s == 0.0 {
         knots.interior = interpolation_knots(sites, k);
-        let (t, _, c) = fit_on(&mut pass, obs, &breaks(&knots.interior))?;
+        let (t, _, c) = fit_on(&mut pass, obs, &breaks(&knots.interior), steps)?;
         seen(&t);
         return Ok(PeriodicRounds::Done { t, c });
     }
     // the least-squares constant
-    let (t, qr, c) = fit_on(&mut pass, obs, &[a, b])?;
+    let (t, qr, c) = fit_on(&mut pass, obs, &[a, b], steps)?;
     let fp0 = qr.rss;
     if fp0 <= s || full == 0 || cap == 0 {
         seen(&t);
@@ -313,7 +382,7 @@ fn periodic_rounds(
     knots.nrdata = vec![mid - 1, m - 2 - mid];
     let (mut fpold, mut nplus) = (fp0, 1usize);
     loop {
-        let (t, qr, c) = fit_on(&mut pass, obs, &breaks(&knots.interior))?;
+        let (t, qr, c) = fit_on(&mut pass, obs, &breaks(&knots.interior), steps)?;
         seen(&t);
         let fp = qr.rss;
         let fpms = fp - s;
@@ -347,7 +416,9 @@ fn periodic_rounds(
 /// The smoothing step of a closed fit on the knots `t` with the data's triangle `qr`
 /// (repeated coefficients and the jump weight λ), as [`smooth_on`](super::smoothing_condition)
 /// for open curves: `[R; B/p]` with the jump rows of the `k`-th derivative at the interior
-/// knots, wrapped like the data rows (band `k + 2`, border `k + 1`).
+/// knots, wrapped like the data rows (band `k + 2`, border `k + 1`). Each weight tried is a
+/// step of `steps`.
+#[allow(clippy::too_many_arguments)]
 fn smooth_periodic(
     obs: &Observations,
     k: usize,
@@ -356,6 +427,7 @@ fn smooth_periodic(
     s: f64,
     fp0: f64,
     fp_inf: f64,
+    steps: &Steps<'_, '_>,
 ) -> Result<(Vec<f64>, Option<f64>)> {
     let pen = jump_rows(t, k);
     let (np, k2, dim) = (qr.n(), k + 2, obs.dim);
@@ -388,7 +460,7 @@ fn smooth_periodic(
         Ok((c, fp))
     };
     let trace: f64 = qr.diagonal().sum();
-    let (c, lambda) = match smooth_weight(&solve, np as f64 / trace, s, fp0, fp_inf)? {
+    let (c, lambda) = match smooth_weight(&solve, np as f64 / trace, s, fp0, fp_inf, steps)? {
         Some((p, _, c)) => (c, Some((p * pen.scale).powi(-2))),
         None => (solve_cyclic(qr)?, None),
     };
@@ -473,12 +545,14 @@ fn interpolation_knots(sites: &[f64], k: usize) -> Vec<f64> {
 }
 
 /// One least-squares pass on the breakpoints: the knots, the triangle and the control points
-/// (all `np + k`, the last `k` repeating the first).
+/// (all `np + k`, the last `k` repeating the first); the pass is a step of `steps`.
 fn fit_on(
     pass: &mut LsqPass,
     obs: &Observations,
     breaks: &[f64],
+    steps: &Steps<'_, '_>,
 ) -> Result<(Vec<f64>, CyclicQr, Vec<f64>)> {
+    steps.tick()?;
     let k = pass.k;
     let t = periodic_knots(breaks, k);
     let np = breaks.len() - 1;

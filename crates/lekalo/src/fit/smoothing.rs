@@ -1,11 +1,15 @@
 //! Penalised smoothing splines, `Σ w_k |Q_k − f(ū_k)|² + λ ∫ |f''|²`, with λ given or chosen by
 //! generalised cross-validation (`docs/theory/fitting.md#penalised`, `#gcv`).
 
+use std::cell::Cell;
+
 use super::banded::SymBand;
 use super::data::{CurveFit, FitData, FitReport};
+use super::progress::Steps;
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
 use crate::natural_cubic_spline;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
@@ -52,6 +56,22 @@ pub enum Lambda {
 /// [`Error::SingularSystem`] if the weighted data cannot fix a line (fewer than two points of
 /// positive weight).
 pub fn smoothing_spline(data: &FitData<'_>, lambda: Lambda) -> Result<CurveFit> {
+    smoothing_spline_with_progress(data, lambda, &Progress::new())
+}
+
+/// [`smoothing_spline`] reporting to `progress` after the assembly and after each GCV score
+/// evaluated (`done` the steps so far, `total` one more: the number of scores is not known
+/// ahead; `(done, done)` at the end), and stopping with [`Error::Cancelled`] between two steps
+/// when its cancel flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`smoothing_spline`], and [`Error::Cancelled`].
+pub fn smoothing_spline_with_progress(
+    data: &FitData<'_>,
+    lambda: Lambda,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    let steps = Steps::new(progress, "smoothing spline (GCV scores)");
     if let Lambda::Given(l) = lambda {
         if !(l >= 0.0 && l.is_finite()) {
             return Err(Error::NegativeSmoothing {
@@ -61,18 +81,21 @@ pub fn smoothing_spline(data: &FitData<'_>, lambda: Lambda) -> Result<CurveFit> 
         }
     }
     let s = Smoother::new(data)?;
+    steps.tick()?;
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv()?,
+        Lambda::Gcv => s.minimise_gcv(&steps)?,
     };
     if lam == 0.0 {
         let curve = natural_cubic_spline(data.params(), data.points())?;
         let report = FitReport::new(&curve, data, Some(0.0));
+        steps.finish();
         return Ok(CurveFit { curve, report });
     }
     let (coef, _) = s.solve(lam)?;
     let curve = s.curve(&coef);
     let report = FitReport::new(&curve, data, Some(lam));
+    steps.finish();
     Ok(CurveFit { curve, report })
 }
 
@@ -286,8 +309,11 @@ impl Smoother {
     /// minima, and with many closely spaced points the best λ lies many decades above the first
     /// bound, so the scan covers the whole range rather than a fixed width around either end.
     /// λ where the banded system cannot be factored (beyond about 10¹⁶ times the first bound)
-    /// score `+∞`.
-    pub(super) fn minimise_gcv(&self) -> Result<f64> {
+    /// score `+∞`. Each score evaluated is a step of `steps`.
+    ///
+    /// # Errors
+    /// [`Error::SingularSystem`] when no score is finite; [`Error::Cancelled`] from `steps`.
+    pub(super) fn minimise_gcv(&self, steps: &Steps<'_, '_>) -> Result<f64> {
         let tg: f64 = (0..self.gram.n).map(|i| self.gram.a[i * 4]).sum();
         let to: f64 = (0..self.omega.n).map(|i| self.omega.a[i * 4]).sum();
         let scale = (tg / to).log10();
@@ -303,13 +329,25 @@ impl Smoother {
         // a point a decade (the score's minima are decades wide in log λ; Brent refines within
         // the two decades around the best point); clamped to [2, 400] first, so the cast is exact
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let steps = (hi - lo).ceil().clamp(2.0, 400.0) as usize;
-        let f = |z: f64| self.gcv(10f64.powf(z)).unwrap_or(f64::INFINITY);
+        let n_grid = (hi - lo).ceil().clamp(2.0, 400.0) as usize;
+        // once cancelled, every further score is skipped (+∞) and the error returned at the end
+        let stopped = Cell::new(None);
+        let f = |z: f64| match steps.tick() {
+            Ok(()) => self.gcv(10f64.powf(z)).unwrap_or(f64::INFINITY),
+            Err(e) => {
+                stopped.set(Some(e));
+                f64::INFINITY
+            }
+        };
+        let cancelled = |stopped: &Cell<Option<Error>>| stopped.take().map_or(Ok(()), Err);
         let mut best = (f64::INFINITY, 0);
-        let grid: Vec<f64> = (0..=steps)
-            .map(|i| lo + (hi - lo) * i as f64 / steps as f64)
+        // the scan's scores, then Brent's (about twenty more)
+        steps.expect(n_grid as u64 + 1 + 20);
+        let grid: Vec<f64> = (0..=n_grid)
+            .map(|i| lo + (hi - lo) * i as f64 / n_grid as f64)
             .collect();
         let vals: Vec<f64> = grid.iter().map(|&z| f(z)).collect();
+        cancelled(&stopped)?;
         for (i, &v) in vals.iter().enumerate() {
             if v < best.0 {
                 best = (v, i);
@@ -322,8 +360,10 @@ impl Smoother {
         }
         let i = best.1;
         let a = grid[i.saturating_sub(1)];
-        let b = grid[(i + 1).min(steps)];
-        Ok(10f64.powf(brent_min(f, a, b, grid[i], best.0, 1e-7)))
+        let b = grid[(i + 1).min(n_grid)];
+        let z = brent_min(f, a, b, grid[i], best.0, 1e-7);
+        cancelled(&stopped)?;
+        Ok(10f64.powf(z))
     }
 
     fn curve(&self, c: &[f64]) -> BSplineCurve {

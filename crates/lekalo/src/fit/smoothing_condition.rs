@@ -4,8 +4,10 @@
 
 use super::banded::{BandedQr, QrRows};
 use super::data::{CurveFit, FitData, FitReport};
+use super::progress::Steps;
 use crate::basis::{basis_funs_into, BasisScratch, SpanBasis};
 use crate::error::{check_degree_bound, Error, Result};
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
@@ -67,16 +69,35 @@ const MAX_P_ITERATIONS: usize = 20;
 /// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
+    smoothing_condition_with_progress(data, degree, s, &Progress::new())
+}
+
+/// [`smoothing_condition`] reporting to `progress` after each round of knot addition and each
+/// smoothing weight `p` tried (`done` the steps so far, `total` one more: their number is not
+/// known ahead; `(done, done)` at the end), and stopping with [`Error::Cancelled`] between two
+/// steps when its cancel flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`smoothing_condition`], and [`Error::Cancelled`].
+pub fn smoothing_condition_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
+    let steps = Steps::new(progress, "smoothing condition (knot rounds, weights)");
     let obs = Observations::new(data);
     let k = degree;
-    match knot_rounds(&obs, k, s, usize::MAX, &mut |_| {})? {
-        Rounds::Done { t, c } => Ok(finish(data, &obs, k, t, &c, None)),
+    let fit = match knot_rounds(&obs, k, s, usize::MAX, &steps, &mut |_| {})? {
+        Rounds::Done { t, c } => finish(data, &obs, k, t, &c, None),
         Rounds::Smooth { t, qr, fp0, fp_inf } => {
-            let (c, lambda) = smooth_on(&obs, k, &t, &qr, s, fp0, fp_inf)?;
-            Ok(finish(data, &obs, k, t, &c, lambda))
+            let (c, lambda) = smooth_on(&obs, k, &t, &qr, s, fp0, fp_inf, &steps)?;
+            finish(data, &obs, k, t, &c, lambda)
         }
-    }
+    };
+    steps.finish();
+    Ok(fit)
 }
 
 /// The knot vectors of the rounds of [`smoothing_condition`], in order: the clamped knot vector
@@ -110,7 +131,9 @@ pub fn smoothing_knot_sequence(
     let cap = check_max_knots(degree, max_knots)?;
     let obs = Observations::new(data);
     let mut seq = Vec::new();
-    knot_rounds(&obs, degree, s, cap, &mut |t| seq.push(t.to_vec()))?;
+    let quiet = Progress::new();
+    let steps = Steps::new(&quiet, "");
+    knot_rounds(&obs, degree, s, cap, &steps, &mut |t| seq.push(t.to_vec()))?;
     Ok(seq)
 }
 
@@ -142,12 +165,14 @@ pub(super) enum Rounds {
 }
 
 /// Step 2 of [`smoothing_condition`]: the rounds of least squares and knot addition, at most
-/// `cap` interior knots, each round's knot vector passed to `seen` before its pass.
+/// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
+/// step of `steps`.
 fn knot_rounds(
     obs: &Observations,
     k: usize,
     s: f64,
     cap: usize,
+    steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
 ) -> Result<Rounds> {
     let md = obs.sites.len();
@@ -168,6 +193,7 @@ fn knot_rounds(
     let (mut fp0, mut fpold, mut nplus) = (f64::INFINITY, 0.0, 0usize);
     let mut pass = LsqPass::new(obs, k);
     loop {
+        steps.tick()?;
         let t = knots.vector();
         seen(&t);
         let n = t.len();
@@ -214,7 +240,8 @@ fn knot_rounds(
 /// `qr`: the coefficients whose residual is `s` within [`SMOOTHING_RTOL`] and never above, and
 /// the jump weight λ; the least-squares coefficients and no λ when no weight reaches `s` from
 /// below. `fp0` and `fp_inf` are the residuals of the polynomial (`p = 0`) and of the
-/// least-squares spline (`p = ∞`).
+/// least-squares spline (`p = ∞`). Each weight tried is a step of `steps`.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn smooth_on(
     obs: &Observations,
     k: usize,
@@ -223,6 +250,7 @@ pub(super) fn smooth_on(
     s: f64,
     fp0: f64,
     fp_inf: f64,
+    steps: &Steps<'_, '_>,
 ) -> Result<(Vec<f64>, Option<f64>)> {
     let pen = jump_rows(t, k);
     // the triangle of [R; B/p] from scratch in column order (R's row j, then the penalty row
@@ -252,7 +280,7 @@ pub(super) fn smooth_on(
     };
     // p → 0: the least-squares polynomial (fp0); p → ∞: the least-squares spline (fp_inf)
     let trace: f64 = qr.r.chunks_exact(k + 1).map(|row| row[0]).sum();
-    match smooth_weight(&solve, n as f64 / trace, s, fp0, fp_inf)? {
+    match smooth_weight(&solve, n as f64 / trace, s, fp0, fp_inf, steps)? {
         Some((p, _, c)) => Ok((c, Some((p * pen.scale).powi(-2)))),
         // no weight reached s from below: the least-squares spline on these knots
         None => Ok((back_substitute(qr)?, None)),
@@ -572,14 +600,19 @@ pub(super) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> us
 /// The smoothing weight `p` on the final knots (step 3): FITPACK's iteration from `p0`, between
 /// the polynomial's residual `fp0` (`p = 0`) and the least-squares spline's `fp_inf`
 /// (`p = ∞`), continued towards `s − SMOOTHING_RTOL·s/2` if it ends above `s`. Returns the
-/// result with the largest residual `≤ s`, if any.
+/// result with the largest residual `≤ s`, if any. Each weight tried is a step of `steps`.
 pub(super) fn smooth_weight(
     solve: &impl Fn(f64) -> Result<(Vec<f64>, f64)>,
     p0: f64,
     s: f64,
     fp0: f64,
     fp_inf: f64,
+    steps: &Steps<'_, '_>,
 ) -> Result<Option<Below>> {
+    let solve = |p: f64| {
+        steps.tick()?;
+        solve(p)
+    };
     let acc = SMOOTHING_RTOL * s;
     let mut it = PIteration {
         p: p0,
@@ -588,9 +621,9 @@ pub(super) fn smooth_weight(
         high: (-1.0, fp_inf),
     };
     let mut below = None;
-    let last = it.run(solve, s, acc, &mut below)?;
+    let last = it.run(&solve, s, acc, &mut below)?;
     if last.1 > s {
-        it.run(solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
+        it.run(&solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
     }
     Ok(below)
 }

@@ -5,11 +5,13 @@
 use super::data::{CurveFit, FitData};
 use super::knot_placement::check_schoenberg_whitney;
 use super::lsq::spline_space;
+use super::progress::Steps;
 use super::smoothing_condition::{
     back_substitute, check_condition_args, finish, smooth_on, LsqPass, Observations,
 };
 use crate::error::Result;
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 
 /// The B-spline of `degree` on `knots` that minimises `Σ_j (jump of C^{(k)} at t_j)²` over the
 /// interior knots subject to `Σ_k w_k |C(ū_k) − Q_k|² = s` (Dierckx, "Curve and Surface Fitting
@@ -54,32 +56,49 @@ pub fn smoothing_on_knots(
     knots: &KnotVector,
     s: f64,
 ) -> Result<CurveFit> {
+    smoothing_on_knots_with_progress(data, degree, knots, s, &Progress::new())
+}
+
+/// [`smoothing_on_knots`] reporting to `progress` after the least-squares passes and each
+/// smoothing weight tried (`done` the steps so far, `total` one more; `(done, done)` at the end),
+/// and stopping with [`Error::Cancelled`](crate::Error::Cancelled) between two steps when its
+/// cancel flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`smoothing_on_knots`], and [`Error::Cancelled`](crate::Error::Cancelled).
+pub fn smoothing_on_knots_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    s: f64,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
+    let steps = Steps::new(progress, "smoothing on given knots (weights)");
     let n_ctrl = spline_space(data, degree, knots)?;
     check_schoenberg_whitney(data.params(), degree, knots)?;
     let k = degree;
     let t = knots.as_slice();
     let obs = Observations::new(data);
     let mut pass = LsqPass::new(&obs, k);
+    steps.tick()?;
     let qr = pass.run(&obs, t);
     if n_ctrl == k + 1 {
         // no interior knot: nothing to smooth
-        return Ok(finish(
-            data,
-            &obs,
-            k,
-            t.to_vec(),
-            &back_substitute(&qr)?,
-            None,
-        ));
+        let c = back_substitute(&qr)?;
+        steps.finish();
+        return Ok(finish(data, &obs, k, t.to_vec(), &c, None));
     }
     let (a, b) = (t[k], t[n_ctrl]);
     let mut poly = Vec::with_capacity(2 * k + 2);
     poly.extend(std::iter::repeat_n(a, k + 1));
     poly.extend(std::iter::repeat_n(b, k + 1));
+    steps.tick()?;
     let fp0 = pass.run(&obs, &poly).rss;
-    let (c, lambda) = smooth_on(&obs, k, t, &qr, s, fp0, qr.rss)?;
-    Ok(finish(data, &obs, k, t.to_vec(), &c, lambda))
+    let (c, lambda) = smooth_on(&obs, k, t, &qr, s, fp0, qr.rss, &steps)?;
+    let fit = finish(data, &obs, k, t.to_vec(), &c, lambda);
+    steps.finish();
+    Ok(fit)
 }
 
 #[cfg(test)]

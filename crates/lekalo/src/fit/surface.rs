@@ -2,14 +2,18 @@
 //! scattered `(u, v, z)` data on given tensor-product knots with weights and a smoothing penalty
 //! (`docs/theory/fitting.md#surfaces`).
 
+use std::cell::Cell;
+
 use super::banded::SymBand;
 use super::data::FitData;
 use super::knot_placement::place_knots;
 use super::lsq::{least_squares, EndConstraints};
+use super::progress::checked_rows;
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
 use crate::interpolate::{parametrize, Parametrization};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::{Points, PointsRef};
 use crate::surface::BSplineSurface;
 
@@ -217,9 +221,35 @@ pub struct ScatteredSurfaceFit {
 pub fn surface_scattered_least_squares(
     data: PointsRef<'_>,
     weights: Option<&[f64]>,
+    degrees: (usize, usize),
+    knots: (&KnotVector, &KnotVector),
+    penalty: f64,
+) -> Result<ScatteredSurfaceFit> {
+    surface_scattered_least_squares_with_progress(
+        data,
+        weights,
+        degrees,
+        knots,
+        penalty,
+        &Progress::new(),
+    )
+}
+
+/// [`surface_scattered_least_squares`] reporting to `progress` as the data points are added to
+/// the normal matrix and as its rows are factored (`done` of `total` = points + control points,
+/// a report every few thousand operations' worth of rows), and stopping with
+/// [`Error::Cancelled`] between two blocks of rows when its cancel flag is set. The result is
+/// the same with or without the hook.
+///
+/// # Errors
+/// As [`surface_scattered_least_squares`], and [`Error::Cancelled`].
+pub fn surface_scattered_least_squares_with_progress(
+    data: PointsRef<'_>,
+    weights: Option<&[f64]>,
     (p, q): (usize, usize),
     (ku, kv): (&KnotVector, &KnotVector),
     penalty: f64,
+    progress: &Progress<'_>,
 ) -> Result<ScatteredSurfaceFit> {
     let dim = data.dim();
     if dim < 3 {
@@ -299,7 +329,12 @@ pub fn surface_scattered_least_squares(
     let mut idx = Vec::with_capacity((p + 1) * (q + 1));
     let mut val = Vec::with_capacity((p + 1) * (q + 1));
     let (tu, tv) = (ku.as_slice(), kv.as_slice());
-    for (k, row) in data.iter().enumerate() {
+    const WORK: &str = "scattered surface fit (points, then rows of the normal matrix)";
+    let total = n.saturating_add(m);
+    let stopped = Cell::new(None);
+    let cost = ((p + 1) * (q + 1)).pow(2) as u64;
+    for k in checked_rows(progress, WORK, total, cost, 0..n, &stopped) {
+        let row = data.point(k);
         let w = weights.map_or(1.0, |w| w[k]);
         let (u, v) = (row[0], row[1]);
         let (iu, iv) = (ku.span_unchecked(p, u), kv.span_unchecked(q, v));
@@ -353,8 +388,19 @@ pub fn surface_scattered_least_squares(
             }
         }
     }
+    if let Some(e) = stopped.take() {
+        return Err(e);
+    }
     let mut f = a;
-    if let Err(i) = f.factor() {
+    let every = Progress::items_per_step(((band + 1) * (band + 1)) as u64);
+    let factored = f.factor_with(|i| {
+        if i % every == 0 {
+            progress.step(WORK, (n + i) as u64, total as u64)
+        } else {
+            Ok(())
+        }
+    })?;
+    if let Err(i) = factored {
         let ci = i / nv;
         return Err(Error::SchoenbergWhitney {
             basis: i,
@@ -389,6 +435,8 @@ pub fn surface_scattered_least_squares(
         weighted_rss += weights.map_or(1.0, |w| w[k]) * r;
         residuals.push(r.sqrt());
     }
+    // the fit is complete: a flag set this late does not discard it
+    let _ = progress.step(WORK, total as u64, total as u64);
     Ok(ScatteredSurfaceFit {
         surface,
         residuals,

@@ -5,9 +5,10 @@
 use anyhow::Result;
 use lekalo::fit::{
     constrained_least_squares, constrained_smoothing_spline, fit_tolerance_with_progress,
-    least_squares, place_knots, robust_least_squares, smoothing_condition, smoothing_on_knots,
-    smoothing_spline, CurveFit, Deviation, EndConstraints, FitData, Lambda, RobustLoss, Shape,
-    ShapeConstraints, ToleranceOptions,
+    least_squares_with_progress, place_knots, robust_least_squares,
+    smoothing_condition_with_progress, smoothing_on_knots_with_progress,
+    smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
+    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -16,9 +17,14 @@ use serde_json::{json, Value};
 use super::args::{clamped, span, with_ends, FitArgs, Robust};
 use super::report::finish;
 use super::{periodic::run_periodic, surface::run_surface};
+use crate::cancel::with_progress;
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::values::numbers;
+
+/// Data points from which a fit draws a progress bar on a terminal (fewer fit in a blink).
+/// Ctrl-C stops every fit between two steps of its work, bar or no bar.
+pub(super) const LARGE: usize = 100_000;
 
 pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
     let modes = [
@@ -147,16 +153,26 @@ fn fit_curve(
             }
         };
         if shape.is_empty() {
-            smoothing_spline(&data, lambda)?
+            let large = data.len() > LARGE;
+            with_progress(cx, "smoothing", large, |p| {
+                smoothing_spline_with_progress(&data, lambda, p)
+            })?
         } else {
             constrained_smoothing_spline(&data, lambda, &shape)?
         }
     } else if let Some(s) = a.s {
         report["s"] = json!(s);
+        let large = data.len() > LARGE;
+        let degree = a.degree()?;
         if a.knots.is_some() {
-            smoothing_on_knots(&data, a.degree()?, &curve_knots(a, &params)?, s)?
+            let knots = curve_knots(a, &params)?;
+            with_progress(cx, "smoothing on the knots", large, |p| {
+                smoothing_on_knots_with_progress(&data, degree, &knots, s, p)
+            })?
         } else {
-            smoothing_condition(&data, a.degree()?, s)?
+            with_progress(cx, "smoothing condition", large, |p| {
+                smoothing_condition_with_progress(&data, degree, s, p)
+            })?
         }
     } else if let Some(tol) = a.tol {
         if a.function {
@@ -170,8 +186,8 @@ fn fit_curve(
             opts.deviation = Deviation::Parameter;
         }
         // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
-        let large = pts.len() > 100_000;
-        let t = crate::cancel::with_progress(cx, "fitting to the tolerance", large, |p| {
+        let large = pts.len() > LARGE;
+        let t = with_progress(cx, "fitting to the tolerance", large, |p| {
             fit_tolerance_with_progress(pts.as_view(), &opts, p)
         })?;
         report["tol"] = json!(tol);
@@ -207,7 +223,12 @@ fn fit_curve(
             None if !shape.is_empty() => {
                 constrained_least_squares(&data, a.degree()?, &knots, &shape)?
             }
-            None => least_squares(&data, a.degree()?, &knots, &ends)?,
+            None => {
+                let (degree, large) = (a.degree()?, data.len() > LARGE);
+                with_progress(cx, "least squares", large, |p| {
+                    least_squares_with_progress(&data, degree, &knots, &ends, p)
+                })?
+            }
         }
     };
     let shown = if a.function { pts.clone() } else { values };

@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use lekalo::fit::{
-    closed_parameters, periodic_least_squares, periodic_smoothing_condition,
-    periodic_smoothing_on_knots, FitData,
+    closed_parameters, periodic_least_squares_with_progress,
+    periodic_smoothing_condition_with_progress, periodic_smoothing_on_knots_with_progress, FitData,
 };
 use lekalo::Points;
 use lekalo_io::Object;
@@ -13,6 +13,7 @@ use serde_json::json;
 
 use super::args::FitArgs;
 use super::report::finish;
+use crate::cancel::with_progress;
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::values::numbers;
@@ -70,6 +71,9 @@ pub(super) fn run_periodic(
         data = data.with_weights(&w)?;
     }
     let mut report = json!({ "periodic": true, "period": [domain.0, domain.1] });
+    // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
+    let large = data.len() > super::fit::LARGE;
+    let degree = a.degree()?;
     let fit = if let Some(s) = a.s {
         report["s"] = json!(s);
         match &a.knots {
@@ -77,9 +81,13 @@ pub(super) fn run_periodic(
                 let mut breaks = vec![domain.0];
                 breaks.extend(numbers(k, "--knots")?);
                 breaks.push(domain.1);
-                periodic_smoothing_on_knots(&data, a.degree()?, &breaks, s)?
+                with_progress(cx, "closed smoothing on the knots", large, |p| {
+                    periodic_smoothing_on_knots_with_progress(&data, degree, &breaks, s, p)
+                })?
             }
-            None => periodic_smoothing_condition(&data, a.degree()?, s, domain)?,
+            None => with_progress(cx, "closed smoothing condition", large, |p| {
+                periodic_smoothing_condition_with_progress(&data, degree, s, domain, p)
+            })?,
         }
     } else {
         let (lo, hi) = domain;
@@ -98,7 +106,9 @@ pub(super) fn run_periodic(
             breaks.extend((1..n).map(|j| lo + (hi - lo) * j as f64 / n as f64));
         }
         breaks.push(hi);
-        periodic_least_squares(&data, a.degree()?, &breaks)?
+        with_progress(cx, "closed least squares", large, |p| {
+            periodic_least_squares_with_progress(&data, degree, &breaks, p)
+        })?
     };
     let shown = if a.function { pts } else { &values };
     finish(

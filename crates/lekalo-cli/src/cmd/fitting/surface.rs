@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use lekalo::fit::{
     place_knots, surface_grid_least_squares_at, surface_grid_parameters,
-    surface_scattered_least_squares,
+    surface_scattered_least_squares_with_progress,
 };
 use lekalo::{KnotVector, Points};
 use serde_json::{json, Value};
@@ -145,7 +145,18 @@ pub(super) fn run_surface(
         "v values of the data (the second column)",
         &uniform,
     )?;
-    let f = surface_scattered_least_squares(pts.as_view(), weights, (p, q), (&ku, &kv), a.penalty)?;
+    // a bar on a terminal for many points or a large net; Ctrl-C stops the fit between blocks
+    let large = pts.len() > super::fit::LARGE || entries > super::fit::LARGE * 100;
+    let f = crate::cancel::with_progress(cx, "scattered surface fit", large, |pr| {
+        surface_scattered_least_squares_with_progress(
+            pts.as_view(),
+            weights,
+            (p, q),
+            (&ku, &kv),
+            a.penalty,
+            pr,
+        )
+    })?;
     let max = f.residuals.iter().fold(0.0_f64, |m, &r| m.max(r));
     let rms = (f.residuals.iter().map(|r| r * r).sum::<f64>() / f.residuals.len() as f64).sqrt();
     let mut report = json!({ "max_residual": max, "rms": rms, "weighted_rss": f.weighted_rss,

@@ -370,6 +370,33 @@ fn unit(flag: usize, name: &str) -> Option<(String, f64)> {
 /// [`IoError::Syntax`] with the line for records that are not IGES, pointers outside the file
 /// and entities whose numbers do not fit their counts or that the library rejects.
 pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
+    read_iges_limited(text, source, usize::MAX)
+}
+
+/// [`read_iges`] of a file that may hold at most `max_size` entities (directory entries), and
+/// whose B-splines (entities 126 and 128) may hold at most `max_size` control points and knots
+/// together: the counts each entity declares are checked before its points and knots are
+/// allocated, so a file past the limit is refused with the count instead of filling the memory.
+/// The CLI passes its `--max-size`.
+///
+/// ```
+/// use lekalo_io::{read_iges_limited, IgesWriter, IoError, Object};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("line.igs", "2000-01-01T00:00:00");
+/// assert!(read_iges_limited(&text, "line.igs", 1000).is_ok());
+/// // 2 control points and 4 knots are above a limit of 5
+/// let e = read_iges_limited(&text, "line.igs", 5).unwrap_err();
+/// assert!(matches!(e, IoError::TooLarge { .. }) && e.to_string().contains("--max-size"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
+/// the limit.
+pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
     let mut g = String::new();
     let mut d: Vec<(usize, &str)> = Vec::new();
     let mut p: Vec<(usize, &str)> = Vec::new();
@@ -424,6 +451,27 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
     let _ = scale_field;
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
+    let entities = d.len() / 2;
+    if entities > max_size {
+        return Err(IoError::TooLarge {
+            what: format!(
+                "{source}: {entities} entities in the directory section, above the size limit {max_size}; raise the limit with --max-size {entities} if the machine has the memory"
+            ),
+        });
+    }
+    // control points and knots of the B-splines read so far, against the size limit
+    let mut used = 0usize;
+    let mut charge = |seq: u64, n: usize| -> IoResult<()> {
+        used = used.saturating_add(n);
+        if used > max_size {
+            return Err(IoError::TooLarge {
+                what: format!(
+                    "{source}: entity D{seq}: {used} control points and knots with this entity's {n}, above the size limit {max_size}; raise the limit with --max-size {used} if the machine has the memory"
+                ),
+            });
+        }
+        Ok(())
+    };
     // parameter lines read so far: each entity owns its own lines, so more than the section
     // holds means entities share lines, which a file could use to make the reading quadratic
     let mut lines_read = 0usize;
@@ -562,9 +610,10 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
                 format!("K = {k}, M = {m} (upper index and degree)"),
                 &[Some(7), nk, n, n.and_then(|n| n.checked_mul(3)), Some(2)],
             )?;
-            let (Some(nk), Some(_)) = (nk, n) else {
+            let (Some(nk), Some(n)) = (nk, n) else {
                 return Err(bad("the counts overflow".into()));
             };
+            charge(seq, nk.saturating_add(n))?;
             let base = 7;
             let knots = (0..nk).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
             let w = (0..=k)
@@ -603,6 +652,11 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
             let (Some(n1), Some(n2)) = (n1, n2) else {
                 return Err(bad("the counts overflow".into()));
             };
+            charge(
+                seq,
+                n1.saturating_add(n2)
+                    .saturating_add(net.unwrap_or(usize::MAX)),
+            )?;
             // both below the parameter count (checked above), so k + 1 does not overflow
             let (nu, nv) = (k1 + 1, k2 + 1);
             let base = 10;

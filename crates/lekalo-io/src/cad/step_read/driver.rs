@@ -1,6 +1,7 @@
 //! [`read_step`]: the exchange structure parsed, its units found, then each geometric entity
 //! read or listed as skipped.
 
+use std::cell::{Cell, RefCell};
 use std::collections::{HashMap, HashSet};
 
 use super::analytic::{ANALYTIC_CURVES, ANALYTIC_SURFACES};
@@ -36,13 +37,50 @@ use crate::shape::Shape;
 /// [`IoError::Syntax`] naming the entity when a B-spline entity is malformed or rejected by the
 /// library's constructor (unsorted knots, wrong counts, non-positive weights).
 pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
-    let parsed = parse(text, source)?;
+    read_step_limited(text, source, usize::MAX)
+}
+
+/// [`read_step`] of a file that may hold at most `max_size` entity instances, and whose
+/// B-splines may hold at most `max_size` control points and knots together (counted as they are
+/// read, a curve each time it is read: as itself and as the basis of a trim): the count is
+/// checked before the instances, points or knots past the limit are allocated, so a file that
+/// declares more (knot multiplicities in the millions, a net of millions of points) is refused
+/// with the count instead of filling the memory. The CLI passes its `--max-size`.
+///
+/// ```
+/// use lekalo_io::{read_step_limited, IoError, Object, StepWriter};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = StepWriter::new("line");
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("2000-01-01T00:00:00");
+/// assert!(read_step_limited(&text, "line.step", 1000).is_ok());
+/// // 2 control points and 4 knots are above a limit of 5
+/// let e = read_step_limited(&text, "line.step", 5).unwrap_err();
+/// assert!(matches!(e, IoError::TooLarge { .. }) && e.to_string().contains("--max-size"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_step`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
+/// the limit.
+pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
+    let parsed = parse(text, source, max_size)?;
     let (length_unit, scale) = length_unit(&parsed, source)?;
     let rd = Reader {
         p: &parsed,
         source,
         scale,
         angle: plane_angle_unit(&parsed),
+        max_size,
+        used: Cell::new(0),
+        over: RefCell::new(None),
+    };
+    // a refusal by the size limit, wherever it happened (a skipped entity included)
+    let too_large = |rd: &Reader<'_>| {
+        rd.over.borrow().as_ref().map(|why| IoError::TooLarge {
+            what: format!("{source}: {why}"),
+        })
     };
     let mut ids: Vec<u64> = parsed.instances.keys().copied().collect();
     ids.sort_unstable();
@@ -74,15 +112,20 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
             }
         }
     }
+    if let Some(e) = too_large(&rd) {
+        return Err(e);
+    }
     let lines = line_ranges(&rd);
     let mut unbounded = HashSet::new();
     for &id in &ids {
         let inst = &parsed.instances[&id];
         let bad = |why: Why| {
-            IoError::syntax(
-                rd.at(id),
-                format!("entity #{id} {}: {why}", inst.type_name()),
-            )
+            too_large(&rd).unwrap_or_else(|| {
+                IoError::syntax(
+                    rd.at(id),
+                    format!("entity #{id} {}: {why}", inst.type_name()),
+                )
+            })
         };
         if is_bspline_curve(inst) {
             let c = rd.curve(inst).map_err(bad)?;
@@ -132,6 +175,9 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
             );
         }
     }
+    if let Some(e) = too_large(&rd) {
+        return Err(e);
+    }
     let bounds = face_bounds(&rd, &unbounded, &curves);
     for &id in &ids {
         let inst = &parsed.instances[&id];
@@ -142,6 +188,9 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
             Ok(s) => shapes.push((id, Shape::Surface(s))),
             Err(reason) => skip(&mut skipped, id, name, reason),
         }
+    }
+    if let Some(e) = too_large(&rd) {
+        return Err(e);
     }
     shapes.sort_by_key(|(id, _)| *id);
     skipped.sort_by_key(|s| s.id);

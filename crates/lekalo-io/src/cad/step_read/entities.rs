@@ -1,6 +1,8 @@
 //! Decoding of the entities read: B-spline curves and surfaces (plain or complex instances,
 //! rational or not), their points and knots; the other geometry, which is listed as skipped.
 
+use std::cell::{Cell, RefCell};
+
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
 use super::parse::Parsed;
@@ -42,6 +44,31 @@ pub(super) struct Reader<'a> {
     pub(super) scale: f64,
     /// The plane angle unit in radians (1 for radians, π/180 for degrees).
     pub(super) angle: f64,
+    /// The most control points and knots the file's B-splines may hold together (`--max-size`).
+    pub(super) max_size: usize,
+    /// Control points and knots read so far.
+    pub(super) used: Cell<usize>,
+    /// The refusal, once the file went past [`Reader::max_size`].
+    pub(super) over: RefCell<Option<String>>,
+}
+
+impl Reader<'_> {
+    /// Counts `n` more control points or knots of the entity being read (`what`), before they
+    /// are allocated: past [`Reader::max_size`] the entity is refused and the refusal kept for
+    /// the whole read ([`IoError::TooLarge`](crate::IoError::TooLarge) in `read_step`).
+    pub(super) fn charge(&self, n: usize, what: &str) -> Result<(), Why> {
+        let total = self.used.get().saturating_add(n);
+        if total > self.max_size {
+            let why = format!(
+                "{total} control points and knots with this entity's {n} {what}, above the size limit {}; raise the limit with --max-size {total} if the machine has the memory",
+                self.max_size
+            );
+            self.over.borrow_mut().get_or_insert_with(|| why.clone());
+            return Err(why);
+        }
+        self.used.set(total);
+        Ok(())
+    }
 }
 
 /// The knots of one direction, each repeated by its multiplicity, for `n` control points of
@@ -212,8 +239,9 @@ impl Reader<'_> {
     }
 
     fn points(&self, p: &P) -> Result<Points, Why> {
-        let rows = list(p)
-            .ok_or("control_points_list is not a list")?
+        let items = list(p).ok_or("control_points_list is not a list")?;
+        self.charge(items.len(), "control points")?;
+        let rows = items
             .iter()
             .map(|q| self.point(q))
             .collect::<Result<Vec<_>, _>>()?;
@@ -263,6 +291,7 @@ impl Reader<'_> {
         };
         let degree = int(degree).ok_or("degree is not a non-negative integer")?;
         let ctrl = self.points(ctrl)?;
+        self.charge(ctrl.len().saturating_add(degree).saturating_add(1), "knots")?;
         let knots = knots.expand(ctrl.len(), degree, "")?;
         let obj = match weights {
             None => {
@@ -349,7 +378,9 @@ impl Reader<'_> {
             flat.extend_from_slice(pts.as_slice());
         }
         let ctrl = Points::from_flat(dim.max(1), flat).map_err(|e| e.to_string())?;
+        self.charge(nu.saturating_add(du).saturating_add(1), "u knots")?;
         let ku = ku.expand(nu, du, "u ")?;
+        self.charge(nv.saturating_add(dv).saturating_add(1), "v knots")?;
         let kv = kv.expand(nv, dv, "v ")?;
         Ok(match weights {
             None => Surface::BSpline(

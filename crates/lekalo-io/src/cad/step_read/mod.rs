@@ -32,7 +32,7 @@
 //! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library; trimmed curves over any of them |
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
-//! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped |
+//! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
 //! | `tests.rs`, `analytic_tests.rs` | tests |
 
 mod analytic;
@@ -46,7 +46,7 @@ mod parse;
 mod tests;
 mod units;
 
-pub use driver::read_step;
+pub use driver::{read_step, read_step_limited};
 
 use crate::shape::Shape;
 

@@ -306,7 +306,9 @@ pub(super) struct Parsed {
     pub(super) schema: Option<String>,
 }
 
-pub(super) fn parse(text: &str, source: &str) -> IoResult<Parsed> {
+/// Parses the exchange structure; more than `max_entities` instances is
+/// [`IoError::TooLarge`], refused before the next one is stored.
+pub(super) fn parse(text: &str, source: &str, max_entities: usize) -> IoResult<Parsed> {
     let mut lx = Lexer::new(text, source);
     let mut instances = HashMap::new();
     let mut schema = None;
@@ -342,6 +344,13 @@ pub(super) fn parse(text: &str, source: &str) -> IoResult<Parsed> {
                 vec![(k, lx.params()?)]
             };
             lx.expect(b';')?;
+            if instances.len() >= max_entities {
+                return Err(IoError::TooLarge {
+                    what: format!(
+                        "{source}: line {line}: more than {max_entities} entity instances, above the size limit {max_entities}; raise the limit with --max-size if the machine has the memory"
+                    ),
+                });
+            }
             if instances.insert(id, Instance { records, line }).is_some() {
                 return Err(IoError::syntax(
                     Location::new(source).at_line(line),

@@ -10,9 +10,11 @@ use crate::fit::banded::SymBand;
 use crate::fit::data::{CurveFit, FitData, FitReport};
 use crate::fit::knot_placement::check_schoenberg_whitney;
 use crate::fit::lsq::{accumulate, solve_control, spline_space, Fixed};
+use crate::fit::progress::Steps;
 use crate::fit::smoothing::Smoother;
 use crate::fit::{smoothing_spline, Lambda};
 use crate::knots::KnotVector;
+use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
@@ -76,7 +78,7 @@ pub fn constrained_least_squares(
     // the same operations) and the objective of the constrained one
     let fixed = Fixed::free(data);
     let bw = degree + 1;
-    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw);
+    let qr = accumulate(data, degree, knots, n_ctrl, &fixed, bw, &Progress::new())?;
     let scale = Scale::of(data, domain);
     let free = BSplineCurve::from_raw(
         degree,
@@ -160,7 +162,7 @@ pub fn constrained_smoothing_spline(
     let s = Smoother::new(data)?;
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv()?,
+        Lambda::Gcv => s.minimise_gcv(&Steps::new(&Progress::new(), "GCV"))?,
     };
     let n = s.knots.len() - 4;
     let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
