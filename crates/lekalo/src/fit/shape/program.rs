@@ -437,7 +437,7 @@ impl ConeProgram {
         // an equality-constrained run (the polish) is one Newton step: refine its linear solve
         // to the last digit
         let polish = inequalities.is_empty() && cone_rows.is_empty();
-        let refine = if polish { 1e-16 } else { 1e-10 };
+        let refine = if polish { 1e-16 } else { 1e-13 };
         let settings = DefaultSettingsBuilder::default()
             .verbose(false)
             .iterative_refinement_reltol(refine)
