@@ -64,6 +64,8 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::interpolate_surface, m)?)?;
     m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;
     m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::hermite_bernstein, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
     blend::register(m)?;

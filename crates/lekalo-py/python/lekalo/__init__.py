@@ -86,6 +86,8 @@ from ._lekalo import (
     akima_slopes,
     parametrize,
     quasi_interpolate,
+    hermite_bernstein,
+    piecewise_hermite_bernstein,
 )
 from . import _lekalo
 from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
@@ -160,6 +162,8 @@ __all__ = [
     "akima_slopes",
     "parametrize",
     "quasi_interpolate",
+    "hermite_bernstein",
+    "piecewise_hermite_bernstein",
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",
