@@ -67,9 +67,9 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, principal_normal, torsion, BSplineCurve, BezierCurve, BezierSegment, Curve,
-    CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL,
-    POWER_FORM_MAX_DEGREE,
+    curvature, insert_knot_periodic, principal_normal, torsion, BSplineCurve, BezierCurve,
+    BezierSegment, Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator,
+    DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --

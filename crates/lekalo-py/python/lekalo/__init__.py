@@ -88,6 +88,7 @@ from ._lekalo import (
     quasi_interpolate,
     hermite_bernstein,
     piecewise_hermite_bernstein,
+    insert_knot_periodic,
 )
 from . import _lekalo
 from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
@@ -164,6 +165,7 @@ __all__ = [
     "quasi_interpolate",
     "hermite_bernstein",
     "piecewise_hermite_bernstein",
+    "insert_knot_periodic",
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",
