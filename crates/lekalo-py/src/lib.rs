@@ -11,7 +11,7 @@
 //!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
 //! - classes: `curves` (their calculus in `calculus`), `surfaces`, `tensor` (N variables,
 //!   SciPy's `NdBSpline`), `interp` (interpolation, Hermite; SciPy's Hermite slopes in
-//!   `slopes`), `pp`, `blend`;
+//!   `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`;
@@ -28,6 +28,7 @@ mod error;
 mod fit;
 mod interp;
 mod objects;
+mod periodic;
 mod pp;
 mod query;
 mod shape;
@@ -64,6 +65,9 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::interpolate_surface, m)?)?;
     m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;
     m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::hermite_bernstein, m)?)?;
+    m.add_function(wrap_pyfunction!(periodic::insert_knot_periodic, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
     blend::register(m)?;

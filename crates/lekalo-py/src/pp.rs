@@ -7,7 +7,7 @@ use lekalo_io::Shape;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
+use crate::convert::{array, check_size, filled, floats, points_into_array, vec1, vec_array};
 use crate::convert::{out_shape, reduce};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
@@ -81,6 +81,44 @@ impl PyPiecewisePolynomial {
         Ok(Self { inner: p })
     }
 
+    /// The same function from pieces given on strictly decreasing breakpoints `x_0 > … > x_l`,
+    /// piece `i` on `[x_{i+1}, x_i]` written about its right end `x_i` (coefficients `(pieces,
+    /// order, dim)`, lowest power first; SciPy's `PPoly` with decreasing `x`). The result has
+    /// the increasing breakpoints (`lekalo::PiecewisePolynomial::from_decreasing`, a Taylor
+    /// shift of each piece).
+    #[staticmethod]
+    fn from_decreasing(
+        py: Python<'_>,
+        breakpoints: &Bound<'_, PyAny>,
+        coefficients: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let x = vec1(breakpoints, "breakpoints")?;
+        let c = floats(coefficients, "coefficients")?;
+        let s = c.shape();
+        if s.len() != 3 || s[0] + 1 != x.len() {
+            return Err(bad(format!(
+                "coefficients: expected shape (pieces, order, dim) with pieces = {} for {} breakpoints, got {s:?}",
+                x.len().saturating_sub(1),
+                x.len()
+            )));
+        }
+        let data = c.data();
+        let p = py
+            .detach(|| PiecewisePolynomial::from_decreasing(&x, s[1], s[2], data))
+            .map_err(lib_err)?;
+        Ok(Self { inner: p })
+    }
+
+    /// `(breakpoints, coefficients)` on the breakpoints in decreasing order, each piece written
+    /// about its right end (its left limits there), coefficients `(pieces, order, dim)`: the
+    /// inverse of `from_decreasing`.
+    fn to_decreasing<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let p = &self.inner;
+        let (x, c) = p.to_decreasing();
+        let c = array(py, c, &[p.n_pieces(), p.order(), p.dim()])?;
+        PyTuple::new(py, [vec_array(py, &x), c])
+    }
+
     /// The breakpoints `ξ`.
     #[getter]
     fn breakpoints<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
@@ -136,6 +174,54 @@ impl PyPiecewisePolynomial {
                 .try_for_each(|(&x, o)| f.eval_into(x, o))
         })?;
         Ok(out.unbind())
+    }
+
+    /// The `nu`-th derivative at `x` (any shape, result `x.shape + (dim,)`), the end pieces
+    /// continued beyond the breakpoints (SciPy's `PPoly` with `extrapolate=True`); Horner's
+    /// rule on the pp-form (`lekalo::PiecewisePolynomial::eval_extrapolated_into`).
+    #[pyo3(signature = (x, nu = 0))]
+    fn eval_extrapolated<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+        nu: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let xa = floats(x, "x")?;
+        let xs = xa.data();
+        let dim = self.inner.dim();
+        check_size("x", &[xs.len(), dim])?;
+        filled(py, &out_shape(&xa, &[dim]), |out| {
+            xs.iter()
+                .zip(out.chunks_exact_mut(dim))
+                .try_for_each(|(&x, o)| self.inner.eval_extrapolated_into(x, nu, o))
+        })
+    }
+
+    /// The `n`-th antiderivative (order `k + n`, continuous), its derivatives of orders
+    /// `0 … n − 1` zero at `anchor` (default: the first breakpoint); in pp-form, as SciPy's
+    /// `PPoly.antiderivative` (`lekalo::PiecewisePolynomial::antiderivative`).
+    #[pyo3(signature = (n = 1, anchor = None))]
+    fn antiderivative(&self, py: Python<'_>, n: usize, anchor: Option<f64>) -> PyResult<Self> {
+        let at = anchor.unwrap_or(self.inner.breakpoints()[0]);
+        let p = py
+            .detach(|| self.inner.antiderivative(n, at))
+            .map_err(lib_err)?;
+        Ok(Self { inner: p })
+    }
+
+    /// `∫_a^b f` as a `(dim,)` array, the end pieces continued beyond the breakpoints
+    /// (`lekalo::PiecewisePolynomial::integral_extrapolated`; SciPy's `PPoly.integrate`).
+    fn integral_extrapolated<'py>(
+        &self,
+        py: Python<'py>,
+        a: f64,
+        b: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let v = py
+            .detach(|| self.inner.integral_extrapolated(a, b))
+            .map_err(lib_err)?;
+        let dim = v.len();
+        array(py, v, &[dim])
     }
 
     /// The `j`-th derivative as a piecewise polynomial.
@@ -379,4 +465,64 @@ pub(crate) fn quasi_interpolate(
         return Err(e);
     }
     Ok(PyBSplineCurve::wrap(c.map_err(lib_err)?))
+}
+
+/// The Bernstein coefficients on `[a, b]` of the polynomial of least degree with the
+/// derivatives `at_a` at `a` and `at_b` at `b` (rows: value, first derivative, …; `(n, dim)` or
+/// `(n,)`). Returns `(n_a + n_b, dim)` (`lekalo::hermite_bernstein`; SciPy's
+/// `BPoly._construct_from_derivatives`).
+///
+/// >>> import lekalo
+/// >>> lekalo.hermite_bernstein(0.0, 1.0, [2.0, 3.0], [1.0])
+/// array([[2. ],
+///        [3.5],
+///        [1. ]])
+#[pyfunction]
+pub(crate) fn hermite_bernstein<'py>(
+    py: Python<'py>,
+    a: f64,
+    b: f64,
+    at_a: &Bound<'py, PyAny>,
+    at_b: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let ya = floats(at_a, "at_a")?;
+    let yb = floats(at_b, "at_b")?;
+    let (ra, rb) = (ya.points("at_a")?, yb.points("at_b")?);
+    let c = py
+        .detach(|| lekalo::hermite_bernstein(a, b, ra, rb))
+        .map_err(lib_err)?;
+    points_into_array(py, c)
+}
+
+/// The piecewise polynomial on increasing `breakpoints` with the derivatives `derivatives[i]`
+/// at breakpoint `i` (a list of arrays `(n_i, dim)` or `(n_i,)`: value, first derivative, …),
+/// optionally of the degree `orders[i]` on piece `i`: a `BSplineCurve` whose breakpoints all
+/// have multiplicity degree + 1, its control points the Bernstein coefficients piece after
+/// piece (`lekalo::piecewise_hermite_bernstein`; SciPy's `BPoly.from_derivatives`).
+///
+/// >>> import lekalo
+/// >>> f = lekalo.piecewise_hermite_bernstein([0.0, 1.0, 2.0], [[0.0, 1.0], [0.0], [2.0]])
+/// >>> f.degree, f(0.5)
+/// (2, array([0.25]))
+#[pyfunction]
+#[pyo3(signature = (breakpoints, derivatives, orders = None))]
+pub(crate) fn piecewise_hermite_bernstein(
+    py: Python<'_>,
+    breakpoints: &Bound<'_, PyAny>,
+    derivatives: Vec<Bound<'_, PyAny>>,
+    orders: Option<Vec<usize>>,
+) -> PyResult<PyBSplineCurve> {
+    let x = vec1(breakpoints, "breakpoints")?;
+    let arrays = derivatives
+        .iter()
+        .map(|d| floats(d, "derivatives"))
+        .collect::<PyResult<Vec<_>>>()?;
+    let refs = arrays
+        .iter()
+        .map(|a| a.points("derivatives"))
+        .collect::<PyResult<Vec<_>>>()?;
+    let curve = py
+        .detach(|| lekalo::piecewise_hermite_bernstein(&x, &refs, orders.as_deref()))
+        .map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(curve))
 }

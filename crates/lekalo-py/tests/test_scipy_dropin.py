@@ -628,11 +628,70 @@ def test_ppoly_conversions_and_from_spline():
     close(ls.PPoly.from_spline(spl)(XX), spl(XX), 1e-12)
     # roots: lekalo's PiecewisePolynomial.solve, SciPy's conventions
     close(pb.roots(), pa.roots(), 1e-12)
-    # what the core lacks is refused, never computed in Python
-    with pytest.raises(NotImplementedError):
-        ls.BPoly.from_derivatives([0, 1], [[0, 1], [1]])
-    with pytest.raises(NotImplementedError):
-        ls.PPoly(c, x[::-1].copy())(0.5)
+
+
+@pytest.mark.parametrize("tail", [(), (2,), (2, 3)])
+@pytest.mark.parametrize("orders", [None, 3, [1, 2, 3, 4, 5]])
+def test_bpoly_from_derivatives(tail, orders):
+    # lekalo's piecewise_hermite_bernstein: 1 to 4 derivatives at each of 6 breakpoints
+    rng = np.random.default_rng(5)
+    xi = np.sort(rng.uniform(0.0, 4.0, 6))
+    yi = [rng.standard_normal((1 + i % 4,) + tail) for i in range(6)]
+    if orders is not None:
+        # (SciPy refuses some orders that lekalo's rule serves by drawing from the other end)
+        yi = [rng.standard_normal((3,) + tail) for _ in range(6)]
+    a = si.BPoly.from_derivatives(xi, yi, orders=orders)
+    b = ls.BPoly.from_derivatives(xi, yi, orders=orders)
+    assert type(b) is ls.BPoly
+    close(b.c, a.c, 1e-11)
+    # on the breakpoints' span: outside, the degree-7 Bernstein extrapolation of a short end
+    # piece is ill-conditioned in both (relative differences 1e-9 at 0.2 out, 1e-6 at x = 5)
+    xs = np.linspace(xi[0], xi[-1], 41)
+    for nu in range(3):
+        close(b(xs, nu), a(xs, nu), 1e-10)
+
+
+def test_bpoly_from_derivatives_single_piece_and_errors():
+    ya, yb = [1.0, 2.0, 3.0], [4.0, 0.5 + 1j]
+    close(ls.BPoly._construct_from_derivatives(0.5, 2.0, ya, yb), si.BPoly._construct_from_derivatives(0.5, 2.0, ya, yb), 1e-14)
+    for xi, yi, kw in [([0, 1], [[0]], {}), ([0, 0, 1], [[0], [0], [0]], {}), ([0, 1, 2], [[0, 1], [0], [1, 2]], {"orders": 0}), ([0, 1], [[0, 1], [1, 2]], {"orders": 4})]:
+        with pytest.raises(ValueError):
+            si.BPoly.from_derivatives(xi, yi, **kw)
+        with pytest.raises(ValueError):
+            ls.BPoly.from_derivatives(xi, yi, **kw)
+
+
+@pytest.mark.parametrize("cls", ["PPoly", "BPoly"])
+@pytest.mark.parametrize("tail", [(), (2,)])
+def test_decreasing_breakpoints(cls, tail):
+    # lekalo's PiecewisePolynomial.from_decreasing / to_decreasing (PPoly), the Bernstein
+    # coefficients reversed (BPoly)
+    c, x = pp_data(order=4, pieces=6, tail=tail)
+    xd = x[::-1].copy()
+    a, b = getattr(si, cls)(c, xd), getattr(ls, cls)(c, xd)
+    for nu in range(3):
+        close(b(XX, nu), a(XX, nu), 1e-11)
+    close(b.derivative().c, a.derivative().c, 1e-11)
+    close(b.derivative()(XX), a.derivative()(XX), 1e-11)
+    close(b.antiderivative()(XX), a.antiderivative()(XX), 1e-11)
+    close(b.antiderivative().c, a.antiderivative().c, 1e-11)
+    for lo, hi in [(-1.0, 5.0), (3.5, 0.2), (1.0, 1.5)]:
+        close(b.integrate(lo, hi), a.integrate(lo, hi), 1e-11)
+        close(b.integrate(lo, hi, extrapolate=False), a.integrate(lo, hi, extrapolate=False), 1e-11)
+    if cls == "PPoly" and tail == ():
+        close(np.sort(b.roots()), np.sort(a.roots()), 1e-12)
+    if cls == "BPoly":
+        close(ls.PPoly.from_bernstein_basis(b)(XX), si.PPoly.from_bernstein_basis(a)(XX), 1e-11)
+
+
+def test_ppoly_pp_form_integral_and_antiderivative():
+    # lekalo's PiecewisePolynomial.antiderivative / integral_extrapolated on the given pieces
+    c, x = pp_data(order=5, pieces=5, tail=(3,))
+    a, b = si.PPoly(c, x), ls.PPoly(c, x)
+    for nu in (1, 2, 3):
+        close(b.antiderivative(nu).c, a.antiderivative(nu).c, 1e-13)
+    for lo, hi in [(-2.0, 6.0), (3.0, 0.5), (0.1, 0.2)]:
+        close(b.integrate(lo, hi), a.integrate(lo, hi), 1e-13)
 
 
 @pytest.mark.parametrize("cls", ["PPoly", "BPoly"])

@@ -18,7 +18,7 @@
 //! | interpolation ([`interpolate`]) | [`CurveInterpolation`], [`SurfaceInterpolation`], [`natural_cubic_spline`], [`CubicHermite`] | doc 000; document 002, four-point cubic and Hermite segment |
 //! | Bezier degree change ([`degree`]) | [`BezierCurve::elevate_degree`], [`BezierCurve::change_degree`], [`BezierCurve::real_degree`], [`ElevationPlan`] | doc 004 |
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`], [`smooth_polyline_corners`] | doc 001 |
-//! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`] | doc 003 |
+//! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`], [`piecewise_hermite_bernstein`] | doc 003 |
 //! | derivatives for automatic differentiation ([`derivatives`]) | [`BSplineCurve::eval_batch_jvp`], [`BSplineCurve::eval_batch_vjp`], [`BSplineCurve::eval_batch_linearize`], the same for [`BSplineSurface`] | P&T A2.3; `docs/theory.md` |
 //! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
@@ -67,9 +67,9 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, principal_normal, torsion, BSplineCurve, BezierCurve, BezierSegment, Curve,
-    CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL,
-    POWER_FORM_MAX_DEGREE,
+    curvature, insert_knot_periodic, principal_normal, torsion, BSplineCurve, BezierCurve,
+    BezierSegment, Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator,
+    DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --
@@ -132,10 +132,11 @@ pub use blend::{smooth_polyline_corners, CornerWindow, SmoothedPolyline, MAX_POL
 pub mod pp;
 
 pub use pp::{
-    bspline_divided_difference, divided_difference, divided_difference_explicit, quasi_interpolate,
-    quasi_interpolate_expression, sample_quasi_interpolant, sample_quasi_interpolant_expression,
-    truncated_power, Expression, NewtonForm, PiecewisePolynomial, PpSpace, QuasiSamples, Tau,
-    TauRule, DEFAULT_CONTINUITY_RTOL, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER,
+    bspline_divided_difference, divided_difference, divided_difference_explicit, hermite_bernstein,
+    piecewise_hermite_bernstein, quasi_interpolate, quasi_interpolate_expression,
+    sample_quasi_interpolant, sample_quasi_interpolant_expression, truncated_power, Expression,
+    NewtonForm, PiecewisePolynomial, PpSpace, QuasiSamples, Tau, TauRule, DEFAULT_CONTINUITY_RTOL,
+    MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER, MAX_HERMITE_DEGREE,
 };
 
 // -- fitting: least squares, smoothing, fitting to a tolerance --

@@ -86,6 +86,9 @@ from ._lekalo import (
     akima_slopes,
     parametrize,
     quasi_interpolate,
+    hermite_bernstein,
+    piecewise_hermite_bernstein,
+    insert_knot_periodic,
 )
 from . import _lekalo
 from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
@@ -160,6 +163,9 @@ __all__ = [
     "akima_slopes",
     "parametrize",
     "quasi_interpolate",
+    "hermite_bernstein",
+    "piecewise_hermite_bernstein",
+    "insert_knot_periodic",
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",

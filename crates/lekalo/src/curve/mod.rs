@@ -9,6 +9,8 @@
 //!   polynomials of [`BSplineCurve`].
 //! - `knot_insertion.rs`: knot insertion and refinement, splitting, Bezier decomposition and
 //!   its inverse.
+//! - `periodic_insertion.rs`: [`insert_knot_periodic`], knot insertion keeping a periodic
+//!   spline's extension (FITPACK's `fpinst`).
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
 //! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
 //!   segments.
@@ -32,6 +34,7 @@ mod knot_insertion;
 pub(crate) mod knot_removal;
 pub(crate) mod nurbs;
 mod nurbs_ops;
+mod periodic_insertion;
 mod power_form;
 
 pub use any::Curve;
@@ -41,4 +44,5 @@ pub use curvature::{curvature, principal_normal, torsion};
 pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;
+pub use periodic_insertion::insert_knot_periodic;
 pub use power_form::POWER_FORM_CONTINUITY_RTOL;

@@ -3,12 +3,24 @@
 //! - `divided_difference.rs`: divided differences ([`divided_difference`], [`NewtonForm`]) and
 //!   the B-spline as a divided difference of truncated powers.
 //! - `ppform.rs`: [`PiecewisePolynomial`] (pp-form) and the spaces [`PpSpace`].
+//! - `decreasing.rs`: piecewise polynomials given on decreasing breakpoints
+//!   ([`PiecewisePolynomial::from_decreasing`], [`PiecewisePolynomial::to_decreasing`]).
+//! - `extrapolation.rs`: evaluation with the end pieces continued
+//!   ([`PiecewisePolynomial::eval_extrapolated_into`]).
+//! - `hermite_bernstein.rs`: Hermite interpolation in Bernstein form with derivatives of any
+//!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
+//! - `integral.rs`: antiderivatives and integrals in pp-form
+//!   ([`PiecewisePolynomial::antiderivative`], [`PiecewisePolynomial::integral_extrapolated`]).
 //! - `roots.rs`: the real solutions of `f(x) = y` ([`PiecewisePolynomial::solve`], [`Solution`]).
 //! - `quasi_interpolation.rs`: the de Boor–Fix dual functionals: pp-form to B-spline
 //!   conversion and [`quasi_interpolate`].
 
+mod decreasing;
 mod divided_difference;
 mod expression;
+mod extrapolation;
+mod hermite_bernstein;
+mod integral;
 pub(crate) mod ppform;
 mod quasi_interpolation;
 mod roots;
@@ -18,6 +30,7 @@ pub use divided_difference::{
     NewtonForm,
 };
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
+pub use hermite_bernstein::{hermite_bernstein, piecewise_hermite_bernstein, MAX_HERMITE_DEGREE};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi_interpolation::{
     quasi_interpolate, quasi_interpolate_expression, sample_quasi_interpolant,

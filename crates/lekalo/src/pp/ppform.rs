@@ -149,6 +149,11 @@ impl PiecewisePolynomial {
         }
     }
 
+    /// The coefficients for in-crate constructions that change them in place.
+    pub(crate) fn coefficients_mut(&mut self) -> &mut [f64] {
+        &mut self.coefficients
+    }
+
     /// The breakpoints `ξ_1 < … < ξ_{l+1}`.
     #[must_use]
     pub fn breakpoints(&self) -> &[f64] {

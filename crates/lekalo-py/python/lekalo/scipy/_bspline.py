@@ -307,18 +307,30 @@ class BSpline:
 
     def insert_knot(self, x: float, m: int = 1) -> "BSpline":
         """The same spline with the knot ``x`` inserted ``m`` times (Boehm), lekalo's
-        ``insert_knot``; the coefficients grow by ``m``."""
+        ``insert_knot``; the coefficients grow by ``m``. A periodic spline
+        (``extrapolate="periodic"``) keeps its periodic extension, lekalo's
+        ``insert_knot_periodic`` (FITPACK's ``fpinst``)."""
         x = float(x)
         if x < self.t[self.k] or x > self.t[-self.k - 1]:
             raise ValueError(f"Cannot insert a knot at {x}.")
         if m <= 0:
             raise ValueError(f"`m` must be positive, got {m = }.")
-        if self.extrapolate == "periodic":
-            raise NotImplementedError("lekalo.scipy: periodic knot insertion is not available yet")
         n = self._n()
         complex_ = np.iscomplexobj(self.c)
+        if self.extrapolate == "periodic":
+            # lekalo's insert_knot_periodic: Boehm's insertion, then the periodic extension
+            # restored as FITPACK's fpinst does
+            cols = _real_columns(self.c, n)
+            t, control = _lekalo.insert_knot_periodic(self.k, self.t, cols if cols.shape[1] else np.zeros((n, 1)), x, m)
+            if not cols.shape[1]:
+                control = np.zeros((n + m, 0))
+            cc = _from_columns(np.ascontiguousarray(control), complex_).reshape((n + m,) + self.c.shape[1:])
+            # coefficients beyond the n that the knots use stay at the end, as in SciPy
+            cc = np.concatenate([cc, self.c[n:]]) if self.c.shape[0] > n else cc
+            return self.construct_fast(np.ascontiguousarray(t), cc, self.k, self.extrapolate, self.axis)
         curve = _curve(self.t, _real_columns(self.c, n), self.k).insert_knot(x, m)
         cc = _from_columns(curve.control, complex_).reshape((n + m,) + self.c.shape[1:])
+        cc = np.concatenate([cc, self.c[n:]]) if self.c.shape[0] > n else cc
         return self.construct_fast(np.ascontiguousarray(curve.knots), cc, self.k, self.extrapolate, self.axis)
 
 

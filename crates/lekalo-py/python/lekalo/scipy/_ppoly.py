@@ -17,10 +17,10 @@ from ._interpolate import make_interp_spline
 
 
 def _pieces(x: np.ndarray, c: np.ndarray):
-    """The breakpoints and the coefficients of the pieces of positive length (SciPy accepts
+    """The breakpoints and the coefficients of the pieces of nonzero length (SciPy accepts
     repeated breakpoints, whose empty pieces are never evaluated; lekalo's are strictly
-    increasing)."""
-    keep = np.diff(x) > 0
+    monotonic)."""
+    keep = np.diff(x) != 0
     if keep.all():
         return x, c
     return x[np.r_[True, keep]], c[:, keep]
@@ -51,14 +51,6 @@ def _spline_derivative(s: BSpline, nu: int) -> BSpline:
     control = np.asarray(curve.control)
     c = _from_columns(control, complex_).reshape((control.shape[0],) + s.c.shape[1:])
     return BSpline.construct_fast(np.asarray(curve.knots), c, s.k - nu, s.extrapolate, s.axis)
-
-
-def _check_ascending(x: np.ndarray, name: str) -> None:
-    if x[-1] < x[0]:
-        raise NotImplementedError(
-            f"lekalo.scipy: {name} with decreasing breakpoints is not available (lekalo's "
-            "piecewise polynomials have increasing breakpoints)"
-        )
 
 
 class _PPolyBase:
@@ -166,7 +158,6 @@ class _PPolyBase:
             if not (self._c is c and self.x is x and np.array_equal(c, c0) and np.array_equal(x, x0)):
                 s = None
         if s is None:
-            _check_ascending(self.x, type(self).__name__)
             x, c = _pieces(self.x, self._c)
             tail = c.shape[2:]
             cc, complex_ = _columns(c)
@@ -185,6 +176,10 @@ class _PPolyBase:
         if self._curve_ is None or self._curve_[0] is not s:
             self._curve_ = (s, _curve(s.t, _real_columns(s.c, s._n()), s.k))
         return self._curve_[1]
+
+    def _evaluator(self):
+        """What evaluates: lekalo's curve of the spline (``PPoly`` overrides this)."""
+        return self._lekalo_curve()
 
     def _tail(self) -> tuple:
         return self._spline.c.shape[1:] if self._c is None else self._c.shape[2:]
@@ -212,7 +207,7 @@ class _PPolyBase:
         # the common case without BSpline's checks: lekalo's curve, kept between calls
         if extrapolate == "periodic":
             xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
-        vals = self._lekalo_curve().eval_extrapolated(xf, nu)
+        vals = self._evaluator().eval_extrapolated(xf, nu)
         out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
         if self.axis != 0:
             axes = list(range(out.ndim))
@@ -243,7 +238,18 @@ class _PPolyBase:
             return self.derivative(-nu)
         if nu == 0:
             return self.derivative(0)
-        s = self._spline.antiderivative(nu)
+        s = self._spline
+        cols = _real_columns(s.c, s._n())
+        if self.x[-1] < self.x[0] and cols.shape[1] > 0:
+            # SciPy's antiderivative vanishes at x[0], here the right end: lekalo's pp-form
+            # antiderivative anchored there, written back as a B-spline on the same breakpoints
+            pp = _curve(s.t, cols, s.k).to_pp().antiderivative(nu, float(self.x[0]))
+            curve = pp.to_bspline(_lekalo.PpSpace(np.asarray(pp.breakpoints), pp.order))
+            control = np.asarray(curve.control)
+            c = _from_columns(control, np.iscomplexobj(s.c)).reshape((control.shape[0],) + s.c.shape[1:])
+            s = BSpline.construct_fast(np.asarray(curve.knots), c, pp.order - 1, axis=s.axis)
+        else:
+            s = s.antiderivative(nu)
         extrapolate = False if self.extrapolate == "periodic" else self.extrapolate
         return self._from_spline_lazy(s, self.x, extrapolate, self.axis, self._degree + nu)
 
@@ -253,7 +259,7 @@ class _PPolyBase:
         if extrapolate is None:
             extrapolate = self.extrapolate
         if extrapolate != "periodic" and not extrapolate:
-            lo, hi = self.x[0], self.x[-1]
+            lo, hi = min(self.x[0], self.x[-1]), max(self.x[0], self.x[-1])
             if min(a, b) < lo or max(a, b) > hi:
                 return np.full(self._tail(), np.nan, dtype=self._spline.c.dtype)
             extrapolate = False
@@ -316,29 +322,90 @@ class PPoly(_PPolyBase):
     @staticmethod
     def _spline_form(x: np.ndarray, cc: np.ndarray):
         order = cc.shape[0]
-        space = _lekalo.PpSpace(x, order)
+        decreasing = x[-1] < x[0]
+        space = _lekalo.PpSpace(np.ascontiguousarray(x[::-1]) if decreasing else x, order)
         if cc.shape[2] == 0:
             return np.asarray(space.knots), np.zeros((space.dimension, 0))
         # lekalo stores the local power coefficients lowest power first, (pieces, order, dim)
-        pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2)))
-        curve = pp.to_bspline(space)
+        # decreasing: pieces about their right ends, lekalo's pp-form of the same function
+        curve = PPoly._lekalo_pp(x, cc).to_bspline(space)
         return np.asarray(curve.knots), np.asarray(curve.control)
 
+    # lekalo's pp-form of the given coefficients, made on the first evaluation: (spline, pp)
+    _pp_ = None
+
+    @staticmethod
+    def _lekalo_pp(x: np.ndarray, cc: np.ndarray):
+        """lekalo's ``PiecewisePolynomial`` of coefficients ``cc`` (highest power first,
+        ``(order, pieces, columns)``) on the breakpoints ``x``, increasing or decreasing."""
+        local = np.ascontiguousarray(cc[::-1].transpose(1, 0, 2))  # lowest power first
+        if x[-1] < x[0]:
+            return _lekalo.PiecewisePolynomial.from_decreasing(x, local)
+        return _lekalo.PiecewisePolynomial(x, local)
+
+    def _evaluator(self):
+        """With coefficients given, lekalo's pp-form itself (Horner's rule in each piece,
+        the end pieces continued), as SciPy evaluates; otherwise lekalo's curve."""
+        s = self._spline
+        if self._c is None:
+            return self._lekalo_curve()
+        if self._pp_ is None or self._pp_[0] is not s:
+            x, c = _pieces(self.x, self._c)
+            cc, _ = _columns(c)
+            self._pp_ = (s, self._lekalo_pp(x, cc))
+        return self._pp_[1]
+
     def derivative(self, nu: int = 1) -> "PPoly":
-        """The ``nu``-th derivative. With coefficients given (not read off a spline) and
-        increasing breakpoints, lekalo's ``PiecewisePolynomial.derivative`` on the pp-form
-        itself, as SciPy does; otherwise lekalo's B-spline derivative."""
+        """The ``nu``-th derivative. With coefficients given (not read off a spline),
+        lekalo's ``PiecewisePolynomial.derivative`` on the pp-form itself, as SciPy does (on
+        decreasing breakpoints through lekalo's ``from_decreasing``/``to_decreasing``);
+        otherwise lekalo's B-spline derivative."""
         nu = operator.index(nu)
-        if nu <= 0 or nu > self._degree or self._c is None or not self.x[-1] > self.x[0]:
+        if nu <= 0 or nu > self._degree or self._c is None:
             return super().derivative(nu)
         x, c = _pieces(self.x, self._c)
         cc, complex_ = _columns(c)
         if cc.shape[2] == 0 or x.size != self.x.size:
             return super().derivative(nu)
-        pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2))).derivative(nu)
-        d = np.asarray(pp.coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
+        pp = self._lekalo_pp(x, cc).derivative(nu)
+        coefficients = pp.to_decreasing()[1] if x[-1] < x[0] else pp.coefficients
+        d = np.asarray(coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
         d = _from_columns(np.ascontiguousarray(d), complex_).reshape(d.shape[:2] + self._c.shape[2:])
         return self.construct_fast(np.ascontiguousarray(d), self.x, self.extrapolate, self.axis)
+
+    def antiderivative(self, nu: int = 1) -> "PPoly":
+        """The ``nu``-th antiderivative, zero with its first ``nu - 1`` derivatives at
+        ``x[0]``. With coefficients given, lekalo's ``PiecewisePolynomial.antiderivative`` on
+        the pp-form itself, as SciPy does; otherwise lekalo's B-spline antiderivative."""
+        nu = operator.index(nu)
+        if nu <= 0 or self._c is None:
+            return super().antiderivative(nu)
+        x, c = _pieces(self.x, self._c)
+        cc, complex_ = _columns(c)
+        if cc.shape[2] == 0 or x.size != self.x.size:
+            return super().antiderivative(nu)
+        pp = self._evaluator().antiderivative(nu, float(self.x[0]))
+        coefficients = pp.to_decreasing()[1] if x[-1] < x[0] else pp.coefficients
+        d = np.asarray(coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
+        d = _from_columns(np.ascontiguousarray(d), complex_).reshape(d.shape[:2] + self._c.shape[2:])
+        extrapolate = False if self.extrapolate == "periodic" else self.extrapolate
+        return self.construct_fast(np.ascontiguousarray(d), self.x, extrapolate, self.axis)
+
+    def integrate(self, a: float, b: float, extrapolate: Any = None) -> np.ndarray:
+        """``∫_a^b``; with coefficients given and not periodic, lekalo's
+        ``PiecewisePolynomial.integral_extrapolated`` on the pp-form itself (NaN outside
+        ``[x[0], x[-1]]`` unless extrapolating), as SciPy does; otherwise lekalo's B-spline
+        integral."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        if self._c is None or extrapolate == "periodic" or self._c.size == 0 or not np.isfinite([a, b]).all():
+            return super().integrate(a, b, extrapolate)
+        if not extrapolate:
+            lo, hi = min(self.x[0], self.x[-1]), max(self.x[0], self.x[-1])
+            if min(a, b) < lo or max(a, b) > hi:
+                return np.full(self._tail(), np.nan, dtype=self._spline.c.dtype)
+        v = np.asarray(self._evaluator().integral_extrapolated(float(a), float(b)))
+        return _from_columns(v, np.iscomplexobj(self._c)).reshape(self._c.shape[2:])
 
     def _read_coefficients(self) -> np.ndarray:
         s = self._spline
@@ -350,13 +417,20 @@ class PPoly(_PPolyBase):
             # lekalo's pp-form of the spline, when its breakpoints are ours
             pp = _curve(s.t, cols, s.k).to_pp()
             xb = np.asarray(pp.breakpoints)
-            if xb.shape == self.x.shape and np.array_equal(xb, self.x):
-                cc = np.asarray(pp.coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
+            decreasing = self.x[-1] < self.x[0]
+            if xb.shape == self.x.shape and np.array_equal(xb, self.x[::-1] if decreasing else self.x):
+                # decreasing: each piece about its right end (lekalo's left limits there)
+                coefficients = pp.to_decreasing()[1] if decreasing else pp.coefficients
+                cc = np.asarray(coefficients)[:, ::-1].transpose(1, 0, 2)  # highest power first
                 c = _from_columns(np.ascontiguousarray(cc), np.iscomplexobj(s.c))
                 c = c.reshape(cc.shape[:2] + tail)
                 if c.shape[0] < k + 1:
                     c = np.concatenate([np.zeros((k + 1 - c.shape[0],) + c.shape[1:], dtype=c.dtype), c])
                 return np.ascontiguousarray(c)
+        if self.x[-1] < self.x[0]:
+            raise NotImplementedError(
+                "lekalo.scipy: PPoly coefficients on decreasing breakpoints that are not the spline's breakpoints"
+            )
         # elsewhere (repeated breakpoints, breakpoints that are not knots):
         # c[k - m, i] = S^(m)(x_i+) / m!, lekalo's derivatives at the left breakpoints
         xs = self.x[:-1]
@@ -385,7 +459,6 @@ class PPoly(_PPolyBase):
         if np.issubdtype(c.dtype, np.complexfloating):
             raise ValueError("Root finding is only for real-valued polynomials")
         y = float(y)
-        _check_ascending(self.x, "PPoly.solve")
         tail = c.shape[2:]
         if c.shape[0] == 0:
             return np.array([], dtype=float)
@@ -394,7 +467,9 @@ class PPoly(_PPolyBase):
         if cc.shape[2] == 0:
             roots = []
         else:
-            pp = _lekalo.PiecewisePolynomial(x, np.ascontiguousarray(cc[::-1].transpose(1, 0, 2)))
+            # decreasing breakpoints: the same function on increasing ones (lekalo's
+            # from_decreasing), so the roots come in increasing order
+            pp = self._lekalo_pp(x, cc)
             roots = pp.solve(y, discontinuity=bool(discontinuity), extrapolate=bool(extrapolate))
         if c.ndim == 2:
             return roots[0]
@@ -445,11 +520,16 @@ class BPoly(_PPolyBase):
     @staticmethod
     def _spline_form(x: np.ndarray, cc: np.ndarray):
         order = cc.shape[0]
+        if x[-1] < x[0]:
+            # decreasing breakpoints: the pieces in increasing order, each one's Bernstein
+            # coefficients reversed (b_{a,k}(1 - u) = b_{k-a,k}(u))
+            x, cc = x[::-1], cc[::-1, ::-1]
         t = np.repeat(x, order)
         return t, np.ascontiguousarray(cc.transpose(1, 0, 2)).reshape(cc.shape[0] * cc.shape[1], cc.shape[2])
 
     def _read_coefficients(self) -> np.ndarray:
-        _check_ascending(self.x, "BPoly")
+        decreasing = self.x[-1] < self.x[0]
+        xs = self.x[::-1] if decreasing else self.x
         s = self._spline
         n = s._n()
         tail = s.c.shape[1:]
@@ -459,7 +539,7 @@ class BPoly(_PPolyBase):
         if cols.shape[1] == 0:
             return np.zeros((s.k + 1, pieces) + tail, dtype=s.c.dtype)
         curve = _curve(s.t, cols, s.k)
-        x, _ = _pieces(self.x, np.zeros((1, pieces)))
+        x, _ = _pieces(xs, np.zeros((1, pieces)))
         missing = np.setdiff1d(x[1:-1], s.t)
         if missing.size:
             curve = curve.refine_knots(missing)
@@ -471,8 +551,10 @@ class BPoly(_PPolyBase):
         c = c.reshape((ctrl.shape[1], ctrl.shape[0]) + tail)
         if x.size != self.x.size:
             full = np.zeros((c.shape[0], pieces) + tail, dtype=c.dtype)
-            full[:, np.diff(self.x) > 0] = c
+            full[:, np.diff(xs) > 0] = c
             c = full
+        if decreasing:
+            c = c[::-1, ::-1]
         return np.ascontiguousarray(c)
 
     @staticmethod
@@ -509,17 +591,64 @@ class BPoly(_PPolyBase):
 
     @classmethod
     def from_derivatives(cls, xi: Any, yi: Any, orders: Any = None, extrapolate: Any = None) -> "BPoly":
-        raise NotImplementedError(
-            "lekalo.scipy: BPoly.from_derivatives is not available (lekalo's core has no Hermite "
-            "interpolation with derivatives of any order at the breakpoints)"
-        )
+        """The piecewise polynomial in Bernstein form with the derivatives ``yi[i]`` (value,
+        first derivative, ...) at ``xi[i]``, of degree ``orders[i]`` on piece ``i`` when given:
+        lekalo's ``piecewise_hermite_bernstein``. As in SciPy every piece is then raised to the
+        order ``max(len(yi[i]) + len(yi[i+1]), orders)`` (lekalo's degree elevation)."""
+        xi = np.asarray(xi)
+        if len(xi) != len(yi):
+            raise ValueError("xi and yi need to have the same length")
+        if np.any(xi[1:] - xi[:1] <= 0):
+            raise ValueError("x coordinates are not in increasing order")
+        m = len(xi) - 1
+        try:
+            k = max(len(yi[i]) + len(yi[i + 1]) for i in range(m))
+        except TypeError as e:
+            raise ValueError("Using a 1-D array for y? Please .reshape(-1, 1).") from e
+        if orders is not None:
+            if isinstance(orders, (int, np.integer)):
+                orders = [orders] * m
+            orders = [operator.index(o) for o in orders]
+            k = max(k, max(orders))
+            if any(o <= 0 for o in orders):
+                raise ValueError("Orders must be positive.")
+        ys = [np.asarray(y) for y in yi]
+        tail = ys[0].shape[1:]
+        complex_ = any(np.iscomplexobj(y) for y in ys)
+        dt = np.complex128 if complex_ else np.float64
+        for y in ys:
+            if y.shape[1:] != tail:
+                raise ValueError(f"Shapes of ya {ys[0].shape} and yb {y.shape} are incompatible")
+        cols = [_real_columns(np.asarray(y, dtype=dt), y.shape[0]) for y in ys]
+        if cols[0].shape[1] == 0:
+            order = k
+            c = np.zeros((order, m) + tail, dtype=dt)
+        else:
+            curve = _lekalo.piecewise_hermite_bernstein(np.asarray(xi, dtype=np.float64), cols, orders)
+            order = curve.degree + 1
+            ctrl = np.asarray(curve.control).reshape(m, order, -1).transpose(1, 0, 2)
+            c = _from_columns(np.ascontiguousarray(ctrl), complex_).reshape((order, m) + tail)
+            if order < k:
+                c = cls._raise_degree(c, k - order)
+        return cls(c, xi, extrapolate)
 
     @staticmethod
     def _construct_from_derivatives(xa: float, xb: float, ya: Any, yb: Any):
-        raise NotImplementedError(
-            "lekalo.scipy: BPoly._construct_from_derivatives is not available (lekalo's core has no "
-            "Hermite interpolation with derivatives of any order at the breakpoints)"
-        )
+        """The Bernstein coefficients on ``[xa, xb]`` of the polynomial of least degree with the
+        derivatives ``ya`` at ``xa`` and ``yb`` at ``xb``: lekalo's ``hermite_bernstein``."""
+        ya, yb = np.asarray(ya), np.asarray(yb)
+        if ya.shape[1:] != yb.shape[1:]:
+            raise ValueError(f"Shapes of ya {ya.shape} and yb {yb.shape} are incompatible")
+        complex_ = np.iscomplexobj(ya) or np.iscomplexobj(yb)
+        dt = np.complex128 if complex_ else np.float64
+        tail = ya.shape[1:]
+        ca = _real_columns(np.asarray(ya, dtype=dt), ya.shape[0])
+        cb = _real_columns(np.asarray(yb, dtype=dt), yb.shape[0])
+        n = ya.shape[0] + yb.shape[0]
+        if ca.shape[1] == 0:
+            return np.zeros((n,) + tail, dtype=dt)
+        c = _lekalo.hermite_bernstein(float(xa), float(xb), ca, cb)
+        return _from_columns(np.asarray(c), complex_).reshape((n,) + tail)
 
 
 def _prepare_input(x: Any, y: Any, axis: int):

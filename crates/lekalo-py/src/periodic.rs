@@ -1,0 +1,36 @@
+//! Knot operations on periodic splines given as arrays (knots and coefficients with their
+//! periodic extension, SciPy's layout), docs/theory/curves.md#periodic-knot-insertion.
+
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{floats, points_into_array, vec1, vec_array};
+use crate::error::lib_err;
+
+/// The periodic spline of degree `k` with `knots` and coefficients `control` (`(n − k − 1,)` or
+/// `(n − k − 1, dim)`) with `x` inserted `times` times, the periodic extension kept: returns
+/// `(knots, control)` (`lekalo::insert_knot_periodic`; FITPACK's `fpinst`, SciPy's
+/// `insert(..., per=True)`).
+///
+/// >>> import lekalo
+/// >>> t, c = lekalo.insert_knot_periodic(1, [-1.0, 0.0, 1.0, 2.0, 3.0], [1.0, 0.0, 1.0], 0.5)
+/// >>> t.tolist(), c[:, 0].tolist()
+/// ([-1.0, 0.0, 0.5, 1.0, 2.0, 2.5], [1.0, 0.5, 0.0, 1.0])
+#[pyfunction]
+#[pyo3(signature = (k, knots, control, x, times = 1))]
+pub(crate) fn insert_knot_periodic<'py>(
+    py: Python<'py>,
+    k: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    x: f64,
+    times: usize,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let t = vec1(knots, "knots")?;
+    let ca = floats(control, "control")?;
+    let c = ca.points("control")?;
+    let (t2, c2) = py
+        .detach(|| lekalo::insert_knot_periodic(k, &t, c, x, times))
+        .map_err(lib_err)?;
+    PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
+}

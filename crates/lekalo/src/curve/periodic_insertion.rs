@@ -1,0 +1,219 @@
+//! Knot insertion into a periodic spline given by its knots and coefficients over one period
+//! with their periodic extension (Dierckx, *Curve and Surface Fitting with Splines*, 1993:
+//! FITPACK's `fpinst` with `iopt = 1`; docs/theory/curves.md#periodic-knot-insertion).
+
+use crate::error::{check_finite, Error, Result, MAX_SCALARS};
+use crate::knots::KnotVector;
+use crate::points::{Points, PointsRef};
+
+/// Inserts `x` `times` times into the periodic spline of degree `k` with the knots `knots`
+/// (`n` of them, base interval `[t_k, t_{n−k−1}]`) and the `n − k − 1` coefficients `control`,
+/// one knot at a time: Boehm's insertion of `x` in its knot interval `t_l ≤ x < t_{l+1}`
+/// (`t_{n−k−2} ≤ x ≤ t_{n−k−1}` at the right end), then the periodic extension restored. If
+/// the new knot lies among the last `k + 1` knot intervals of the base interval, the first `k`
+/// coefficients are set to the `k` that follow the base interval's period, and the `k` knots
+/// before the base interval to the `k` before its end minus the period `T = t_{n−k−1} − t_k`;
+/// otherwise, if it lies among the first `k + 1`, the `k` coefficients after the period and the
+/// `k` knots after the base interval are set from the first ones (plus `T`). A spline whose
+/// knots and coefficients are periodic in this sense stays the same function; on others the
+/// result is FITPACK's (`scipy.interpolate.insert(..., per=True)`,
+/// `BSpline.insert_knot` with `extrapolate="periodic"`). Returns the `n + times` knots and the
+/// `n + times − k − 1` coefficients.
+///
+/// ```
+/// use lekalo::{insert_knot_periodic, PointsRef};
+/// // the periodic linear spline with coefficients 0, 1, 0 over the period [0, 2]
+/// let t = [-1.0, 0.0, 1.0, 2.0, 3.0];
+/// let c = [1.0, 0.0, 1.0];
+/// let (t2, c2) = insert_knot_periodic(1, &t, PointsRef::from_flat(1, &c)?, 0.5, 1)?;
+/// // the knot after the period follows the new one: 0.5 + 2
+/// assert_eq!(t2, vec![-1.0, 0.0, 0.5, 1.0, 2.0, 2.5]);
+/// assert_eq!(c2.as_slice(), &[1.0, 0.5, 0.0, 1.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Degree`] for `k = 0` or too few knots for degree `k`; knot-vector errors
+/// ([`Error::KnotsNotSorted`], [`Error::NonFinite`]); [`Error::LengthMismatch`] unless there
+/// are `n − k − 1` coefficients; [`Error::ParameterOutOfDomain`] for `x` outside the base
+/// interval; [`Error::InvalidArgument`] if `x` falls in an empty knot interval, or if there are
+/// too few interior knots on either side of it to restore the periodic extension (the new knot
+/// must have more than `2k` knots before it or more than `2k` after it); [`Error::TooLarge`].
+pub fn insert_knot_periodic(
+    k: usize,
+    knots: &[f64],
+    control: PointsRef<'_>,
+    x: f64,
+    times: usize,
+) -> Result<(Vec<f64>, Points)> {
+    let n = knots.len();
+    if k == 0 || n < 2 * k + 2 {
+        return Err(Error::Degree {
+            degree: k,
+            reason: format!(
+                "periodic knot insertion needs degree k ≥ 1 and at least 2k + 2 knots, got {n} knots"
+            ),
+        });
+    }
+    KnotVector::new(knots.to_vec())?;
+    if control.len() != n - k - 1 {
+        return Err(Error::LengthMismatch {
+            what: "coefficients (knots − degree − 1)",
+            expected: n - k - 1,
+            got: control.len(),
+        });
+    }
+    let dim = control.dim();
+    let total = n
+        .checked_add(times)
+        .filter(|v| v.checked_mul(dim + 1).is_some_and(|s| s <= MAX_SCALARS));
+    if total.is_none() {
+        return Err(Error::TooLarge {
+            what: "knots after insertion",
+            size: usize::MAX,
+            max: MAX_SCALARS,
+        });
+    }
+    let mut t = knots.to_vec();
+    let mut c = control.as_slice().to_vec();
+    for _ in 0..times {
+        let (tt, cc) = insert_once(k, &t, &c, dim, x)?;
+        t = tt;
+        c = cc;
+    }
+    check_finite("coefficients after insertion", &c)?;
+    Ok((t, Points::from_raw(c, dim)))
+}
+
+/// One insertion (FITPACK's `insert` and `fpinst` with `iopt = 1`), in 0-based indices: `l` is
+/// the knot interval `t_l ≤ x < t_{l+1}`, `k ≤ l ≤ n − k − 2`.
+fn insert_once(k: usize, t: &[f64], c: &[f64], dim: usize, x: f64) -> Result<(Vec<f64>, Vec<f64>)> {
+    let n = t.len();
+    let (min, max) = (t[k], t[n - k - 1]);
+    if !(x >= min && x <= max) {
+        return Err(Error::ParameterOutOfDomain { t: x, min, max });
+    }
+    let last = n - k - 2;
+    let mut l = k;
+    while !(x < t[l + 1] || l == last) {
+        l += 1;
+    }
+    if t[l] >= t[l + 1] {
+        return Err(Error::InvalidArgument {
+            what: "knot to insert",
+            reason: format!(
+                "{x} lies in an empty knot interval [{}, {}]",
+                t[l],
+                t[l + 1]
+            ),
+        });
+    }
+    // 1-based l of FITPACK is l + 1: refused when l + 1 ≤ 2k and l + 1 ≥ n − 2k
+    if l < 2 * k && l + 1 + 2 * k >= n {
+        return Err(Error::InvalidArgument {
+            what: "knot to insert",
+            reason: format!(
+                "{x} lies in knot interval {l} of {n} knots; to carry the periodic extension \
+                 (degree {k}) the interval must be at least {} or at most {}: insert into a \
+                 spline with more interior knots",
+                2 * k,
+                n - 2 * k - 2
+            ),
+        });
+    }
+    // Boehm's insertion: knots t_0..t_l, x, t_{l+1}..; coefficients c_0..c_{l−k}, the k new
+    // ones, c_l..
+    let mut tt = Vec::with_capacity(n + 1);
+    tt.extend_from_slice(&t[..=l]);
+    tt.push(x);
+    tt.extend_from_slice(&t[l + 1..]);
+    let nc = n - k - 1;
+    let mut cc = vec![0.0; (nc + 1) * dim];
+    cc[..(l + 1 - k) * dim].copy_from_slice(&c[..(l + 1 - k) * dim]);
+    cc[(l + 1) * dim..].copy_from_slice(&c[l * dim..]);
+    for i in l + 1 - k..=l {
+        let fac = (x - tt[i]) / (tt[i + k + 1] - tt[i]);
+        for d in 0..dim {
+            cc[i * dim + d] = fac * c[i * dim + d] + (1.0 - fac) * c[(i - 1) * dim + d];
+        }
+    }
+    // the periodic extension (FITPACK's nk, nl, per in 0-based form)
+    let nn = n + 1;
+    let nk = nn - k - 1; // index of the base interval's right end
+    let nl = nk - k; // coefficients per period
+    let period = tt[nk] - tt[k];
+    let new = l + 1; // index of the new knot
+    if new + 1 > nl {
+        for m in 0..k {
+            for d in 0..dim {
+                cc[m * dim + d] = cc[(m + nl) * dim + d];
+            }
+            tt[k - 1 - m] = tt[nk - 1 - m] - period;
+        }
+    } else if new < 2 * k + 1 {
+        for m in 0..k {
+            for d in 0..dim {
+                cc[(m + nl) * dim + d] = cc[m * dim + d];
+            }
+            tt[nk + 1 + m] = tt[k + 1 + m] + period;
+        }
+    }
+    Ok((tt, cc))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::bspline::BSplineCurve;
+
+    /// The periodic cubic on uniform knots with period 6: inserting anywhere keeps the function
+    /// on the base interval and keeps knots and coefficients periodic.
+    #[test]
+    fn periodic_spline_is_unchanged() {
+        let k = 3;
+        let t: Vec<f64> = (-3..=9).map(f64::from).collect(); // base interval [0, 6]
+        let per = [0.5, 2.0, -1.0, 0.25, 1.5, -0.75];
+        let c: Vec<f64> = (0..t.len() - k - 1).map(|i| per[i % 6]).collect();
+        let before =
+            BSplineCurve::new(k, t.clone(), Points::from_flat(1, c.clone()).unwrap()).unwrap();
+        for x in [0.0, 0.3, 1.0, 2.5, 4.2, 5.9, 6.0] {
+            // (at the right end the first insertion leaves an empty last interval: once only)
+            let times = if x == 6.0 { 1 } else { 2 };
+            let view = PointsRef::from_flat(1, &c).unwrap();
+            let (t2, c2) = insert_knot_periodic(k, &t, view, x, times).unwrap();
+            assert_eq!(t2.len(), t.len() + times);
+            let after = BSplineCurve::new(k, t2.clone(), c2.clone()).unwrap();
+            for s in [0.0, 0.7, 2.2, 3.0, 5.5, 6.0] {
+                let (a, b) = (before.eval(s).unwrap()[0], after.eval(s).unwrap()[0]);
+                assert!((a - b).abs() < 1e-14, "insert {x}, eval {s}: {a} vs {b}");
+            }
+            let n = t2.len();
+            let nl = n - 2 * k - 1; // coefficients per period
+            for m in 0..k {
+                let (a, b) = (c2.point(m)[0], c2.point(m + nl)[0]);
+                assert!(
+                    (a - b).abs() < 1e-14,
+                    "insert {x}: coefficient {m} not periodic"
+                );
+            }
+            let period = t2[n - k - 1] - t2[k];
+            assert!((period - 6.0).abs() < 1e-15, "period kept");
+        }
+    }
+
+    /// FITPACK's refusal: two interior knots on each side of the new one are too few for k = 3.
+    #[test]
+    fn too_few_interior_knots_and_domain() {
+        let k = 3;
+        let t = [0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 4.0, 5.0, 7.0, 7.0, 7.0, 7.0];
+        let c = [1.0; 8];
+        let view = PointsRef::from_flat(1, &c).unwrap();
+        let e = insert_knot_periodic(k, &t, view, 3.5, 1).unwrap_err();
+        assert!(matches!(e, Error::InvalidArgument { .. }), "{e}");
+        let e = insert_knot_periodic(k, &t, view, 7.5, 1).unwrap_err();
+        assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e}");
+        let e = insert_knot_periodic(k, &t, PointsRef::from_flat(1, &c[..7]).unwrap(), 1.0, 1)
+            .unwrap_err();
+        assert!(matches!(e, Error::LengthMismatch { .. }), "{e}");
+    }
+}
