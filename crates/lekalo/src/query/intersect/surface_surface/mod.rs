@@ -58,9 +58,9 @@ pub struct IntersectionBranch {
     pub curve_uv_a: Option<BSplineCurve>,
     /// The branch in the second surface's parameter plane (none for a plane section).
     pub curve_uv_b: Option<BSplineCurve>,
-    /// The tolerance of the answer: every point is within it of both surfaces (in fact within
-    /// a thousandth of it), consecutive points are joined by chords within it of the branch,
-    /// and the fitted curves are within it of the points.
+    /// The tolerance of the answer: every point is within a tenth of it of both surfaces (the
+    /// corrector aims at a thousandth), consecutive points are joined by chords within it of
+    /// the branch, and the fitted curves are within it of the points.
     pub tolerance: f64,
 }
 
