@@ -140,7 +140,8 @@ enum Command {
     Measure(cmd::measure::MeasureArgs),
     /// Closest points on a curve or a surface (single points or batches).
     Project(cmd::project::ProjectArgs),
-    /// Intersections of planar curves, self-intersections, curve–plane.
+    /// Intersections of curves, self-intersections, curve–plane; surface–surface and plane
+    /// sections of surfaces.
     Intersect(cmd::intersect::IntersectArgs),
     /// The offset of a planar curve at a distance, with its cusps and loops found and trimmed.
     Offset(cmd::offset::OffsetArgs),

@@ -6,7 +6,8 @@
 //! computation.
 
 use lekalo::query::{
-    Contact, CurveIntersection, PlaneIntersection, SurfaceIntersection, DEFAULT_LENGTH_RTOL,
+    Contact, CurveIntersection, IntersectionBranch, PlaneIntersection, SurfaceIntersection,
+    DEFAULT_LENGTH_RTOL,
 };
 use lekalo::{Points, QueryCurve, QuerySurface};
 use numpy::{PyArray1, PyArrayMethods};
@@ -599,6 +600,44 @@ impl PySurfaceQuery {
         Ok((col(0)?, col(1)?, col(2)?, col(3)?))
     }
 
+    /// The intersection with another 3-D surface within `tolerance` (an absolute distance):
+    /// a list of dicts, one a branch (`docs/theory/queries.md#surface-surface-intersection`):
+    /// `kind` (`"crossing"`, `"tangent"` with `"order"`, or `"overlap"`), `closed`, `points`
+    /// `(n, 3)`, `uv_a` and `uv_b` `(n, 2)` (the parameters on each surface at every point),
+    /// `curve`, `curve_uv_a`, `curve_uv_b` (the branch fitted as a `BSplineCurve` in space and in
+    /// each parameter plane, sharing knots; `None` for a contact or an overlap), `length` and
+    /// `tolerance`. Every point is within `tolerance` of both surfaces.
+    #[pyo3(signature = (other, tolerance = 1e-6))]
+    fn intersect<'py>(
+        &self,
+        py: Python<'py>,
+        other: &Bound<'py, PySurfaceQuery>,
+        tolerance: f64,
+    ) -> PyResult<Bound<'py, PyList>> {
+        let o = &other.get().inner;
+        let r = py
+            .detach(|| self.inner.intersect_surface(o, tolerance))
+            .map_err(lib_err)?;
+        branches(py, r)
+    }
+
+    /// The section by the plane through `origin` with `normal` within `tolerance`: branches as
+    /// for `intersect`, with `uv_b` empty and `curve_uv_b` `None`.
+    #[pyo3(signature = (origin, normal, tolerance = 1e-6))]
+    fn intersect_plane<'py>(
+        &self,
+        py: Python<'py>,
+        origin: &Bound<'py, PyAny>,
+        normal: &Bound<'py, PyAny>,
+        tolerance: f64,
+    ) -> PyResult<Bound<'py, PyList>> {
+        let (o, n) = (vec1(origin, "origin")?, vec1(normal, "normal")?);
+        let r = py
+            .detach(|| self.inner.intersect_plane(&o, &n, tolerance))
+            .map_err(lib_err)?;
+        branches(py, r)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "SurfaceQuery(patches={}, dim={})",
@@ -606,6 +645,38 @@ impl PySurfaceQuery {
             self.inner.dim()
         )
     }
+}
+
+/// Surface–surface branches as dicts (see `SurfaceQuery.intersect`).
+fn branches<'py>(py: Python<'py>, found: Vec<IntersectionBranch>) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    for b in found {
+        let d = PyDict::new(py);
+        d.set_item("kind", b.kind.name())?;
+        if let Some(order) = b.kind.order() {
+            d.set_item("order", order)?;
+        }
+        d.set_item("closed", b.closed)?;
+        d.set_item("length", b.length())?;
+        d.set_item("tolerance", b.tolerance)?;
+        let n = b.points.len();
+        let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+        d.set_item(
+            "points",
+            array(py, b.points.iter().flatten().copied().collect(), &[n, 3])?,
+        )?;
+        d.set_item("uv_a", array(py, flat(&b.uv_a), &[b.uv_a.len(), 2])?)?;
+        d.set_item("uv_b", array(py, flat(&b.uv_b), &[b.uv_b.len(), 2])?)?;
+        for (key, c) in [
+            ("curve", b.curve),
+            ("curve_uv_a", b.curve_uv_a),
+            ("curve_uv_b", b.curve_uv_b),
+        ] {
+            d.set_item(key, c.map(PyBSplineCurve::wrap))?;
+        }
+        out.append(d)?;
+    }
+    Ok(out)
 }
 
 /// Registers the query classes.

@@ -5,7 +5,10 @@
 //! - `length_1e-12`: its arc-length table to 1e-12 relative; `param_at_1e5`: 10^5
 //!   parameter-at-length queries on that table;
 //! - `intersect_100x100`: two planar cubics with 100 pieces each;
-//! - `mesh_50x50`: a bicubic surface with 50×50 patches meshed to 1e-4 of its size.
+//! - `mesh_50x50`: a bicubic surface with 50×50 patches meshed to 1e-4 of its size;
+//! - `ssi_sphere_cylinder`: the unit sphere and a cylinder of radius 0.6 about its axis (exact
+//!   NURBS), intersected to 1e-6 (two circles); `section_torus`: a torus cut by an oblique
+//!   plane to 1e-6 (no peer program yet).
 //!
 //! Run: `cargo bench -p lekalo --bench query`. Smoke: `cargo test -p lekalo --benches`.
 
@@ -13,7 +16,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_main, Criterion, Throughput};
-use lekalo::{Points, QueryCurve, QuerySurface};
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+use lekalo::surface::Placement;
+use lekalo::{NurbsSurface, Points, QueryCurve, QuerySurface};
 
 mod query_workloads;
 use query_workloads::{plane_curve, query_point, space_curve, surface};
@@ -57,6 +63,30 @@ fn queries(c: &mut Criterion) {
     g.bench_function("mesh_50x50", |b| {
         // 1e-4 of the size: the net spans the unit square
         b.iter(|| black_box(&s).mesh(1e-4).expect("mesh"));
+    });
+    let f = Placement::new([0.0; 3], None, None).expect("frame");
+    let sphere =
+        NurbsSurface::sphere(&f, 1.0, (0.0, TAU), (-FRAC_PI_2, FRAC_PI_2)).expect("sphere");
+    let cylinder = NurbsSurface::cylinder(&f, 0.6, (0.0, TAU), (-1.2, 1.2)).expect("cylinder");
+    let torus = NurbsSurface::torus(&f, 3.0, 1.0, (0.0, TAU), (0.0, TAU)).expect("torus");
+    let (qs, qc, qt) = (
+        QuerySurface::from_nurbs(&sphere).expect("sphere"),
+        QuerySurface::from_nurbs(&cylinder).expect("cylinder"),
+        QuerySurface::from_nurbs(&torus).expect("torus"),
+    );
+    g.bench_function("ssi_sphere_cylinder", |b| {
+        b.iter(|| {
+            black_box(&qs)
+                .intersect_surface(&qc, 1e-6)
+                .expect("branches")
+        });
+    });
+    g.bench_function("section_torus", |b| {
+        b.iter(|| {
+            black_box(&qt)
+                .intersect_plane(&[0.0, 0.0, 0.2], &[0.3, 0.1, 1.0], 1e-6)
+                .expect("branches")
+        });
     });
     g.finish();
     let mesh = s.mesh(1e-4).expect("mesh");

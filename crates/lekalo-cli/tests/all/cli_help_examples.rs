@@ -136,6 +136,11 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
         "intersect" => vec![
             ("loop.json", bezier("[[0, 0], [3, 3], [0, 3], [3, 0]]")),
             ("space.json", bezier("[[0, 0, 0], [1, 1, 2], [2, 0, 2]]")),
+            // the plane z = 0.1 as a surface, cutting the bump surface.json in a loop
+            (
+                "level.json",
+                r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1], "net": [2, 2], "control": [[0, 0, 0.1], [0, 2, 0.1], [2, 0, 0.1], [2, 2, 0.1]]}"#.into(),
+            ),
         ],
         // a twisted cubic: a space curve with torsion
         "eval" => vec![(

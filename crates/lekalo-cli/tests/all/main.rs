@@ -12,6 +12,7 @@ mod cli_fit_options;
 mod cli_gallery;
 mod cli_help_examples;
 mod cli_interpolate;
+mod cli_intersect_surfaces;
 mod cli_json;
 mod cli_knot_cad;
 mod cli_npy;

@@ -13,7 +13,7 @@
 //! | `surface.rs` | [`QuerySurface`]: the patches, their evaluation and subdivision |
 //! | `length.rs` | arc length by adaptive Gauss–Legendre, its inverse, equal arc-length steps, the arc-length spline ([`ArcLength`]) |
 //! | `project.rs` | closest points on curves and surfaces, all minima on request, parallel batches, point inversion |
-//! | `intersect/` | curve–curve (planar: sweep, Bezier clipping, Newton), self-intersection, curve–plane and curve–surface intersections |
+//! | `intersect/` | curve–curve (planar: sweep, Bezier clipping, Newton), self-intersection, curve–plane, curve–surface and surface–surface intersections, plane sections |
 //! | `offset.rs` | offsets of planar curves, with cusps and loops detected and trimmed |
 //! | `tessellate.rs` | polylines within a proved deviation; the mesh type |
 //! | `mesh/` | adaptive, crack-free triangle meshes of surfaces within a proved deviation |
@@ -41,7 +41,8 @@ mod tessellate;
 pub use bbox::SURFACE_BOX_RTOL;
 pub use curvature::{CurvatureExtremum, SurfaceCurvature, CURVATURE_EXTREMUM_RTOL};
 pub use intersect::{
-    Contact, CurveIntersection, PlaneIntersection, SurfaceIntersection, TOUCH_RTOL,
+    Contact, CurveIntersection, IntersectionBranch, PlaneIntersection, SurfaceIntersection,
+    TOUCH_RTOL,
 };
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
 pub use offset::Offset;

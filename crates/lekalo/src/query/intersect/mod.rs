@@ -9,15 +9,19 @@
 //! | `curves.rs` | [`QueryCurve::intersect`] and [`QueryCurve::self_intersections`]: the search's solutions grouped into crossings, contacts and overlaps |
 //! | `refine.rs` | a contact refined on the tangency system and named: touch, near miss or two crossings, order of contact |
 //! | `surface.rs` | [`QueryCurve::intersect_plane`] and [`QueryCurve::intersect_surface`], with their overlaps |
+//! | `surface_surface/` | [`QuerySurface::intersect_surface`] and [`QuerySurface::intersect_plane`]: branches of the intersection of two surfaces, plane sections |
 
 mod curves;
 mod planar;
 mod refine;
 mod space;
 mod surface;
+mod surface_surface;
+
+pub use surface_surface::IntersectionBranch;
 
 #[cfg(doc)]
-use super::pieces::QueryCurve;
+use super::{pieces::QueryCurve, surface::QuerySurface};
 
 /// Most sub-curve pairs one intersection visits (a bound on its work; reaching it is
 /// [`crate::Error::TooLarge`]).

@@ -1,0 +1,487 @@
+//! Surface–surface intersection and plane sections of surfaces
+//! (`docs/theory/queries.md#surface-surface-intersection`): starting points from a subdivision
+//! with loop detection, branches traced by marching, each branch returned as a polyline with
+//! the parameters of both surfaces at every point and fitted as a B-spline in space and in each
+//! parameter plane.
+//!
+//! | file | subject |
+//! |---|---|
+//! | `system.rs` | the equations (two surfaces, or a surface and a plane), their tangent and Newton's method |
+//! | `seeds.rs` | the subdivision: boxes, normal cones, starting points on the sides of sub-patches |
+//! | `march.rs` | marching along a branch: predictor, corrector, step control, stops |
+//! | `mod.rs` | [`QuerySurface::intersect_surface`], [`QuerySurface::intersect_plane`], the branches' kinds and fitted curves |
+
+mod march;
+mod seeds;
+mod system;
+
+use super::super::pieces::{check_tolerance, dist};
+use super::super::project::check_query;
+use super::super::surface::QuerySurface;
+use super::refine::order_from_growth;
+use super::{segment_distance, Contact};
+use crate::error::{Error, Result};
+use crate::fit::{fit_tolerance, Deviation, ToleranceOptions};
+use crate::interpolate::Parametrization;
+use crate::{BSplineCurve, Points, PointsRef};
+use march::{March, Stop, Traced, SIN_STOP};
+use seeds::Found;
+use system::{norm, surface_jet, PlaneSection, TwoSurfaces, K};
+
+/// Tangent points closer than this fraction of the scale are one contact (and chained into a
+/// line of contact when they spread further).
+const TANGENT_MERGE: f64 = 1.0 / 64.0;
+
+/// One branch of the intersection of two surfaces (or of a plane section).
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntersectionBranch {
+    /// [`Contact::Crossing`] for a branch along which the surfaces cross,
+    /// [`Contact::Tangent`] for a point (or line) where they touch, with normals parallel,
+    /// [`Contact::Overlap`] for a region where they coincide.
+    pub kind: Contact,
+    /// Whether the branch is a closed curve in space (its ends within the tolerance; the
+    /// parameter curves may still jump across a seam of a closed surface).
+    pub closed: bool,
+    /// The points, in order along the branch (for an overlap: the middles of the coinciding
+    /// cells of the subdivision, in no order).
+    pub points: Vec<[f64; 3]>,
+    /// `(u, v)` on the first surface at every point.
+    pub uv_a: Vec<[f64; 2]>,
+    /// `(u, v)` on the second surface at every point (empty for a plane section).
+    pub uv_b: Vec<[f64; 2]>,
+    /// The branch fitted in space (a crossing branch of at least two points): within
+    /// [`IntersectionBranch::tolerance`] of every point, at the same parameters as the
+    /// parameter curves.
+    pub curve: Option<BSplineCurve>,
+    /// The branch in the first surface's parameter plane (same knots as `curve`): `S₁` of it is
+    /// within the tolerance of every point, to first order.
+    pub curve_uv_a: Option<BSplineCurve>,
+    /// The branch in the second surface's parameter plane (none for a plane section).
+    pub curve_uv_b: Option<BSplineCurve>,
+    /// The tolerance of the answer: every point is within a tenth of it of both surfaces (the
+    /// corrector aims at a thousandth), consecutive points are joined by chords within it of
+    /// the branch, and the fitted curves are within it of the points.
+    pub tolerance: f64,
+}
+
+impl IntersectionBranch {
+    /// Length of the polyline of the points (0 for a point or an overlap).
+    #[must_use]
+    pub fn length(&self) -> f64 {
+        if self.kind == Contact::Overlap {
+            return 0.0;
+        }
+        self.points.windows(2).map(|w| dist(&w[0], &w[1])).sum()
+    }
+}
+
+impl QuerySurface {
+    /// The intersection of two 3-D surfaces within `tolerance` (an absolute distance): every
+    /// branch where they cross, every point (or line) where they touch and every region where
+    /// they coincide (`docs/theory/queries.md#surface-surface-intersection`).
+    ///
+    /// 1. **Starting points**: pairs of sub-patches are subdivided (de Casteljau, the larger
+    ///    one) while their boxes overlap within the tolerance, until their normal cones are
+    ///    disjoint (no closed loop inside: Sederberg and Meyers, *CAGD* 5, 1988) and both are
+    ///    at most 1/8 of the scale across, or until they are 1/512 of it; then Newton's method
+    ///    finds the points where the intersection crosses the sides of either sub-patch (one
+    ///    unknown held) and one from the middles.
+    /// 2. **Marching** from each starting point not already on a branch, both ways along
+    ///    `n₁ × n₂`: a predictor step, a Newton corrector on `S₁ = S₂` and the plane
+    ///    orthogonal to the step, the step set so that the chord deviates at most `tolerance`
+    ///    from the branch (turning of the tangent θ over a step h: `hθ/8`), stopping at a side
+    ///    of either parameter domain, where the branch closes, or where the normals become
+    ///    parallel (Barnhill and Kersey, *CAGD* 7, 1990; Patrikalakis and Maekawa, *Shape
+    ///    Interrogation*, §5.8).
+    /// 3. Points where the normals are parallel (sine below `10⁻⁴`) are **tangent** answers
+    ///    (those within 1/64 of the scale merged, chained into a line of contact when they
+    ///    spread); sub-patches that coincide within the tolerance are an **overlap**.
+    /// 4. Each crossing branch is fitted ([`fit_tolerance`], cubic, in the seven coordinates
+    ///    `(x, y, z, k₁u₁, k₁v₁, k₂u₂, k₂v₂)`, `kᵢ` the largest `|S_u| + |S_v|` on the branch) and
+    ///    split into the curve in space and the two parameter curves.
+    ///
+    /// ```
+    /// use lekalo::query::Contact;
+    /// use lekalo::{surface::Placement, BSplineSurface, NurbsSurface};
+    /// use std::f64::consts::{FRAC_PI_2, TAU};
+    /// // the unit sphere and the plane z = 0.5 (as a surface): a circle of radius √0.75
+    /// let f = Placement::new([0.0; 3], None, None)?;
+    /// let sphere = NurbsSurface::sphere(&f, 1.0, (0.0, TAU), (-FRAC_PI_2, FRAC_PI_2))?;
+    /// let g = Placement::new([0.0, 0.0, 0.5], None, None)?;
+    /// let plane = BSplineSurface::plane_patch(&g, (-2.0, 2.0), (-2.0, 2.0))?;
+    /// let (a, b) = (lekalo::QuerySurface::from_nurbs(&sphere)?, lekalo::QuerySurface::from_bspline(&plane)?);
+    /// let branches = a.intersect_surface(&b, 1e-6)?;
+    /// assert_eq!(branches.len(), 1);
+    /// assert_eq!(branches[0].kind, Contact::Crossing);
+    /// assert!(branches[0].closed);
+    /// for p in &branches[0].points {
+    ///     assert!((p[0].hypot(p[1]) - 0.75_f64.sqrt()).abs() < 1e-9 && (p[2] - 0.5).abs() < 1e-9);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Dimension`] unless both surfaces are 3-D; [`Error::InvalidArgument`] for a
+    /// tolerance that is not positive and finite or below `10⁻¹²` of the scale;
+    /// [`Error::TooLarge`] past `2²⁰` sub-patch pairs or points of a branch; errors of the fit.
+    pub fn intersect_surface(
+        &self,
+        other: &QuerySurface,
+        tolerance: f64,
+    ) -> Result<Vec<IntersectionBranch>> {
+        for s in [self, other] {
+            if s.dim != 3 {
+                return Err(Error::Dimension {
+                    what: "surfaces to intersect",
+                    expected: 3,
+                    got: s.dim,
+                });
+            }
+        }
+        let scale = self.scale.max(other.scale);
+        check_section_tolerance(tolerance, scale)?;
+        let sys = TwoSurfaces { a: self, b: other };
+        let march = March {
+            sys: &sys,
+            tol: tolerance,
+            scale,
+        };
+        let found = seeds::surface_seeds(self, other, &sys, tolerance, scale, march.eps())?;
+        let probe = |x: &[f64; K], p: &[f64; 3]| seeds::distance_to(other, p, x[2], x[3]).0;
+        assemble(&march, found, &probe, |x| [x[2], x[3]], true)
+    }
+
+    /// The section of a 3-D surface by the plane through `origin` with normal `normal`, within
+    /// `tolerance`: the contour `f(u, v) = n·(S(u, v) − o) = 0`, found as
+    /// [`QuerySurface::intersect_surface`] describes with the plane's exact tests: a patch cell
+    /// whose coefficients of `f` (those of the control points, `n·(P^w − w o)`) have one sign is
+    /// dropped; one whose `u` or `v` differences have one sign holds no closed contour, and the
+    /// roots of `f` on its sides ([`crate::query`]'s Bernstein root finder) start the marching;
+    /// a cell whose coefficients vanish lies in the plane (an overlap). Branches carry `(u, v)`
+    /// only.
+    ///
+    /// ```
+    /// use lekalo::{surface::Placement, NurbsSurface};
+    /// use std::f64::consts::TAU;
+    /// // a cylinder of radius 1 about z cut by the plane z = x: an ellipse
+    /// let f = Placement::new([0.0; 3], None, None)?;
+    /// let cyl = lekalo::QuerySurface::from_nurbs(&NurbsSurface::cylinder(&f, 1.0, (0.0, TAU), (-2.0, 2.0))?)?;
+    /// let b = cyl.intersect_plane(&[0.0; 3], &[1.0, 0.0, -1.0], 1e-6)?;
+    /// assert_eq!(b.len(), 1);
+    /// assert!(b[0].closed);
+    /// for p in &b[0].points {
+    ///     assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-9 && (p[2] - p[0]).abs() < 1e-9);
+    /// }
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`QuerySurface::intersect_surface`]; [`Error::Dimension`] / [`Error::NonFinite`] for
+    /// bad plane data; [`Error::InvalidArgument`] for a zero normal.
+    pub fn intersect_plane(
+        &self,
+        origin: &[f64],
+        normal: &[f64],
+        tolerance: f64,
+    ) -> Result<Vec<IntersectionBranch>> {
+        if self.dim != 3 {
+            return Err(Error::Dimension {
+                what: "surface of a plane section",
+                expected: 3,
+                got: self.dim,
+            });
+        }
+        check_query("plane origin", origin, 3)?;
+        check_query("plane normal", normal, 3)?;
+        let nn = norm(normal);
+        if !(nn > 0.0) {
+            return Err(Error::InvalidArgument {
+                what: "plane normal",
+                reason: "it is the zero vector".into(),
+            });
+        }
+        check_section_tolerance(tolerance, self.scale)?;
+        let n = [normal[0] / nn, normal[1] / nn, normal[2] / nn];
+        let o = [origin[0], origin[1], origin[2]];
+        let sys = PlaneSection {
+            s: self,
+            origin: o,
+            normal: n,
+        };
+        let march = March {
+            sys: &sys,
+            tol: tolerance,
+            scale: self.scale,
+        };
+        let found = seeds::plane_seeds(self, &sys, &o, &n, march.eps(), tolerance)?;
+        let probe =
+            |_: &[f64; K], p: &[f64; 3]| (0..3).map(|c| n[c] * (p[c] - o[c])).sum::<f64>().abs();
+        assemble(&march, found, &probe, |_| [0.0; 2], false)
+    }
+}
+
+fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
+    check_tolerance("tolerance", tolerance)?;
+    if tolerance < 1e-12 * scale {
+        return Err(Error::InvalidArgument {
+            what: "tolerance",
+            reason: format!(
+                "{tolerance} is below 1e-12 of the surfaces' size {scale}: rounding, not the \
+                 geometry, would decide it; give a larger tolerance"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Traces the branches from the starting points and builds the answers: crossing branches
+/// (fitted), tangent points and lines, the overlap. `probe(x, p)` is the distance of a point
+/// `p` of the first surface (near the section point `x`) to the second object; `uv_b` the
+/// second surface's parameters of `x`; `two` whether there is a second surface.
+fn assemble(
+    march: &March<'_>,
+    found: Found,
+    probe: &dyn Fn(&[f64; K], &[f64; 3]) -> f64,
+    uv_b: impl Fn(&[f64; K]) -> [f64; 2],
+    two: bool,
+) -> Result<Vec<IntersectionBranch>> {
+    let sys = march.sys;
+    let (tol, scale) = (march.tol, march.scale);
+    let cover = 4.0 * tol + 1e-9 * scale;
+    let mut traced: Vec<Traced> = Vec::new();
+    // tangent candidates: (x, p, sine)
+    let mut touch: Vec<([f64; K], [f64; 3], f64)> = Vec::new();
+    for x in &found.seeds {
+        let Some(jet) = sys.jet(x) else { continue };
+        if jet.sin < SIN_STOP {
+            touch.push((*x, jet.p, jet.sin));
+            continue;
+        }
+        let covered = traced.iter().any(|t| {
+            t.ps.windows(2)
+                .any(|w| segment_distance(&jet.p, &w[0], &w[1]) <= cover)
+                || (t.ps.len() == 1 && dist(&t.ps[0], &jet.p) <= cover)
+        });
+        if covered {
+            continue;
+        }
+        let t = march.branch(*x, &jet)?;
+        for (end, stop) in [(0, t.stops[0]), (t.xs.len() - 1, t.stops[1])] {
+            if stop == Stop::Tangent {
+                let s = sys.jet(&t.xs[end]).map_or(0.0, |j| j.sin);
+                touch.push((t.xs[end], t.ps[end], s));
+            }
+        }
+        traced.push(t);
+    }
+    let mut out = Vec::new();
+    for t in traced {
+        let n = t.ps.len();
+        if n < 2 {
+            continue;
+        }
+        let closed = t.stops[0] == Stop::Closed || dist(&t.ps[0], &t.ps[n - 1]) <= tol;
+        let uv_a: Vec<[f64; 2]> = t.xs.iter().map(|x| [x[0], x[1]]).collect();
+        let uvb: Vec<[f64; 2]> = if two {
+            t.xs.iter().map(&uv_b).collect()
+        } else {
+            Vec::new()
+        };
+        let (curve, ca, cb) = fit_branch(march, &t, two)?;
+        out.push(IntersectionBranch {
+            kind: Contact::Crossing,
+            closed,
+            points: t.ps,
+            uv_a,
+            uv_b: uvb,
+            curve: Some(curve),
+            curve_uv_a: Some(ca),
+            curve_uv_b: cb,
+            tolerance: tol,
+        });
+    }
+    // tangent points: single-linkage groups within the merge distance
+    let merge = TANGENT_MERGE * scale;
+    let mut group: Vec<usize> = (0..touch.len()).collect();
+    for i in 0..touch.len() {
+        for j in 0..i {
+            if dist(&touch[i].1, &touch[j].1) <= merge {
+                let (gi, gj) = (group[i], group[j]);
+                for g in &mut group {
+                    if *g == gi {
+                        *g = gj;
+                    }
+                }
+            }
+        }
+    }
+    let mut ids: Vec<usize> = group.clone();
+    ids.sort_unstable();
+    ids.dedup();
+    for id in ids {
+        let members: Vec<&([f64; K], [f64; 3], f64)> = touch
+            .iter()
+            .zip(&group)
+            .filter(|(_, g)| **g == id)
+            .map(|(m, _)| m)
+            .collect();
+        // the two members farthest apart
+        let mut far = (0.0, 0, 0);
+        for (i, a) in members.iter().enumerate() {
+            for (j, b) in members.iter().enumerate().take(i) {
+                let d = dist(&a.1, &b.1);
+                if d > far.0 {
+                    far = (d, i, j);
+                }
+            }
+        }
+        let chosen: Vec<&([f64; K], [f64; 3], f64)> = if far.0 <= merge {
+            // one contact: the most tangent member
+            members
+                .iter()
+                .min_by(|a, b| a.2.total_cmp(&b.2))
+                .map(|m| vec![*m])
+                .unwrap_or_default()
+        } else {
+            // a line of contact: the members in order along it
+            let (a, b) = (members[far.1].1, members[far.2].1);
+            let dir = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let along = |p: &[f64; 3]| (0..3).map(|c| (p[c] - a[c]) * dir[c]).sum::<f64>();
+            let mut m = members.clone();
+            m.sort_by(|x, y| along(&x.1).total_cmp(&along(&y.1)));
+            m.dedup_by(|x, y| dist(&x.1, &y.1) <= tol);
+            m
+        };
+        let order = chosen
+            .first()
+            .map_or(1, |m| contact_order(march, probe, &m.0));
+        out.push(IntersectionBranch {
+            kind: Contact::Tangent { order },
+            closed: false,
+            points: chosen.iter().map(|m| m.1).collect(),
+            uv_a: chosen.iter().map(|m| [m.0[0], m.0[1]]).collect(),
+            uv_b: if two {
+                chosen.iter().map(|m| uv_b(&m.0)).collect()
+            } else {
+                Vec::new()
+            },
+            curve: None,
+            curve_uv_a: None,
+            curve_uv_b: None,
+            tolerance: tol,
+        });
+    }
+    if !found.overlaps.is_empty() {
+        let mut points = Vec::new();
+        let mut uv_a = Vec::new();
+        let mut uvb = Vec::new();
+        for x in &found.overlaps {
+            if let Some([p, _, _]) = surface_jet(sys.first(), x[0], x[1]) {
+                points.push(p);
+                uv_a.push([x[0], x[1]]);
+                if two {
+                    uvb.push(uv_b(x));
+                }
+            }
+        }
+        out.push(IntersectionBranch {
+            kind: Contact::Overlap,
+            closed: false,
+            points,
+            uv_a,
+            uv_b: uvb,
+            curve: None,
+            curve_uv_a: None,
+            curve_uv_b: None,
+            tolerance: tol,
+        });
+    }
+    Ok(out)
+}
+
+/// The order of a tangential contact at `x`: the growth of the distance from the first
+/// surface's point to the second object at parameter offsets `h` and `2h` (`h` a thousandth of
+/// the first surface's domain, along `u` and along `v`, on the side with room),
+/// `gap(2h)/gap(h) ≈ 2^(order + 1)`; the lower of the two directions.
+fn contact_order(
+    march: &March<'_>,
+    probe: &dyn Fn(&[f64; K], &[f64; 3]) -> f64,
+    x: &[f64; K],
+) -> u32 {
+    let b = march.sys.bounds();
+    let s = march.sys.first();
+    (0..2)
+        .map(|i| {
+            let h = 1e-3 * (b[i].1 - b[i].0);
+            let sign = if x[i] + 2.0 * h <= b[i].1 { 1.0 } else { -1.0 };
+            let gap = |m: f64| {
+                let mut y = *x;
+                y[i] += m * sign * h;
+                surface_jet(s, y[0], y[1]).map_or(f64::INFINITY, |[p, _, _]| probe(&y, &p))
+            };
+            order_from_growth(gap(1.0), gap(2.0))
+        })
+        .min()
+        .unwrap_or(1)
+}
+
+/// The fitted curves of a traced branch: one tolerance fit of the points with their scaled
+/// parameters appended (see [`QuerySurface::intersect_surface`]), split into the curve in space
+/// and the parameter curves.
+#[allow(clippy::type_complexity)]
+fn fit_branch(
+    march: &March<'_>,
+    t: &Traced,
+    two: bool,
+) -> Result<(BSplineCurve, BSplineCurve, Option<BSplineCurve>)> {
+    let sys = march.sys;
+    let n = t.ps.len();
+    let mut ka = 0.0_f64;
+    let mut kb = 0.0_f64;
+    for x in &t.xs {
+        if let Some(j) = sys.jet(x) {
+            ka = ka.max(norm(&j.dp[0]) + norm(&j.dp[1]));
+            if two {
+                // the second surface's derivatives are the Jacobian's last columns
+                let tu = [j.j[0][2], j.j[1][2], j.j[2][2]];
+                let tv = [j.j[0][3], j.j[1][3], j.j[2][3]];
+                kb = kb.max(norm(&tu) + norm(&tv));
+            }
+        }
+    }
+    let ka = if ka > 0.0 { ka } else { 1.0 };
+    let kb = if kb > 0.0 { kb } else { 1.0 };
+    let width = if two { 7 } else { 5 };
+    let mut data = Vec::with_capacity(n * width);
+    for (p, x) in t.ps.iter().zip(&t.xs) {
+        data.extend_from_slice(p);
+        data.extend_from_slice(&[ka * x[0], ka * x[1]]);
+        if two {
+            data.extend_from_slice(&[kb * x[2], kb * x[3]]);
+        }
+    }
+    let opts = ToleranceOptions {
+        degree: 3.min(n - 1),
+        tol: march.tol,
+        deviation: Deviation::Parameter,
+        parametrization: Parametrization::ChordLength,
+    };
+    let fit = fit_tolerance(PointsRef::from_flat(width, &data)?, &opts)?;
+    let c = &fit.curve;
+    let knots = c.knots().as_slice().to_vec();
+    let ctrl = c.control_points().as_slice();
+    let part = |from: usize, dim: usize, f: f64| -> Result<BSplineCurve> {
+        let pts: Vec<f64> = ctrl
+            .chunks_exact(width)
+            .flat_map(|r| r[from..from + dim].iter().map(move |v| v / f))
+            .collect();
+        BSplineCurve::new(c.degree(), knots.clone(), Points::from_flat(dim, pts)?)
+    };
+    let space = part(0, 3, 1.0)?;
+    let pa = part(3, 2, ka)?;
+    let pb = if two { Some(part(5, 2, kb)?) } else { None };
+    Ok((space, pa, pb))
+}
+
+#[cfg(test)]
+mod tests;

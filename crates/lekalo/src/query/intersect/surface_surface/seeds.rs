@@ -1,0 +1,429 @@
+//! Starting points of the marching (`docs/theory/queries.md#starting-points`): the patches are
+//! subdivided while their boxes overlap until no closed loop can hide inside a pair (the normal
+//! cones are disjoint, Sederberg and Meyers 1988) or the pair is tiny; then points on the sides
+//! of the pair's sub-patches (and one from the middle) are solved for by Newton's method. A
+//! plane section works on the signed distance's Bernstein coefficients: exact pruning, exact
+//! roots on the sides.
+
+use super::super::super::pieces::{bern_roots, dist, dot, Bern};
+use super::super::super::surface::{QuerySurface, SubNet};
+use super::super::{boxes_overlap, MAX_PAIRS};
+use super::system::{cross, newton, norm, surface_jet, System, K};
+use crate::error::{Error, Result};
+
+/// Sub-patch pairs whose normal cones are disjoint are searched from their sides once both are
+/// at most this fraction of the scale across.
+const LEAF: f64 = 0.125;
+/// Pairs whose cones overlap are subdivided down to this fraction of the scale.
+const TINY: f64 = 1.0 / 512.0;
+/// Deepest subdivision (splits of either sub-patch).
+const MAX_DEPTH: u32 = 40;
+
+/// What the search found: starting points, and the middles of sub-patch pairs on which the
+/// surfaces coincide.
+#[derive(Debug, Default)]
+pub(super) struct Found {
+    pub(super) seeds: Vec<[f64; K]>,
+    pub(super) overlaps: Vec<[f64; K]>,
+}
+
+/// A patch net in original coordinates (homogeneous for a rational surface).
+fn original_net(s: &QuerySurface, k: usize) -> Vec<f64> {
+    let mut out = s.patch(k).to_vec();
+    for p in out.chunks_exact_mut(s.hd) {
+        let w = if s.rational { p[s.dim] } else { 1.0 };
+        for d in 0..s.dim {
+            p[d] = w * s.centre[d] + s.scale * p[d];
+        }
+    }
+    out
+}
+
+/// Control point `(i, j)` of a net, Cartesian.
+fn net_point(s: &QuerySurface, net: &[f64], i: usize, j: usize) -> [f64; 3] {
+    let c = &net[(i * (s.q + 1) + j) * s.hd..];
+    let w = if s.rational { c[3] } else { 1.0 };
+    [c[0] / w, c[1] / w, c[2] / w]
+}
+
+/// A cone holding every normal of a sub-patch: `S_u × S_v` is a combination with positive
+/// weights of the products `ΔᵤPᵢⱼ × ΔᵥPₖₗ` of the net's differences, so their cone holds it
+/// (for a rational net, the differences of the Cartesian points: a close bound, not a proof).
+/// Its unit axis (the mean direction) and half-angle; `None` when it is not within a half-space
+/// (`> 0.45π`), where it excludes nothing.
+fn normal_cone(s: &QuerySurface, net: &[f64]) -> Option<([f64; 3], f64)> {
+    let (p, q) = (s.p, s.q);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let mut du = Vec::with_capacity(p * (q + 1));
+    for i in 0..p {
+        for j in 0..=q {
+            du.push(sub(net_point(s, net, i + 1, j), net_point(s, net, i, j)));
+        }
+    }
+    let mut dv = Vec::with_capacity((p + 1) * q);
+    for i in 0..=p {
+        for j in 0..q {
+            dv.push(sub(net_point(s, net, i, j + 1), net_point(s, net, i, j)));
+        }
+    }
+    let mut ns = Vec::with_capacity(du.len() * dv.len());
+    let big = du
+        .iter()
+        .chain(&dv)
+        .map(|d| norm(d))
+        .fold(0.0_f64, f64::max);
+    for a in &du {
+        for b in &dv {
+            let n = cross(a, b);
+            let l = norm(&n);
+            if l > 1e-12 * big * big {
+                ns.push([n[0] / l, n[1] / l, n[2] / l]);
+            }
+        }
+    }
+    let mut axis = [0.0; 3];
+    for n in &ns {
+        for c in 0..3 {
+            axis[c] += n[c];
+        }
+    }
+    let l = norm(&axis);
+    if !(l > 0.0) {
+        return None;
+    }
+    let axis = [axis[0] / l, axis[1] / l, axis[2] / l];
+    let half = ns
+        .iter()
+        .map(|n| dot(n, &axis).clamp(-1.0, 1.0).acos())
+        .fold(0.0_f64, f64::max);
+    (half < 0.45 * std::f64::consts::PI).then_some((axis, half))
+}
+
+/// Whether no line is normal to both sub-patches: the double cones `±cone` are disjoint. A closed
+/// intersection loop inside a pair needs a pair of parallel normals (Sederberg and Meyers 1988;
+/// Hohmeyer 1991), so without one every branch in the pair reaches the side of a sub-patch.
+fn loop_free(a: Option<([f64; 3], f64)>, b: Option<([f64; 3], f64)>) -> bool {
+    let (Some((x, ax)), Some((y, by))) = (a, b) else {
+        return false;
+    };
+    let theta = dot(&x, &y).clamp(-1.0, 1.0).acos();
+    theta.min(std::f64::consts::PI - theta) > ax + by
+}
+
+/// Global parameters of local `t` in a sub-range `r` of patch range `g`.
+fn global(g: (f64, f64), r: (f64, f64), t: f64) -> f64 {
+    g.0 + (r.0 + t * (r.1 - r.0)) * (g.1 - g.0)
+}
+
+/// Closest point of `s` to `p` by Gauss–Newton from `(u, v)` (at most 12 steps, kept in the
+/// domain): its distance, and whether the step was held at a side of the domain (the foot lies
+/// beyond the surface's edge).
+pub(super) fn distance_to(s: &QuerySurface, p: &[f64; 3], mut u: f64, mut v: f64) -> (f64, bool) {
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let mut best = f64::INFINITY;
+    let mut held = false;
+    for _ in 0..12 {
+        let Some([q, su, sv]) = surface_jet(s, u, v) else {
+            break;
+        };
+        let r = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+        best = best.min(norm(&r));
+        let (a, b, c) = (dot(&su, &su), dot(&su, &sv), dot(&sv, &sv));
+        let (g0, g1) = (dot(&su, &r), dot(&sv, &r));
+        let det = a * c - b * b;
+        if !(det > 0.0) {
+            break;
+        }
+        let (nu, nv) = (u + (g0 * c - g1 * b) / det, v + (a * g1 - b * g0) / det);
+        held = !(nu >= u0 && nu <= u1 && nv >= v0 && nv <= v1);
+        u = nu.clamp(u0, u1);
+        v = nv.clamp(v0, v1);
+    }
+    (best, held)
+}
+
+/// Whether two sub-patches coincide within `tol`: of 3 × 3 points of each, every one within
+/// `tol` of the other surface or beyond its edge, and at least one within `tol`.
+#[allow(clippy::too_many_arguments)]
+fn coincide(
+    a: &QuerySurface,
+    (ka, ua, va, na): (usize, (f64, f64), (f64, f64), &[f64]),
+    b: &QuerySurface,
+    (kb, ub, vb, nb): (usize, (f64, f64), (f64, f64), &[f64]),
+    tol: f64,
+) -> bool {
+    // the middle of the other sub-patch starts each projection
+    let one_way = |s: &QuerySurface, net: &[f64], o: &QuerySurface, start: (f64, f64)| {
+        let mut on = 0;
+        for i in 0..3 {
+            for j in 0..3 {
+                let (pt, _) = s.eval_net(net, f64::from(i) / 2.0, f64::from(j) / 2.0);
+                let (d, beyond) = distance_to(o, &[pt[0], pt[1], pt[2]], start.0, start.1);
+                if d <= tol {
+                    on += 1;
+                } else if !beyond {
+                    return false;
+                }
+            }
+        }
+        on > 0
+    };
+    let (ga, gb) = (a.ranges[ka], b.ranges[kb]);
+    let mid_a = (global(ga.0, ua, 0.5), global(ga.1, va, 0.5));
+    let mid_b = (global(gb.0, ub, 0.5), global(gb.1, vb, 0.5));
+    one_way(a, na, b, mid_b) && one_way(b, nb, a, mid_a)
+}
+
+/// A node of the search over two surfaces: patch indices, local ranges and nets of both.
+struct Pair {
+    ka: usize,
+    a: SubNet,
+    kb: usize,
+    b: SubNet,
+    depth: u32,
+}
+
+/// The starting points of the intersection of two 3-D surfaces, as the module describes.
+pub(super) fn surface_seeds(
+    sa: &QuerySurface,
+    sb: &QuerySurface,
+    sys: &dyn System,
+    tol: f64,
+    scale: f64,
+    eps: f64,
+) -> Result<Found> {
+    let mut found = Found::default();
+    let nets_a: Vec<Vec<f64>> = (0..sa.patch_count()).map(|k| original_net(sa, k)).collect();
+    let nets_b: Vec<Vec<f64>> = (0..sb.patch_count()).map(|k| original_net(sb, k)).collect();
+    let mut stack = Vec::new();
+    for (ka, na) in nets_a.iter().enumerate() {
+        for (kb, nb) in nets_b.iter().enumerate() {
+            stack.push(Pair {
+                ka,
+                a: ((0.0, 1.0), (0.0, 1.0), na.clone()),
+                kb,
+                b: ((0.0, 1.0), (0.0, 1.0), nb.clone()),
+                depth: 0,
+            });
+        }
+    }
+    let mut visited = 0_usize;
+    while let Some(pair) = stack.pop() {
+        visited += 1;
+        if visited > MAX_PAIRS {
+            return Err(Error::TooLarge {
+                what: "surface-surface sub-patch pairs",
+                size: visited,
+                max: MAX_PAIRS,
+            });
+        }
+        let (box_a, box_b) = (sa.net_box(&pair.a.2), sb.net_box(&pair.b.2));
+        if !boxes_overlap(&box_a, &box_b, 3, tol) {
+            continue;
+        }
+        let da = dist(&box_a[..3], &box_a[3..]);
+        let db = dist(&box_b[..3], &box_b[3..]);
+        let size = da.max(db);
+        let free = loop_free(normal_cone(sa, &pair.a.2), normal_cone(sb, &pair.b.2));
+        if (free && size <= LEAF * scale) || size <= TINY * scale || pair.depth >= MAX_DEPTH {
+            leaf_seeds(sa, sb, &pair, sys, eps, tol, &mut found.seeds);
+            continue;
+        }
+        if !free
+            && size <= LEAF * scale
+            && size >= 4.0 * (tol * scale).sqrt()
+            && coincide(
+                sa,
+                (pair.ka, pair.a.0, pair.a.1, &pair.a.2),
+                sb,
+                (pair.kb, pair.b.0, pair.b.1, &pair.b.2),
+                tol,
+            )
+        {
+            let (ga, gb) = (sa.ranges[pair.ka], sb.ranges[pair.kb]);
+            found.overlaps.push([
+                global(ga.0, pair.a.0, 0.5),
+                global(ga.1, pair.a.1, 0.5),
+                global(gb.0, pair.b.0, 0.5),
+                global(gb.1, pair.b.1, 0.5),
+            ]);
+            continue;
+        }
+        let d = pair.depth + 1;
+        if da >= db {
+            for a in sa.split4(&pair.a.2, pair.a.0, pair.a.1) {
+                stack.push(Pair {
+                    ka: pair.ka,
+                    a,
+                    kb: pair.kb,
+                    b: pair.b.clone(),
+                    depth: d,
+                });
+            }
+        } else {
+            for b in sb.split4(&pair.b.2, pair.b.0, pair.b.1) {
+                stack.push(Pair {
+                    ka: pair.ka,
+                    a: pair.a.clone(),
+                    kb: pair.kb,
+                    b,
+                    depth: d,
+                });
+            }
+        }
+    }
+    Ok(found)
+}
+
+/// Seeds of a leaf pair: Newton's method with one unknown held on each of the eight sides of the
+/// two sub-patches (from the side's middle and the other's middle), and the free minimum-norm
+/// Newton from both middles; the points it reaches within a tenth of the tolerance.
+fn leaf_seeds(
+    sa: &QuerySurface,
+    sb: &QuerySurface,
+    pair: &Pair,
+    sys: &dyn System,
+    eps: f64,
+    tol: f64,
+    out: &mut Vec<[f64; K]>,
+) {
+    let (ga, gb) = (sa.ranges[pair.ka], sb.ranges[pair.kb]);
+    let (ua, va) = (pair.a.0, pair.a.1);
+    let (ub, vb) = (pair.b.0, pair.b.1);
+    let mid = [
+        global(ga.0, ua, 0.5),
+        global(ga.1, va, 0.5),
+        global(gb.0, ub, 0.5),
+        global(gb.1, vb, 0.5),
+    ];
+    let sides = [
+        (0, global(ga.0, ua, 0.0)),
+        (0, global(ga.0, ua, 1.0)),
+        (1, global(ga.1, va, 0.0)),
+        (1, global(ga.1, va, 1.0)),
+        (2, global(gb.0, ub, 0.0)),
+        (2, global(gb.0, ub, 1.0)),
+        (3, global(gb.1, vb, 0.0)),
+        (3, global(gb.1, vb, 1.0)),
+    ];
+    let k = sys.k();
+    let mut push = |r: Option<([f64; K], super::system::Jet)>| {
+        if let Some((x, j)) = r {
+            if j.gap(k) <= 0.1 * tol {
+                out.push(x);
+            }
+        }
+    };
+    push(newton(sys, mid, None, None, eps));
+    for (i, value) in sides {
+        let mut x = mid;
+        x[i] = value;
+        push(newton(sys, x, Some(i), None, eps));
+    }
+}
+
+/// The numerator `N = Σ cᵢⱼ BᵢBⱼ` of the signed distance of a (rational) patch net to the plane:
+/// `cᵢⱼ = n·(P^w)ᵢⱼ − wᵢⱼ (n·o)`, zero exactly where the patch meets the plane; `(p + 1)(q + 1)`
+/// coefficients, row-major in `u`.
+fn plane_coefficients(s: &QuerySurface, net: &[f64], o: &[f64; 3], n: &[f64; 3]) -> Vec<f64> {
+    let no = dot(n, o);
+    net.chunks_exact(s.hd)
+        .map(|c| {
+            let w = if s.rational { c[3] } else { 1.0 };
+            n[0] * c[0] + n[1] * c[1] + n[2] * c[2] - w * no
+        })
+        .collect()
+}
+
+/// The starting points of a plane section: the cells of the subdivision where the coefficients
+/// of `N` change sign; a cell where the `u` or the `v` differences of the coefficients all have
+/// one sign (`N` monotone in one direction, so no closed contour inside) gives the roots of `N`
+/// on its four sides (Bernstein polynomials: none missed); a cell at depth 24 (in each
+/// direction 12 halvings) gives Newton's point from its middle; a cell whose coefficients all
+/// vanish (to `64ε` of their size) lies in the plane: an overlap.
+pub(super) fn plane_seeds(
+    s: &QuerySurface,
+    sys: &dyn System,
+    o: &[f64; 3],
+    n: &[f64; 3],
+    eps: f64,
+    tol: f64,
+) -> Result<Found> {
+    let mut found = Found::default();
+    let (p, q) = (s.p, s.q);
+    let mut stack: Vec<(usize, SubNet, u32)> = (0..s.patch_count())
+        .map(|k| (k, ((0.0, 1.0), (0.0, 1.0), original_net(s, k)), 0))
+        .collect();
+    let mut visited = 0_usize;
+    while let Some((k, (ur, vr, net), depth)) = stack.pop() {
+        visited += 1;
+        if visited > MAX_PAIRS {
+            return Err(Error::TooLarge {
+                what: "plane-section cells",
+                size: visited,
+                max: MAX_PAIRS,
+            });
+        }
+        let c = plane_coefficients(s, &net, o, n);
+        let mag = net
+            .chunks_exact(s.hd)
+            .map(|x| x.iter().map(|v| v.abs()).sum::<f64>() * (1.0 + norm(o)))
+            .fold(0.0_f64, f64::max);
+        let zero = 64.0 * f64::EPSILON * mag;
+        let g = s.ranges[k];
+        if c.iter().all(|x| x.abs() <= zero) {
+            found
+                .overlaps
+                .push([global(g.0, ur, 0.5), global(g.1, vr, 0.5), 0.0, 0.0]);
+            continue;
+        }
+        if c.iter().all(|&x| x > zero) || c.iter().all(|&x| x < -zero) {
+            continue;
+        }
+        let at = |i: usize, j: usize| c[i * (q + 1) + j];
+        let mono =
+            |diffs: Vec<f64>| diffs.iter().all(|&d| d > 0.0) || diffs.iter().all(|&d| d < 0.0);
+        let du: Vec<f64> = (0..p)
+            .flat_map(|i| (0..=q).map(move |j| (i, j)))
+            .map(|(i, j)| at(i + 1, j) - at(i, j))
+            .collect();
+        let dv: Vec<f64> = (0..=p)
+            .flat_map(|i| (0..q).map(move |j| (i, j)))
+            .map(|(i, j)| at(i, j + 1) - at(i, j))
+            .collect();
+        if mono(du) || mono(dv) {
+            // the roots of N on the four sides
+            let sides: [(Vec<f64>, bool, f64); 4] = [
+                ((0..=q).map(|j| at(0, j)).collect(), false, 0.0),
+                ((0..=q).map(|j| at(p, j)).collect(), false, 1.0),
+                ((0..=p).map(|i| at(i, 0)).collect(), true, 0.0),
+                ((0..=p).map(|i| at(i, q)).collect(), true, 1.0),
+            ];
+            for (coef, along_u, fixed) in sides {
+                for t in bern_roots(&Bern(coef), zero) {
+                    let (lu, lv) = if along_u { (t, fixed) } else { (fixed, t) };
+                    let x = [global(g.0, ur, lu), global(g.1, vr, lv), 0.0, 0.0];
+                    if let Some((x, j)) = newton(sys, x, None, None, eps) {
+                        if j.gap(2) <= 0.1 * tol {
+                            found.seeds.push(x);
+                        }
+                    }
+                }
+            }
+            continue;
+        }
+        if depth >= 24 {
+            let x = [global(g.0, ur, 0.5), global(g.1, vr, 0.5), 0.0, 0.0];
+            if let Some((x, j)) = newton(sys, x, None, None, eps) {
+                if j.gap(2) <= 0.1 * tol {
+                    found.seeds.push(x);
+                }
+            }
+            continue;
+        }
+        for (u, v, sub) in s.split4(&net, ur, vr) {
+            stack.push((k, (u, v, sub), depth + 2));
+        }
+    }
+    Ok(found)
+}
