@@ -45,7 +45,7 @@
 //!   the origin (a 1e8 offset) lose no digits in the solve.
 //! - No dense matrix is formed: curves use banded QR or banded `UᵀDU`, O(N·p²) for `N` points.
 
-mod banded;
+pub(crate) mod banded;
 mod cyclic;
 mod data;
 mod knot_placement;
