@@ -392,10 +392,10 @@ pub enum Error {
     },
 
     /// A control point of a least-squares fit in `N` variables that the data do not determine:
-    /// its support, the box `lower..upper` of knot spans where its basis function is positive,
-    /// holds no data point of positive weight (`points = 0`), or too few or too nearly aligned
-    /// ones (the normal matrix is singular there). The `N`-variate counterpart of
-    /// [`Error::SchoenbergWhitney`]; `index` is the control point's index per direction.
+    /// its support ([`ControlSupport`]: the box of knot spans where its basis function is
+    /// positive) holds no data point of positive weight (`points = 0`), or too few or too
+    /// nearly aligned ones (the normal matrix is singular there). The `N`-variate counterpart
+    /// of [`Error::SchoenbergWhitney`]. Boxed, so that [`Error`] stays small.
     ///
     /// ```
     /// use lekalo::{tensor_scattered_least_squares, Error, KnotVector, PointsRef};
@@ -406,24 +406,21 @@ pub enum Error {
     /// let e = tensor_scattered_least_squares(
     ///     PointsRef::from_flat(2, &x)?, PointsRef::from_flat(1, &y)?, None, &[1, 1], vec![k.clone(), k],
     /// ).unwrap_err();
-    /// assert!(matches!(e, Error::EmptySupport { ref index, points: 0, .. } if index == &[2, 2]));
+    /// assert!(matches!(e, Error::EmptySupport { ref support, points: 0 } if support.index == [2, 2]));
     /// assert!(e.to_string().contains("[1, 2] × [1, 2]"));
     /// # Ok::<(), lekalo::Error>(())
     /// ```
     #[error(
-        "control point {index:?} is not determined by the data: its support {} holds {points} \
+        "control point {:?} is not determined by the data: its support {} holds {points} \
          data points of positive weight{}; remove knots there (fewer control points in that \
          region), or add data inside it",
-        support_box(.lower, .upper),
+        .support.index,
+        support_box(&.support.lower, &.support.upper),
         if *.points > 0 { ", too few or too nearly aligned" } else { "" }
     )]
     EmptySupport {
-        /// The control point's index in each direction.
-        index: Vec<usize>,
-        /// The lower corner of its support (one knot per direction).
-        lower: Vec<f64>,
-        /// The upper corner of its support.
-        upper: Vec<f64>,
+        /// The control point and its support.
+        support: Box<ControlSupport>,
         /// Data points of positive weight inside the support.
         points: usize,
     },
@@ -597,6 +594,19 @@ impl std::fmt::Display for Readable {
             write!(f, "{x:e}")
         }
     }
+}
+
+/// A control point of a tensor-product spline in `N` variables and its support, the box
+/// `Π_a [t_{a,i_a}, t_{a,i_a+p_a+1}]` where its basis function is positive
+/// ([`Error::EmptySupport`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ControlSupport {
+    /// The control point's index in each direction.
+    pub index: Vec<usize>,
+    /// The lower corner of its support (one knot per direction).
+    pub lower: Vec<f64>,
+    /// The upper corner of its support.
+    pub upper: Vec<f64>,
 }
 
 /// The box `[a_0, b_0] × … × [a_{N−1}, b_{N−1}]` of [`Error::EmptySupport`].

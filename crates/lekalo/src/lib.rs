@@ -58,7 +58,8 @@ mod knots;
 mod points;
 
 pub use error::{
-    Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS, MAX_SURFACE_DERIVATIVE_ORDER,
+    ControlSupport, Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
+    MAX_SURFACE_DERIVATIVE_ORDER,
 };
 pub use knots::{check_parameters, uniform_parameters, KnotVector, SpanCursor};
 pub use points::{Points, PointsRef};

@@ -3,7 +3,7 @@
 //! curve and surface fits. `docs/theory/tensor.md#least-squares-on-scattered-data`.
 
 use crate::basis::{basis_funs_into, BasisScratch};
-use crate::error::{Error, Result, MAX_SCALARS};
+use crate::error::{ControlSupport, Error, Result, MAX_SCALARS};
 use crate::fit::banded::SymBand;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
@@ -269,9 +269,11 @@ fn empty_support(
         .map(|(&j, (kv, &p))| kv.as_slice()[j + p + 1])
         .collect();
     Error::EmptySupport {
-        index,
-        lower,
-        upper,
+        support: Box::new(ControlSupport {
+            index,
+            lower,
+            upper,
+        }),
         points,
     }
 }
