@@ -75,5 +75,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fit::register(m)?;
     query::register(m)?;
     slopes::register(m)?;
+    tensor::register(m)?;
     Ok(())
 }

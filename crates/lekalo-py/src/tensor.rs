@@ -4,11 +4,14 @@
 //! `dim = prod(trailing)`), degrees `k`. Evaluation at `(..., N)` arrays gives
 //! `(..., *trailing)`.
 
-use lekalo::{KnotVector, Points, PointsRef, TensorBSpline, TensorInterpolation};
+use lekalo::{
+    tensor_grid_least_squares, tensor_scattered_least_squares, KnotVector, Points, PointsRef,
+    TensorBSpline, TensorInterpolation,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, vec1};
+use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
 use crate::error::{bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
@@ -344,4 +347,139 @@ impl PyTensorBSpline {
             self.trailing
         )
     }
+}
+
+/// Knot vectors `t` (one 1-D array per variable) for the fits: validated, `t[a]` named in the
+/// errors.
+fn knot_vectors_arg(t: &Bound<'_, PyAny>) -> PyResult<Vec<KnotVector>> {
+    axes_arg(t, "t")?
+        .into_iter()
+        .enumerate()
+        .map(|(a, k)| KnotVector::new(k).map_err(|e| named(&format!("t[{a}]"), &e)))
+        .collect()
+}
+
+/// The argument of a fit an error is about (`x` or `axes` for the coordinates).
+fn fit_err(e: lekalo::Error, coordinates: &str) -> PyErr {
+    match e {
+        lekalo::Error::Degree { .. } => named("k", &e),
+        lekalo::Error::ParameterOutOfDomain { .. }
+        | lekalo::Error::KnotsNotSorted { .. }
+        | lekalo::Error::NonFinite { .. } => named(coordinates, &e),
+        lekalo::Error::InvalidDataWeight { .. } => named("w", &e),
+        other => lib_err(other),
+    }
+}
+
+/// The least-squares tensor-product spline on a grid with given knots
+/// (`tensor_grid_least_squares`, `docs/theory/tensor.md#least-squares-on-grids`): `values` of
+/// shape `(m_1, …, m_N, *trailing)` at the coordinates `axes` (one strictly increasing 1-D
+/// array per variable), knots `t` (one 1-D array per variable, at most `m_a + k_a + 1` knots),
+/// degrees `k` (one integer or one per variable). SciPy's `make_lsq_spline` in each direction;
+/// for `N = 2`, `RectBivariateSpline`'s least squares on given knots.
+#[pyfunction]
+#[pyo3(signature = (axes, values, t, k = None))]
+pub(crate) fn fit_tensor_grid(
+    py: Python<'_>,
+    axes: &Bound<'_, PyAny>,
+    values: &Bound<'_, PyAny>,
+    t: &Bound<'_, PyAny>,
+    k: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyTensorBSpline> {
+    let lists = axes_arg(axes, "axes")?;
+    let n = lists.len();
+    let knots = knot_vectors_arg(t)?;
+    if knots.len() != n {
+        return Err(bad(format!(
+            "t: {} knot vectors for {n} axes; give one per variable",
+            knots.len()
+        )));
+    }
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    let va = floats(values, "values")?;
+    let shape = va.shape();
+    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
+    if shape.len() < n || shape[..n] != sizes[..] {
+        return Err(bad(format!(
+            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
+        )));
+    }
+    let trailing = shape[n..].to_vec();
+    let dim: usize = trailing.iter().product();
+    let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+    let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let inner = py
+        .detach(|| tensor_grid_least_squares(&refs, pts, &degrees, knots))
+        .map_err(|e| fit_err(e, "axes"))?;
+    Ok(PyTensorBSpline { inner, trailing })
+}
+
+/// The least-squares tensor-product spline through scattered points with given knots
+/// (`tensor_scattered_least_squares`,
+/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
+/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
+/// weights `w` (one per point). Returns `(spline, residuals, weighted_rss)`, as
+/// `fit_surface_scattered`; SciPy's `LSQBivariateSpline` for `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (x, y, t, k = None, *, w = None))]
+pub(crate) fn fit_tensor_scattered<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    k: Option<&Bound<'py, PyAny>>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(PyTensorBSpline, Bound<'py, PyAny>, f64)> {
+    let xa = floats(x, "x")?;
+    let xshape = xa.shape();
+    let [npts, n] = xshape[..] else {
+        return Err(bad(format!(
+            "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
+        )));
+    };
+    let knots = knot_vectors_arg(t)?;
+    if knots.len() != n {
+        return Err(bad(format!(
+            "t: {} knot vectors for points in {n} variables; give one per variable",
+            knots.len()
+        )));
+    }
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    let ya = floats(y, "y")?;
+    let yshape = ya.shape();
+    if yshape.first() != Some(&npts) {
+        return Err(bad(format!(
+            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
+        )));
+    }
+    let trailing = yshape[1..].to_vec();
+    let dim: usize = trailing.iter().product();
+    let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
+    let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
+    let wa = w.map(|w| floats(w, "w")).transpose()?;
+    let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
+    let f = py
+        .detach(|| tensor_scattered_least_squares(xs, ys, wv, &degrees, knots))
+        .map_err(|e| fit_err(e, "x"))?;
+    Ok((
+        PyTensorBSpline {
+            inner: f.spline,
+            trailing,
+        },
+        vec_array(py, &f.residuals),
+        f.weighted_rss,
+    ))
+}
+
+/// Registers the fits of tensor-product splines.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
+    Ok(())
 }

@@ -391,6 +391,40 @@ pub enum Error {
         end: f64,
     },
 
+    /// A control point of a least-squares fit in `N` variables that the data do not determine:
+    /// its support ([`ControlSupport`]: the box of knot spans where its basis function is
+    /// positive) holds no data point of positive weight (`points = 0`), or too few or too
+    /// nearly aligned ones (the normal matrix is singular there). The `N`-variate counterpart
+    /// of [`Error::SchoenbergWhitney`]. Boxed, so that [`Error`] stays small.
+    ///
+    /// ```
+    /// use lekalo::{tensor_scattered_least_squares, Error, KnotVector, PointsRef};
+    /// // bilinear on [0, 2]², knots at 1: no data in the cell [1, 2] × [1, 2]
+    /// let k = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 2.0])?;
+    /// let x = [0.2, 0.3, 0.8, 0.5, 1.5, 0.4, 0.6, 1.7, 1.2, 0.9, 0.1, 1.1];
+    /// let y = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    /// let e = tensor_scattered_least_squares(
+    ///     PointsRef::from_flat(2, &x)?, PointsRef::from_flat(1, &y)?, None, &[1, 1], vec![k.clone(), k],
+    /// ).unwrap_err();
+    /// assert!(matches!(e, Error::EmptySupport { ref support, points: 0 } if support.index == [2, 2]));
+    /// assert!(e.to_string().contains("[1, 2] × [1, 2]"));
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    #[error(
+        "control point {:?} is not determined by the data: its support {} holds {points} \
+         data points of positive weight{}; remove knots there (fewer control points in that \
+         region), or add data inside it",
+        .support.index,
+        support_box(&.support.lower, &.support.upper),
+        if *.points > 0 { ", too few or too nearly aligned" } else { "" }
+    )]
+    EmptySupport {
+        /// The control point and its support.
+        support: Box<ControlSupport>,
+        /// Data points of positive weight inside the support.
+        points: usize,
+    },
+
     /// A data weight that is NaN, infinite or negative, or weights that are all zero.
     ///
     /// ```
@@ -560,6 +594,29 @@ impl std::fmt::Display for Readable {
             write!(f, "{x:e}")
         }
     }
+}
+
+/// A control point of a tensor-product spline in `N` variables and its support, the box
+/// `Π_a [t_{a,i_a}, t_{a,i_a+p_a+1}]` where its basis function is positive
+/// ([`Error::EmptySupport`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ControlSupport {
+    /// The control point's index in each direction.
+    pub index: Vec<usize>,
+    /// The lower corner of its support (one knot per direction).
+    pub lower: Vec<f64>,
+    /// The upper corner of its support.
+    pub upper: Vec<f64>,
+}
+
+/// The box `[a_0, b_0] × … × [a_{N−1}, b_{N−1}]` of [`Error::EmptySupport`].
+fn support_box(lower: &[f64], upper: &[f64]) -> String {
+    let sides: Vec<String> = lower
+        .iter()
+        .zip(upper)
+        .map(|(a, b)| format!("[{a}, {b}]"))
+        .collect();
+    sides.join(" × ")
 }
 
 /// [`Readable`] of a field (the messages above take their fields by reference).

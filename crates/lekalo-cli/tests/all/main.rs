@@ -10,6 +10,7 @@ mod cli_blend_corners;
 mod cli_fit;
 mod cli_fit_options;
 mod cli_gallery;
+mod cli_grid_knots;
 mod cli_help_examples;
 mod cli_interpolate;
 mod cli_intersect_surfaces;

@@ -556,6 +556,12 @@ def fit_surface_grid(
 def fit_surface_scattered(
     data: ArrayLike, tu: ArrayLike, tv: ArrayLike, degree: Tuple[int, int] = (3, 3), *, w: Optional[ArrayLike] = None, penalty: float = 0.0
 ) -> Tuple[BSplineSurface, Array, float]: ...
+def fit_tensor_grid(
+    axes: Sequence[ArrayLike], values: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None
+) -> TensorBSpline: ...
+def fit_tensor_scattered(
+    x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None
+) -> Tuple[TensorBSpline, Array, float]: ...
 
 # -- geometric queries (docs/theory/queries.md)
 class CurveQuery:

@@ -50,7 +50,7 @@
 //!   once the cancel flag is set, and otherwise gives the bits of the plain function.
 //! - No dense matrix is formed: curves use banded QR or banded `UᵀDU`, O(N·p²) for `N` points.
 
-mod banded;
+pub(crate) mod banded;
 mod cyclic;
 mod data;
 mod knot_placement;

@@ -93,3 +93,102 @@ pub fn tensor_grid_least_squares(
     }
     TensorBSpline::from_knot_vectors(degrees.to_vec(), knots, Points::from_flat(dim, grid)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(crate::oracle::proptest_config(32))]
+
+        /// A grid sampled from a spline of the same space is fitted exactly, and the residual
+        /// of a perturbed grid is orthogonal to every basis function of the space: each
+        /// `(B_i(x̄_{0,k_0})⋯B_{i'}(x̄_{N−1,k_{N−1}}))` summed against the residuals vanishes.
+        #[test]
+        fn reproduces_its_space_and_leaves_orthogonal_residuals(
+            degrees in proptest::collection::vec(1usize..=3, 1..=3),
+            extra in proptest::collection::vec(0usize..=2, 3),
+            more in proptest::collection::vec(0usize..=4, 3),
+            coefficients in proptest::collection::vec(-5.0f64..5.0, 216),
+            noise in proptest::collection::vec(-0.1f64..0.1, 97),
+        ) {
+            let n = degrees.len();
+            let shape: Vec<usize> = degrees.iter().zip(&extra).map(|(&p, &e)| p + 1 + e).collect();
+            let knots: Vec<KnotVector> = degrees
+                .iter()
+                .zip(&shape)
+                .map(|(&p, &c)| KnotVector::clamped_uniform(p, c).unwrap())
+                .collect();
+            let m: usize = shape.iter().product();
+            let truth = TensorBSpline::from_knot_vectors(
+                degrees.clone(),
+                knots.clone(),
+                Points::from_flat(1, coefficients[..m].to_vec()).unwrap(),
+            )
+            .unwrap();
+            // uneven grid coordinates, more than control points in every direction
+            let axes: Vec<Vec<f64>> = shape
+                .iter()
+                .zip(&more)
+                .map(|(&c, &k)| {
+                    let count = c + 1 + k;
+                    (0..count)
+                        .map(|i| {
+                            let t = i as f64 / (count - 1) as f64;
+                            t * t * (3.0 - 2.0 * t) * 0.5 + t * 0.5
+                        })
+                        .collect()
+                })
+                .collect();
+            let refs: Vec<&[f64]> = axes.iter().map(Vec::as_slice).collect();
+            let sizes: Vec<usize> = axes.iter().map(Vec::len).collect();
+            let total: usize = sizes.iter().product();
+            let mut grid = vec![0.0; total];
+            truth.eval_grid(&refs, None, &mut grid).unwrap();
+            let fit = tensor_grid_least_squares(
+                &refs,
+                PointsRef::from_flat(1, &grid).unwrap(),
+                &degrees,
+                knots.clone(),
+            )
+            .unwrap();
+            for (p, q) in fit
+                .control_points()
+                .as_slice()
+                .iter()
+                .zip(truth.control_points().as_slice())
+            {
+                prop_assert!((p - q).abs() < 1e-9, "{} vs {}", p, q);
+            }
+            for (k, v) in grid.iter_mut().enumerate() {
+                *v += noise[k % noise.len()];
+            }
+            let fit = tensor_grid_least_squares(
+                &refs,
+                PointsRef::from_flat(1, &grid).unwrap(),
+                &degrees,
+                knots.clone(),
+            )
+            .unwrap();
+            let mut s = vec![0.0; total];
+            fit.eval_grid(&refs, None, &mut s).unwrap();
+            let residual: Vec<f64> = grid.iter().zip(&s).map(|(g, f)| g - f).collect();
+            for i in 0..m {
+                let mut e = vec![0.0; m];
+                e[i] = 1.0;
+                let unit = TensorBSpline::from_knot_vectors(
+                    degrees.clone(),
+                    knots.clone(),
+                    Points::from_flat(1, e).unwrap(),
+                )
+                .unwrap();
+                let mut b = vec![0.0; total];
+                unit.eval_grid(&refs, None, &mut b).unwrap();
+                let dot: f64 = b.iter().zip(&residual).map(|(x, r)| x * r).sum();
+                let size: f64 = b.iter().zip(&residual).map(|(x, r)| (x * r).abs()).sum();
+                prop_assert!(dot.abs() <= 1e-10 * (1.0 + size), "{} of {} (n = {})", dot, size, n);
+            }
+        }
+    }
+}

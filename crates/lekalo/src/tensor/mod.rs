@@ -16,12 +16,15 @@
 //! - `any.rs`: [`Tensor`], one value for either kind.
 //! - `fit.rs`: [`tensor_grid_least_squares`], least squares on a grid with given knots by one
 //!   sweep of curve fits per direction.
+//! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
+//!   `N` variables by banded normal equations.
 
 mod any;
 mod fit;
 mod grid_eval;
 mod interpolate;
 mod nurbs;
+mod scattered;
 mod slice;
 mod spline;
 
@@ -29,6 +32,7 @@ pub use any::Tensor;
 pub use fit::tensor_grid_least_squares;
 pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
+pub use scattered::{tensor_scattered_least_squares, TensorScatteredFit};
 pub use spline::TensorBSpline;
 
 #[cfg(test)]

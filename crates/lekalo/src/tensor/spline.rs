@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
+use crate::basis::{basis_ders_into, basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{
     check_derivative_order, check_finite, Error, Result, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
 };
@@ -338,7 +338,10 @@ impl TensorBSpline {
 
     /// [`TensorBSpline::eval_batch`] split over the current rayon thread pool in chunks of a
     /// fixed number of points, each with its own scratch; every point gets the same bits as in
-    /// the sequential batch (the same kernel on the same numbers).
+    /// the sequential batch (the same kernel on the same numbers). A large batch on a large net
+    /// whose points are all in the domain is worked through in the order of a grid of cells,
+    /// for the cache, and its values put back in order
+    /// (`docs/theory/tensor.md#tensor-product-splines`, "Large batches in cell order").
     ///
     /// # Errors
     /// As [`TensorBSpline::eval_batch`] (the error of the first failing chunk).
@@ -401,6 +404,13 @@ impl TensorBSpline {
         TensorScratch::new(self, orders)?;
         let (n, dim) = (self.n_vars(), self.dim());
         let points = xs.len() / n;
+        if points >= SORT_MIN_POINTS
+            && self.control.as_slice().len() >= SORT_MIN_NET
+            && n <= SORT_MAX_VARS
+            && (extrapolate || self.all_inside(xs))
+        {
+            return self.par_batch_sorted(xs, orders, extrapolate, out);
+        }
         let chunk = points
             .div_ceil(4 * rayon::current_num_threads().max(1))
             .max(PAR_CHUNK);
@@ -413,6 +423,80 @@ impl TensorBSpline {
             })
             .collect();
         results.into_iter().collect()
+    }
+
+    /// Whether every point of `xs` lies in the domain (then no point of the batch fails).
+    fn all_inside(&self, xs: &[f64]) -> bool {
+        let domains = self.domain();
+        xs.chunks_exact(self.n_vars()).all(|x| {
+            x.iter()
+                .zip(&domains)
+                .all(|(&t, &(lo, hi))| t >= lo && t <= hi)
+        })
+    }
+
+    /// [`TensorBSpline::par_batch`] for a large batch on a large net, every point evaluable:
+    /// the points are visited in the order of a coarse grid of cells over the domain
+    /// ([`SORT_BINS`] per direction, the first direction slowest, as the net), so that
+    /// consecutive points read neighbouring control points from the cache and the span
+    /// searches start next to their answer. Each point is evaluated by the same kernel on the
+    /// same numbers, so the values are the bits of the unsorted batch; only the order of the
+    /// work changes. Memory: the permutation and a sorted copy of the points and values
+    /// (`points·(2 + N + dim)` numbers).
+    fn par_batch_sorted(
+        &self,
+        xs: &[f64],
+        orders: Option<&[usize]>,
+        extrapolate: bool,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let (n, dim) = (self.n_vars(), self.dim());
+        let points = xs.len() / n;
+        checked_size("sorted copy of the points", &[points], 2 + n + dim)?;
+        let domains = self.domain();
+        let bins = SORT_BINS as f64;
+        let mut order: Vec<(u64, usize)> = xs
+            .par_chunks_exact(n)
+            .enumerate()
+            .map(|(k, x)| {
+                let mut key = 0u64;
+                for (&t, &(lo, hi)) in x.iter().zip(&domains) {
+                    let width = hi - lo;
+                    let cell = if width > 0.0 {
+                        ((t - lo) / width * bins).clamp(0.0, bins - 1.0)
+                    } else {
+                        0.0
+                    };
+                    // truncation of a number in [0, SORT_BINS − 1] (NaN-free: finite points)
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let cell = cell as u64;
+                    key = key * SORT_BINS + cell;
+                }
+                (key, k)
+            })
+            .collect();
+        order.par_sort_unstable_by_key(|&(key, _)| key);
+        let mut sorted_xs = Vec::with_capacity(xs.len());
+        for &(_, k) in &order {
+            sorted_xs.extend_from_slice(&xs[k * n..(k + 1) * n]);
+        }
+        let mut sorted_out = vec![0.0; out.len()];
+        let chunk = points
+            .div_ceil(4 * rayon::current_num_threads().max(1))
+            .max(PAR_CHUNK);
+        let results: Vec<Result<()>> = sorted_xs
+            .par_chunks(chunk * n)
+            .zip(sorted_out.par_chunks_mut(chunk * dim))
+            .map(|(x, o)| {
+                let mut scratch = TensorScratch::new(self, orders)?;
+                self.batch_slice(x, orders, extrapolate, &mut scratch, o)
+            })
+            .collect();
+        results.into_iter().collect::<Result<()>>()?;
+        for (&(_, k), v) in order.iter().zip(sorted_out.chunks_exact(dim)) {
+            out[k * dim..(k + 1) * dim].copy_from_slice(v);
+        }
+        Ok(())
     }
 
     fn check_batch(&self, xs: &[f64], out: &[f64]) -> Result<()> {
@@ -449,6 +533,25 @@ impl TensorBSpline {
             .map(|(k, &p)| k.span_cursor(p))
             .collect();
         let domains = self.domain();
+        if orders.is_none() && n == 3 && self.dim() == 1 {
+            let d = &self.degrees;
+            if d[1] == d[0] && d[2] == d[0] {
+                let run = Batch3 {
+                    s: self,
+                    xs,
+                    extrapolate,
+                    domains: &domains,
+                };
+                match d[0] {
+                    1 => return run.values::<2>(&mut cursors, out),
+                    2 => return run.values::<3>(&mut cursors, out),
+                    3 => return run.values::<4>(&mut cursors, out),
+                    4 => return run.values::<5>(&mut cursors, out),
+                    5 => return run.values::<6>(&mut cursors, out),
+                    _ => {}
+                }
+            }
+        }
         for (x, o) in xs.chunks_exact(n).zip(out.chunks_exact_mut(self.dim())) {
             for (a, c) in cursors.iter_mut().enumerate() {
                 scratch.spans[a] = if extrapolate {
@@ -518,6 +621,64 @@ impl TensorBSpline {
         contract_window(self, &window, stages, odometer, out);
     }
 }
+
+/// A batch of values of a trivariate scalar spline of one degree `p ≤ 5` in every direction:
+/// per point the three spans (searched from the previous point's), the basis vectors by the
+/// fixed-order A2.2 ([`basis_funs_fixed`], the same operations in the same order as
+/// [`basis_funs_into`]) and the fixed-size contraction [`contract3`], with no scratch and no
+/// odometer. The same bits as the general kernel (tested); it is the whole cost of the
+/// evaluation of a trivariate lookup table at scattered points.
+struct Batch3<'a> {
+    s: &'a TensorBSpline,
+    xs: &'a [f64],
+    extrapolate: bool,
+    domains: &'a [(f64, f64)],
+}
+
+impl Batch3<'_> {
+    fn values<const W: usize>(
+        &self,
+        cursors: &mut [crate::knots::SpanCursor<'_>],
+        out: &mut [f64],
+    ) -> Result<()> {
+        let s = self.s;
+        let net = s.control.as_slice();
+        let strides = [s.stride(0), s.stride(1)];
+        let (k0, k1, k2) = (
+            s.knots[0].as_slice(),
+            s.knots[1].as_slice(),
+            s.knots[2].as_slice(),
+        );
+        let p = W - 1;
+        for (x, o) in self.xs.chunks_exact(3).zip(out.iter_mut()) {
+            let mut spans = [0usize; 3];
+            for (a, c) in cursors.iter_mut().enumerate() {
+                spans[a] = if self.extrapolate {
+                    let (lo, hi) = self.domains[a];
+                    c.find_unchecked(x[a].clamp(lo, hi))
+                } else {
+                    c.find(x[a])?
+                };
+            }
+            let b0: [f64; W] = basis_funs_fixed(k0, spans[0], x[0]);
+            let b1: [f64; W] = basis_funs_fixed(k1, spans[1], x[1]);
+            let b2: [f64; W] = basis_funs_fixed(k2, spans[2], x[2]);
+            let first = [spans[0] - p, spans[1] - p, spans[2] - p];
+            *o = contract3::<W>(net, first, strides, &b0, &b1, &b2);
+        }
+        Ok(())
+    }
+}
+
+/// Batches of at least this many points on nets of at least [`SORT_MIN_NET`] numbers are
+/// evaluated in the order of a coarse grid of cells ([`TensorBSpline::par_batch_sorted`]).
+const SORT_MIN_POINTS: usize = 1 << 14;
+/// Nets below this many numbers (256 KiB) stay in the cache whatever the order of the points.
+const SORT_MIN_NET: usize = 1 << 15;
+/// Cells per direction of the ordering grid.
+const SORT_BINS: u64 = 64;
+/// Directions whose cell indices fit one 64-bit key (6 bits each).
+const SORT_MAX_VARS: usize = 10;
 
 /// Points per parallel chunk at least (scratch set-up and scheduling amortised).
 const PAR_CHUNK: usize = 256;

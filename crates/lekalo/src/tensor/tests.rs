@@ -1145,6 +1145,19 @@ fn the_trivariate_scalar_kernel_has_the_general_bits() {
         for (k, (x, y)) in a.iter().zip(b.chunks_exact(2)).enumerate() {
             assert_eq!(x.to_bits(), y[0].to_bits(), "degree {p}, point {k}");
         }
+        // beyond the domain too (the batch of values continues the end polynomials)
+        let wide: Vec<f64> = xs.iter().map(|x| 2.0 * x - 0.5).collect();
+        one.par_eval_batch_extrapolated(&wide, None, &mut a)
+            .unwrap();
+        two.par_eval_batch_extrapolated(&wide, None, &mut b)
+            .unwrap();
+        for (k, (x, y)) in a.iter().zip(b.chunks_exact(2)).enumerate() {
+            assert_eq!(
+                x.to_bits(),
+                y[0].to_bits(),
+                "degree {p}, extrapolated point {k}"
+            );
+        }
     }
 }
 
@@ -1238,4 +1251,61 @@ fn derivative_splines_agree_with_partial_derivatives() {
     assert!(z.control_points().as_slice().iter().all(|&v| v == 0.0));
     assert_eq!(z.eval(&[1.2, 0.7, 2.9]).unwrap(), vec![0.0, 0.0]);
     assert!(s.derivative(&[1, 0]).is_err());
+}
+
+/// A large batch on a large net is evaluated in the order of a grid of cells: every value has
+/// the bits of the sequential batch, inside and beyond the domain, for the fixed trivariate
+/// kernel and the general one; a point outside the domain is still the error of the first such
+/// point.
+#[test]
+fn a_large_batch_in_cell_order_has_the_bits_of_the_sequential_one() {
+    let mut rng = 0x9e37_79b9_u64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for (degrees, sizes, dim) in [
+        (vec![3, 3, 3], vec![33, 33, 33], 1),
+        (vec![2, 3, 1, 2], vec![14, 12, 10, 9], 2),
+    ] {
+        let knots: Vec<Vec<f64>> = sizes
+            .iter()
+            .zip(&degrees)
+            .map(|(&m, &p)| {
+                let mut t = vec![0.0; p + 1];
+                t.extend((1..m - p).map(|i| i as f64 / (m - p) as f64));
+                t.extend(vec![1.0; p + 1]);
+                t
+            })
+            .collect();
+        let count: usize = sizes.iter().product::<usize>() * dim;
+        let net: Vec<f64> = (0..count).map(|_| 2.0 * next() - 1.0).collect();
+        let s = TensorBSpline::new(degrees, knots, Points::from_flat(dim, net).unwrap()).unwrap();
+        let n = s.n_vars();
+        let points = 20_000;
+        let xs: Vec<f64> = (0..points * n).map(|_| next()).collect();
+        let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+        let mut seq = vec![0.0; points * dim];
+        let mut par = vec![0.0; points * dim];
+        s.eval_batch(&xs, None, &mut seq).unwrap();
+        s.par_eval_batch(&xs, None, &mut par).unwrap();
+        assert_eq!(bits(&seq), bits(&par), "{n} variables");
+        // beyond the domain: the sorted batch against small (unsorted) batches
+        let wide: Vec<f64> = xs.iter().map(|x| 1.6 * x - 0.3).collect();
+        s.par_eval_batch_extrapolated(&wide, None, &mut par)
+            .unwrap();
+        for (x, v) in wide.chunks(1000 * n).zip(par.chunks(1000 * dim)) {
+            let mut small = vec![0.0; v.len()];
+            s.par_eval_batch_extrapolated(x, None, &mut small).unwrap();
+            assert_eq!(bits(&small), bits(v), "{n} variables, extrapolated");
+        }
+        // one point outside: the sequential error, not the sorted path
+        let mut bad = xs.clone();
+        bad[(points / 2) * n] = 1.5;
+        bad[(points - 1) * n] = -0.5;
+        let e = s.par_eval_batch(&bad, None, &mut par).unwrap_err();
+        assert_eq!(e, s.eval_batch(&bad, None, &mut seq).unwrap_err());
+    }
 }

@@ -44,7 +44,9 @@ Curves (document 000): global B-spline interpolation, any degree, every parametr
 knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
 Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
 slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
-takes one degree or one per direction.
+takes one degree or one per direction. A grid's knots in a direction: its interior knots
+(values − degree − 1, inside the parameters' range) by --knots-u, --knots-v (directions 1, 2)
+or --knots-in K=LIST (direction K); the other directions' by averaging.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
 --hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 
@@ -58,6 +60,7 @@ Examples:
   lekalo interpolate pts.csv --end periodic --degree 3
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,1 --param uniform -o tensor.json
+  lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,2 --param uniform --knots-u 0.4,0.6 --knots-in 3=0.5
   lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
   lekalo interpolate xy.csv --function --hermite monotone
   lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json
@@ -101,6 +104,32 @@ pub(crate) struct InterpolateArgs {
         conflicts_with_all = ["end", "knots", "d0", "dn", "function", "hermite"]
     )]
     grid: Option<String>,
+    /// Interior knots of a grid's first direction (u, the rows of a surface grid), inside its
+    /// parameters' range, as `fit --knots-u`: values − degree − 1 of them; the ends are clamped.
+    #[arg(
+        long,
+        value_name = "LIST",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    knots_u: Option<String>,
+    /// Interior knots of a grid's second direction (v), as --knots-u.
+    #[arg(
+        long,
+        value_name = "LIST",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    knots_v: Option<String>,
+    /// Interior knots of direction K of a grid (K from 1, as the columns x1 … xN of `eval`),
+    /// as --knots-u; repeat for several directions (e.g. --knots-in 3=0.5).
+    #[arg(
+        long,
+        value_name = "K=LIST",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    knots_in: Vec<String>,
     /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
     #[arg(
         long,
@@ -184,6 +213,7 @@ pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
             degree: &a.degree,
             param,
             max_condition: a.max_condition,
+            knots: grid_knots(a),
             output: a.out.output.as_deref(),
             to: a.out.to.as_deref(),
         };
@@ -212,6 +242,22 @@ pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
             _ => (single_degree(a)?, a.degree_v),
         };
         let degree_v = listed_v.unwrap_or(degree.min(nv.saturating_sub(1)).max(1));
+        if grid_knots(a).any() {
+            // given knots: the tensor interpolation of two directions, which is the surface's
+            let mut interp =
+                lekalo::TensorInterpolation::new(vec![degree, degree_v]).parametrization(param);
+            if let Some(limit) = a.max_condition {
+                interp = interp.max_condition(limit);
+            }
+            let s = crate::cmd::tensor::interpolate_with_knots(
+                interp,
+                &[degree, degree_v],
+                &pts,
+                &[nu, nv],
+                grid_knots(a),
+            )?;
+            return write_surface(&s.to_surface()?, &a.out, &inputs, cx);
+        }
         let mut fit = SurfaceInterpolation::new(degree, degree_v).parametrization(param);
         if let Some(limit) = a.max_condition {
             fit = fit.max_condition(limit);
@@ -300,6 +346,15 @@ pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
     bar.finish_and_clear();
     let curve = curve?;
     write_curve(&Object::BSpline(curve), Some(&pts), &a.out, &inputs, cx)
+}
+
+/// The interior knots given per direction of a grid.
+fn grid_knots(a: &InterpolateArgs) -> crate::cmd::tensor::GridKnots<'_> {
+    crate::cmd::tensor::GridKnots {
+        u: a.knots_u.as_deref(),
+        v: a.knots_v.as_deref(),
+        per_direction: &a.knots_in,
+    }
 }
 
 /// The B-spline interpolation of the options (end conditions, knots, condition limit).

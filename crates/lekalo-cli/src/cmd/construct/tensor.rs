@@ -1,5 +1,6 @@
-//! Tensor-product splines in `N ≥ 3` parameters in the CLI: `interpolate --grid AxBxC…`,
-//! `eval` at points and `info` of a `bspline_tensor` / `nurbs_tensor` file. Parsing and
+//! Tensor-product splines in `N ≥ 3` parameters in the CLI: `interpolate --grid AxBxC…`
+//! (and the grids of any size whose knots are given per direction), `eval` at points and
+//! `info` of a `bspline_tensor` / `nurbs_tensor` file. Parsing and
 //! presentation only; the spline work is the library's ([`lekalo::TensorInterpolation`],
 //! [`lekalo::Tensor`]).
 
@@ -7,9 +8,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use lekalo::{Parametrization, Points, Tensor, TensorInterpolation};
+use lekalo::fit::check_schoenberg_whitney;
+use lekalo::{KnotVector, Parametrization, Points, Tensor, TensorBSpline, TensorInterpolation};
 use serde_json::{json, Value};
 
+use crate::cmd::fit_args::clamped;
 use crate::context::Context;
 use crate::exit::{bad_input, BadInput};
 use crate::output::{emit, format_of};
@@ -40,6 +43,131 @@ pub(crate) fn degrees_for(degree: &[usize], n: usize) -> Result<Vec<usize>> {
     }
 }
 
+/// The interior knots of one direction, with the option that gave them (for the messages).
+type GivenKnots = Option<(String, Vec<f64>)>;
+
+/// The interior knots given to `interpolate --grid` per direction: `--knots-u` and
+/// `--knots-v` (directions 1 and 2, as `fit` spells them) and `--knots-in K=LIST` (direction
+/// `K`, counted from 1 as the columns `x1 … xN` of `eval`).
+#[derive(Clone, Copy, Default)]
+pub(crate) struct GridKnots<'a> {
+    pub(crate) u: Option<&'a str>,
+    pub(crate) v: Option<&'a str>,
+    pub(crate) per_direction: &'a [String],
+}
+
+impl GridKnots<'_> {
+    /// Whether any direction's knots are given.
+    pub(crate) fn any(&self) -> bool {
+        self.u.is_some() || self.v.is_some() || !self.per_direction.is_empty()
+    }
+
+    /// The interior knots of each of `n` directions, or `None` where the library places them.
+    fn per_direction(&self, n: usize) -> Result<Vec<GivenKnots>> {
+        let mut out: Vec<GivenKnots> = vec![None; n];
+        let mut put = |k: usize, option: String, text: &str| -> Result<()> {
+            if k == 0 || k > n {
+                return bad_input(format!(
+                    "{option}: the grid has {n} directions, numbered 1 to {n} (direction x1 is \
+                     the slowest in the file)"
+                ));
+            }
+            if let Some((first, _)) = &out[k - 1] {
+                return bad_input(format!(
+                    "{option}: direction {k} already has knots from {first}; give each \
+                     direction's knots once"
+                ));
+            }
+            let knots = if text.trim().is_empty() {
+                Vec::new()
+            } else {
+                numbers(text, &option)?
+            };
+            out[k - 1] = Some((option, knots));
+            Ok(())
+        };
+        if let Some(t) = self.u {
+            put(1, "--knots-u".into(), t)?;
+        }
+        if let Some(t) = self.v {
+            put(2, "--knots-v".into(), t)?;
+        }
+        for given in self.per_direction {
+            let Some((k, list)) = given.split_once('=') else {
+                return bad_input(format!(
+                    "--knots-in: \"{given}\" is not K=LIST; give the direction and its \
+                     interior knots, e.g. --knots-in 3=0.25,0.5"
+                ));
+            };
+            let Ok(k) = k.trim().parse::<usize>() else {
+                return bad_input(format!(
+                    "--knots-in: \"{}\" in \"{given}\" is not a direction number (1 to {n})",
+                    k.trim()
+                ));
+            };
+            put(k, format!("--knots-in {k}"), list)?;
+        }
+        Ok(out)
+    }
+}
+
+/// The tensor spline of `interp` through a grid of `values` with the given interior knots in
+/// some directions: the parameters are the library's ([`TensorInterpolation::grid_parameters`]),
+/// each given direction's knot vector is clamped at the ends of its parameters, and its
+/// Schoenberg–Whitney condition is checked direction by direction so that a failure names the
+/// option and the direction.
+pub(crate) fn interpolate_with_knots(
+    interp: TensorInterpolation,
+    degrees: &[usize],
+    values: &Points,
+    shape: &[usize],
+    knots: GridKnots<'_>,
+) -> Result<TensorBSpline> {
+    let given = knots.per_direction(shape.len())?;
+    if given.iter().all(Option::is_none) {
+        return Ok(interp.interpolate(values.as_view(), shape)?);
+    }
+    let params = interp.grid_parameters(values.as_view(), shape)?;
+    let mut vectors = Vec::with_capacity(shape.len());
+    for (a, entry) in given.into_iter().enumerate() {
+        let Some((option, inner)) = entry else {
+            vectors.push(None);
+            continue;
+        };
+        let (m, p, k) = (shape[a], degrees[a], a + 1);
+        if p == 0 || p >= m {
+            return bad_input(format!(
+                "--degree: direction {k} has {m} grid values and takes a degree from 1 to {}",
+                m - 1
+            ));
+        }
+        let needed = m - p - 1;
+        if inner.len() != needed {
+            return bad_input(format!(
+                "{option}: {} interior knots for the {m} grid values of direction {k} at degree \
+                 {p}; an interpolant takes values − degree − 1 = {needed}",
+                inner.len()
+            ));
+        }
+        let t = &params[a];
+        let range = (t[0], t[m - 1]);
+        let within = format!("the parameters of direction {k}");
+        let kv: KnotVector = clamped(p, range, &inner, &option, &within)?;
+        check_schoenberg_whitney(t, p, &kv).map_err(|e| {
+            let grid: Vec<String> = t.iter().map(|x| format!("{x:.4}")).collect();
+            BadInput(format!(
+                "{option} (direction {k}, grid parameters {}): {e}",
+                grid.join(",")
+            ))
+        })?;
+        vectors.push(Some(kv));
+    }
+    let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
+    Ok(interp
+        .knot_vectors(vectors)
+        .interpolate_at(&refs, values.as_view())?)
+}
+
 /// What `interpolate --grid` with three or more factors asks.
 pub(crate) struct GridInterpolation<'a> {
     pub(crate) grid: &'a str,
@@ -47,6 +175,7 @@ pub(crate) struct GridInterpolation<'a> {
     pub(crate) degree: &'a [usize],
     pub(crate) param: Parametrization,
     pub(crate) max_condition: Option<f64>,
+    pub(crate) knots: GridKnots<'a>,
     pub(crate) output: Option<&'a Path>,
     pub(crate) to: Option<&'a str>,
 }
@@ -62,40 +191,51 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
         ));
     }
     let degrees = degrees_for(g.degree, g.factors.len())?;
+    let values = checked_grid_values(g.grid, &g.factors, file, cx)?;
+    let mut interp = TensorInterpolation::new(degrees.clone()).parametrization(g.param);
+    if let Some(limit) = g.max_condition {
+        interp = interp.max_condition(limit);
+    }
+    let s =
+        interpolate_with_knots(interp, &degrees, &values, &g.factors, g.knots).map_err(|e| {
+            match e.downcast::<lekalo::Error>() {
+                Ok(e @ lekalo::Error::Degree { .. }) => {
+                    BadInput(format!("--degree (grid {}): {e}", g.grid)).into()
+                }
+                Ok(other) => anyhow::Error::from(other),
+                Err(other) => other,
+            }
+        })?;
+    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
+    emit(g.output, text.as_bytes(), &[file.to_path_buf()], cx)
+}
+
+/// The values of the grid `grid` (`factors`) in `file`, their count checked against the grid's
+/// (which is refused above the size limit before the file is read).
+pub(crate) fn checked_grid_values(
+    grid: &str,
+    factors: &[usize],
+    file: &Path,
+    cx: &Context,
+) -> Result<Points> {
     // the size, refused before the values are read
-    let Some(nodes) = g
-        .factors
+    let Some(nodes) = factors
         .iter()
         .try_fold(1usize, |acc, &n| acc.checked_mul(n))
     else {
         return bad_input(format!(
-            "--grid {}: the number of grid nodes overflows; give a smaller grid",
-            g.grid
+            "--grid {grid}: the number of grid nodes overflows; give a smaller grid"
         ));
     };
     cx.check_size(nodes, "--grid")?;
-    let (values, name) = grid_values(cx, file, &g.factors)?;
+    let (values, name) = grid_values(cx, file, factors)?;
     if values.len() != nodes {
         return bad_input(format!(
-            "--grid {}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
-            g.grid,
+            "--grid {grid}: {nodes} grid nodes, but {name} holds {} rows (one row per node, the first direction slowest)",
             values.len()
         ));
     }
-    let mut interp = TensorInterpolation::new(degrees).parametrization(g.param);
-    if let Some(limit) = g.max_condition {
-        interp = interp.max_condition(limit);
-    }
-    let s = interp
-        .interpolate(values.as_view(), &g.factors)
-        .map_err(|e| match e {
-            lekalo::Error::Degree { .. } => {
-                BadInput(format!("--degree (grid {}): {e}", g.grid)).into()
-            }
-            other => anyhow::Error::from(other),
-        })?;
-    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
-    emit(g.output, text.as_bytes(), &[file.to_path_buf()], cx)
+    Ok(values)
 }
 
 /// The values of a grid file: rows of a points file, or a `.npy` array of shape

@@ -298,7 +298,7 @@ pub(super) fn span(text: &str, option: &str, example: &str) -> Result<(f64, f64)
 /// The clamped knot vector of degree `p` on `[lo, hi]` with the interior knots `inner` (of
 /// `option`, which must lie inside the interval, set by `within`): `p + 1` copies of each end
 /// around them, as the end knots of P&T eq. 9.68.
-pub(super) fn clamped(
+pub(crate) fn clamped(
     p: usize,
     (lo, hi): (f64, f64),
     inner: &[f64],

@@ -1,0 +1,199 @@
+//! `interpolate --grid` with the interior knots of some directions given (`--knots-u`,
+//! `--knots-v`, `--knots-in K=LIST`): the knots are the written spline's, the other directions
+//! keep their averaged knots, and wrong knots exit with 2 naming the option and the direction.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+use std::path::Path;
+
+use assert_cmd::Command;
+use predicates::str::contains;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+/// `f(x, y, z) = x·y + z²` on the uniform grid of `[0, 1]³` with 6 × 5 × 4 nodes, one value a
+/// row, the first direction slowest.
+fn values(dir: &Path) -> std::path::PathBuf {
+    let mut s = String::new();
+    let at = |k: u32, n: u32| f64::from(k) / f64::from(n - 1);
+    for i in 0..6 {
+        for j in 0..5 {
+            for k in 0..4 {
+                let (x, y, z) = (at(i, 6), at(j, 5), at(k, 4));
+                s.push_str(&format!("{:?}\n", x * y + z * z));
+            }
+        }
+    }
+    let v = dir.join("values.txt");
+    fs::write(&v, s).unwrap();
+    v
+}
+
+fn knots(j: &serde_json::Value, a: usize) -> Vec<f64> {
+    j["knots"][a]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn given_interior_knots_are_the_splines_and_it_still_interpolates() {
+    let d = tempfile::tempdir().unwrap();
+    let v = values(d.path());
+    let t = d.path().join("tensor.json");
+    lekalo()
+        .arg("interpolate")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--degree", "3,3,2", "--param", "uniform"])
+        .args(["--knots-u", "0.3,0.55", "--knots-in", "3=0.6", "-o"])
+        .arg(&t)
+        .assert()
+        .success();
+    let j: serde_json::Value = serde_json::from_str(&fs::read_to_string(&t).unwrap()).unwrap();
+    assert_eq!(
+        knots(&j, 0),
+        [0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 1.0, 1.0, 1.0, 1.0]
+    );
+    assert_eq!(knots(&j, 2), [0.0, 0.0, 0.0, 0.6, 1.0, 1.0, 1.0]);
+    // direction 2 keeps its averaged knot: the mean of the parameters 1/4, 2/4, 3/4
+    let k1 = knots(&j, 1);
+    assert_eq!(k1.len(), 9);
+    assert!((k1[4] - 0.5).abs() < 1e-15, "{k1:?}");
+    // the spline space holds f, so the interpolant is f everywhere, with the new knots too
+    let out = lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--at", "0.35,0.7,0.45,0.9,0.1,0.65", "--json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    for (row, (x, y, z)) in [(0.35, 0.7, 0.45), (0.9, 0.1, 0.65)]
+        .into_iter()
+        .enumerate()
+    {
+        let got = e["rows"][row][3].as_f64().unwrap();
+        assert!((got - (x * y + z * z)).abs() < 1e-12, "{got}");
+    }
+    // --knots-in 1= is --knots-u
+    let same = lekalo()
+        .arg("interpolate")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--degree", "3,3,2", "--param", "uniform"])
+        .args(["--knots-in", "1=0.3,0.55", "--knots-in", "3=0.6"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(
+        String::from_utf8(same).unwrap(),
+        fs::read_to_string(&t).unwrap()
+    );
+}
+
+#[test]
+fn a_surface_grid_takes_knots_in_u_and_v_as_fit_does() {
+    let d = tempfile::tempdir().unwrap();
+    let pts = d.path().join("grid.csv");
+    let mut s = String::new();
+    for i in 0..5 {
+        for j in 0..4 {
+            s.push_str(&format!("{i},{},{}\n", j * j, f64::from(i + j * j).sqrt()));
+        }
+    }
+    fs::write(&pts, s).unwrap();
+    let out = lekalo()
+        .arg("interpolate")
+        .arg(&pts)
+        .args(["--grid", "5x4", "--degree", "3,2", "--knots-v", "0.25"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(j["type"], "bspline_surface");
+    assert_eq!(
+        j["knots_v"],
+        serde_json::json!([0.0, 0.0, 0.0, 0.25, 1.0, 1.0, 1.0])
+    );
+    // clamped in both directions: the net's corners are the grid's corners
+    let corner = &j["control"][19];
+    assert!(
+        (corner[1].as_f64().unwrap() - 9.0).abs() < 1e-12,
+        "{corner}"
+    );
+    assert!(
+        (corner[2].as_f64().unwrap() - 13f64.sqrt()).abs() < 1e-12,
+        "{corner}"
+    );
+    // without knots, averaging puts the v knot elsewhere
+    let placed = lekalo()
+        .arg("interpolate")
+        .arg(&pts)
+        .args(["--grid", "5x4", "--degree", "3,2"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let p: serde_json::Value = serde_json::from_slice(&placed).unwrap();
+    assert_eq!(p["knots_u"], j["knots_u"]);
+    assert_ne!(p["knots_v"], j["knots_v"]);
+}
+
+#[test]
+fn wrong_knots_exit_2_naming_the_option_and_direction() {
+    let d = tempfile::tempdir().unwrap();
+    let v = values(d.path());
+    let fails = |args: &[&str], needle: &str| {
+        lekalo()
+            .arg("interpolate")
+            .arg(&v)
+            .args(["--grid", "6x5x4", "--degree", "3,3,2", "--param", "uniform"])
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    };
+    fails(
+        &["--knots-in", "3=0.4,0.6"],
+        "--knots-in 3: 2 interior knots for the 4 grid values of direction 3 at degree 2",
+    );
+    fails(
+        &["--knots-v", "1.5"],
+        "--knots-v: the knot 1.5 is not inside",
+    );
+    fails(
+        &["--knots-u", "0.05,0.1"],
+        "--knots-u (direction 1, grid parameters",
+    );
+    fails(&["--knots-u", "0.05,0.1"], "Schoenberg–Whitney");
+    fails(
+        &["--knots-in", "4=0.5"],
+        "--knots-in 4: the grid has 3 directions",
+    );
+    fails(&["--knots-in", "0=0.5"], "numbered 1 to 3");
+    fails(
+        &["--knots-v", "0.5", "--knots-in", "2=0.5"],
+        "direction 2 already has knots from --knots-v",
+    );
+    fails(&["--knots-in", "0.5"], "is not K=LIST");
+    fails(&["--knots-in", "z=0.5"], "is not a direction number");
+    fails(&["--knots-u", "0.3,x"], "--knots-u");
+    lekalo()
+        .arg("interpolate")
+        .arg(&v)
+        .args(["--knots-u", "0.5"])
+        .assert()
+        .code(2)
+        .stderr(contains("--grid"));
+}
