@@ -445,3 +445,45 @@ fn a_loop_beside_an_overlap_stays_a_crossing() {
         "{hits:?} vs {loop_at:?}"
     );
 }
+
+/// A cubic that crosses itself inside the stretch two of its parts share: the overlap runs on
+/// past the crossing of its other stretch (which stays a crossing) to the shared stretch's end.
+#[test]
+fn an_overlap_runs_past_a_crossing_inside_it() {
+    let rows = [
+        [3.8845311756995566, 1.9533238654014282],
+        [-3.6077730828797305, -4.006867790025332],
+        [1.3399947061843052, -7.595205710776024],
+        [1.8709825906676303, 8.47527125069541],
+    ];
+    let (s, e) = (0.1, 0.6839355105326358);
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    let c = BSplineCurve::new(3, knots, Points::from_2d(&rows).expect("p")).expect("c");
+    let right = QueryCurve::from_bspline(&c.split_at(s).expect("split").1).expect("a");
+    let left = QueryCurve::from_bspline(&c.split_at(e).expect("split").0).expect("b");
+    let hits = right.intersect(&left, 1e-9).expect("x");
+    let overlaps: Vec<_> = hits
+        .iter()
+        .filter_map(|h| match h {
+            CurveIntersection::Overlap { a, b } => Some((*a, *b)),
+            CurveIntersection::Point { .. } => None,
+        })
+        .collect();
+    assert_eq!(overlaps.len(), 1, "{hits:?}");
+    let (a, b) = overlaps[0];
+    assert!(
+        (a.0 - s).abs() <= 1e-12 && (a.1 - e).abs() <= 1e-12,
+        "{a:?}"
+    );
+    assert!(
+        (b.0 - s).abs() <= 1e-12 && (b.1 - e).abs() <= 1e-12,
+        "{b:?}"
+    );
+    // the cubic's own crossing (t = 0.68 on one stretch, 0.22 on the other) is still there
+    assert!(
+        hits.iter()
+            .any(|h| matches!(h, CurveIntersection::Point { t_a, t_b, .. }
+            if (t_a - 0.6816).abs() < 1e-3 && (t_b - 0.2202).abs() < 1e-3)),
+        "{hits:?}"
+    );
+}

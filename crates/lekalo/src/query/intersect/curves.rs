@@ -285,20 +285,21 @@ impl QueryCurve {
                     .all(|&t| gap(t).0 <= tolerance / 100.0)
             };
             if !transversal && ((g.len() > 1 && a1 > a0) || probe()) {
-                // grow to where the gap exceeds the tolerance (bisection, 60 steps each side)
-                // grown up to the nearest other group on either side
+                // grow to where the gap exceeds the tolerance (bisection, 60 steps each side),
+                // one other group at a time: an overlap that reaches another group (a crossing
+                // of another stretch of a curve inside the overlap) goes on past it
                 let others = groups.iter().enumerate().filter(|(i, _)| *i != gi);
-                let left_lim = others
+                let mut left: Vec<f64> = others
                     .clone()
                     .map(|(_, n)| n[n.len() - 1].0)
                     .filter(|t| *t < a0)
-                    .fold(lo, f64::max);
-                let right_lim = others
-                    .map(|(_, n)| n[0].0)
-                    .filter(|t| *t > a1)
-                    .fold(hi, f64::min);
-                a0 = grow(a0, left_lim, |t| gap(t).0 <= tolerance);
-                a1 = grow(a1, right_lim, |t| gap(t).0 <= tolerance);
+                    .collect();
+                left.sort_by(|x, y| y.total_cmp(x));
+                let mut right: Vec<f64> = others.map(|(_, n)| n[0].0).filter(|t| *t > a1).collect();
+                right.sort_by(f64::total_cmp);
+                let ok = |t: f64| gap(t).0 <= tolerance;
+                a0 = grow_past(a0, &left, lo, ok);
+                a1 = grow_past(a1, &right, hi, ok);
                 let coincide = (1..10).all(|i| {
                     let t = a0 + (a1 - a0) * f64::from(i) / 10.0;
                     gap(t).0 <= tolerance / 100.0
@@ -509,6 +510,19 @@ pub(super) fn grow(from: f64, limit: f64, ok: impl Fn(f64) -> bool) -> f64 {
         }
     }
     good
+}
+
+/// [`grow`] from `from` towards `end` through the `stops` in between (in order of distance):
+/// past each stop that the stretch reaches in full, on to the next.
+fn grow_past(from: f64, stops: &[f64], end: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    let mut t = from;
+    for &limit in stops.iter().chain([&end]) {
+        t = grow(t, limit, &ok);
+        if t != limit {
+            break;
+        }
+    }
+    t
 }
 
 /// Minimum of `f` on `[a, b]` by golden-section search, 80 steps.
