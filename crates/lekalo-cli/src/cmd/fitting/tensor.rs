@@ -236,19 +236,8 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
         ("--params-u", "--params-v", "--params-in"),
         |text, option| crate::cmd::explicit::parameters(cx, text, option),
     )?;
-    let averaged = if given.iter().any(Option::is_none) {
-        TensorInterpolation::new(degrees.clone())
-            .parametrization(a.param)
-            .grid_parameters(values.as_view(), &shape)?
-    } else {
-        Vec::new()
-    };
-    let mut params = Vec::with_capacity(n);
-    for (i, entry) in given.into_iter().enumerate() {
-        let Some((option, t)) = entry else {
-            params.push(averaged[i].clone());
-            continue;
-        };
+    for (i, entry) in given.iter().enumerate() {
+        let Some((option, t)) = entry else { continue };
         if t.len() != shape[i] {
             return bad_input(format!(
                 "{option}: {} values for the {} grid values of direction {} (--grid {g}); give \
@@ -270,8 +259,25 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
                 i + 1
             ));
         }
-        params.push(t);
     }
+    let averaged = if given.iter().any(Option::is_none) {
+        TensorInterpolation::new(degrees.clone())
+            .parametrization(a.param)
+            .grid_parameters(values.as_view(), &shape)
+            .map_err(|e| {
+                BadInput(format!(
+                    "--param (the parameters of the grid's directions without --params-u, \
+                     --params-v or --params-in): {e}"
+                ))
+            })?
+    } else {
+        Vec::new()
+    };
+    let params: Vec<Vec<f64>> = given
+        .into_iter()
+        .enumerate()
+        .map(|(i, entry)| entry.map_or_else(|| averaged[i].clone(), |(_, t)| t))
+        .collect();
     let mut knots = Vec::with_capacity(n);
     let mut net = Vec::with_capacity(n);
     for (d, t) in dirs.iter().zip(&params) {
