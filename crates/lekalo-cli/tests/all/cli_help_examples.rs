@@ -124,6 +124,7 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
             ),
             ("grid.csv", rows(600, &|i| format!("{},{},{}", (i / 20.0).floor(), i % 20.0, (i * 0.01).sin()))),
             ("uvz.csv", rows(300, &|i| format!("{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.1).sin()))),
+            ("xyzw.csv", rows(300, &|i| format!("{},{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.43) % 1.0, (i * 0.1).sin()))),
         ],
         // a plane surface in 2-D, so that 2-D queries suit the curve and the surface
         "project" => vec![

@@ -9,6 +9,7 @@ mod cli_blend;
 mod cli_blend_corners;
 mod cli_fit;
 mod cli_fit_options;
+mod cli_fit_tensor;
 mod cli_gallery;
 mod cli_grid_knots;
 mod cli_help_examples;

@@ -36,6 +36,11 @@ Modes (one of them; least squares by default):
 Surfaces: --grid ROWSxCOLS or --scattered (rows u,v,z), with --ctrl-grid NUxNV or the interior
 knots of each direction (--knots-u, --knots-v); --degree P,Q per direction; --bbox U0:U1,V0:V1
 the domain (end knots); a grid's parameters --params-u, --params-v (default: from --param).
+In 3 or more variables: --grid AxBxC (one row of values per node, the first direction slowest,
+or a .npy array) or --scattered (rows x1 … xN then the values; N from --ctrl-grid AxBxC, or the
+last direction whose knots are given); direction K's interior knots --knots-in K=LIST (1 and 2
+also --knots-u, --knots-v), a grid's parameters --params-in K=LIST|FILE, --bbox one A:B per
+direction; the spline is written as JSON, as `interpolate --grid AxBxC` writes it.
 
 Shape constraints (--function fits by --lsq or --smooth; each holds for every x, not only at
 the data; repeat an option for several intervals):
@@ -60,7 +65,10 @@ Examples:
   lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3
   lekalo fit xy.csv --function --ctrl 8 --domain -5:35 -o wide.json
   lekalo fit grid.csv --grid 30x20 --degree 3,2 --knots-u 0.25,0.5,0.75 --knots-v 0.5 -o surface.json
-  lekalo fit uvz.csv --scattered --knots-u 0.3,0.6 --knots-v 0.5 --bbox 0:1,0:1 --degree 3,2")]
+  lekalo fit uvz.csv --scattered --knots-u 0.3,0.6 --knots-v 0.5 --bbox 0:1,0:1 --degree 3,2
+  lekalo fit values.csv --grid 6x5x4 --degree 2 --param uniform --ctrl-grid 4x4x3 -o fitted.json
+  lekalo fit values.csv --grid 6x5x4 --degree 2,2,1 --param uniform --knots-in 3=0.5 --ctrl-grid 4x4x3
+  lekalo fit xyzw.csv --scattered --ctrl-grid 4x4x4 --degree 2 --bbox 0:1,0:1,0:1 --json")]
 pub(crate) struct FitArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     pub(super) points: PathBuf,
@@ -142,6 +150,10 @@ pub(crate) struct FitArgs {
     /// Interior knots of a surface in v, as --knots-u.
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub(super) knots_v: Option<String>,
+    /// Interior knots of direction K of a fit in 3 or more variables (K from 1, the column xK
+    /// of scattered rows), as --knots-u; repeat for several directions (e.g. --knots-in 3=0.5).
+    #[arg(long, value_name = "K=LIST", allow_hyphen_values = true)]
+    pub(super) knots_in: Vec<String>,
     /// The surface's domain U0:U1,V0:V1, its end knots, as the `bbox` of SciPy's
     /// `LSQBivariateSpline`
     /// (default: the range of the data's u and v, or of the grid's parameters).
@@ -154,6 +166,10 @@ pub(crate) struct FitArgs {
     /// Parameters of the grid's columns (--grid), as --params-u.
     #[arg(long, value_name = "LIST|FILE", allow_hyphen_values = true)]
     pub(super) params_v: Option<String>,
+    /// Parameters of direction K of a grid in 3 or more directions (`--grid AxBxC`), one per
+    /// grid line along it, as --params-u; repeat for several directions.
+    #[arg(long, value_name = "K=LIST|FILE", allow_hyphen_values = true)]
+    pub(super) params_in: Vec<String>,
     /// Smoothing penalty of scattered surfaces (second differences of the net).
     #[arg(long, default_value_t = 0.0)]
     pub(super) penalty: f64,
@@ -228,6 +244,8 @@ impl FitArgs {
                 (self.bbox.is_some(), "--bbox"),
                 (self.params_u.is_some(), "--params-u"),
                 (self.params_v.is_some(), "--params-v"),
+                (!self.knots_in.is_empty(), "--knots-in"),
+                (!self.params_in.is_empty(), "--params-in"),
             ]
             .iter()
             .filter(|(on, _)| *on)
@@ -272,10 +290,13 @@ impl FitArgs {
                  --knots-v",
             );
         }
-        if self.scattered && (self.params_u.is_some() || self.params_v.is_some()) {
+        if self.scattered
+            && (self.params_u.is_some() || self.params_v.is_some() || !self.params_in.is_empty())
+        {
             return bad_input(
-                "--params-u/--params-v are the parameters of a grid's rows and columns (--grid); \
-                 --scattered reads u and v from the first two columns",
+                "--params-u/--params-v/--params-in are the parameters of a grid's rows and columns (--grid); \
+                 --scattered reads u and v from the first two columns (x1 … xN from the first N in N \
+                 variables)",
             );
         }
         Ok(())

@@ -61,6 +61,9 @@ pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
             &curve,
         );
     }
+    if let Some(n) = super::tensor::variables(a)? {
+        return super::tensor::run(a, n, cx);
+    }
     let (pts, name) = crate::items::read_points(cx, &a.points)?;
     let mut inputs = vec![a.points.clone()];
     let weights = match &a.weights {

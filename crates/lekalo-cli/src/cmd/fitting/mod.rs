@@ -3,6 +3,7 @@
 //! - `args.rs`: the command's arguments, and the domains and knot vectors they give.
 //! - `fit.rs`: the command, dispatching to the curve modes (here), surfaces and closed curves.
 //! - `surface.rs`: grid and scattered surfaces.
+//! - `tensor.rs`: grid and scattered fits in three or more variables.
 //! - `periodic.rs`: closed curves and periodic functions.
 //! - `report.rs`: a fitted curve written out with its report.
 
@@ -11,3 +12,4 @@ pub(crate) mod fit;
 mod periodic;
 mod report;
 mod surface;
+mod tensor;

@@ -1,0 +1,626 @@
+//! `lekalo fit --grid AxBxC…` and `--scattered` in three or more variables: least squares of a
+//! tensor-product spline with given knots (or control-point counts) per direction, written as
+//! `interpolate --grid` writes splines in `N` parameters. Parsing and presentation only; the
+//! fits are the library's ([`lekalo::tensor_grid_least_squares`],
+//! [`lekalo::tensor_scattered_least_squares`]).
+
+use std::cmp::Ordering;
+use std::path::PathBuf;
+
+use anyhow::Result;
+use lekalo::fit::{check_schoenberg_whitney, place_knots};
+use lekalo::{
+    tensor_grid_least_squares, tensor_scattered_least_squares, KnotVector, PointsRef, Tensor,
+    TensorBSpline, TensorInterpolation,
+};
+use serde_json::{json, Value};
+
+use super::args::{clamped, span, with_ends, FitArgs};
+use crate::cmd::tensor::{checked_grid_values, degrees_for, grid_factors};
+use crate::context::Context;
+use crate::exit::{bad_input, BadInput};
+use crate::output::{emit, format_of};
+use crate::values::numbers;
+
+/// The number of variables of a tensor fit (three or more), or `None` for curves and surfaces:
+/// the factors of `--grid`; for `--scattered`, the factors of `--ctrl-grid`, or else the last
+/// direction whose knots are given.
+pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
+    let per_direction = !a.knots_in.is_empty() || !a.params_in.is_empty();
+    let n = if let Some(g) = &a.grid {
+        grid_factors(g)?.len()
+    } else if a.scattered {
+        match &a.ctrl_grid {
+            Some(cg) => sizes(cg, "--ctrl-grid")?.len(),
+            None => {
+                let mut n =
+                    usize::from(a.knots_u.is_some()).max(2 * usize::from(a.knots_v.is_some()));
+                for given in &a.knots_in {
+                    n = n.max(direction_of(given, "--knots-in")?.0);
+                }
+                n
+            }
+        }
+    } else {
+        return Ok(None);
+    };
+    if n >= 3 {
+        return Ok(Some(n));
+    }
+    if per_direction {
+        return bad_input(
+            "--knots-in and --params-in are for fits in 3 or more variables (--grid AxBxC, or \
+             --scattered with --ctrl-grid AxBxC); a surface takes --knots-u, --knots-v, \
+             --params-u and --params-v",
+        );
+    }
+    Ok(None)
+}
+
+/// The fit in `n ≥ 3` variables asked by `a`, written with its report.
+pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
+    refuse_curve_options(a)?;
+    let format = format_of(a.out.to.as_deref(), a.out.output.as_deref(), "json");
+    if format != "json" {
+        return bad_input(format!(
+            "a spline in {n} parameters is written as json, not \"{format}\""
+        ));
+    }
+    let degrees = degrees_for(&a.degrees, n)?;
+    let counts = match &a.ctrl_grid {
+        Some(cg) => {
+            let c = sizes(cg, "--ctrl-grid")?;
+            if c.len() != n {
+                return bad_input(format!(
+                    "--ctrl-grid {cg}: {} sizes for a fit in {n} variables; give one control-point \
+                     count per direction (e.g. --ctrl-grid {})",
+                    c.len(),
+                    vec!["4"; n].join("x")
+                ));
+            }
+            c.into_iter().map(Some).collect()
+        }
+        None => vec![None; n],
+    };
+    let inner: Vec<Given> = per_direction(
+        n,
+        a.knots_u.as_deref(),
+        a.knots_v.as_deref(),
+        &a.knots_in,
+        ("--knots-u", "--knots-v", "--knots-in"),
+        |text, option| {
+            if text.trim().is_empty() {
+                Ok(Vec::new())
+            } else {
+                numbers(text, option)
+            }
+        },
+    )?;
+    let ranges = match &a.bbox {
+        Some(b) => boxes(b, n)?.into_iter().map(Some).collect(),
+        None => vec![None; n],
+    };
+    let dirs: Vec<Direction> = (0..n)
+        .map(|k| Direction {
+            k: k + 1,
+            degree: degrees[k],
+            inner: inner[k].clone(),
+            count: counts[k],
+            range: ranges[k],
+        })
+        .collect();
+    for d in &dirs {
+        d.check_given()?;
+    }
+    let mut inputs = vec![a.points.clone()];
+    if a.grid.is_some() {
+        return run_grid(a, &dirs, &inputs, cx);
+    }
+    if a.penalty != 0.0 {
+        return bad_input(
+            "--penalty smooths scattered surfaces (two variables); a fit in 3 or more variables \
+             is plain least squares: drop --penalty, or use fewer control points",
+        );
+    }
+    let weights = match &a.weights {
+        Some(p) => {
+            let (t, name) = lekalo_io::read_input(p)?;
+            inputs.push(p.clone());
+            Some(lekalo_io::read_points(&t, &name)?.into_vec())
+        }
+        None => None,
+    };
+    run_scattered(a, &dirs, weights.as_deref(), &inputs, cx)
+}
+
+/// One direction of a tensor fit (`k` counted from 1): its degree, its interior knots given
+/// (with the option that gave them) or its control-point count, and its `--bbox` interval.
+struct Direction {
+    k: usize,
+    degree: usize,
+    inner: Given,
+    count: Option<usize>,
+    range: Option<(f64, f64)>,
+}
+
+impl Direction {
+    /// The option that sets this direction's knots, for messages.
+    fn knots_option(&self) -> String {
+        match (&self.inner, self.k) {
+            (Some((option, _)), _) => option.clone(),
+            (None, 1) => "--knots-u".into(),
+            (None, 2) => "--knots-v".into(),
+            (None, k) => format!("--knots-in {k}"),
+        }
+    }
+
+    /// Knots or a count, and the two agreeing when both are given.
+    fn check_given(&self) -> Result<()> {
+        let (k, p) = (self.k, self.degree);
+        match (&self.inner, self.count) {
+            (None, None) => bad_input(format!(
+                "direction {k} has neither knots nor a control-point count; give --ctrl-grid \
+                 (one count per direction) or its interior knots ({})",
+                self.knots_option()
+            )),
+            (Some((option, t)), Some(c)) if t.len() + p + 1 != c => bad_input(format!(
+                "--ctrl-grid and {option} disagree: {} interior knots of degree {p} make {} \
+                 control points in direction {k}, not {c}; drop one of them",
+                t.len(),
+                t.len() + p + 1
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The domain of this direction: `--bbox` (which must hold `lo..hi`, the data's range,
+    /// named `what`) or the data's range.
+    fn domain(&self, (lo, hi): (f64, f64), what: &str) -> Result<(f64, f64)> {
+        match self.range {
+            Some((a, b)) if a > lo || b < hi => bad_input(format!(
+                "--bbox: the {what} run from {lo} to {hi}, outside {a}:{b}, the interval of \
+                 direction {}; give one around them, e.g. {}:{}",
+                self.k,
+                a.min(lo),
+                b.max(hi)
+            )),
+            Some(r) => Ok(r),
+            None => Ok((lo, hi)),
+        }
+    }
+
+    /// The clamped knot vector on `range` from the interior knots given, or from
+    /// `place(count)`.
+    fn knots(
+        &self,
+        range: (f64, f64),
+        place: impl FnOnce(usize) -> Result<KnotVector>,
+    ) -> Result<KnotVector> {
+        match (&self.inner, self.count) {
+            (Some((option, t)), _) => {
+                let within = if self.range.is_some() {
+                    format!("--bbox, direction {}", self.k)
+                } else {
+                    format!("the range of direction {}'s data, or --bbox", self.k)
+                };
+                clamped(self.degree, range, t, option, &within)
+            }
+            (None, Some(c)) => place(c),
+            (None, None) => self
+                .check_given()
+                .and_then(|()| bad_input(format!("direction {} needs knots or a count", self.k))),
+        }
+    }
+}
+
+/// Least squares on the grid of `a.grid`: its values one row per node, the first direction
+/// slowest (or a `.npy` array), at the parameters given (`--params-u`, `--params-v`,
+/// `--params-in K=LIST`) or those of `--param` averaged over the grid's lines.
+fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -> Result<()> {
+    if a.weights.is_some() {
+        return bad_input(
+            "--weights is for scattered data; a grid's least squares weighs every node alike \
+             (give the grid as --scattered rows to weigh them)",
+        );
+    }
+    let g = a.grid.as_deref().unwrap_or_default();
+    let shape = grid_factors(g)?;
+    let n = shape.len();
+    let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
+    let values = checked_grid_values(g, &shape, &a.points, cx)?;
+    let given = per_direction(
+        n,
+        a.params_u.as_deref(),
+        a.params_v.as_deref(),
+        &a.params_in,
+        ("--params-u", "--params-v", "--params-in"),
+        |text, option| crate::cmd::explicit::parameters(cx, text, option),
+    )?;
+    for (i, entry) in given.iter().enumerate() {
+        let Some((option, t)) = entry else { continue };
+        if t.len() != shape[i] {
+            return bad_input(format!(
+                "{option}: {} values for the {} grid values of direction {} (--grid {g}); give \
+                 one parameter per grid line",
+                t.len(),
+                shape[i],
+                i + 1
+            ));
+        }
+        if let Some(w) = t
+            .windows(2)
+            .position(|w| w[0].partial_cmp(&w[1]) != Some(Ordering::Less))
+        {
+            return bad_input(format!(
+                "{option}: parameters {} and {} of direction {} are not increasing; give \
+                 strictly increasing parameters",
+                t[w],
+                t[w + 1],
+                i + 1
+            ));
+        }
+    }
+    let averaged = if given.iter().any(Option::is_none) {
+        TensorInterpolation::new(degrees.clone())
+            .parametrization(a.param)
+            .grid_parameters(values.as_view(), &shape)
+            .map_err(|e| {
+                BadInput(format!(
+                    "--param (the parameters of the grid's directions without --params-u, \
+                     --params-v or --params-in): {e}"
+                ))
+            })?
+    } else {
+        Vec::new()
+    };
+    let params: Vec<Vec<f64>> = given
+        .into_iter()
+        .enumerate()
+        .map(|(i, entry)| entry.map_or_else(|| averaged[i].clone(), |(_, t)| t))
+        .collect();
+    let mut knots = Vec::with_capacity(n);
+    let mut net = Vec::with_capacity(n);
+    for (d, t) in dirs.iter().zip(&params) {
+        let (m, p, k) = (t.len(), d.degree, d.k);
+        if p >= m {
+            return bad_input(format!(
+                "--degree: direction {k} has {m} grid values and takes a degree below {m}"
+            ));
+        }
+        let range = d.domain((t[0], t[m - 1]), &format!("parameters of direction {k}"))?;
+        let option = match (&d.inner, d.count) {
+            (None, Some(_)) => "--ctrl-grid".to_string(),
+            _ => d.knots_option(),
+        };
+        let count = d.count.unwrap_or(0);
+        if d.inner.is_none() && count > m {
+            return bad_input(format!(
+                "--ctrl-grid: {count} control points in direction {k}, more than its {m} grid \
+                 values; give at most {m}"
+            ));
+        }
+        let kv = d.knots(range, |c| with_ends(&place_knots(t, p, c)?, p, range))?;
+        let c = kv.len() - p - 1;
+        if c > m {
+            return bad_input(format!(
+                "{option}: {} interior knots of degree {p} make {c} control points in direction \
+                 {k}, more than its {m} grid values; give at most {} interior knots",
+                c - p - 1,
+                m - p - 1
+            ));
+        }
+        check_schoenberg_whitney(t, p, &kv).map_err(|e| {
+            BadInput(format!(
+                "{option} (direction {k}, {m} grid parameters from {} to {}): {e}",
+                t[0],
+                t[m - 1]
+            ))
+        })?;
+        net.push(c);
+        knots.push(kv);
+    }
+    let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
+    let s = tensor_grid_least_squares(&refs, values.as_view(), &degrees, knots)?;
+    // the residual of each node: the fitted spline evaluated on the grid against the values
+    let mut fitted = vec![0.0; values.as_slice().len()];
+    s.eval_grid(&refs, None, &mut fitted)?;
+    let residuals: Vec<f64> = fitted
+        .chunks_exact(values.dim())
+        .zip(values.iter())
+        .map(|(f, q)| {
+            f.iter()
+                .zip(q)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let rss = residuals.iter().map(|r| r * r).sum::<f64>();
+    finish(a, &s, &net, &residuals, rss, inputs, cx)
+}
+
+/// Least squares on scattered rows `x1 … xN` followed by the values.
+fn run_scattered(
+    a: &FitArgs,
+    dirs: &[Direction],
+    weights: Option<&[f64]>,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let n = dirs.len();
+    let (pts, name) = crate::items::read_points(cx, &a.points)?;
+    let dim = pts.dim();
+    if dim <= n {
+        return bad_input(format!(
+            "{name}: --scattered in {n} variables reads rows x1 … x{n} followed by the values: \
+             at least {} columns; found {dim}",
+            n + 1
+        ));
+    }
+    let column = |c: usize| pts.iter().map(|r| r[c]).collect::<Vec<f64>>();
+    let mut knots = Vec::with_capacity(n);
+    let mut net = Vec::with_capacity(n);
+    for d in dirs {
+        let x = column(d.k - 1);
+        let data = x
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
+                (l.min(u), h.max(u))
+            });
+        let what = format!("values of x{} (column {})", d.k, d.k);
+        let (lo, hi) = d.domain(data, &what)?;
+        if lo.partial_cmp(&hi) != Some(Ordering::Less) {
+            return bad_input(format!(
+                "{name}: every {what} is {lo}; give --bbox with an interval A:B, A < B, around it"
+            ));
+        }
+        let p = d.degree;
+        let kv = d.knots((lo, hi), |c| {
+            let k = KnotVector::clamped_uniform(p, c)?;
+            Ok(KnotVector::new(
+                k.as_slice().iter().map(|t| lo + (hi - lo) * t).collect(),
+            )?)
+        })?;
+        net.push(kv.len().saturating_sub(p + 1));
+        knots.push(kv);
+    }
+    // The normal matrix is banded: Π n_a rows of Σ p_a·(Π_{b>a} n_b) + 1 numbers. Its size is
+    // refused here, before the library allocates it.
+    let mut stride = 1usize;
+    let mut band = 0usize;
+    for (d, &c) in dirs.iter().zip(&net).rev() {
+        band = band.saturating_add(d.degree.saturating_mul(stride));
+        stride = stride.saturating_mul(c);
+    }
+    let entries = stride.saturating_mul(band.saturating_add(1));
+    if entries > cx.max_size {
+        return bad_input(format!(
+            "a {} control net (--ctrl-grid, --knots-u, --knots-v, --knots-in): the scattered \
+             fit's least-squares system holds {entries} numbers ({} bytes), above the size \
+             limit {}; use a smaller control net, or raise the limit with --max-size {entries} \
+             if the machine has the memory",
+            shape_text(&net),
+            lekalo_io::fmt_number(entries as f64 * 8.0),
+            cx.max_size
+        ));
+    }
+    let (mut xs, mut ys) = (Vec::with_capacity(pts.len() * n), Vec::new());
+    ys.reserve(pts.len() * (dim - n));
+    for row in pts.iter() {
+        xs.extend_from_slice(&row[..n]);
+        ys.extend_from_slice(&row[n..]);
+    }
+    let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
+    let f = tensor_scattered_least_squares(
+        PointsRef::from_flat(n, &xs)?,
+        PointsRef::from_flat(dim - n, &ys)?,
+        weights,
+        &degrees,
+        knots,
+    )
+    .map_err(|e| match e {
+        lekalo::Error::EmptySupport { support, points } => {
+            let index: Vec<String> = support.index.iter().map(|i| (i + 1).to_string()).collect();
+            let sides: Vec<String> = (0..n)
+                .map(|a| format!("x{} in [{}, {}]", a + 1, support.lower[a], support.upper[a]))
+                .collect();
+            let options: Vec<String> = dirs.iter().map(Direction::knots_option).collect();
+            let many = if points > 0 {
+                ", too few or too nearly aligned"
+            } else {
+                ""
+            };
+            anyhow::Error::from(BadInput(format!(
+                "{name}: control point ({}) of the {} net (counted from 1 in each direction) is \
+                 not determined by the data: its region {} holds {points} data points of \
+                 positive weight{many}; remove knots there ({} or a smaller --ctrl-grid), or \
+                 add data inside it",
+                index.join(", "),
+                shape_text(&net),
+                sides.join(", "),
+                options.join(", ")
+            )))
+        }
+        other => other.into(),
+    })?;
+    finish(a, &f.spline, &net, &f.residuals, f.weighted_rss, inputs, cx)
+}
+
+/// Writes the fitted spline (or `{"object", "report"}` with `--json`) and its report.
+fn finish(
+    a: &FitArgs,
+    s: &TensorBSpline,
+    net: &[usize],
+    residuals: &[f64],
+    weighted_rss: f64,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let (max_index, max) =
+        residuals.iter().enumerate().fold(
+            (0, 0.0_f64),
+            |(i, m), (k, &r)| if r > m { (k, r) } else { (i, m) },
+        );
+    let rms = (residuals.iter().map(|r| r * r).sum::<f64>() / residuals.len().max(1) as f64).sqrt();
+    let count: usize = net.iter().product();
+    let mut report = json!({ "max_residual": max, "max_index": max_index, "rms": rms,
+        "weighted_rss": weighted_rss, "control_points": count, "shape": net });
+    if a.per_point {
+        report["residuals"] = json!(residuals);
+    }
+    let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s.clone()));
+    if a.json {
+        let object: Value = serde_json::from_str(&text)?;
+        let text = serde_json::to_string_pretty(&json!({ "object": object, "report": report }))?;
+        return emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx);
+    }
+    if !cx.is_quiet() {
+        crate::output::report(&format!(
+            "fit: {} = {count} control points, residual max {} (point {max_index}), RMS {}, \
+             weighted RSS {}",
+            shape_text(net),
+            report["max_residual"],
+            report["rms"],
+            report["weighted_rss"]
+        ));
+    }
+    emit(a.out.output.as_deref(), text.as_bytes(), inputs, cx)
+}
+
+/// `5x4x4`.
+fn shape_text(net: &[usize]) -> String {
+    net.iter()
+        .map(usize::to_string)
+        .collect::<Vec<_>>()
+        .join("x")
+}
+
+/// The options of curve fits, refused in `N` variables (least squares with given knots only).
+fn refuse_curve_options(a: &FitArgs) -> Result<()> {
+    let given: Vec<&str> = [
+        (a.smooth.is_some(), "--smooth"),
+        (a.s.is_some(), "--s"),
+        (a.tol.is_some(), "--tol"),
+        (a.robust.is_some(), "--robust"),
+        (a.periodic, "--periodic"),
+        (a.function, "--function"),
+        (a.clamp_ends, "--clamp-ends"),
+        (
+            a.d0.is_some() || a.dn.is_some(),
+            "--start-derivative/--end-derivative",
+        ),
+        (a.ctrl.is_some(), "--ctrl"),
+        (
+            !(a.increasing.is_empty()
+                && a.decreasing.is_empty()
+                && a.convex.is_empty()
+                && a.concave.is_empty()
+                && a.min.is_empty()
+                && a.max.is_empty()
+                && a.through.is_empty()
+                && a.slope_at.is_empty()),
+            "shape constraints",
+        ),
+    ]
+    .iter()
+    .filter(|(on, _)| *on)
+    .map(|(_, name)| *name)
+    .collect();
+    if given.is_empty() {
+        return Ok(());
+    }
+    bad_input(format!(
+        "{} {} for curves; a fit in 3 or more variables is least squares with --ctrl-grid or \
+         the knots of each direction (--knots-u, --knots-v, --knots-in K=LIST)",
+        given.join(", "),
+        if given.len() == 1 { "is" } else { "are" }
+    ))
+}
+
+/// A list given for one direction, with the option that gave it (for the messages).
+type Given = Option<(String, Vec<f64>)>;
+
+/// The direction `K` (from 1) and the list of `K=LIST` given to `option`.
+fn direction_of<'t>(given: &'t str, option: &str) -> Result<(usize, &'t str)> {
+    let Some((k, list)) = given.split_once('=') else {
+        return bad_input(format!(
+            "{option}: \"{given}\" is not K=LIST; give the direction (from 1) and its list, \
+             e.g. {option} 3=0.25,0.5"
+        ));
+    };
+    match k.trim().parse::<usize>() {
+        Ok(k) if k >= 1 => Ok((k, list)),
+        _ => bad_input(format!(
+            "{option}: \"{}\" in \"{given}\" is not a direction number (from 1)",
+            k.trim()
+        )),
+    }
+}
+
+/// A list per direction of `n`: from `u` (direction 1), `v` (direction 2) and `K=LIST` entries,
+/// named by the options `(u, v, per direction)`, read by `read(text, option)`; `None` where
+/// none is given.
+fn per_direction(
+    n: usize,
+    u: Option<&str>,
+    v: Option<&str>,
+    entries: &[String],
+    (u_option, v_option, k_option): (&str, &str, &str),
+    read: impl Fn(&str, &str) -> Result<Vec<f64>>,
+) -> Result<Vec<Given>> {
+    let mut out: Vec<Given> = vec![None; n];
+    let mut put = |k: usize, option: String, text: &str| -> Result<()> {
+        if k > n {
+            return bad_input(format!(
+                "{option}: the fit has {n} variables, directions 1 to {n} (x1 … x{n})"
+            ));
+        }
+        if let Some((first, _)) = &out[k - 1] {
+            return bad_input(format!(
+                "{option}: direction {k} is already given by {first}; give each direction once"
+            ));
+        }
+        out[k - 1] = Some((option.clone(), read(text, &option)?));
+        Ok(())
+    };
+    if let Some(t) = u {
+        put(1, u_option.into(), t)?;
+    }
+    if let Some(t) = v {
+        put(2, v_option.into(), t)?;
+    }
+    for given in entries {
+        let (k, list) = direction_of(given, k_option)?;
+        put(k, format!("{k_option} {k}"), list)?;
+    }
+    Ok(out)
+}
+
+/// The sizes `AxBxC…` of `option`, each at least 1.
+fn sizes(text: &str, option: &str) -> Result<Vec<usize>> {
+    text.split(['x', 'X', '×'])
+        .map(|s| match s.trim().parse::<usize>() {
+            Ok(c) if c >= 1 => Ok(c),
+            _ => bad_input(format!(
+                "{option}: \"{}\" in \"{text}\" is not a positive integer; write one size per \
+                 direction, e.g. 5x4x3",
+                s.trim()
+            )),
+        })
+        .collect()
+}
+
+/// `A:B,C:D,…` of `--bbox`, one interval per each of `n` directions.
+fn boxes(text: &str, n: usize) -> Result<Vec<(f64, f64)>> {
+    let example = vec!["0:1"; n].join(",");
+    let example = format!("--bbox {example}");
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != n {
+        return bad_input(format!(
+            "--bbox: {} intervals in \"{text}\" for a fit in {n} variables; give one A:B per \
+             direction (e.g. {example})",
+            parts.len()
+        ));
+    }
+    parts.iter().map(|p| span(p, "--bbox", &example)).collect()
+}

@@ -1,0 +1,240 @@
+//! `fit --grid AxBxC` and `fit --scattered` in three variables: data sampled from a spline of
+//! the fitted space give that spline back (its control points), a knot count the grid cannot
+//! determine names the option and the direction, and a region without data is refused with
+//! exit 2 naming the control point.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use predicates::prelude::PredicateBooleanExt;
+use predicates::str::contains;
+
+fn lekalo() -> Command {
+    Command::cargo_bin("lekalo").unwrap()
+}
+
+/// Interior knots of the known spline, per direction (degrees 2, 2, 1).
+const INNER: [&[f64]; 3] = [&[0.3, 0.6], &[0.5], &[0.4, 0.7]];
+const DEGREES: [usize; 3] = [2, 2, 1];
+
+/// A spline in three variables with the knots of [`INNER`] and irregular control values
+/// (not a polynomial: its interior knots matter), written as `bspline_tensor` JSON.
+fn known_spline(dir: &Path) -> (PathBuf, Vec<f64>) {
+    let mut knots = Vec::new();
+    let mut shape = Vec::new();
+    for (inner, &p) in INNER.iter().zip(&DEGREES) {
+        let mut k = vec![0.0; p + 1];
+        k.extend_from_slice(inner);
+        k.extend(vec![1.0; p + 1]);
+        shape.push(k.len() - p - 1);
+        knots.push(k);
+    }
+    let n: usize = shape.iter().product();
+    let control: Vec<f64> = (0..n)
+        .map(|i| ((i * 37 + 11) % 23) as f64 / 7.0 - 1.5)
+        .collect();
+    let rows: Vec<Vec<f64>> = control.iter().map(|&c| vec![c]).collect();
+    let j = serde_json::json!({"lekalo": 1, "type": "bspline_tensor", "degrees": DEGREES,
+        "knots": knots, "shape": shape, "control": rows});
+    let path = dir.join("known.json");
+    fs::write(&path, j.to_string()).unwrap();
+    (path, control)
+}
+
+/// The known spline's values at the rows of `at` (three columns), through `lekalo eval`.
+fn sample(spline: &Path, at: &Path) -> Vec<f64> {
+    let out = lekalo()
+        .arg("eval")
+        .arg(spline)
+        .arg("--at-file")
+        .arg(at)
+        .args(["--format", "json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    e["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r[3].as_f64().unwrap())
+        .collect()
+}
+
+fn control(j: &serde_json::Value) -> Vec<f64> {
+    j["control"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r[0].as_f64().unwrap())
+        .collect()
+}
+
+fn list(t: &[f64]) -> String {
+    t.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+}
+
+/// The grid's coordinates in direction `a` (`m` of them, uneven, from 0 to 1).
+fn axis(m: usize) -> Vec<f64> {
+    (0..m)
+        .map(|k| {
+            let t = k as f64 / (m - 1) as f64;
+            t * t * 0.3 + t * 0.7
+        })
+        .collect()
+}
+
+fn assert_close(got: &[f64], want: &[f64], tol: f64) {
+    assert_eq!(got.len(), want.len());
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!((g - w).abs() <= tol, "control point {i}: {g} vs {w}");
+    }
+}
+
+#[test]
+fn a_grid_sampled_from_a_spline_of_the_space_gives_it_back() {
+    let d = tempfile::tempdir().unwrap();
+    let (known, want) = known_spline(d.path());
+    let axes = [axis(9), axis(7), axis(6)];
+    let mut nodes = String::new();
+    for &x in &axes[0] {
+        for &y in &axes[1] {
+            for &z in &axes[2] {
+                nodes.push_str(&format!("{x},{y},{z}\n"));
+            }
+        }
+    }
+    let at = d.path().join("nodes.csv");
+    fs::write(&at, nodes).unwrap();
+    let values = sample(&known, &at);
+    let v = d.path().join("values.txt");
+    fs::write(&v, list(&values).replace(',', "\n")).unwrap();
+    let out = lekalo()
+        .arg("fit")
+        .arg(&v)
+        .args(["--grid", "9x7x6", "--degree", "2,2,1", "--json"])
+        .args(["--knots-u", &list(INNER[0]), "--knots-v", &list(INNER[1])])
+        .args(["--knots-in", &format!("3={}", list(INNER[2]))])
+        .args(["--params-u", &list(&axes[0]), "--params-v", &list(&axes[1])])
+        .args(["--params-in", &format!("3={}", list(&axes[2]))])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(j["object"]["type"], "bspline_tensor");
+    assert_eq!(j["object"]["shape"], serde_json::json!([5, 4, 4]));
+    assert_close(&control(&j["object"]), &want, 1e-12);
+    assert!(j["report"]["max_residual"].as_f64().unwrap() < 1e-12);
+    assert_eq!(j["report"]["control_points"], 80);
+}
+
+#[test]
+fn scattered_points_sampled_from_a_spline_of_the_space_give_it_back() {
+    let d = tempfile::tempdir().unwrap();
+    let (known, want) = known_spline(d.path());
+    // a deterministic spread of 400 points in [0, 1]³ (the additive recurrence of the
+    // plastic number's powers)
+    let (a1, a2, a3) = (
+        0.819_172_513_396_164,
+        0.671_043_606_703_789,
+        0.549_700_477_901_970,
+    );
+    let mut rows = String::new();
+    let mut points = Vec::new();
+    for k in 1..=400 {
+        let f = |a: f64| (0.5 + a * f64::from(k)).fract();
+        let p = [f(a1), f(a2), f(a3)];
+        rows.push_str(&format!("{},{},{}\n", p[0], p[1], p[2]));
+        points.push(p);
+    }
+    let at = d.path().join("at.csv");
+    fs::write(&at, rows).unwrap();
+    let values = sample(&known, &at);
+    let mut data = String::new();
+    for (p, y) in points.iter().zip(&values) {
+        data.push_str(&format!("{},{},{},{y}\n", p[0], p[1], p[2]));
+    }
+    let x = d.path().join("xyzw.csv");
+    fs::write(&x, data).unwrap();
+    let t = d.path().join("fitted.json");
+    lekalo()
+        .arg("fit")
+        .arg(&x)
+        .args(["--scattered", "--degree", "2,2,1", "--bbox", "0:1,0:1,0:1"])
+        .args(["--knots-u", &list(INNER[0]), "--knots-v", &list(INNER[1])])
+        .args(["--knots-in", &format!("3={}", list(INNER[2])), "-o"])
+        .arg(&t)
+        .assert()
+        .success()
+        .stderr(contains("fit: 5x4x4 = 80 control points"));
+    let j: serde_json::Value = serde_json::from_str(&fs::read_to_string(&t).unwrap()).unwrap();
+    assert_eq!(
+        j["knots"][2],
+        serde_json::json!([0.0, 0.0, 0.4, 0.7, 1.0, 1.0])
+    );
+    assert_close(&control(&j), &want, 1e-10);
+}
+
+#[test]
+fn more_knots_than_the_grid_determines_name_the_option_and_the_direction() {
+    let d = tempfile::tempdir().unwrap();
+    let v = d.path().join("values.txt");
+    fs::write(&v, "1\n".repeat(6 * 5 * 4)).unwrap();
+    lekalo()
+        .arg("fit")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--degree", "2", "--param", "uniform"])
+        .args(["--ctrl-grid", "4x4x6", "--knots-in", "3=0.2,0.4,0.6"])
+        .assert()
+        .code(2)
+        .stderr(contains("--knots-in 3"))
+        .stderr(contains("direction 3"))
+        .stderr(contains("more than its 4 grid values"));
+    // --ctrl-grid sizes one per direction
+    lekalo()
+        .arg("fit")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--ctrl-grid", "4x4"])
+        .assert()
+        .code(2)
+        .stderr(contains(
+            "--ctrl-grid 4x4: 2 sizes for a fit in 3 variables",
+        ));
+}
+
+#[test]
+fn a_region_without_data_is_refused_naming_the_control_point() {
+    let d = tempfile::tempdir().unwrap();
+    // points of [0, 1]³ except the corner box (0.5, 1]³
+    let mut rows = String::new();
+    for i in 0..8 {
+        for j in 0..8 {
+            for k in 0..8 {
+                let p = [i, j, k].map(|c| f64::from(c) / 7.0);
+                if p.iter().all(|&c| c > 0.5) {
+                    continue;
+                }
+                rows.push_str(&format!("{},{},{},{}\n", p[0], p[1], p[2], p[0] + p[2]));
+            }
+        }
+    }
+    let x = d.path().join("hole.csv");
+    fs::write(&x, rows).unwrap();
+    lekalo()
+        .arg("fit")
+        .arg(&x)
+        .args(["--scattered", "--ctrl-grid", "4x4x4", "--degree", "2"])
+        .assert()
+        .code(2)
+        .stderr(contains("control point (4, 4, 4) of the 4x4x4 net"))
+        .stderr(contains("x1 in [0.5, 1], x2 in [0.5, 1], x3 in [0.5, 1]"))
+        .stderr(contains("holds 0 data points"))
+        .stderr(contains("EmptySupport").not());
+}
