@@ -53,10 +53,12 @@ fn bump_and_level_plane_give_one_loop() {
         "--tolerance",
         "1e-7",
         "-o",
-        "b.jsonl",
+        "b.json",
     ]));
-    let lines = fs::read_to_string(p(&d, "b.jsonl")).unwrap();
-    let b: serde_json::Value = serde_json::from_str(lines.lines().next().unwrap()).unwrap();
+    let all: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(p(&d, "b.json")).unwrap()).unwrap();
+    assert_eq!(all.as_array().map(Vec::len), Some(1), "{all}");
+    let b = &all[0];
     assert_eq!(b["kind"], "crossing");
     assert_eq!(b["closed"], true);
     assert_eq!(b["tolerance"], 1e-7);
@@ -92,6 +94,32 @@ fn bump_and_level_plane_give_one_loop() {
         .or_else(|| last["point"][2].as_f64())
         .unwrap_or(f64::NAN);
     assert!((z - 0.1).abs() <= 1e-6, "{last}");
+    // -o FILE.jsonl: the same curve, one a line, read by every command as it is
+    lekalo()
+        .current_dir(d.path())
+        .args([
+            "intersect",
+            "bump.json",
+            "level.json",
+            "--tolerance",
+            "1e-7",
+            "-o",
+            "b.jsonl",
+        ])
+        .assert()
+        .success();
+    let lines = fs::read_to_string(p(&d, "b.jsonl")).unwrap();
+    assert_eq!(lines.lines().count(), 1, "{lines}");
+    let c: serde_json::Value = serde_json::from_str(lines.trim()).unwrap();
+    assert_eq!(c, b["curve"]);
+    let j = json_of(lekalo().current_dir(d.path()).args([
+        "eval",
+        "b.jsonl",
+        "--samples",
+        "3",
+        "--json",
+    ]));
+    assert!(j.to_string().contains("0.1"), "{j}");
 }
 
 #[test]
@@ -105,14 +133,15 @@ fn plane_section_of_a_nurbs_cylinder_json_summary_and_step() {
         "0,0,0.2,-0.5,0,1",
         "--json",
         "-o",
-        "arc.jsonl",
+        "arc.json",
     ]));
     let list = j.as_array().unwrap();
     assert_eq!(list.len(), 1, "{j}");
     assert_eq!(list[0]["kind"], "crossing");
     assert_eq!(list[0]["closed"], false);
-    let line = fs::read_to_string(p(&d, "arc.jsonl")).unwrap();
-    let b: serde_json::Value = serde_json::from_str(line.trim()).unwrap();
+    let all: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(p(&d, "arc.json")).unwrap()).unwrap();
+    let b = &all[0];
     assert_eq!(b["uv_b"].as_array().unwrap().len(), 0);
     assert!(b["curve_uv_b"].is_null());
     for q in b["points"].as_array().unwrap() {
@@ -177,5 +206,5 @@ fn misses_and_refusals() {
         ])
         .assert()
         .code(2)
-        .stderr(contains("jsonl or step"));
+        .stderr(contains("jsonl, json or step"));
 }

@@ -36,8 +36,9 @@ small closed loops included), each a crossing (a curve), a tangent contact (a po
 where the normals are parallel) or an overlap (where the surfaces coincide). Every point is
 within the tolerance (default 1e-6 for surfaces) of both surfaces. Standard output gets a
 summary (one line a branch: index, kind, closed or open, point count, length; --json for the
-same as JSON); -o writes the branches: FILE.jsonl one line a branch (points, (u, v) on each surface,
-the fitted curve in space and in each parameter plane), FILE.step the curves in space.
+same as JSON); -o writes the branches: FILE.jsonl and FILE.step the fitted curves in space (one
+curve a line, read by every command), FILE.json every branch in full (points, (u, v) on each
+surface, the fitted curve in space and in each parameter plane).
 
 Examples:
   lekalo intersect a.json b.json
@@ -45,6 +46,7 @@ Examples:
   lekalo intersect loop.json --self
   lekalo intersect space.json --plane 0,0,1,0,0,1
   lekalo intersect surface.json level.json -o branches.jsonl
+  lekalo intersect surface.json level.json -o branches.json
   lekalo intersect surface.json --plane 0,0,0.1,0,0,1 --json -o section.step")]
 pub(crate) struct IntersectArgs {
     /// First curve.
@@ -229,8 +231,13 @@ fn run_surfaces(a: &IntersectArgs, s: &lekalo_io::Surface, cx: &Context) -> Resu
         let body = match format_of(None, Some(out), "jsonl").as_str() {
             "jsonl" => branches
                 .iter()
-                .map(|b| branch_json(b).to_string() + "\n")
+                .filter_map(|b| b.curve.clone())
+                .map(|c| Shape::Curve(lekalo::Curve::BSpline(c)).to_json_line() + "\n")
                 .collect(),
+            "json" => {
+                let all: Vec<Value> = branches.iter().map(branch_json).collect();
+                format!("{:#}\n", json!(all))
+            }
             "step" => {
                 let name = out
                     .file_stem()
@@ -243,9 +250,9 @@ fn run_surfaces(a: &IntersectArgs, s: &lekalo_io::Surface, cx: &Context) -> Resu
             }
             other => {
                 return bad_input(format!(
-                    "-o {}: intersection branches are written as jsonl or step, not \"{other}\"",
-                    out.display()
-                ))
+                "-o {}: intersection branches are written as jsonl, json or step, not \"{other}\"",
+                out.display()
+            ))
             }
         };
         emit(Some(out), body.as_bytes(), &inputs, cx)?;
@@ -290,7 +297,7 @@ fn summary_text(summary: &[Value]) -> String {
         .collect()
 }
 
-/// The JSON Lines record of a branch: its summary, tolerance, points, parameters on both
+/// The full record of a branch: its summary, tolerance, points, parameters on both
 /// surfaces and fitted curves (lekalo curve objects).
 fn branch_json(b: &IntersectionBranch) -> Value {
     let mut v = branch_summary(b);
