@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _pad_rows
-from ._interpolate import make_interp_spline, make_lsq_spline
+from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
 def splrep(
@@ -19,7 +19,8 @@ def splrep(
 ):
     """``scipy.interpolate.splrep`` for interpolation (``s = 0``, the default without weights;
     FITPACK's knots are SciPy's not-a-knot ones) and for least squares on given interior knots
-    ``t``. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    ``t`` (``task=-1``), with the end knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe``
+    as FITPACK's ``percur`` does. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
@@ -27,8 +28,20 @@ def splrep(
         s = 0.0 if w is None else m - np.sqrt(2 * m)
     if not (1 <= k <= 5):
         raise TypeError(f"1 <= k= {k} <=5 must hold")
-    if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
-        raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
+    if task not in (-1, 0, 1):
+        raise TypeError("task must be -1, 0 or 1")
+    if task == 1:
+        raise NotImplementedError("lekalo.scipy.splrep: task=1 (continuing an earlier fit) is not available yet")
+    if task == -1 and t is None:
+        raise TypeError("Knots must be given for task=-1")
+    # FITPACK's periodic fit (percur) takes its period from the data and ignores xb/xe
+    xb = x[0] if xb is None or per else float(xb)
+    xe = x[-1] if xe is None or per else float(xe)
+    if m and (xb > x[0] or xe < x[-1]):
+        raise ValueError("Error on input data: xb <= x[0] and xe >= x[-1] must hold")
+    wide = m > 0 and (xb != x[0] or xe != x[-1])
+    if wide and t is None and not (s == 0 and w is None):
+        raise NotImplementedError("lekalo.scipy.splrep: smoothing with xb/xe wider than the data is not available yet")
     if y.ndim != 1:
         raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
     if len(y) != m:
@@ -43,8 +56,13 @@ def splrep(
         )
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
-        tt = np.r_[(x[0],) * (k + 1), np.asarray(t, dtype=np.float64), (x[-1],) * (k + 1)]
+        tt = np.r_[(xb,) * (k + 1), np.asarray(t, dtype=np.float64), (xe,) * (k + 1)]
         spl = make_lsq_spline(x, y, tt, k, w=w)
+    elif s == 0 and w is None and wide:
+        # FITPACK's interpolation knots (the not-a-knot ones) with the ends at xb and xe
+        tt = _not_a_knot(x, k)
+        tt[: k + 1], tt[-k - 1 :] = xb, xe
+        spl = make_lsq_spline(x, y, tt, k)
     elif s == 0 and w is None:
         spl = make_interp_spline(x, y, k=k)
     else:
