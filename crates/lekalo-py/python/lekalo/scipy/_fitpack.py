@@ -284,7 +284,8 @@ def splprep(
 ):
     """``scipy.interpolate.splprep``: the parametric spline of FITPACK's ``parcur``/``clocur``
     (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
-    ``fit_closed`` on FITPACK's knots. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
+    ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
+    on their interior knots, the end knots at ``ub`` and ``ue``. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
     ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
@@ -305,15 +306,28 @@ def splprep(
         raise TypeError("Knots must be given for task=-1")
     if m <= k:
         raise TypeError("m > k must hold")
-    if task != 0 or t is not None or ub is not None or ue is not None:
-        raise NotImplementedError("lekalo.scipy.splprep: task, t and ub/ue are not available yet")
+    if task == 1 or (per and (t is not None or task == -1)):
+        raise NotImplementedError("lekalo.scipy.splprep: task=1, and t with per=1, are not available yet")
+    if t is None and (ub is not None or ue is not None):
+        raise NotImplementedError("lekalo.scipy.splprep: ub/ue without t are not available yet")
     pts = np.ascontiguousarray(x.T)
     if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
         # two consecutive points coincide: the chord-length parameters do not increase
         raise ValueError("Invalid inputs")
     if u is not None and np.any(np.diff(np.asarray(u, dtype=np.float64)) <= 0):
         raise ValueError("Invalid inputs")
-    if per:
+    if t is not None:
+        # FITPACK's parcur with iopt = -1: least squares on the interior knots of t, the end
+        # knots at ub and ue (the ends of u by default), u FITPACK's (lekalo's chord length)
+        uu = _lekalo.parametrize(pts, "chord") if u is None else np.asarray(u, dtype=np.float64)
+        t = np.atleast_1d(np.asarray(t, dtype=np.float64))
+        if t.shape[0] < 2 * k + 2:
+            raise TypeError(f"There must be at least 2*k+2 knots for task=-1, got {t.shape[0]}")
+        ub = uu[0] if ub is None else float(ub)
+        ue = uu[-1] if ue is None else float(ue)
+        knots = np.r_[(ub,) * (k + 1), t[k + 1 : -k - 1], (ue,) * (k + 1)]
+        curve = _lekalo.make_lsq_spline(uu, pts, knots, k, w)
+    elif per:
         if u is not None:
             raise NotImplementedError("lekalo.scipy.splprep: u with per=1 is not available yet")
         curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))
