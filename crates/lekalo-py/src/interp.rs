@@ -3,8 +3,9 @@
 //! the library's enums (the parsers are shared with the batch API).
 
 use lekalo::{
-    natural_cubic_spline as lk_natural, CubicHermite, CurveInterpolation, EndCondition,
-    KnotPlacement, Parametrization, TangentEstimate,
+    interpolate_with_end_derivatives as lk_end_derivatives, natural_cubic_spline as lk_natural,
+    CubicHermite, CurveInterpolation, EndCondition, EndDerivative, KnotPlacement, Parametrization,
+    TangentEstimate,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
@@ -184,6 +185,60 @@ pub(crate) fn natural_cubic_spline(
     let ya = floats(y, "y")?;
     let ys = ya.points("y")?;
     let c = py.detach(|| lk_natural(xs, ys)).map_err(lib_err)?;
+    Ok(PyBSplineCurve::wrap(c))
+}
+
+/// Reads `[(order, value), ...]`: derivative conditions at one end, each value with `dim`
+/// components (a number for `dim = 1`).
+fn end_derivatives_arg(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Vec<EndDerivative>> {
+    let Some(obj) = obj else {
+        return Ok(Vec::new());
+    };
+    let mut out = Vec::new();
+    for item in obj.try_iter()? {
+        let item = item?;
+        let (order, value): (usize, Bound<'_, PyAny>) = item.extract().map_err(|_| {
+            bad(format!(
+                "{what}: expected a list of (order, value) pairs, order a non-negative integer"
+            ))
+        })?;
+        let value = floats(&value, what)?.data().to_vec();
+        out.push(EndDerivative::new(order, value));
+    }
+    Ok(out)
+}
+
+/// The B-spline of degree `k` on the knots `t` through `(x_j, y_j)` with derivative conditions
+/// chosen per end: `start` and `end` are lists of `(order, value)`, `C^(order)(x_0) = value` and
+/// `C^(order)(x_last) = value` (`docs/theory/interpolation.md#derivative-conditions-per-end`).
+/// The points and conditions must number the control points, `len(t) - k - 1`.
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.array([0.0, 1.0, 2.0, 3.0]); t = [0, 0, 0, 0, 1, 2, 3, 3, 3, 3]
+/// >>> c = lekalo.interpolate_with_end_derivatives(x, x ** 3, t, 3, start=[(1, 0.0)], end=[(2, 18.0)])
+/// >>> bool(np.allclose(c(np.linspace(0, 3, 7))[:, 0], np.linspace(0, 3, 7) ** 3))
+/// True
+#[pyfunction]
+#[pyo3(signature = (x, y, t, k = 3, *, start = None, end = None))]
+pub(crate) fn interpolate_with_end_derivatives(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+    t: &Bound<'_, PyAny>,
+    k: usize,
+    start: Option<&Bound<'_, PyAny>>,
+    end: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyBSplineCurve> {
+    let xa = floats(x, "x")?;
+    let xs = xa.vector("x")?;
+    let ya = floats(y, "y")?;
+    let ys = ya.points("y")?;
+    let knots = lekalo::KnotVector::new(vec1(t, "t")?).map_err(lib_err)?;
+    let start = end_derivatives_arg(start, "start")?;
+    let end = end_derivatives_arg(end, "end")?;
+    let c = py
+        .detach(|| lk_end_derivatives(ys, xs, &knots, k, &start, &end))
+        .map_err(lib_err)?;
     Ok(PyBSplineCurve::wrap(c))
 }
 

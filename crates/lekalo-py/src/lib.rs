@@ -62,11 +62,16 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
     m.add_function(wrap_pyfunction!(interp::basis_functions, m)?)?;
     m.add_function(wrap_pyfunction!(interp::natural_cubic_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        interp::interpolate_with_end_derivatives,
+        m
+    )?)?;
     m.add_function(wrap_pyfunction!(interp::interpolate_surface, m)?)?;
     m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;
     m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(pp::hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_periodic, m)?)?;
+    m.add_function(wrap_pyfunction!(periodic::insert_knot_raw, m)?)?;
     m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;

@@ -1,5 +1,7 @@
-//! Knot operations on periodic splines given as arrays (knots and coefficients with their
-//! periodic extension, SciPy's layout), docs/theory/curves.md#periodic-knot-insertion.
+//! Knot insertion into splines given as arrays (knots and coefficients, SciPy's layout), as
+//! FITPACK's `fpinst` does it: periodic splines with their periodic extension
+//! (docs/theory/curves.md#periodic-knot-insertion) and insertion at any multiplicity
+//! (docs/theory/curves.md#knot-insertion-on-raw-knots).
 
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -31,6 +33,34 @@ pub(crate) fn insert_knot_periodic<'py>(
     let c = ca.points("control")?;
     let (t2, c2) = py
         .detach(|| lekalo::insert_knot_periodic(k, &t, c, x, times))
+        .map_err(lib_err)?;
+    PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
+}
+
+/// The spline of degree `k` with `knots` and coefficients `control` (`(n − k − 1,)` or
+/// `(n − k − 1, dim)`) with `x` inserted `times` times at any multiplicity, past `k + 1` at the
+/// ends of the base interval and past `k` inside: returns `(knots, control)`
+/// (`lekalo::insert_knot_raw`; FITPACK's `fpinst` with `iopt = 0`, SciPy's `insert`).
+///
+/// >>> import lekalo
+/// >>> t, c = lekalo.insert_knot_raw(1, [0.0, 0.0, 1.0, 1.0], [0.0, 1.0], 0.0)
+/// >>> t.tolist(), c[:, 0].tolist()
+/// ([0.0, 0.0, 0.0, 1.0, 1.0], [0.0, 0.0, 1.0])
+#[pyfunction]
+#[pyo3(signature = (k, knots, control, x, times = 1))]
+pub(crate) fn insert_knot_raw<'py>(
+    py: Python<'py>,
+    k: usize,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    x: f64,
+    times: usize,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let t = vec1(knots, "knots")?;
+    let ca = floats(control, "control")?;
+    let c = ca.points("control")?;
+    let (t2, c2) = py
+        .detach(|| lekalo::insert_knot_raw(k, &t, c, x, times))
         .map_err(lib_err)?;
     PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
 }

@@ -264,3 +264,35 @@ def test_version_is_the_crates():
     cargo = (Path(__file__).resolve().parents[3] / "Cargo.toml").read_text()
     version = re.search(r'^version = "([^"]+)"', cargo, flags=re.M).group(1)
     assert lekalo.__version__ == version
+
+
+@pytest.mark.parametrize(
+    ("k", "start", "end"),
+    [
+        (3, [(1, 0.5)], [(2, -1.0)]),
+        (3, [], [(1, 2.0), (2, 0.0)]),
+        (2, [], [(1, 8.0)]),
+        (5, [(1, -12.0), (2, 1.0)], [(1, 8.0), (2, 3.0)]),
+    ],
+)
+def test_end_derivatives_per_end_match_scipy(k, start, end):
+    # conditions chosen per end (docs/theory/interpolation.md#derivative-conditions-per-end)
+    # give SciPy's make_interp_spline, which solves the same square system
+    x = np.linspace(0.0, 3.0, 9) ** 1.2
+    y = np.sin(2 * x) + 0.2 * x
+    ref = si.make_interp_spline(x, y, k=k, bc_type=(start or None, end or None))
+    c = lekalo.interpolate_with_end_derivatives(x, y, ref.t, k, start=start, end=end)
+    np.testing.assert_allclose(c.control[:, 0], ref.c, rtol=0, atol=1e-11 * np.abs(ref.c).max())
+    for order, value in start:
+        assert abs(np.ravel(c(x[0], order))[0] - value) < 1e-9
+    for order, value in end:
+        assert abs(np.ravel(c(x[-1], order))[0] - value) < 1e-9
+
+
+def test_end_derivatives_per_end_refusals():
+    x = np.arange(4.0)
+    t = np.r_[[0.0] * 4, [1.0, 2.0], [3.0] * 4]
+    with pytest.raises(lekalo.Error, match="conditions"):
+        lekalo.interpolate_with_end_derivatives(x, x, t, 3, start=[(1, 0.0)])
+    with pytest.raises(lekalo.Error, match="order"):
+        lekalo.interpolate_with_end_derivatives(x, x, t, 3, start=[(4, 0.0)], end=[(1, 0.0)])

@@ -44,3 +44,27 @@ def test_refusals():
         lekalo.insert_knot_periodic(k, t, c, 8.0)
     with pytest.raises(lekalo.Error, match="coefficients"):
         lekalo.insert_knot_periodic(k, t, c[:-1], 1.0)
+
+
+@pytest.mark.parametrize(("x", "m"), [(0.0, 1), (0.0, 3), (2 * np.pi, 2), (1.0, 4), (3.1, 1)])
+def test_fitpacks_insertion_at_any_multiplicity(x, m):
+    # insert_knot_raw is FITPACK's fpinst with iopt = 0: past multiplicity k + 1 at the ends of
+    # the base interval and past k inside, SciPy's insert gives the same knots and coefficients
+    xs = np.linspace(0.0, 2 * np.pi, 12)
+    t, c, k = si.splrep(xs, np.sin(xs) + 0.3 * xs)
+    n = len(t) - k - 1
+    tf, cf, _ = si.insert(x, (t, c, k), m=m)
+    t2, c2 = lekalo.insert_knot_raw(k, t, c[:n], x, m)
+    np.testing.assert_array_equal(t2, tf)
+    np.testing.assert_allclose(c2[:, 0], cf[: len(tf) - k - 1], rtol=0, atol=1e-14)
+    spl = ls.BSpline(t, c[:n], k).insert_knot(x, m)
+    np.testing.assert_array_equal(spl.t, tf)
+
+
+def test_raw_insertion_refusals():
+    t = np.array([0.0] * 4 + [2, 3] + [7.0] * 4)
+    c = np.ones(len(t) - 4)
+    with pytest.raises(lekalo.Error, match="outside|domain"):
+        lekalo.insert_knot_raw(3, t, c, 7.5)
+    with pytest.raises(lekalo.Error, match="coefficients"):
+        lekalo.insert_knot_raw(3, t, c[:-1], 1.0)

@@ -717,3 +717,28 @@ def test_ppoly_bpoly_of_empty_values(cls):
     close(b.derivative().c, a.derivative().c)
     close(b.antiderivative().c, a.antiderivative().c)
     close(b.integrate(0.0, 2.0), a.integrate(0.0, 2.0))
+
+
+def test_splprep_on_given_knots_is_fitpacks():
+    # splprep(task=-1, t=...): least squares on the interior knots, ends at ub/ue (FITPACK's
+    # parcur with iopt=-1)
+    s = np.linspace(0, 1, 11)
+    pts = [np.sin(2 * np.pi * s), np.cos(2 * np.pi * s) + s]
+    t = np.r_[[0.0] * 4, [0.3, 0.5, 0.8], [1.0] * 4]
+    (ta, ca, _), ua = si.splprep(pts, task=-1, t=t)
+    (tb, cb, _), ub = ls.splprep(pts, task=-1, t=t)
+    np.testing.assert_allclose(tb, ta, atol=1e-15)
+    np.testing.assert_allclose(ub, ua, atol=1e-15)
+    n = len(ta) - 4
+    np.testing.assert_allclose(np.asarray(cb)[:, :n], np.asarray(ca)[:, :n], atol=1e-12)
+
+
+@pytest.mark.parametrize("t", [None, [1.0, 2.5]])
+def test_splrep_with_wider_end_knots_is_fitpacks(t):
+    # splrep(xb=, xe=) puts the end knots there, for interpolation and for given knots
+    x = np.linspace(0.0, 4.0, 9)
+    y = np.exp(-x) * np.cos(2 * x)
+    ta, ca, _ = si.splrep(x, y, xb=-1.0, xe=5.0, t=t)
+    tb, cb, _ = ls.splrep(x, y, xb=-1.0, xe=5.0, t=t)
+    np.testing.assert_allclose(tb, ta, atol=1e-15)
+    np.testing.assert_allclose(cb, ca, atol=1e-10 * np.abs(ca).max())

@@ -68,8 +68,8 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, insert_knot_periodic, principal_normal, torsion, BSplineCurve, BezierCurve,
-    BezierSegment, Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator,
+    curvature, insert_knot_periodic, insert_knot_raw, principal_normal, torsion, BSplineCurve,
+    BezierCurve, BezierSegment, Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator,
     DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
 };
 
@@ -86,10 +86,10 @@ pub mod interpolate;
 
 pub use interpolate::{
     akima_slopes, cubic_through_four_points, four_point_cubic_coefficients,
-    hermite_segment_coefficients, natural_cubic_spline, parametrize, pchip_slopes, CubicHermite,
-    CurveInterpolation, EndCondition, InterpolationWorkspace, KnotPlacement, Parametrization,
-    SurfaceInterpolation, SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX,
-    INTERPOLATION_RESIDUAL_RTOL,
+    hermite_segment_coefficients, interpolate_with_end_derivatives, natural_cubic_spline,
+    parametrize, pchip_slopes, CubicHermite, CurveInterpolation, EndCondition, EndDerivative,
+    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
+    SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
 };
 // the grid interpolation functions before `SurfaceInterpolation`, kept for existing code
 #[allow(deprecated)]

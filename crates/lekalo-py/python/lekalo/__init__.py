@@ -84,6 +84,7 @@ from ._lekalo import (
     interpolate_batch,
     interpolate_surface,
     natural_cubic_spline,
+    interpolate_with_end_derivatives,
     pchip_slopes,
     akima_slopes,
     parametrize,
@@ -91,6 +92,7 @@ from ._lekalo import (
     hermite_bernstein,
     piecewise_hermite_bernstein,
     insert_knot_periodic,
+    insert_knot_raw,
 )
 from . import _lekalo
 from ._interop import design_matrix, from_geomdl, from_scipy, to_geomdl, to_scipy
@@ -163,6 +165,7 @@ __all__ = [
     "interpolate_batch",
     "interpolate_surface",
     "natural_cubic_spline",
+    "interpolate_with_end_derivatives",
     "pchip_slopes",
     "akima_slopes",
     "parametrize",
@@ -170,6 +173,7 @@ __all__ = [
     "hermite_bernstein",
     "piecewise_hermite_bernstein",
     "insert_knot_periodic",
+    "insert_knot_raw",
     "ragged_offsets",
     "to_geomdl",
     "to_scipy",

@@ -10,7 +10,8 @@
 //! - `knot_insertion.rs`: knot insertion and refinement, splitting, Bezier decomposition and
 //!   its inverse.
 //! - `periodic_insertion.rs`: [`insert_knot_periodic`], knot insertion keeping a periodic
-//!   spline's extension (FITPACK's `fpinst`).
+//!   spline's extension, and [`insert_knot_raw`], insertion at any multiplicity (FITPACK's
+//!   `fpinst`).
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
 //! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
 //!   segments.
@@ -44,5 +45,5 @@ pub use curvature::{curvature, principal_normal, torsion};
 pub use fast_eval::{CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;
-pub use periodic_insertion::insert_knot_periodic;
+pub use periodic_insertion::{insert_knot_periodic, insert_knot_raw};
 pub use power_form::POWER_FORM_CONTINUITY_RTOL;

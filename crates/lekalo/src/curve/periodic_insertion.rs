@@ -1,6 +1,8 @@
-//! Knot insertion into a periodic spline given by its knots and coefficients over one period
-//! with their periodic extension (Dierckx, *Curve and Surface Fitting with Splines*, 1993:
-//! FITPACK's `fpinst` with `iopt = 1`; docs/theory/curves.md#periodic-knot-insertion).
+//! Knot insertion into a spline given by its raw knots and coefficients, as FITPACK's `fpinst`
+//! does it (Dierckx, *Curve and Surface Fitting with Splines*, 1993): for a periodic spline
+//! with its periodic extension (`iopt = 1`, docs/theory/curves.md#periodic-knot-insertion),
+//! and without it, at any multiplicity (`iopt = 0`,
+//! docs/theory/curves.md#knot-insertion-on-raw-knots).
 
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::KnotVector;
@@ -46,12 +48,64 @@ pub fn insert_knot_periodic(
     x: f64,
     times: usize,
 ) -> Result<(Vec<f64>, Points)> {
+    insert_repeatedly(k, knots, control, x, times, true)
+}
+
+/// Inserts `x` `times` times into the spline of degree `k` with the knots `knots` (`n` of them,
+/// base interval `[t_k, t_{n−k−1}]`) and the `n − k − 1` coefficients `control`, one knot at a
+/// time by Boehm's insertion in the knot interval `t_l ≤ x < t_{l+1}` (`t_{n−k−2} ≤ x ≤
+/// t_{n−k−1}` at the right end; where that interval is empty, `t_l < x ≤ t_{l+1}`, so that the
+/// right end can be inserted again): FITPACK's `insert` and `fpinst` with `iopt = 0`
+/// (docs/theory/curves.md#knot-insertion-on-raw-knots), `scipy.interpolate.insert`. Unlike
+/// [`BSplineCurve::insert_knot`](crate::BSplineCurve::insert_knot) it puts no bound on the
+/// multiplicity: at an end of the base interval the knot may pass multiplicity `k + 1` (the
+/// function on the base interval is unchanged; the new knots lie at the end and the new
+/// coefficients continue the end coefficient), and inside it may pass `k` (the spline stays the
+/// same function, piecewise; its continuity at `x` is what the knots say). Returns the
+/// `n + times` knots and the `n + times − k − 1` coefficients.
+///
+/// ```
+/// use lekalo::{insert_knot_raw, PointsRef};
+/// // the linear spline 0 → 1 on [0, 1], the knot 0 inserted past multiplicity k + 1 = 2
+/// let t = [0.0, 0.0, 1.0, 1.0];
+/// let c = [0.0, 1.0];
+/// let (t2, c2) = insert_knot_raw(1, &t, PointsRef::from_flat(1, &c)?, 0.0, 1)?;
+/// assert_eq!(t2, vec![0.0, 0.0, 0.0, 1.0, 1.0]);
+/// assert_eq!(c2.as_slice(), &[0.0, 0.0, 1.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Degree`] for `k = 0` or too few knots for degree `k`; knot-vector errors
+/// ([`Error::KnotsNotSorted`], [`Error::NonFinite`]); [`Error::LengthMismatch`] unless there
+/// are `n − k − 1` coefficients; [`Error::ParameterOutOfDomain`] for `x` outside the base
+/// interval; [`Error::InvalidArgument`] if `x` falls in an empty knot interval;
+/// [`Error::TooLarge`].
+pub fn insert_knot_raw(
+    k: usize,
+    knots: &[f64],
+    control: PointsRef<'_>,
+    x: f64,
+    times: usize,
+) -> Result<(Vec<f64>, Points)> {
+    insert_repeatedly(k, knots, control, x, times, false)
+}
+
+/// The checks and the loop of [`insert_knot_periodic`] and [`insert_knot_raw`].
+fn insert_repeatedly(
+    k: usize,
+    knots: &[f64],
+    control: PointsRef<'_>,
+    x: f64,
+    times: usize,
+    periodic: bool,
+) -> Result<(Vec<f64>, Points)> {
     let n = knots.len();
     if k == 0 || n < 2 * k + 2 {
         return Err(Error::Degree {
             degree: k,
             reason: format!(
-                "periodic knot insertion needs degree k ≥ 1 and at least 2k + 2 knots, got {n} knots"
+                "knot insertion needs degree k ≥ 1 and at least 2k + 2 knots, got {n} knots"
             ),
         });
     }
@@ -77,7 +131,7 @@ pub fn insert_knot_periodic(
     let mut t = knots.to_vec();
     let mut c = control.as_slice().to_vec();
     for _ in 0..times {
-        let (tt, cc) = insert_once(k, &t, &c, dim, x)?;
+        let (tt, cc) = insert_once(k, &t, &c, dim, x, periodic)?;
         t = tt;
         c = cc;
     }
@@ -85,9 +139,17 @@ pub fn insert_knot_periodic(
     Ok((t, Points::from_raw(c, dim)))
 }
 
-/// One insertion (FITPACK's `insert` and `fpinst` with `iopt = 1`), in 0-based indices: `l` is
-/// the knot interval `t_l ≤ x < t_{l+1}`, `k ≤ l ≤ n − k − 2`.
-fn insert_once(k: usize, t: &[f64], c: &[f64], dim: usize, x: f64) -> Result<(Vec<f64>, Vec<f64>)> {
+/// One insertion (FITPACK's `insert` and `fpinst` with `iopt = 1` when `periodic`, else
+/// `iopt = 0`), in 0-based indices: `l` is the knot interval `t_l ≤ x < t_{l+1}`,
+/// `k ≤ l ≤ n − k − 2`.
+fn insert_once(
+    k: usize,
+    t: &[f64],
+    c: &[f64],
+    dim: usize,
+    x: f64,
+    periodic: bool,
+) -> Result<(Vec<f64>, Vec<f64>)> {
     let n = t.len();
     let (min, max) = (t[k], t[n - k - 1]);
     if !(x >= min && x <= max) {
@@ -97,6 +159,14 @@ fn insert_once(k: usize, t: &[f64], c: &[f64], dim: usize, x: f64) -> Result<(Ve
     let mut l = k;
     while !(x < t[l + 1] || l == last) {
         l += 1;
+    }
+    if t[l] >= t[l + 1] {
+        // FITPACK's `insert` then searches the other way, t_l < x ≤ t_{l+1}: x at the end of
+        // an interval followed by repeated knots (a second insertion at the right end)
+        l = k;
+        while !(x <= t[l + 1] || l == last) {
+            l += 1;
+        }
     }
     if t[l] >= t[l + 1] {
         return Err(Error::InvalidArgument {
@@ -109,7 +179,7 @@ fn insert_once(k: usize, t: &[f64], c: &[f64], dim: usize, x: f64) -> Result<(Ve
         });
     }
     // 1-based l of FITPACK is l + 1: refused when l + 1 ≤ 2k and l + 1 ≥ n − 2k
-    if l < 2 * k && l + 1 + 2 * k >= n {
+    if periodic && l < 2 * k && l + 1 + 2 * k >= n {
         return Err(Error::InvalidArgument {
             what: "knot to insert",
             reason: format!(
@@ -136,6 +206,9 @@ fn insert_once(k: usize, t: &[f64], c: &[f64], dim: usize, x: f64) -> Result<(Ve
         for d in 0..dim {
             cc[i * dim + d] = fac * c[i * dim + d] + (1.0 - fac) * c[(i - 1) * dim + d];
         }
+    }
+    if !periodic {
+        return Ok((tt, cc));
     }
     // the periodic extension (FITPACK's nk, nl, per in 0-based form)
     let nn = n + 1;
@@ -199,6 +272,67 @@ mod tests {
             let period = t2[n - k - 1] - t2[k];
             assert!((period - 6.0).abs() < 1e-15, "period kept");
         }
+    }
+
+    /// de Boor's algorithm on raw knots (any multiplicity) in the interval `t_l ≤ s < t_{l+1}`
+    /// of the base interval (the last non-empty one at its right end).
+    fn de_boor(k: usize, t: &[f64], c: &[f64], s: f64) -> f64 {
+        let n = t.len();
+        let mut l = k;
+        while l < n - k - 2 && (s >= t[l + 1] || t[l] >= t[l + 1]) {
+            l += 1;
+        }
+        while t[l] >= t[l + 1] {
+            l -= 1;
+        }
+        let mut d: Vec<f64> = (0..=k).map(|j| c[j + l - k]).collect();
+        for r in 1..=k {
+            for j in (r..=k).rev() {
+                let i = j + l - k;
+                let a = (s - t[i]) / (t[i + k + 1 - r] - t[i]);
+                d[j] = (1.0 - a) * d[j - 1] + a * d[j];
+            }
+        }
+        d[k]
+    }
+
+    /// Raw insertion keeps the function on the base interval, also past multiplicity k + 1 at
+    /// the ends and past k inside (there the spline may jump, but each piece is kept).
+    #[test]
+    fn raw_insertion_keeps_the_function() {
+        let k = 3;
+        let t = [0.0, 0.0, 0.0, 0.0, 1.0, 2.5, 3.0, 4.0, 4.0, 4.0, 4.0];
+        let c = [0.5, -1.0, 2.0, 1.0, 0.25, 3.0, -0.5];
+        let before =
+            BSplineCurve::new(k, t.to_vec(), Points::from_flat(1, c.to_vec()).unwrap()).unwrap();
+        for (x, times) in [(0.0, 2), (4.0, 3), (2.5, 4), (1.7, 5), (0.0, 1), (4.0, 1)] {
+            let view = PointsRef::from_flat(1, &c).unwrap();
+            let (t2, c2) = insert_knot_raw(k, &t, view, x, times).unwrap();
+            assert_eq!(t2.len(), t.len() + times);
+            assert_eq!(c2.len(), c.len() + times);
+            assert_eq!(
+                t2.iter().filter(|&&v| v == x).count(),
+                t.iter().filter(|&&v| v == x).count() + times
+            );
+            // evaluate each piece inside its own interval, away from the inserted knot
+            let after = |s: f64| de_boor(k, &t2, c2.as_slice(), s);
+            for s in [0.0, 0.3, 0.99, 1.2, 2.0, 2.49, 2.51, 3.5, 4.0] {
+                if (s - x).abs() < 1e-9 && x > 0.0 && x < 4.0 {
+                    continue;
+                }
+                let a = before.eval(s).unwrap()[0];
+                let b = after(s);
+                assert!(
+                    (a - b).abs() < 1e-13,
+                    "insert {x}×{times}, eval {s}: {a} vs {b}"
+                );
+            }
+        }
+        let view = PointsRef::from_flat(1, &c).unwrap();
+        assert!(matches!(
+            insert_knot_raw(k, &t, view, 4.5, 1),
+            Err(Error::ParameterOutOfDomain { .. })
+        ));
     }
 
     /// FITPACK's refusal: two interior knots on each side of the new one are too few for k = 3.

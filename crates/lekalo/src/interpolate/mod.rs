@@ -8,6 +8,8 @@
 //!   centripetal parameters.
 //! - `end_conditions.rs`: [`EndCondition`]: free ends, first and second end derivatives, the
 //!   natural cubic.
+//! - `end_derivatives.rs`: [`interpolate_with_end_derivatives`], interpolation on given knots
+//!   with derivative conditions of any orders chosen per end ([`EndDerivative`]).
 //! - `collocation.rs`: the banded collocation system and its condition estimate.
 //! - `fast.rs`: the fused fast path of free-end cubic interpolation
 //!   ([`InterpolationWorkspace`]).
@@ -23,6 +25,7 @@ pub(crate) mod collocation;
 mod cubic_sweep;
 pub(crate) mod curve;
 mod end_conditions;
+mod end_derivatives;
 mod fast;
 pub(crate) mod hermite;
 pub(crate) mod parametrization;
@@ -35,6 +38,7 @@ pub use curve::{
     natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
 };
 pub use end_conditions::EndCondition;
+pub use end_derivatives::{interpolate_with_end_derivatives, EndDerivative};
 pub use fast::InterpolationWorkspace;
 pub use hermite::{
     cubic_through_four_points, four_point_cubic_coefficients, hermite_segment_coefficients,

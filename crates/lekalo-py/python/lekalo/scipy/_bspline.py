@@ -306,10 +306,10 @@ class BSpline:
         return cls.construct_fast(t, c, k, pp.extrapolate, pp.axis)
 
     def insert_knot(self, x: float, m: int = 1) -> "BSpline":
-        """The same spline with the knot ``x`` inserted ``m`` times (Boehm), lekalo's
-        ``insert_knot``; the coefficients grow by ``m``. A periodic spline
-        (``extrapolate="periodic"``) keeps its periodic extension, lekalo's
-        ``insert_knot_periodic`` (FITPACK's ``fpinst``)."""
+        """The same spline with the knot ``x`` inserted ``m`` times (Boehm, at any
+        multiplicity), lekalo's ``insert_knot_raw``; the coefficients grow by ``m``. A periodic
+        spline (``extrapolate="periodic"``) keeps its periodic extension, lekalo's
+        ``insert_knot_periodic`` (both FITPACK's ``fpinst``)."""
         x = float(x)
         if x < self.t[self.k] or x > self.t[-self.k - 1]:
             raise ValueError(f"Cannot insert a knot at {x}.")
@@ -317,21 +317,17 @@ class BSpline:
             raise ValueError(f"`m` must be positive, got {m = }.")
         n = self._n()
         complex_ = np.iscomplexobj(self.c)
-        if self.extrapolate == "periodic":
-            # lekalo's insert_knot_periodic: Boehm's insertion, then the periodic extension
-            # restored as FITPACK's fpinst does
-            cols = _real_columns(self.c, n)
-            t, control = _lekalo.insert_knot_periodic(self.k, self.t, cols if cols.shape[1] else np.zeros((n, 1)), x, m)
-            if not cols.shape[1]:
-                control = np.zeros((n + m, 0))
-            cc = _from_columns(np.ascontiguousarray(control), complex_).reshape((n + m,) + self.c.shape[1:])
-            # coefficients beyond the n that the knots use stay at the end, as in SciPy
-            cc = np.concatenate([cc, self.c[n:]]) if self.c.shape[0] > n else cc
-            return self.construct_fast(np.ascontiguousarray(t), cc, self.k, self.extrapolate, self.axis)
-        curve = _curve(self.t, _real_columns(self.c, n), self.k).insert_knot(x, m)
-        cc = _from_columns(curve.control, complex_).reshape((n + m,) + self.c.shape[1:])
+        # lekalo's insert_knot_periodic (Boehm's insertion, then the periodic extension restored)
+        # or insert_knot_raw (Boehm's insertion at any multiplicity), as FITPACK's fpinst does
+        insert = _lekalo.insert_knot_periodic if self.extrapolate == "periodic" else _lekalo.insert_knot_raw
+        cols = _real_columns(self.c, n)
+        t, control = insert(self.k, self.t, cols if cols.shape[1] else np.zeros((n, 1)), x, m)
+        if not cols.shape[1]:
+            control = np.zeros((n + m, 0))
+        cc = _from_columns(np.ascontiguousarray(control), complex_).reshape((n + m,) + self.c.shape[1:])
+        # coefficients beyond the n that the knots use stay at the end, as in SciPy
         cc = np.concatenate([cc, self.c[n:]]) if self.c.shape[0] > n else cc
-        return self.construct_fast(np.ascontiguousarray(curve.knots), cc, self.k, self.extrapolate, self.axis)
+        return self.construct_fast(np.ascontiguousarray(t), cc, self.k, self.extrapolate, self.axis)
 
 
 def _knots_to_add(t0: np.ndarray, t: np.ndarray) -> np.ndarray | None:

@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _pad_rows
-from ._interpolate import make_interp_spline, make_lsq_spline
+from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
 def splrep(
@@ -19,7 +19,8 @@ def splrep(
 ):
     """``scipy.interpolate.splrep`` for interpolation (``s = 0``, the default without weights;
     FITPACK's knots are SciPy's not-a-knot ones) and for least squares on given interior knots
-    ``t``. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    ``t`` (``task=-1``), with the end knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe``
+    as FITPACK's ``percur`` does. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
@@ -27,8 +28,20 @@ def splrep(
         s = 0.0 if w is None else m - np.sqrt(2 * m)
     if not (1 <= k <= 5):
         raise TypeError(f"1 <= k= {k} <=5 must hold")
-    if task != 0 or (xb is not None and xb != x[0]) or (xe is not None and xe != x[-1]):
-        raise NotImplementedError("lekalo.scipy.splrep: task and xb/xe are not available yet")
+    if task not in (-1, 0, 1):
+        raise TypeError("task must be -1, 0 or 1")
+    if task == 1:
+        raise NotImplementedError("lekalo.scipy.splrep: task=1 (continuing an earlier fit) is not available yet")
+    if task == -1 and t is None:
+        raise TypeError("Knots must be given for task=-1")
+    # FITPACK's periodic fit (percur) takes its period from the data and ignores xb/xe
+    xb = x[0] if xb is None or per else float(xb)
+    xe = x[-1] if xe is None or per else float(xe)
+    if m and (xb > x[0] or xe < x[-1]):
+        raise ValueError("Error on input data: xb <= x[0] and xe >= x[-1] must hold")
+    wide = m > 0 and (xb != x[0] or xe != x[-1])
+    if wide and t is None and not (s == 0 and w is None):
+        raise NotImplementedError("lekalo.scipy.splrep: smoothing with xb/xe wider than the data is not available yet")
     if y.ndim != 1:
         raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
     if len(y) != m:
@@ -43,8 +56,13 @@ def splrep(
         )
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     elif t is not None:
-        tt = np.r_[(x[0],) * (k + 1), np.asarray(t, dtype=np.float64), (x[-1],) * (k + 1)]
+        tt = np.r_[(xb,) * (k + 1), np.asarray(t, dtype=np.float64), (xe,) * (k + 1)]
         spl = make_lsq_spline(x, y, tt, k, w=w)
+    elif s == 0 and w is None and wide:
+        # FITPACK's interpolation knots (the not-a-knot ones) with the ends at xb and xe
+        tt = _not_a_knot(x, k)
+        tt[: k + 1], tt[-k - 1 :] = xb, xe
+        spl = make_lsq_spline(x, y, tt, k)
     elif s == 0 and w is None:
         spl = make_interp_spline(x, y, k=k)
     else:
@@ -266,7 +284,8 @@ def splprep(
 ):
     """``scipy.interpolate.splprep``: the parametric spline of FITPACK's ``parcur``/``clocur``
     (``per=1``) through or near the points ``x`` (``(dim, m)``), lekalo's ``make_splprep`` and
-    ``fit_closed`` on FITPACK's knots. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
+    ``fit_closed`` on FITPACK's knots; with knots ``t`` (``task=-1``) lekalo's ``make_lsq_spline``
+    on their interior knots, the end knots at ``ub`` and ``ue``. Returns ``([t, [c_0, …], k], u)`` (with ``fp``, ``ier``,
     ``msg`` for ``full_output``)."""
     x = np.array(np.atleast_1d(x), dtype=np.float64)
     idim, m = x.shape
@@ -287,15 +306,28 @@ def splprep(
         raise TypeError("Knots must be given for task=-1")
     if m <= k:
         raise TypeError("m > k must hold")
-    if task != 0 or t is not None or ub is not None or ue is not None:
-        raise NotImplementedError("lekalo.scipy.splprep: task, t and ub/ue are not available yet")
+    if task == 1 or (per and (t is not None or task == -1)):
+        raise NotImplementedError("lekalo.scipy.splprep: task=1, and t with per=1, are not available yet")
+    if t is None and (ub is not None or ue is not None):
+        raise NotImplementedError("lekalo.scipy.splprep: ub/ue without t are not available yet")
     pts = np.ascontiguousarray(x.T)
     if u is None and np.any(np.all(pts[1:] == pts[:-1], axis=1)):
         # two consecutive points coincide: the chord-length parameters do not increase
         raise ValueError("Invalid inputs")
     if u is not None and np.any(np.diff(np.asarray(u, dtype=np.float64)) <= 0):
         raise ValueError("Invalid inputs")
-    if per:
+    if t is not None:
+        # FITPACK's parcur with iopt = -1: least squares on the interior knots of t, the end
+        # knots at ub and ue (the ends of u by default), u FITPACK's (lekalo's chord length)
+        uu = _lekalo.parametrize(pts, "chord") if u is None else np.asarray(u, dtype=np.float64)
+        t = np.atleast_1d(np.asarray(t, dtype=np.float64))
+        if t.shape[0] < 2 * k + 2:
+            raise TypeError(f"There must be at least 2*k+2 knots for task=-1, got {t.shape[0]}")
+        ub = uu[0] if ub is None else float(ub)
+        ue = uu[-1] if ue is None else float(ue)
+        knots = np.r_[(ub,) * (k + 1), t[k + 1 : -k - 1], (ue,) * (k + 1)]
+        curve = _lekalo.make_lsq_spline(uu, pts, knots, k, w)
+    elif per:
         if u is not None:
             raise NotImplementedError("lekalo.scipy.splprep: u with per=1 is not available yet")
         curve, uu = _lekalo.fit_closed(np.ascontiguousarray(pts[:-1]), w=w[:-1] ** 2, k=k, s=float(s))

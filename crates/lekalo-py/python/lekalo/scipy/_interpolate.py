@@ -66,8 +66,8 @@ def make_interp_spline(
 ) -> BSpline:
     """The interpolating B-spline of degree ``k`` (``scipy.interpolate.make_interp_spline``):
     SciPy's knots and boundary conditions, solved by lekalo (``make_lsq_spline`` on as many
-    coefficients as conditions, a square banded QR; ``fit_least_squares`` with end
-    derivatives; ``interpolate`` with second derivatives at the ends)."""
+    coefficients as conditions, a square banded QR; ``interpolate_with_end_derivatives`` with
+    derivative conditions of any orders, chosen per end)."""
     if bc_type is None or bc_type == "not-a-knot" or bc_type == "periodic":
         deriv_l, deriv_r = None, None
     elif isinstance(bc_type, str):
@@ -144,39 +144,17 @@ def make_interp_spline(
     yy = _real_columns(y, n)
     if nleft == 0 and nright == 0:
         ctrl = _lekalo.make_lsq_spline(x, yy, t, k).control
-    elif (
-        nleft == 1
-        and nright == 1
-        and deriv_l_ords[0] == 1
-        and deriv_r_ords[0] == 1
-        and t[0] == t[k]
-        and t[-1] == t[-k - 1]
-        and x[0] == t[0]
-        and x[-1] == t[-1]
-    ):
-        d0 = _real_columns(np.asarray(deriv_l_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
-        d1 = _real_columns(np.asarray(deriv_r_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
-        curve, _ = _lekalo.fit_least_squares(yy, x, t, k, clamp_ends=True, d_start=d0, d_end=d1)
-        ctrl = curve.control
-    elif (
-        k == 3
-        and nleft == 1
-        and nright == 1
-        and deriv_l_ords[0] == 2
-        and deriv_r_ords[0] == 2
-        and np.array_equal(t, _augknt(x, k))
-    ):
-        d0 = _real_columns(np.asarray(deriv_l_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
-        d1 = _real_columns(np.asarray(deriv_r_vals[0], dtype=y.dtype).reshape((1,) + tail), 1)[0]
-        curve = _lekalo.interpolate(yy, 3, params=x, knots="at-params", end="second", d_start=d0, d_end=d1)
-        if not np.array_equal(curve.knots, t):
-            raise NotImplementedError("lekalo.scipy: second-derivative ends on these knots are not available yet")
-        ctrl = curve.control
     else:
-        raise NotImplementedError(
-            f"lekalo.scipy: bc_type={bc_type!r} with k={k} is not available yet "
-            "(supported: not-a-knot, clamped/first derivatives, natural cubics)"
-        )
+
+        def conditions(ords, vals):
+            return [
+                (int(o), _real_columns(np.asarray(v, dtype=y.dtype).reshape((1,) + tail), 1)[0])
+                for o, v in zip(ords, vals)
+            ]
+
+        start = conditions(deriv_l_ords, deriv_l_vals)
+        end = conditions(deriv_r_ords, deriv_r_vals)
+        ctrl = _lekalo.interpolate_with_end_derivatives(x, yy, t, k, start=start, end=end).control
     c = _from_columns(ctrl, complex_).reshape((nt,) + tail)
     return BSpline.construct_fast(t, c, k, axis=axis)
 

@@ -730,11 +730,21 @@ class CubicSpline(PPoly):
             return [(order, value)]
 
         dl, dr = side(left), side(right)
+        if n == 2:
+            # SciPy's convention: not-a-knot through two points is the chord's slope
+            slope = (y[1] - y[0]) / (x[1] - x[0])
+            dl = [(1, slope)] if dl is None and dr is not None else dl
+            dr = [(1, slope)] if dr is None and dl is not None else dr
+        if any(np.iscomplexobj(v) for d in (dl, dr) if isinstance(d, list) for _, v in d):
+            y = y.astype(complex)
         if dl is None and dr is None:
             kk = 3 if n >= 4 else n - 1
             spline = make_interp_spline(x, y, k=kk, axis=0)
         elif dl is None or dr is None:
-            raise NotImplementedError("lekalo.scipy: not-a-knot at one end only is not available yet")
+            # not-a-knot at one end: the knot at the second (next-to-last) point is dropped
+            inner = x[2:-1] if dl is None else x[1:-2]
+            t = np.r_[(x[0],) * 4, inner, (x[-1],) * 4]
+            spline = make_interp_spline(x, y, k=3, t=t, bc_type=(dl, dr), axis=0)
         else:
             spline = make_interp_spline(x, y, k=3, bc_type=(dl, dr), axis=0)
         spline = BSpline.construct_fast(spline.t, spline.c, spline.k, axis=axis)

@@ -56,12 +56,12 @@ def _validate_inputs(x: Any, y: Any, w: Any, k: Any, s: float, xb: Any, xe: Any,
     k = operator.index(k)
     if s < 0:
         raise ValueError(f"`s` must be non-negative. Got {s = }")
-    if (xb is not None and xb != x.min()) or (xe is not None and xe != x.max()):
-        raise NotImplementedError("lekalo.scipy: xb/xe other than the ends of the data are not available yet")
     if periodic and not np.allclose(y[0], y[-1], atol=1e-15):
         raise ValueError(
             "First and last points does not match which is required for `bc_type='periodic'`."
         )
+    if (xb is not None and xb != x.min()) or (xe is not None and xe != x.max()):
+        raise NotImplementedError("lekalo.scipy: xb/xe other than the ends of the data are not available yet")
     return x, y, w, k
 
 

@@ -1,0 +1,352 @@
+//! Interpolation on given knots with any set of derivative conditions at each end, chosen per
+//! end (`docs/theory/interpolation.md#derivative-conditions-per-end`).
+
+use crate::basis::{basis_ders_into, BasisScratch};
+use crate::curve::bspline::BSplineCurve;
+use crate::error::{Error, Result};
+use crate::fit::banded::BandedQr;
+use crate::knots::KnotVector;
+use crate::points::{Points, PointsRef};
+
+/// A prescribed derivative at one end of an interpolating curve: `C^{(order)}(t̄) = value`,
+/// derivatives with respect to the curve parameter; `value` has the points' dimension.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EndDerivative {
+    /// The order of the derivative, `0 ≤ order ≤ p` (order 0 prescribes the end value).
+    pub order: usize,
+    /// The prescribed derivative.
+    pub value: Vec<f64>,
+}
+
+impl EndDerivative {
+    /// `C^{(order)} = value` at one end.
+    #[must_use]
+    pub fn new(order: usize, value: Vec<f64>) -> Self {
+        EndDerivative { order, value }
+    }
+}
+
+/// The B-spline of degree `p` on the given `knots` that interpolates `points` at the increasing
+/// `params` and satisfies the derivative conditions `start` at `params[0]` and `end` at the last
+/// parameter: a condition for each end on its own (none, one, or several of any orders), e.g.
+/// a clamped start and a natural end, or conditions at one end only. The unknowns are the
+/// `n = knots − p − 1` control points; the conditions must number exactly `n`:
+/// `params.len() + start.len() + end.len() = n`.
+///
+/// The square collocation system (de Boor, *A Practical Guide to Splines*, rev. ed. 2001,
+/// ch. XIII; the system of SciPy's `make_interp_spline`) has the rows, in this order, of the
+/// start conditions `Σ_i N^{(r)}_{i,p}(t̄_0) P_i = d_r` (P&T Algorithm A2.3 for the derivatives),
+/// the data `Σ_i N_{i,p}(t̄_j) P_i = q_j`, and the end conditions. Its derivative rows are not
+/// totally positive, so elimination without pivoting is not safe; the rows are instead rotated
+/// into a banded triangle by Givens rotations (orthogonal, stable for any non-singular square
+/// matrix; `docs/theory/fitting.md#banded-qr`), in O(n·p·(p + dim)).
+///
+/// # Errors
+/// [`Error::TooFew`] for no point; [`Error::Dimension`] for a condition whose value does not
+/// have the points' dimension; [`Error::LengthMismatch`] if the conditions do not number the
+/// control points; [`Error::InvalidArgument`] for an order above `p`, decreasing or repeated
+/// parameters; [`Error::ParameterOutOfDomain`] for a parameter outside the knots' domain;
+/// [`Error::NonFinite`] for non-finite input; [`Error::SingularSystem`] if the conditions do not
+/// determine the spline (e.g. a parameter-free knot span, Schoenberg–Whitney, or two conditions
+/// of one order at one end).
+pub fn interpolate_with_end_derivatives(
+    points: PointsRef<'_>,
+    params: &[f64],
+    knots: &KnotVector,
+    degree: usize,
+    start: &[EndDerivative],
+    end: &[EndDerivative],
+) -> Result<BSplineCurve> {
+    let p = degree;
+    let dim = points.dim();
+    let m = points.len();
+    if m == 0 {
+        return Err(Error::TooFew {
+            what: "points to interpolate",
+            min: 1,
+            got: 0,
+        });
+    }
+    if params.len() != m {
+        return Err(Error::LengthMismatch {
+            what: "parameters (one per point)",
+            expected: m,
+            got: params.len(),
+        });
+    }
+    knots.check_degree(p)?;
+    let n = knots.len() - p - 1;
+    let conditions = m + start.len() + end.len();
+    if conditions != n {
+        return Err(Error::LengthMismatch {
+            what: "conditions (points + end derivatives) to equal the control points \
+                   (knots − degree − 1)",
+            expected: n,
+            got: conditions,
+        });
+    }
+    for d in start.iter().chain(end) {
+        if d.value.len() != dim {
+            return Err(Error::Dimension {
+                what: "an end derivative (the points' dimension)",
+                expected: dim,
+                got: d.value.len(),
+            });
+        }
+        if d.order > p {
+            return Err(Error::InvalidArgument {
+                what: "end derivative order",
+                reason: format!(
+                    "order {} exceeds the degree {p}: the derivative of that order is zero; \
+                     use orders 0 … {p}",
+                    d.order
+                ),
+            });
+        }
+        if let Some(index) = d.value.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                what: "end derivative",
+                index,
+                value: d.value[index],
+            });
+        }
+    }
+    if let Some(index) = params.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            what: "parameters",
+            index,
+            value: params[index],
+        });
+    }
+    if let Some(w) = params.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(Error::InvalidArgument {
+            what: "parameters",
+            reason: format!(
+                "parameter {} = {} does not exceed parameter {w} = {}; pass strictly \
+                 increasing parameters (one per point)",
+                w + 1,
+                params[w + 1],
+                params[w]
+            ),
+        });
+    }
+    if let Some(index) = points.as_slice().iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            what: "points",
+            index,
+            value: points.as_slice()[index],
+        });
+    }
+    let kn = knots.as_slice();
+    let spans = params
+        .iter()
+        .map(|&t| knots.find_span(p, t))
+        .collect::<Result<Vec<_>>>()?;
+    let width = p + 1;
+    let max_order = start.iter().chain(end).map(|d| d.order).max().unwrap_or(0);
+    let mut qr = BandedQr::new(n, width, dim);
+    let mut scratch = BasisScratch::new(p);
+    let mut ders = vec![0.0; (max_order + 1) * width];
+    let mut row = vec![0.0; width];
+    let mut rhs = vec![0.0; dim];
+    let mut derivative_rows =
+        |qr: &mut BandedQr, sc: &mut BasisScratch, span: usize, t: f64, conds: &[EndDerivative]| {
+            basis_ders_into(kn, p, span, t, max_order, sc, &mut ders);
+            for d in conds {
+                row.copy_from_slice(&ders[d.order * width..(d.order + 1) * width]);
+                rhs.copy_from_slice(&d.value);
+                qr.add_row(span - p, &mut row, &mut rhs);
+            }
+        };
+    derivative_rows(&mut qr, &mut scratch, spans[0], params[0], start);
+    let mut basis = vec![0.0; width];
+    let mut y = vec![0.0; dim];
+    for (j, (&t, &span)) in params.iter().zip(&spans).enumerate() {
+        basis_ders_into(kn, p, span, t, 0, &mut scratch, &mut basis);
+        y.copy_from_slice(points.point(j));
+        qr.add_row(span - p, &mut basis, &mut y);
+    }
+    derivative_rows(&mut qr, &mut scratch, spans[m - 1], params[m - 1], end);
+    let mut control = vec![0.0; n * dim];
+    qr.solve(&mut control)
+        .map_err(|col| Error::SingularSystem {
+            reason: format!(
+                "the points and end derivatives do not determine control point {col}: a knot \
+             span holds no parameter (Schoenberg–Whitney), or two conditions at one end have \
+             the same order; move the knots or change the conditions"
+            ),
+        })?;
+    BSplineCurve::new(p, kn.to_vec(), Points::from_flat(dim, control)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn knots_for(x: &[f64], p: usize) -> KnotVector {
+        // the data sites with end knots of multiplicity p + 1 (n = m + p − 1 control points)
+        let mut k = vec![x[0]; p];
+        k.extend_from_slice(x);
+        k.extend(std::iter::repeat_n(x[x.len() - 1], p));
+        KnotVector::new(k).unwrap()
+    }
+
+    fn derivative(c: &BSplineCurve, t: f64, order: usize) -> f64 {
+        c.eval_derivatives(t, order).unwrap().point(order)[0]
+    }
+
+    /// A polynomial of degree ≤ p is reproduced exactly, whatever the conditions, when they are
+    /// its own values: a clamped start with a natural end, and conditions at one end only.
+    #[test]
+    fn reproduces_a_cubic_with_mixed_ends() {
+        let f = |x: f64| 1.0 - 2.0 * x + 0.5 * x * x + 0.25 * x * x * x;
+        let f1 = |x: f64| -2.0 + x + 0.75 * x * x;
+        let f2 = |x: f64| 1.0 + 1.5 * x;
+        let x = [0.0, 0.5, 1.3, 2.0, 2.4, 3.0];
+        let y: Vec<f64> = x.iter().map(|&v| f(v)).collect();
+        let pts = PointsRef::from_flat(1, &y).unwrap();
+        let kv = knots_for(&x, 3);
+        let cases: [(Vec<EndDerivative>, Vec<EndDerivative>); 3] = [
+            (
+                vec![EndDerivative::new(1, vec![f1(0.0)])],
+                vec![EndDerivative::new(2, vec![f2(3.0)])],
+            ),
+            (
+                vec![
+                    EndDerivative::new(1, vec![f1(0.0)]),
+                    EndDerivative::new(2, vec![f2(0.0)]),
+                ],
+                vec![],
+            ),
+            (
+                vec![],
+                vec![
+                    EndDerivative::new(2, vec![f2(3.0)]),
+                    EndDerivative::new(1, vec![f1(3.0)]),
+                ],
+            ),
+        ];
+        for (start, end) in cases {
+            let c = interpolate_with_end_derivatives(pts, &x, &kv, 3, &start, &end).unwrap();
+            for i in 0..=30 {
+                let t = 3.0 * f64::from(i) / 30.0;
+                let v = c.eval(t).unwrap()[0];
+                assert!((v - f(t)).abs() < 1e-12, "{t}: {v} vs {}", f(t));
+            }
+        }
+    }
+
+    /// A spline (not a polynomial) meets every condition it was given: the values, a first
+    /// derivative at the start and a second at the end, for degree 2 (one condition in all).
+    #[test]
+    fn meets_its_conditions_quadratic_one_end() {
+        let x = [0.0, 1.0, 1.5, 2.5, 4.0];
+        let y = [1.0, -1.0, 2.0, 0.5, 3.0, 3.0, -2.0, 1.0, 0.0, 4.0];
+        let pts = PointsRef::from_flat(2, &y).unwrap();
+        let kv = knots_for(&x, 2);
+        let end = [EndDerivative::new(1, vec![8.0, -3.0])];
+        let c = interpolate_with_end_derivatives(pts, &x, &kv, 2, &[], &end).unwrap();
+        for (j, &t) in x.iter().enumerate() {
+            let v = c.eval(t).unwrap();
+            assert!((v[0] - y[2 * j]).abs() < 1e-12 && (v[1] - y[2 * j + 1]).abs() < 1e-12);
+        }
+        let d = c.eval_derivatives(4.0, 1).unwrap();
+        assert!((d.point(1)[0] - 8.0).abs() < 1e-11 && (d.point(1)[1] + 3.0).abs() < 1e-11);
+    }
+
+    /// The result agrees with the symmetric natural cubic of [`EndCondition::Natural`] where
+    /// both describe the same spline.
+    #[test]
+    fn natural_both_ends_matches_natural_cubic() {
+        let x = [0.0, 0.7, 1.1, 2.0, 3.5, 4.0];
+        let y = [0.3, 1.0, -0.5, 2.0, 1.0, 0.0];
+        let pts = PointsRef::from_flat(1, &y).unwrap();
+        let kv = knots_for(&x, 3);
+        let zero = || vec![EndDerivative::new(2, vec![0.0])];
+        let c = interpolate_with_end_derivatives(pts, &x, &kv, 3, &zero(), &zero()).unwrap();
+        assert!(derivative(&c, 0.0, 2).abs() < 1e-10 && derivative(&c, 4.0, 2).abs() < 1e-10);
+        let reference = crate::natural_cubic_spline(&x, pts).unwrap();
+        for i in 0..=40 {
+            let t = 4.0 * f64::from(i) / 40.0;
+            let (a, b) = (c.eval(t).unwrap()[0], reference.eval(t).unwrap()[0]);
+            assert!((a - b).abs() < 1e-12, "{t}: {a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn refuses_wrong_counts_orders_and_repeated_orders() {
+        let x = [0.0, 1.0, 2.0, 3.0];
+        let y = [0.0, 1.0, 0.0, 1.0];
+        let pts = PointsRef::from_flat(1, &y).unwrap();
+        let kv = knots_for(&x, 3);
+        let one = |o| vec![EndDerivative::new(o, vec![0.0])];
+        assert!(matches!(
+            interpolate_with_end_derivatives(pts, &x, &kv, 3, &one(1), &[]),
+            Err(Error::LengthMismatch {
+                expected: 6,
+                got: 5,
+                ..
+            })
+        ));
+        assert!(matches!(
+            interpolate_with_end_derivatives(pts, &x, &kv, 3, &one(4), &one(1)),
+            Err(Error::InvalidArgument { .. })
+        ));
+        let two = [
+            EndDerivative::new(1, vec![0.0]),
+            EndDerivative::new(1, vec![1.0]),
+        ];
+        assert!(matches!(
+            interpolate_with_end_derivatives(pts, &x, &kv, 3, &two, &[]),
+            Err(Error::SingularSystem { .. })
+        ));
+        let wide = [EndDerivative::new(1, vec![0.0, 0.0])];
+        assert!(matches!(
+            interpolate_with_end_derivatives(pts, &x, &kv, 3, &wide, &one(1)),
+            Err(Error::Dimension { .. })
+        ));
+    }
+
+    proptest::proptest! {
+        /// Whatever the degree, the spline passes through every point and has every prescribed
+        /// end derivative (relative to the data's scale). The conditions are split evenly
+        /// between the ends (one more at either) and the mesh ratio is at most 3: piling them
+        /// at one end makes the problem an initial-value one whose error grows geometrically
+        /// along the data, a property of the problem, not of the solver.
+        #[test]
+        fn every_condition_is_met(
+            p in 2usize..=5,
+            m in 6usize..20,
+            gaps in proptest::collection::vec(0.5f64..1.5, 19),
+            values in proptest::collection::vec(-3.0f64..3.0, 20 + 10),
+            more_at_start in proptest::bool::ANY,
+        ) {
+            let mut x = vec![0.0];
+            for g in &gaps[..m - 1] {
+                x.push(x[x.len() - 1] + g);
+            }
+            let y = &values[..m];
+            let kv = knots_for(&x, p);
+            // p − 1 conditions in all (m + p − 1 control points), orders 1, 2, … at each end
+            let extra = p - 1;
+            let left = if more_at_start { extra.div_ceil(2) } else { extra / 2 };
+            let start: Vec<_> = (0..left).map(|r| EndDerivative::new(r + 1, vec![values[20 + r]])).collect();
+            let end: Vec<_> = (0..extra - left)
+                .map(|r| EndDerivative::new(r + 1, vec![values[25 + r]]))
+                .collect();
+            let pts = PointsRef::from_flat(1, y).unwrap();
+            let c = interpolate_with_end_derivatives(pts, &x, &kv, p, &start, &end).unwrap();
+            let scale = 1.0 + y.iter().chain(&values[20..]).fold(0.0f64, |a, v| a.max(v.abs()));
+            for (j, &t) in x.iter().enumerate() {
+                let v = c.eval(t).unwrap()[0];
+                proptest::prop_assert!((v - y[j]).abs() < 1e-11 * scale, "point {}: {} vs {}", j, v, y[j]);
+            }
+            for (t, conds) in [(x[0], &start), (x[m - 1], &end)] {
+                for d in conds.iter() {
+                    let v = derivative(&c, t, d.order);
+                    proptest::prop_assert!((v - d.value[0]).abs() < 1e-9 * scale, "order {}: {} vs {}", d.order, v, d.value[0]);
+                }
+            }
+        }
+    }
+}
