@@ -12,6 +12,10 @@ use crate::output::objects::OutArgs;
 use crate::values::numbers;
 use crate::words::Words;
 
+/// Data points from which a fit draws a progress bar on a terminal (fewer fit in a blink).
+/// Ctrl-C stops every fit between two steps of its work, bar or no bar.
+pub(super) const LARGE: usize = 100_000;
+
 /// Robust loss for `--robust`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Robust {

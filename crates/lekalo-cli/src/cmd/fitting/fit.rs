@@ -14,17 +14,13 @@ use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
 use serde_json::{json, Value};
 
-use super::args::{clamped, span, with_ends, FitArgs, Robust};
+use super::args::{clamped, span, with_ends, FitArgs, Robust, LARGE};
 use super::report::finish;
 use super::{periodic::run_periodic, surface::run_surface};
 use crate::cancel::with_progress;
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::values::numbers;
-
-/// Data points from which a fit draws a progress bar on a terminal (fewer fit in a blink).
-/// Ctrl-C stops every fit between two steps of its work, bar or no bar.
-pub(super) const LARGE: usize = 100_000;
 
 pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
     let modes = [

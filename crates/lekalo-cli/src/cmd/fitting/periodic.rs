@@ -72,7 +72,7 @@ pub(super) fn run_periodic(
     }
     let mut report = json!({ "periodic": true, "period": [domain.0, domain.1] });
     // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
-    let large = data.len() > super::fit::LARGE;
+    let large = data.len() > super::args::LARGE;
     let degree = a.degree()?;
     let fit = if let Some(s) = a.s {
         report["s"] = json!(s);

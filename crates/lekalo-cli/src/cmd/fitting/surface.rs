@@ -146,7 +146,7 @@ pub(super) fn run_surface(
         &uniform,
     )?;
     // a bar on a terminal for many points or a large net; Ctrl-C stops the fit between blocks
-    let large = pts.len() > super::fit::LARGE || entries > super::fit::LARGE * 100;
+    let large = pts.len() > super::args::LARGE || entries > super::args::LARGE * 100;
     let f = crate::cancel::with_progress(cx, "scattered surface fit", large, |pr| {
         surface_scattered_least_squares_with_progress(
             pts.as_view(),
