@@ -8,13 +8,13 @@
 //! runs with the GIL released.
 
 use lekalo::fit::{
-    closed_parameters, constrained_least_squares, constrained_smoothing_spline,
-    gcv_score as lk_gcv, least_squares, periodic_least_squares, periodic_smoothing_condition,
-    periodic_smoothing_knot_sequence, periodic_smoothing_on_knots, place_knots as lk_place_knots,
-    robust_least_squares, smoothing_condition, smoothing_knot_sequence, smoothing_on_knots,
-    smoothing_spline, surface_grid_least_squares_at, surface_grid_parameters,
-    surface_scattered_least_squares, CurveFit, Deviation, EndConstraints, FitData, FitReport,
-    Lambda, RobustLoss, ToleranceOptions,
+    closed_parameters, constrained_least_squares, constrained_smoothing_condition,
+    constrained_smoothing_spline, gcv_score as lk_gcv, least_squares, periodic_least_squares,
+    periodic_smoothing_condition, periodic_smoothing_knot_sequence, periodic_smoothing_on_knots,
+    place_knots as lk_place_knots, robust_least_squares, smoothing_condition,
+    smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, surface_grid_least_squares_at,
+    surface_grid_parameters, surface_scattered_least_squares, CurveFit, Deviation, EndConstraints,
+    FitData, FitReport, Lambda, RobustLoss, ToleranceOptions,
 };
 use lekalo::{KnotVector, PointsRef};
 use pyo3::prelude::*;
@@ -403,9 +403,12 @@ fn condition_fit(
 }
 
 /// As `make_splrep`, returning `(curve, report)`, with the library's weights: the condition is
-/// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these).
+/// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these). With shape
+/// constraints (keywords as `fit_smoothing`), the constrained cubic smoothing spline whose
+/// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None))]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
@@ -414,9 +417,41 @@ pub(crate) fn fit_smoothing_condition<'py>(
     k: usize,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
-    let f = condition_fit(py, &data, k, s, t)?;
+    if shape.is_empty() {
+        let f = condition_fit(py, &data, k, s, t)?;
+        return with_report(py, f);
+    }
+    if t.is_some() || k != 3 {
+        return Err(bad(
+            "with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data): drop t and k"
+                .into(),
+        ));
+    }
+    let fd = data.fit_data("x")?;
+    let f = py
+        .detach(|| constrained_smoothing_condition(&fd, s, &shape))
+        .map_err(lib_err)?;
     with_report(py, f)
 }
 

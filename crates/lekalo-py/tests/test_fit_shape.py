@@ -71,3 +71,21 @@ def test_shape_constraints_need_values_not_points():
         lekalo.fit_least_squares(np.c_[X, Y], X, T, increasing=True)
     with pytest.raises(lekalo.InputError, match="through"):
         lekalo.fit_least_squares(Y, X, T, clamp_ends=True, increasing=True)
+
+
+def test_smoothing_condition_with_constraints():
+    # the increasing smoothing spline whose residual sum of squares is s (λ found by bisection)
+    _, gcv = lekalo.fit_smoothing(X, Y, increasing=True)
+    s = 2.0 * gcv["weighted_rss"]
+    c, report = lekalo.fit_smoothing_condition(X, Y, s=s, increasing=True)
+    assert isinstance(c, lekalo.BSplineCurve)
+    assert abs(report["weighted_rss"] - s) <= 1e-3 * s
+    assert report["lam"] > gcv["lam"]
+    assert (np.diff(values(c)) >= -1e-12).all()
+    # the same curve as the constrained smoothing spline of that λ
+    again = lekalo.make_smoothing_spline(X, Y, lam=report["lam"], increasing=True)
+    assert np.array_equal(values(again), values(c))
+    with pytest.raises(lekalo.InputError, match="drop t and k"):
+        lekalo.fit_smoothing_condition(X, Y, s=s, t=T, increasing=True)
+    with pytest.raises(lekalo.InputError, match="give s"):
+        lekalo.fit_smoothing_condition(X, Y, s=1e-12, increasing=True)

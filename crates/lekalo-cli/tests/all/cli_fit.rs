@@ -582,14 +582,62 @@ fn shape_constraints_from_options() {
         .assert()
         .success()
         .stdout(contains("\"convex\""));
+    // the smoothing condition under constraints: the convex smoothing spline whose residual is S
+    let gcv = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--smooth",
+            "gcv",
+            "--convex",
+            "--json",
+        ],
+        &data,
+    );
+    let target = 2.0 * gcv["report"]["weighted_rss"].as_f64().unwrap();
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--s",
+            &target.to_string(),
+            "--convex",
+            "--json",
+        ],
+        &data,
+    );
+    let rss = v["report"]["weighted_rss"].as_f64().unwrap();
+    assert!(
+        (rss - target).abs() <= 1e-3 * target,
+        "{rss} against {target}"
+    );
+    assert!(
+        v["report"]["constraints"].to_string().contains("convex"),
+        "{v}"
+    );
     for (args, reason) in [
         (
             &["fit", "-", "--ctrl", "12", "--increasing"][..],
             "add --function",
         ),
         (
-            &["fit", "-", "--function", "--s", "0.1", "--convex"][..],
-            "drop --s, --tol and --robust",
+            &[
+                "fit",
+                "-",
+                "--function",
+                "--s",
+                "0.1",
+                "--knots",
+                "3",
+                "--convex",
+            ][..],
+            "or --knots with --s",
+        ),
+        (
+            &["fit", "-", "--function", "--tol", "0.1", "--convex"][..],
+            "drop --tol, --robust",
         ),
         (
             &["fit", "-", "--function", "--min", "0@1"][..],

@@ -516,7 +516,21 @@ def fit_smoothing(
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_smoothing_condition(
-    x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, t: Optional[ArrayLike] = None
+    x: ArrayLike,
+    y: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    t: Optional[ArrayLike] = None,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_tolerance(
     points: ArrayLike, tol: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None

@@ -18,7 +18,7 @@
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `progress.rs` | how the fits report to a [`Progress`](crate::Progress) hook and stop when cancelled: steps of iterations of unknown length, checked passes over the data rows (crate-private plumbing, no arithmetic) | — |
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
-//! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
+//! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3; [`surface_grid_least_squares_at`] at given parameters and knots, [`surface_grid_parameters`]), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
@@ -77,8 +77,9 @@ pub use periodic::{
 };
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub use shape::{
-    constrained_least_squares, constrained_smoothing_spline, shape_violations, PointCondition,
-    Shape, ShapeConstraint, ShapeConstraints, SHAPE_RTOL,
+    constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
+    shape_violations, PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL,
+    SHAPE_RTOL,
 };
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub use smoothing_condition::{

@@ -46,8 +46,8 @@ last direction whose knots are given); direction K's interior knots --knots-in K
 also --knots-u, --knots-v), a grid's parameters --params-in K=LIST|FILE, --bbox one A:B per
 direction; the spline is written as JSON, as `interpolate --grid AxBxC` writes it.
 
-Shape constraints (--function fits by --lsq or --smooth; each holds for every x, not only at
-the data; repeat an option for several intervals):
+Shape constraints (--function fits by --lsq, --smooth, or --s without --knots; each holds for
+every x, not only at the data; repeat an option for several intervals):
   --increasing[=A:B] --decreasing[=A:B] --convex[=A:B] --concave[=A:B]
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
 

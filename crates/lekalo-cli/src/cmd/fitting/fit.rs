@@ -4,8 +4,8 @@
 
 use anyhow::Result;
 use lekalo::fit::{
-    constrained_least_squares, constrained_smoothing_spline, fit_tolerance_with_progress,
-    least_squares_with_progress, place_knots, robust_least_squares,
+    constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
+    fit_tolerance_with_progress, least_squares_with_progress, place_knots, robust_least_squares,
     smoothing_condition_with_progress, smoothing_on_knots_with_progress,
     smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
     RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
@@ -126,9 +126,9 @@ fn fit_curve(
                 "shape constraints (--increasing, --convex, --min, --through, …) are for functions y(x): add --function",
             );
         }
-        if a.s.is_some() || a.tol.is_some() || a.robust.is_some() {
+        if a.tol.is_some() || a.robust.is_some() || (a.s.is_some() && a.knots.is_some()) {
             return bad_input(
-                "shape constraints go with least squares (--lsq, the default) or --smooth; drop --s, --tol and --robust",
+                "shape constraints go with least squares (--lsq, the default), --smooth, or --s without --knots (the smoothing spline whose residual is S); drop --tol, --robust, or --knots with --s",
             );
         }
         if a.clamp_ends || a.d0.is_some() || a.dn.is_some() {
@@ -163,7 +163,9 @@ fn fit_curve(
         report["s"] = json!(s);
         let large = data.len() > LARGE;
         let degree = a.degree()?;
-        if a.knots.is_some() {
+        if !shape.is_empty() {
+            constrained_smoothing_condition(&data, s, &shape)?
+        } else if a.knots.is_some() {
             let knots = curve_knots(a, &params)?;
             with_progress(cx, "smoothing on the knots", large, |p| {
                 smoothing_on_knots_with_progress(&data, degree, &knots, s, p)

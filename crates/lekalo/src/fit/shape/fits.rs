@@ -185,6 +185,128 @@ pub fn constrained_smoothing_spline(
     Ok(CurveFit { curve, report })
 }
 
+/// The shape-constrained cubic smoothing spline of [`constrained_smoothing_spline`] whose
+/// weighted residual sum of squares `Σ_k w_k (y(x_k) − y_k)²` is `s` (Reinsch's smoothing
+/// condition, 1967, on the space of the smoothing spline: knots at the data, the penalty weight λ
+/// found instead of knots; `docs/theory/fitting.md#shape-constraints`). The residual of the
+/// constrained optimum never decreases as λ grows (a penalised least-squares problem over a
+/// convex set), so λ is bracketed by factors of ten from the generalised cross-validation choice
+/// and then found by bisection in `log λ` until the residual is within [`CONDITION_RTOL`] of
+/// `s`. Where even the straight line (λ → ∞) leaves less than `s`, the fit at the largest λ
+/// tried is returned; its residual is then below `s`.
+///
+/// ```
+/// use lekalo::fit::{constrained_smoothing_condition, FitData, Shape, ShapeConstraints};
+/// use lekalo::PointsRef;
+/// let x: Vec<f64> = (0..40).map(|k| k as f64 / 39.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| t * t + 0.02 * (40.0 * t).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let c = ShapeConstraints::new().with(Shape::Increasing);
+/// let fit = constrained_smoothing_condition(&data, 2e-3, &c)?;
+/// assert!((fit.report.weighted_rss - 2e-3).abs() <= 1e-3 * 2e-3);
+/// assert!(lekalo::fit::shape_violations(&fit.curve, &c)?[0] <= 1e-12);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`constrained_smoothing_spline`]; [`Error::NegativeSmoothing`] for `s < 0` or
+/// not finite; [`Error::InvalidArgument`] when the constraints leave a residual above `s` at every
+/// λ (the message gives the least residual they allow).
+pub fn constrained_smoothing_condition(
+    data: &FitData<'_>,
+    s: f64,
+    constraints: &ShapeConstraints,
+) -> Result<CurveFit> {
+    if !(s >= 0.0 && s.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: "s",
+            value: s,
+        });
+    }
+    let start = constrained_smoothing_spline(data, Lambda::Gcv, constraints)?;
+    let Some(lam0) = start.report.lambda.filter(|l| *l > 0.0) else {
+        return Ok(start);
+    };
+    let fit_at = |lam: f64| constrained_smoothing_spline(data, Lambda::Given(lam), constraints);
+    let close = |f: &CurveFit| (f.report.weighted_rss - s).abs() <= CONDITION_RTOL * s;
+    if close(&start) {
+        return Ok(start);
+    }
+    // bracket: (λ, fit) with the residual below s and above it
+    let below = start.report.weighted_rss < s;
+    let mut near = (lam0, start);
+    for _ in 0..CONDITION_DECADES {
+        let lam = if below { near.0 * 10.0 } else { near.0 / 10.0 };
+        let f = match fit_at(lam) {
+            Ok(f) => f,
+            // a penalty so small (or so large) that the system loses its pivots: the search
+            // ends at the last λ that could be solved
+            Err(Error::SingularSystem { .. } | Error::IllConditioned { .. }) => break,
+            Err(e) => return Err(e),
+        };
+        if close(&f) {
+            return Ok(f);
+        }
+        if (f.report.weighted_rss < s) != below {
+            let far = (lam, f);
+            let (lo, hi) = if below { (near, far) } else { (far, near) };
+            return bisect_condition(lo, hi, s, &fit_at, &close);
+        }
+        near = (lam, f);
+    }
+    if below {
+        // even the straightest fit tried stays below s
+        return Ok(near.1);
+    }
+    let least = near.1.report.weighted_rss;
+    Err(Error::InvalidArgument {
+        what: "s (smoothing condition)",
+        reason: format!(
+            "the shape constraints leave a residual sum of squares of at least about {least:e} \
+             (at the smallest penalty tried), above s = {s:e}; give s ≥ {least:e}, or fewer \
+             constraints"
+        ),
+    })
+}
+
+/// Relative distance of the residual from `s` at which [`constrained_smoothing_condition`]
+/// stops (FITPACK's `|fp − s| ≤ 0.001·s`).
+pub const CONDITION_RTOL: f64 = 1e-3;
+
+/// Decades of λ searched either side of the cross-validation choice.
+const CONDITION_DECADES: usize = 16;
+
+/// Bisection steps in `log λ` (each halves the bracket's ratio).
+const CONDITION_STEPS: usize = 80;
+
+/// Bisection in `log λ` between a fit whose residual is below `s` and one above.
+fn bisect_condition(
+    mut lo: (f64, CurveFit),
+    mut hi: (f64, CurveFit),
+    s: f64,
+    fit_at: &dyn Fn(f64) -> Result<CurveFit>,
+    close: &dyn Fn(&CurveFit) -> bool,
+) -> Result<CurveFit> {
+    for _ in 0..CONDITION_STEPS {
+        let lam = (lo.0 * hi.0).sqrt();
+        if lam <= lo.0 || lam >= hi.0 {
+            break;
+        }
+        let f = fit_at(lam)?;
+        if close(&f) {
+            return Ok(f);
+        }
+        if f.report.weighted_rss < s {
+            lo = (lam, f);
+        } else {
+            hi = (lam, f);
+        }
+    }
+    // the nearer of the two ends
+    let d = |f: &CurveFit| (f.report.weighted_rss - s).abs();
+    Ok(if d(&lo.1) <= d(&hi.1) { lo.1 } else { hi.1 })
+}
+
 /// For each constraint (shapes, then points), by how much `curve` violates it (0 when it holds):
 /// `max(0, −min σ(y⁽ʳ⁾ − v))` over the interval for a shape, `|y⁽ʳ⁾(x) − value|` for a point.
 /// The minimum on each piece of a knot span is exact for `d = p − r ≤ 3` (end values and the

@@ -13,7 +13,7 @@
 //! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
 //! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` (crate-private) |
 //! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, infeasibility certificates mapped back to constraints (crate-private) |
-//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`shape_violations`] |
+//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`], [`shape_violations`] |
 
 mod bernstein;
 mod constraints;
@@ -22,7 +22,8 @@ mod program;
 
 pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
 pub use fits::{
-    constrained_least_squares, constrained_smoothing_spline, shape_violations, SHAPE_RTOL,
+    constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
+    shape_violations, CONDITION_RTOL, SHAPE_RTOL,
 };
 
 #[cfg(test)]

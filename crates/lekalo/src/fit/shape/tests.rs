@@ -259,6 +259,56 @@ fn constraints_on_an_interval_and_gcv_hold_exactly() {
 }
 
 #[test]
+fn the_smoothing_condition_is_met_under_constraints() {
+    // 40 points: the spline has a knot at each, and y'' by the independent Taylor check
+    // carries rounding of about ε·|c|/h² (1e-13 here, 1e-11 at 120 points)
+    let (x, y) = noisy(40, |t| t * t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let c = ShapeConstraints::new()
+        .with(Shape::Increasing)
+        .with(Shape::Convex);
+    // the residual of the constrained spline grows with λ, so every s between its ends is met
+    let r0 = constrained_smoothing_spline(&data, Lambda::Gcv, &c)
+        .unwrap()
+        .report
+        .weighted_rss;
+    for s in [1.2 * r0, 2.0 * r0, 4.0 * r0] {
+        let fit = constrained_smoothing_condition(&data, s, &c).unwrap();
+        assert!(
+            (fit.report.weighted_rss - s).abs() <= CONDITION_RTOL * s,
+            "s = {s}: residual {}",
+            fit.report.weighted_rss
+        );
+        assert!(
+            min_by_roots(&fit.curve, 1, 1.0, 0.0, 0.0, 1.0) >= -1e-12,
+            "s = {s}: y' < 0"
+        );
+        let m2 = min_by_roots(&fit.curve, 2, 1.0, 0.0, 0.0, 1.0);
+        assert!(
+            m2 >= -1e-12,
+            "s = {s}: min y'' = {m2:e}, {:?}, λ {:?}",
+            shape_violations(&fit.curve, &c),
+            fit.report.lambda
+        );
+        // it is the constrained smoothing spline of the λ it reports
+        let again =
+            constrained_smoothing_spline(&data, Lambda::Given(fit.report.lambda.unwrap()), &c)
+                .unwrap();
+        assert_eq!(again.curve, fit.curve, "s = {s}");
+    }
+    // below what the constraints allow: refused, naming s
+    let e = constrained_smoothing_condition(&data, 1e-9, &c).unwrap_err();
+    assert!(e.to_string().contains("give s ≥"), "{e}");
+    // above what a straight line leaves: the straightest fit
+    let fit = constrained_smoothing_condition(&data, 1e3, &c).unwrap();
+    assert!(fit.report.weighted_rss < 1e3);
+    assert!(matches!(
+        constrained_smoothing_condition(&data, -1.0, &c),
+        Err(crate::Error::NegativeSmoothing { .. })
+    ));
+}
+
+#[test]
 fn contradictory_constraints_are_named() {
     let (x, y) = noisy(30, |t| t);
     let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
