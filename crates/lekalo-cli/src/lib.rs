@@ -17,7 +17,7 @@
 //! - `batch/`: the batch runner, given the command's work on one item as a closure;
 //! - `output/`: writing results and progress; `report.rs`: `--json` results;
 //! - `exit.rs`: error kinds and exit codes; `values.rs`: number lists in options;
-//! - `cancel.rs`: signals; `words.rs`, `terms.rs`: the shared vocabulary and messages;
+//! - `cancel.rs`: signals; `words.rs`: the shared vocabulary and the messages in the options' names;
 //! - `demo/`: `lekalo demo`.
 //!
 //! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
@@ -39,7 +39,6 @@ mod exit;
 mod items;
 mod output;
 mod report;
-mod terms;
 mod values;
 mod words;
 
@@ -289,7 +288,7 @@ where
         Err(e) if exit::is_broken_pipe(&e) => 0,
         Err(_) if cancel::exit_code().is_some() => cancel::exit_interrupted(),
         Err(e) => {
-            output::report(&terms::cli_terms(&words::message(&e)));
+            output::report(&words::message(&e));
             exit::exit_code(&e)
         }
     }

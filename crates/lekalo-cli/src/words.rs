@@ -91,14 +91,17 @@ pub(crate) fn option_of(key: &str) -> Option<&'static str> {
 /// an option for is written with that option (`--knots: …`), any other as it is, with its
 /// context (`file: …`).
 pub(crate) fn message(e: &anyhow::Error) -> String {
-    if e.chain().len() == 1 {
-        if let Some(Error::InvalidArgument { what, reason }) = e.downcast_ref::<Error>() {
+    let mut parts: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        if let Some(Error::InvalidArgument { what, reason }) = cause.downcast_ref::<Error>() {
             if let Some(option) = option_of(what) {
-                return format!("error: {option}: {reason}");
+                parts.push(format!("{option}: {reason}"));
+                break;
             }
         }
+        parts.push(cause.to_string());
     }
-    format!("error: {e:#}")
+    format!("error: {}", parts.join(": "))
 }
 
 #[cfg(test)]
@@ -120,6 +123,15 @@ mod tests {
             reason: "why".into(),
         });
         assert_eq!(message(&other), "error: invalid something else: why");
+        let wrapped = anyhow::Error::from(Error::InvalidArgument {
+            what: "knots",
+            reason: "use the placement auto".into(),
+        })
+        .context("pts.csv");
+        assert_eq!(
+            message(&wrapped),
+            "error: pts.csv: --knots: use the placement auto"
+        );
     }
 
     /// Every option of every subcommand that chooses among the words of a vocabulary offers

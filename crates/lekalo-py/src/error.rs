@@ -85,7 +85,7 @@ const ARGUMENTS: [(&str, &str); 6] = [
 
 /// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system) or
 /// `lekalo.InputError` (everything else), an argument named by its keyword
-/// ([`ARGUMENTS`]) and the other messages in Python's words ([`python_terms`]).
+/// ([`ARGUMENTS`]).
 pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     let numerical = matches!(
         e,
@@ -96,25 +96,7 @@ pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
             return raise(false, format!("{name}: {reason}"));
         }
     }
-    raise(numerical, python_terms(&e.to_string()))
-}
-
-/// `(library wording, Python wording)`: the few library messages that name Rust items, as
-/// the Python package spells them (the command line has its own table).
-const TERMS: [(&str, &str); 2] = [
-    ("net_size.0", "control.shape[0]"),
-    ("net_size.1", "control.shape[1]"),
-];
-
-/// `message` with every Rust item of [`TERMS`] replaced by its Python spelling.
-pub(crate) fn python_terms(message: &str) -> String {
-    let mut out = message.to_string();
-    for (library, python) in TERMS {
-        if out.contains(library) {
-            out = out.replace(library, python);
-        }
-    }
-    out
+    raise(numerical, e.to_string())
 }
 
 /// The file-format crate's error as `lekalo.InputError`.
@@ -124,7 +106,7 @@ pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
 
 /// The library's error as `lekalo.InputError`, prefixed with the Python argument at fault.
 pub(crate) fn named(what: &str, e: &lekalo::Error) -> PyErr {
-    bad(format!("{what}: {}", python_terms(&e.to_string())))
+    bad(format!("{what}: {e}"))
 }
 
 /// An argument error found by the binding itself (dtype, layout, shape), as

@@ -975,6 +975,9 @@ fn hints_name_options_not_library_items() {
         .arg(p(&d, "p.txt"))
         .assert()
         .code(2)
-        .stderr(contains("use --knots auto"))
+        .stderr(contains(
+            "error: --knots: averaged or uniform knots do not go with",
+        ))
+        .stderr(contains("use the knot placement \"auto\""))
         .stderr(contains("KnotPlacement").not());
 }

@@ -565,7 +565,7 @@ fn unsupported(knots: &str, end: &str) -> Error {
     Error::InvalidArgument {
         what: "knots",
         reason: format!(
-            "{knots} knots do not go with {end} end conditions; use the placement auto"
+            "{knots} knots do not go with {end} end conditions; use the knot placement \"auto\""
         ),
     }
 }

@@ -113,8 +113,8 @@ impl SurfaceScratch {
 /// [`Error::LengthMismatch`] if `control.len() != nu · nv`.
 pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<usize> {
     for (n, what) in [
-        (nu, "control net rows (net_size.0)"),
-        (nv, "control net columns (net_size.1)"),
+        (nu, "rows of the control net (u direction)"),
+        (nv, "columns of the control net (v direction)"),
     ] {
         if n == 0 {
             return Err(Error::TooFew {
@@ -128,13 +128,13 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
         .checked_mul(nv)
         .filter(|&c| c <= MAX_SCALARS)
         .ok_or(Error::TooLarge {
-            what: "control net (net_size.0 × net_size.1)",
+            what: "control net (rows × columns)",
             size: nu.saturating_mul(nv),
             max: MAX_SCALARS,
         })?;
     if control.len() != count {
         return Err(Error::LengthMismatch {
-            what: "control points (net_size.0 × net_size.1)",
+            what: "control points (rows × columns of the net)",
             expected: count,
             got: control.len(),
         });
@@ -172,20 +172,20 @@ fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) 
 impl Direction {
     fn name(self) -> &'static str {
         match self {
-            Direction::U => "u direction (degree_u)",
-            Direction::V => "v direction (degree_v)",
+            Direction::U => "u direction",
+            Direction::V => "v direction",
         }
     }
     fn net(self) -> &'static str {
         match self {
-            Direction::U => "net_size.0",
-            Direction::V => "net_size.1",
+            Direction::U => "rows of the net",
+            Direction::V => "columns of the net",
         }
     }
     fn knot_count(self) -> &'static str {
         match self {
-            Direction::U => "knots_u (net_size.0 + degree_u + 1)",
-            Direction::V => "knots_v (net_size.1 + degree_v + 1)",
+            Direction::U => "knots in u (rows of the net + u degree + 1)",
+            Direction::V => "knots in v (columns of the net + v degree + 1)",
         }
     }
     fn knots(self) -> &'static str {
