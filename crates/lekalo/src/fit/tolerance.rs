@@ -84,6 +84,11 @@ pub struct ToleranceFit {
 ///    when the points under the changed part of the curve are still within `tol`. Outside that
 ///    part the curve is unchanged, so each trial costs the data near the knot, not all of it.
 ///
+/// 4. Above 2^18 points, steps 1–3 run on a sample of about 2^17 of them (every `s`-th point and
+///    the last); the sample's curve is measured against all points and returned when every one is
+///    within `tol`; otherwise step 2 continues on all points from the sample's knots and step 3
+///    tries the added knots and their neighbours (`docs/theory/fitting.md#tolerance`).
+///
 /// Deviation is the distance to the curve ([`Deviation::Distance`], a closest-point projection
 /// per point) or at the data parameter ([`Deviation::Parameter`]). O(rounds·N·p²) plus the
 /// projections; the rounds double the knots, so they are about `log₂` of the control points.
@@ -140,12 +145,123 @@ pub fn fit_tolerance_with_progress(
         });
     }
     let params = parametrize(points, opts.parametrization)?;
-    let data = FitData::new(points, &params)?;
+    let (curve, dev) = if points.len() > SAMPLE_ABOVE {
+        fit_sample_first(points, &params, opts, progress, SAMPLE_SIZE)?
+    } else {
+        let (curve, dev) = refine(points, &params, opts, progress, &[])?;
+        // the distances of the final curve from every data parameter; the removal kept upper
+        // bounds (distances to points of this same curve), so each point keeps the smaller
+        let dev = if opts.deviation == Deviation::Distance {
+            let fresh = deviations_full(&curve, points, &params, opts.deviation, -1.0)?;
+            dev.iter().zip(fresh).map(|(&d, f)| d.min(f)).collect()
+        } else {
+            dev
+        };
+        (curve, dev)
+    };
+    let (mut worst_index, mut max_deviation) = (0, 0.0);
+    for (i, &d) in dev.iter().enumerate() {
+        if d > max_deviation {
+            (worst_index, max_deviation) = (i, d);
+        }
+    }
+    if max_deviation > tol || max_deviation.is_nan() {
+        // every site carries a knot (interpolation) and rounding still exceeds tol
+        return Err(Error::IllConditioned {
+            reason: format!(
+                "the closest fit found deviates by {max_deviation} at point {worst_index}, more \
+                 than the tolerance {tol}; raise the tolerance above the data's rounding"
+            ),
+        });
+    }
+    let worst_param = project(&curve, points, &params, &[worst_index])?[0].0;
+    Ok(ToleranceFit {
+        curve,
+        params,
+        deviations: dev,
+        max_deviation,
+        worst_index,
+        worst_param,
+    })
+}
+
+/// Points above which [`fit_tolerance`] places its knots on a sample of the data first.
+const SAMPLE_ABOVE: usize = 1 << 18;
+
+/// Points in that sample (about; the last point is added).
+const SAMPLE_SIZE: usize = 1 << 17;
+
+/// Knots of the sample's fit on either side of a knot inserted for all points that
+/// [`refine`] tries again for removal.
+const NEIGHBOURS: usize = 4;
+
+/// [`fit_tolerance`] on many points: the knots are found on every `s`-th point (about
+/// `sample_size` of them, the last point included, at their own data parameters), and that
+/// curve is measured against all points, one pass. Where a point is beyond `tol`, the knot
+/// insertion of [`refine`] continues from the sample's knots on all points, and only the knots
+/// it adds are tried for removal. Dense data between the sampled points rarely needs more, so
+/// the cost is that of the sample's fit plus a pass or two over the data instead of a pass per
+/// round and a local refit per knot.
+fn fit_sample_first(
+    points: PointsRef<'_>,
+    params: &[f64],
+    opts: &ToleranceOptions,
+    progress: &Progress<'_>,
+    sample_size: usize,
+) -> Result<(BSplineCurve, Vec<f64>)> {
+    let (flat, sample_params) = sample_of(points, params, sample_size);
+    let sample = PointsRef::from_flat(points.dim(), &flat)?;
+    let (curve, _) = refine(sample, &sample_params, opts, progress, &[])?;
+    // the sample's curve against every point: distances of all (exact per point, projected)
+    let skip = if opts.deviation == Deviation::Distance {
+        -1.0
+    } else {
+        opts.tol
+    };
+    let dev = deviations_full(&curve, points, params, opts.deviation, skip)?;
+    if dev.iter().all(|&d| d <= opts.tol) {
+        return Ok((curve, dev));
+    }
+    let (curve, dev) = refine(points, params, opts, progress, &interior_knots(&curve))?;
+    let fresh = deviations_full(&curve, points, params, opts.deviation, -1.0)?;
+    Ok((
+        curve,
+        dev.iter().zip(fresh).map(|(&d, f)| d.min(f)).collect(),
+    ))
+}
+
+/// Every `s`-th point and its parameter, `s` = `⌈n / size⌉`, and the last point.
+fn sample_of(points: PointsRef<'_>, params: &[f64], size: usize) -> (Vec<f64>, Vec<f64>) {
+    let n = points.len();
+    let mut picked: Vec<usize> = (0..n).step_by(n.div_ceil(size.max(1))).collect();
+    if picked.last() != Some(&(n - 1)) {
+        picked.push(n - 1);
+    }
+    let flat = picked
+        .iter()
+        .flat_map(|&i| points.point(i))
+        .copied()
+        .collect();
+    (flat, picked.iter().map(|&i| params[i]).collect())
+}
+
+/// Knot insertion and removal of [`fit_tolerance`] from the interior knots `start`, at the
+/// data parameters `params`: the curve and an upper bound of every point's deviation. Knots of
+/// `start` are kept; only those inserted are tried for removal.
+fn refine(
+    points: PointsRef<'_>,
+    params: &[f64],
+    opts: &ToleranceOptions,
+    progress: &Progress<'_>,
+    start: &[f64],
+) -> Result<(BSplineCurve, Vec<f64>)> {
+    let (tol, p) = (opts.tol, opts.degree);
+    let data = FitData::new(points, params)?;
     let (a, b) = (params[0], params[params.len() - 1]);
     let ends = EndConstraints::points();
-    let mut interior: Vec<f64> = Vec::new();
+    let mut interior: Vec<f64> = start.to_vec();
     // knot sites that keep the Schoenberg–Whitney conditions (see smoothing_condition)
-    let mut distinct = params.clone();
+    let mut distinct = params.to_vec();
     distinct.dedup();
     if distinct.len() < p + 1 {
         return Err(Error::TooFew {
@@ -161,7 +277,7 @@ pub fn fit_tolerance_with_progress(
         let dev = deviations(
             &f.curve,
             points,
-            &params,
+            params,
             &f.report.residuals,
             opts.deviation,
             tol,
@@ -173,7 +289,7 @@ pub fn fit_tolerance_with_progress(
     loop {
         round += 1;
         progress.step("tolerance fit (knot insertion)", round, round + 1)?;
-        let bad = bad_spans(&params, &dev, tol, a, b, &interior);
+        let bad = bad_spans(params, &dev, tol, a, b, &interior);
         if bad.is_empty() {
             break;
         }
@@ -200,10 +316,10 @@ pub fn fit_tolerance_with_progress(
     }
     // removal: first within the remaining budget (exact bound), then by refitting
     let worst = dev.iter().fold(0.0_f64, |m, &v| m.max(v));
-    if worst < tol && !interior.is_empty() {
+    if start.is_empty() && worst < tol && !interior.is_empty() {
         let (removed_curve, removed) = curve.remove_all_removable_knots(tol - worst)?;
         if removed > 0 {
-            let d = deviations_full(&removed_curve, points, &params, opts.deviation, tol)?;
+            let d = deviations_full(&removed_curve, points, params, opts.deviation, tol)?;
             if d.iter().all(|&v| v <= tol) {
                 curve = removed_curve;
                 interior = interior_knots(&curve);
@@ -211,17 +327,36 @@ pub fn fit_tolerance_with_progress(
         }
     }
     // removal by local refits: each knot once, in order
-    let mut tracked = Tracked::new(&curve, points, &params, opts.deviation, tol)?;
+    let mut tracked = Tracked::new(&curve, points, params, opts.deviation, tol)?;
     let mut k = 0;
-    let (mut tried, to_try) = (0, interior.len() as u64);
+    // knots of `start` more than NEIGHBOURS knots away from every inserted one are kept: the
+    // fit there is the one the start was made for
+    let inserted: Vec<bool> = interior
+        .iter()
+        .map(|u| start.binary_search_by(|v| v.total_cmp(u)).is_err())
+        .collect();
+    let mut candidate = vec![false; interior.len()];
+    for (i, _) in inserted.iter().enumerate().filter(|(_, &new)| new) {
+        let (lo, hi) = (
+            i.saturating_sub(NEIGHBOURS),
+            (i + NEIGHBOURS).min(interior.len() - 1),
+        );
+        candidate[lo..=hi].fill(true);
+    }
+    let (mut tried, to_try) = (0, candidate.iter().filter(|&&c| c).count() as u64);
     while k < interior.len() {
+        if !candidate[k] {
+            k += 1;
+            continue;
+        }
         progress.step("tolerance fit (knot removal)", tried, to_try)?;
         tried += 1;
-        match remove_locally(&curve, p + 1 + k, points, &params)? {
+        match remove_locally(&curve, p + 1 + k, points, params)? {
             Some((trial, changed)) => {
-                if tracked.accept(&trial, changed, points, &params, tol)? {
+                if tracked.accept(&trial, changed, points, params, tol)? {
                     curve = trial;
                     interior.remove(k);
+                    candidate.remove(k);
                 } else {
                     k += 1;
                 }
@@ -230,39 +365,7 @@ pub fn fit_tolerance_with_progress(
         }
     }
     progress.step("tolerance fit (knot removal)", to_try, to_try)?;
-    dev = tracked.dev;
-    // the distances of the final curve from every data parameter; the removal kept upper
-    // bounds (distances to points of this same curve), so each point keeps the smaller
-    if opts.deviation == Deviation::Distance {
-        let fresh = deviations_full(&curve, points, &params, opts.deviation, -1.0)?;
-        for (d, f) in dev.iter_mut().zip(fresh) {
-            *d = d.min(f);
-        }
-    }
-    let (mut worst_index, mut max_deviation) = (0, 0.0);
-    for (i, &d) in dev.iter().enumerate() {
-        if d > max_deviation {
-            (worst_index, max_deviation) = (i, d);
-        }
-    }
-    if max_deviation > tol || max_deviation.is_nan() {
-        // every site carries a knot (interpolation) and rounding still exceeds tol
-        return Err(Error::IllConditioned {
-            reason: format!(
-                "the closest fit found deviates by {max_deviation} at point {worst_index}, more \
-                 than the tolerance {tol}; raise the tolerance above the data's rounding"
-            ),
-        });
-    }
-    let worst_param = project(&curve, points, &params, &[worst_index])?[0].0;
-    Ok(ToleranceFit {
-        curve,
-        params,
-        deviations: dev,
-        max_deviation,
-        worst_index,
-        worst_param,
-    })
+    Ok((curve, tracked.dev))
 }
 
 fn clamped(a: f64, b: f64, p: usize, interior: &[f64]) -> KnotVector {
@@ -536,6 +639,13 @@ impl Tracked {
             params.partition_point(|&u| u <= changed.1),
         );
         let dim = points.dim();
+        // the part of the trial curve these points can reach: its evaluator costs the spans
+        // there, not the whole curve's (a trial per knot would otherwise cost O(n) each)
+        let trial = &local_part(
+            trial,
+            changed.0 - 2.0 * self.reach,
+            changed.1 + 2.0 * self.reach,
+        )?;
         let under = PointsRef::from_flat(dim, &points.as_slice()[c0 * dim..c1 * dim])?;
         let fresh = at_parameter(trial, under, &params[c0..c1])?;
         // outside it, points whose foot lay in the changed part fall back to their parameter
@@ -577,6 +687,27 @@ impl Tracked {
         }
         Ok(within)
     }
+}
+
+/// The piece of `curve` over the knot spans that meet `[lo, hi]` (clamped to the domain): the
+/// control points and knots of those spans, an unclamped B-spline equal to `curve` on its
+/// domain, which covers `[lo, hi]`. Projections onto it stay inside it, so the distances found
+/// are distances to points of `curve`.
+fn local_part(curve: &BSplineCurve, lo: f64, hi: f64) -> Result<BSplineCurve> {
+    let p = curve.degree();
+    let (a, b) = curve.domain();
+    let kv = curve.knots();
+    let s0 = kv.find_span(p, lo.clamp(a, b))?;
+    let s1 = kv.find_span(p, hi.clamp(a, b))?;
+    let t = kv.as_slice();
+    let ctrl = curve.control_points();
+    let dim = ctrl.dim();
+    let flat = ctrl.as_slice()[(s0 - p) * dim..(s1 + 1) * dim].to_vec();
+    BSplineCurve::new(
+        p,
+        t[s0 - p..=s1 + p + 1].to_vec(),
+        Points::from_flat(dim, flat)?,
+    )
 }
 
 /// `|C(ū_k) − Q_k|` for every point.
@@ -799,6 +930,103 @@ mod tests {
         let stop = AtomicBool::new(true);
         let e = fit_tolerance_with_progress(points, &opts, &Progress::new().with_cancel(&stop));
         assert!(matches!(e, Err(Error::Cancelled { .. })), "{e:?}");
+    }
+
+    /// Fits of `q` by the whole algorithm and by the sample-first path with samples of
+    /// `sample` points: (control points, largest deviation) of each, both checked against a
+    /// full measurement.
+    fn both_ways(q: &[f64], dim: usize, tol: f64, sample: usize) -> [(usize, f64); 2] {
+        let points = PointsRef::from_flat(dim, q).unwrap();
+        let opts = ToleranceOptions::new(3, tol);
+        let params = parametrize(points, opts.parametrization).unwrap();
+        let progress = Progress::new();
+        let (whole, _) = refine(points, &params, &opts, &progress, &[]).unwrap();
+        let (sampled, dev) = fit_sample_first(points, &params, &opts, &progress, sample).unwrap();
+        let full = deviations_full(&sampled, points, &params, opts.deviation, -1.0).unwrap();
+        for (k, (&d, &f)) in dev.iter().zip(&full).enumerate() {
+            assert!(d <= tol && d <= f, "point {k}: {d} {f}");
+        }
+        [&whole, &sampled].map(|c| {
+            let d = deviations_full(c, points, &params, opts.deviation, -1.0).unwrap();
+            (
+                c.control_points().len(),
+                d.iter().fold(0.0, |m: f64, &v| m.max(v)),
+            )
+        })
+    }
+
+    #[test]
+    fn a_sample_places_the_knots_of_dense_smooth_data() {
+        // a helix: the sample's knots hold for every point, found in one pass
+        let n = 40_000;
+        let q: Vec<f64> = (0..n)
+            .flat_map(|k| {
+                let u = f64::from(k) / f64::from(n - 1);
+                let a = 4.0 * std::f64::consts::PI * u;
+                [a.cos(), a.sin(), u]
+            })
+            .collect();
+        let [whole, sampled] = both_ways(&q, 3, 1e-6, 2_000);
+        assert!(sampled.1 <= 1e-6, "{sampled:?}");
+        assert_eq!(sampled.0, whole.0, "{sampled:?} {whole:?}");
+    }
+
+    #[test]
+    fn where_the_sample_misses_points_knots_are_added_and_pruned_for_all() {
+        // noise of 0.9·tol between the sampled points: the sample's curve misses some, the
+        // insertion for all points adds knots, and the removal near them keeps the count
+        // within a few percent of the whole algorithm's
+        let (n, tol) = (20_000_u32, 1e-4);
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut noise = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1_u64 << 53) as f64 - 0.5
+        };
+        let q: Vec<f64> = (0..n)
+            .flat_map(|k| {
+                let x = f64::from(k) / f64::from(n - 1) * 6.0;
+                [x, (3.0 * x).sin() + 0.9 * tol * noise()]
+            })
+            .collect();
+        let points = PointsRef::from_flat(2, &q).unwrap();
+        let opts = ToleranceOptions::new(3, tol);
+        let params = parametrize(points, opts.parametrization).unwrap();
+        let (flat, ps) = sample_of(points, &params, 1_000);
+        let sample = PointsRef::from_flat(2, &flat).unwrap();
+        let (first, _) = refine(sample, &ps, &opts, &Progress::new(), &[]).unwrap();
+        let misses = deviations_full(&first, points, &params, opts.deviation, -1.0).unwrap();
+        assert!(
+            misses.iter().any(|&d| d > tol),
+            "the fallback is not exercised"
+        );
+        let [whole, sampled] = both_ways(&q, 2, tol, 1_000);
+        assert!(sampled.1 <= tol, "{sampled:?}");
+        assert!(
+            sampled.0 as f64 <= 1.03 * whole.0 as f64,
+            "{sampled:?} against {whole:?}"
+        );
+    }
+
+    #[test]
+    fn the_local_part_of_a_curve_is_the_curve_there() {
+        let (curve, ..) = offset_points();
+        let fine = curve
+            .refine_knots(&[0.1, 0.2, 0.35, 0.5, 0.6, 0.8])
+            .unwrap();
+        for (lo, hi) in [(0.0, 0.05), (0.15, 0.4), (0.55, 1.0), (-1.0, 2.0)] {
+            let part = local_part(&fine, lo, hi).unwrap();
+            let (a, b) = part.domain();
+            assert!(
+                a <= lo.max(0.0) && b >= hi.min(1.0),
+                "{lo} {hi}: [{a}, {b}]"
+            );
+            for k in 0..=20 {
+                let u = a + (b - a) * f64::from(k) / 20.0;
+                assert_eq!(part.eval(u).unwrap(), fine.eval(u).unwrap(), "at {u}");
+            }
+        }
     }
 
     #[test]
