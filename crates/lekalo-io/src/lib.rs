@@ -84,7 +84,8 @@ pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{
-    read_step, read_step_limited, skipped_by_kind, SkippedKind, StepRead, StepSkipped,
+    read_step, read_step_faces, read_step_limited, skipped_by_kind, SkippedKind, StepFace,
+    StepRead, StepSkipped,
 };
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};
