@@ -26,7 +26,7 @@ use crate::shape::Surface;
 /// The tolerance on the gaps of a face's loops, relative to the model size (see
 /// [`lekalo::topology::LOOP_CLOSURE_RTOL`]): `1e-3`, as exporters sew at tolerances up to 0.1 mm
 /// on parts of 100 mm.
-pub(super) const STEP_LOOP_RTOL: f64 = 1e-3;
+pub const STEP_LOOP_RTOL: f64 = 1e-3;
 
 /// A face read from a STEP file.
 #[derive(Debug, Clone, PartialEq)]

@@ -337,3 +337,56 @@ fn faces_keep_to_the_size_limit() {
     );
     assert!(read_step_faces(&file(&huge), "t.step", 1000).is_err());
 }
+
+#[test]
+fn faces_round_trip_through_json() {
+    for (data, id) in [(PLATE, 70), (PATCH, 197), (TUBE, 246)] {
+        let r = read(data);
+        let f = face(&r, id);
+        let line = crate::face_to_json_line(f);
+        assert!(!line.contains('\n') && line.starts_with(r#"{"lekalo":1,"type":"face","#));
+        let back = crate::read_face(&line, "f.jsonl").unwrap();
+        assert_eq!(crate::face_to_json_line(&back), line);
+        assert_eq!(
+            (back.id, &back.name, &back.edge_ids),
+            (f.id, &f.name, &f.edge_ids)
+        );
+    }
+}
+
+#[test]
+fn face_json_errors_name_the_field() {
+    let line = crate::face_to_json_line(face(&read(PATCH), 197));
+    let v: serde_json::Value = serde_json::from_str(&line).unwrap();
+    let with = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut w = v.clone();
+        f(&mut w);
+        crate::read_face(&w.to_string(), "f.jsonl")
+            .unwrap_err()
+            .to_string()
+    };
+    let e = with(&|w| w["type"] = "bspline_surface".into());
+    assert!(e.contains("field `type`"), "{e}");
+    let e = with(&|w| {
+        w.as_object_mut().unwrap().remove("surface");
+    });
+    assert!(e.contains("field `surface`"), "{e}");
+    // a pcurve of three coordinates
+    let e = with(&|w| w["outer"][1]["pcurve"] = w["outer"][1]["curve"].clone());
+    assert!(
+        e.contains("outer[1].pcurve") && e.contains("expected 2, got 3"),
+        "{e}"
+    );
+    // two edges swapped: the loop does not close
+    let e = with(&|w| {
+        let a = w["outer"][1].clone();
+        w["outer"][1] = w["outer"][2].clone();
+        w["outer"][2] = a;
+    });
+    assert!(e.contains("does not close"), "{e}");
+    let e = with(&|w| w["outer"] = serde_json::json!([]));
+    assert!(
+        e.contains("field `outer`") && e.contains("edges in a loop"),
+        "{e}"
+    );
+}

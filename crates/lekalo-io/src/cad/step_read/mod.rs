@@ -51,7 +51,7 @@ mod tests;
 mod units;
 
 pub use driver::{read_step, read_step_faces, read_step_limited};
-pub use faces::StepFace;
+pub use faces::{StepFace, STEP_LOOP_RTOL};
 
 use crate::shape::Shape;
 
