@@ -84,6 +84,10 @@ struct EdgeGeom {
     /// The parameters a spline was cut at, and its whole domain.
     cut_at: Option<(f64, f64)>,
     domain: Option<(f64, f64)>,
+    /// The parameters of the start and end vertices on the 3-D curve as the file writes it.
+    range: (f64, f64),
+    /// The start and end vertices.
+    ends: [Vec<f64>; 2],
     pcurves: Vec<u64>,
     same_sense: bool,
 }
@@ -203,7 +207,14 @@ fn read_face(
             .ok_or_else(|| format!("EDGE_LOOP #{lid} has no list of edges"))?;
         let mut uses = Vec::with_capacity(oes.len());
         for oe in oes {
-            uses.push(edge_use(rd, oe, sid, &policy, edges, &mut pcurve_error)?);
+            uses.push(edge_use(
+                rd,
+                oe,
+                (sid, surface),
+                &policy,
+                edges,
+                &mut pcurve_error,
+            )?);
         }
         if !orientation {
             uses.reverse();
@@ -314,7 +325,7 @@ fn choose_pcurves(uses: Vec<Use>) -> Result<(Vec<Edge>, Vec<u64>, usize), Why> {
 fn edge_use(
     rd: &Reader<'_>,
     oe: &P,
-    sid: u64,
+    (sid, surface): (u64, &Surface),
     policy: &Pcurves,
     edges: &mut HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>>,
     pcurve_error: &mut Option<String>,
@@ -338,7 +349,7 @@ fn edge_use(
         pcurves.push(on_plane(&curve, f)?);
     } else if matches!(policy, Pcurves::AsWritten) {
         for &pid in &geom.pcurves {
-            match pcurve(rd, pid, sid, &geom) {
+            match pcurve(rd, pid, sid, surface, &geom) {
                 Ok(Some(p)) => pcurves.push(p),
                 Ok(None) => {}
                 Err(why) => {
@@ -413,10 +424,27 @@ fn edge_geom(rd: &Reader<'_>, eid: u64) -> Result<EdgeGeom, Why> {
     };
     let (curve, cut_at) =
         cut(&basis, &ends, same_sense).map_err(|why| format!("edge #{eid}: {why}"))?;
+    let range = match (&basis, cut_at) {
+        (_, Some(r)) => r,
+        (Basis::Spline(o), None) => {
+            let (a, b) = o.domain();
+            if same_sense {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        }
+        _ => (
+            basis.parameter_of(&ends[0]).unwrap_or(0.0),
+            basis.parameter_of(&ends[1]).unwrap_or(0.0),
+        ),
+    };
     Ok(EdgeGeom {
         curve,
         cut_at,
         domain,
+        range,
+        ends,
         pcurves,
         same_sense,
     })
@@ -499,7 +527,13 @@ fn on_plane(c: &Curve, f: &Placement) -> Result<Curve, Why> {
 /// reference_to_curve)` whose `DEFINITIONAL_REPRESENTATION` holds a 2-D B-spline; directed
 /// from the edge's start to its end, and cut where the 3-D curve was when both share their
 /// parameters. `Ok(None)` for a pcurve on another surface.
-fn pcurve(rd: &Reader<'_>, pid: u64, sid: u64, edge: &EdgeGeom) -> Result<Option<Curve>, Why> {
+fn pcurve(
+    rd: &Reader<'_>,
+    pid: u64,
+    sid: u64,
+    surface: &Surface,
+    edge: &EdgeGeom,
+) -> Result<Option<Curve>, Why> {
     let Some(pr) = rd.p.instances.get(&pid).and_then(|p| p.get("PCURVE")) else {
         return Ok(None);
     };
@@ -521,23 +555,62 @@ fn pcurve(rd: &Reader<'_>, pid: u64, sid: u64, edge: &EdgeGeom) -> Result<Option
     let basis = rd
         .basis(item)
         .map_err(|why| format!("PCURVE #{pid}: {why}"))?;
-    let Basis::Spline(o) = &basis else {
-        return Err(format!(
-            "PCURVE #{pid} is a line or conic on a B-spline surface; lekalo reads B-spline pcurves there"
-        ));
+    let lib = |e: lekalo::Error| e.to_string();
+    let (t0, t1) = edge.range;
+    let curve = match &basis {
+        Basis::Spline(o) => match edge.cut_at {
+            Some((t0, t1)) if Some(o.domain()) == edge.domain => {
+                basis.piece(t0, t1, edge.same_sense)?
+            }
+            _ if edge.same_sense => o.clone(),
+            _ => o.reverse().map_err(lib)?,
+        },
+        // a line or conic in (u, v) on the parameters of the 3-D curve (the same parameter
+        // range, as exporters write them), checked at the vertices below
+        Basis::Line { .. } => {
+            let seg = basis.piece(t0.min(t1), t0.max(t1), true)?;
+            if t0 > t1 {
+                seg.reverse().map_err(lib)?
+            } else {
+                seg
+            }
+        }
+        Basis::Ellipse { .. } => basis.piece(t0, t1, edge.same_sense)?,
     };
-    if o.dim() != 2 {
+    if curve.dim() != 2 {
         return Err(format!(
             "PCURVE #{pid}: its curve #{item} has {} coordinates, not the 2 of a surface's (u, v)",
-            o.dim()
+            curve.dim()
         ));
     }
-    let curve = match edge.cut_at {
-        Some((t0, t1)) if Some(o.domain()) == edge.domain => {
-            basis.piece(t0, t1, edge.same_sense)?
+    // S(p(t)) must meet the edge's vertices: the same check as the loops' closure
+    let tol = STEP_LOOP_RTOL * size_of(surface);
+    let (a, b) = curve.domain();
+    for (t, v) in [(a, &edge.ends[0]), (b, &edge.ends[1])] {
+        let uv = curve.eval(t).map_err(lib)?;
+        let on = surface.eval(uv[0], uv[1]).map_err(lib)?;
+        let d = on
+            .iter()
+            .zip(v)
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt();
+        if d.is_nan() || d > tol {
+            return Err(format!(
+                "PCURVE #{pid} does not run between its edge's vertices on the surface ({d:.3e} from a vertex, tolerance {tol:.3e})"
+            ));
         }
-        _ if edge.same_sense => o.clone(),
-        _ => o.reverse().map_err(|e| e.to_string())?,
-    };
+    }
     Ok(Some(curve))
+}
+
+/// The diagonal of the box of a surface's control points (which contain it).
+fn size_of(s: &Surface) -> f64 {
+    s.control_points().bounding_box().map_or(0.0, |(lo, hi)| {
+        lo.iter()
+            .zip(&hi)
+            .map(|(a, b)| (b - a) * (b - a))
+            .sum::<f64>()
+            .sqrt()
+    })
 }
