@@ -390,3 +390,37 @@ fn face_json_errors_name_the_field() {
         "{e}"
     );
 }
+
+/// Open CASCADE writes the pcurves of B-spline faces as 2-D lines on the edges' parameters:
+/// they are read, and the surface at each pcurve's points is the edge's curve.
+#[test]
+fn line_pcurves_of_open_cascade_lie_under_their_edges() {
+    let text = include_str!("../../../tests/data/occ/mixed_ap242_m.step");
+    let r = read_step_faces(text, "mixed_ap242_m.step", usize::MAX).unwrap();
+    assert_eq!((r.faces.len(), r.skipped_faces.len()), (2, 0));
+    for f in &r.faces {
+        assert_eq!(f.pcurves, None, "face #{}", f.id);
+        let size = f.face.model_size();
+        for e in f.face.outer().edges() {
+            let (p, c) = (e.pcurve().unwrap(), e.curve());
+            // both run from the edge's start to its end
+            let (pa, pb) = p.domain();
+            let (ca, cb) = c.domain();
+            for (s, t) in [(pa, ca), (pb, cb)] {
+                let uv = p.eval(s).unwrap();
+                let on = f.face.surface().eval(uv[0], uv[1]).unwrap();
+                let q = c.eval(t).unwrap();
+                let d: f64 = on
+                    .iter()
+                    .zip(&q)
+                    .map(|(x, y)| (x - y) * (x - y))
+                    .sum::<f64>()
+                    .sqrt();
+                assert!(d <= 1e-6 * size, "face #{} {d}", f.id);
+            }
+        }
+        let region = f.face.trim_region().unwrap();
+        let ((u0, u1), (v0, v1)) = f.face.surface().domain();
+        assert!(region.contains(0.5 * (u0 + u1), 0.5 * (v0 + v1)));
+    }
+}
