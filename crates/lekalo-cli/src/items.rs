@@ -175,7 +175,12 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
 
 /// The entities a CAD file holds that were not read: one line per type and reason with the
 /// count and the first id, and with `-v` every entity.
-fn report_skipped(cx: &Context, name: &str, skipped: &[lekalo_io::StepSkipped], prefix: &str) {
+pub(crate) fn report_skipped(
+    cx: &Context,
+    name: &str,
+    skipped: &[lekalo_io::StepSkipped],
+    prefix: &str,
+) {
     if skipped.is_empty() {
         return;
     }

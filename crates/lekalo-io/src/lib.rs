@@ -17,6 +17,7 @@
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
 //! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
+//! | STEP faces (surfaces trimmed by loops of edges with pcurves), as `"type": "face"` envelopes | yes | — (JSON: yes) | [`read_step_faces`], [`face_to_json_line`], [`read_face`] |
 //! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
@@ -44,7 +45,7 @@ mod tables;
 
 // each subject's files keep their short paths inside the crate (`crate::object`, `crate::svg`)
 use cad::{iges, step, step_read};
-use envelope::{analysis, flat, json_write, object, object_ext, shape, tensor_json};
+use envelope::{analysis, face_json, flat, json_write, object, object_ext, shape, tensor_json};
 use mesh::{mesh_files, obj};
 use plot::{figure_check, layout, palette, png, surface_plot, svg, wireframe};
 use points::{npy, npz, points_in, text_points};
@@ -57,6 +58,7 @@ pub use atomic::{
     write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions, WriteSeek,
 };
 pub use error::{IoError, IoResult, Location};
+pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;
 pub use iges::{read_iges, read_iges_limited, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
@@ -84,7 +86,8 @@ pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{
-    read_step, read_step_limited, skipped_by_kind, SkippedKind, StepRead, StepSkipped,
+    read_step, read_step_faces, read_step_limited, skipped_by_kind, SkippedKind, StepFace,
+    StepRead, StepSkipped, STEP_LOOP_RTOL,
 };
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};

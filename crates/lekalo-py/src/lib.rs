@@ -13,6 +13,7 @@
 //!   SciPy's `NdBSpline`), `interp` (interpolation, Hermite; SciPy's Hermite slopes in
 //!   `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
+//! - CAD files: `faces` (`read_step`, `Face`: a surface trimmed by loops of edges);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`;
 //! - derivatives of evaluation for automatic differentiation: `derivatives` (the kernels under
@@ -25,6 +26,7 @@ mod convert;
 mod curves;
 mod derivatives;
 mod error;
+mod faces;
 mod fit;
 mod interp;
 mod objects;
@@ -58,6 +60,8 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pp::PyPpSpace>()?;
     m.add_class::<tensor::PyTensorBSpline>()?;
     m.add_function(wrap_pyfunction!(objects::from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(faces::read_step, m)?)?;
+    m.add_class::<faces::PyFace>()?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
     m.add_function(wrap_pyfunction!(interp::basis_functions, m)?)?;

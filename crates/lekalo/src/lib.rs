@@ -20,6 +20,7 @@
 //! | blending ([`blend`]) | [`JumpPolynomial`], [`Deformation`], [`BlendSpline`], [`CornerTransition`], [`smooth_polyline_corners`] | doc 001 |
 //! | piecewise polynomials ([`pp`]) | [`PiecewisePolynomial`], [`PpSpace`], [`divided_difference`], [`quasi_interpolate`], [`piecewise_hermite_bernstein`] | doc 003 |
 //! | derivatives for automatic differentiation ([`derivatives`]) | [`BSplineCurve::eval_batch_jvp`], [`BSplineCurve::eval_batch_vjp`], [`BSplineCurve::eval_batch_linearize`], the same for [`BSplineSurface`] | P&T A2.3; `docs/theory.md` |
+//! | faces of CAD models ([`topology`]) | [`Face`], [`Loop`], [`Edge`], [`TrimRegion`] (point in face) | ISO 10303-42 §5; Hormann & Agathos 2001 |
 //! | fitting | [`least_squares`], [`smoothing_spline`], [`smoothing_condition`], [`fit_tolerance`], [`fit`] | P&T §9.4; Dierckx; `docs/theory/fitting.md` |
 //!
 //! ## Conventions
@@ -163,6 +164,11 @@ pub use query::{
     ArcLength, CurveProjection, QueryCurve, QuerySurface, SurfaceProjection,
     CURVATURE_EXTREMUM_RTOL, MAX_QUERY_DEGREE, SURFACE_BOX_RTOL,
 };
+
+// -- topology: faces of CAD models, surfaces trimmed by loops of edges --
+pub mod topology;
+
+pub use topology::{Edge, Face, Loop, TrimRegion};
 
 // -- derivatives of evaluation for differentiable programs: JVP, VJP, linearisation --
 pub mod derivatives;

@@ -7,6 +7,7 @@ mod cli;
 mod cli_bezier;
 mod cli_blend;
 mod cli_blend_corners;
+mod cli_faces;
 mod cli_fit;
 mod cli_fit_options;
 mod cli_fit_tensor;

@@ -5,12 +5,14 @@
 //! - `object.rs`: curves: the envelope, `CurveJson`, JSON Lines;
 //! - `object_ext.rs`: surfaces and piecewise polynomials;
 //! - `shape.rs`: any object by its `type` (`Shape`), NURBS surfaces, `SurfaceJson`;
+//! - `face_json.rs`: faces (a surface trimmed by loops of edges) read from CAD files;
 //! - `tensor_json.rs`: tensor splines in N parameters;
 //! - `json_write.rs`: streaming writer of large curves;
 //! - `flat.rs`: control points as rows or flat `{dim, data}`;
 //! - `analysis.rs`: names older callers used for the library's curve analysis.
 
 pub(crate) mod analysis;
+pub(crate) mod face_json;
 pub(crate) mod flat;
 pub(crate) mod json_write;
 pub(crate) mod object;

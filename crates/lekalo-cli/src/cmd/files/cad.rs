@@ -125,6 +125,52 @@ pub(crate) fn convert_shapes(
     emit(output, bytes.as_bytes(), &inputs, cx)
 }
 
+/// The faces of a STEP file (`--faces` of `convert` and `info`), with how many were read and
+/// which were skipped and why reported on standard error (not with `-q`).
+pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRead> {
+    if !is_step(path) {
+        return bad_input(format!(
+            "{}: --faces reads the faces of a STEP file (.step, .stp, .p21)",
+            path.display()
+        ));
+    }
+    let (text, name) = lekalo_io::read_input(path)?;
+    let r = lekalo_io::read_step_faces(&text, &name, cx.max_size)?;
+    if !cx.is_quiet() {
+        let with = r.faces.iter().filter(|f| f.pcurves.is_none()).count();
+        eprintln!(
+            "{name}: read {} face(s), {with} with pcurves; length unit {}",
+            r.faces.len(),
+            r.length_unit
+        );
+        crate::items::report_skipped(cx, &name, &r.skipped_faces, "#");
+    }
+    Ok(r)
+}
+
+/// `convert --faces`: the faces of a STEP file as JSON Lines, one face envelope a line
+/// (docs/formats.md, "Faces").
+pub(crate) fn convert_faces(
+    input: &Path,
+    output: Option<&Path>,
+    to: Option<&str>,
+    cx: &Context,
+) -> Result<()> {
+    let format = format_of(to, output, "jsonl");
+    if format != "jsonl" {
+        return bad_input(format!(
+            "--faces writes JSON Lines (one face a line), not \"{format}\": use -o FILE.jsonl or --to jsonl"
+        ));
+    }
+    let r = read_faces(input, cx)?;
+    let text: String = r
+        .faces
+        .iter()
+        .map(|f| lekalo_io::face_to_json_line(f) + "\n")
+        .collect();
+    emit(output, text.as_bytes(), &[input.to_path_buf()], cx)
+}
+
 /// True when `convert` should take the many-shapes path: a STEP input, or JSON Lines holding
 /// something other than curves.
 pub(crate) fn wants_shapes(input: &Path, jsonl: bool, out_format: &str) -> bool {

@@ -41,6 +41,7 @@ Examples:
   lekalo convert spline.pp.json -o spline.csv --samples 100
   lekalo convert surface.json -o grid.csv --samples 400
   lekalo convert part.step -o curves.jsonl
+  lekalo convert part.step -o faces.jsonl --faces
   lekalo convert curves.jsonl -o again.step
   lekalo convert curves.jsonl -o again.igs
   lekalo convert again.igs -o from-iges.jsonl
@@ -50,7 +51,9 @@ CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and
 curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
 complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),
 json (one object) or step; what was skipped is listed on stderr. JSON Lines holding surfaces
-convert to step and jsonl. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
+convert to step and jsonl. With --faces, a STEP file's faces (ADVANCED_FACE: the surface,
+its outer and inner loops, each edge's 3-D curve and pcurve) are written as JSON Lines, one
+\"face\" object a line; faces that cannot be read are listed on stderr with the reason. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
 (rational B-spline surface) are written and read.")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
@@ -67,6 +70,10 @@ pub(crate) struct ConvertArgs {
     /// Treat the input as JSON Lines.
     #[arg(long)]
     jsonl: bool,
+    /// Write the faces of a STEP file (surface, loops of edges with their pcurves) as JSON
+    /// Lines, one face a line, instead of its curves and surfaces.
+    #[arg(long)]
+    faces: bool,
 }
 
 /// Timestamp written into STEP headers: fixed, so that the same input gives the same file.
@@ -83,6 +90,9 @@ fn step_name(a: &ConvertArgs) -> String {
 }
 
 pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
+    if a.faces {
+        return crate::cmd::cad::convert_faces(&a.input, a.output.as_deref(), a.to.as_deref(), cx);
+    }
     let parquet = crate::items::is_parquet;
     if parquet(&a.input) || a.output.as_deref().is_some_and(parquet) {
         return crate::batch::parquet::convert_curves(cx, &a.input, a.output.as_deref());

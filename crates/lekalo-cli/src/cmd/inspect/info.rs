@@ -25,7 +25,8 @@ Examples:
   lekalo info curve.json --json
   lekalo info surface.json          # degrees, knots u and v, net, domain, boxes
   lekalo info spline.pp.json        # order, breakpoints, continuity at each breakpoint
-  lekalo info many.jsonl            # one JSON line per object, in parallel")]
+  lekalo info many.jsonl            # one JSON line per object, in parallel
+  lekalo info part.step --faces     # faces: surface, loops and their edges, pcurves")]
 pub(crate) struct InfoArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -41,6 +42,10 @@ pub(crate) struct InfoArgs {
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
+    /// Describe the faces of a STEP file (surface, loops, edges, pcurves) instead of its
+    /// curves and surfaces.
+    #[arg(long)]
+    faces: bool,
 }
 
 /// Most entries of a knot list shown by `info`; a longer list shows its first and last
@@ -190,6 +195,17 @@ fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
 
 pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
     let inputs = vec![a.input.clone()];
+    if a.faces {
+        let r = crate::cmd::files::cad::read_faces(&a.input, cx)?;
+        return crate::report::print_report(
+            a.json,
+            &faces_json(&r),
+            faces_text,
+            a.output.as_deref(),
+            &inputs,
+            cx,
+        );
+    }
     let samples = cx.in_range(a.samples, 2, 1_000_000, "--samples")?;
     let loaded = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
         // a CAD file: one shape is described as any object; several (curves and surfaces
@@ -290,4 +306,93 @@ fn cad_info(
         })
         .collect();
     crate::batch::lines::finish(cx, lines, a.output.as_deref(), inputs)
+}
+
+/// `info --faces`: the number of faces read and skipped, and each face's id, name, surface,
+/// loops (edge counts and `EDGE_CURVE` ids, outer first) and whether its edges have pcurves.
+fn faces_json(r: &lekalo_io::StepRead) -> Value {
+    let faces: Vec<Value> = r
+        .faces
+        .iter()
+        .map(|f| {
+            let loops: Vec<Value> = f
+                .face
+                .loops()
+                .zip(&f.edge_ids)
+                .enumerate()
+                .map(|(i, (lp, ids))| {
+                    json!({"outer": i == 0, "edges": lp.edges().len(), "edge_ids": ids})
+                })
+                .collect();
+            json!({
+                "id": f.id,
+                "name": f.name,
+                "surface": f.face.surface().type_name(),
+                "surface_id": f.surface_id,
+                "same_sense": f.face.same_sense(),
+                "loops": loops,
+                "pcurves": f.pcurves.as_ref().map_or(json!(true), |why| json!(why)),
+            })
+        })
+        .collect();
+    let skipped: Vec<Value> = r
+        .skipped_faces
+        .iter()
+        .map(|s| json!({"id": s.id, "entity": s.entity, "reason": s.reason}))
+        .collect();
+    json!({
+        "faces_total": r.faces.len(),
+        "with_pcurves": r.faces.iter().filter(|f| f.pcurves.is_none()).count(),
+        "skipped_total": r.skipped_faces.len(),
+        "faces": faces,
+        "skipped": skipped,
+    })
+}
+
+/// The text of [`faces_json`]: a summary line, then one line per face and per skipped face.
+fn faces_text(j: &Value) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "faces           {} ({} with pcurves), {} skipped",
+        j["faces_total"], j["with_pcurves"], j["skipped_total"]
+    );
+    for f in j["faces"].as_array().into_iter().flatten() {
+        let loops: Vec<String> = f["loops"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|l| {
+                let kind = if l["outer"] == Value::Bool(true) {
+                    "outer"
+                } else {
+                    "inner"
+                };
+                format!("{kind} {}", l["edges"])
+            })
+            .collect();
+        let pcurves = match &f["pcurves"] {
+            Value::Bool(true) => "pcurves".to_string(),
+            other => format!("no pcurves: {}", other.as_str().unwrap_or_default()),
+        };
+        let _ = writeln!(
+            s,
+            "#{} {}  {} #{}  edges: {}  {pcurves}",
+            f["id"],
+            f["name"],
+            f["surface"].as_str().unwrap_or_default(),
+            f["surface_id"],
+            loops.join(", "),
+        );
+    }
+    for k in j["skipped"].as_array().into_iter().flatten() {
+        let _ = writeln!(
+            s,
+            "skipped #{} {}: {}",
+            k["id"],
+            k["entity"].as_str().unwrap_or_default(),
+            k["reason"].as_str().unwrap_or_default()
+        );
+    }
+    s
 }

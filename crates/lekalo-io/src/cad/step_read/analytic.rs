@@ -14,7 +14,7 @@ use lekalo::surface::{Placement, FULL_TURN};
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
 use super::entities::{is_bspline_curve, Reader, IMPLICIT_CURVES};
-use super::{list, num, numbers, Instance, Why, P};
+use super::{list, num, numbers, unnamed, Instance, Why, P};
 use crate::object::Object;
 use crate::shape::Surface;
 
@@ -285,6 +285,12 @@ impl Reader<'_> {
             .ok_or_else(|| "a surface placed by a 2-D placement".to_string())
     }
 
+    /// The placement of a `PLANE` instance (its parameters are lengths along the placement's
+    /// unit `x` and `y`, as those of the patch [`BSplineSurface::plane_patch`] built for it).
+    pub(super) fn plane_placement(&self, inst: &Instance) -> Option<Placement> {
+        self.placement(inst.get("PLANE")?.get(1)?).ok()
+    }
+
     /// A length of the file in millimetres (`dim` 3) or as written (2-D parameter space).
     fn length(&self, p: Option<&P>, what: &str, dim: usize) -> Result<f64, Why> {
         let x = p
@@ -378,7 +384,7 @@ impl Reader<'_> {
                 .map(|(_, o)| Basis::Spline(o));
         }
         for name in ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"] {
-            if let Some(P::Ref(c)) = inst.get(name).and_then(|r| r.get(1)) {
+            if let Some(P::Ref(c)) = inst.get(name).and_then(|r| unnamed(r).first()) {
                 return self.basis_at(*c, depth + 1);
             }
         }

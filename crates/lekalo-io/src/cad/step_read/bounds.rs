@@ -20,10 +20,12 @@ fn curve_3d(rd: &Reader<'_>, mut id: u64) -> u64 {
         };
         let next = ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"]
             .iter()
-            .find_map(|n| match inst.get(n).and_then(|r| r.get(1)) {
-                Some(P::Ref(c)) => Some(*c),
-                _ => None,
-            });
+            .find_map(
+                |n| match inst.get(n).and_then(|r| super::unnamed(r).first()) {
+                    Some(P::Ref(c)) => Some(*c),
+                    _ => None,
+                },
+            );
         match next {
             Some(c) => id = c,
             None => return id,

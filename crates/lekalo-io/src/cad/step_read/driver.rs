@@ -7,6 +7,7 @@ use std::collections::{HashMap, HashSet};
 use super::analytic::{ANALYTIC_CURVES, ANALYTIC_SURFACES};
 use super::bounds::{face_bounds, line_ranges};
 use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMETRY, TESSELLATED};
+use super::faces::read_faces;
 use super::parse::parse;
 use super::units::{length_unit, plane_angle_unit};
 use super::{StepRead, StepSkipped, Why};
@@ -65,6 +66,21 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
 /// As [`read_step`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
+    read(text, source, max_size, false)
+}
+
+/// [`read_step_limited`] that reads the faces too ([`StepRead::faces`]): each `ADVANCED_FACE`
+/// or `FACE_SURFACE` as a [`lekalo::Face`], its surface trimmed by loops of edges with their
+/// pcurves; faces that cannot be read are listed in [`StepRead::skipped_faces`] with the
+/// reason. The edges' curves count toward the size limit each time a face reads them.
+///
+/// # Errors
+/// As [`read_step_limited`].
+pub fn read_step_faces(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
+    read(text, source, max_size, true)
+}
+
+fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult<StepRead> {
     let parsed = parse(text, source, max_size)?;
     let (length_unit, scale) = length_unit(&parsed, source)?;
     let rd = Reader {
@@ -194,9 +210,29 @@ pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<
     }
     shapes.sort_by_key(|(id, _)| *id);
     skipped.sort_by_key(|s| s.id);
+    let (faces, skipped_faces) = if with_faces {
+        let surfaces: HashMap<u64, &lekalo::Surface> = shapes
+            .iter()
+            .filter_map(|(id, s)| match s {
+                Shape::Surface(s) => Some((*id, s)),
+                _ => None,
+            })
+            .collect();
+        let surface_skips: HashMap<u64, &str> =
+            skipped.iter().map(|s| (s.id, s.reason.as_str())).collect();
+        let r = read_faces(&rd, &ids, &surfaces, &surface_skips);
+        if let Some(e) = too_large(&rd) {
+            return Err(e);
+        }
+        r
+    } else {
+        (Vec::new(), Vec::new())
+    };
     Ok(StepRead {
         shapes,
         skipped,
+        faces,
+        skipped_faces,
         schema: parsed.schema,
         length_unit,
         scale_to_mm: scale,

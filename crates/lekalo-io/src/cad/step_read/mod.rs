@@ -32,8 +32,9 @@
 //! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library; trimmed curves over any of them |
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
+//! | `faces.rs` | faces: `ADVANCED_FACE`, bounds, edge loops, oriented edges, edge curves cut at their vertices, pcurves in the surface's parameters ([`StepFace`]) |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
-//! | `tests.rs`, `analytic_tests.rs` | tests |
+//! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs` | tests |
 
 mod analytic;
 #[cfg(test)]
@@ -41,12 +42,16 @@ mod analytic_tests;
 mod bounds;
 mod driver;
 mod entities;
+mod faces;
+#[cfg(test)]
+mod faces_tests;
 mod parse;
 #[cfg(test)]
 mod tests;
 mod units;
 
-pub use driver::{read_step, read_step_limited};
+pub use driver::{read_step, read_step_faces, read_step_limited};
+pub use faces::{StepFace, STEP_LOOP_RTOL};
 
 use crate::shape::Shape;
 
@@ -115,6 +120,10 @@ pub struct StepRead {
     pub shapes: Vec<(u64, Shape)>,
     /// Geometric entities that were not read, in id order.
     pub skipped: Vec<StepSkipped>,
+    /// The faces, in id order ([`read_step_faces`]; empty from [`read_step`]).
+    pub faces: Vec<StepFace>,
+    /// The faces that were not read, with the reason, in id order ([`read_step_faces`]).
+    pub skipped_faces: Vec<StepSkipped>,
     /// The schema named in the header's `FILE_SCHEMA`, e.g. `AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }`.
     pub schema: Option<String>,
     /// The length unit of the unit context, e.g. `millimetre`, `metre`, `INCH (25.4 mm)`;
@@ -186,6 +195,16 @@ fn int(p: &P) -> Option<usize> {
         Some(x as usize)
     } else {
         None
+    }
+}
+
+/// The attributes of a record after its name: a simple instance's record starts with the
+/// inherited `name` (a string), a complex instance's record holds its own attributes only
+/// (the name is in its `REPRESENTATION_ITEM` record).
+fn unnamed(r: &[P]) -> &[P] {
+    match r.first() {
+        Some(P::Str(_)) => &r[1..],
+        _ => r,
     }
 }
 

@@ -1,0 +1,181 @@
+//! End-to-end tests of `--faces`: `convert` writes a STEP file's faces as JSON Lines that the
+//! library reads back, `info` lists them, and faces that cannot be read are reported.
+
+#![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
+
+use std::fs;
+
+use predicates::prelude::PredicateBooleanExt;
+use predicates::str::contains;
+use serde_json::Value;
+
+use crate::common;
+use common::{dir_with, lekalo, p};
+
+/// A plate 10 × 10 mm on the plane z = 0 with a round hole of radius 2 about (5, 5), and a
+/// second face whose loop names an edge that is not in the file.
+const PLATE: &str = "ISO-10303-21;
+HEADER;
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));
+ENDSEC;
+DATA;
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=PLANE('',#4);
+#12=CARTESIAN_POINT('',(10.,0.,0.));
+#13=CARTESIAN_POINT('',(10.,10.,0.));
+#14=CARTESIAN_POINT('',(0.,10.,0.));
+#21=VERTEX_POINT('',#1);
+#22=VERTEX_POINT('',#12);
+#23=VERTEX_POINT('',#13);
+#24=VERTEX_POINT('',#14);
+#30=DIRECTION('',(1.,0.,0.));
+#31=VECTOR('',#30,1.);
+#32=LINE('',#1,#31);
+#33=DIRECTION('',(0.,1.,0.));
+#34=VECTOR('',#33,1.);
+#35=LINE('',#12,#34);
+#36=LINE('',#14,#31);
+#37=LINE('',#1,#34);
+#41=EDGE_CURVE('',#21,#22,#32,.T.);
+#42=EDGE_CURVE('',#22,#23,#35,.T.);
+#43=EDGE_CURVE('',#24,#23,#36,.T.);
+#44=EDGE_CURVE('',#21,#24,#37,.T.);
+#51=ORIENTED_EDGE('',*,*,#41,.T.);
+#52=ORIENTED_EDGE('',*,*,#42,.T.);
+#53=ORIENTED_EDGE('',*,*,#43,.F.);
+#54=ORIENTED_EDGE('',*,*,#44,.F.);
+#55=EDGE_LOOP('',(#51,#52,#53,#54));
+#56=FACE_OUTER_BOUND('',#55,.T.);
+#60=CARTESIAN_POINT('',(5.,5.,0.));
+#61=AXIS2_PLACEMENT_3D('',#60,#2,#3);
+#62=CIRCLE('',#61,2.);
+#63=CARTESIAN_POINT('',(7.,5.,0.));
+#64=VERTEX_POINT('',#63);
+#65=EDGE_CURVE('',#64,#64,#62,.T.);
+#66=ORIENTED_EDGE('',*,*,#65,.F.);
+#67=EDGE_LOOP('',(#66));
+#68=FACE_BOUND('',#67,.T.);
+#70=ADVANCED_FACE('plate',(#56,#68),#5,.T.);
+#80=EDGE_LOOP('',(#51,#999));
+#81=FACE_OUTER_BOUND('',#80,.T.);
+#82=ADVANCED_FACE('broken',(#81),#5,.T.);
+ENDSEC;
+END-ISO-10303-21;
+";
+
+#[test]
+fn convert_faces_writes_face_objects_the_library_reads() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    lekalo()
+        .args(["convert", "--faces"])
+        .arg(p(&d, "plate.step"))
+        .arg("-o")
+        .arg(p(&d, "faces.jsonl"))
+        .assert()
+        .success()
+        .stderr(
+            contains("read 1 face(s), 1 with pcurves")
+                .and(contains("ADVANCED_FACE"))
+                .and(contains("#999 of a loop is not defined"))
+                .and(contains("(first #82)")),
+        );
+    let text = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    assert_eq!(text.lines().count(), 1);
+    let v: Value = serde_json::from_str(text.trim()).unwrap();
+    assert_eq!(
+        (v["type"].as_str(), v["id"].as_u64(), v["name"].as_str()),
+        (Some("face"), Some(70), Some("plate"))
+    );
+    assert_eq!(v["outer"].as_array().unwrap().len(), 4);
+    assert_eq!(v["inner"][0].as_array().unwrap().len(), 1);
+    assert_eq!(v["inner"][0][0]["edge_id"].as_u64(), Some(65));
+    assert_eq!(
+        v["inner"][0][0]["pcurve"]["control"][0]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
+    let f = lekalo_io::read_face(text.trim(), "faces.jsonl").unwrap();
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(1.0, 1.0) && !region.contains(5.0, 5.0));
+    // the default output is unchanged: curves and surfaces
+    lekalo()
+        .arg("convert")
+        .arg(p(&d, "plate.step"))
+        .arg("-o")
+        .arg(p(&d, "shapes.jsonl"))
+        .assert()
+        .success();
+    let shapes = fs::read_to_string(p(&d, "shapes.jsonl")).unwrap();
+    assert!(!shapes.contains("\"face\"") && shapes.contains("bspline_surface"));
+}
+
+#[test]
+fn info_faces_lists_loops_and_pcurves() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    lekalo()
+        .args(["info", "--faces"])
+        .arg(p(&d, "plate.step"))
+        .assert()
+        .success()
+        .stdout(
+            contains("faces           1 (1 with pcurves), 1 skipped")
+                .and(contains(
+                    "#70 \"plate\"  bspline_surface #5  edges: outer 4, inner 1  pcurves",
+                ))
+                .and(contains(
+                    "skipped #82 ADVANCED_FACE: edge #999 of a loop is not defined",
+                )),
+        );
+    let out = lekalo()
+        .args(["info", "--faces", "--json", "-q"])
+        .arg(p(&d, "plate.step"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        v["faces"][0]["loops"][0]["edge_ids"],
+        serde_json::json!([41, 42, 43, 44])
+    );
+    assert_eq!(v["faces"][0]["pcurves"], Value::Bool(true));
+    assert_eq!(v["skipped"][0]["id"].as_u64(), Some(82));
+}
+
+#[test]
+fn faces_refuse_what_they_cannot_write_or_read() {
+    let d = dir_with(&[
+        ("plate.step", PLATE),
+        (
+            "c.json",
+            r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]}"#,
+        ),
+    ]);
+    lekalo()
+        .args(["convert", "--faces"])
+        .arg(p(&d, "plate.step"))
+        .arg("-o")
+        .arg(p(&d, "faces.step"))
+        .assert()
+        .code(2)
+        .stderr(contains("--faces writes JSON Lines"));
+    lekalo()
+        .args(["info", "--faces"])
+        .arg(p(&d, "c.json"))
+        .assert()
+        .code(2)
+        .stderr(contains("--faces reads the faces of a STEP file"));
+    // the size limit holds for faces too
+    lekalo()
+        .args(["convert", "--faces", "--max-size", "20"])
+        .arg(p(&d, "plate.step"))
+        .arg("-o")
+        .arg(p(&d, "faces.jsonl"))
+        .assert()
+        .code(2)
+        .stderr(contains("--max-size"));
+}

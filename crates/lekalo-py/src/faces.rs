@@ -1,0 +1,237 @@
+//! `Face` and `read_step`: the faces of a STEP file (a surface trimmed by loops of edges, each
+//! edge a 3-D curve with its pcurve in the surface's `(u, v)`), with the point-in-face test on
+//! NumPy arrays; `read_step` also gives the file's curves and surfaces.
+
+use lekalo::topology::TrimRegion;
+use lekalo_io::{Shape, StepFace};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+use crate::convert::{array, uv_args};
+use crate::curves::curve_to_py;
+use crate::error::{io_err, lib_err};
+use crate::surfaces::surface_to_py;
+
+/// A face of a CAD model: a surface trimmed by an outer loop and inner loops (holes). Each edge
+/// is a pair ``(curve, pcurve)``: its 3-D curve and its curve in the surface's ``(u, v)`` (or
+/// ``None``), both directed along the loop.
+#[pyclass(module = "lekalo", name = "Face", frozen)]
+pub(crate) struct PyFace {
+    inner: StepFace,
+    /// The trim polygons, made on first use of `contains`.
+    region: std::sync::OnceLock<Result<TrimRegion, lekalo::Error>>,
+}
+
+impl PyFace {
+    fn region(&self) -> PyResult<&TrimRegion> {
+        self.region
+            .get_or_init(|| self.inner.face.trim_region())
+            .as_ref()
+            .map_err(|e| lib_err(e.clone()))
+    }
+}
+
+fn loop_to_py<'py>(py: Python<'py>, lp: &lekalo::Loop) -> PyResult<Bound<'py, PyList>> {
+    let mut edges = Vec::with_capacity(lp.edges().len());
+    for e in lp.edges() {
+        let c = curve_to_py(py, e.curve().clone())?;
+        let p = match e.pcurve() {
+            Some(p) => curve_to_py(py, p.clone())?,
+            None => py.None(),
+        };
+        edges.push(PyTuple::new(py, [c, p])?);
+    }
+    PyList::new(py, edges)
+}
+
+#[pymethods]
+impl PyFace {
+    /// The face's instance id in its file (``#id``).
+    #[getter]
+    fn id(&self) -> u64 {
+        self.inner.id
+    }
+
+    /// The face's name in its file.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+
+    /// The id of the surface's instance in the file.
+    #[getter]
+    fn surface_id(&self) -> u64 {
+        self.inner.surface_id
+    }
+
+    /// True when the face's normal is the surface's.
+    #[getter]
+    fn same_sense(&self) -> bool {
+        self.inner.face.same_sense()
+    }
+
+    /// The surface (``BSplineSurface`` or ``NurbsSurface``).
+    #[getter]
+    fn surface(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        surface_to_py(py, self.inner.face.surface().clone())
+    }
+
+    /// The outer loop: a list of ``(curve, pcurve)`` edges in loop order.
+    #[getter]
+    fn outer<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        loop_to_py(py, self.inner.face.outer())
+    }
+
+    /// The inner loops (holes), each a list of ``(curve, pcurve)`` edges.
+    #[getter]
+    fn inner<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let loops = self
+            .inner
+            .face
+            .inner()
+            .iter()
+            .map(|lp| loop_to_py(py, lp))
+            .collect::<PyResult<Vec<_>>>()?;
+        PyList::new(py, loops)
+    }
+
+    /// The ``EDGE_CURVE`` ids of each loop's edges, outer loop first.
+    #[getter]
+    fn edge_ids(&self) -> Vec<Vec<u64>> {
+        self.inner.edge_ids.clone()
+    }
+
+    /// Why the edges have no pcurves (e.g. a cylinder's), or ``None`` when they all have one.
+    #[getter]
+    fn pcurves(&self) -> Option<String> {
+        self.inner.pcurves.clone()
+    }
+
+    /// The loops in ``(u, v)`` as closed polygons through points of the pcurves (16 per knot
+    /// span): a list of ``(n, 2)`` arrays, outer loop first.
+    fn trim_polygons<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let region = self.region()?;
+        region
+            .polygons()
+            .iter()
+            .map(|p| array(py, p.as_slice().to_vec(), &[p.len(), 2]))
+            .collect()
+    }
+
+    /// Whether ``(u, v)`` lies inside the face: the outer polygon winds around it and no inner
+    /// one does (winding numbers, Hormann and Agathos 2001). ``u`` and ``v`` are numbers (a
+    /// ``bool`` back) or arrays of one shape (a boolean array of that shape).
+    fn contains<'py>(
+        &self,
+        py: Python<'py>,
+        u: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let region = self.region()?;
+        let (ua, pairs) = uv_args(u, v)?;
+        let shape = ua.shape().to_vec();
+        let inside: Vec<bool> =
+            py.detach(|| pairs.iter().map(|&[a, b]| region.contains(a, b)).collect());
+        if shape.is_empty() {
+            return Ok(pyo3::types::PyBool::new(py, inside[0])
+                .to_owned()
+                .into_any());
+        }
+        let a = PyArray1::from_vec(py, inside);
+        Ok(a.reshape(shape)?.into_any())
+    }
+
+    /// The face as its JSON line (``"type": "face"``, docs/formats.md).
+    fn to_json(&self) -> String {
+        lekalo_io::face_to_json_line(&self.inner)
+    }
+
+    /// A face from its JSON line.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        Ok(face(lekalo_io::read_face(text, "json").map_err(io_err)?))
+    }
+
+    fn __repr__(&self) -> String {
+        let f = &self.inner.face;
+        format!(
+            "Face(id={}, name={:?}, surface={}, outer={} edges, inner={} loops, pcurves={})",
+            self.inner.id,
+            self.inner.name,
+            f.surface().type_name(),
+            f.outer().edges().len(),
+            f.inner().len(),
+            self.inner.pcurves.is_none()
+        )
+    }
+}
+
+fn face(inner: StepFace) -> PyFace {
+    PyFace {
+        inner,
+        region: std::sync::OnceLock::new(),
+    }
+}
+
+/// Reads a STEP file: ``{"shapes": [...], "skipped": [...], "length_unit": str, "schema":
+/// str | None}``, and with ``faces=True`` also ``"faces"`` (a list of ``Face``) and
+/// ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``. ``max_size``
+/// bounds the entities and the control points and knots of the file, as the CLI's
+/// ``--max-size``.
+#[pyfunction]
+#[pyo3(signature = (path, *, faces = false, max_size = 10_000_000))]
+pub(crate) fn read_step<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    faces: bool,
+    max_size: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (text, name) = lekalo_io::read_input(&path).map_err(io_err)?;
+    let r = py
+        .detach(|| {
+            if faces {
+                lekalo_io::read_step_faces(&text, &name, max_size)
+            } else {
+                lekalo_io::read_step_limited(&text, &name, max_size)
+            }
+        })
+        .map_err(io_err)?;
+    let skipped = |list: &[lekalo_io::StepSkipped]| -> PyResult<Bound<'py, PyList>> {
+        let items = list
+            .iter()
+            .map(|s| {
+                let d = PyDict::new(py);
+                d.set_item("id", s.id)?;
+                d.set_item("entity", &s.entity)?;
+                d.set_item("reason", &s.reason)?;
+                Ok(d)
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        PyList::new(py, items)
+    };
+    let out = PyDict::new(py);
+    let shapes = r
+        .shapes
+        .into_iter()
+        .map(|(_, s)| match s {
+            Shape::Curve(c) => curve_to_py(py, c),
+            Shape::Surface(s) => surface_to_py(py, s),
+            other => crate::objects::shape_to_py(py, other),
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    out.set_item("shapes", shapes)?;
+    out.set_item("skipped", skipped(&r.skipped)?)?;
+    out.set_item("length_unit", r.length_unit)?;
+    out.set_item("schema", r.schema)?;
+    if faces {
+        let list = r
+            .faces
+            .into_iter()
+            .map(|f| Py::new(py, face(f)))
+            .collect::<PyResult<Vec<_>>>()?;
+        out.set_item("faces", list)?;
+        out.set_item("skipped_faces", skipped(&r.skipped_faces)?)?;
+    }
+    Ok(out)
+}

@@ -1,0 +1,153 @@
+"""Faces of STEP files: ``lekalo.read_step(path, faces=True)`` gives ``Face`` objects whose
+surface and edges are lekalo objects, with the point-in-face test on NumPy arrays."""
+
+import numpy as np
+import pytest
+
+import lekalo
+
+HEAD = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n"
+TAIL = "ENDSEC;\nEND-ISO-10303-21;\n"
+
+# a plate 10 x 10 on z = 0 with a hole of radius 2 about (5, 5); face #82 names a missing edge
+PLATE = """
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=PLANE('',#4);
+#12=CARTESIAN_POINT('',(10.,0.,0.));
+#13=CARTESIAN_POINT('',(10.,10.,0.));
+#14=CARTESIAN_POINT('',(0.,10.,0.));
+#21=VERTEX_POINT('',#1);
+#22=VERTEX_POINT('',#12);
+#23=VERTEX_POINT('',#13);
+#24=VERTEX_POINT('',#14);
+#30=DIRECTION('',(1.,0.,0.));
+#31=VECTOR('',#30,1.);
+#32=LINE('',#1,#31);
+#33=DIRECTION('',(0.,1.,0.));
+#34=VECTOR('',#33,1.);
+#35=LINE('',#12,#34);
+#36=LINE('',#14,#31);
+#37=LINE('',#1,#34);
+#41=EDGE_CURVE('',#21,#22,#32,.T.);
+#42=EDGE_CURVE('',#22,#23,#35,.T.);
+#43=EDGE_CURVE('',#24,#23,#36,.T.);
+#44=EDGE_CURVE('',#21,#24,#37,.T.);
+#51=ORIENTED_EDGE('',*,*,#41,.T.);
+#52=ORIENTED_EDGE('',*,*,#42,.T.);
+#53=ORIENTED_EDGE('',*,*,#43,.F.);
+#54=ORIENTED_EDGE('',*,*,#44,.F.);
+#55=EDGE_LOOP('',(#51,#52,#53,#54));
+#56=FACE_OUTER_BOUND('',#55,.T.);
+#60=CARTESIAN_POINT('',(5.,5.,0.));
+#61=AXIS2_PLACEMENT_3D('',#60,#2,#3);
+#62=CIRCLE('',#61,2.);
+#63=CARTESIAN_POINT('',(7.,5.,0.));
+#64=VERTEX_POINT('',#63);
+#65=EDGE_CURVE('',#64,#64,#62,.T.);
+#66=ORIENTED_EDGE('',*,*,#65,.F.);
+#67=EDGE_LOOP('',(#66));
+#68=FACE_BOUND('',#67,.T.);
+#70=ADVANCED_FACE('plate',(#56,#68),#5,.T.);
+#80=EDGE_LOOP('',(#51,#999));
+#81=FACE_OUTER_BOUND('',#80,.T.);
+#82=ADVANCED_FACE('broken',(#81),#5,.T.);
+"""
+
+# a cylinder of radius 1 and height 2: bottom and top circles and the seam, up and down
+TUBE = """
+#201=CARTESIAN_POINT('',(0.,0.,0.));
+#202=DIRECTION('',(0.,0.,1.));
+#203=DIRECTION('',(1.,0.,0.));
+#204=AXIS2_PLACEMENT_3D('',#201,#202,#203);
+#205=CYLINDRICAL_SURFACE('',#204,1.);
+#206=CARTESIAN_POINT('',(0.,0.,2.));
+#207=AXIS2_PLACEMENT_3D('',#206,#202,#203);
+#208=CIRCLE('',#204,1.);
+#209=CIRCLE('',#207,1.);
+#210=CARTESIAN_POINT('',(1.,0.,0.));
+#211=CARTESIAN_POINT('',(1.,0.,2.));
+#212=VERTEX_POINT('',#210);
+#213=VERTEX_POINT('',#211);
+#214=VECTOR('',#202,1.);
+#215=LINE('',#210,#214);
+#230=EDGE_CURVE('',#212,#212,#208,.T.);
+#231=EDGE_CURVE('',#213,#213,#209,.T.);
+#232=EDGE_CURVE('',#212,#213,#215,.T.);
+#240=ORIENTED_EDGE('',*,*,#230,.T.);
+#241=ORIENTED_EDGE('',*,*,#232,.T.);
+#242=ORIENTED_EDGE('',*,*,#231,.F.);
+#243=ORIENTED_EDGE('',*,*,#232,.F.);
+#244=EDGE_LOOP('',(#240,#241,#242,#243));
+#245=FACE_OUTER_BOUND('',#244,.T.);
+#246=ADVANCED_FACE('tube',(#245),#205,.T.);
+"""
+
+
+def write(tmp_path, name, data):
+    path = tmp_path / name
+    path.write_text(HEAD + data + TAIL)
+    return path
+
+
+def test_plate_faces_loops_and_pcurves(tmp_path):
+    r = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)
+    assert [f.id for f in r["faces"]] == [70]
+    assert r["skipped_faces"][0]["id"] == 82
+    assert "#999 of a loop is not defined" in r["skipped_faces"][0]["reason"]
+    f = r["faces"][0]
+    assert (f.name, f.surface_id, f.same_sense, f.pcurves) == ("plate", 5, True, None)
+    assert isinstance(f.surface, lekalo.BSplineSurface)
+    assert len(f.outer) == 4 and len(f.inner) == 1 and len(f.inner[0]) == 1
+    assert f.edge_ids == [[41, 42, 43, 44], [65]]
+    curve, pcurve = f.outer[2]
+    # the top edge, used backwards, runs from (10, 10) to (0, 10) in space and in (u, v)
+    lo, hi = curve.domain
+    np.testing.assert_allclose(curve(np.array([lo, hi])), [[10, 10, 0], [0, 10, 0]], atol=1e-12)
+    lo, hi = pcurve.domain
+    np.testing.assert_allclose(pcurve(np.array([lo, hi])), [[10, 10], [0, 10]], atol=1e-12)
+    assert isinstance(f.inner[0][0][1], lekalo.NurbsCurve) and f.inner[0][0][1].dim == 2
+
+
+def test_contains_takes_numbers_and_arrays(tmp_path):
+    f = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    assert f.contains(1.0, 1.0) is True
+    assert f.contains(5.0, 5.0) is False
+    u, v = np.meshgrid(np.linspace(-1, 11, 8), np.linspace(-0.5, 10.5, 6), indexing="ij")
+    inside = f.contains(u, v)
+    assert inside.shape == (8, 6) and inside.dtype == bool
+    expected = (u > 0) & (u < 10) & (v > 0) & (v < 10) & (np.hypot(u - 5, v - 5) > 2)
+    np.testing.assert_array_equal(inside, expected)
+    polygons = f.trim_polygons()
+    assert [p.shape[1] for p in polygons] == [2, 2]
+    np.testing.assert_allclose(np.hypot(*(polygons[1] - 5).T), 2, rtol=0.02)
+
+
+def test_faces_round_trip_through_json(tmp_path):
+    f = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    text = f.to_json()
+    g = lekalo.Face.from_json(text)
+    assert g.to_json() == text and g.id == 70
+    with pytest.raises(lekalo.InputError, match="field `type`"):
+        lekalo.Face.from_json(text.replace('"type":"face"', '"type":"surface"'))
+
+
+def test_cylinder_faces_keep_their_edges_without_pcurves(tmp_path):
+    r = lekalo.read_step(write(tmp_path, "tube.step", TUBE), faces=True)
+    f = r["faces"][0]
+    assert f.edge_ids == [[230, 232, 231, 232]]
+    assert all(p is None for _, p in f.outer)
+    assert "CYLINDRICAL_SURFACE" in f.pcurves
+    with pytest.raises(lekalo.InputError, match="no curve in the surface's"):
+        f.contains(0.5, 0.5)
+
+
+def test_read_step_without_faces_and_with_a_limit(tmp_path):
+    path = write(tmp_path, "plate.step", PLATE)
+    r = lekalo.read_step(path)
+    assert "faces" not in r and r["length_unit"].startswith("millimetre")
+    assert any(isinstance(s, lekalo.BSplineSurface) for s in r["shapes"])
+    with pytest.raises(lekalo.InputError, match="max-size"):
+        lekalo.read_step(path, faces=True, max_size=20)
