@@ -68,6 +68,52 @@ impl QueryCurve {
         ))
     }
 
+    /// The self-intersection `O(a) = O(b)` of the exact offset near `(a, b)`, found on the
+    /// fitted offset: Newton's method on `O(a) − O(b) = 0` with the Jacobian `[O'(a), −O'(b)]`,
+    /// `O' = C'·(1 − d·κ)`, while the steps shrink, `a` and `b` kept in `lims`; `None` if it
+    /// does not converge (the fitted cut is kept).
+    fn refine_cut(
+        &self,
+        (mut a, mut b): (f64, f64),
+        lims: ((f64, f64), (f64, f64)),
+        d: f64,
+        scratch: &mut Vec<f64>,
+    ) -> Option<(f64, f64)> {
+        let mut jet = |t: f64| -> Option<([f64; 2], [f64; 2])> {
+            let v = self.eval_global(t, 2, scratch);
+            let (p, f) = self.offset_point(t, d, scratch)?;
+            Some((p, [v[2] * f, v[3] * f]))
+        };
+        let span = (lims.1 .1 - lims.0 .0).abs();
+        let mut last = f64::INFINITY;
+        for _ in 0..30 {
+            let ((p, u), (q, w)) = (jet(a)?, jet(b)?);
+            let r = [p[0] - q[0], p[1] - q[1]];
+            let det = u[0] * -w[1] + w[0] * u[1];
+            if !(det.abs() > 0.0) {
+                return None;
+            }
+            // [u, −w] (da, db)ᵀ = −r
+            let da = (-r[0] * -w[1] - -w[0] * -r[1]) / det;
+            let db = (u[0] * -r[1] - u[1] * -r[0]) / det;
+            a += da;
+            b += db;
+            if !(a >= lims.0 .0 && a <= lims.0 .1 && b >= lims.1 .0 && b <= lims.1 .1) {
+                return None;
+            }
+            let step = da.abs().max(db.abs());
+            if step <= 4.0 * f64::EPSILON * span {
+                return Some((a, b));
+            }
+            if step >= last {
+                // rounding stops the steps shrinking; anything larger does not converge
+                return (step <= 1e-9 * span).then_some((a, b));
+            }
+            last = step;
+        }
+        None
+    }
+
     /// The offset `O = C + d·N` and its derivative `O' = C'·(1 − d·κ)` at the local parameter
     /// `s` of piece `k` (one-sided at the piece's ends); `None` where `C' = 0`.
     fn offset_jet(
@@ -434,7 +480,8 @@ impl QueryCurve {
                 })
                 .min_by(|x, y| ((c1 - x.0) + (x.1 - c2)).total_cmp(&((c1 - y.0) + (y.1 - c2))));
             if let Some(cut) = best {
-                loops.push(cut);
+                let lims = ((bounds[i - 1], c1), (c2, bounds[i + 2]));
+                loops.push(self.refine_cut(cut, lims, d, &mut scratch).unwrap_or(cut));
             }
         }
         let mut trimmed = Vec::new();
@@ -665,5 +712,10 @@ mod tests {
         let off = q.offset(0.6, 1e-6).unwrap();
         assert_eq!(off.cusps.len(), 4, "{:?}", off.cusps);
         assert!(!off.loops.is_empty(), "loops {:?}", off.loops);
+        // each cut is a self-intersection of the exact offset, to rounding
+        for &(a, b) in &off.loops {
+            let gap = dist(&exact(&q, a, 0.6), &exact(&q, b, 0.6));
+            assert!(gap <= 1e-14, "loop ({a}, {b}): {gap}");
+        }
     }
 }
