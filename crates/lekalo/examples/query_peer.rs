@@ -18,7 +18,9 @@ use lekalo::{Points, QueryCurve, QuerySurface};
 
 #[path = "../benches/query_workloads/mod.rs"]
 mod query_workloads;
-use query_workloads::{plane_curve, query_point, space_curve, surface};
+use query_workloads::{
+    arc, plane_curve, query_point, space_curve, surface, OFFSET_DISTANCE, OFFSET_TOLERANCE,
+};
 
 /// Median wall time in seconds of the runs of `f`: `repeats` runs, then more while they have
 /// taken less than a second in all (at most 1,001), so that a fast workload is timed over many
@@ -106,6 +108,22 @@ fn main() -> Result<(), lekalo::Error> {
             s
         }),
     );
+    for (name, q) in [
+        ("offset_cubic", QueryCurve::from_bspline(&plane_curve(0))?),
+        ("offset_arc", QueryCurve::from_nurbs(&arc())?),
+    ] {
+        let mut facts = (0, 0.0);
+        let t = median_s(repeats, || {
+            let o = black_box(&q)
+                .offset(OFFSET_DISTANCE, OFFSET_TOLERANCE)
+                .expect("offset");
+            facts = (o.curve.control_points().len(), o.deviation);
+        });
+        println!(
+            "lekalo {name} {t:.6e} s control points {} deviation {:.3e}",
+            facts.0, facts.1
+        );
+    }
     let s = QuerySurface::from_bspline(&surface())?;
     let mut facts = (0, 0, 0.0);
     let t = median_s(repeats, || {

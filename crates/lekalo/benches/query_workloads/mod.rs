@@ -2,7 +2,7 @@
 //! by formulas, which `bench/peers/occt_queries.cpp` builds the same way for Open CASCADE.
 #![allow(dead_code)]
 
-use lekalo::{BSplineCurve, BSplineSurface, KnotVector, Points};
+use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve, Points};
 
 /// Control points of the 3-D projection curve (index `i` of `n`).
 pub(crate) fn space_point(i: usize) -> [f64; 3] {
@@ -63,6 +63,27 @@ pub(crate) fn plane_curve(phase: usize) -> BSplineCurve {
         Points::from_2d(&pts).expect("points"),
     )
     .expect("curve")
+}
+
+/// Distance of the offset workloads: of the planar cubic `plane_curve(0)` (whose smallest
+/// radius of curvature is about 0.09) and of the arc.
+pub(crate) const OFFSET_DISTANCE: f64 = 0.05;
+/// Tolerance of the offset workloads.
+pub(crate) const OFFSET_TOLERANCE: f64 = 1e-6;
+
+/// The half circle of radius 1 about the origin from (1, 0) to (−1, 0), as two rational
+/// quadratic quarter circles: control points (1, 0), (1, 1), (0, 1), (−1, 1), (−1, 0), weights
+/// 1, 1/√2, 1, 1/√2, 1, knots 0, 0, 0, ½, ½, 1, 1, 1.
+pub(crate) fn arc() -> NurbsCurve {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    NurbsCurve::new(
+        2,
+        vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
+        Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [-1.0, 1.0], [-1.0, 0.0]])
+            .expect("points"),
+        vec![1.0, w, 1.0, w, 1.0],
+    )
+    .expect("arc")
 }
 
 pub(crate) fn surface() -> BSplineSurface {
