@@ -81,6 +81,7 @@ pub use shape::{
     shape_violations, PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL,
     SHAPE_RTOL,
 };
+pub(crate) use smoothing::smoothing_system;
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub use smoothing_condition::{
     smoothing_condition, smoothing_condition_with_progress, smoothing_knot_sequence, SMOOTHING_RTOL,
