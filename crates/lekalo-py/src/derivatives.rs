@@ -8,7 +8,9 @@
 //! and tangents have the shape `t.shape + (dim,)`; cotangents of the control points the shape
 //! of `control`, of the parameters the shape of `t`.
 
-use lekalo::derivatives::{CurveLinearization, InterpolationMap};
+use lekalo::derivatives::{
+    CurveLinearization, FitLinearization, InterpolationMap, LeastSquaresMap, SmoothingMap,
+};
 use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -28,6 +30,15 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(nurbs_curve_linearize, m)?)?;
     m.add_function(wrap_pyfunction!(interpolation_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(interpolation_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(least_squares_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(least_squares_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(least_squares_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_bspline_jvp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_bspline_vjp, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_bspline_linearize, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_jvp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(bspline_surface_linearize, m)?)?;
@@ -353,6 +364,174 @@ pub(crate) fn interpolation_vjp<'py>(
     array(py, out, a.shape())
 }
 
+/// `shape` with its first axis replaced by `len` (a tangent or cotangent of points mapped to
+/// another number of points).
+fn with_len(shape: &[usize], len: usize) -> Vec<usize> {
+    let mut s = shape.to_vec();
+    if let Some(first) = s.first_mut() {
+        *first = len;
+    }
+    s
+}
+
+/// The factored least-squares map of `degree` on `knots` at `params` with weights `w` (the
+/// library's `Σ w_k |r_k|²`, as `fit_least_squares`).
+fn least_squares_map(
+    degree: usize,
+    knots: &Bound<'_, PyAny>,
+    params: &Bound<'_, PyAny>,
+    w: Option<&Bound<'_, PyAny>>,
+) -> PyResult<LeastSquaresMap> {
+    let kv = KnotVector::new(vec1(knots, "knots")?).map_err(lib_err)?;
+    let ts = vec1(params, "params")?;
+    let w = w
+        .filter(|w| !w.is_none())
+        .map(|w| vec1(w, "w"))
+        .transpose()?;
+    LeastSquaresMap::new(degree, &kv, &ts, w.as_deref()).map_err(lib_err)
+}
+
+/// Forward-mode derivative of the least-squares fit (`fit_least_squares` without end or shape
+/// constraints) at fixed `params` and `knots` with respect to the data: the control-point
+/// tangent `(BᵀWB)⁻¹ BᵀW @ data_tangent` (`(n_ctrl, dim)`, or `(n_ctrl,)` for a 1-D tangent),
+/// by the banded QR's triangle.
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, data_tangent, w = None))]
+pub(crate) fn least_squares_jvp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    data_tangent: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = least_squares_map(degree, knots, params, w)?;
+    let a = floats(data_tangent, "data_tangent")?;
+    let dim = dim_of(&a, "data_tangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
+    array(py, out, &with_len(a.shape(), map.n_ctrl()))
+}
+
+/// Reverse-mode derivative of the least-squares fit with respect to the data: the data
+/// cotangent `W B (BᵀWB)⁻¹ @ control_cotangent` (`(len(params), dim)`, or 1-D).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, control_cotangent, w = None))]
+pub(crate) fn least_squares_vjp<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    control_cotangent: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = least_squares_map(degree, knots, params, w)?;
+    let a = floats(control_cotangent, "control_cotangent")?;
+    let dim = dim_of(&a, "control_cotangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
+    array(py, out, &with_len(a.shape(), map.n_data()))
+}
+
+/// The factored smoothing map of the parameters `x` with weights `w` for `lam > 0`.
+fn smoothing_map(
+    x: &Bound<'_, PyAny>,
+    lam: f64,
+    w: Option<&Bound<'_, PyAny>>,
+) -> PyResult<SmoothingMap> {
+    let xs = vec1(x, "x")?;
+    let w = w
+        .filter(|w| !w.is_none())
+        .map(|w| vec1(w, "w"))
+        .transpose()?;
+    SmoothingMap::new(&xs, lam, w.as_deref()).map_err(lib_err)
+}
+
+/// Forward-mode derivative of the smoothing spline with a given `lam > 0` (`fit_smoothing(x, y,
+/// w, lam)`) with respect to the data `y`: the control-point tangent
+/// `(BᵀWB + lam Ω)⁻¹ BᵀW @ data_tangent` (`(len(x) + 2, dim)`, or 1-D), with the fit's banded
+/// factorisation.
+#[pyfunction]
+#[pyo3(signature = (x, lam, data_tangent, w = None))]
+pub(crate) fn smoothing_jvp<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    lam: f64,
+    data_tangent: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = smoothing_map(x, lam, w)?;
+    let a = floats(data_tangent, "data_tangent")?;
+    let dim = dim_of(&a, "data_tangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
+    array(py, out, &with_len(a.shape(), map.n_ctrl()))
+}
+
+/// Reverse-mode derivative of the smoothing spline with respect to the data: the data
+/// cotangent `W B (BᵀWB + lam Ω)⁻¹ @ control_cotangent` (`(len(x), dim)`, or 1-D).
+#[pyfunction]
+#[pyo3(signature = (x, lam, control_cotangent, w = None))]
+pub(crate) fn smoothing_vjp<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    lam: f64,
+    control_cotangent: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let map = smoothing_map(x, lam, w)?;
+    let a = floats(control_cotangent, "control_cotangent")?;
+    let dim = dim_of(&a, "control_cotangent")?;
+    let v = a.data();
+    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
+    array(py, out, &with_len(a.shape(), map.n_data()))
+}
+
+/// A fit's map as a dict: `first` (int64, `(m,)`), `basis` (`(m, width)`), `weights`
+/// (`(m,)`) and `triangle` (`(n_ctrl, bandwidth)`, row `i` holding `R[i, i:i + bandwidth]`).
+fn fit_linearization_dict(py: Python<'_>, lin: FitLinearization) -> PyResult<Bound<'_, PyDict>> {
+    let m = lin.first.len();
+    let d = PyDict::new(py);
+    d.set_item("first", index_array(py, lin.first, &[m])?)?;
+    d.set_item("basis", array(py, lin.basis, &[m, lin.width])?)?;
+    d.set_item("weights", array(py, lin.weights, &[m])?)?;
+    d.set_item(
+        "triangle",
+        array(py, lin.triangle, &[lin.n_ctrl, lin.bandwidth])?,
+    )?;
+    Ok(d)
+}
+
+/// The least-squares fit's map from data to control points, `(RᵀR)⁻¹ BᵀW`, as a dict of its
+/// pieces: `first`, `basis` (the sparse rows of `B`), `weights` (`W`, divided by the largest)
+/// and `triangle` (the banded QR's `R`, `RᵀR = BᵀWB`).
+#[pyfunction]
+#[pyo3(signature = (degree, knots, params, w = None))]
+pub(crate) fn least_squares_linearize<'py>(
+    py: Python<'py>,
+    degree: usize,
+    knots: &Bound<'py, PyAny>,
+    params: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let map = least_squares_map(degree, knots, params, w)?;
+    fit_linearization_dict(py, map.linearize())
+}
+
+/// The smoothing spline's map from data to control points, `(RᵀR)⁻¹ BᵀW` with
+/// `RᵀR = BᵀWB + lam Ω`, as [`least_squares_linearize`]'s dict.
+#[pyfunction]
+#[pyo3(signature = (x, lam, w = None))]
+pub(crate) fn smoothing_linearize<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    lam: f64,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let map = smoothing_map(x, lam, w)?;
+    fit_linearization_dict(py, map.linearize())
+}
+
 /// `(u, v)` of one shape as pairs, and that shape.
 fn pairs(u: &Bound<'_, PyAny>, v: &Bound<'_, PyAny>) -> PyResult<(Vec<[f64; 2]>, Vec<usize>)> {
     let (ua, pairs) = crate::convert::uv_args(u, v)?;
@@ -471,5 +650,137 @@ pub(crate) fn bspline_surface_linearize<'py>(
     d.set_item("first_v", index_array(py, lin.first_v, &shape)?)?;
     d.set_item("basis_u", array(py, lin.basis_u, &tail(degree_u + 1))?)?;
     d.set_item("basis_v", array(py, lin.basis_v, &tail(degree_v + 1))?)?;
+    Ok(d)
+}
+
+/// A tensor spline `TensorBSpline(t, c, k)`, its trailing axes, the points `x` (`(..., N)`)
+/// and their leading shape.
+fn tensor_points<'py>(
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+) -> PyResult<(
+    lekalo::TensorBSpline,
+    Vec<usize>,
+    FloatArray<'py>,
+    Vec<usize>,
+)> {
+    let (s, trailing) = crate::tensor::tensor_arg(t, c, k)?;
+    let xa = floats(x, "x")?;
+    let n = s.n_vars();
+    let shape = xa.shape().to_vec();
+    if shape.last() != Some(&n) {
+        return Err(bad(format!(
+            "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
+        )));
+    }
+    let lead = shape[..shape.len() - 1].to_vec();
+    check_size("x", &[lead.iter().product(), s.dim()])?;
+    Ok((s, trailing, xa, lead))
+}
+
+/// Forward-mode derivative of tensor-spline evaluation `TensorBSpline(t, c, k)(x)` at the
+/// points `x` (`(..., N)`): returns `(values, tangent)`, each `x.shape[:-1] + trailing`, with
+/// `tangent = Σ_k Π_a N_{k_a}(x_a) c_tangent[k] + Σ_a ∂S/∂x_a x_tangent[..., a]` (either
+/// tangent may be `None`); the values are bit-for-bit the evaluation's.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, c_tangent = None, x_tangent = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn tensor_bspline_jvp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    c_tangent: Option<&Bound<'py, PyAny>>,
+    x_tangent: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
+    let c_shape = floats(c, "c")?.shape().to_vec();
+    let dc = same_shape(c_tangent, "c_tangent", &c_shape, "c")?;
+    let dx = same_shape(x_tangent, "x_tangent", xa.shape(), "x")?;
+    let len = lead.iter().product::<usize>() * s.dim();
+    let (mut out, mut tan) = (vec![0.0; len], vec![0.0; len]);
+    let (xs, dc, dx) = (
+        xa.data(),
+        dc.as_ref().map(FloatArray::data),
+        dx.as_ref().map(FloatArray::data),
+    );
+    py.detach(|| s.eval_batch_jvp(xs, dc, dx, &mut out, &mut tan))
+        .map_err(lib_err)?;
+    let shape = [lead.as_slice(), &trailing].concat();
+    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+}
+
+/// Reverse-mode derivative of tensor-spline evaluation: for `cotangent` of shape
+/// `x.shape[:-1] + trailing`, returns `(c_cotangent, x_cotangent)`, shaped as `c` and `x`.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, cotangent))]
+pub(crate) fn tensor_bspline_vjp<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    cotangent: &Bound<'py, PyAny>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
+    let c_shape = floats(c, "c")?.shape().to_vec();
+    let want = [lead.as_slice(), &trailing].concat();
+    let g = floats(cotangent, "cotangent")?;
+    if g.shape() != want.as_slice() {
+        return Err(bad(format!(
+            "cotangent: shape {:?} differs from the values' {want:?} (x.shape[:-1] + the \
+             coefficients' trailing axes)",
+            g.shape()
+        )));
+    }
+    let (mut gc, mut gx) = (
+        vec![0.0; s.control_points().as_slice().len()],
+        vec![0.0; xa.data().len()],
+    );
+    let (xs, gs) = (xa.data(), g.data());
+    py.detach(|| s.eval_batch_vjp(xs, gs, Some(&mut gc), Some(&mut gx)))
+        .map_err(lib_err)?;
+    Ok((array(py, gc, &c_shape)?, array(py, gx, xa.shape())?))
+}
+
+/// The linearisation of tensor-spline evaluation at `x`: a dict with `values`
+/// (`x.shape[:-1] + trailing`), `partials` (`x.shape[:-1] + (N,) + trailing`, `∂S/∂x_a`),
+/// `first` (int64, `x.shape`: the first net index of every direction) and `basis`
+/// (`x.shape[:-1] + (Σ_a (k_a + 1),)`: the basis vectors of the directions one after the other).
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x))]
+pub(crate) fn tensor_bspline_linearize<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (s, trailing, xa, lead) = tensor_points(t, c, k, x)?;
+    let xs = xa.data();
+    let lin = py.detach(|| s.eval_batch_linearize(xs)).map_err(lib_err)?;
+    let n = s.n_vars();
+    let width: usize = s.degrees().iter().map(|p| p + 1).sum();
+    let d = PyDict::new(py);
+    d.set_item(
+        "values",
+        array(py, lin.values, &[lead.as_slice(), &trailing].concat())?,
+    )?;
+    d.set_item(
+        "partials",
+        array(
+            py,
+            lin.partials,
+            &[lead.as_slice(), &[n], &trailing].concat(),
+        )?,
+    )?;
+    d.set_item("first", index_array(py, lin.first, xa.shape())?)?;
+    d.set_item(
+        "basis",
+        array(py, lin.basis, &[lead.as_slice(), &[width]].concat())?,
+    )?;
     Ok(d)
 }

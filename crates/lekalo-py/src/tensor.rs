@@ -483,3 +483,14 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
     Ok(())
 }
+
+/// The spline of `TensorBSpline(t, c, k)`, validated as the class validates it, and the
+/// coefficients' trailing axes (for the derivative kernels of `derivatives.rs`).
+pub(crate) fn tensor_arg(
+    t: &Bound<'_, PyAny>,
+    c: &Bound<'_, PyAny>,
+    k: &Bound<'_, PyAny>,
+) -> PyResult<(TensorBSpline, Vec<usize>)> {
+    let s = PyTensorBSpline::new(t, c, k)?;
+    Ok((s.inner, s.trailing))
+}

@@ -215,6 +215,8 @@ def test_the_docs_examples_run():
     for code in blocks:
         exec(compile(code, str(doc), "exec"), namespace)
     assert namespace["jac_u"].shape == (7, 2, 7)
+    assert namespace["g_data"].shape == (60, 2) and namespace["jac_y"].shape == (14, 12)
+    assert namespace["grad_pts"].shape == (2, 3) and namespace["vals"].shape == (2,)
 
 
 def test_the_module_docstring_examples_run():

@@ -1,7 +1,9 @@
 //! criterion benches of the derivative kernels of evaluation (`lekalo::derivatives`): a cubic
 //! 3-D curve with 1000 control points at 10^6 sorted parameters, the plain batch evaluation
 //! beside its JVP (values only, control-point tangent, parameter tangent), its VJP (control
-//! points and parameters) and its linearisation.
+//! points and parameters) and its linearisation; and the derivatives of fits with respect to
+//! the data beside the fits themselves: least squares of 10^5 3-D points on 1000 cubic control
+//! points, the smoothing spline of 10^5 3-D points (factor once, then JVP and VJP).
 //!
 //! Run: `cargo bench --bench derivatives`.
 //! Smoke (each benchmark once, test profile): `cargo test -p lekalo --benches`.
@@ -72,9 +74,54 @@ fn curve(c: &mut Criterion) {
     group.finish();
 }
 
+/// Data points of the fit benches.
+const N_FIT: usize = 100_000;
+
+fn fits(c: &mut Criterion) {
+    use lekalo::derivatives::{LeastSquaresMap, SmoothingMap};
+    use lekalo::fit::{least_squares, smoothing_spline, EndConstraints, FitData, Lambda};
+    let curve = common::curve(3, 1000, 3);
+    let ts = common::sorted_params(N_FIT);
+    let mut q = vec![0.0; N_FIT * 3];
+    curve.eval_batch(&ts, &mut q).expect("in domain");
+    let data = FitData::new(lekalo::PointsRef::from_flat(3, &q).expect("finite"), &ts)
+        .expect("valid data");
+    let knots = curve.knots();
+    let g_ctrl = vec![1.0; 1000 * 3];
+    let mut group = c.benchmark_group("fit_derivatives");
+    group.throughput(Throughput::Elements(N_FIT as u64));
+    group.sample_size(10);
+    group.bench_function("least_squares_fit", |b| {
+        b.iter(|| least_squares(black_box(&data), 3, knots, &EndConstraints::none()).expect("fit"));
+    });
+    group.bench_function("least_squares_map_new", |b| {
+        b.iter(|| LeastSquaresMap::new(3, knots, black_box(&ts), None).expect("map"));
+    });
+    let map = LeastSquaresMap::new(3, knots, &ts, None).expect("map");
+    group.bench_function("least_squares_jvp", |b| {
+        b.iter(|| map.jvp(black_box(&q), 3).expect("jvp"));
+    });
+    group.bench_function("least_squares_vjp", |b| {
+        b.iter(|| map.vjp(black_box(&g_ctrl), 3).expect("vjp"));
+    });
+    group.bench_function("smoothing_fit", |b| {
+        b.iter(|| smoothing_spline(black_box(&data), Lambda::Given(1e-6)).expect("fit"));
+    });
+    let smooth = SmoothingMap::new(&ts, 1e-6, None).expect("map");
+    group.bench_function("smoothing_jvp", |b| {
+        b.iter(|| smooth.jvp(black_box(&q), 3).expect("jvp"));
+    });
+    let g_smooth = vec![1.0; (N_FIT + 2) * 3];
+    group.bench_function("smoothing_vjp", |b| {
+        b.iter(|| smooth.vjp(black_box(&g_smooth), 3).expect("vjp"));
+    });
+    group.finish();
+}
+
 fn benches() {
     let mut c = Criterion::default().configure_from_args();
     curve(&mut c);
+    fits(&mut c);
 }
 
 criterion_main!(benches);

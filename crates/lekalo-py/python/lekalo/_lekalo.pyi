@@ -423,6 +423,48 @@ def interpolation_jvp(
 def interpolation_vjp(
     degree: int, knots: ArrayLike, params: ArrayLike, control_cotangent: ArrayLike
 ) -> Array: ...
+def least_squares_jvp(
+    degree: int,
+    knots: ArrayLike,
+    params: ArrayLike,
+    data_tangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+) -> Array: ...
+def least_squares_vjp(
+    degree: int,
+    knots: ArrayLike,
+    params: ArrayLike,
+    control_cotangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+) -> Array: ...
+def smoothing_jvp(
+    x: ArrayLike, lam: float, data_tangent: ArrayLike, w: Optional[ArrayLike] = None
+) -> Array: ...
+def smoothing_vjp(
+    x: ArrayLike, lam: float, control_cotangent: ArrayLike, w: Optional[ArrayLike] = None
+) -> Array: ...
+def least_squares_linearize(
+    degree: int, knots: ArrayLike, params: ArrayLike, w: Optional[ArrayLike] = None
+) -> dict: ...
+def smoothing_linearize(x: ArrayLike, lam: float, w: Optional[ArrayLike] = None) -> dict: ...
+def tensor_bspline_jvp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    x: ArrayLike,
+    c_tangent: Optional[ArrayLike] = None,
+    x_tangent: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def tensor_bspline_vjp(
+    t: Sequence[ArrayLike],
+    c: ArrayLike,
+    k: Union[int, Sequence[int]],
+    x: ArrayLike,
+    cotangent: ArrayLike,
+) -> Tuple[Array, Array]: ...
+def tensor_bspline_linearize(
+    t: Sequence[ArrayLike], c: ArrayLike, k: Union[int, Sequence[int]], x: ArrayLike
+) -> dict: ...
 def bspline_surface_jvp(
     degree_u: int,
     degree_v: int,

@@ -6,10 +6,15 @@
 - ``nurbs_eval(knots, control_points, weights, u, degree)``: ``C(u)`` of a NURBS curve,
   differentiable also with respect to the weights;
 - ``bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degree_v)``:
-  ``S(u, v)`` of a tensor-product B-spline surface (control net ``(nu, nv, dim)``).
+  ``S(u, v)`` of a tensor-product B-spline surface (control net ``(nu, nv, dim)``);
+- ``tensor_bspline_eval(knots, control_points, x, degrees)``: ``S(x)`` of a tensor-product
+  B-spline in ``N`` variables at points ``(..., N)``;
+- ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
+  ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the least-squares fit and of
+  the smoothing spline, differentiable with respect to the data.
 
-Both are differentiable, in forward and reverse mode, with respect to the control points and
-the parameters; the knots and degrees are constants. The values come from lekalo through
+The evaluations are differentiable, in forward and reverse mode, with respect to the control
+points and the parameters; the knots and degrees are constants. The values come from lekalo through
 ``jax.pure_callback`` (bit-for-bit the library's de Boor evaluation); the derivatives from the
 library's linearisation (``lekalo.bspline_curve_linearize``): the sparse basis matrix, ``p + 1``
 entries a parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for
@@ -56,7 +61,14 @@ except ImportError as e:  # pragma: no cover - the message is the point
 from . import _lekalo
 from ._lekalo import InputError
 
-__all__ = ["bspline_eval", "nurbs_eval", "bspline_surface_eval"]
+__all__ = [
+    "bspline_eval",
+    "nurbs_eval",
+    "bspline_surface_eval",
+    "tensor_bspline_eval",
+    "fit_least_squares",
+    "fit_smoothing",
+]
 
 
 def _require_x64(name):
@@ -416,3 +428,359 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
         )
     out = _surface(degrees, ku, kv, ctrl, u.reshape(-1), v.reshape(-1))
     return out.reshape(u.shape + ctrl.shape[-1:])
+
+
+# -- fits ----------------------------------------------------------------------------------------
+
+
+def _constant_only(name, what, *tangents):
+    if any(not isinstance(t, SymbolicZero) for t in tangents):
+        raise NotImplementedError(
+            f"lekalo.jax.{name}: derivatives with respect to {what} are not supported (the fit "
+            "is differentiated with respect to the data values only); pass them as constants "
+            "(close over them, or wrap them in jax.lax.stop_gradient)"
+        )
+
+
+def _banded_normal_solve(tri, z):
+    """``(RᵀR)⁻¹ z`` for the banded upper triangle ``R`` (row ``i`` of ``tri`` holds
+    ``R[i, i:i + bw]``) and ``z`` of shape ``(n, d)``: a forward sweep with ``Rᵀ`` and a backward
+    sweep with ``R``, each a ``lax.scan`` over the rows carrying the ``bw - 1`` neighbours solved
+    last. Linear in ``z``, so JAX transposes it (reverse mode) and batches it (``vmap``)."""
+    n, bw = tri.shape
+    diag = tri[:, 0]
+    if bw == 1:
+        return z / (diag * diag)[:, None]
+    i = jnp.arange(n)[:, None]
+    k = jnp.arange(1, bw)[None, :]
+    # Rᵀ y = z: y_i = (z_i - Σ_k R[i - k, i] y_{i - k}) / R[i, i]
+    lower = jnp.where(i - k >= 0, tri[jnp.clip(i - k, 0), k], 0.0)
+    # R x = y: x_i = (y_i - Σ_k R[i, i + k] x_{i + k}) / R[i, i]
+    upper = jnp.where(i + k < n, tri[:, 1:], 0.0)
+
+    def sweep(window, row):
+        zi, coef, d = row
+        xi = (zi - coef @ window) / d
+        return jnp.concatenate([xi[None], window[:-1]]), xi
+
+    start = jnp.zeros((bw - 1,) + z.shape[1:], z.dtype)
+    _, y = jax.lax.scan(sweep, start, (z, lower, diag))
+    _, x = jax.lax.scan(sweep, start, (y, upper, diag), reverse=True)
+    return x
+
+
+def _fit_tangent(first, basis, weights, tri, dq):
+    """``(RᵀR)⁻¹ BᵀW dq`` from a fit's linearisation: a scatter-add of the weighted sparse rows,
+    then the banded solve (``docs/theory/derivatives.md``, "Fits")."""
+    rows = first[:, None] + jnp.arange(basis.shape[1])
+    contrib = (weights[:, None] * basis)[..., None] * dq[:, None, :]
+    z = jnp.zeros((tri.shape[0], dq.shape[1]), dq.dtype).at[rows].add(contrib)
+    return _banded_normal_solve(tri, z)
+
+
+def _fit_linearization_shapes(m, width, n, bw):
+    return (
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, width), jnp.float64),
+        jax.ShapeDtypeStruct((m,), jnp.float64),
+        jax.ShapeDtypeStruct((n, bw), jnp.float64),
+    )
+
+
+def _lin_tuple(d):
+    return d["first"], d["basis"], d["weights"], d["triangle"]
+
+
+def _lsq_values_cb(k, weighted, points, params, t, w):
+    def one(q, x, kn, ws):
+        fit = _lekalo.fit_least_squares(q, x, kn, k, w=ws if weighted else None)[0]
+        return (np.asarray(fit.control).reshape(len(kn) - k - 1, q.shape[-1]),)
+
+    return _looped(one, (2, 1, 1, 1), points, params, t, w)[0]
+
+
+def _lsq_linearize_cb(k, weighted, params, t, w):
+    def one(x, kn, ws):
+        return _lin_tuple(_lekalo.least_squares_linearize(k, kn, x, ws if weighted else None))
+
+    return _looped(one, (1, 1, 1), params, t, w)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0, 1))
+def _lsq(k, weighted, points, params, t, w):
+    shape = jax.ShapeDtypeStruct((t.shape[0] - k - 1, points.shape[1]), jnp.float64)
+    return jax.pure_callback(
+        partial(_lsq_values_cb, k, weighted), shape, points, params, t, w, vmap_method="expand_dims"
+    )
+
+
+@partial(_lsq.defjvp, symbolic_zeros=True)
+def _lsq_jvp(k, weighted, primals, tangents):
+    points, params, t, w = primals
+    dq, dx, dt, dw = tangents
+    name = "fit_least_squares"
+    _constant_only(name, "the parameters, the knots or the weights", dx, dt, dw)
+    guard = partial(_first_order_only, name)
+    values = _lsq(k, weighted, guard(points), params, t, w)
+    if isinstance(dq, SymbolicZero):
+        return values, jnp.zeros_like(values)
+    n, m = t.shape[0] - k - 1, params.shape[0]
+    lin = jax.pure_callback(
+        partial(_lsq_linearize_cb, k, weighted),
+        _fit_linearization_shapes(m, k + 1, n, k + 1),
+        guard(params),
+        guard(t),
+        guard(w),
+        vmap_method="expand_dims",
+    )
+    return values, _fit_tangent(*lin, dq)
+
+
+def _points_arg(points, name, what):
+    if points.ndim not in (1, 2):
+        raise InputError(
+            f"lekalo.jax.{name}: {what} must be (m, dim) or (m,), got shape {points.shape}"
+        )
+    return points.ndim == 1, points[:, None] if points.ndim == 1 else points
+
+
+def _weights_arg(w, m, name):
+    if w is None:
+        return False, jnp.ones((m,), jnp.float64)
+    w = _float64(w, "w", name)
+    if w.shape != (m,):
+        raise InputError(f"lekalo.jax.{name}: w must be one a data point, shape ({m},), got {w.shape}")
+    return True, w
+
+
+def fit_least_squares(points, params, t, k=3, *, w=None):
+    """The control points of the weighted least-squares B-spline of degree ``k`` on the knots
+    ``t`` through ``points`` (``(m, dim)``, or ``(m,)`` for a function) at ``params``:
+    ``lekalo.fit_least_squares(points, params, t, k, w=w)[0].control``, bit for bit, shape
+    ``(len(t) - k - 1, dim)`` (or ``(len(t) - k - 1,)``). ``w`` weighs the squared residuals,
+    ``Σ w_k |C(params_k) - points_k|²``.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``points``: the fit is linear in them, ``P = (BᵀWB)⁻¹ BᵀW Q``, and its
+    derivatives apply the sparse rows of ``B`` and the triangle of lekalo's banded QR
+    (``lekalo.least_squares_linearize``). ``params``, ``t``, ``w`` and ``k`` are constants.
+    """
+    name = "fit_least_squares"
+    _require_x64(name)
+    k = _degree(k, "k", name)
+    points = _float64(points, "points", name)
+    params = _float64(params, "params", name)
+    t = _float64(t, "t", name)
+    scalar, q = _points_arg(points, name, "points")
+    m = q.shape[0]
+    if params.shape != (m,):
+        raise InputError(
+            f"lekalo.jax.{name}: params must be one a point, shape ({m},), got {params.shape}"
+        )
+    if t.ndim != 1 or t.shape[0] < 2 * (k + 1):
+        raise InputError(
+            f"lekalo.jax.{name}: t must be a 1-D knot vector of at least 2 (k + 1) = "
+            f"{2 * (k + 1)} knots, got shape {t.shape}"
+        )
+    weighted, w = _weights_arg(w, m, name)
+    out = _lsq(k, weighted, q, params, t, w)
+    return out[:, 0] if scalar else out
+
+
+def _smoothing_values_cb(lam, weighted, x, y, w):
+    def one(xs, ys, ws):
+        fit = _lekalo.fit_smoothing(xs, ys, ws if weighted else None, lam)[0]
+        return (np.asarray(fit.control).reshape(xs.shape[0] + 2, ys.shape[-1]),)
+
+    return _looped(one, (1, 2, 1), x, y, w)[0]
+
+
+def _smoothing_linearize_cb(lam, weighted, x, w):
+    def one(xs, ws):
+        return _lin_tuple(_lekalo.smoothing_linearize(xs, lam, ws if weighted else None))
+
+    return _looped(one, (1, 1), x, w)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0, 1))
+def _smoothing(lam, weighted, x, y, w):
+    shape = jax.ShapeDtypeStruct((x.shape[0] + 2, y.shape[1]), jnp.float64)
+    return jax.pure_callback(
+        partial(_smoothing_values_cb, lam, weighted), shape, x, y, w, vmap_method="expand_dims"
+    )
+
+
+@partial(_smoothing.defjvp, symbolic_zeros=True)
+def _smoothing_jvp(lam, weighted, primals, tangents):
+    x, y, w = primals
+    dx, dy, dw = tangents
+    name = "fit_smoothing"
+    _constant_only(name, "x or the weights", dx, dw)
+    guard = partial(_first_order_only, name)
+    values = _smoothing(lam, weighted, x, guard(y), w)
+    if isinstance(dy, SymbolicZero):
+        return values, jnp.zeros_like(values)
+    m = x.shape[0]
+    lin = jax.pure_callback(
+        partial(_smoothing_linearize_cb, lam, weighted),
+        _fit_linearization_shapes(m, 4, m + 2, 4),
+        guard(x),
+        guard(w),
+        vmap_method="expand_dims",
+    )
+    return values, _fit_tangent(*lin, dy)
+
+
+def fit_smoothing(x, y, w=None, lam=None):
+    """The control points of the cubic smoothing spline with the given penalty ``lam > 0``,
+    minimising ``Σ w_k |y_k - f(x_k)|² + lam ∫ |f''|²``: ``lekalo.fit_smoothing(x, y, w,
+    lam)[0].control``, bit for bit, shape ``(len(x) + 2, dim)`` (``(len(x) + 2,)`` for 1-D
+    ``y``). The knots are ``x`` with its ends repeated four times,
+    ``jnp.concatenate([x[:1].repeat(3), x, x[-1:].repeat(3)])``.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``y``: the fit is linear in it, ``P = (BᵀWB + lam Ω)⁻¹ BᵀW y``, applied with the
+    fit's banded factorisation (``lekalo.smoothing_linearize``). ``x``, ``w`` and ``lam`` are
+    constants; ``lam`` must be given (a Python float): the GCV choice depends on the data and is
+    not differentiated.
+    """
+    name = "fit_smoothing"
+    _require_x64(name)
+    if lam is None or isinstance(lam, bool) or not isinstance(lam, (int, float, np.floating, np.integer)):
+        raise InputError(
+            f"lekalo.jax.{name}: give lam > 0 as a Python float (a constant); the GCV choice of "
+            f"lam depends on the data and is not differentiated, got {lam!r}"
+        )
+    lam = float(lam)
+    if not lam > 0.0 or not np.isfinite(lam):
+        raise InputError(f"lekalo.jax.{name}: lam must be finite and > 0, got {lam}")
+    x = _float64(x, "x", name)
+    y = _float64(y, "y", name)
+    scalar, q = _points_arg(y, name, "y")
+    m = q.shape[0]
+    if x.shape != (m,):
+        raise InputError(f"lekalo.jax.{name}: x must be one a value, shape ({m},), got {x.shape}")
+    weighted, w = _weights_arg(w, m, name)
+    out = _smoothing(lam, weighted, x, q, w)
+    return out[:, 0] if scalar else out
+
+
+# -- tensor-product splines in N variables ---------------------------------------------------------
+
+
+def _tensor_values_cb(degrees, *args):
+    n = len(degrees)
+
+    def one(*a):
+        knots, ctrl, x = list(a[:n]), a[n], a[n + 1]
+        return (_lekalo.tensor_bspline_jvp(knots, ctrl, list(degrees), x)[0],)
+
+    return _looped(one, (1,) * n + (n + 1, 2), *args)[0]
+
+
+def _tensor_linearize_cb(degrees, *args):
+    n = len(degrees)
+
+    def one(*a):
+        knots, ctrl, x = list(a[:n]), a[n], a[n + 1]
+        d = _lekalo.tensor_bspline_linearize(knots, ctrl, list(degrees), x)
+        return d["values"], d["partials"], d["first"], d["basis"]
+
+    return _looped(one, (1,) * n + (n + 1, 2), *args)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _tensor(degrees, knots, ctrl, x):
+    shape = jax.ShapeDtypeStruct(x.shape[:1] + ctrl.shape[-1:], jnp.float64)
+    return jax.pure_callback(
+        partial(_tensor_values_cb, degrees), shape, *knots, ctrl, x, vmap_method="expand_dims"
+    )
+
+
+@partial(_tensor.defjvp, symbolic_zeros=True)
+def _tensor_jvp(degrees, primals, tangents):
+    knots, ctrl, x = primals
+    dk, dc, dx = tangents
+    name = "tensor_bspline_eval"
+    _no_knot_tangent(name, *dk)
+    n, m, dim = len(degrees), x.shape[0], ctrl.shape[-1]
+    widths = [p + 1 for p in degrees]
+    f64 = jnp.float64
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), f64),
+        jax.ShapeDtypeStruct((m, n, dim), f64),
+        jax.ShapeDtypeStruct((m, n), jnp.int64),
+        jax.ShapeDtypeStruct((m, sum(widths)), f64),
+    )
+    guard = partial(_first_order_only, name)
+    values, partials, first, basis = jax.pure_callback(
+        partial(_tensor_linearize_cb, degrees),
+        shapes,
+        *(guard(k) for k in knots),
+        guard(ctrl),
+        guard(x),
+        vmap_method="expand_dims",
+    )
+    tangent = jnp.zeros((m, dim), f64)
+    if not isinstance(dc, SymbolicZero):
+        # the Π (p_a + 1) block of the net a point touches, one multi-index a column
+        block = np.array(list(np.ndindex(*widths)), dtype=np.int64).reshape(-1, n)  # (K, N)
+        offsets = np.concatenate([[0], np.cumsum(widths)[:-1]]).astype(np.int64)
+        index = tuple(first[:, a, None] + block[None, :, a] for a in range(n))  # N × (m, K)
+        weight = jnp.prod(
+            jnp.stack([basis[:, offsets[a] + block[:, a]] for a in range(n)]), axis=0
+        )  # (m, K)
+        tangent = tangent + jnp.einsum("mk,mkd->md", weight, dc[index])
+    if not isinstance(dx, SymbolicZero):
+        tangent = tangent + jnp.einsum("mnd,mn->md", partials, dx)
+    return values, tangent
+
+
+def tensor_bspline_eval(knots, control_points, x, degrees):
+    """``S(x)`` of the tensor-product B-spline in ``N`` variables with degrees ``degrees`` (a
+    tuple of ``N`` Python ints), knot vectors ``knots`` (a tuple of ``N`` 1-D arrays) and
+    coefficients ``control_points`` (``(n_1, ..., n_N, dim)``, or ``(n_1, ..., n_N)`` for a
+    scalar function), at the points ``x`` of shape ``(..., N)``. Returns ``x.shape[:-1] +
+    (dim,)`` (``x.shape[:-1]`` for scalar coefficients), bit-for-bit
+    ``lekalo.TensorBSpline(knots, control_points, degrees)(x)``.
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``control_points`` and ``x``: the net's Jacobian is the product of the ``N``
+    basis vectors on the ``Π (p_a + 1)`` block a point touches (a JAX gather whose transpose is
+    a scatter-add), the points' the partial derivatives ``∂S/∂x_a``
+    (``lekalo.tensor_bspline_linearize``). The knots and degrees are constants.
+    """
+    name = "tensor_bspline_eval"
+    _require_x64(name)
+    if isinstance(degrees, (int, np.integer)) or not hasattr(degrees, "__len__"):
+        raise InputError(f"lekalo.jax.{name}: degrees must be a tuple of Python ints, one a variable")
+    degrees = tuple(_degree(d, f"degrees[{a}]", name) for a, d in enumerate(degrees))
+    n = len(degrees)
+    if not hasattr(knots, "__len__") or len(knots) != n:
+        raise InputError(
+            f"lekalo.jax.{name}: knots must be a tuple of {n} 1-D arrays, one a variable"
+        )
+    knots = tuple(_float64(k, f"knots[{a}]", name) for a, k in enumerate(knots))
+    ctrl = _float64(control_points, "control_points", name)
+    x = _float64(x, "x", name)
+    if ctrl.ndim not in (n, n + 1):
+        raise InputError(
+            f"lekalo.jax.{name}: control_points must be (n_1, ..., n_{n}, dim) or (n_1, ..., "
+            f"n_{n}), got shape {ctrl.shape}"
+        )
+    for a, (k, p) in enumerate(zip(knots, degrees)):
+        if k.ndim != 1 or k.shape[0] != ctrl.shape[a] + p + 1:
+            raise InputError(
+                f"lekalo.jax.{name}: knots[{a}] must be 1-D with {ctrl.shape[a] + p + 1} knots "
+                f"(net size {ctrl.shape[a]} + degree {p} + 1), got shape {k.shape}"
+            )
+    if x.ndim < 1 or x.shape[-1] != n:
+        raise InputError(
+            f"lekalo.jax.{name}: x must have shape (..., {n}), the coordinates on the last "
+            f"axis, got {x.shape}"
+        )
+    scalar = ctrl.ndim == n
+    c = ctrl[..., None] if scalar else ctrl
+    out = _tensor(degrees, knots, c, x.reshape(-1, n))
+    out = out.reshape(x.shape[:-1] + c.shape[-1:])
+    return out[..., 0] if scalar else out

@@ -20,19 +20,29 @@
 //! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
 //!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
 //!   factorisation).
+//! - `fitting.rs`: [`LeastSquaresMap`] and [`SmoothingMap`], the derivatives of the
+//!   least-squares fit on given knots and parameters and of the smoothing spline with a given
+//!   `λ` with respect to the data (a sparse product and a solve with the fit's banded
+//!   factorisation, forward or transposed).
+//! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
+//!   `N` coordinates.
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
 mod checks;
 mod curve;
+mod fitting;
 mod interpolation;
 mod nurbs;
 mod slopes;
 mod surface;
+mod tensor;
 #[cfg(test)]
 mod tests;
 
 pub use curve::CurveLinearization;
+pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
 pub use surface::SurfaceLinearization;
+pub use tensor::TensorLinearization;

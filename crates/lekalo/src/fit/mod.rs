@@ -66,6 +66,7 @@ mod smoothing_on_knots;
 mod surface;
 mod tolerance;
 
+pub(crate) use data::check_in_domain;
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{least_squares, least_squares_with_progress, EndConstraints};
@@ -76,11 +77,13 @@ pub use periodic::{
     periodic_smoothing_on_knots_with_progress,
 };
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
+pub(crate) use rows::for_each_row;
 pub use shape::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
     shape_violations, PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL,
     SHAPE_RTOL,
 };
+pub(crate) use smoothing::smoothing_system;
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub use smoothing_condition::{
     smoothing_condition, smoothing_condition_with_progress, smoothing_knot_sequence, SMOOTHING_RTOL,

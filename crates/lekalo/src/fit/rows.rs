@@ -10,7 +10,7 @@ use crate::knots::KnotVector;
 /// previous one ([`KnotVector::span_cursor`]), and the basis functions of a span share the
 /// reciprocals of its knot differences ([`SpanBasis`], unrolled for degrees up to 5), so sorted
 /// parameters cost no search and no division. Every parameter must lie in the knots' domain.
-pub(super) fn for_each_row(
+pub(crate) fn for_each_row(
     knots: &KnotVector,
     degree: usize,
     params: &[f64],

@@ -377,6 +377,37 @@ impl Smoother {
     }
 }
 
+/// The pieces of the smoothing spline with a given `λ > 0` that its derivatives with respect
+/// to the data need (`crate::derivatives::SmoothingMap`): `BᵀWB + λΩ` factored as
+/// [`Smoother::solve`] factors it, and the rows of `B` with their weights
+/// (`docs/theory/derivatives.md#fits`).
+pub(crate) struct SmoothingSystem {
+    /// `BᵀWB + λΩ`, factored `UᵀDU`.
+    pub(crate) matrix: SymBand,
+    /// Per data point, the 4 non-zero cubic B-splines, starting at coefficient
+    /// `min(k + 3, N + 1) − 3`.
+    pub(crate) basis: Vec<[f64; 4]>,
+    /// The data weights `w_k`.
+    pub(crate) weights: Vec<f64>,
+    /// The clamped cubic knot vector of the fit (knots at the data parameters).
+    pub(crate) knots: Vec<f64>,
+}
+
+/// [`SmoothingSystem`] of `data` (only its parameters and weights matter) for `λ > 0`.
+///
+/// # Errors
+/// As [`smoothing_spline`] with [`Lambda::Given`]`(lam)`.
+pub(crate) fn smoothing_system(data: &FitData<'_>, lam: f64) -> Result<SmoothingSystem> {
+    let s = Smoother::new(data)?;
+    let (_, matrix) = s.solve(lam)?;
+    Ok(SmoothingSystem {
+        matrix,
+        basis: s.basis,
+        weights: s.weights,
+        knots: s.knots,
+    })
+}
+
 /// Brent's minimisation (golden section with parabolic steps) of `f` on `[a, b]` from the
 /// point `x` with value `fx`, to an absolute tolerance `tol` in the argument (Brent 1973, ch. 5).
 pub(crate) fn brent_min(

@@ -1,0 +1,116 @@
+"""lekalo.torch: values bit-for-bit lekalo's, gradients from backward() against central finite
+differences (relative 1e-7), batches of control points and data sets, and the errors for what
+is not supported. Skipped without PyTorch, which the project's test command does not install
+(docs/differentiable.md, "PyTorch"); run it with torch installed:
+`python -m pytest crates/lekalo-py/tests/test_torch.py`."""
+
+import numpy as np
+import pytest
+
+torch = pytest.importorskip("torch")
+
+import lekalo  # noqa: E402
+from lekalo import torch as lt  # noqa: E402
+
+from test_jax import assert_rel, central  # noqa: E402
+
+
+def t64(a, grad=True):
+    return torch.tensor(np.asarray(a, dtype=float), dtype=torch.float64, requires_grad=grad)
+
+
+def grads(f, *args):
+    """Gradients of sum(f(*args) * weights) with respect to args, and the weights."""
+    out = f(*args)
+    g = torch.sin(torch.arange(out.numel(), dtype=torch.float64)).reshape(out.shape)
+    return torch.autograd.grad((out * g).sum(), args), g.numpy()
+
+
+def curve_case(dim=3):
+    rng = np.random.default_rng(7)
+    knots = np.array([0, 0, 0, 0, 0.3, 0.55, 1, 1, 1, 1.0])
+    return knots, rng.uniform(-1, 1, (6, dim)), np.array([0.05, 0.2, 0.41, 0.5, 0.7, 0.93])
+
+
+def test_curve_values_and_gradients():
+    knots, ctrl, u = curve_case()
+    c, t = t64(ctrl), t64(u)
+    vals = lt.bspline_eval(knots, c, t, 3)
+    assert np.array_equal(vals.detach().numpy(), lekalo.bspline_curve_jvp(3, knots, ctrl, u)[0])
+    (gc, gu), g = grads(lambda a, b: lt.bspline_eval(knots, a, b, 3), c, t)
+    plain = lambda a, b: np.sum(lekalo.bspline_curve_jvp(3, knots, a, b)[0] * g)  # noqa: E731
+    assert_rel(gc, central(lambda a: plain(a, u), ctrl, 1e-3), "control points")
+    assert_rel(gu, central(lambda b: plain(ctrl, b), u, 1e-6), "u")
+    # a batch of curves at shared parameters: the parameter gradient sums over the batch
+    batch = np.stack([ctrl, -2 * ctrl])
+    (gb, gu2), g2 = grads(lambda a, b: lt.bspline_eval(knots, a, b, 3), t64(batch), t64(u))
+    for i in range(2):
+        pi = lambda a: np.sum(lekalo.bspline_curve_jvp(3, knots, a, u)[0] * g2[i])  # noqa: E731
+        assert_rel(gb[i], central(pi, batch[i], 1e-3), "batched control points")
+    fd = central(lambda b: sum(np.sum(lekalo.bspline_curve_jvp(3, knots, batch[i], b)[0] * g2[i]) for i in range(2)), u, 1e-6)
+    assert_rel(gu2, fd, "shared u")
+
+
+def test_nurbs_surface_and_tensor_gradients():
+    knots, ctrl, u = curve_case()
+    w = np.array([1.0, 0.5, 2.0, 1.5, 0.8, 1.2])
+    (gc, gw, gu), g = grads(lambda a, b, c: lt.nurbs_eval(knots, a, b, c, 3), t64(ctrl), t64(w), t64(u))
+    plain = lambda a, b, c: np.sum(lekalo.nurbs_curve_jvp(3, knots, a, b, c)[0] * g)  # noqa: E731
+    assert_rel(gw, central(lambda b: plain(ctrl, b, u), w, 1e-6), "weights")
+    assert_rel(gc, central(lambda a: plain(a, w, u), ctrl, 1e-3), "NURBS control points")
+    rng = np.random.default_rng(11)
+    ku, kv = np.array([0, 0, 0, 0.4, 1, 1, 1.0]), np.array([0, 0, 0, 0, 0.5, 1, 1, 1, 1.0])
+    net, su, sv = rng.uniform(-1, 1, (4, 5, 3)), np.array([0.1, 0.3, 0.6]), np.array([0.2, 0.45, 0.7])
+    (gn, gsu, gsv), g = grads(lambda a, b, c: lt.bspline_surface_eval(ku, kv, a, b, c, 2, 3), t64(net), t64(su), t64(sv))
+    plain = lambda a, b, c: np.sum(lekalo.bspline_surface_jvp(2, 3, ku, kv, a, b, c)[0] * g)  # noqa: E731
+    assert_rel(gn, central(lambda a: plain(a, su, sv), net, 1e-3), "net")
+    assert_rel(gsv, central(lambda c: plain(net, su, c), sv, 1e-6), "v")
+    kt = [np.array([0, 0, 0, 0.5, 1, 1, 1.0])] * 3
+    coef, pts = rng.uniform(-1, 1, (4, 4, 4, 2)), np.array([[0.1, 0.45, 0.9], [0.3, 0.3, 0.7]])  # off the knots
+    (gk, gx), g = grads(lambda a, b: lt.tensor_bspline_eval(kt, a, b, (2, 2, 2)), t64(coef), t64(pts))
+    plain = lambda a, b: np.sum(lekalo.TensorBSpline(kt, a, [2, 2, 2])(b) * g)  # noqa: E731
+    assert_rel(gk, central(lambda a: plain(a, pts), coef, 1e-3), "tensor coefficients")
+    assert_rel(gx, central(lambda b: plain(coef, b), pts, 1e-6), "tensor points")
+
+
+def test_fit_gradients():
+    rng = np.random.default_rng(3)
+    x = np.sort(rng.uniform(0, 1, 30))
+    x[0], x[-1] = 0.0, 1.0
+    y = np.stack([np.sin(3 * x), np.cos(2 * x)], axis=-1)
+    t = np.array([0, 0, 0, 0, 0.3, 0.7, 1, 1, 1, 1.0])
+    w = rng.uniform(0.5, 2, 30)
+    out = lt.fit_least_squares(t64(y, False), x, t, 3, w=w)
+    assert np.array_equal(out.numpy(), lekalo.fit_least_squares(y, x, t, 3, w=w)[0].control)
+    (gq,), g = grads(lambda q: lt.fit_least_squares(q, x, t, 3, w=w), t64(y))
+    plain = lambda q: np.sum(lekalo.fit_least_squares(q, x, t, 3, w=w)[0].control * g)  # noqa: E731
+    assert_rel(gq, central(plain, y, 1e-3), "least squares, data")
+    batch = np.stack([y, y[::-1]])
+    (gb,), g = grads(lambda q: lt.fit_smoothing(x, q, w, 1e-3), t64(batch))
+    for i in range(2):
+        pi = lambda q: np.sum(lekalo.fit_smoothing(x, q, w, 1e-3)[0].control * g[i])  # noqa: E731
+        assert_rel(gb[i], central(pi, batch[i], 1e-3), "smoothing, batched data")
+
+
+def test_bad_input_says_so():
+    knots, ctrl, u = curve_case()
+    with pytest.raises(lekalo.InputError, match="float64"):
+        lt.bspline_eval(knots, torch.tensor(ctrl, dtype=torch.float32), u, 3)
+    with pytest.raises(lekalo.InputError, match="knots"):
+        lt.bspline_eval(t64(knots), t64(ctrl), u, 3)
+    with pytest.raises(lekalo.InputError, match="lam > 0"):
+        lt.fit_smoothing(u, t64(ctrl))
+
+
+def test_the_docs_example_runs():
+    """The PyTorch example of docs/differentiable.md (a ```text block there, since the docs'
+    python blocks run without torch) runs as written."""
+    import re
+    from pathlib import Path
+
+    doc = Path(__file__).resolve().parents[3] / "docs" / "differentiable.md"
+    section = doc.read_text(encoding="utf-8").split("## PyTorch", 1)[1]
+    code = re.search(r"^```text\n(.*?)^```", section, flags=re.S | re.M).group(1)
+    namespace = {"__name__": "docs"}
+    exec(compile(code, str(doc), "exec"), namespace)
+    assert namespace["ctrl"].grad.shape == (5, 2)
