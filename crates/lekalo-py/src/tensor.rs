@@ -5,8 +5,8 @@
 //! `(..., *trailing)`.
 
 use lekalo::{
-    tensor_grid_least_squares, tensor_scattered_least_squares, KnotVector, Points, PointsRef,
-    TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
+    Points, PointsRef, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -252,6 +252,20 @@ impl PyTensorBSpline {
         Ok(out.unbind())
     }
 
+    /// The integral over the box `bounds` (one `(a, b)` per variable, inside the domain):
+    /// shape `trailing` (`TensorBSpline::integral`, `docs/theory/tensor.md#integrals-over-boxes`).
+    fn integral<'py>(
+        &self,
+        py: Python<'py>,
+        bounds: Vec<(f64, f64)>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let v = self
+            .inner
+            .integral(&bounds)
+            .map_err(|e| named("bounds", &e))?;
+        array(py, v, &self.trailing)
+    }
+
     /// The interpolating spline of the grid `values` (shape `(m_1, …, m_N, *trailing)`) at the
     /// coordinates `axes` (one strictly increasing 1-D array per variable), of the given degrees
     /// (one integer or one per variable; free ends) and knots (`knots`: one entry per
@@ -417,6 +431,69 @@ pub(crate) fn fit_tensor_grid(
     Ok(PyTensorBSpline { inner, trailing })
 }
 
+/// The smoothing spline on a grid (`tensor_grid_smoothing`,
+/// `docs/theory/tensor.md#smoothing-on-grids`): the tensor-product spline with the fewest knots
+/// found whose residual sum of squares over the grid is at most `s` (`s = 0`: interpolation on
+/// FITPACK's knots). `values` of shape `(m_1, …, m_N, *trailing)` at the coordinates `axes`
+/// (one strictly increasing 1-D array per variable), degrees `k` (one integer or one per
+/// variable, default 3), `bbox` one `(a, b)` per variable around its coordinates (default:
+/// their range). Returns `(spline, residual, p)`, `p` the smoothing weight (`None` for a
+/// least-squares result). SciPy's `RectBivariateSpline(x, y, z, s=…)` for `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (axes, values, s, k = None, *, bbox = None))]
+pub(crate) fn fit_tensor_grid_smoothing(
+    py: Python<'_>,
+    axes: &Bound<'_, PyAny>,
+    values: &Bound<'_, PyAny>,
+    s: f64,
+    k: Option<&Bound<'_, PyAny>>,
+    bbox: Option<Vec<(f64, f64)>>,
+) -> PyResult<(PyTensorBSpline, f64, Option<f64>)> {
+    let lists = axes_arg(axes, "axes")?;
+    let n = lists.len();
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    if let Some(b) = &bbox {
+        if b.len() != n {
+            return Err(bad(format!(
+                "bbox: {} intervals for {n} axes; give one (a, b) per variable",
+                b.len()
+            )));
+        }
+    }
+    let va = floats(values, "values")?;
+    let shape = va.shape();
+    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
+    if shape.len() < n || shape[..n] != sizes[..] {
+        return Err(bad(format!(
+            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
+        )));
+    }
+    let trailing = shape[n..].to_vec();
+    let dim: usize = trailing.iter().product();
+    let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+    let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
+    let f = py
+        .detach(|| tensor_grid_smoothing(&refs, pts, &degrees, s, bbox.as_deref()))
+        .map_err(|e| match e {
+            lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
+            lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. } => {
+                named("bbox", &e)
+            }
+            other => fit_err(other, "axes"),
+        })?;
+    Ok((
+        PyTensorBSpline {
+            inner: f.spline,
+            trailing,
+        },
+        f.residual,
+        f.p,
+    ))
+}
+
 /// The least-squares tensor-product spline through scattered points with given knots
 /// (`tensor_scattered_least_squares`,
 /// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
@@ -480,6 +557,7 @@ pub(crate) fn fit_tensor_scattered<'py>(
 /// Registers the fits of tensor-product splines.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_tensor_grid_smoothing, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
     Ok(())
 }

@@ -238,3 +238,53 @@ fn a_region_without_data_is_refused_naming_the_control_point() {
         .stderr(contains("holds 0 data points"))
         .stderr(contains("EmptySupport").not());
 }
+
+#[test]
+fn s_smooths_a_grid_with_the_fewest_knots_and_zero_interpolates() {
+    let d = tempfile::tempdir().unwrap();
+    let axes = [axis(9), axis(8), axis(7)];
+    // a smooth function plus a fixed pattern of noise (sum of squares 9·8·7·0.01² = 0.0504)
+    let mut values = Vec::new();
+    let mut k = 0;
+    for &x in &axes[0] {
+        for &y in &axes[1] {
+            for &z in &axes[2] {
+                let noise = if k % 2 == 0 { 0.01 } else { -0.01 };
+                values.push((2.0 * x).sin() + y * z + noise);
+                k += 1;
+            }
+        }
+    }
+    let v = d.path().join("values.txt");
+    fs::write(&v, list(&values).replace(',', "\n")).unwrap();
+    let run = |s: &str| -> serde_json::Value {
+        let out = lekalo()
+            .arg("fit")
+            .arg(&v)
+            .args(["--grid", "9x8x7", "--s", s, "--json"])
+            .args(["--params-u", &list(&axes[0]), "--params-v", &list(&axes[1])])
+            .args(["--params-in", &format!("3={}", list(&axes[2]))])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        serde_json::from_slice(&out).unwrap()
+    };
+    // the cubic polynomial leaves 0.0546: S = 0.04 needs knots and a smoothing weight
+    let smooth = run("0.04");
+    let rss = smooth["report"]["weighted_rss"].as_f64().unwrap();
+    assert!((0.04 * (1.0 - 1e-3)..=0.04).contains(&rss), "{rss}");
+    assert!(smooth["report"]["control_points"].as_u64().unwrap() < 9 * 8 * 7);
+    let exact = run("0");
+    assert_eq!(exact["object"]["shape"], serde_json::json!([9, 8, 7]));
+    assert!(exact["report"]["max_residual"].as_f64().unwrap() < 1e-12);
+    // the knots are the smoothing's own
+    lekalo()
+        .arg("fit")
+        .arg(&v)
+        .args(["--grid", "9x8x7", "--s", "0.06", "--ctrl-grid", "4x4x4"])
+        .assert()
+        .code(2)
+        .stderr(contains("--s places the knots"));
+}

@@ -76,6 +76,11 @@ impl BandedQr {
             }
             let rj = &mut self.r[j * bw..(j + 1) * bw];
             let d = (piv * piv + rj[0] * rj[0]).sqrt();
+            if d == 0.0 {
+                // |piv| below 1e-154 against an empty row: the square underflows, and the
+                // rotation of a rounding remnant would divide by zero; it is dropped as zero
+                continue;
+            }
             let inv = 1.0 / d;
             let (c, s) = (rj[0] * inv, piv * inv);
             rj[0] = d;

@@ -89,6 +89,9 @@ pub use smoothing_condition::{
     smoothing_condition, smoothing_condition_with_progress, smoothing_knot_sequence, SMOOTHING_RTOL,
 };
 pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progress};
+// the pieces of FITPACK's smoothing condition that the smoothing on tensor grids shares
+pub(crate) use progress::Steps;
+pub(crate) use smoothing_condition::{check_condition_args, jump_rows, next_nplus, smooth_weight};
 pub use surface::{
     surface_grid_least_squares, surface_grid_least_squares_at, surface_grid_parameters,
     surface_scattered_least_squares, surface_scattered_least_squares_with_progress,

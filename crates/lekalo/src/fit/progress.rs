@@ -12,7 +12,7 @@ use crate::numeric::progress::Progress;
 /// A counter of the steps of an iteration of unknown length: step `d` reports `(d, d + 1)`, or
 /// `(d, e)` while fewer than `e` steps are expected ([`Steps::expect`]), so `done` never goes
 /// back and `total` stays ahead until [`Steps::finish`] reports `(done, done)`.
-pub(super) struct Steps<'a, 'p> {
+pub(crate) struct Steps<'a, 'p> {
     progress: &'a Progress<'p>,
     what: &'static str,
     done: Cell<u64>,
@@ -21,7 +21,7 @@ pub(super) struct Steps<'a, 'p> {
 
 impl<'a, 'p> Steps<'a, 'p> {
     /// No step done yet.
-    pub(super) fn new(progress: &'a Progress<'p>, what: &'static str) -> Self {
+    pub(crate) fn new(progress: &'a Progress<'p>, what: &'static str) -> Self {
         Steps {
             progress,
             what,
@@ -40,7 +40,7 @@ impl<'a, 'p> Steps<'a, 'p> {
     ///
     /// # Errors
     /// [`Error::Cancelled`] once the cancel flag is set.
-    pub(super) fn tick(&self) -> Result<()> {
+    pub(crate) fn tick(&self) -> Result<()> {
         let d = self.done.get() + 1;
         self.done.set(d);
         self.progress
@@ -49,7 +49,7 @@ impl<'a, 'p> Steps<'a, 'p> {
 
     /// The work is complete: reports `(done, done)`. A cancel flag set now is not an error (the
     /// result is there).
-    pub(super) fn finish(&self) {
+    pub(crate) fn finish(&self) {
         let d = self.done.get();
         // the result is complete: a flag set this late does not discard it
         let _ = self.progress.step(self.what, d, d);

@@ -585,7 +585,7 @@ impl Knots {
 
 /// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
 /// nplus/2, 1))`, doubling when the last round decreased the residual by less than `acc`.
-pub(super) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> usize {
+pub(crate) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> usize {
     let npl1 = if decrease > acc {
         // FITPACK truncates the real quotient to an integer
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
@@ -601,7 +601,7 @@ pub(super) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> us
 /// the polynomial's residual `fp0` (`p = 0`) and the least-squares spline's `fp_inf`
 /// (`p = ∞`), continued towards `s − SMOOTHING_RTOL·s/2` if it ends above `s`. Returns the
 /// result with the largest residual `≤ s`, if any. Each weight tried is a step of `steps`.
-pub(super) fn smooth_weight(
+pub(crate) fn smooth_weight(
     solve: &impl Fn(f64) -> Result<(Vec<f64>, f64)>,
     p0: f64,
     s: f64,
@@ -642,14 +642,14 @@ pub(super) fn back_substitute(qr: &BandedQr) -> Result<Vec<f64>> {
 
 /// FITPACK's discontinuity rows (`fpdisc`): for each interior knot `t_l`, the jump of the
 /// `k`-th derivative of the `k + 2` B-splines `N_{l−k−1..=l}` there, divided by `scale`.
-pub(super) struct JumpRows {
+pub(crate) struct JumpRows {
     /// `k + 2` entries per interior knot; row `j` starts at coefficient `j`.
-    pub(super) rows: Vec<f64>,
+    pub(crate) rows: Vec<f64>,
     /// `k!·(spans/length)^k`.
-    pub(super) scale: f64,
+    pub(crate) scale: f64,
 }
 
-pub(super) fn jump_rows(t: &[f64], k: usize) -> JumpRows {
+pub(crate) fn jump_rows(t: &[f64], k: usize) -> JumpRows {
     let n = t.len();
     let nk1 = n - k - 1;
     let spans = nk1 - k;
@@ -676,7 +676,7 @@ pub(super) fn jump_rows(t: &[f64], k: usize) -> JumpRows {
 }
 
 /// A smoothed result `(p, fp, c)`.
-pub(super) type Below = (f64, f64, Vec<f64>);
+pub(crate) type Below = (f64, f64, Vec<f64>);
 
 /// FITPACK's iteration for the smoothing weight `p`: `fp(p)` decreases from the polynomial's
 /// residual (`p = 0`) to the least-squares spline's (`p = ∞`, marked `-1`); `low`/`high` hold
@@ -790,7 +790,7 @@ pub(super) fn finish(
 
 /// The arguments every smoothing condition (open and closed) refuses: `s` negative or not finite,
 /// a degree of 0 or beyond the library's bound.
-pub(super) fn check_condition_args(degree: usize, s: f64) -> Result<()> {
+pub(crate) fn check_condition_args(degree: usize, s: f64) -> Result<()> {
     if !(s >= 0.0 && s.is_finite()) {
         return Err(Error::NegativeSmoothing {
             what: "s",

@@ -16,12 +16,18 @@
 //! - `any.rs`: [`Tensor`], one value for either kind.
 //! - `fit.rs`: [`tensor_grid_least_squares`], least squares on a grid with given knots by one
 //!   sweep of curve fits per direction.
+//! - `grid_smoothing.rs`: [`tensor_grid_smoothing`], the fewest knots whose residual on a grid
+//!   is at most `s` (FITPACK `regrid` in `N` directions), one banded sweep per direction a
+//!   solve.
+//! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
 //!   `N` variables by banded normal equations.
 
 mod any;
 mod fit;
 mod grid_eval;
+mod grid_smoothing;
+mod integral;
 mod interpolate;
 mod nurbs;
 mod scattered;
@@ -30,6 +36,9 @@ mod spline;
 
 pub use any::Tensor;
 pub use fit::tensor_grid_least_squares;
+pub use grid_smoothing::{
+    tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,
+};
 pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use scattered::{tensor_scattered_least_squares, TensorScatteredFit};

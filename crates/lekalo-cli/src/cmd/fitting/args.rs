@@ -44,7 +44,9 @@ In 3 or more variables: --grid AxBxC (one row of values per node, the first dire
 or a .npy array) or --scattered (rows x1 … xN then the values; N from --ctrl-grid AxBxC, or the
 last direction whose knots are given); direction K's interior knots --knots-in K=LIST (1 and 2
 also --knots-u, --knots-v), a grid's parameters --params-in K=LIST|FILE, --bbox one A:B per
-direction; the spline is written as JSON, as `interpolate --grid AxBxC` writes it.
+direction; the spline is written as JSON, as `interpolate --grid AxBxC` writes it. --s S on
+such a grid places the knots itself: the fewest found with residual sum of squares <= S
+(FITPACK's regrid, SciPy's RectBivariateSpline).
 
 Shape constraints (--function fits by --lsq, --smooth, or --s without --knots; each holds for
 every x, not only at the data; repeat an option for several intervals):

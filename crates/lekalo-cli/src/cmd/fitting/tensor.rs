@@ -10,8 +10,8 @@ use std::path::PathBuf;
 use anyhow::Result;
 use lekalo::fit::{check_schoenberg_whitney, place_knots};
 use lekalo::{
-    tensor_grid_least_squares, tensor_scattered_least_squares, KnotVector, PointsRef, Tensor,
-    TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
+    PointsRef, Tensor, TensorBSpline, TensorInterpolation,
 };
 use serde_json::{json, Value};
 
@@ -109,8 +109,17 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
             range: ranges[k],
         })
         .collect();
-    for d in &dirs {
-        d.check_given()?;
+    if a.s.is_some() {
+        if a.ctrl_grid.is_some() || dirs.iter().any(|d| d.inner.is_some()) {
+            return bad_input(
+                "--s places the knots of the grid's smoothing itself (FITPACK's regrid): drop \
+                 --ctrl-grid and --knots-u/--knots-v/--knots-in",
+            );
+        }
+    } else {
+        for d in &dirs {
+            d.check_given()?;
+        }
     }
     let mut inputs = vec![a.points.clone()];
     if a.grid.is_some() {
@@ -278,9 +287,55 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
         .enumerate()
         .map(|(i, entry)| entry.map_or_else(|| averaged[i].clone(), |(_, t)| t))
         .collect();
+    let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
+    let (s, net) = if let Some(target) = a.s {
+        // the fewest knots whose residual is at most S (lekalo::tensor_grid_smoothing)
+        let bbox = dirs
+            .iter()
+            .zip(&params)
+            .map(|(d, t)| {
+                d.domain(
+                    (t[0], t[t.len() - 1]),
+                    &format!("parameters of direction {}", d.k),
+                )
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let f = tensor_grid_smoothing(&refs, values.as_view(), &degrees, target, Some(&bbox))?;
+        let net = f.spline.shape().to_vec();
+        (f.spline, net)
+    } else {
+        least_squares_on_grid(dirs, &params, &refs, &values, &degrees)?
+    };
+    // the residual of each node: the fitted spline evaluated on the grid against the values
+    let mut fitted = vec![0.0; values.as_slice().len()];
+    s.eval_grid(&refs, None, &mut fitted)?;
+    let residuals: Vec<f64> = fitted
+        .chunks_exact(values.dim())
+        .zip(values.iter())
+        .map(|(f, q)| {
+            f.iter()
+                .zip(q)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let rss = residuals.iter().map(|r| r * r).sum::<f64>();
+    finish(a, &s, &net, &residuals, rss, inputs, cx)
+}
+
+/// Least squares on the grid with the knots (or control-point counts) of each direction.
+fn least_squares_on_grid(
+    dirs: &[Direction],
+    params: &[Vec<f64>],
+    refs: &[&[f64]],
+    values: &lekalo::Points,
+    degrees: &[usize],
+) -> Result<(TensorBSpline, Vec<usize>)> {
+    let n = dirs.len();
     let mut knots = Vec::with_capacity(n);
     let mut net = Vec::with_capacity(n);
-    for (d, t) in dirs.iter().zip(&params) {
+    for (d, t) in dirs.iter().zip(params) {
         let (m, p, k) = (t.len(), d.degree, d.k);
         if p >= m {
             return bad_input(format!(
@@ -319,24 +374,8 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
         net.push(c);
         knots.push(kv);
     }
-    let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
-    let s = tensor_grid_least_squares(&refs, values.as_view(), &degrees, knots)?;
-    // the residual of each node: the fitted spline evaluated on the grid against the values
-    let mut fitted = vec![0.0; values.as_slice().len()];
-    s.eval_grid(&refs, None, &mut fitted)?;
-    let residuals: Vec<f64> = fitted
-        .chunks_exact(values.dim())
-        .zip(values.iter())
-        .map(|(f, q)| {
-            f.iter()
-                .zip(q)
-                .map(|(x, y)| (x - y) * (x - y))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .collect();
-    let rss = residuals.iter().map(|r| r * r).sum::<f64>();
-    finish(a, &s, &net, &residuals, rss, inputs, cx)
+    let s = tensor_grid_least_squares(refs, values.as_view(), degrees, knots)?;
+    Ok((s, net))
 }
 
 /// Least squares on scattered rows `x1 … xN` followed by the values.
@@ -499,7 +538,7 @@ fn shape_text(net: &[usize]) -> String {
 fn refuse_curve_options(a: &FitArgs) -> Result<()> {
     let given: Vec<&str> = [
         (a.smooth.is_some(), "--smooth"),
-        (a.s.is_some(), "--s"),
+        (a.s.is_some() && a.grid.is_none(), "--s"),
         (a.tol.is_some(), "--tol"),
         (a.robust.is_some(), "--robust"),
         (a.periodic, "--periodic"),

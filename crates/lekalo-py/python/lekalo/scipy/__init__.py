@@ -15,14 +15,17 @@ periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, 
 ``k = 0 … 5``), ``make_lsq_spline``, ``make_smoothing_spline``, ``make_splrep`` and
 ``make_splprep`` (FITPACK's knots for ``s > 0``, or given knots ``t``), ``generate_knots``, ``splrep``, ``splprep``, ``splev``,
 ``splint``, ``sproot``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
-``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
+``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``RectBivariateSpline`` (FITPACK's
+knots and smoothing on grids, ``__call__``, ``ev``, ``partial_derivative``, ``integral``),
+``LSQBivariateSpline``, ``bisplev``, ``dblint``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
 ``make_ndbspl`` (solved directly, one banded sweep per direction);
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
 ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, the 2-D FITPACK classes,
+breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, ``SmoothBivariateSpline``, ``bisplrep`` and the spherical 2-D
+classes,
 ``NdBSpline.design_matrix``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
@@ -30,8 +33,27 @@ extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 from __future__ import annotations
 
 from ._bspline import BSpline
-from ._fitpack import insert, spalde, splantider, splder, splev, splint, splprep, splrep, sproot
-from ._fitpack2 import InterpolatedUnivariateSpline, LSQUnivariateSpline, UnivariateSpline
+from ._fitpack import (
+    bisplev,
+    dblint,
+    insert,
+    spalde,
+    splantider,
+    splder,
+    splev,
+    splint,
+    splprep,
+    splrep,
+    sproot,
+)
+from ._fitpack2 import (
+    BivariateSpline,
+    InterpolatedUnivariateSpline,
+    LSQBivariateSpline,
+    LSQUnivariateSpline,
+    RectBivariateSpline,
+    UnivariateSpline,
+)
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ndbspline import NdBSpline, make_ndbspl
 from ._ppoly import (
@@ -66,6 +88,11 @@ __all__ = [
     "UnivariateSpline",
     "InterpolatedUnivariateSpline",
     "LSQUnivariateSpline",
+    "BivariateSpline",
+    "RectBivariateSpline",
+    "LSQBivariateSpline",
+    "bisplev",
+    "dblint",
     "NdBSpline",
     "make_ndbspl",
     "CubicSpline",

@@ -342,3 +342,41 @@ def splprep(
         ier = -1 if s == 0 else 0
         return tcku, fp, ier, _PARCUR_MESSAGES[ier]
     return tcku
+
+
+def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
+    """``scipy.interpolate.bisplev``: the 2-D spline ``tck = [tx, ty, c, kx, ky]`` (or its
+    partial derivative ``(dx, dy)``) on the grid ``x × y`` (increasing), squeezed as SciPy
+    squeezes it; lekalo's ``TensorBSpline``, coordinates outside the base box taken at its
+    edge as FITPACK's ``bispev``."""
+    from ._fitpack2 import _evaluate
+
+    tx, ty, c, kx, ky = tck
+    if not (0 <= dx < kx):
+        raise ValueError(f"0 <= dx = {dx} < kx = {kx} must hold")
+    if not (0 <= dy < ky):
+        raise ValueError(f"0 <= dy = {dy} < ky = {ky} must hold")
+    x, y = map(np.atleast_1d, [x, y])
+    if len(x.shape) != 1 or len(y.shape) != 1:
+        raise ValueError("First two entries should be rank-1 arrays.")
+    if x.size == 0 or y.size == 0:
+        return np.zeros((x.size, y.size))
+    if (x.size >= 2 and not np.all(np.diff(x) >= 0.0)) or (y.size >= 2 and not np.all(np.diff(y) >= 0.0)):
+        raise ValueError("Invalid input data: x and y must be increasing")
+    z = _evaluate((tx, ty, c), (kx, ky), x, y, dx, dy, True)
+    z.shape = len(x), len(y)
+    if len(z) > 1:
+        return z
+    if len(z[0]) > 1:
+        return z[0]
+    return z[0][0]
+
+
+def dblint(xa: float, xb: float, ya: float, yb: float, tck: Any) -> float:
+    """``scipy.interpolate.dblint``: ``∫_xa^xb ∫_ya^yb`` of the 2-D spline
+    ``tck = [tx, ty, c, kx, ky]`` over the base box (limits taken into it, as FITPACK),
+    lekalo's ``TensorBSpline.integral``."""
+    from ._fitpack2 import _dblint
+
+    tx, ty, c, kx, ky = tck
+    return _dblint((tx, ty, c), (kx, ky), xa, xb, ya, yb)

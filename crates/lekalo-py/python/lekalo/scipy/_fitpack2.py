@@ -2,7 +2,10 @@
 ``lekalo.scipy``: SciPy's object interface to FITPACK's ``curfit``, over lekalo's fits
 (``splrep``: the smoothing condition on FITPACK's knots, interpolation, least squares on given
 knots) and lekalo's evaluation, integrals and derivatives (``splev``, ``splint``, ``spalde``,
-``splder``, ``splantider``)."""
+``splder``, ``splantider``). The 2-D classes ``RectBivariateSpline`` (FITPACK's ``regrid``:
+lekalo's ``fit_tensor_grid_smoothing``) and ``LSQBivariateSpline`` (lekalo's
+``fit_tensor_scattered``), evaluated, differentiated and integrated by lekalo's
+``TensorBSpline``."""
 
 from __future__ import annotations
 
@@ -10,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import _lekalo
 from ._bspline import _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
@@ -168,3 +172,254 @@ class LSQUnivariateSpline(UnivariateSpline):
         self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
         ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
         self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
+
+
+# -- the 2-D FITPACK classes (docs/scipy.md): tensor-product splines of lekalo's core --------
+
+
+def _tensor(tx: Any, ty: Any, c: Any, kx: int, ky: int):
+    """lekalo's ``TensorBSpline`` of FITPACK's ``(tx, ty, c, kx, ky)`` (``c`` flat, ``x`` slowest)."""
+    tx = np.ascontiguousarray(tx, dtype=np.float64)
+    ty = np.ascontiguousarray(ty, dtype=np.float64)
+    nx, ny = len(tx) - kx - 1, len(ty) - ky - 1
+    c = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[: nx * ny]).reshape(nx, ny)
+    return _lekalo.TensorBSpline((tx, ty), c, [int(kx), int(ky)])
+
+
+def _clip(v: np.ndarray, t: np.ndarray, k: int) -> np.ndarray:
+    """FITPACK's evaluation (``fpbisp``) takes a coordinate outside the base interval at its end."""
+    return np.clip(np.asarray(v, dtype=np.float64), t[k], t[len(t) - k - 1])
+
+
+def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bool) -> np.ndarray:
+    """SciPy's ``bispev``/``parder`` (``grid``) and ``bispeu``/``pardeu`` (points): values of the
+    spline or of its partial derivative ``(dx, dy)``, computed as the values of the derivative
+    spline (lekalo's ``TensorBSpline.derivative``, as ``partial_derivative`` returns it)."""
+    tx, ty, c = tck[:3]
+    kx, ky = degrees
+    tx = np.asarray(tx, dtype=np.float64)
+    ty = np.asarray(ty, dtype=np.float64)
+    if dx or dy:
+        if not (0 <= dx < kx and 0 <= dy < ky):
+            raise ValueError(
+                f"Error code returned by {'parder' if grid else 'pardeu'}: 10 (derivative orders "
+                f"dx={dx}, dy={dy} must satisfy 0 <= dx < kx={kx}, 0 <= dy < ky={ky})"
+            )
+        spline = _tensor(tx, ty, c, kx, ky).derivative([int(dx), int(dy)])
+        tx, ty = (np.asarray(t) for t in spline.t)
+        kx, ky = kx - dx, ky - dy
+    else:
+        spline = _tensor(tx, ty, c, kx, ky)
+    if grid:
+        if np.size(x) * np.size(y) > _lekalo.MAX_SCALARS:
+            raise MemoryError(
+                f"a grid of {np.size(x)} x {np.size(y)} values exceeds lekalo's size limit "
+                f"{_lekalo.MAX_SCALARS} (MAX_SCALARS); evaluate it in parts"
+            )
+        xs = _clip(x, tx, kx).ravel()
+        ys = _clip(y, ty, ky).ravel()
+        return np.asarray(spline.grid(np.ascontiguousarray(xs), np.ascontiguousarray(ys)))
+    pts = np.stack([_clip(x, tx, kx).ravel(), _clip(y, ty, ky).ravel()], axis=-1)
+    return np.asarray(spline(np.ascontiguousarray(pts))).reshape(np.shape(x))
+
+
+class _BivariateSplineBase:
+    """SciPy's base of the 2-D FITPACK classes: ``tck = (tx, ty, c)`` (``c`` flat, ``x``
+    slowest) and ``degrees = (kx, ky)``, evaluated by lekalo's ``TensorBSpline``."""
+
+    @classmethod
+    def _from_tck(cls, tck: Any):
+        self = cls.__new__(cls)
+        if len(tck) != 5:
+            raise ValueError("tck should be a 5 element tuple of tx, ty, c, kx, ky")
+        self.tck = tuple(tck[:3])
+        self.degrees = tuple(tck[3:])
+        return self
+
+    def get_residual(self) -> float:
+        """The weighted residual sum of squares of the fit (FITPACK's ``fp``)."""
+        return self.fp
+
+    def get_knots(self):
+        """The knot vectors ``(tx, ty)``, end knots included."""
+        return self.tck[:2]
+
+    def get_coeffs(self) -> np.ndarray:
+        """The coefficients, flat (``x`` slowest)."""
+        return self.tck[2]
+
+    def __call__(self, x: Any, y: Any, dx: int = 0, dy: int = 0, grid: bool = True) -> np.ndarray:
+        """The spline (or its partial derivative ``(dx, dy)``) on the grid ``x × y`` (``grid``,
+        shape ``(len(x), len(y))``, both increasing) or at the points ``(x, y)`` broadcast."""
+        x = np.asarray(x)
+        y = np.asarray(y)
+        dtype = np.asarray(self.tck[2]).dtype
+        if grid:
+            if x.size == 0 or y.size == 0:
+                return np.zeros((x.size, y.size), dtype=dtype)
+            if x.size >= 2 and not np.all(np.diff(x.ravel()) >= 0.0):
+                raise ValueError("x must be strictly increasing when `grid` is True")
+            if y.size >= 2 and not np.all(np.diff(y.ravel()) >= 0.0):
+                raise ValueError("y must be strictly increasing when `grid` is True")
+            return _evaluate(self.tck, self.degrees, x, y, dx, dy, True)
+        if x.shape != y.shape:
+            x, y = np.broadcast_arrays(x, y)
+        if x.size == 0:
+            return np.zeros(x.shape, dtype=dtype)
+        return _evaluate(self.tck, self.degrees, x, y, dx, dy, False)
+
+    def partial_derivative(self, dx: int, dy: int):
+        """The partial derivative ``(dx, dy)`` as a spline of degrees ``(kx - dx, ky - dy)``
+        (lekalo's ``TensorBSpline.derivative``)."""
+        if dx == 0 and dy == 0:
+            return self
+        kx, ky = self.degrees
+        if not (dx >= 0 and dy >= 0):
+            raise ValueError("order of derivative must be positive or zero")
+        if not (dx < kx and dy < ky):
+            raise ValueError("order of derivative must be less than degree of spline")
+        d = _tensor(*self.tck, kx, ky).derivative([int(dx), int(dy)])
+        tx, ty = d.t
+        return _DerivedBivariateSpline._from_tck(
+            (np.asarray(tx), np.asarray(ty), np.asarray(d.c).ravel(), kx - dx, ky - dy)
+        )
+
+
+class BivariateSpline(_BivariateSplineBase):
+    """``scipy.interpolate.BivariateSpline``: evaluation (``ev``) and integrals of the 2-D
+    splines."""
+
+    def ev(self, xi: Any, yi: Any, dx: int = 0, dy: int = 0) -> np.ndarray:
+        """The spline at the points ``(xi[i], yi[i])``."""
+        return self.__call__(xi, yi, dx=dx, dy=dy, grid=False)
+
+    def integral(self, xa: float, xb: float, ya: float, yb: float) -> float:
+        """``∫_xa^xb ∫_ya^yb s(x, y) dy dx`` over the base box (limits taken into it, as
+        FITPACK's ``dblint``), lekalo's ``TensorBSpline.integral``."""
+        return _dblint(self.tck, self.degrees, xa, xb, ya, yb)
+
+    @staticmethod
+    def _validate_input(x: Any, y: Any, z: Any, w: Any, kx: int, ky: int, eps: Any):
+        x, y, z = np.asarray(x), np.asarray(y), np.asarray(z)
+        if not x.size == y.size == z.size:
+            raise ValueError("x, y, and z should have a same length")
+        if w is not None:
+            w = np.asarray(w)
+            if x.size != w.size:
+                raise ValueError("x, y, z, and w should have a same length")
+            elif not np.all(w >= 0.0):
+                raise ValueError("w should be positive")
+        if (eps is not None) and (not 0.0 < eps < 1.0):
+            raise ValueError("eps should be between (0, 1)")
+        if not x.size >= (kx + 1) * (ky + 1):
+            raise ValueError("The length of x, y and z should be at least (kx+1) * (ky+1)")
+        return x, y, z, w
+
+
+def _dblint(tck: Any, degrees: Any, xa: float, xb: float, ya: float, yb: float) -> float:
+    tx, ty, c = tck[:3]
+    kx, ky = degrees
+    tx = np.asarray(tx, dtype=np.float64)
+    ty = np.asarray(ty, dtype=np.float64)
+    bounds = [
+        (float(_clip(xa, tx, kx)), float(_clip(xb, tx, kx))),
+        (float(_clip(ya, ty, ky)), float(_clip(yb, ty, ky))),
+    ]
+    return float(np.asarray(_tensor(tx, ty, c, kx, ky).integral(bounds)).ravel()[0])
+
+
+class _DerivedBivariateSpline(_BivariateSplineBase):
+    """A partial derivative of a 2-D spline: no data, so no residual."""
+
+    _invalid_why = (
+        "is unavailable, because _DerivedBivariateSpline instance is not constructed from data "
+        "that are to be interpolated or smoothed, but derived from the underlying knots and "
+        "coefficients of another spline object"
+    )
+
+    @property
+    def fp(self):
+        raise AttributeError(f'attribute "fp" {self._invalid_why}')
+
+    def get_residual(self):
+        raise AttributeError(f'method "get_residual" {self._invalid_why}')
+
+
+class RectBivariateSpline(BivariateSpline):
+    """``scipy.interpolate.RectBivariateSpline(x, y, z, bbox, kx, ky, s, maxit)``: the spline on
+    the grid ``x × y`` with FITPACK's knots whose residual sum of squares is at most ``s``
+    (``s = 0``: interpolation), lekalo's ``fit_tensor_grid_smoothing``
+    (``docs/theory/tensor.md#smoothing-on-grids``). lekalo's iteration for the smoothing weight
+    keeps the residual at or below ``s`` and its own bound on the iterations; ``maxit`` is
+    accepted and not used."""
+
+    def __init__(
+        self, x: Any, y: Any, z: Any, bbox: Any = [None] * 4, kx: int = 3, ky: int = 3, s: Any = 0,  # noqa: B006
+        maxit: int = 20,
+    ) -> None:
+        x, y, bbox = np.ravel(x), np.ravel(y), np.ravel(np.asarray(bbox, dtype=object))
+        z = np.asarray(z)
+        if not np.all(np.diff(x) > 0.0):
+            raise ValueError("x must be strictly increasing")
+        if not np.all(np.diff(y) > 0.0):
+            raise ValueError("y must be strictly increasing")
+        if not x.size == z.shape[0]:
+            raise ValueError("x dimension of z must have same number of elements as x")
+        if not y.size == z.shape[1]:
+            raise ValueError("y dimension of z must have same number of elements as y")
+        if not bbox.shape == (4,):
+            raise ValueError("bbox shape should be (4,)")
+        if s is not None and not s >= 0.0:
+            raise ValueError("s should be s >= 0.0")
+        del maxit
+        x = np.ascontiguousarray(x, dtype=np.float64)
+        y = np.ascontiguousarray(y, dtype=np.float64)
+        xb, xe, yb, ye = (None if b is None else float(b) for b in bbox)
+        box = [
+            (x[0] if xb is None else xb, x[-1] if xe is None else xe),
+            (y[0] if yb is None else yb, y[-1] if ye is None else ye),
+        ]
+        z = np.ascontiguousarray(z, dtype=np.float64)
+        spline, fp, _ = _lekalo.fit_tensor_grid_smoothing(
+            [x, y], z, float(0.0 if s is None else s), [int(kx), int(ky)], bbox=box
+        )
+        tx, ty = spline.t
+        self.fp = fp
+        self.tck = (np.asarray(tx), np.asarray(ty), np.asarray(spline.c).ravel())
+        self.degrees = kx, ky
+
+
+class LSQBivariateSpline(BivariateSpline):
+    """``scipy.interpolate.LSQBivariateSpline(x, y, z, tx, ty, w, bbox, kx, ky, eps)``: the
+    weighted least-squares spline on scattered points with the interior knots ``tx``, ``ty``,
+    lekalo's ``fit_tensor_scattered`` (FITPACK's weights multiply the residual: lekalo's are
+    their squares). A control point without data under it is refused (lekalo's
+    ``EmptySupport``) where FITPACK returns a minimal-norm solution with a warning; ``eps`` is
+    validated and not used."""
+
+    def __init__(
+        self, x: Any, y: Any, z: Any, tx: Any, ty: Any, w: Any = None, bbox: Any = [None] * 4,  # noqa: B006
+        kx: int = 3, ky: int = 3, eps: Any = None,
+    ) -> None:
+        x, y, z, w = self._validate_input(x, y, z, w, kx, ky, eps)
+        bbox = np.ravel(np.asarray(bbox, dtype=object))
+        if not bbox.shape == (4,):
+            raise ValueError("bbox shape should be (4,)")
+        x = np.asarray(x, dtype=np.float64).ravel()
+        y = np.asarray(y, dtype=np.float64).ravel()
+        z = np.asarray(z, dtype=np.float64).ravel()
+        xb, xe, yb, ye = (None if b is None else float(b) for b in bbox)
+        xb = x.min() if xb is None else xb
+        xe = x.max() if xe is None else xe
+        yb = y.min() if yb is None else yb
+        ye = y.max() if ye is None else ye
+        tx = np.concatenate([[xb] * (kx + 1), np.asarray(tx, dtype=np.float64), [xe] * (kx + 1)])
+        ty = np.concatenate([[yb] * (ky + 1), np.asarray(ty, dtype=np.float64), [ye] * (ky + 1)])
+        ww = None if w is None else np.asarray(w, dtype=np.float64) ** 2
+        spline, _, fp = _lekalo.fit_tensor_scattered(
+            np.ascontiguousarray(np.stack([x, y], axis=-1)), z, (tx, ty), [int(kx), int(ky)], w=ww
+        )
+        self.fp = fp
+        t0, t1 = spline.t
+        self.tck = (np.asarray(t0), np.asarray(t1), np.asarray(spline.c).ravel())
+        self.degrees = kx, ky
