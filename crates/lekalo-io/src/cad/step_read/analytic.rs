@@ -157,7 +157,10 @@ impl Basis {
                 let seg = BSplineCurve::line_segment(point, direction, t1.min(t2), t1.max(t2))
                     .map_err(lib)?;
                 let seg = Object::BSpline(seg);
-                if sense == (t1 < t2) {
+                // a line cannot wrap: the piece between the trims, along the line when
+                // `sense` holds and against it when not, whichever trim is the larger (as
+                // Open CASCADE's Geom_TrimmedCurve reads a non-periodic basis)
+                if sense {
                     Ok(seg)
                 } else {
                     seg.reverse().map_err(lib)

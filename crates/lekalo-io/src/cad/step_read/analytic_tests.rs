@@ -153,6 +153,7 @@ fn conics_and_lines_are_exact() {
 #38=CARTESIAN_POINT('',(1.,0.,0.));
 #39=CARTESIAN_POINT('',(5.,0.,0.));
 #40=LINE('',#20,#35);
+#45=TRIMMED_CURVE('',#36,(PARAMETER_VALUE(3.)),(PARAMETER_VALUE(1.)),.F.,.PARAMETER.);
 #41=( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );
 #42=PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE(0.0174532925199433),#41);
 #43=( CONVERSION_BASED_UNIT('DEGREE',#42) NAMED_UNIT(*) PLANE_ANGLE_UNIT() );
@@ -182,6 +183,11 @@ REPRESENTATION_CONTEXT('','') );"
     let (a, b) = seg.domain();
     close(&seg.eval(a).unwrap(), &[5.0, 0.0, 0.0], 1e-15);
     close(&seg.eval(b).unwrap(), &[1.0, 0.0, 0.0], 1e-15);
+    // against the line from the larger trim: from trim_1 (t = 3, x = 6) to trim_2 (x = 2)
+    let back = curve(&r, 45);
+    let (a, b) = back.domain();
+    close(&back.eval(a).unwrap(), &[6.0, 0.0, 0.0], 1e-15);
+    close(&back.eval(b).unwrap(), &[2.0, 0.0, 0.0], 1e-15);
     // the trims' bases are read through their trims; an unbounded line is reported
     assert!(r.shapes.iter().all(|(i, _)| *i != 33 && *i != 36));
     let why: Vec<_> = r
