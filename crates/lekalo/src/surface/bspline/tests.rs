@@ -159,12 +159,12 @@ fn constructor_errors_name_the_direction() {
     // knots_v has 4 knots but 3 + 1 + 1 = 5 are needed
     let e = BSplineSurface::new(1, 1, k2.clone(), k2.clone(), net.clone(), (2, 3)).unwrap_err();
     assert!(
-        matches!(e, Error::LengthMismatch { what, expected: 5, got: 4 } if what.starts_with("knots_v")),
+        matches!(e, Error::LengthMismatch { what, expected: 5, got: 4 } if what.starts_with("knots in v")),
         "{e}"
     );
     let e = BSplineSurface::new(1, 1, k3.clone(), k3.clone(), net.clone(), (2, 3)).unwrap_err();
     assert!(
-        matches!(e, Error::LengthMismatch { what, .. } if what.starts_with("knots_u")),
+        matches!(e, Error::LengthMismatch { what, .. } if what.starts_with("knots in u")),
         "{e}"
     );
     // degree 2 in u with 2 rows
@@ -256,5 +256,5 @@ fn serde_goes_through_validation() {
     let bad = json.replace("\"net_size\":[6,5]", "\"net_size\":[5,6]");
     assert_ne!(bad, json, "the replacement must hit");
     let e = serde_json::from_str::<BSplineSurface>(&bad).unwrap_err();
-    assert!(e.to_string().contains("knots_u"), "{e}");
+    assert!(e.to_string().contains("knots in u"), "{e}");
 }
