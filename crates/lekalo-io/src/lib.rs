@@ -19,6 +19,7 @@
 //! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
 //! | STEP faces (surfaces trimmed by loops of edges with pcurves), as `"type": "face"` envelopes | yes | — (JSON: yes) | [`read_step_faces`], [`face_to_json_line`], [`read_face`] |
 //! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
+//! | IGES trimmed surfaces (144 with 142 boundaries) as faces | yes | — | [`read_iges_faces`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.
@@ -60,7 +61,7 @@ pub use atomic::{
 pub use error::{IoError, IoResult, Location};
 pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;
-pub use iges::{read_iges, read_iges_limited, IgesRead, IgesWriter};
+pub use iges::{read_iges, read_iges_faces, read_iges_limited, IgesRead, IgesWriter};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use mesh_files::{mesh_text, polyline_text, MeshFormat};

@@ -14,18 +14,27 @@
 //! rounded (`D` exponents accepted), so a round trip is exact. The units of the Global section
 //! (flag 1–11) convert coordinates to millimetres. Entities of other types, and 126/128 entities
 //! with a transformation matrix, are listed as skipped.
+//!
+//! | file | subject |
+//! |---|---|
+//! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
+//! | `faces.rs` | trimmed surfaces (144) with their boundaries (142) and composite curves (102) as faces ([`read_iges_faces`]) |
 
 use std::fmt::Write as _;
 
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
+mod faces;
 mod splines;
+
+pub use faces::read_iges_faces;
+use faces::Raw;
 
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
 use crate::step::step_real;
-use crate::step_read::StepSkipped;
+use crate::step_read::{StepFace, StepSkipped};
 
 /// What [`read_iges`] found: the shapes with their directory-entry sequence numbers, what was
 /// skipped, the unit.
@@ -39,6 +48,12 @@ pub struct IgesRead {
     pub length_unit: String,
     /// The factor that converted coordinates to millimetres.
     pub scale_to_mm: f64,
+    /// The trimmed surfaces (entities 144 and 143) read as faces, with the sequence number of
+    /// their directory entry in `id` ([`read_iges_faces`]; empty from [`read_iges`]).
+    pub faces: Vec<StepFace>,
+    /// The trimmed and bounded surfaces not read as faces, with the reason
+    /// ([`read_iges_faces`]).
+    pub skipped_faces: Vec<StepSkipped>,
 }
 
 /// Builds one IGES file from curves and surfaces.
@@ -397,6 +412,20 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
 /// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
+    read_entities(text, source, max_size, false).map(|(r, _)| r)
+}
+
+/// The entities of a file as [`read_iges_limited`] reads them and, with `topology`, the
+/// parameters of the composite curves, curves on surfaces, boundaries, bounded and trimmed
+/// surfaces (entities 102, 141, 142, 143, 144) by sequence number, which the faces are built
+/// from.
+fn read_entities(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    topology: bool,
+) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>)> {
+    let mut raw = std::collections::HashMap::new();
     let mut g = String::new();
     let mut d: Vec<(usize, &str)> = Vec::new();
     let mut p: Vec<(usize, &str)> = Vec::new();
@@ -488,7 +517,8 @@ pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<
             .get(73..80)
             .and_then(|s| s.trim().parse().ok())
             .unwrap_or(0);
-        if !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
+        let keep = topology && matches!(ty.as_str(), "102" | "141" | "142" | "143" | "144");
+        if !keep && !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
             if matches!(
                 ty.as_str(),
                 "100"
@@ -528,7 +558,7 @@ pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<
             });
             continue;
         }
-        if !matches!(field(a, 6).as_str(), "" | "0") {
+        if !keep && !matches!(field(a, 6).as_str(), "" | "0") {
             skipped.push(StepSkipped {
                 id: seq,
                 entity: format!("IGES entity {ty}"),
@@ -570,6 +600,17 @@ pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<
                 .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
         };
         let lib = |e: lekalo::Error| bad(e.to_string());
+        if keep {
+            raw.insert(
+                seq,
+                Raw {
+                    ty: ty.clone(),
+                    fields: f,
+                    matrix: !matches!(field(a, 6).as_str(), "" | "0"),
+                },
+            );
+            continue;
+        }
         if ty == "110" || ty == "112" || ty == "114" {
             let num = |k: usize| {
                 f.get(k)
@@ -686,12 +727,17 @@ pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<
             shapes.push((seq, Shape::Surface(s)));
         }
     }
-    Ok(IgesRead {
-        shapes,
-        skipped,
-        length_unit,
-        scale_to_mm: unit_mm,
-    })
+    Ok((
+        IgesRead {
+            shapes,
+            skipped,
+            length_unit,
+            scale_to_mm: unit_mm,
+            faces: Vec::new(),
+            skipped_faces: Vec::new(),
+        },
+        raw,
+    ))
 }
 
 #[cfg(test)]
@@ -932,3 +978,6 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod faces_tests;

@@ -1,0 +1,425 @@
+//! IGES trimmed surfaces (entity 144, IGES 5.3 §4.34) read as [`lekalo::topology::Face`]s:
+//! the surface, an outer boundary and inner boundaries, each a curve on a parametric surface
+//! (entity 142, §4.32) holding the curve in the surface's parameters (`BPTR`) and the curve in
+//! model space (`CPTR`); a composite curve (entity 102, §4.4) splits into one edge per
+//! constituent, in its order. Each edge is directed as the boundary runs.
+//!
+//! Entity 144: `PTS, N1, N2, PTO, PTI(1)…PTI(N2)`; `N1 = 0` (or `PTO = 0`) says the outer
+//! boundary is the boundary of the surface's domain, read as the four iso-parametric edges
+//! `v = v0`, `u = u1`, `v = v1`, `u = u0` counter-clockwise in `(u, v)`. Entity 142:
+//! `CRTN, SPTR, BPTR, CPTR, PREF`. Parameter-space curves are stored as 3-D curves with
+//! `z = 0` in the units of the surface's parameters: they are read without the length unit and
+//! kept as 2-D pcurves. The surfaces lekalo reads from IGES (128, and 114 converted exactly on
+//! its own breakpoints) keep the file's parameters, so the pcurves apply as written.
+//!
+//! A face whose surface, boundary or model-space curves are not read is listed as skipped with
+//! the reason; edges whose parameter-space curves are missing or do not match the model-space
+//! pieces are kept without pcurves, with the reason in [`StepFace::pcurves`].
+
+use std::collections::HashMap;
+
+use lekalo::topology::{Edge, Face, Loop};
+use lekalo::{BSplineCurve, Curve, Direction, NurbsCurve, Points};
+
+use super::{read_entities, IgesRead};
+use crate::error::{IoError, IoResult};
+use crate::shape::{Shape, Surface};
+use crate::step_read::{StepFace, StepSkipped, STEP_LOOP_RTOL};
+
+/// The parameter data of an entity the faces are built from (102, 141, 142, 143, 144).
+pub(super) struct Raw {
+    /// The entity type, e.g. `144`.
+    pub(super) ty: String,
+    /// The parameters, the entity type first.
+    pub(super) fields: Vec<String>,
+    /// True when the directory entry points at a transformation matrix.
+    pub(super) matrix: bool,
+}
+
+/// Composite curves nested deeper than this are refused (a file could make them cyclic).
+const MAX_NESTING: usize = 8;
+
+/// Reads an IGES file as [`super::read_iges_limited`] does and, in [`IgesRead::faces`], its
+/// trimmed surfaces (entity 144) as faces; the ones that cannot be read are in
+/// [`IgesRead::skipped_faces`] with the reason. In each [`StepFace`], `id` is the sequence
+/// number of the 144's directory entry, `surface_id` the surface's, `edge_ids` the model-space
+/// curves' (0 for the edges of an untrimmed outer boundary) and `name` is empty. Loops must
+/// close within [`STEP_LOOP_RTOL`] of the model size. The control points copied into faces
+/// count against `max_size` as well.
+///
+/// # Errors
+/// As [`super::read_iges_limited`]; [`IoError::TooLarge`] when the faces' surfaces and edges
+/// hold more than `max_size` control points together.
+pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
+    let (mut r, raw) = read_entities(text, source, max_size, true)?;
+    let mut cx = Faces {
+        curves: HashMap::new(),
+        surfaces: HashMap::new(),
+        skips: r
+            .skipped
+            .iter()
+            .map(|s| (s.id, s.reason.as_str()))
+            .collect(),
+        raw: &raw,
+        unit: r.scale_to_mm,
+    };
+    for (id, s) in &r.shapes {
+        match s {
+            Shape::Curve(c) => {
+                cx.curves.insert(*id, c);
+            }
+            Shape::Surface(s) => {
+                cx.surfaces.insert(*id, s);
+            }
+            _ => {}
+        }
+    }
+    let mut ids: Vec<u64> = raw
+        .iter()
+        .filter(|(_, e)| e.ty == "144")
+        .map(|(id, _)| *id)
+        .collect();
+    ids.sort_unstable();
+    let mut faces = Vec::new();
+    let mut skipped = Vec::new();
+    let mut used = 0usize;
+    for id in ids {
+        match cx.face(id) {
+            Ok(f) => {
+                let points = f.face.surface().control_points().len()
+                    + f.face
+                        .loops()
+                        .flat_map(Loop::edges)
+                        .map(|e| e.curve().control_points().len())
+                        .sum::<usize>();
+                used = used.saturating_add(points);
+                if used > max_size {
+                    return Err(IoError::TooLarge {
+                        what: format!(
+                            "{source}: face D{id}: {used} control points in the faces read so far, above the size limit {max_size}; raise the limit with --max-size {used} if the machine has the memory"
+                        ),
+                    });
+                }
+                faces.push(f);
+            }
+            Err(reason) => skipped.push(StepSkipped {
+                id,
+                entity: "IGES entity 144".into(),
+                reason,
+            }),
+        }
+    }
+    r.faces = faces;
+    r.skipped_faces = skipped;
+    Ok(r)
+}
+
+/// What the faces are built from.
+struct Faces<'a> {
+    curves: HashMap<u64, &'a Curve>,
+    surfaces: HashMap<u64, &'a Surface>,
+    skips: HashMap<u64, &'a str>,
+    raw: &'a HashMap<u64, Raw>,
+    unit: f64,
+}
+
+/// A loop read: its edges, the sequence numbers of their model-space curves, and why the edges
+/// have no pcurves when they have none.
+type ReadLoop = (Loop, Vec<u64>, Option<String>);
+
+impl Faces<'_> {
+    /// Pointer `k` of entity `id` (a directory-entry sequence number), 0 when blank.
+    fn pointer(e: &Raw, id: u64, k: usize, what: &str) -> Result<u64, String> {
+        let t = e.fields.get(k).map_or("", |s| s.trim());
+        if t.is_empty() {
+            return Ok(0);
+        }
+        t.parse::<u64>().map_err(|_| {
+            format!("entity {} D{id}: {what} (parameter {k}) is \"{t}\", not a pointer to a directory entry", e.ty)
+        })
+    }
+
+    /// Why entity `id` is not a curve or surface read.
+    fn why_not(&self, id: u64, what: &str) -> String {
+        if let Some(why) = self.skips.get(&id) {
+            format!("its {what} D{id} was not read: {why}")
+        } else if let Some(e) = self.raw.get(&id) {
+            format!("its {what} D{id} is an entity {}, not a {what}", e.ty)
+        } else if self.curves.contains_key(&id) {
+            format!("its {what} D{id} is a curve, not a {what}")
+        } else if self.surfaces.contains_key(&id) {
+            format!("its {what} D{id} is a surface, not a {what}")
+        } else {
+            format!("its {what} D{id} is not an entity lekalo reads (110, 112, 114, 126, 128, 102), or not in the file")
+        }
+    }
+
+    /// The curves of entity `id`: itself, or the constituents of a composite curve in order,
+    /// with their sequence numbers.
+    fn pieces(&self, id: u64, depth: usize, out: &mut Vec<(u64, Curve)>) -> Result<(), String> {
+        if let Some(c) = self.curves.get(&id) {
+            out.push((id, (*c).clone()));
+            return Ok(());
+        }
+        let Some(e) = self.raw.get(&id).filter(|e| e.ty == "102") else {
+            return Err(self.why_not(id, "curve"));
+        };
+        if e.matrix {
+            return Err(format!(
+                "its composite curve D{id} has a transformation matrix (entity 124), which is not applied"
+            ));
+        }
+        if depth >= MAX_NESTING {
+            return Err(format!(
+                "composite curve D{id} is nested more than {MAX_NESTING} deep (a cycle?)"
+            ));
+        }
+        let n = Self::pointer(e, id, 1, "the number of curves N")?;
+        if n == 0 {
+            return Err(format!("composite curve D{id} has no curves (N = 0)"));
+        }
+        for k in 0..n {
+            let k = usize::try_from(k).unwrap_or(usize::MAX).saturating_add(2);
+            if k >= e.fields.len() {
+                return Err(format!(
+                    "composite curve D{id} declares N = {n} curves and lists {}",
+                    e.fields.len().saturating_sub(2)
+                ));
+            }
+            let c = Self::pointer(e, id, k, "a constituent curve")?;
+            self.pieces(c, depth + 1, out)?;
+        }
+        Ok(())
+    }
+
+    /// A parameter-space curve (`z = 0`, not in the length unit) as a 2-D curve.
+    fn plane_curve(&self, c: &Curve) -> Result<Curve, String> {
+        let ctrl = c.control_points();
+        let mut data = Vec::with_capacity(2 * ctrl.len());
+        for p in ctrl.iter() {
+            data.extend([
+                p[0] / self.unit,
+                p.get(1).copied().unwrap_or(0.0) / self.unit,
+            ]);
+        }
+        let pts = Points::from_flat(2, data).map_err(|e| e.to_string())?;
+        let knots = c.knots().as_slice().to_vec();
+        let out = match c.weights() {
+            Some(w) => NurbsCurve::new(c.degree(), knots, pts, w).map(Curve::Nurbs),
+            None => BSplineCurve::new(c.degree(), knots, pts).map(Curve::BSpline),
+        };
+        out.map_err(|e| e.to_string())
+    }
+
+    /// The loop of boundary `id` (an entity 142).
+    fn boundary(&self, id: u64, surface: &Surface) -> Result<ReadLoop, String> {
+        let Some(e) = self.raw.get(&id).filter(|e| e.ty == "142") else {
+            return Err(self.why_not(id, "boundary (curve on a parametric surface, entity 142)"));
+        };
+        if e.matrix {
+            return Err(format!(
+                "its boundary D{id} has a transformation matrix (entity 124), which is not applied"
+            ));
+        }
+        let b = Self::pointer(e, id, 3, "the parameter-space curve BPTR")?;
+        let c = Self::pointer(e, id, 4, "the model-space curve CPTR")?;
+        if c == 0 {
+            return Err(format!(
+                "its boundary D{id} has no model-space curve (CPTR = 0); lekalo does not build the 3-D edges from the parameter-space curves"
+            ));
+        }
+        let mut model = Vec::new();
+        self.pieces(c, 0, &mut model)
+            .map_err(|why| format!("boundary D{id}: {why}"))?;
+        let mut plane = Vec::new();
+        let pcurves: Result<Vec<Curve>, String> = if b == 0 {
+            Err(format!(
+                "boundary D{id} has no parameter-space curve (BPTR = 0)"
+            ))
+        } else {
+            self.pieces(b, 0, &mut plane)
+                .and_then(|()| {
+                    plane
+                        .iter()
+                        .map(|(_, p)| self.plane_curve(p))
+                        .collect::<Result<Vec<_>, _>>()
+                })
+                .map_err(|why| format!("boundary D{id}: {why}"))
+                .and_then(|pcs| {
+                    if pcs.len() == model.len() || poles(surface, &pcs, &mut model) {
+                        Ok(pcs)
+                    } else {
+                        Err(format!(
+                            "boundary D{id}: the parameter-space curve has {} pieces, the model-space curve {}",
+                            pcs.len(),
+                            model.len()
+                        ))
+                    }
+                })
+        };
+        let (mut pcs, why) = match pcurves {
+            Ok(p) => (p.into_iter().map(Some).collect::<Vec<_>>(), None),
+            Err(why) => (vec![None; model.len()], Some(why)),
+        };
+        let mut edges = Vec::with_capacity(model.len());
+        let mut ids = Vec::with_capacity(model.len());
+        for ((cid, curve), pc) in model.into_iter().zip(pcs.drain(..)) {
+            edges.push(Edge::new(curve, pc).map_err(|e| format!("boundary D{id}: {e}"))?);
+            ids.push(cid);
+        }
+        let lp = Loop::new(edges).map_err(|e| format!("boundary D{id}: {e}"))?;
+        Ok((lp, ids, why))
+    }
+
+    /// The boundary of the surface's domain: the iso-parametric edges `v = v0`, `u = u1`,
+    /// `v = v1`, `u = u0`, counter-clockwise in `(u, v)`, with their pcurves.
+    fn domain_loop(s: &Surface) -> Result<ReadLoop, String> {
+        let ((u0, u1), (v0, v1)) = s.domain();
+        let lib = |e: lekalo::Error| format!("the boundary of the surface's domain: {e}");
+        let line = |p: [f64; 2], d: [f64; 2], a: f64, b: f64| {
+            BSplineCurve::line_segment(&p, &d, a, b).map(Curve::BSpline)
+        };
+        let edges = vec![
+            (
+                s.iso_curve(Direction::U, v0),
+                line([0.0, v0], [1.0, 0.0], u0, u1),
+            ),
+            (
+                s.iso_curve(Direction::V, u1),
+                line([u1, 0.0], [0.0, 1.0], v0, v1),
+            ),
+            (
+                s.iso_curve(Direction::U, v1).and_then(|c| c.reverse()),
+                line([u0 + u1, v1], [-1.0, 0.0], u0, u1),
+            ),
+            (
+                s.iso_curve(Direction::V, u0).and_then(|c| c.reverse()),
+                line([u0, v0 + v1], [0.0, -1.0], v0, v1),
+            ),
+        ]
+        .into_iter()
+        .map(|(c, p)| Edge::new(c?, Some(p?)))
+        .collect::<lekalo::Result<Vec<_>>>()
+        .map_err(lib)?;
+        Ok((Loop::new(edges).map_err(lib)?, vec![0; 4], None))
+    }
+
+    /// The face of trimmed surface `id` (an entity 144).
+    fn face(&self, id: u64) -> Result<StepFace, String> {
+        let e = &self.raw[&id];
+        if e.matrix {
+            return Err(
+                "has a transformation matrix (entity 124), which is not applied".to_string(),
+            );
+        }
+        let pts = Self::pointer(e, id, 1, "the surface PTS")?;
+        let Some(surface) = self.surfaces.get(&pts) else {
+            return Err(self.why_not(pts, "surface"));
+        };
+        let n1 = Self::pointer(e, id, 2, "N1")?;
+        let n2 = Self::pointer(e, id, 3, "the number of inner boundaries N2")?;
+        let pto = Self::pointer(e, id, 4, "the outer boundary PTO")?;
+        let outer = if n1 == 0 || pto == 0 {
+            Self::domain_loop(surface)?
+        } else {
+            self.boundary(pto, surface)?
+        };
+        let mut why = outer.2;
+        let mut ids = vec![outer.1];
+        let mut inner = Vec::new();
+        for k in 0..n2 {
+            let k = usize::try_from(k).unwrap_or(usize::MAX).saturating_add(5);
+            if k >= e.fields.len() {
+                return Err(format!(
+                    "declares N2 = {n2} inner boundaries and lists {}",
+                    e.fields.len().saturating_sub(5)
+                ));
+            }
+            let b = Self::pointer(e, id, k, "an inner boundary PTI")?;
+            let (lp, lids, w) = self.boundary(b, surface)?;
+            why = why.or(w);
+            inner.push(lp);
+            ids.push(lids);
+        }
+        let face = Face::new((*surface).clone(), outer.0, inner, true, STEP_LOOP_RTOL)
+            .map_err(|e| e.to_string())?;
+        Ok(StepFace {
+            id,
+            name: String::new(),
+            surface_id: pts,
+            face,
+            edge_ids: ids,
+            pcurves: why,
+        })
+    }
+}
+
+/// Where the parameter-space curve of a boundary has more pieces than its model-space curve
+/// because the exporter left out the edges that collapse to a point in space (a pole of the
+/// surface, where a whole side of the domain maps to one point), inserts those points into
+/// `model` as degenerate edges (degree 1, both control points at the pole; sequence number 0)
+/// and returns true. A piece is taken as collapsed when its images at its ends and middle lie
+/// within [`STEP_LOOP_RTOL`] of the surface's size of each other; nothing is changed unless
+/// exactly the missing number of pieces collapse.
+fn poles(surface: &Surface, pcs: &[Curve], model: &mut Vec<(u64, Curve)>) -> bool {
+    let Some(extra) = pcs.len().checked_sub(model.len()) else {
+        return false;
+    };
+    let size = surface
+        .control_points()
+        .bounding_box()
+        .map_or(0.0, |(lo, hi)| {
+            lo.iter()
+                .zip(&hi)
+                .map(|(a, b)| (b - a) * (b - a))
+                .sum::<f64>()
+                .sqrt()
+        });
+    let tol = STEP_LOOP_RTOL * size;
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let at = |p: &Curve, t: f64| -> Option<Vec<f64>> {
+        let uv = p.eval(t).ok()?;
+        // parameter-space curves stray from the domain by rounding (1e-16 to 1e-9)
+        surface.eval(uv[0].clamp(u0, u1), uv[1].clamp(v0, v1)).ok()
+    };
+    let collapsed: Vec<Option<Vec<f64>>> = pcs
+        .iter()
+        .map(|p| {
+            let (a, b) = p.domain();
+            let pts = [at(p, a)?, at(p, 0.5 * (a + b))?, at(p, b)?];
+            let far = pts[1..].iter().any(|q| {
+                q.iter()
+                    .zip(&pts[0])
+                    .map(|(x, y)| (x - y) * (x - y))
+                    .sum::<f64>()
+                    .sqrt()
+                    > tol
+            });
+            (!far).then(|| pts[0].clone())
+        })
+        .collect();
+    if collapsed.iter().filter(|c| c.is_some()).count() != extra {
+        return false;
+    }
+    let mut out = Vec::with_capacity(pcs.len());
+    let mut rest = model.iter();
+    for (p, c) in pcs.iter().zip(collapsed) {
+        match c {
+            Some(pole) => {
+                let (a, b) = p.domain();
+                let pts = Points::from_rows(&[pole.clone(), pole]);
+                let edge = pts.and_then(|pts| BSplineCurve::new(1, vec![a, a, b, b], pts));
+                match edge {
+                    Ok(e) => out.push((0, Curve::BSpline(e))),
+                    Err(_) => return false,
+                }
+            }
+            None => match rest.next() {
+                Some(m) => out.push(m.clone()),
+                None => return false,
+            },
+        }
+    }
+    *model = out;
+    true
+}

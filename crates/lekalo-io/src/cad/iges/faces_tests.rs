@@ -1,0 +1,263 @@
+//! Trimmed surfaces (144) with curves on surfaces (142), composite curves (102) and
+//! parameter-space B-splines (126) read as faces.
+
+use lekalo::{BSplineCurve, BSplineSurface, Points};
+
+use super::{read_iges, read_iges_faces, IgesWriter};
+use crate::object::Object;
+use crate::shape::Surface;
+
+fn polyline(pts: &[[f64; 2]], scale: f64, three_d: bool) -> Object {
+    let n = pts.len();
+    let mut knots = vec![0.0];
+    knots.extend((0..n).map(|i| i as f64));
+    knots.push((n - 1) as f64);
+    let rows: Vec<Vec<f64>> = pts
+        .iter()
+        .map(|p| {
+            let mut r = vec![p[0] * scale, p[1] * scale];
+            if three_d {
+                r.push(0.0);
+            }
+            r
+        })
+        .collect();
+    Object::BSpline(BSplineCurve::new(1, knots, Points::from_rows(&rows).unwrap()).unwrap())
+}
+
+/// A 10 mm square plate `S(u, v) = (10 u, 10 v, 0)` on `[0, 1]²` (D1); its outer boundary
+/// as composite curves of four lines in space and in `(u, v)` (142 at D23); a square hole
+/// `[0.3, 0.7]²` as one closed 126 in space and one in `(u, v)` (142 at D29); then the
+/// trimmed surfaces `faces` (from D31 on).
+fn plate(faces: &[&str]) -> String {
+    let mut w = IgesWriter::new();
+    let net = Points::from_3d(&[
+        [0.0, 0.0, 0.0],
+        [0.0, 10.0, 0.0],
+        [10.0, 0.0, 0.0],
+        [10.0, 10.0, 0.0],
+    ])
+    .unwrap();
+    let s = BSplineSurface::new(
+        1,
+        1,
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![0.0, 0.0, 1.0, 1.0],
+        net,
+        (2, 2),
+    )
+    .unwrap();
+    w.add_surface(&Surface::BSpline(s)).unwrap();
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]];
+    for (scale, three_d) in [(10.0, true), (1.0, false)] {
+        for k in 0..4 {
+            w.add_object(&polyline(&square[k..k + 2], scale, three_d))
+                .unwrap();
+        }
+    }
+    let raw = |w: &mut IgesWriter, ty: u32, text: &str| {
+        let t = text.split(',').map(String::from).collect();
+        w.entities.push((ty, 0, t));
+    };
+    raw(&mut w, 102, "102,4,3,5,7,9");
+    raw(&mut w, 102, "102,4,11,13,15,17");
+    raw(&mut w, 142, "142,0,1,21,19,1");
+    let hole = [[0.3, 0.3], [0.3, 0.7], [0.7, 0.7], [0.7, 0.3], [0.3, 0.3]];
+    w.add_object(&polyline(&hole, 10.0, true)).unwrap();
+    w.add_object(&polyline(&hole, 1.0, false)).unwrap();
+    raw(&mut w, 142, "142,0,1,27,25,1");
+    for f in faces {
+        raw(&mut w, 144, f);
+    }
+    w.finish("plate.igs", "20000101.000000")
+}
+
+#[test]
+fn a_trimmed_plate_with_a_hole_reads_as_a_face_with_pcurves() {
+    let text = plate(&["144,1,1,1,23,29"]);
+    let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
+    assert!(r.skipped_faces.is_empty(), "{:?}", r.skipped_faces);
+    let [f] = r.faces.as_slice() else {
+        panic!("one face: {:?}", r.faces)
+    };
+    assert_eq!((f.id, f.surface_id, f.pcurves.as_deref()), (31, 1, None));
+    assert_eq!(f.edge_ids, vec![vec![3, 5, 7, 9], vec![25]]);
+    assert_eq!(f.face.outer().edges().len(), 4);
+    assert_eq!(f.face.inner().len(), 1);
+    // each pcurve maps onto its edge through the surface
+    for e in f.face.loops().flat_map(|l| l.edges()) {
+        let p = e.pcurve().expect("a pcurve");
+        assert_eq!(p.dim(), 2);
+        let (a, b) = p.domain();
+        for t in [a, 0.5 * (a + b), b] {
+            let uv = p.eval(t).unwrap();
+            let s = f.face.surface().eval(uv[0], uv[1]).unwrap();
+            let c = e.curve().eval(t).unwrap();
+            let d: f64 = s.iter().zip(&c).map(|(x, y)| (x - y).abs()).sum();
+            assert!(d < 1e-12, "S(pcurve({t})) = {s:?}, curve({t}) = {c:?}");
+        }
+    }
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(0.1, 0.1));
+    assert!(!region.contains(0.5, 0.5), "inside the hole");
+    // read_iges still lists the topology entities as not read
+    let plain = read_iges(&text, "plate.igs").unwrap();
+    assert!(plain.faces.is_empty());
+    assert!(plain.skipped.iter().any(|s| s.entity == "IGES entity 144"));
+    assert_eq!(plain.shapes, r.shapes);
+}
+
+#[test]
+fn an_untrimmed_outer_boundary_is_the_domain_of_the_surface() {
+    let text = plate(&["144,1,0,1,0,29"]);
+    let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
+    let [f] = r.faces.as_slice() else {
+        panic!("one face: {:?}", r.skipped_faces)
+    };
+    assert_eq!(f.edge_ids[0], vec![0; 4]);
+    let outer = f.face.outer();
+    assert_eq!(outer.largest_gap(true).unwrap().unwrap().0, 0.0);
+    let starts: Vec<Vec<f64>> = outer
+        .edges()
+        .iter()
+        .map(|e| {
+            let p = e.pcurve().unwrap();
+            p.eval(p.domain().0).unwrap()
+        })
+        .collect();
+    assert_eq!(
+        starts,
+        vec![
+            vec![0.0, 0.0],
+            vec![1.0, 0.0],
+            vec![1.0, 1.0],
+            vec![0.0, 1.0]
+        ]
+    );
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(0.05, 0.95) && !region.contains(0.5, 0.5));
+}
+
+#[test]
+fn faces_pointing_at_missing_or_wrong_entities_are_skipped_with_the_reason() {
+    let text = plate(&[
+        "144,99,1,0,23",
+        "144,1,1,1,23,3",
+        "144,1,1,0,7",
+        "144,1,1,3,23,29",
+        "144,1,1,0,x",
+    ]);
+    let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
+    assert!(r.faces.is_empty());
+    let reasons: Vec<(u64, &str)> = r
+        .skipped_faces
+        .iter()
+        .map(|s| (s.id, s.reason.as_str()))
+        .collect();
+    assert_eq!(reasons.len(), 5, "{reasons:?}");
+    assert!(
+        reasons[0].1.contains("surface D99 is not an entity"),
+        "{reasons:?}"
+    );
+    assert!(
+        reasons[1].1.contains("D3 is a curve, not a boundary"),
+        "{reasons:?}"
+    );
+    assert!(
+        reasons[2].1.contains("D7 is a curve, not a boundary"),
+        "{reasons:?}"
+    );
+    assert!(
+        reasons[3].1.contains("N2 = 3 inner boundaries and lists 1"),
+        "{reasons:?}"
+    );
+    assert!(reasons[4].1.contains("\"x\", not a pointer"), "{reasons:?}");
+    assert_eq!(
+        reasons.iter().map(|r| r.0).collect::<Vec<_>>(),
+        vec![31, 33, 35, 37, 39]
+    );
+}
+
+#[test]
+fn a_loop_that_does_not_close_skips_the_face() {
+    // the composite outer boundary without its last line
+    let text = plate(&["144,1,1,0,23"]).replacen("102,4,3,5,7,9;", "102,3,3,5,7;  ", 1);
+    let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
+    let [s] = r.skipped_faces.as_slice() else {
+        panic!("{r:?}")
+    };
+    assert!(s.reason.contains("does not close"), "{}", s.reason);
+}
+
+/// A bilinear surface with the corners `(u, v) = (0, 1)` and `(1, 1)` at `top` (D1); its
+/// boundary (142, D21) as three lines in space around the triangle `(0, 0)`, `(10, 0)`,
+/// `(5, 10)` and the four sides of the unit square in `(u, v)`; the trimmed surface (D23).
+fn triangle(top: [[f64; 3]; 2]) -> String {
+    let mut w = IgesWriter::new();
+    let net = Points::from_3d(&[[0.0, 0.0, 0.0], top[0], [10.0, 0.0, 0.0], top[1]]).unwrap();
+    let s = BSplineSurface::new(
+        1,
+        1,
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![0.0, 0.0, 1.0, 1.0],
+        net,
+        (2, 2),
+    )
+    .unwrap();
+    w.add_surface(&Surface::BSpline(s)).unwrap();
+    let triangle = [[0.0, 0.0], [10.0, 0.0], [5.0, 10.0], [0.0, 0.0]];
+    for k in 0..3 {
+        w.add_object(&polyline(&triangle[k..k + 2], 1.0, true))
+            .unwrap();
+    }
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]];
+    for k in 0..4 {
+        w.add_object(&polyline(&square[k..k + 2], 1.0, false))
+            .unwrap();
+    }
+    for (ty, text) in [
+        (102, "102,3,3,5,7"),
+        (102, "102,4,9,11,13,15"),
+        (142, "142,0,1,19,17,1"),
+        (144, "144,1,1,0,21"),
+    ] {
+        w.entities
+            .push((ty, 0, text.split(',').map(String::from).collect()));
+    }
+    w.finish("pole.igs", "20000101.000000")
+}
+
+#[test]
+fn an_edge_left_out_at_a_pole_is_a_degenerate_edge() {
+    // the side v = 1 collapsed to the point (5, 10, 0): the model-space boundary has three
+    // lines, the parameter-space boundary four
+    let apex = [5.0, 10.0, 0.0];
+    let r = read_iges_faces(&triangle([apex, apex]), "pole.igs", usize::MAX).unwrap();
+    let [f] = r.faces.as_slice() else {
+        panic!("{:?}", r.skipped_faces)
+    };
+    assert_eq!(f.pcurves, None);
+    assert_eq!(f.edge_ids, vec![vec![3, 5, 0, 7]]);
+    let pole = &f.face.outer().edges()[2];
+    let (a, b) = pole.curve().domain();
+    for t in [a, b] {
+        assert_eq!(pole.curve().eval(t).unwrap(), apex.to_vec());
+    }
+    // no pole (the side v = 1 from (4, 10) to (6, 10)): the pieces do not pair, the edges
+    // keep no pcurves and say why
+    let r = read_iges_faces(
+        &triangle([[4.0, 10.0, 0.0], [6.0, 10.0, 0.0]]),
+        "pole.igs",
+        usize::MAX,
+    )
+    .unwrap();
+    let [f] = r.faces.as_slice() else {
+        panic!("{:?}", r.skipped_faces)
+    };
+    let why = f.pcurves.as_deref().unwrap_or_default();
+    assert!(
+        why.contains("parameter-space curve has 4 pieces, the model-space curve 3"),
+        "{why}"
+    );
+    assert!(f.face.loops().all(|l| !l.has_pcurves()));
+}
