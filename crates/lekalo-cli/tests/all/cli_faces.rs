@@ -1,4 +1,5 @@
-//! End-to-end tests of `--faces`: `convert` writes a STEP file's faces as JSON Lines that the
+//! End-to-end tests of `--faces`: `convert` writes a STEP file's faces (and an IGES file's
+//! trimmed surfaces) as JSON Lines that the
 //! library reads back, `info` lists them, and faces that cannot be read are reported.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
@@ -178,4 +179,122 @@ fn faces_refuse_what_they_cannot_write_or_read() {
         .assert()
         .code(2)
         .stderr(contains("--max-size"));
+}
+
+/// A 10 × 10 mm plate (128, D1) trimmed by a 144 (D31) whose outer boundary (142, D23) is a
+/// composite curve (102) of four lines in space and four in `(u, v)`, and whose hole (142, D29)
+/// is the square `[3, 7]²` as one 126 in space and one in `(u, v)`; a second 144 (D33) names a
+/// surface D99 that is not in the file. Written by `plate` in
+/// crates/lekalo-io/src/cad/iges/faces_tests.rs.
+const PLATE_IGES: &str = "\
+lekalo spline export                                                    S      1
+1H,,1H;,9Hplate.igs,9Hplate.igs,6Hlekalo,5H0.1.0,32,308,15,308,15,      G      1
+9Hplate.igs,1.,2,2HMM,1,1.,15H20000101.000000,1.E-10,1.44E2,6Hlekalo,0H,G      2
+11,0,15H20000101.000000;                                                G      3
+     128       1       0       0       0       0       0       000000000D      1
+     128       0       0       2       0                               0D      2
+     126       3       0       0       0       0       0       000000000D      3
+     126       0       0       2       0                               0D      4
+     126       5       0       0       0       0       0       000000000D      5
+     126       0       0       2       0                               0D      6
+     126       7       0       0       0       0       0       000000000D      7
+     126       0       0       2       0                               0D      8
+     126       9       0       0       0       0       0       000000000D      9
+     126       0       0       2       0                               0D     10
+     126      11       0       0       0       0       0       000000000D     11
+     126       0       0       2       0                               0D     12
+     126      13       0       0       0       0       0       000000000D     13
+     126       0       0       2       0                               0D     14
+     126      15       0       0       0       0       0       000000000D     15
+     126       0       0       2       0                               0D     16
+     126      17       0       0       0       0       0       000000000D     17
+     126       0       0       2       0                               0D     18
+     102      19       0       0       0       0       0       000000000D     19
+     102       0       0       1       0                               0D     20
+     102      20       0       0       0       0       0       000000000D     21
+     102       0       0       1       0                               0D     22
+     142      21       0       0       0       0       0       000000000D     23
+     142       0       0       1       0                               0D     24
+     126      22       0       0       0       0       0       000000000D     25
+     126       0       0       2       0                               0D     26
+     126      24       0       0       0       0       0       000000000D     27
+     126       0       0       3       0                               0D     28
+     142      27       0       0       0       0       0       000000000D     29
+     142       0       0       1       0                               0D     30
+     144      28       0       0       0       0       0       000000000D     31
+     144       0       0       1       0                               0D     32
+     144      29       0       0       0       0       0       000000000D     33
+     144       0       0       1       0                               0D     34
+128,1,1,1,1,0,0,1,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,1.,1.,1.,0.,0.,       1P      1
+0.,1.E1,0.,0.,0.,1.E1,0.,1.E1,1.E1,0.,0.,1.,0.,1.;                     1P      2
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,1.E1,0.,0.,0.,1.,0.,        3P      3
+0.,1.;                                                                 3P      4
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,1.E1,0.,0.,1.E1,1.E1,0.,0.,1.,       5P      5
+0.,0.,1.;                                                              5P      6
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,1.E1,1.E1,0.,0.,1.E1,0.,0.,1.,       7P      7
+0.,0.,1.;                                                              7P      8
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,1.E1,0.,0.,0.,0.,0.,1.,0.,        9P      9
+0.,1.;                                                                 9P     10
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,1.,0.,0.,0.,1.,0.,0.,      11P     11
+1.;                                                                   11P     12
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,1.,0.,0.,1.,1.,0.,0.,1.,0.,0.,      13P     13
+1.;                                                                   13P     14
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,1.,1.,0.,0.,1.,0.,0.,1.,0.,0.,      15P     15
+1.;                                                                   15P     16
+126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,1.,0.,0.,0.,0.,0.,1.,0.,0.,      17P     17
+1.;                                                                   17P     18
+102,4,3,5,7,9;                                                        19P     19
+102,4,11,13,15,17;                                                    21P     20
+142,0,1,21,19,1;                                                      23P     21
+126,4,1,1,0,1,0,0.,0.,1.,2.,3.,4.,4.,1.,1.,1.,1.,1.,3.,3.,0.,3.,      25P     22
+7.,0.,7.,7.,0.,7.,3.,0.,3.,3.,0.,0.,4.,0.,0.,1.;                      25P     23
+126,4,1,1,0,1,0,0.,0.,1.,2.,3.,4.,4.,1.,1.,1.,1.,1.,3.E-1,3.E-1,      27P     24
+0.,3.E-1,7.E-1,0.,7.E-1,7.E-1,0.,7.E-1,3.E-1,0.,3.E-1,3.E-1,0.,       27P     25
+0.,4.,0.,0.,1.;                                                       27P     26
+142,0,1,27,25,1;                                                      29P     27
+144,1,1,1,23,29;                                                      31P     28
+144,99,1,0,23;                                                        33P     29
+S      1G      3D     34P     29                                        T      1
+";
+
+#[test]
+fn iges_trimmed_surfaces_convert_and_list_as_faces() {
+    let d = dir_with(&[("plate.igs", PLATE_IGES)]);
+    lekalo()
+        .args(["convert", "--faces"])
+        .arg(p(&d, "plate.igs"))
+        .arg("-o")
+        .arg(p(&d, "faces.jsonl"))
+        .assert()
+        .success()
+        .stderr(
+            contains("read 1 face(s), 1 with pcurves")
+                .and(contains("IGES entity 144"))
+                .and(contains("surface D99 is not an entity"))
+                .and(contains("(first D33)")),
+        );
+    let text = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    assert_eq!(text.lines().count(), 1);
+    let f = lekalo_io::read_face(text.trim(), "faces.jsonl").unwrap();
+    assert_eq!((f.id, f.surface_id), (31, 1));
+    assert_eq!(f.edge_ids, vec![vec![3, 5, 7, 9], vec![25]]);
+    assert!(f.face.loops().all(lekalo::topology::Loop::has_pcurves));
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(0.1, 0.1) && !region.contains(0.5, 0.5));
+    let out = lekalo()
+        .args(["info", "--faces", "--json", "-q"])
+        .arg(p(&d, "plate.igs"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (v["faces_total"].as_u64(), v["skipped_total"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert_eq!(
+        v["faces"][0]["loops"][1]["edge_ids"],
+        serde_json::json!([25])
+    );
+    assert_eq!(v["skipped"][0]["id"].as_u64(), Some(33));
 }

@@ -125,17 +125,33 @@ pub(crate) fn convert_shapes(
     emit(output, bytes.as_bytes(), &inputs, cx)
 }
 
-/// The faces of a STEP file (`--faces` of `convert` and `info`), with how many were read and
-/// which were skipped and why reported on standard error (not with `-q`).
+/// The faces of a STEP file, or the trimmed surfaces of an IGES file (`--faces` of `convert`
+/// and `info`), with how many were read and which were skipped and why reported on standard
+/// error (not with `-q`). IGES faces come in the same record, ids being directory-entry
+/// sequence numbers.
 pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRead> {
-    if !is_step(path) {
+    let iges = is_iges(path);
+    if !is_step(path) && !iges {
         return bad_input(format!(
-            "{}: --faces reads the faces of a STEP file (.step, .stp, .p21)",
+            "{}: --faces reads the faces of a STEP file (.step, .stp, .p21) or the trimmed surfaces of an IGES file (.igs, .iges)",
             path.display()
         ));
     }
     let (text, name) = lekalo_io::read_input(path)?;
-    let r = lekalo_io::read_step_faces(&text, &name, cx.max_size)?;
+    let r = if iges {
+        let r = lekalo_io::read_iges_faces(&text, &name, cx.max_size)?;
+        lekalo_io::StepRead {
+            shapes: r.shapes,
+            skipped: r.skipped,
+            faces: r.faces,
+            skipped_faces: r.skipped_faces,
+            schema: None,
+            length_unit: r.length_unit,
+            scale_to_mm: r.scale_to_mm,
+        }
+    } else {
+        lekalo_io::read_step_faces(&text, &name, cx.max_size)?
+    };
     if !cx.is_quiet() {
         let with = r.faces.iter().filter(|f| f.pcurves.is_none()).count();
         eprintln!(
@@ -143,12 +159,12 @@ pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRea
             r.faces.len(),
             r.length_unit
         );
-        crate::items::report_skipped(cx, &name, &r.skipped_faces, "#");
+        crate::items::report_skipped(cx, &name, &r.skipped_faces, if iges { "D" } else { "#" });
     }
     Ok(r)
 }
 
-/// `convert --faces`: the faces of a STEP file as JSON Lines, one face envelope a line
+/// `convert --faces`: the faces of a STEP or IGES file as JSON Lines, one face envelope a line
 /// (docs/formats.md, "Faces").
 pub(crate) fn convert_faces(
     input: &Path,

@@ -42,8 +42,8 @@ pub(crate) struct InfoArgs {
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
-    /// Describe the faces of a STEP file (surface, loops, edges, pcurves) instead of its
-    /// curves and surfaces.
+    /// Describe the faces of a STEP file, or the trimmed surfaces of an IGES file (surface,
+    /// loops, edges, pcurves) instead of its curves and surfaces.
     #[arg(long)]
     faces: bool,
 }
