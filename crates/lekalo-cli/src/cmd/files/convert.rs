@@ -54,9 +54,9 @@ json (one object) or step; what was skipped is listed on stderr. JSON Lines hold
 convert to step and jsonl. With --faces, a STEP file's faces (ADVANCED_FACE: the surface,
 its outer and inner loops, each edge's 3-D curve and pcurve) are written as JSON Lines, one
 \"face\" object a line; faces that cannot be read are listed on stderr with the reason. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
-(rational B-spline surface) are written and read; with --faces, its trimmed surfaces (144,
-boundaries 142 with their parameter-space curves, composite curves 102 split into edges)
-are written as faces.")]
+(rational B-spline surface) are written and read; with --faces, its trimmed and bounded surfaces
+(144 and 143, boundaries 142 and 141 with their parameter-space curves, composite curves 102
+split into edges) are written as faces.")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,

@@ -12,6 +12,11 @@
 //! kept as 2-D pcurves. The surfaces lekalo reads from IGES (128, and 114 converted exactly on
 //! its own breakpoints) keep the file's parameters, so the pcurves apply as written.
 //!
+//! A bounded surface (entity 143, §4.33: `TYPE, SPTR, N, BDPT(1)…BDPT(N)`) is read the same
+//! way, its first boundary the outer loop; each boundary (entity 141, §4.31: `TYPE, PREF, SPTR,
+//! N`, then per curve `CRVPT, SENSE, K, PSCPT(1)…PSCPT(K)`) lists model-space curves, each with
+//! its parameter-space curves, reversed where `SENSE = 2`.
+//!
 //! A face whose surface, boundary or model-space curves are not read is listed as skipped with
 //! the reason; edges whose parameter-space curves are missing or do not match the model-space
 //! pieces are kept without pcurves, with the reason in [`StepFace::pcurves`].
@@ -40,9 +45,9 @@ pub(super) struct Raw {
 const MAX_NESTING: usize = 8;
 
 /// Reads an IGES file as [`super::read_iges_limited`] does and, in [`IgesRead::faces`], its
-/// trimmed surfaces (entity 144) as faces; the ones that cannot be read are in
+/// trimmed surfaces (entity 144) and bounded surfaces (entity 143) as faces; the ones that cannot be read are in
 /// [`IgesRead::skipped_faces`] with the reason. In each [`StepFace`], `id` is the sequence
-/// number of the 144's directory entry, `surface_id` the surface's, `edge_ids` the model-space
+/// number of the 144's (or 143's) directory entry, `surface_id` the surface's, `edge_ids` the model-space
 /// curves' (0 for the edges of an untrimmed outer boundary) and `name` is empty. Loops must
 /// close within [`STEP_LOOP_RTOL`] of the model size. The control points copied into faces
 /// count against `max_size` as well.
@@ -76,7 +81,7 @@ pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<Ig
     }
     let mut ids: Vec<u64> = raw
         .iter()
-        .filter(|(_, e)| e.ty == "144")
+        .filter(|(_, e)| e.ty == "144" || e.ty == "143")
         .map(|(id, _)| *id)
         .collect();
     ids.sort_unstable();
@@ -104,7 +109,7 @@ pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<Ig
             }
             Err(reason) => skipped.push(StepSkipped {
                 id,
-                entity: "IGES entity 144".into(),
+                entity: format!("IGES entity {}", raw[&id].ty),
                 reason,
             }),
         }
@@ -232,19 +237,100 @@ impl Faces<'_> {
         self.pieces(c, 0, &mut model)
             .map_err(|why| format!("boundary D{id}: {why}"))?;
         let mut plane = Vec::new();
-        let pcurves: Result<Vec<Curve>, String> = if b == 0 {
+        let plane = if b == 0 {
             Err(format!(
                 "boundary D{id} has no parameter-space curve (BPTR = 0)"
             ))
         } else {
             self.pieces(b, 0, &mut plane)
-                .and_then(|()| {
+                .map(|()| plane)
+                .map_err(|why| format!("boundary D{id}: {why}"))
+        };
+        self.assemble(id, surface, model, plane)
+    }
+
+    /// The loop of boundary `id` (an entity 141, §4.31): its curves in order, each reversed
+    /// where `SENSE = 2`, with their parameter-space curves.
+    fn boundary_141(&self, id: u64, surface: &Surface) -> Result<ReadLoop, String> {
+        let Some(e) = self.raw.get(&id).filter(|e| e.ty == "141") else {
+            return Err(self.why_not(id, "boundary (entity 141)"));
+        };
+        if e.matrix {
+            return Err(format!(
+                "its boundary D{id} has a transformation matrix (entity 124), which is not applied"
+            ));
+        }
+        let n = Self::pointer(e, id, 4, "the number of curves N")?;
+        let mut model = Vec::new();
+        let mut plane: Result<Vec<(u64, Curve)>, String> = Ok(Vec::new());
+        let mut k = 5usize;
+        for j in 0..n {
+            if k.saturating_add(2) >= e.fields.len() {
+                return Err(format!(
+                    "boundary D{id} declares N = {n} curves and lists {j}"
+                ));
+            }
+            let crv = Self::pointer(e, id, k, "a model-space curve CRVPT")?;
+            let reversed = Self::pointer(e, id, k + 1, "SENSE")? == 2;
+            let kk = Self::pointer(e, id, k + 2, "the number of parameter-space curves K")?;
+            let oriented = |mut v: Vec<(u64, Curve)>| -> Result<Vec<(u64, Curve)>, String> {
+                if reversed {
+                    v.reverse();
+                    for (_, c) in &mut v {
+                        *c = c.reverse().map_err(|e| e.to_string())?;
+                    }
+                }
+                Ok(v)
+            };
+            let mut m = Vec::new();
+            self.pieces(crv, 0, &mut m)
+                .map_err(|why| format!("boundary D{id}: {why}"))?;
+            model.extend(oriented(m)?);
+            let mut pk = Vec::new();
+            let found = if kk == 0 {
+                Err(format!(
+                    "boundary D{id}: curve {j} has no parameter-space curve (K = 0)"
+                ))
+            } else {
+                (0..kk).try_for_each(|i| {
+                    let at = usize::try_from(i).map_or(usize::MAX, |i| k.saturating_add(3 + i));
+                    let p = Self::pointer(e, id, at, "a parameter-space curve")?;
+                    self.pieces(p, 0, &mut pk)
+                        .map_err(|why| format!("boundary D{id}: {why}"))
+                })
+            };
+            plane = match (plane, found) {
+                (Ok(mut all), Ok(())) => oriented(pk).map(|p| {
+                    all.extend(p);
+                    all
+                }),
+                (Err(w), _) | (_, Err(w)) => Err(w),
+            };
+            k = usize::try_from(kk)
+                .ok()
+                .and_then(|kk| k.checked_add(3 + kk))
+                .ok_or_else(|| format!("boundary D{id}: K = {kk} is not a count"))?;
+        }
+        self.assemble(id, surface, model, plane)
+    }
+
+    /// The loop of boundary `id` from its model-space pieces and, when read, its
+    /// parameter-space pieces (or why not), paired in order.
+    fn assemble(
+        &self,
+        id: u64,
+        surface: &Surface,
+        mut model: Vec<(u64, Curve)>,
+        plane: Result<Vec<(u64, Curve)>, String>,
+    ) -> Result<ReadLoop, String> {
+        let pcurves: Result<Vec<Curve>, String> = plane
+                .and_then(|plane| {
                     plane
                         .iter()
                         .map(|(_, p)| self.plane_curve(p))
                         .collect::<Result<Vec<_>, _>>()
+                        .map_err(|why| format!("boundary D{id}: {why}"))
                 })
-                .map_err(|why| format!("boundary D{id}: {why}"))
                 .and_then(|pcs| {
                     if pcs.len() == model.len() || poles(surface, &pcs, &mut model) {
                         Ok(pcs)
@@ -255,8 +341,7 @@ impl Faces<'_> {
                             model.len()
                         ))
                     }
-                })
-        };
+                });
         let (mut pcs, why) = match pcurves {
             Ok(p) => (p.into_iter().map(Some).collect::<Vec<_>>(), None),
             Err(why) => (vec![None; model.len()], Some(why)),
@@ -304,6 +389,44 @@ impl Faces<'_> {
         Ok((Loop::new(edges).map_err(lib)?, vec![0; 4], None))
     }
 
+    /// The face of bounded surface `id` (entity 143, §4.33: `TYPE, SPTR, N, BDPT(1)…BDPT(N)`),
+    /// its first boundary (entity 141) taken as the outer loop.
+    fn bounded(&self, id: u64, e: &Raw) -> Result<StepFace, String> {
+        let sptr = Self::pointer(e, id, 2, "the surface SPTR")?;
+        let Some(surface) = self.surfaces.get(&sptr) else {
+            return Err(self.why_not(sptr, "surface"));
+        };
+        let n = Self::pointer(e, id, 3, "the number of boundaries N")?;
+        if n == 0 {
+            return Err("has no boundary (N = 0)".into());
+        }
+        let mut loops = Vec::new();
+        let mut ids = Vec::new();
+        let mut why = None;
+        for k in 0..n {
+            let at = usize::try_from(k).map_or(usize::MAX, |k| k.saturating_add(4));
+            if at >= e.fields.len() {
+                return Err(format!("declares N = {n} boundaries and lists {k}"));
+            }
+            let b = Self::pointer(e, id, at, "a boundary BDPT")?;
+            let (lp, lids, w) = self.boundary_141(b, surface)?;
+            why = why.or(w);
+            loops.push(lp);
+            ids.push(lids);
+        }
+        let outer = loops.remove(0);
+        let face = Face::new((*surface).clone(), outer, loops, true, STEP_LOOP_RTOL)
+            .map_err(|e| e.to_string())?;
+        Ok(StepFace {
+            id,
+            name: String::new(),
+            surface_id: sptr,
+            face,
+            edge_ids: ids,
+            pcurves: why,
+        })
+    }
+
     /// The face of trimmed surface `id` (an entity 144).
     fn face(&self, id: u64) -> Result<StepFace, String> {
         let e = &self.raw[&id];
@@ -311,6 +434,9 @@ impl Faces<'_> {
             return Err(
                 "has a transformation matrix (entity 124), which is not applied".to_string(),
             );
+        }
+        if e.ty == "143" {
+            return self.bounded(id, e);
         }
         let pts = Self::pointer(e, id, 1, "the surface PTS")?;
         let Some(surface) = self.surfaces.get(&pts) else {

@@ -28,7 +28,7 @@ fn polyline(pts: &[[f64; 2]], scale: f64, three_d: bool) -> Object {
 /// A 10 mm square plate `S(u, v) = (10 u, 10 v, 0)` on `[0, 1]²` (D1); its outer boundary
 /// as composite curves of four lines in space and in `(u, v)` (142 at D23); a square hole
 /// `[0.3, 0.7]²` as one closed 126 in space and one in `(u, v)` (142 at D29); then the
-/// trimmed surfaces `faces` (from D31 on).
+/// entities `faces` (trimmed and bounded surfaces, boundaries; from D31 on).
 fn plate(faces: &[&str]) -> String {
     let mut w = IgesWriter::new();
     let net = Points::from_3d(&[
@@ -67,7 +67,8 @@ fn plate(faces: &[&str]) -> String {
     w.add_object(&polyline(&hole, 1.0, false)).unwrap();
     raw(&mut w, 142, "142,0,1,27,25,1");
     for f in faces {
-        raw(&mut w, 144, f);
+        let ty = f.split(',').next().and_then(|t| t.parse().ok()).unwrap();
+        raw(&mut w, ty, f);
     }
     w.finish("plate.igs", "20000101.000000")
 }
@@ -260,4 +261,42 @@ fn an_edge_left_out_at_a_pole_is_a_degenerate_edge() {
         "{why}"
     );
     assert!(f.face.loops().all(|l| !l.has_pcurves()));
+}
+
+#[test]
+fn a_bounded_surface_reads_its_boundaries_each_curve_in_its_sense() {
+    // 141 boundaries: the composite outer curve as written, the hole reversed (SENSE = 2)
+    let text = plate(&[
+        "141,1,1,1,1,19,1,1,21",
+        "141,1,1,1,1,25,2,1,27",
+        "143,1,1,2,31,33",
+        "143,1,1,1,3",
+    ]);
+    let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
+    let [f] = r.faces.as_slice() else {
+        panic!("one face: {:?}", r.skipped_faces)
+    };
+    assert_eq!((f.id, f.surface_id, f.pcurves.as_deref()), (35, 1, None));
+    assert_eq!(f.edge_ids, vec![vec![3, 5, 7, 9], vec![25]]);
+    let hole = &f.face.inner()[0].edges()[0];
+    let (a, _) = hole.curve().domain();
+    // the hole runs (0.3, 0.3) -> (0.3, 0.7) -> ... as written; reversed it starts towards (0.7, 0.3)
+    let p = hole.pcurve().unwrap();
+    let after = p.eval(a + 0.5).unwrap();
+    assert!(
+        (after[0] - 0.5).abs() < 1e-12 && (after[1] - 0.3).abs() < 1e-12,
+        "{after:?}"
+    );
+    assert_eq!(hole.curve().eval(a + 0.5).unwrap(), vec![5.0, 3.0, 0.0]);
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(0.1, 0.1) && !region.contains(0.5, 0.5));
+    let [s] = r.skipped_faces.as_slice() else {
+        panic!("{:?}", r.skipped_faces)
+    };
+    assert_eq!((s.id, s.entity.as_str()), (37, "IGES entity 143"));
+    assert!(
+        s.reason.contains("D3 is a curve, not a boundary"),
+        "{}",
+        s.reason
+    );
 }

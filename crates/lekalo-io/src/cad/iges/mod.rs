@@ -18,7 +18,7 @@
 //! | file | subject |
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
-//! | `faces.rs` | trimmed surfaces (144) with their boundaries (142) and composite curves (102) as faces ([`read_iges_faces`]) |
+//! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102) as faces ([`read_iges_faces`]) |
 
 use std::fmt::Write as _;
 
