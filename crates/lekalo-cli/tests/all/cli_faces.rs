@@ -281,6 +281,15 @@ fn iges_trimmed_surfaces_convert_and_list_as_faces() {
     assert!(f.face.loops().all(lekalo::topology::Loop::has_pcurves));
     let region = f.face.trim_region().unwrap();
     assert!(region.contains(0.1, 0.1) && !region.contains(0.5, 0.5));
+    lekalo()
+        .args(["info", "--faces"])
+        .arg(p(&d, "plate.igs"))
+        .assert()
+        .success()
+        .stdout(
+            contains("D31 \"\"  bspline_surface D1  edges: outer 4, inner 1  pcurves")
+                .and(contains("skipped D33 IGES entity 144: its surface D99")),
+        );
     let out = lekalo()
         .args(["info", "--faces", "--json", "-q"])
         .arg(p(&d, "plate.igs"))

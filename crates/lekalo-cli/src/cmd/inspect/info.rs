@@ -200,7 +200,16 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
         return crate::report::print_report(
             a.json,
             &faces_json(&r),
-            faces_text,
+            |j| {
+                faces_text(
+                    j,
+                    if crate::items::is_iges(&a.input) {
+                        "D"
+                    } else {
+                        "#"
+                    },
+                )
+            },
             a.output.as_deref(),
             &inputs,
             cx,
@@ -349,8 +358,9 @@ fn faces_json(r: &lekalo_io::StepRead) -> Value {
     })
 }
 
-/// The text of [`faces_json`]: a summary line, then one line per face and per skipped face.
-fn faces_text(j: &Value) -> String {
+/// The text of [`faces_json`]: a summary line, then one line per face and per skipped face,
+/// ids after `prefix` (`#` for STEP instances, `D` for IGES directory entries).
+fn faces_text(j: &Value, prefix: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -377,7 +387,7 @@ fn faces_text(j: &Value) -> String {
         };
         let _ = writeln!(
             s,
-            "#{} {}  {} #{}  edges: {}  {pcurves}",
+            "{prefix}{} {}  {} {prefix}{}  edges: {}  {pcurves}",
             f["id"],
             f["name"],
             f["surface"].as_str().unwrap_or_default(),
@@ -388,7 +398,7 @@ fn faces_text(j: &Value) -> String {
     for k in j["skipped"].as_array().into_iter().flatten() {
         let _ = writeln!(
             s,
-            "skipped #{} {}: {}",
+            "skipped {prefix}{} {}: {}",
             k["id"],
             k["entity"].as_str().unwrap_or_default(),
             k["reason"].as_str().unwrap_or_default()
