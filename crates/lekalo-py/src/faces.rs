@@ -197,6 +197,66 @@ pub(crate) fn read_step<'py>(
             }
         })
         .map_err(io_err)?;
+    let out = cad_dict(
+        py,
+        r.shapes,
+        &r.skipped,
+        r.length_unit,
+        faces,
+        r.faces,
+        &r.skipped_faces,
+    )?;
+    out.set_item("schema", r.schema)?;
+    Ok(out)
+}
+
+/// Reads an IGES file: ``{"shapes": [...], "skipped": [...], "length_unit": str,
+/// "scale_to_mm": float}``, and with ``faces=True`` also ``"faces"`` (the trimmed and bounded
+/// surfaces, entities 144 and 143, as ``Face``) and ``"skipped_faces"``; as ``read_step``
+/// otherwise (ids are directory-entry sequence numbers).
+#[pyfunction]
+#[pyo3(signature = (path, *, faces = false, max_size = 10_000_000))]
+pub(crate) fn read_iges<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    faces: bool,
+    max_size: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (text, name) = lekalo_io::read_input(&path).map_err(io_err)?;
+    let r = py
+        .detach(|| {
+            if faces {
+                lekalo_io::read_iges_faces(&text, &name, max_size)
+            } else {
+                lekalo_io::read_iges_limited(&text, &name, max_size)
+            }
+        })
+        .map_err(io_err)?;
+    let out = cad_dict(
+        py,
+        r.shapes,
+        &r.skipped,
+        r.length_unit,
+        faces,
+        r.faces,
+        &r.skipped_faces,
+    )?;
+    out.set_item("scale_to_mm", r.scale_to_mm)?;
+    Ok(out)
+}
+
+/// The dictionary `read_step` and `read_iges` share: shapes, what was skipped, the length unit,
+/// and with `faces` the faces and the faces skipped.
+#[allow(clippy::too_many_arguments)]
+fn cad_dict<'py>(
+    py: Python<'py>,
+    shapes: Vec<(u64, Shape)>,
+    skipped_entities: &[lekalo_io::StepSkipped],
+    length_unit: String,
+    faces: bool,
+    read_faces: Vec<StepFace>,
+    skipped_faces: &[lekalo_io::StepSkipped],
+) -> PyResult<Bound<'py, PyDict>> {
     let skipped = |list: &[lekalo_io::StepSkipped]| -> PyResult<Bound<'py, PyList>> {
         let items = list
             .iter()
@@ -211,8 +271,7 @@ pub(crate) fn read_step<'py>(
         PyList::new(py, items)
     };
     let out = PyDict::new(py);
-    let shapes = r
-        .shapes
+    let shapes = shapes
         .into_iter()
         .map(|(_, s)| match s {
             Shape::Curve(c) => curve_to_py(py, c),
@@ -221,17 +280,15 @@ pub(crate) fn read_step<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     out.set_item("shapes", shapes)?;
-    out.set_item("skipped", skipped(&r.skipped)?)?;
-    out.set_item("length_unit", r.length_unit)?;
-    out.set_item("schema", r.schema)?;
+    out.set_item("skipped", skipped(skipped_entities)?)?;
+    out.set_item("length_unit", length_unit)?;
     if faces {
-        let list = r
-            .faces
+        let list = read_faces
             .into_iter()
             .map(|f| Py::new(py, face(f)))
             .collect::<PyResult<Vec<_>>>()?;
         out.set_item("faces", list)?;
-        out.set_item("skipped_faces", skipped(&r.skipped_faces)?)?;
+        out.set_item("skipped_faces", skipped(skipped_faces)?)?;
     }
     Ok(out)
 }

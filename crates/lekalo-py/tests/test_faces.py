@@ -1,6 +1,8 @@
 """Faces of STEP files: ``lekalo.read_step(path, faces=True)`` gives ``Face`` objects whose
 surface and edges are lekalo objects, with the point-in-face test on NumPy arrays."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -151,3 +153,23 @@ def test_read_step_without_faces_and_with_a_limit(tmp_path):
     assert any(isinstance(s, lekalo.BSplineSurface) for s in r["shapes"])
     with pytest.raises(lekalo.InputError, match="max-size"):
         lekalo.read_step(path, faces=True, max_size=20)
+
+
+def test_iges_trimmed_surfaces_read_as_faces():
+    # a 10 mm plate (entity 128) trimmed by a 144: outer boundary of four lines (142 over 102
+    # composites), a square hole [0.3, 0.7]² (142 over 126 curves); written by the IGES
+    # reader's own test, which fails when the file and the writer differ
+    path = Path(__file__).parent / "data" / "plate_144.igs"
+    plain = lekalo.read_iges(path)
+    assert "faces" not in plain and plain["length_unit"] == "MM" and plain["scale_to_mm"] == 1.0
+    r = lekalo.read_iges(path, faces=True)
+    assert r["skipped_faces"] == []
+    [f] = r["faces"]
+    assert len(f.outer) == 4 and len(f.inner) == 1
+    for curve, pcurve in f.outer + f.inner[0]:
+        assert pcurve is not None
+        t = np.linspace(*pcurve.domain, 5)
+        u, v = np.ascontiguousarray(np.atleast_2d(pcurve(t)).T)
+        assert np.allclose(f.surface(u, v), curve(t), atol=1e-12)
+    inside = f.contains(np.array([0.1, 0.5, 0.9]), np.array([0.1, 0.5, 0.2]))
+    assert list(inside) == [True, False, True]

@@ -300,3 +300,17 @@ fn a_bounded_surface_reads_its_boundaries_each_curve_in_its_sense() {
         s.reason
     );
 }
+
+/// The plate with its hole as the Python package's tests read it
+/// (`crates/lekalo-py/tests/data/plate_144.igs`): this test fails when the file differs from
+/// what `plate` writes, and rewrites it when `LEKALO_WRITE_FIXTURES` is set.
+#[test]
+fn the_python_fixture_is_the_plate() {
+    let text = plate(&["144,1,1,1,23,29"]);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../lekalo-py/tests/data/plate_144.igs");
+    if std::env::var_os("LEKALO_WRITE_FIXTURES").is_some() {
+        std::fs::write(&path, &text).unwrap();
+    }
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+}
