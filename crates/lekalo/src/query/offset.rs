@@ -4,6 +4,7 @@
 
 use super::intersect::CurveIntersection;
 use super::pieces::{check_tolerance, dist, QueryCurve};
+use crate::basis::BasisScratch;
 use crate::error::{check_finite, Error, Result};
 use crate::fit::{least_squares, EndConstraints, FitData};
 use crate::{BSplineCurve, KnotVector, PointsRef};
@@ -21,9 +22,12 @@ const MAX_SAMPLES: usize = 1 << 21;
 /// Shortest span, relative to the domain, that is still split: below it the tolerance is
 /// taken to be under the rounding of the curve.
 const MIN_SPAN: f64 = 1e-10;
-/// Golden-section steps refining the largest deviation in each knot span (the bracket shrinks
-/// by 0.618 a step: 30 steps leave 1e-6 of a check interval).
-const GOLDEN_STEPS: usize = 30;
+/// Golden-section steps refining the largest deviation in each knot span. The bracket starts
+/// at two check intervals (1/8 of the span `H`) and shrinks by 0.618 a step: 20 steps leave
+/// `8e-6·H`. The deviation of a cubic fit oscillates like a polynomial of low degree on the
+/// span (`|e''| ≲ 100·max e / H²`, as for a Chebyshev polynomial of degree 5), so the maximum
+/// can rise above the best point found by at most `50·(8e-6)² ≈ 3e-9` of itself.
+const GOLDEN_STEPS: usize = 20;
 
 /// The error of a point where the base curve has no normal.
 fn no_normal(t: f64) -> Error {
@@ -53,17 +57,42 @@ pub struct Offset {
 
 impl QueryCurve {
     /// The exact offset point `C(t) + d·N(t)` and the factor `1 − d·κ(t)` (signed curvature,
-    /// left normal `N = (−y', x')/|C'|`); `None` where `C' = 0`.
+    /// left normal `N = (−y', x')/|C'|`); `None` where `C' = 0`. Evaluated on the piece holding
+    /// `t` without allocating (it runs for every sample and check point).
     fn offset_point(&self, t: f64, d: f64, scratch: &mut Vec<f64>) -> Option<([f64; 2], f64)> {
-        let v = self.eval_global(t, 2, scratch);
-        let (x1, y1, x2, y2) = (v[2], v[3], v[4], v[5]);
+        let k = self.piece_of(t);
+        self.offset_local(k, self.local(k, t), d, scratch)
+            .map(|(p, _, f)| (p, f))
+    }
+
+    /// The offset point `C + d·N`, the base curve's derivative `C'` and the factor
+    /// `1 − d·κ` at the local parameter `s` of piece `k` (one-sided at the piece's ends);
+    /// `None` where `C' = 0`.
+    fn offset_local(
+        &self,
+        k: usize,
+        s: f64,
+        d: f64,
+        scratch: &mut Vec<f64>,
+    ) -> Option<([f64; 2], [f64; 2], f64)> {
+        let mut out = [0.0; 6];
+        self.eval_local(k, s, 2, scratch, &mut out);
+        let (a, b) = self.spans[k];
+        let h = b - a;
+        let c = [
+            self.centre[0] + self.scale * out[0],
+            self.centre[1] + self.scale * out[1],
+        ];
+        let (x1, y1) = (self.scale * out[2] / h, self.scale * out[3] / h);
+        let (x2, y2) = (self.scale * out[4] / (h * h), self.scale * out[5] / (h * h));
         let speed = x1.hypot(y1);
         if !(speed > 0.0) {
             return None;
         }
         let kappa = (x1 * y2 - y1 * x2) / (speed * speed * speed);
         Some((
-            [v[0] - d * y1 / speed, v[1] + d * x1 / speed],
+            [c[0] - d * y1 / speed, c[1] + d * x1 / speed],
+            [x1, y1],
             1.0 - d * kappa,
         ))
     }
@@ -80,9 +109,8 @@ impl QueryCurve {
         scratch: &mut Vec<f64>,
     ) -> Option<(f64, f64)> {
         let mut jet = |t: f64| -> Option<([f64; 2], [f64; 2])> {
-            let v = self.eval_global(t, 2, scratch);
-            let (p, f) = self.offset_point(t, d, scratch)?;
-            Some((p, [v[2] * f, v[3] * f]))
+            let k = self.piece_of(t);
+            self.offset_jet(k, self.local(k, t), d, scratch)
         };
         let span = (lims.1 .1 - lims.0 .0).abs();
         let mut last = f64::INFINITY;
@@ -123,25 +151,8 @@ impl QueryCurve {
         d: f64,
         scratch: &mut Vec<f64>,
     ) -> Option<([f64; 2], [f64; 2])> {
-        let mut out = vec![0.0; 3 * self.dim];
-        self.eval_local(k, s, 2, scratch, &mut out);
-        let (a, b) = self.spans[k];
-        let h = b - a;
-        let c = [
-            self.centre[0] + self.scale * out[0],
-            self.centre[1] + self.scale * out[1],
-        ];
-        let (x1, y1) = (self.scale * out[2] / h, self.scale * out[3] / h);
-        let (x2, y2) = (self.scale * out[4] / (h * h), self.scale * out[5] / (h * h));
-        let speed = x1.hypot(y1);
-        if !(speed > 0.0) {
-            return None;
-        }
-        let f = 1.0 - d * (x1 * y2 - y1 * x2) / (speed * speed * speed);
-        Some((
-            [c[0] - d * y1 / speed, c[1] + d * x1 / speed],
-            [x1 * f, y1 * f],
-        ))
+        let (p, v, f) = self.offset_local(k, s, d, scratch)?;
+        Some((p, [v[0] * f, v[1] * f]))
     }
 
     /// Knot multiplicity of the fitted cubic at the start of piece `k` of the base curve: the
@@ -198,56 +209,81 @@ impl QueryCurve {
     }
 
     /// The largest deviation `e(t) = |curve(t) − (C(t) + d·N(t))|` in each span between the
-    /// breakpoints `breaks`: at [`CHECKS_PER_SPAN`] check points `(j + ½)/CHECKS_PER_SPAN` of
-    /// the span (none of them a sample of [`QueryCurve::offset_samples`]), and with `refine`
-    /// also by golden-section search for the maximum of `e` between the neighbours of the
-    /// largest of them.
+    /// breakpoints `breaks` (the distinct knots of `curve`): at [`CHECKS_PER_SPAN`] check
+    /// points `(j + ½)/CHECKS_PER_SPAN` of the span (none of them a sample of
+    /// [`QueryCurve::offset_samples`]); if all of them are within `tolerance`, also by
+    /// golden-section search for the maximum of `e` between the neighbours of the largest check
+    /// point of each span. The search stops as soon as it finds a deviation above `tolerance`:
+    /// the span is split then, and into the same number of parts (a deviation refined from
+    /// check points within the tolerance stays far below the `12.8·tol` that would ask for
+    /// three).
     fn span_deviations(
         &self,
         curve: &BSplineCurve,
         breaks: &[f64],
         d: f64,
-        refine: bool,
+        tolerance: f64,
         scratch: &mut Vec<f64>,
     ) -> Result<Vec<f64>> {
-        let mut e = |t: f64| -> Result<f64> {
-            let (p, _) = self
+        let p = curve.degree();
+        let mut basis = BasisScratch::new(p);
+        let mut n = vec![0.0; p + 1];
+        // `span`: the knot span of `curve` holding `t` (all of a window's inner points share it)
+        let mut e = |span: usize, t: f64| -> Result<f64> {
+            let (o, _) = self
                 .offset_point(t, d, scratch)
                 .ok_or_else(|| no_normal(t))?;
-            Ok(dist(&curve.eval(t)?, &p))
+            let mut q = [0.0; 2];
+            curve.eval_span(span, t, &mut basis, &mut n, &mut q);
+            Ok(dist(&q, &o))
         };
         const G: f64 = 0.618_033_988_749_894_9;
-        let mut out = Vec::with_capacity(breaks.len() - 1);
+        let spans = breaks.len() - 1;
+        let (mut out, mut at, mut knot_span) = (
+            Vec::with_capacity(spans),
+            Vec::with_capacity(spans),
+            Vec::with_capacity(spans),
+        );
         for w in breaks.windows(2) {
+            let span = curve.knots().find_span(p, 0.5 * (w[0] + w[1]))?;
             let h = (w[1] - w[0]) / CHECKS_PER_SPAN as f64;
-            let (mut best, mut at) = (0.0_f64, w[0]);
+            let (mut best, mut arg) = (0.0_f64, w[0]);
             for j in 0..CHECKS_PER_SPAN {
                 let t = w[0] + h * (j as f64 + 0.5);
-                let v = e(t)?;
+                let v = e(span, t)?;
                 if v > best {
-                    (best, at) = (v, t);
+                    (best, arg) = (v, t);
                 }
-            }
-            if refine {
-                let (mut a, mut b) = ((at - h).max(w[0]), (at + h).min(w[1]));
-                let (mut x1, mut x2) = (b - G * (b - a), a + G * (b - a));
-                let (mut f1, mut f2) = (e(x1)?, e(x2)?);
-                for _ in 0..GOLDEN_STEPS {
-                    if f1 > f2 {
-                        b = x2;
-                        (x2, f2) = (x1, f1);
-                        x1 = b - G * (b - a);
-                        f1 = e(x1)?;
-                    } else {
-                        a = x1;
-                        (x1, f1) = (x2, f2);
-                        x2 = a + G * (b - a);
-                        f2 = e(x2)?;
-                    }
-                }
-                best = best.max(f1).max(f2);
             }
             out.push(best);
+            at.push(arg);
+            knot_span.push(span);
+        }
+        if out.iter().any(|&x| x > tolerance) {
+            return Ok(out);
+        }
+        for (k, w) in breaks.windows(2).enumerate() {
+            let (span, h) = (knot_span[k], (w[1] - w[0]) / CHECKS_PER_SPAN as f64);
+            let (mut a, mut b) = ((at[k] - h).max(w[0]), (at[k] + h).min(w[1]));
+            let (mut x1, mut x2) = (b - G * (b - a), a + G * (b - a));
+            let (mut f1, mut f2) = (e(span, x1)?, e(span, x2)?);
+            for _ in 0..GOLDEN_STEPS {
+                if f1.max(f2) > tolerance {
+                    break;
+                }
+                if f1 > f2 {
+                    b = x2;
+                    (x2, f2) = (x1, f1);
+                    x1 = b - G * (b - a);
+                    f1 = e(span, x1)?;
+                } else {
+                    a = x1;
+                    (x1, f1) = (x2, f2);
+                    x2 = a + G * (b - a);
+                    f2 = e(span, x2)?;
+                }
+            }
+            out[k] = out[k].max(f1).max(f2);
         }
         Ok(out)
     }
@@ -319,10 +355,7 @@ impl QueryCurve {
                 });
             }
             let fit = self.fit_offset(d, &breaks, &mult, scratch)?;
-            let mut errs = self.span_deviations(&fit, &breaks, d, false, scratch)?;
-            if max(&errs) <= tolerance {
-                errs = self.span_deviations(&fit, &breaks, d, true, scratch)?;
-            }
+            let errs = self.span_deviations(&fit, &breaks, d, tolerance, scratch)?;
             let worst = max(&errs);
             if worst > tolerance {
                 let mut nb = Vec::with_capacity(2 * breaks.len());
@@ -361,7 +394,7 @@ impl QueryCurve {
             if removed > 0 {
                 let mut rb = fewer.knots().as_slice().to_vec();
                 rb.dedup();
-                let w = max(&self.span_deviations(&fewer, &rb, d, true, scratch)?);
+                let w = max(&self.span_deviations(&fewer, &rb, d, tolerance, scratch)?);
                 if w <= tolerance {
                     done = (fewer, w);
                 }
