@@ -92,7 +92,7 @@ def source_files() -> tuple[Path, dict[str, Path]]:
             fail(f"{key} is not in SciPy {pin}'s RECORD")
         algo, expected = hashes[key].split("=", 1)
         # RECORD holds the urlsafe base64 of the raw hash (PEP 376 / the wheel format)
-        raw = bytes.fromhex(hashlib.new(algo, path.read_bytes()).hexdigest())
+        raw = hashlib.new(algo, path.read_bytes()).digest()
         got = base64.urlsafe_b64encode(raw).rstrip(b"=").decode()
         if got != expected:
             fail(f"{path} differs from the file SciPy {pin}'s wheel installed: reinstall scipy=={pin}")
