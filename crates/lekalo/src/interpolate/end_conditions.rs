@@ -46,7 +46,9 @@ pub enum EndCondition {
     /// the closing chord `q_{N−1} → q_0`. Odd degrees put the knots at the parameters (the
     /// periodic version of eq. 8), even degrees halfway between them (so that the collocation
     /// matrix stays non-singular); the domain has length 1 and starts at `t̄_0 = 0` for odd and
-    /// at `−(1 − t̄_{N−1})/2` for even degrees. Needs `N ≥ p + 1` points.
+    /// at `−(1 − t̄_{N−1})/2` for even degrees. Needs `N ≥ 2` points for every degree (with
+    /// `N ≤ p` the basis functions wrap around the period more than once; three points of a
+    /// cubic function, the last repeating the first, give SciPy's periodic `CubicSpline`).
     Periodic,
 }
 

@@ -694,8 +694,6 @@ class CubicSpline(PPoly):
                     f"The first and last `y` point along axis {axis} must be identical (within "
                     "machine precision) when bc_type='periodic'."
                 )
-            if n < 4:
-                raise NotImplementedError("lekalo.scipy: periodic CubicSpline needs 4 points or more")
             spline = make_interp_spline(x, y, k=3, bc_type="periodic", axis=0)
             spline = BSpline.construct_fast(spline.t, spline.c, 3, axis=axis)
             self._init_from_spline(spline, x, extrapolate, axis)
