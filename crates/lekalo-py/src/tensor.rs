@@ -4,6 +4,7 @@
 //! `dim = prod(trailing)`), degrees `k`. Evaluation at `(..., N)` arrays gives
 //! `(..., *trailing)`.
 
+use lekalo::tensor::tensor_design_matrix as lk_design_matrix;
 use lekalo::{
     tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
     Points, PointsRef, TensorBSpline, TensorInterpolation,
@@ -554,8 +555,69 @@ pub(crate) fn fit_tensor_scattered<'py>(
     ))
 }
 
+/// A CSR matrix for Python: `(data, indices, indptr, shape)`.
+type Csr<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    (usize, usize),
+);
+
+/// The design matrix of the tensor-product B-spline space with knots `t` (one 1-D array per
+/// variable) and degrees `k` at the points `x` of shape `(npts, N)`
+/// (`lekalo::tensor::tensor_design_matrix`, `docs/theory/tensor.md#design-matrix`; SciPy's
+/// `NdBSpline.design_matrix`): `(data, indices, indptr, shape)` of a CSR matrix with one row per
+/// point and one column per control point (the net in C order), each row the Kronecker product
+/// of the per-variable basis rows. `extrapolate` continues the end spans' polynomials beyond the
+/// domain; without it a point outside is an error.
+#[pyfunction]
+#[pyo3(signature = (x, t, k = None, *, extrapolate = true))]
+pub(crate) fn tensor_design_matrix<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    k: Option<&Bound<'py, PyAny>>,
+    extrapolate: bool,
+) -> PyResult<Csr<'py>> {
+    let xa = floats(x, "x")?;
+    let xshape = xa.shape();
+    let [_, n] = xshape[..] else {
+        return Err(bad(format!(
+            "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
+        )));
+    };
+    let knots = knot_vectors_arg(t)?;
+    if knots.len() != n {
+        return Err(bad(format!(
+            "t: {} knot vectors for points in {n} variables; give one per variable",
+            knots.len()
+        )));
+    }
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    let xs = xa.data();
+    let m = py
+        .detach(|| lk_design_matrix(&degrees, &knots, xs, extrapolate))
+        .map_err(|e| fit_err(e, "x"))?;
+    let to_i64 = |v: Vec<usize>| -> Vec<i64> {
+        v.into_iter()
+            .map(|i| i64::try_from(i).unwrap_or(i64::MAX))
+            .collect()
+    };
+    let indptr: Vec<usize> = (0..=m.rows).map(|j| j * m.row_len).collect();
+    Ok((
+        vec_array(py, &m.values),
+        numpy::PyArray1::from_vec(py, to_i64(m.indices)).into_any(),
+        numpy::PyArray1::from_vec(py, to_i64(indptr)).into_any(),
+        (m.rows, m.columns),
+    ))
+}
+
 /// Registers the fits of tensor-product splines.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(tensor_design_matrix, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_grid_smoothing, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;

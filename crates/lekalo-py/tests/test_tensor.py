@@ -186,3 +186,22 @@ def test_derivative_spline_and_extrapolation_match_scipy():
     close(ours(far, extrapolate=True), ref(far))
     with pytest.raises(lekalo.Error):
         ours(far)
+
+
+def test_design_matrix_times_the_net_is_the_spline():
+    # each row the Kronecker product of the basis rows; B @ c is the spline, extrapolated too
+    rng = np.random.default_rng(5)
+    t = [np.r_[[0.0] * 3, 0.4, [1.0] * 3], np.r_[[-1.0] * 4, 0.0, 0.5, [2.0] * 4]]
+    k = [2, 3]
+    c = rng.uniform(-1, 1, (4, 6))
+    spline = lekalo.TensorBSpline(t, c, k)
+    x = np.c_[rng.uniform(-0.2, 1.2, 25), rng.uniform(-1.5, 2.5, 25)]
+    data, indices, indptr, shape = lekalo.tensor_design_matrix(x, t, k)
+    assert shape == (25, 24)
+    assert np.array_equal(indptr, np.arange(26) * 12)
+    b = np.zeros(shape)
+    for j in range(25):
+        b[j, indices[indptr[j]:indptr[j + 1]]] = data[indptr[j]:indptr[j + 1]]
+    assert np.abs(b @ c.ravel() - spline(x, extrapolate=True)).max() <= 1e-12
+    with pytest.raises(lekalo.InputError, match="x"):
+        lekalo.tensor_design_matrix(x, t, k, extrapolate=False)

@@ -22,8 +22,11 @@
 //! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
 //!   `N` variables by banded normal equations.
+//! - `design_matrix.rs`: [`tensor_design_matrix`], the basis products at points (rows the
+//!   Kronecker products of the one-direction basis rows).
 
 mod any;
+mod design_matrix;
 mod fit;
 mod grid_eval;
 mod grid_smoothing;
@@ -35,6 +38,7 @@ mod slice;
 mod spline;
 
 pub use any::Tensor;
+pub use design_matrix::{tensor_design_matrix, TensorDesignMatrix};
 pub use fit::tensor_grid_least_squares;
 pub use grid_smoothing::{
     tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,

@@ -116,7 +116,28 @@ class NdBSpline:
 
     @classmethod
     def design_matrix(cls, xvals: Any, t: Any, k: Any, extrapolate: bool = True):
-        raise NotImplementedError("lekalo.scipy: NdBSpline.design_matrix is not available yet")
+        """``NdBSpline.design_matrix(xvals, t, k, extrapolate=True)``: the ``scipy.sparse``
+        CSR array of the basis products at the points ``xvals`` (shape ``(npts, ndim)``), one
+        column per coefficient of the C-ordered net, lekalo's ``tensor_design_matrix`` (each row
+        the Kronecker product of the per-variable basis rows). ``extrapolate=False`` refuses a
+        point outside the base box."""
+        from scipy.sparse import csr_array
+
+        xvals = np.asarray(xvals, dtype=float)
+        if xvals.ndim != 2:
+            raise ValueError(f"xvals: expected an array of shape (npts, ndim), got shape {xvals.shape}")
+        ndim = xvals.shape[-1]
+        if len(t) != ndim:
+            raise ValueError(f"Data and knots are inconsistent: len(t) = {len(t)} for  {ndim = }.")
+        if np.ndim(k) == 0:
+            k = (operator.index(k),) * ndim
+        data, indices, indptr, shape = _lekalo.tensor_design_matrix(
+            np.ascontiguousarray(xvals),
+            [np.ascontiguousarray(td, dtype=float) for td in t],
+            [operator.index(kd) for kd in k],
+            extrapolate=bool(extrapolate),
+        )
+        return csr_array((data, indices, indptr), shape=shape)
 
 
 def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **solver_args: Any) -> NdBSpline:
