@@ -71,6 +71,11 @@ out["splrep_more"] = {"interp_k2": {"t": tck0[0].tolist(), "c": tck0[1][:len(tck
                       "weighted_k5": {"w": wr.tolist(), "fp": float(fp5), "t": tck5[0].tolist(),
                                       "c": tck5[1][:len(tck5[0]) - 6].tolist()}}
 
+# 3b'. the same data and s on a domain wider than the data (end knots at xb, xe)
+tckw, fpw, _, _ = splrep(xr, yr, k=3, s=sr, xb=-0.25, xe=1.5, full_output=True)
+out["splrep_more"]["wide"] = {"xb": -0.25, "xe": 1.5, "fp": float(fpw), "t": tckw[0].tolist(),
+                              "c": tckw[1][:len(tckw[0]) - 4].tolist()}
+
 # 3c. periodic: splrep(per=1), least squares with given interior knots and smoothing with s
 xp = np.linspace(0.0, 2 * np.pi, 121) + 0.01 * noise(121, 31)
 xp[0], xp[-1] = 0.0, 2 * np.pi

@@ -12,9 +12,9 @@ use lekalo::fit::{
     constrained_smoothing_spline, gcv_score as lk_gcv, least_squares, periodic_least_squares,
     periodic_smoothing_condition, periodic_smoothing_knot_sequence, periodic_smoothing_on_knots,
     place_knots as lk_place_knots, robust_least_squares, smoothing_condition,
-    smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, surface_grid_least_squares_at,
-    surface_grid_parameters, surface_scattered_least_squares, CurveFit, Deviation, EndConstraints,
-    FitData, FitReport, Lambda, RobustLoss, ToleranceOptions,
+    smoothing_condition_in, smoothing_knot_sequence, smoothing_on_knots, smoothing_spline,
+    surface_grid_least_squares_at, surface_grid_parameters, surface_scattered_least_squares,
+    CurveFit, Deviation, EndConstraints, FitData, FitReport, Lambda, RobustLoss, ToleranceOptions,
 };
 use lekalo::{KnotVector, PointsRef};
 use pyo3::prelude::*;
@@ -357,7 +357,8 @@ pub(crate) fn gcv_score(
 /// FITPACK `curfit`; `docs/theory/fitting.md#smoothing-condition`). `s = 0` interpolates.
 /// With a knot vector `t` (SciPy's full vector), the spline on those knots whose `k`-th
 /// derivative jumps least with the residual `s` (`docs/theory/fitting.md#smoothing-on-given-knots`).
-/// Weights as SciPy's: the condition is `Σ (w_k (y_k − f(x_k)))² ≤ s`.
+/// Weights as SciPy's: the condition is `Σ (w_k (y_k − f(x_k)))² ≤ s`. `domain=(a, b)`, holding
+/// the data, puts the end knots at `a` and `b` (SciPy's `xb`, `xe`; without `t`).
 /// Returns the curve; `fit_smoothing_condition` also returns the report.
 ///
 /// >>> import numpy as np, lekalo
@@ -370,7 +371,8 @@ pub(crate) fn gcv_score(
 /// >>> bool(abs(((c(x)[:, 0] - y) ** 2).sum() - 0.5) <= 1e-3 * 0.5)
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None))]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splrep(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
@@ -379,35 +381,53 @@ pub(crate) fn make_splrep(
     k: usize,
     s: f64,
     t: Option<&Bound<'_, PyAny>>,
+    domain: Option<(f64, f64)>,
 ) -> PyResult<PyBSplineCurve> {
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     Ok(PyBSplineCurve::wrap(
-        condition_fit(py, &data, k, s, t)?.curve,
+        condition_fit(py, &data, k, s, t, domain)?.curve,
     ))
 }
 
+/// The smoothing condition on FITPACK's knots (end knots at `domain` when given) or, with `t`,
+/// the smoothing on those knots.
 fn condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
     k: usize,
     s: f64,
     t: Option<&Bound<'_, PyAny>>,
+    domain: Option<(f64, f64)>,
 ) -> PyResult<CurveFit> {
     let fd = data.fit_data("x")?;
     let kv = t.map(knot_vector).transpose()?;
-    py.detach(|| match &kv {
-        Some(kv) => smoothing_on_knots(&fd, k, kv, s),
-        None => smoothing_condition(&fd, k, s),
+    if kv.is_some() && domain.is_some() {
+        return Err(bad(
+            "domain: the knots t set the domain (their end knots); drop domain or t".into(),
+        ));
+    }
+    py.detach(|| match (&kv, domain) {
+        (Some(kv), _) => smoothing_on_knots(&fd, k, kv, s),
+        (None, Some(domain)) => smoothing_condition_in(&fd, k, s, domain),
+        (None, None) => smoothing_condition(&fd, k, s),
     })
-    .map_err(lib_err)
+    .map_err(|e| match e {
+        lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. }
+            if domain.is_some() =>
+        {
+            named("domain", &e)
+        }
+        other => lib_err(other),
+    })
 }
 
 /// As `make_splrep`, returning `(curve, report)`, with the library's weights: the condition is
 /// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these). With shape
 /// constraints (keywords as `fit_smoothing`), the constrained cubic smoothing spline whose
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
+/// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
@@ -417,6 +437,7 @@ pub(crate) fn fit_smoothing_condition<'py>(
     k: usize,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
+    domain: Option<(f64, f64)>,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
     convex: Option<&Bound<'py, PyAny>>,
@@ -439,8 +460,14 @@ pub(crate) fn fit_smoothing_condition<'py>(
     .constraints()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     if shape.is_empty() {
-        let f = condition_fit(py, &data, k, s, t)?;
+        let f = condition_fit(py, &data, k, s, t, domain)?;
         return with_report(py, f);
+    }
+    if domain.is_some() {
+        return Err(bad(
+            "domain: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop domain"
+                .into(),
+        ));
     }
     if t.is_some() || k != 3 {
         return Err(bad(

@@ -99,3 +99,24 @@ def test_periodic_generate_knots_ends_on_fitpacks_knots():
     seq = lekalo.generate_knots(x, y, s=0.2, periodic=True)
     assert np.array_equal(seq[-1], si.splrep(x, y, s=0.2, per=1)[0])
     assert len(seq[0]) == 2 * 3 + 3  # one interior knot first
+
+
+def test_make_splrep_on_a_wider_domain_is_fitpacks_and_refuses_what_no_spline_reaches():
+    # domain=(xb, xe): FITPACK's knots among the data, the end knots at xb and xe (splrep's)
+    x, y = noisy()
+    curve = lekalo.make_splrep(x, y, s=1.0, domain=(-1.0, 8.0))
+    t, _, _ = si.splrep(x, y, s=1.0, xb=-1.0, xe=8.0)
+    assert np.array_equal(curve.knots, t)
+    assert np.sum((curve(x)[:, 0] - y) ** 2) <= 1.0
+    _, report = lekalo.fit_smoothing_condition(x, y, s=1.0, domain=(-1.0, 8.0))
+    assert report["weighted_rss"] <= 1.0
+    with pytest.raises(lekalo.InputError, match="domain"):
+        lekalo.make_splrep(x, y, s=1.0, domain=(1.0, 8.0))
+    with pytest.raises(lekalo.InputError, match="drop domain or t"):
+        lekalo.make_splrep(x, y, s=1.0, t=t, domain=(-1.0, 8.0))
+    # two values at one x leave (0.5² + 0.5²) = 0.5 to every function: s = 0.4 is refused
+    xr = np.r_[x[:30], x[29], x[30:]]
+    yr = np.r_[y[:30], y[29] + 1.0, y[30:]]
+    with pytest.raises(lekalo.InputError, match="s = 0.4 is below"):
+        lekalo.make_splrep(xr, yr, s=0.4)
+    assert np.sum((lekalo.make_splrep(xr, yr, s=0.6)(xr)[:, 0] - yr) ** 2) <= 0.6

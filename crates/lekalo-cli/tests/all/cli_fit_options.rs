@@ -164,6 +164,49 @@ fn a_least_squares_curve_reaches_beyond_its_data_with_domain() {
     }
 }
 
+/// `--s` with `--domain`: the smoothing condition with its end knots at the domain (splrep's
+/// `xb`, `xe`); the cubic's own samples need no interior knot, and the cubic continues to the
+/// domain's ends.
+#[test]
+fn the_smoothing_condition_takes_a_domain_wider_than_the_data() {
+    let d = dir_with(&[("xy.txt", &cubic_samples())]);
+    let fit = json_of(lekalo().current_dir(d.path()).args([
+        "fit",
+        "xy.txt",
+        "--function",
+        "--s",
+        "0.01",
+        "--domain",
+        "-2:12",
+        "--json",
+    ]));
+    assert_eq!(
+        numbers(&fit["object"]["knots"]),
+        [-2.0, -2.0, -2.0, -2.0, 12.0, 12.0, 12.0, 12.0]
+    );
+    assert!(fit["report"]["max_residual"].as_f64().unwrap() < 1e-10);
+    std::fs::write(
+        p(&d, "curve.json"),
+        serde_json::to_string(&fit["object"]).unwrap(),
+    )
+    .unwrap();
+    let rows = json_of(lekalo().current_dir(d.path()).args([
+        "eval",
+        "curve.json",
+        "--at",
+        "-2,11.5",
+        "--json",
+    ]));
+    for row in rows.as_array().unwrap() {
+        let (t, x) = (row["t"].as_f64().unwrap(), row["x"].as_f64().unwrap());
+        assert!(
+            (x - cubic(t)).abs() < 1e-9,
+            "y({t}) = {x}, not {}",
+            cubic(t)
+        );
+    }
+}
+
 #[test]
 fn domain_refuses_what_it_cannot_do_and_says_why() {
     let d = dir_with(&[("xy.txt", &cubic_samples())]);
@@ -185,7 +228,7 @@ fn domain_refuses_what_it_cannot_do_and_says_why() {
         ],
     );
     assert!(e.contains("--knots: the knot 13 is not inside"), "{e}");
-    for mode in [["--s", "0.1"], ["--smooth", "gcv"]] {
+    for mode in [["--smooth", "gcv"], ["--tol", "0.1"]] {
         let e = refusal(
             &d,
             &[
@@ -200,6 +243,20 @@ fn domain_refuses_what_it_cannot_do_and_says_why() {
         );
         assert!(e.contains("drop --domain"), "{e}");
     }
+    let e = refusal(
+        &d,
+        &[
+            "fit",
+            "xy.txt",
+            "--function",
+            "--s",
+            "0.1",
+            "--increasing",
+            "--domain",
+            "-2:12",
+        ],
+    );
+    assert!(e.contains("drop --domain"), "{e}");
     let e = refusal(&d, &["fit", "xy.txt", "--clamp-ends", "--domain", "-2:12"]);
     assert!(e.contains("--clamp-ends"), "{e}");
     let e = refusal(&d, &["fit", "xy.txt", "--function", "--degree", "3,2"]);

@@ -532,7 +532,14 @@ def make_smoothing_spline(
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> BSplineCurve: ...
 def make_splrep(
-    x: ArrayLike, y: ArrayLike, *, w: Optional[ArrayLike] = None, k: int = 3, s: float = 0.0, t: Optional[ArrayLike] = None
+    x: ArrayLike,
+    y: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    k: int = 3,
+    s: float = 0.0,
+    t: Optional[ArrayLike] = None,
+    domain: Optional[Tuple[float, float]] = None,
 ) -> BSplineCurve: ...
 def make_splprep(
     points: ArrayLike,
@@ -596,6 +603,7 @@ def fit_smoothing_condition(
     k: int = 3,
     s: float = 0.0,
     t: Optional[ArrayLike] = None,
+    domain: Optional[Tuple[float, float]] = None,
     increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
@@ -662,6 +670,9 @@ def fit_tensor_grid_smoothing(
 def fit_tensor_scattered(
     x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None
 ) -> Tuple[TensorBSpline, Array, float]: ...
+def tensor_design_matrix(
+    x: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, extrapolate: bool = True
+) -> Tuple[Array, npt.NDArray[np.int64], npt.NDArray[np.int64], Tuple[int, int]]: ...
 
 # -- geometric queries (docs/theory/queries.md)
 class CurveQuery:

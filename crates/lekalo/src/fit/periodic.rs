@@ -12,8 +12,8 @@ use super::cyclic::CyclicQr;
 use super::data::{check_in_domain, CurveFit, FitData};
 use super::progress::Steps;
 use super::smoothing_condition::{
-    check_condition_args, check_max_knots, finish, jump_rows, next_nplus, smooth_weight, Added,
-    Knots, LsqPass, Observations, SMOOTHING_RTOL,
+    check_condition_args, check_max_knots, check_reachable, finish, jump_rows, next_nplus,
+    smooth_weight, Added, Knots, LsqPass, Observations, SMOOTHING_RTOL,
 };
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
@@ -139,7 +139,9 @@ pub fn periodic_least_squares_with_progress(
 /// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
 /// [`Error::EmptyDomain`] / [`Error::NonFinite`] for a bad domain;
 /// [`Error::ParameterOutOfDomain`]; [`Error::TooFew`] for fewer than `degree + 1` distinct
-/// parameters; [`Error::SingularSystem`] when zero weights leave a coefficient without data.
+/// parameters; [`Error::InvalidArgument`] (`what = "s"`) for `s` below the residual that
+/// repeated parameters with different values leave to every function (`b` repeats `a`);
+/// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn periodic_smoothing_condition(
     data: &FitData<'_>,
     degree: usize,
@@ -170,6 +172,7 @@ pub fn periodic_smoothing_condition_with_progress(
     );
     let k = degree;
     let (obs, sites) = periodic_observations(data, k, domain)?;
+    check_reachable(&obs, s)?;
     let fit = match periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &steps, &mut |_| {})? {
         PeriodicRounds::Done { t, c } => finish(data, &obs, k, t, &c, None),
         PeriodicRounds::Smooth { t, qr, fp0, fp_inf } => {

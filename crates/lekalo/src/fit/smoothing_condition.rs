@@ -3,10 +3,10 @@
 //! `docs/theory/fitting.md#smoothing-condition`).
 
 use super::banded::{BandedQr, QrRows};
-use super::data::{CurveFit, FitData, FitReport};
+use super::data::{check_in_domain, CurveFit, FitData, FitReport};
 use super::progress::Steps;
 use crate::basis::{basis_funs_into, BasisScratch, SpanBasis};
-use crate::error::{check_degree_bound, Error, Result};
+use crate::error::{check_degree_bound, check_finite, readable, Error, Result};
 use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
@@ -47,7 +47,11 @@ const MAX_P_ITERATIONS: usize = 20;
 /// would return a residual above `s`: a least-squares fit with `s < fp < s + SMOOTHING_RTOL·s`
 /// gets more knots instead of being accepted, and a smoothed fit with `fp > s` continues the
 /// same iteration towards `s − SMOOTHING_RTOL·s/2`, so the result never exceeds `s`.
-/// Repeated parameters are allowed: knots are placed among the distinct ones. The reported λ
+/// Repeated parameters are allowed: knots are placed among the distinct ones. Where points share
+/// a parameter with different values no function meets them all: every spline leaves at least
+/// their spread about the group's weighted mean ([`reachable_floor`]), and an `s` below it is
+/// refused (as SciPy's `make_splrep` refuses it) rather than answered with a residual above `s`.
+/// The reported λ
 /// is the weight of `Σ_j (jump of C^{(k)} at t_j)²`, `λ = (p·k!·(spans/length)^k)^{-2}`.
 /// Cost: O(rounds·N·k²) for `N` points, the rounds growing like the logarithm of the knot count.
 ///
@@ -67,6 +71,8 @@ const MAX_P_ITERATIONS: usize = 20;
 /// # Errors
 /// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
 /// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
+/// [`Error::InvalidArgument`] (`what = "s"`) for `s` below the residual that repeated
+/// parameters with different values leave to every function;
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
     smoothing_condition_with_progress(data, degree, s, &Progress::new())
@@ -85,11 +91,85 @@ pub fn smoothing_condition_with_progress(
     s: f64,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
+    condition_fit(data, degree, s, None, progress)
+}
+
+/// [`smoothing_condition`] on the domain `(a, b)`, which holds the data and may reach beyond
+/// them: the end knots are `a` and `b` (FITPACK `curfit`'s `xb`, `xe`; SciPy's
+/// `splrep(x, y, xb=a, xe=b, s=…)`, `UnivariateSpline(…, bbox=[a, b])`). Everything else is
+/// [`smoothing_condition`]'s: the interior knots are placed among the distinct data parameters
+/// in the same rounds (for `s = 0` those of interpolation), the residual sums per span now
+/// reaching to `a` and `b`, and the jumps of the `k`-th derivative scaled by the spans per
+/// length `(b − a)` as FITPACK's `fpdisc`. With `(a, b)` the data's own ends it is
+/// [`smoothing_condition`], bit for bit.
+///
+/// ```
+/// use lekalo::fit::{smoothing_condition_in, FitData};
+/// use lekalo::PointsRef;
+/// let x = [1.0, 2.0, 4.0, 6.0, 8.5];
+/// let y = [0.5, 0.8, 1.3, 2.5, 2.8];
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let fit = smoothing_condition_in(&data, 3, 0.1, (-100.0, 100.0))?;
+/// assert_eq!(fit.curve.domain(), (-100.0, 100.0));
+/// assert!(fit.report.weighted_rss <= 0.1);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition`]; [`Error::NonFinite`] / [`Error::EmptyDomain`] for a domain
+/// that is not finite with `a < b`; [`Error::ParameterOutOfDomain`] for a data parameter
+/// outside it.
+pub fn smoothing_condition_in(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+) -> Result<CurveFit> {
+    smoothing_condition_in_with_progress(data, degree, s, domain, &Progress::new())
+}
+
+/// [`smoothing_condition_in`] reporting to `progress` as
+/// [`smoothing_condition_with_progress`] does.
+///
+/// # Errors
+/// As [`smoothing_condition_in`], and [`Error::Cancelled`].
+pub fn smoothing_condition_in_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    condition_fit(data, degree, s, Some(domain), progress)
+}
+
+/// The domain `(a, b)` of a fit: finite, `a < b`, holding every data parameter.
+fn check_domain(data: &FitData<'_>, (a, b): (f64, f64)) -> Result<()> {
+    check_finite("domain (a, b) of the smoothing condition", &[a, b])?;
+    if a >= b {
+        return Err(Error::EmptyDomain { min: a, max: b });
+    }
+    check_in_domain(data.params(), (a, b))
+}
+
+/// [`smoothing_condition_with_progress`] and [`smoothing_condition_in_with_progress`]: on the
+/// data's own domain when `domain` is `None`.
+fn condition_fit(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: Option<(f64, f64)>,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
+    if let Some(domain) = domain {
+        check_domain(data, domain)?;
+    }
     let steps = Steps::new(progress, "smoothing condition (knot rounds, weights)");
     let obs = Observations::new(data);
+    check_reachable(&obs, s)?;
     let k = degree;
-    let fit = match knot_rounds(&obs, k, s, usize::MAX, &steps, &mut |_| {})? {
+    let fit = match knot_rounds(&obs, k, s, domain, usize::MAX, &steps, &mut |_| {})? {
         Rounds::Done { t, c } => finish(data, &obs, k, t, &c, None),
         Rounds::Smooth { t, qr, fp0, fp_inf } => {
             let (c, lambda) = smooth_on(&obs, k, &t, &qr, s, fp0, fp_inf, &steps)?;
@@ -133,7 +213,9 @@ pub fn smoothing_knot_sequence(
     let mut seq = Vec::new();
     let quiet = Progress::new();
     let steps = Steps::new(&quiet, "");
-    knot_rounds(&obs, degree, s, cap, &steps, &mut |t| seq.push(t.to_vec()))?;
+    knot_rounds(&obs, degree, s, None, cap, &steps, &mut |t| {
+        seq.push(t.to_vec());
+    })?;
     Ok(seq)
 }
 
@@ -166,11 +248,14 @@ pub(super) enum Rounds {
 
 /// Step 2 of [`smoothing_condition`]: the rounds of least squares and knot addition, at most
 /// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
-/// step of `steps`.
+/// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
+/// ends.
+#[allow(clippy::too_many_arguments)]
 fn knot_rounds(
     obs: &Observations,
     k: usize,
     s: f64,
+    domain: Option<(f64, f64)>,
     cap: usize,
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
@@ -186,7 +271,7 @@ fn knot_rounds(
     let acc = SMOOTHING_RTOL * s;
     // knot counts of the polynomial and of interpolation
     let (nmin, nmax) = (2 * k + 2, md + k + 1);
-    let mut knots = Knots::new(&obs.sites, k);
+    let mut knots = Knots::new(&obs.sites, k, domain);
     if s == 0.0 {
         knots.interpolation(&obs.sites);
     }
@@ -328,6 +413,64 @@ impl Observations {
     }
 }
 
+/// The least weighted residual sum of squares any function of the parameter leaves on the data
+/// `obs`: for each group of points with the same parameter, `Σ_i w_i |Q_i − Q̄|²` about the
+/// group's weighted mean `Q̄ = Σ w_i Q_i / Σ w_i` (the minimum of `Σ_i w_i |v − Q_i|²` over one
+/// value `v`); 0 when the parameters are distinct. The least-squares spline on the knots of
+/// interpolation at the distinct parameters reaches it (it passes through every group's mean).
+/// Computed from the rows `√w_i·(Q_i − Q_first)`: `√w_i·(Q_i − Q̄) = y_i − √w_i·Q̄`.
+pub(super) fn reachable_floor(obs: &Observations) -> f64 {
+    let dim = obs.dim;
+    let mut floor = 0.0;
+    let mut mean = vec![0.0; dim];
+    let mut start = 0;
+    while start < obs.x.len() {
+        let end = start + obs.x[start..].partition_point(|&u| u == obs.x[start]);
+        if end - start > 1 {
+            // Σ w·Q = Σ √w·y, Σ w = Σ √w²
+            let total: f64 = obs.wf[start..end].iter().map(|w| w * w).sum();
+            if total > 0.0 {
+                mean.fill(0.0);
+                for i in start..end {
+                    for (m, y) in mean.iter_mut().zip(&obs.y[i * dim..(i + 1) * dim]) {
+                        *m += obs.wf[i] * y;
+                    }
+                }
+                mean.iter_mut().for_each(|m| *m /= total);
+                for i in start..end {
+                    for (m, y) in mean.iter().zip(&obs.y[i * dim..(i + 1) * dim]) {
+                        let r = y - obs.wf[i] * m;
+                        floor += r * r;
+                    }
+                }
+            }
+        }
+        start = end;
+    }
+    floor
+}
+
+/// Refuses a target `s` below [`reachable_floor`]: no spline (no function) has a residual that
+/// small, so the smoothing condition has no answer.
+pub(super) fn check_reachable(obs: &Observations, s: f64) -> Result<()> {
+    let floor = reachable_floor(obs);
+    if floor > s {
+        return Err(Error::InvalidArgument {
+            what: "s",
+            reason: format!(
+                "s = {} is below {}, the weighted residual sum of squares that every function \
+                 leaves where points share a parameter (x) with different values (at best it \
+                 passes through each group's weighted mean): give s ≥ {}, or average the points \
+                 with a repeated parameter",
+                readable(&s),
+                readable(&floor),
+                readable(&floor)
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// One least-squares pass over the data for a knot vector, keeping each row's first column and
 /// weighted basis values for the span residuals.
 pub(super) struct LsqPass {
@@ -465,11 +608,15 @@ pub(super) struct Knots {
 }
 
 impl Knots {
-    fn new(sites: &[f64], k: usize) -> Self {
+    /// No interior knot; the end knots at `domain`, else at the first and last site. The
+    /// bookkeeping counts the sites strictly inside, whatever the domain (FITPACK's
+    /// `nrdata(1) = m − 2` with `xb ≤ x(1)`, `xe ≥ x(m)`).
+    fn new(sites: &[f64], k: usize, domain: Option<(f64, f64)>) -> Self {
+        let (a, b) = domain.unwrap_or((sites[0], sites[sites.len() - 1]));
         Knots {
             k,
-            a: sites[0],
-            b: sites[sites.len() - 1],
+            a,
+            b,
             interior: Vec::new(),
             fpint: vec![0.0],
             nrdata: vec![sites.len().saturating_sub(2)],
@@ -840,6 +987,49 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The data of a SciPy `make_splrep` test with a repeated x: the two points at x = 310.1
+    /// with values 7.2 and 3.6 leave every function `2·w·1.8² = 12.47…`, so `s = 12` is refused
+    /// (as SciPy's `make_splrep` refuses it) and `s = 13` is met.
+    #[test]
+    fn s_below_the_spread_of_repeated_parameters_is_refused() {
+        let x = [
+            20.00, 153.81, 175.57, 202.47, 237.11, 253.61, 258.56, 273.40, 284.54, 293.61, 298.56,
+            301.86, 305.57, 307.22, 308.45, 310.10, 310.10, 310.50,
+        ];
+        let y = [
+            53.00, 49.50, 48.60, 46.80, 43.20, 40.32, 39.60, 36.00, 32.40, 28.80, 25.20, 21.60,
+            18.00, 14.40, 10.80, 7.20, 3.60, 0.0,
+        ];
+        let w = [1.38723f64 * 1.38723; 18];
+        let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &x)
+            .unwrap()
+            .with_weights(&w)
+            .unwrap();
+        let floor = 2.0 * w[0] * 1.8 * 1.8;
+        let obs = Observations::new(&data);
+        assert!(
+            (reachable_floor(&obs) - floor).abs() <= 1e-12 * floor,
+            "floor {} vs {floor}",
+            reachable_floor(&obs)
+        );
+        let e = smoothing_condition(&data, 2, 12.0).unwrap_err();
+        assert!(
+            matches!(&e, Error::InvalidArgument { what: "s", reason } if reason.contains("12.47")),
+            "{e}"
+        );
+        for s in [13.0, 20.0] {
+            let fit = smoothing_condition(&data, 2, s).unwrap();
+            assert!(
+                fit.report.weighted_rss <= s,
+                "s = {s}: residual {}",
+                fit.report.weighted_rss
+            );
+        }
+        // distinct parameters: nothing is out of reach
+        let data = FitData::new(crate::PointsRef::from_flat(1, &y).unwrap(), &y).unwrap();
+        assert_eq!(reachable_floor(&Observations::new(&data)), 0.0);
     }
 
     #[test]

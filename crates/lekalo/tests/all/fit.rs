@@ -4,8 +4,9 @@
 
 use lekalo::fit::{
     check_schoenberg_whitney, fit_tolerance, gcv_score, least_squares, place_knots,
-    robust_least_squares, smoothing_condition, smoothing_spline, surface_scattered_least_squares,
-    Deviation, EndConstraints, FitData, Lambda, RobustLoss, ToleranceOptions,
+    robust_least_squares, smoothing_condition, smoothing_condition_in, smoothing_spline,
+    surface_scattered_least_squares, Deviation, EndConstraints, FitData, Lambda, RobustLoss,
+    ToleranceOptions,
 };
 use lekalo::{BSplineCurve, Error, KnotVector, Points, PointsRef};
 use proptest::prelude::*;
@@ -164,6 +165,47 @@ fn smoothing_condition_matches_scipy_splrep() {
     check_splrep(&x[..40], &y[..40], None, 2, 0.0, &more["interp_k2"]);
     let w5 = &more["weighted_k5"];
     check_splrep(&x, &y, Some(&vec_of(&w5["w"])), 5, s, w5);
+}
+
+/// `smoothing_condition_in` against `splrep(x, y, s=…, xb=−0.25, xe=1.5)`: FITPACK's knots,
+/// ends at `xb` and `xe`, and its coefficients (FITPACK's residual is below `s` here, so the
+/// iterations agree step for step).
+#[test]
+fn smoothing_condition_in_a_wider_domain_matches_scipy_splrep() {
+    let g = golden();
+    let r = &g["splrep"];
+    let (x, y, s) = (vec_of(&r["x"]), vec_of(&r["y"]), r["s"].as_f64().unwrap());
+    let wide = &g["splrep_more"]["wide"];
+    let domain = (wide["xb"].as_f64().unwrap(), wide["xe"].as_f64().unwrap());
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let fit = smoothing_condition_in(&data, 3, s, domain).unwrap();
+    assert_eq!(fit.curve.domain(), domain, "end knots at xb, xe");
+    let rss = fit.report.weighted_rss;
+    assert!(rss <= s && rss >= 0.999 * s, "rss {rss}, s {s}");
+    assert_close(
+        fit.curve.knots().as_slice(),
+        &vec_of(&wide["t"]),
+        1e-14,
+        "knots",
+    );
+    let c: Vec<f64> = fit.curve.control_points().iter().map(|p| p[0]).collect();
+    assert_close(&c, &vec_of(&wide["c"]), 1e-9, "coefficients");
+    // the data's own ends: smoothing_condition, bit for bit
+    let own = smoothing_condition_in(&data, 3, s, (x[0], x[x.len() - 1])).unwrap();
+    assert_eq!(own.curve, smoothing_condition(&data, 3, s).unwrap().curve);
+    // a domain that does not hold the data, or is empty
+    assert!(matches!(
+        smoothing_condition_in(&data, 3, s, (0.1, 1.5)),
+        Err(Error::ParameterOutOfDomain { .. })
+    ));
+    assert!(matches!(
+        smoothing_condition_in(&data, 3, s, (1.0, 1.0)),
+        Err(Error::EmptyDomain { .. })
+    ));
+    assert!(matches!(
+        smoothing_condition_in(&data, 3, s, (f64::NAN, 1.0)),
+        Err(Error::NonFinite { .. })
+    ));
 }
 
 #[test]
@@ -444,6 +486,50 @@ proptest! {
             let t = fit_tolerance(PointsRef::from_flat(2, &q).unwrap(), &opts).unwrap();
             prop_assert!(t.max_deviation <= tol, "deviation {} > tol {}", t.max_deviation, tol);
             prop_assert!(t.deviations.iter().all(|&d| d <= tol), "every deviation within tol");
+        }
+    }
+
+    /// With repeated abscissae, the smoothing condition either meets `s` or refuses it, and
+    /// refuses exactly when `s` is below the spread of the repeated points about their
+    /// weighted means, the residual no function can go below (the tolerance is rounding, relative
+    /// to the weighted sum of squares of the data).
+    #[test]
+    fn repeated_abscissae_meet_s_or_refuse_it(
+        degree in 1usize..=5,
+        count in 8usize..40,
+        repeats in proptest::collection::vec(0usize..40, 1..6),
+        values in proptest::collection::vec(-10.0f64..10.0, 80),
+        weights in proptest::collection::vec(0.1f64..3.0, 80),
+        s_frac in 0.0f64..2.0,
+    ) {
+        // x = 0, 1, …, with some abscissae given twice
+        let mut x: Vec<f64> = (0..count).map(|i| i as f64).collect();
+        x.extend(repeats.iter().map(|&r| (r % count) as f64));
+        x.sort_by(f64::total_cmp);
+        let m = x.len();
+        let (y, w) = (&values[..m], &weights[..m]);
+        let mut floor = 0.0;
+        let mut i = 0;
+        while i < m {
+            let j = i + x[i..].iter().take_while(|&&v| v == x[i]).count();
+            let total: f64 = w[i..j].iter().sum();
+            let mean = (i..j).map(|l| w[l] * y[l]).sum::<f64>() / total;
+            floor += (i..j).map(|l| w[l] * (y[l] - mean).powi(2)).sum::<f64>();
+            i = j;
+        }
+        prop_assume!(floor > 0.0);
+        let data = FitData::new(PointsRef::from_flat(1, y).unwrap(), &x).unwrap().with_weights(w).unwrap();
+        let s = s_frac * floor;
+        let scale: f64 = y.iter().zip(w).map(|(v, q)| q * v * v).sum();
+        match smoothing_condition(&data, degree, s) {
+            Ok(fit) => {
+                prop_assert!(s >= floor * (1.0 - 1e-12), "s = {s} below the floor {floor} was accepted");
+                prop_assert!(fit.report.weighted_rss <= s + 1e-12 * scale, "rss {} > s {s}", fit.report.weighted_rss);
+            }
+            Err(Error::InvalidArgument { what: "s", .. }) => {
+                prop_assert!(s <= floor * (1.0 + 1e-12), "s = {s} above the floor {floor} was refused");
+            }
+            Err(e) => prop_assert!(false, "unexpected error {e}"),
         }
     }
 }

@@ -33,7 +33,8 @@ Modes (one of them; least squares by default):
                      --domain A:B sets the end knots (a curve reaching beyond the data)
   --smooth LAMBDA    cubic smoothing spline, λ given, or `--smooth gcv` (cross-validation)
   --s S              fewest knots with weighted residual sum of squares <= S (like splrep);
-                     with --knots, the least k-th derivative jumps on those knots with RSS = S
+                     with --knots, the least k-th derivative jumps on those knots with RSS = S;
+                     --domain A:B sets the end knots
   --tol TOL          within TOL of every point (distance), few control points
   --robust huber|tukey   least squares that resists outliers (final weights in the report)
   --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
@@ -70,6 +71,7 @@ Examples:
   lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
   lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3
   lekalo fit xy.csv --function --ctrl 8 --domain -5:35 -o wide.json
+  lekalo fit xy.csv --function --s 0.5 --domain -5:35 -o wide.json
   lekalo fit grid.csv --grid 30x20 --degree 3,2 --knots-u 0.25,0.5,0.75 --knots-v 0.5 -o surface.json
   lekalo fit uvz.csv --scattered --knots-u 0.3,0.6 --knots-v 0.5 --bbox 0:1,0:1 --degree 3,2
   lekalo fit values.csv --grid 6x5x4 --degree 2 --param uniform --ctrl-grid 4x4x3 -o fitted.json
@@ -117,8 +119,8 @@ pub(crate) struct FitArgs {
     #[arg(long, value_name = "LIST")]
     pub(crate) knots: Option<String>,
     /// The parameter domain A:B of the curve, its end knots: wider than the data's parameters
-    /// (x with --function) for a curve that reaches beyond them (least squares and --robust;
-    /// default: from the first to the last parameter, as splrep's xb, xe).
+    /// (x with --function) for a curve that reaches beyond them (least squares, --robust and
+    /// --s; default: from the first to the last parameter, as splrep's xb, xe).
     #[arg(long, value_name = "A:B", allow_hyphen_values = true)]
     pub(super) domain: Option<String>,
     /// Weights file: one number per point.
@@ -277,10 +279,11 @@ impl FitArgs {
                      to the last); drop --domain",
                 );
             }
-            if self.smooth.is_some() || self.s.is_some() || self.tol.is_some() {
+            if self.smooth.is_some() || self.tol.is_some() {
                 return bad_input(
                     "--domain sets the end knots of least squares (--lsq, --ctrl, --knots, \
-                     --robust); --smooth, --s and --tol place their own knots: drop --domain",
+                     --robust) and of --s; --smooth and --tol place their own knots: drop \
+                     --domain",
                 );
             }
             if self.clamp_ends {

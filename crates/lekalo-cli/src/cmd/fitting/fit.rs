@@ -6,9 +6,9 @@ use anyhow::Result;
 use lekalo::fit::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
     fit_tolerance_with_progress, least_squares_with_progress, place_knots, robust_least_squares,
-    smoothing_condition_with_progress, smoothing_on_knots_with_progress,
-    smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
-    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
+    smoothing_condition_in_with_progress, smoothing_condition_with_progress,
+    smoothing_on_knots_with_progress, smoothing_spline_with_progress, CurveFit, Deviation,
+    EndConstraints, FitData, Lambda, RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -164,11 +164,21 @@ fn fit_curve(
         let large = data.len() > LARGE;
         let degree = a.degree()?;
         if !shape.is_empty() {
+            if a.domain.is_some() {
+                return bad_input(
+                    "--domain: with shape constraints --s fits the cubic smoothing spline with \
+                     knots at the data; drop --domain",
+                );
+            }
             constrained_smoothing_condition(&data, s, &shape)?
         } else if a.knots.is_some() {
             let knots = curve_knots(a, &params)?;
             with_progress(cx, "smoothing on the knots", large, |p| {
                 smoothing_on_knots_with_progress(&data, degree, &knots, s, p)
+            })?
+        } else if let Some(domain) = domain_arg(a, &params)? {
+            with_progress(cx, "smoothing condition", large, |p| {
+                smoothing_condition_in_with_progress(&data, degree, s, domain, p)
             })?
         } else {
             with_progress(cx, "smoothing condition", large, |p| {
@@ -244,14 +254,14 @@ fn least_squares_report(curve: &lekalo::BSplineCurve, d: &FitData<'_>) -> Result
     })
 }
 
-fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
-    let p = a.degree()?;
+/// `--domain A:B`, checked to hold the data's parameters `params`.
+fn domain_arg(a: &FitArgs, params: &[f64]) -> Result<Option<(f64, f64)>> {
     let data = params
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
             (l.min(u), h.max(u))
         });
-    let domain = match &a.domain {
+    Ok(match &a.domain {
         Some(text) => {
             let (lo, hi) = span(text, "--domain", "--domain -1:2")?;
             if lo > data.0 || hi < data.1 {
@@ -268,7 +278,17 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
             Some((lo, hi))
         }
         None => None,
-    };
+    })
+}
+
+fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
+    let p = a.degree()?;
+    let data = params
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &u| {
+            (l.min(u), h.max(u))
+        });
+    let domain = domain_arg(a, params)?;
     if let Some(k) = &a.knots {
         if a.ctrl.is_some() {
             return bad_input("give --ctrl or --knots, not both");

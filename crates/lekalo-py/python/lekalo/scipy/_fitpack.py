@@ -18,9 +18,10 @@ def splrep(
     s: Any = None, t: Any = None, full_output: int = 0, per: int = 0, quiet: int = 1,
 ):
     """``scipy.interpolate.splrep`` for interpolation (``s = 0``, the default without weights;
-    FITPACK's knots are SciPy's not-a-knot ones) and for least squares on given interior knots
-    ``t`` (``task=-1``), with the end knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe``
-    as FITPACK's ``percur`` does. Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
+    FITPACK's knots are SciPy's not-a-knot ones), the smoothing condition (lekalo's
+    ``make_splrep``) and least squares on given interior knots ``t`` (``task=-1``), with the end
+    knots at ``xb`` and ``xe``; ``per=1`` ignores ``xb``/``xe`` as FITPACK's ``percur`` does.
+    Returns ``(t, c, k)`` with ``c`` zero-padded to ``len(t)``, as FITPACK."""
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
@@ -40,8 +41,6 @@ def splrep(
     if m and (xb > x[0] or xe < x[-1]):
         raise ValueError("Error on input data: xb <= x[0] and xe >= x[-1] must hold")
     wide = m > 0 and (xb != x[0] or xe != x[-1])
-    if wide and t is None and not (s == 0 and w is None):
-        raise NotImplementedError("lekalo.scipy.splrep: smoothing with xb/xe wider than the data is not available yet")
     if y.ndim != 1:
         raise ValueError(f"too many axes: {y.ndim} (effrank={y.ndim}), expected rank=1")
     if len(y) != m:
@@ -67,8 +66,9 @@ def splrep(
         spl = make_interp_spline(x, y, k=k)
     else:
         # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
-        # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits
-        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s))
+        # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits;
+        # the end knots at xb and xe
+        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), domain=(xb, xe) if wide else None)
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
     if full_output:

@@ -60,15 +60,33 @@ def _validate_inputs(x: Any, y: Any, w: Any, k: Any, s: float, xb: Any, xe: Any,
         raise ValueError(
             "First and last points does not match which is required for `bc_type='periodic'`."
         )
-    if (xb is not None and xb != x.min()) or (xe is not None and xe != x.max()):
-        raise NotImplementedError("lekalo.scipy: xb/xe other than the ends of the data are not available yet")
     return x, y, w, k
 
 
-def _smooth(x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, t: Any, nest: Any, periodic: bool):
+def _domain(x: np.ndarray, xb: Any, xe: Any, wider: bool):
+    """``(xb, xe)`` when they reach beyond the data (lekalo's ``domain``), ``None`` when they are
+    the data's ends; ``wider=False`` where only the data's ends are available."""
+    lo = x.min() if xb is None else float(xb)
+    hi = x.max() if xe is None else float(xe)
+    if lo == x.min() and hi == x.max():
+        return None
+    if lo > x.min() or hi < x.max():
+        raise ValueError(f"xb = {lo} and xe = {hi} must hold the data: xb <= {x.min()} and xe >= {x.max()}")
+    if not wider:
+        raise NotImplementedError(
+            "lekalo.scipy: xb/xe wider than the data go with make_splrep's smoothing condition on "
+            "FITPACK's knots (no t, nest or bc_type='periodic')"
+        )
+    return (lo, hi)
+
+
+def _smooth(
+    x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, t: Any, nest: Any, periodic: bool, domain: Any = None
+):
     """The curve of the smoothing condition: on the knots ``t`` when given (lekalo's smoothing
     on given knots), else on FITPACK's knots, the last of ``generate_knots`` (lekalo's
-    smoothing condition); SciPy's ``nest`` checks. ``y`` is ``(m,)`` or ``(m, dim)``."""
+    smoothing condition, its end knots at ``domain`` when given); SciPy's ``nest`` checks.
+    ``y`` is ``(m,)`` or ``(m, dim)``."""
     if nest is not None:
         if nest < 2 * (k + 1):
             raise ValueError(f"`nest` too small: {nest = } < 2*(k+1) = {2*(k+1)}.")
@@ -89,7 +107,7 @@ def _smooth(x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, t: An
     elif periodic:
         curve, _ = _lekalo.fit_periodic(x, y, w=w * w, k=k, s=float(s))
     elif y.ndim == 1:
-        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s))
+        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), domain=domain)
     else:
         curve, _ = _lekalo.make_splprep(y, w=w, u=x, k=k, s=float(s))
     return np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control)
@@ -123,6 +141,7 @@ def generate_knots(
         yield t
         return
     x, y, w, k = _validate_inputs(x, y, w, k, s, xb, xe, parametric=np.ndim(y) == 2, periodic=periodic)
+    _domain(x, xb, xe, wider=False)
     yield from _knot_sequence(x, y, w, k, s, nest, periodic)
 
 
@@ -131,8 +150,9 @@ def make_splrep(
     t: Any = None, nest: Any = None, bc_type: Any = None,
 ) -> BSpline:
     """``scipy.interpolate.make_splrep``: with ``s = 0`` the interpolating spline, otherwise the
-    spline on FITPACK's knots whose weighted residual is ``s`` (lekalo's ``make_splrep``,
-    ``fit_periodic`` for ``bc_type="periodic"``)."""
+    spline on FITPACK's knots whose weighted residual is ``s`` (lekalo's ``make_splrep``, its end
+    knots at ``xb``/``xe`` when they reach beyond the data; ``fit_periodic`` for
+    ``bc_type="periodic"``)."""
     bc_type = _validate_bc_type(bc_type)
     if s == 0:
         if t is not None or w is not None or nest is not None:
@@ -140,7 +160,8 @@ def make_splrep(
         return make_interp_spline(x, y, k=k, bc_type=bc_type)
     periodic = bc_type == "periodic"
     x, y, w, k = _validate_inputs(x, y, w, k, s, xb, xe, parametric=False, periodic=periodic)
-    tt, c = _smooth(x, y, w, k, s, t, nest, periodic)
+    domain = _domain(x, xb, xe, wider=t is None and nest is None and not periodic)
+    tt, c = _smooth(x, y, w, k, s, t, nest, periodic, domain)
     return BSpline(tt, c[:, 0], k)
 
 
@@ -164,5 +185,6 @@ def make_splprep(
             raise ValueError("s==0 is for interpolation only")
         return make_interp_spline(u, pts.T, k=k, axis=1), u
     u, pts, w, k = _validate_inputs(u, pts, w, k, s, ub, ue, parametric=True, periodic=periodic)
+    _domain(u, ub, ue, wider=False)
     tt, c = _smooth(u, pts, w, k, s, t, nest, periodic)
     return BSpline(tt, np.ascontiguousarray(c.T), k, axis=1), u
