@@ -19,6 +19,12 @@ for bit (both sides parse the same decimal text).
 knot into every curve (a modification that keeps the geometry), writes STEP and IGES; Open
 CASCADE reads lekalo's files and every curve and surface is compared with the original at 101 (11 x 11)
 parameters: the largest distance must be below 1e-12 of the object's size.
+
+`check` then does the same for faces: Open CASCADE builds solids (a box, a box with a round hole
+through it, converted to B-spline faces with pcurves) and writes them to STEP; lekalo reads their
+faces (`convert --faces`), writes them as JSON Lines and from there to STEP and IGES. Open
+CASCADE reads lekalo's files: the numbers of faces, wires and edges must be those of the
+original, BRepCheck_Analyzer must find the shapes valid, and the areas must agree within 1e-9.
 """
 import json
 import math
@@ -335,6 +341,85 @@ def check(lekalo):
             worst = max(worst, w)
     assert worst <= 1e-12, worst
     print(f"all files: largest relative distance {worst:.3g} (limit 1e-12)")
+    check_faces(lekalo)
+
+
+def occ_shape(path):
+    if path.endswith(".igs"):
+        from OCP.IGESControl import IGESControl_Reader
+        r = IGESControl_Reader()
+    else:
+        r = STEPControl_Reader()
+    assert r.ReadFile(path) == IFSelect_RetDone, path
+    r.TransferRoots()
+    return r.OneShape()
+
+
+def topology(shape):
+    """Faces, and the wires and edges of the faces (each counted once), whether BRepCheck finds the shape valid, area."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from OCP.TopAbs import TopAbs_WIRE
+    from OCP.TopExp import TopExp
+    try:
+        from OCP.TopTools import TopTools_IndexedMapOfShape
+    except ImportError:  # cadquery-ocp 8
+        from OCP.OCP.collections import (
+            IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as TopTools_IndexedMapOfShape)
+    faces = TopTools_IndexedMapOfShape()
+    TopExp.MapShapes_s(shape, TopAbs_FACE, faces)
+    counts = [faces.Extent()]
+    for kind in (TopAbs_WIRE, TopAbs_EDGE):
+        # those of the faces (a file may hold loose curves too)
+        m = TopTools_IndexedMapOfShape()
+        for i in range(1, faces.Extent() + 1):
+            TopExp.MapShapes_s(faces.FindKey(i), kind, m)
+        counts.append(m.Extent())
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(shape, props, 1e-10)
+    return (*counts, BRepCheck_Analyzer(shape).IsValid(), props.Mass())
+
+
+def check_faces(lekalo):
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
+    from OCP.gp import gp_Ax2, gp_Dir
+    box = BRepPrimAPI_MakeBox(10.0, 20.0, 5.0).Shape()
+    cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(5.0, 10.0, -1.0), gp_Dir(0.0, 0.0, 1.0)), 2.0, 7.0).Shape()
+    solids = {
+        "box": box,
+        "box_with_hole": BRepAlgoAPI_Cut(box, cyl).Shape(),
+    }
+    with tempfile.TemporaryDirectory() as tmp:
+        sources = []
+        for name, shape in solids.items():
+            path = os.path.join(tmp, name + ".step")
+            w = STEPControl_Writer()
+            w.Transfer(BRepBuilderAPI_NurbsConvert(shape, True).Shape(), STEPControl_AsIs)
+            assert w.Write(path) == IFSelect_RetDone
+            sources.append((name, path))
+        for name in ("surfaces_ap214_mm", "mixed_ap242_m"):
+            sources.append((name, os.path.join(DATA, name + ".step")))
+        for name, src in sources:
+            jl = os.path.join(tmp, name + "_faces.jsonl")
+            subprocess.run([lekalo, "-q", "convert", src, "--faces", "-o", jl], check=True)
+            orig = topology(occ_shape(src))
+            for ext in ("step", "igs"):
+                back = os.path.join(tmp, name + "_faces." + ext)
+                subprocess.run([lekalo, "-q", "convert", jl, "-o", back], check=True)
+                got = topology(occ_shape(back))
+                print(f"{name} -> lekalo {ext}: Open CASCADE reads {got[0]} faces, {got[1]} wires, "
+                      f"{got[2]} edges, valid {got[3]}, area {got[4]:.12g} "
+                      f"(original: {orig[0]}, {orig[1]}, {orig[2]}, valid {orig[3]}, area {orig[4]:.12g})")
+                assert got[0] == orig[0] and got[1] == orig[1], (name, ext, got, orig)
+                # IGES shares no edges between trimmed surfaces: each face has its own
+                if ext == "step":
+                    assert got[2] == orig[2], (name, ext, got, orig)
+                assert got[3], (name, ext, "BRepCheck_Analyzer finds the shape invalid")
+                assert abs(got[4] - orig[4]) <= 1e-9 * orig[4], (name, ext, got[4], orig[4])
+    print("faces: Open CASCADE reads lekalo's STEP and IGES faces with the original topology")
 
 
 if __name__ == "__main__":

@@ -17,9 +17,9 @@
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
 //! | STEP ISO 10303-21 AP203/AP214/AP242 B-spline/NURBS curves and surfaces | yes | yes | [`read_step`], [`StepWriter`] |
-//! | STEP faces (surfaces trimmed by loops of edges with pcurves), as `"type": "face"` envelopes | yes | — (JSON: yes) | [`read_step_faces`], [`face_to_json_line`], [`read_face`] |
+//! | STEP faces (surfaces trimmed by loops of edges with pcurves), as `"type": "face"` envelopes; written as a B-rep (shared edges, shells) | yes | yes | [`read_step_faces`], [`StepWriter::add_faces`], [`face_to_json_line`], [`read_face`] |
 //! | IGES 5.3 rational B-spline curves (126) and surfaces (128) | yes | yes | [`read_iges`], [`IgesWriter`] |
-//! | IGES trimmed and bounded surfaces (144, 143 with 142, 141 boundaries) as faces | yes | — | [`read_iges_faces`] |
+//! | IGES trimmed and bounded surfaces (144, 143 with 142, 141 boundaries) as faces; faces written as 144 | yes | yes | [`read_iges_faces`], [`IgesWriter::add_faces`] |
 //! | OBJ: tessellated surfaces with normals, polylines | — | yes | [`grid_to_obj`] |
 //!
 //! Outputs are written atomically ([`write_atomic`]) and never over an input.

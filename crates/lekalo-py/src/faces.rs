@@ -292,3 +292,62 @@ fn cad_dict<'py>(
     }
     Ok(out)
 }
+
+/// The faces of a Python sequence of `Face`.
+fn step_faces(faces: &[Bound<'_, PyFace>]) -> Vec<StepFace> {
+    faces.iter().map(|f| f.get().inner.clone()).collect()
+}
+
+/// Writes faces to a STEP file (AP214) as a boundary representation: each face an
+/// ``ADVANCED_FACE`` over its surface with its loops, an edge shared by two faces (the same
+/// control points, in the same or reverse order) one ``EDGE_CURVE`` with both faces' pcurves,
+/// the faces in a closed shell of a solid when they close a volume, else in an open shell of a
+/// surface model; names kept (docs/formats.md, "Writing faces"). ``name`` is the product's
+/// (default: the file's stem).
+#[pyfunction]
+#[pyo3(signature = (path, faces, *, name = None))]
+pub(crate) fn write_step(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    faces: Vec<Bound<'_, PyFace>>,
+    name: Option<String>,
+) -> PyResult<()> {
+    let list = step_faces(&faces);
+    let name = name.unwrap_or_else(|| stem(&path));
+    let text = py
+        .detach(|| {
+            let mut w = lekalo_io::StepWriter::new(&name);
+            w.add_faces(&list)?;
+            Ok::<_, lekalo_io::IoError>(w.finish("2000-01-01T00:00:00"))
+        })
+        .map_err(io_err)?;
+    lekalo_io::write_atomic(&path, text.as_bytes(), &[]).map_err(io_err)
+}
+
+/// Writes faces to an IGES file as trimmed surfaces (entity 144 over 128, each loop a 142 with
+/// its curves in space and in (u, v)); IGES shares no edges and keeps no orientation flag
+/// (docs/formats.md, section 6a).
+#[pyfunction]
+pub(crate) fn write_iges(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    faces: Vec<Bound<'_, PyFace>>,
+) -> PyResult<()> {
+    let list = step_faces(&faces);
+    let name = stem(&path);
+    let text = py
+        .detach(|| {
+            let mut w = lekalo_io::IgesWriter::new();
+            w.add_faces(&list)?;
+            Ok::<_, lekalo_io::IoError>(w.finish(&name, "20000101.000000"))
+        })
+        .map_err(io_err)?;
+    lekalo_io::write_atomic(&path, text.as_bytes(), &[]).map_err(io_err)
+}
+
+fn stem(path: &std::path::Path) -> String {
+    path.file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("lekalo")
+        .to_string()
+}

@@ -13,7 +13,8 @@
 //!   SciPy's `NdBSpline`), `interp` (interpolation, Hermite; SciPy's Hermite slopes in
 //!   `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
-//! - CAD files: `faces` (`read_step`, `read_iges`, `Face`: a surface trimmed by loops of edges);
+//! - CAD files: `faces` (`read_step`, `read_iges`, `write_step`, `write_iges`, `Face`: a surface
+//!   trimmed by loops of edges);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
 //! - many curves at once: `batch`;
 //! - derivatives of evaluation for automatic differentiation: `derivatives` (the kernels under
@@ -62,6 +63,8 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(objects::from_json, m)?)?;
     m.add_function(wrap_pyfunction!(faces::read_step, m)?)?;
     m.add_function(wrap_pyfunction!(faces::read_iges, m)?)?;
+    m.add_function(wrap_pyfunction!(faces::write_step, m)?)?;
+    m.add_function(wrap_pyfunction!(faces::write_iges, m)?)?;
     m.add_class::<faces::PyFace>()?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;

@@ -136,6 +136,35 @@ def test_faces_round_trip_through_json(tmp_path):
         lekalo.Face.from_json(text.replace('"type":"face"', '"type":"surface"'))
 
 
+def _same_face(a, b):
+    """The same surface (by its JSON), sense, and loops: edge curves and pcurves at their
+    control points and knots."""
+    assert type(a.surface) is type(b.surface)
+    assert a.surface.to_json() == b.surface.to_json()
+    assert a.same_sense == b.same_sense
+    for la, lb in zip([a.outer] + a.inner, [b.outer] + b.inner):
+        assert len(la) == len(lb)
+        for (ca, pa), (cb, pb) in zip(la, lb):
+            assert ca.to_json() == cb.to_json()
+            assert pa.to_json() == pb.to_json()
+
+
+def test_faces_write_to_step_and_iges_and_read_back(tmp_path):
+    f = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    lekalo.write_step(tmp_path / "again.step", [f])
+    text = (tmp_path / "again.step").read_text()
+    assert "ADVANCED_FACE('plate'" in text and "SURFACE_CURVE" in text and "OPEN_SHELL" in text
+    g = lekalo.read_step(tmp_path / "again.step", faces=True)["faces"]
+    assert len(g) == 1 and g[0].name == "plate"
+    _same_face(f, g[0])
+    lekalo.write_iges(tmp_path / "again.igs", [f])
+    h = lekalo.read_iges(tmp_path / "again.igs", faces=True)["faces"]
+    assert len(h) == 1
+    _same_face(f, h[0])
+    with pytest.raises(lekalo.InputError, match="no faces"):
+        lekalo.write_step(tmp_path / "none.step", [])
+
+
 def test_cylinder_faces_keep_their_edges_without_pcurves(tmp_path):
     r = lekalo.read_step(write(tmp_path, "tube.step", TUBE), faces=True)
     f = r["faces"][0]

@@ -160,10 +160,12 @@ fn faces_refuse_what_they_cannot_write_or_read() {
         .args(["convert", "--faces"])
         .arg(p(&d, "plate.step"))
         .arg("-o")
-        .arg(p(&d, "faces.step"))
+        .arg(p(&d, "faces.csv"))
         .assert()
         .code(2)
-        .stderr(contains("--faces writes JSON Lines"));
+        .stderr(contains(
+            "faces are written as jsonl (one face a line), step or iges",
+        ));
     lekalo()
         .args(["info", "--faces"])
         .arg(p(&d, "c.json"))
@@ -306,4 +308,73 @@ fn iges_trimmed_surfaces_convert_and_list_as_faces() {
         serde_json::json!([25])
     );
     assert_eq!(v["skipped"][0]["id"].as_u64(), Some(33));
+}
+
+/// The plate's faces as JSON Lines, then STEP and IGES from them, read back: the same faces.
+#[test]
+fn face_lines_convert_to_step_and_iges_and_back() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    let run = |args: &[&str]| lekalo().current_dir(d.path()).args(args).assert().success();
+    run(&["convert", "--faces", "plate.step", "-o", "faces.jsonl"]);
+    run(&["convert", "faces.jsonl", "-o", "faces.step"]);
+    run(&["convert", "faces.jsonl", "-o", "faces.igs"]);
+    let step = fs::read_to_string(p(&d, "faces.step")).unwrap();
+    for entity in [
+        "ADVANCED_FACE('plate'",
+        "FACE_OUTER_BOUND",
+        "FACE_BOUND",
+        "SURFACE_CURVE",
+        "PCURVE",
+        "OPEN_SHELL",
+        "SHELL_BASED_SURFACE_MODEL",
+    ] {
+        assert!(step.contains(entity), "{entity}: {step}");
+    }
+    // --faces of STEP straight to IGES, and the faces read from each file are the same
+    run(&["convert", "--faces", "faces.step", "-o", "again.igs"]);
+    run(&["convert", "--faces", "faces.step", "-o", "from-step.jsonl"]);
+    run(&["convert", "--faces", "faces.igs", "-o", "from-iges.jsonl"]);
+    let surfaces_and_loops = |name: &str| -> Vec<(Value, Value, Value)> {
+        fs::read_to_string(p(&d, name))
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let mut v: Value = serde_json::from_str(l).unwrap();
+                let strip = |lp: &mut Value| {
+                    for e in lp.as_array_mut().unwrap() {
+                        e.as_object_mut().unwrap().remove("edge_id");
+                    }
+                };
+                strip(&mut v["outer"]);
+                for lp in v["inner"].as_array_mut().unwrap() {
+                    strip(lp);
+                }
+                (v["surface"].clone(), v["outer"].clone(), v["inner"].clone())
+            })
+            .collect()
+    };
+    let original = surfaces_and_loops("faces.jsonl");
+    assert_eq!(original.len(), 1);
+    assert_eq!(surfaces_and_loops("from-step.jsonl"), original);
+    assert_eq!(surfaces_and_loops("from-iges.jsonl"), original);
+    // info lists the faces of the JSON Lines file
+    lekalo()
+        .current_dir(d.path())
+        .args(["info", "faces.jsonl"])
+        .assert()
+        .success()
+        .stdout(contains("faces           1 (1 with pcurves), 0 skipped").and(contains("plate")));
+    // a line that is not a face is named
+    fs::write(
+        p(&d, "mixed.jsonl"),
+        fs::read_to_string(p(&d, "faces.jsonl")).unwrap()
+            + r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]}"#,
+    )
+    .unwrap();
+    lekalo()
+        .current_dir(d.path())
+        .args(["convert", "mixed.jsonl", "-o", "m.step"])
+        .assert()
+        .code(2)
+        .stderr(contains("mixed.jsonl:2").and(contains("face")));
 }

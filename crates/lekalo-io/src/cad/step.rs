@@ -55,11 +55,13 @@ pub struct StepWriter {
     lines: Vec<String>,
     curves: Vec<usize>,
     surfaces: Vec<usize>,
+    /// The shape representation of the faces written by `add_faces` (`step_faces.rs`).
+    pub(crate) faces_rep: Option<usize>,
     name: String,
 }
 
 /// Ids of the fixed preamble entities.
-const CONTEXT_ID: usize = 14;
+pub(crate) const CONTEXT_ID: usize = 14;
 const PRODUCT_SHAPE_ID: usize = 8;
 
 impl StepWriter {
@@ -88,24 +90,43 @@ impl StepWriter {
             lines,
             curves: Vec::new(),
             surfaces: Vec::new(),
+            faces_rep: None,
             name: name.to_string(),
         }
     }
 
-    fn add(&mut self, entity: String) -> usize {
+    /// Appends an entity instance; returns its id.
+    pub(crate) fn add(&mut self, entity: String) -> usize {
         self.lines.push(entity);
         self.lines.len()
     }
 
-    fn add_point(&mut self, p: &[f64]) -> usize {
+    /// A `CARTESIAN_POINT` of 3 coordinates (fewer padded with zeros).
+    pub(crate) fn add_point(&mut self, p: &[f64]) -> usize {
+        self.add_point_in(p, 3)
+    }
+
+    /// A `CARTESIAN_POINT` of `coords` coordinates (`p` padded with zeros).
+    fn add_point_in(&mut self, p: &[f64], coords: usize) -> usize {
         let mut c = [0.0; 3];
         c[..p.len()].copy_from_slice(p);
-        self.add(format!(
-            "CARTESIAN_POINT('',({},{},{}))",
-            step_real(c[0]),
-            step_real(c[1]),
-            step_real(c[2])
-        ))
+        let xs: Vec<String> = c[..coords].iter().map(|&x| step_real(x)).collect();
+        self.add(format!("CARTESIAN_POINT('',({}))", xs.join(",")))
+    }
+
+    /// Fails once faces are written: a file holds faces or loose curves and surfaces.
+    fn check_no_faces(&self) -> IoResult<()> {
+        if self.faces_rep.is_some() {
+            return Err(IoError::Unsupported {
+                what: "a STEP file of faces holds only faces; write the curves and surfaces to another file".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// True when curves or surfaces were added with `add_curve` or `add_surface`.
+    pub(crate) fn has_loose_geometry(&self) -> bool {
+        !(self.curves.is_empty() && self.surfaces.is_empty())
     }
 
     /// Adds a curve; returns its entity id.
@@ -114,13 +135,34 @@ impl StepWriter {
     /// [`IoError::Unsupported`] for points of dimension above 3, inconsistent counts or
     /// non-positive weights.
     pub fn add_curve(&mut self, c: &CurveNet<'_>) -> IoResult<usize> {
+        self.check_no_faces()?;
+        let id = self.write_curve(c, 3)?;
+        self.curves.push(id);
+        Ok(id)
+    }
+
+    /// Writes a curve with points of `coords` coordinates (2 for curves in a surface's
+    /// parameters) without listing it in the file's geometric set; returns its entity id.
+    pub(crate) fn write_curve(&mut self, c: &CurveNet<'_>, coords: usize) -> IoResult<usize> {
         let n = c.points.len();
         check_dim(c.points.dim())?;
         check_counts("curve", c.knots.len(), n, c.degree)?;
         if let Some(w) = c.weights {
             check_weights(w, n)?;
         }
-        let ids: Vec<usize> = c.points.iter().map(|p| self.add_point(p)).collect();
+        if c.points.dim() > coords {
+            return Err(IoError::Unsupported {
+                what: format!(
+                    "a curve of {} coordinates where {coords} are written",
+                    c.points.dim()
+                ),
+            });
+        }
+        let ids: Vec<usize> = c
+            .points
+            .iter()
+            .map(|p| self.add_point_in(p, coords))
+            .collect();
         let (mults, knots) = distinct(c.knots);
         let pts = ref_list(&ids);
         let id = match c.weights {
@@ -134,7 +176,6 @@ impl StepWriter {
                 real_list(w)
             )),
         };
-        self.curves.push(id);
         Ok(id)
     }
 
@@ -143,6 +184,14 @@ impl StepWriter {
     /// # Errors
     /// As [`StepWriter::add_curve`], per direction.
     pub fn add_surface(&mut self, s: &SurfaceNet<'_>) -> IoResult<usize> {
+        self.check_no_faces()?;
+        let id = self.write_surface(s)?;
+        self.surfaces.push(id);
+        Ok(id)
+    }
+
+    /// Writes a surface without listing it in the file's geometric set; returns its entity id.
+    pub(crate) fn write_surface(&mut self, s: &SurfaceNet<'_>) -> IoResult<usize> {
         let g = &s.net;
         check_dim(g.dim)?;
         check_counts("surface (u direction)", s.knots.0.len(), g.nu, s.degrees.0)?;
@@ -176,7 +225,6 @@ impl StepWriter {
                 ))
             }
         };
-        self.surfaces.push(id);
         Ok(id)
     }
 
@@ -201,7 +249,9 @@ impl StepWriter {
     #[must_use]
     pub fn finish(mut self, timestamp: &str) -> String {
         let items: Vec<usize> = self.curves.iter().chain(&self.surfaces).copied().collect();
-        let rep = if self.surfaces.is_empty() {
+        let rep = if let Some(rep) = self.faces_rep {
+            rep
+        } else if self.surfaces.is_empty() {
             let set = self.add(format!("GEOMETRIC_CURVE_SET('',{})", ref_list(&items)));
             self.add(format!(
                 "GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#{set}),#{CONTEXT_ID})"
@@ -323,7 +373,7 @@ pub fn step_real(x: f64) -> String {
 
 /// A STRING token: single-quoted, quotes doubled, non-ASCII replaced by `?` (Part 21 strings
 /// are ISO 8859-1 without the `\X2\` encoding that not every reader handles).
-fn step_string(s: &str) -> String {
+pub(crate) fn step_string(s: &str) -> String {
     let clean: String = s
         .chars()
         .map(|c| {

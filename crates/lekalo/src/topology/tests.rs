@@ -181,3 +181,46 @@ proptest! {
         prop_assert_eq!(winding_number(&back, x, y), -w);
     }
 }
+
+#[test]
+fn shell_shares_edges_run_both_ways_and_closed_edges_keep_one_vertex() {
+    // the same square twice, once each way round: every edge shared, used once each way
+    let a = Face::new(
+        plane(),
+        square(false),
+        vec![hole(false)],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let b = Face::new(plane(), square(true), vec![], false, LOOP_CLOSURE_RTOL).unwrap();
+    let shell = Shell::new(&[&a, &b]).unwrap();
+    // 4 sides shared by both faces, and the hole's circle used by the first only
+    assert_eq!(shell.edges().len(), 5);
+    assert_eq!(
+        shell.vertices().len(),
+        5,
+        "4 corners and the circle's one vertex"
+    );
+    let circle = &shell.edges()[4];
+    assert_eq!(circle.vertices[0], circle.vertices[1]);
+    for e in &shell.edges()[..4] {
+        assert_eq!(e.uses.len(), 2);
+        assert_eq!((e.uses[0].1, e.uses[1].1), (true, false));
+        assert_eq!(e.uses[1].0.face, 1);
+    }
+    let first = EdgeUse {
+        face: 0,
+        lp: 0,
+        edge: 0,
+    };
+    assert_eq!(shell.edge_of(first), Some((0, true)));
+    // the circle is used once: not closed; without it, every edge is used once each way
+    assert!(!shell.is_closed());
+    let a = Face::new(plane(), square(false), vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    assert!(Shell::new(&[&a, &b]).unwrap().is_closed());
+    // one face alone is open, and a third use of an edge starts a new edge
+    assert!(!Shell::new(&[&a]).unwrap().is_closed());
+    let shell = Shell::new(&[&a, &b, &a]).unwrap();
+    assert_eq!(shell.edges().len(), 8);
+}

@@ -164,26 +164,71 @@ pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRea
     Ok(r)
 }
 
-/// `convert --faces`: the faces of a STEP or IGES file as JSON Lines, one face envelope a line
-/// (docs/formats.md, "Faces").
+/// The faces of a JSON Lines file of face envelopes (docs/formats.md, "Faces"; its first
+/// object is a `"type": "face"`), or `None` for any other input. Blank lines and `#` comments
+/// are skipped; a line that is not a face is an error naming the line.
+pub(crate) fn face_lines(path: &Path) -> Result<Option<Vec<lekalo_io::StepFace>>> {
+    if !is_json_lines(path, false) || path.as_os_str() == "-" {
+        return Ok(None);
+    }
+    let (text, name) = lekalo_io::read_input(path)?;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+        .peekable();
+    match lines.peek() {
+        Some((_, first)) if lekalo_io::envelope_type(first).as_deref() == Some("face") => {}
+        _ => return Ok(None),
+    }
+    let faces = lines
+        .map(|(i, l)| lekalo_io::read_face(l, &format!("{name}:{}", i + 1)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Some(faces))
+}
+
+/// `convert --faces` (and `convert` of face JSON Lines): the faces of a STEP or IGES file, or
+/// of a JSON Lines file of faces, written as JSON Lines (one face envelope a line), STEP (a
+/// boundary representation: shared edges once, a closed shell when the faces close a volume)
+/// or IGES (trimmed surfaces, entity 144).
 pub(crate) fn convert_faces(
     input: &Path,
+    faces: Option<Vec<lekalo_io::StepFace>>,
     output: Option<&Path>,
     to: Option<&str>,
+    (name, timestamp): (&str, &str),
     cx: &Context,
 ) -> Result<()> {
     let format = format_of(to, output, "jsonl");
-    if format != "jsonl" {
+    if !matches!(format.as_str(), "jsonl" | "step" | "iges" | "igs") {
         return bad_input(format!(
-            "--faces writes JSON Lines (one face a line), not \"{format}\": use -o FILE.jsonl or --to jsonl"
+            "faces are written as jsonl (one face a line), step or iges, not \"{format}\": use -o FILE.jsonl, FILE.step or FILE.igs"
         ));
     }
-    let r = read_faces(input, cx)?;
-    let text: String = r
-        .faces
-        .iter()
-        .map(|f| lekalo_io::face_to_json_line(f) + "\n")
-        .collect();
+    let faces = match faces {
+        Some(f) => f,
+        None => read_faces(input, cx)?.faces,
+    };
+    if faces.is_empty() && format != "jsonl" {
+        return bad_input(format!("{}: no faces to write", input.display()));
+    }
+    let text: String = match format.as_str() {
+        "step" => {
+            let mut w = StepWriter::new(name);
+            w.add_faces(&faces)?;
+            w.finish(timestamp)
+        }
+        "iges" | "igs" => {
+            let mut w = lekalo_io::IgesWriter::new();
+            w.add_faces(&faces)?;
+            w.finish(name, "20000101.000000")
+        }
+        _ => faces
+            .iter()
+            .map(|f| lekalo_io::face_to_json_line(f) + "\n")
+            .collect(),
+    };
     emit(output, text.as_bytes(), &[input.to_path_buf()], cx)
 }
 

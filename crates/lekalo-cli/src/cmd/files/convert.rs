@@ -42,6 +42,8 @@ Examples:
   lekalo convert surface.json -o grid.csv --samples 400
   lekalo convert part.step -o curves.jsonl
   lekalo convert part.step -o faces.jsonl --faces
+  lekalo convert faces.jsonl -o faces.step
+  lekalo convert faces.jsonl -o faces.igs
   lekalo convert curves.jsonl -o again.step
   lekalo convert curves.jsonl -o again.igs
   lekalo convert again.igs -o from-iges.jsonl
@@ -56,7 +58,11 @@ its outer and inner loops, each edge's 3-D curve and pcurve) are written as JSON
 \"face\" object a line; faces that cannot be read are listed on stderr with the reason. IGES (.igs, .iges): entities 126 (rational B-spline curve) and 128
 (rational B-spline surface) are written and read; with --faces, its trimmed and bounded surfaces
 (144 and 143, boundaries 142 and 141 with their parameter-space curves, composite curves 102
-split into edges) are written as faces.")]
+split into edges) are written as faces. A JSON Lines file of faces (or --faces of a STEP or IGES
+file) converts to step (ADVANCED_FACEs with shared EDGE_CURVEs and VERTEX_POINTs, pcurves in
+SURFACE_CURVEs, a CLOSED_SHELL of a MANIFOLD_SOLID_BREP when the faces close a volume, else an
+OPEN_SHELL of a SHELL_BASED_SURFACE_MODEL) and iges (trimmed surfaces 144 over 128 with
+boundaries 142).")]
 pub(crate) struct ConvertArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -73,8 +79,8 @@ pub(crate) struct ConvertArgs {
     #[arg(long)]
     jsonl: bool,
     /// Write the faces of a STEP file, or the trimmed surfaces of an IGES file (surface, loops
-    /// of edges with their pcurves) as JSON Lines, one face a line, instead of its curves and
-    /// surfaces.
+    /// of edges with their pcurves) instead of its curves and surfaces: as JSON Lines (one face
+    /// a line), STEP or IGES.
     #[arg(long)]
     faces: bool,
 }
@@ -93,8 +99,16 @@ fn step_name(a: &ConvertArgs) -> String {
 }
 
 pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
-    if a.faces {
-        return crate::cmd::cad::convert_faces(&a.input, a.output.as_deref(), a.to.as_deref(), cx);
+    let face_lines = crate::cmd::cad::face_lines(&a.input)?;
+    if a.faces || face_lines.is_some() {
+        return crate::cmd::cad::convert_faces(
+            &a.input,
+            face_lines,
+            a.output.as_deref(),
+            a.to.as_deref(),
+            (&step_name(a), STEP_TIMESTAMP),
+            cx,
+        );
     }
     let parquet = crate::items::is_parquet;
     if parquet(&a.input) || a.output.as_deref().is_some_and(parquet) {

@@ -26,7 +26,9 @@ Examples:
   lekalo info surface.json          # degrees, knots u and v, net, domain, boxes
   lekalo info spline.pp.json        # order, breakpoints, continuity at each breakpoint
   lekalo info many.jsonl            # one JSON line per object, in parallel
-  lekalo info part.step --faces     # faces: surface, loops and their edges, pcurves")]
+  lekalo info part.step --faces     # faces: surface, loops and their edges, pcurves
+
+A JSON Lines file of faces (convert --faces) is listed as --faces lists a STEP file's faces.")]
 pub(crate) struct InfoArgs {
     /// Object file (JSON; JSON Lines for batches; `-` for standard input).
     input: PathBuf,
@@ -195,8 +197,20 @@ fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
 
 pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
     let inputs = vec![a.input.clone()];
-    if a.faces {
-        let r = crate::cmd::files::cad::read_faces(&a.input, cx)?;
+    let face_lines = crate::cmd::files::cad::face_lines(&a.input)?;
+    if a.faces || face_lines.is_some() {
+        let r = match face_lines {
+            Some(faces) => lekalo_io::StepRead {
+                shapes: Vec::new(),
+                skipped: Vec::new(),
+                faces,
+                skipped_faces: Vec::new(),
+                schema: None,
+                length_unit: "millimetre".into(),
+                scale_to_mm: 1.0,
+            },
+            None => crate::cmd::files::cad::read_faces(&a.input, cx)?,
+        };
         return crate::report::print_report(
             a.json,
             &faces_json(&r),

@@ -57,7 +57,7 @@ fn plate(faces: &[&str]) -> String {
     }
     let raw = |w: &mut IgesWriter, ty: u32, text: &str| {
         let t = text.split(',').map(String::from).collect();
-        w.entities.push((ty, 0, t));
+        w.entities.push((ty, 0, t, "00000000"));
     };
     raw(&mut w, 102, "102,4,3,5,7,9");
     raw(&mut w, 102, "102,4,11,13,15,17");
@@ -222,8 +222,12 @@ fn triangle(top: [[f64; 3]; 2]) -> String {
         (142, "142,0,1,19,17,1"),
         (144, "144,1,1,0,21"),
     ] {
-        w.entities
-            .push((ty, 0, text.split(',').map(String::from).collect()));
+        w.entities.push((
+            ty,
+            0,
+            text.split(',').map(String::from).collect(),
+            "00000000",
+        ));
     }
     w.finish("pole.igs", "20000101.000000")
 }

@@ -18,6 +18,7 @@
 //! | file | subject |
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
+//! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
 //! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102) as faces ([`read_iges_faces`]) |
 
 use std::fmt::Write as _;
@@ -25,6 +26,7 @@ use std::fmt::Write as _;
 use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
 mod faces;
+mod faces_write;
 mod splines;
 
 pub use faces::read_iges_faces;
@@ -59,9 +61,13 @@ pub struct IgesRead {
 /// Builds one IGES file from curves and surfaces.
 #[derive(Debug, Clone, Default)]
 pub struct IgesWriter {
-    /// `(entity type, form, parameter text)` per entity.
-    entities: Vec<(u32, u32, Vec<String>)>,
+    /// `(entity type, form, parameter text, status number)` per entity.
+    entities: Vec<(u32, u32, Vec<String>, &'static str)>,
 }
+
+/// The status number of an independent entity (IGES 5.3 §2.2.4.4.9: visible, independent,
+/// geometry use, top-down).
+const INDEPENDENT: &str = "00000000";
 
 fn pad3(p: &[f64]) -> [f64; 3] {
     let mut c = [0.0; 3];
@@ -92,6 +98,19 @@ impl IgesWriter {
     /// # Errors
     /// [`IoError::Unsupported`] for points of dimension above 3.
     pub fn add_object(&mut self, obj: &Object) -> IoResult<()> {
+        let t = Self::curve_params(obj)?;
+        self.push(126, t, INDEPENDENT);
+        Ok(())
+    }
+
+    /// Appends an entity of form 0; returns its directory entry's sequence number.
+    pub(crate) fn push(&mut self, ty: u32, params: Vec<String>, status: &'static str) -> usize {
+        self.entities.push((ty, 0, params, status));
+        2 * self.entities.len() - 1
+    }
+
+    /// The parameters of entity 126 for `obj`.
+    pub(crate) fn curve_params(obj: &Object) -> IoResult<Vec<String>> {
         check_dim(obj.dim())?;
         let p = obj.degree();
         let knots = obj.knots();
@@ -114,8 +133,7 @@ impl IgesWriter {
         }
         t.extend([step_real(a), step_real(b)]);
         t.extend(["0.", "0.", if planar { "1." } else { "0." }].map(String::from));
-        self.entities.push((126, 0, t));
-        Ok(())
+        Ok(t)
     }
 
     /// Adds a surface as entity 128.
@@ -123,6 +141,13 @@ impl IgesWriter {
     /// # Errors
     /// [`IoError::Unsupported`] for points of dimension above 3.
     pub fn add_surface(&mut self, s: &Surface) -> IoResult<()> {
+        let t = Self::surface_params(s)?;
+        self.push(128, t, INDEPENDENT);
+        Ok(())
+    }
+
+    /// The parameters of entity 128 for `s`.
+    pub(crate) fn surface_params(s: &Surface) -> IoResult<Vec<String>> {
         check_dim(s.dim())?;
         let (pu, pv) = s.degrees();
         let (nu, nv) = s.net_size();
@@ -167,8 +192,7 @@ impl IgesWriter {
             }
         }
         t.extend([u0, u1, v0, v1].map(step_real));
-        self.entities.push((128, 0, t));
-        Ok(())
+        Ok(t)
     }
 
     /// The complete file; `name` is the file name in the Global section, `timestamp` its date
@@ -184,7 +208,7 @@ impl IgesWriter {
         let max_coord = self
             .entities
             .iter()
-            .flat_map(|(_, _, t)| t.iter().filter_map(|x| x.parse::<f64>().ok()))
+            .flat_map(|(_, _, t, _)| t.iter().filter_map(|x| x.parse::<f64>().ok()))
             .fold(0.0_f64, |m, x| m.max(x.abs()));
         let global = [
             h(","),
@@ -221,7 +245,7 @@ impl IgesWriter {
         let mut dir = String::new();
         let mut par = String::new();
         let mut pseq = 1;
-        for (k, (ty, form, t)) in self.entities.iter().enumerate() {
+        for (k, (ty, form, t, status)) in self.entities.iter().enumerate() {
             let de = 2 * k + 1;
             let lines = pack(t, 64);
             let start = pseq;
@@ -231,8 +255,8 @@ impl IgesWriter {
             }
             let _ = writeln!(
                 dir,
-                "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{de:>7}",
-                0, 0, 0, 0, 0, 0, "00000000"
+                "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{status:>8}D{de:>7}",
+                0, 0, 0, 0, 0, 0
             );
             let _ = writeln!(
                 dir,

@@ -4,7 +4,7 @@
 use super::*;
 use crate::error::IoError;
 
-fn file(data: &str) -> String {
+pub(crate) fn file(data: &str) -> String {
     format!(
         "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n"
     )
@@ -32,7 +32,7 @@ fn ends(c: &lekalo::Curve) -> (Vec<f64>, Vec<f64>) {
 
 /// A square plate 10 × 10 on the plane z = 0 with a hole of radius 2 about (5, 5): the top and
 /// left edges are used backwards, the hole's circle is one closed edge used backwards.
-pub(super) const PLATE: &str = "
+pub(crate) const PLATE: &str = "
 #1=CARTESIAN_POINT('',(0.,0.,0.));
 #2=DIRECTION('',(0.,0.,1.));
 #3=DIRECTION('',(1.,0.,0.));
@@ -121,7 +121,7 @@ fn plate_in_metres_is_in_millimetres() {
 
 /// A bilinear B-spline patch over (0..10) × (0..10) with its corner (10, 10) raised, bounded by
 /// its four boundary curves with pcurves; one surface curve is a complex instance.
-pub(super) const PATCH: &str = "
+pub(crate) const PATCH: &str = "
 #101=CARTESIAN_POINT('',(0.,0.,0.));
 #102=CARTESIAN_POINT('',(0.,10.,0.));
 #103=CARTESIAN_POINT('',(10.,0.,0.));
@@ -205,7 +205,7 @@ fn bspline_patch_keeps_its_pcurves_in_2d() {
 
 /// A cylinder of radius 1 and height 2: the bottom and top circles and the seam, used up and
 /// down.
-pub(super) const TUBE: &str = "
+pub(crate) const TUBE: &str = "
 #150=(GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() REPRESENTATION_CONTEXT('',''));
 #201=CARTESIAN_POINT('',(0.,0.,0.));
 #202=DIRECTION('',(0.,0.,1.));

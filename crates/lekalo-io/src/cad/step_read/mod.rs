@@ -44,7 +44,7 @@ mod driver;
 mod entities;
 mod faces;
 #[cfg(test)]
-mod faces_tests;
+pub(crate) mod faces_tests;
 mod parse;
 #[cfg(test)]
 mod tests;
