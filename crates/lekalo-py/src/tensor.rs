@@ -5,13 +5,14 @@
 //! `(..., *trailing)`.
 
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
-    Points, PointsRef, TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares_with,
+    tensor_scattered_smoothing, KnotLimit, KnotVector, Points, PointsRef, RankDeficiency,
+    ScatteredSmoothingOptions, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
+use crate::convert::{array, check_size, filled, floats, vec1, vec_array, FloatArray};
 use crate::error::{bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
@@ -494,22 +495,29 @@ pub(crate) fn fit_tensor_grid_smoothing(
     ))
 }
 
-/// The least-squares tensor-product spline through scattered points with given knots
-/// (`tensor_scattered_least_squares`,
-/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
-/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
-/// weights `w` (one per point). Returns `(spline, residuals, weighted_rss)`, as
-/// `fit_surface_scattered`; SciPy's `LSQBivariateSpline` for `N = 2`.
-#[pyfunction]
-#[pyo3(signature = (x, y, t, k = None, *, w = None))]
-pub(crate) fn fit_tensor_scattered<'py>(
-    py: Python<'py>,
+/// The rank choice of the scattered fits: `eps = None` refuses a control point the data do not
+/// determine, a number is FITPACK's minimal-norm solution with that rank threshold.
+fn rank_arg(eps: Option<f64>) -> RankDeficiency {
+    eps.map_or(RankDeficiency::Refuse, |eps| RankDeficiency::MinimumNorm {
+        eps,
+    })
+}
+
+/// Points `x` of shape `(npts, N)` and values `y` of shape `(npts, *trailing)` of a scattered
+/// fit: the flat arrays, `N`, the trailing shape and the weights.
+type Scattered<'py> = (
+    FloatArray<'py>,
+    FloatArray<'py>,
+    usize,
+    Vec<usize>,
+    Option<FloatArray<'py>>,
+);
+
+fn scattered_args<'py>(
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
-    t: &Bound<'py, PyAny>,
-    k: Option<&Bound<'py, PyAny>>,
     w: Option<&Bound<'py, PyAny>>,
-) -> PyResult<(PyTensorBSpline, Bound<'py, PyAny>, f64)> {
+) -> PyResult<Scattered<'py>> {
     let xa = floats(x, "x")?;
     let xshape = xa.shape();
     let [npts, n] = xshape[..] else {
@@ -517,6 +525,39 @@ pub(crate) fn fit_tensor_scattered<'py>(
             "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
         )));
     };
+    let ya = floats(y, "y")?;
+    let yshape = ya.shape();
+    if yshape.first() != Some(&npts) {
+        return Err(bad(format!(
+            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
+        )));
+    }
+    let trailing = yshape[1..].to_vec();
+    let wa = w.map(|w| floats(w, "w")).transpose()?;
+    Ok((xa, ya, n, trailing, wa))
+}
+
+/// The least-squares tensor-product spline through scattered points with given knots
+/// (`tensor_scattered_least_squares_with`,
+/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
+/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
+/// weights `w` (one per point). `eps = None` refuses a control point the data do not determine
+/// (`InputError` naming it); a number in `(0, 1)` gives FITPACK's minimal-norm solution, the
+/// pivots at most `sqrt(eps)` times the largest taken as zero
+/// (`docs/theory/tensor.md#rank-deficient-least-squares`). Returns
+/// `(spline, residuals, weighted_rss, rank)`; SciPy's `LSQBivariateSpline` for `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (x, y, t, k = None, *, w = None, eps = None))]
+pub(crate) fn fit_tensor_scattered<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    k: Option<&Bound<'py, PyAny>>,
+    w: Option<&Bound<'py, PyAny>>,
+    eps: Option<f64>,
+) -> PyResult<(PyTensorBSpline, Bound<'py, PyAny>, f64, usize)> {
+    let (xa, ya, n, trailing, wa) = scattered_args(x, y, w)?;
     let knots = knot_vectors_arg(t)?;
     if knots.len() != n {
         return Err(bad(format!(
@@ -528,22 +569,16 @@ pub(crate) fn fit_tensor_scattered<'py>(
         Some(k) => degrees_arg(k, n)?,
         None => vec![3; n],
     };
-    let ya = floats(y, "y")?;
-    let yshape = ya.shape();
-    if yshape.first() != Some(&npts) {
-        return Err(bad(format!(
-            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
-        )));
-    }
-    let trailing = yshape[1..].to_vec();
     let dim: usize = trailing.iter().product();
     let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
     let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
-    let wa = w.map(|w| floats(w, "w")).transpose()?;
     let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
     let f = py
-        .detach(|| tensor_scattered_least_squares(xs, ys, wv, &degrees, knots))
-        .map_err(|e| fit_err(e, "x"))?;
+        .detach(|| tensor_scattered_least_squares_with(xs, ys, wv, &degrees, knots, rank_arg(eps)))
+        .map_err(|e| match e {
+            lekalo::Error::InvalidArgument { what: "eps", .. } => named("eps", &e),
+            other => fit_err(other, "x"),
+        })?;
     Ok((
         PyTensorBSpline {
             inner: f.spline,
@@ -551,6 +586,89 @@ pub(crate) fn fit_tensor_scattered<'py>(
         },
         vec_array(py, &f.residuals),
         f.weighted_rss,
+        f.rank,
+    ))
+}
+
+/// `(spline, residual, p, rank, limit)` of `fit_tensor_scattered_smoothing`.
+type ScatteredSmoothing = (
+    PyTensorBSpline,
+    f64,
+    Option<f64>,
+    usize,
+    Option<&'static str>,
+);
+
+/// The smoothing spline of scattered data (`tensor_scattered_smoothing`,
+/// `docs/theory/tensor.md#smoothing-scattered-data`): the tensor-product spline with FITPACK
+/// `surfit`'s knots whose weighted residual sum of squares is `s` (within 0.1 %, never above).
+/// Points `x` of shape `(npts, N)`, values `y` of shape `(npts, *trailing)`, degrees `k` (one
+/// integer or one per variable, default 3), weights `w` (one per point, multiplying the squared
+/// residual), `bbox` one `(a, b)` per variable (default: the range of the points), `max_knots`
+/// the largest knot count per variable (end knots included, FITPACK's `nxest`), `eps` the rank
+/// choice of `fit_tensor_scattered`. Returns `(spline, residual, p, rank, limit)`: `p` the
+/// smoothing weight (`None` for a least-squares result), `rank` that of the last system, and
+/// `limit` why the knot rounds stopped above `s` (`None`, `"max-knots"`,
+/// `"coefficients-exceed-data"` or `"knots-coincide"`). SciPy's `SmoothBivariateSpline` for
+/// `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (x, y, s, k = None, *, w = None, bbox = None, max_knots = None, eps = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_tensor_scattered_smoothing<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    s: f64,
+    k: Option<&Bound<'py, PyAny>>,
+    w: Option<&Bound<'py, PyAny>>,
+    bbox: Option<Vec<(f64, f64)>>,
+    max_knots: Option<Vec<usize>>,
+    eps: Option<f64>,
+) -> PyResult<ScatteredSmoothing> {
+    let (xa, ya, n, trailing, wa) = scattered_args(x, y, w)?;
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    let dim: usize = trailing.iter().product();
+    let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
+    let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
+    let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
+    let options = ScatteredSmoothingOptions {
+        bbox,
+        max_knots,
+        rank: rank_arg(eps),
+    };
+    let f = py
+        .detach(|| tensor_scattered_smoothing(xs, ys, wv, &degrees, s, &options))
+        .map_err(|e| match e {
+            lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
+            lekalo::Error::EmptyDomain { .. } => named("bbox", &e),
+            lekalo::Error::InvalidArgument { what, .. } if what == "eps" || what == "max_knots" => {
+                named(what, &e)
+            }
+            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("bbox") => {
+                named("bbox", &e)
+            }
+            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("max_knots") => {
+                named("max_knots", &e)
+            }
+            other => fit_err(other, "x"),
+        })?;
+    let limit = f.limit.map(|l| match l {
+        KnotLimit::MaxKnots => "max-knots",
+        KnotLimit::CoefficientsExceedData => "coefficients-exceed-data",
+        KnotLimit::KnotsCoincide => "knots-coincide",
+    });
+    Ok((
+        PyTensorBSpline {
+            inner: f.spline,
+            trailing,
+        },
+        f.residual,
+        f.p,
+        f.rank,
+        limit,
     ))
 }
 
@@ -559,6 +677,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_grid_smoothing, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_tensor_scattered_smoothing, m)?)?;
     Ok(())
 }
 
