@@ -503,21 +503,8 @@ fn rank_arg(eps: Option<f64>) -> RankDeficiency {
     })
 }
 
-/// Points `x` of shape `(npts, N)` and values `y` of shape `(npts, *trailing)` of a scattered
-/// fit: the flat arrays, `N`, the trailing shape and the weights.
-type Scattered<'py> = (
-    FloatArray<'py>,
-    FloatArray<'py>,
-    usize,
-    Vec<usize>,
-    Option<FloatArray<'py>>,
-);
-
-fn scattered_args<'py>(
-    x: &Bound<'py, PyAny>,
-    y: &Bound<'py, PyAny>,
-    w: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Scattered<'py>> {
+/// Points `x` of shape `(npts, N)` of a scattered fit: the array, `npts` and `N`.
+fn points_arg<'py>(x: &Bound<'py, PyAny>) -> PyResult<(FloatArray<'py>, usize, usize)> {
     let xa = floats(x, "x")?;
     let xshape = xa.shape();
     let [npts, n] = xshape[..] else {
@@ -525,6 +512,11 @@ fn scattered_args<'py>(
             "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
         )));
     };
+    Ok((xa, npts, n))
+}
+
+/// Values `y` of shape `(npts, *trailing)` of a scattered fit: the array and `trailing`.
+fn values_arg<'py>(y: &Bound<'py, PyAny>, npts: usize) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
     let ya = floats(y, "y")?;
     let yshape = ya.shape();
     if yshape.first() != Some(&npts) {
@@ -533,8 +525,7 @@ fn scattered_args<'py>(
         )));
     }
     let trailing = yshape[1..].to_vec();
-    let wa = w.map(|w| floats(w, "w")).transpose()?;
-    Ok((xa, ya, n, trailing, wa))
+    Ok((ya, trailing))
 }
 
 /// The least-squares tensor-product spline through scattered points with given knots
@@ -557,7 +548,7 @@ pub(crate) fn fit_tensor_scattered<'py>(
     w: Option<&Bound<'py, PyAny>>,
     eps: Option<f64>,
 ) -> PyResult<(PyTensorBSpline, Bound<'py, PyAny>, f64, usize)> {
-    let (xa, ya, n, trailing, wa) = scattered_args(x, y, w)?;
+    let (xa, npts, n) = points_arg(x)?;
     let knots = knot_vectors_arg(t)?;
     if knots.len() != n {
         return Err(bad(format!(
@@ -569,9 +560,11 @@ pub(crate) fn fit_tensor_scattered<'py>(
         Some(k) => degrees_arg(k, n)?,
         None => vec![3; n],
     };
+    let (ya, trailing) = values_arg(y, npts)?;
     let dim: usize = trailing.iter().product();
     let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
     let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
+    let wa = w.map(|w| floats(w, "w")).transpose()?;
     let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
     let f = py
         .detach(|| tensor_scattered_least_squares_with(xs, ys, wv, &degrees, knots, rank_arg(eps)))
@@ -625,7 +618,9 @@ pub(crate) fn fit_tensor_scattered_smoothing<'py>(
     max_knots: Option<Vec<usize>>,
     eps: Option<f64>,
 ) -> PyResult<ScatteredSmoothing> {
-    let (xa, ya, n, trailing, wa) = scattered_args(x, y, w)?;
+    let (xa, npts, n) = points_arg(x)?;
+    let (ya, trailing) = values_arg(y, npts)?;
+    let wa = w.map(|w| floats(w, "w")).transpose()?;
     let degrees = match k {
         Some(k) => degrees_arg(k, n)?,
         None => vec![3; n],

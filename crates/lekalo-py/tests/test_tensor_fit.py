@@ -62,7 +62,7 @@ def test_scattered_fit_matches_lsqbivariatespline_with_weights():
     z = np.exp(-pts[:, 0]) * np.sin(4 * pts[:, 1]) + 0.02 * rng.standard_normal(400)
     w = rng.uniform(0.5, 2.0, 400)
     tx, ty = [0.25, 0.5, 0.75], [0.33, 0.66]
-    s, residuals, rss = lekalo.fit_tensor_scattered(
+    s, residuals, rss, _ = lekalo.fit_tensor_scattered(
         pts, z, [clamped(3, tx), clamped(3, ty)], k=3, w=w
     )
     # FITPACK minimises Σ (w_k r_k)², lekalo Σ w_k r_k²: FITPACK's weights are their roots
@@ -88,7 +88,7 @@ def test_scattered_fit_in_three_variables_is_the_least_squares_solution():
     y = np.stack([np.cos(x[:, 0] * x[:, 1]) + x[:, 2] ** 3, x.sum(axis=1)], axis=-1)
     k = (2, 3, 1)
     t = [clamped(2, [0.0, 1.0], -1, 2), clamped(3, [0.5], -1, 2), clamped(1, [-0.5, 0.5, 1.5], -1, 2)]
-    s, residuals, rss = lekalo.fit_tensor_scattered(x, y, t, k=k)
+    s, residuals, rss, _ = lekalo.fit_tensor_scattered(x, y, t, k=k)
     assert s.c.shape == (5, 5, 5, 2) and residuals.shape == (1500,)
     a = design_matrix(x, t, k)
     c, *_ = np.linalg.lstsq(a, y, rcond=None)
