@@ -6,13 +6,14 @@
 
 use lekalo::tensor::tensor_design_matrix as lk_design_matrix;
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
-    Points, PointsRef, TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares_with,
+    tensor_scattered_smoothing, KnotLimit, KnotVector, Points, PointsRef, RankDeficiency,
+    ScatteredSmoothingOptions, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, vec1, vec_array};
+use crate::convert::{array, check_size, filled, floats, vec1, vec_array, FloatArray};
 use crate::error::{bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
@@ -495,22 +496,16 @@ pub(crate) fn fit_tensor_grid_smoothing(
     ))
 }
 
-/// The least-squares tensor-product spline through scattered points with given knots
-/// (`tensor_scattered_least_squares`,
-/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
-/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
-/// weights `w` (one per point). Returns `(spline, residuals, weighted_rss)`, as
-/// `fit_surface_scattered`; SciPy's `LSQBivariateSpline` for `N = 2`.
-#[pyfunction]
-#[pyo3(signature = (x, y, t, k = None, *, w = None))]
-pub(crate) fn fit_tensor_scattered<'py>(
-    py: Python<'py>,
-    x: &Bound<'py, PyAny>,
-    y: &Bound<'py, PyAny>,
-    t: &Bound<'py, PyAny>,
-    k: Option<&Bound<'py, PyAny>>,
-    w: Option<&Bound<'py, PyAny>>,
-) -> PyResult<(PyTensorBSpline, Bound<'py, PyAny>, f64)> {
+/// The rank choice of the scattered fits: `eps = None` refuses a control point the data do not
+/// determine, a number is FITPACK's minimal-norm solution with that rank threshold.
+fn rank_arg(eps: Option<f64>) -> RankDeficiency {
+    eps.map_or(RankDeficiency::Refuse, |eps| RankDeficiency::MinimumNorm {
+        eps,
+    })
+}
+
+/// Points `x` of shape `(npts, N)` of a scattered fit: the array, `npts` and `N`.
+fn points_arg<'py>(x: &Bound<'py, PyAny>) -> PyResult<(FloatArray<'py>, usize, usize)> {
     let xa = floats(x, "x")?;
     let xshape = xa.shape();
     let [npts, n] = xshape[..] else {
@@ -518,6 +513,46 @@ pub(crate) fn fit_tensor_scattered<'py>(
             "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
         )));
     };
+    Ok((xa, npts, n))
+}
+
+/// Values `y` of shape `(npts, *trailing)` of a scattered fit: the array and `trailing`.
+fn values_arg<'py>(y: &Bound<'py, PyAny>, npts: usize) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
+    let ya = floats(y, "y")?;
+    let yshape = ya.shape();
+    if yshape.first() != Some(&npts) {
+        return Err(bad(format!(
+            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
+        )));
+    }
+    let trailing = yshape[1..].to_vec();
+    Ok((ya, trailing))
+}
+
+/// The least-squares tensor-product spline through scattered points with given knots
+/// (`tensor_scattered_least_squares_with`,
+/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
+/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
+/// weights `w` (one per point). `eps = None` refuses a control point the data do not determine
+/// (`InputError` naming it); a number in `(0, 1)` gives FITPACK's minimal-norm solution, the
+/// pivots at most `sqrt(eps)` times the largest taken as zero
+/// (`docs/theory/tensor.md#rank-deficient-least-squares`). Returns
+/// `(spline, residuals, weighted_rss)`, and `(spline, residuals, weighted_rss, rank)` with
+/// `full_output=True` (SciPy's convention for extra results); SciPy's `LSQBivariateSpline` for
+/// `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (x, y, t, k = None, *, w = None, eps = None, full_output = false))]
+pub(crate) fn fit_tensor_scattered<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    k: Option<&Bound<'py, PyAny>>,
+    w: Option<&Bound<'py, PyAny>>,
+    eps: Option<f64>,
+    full_output: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let (xa, npts, n) = points_arg(x)?;
     let knots = knot_vectors_arg(t)?;
     if knots.len() != n {
         return Err(bad(format!(
@@ -529,29 +564,114 @@ pub(crate) fn fit_tensor_scattered<'py>(
         Some(k) => degrees_arg(k, n)?,
         None => vec![3; n],
     };
-    let ya = floats(y, "y")?;
-    let yshape = ya.shape();
-    if yshape.first() != Some(&npts) {
-        return Err(bad(format!(
-            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
-        )));
-    }
-    let trailing = yshape[1..].to_vec();
+    let (ya, trailing) = values_arg(y, npts)?;
     let dim: usize = trailing.iter().product();
     let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
     let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
     let wa = w.map(|w| floats(w, "w")).transpose()?;
     let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
     let f = py
-        .detach(|| tensor_scattered_least_squares(xs, ys, wv, &degrees, knots))
-        .map_err(|e| fit_err(e, "x"))?;
+        .detach(|| tensor_scattered_least_squares_with(xs, ys, wv, &degrees, knots, rank_arg(eps)))
+        .map_err(|e| match e {
+            lekalo::Error::InvalidArgument { what: "eps", .. } => named("eps", &e),
+            other => fit_err(other, "x"),
+        })?;
+    let spline = PyTensorBSpline {
+        inner: f.spline,
+        trailing,
+    }
+    .into_pyobject(py)?
+    .into_any();
+    let residuals = vec_array(py, &f.residuals);
+    let rss = f.weighted_rss.into_pyobject(py)?.into_any();
+    if full_output {
+        PyTuple::new(py, [spline, residuals, rss, f.rank.into_pyobject(py)?.into_any()])
+    } else {
+        PyTuple::new(py, [spline, residuals, rss])
+    }
+}
+
+/// `(spline, residual, p, rank, limit)` of `fit_tensor_scattered_smoothing`.
+type ScatteredSmoothing = (
+    PyTensorBSpline,
+    f64,
+    Option<f64>,
+    usize,
+    Option<&'static str>,
+);
+
+/// The smoothing spline of scattered data (`tensor_scattered_smoothing`,
+/// `docs/theory/tensor.md#smoothing-scattered-data`): the tensor-product spline with FITPACK
+/// `surfit`'s knots whose weighted residual sum of squares is `s` (within 0.1 %, never above).
+/// Points `x` of shape `(npts, N)`, values `y` of shape `(npts, *trailing)`, degrees `k` (one
+/// integer or one per variable, default 3), weights `w` (one per point, multiplying the squared
+/// residual), `bbox` one `(a, b)` per variable (default: the range of the points), `max_knots`
+/// the largest knot count per variable (end knots included, FITPACK's `nxest`), `eps` the rank
+/// choice of `fit_tensor_scattered`. Returns `(spline, residual, p, rank, limit)`: `p` the
+/// smoothing weight (`None` for a least-squares result), `rank` that of the last system, and
+/// `limit` why the knot rounds stopped above `s` (`None`, `"max-knots"`,
+/// `"coefficients-exceed-data"` or `"knots-coincide"`). SciPy's `SmoothBivariateSpline` for
+/// `N = 2`.
+#[pyfunction]
+#[pyo3(signature = (x, y, s, k = None, *, w = None, bbox = None, max_knots = None, eps = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_tensor_scattered_smoothing<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    s: f64,
+    k: Option<&Bound<'py, PyAny>>,
+    w: Option<&Bound<'py, PyAny>>,
+    bbox: Option<Vec<(f64, f64)>>,
+    max_knots: Option<Vec<usize>>,
+    eps: Option<f64>,
+) -> PyResult<ScatteredSmoothing> {
+    let (xa, npts, n) = points_arg(x)?;
+    let (ya, trailing) = values_arg(y, npts)?;
+    let wa = w.map(|w| floats(w, "w")).transpose()?;
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    let dim: usize = trailing.iter().product();
+    let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
+    let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
+    let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
+    let options = ScatteredSmoothingOptions {
+        bbox,
+        max_knots,
+        rank: rank_arg(eps),
+    };
+    let f = py
+        .detach(|| tensor_scattered_smoothing(xs, ys, wv, &degrees, s, &options))
+        .map_err(|e| match e {
+            lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
+            lekalo::Error::EmptyDomain { .. } => named("bbox", &e),
+            lekalo::Error::InvalidArgument { what, .. } if what == "eps" || what == "max_knots" => {
+                named(what, &e)
+            }
+            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("bbox") => {
+                named("bbox", &e)
+            }
+            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("max_knots") => {
+                named("max_knots", &e)
+            }
+            other => fit_err(other, "x"),
+        })?;
+    let limit = f.limit.map(|l| match l {
+        KnotLimit::MaxKnots => "max-knots",
+        KnotLimit::CoefficientsExceedData => "coefficients-exceed-data",
+        KnotLimit::KnotsCoincide => "knots-coincide",
+    });
     Ok((
         PyTensorBSpline {
             inner: f.spline,
             trailing,
         },
-        vec_array(py, &f.residuals),
-        f.weighted_rss,
+        f.residual,
+        f.p,
+        f.rank,
+        limit,
     ))
 }
 
@@ -621,6 +741,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_grid_smoothing, m)?)?;
     m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_tensor_scattered_smoothing, m)?)?;
     Ok(())
 }
 

@@ -288,3 +288,62 @@ fn s_smooths_a_grid_with_the_fewest_knots_and_zero_interpolates() {
         .code(2)
         .stderr(contains("--s places the knots"));
 }
+
+/// `--scattered --s S` places FITPACK surfit's knots itself: the weighted residual sum of
+/// squares is at most S (and within 0.1 % of it when smoothed), in two and in three variables
+/// (their number from --degree), and knots given with it are refused.
+#[test]
+fn s_smooths_scattered_data_with_surfit_knots() {
+    let d = tempfile::tempdir().unwrap();
+    let mut rows2 = String::new();
+    let mut rows3 = String::new();
+    for i in 0..400 {
+        let k = f64::from(i);
+        let (x, y, z) = (
+            (k * 0.754_877_666).fract(),
+            (k * 0.569_840_291).fract(),
+            (k * 0.438_047_065).fract(),
+        );
+        let noise = 0.01 * f64::from(i % 7 - 3);
+        rows2.push_str(&format!(
+            "{x},{y},{}\n",
+            (3.0 * x).sin() * (2.0 * y).cos() + noise
+        ));
+        rows3.push_str(&format!("{x},{y},{z},{}\n", x * y + z * z + noise));
+    }
+    let (p2, p3) = (d.path().join("xyz.csv"), d.path().join("xyzw.csv"));
+    fs::write(&p2, rows2).unwrap();
+    fs::write(&p3, rows3).unwrap();
+    for (path, extra, s) in [(&p2, vec![], 0.05), (&p3, vec!["--degree", "2,2,1"], 0.02)] {
+        let out = lekalo()
+            .arg("fit")
+            .arg(path)
+            .args(["--scattered", "--s", &s.to_string(), "--json"])
+            .args(&extra)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let j: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        let r = &j["report"];
+        let rss = r["weighted_rss"].as_f64().unwrap();
+        assert!(rss <= s, "{r}");
+        if r["p"].is_number() {
+            assert!(rss >= 0.999 * s, "{r}");
+        }
+        assert!(r["knot_limit"].is_null(), "{r}");
+        assert!(r["control_points"].as_u64().unwrap() < 400, "{r}");
+        assert_eq!(
+            j["object"]["degrees"].as_array().unwrap().len(),
+            2 + extra.len() / 2
+        );
+    }
+    lekalo()
+        .arg("fit")
+        .arg(&p2)
+        .args(["--scattered", "--s", "0.05", "--ctrl-grid", "5x5"])
+        .assert()
+        .code(2)
+        .stderr(contains("--s places the knots").and(contains("surfit")));
+}

@@ -670,11 +670,22 @@ def fit_tensor_grid_smoothing(
     axes: Sequence[ArrayLike], values: ArrayLike, s: float, k: Optional[Union[int, Sequence[int]]] = None, *, bbox: Optional[Sequence[Tuple[float, float]]] = None
 ) -> Tuple[TensorBSpline, float, Optional[float]]: ...
 def fit_tensor_scattered(
-    x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None
-) -> Tuple[TensorBSpline, Array, float]: ...
+    x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None, eps: Optional[float] = None, full_output: bool = False
+) -> Union[Tuple[TensorBSpline, Array, float], Tuple[TensorBSpline, Array, float, int]]: ...
 def tensor_design_matrix(
     x: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, extrapolate: bool = True
 ) -> Tuple[Array, npt.NDArray[np.int64], npt.NDArray[np.int64], Tuple[int, int]]: ...
+def fit_tensor_scattered_smoothing(
+    x: ArrayLike,
+    y: ArrayLike,
+    s: float,
+    k: Optional[Union[int, Sequence[int]]] = None,
+    *,
+    w: Optional[ArrayLike] = None,
+    bbox: Optional[Sequence[Tuple[float, float]]] = None,
+    max_knots: Optional[Sequence[int]] = None,
+    eps: Optional[float] = None,
+) -> Tuple[TensorBSpline, float, Optional[float], int, Optional[str]]: ...
 
 # -- geometric queries (docs/theory/queries.md)
 class CurveQuery:

@@ -21,9 +21,15 @@
 //!   solve.
 //! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
-//!   `N` variables by banded normal equations.
+//!   `N` variables by banded normal equations, and [`tensor_scattered_least_squares_with`], the
+//!   same with FITPACK's minimal-norm answer to a rank-deficient system.
 //! - `design_matrix.rs`: [`tensor_design_matrix`], the basis products at points (rows the
 //!   Kronecker products of the one-direction basis rows).
+//! - `scattered_qr.rs`: the observation matrix of scattered data as a band triangle (Givens
+//!   rotations), the rows of the derivative jumps, and the minimal-norm solve
+//!   ([`RankDeficiency`], FITPACK `fprank`).
+//! - `scattered_smoothing.rs`: [`tensor_scattered_smoothing`], the spline whose residual on
+//!   scattered data is at most `s`, with the knots of FITPACK `surfit`.
 
 mod any;
 mod design_matrix;
@@ -34,6 +40,8 @@ mod integral;
 mod interpolate;
 mod nurbs;
 mod scattered;
+mod scattered_qr;
+mod scattered_smoothing;
 mod slice;
 mod spline;
 
@@ -45,7 +53,14 @@ pub use grid_smoothing::{
 };
 pub use interpolate::TensorInterpolation;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
-pub use scattered::{tensor_scattered_least_squares, TensorScatteredFit};
+pub use scattered::{
+    tensor_scattered_least_squares, tensor_scattered_least_squares_with, TensorScatteredFit,
+};
+pub use scattered_qr::RankDeficiency;
+pub use scattered_smoothing::{
+    tensor_scattered_smoothing, tensor_scattered_smoothing_with_progress, KnotLimit,
+    ScatteredSmoothingOptions, TensorScatteredSmoothing,
+};
 pub use spline::TensorBSpline;
 
 #[cfg(test)]

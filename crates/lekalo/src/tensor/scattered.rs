@@ -7,6 +7,7 @@ use crate::error::{ControlSupport, Error, Result, MAX_SCALARS};
 use crate::fit::banded::SymBand;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
+use crate::tensor::scattered_qr::{observe, solve, to_natural, Layout, RankDeficiency};
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
 
 /// The result of [`tensor_scattered_least_squares`].
@@ -18,6 +19,10 @@ pub struct TensorScatteredFit {
     pub residuals: Vec<f64>,
     /// `Σ_k w_k |S(x_k) − y_k|²`.
     pub weighted_rss: f64,
+    /// The rank of the system solved: the number of control points unless
+    /// [`RankDeficiency::MinimumNorm`] dropped some
+    /// ([`tensor_scattered_least_squares_with`]).
+    pub rank: usize,
 }
 
 /// The tensor-product B-spline with the given degrees and knots that minimises
@@ -222,11 +227,118 @@ pub fn tensor_scattered_least_squares(
         spline,
         residuals,
         weighted_rss,
+        rank: n_ctrl,
+    })
+}
+
+/// [`tensor_scattered_least_squares`] with a choice for a control point the data do not
+/// determine: [`RankDeficiency::Refuse`] is [`tensor_scattered_least_squares`];
+/// [`RankDeficiency::MinimumNorm`] is FITPACK's `surfit` with given knots (SciPy's
+/// `LSQBivariateSpline`): the observation matrix reduced to a band triangle by Givens
+/// rotations, the variables ordered for the least band, and the solution of least norm with
+/// the pivots at most `√eps` times the largest taken as zero (FITPACK `fprank`; Dierckx, *Curve
+/// and Surface Fitting with Splines*, 1993, §9.2.2). The result's `rank` says how many
+/// pivots were kept. `docs/theory/tensor.md#rank-deficient-least-squares`.
+///
+/// ```
+/// use lekalo::{tensor_scattered_least_squares_with, KnotVector, PointsRef, RankDeficiency};
+/// // points on the diagonal of the square leave some bilinear control points undetermined
+/// let x: Vec<f64> = (0..20).flat_map(|i| [i as f64 / 19.0, i as f64 / 19.0]).collect();
+/// let y: Vec<f64> = (0..20).map(|i| 2.0 + i as f64 / 19.0).collect();
+/// let k = KnotVector::new(vec![0.0, 0.0, 0.5, 1.0, 1.0])?;
+/// let fit = tensor_scattered_least_squares_with(
+///     PointsRef::from_flat(2, &x)?, PointsRef::from_flat(1, &y)?, None, &[1, 1],
+///     vec![k.clone(), k], RankDeficiency::MinimumNorm { eps: 1e-16 },
+/// )?;
+/// assert!(fit.rank < 9);
+/// assert!(fit.weighted_rss < 1e-20);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`tensor_scattered_least_squares`] (no [`Error::EmptySupport`] with
+/// [`RankDeficiency::MinimumNorm`]), and [`Error::InvalidArgument`] for `eps` outside `(0, 1)`.
+pub fn tensor_scattered_least_squares_with(
+    x: PointsRef<'_>,
+    values: PointsRef<'_>,
+    weights: Option<&[f64]>,
+    degrees: &[usize],
+    knots: Vec<KnotVector>,
+    rank: RankDeficiency,
+) -> Result<TensorScatteredFit> {
+    rank.check()?;
+    if rank == RankDeficiency::Refuse {
+        return tensor_scattered_least_squares(x, values, weights, degrees, knots);
+    }
+    let n_vars = x.dim();
+    check_n_vars(n_vars)?;
+    check_len("degrees (one per variable)", n_vars, degrees.len())?;
+    check_len("knot vectors (one per variable)", n_vars, knots.len())?;
+    let count = x.len();
+    if count == 0 {
+        return Err(Error::TooFew {
+            what: "scattered data points",
+            min: 1,
+            got: 0,
+        });
+    }
+    check_len("values (one row per data point)", count, values.len())?;
+    if let Some(w) = weights {
+        check_weights(w, count)?;
+    }
+    let mut shape = Vec::with_capacity(n_vars);
+    for (kv, &p) in knots.iter().zip(degrees) {
+        let n = kv.len().saturating_sub(p + 1);
+        kv.validate_for(p, n)?;
+        shape.push(n);
+    }
+    checked_size(
+        "control net of the scattered fit (product of the net sizes)",
+        &shape,
+        1,
+    )?;
+    for row in x.iter() {
+        for ((&t, kv), &p) in row.iter().zip(&knots).zip(degrees) {
+            let (lo, hi) = kv.domain(p);
+            if !(t >= lo && t <= hi) {
+                return Err(Error::ParameterOutOfDomain {
+                    t,
+                    min: lo,
+                    max: hi,
+                });
+            }
+        }
+    }
+    let identity: Vec<usize> = (0..n_vars).collect();
+    let layout = Layout::least_band(&identity, &shape, degrees);
+    let obs = observe(x, values, weights, degrees, &knots, layout, false)?;
+    let dim = values.dim();
+    let (c, rank) = solve(obs.qr.clone(), obs.bw, rank).map_err(|i| {
+        let natural = obs.layout.natural(i, &shape);
+        empty_support(natural, obs.support[i], &shape, degrees, &knots)
+    })?;
+    let c = to_natural(&c, &obs.layout, &shape, dim);
+    let spline =
+        TensorBSpline::from_knot_vectors(degrees.to_vec(), knots, Points::from_flat(dim, c)?)?;
+    let mut fitted = vec![0.0; count * dim];
+    spline.par_eval_batch(x.as_slice(), None, &mut fitted)?;
+    let mut residuals = Vec::with_capacity(count);
+    let mut weighted_rss = 0.0;
+    for (k, (s, y)) in fitted.chunks_exact(dim).zip(values.iter()).enumerate() {
+        let r2: f64 = s.iter().zip(y).map(|(a, b)| (a - b) * (a - b)).sum();
+        weighted_rss += weights.map_or(1.0, |w| w[k]) * r2;
+        residuals.push(r2.sqrt());
+    }
+    Ok(TensorScatteredFit {
+        spline,
+        residuals,
+        weighted_rss,
+        rank,
     })
 }
 
 /// Weights finite, non-negative, one per point, not all zero.
-fn check_weights(w: &[f64], count: usize) -> Result<()> {
+pub(super) fn check_weights(w: &[f64], count: usize) -> Result<()> {
     check_len("weights (one per data point)", count, w.len())?;
     if let Some((index, &weight)) = w
         .iter()
@@ -245,7 +357,7 @@ fn check_weights(w: &[f64], count: usize) -> Result<()> {
 }
 
 /// [`Error::EmptySupport`] for the control point of flat index `i`.
-fn empty_support(
+pub(super) fn empty_support(
     i: usize,
     points: usize,
     shape: &[usize],

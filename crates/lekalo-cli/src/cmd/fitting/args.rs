@@ -47,7 +47,9 @@ last direction whose knots are given); direction K's interior knots --knots-in K
 also --knots-u, --knots-v), a grid's parameters --params-in K=LIST|FILE, --bbox one A:B per
 direction; the spline is written as JSON, as `interpolate --grid AxBxC` writes it. --s S on
 such a grid places the knots itself: the fewest found with residual sum of squares <= S
-(FITPACK's regrid, SciPy's RectBivariateSpline).
+(FITPACK's regrid, SciPy's RectBivariateSpline). --scattered --s S does the same for scattered
+rows in any number of variables (FITPACK's surfit, SciPy's SmoothBivariateSpline; the number
+from --degree P,Q,R…, else --bbox, else 2), weighted RSS within 0.1 % of S and never above.
 
 Shape constraints (--function fits by --lsq, --smooth, or --s without --knots; each holds for
 every x, not only at the data; repeat an option for several intervals):
@@ -70,6 +72,7 @@ Examples:
   lekalo fit loop.csv --periodic --s 0.01 -o loop.json
   lekalo fit grid.csv --grid 30x20 --ctrl-grid 8x6 -o surface.json
   lekalo fit uvz.csv --scattered --ctrl-grid 10x10 --penalty 1e-3
+  lekalo fit uvz.csv --scattered --s 5 --json
   lekalo fit xy.csv --function --ctrl 8 --domain -5:35 -o wide.json
   lekalo fit xy.csv --function --s 0.5 --domain -5:35 -o wide.json
   lekalo fit grid.csv --grid 30x20 --degree 3,2 --knots-u 0.25,0.5,0.75 --knots-v 0.5 -o surface.json

@@ -10,8 +10,9 @@ use std::path::PathBuf;
 use anyhow::Result;
 use lekalo::fit::{check_schoenberg_whitney, place_knots};
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares, KnotVector,
-    PointsRef, Tensor, TensorBSpline, TensorInterpolation,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares,
+    tensor_scattered_smoothing, KnotLimit, KnotVector, PointsRef, RankDeficiency,
+    ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorInterpolation,
 };
 use serde_json::{json, Value};
 
@@ -22,11 +23,25 @@ use crate::exit::{bad_input, BadInput};
 use crate::output::{emit, format_of};
 use crate::values::numbers;
 
-/// The number of variables of a tensor fit (three or more), or `None` for curves and surfaces:
-/// the factors of `--grid`; for `--scattered`, the factors of `--ctrl-grid`, or else the last
-/// direction whose knots are given.
+/// The number of variables of a tensor fit (three or more, or any number for `--scattered
+/// --s`), or `None` for curves and surfaces: the factors of `--grid`; for `--scattered`, the
+/// factors of `--ctrl-grid`, or else the last direction whose knots are given; for
+/// `--scattered --s` without knots, the entries of `--degree` (two or more), or else the
+/// intervals of `--bbox`, or else 2.
 pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
     let per_direction = !a.knots_in.is_empty() || !a.params_in.is_empty();
+    let knots_given = a.ctrl_grid.is_some()
+        || a.knots_u.is_some()
+        || a.knots_v.is_some()
+        || !a.knots_in.is_empty();
+    if a.scattered && a.s.is_some() && !knots_given {
+        let n = if a.degrees.len() > 1 {
+            a.degrees.len()
+        } else {
+            a.bbox.as_deref().map_or(2, |b| b.split(',').count())
+        };
+        return Ok(Some(n));
+    }
     let n = if let Some(g) = &a.grid {
         grid_factors(g)?.len()
     } else if a.scattered {
@@ -44,8 +59,8 @@ pub(super) fn variables(a: &FitArgs) -> Result<Option<usize>> {
     } else {
         return Ok(None);
     };
-    if n >= 3 {
-        return Ok(Some(n));
+    if n >= 3 || (a.scattered && a.s.is_some()) {
+        return Ok(Some(n.max(2)));
     }
     if per_direction {
         return bad_input(
@@ -112,8 +127,8 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
     if a.s.is_some() {
         if a.ctrl_grid.is_some() || dirs.iter().any(|d| d.inner.is_some()) {
             return bad_input(
-                "--s places the knots of the grid's smoothing itself (FITPACK's regrid): drop \
-                 --ctrl-grid and --knots-u/--knots-v/--knots-in",
+                "--s places the knots of the smoothing itself (FITPACK's regrid on a grid, \
+                 surfit on scattered data): drop --ctrl-grid and --knots-u/--knots-v/--knots-in",
             );
         }
     } else {
@@ -396,6 +411,14 @@ fn run_scattered(
             n + 1
         ));
     }
+    if let Some(target) = a.s {
+        let (mut xs, mut ys) = (Vec::with_capacity(pts.len() * n), Vec::new());
+        for row in pts.iter() {
+            xs.extend_from_slice(&row[..n]);
+            ys.extend_from_slice(&row[n..]);
+        }
+        return smooth_scattered(a, dirs, (&xs, &ys), weights, target, inputs, cx);
+    }
     let column = |c: usize| pts.iter().map(|r| r[c]).collect::<Vec<f64>>();
     let mut knots = Vec::with_capacity(n);
     let mut net = Vec::with_capacity(n);
@@ -485,6 +508,78 @@ fn run_scattered(
     finish(a, &f.spline, &net, &f.residuals, f.weighted_rss, inputs, cx)
 }
 
+/// `--scattered --s S`: the spline with FITPACK surfit's knots whose weighted residual sum of
+/// squares is S ([`lekalo::tensor_scattered_smoothing`]), on the box of the data or `--bbox`, a
+/// rank-deficient least-squares round answered by FITPACK's minimal-norm solution (the knots
+/// are the method's, not the user's, so a region they leave without data is not refused).
+fn smooth_scattered(
+    a: &FitArgs,
+    dirs: &[Direction],
+    (xs, ys): (&[f64], &[f64]),
+    weights: Option<&[f64]>,
+    target: f64,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    let n = dirs.len();
+    let x = PointsRef::from_flat(n, xs)?;
+    let y = PointsRef::from_flat(ys.len() / x.len().max(1), ys)?;
+    let mut bbox = Vec::with_capacity(n);
+    for d in dirs {
+        let data = x
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
+                (l.min(r[d.k - 1]), h.max(r[d.k - 1]))
+            });
+        let what = format!("values of x{} (column {})", d.k, d.k);
+        bbox.push(d.domain(data, &what)?);
+    }
+    let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
+    let options = ScatteredSmoothingOptions {
+        bbox: Some(bbox),
+        max_knots: None,
+        rank: RankDeficiency::MinimumNorm { eps: 1e-16 },
+    };
+    let f = tensor_scattered_smoothing(x, y, weights, &degrees, target, &options)?;
+    let mut fitted = vec![0.0; ys.len()];
+    f.spline.par_eval_batch(xs, None, &mut fitted)?;
+    let residuals: Vec<f64> = fitted
+        .chunks_exact(y.dim())
+        .zip(y.iter())
+        .map(|(f, q)| {
+            f.iter()
+                .zip(q)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let net = f.spline.shape().to_vec();
+    let limit = f.limit.map(|l| match l {
+        KnotLimit::MaxKnots => "max-knots",
+        KnotLimit::CoefficientsExceedData => "coefficients-exceed-data",
+        KnotLimit::KnotsCoincide => "knots-coincide",
+    });
+    if let (Some(l), false) = (limit, cx.is_quiet()) {
+        crate::output::report(&format!(
+            "fit: no knot could be added ({l}); the least-squares spline on the knots found \
+             has weighted RSS {} > --s {target}",
+            lekalo_io::fmt_number(f.residual)
+        ));
+    }
+    let extra = json!({ "s": target, "p": f.p, "rank": f.rank, "knot_limit": limit });
+    finish_with(
+        a,
+        &f.spline,
+        &net,
+        &residuals,
+        f.residual,
+        Some(extra),
+        inputs,
+        cx,
+    )
+}
+
 /// Writes the fitted spline (or `{"object", "report"}` with `--json`) and its report.
 fn finish(
     a: &FitArgs,
@@ -492,6 +587,21 @@ fn finish(
     net: &[usize],
     residuals: &[f64],
     weighted_rss: f64,
+    inputs: &[PathBuf],
+    cx: &Context,
+) -> Result<()> {
+    finish_with(a, s, net, residuals, weighted_rss, None, inputs, cx)
+}
+
+/// [`finish`] with `extra` fields in the report.
+#[allow(clippy::too_many_arguments)]
+fn finish_with(
+    a: &FitArgs,
+    s: &TensorBSpline,
+    net: &[usize],
+    residuals: &[f64],
+    weighted_rss: f64,
+    extra: Option<Value>,
     inputs: &[PathBuf],
     cx: &Context,
 ) -> Result<()> {
@@ -504,6 +614,11 @@ fn finish(
     let count: usize = net.iter().product();
     let mut report = json!({ "max_residual": max, "max_index": max_index, "rms": rms,
         "weighted_rss": weighted_rss, "control_points": count, "shape": net });
+    if let Some(Value::Object(fields)) = extra {
+        for (k, v) in fields {
+            report[k] = v;
+        }
+    }
     if a.per_point {
         report["residuals"] = json!(residuals);
     }
@@ -538,7 +653,7 @@ fn shape_text(net: &[usize]) -> String {
 fn refuse_curve_options(a: &FitArgs) -> Result<()> {
     let given: Vec<&str> = [
         (a.smooth.is_some(), "--smooth"),
-        (a.s.is_some() && a.grid.is_none(), "--s"),
+        (a.s.is_some() && a.grid.is_none() && !a.scattered, "--s"),
         (a.tol.is_some(), "--tol"),
         (a.robust.is_some(), "--robust"),
         (a.periodic, "--periodic"),

@@ -17,14 +17,15 @@ periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, 
 ``splint``, ``sproot``, ``spalde``, ``splder``, ``splantider``, ``insert``, ``UnivariateSpline``,
 ``InterpolatedUnivariateSpline``, ``LSQUnivariateSpline``, ``RectBivariateSpline`` (FITPACK's
 knots and smoothing on grids, ``__call__``, ``ev``, ``partial_derivative``, ``integral``),
-``LSQBivariateSpline``, ``bisplev``, ``dblint``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
+``LSQBivariateSpline`` and ``SmoothBivariateSpline`` (FITPACK's ``surfit``, minimal-norm
+solutions of rank-deficient systems), ``bisplrep`` (``task`` 0 and -1), ``bisplev``, ``dblint``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
 ``make_ndbspl`` (solved directly, one banded sweep per direction);
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
 ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, ``SmoothBivariateSpline``, ``bisplrep`` and the spherical 2-D
+breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, ``bisplrep`` with ``task=1``, the spherical 2-D
 classes,
 ``NdBSpline.design_matrix``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
@@ -35,6 +36,7 @@ from __future__ import annotations
 from ._bspline import BSpline
 from ._fitpack import (
     bisplev,
+    bisplrep,
     dblint,
     insert,
     spalde,
@@ -52,6 +54,7 @@ from ._fitpack2 import (
     LSQBivariateSpline,
     LSQUnivariateSpline,
     RectBivariateSpline,
+    SmoothBivariateSpline,
     UnivariateSpline,
 )
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
@@ -91,6 +94,8 @@ __all__ = [
     "BivariateSpline",
     "RectBivariateSpline",
     "LSQBivariateSpline",
+    "SmoothBivariateSpline",
+    "bisplrep",
     "bisplev",
     "dblint",
     "NdBSpline",

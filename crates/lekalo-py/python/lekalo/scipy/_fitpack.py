@@ -344,6 +344,119 @@ def splprep(
     return tcku
 
 
+# FITPACK's surfit messages as SciPy's bisplrep words them: ier -> (text, exception or None)
+_SURFIT_IER = {
+    0: ("The spline has a residual sum of squares fp such that abs(fp-s)/s<=0.001", None),
+    -1: ("The spline is an interpolating spline (fp=0)", None),
+    -2: ("The spline is weighted least-squares polynomial of degree kx and ky."
+         "\nfp gives the upper bound fp0 for the smoothing factor s", None),
+    -3: ("Warning. The coefficients of the spline have been computed as the\n"
+         "minimal norm least-squares solution of a rank deficient system.", None),
+    1: ("The required storage space exceeds the available storage space.\n"
+        "Probable causes: nxest or nyest too small or s is too small. (fp>s)", ValueError),
+    4: ("No more knots can be added because the number of B-spline\n"
+        "coefficients already exceeds the number of data points m.\n"
+        "Probable causes: either s or m too small. (fp>s)", ValueError),
+    5: ("No more knots can be added because the additional knot would\n"
+        "coincide with an old one. Probable cause: s too small or too large\n"
+        "a weight to an inaccurate data point. (fp>s)", ValueError),
+}
+
+
+def bisplrep(
+    x: Any, y: Any, z: Any, w: Any = None, xb: Any = None, xe: Any = None, yb: Any = None,
+    ye: Any = None, kx: int = 3, ky: int = 3, task: int = 0, s: Any = None, eps: float = 1e-16,
+    tx: Any = None, ty: Any = None, full_output: int = 0, nxest: Any = None, nyest: Any = None,
+    quiet: int = 1,
+):
+    """``scipy.interpolate.bisplrep``: FITPACK's ``surfit`` as a list ``[tx, ty, c, kx, ky]``.
+    ``task = 0``: the spline with FITPACK's knots whose weighted residual is ``s`` (default
+    ``m - sqrt(2m)``), lekalo's ``fit_tensor_scattered_smoothing``
+    (``docs/theory/tensor.md#smoothing-scattered-data``); ``task = -1``: least squares on the
+    full knot vectors ``tx``, ``ty``, lekalo's ``fit_tensor_scattered``. Both with FITPACK's
+    minimal-norm solution of a rank-deficient system (threshold ``eps``). ``task = 1`` (resume
+    from the knots of the previous call) is not available. SciPy's checks, warnings and
+    ``full_output``."""
+    from ._fitpack2 import _SURFIT_MESSAGES, _surfit  # noqa: F401
+
+    x, y, z = map(np.ravel, [x, y, z])
+    m = len(x)
+    if not (m == len(y) == len(z)):
+        raise TypeError("len(x)==len(y)==len(z) must hold.")
+    w = np.ones(m) if w is None else np.atleast_1d(w)
+    if not len(w) == m:
+        raise TypeError(f"len(w)={len(w)} is not equal to m={m}")
+    if not (-1 <= task <= 1):
+        raise TypeError("task must be -1, 0 or 1")
+    if task == 1:
+        raise NotImplementedError("lekalo.scipy: bisplrep with task=1 (resume from the previous knots) is not available")
+    if s is None:
+        s = m - np.sqrt(2 * m)
+    if task == -1 and tx is None:
+        raise TypeError("Knots_x must be given for task=-1")
+    if task == -1 and ty is None:
+        raise TypeError("Knots_y must be given for task=-1")
+    if task == -1 and len(tx) < 2 * kx + 2:
+        raise TypeError("There must be at least 2*kx+2 knots_x for task=-1")
+    if task == -1 and len(ty) < 2 * ky + 2:
+        raise TypeError("There must be at least 2*ky+2 knots_x for task=-1")
+    if not ((1 <= kx <= 5) and (1 <= ky <= 5)):
+        raise TypeError(f"Given degree of the spline (kx,ky={kx},{ky}) is not supported. (1<=k<=5)")
+    if m < (kx + 1) * (ky + 1):
+        raise TypeError("m >= (kx+1)(ky+1) must hold")
+    if nxest is None:
+        nxest = int(kx + np.sqrt(m / 2))
+    if nyest is None:
+        nyest = int(ky + np.sqrt(m / 2))
+    nxest, nyest = max(nxest, 2 * kx + 3), max(nyest, 2 * ky + 3)
+    if task >= 0 and s == 0:
+        nxest = int(kx + np.sqrt(3 * m))
+        nyest = int(ky + np.sqrt(3 * m))
+    # FITPACK's workspace for these sizes (SciPy's formula), refused beyond lekalo's size limit
+    # before any array is read
+    u, v = nxest - kx - 1, nyest - ky - 1
+    km, ne = max(kx, ky) + 1, max(nxest, nyest)
+    bx, by = kx * v + ky + 1, ky * u + kx + 1
+    b1, b2 = (bx, bx + v - ky) if bx <= by else (by, by + u - kx)
+    lwrk1 = u * v * (2 + b1 + b2) + 2 * (u + v + km * (m + ne) + ne - kx - ky) + b2 + 1
+    if lwrk1 >= _lekalo.MAX_SCALARS:
+        raise OverflowError("Too many data points to interpolate")
+    xb = float(x.min()) if xb is None else float(xb)
+    xe = float(x.max()) if xe is None else float(xe)
+    yb = float(y.min()) if yb is None else float(yb)
+    ye = float(y.max()) if ye is None else float(ye)
+    x, y, z, w = (np.ascontiguousarray(a, dtype=np.float64) for a in (x, y, z, w))
+    if task == 0:
+        tx, ty, c, fp, ier = _surfit(x, y, z, w, [(xb, xe), (yb, ye)], kx, ky, s, eps, nxest, nyest)
+    else:
+        tx = np.asarray(tx, dtype=np.float64).copy()
+        ty = np.asarray(ty, dtype=np.float64).copy()
+        tx[: kx + 1], tx[len(tx) - kx - 1:] = xb, xe
+        ty[: ky + 1], ty[len(ty) - ky - 1:] = yb, ye
+        spline, _, fp, rank = _lekalo.fit_tensor_scattered(
+            np.ascontiguousarray(np.stack([x, y], axis=-1)), z, (tx, ty), [int(kx), int(ky)],
+            w=w**2, eps=float(eps), full_output=True,
+        )
+        c = np.asarray(spline.c).ravel()
+        ier = -rank if rank != c.size else 0
+    tck = [tx, ty, c, kx, ky]
+    ierm = min(11, max(-3, ier))
+    message = _SURFIT_IER[ierm][0]
+    if ierm <= 0 and not quiet:
+        warnings.warn(
+            RuntimeWarning(message + f"\tkx,ky={kx},{ky} nx,ny={len(tx)},{len(ty)} m={m} fp={fp} s={s}"),
+            stacklevel=2,
+        )
+    if ierm > 0 and not full_output:
+        warnings.warn(
+            RuntimeWarning(message + f"\n\tkx,ky={kx},{ky} nx,ny={len(tx)},{len(ty)} m={m} fp={fp} s={s}"),
+            stacklevel=2,
+        )
+    if full_output:
+        return tck, fp, ier, message
+    return tck
+
+
 def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
     """``scipy.interpolate.bisplev``: the 2-D spline ``tck = [tx, ty, c, kx, ky]`` (or its
     partial derivative ``(dx, dy)``) on the grid ``x × y`` (increasing), squeezed as SciPy

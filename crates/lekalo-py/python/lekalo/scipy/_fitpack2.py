@@ -3,12 +3,14 @@
 (``splrep``: the smoothing condition on FITPACK's knots, interpolation, least squares on given
 knots) and lekalo's evaluation, integrals and derivatives (``splev``, ``splint``, ``spalde``,
 ``splder``, ``splantider``). The 2-D classes ``RectBivariateSpline`` (FITPACK's ``regrid``:
-lekalo's ``fit_tensor_grid_smoothing``) and ``LSQBivariateSpline`` (lekalo's
+lekalo's ``fit_tensor_grid_smoothing``), ``SmoothBivariateSpline`` (FITPACK's ``surfit``:
+lekalo's ``fit_tensor_scattered_smoothing``) and ``LSQBivariateSpline`` (lekalo's
 ``fit_tensor_scattered``), evaluated, differentiated and integrated by lekalo's
 ``TensorBSpline``."""
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
@@ -389,13 +391,141 @@ class RectBivariateSpline(BivariateSpline):
         self.degrees = kx, ky
 
 
+# FITPACK's surfit messages as SciPy words them (``ier`` -> text), for its warnings.
+_SURFIT_MESSAGES = {
+    1: """
+The required storage space exceeds the available storage space: nxest
+or nyest too small, or s too small.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    4: """
+No more knots can be added because the number of b-spline coefficients
+(nx-kx-1)*(ny-ky-1) already exceeds the number of data points m:
+either s or m too small.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    5: """
+No more knots can be added because the additional knot would (quasi)
+coincide with an old one: s too small or too large a weight to an
+inaccurate data point.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    -3: """
+The coefficients of the spline returned have been computed as the
+minimal norm least-squares solution of a (numerically) rank deficient
+system (deficiency=%i). If deficiency is large, the results may be
+inaccurate. Deficiency may strongly depend on the value of eps.""",
+}
+
+# lekalo's reason for stopping the knot rounds above s -> FITPACK's ier
+_LIMIT_IER = {"max-knots": 1, "coefficients-exceed-data": 4, "knots-coincide": 5}
+
+
+def _box(x: np.ndarray, y: np.ndarray, bbox: Any):
+    """FITPACK's box: ``bbox = [xb, xe, yb, ye]``, ``None`` entries taken from the data."""
+    xb, xe, yb, ye = (None if b is None else float(b) for b in bbox)
+    return (
+        (float(x.min()) if xb is None else xb, float(x.max()) if xe is None else xe),
+        (float(y.min()) if yb is None else yb, float(y.max()) if ye is None else ye),
+    )
+
+
+def _surfit(x: Any, y: Any, z: Any, w: Any, box: Any, kx: int, ky: int, s: float, eps: float,
+            nxest: int, nyest: int):
+    """FITPACK's ``surfit`` with ``iopt = 0``: lekalo's ``fit_tensor_scattered_smoothing`` with
+    the minimal-norm rank choice and the knot bounds ``nxest``, ``nyest``; FITPACK's weights
+    multiply the residual (lekalo's are their squares). Returns ``(tx, ty, c, fp, ier)``."""
+    pts = np.ascontiguousarray(np.stack([x, y], axis=-1), dtype=np.float64)
+    ww = None if w is None else np.asarray(w, dtype=np.float64) ** 2
+    spline, fp, p, rank, limit = _lekalo.fit_tensor_scattered_smoothing(
+        pts, np.ascontiguousarray(z, dtype=np.float64), float(s), [int(kx), int(ky)], w=ww,
+        bbox=box, max_knots=[int(nxest), int(nyest)], eps=float(eps),
+    )
+    tx, ty = (np.asarray(t) for t in spline.t)
+    c = np.asarray(spline.c).ravel()
+    ncof = c.size
+    polynomial = len(tx) == 2 * kx + 2 and len(ty) == 2 * ky + 2
+    # FITPACK's order: a knot limit; the polynomial below s (rank not reported); the rank; an
+    # interpolating spline; the polynomial within the tolerance of s
+    if limit is not None:
+        ier = _LIMIT_IER[limit]
+    elif polynomial and fp < s - 1e-3 * s:
+        ier = -2
+    elif rank != ncof:
+        ier = -rank
+    elif p is None and fp <= 0.0:
+        ier = -1
+    elif p is None and polynomial:
+        ier = -2
+    else:
+        ier = 0
+    return tx, ty, c, fp, ier
+
+
+class SmoothBivariateSpline(BivariateSpline):
+    """``scipy.interpolate.SmoothBivariateSpline(x, y, z, w, bbox, kx, ky, s, eps)``: the spline
+    on scattered points with FITPACK ``surfit``'s knots whose weighted residual is ``s``
+    (``len(x)`` by default), lekalo's ``fit_tensor_scattered_smoothing``
+    (``docs/theory/tensor.md#smoothing-scattered-data``), SciPy's knot bounds
+    ``nxest = max(kx + 1 + sqrt(m/2), 2(kx + 1))`` and FITPACK's minimal-norm solution of a
+    rank-deficient system with the threshold ``eps``. lekalo's iteration for the smoothing
+    weight keeps the residual at or below ``s``; SciPy warns as FITPACK reports."""
+
+    def __init__(
+        self, x: Any, y: Any, z: Any, w: Any = None, bbox: Any = [None] * 4,  # noqa: B006
+        kx: int = 3, ky: int = 3, s: Any = None, eps: float = 1e-16,
+    ) -> None:
+        x, y, z, w = self._validate_input(x, y, z, w, kx, ky, eps)
+        bbox = np.ravel(np.asarray(bbox, dtype=object))
+        if not bbox.shape == (4,):
+            raise ValueError("bbox shape should be (4,)")
+        if s is not None and not s >= 0.0:
+            raise ValueError("s should be s >= 0.0")
+        x = np.asarray(x, dtype=np.float64).ravel()
+        y = np.asarray(y, dtype=np.float64).ravel()
+        z = np.asarray(z, dtype=np.float64).ravel()
+        m = x.size
+        nxest = max(int(kx + 1 + np.sqrt(m / 2)), 2 * (kx + 1))
+        nyest = max(int(ky + 1 + np.sqrt(m / 2)), 2 * (ky + 1))
+        s = float(m) if s is None else float(s)
+        tx, ty, c, fp, ier = _surfit(
+            x, y, z, w, _box(x, y, bbox), kx, ky, s, 1e-16 if eps is None else eps, nxest, nyest
+        )
+        if ier not in (0, -1, -2):
+            warnings.warn(_SURFIT_MESSAGES.get(ier, f"ier={ier}"), stacklevel=2)
+        self.fp = fp
+        self.tck = (tx, ty, c)
+        self.degrees = kx, ky
+
+
+def _default_lower(data: np.ndarray, t: np.ndarray) -> float:
+    """SciPy's default lower bound of the box of ``LSQBivariateSpline`` (its ``calc_b`` over the
+    knot array ``t`` of length ``nx``, end places included): the data's minimum unless a knot
+    place lies at or below it, else that place minus the knot array's span over its length."""
+    v1, v2 = float(data.min()), float(t.min())
+    if v2 > v1:
+        return v1
+    return v2 - (float(t.max()) - v2) / len(t)
+
+
+def _default_upper(data: np.ndarray, t: np.ndarray) -> float:
+    """SciPy's default upper bound (``calc_e``), the mirror of :func:`_default_lower`."""
+    v1, v2 = float(data.max()), float(t.max())
+    if v2 < v1:
+        return v1
+    return v2 + (v2 - float(t.min())) / len(t)
+
+
 class LSQBivariateSpline(BivariateSpline):
     """``scipy.interpolate.LSQBivariateSpline(x, y, z, tx, ty, w, bbox, kx, ky, eps)``: the
     weighted least-squares spline on scattered points with the interior knots ``tx``, ``ty``,
-    lekalo's ``fit_tensor_scattered`` (FITPACK's weights multiply the residual: lekalo's are
-    their squares). A control point without data under it is refused (lekalo's
-    ``EmptySupport``) where FITPACK returns a minimal-norm solution with a warning; ``eps`` is
-    validated and not used."""
+    lekalo's ``fit_tensor_scattered`` with FITPACK's minimal-norm solution of a rank-deficient
+    system (threshold ``eps``, default ``1e-16``; SciPy's warning names the deficiency).
+    FITPACK's weights multiply the residual: lekalo's are their squares. The box entries left
+    ``None`` take SciPy's defaults: computed from the data and the knot array of length ``nx``
+    whose end places hold zeros (the box then reaches beyond the data whenever ``0`` is at or
+    below the smallest coordinate), and, when the system is rank deficient, computed once more
+    from the knot array holding the first box, as SciPy's second call of ``surfit`` does."""
 
     def __init__(
         self, x: Any, y: Any, z: Any, tx: Any, ty: Any, w: Any = None, bbox: Any = [None] * 4,  # noqa: B006
@@ -408,17 +538,35 @@ class LSQBivariateSpline(BivariateSpline):
         x = np.asarray(x, dtype=np.float64).ravel()
         y = np.asarray(y, dtype=np.float64).ravel()
         z = np.asarray(z, dtype=np.float64).ravel()
-        xb, xe, yb, ye = (None if b is None else float(b) for b in bbox)
-        xb = x.min() if xb is None else xb
-        xe = x.max() if xe is None else xe
-        yb = y.min() if yb is None else yb
-        ye = y.max() if ye is None else ye
-        tx = np.concatenate([[xb] * (kx + 1), np.asarray(tx, dtype=np.float64), [xe] * (kx + 1)])
-        ty = np.concatenate([[yb] * (ky + 1), np.asarray(ty, dtype=np.float64), [ye] * (ky + 1)])
+        tx = np.asarray(tx, dtype=np.float64).ravel()
+        ty = np.asarray(ty, dtype=np.float64).ravel()
+        nx, ny = 2 * kx + 2 + len(tx), 2 * ky + 2 + len(ty)
+        tx1, ty1 = np.zeros(nx), np.zeros(ny)
+        tx1[kx + 1 : nx - kx - 1] = tx
+        ty1[ky + 1 : ny - ky - 1] = ty
+        given = [None if b is None else float(b) for b in bbox]
         ww = None if w is None else np.asarray(w, dtype=np.float64) ** 2
-        spline, _, fp = _lekalo.fit_tensor_scattered(
-            np.ascontiguousarray(np.stack([x, y], axis=-1)), z, (tx, ty), [int(kx), int(ky)], w=ww
-        )
+        pts = np.ascontiguousarray(np.stack([x, y], axis=-1))
+        eps = 1e-16 if eps is None else float(eps)
+        ncof = (nx - kx - 1) * (ny - ky - 1)
+        for attempt in range(2):
+            xb, xe, yb, ye = (
+                _default_lower(x, tx1) if given[0] is None else given[0],
+                _default_upper(x, tx1) if given[1] is None else given[1],
+                _default_lower(y, ty1) if given[2] is None else given[2],
+                _default_upper(y, ty1) if given[3] is None else given[3],
+            )
+            tx1[: kx + 1], tx1[nx - kx - 1 :] = xb, xe
+            ty1[: ky + 1], ty1[ny - ky - 1 :] = yb, ye
+            spline, _, fp, rank = _lekalo.fit_tensor_scattered(
+                pts, z, (tx1.copy(), ty1.copy()), [int(kx), int(ky)], w=ww, eps=eps,
+                full_output=True,
+            )
+            if rank == ncof or attempt == 1 or all(g is not None for g in given):
+                break
+        # FITPACK reports ier = -rank; SciPy warns for ier < -2
+        if rank < ncof and rank > 2:
+            warnings.warn(_SURFIT_MESSAGES[-3] % (ncof - rank), stacklevel=2)
         self.fp = fp
         t0, t1 = spline.t
         self.tck = (np.asarray(t0), np.asarray(t1), np.asarray(spline.c).ravel())
