@@ -228,12 +228,16 @@ def main():
         def med(key, k):
             return statistics.median(t[k] for t in got[key]) if got[key] else math.nan
 
+        def ratio(a, b):
+            # a read below the clock's resolution has no ratio
+            return a / b if b > 0 else math.nan
+
         faces = "/".join(str(int(last.get(k, {}).get("faces", -1))) if "faces" in last.get(k, {})
                          else str(last.get(k, {}).get("error", "-")) for k in ["faces", "occt"])
         print(f"{path.name:<30} {mb:6.1f} | wall s: {med('ours', 0):7.3f} {med('faces', 0):7.3f} "
-              f"{med('occt', 0):7.3f} {med('occt', 0) / med('faces', 0):5.1f}x"
+              f"{med('occt', 0):7.3f} {ratio(med('occt', 0), med('faces', 0)):5.1f}x"
               f" | CPU s: {med('faces', 1):7.3f} {med('occt', 1):7.3f} "
-              f"{med('occt', 1) / med('faces', 1):5.1f}x | {faces}", flush=True)
+              f"{ratio(med('occt', 1), med('faces', 1)):5.1f}x | {faces}", flush=True)
 
 
 if __name__ == "__main__":
