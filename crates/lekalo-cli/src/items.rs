@@ -198,6 +198,26 @@ pub(crate) fn report_skipped(
     }
 }
 
+/// CAD files from this size on show a progress bar while they are read (on a terminal, not
+/// with `-q`).
+const LARGE_CAD_BYTES: usize = 4 << 20;
+
+/// Runs the read `f` of the CAD file `name` (its `text`) with a progress bar for a large file
+/// and the cancel flag of Ctrl-C: an interrupted read leaves nothing written.
+pub(crate) fn read_with_progress<R>(
+    cx: &Context,
+    name: &str,
+    text: &str,
+    f: impl FnOnce(&lekalo::Progress<'_>) -> R,
+) -> R {
+    crate::cancel::with_progress(
+        cx,
+        &format!("reading {name}"),
+        text.len() >= LARGE_CAD_BYTES,
+        f,
+    )
+}
+
 /// The curves and surfaces of a STEP or IGES file, by its extension (`None` for any other
 /// file), with what was read and skipped reported on standard error (not with `-q`).
 pub(crate) fn read_cad(
@@ -207,12 +227,16 @@ pub(crate) fn read_cad(
     name: &str,
 ) -> Result<Option<Vec<lekalo_io::Shape>>> {
     if is_step(path) {
-        let r = lekalo_io::read_step_limited(text, name, cx.max_size)?;
+        let r = read_with_progress(cx, name, text, |p| {
+            lekalo_io::read_step_with_progress(text, name, cx.max_size, false, p)
+        })?;
         report_step(cx, name, &r);
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
     }
     if is_iges(path) {
-        let r = lekalo_io::read_iges_limited(text, name, cx.max_size)?;
+        let r = read_with_progress(cx, name, text, |p| {
+            lekalo_io::read_iges_with_progress(text, name, cx.max_size, false, p)
+        })?;
         if !cx.is_quiet() {
             let curves = r
                 .shapes

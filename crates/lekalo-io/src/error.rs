@@ -121,6 +121,15 @@ pub enum IoError {
     /// Rendering an SVG to PNG failed (an internal failure, not bad input).
     #[error("rendering failed: {0}")]
     Render(String),
+    /// The caller's cancel flag ([`lekalo::Progress::with_cancel`]) stopped a read; nothing of
+    /// it is returned.
+    #[error("{at}: {what}: cancelled")]
+    Cancelled {
+        /// The input.
+        at: Location,
+        /// The work that stopped, e.g. `reading STEP`.
+        what: &'static str,
+    },
 }
 
 impl IoError {
@@ -136,7 +145,19 @@ impl IoError {
             | IoError::WriteProtected { .. }
             | IoError::TooLarge { .. }
             | IoError::Unsupported { .. } => true,
-            IoError::Write { .. } | IoError::Render(_) => false,
+            IoError::Write { .. } | IoError::Render(_) | IoError::Cancelled { .. } => false,
+        }
+    }
+
+    /// [`IoError::Cancelled`] for a [`lekalo::Progress`] step that reported the cancel flag
+    /// (any other error of the step is the same stop).
+    pub(crate) fn cancelled(source: &str, e: &lekalo::Error) -> Self {
+        IoError::Cancelled {
+            at: Location::new(source),
+            what: match e {
+                lekalo::Error::Cancelled { what } => what,
+                _ => "reading",
+            },
         }
     }
 

@@ -61,7 +61,9 @@ pub use atomic::{
 pub use error::{IoError, IoResult, Location};
 pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;
-pub use iges::{read_iges, read_iges_faces, read_iges_limited, IgesRead, IgesWriter};
+pub use iges::{
+    read_iges, read_iges_faces, read_iges_limited, read_iges_with_progress, IgesRead, IgesWriter,
+};
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};
 pub use mesh_files::{mesh_text, polyline_text, MeshFormat};
@@ -87,8 +89,8 @@ pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};
 pub use step_read::{
-    read_step, read_step_faces, read_step_limited, skipped_by_kind, SkippedKind, StepFace,
-    StepRead, StepSkipped, STEP_LOOP_RTOL,
+    read_step, read_step_faces, read_step_limited, read_step_with_progress, skipped_by_kind,
+    SkippedKind, StepFace, StepRead, StepSkipped, STEP_LOOP_RTOL,
 };
 pub use surface_plot::{surface_plot, ColorField, SurfacePlot, SURFACE_SAMPLES};
 pub use surface_samples::{surface_sample_table, SurfaceSampleSpec};

@@ -139,7 +139,9 @@ pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRea
     }
     let (text, name) = lekalo_io::read_input(path)?;
     let r = if iges {
-        let r = lekalo_io::read_iges_faces(&text, &name, cx.max_size)?;
+        let r = crate::items::read_with_progress(cx, &name, &text, |p| {
+            lekalo_io::read_iges_with_progress(&text, &name, cx.max_size, true, p)
+        })?;
         lekalo_io::StepRead {
             shapes: r.shapes,
             skipped: r.skipped,
@@ -150,7 +152,9 @@ pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRea
             scale_to_mm: r.scale_to_mm,
         }
     } else {
-        lekalo_io::read_step_faces(&text, &name, cx.max_size)?
+        crate::items::read_with_progress(cx, &name, &text, |p| {
+            lekalo_io::read_step_with_progress(&text, &name, cx.max_size, true, p)
+        })?
     };
     if !cx.is_quiet() {
         let with = r.faces.iter().filter(|f| f.pcurves.is_none()).count();

@@ -56,7 +56,18 @@ const MAX_NESTING: usize = 8;
 /// As [`super::read_iges_limited`]; [`IoError::TooLarge`] when the faces' surfaces and edges
 /// hold more than `max_size` control points together.
 pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
-    let (mut r, raw) = read_entities(text, source, max_size, true)?;
+    read_faces_with_progress(text, source, max_size, &lekalo::Progress::new())
+}
+
+/// [`read_iges_faces`] reporting the directory entries read to `progress`
+/// ([`super::read_iges_with_progress`]).
+pub(super) fn read_faces_with_progress(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    progress: &lekalo::Progress<'_>,
+) -> IoResult<IgesRead> {
+    let (mut r, raw) = read_entities(text, source, max_size, true, progress)?;
     let mut cx = Faces {
         curves: HashMap::new(),
         surfaces: HashMap::new(),

@@ -23,7 +23,7 @@
 
 use std::fmt::Write as _;
 
-use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points};
+use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Progress};
 
 mod faces;
 mod faces_write;
@@ -436,18 +436,62 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
 /// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
-    read_entities(text, source, max_size, false).map(|(r, _)| r)
+    read_entities(text, source, max_size, false, &Progress::new()).map(|(r, _)| r)
+}
+
+/// What an IGES read reports itself as.
+const READING: &str = "reading IGES";
+
+/// Directory entries read between two consultations of the progress hook.
+const REPORT_ENTITIES: usize = 1 << 10;
+
+/// [`read_iges_limited`] (or [`read_iges_faces`] with `faces`) that reports to `progress` and
+/// stops when its cancel flag is set: `(entities read, entities)` of the directory section,
+/// every 1024 entities and never inside one (the result is the same with or without the hook),
+/// `(total, total)` last.
+///
+/// ```
+/// use std::sync::atomic::AtomicBool;
+/// use lekalo::Progress;
+/// use lekalo_io::{read_iges_with_progress, IgesWriter, IoError, Object};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("line.igs", "2000-01-01T00:00:00");
+/// let stop = AtomicBool::new(true);
+/// let e = read_iges_with_progress(&text, "line.igs", 1000, false,
+///     &Progress::new().with_cancel(&stop)).unwrap_err();
+/// assert_eq!(e.to_string(), "line.igs: reading IGES: cancelled");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_iges_limited`]; [`IoError::Cancelled`] once the cancel flag is set.
+pub fn read_iges_with_progress(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    faces: bool,
+    progress: &Progress<'_>,
+) -> IoResult<IgesRead> {
+    if faces {
+        faces::read_faces_with_progress(text, source, max_size, progress)
+    } else {
+        read_entities(text, source, max_size, false, progress).map(|(r, _)| r)
+    }
 }
 
 /// The entities of a file as [`read_iges_limited`] reads them and, with `topology`, the
 /// parameters of the composite curves, curves on surfaces, boundaries, bounded and trimmed
 /// surfaces (entities 102, 141, 142, 143, 144) by sequence number, which the faces are built
-/// from.
+/// from. `progress` is told the directory entries read.
 fn read_entities(
     text: &str,
     source: &str,
     max_size: usize,
     topology: bool,
+    progress: &Progress<'_>,
 ) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>)> {
     let mut raw = std::collections::HashMap::new();
     let mut g = String::new();
@@ -528,7 +572,18 @@ fn read_entities(
     // parameter lines read so far: each entity owns its own lines, so more than the section
     // holds means entities share lines, which a file could use to make the reading quadratic
     let mut lines_read = 0usize;
-    for pair in d.chunks(2) {
+    let step = |k: usize| -> IoResult<()> {
+        if progress.is_active() {
+            progress
+                .step(READING, k as u64, entities as u64)
+                .map_err(|e| IoError::cancelled(source, &e))?;
+        }
+        Ok(())
+    };
+    for (k, pair) in d.chunks(2).enumerate() {
+        if k % REPORT_ENTITIES == 0 {
+            step(k)?;
+        }
         let [(line, a), (_, b)] = pair else {
             return Err(IoError::syntax(
                 Location::new(source).at_line(pair[0].0),
@@ -750,6 +805,10 @@ fn read_entities(
             };
             shapes.push((seq, Shape::Surface(s)));
         }
+    }
+    if progress.is_active() {
+        // complete: a flag set this late does not discard the result
+        let _ = progress.step(READING, entities as u64, entities as u64);
     }
     Ok((
         IgesRead {
@@ -1000,6 +1059,55 @@ mod tests {
             e.contains("K = 3, M = 1") && e.contains("need 31 parameters"),
             "{e}"
         );
+    }
+    #[test]
+    fn progress_reports_the_entities_and_cancels() {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        use std::sync::Mutex;
+
+        let mut w = IgesWriter::new();
+        for k in 0..3000 {
+            let x = f64::from(k);
+            let c = BSplineCurve::new(
+                1,
+                vec![0.0, 0.0, 1.0, 1.0],
+                Points::from_rows(&[vec![x, 0.0, 0.0], vec![x, 1.0, 0.0]]).unwrap(),
+            )
+            .unwrap();
+            w.add_object(&Object::BSpline(c)).unwrap();
+        }
+        let text = w.finish("lines.igs", "20000101.000000");
+        let plain = read_iges(&text, "l.igs").unwrap();
+        let seen = Mutex::new(Vec::new());
+        let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));
+        let hooked = read_iges_with_progress(
+            &text,
+            "l.igs",
+            usize::MAX,
+            false,
+            &Progress::new().with_report(&report),
+        )
+        .unwrap();
+        assert_eq!(hooked, plain, "the hook changed the result");
+        let seen = seen.into_inner().unwrap();
+        assert_eq!(
+            seen,
+            vec![(0, 3000), (1024, 3000), (2048, 3000), (3000, 3000)]
+        );
+        let stop = AtomicBool::new(false);
+        let report = |d: u64, _: u64| stop.store(d >= 1024, Ordering::Relaxed);
+        for faces in [false, true] {
+            let e = read_iges_with_progress(
+                &text,
+                "l.igs",
+                usize::MAX,
+                faces,
+                &Progress::new().with_report(&report).with_cancel(&stop),
+            )
+            .unwrap_err();
+            assert!(matches!(e, IoError::Cancelled { .. }), "{e:?}");
+            assert_eq!(e.to_string(), "l.igs: reading IGES: cancelled");
+        }
     }
 }
 

@@ -11,6 +11,8 @@ use super::faces::read_faces;
 use super::parse::parse;
 use super::units::{length_unit, plane_angle_unit};
 use super::{StepRead, StepSkipped, Why};
+use lekalo::Progress;
+
 use crate::error::{IoError, IoResult};
 use crate::shape::Shape;
 
@@ -66,7 +68,7 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
 /// As [`read_step`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
-    read(text, source, max_size, false)
+    read(text, source, max_size, false, &Progress::new())
 }
 
 /// [`read_step_limited`] that reads the faces too ([`StepRead::faces`]): each `ADVANCED_FACE`
@@ -77,11 +79,121 @@ pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<
 /// # Errors
 /// As [`read_step_limited`].
 pub fn read_step_faces(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
-    read(text, source, max_size, true)
+    read(text, source, max_size, true, &Progress::new())
 }
 
-fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult<StepRead> {
-    let parsed = parse(text, source, max_size)?;
+/// [`read_step_limited`] (or [`read_step_faces`] with `faces`) that reports to `progress` and
+/// stops when its cancel flag is set. The bar has twice the file's length in bytes: the first
+/// half counts the bytes parsed, the second the entity instances converted, pass after pass
+/// (trimmed curves, curves and B-spline surfaces, analytic surfaces, faces); `done` never goes
+/// back and the last report is `(total, total)`. The hook is consulted every 64 KiB of text and
+/// every 1024 instances, never inside an entity, so the result is the same with or without it.
+///
+/// ```
+/// use std::sync::atomic::AtomicBool;
+/// use lekalo::Progress;
+/// use lekalo_io::{read_step_with_progress, IoError, Object, StepWriter};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = StepWriter::new("line");
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("2000-01-01T00:00:00");
+/// let stop = AtomicBool::new(true);
+/// let e = read_step_with_progress(&text, "line.step", 1000, false,
+///     &Progress::new().with_cancel(&stop)).unwrap_err();
+/// assert!(matches!(e, IoError::Cancelled { .. }), "{e}");
+/// assert_eq!(e.to_string(), "line.step: reading STEP: cancelled");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_step_limited`]; [`IoError::Cancelled`] once the cancel flag is set.
+pub fn read_step_with_progress(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    faces: bool,
+    progress: &Progress<'_>,
+) -> IoResult<StepRead> {
+    read(text, source, max_size, faces, progress)
+}
+
+/// The passes over the entity instances after parsing, in order.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Pass {
+    /// Trimmed curves.
+    Trims = 0,
+    /// B-spline curves and surfaces, analytic curves.
+    Curves = 1,
+    /// Analytic surfaces.
+    Surfaces = 2,
+    /// Faces.
+    Faces = 3,
+}
+
+/// The progress of one read on a bar of `2 · len` units for a text of `len` bytes: the bytes
+/// parsed, then the instances converted, the four [`Pass`]es sharing the second half.
+pub(super) struct Meter<'a> {
+    progress: &'a Progress<'a>,
+    source: &'a str,
+    len: u64,
+}
+
+/// What a STEP read reports itself as.
+const READING: &str = "reading STEP";
+
+/// Instances converted between two consultations of the hook.
+const REPORT_INSTANCES: usize = 1 << 10;
+
+impl Meter<'_> {
+    fn step(&self, done: u64) -> IoResult<()> {
+        if !self.progress.is_active() {
+            return Ok(());
+        }
+        self.progress
+            .step(READING, done, 2 * self.len)
+            .map_err(|e| IoError::cancelled(self.source, &e))
+    }
+
+    /// `bytes` of the text parsed.
+    pub(super) fn parsed(&self, bytes: usize) -> IoResult<()> {
+        self.step((bytes as u64).min(self.len))
+    }
+
+    /// Instance `k` of `n` reached in `pass`: reported every [`REPORT_INSTANCES`].
+    pub(super) fn converted(&self, pass: Pass, k: usize, n: usize) -> IoResult<()> {
+        if k % REPORT_INSTANCES != 0 {
+            return Ok(());
+        }
+        let whole = 4 * n.max(1) as u128;
+        let at = (pass as u128) * n as u128 + k as u128;
+        // at ≤ whole, so the quotient is at most len
+        #[allow(clippy::cast_possible_truncation)]
+        let done = (u128::from(self.len) * at / whole) as u64;
+        self.step(self.len + done)
+    }
+
+    /// The read is complete: `(total, total)`, whatever the flag says now.
+    fn finish(&self) {
+        if self.progress.is_active() {
+            let _ = self.progress.step(READING, 2 * self.len, 2 * self.len);
+        }
+    }
+}
+
+fn read(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    with_faces: bool,
+    progress: &Progress<'_>,
+) -> IoResult<StepRead> {
+    let meter = Meter {
+        progress,
+        source,
+        len: text.len() as u64,
+    };
+    let parsed = parse(text, source, max_size, &meter)?;
     let (length_unit, scale) = length_unit(&parsed, source)?;
     let rd = Reader {
         p: &parsed,
@@ -115,7 +227,8 @@ fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult
     // the basis control points all trims may read: four times the instances of the file (each
     // control point is an instance), so that reading stays linear in the file's size
     let mut budget = parsed.instances.len().saturating_mul(4);
-    for &id in &ids {
+    for (k, &id) in ids.iter().enumerate() {
+        meter.converted(Pass::Trims, k, ids.len())?;
         let inst = &parsed.instances[&id];
         if let Some(r) = inst.get("TRIMMED_CURVE") {
             match rd.trimmed(r, &mut budget) {
@@ -133,7 +246,8 @@ fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult
     }
     let lines = line_ranges(&rd);
     let mut unbounded = HashSet::new();
-    for &id in &ids {
+    for (k, &id) in ids.iter().enumerate() {
+        meter.converted(Pass::Curves, k, ids.len())?;
         let inst = &parsed.instances[&id];
         let bad = |why: Why| {
             too_large(&rd).unwrap_or_else(|| {
@@ -195,7 +309,8 @@ fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult
         return Err(e);
     }
     let bounds = face_bounds(&rd, &unbounded, &curves);
-    for &id in &ids {
+    for (k, &id) in ids.iter().enumerate() {
+        meter.converted(Pass::Surfaces, k, ids.len())?;
         let inst = &parsed.instances[&id];
         let Some(name) = first_of(inst, ANALYTIC_SURFACES) else {
             continue;
@@ -220,7 +335,7 @@ fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult
             .collect();
         let surface_skips: HashMap<u64, &str> =
             skipped.iter().map(|s| (s.id, s.reason.as_str())).collect();
-        let r = read_faces(&rd, &ids, &surfaces, &surface_skips);
+        let r = read_faces(&rd, &ids, &surfaces, &surface_skips, &meter)?;
         if let Some(e) = too_large(&rd) {
             return Err(e);
         }
@@ -228,6 +343,7 @@ fn read(text: &str, source: &str, max_size: usize, with_faces: bool) -> IoResult
     } else {
         (Vec::new(), Vec::new())
     };
+    meter.finish();
     Ok(StepRead {
         shapes,
         skipped,

@@ -19,8 +19,10 @@ use lekalo::topology::{Edge, Face, Loop};
 use lekalo::{BSplineCurve, Curve, NurbsCurve, Points};
 
 use super::analytic::Basis;
+use super::driver::{Meter, Pass};
 use super::entities::{is_bspline_surface, Reader};
 use super::{list, unnamed, StepSkipped, Why, P};
+use crate::error::IoResult;
 use crate::shape::Surface;
 
 /// The tolerance on the gaps of a face's loops, relative to the model size (see
@@ -94,17 +96,19 @@ struct EdgeGeom {
 
 /// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file: the faces read, and those
 /// skipped with the reason. `surfaces` are the surfaces read by id, `surface_skips` why the
-/// others were not.
+/// others were not; `meter` is told the instances looked at and can cancel the read.
 pub(super) fn read_faces(
     rd: &Reader<'_>,
     ids: &[u64],
     surfaces: &HashMap<u64, &Surface>,
     surface_skips: &HashMap<u64, &str>,
-) -> (Vec<StepFace>, Vec<StepSkipped>) {
+    meter: &Meter<'_>,
+) -> IoResult<(Vec<StepFace>, Vec<StepSkipped>)> {
     let mut faces = Vec::new();
     let mut skipped = Vec::new();
     let mut edges: HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>> = HashMap::new();
-    for &id in ids {
+    for (k, &id) in ids.iter().enumerate() {
+        meter.converted(Pass::Faces, k, ids.len())?;
         let inst = &rd.p.instances[&id];
         let Some((entity, r)) = ["ADVANCED_FACE", "FACE_SURFACE"]
             .iter()
@@ -121,7 +125,7 @@ pub(super) fn read_faces(
             }),
         }
     }
-    (faces, skipped)
+    Ok((faces, skipped))
 }
 
 fn read_face(
@@ -464,6 +468,17 @@ fn cut(
     match basis {
         Basis::Spline(o) => {
             let (a, b) = o.domain();
+            // vertices written as the curve's own end points (the common case) are its ends:
+            // no projection needed
+            let (pa, pb) = (o.eval(a).map_err(lib)?, o.eval(b).map_err(lib)?);
+            if (ends[0] == pa && ends[1] == pb) || (ends[0] == pb && ends[1] == pa) {
+                let c = if same_sense {
+                    o.clone()
+                } else {
+                    o.reverse().map_err(lib)?
+                };
+                return Ok((c, None));
+            }
             let q = o.to_query().map_err(lib)?;
             let t0 = q.project(&ends[0]).map_err(lib)?.t;
             let t1 = q.project(&ends[1]).map_err(lib)?.t;

@@ -50,7 +50,7 @@ mod parse;
 mod tests;
 mod units;
 
-pub use driver::{read_step, read_step_faces, read_step_limited};
+pub use driver::{read_step, read_step_faces, read_step_limited, read_step_with_progress};
 pub use faces::{StepFace, STEP_LOOP_RTOL};
 
 use crate::shape::Shape;

@@ -2,8 +2,8 @@
 //! kinds, lists, typed parameters, simple and complex instances, with line numbers in errors.
 
 use std::cell::Cell;
-use std::collections::HashMap;
 
+use super::driver::Meter;
 use super::{Instance, P};
 use crate::error::{IoError, IoResult, Location};
 
@@ -284,12 +284,19 @@ impl<'a> Lexer<'a> {
                 }) {
                     self.pos += 1;
                 }
-                let text = String::from_utf8_lossy(&self.s[start..self.pos]);
-                // Part 21 allows "1." (no fraction digits); Rust's parser accepts it too
-                match text.parse::<f64>() {
+                let bytes = &self.s[start..self.pos];
+                // Part 21 allows "1." (no fraction digits); fast_float2 reads it, correctly
+                // rounded as Rust's parser, from the bytes without a copy
+                match fast_float2::parse::<f64, _>(bytes) {
                     Ok(x) if x.is_finite() => Ok(P::Num(x)),
-                    Ok(_) => self.err(format!("number {text} is outside the range of a double")),
-                    Err(_) => self.err(format!("\"{text}\" is not a number")),
+                    Ok(_) => self.err(format!(
+                        "number {} is outside the range of a double",
+                        String::from_utf8_lossy(bytes)
+                    )),
+                    Err(_) => self.err(format!(
+                        "\"{}\" is not a number",
+                        String::from_utf8_lossy(bytes)
+                    )),
                 }
             }
             _ => self.err(format!(
@@ -302,15 +309,118 @@ impl<'a> Lexer<'a> {
 
 /// The parsed exchange structure: instances by id, and the header's schema.
 pub(super) struct Parsed {
-    pub(super) instances: HashMap<u64, Instance>,
+    pub(super) instances: Instances,
     pub(super) schema: Option<String>,
 }
 
+/// The entity instances of a file, in id order, found by id in constant time: writers number
+/// instances `#1, #2, …` with few gaps, so a table indexed by id holds the position of each
+/// (when the largest id is at most [`DENSE_IDS`] times the count, plus 1024); sparser ids are
+/// found by binary search. Either way no id is hashed and the table is linear in the count.
+pub(super) struct Instances {
+    /// The ids, ascending.
+    ids: Vec<u64>,
+    /// The instance of each id of `ids`, at the same position.
+    items: Vec<Instance>,
+    /// The position + 1 of id `k` at `dense[k]` (0: no instance), or empty for sparse ids.
+    dense: Vec<u32>,
+}
+
+/// The largest id, over the number of instances, up to which [`Instances`] indexes by id.
+const DENSE_IDS: u64 = 4;
+
+impl Instances {
+    /// The instances of `(id, instance)` pairs in any order; a repeated id is an error naming
+    /// the line of its second definition.
+    fn new(mut pairs: Vec<(u64, Instance)>, source: &str) -> IoResult<Self> {
+        if !pairs.windows(2).all(|w| w[0].0 < w[1].0) {
+            // stable: of two instances with one id, the one defined later stays after
+            pairs.sort_by_key(|(id, _)| *id);
+            if let Some(w) = pairs.windows(2).find(|w| w[0].0 == w[1].0) {
+                let (id, line) = (w[1].0, w[1].1.line.max(w[0].1.line));
+                return Err(IoError::syntax(
+                    Location::new(source).at_line(line),
+                    format!("entity instance #{id} is defined twice"),
+                ));
+            }
+        }
+        let (ids, items): (Vec<u64>, Vec<Instance>) = pairs.into_iter().unzip();
+        let n = ids.len() as u64;
+        let dense = match ids.last() {
+            Some(&max)
+                if n < u64::from(u32::MAX)
+                    && max <= n.saturating_mul(DENSE_IDS).saturating_add(1024) =>
+            {
+                // max is below 4 · n + 1024 entries, n instances already held
+                #[allow(clippy::cast_possible_truncation)]
+                let mut t = vec![0u32; max as usize + 1];
+                for (k, &id) in ids.iter().enumerate() {
+                    #[allow(clippy::cast_possible_truncation)]
+                    {
+                        t[id as usize] = k as u32 + 1;
+                    }
+                }
+                t
+            }
+            _ => Vec::new(),
+        };
+        Ok(Instances { ids, items, dense })
+    }
+
+    /// The instance `#id`.
+    pub(super) fn get(&self, id: &u64) -> Option<&Instance> {
+        let k = if self.dense.is_empty() {
+            self.ids.binary_search(id).ok()?
+        } else {
+            let slot = *self.dense.get(usize::try_from(*id).ok()?)?;
+            (slot as usize).checked_sub(1)?
+        };
+        self.items.get(k)
+    }
+
+    /// How many instances the file holds.
+    pub(super) fn len(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// The ids, ascending.
+    pub(super) fn keys(&self) -> std::slice::Iter<'_, u64> {
+        self.ids.iter()
+    }
+
+    /// The instances, in id order.
+    pub(super) fn values(&self) -> std::slice::Iter<'_, Instance> {
+        self.items.iter()
+    }
+}
+
+impl std::ops::Index<&u64> for Instances {
+    type Output = Instance;
+
+    /// The instance `#id`, which must exist (an id taken from [`Instances::keys`]).
+    fn index(&self, id: &u64) -> &Instance {
+        match self.get(id) {
+            Some(i) => i,
+            None => unreachable!("instance #{id} looked up by an id not taken from the file"),
+        }
+    }
+}
+
+/// Bytes parsed between two reports to the progress hook (a fraction of a millisecond).
+const REPORT_BYTES: usize = 1 << 16;
+
 /// Parses the exchange structure; more than `max_entities` instances is
-/// [`IoError::TooLarge`], refused before the next one is stored.
-pub(super) fn parse(text: &str, source: &str, max_entities: usize) -> IoResult<Parsed> {
+/// [`IoError::TooLarge`], refused before the next one is stored. `meter` is told the bytes
+/// parsed every [`REPORT_BYTES`] and stops the parse when cancelled.
+pub(super) fn parse(
+    text: &str,
+    source: &str,
+    max_entities: usize,
+    meter: &Meter<'_>,
+) -> IoResult<Parsed> {
     let mut lx = Lexer::new(text, source);
-    let mut instances = HashMap::new();
+    let mut reported = 0;
+    let mut instances: Vec<(u64, Instance)> = Vec::new();
     let mut schema = None;
     let mut in_data = false;
     let mut seen_data = false;
@@ -351,11 +461,10 @@ pub(super) fn parse(text: &str, source: &str, max_entities: usize) -> IoResult<P
                     ),
                 });
             }
-            if instances.insert(id, Instance { records, line }).is_some() {
-                return Err(IoError::syntax(
-                    Location::new(source).at_line(line),
-                    format!("entity instance #{id} is defined twice"),
-                ));
+            instances.push((id, Instance { records, line }));
+            if lx.pos - reported >= REPORT_BYTES {
+                reported = lx.pos;
+                meter.parsed(lx.pos)?;
             }
             continue;
         }
@@ -397,5 +506,8 @@ pub(super) fn parse(text: &str, source: &str, max_entities: usize) -> IoResult<P
             "no DATA section: this is not an ISO 10303-21 (STEP) exchange structure",
         ));
     }
-    Ok(Parsed { instances, schema })
+    Ok(Parsed {
+        instances: Instances::new(instances, source)?,
+        schema,
+    })
 }

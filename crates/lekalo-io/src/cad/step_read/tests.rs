@@ -2,6 +2,7 @@ use lekalo::{BSplineSurface, NurbsCurve, NurbsSurface, Points};
 
 use super::parse::MAX_NESTING;
 use super::*;
+use crate::error::IoError;
 use crate::object::Object;
 use crate::shape::Surface;
 use crate::StepWriter;
@@ -305,4 +306,118 @@ fn units_that_are_not_positive_lengths_are_refused() {
         );
         assert!(e.contains(shown), "{factor}: {e}");
     }
+}
+
+/// A STEP file of `n` cubic curves (about 600 bytes each) written by [`StepWriter`].
+fn many_curves(n: usize) -> String {
+    let mut w = StepWriter::new("curves");
+    for k in 0..n {
+        let x = k as f64;
+        let c = lekalo::BSplineCurve::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            Points::from_rows(&[
+                vec![x, 0.0, 0.0],
+                vec![x, 1.0, 0.5],
+                vec![x, 2.0, -0.5],
+                vec![x, 3.0, 0.0],
+            ])
+            .unwrap(),
+        )
+        .unwrap();
+        w.add_object(&Object::BSpline(c)).unwrap();
+    }
+    w.finish("2000-01-01T00:00:00")
+}
+
+#[test]
+fn progress_reports_the_bytes_then_the_entities_and_cancels() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Mutex;
+
+    let text = many_curves(1000);
+    assert!(text.len() > 4 * (1 << 16), "the file spans several reports");
+    for faces in [false, true] {
+        let plain = read_step_faces(&text, "c.step", usize::MAX).unwrap();
+        let seen = Mutex::new(Vec::new());
+        let report = |d: u64, t: u64| seen.lock().unwrap().push((d, t));
+        let stop = AtomicBool::new(false);
+        let hooked = read_step_with_progress(
+            &text,
+            "c.step",
+            usize::MAX,
+            faces,
+            &lekalo::Progress::new()
+                .with_report(&report)
+                .with_cancel(&stop),
+        )
+        .unwrap();
+        assert_eq!(hooked.shapes, plain.shapes, "the hook changed the curves");
+        assert_eq!(
+            hooked.faces.len(),
+            if faces { plain.faces.len() } else { 0 }
+        );
+        let seen = seen.into_inner().unwrap();
+        let total = 2 * text.len() as u64;
+        assert!(seen.iter().all(|&(d, t)| t == total && d <= t), "{seen:?}");
+        assert!(seen.windows(2).all(|w| w[0].0 <= w[1].0), "reports go back");
+        // parsing reports bytes below the length, conversion above it
+        assert!(
+            seen.iter().any(|&(d, _)| d > 0 && d < total / 2),
+            "{seen:?}"
+        );
+        assert!(
+            seen.iter().any(|&(d, _)| d > total / 2 && d < total),
+            "{seen:?}"
+        );
+        assert_eq!(seen.last(), Some(&(total, total)));
+    }
+    // a flag set from the first report on stops the read, while parsing or converting
+    for after in [1, 8] {
+        let stop = AtomicBool::new(false);
+        let calls = Mutex::new(0);
+        let report = |_: u64, _: u64| {
+            let mut c = calls.lock().unwrap();
+            *c += 1;
+            if *c >= after {
+                stop.store(true, Ordering::Relaxed);
+            }
+        };
+        let e = read_step_with_progress(
+            &text,
+            "c.step",
+            usize::MAX,
+            true,
+            &lekalo::Progress::new()
+                .with_report(&report)
+                .with_cancel(&stop),
+        )
+        .unwrap_err();
+        assert!(matches!(e, IoError::Cancelled { .. }), "{e:?}");
+        assert_eq!(e.to_string(), "c.step: reading STEP: cancelled");
+        assert!(!e.is_bad_input());
+        assert_eq!(*calls.lock().unwrap(), after, "stopped at the first check");
+    }
+}
+
+#[test]
+fn instances_are_found_by_id_dense_or_sparse() {
+    // ids far apart (beyond the dense table) and out of order read as the same curve
+    let dense = "ISO-10303-21;HEADER;ENDSEC;DATA;
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=CARTESIAN_POINT('',(1.,0.,0.));
+#3=B_SPLINE_CURVE_WITH_KNOTS('',1,(#1,#2),.UNSPECIFIED.,.F.,.F.,(2,2),(0.,1.),.UNSPECIFIED.);
+ENDSEC;END-ISO-10303-21;";
+    let sparse = dense
+        .replace("#3=", "#5=")
+        .replace("#1", "#900000000000")
+        .replace("#2", "#7");
+    let a = read_step(dense, "a.step").unwrap();
+    let b = read_step(&sparse, "b.step").unwrap();
+    assert_eq!(a.shapes[0].1, b.shapes[0].1);
+    assert_eq!(b.shapes[0].0, 5);
+    // a repeated id is refused at its second definition, wherever the first is
+    let twice = sparse.replace("#7=", "#900000000000=");
+    let e = read_step(&twice, "t.step").unwrap_err().to_string();
+    assert!(e.contains("#900000000000 is defined twice"), "{e}");
+    assert!(e.starts_with("t.step:2:"), "{e}");
 }
