@@ -542,6 +542,7 @@ fn values_arg<'py>(y: &Bound<'py, PyAny>, npts: usize) -> PyResult<(FloatArray<'
 /// `N = 2`.
 #[pyfunction]
 #[pyo3(signature = (x, y, t, k = None, *, w = None, eps = None, full_output = false))]
+#[allow(clippy::too_many_arguments)] // one parameter per Python argument
 pub(crate) fn fit_tensor_scattered<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
