@@ -586,7 +586,10 @@ pub(crate) fn fit_tensor_scattered<'py>(
     let residuals = vec_array(py, &f.residuals);
     let rss = f.weighted_rss.into_pyobject(py)?.into_any();
     if full_output {
-        PyTuple::new(py, [spline, residuals, rss, f.rank.into_pyobject(py)?.into_any()])
+        PyTuple::new(
+            py,
+            [spline, residuals, rss, f.rank.into_pyobject(py)?.into_any()],
+        )
     } else {
         PyTuple::new(py, [spline, residuals, rss])
     }
