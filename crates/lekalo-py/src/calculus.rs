@@ -3,13 +3,14 @@
 //! `docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`), as methods of
 //! `BSplineCurve`.
 
-use lekalo::BSplineCurve;
+use lekalo::{BSplineCurve, Beyond};
+use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::convert::out_shape;
 use crate::convert::{array, check_size, filled, floats};
-use crate::curves::PyBSplineCurve;
-use crate::error::lib_err;
+use crate::curves::{basis_kernel, PyBSplineCurve, PAR_MIN};
+use crate::error::{bad, lib_err};
 
 #[pymethods]
 impl PyBSplineCurve {
@@ -31,6 +32,81 @@ impl PyBSplineCurve {
         integrate(py, &self.inner, a, b, extrapolate)
     }
 
+    /// The `nu`-th derivative at `t` (`t.shape + (dim,)`), anywhere on the real line, with
+    /// the kept fast evaluator's basis kernel (`CurveEvaluator::eval_batch_beyond`; on the
+    /// rayon pool for large batches): outside the domain the end polynomials continued (`extrapolate=True`)
+    /// or NaN, NaN at NaN or infinite parameters. SciPy's `BSpline.__call__` in one pass.
+    #[pyo3(signature = (t, nu = 0, extrapolate = true))]
+    fn eval_beyond<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        nu: usize,
+        extrapolate: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let dim = self.inner.dim();
+        let ta = floats(t, "t")?;
+        let ts = ta.data();
+        check_size("t", &[ts.len(), dim])?;
+        let beyond = if extrapolate {
+            Beyond::Continue
+        } else {
+            Beyond::Nan
+        };
+        let shape = out_shape(&ta, &[dim]);
+        if nu > self.inner.degree() {
+            // zero inside, and where continued; NaN where SciPy gives NaN
+            let (lo, hi) = self.inner.domain();
+            return filled(py, &shape, |buf| {
+                for (&x, o) in ts.iter().zip(buf.chunks_exact_mut(dim.max(1))) {
+                    let defined = x.is_finite() && (extrapolate || (lo <= x && x <= hi));
+                    o.fill(if defined { 0.0 } else { f64::NAN });
+                }
+                Ok(())
+            });
+        }
+        let derived;
+        let curve = if nu == 0 {
+            &self.inner
+        } else {
+            let mut d = self.inner.derivative().map_err(lib_err)?;
+            for _ in 1..nu {
+                d = d.derivative().map_err(lib_err)?;
+            }
+            derived = d;
+            &derived
+        };
+        if ts.len() < 3 * curve.control_points().len() {
+            // fewer points than it takes to pay for an evaluator (its tables cost about three
+            // points' evaluations a piece): the reference path, point by point
+            let (lo, hi) = curve.domain();
+            return filled(py, &shape, |buf| {
+                for (&x, o) in ts.iter().zip(buf.chunks_exact_mut(dim)) {
+                    if x.is_finite() && (extrapolate || (lo <= x && x <= hi)) {
+                        curve.eval_batch_extrapolated(&[x], o)?;
+                    } else {
+                        o.fill(f64::NAN);
+                    }
+                }
+                Ok(())
+            });
+        }
+        let kept;
+        let ev = if nu == 0 {
+            self.basis_evaluator()
+        } else {
+            kept = basis_kernel(curve);
+            &kept
+        };
+        filled(py, &shape, |buf| {
+            if ts.len() >= PAR_MIN {
+                ev.par_eval_batch_beyond(ts, beyond, buf)
+            } else {
+                ev.eval_batch_beyond(ts, beyond, buf)
+            }
+        })
+    }
+
     /// The `nu`-th derivative at `t` (`t.shape + (dim,)`), continued beyond the domain.
     #[pyo3(signature = (t, nu = 0))]
     fn eval_extrapolated<'py>(
@@ -41,6 +117,52 @@ impl PyBSplineCurve {
     ) -> PyResult<Bound<'py, PyAny>> {
         eval_extrapolated(py, &self.inner, t, nu)
     }
+}
+
+/// The value at the number `x` of the scalar spline on the knots `t`, degree `k`, coefficients
+/// `c` (1-D float64 arrays, read in place): `lekalo::bspline_value_by`, no curve
+/// built. The end polynomials are continued outside the domain (`extrapolate=True`), or NaN is
+/// given; NaN at a NaN or infinite `x`. The scalar call of SciPy's `BSpline` and `splev`.
+#[pyfunction]
+#[pyo3(signature = (t, k, c, x, extrapolate = true))]
+pub(crate) fn bspline_value(
+    t: &Bound<'_, PyAny>,
+    k: usize,
+    c: &Bound<'_, PyAny>,
+    x: f64,
+    extrapolate: bool,
+) -> PyResult<f64> {
+    let beyond = if extrapolate {
+        Beyond::Continue
+    } else {
+        Beyond::Nan
+    };
+    let t = vector_1d(t, "t")?;
+    let c = vector_1d(c, "c")?;
+    // the few numbers the evaluation needs, read in place (no copy, no borrow of the arrays)
+    let read = |a: &Bound<'_, PyArray1<f64>>, i: usize| a.get_owned(i).unwrap_or(f64::NAN);
+    lekalo::bspline_value_by(
+        t.len(),
+        |i| read(t, i),
+        k,
+        c.len(),
+        |i| read(c, i),
+        x,
+        beyond,
+    )
+    .map_err(lib_err)
+}
+
+/// A 1-D float64 array, or the error naming `what` and the fix.
+fn vector_1d<'a, 'py>(
+    obj: &'a Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<&'a Bound<'py, PyArray1<f64>>> {
+    obj.cast::<PyArray1<f64>>().map_err(|_| {
+        bad(format!(
+            "{what}: expected a 1-D float64 array; convert with np.asarray({what}, dtype=np.float64)"
+        ))
+    })
 }
 
 /// The `n`-th antiderivative (degree `p + n`, vanishing at the first knot).

@@ -500,6 +500,7 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
 pub(crate) struct PyBSplineCurve {
     pub(crate) inner: BSplineCurve,
     evaluator: OnceLock<CurveEvaluator>,
+    basis_evaluator: OnceLock<CurveEvaluator>,
 }
 
 impl PyBSplineCurve {
@@ -507,12 +508,21 @@ impl PyBSplineCurve {
         PyBSplineCurve {
             inner,
             evaluator: OnceLock::new(),
+            basis_evaluator: OnceLock::new(),
         }
     }
 
     /// The fast evaluator, built on first use and kept.
-    fn evaluator(&self) -> &CurveEvaluator {
+    pub(crate) fn evaluator(&self) -> &CurveEvaluator {
         self.evaluator.get_or_init(|| self.inner.evaluator())
+    }
+
+    /// The fast evaluator with the basis kernel (`EvalKernel::Basis`: the reference's
+    /// arithmetic, so that a zero coefficient contributes an exact zero, as in SciPy), built on
+    /// first use and kept.
+    pub(crate) fn basis_evaluator(&self) -> &CurveEvaluator {
+        self.basis_evaluator
+            .get_or_init(|| basis_kernel(&self.inner))
     }
 
     /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
@@ -784,3 +794,9 @@ curve_class!(PyNurbsCurve, Nurbs, "nurbs_curve", knots, {
         )
     }
 });
+
+/// `curve`'s fast evaluator with the basis kernel (which every curve has).
+pub(crate) fn basis_kernel(curve: &BSplineCurve) -> CurveEvaluator {
+    CurveEvaluator::with_kernel(curve, lekalo::EvalKernel::Basis)
+        .unwrap_or_else(|_| curve.evaluator())
+}

@@ -83,6 +83,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(batch::interpolate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(calculus::bspline_value, m)?)?;
     blend::register(m)?;
     derivatives::register(m)?;
     fit::register(m)?;

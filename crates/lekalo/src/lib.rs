@@ -69,9 +69,10 @@ pub use points::{Points, PointsRef};
 pub mod curve;
 
 pub use curve::{
-    curvature, insert_knot_periodic, insert_knot_raw, principal_normal, torsion, BSplineCurve,
-    BezierCurve, BezierSegment, Curve, CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator,
-    DEFAULT_REMOVAL_RTOL, POWER_FORM_MAX_DEGREE,
+    bspline_value, bspline_value_by, curvature, insert_knot_periodic, insert_knot_raw,
+    principal_normal, torsion, BSplineCurve, Beyond, BezierCurve, BezierSegment, Curve,
+    CurveEvaluator, EvalKernel, NurbsCurve, NurbsEvaluator, DEFAULT_REMOVAL_RTOL,
+    POWER_FORM_MAX_DEGREE,
 };
 
 // -- surfaces: tensor-product Bezier, B-spline, NURBS --

@@ -31,7 +31,8 @@
 //! so their results are bit-identical to the sequential fast path's.
 //!
 //! Monomorphised kernels (degree and dimension known at compile time) serve the common cases:
-//! degree 1–3 in dimensions 2 and 3, cubics also in dimensions 1 and 4, and NURBS of degree 2–3
+//! degree 1–3 in dimensions 2 and 3, cubics also in dimensions 1 and 4 (the basis kernel in
+//! dimension 1 at degrees 1–3 too: SciPy's scalar splines), and NURBS of degree 2–3
 //! in 2-D and 3-D (homogeneous dimension 3 and 4); everything else takes the generic kernel, which performs the same arithmetic.
 
 use rayon::prelude::*;
@@ -71,6 +72,18 @@ pub enum EvalKernel {
     PowerForm,
     /// Cox–de Boor basis functions with precomputed reciprocals of knot differences.
     Basis,
+}
+
+/// What the `*_beyond` evaluations of a [`CurveEvaluator`] give at a parameter outside the
+/// domain `[t_p, t_{n+1}]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Beyond {
+    /// The polynomial of the first (last) piece continued to the left (right): the same
+    /// function as [`BSplineCurve::eval_extrapolated`] (SciPy's `BSpline(extrapolate=True)`,
+    /// FITPACK's `splev(ext=0)`).
+    Continue,
+    /// NaN in every coordinate (SciPy's `BSpline(extrapolate=False)`).
+    Nan,
 }
 
 /// Per-piece data of the kernels.
@@ -315,7 +328,48 @@ impl CurveEvaluator {
     /// before it are written, nothing is guaranteed about the rest).
     pub fn eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
         check_batch(ts.len(), self.dim, out.len())?;
-        self.eval_slice(ts, out)
+        self.eval_slice(ts, out, None)
+    }
+
+    /// As [`CurveEvaluator::eval_batch`] for parameters anywhere on the real line: outside the
+    /// domain the end pieces' polynomials are continued or NaN is written, as `beyond` says
+    /// (the power form and the basis kernel are polynomials in `t`, so the kernels are the
+    /// same; `docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`). A NaN or
+    /// infinite parameter gives a NaN point. No allocation.
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Beyond, Points};
+    /// let ctrl = Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]])?;
+    /// let c = BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl)?;
+    /// let fast = c.evaluator();
+    /// let mut out = [0.0; 6];
+    /// fast.eval_batch_beyond(&[-0.5, 1.5, f64::NAN], Beyond::Continue, &mut out)?;
+    /// let want = c.eval_extrapolated(-0.5)?;
+    /// assert!((out[0] - want[0]).abs() < 1e-14 && (out[1] - want[1]).abs() < 1e-14);
+    /// assert!(out[4].is_nan() && out[5].is_nan());
+    /// fast.eval_batch_beyond(&[-0.5, 1.5, 3.5], Beyond::Nan, &mut out)?;
+    /// assert!(out[0].is_nan() && !out[2].is_nan() && out[5].is_nan());
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out.len() != ts.len() · dim`.
+    pub fn eval_batch_beyond(&self, ts: &[f64], beyond: Beyond, out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim, out.len())?;
+        self.eval_slice(ts, out, Some(beyond))
+    }
+
+    /// [`CurveEvaluator::eval_batch_beyond`] split over the current rayon thread pool as
+    /// [`CurveEvaluator::par_eval_batch`] splits; the results are bit-identical to the
+    /// sequential ones.
+    ///
+    /// # Errors
+    /// As [`CurveEvaluator::eval_batch_beyond`].
+    pub fn par_eval_batch_beyond(&self, ts: &[f64], beyond: Beyond, out: &mut [f64]) -> Result<()> {
+        check_batch(ts.len(), self.dim, out.len())?;
+        par_chunks(ts, out, self.dim, |t, o| {
+            self.eval_slice(t, o, Some(beyond))
+        })
     }
 
     /// As [`CurveEvaluator::eval_batch`], split over the current rayon thread pool in chunks of
@@ -332,7 +386,7 @@ impl CurveEvaluator {
     /// As [`CurveEvaluator::eval_batch`] (the error of the first failing chunk).
     pub fn par_eval_batch(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
         check_batch(ts.len(), self.dim, out.len())?;
-        par_chunks(ts, out, self.dim, |t, o| self.eval_slice(t, o))
+        par_chunks(ts, out, self.dim, |t, o| self.eval_slice(t, o, None))
     }
 
     /// Derivatives `C^{(k)}(t)`, `k = 0..=order`, for every `t` in `ts`, into `out` laid out
@@ -357,7 +411,7 @@ impl CurveEvaluator {
                 let kmax = order.min(p);
                 macro_rules! fixed {
                     ($w:literal, $d:literal) => {
-                        self.drive(ts, out, row, |j, t, o| {
+                        self.drive(ts, out, row, None, |j, t, o| {
                             let mut a = [0.0; $w];
                             power_ders(&mut a, $d, coef, j, t, kmax, o);
                         })
@@ -370,7 +424,7 @@ impl CurveEvaluator {
                 // (docs/performance.md)
                 macro_rules! fixed_order {
                     ($w:literal, $d:literal, $k:literal) => {
-                        self.drive(ts, out, row, |j, t, o| {
+                        self.drive(ts, out, row, None, |j, t, o| {
                             let mut a = [0.0; $w];
                             power_ders(&mut a, $d, coef, j, t, $k, o);
                         })
@@ -391,7 +445,7 @@ impl CurveEvaluator {
                     (3, 3, _) => fixed!(4, 3),
                     _ => {
                         let mut a = vec![0.0; p + 1];
-                        self.drive(ts, out, row, |j, t, o| {
+                        self.drive(ts, out, row, None, |j, t, o| {
                             power_ders(&mut a, dim, coef, j, t, kmax, o);
                         })
                     }
@@ -401,7 +455,7 @@ impl CurveEvaluator {
                 let w = p + 1;
                 let mut scratch = BasisScratch::new(p);
                 let mut d = vec![0.0; (order + 1) * w];
-                self.drive(ts, out, row, |j, t, o| {
+                self.drive(ts, out, row, None, |j, t, o| {
                     let span = self.spans[j];
                     basis_ders_into(knots, p, span, t, order, &mut scratch, &mut d);
                     o.fill(0.0);
@@ -429,6 +483,7 @@ impl CurveEvaluator {
         ts: &[f64],
         out: &mut [f64],
         row: usize,
+        beyond: Option<Beyond>,
         mut f: F,
     ) -> Result<()> {
         let (mut j, (mut mid, mut radius)) = (0, self.balls[0]);
@@ -439,8 +494,13 @@ impl CurveEvaluator {
             // outside the domain, another piece, within rounding of an end) take the exact
             // path.
             if !((t - mid).abs() < radius) {
-                self.check_domain(t)?;
-                j = self.locator.find(&self.breaks, t);
+                match self.piece_beyond(t, beyond)? {
+                    Some(piece) => j = piece,
+                    None => {
+                        o.fill(f64::NAN);
+                        continue;
+                    }
+                }
                 (mid, radius) = self.balls[j];
             }
             f(j, t, o);
@@ -448,13 +508,30 @@ impl CurveEvaluator {
         Ok(())
     }
 
+    /// The piece that evaluates `t`: its own inside the domain; outside, the error (`beyond`
+    /// None), the end piece (`Continue`, finite `t`) or none (NaN to be written).
+    #[inline(always)]
+    fn piece_beyond(&self, t: f64, beyond: Option<Beyond>) -> Result<Option<usize>> {
+        let (min, max) = self.domain();
+        if t >= min && t <= max {
+            return Ok(Some(self.locator.find(&self.breaks, t)));
+        }
+        match beyond {
+            None => self.check_domain(t).map(|()| None),
+            Some(Beyond::Continue) if t.is_finite() => {
+                Ok(Some(if t < min { 0 } else { self.spans.len() - 1 }))
+            }
+            Some(_) => Ok(None),
+        }
+    }
+
     /// Points into `out`, choosing a monomorphised kernel where there is one.
-    fn eval_slice(&self, ts: &[f64], out: &mut [f64]) -> Result<()> {
+    fn eval_slice(&self, ts: &[f64], out: &mut [f64], beyond: Option<Beyond>) -> Result<()> {
         match &self.kernel {
             KernelData::Power { coef } => {
                 macro_rules! fixed {
                     ($p:literal, $d:literal) => {
-                        self.drive(ts, out, $d, |j, t, o| {
+                        self.drive(ts, out, $d, beyond, |j, t, o| {
                             power_fixed::<$p, $d>(coef, j, t, o);
                         })
                     };
@@ -468,7 +545,7 @@ impl CurveEvaluator {
                     (3, 2) => fixed!(3, 2),
                     (3, 3) => fixed!(3, 3),
                     (3, 4) => fixed!(3, 4),
-                    _ => self.drive(ts, out, self.dim, |j, t, o| {
+                    _ => self.drive(ts, out, self.dim, beyond, |j, t, o| {
                         power_dyn(self.degree, coef, j, t, o);
                     }),
                 }
@@ -480,12 +557,15 @@ impl CurveEvaluator {
             } => {
                 macro_rules! fixed {
                     ($w:literal, $d:literal) => {
-                        self.drive(ts, out, $d, |j, t, o| {
+                        self.drive(ts, out, $d, beyond, |j, t, o| {
                             basis_fixed::<$w, $d>(knots, control, recip, self.spans[j], j, t, o);
                         })
                     };
                 }
                 match (self.degree, self.dim) {
+                    (1, 1) => fixed!(2, 1),
+                    (2, 1) => fixed!(3, 1),
+                    (3, 1) => fixed!(4, 1),
                     (3, 2) => fixed!(4, 2),
                     (3, 3) => fixed!(4, 3),
                     (4, 2) => fixed!(5, 2),
@@ -496,7 +576,7 @@ impl CurveEvaluator {
                     (7, 3) => fixed!(8, 3),
                     _ => {
                         let mut n = vec![0.0; 3 * (self.degree + 1)];
-                        self.drive(ts, out, self.dim, |j, t, o| {
+                        self.drive(ts, out, self.dim, beyond, |j, t, o| {
                             self.basis_point(knots, control, recip, j, t, &mut n, o);
                         })
                     }

@@ -9,10 +9,11 @@
 //! - [`BSplineCurve::eval_extrapolated`] and [`BSplineCurve::eval_batch_extrapolated`]: the
 //!   polynomials of the first and last non-empty spans continued beyond the domain (SciPy's
 //!   `BSpline(..., extrapolate=True)`); inside the domain the same bits as
-//!   [`BSplineCurve::eval`].
+//!   [`BSplineCurve::eval`]; [`bspline_value`], the same at one parameter on borrowed knots and
+//!   coefficients (no curve built).
 
-use crate::basis::BasisScratch;
-use crate::curve::BSplineCurve;
+use crate::basis::{basis_funs_into, BasisScratch};
+use crate::curve::{BSplineCurve, Beyond};
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::points::Points;
 
@@ -202,6 +203,125 @@ impl BSplineCurve {
     }
 }
 
+/// The value at `t` of the scalar spline `S(t) = Σ_j c_j B_{j,k}(t)` on borrowed knots and
+/// coefficients, without building a curve: one span search (the last non-empty span
+/// `t_i <= t < t_{i+1}` of the domain `[t_k, t_n]`, the last span at `t = t_n`), the `k + 1`
+/// basis functions by Cox–de Boor (P&T Algorithm A2.2) and their combination (A3.1). Outside the
+/// domain the end spans' polynomials are continued or NaN is given, as `beyond` says (the same
+/// function as [`BSplineCurve::eval_extrapolated`]); a NaN or infinite `t` gives NaN. Knots with
+/// more than `k + 1` copies are accepted (their B-splines vanish and are never used), and
+/// coefficients beyond the `n = len(knots) − k − 1` that the knots use are ignored, as SciPy's
+/// `BSpline` does. O(log n + k²); one small allocation.
+///
+/// ```
+/// use lekalo::{bspline_value, BSplineCurve, Beyond, Points};
+/// let t = [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0];
+/// let c = [1.0, 2.0, 4.0, 3.0, 0.5];
+/// let curve = BSplineCurve::new(2, t.to_vec(), Points::from_flat(1, c.to_vec())?)?;
+/// for x in [-1.0, 0.0, 0.7, 2.0, 3.0, 4.5] {
+///     let v = bspline_value(&t, 2, &c, x, Beyond::Continue)?;
+///     assert!((v - curve.eval_extrapolated(x)?[0]).abs() < 1e-14);
+/// }
+/// assert!(bspline_value(&t, 2, &c, 4.5, Beyond::Nan)?.is_nan());
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] if there are fewer than `2k + 2` knots, fewer coefficients than
+/// `n`, or the domain is empty (`t_k = t_n`).
+pub fn bspline_value(
+    knots: &[f64],
+    k: usize,
+    coefficients: &[f64],
+    t: f64,
+    beyond: Beyond,
+) -> Result<f64> {
+    bspline_value_by(
+        knots.len(),
+        |i| knots[i],
+        k,
+        coefficients.len(),
+        |i| coefficients[i],
+        t,
+        beyond,
+    )
+}
+
+/// [`bspline_value`] reading the knots and coefficients through `knot(i)`, `i < n_knots`, and
+/// `coefficient(j)`, `j < n_coefficients` (for arrays that are not Rust slices, such as a NumPy
+/// array read in place): about `log2(n) + 3k + 2` reads, the same arithmetic.
+///
+/// # Errors
+/// As [`bspline_value`].
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty domain or span
+pub fn bspline_value_by(
+    n_knots: usize,
+    knot: impl Fn(usize) -> f64,
+    k: usize,
+    n_coefficients: usize,
+    coefficient: impl Fn(usize) -> f64,
+    t: f64,
+    beyond: Beyond,
+) -> Result<f64> {
+    let invalid = |reason: String| Error::InvalidArgument {
+        what: "spline (knots, degree, coefficients)",
+        reason,
+    };
+    if n_knots < 2 * k + 2 {
+        return Err(invalid(format!(
+            "{n_knots} knots for degree {k}: at least {} are needed",
+            2 * k + 2
+        )));
+    }
+    let n = n_knots - k - 1;
+    if n_coefficients < n {
+        return Err(invalid(format!(
+            "{n_coefficients} coefficients for {n_knots} knots of degree {k}: at least {n} are needed"
+        )));
+    }
+    let (lo, hi) = (knot(k), knot(n));
+    if !(lo < hi) {
+        return Err(invalid(format!(
+            "the domain [t_k, t_n] = [{lo}, {hi}] is empty"
+        )));
+    }
+    if !t.is_finite() || (beyond == Beyond::Nan && !(lo <= t && t <= hi)) {
+        return Ok(f64::NAN);
+    }
+    // the last span i in k..n with t_i <= t (the first for t < t_k): a binary search over
+    // k + 1..n, then the nearest non-empty span, below it at the right end and in runs of
+    // repeated knots, above it at the left end
+    let (mut a, mut b) = (k + 1, n);
+    while a < b {
+        let m = a + (b - a) / 2;
+        if knot(m) <= t {
+            a = m + 1;
+        } else {
+            b = m;
+        }
+    }
+    let mut i = (a - 1).clamp(k, n - 1);
+    while i > k && !(knot(i) < knot(i + 1)) {
+        i -= 1;
+    }
+    while i < n - 1 && !(knot(i) < knot(i + 1)) {
+        i += 1;
+    }
+    // the knots t_{i-k+1} ..= t_{i+k} that the triangle reads, after one unused slot: t_i is
+    // at index k of the window, which is the span the triangle is given
+    let window: Vec<f64> = std::iter::once(f64::NAN)
+        .chain((i + 1 - k..=i + k).map(&knot))
+        .collect();
+    let mut scratch = BasisScratch::new(k);
+    let mut basis = vec![0.0; k + 1];
+    basis_funs_into(&window, k, k, t, &mut scratch, &mut basis);
+    Ok(basis
+        .iter()
+        .enumerate()
+        .map(|(r, b)| b * coefficient(i - k + r))
+        .sum())
+}
+
 /// `b − a` coordinate by coordinate, checked for overflow.
 fn difference(mut b: Vec<f64>, a: &[f64]) -> Result<Vec<f64>> {
     for (x, y) in b.iter_mut().zip(a) {
@@ -214,6 +334,54 @@ fn difference(mut b: Vec<f64>, a: &[f64]) -> Result<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `bspline_value` is `eval_extrapolated` on the curve (knots of any multiplicity, the
+    /// ends, beyond them), NaN where asked for, and refuses inconsistent sizes.
+    #[test]
+    fn bspline_value_matches_the_curve() {
+        // a repeated interior knot, end knots of multiplicity k + 2 (a vanishing B-spline)
+        let t = vec![
+            0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 3.0, 5.0, 5.0, 5.0, 5.0,
+        ];
+        let k = 3;
+        let n = t.len() - k - 1;
+        let c: Vec<f64> = (0..n).map(|i| (i as f64 * 0.9).sin() + 2.0).collect();
+        // the curve without the vanishing B-spline (its coefficient is never used)
+        let curve = BSplineCurve::new(
+            k,
+            t[1..].to_vec(),
+            Points::from_flat(1, c[1..].to_vec()).unwrap(),
+        )
+        .unwrap();
+        for x in [-2.0, 0.0, 0.3, 1.0, 1.999, 2.0, 2.5, 4.9, 5.0, 7.0] {
+            let v = bspline_value(&t, k, &c, x, Beyond::Continue).unwrap();
+            let want = curve.eval_extrapolated(x).unwrap()[0];
+            assert!(
+                (v - want).abs() <= 1e-13 * (1.0 + x.abs().powi(3)),
+                "x = {x}: {v} {want}"
+            );
+            let inside = (0.0..=5.0).contains(&x);
+            assert_eq!(
+                bspline_value(&t, k, &c, x, Beyond::Nan).unwrap().is_nan(),
+                !inside
+            );
+        }
+        // more coefficients than the knots use: the extra ones are ignored
+        let mut longer = c.clone();
+        longer.extend([1e9, 1e9]);
+        assert_eq!(
+            bspline_value(&t, k, &longer, 2.5, Beyond::Continue).unwrap(),
+            bspline_value(&t, k, &c, 2.5, Beyond::Continue).unwrap()
+        );
+        for x in [f64::NAN, f64::INFINITY] {
+            assert!(bspline_value(&t, k, &c, x, Beyond::Continue)
+                .unwrap()
+                .is_nan());
+        }
+        assert!(bspline_value(&t[..7], k, &c, 0.5, Beyond::Continue).is_err());
+        assert!(bspline_value(&t, k, &c[..n - 1], 0.5, Beyond::Continue).is_err());
+        assert!(bspline_value(&[1.0; 8], k, &c, 1.0, Beyond::Continue).is_err());
+    }
 
     /// Gauss–Legendre nodes and weights of 5 points on [−1, 1]: exact for degree ≤ 9.
     const GL5: [(f64, f64); 5] = [

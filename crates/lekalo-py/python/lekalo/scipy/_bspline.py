@@ -89,7 +89,8 @@ class BSpline:
             raise ValueError(f"Need at least {2 * k + 2} knots for degree {k}")
         if (np.diff(self.t) < 0).any():
             raise ValueError("Knots must be in a non-decreasing order.")
-        if len(np.unique(self.t[k : n + 1])) < 2:
+        # sorted knots: t[k] < t[n] means two distinct ones (np.unique only to decide otherwise)
+        if not self.t[k] < self.t[n] and len(np.unique(self.t[k : n + 1])) < 2:
             raise ValueError("Need at least two internal knots.")
         if not np.isfinite(self.t).all():
             raise ValueError("Knots should not have nans or infs.")
@@ -178,6 +179,13 @@ class BSpline:
         followed by the coefficients' trailing shape, the interpolation axis at ``axis``)."""
         if extrapolate is None:
             extrapolate = self.extrapolate
+        if isinstance(x, float) and nu == 0 and self.k and extrapolate != "periodic":
+            # one number in: lekalo's bspline_value on the arrays as they are (no curve built);
+            # anything it does not take (complex or N-D coefficients, ...) goes the array way
+            try:
+                return np.array(_lekalo.bspline_value(self.t, self.k, self.c, x, bool(extrapolate)))
+            except Exception:
+                pass
         x = np.asarray(x)
         x_shape, x_ndim = x.shape, x.ndim
         x = np.ascontiguousarray(x.ravel(), dtype=np.float64)
@@ -200,18 +208,18 @@ class BSpline:
         n = self._n()
         m = int(np.prod(self.c.shape[1:], dtype=np.int64))
         complex_ = np.iscomplexobj(self.c)
-        out = np.full((x.shape[0], m), np.nan, dtype=self.c.dtype)
         if m == 0 or x.shape[0] == 0:
-            return out
-        ok = np.isfinite(x)
-        if not extrapolate:
-            ok &= (x >= self.t[self.k]) & (x <= self.t[n])
+            return np.full((x.shape[0], m), np.nan, dtype=self.c.dtype)
+        # one pass in lekalo: NaN at non-finite x (and outside without extrapolation), the end
+        # polynomials continued otherwise (CurveEvaluator::eval_batch_beyond)
         curve = _curve(self.t, _real_columns(self.c, n), self.k)
-        vals = curve.eval_extrapolated(x[ok], nu)
-        out[ok] = _from_columns(vals, complex_)
+        out = _from_columns(curve.eval_beyond(x, nu, extrapolate), complex_)
         if self.k == 0 and nu == 0 and self.t[n - 1] == self.t[n]:
             # SciPy's span search ends in the last interval even when it is empty: a
             # piecewise constant (make_interp_spline(k=0)) takes its last value from x[-1] on
+            ok = np.isfinite(x)
+            if not extrapolate:
+                ok &= (x >= self.t[self.k]) & (x <= self.t[n])
             out[ok & (x >= self.t[n])] = self.c[n - 1].reshape(-1)
         return out
 

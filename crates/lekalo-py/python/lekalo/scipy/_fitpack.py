@@ -92,6 +92,13 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
             raise ValueError(f"Extrapolation mode {ext} is not supported by BSpline.") from e
         return tck(x, der, extrapolate=extrapolate)
     t, c, k = tck
+    if isinstance(x, float) and der == 0 and ext == 0 and k and type(c) is np.ndarray and c.ndim == 1:
+        # one number in: lekalo's bspline_value on the arrays as they are; anything it does not
+        # take (knots that are not a float64 array, ...) goes the array way
+        try:
+            return np.array(_lekalo.bspline_value(t, k, c, x, True))
+        except Exception:
+            pass
     try:
         c[0][0]
         parametric = True
@@ -261,15 +268,17 @@ def spalde(x: Any, tck: Any):
     if parametric:
         return list(map(lambda c, x=x, t=t, k=k: spalde(x, [t, c, k]), c))
     x = np.atleast_1d(x)
-    if len(x) > 1:
-        return list(map(lambda x, tck=tck: spalde(x, tck), x))
     t = np.asarray(t, dtype=np.float64)
     c = np.asarray(c, dtype=np.float64)
     n = t.shape[0] - k - 1
-    if not (t[k] <= x[0] <= t[n]):
+    xs = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+    if not ((t[k] <= xs) & (xs <= t[n])).all():
         raise ValueError("Invalid input data. t(k)<=x<=t(n-k+1) must hold.")
+    # all the points in one call of lekalo's derivatives; several points give a list of rows,
+    # as SciPy's point-by-point loop does
     curve = _lekalo.BSplineCurve(k, t, np.ascontiguousarray(c[:n].reshape(n, 1)))
-    return curve.derivatives(np.asarray([float(x[0])]), k)[0, :, 0]
+    d = curve.derivatives(xs, k)[:, :, 0]
+    return list(d) if len(x) > 1 else d[0]
 
 
 _PARCUR_MESSAGES = {

@@ -91,6 +91,8 @@ class UnivariateSpline:
         return self
 
     def __call__(self, x: Any, nu: int = 0, ext: Any = None) -> np.ndarray:
+        if isinstance(x, float):  # splev's scalar call
+            return splev(x, self._eval_args, der=nu, ext=self.ext if ext is None else _ext_mode(ext))
         x = np.asarray(x)
         if x.size == 0:
             return np.array([])

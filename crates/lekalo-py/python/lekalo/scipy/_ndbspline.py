@@ -79,7 +79,19 @@ class NdBSpline:
         cc = np.ascontiguousarray(cc.view(float) if complex_ else cc)
         tail = cc.shape[ndim:]
         cc = cc.reshape(cc.shape[:ndim] + (-1,))
-        spline = _lekalo.TensorBSpline(self._t, cc, list(self._k))
+        # lekalo's spline, kept between calls while knots and coefficients are unchanged (in
+        # place too)
+        kept = getattr(self, "_lekalo_", None)
+        if (
+            kept is not None
+            and kept[0] is self._c
+            and np.array_equal(kept[1], self._c)
+            and all(np.array_equal(a, b) for a, b in zip(kept[2], self._t))
+        ):
+            spline = kept[3]
+        else:
+            spline = _lekalo.TensorBSpline(self._t, cc, list(self._k))
+            self._lekalo_ = (self._c, self._c.copy(), tuple(td.copy() for td in self._t), spline)
         out = np.full((xi.shape[0], cc.shape[-1]), np.nan)
         # beyond the base box: the end polynomials continued (extrapolate) or nan; a point with
         # a NaN or infinite coordinate is nan either way

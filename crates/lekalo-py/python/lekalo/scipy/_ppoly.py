@@ -189,6 +189,16 @@ class _PPolyBase:
         into the coefficients' trailing shape."""
         if extrapolate is None:
             extrapolate = self.extrapolate
+        if isinstance(x, float) and nu == 0 and extrapolate != "periodic":
+            # one number in: lekalo's bspline_value on the B-spline's arrays (the B-spline's
+            # own call for what it does not take)
+            s = self._spline
+            if s.k:
+                try:
+                    return np.array(_lekalo.bspline_value(s.t, s.k, s.c, x, bool(extrapolate)))
+                except Exception:
+                    pass
+            return s(x, 0, extrapolate)
         x = np.asarray(x)
         if x.dtype == object:
             x = x.astype(np.float64)
@@ -202,12 +212,19 @@ class _PPolyBase:
         if not (extrapolate is True or extrapolate == "periodic") or s.k == 0 or nu > s.k or s.c.size == 0:
             return s(x, nu, extrapolate)
         xf = np.ascontiguousarray(x.ravel(), dtype=np.float64)
-        if not np.isfinite(xf).all():
-            return s(x, nu, extrapolate)
         # the common case without BSpline's checks: lekalo's curve, kept between calls
-        if extrapolate == "periodic":
-            xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
-        vals = self._evaluator().eval_extrapolated(xf, nu)
+        ev = self._evaluator()
+        if isinstance(ev, _lekalo.BSplineCurve):
+            # one pass, NaN at NaN or infinite x (as BSpline gives)
+            if extrapolate == "periodic":
+                xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
+            vals = ev.eval_beyond(xf, nu, True)
+        else:
+            if not np.isfinite(xf).all():
+                return s(x, nu, extrapolate)
+            if extrapolate == "periodic":
+                xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
+            vals = ev.eval_extrapolated(xf, nu)
         out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
         if self.axis != 0:
             axes = list(range(out.ndim))
@@ -333,6 +350,43 @@ class PPoly(_PPolyBase):
 
     # lekalo's pp-form of the given coefficients, made on the first evaluation: (spline, pp)
     _pp_ = None
+    # the same without the B-spline form, for evaluation: (c, x, copies of them, pp)
+    _pp_direct_ = None
+
+    def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
+        """The value (or ``nu``-th derivative) at ``x``. With real coefficients given and the
+        end pieces continued, lekalo's pp-form itself evaluates (Horner's rule in each piece,
+        ``PiecewisePolynomial.eval_extrapolated``) without the B-spline form being made; the
+        other cases as the base class."""
+        c = self._c
+        ext = self.extrapolate if extrapolate is None else extrapolate
+        if c is not None and ext is True and self._degree >= 1 and c.size and c.dtype == np.float64:
+            nu = operator.index(nu)
+            xa = np.asarray(x)
+            if 0 <= nu <= self._degree and xa.dtype != object:
+                xf = np.ascontiguousarray(xa.ravel(), dtype=np.float64)
+                if np.isfinite(xf).all():
+                    vals = self._pp_direct().eval_extrapolated(xf, nu)
+                    out = vals.reshape(xa.shape + c.shape[2:])
+                    if self.axis != 0:
+                        axes = list(range(out.ndim))
+                        axes = axes[xa.ndim : xa.ndim + self.axis] + axes[: xa.ndim] + axes[xa.ndim + self.axis :]
+                        out = out.transpose(axes)
+                    return out
+        return super().__call__(x, nu, extrapolate)
+
+    def _pp_direct(self):
+        """lekalo's pp-form of the given coefficients, made again when ``c`` or ``x`` changed
+        (in place too, as SciPy sees such changes)."""
+        kept = self._pp_direct_
+        c, x = self._c, self.x
+        if kept is not None and kept[0] is c and kept[1] is x and np.array_equal(c, kept[2]) and np.array_equal(x, kept[3]):
+            return kept[4]
+        xp, cp = _pieces(x, c)
+        cc, _ = _columns(cp)
+        pp = self._lekalo_pp(xp, cc)
+        self._pp_direct_ = (c, x, c.copy(), x.copy(), pp)
+        return pp
 
     @staticmethod
     def _lekalo_pp(x: np.ndarray, cc: np.ndarray):

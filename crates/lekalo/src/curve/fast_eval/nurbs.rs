@@ -84,7 +84,7 @@ impl NurbsEvaluator {
         if let KernelData::Power { coef } = &h.kernel {
             macro_rules! fixed {
                 ($p:literal, $hd:literal) => {
-                    return h.drive(ts, out, $hd - 1, |j, t, o| {
+                    return h.drive(ts, out, $hd - 1, None, |j, t, o| {
                         let mut a = [0.0; $hd];
                         power_fixed::<$p, $hd>(coef, j, t, &mut a);
                         project(&a, o);
@@ -101,7 +101,7 @@ impl NurbsEvaluator {
         }
         let mut a = vec![0.0; dim + 1];
         match &h.kernel {
-            KernelData::Power { coef } => h.drive(ts, out, dim, |j, t, o| {
+            KernelData::Power { coef } => h.drive(ts, out, dim, None, |j, t, o| {
                 power_dyn(h.degree, coef, j, t, &mut a);
                 project(&a, o);
             }),
@@ -111,7 +111,7 @@ impl NurbsEvaluator {
                 recip,
             } => {
                 let mut n = vec![0.0; 3 * (h.degree + 1)];
-                h.drive(ts, out, dim, |j, t, o| {
+                h.drive(ts, out, dim, None, |j, t, o| {
                     h.basis_point(knots, control, recip, j, t, &mut n, &mut a);
                     project(&a, o);
                 })

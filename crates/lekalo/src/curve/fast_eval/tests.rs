@@ -137,7 +137,7 @@ fn fixed_kernels_match_generic_bit_for_bit() {
             ev.eval_batch(&ts, &mut fast).unwrap();
             let mut generic = vec![0.0; ts.len() * dim];
             let mut n = vec![0.0; 3 * (p + 1)];
-            ev.drive(&ts, &mut generic, dim, |j, t, o| match &ev.kernel {
+            ev.drive(&ts, &mut generic, dim, None, |j, t, o| match &ev.kernel {
                 KernelData::Power { coef } => power_dyn(p, coef, j, t, o),
                 KernelData::Basis {
                     knots,
@@ -163,7 +163,7 @@ fn fixed_kernels_match_generic_bit_for_bit() {
                 ev.eval_derivatives_batch(&ts, order, &mut fast).unwrap();
                 let mut generic = vec![f64::NAN; ts.len() * row];
                 let mut a = vec![0.0; p + 1];
-                ev.drive(&ts, &mut generic, row, |j, t, o| {
+                ev.drive(&ts, &mut generic, row, None, |j, t, o| {
                     power_ders(&mut a, dim, coef, j, t, order.min(p), o);
                 })
                 .unwrap();
@@ -330,4 +330,67 @@ fn errors() {
         Err(Error::InvalidArgument { .. })
     ));
     assert_eq!(h.evaluator().kernel(), EvalKernel::Basis);
+}
+
+/// Beyond the domain: `Continue` is `eval_batch_extrapolated` (the end polynomials), `Nan`
+/// gives NaN there; inside both are `eval_batch`; NaN and infinite parameters give NaN; the
+/// parallel path gives the same bits.
+#[test]
+fn beyond_continues_or_gives_nan() {
+    for (p, dim) in [(1, 1), (2, 1), (3, 1), (3, 2), (3, 3), (4, 1), (5, 2)] {
+        let c = curve(p, 12, dim);
+        let mut ts = params(301, true);
+        ts.extend([
+            -0.7,
+            -1e-9,
+            1.0 + 1e-9,
+            1.4,
+            3.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ]);
+        let outside = |t: f64| !(0.0..=1.0).contains(&t);
+        for kernel in [EvalKernel::PowerForm, EvalKernel::Basis] {
+            let ev = CurveEvaluator::with_kernel(&c, kernel).unwrap();
+            let finite: Vec<f64> = ts.iter().copied().filter(|t| t.is_finite()).collect();
+            let mut want = vec![0.0; finite.len() * dim];
+            c.eval_batch_extrapolated(&finite, &mut want).unwrap();
+            for beyond in [Beyond::Continue, Beyond::Nan] {
+                let mut got = vec![0.0; ts.len() * dim];
+                ev.eval_batch_beyond(&ts, beyond, &mut got).unwrap();
+                let mut par = vec![0.0; ts.len() * dim];
+                ev.par_eval_batch_beyond(&ts, beyond, &mut par).unwrap();
+                assert!(got
+                    .iter()
+                    .zip(&par)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()));
+                let mut w = want.chunks_exact(dim);
+                for (&t, g) in ts.iter().zip(got.chunks_exact(dim)) {
+                    if !t.is_finite() {
+                        assert!(g.iter().all(|v| v.is_nan()), "t = {t}");
+                        continue;
+                    }
+                    let r = w.next().unwrap();
+                    if beyond == Beyond::Nan && outside(t) {
+                        assert!(g.iter().all(|v| v.is_nan()), "t = {t}");
+                    } else {
+                        // rounding relative to the control net (1) inside, to the value
+                        // beyond the ends, where the end polynomial grows like |u|^p in the
+                        // piece's local parameter
+                        let scale = r.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+                        assert!(
+                            max_diff(g, r) <= 1e-13 * scale,
+                            "p {p} dim {dim} {kernel:?} t {t}: {g:?} {r:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    let mut short = [0.0; 1];
+    assert!(curve(3, 6, 1)
+        .evaluator()
+        .eval_batch_beyond(&[0.5, 0.6], Beyond::Continue, &mut short)
+        .is_err());
 }
