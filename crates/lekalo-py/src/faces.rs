@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
-use crate::convert::{array, uv_args};
+use crate::convert::{array, points_into_array, uv_args};
 use crate::curves::curve_to_py;
 use crate::error::{io_err, lib_err};
 use crate::surfaces::surface_to_py;
@@ -117,6 +117,27 @@ impl PyFace {
             .iter()
             .map(|p| array(py, p.as_slice().to_vec(), &[p.len(), 2]))
             .collect()
+    }
+
+    /// A triangle mesh of the face's trimmed region within ``tolerance`` (in the model's units):
+    /// ``(vertices, triangles)``, an ``(n, 3)`` float array of points and an ``(m, 3)`` uint32
+    /// array of vertex indices, the triangles' normals the face's. Each loop is sampled through
+    /// its pcurves, grid points inside the trims are added and the whole triangulated by a
+    /// constrained Delaunay triangulation, refined until every triangle's deviation bound is
+    /// within the tolerance (``lekalo::topology::mesh_faces``; docs/theory/topology.md,
+    /// "Meshing a trimmed face").
+    fn mesh<'py>(
+        &self,
+        py: Python<'py>,
+        tolerance: f64,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let m = py
+            .detach(|| self.inner.face.mesh(tolerance))
+            .map_err(lib_err)?;
+        let nt = m.triangles.len();
+        let tri: Vec<u32> = m.triangles.iter().flatten().copied().collect();
+        let tri = PyArray1::from_vec(py, tri).reshape([nt, 3])?.into_any();
+        Ok((points_into_array(py, m.vertices)?, tri))
     }
 
     /// Whether ``(u, v)`` lies inside the face: the outer polygon winds around it and no inner

@@ -202,3 +202,22 @@ def test_iges_trimmed_surfaces_read_as_faces():
         assert np.allclose(f.surface(u, v), curve(t), atol=1e-12)
     inside = f.contains(np.array([0.1, 0.5, 0.9]), np.array([0.1, 0.5, 0.2]))
     assert list(inside) == [True, False, True]
+
+
+def test_mesh_of_the_plate_leaves_the_hole_out(tmp_path):
+    f = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    tol = 1e-3
+    vertices, triangles = f.mesh(tol)
+    assert vertices.shape[1] == 3 and triangles.shape[1] == 3
+    assert triangles.dtype == np.uint32 and triangles.max() < len(vertices)
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    centroids = (a + b + c) / 3.0
+    # no triangle in the hole of radius 2 about (5, 5)
+    assert np.all(np.hypot(centroids[:, 0] - 5.0, centroids[:, 1] - 5.0) >= 2.0 - tol)
+    area = 0.5 * np.abs(np.cross(b - a, c - a)[:, 2]).sum()
+    exact = 100.0 - 4.0 * np.pi
+    # the polygon of the hole is inside the circle, within tol of it: its area is at most
+    # the circle's length times tol smaller
+    assert exact - 1e-9 <= area <= exact + 4.0 * np.pi * tol
+    with pytest.raises(ValueError, match="tolerance"):
+        f.mesh(0.0)

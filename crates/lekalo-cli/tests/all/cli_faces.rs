@@ -15,7 +15,7 @@ use common::{dir_with, lekalo, p};
 
 /// A plate 10 × 10 mm on the plane z = 0 with a round hole of radius 2 about (5, 5), and a
 /// second face whose loop names an edge that is not in the file.
-const PLATE: &str = "ISO-10303-21;
+pub(crate) const PLATE: &str = "ISO-10303-21;
 HEADER;
 FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));
 ENDSEC;

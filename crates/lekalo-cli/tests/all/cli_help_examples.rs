@@ -259,6 +259,12 @@ fn fixtures(d: &Path, path: &str) {
         .args(["pp", "convert", "curve.json", "-o", "spline.pp.json"])
         .assert()
         .success();
+    // the faces of part.step as JSON Lines (mesh of faces)
+    lekalo()
+        .current_dir(d)
+        .args(["convert", "part.step", "-o", "faces.jsonl", "--faces"])
+        .assert()
+        .success();
     lekalo()
         .current_dir(d)
         .args([

@@ -18,6 +18,7 @@ mod cli_interpolate;
 mod cli_intersect_surfaces;
 mod cli_json;
 mod cli_knot_cad;
+mod cli_mesh_faces;
 mod cli_npy;
 mod cli_parquet;
 mod cli_pp;

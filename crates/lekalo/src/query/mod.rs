@@ -45,10 +45,12 @@ pub use intersect::{
     TOUCH_RTOL,
 };
 pub use length::{ArcLength, DEFAULT_LENGTH_RTOL};
+pub(crate) use mesh::triangle_bound;
 pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use surface::QuerySurface;
+pub(crate) use tessellate::check_tol;
 pub use tessellate::{
     Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS,
     MIN_RELATIVE_TOLERANCE,

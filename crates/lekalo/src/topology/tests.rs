@@ -4,7 +4,7 @@ use super::*;
 use crate::{BSplineCurve, BSplineSurface, Curve, Error, NurbsCurve, Points, Surface};
 use proptest::prelude::*;
 
-fn plane() -> Surface {
+pub(super) fn plane() -> Surface {
     Surface::from(
         BSplineSurface::new(
             1,
@@ -24,7 +24,7 @@ fn plane() -> Surface {
     )
 }
 
-fn segment(a: [f64; 2], b: [f64; 2]) -> Edge {
+pub(super) fn segment(a: [f64; 2], b: [f64; 2]) -> Edge {
     let d = [b[0] - a[0], b[1] - a[1]];
     Edge::new(
         Curve::from(
@@ -37,7 +37,7 @@ fn segment(a: [f64; 2], b: [f64; 2]) -> Edge {
     .unwrap()
 }
 
-fn square(reverse: bool) -> Loop {
+pub(super) fn square(reverse: bool) -> Loop {
     let mut c = [[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
     if reverse {
         c.reverse();
@@ -46,7 +46,7 @@ fn square(reverse: bool) -> Loop {
 }
 
 /// The circle of radius 1 about (2, 2), clockwise with `reverse`.
-fn hole(reverse: bool) -> Loop {
+pub(super) fn hole(reverse: bool) -> Loop {
     let c3 = NurbsCurve::circle(&[2.0, 2.0, 0.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 1.0).unwrap();
     let c2 = NurbsCurve::circle(&[2.0, 2.0], &[1.0, 0.0], &[0.0, 1.0], 1.0).unwrap();
     let (mut a, mut b) = (Curve::from(c3), Curve::from(c2));

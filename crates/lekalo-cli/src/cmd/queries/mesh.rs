@@ -21,12 +21,16 @@ the tolerance, a bound proved from the control net (and the weights). Curves: a 
 format follows the output's extension (.obj, .stl, .ply) or --format; --json prints the counts
 and the bound instead of writing geometry to standard output.
 
+Faces (a JSON Lines file of face envelopes, as `convert --faces` writes): one mesh of all faces,
+each trimmed by its loops, the faces meeting at the same points along their shared edges.
+
 Examples:
   lekalo mesh surface.json --tolerance 1e-3 -o surface.obj
+  lekalo mesh faces.jsonl --tolerance 1e-3 -o faces.obj
   lekalo mesh surface.json --tolerance 1e-4 -o surface.stl
   lekalo mesh curve.json --tolerance 1e-3 -o curve.obj")]
 pub(crate) struct MeshArgs {
-    /// Surface or curve file (JSON).
+    /// Surface or curve file (JSON), or faces (JSON Lines of face envelopes).
     input: PathBuf,
     /// Largest deviation (in the object's units).
     #[arg(long, short = 't')]
@@ -44,8 +48,6 @@ pub(crate) struct MeshArgs {
 }
 
 pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
-    let (text, name) = lekalo_io::read_input(&a.input)?;
-    let shape = Shape::from_json_str(&text, &name)?;
     // the tolerance alone sets the size of the result: its refusals name the option
     let bad = |e: lekalo::Error| {
         BadInput(format!(
@@ -55,6 +57,16 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         ))
     };
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
+    if let Some(faces) = crate::cmd::files::cad::face_lines(&a.input)? {
+        let faces: Vec<&lekalo::Face> = faces.iter().map(|f| &f.face).collect();
+        let m = lekalo::topology::mesh_faces(&faces, a.tolerance)
+            .and_then(|ms| lekalo::topology::join_meshes(&ms))
+            .map_err(bad)?;
+        let summary = json!({"faces": faces.len(), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        return write_mesh(a, cx, &m, &fmt, &summary);
+    }
+    let (text, name) = lekalo_io::read_input(&a.input)?;
+    let shape = Shape::from_json_str(&text, &name)?;
     let (body, summary) = match shape {
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
@@ -63,16 +75,8 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 q.mesh_with_progress(a.tolerance, p)
             })
             .map_err(bad)?;
-            let format = match lekalo_io::MeshFormat::from_name(&fmt) {
-                Ok(f) => f,
-                Err(_) => return bad_input(format!("--format {fmt}: use obj, stl or ply")),
-            };
-            let body = match lekalo_io::mesh_text(&m, format) {
-                Ok(b) => b,
-                Err(_) => return bad_input("meshes are written for 3-D surfaces"),
-            };
             let summary = json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
-            (body, summary)
+            return write_mesh(a, cx, &m, &fmt, &summary);
         }
         Shape::Curve(obj) => {
             let q = query_curve(&obj, &a.input)?;
@@ -88,6 +92,30 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         }
         _ => return bad_input(format!("{}: mesh curves and surfaces", a.input.display())),
     };
+    finish(a, cx, &body, &summary)
+}
+
+/// A triangle mesh in the format asked for, written with its summary.
+fn write_mesh(
+    a: &MeshArgs,
+    cx: &Context,
+    m: &lekalo::query::Mesh,
+    fmt: &str,
+    summary: &serde_json::Value,
+) -> Result<()> {
+    let format = match lekalo_io::MeshFormat::from_name(fmt) {
+        Ok(f) => f,
+        Err(_) => return bad_input(format!("--format {fmt}: use obj, stl or ply")),
+    };
+    let body = match lekalo_io::mesh_text(m, format) {
+        Ok(b) => b,
+        Err(_) => return bad_input("meshes are written for 3-D surfaces"),
+    };
+    finish(a, cx, &body, summary)
+}
+
+/// Writes `body` to the output (or the summary alone with `--json` and no output).
+fn finish(a: &MeshArgs, cx: &Context, body: &str, summary: &serde_json::Value) -> Result<()> {
     if a.json && a.output.is_none() {
         return emit(
             None,

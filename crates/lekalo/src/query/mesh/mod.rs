@@ -28,6 +28,8 @@ mod strips;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use bounds::triangle_bound;
+
 #[cfg(doc)]
 use super::surface::QuerySurface;
 

@@ -1,0 +1,645 @@
+//! Triangle meshes of trimmed faces (`docs/theory/topology.md`, "Meshing a trimmed face"):
+//! each loop sampled through its edges' pcurves, points of a `(u, v)` grid inside the trims,
+//! a constrained Delaunay triangulation of both with the loops' segments as constraints
+//! (Chew, "Constrained Delaunay triangulations", Algorithmica 4 (1989) 97–108; de Berg et al.,
+//! "Computational Geometry", 3rd ed., 2008, ch. 9), refined where a triangle's deviation bound
+//! is above the tolerance. Faces of a set are meshed with each shared edge sampled once, so the
+//! faces' meshes meet at the same points along it.
+
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
+
+use super::face::{Edge, Face};
+use super::inside::winding_number;
+use super::shell::{EdgeUse, Shell};
+use crate::query::{check_tol, triangle_bound, Mesh, MAX_MESH_VERTICES};
+use crate::{Error, Points, Result, Surface};
+
+/// Samples per knot span of an edge's curve and pcurves before bisection.
+const START_SAMPLES_PER_SPAN: usize = 4;
+/// Most bisections of one segment of an edge.
+const MAX_EDGE_DEPTH: u32 = 30;
+/// Most rounds of refinement of the triangles above the tolerance.
+const MAX_REFINE_ROUNDS: usize = 24;
+/// Grid points closer to a trim than this fraction of the grid spacing are left out, so no
+/// sliver triangle joins a grid point to a nearby trim segment.
+pub const TRIM_CLEARANCE: f64 = 0.3;
+
+/// Bounds on the second derivatives of a surface in its own parameters and units: `a ≥ |S_uu|`,
+/// `b ≥ |S_uv|`, `c ≥ |S_vv|` over the whole surface, from each Bezier patch's net
+/// (`QuerySurface::net_bounds`, `docs/theory/queries.md#tessellation`) scaled back from the
+/// patch's unit square and the normalised coordinates.
+#[derive(Clone, Copy)]
+struct Curvature {
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+impl Curvature {
+    fn of(s: &Surface) -> Result<(Self, f64)> {
+        let q = s.to_query()?;
+        let (mut a, mut b, mut c) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for (k, &((u0, u1), (v0, v1))) in q.ranges.iter().enumerate() {
+            let (pa, pb, pc) = q.net_bounds(q.patch(k)).ok_or(Error::InvalidArgument {
+                what: "face surface",
+                reason: "a weight is not positive; a rational surface needs positive weights"
+                    .into(),
+            })?;
+            let (du, dv) = (u1 - u0, v1 - v0);
+            if du > 0.0 && dv > 0.0 {
+                a = a.max(pa * q.scale / (du * du));
+                b = b.max(pb * q.scale / (du * dv));
+                c = c.max(pc * q.scale / (dv * dv));
+            }
+        }
+        Ok((Curvature { a, b, c }, q.scale))
+    }
+
+    /// `M(e) ≥ max |D²S[e, e]|` for the parameter step `e`.
+    fn along(&self, eu: f64, ev: f64) -> f64 {
+        self.a * eu * eu + 2.0 * self.b * (eu * ev).abs() + self.c * ev * ev
+    }
+
+    /// The deviation bound of the linear interpolant over a parameter triangle
+    /// ([`triangle_bound`] of its edges' `M`).
+    fn triangle(&self, p: [[f64; 2]; 3]) -> f64 {
+        let m = |i: usize, j: usize| self.along(p[j][0] - p[i][0], p[j][1] - p[i][1]);
+        triangle_bound([m(0, 1), m(0, 2), m(1, 2)])
+    }
+}
+
+/// What one face needs while its edges are sampled: its surface's bounds and grid spacing.
+struct FacePlan<'a> {
+    face: &'a Face,
+    curv: Curvature,
+    /// Grid spacing in `u` and `v`.
+    h: [f64; 2],
+}
+
+/// One use of an edge: its face, and its pcurve's parameter at a fraction of the edge.
+fn pcurve_at(e: &Edge, s: f64) -> Result<[f64; 2]> {
+    let p = e.pcurve().ok_or(Error::InvalidArgument {
+        what: "face loop",
+        reason:
+            "an edge has no curve in the surface's (u, v); meshing a face needs every edge's pcurve"
+                .into(),
+    })?;
+    let (a, b) = p.domain();
+    let x = p.eval(a + (b - a) * s.clamp(0.0, 1.0))?;
+    Ok([x[0], x[1]])
+}
+
+fn curve_at(e: &Edge, s: f64) -> Result<Vec<f64>> {
+    let (a, b) = e.curve().domain();
+    e.curve().eval(a + (b - a) * s.clamp(0.0, 1.0))
+}
+
+fn dist(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The fractions `0 = s_0 < … < s_n = 1` at which an edge is sampled, as its first use runs
+/// it, for all its uses (`(plan, edge, same direction)`): start at
+/// [`START_SAMPLES_PER_SPAN`] per knot span, then halve a segment while, on any use's face,
+/// the surface at the pcurve's midpoint is farther than `tol / 2` from the chord's midpoint,
+/// the segment's parameter step has `M(e) > 4 tol` (its part of the triangles' bound), or
+/// the step is longer than the face's grid spacing.
+fn sample_edge(
+    uses: &[(&FacePlan<'_>, &Edge, bool)],
+    tol: f64,
+    budget: &mut usize,
+) -> Result<Vec<f64>> {
+    let spans = uses
+        .iter()
+        .flat_map(|(_, e, _)| {
+            [
+                e.curve().knots().distinct().len(),
+                e.pcurve().map_or(2, |p| p.knots().distinct().len()),
+            ]
+        })
+        .max()
+        .unwrap_or(2)
+        .saturating_sub(1)
+        .max(1);
+    let n0 = spans.saturating_mul(START_SAMPLES_PER_SPAN);
+    let point = |u: &(&FacePlan<'_>, &Edge, bool), s: f64| -> Result<([f64; 2], Vec<f64>)> {
+        let su = if u.2 { s } else { 1.0 - s };
+        let uv = pcurve_at(u.1, su)?;
+        Ok((uv, u.0.face.surface().eval(uv[0], uv[1])?))
+    };
+    let split = |s0: f64, s1: f64| -> Result<bool> {
+        let sm = 0.5 * (s0 + s1);
+        for u in uses {
+            let (a, pa) = point(u, s0)?;
+            let (b, pb) = point(u, s1)?;
+            let (_, pm) = point(u, sm)?;
+            let mid: Vec<f64> = pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)).collect();
+            let (eu, ev) = (b[0] - a[0], b[1] - a[1]);
+            if dist(&pm, &mid) > 0.5 * tol
+                || u.0.curv.along(eu, ev) > 4.0 * tol
+                || eu.abs() > u.0.h[0]
+                || ev.abs() > u.0.h[1]
+            {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    };
+    let mut out = vec![0.0];
+    for k in 0..n0 {
+        let (s0, s1) = (k as f64 / n0 as f64, (k + 1) as f64 / n0 as f64);
+        let mut stack = vec![(s1, 0u32)];
+        let mut at = s0;
+        while let Some(&(s, depth)) = stack.last() {
+            if depth < MAX_EDGE_DEPTH && split(at, s)? {
+                stack.push((0.5 * (at + s), depth + 1));
+                continue;
+            }
+            stack.pop();
+            out.push(s);
+            at = s;
+            if out.len() > *budget {
+                return Err(Error::TooLarge {
+                    what: "points on the edges of the faces to mesh (make the tolerance larger)",
+                    size: out.len(),
+                    max: *budget,
+                });
+            }
+        }
+    }
+    *budget -= out.len();
+    Ok(out)
+}
+
+/// Meshes of `faces`, one per face, each within `tolerance` of its surface over its trimmed
+/// region, the faces' meshes meeting without cracks along their shared edges
+/// (`docs/theory/topology.md`, "Meshing a trimmed face"):
+///
+/// * every edge of the [`Shell`] of the faces is sampled once, at fractions of its first
+///   use's curve, halved where on any of its faces the surface at the pcurve's midpoint
+///   departs from the chord by more than `tolerance / 2`, where the parameter step `e` has
+///   `M(e) > 4·tolerance`, or where it is longer than the face's grid spacing; each use takes
+///   the same points of the 3-D curve, its `(u, v)` from its pcurve at the same fraction (run
+///   backwards by a use that runs the edge the other way), so the faces' boundary vertices
+///   coincide;
+/// * the interior points are the points of a uniform `(u, v)` grid whose triangles are within
+///   the tolerance by the bound of the untrimmed mesher (`M(e) = A e_u² + 2B |e_u e_v| +
+///   C e_v²`, `A, B, C` bounds on `|S_uu|, |S_uv|, |S_vv|` from the Bezier nets, and the
+///   triangle bound `½ max Σ λ_i λ_j M_ij`; `docs/theory/queries.md#tessellation`) that lie
+///   inside the trims (winding numbers of the sampled loops) farther than
+///   [`TRIM_CLEARANCE`] of the spacing from every trim segment;
+/// * a constrained Delaunay triangulation of these points with the loops' segments as
+///   constraints (Chew 1989; de Berg et al. 2008, ch. 9; the `spade` crate) keeps the
+///   triangles inside the trims: those joined across edges that are not constraints form one
+///   region, outside when it reaches the convex hull, else inside when the centroid of its
+///   largest triangle is (so a sliver of three nearly collinear trim points, whose own
+///   centroid is within rounding of the trim, takes its region's side); a triangle whose bound is above the
+///   tolerance gets its centroid inserted, and the triangulation is made again, at most
+///   [`MAX_REFINE_ROUNDS`] times.
+///
+/// Vertices on the edges are the edges' 3-D points, the others the surface's. Triangles run
+/// counter-clockwise in `(u, v)` where the face's normal is the surface's and the other way
+/// where it is not, so their normals are the face's. The reported deviation is the largest
+/// triangle bound (for a rational surface the bounds of its nets, an estimate; the edges'
+/// chords are checked at their midpoints).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for a tolerance that is not finite or below
+/// [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) of a surface's size, for
+/// an edge without pcurve, or a tolerance whose grid would exceed
+/// [`MAX_MESH_VERTICES`](crate::query::MAX_MESH_VERTICES) points (naming the tolerance and the
+/// number of points); [`Error::TooLarge`] when the edges' points or the refined meshes exceed
+/// that many vertices.
+pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
+    let mut plans = Vec::with_capacity(faces.len());
+    let mut grid_total = 0.0_f64;
+    for f in faces {
+        let (curv, scale) = Curvature::of(f.surface())?;
+        check_tol(tolerance, scale)?;
+        let ((u0, u1), (v0, v1)) = f.surface().domain();
+        // a grid whose two triangles of a cell are within the tolerance: each of the three
+        // edge terms at most 6·tol (triangle_bound ≤ max M / 6), split evenly
+        let h = |c: f64, w: f64| {
+            if c > 0.0 {
+                (2.0 * tolerance / c).sqrt().min(w)
+            } else {
+                w
+            }
+        };
+        let mut hu = h(curv.a, u1 - u0);
+        let mut hv = h(curv.c, v1 - v0);
+        if 2.0 * curv.b * hu * hv > 2.0 * tolerance {
+            let r = (2.0 * tolerance / (2.0 * curv.b * hu * hv)).sqrt();
+            hu *= r;
+            hv *= r;
+        }
+        let cells = ((u1 - u0) / hu).ceil().max(1.0) * ((v1 - v0) / hv).ceil().max(1.0);
+        grid_total += cells;
+        plans.push(FacePlan {
+            face: f,
+            curv,
+            h: [hu.max(f64::MIN_POSITIVE), hv.max(f64::MIN_POSITIVE)],
+        });
+    }
+    #[allow(clippy::cast_precision_loss)] // 2^26 is exact
+    let max = MAX_MESH_VERTICES as f64;
+    if grid_total > max {
+        return Err(Error::InvalidArgument {
+            what: "tessellation tolerance",
+            reason: format!(
+                "{tolerance:e} needs a grid of about {grid_total:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
+                tolerance * grid_total / max
+            ),
+        });
+    }
+    let shell = Shell::new(faces)?;
+    let mut budget = MAX_MESH_VERTICES;
+    // each edge of the shell sampled once: fractions along its first use and the 3-D points
+    let mut samples: Vec<(Vec<f64>, Vec<Vec<f64>>)> = Vec::with_capacity(shell.edges().len());
+    for se in shell.edges() {
+        let uses: Vec<(&FacePlan<'_>, &Edge, bool)> = se
+            .uses
+            .iter()
+            .filter_map(|&(u, same)| Some((&plans[u.face], edge_of(faces, u)?, same)))
+            .collect();
+        if uses.is_empty() {
+            samples.push((Vec::new(), Vec::new()));
+            continue;
+        }
+        let s = sample_edge(&uses, tolerance, &mut budget)?;
+        let first = uses[0].1;
+        let pts = s
+            .iter()
+            .map(|&x| curve_at(first, x))
+            .collect::<Result<Vec<_>>>()?;
+        samples.push((s, pts));
+    }
+    let mut out = Vec::with_capacity(faces.len());
+    for (fi, plan) in plans.iter().enumerate() {
+        // the loops as polygons in (u, v), with their 3-D points
+        let mut loops: Vec<Vec<([f64; 2], Vec<f64>)>> = Vec::new();
+        for (li, lp) in plan.face.loops().enumerate() {
+            let mut poly = Vec::new();
+            for (ei, e) in lp.edges().iter().enumerate() {
+                let u = EdgeUse {
+                    face: fi,
+                    lp: li,
+                    edge: ei,
+                };
+                let Some((g, same)) = shell.edge_of(u) else {
+                    continue;
+                };
+                let (s, pts) = &samples[g];
+                let n = s.len();
+                if n < 2 {
+                    continue;
+                }
+                // the last point is the next edge's first
+                for k in 0..n - 1 {
+                    let j = if same { k } else { n - 1 - k };
+                    let su = if same { s[j] } else { 1.0 - s[j] };
+                    poly.push((pcurve_at(e, su)?, pts[j].clone()));
+                }
+            }
+            loops.push(poly);
+        }
+        out.push(mesh_one(plan, &loops, tolerance, &mut budget)?);
+    }
+    Ok(out)
+}
+
+fn edge_of<'a>(faces: &[&'a Face], u: EdgeUse) -> Option<&'a Edge> {
+    faces.get(u.face)?.loops().nth(u.lp)?.edges().get(u.edge)
+}
+
+/// True when `(u, v)` is inside the polygons (the outer's winding number not zero, every
+/// inner's zero).
+fn inside(polys: &[Vec<f64>], u: f64, v: f64) -> bool {
+    let mut it = polys.iter();
+    let Some(outer) = it.next() else { return false };
+    winding_number(outer, u, v) != 0 && it.all(|p| winding_number(p, u, v) == 0)
+}
+
+/// The distance from `p` to the segment `ab`, in coordinates scaled by `1 / h`.
+fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2], h: [f64; 2]) -> f64 {
+    let (px, py) = ((p[0] - a[0]) / h[0], (p[1] - a[1]) / h[1]);
+    let (dx, dy) = ((b[0] - a[0]) / h[0], (b[1] - a[1]) / h[1]);
+    let l = dx * dx + dy * dy;
+    let t = if l > 0.0 {
+        ((px * dx + py * dy) / l).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((px - t * dx).powi(2) + (py - t * dy).powi(2)).sqrt()
+}
+
+#[allow(clippy::cast_possible_truncation)] // cells and counts checked against MAX_MESH_VERTICES
+fn mesh_one(
+    plan: &FacePlan<'_>,
+    loops: &[Vec<([f64; 2], Vec<f64>)>],
+    tol: f64,
+    budget: &mut usize,
+) -> Result<Mesh> {
+    let polys: Vec<Vec<f64>> = loops
+        .iter()
+        .map(|l| l.iter().flat_map(|(uv, _)| *uv).collect())
+        .collect();
+    let surface = plan.face.surface();
+    let h = plan.h;
+    let mut uv: Vec<[f64; 2]> = Vec::new();
+    let mut xyz: Vec<Vec<f64>> = Vec::new();
+    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
+        ConstrainedDelaunayTriangulation::new();
+    // vertex of the triangulation -> our vertex
+    let mut ours: Vec<usize> = Vec::new();
+    let insert_err = |e: spade::InsertionError| {
+        Error::InvalidArgument {
+        what: "face loop",
+        reason: format!("a point of a trim cannot be triangulated ({e:?}); its (u, v) is not finite or too large"),
+    }
+    };
+    let add = |cdt: &mut Cdt,
+               ours: &mut Vec<usize>,
+               uv: &mut Vec<[f64; 2]>,
+               xyz: &mut Vec<Vec<f64>>,
+               p: [f64; 2],
+               x: Vec<f64>|
+     -> Result<spade::handles::FixedVertexHandle> {
+        let vh = cdt.insert(Point2::new(p[0], p[1])).map_err(insert_err)?;
+        if vh.index() >= ours.len() {
+            ours.push(uv.len());
+            uv.push(p);
+            xyz.push(x);
+        }
+        Ok(vh)
+    };
+    // the segments of the loops, bucketed by grid cell for the clearance test
+    let ((u0, _), (v0, _)) = surface.domain();
+    let cell = |p: [f64; 2]| {
+        (
+            ((p[0] - u0) / h[0]).floor() as i64,
+            ((p[1] - v0) / h[1]).floor() as i64,
+        )
+    };
+    let mut buckets: Buckets = std::collections::HashMap::new();
+    for l in loops {
+        let n = l.len();
+        if n == 0 {
+            continue;
+        }
+        let mut handles = Vec::with_capacity(n);
+        for (p, x) in l {
+            handles.push(add(&mut cdt, &mut ours, &mut uv, &mut xyz, *p, x.clone())?);
+        }
+        for k in 0..n {
+            let (a, b) = (l[k].0, l[(k + 1) % n].0);
+            let (ca, cb) = (cell(a), cell(b));
+            for c in [ca, cb] {
+                buckets.entry(c).or_default().push((a, b));
+            }
+            if handles[k] != handles[(k + 1) % n] {
+                cdt.try_add_constraint(handles[k], handles[(k + 1) % n]);
+            }
+        }
+    }
+    // grid points inside the trims, clear of them
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in loops.iter().flatten() {
+        for d in 0..2 {
+            lo[d] = lo[d].min(p.0[d]);
+            hi[d] = hi[d].max(p.0[d]);
+        }
+    }
+    if lo[0].is_finite() {
+        let steps = |d: usize| ((hi[d] - lo[d]) / h[d]).ceil().max(1.0) as usize;
+        let (nu, nv) = (steps(0), steps(1));
+        for i in 1..nu {
+            for j in 1..nv {
+                let p = [
+                    lo[0] + (hi[0] - lo[0]) * i as f64 / nu as f64,
+                    lo[1] + (hi[1] - lo[1]) * j as f64 / nv as f64,
+                ];
+                if !inside(&polys, p[0], p[1]) {
+                    continue;
+                }
+                let (ci, cj) = cell(p);
+                let near = (ci - 1..=ci + 1).any(|a| {
+                    (cj - 1..=cj + 1).any(|b| {
+                        buckets.get(&(a, b)).is_some_and(|segs| {
+                            segs.iter()
+                                .any(|&(s, t)| seg_dist(p, s, t, h) < TRIM_CLEARANCE)
+                        })
+                    })
+                });
+                if near {
+                    continue;
+                }
+                let x = surface.eval(p[0], p[1])?;
+                add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
+                if uv.len() > *budget {
+                    return Err(Error::TooLarge {
+                        what: "vertices of the faces' mesh (make the tolerance larger)",
+                        size: uv.len(),
+                        max: *budget,
+                    });
+                }
+            }
+        }
+    }
+    // triangles inside, refined at the centroids of those above the tolerance
+    let mut round = 0;
+    let (tris, deviation) = loop {
+        let keep = inside_triangles(&cdt, &polys, &uv, &ours);
+        let mut tris = Vec::new();
+        let mut worst = 0.0_f64;
+        let mut refine = Vec::new();
+        for f in cdt.inner_faces() {
+            let vs = f.vertices().map(|v| ours[v.fix().index()]);
+            let p = vs.map(|k| uv[k]);
+            let c = [
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            ];
+            if !keep[f.fix().index()] {
+                continue;
+            }
+            tris.push(vs);
+            let b = plan.curv.triangle(p);
+            if b > tol {
+                refine.push(c);
+            }
+            worst = worst.max(b);
+        }
+        if refine.is_empty() || round == MAX_REFINE_ROUNDS {
+            break (tris, worst);
+        }
+        round += 1;
+        for c in refine {
+            let x = surface.eval(c[0], c[1])?;
+            add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
+            if uv.len() > *budget {
+                return Err(Error::TooLarge {
+                    what: "vertices of the faces' mesh (make the tolerance larger)",
+                    size: uv.len(),
+                    max: *budget,
+                });
+            }
+        }
+    };
+    *budget -= uv.len();
+    let dim = surface.dim();
+    let mut flat = Vec::with_capacity(dim * xyz.len());
+    for x in &xyz {
+        flat.extend_from_slice(&x[..dim]);
+    }
+    let triangles = tris
+        .into_iter()
+        .map(|t| {
+            let t = t.map(|k| k as u32);
+            if plan.face.same_sense() {
+                t
+            } else {
+                [t[0], t[2], t[1]]
+            }
+        })
+        .collect();
+    Ok(Mesh {
+        vertices: Points::from_flat(dim, flat)?,
+        uv,
+        triangles,
+        deviation,
+    })
+}
+
+/// Trim segments by grid cell.
+type Buckets = std::collections::HashMap<(i64, i64), Vec<([f64; 2], [f64; 2])>>;
+
+type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
+
+/// Which faces of the triangulation (by index) are inside the trims: the faces joined across
+/// edges that are not constraints are one region, on one side of every loop, so a region is
+/// outside when it reaches the convex hull across an edge that is not a constraint, and
+/// otherwise inside when the centroid of its largest triangle is (winding numbers of the
+/// loops' polygons). A triangle of three nearly collinear points of a loop, whose own centroid is
+/// within rounding of the trim, takes the side of its region.
+fn inside_triangles(cdt: &Cdt, polys: &[Vec<f64>], uv: &[[f64; 2]], ours: &[usize]) -> Vec<bool> {
+    let n = cdt.num_all_faces();
+    let mut region = vec![usize::MAX; n];
+    let mut keep = vec![false; n];
+    let mut members = Vec::new();
+    let mut stack = Vec::new();
+    let area_centroid = |f: spade::handles::FaceHandle<
+        '_,
+        spade::handles::InnerTag,
+        Point2<f64>,
+        (),
+        spade::CdtEdge<()>,
+        (),
+    >| {
+        let p = f.vertices().map(|v| uv[ours[v.fix().index()]]);
+        let a = ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
+            - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]))
+            .abs();
+        (
+            a,
+            [
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            ],
+        )
+    };
+    for f in cdt.inner_faces() {
+        let start = f.fix().index();
+        if region[start] != usize::MAX {
+            continue;
+        }
+        region[start] = start;
+        members.clear();
+        stack.push(f);
+        let mut best = (-1.0, [0.0, 0.0]);
+        let mut outer = false;
+        while let Some(g) = stack.pop() {
+            members.push(g.fix().index());
+            let (a, c) = area_centroid(g);
+            if a > best.0 {
+                best = (a, c);
+            }
+            for e in g.adjacent_edges() {
+                if cdt.is_constraint_edge(e.fix().as_undirected()) {
+                    continue;
+                }
+                match e.rev().face().as_inner() {
+                    Some(h) => {
+                        let k = h.fix().index();
+                        if region[k] == usize::MAX {
+                            region[k] = start;
+                            stack.push(h);
+                        }
+                    }
+                    None => outer = true,
+                }
+            }
+        }
+        let is_in = !outer && inside(polys, best.1[0], best.1[1]);
+        for &k in &members {
+            keep[k] = is_in;
+        }
+    }
+    keep
+}
+
+impl Face {
+    /// A triangle mesh of the face's trimmed region within `tolerance` ([`mesh_faces`] of the
+    /// face alone).
+    ///
+    /// # Errors
+    /// As [`mesh_faces`].
+    pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
+        let mut m = mesh_faces(&[self], tolerance)?;
+        Ok(m.remove(0))
+    }
+}
+
+/// The meshes as one: vertices and triangles in order, each vertex with its own face's
+/// `(u, v)`, the deviation the largest.
+///
+/// # Errors
+/// [`Error::Dimension`] when the meshes' points differ in dimension.
+#[allow(clippy::cast_possible_truncation)] // vertex counts below MAX_MESH_VERTICES
+pub fn join_meshes(meshes: &[Mesh]) -> Result<Mesh> {
+    let dim = meshes.first().map_or(3, |m| m.vertices.dim());
+    let mut flat = Vec::new();
+    let mut uv = Vec::new();
+    let mut triangles = Vec::new();
+    let mut deviation = 0.0_f64;
+    for m in meshes {
+        let base = uv.len() as u32;
+        flat.extend_from_slice(m.vertices.as_slice());
+        uv.extend_from_slice(&m.uv);
+        triangles.extend(m.triangles.iter().map(|t| t.map(|k| k + base)));
+        deviation = deviation.max(m.deviation);
+    }
+    for m in meshes {
+        if m.vertices.dim() != dim {
+            return Err(Error::Dimension {
+                what: "mesh vertices",
+                expected: dim,
+                got: m.vertices.dim(),
+            });
+        }
+    }
+    Ok(Mesh {
+        vertices: Points::from_flat(dim, flat)?,
+        uv,
+        triangles,
+        deviation,
+    })
+}
+
+#[cfg(test)]
+#[path = "mesh_tests.rs"]
+mod tests;

@@ -1,0 +1,221 @@
+//! Meshes of trimmed faces: a square with a round hole (area and hole), a curved B-spline
+//! face with a corner cut off, two faces sharing an edge (no crack).
+
+use super::super::tests::{hole, plane, square};
+use super::*;
+use crate::topology::{Loop, LOOP_CLOSURE_RTOL};
+use crate::{BSplineCurve, BSplineSurface, Curve};
+use proptest::prelude::*;
+
+fn area3(m: &Mesh) -> f64 {
+    let v = |k: u32| m.vertices.point(k as usize).to_vec();
+    m.triangles
+        .iter()
+        .map(|t| {
+            let (a, b, c) = (v(t[0]), v(t[1]), v(t[2]));
+            let e = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let f = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let n = [
+                e[1] * f[2] - e[2] * f[1],
+                e[2] * f[0] - e[0] * f[2],
+                e[0] * f[1] - e[1] * f[0],
+            ];
+            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+        })
+        .sum()
+}
+
+/// The square `[0, 4]²` with the hole of radius 1 about `(2, 2)`, meshed within `tol`: no
+/// triangle's centroid is in the hole, the area is `16 − π` within the area between the
+/// circle and a polygon inscribed within `tol` (at most its length `2π` times `tol`), and every
+/// triangle faces `+z`.
+fn check_holed_square(tol: f64) {
+    let f = Face::new(
+        plane(),
+        square(false),
+        vec![hole(true)],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let m = f.mesh(tol).unwrap();
+    assert!(m.deviation <= tol, "{} > {tol}", m.deviation);
+    for t in &m.triangles {
+        let c = t.iter().fold([0.0, 0.0], |c, &k| {
+            let uv = m.uv[k as usize];
+            [c[0] + uv[0] / 3.0, c[1] + uv[1] / 3.0]
+        });
+        let r = ((c[0] - 2.0).powi(2) + (c[1] - 2.0).powi(2)).sqrt();
+        assert!(r >= 1.0 - tol, "centroid {c:?} in the hole");
+    }
+    for k in 0..m.triangles.len() {
+        let n = m.facet_normal(k).unwrap();
+        assert!(n[2] > 0.999, "triangle {k} faces {n:?}");
+    }
+    let exact = 16.0 - std::f64::consts::PI;
+    let a = area3(&m);
+    assert!(
+        a >= exact - 1e-12 && a - exact <= 2.0 * std::f64::consts::PI * tol,
+        "area {a} against {exact}"
+    );
+}
+
+#[test]
+fn square_with_a_hole_has_the_area_of_the_ring() {
+    check_holed_square(1e-3);
+    check_holed_square(1e-5);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+    #[test]
+    fn the_hole_stays_empty_at_any_tolerance(e in 2.0f64..6.0) {
+        check_holed_square(10f64.powf(-e));
+    }
+}
+
+/// `S(u, v) = (u, v, u² − v²)` on `[0, 1]²`: biquadratic, so a line in `(u, v)` is a
+/// quadratic curve in space.
+fn saddle() -> Surface {
+    let mut pts = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            let z = f64::from(u8::from(i == 2)) - f64::from(u8::from(j == 2));
+            pts.push([f64::from(i) / 2.0, f64::from(j) / 2.0, z]);
+        }
+    }
+    let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    Surface::from(
+        BSplineSurface::new(2, 2, k.clone(), k, Points::from_3d(&pts).unwrap(), (3, 3)).unwrap(),
+    )
+}
+
+/// The edge of the saddle along the line from `a` to `b` in `(u, v)`: its 3-D curve the exact
+/// image (a quadratic Bezier curve), its pcurve the line.
+fn saddle_edge(a: [f64; 2], b: [f64; 2]) -> Edge {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let z = |p: [f64; 2]| p[0] * p[0] - p[1] * p[1];
+    let p1 = [
+        a[0] + d[0] / 2.0,
+        a[1] + d[1] / 2.0,
+        z(a) + a[0] * d[0] - a[1] * d[1],
+    ];
+    let pts = Points::from_3d(&[[a[0], a[1], z(a)], p1, [b[0], b[1], z(b)]]).unwrap();
+    Edge::new(
+        Curve::from(BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], pts).unwrap()),
+        Some(Curve::from(
+            BSplineCurve::line_segment(&a, &d, 0.0, 1.0).unwrap(),
+        )),
+    )
+    .unwrap()
+}
+
+fn saddle_loop(c: &[[f64; 2]]) -> Loop {
+    Loop::new(
+        (0..c.len())
+            .map(|k| saddle_edge(c[k], c[(k + 1) % c.len()]))
+            .collect(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_curved_face_with_a_corner_cut_off() {
+    let c = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.6], [0.6, 1.0], [0.0, 1.0]];
+    let f = Face::new(saddle(), saddle_loop(&c), vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let tol = 1e-4;
+    let m = f.mesh(tol).unwrap();
+    assert!(
+        m.deviation <= tol,
+        "{} {} {}",
+        m.deviation,
+        m.vertices.len(),
+        m.triangles.len()
+    );
+    let s = f.surface();
+    let mut area = 0.0;
+    for t in &m.triangles {
+        let p = t.map(|k| m.uv[k as usize]);
+        area += 0.5
+            * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
+                - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+        let c = [
+            (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+            (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+        ];
+        assert!(c[0] + c[1] <= 1.6, "centroid {c:?} in the cut corner");
+        // the surface at the centroid against the triangle's plane point there
+        let x = s.eval(c[0], c[1]).unwrap();
+        let lin: Vec<f64> = (0..3)
+            .map(|d| {
+                t.iter()
+                    .map(|&k| m.vertices.point(k as usize)[d])
+                    .sum::<f64>()
+                    / 3.0
+            })
+            .collect();
+        assert!(dist(&x, &lin) <= tol, "{} off at {c:?}", dist(&x, &lin));
+    }
+    // the triangles cover the pentagon in (u, v), counter-clockwise
+    assert!((area - (1.0 - 0.08)).abs() < 1e-9, "area {area}");
+}
+
+#[test]
+fn two_faces_sharing_an_edge_meet_at_the_same_points() {
+    let a = saddle_loop(&[[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]]);
+    // the second face runs the shared edge backwards, with the first face's curve reversed
+    let shared = &a.edges()[1];
+    let back = Edge::new(
+        shared.curve().reverse().unwrap(),
+        Some(shared.pcurve().unwrap().reverse().unwrap()),
+    )
+    .unwrap();
+    let b = Loop::new(vec![
+        saddle_edge([0.5, 0.0], [1.0, 0.0]),
+        saddle_edge([1.0, 0.0], [1.0, 1.0]),
+        saddle_edge([1.0, 1.0], [0.5, 1.0]),
+        back,
+    ])
+    .unwrap();
+    let fa = Face::new(saddle(), a, vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let fb = Face::new(saddle(), b, vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let tol = 1e-4;
+    let ms = mesh_faces(&[&fa, &fb], tol).unwrap();
+    let on_edge = |m: &Mesh| -> Vec<Vec<f64>> {
+        (0..m.vertices.len())
+            .filter(|&k| (m.uv[k][0] - 0.5).abs() < 1e-12)
+            .map(|k| m.vertices.point(k).to_vec())
+            .collect()
+    };
+    let (ea, eb) = (on_edge(&ms[0]), on_edge(&ms[1]));
+    assert!(ea.len() > 2, "the shared edge is sampled");
+    assert_eq!(ea.len(), eb.len());
+    for p in &ea {
+        assert!(
+            eb.contains(p),
+            "{p:?} of the first face is not a vertex of the second"
+        );
+    }
+    // each face alone samples its edge for itself; the joined mesh keeps all vertices
+    let joined = join_meshes(&ms).unwrap();
+    assert_eq!(
+        joined.vertices.len(),
+        ms[0].vertices.len() + ms[1].vertices.len()
+    );
+    assert!(joined.deviation <= tol);
+}
+
+#[test]
+fn a_tolerance_too_small_for_the_grid_is_refused_with_the_tolerance() {
+    let f = Face::new(
+        saddle(),
+        saddle_loop(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let e = f.mesh(1e-11).unwrap_err().to_string();
+    assert!(e.contains("1e-11") && e.contains("points"), "{e}");
+    assert!(f.mesh(f64::NAN).is_err());
+}
