@@ -9,6 +9,7 @@ use super::bounds::{face_bounds, line_ranges};
 use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMETRY, TESSELLATED};
 use super::faces::read_faces;
 use super::parse::parse;
+use super::progress::{Meter, Pass};
 use super::units::{length_unit, plane_angle_unit};
 use super::{StepRead, StepSkipped, Why};
 use lekalo::Progress;
@@ -116,69 +117,6 @@ pub fn read_step_with_progress(
     progress: &Progress<'_>,
 ) -> IoResult<StepRead> {
     read(text, source, max_size, faces, progress)
-}
-
-/// The passes over the entity instances after parsing, in order.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Pass {
-    /// Trimmed curves.
-    Trims = 0,
-    /// B-spline curves and surfaces, analytic curves.
-    Curves = 1,
-    /// Analytic surfaces.
-    Surfaces = 2,
-    /// Faces.
-    Faces = 3,
-}
-
-/// The progress of one read on a bar of `2 · len` units for a text of `len` bytes: the bytes
-/// parsed, then the instances converted, the four [`Pass`]es sharing the second half.
-pub(super) struct Meter<'a> {
-    progress: &'a Progress<'a>,
-    source: &'a str,
-    len: u64,
-}
-
-/// What a STEP read reports itself as.
-const READING: &str = "reading STEP";
-
-/// Instances converted between two consultations of the hook.
-const REPORT_INSTANCES: usize = 1 << 10;
-
-impl Meter<'_> {
-    fn step(&self, done: u64) -> IoResult<()> {
-        if !self.progress.is_active() {
-            return Ok(());
-        }
-        self.progress
-            .step(READING, done, 2 * self.len)
-            .map_err(|e| IoError::cancelled(self.source, &e))
-    }
-
-    /// `bytes` of the text parsed.
-    pub(super) fn parsed(&self, bytes: usize) -> IoResult<()> {
-        self.step((bytes as u64).min(self.len))
-    }
-
-    /// Instance `k` of `n` reached in `pass`: reported every [`REPORT_INSTANCES`].
-    pub(super) fn converted(&self, pass: Pass, k: usize, n: usize) -> IoResult<()> {
-        if k % REPORT_INSTANCES != 0 {
-            return Ok(());
-        }
-        let whole = 4 * n.max(1) as u128;
-        let at = (pass as u128) * n as u128 + k as u128;
-        // at ≤ whole, so the quotient is at most len
-        #[allow(clippy::cast_possible_truncation)]
-        let done = (u128::from(self.len) * at / whole) as u64;
-        self.step(self.len + done)
-    }
-
-    /// The read is complete: `(total, total)`, whatever the flag says now.
-    fn finish(&self) {
-        if self.progress.is_active() {
-            let _ = self.progress.step(READING, 2 * self.len, 2 * self.len);
-        }
-    }
 }
 
 fn read(

@@ -19,8 +19,8 @@ use lekalo::topology::{Edge, Face, Loop};
 use lekalo::{BSplineCurve, Curve, NurbsCurve, Points};
 
 use super::analytic::Basis;
-use super::driver::{Meter, Pass};
 use super::entities::{is_bspline_surface, Reader};
+use super::progress::{Meter, Pass};
 use super::{list, unnamed, StepSkipped, Why, P};
 use crate::error::IoResult;
 use crate::shape::Surface;

@@ -33,6 +33,7 @@
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `faces.rs` | faces: `ADVANCED_FACE`, bounds, edge loops, oriented edges, edge curves cut at their vertices, pcurves in the surface's parameters ([`StepFace`]) |
+//! | `progress.rs` | the progress of a read through the library's hook: bytes parsed, instances converted per pass |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
 //! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs` | tests |
 
@@ -46,6 +47,7 @@ mod faces;
 #[cfg(test)]
 pub(crate) mod faces_tests;
 mod parse;
+mod progress;
 #[cfg(test)]
 mod tests;
 mod units;

@@ -3,7 +3,7 @@
 
 use std::cell::Cell;
 
-use super::driver::Meter;
+use super::progress::Meter;
 use super::{Instance, P};
 use crate::error::{IoError, IoResult, Location};
 
