@@ -89,3 +89,59 @@ fn mesh_of_faces_refuses_a_tolerance_too_small() {
         .failure()
         .stderr(predicates::str::contains("--tolerance 0"));
 }
+
+/// Removes every edge's pcurve from a face's JSON.
+fn without_pcurves(face: &mut Value) {
+    let strip = |edges: &mut Value| {
+        for e in edges.as_array_mut().unwrap() {
+            e.as_object_mut().unwrap().remove("pcurve");
+        }
+    };
+    strip(&mut face["outer"]);
+    if let Some(inner) = face["inner"].as_array_mut() {
+        inner.iter_mut().for_each(strip);
+    }
+}
+
+#[test]
+fn mesh_of_faces_lists_the_faces_without_pcurves_and_meshes_the_others() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    lekalo()
+        .args(["convert", "--faces", "-q"])
+        .arg(p(&d, "plate.step"))
+        .arg("-o")
+        .arg(p(&d, "faces.jsonl"))
+        .assert()
+        .success();
+    let line = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    let mut bare: Value = serde_json::from_str(line.trim()).unwrap();
+    without_pcurves(&mut bare);
+    fs::write(p(&d, "bare.jsonl"), format!("{bare}\n")).unwrap();
+    fs::write(p(&d, "both.jsonl"), format!("{}\n{bare}\n", line.trim())).unwrap();
+    let out = lekalo()
+        .args(["mesh", "--tolerance", "1e-3", "--json"])
+        .arg(p(&d, "both.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "plate.obj"))
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("1 of 2 faces not meshed"));
+    let summary: Value = serde_json::from_str(
+        String::from_utf8_lossy(&out.get_output().stderr)
+            .lines()
+            .last()
+            .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(summary["faces"].as_u64(), Some(1));
+    assert_eq!(summary["skipped"].as_u64(), Some(1));
+    lekalo()
+        .args(["mesh", "--tolerance", "1e-3"])
+        .arg(p(&d, "bare.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "bare.obj"))
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("none of the 1 faces has"));
+    assert!(!p(&d, "bare.obj").exists());
+}

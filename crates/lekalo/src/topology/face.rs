@@ -289,6 +289,13 @@ impl Face {
     pub fn edge_count(&self) -> usize {
         self.loops().map(|l| l.edges.len()).sum()
     }
+
+    /// True when every edge of every loop has its pcurve, as meshing the trimmed region
+    /// ([`mesh_faces`](crate::topology::mesh_faces)) needs.
+    #[must_use]
+    pub fn has_pcurves(&self) -> bool {
+        self.loops().all(Loop::has_pcurves)
+    }
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {

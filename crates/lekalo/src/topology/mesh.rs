@@ -84,14 +84,26 @@ fn pcurve_at(e: &Edge, s: f64) -> Result<[f64; 2]> {
             "an edge has no curve in the surface's (u, v); meshing a face needs every edge's pcurve"
                 .into(),
     })?;
-    let (a, b) = p.domain();
-    let x = p.eval(a + (b - a) * s.clamp(0.0, 1.0))?;
+    let x = p.eval(at_fraction(p.domain(), s))?;
     Ok([x[0], x[1]])
 }
 
 fn curve_at(e: &Edge, s: f64) -> Result<Vec<f64>> {
-    let (a, b) = e.curve().domain();
-    e.curve().eval(a + (b - a) * s.clamp(0.0, 1.0))
+    e.curve().eval(at_fraction(e.curve().domain(), s))
+}
+
+/// The parameter at fraction `s` of `[a, b]`, kept in `[a, b]` (`a + (b − a)·1` may round
+/// past `b`).
+fn at_fraction((a, b): (f64, f64), s: f64) -> f64 {
+    (a + (b - a) * s.clamp(0.0, 1.0)).clamp(a, b)
+}
+
+/// The surface at a point of a pcurve: a pcurve written by a CAD system may leave the
+/// surface's domain by its own rounding or tolerance, and the surface is taken at the nearest
+/// point of its domain there.
+fn surface_at(surface: &Surface, uv: [f64; 2]) -> Result<Vec<f64>> {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    surface.eval(uv[0].clamp(u0, u1), uv[1].clamp(v0, v1))
 }
 
 fn dist(a: &[f64], b: &[f64]) -> f64 {
@@ -129,7 +141,7 @@ fn sample_edge(
     let point = |u: &(&FacePlan<'_>, &Edge, bool), s: f64| -> Result<([f64; 2], Vec<f64>)> {
         let su = if u.2 { s } else { 1.0 - s };
         let uv = pcurve_at(u.1, su)?;
-        Ok((uv, u.0.face.surface().eval(uv[0], uv[1])?))
+        Ok((uv, surface_at(u.0.face.surface(), uv)?))
     };
     let split = |s0: f64, s1: f64| -> Result<bool> {
         let sm = 0.5 * (s0 + s1);
@@ -438,7 +450,7 @@ fn mesh_one(
                 if near {
                     continue;
                 }
-                let x = surface.eval(p[0], p[1])?;
+                let x = surface_at(surface, p)?;
                 add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
                 if uv.len() > *budget {
                     return Err(Error::TooLarge {
@@ -479,7 +491,7 @@ fn mesh_one(
         }
         round += 1;
         for c in refine {
-            let x = surface.eval(c[0], c[1])?;
+            let x = surface_at(surface, c)?;
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
             if uv.len() > *budget {
                 return Err(Error::TooLarge {

@@ -219,3 +219,24 @@ fn a_tolerance_too_small_for_the_grid_is_refused_with_the_tolerance() {
     assert!(e.contains("1e-11") && e.contains("points"), "{e}");
     assert!(f.mesh(f64::NAN).is_err());
 }
+
+/// A CAD system's pcurves leave the surface's domain by their rounding (here by 4e-16 at
+/// two corners): the face is meshed, the surface taken at the nearest point of its domain.
+#[test]
+fn pcurves_past_the_domain_by_rounding_are_meshed() {
+    let e = 4e-16;
+    let c = [[-e, -e], [1.0 + e, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let f = Face::new(saddle(), saddle_loop(&c), vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let m = f.mesh(1e-3).unwrap();
+    assert!(m.deviation <= 1e-3);
+    let area: f64 = m
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|k| m.uv[k as usize]);
+            0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
+                - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]))
+        })
+        .sum();
+    assert!((area - 1.0).abs() < 1e-9, "area {area}");
+}

@@ -58,11 +58,31 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     };
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
     if let Some(faces) = crate::cmd::files::cad::face_lines(&a.input)? {
-        let faces: Vec<&lekalo::Face> = faces.iter().map(|f| &f.face).collect();
+        // a face whose edges lack their (u, v) curves is listed, not meshed
+        let (faces, skipped): (Vec<&lekalo::Face>, Vec<&lekalo::Face>) =
+            faces.iter().map(|f| &f.face).partition(|f| f.has_pcurves());
+        if faces.is_empty() {
+            return bad_input(format!(
+                "{}: none of the {} faces has the curves of its edges in the surface's (u, v) \
+                 (pcurves), which meshing the trimmed region needs; lekalo reads them \
+                 where the CAD file gives them (STEP PCURVE, IGES 142)",
+                a.input.display(),
+                skipped.len()
+            ));
+        }
+        if !skipped.is_empty() {
+            eprintln!(
+                "warning: {}: {} of {} faces not meshed: an edge has no pcurve (its curve in the \
+                 surface's (u, v))",
+                a.input.display(),
+                skipped.len(),
+                faces.len() + skipped.len()
+            );
+        }
         let m = lekalo::topology::mesh_faces(&faces, a.tolerance)
             .and_then(|ms| lekalo::topology::join_meshes(&ms))
             .map_err(bad)?;
-        let summary = json!({"faces": faces.len(), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let summary = json!({"faces": faces.len(), "skipped": skipped.len(), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         return write_mesh(a, cx, &m, &fmt, &summary);
     }
     let (text, name) = lekalo_io::read_input(&a.input)?;
