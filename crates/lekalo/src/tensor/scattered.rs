@@ -25,6 +25,41 @@ pub struct TensorScatteredFit {
     pub rank: usize,
 }
 
+/// The net sizes of a scattered fit's space, after checking the data against it: one degree
+/// and one knot vector per variable, at least one point, one value row and (when given) one
+/// finite non-negative weight per point, and knot vectors valid for their degrees.
+fn check_data(
+    x: PointsRef<'_>,
+    values: PointsRef<'_>,
+    weights: Option<&[f64]>,
+    degrees: &[usize],
+    knots: &[KnotVector],
+) -> Result<Vec<usize>> {
+    let n_vars = x.dim();
+    check_n_vars(n_vars)?;
+    check_len("degrees (one per variable)", n_vars, degrees.len())?;
+    check_len("knot vectors (one per variable)", n_vars, knots.len())?;
+    let count = x.len();
+    if count == 0 {
+        return Err(Error::TooFew {
+            what: "scattered data points",
+            min: 1,
+            got: 0,
+        });
+    }
+    check_len("values (one row per data point)", count, values.len())?;
+    if let Some(w) = weights {
+        check_weights(w, count)?;
+    }
+    let mut shape = Vec::with_capacity(n_vars);
+    for (kv, &p) in knots.iter().zip(degrees) {
+        let n = kv.len().saturating_sub(p + 1);
+        kv.validate_for(p, n)?;
+        shape.push(n);
+    }
+    Ok(shape)
+}
+
 /// The tensor-product B-spline with the given degrees and knots that minimises
 /// `Σ_k w_k |S(x_k) − y_k|²` over scattered points `x_k` in `N` variables (SciPy's
 /// `LSQBivariateSpline` for `N = 2`, here in any number of variables; Dierckx, *Curve and
@@ -83,28 +118,8 @@ pub fn tensor_scattered_least_squares(
     degrees: &[usize],
     knots: Vec<KnotVector>,
 ) -> Result<TensorScatteredFit> {
-    let n_vars = x.dim();
-    check_n_vars(n_vars)?;
-    check_len("degrees (one per variable)", n_vars, degrees.len())?;
-    check_len("knot vectors (one per variable)", n_vars, knots.len())?;
-    let count = x.len();
-    if count == 0 {
-        return Err(Error::TooFew {
-            what: "scattered data points",
-            min: 1,
-            got: 0,
-        });
-    }
-    check_len("values (one row per data point)", count, values.len())?;
-    if let Some(w) = weights {
-        check_weights(w, count)?;
-    }
-    let mut shape = Vec::with_capacity(n_vars);
-    for (kv, &p) in knots.iter().zip(degrees) {
-        let n = kv.len().saturating_sub(p + 1);
-        kv.validate_for(p, n)?;
-        shape.push(n);
-    }
+    let shape = check_data(x, values, weights, degrees, &knots)?;
+    let (n_vars, count) = (x.dim(), x.len());
     let n_ctrl = checked_size(
         "control net of the scattered fit (product of the net sizes)",
         &shape,
@@ -270,28 +285,8 @@ pub fn tensor_scattered_least_squares_with(
     if rank == RankDeficiency::Refuse {
         return tensor_scattered_least_squares(x, values, weights, degrees, knots);
     }
-    let n_vars = x.dim();
-    check_n_vars(n_vars)?;
-    check_len("degrees (one per variable)", n_vars, degrees.len())?;
-    check_len("knot vectors (one per variable)", n_vars, knots.len())?;
-    let count = x.len();
-    if count == 0 {
-        return Err(Error::TooFew {
-            what: "scattered data points",
-            min: 1,
-            got: 0,
-        });
-    }
-    check_len("values (one row per data point)", count, values.len())?;
-    if let Some(w) = weights {
-        check_weights(w, count)?;
-    }
-    let mut shape = Vec::with_capacity(n_vars);
-    for (kv, &p) in knots.iter().zip(degrees) {
-        let n = kv.len().saturating_sub(p + 1);
-        kv.validate_for(p, n)?;
-        shape.push(n);
-    }
+    let shape = check_data(x, values, weights, degrees, &knots)?;
+    let (n_vars, count) = (x.dim(), x.len());
     checked_size(
         "control net of the scattered fit (product of the net sizes)",
         &shape,
