@@ -2,12 +2,13 @@
 //! assembled point by point into a symmetric band and factored by the banded `UᵀDU` of the
 //! curve and surface fits. `docs/theory/tensor.md#least-squares-on-scattered-data`.
 
-use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{ControlSupport, Error, Result, MAX_SCALARS};
 use crate::fit::banded::SymBand;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
-use crate::tensor::scattered_qr::{observe, solve, to_natural, Layout, RankDeficiency};
+use crate::tensor::scattered_qr::{
+    observe, solve, to_natural, Layout, RankDeficiency, RowProducts,
+};
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
 
 /// The result of [`tensor_scattered_least_squares`].
@@ -165,42 +166,14 @@ pub fn tensor_scattered_least_squares(
     // data points of positive weight and positive basis value in each control point's support
     let mut support = vec![0usize; n_ctrl];
     let window: usize = degrees.iter().map(|p| p + 1).product();
-    let mut scratch: Vec<BasisScratch> = degrees.iter().map(|&p| BasisScratch::new(p)).collect();
-    let mut bases: Vec<Vec<f64>> = degrees.iter().map(|&p| vec![0.0; p + 1]).collect();
-    let (mut idx, mut val) = (Vec::with_capacity(window), Vec::with_capacity(window));
-    let (mut idx2, mut val2) = (Vec::with_capacity(window), Vec::with_capacity(window));
+    let mut row_products = RowProducts::new(degrees);
     for (k, (row, y)) in x.iter().zip(values.iter()).enumerate() {
         let w = weights.map_or(1.0, |w| w[k]);
         if w == 0.0 {
             continue;
         }
         // the window's indices and basis products, the first direction slowest (increasing)
-        idx.clear();
-        val.clear();
-        idx.push(0usize);
-        val.push(1.0);
-        for a in 0..n_vars {
-            let p = degrees[a];
-            let span = knots[a].span_unchecked(p, row[a]);
-            basis_funs_into(
-                knots[a].as_slice(),
-                p,
-                span,
-                row[a],
-                &mut scratch[a],
-                &mut bases[a],
-            );
-            idx2.clear();
-            val2.clear();
-            for (&i, &v) in idx.iter().zip(&val) {
-                for (j, &b) in bases[a].iter().enumerate() {
-                    idx2.push(i + (span - p + j) * stride[a]);
-                    val2.push(v * b);
-                }
-            }
-            std::mem::swap(&mut idx, &mut idx2);
-            std::mem::swap(&mut val, &mut val2);
-        }
+        let (idx, val) = row_products.fill(&knots, degrees, &stride, row);
         for r in 0..window {
             if val[r] > 0.0 {
                 support[idx[r]] += 1;

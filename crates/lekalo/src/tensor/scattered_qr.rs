@@ -167,49 +167,19 @@ pub(super) fn observe(
     for (b, &a) in layout.order.iter().enumerate() {
         stride[a] = layout.stride[b];
     }
-    let mut scratch: Vec<BasisScratch> = degrees.iter().map(|&p| BasisScratch::new(p)).collect();
-    let mut bases: Vec<Vec<f64>> = degrees.iter().map(|&p| vec![0.0; p + 1]).collect();
     let window: usize = degrees.iter().map(|p| p + 1).product();
     // (first coefficient, point) and each point's window, flat
     let mut firsts = Vec::with_capacity(x.len());
     let mut offsets = Vec::with_capacity(x.len() * window);
     let mut products = Vec::with_capacity(x.len() * window);
-    let mut idx = Vec::with_capacity(window);
-    let mut idx2 = Vec::with_capacity(window);
-    let mut val = Vec::with_capacity(window);
-    let mut val2 = Vec::with_capacity(window);
+    let mut row_products = RowProducts::new(degrees);
     let mut support = vec![0usize; n];
     for (k, row) in x.iter().enumerate() {
-        idx.clear();
-        val.clear();
-        idx.push(0usize);
-        val.push(1.0);
-        for a in 0..n_vars {
-            let p = degrees[a];
-            let span = knots[a].span_unchecked(p, row[a]);
-            basis_funs_into(
-                knots[a].as_slice(),
-                p,
-                span,
-                row[a],
-                &mut scratch[a],
-                &mut bases[a],
-            );
-            idx2.clear();
-            val2.clear();
-            for (&i, &v) in idx.iter().zip(&val) {
-                for (j, &b) in bases[a].iter().enumerate() {
-                    idx2.push(i + (span - p + j) * stride[a]);
-                    val2.push(v * b);
-                }
-            }
-            std::mem::swap(&mut idx, &mut idx2);
-            std::mem::swap(&mut val, &mut val2);
-        }
+        let (idx, val) = row_products.fill(knots, degrees, &stride, row);
         let w = weights.map_or(1.0, |w| w[k]);
         let first = idx.iter().copied().min().unwrap_or(0);
         if w > 0.0 {
-            for (&i, &v) in idx.iter().zip(&val) {
+            for (&i, &v) in idx.iter().zip(val) {
                 if v > 0.0 {
                     support[i] += 1;
                 }
@@ -439,4 +409,67 @@ pub(super) fn to_natural(c: &[f64], layout: &Layout, shape: &[usize], dim: usize
         out[j * dim..(j + 1) * dim].copy_from_slice(row);
     }
     out
+}
+
+/// The non-zero basis products of one point of a tensor-product space: the Kronecker
+/// product of the one-direction basis rows (P&T Algorithm A2.2 in each direction), the first
+/// direction slowest, with their indices in a net of the given strides.
+pub(super) struct RowProducts {
+    scratch: Vec<BasisScratch>,
+    bases: Vec<Vec<f64>>,
+    idx: Vec<usize>,
+    val: Vec<f64>,
+    idx2: Vec<usize>,
+    val2: Vec<f64>,
+}
+
+impl RowProducts {
+    /// Buffers for the degrees `degrees`.
+    pub(super) fn new(degrees: &[usize]) -> Self {
+        let window: usize = degrees.iter().map(|p| p + 1).product();
+        RowProducts {
+            scratch: degrees.iter().map(|&p| BasisScratch::new(p)).collect(),
+            bases: degrees.iter().map(|&p| vec![0.0; p + 1]).collect(),
+            idx: Vec::with_capacity(window),
+            val: Vec::with_capacity(window),
+            idx2: Vec::with_capacity(window),
+            val2: Vec::with_capacity(window),
+        }
+    }
+
+    /// The indices and products at `row` (inside every knot vector's domain).
+    pub(super) fn fill(
+        &mut self,
+        knots: &[KnotVector],
+        degrees: &[usize],
+        stride: &[usize],
+        row: &[f64],
+    ) -> (&[usize], &[f64]) {
+        self.idx.clear();
+        self.val.clear();
+        self.idx.push(0);
+        self.val.push(1.0);
+        for (a, (kv, &p)) in knots.iter().zip(degrees).enumerate() {
+            let span = kv.span_unchecked(p, row[a]);
+            basis_funs_into(
+                kv.as_slice(),
+                p,
+                span,
+                row[a],
+                &mut self.scratch[a],
+                &mut self.bases[a],
+            );
+            self.idx2.clear();
+            self.val2.clear();
+            for (&i, &v) in self.idx.iter().zip(&self.val) {
+                for (j, &b) in self.bases[a].iter().enumerate() {
+                    self.idx2.push(i + (span - p + j) * stride[a]);
+                    self.val2.push(v * b);
+                }
+            }
+            std::mem::swap(&mut self.idx, &mut self.idx2);
+            std::mem::swap(&mut self.val, &mut self.val2);
+        }
+        (&self.idx, &self.val)
+    }
 }
