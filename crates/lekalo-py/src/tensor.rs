@@ -404,17 +404,7 @@ pub(crate) fn fit_tensor_grid(
 ) -> PyResult<PyTensorBSpline> {
     let lists = axes_arg(axes, "axes")?;
     let n = lists.len();
-    let knots = knot_vectors_arg(t)?;
-    if knots.len() != n {
-        return Err(bad(format!(
-            "t: {} knot vectors for {n} axes; give one per variable",
-            knots.len()
-        )));
-    }
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("{n} axes"))?;
     let va = floats(values, "values")?;
     let shape = va.shape();
     let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
@@ -516,6 +506,28 @@ fn points_arg<'py>(x: &Bound<'py, PyAny>) -> PyResult<(FloatArray<'py>, usize, u
     Ok((xa, npts, n))
 }
 
+/// The knot vectors `t` (one per variable) and degrees `k` (default 3 in each) of a space in
+/// `n` variables; `of` says what the `n` variables are, for the message.
+fn knots_and_degrees(
+    t: &Bound<'_, PyAny>,
+    k: Option<&Bound<'_, PyAny>>,
+    n: usize,
+    of: &str,
+) -> PyResult<(Vec<KnotVector>, Vec<usize>)> {
+    let knots = knot_vectors_arg(t)?;
+    if knots.len() != n {
+        return Err(bad(format!(
+            "t: {} knot vectors for {of}; give one per variable",
+            knots.len()
+        )));
+    }
+    let degrees = match k {
+        Some(k) => degrees_arg(k, n)?,
+        None => vec![3; n],
+    };
+    Ok((knots, degrees))
+}
+
 /// Values `y` of shape `(npts, *trailing)` of a scattered fit: the array and `trailing`.
 fn values_arg<'py>(y: &Bound<'py, PyAny>, npts: usize) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
     let ya = floats(y, "y")?;
@@ -554,17 +566,7 @@ pub(crate) fn fit_tensor_scattered<'py>(
     full_output: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let (xa, npts, n) = points_arg(x)?;
-    let knots = knot_vectors_arg(t)?;
-    if knots.len() != n {
-        return Err(bad(format!(
-            "t: {} knot vectors for points in {n} variables; give one per variable",
-            knots.len()
-        )));
-    }
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("points in {n} variables"))?;
     let (ya, trailing) = values_arg(y, npts)?;
     let dim: usize = trailing.iter().product();
     let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
@@ -710,17 +712,7 @@ pub(crate) fn tensor_design_matrix<'py>(
             "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
         )));
     };
-    let knots = knot_vectors_arg(t)?;
-    if knots.len() != n {
-        return Err(bad(format!(
-            "t: {} knot vectors for points in {n} variables; give one per variable",
-            knots.len()
-        )));
-    }
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("points in {n} variables"))?;
     let xs = xa.data();
     let m = py
         .detach(|| lk_design_matrix(&degrees, &knots, xs, extrapolate))
