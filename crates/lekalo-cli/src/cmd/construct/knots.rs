@@ -210,7 +210,7 @@ fn basis_table(kv: &KnotVector, p: usize, t: &[f64], as_json: bool) -> Result<St
     }
     let mut s = String::new();
     for ((t, span), n) in rows {
-        let ns: Vec<String> = n.iter().map(|x| format!("{x}")).collect();
+        let ns: Vec<String> = n.iter().copied().map(lekalo_io::fmt_number).collect();
         let _ = writeln!(
             s,
             "t = {t}  span {span}  N({}..={span}, {p}) = [{}]",

@@ -102,17 +102,6 @@ pub(crate) fn info_json(obj: &Object, samples: usize) -> lekalo::Result<Value> {
     }))
 }
 
-fn fmt_list(v: &Value) -> String {
-    match v {
-        Value::Array(a) => {
-            let s: Vec<String> = a.iter().map(fmt_list).collect();
-            format!("[{}]", s.join(", "))
-        }
-        Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), |x| format!("{x}")),
-        other => other.to_string(),
-    }
-}
-
 /// Human-readable text of [`info_json`].
 fn info_text(j: &Value) -> String {
     let mut s = String::new();
@@ -126,7 +115,7 @@ fn info_text(j: &Value) -> String {
     let _ = writeln!(s, "degree          {} (order {})", j["degree"], j["order"]);
     let _ = writeln!(s, "control points  {}", j["control_points"]);
     if j["rational"] == Value::Bool(true) {
-        let _ = writeln!(s, "weights         {}", fmt_list(&j["weights"]));
+        let _ = writeln!(s, "weights         {}", shapes::fmt(&j["weights"]));
     }
     let more = |list: &str, total: &str| {
         let (n, total) = (j[list].as_array().map_or(0, Vec::len), &j[total]);
@@ -139,14 +128,14 @@ fn info_text(j: &Value) -> String {
     let _ = writeln!(
         s,
         "knots           {}{}",
-        fmt_list(&j["knots"]),
+        shapes::fmt(&j["knots"]),
         more("knots", "knots_total")
     );
     let mults: Vec<String> = j["distinct_knots"]
         .as_array()
         .map(|a| {
             a.iter()
-                .map(|d| format!("{}×{}", fmt_list(&d["knot"]), d["multiplicity"]))
+                .map(|d| format!("{}×{}", shapes::fmt(&d["knot"]), d["multiplicity"]))
                 .collect()
         })
         .unwrap_or_default();
@@ -161,14 +150,18 @@ fn info_text(j: &Value) -> String {
     } else {
         "not clamped"
     };
-    let _ = writeln!(s, "domain          {} ({clamped})", fmt_list(&j["domain"]));
+    let _ = writeln!(
+        s,
+        "domain          {} ({clamped})",
+        shapes::fmt(&j["domain"])
+    );
     let _ = writeln!(
         s,
         "start, end      {}, {}",
-        fmt_list(&j["start"]),
-        fmt_list(&j["end"])
+        shapes::fmt(&j["start"]),
+        shapes::fmt(&j["end"])
     );
-    let bx = |b: &Value| format!("{} .. {}", fmt_list(&b["min"]), fmt_list(&b["max"]));
+    let bx = |b: &Value| format!("{} .. {}", shapes::fmt(&b["min"]), shapes::fmt(&b["max"]));
     let _ = writeln!(s, "control box     {}", bx(&j["control_box"]));
     let _ = writeln!(s, "sampled box     {}", bx(&j["sampled_box"]));
     s

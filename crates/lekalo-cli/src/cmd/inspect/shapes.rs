@@ -91,13 +91,17 @@ pub(crate) fn pp_info_json(p: &PiecewisePolynomial, samples: usize) -> lekalo::R
     }))
 }
 
-fn fmt(v: &Value) -> String {
+/// A JSON value as text for the human-readable reports: lists in brackets, numbers as
+/// [`lekalo_io::fmt_number`] writes them (exponent notation for the very small and large).
+pub(crate) fn fmt(v: &Value) -> String {
     match v {
         Value::Array(a) => {
             let s: Vec<String> = a.iter().map(fmt).collect();
             format!("[{}]", s.join(", "))
         }
-        Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), |x| format!("{x}")),
+        Value::Number(n) => n
+            .as_f64()
+            .map_or_else(|| n.to_string(), lekalo_io::fmt_number),
         Value::String(s) => s.clone(),
         other => other.to_string(),
     }

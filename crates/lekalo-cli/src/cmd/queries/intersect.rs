@@ -14,7 +14,7 @@ use crate::cmd::measure::{query_curve, query_surface};
 use crate::context::Context;
 use crate::exit::{bad_input, BadInput};
 use crate::items::{load_one, open, Items};
-use crate::output::{emit, format_of};
+use crate::output::{emit, format_of, report};
 use crate::values::numbers;
 
 /// Arguments of `lekalo intersect`.
@@ -118,6 +118,9 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
     let text = if a.json {
         format!("{:#}\n", json!(hits))
     } else {
+        if hits.is_empty() && !cx.is_quiet() {
+            report("note: no intersection within the tolerance");
+        }
         hits.iter().map(csv_row).collect()
     };
     emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
@@ -165,7 +168,7 @@ fn plane_json(h: &PlaneIntersection) -> Value {
 /// The CSV row of an answer's JSON object: the kind, then `t_a,t_b` (a plane: `t,`) and the
 /// point, or an overlap's interval ends.
 fn csv_row(h: &Value) -> String {
-    let num = |v: &Value| v.as_f64().map(|x| x.to_string()).unwrap_or_default();
+    let num = |v: &Value| v.as_f64().map(lekalo_io::fmt_number).unwrap_or_default();
     let mut cells = vec![h["kind"].as_str().unwrap_or_default().to_string()];
     if let Some(point) = h["point"].as_array() {
         if h.get("t").is_some() {

@@ -167,8 +167,8 @@ pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
         }
         for (i, par, p, d) in &out_rows {
             let cols: Vec<String> = std::iter::once(i.to_string())
-                .chain(par.iter().chain(p).map(f64::to_string))
-                .chain(std::iter::once(d.to_string()))
+                .chain(par.iter().chain(p).copied().map(lekalo_io::fmt_number))
+                .chain(std::iter::once(lekalo_io::fmt_number(*d)))
                 .collect();
             s.push_str(&cols.join(","));
             s.push('\n');
