@@ -209,6 +209,16 @@ fn project_single_batch_and_all() {
     );
     assert_eq!(j.as_array().unwrap().len(), 2);
     assert!((j[1]["distance"].as_f64().unwrap() - 2f64.sqrt()).abs() < 1e-14);
+    // a distance of 2^-23 reads as the tables write it (1.1920928955078125e-7), not as
+    // 0.00000011920928955078125
+    let out = String::from_utf8(output_of(
+        lekalo()
+            .args(["project", "--point", "3.00000011920928955078125,2"])
+            .arg(p(&d, "poly.json")),
+    ))
+    .unwrap();
+    let distance = out.lines().nth(1).unwrap().rsplit(',').next().unwrap();
+    assert_eq!(distance, "1.1920928955078125e-7", "{out}");
     lekalo()
         .args(["project", "--point", "nan,1"])
         .arg(p(&d, "poly.json"))
@@ -245,6 +255,20 @@ fn intersect_pairs_self_and_plane() {
         .assert()
         .success()
         .stdout(contains("crossing,"));
+    // nothing found: no rows, and a note saying so (none with --quiet)
+    lekalo()
+        .args(["intersect", "--plane", "0,9,0,1"])
+        .arg(p(&d, "poly.json"))
+        .assert()
+        .success()
+        .stdout("")
+        .stderr(contains("no intersection"));
+    lekalo()
+        .args(["--quiet", "intersect", "--plane", "0,9,0,1"])
+        .arg(p(&d, "poly.json"))
+        .assert()
+        .success()
+        .stderr("");
     lekalo()
         .arg("intersect")
         .arg(p(&d, "poly.json"))
