@@ -26,6 +26,27 @@ pub(crate) fn read_points(cx: &Context, path: &Path) -> Result<(lekalo::Points, 
     Ok((points, name))
 }
 
+/// `e` with the lines of the points it names, where it is the library's error about points by
+/// their index (two that coincide) and `path` a CSV or whitespace points file that can be read
+/// again: `pts.csv lines 4 and 5: points 2 and 3 coincide: …`. Any other error is returned as
+/// it is.
+pub(crate) fn at_point_lines(cx: &Context, path: &Path, e: anyhow::Error) -> anyhow::Error {
+    let Some(&lekalo::Error::CoincidentPoints { first, second }) = e.downcast_ref() else {
+        return e;
+    };
+    if path.as_os_str() == "-" {
+        return e;
+    }
+    let Ok(bytes) = std::fs::read(path) else {
+        return e;
+    };
+    let line = |i| lekalo_io::line_of_point(&bytes, cx.header_rule(), i);
+    match (line(first), line(second)) {
+        (Some(a), Some(b)) => e.context(format!("{} lines {a} and {b}", path.display())),
+        _ => e,
+    }
+}
+
 /// The points of the text of a points file named `name` (CSV, whitespace text, JSON), with
 /// `--header`.
 pub(crate) fn points_from_text(cx: &Context, text: &str, name: &str) -> Result<lekalo::Points> {

@@ -84,7 +84,9 @@ pub use parquet::{
     read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
 };
 pub use png::svg_to_png;
-pub use points_in::{parse_number_list, read_points, read_points_bytes, read_points_with, Header};
+pub use points_in::{
+    line_of_point, parse_number_list, read_points, read_points_bytes, read_points_with, Header,
+};
 pub use samples::{coord_names, sample_table, SampleSpec, SampleTable};
 pub use shape::{nurbs_surface_to_json, read_nurbs_surface, Shape, Surface, SurfaceJson};
 pub use step::{step_real, CurveNet, StepWriter, SurfaceNet};

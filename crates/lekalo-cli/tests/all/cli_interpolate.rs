@@ -343,3 +343,20 @@ fn a_large_file_read_in_parallel_is_read_as_standard_input() {
         "{file}\n{stdin}"
     );
 }
+
+/// Two points that coincide are named by the lines of the file that hold them (after its
+/// header, blank and comment lines), for `interpolate` and for `fit`.
+#[test]
+fn coinciding_points_are_named_by_their_lines() {
+    let d = tempfile::tempdir().unwrap();
+    let pts = d.path().join("dup.csv");
+    fs::write(&pts, "x,y\n0,0\n# a comment\n1,1\n\n1,1\n3,9\n").unwrap();
+    for args in [&["interpolate"][..], &["fit", "--tol", "0.1"]] {
+        lekalo()
+            .args(args)
+            .arg(&pts)
+            .assert()
+            .code(2)
+            .stderr(contains("dup.csv lines 4 and 6: points 1 and 2 coincide"));
+    }
+}

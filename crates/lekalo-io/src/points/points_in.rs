@@ -88,6 +88,28 @@ pub fn read_points_bytes(bytes: &[u8], source: &str, header_rule: Header) -> IoR
     }
 }
 
+/// The line (counted from 1) of a points file that holds point `index` (counted from 0), for
+/// messages about points the library names by index: CSV and whitespace text by the rules of
+/// [`read_points_with`] (blank and `#` lines skipped, the header by `header_rule`); `None` for
+/// JSON, or past the last point.
+///
+/// ```
+/// use lekalo_io::{line_of_point, Header};
+/// let text = b"x,y\n0,0\n\n# a comment\n1,1\n1,1\n";
+/// assert_eq!(line_of_point(text, Header::Auto, 0), Some(2));
+/// assert_eq!(line_of_point(text, Header::Auto, 2), Some(6));
+/// assert_eq!(line_of_point(text, Header::Auto, 3), None);
+/// assert_eq!(line_of_point(b"[[0, 0], [1, 1]]", Header::Auto, 1), None);
+/// ```
+#[must_use]
+pub fn line_of_point(bytes: &[u8], header_rule: Header, index: usize) -> Option<usize> {
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    match bytes.iter().find(|b| !b.is_ascii_whitespace()) {
+        Some(b'[' | b'{') | None => None,
+        _ => crate::text_points::line_of_point(bytes, header_rule, index),
+    }
+}
+
 fn read_points_json(text: &str, source: &str) -> IoResult<Points> {
     let at = Location::new(source);
     let mut de = serde_json::Deserializer::from_str(text);

@@ -303,6 +303,33 @@ pub(crate) fn decimal_commas(source: &str, line_no: usize, line: &str) -> IoErro
     )
 }
 
+/// Whether `line`, the first that is neither blank nor a comment, is a header by `rule`.
+fn is_header(line: &str, rule: Header) -> bool {
+    match rule {
+        Header::Yes => true,
+        Header::No => false,
+        Header::Auto => Fields::of(line).all(|f| f.parse::<f64>().is_err()),
+    }
+}
+
+/// The line (counted from 1) of a CSV or whitespace points file that holds point `index`
+/// (counted from 0), by the rules of [`read_delimited`]: blank and `#` lines are no points, and
+/// the first other line is a header by `header_rule`. `None` past the last point, or at a line
+/// that is not UTF-8. Used to name the lines of the points a library error names by index.
+pub(crate) fn line_of_point(text: &[u8], header_rule: Header, index: usize) -> Option<usize> {
+    let mut rows = line_ranges(text)
+        .enumerate()
+        .map(|(n, (a, b))| (n + 1, std::str::from_utf8(&text[a..b]).map(trim)))
+        .filter(|(_, line)| !matches!(line, Ok(l) if l.is_empty() || l.starts_with('#')));
+    let (first_no, first) = rows.next()?;
+    let header = is_header(first.ok()?, header_rule);
+    std::iter::once((first_no, first))
+        .chain(rows)
+        .skip(usize::from(header))
+        .nth(index)
+        .and_then(|(n, line)| line.ok().map(|_| n))
+}
+
 pub(crate) fn read_delimited(text: &[u8], source: &str, header_rule: Header) -> IoResult<Points> {
     read_delimited_from(text, source, header_rule, PARALLEL_MIN)
 }
@@ -329,12 +356,7 @@ pub(crate) fn read_delimited_from(
             continue;
         }
         if header.is_none() {
-            let is_header = match header_rule {
-                Header::Yes => true,
-                Header::No => false,
-                Header::Auto => Fields::of(line).all(|f| f.parse::<f64>().is_err()),
-            };
-            if is_header {
+            if is_header(line, header_rule) {
                 header = Some(Fields::of(line).map(str::to_string).collect());
                 continue;
             }

@@ -169,6 +169,10 @@ pub(crate) struct InterpolateArgs {
 }
 
 pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
+    interpolate(a, cx).map_err(|e| crate::items::at_point_lines(cx, &a.points, e))
+}
+
+fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
     let param = parametrization(a.param, a.exponent);
     if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()

@@ -23,6 +23,10 @@ use crate::exit::bad_input;
 use crate::values::numbers;
 
 pub(crate) fn run(a: &FitArgs, cx: &Context) -> Result<()> {
+    fit(a, cx).map_err(|e| crate::items::at_point_lines(cx, &a.points, e))
+}
+
+fn fit(a: &FitArgs, cx: &Context) -> Result<()> {
     let modes = [
         a.lsq,
         a.smooth.is_some(),
