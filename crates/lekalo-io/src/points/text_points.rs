@@ -355,11 +355,9 @@ pub(crate) fn read_delimited_from(
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        if header.is_none() {
-            if is_header(line, header_rule) {
-                header = Some(Fields::of(line).map(str::to_string).collect());
-                continue;
-            }
+        if header.is_none() && is_header(line, header_rule) {
+            header = Some(Fields::of(line).map(str::to_string).collect());
+            continue;
         }
         first = Some((line, n + 1, (b + 1).min(bytes.len())));
         break;
