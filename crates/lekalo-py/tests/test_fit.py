@@ -163,6 +163,15 @@ def test_fit_tolerance():
     assert np.allclose(np.linalg.norm(c(rep["params"]) - pts, axis=1), rep["deviations"], atol=1e-13)
 
 
+def test_fit_tolerance_of_noisy_data_as_the_readme_shows():
+    # the package README's example: a tolerance of twice the noise gives few control points
+    x = np.linspace(0, 1, 200)
+    y = np.sin(6 * x) + 0.05 * np.random.default_rng(0).standard_normal(200)
+    c, rep = lekalo.fit_tolerance(np.column_stack([x, y]), 0.1)
+    assert c.control.shape[0] == 9
+    assert abs(rep["max_deviation"] - 0.0987) < 1e-4
+
+
 def test_fit_robust_rejects_an_outlier():
     x = np.linspace(0, 1, 60)
     y = 2 * x
