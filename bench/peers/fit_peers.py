@@ -18,7 +18,6 @@ python3 -m venv target/fitvenv && target/fitvenv/bin/pip install numpy scipy)
 """
 import json
 import os
-import shutil
 import statistics
 import subprocess
 import sys
@@ -106,21 +105,15 @@ for name, peer, key, peer_secs, note in rows:
 tol = after["tolerance"]
 ours = 0.5 * (before["tolerance"]["secs"] + tol["secs"])
 occt = None
-inc = os.environ.get("OCCT_INCLUDE", "/usr/include/opencascade")
-if os.path.exists(f"{inc}/GeomAPI_PointsToBSpline.hxx") and shutil.which("g++"):
-    os.makedirs("target/peers-occt", exist_ok=True)
-    libs = ["-lTKGeomAlgo", "-lTKGeomBase", "-lTKG3d", "-lTKG2d", "-lTKMath", "-lTKernel"]
-    if os.environ.get("OCCT_LIB"):
-        libs = [f"-L{os.environ['OCCT_LIB']}", f"-Wl,-rpath,{os.environ['OCCT_LIB']}"] + libs
-    built = subprocess.run(["g++", "-O2", "-std=c++17", "-Wno-deprecated-declarations", f"-I{inc}",
-                            "bench/peers/occt_fit.cpp", "-o", "target/peers-occt/occt_fit"] + libs)
-    if built.returncode == 0:
-        occt = json.loads(subprocess.run(["target/peers-occt/occt_fit", DIR, str(repeats),
-                                          str(tol["tol"])], check=True, capture_output=True,
-                                         text=True).stdout)
-else:
-    print("tolerance: no Open CASCADE headers (Debian: apt-get install "
-          "libocct-modeling-algorithms-dev libocct-modeling-data-dev); OCCT peer skipped")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from occt_build import build  # noqa: E402  (beside this script)
+
+binary = build("occt_fit.cpp", "GeomAPI_PointsToBSpline.hxx",
+               ["-lTKGeomAlgo", "-lTKGeomBase", "-lTKG3d", "-lTKG2d", "-lTKMath", "-lTKernel"])
+if binary:
+    occt = json.loads(subprocess.run([str(binary), f"{DIR}/tol_q.bin", "2", str(repeats),
+                                      str(tol["tol"]), "3"], check=True, capture_output=True,
+                                     text=True).stdout)
 if occt:
     print(f"{'tolerance fit 10^5, tol ' + str(tol['tol']):34} {'GeomAPI_PointsToBSpline (C++)':34} "
           f"{ours:10.4f} {occt['secs']:10.4f} {occt['secs'] / ours:7.1f}  control points "
