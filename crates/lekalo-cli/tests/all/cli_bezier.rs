@@ -153,6 +153,92 @@ fn surfaces() {
         .stderr(contains("real degree is 3"));
 }
 
+/// A quadratic B-spline curve of two pieces and the 3×3 biquadratic dome as a B-spline surface.
+const BSPLINE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 2,
+ "knots": [0, 0, 0, 1, 2, 2, 2], "control": [[0, 0], [1, 2], [3, 2], [4, 0]]}"#;
+const DOME: &str = r#"{"lekalo": 1, "type": "bspline_surface", "degree_u": 2, "degree_v": 2,
+ "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1], "net": [3, 3],
+ "control": [[0, 0, 0], [0, 1, 0], [0, 2, 0], [1, 0, 0], [1, 1, 1], [1, 2, 0], [2, 0, 0],
+  [2, 1, 0], [2, 2, 0]]}"#;
+
+/// B-spline curves and surfaces: elevated and changed to a degree (the library's
+/// `elevate_degree`/`change_degree` of each), a curve reduced approximately; the real degree
+/// stays a Bezier notion, refused with what to do instead.
+#[test]
+fn bspline_curves_and_surfaces_change_degree() {
+    let d = setup();
+    let curve = d.path().join("curve.json");
+    let dome = d.path().join("dome.json");
+    fs::write(&curve, BSPLINE).unwrap();
+    fs::write(&dome, DOME).unwrap();
+    let json = |args: &[&str], input: &std::path::Path| {
+        let out = lekalo()
+            .arg("bezier")
+            .args(args)
+            .arg(input)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        serde_json::from_slice::<serde_json::Value>(&out).unwrap()
+    };
+    let up = json(&["elevate", "--by", "1,2"], &dome);
+    assert_eq!(
+        (up["degree_u"].as_u64(), up["degree_v"].as_u64()),
+        (Some(3), Some(4))
+    );
+    let up_file = d.path().join("up.json");
+    fs::write(&up_file, up.to_string()).unwrap();
+    let back = json(&["change", "--degree", "2,2"], &up_file);
+    for (a, b) in back["control"].as_array().unwrap().iter().zip(DOME_CONTROL) {
+        for (x, y) in a.as_array().unwrap().iter().zip(b) {
+            assert!((x.as_f64().unwrap() - y).abs() < 1e-12, "{back}");
+        }
+    }
+    lekalo()
+        .args(["bezier", "change", "--degree", "1,2"])
+        .arg(&up_file)
+        .assert()
+        .code(2)
+        .stderr(contains("real degree is 2"));
+    let cubic = json(&["change", "--degree", "3"], &curve);
+    assert_eq!(cubic["degree"], 3);
+    let cubic_file = d.path().join("cubic.json");
+    fs::write(&cubic_file, cubic.to_string()).unwrap();
+    assert_eq!(json(&["change", "--degree", "2"], &cubic_file)["degree"], 2);
+    let reduced = json(&["reduce", "--approx", "2", "--json"], &cubic_file);
+    assert_eq!(reduced["curve"]["degree"], 2);
+    assert!(
+        reduced["max_deviation_sampled"].as_f64().unwrap() < 1e-12,
+        "{reduced}"
+    );
+    lekalo()
+        .args(["bezier", "reduce", "--approx", "1", "--ends", "free"])
+        .arg(&cubic_file)
+        .assert()
+        .code(2)
+        .stderr(contains("free ends would tear the 2 pieces"));
+    lekalo()
+        .args(["bezier", "real-degree"])
+        .arg(&dome)
+        .assert()
+        .code(2)
+        .stderr(contains("knot decompose"));
+}
+
+const DOME_CONTROL: [[f64; 3]; 9] = [
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 2.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0],
+    [1.0, 2.0, 0.0],
+    [2.0, 0.0, 0.0],
+    [2.0, 1.0, 0.0],
+    [2.0, 2.0, 0.0],
+];
+
 #[test]
 fn bad_input_exit_code_2_names_the_problem() {
     let d = setup();
@@ -193,7 +279,7 @@ fn bad_input_exit_code_2_names_the_problem() {
         .arg(&bs)
         .assert()
         .code(2)
-        .stderr(contains("takes a Bezier curve"));
+        .stderr(contains("the real degree is defined for one Bezier piece"));
     // B-spline curves can be elevated
     lekalo()
         .args(["bezier", "elevate", "--by", "2"])

@@ -246,8 +246,8 @@ impl BSplineCurve {
             return Err(Error::InvalidArgument {
                 what: "end conditions",
                 reason: format!(
-                    "EndConditions::Free would tear the {} pieces of the B-spline apart at their \
-                     joins; use EndConditions::Points or EndConditions::Tangents",
+                    "free ends would tear the {} pieces of the B-spline apart at their joins; \
+                     keep the end points or the end tangents",
                     segments.len()
                 ),
             });

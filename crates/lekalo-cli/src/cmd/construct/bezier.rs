@@ -11,16 +11,17 @@ use lekalo_io::Object;
 use crate::context::Context;
 use crate::exit::bad_input;
 use crate::items::load_one;
-use crate::output::objects::{write_bezier_surface, write_curve, OutArgs};
+use crate::output::objects::{write_bezier_surface, write_curve, write_surface, OutArgs};
 use crate::values::integers;
 use crate::values::net_size;
 
 /// The input of a `bezier` operation: a curve object, or a surface net.
 #[derive(Args, Debug)]
 pub(crate) struct BezierInput {
-    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), or the control
-    /// points of a Bezier curve as a points file (CSV, text, JSON list, .npy; degree = number of
-    /// points − 1), or nothing with --surface.
+    /// A Bezier curve or Bezier surface object (JSON; `-` for standard input), a B-spline curve
+    /// or surface (elevate, change, and reduce --approx of curves: piece by piece), or the
+    /// control points of a Bezier curve as a points file (CSV, text, JSON list, .npy; degree =
+    /// number of points − 1), or nothing with --surface.
     input: Option<PathBuf>,
     /// A Bezier surface: its control net as a points file, read row by row (with --net).
     #[arg(long, value_name = "FILE", requires = "net")]
@@ -138,6 +139,7 @@ enum Loaded {
     Curve(BezierCurve, PathBuf),
     BSpline(BSplineCurve, PathBuf),
     Surface(BezierSurface, PathBuf),
+    BSplineSurface(lekalo::BSplineSurface, PathBuf),
 }
 
 fn load(i: &BezierInput, cx: &Context) -> Result<Loaded> {
@@ -152,6 +154,10 @@ fn load(i: &BezierInput, cx: &Context) -> Result<Loaded> {
                 Some("bezier_surface") => {
                     let s = lekalo_io::read_bezier_surface(&text, &name)?;
                     Ok(Loaded::Surface(s, p.clone()))
+                }
+                Some("bspline_surface") => {
+                    let s = lekalo_io::read_bspline_surface(&text, &name)?;
+                    Ok(Loaded::BSplineSurface(s, p.clone()))
                 }
                 // not an object: a points file of the control points
                 None if !lekalo_io::strip_bom_str(&text)
@@ -215,7 +221,8 @@ fn guard(cx: &Context, l: Loaded, what: &str) -> Result<Loaded> {
     let degree = match &l {
         Loaded::Curve(c, _) => c.degree(),
         Loaded::Surface(s, _) => s.degree_u().max(s.degree_v()),
-        Loaded::BSpline(..) => 0,
+        Loaded::BSpline(c, _) => c.degree(),
+        Loaded::BSplineSurface(s, _) => s.degree_u().max(s.degree_v()),
     };
     if degree > limit {
         return bad_input(format!(
@@ -225,11 +232,23 @@ fn guard(cx: &Context, l: Loaded, what: &str) -> Result<Loaded> {
     Ok(l)
 }
 
+/// The refusal of the real degree, or of the exact reduction, of a B-spline curve or surface.
 fn not_bezier() -> Result<()> {
     bad_input(
-        "this operation takes a Bezier curve or surface; a B-spline curve can only be elevated \
-         (split it into Bezier pieces with `lekalo knot decompose` first)",
+        "the real degree is defined for one Bezier piece; a B-spline curve or surface is \
+         elevated or changed to a degree (`lekalo bezier change --degree N` refuses a degree \
+         below that of its pieces and names it), a B-spline curve reduced with --approx; split \
+         it into Bezier pieces with `lekalo knot decompose` for the real degree of each",
     )
+}
+
+/// The library's end conditions of `--ends`.
+fn end_conditions(ends: Ends) -> EndConditions {
+    match ends {
+        Ends::Free => EndConditions::Free,
+        Ends::Points => EndConditions::Points,
+        Ends::Tangents => EndConditions::Tangents,
+    }
 }
 
 /// One number for curves, two for surfaces.
@@ -262,6 +281,10 @@ pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
                 let (du, dv) = amounts(by, "--by", true)?;
                 write_bezier_surface(&s.elevate_degree(du, dv)?, out, &[p], cx)
             }
+            Loaded::BSplineSurface(s, p) => {
+                let (du, dv) = amounts(by, "--by", true)?;
+                write_surface(&s.elevate_degree(du, dv)?, out, &[p], cx)
+            }
         },
         BezierOp::Reduce {
             input,
@@ -287,11 +310,7 @@ pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
                             c.degree().saturating_mul(4)
                         ));
                     }
-                    let ends = match ends {
-                        Ends::Free => EndConditions::Free,
-                        Ends::Points => EndConditions::Points,
-                        Ends::Tangents => EndConditions::Tangents,
-                    };
+                    let ends = end_conditions(*ends);
                     let bar = crate::output::spinner(
                         cx,
                         format!("reducing degree {} to {target}", c.degree()),
@@ -315,7 +334,26 @@ pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
                     write_curve(&obj, None, out, &[p], cx)
                 }
             },
-            Loaded::BSpline(..) => not_bezier(),
+            Loaded::BSpline(c, p) => {
+                let Some(target) = approx else {
+                    return not_bezier();
+                };
+                let r = c.reduce_degree_approx(*target, end_conditions(*ends))?;
+                let obj = Object::BSpline(r.curve);
+                let d = (r.max_deviation_sampled, r.max_deviation_bound);
+                if json.json {
+                    return reduction_report(&obj, d, out, p, cx);
+                }
+                if !cx.is_quiet() {
+                    crate::output::report(&format!(
+                        "max deviation {} (sampled), bound {}",
+                        crate::report::number(d.0),
+                        crate::report::number(d.1)
+                    ));
+                }
+                write_curve(&obj, None, out, &[p], cx)
+            }
+            Loaded::BSplineSurface(..) => not_bezier(),
             Loaded::Surface(_, _) if approx.is_some() => bad_input(
                 "--approx reduces curves; surfaces are reduced exactly to their real degrees",
             ),
@@ -331,7 +369,7 @@ pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
                     "real_degree": c.real_degree(),
                     "defect": c.degree_defect(),
                 }),
-                Loaded::BSpline(..) => return not_bezier(),
+                Loaded::BSpline(..) | Loaded::BSplineSurface(..) => return not_bezier(),
                 Loaded::Surface(s, _) => {
                     let (n, m) = s.real_degrees();
                     serde_json::json!({
@@ -363,10 +401,17 @@ pub(crate) fn run(a: &BezierArgs, cx: &Context) -> Result<()> {
                     let (n, _) = amounts(degree, "--degree", false)?;
                     write_curve(&Object::Bezier(c.change_degree(n)?), None, out, &[p], cx)
                 }
-                Loaded::BSpline(..) => not_bezier(),
+                Loaded::BSpline(c, p) => {
+                    let (n, _) = amounts(degree, "--degree", false)?;
+                    write_curve(&Object::BSpline(c.change_degree(n)?), None, out, &[p], cx)
+                }
                 Loaded::Surface(s, p) => {
                     let (n, m) = amounts(degree, "--degree", true)?;
                     write_bezier_surface(&s.change_degree(n, m)?, out, &[p], cx)
+                }
+                Loaded::BSplineSurface(s, p) => {
+                    let (n, m) = amounts(degree, "--degree", true)?;
+                    write_surface(&s.change_degree(n, m)?, out, &[p], cx)
                 }
             }
         }
