@@ -10,7 +10,7 @@ jax = pytest.importorskip("jax")
 import jax.numpy as jnp  # noqa: E402
 
 import lekalo  # noqa: E402
-from lekalo.jax import bspline_eval, bspline_surface_eval, nurbs_eval  # noqa: E402
+from lekalo.jax import bspline_eval, bspline_surface_eval, interpolate, nurbs_eval  # noqa: E402
 
 RTOL = 1e-7
 
@@ -168,6 +168,121 @@ def test_surface_jacobians_match_central_differences(mode):
         assert_rel(g[i], fd, "vmap(grad) over nets")
 
 
+def interpolation_case(dim=2):
+    """Nine sorted parameters with not-a-knot cubic knots (the interior data sites but the
+    second and the second last): Schoenberg–Whitney holds."""
+    rng = np.random.default_rng(5)
+    x = np.array([0.0, 0.08, 0.21, 0.35, 0.47, 0.6, 0.74, 0.88, 1.0])
+    t = np.r_[[x[0]] * 4, x[2:-2], [x[-1]] * 4]
+    q = rng.uniform(-1, 1, (x.size, dim))
+    return q, x, t
+
+
+def plain_interpolate(q, x, t, k=3):
+    return lekalo.interpolation_jvp(k, t, x, q)
+
+
+def test_interpolation_values_are_lekalos_and_scipys():
+    q, x, t = interpolation_case()
+    got = np.asarray(interpolate(q, x, t))
+    assert np.array_equal(got, plain_interpolate(q, x, t))
+    assert np.array_equal(np.asarray(jax.jit(interpolate, static_argnums=3)(q, x, t, 3)), got)
+    # the interpolant passes through the data
+    np.testing.assert_allclose(lekalo.bspline_curve_jvp(3, t, got, x)[0], q, rtol=0, atol=1e-14)
+    scipy = pytest.importorskip("scipy.interpolate")
+    np.testing.assert_allclose(got, scipy.make_interp_spline(x, q, 3, t=t).c, rtol=0, atol=1e-13)
+    y = interpolate(q[:, 0], x, t)
+    assert y.shape == (x.size,) and np.array_equal(np.asarray(y), got[:, 0])
+    # degree 1 on the parameters themselves: the control points are the data
+    t1 = np.r_[x[0], x, x[-1]]
+    np.testing.assert_allclose(np.asarray(interpolate(q, x, t1, 1)), q, rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+@pytest.mark.parametrize("jit", [False, True])
+def test_interpolation_jacobians_match_central_differences(mode, jit):
+    q, x, t = interpolation_case()
+    jac = getattr(jax, mode)(lambda a, b: interpolate(a, b, t), argnums=(0, 1))
+    jq, jx = (jax.jit(jac) if jit else jac)(q, x)
+    assert_rel(jq, central(lambda a: plain_interpolate(a, x, t), q, 1e-3), f"{mode} in the data")
+    # the end parameters sit on the ends of the domain: central differences only inside
+    inner = lambda b: plain_interpolate(q, np.r_[x[0], b, x[-1]], t)  # noqa: E731
+    assert_rel(np.asarray(jx)[..., 1:-1], central(inner, x[1:-1], 1e-6), f"{mode} in the parameters")
+    # at the ends, one-sided differences of second order
+    h = 1e-6
+    for i, s in ((0, 1.0), (x.size - 1, -1.0)):
+        xs = [x.copy() for _ in range(3)]
+        for j, xi in enumerate(xs):
+            xi[i] += s * j * h
+        f0, f1, f2 = (plain_interpolate(q, xi, t) for xi in xs)
+        fd = s * (-3 * f0 + 4 * f1 - f2) / (2 * h)
+        assert_rel(np.asarray(jx)[..., i], fd, f"{mode} in the end parameter {i}")
+
+
+def test_interpolation_grad_jvp_vjp_and_vmap():
+    q, x, t = interpolation_case()
+    u = np.linspace(0.03, 0.97, 23)
+    loss = lambda a, b: jnp.sum(bspline_eval(t, interpolate(a, b, t), u, 3) ** 2)  # noqa: E731
+    loss_np = lambda a, b: np.sum(  # noqa: E731
+        lekalo.bspline_curve_jvp(3, t, plain_interpolate(a, b, t), u)[0] ** 2
+    )
+    for grad in (jax.grad(loss, argnums=(0, 1)), jax.jit(jax.grad(loss, argnums=(0, 1)))):
+        gq, gx = grad(q, x)
+        assert_rel(gq, central(lambda a: loss_np(a, x), q, 1e-5), "grad in the data")
+        inner = central(lambda b: loss_np(q, np.r_[x[0], b, x[-1]]), x[1:-1], 1e-6)
+        assert_rel(np.asarray(gx)[1:-1], inner, "grad in the parameters")
+    # jax.jvp and jax.vjp agree with lekalo's kernels
+    dq = np.linspace(-1, 1, q.size).reshape(q.shape)
+    _, tan = jax.jvp(lambda a: interpolate(a, x, t), (q,), (dq,))
+    assert_rel(tan, lekalo.interpolation_jvp(3, t, x, dq), "jvp")
+    g = np.cos(np.arange(q.size)).reshape(q.shape)
+    _, pullback = jax.vjp(lambda a: interpolate(a, x, t), q)
+    assert_rel(pullback(g)[0], lekalo.interpolation_vjp(3, t, x, g), "vjp")
+    # vmap over data sets and parameter sets, of the function and of grad; grad of vmap
+    qs = np.stack([q, -2 * q, q[::-1]])
+    xs = np.stack([x, x + 0.02 * np.sin(2 * np.pi * x), x - 0.02 * np.sin(np.pi * x)])
+    vals = jax.jit(jax.vmap(lambda a, b: interpolate(a, b, t)))(qs, xs)
+    per = jax.jit(jax.vmap(jax.grad(loss, argnums=(0, 1))))(qs, xs)
+    summed = jax.jit(jax.grad(lambda a, b: jnp.sum(jax.vmap(loss)(a, b)), argnums=(0, 1)))(qs, xs)
+    for i in range(3):
+        assert np.array_equal(np.asarray(vals[i]), plain_interpolate(qs[i], xs[i], t))
+        fq = central(lambda a: loss_np(a, xs[i]), qs[i], 1e-5)
+        fx = central(lambda b: loss_np(qs[i], np.r_[0.0, b, 1.0]), xs[i][1:-1], 1e-6)
+        for (gq, gx), what in ((per, "vmap(grad)"), (summed, "grad(vmap)")):
+            assert_rel(gq[i], fq, f"{what} in the data")
+            assert_rel(np.asarray(gx[i])[1:-1], fx, f"{what} in the parameters")
+    # vmap of jacfwd and jacrev in the data, the parameters shared
+    for mode in ("jacfwd", "jacrev"):
+        jq = jax.jit(jax.vmap(getattr(jax, mode)(lambda a: interpolate(a, x, t))))(qs)
+        for i in range(3):
+            assert_rel(jq[i], central(lambda a: plain_interpolate(a, x, t), qs[i], 1e-3), f"vmap({mode})")
+
+
+def test_interpolation_refuses_what_it_cannot_do():
+    q, x, t = interpolation_case()
+    with pytest.raises(lekalo.InputError, match="need 13 knots"):
+        interpolate(q, x, t[:-1])
+    with pytest.raises(lekalo.InputError, match=r"params must be one a point, shape \(9,\)"):
+        interpolate(q, x[:-1], t)
+    with pytest.raises(lekalo.InputError, match="Python int"):
+        interpolate(q, x, t, 3.0)
+    with pytest.raises(NotImplementedError, match="knots"):
+        jax.grad(lambda kn: jnp.sum(interpolate(q, x, kn)))(t)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda a: jnp.sum(interpolate(a, x, t) ** 2))(q)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.jacfwd(jax.jacrev(lambda b: jnp.sum(interpolate(q, b, t) ** 2)))(x)
+    # Schoenberg–Whitney violated: lekalo's error reaches the caller
+    bunched = np.r_[x[:3] * 0.1, x[3:]]
+    bunched[3:6] = [0.03, 0.04, 0.05]
+    bunched = np.sort(bunched)
+    with pytest.raises(jax.errors.JaxRuntimeError, match="Schoenberg"):
+        interpolate(q, bunched, t).block_until_ready()
+    jax.config.update("jax_enable_x64", False)
+    with pytest.raises(lekalo.InputError, match="jax_enable_x64"):
+        interpolate(q, x, t)
+
+
 def test_unsupported_transformations_say_so():
     knots, ctrl, u = curve_case()
     with pytest.raises(NotImplementedError, match="knots"):
@@ -217,6 +332,7 @@ def test_the_docs_examples_run():
     assert namespace["jac_u"].shape == (7, 2, 7)
     assert namespace["g_data"].shape == (60, 2) and namespace["jac_y"].shape == (14, 12)
     assert namespace["grad_pts"].shape == (2, 3) and namespace["vals"].shape == (2,)
+    assert namespace["g_ys"].shape == (8,) and namespace["g_xs"].shape == (8,)
 
 
 def test_the_module_docstring_examples_run():

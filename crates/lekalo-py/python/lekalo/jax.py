@@ -11,7 +11,10 @@
   B-spline in ``N`` variables at points ``(..., N)``;
 - ``fit_least_squares(points, params, t, k=3, *, w=None)`` and
   ``fit_smoothing(x, y, w=None, lam=...)``: the control points of the least-squares fit and of
-  the smoothing spline, differentiable with respect to the data.
+  the smoothing spline, differentiable with respect to the data;
+- ``interpolate(points, params, t, k=3)``: the control points of the interpolant through
+  ``points`` at ``params`` on the knots ``t``, differentiable with respect to the data and the
+  parameters.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
 points and the parameters; the knots and degrees are constants. The values come from lekalo through
@@ -68,6 +71,7 @@ __all__ = [
     "tensor_bspline_eval",
     "fit_least_squares",
     "fit_smoothing",
+    "interpolate",
 ]
 
 
@@ -428,6 +432,144 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
         )
     out = _surface(degrees, ku, kv, ctrl, u.reshape(-1), v.reshape(-1))
     return out.reshape(u.shape + ctrl.shape[-1:])
+
+
+# -- interpolation -------------------------------------------------------------------------------
+
+
+def _interp_solve_cb(k, params, t, b):
+    def one(x, kn, v):
+        return (np.asarray(_lekalo.interpolation_jvp(k, kn, x, v)),)
+
+    return _looped(one, (1, 1, 2), params, t, b)[0]
+
+
+def _interp_solve_transposed_cb(k, params, t, g):
+    def one(x, kn, v):
+        return (np.asarray(_lekalo.interpolation_vjp(k, kn, x, v)),)
+
+    return _looped(one, (1, 1, 2), params, t, g)[0]
+
+
+def _collocation_solve(k, params, t, first, basis, b):
+    """``A⁻¹ b`` for the collocation matrix ``A[r, i] = N_{i,k}(params[r])`` (rows ``first``,
+    ``basis``) as a ``jax.lax.custom_linear_solve``: the solve is lekalo's
+    ``interpolation_jvp``, the transposed solve (reverse mode) its ``interpolation_vjp``, both
+    with the one banded factorisation; ``A`` itself (a gather, for JAX's own bookkeeping) is
+    never inverted by JAX."""
+    rows = first[:, None] + jnp.arange(basis.shape[1])
+
+    def matvec(x):
+        return jnp.einsum("mk,mkd->md", basis, x[rows])
+
+    def solve(_, rhs):
+        return jax.pure_callback(
+            partial(_interp_solve_cb, k),
+            jax.ShapeDtypeStruct(rhs.shape, jnp.float64),
+            params,
+            t,
+            rhs,
+            vmap_method="expand_dims",
+        )
+
+    def solve_transposed(_, rhs):
+        return jax.pure_callback(
+            partial(_interp_solve_transposed_cb, k),
+            jax.ShapeDtypeStruct(rhs.shape, jnp.float64),
+            params,
+            t,
+            rhs,
+            vmap_method="expand_dims",
+        )
+
+    return jax.lax.custom_linear_solve(matvec, b, solve, solve_transposed)
+
+
+@partial(jax.custom_jvp, nondiff_argnums=(0,))
+def _interp(k, points, params, t):
+    return jax.pure_callback(
+        partial(_interp_solve_cb, k),
+        jax.ShapeDtypeStruct(points.shape, jnp.float64),
+        params,
+        t,
+        points,
+        vmap_method="expand_dims",
+    )
+
+
+@partial(_interp.defjvp, symbolic_zeros=True)
+def _interp_jvp(k, primals, tangents):
+    points, params, t = primals
+    dq, dx, dt = tangents
+    name = "interpolate"
+    _no_knot_tangent(name, dt)
+    guard = partial(_first_order_only, name)
+    ctrl = _interp(k, guard(points), guard(params), guard(t))
+    if isinstance(dq, SymbolicZero) and isinstance(dx, SymbolicZero):
+        return ctrl, jnp.zeros_like(ctrl)
+    m, dim = points.shape
+    shapes = (
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m, dim), jnp.float64),
+        jax.ShapeDtypeStruct((m,), jnp.int64),
+        jax.ShapeDtypeStruct((m, k + 1), jnp.float64),
+    )
+    # the interpolant's linearisation at its own parameters: the rows of A and C'(params)
+    _, slopes, first, basis = jax.pure_callback(
+        partial(_curve_linearize_cb, k),
+        shapes,
+        guard(t),
+        ctrl,
+        guard(params),
+        vmap_method="expand_dims",
+    )
+    # A(x) P = Q, so A Ṗ = Q̇ - Ȧ P = Q̇ - C'(x) ẋ
+    rhs = jnp.zeros((m, dim), jnp.float64)
+    if not isinstance(dq, SymbolicZero):
+        rhs = rhs + dq
+    if not isinstance(dx, SymbolicZero):
+        rhs = rhs - slopes * dx[:, None]
+    return ctrl, _collocation_solve(k, guard(params), guard(t), first, basis, rhs)
+
+
+def interpolate(points, params, t, k=3):
+    """The control points of the B-spline of degree ``k`` on the knots ``t`` that interpolates
+    ``points`` (``(m, dim)``, or ``(m,)`` for a function) at the sorted ``params``, one a control
+    point (``len(t) == m + k + 1``): the solution of the collocation system ``A P = points``,
+    ``A[r, i] = N_{i,k}(params[r])``, with lekalo's banded factorisation
+    (``lekalo.interpolation_jvp(k, t, params, points)``, bit for bit; the same control points as
+    ``scipy.interpolate.make_interp_spline(params, points, k, t=t)``). Shape ``(m, dim)`` (or
+    ``(m,)``).
+
+    Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
+    respect to ``points`` and ``params``: ``Ṗ = A⁻¹ (Q̇ - C'(params) ẋ)``, the solve being
+    lekalo's ``interpolation_jvp`` and, in reverse mode, the adjoint solve
+    ``interpolation_vjp`` (a ``jax.lax.custom_linear_solve``), ``C'`` the interpolant's
+    derivative (``docs/theory/derivatives.md``, "Interpolation"). At a parameter on an interior
+    knot where ``C'`` jumps (a knot of multiplicity ``k`` or more), the right-hand derivative is
+    used. ``t`` and ``k`` are constants. The parameters must satisfy the Schoenberg–Whitney
+    condition (``t[r] < params[r] < t[r + k + 1]``, ends excepted); otherwise lekalo's error
+    reaches the caller as ``jax.errors.JaxRuntimeError``.
+    """
+    name = "interpolate"
+    _require_x64(name)
+    k = _degree(k, "k", name)
+    points = _float64(points, "points", name)
+    params = _float64(params, "params", name)
+    t = _float64(t, "t", name)
+    scalar, q = _points_arg(points, name, "points")
+    m = q.shape[0]
+    if params.shape != (m,):
+        raise InputError(
+            f"lekalo.jax.{name}: params must be one a point, shape ({m},), got {params.shape}"
+        )
+    if t.ndim != 1 or t.shape[0] != m + k + 1:
+        raise InputError(
+            f"lekalo.jax.{name}: {m} points of degree {k} need {m + k + 1} knots (points + "
+            f"degree + 1: as many control points as points), got t of shape {t.shape}"
+        )
+    out = _interp(k, q, params, t)
+    return out[:, 0] if scalar else out
 
 
 # -- fits ----------------------------------------------------------------------------------------
