@@ -9,8 +9,12 @@ CASCADE in C++ (`bench/peers/occt_cad_read.cpp`: `STEPControl_Reader::ReadFile` 
 `TransferRoots`, or `IGESControl_Reader` likewise, which build the file's curves, surfaces and
 faces) are run alternately, one whole read a process, REPEATS times each; the table gives the
 median wall time and CPU time (all threads) of a read, the process start not timed, and the
-ratios Open CASCADE / lekalo with faces (above 1: lekalo is faster). On a machine shared with
-other work the CPU times are the steadier comparison.
+ratios Open CASCADE / lekalo with faces (above 1: lekalo is faster), and the peak resident
+memory of each reader's process (VmHWM, which each program reads at its end; the largest of the
+runs), to compare with the file's size; `result` is the memory that lekalo's
+result with faces holds alone (the bytes its allocator counts as live once the text is
+dropped), part of its peak that is not the reading's own. On a machine shared with other work the
+CPU times are the steadier comparison.
 
 Without FILE arguments the files are generated: STEP files of B-spline faces of about 50, 100
 and 200 MB (--sizes, in MB), written into target/cad-read/ (never committed; built again only
@@ -30,6 +34,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -184,12 +189,28 @@ GLOBAL_UNIT_ASSIGNED_CONTEXT((#21,#22,#23)) REPRESENTATION_CONTEXT('Context #1',
 
 
 def run(cmd):
-    """The fields of the one line a timing binary prints: {'seconds': .., 'shapes': .., ..}."""
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        return {"error": (r.stderr or r.stdout).strip().splitlines()[-1:]}
-    words = r.stdout.split()
-    return {words[i]: float(words[i + 1]) for i in range(0, len(words) - 1, 2)}
+    """The fields of the one line a timing binary prints: {'seconds': .., 'shapes': ..,
+    'peak_mb': .., ..}; 'peak_mb' is the peak resident memory of the process that the binary
+    reads from Linux's /proc/self/status (VmHWM) at its end, or else the maximum resident set
+    size the kernel reports to this parent (which counts this Python process's own memory at
+    the fork, some 16 MB, as the child's), in MB."""
+    with tempfile.TemporaryFile(mode="w+") as errors:
+        p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=errors, text=True)
+        out = p.stdout.read()
+        p.stdout.close()
+        # reaped here, with the child's own resource usage (not Popen.wait, which drops it)
+        _, status, usage = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        errors.seek(0)
+        err = errors.read()
+    if p.returncode != 0:
+        return {"error": (err or out).strip().splitlines()[-1:]}
+    words = out.split()
+    r = {words[i]: float(words[i + 1]) for i in range(0, len(words) - 1, 2)}
+    if not r.get("peak_mb"):
+        # ru_maxrss is in KiB on Linux
+        r["peak_mb"] = usage.ru_maxrss * 1024 / 1e6
+    return r
 
 
 def main():
@@ -208,7 +229,8 @@ def main():
                 generate(p, mb)
             files.append(p)
     print(f"{'file':<30} {'MB':>6} | wall s: {'lekalo':>7} {'+faces':>7} {'OCCT':>7} {'ratio':>6}"
-          f" | CPU s: {'+faces':>7} {'OCCT':>7} {'ratio':>6} | faces lekalo/OCCT")
+          f" | CPU s: {'+faces':>7} {'OCCT':>7} {'ratio':>6}"
+          f" | peak MB: {'lekalo':>7} {'+faces':>7} {'OCCT':>7} {'result':>7} | faces lekalo/OCCT")
     for path in files:
         mb = path.stat().st_size / 1e6
         repeats = min(args.repeats, 3) if mb > 100 else args.repeats
@@ -223,10 +245,15 @@ def main():
                 r = run(cmd)
                 last[key] = r
                 if "seconds" in r:
-                    got[key].append((r["seconds"], r["cpu"]))
+                    got[key].append((r["seconds"], r["cpu"], r["peak_mb"],
+                                     r.get("result_mb", math.nan)))
 
         def med(key, k):
             return statistics.median(t[k] for t in got[key]) if got[key] else math.nan
+
+        def peak(key):
+            # the largest of the runs: the memory a read needs
+            return max(t[2] for t in got[key]) if got[key] else math.nan
 
         def ratio(a, b):
             # a read below the clock's resolution has no ratio
@@ -237,7 +264,10 @@ def main():
         print(f"{path.name:<30} {mb:6.1f} | wall s: {med('ours', 0):7.3f} {med('faces', 0):7.3f} "
               f"{med('occt', 0):7.3f} {ratio(med('occt', 0), med('faces', 0)):5.1f}x"
               f" | CPU s: {med('faces', 1):7.3f} {med('occt', 1):7.3f} "
-              f"{ratio(med('occt', 1), med('faces', 1)):5.1f}x | {faces}", flush=True)
+              f"{ratio(med('occt', 1), med('faces', 1)):5.1f}x"
+              f" | peak MB: {peak('ours'):7.0f} {peak('faces'):7.0f} {peak('occt'):7.0f}"
+              f" {med('faces', 3):7.0f}"
+              f" | {faces}", flush=True)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,9 @@
 // wall time and the median CPU time (all threads) of REPEATS whole reads.
 //
 // Usage: occt_cad_read FILE REPEATS
-// Prints one line: seconds <wall> cpu <cpu> roots <n> faces <n> (the faces of the shape read).
+// Prints one line: seconds <wall> cpu <cpu> roots <n> faces <n> peak_mb <p> (the faces of the
+// shape read; the peak resident memory of the process, VmHWM of Linux's /proc/self/status, in
+// MB, 0 elsewhere).
 // Built by cad_read.py when Debian's libocct-data-exchange-dev (or another OCCT install with
 // the headers of TKSTEP and TKIGES) is present.
 
@@ -23,6 +25,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -39,6 +42,16 @@ double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The peak resident memory of the process in MB (VmHWM; 0 where /proc/self/status is missing).
+double peak_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) * 1024.0 / 1e6;
+  }
+  return 0.0;
 }
 
 struct Timed {
@@ -84,7 +97,7 @@ int main(int argc, char** argv) {
   }
   std::sort(wall.begin(), wall.end());
   std::sort(cpu.begin(), cpu.end());
-  std::printf("seconds %.6f cpu %.6f roots %d faces %d\n", wall[wall.size() / 2],
-              cpu[cpu.size() / 2], r.roots, r.faces);
+  std::printf("seconds %.6f cpu %.6f roots %d faces %d peak_mb %.1f\n", wall[wall.size() / 2],
+              cpu[cpu.size() / 2], r.roots, r.faces, peak_rss_mb());
   return 0;
 }

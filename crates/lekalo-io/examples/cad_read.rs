@@ -2,15 +2,79 @@
 //!
 //! `cad_read FILE REPEATS [faces]`: reads the file (the text from disk, then every curve and
 //! surface, and with `faces` the faces as well, as `lekalo convert --faces` does) `REPEATS`
-//! times and prints one line `seconds <wall> cpu <cpu> shapes <n> faces <n>`: the median wall
-//! time and the median CPU time (all threads, from Linux's `/proc/self/task/*/schedstat`; 0
-//! elsewhere) of a whole read, file read included.
+//! times and prints one line `seconds <wall> cpu <cpu> shapes <n> faces <n> result_mb <r>
+//! heap_mb <h> peak_mb <p>`: the median wall time and the median CPU time (all threads, from
+//! Linux's `/proc/self/task/*/schedstat`; 0 elsewhere) of a whole read, file read included; the
+//! memory the result of a read holds (the bytes allocated that are still live once the file's
+//! text is dropped), and the peak of the bytes allocated during the reads (text included), both
+//! counted by this program's allocator; and the peak resident memory of the process (`VmHWM` of
+//! Linux's `/proc/self/status`, which the allocator's overhead and the program's code add to;
+//! 0 elsewhere), all in MB.
 
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-/// Shapes and faces read from `path`.
-fn read(path: &Path, faces: bool) -> Result<(usize, usize), Box<dyn std::error::Error>> {
+/// The system allocator, counting the bytes live and their peak (two relaxed atomic additions
+/// an allocation, a few nanoseconds).
+struct Counting;
+
+/// Bytes allocated and not yet freed.
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+/// The most bytes live at once.
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+fn grow(n: usize) {
+    let now = LIVE.fetch_add(n, Ordering::Relaxed) + n;
+    PEAK.fetch_max(now, Ordering::Relaxed);
+}
+
+// SAFETY: every call is passed to `System` unchanged, with the caller's pointer and layout, and
+// its result returned unchanged; the counters are only added to.
+#[allow(unsafe_code)]
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: the caller's contract for `alloc` is `System::alloc`'s
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            grow(layout.size());
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: as `alloc`
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            grow(layout.size());
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` was allocated by `System` with `layout` (every allocation goes there)
+        unsafe { System.dealloc(ptr, layout) };
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        // SAFETY: as `dealloc`, with the caller's contract for `realloc`
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
+        if !p.is_null() {
+            LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+            grow(new_size);
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Shapes and faces read from `path`, and the bytes the result holds.
+fn read(path: &Path, faces: bool) -> Result<(usize, usize, usize), Box<dyn std::error::Error>> {
+    let before = LIVE.load(Ordering::Relaxed);
     let (text, name) = lekalo_io::read_input(path)?;
     let ext = path
         .extension()
@@ -18,24 +82,42 @@ fn read(path: &Path, faces: bool) -> Result<(usize, usize), Box<dyn std::error::
         .unwrap_or("")
         .to_ascii_lowercase();
     let iges = matches!(ext.as_str(), "igs" | "iges");
+    // the result held while the text is dropped: what is then live beyond `before` is the result
+    let result = |text: String, counts: (usize, usize)| {
+        drop(text);
+        let bytes = LIVE.load(Ordering::Relaxed).saturating_sub(before);
+        (counts.0, counts.1, bytes)
+    };
     Ok(match (iges, faces) {
         (true, false) => {
             let r = lekalo_io::read_iges(&text, &name)?;
-            (r.shapes.len(), 0)
+            result(text, (r.shapes.len(), 0))
         }
         (true, true) => {
             let r = lekalo_io::read_iges_faces(&text, &name, usize::MAX)?;
-            (r.shapes.len(), r.faces.len())
+            result(text, (r.shapes.len(), r.faces.len()))
         }
         (false, false) => {
             let r = lekalo_io::read_step(&text, &name)?;
-            (r.shapes.len(), 0)
+            result(text, (r.shapes.len(), 0))
         }
         (false, true) => {
             let r = lekalo_io::read_step_faces(&text, &name, usize::MAX)?;
-            (r.shapes.len(), r.faces.len())
+            result(text, (r.shapes.len(), r.faces.len()))
         }
     })
+}
+
+/// The peak resident memory of the process in MB (`VmHWM`, Linux; 0 elsewhere).
+fn peak_rss_mb() -> f64 {
+    let Ok(status) = std::fs::read_to_string("/proc/self/status") else {
+        return 0.0;
+    };
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map_or(0.0, |kb| kb * 1024.0 / 1e6)
 }
 
 /// CPU time of the process so far, all threads, in seconds (0 where Linux's schedstat is
@@ -59,7 +141,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let faces = args.get(3).is_some_and(|a| a == "faces");
     let mut wall = Vec::with_capacity(repeats.max(1));
     let mut cpu = Vec::with_capacity(repeats.max(1));
-    let mut counts = (0, 0);
+    let mut counts = (0, 0, 0);
     for _ in 0..repeats.max(1) {
         let c = cpu_seconds();
         let t = Instant::now();
@@ -70,11 +152,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     wall.sort_by(f64::total_cmp);
     cpu.sort_by(f64::total_cmp);
     println!(
-        "seconds {:.6} cpu {:.6} shapes {} faces {}",
+        "seconds {:.6} cpu {:.6} shapes {} faces {} result_mb {:.1} heap_mb {:.1} peak_mb {:.1}",
         wall[wall.len() / 2],
         cpu[cpu.len() / 2],
         counts.0,
-        counts.1
+        counts.1,
+        counts.2 as f64 / 1e6,
+        PEAK.load(Ordering::Relaxed) as f64 / 1e6,
+        peak_rss_mb()
     );
     Ok(())
 }

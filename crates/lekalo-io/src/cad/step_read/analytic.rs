@@ -202,7 +202,7 @@ impl FaceBounds {
 }
 
 impl Reader<'_> {
-    fn instance(&self, p: &P, what: &str) -> Result<(u64, &Instance), Why> {
+    fn instance(&self, p: &P, what: &str) -> Result<(u64, Instance<'_>), Why> {
         let P::Ref(id) = p else {
             return Err(format!("{what} is not a reference"));
         };
@@ -216,11 +216,22 @@ impl Reader<'_> {
     /// A `CARTESIAN_POINT`, 3-D coordinates in millimetres.
     pub(super) fn location(&self, p: &P) -> Result<Vec<f64>, Why> {
         let (id, inst) = self.instance(p, "a point")?;
-        let c = inst
-            .get("CARTESIAN_POINT")
-            .and_then(|r| r.get(1))
-            .ok_or_else(|| format!("#{id} is a {}, not a CARTESIAN_POINT", inst.type_name()))?;
-        let mut v = numbers(c, &format!("the coordinates of #{id}"))?;
+        let fast = inst
+            .has("CARTESIAN_POINT")
+            .then(|| inst.numbers())
+            .flatten();
+        let mut v = match fast {
+            Some(v) => v,
+            None => {
+                let c = inst
+                    .get("CARTESIAN_POINT")
+                    .and_then(|r| r.get(1))
+                    .ok_or_else(|| {
+                        format!("#{id} is a {}, not a CARTESIAN_POINT", inst.type_name())
+                    })?;
+                numbers(c, &format!("the coordinates of #{id}"))?
+            }
+        };
         if v.len() == 3 {
             v.iter_mut().for_each(|x| *x *= self.scale);
         }
@@ -229,6 +240,9 @@ impl Reader<'_> {
 
     fn direction(&self, p: &P) -> Result<Vec<f64>, Why> {
         let (id, inst) = self.instance(p, "a direction")?;
+        if let Some(v) = inst.has("DIRECTION").then(|| inst.numbers()).flatten() {
+            return Ok(v);
+        }
         let c = inst
             .get("DIRECTION")
             .and_then(|r| r.get(1))
@@ -290,7 +304,7 @@ impl Reader<'_> {
 
     /// The placement of a `PLANE` instance (its parameters are lengths along the placement's
     /// unit `x` and `y`, as those of the patch [`BSplineSurface::plane_patch`] built for it).
-    pub(super) fn plane_placement(&self, inst: &Instance) -> Option<Placement> {
+    pub(super) fn plane_placement(&self, inst: &Instance<'_>) -> Option<Placement> {
         self.placement(inst.get("PLANE")?.get(1)?).ok()
     }
 
@@ -320,8 +334,8 @@ impl Reader<'_> {
             .instances
             .get(&id)
             .ok_or_else(|| format!("curve #{id} is not defined"))?;
-        if is_bspline_curve(inst) {
-            return self.curve(inst).map(Basis::Spline);
+        if is_bspline_curve(&inst) {
+            return self.curve(&inst).map(Basis::Spline);
         }
         if let Some(r) = inst.get("CIRCLE") {
             let f = self.frame(r.get(1).ok_or("CIRCLE has no position")?)?;
@@ -401,12 +415,12 @@ impl Reader<'_> {
     pub(super) fn analytic_surface(
         &self,
         id: u64,
-        inst: &Instance,
+        inst: &Instance<'_>,
         bounds: &FaceBounds,
         curves: &HashMap<u64, Object>,
     ) -> Result<Surface, Why> {
         let (name, r) = inst
-            .records
+            .records()
             .iter()
             .find(|(n, _)| ANALYTIC_SURFACES.contains(&n.as_str()))
             .ok_or("not an analytic surface")?;
@@ -562,22 +576,31 @@ impl Reader<'_> {
             .instances
             .get(basis)
             .ok_or_else(|| format!("basis curve #{basis} is not defined"))?;
-        let size = inst
-            .records
-            .iter()
-            .find_map(|(name, r)| {
-                let at = if name == "B_SPLINE_CURVE" {
-                    1
-                } else if name == "B_SPLINE_CURVE_WITH_KNOTS"
-                    || IMPLICIT_CURVES.iter().any(|(n, _)| n == name)
-                {
-                    2
-                } else {
-                    return None;
-                };
-                r.get(at).and_then(list).map(<[P]>::len)
-            })
-            .unwrap_or(0);
+        // the count of each basis is kept: a basis is parsed from the text once, not once a trim
+        let known = self.basis_sizes.borrow().get(basis).copied();
+        let size = known.unwrap_or_else(|| {
+            let size = if is_bspline_curve(&inst) {
+                inst.records()
+                    .iter()
+                    .find_map(|(name, r)| {
+                        let at = if name == "B_SPLINE_CURVE" {
+                            1
+                        } else if name == "B_SPLINE_CURVE_WITH_KNOTS"
+                            || IMPLICIT_CURVES.iter().any(|(n, _)| n == name)
+                        {
+                            2
+                        } else {
+                            return None;
+                        };
+                        r.get(at).and_then(list).map(<[P]>::len)
+                    })
+                    .unwrap_or(0)
+            } else {
+                0
+            };
+            self.basis_sizes.borrow_mut().insert(*basis, size);
+            size
+        });
         *budget = budget.checked_sub(size).ok_or_else(|| {
             format!(
                 "the basis curve #{basis} ({size} control points) is one of bases trimmed more often than the file's size allows to read"

@@ -42,7 +42,7 @@ fn reference(p: Option<&P>) -> Option<u64> {
 }
 
 /// `EDGE_CURVE(name, start, end, geometry, same_sense)`: its vertices' points and geometry.
-fn edge<'a>(rd: &Reader<'a>, inst: &'a Instance) -> Option<(Vec<Vec<f64>>, u64)> {
+fn edge(rd: &Reader<'_>, inst: &Instance<'_>) -> Option<(Vec<Vec<f64>>, u64)> {
     let r = inst.get("EDGE_CURVE")?;
     let mut points = Vec::with_capacity(2);
     for k in [1, 2] {
@@ -62,7 +62,7 @@ pub(super) fn line_ranges(rd: &Reader<'_>) -> HashMap<u64, (f64, f64)> {
     let mut out: HashMap<u64, (f64, f64)> = HashMap::new();
     let mut lines: HashMap<u64, Option<Basis>> = HashMap::new();
     for inst in rd.p.instances.values() {
-        let Some((points, geom)) = edge(rd, inst) else {
+        let Some((points, geom)) = edge(rd, &inst) else {
             continue;
         };
         if !rd.p.instances.get(&geom).is_some_and(|g| g.has("LINE")) {
@@ -84,21 +84,23 @@ pub(super) fn line_ranges(rd: &Reader<'_>) -> HashMap<u64, (f64, f64)> {
 /// §5: `name, coordinates, pnmax, normals, geometric_link, pnindex, …`) whose geometric link is
 /// a surface of `wanted`: the points of its `COORDINATES_LIST` that `pnindex` names (all of them
 /// when `pnindex` is empty), in millimetres. They lie on the surface and span the face.
-fn triangulated(
-    rd: &Reader<'_>,
-    inst: &Instance,
+/// `lists` keeps the coordinate lists parsed, by id: one list serves many faces.
+fn triangulated<'a>(
+    rd: &Reader<'a>,
+    inst: &Instance<'_>,
     wanted: &HashSet<u64>,
+    lists: &mut HashMap<u64, Option<Instance<'a>>>,
 ) -> Option<(u64, Vec<[f64; 3]>)> {
     let r = inst
         .get("TRIANGULATED_FACE")
         .or_else(|| inst.get("COMPLEX_TRIANGULATED_FACE"))?;
     let surface = reference(r.get(4)).filter(|s| wanted.contains(s))?;
-    let coords =
-        rd.p.instances
-            .get(&reference(r.get(1))?)?
-            .get("COORDINATES_LIST")?
-            .get(2)
-            .and_then(list)?;
+    let lid = reference(r.get(1))?;
+    let list_inst = lists
+        .entry(lid)
+        .or_insert_with(|| rd.p.instances.get(&lid))
+        .as_ref()?;
+    let coords = list_inst.get("COORDINATES_LIST")?.get(2).and_then(list)?;
     let point = |k: usize| -> Option<[f64; 3]> {
         let c = list(coords.get(k)?)?;
         let mut p = [0.0; 3];
@@ -133,11 +135,10 @@ pub(super) fn face_bounds(
         return bounds;
     }
     let mut budget = rd.p.instances.len().saturating_mul(8);
-    let mut ids: Vec<u64> = rd.p.instances.keys().copied().collect();
-    ids.sort_unstable();
-    for id in ids {
-        let inst = &rd.p.instances[&id];
-        if let Some((surface, pts)) = triangulated(rd, inst, wanted) {
+    let mut lists = HashMap::new();
+    for &id in rd.p.instances.ids() {
+        let inst = rd.p.instances.known(&id);
+        if let Some((surface, pts)) = triangulated(rd, &inst, wanted, &mut lists) {
             bounds.points.entry(surface).or_default().extend(pts);
             continue;
         }
@@ -172,14 +173,11 @@ pub(super) fn face_bounds(
                 continue;
             };
             if let Some(v) = lp.get("VERTEX_LOOP").and_then(|r| reference(r.get(1))) {
-                if let Some(q) =
-                    rd.p.instances
-                        .get(&v)
-                        .and_then(|v| v.get("VERTEX_POINT"))
-                        .and_then(|r| r.get(1))
-                {
-                    if let Ok(p) = rd.location(q) {
-                        push(&p);
+                if let Some(v) = rd.p.instances.get(&v) {
+                    if let Some(q) = v.get("VERTEX_POINT").and_then(|r| r.get(1)) {
+                        if let Ok(p) = rd.location(q) {
+                            push(&p);
+                        }
                     }
                 }
             }
@@ -194,13 +192,12 @@ pub(super) fn face_bounds(
             for oe in edges.unwrap_or(&[]) {
                 let Some(e) = reference(Some(oe))
                     .and_then(|o| rd.p.instances.get(&o))
-                    .and_then(|o| o.get("ORIENTED_EDGE"))
-                    .and_then(|r| reference(r.get(3)))
+                    .and_then(|o| reference(o.get("ORIENTED_EDGE")?.get(3)))
                     .and_then(|e| rd.p.instances.get(&e))
                 else {
                     continue;
                 };
-                let Some((vertices, geom)) = edge(rd, e) else {
+                let Some((vertices, geom)) = edge(rd, &e) else {
                     continue;
                 };
                 vertices.iter().for_each(|p| push(p));

@@ -141,6 +141,7 @@ fn read(
         max_size,
         used: Cell::new(0),
         over: RefCell::new(None),
+        basis_sizes: RefCell::new(HashMap::new()),
     };
     // a refusal by the size limit, wherever it happened (a skipped entity included)
     let too_large = |rd: &Reader<'_>| {
@@ -148,8 +149,7 @@ fn read(
             what: format!("{source}: {why}"),
         })
     };
-    let mut ids: Vec<u64> = parsed.instances.keys().copied().collect();
-    ids.sort_unstable();
+    let ids = parsed.instances.ids();
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
     let skip = |skipped: &mut Vec<StepSkipped>, id: u64, entity: &str, reason: Why| {
@@ -159,20 +159,24 @@ fn read(
             reason,
         });
     };
-    // every curve read, by id (trimmed bases included), for swept surfaces and face bounds
+    // every curve read, by id (trimmed bases included), for swept surfaces and face bounds:
+    // copies, kept only when the file has analytic surfaces to read
     let mut curves = HashMap::new();
+    let keep_curves = parsed.instances.any_of(ANALYTIC_SURFACES);
     let mut trimmed_bases = HashSet::new();
     // the basis control points all trims may read: four times the instances of the file (each
     // control point is an instance), so that reading stays linear in the file's size
     let mut budget = parsed.instances.len().saturating_mul(4);
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Trims, k, ids.len())?;
-        let inst = &parsed.instances[&id];
+        let inst = parsed.instances.known(&id);
         if let Some(r) = inst.get("TRIMMED_CURVE") {
             match rd.trimmed(r, &mut budget) {
                 Ok((basis, piece)) => {
                     trimmed_bases.insert(basis);
-                    curves.insert(id, piece.clone());
+                    if keep_curves {
+                        curves.insert(id, piece.clone());
+                    }
                     shapes.push((id, Shape::Curve(piece)));
                 }
                 Err(reason) => skip(&mut skipped, id, "TRIMMED_CURVE", reason),
@@ -186,7 +190,7 @@ fn read(
     let mut unbounded = HashSet::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Curves, k, ids.len())?;
-        let inst = &parsed.instances[&id];
+        let inst = parsed.instances.known(&id);
         let bad = |why: Why| {
             too_large(&rd).unwrap_or_else(|| {
                 IoError::syntax(
@@ -195,20 +199,24 @@ fn read(
                 )
             })
         };
-        if is_bspline_curve(inst) {
-            let c = rd.curve(inst).map_err(bad)?;
-            curves.insert(id, c.clone());
+        if is_bspline_curve(&inst) {
+            let c = rd.curve(&inst).map_err(bad)?;
+            if keep_curves {
+                curves.insert(id, c.clone());
+            }
             if !trimmed_bases.contains(&id) {
                 shapes.push((id, Shape::Curve(c)));
             }
-        } else if let Some(name) = first_of(inst, ANALYTIC_CURVES) {
+        } else if let Some(name) = first_of(&inst, ANALYTIC_CURVES) {
             let read = rd.basis(id).and_then(|b| match lines.get(&id) {
                 Some(&(t0, t1)) if name == "LINE" => b.piece(t0, t1, true),
                 _ => b.whole(),
             });
             match read {
                 Ok(c) => {
-                    curves.insert(id, c.clone());
+                    if keep_curves {
+                        curves.insert(id, c.clone());
+                    }
                     if !trimmed_bases.contains(&id) {
                         shapes.push((id, Shape::Curve(c)));
                     }
@@ -217,16 +225,16 @@ fn read(
                 Err(_) if trimmed_bases.contains(&id) => {}
                 Err(reason) => skip(&mut skipped, id, name, reason),
             }
-        } else if is_bspline_surface(inst) {
-            shapes.push((id, Shape::Surface(rd.surface(inst).map_err(bad)?)));
-        } else if let Some(name) = first_of(inst, ANALYTIC_SURFACES) {
+        } else if is_bspline_surface(&inst) {
+            shapes.push((id, Shape::Surface(rd.surface(&inst).map_err(bad)?)));
+        } else if let Some(name) = first_of(&inst, ANALYTIC_SURFACES) {
             if matches!(
                 name,
                 "PLANE" | "CYLINDRICAL_SURFACE" | "CONICAL_SURFACE" | "SURFACE_OF_LINEAR_EXTRUSION"
             ) {
                 unbounded.insert(id);
             }
-        } else if let Some(name) = first_of(inst, TESSELLATED) {
+        } else if let Some(name) = first_of(&inst, TESSELLATED) {
             skip(
                 &mut skipped,
                 id,
@@ -234,7 +242,7 @@ fn read(
                 "tessellated geometry (a mesh of triangles or polylines), not a curve or surface"
                     .into(),
             );
-        } else if let Some(name) = first_of(inst, OTHER_GEOMETRY) {
+        } else if let Some(name) = first_of(&inst, OTHER_GEOMETRY) {
             skip(
                 &mut skipped,
                 id,
@@ -249,11 +257,11 @@ fn read(
     let bounds = face_bounds(&rd, &unbounded, &curves);
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Surfaces, k, ids.len())?;
-        let inst = &parsed.instances[&id];
-        let Some(name) = first_of(inst, ANALYTIC_SURFACES) else {
+        let inst = parsed.instances.known(&id);
+        let Some(name) = first_of(&inst, ANALYTIC_SURFACES) else {
             continue;
         };
-        match rd.analytic_surface(id, inst, &bounds, &curves) {
+        match rd.analytic_surface(id, &inst, &bounds, &curves) {
             Ok(s) => shapes.push((id, Shape::Surface(s))),
             Err(reason) => skip(&mut skipped, id, name, reason),
         }
@@ -273,7 +281,7 @@ fn read(
             .collect();
         let surface_skips: HashMap<u64, &str> =
             skipped.iter().map(|s| (s.id, s.reason.as_str())).collect();
-        let r = read_faces(&rd, &ids, &surfaces, &surface_skips, &meter)?;
+        let r = read_faces(&rd, ids, &surfaces, &surface_skips, &meter)?;
         if let Some(e) = too_large(&rd) {
             return Err(e);
         }
@@ -294,8 +302,8 @@ fn read(
 }
 
 /// The first record of `inst` named in `names`.
-fn first_of<'a>(inst: &super::Instance, names: &[&'a str]) -> Option<&'a str> {
-    inst.records
+fn first_of<'a>(inst: &super::Instance<'_>, names: &[&'a str]) -> Option<&'a str> {
+    inst.names()
         .iter()
-        .find_map(|(n, _)| names.iter().find(|m| **m == n.as_str()).copied())
+        .find_map(|n| names.iter().find(|m| **m == n.as_str()).copied())
 }

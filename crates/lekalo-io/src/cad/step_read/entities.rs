@@ -39,7 +39,7 @@ pub(super) const OTHER_GEOMETRY: &[&str] = &[
 ];
 
 pub(super) struct Reader<'a> {
-    pub(super) p: &'a Parsed,
+    pub(super) p: &'a Parsed<'a>,
     pub(super) source: &'a str,
     pub(super) scale: f64,
     /// The plane angle unit in radians (1 for radians, π/180 for degrees).
@@ -50,6 +50,9 @@ pub(super) struct Reader<'a> {
     pub(super) used: Cell<usize>,
     /// The refusal, once the file went past [`Reader::max_size`].
     pub(super) over: RefCell<Option<String>>,
+    /// The control points of each basis of trimmed curves met, by id (see
+    /// [`Reader::trimmed`]).
+    pub(super) basis_sizes: RefCell<std::collections::HashMap<u64, usize>>,
 }
 
 impl Reader<'_> {
@@ -211,7 +214,7 @@ impl Reader<'_> {
     pub(super) fn at(&self, id: u64) -> Location {
         let mut loc = Location::new(self.source);
         if let Some(i) = self.p.instances.get(&id) {
-            loc = loc.at_line(i.line);
+            loc = loc.at_line(i.line());
         }
         loc
     }
@@ -225,12 +228,16 @@ impl Reader<'_> {
             .instances
             .get(id)
             .ok_or_else(|| format!("control point #{id} is not defined"))?;
-        let c = inst.get("CARTESIAN_POINT").ok_or_else(|| {
-            format!(
+        if !inst.has("CARTESIAN_POINT") {
+            return Err(format!(
                 "control point #{id} is a {}, not a CARTESIAN_POINT",
                 inst.type_name()
-            )
-        })?;
+            ));
+        }
+        if let Some(coords) = inst.numbers() {
+            return Ok(coords);
+        }
+        let c = inst.get("CARTESIAN_POINT").unwrap_or_default();
         let coords = c
             .get(1)
             .ok_or_else(|| format!("CARTESIAN_POINT #{id} has no coordinates"))
@@ -257,7 +264,7 @@ impl Reader<'_> {
     /// A B-spline curve instance (simple or complex, rational or not), with its knots given
     /// (`B_SPLINE_CURVE_WITH_KNOTS`) or implied by its form (`UNIFORM_CURVE`,
     /// `QUASI_UNIFORM_CURVE`, `BEZIER_CURVE`, see [`implicit_knots`]).
-    pub(super) fn curve(&self, inst: &Instance) -> Result<Object, Why> {
+    pub(super) fn curve(&self, inst: &Instance<'_>) -> Result<Object, Why> {
         let (degree, ctrl, knots, weights) = if let Some(r) = inst
             .get("B_SPLINE_CURVE_WITH_KNOTS")
             .filter(|r| r.len() >= 9)
@@ -307,7 +314,7 @@ impl Reader<'_> {
 
     /// A B-spline surface instance (simple or complex, rational or not), with its knots given
     /// or implied by its form as for curves.
-    pub(super) fn surface(&self, inst: &Instance) -> Result<Surface, Why> {
+    pub(super) fn surface(&self, inst: &Instance<'_>) -> Result<Surface, Why> {
         let simple = inst
             .get("B_SPLINE_SURFACE_WITH_KNOTS")
             .filter(|r| r.len() >= 13);
@@ -400,13 +407,13 @@ impl Reader<'_> {
     }
 }
 
-pub(super) fn is_bspline_curve(i: &Instance) -> bool {
+pub(super) fn is_bspline_curve(i: &Instance<'_>) -> bool {
     i.has("B_SPLINE_CURVE_WITH_KNOTS")
         || i.has("B_SPLINE_CURVE")
         || IMPLICIT_CURVES.iter().any(|(n, _)| i.has(n))
 }
 
-pub(super) fn is_bspline_surface(i: &Instance) -> bool {
+pub(super) fn is_bspline_surface(i: &Instance<'_>) -> bool {
     i.has("B_SPLINE_SURFACE_WITH_KNOTS")
         || i.has("B_SPLINE_SURFACE")
         || IMPLICIT_SURFACES.iter().any(|(n, _)| i.has(n))

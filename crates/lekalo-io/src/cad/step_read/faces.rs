@@ -109,7 +109,7 @@ pub(super) fn read_faces(
     let mut edges: HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>> = HashMap::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Faces, k, ids.len())?;
-        let inst = &rd.p.instances[&id];
+        let inst = rd.p.instances.known(&id);
         let Some((entity, r)) = ["ADVANCED_FACE", "FACE_SURFACE"]
             .iter()
             .find_map(|n| Some((*n, inst.get(n)?)))
@@ -154,10 +154,10 @@ fn read_face(
         });
     };
     let same_sense = boolean(r.get(3)).unwrap_or(true);
-    let sinst = &rd.p.instances[&sid];
-    let policy = if is_bspline_surface(sinst) {
+    let sinst = rd.p.instances.known(&sid);
+    let policy = if is_bspline_surface(&sinst) {
         Pcurves::AsWritten
-    } else if let Some(f) = rd.plane_placement(sinst) {
+    } else if let Some(f) = rd.plane_placement(&sinst) {
         Pcurves::Plane(f)
     } else {
         Pcurves::Dropped(format!(
@@ -335,12 +335,13 @@ fn edge_use(
     pcurve_error: &mut Option<String>,
 ) -> Result<Use, Why> {
     let oid = reference(Some(oe)).ok_or("an edge of a loop is not a reference")?;
-    let or =
+    let oinst =
         rd.p.instances
             .get(&oid)
-            .ok_or_else(|| format!("edge #{oid} of a loop is not defined"))?
-            .get("ORIENTED_EDGE")
-            .ok_or_else(|| format!("edge #{oid} of a loop is not an ORIENTED_EDGE"))?;
+            .ok_or_else(|| format!("edge #{oid} of a loop is not defined"))?;
+    let or = oinst
+        .get("ORIENTED_EDGE")
+        .ok_or_else(|| format!("edge #{oid} of a loop is not an ORIENTED_EDGE"))?;
     let eid = reference(or.get(3)).ok_or_else(|| format!("ORIENTED_EDGE #{oid} has no edge"))?;
     let forward = boolean(or.get(4)).unwrap_or(true);
     let geom = edges
@@ -389,11 +390,11 @@ fn edge_geom(rd: &Reader<'_>, eid: u64) -> Result<EdgeGeom, Why> {
     for (k, end) in ends.iter_mut().enumerate() {
         let vid =
             reference(r.get(k + 1)).ok_or_else(|| format!("EDGE_CURVE #{eid} has no vertex"))?;
-        let v =
-            rd.p.instances
-                .get(&vid)
-                .and_then(|v| v.get("VERTEX_POINT"))
-                .ok_or_else(|| format!("vertex #{vid} of edge #{eid} is not a VERTEX_POINT"))?;
+        let vinst = rd.p.instances.get(&vid);
+        let v = vinst
+            .as_ref()
+            .and_then(|v| v.get("VERTEX_POINT"))
+            .ok_or_else(|| format!("vertex #{vid} of edge #{eid} is not a VERTEX_POINT"))?;
         *end = rd.location(v.get(1).ok_or("VERTEX_POINT without a point")?)?;
     }
     let gid = reference(r.get(3)).ok_or_else(|| format!("EDGE_CURVE #{eid} has no geometry"))?;
@@ -549,7 +550,8 @@ fn pcurve(
     surface: &Surface,
     edge: &EdgeGeom,
 ) -> Result<Option<Curve>, Why> {
-    let Some(pr) = rd.p.instances.get(&pid).and_then(|p| p.get("PCURVE")) else {
+    let pinst = rd.p.instances.get(&pid);
+    let Some(pr) = pinst.as_ref().and_then(|p| p.get("PCURVE")) else {
         return Ok(None);
     };
     let pr = unnamed(pr);
@@ -557,16 +559,16 @@ fn pcurve(
         return Ok(None);
     }
     let did = reference(pr.get(1)).ok_or_else(|| format!("PCURVE #{pid} has no representation"))?;
-    let item =
-        rd.p.instances
-            .get(&did)
-            .and_then(|d| d.get("DEFINITIONAL_REPRESENTATION"))
-            .and_then(|d| unnamed(d).first())
-            .and_then(list)
-            .and_then(|items| reference(items.first()))
-            .ok_or_else(|| {
-                format!("PCURVE #{pid}: #{did} is not a DEFINITIONAL_REPRESENTATION of a curve")
-            })?;
+    let dinst = rd.p.instances.get(&did);
+    let item = dinst
+        .as_ref()
+        .and_then(|d| d.get("DEFINITIONAL_REPRESENTATION"))
+        .and_then(|d| unnamed(d).first())
+        .and_then(list)
+        .and_then(|items| reference(items.first()))
+        .ok_or_else(|| {
+            format!("PCURVE #{pid}: #{did} is not a DEFINITIONAL_REPRESENTATION of a curve")
+        })?;
     let basis = rd
         .basis(item)
         .map_err(|why| format!("PCURVE #{pid}: {why}"))?;

@@ -25,9 +25,15 @@
 //! The grammar needed (ISO 10303-21 §6–7: keywords, the six token kinds, lists, typed
 //! parameters, simple and complex instances) is small.
 //!
+//! Memory: the text is parsed once to check it and to index its instances (20 bytes each:
+//! offset, type and id); an instance's parameters are parsed from the text when the conversion
+//! asks for them and dropped after, so a read holds the text, that index and what it converts,
+//! about 2.6 times the file's size for a file of B-spline faces (see
+//! `docs/performance/data.md`).
+//!
 //! | file | subject |
 //! |---|---|
-//! | `parse.rs` | the exchange structure's lexer and parser: instances by id and the header's schema |
+//! | `parse.rs` | the exchange structure's lexer and parser: the whole text checked, each instance kept as its id, offset and type (its parameters parsed when asked for), and the header's schema |
 //! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots); the geometry that is skipped |
 //! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library; trimmed curves over any of them |
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
@@ -151,31 +157,74 @@ enum P {
 /// One record `NAME(params)`.
 type Record = (String, Vec<P>);
 
-#[derive(Debug, Clone)]
-struct Instance {
-    records: Vec<Record>,
-    line: usize,
+/// An entity instance of the file: its type (the names of its records, known from the parse)
+/// and its records, parsed from the text the first time they are asked for and dropped with
+/// it (see [`parse::Instances`]).
+struct Instance<'a> {
+    text: &'a str,
+    /// The offset of the instance's `#` in `text`.
+    at: usize,
+    names: &'a [String],
+    records: std::cell::OnceCell<Vec<Record>>,
 }
 
-impl Instance {
-    fn get(&self, name: &str) -> Option<&[P]> {
+impl<'a> Instance<'a> {
+    fn new(text: &'a str, at: usize, names: &'a [String]) -> Self {
+        Instance {
+            text,
+            at,
+            names,
+            records: std::cell::OnceCell::new(),
+        }
+    }
+
+    /// The records, parsed on the first call.
+    fn records(&self) -> &[Record] {
         self.records
+            .get_or_init(|| parse::records_at(self.text, self.at))
+    }
+
+    /// The parameters of the record `name`; the text is parsed only when the instance has one.
+    fn get(&self, name: &str) -> Option<&[P]> {
+        if !self.has(name) {
+            return None;
+        }
+        self.records()
             .iter()
             .find(|(n, _)| n == name)
             .map(|(_, p)| p.as_slice())
     }
 
+    /// The numbers of a simple instance `NAME('name', (x, y, …))` (a point, a direction)
+    /// read straight from the text, without building its records; `None` for any other
+    /// instance, or one whose records are already parsed: the caller then reads the records.
+    fn numbers(&self) -> Option<Vec<f64>> {
+        if self.names.len() != 1 || self.records.get().is_some() {
+            return None;
+        }
+        parse::numbers_at(self.text, self.at)
+    }
+
     fn has(&self, name: &str) -> bool {
-        self.records.iter().any(|(n, _)| n == name)
+        self.names.iter().any(|n| n == name)
+    }
+
+    /// The names of the records, in the order written.
+    fn names(&self) -> &'a [String] {
+        self.names
+    }
+
+    /// The line of the file where the instance starts.
+    fn line(&self) -> usize {
+        parse::line_of(self.text, self.at)
     }
 
     /// The type name for reports: the record's name, or the most specific of a complex one.
     fn type_name(&self) -> String {
-        if self.records.len() == 1 {
-            return self.records[0].0.clone();
+        if self.names.len() == 1 {
+            return self.names[0].clone();
         }
-        let names: Vec<&str> = self.records.iter().map(|(n, _)| n.as_str()).collect();
-        format!("({})", names.join(" "))
+        format!("({})", self.names.join(" "))
     }
 }
 

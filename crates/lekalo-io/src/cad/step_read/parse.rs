@@ -2,9 +2,10 @@
 //! kinds, lists, typed parameters, simple and complex instances, with line numbers in errors.
 
 use std::cell::Cell;
+use std::collections::HashMap;
 
 use super::progress::Meter;
-use super::{Instance, P};
+use super::{Instance, Record, P};
 use crate::error::{IoError, IoResult, Location};
 
 /// Deepest nesting of parameter lists read. Geometry nests two or three deep (a surface's
@@ -19,15 +20,22 @@ struct Lexer<'a> {
     /// The last position whose line was counted, and its line: the count resumes there, so
     /// that asking the line of every instance costs one pass over the file, not one per instance.
     line_at: Cell<(usize, usize)>,
+    /// Whether parameters are built; without, they are checked only (strings, enumerations
+    /// and keywords of typed parameters are not copied, lists are not stored).
+    keep: bool,
+    /// The stack of lists open of [`Lexer::params`], kept between calls for its memory.
+    stack: Vec<(Option<String>, Vec<P>)>,
 }
 
 impl<'a> Lexer<'a> {
-    fn new(text: &'a str, source: &'a str) -> Self {
+    fn new(text: &'a str, source: &'a str, keep: bool) -> Self {
         Lexer {
             s: text.as_bytes(),
             pos: 0,
             source,
             line_at: Cell::new((0, 1)),
+            keep,
+            stack: Vec::new(),
         }
     }
 
@@ -87,6 +95,12 @@ impl<'a> Lexer<'a> {
     }
 
     fn keyword(&mut self) -> IoResult<String> {
+        let k = self.keyword_span()?;
+        Ok(String::from_utf8_lossy(k).to_ascii_uppercase())
+    }
+
+    /// The bytes of a keyword, as written (any case).
+    fn keyword_span(&mut self) -> IoResult<&'a [u8]> {
         self.skip_ws()?;
         let start = self.pos;
         while let Some(b) = self.peek() {
@@ -103,7 +117,7 @@ impl<'a> Lexer<'a> {
         if start == self.pos {
             return self.err("expected a keyword (an entity name such as CARTESIAN_POINT)");
         }
-        Ok(String::from_utf8_lossy(&self.s[start..self.pos]).to_ascii_uppercase())
+        Ok(&self.s[start..self.pos])
     }
 
     fn digits(&mut self) -> &'a [u8] {
@@ -117,11 +131,14 @@ impl<'a> Lexer<'a> {
     fn entity_ref(&mut self) -> IoResult<u64> {
         // after '#'
         let d = self.digits();
-        let text = String::from_utf8_lossy(d);
-        match text.parse::<u64>() {
-            Ok(n) => Ok(n),
-            Err(_) => self.err(format!(
-                "entity instance name #{text} is not a number below 2^64"
+        let n = d.iter().try_fold(0u64, |n, &c| {
+            n.checked_mul(10)?.checked_add(u64::from(c - b'0'))
+        });
+        match n {
+            Some(n) if !d.is_empty() => Ok(n),
+            _ => self.err(format!(
+                "entity instance name #{} is not a number below 2^64",
+                String::from_utf8_lossy(d)
             )),
         }
     }
@@ -133,7 +150,9 @@ impl<'a> Lexer<'a> {
         self.expect(b'(')?;
         // the lists open, innermost last: the keyword of a typed parameter (`None` for a plain
         // list) and the parameters read in it so far
-        let mut open: Vec<(Option<String>, Vec<P>)> = vec![(None, Vec::new())];
+        let mut open = std::mem::take(&mut self.stack);
+        open.clear();
+        open.push((None, Vec::new()));
         let mut just_opened = true;
         'param: loop {
             self.skip_ws()?;
@@ -146,7 +165,12 @@ impl<'a> Lexer<'a> {
                         Some(None)
                     }
                     Some(b) if b.is_ascii_alphabetic() || b == b'!' => {
-                        let k = self.keyword()?;
+                        let k = if self.keep {
+                            self.keyword()?
+                        } else {
+                            self.keyword_span()?;
+                            String::new()
+                        };
                         self.expect(b'(')?;
                         Some(Some(k))
                     }
@@ -163,7 +187,7 @@ impl<'a> Lexer<'a> {
                     continue;
                 }
                 let p = self.scalar()?;
-                if let Some((_, items)) = open.last_mut() {
+                if let Some((_, items)) = open.last_mut().filter(|_| self.keep) {
                     items.push(p);
                 }
                 if self.separator()? {
@@ -177,12 +201,15 @@ impl<'a> Lexer<'a> {
                     return self.err("unbalanced parentheses in a parameter list");
                 };
                 let Some((_, parent)) = open.last_mut() else {
+                    self.stack = open;
                     return Ok(items);
                 };
-                parent.push(match kind {
-                    None => P::List(items),
-                    Some(k) => P::Typed(k, items),
-                });
+                if self.keep {
+                    parent.push(match kind {
+                        None => P::List(items),
+                        Some(k) => P::Typed(k, items),
+                    });
+                }
                 if self.separator()? {
                     just_opened = false;
                     continue 'param;
@@ -232,21 +259,26 @@ impl<'a> Lexer<'a> {
                 self.pos += 1;
                 let mut text = Vec::new();
                 loop {
-                    match self.peek() {
-                        None => return self.err("string '… is never closed"),
-                        Some(b'\'') if self.s.get(self.pos + 1) == Some(&b'\'') => {
-                            text.push(b'\'');
-                            self.pos += 2;
-                        }
-                        Some(b'\'') => {
-                            self.pos += 1;
-                            break;
-                        }
-                        Some(c) => {
-                            text.push(c);
-                            self.pos += 1;
-                        }
+                    let rest = &self.s[self.pos..];
+                    let Some(k) = memchr::memchr(b'\'', rest) else {
+                        return self.err("string '… is never closed");
+                    };
+                    if self.keep {
+                        text.extend_from_slice(&rest[..k]);
                     }
+                    self.pos += k + 1;
+                    if self.peek() == Some(b'\'') {
+                        // '' stands for one quote
+                        if self.keep {
+                            text.push(b'\'');
+                        }
+                        self.pos += 1;
+                    } else {
+                        break;
+                    }
+                }
+                if !self.keep {
+                    return Ok(P::Unset);
                 }
                 Ok(P::Str(String::from_utf8_lossy(&text).into_owned()))
             }
@@ -256,9 +288,14 @@ impl<'a> Lexer<'a> {
                 while self.peek().is_some_and(|c| c != b'"') {
                     self.pos += 1;
                 }
-                let text = String::from_utf8_lossy(&self.s[start..self.pos]).into_owned();
+                let end = self.pos;
                 self.expect(b'"')?;
-                Ok(P::Str(text))
+                if !self.keep {
+                    return Ok(P::Unset);
+                }
+                Ok(P::Str(
+                    String::from_utf8_lossy(&self.s[start..end]).into_owned(),
+                ))
             }
             b'.' if self
                 .s
@@ -273,9 +310,14 @@ impl<'a> Lexer<'a> {
                 {
                     self.pos += 1;
                 }
-                let text = String::from_utf8_lossy(&self.s[start..self.pos]).to_ascii_uppercase();
+                let end = self.pos;
                 self.expect(b'.')?;
-                Ok(P::Enum(text))
+                if !self.keep {
+                    return Ok(P::Unset);
+                }
+                Ok(P::Enum(
+                    String::from_utf8_lossy(&self.s[start..end]).to_ascii_uppercase(),
+                ))
             }
             b'+' | b'-' | b'.' | b'0'..=b'9' => {
                 let start = self.pos;
@@ -308,8 +350,8 @@ impl<'a> Lexer<'a> {
 }
 
 /// The parsed exchange structure: instances by id, and the header's schema.
-pub(super) struct Parsed {
-    pub(super) instances: Instances,
+pub(super) struct Parsed<'a> {
+    pub(super) instances: Instances<'a>,
     pub(super) schema: Option<String>,
 }
 
@@ -317,11 +359,24 @@ pub(super) struct Parsed {
 /// instances `#1, #2, …` with few gaps, so a table indexed by id holds the position of each
 /// (when the largest id is at most [`DENSE_IDS`] times the count, plus 1024); sparser ids are
 /// found by binary search. Either way no id is hashed and the table is linear in the count.
-pub(super) struct Instances {
+///
+/// An instance is held as the offset of its text and its type (an index into the table of the
+/// distinct type names of the file): 20 bytes, whatever its parameters. Its parameters are
+/// parsed from the text when asked for ([`Instance::get`]), and dropped with the [`Instance`],
+/// so that the memory of a read is the text, this table and what is converted, not a tree of
+/// every parameter of the file.
+pub(super) struct Instances<'a> {
+    /// The text of the exchange structure.
+    text: &'a str,
     /// The ids, ascending.
     ids: Vec<u64>,
-    /// The instance of each id of `ids`, at the same position.
-    items: Vec<Instance>,
+    /// The offset of the `#` that starts the instance of each id of `ids`.
+    at: Vec<usize>,
+    /// The type of each instance of `ids`: an index into `kinds`.
+    kind: Vec<u32>,
+    /// The record names of each type: one for a simple instance, those of a complex one in
+    /// the order written.
+    kinds: Vec<Box<[String]>>,
     /// The position + 1 of id `k` at `dense[k]` (0: no instance), or empty for sparse ids.
     dense: Vec<u32>,
 }
@@ -329,22 +384,134 @@ pub(super) struct Instances {
 /// The largest id, over the number of instances, up to which [`Instances`] indexes by id.
 const DENSE_IDS: u64 = 4;
 
-impl Instances {
-    /// The instances of `(id, instance)` pairs in any order; a repeated id is an error naming
-    /// the line of its second definition.
-    fn new(mut pairs: Vec<(u64, Instance)>, source: &str) -> IoResult<Self> {
-        if !pairs.windows(2).all(|w| w[0].0 < w[1].0) {
-            // stable: of two instances with one id, the one defined later stays after
-            pairs.sort_by_key(|(id, _)| *id);
-            if let Some(w) = pairs.windows(2).find(|w| w[0].0 == w[1].0) {
-                let (id, line) = (w[1].0, w[1].1.line.max(w[0].1.line));
-                return Err(IoError::syntax(
-                    Location::new(source).at_line(line),
-                    format!("entity instance #{id} is defined twice"),
-                ));
+/// The line (from 1) of the byte at `at` of `text`: one pass over the text before it, for
+/// messages only.
+pub(super) fn line_of(text: &str, at: usize) -> usize {
+    let end = at.min(text.len());
+    1 + memchr::memchr_iter(b'\n', &text.as_bytes()[..end]).count()
+}
+
+/// The records of the instance whose text starts at `at` (its `#`), parsed; the text was
+/// checked by [`parse`], so nothing is refused here (a text that was not is read as no record).
+pub(super) fn records_at(text: &str, at: usize) -> Vec<Record> {
+    let mut lx = Lexer::new(text, "", true);
+    lx.pos = at;
+    let read = (|| {
+        lx.expect(b'#')?;
+        lx.entity_ref()?;
+        lx.expect(b'=')?;
+        lx.instance_body(None)
+    })();
+    read.unwrap_or_default()
+}
+
+/// The numbers of the list that is the second and last parameter of the simple instance whose
+/// text starts at `at`, read straight from the text (`CARTESIAN_POINT('', (x, y, z))`,
+/// `DIRECTION('', (x, y, z))`): no record is built. `None` when the instance is written
+/// otherwise (other parameters, a typed number in the list), for the caller to read its
+/// records.
+pub(super) fn numbers_at(text: &str, at: usize) -> Option<Vec<f64>> {
+    let mut lx = Lexer::new(text, "", false);
+    lx.pos = at;
+    lx.expect(b'#').ok()?;
+    lx.entity_ref().ok()?;
+    lx.expect(b'=').ok()?;
+    lx.keyword_span().ok()?;
+    lx.expect(b'(').ok()?;
+    lx.scalar().ok()?;
+    lx.expect(b',').ok()?;
+    lx.expect(b'(').ok()?;
+    let mut out = Vec::with_capacity(3);
+    lx.skip_ws().ok()?;
+    if lx.peek() == Some(b')') {
+        lx.pos += 1;
+    } else {
+        loop {
+            match lx.scalar().ok()? {
+                P::Num(x) => out.push(x),
+                _ => return None,
+            }
+            if !lx.separator().ok()? {
+                break;
             }
         }
-        let (ids, items): (Vec<u64>, Vec<Instance>) = pairs.into_iter().unzip();
+    }
+    // the instance's parameters end here
+    lx.expect(b')').ok()?;
+    Some(out)
+}
+
+impl Lexer<'_> {
+    /// The records after `#id =`: `NAME(…)`, or `(NAME(…) NAME(…) …)` for a complex
+    /// instance, built when [`Lexer::keep`]; their names, upper case and separated by spaces,
+    /// are left in `names` when given.
+    fn instance_body(&mut self, mut names: Option<&mut Vec<u8>>) -> IoResult<Vec<Record>> {
+        if let Some(n) = names.as_deref_mut() {
+            n.clear();
+        }
+        let mut recs = Vec::new();
+        let mut record = |lx: &mut Self, names: &mut Option<&mut Vec<u8>>| -> IoResult<()> {
+            let k = lx.keyword_span()?;
+            if let Some(names) = names.as_deref_mut() {
+                if !names.is_empty() {
+                    names.push(b' ');
+                }
+                names.extend(k.iter().map(u8::to_ascii_uppercase));
+            }
+            let params = lx.params()?;
+            if lx.keep {
+                recs.push((String::from_utf8_lossy(k).to_ascii_uppercase(), params));
+            }
+            Ok(())
+        };
+        self.skip_ws()?;
+        if self.peek() == Some(b'(') {
+            self.pos += 1;
+            loop {
+                self.skip_ws()?;
+                if self.peek() == Some(b')') {
+                    self.pos += 1;
+                    break;
+                }
+                record(self, &mut names)?;
+            }
+        } else {
+            record(self, &mut names)?;
+        }
+        Ok(recs)
+    }
+}
+
+impl<'a> Instances<'a> {
+    /// The instances of `text` at offsets `at` with ids `ids` and types `kind`, in any order; a
+    /// repeated id is an error naming the line of its second definition.
+    fn new(
+        text: &'a str,
+        mut ids: Vec<u64>,
+        mut at: Vec<usize>,
+        mut kind: Vec<u32>,
+        kinds: Vec<Box<[String]>>,
+        source: &str,
+    ) -> IoResult<Self> {
+        if !ids.windows(2).all(|w| w[0] < w[1]) {
+            // stable: of two instances with one id, the one defined later stays after
+            let mut order: Vec<usize> = (0..ids.len()).collect();
+            order.sort_by_key(|&k| ids[k]);
+            if let Some(w) = order.windows(2).find(|w| ids[w[0]] == ids[w[1]]) {
+                let line = line_of(text, at[w[0]].max(at[w[1]]));
+                return Err(IoError::syntax(
+                    Location::new(source).at_line(line),
+                    format!("entity instance #{} is defined twice", ids[w[0]]),
+                ));
+            }
+            ids = order.iter().map(|&k| ids[k]).collect();
+            at = order.iter().map(|&k| at[k]).collect();
+            kind = order.iter().map(|&k| kind[k]).collect();
+        }
+        // grown by doubling while parsing: the capacity beyond the count is given back
+        ids.shrink_to_fit();
+        at.shrink_to_fit();
+        kind.shrink_to_fit();
         let n = ids.len() as u64;
         let dense = match ids.last() {
             Some(&max)
@@ -364,18 +531,38 @@ impl Instances {
             }
             _ => Vec::new(),
         };
-        Ok(Instances { ids, items, dense })
+        Ok(Instances {
+            text,
+            ids,
+            at,
+            kind,
+            kinds,
+            dense,
+        })
+    }
+
+    /// The instance at position `k` of the ids.
+    fn nth(&self, k: usize) -> Instance<'_> {
+        Instance::new(self.text, self.at[k], &self.kinds[self.kind[k] as usize])
     }
 
     /// The instance `#id`.
-    pub(super) fn get(&self, id: &u64) -> Option<&Instance> {
+    pub(super) fn get(&self, id: &u64) -> Option<Instance<'_>> {
         let k = if self.dense.is_empty() {
             self.ids.binary_search(id).ok()?
         } else {
             let slot = *self.dense.get(usize::try_from(*id).ok()?)?;
             (slot as usize).checked_sub(1)?
         };
-        self.items.get(k)
+        (k < self.ids.len()).then(|| self.nth(k))
+    }
+
+    /// The instance `#id`, which must exist (an id taken from [`Instances::keys`]).
+    pub(super) fn known(&self, id: &u64) -> Instance<'_> {
+        match self.get(id) {
+            Some(i) => i,
+            None => unreachable!("instance #{id} looked up by an id not taken from the file"),
+        }
     }
 
     /// How many instances the file holds.
@@ -384,25 +571,21 @@ impl Instances {
     }
 
     /// The ids, ascending.
-    pub(super) fn keys(&self) -> std::slice::Iter<'_, u64> {
-        self.ids.iter()
+    pub(super) fn ids(&self) -> &[u64] {
+        &self.ids
+    }
+
+    /// Whether an instance has a record named in `names` (a look at the types of the file,
+    /// not at its instances).
+    pub(super) fn any_of(&self, names: &[&str]) -> bool {
+        self.kinds
+            .iter()
+            .any(|k| k.iter().any(|n| names.contains(&n.as_str())))
     }
 
     /// The instances, in id order.
-    pub(super) fn values(&self) -> std::slice::Iter<'_, Instance> {
-        self.items.iter()
-    }
-}
-
-impl std::ops::Index<&u64> for Instances {
-    type Output = Instance;
-
-    /// The instance `#id`, which must exist (an id taken from [`Instances::keys`]).
-    fn index(&self, id: &u64) -> &Instance {
-        match self.get(id) {
-            Some(i) => i,
-            None => unreachable!("instance #{id} looked up by an id not taken from the file"),
-        }
+    pub(super) fn values(&self) -> impl Iterator<Item = Instance<'_>> {
+        (0..self.ids.len()).map(|k| self.nth(k))
     }
 }
 
@@ -412,15 +595,26 @@ const REPORT_BYTES: usize = 1 << 16;
 /// Parses the exchange structure; more than `max_entities` instances is
 /// [`IoError::TooLarge`], refused before the next one is stored. `meter` is told the bytes
 /// parsed every [`REPORT_BYTES`] and stops the parse when cancelled.
-pub(super) fn parse(
-    text: &str,
+///
+/// The whole text is checked here (every error of syntax is reported with its line), but only
+/// the id, offset and type of each instance are kept ([`Instances`]).
+pub(super) fn parse<'a>(
+    text: &'a str,
     source: &str,
     max_entities: usize,
     meter: &Meter<'_>,
-) -> IoResult<Parsed> {
-    let mut lx = Lexer::new(text, source);
+) -> IoResult<Parsed<'a>> {
+    let mut lx = Lexer::new(text, source, true);
     let mut reported = 0;
-    let mut instances: Vec<(u64, Instance)> = Vec::new();
+    let mut ids: Vec<u64> = Vec::new();
+    let mut offsets: Vec<usize> = Vec::new();
+    let mut kind: Vec<u32> = Vec::new();
+    // the types met, by their names ("NAME" or "NAME NAME …" for a complex instance)
+    let mut kinds: Vec<Box<[String]>> = Vec::new();
+    let mut kind_of: HashMap<Vec<u8>, u32> = HashMap::new();
+    let mut names: Vec<u8> = Vec::new();
+    // the type of the previous instance: runs of one type (the points of a net) are common
+    let mut last: (Vec<u8>, u32) = (Vec::new(), u32::MAX);
     let mut schema = None;
     let mut in_data = false;
     let mut seen_data = false;
@@ -431,37 +625,52 @@ pub(super) fn parse(
             if !in_data {
                 return lx.err("entity instance outside a DATA section");
             }
-            let line = lx.line();
+            let start = lx.pos;
             lx.pos += 1;
             let id = lx.entity_ref()?;
             lx.expect(b'=')?;
-            lx.skip_ws()?;
-            let records = if lx.peek() == Some(b'(') {
-                lx.pos += 1;
-                let mut recs = Vec::new();
-                loop {
-                    lx.skip_ws()?;
-                    if lx.peek() == Some(b')') {
-                        lx.pos += 1;
-                        break;
-                    }
-                    let k = lx.keyword()?;
-                    recs.push((k, lx.params()?));
-                }
-                recs
-            } else {
-                let k = lx.keyword()?;
-                vec![(k, lx.params()?)]
-            };
+            lx.keep = false;
+            let body = lx.instance_body(Some(&mut names));
+            lx.keep = true;
+            body?;
             lx.expect(b';')?;
-            if instances.len() >= max_entities {
+            if ids.len() >= max_entities {
                 return Err(IoError::TooLarge {
                     what: format!(
-                        "{source}: line {line}: more than {max_entities} entity instances, above the size limit {max_entities}; raise the limit with --max-size if the machine has the memory"
+                        "{source}: line {}: more than {max_entities} entity instances, above the size limit {max_entities}; raise the limit with --max-size if the machine has the memory",
+                        line_of(text, start)
                     ),
                 });
             }
-            instances.push((id, Instance { records, line }));
+            let k = if last.1 != u32::MAX && last.0 == names {
+                last.1
+            } else {
+                let k = match kind_of.get(names.as_slice()) {
+                    Some(&k) => k,
+                    None => {
+                        let k = u32::try_from(kinds.len()).map_err(|_| IoError::TooLarge {
+                            what: format!(
+                                "{source}: line {}: more than 2^32 entity types",
+                                line_of(text, start)
+                            ),
+                        })?;
+                        // `#1 = ();` is a complex instance of no record
+                        let split = names
+                            .split(|&c| c == b' ')
+                            .filter(|n| !n.is_empty())
+                            .map(|n| String::from_utf8_lossy(n).into_owned())
+                            .collect();
+                        kinds.push(split);
+                        kind_of.insert(names.clone(), k);
+                        k
+                    }
+                };
+                last = (names.clone(), k);
+                k
+            };
+            ids.push(id);
+            offsets.push(start);
+            kind.push(k);
             if lx.pos - reported >= REPORT_BYTES {
                 reported = lx.pos;
                 meter.parsed(lx.pos)?;
@@ -507,7 +716,7 @@ pub(super) fn parse(
         ));
     }
     Ok(Parsed {
-        instances: Instances::new(instances, source)?,
+        instances: Instances::new(text, ids, offsets, kind, kinds, source)?,
         schema,
     })
 }

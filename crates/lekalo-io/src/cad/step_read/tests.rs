@@ -421,3 +421,99 @@ ENDSEC;END-ISO-10303-21;";
     assert!(e.contains("#900000000000 is defined twice"), "{e}");
     assert!(e.starts_with("t.step:2:"), "{e}");
 }
+
+/// The instances of `data` (the text of a DATA section), parsed.
+fn parsed(text: &str) -> super::parse::Parsed<'_> {
+    let progress = lekalo::Progress::new();
+    let meter = super::progress::Meter {
+        progress: &progress,
+        source: "p.step",
+        len: text.len() as u64,
+    };
+    super::parse::parse(text, "p.step", usize::MAX, &meter).unwrap()
+}
+
+#[test]
+fn instances_keep_their_type_and_parse_their_records_when_asked() {
+    let text = "ISO-10303-21;\nDATA;\n#4=cartesian_point('p''q',(1.,-2.5E1,3));\n\
+                #2=(b_spline_curve(1,(#4)) Bounded_Curve() );\n#3=();\nENDSEC;\n";
+    let p = parsed(text);
+    assert_eq!(p.instances.ids(), &[2, 3, 4]);
+    let point = p.instances.known(&4);
+    assert_eq!(point.type_name(), "CARTESIAN_POINT");
+    assert_eq!(point.line(), 3);
+    // the names are known without parsing, the records are parsed on demand
+    assert!(point.has("CARTESIAN_POINT") && point.records.get().is_none());
+    assert_eq!(
+        point.get("CARTESIAN_POINT").unwrap(),
+        &[
+            P::Str("p'q".into()),
+            P::List(vec![P::Num(1.0), P::Num(-25.0), P::Num(3.0)])
+        ]
+    );
+    assert!(point.get("DIRECTION").is_none());
+    let curve = p.instances.known(&2);
+    assert_eq!(curve.type_name(), "(B_SPLINE_CURVE BOUNDED_CURVE)");
+    assert_eq!(curve.line(), 4);
+    assert_eq!(curve.records().len(), 2);
+    assert_eq!(curve.get("BOUNDED_CURVE").unwrap(), &[]);
+    assert_eq!(
+        curve.get("B_SPLINE_CURVE").unwrap()[1],
+        P::List(vec![P::Ref(4)])
+    );
+    let empty = p.instances.known(&3);
+    assert_eq!((empty.type_name(), empty.records().len()), ("()".into(), 0));
+    // instances of one type share it
+    assert!(p.instances.any_of(&["BOUNDED_CURVE"]) && !p.instances.any_of(&["CIRCLE"]));
+}
+
+#[test]
+fn numbers_read_straight_from_the_text_agree_with_the_records() {
+    let cases = [
+        (
+            "#1 = CARTESIAN_POINT ( 'a''b' , ( 1. , -2.5E1 ,3 ) ) ;",
+            Some(vec![1.0, -25.0, 3.0]),
+        ),
+        ("#1=DIRECTION('',(/* x */ 0.,1.));", Some(vec![0.0, 1.0])),
+        ("#1=CARTESIAN_POINT('',());", Some(vec![])),
+        // written otherwise: read from the records
+        ("#1=CARTESIAN_POINT('',(LENGTH_MEASURE(1.),2.));", None),
+        ("#1=CARTESIAN_POINT('',(1.,2.),3.);", None),
+        ("#1=CARTESIAN_POINT('',(1.,$));", None),
+        ("#1=(CARTESIAN_POINT('',(1.,2.)) X());", None),
+    ];
+    for (data, want) in cases {
+        let text = format!("ISO-10303-21;\nDATA;\n{data}\nENDSEC;\n");
+        let p = parsed(&text);
+        let inst = p.instances.known(&1);
+        assert_eq!(inst.numbers(), want, "{data}");
+        if let Some(want) = want {
+            let name = &inst.names()[0];
+            let from_records = numbers(&inst.get(name).unwrap()[1], "x").unwrap();
+            assert_eq!(from_records, want, "{data}");
+        }
+    }
+    // a point written either way is the same control point
+    let curve = |p: &str| {
+        let text = format!(
+            "ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2={p};\n\
+             #3=B_SPLINE_CURVE_WITH_KNOTS('',1,(#1,#2),.UNSPECIFIED.,.F.,.F.,(2,2),(0.,1.),.UNSPECIFIED.);\nENDSEC;\n"
+        );
+        read_step(&text, "c.step").unwrap().shapes
+    };
+    assert_eq!(
+        curve("CARTESIAN_POINT('',(1.5,2.,3.))"),
+        curve("CARTESIAN_POINT('',(LENGTH_MEASURE(1.5),2.,3.))")
+    );
+}
+
+#[test]
+fn unsorted_ids_are_sorted_with_their_instances() {
+    let text = "ISO-10303-21;\nDATA;\n#9=B();\n#1=A();\n#5=C(1.);\nENDSEC;\n";
+    let p = parsed(text);
+    assert_eq!(p.instances.ids(), &[1, 5, 9]);
+    let names: Vec<String> = p.instances.values().map(|i| i.type_name()).collect();
+    assert_eq!(names, ["A", "C", "B"]);
+    assert_eq!(p.instances.known(&5).get("C").unwrap(), &[P::Num(1.0)]);
+    assert_eq!(p.instances.known(&9).line(), 3);
+}

@@ -10,14 +10,12 @@ use crate::error::{IoError, IoResult, Location};
 /// [`IoError::Syntax`] naming the unit's entity when its factor is zero, negative or beyond the
 /// range of a double: such a unit would turn every point into the origin, mirror the geometry
 /// or make it infinite.
-pub(super) fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
+pub(super) fn length_unit(p: &Parsed<'_>, source: &str) -> IoResult<(String, f64)> {
     // the unit assigned by the (first) global unit context, else any length unit of the file
-    let mut ids: Vec<u64> = p.instances.keys().copied().collect();
-    ids.sort_unstable();
+    let ids = p.instances.ids();
     let from_context = ids.iter().find_map(|id| {
-        let refs = p.instances[id]
-            .get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?
-            .first()?;
+        let context = p.instances.known(id);
+        let refs = context.get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?.first()?;
         list(refs)?.iter().find_map(|r| match r {
             P::Ref(u) if p.instances.get(u).is_some_and(|i| i.has("LENGTH_UNIT")) => Some(*u),
             _ => None,
@@ -26,7 +24,7 @@ pub(super) fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
     let unit = from_context.or_else(|| {
         ids.iter()
             .copied()
-            .find(|id| p.instances[id].has("LENGTH_UNIT"))
+            .find(|id| p.instances.known(id).has("LENGTH_UNIT"))
     });
     let Some((u, (name, mm))) = unit.and_then(|u| Some((u, unit_factor(p, u, 0)?))) else {
         return Ok(("millimetre (assumed)".to_string(), 1.0));
@@ -34,7 +32,7 @@ pub(super) fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
     if !(mm.is_finite() && mm > 0.0) {
         let mut at = Location::new(source);
         if let Some(i) = p.instances.get(&u) {
-            at = at.at_line(i.line);
+            at = at.at_line(i.line());
         }
         return Err(IoError::syntax(
             at,
@@ -47,7 +45,7 @@ pub(super) fn length_unit(p: &Parsed, source: &str) -> IoResult<(String, f64)> {
     Ok((name, mm))
 }
 
-fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
+fn unit_factor(p: &Parsed<'_>, id: u64, depth: usize) -> Option<(String, f64)> {
     let inst = p.instances.get(&id)?;
     if let Some(si) = inst.get("SI_UNIT") {
         let prefix = match si.first() {
@@ -89,7 +87,8 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
         _ => "conversion-based unit".to_string(),
     };
     let P::Ref(m) = cb.get(1)? else { return None };
-    let measure = p.instances.get(m)?.records.first()?;
+    let mi = p.instances.get(m)?;
+    let measure = mi.records().first()?;
     let value = num(measure.1.first()?)?;
     let P::Ref(base) = measure.1.get(1)? else {
         return None;
@@ -103,13 +102,11 @@ fn unit_factor(p: &Parsed, id: u64, depth: usize) -> Option<(String, f64)> {
 /// unit context, `SI_UNIT(.RADIAN.)` (1) or a conversion-based unit such as `DEGREE`
 /// (its `PLANE_ANGLE_MEASURE_WITH_UNIT`, π/180); 1 when the file declares none or the
 /// declaration cannot be read.
-pub(super) fn plane_angle_unit(p: &Parsed) -> f64 {
-    let mut ids: Vec<u64> = p.instances.keys().copied().collect();
-    ids.sort_unstable();
+pub(super) fn plane_angle_unit(p: &Parsed<'_>) -> f64 {
+    let ids = p.instances.ids();
     let unit = ids.iter().find_map(|id| {
-        let refs = p.instances[id]
-            .get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?
-            .first()?;
+        let context = p.instances.known(id);
+        let refs = context.get("GLOBAL_UNIT_ASSIGNED_CONTEXT")?.first()?;
         list(refs)?.iter().find_map(|r| match r {
             P::Ref(u)
                 if p.instances
@@ -125,7 +122,7 @@ pub(super) fn plane_angle_unit(p: &Parsed) -> f64 {
     factor.filter(|f| f.is_finite() && *f > 0.0).unwrap_or(1.0)
 }
 
-fn angle_factor(p: &Parsed, id: u64, depth: usize) -> Option<f64> {
+fn angle_factor(p: &Parsed<'_>, id: u64, depth: usize) -> Option<f64> {
     let inst = p.instances.get(&id)?;
     if let Some(si) = inst.get("SI_UNIT") {
         return match si.first() {
@@ -138,7 +135,8 @@ fn angle_factor(p: &Parsed, id: u64, depth: usize) -> Option<f64> {
     }
     let cb = inst.get("CONVERSION_BASED_UNIT")?;
     let P::Ref(m) = cb.get(1)? else { return None };
-    let measure = p.instances.get(m)?.records.first()?;
+    let mi = p.instances.get(m)?;
+    let measure = mi.records().first()?;
     let value = num(measure.1.first()?)?;
     let P::Ref(base) = measure.1.get(1)? else {
         return None;
