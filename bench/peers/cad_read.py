@@ -30,12 +30,13 @@ from reads a few seconds apart.
 import argparse
 import math
 import os
-import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+import occt_build  # beside this script
 
 ROOT = Path(__file__).resolve().parents[2]
 TARGET = ROOT / "target"
@@ -54,24 +55,9 @@ def build():
     whether Open CASCADE is timed."""
     subprocess.run(["cargo", "build", "--quiet", "--release", "-p", "lekalo-io",
                     "--example", "cad_read"], cwd=ROOT, check=True)
-    include = os.environ.get("OCCT_INCLUDE", "/usr/include/opencascade")
-    if not (Path(include) / "STEPControl_Reader.hxx").exists() or not shutil.which("g++"):
-        print(f"cad_read: no Open CASCADE data exchange headers in {include} (Debian: apt-get "
-              "install libocct-data-exchange-dev); only lekalo is timed", file=sys.stderr)
-        return False
-    src = ROOT / "bench" / "peers" / "occt_cad_read.cpp"
-    if OCCT.exists() and OCCT.stat().st_mtime > src.stat().st_mtime:
-        return True
-    OCCT.parent.mkdir(parents=True, exist_ok=True)
-    lib = os.environ.get("OCCT_LIB")
-    libdirs = [f"-L{lib}", f"-Wl,-rpath,{lib}"] if lib else []
-    cmd = ["g++", "-O2", "-std=c++17", "-Wno-deprecated-declarations", f"-I{include}", str(src),
-           "-o", str(OCCT), *libdirs, "-lTKSTEP", "-lTKIGES", "-lTKXSBase", "-lTKBRep",
-           "-lTKTopAlgo", "-lTKG3d", "-lTKMath", "-lTKernel"]
-    if subprocess.run(cmd).returncode != 0:
-        print("cad_read: occt_cad_read.cpp did not build; only lekalo is timed", file=sys.stderr)
-        return False
-    return True
+    return occt_build.build("occt_cad_read.cpp", "STEPControl_Reader.hxx",
+                            ["-lTKSTEP", "-lTKIGES", "-lTKXSBase", "-lTKBRep", "-lTKTopAlgo",
+                             "-lTKG3d", "-lTKMath", "-lTKernel"]) == OCCT
 
 
 def real(x):
