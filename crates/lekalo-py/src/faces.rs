@@ -195,6 +195,17 @@ fn face(inner: StepFace) -> PyFace {
     }
 }
 
+/// The file at `path` (or standard input for `-`) read by `read(text, name)` with the GIL
+/// released, as both CAD readers do.
+fn read_cad<R: Send>(
+    py: Python<'_>,
+    path: &std::path::Path,
+    read: impl FnOnce(&str, &str) -> lekalo_io::IoResult<R> + Send,
+) -> PyResult<R> {
+    let (text, name) = lekalo_io::read_input(path).map_err(io_err)?;
+    py.detach(|| read(&text, &name)).map_err(io_err)
+}
+
 /// Reads a STEP file: ``{"shapes": [...], "skipped": [...], "length_unit": str, "schema":
 /// str | None}``, and with ``faces=True`` also ``"faces"`` (a list of ``Face``) and
 /// ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``. ``max_size``
@@ -208,16 +219,13 @@ pub(crate) fn read_step<'py>(
     faces: bool,
     max_size: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (text, name) = lekalo_io::read_input(&path).map_err(io_err)?;
-    let r = py
-        .detach(|| {
-            if faces {
-                lekalo_io::read_step_faces(&text, &name, max_size)
-            } else {
-                lekalo_io::read_step_limited(&text, &name, max_size)
-            }
-        })
-        .map_err(io_err)?;
+    let r = read_cad(py, &path, |text, name| {
+        if faces {
+            lekalo_io::read_step_faces(text, name, max_size)
+        } else {
+            lekalo_io::read_step_limited(text, name, max_size)
+        }
+    })?;
     let out = cad_dict(
         py,
         r.shapes,
@@ -243,16 +251,13 @@ pub(crate) fn read_iges<'py>(
     faces: bool,
     max_size: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (text, name) = lekalo_io::read_input(&path).map_err(io_err)?;
-    let r = py
-        .detach(|| {
-            if faces {
-                lekalo_io::read_iges_faces(&text, &name, max_size)
-            } else {
-                lekalo_io::read_iges_limited(&text, &name, max_size)
-            }
-        })
-        .map_err(io_err)?;
+    let r = read_cad(py, &path, |text, name| {
+        if faces {
+            lekalo_io::read_iges_faces(text, name, max_size)
+        } else {
+            lekalo_io::read_iges_limited(text, name, max_size)
+        }
+    })?;
     let out = cad_dict(
         py,
         r.shapes,

@@ -11,7 +11,7 @@ use predicates::str::contains;
 use serde_json::Value;
 
 use crate::common;
-use common::{dir_with, lekalo, p};
+use common::{convert_faces, dir_with, lekalo, p};
 
 /// A plate 10 × 10 mm on the plane z = 0 with a round hole of radius 2 about (5, 5), and a
 /// second face whose loop names an edge that is not in the file.
@@ -70,12 +70,7 @@ END-ISO-10303-21;
 #[test]
 fn convert_faces_writes_face_objects_the_library_reads() {
     let d = dir_with(&[("plate.step", PLATE)]);
-    lekalo()
-        .args(["convert", "--faces"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
+    convert_faces(&d, &[], "plate.step", "faces.jsonl")
         .success()
         .stderr(
             contains("read 1 face(s), 1 with pcurves")
@@ -156,12 +151,7 @@ fn faces_refuse_what_they_cannot_write_or_read() {
             r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]}"#,
         ),
     ]);
-    lekalo()
-        .args(["convert", "--faces"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.csv"))
-        .assert()
+    convert_faces(&d, &[], "plate.step", "faces.csv")
         .code(2)
         .stderr(contains(
             "faces are written as jsonl (one face a line), step or iges",
@@ -173,12 +163,7 @@ fn faces_refuse_what_they_cannot_write_or_read() {
         .code(2)
         .stderr(contains("--faces reads the faces of a STEP file"));
     // the size limit holds for faces too
-    lekalo()
-        .args(["convert", "--faces", "--max-size", "20"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
+    convert_faces(&d, &["--max-size", "20"], "plate.step", "faces.jsonl")
         .code(2)
         .stderr(contains("--max-size"));
 }
@@ -262,12 +247,7 @@ S      1G      3D     34P     29                                        T      1
 #[test]
 fn iges_trimmed_surfaces_convert_and_list_as_faces() {
     let d = dir_with(&[("plate.igs", PLATE_IGES)]);
-    lekalo()
-        .args(["convert", "--faces"])
-        .arg(p(&d, "plate.igs"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
+    convert_faces(&d, &[], "plate.igs", "faces.jsonl")
         .success()
         .stderr(
             contains("read 1 face(s), 1 with pcurves")

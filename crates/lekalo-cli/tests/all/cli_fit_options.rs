@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 
 use crate::common;
-use common::{dir_with, json_of, lekalo, p};
+use common::{dir_with, eval_fitted, json_of, lekalo, p};
 
 /// The cubic y(x) = 1 − 2x + 0.1x³, which every cubic spline space reproduces.
 fn cubic(x: f64) -> f64 {
@@ -142,20 +142,7 @@ fn a_least_squares_curve_reaches_beyond_its_data_with_domain() {
         [-2.0, -2.0, -2.0, -2.0, 3.0, 6.0, 12.0, 12.0, 12.0, 12.0]
     );
     // the cubic is reproduced outside the data too, up to the domain's ends
-    std::fs::write(
-        p(&d, "curve.json"),
-        serde_json::to_string(&written["object"]).unwrap(),
-    )
-    .unwrap();
-    let rows = json_of(lekalo().current_dir(d.path()).args([
-        "eval",
-        "curve.json",
-        "--at",
-        "-2,-1,11,12",
-        "--json",
-    ]));
-    for row in rows.as_array().unwrap() {
-        let (t, x) = (row["t"].as_f64().unwrap(), row["x"].as_f64().unwrap());
+    for (t, x) in eval_fitted(&d, &written["object"], "-2,-1,11,12") {
         assert!(
             (x - cubic(t)).abs() < 1e-9,
             "y({t}) = {x}, not {}",
@@ -185,20 +172,7 @@ fn the_smoothing_condition_takes_a_domain_wider_than_the_data() {
         [-2.0, -2.0, -2.0, -2.0, 12.0, 12.0, 12.0, 12.0]
     );
     assert!(fit["report"]["max_residual"].as_f64().unwrap() < 1e-10);
-    std::fs::write(
-        p(&d, "curve.json"),
-        serde_json::to_string(&fit["object"]).unwrap(),
-    )
-    .unwrap();
-    let rows = json_of(lekalo().current_dir(d.path()).args([
-        "eval",
-        "curve.json",
-        "--at",
-        "-2,11.5",
-        "--json",
-    ]));
-    for row in rows.as_array().unwrap() {
-        let (t, x) = (row["t"].as_f64().unwrap(), row["x"].as_f64().unwrap());
+    for (t, x) in eval_fitted(&d, &fit["object"], "-2,11.5") {
         assert!(
             (x - cubic(t)).abs() < 1e-9,
             "y({t}) = {x}, not {}",

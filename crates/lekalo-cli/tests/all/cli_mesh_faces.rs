@@ -9,7 +9,7 @@ use serde_json::Value;
 
 use crate::cli_faces::PLATE;
 use crate::common;
-use common::{dir_with, lekalo, p};
+use common::{convert_faces, dir_with, last_stderr_json, lekalo, p};
 
 /// The vertices and triangles of an OBJ file.
 fn read_obj(text: &str) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
@@ -30,13 +30,7 @@ fn read_obj(text: &str) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
 #[test]
 fn mesh_of_face_lines_leaves_the_hole_out() {
     let d = dir_with(&[("plate.step", PLATE)]);
-    lekalo()
-        .args(["convert", "--faces", "-q"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
-        .success();
+    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
     let tol = 1e-3;
     let out = lekalo()
         .args(["mesh", "--tolerance", "1e-3", "--json"])
@@ -45,13 +39,7 @@ fn mesh_of_face_lines_leaves_the_hole_out() {
         .arg(p(&d, "plate.obj"))
         .assert()
         .success();
-    let summary: Value = serde_json::from_str(
-        String::from_utf8_lossy(&out.get_output().stderr)
-            .lines()
-            .last()
-            .unwrap(),
-    )
-    .unwrap();
+    let summary = last_stderr_json(&out);
     assert_eq!(summary["faces"].as_u64(), Some(1));
     assert!(summary["deviation"].as_f64().unwrap() <= tol);
     let (v, f) = read_obj(&fs::read_to_string(p(&d, "plate.obj")).unwrap());
@@ -75,13 +63,7 @@ fn mesh_of_face_lines_leaves_the_hole_out() {
 #[test]
 fn mesh_of_faces_refuses_a_tolerance_too_small() {
     let d = dir_with(&[("plate.step", PLATE)]);
-    lekalo()
-        .args(["convert", "--faces", "-q"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
-        .success();
+    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
     lekalo()
         .args(["mesh", "--tolerance", "0"])
         .arg(p(&d, "faces.jsonl"))
@@ -106,13 +88,7 @@ fn without_pcurves(face: &mut Value) {
 #[test]
 fn mesh_of_faces_lists_the_faces_without_pcurves_and_meshes_the_others() {
     let d = dir_with(&[("plate.step", PLATE)]);
-    lekalo()
-        .args(["convert", "--faces", "-q"])
-        .arg(p(&d, "plate.step"))
-        .arg("-o")
-        .arg(p(&d, "faces.jsonl"))
-        .assert()
-        .success();
+    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
     let line = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
     let mut bare: Value = serde_json::from_str(line.trim()).unwrap();
     without_pcurves(&mut bare);
@@ -126,13 +102,7 @@ fn mesh_of_faces_lists_the_faces_without_pcurves_and_meshes_the_others() {
         .assert()
         .success()
         .stderr(predicates::str::contains("1 of 2 faces not meshed"));
-    let summary: Value = serde_json::from_str(
-        String::from_utf8_lossy(&out.get_output().stderr)
-            .lines()
-            .last()
-            .unwrap(),
-    )
-    .unwrap();
+    let summary = last_stderr_json(&out);
     assert_eq!(summary["faces"].as_u64(), Some(1));
     assert_eq!(summary["skipped"].as_u64(), Some(1));
     lekalo()

@@ -11,9 +11,9 @@
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
 //! | `lsq.rs` | [`least_squares`]: weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
 //! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
-//! | `smoothing_condition.rs` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style), [`smoothing_condition_in`] on a domain wider than the data; [`smoothing_knot_sequence`]: its knot vectors round by round | [#smoothing-condition] |
+//! | `smoothing_condition/` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style), [`smoothing_condition_in`] on a domain wider than the data; [`smoothing_knot_sequence`]: its knot vectors round by round | [#smoothing-condition] |
 //! | `smoothing_on_knots.rs` | [`smoothing_on_knots`]: least jumps of the `k`-th derivative on given knots with weighted RSS = s | [#smoothing-on-given-knots] |
-//! | `tolerance.rs` | [`fit_tolerance`]: within `tol` of every point with few control points | [#tolerance] |
+//! | `tolerance/` | [`fit_tolerance`]: within `tol` of every point with few control points (knot insertion and removal, deviations by projection) | [#tolerance] |
 //! | `periodic.rs` | [`periodic_least_squares`], [`periodic_smoothing_condition`], [`periodic_smoothing_knot_sequence`], [`periodic_smoothing_on_knots`]: closed fits (FITPACK `fpperi`) | [#periodic] |
 //! | `cyclic.rs` | the banded QR whose band wraps around the corner, for closed fits (crate-private kernel) | [#periodic] |
 //! | `progress.rs` | how the fits report to a [`Progress`](crate::Progress) hook and stop when cancelled: steps of iterations of unknown length, checked passes over the data rows (crate-private plumbing, no arithmetic) | — |

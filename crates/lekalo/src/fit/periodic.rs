@@ -13,7 +13,7 @@ use super::data::{check_in_domain, CurveFit, FitData};
 use super::progress::Steps;
 use super::smoothing_condition::{
     check_condition_args, check_max_knots, check_reachable, finish, jump_rows, next_nplus,
-    smooth_weight, Added, Knots, LsqPass, Observations, SMOOTHING_RTOL,
+    smooth_weight, Added, Knots, LsqPass, Observations, Rounds, SMOOTHING_RTOL,
 };
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
@@ -173,15 +173,13 @@ pub fn periodic_smoothing_condition_with_progress(
     let k = degree;
     let (obs, sites) = periodic_observations(data, k, domain)?;
     check_reachable(&obs, s)?;
-    let fit = match periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &steps, &mut |_| {})? {
-        PeriodicRounds::Done { t, c } => finish(data, &obs, k, t, &c, None),
-        PeriodicRounds::Smooth { t, qr, fp0, fp_inf } => {
-            let (c, lambda) = smooth_periodic(&obs, k, &t, &qr, s, fp0, fp_inf, &steps)?;
-            finish(data, &obs, k, t, &c, lambda)
-        }
-    };
-    steps.finish();
-    Ok(fit)
+    periodic_rounds(&obs, &sites, k, s, domain, usize::MAX, &steps, &mut |_| {})?.into_fit(
+        data,
+        &obs,
+        k,
+        &steps,
+        |t, qr, fp0, fp_inf| smooth_periodic(&obs, k, t, qr, s, fp0, fp_inf, &steps),
+    )
 }
 
 /// The knot vectors of the rounds of [`periodic_smoothing_condition`], in order (SciPy's
@@ -320,19 +318,6 @@ fn periodic_observations(
     Ok((obs, sites))
 }
 
-/// Where the knot rounds of a closed smoothing condition ended.
-enum PeriodicRounds {
-    /// The answer: the knots and the least-squares coefficients (repeated) on them.
-    Done { t: Vec<f64>, c: Vec<f64> },
-    /// Knots whose least-squares residual `fp_inf` is below `s`: smooth on them.
-    Smooth {
-        t: Vec<f64>,
-        qr: CyclicQr,
-        fp0: f64,
-        fp_inf: f64,
-    },
-}
-
 /// The knot rounds of [`periodic_smoothing_condition`], at most `cap` interior knots, each
 /// round's knot vector (and the constant's when it is the answer) passed to `seen`, each pass a
 /// step of `steps`.
@@ -346,7 +331,7 @@ fn periodic_rounds(
     cap: usize,
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
-) -> Result<PeriodicRounds> {
+) -> Result<Rounds<CyclicQr>> {
     let m = sites.len();
     let acc = SMOOTHING_RTOL * s;
     let full = m - 2;
@@ -370,14 +355,14 @@ fn periodic_rounds(
         knots.interior = interpolation_knots(sites, k);
         let (t, _, c) = fit_on(&mut pass, obs, &breaks(&knots.interior), steps)?;
         seen(&t);
-        return Ok(PeriodicRounds::Done { t, c });
+        return Ok(Rounds::Done { t, c });
     }
     // the least-squares constant
     let (t, qr, c) = fit_on(&mut pass, obs, &[a, b], steps)?;
     let fp0 = qr.rss;
     if fp0 <= s || full == 0 || cap == 0 {
         seen(&t);
-        return Ok(PeriodicRounds::Done { t, c });
+        return Ok(Rounds::Done { t, c });
     }
     // one knot at the middle parameter (FITPACK: x((m + 1)/2))
     let mid = m.div_ceil(2) - 1;
@@ -391,9 +376,9 @@ fn periodic_rounds(
         let fpms = fp - s;
         if fpms <= 0.0 {
             if -fpms < acc {
-                return Ok(PeriodicRounds::Done { t, c });
+                return Ok(Rounds::Done { t, c });
             }
-            return Ok(PeriodicRounds::Smooth {
+            return Ok(Rounds::Smooth {
                 t,
                 qr,
                 fp0,
@@ -402,7 +387,7 @@ fn periodic_rounds(
         }
         if knots.count() >= full || knots.count() >= cap {
             // interpolation, or as many knots as allowed
-            return Ok(PeriodicRounds::Done { t, c });
+            return Ok(Rounds::Done { t, c });
         }
         nplus = next_nplus(nplus, fpms, fpold - fp, acc);
         fpold = fp;
@@ -411,7 +396,7 @@ fn periodic_rounds(
         match knots.add_up_to(sites, nplus, full, cap) {
             Added::Some => {}
             Added::Full => knots.interior = interpolation_knots(sites, k),
-            Added::None => return Ok(PeriodicRounds::Done { t, c }),
+            Added::None => return Ok(Rounds::Done { t, c }),
         }
     }
 }

@@ -95,3 +95,47 @@ pub(crate) fn leaf_subcommands() -> Vec<Vec<String>> {
     walk(Vec::new(), &mut out);
     out
 }
+
+/// `lekalo convert --faces <extra…> <input> -o <output>` on files of the folder `d`, its
+/// status and messages left to the caller.
+pub(crate) fn convert_faces(
+    d: &tempfile::TempDir,
+    extra: &[&str],
+    input: &str,
+    output: &str,
+) -> assert_cmd::assert::Assert {
+    lekalo()
+        .args(["convert", "--faces"])
+        .args(extra)
+        .arg(p(d, input))
+        .arg("-o")
+        .arg(p(d, output))
+        .assert()
+}
+
+/// The JSON summary a command printed as the last line of its standard error.
+pub(crate) fn last_stderr_json(done: &assert_cmd::assert::Assert) -> serde_json::Value {
+    let err = String::from_utf8_lossy(&done.get_output().stderr).into_owned();
+    serde_json::from_str(err.lines().last().unwrap()).unwrap()
+}
+
+/// The fitted `object` (a function `y(x)`) written to `curve.json` in `d` and evaluated by
+/// `lekalo eval --at <at>`: the pairs `(x, y)`.
+pub(crate) fn eval_fitted(
+    d: &tempfile::TempDir,
+    object: &serde_json::Value,
+    at: &str,
+) -> Vec<(f64, f64)> {
+    fs::write(p(d, "curve.json"), serde_json::to_string(object).unwrap()).unwrap();
+    let rows =
+        json_of(
+            lekalo()
+                .current_dir(d.path())
+                .args(["eval", "curve.json", "--at", at, "--json"]),
+        );
+    rows.as_array()
+        .unwrap()
+        .iter()
+        .map(|row| (row["t"].as_f64().unwrap(), row["x"].as_f64().unwrap()))
+        .collect()
+}

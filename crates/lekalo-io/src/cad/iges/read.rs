@@ -1,0 +1,442 @@
+//! Reading IGES: the sections of the file, the size limits, and the rational B-spline entities
+//! (126, 128; 110, 112, 114 through `splines.rs`) as shapes (IGES 5.3 §2, §4.23, §4.24).
+
+use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Progress};
+
+use super::faces::{self, Raw};
+use super::fields::{count, fields, real, unit};
+use super::{splines, IgesRead};
+use crate::error::{IoError, IoResult, Location};
+use crate::object::Object;
+use crate::shape::{Shape, Surface};
+use crate::step_read::StepSkipped;
+
+/// Reads the rational B-spline curves (126) and surfaces (128) of an IGES file.
+///
+/// ```
+/// use lekalo_io::{read_iges, IgesWriter, Object, Shape};
+/// let c = lekalo::NurbsCurve::circle(&[0.0, 0.0, 0.0], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 2.0)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::Nurbs(c.clone()))?;
+/// let r = read_iges(&w.finish("circle", "20000101.000000"), "circle.igs")?;
+/// assert_eq!(r.shapes[0].1, Shape::Curve(Object::Nurbs(c)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// [`IoError::Syntax`] with the line for records that are not IGES, pointers outside the file
+/// and entities whose numbers do not fit their counts or that the library rejects.
+pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
+    read_iges_limited(text, source, usize::MAX)
+}
+
+/// [`read_iges`] of a file that may hold at most `max_size` entities (directory entries), and
+/// whose B-splines (entities 126 and 128) may hold at most `max_size` control points and knots
+/// together: the counts each entity declares are checked before its points and knots are
+/// allocated, so a file past the limit is refused with the count instead of filling the memory.
+/// The CLI passes its `--max-size`.
+///
+/// ```
+/// use lekalo_io::{read_iges_limited, IgesWriter, IoError, Object};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("line.igs", "2000-01-01T00:00:00");
+/// assert!(read_iges_limited(&text, "line.igs", 1000).is_ok());
+/// // 2 control points and 4 knots are above a limit of 5
+/// let e = read_iges_limited(&text, "line.igs", 5).unwrap_err();
+/// assert!(matches!(e, IoError::TooLarge { .. }) && e.to_string().contains("--max-size"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
+/// the limit.
+pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
+    read_entities(text, source, max_size, false, &Progress::new()).map(|(r, _)| r)
+}
+
+/// What an IGES read reports itself as.
+const READING: &str = "reading IGES";
+
+/// Directory entries read between two consultations of the progress hook.
+const REPORT_ENTITIES: usize = 1 << 10;
+
+/// [`read_iges_limited`] (or [`read_iges_faces`] with `faces`) that reports to `progress` and
+/// stops when its cancel flag is set: `(entities read, entities)` of the directory section,
+/// every 1024 entities and never inside one (the result is the same with or without the hook),
+/// `(total, total)` last.
+///
+/// ```
+/// use std::sync::atomic::AtomicBool;
+/// use lekalo::Progress;
+/// use lekalo_io::{read_iges_with_progress, IgesWriter, IoError, Object};
+/// let c = lekalo::BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0],
+///     lekalo::Points::from_rows(&[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]])?)?;
+/// let mut w = IgesWriter::new();
+/// w.add_object(&Object::BSpline(c))?;
+/// let text = w.finish("line.igs", "2000-01-01T00:00:00");
+/// let stop = AtomicBool::new(true);
+/// let e = read_iges_with_progress(&text, "line.igs", 1000, false,
+///     &Progress::new().with_cancel(&stop)).unwrap_err();
+/// assert_eq!(e.to_string(), "line.igs: reading IGES: cancelled");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`read_iges_limited`]; [`IoError::Cancelled`] once the cancel flag is set.
+pub fn read_iges_with_progress(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    faces: bool,
+    progress: &Progress<'_>,
+) -> IoResult<IgesRead> {
+    if faces {
+        faces::read_faces_with_progress(text, source, max_size, progress)
+    } else {
+        read_entities(text, source, max_size, false, progress).map(|(r, _)| r)
+    }
+}
+
+/// The entities of a file as [`read_iges_limited`] reads them and, with `topology`, the
+/// parameters of the composite curves, curves on surfaces, boundaries, bounded and trimmed
+/// surfaces (entities 102, 141, 142, 143, 144) by sequence number, which the faces are built
+/// from. `progress` is told the directory entries read.
+pub(super) fn read_entities(
+    text: &str,
+    source: &str,
+    max_size: usize,
+    topology: bool,
+    progress: &Progress<'_>,
+) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>)> {
+    let mut raw = std::collections::HashMap::new();
+    let mut g = String::new();
+    let mut d: Vec<(usize, &str)> = Vec::new();
+    let mut p: Vec<(usize, &str)> = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let l = raw.trim_end_matches('\r');
+        if l.trim().is_empty() {
+            continue;
+        }
+        let section = l.get(72..73).ok_or_else(|| {
+            IoError::syntax(
+                Location::new(source).at_line(i + 1),
+                "an IGES record has 80 columns with the section letter in column 73; this line is shorter",
+            )
+        })?;
+        match section {
+            "G" => g.push_str(&l[..72]),
+            "D" => d.push((i + 1, l)),
+            "P" => p.push((i + 1, l)),
+            "S" | "T" => {}
+            other => {
+                return Err(IoError::syntax(
+                    Location::new(source).at_line(i + 1),
+                    format!("section letter \"{other}\" in column 73: expected S, G, D, P or T"),
+                ))
+            }
+        }
+    }
+    let (delim, record) = {
+        // `1H,` and `1H;` name the delimiters; the character after `1H` may take several bytes
+        let hollerith = |t: &str, default: char| -> (char, usize) {
+            t.strip_prefix("1H")
+                .and_then(|r| r.chars().next())
+                .map_or((default, 0), |c| (c, 2 + c.len_utf8()))
+        };
+        let t = g.trim_start();
+        let (pd, used) = hollerith(t, ',');
+        let rest = t[used..].trim_start_matches(pd).trim_start();
+        let (rd, _) = hollerith(rest, ';');
+        (pd, rd)
+    };
+    let gf = fields(&g, delim, record);
+    let flag = gf.get(13).and_then(|s| count(s)).unwrap_or(2);
+    let name = gf.get(14).cloned().unwrap_or_default();
+    let scale_field = gf
+        .get(12)
+        .and_then(|s| real(s))
+        .filter(|s| *s > 0.0)
+        .unwrap_or(1.0);
+    let (length_unit, unit_mm) =
+        unit(flag, &name).unwrap_or_else(|| (format!("{name} (assumed MM)"), 1.0));
+    // model space scale: model units per drawing unit; coordinates are in model units
+    let _ = scale_field;
+    let mut shapes = Vec::new();
+    let mut skipped = Vec::new();
+    let entities = d.len() / 2;
+    if entities > max_size {
+        return Err(IoError::TooLarge {
+            what: format!(
+                "{source}: {entities} entities in the directory section, above the size limit {max_size}; raise the limit with --max-size {entities} if the machine has the memory"
+            ),
+        });
+    }
+    // control points and knots of the B-splines read so far, against the size limit
+    let mut used = 0usize;
+    let mut charge = |seq: u64, n: usize| -> IoResult<()> {
+        used = used.saturating_add(n);
+        if used > max_size {
+            return Err(IoError::TooLarge {
+                what: format!(
+                    "{source}: entity D{seq}: {used} control points and knots with this entity's {n}, above the size limit {max_size}; raise the limit with --max-size {used} if the machine has the memory"
+                ),
+            });
+        }
+        Ok(())
+    };
+    // parameter lines read so far: each entity owns its own lines, so more than the section
+    // holds means entities share lines, which a file could use to make the reading quadratic
+    let mut lines_read = 0usize;
+    let step = |k: usize| -> IoResult<()> {
+        if progress.is_active() {
+            progress
+                .step(READING, k as u64, entities as u64)
+                .map_err(|e| IoError::cancelled(source, &e))?;
+        }
+        Ok(())
+    };
+    for (k, pair) in d.chunks(2).enumerate() {
+        if k % REPORT_ENTITIES == 0 {
+            step(k)?;
+        }
+        let [(line, a), (_, b)] = pair else {
+            return Err(IoError::syntax(
+                Location::new(source).at_line(pair[0].0),
+                "the directory section has an odd number of records",
+            ));
+        };
+        let field = |s: &str, k: usize| s.get(8 * k..8 * k + 8).unwrap_or("").trim().to_string();
+        let ty = field(a, 0);
+        let seq: u64 = a
+            .get(73..80)
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or(0);
+        let keep = topology && matches!(ty.as_str(), "102" | "141" | "142" | "143" | "144");
+        if !keep && !matches!(ty.as_str(), "110" | "112" | "114" | "126" | "128") {
+            if matches!(
+                ty.as_str(),
+                "100"
+                    | "102"
+                    | "104"
+                    | "106"
+                    | "108"
+                    | "118"
+                    | "120"
+                    | "122"
+                    | "130"
+                    | "140"
+                    | "141"
+                    | "142"
+                    | "143"
+                    | "144"
+                    | "190"
+                    | "192"
+                    | "194"
+                    | "196"
+                    | "198"
+            ) {
+                skipped.push(StepSkipped {
+                    id: seq,
+                    entity: format!("IGES entity {ty}"),
+                    reason: "not read (lekalo reads entities 110, 112, 114, 126 and 128)".into(),
+                });
+            }
+            continue;
+        }
+        let at = Location::new(source).at_line(*line);
+        if ty == "110" && !matches!(field(b, 4).as_str(), "" | "0") {
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity 110 form {}", field(b, 4)),
+                reason: "a ray or an unbounded line (forms 1 and 2), which no NURBS holds".into(),
+            });
+            continue;
+        }
+        if !keep && !matches!(field(a, 6).as_str(), "" | "0") {
+            skipped.push(StepSkipped {
+                id: seq,
+                entity: format!("IGES entity {ty}"),
+                reason: "has a transformation matrix (entity 124), which is not applied".into(),
+            });
+            continue;
+        }
+        let start = count(&field(a, 1)).unwrap_or(0);
+        let n = count(&field(b, 3)).unwrap_or(0);
+        if start == 0 || n == 0 || start.checked_add(n - 1).is_none_or(|last| last > p.len()) {
+            return Err(IoError::syntax(at, format!("entity {ty}: parameter data pointer {start} (+{n} lines) is outside the P section")));
+        }
+        lines_read = lines_read.saturating_add(n);
+        if lines_read > p.len() {
+            return Err(IoError::syntax(
+                at,
+                format!("entity {ty}: its parameter data (lines {start} to {}) are also another entity's; each entity has its own lines of the P section", start + n - 1),
+            ));
+        }
+        let body: String = p[start - 1..start - 1 + n]
+            .iter()
+            .map(|(_, l)| l.get(..64).unwrap_or(l))
+            .collect();
+        let f = fields(&body, delim, record);
+        let bad = |why: String| {
+            IoError::syntax(
+                Location::new(source).at_line(p[start - 1].0),
+                format!("entity {ty} (D{seq}): {why}"),
+            )
+        };
+        let r = |k: usize| {
+            f.get(k)
+                .and_then(|s| real(s))
+                .ok_or_else(|| bad(format!("parameter {k} is missing or not a number")))
+        };
+        let c = |k: usize| {
+            f.get(k)
+                .and_then(|s| count(s))
+                .ok_or_else(|| bad(format!("parameter {k} is missing or not a count")))
+        };
+        let lib = |e: lekalo::Error| bad(e.to_string());
+        if keep {
+            raw.insert(
+                seq,
+                Raw {
+                    ty: ty.clone(),
+                    fields: f,
+                    matrix: !matches!(field(a, 6).as_str(), "" | "0"),
+                },
+            );
+            continue;
+        }
+        if ty == "110" || ty == "112" || ty == "114" {
+            let num = |k: usize| {
+                f.get(k)
+                    .and_then(|s| real(s))
+                    .ok_or_else(|| format!("parameter {k} is missing or not a number"))
+            };
+            let shape = if ty == "110" {
+                splines::line(&num, unit_mm)
+            } else if ty == "112" {
+                splines::spline_curve(&num, f.len(), unit_mm)
+            } else {
+                splines::spline_surface(&num, f.len(), unit_mm)
+            };
+            shapes.push((seq, shape.map_err(bad)?));
+            continue;
+        }
+        // The counts are checked against the parameters the entity holds before anything is
+        // allocated: a declared size the file cannot back (a 23170 × 23170 net in a few lines)
+        // is refused, and so is one whose arithmetic would overflow.
+        let needs = |what: String, sizes: &[Option<usize>]| -> IoResult<()> {
+            let total = sizes.iter().try_fold(0usize, |sum, &x| sum.checked_add(x?));
+            match total {
+                Some(t) if t <= f.len() => Ok(()),
+                Some(t) => Err(bad(format!(
+                    "{what} need {t} parameters, the entity has {}; the counts or the parameter data are wrong",
+                    f.len()
+                ))),
+                None => Err(bad(format!(
+                    "{what} need more parameters than any file holds; the counts are wrong"
+                ))),
+            }
+        };
+        if ty == "126" {
+            let (k, m, poly) = (c(1)?, c(2)?, c(5)? == 1);
+            let n = k.checked_add(1);
+            let nk = k.checked_add(m).and_then(|x| x.checked_add(2));
+            needs(
+                format!("K = {k}, M = {m} (upper index and degree)"),
+                &[Some(7), nk, n, n.and_then(|n| n.checked_mul(3)), Some(2)],
+            )?;
+            let (Some(nk), Some(n)) = (nk, n) else {
+                return Err(bad("the counts overflow".into()));
+            };
+            charge(seq, nk.saturating_add(n))?;
+            let base = 7;
+            let knots = (0..nk).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
+            let w = (0..=k)
+                .map(|i| r(base + nk + i))
+                .collect::<IoResult<Vec<_>>>()?;
+            let pb = base + nk + k + 1;
+            let mut data = Vec::with_capacity(3 * (k + 1));
+            for i in 0..3 * (k + 1) {
+                data.push(r(pb + i)? * unit_mm);
+            }
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
+            let obj = if poly {
+                Object::BSpline(BSplineCurve::new(m, knots, ctrl).map_err(lib)?)
+            } else {
+                Object::Nurbs(NurbsCurve::new(m, knots, ctrl, w).map_err(lib)?)
+            };
+            shapes.push((seq, Shape::Curve(obj)));
+        } else {
+            let (k1, k2, m1, m2, poly) = (c(1)?, c(2)?, c(3)?, c(4)?, c(7)? == 1);
+            let plus = |a: usize, b: usize| a.checked_add(b);
+            let net = plus(k1, 1)
+                .zip(plus(k2, 1))
+                .and_then(|(a, b)| a.checked_mul(b));
+            let n1 = plus(k1, m1).and_then(|x| plus(x, 2));
+            let n2 = plus(k2, m2).and_then(|x| plus(x, 2));
+            needs(
+                format!("K1 = {k1}, K2 = {k2}, M1 = {m1}, M2 = {m2} (upper indices and degrees)"),
+                &[
+                    Some(10),
+                    n1,
+                    n2,
+                    net.and_then(|x| x.checked_mul(4)),
+                    Some(4),
+                ],
+            )?;
+            let (Some(n1), Some(n2)) = (n1, n2) else {
+                return Err(bad("the counts overflow".into()));
+            };
+            charge(
+                seq,
+                n1.saturating_add(n2)
+                    .saturating_add(net.unwrap_or(usize::MAX)),
+            )?;
+            // both below the parameter count (checked above), so k + 1 does not overflow
+            let (nu, nv) = (k1 + 1, k2 + 1);
+            let base = 10;
+            let ku = (0..n1).map(|i| r(base + i)).collect::<IoResult<Vec<_>>>()?;
+            let kv = (0..n2)
+                .map(|i| r(base + n1 + i))
+                .collect::<IoResult<Vec<_>>>()?;
+            let wb = base + n1 + n2;
+            let pb = wb + nu * nv;
+            let mut w = vec![0.0; nu * nv];
+            let mut data = vec![0.0; 3 * nu * nv];
+            for j in 0..nv {
+                for i in 0..nu {
+                    let src = j * nu + i;
+                    w[i * nv + j] = r(wb + src)?;
+                    for x in 0..3 {
+                        data[3 * (i * nv + j) + x] = r(pb + 3 * src + x)? * unit_mm;
+                    }
+                }
+            }
+            let ctrl = Points::from_flat(3, data).map_err(lib)?;
+            let s = if poly {
+                Surface::BSpline(BSplineSurface::new(m1, m2, ku, kv, ctrl, (nu, nv)).map_err(lib)?)
+            } else {
+                Surface::Nurbs(NurbsSurface::new(m1, m2, ku, kv, ctrl, w, (nu, nv)).map_err(lib)?)
+            };
+            shapes.push((seq, Shape::Surface(s)));
+        }
+    }
+    if progress.is_active() {
+        // complete: a flag set this late does not discard the result
+        let _ = progress.step(READING, entities as u64, entities as u64);
+    }
+    Ok((
+        IgesRead {
+            shapes,
+            skipped,
+            length_unit,
+            scale_to_mm: unit_mm,
+            faces: Vec::new(),
+            skipped_faces: Vec::new(),
+        },
+        raw,
+    ))
+}

@@ -1,0 +1,338 @@
+//! Smoothing from Python (`docs/theory/fitting.md#penalised`, `#smoothing-condition`): smoothing
+//! splines (λ given or by GCV), the fewest knots within a residual `s` (SciPy's `make_splrep`,
+//! `make_splprep`, `generate_knots`) and the least jumps on given knots.
+
+use lekalo::fit::{
+    constrained_smoothing_condition, constrained_smoothing_spline, gcv_score as lk_gcv,
+    periodic_smoothing_knot_sequence, smoothing_condition, smoothing_condition_in,
+    smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, CurveFit, FitData, Lambda,
+};
+use lekalo::PointsRef;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use super::{knot_vector, periodic_rows, weight_vec, with_report, Data, WeightsAre};
+use crate::convert::{floats, vec1, vec_array};
+use crate::curves::PyBSplineCurve;
+use crate::error::{bad, lib_err, named};
+use crate::interp::parametrization_or_chord;
+use crate::shape::ShapeArgs;
+
+fn lambda_arg(lam: Option<f64>) -> Lambda {
+    lam.map_or(Lambda::Gcv, Lambda::Given)
+}
+
+/// The cubic smoothing spline minimising `Σ w_k |y_k − f(x_k)|² + lam ∫ |f''|²` (SciPy's
+/// `make_smoothing_spline`; Reinsch, `docs/theory/fitting.md#penalised`). `lam=None` chooses λ
+/// by generalised cross-validation (`#gcv`). `x` strictly increasing; `y` `(n,)` or `(n, dim)`.
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.linspace(0, 1, 50); y = np.sin(4 * x) + 0.01 * np.cos(37 * x)
+/// >>> c = lekalo.make_smoothing_spline(x, y)
+/// >>> bool(np.abs(c(x)[:, 0] - y).max() < 0.05)
+/// True
+///
+/// The shape constraints of `make_lsq_spline` (keyword arguments) keep the spline's shape over
+/// the cubic splines with knots at the data; with `lam=None`, λ is the unconstrained spline's
+/// GCV choice.
+#[pyfunction]
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn make_smoothing_spline<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    lam: Option<f64>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
+) -> PyResult<PyBSplineCurve> {
+    Ok(fit_smoothing(
+        py, x, y, w, lam, increasing, decreasing, convex, concave, min, max, through, slope_at,
+    )?
+    .0)
+}
+
+/// As `make_smoothing_spline`, returning `(curve, report)`; `report["lam"]` is the λ used.
+#[pyfunction]
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_smoothing<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    lam: Option<f64>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
+    let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
+    let fd = data.fit_data("x")?;
+    let f = py
+        .detach(|| {
+            if shape.is_empty() {
+                smoothing_spline(&fd, lambda_arg(lam))
+            } else {
+                constrained_smoothing_spline(&fd, lambda_arg(lam), &shape)
+            }
+        })
+        .map_err(lib_err)?;
+    with_report(py, f)
+}
+
+/// The generalised cross-validation score of the smoothing spline with weight `lam`
+/// (`docs/theory/fitting.md#gcv`).
+#[pyfunction]
+#[pyo3(signature = (x, y, lam, w = None))]
+pub(crate) fn gcv_score(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+    lam: f64,
+    w: Option<&Bound<'_, PyAny>>,
+) -> PyResult<f64> {
+    let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
+    let fd = data.fit_data("x")?;
+    py.detach(|| lk_gcv(&fd, lam)).map_err(lib_err)
+}
+
+/// The spline of degree `k` with the fewest knots whose weighted residual `Σ w_k |y_k −
+/// f(x_k)|²` is at most `s` (the smoothing condition of SciPy's `splrep`/`make_splrep`,
+/// FITPACK `curfit`; `docs/theory/fitting.md#smoothing-condition`). `s = 0` interpolates.
+/// With a knot vector `t` (SciPy's full vector), the spline on those knots whose `k`-th
+/// derivative jumps least with the residual `s` (`docs/theory/fitting.md#smoothing-on-given-knots`).
+/// Weights as SciPy's: the condition is `Σ (w_k (y_k − f(x_k)))² ≤ s`. `domain=(a, b)`, holding
+/// the data, puts the end knots at `a` and `b` (SciPy's `xb`, `xe`; without `t`).
+/// Returns the curve; `fit_smoothing_condition` also returns the report.
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.linspace(0, 1, 200); y = np.sin(6 * x)
+/// >>> c = lekalo.make_splrep(x, y, s=1e-4)
+/// >>> bool(((c(x)[:, 0] - y) ** 2).sum() <= 1e-4)
+/// True
+/// >>> t = [0, 0, 0, 0, 0.5, 1, 1, 1, 1]
+/// >>> c = lekalo.make_splrep(x, y, s=0.5, t=t)
+/// >>> bool(abs(((c(x)[:, 0] - y) ** 2).sum() - 0.5) <= 1e-3 * 0.5)
+/// True
+#[pyfunction]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn make_splrep(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+    w: Option<&Bound<'_, PyAny>>,
+    k: usize,
+    s: f64,
+    t: Option<&Bound<'_, PyAny>>,
+    domain: Option<(f64, f64)>,
+) -> PyResult<PyBSplineCurve> {
+    let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
+    Ok(PyBSplineCurve::wrap(
+        condition_fit(py, &data, k, s, t, domain)?.curve,
+    ))
+}
+
+/// The smoothing condition on FITPACK's knots (end knots at `domain` when given) or, with `t`,
+/// the smoothing on those knots.
+fn condition_fit(
+    py: Python<'_>,
+    data: &Data<'_>,
+    k: usize,
+    s: f64,
+    t: Option<&Bound<'_, PyAny>>,
+    domain: Option<(f64, f64)>,
+) -> PyResult<CurveFit> {
+    let fd = data.fit_data("x")?;
+    let kv = t.map(knot_vector).transpose()?;
+    if kv.is_some() && domain.is_some() {
+        return Err(bad(
+            "domain: the knots t set the domain (their end knots); drop domain or t".into(),
+        ));
+    }
+    py.detach(|| match (&kv, domain) {
+        (Some(kv), _) => smoothing_on_knots(&fd, k, kv, s),
+        (None, Some(domain)) => smoothing_condition_in(&fd, k, s, domain),
+        (None, None) => smoothing_condition(&fd, k, s),
+    })
+    .map_err(|e| match e {
+        lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. }
+            if domain.is_some() =>
+        {
+            named("domain", &e)
+        }
+        other => lib_err(other),
+    })
+}
+
+/// As `make_splrep`, returning `(curve, report)`, with the library's weights: the condition is
+/// `Σ w_k |y_k − f(x_k)|² ≤ s` (`make_splrep` squares SciPy's `w` into these). With shape
+/// constraints (keywords as `fit_smoothing`), the constrained cubic smoothing spline whose
+/// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
+/// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
+#[pyfunction]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_smoothing_condition<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    k: usize,
+    s: f64,
+    t: Option<&Bound<'py, PyAny>>,
+    domain: Option<(f64, f64)>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let shape = ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()?;
+    let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
+    if shape.is_empty() {
+        let f = condition_fit(py, &data, k, s, t, domain)?;
+        return with_report(py, f);
+    }
+    if domain.is_some() {
+        return Err(bad(
+            "domain: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop domain"
+                .into(),
+        ));
+    }
+    if t.is_some() || k != 3 {
+        return Err(bad(
+            "with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data): drop t and k"
+                .into(),
+        ));
+    }
+    let fd = data.fit_data("x")?;
+    let f = py
+        .detach(|| constrained_smoothing_condition(&fd, s, &shape))
+        .map_err(lib_err)?;
+    with_report(py, f)
+}
+
+/// The successive knot vectors of the smoothing condition's rounds (SciPy's `generate_knots`,
+/// FITPACK's knot placement; `docs/theory/fitting.md#smoothing-condition`): a list of knot
+/// arrays, each with more knots than the one before; the last is the knot vector
+/// `make_splrep(x, y, s=s)` smooths on. `nest` stops the rounds once a vector has that many
+/// knots. Weights as SciPy's (`Σ (w_k (y_k − f(x_k)))² ≤ s`). With `periodic=True` the rounds
+/// of `fit_periodic` (the last row of `x`, `y` repeats the first, on the period
+/// `[x[0], x[-1]]`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.arange(8.0); y = np.sin(x * np.pi / 8)
+/// >>> [len(t) for t in lekalo.generate_knots(x, y, s=1e-7)]
+/// [8, 9, 10, 11, 12]
+#[pyfunction]
+#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, nest = None, periodic = false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn generate_knots<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    k: usize,
+    s: f64,
+    nest: Option<usize>,
+    periodic: bool,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
+    let seq = if periodic {
+        let xs = data.x.vector("x")?;
+        let ys = data.y.points("y")?;
+        let n = periodic_rows(xs.len(), ys.len())?;
+        let rows =
+            PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
+        let mut fd = FitData::new(rows, &xs[..n]).map_err(lib_err)?;
+        if let Some(w) = data.w.as_deref() {
+            fd = fd.with_weights(&w[..n.min(w.len())]).map_err(lib_err)?;
+        }
+        let domain = (xs[0], xs[n]);
+        py.detach(|| periodic_smoothing_knot_sequence(&fd, k, s, domain, nest))
+    } else {
+        let fd = data.fit_data("x")?;
+        py.detach(|| smoothing_knot_sequence(&fd, k, s, nest))
+    }
+    .map_err(lib_err)?;
+    Ok(seq.iter().map(|t| vec_array(py, t)).collect())
+}
+
+/// A parametric curve through points `(n, dim)` with the fewest knots within the residual `s`
+/// (SciPy's `make_splprep`, points as rows instead of SciPy's list of coordinate arrays).
+/// Parameters `u` default to chord length on `[0, 1]` (`parametrization` chooses another);
+/// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`).
+/// Returns `(curve, u)`.
+#[pyfunction]
+#[pyo3(signature = (points, *, w = None, u = None, k = 3, s = 0.0, t = None, parametrization = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn make_splprep<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
+    u: Option<&Bound<'py, PyAny>>,
+    k: usize,
+    s: f64,
+    t: Option<&Bound<'py, PyAny>>,
+    parametrization: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
+    let pa = floats(points, "points")?;
+    let pts = pa.points("points")?;
+    let params = match u {
+        Some(u) => vec1(u, "u")?,
+        None => {
+            let m = parametrization_or_chord(parametrization)?;
+            py.detach(|| lekalo::parametrize(pts, m)).map_err(lib_err)?
+        }
+    };
+    let wv = w.map(|w| weight_vec(w, WeightsAre::Linear)).transpose()?;
+    let mut fd = FitData::new(pts, &params).map_err(lib_err)?;
+    if let Some(wv) = &wv {
+        fd = fd.with_weights(wv).map_err(lib_err)?;
+    }
+    let kv = t.map(knot_vector).transpose()?;
+    let f = py
+        .detach(|| match &kv {
+            Some(kv) => smoothing_on_knots(&fd, k, kv, s),
+            None => smoothing_condition(&fd, k, s),
+        })
+        .map_err(lib_err)?;
+    Ok((PyBSplineCurve::wrap(f.curve), vec_array(py, &params)))
+}

@@ -1,0 +1,241 @@
+//! Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares
+//! and knot addition, knots added where the residual is largest (FITPACK `fpcurf`/`fpknot`;
+//! `docs/theory/fitting.md#smoothing-condition`).
+
+use super::lsq_pass::{back_substitute, LsqPass, Observations};
+use super::{Rounds, SMOOTHING_RTOL};
+use crate::error::{Error, Result};
+use crate::fit::banded::BandedQr;
+use crate::fit::progress::Steps;
+
+/// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares and knot addition, at most
+/// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
+/// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
+/// ends.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn knot_rounds(
+    obs: &Observations,
+    k: usize,
+    s: f64,
+    domain: Option<(f64, f64)>,
+    cap: usize,
+    steps: &Steps<'_, '_>,
+    seen: &mut dyn FnMut(&[f64]),
+) -> Result<Rounds<BandedQr>> {
+    let md = obs.sites.len();
+    if md < k + 1 {
+        return Err(Error::TooFew {
+            what: "distinct data parameters for the smoothing condition (degree + 1)",
+            min: k + 1,
+            got: md,
+        });
+    }
+    let acc = SMOOTHING_RTOL * s;
+    // knot counts of the polynomial and of interpolation
+    let (nmin, nmax) = (2 * k + 2, md + k + 1);
+    let mut knots = Knots::new(&obs.sites, k, domain);
+    if s == 0.0 {
+        knots.interpolation(&obs.sites);
+    }
+    let (mut fp0, mut fpold, mut nplus) = (f64::INFINITY, 0.0, 0usize);
+    let mut pass = LsqPass::new(obs, k);
+    loop {
+        steps.tick()?;
+        let t = knots.vector();
+        seen(&t);
+        let n = t.len();
+        let qr = pass.run(obs, &t);
+        let c = back_substitute(&qr)?;
+        let fp = qr.rss;
+        if n == nmin {
+            fp0 = fp;
+        }
+        let fpms = fp - s;
+        if fpms < 0.0 || (fpms == 0.0 && s > 0.0) {
+            if -fpms < acc || n == nmin {
+                return Ok(Rounds::Done { t, c });
+            }
+            return Ok(Rounds::Smooth {
+                t,
+                qr,
+                fp0,
+                fp_inf: fp,
+            });
+        }
+        if n >= nmax || knots.count() >= cap {
+            // interpolation, or as many knots as allowed
+            return Ok(Rounds::Done { t, c });
+        }
+        nplus = if n == nmin {
+            1
+        } else {
+            next_nplus(nplus, fpms, fpold - fp, acc)
+        };
+        fpold = fp;
+        pass.residuals(obs, &c);
+        knots.span_sums(obs, &pass, &t);
+        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2, cap) {
+            Added::Some => {}
+            Added::Full => knots.interpolation(&obs.sites),
+            // no span holds a parameter strictly inside: as close to interpolation as it gets
+            Added::None => return Ok(Rounds::Done { t, c }),
+        }
+    }
+}
+/// What [`Knots::add_up_to`] did.
+pub(in crate::fit) enum Added {
+    /// Knots were added.
+    Some,
+    /// The knot count of interpolation is reached.
+    Full,
+    /// No span holds a distinct parameter strictly inside.
+    None,
+}
+
+/// The interior knots of the rounds with FITPACK's bookkeeping per span: the residual sum
+/// `fpint` and the number of distinct parameters strictly inside, `nrdata`.
+pub(in crate::fit) struct Knots {
+    pub(in crate::fit) k: usize,
+    pub(in crate::fit) a: f64,
+    pub(in crate::fit) b: f64,
+    pub(in crate::fit) interior: Vec<f64>,
+    pub(in crate::fit) fpint: Vec<f64>,
+    pub(in crate::fit) nrdata: Vec<usize>,
+}
+
+impl Knots {
+    /// No interior knot; the end knots at `domain`, else at the first and last site. The
+    /// bookkeeping counts the sites strictly inside, whatever the domain (FITPACK's
+    /// `nrdata(1) = m − 2` with `xb ≤ x(1)`, `xe ≥ x(m)`).
+    fn new(sites: &[f64], k: usize, domain: Option<(f64, f64)>) -> Self {
+        let (a, b) = domain.unwrap_or((sites[0], sites[sites.len() - 1]));
+        Knots {
+            k,
+            a,
+            b,
+            interior: Vec::new(),
+            fpint: vec![0.0],
+            nrdata: vec![sites.len().saturating_sub(2)],
+        }
+    }
+
+    pub(in crate::fit) fn count(&self) -> usize {
+        self.interior.len()
+    }
+
+    /// The clamped knot vector.
+    fn vector(&self) -> Vec<f64> {
+        let k = self.k;
+        let mut t = Vec::with_capacity(self.interior.len() + 2 * k + 2);
+        t.extend(std::iter::repeat_n(self.a, k + 1));
+        t.extend_from_slice(&self.interior);
+        t.extend(std::iter::repeat_n(self.b, k + 1));
+        t
+    }
+
+    /// The knots of interpolation at the distinct parameters (FITPACK's choice for `s = 0`):
+    /// the parameters themselves for odd degree, the midpoints for even degree, leaving out
+    /// `⌈(k+1)/2⌉`-ish at each end so that there are `sites − k − 1` of them.
+    fn interpolation(&mut self, sites: &[f64]) {
+        let k = self.k;
+        let count = sites.len().saturating_sub(k + 1);
+        let j0 = k / 2 + 1;
+        self.interior = (0..count)
+            .map(|l| {
+                let j = j0 + l;
+                if k % 2 == 1 {
+                    sites[j]
+                } else {
+                    0.5 * (sites[j] + sites[j - 1])
+                }
+            })
+            .collect();
+    }
+
+    /// `fpint`: the residual of each span, a point on a knot counting half to each side.
+    fn span_sums(&mut self, obs: &Observations, pass: &LsqPass, t: &[f64]) {
+        let k = self.k;
+        let nk1 = t.len() - k - 1;
+        self.fpint.clear();
+        let (mut l, mut part) = (k + 1, 0.0);
+        for (&u, &term) in obs.x.iter().zip(&pass.res) {
+            let new = l < nk1 && u >= t[l];
+            if new {
+                l += 1;
+            }
+            part += term;
+            if new {
+                self.fpint.push(part - 0.5 * term);
+                part = 0.5 * term;
+            }
+        }
+        self.fpint.push(part);
+    }
+
+    /// Adds up to `nplus` knots (FITPACK `fpknot`, one at a time) while fewer than `full`
+    /// and `cap` interior knots: [`Added::Full`] when `full` is reached (the caller places the
+    /// knots of interpolation), [`Added::None`] when no span could be split.
+    pub(in crate::fit) fn add_up_to(
+        &mut self,
+        sites: &[f64],
+        nplus: usize,
+        full: usize,
+        cap: usize,
+    ) -> Added {
+        let before = self.count();
+        for _ in 0..nplus {
+            if !self.add_one(sites) || self.count() >= full || self.count() >= cap {
+                break;
+            }
+        }
+        if self.count() >= full {
+            Added::Full
+        } else if self.count() == before {
+            Added::None
+        } else {
+            Added::Some
+        }
+    }
+
+    /// Adds one knot at the middle distinct parameter of the span with the largest residual
+    /// sum among those with a parameter strictly inside (FITPACK `fpknot`). Returns `false`
+    /// when no span can be split.
+    fn add_one(&mut self, sites: &[f64]) -> bool {
+        let (mut best, mut fpmax, mut begin) = (None, 0.0, 0usize);
+        for (j, (&f, &nd)) in self.fpint.iter().zip(&self.nrdata).enumerate() {
+            if nd > 0 && f > fpmax {
+                fpmax = f;
+                best = Some((j, begin));
+            }
+            begin += nd + 1;
+        }
+        let Some((j, begin)) = best else {
+            return false;
+        };
+        let maxpt = self.nrdata[j];
+        let ihalf = maxpt / 2 + 1;
+        let knot = sites[begin + ihalf];
+        self.interior.insert(j, knot);
+        self.nrdata[j] = ihalf - 1;
+        self.nrdata.insert(j + 1, maxpt - ihalf);
+        let am = maxpt as f64;
+        self.fpint[j] = fpmax * (ihalf - 1) as f64 / am;
+        self.fpint
+            .insert(j + 1, fpmax * (maxpt - ihalf) as f64 / am);
+        true
+    }
+}
+
+/// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
+/// nplus/2, 1))`, doubling when the last round decreased the residual by less than `acc`.
+pub(crate) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> usize {
+    let npl1 = if decrease > acc {
+        // FITPACK truncates the real quotient to an integer
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let v = (nplus as f64 * fpms / decrease).min(1e9) as usize;
+        v
+    } else {
+        nplus * 2
+    };
+    (nplus * 2).min(npl1.max(nplus / 2).max(1))
+}

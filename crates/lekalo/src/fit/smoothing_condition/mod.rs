@@ -1,0 +1,321 @@
+//! The smoothing condition: the spline with the fewest knots whose weighted residual sum of
+//! squares is at most `s` (FITPACK `curfit`/`parcur`, behind SciPy's `splrep`/`splprep`;
+//! `docs/theory/fitting.md#smoothing-condition`).
+//!
+//! | file | what it does |
+//! |---|---|
+//! | `mod.rs` | [`smoothing_condition`] and its variants, the checks of their arguments, the curve and report from the coefficients |
+//! | `lsq_pass.rs` | the data as rows of the least-squares problem, the residual no spline gets below, one least-squares pass over the data for a knot vector |
+//! | `knot_rounds.rs` | step 2: the rounds of least squares and knot addition (FITPACK `fpcurf`/`fpknot`) |
+//! | `weight.rs` | step 3: the smoothing weight `p` on the final knots, by FITPACK's rational iteration (`fpdisc`, `fprati`) |
+
+mod knot_rounds;
+mod lsq_pass;
+#[cfg(test)]
+mod tests;
+mod weight;
+
+use knot_rounds::knot_rounds;
+pub(crate) use knot_rounds::next_nplus;
+pub(in crate::fit) use knot_rounds::{Added, Knots};
+pub(in crate::fit) use lsq_pass::{back_substitute, check_reachable, LsqPass, Observations};
+pub(in crate::fit) use weight::smooth_on;
+pub(crate) use weight::{jump_rows, smooth_weight};
+
+use super::data::{check_in_domain, CurveFit, FitData, FitReport};
+use super::progress::Steps;
+use crate::error::{check_degree_bound, check_finite, Error, Result};
+use crate::numeric::progress::Progress;
+use crate::points::Points;
+use crate::BSplineCurve;
+
+/// Relative accuracy of the final residual: the result has
+/// `(1 − SMOOTHING_RTOL)·s ≤ Σ w_k |C(ū_k) − Q_k|² ≤ s` when it is smoothed (FITPACK's
+/// `tol = 0.001`, which SciPy's `splrep` keeps).
+pub const SMOOTHING_RTOL: f64 = 1e-3;
+
+/// The B-spline of `degree` with the fewest interior knots found whose weighted residual sum of
+/// squares `Σ_k w_k |C(ū_k) − Q_k|²` is at most `s` (Dierckx 1975, 1993 ch. 5; FITPACK `curfit`
+/// for functions and `parcur` for parametric curves, as in SciPy's `splrep(s=…)`/`splprep`).
+/// FITPACK's weights multiply the residual, ours its square: `w_k = w_FITPACK²`.
+///
+/// 1. Start with no interior knot: the least-squares polynomial. If its residual is `≤ s`, it is
+///    the answer.
+/// 2. Otherwise add knots where the residual is largest, as FITPACK's `fpcurf`/`fpknot`: the
+///    residual is summed per knot span (a point on a knot counts half to each side), and the span
+///    with the largest sum among those with a distinct parameter strictly inside is split at its
+///    middle such parameter, the sum shared in proportion. The number added per round starts at
+///    1 and follows `nplus = min(2·nplus, max(⌊nplus·(fp − s)/(fp_old − fp)⌋, nplus/2, 1))`.
+///    Each round is one least-squares pass: the data rows are reduced into a banded triangle
+///    `R` (Householder blocks of the rows of one knot span, `docs/theory/fitting.md#banded-qr`)
+///    and kept only for the span residuals. The round stops when `fp ≤ s`, or when the knots are
+///    those of interpolation (`s = 0` starts there).
+/// 3. On this final knot set, smooth: add the rows `b_j / p` of FITPACK's `fpdisc` (the jumps of
+///    the `p`-th derivative at the interior knots, scaled by `k!·(spans/length)^k`) and find `p`
+///    with `|fp(p) − s| < SMOOTHING_RTOL·s` by FITPACK's rational interpolation (`fprati`),
+///    starting from `p = n / trace R`. Each `p` rotates only the penalty rows into a copy of
+///    the data's `R` and reads the data residual off `R` (`fp = rss₀ + ‖R c − Qᵀy‖²`): O(n·k²),
+///    no pass over the data.
+///
+/// On data with distinct parameters this is FITPACK's algorithm step for step, so the knots and
+/// coefficients are SciPy's to rounding (tested on stored SciPy values). It differs where FITPACK
+/// would return a residual above `s`: a least-squares fit with `s < fp < s + SMOOTHING_RTOL·s`
+/// gets more knots instead of being accepted, and a smoothed fit with `fp > s` continues the
+/// same iteration towards `s − SMOOTHING_RTOL·s/2`, so the result never exceeds `s`.
+/// Repeated parameters are allowed: knots are placed among the distinct ones. Where points share
+/// a parameter with different values no function meets them all: every spline leaves at least
+/// their spread about the group's weighted mean ([`reachable_floor`](lsq_pass::reachable_floor)), and an `s` below it is
+/// refused (as SciPy's `make_splrep` refuses it) rather than answered with a residual above `s`.
+/// The reported λ
+/// is the weight of `Σ_j (jump of C^{(k)} at t_j)²`, `λ = (p·k!·(spans/length)^k)^{-2}`.
+/// Cost: O(rounds·N·k²) for `N` points, the rounds growing like the logarithm of the knot count.
+///
+/// ```
+/// use lekalo::fit::{smoothing_condition, FitData};
+/// use lekalo::PointsRef;
+/// let x: Vec<f64> = (0..200).map(|k| k as f64 / 199.0).collect();
+/// let y: Vec<f64> = x.iter().enumerate().map(|(k, t)| (6.0 * t).sin() + 0.01 * ((k * 7919 % 13) as f64 - 6.0)).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// // the noise's sum of squares is 0.279
+/// let fit = smoothing_condition(&data, 3, 0.3)?;
+/// assert!(fit.report.weighted_rss <= 0.3);
+/// assert!(fit.report.n_ctrl < 30);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
+/// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
+/// [`Error::InvalidArgument`] (`what = "s"`) for `s` below the residual that repeated
+/// parameters with different values leave to every function;
+/// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
+pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
+    smoothing_condition_with_progress(data, degree, s, &Progress::new())
+}
+
+/// [`smoothing_condition`] reporting to `progress` after each round of knot addition and each
+/// smoothing weight `p` tried (`done` the steps so far, `total` one more: their number is not
+/// known ahead; `(done, done)` at the end), and stopping with [`Error::Cancelled`] between two
+/// steps when its cancel flag is set. The result is the same with or without the hook.
+///
+/// # Errors
+/// As [`smoothing_condition`], and [`Error::Cancelled`].
+pub fn smoothing_condition_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    condition_fit(data, degree, s, None, progress)
+}
+
+/// [`smoothing_condition`] on the domain `(a, b)`, which holds the data and may reach beyond
+/// them: the end knots are `a` and `b` (FITPACK `curfit`'s `xb`, `xe`; SciPy's
+/// `splrep(x, y, xb=a, xe=b, s=…)`, `UnivariateSpline(…, bbox=[a, b])`). Everything else is
+/// [`smoothing_condition`]'s: the interior knots are placed among the distinct data parameters
+/// in the same rounds (for `s = 0` those of interpolation), the residual sums per span now
+/// reaching to `a` and `b`, and the jumps of the `k`-th derivative scaled by the spans per
+/// length `(b − a)` as FITPACK's `fpdisc`. With `(a, b)` the data's own ends it is
+/// [`smoothing_condition`], bit for bit.
+///
+/// ```
+/// use lekalo::fit::{smoothing_condition_in, FitData};
+/// use lekalo::PointsRef;
+/// let x = [1.0, 2.0, 4.0, 6.0, 8.5];
+/// let y = [0.5, 0.8, 1.3, 2.5, 2.8];
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let fit = smoothing_condition_in(&data, 3, 0.1, (-100.0, 100.0))?;
+/// assert_eq!(fit.curve.domain(), (-100.0, 100.0));
+/// assert!(fit.report.weighted_rss <= 0.1);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition`]; [`Error::NonFinite`] / [`Error::EmptyDomain`] for a domain
+/// that is not finite with `a < b`; [`Error::ParameterOutOfDomain`] for a data parameter
+/// outside it.
+pub fn smoothing_condition_in(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+) -> Result<CurveFit> {
+    smoothing_condition_in_with_progress(data, degree, s, domain, &Progress::new())
+}
+
+/// [`smoothing_condition_in`] reporting to `progress` as
+/// [`smoothing_condition_with_progress`] does.
+///
+/// # Errors
+/// As [`smoothing_condition_in`], and [`Error::Cancelled`].
+pub fn smoothing_condition_in_with_progress(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: (f64, f64),
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    condition_fit(data, degree, s, Some(domain), progress)
+}
+
+/// The domain `(a, b)` of a fit: finite, `a < b`, holding every data parameter.
+fn check_domain(data: &FitData<'_>, (a, b): (f64, f64)) -> Result<()> {
+    check_finite("domain (a, b) of the smoothing condition", &[a, b])?;
+    if a >= b {
+        return Err(Error::EmptyDomain { min: a, max: b });
+    }
+    check_in_domain(data.params(), (a, b))
+}
+
+/// [`smoothing_condition_with_progress`] and [`smoothing_condition_in_with_progress`]: on the
+/// data's own domain when `domain` is `None`.
+fn condition_fit(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    domain: Option<(f64, f64)>,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    check_condition_args(degree, s)?;
+    if let Some(domain) = domain {
+        check_domain(data, domain)?;
+    }
+    let steps = Steps::new(progress, "smoothing condition (knot rounds, weights)");
+    let obs = Observations::new(data);
+    check_reachable(&obs, s)?;
+    let k = degree;
+    knot_rounds(&obs, k, s, domain, usize::MAX, &steps, &mut |_| {})?.into_fit(
+        data,
+        &obs,
+        k,
+        &steps,
+        |t, qr, fp0, fp_inf| smooth_on(&obs, k, t, qr, s, fp0, fp_inf, &steps),
+    )
+}
+
+/// The knot vectors of the rounds of [`smoothing_condition`], in order: the clamped knot vector
+/// of each least-squares pass of step 2 (the first without interior knots, unless `s = 0`,
+/// whose only round is on the knots of interpolation). The last is the knot vector the
+/// smoothing condition smooths on. This is SciPy's `generate_knots(x, y, k=…, s=…, nest=…)`
+/// (Dierckx, "Curve and Surface Fitting with Splines", 1993, ch. 5): `max_knots` (SciPy's `nest`, at least `2·degree + 2`) stops the
+/// rounds once a knot vector has that many knots; `None` runs them to the end.
+///
+/// ```
+/// use lekalo::fit::{smoothing_knot_sequence, FitData};
+/// use lekalo::PointsRef;
+/// let x: Vec<f64> = (0..8).map(|k| k as f64).collect();
+/// let y: Vec<f64> = x.iter().map(|v| (v * std::f64::consts::PI / 8.0).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let seq = smoothing_knot_sequence(&data, 3, 1e-7, None)?;
+/// let counts: Vec<usize> = seq.iter().map(Vec::len).collect();
+/// assert_eq!(counts, vec![8, 9, 10, 11, 12]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition`]; [`Error::TooFew`] for `max_knots < 2·degree + 2`.
+pub fn smoothing_knot_sequence(
+    data: &FitData<'_>,
+    degree: usize,
+    s: f64,
+    max_knots: Option<usize>,
+) -> Result<Vec<Vec<f64>>> {
+    check_condition_args(degree, s)?;
+    let cap = check_max_knots(degree, max_knots)?;
+    let obs = Observations::new(data);
+    let mut seq = Vec::new();
+    let quiet = Progress::new();
+    let steps = Steps::new(&quiet, "");
+    knot_rounds(&obs, degree, s, None, cap, &steps, &mut |t| {
+        seq.push(t.to_vec());
+    })?;
+    Ok(seq)
+}
+
+/// `max_knots` as a count of interior knots (`usize::MAX` for none), refusing fewer knots than
+/// the polynomial has.
+pub(in crate::fit) fn check_max_knots(degree: usize, max_knots: Option<usize>) -> Result<usize> {
+    match max_knots {
+        None => Ok(usize::MAX),
+        Some(n) if n < 2 * degree + 2 => Err(Error::TooFew {
+            what: "knots allowed (max_knots, SciPy's nest): the polynomial has 2·degree + 2",
+            min: 2 * degree + 2,
+            got: n,
+        }),
+        Some(n) => Ok(n - 2 * degree - 2),
+    }
+}
+/// Where the knot rounds of step 2 ended, `Q` the least-squares triangle of the data (banded
+/// for open curves, cyclic for closed ones).
+pub(in crate::fit) enum Rounds<Q> {
+    /// The answer: the knots and the least-squares coefficients on them.
+    Done { t: Vec<f64>, c: Vec<f64> },
+    /// Knots whose least-squares residual `fp_inf` is below `s`: smooth on them (step 3).
+    Smooth {
+        t: Vec<f64>,
+        qr: Q,
+        fp0: f64,
+        fp_inf: f64,
+    },
+}
+
+impl<Q> Rounds<Q> {
+    /// The fitted curve and its report: the least-squares coefficients when the rounds ended
+    /// with the answer, else those of `smooth(t, qr, fp0, fp_inf)` (coefficients and λ, step
+    /// 3); `steps` finished.
+    pub(super) fn into_fit(
+        self,
+        data: &FitData<'_>,
+        obs: &Observations,
+        k: usize,
+        steps: &Steps<'_, '_>,
+        smooth: impl FnOnce(&[f64], &Q, f64, f64) -> Result<(Vec<f64>, Option<f64>)>,
+    ) -> Result<CurveFit> {
+        let fit = match self {
+            Rounds::Done { t, c } => finish(data, obs, k, t, &c, None),
+            Rounds::Smooth { t, qr, fp0, fp_inf } => {
+                let (c, lambda) = smooth(&t, &qr, fp0, fp_inf)?;
+                finish(data, obs, k, t, &c, lambda)
+            }
+        };
+        steps.finish();
+        Ok(fit)
+    }
+}
+
+/// The curve from the coefficients (relative to the reference point) and its report.
+pub(in crate::fit) fn finish(
+    data: &FitData<'_>,
+    obs: &Observations,
+    k: usize,
+    t: Vec<f64>,
+    c: &[f64],
+    lambda: Option<f64>,
+) -> CurveFit {
+    let mut flat = c.to_vec();
+    for p in flat.chunks_exact_mut(obs.dim) {
+        p.iter_mut().zip(&obs.center).for_each(|(v, o)| *v += o);
+    }
+    let curve = BSplineCurve::from_raw(k, t, Points::from_raw(flat, obs.dim));
+    let report = FitReport::new(&curve, data, lambda);
+    CurveFit { curve, report }
+}
+
+/// The arguments every smoothing condition (open and closed) refuses: `s` negative or not finite,
+/// a degree of 0 or beyond the library's bound.
+pub(crate) fn check_condition_args(degree: usize, s: f64) -> Result<()> {
+    if !(s >= 0.0 && s.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: "s",
+            value: s,
+        });
+    }
+    check_degree_bound(degree)?;
+    if degree == 0 {
+        return Err(Error::Degree {
+            degree,
+            reason: "the smoothing condition needs degree ≥ 1".into(),
+        });
+    }
+    Ok(())
+}
