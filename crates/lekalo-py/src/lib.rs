@@ -10,8 +10,8 @@
 //! - errors: `error` (`lekalo.Error`, with `lekalo.InputError`, a `ValueError`, and
 //!   `lekalo.NumericalError`, a `numpy.linalg.LinAlgError`);
 //! - classes: `curves` (their calculus in `calculus`), `surfaces`, `tensor` (N variables,
-//!   SciPy's `NdBSpline`), `interp` (interpolation, Hermite; SciPy's Hermite slopes in
-//!   `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
+//!   SciPy's `NdBSpline`; `tensor_values`: SciPy's `(t, c, k)` arrays evaluated in place),
+//!   `interp` (interpolation, Hermite; SciPy's Hermite slopes in `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
 //! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
 //! - CAD files: `faces` (`read_step`, `read_iges`, `write_step`, `write_iges`, `Face`: a surface
 //!   trimmed by loops of edges);
@@ -38,6 +38,7 @@ mod shape;
 mod slopes;
 mod surfaces;
 mod tensor;
+mod tensor_values;
 mod words;
 
 use pyo3::prelude::*;
@@ -78,6 +79,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::cubic_through_four_points, m)?)?;
     m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(pp::hermite_bernstein, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::ppoly_values, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_periodic, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_raw, m)?)?;
     m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;
@@ -90,5 +92,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     query::register(m)?;
     slopes::register(m)?;
     tensor::register(m)?;
+    tensor_values::register(m)?;
     Ok(())
 }

@@ -526,3 +526,41 @@ pub(crate) fn piecewise_hermite_bernstein(
         .map_err(lib_err)?;
     Ok(PyBSplineCurve::wrap(curve))
 }
+
+/// `ppoly_values(c, x, xp, nu=0)`: the `nu`-th derivative of SciPy's `PPoly` with coefficients
+/// `c` (shape `(k, pieces, dim)`, float64, the highest power first) on the non-decreasing
+/// breakpoints `x` at the points `xp` (any shape, result `xp.shape + (dim,)`), the end pieces
+/// continued (`lekalo::pp::PowerFormRef::par_eval_extrapolated`: Horner's rule on the arrays in
+/// place, nothing copied).
+#[pyfunction]
+#[pyo3(signature = (c, x, xp, nu = 0))]
+pub(crate) fn ppoly_values<'py>(
+    py: Python<'py>,
+    c: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    xp: &Bound<'py, PyAny>,
+    nu: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let ca = floats(c, "c")?;
+    let [order, pieces, dim] = ca.shape()[..] else {
+        return Err(bad(format!(
+            "c: shape {:?}; expected (k, pieces, dim)",
+            ca.shape()
+        )));
+    };
+    let xa = floats(x, "x")?;
+    if xa.shape() != [pieces + 1] {
+        return Err(bad(format!(
+            "x: shape {:?}; expected {} breakpoints for {pieces} pieces",
+            xa.shape(),
+            pieces + 1
+        )));
+    }
+    let f = lekalo::pp::PowerFormRef::new(ca.data(), order, xa.data(), dim).map_err(lib_err)?;
+    let pa = floats(xp, "xp")?;
+    let xs = pa.data();
+    check_size("xp", &[xs.len(), dim])?;
+    filled(py, &out_shape(&pa, &[dim]), |out| {
+        f.par_eval_extrapolated(xs, nu, out)
+    })
+}

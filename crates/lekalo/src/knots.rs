@@ -430,18 +430,7 @@ impl KnotVector {
     /// Span search without domain checks; `t` must lie in the non-empty domain.
     #[inline]
     pub(crate) fn span_unchecked(&self, degree: usize, t: f64) -> usize {
-        let n = self.knots.len() - degree - 2; // last control point index
-        let end = self.knots[n + 1];
-        if t >= end {
-            // right end: last non-empty span
-            let mut i = n;
-            while i > degree && self.knots[i] >= end {
-                i -= 1;
-            }
-            return i;
-        }
-        let first_greater = self.knots.partition_point(|&k| k <= t);
-        (first_greater - 1).clamp(degree, n)
+        span_in(&self.knots, degree, t)
     }
 
     /// A cursor for span search over a batch of parameters: amortised O(1) per parameter when
@@ -458,37 +447,69 @@ impl KnotVector {
     /// ```
     #[must_use]
     pub fn span_cursor(&self, degree: usize) -> SpanCursor<'_> {
-        SpanCursor {
-            knots: self,
-            degree,
-            span: degree,
-        }
+        SpanCursor::over(&self.knots, degree)
     }
+}
+
+/// [`KnotVector::span_unchecked`] on sorted knots given as a slice (at least `2·degree + 2`
+/// of them, `t` in the non-empty domain): the span `i` with `t_i ≤ t < t_{i+1}`, at the right
+/// end the last non-empty span (P&T Algorithm A2.1 by binary search).
+#[inline]
+pub(crate) fn span_in(knots: &[f64], degree: usize, t: f64) -> usize {
+    let n = knots.len() - degree - 2; // last control point index
+    let end = knots[n + 1];
+    if t >= end {
+        // right end: last non-empty span
+        let mut i = n;
+        while i > degree && knots[i] >= end {
+            i -= 1;
+        }
+        return i;
+    }
+    let first_greater = knots.partition_point(|&k| k <= t);
+    (first_greater - 1).clamp(degree, n)
 }
 
 /// Span search with memory of the previous span (see [`KnotVector::span_cursor`]).
 #[derive(Debug, Clone)]
 pub struct SpanCursor<'a> {
-    knots: &'a KnotVector,
+    knots: &'a [f64],
     degree: usize,
     span: usize,
 }
 
-impl SpanCursor<'_> {
+impl<'a> SpanCursor<'a> {
     /// Longest forward walk before falling back to binary search.
     const MAX_WALK: usize = 8;
+
+    /// A cursor over sorted knots given as a slice (validated by the caller, as a
+    /// [`KnotVector`]'s are).
+    pub(crate) fn over(knots: &'a [f64], degree: usize) -> Self {
+        SpanCursor {
+            knots,
+            degree,
+            span: degree,
+        }
+    }
 
     /// Span of `t`, as [`KnotVector::find_span`].
     ///
     /// # Errors
     /// As [`KnotVector::find_span`].
     pub fn find(&mut self, t: f64) -> Result<usize> {
-        let k = &self.knots.knots;
+        let k = self.knots;
         let p = self.degree;
         if k.len() / 2 <= p {
-            return self.knots.find_span(p, t);
+            return Err(Error::Degree {
+                degree: p,
+                reason: format!(
+                    "{} knots carry a degree of at most {}",
+                    k.len(),
+                    (k.len() / 2).saturating_sub(1)
+                ),
+            });
         }
-        let (min, max) = self.knots.domain(p);
+        let (min, max) = (k[p], k[k.len() - p - 1]);
         if !(t >= min && t <= max) || min >= max {
             return Err(Error::ParameterOutOfDomain { t, min, max });
         }
@@ -498,7 +519,7 @@ impl SpanCursor<'_> {
     /// Span of `t` already known to be in the domain.
     #[inline]
     pub(crate) fn find_unchecked(&mut self, t: f64) -> usize {
-        let k = &self.knots.knots;
+        let k = self.knots;
         let n = k.len() - self.degree - 2;
         let s = self.span;
         // the cursor only ever holds non-empty spans; the right end belongs to span n only when
@@ -519,7 +540,7 @@ impl SpanCursor<'_> {
                 }
             }
         }
-        self.span = self.knots.span_unchecked(self.degree, t);
+        self.span = span_in(k, self.degree, t);
         self.span
     }
 }
@@ -616,7 +637,7 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] naming `what` if `max − min` overflows.
-fn check_width(what: &'static str, min: f64, max: f64) -> Result<()> {
+pub(crate) fn check_width(what: &'static str, min: f64, max: f64) -> Result<()> {
     if !(max - min).is_finite() {
         return Err(Error::InvalidArgument {
             what,

@@ -107,9 +107,9 @@ pub use tensor::{
     tensor_grid_least_squares, tensor_grid_smoothing, tensor_grid_smoothing_with_progress,
     tensor_scattered_least_squares, tensor_scattered_least_squares_with,
     tensor_scattered_smoothing, tensor_scattered_smoothing_with_progress, KnotLimit,
-    RankDeficiency, ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorGridSmoothing,
-    TensorInterpolation, TensorNurbs, TensorScatteredFit, TensorScatteredSmoothing,
-    MAX_TENSOR_DERIVATIVE_TABLE,
+    RankDeficiency, ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorBSplineRef,
+    TensorGridSmoothing, TensorInterpolation, TensorNurbs, TensorScatteredFit,
+    TensorScatteredSmoothing, MAX_TENSOR_DERIVATIVE_TABLE,
 };
 
 // -- degree change of Bezier curves and surfaces --

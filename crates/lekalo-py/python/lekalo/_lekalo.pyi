@@ -1,6 +1,6 @@
 """Type stubs of the native module (see the docstrings for details)."""
 
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, TypeVar, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, TypeVar, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -675,6 +675,18 @@ def fit_tensor_grid_smoothing(
 def fit_tensor_scattered(
     x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None, eps: Optional[float] = None, full_output: bool = False
 ) -> Union[Tuple[TensorBSpline, Array, float], Tuple[TensorBSpline, Array, float, int]]: ...
+def tensor_values(
+    t: Sequence[Array],
+    c: Array,
+    k: Union[int, Sequence[int]],
+    x: ArrayLike,
+    nu: Optional[Sequence[int]] = None,
+    beyond: Literal["continue", "clamp", "nan"] = "continue",
+) -> Array: ...
+def tensor_grid_values(
+    t: Sequence[Array], c: Array, k: Union[int, Sequence[int]], axes: Sequence[Array], nu: Optional[Sequence[int]] = None
+) -> Array: ...
+def ppoly_values(c: Array, x: Array, xp: ArrayLike, nu: int = 0) -> Array: ...
 def tensor_design_matrix(
     x: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, extrapolate: bool = True
 ) -> Tuple[Array, npt.NDArray[np.int64], npt.NDArray[np.int64], Tuple[int, int]]: ...

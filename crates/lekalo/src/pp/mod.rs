@@ -7,6 +7,8 @@
 //!   ([`PiecewisePolynomial::from_decreasing`], [`PiecewisePolynomial::to_decreasing`]).
 //! - `extrapolation.rs`: evaluation with the end pieces continued
 //!   ([`PiecewisePolynomial::eval_extrapolated_into`]).
+//! - `power_form.rs`: [`PowerFormRef`], SciPy's `PPoly` arrays evaluated in place (Horner,
+//!   the end pieces continued).
 //! - `hermite_bernstein.rs`: Hermite interpolation in Bernstein form with derivatives of any
 //!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
 //! - `integral.rs`: antiderivatives and integrals in pp-form
@@ -21,6 +23,7 @@ mod expression;
 mod extrapolation;
 mod hermite_bernstein;
 mod integral;
+mod power_form;
 pub(crate) mod ppform;
 mod quasi_interpolation;
 mod roots;
@@ -31,6 +34,7 @@ pub use divided_difference::{
 };
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use hermite_bernstein::{hermite_bernstein, piecewise_hermite_bernstein, MAX_HERMITE_DEGREE};
+pub use power_form::PowerFormRef;
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi_interpolation::{
     quasi_interpolate, quasi_interpolate_expression, sample_quasi_interpolant,

@@ -2,8 +2,12 @@
 //! one parameter list per direction) without forming the grid's points:
 //! `docs/theory/tensor.md#evaluation-on-grids`.
 
+use rayon::prelude::*;
+
 use crate::error::{Error, Result};
-use crate::tensor::spline::{accumulate, basis_vector, checked_size, TensorBSpline, TensorScratch};
+use crate::knots::SpanCursor;
+use crate::tensor::eval::{accumulate, basis_vector, TensorBSplineRef, TensorScratch};
+use crate::tensor::spline::{checked_size, TensorBSpline};
 
 /// Basis vectors and spans of one direction at every parameter of its list.
 struct AxisTable {
@@ -56,6 +60,21 @@ impl TensorBSpline {
         orders: Option<&[usize]>,
         out: &mut [f64],
     ) -> Result<()> {
+        self.view().eval_grid(axes, orders, out)
+    }
+}
+
+impl TensorBSplineRef<'_> {
+    /// As [`TensorBSpline::eval_grid`].
+    ///
+    /// # Errors
+    /// As [`TensorBSpline::eval_grid`].
+    pub fn eval_grid(
+        &self,
+        axes: &[&[f64]],
+        orders: Option<&[usize]>,
+        out: &mut [f64],
+    ) -> Result<()> {
         let n = self.n_vars();
         let dim = self.dim();
         if axes.len() != n {
@@ -80,9 +99,35 @@ impl TensorBSpline {
         }
         let tables = self.axis_tables(axes, orders)?;
         if self.grid_cost(&m) < self.pointwise_cost(&m) {
-            let mut buffers: Vec<Vec<f64>> =
-                (1..n).map(|a| vec![0.0; self.stride(a - 1)]).collect();
-            grid_rec(self, 0, self.control.as_slice(), &tables, &mut buffers, out);
+            if n > 1 && size >= PAR_MIN_VALUES {
+                // the rows of the first direction on the thread pool, each with its buffers
+                let row = size / m[0];
+                let table = &tables[0];
+                let p = self.degrees[0];
+                let len = self.stride(0);
+                out.par_chunks_mut(row)
+                    .zip(table.spans.par_iter())
+                    .zip(table.values.par_chunks_exact(p + 1))
+                    .for_each_init(
+                        || -> Vec<Vec<f64>> {
+                            (1..n).map(|a| vec![0.0; self.stride(a - 1)]).collect()
+                        },
+                        |buffers, ((o, &span), nv)| {
+                            let (buf, rest) = buffers
+                                .split_first_mut()
+                                .expect("a buffer per direction after the first");
+                            for (j, &v) in nv.iter().enumerate() {
+                                let at = (span - p + j) * len;
+                                accumulate(buf, v, &self.net[at..at + len], j == 0);
+                            }
+                            grid_rec(self, 1, buf, &tables, rest, o);
+                        },
+                    );
+            } else {
+                let mut buffers: Vec<Vec<f64>> =
+                    (1..n).map(|a| vec![0.0; self.stride(a - 1)]).collect();
+                grid_rec(self, 0, self.net, &tables, &mut buffers, out);
+            }
         } else {
             self.grid_pointwise(&m, &tables, &mut scratch, out);
         }
@@ -94,8 +139,8 @@ impl TensorBSpline {
         let mut tables = Vec::with_capacity(axes.len());
         for (a, xs) in axes.iter().enumerate() {
             let p = self.degrees[a];
-            let knots = self.knots[a].as_slice();
-            let mut cursor = self.knots[a].span_cursor(p);
+            let knots = self.knots[a];
+            let mut cursor = SpanCursor::over(knots, p);
             let mut spans = Vec::with_capacity(xs.len());
             let mut values = vec![0.0; xs.len() * (p + 1)];
             let k = orders.map_or(0, |k| k[a]);
@@ -166,11 +211,17 @@ impl TensorBSpline {
     }
 }
 
+/// Grids of at least this many numbers have the rows of their first direction computed on
+/// the thread pool.
+const PAR_MIN_VALUES: usize = 1 << 14;
+
 /// Contracts direction `a` of `src` (the net of directions `a…N−1`, full size) at every
 /// parameter of the direction, recursing into the next direction; at the last direction the
-/// values go to `out` (the sub-grid of directions `a…N−1`).
+/// values go to `out` (the sub-grid of directions `a…N−1`). Scalar values in the last
+/// direction are one dot product of `p + 1` numbers a parameter, summed from the first term
+/// as [`accumulate`] does.
 fn grid_rec(
-    s: &TensorBSpline,
+    s: &TensorBSplineRef<'_>,
     a: usize,
     src: &[f64],
     tables: &[AxisTable],
@@ -180,6 +231,21 @@ fn grid_rec(
     let p = s.degrees[a];
     let table = &tables[a];
     let len = s.stride(a);
+    if buffers.is_empty() && len == 1 {
+        for ((o, &span), nv) in out
+            .iter_mut()
+            .zip(&table.spans)
+            .zip(table.values.chunks_exact(p + 1))
+        {
+            let w = &src[span - p..=span];
+            let mut acc = nv[0] * w[0];
+            for j in 1..=p {
+                acc += nv[j] * w[j];
+            }
+            *o = acc;
+        }
+        return;
+    }
     let points = table.spans.len();
     let sub = out.len() / points.max(1);
     for (i, (&span, nv)) in table

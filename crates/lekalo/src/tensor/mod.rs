@@ -5,7 +5,11 @@
 //! [`curve`](crate::curve) and [`surface`](crate::surface), with which they convert bit for bit.
 //!
 //! - `spline.rs`: [`TensorBSpline`], the type and its validation (net layout: first direction
-//!   slowest), evaluation at a point, partial derivatives, sequential and parallel batches.
+//!   slowest), and its evaluation at a point, partial derivatives and batches (by the kernels
+//!   of `eval.rs`).
+//! - `eval.rs`: [`TensorBSplineRef`], a spline whose arrays are borrowed, and the evaluation
+//!   kernels: window contraction, the fixed-size trivariate kernel, sequential, parallel and
+//!   cell-ordered batches, the points beyond the domain ([`Beyond`]).
 //! - `grid_eval.rs`: evaluation on the outer product of per-direction parameter lists
 //!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
 //! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
@@ -33,6 +37,7 @@
 
 mod any;
 mod design_matrix;
+mod eval;
 mod fit;
 mod grid_eval;
 mod grid_smoothing;
@@ -47,6 +52,7 @@ mod spline;
 
 pub use any::Tensor;
 pub use design_matrix::{tensor_design_matrix, TensorDesignMatrix};
+pub use eval::{Beyond, TensorBSplineRef};
 pub use fit::tensor_grid_least_squares;
 pub use grid_smoothing::{
     tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,
@@ -63,5 +69,7 @@ pub use scattered_smoothing::{
 };
 pub use spline::TensorBSpline;
 
+#[cfg(test)]
+mod eval_tests;
 #[cfg(test)]
 mod tests;

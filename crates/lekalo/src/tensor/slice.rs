@@ -12,7 +12,8 @@ use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
-use crate::tensor::spline::{accumulate, basis_vector, check_len, TensorBSpline};
+use crate::tensor::eval::{accumulate, basis_vector};
+use crate::tensor::spline::{check_len, TensorBSpline};
 
 impl TensorBSpline {
     /// `(outer, n_a, inner)` of direction `a` (see the module documentation).

@@ -69,7 +69,7 @@ fn naive_eval(s: &TensorBSpline, x: &[f64]) -> Vec<f64> {
 
 /// A random spline: `N` in 1..=4, degree 0..=3 and up to 3 extra control points per direction,
 /// knots clamped or not with multiple interior knots now and then, dim 1..=3.
-fn spline() -> impl Strategy<Value = TensorBSpline> {
+pub(super) fn spline() -> impl Strategy<Value = TensorBSpline> {
     (1usize..=4, 1usize..=3)
         .prop_flat_map(|(n, dim)| {
             (

@@ -213,18 +213,36 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
         tx, ty = (np.asarray(t) for t in spline.t)
         kx, ky = kx - dx, ky - dy
     else:
-        spline = _tensor(tx, ty, c, kx, ky)
+        # values: lekalo's tensor_values on the arrays in place (no spline built, nothing of
+        # the coefficients copied), coordinates outside the base box taken at its edge
+        tx = np.ascontiguousarray(tx)
+        ty = np.ascontiguousarray(ty)
+        nx, ny = len(tx) - kx - 1, len(ty) - ky - 1
+        net = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[: nx * ny]).reshape(nx, ny)
+        if grid:
+            _check_grid_size(x, y)
+            xs = np.ascontiguousarray(_clip(x, tx, kx).ravel())
+            ys = np.ascontiguousarray(_clip(y, ty, ky).ravel())
+            return _lekalo.tensor_grid_values((tx, ty), net, (int(kx), int(ky)), (xs, ys))
+        pts = np.empty(np.shape(x) + (2,))
+        pts[..., 0] = x
+        pts[..., 1] = y
+        return _lekalo.tensor_values((tx, ty), net, (int(kx), int(ky)), pts, None, "clamp")
     if grid:
-        if np.size(x) * np.size(y) > _lekalo.MAX_SCALARS:
-            raise MemoryError(
-                f"a grid of {np.size(x)} x {np.size(y)} values exceeds lekalo's size limit "
-                f"{_lekalo.MAX_SCALARS} (MAX_SCALARS); evaluate it in parts"
-            )
+        _check_grid_size(x, y)
         xs = _clip(x, tx, kx).ravel()
         ys = _clip(y, ty, ky).ravel()
         return np.asarray(spline.grid(np.ascontiguousarray(xs), np.ascontiguousarray(ys)))
     pts = np.stack([_clip(x, tx, kx).ravel(), _clip(y, ty, ky).ravel()], axis=-1)
     return np.asarray(spline(np.ascontiguousarray(pts))).reshape(np.shape(x))
+
+
+def _check_grid_size(x: Any, y: Any) -> None:
+    if np.size(x) * np.size(y) > _lekalo.MAX_SCALARS:
+        raise MemoryError(
+            f"a grid of {np.size(x)} x {np.size(y)} values exceeds lekalo's size limit "
+            f"{_lekalo.MAX_SCALARS} (MAX_SCALARS); evaluate it in parts"
+        )
 
 
 class _BivariateSplineBase:

@@ -41,6 +41,10 @@ class NdBSpline:
                     f"{c.shape[d]} coefficients for {len(self._t[d])} knots, need at least {n} for k={k}."
                 )
         self._c = np.ascontiguousarray(c, dtype=_get_dtype(c.dtype))
+        # the coefficients as float64 numbers, a view of ``_c`` (a complex value is two trailing
+        # numbers), handed to lekalo at every call: changes made in place are seen
+        cc = self._c[..., None] if self._c.dtype.kind == "c" and self._c.ndim == ndim else self._c
+        self._cc = cc.view(np.float64) if cc.dtype.kind == "c" else cc
 
     @property
     def k(self) -> tuple:
@@ -55,54 +59,29 @@ class NdBSpline:
         return self._c
 
     def __call__(self, xi: Any, *, nu: Any = None, extrapolate: Any = None) -> np.ndarray:
+        """Values (or the partial derivative of orders ``nu``) at the points ``xi`` of shape
+        ``(..., ndim)``: lekalo's ``tensor_values`` on the knots and coefficients in place
+        (``TensorBSplineRef::par_eval_batch_beyond``); beyond the base box the end polynomials
+        continued (``extrapolate``) or nan, and nan at a NaN or infinite coordinate, as SciPy."""
         ndim = len(self._t)
         extrapolate = self.extrapolate if extrapolate is None else bool(extrapolate)
-        if nu is None:
-            nu = np.zeros((ndim,), dtype=np.int64)
-        else:
+        orders = None
+        if nu is not None:
             nu = np.asarray(nu, dtype=np.int64)
             if nu.ndim != 1 or nu.shape[0] != ndim:
                 raise ValueError(f"invalid number of derivative orders {nu = } for ndim = {ndim}.")
             if any(nu < 0):
                 raise ValueError(f"derivatives must be positive, got {nu = }")
+            orders = [int(v) for v in nu]
         xi = np.asarray(xi, dtype=float)
         shape = xi.shape
         if shape[-1] != ndim:
             raise ValueError(f"Shapes: xi.shape={shape} and ndim={ndim}")
-        xi = np.ascontiguousarray(xi.reshape(-1, ndim))
-        lo = np.array([td[kd] for td, kd in zip(self._t, self._k)])
-        hi = np.array([td[-kd - 1] for td, kd in zip(self._t, self._k)])
-        undefined = np.isnan(xi).any(axis=1)  # nan, as SciPy
-        outside = np.any((xi < lo) | (xi > hi), axis=1)
-        complex_ = self._c.dtype.kind == "c"
-        cc = self._c[..., None] if complex_ and self._c.ndim == ndim else self._c
-        cc = np.ascontiguousarray(cc.view(float) if complex_ else cc)
-        tail = cc.shape[ndim:]
-        cc = cc.reshape(cc.shape[:ndim] + (-1,))
-        # lekalo's spline, kept between calls while knots and coefficients are unchanged (in
-        # place too)
-        kept = getattr(self, "_lekalo_", None)
-        if (
-            kept is not None
-            and kept[0] is self._c
-            and np.array_equal(kept[1], self._c)
-            and all(np.array_equal(a, b) for a, b in zip(kept[2], self._t))
-        ):
-            spline = kept[3]
-        else:
-            spline = _lekalo.TensorBSpline(self._t, cc, list(self._k))
-            self._lekalo_ = (self._c, self._c.copy(), tuple(td.copy() for td in self._t), spline)
-        out = np.full((xi.shape[0], cc.shape[-1]), np.nan)
-        # beyond the base box: the end polynomials continued (extrapolate) or nan; a point with
-        # a NaN or infinite coordinate is nan either way
-        inside = np.all(np.isfinite(xi), axis=1) if extrapolate else ~outside & ~undefined
-        if inside.any():
-            out[inside] = np.asarray(
-                spline(np.ascontiguousarray(xi[inside]), nu=[int(v) for v in nu], extrapolate=extrapolate)
-            ).reshape(-1, cc.shape[-1])
-        out = out.reshape((xi.shape[0],) + tail)
-        if complex_:
-            out = np.ascontiguousarray(out).view(np.complex128)
+        if not xi.flags.c_contiguous:
+            xi = np.ascontiguousarray(xi)
+        out = _lekalo.tensor_values(self._t, self._cc, self._k, xi, orders, "continue" if extrapolate else "nan")
+        if self._c.dtype.kind == "c":
+            out = out.view(np.complex128)
         return out.reshape(shape[:-1] + self._c.shape[ndim:])
 
     def derivative(self, nu: Any) -> "NdBSpline":

@@ -355,9 +355,10 @@ class PPoly(_PPolyBase):
 
     def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
         """The value (or ``nu``-th derivative) at ``x``. With real coefficients given and the
-        end pieces continued, lekalo's pp-form itself evaluates (Horner's rule in each piece,
-        ``PiecewisePolynomial.eval_extrapolated``) without the B-spline form being made; the
-        other cases as the base class."""
+        end pieces continued, Horner's rule in each piece on the coefficients themselves
+        without the B-spline form being made: in place on increasing breakpoints (lekalo's
+        ``ppoly_values``, ``PowerFormRef``), through lekalo's pp-form on decreasing ones
+        (``PiecewisePolynomial.eval_extrapolated``); the other cases as the base class."""
         c = self._c
         ext = self.extrapolate if extrapolate is None else extrapolate
         if c is not None and ext is True and self._degree >= 1 and c.size and c.dtype == np.float64:
@@ -366,7 +367,12 @@ class PPoly(_PPolyBase):
             if 0 <= nu <= self._degree and xa.dtype != object:
                 xf = np.ascontiguousarray(xa.ravel(), dtype=np.float64)
                 if np.isfinite(xf).all():
-                    vals = self._pp_direct().eval_extrapolated(xf, nu)
+                    if self.x[-1] > self.x[0]:
+                        # increasing breakpoints: Horner on SciPy's arrays in place
+                        cc = np.ascontiguousarray(c).reshape(c.shape[0], c.shape[1], -1)
+                        vals = _lekalo.ppoly_values(cc, np.ascontiguousarray(self.x, dtype=np.float64), xf, nu)
+                    else:
+                        vals = self._pp_direct().eval_extrapolated(xf, nu)
                     out = vals.reshape(xa.shape + c.shape[2:])
                     if self.axis != 0:
                         axes = list(range(out.ndim))

@@ -1,0 +1,205 @@
+//! Values of a tensor-product B-spline given as SciPy's arrays `(t, c, k)`, evaluated in place:
+//! the knots and coefficients are borrowed from NumPy for the call (`lekalo::TensorBSplineRef`,
+//! checked in `O(Σ|t_a|)`, the coefficients never copied), so that an object of `lekalo.scipy`
+//! keeps no second copy and sees its arrays changed in place. Points beyond the domain follow
+//! one of the `Beyond` rules: `"continue"` (the end spans' polynomials), `"clamp"` (FITPACK:
+//! the coordinate taken at the domain's end) or `"nan"`; a NaN or infinite coordinate gives NaN.
+
+use lekalo::tensor::Beyond;
+use lekalo::TensorBSplineRef;
+use pyo3::prelude::*;
+
+use crate::convert::{check_size, filled, floats, FloatArray};
+use crate::error::{bad, named};
+
+/// The knot arrays of `t`, one 1-D float64 array per variable, borrowed.
+fn knot_arrays<'py>(t: &Bound<'py, PyAny>) -> PyResult<Vec<FloatArray<'py>>> {
+    let items: Vec<Bound<'py, PyAny>> = t
+        .try_iter()
+        .map_err(|_| bad("t: expected a sequence of 1-D arrays, one per variable".into()))?
+        .collect::<PyResult<_>>()?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(a, x)| {
+            let what = format!("t[{a}]");
+            let arr = floats(x, &what)?;
+            if arr.shape().len() != 1 {
+                return Err(bad(format!(
+                    "{what}: expected a 1-D array of knots, got shape {:?}",
+                    arr.shape()
+                )));
+            }
+            Ok(arr)
+        })
+        .collect()
+}
+
+/// Degrees from `k`: one integer for every variable, or one per variable.
+fn degrees(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
+    if let Ok(p) = k.extract::<usize>() {
+        return Ok(vec![p; n]);
+    }
+    let list: Vec<usize> = k.extract().map_err(|_| {
+        bad("k: expected a non-negative integer or one per variable (a tuple of ints)".into())
+    })?;
+    if list.len() != n {
+        return Err(bad(format!(
+            "k: {} degrees for {n} variables; give one integer, or one per variable",
+            list.len()
+        )));
+    }
+    Ok(list)
+}
+
+/// The borrowed spline of `(t, c, k)` (`c` of shape `(n_1, …, n_N, *trailing)`), with the
+/// trailing axes; every axis of `c` checked against the knots and degrees.
+fn spline_ref<'a>(
+    knots: &'a [FloatArray<'_>],
+    degrees: &'a [usize],
+    c: &'a FloatArray<'_>,
+) -> PyResult<(TensorBSplineRef<'a>, Vec<usize>)> {
+    let n = knots.len();
+    let shape = c.shape();
+    if shape.len() < n {
+        return Err(bad(format!(
+            "c: shape {shape:?} has fewer axes than the {n} variables; c has shape (n_1, …, n_N, *trailing)"
+        )));
+    }
+    for (a, (kv, &p)) in knots.iter().zip(degrees).enumerate() {
+        let want = kv.data().len().saturating_sub(p + 1);
+        if shape[a] != want {
+            return Err(bad(format!(
+                "c: axis {a} has {} coefficients, but t[{a}] ({} knots) and k[{a}] = {p} give {want}",
+                shape[a],
+                kv.data().len()
+            )));
+        }
+    }
+    let trailing = shape[n..].to_vec();
+    let dim: usize = trailing.iter().product();
+    if dim == 0 {
+        return Err(bad(format!(
+            "c: a trailing axis of shape {shape:?} is empty"
+        )));
+    }
+    let slices = knots.iter().map(FloatArray::data).collect();
+    let s = TensorBSplineRef::new(degrees, slices, c.data(), dim).map_err(|e| {
+        let what = match e {
+            lekalo::Error::Degree { .. } => "k",
+            lekalo::Error::LengthMismatch { .. } | lekalo::Error::TooLarge { .. } => "c",
+            _ => "t",
+        };
+        named(what, &e)
+    })?;
+    Ok((s, trailing))
+}
+
+/// Derivative orders `nu` (one per variable; all zero is the values).
+fn orders(nu: Option<Vec<usize>>, n: usize) -> PyResult<Option<Vec<usize>>> {
+    match nu {
+        Some(v) if v.len() != n => Err(bad(format!(
+            "nu: {} orders for {n} variables; give one derivative order per variable",
+            v.len()
+        ))),
+        Some(v) if v.iter().all(|&o| o == 0) => Ok(None),
+        other => Ok(other),
+    }
+}
+
+/// `tensor_values(t, c, k, x, nu=None, beyond="continue")`: the spline `(t, c, k)` (or its
+/// partial derivative of orders `nu`) at the points `x` of shape `(..., N)`, shape
+/// `(..., *trailing)`; `beyond` is `"continue"`, `"clamp"` or `"nan"` for a point outside the
+/// domain (`TensorBSplineRef::par_eval_batch_beyond`), and a NaN or infinite coordinate gives
+/// NaN. Nothing of `t`, `c` or `x` is copied.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, nu = None, beyond = "continue"))]
+pub(crate) fn tensor_values(
+    py: Python<'_>,
+    t: &Bound<'_, PyAny>,
+    c: &Bound<'_, PyAny>,
+    k: &Bound<'_, PyAny>,
+    x: &Bound<'_, PyAny>,
+    nu: Option<Vec<usize>>,
+    beyond: &str,
+) -> PyResult<Py<PyAny>> {
+    let rule = match beyond {
+        "continue" => Beyond::Continue,
+        "clamp" => Beyond::Clamp,
+        "nan" => Beyond::Nan,
+        other => {
+            return Err(bad(format!(
+                "beyond: {other:?} is not one of continue, clamp, nan"
+            )))
+        }
+    };
+    let knots = knot_arrays(t)?;
+    let n = knots.len();
+    let degrees = degrees(k, n)?;
+    let ca = floats(c, "c")?;
+    let (s, trailing) = spline_ref(&knots, &degrees, &ca)?;
+    let orders = orders(nu, n)?;
+    let xa = floats(x, "x")?;
+    let shape = xa.shape();
+    if shape.last() != Some(&n) {
+        return Err(bad(format!(
+            "x: shape {shape:?}; the last axis must hold the {n} coordinates of a point"
+        )));
+    }
+    let lead = &shape[..shape.len() - 1];
+    check_size("x", &[lead.iter().product(), s.dim()])?;
+    let out_shape = [lead, &trailing].concat();
+    let xs = xa.data();
+    let out = filled(py, &out_shape, |out| {
+        s.par_eval_batch_beyond(xs, orders.as_deref(), rule, out)
+    })?;
+    Ok(out.unbind())
+}
+
+/// `tensor_grid_values(t, c, k, axes, nu=None)`: the spline `(t, c, k)` (or its partial
+/// derivative of orders `nu`) on the grid `axes[0] × … × axes[N-1]` (each inside its domain),
+/// shape `(len(axes[0]), …, len(axes[N-1]), *trailing)`, by sum factorisation
+/// (`TensorBSplineRef::eval_grid`). Nothing of `t` or `c` is copied.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, axes, nu = None))]
+pub(crate) fn tensor_grid_values(
+    py: Python<'_>,
+    t: &Bound<'_, PyAny>,
+    c: &Bound<'_, PyAny>,
+    k: &Bound<'_, PyAny>,
+    axes: &Bound<'_, PyAny>,
+    nu: Option<Vec<usize>>,
+) -> PyResult<Py<PyAny>> {
+    let knots = knot_arrays(t)?;
+    let n = knots.len();
+    let degrees = degrees(k, n)?;
+    let ca = floats(c, "c")?;
+    let (s, trailing) = spline_ref(&knots, &degrees, &ca)?;
+    let orders = orders(nu, n)?;
+    let lists: Vec<FloatArray<'_>> = axes
+        .try_iter()
+        .map_err(|_| bad("axes: expected a sequence of 1-D arrays, one per variable".into()))?
+        .enumerate()
+        .map(|(a, x)| floats(&x?, &format!("axes[{a}]")))
+        .collect::<PyResult<_>>()?;
+    if lists.len() != n {
+        return Err(bad(format!(
+            "axes: {} parameter lists for {n} variables; pass one 1-D array per variable",
+            lists.len()
+        )));
+    }
+    let lead: Vec<usize> = lists.iter().map(|l| l.data().len()).collect();
+    check_size("axes", &[&lead[..], &[s.dim()]].concat())?;
+    let refs: Vec<&[f64]> = lists.iter().map(FloatArray::data).collect();
+    let out = filled(py, &[&lead[..], &trailing].concat(), |out| {
+        s.eval_grid(&refs, orders.as_deref(), out)
+    })?;
+    Ok(out.unbind())
+}
+
+/// Registers the in-place evaluation of `(t, c, k)` splines.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(tensor_values, m)?)?;
+    m.add_function(wrap_pyfunction!(tensor_grid_values, m)?)?;
+    Ok(())
+}

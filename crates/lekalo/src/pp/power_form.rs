@@ -1,0 +1,262 @@
+//! A piecewise polynomial in the local power basis read in place from SciPy's `PPoly` arrays
+//! ([`PowerFormRef`]): coefficients `c` of shape `(k, pieces, dim)`, the highest power first,
+//! on non-decreasing breakpoints, evaluated by Horner's rule in each piece with the end pieces
+//! continued, without a copy into a [`PiecewisePolynomial`] (the same operations, so the same
+//! bits). `docs/theory/pp.md#piecewise-polynomials`.
+
+use rayon::prelude::*;
+
+use crate::error::{check_finite, Error, Result};
+#[cfg(doc)]
+use crate::pp::ppform::PiecewisePolynomial;
+
+/// Borrowed coefficients of SciPy's `PPoly`: `f(x) = Σ_m c[m, i]·(x − x_i)^{k−1−m}` on
+/// `x_i ≤ x < x_{i+1}`, `c[m, i, d]` at `(m·pieces + i)·dim + d`. Repeated breakpoints (empty
+/// pieces) are allowed and never evaluated.
+#[derive(Debug, Clone, Copy)]
+pub struct PowerFormRef<'a> {
+    c: &'a [f64],
+    order: usize,
+    breakpoints: &'a [f64],
+    dim: usize,
+}
+
+/// Batches below this many points run on the calling thread.
+const PAR_MIN_POINTS: usize = 4096;
+
+impl<'a> PowerFormRef<'a> {
+    /// The piecewise polynomial of order `order` (`k` coefficients a piece) on `breakpoints`
+    /// (`pieces + 1` of them, non-decreasing, the first below the last) with the coefficients
+    /// `c` (`k·pieces·dim` numbers, SciPy's layout). The order of the breakpoints is the
+    /// caller's to guarantee (SciPy's constructor checks it): only their ends are checked here,
+    /// so that a call costs no pass over the arrays.
+    ///
+    /// ```
+    /// use lekalo::pp::PowerFormRef;
+    /// // x² on [0, 1), then 1 + 2(x − 1) on [1, 2]: c[0] the highest power
+    /// let c = [1.0, 0.0, 0.0, 2.0, 0.0, 1.0];
+    /// let f = PowerFormRef::new(&c, 3, &[0.0, 1.0, 2.0], 1)?;
+    /// let mut out = [0.0; 3];
+    /// f.par_eval_extrapolated(&[0.5, 1.5, 3.0], 0, &mut out)?;
+    /// assert_eq!(out, [0.25, 2.0, 5.0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
+    /// [`Error::LengthMismatch`] if `c` does not hold `k·pieces·dim` numbers;
+    /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
+    /// if the first breakpoint is not below the last.
+    pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
+        if breakpoints.len() < 2 {
+            return Err(Error::TooFew {
+                what: "breakpoints",
+                min: 2,
+                got: breakpoints.len(),
+            });
+        }
+        if order == 0 || dim == 0 {
+            return Err(Error::TooFew {
+                what: if order == 0 {
+                    "coefficients a piece (order)"
+                } else {
+                    "numbers a value (dim)"
+                },
+                min: 1,
+                got: 0,
+            });
+        }
+        let pieces = breakpoints.len() - 1;
+        let want = order
+            .checked_mul(pieces)
+            .and_then(|v| v.checked_mul(dim))
+            .unwrap_or(usize::MAX);
+        if c.len() != want {
+            return Err(Error::LengthMismatch {
+                what: "coefficients (order × pieces × dim)",
+                expected: want,
+                got: c.len(),
+            });
+        }
+        let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
+        check_finite("breakpoints (the ends)", &[lo, hi])?;
+        if lo >= hi {
+            return Err(Error::EmptyDomain { min: lo, max: hi });
+        }
+        Ok(PowerFormRef {
+            c,
+            order,
+            breakpoints,
+            dim,
+        })
+    }
+
+    /// The piece of `x`: `x_j ≤ x < x_{j+1}` (the last non-empty piece at and beyond the right
+    /// end, the first non-empty one below the left end), as the pp-form without its empty
+    /// pieces finds it.
+    #[inline]
+    fn piece(&self, x: f64) -> usize {
+        let b = self.breakpoints;
+        let last = b.len() - 2;
+        let mut j = b.partition_point(|&v| v <= x).saturating_sub(1);
+        if j >= last {
+            j = last;
+            while j > 0 && b[j] >= b[j + 1] {
+                j -= 1;
+            }
+        } else if x < b[0] {
+            while j < last && b[j] >= b[j + 1] {
+                j += 1;
+            }
+        }
+        j
+    }
+
+    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), the end pieces
+    /// continued: `D^r Σ_s c_s u^s = Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` by Horner's rule in
+    /// `u = x − x_j`, as [`PiecewisePolynomial::eval_extrapolated_into`] (the same operations
+    /// in the same order). Orders `nu ≥ k` give zeros. On the thread pool from a few thousand
+    /// points.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
+    /// [`Error::NonFinite`] for a NaN or infinite `x`, or a value that overflows.
+    pub fn par_eval_extrapolated(&self, xs: &[f64], nu: usize, out: &mut [f64]) -> Result<()> {
+        let dim = self.dim;
+        let want = xs.len().saturating_mul(dim);
+        if out.len() != want {
+            return Err(Error::LengthMismatch {
+                what: "output (points × dim)",
+                expected: want,
+                got: out.len(),
+            });
+        }
+        check_finite("x", xs)?;
+        if xs.len() < PAR_MIN_POINTS {
+            self.eval_slice(xs, nu, out);
+        } else {
+            let chunk = xs
+                .len()
+                .div_ceil(4 * rayon::current_num_threads().max(1))
+                .max(1024);
+            xs.par_chunks(chunk)
+                .zip(out.par_chunks_mut(chunk * dim))
+                .for_each(|(x, o)| self.eval_slice(x, nu, o));
+        }
+        check_finite(
+            "piecewise polynomial value (overflow: rescale the coefficients)",
+            out,
+        )
+    }
+
+    fn eval_slice(&self, xs: &[f64], r: usize, out: &mut [f64]) {
+        let (k, dim) = (self.order, self.dim);
+        let pieces = self.breakpoints.len() - 1;
+        for (&x, o) in xs.iter().zip(out.chunks_exact_mut(dim)) {
+            o.fill(0.0);
+            if r >= k {
+                continue;
+            }
+            let j = self.piece(x);
+            let u = x - self.breakpoints[j];
+            for s in (r..k).rev() {
+                let falling: f64 = (s - r + 1..=s).map(|v| v as f64).product();
+                // power s is row k − 1 − s of SciPy's array
+                let at = ((k - 1 - s) * pieces + j) * dim;
+                for (v, &cs) in o.iter_mut().zip(&self.c[at..at + dim]) {
+                    *v = *v * u + falling * cs;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::oracle::proptest_config;
+    use crate::pp::ppform::PiecewisePolynomial;
+
+    proptest! {
+        #![proptest_config(proptest_config(64))]
+
+        /// The borrowed power form has the bits of the pp-form without its empty pieces
+        /// (`eval_extrapolated_into`), inside and beyond the breakpoints, derivatives included.
+        #[test]
+        fn borrowed_power_form_has_the_pp_form_bits(
+            order in 1usize..=5,
+            dim in 1usize..=2,
+            gaps in prop::collection::vec(prop_oneof![1 => Just(0.0), 4 => 0.1f64..2.0], 1..=8),
+            seed in prop::collection::vec(-5.0f64..5.0, 200),
+            xs in prop::collection::vec(-0.3f64..1.3, 1..=40),
+            nu in 0usize..=5,
+        ) {
+            let mut b = vec![-1.0];
+            for g in &gaps {
+                b.push(b[b.len() - 1] + g);
+            }
+            prop_assume!(b[b.len() - 1] > b[0]);
+            let pieces = b.len() - 1;
+            let c: Vec<f64> = (0..order * pieces * dim).map(|i| seed[i % seed.len()]).collect();
+            let f = PowerFormRef::new(&c, order, &b, dim).unwrap();
+            // the pp-form of the non-empty pieces, lowest power first
+            let mut kept_b = vec![b[0]];
+            let mut local = Vec::new();
+            for j in 0..pieces {
+                if b[j + 1] > b[j] {
+                    kept_b.push(b[j + 1]);
+                    for s in 0..order {
+                        let at = ((order - 1 - s) * pieces + j) * dim;
+                        local.extend_from_slice(&c[at..at + dim]);
+                    }
+                }
+            }
+            let pp = PiecewisePolynomial::new(kept_b, order, dim, local).unwrap();
+            let (lo, hi) = (b[0], b[pieces]);
+            let xs: Vec<f64> = xs.iter().map(|u| lo + (hi - lo) * u).chain(b.iter().copied()).collect();
+            let mut out = vec![0.0; xs.len() * dim];
+            f.par_eval_extrapolated(&xs, nu, &mut out).unwrap();
+            let mut want = vec![0.0; dim];
+            for (&x, o) in xs.iter().zip(out.chunks_exact(dim)) {
+                pp.eval_extrapolated_into(x, nu, &mut want).unwrap();
+                let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
+                prop_assert_eq!(bits(o), bits(&want), "x = {}", x);
+            }
+        }
+    }
+
+    /// A large batch on the thread pool has the bits of the sequential one; bad arguments are
+    /// refused by name.
+    #[test]
+    fn parallel_batches_and_errors() {
+        let b: Vec<f64> = (0..=100).map(f64::from).collect();
+        let c: Vec<f64> = (0..400).map(|i| f64::from(i % 17) - 8.0).collect();
+        let f = PowerFormRef::new(&c, 4, &b, 1).unwrap();
+        let xs: Vec<f64> = (0..10_000).map(|i| f64::from(i) * 0.0107 - 3.0).collect();
+        let mut par = vec![0.0; xs.len()];
+        f.par_eval_extrapolated(&xs, 1, &mut par).unwrap();
+        for (&x, &v) in xs.iter().zip(&par) {
+            let mut one = [0.0];
+            f.par_eval_extrapolated(&[x], 1, &mut one).unwrap();
+            assert_eq!(one[0].to_bits(), v.to_bits(), "x = {x}");
+        }
+        let mut one = [0.0];
+        let e = f
+            .par_eval_extrapolated(&[f64::NAN], 0, &mut one)
+            .unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        let e = PowerFormRef::new(&c[..399], 4, &b, 1).unwrap_err();
+        assert!(
+            matches!(e, Error::LengthMismatch { expected: 400, .. }),
+            "{e}"
+        );
+        let e = PowerFormRef::new(&c[..4], 4, &[1.0, 1.0], 1).unwrap_err();
+        assert!(matches!(e, Error::EmptyDomain { .. }), "{e}");
+        let huge = [f64::MAX, f64::MAX];
+        let g = PowerFormRef::new(&huge, 2, &[0.0, 1.0], 1).unwrap();
+        let e = g.par_eval_extrapolated(&[1.0], 0, &mut one).unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+    }
+}

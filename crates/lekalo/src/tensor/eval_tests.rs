@@ -1,0 +1,196 @@
+//! Tests of the borrowed evaluation ([`TensorBSplineRef`]) and of the batches beyond the
+//! domain ([`Beyond`]): the same bits as the owned spline's kernels.
+
+use proptest::prelude::*;
+
+use crate::error::Error;
+use crate::oracle::proptest_config;
+use crate::points::Points;
+use crate::tensor::tests::spline;
+use crate::tensor::{Beyond, TensorBSpline, TensorBSplineRef};
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// Points of the spline's box widened by half its width on each side, with now and then a NaN
+/// or infinite coordinate: `(points, which are finite, which are inside)`.
+fn points(s: &TensorBSpline, raw: &[(f64, u8)]) -> Vec<f64> {
+    let domains = s.domain();
+    raw.iter()
+        .enumerate()
+        .map(|(i, &(u, special))| {
+            let (lo, hi) = domains[i % s.n_vars()];
+            match special {
+                0 => f64::NAN,
+                1 => f64::INFINITY,
+                2 => lo,
+                3 => hi,
+                _ => lo + (hi - lo) * u,
+            }
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(proptest_config(64))]
+
+    /// A spline borrowed from its arrays evaluates as the owned one; beyond the domain,
+    /// `Continue` is the extrapolated batch, `Clamp` the plain batch at the clamped point and
+    /// `Nan` NaN; a point with a NaN or infinite coordinate is NaN; inside, every rule has the
+    /// bits of the plain batch, values and partial derivatives.
+    #[test]
+    fn borrowed_batches_have_the_bits_of_the_owned_kernels(
+        s in spline(),
+        raw in prop::collection::vec((-0.5f64..1.5, 0u8..40), 4..=80),
+        order in 0usize..=2,
+    ) {
+        let n = s.n_vars();
+        let dim = s.dim();
+        let knots: Vec<&[f64]> = s.knots().iter().map(|k| k.as_slice()).collect();
+        let view = TensorBSplineRef::new(s.degrees(), knots, s.control_points().as_slice(), dim)
+            .unwrap();
+        let orders: Vec<usize> = (0..n).map(|a| if a == 0 { order } else { 0 }).collect();
+        let orders = (order > 0).then_some(&orders[..]);
+        let xs = points(&s, &raw[..raw.len() / n * n]);
+        let count = xs.len() / n;
+        let domains = s.domain();
+        let mut out = vec![0.0; count * dim];
+        for rule in [Beyond::Continue, Beyond::Clamp, Beyond::Nan] {
+            view.par_eval_batch_beyond(&xs, orders, rule, &mut out).unwrap();
+            for (x, o) in xs.chunks_exact(n).zip(out.chunks_exact(dim)) {
+                let finite = x.iter().all(|t| t.is_finite());
+                let inside = x.iter().zip(&domains).all(|(&t, &(lo, hi))| t >= lo && t <= hi);
+                let mut want = vec![0.0; dim];
+                if !finite || (rule == Beyond::Nan && !inside) {
+                    prop_assert!(o.iter().all(|v| v.is_nan()), "{rule:?} at {x:?}: {o:?}");
+                    continue;
+                }
+                match rule {
+                    Beyond::Continue => s.par_eval_batch_extrapolated(x, orders, &mut want).unwrap(),
+                    _ => {
+                        let c: Vec<f64> = x.iter().zip(&domains).map(|(&t, &(lo, hi))| t.clamp(lo, hi)).collect();
+                        s.eval_batch(&c, orders, &mut want).unwrap();
+                    }
+                }
+                prop_assert_eq!(bits(o), bits(&want), "{:?} at {:?}", rule, x);
+            }
+        }
+        // the borrowed point and grid kernels are the owned ones
+        let inside: Vec<f64> = xs.chunks_exact(n).filter(|x| x.iter().zip(&domains).all(|(&t, &(lo, hi))| t >= lo && t <= hi)).flatten().copied().collect();
+        for x in inside.chunks_exact(n) {
+            prop_assert_eq!(bits(&view.eval(x).unwrap()), bits(&s.eval(x).unwrap()));
+        }
+    }
+}
+
+/// Above the sequential size and the cell-order size, with the parallel rows of the grid path:
+/// the bits of the sequential batch and of the point kernel.
+#[test]
+fn large_borrowed_batches_and_grids_have_the_sequential_bits() {
+    let p: usize = 3;
+    let m: usize = 40; // control points a direction: 64,000 numbers, above the cell-order net size
+    let k: Vec<f64> = (0..m + p + 1)
+        .map(|i| (i.saturating_sub(p).min(m - p)) as f64 / (m - p) as f64)
+        .collect();
+    let net: Vec<f64> = (0..m * m * m)
+        .map(|i| ((i * 7919) % 1013) as f64 / 1013.0 - 0.5)
+        .collect();
+    let s = TensorBSpline::new(
+        vec![p; 3],
+        vec![k.clone(), k.clone(), k],
+        Points::from_flat(1, net).unwrap(),
+    )
+    .unwrap();
+    let count = 20_000;
+    let xs: Vec<f64> = (0..3 * count)
+        .map(|i| ((i * 104_729) % 9973) as f64 / 9973.0 * 1.4 - 0.2)
+        .collect();
+    let mut par = vec![0.0; count];
+    s.view()
+        .par_eval_batch_beyond(&xs, None, Beyond::Continue, &mut par)
+        .unwrap();
+    let mut seq = vec![0.0; count];
+    for (x, o) in xs.chunks_exact(3).zip(seq.iter_mut()) {
+        s.par_eval_batch_extrapolated(x, None, std::slice::from_mut(o))
+            .unwrap();
+    }
+    assert_eq!(bits(&par), bits(&seq));
+    // a 2-D grid of 200 × 150 values (rows on the thread pool) against the point kernel
+    let s2 = TensorBSpline::new(
+        vec![3, 2],
+        vec![
+            vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.5, 1.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 0.2, 0.6, 1.0, 1.0, 1.0],
+        ],
+        Points::from_flat(1, (0..30).map(|i| f64::from(i).sin()).collect()).unwrap(),
+    )
+    .unwrap();
+    let gx: Vec<f64> = (0..200).map(|i| f64::from(i) / 199.0).collect();
+    let gy: Vec<f64> = (0..150).map(|i| f64::from(i) / 149.0).collect();
+    let mut grid = vec![0.0; 200 * 150];
+    s2.eval_grid(&[&gx, &gy], None, &mut grid).unwrap();
+    for (i, &x) in gx.iter().enumerate() {
+        for (j, &y) in gy.iter().enumerate() {
+            assert_eq!(
+                grid[i * 150 + j].to_bits(),
+                s2.eval(&[x, y]).unwrap()[0].to_bits()
+            );
+        }
+    }
+}
+
+/// A borrowed spline is refused as the owned one is, with the same errors.
+#[test]
+fn borrowed_splines_are_checked_as_owned_ones() {
+    let net = [0.0; 4];
+    let good: [f64; 4] = [0.0, 0.0, 1.0, 1.0];
+    let check = |t: &[f64], p: usize, net: &[f64]| -> Error {
+        let e = TensorBSplineRef::new(&[p], vec![t], net, 1).unwrap_err();
+        let owned = TensorBSpline::new(
+            vec![p],
+            vec![t.to_vec()],
+            Points::from_flat(1, net.to_vec()).unwrap(),
+        )
+        .unwrap_err();
+        // the same error; the same words for the knots (the net is counted in numbers here,
+        // in points there)
+        assert_eq!(std::mem::discriminant(&e), std::mem::discriminant(&owned));
+        if !matches!(e, Error::LengthMismatch { .. }) {
+            assert_eq!(e.to_string(), owned.to_string());
+        }
+        e
+    };
+    assert!(matches!(
+        check(&[0.0, 1.0, 0.5, 2.0], 1, &net[..2]),
+        Error::KnotsNotSorted { .. }
+    ));
+    assert!(matches!(
+        check(&[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], 1, &net),
+        Error::KnotMultiplicity {
+            multiplicity: 3,
+            ..
+        }
+    ));
+    assert!(matches!(
+        check(&[0.0, 1.0, 2.0], 1, &net[..1]),
+        Error::Degree { .. }
+    ));
+    assert!(matches!(
+        check(&good, 1, &net[..3]),
+        Error::LengthMismatch { .. }
+    ));
+    assert!(matches!(
+        check(&[0.0, f64::NAN, 1.0, 1.0], 1, &net[..2]),
+        Error::NonFinite { .. }
+    ));
+    assert!(matches!(
+        check(&[1.0, 1.0, 1.0, 1.0], 1, &net[..2]),
+        Error::EmptyDomain { .. }
+    ));
+    let e = TensorBSplineRef::new(&[1], vec![&good], &net[..0], 0).unwrap_err();
+    assert!(
+        matches!(e, Error::InvalidArgument { what: "dim", .. }),
+        "{e}"
+    );
+}
