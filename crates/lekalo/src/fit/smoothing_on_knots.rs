@@ -173,6 +173,41 @@ mod tests {
         assert!(matches!(e, crate::Error::SchoenbergWhitney { .. }), "{e:?}");
     }
 
+    /// The case a property run found: the range of the residual (polynomial to least-squares
+    /// spline) is narrower than the accuracy asked of s, and the continued iteration used to
+    /// aim below the spline's residual and drive p to a singular system.
+    #[test]
+    fn a_residual_range_narrower_than_the_accuracy() {
+        let (m, k, interior, frac) = (31, 5, 1, 0.05);
+        let (x, y) = noisy(m);
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let mut t = vec![0.0; k + 1];
+        t.extend((1..=interior).map(|j| j as f64 / (interior + 1) as f64));
+        t.extend(std::iter::repeat_n(1.0, k + 1));
+        let kv = KnotVector::new(t).unwrap();
+        let mut p = vec![0.0; k + 1];
+        p.extend(std::iter::repeat_n(1.0, k + 1));
+        let poly = KnotVector::new(p).unwrap();
+        let none = EndConstraints::none();
+        let fp_inf = least_squares(&data, k, &kv, &none)
+            .unwrap()
+            .report
+            .weighted_rss;
+        let fp0 = least_squares(&data, k, &poly, &none)
+            .unwrap()
+            .report
+            .weighted_rss;
+        let s = fp_inf + frac * (fp0 - fp_inf);
+        let fp = smoothing_on_knots(&data, k, &kv, s)
+            .unwrap()
+            .report
+            .weighted_rss;
+        assert!(
+            fp <= s && fp >= s * (1.0 - SMOOTHING_RTOL),
+            "fp {fp}, s {s}"
+        );
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(48))]
         /// Between the polynomial's residual and the least-squares spline's, the residual at

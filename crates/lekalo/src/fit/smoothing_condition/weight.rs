@@ -63,7 +63,9 @@ pub(in crate::fit) fn smooth_on(
 
 /// The smoothing weight `p` on the final knots (step 3): FITPACK's iteration from `p0`, between
 /// the polynomial's residual `fp0` (`p = 0`) and the least-squares spline's `fp_inf`
-/// (`p = ∞`), continued towards `s − SMOOTHING_RTOL·s/2` if it ends above `s`. Returns the
+/// (`p = ∞`), continued towards `s − SMOOTHING_RTOL·s/2` if it ends above `s` and that target
+/// is above `fp_inf` (otherwise the least-squares spline, `None` here, is within
+/// `SMOOTHING_RTOL·s/2` of `s`). Returns the
 /// result with the largest residual `≤ s`, if any. Each weight tried is a step of `steps`.
 pub(crate) fn smooth_weight(
     solve: &impl Fn(f64) -> Result<(Vec<f64>, f64)>,
@@ -86,7 +88,9 @@ pub(crate) fn smooth_weight(
     };
     let mut below = None;
     let last = it.run(&solve, s, acc, &mut below)?;
-    if last.1 > s {
+    // a target below the least-squares spline's residual is out of reach (the iteration would
+    // drive p to 0 and the system to singular); that spline is then within the accuracy of s
+    if last.1 > s && s - 0.5 * acc > fp_inf {
         it.run(&solve, s - 0.5 * acc, 0.5 * acc, &mut below)?;
     }
     Ok(below)
