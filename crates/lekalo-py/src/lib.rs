@@ -16,6 +16,8 @@
 //! - CAD files: `faces` (`read_step`, `read_iges`, `write_step`, `write_iges`, `Face`: a surface
 //!   trimmed by loops of edges);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
+//! - SciPy's `(t, c, k)` arrays: derivative and antiderivative coefficients and integrals read in
+//!   place, without a curve built: `tck`;
 //! - many curves at once: `batch`;
 //! - derivatives of evaluation for automatic differentiation: `derivatives` (the kernels under
 //!   `lekalo.jax`).
@@ -37,6 +39,7 @@ mod query;
 mod shape;
 mod slopes;
 mod surfaces;
+mod tck;
 mod tensor;
 mod tensor_values;
 mod words;
@@ -93,5 +96,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     slopes::register(m)?;
     tensor::register(m)?;
     tensor_values::register(m)?;
+    tck::register(m)?;
     Ok(())
 }

@@ -53,6 +53,15 @@ impl KnotVector {
     /// [`Error::KnotsNotSorted`] at the first decrease; [`Error::EmptyDomain`] if all knots are
     /// equal; [`Error::InvalidArgument`] if `t_last − t_0` overflows; [`Error::TooLarge`].
     pub fn new(knots: Vec<f64>) -> Result<Self> {
+        Self::check_values(&knots)?;
+        Ok(KnotVector { knots })
+    }
+
+    /// The checks of [`KnotVector::new`] on knots read in place (nothing copied).
+    ///
+    /// # Errors
+    /// As [`KnotVector::new`].
+    pub(crate) fn check_values(knots: &[f64]) -> Result<()> {
         if knots.len() < 2 {
             return Err(Error::TooFew {
                 what: "knots",
@@ -67,7 +76,7 @@ impl KnotVector {
                 max: MAX_SCALARS,
             });
         }
-        check_finite("knots", &knots)?;
+        check_finite("knots", knots)?;
         for i in 1..knots.len() {
             if knots[i] < knots[i - 1] {
                 return Err(Error::KnotsNotSorted {
@@ -82,7 +91,7 @@ impl KnotVector {
             return Err(Error::EmptyDomain { min, max });
         }
         check_width("knots", min, max)?;
-        Ok(KnotVector { knots })
+        Ok(())
     }
 
     /// Trusted constructor for knots built by this crate (debug-checked).

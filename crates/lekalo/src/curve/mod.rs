@@ -11,7 +11,12 @@
 //!   its inverse.
 //! - `periodic_insertion.rs`: [`insert_knot_periodic`], knot insertion keeping a periodic
 //!   spline's extension, and [`insert_knot_raw`], insertion at any multiplicity (FITPACK's
-//!   `fpinst`).
+//!   `fpinst`); [`insert_knot_into`], either into the caller's buffers.
+//! - `roots.rs`: [`bspline_zeros`], the zeros of a scalar spline span by span, spans without a
+//!   sign change among their coefficients skipped.
+//! - `tck.rs`: [`derivative_coefficients_into`], [`antiderivative_coefficients_into`] and
+//!   [`integral_into`]: calculus on a spline given as arrays (SciPy's `(t, c, k)`), read in
+//!   place and written into the caller's buffers.
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
 //! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
 //!   segments.
@@ -37,6 +42,8 @@ pub(crate) mod nurbs;
 mod nurbs_ops;
 mod periodic_insertion;
 mod power_form;
+mod roots;
+mod tck;
 
 pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
@@ -46,5 +53,7 @@ pub use fast_eval::{Beyond, CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FO
 pub use integral::{bspline_value, bspline_value_by};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;
-pub use periodic_insertion::{insert_knot_periodic, insert_knot_raw};
+pub use periodic_insertion::{insert_knot_into, insert_knot_periodic, insert_knot_raw};
 pub use power_form::POWER_FORM_CONTINUITY_RTOL;
+pub use roots::bspline_zeros;
+pub use tck::{antiderivative_coefficients_into, derivative_coefficients_into, integral_into};

@@ -100,6 +100,26 @@ fn insert_repeatedly(
     times: usize,
     periodic: bool,
 ) -> Result<(Vec<f64>, Points)> {
+    check_insertion(k, knots, control, times)?;
+    let (n, dim) = (knots.len(), control.dim());
+    let mut t = vec![0.0; n + times];
+    let mut c = vec![0.0; (n + times - k - 1) * dim];
+    insert_checked_into(
+        k,
+        knots,
+        control.as_slice(),
+        dim,
+        x,
+        times,
+        periodic,
+        &mut t,
+        &mut c,
+    )?;
+    Ok((t, Points::from_raw(c, dim)))
+}
+
+/// The checks of the insertion functions: degree, knots, coefficient count, result size.
+fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize) -> Result<()> {
     let n = knots.len();
     if k == 0 || n < 2 * k + 2 {
         return Err(Error::Degree {
@@ -109,7 +129,7 @@ fn insert_repeatedly(
             ),
         });
     }
-    KnotVector::new(knots.to_vec())?;
+    KnotVector::check_values(knots)?;
     if control.len() != n - k - 1 {
         return Err(Error::LengthMismatch {
             what: "coefficients (knots − degree − 1)",
@@ -128,28 +148,120 @@ fn insert_repeatedly(
             max: MAX_SCALARS,
         });
     }
-    let mut t = knots.to_vec();
-    let mut c = control.as_slice().to_vec();
-    for _ in 0..times {
-        let (tt, cc) = insert_once(k, &t, &c, dim, x, periodic)?;
-        t = tt;
-        c = cc;
+    Ok(())
+}
+
+/// [`insert_knot_raw`] (or, with `periodic`, [`insert_knot_periodic`]) written into the caller's
+/// buffers, SciPy's layout: `out_knots` takes the `n + times` knots, `out_control` at least
+/// `n + times − k − 1` rows of `control.dim()` numbers, the new coefficients and then zeros
+/// (`scipy.interpolate.insert` pads the coefficients to the knots' length). The spline is read
+/// in place; with `times = 1` nothing else is allocated.
+///
+/// ```
+/// use lekalo::{insert_knot_into, PointsRef};
+/// let t = [0.0, 0.0, 1.0, 1.0];
+/// let (mut t2, mut c2) = ([0.0; 5], [f64::NAN; 5]);
+/// insert_knot_into(1, &t, PointsRef::from_flat(1, &[0.0, 1.0])?, 0.5, 1, false, &mut t2, &mut c2)?;
+/// assert_eq!(t2, [0.0, 0.0, 0.5, 1.0, 1.0]);
+/// assert_eq!(c2, [0.0, 0.5, 1.0, 0.0, 0.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`insert_knot_raw`]; [`Error::LengthMismatch`] for buffers of other sizes.
+#[allow(clippy::too_many_arguments)] // the spline, the insertion and the two buffers
+pub fn insert_knot_into(
+    k: usize,
+    knots: &[f64],
+    control: PointsRef<'_>,
+    x: f64,
+    times: usize,
+    periodic: bool,
+    out_knots: &mut [f64],
+    out_control: &mut [f64],
+) -> Result<()> {
+    check_insertion(k, knots, control, times)?;
+    let (n, dim) = (knots.len(), control.dim());
+    let rows = n + times - k - 1;
+    if out_knots.len() != n + times {
+        return Err(Error::LengthMismatch {
+            what: "knot buffer (knots + insertions)",
+            expected: n + times,
+            got: out_knots.len(),
+        });
     }
-    check_finite("coefficients after insertion", &c)?;
-    Ok((t, Points::from_raw(c, dim)))
+    if out_control.len() < rows * dim || out_control.len() % dim != 0 {
+        return Err(Error::LengthMismatch {
+            what: "coefficient buffer (rows × dimension, at least the coefficients)",
+            expected: rows * dim,
+            got: out_control.len(),
+        });
+    }
+    let (head, tail) = out_control.split_at_mut(rows * dim);
+    tail.fill(0.0);
+    insert_checked_into(
+        k,
+        knots,
+        control.as_slice(),
+        dim,
+        x,
+        times,
+        periodic,
+        out_knots,
+        head,
+    )
+}
+
+/// `times` insertions of `x` into checked input, the last one into `out_t` and `out_c` (of
+/// exactly `n + times` knots and `n + times − k − 1` rows), the others into held buffers.
+#[allow(clippy::too_many_arguments)]
+fn insert_checked_into(
+    k: usize,
+    knots: &[f64],
+    control: &[f64],
+    dim: usize,
+    x: f64,
+    times: usize,
+    periodic: bool,
+    out_t: &mut [f64],
+    out_c: &mut [f64],
+) -> Result<()> {
+    if times == 0 {
+        out_t.copy_from_slice(knots);
+        out_c.copy_from_slice(control);
+        return Ok(());
+    }
+    let mut held: Option<(Vec<f64>, Vec<f64>)> = None;
+    for _ in 1..times {
+        let (t, c) = held
+            .as_ref()
+            .map_or((knots, control), |(t, c)| (t.as_slice(), c.as_slice()));
+        let mut tt = vec![0.0; t.len() + 1];
+        let mut cc = vec![0.0; c.len() + dim];
+        insert_once_into(k, t, c, dim, x, periodic, &mut tt, &mut cc)?;
+        held = Some((tt, cc));
+    }
+    let (t, c) = held
+        .as_ref()
+        .map_or((knots, control), |(t, c)| (t.as_slice(), c.as_slice()));
+    insert_once_into(k, t, c, dim, x, periodic, out_t, out_c)?;
+    check_finite("coefficients after insertion", out_c)
 }
 
 /// One insertion (FITPACK's `insert` and `fpinst` with `iopt = 1` when `periodic`, else
 /// `iopt = 0`), in 0-based indices: `l` is the knot interval `t_l ≤ x < t_{l+1}`,
 /// `k ≤ l ≤ n − k − 2`.
-fn insert_once(
+#[allow(clippy::too_many_arguments)]
+fn insert_once_into(
     k: usize,
     t: &[f64],
     c: &[f64],
     dim: usize,
     x: f64,
     periodic: bool,
-) -> Result<(Vec<f64>, Vec<f64>)> {
+    tt: &mut [f64],
+    cc: &mut [f64],
+) -> Result<()> {
     let n = t.len();
     let (min, max) = (t[k], t[n - k - 1]);
     if !(x >= min && x <= max) {
@@ -193,12 +305,10 @@ fn insert_once(
     }
     // Boehm's insertion: knots t_0..t_l, x, t_{l+1}..; coefficients c_0..c_{l−k}, the k new
     // ones, c_l..
-    let mut tt = Vec::with_capacity(n + 1);
-    tt.extend_from_slice(&t[..=l]);
-    tt.push(x);
-    tt.extend_from_slice(&t[l + 1..]);
-    let nc = n - k - 1;
-    let mut cc = vec![0.0; (nc + 1) * dim];
+    // `tt` holds n + 1 knots, `cc` n − k rows
+    tt[..=l].copy_from_slice(&t[..=l]);
+    tt[l + 1] = x;
+    tt[l + 2..].copy_from_slice(&t[l + 1..]);
     cc[..(l + 1 - k) * dim].copy_from_slice(&c[..(l + 1 - k) * dim]);
     cc[(l + 1) * dim..].copy_from_slice(&c[l * dim..]);
     for i in l + 1 - k..=l {
@@ -208,7 +318,7 @@ fn insert_once(
         }
     }
     if !periodic {
-        return Ok((tt, cc));
+        return Ok(());
     }
     // the periodic extension (FITPACK's nk, nl, per in 0-based form)
     let nn = n + 1;
@@ -231,7 +341,7 @@ fn insert_once(
             tt[nk + 1 + m] = tt[k + 1 + m] + period;
         }
     }
-    Ok((tt, cc))
+    Ok(())
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use crate::basis::{basis_ders_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
+use crate::interpolate::collocation::{solve_collocation, Factors};
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
 
@@ -39,7 +40,9 @@ impl EndDerivative {
 /// the data `Σ_i N_{i,p}(t̄_j) P_i = q_j`, and the end conditions. Its derivative rows are not
 /// totally positive, so elimination without pivoting is not safe; the rows are instead rotated
 /// into a banded triangle by Givens rotations (orthogonal, stable for any non-singular square
-/// matrix; `docs/theory/fitting.md#banded-qr`), in O(n·p·(p + dim)).
+/// matrix; `docs/theory/fitting.md#banded-qr`), in O(n·p·(p + dim)). Without conditions at
+/// either end the matrix is the collocation matrix alone, totally positive, and is eliminated
+/// without pivoting instead (half the work; `docs/theory/interpolation.md#collocation-by-elimination-without-pivoting`).
 ///
 /// # Errors
 /// [`Error::TooFew`] for no point; [`Error::Dimension`] for a condition whose value does not
@@ -138,6 +141,9 @@ pub fn interpolate_with_end_derivatives(
         });
     }
     let kn = knots.as_slice();
+    if start.is_empty() && end.is_empty() {
+        return collocation_only(points, params, knots, p);
+    }
     let spans = params
         .iter()
         .map(|&t| knots.find_span(p, t))
@@ -177,6 +183,39 @@ pub fn interpolate_with_end_derivatives(
             ),
         })?;
     BSplineCurve::new(p, kn.to_vec(), Points::from_flat(dim, control)?)
+}
+
+/// The square collocation system without derivative rows, `Σ_i N_{i,p}(t̄_j) P_i = q_j`, by
+/// banded Gaussian elimination without pivoting ([`solve_collocation`]): the collocation matrix
+/// of increasing parameters is totally positive (Karlin; de Boor, "Total positivity of the
+/// spline collocation matrix", *Indiana Univ. Math. J.* 25, 1976), non-singular exactly when
+/// the Schoenberg–Whitney condition `N_{j,p}(t̄_j) > 0` holds (checked), and then elimination
+/// without pivoting is stable (de Boor & Pinkus, "Backward error analysis for totally positive
+/// linear systems", *Numer. Math.* 27, 1977; de Boor, *A Practical Guide to Splines*, ch. XIII)
+/// — SciPy's `make_interp_spline` solves the same band by LU (`gbsv`). O(n·p·(p + dim)), half
+/// the work of the Givens rotations, one row eliminated as it is built.
+fn collocation_only(
+    points: PointsRef<'_>,
+    params: &[f64],
+    knots: &KnotVector,
+    p: usize,
+) -> Result<BSplineCurve> {
+    let dim = points.dim();
+    let (lo, hi) = knots.domain(p);
+    if let Some(&t) = params.iter().find(|&&t| !(lo <= t && t <= hi)) {
+        return Err(Error::ParameterOutOfDomain {
+            t,
+            min: lo,
+            max: hi,
+        });
+    }
+    let mut control = points.as_slice().to_vec();
+    solve_collocation(knots, p, params, 0, &mut control, dim, Factors::Discard)?;
+    BSplineCurve::new(
+        p,
+        knots.as_slice().to_vec(),
+        Points::from_flat(dim, control)?,
+    )
 }
 
 #[cfg(test)]
@@ -271,6 +310,65 @@ mod tests {
             let (a, b) = (c.eval(t).unwrap()[0], reference.eval(t).unwrap()[0]);
             assert!((a - b).abs() < 1e-12, "{t}: {a} vs {b}");
         }
+    }
+
+    /// Without end conditions (odd and even degrees on SciPy's not-a-knot knots) the elimination
+    /// without pivoting solves the square system: the spline passes through every point to
+    /// rounding; a knot span without parameter is refused.
+    #[test]
+    fn collocation_alone_by_elimination_interpolates() {
+        let x: Vec<f64> = (0..60)
+            .map(|i| f64::from(i) * 0.37 + (f64::from(i) * 1.3).sin() * 0.1)
+            .collect();
+        let y: Vec<f64> = x.iter().flat_map(|&v| [v.sin(), (2.0 * v).cos()]).collect();
+        let pts = Points::from_flat(2, y.clone()).unwrap();
+        for p in [2usize, 3, 5] {
+            // SciPy's not-a-knot knots: the ends p + 1 times, interior knots at the data (odd p)
+            // or at the midpoints (even p)
+            let m = x.len();
+            let mut t = vec![x[0]; p + 1];
+            if p % 2 == 1 {
+                t.extend_from_slice(&x[p.div_ceil(2)..m - p.div_ceil(2)]);
+            } else {
+                t.extend((p / 2..m - p / 2 - 1).map(|i| 0.5 * (x[i] + x[i + 1])));
+            }
+            t.extend(std::iter::repeat_n(x[m - 1], p + 1));
+            let kv = KnotVector::new(t).unwrap();
+            let lu = interpolate_with_end_derivatives(pts.as_view(), &x, &kv, p, &[], &[]).unwrap();
+            for (j, &xj) in x.iter().enumerate() {
+                let v = lu.eval(xj).unwrap();
+                assert!(
+                    (v[0] - y[2 * j]).abs() < 1e-12 && (v[1] - y[2 * j + 1]).abs() < 1e-12,
+                    "degree {p}, point {j}: {v:?}"
+                );
+            }
+        }
+        // four cubic coefficients, but no parameter in the span [2, 3]: Schoenberg–Whitney fails
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 3.0, 3.0, 3.0, 3.0]).unwrap();
+        let pts = Points::from_flat(1, vec![1.0, 2.0, 3.0, 4.0]).unwrap();
+        let err = interpolate_with_end_derivatives(
+            pts.as_view(),
+            &[0.0, 0.1, 0.2, 3.0],
+            &kv,
+            3,
+            &[],
+            &[],
+        );
+        assert!(
+            err.is_ok(),
+            "a single cubic span takes any four distinct parameters"
+        );
+        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 3.0, 3.0, 3.0]).unwrap();
+        let pts = Points::from_flat(1, vec![1.0, 2.0, 3.0, 4.0, 5.0]).unwrap();
+        let err = interpolate_with_end_derivatives(
+            pts.as_view(),
+            &[0.0, 0.1, 0.2, 0.3, 0.4],
+            &kv,
+            3,
+            &[],
+            &[],
+        );
+        assert!(matches!(err, Err(Error::SingularSystem { .. })));
     }
 
     #[test]

@@ -225,13 +225,14 @@ class BSpline:
 
     def derivative(self, nu: int = 1) -> "BSpline":
         """The derivative spline of order ``nu`` (SciPy's ``splder`` knots ``t[nu:-nu]``, the
-        coefficients zero-padded to the knots' length), from lekalo's derivative curve."""
+        coefficients zero-padded to the knots' length), lekalo's ``tck_derivative`` on the arrays
+        as they are (no curve built)."""
         t, c = _derivative_tc(self.t, self.c, self.k, nu)
         return self.construct_fast(t, c, self.k - nu, extrapolate=self.extrapolate, axis=self.axis)
 
     def antiderivative(self, nu: int = 1) -> "BSpline":
         """The antiderivative of order ``nu`` (SciPy's ``splantider``: degree ``k + nu``, end
-        knots repeated), lekalo's ``antiderivative``. A periodic spline's antiderivative does
+        knots repeated), lekalo's ``tck_antiderivative`` on the arrays as they are. A periodic spline's antiderivative does
         not extrapolate (it is not periodic)."""
         t, c = _antiderivative_tc(self.t, self.c, self.k, nu)
         extrapolate = False if self.extrapolate == "periodic" else self.extrapolate
@@ -239,7 +240,8 @@ class BSpline:
 
     def integrate(self, a: float, b: float, extrapolate: Any = None):
         """``∫_a^b S(x) dx`` (SciPy's rules: outside the base interval zero unless
-        extrapolating; periodic splines integrate whole periods), lekalo's ``integrate``."""
+        extrapolating; periodic splines integrate whole periods), lekalo's ``tck_integral`` (only
+        the coefficients between the limits read)."""
         if extrapolate is None:
             extrapolate = self.extrapolate
         sign = 1
@@ -252,11 +254,13 @@ class BSpline:
         if m == 0:
             return np.zeros(tail, dtype=self.c.dtype) * sign
         complex_ = np.iscomplexobj(self.c)
-        curve = _curve(self.t, _real_columns(self.c, n), self.k)
-        ts, te = self.t[self.k], self.t[n]
+        t, cols, k = self.t, _real_columns(self.c, n), self.k
+        ts, te = t[k], t[n]
 
         def piece(lo: float, hi: float, ext: bool) -> np.ndarray:
-            return curve.integrate(float(lo), float(hi), ext)
+            # lekalo's integral on the arrays as they are, reading the coefficients between the
+            # limits only; the limits lie in the base interval unless extrapolating
+            return _lekalo.tck_integral(t, cols, k, float(lo), float(hi))
 
         if extrapolate == "periodic":
             period = te - ts
@@ -271,7 +275,7 @@ class BSpline:
         elif not extrapolate:
             a = max(a, ts)
             b = min(b, te)
-            total = piece(a, b, False) if a < b else np.zeros(curve.dim)
+            total = piece(a, b, False) if a < b else np.zeros(cols.shape[1])
         else:
             total = piece(a, b, True)
         total = _from_columns(np.asarray(total, dtype=np.float64).reshape(1, -1), complex_)
@@ -315,27 +319,35 @@ class BSpline:
 
     def insert_knot(self, x: float, m: int = 1) -> "BSpline":
         """The same spline with the knot ``x`` inserted ``m`` times (Boehm, at any
-        multiplicity), lekalo's ``insert_knot_raw``; the coefficients grow by ``m``. A periodic
-        spline (``extrapolate="periodic"``) keeps its periodic extension, lekalo's
-        ``insert_knot_periodic`` (both FITPACK's ``fpinst``)."""
-        x = float(x)
-        if x < self.t[self.k] or x > self.t[-self.k - 1]:
-            raise ValueError(f"Cannot insert a knot at {x}.")
-        if m <= 0:
-            raise ValueError(f"`m` must be positive, got {m = }.")
+        multiplicity); the coefficients grow by ``m``. A periodic
+        spline (``extrapolate="periodic"``) keeps its periodic extension (both FITPACK's
+        ``fpinst``, lekalo's ``insert_knot_into``)."""
+        t, cc = _insert_tc(self.t, self.c, self.k, x, m, self.extrapolate == "periodic")
         n = self._n()
-        complex_ = np.iscomplexobj(self.c)
-        # lekalo's insert_knot_periodic (Boehm's insertion, then the periodic extension restored)
-        # or insert_knot_raw (Boehm's insertion at any multiplicity), as FITPACK's fpinst does
-        insert = _lekalo.insert_knot_periodic if self.extrapolate == "periodic" else _lekalo.insert_knot_raw
-        cols = _real_columns(self.c, n)
-        t, control = insert(self.k, self.t, cols if cols.shape[1] else np.zeros((n, 1)), x, m)
-        if not cols.shape[1]:
-            control = np.zeros((n + m, 0))
-        cc = _from_columns(np.ascontiguousarray(control), complex_).reshape((n + m,) + self.c.shape[1:])
+        cc = cc[: n + m]
         # coefficients beyond the n that the knots use stay at the end, as in SciPy
         cc = np.concatenate([cc, self.c[n:]]) if self.c.shape[0] > n else cc
-        return self.construct_fast(np.ascontiguousarray(t), cc, self.k, self.extrapolate, self.axis)
+        return self.construct_fast(t, cc, self.k, self.extrapolate, self.axis)
+
+
+def _insert_tc(t: np.ndarray, c: np.ndarray, k: int, x: float, m: int, periodic: bool):
+    """The knots and coefficients of ``(t, c, k)`` with ``x`` inserted ``m`` times, the
+    coefficients padded with zero rows to the knots' length (SciPy's ``insert`` layout): lekalo's
+    ``tck_insert`` on the arrays as they are (``insert_knot_into``: Boehm's insertion at any
+    multiplicity, or with ``periodic`` the periodic extension kept, both FITPACK's ``fpinst``)."""
+    x = float(x)
+    if x < t[k] or x > t[-k - 1]:
+        raise ValueError(f"Cannot insert a knot at {x}.")
+    if m <= 0:
+        raise ValueError(f"`m` must be positive, got {m = }.")
+    n = t.shape[0] - k - 1
+    complex_ = np.iscomplexobj(c)
+    cols = _real_columns(c, n)
+    if not cols.shape[1]:
+        tt, _ = _lekalo.tck_insert(t, np.zeros((n, 1)), k, x, m, periodic)
+        return tt, np.zeros((tt.shape[0],) + c.shape[1:], dtype=c.dtype)
+    tt, cc = _lekalo.tck_insert(t, cols, k, x, m, periodic)
+    return tt, _from_columns(cc, complex_).reshape((tt.shape[0],) + c.shape[1:])
 
 
 def _knots_to_add(t0: np.ndarray, t: np.ndarray) -> np.ndarray | None:
@@ -383,10 +395,17 @@ def _derivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
-    curve = _curve(t, _real_columns(c, n), k)
+    cols = _real_columns(c, n)
+    t_new = t[nu:-nu]
+    try:
+        # one call on the arrays as they are, SciPy's layout out (the rows past n - nu zero)
+        cn = _lekalo.tck_derivative(t, cols, k, nu)
+        return t_new, _from_columns(cn, complex_).reshape((t_new.shape[0],) + tail)
+    except _lekalo.Error:
+        pass  # knots lekalo's curve takes apart (B-splines without support, repeated knots)
+    curve = _curve(t, cols, k)
     for _ in range(nu):
         curve = curve.derivative()
-    t_new = t[nu:-nu] if nu > 0 else t
     if curve.knots.shape[0] != t_new.shape[0]:
         raise ValueError(f"The spline has internal repeated knots and is not differentiable {nu} times")
     cn = _from_columns(curve.control, complex_).reshape((n - nu,) + tail)
@@ -404,6 +423,15 @@ def _antiderivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
     n = t.shape[0] - k - 1
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
+    try:
+        # one call on the arrays as they are, SciPy's layout out (the rows past n + nu copies of
+        # the last); a B-spline without support adds nothing to the running sum, so its
+        # coefficient repeats the previous one, as SciPy's
+        cn = _lekalo.tck_antiderivative(t, _real_columns(c, n), k, nu)
+        t_new = np.r_[(t[0],) * nu, t, (t[-1],) * nu]
+        return t_new, _from_columns(cn, complex_).reshape((t_new.shape[0],) + tail)
+    except _lekalo.Error:
+        pass  # what the library refuses, refused below in SciPy's words
     kept = _kept(t, k)
     if not kept.all():
         # one step on the B-splines with support; those without add nothing to the cumulative

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _pad_rows
+from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _pad_rows
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
@@ -186,7 +186,7 @@ def splantider(tck: Any, n: int = 1):
 
 def insert(x: float, tck: Any, m: int = 1, per: int = 0):
     """``scipy.interpolate.insert``: the knot ``x`` inserted ``m`` times (Boehm), lekalo's
-    ``insert_knot`` through ``BSpline.insert_knot``; a ``(t, c, k)`` tuple gives a tuple with
+    ``insert_knot_into`` on the arrays as they are; a ``(t, c, k)`` tuple gives a tuple with
     ``c`` zero-padded to ``len(t)``, a ``BSpline`` a ``BSpline``."""
     if isinstance(tck, BSpline):
         spl = BSpline(tck.t, tck.c, tck.k, extrapolate="periodic" if per else tck.extrapolate, axis=tck.axis)
@@ -207,16 +207,16 @@ def insert(x: float, tck: Any, m: int = 1, per: int = 0):
     t = np.asarray(t, dtype=np.float64)
     c = np.asarray(c, dtype=np.float64)
     n = t.shape[0] - k - 1
-    spl = BSpline.construct_fast(t, c[:n], k, extrapolate="periodic" if per else True)
-    out = spl.insert_knot(x, m)
-    return out.t, _pad_rows(out.c, out.t.shape[0]), k
+    tt, cc = _insert_tc(t, c[:n], k, x, m, bool(per))
+    return tt, cc, k
 
 
 def sproot(tck: Any, mest: int = 10):
     """``scipy.interpolate.sproot``: the zeros of a cubic spline in its base interval (FITPACK's
-    ``sproot``), found by lekalo's ``PiecewisePolynomial.solve`` on the spline's pp-form
-    (no sign changes across jumps; intervals where the spline vanishes give no zero; the base
-    interval widened by rounding, docs/theory/pp.md#roots). At most ``mest`` zeros, with FITPACK's warning when there are more."""
+    ``sproot``), found by lekalo's ``tck_zeros`` on the B-spline (spans whose coefficients share
+    one sign skipped, the others solved in power form; intervals where the spline vanishes give
+    no zero; the base interval widened by rounding, docs/theory/curves.md#zeros-of-a-spline). At
+    most ``mest`` zeros, with FITPACK's warning when there are more."""
     if isinstance(tck, BSpline):
         if tck.c.ndim > 1:
             raise ValueError("Calling sproot() with BSpline objects with c.ndim > 1 is not allowed.")
@@ -239,11 +239,7 @@ def sproot(tck: Any, mest: int = 10):
     cc = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[:n].reshape(n, 1))
     if not (np.all(np.diff(t) >= 0) and np.all(np.diff(t[k:n + 1]) > 0)):
         raise TypeError("Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold.")
-    pp = _lekalo.BSplineCurve(k, t, cc).to_pp()
-    z = pp.solve(0.0, discontinuity=False, extrapolate=True)[0]
-    keep = ~np.isnan(z)
-    keep[:-1] &= ~np.isnan(z[1:])  # a vanishing interval is not a zero
-    z = z[keep]
+    z = _lekalo.tck_zeros(t, cc[:, 0], k)
     # the base interval, widened by rounding: a zero at an end falls on either side of it
     a, b = t[k], t[n]
     tol = 4 * np.finfo(float).eps * max(abs(a), abs(b), b - a)

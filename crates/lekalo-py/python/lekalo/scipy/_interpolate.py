@@ -65,9 +65,10 @@ def make_interp_spline(
     x: Any, y: Any, k: int = 3, t: Any = None, bc_type: Any = None, axis: int = 0, check_finite: bool = True
 ) -> BSpline:
     """The interpolating B-spline of degree ``k`` (``scipy.interpolate.make_interp_spline``):
-    SciPy's knots and boundary conditions, solved by lekalo (``make_lsq_spline`` on as many
-    coefficients as conditions, a square banded QR; ``interpolate_with_end_derivatives`` with
-    derivative conditions of any orders, chosen per end)."""
+    SciPy's knots and boundary conditions, solved by lekalo's ``interpolate_with_end_derivatives``
+    (without derivative conditions the collocation matrix, totally positive, by banded
+    elimination without pivoting as SciPy's LU; with derivative conditions of any orders, chosen
+    per end, by banded QR)."""
     if bc_type is None or bc_type == "not-a-knot" or bc_type == "periodic":
         deriv_l, deriv_r = None, None
     elif isinstance(bc_type, str):
@@ -143,7 +144,8 @@ def make_interp_spline(
     complex_ = np.iscomplexobj(y)
     yy = _real_columns(y, n)
     if nleft == 0 and nright == 0:
-        ctrl = _lekalo.make_lsq_spline(x, yy, t, k).control
+        # the collocation matrix alone, totally positive: lekalo eliminates it without pivoting
+        ctrl = _lekalo.interpolate_with_end_derivatives(x, yy, t, k).control
     else:
 
         def conditions(ords, vals):

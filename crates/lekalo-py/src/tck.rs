@@ -1,0 +1,210 @@
+//! Calculus on a spline given as arrays, SciPy's `(t, c, k)`, for `lekalo.scipy`: derivative and
+//! antiderivative coefficients, definite integrals (`lekalo::curve::tck`), knot insertion
+//! (`lekalo::insert_knot_into`) and zeros (`lekalo::curve::bspline_zeros`). The knots and
+//! coefficients are read in place (C-contiguous float64 arrays are borrowed, never copied) and
+//! each result is one NumPy array, allocated once and written with the GIL released; no curve
+//! is built, so nothing is validated or copied beyond what the computation reads.
+
+use lekalo::curve::{
+    antiderivative_coefficients_into, bspline_zeros, derivative_coefficients_into, integral_into,
+};
+use lekalo::{insert_knot_into, PointsRef};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{check_size, filled, floats, FloatArray};
+use crate::error::{bad, lib_err};
+
+/// The knots: a 1-D array (not checked finite here: the library refuses what it cannot use).
+fn knots<'a>(t: &'a FloatArray<'_>) -> PyResult<&'a [f64]> {
+    if t.shape().len() != 1 {
+        return Err(bad(format!(
+            "t: expected a 1-D array of knots, got shape {:?}",
+            t.shape()
+        )));
+    }
+    Ok(t.data())
+}
+
+/// The coefficients' columns: `(rows, dim)`, or `(rows,)` as one column.
+fn columns(c: &FloatArray<'_>) -> PyResult<usize> {
+    match c.shape() {
+        [_] => Ok(1),
+        [_, d] => Ok(*d),
+        s => Err(bad(format!(
+            "c: expected a 1-D or 2-D array of coefficients (rows, columns), got shape {s:?}"
+        ))),
+    }
+}
+
+/// The coefficients of the `nu`-th derivative of the spline `(t, c, k)`, `(len(t) − 2nu, dim)`
+/// in SciPy's layout (the rows past `n − nu` zero; its knots are `t[nu:-nu]`), without a curve
+/// built (`lekalo::curve::derivative_coefficients_into`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> t = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+/// >>> lekalo._lekalo.tck_derivative(t, np.array([[0.0], [0.0], [1.0]]), 2)[:, 0].tolist()
+/// [0.0, 2.0, 0.0, 0.0]
+#[pyfunction]
+#[pyo3(signature = (t, c, k, nu = 1))]
+pub(crate) fn tck_derivative<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: usize,
+    nu: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let ta = floats(t, "t")?;
+    let ca = floats(c, "c")?;
+    let (ts, dim) = (knots(&ta)?, columns(&ca)?);
+    let rows = ts.len().checked_sub(2 * nu).ok_or_else(|| {
+        bad(format!(
+            "derivative order {nu} needs at least {} knots, got {}",
+            2 * nu,
+            ts.len()
+        ))
+    })?;
+    let cs = ca.data();
+    filled(py, &[rows, dim], |out| {
+        derivative_coefficients_into(ts, k, cs, dim, nu, out)
+    })
+}
+
+/// The coefficients of the `nu`-th antiderivative of the spline `(t, c, k)`,
+/// `(len(t) + 2nu, dim)` in SciPy's layout (the rows past `n + nu` copies of the last; its knots
+/// are `t` with each end knot repeated `nu` times more), without a curve built
+/// (`lekalo::curve::antiderivative_coefficients_into`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> lekalo._lekalo.tck_antiderivative(np.array([0.0, 1.0]), np.array([[1.0]]), 0)[:, 0].tolist()
+/// [0.0, 1.0, 1.0, 1.0]
+#[pyfunction]
+#[pyo3(signature = (t, c, k, nu = 1))]
+pub(crate) fn tck_antiderivative<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: usize,
+    nu: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let ta = floats(t, "t")?;
+    let ca = floats(c, "c")?;
+    let (ts, dim) = (knots(&ta)?, columns(&ca)?);
+    let rows = nu
+        .checked_mul(2)
+        .and_then(|v| v.checked_add(ts.len()))
+        .ok_or_else(|| bad(format!("antiderivative order {nu} is too large")))?;
+    check_size("antiderivative coefficients", &[rows, dim])?;
+    let cs = ca.data();
+    filled(py, &[rows, dim], |out| {
+        antiderivative_coefficients_into(ts, k, cs, dim, nu, out)
+    })
+}
+
+/// `∫_a^b` of the spline `(t, c, k)`, `(dim,)`, the end polynomials continued beyond the
+/// domain (clip the limits first for the integral over the domain only), reading only the
+/// coefficients between the limits (`lekalo::curve::integral_into`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> t = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+/// >>> float(lekalo._lekalo.tck_integral(t, np.array([[0.0], [0.0], [3.0]]), 2, 0.0, 1.0)[0])
+/// 1.0
+#[pyfunction]
+pub(crate) fn tck_integral<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: usize,
+    a: f64,
+    b: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let ta = floats(t, "t")?;
+    let ca = floats(c, "c")?;
+    let (ts, dim) = (knots(&ta)?, columns(&ca)?);
+    let mut out = vec![0.0; dim];
+    let cs = ca.data();
+    py.detach(|| integral_into(ts, k, cs, dim, a, b, &mut out))
+        .map_err(lib_err)?;
+    Ok(PyArray1::from_vec(py, out))
+}
+
+/// The spline `(t, c, k)` with `x` inserted `m` times (Boehm's insertion at any multiplicity, as
+/// FITPACK's `fpinst`; with `periodic`, the periodic extension kept): `(knots, coefficients)`,
+/// the coefficients `(len(knots), dim)` in SciPy's layout (zero rows after the
+/// `len(knots) − k − 1` coefficients), each array allocated once (`lekalo::insert_knot_into`).
+/// `c` has exactly `len(t) − k − 1` rows.
+///
+/// >>> import numpy as np, lekalo
+/// >>> t, c = lekalo._lekalo.tck_insert(np.array([0.0, 0.0, 1.0, 1.0]), np.array([[0.0], [1.0]]), 1, 0.5)
+/// >>> t.tolist(), c[:, 0].tolist()
+/// ([0.0, 0.0, 0.5, 1.0, 1.0], [0.0, 0.5, 1.0, 0.0, 0.0])
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, m = 1, periodic = false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn tck_insert<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: usize,
+    x: f64,
+    m: usize,
+    periodic: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let ta = floats(t, "t")?;
+    let ca = floats(c, "c")?;
+    let (ts, dim) = (knots(&ta)?, columns(&ca)?);
+    let control = PointsRef::from_flat(dim, ca.data()).map_err(lib_err)?;
+    let len = ts
+        .len()
+        .checked_add(m)
+        .ok_or_else(|| bad(format!("m = {m} insertions are too many")))?;
+    check_size("coefficients after insertion", &[len, dim])?;
+    let new_t = PyArray1::<f64>::zeros(py, len, false);
+    let new_c = {
+        let mut tw = new_t.readwrite();
+        let out_t = tw.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
+        filled(py, &[len, dim], |out_c| {
+            insert_knot_into(k, ts, control, x, m, periodic, out_t, out_c)
+        })?
+    };
+    PyTuple::new(py, [new_t.into_any(), new_c])
+}
+
+/// The zeros of the scalar spline `(t, c, k)` in its base interval, increasing, the first and
+/// last spans' polynomials also searched beyond it (`lekalo::curve::bspline_zeros`: spans whose
+/// coefficients share one strict sign skipped, the others solved in power form). `c` is 1-D.
+///
+/// >>> import numpy as np, lekalo
+/// >>> lekalo._lekalo.tck_zeros(np.array([0.0, 0.0, 1.0, 2.0, 2.0]), np.array([-1.0, 1.0, -1.0]), 1).tolist()
+/// [0.5, 1.5]
+#[pyfunction]
+pub(crate) fn tck_zeros<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    k: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let ta = floats(t, "t")?;
+    let ca = floats(c, "c")?;
+    let ts = knots(&ta)?;
+    if ca.shape().len() != 1 {
+        return Err(bad(format!(
+            "c: expected a 1-D array of coefficients (one spline), got shape {:?}",
+            ca.shape()
+        )));
+    }
+    let cs = ca.data();
+    let z = py.detach(|| bspline_zeros(ts, k, cs)).map_err(lib_err)?;
+    Ok(PyArray1::from_vec(py, z))
+}
+
+/// Registers the functions of this module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(tck_derivative, m)?)?;
+    m.add_function(wrap_pyfunction!(tck_antiderivative, m)?)?;
+    m.add_function(wrap_pyfunction!(tck_integral, m)?)?;
+    m.add_function(wrap_pyfunction!(tck_insert, m)?)?;
+    m.add_function(wrap_pyfunction!(tck_zeros, m)?)?;
+    Ok(())
+}

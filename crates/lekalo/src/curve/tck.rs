@@ -1,0 +1,551 @@
+//! Calculus on a spline given as arrays — knots `t`, coefficients `c` (`n × dim`, one row a
+//! coefficient) and degree `k`, SciPy's `(t, c, k)` — read in place and written into the
+//! caller's buffers, without building a [`BSplineCurve`](crate::BSplineCurve): the derivative
+//! and antiderivative coefficients and the definite integral
+//! (`docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`). The arithmetic is that
+//! of [`BSplineCurve::derivative`](crate::BSplineCurve::derivative) and
+//! [`BSplineCurve::antiderivative`](crate::BSplineCurve::antiderivative), so the numbers are
+//! the same; what is saved is the copies of the arrays, their validation as a curve, and the
+//! fresh memory of intermediate results (for millions of coefficients the page faults of that
+//! memory cost more than the arithmetic).
+
+use crate::basis::{basis_funs_into, BasisScratch};
+use crate::error::{check_degree_bound, check_finite, Error, Result};
+
+/// The checks shared by the functions of this module: `t.len() ≥ 2k + 2`, `dim ≥ 1`, at least
+/// `n = t.len() − k − 1` coefficient rows in `c`; returns `n`.
+fn coefficient_count(t: &[f64], k: usize, c: &[f64], dim: usize) -> Result<usize> {
+    let invalid = |reason: String| Error::InvalidArgument {
+        what: "spline (knots, degree, coefficients)",
+        reason,
+    };
+    if dim == 0 {
+        return Err(invalid(
+            "the coefficients have no column (dimension 0)".into(),
+        ));
+    }
+    let need = k.checked_mul(2).and_then(|v| v.checked_add(2));
+    if need.is_none_or(|need| t.len() < need) {
+        return Err(invalid(format!(
+            "{} knots for degree {k}: at least 2k + 2 are needed",
+            t.len()
+        )));
+    }
+    let n = t.len() - k - 1;
+    if c.len() < n * dim {
+        return Err(invalid(format!(
+            "{} coefficient rows for {} knots of degree {k}: at least {n} are needed",
+            c.len() / dim,
+            t.len()
+        )));
+    }
+    Ok(n)
+}
+
+/// A buffer of the wrong size: the caller's mistake, named.
+fn buffer_size(expected: usize, got: usize) -> Error {
+    Error::LengthMismatch {
+        what: "result buffer (rows × dimension)",
+        expected,
+        got,
+    }
+}
+
+/// The coefficients of the `nu`-th derivative of the spline `(t, c, k)` into `out`, on the knots
+/// `t[nu .. t.len() − nu]` and of degree `k − nu`, in SciPy's layout (`splder`): `out` holds
+/// `t.len() − 2nu` rows of `dim` numbers, the first `n − nu` the coefficients
+/// `c'_i = p (c_{i+1} − c_i) / (t_{i+p+1} − t_{i+1})` applied `nu` times (P&T eq. 3.7; the
+/// arithmetic of [`BSplineCurve::derivative`](crate::BSplineCurve::derivative)), the others
+/// zero. Only the first `n = t.len() − k − 1` rows of `c` are read. O(nu · n · dim).
+///
+/// ```
+/// use lekalo::curve::derivative_coefficients_into;
+/// // t² on [0, 1] as a clamped quadratic: coefficients 0, 0, 1; the derivative 2t is 0, 2
+/// let t = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+/// let mut out = [f64::NAN; 4];
+/// derivative_coefficients_into(&t, 2, &[0.0, 0.0, 1.0], 1, 1, &mut out)?;
+/// assert_eq!(out, [0.0, 2.0, 0.0, 0.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for fewer than `2k + 2` knots, fewer coefficients than `n`, no
+/// column, `nu > k`, or a knot repeated so often inside that the spline is not differentiable
+/// `nu` times (a zero denominator `t_{i+p+1} − t_{i+1}`); [`Error::LengthMismatch`] for `out`
+/// not of `(t.len() − 2nu) · dim` numbers; [`Error::NonFinite`] on overflow.
+pub fn derivative_coefficients_into(
+    t: &[f64],
+    k: usize,
+    c: &[f64],
+    dim: usize,
+    nu: usize,
+    out: &mut [f64],
+) -> Result<()> {
+    let n = coefficient_count(t, k, c, dim)?;
+    if nu > k {
+        return Err(Error::InvalidArgument {
+            what: "derivative order",
+            reason: format!("order {nu} exceeds the degree {k}: use orders 0 … {k}"),
+        });
+    }
+    let rows = t.len() - 2 * nu;
+    if out.len() != rows * dim {
+        return Err(buffer_size(rows * dim, out.len()));
+    }
+    let m = n - nu; // coefficients of the result
+    match nu {
+        0 => out[..n * dim].copy_from_slice(&c[..n * dim]),
+        // one step straight from the input
+        1 => derivative_step(t, k, nu, dim, &c[..n * dim], &mut out[..m * dim])?,
+        // the result may have fewer rows than the steps before it: the steps in a work copy,
+        // each in place (row i reads rows i and i + 1)
+        _ => {
+            let mut work = c[..n * dim].to_vec();
+            for step in 0..nu {
+                let rows = n - step;
+                derivative_step_in_place(
+                    &t[step..t.len() - step],
+                    k - step,
+                    nu,
+                    dim,
+                    &mut work[..rows * dim],
+                )?;
+            }
+            out[..m * dim].copy_from_slice(&work[..m * dim]);
+        }
+    }
+    out[m * dim..].fill(0.0);
+    check_finite(
+        "derivative coefficients (overflow: rescale the coefficients)",
+        &out[..(n - nu) * dim],
+    )
+}
+
+/// `p / (u_{i+p+1} − u_{i+1})`, the factor of derivative row `i` on the knots `u` of degree `p`,
+/// or the error of a knot repeated `p + 1` times (a zero denominator; NaN knots too).
+fn derivative_factor(u: &[f64], p: usize, i: usize, nu: usize) -> Result<f64> {
+    let denom = u[i + p + 1] - u[i + 1];
+    if denom.is_nan() || denom <= 0.0 {
+        return Err(Error::InvalidArgument {
+            what: "knots",
+            reason: format!(
+                "knot {} is repeated {} times or more: the spline is not differentiable {nu} \
+                 times there; take fewer derivatives",
+                u[i + 1],
+                p + 1
+            ),
+        });
+    }
+    Ok(p as f64 / denom)
+}
+
+/// One derivative step on the knots `u` of degree `p`: `dst` (one row fewer than `src`) from
+/// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`.
+fn derivative_step(
+    u: &[f64],
+    p: usize,
+    nu: usize,
+    dim: usize,
+    src: &[f64],
+    dst: &mut [f64],
+) -> Result<()> {
+    for (i, row) in dst.chunks_exact_mut(dim).enumerate() {
+        let s = derivative_factor(u, p, i, nu)?;
+        let (a, b) = (
+            &src[i * dim..(i + 1) * dim],
+            &src[(i + 1) * dim..(i + 2) * dim],
+        );
+        for ((o, x0), x1) in row.iter_mut().zip(a).zip(b) {
+            *o = s * (x1 - x0);
+        }
+    }
+    Ok(())
+}
+
+/// [`derivative_step`] in place: the first `rows − 1` rows of `buf` replaced by the step's
+/// coefficients (row `i` reads rows `i` and `i + 1`, so going up reads before writing).
+fn derivative_step_in_place(
+    u: &[f64],
+    p: usize,
+    nu: usize,
+    dim: usize,
+    buf: &mut [f64],
+) -> Result<()> {
+    let rows = buf.len() / dim;
+    for i in 0..rows - 1 {
+        let s = derivative_factor(u, p, i, nu)?;
+        for d in 0..dim {
+            buf[i * dim + d] = s * (buf[(i + 1) * dim + d] - buf[i * dim + d]);
+        }
+    }
+    Ok(())
+}
+
+/// The coefficients of the `nu`-th antiderivative of the spline `(t, c, k)` into `out`, of
+/// degree `k + nu` on the knots `t` with each end knot repeated `nu` times more, in SciPy's
+/// layout (`splantider`): `out` holds `t.len() + 2nu` rows of `dim` numbers, the first `n + nu`
+/// the coefficients of `nu` steps of `P̃_0 = 0`, `P̃_{i+1} = Σ_{j≤i} c_j (t_{j+p+1} − t_j)/(p + 1)`
+/// (de Boor, *A Practical Guide to Splines*, ch. X, eq. (31); the arithmetic of
+/// [`BSplineCurve::antiderivative`](crate::BSplineCurve::antiderivative)), the others copies
+/// of the last. Only the first `n` rows of `c` are read. O(nu · n · dim).
+///
+/// ```
+/// use lekalo::curve::antiderivative_coefficients_into;
+/// // 1 on [0, 1] (degree 0): the antiderivative x has coefficients 0, 1 on knots 0, 0, 1, 1
+/// let mut out = [f64::NAN; 4];
+/// antiderivative_coefficients_into(&[0.0, 1.0], 0, &[1.0], 1, 1, &mut out)?;
+/// assert_eq!(out, [0.0, 1.0, 1.0, 1.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for fewer than `2k + 2` knots, fewer coefficients than `n` or no
+/// column; [`Error::Degree`] if `k + nu` exceeds [`crate::MAX_DEGREE`];
+/// [`Error::LengthMismatch`] for `out` not of `(t.len() + 2nu) · dim` numbers;
+/// [`Error::NonFinite`] on overflow.
+pub fn antiderivative_coefficients_into(
+    t: &[f64],
+    k: usize,
+    c: &[f64],
+    dim: usize,
+    nu: usize,
+    out: &mut [f64],
+) -> Result<()> {
+    let n = coefficient_count(t, k, c, dim)?;
+    check_degree_bound(k.saturating_add(nu))?;
+    let rows = t.len() + 2 * nu;
+    if out.len() != rows * dim {
+        return Err(buffer_size(rows * dim, out.len()));
+    }
+    out[..n * dim].copy_from_slice(&c[..n * dim]);
+    let (first, last) = (t[0], t[t.len() - 1]);
+    let mut acc = vec![0.0; dim];
+    let mut x = vec![0.0; dim];
+    for step in 0..nu {
+        // the knots of this step: t with each end knot repeated `step` times more
+        let u = |i: usize| {
+            if i < step {
+                first
+            } else if i - step < t.len() {
+                t[i - step]
+            } else {
+                last
+            }
+        };
+        let p = k + step;
+        let scale = 1.0 / (p as f64 + 1.0);
+        let m = n + step; // coefficients of this step
+        acc.fill(0.0);
+        for j in 0..m {
+            let w = (u(j + p + 1) - u(j)) * scale;
+            let row = &mut out[j * dim..(j + 1) * dim];
+            x.copy_from_slice(row);
+            row.copy_from_slice(&acc);
+            for (a, xi) in acc.iter_mut().zip(&x) {
+                *a += xi * w;
+            }
+        }
+        out[m * dim..(m + 1) * dim].copy_from_slice(&acc);
+    }
+    let m = n + nu;
+    check_finite(
+        "antiderivative coefficients (overflow: rescale the coefficients)",
+        &out[..m * dim],
+    )?;
+    let (filled, rest) = out.split_at_mut(m * dim);
+    let last_row = &filled[(m - 1) * dim..];
+    for row in rest.chunks_exact_mut(dim) {
+        row.copy_from_slice(last_row);
+    }
+    Ok(())
+}
+
+/// The span `s` of `x` for the spline `(t, k)` with `n` coefficients: `t_s ≤ x < t_{s+1}`,
+/// `k ≤ s < n`, non-empty; below the domain the first non-empty span, from `t_n` on the last
+/// (the end polynomials continued, as [`crate::bspline_value`]).
+fn span_of(t: &[f64], k: usize, n: usize, x: f64) -> usize {
+    // the last s in k..n with t_s ≤ x (k when none): a binary search over k + 1 .. n
+    let (mut a, mut b) = (k + 1, n);
+    while a < b {
+        let m = a + (b - a) / 2;
+        if t[m] <= x {
+            a = m + 1;
+        } else {
+            b = m;
+        }
+    }
+    let mut s = a - 1;
+    // empty spans: down to the last non-empty one (x at or beyond t_n, or on repeated knots),
+    // up from k at the left end
+    while s > k && t[s] >= t[s + 1] {
+        s -= 1;
+    }
+    while s + 1 < n && t[s] >= t[s + 1] {
+        s += 1;
+    }
+    s
+}
+
+/// `∫_a^b S(x) dx` of the spline `(t, c, k)` into `out` (`dim` numbers), the end polynomials
+/// continued beyond the domain `[t_k, t_n]` (so that inside it this is the plain integral):
+/// `A(b) − A(a)` with `A = Σ_l P̃_l Ñ_l` the antiderivative of
+/// [`antiderivative_coefficients_into`] (de Boor, ch. X, eq. (31)). Since the `Ñ_l` sum to one,
+/// the prefix sums `P̃_l` may start at the first B-spline that is non-zero at `a`: only the
+/// coefficients between the spans of `a` and `b` are read, and nothing is allocated beyond
+/// `O(k · dim)`. `a > b` gives the negative of `∫_b^a`. SciPy's `BSpline.integrate` and
+/// `splint` (with the limits first clipped to the domain when not extrapolating).
+///
+/// ```
+/// use lekalo::curve::integral_into;
+/// // t² on [0, 1] (coefficients 0, 0, 1): ∫_0^1 = 1/3; continued, ∫_{-1}^{2} t² = 3
+/// let t = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+/// let mut out = [0.0];
+/// integral_into(&t, 2, &[0.0, 0.0, 1.0], 1, 0.0, 1.0, &mut out)?;
+/// assert!((out[0] - 1.0 / 3.0).abs() < 1e-15);
+/// integral_into(&t, 2, &[0.0, 0.0, 1.0], 1, -1.0, 2.0, &mut out)?;
+/// assert!((out[0] - 3.0).abs() < 1e-14);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for fewer than `2k + 2` knots, fewer coefficients than `n`, no
+/// column, or an empty domain; [`Error::Degree`] if `k + 1` exceeds [`crate::MAX_DEGREE`];
+/// [`Error::NonFinite`] for a non-finite limit or an overflowing result;
+/// [`Error::LengthMismatch`] for `out` not of `dim` numbers.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty domain
+pub fn integral_into(
+    t: &[f64],
+    k: usize,
+    c: &[f64],
+    dim: usize,
+    a: f64,
+    b: f64,
+    out: &mut [f64],
+) -> Result<()> {
+    let n = coefficient_count(t, k, c, dim)?;
+    check_degree_bound(k.saturating_add(1))?;
+    if out.len() != dim {
+        return Err(buffer_size(dim, out.len()));
+    }
+    check_finite("integration limits [a, b]", &[a, b])?;
+    if !(t[k] < t[n]) {
+        return Err(Error::InvalidArgument {
+            what: "spline (knots, degree, coefficients)",
+            reason: format!("the domain [t_k, t_n] = [{}, {}] is empty", t[k], t[n]),
+        });
+    }
+    let (a, b, sign) = if b < a { (b, a, -1.0) } else { (a, b, 1.0) };
+    let q = k + 1;
+    // the extended knots t̃ (each end knot once more): t̃_0 = t_0, t̃_i = t_{i−1}, t̃_{len+1} = t_last
+    let ext = |i: usize| t[i.saturating_sub(1).min(t.len() - 1)];
+    let mut scratch = BasisScratch::new(q);
+    let mut window = vec![0.0; 2 * q];
+    let mut basis_at = |x: f64, sigma: usize, basis: &mut [f64]| {
+        // Ñ_{σ−q ..= σ}(x) by Cox–de Boor on the knots t̃_{σ−q+1 ..= σ+q}
+        for (i, w) in window.iter_mut().enumerate() {
+            *w = ext(sigma + 1 + i - q);
+        }
+        basis_funs_into(&window, q, q - 1, x, &mut scratch, basis);
+    };
+    // the span of t̃ is one more than that of t (same domain, one more knot in front)
+    let sigma_a = span_of(t, k, n, a) + 1;
+    let sigma_b = span_of(t, k, n, b) + 1;
+    let mut na = vec![0.0; q + 1];
+    let mut nb = vec![0.0; q + 1];
+    basis_at(a, sigma_a, &mut na);
+    basis_at(b, sigma_b, &mut nb);
+    // D_l = P̃_l − P̃_L = Σ_{L ≤ j < l} c_j w_j, L = σ_a − q; the result Σ D_l Ñ_l(b) − Σ D_l Ñ_l(a)
+    let base = sigma_a - q;
+    let scale = 1.0 / (q as f64);
+    let mut acc = vec![0.0; dim];
+    out.fill(0.0);
+    let b_first = sigma_b - q; // the first B-spline non-zero at b (≥ base, as b ≥ a)
+    let mut l = base;
+    while l <= sigma_b {
+        if l > sigma_a && l < b_first {
+            // between the two windows only the running sum grows: one tight pass
+            running_sum(t, k, c, dim, l, b_first, scale, &mut acc);
+            l = b_first;
+            continue;
+        }
+        if l <= sigma_a {
+            let v = na[l - base];
+            for (o, d) in out.iter_mut().zip(&acc) {
+                *o -= v * d;
+            }
+        }
+        if l + q >= sigma_b {
+            let v = nb[l + q - sigma_b];
+            for (o, d) in out.iter_mut().zip(&acc) {
+                *o += v * d;
+            }
+        }
+        if l < sigma_b {
+            running_sum(t, k, c, dim, l, l + 1, scale, &mut acc);
+        }
+        l += 1;
+    }
+    for o in out.iter_mut() {
+        *o *= sign;
+    }
+    check_finite("integral (overflow: rescale the coefficients)", out)
+}
+
+/// `acc += Σ_{j=from}^{to−1} c_j (t_{j+k+1} − t_j) · scale`; one column in four independent
+/// sums.
+#[allow(clippy::too_many_arguments)]
+fn running_sum(
+    t: &[f64],
+    k: usize,
+    c: &[f64],
+    dim: usize,
+    from: usize,
+    to: usize,
+    scale: f64,
+    acc: &mut [f64],
+) {
+    if dim == 1 {
+        let (cs, lo, hi) = (&c[from..to], &t[from..to], &t[from + k + 1..to + k + 1]);
+        let mut s = [0.0; 4];
+        let mut chunks = cs
+            .chunks_exact(4)
+            .zip(lo.chunks_exact(4).zip(hi.chunks_exact(4)));
+        for (x, (a, b)) in chunks.by_ref() {
+            for r in 0..4 {
+                s[r] += x[r] * (b[r] - a[r]);
+            }
+        }
+        let done = cs.len() / 4 * 4;
+        let mut tail = 0.0;
+        for j in done..cs.len() {
+            tail += cs[j] * (hi[j] - lo[j]);
+        }
+        acc[0] += ((s[0] + s[1]) + (s[2] + s[3]) + tail) * scale;
+        return;
+    }
+    for j in from..to {
+        let w = (t[j + k + 1] - t[j]) * scale;
+        for (s, x) in acc.iter_mut().zip(&c[j * dim..(j + 1) * dim]) {
+            *s += x * w;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BSplineCurve, Points};
+    use proptest::prelude::*;
+
+    fn curve(t: &[f64], k: usize, c: &[f64], dim: usize) -> BSplineCurve {
+        BSplineCurve::new(k, t.to_vec(), Points::from_flat(dim, c.to_vec()).unwrap()).unwrap()
+    }
+
+    /// A clamped knot vector on [0, 10] with jittered interior knots, and coefficients.
+    fn spline(k: usize, n: usize, dim: usize, seed: u64) -> (Vec<f64>, Vec<f64>) {
+        let mut s = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let inner = n - k - 1;
+        let mut t = vec![0.0; k + 1];
+        for i in 1..=inner {
+            t.push((i as f64 + 0.4 * (next() - 0.5)) * 10.0 / (inner + 1) as f64);
+        }
+        t.extend(std::iter::repeat_n(10.0, k + 1));
+        let c = (0..n * dim).map(|_| next() * 2.0 - 1.0).collect();
+        (t, c)
+    }
+
+    proptest! {
+        /// The derivative coefficients are those of the derivative curve, bit for bit, and the
+        /// rows past them are zero.
+        #[test]
+        fn derivative_matches_the_curve(k in 1usize..6, extra in 0usize..20, dim in 1usize..4, seed in any::<u64>(), nu in 1usize..6) {
+            let n = k + 1 + extra;
+            let (t, c) = spline(k, n, dim, seed);
+            let nu = nu.min(k);
+            let mut out = vec![f64::NAN; (t.len() - 2 * nu) * dim];
+            derivative_coefficients_into(&t, k, &c, dim, nu, &mut out).unwrap();
+            let mut d = curve(&t, k, &c, dim);
+            for _ in 0..nu {
+                d = d.derivative().unwrap();
+            }
+            let m = d.control_points().as_slice().len();
+            prop_assert_eq!(&out[..m], d.control_points().as_slice());
+            prop_assert!(out[m..].iter().all(|&v| v == 0.0));
+            prop_assert_eq!(d.knots().as_slice(), &t[nu..t.len() - nu]);
+        }
+
+        /// The antiderivative coefficients are those of the antiderivative curve, bit for bit,
+        /// the rows past them copies of the last.
+        #[test]
+        fn antiderivative_matches_the_curve(k in 0usize..6, extra in 0usize..20, dim in 1usize..4, seed in any::<u64>(), nu in 1usize..3) {
+            let n = k + 1 + extra;
+            let (t, c) = spline(k, n, dim, seed);
+            let mut out = vec![f64::NAN; (t.len() + 2 * nu) * dim];
+            antiderivative_coefficients_into(&t, k, &c, dim, nu, &mut out).unwrap();
+            let a = curve(&t, k, &c, dim).antiderivative(nu).unwrap();
+            let m = a.control_points().as_slice().len();
+            prop_assert_eq!(&out[..m], a.control_points().as_slice());
+            let last = &out[m - dim..m];
+            prop_assert!(out[m..].chunks_exact(dim).all(|r| r == last));
+        }
+
+        /// The integral agrees with the difference of the antiderivative curve's values, inside
+        /// the domain and continued beyond it, to rounding of the data's scale.
+        #[test]
+        fn integral_matches_the_antiderivative(k in 0usize..6, extra in 0usize..30, dim in 1usize..3, seed in any::<u64>(), a in -2.0f64..12.0, b in -2.0f64..12.0) {
+            let n = k + 1 + extra;
+            let (t, c) = spline(k, n, dim, seed);
+            let mut out = vec![f64::NAN; dim];
+            integral_into(&t, k, &c, dim, a, b, &mut out).unwrap();
+            let want = curve(&t, k, &c, dim).integral_extrapolated(a, b).unwrap();
+            // |∫| ≤ |b − a| · max|c| with |c| ≤ 1 inside; beyond, the end polynomials grow
+            let scale = 1.0 + (b - a).abs() * (1.0 + 12f64.powf(k as f64 + 1.0));
+            for (o, w) in out.iter().zip(&want) {
+                prop_assert!((o - w).abs() <= 1e-12 * scale, "{} against {}", o, w);
+            }
+        }
+    }
+
+    #[test]
+    fn refusals_name_the_problem() {
+        let t = [0.0, 0.0, 1.0, 1.0];
+        let mut out = [0.0; 4];
+        assert!(matches!(
+            derivative_coefficients_into(&t, 1, &[0.0, 1.0], 1, 2, &mut out),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            derivative_coefficients_into(&t, 1, &[0.0, 1.0], 1, 1, &mut out[..1]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        // a knot of multiplicity k inside: the cubic is C⁰ there, not twice differentiable
+        let t = [0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0, 1.0];
+        let c = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        let mut out = [0.0; 7];
+        assert!(derivative_coefficients_into(&t, 3, &c, 1, 2, &mut out).is_err());
+        assert!(matches!(
+            integral_into(&[0.0, 0.0, 1.0, 1.0], 1, &[0.0], 1, 0.0, 1.0, &mut [0.0]),
+            Err(Error::InvalidArgument { .. })
+        ));
+        assert!(matches!(
+            integral_into(
+                &[0.0, 0.0, 1.0, 1.0],
+                1,
+                &[0.0, 1.0],
+                1,
+                f64::NAN,
+                1.0,
+                &mut [0.0]
+            ),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+}
