@@ -393,6 +393,15 @@ fn mesh_one(
                p: [f64; 2],
                x: Vec<f64>|
      -> Result<spade::handles::FixedVertexHandle> {
+        // a parameter within 2⁻¹⁴² of 0 (a foot on a seam at 0, by rounding) is 0: the
+        // triangulation refuses smaller coordinates other than 0
+        let p = p.map(|x| {
+            if x.abs() < spade::MIN_ALLOWED_VALUE {
+                0.0
+            } else {
+                x
+            }
+        });
         let vh = cdt.insert(Point2::new(p[0], p[1])).map_err(insert_err)?;
         if vh.index() >= ours.len() {
             ours.push(uv.len());
