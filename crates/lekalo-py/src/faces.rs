@@ -125,19 +125,45 @@ impl PyFace {
     /// its pcurves, grid points inside the trims are added and the whole triangulated by a
     /// constrained Delaunay triangulation, refined until every triangle's deviation bound is
     /// within the tolerance (``lekalo::topology::mesh_faces``; docs/theory/topology.md,
-    /// "Meshing a trimmed face").
+    /// "Meshing a trimmed face"). Edges without a pcurve get one by projection first, as
+    /// ``with_projected_pcurves(tolerance)``; an edge off the surface raises ``ValueError``.
     fn mesh<'py>(
         &self,
         py: Python<'py>,
         tolerance: f64,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let m = py
-            .detach(|| self.inner.face.mesh(tolerance))
+            .detach(|| {
+                if self.inner.face.has_pcurves() {
+                    self.inner.face.mesh(tolerance)
+                } else {
+                    self.inner
+                        .face
+                        .with_projected_pcurves(tolerance)
+                        .and_then(|f| f.mesh(tolerance))
+                }
+            })
             .map_err(lib_err)?;
         let nt = m.triangles.len();
         let tri: Vec<u32> = m.triangles.iter().flatten().copied().collect();
         let tri = PyArray1::from_vec(py, tri).reshape([nt, 3])?.into_any();
         Ok((points_into_array(py, m.vertices)?, tri))
+    }
+
+    /// The face with a pcurve for every edge: each edge without one gets the projection of its
+    /// 3-D curve onto the surface, a degree-1 B-spline over the curve's parameters whose image
+    /// is within ``tolerance`` of the projected edge, unwrapped across the seams of closed
+    /// surfaces (``lekalo::Face::with_projected_pcurves``; docs/theory/topology.md, "Pcurves
+    /// by projection"). Raises ``ValueError`` for an edge off the surface (by more than the
+    /// tolerance or 1e-4 of the model size), naming the edge and its distance.
+    fn with_projected_pcurves(&self, py: Python<'_>, tolerance: f64) -> PyResult<Self> {
+        let f = py
+            .detach(|| self.inner.face.with_projected_pcurves(tolerance))
+            .map_err(lib_err)?;
+        let mut inner = self.inner.clone();
+        inner.face = f;
+        inner.pcurves = None;
+        Ok(face(inner))
     }
 
     /// Whether ``(u, v)`` lies inside the face: the outer polygon winds around it and no inner

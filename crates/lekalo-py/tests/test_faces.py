@@ -221,3 +221,34 @@ def test_mesh_of_the_plate_leaves_the_hole_out(tmp_path):
     assert exact - 1e-9 <= area <= exact + 4.0 * np.pi * tol
     with pytest.raises(ValueError, match="tolerance"):
         f.mesh(0.0)
+
+
+def test_mesh_of_a_tube_without_pcurves_projects_its_edges(tmp_path):
+    # the tube's edges are given as 3-D curves only: two circles and the seam line used twice
+    f = lekalo.read_step(write(tmp_path, "tube.step", TUBE), faces=True)["faces"][0]
+    assert all(p is None for _, p in f.outer)
+    g = f.with_projected_pcurves(1e-7)
+    assert g.pcurves is None and g.edge_ids == f.edge_ids
+    (u0, u1), (v0, v1) = g.surface.domain
+    for curve, pcurve in g.outer:
+        assert pcurve.domain == curve.domain
+        t = np.linspace(*curve.domain, 33)
+        u, v = np.ascontiguousarray(np.atleast_2d(pcurve(t)).T)
+        # the loop lies in the domain, up to rounding at the seam
+        assert u.min() >= u0 - 1e-9 and u.max() <= u1 + 1e-9
+        uv = np.clip(u, u0, u1), np.clip(v, v0, v1)
+        assert np.allclose(g.surface(*uv), curve(t), atol=1e-7)
+    tol = 1e-3
+    vertices, triangles = f.mesh(tol)
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+    # radius 1, height 2: inscribed triangles within tol lose at most tol of the area per unit
+    # area, and the trims at most tol times their length (two circles and the seam twice)
+    exact, perimeter = 4.0 * np.pi, 4.0 * np.pi + 4.0
+    assert abs(area - exact) <= (exact + perimeter) * tol
+    # every triangle's normal points out of the tube, as the face's does
+    n = np.cross(b - a, c - a)
+    centroids = (a + b + c) / 3.0
+    assert np.all(np.einsum("ij,ij->i", n[:, :2], centroids[:, :2]) > 0)
+    with pytest.raises(ValueError, match="tolerance"):
+        f.with_projected_pcurves(0.0)

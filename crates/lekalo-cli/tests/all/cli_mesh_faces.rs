@@ -85,33 +85,130 @@ fn without_pcurves(face: &mut Value) {
     }
 }
 
+/// The area of the triangles of an OBJ file.
+fn obj_area(v: &[[f64; 3]], f: &[[usize; 3]]) -> f64 {
+    f.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|k| v[k]);
+            let (e, g) = (
+                [0, 1, 2].map(|i| b[i] - a[i]),
+                [0, 1, 2].map(|i| c[i] - a[i]),
+            );
+            let n = [
+                e[1] * g[2] - e[2] * g[1],
+                e[2] * g[0] - e[0] * g[2],
+                e[0] * g[1] - e[1] * g[0],
+            ];
+            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+        })
+        .sum()
+}
+
+/// A tube of radius 1 and height 2 about the z axis: a cylindrical face bounded by two circles
+/// and its seam line (used twice), none of its edges with a pcurve.
+const TUBE: &str = "ISO-10303-21;
+HEADER;
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));
+ENDSEC;
+DATA;
+#201=CARTESIAN_POINT('',(0.,0.,0.));
+#202=DIRECTION('',(0.,0.,1.));
+#203=DIRECTION('',(1.,0.,0.));
+#204=AXIS2_PLACEMENT_3D('',#201,#202,#203);
+#205=CYLINDRICAL_SURFACE('',#204,1.);
+#206=CARTESIAN_POINT('',(0.,0.,2.));
+#207=AXIS2_PLACEMENT_3D('',#206,#202,#203);
+#208=CIRCLE('',#204,1.);
+#209=CIRCLE('',#207,1.);
+#210=CARTESIAN_POINT('',(1.,0.,0.));
+#211=CARTESIAN_POINT('',(1.,0.,2.));
+#212=VERTEX_POINT('',#210);
+#213=VERTEX_POINT('',#211);
+#214=VECTOR('',#202,1.);
+#215=LINE('',#210,#214);
+#230=EDGE_CURVE('',#212,#212,#208,.T.);
+#231=EDGE_CURVE('',#213,#213,#209,.T.);
+#232=EDGE_CURVE('',#212,#213,#215,.T.);
+#240=ORIENTED_EDGE('',*,*,#230,.T.);
+#241=ORIENTED_EDGE('',*,*,#232,.T.);
+#242=ORIENTED_EDGE('',*,*,#231,.F.);
+#243=ORIENTED_EDGE('',*,*,#232,.F.);
+#244=EDGE_LOOP('',(#240,#241,#242,#243));
+#245=FACE_OUTER_BOUND('',#244,.T.);
+#246=ADVANCED_FACE('tube',(#245),#205,.T.);
+ENDSEC;
+END-ISO-10303-21;
+";
+
 #[test]
-fn mesh_of_faces_lists_the_faces_without_pcurves_and_meshes_the_others() {
-    let d = dir_with(&[("plate.step", PLATE)]);
-    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
-    let line = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
-    let mut bare: Value = serde_json::from_str(line.trim()).unwrap();
+fn mesh_of_faces_projects_the_missing_pcurves_and_lists_the_faces_off_their_surface() {
+    let d = dir_with(&[("plate.step", PLATE), ("tube.step", TUBE)]);
+    for name in ["plate", "tube"] {
+        convert_faces(
+            &d,
+            &["-q"],
+            &format!("{name}.step"),
+            &format!("{name}.jsonl"),
+        )
+        .success();
+    }
+    let plate = fs::read_to_string(p(&d, "plate.jsonl")).unwrap();
+    let tube = fs::read_to_string(p(&d, "tube.jsonl")).unwrap();
+    assert!(tube.contains(r#""pcurve":null"#), "{tube}");
+    // the plate without its pcurves, and once more with its plane lifted 1 mm off its edges
+    let mut bare: Value = serde_json::from_str(plate.trim()).unwrap();
     without_pcurves(&mut bare);
-    fs::write(p(&d, "bare.jsonl"), format!("{bare}\n")).unwrap();
-    fs::write(p(&d, "both.jsonl"), format!("{}\n{bare}\n", line.trim())).unwrap();
+    let mut lifted = bare.clone();
+    lifted["id"] = Value::from(99);
+    for c in lifted["surface"]["control"].as_array_mut().unwrap() {
+        c[2] = Value::from(c[2].as_f64().unwrap() + 1.0);
+    }
+    let lifted_text = lifted.to_string();
+    fs::write(
+        p(&d, "all.jsonl"),
+        format!("{}\n{bare}\n{lifted_text}\n", tube.trim()),
+    )
+    .unwrap();
+    let tol = 1e-3;
     let out = lekalo()
         .args(["mesh", "--tolerance", "1e-3", "--json"])
-        .arg(p(&d, "both.jsonl"))
+        .arg(p(&d, "all.jsonl"))
         .arg("-o")
-        .arg(p(&d, "plate.obj"))
+        .arg(p(&d, "all.obj"))
         .assert()
         .success()
-        .stderr(predicates::str::contains("1 of 2 faces not meshed"));
+        .stderr(predicates::str::contains("1 of 3 faces not meshed"))
+        .stderr(predicates::str::contains("face #99"));
     let summary = last_stderr_json(&out);
-    assert_eq!(summary["faces"].as_u64(), Some(1));
+    assert_eq!(summary["faces"].as_u64(), Some(2));
     assert_eq!(summary["skipped"].as_u64(), Some(1));
+    assert_eq!(summary["skipped_faces"][0]["id"].as_u64(), Some(99));
+    let reason = summary["skipped_faces"][0]["reason"].as_str().unwrap();
+    assert!(
+        reason.contains("does not lie on the face's surface"),
+        "{reason}"
+    );
+    // the tube (4π, radius 1 and height 2) and the plate with its hole (100 − 4π): inscribed
+    // triangles lose at most tol of the tube's area per unit area, and each trim at most tol
+    // times its length (the tube's two circles and seam twice, the plate's square and circle)
+    let (v, f) = read_obj(&fs::read_to_string(p(&d, "all.obj")).unwrap());
+    let area = obj_area(&v, &f);
+    let exact = 100.0;
+    let pi = std::f64::consts::PI;
+    let bound = (4.0 * pi + (4.0 * pi + 4.0) + (40.0 + 4.0 * pi)) * tol;
+    assert!((area - exact).abs() <= bound, "{area}");
+    // the lifted face alone: nothing to mesh, and the reason
+    fs::write(p(&d, "lifted.jsonl"), format!("{lifted_text}\n")).unwrap();
     lekalo()
         .args(["mesh", "--tolerance", "1e-3"])
-        .arg(p(&d, "bare.jsonl"))
+        .arg(p(&d, "lifted.jsonl"))
         .arg("-o")
-        .arg(p(&d, "bare.obj"))
+        .arg(p(&d, "lifted.obj"))
         .assert()
         .code(2)
-        .stderr(predicates::str::contains("none of the 1 faces has"));
-    assert!(!p(&d, "bare.obj").exists());
+        .stderr(predicates::str::contains(
+            "none of the 1 faces can be meshed",
+        ))
+        .stderr(predicates::str::contains("does not lie on"));
+    assert!(!p(&d, "lifted.obj").exists());
 }

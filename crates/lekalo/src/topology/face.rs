@@ -228,6 +228,21 @@ impl Face {
         Ok(face)
     }
 
+    /// A face from parts already checked by [`Face::new`] (the same surface and 3-D curves).
+    pub(super) fn from_parts(
+        surface: Surface,
+        outer: Loop,
+        inner: Vec<Loop>,
+        same_sense: bool,
+    ) -> Self {
+        Face {
+            surface,
+            outer,
+            inner,
+            same_sense,
+        }
+    }
+
     /// The diagonal of the bounding box of the control points of the surface and of the edges'
     /// curves: the scale of the closure tolerance.
     #[must_use]

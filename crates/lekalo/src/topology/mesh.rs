@@ -10,6 +10,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 
 use super::face::{Edge, Face};
 use super::inside::winding_number;
+use super::pcurve::SurfaceClosure;
 use super::shell::{EdgeUse, Shell};
 use crate::query::{check_tol, triangle_bound, Mesh, MAX_MESH_VERTICES};
 use crate::{Error, Points, Result, Surface};
@@ -74,6 +75,20 @@ struct FacePlan<'a> {
     curv: Curvature,
     /// Grid spacing in `u` and `v`.
     h: [f64; 2],
+    /// The surface's seams: a pcurve projected across one leaves the domain by whole periods.
+    closure: SurfaceClosure,
+}
+
+impl FacePlan<'_> {
+    /// The surface at a point of a pcurve: a pcurve written by a CAD system may leave the
+    /// surface's domain by its own rounding or tolerance, and the surface is taken at the
+    /// nearest point of its domain there; one unwrapped across a seam is brought back by whole
+    /// periods ([`SurfaceClosure::wrap`]).
+    fn surface_at(&self, uv: [f64; 2]) -> Result<Vec<f64>> {
+        let s = self.face.surface();
+        let w = self.closure.wrap(s.domain(), uv);
+        s.eval(w[0], w[1])
+    }
 }
 
 /// One use of an edge: its face, and its pcurve's parameter at a fraction of the edge.
@@ -98,14 +113,6 @@ fn at_fraction((a, b): (f64, f64), s: f64) -> f64 {
     (a + (b - a) * s.clamp(0.0, 1.0)).clamp(a, b)
 }
 
-/// The surface at a point of a pcurve: a pcurve written by a CAD system may leave the
-/// surface's domain by its own rounding or tolerance, and the surface is taken at the nearest
-/// point of its domain there.
-fn surface_at(surface: &Surface, uv: [f64; 2]) -> Result<Vec<f64>> {
-    let ((u0, u1), (v0, v1)) = surface.domain();
-    surface.eval(uv[0].clamp(u0, u1), uv[1].clamp(v0, v1))
-}
-
 fn dist(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
@@ -116,7 +123,9 @@ fn dist(a: &[f64], b: &[f64]) -> f64 {
 
 /// The fractions `0 = s_0 < … < s_n = 1` at which an edge is sampled, as its first use runs
 /// it, for all its uses (`(plan, edge, same direction)`): start at
-/// [`START_SAMPLES_PER_SPAN`] per knot span, then halve a segment while, on any use's face,
+/// [`START_SAMPLES_PER_SPAN`] per knot span of its curve and of its pcurves of degree above 1
+/// (a projected pcurve of degree 1 has many short spans, which the tests below sample as
+/// finely as they need), then halve a segment while, on any use's face,
 /// the surface at the pcurve's midpoint is farther than `tol / 2` from the chord's midpoint,
 /// the segment's parameter step has `M(e) > 4 tol` (its part of the triangles' bound), or
 /// the step is longer than the face's grid spacing.
@@ -130,7 +139,9 @@ fn sample_edge(
         .flat_map(|(_, e, _)| {
             [
                 e.curve().knots().distinct().len(),
-                e.pcurve().map_or(2, |p| p.knots().distinct().len()),
+                e.pcurve()
+                    .filter(|p| p.degree() > 1)
+                    .map_or(2, |p| p.knots().distinct().len()),
             ]
         })
         .max()
@@ -141,7 +152,7 @@ fn sample_edge(
     let point = |u: &(&FacePlan<'_>, &Edge, bool), s: f64| -> Result<([f64; 2], Vec<f64>)> {
         let su = if u.2 { s } else { 1.0 - s };
         let uv = pcurve_at(u.1, su)?;
-        Ok((uv, surface_at(u.0.face.surface(), uv)?))
+        Ok((uv, u.0.surface_at(uv)?))
     };
     let split = |s0: f64, s1: f64| -> Result<bool> {
         let sm = 0.5 * (s0 + s1);
@@ -255,6 +266,7 @@ pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
             face: f,
             curv,
             h: [hu.max(f64::MIN_POSITIVE), hv.max(f64::MIN_POSITIVE)],
+            closure: SurfaceClosure::of(f.surface(), tolerance)?,
         });
     }
     #[allow(clippy::cast_precision_loss)] // 2^26 is exact
@@ -381,6 +393,15 @@ fn mesh_one(
                p: [f64; 2],
                x: Vec<f64>|
      -> Result<spade::handles::FixedVertexHandle> {
+        // a parameter within 2⁻¹⁴² of 0 (a foot on a seam at 0, by rounding) is 0: the
+        // triangulation refuses smaller coordinates other than 0
+        let p = p.map(|x| {
+            if x.abs() < spade::MIN_ALLOWED_VALUE {
+                0.0
+            } else {
+                x
+            }
+        });
         let vh = cdt.insert(Point2::new(p[0], p[1])).map_err(insert_err)?;
         if vh.index() >= ours.len() {
             ours.push(uv.len());
@@ -450,7 +471,7 @@ fn mesh_one(
                 if near {
                     continue;
                 }
-                let x = surface_at(surface, p)?;
+                let x = plan.surface_at(p)?;
                 add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
                 if uv.len() > *budget {
                     return Err(Error::TooLarge {
@@ -491,7 +512,7 @@ fn mesh_one(
         }
         round += 1;
         for c in refine {
-            let x = surface_at(surface, c)?;
+            let x = plan.surface_at(c)?;
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
             if uv.len() > *budget {
                 return Err(Error::TooLarge {

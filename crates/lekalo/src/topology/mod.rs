@@ -7,6 +7,7 @@
 //! | `face.rs` | [`Face`], [`Loop`] and [`Edge`]: a surface, its outer and inner loops, each edge a 3-D curve with its curve in the surface's `(u, v)`; validation (dimensions, loops closed within a tolerance relative to the model size) |
 //! | `shell.rs` | [`Shell`]: which edges of a set of faces are one edge (shared by two faces, or a seam), and which edge ends are one vertex |
 //! | `mesh.rs` | [`mesh_faces`] and [`Face::mesh`]: triangle meshes of trimmed faces within a tolerance, edges sampled once for the faces that share them, constrained Delaunay triangulation |
+//! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
 //! | `inside.rs` | [`TrimRegion`]: the loops in `(u, v)` as polygons and the point-in-face test by winding numbers |
 //!
 //! See `docs/theory/topology.md`.
@@ -14,11 +15,13 @@
 mod face;
 mod inside;
 mod mesh;
+mod pcurve;
 mod shell;
 
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 pub use inside::{winding_number, TrimRegion, TRIM_SAMPLES_PER_SPAN};
 pub use mesh::{join_meshes, mesh_faces, TRIM_CLEARANCE};
+pub use pcurve::{SurfaceClosure, MAX_PCURVE_POINTS};
 pub use shell::{EdgeUse, SharedEdge, Shell};
 #[cfg(test)]
 mod tests;

@@ -22,7 +22,9 @@ format follows the output's extension (.obj, .stl, .ply) or --format; --json pri
 and the bound instead of writing geometry to standard output.
 
 Faces (a JSON Lines file of face envelopes, as `convert --faces` writes): one mesh of all faces,
-each trimmed by its loops, the faces meeting at the same points along their shared edges.
+each trimmed by its loops, the faces meeting at the same points along their shared edges. An
+edge without its curve in the surface's (u, v) gets one by projecting it onto the surface; a
+face that cannot be meshed (an edge off its surface) is listed with the reason and left out.
 
 Examples:
   lekalo mesh surface.json --tolerance 1e-3 -o surface.obj
@@ -58,31 +60,84 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     };
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
     if let Some(faces) = crate::cmd::files::cad::face_lines(&a.input)? {
-        // a face whose edges lack their (u, v) curves is listed, not meshed
-        let (faces, skipped): (Vec<&lekalo::Face>, Vec<&lekalo::Face>) =
-            faces.iter().map(|f| &f.face).partition(|f| f.has_pcurves());
-        if faces.is_empty() {
+        // an edge without its (u, v) curve gets one by projection; a face that still cannot be
+        // meshed is counted with the reason
+        let mut ready: Vec<(usize, lekalo::Face)> = Vec::with_capacity(faces.len());
+        let mut skipped: Vec<(usize, String)> = Vec::new();
+        for (k, f) in faces.iter().enumerate() {
+            if f.face.has_pcurves() {
+                ready.push((k, f.face.clone()));
+                continue;
+            }
+            match f.face.with_projected_pcurves(a.tolerance) {
+                Ok(g) => ready.push((k, g)),
+                Err(
+                    e @ lekalo::Error::InvalidArgument {
+                        what: "pcurve tolerance",
+                        ..
+                    },
+                ) => return Err(bad(e).into()),
+                Err(e) => skipped.push((k, e.to_string())),
+            }
+        }
+        // a face whose mesh fails alone is left out and the others meshed together
+        let mut meshed = lekalo::topology::mesh_faces(
+            &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
+            a.tolerance,
+        );
+        if meshed.is_err() && ready.len() > 1 {
+            let mut keep = Vec::with_capacity(ready.len());
+            for (k, f) in ready {
+                match f.mesh(a.tolerance) {
+                    Ok(_) => keep.push((k, f)),
+                    Err(e) => skipped.push((k, e.to_string())),
+                }
+            }
+            ready = keep;
+            meshed = lekalo::topology::mesh_faces(
+                &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
+                a.tolerance,
+            );
+        }
+        skipped.sort_by_key(|(k, _)| *k);
+        let name = |k: usize| {
+            let f = &faces[k];
+            if f.name.is_empty() {
+                format!("#{}", f.id)
+            } else {
+                format!("#{} ({})", f.id, f.name)
+            }
+        };
+        if ready.is_empty() {
+            let first = skipped
+                .first()
+                .map(|(k, r)| format!("; face {}: {r}", name(*k)))
+                .unwrap_or_default();
             return bad_input(format!(
-                "{}: none of the {} faces has the curves of its edges in the surface's (u, v) \
-                 (pcurves), which meshing the trimmed region needs; lekalo reads them \
-                 where the CAD file gives them (STEP PCURVE, IGES 142)",
+                "{}: none of the {} faces can be meshed{first}",
                 a.input.display(),
                 skipped.len()
             ));
         }
         if !skipped.is_empty() {
             eprintln!(
-                "warning: {}: {} of {} faces not meshed: an edge has no pcurve (its curve in the \
-                 surface's (u, v))",
+                "warning: {}: {} of {} faces not meshed:",
                 a.input.display(),
                 skipped.len(),
-                faces.len() + skipped.len()
+                faces.len()
             );
+            for (k, r) in &skipped {
+                eprintln!("  face {}: {r}", name(*k));
+            }
         }
-        let m = lekalo::topology::mesh_faces(&faces, a.tolerance)
+        let m = meshed
             .and_then(|ms| lekalo::topology::join_meshes(&ms))
             .map_err(bad)?;
-        let summary = json!({"faces": faces.len(), "skipped": skipped.len(), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let reasons: Vec<serde_json::Value> = skipped
+            .iter()
+            .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
+            .collect();
+        let summary = json!({"faces": ready.len(), "skipped": skipped.len(), "skipped_faces": reasons, "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         return write_mesh(a, cx, &m, &fmt, &summary);
     }
     let (text, name) = lekalo_io::read_input(&a.input)?;
