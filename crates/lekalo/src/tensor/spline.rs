@@ -6,7 +6,6 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result, MAX_SCALARS};
 use crate::knots::KnotVector;
 use crate::points::Points;
-use crate::tensor::eval::TensorScratch;
 
 /// A tensor-product B-spline in `N ≥ 1` parameters `x = (x_0, …, x_{N−1})` with values of any
 /// dimension:
@@ -267,53 +266,6 @@ impl TensorBSpline {
     /// coordinate outside its direction's domain (or NaN).
     pub fn eval(&self, x: &[f64]) -> Result<Vec<f64>> {
         self.view().eval(x)
-    }
-
-    /// `S(x)` into `out` (`dim` numbers). One allocation (the scratch); for many points use
-    /// [`TensorBSpline::eval_batch`].
-    ///
-    /// # Errors
-    /// As [`TensorBSpline::eval`]; [`Error::LengthMismatch`] if `out.len() != dim`.
-    pub fn eval_into(&self, x: &[f64], out: &mut [f64]) -> Result<()> {
-        check_len("output (dim)", self.dim(), out.len())?;
-        let view = self.view();
-        let mut scratch = TensorScratch::new(&view, None)?;
-        view.eval_with(x, None, &mut scratch, out)
-    }
-
-    /// The partial derivative `∂^{|k|} S / ∂x_0^{k_0} ⋯ ∂x_{N−1}^{k_{N−1}}` at `x`: the same
-    /// contraction as [`TensorBSpline::eval`] with the basis vector of direction `a` replaced by
-    /// the `k_a`-th derivatives of its basis functions (P&T Algorithm A2.3; a tensor product
-    /// differentiates direction by direction, P&T §3.4). Orders above `p_a` give zero. At an
-    /// interior knot the derivatives are right-hand ones (left-hand at the right end), as for
-    /// curves. O(`Π_a (p_a + 1)·dim + Σ_a (k_a + 1)·p_a²`).
-    ///
-    /// ```
-    /// use lekalo::{Points, TensorBSpline};
-    /// // f(x, y) = x² + y on [0, 1]²: degree 2 in x, 1 in y
-    /// let net = Points::from_flat(1, vec![0.0, 1.0, 0.0, 1.0, 1.0, 2.0])?;
-    /// let s = TensorBSpline::new(
-    ///     vec![2, 1],
-    ///     vec![vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
-    ///     net,
-    /// )?;
-    /// let (x, y) = (0.3, 0.7);
-    /// assert!((s.eval(&[x, y])?[0] - (x * x + y)).abs() < 1e-15);
-    /// assert!((s.eval_partial(&[x, y], &[1, 0])?[0] - 2.0 * x).abs() < 1e-15);
-    /// assert!((s.eval_partial(&[x, y], &[2, 0])?[0] - 2.0).abs() < 1e-14);
-    /// assert_eq!(s.eval_partial(&[x, y], &[0, 2])?, vec![0.0]);
-    /// # Ok::<(), lekalo::Error>(())
-    /// ```
-    ///
-    /// # Errors
-    /// As [`TensorBSpline::eval`]; [`Error::LengthMismatch`] if `orders.len() != N`;
-    /// [`Error::TooLarge`] for an order above [`MAX_DERIVATIVE_ORDER`].
-    pub fn eval_partial(&self, x: &[f64], orders: &[usize]) -> Result<Vec<f64>> {
-        let view = self.view();
-        let mut out = vec![0.0; self.dim()];
-        let mut scratch = TensorScratch::new(&view, Some(orders))?;
-        view.eval_with(x, Some(orders), &mut scratch, &mut out)?;
-        Ok(out)
     }
 
     /// `S(x_r)` (or the partial derivative of `orders`, see [`TensorBSpline::eval_partial`]) for
