@@ -58,6 +58,23 @@ impl FloatArray<'_> {
         PointsRef::from_flat(dim, self.data()).map_err(lib_err)
     }
 
+    /// [`FloatArray::points`] of a curve's data, which needs at least `needed` points: an array
+    /// of fewer rows than that but enough columns, with at most 3 rows, is SciPy's list of
+    /// coordinate arrays (`[x, y]`, shape `(dim, n)`), refused with the call that reads it.
+    pub(crate) fn curve_points(&self, what: &str, needed: usize) -> PyResult<PointsRef<'_>> {
+        if let [rows, cols] = self.shape[..] {
+            if rows < needed && cols >= needed && rows <= 3 {
+                return Err(bad(format!(
+                    "{what}: shape ({rows}, {cols}) reads as {rows} points of dimension {cols}, \
+                     fewer than the {needed} needed; lekalo takes points as rows, shape \
+                     (n, dim): for SciPy's coordinate arrays [x, y] pass np.column_stack([x, y]) \
+                     (or use lekalo.scipy, which takes SciPy's form)"
+                )));
+            }
+        }
+        self.points(what)
+    }
+
     /// The array as a 1-D list of numbers, checked finite.
     pub(crate) fn vector(&self, what: &str) -> PyResult<&[f64]> {
         if self.shape.len() != 1 {

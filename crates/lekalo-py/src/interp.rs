@@ -114,7 +114,7 @@ pub(crate) fn interpolate(
         ci = ci.max_condition(m);
     }
     let pa = floats(points, "points")?;
-    let pts = pa.points("points")?;
+    let pts = pa.curve_points("points", degree + 1)?;
     let curve = match params {
         Some(t) => {
             let ta = floats(t, "params")?;

@@ -301,3 +301,19 @@ def test_nan_and_schoenberg_whitney_are_errors():
     x[-1] = 1.0
     with pytest.raises(lekalo.Error):
         lekalo.make_lsq_spline(x, y, [0, 0, 0, 0, 0.5, 0.6, 0.7, 1, 1, 1, 1])
+
+
+def test_scipy_coordinate_arrays_are_refused_with_the_call_that_reads_them():
+    # SciPy's parametric fits take [x, y] (shape (dim, n)); lekalo takes points as rows
+    x = np.arange(6.0)
+    y = x**2
+    calls = [
+        lambda: lekalo.make_splprep([x, y], s=0.1),
+        lambda: lekalo.fit_tolerance([x, y], 0.1),
+        lambda: lekalo.interpolate([x, y]),
+    ]
+    for call in calls:
+        with pytest.raises(lekalo.InputError, match=r"shape \(2, 6\).*np\.column_stack"):
+            call()
+    curve, u = lekalo.make_splprep(np.column_stack([x, y]), s=0.1)
+    assert curve.dim == 2 and len(u) == 6

@@ -192,7 +192,7 @@ pub(crate) fn fit_tolerance<'py>(
         opts.parametrization = parametrization_arg(p)?;
     }
     let pa = floats(points, "points")?;
-    let pts = pa.points("points")?;
+    let pts = pa.curve_points("points", k + 1)?;
     let f = py
         .detach(|| lekalo::fit::fit_tolerance(pts, &opts))
         .map_err(lib_err)?;

@@ -314,7 +314,7 @@ pub(crate) fn make_splprep<'py>(
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
     let pa = floats(points, "points")?;
-    let pts = pa.points("points")?;
+    let pts = pa.curve_points("points", k + 1)?;
     let params = match u {
         Some(u) => vec1(u, "u")?,
         None => {
