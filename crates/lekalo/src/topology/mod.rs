@@ -21,7 +21,7 @@ mod shell;
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 pub use inside::{winding_number, TrimRegion, TRIM_SAMPLES_PER_SPAN};
 pub use mesh::{join_meshes, mesh_faces, TRIM_CLEARANCE};
-pub use pcurve::{SurfaceClosure, MAX_PCURVE_POINTS};
+pub use pcurve::{SurfaceClosure, MAX_PCURVE_POINTS, PCURVE_SAMPLING_RTOL};
 pub use shell::{EdgeUse, SharedEdge, Shell};
 #[cfg(test)]
 mod tests;

@@ -17,6 +17,11 @@ const START_SAMPLES_PER_SPAN: usize = 4;
 const MAX_DEPTH: u32 = 24;
 /// Most points of one projected pcurve.
 pub const MAX_PCURVE_POINTS: usize = 1 << 16;
+/// The coarsest sampling of a projected pcurve, relative to the face's model size: a pcurve is
+/// geometry, not a mesh, and a loop sampled at a mesh tolerance near the face's own size has too
+/// few points to enclose its region in `(u, v)` (a circle of three points), which left such faces
+/// without triangles. The mesher samples the pcurves again at its own tolerance.
+pub const PCURVE_SAMPLING_RTOL: f64 = 1e-3;
 /// Points along each side of a surface compared for closure and poles.
 const SIDE_SAMPLES: usize = 17;
 /// Most Newton steps of one warm-started projection.
@@ -396,7 +401,8 @@ impl Face {
     /// The face with a pcurve for every edge: an edge given without one gets the projection
     /// of its 3-D curve onto the surface (`docs/theory/topology.md`, "Pcurves by projection";
     /// Piegl & Tiller §6.1 for the foot points), a degree-1 B-spline over the curve's own
-    /// parameters whose image on the surface is within `tolerance` of the projected edge.
+    /// parameters whose image on the surface is within `tolerance` of the projected edge (and
+    /// within [`PCURVE_SAMPLING_RTOL`] times the model size, for a coarse `tolerance`).
     /// Each sample's projection starts from the previous one's `(u, v)`, so the pcurve follows
     /// the edge; across the seam of a closed surface the parameters are unwrapped by the
     /// period (so a pcurve may leave the domain by whole periods, as
@@ -423,8 +429,10 @@ impl Face {
         if self.has_pcurves() {
             return Ok(self.clone());
         }
-        let on_surface = tolerance.max(LOOP_CLOSURE_RTOL * self.model_size());
-        let proj = Projector::new(self.surface(), tolerance, on_surface)?;
+        let size = self.model_size();
+        let on_surface = tolerance.max(LOOP_CLOSURE_RTOL * size);
+        let sampling = tolerance.min(PCURVE_SAMPLING_RTOL * size);
+        let proj = Projector::new(self.surface(), sampling, on_surface)?;
         let mut loops: Vec<Vec<Made>> = Vec::new();
         for (li, lp) in self.loops().enumerate() {
             loops.push(project_loop(&proj, lp, li)?);

@@ -275,6 +275,20 @@ fn cylinder_faces_across_the_seam_mesh_to_their_areas_without_a_crack() {
     }
 }
 
+/// At a mesh tolerance near the face's own size the pcurves are still sampled finely enough to
+/// enclose the face: the coarse mesh has triangles, and its area is the face's within the
+/// tolerance's bound (before, three points a circle enclosed nothing and the mesh was empty).
+#[test]
+fn a_coarse_tolerance_still_meshes_the_face() {
+    let (fa, _) = cylinder_faces();
+    for tol in [0.5, 5.0] {
+        let g = fa.with_projected_pcurves(tol).unwrap();
+        let ms = mesh_faces(&[&g], tol).unwrap();
+        assert!(!ms[0].triangles.is_empty(), "no triangles at {tol}");
+        assert!(area3(&ms[0]) > 0.5, "area {} at {tol}", area3(&ms[0]));
+    }
+}
+
 /// The cone of base radius 1 at `z = 0` and apex `(0, 0, 1)`: `u` along the circle, `v` from
 /// the base (0) to the apex (1), a pole.
 fn cone() -> Surface {
