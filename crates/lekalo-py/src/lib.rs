@@ -31,6 +31,7 @@ mod derivatives;
 mod error;
 mod faces;
 mod fit;
+mod hermite_tck;
 mod interp;
 mod objects;
 mod periodic;
@@ -97,5 +98,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor::register(m)?;
     tensor_values::register(m)?;
     tck::register(m)?;
+    hermite_tck::register(m)?;
     Ok(())
 }

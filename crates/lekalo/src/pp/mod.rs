@@ -11,6 +11,8 @@
 //!   the end pieces continued).
 //! - `hermite_bernstein.rs`: Hermite interpolation in Bernstein form with derivatives of any
 //!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
+//! - `hermite_bspline.rs`: cubic Hermite data written into the knots and coefficients of a
+//!   B-spline with double knots in one pass ([`cubic_hermite_bspline_into`]).
 //! - `integral.rs`: antiderivatives and integrals in pp-form
 //!   ([`PiecewisePolynomial::antiderivative`], [`PiecewisePolynomial::integral_extrapolated`]).
 //! - `roots.rs`: the real solutions of `f(x) = y` ([`PiecewisePolynomial::solve`], [`Solution`]).
@@ -22,6 +24,7 @@ mod divided_difference;
 mod expression;
 mod extrapolation;
 mod hermite_bernstein;
+mod hermite_bspline;
 mod integral;
 mod power_form;
 pub(crate) mod ppform;
@@ -34,6 +37,7 @@ pub use divided_difference::{
 };
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use hermite_bernstein::{hermite_bernstein, piecewise_hermite_bernstein, MAX_HERMITE_DEGREE};
+pub use hermite_bspline::{cubic_hermite_bspline_into, cubic_hermite_bspline_len};
 pub use power_form::PowerFormRef;
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi_interpolation::{

@@ -811,7 +811,8 @@ class CubicSpline(PPoly):
 
 class CubicHermiteSpline(PPoly):
     """``scipy.interpolate.CubicHermiteSpline``: the cubic with values ``y`` and slopes
-    ``dydx`` at ``x``, lekalo's ``CubicHermite`` written as a B-spline (double knots)."""
+    ``dydx`` at ``x``, written as a B-spline with double knots in one pass by lekalo's
+    ``cubic_hermite_bspline_into``."""
 
     def __init__(self, x: Any, y: Any, dydx: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
@@ -835,9 +836,9 @@ def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -
     if yy.shape[1] == 0:
         t = np.r_[x[0], x[0], np.repeat(x, 2), x[-1], x[-1]]
         return BSpline.construct_fast(t, np.zeros((2 * n,) + tail, dtype=dt), 3, axis=axis)
-    curve = _lekalo.CubicHermite(x, yy, dd).to_bspline()
-    c = _from_columns(np.ascontiguousarray(curve.control), complex_).reshape((-1,) + tail)
-    return BSpline.construct_fast(np.ascontiguousarray(curve.knots), c, 3, axis=axis)
+    # lekalo's knots and coefficients written straight into NumPy's arrays, the data read in place
+    t, c = _lekalo.hermite_tck(x, yy, dd)
+    return BSpline.construct_fast(t, _from_columns(c, complex_).reshape((-1,) + tail), 3, axis=axis)
 
 
 class PchipInterpolator(PPoly):
