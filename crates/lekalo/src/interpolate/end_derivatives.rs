@@ -6,6 +6,7 @@ use crate::curve::bspline::BSplineCurve;
 use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::interpolate::collocation::{solve_collocation, Factors};
+use crate::interpolate::fast::free_end_cubic;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
 
@@ -193,7 +194,11 @@ pub fn interpolate_with_end_derivatives(
 /// without pivoting is stable (de Boor & Pinkus, "Backward error analysis for totally positive
 /// linear systems", *Numer. Math.* 27, 1977; de Boor, *A Practical Guide to Splines*, ch. XIII)
 /// — SciPy's `make_interp_spline` solves the same band by LU (`gbsv`). O(n·p·(p + dim)), half
-/// the work of the Givens rotations, one row eliminated as it is built.
+/// the work of the Givens rotations, one row eliminated as it is built. A cubic in 1–3
+/// dimensions on knots clamped at the first and last parameters (SciPy's not-a-knot knots,
+/// FITPACK's for `s = 0`) takes the fused sweep of the same elimination (`cubic_sweep.rs`,
+/// `docs/theory/interpolation.md#collocation-by-elimination-without-pivoting`), the rows built
+/// and eliminated in registers; it agrees with the general elimination to rounding.
 fn collocation_only(
     points: PointsRef<'_>,
     params: &[f64],
@@ -208,6 +213,24 @@ fn collocation_only(
             min: lo,
             max: hi,
         });
+    }
+    let kn = knots.as_slice();
+    let m = params.len();
+    // the cubic on clamped knots whose ends are the first and last parameters (SciPy's
+    // not-a-knot and FITPACK's s = 0 knots among them) in 1–3 dimensions: the fused sweep of the
+    // same elimination (`cubic_sweep`), which hands anything it cannot do to the general path
+    if p == 3
+        && (1..=3).contains(&dim)
+        && m >= 5
+        && kn.len() == m + 4
+        && kn[0] == params[0]
+        && kn[3] == params[0]
+        && kn[m] == params[m - 1]
+        && kn[m + 3] == params[m - 1]
+    {
+        if let Some(control) = free_end_cubic(points, params, kn) {
+            return BSplineCurve::new(p, kn.to_vec(), control);
+        }
     }
     let mut control = points.as_slice().to_vec();
     solve_collocation(knots, p, params, 0, &mut control, dim, Factors::Discard)?;
@@ -272,6 +295,54 @@ mod tests {
                 let v = c.eval(t).unwrap()[0];
                 assert!((v - f(t)).abs() < 1e-12, "{t}: {v} vs {}", f(t));
             }
+        }
+    }
+
+    /// The fused cubic sweep (SciPy's not-a-knot knots, 1–3 dimensions) and the general
+    /// elimination (the same data as the first column of 4-D points) give the same spline to
+    /// rounding, and it interpolates.
+    #[test]
+    fn fused_cubic_sweep_matches_general_elimination() {
+        let m = 40;
+        let x: Vec<f64> = (0..m)
+            .map(|i| f64::from(i) + 0.3 * (f64::from(i) * 1.7).sin())
+            .collect();
+        let y: Vec<f64> = x.iter().map(|v| (0.4 * v).sin() + 0.1 * v).collect();
+        let mut k = vec![x[0]; 4];
+        k.extend_from_slice(&x[2..m as usize - 2]);
+        k.extend([x[m as usize - 1]; 4]);
+        let kv = KnotVector::new(k).unwrap();
+        let fused = interpolate_with_end_derivatives(
+            PointsRef::from_flat(1, &y).unwrap(),
+            &x,
+            &kv,
+            3,
+            &[],
+            &[],
+        )
+        .unwrap();
+        let wide: Vec<f64> = y.iter().flat_map(|&v| [v, 1.0, -v, 2.0 * v]).collect();
+        let general = interpolate_with_end_derivatives(
+            PointsRef::from_flat(4, &wide).unwrap(),
+            &x,
+            &kv,
+            3,
+            &[],
+            &[],
+        )
+        .unwrap();
+        let a = fused.control_points().as_slice();
+        let b = general.control_points().as_slice();
+        for i in 0..a.len() {
+            assert!(
+                (a[i] - b[4 * i]).abs() < 1e-13,
+                "{i}: {} vs {}",
+                a[i],
+                b[4 * i]
+            );
+        }
+        for (&t, &v) in x.iter().zip(&y) {
+            assert!((fused.eval(t).unwrap()[0] - v).abs() < 1e-13);
         }
     }
 
