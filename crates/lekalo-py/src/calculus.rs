@@ -80,6 +80,13 @@ impl PyBSplineCurve {
             // fewer points than it takes to pay for an evaluator (its tables cost about three
             // points' evaluations a piece): the reference path, point by point
             let (lo, hi) = curve.domain();
+            if ts
+                .iter()
+                .all(|&x| x.is_finite() && (extrapolate || (lo <= x && x <= hi)))
+            {
+                // every point defined: one pass, its span search walking on from the last span
+                return filled(py, &shape, |buf| curve.eval_batch_extrapolated(ts, buf));
+            }
             return filled(py, &shape, |buf| {
                 for (&x, o) in ts.iter().zip(buf.chunks_exact_mut(dim)) {
                     if x.is_finite() && (extrapolate || (lo <= x && x <= hi)) {
