@@ -843,7 +843,8 @@ def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -
 
 class PchipInterpolator(PPoly):
     """``scipy.interpolate.PchipInterpolator``: the monotonicity-preserving piecewise cubic,
-    with lekalo's ``pchip_slopes`` (Fritsch–Butland, Moler's ends) and ``CubicHermite``."""
+    with lekalo's ``pchip_slopes`` (Fritsch–Butland, Moler's ends), written as a B-spline with
+    double knots by ``cubic_hermite_bspline_into``."""
 
     def __init__(self, x: Any, y: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
@@ -868,7 +869,7 @@ class PchipInterpolator(PPoly):
 class Akima1DInterpolator(PPoly):
     """``scipy.interpolate.Akima1DInterpolator``: the local Akima (``method="akima"``) or
     modified Akima (``"makima"``) piecewise cubic, with lekalo's ``akima_slopes`` and
-    ``CubicHermite``. Extrapolation is off by default, as in SciPy."""
+    ``cubic_hermite_bspline_into``. Extrapolation is off by default, as in SciPy."""
 
     def __init__(self, x: Any, y: Any, axis: int = 0, *, method: str = "akima", extrapolate: Any = None) -> None:
         if method not in {"akima", "makima"}:
