@@ -122,8 +122,9 @@ where
     Ok((array(py, out, shape)?, array(py, tan, shape)?))
 }
 
-/// The `cotangent` of a reverse-mode derivative, of the values' `shape`, and its data (empty
-/// for `None`, which the library then refuses by its length).
+/// The `cotangent` of a reverse-mode derivative, checked to have the values' `shape`; absent
+/// for Python's `None` (the callers then pass no numbers, which the library refuses by their
+/// length).
 fn cotangent_arg<'py>(
     cotangent: &Bound<'py, PyAny>,
     shape: &[usize],

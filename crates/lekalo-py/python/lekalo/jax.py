@@ -210,14 +210,8 @@ def _curve_jvp(degree, primals, tangents):
     dk, dc, du = tangents
     _no_knot_tangent("bspline_eval", dk)
     m, dim, w = u.shape[0], ctrl.shape[-1], degree + 1
-    values, slopes, first, basis = _linearized(
-        "bspline_eval",
-        partial(_curve_linearize_cb, degree),
-        _curve_lin_shapes(m, dim, w),
-        knots,
-        ctrl,
-        u,
-    )
+    cb, shapes = partial(_curve_linearize_cb, degree), _curve_lin_shapes(m, dim, w)
+    values, slopes, first, basis = _linearized("bspline_eval", cb, shapes, knots, ctrl, u)
     tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
         rows = first[:, None] + jnp.arange(w)  # (m, p + 1) control-point indices
@@ -287,15 +281,8 @@ def _nurbs_jvp(degree, primals, tangents):
     dk, dc, dw, du = tangents
     _no_knot_tangent("nurbs_eval", dk)
     m, dim, width = u.shape[0], ctrl.shape[-1], degree + 1
-    values, slopes, first, basis = _linearized(
-        "nurbs_eval",
-        partial(_nurbs_linearize_cb, degree),
-        _curve_lin_shapes(m, dim, width),
-        knots,
-        ctrl,
-        w,
-        u,
-    )
+    cb, shapes = partial(_nurbs_linearize_cb, degree), _curve_lin_shapes(m, dim, width)
+    values, slopes, first, basis = _linearized("nurbs_eval", cb, shapes, knots, ctrl, w, u)
     rows = first[:, None] + jnp.arange(width)  # (m, p + 1) control-point indices
     tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
@@ -377,15 +364,9 @@ def _surface_jvp(degrees, primals, tangents):
     (p, q), m, dim = degrees, u.shape[0], ctrl.shape[-1]
     index = _struct((m,), jnp.int64)
     shapes = (_struct((m, dim)),) * 3 + (index, index, _struct((m, p + 1)), _struct((m, q + 1)))
+    cb = partial(_surface_linearize_cb, degrees)
     values, su, sv, fu, fv, bu, bv = _linearized(
-        "bspline_surface_eval",
-        partial(_surface_linearize_cb, degrees),
-        shapes,
-        ku,
-        kv,
-        ctrl,
-        u,
-        v,
+        "bspline_surface_eval", cb, shapes, ku, kv, ctrl, u, v
     )
     tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
@@ -643,14 +624,8 @@ def _lsq_jvp(k, weighted, primals, tangents):
     if isinstance(dq, SymbolicZero):
         return values, jnp.zeros_like(values)
     n, m = t.shape[0] - k - 1, params.shape[0]
-    lin = _linearized(
-        name,
-        partial(_lsq_linearize_cb, k, weighted),
-        _fit_linearization_shapes(m, k + 1, n, k + 1),
-        params,
-        t,
-        w,
-    )
+    shapes = _fit_linearization_shapes(m, k + 1, n, k + 1)
+    lin = _linearized(name, partial(_lsq_linearize_cb, k, weighted), shapes, params, t, w)
     return values, _fit_tangent(*lin, dq)
 
 
@@ -728,13 +703,8 @@ def _smoothing_jvp(lam, weighted, primals, tangents):
     if isinstance(dy, SymbolicZero):
         return values, jnp.zeros_like(values)
     m = x.shape[0]
-    lin = _linearized(
-        name,
-        partial(_smoothing_linearize_cb, lam, weighted),
-        _fit_linearization_shapes(m, 4, m + 2, 4),
-        x,
-        w,
-    )
+    shapes = _fit_linearization_shapes(m, 4, m + 2, 4)
+    lin = _linearized(name, partial(_smoothing_linearize_cb, lam, weighted), shapes, x, w)
     return values, _fit_tangent(*lin, dy)
 
 
