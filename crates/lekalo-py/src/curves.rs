@@ -94,6 +94,11 @@ fn pick_order(py: Python<'_>, d: Py<PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
         .unbind())
 }
 
+/// `f()` with the GIL released, the library's error raised as Python's.
+fn detached<T: Send>(py: Python<'_>, f: impl Send + FnOnce() -> lekalo::Result<T>) -> PyResult<T> {
+    py.detach(f).map_err(lib_err)
+}
+
 /// The Python object of a curve of any kind: the class of its kind.
 pub(crate) fn curve_to_py(py: Python<'_>, c: lekalo::Curve) -> PyResult<Py<PyAny>> {
     Ok(match c {
@@ -419,19 +424,15 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
     /// Degree elevation by `by` (document 004): the same curve with more control points.
     #[pyo3(signature = (by = 1))]
     fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.elevate_degree(by))
-                .map_err(lib_err)?,
-        ))
+        Ok(Self::wrap(detached(py, || self.inner.elevate_degree(by))?))
     }
 
     /// Exact degree change to `target` (document 004): elevation, or reduction that is refused
     /// below the real degree.
     fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.change_degree(target))
-                .map_err(lib_err)?,
-        ))
+        Ok(Self::wrap(detached(py, || {
+            self.inner.change_degree(target)
+        })?))
     }
 
     /// Least-squares degree reduction to `target` keeping `ends` ('free', 'points',
@@ -620,18 +621,14 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     /// Degree elevation by `by`, piece by piece (document 004).
     #[pyo3(signature = (by = 1))]
     fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.elevate_degree(by))
-                .map_err(lib_err)?,
-        ))
+        Ok(Self::wrap(detached(py, || self.inner.elevate_degree(by))?))
     }
 
     /// Exact degree change to `target` (refused below the real degree of a piece).
     fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
-        Ok(Self::wrap(
-            py.detach(|| self.inner.change_degree(target))
-                .map_err(lib_err)?,
-        ))
+        Ok(Self::wrap(detached(py, || {
+            self.inner.change_degree(target)
+        })?))
     }
 
     /// The axis-aligned bounding box of the control net, `(lo, hi)`.

@@ -11,14 +11,14 @@
 use lekalo::derivatives::{
     CurveLinearization, FitLinearization, InterpolationMap, LeastSquaresMap, SmoothingMap,
 };
-use lekalo::{BSplineCurve, BSplineSurface, KnotVector, NurbsCurve};
+use lekalo::{BSplineCurve, KnotVector, NurbsCurve};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{array, check_size, floats, out_shape, vec1, FloatArray};
 use crate::error::{bad, lib_err};
-use crate::surfaces::net_arg;
+use crate::surfaces::bspline_surface_arg;
 
 /// Registers the functions of this module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -53,17 +53,6 @@ fn curve(
     let k = vec1(knots, "knots")?;
     let p = control.points("control")?.to_owned();
     BSplineCurve::new(degree, k, p).map_err(lib_err)
-}
-
-fn surface(
-    (degree_u, degree_v): (usize, usize),
-    knots_u: &Bound<'_, PyAny>,
-    knots_v: &Bound<'_, PyAny>,
-    control: &Bound<'_, PyAny>,
-) -> PyResult<BSplineSurface> {
-    let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
-    let (p, size) = net_arg(control, "control")?;
-    BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)
 }
 
 /// An optional argument of the same shape as `like` (`like_name`).
@@ -101,6 +90,76 @@ fn index_array<'py>(
         .into_any())
 }
 
+/// The data of an optional array.
+fn data_of<'a>(a: &'a Option<FloatArray<'_>>) -> Option<&'a [f64]> {
+    a.as_ref().map(FloatArray::data)
+}
+
+/// `control` and `t` as arrays, and the curve `make` builds from `control`.
+fn curve_at<'py, C>(
+    control: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    make: impl FnOnce(&FloatArray<'py>) -> PyResult<C>,
+) -> PyResult<(FloatArray<'py>, C, FloatArray<'py>)> {
+    let ca = floats(control, "control")?;
+    let c = make(&ca)?;
+    Ok((ca, c, floats(t, "t")?))
+}
+
+/// The values and tangent of a forward-mode derivative: two buffers of `n` numbers that `f`
+/// fills with the GIL released, as arrays of `shape`.
+fn values_and_tangent<'py, F>(
+    py: Python<'py>,
+    n: usize,
+    shape: &[usize],
+    f: F,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)>
+where
+    F: Send + FnOnce(&mut [f64], &mut [f64]) -> lekalo::Result<()>,
+{
+    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| f(&mut out, &mut tan)).map_err(lib_err)?;
+    Ok((array(py, out, shape)?, array(py, tan, shape)?))
+}
+
+/// The `cotangent` of a reverse-mode derivative, checked to have the values' `shape`; absent
+/// for Python's `None` (the callers then pass no numbers, which the library refuses by their
+/// length).
+fn cotangent_arg<'py>(
+    cotangent: &Bound<'py, PyAny>,
+    shape: &[usize],
+) -> PyResult<Option<FloatArray<'py>>> {
+    same_shape(Some(cotangent), "cotangent", shape, "the values")
+}
+
+/// A tangent or cotangent of points `arg` (`(n, dim)`, or `(n,)` for dimension 1) through the
+/// linear map `f(data, dim)` with the GIL released, shaped as `arg` with its first axis `len`
+/// (unchanged for `None`).
+fn map_points<'py, F>(
+    py: Python<'py>,
+    arg: &Bound<'py, PyAny>,
+    what: &str,
+    len: Option<usize>,
+    f: F,
+) -> PyResult<Bound<'py, PyAny>>
+where
+    F: Send + FnOnce(&[f64], usize) -> lekalo::Result<Vec<f64>>,
+{
+    let a = floats(arg, what)?;
+    let dim = dim_of(&a, what)?;
+    let v = a.data();
+    let out = py.detach(|| f(v, dim)).map_err(lib_err)?;
+    match len {
+        Some(len) => array(py, out, &with_len(a.shape(), len)),
+        None => array(py, out, a.shape()),
+    }
+}
+
+/// An optional weights argument `w` (`None` as absent).
+fn weights_arg(w: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<f64>>> {
+    w.filter(|w| !w.is_none()).map(|w| vec1(w, "w")).transpose()
+}
+
 /// Forward-mode derivative of B-spline curve evaluation: returns `(values, tangent)` with
 /// `values = C(t)` (bit-for-bit `BSplineCurve.evaluate_batch`'s de Boor evaluation) and
 /// `tangent = B(t) @ control_tangent + C'(t) * t_tangent` (either tangent may be `None`).
@@ -115,23 +174,14 @@ pub(crate) fn bspline_curve_jvp<'py>(
     control_tangent: Option<&Bound<'py, PyAny>>,
     t_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let ca = floats(control, "control")?;
-    let c = curve(degree, knots, &ca)?;
-    let ta = floats(t, "t")?;
-    let dim = c.dim();
-    let n = check_size("t", &[ta.data().len(), dim])?;
+    let (ca, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
+    let n = check_size("t", &[ta.data().len(), c.dim()])?;
     let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
     let dt = same_shape(t_tangent, "t_tangent", ta.shape(), "t")?;
-    let (ts, dc, dt) = (
-        ta.data(),
-        dc.as_ref().map(FloatArray::data),
-        dt.as_ref().map(FloatArray::data),
-    );
-    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
-    py.detach(|| c.eval_batch_jvp(ts, dc, dt, &mut out, &mut tan))
-        .map_err(lib_err)?;
-    let shape = out_shape(&ta, &[dim]);
-    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+    let (ts, dc, dt) = (ta.data(), data_of(&dc), data_of(&dt));
+    values_and_tangent(py, n, &out_shape(&ta, &[c.dim()]), |out, tan| {
+        c.eval_batch_jvp(ts, dc, dt, out, tan)
+    })
 }
 
 /// Reverse-mode derivative of B-spline curve evaluation: for `cotangent` of shape
@@ -147,12 +197,9 @@ pub(crate) fn bspline_curve_vjp<'py>(
     t: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let ca = floats(control, "control")?;
-    let c = curve(degree, knots, &ca)?;
-    let ta = floats(t, "t")?;
-    let shape = out_shape(&ta, &[c.dim()]);
-    let ga = same_shape(Some(cotangent), "cotangent", &shape, "the values")?;
-    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let (ca, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
+    let ga = cotangent_arg(cotangent, &out_shape(&ta, &[c.dim()]))?;
+    let g = data_of(&ga).unwrap_or(&[]);
     let (mut gc, mut gt) = (vec![0.0; ca.data().len()], vec![0.0; ta.data().len()]);
     let ts = ta.data();
     py.detach(|| c.eval_batch_vjp(ts, g, Some(&mut gc), Some(&mut gt)))
@@ -173,9 +220,7 @@ pub(crate) fn bspline_curve_linearize<'py>(
     control: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let ca = floats(control, "control")?;
-    let c = curve(degree, knots, &ca)?;
-    let ta = floats(t, "t")?;
+    let (_, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
     linearization_dict(py, lin, &ta, c.dim(), degree)
@@ -233,26 +278,16 @@ pub(crate) fn nurbs_curve_jvp<'py>(
     weights_tangent: Option<&Bound<'py, PyAny>>,
     t_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let ca = floats(control, "control")?;
-    let c = nurbs(degree, knots, &ca, weights)?;
-    let ta = floats(t, "t")?;
-    let dim = c.dim();
-    let n = check_size("t", &[ta.data().len(), dim])?;
+    let (ca, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
+    let n = check_size("t", &[ta.data().len(), c.dim()])?;
     let w_shape = [c.weights().len()];
     let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
     let dw = same_shape(weights_tangent, "weights_tangent", &w_shape, "weights")?;
     let dt = same_shape(t_tangent, "t_tangent", ta.shape(), "t")?;
-    let (ts, dc, dw, dt) = (
-        ta.data(),
-        dc.as_ref().map(FloatArray::data),
-        dw.as_ref().map(FloatArray::data),
-        dt.as_ref().map(FloatArray::data),
-    );
-    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
-    py.detach(|| c.eval_batch_jvp(ts, dc, dw, dt, &mut out, &mut tan))
-        .map_err(lib_err)?;
-    let shape = out_shape(&ta, &[dim]);
-    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+    let (ts, dc, dw, dt) = (ta.data(), data_of(&dc), data_of(&dw), data_of(&dt));
+    values_and_tangent(py, n, &out_shape(&ta, &[c.dim()]), |out, tan| {
+        c.eval_batch_jvp(ts, dc, dw, dt, out, tan)
+    })
 }
 
 /// Reverse-mode derivative of NURBS curve evaluation: for `cotangent` of shape
@@ -269,12 +304,9 @@ pub(crate) fn nurbs_curve_vjp<'py>(
     t: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let ca = floats(control, "control")?;
-    let c = nurbs(degree, knots, &ca, weights)?;
-    let ta = floats(t, "t")?;
-    let shape = out_shape(&ta, &[c.dim()]);
-    let ga = same_shape(Some(cotangent), "cotangent", &shape, "the values")?;
-    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let (ca, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
+    let ga = cotangent_arg(cotangent, &out_shape(&ta, &[c.dim()]))?;
+    let g = data_of(&ga).unwrap_or(&[]);
     let n_ctrl = c.weights().len();
     let (mut gc, mut gw) = (vec![0.0; ca.data().len()], vec![0.0; n_ctrl]);
     let mut gt = vec![0.0; ta.data().len()];
@@ -301,9 +333,7 @@ pub(crate) fn nurbs_curve_linearize<'py>(
     weights: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let ca = floats(control, "control")?;
-    let c = nurbs(degree, knots, &ca, weights)?;
-    let ta = floats(t, "t")?;
+    let (_, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
     linearization_dict(py, lin, &ta, c.dim(), degree)
@@ -337,11 +367,9 @@ pub(crate) fn interpolation_jvp<'py>(
     data_tangent: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = interpolation_map(degree, knots, params)?;
-    let a = floats(data_tangent, "data_tangent")?;
-    let dim = dim_of(&a, "data_tangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
-    array(py, out, a.shape())
+    map_points(py, data_tangent, "data_tangent", None, |v, dim| {
+        map.jvp(v, dim)
+    })
 }
 
 /// Reverse-mode derivative of interpolation at fixed `params` and `knots` with respect to the
@@ -357,11 +385,13 @@ pub(crate) fn interpolation_vjp<'py>(
     control_cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = interpolation_map(degree, knots, params)?;
-    let a = floats(control_cotangent, "control_cotangent")?;
-    let dim = dim_of(&a, "control_cotangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
-    array(py, out, a.shape())
+    map_points(
+        py,
+        control_cotangent,
+        "control_cotangent",
+        None,
+        |v, dim| map.vjp(v, dim),
+    )
 }
 
 /// `shape` with its first axis replaced by `len` (a tangent or cotangent of points mapped to
@@ -384,10 +414,7 @@ fn least_squares_map(
 ) -> PyResult<LeastSquaresMap> {
     let kv = KnotVector::new(vec1(knots, "knots")?).map_err(lib_err)?;
     let ts = vec1(params, "params")?;
-    let w = w
-        .filter(|w| !w.is_none())
-        .map(|w| vec1(w, "w"))
-        .transpose()?;
+    let w = weights_arg(w)?;
     LeastSquaresMap::new(degree, &kv, &ts, w.as_deref()).map_err(lib_err)
 }
 
@@ -406,11 +433,8 @@ pub(crate) fn least_squares_jvp<'py>(
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = least_squares_map(degree, knots, params, w)?;
-    let a = floats(data_tangent, "data_tangent")?;
-    let dim = dim_of(&a, "data_tangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
-    array(py, out, &with_len(a.shape(), map.n_ctrl()))
+    let len = Some(map.n_ctrl());
+    map_points(py, data_tangent, "data_tangent", len, |v, d| map.jvp(v, d))
 }
 
 /// Reverse-mode derivative of the least-squares fit with respect to the data: the data
@@ -426,11 +450,10 @@ pub(crate) fn least_squares_vjp<'py>(
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = least_squares_map(degree, knots, params, w)?;
-    let a = floats(control_cotangent, "control_cotangent")?;
-    let dim = dim_of(&a, "control_cotangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
-    array(py, out, &with_len(a.shape(), map.n_data()))
+    let len = Some(map.n_data());
+    map_points(py, control_cotangent, "control_cotangent", len, |v, d| {
+        map.vjp(v, d)
+    })
 }
 
 /// The factored smoothing map of the parameters `x` with weights `w` for `lam > 0`.
@@ -440,10 +463,7 @@ fn smoothing_map(
     w: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<SmoothingMap> {
     let xs = vec1(x, "x")?;
-    let w = w
-        .filter(|w| !w.is_none())
-        .map(|w| vec1(w, "w"))
-        .transpose()?;
+    let w = weights_arg(w)?;
     SmoothingMap::new(&xs, lam, w.as_deref()).map_err(lib_err)
 }
 
@@ -461,11 +481,8 @@ pub(crate) fn smoothing_jvp<'py>(
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = smoothing_map(x, lam, w)?;
-    let a = floats(data_tangent, "data_tangent")?;
-    let dim = dim_of(&a, "data_tangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.jvp(v, dim)).map_err(lib_err)?;
-    array(py, out, &with_len(a.shape(), map.n_ctrl()))
+    let len = Some(map.n_ctrl());
+    map_points(py, data_tangent, "data_tangent", len, |v, d| map.jvp(v, d))
 }
 
 /// Reverse-mode derivative of the smoothing spline with respect to the data: the data
@@ -480,11 +497,10 @@ pub(crate) fn smoothing_vjp<'py>(
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let map = smoothing_map(x, lam, w)?;
-    let a = floats(control_cotangent, "control_cotangent")?;
-    let dim = dim_of(&a, "control_cotangent")?;
-    let v = a.data();
-    let out = py.detach(|| map.vjp(v, dim)).map_err(lib_err)?;
-    array(py, out, &with_len(a.shape(), map.n_data()))
+    let len = Some(map.n_data());
+    map_points(py, control_cotangent, "control_cotangent", len, |v, d| {
+        map.vjp(v, d)
+    })
 }
 
 /// A fit's map as a dict: `first` (int64, `(m,)`), `basis` (`(m, width)`), `weights`
@@ -558,7 +574,7 @@ pub(crate) fn bspline_surface_jvp<'py>(
     u_tangent: Option<&Bound<'py, PyAny>>,
     v_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
     let dim = s.dim();
     let n = check_size("u", &[uv.len(), dim])?;
@@ -572,13 +588,10 @@ pub(crate) fn bspline_surface_jvp<'py>(
     } else {
         None
     };
-    let dc = dc.as_ref().map(FloatArray::data);
-    let (mut out, mut tan) = (vec![0.0; n], vec![0.0; n]);
-    py.detach(|| s.eval_batch_jvp(&uv, dc, duv.as_deref(), &mut out, &mut tan))
-        .map_err(lib_err)?;
-    let mut pts = shape;
-    pts.push(dim);
-    Ok((array(py, out, &pts)?, array(py, tan, &pts)?))
+    let (dc, duv) = (data_of(&dc), duv.as_deref());
+    values_and_tangent(py, n, &[shape.as_slice(), &[dim]].concat(), |out, tan| {
+        s.eval_batch_jvp(&uv, dc, duv, out, tan)
+    })
 }
 
 /// Reverse-mode derivative of B-spline surface evaluation: for `cotangent` of shape
@@ -597,12 +610,10 @@ pub(crate) fn bspline_surface_vjp<'py>(
     v: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
-    let mut pts = shape.clone();
-    pts.push(s.dim());
-    let ga = same_shape(Some(cotangent), "cotangent", &pts, "the values")?;
-    let g = ga.as_ref().map(FloatArray::data).unwrap_or(&[]);
+    let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
+    let g = data_of(&ga).unwrap_or(&[]);
     let mut gc = vec![0.0; s.control_points().as_slice().len()];
     let mut guv = vec![[0.0; 2]; uv.len()];
     py.detach(|| s.eval_batch_vjp(&uv, g, Some(&mut gc), Some(&mut guv)))
@@ -633,7 +644,7 @@ pub(crate) fn bspline_surface_linearize<'py>(
     u: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let s = surface((degree_u, degree_v), knots_u, knots_v, control)?;
+    let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
     let lin = py.detach(|| s.eval_batch_linearize(&uv)).map_err(lib_err)?;
     let tail = |k: usize| {
@@ -701,16 +712,13 @@ pub(crate) fn tensor_bspline_jvp<'py>(
     let dc = same_shape(c_tangent, "c_tangent", &c_shape, "c")?;
     let dx = same_shape(x_tangent, "x_tangent", xa.shape(), "x")?;
     let len = lead.iter().product::<usize>() * s.dim();
-    let (mut out, mut tan) = (vec![0.0; len], vec![0.0; len]);
-    let (xs, dc, dx) = (
-        xa.data(),
-        dc.as_ref().map(FloatArray::data),
-        dx.as_ref().map(FloatArray::data),
-    );
-    py.detach(|| s.eval_batch_jvp(xs, dc, dx, &mut out, &mut tan))
-        .map_err(lib_err)?;
-    let shape = [lead.as_slice(), &trailing].concat();
-    Ok((array(py, out, &shape)?, array(py, tan, &shape)?))
+    let (xs, dc, dx) = (xa.data(), data_of(&dc), data_of(&dx));
+    values_and_tangent(
+        py,
+        len,
+        &[lead.as_slice(), &trailing].concat(),
+        |out, tan| s.eval_batch_jvp(xs, dc, dx, out, tan),
+    )
 }
 
 /// Reverse-mode derivative of tensor-spline evaluation: for `cotangent` of shape

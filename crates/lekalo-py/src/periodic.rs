@@ -3,11 +3,27 @@
 //! (docs/theory/curves.md#periodic-knot-insertion) and insertion at any multiplicity
 //! (docs/theory/curves.md#knot-insertion-on-raw-knots).
 
+use lekalo::{Points, PointsRef};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::{floats, points_into_array, vec1, vec_array};
 use crate::error::lib_err;
+
+/// The spline of `knots` and coefficients `control` through the library's knot insertion
+/// `insert(knots, control)`, run with the GIL released: `(knots, control)` as arrays.
+fn inserted<'py>(
+    py: Python<'py>,
+    knots: &Bound<'py, PyAny>,
+    control: &Bound<'py, PyAny>,
+    insert: impl Send + FnOnce(&[f64], PointsRef<'_>) -> lekalo::Result<(Vec<f64>, Points)>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let t = vec1(knots, "knots")?;
+    let ca = floats(control, "control")?;
+    let c = ca.points("control")?;
+    let (t2, c2) = py.detach(|| insert(&t, c)).map_err(lib_err)?;
+    PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
+}
 
 /// The periodic spline of degree `k` with `knots` and coefficients `control` (`(n − k − 1,)` or
 /// `(n − k − 1, dim)`) with `x` inserted `times` times, the periodic extension kept: returns
@@ -28,13 +44,9 @@ pub(crate) fn insert_knot_periodic<'py>(
     x: f64,
     times: usize,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let t = vec1(knots, "knots")?;
-    let ca = floats(control, "control")?;
-    let c = ca.points("control")?;
-    let (t2, c2) = py
-        .detach(|| lekalo::insert_knot_periodic(k, &t, c, x, times))
-        .map_err(lib_err)?;
-    PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
+    inserted(py, knots, control, |t, c| {
+        lekalo::insert_knot_periodic(k, t, c, x, times)
+    })
 }
 
 /// The spline of degree `k` with `knots` and coefficients `control` (`(n − k − 1,)` or
@@ -56,11 +68,7 @@ pub(crate) fn insert_knot_raw<'py>(
     x: f64,
     times: usize,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let t = vec1(knots, "knots")?;
-    let ca = floats(control, "control")?;
-    let c = ca.points("control")?;
-    let (t2, c2) = py
-        .detach(|| lekalo::insert_knot_raw(k, &t, c, x, times))
-        .map_err(lib_err)?;
-    PyTuple::new(py, [vec_array(py, &t2), points_into_array(py, c2)?])
+    inserted(py, knots, control, |t, c| {
+        lekalo::insert_knot_raw(k, t, c, x, times)
+    })
 }

@@ -12,6 +12,32 @@ use crate::convert::{out_shape, reduce};
 use crate::curves::{PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
 use crate::error::{bad, io_err, lib_err};
 
+/// Two knot vectors, a control net and its size `(nu, nv)`.
+type KnotsAndNet = (Vec<f64>, Vec<f64>, Points, (usize, usize));
+
+/// The knot vectors `knots_u`, `knots_v` and the control net `control` of a B-spline or NURBS
+/// surface, with the net's size.
+fn knots_and_net(
+    knots_u: &Bound<'_, PyAny>,
+    knots_v: &Bound<'_, PyAny>,
+    control: &Bound<'_, PyAny>,
+) -> PyResult<KnotsAndNet> {
+    let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
+    let (p, size) = net_arg(control, "control")?;
+    Ok((ku, kv, p, size))
+}
+
+/// The B-spline surface `BSplineSurface(degree_u, degree_v, knots_u, knots_v, control)`.
+pub(crate) fn bspline_surface_arg(
+    (degree_u, degree_v): (usize, usize),
+    knots_u: &Bound<'_, PyAny>,
+    knots_v: &Bound<'_, PyAny>,
+    control: &Bound<'_, PyAny>,
+) -> PyResult<BSplineSurface> {
+    let (ku, kv, p, size) = knots_and_net(knots_u, knots_v, control)?;
+    BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)
+}
+
 /// A control net `(nu, nv, dim)` as points and its size.
 pub(crate) fn net_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Points, (usize, usize))> {
     let a = floats(obj, what)?;
@@ -349,11 +375,8 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCur
         knots_v: &Bound<'_, PyAny>,
         control: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
-        let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
-        let (p, size) = net_arg(control, "control")?;
-        Ok(Self {
-            inner: BSplineSurface::new(degree_u, degree_v, ku, kv, p, size).map_err(lib_err)?,
-        })
+        let inner = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
+        Ok(Self { inner })
     }
 
     /// The control net `(nu, nv, dim)`.
@@ -390,8 +413,7 @@ surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
         control: &Bound<'_, PyAny>,
         weights: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
-        let (ku, kv) = (vec1(knots_u, "knots_u")?, vec1(knots_v, "knots_v")?);
-        let (p, size) = net_arg(control, "control")?;
+        let (ku, kv, p, size) = knots_and_net(knots_u, knots_v, control)?;
         let w = floats(weights, "weights")?;
         if w.shape() != [size.0, size.1] {
             return Err(bad(format!(

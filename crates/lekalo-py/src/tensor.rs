@@ -35,7 +35,7 @@ pub(crate) struct PyTensorBSpline {
 }
 
 /// Degrees from `k`: one integer for every variable, or one per variable.
-fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
+pub(crate) fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
     if let Ok(p) = k.extract::<usize>() {
         return Ok(vec![p; n]);
     }
@@ -49,6 +49,34 @@ fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
         )));
     }
     Ok(list)
+}
+
+/// Degrees from `k` as [`degrees_arg`], cubic in every variable without `k`.
+fn degrees_or_cubic(k: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<usize>> {
+    match k {
+        Some(k) => degrees_arg(k, n),
+        None => Ok(vec![3; n]),
+    }
+}
+
+/// Values on the grid of the coordinate `lists` (`va` of shape `(m_1, …, m_N, *trailing)`) as
+/// rows of the trailing size, and the trailing axes.
+fn grid_values<'a>(
+    va: &'a FloatArray<'_>,
+    lists: &[Vec<f64>],
+) -> PyResult<(PointsRef<'a>, Vec<usize>)> {
+    let n = lists.len();
+    let shape = va.shape();
+    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
+    if shape.len() < n || shape[..n] != sizes[..] {
+        return Err(bad(format!(
+            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
+        )));
+    }
+    let trailing = shape[n..].to_vec();
+    let dim: usize = trailing.iter().product();
+    let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+    Ok((pts, trailing))
 }
 
 /// One 1-D float array per variable.
@@ -286,21 +314,9 @@ impl PyTensorBSpline {
         let lists = axes_arg(axes, "axes")?;
         let n = lists.len();
         let given = knots.map(|k| knots_arg(k, n)).transpose()?;
-        let degrees = match degrees {
-            Some(d) => degrees_arg(d, n)?,
-            None => vec![3; n],
-        };
+        let degrees = degrees_or_cubic(degrees, n)?;
         let va = floats(values, "values")?;
-        let shape = va.shape();
-        let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
-        if shape.len() < n || shape[..n] != sizes[..] {
-            return Err(bad(format!(
-                "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
-            )));
-        }
-        let trailing = shape[n..].to_vec();
-        let dim: usize = trailing.iter().product();
-        let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+        let (pts, trailing) = grid_values(&va, &lists)?;
         let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
         let mut interpolation = TensorInterpolation::new(degrees);
         if let Some(given) = given {
@@ -406,16 +422,7 @@ pub(crate) fn fit_tensor_grid(
     let n = lists.len();
     let (knots, degrees) = knots_and_degrees(t, k, n, &format!("{n} axes"))?;
     let va = floats(values, "values")?;
-    let shape = va.shape();
-    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
-    if shape.len() < n || shape[..n] != sizes[..] {
-        return Err(bad(format!(
-            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
-        )));
-    }
-    let trailing = shape[n..].to_vec();
-    let dim: usize = trailing.iter().product();
-    let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+    let (pts, trailing) = grid_values(&va, &lists)?;
     let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
     let inner = py
         .detach(|| tensor_grid_least_squares(&refs, pts, &degrees, knots))
@@ -443,10 +450,7 @@ pub(crate) fn fit_tensor_grid_smoothing(
 ) -> PyResult<(PyTensorBSpline, f64, Option<f64>)> {
     let lists = axes_arg(axes, "axes")?;
     let n = lists.len();
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let degrees = degrees_or_cubic(k, n)?;
     if let Some(b) = &bbox {
         if b.len() != n {
             return Err(bad(format!(
@@ -456,16 +460,7 @@ pub(crate) fn fit_tensor_grid_smoothing(
         }
     }
     let va = floats(values, "values")?;
-    let shape = va.shape();
-    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
-    if shape.len() < n || shape[..n] != sizes[..] {
-        return Err(bad(format!(
-            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
-        )));
-    }
-    let trailing = shape[n..].to_vec();
-    let dim: usize = trailing.iter().product();
-    let pts = PointsRef::from_flat(dim.max(1), va.data()).map_err(|e| named("values", &e))?;
+    let (pts, trailing) = grid_values(&va, &lists)?;
     let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
     let f = py
         .detach(|| tensor_grid_smoothing(&refs, pts, &degrees, s, bbox.as_deref()))
@@ -521,10 +516,7 @@ fn knots_and_degrees(
             knots.len()
         )));
     }
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let degrees = degrees_or_cubic(k, n)?;
     Ok((knots, degrees))
 }
 
@@ -635,10 +627,7 @@ pub(crate) fn fit_tensor_scattered_smoothing<'py>(
     let (xa, npts, n) = points_arg(x)?;
     let (ya, trailing) = values_arg(y, npts)?;
     let wa = w.map(|w| floats(w, "w")).transpose()?;
-    let degrees = match k {
-        Some(k) => degrees_arg(k, n)?,
-        None => vec![3; n],
-    };
+    let degrees = degrees_or_cubic(k, n)?;
     let dim: usize = trailing.iter().product();
     let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
     let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;

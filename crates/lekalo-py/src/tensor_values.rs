@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 use crate::convert::{check_size, filled, floats, FloatArray};
 use crate::error::{bad, named};
+use crate::tensor::degrees_arg;
 
 /// The knot arrays of `t`, one 1-D float64 array per variable, borrowed.
 fn knot_arrays<'py>(t: &Bound<'py, PyAny>) -> PyResult<Vec<FloatArray<'py>>> {
@@ -33,23 +34,6 @@ fn knot_arrays<'py>(t: &Bound<'py, PyAny>) -> PyResult<Vec<FloatArray<'py>>> {
             Ok(arr)
         })
         .collect()
-}
-
-/// Degrees from `k`: one integer for every variable, or one per variable.
-fn degrees(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
-    if let Ok(p) = k.extract::<usize>() {
-        return Ok(vec![p; n]);
-    }
-    let list: Vec<usize> = k.extract().map_err(|_| {
-        bad("k: expected a non-negative integer or one per variable (a tuple of ints)".into())
-    })?;
-    if list.len() != n {
-        return Err(bad(format!(
-            "k: {} degrees for {n} variables; give one integer, or one per variable",
-            list.len()
-        )));
-    }
-    Ok(list)
 }
 
 /// The borrowed spline of `(t, c, k)` (`c` of shape `(n_1, …, n_N, *trailing)`), with the
@@ -135,7 +119,7 @@ pub(crate) fn tensor_values(
     };
     let knots = knot_arrays(t)?;
     let n = knots.len();
-    let degrees = degrees(k, n)?;
+    let degrees = degrees_arg(k, n)?;
     let ca = floats(c, "c")?;
     let (s, trailing) = spline_ref(&knots, &degrees, &ca)?;
     let orders = orders(nu, n)?;
@@ -172,7 +156,7 @@ pub(crate) fn tensor_grid_values(
 ) -> PyResult<Py<PyAny>> {
     let knots = knot_arrays(t)?;
     let n = knots.len();
-    let degrees = degrees(k, n)?;
+    let degrees = degrees_arg(k, n)?;
     let ca = floats(c, "c")?;
     let (s, trailing) = spline_ref(&knots, &degrees, &ca)?;
     let orders = orders(nu, n)?;

@@ -145,30 +145,63 @@ def _no_knot_tangent(name, *tangents):
         )
 
 
+# -- host callbacks ------------------------------------------------------------------------------
+
+
+def _struct(shape, dtype=jnp.float64):
+    return jax.ShapeDtypeStruct(shape, dtype)
+
+
+def _callback(cb, shapes, *args):
+    """``cb(*args)`` run on the host by ``jax.pure_callback`` into ``shapes``; under ``vmap``
+    the batch axes lead (``vmap_method="expand_dims"``) and ``cb`` loops over them
+    (``_looped``)."""
+    return jax.pure_callback(cb, shapes, *args, vmap_method="expand_dims")
+
+
+def _linearized(name, cb, shapes, *args):
+    """``_callback`` of a linearisation on ``args``, each through ``_first_order_only`` so that
+    a second derivative of ``lekalo.jax.{name}`` raises."""
+    guard = partial(_first_order_only, name)
+    return _callback(cb, shapes, *(guard(a) for a in args))
+
+
+def _values_cb(kernel, static, core_ndims, *arrays):
+    """The values (first result) of the JVP kernel ``kernel(*static, *element)``, each batch
+    element of ``arrays`` in turn."""
+    return _looped(lambda *a: (kernel(*static, *a)[0],), core_ndims, *arrays)[0]
+
+
+def _fields_cb(kernel, static, core_ndims, keys, *arrays):
+    """The entries ``keys`` of the dict ``kernel(*static, *element)`` returns (a
+    linearisation), each batch element of ``arrays`` in turn."""
+    return _looped(lambda *a: tuple(kernel(*static, *a)[k] for k in keys), core_ndims, *arrays)
+
+
+_CURVE_KEYS = ("values", "derivatives", "first", "basis")
+
+
+def _curve_lin_shapes(m, dim, width):
+    """The shapes of a curve's linearisation at ``m`` parameters: values and derivatives
+    ``(m, dim)``, first indices ``(m,)``, basis ``(m, width)``."""
+    return (_struct((m, dim)), _struct((m, dim)), _struct((m,), jnp.int64), _struct((m, width)))
+
+
 # -- curves ------------------------------------------------------------------------------------
 
 
-def _curve_values_cb(degree, knots, ctrl, u):
-    def one(k, c, t):
-        return (_lekalo.bspline_curve_jvp(degree, k, c, t)[0],)
-
-    return _looped(one, (1, 2, 1), knots, ctrl, u)[0]
+def _curve_values_cb(degree, *arrays):
+    return _values_cb(_lekalo.bspline_curve_jvp, (degree,), (1, 2, 1), *arrays)
 
 
-def _curve_linearize_cb(degree, knots, ctrl, u):
-    def one(k, c, t):
-        d = _lekalo.bspline_curve_linearize(degree, k, c, t)
-        return d["values"], d["derivatives"], d["first"], d["basis"]
-
-    return _looped(one, (1, 2, 1), knots, ctrl, u)
+def _curve_linearize_cb(degree, *arrays):
+    return _fields_cb(_lekalo.bspline_curve_linearize, (degree,), (1, 2, 1), _CURVE_KEYS, *arrays)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _curve(degree, knots, ctrl, u):
-    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
-    return jax.pure_callback(
-        partial(_curve_values_cb, degree), shape, knots, ctrl, u, vmap_method="expand_dims"
-    )
+    shape = _struct(u.shape + ctrl.shape[-1:])
+    return _callback(partial(_curve_values_cb, degree), shape, knots, ctrl, u)
 
 
 @partial(_curve.defjvp, symbolic_zeros=True)
@@ -177,21 +210,8 @@ def _curve_jvp(degree, primals, tangents):
     dk, dc, du = tangents
     _no_knot_tangent("bspline_eval", dk)
     m, dim, w = u.shape[0], ctrl.shape[-1], degree + 1
-    shapes = (
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m, w), jnp.float64),
-    )
-    guard = partial(_first_order_only, "bspline_eval")
-    values, slopes, first, basis = jax.pure_callback(
-        partial(_curve_linearize_cb, degree),
-        shapes,
-        guard(knots),
-        guard(ctrl),
-        guard(u),
-        vmap_method="expand_dims",
-    )
+    cb, shapes = partial(_curve_linearize_cb, degree), _curve_lin_shapes(m, dim, w)
+    values, slopes, first, basis = _linearized("bspline_eval", cb, shapes, knots, ctrl, u)
     tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
         rows = first[:, None] + jnp.arange(w)  # (m, p + 1) control-point indices
@@ -240,27 +260,19 @@ def bspline_eval(knots, control_points, u, degree):
 # -- NURBS curves ------------------------------------------------------------------------------
 
 
-def _nurbs_values_cb(degree, knots, ctrl, w, u):
-    def one(k, c, ws, t):
-        return (_lekalo.nurbs_curve_jvp(degree, k, c, ws, t)[0],)
-
-    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)[0]
+def _nurbs_values_cb(degree, *arrays):
+    return _values_cb(_lekalo.nurbs_curve_jvp, (degree,), (1, 2, 1, 1), *arrays)
 
 
-def _nurbs_linearize_cb(degree, knots, ctrl, w, u):
-    def one(k, c, ws, t):
-        d = _lekalo.nurbs_curve_linearize(degree, k, c, ws, t)
-        return d["values"], d["derivatives"], d["first"], d["basis"]
-
-    return _looped(one, (1, 2, 1, 1), knots, ctrl, w, u)
+def _nurbs_linearize_cb(degree, *arrays):
+    kernel = _lekalo.nurbs_curve_linearize
+    return _fields_cb(kernel, (degree,), (1, 2, 1, 1), _CURVE_KEYS, *arrays)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _nurbs(degree, knots, ctrl, w, u):
-    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
-    return jax.pure_callback(
-        partial(_nurbs_values_cb, degree), shape, knots, ctrl, w, u, vmap_method="expand_dims"
-    )
+    shape = _struct(u.shape + ctrl.shape[-1:])
+    return _callback(partial(_nurbs_values_cb, degree), shape, knots, ctrl, w, u)
 
 
 @partial(_nurbs.defjvp, symbolic_zeros=True)
@@ -269,19 +281,8 @@ def _nurbs_jvp(degree, primals, tangents):
     dk, dc, dw, du = tangents
     _no_knot_tangent("nurbs_eval", dk)
     m, dim, width = u.shape[0], ctrl.shape[-1], degree + 1
-    shapes = (
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m, width), jnp.float64),
-    )
-    guard = partial(_first_order_only, "nurbs_eval")
-    values, slopes, first, basis = jax.pure_callback(
-        partial(_nurbs_linearize_cb, degree),
-        shapes,
-        *(guard(x) for x in (knots, ctrl, w, u)),
-        vmap_method="expand_dims",
-    )
+    cb, shapes = partial(_nurbs_linearize_cb, degree), _curve_lin_shapes(m, dim, width)
+    values, slopes, first, basis = _linearized("nurbs_eval", cb, shapes, knots, ctrl, w, u)
     rows = first[:, None] + jnp.arange(width)  # (m, p + 1) control-point indices
     tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
@@ -329,38 +330,30 @@ def nurbs_eval(knots, control_points, weights, u, degree):
 # -- surfaces ----------------------------------------------------------------------------------
 
 
-def _surface_values_cb(degrees, ku, kv, ctrl, u, v):
-    def one(a, b, c, x, y):
-        return (_lekalo.bspline_surface_jvp(*degrees, a, b, c, x, y)[0],)
+_SURFACE_KEYS = (
+    "values",
+    "derivatives_u",
+    "derivatives_v",
+    "first_u",
+    "first_v",
+    "basis_u",
+    "basis_v",
+)
 
-    return _looped(one, (1, 1, 3, 1, 1), ku, kv, ctrl, u, v)[0]
+
+def _surface_values_cb(degrees, *arrays):
+    return _values_cb(_lekalo.bspline_surface_jvp, degrees, (1, 1, 3, 1, 1), *arrays)
 
 
-def _surface_linearize_cb(degrees, ku, kv, ctrl, u, v):
-    def one(a, b, c, x, y):
-        d = _lekalo.bspline_surface_linearize(*degrees, a, b, c, x, y)
-        return tuple(
-            d[k]
-            for k in (
-                "values",
-                "derivatives_u",
-                "derivatives_v",
-                "first_u",
-                "first_v",
-                "basis_u",
-                "basis_v",
-            )
-        )
-
-    return _looped(one, (1, 1, 3, 1, 1), ku, kv, ctrl, u, v)
+def _surface_linearize_cb(degrees, *arrays):
+    kernel = _lekalo.bspline_surface_linearize
+    return _fields_cb(kernel, degrees, (1, 1, 3, 1, 1), _SURFACE_KEYS, *arrays)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _surface(degrees, ku, kv, ctrl, u, v):
-    shape = jax.ShapeDtypeStruct(u.shape + ctrl.shape[-1:], jnp.float64)
-    return jax.pure_callback(
-        partial(_surface_values_cb, degrees), shape, ku, kv, ctrl, u, v, vmap_method="expand_dims"
-    )
+    shape = _struct(u.shape + ctrl.shape[-1:])
+    return _callback(partial(_surface_values_cb, degrees), shape, ku, kv, ctrl, u, v)
 
 
 @partial(_surface.defjvp, symbolic_zeros=True)
@@ -369,24 +362,13 @@ def _surface_jvp(degrees, primals, tangents):
     dku, dkv, dc, du, dv = tangents
     _no_knot_tangent("bspline_surface_eval", dku, dkv)
     (p, q), m, dim = degrees, u.shape[0], ctrl.shape[-1]
-    f64 = jnp.float64
-    shapes = (
-        jax.ShapeDtypeStruct((m, dim), f64),
-        jax.ShapeDtypeStruct((m, dim), f64),
-        jax.ShapeDtypeStruct((m, dim), f64),
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m, p + 1), f64),
-        jax.ShapeDtypeStruct((m, q + 1), f64),
+    index = _struct((m,), jnp.int64)
+    shapes = (_struct((m, dim)),) * 3 + (index, index, _struct((m, p + 1)), _struct((m, q + 1)))
+    cb = partial(_surface_linearize_cb, degrees)
+    values, su, sv, fu, fv, bu, bv = _linearized(
+        "bspline_surface_eval", cb, shapes, ku, kv, ctrl, u, v
     )
-    guard = partial(_first_order_only, "bspline_surface_eval")
-    values, su, sv, fu, fv, bu, bv = jax.pure_callback(
-        partial(_surface_linearize_cb, degrees),
-        shapes,
-        *(guard(x) for x in (ku, kv, ctrl, u, v)),
-        vmap_method="expand_dims",
-    )
-    tangent = jnp.zeros((m, dim), f64)
+    tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
         rows = (fu[:, None] + jnp.arange(p + 1))[:, :, None]  # (m, p + 1, 1)
         cols = (fv[:, None] + jnp.arange(q + 1))[:, None, :]  # (m, 1, q + 1)
@@ -463,38 +445,18 @@ def _collocation_solve(k, params, t, first, basis, b):
         return jnp.einsum("mk,mkd->md", basis, x[rows])
 
     def solve(_, rhs):
-        return jax.pure_callback(
-            partial(_interp_solve_cb, k),
-            jax.ShapeDtypeStruct(rhs.shape, jnp.float64),
-            params,
-            t,
-            rhs,
-            vmap_method="expand_dims",
-        )
+        return _callback(partial(_interp_solve_cb, k), _struct(rhs.shape), params, t, rhs)
 
     def solve_transposed(_, rhs):
-        return jax.pure_callback(
-            partial(_interp_solve_transposed_cb, k),
-            jax.ShapeDtypeStruct(rhs.shape, jnp.float64),
-            params,
-            t,
-            rhs,
-            vmap_method="expand_dims",
-        )
+        cb = partial(_interp_solve_transposed_cb, k)
+        return _callback(cb, _struct(rhs.shape), params, t, rhs)
 
     return jax.lax.custom_linear_solve(matvec, b, solve, solve_transposed)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _interp(k, points, params, t):
-    return jax.pure_callback(
-        partial(_interp_solve_cb, k),
-        jax.ShapeDtypeStruct(points.shape, jnp.float64),
-        params,
-        t,
-        points,
-        vmap_method="expand_dims",
-    )
+    return _callback(partial(_interp_solve_cb, k), _struct(points.shape), params, t, points)
 
 
 @partial(_interp.defjvp, symbolic_zeros=True)
@@ -508,20 +470,13 @@ def _interp_jvp(k, primals, tangents):
     if isinstance(dq, SymbolicZero) and isinstance(dx, SymbolicZero):
         return ctrl, jnp.zeros_like(ctrl)
     m, dim = points.shape
-    shapes = (
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m, dim), jnp.float64),
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m, k + 1), jnp.float64),
-    )
     # the interpolant's linearisation at its own parameters: the rows of A and C'(params)
-    _, slopes, first, basis = jax.pure_callback(
+    _, slopes, first, basis = _callback(
         partial(_curve_linearize_cb, k),
-        shapes,
+        _curve_lin_shapes(m, dim, k + 1),
         guard(t),
         ctrl,
         guard(params),
-        vmap_method="expand_dims",
     )
     # A(x) P = Q, so A Ṗ = Q̇ - Ȧ P = Q̇ - C'(x) ẋ
     rhs = jnp.zeros((m, dim), jnp.float64)
@@ -530,6 +485,24 @@ def _interp_jvp(k, primals, tangents):
     if not isinstance(dx, SymbolicZero):
         rhs = rhs - slopes * dx[:, None]
     return ctrl, _collocation_solve(k, guard(params), guard(t), first, basis, rhs)
+
+
+def _points_at_params(name, k, points, params, t):
+    """The arguments of ``lekalo.jax.{name}(points, params, t, k)`` checked in order: ``k``
+    a degree, ``points`` as ``(m, dim)`` (and whether they were 1-D), ``params`` one a point,
+    all in float64. Returns ``(k, params, t, scalar, points)``."""
+    _require_x64(name)
+    k = _degree(k, "k", name)
+    points = _float64(points, "points", name)
+    params = _float64(params, "params", name)
+    t = _float64(t, "t", name)
+    scalar, q = _points_arg(points, name, "points")
+    m = q.shape[0]
+    if params.shape != (m,):
+        raise InputError(
+            f"lekalo.jax.{name}: params must be one a point, shape ({m},), got {params.shape}"
+        )
+    return k, params, t, scalar, q
 
 
 def interpolate(points, params, t, k=3):
@@ -552,17 +525,8 @@ def interpolate(points, params, t, k=3):
     reaches the caller as ``jax.errors.JaxRuntimeError``.
     """
     name = "interpolate"
-    _require_x64(name)
-    k = _degree(k, "k", name)
-    points = _float64(points, "points", name)
-    params = _float64(params, "params", name)
-    t = _float64(t, "t", name)
-    scalar, q = _points_arg(points, name, "points")
+    k, params, t, scalar, q = _points_at_params(name, k, points, params, t)
     m = q.shape[0]
-    if params.shape != (m,):
-        raise InputError(
-            f"lekalo.jax.{name}: params must be one a point, shape ({m},), got {params.shape}"
-        )
     if t.ndim != 1 or t.shape[0] != m + k + 1:
         raise InputError(
             f"lekalo.jax.{name}: {m} points of degree {k} need {m + k + 1} knots (points + "
@@ -621,12 +585,7 @@ def _fit_tangent(first, basis, weights, tri, dq):
 
 
 def _fit_linearization_shapes(m, width, n, bw):
-    return (
-        jax.ShapeDtypeStruct((m,), jnp.int64),
-        jax.ShapeDtypeStruct((m, width), jnp.float64),
-        jax.ShapeDtypeStruct((m,), jnp.float64),
-        jax.ShapeDtypeStruct((n, bw), jnp.float64),
-    )
+    return (_struct((m,), jnp.int64), _struct((m, width)), _struct((m,)), _struct((n, bw)))
 
 
 def _lin_tuple(d):
@@ -650,10 +609,8 @@ def _lsq_linearize_cb(k, weighted, params, t, w):
 
 @partial(jax.custom_jvp, nondiff_argnums=(0, 1))
 def _lsq(k, weighted, points, params, t, w):
-    shape = jax.ShapeDtypeStruct((t.shape[0] - k - 1, points.shape[1]), jnp.float64)
-    return jax.pure_callback(
-        partial(_lsq_values_cb, k, weighted), shape, points, params, t, w, vmap_method="expand_dims"
-    )
+    shape = _struct((t.shape[0] - k - 1, points.shape[1]))
+    return _callback(partial(_lsq_values_cb, k, weighted), shape, points, params, t, w)
 
 
 @partial(_lsq.defjvp, symbolic_zeros=True)
@@ -667,14 +624,8 @@ def _lsq_jvp(k, weighted, primals, tangents):
     if isinstance(dq, SymbolicZero):
         return values, jnp.zeros_like(values)
     n, m = t.shape[0] - k - 1, params.shape[0]
-    lin = jax.pure_callback(
-        partial(_lsq_linearize_cb, k, weighted),
-        _fit_linearization_shapes(m, k + 1, n, k + 1),
-        guard(params),
-        guard(t),
-        guard(w),
-        vmap_method="expand_dims",
-    )
+    shapes = _fit_linearization_shapes(m, k + 1, n, k + 1)
+    lin = _linearized(name, partial(_lsq_linearize_cb, k, weighted), shapes, params, t, w)
     return values, _fit_tangent(*lin, dq)
 
 
@@ -708,17 +659,8 @@ def fit_least_squares(points, params, t, k=3, *, w=None):
     (``lekalo.least_squares_linearize``). ``params``, ``t``, ``w`` and ``k`` are constants.
     """
     name = "fit_least_squares"
-    _require_x64(name)
-    k = _degree(k, "k", name)
-    points = _float64(points, "points", name)
-    params = _float64(params, "params", name)
-    t = _float64(t, "t", name)
-    scalar, q = _points_arg(points, name, "points")
+    k, params, t, scalar, q = _points_at_params(name, k, points, params, t)
     m = q.shape[0]
-    if params.shape != (m,):
-        raise InputError(
-            f"lekalo.jax.{name}: params must be one a point, shape ({m},), got {params.shape}"
-        )
     if t.ndim != 1 or t.shape[0] < 2 * (k + 1):
         raise InputError(
             f"lekalo.jax.{name}: t must be a 1-D knot vector of at least 2 (k + 1) = "
@@ -746,10 +688,8 @@ def _smoothing_linearize_cb(lam, weighted, x, w):
 
 @partial(jax.custom_jvp, nondiff_argnums=(0, 1))
 def _smoothing(lam, weighted, x, y, w):
-    shape = jax.ShapeDtypeStruct((x.shape[0] + 2, y.shape[1]), jnp.float64)
-    return jax.pure_callback(
-        partial(_smoothing_values_cb, lam, weighted), shape, x, y, w, vmap_method="expand_dims"
-    )
+    shape = _struct((x.shape[0] + 2, y.shape[1]))
+    return _callback(partial(_smoothing_values_cb, lam, weighted), shape, x, y, w)
 
 
 @partial(_smoothing.defjvp, symbolic_zeros=True)
@@ -763,13 +703,8 @@ def _smoothing_jvp(lam, weighted, primals, tangents):
     if isinstance(dy, SymbolicZero):
         return values, jnp.zeros_like(values)
     m = x.shape[0]
-    lin = jax.pure_callback(
-        partial(_smoothing_linearize_cb, lam, weighted),
-        _fit_linearization_shapes(m, 4, m + 2, 4),
-        guard(x),
-        guard(w),
-        vmap_method="expand_dims",
-    )
+    shapes = _fit_linearization_shapes(m, 4, m + 2, 4)
+    lin = _linearized(name, partial(_smoothing_linearize_cb, lam, weighted), shapes, x, w)
     return values, _fit_tangent(*lin, dy)
 
 
@@ -810,33 +745,27 @@ def fit_smoothing(x, y, w=None, lam=None):
 # -- tensor-product splines in N variables ---------------------------------------------------------
 
 
-def _tensor_values_cb(degrees, *args):
+def _tensor_kernel(kernel, degrees, *a):
+    """``kernel(knots, ctrl, degrees, x)`` on the arrays ``(*knots, ctrl, x)``."""
     n = len(degrees)
+    return kernel(list(a[:n]), a[n], list(degrees), a[n + 1])
 
-    def one(*a):
-        knots, ctrl, x = list(a[:n]), a[n], a[n + 1]
-        return (_lekalo.tensor_bspline_jvp(knots, ctrl, list(degrees), x)[0],)
 
-    return _looped(one, (1,) * n + (n + 1, 2), *args)[0]
+def _tensor_values_cb(degrees, *args):
+    kernel = partial(_tensor_kernel, _lekalo.tensor_bspline_jvp)
+    return _values_cb(kernel, (degrees,), (1,) * len(degrees) + (len(degrees) + 1, 2), *args)
 
 
 def _tensor_linearize_cb(degrees, *args):
-    n = len(degrees)
-
-    def one(*a):
-        knots, ctrl, x = list(a[:n]), a[n], a[n + 1]
-        d = _lekalo.tensor_bspline_linearize(knots, ctrl, list(degrees), x)
-        return d["values"], d["partials"], d["first"], d["basis"]
-
-    return _looped(one, (1,) * n + (n + 1, 2), *args)
+    kernel = partial(_tensor_kernel, _lekalo.tensor_bspline_linearize)
+    keys = ("values", "partials", "first", "basis")
+    return _fields_cb(kernel, (degrees,), (1,) * len(degrees) + (len(degrees) + 1, 2), keys, *args)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _tensor(degrees, knots, ctrl, x):
-    shape = jax.ShapeDtypeStruct(x.shape[:1] + ctrl.shape[-1:], jnp.float64)
-    return jax.pure_callback(
-        partial(_tensor_values_cb, degrees), shape, *knots, ctrl, x, vmap_method="expand_dims"
-    )
+    shape = _struct(x.shape[:1] + ctrl.shape[-1:])
+    return _callback(partial(_tensor_values_cb, degrees), shape, *knots, ctrl, x)
 
 
 @partial(_tensor.defjvp, symbolic_zeros=True)
@@ -847,23 +776,16 @@ def _tensor_jvp(degrees, primals, tangents):
     _no_knot_tangent(name, *dk)
     n, m, dim = len(degrees), x.shape[0], ctrl.shape[-1]
     widths = [p + 1 for p in degrees]
-    f64 = jnp.float64
     shapes = (
-        jax.ShapeDtypeStruct((m, dim), f64),
-        jax.ShapeDtypeStruct((m, n, dim), f64),
-        jax.ShapeDtypeStruct((m, n), jnp.int64),
-        jax.ShapeDtypeStruct((m, sum(widths)), f64),
+        _struct((m, dim)),
+        _struct((m, n, dim)),
+        _struct((m, n), jnp.int64),
+        _struct((m, sum(widths))),
     )
-    guard = partial(_first_order_only, name)
-    values, partials, first, basis = jax.pure_callback(
-        partial(_tensor_linearize_cb, degrees),
-        shapes,
-        *(guard(k) for k in knots),
-        guard(ctrl),
-        guard(x),
-        vmap_method="expand_dims",
+    values, partials, first, basis = _linearized(
+        name, partial(_tensor_linearize_cb, degrees), shapes, *knots, ctrl, x
     )
-    tangent = jnp.zeros((m, dim), f64)
+    tangent = jnp.zeros((m, dim), jnp.float64)
     if not isinstance(dc, SymbolicZero):
         # the Π (p_a + 1) block of the net a point touches, one multi-index a column
         block = np.array(list(np.ndindex(*widths)), dtype=np.int64).reshape(-1, n)  # (K, N)

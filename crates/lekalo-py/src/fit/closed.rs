@@ -9,7 +9,7 @@ use lekalo::PointsRef;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::{periodic_rows, weight_vec, with_report, Data, WeightsAre};
+use super::{weight_vec, with_report, Data, WeightsAre};
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::lib_err;
@@ -77,11 +77,7 @@ pub(crate) fn fit_periodic<'py>(
     t: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
-    let xs = data.x.vector("x")?;
-    let ys = data.y.points("y")?;
-    let n = periodic_rows(xs.len(), ys.len())?;
-    let rows = PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
-    let w = data.w.as_deref().map(|w| &w[..n.min(w.len())]);
+    let (rows, xs, w) = data.periodic()?;
     let t = t.map(|t| vec1(t, "t")).transpose()?;
     let f = closed_fit(py, rows, xs, w, k, s, t)?;
     with_report(py, f)

@@ -9,12 +9,11 @@ use lekalo::fit::{
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::{knot_vector, report_dict, with_report, Data, WeightsAre};
+use super::{knot_vector, report_dict, shape_constraints, with_report, Data, WeightsAre};
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err};
 use crate::interp::parametrization_arg;
-use crate::shape::ShapeArgs;
 
 fn ends_constraints(
     clamp_ends: bool,
@@ -74,17 +73,9 @@ pub(crate) fn make_lsq_spline<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
-    let shape = ShapeArgs {
-        increasing,
-        decreasing,
-        convex,
-        concave,
-        min,
-        max,
-        through,
-        slope_at,
-    }
-    .constraints()?;
+    let shape = shape_constraints([
+        increasing, decreasing, convex, concave, min, max, through, slope_at,
+    ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let fd = data.fit_data("x")?;
     let kv = knot_vector(t)?;
@@ -129,17 +120,9 @@ pub(crate) fn fit_least_squares<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
-    let shape = ShapeArgs {
-        increasing,
-        decreasing,
-        convex,
-        concave,
-        min,
-        max,
-        through,
-        slope_at,
-    }
-    .constraints()?;
+    let shape = shape_constraints([
+        increasing, decreasing, convex, concave, min, max, through, slope_at,
+    ])?;
     let data = Data::read(params, points, w, "params", WeightsAre::Squared)?;
     let fd = data.fit_data("params")?;
     let kv = knot_vector(t)?;

@@ -9,7 +9,7 @@
 //!
 //! | file | what it does |
 //! |---|---|
-//! | `mod.rs` | the data and weights read once for every fit, the report as a dict, [`register`] |
+//! | `mod.rs` | the data and weights read once for every fit (and periodic data without its repeated row), the shape-constraint keywords, the report as a dict, [`register`] |
 //! | `least_squares.rs` | `make_lsq_spline`, `fit_least_squares`, `fit_robust`, `fit_tolerance`, `place_knots` |
 //! | `smoothing.rs` | `make_smoothing_spline`, `fit_smoothing`, `gcv_score`, `make_splrep`, `make_splprep`, `fit_smoothing_condition`, `generate_knots` |
 //! | `surface.rs` | `fit_surface_grid`, `fit_surface_scattered` |
@@ -28,14 +28,15 @@ use smoothing::{
 };
 use surface::{fit_surface_grid, fit_surface_scattered};
 
-use lekalo::fit::{CurveFit, FitData, FitReport};
-use lekalo::KnotVector;
+use lekalo::fit::{CurveFit, FitData, FitReport, ShapeConstraints};
+use lekalo::{KnotVector, PointsRef};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{floats, vec1, vec_array, FloatArray};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err};
+use crate::shape::ShapeArgs;
 
 /// How a weight argument enters the sum of squares.
 #[derive(Clone, Copy)]
@@ -53,6 +54,9 @@ struct Data<'py> {
     w: Option<Vec<f64>>,
 }
 
+/// Periodic data without its repeated last row: the rows, all the parameters, the weights.
+type PeriodicRows<'a> = (PointsRef<'a>, &'a [f64], Option<&'a [f64]>);
+
 impl<'py> Data<'py> {
     fn read(
         x: &Bound<'py, PyAny>,
@@ -66,6 +70,18 @@ impl<'py> Data<'py> {
             y: floats(y, "y")?,
             w: w.map(|w| weight_vec(w, weights)).transpose()?,
         })
+    }
+
+    /// Periodic data: the rows of `y` without the last, which repeats the first, all the
+    /// parameters `x` (the last closes the period) and the weights of the rows kept.
+    fn periodic(&self) -> PyResult<PeriodicRows<'_>> {
+        let xs = self.x.vector("x")?;
+        let ys = self.y.points("y")?;
+        let n = periodic_rows(xs.len(), ys.len())?;
+        let rows =
+            PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
+        let w = self.w.as_deref().map(|w| &w[..n.min(w.len())]);
+        Ok((rows, xs, w))
     }
 
     /// The library's validated data (lengths, finiteness, weights ≥ 0).
@@ -88,6 +104,26 @@ fn weight_vec(w: &Bound<'_, PyAny>, weights: WeightsAre) -> PyResult<Vec<f64>> {
         }
     }
     Ok(v)
+}
+
+/// A shape-constraint keyword argument of a fit (`None` when absent).
+type ShapeKeyword<'a, 'py> = Option<&'a Bound<'py, PyAny>>;
+
+/// The shape-constraint keyword arguments of a fit, `[increasing, decreasing, convex, concave,
+/// min, max, through, slope_at]`, read into the library's constraints ([`ShapeArgs`]).
+fn shape_constraints(args: [ShapeKeyword<'_, '_>; 8]) -> PyResult<ShapeConstraints> {
+    let [increasing, decreasing, convex, concave, min, max, through, slope_at] = args;
+    ShapeArgs {
+        increasing,
+        decreasing,
+        convex,
+        concave,
+        min,
+        max,
+        through,
+        slope_at,
+    }
+    .constraints()
 }
 
 /// The report of a fit as a dict: `residuals`, `max_residual`, `max_index`, `rms`,

@@ -7,16 +7,14 @@ use lekalo::fit::{
     periodic_smoothing_knot_sequence, smoothing_condition, smoothing_condition_in,
     smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, CurveFit, FitData, Lambda,
 };
-use lekalo::PointsRef;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::{knot_vector, periodic_rows, weight_vec, with_report, Data, WeightsAre};
+use super::{knot_vector, shape_constraints, weight_vec, with_report, Data, WeightsAre};
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err, named};
 use crate::interp::parametrization_or_chord;
-use crate::shape::ShapeArgs;
 
 fn lambda_arg(lam: Option<f64>) -> Lambda {
     lam.map_or(Lambda::Gcv, Lambda::Given)
@@ -78,17 +76,9 @@ pub(crate) fn fit_smoothing<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
-    let shape = ShapeArgs {
-        increasing,
-        decreasing,
-        convex,
-        concave,
-        min,
-        max,
-        through,
-        slope_at,
-    }
-    .constraints()?;
+    let shape = shape_constraints([
+        increasing, decreasing, convex, concave, min, max, through, slope_at,
+    ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let fd = data.fit_data("x")?;
     let f = py
@@ -214,17 +204,9 @@ pub(crate) fn fit_smoothing_condition<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
-    let shape = ShapeArgs {
-        increasing,
-        decreasing,
-        convex,
-        concave,
-        min,
-        max,
-        through,
-        slope_at,
-    }
-    .constraints()?;
+    let shape = shape_constraints([
+        increasing, decreasing, convex, concave, min, max, through, slope_at,
+    ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     if shape.is_empty() {
         let f = condition_fit(py, &data, k, s, t, domain)?;
@@ -276,14 +258,11 @@ pub(crate) fn generate_knots<'py>(
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let seq = if periodic {
-        let xs = data.x.vector("x")?;
-        let ys = data.y.points("y")?;
-        let n = periodic_rows(xs.len(), ys.len())?;
-        let rows =
-            PointsRef::from_flat(ys.dim(), &ys.as_slice()[..n * ys.dim()]).map_err(lib_err)?;
+        let (rows, xs, w) = data.periodic()?;
+        let n = rows.len();
         let mut fd = FitData::new(rows, &xs[..n]).map_err(lib_err)?;
-        if let Some(w) = data.w.as_deref() {
-            fd = fd.with_weights(&w[..n.min(w.len())]).map_err(lib_err)?;
+        if let Some(w) = w {
+            fd = fd.with_weights(w).map_err(lib_err)?;
         }
         let domain = (xs[0], xs[n]);
         py.detach(|| periodic_smoothing_knot_sequence(&fd, k, s, domain, nest))

@@ -37,3 +37,39 @@ pub(super) fn check_scalars(what: &'static str, count: usize, width: usize) -> R
         }),
     }
 }
+
+/// The cotangent of a batch VJP: `count · dim` numbers (`what` names them), all finite.
+pub(super) fn check_cotangent(
+    what: &'static str,
+    count: usize,
+    dim: usize,
+    cotangent: &[f64],
+) -> Result<()> {
+    check_len(what, count.saturating_mul(dim), cotangent.len())?;
+    check_finite("cotangent", cotangent)
+}
+
+/// An optional output buffer a VJP sums into: its length, then zeroed.
+pub(super) fn zeroed_output(
+    what: &'static str,
+    expected: usize,
+    buf: Option<&mut [f64]>,
+) -> Result<()> {
+    if let Some(g) = buf {
+        check_len(what, expected, g.len())?;
+        g.fill(0.0);
+    }
+    Ok(())
+}
+
+/// An optional output buffer a VJP overwrites: its length.
+pub(super) fn check_output<T>(
+    what: &'static str,
+    expected: usize,
+    buf: Option<&[T]>,
+) -> Result<()> {
+    match buf {
+        Some(g) => check_len(what, expected, g.len()),
+        None => Ok(()),
+    }
+}

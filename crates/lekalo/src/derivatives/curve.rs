@@ -1,10 +1,12 @@
 //! JVP, VJP and linearisation of B-spline curve batch evaluation `C(t_i) = Σ_j N_{j,p}(t_i) P_j`
 //! with respect to the control points `P` and the parameters `t` (`docs/theory/derivatives.md`).
 
-use super::checks::{check_input, check_len, check_scalars};
+use super::checks::{
+    check_cotangent, check_input, check_len, check_output, check_scalars, zeroed_output,
+};
 use super::slopes::basis_with_slopes;
 use crate::curve::BSplineCurve;
-use crate::error::{check_finite, Result};
+use crate::error::Result;
 
 /// The linearisation of a curve's batch evaluation at parameters `t_0 … t_{m−1}`: what
 /// [`BSplineCurve::eval_batch_linearize`] returns, enough to apply the Jacobian and its transpose
@@ -215,28 +217,23 @@ impl BSplineCurve {
         mut parameter_cotangent: Option<&mut [f64]>,
     ) -> Result<()> {
         let dim = self.dim();
-        check_len(
+        check_cotangent(
             "cotangent (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            cotangent.len(),
+            ts.len(),
+            dim,
+            cotangent,
         )?;
-        check_finite("cotangent", cotangent)?;
         let ctrl = self.control_points().as_slice();
-        if let Some(g) = control_cotangent.as_deref_mut() {
-            check_len(
-                "control-point cotangent buffer (as the control points)",
-                ctrl.len(),
-                g.len(),
-            )?;
-            g.fill(0.0);
-        }
-        if let Some(g) = parameter_cotangent.as_deref() {
-            check_len(
-                "parameter cotangent buffer (one a parameter)",
-                ts.len(),
-                g.len(),
-            )?;
-        }
+        zeroed_output(
+            "control-point cotangent buffer (as the control points)",
+            ctrl.len(),
+            control_cotangent.as_deref_mut(),
+        )?;
+        check_output(
+            "parameter cotangent buffer (one a parameter)",
+            ts.len(),
+            parameter_cotangent.as_deref(),
+        )?;
         let (p, knots) = (self.degree(), self.knots().as_slice());
         let mut cursor = self.knots().span_cursor(p);
         let mut basis = PointBasis::new(p);

@@ -75,6 +75,57 @@ impl Rows {
         out
     }
 
+    /// The forward-mode derivative of a linear fit, `solve(BᵀW Q̇)` for a data tangent `Q̇`
+    /// (`m × dim`, point-major), `solve` applying the inverse of the fit's normal matrix. The
+    /// tangent is shifted by its first point before and the control points back after
+    /// ([`shifted`], [`unshift`]).
+    ///
+    /// # Errors
+    /// As [`Rows::check`] for `m · dim` numbers.
+    fn jvp(
+        &self,
+        data_tangent: &[f64],
+        dim: usize,
+        solve: impl FnOnce(&mut [f64], usize),
+    ) -> Result<Vec<f64>> {
+        Rows::check(
+            "data tangent (points × dimension)",
+            data_tangent,
+            self.first.len(),
+            dim,
+        )?;
+        let (shifted, center) = shifted(data_tangent, dim);
+        let mut x = self.transpose_weighted(&shifted, dim);
+        solve(&mut x, dim);
+        Ok(unshift(x, &center))
+    }
+
+    /// The reverse-mode derivative of a linear fit, `W B solve(P̄)` for a control-point
+    /// cotangent `P̄` (`n × dim`, point-major), the adjoint of [`Rows::jvp`] with its shift.
+    ///
+    /// # Errors
+    /// As [`Rows::check`] for `n · dim` numbers.
+    fn vjp(
+        &self,
+        control_cotangent: &[f64],
+        dim: usize,
+        solve: impl FnOnce(&mut [f64], usize),
+    ) -> Result<Vec<f64>> {
+        Rows::check(
+            "control-point cotangent (points × dimension)",
+            control_cotangent,
+            self.n,
+            dim,
+        )?;
+        let mut x = control_cotangent.to_vec();
+        solve(&mut x, dim);
+        Ok(unshift_transposed(
+            self.weighted(&x, dim),
+            control_cotangent,
+            dim,
+        ))
+    }
+
     /// The length and finiteness of a buffer of `count` points of dimension `dim ≥ 1`.
     fn check(what: &'static str, v: &[f64], count: usize, dim: usize) -> Result<()> {
         if dim == 0 {
@@ -290,16 +341,8 @@ impl LeastSquaresMap {
     /// [`Error::LengthMismatch`] unless `data_tangent.len() == N · dim`; [`Error::NonFinite`];
     /// [`Error::Dimension`] for `dim == 0`.
     pub fn jvp(&self, data_tangent: &[f64], dim: usize) -> Result<Vec<f64>> {
-        Rows::check(
-            "data tangent (points × dimension)",
-            data_tangent,
-            self.n_data(),
-            dim,
-        )?;
-        let (shifted, center) = shifted(data_tangent, dim);
-        let mut x = self.rows.transpose_weighted(&shifted, dim);
-        self.solve_normal(&mut x, dim);
-        Ok(unshift(x, &center))
+        self.rows
+            .jvp(data_tangent, dim, |x, dim| self.solve_normal(x, dim))
     }
 
     /// Reverse-mode derivative: the data cotangent `Q̄ = W B (BᵀWB)⁻¹ P̄` for a control-point
@@ -309,19 +352,8 @@ impl LeastSquaresMap {
     /// [`Error::LengthMismatch`] unless `control_cotangent.len() == n · dim`;
     /// [`Error::NonFinite`]; [`Error::Dimension`] for `dim == 0`.
     pub fn vjp(&self, control_cotangent: &[f64], dim: usize) -> Result<Vec<f64>> {
-        Rows::check(
-            "control-point cotangent (points × dimension)",
-            control_cotangent,
-            self.n_ctrl(),
-            dim,
-        )?;
-        let mut x = control_cotangent.to_vec();
-        self.solve_normal(&mut x, dim);
-        Ok(unshift_transposed(
-            self.rows.weighted(&x, dim),
-            control_cotangent,
-            dim,
-        ))
+        self.rows
+            .vjp(control_cotangent, dim, |x, dim| self.solve_normal(x, dim))
     }
 
     /// The sparse rows of `B`, the weights and the triangle `R` of the banded QR
@@ -482,16 +514,8 @@ impl SmoothingMap {
     /// [`Error::LengthMismatch`] unless `data_tangent.len() == N · dim`; [`Error::NonFinite`];
     /// [`Error::Dimension`] for `dim == 0`.
     pub fn jvp(&self, data_tangent: &[f64], dim: usize) -> Result<Vec<f64>> {
-        Rows::check(
-            "data tangent (points × dimension)",
-            data_tangent,
-            self.n_data(),
-            dim,
-        )?;
-        let (shifted, center) = shifted(data_tangent, dim);
-        let mut x = self.rows.transpose_weighted(&shifted, dim);
-        self.matrix.solve(&mut x, dim);
-        Ok(unshift(x, &center))
+        self.rows
+            .jvp(data_tangent, dim, |x, dim| self.matrix.solve(x, dim))
     }
 
     /// Reverse-mode derivative: the data cotangent `Q̄ = W B (BᵀWB + λΩ)⁻¹ P̄` for a
@@ -501,19 +525,8 @@ impl SmoothingMap {
     /// [`Error::LengthMismatch`] unless `control_cotangent.len() == (N + 2) · dim`;
     /// [`Error::NonFinite`]; [`Error::Dimension`] for `dim == 0`.
     pub fn vjp(&self, control_cotangent: &[f64], dim: usize) -> Result<Vec<f64>> {
-        Rows::check(
-            "control-point cotangent (points × dimension)",
-            control_cotangent,
-            self.n_ctrl(),
-            dim,
-        )?;
-        let mut x = control_cotangent.to_vec();
-        self.matrix.solve(&mut x, dim);
-        Ok(unshift_transposed(
-            self.rows.weighted(&x, dim),
-            control_cotangent,
-            dim,
-        ))
+        self.rows
+            .vjp(control_cotangent, dim, |x, dim| self.matrix.solve(x, dim))
     }
 }
 

@@ -7,10 +7,12 @@
 //! - `∂C/∂w_j = N_j (P_j − C) / W`;
 //! - `∂C/∂t = C' = (A' − W' C) / W` (P&T eq. 4.8 with one derivative).
 
-use super::checks::{check_input, check_len, check_scalars};
+use super::checks::{
+    check_cotangent, check_input, check_len, check_output, check_scalars, zeroed_output,
+};
 use super::curve::{CurveLinearization, PointBasis};
 use crate::curve::NurbsCurve;
-use crate::error::{check_finite, Result};
+use crate::error::Result;
 
 /// The linearisation of a NURBS curve's batch evaluation, what
 /// [`NurbsCurve::eval_batch_linearize`] returns: the fields of a B-spline's
@@ -198,35 +200,27 @@ impl NurbsCurve {
         let (dim, p) = (self.dim(), self.degree());
         let hom = self.homogeneous();
         let n_ctrl = hom.control_points().len();
-        check_len(
+        check_cotangent(
             "cotangent (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            cotangent.len(),
+            ts.len(),
+            dim,
+            cotangent,
         )?;
-        check_finite("cotangent", cotangent)?;
-        if let Some(g) = control_cotangent.as_deref_mut() {
-            check_len(
-                "control-point cotangent buffer (as the control points)",
-                n_ctrl * dim,
-                g.len(),
-            )?;
-            g.fill(0.0);
-        }
-        if let Some(g) = weight_cotangent.as_deref_mut() {
-            check_len(
-                "weight cotangent buffer (one a control point)",
-                n_ctrl,
-                g.len(),
-            )?;
-            g.fill(0.0);
-        }
-        if let Some(g) = parameter_cotangent.as_deref() {
-            check_len(
-                "parameter cotangent buffer (one a parameter)",
-                ts.len(),
-                g.len(),
-            )?;
-        }
+        zeroed_output(
+            "control-point cotangent buffer (as the control points)",
+            n_ctrl * dim,
+            control_cotangent.as_deref_mut(),
+        )?;
+        zeroed_output(
+            "weight cotangent buffer (one a control point)",
+            n_ctrl,
+            weight_cotangent.as_deref_mut(),
+        )?;
+        check_output(
+            "parameter cotangent buffer (one a parameter)",
+            ts.len(),
+            parameter_cotangent.as_deref(),
+        )?;
         let (knots, h) = (hom.knots().as_slice(), hom.control_points().as_slice());
         let hd = dim + 1;
         let mut cursor = hom.knots().span_cursor(p);

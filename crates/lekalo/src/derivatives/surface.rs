@@ -2,9 +2,11 @@
 //! `S(u_i, v_i) = Σ_k Σ_l N_{k,p}(u_i) N_{l,q}(v_i) P_{kl}` with respect to the control net and
 //! the parameters `(u, v)` (`docs/theory/derivatives.md`).
 
-use super::checks::{check_input, check_len, check_scalars};
+use super::checks::{
+    check_cotangent, check_input, check_len, check_output, check_scalars, zeroed_output,
+};
 use super::curve::PointBasis;
-use crate::error::{check_finite, Result};
+use crate::error::Result;
 use crate::surface::BSplineSurface;
 
 /// The linearisation of a surface's batch evaluation at pairs `(u_i, v_i)`, what
@@ -195,28 +197,23 @@ impl BSplineSurface {
         mut parameter_cotangent: Option<&mut [[f64; 2]]>,
     ) -> Result<()> {
         let dim = self.dim();
-        check_len(
+        check_cotangent(
             "cotangent (parameter pairs × dimension)",
-            uv.len().saturating_mul(dim),
-            cotangent.len(),
+            uv.len(),
+            dim,
+            cotangent,
         )?;
-        check_finite("cotangent", cotangent)?;
         let ctrl = self.control_points().as_slice();
-        if let Some(g) = control_cotangent.as_deref_mut() {
-            check_len(
-                "control-net cotangent buffer (as the control net)",
-                ctrl.len(),
-                g.len(),
-            )?;
-            g.fill(0.0);
-        }
-        if let Some(g) = parameter_cotangent.as_deref() {
-            check_len(
-                "parameter cotangent buffer (one pair a point)",
-                uv.len(),
-                g.len(),
-            )?;
-        }
+        zeroed_output(
+            "control-net cotangent buffer (as the control net)",
+            ctrl.len(),
+            control_cotangent.as_deref_mut(),
+        )?;
+        check_output(
+            "parameter cotangent buffer (one pair a point)",
+            uv.len(),
+            parameter_cotangent.as_deref(),
+        )?;
         let nv = self.net_size().1;
         let mut cursors = self.cursors();
         let mut b = PairBasis::new(self);

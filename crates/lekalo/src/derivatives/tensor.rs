@@ -7,9 +7,9 @@
 //! the net's Jacobian is the product of the `N` basis vectors, non-zero on a
 //! `Π_a (p_a + 1)` block of the net, walked by an odometer.
 
-use super::checks::{check_input, check_len, check_scalars};
+use super::checks::{check_cotangent, check_input, check_len, check_scalars};
 use crate::basis::{basis_funs_into, BasisScratch};
-use crate::error::{check_finite, Result};
+use crate::error::Result;
 use crate::tensor::TensorBSpline;
 
 /// The linearisation of a tensor spline's batch evaluation at `m` points, what
@@ -217,12 +217,7 @@ impl TensorBSpline {
     ) -> Result<()> {
         let (n, dim) = (self.n_vars(), self.dim());
         let m = self.points_in(xs)?;
-        check_len(
-            "cotangent (points × dimension)",
-            m.saturating_mul(dim),
-            cotangent.len(),
-        )?;
-        check_finite("cotangent", cotangent)?;
+        check_cotangent("cotangent (points × dimension)", m, dim, cotangent)?;
         if let Some(gp) = control_cotangent {
             check_len(
                 "control-net cotangent buffer (as the control net)",

@@ -13,7 +13,7 @@ use super::data::{check_in_domain, CurveFit, FitData};
 use super::progress::Steps;
 use super::smoothing_condition::{
     check_condition_args, check_max_knots, check_reachable, finish, jump_rows, next_nplus,
-    smooth_weight, Added, Knots, LsqPass, Observations, Rounds, SMOOTHING_RTOL,
+    rounds_knots, smooth_weight, Added, Knots, LsqPass, Observations, Rounds, SMOOTHING_RTOL,
 };
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
@@ -213,13 +213,7 @@ pub fn periodic_smoothing_knot_sequence(
     check_condition_args(degree, s)?;
     let cap = check_max_knots(degree, max_knots)?;
     let (obs, sites) = periodic_observations(data, degree, domain)?;
-    let mut seq = Vec::new();
-    let quiet = Progress::new();
-    let steps = Steps::new(&quiet, "");
-    periodic_rounds(&obs, &sites, degree, s, domain, cap, &steps, &mut |t| {
-        seq.push(t.to_vec());
-    })?;
-    Ok(seq)
+    rounds_knots(|steps, seen| periodic_rounds(&obs, &sites, degree, s, domain, cap, steps, seen))
 }
 
 /// The closed spline of `degree` on the breakpoints `breaks` (`a = τ_0 < … < τ_np = b`) that

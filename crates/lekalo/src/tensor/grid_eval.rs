@@ -6,8 +6,9 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::knots::SpanCursor;
-use crate::tensor::eval::{accumulate, basis_vector, TensorBSplineRef, TensorScratch};
+use crate::tensor::contract::{accumulate, basis_vector, TensorScratch};
 use crate::tensor::spline::{checked_size, TensorBSpline};
+use crate::tensor::view::TensorBSplineRef;
 
 /// Basis vectors and spans of one direction at every parameter of its list.
 struct AxisTable {

@@ -6,10 +6,14 @@
 //!
 //! - `spline.rs`: [`TensorBSpline`], the type and its validation (net layout: first direction
 //!   slowest), and its evaluation at a point, partial derivatives and batches (by the kernels
-//!   of `eval.rs`).
-//! - `eval.rs`: [`TensorBSplineRef`], a spline whose arrays are borrowed, and the evaluation
-//!   kernels: window contraction, the fixed-size trivariate kernel, sequential, parallel and
-//!   cell-ordered batches, the points beyond the domain ([`Beyond`]).
+//!   of `eval.rs` and `contract.rs`).
+//! - `view.rs`: [`TensorBSplineRef`], a spline whose arrays are borrowed, its validation, sizes
+//!   and domain.
+//! - `contract.rs`: the point kernel: scratch sized once for a spline, the basis vectors of
+//!   every direction, the window contraction (sum factorisation) and the fixed-size trivariate
+//!   kernel.
+//! - `eval.rs`: evaluation at points: single points, partial derivatives, sequential, parallel
+//!   and cell-ordered batches, the points beyond the domain ([`Beyond`]).
 //! - `grid_eval.rs`: evaluation on the outer product of per-direction parameter lists
 //!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
 //! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
@@ -36,6 +40,7 @@
 //!   scattered data is at most `s`, with the knots of FITPACK `surfit`.
 
 mod any;
+mod contract;
 mod design_matrix;
 mod eval;
 mod fit;
@@ -49,10 +54,11 @@ mod scattered_qr;
 mod scattered_smoothing;
 mod slice;
 mod spline;
+mod view;
 
 pub use any::Tensor;
 pub use design_matrix::{tensor_design_matrix, TensorDesignMatrix};
-pub use eval::{Beyond, TensorBSplineRef};
+pub use eval::Beyond;
 pub use fit::tensor_grid_least_squares;
 pub use grid_smoothing::{
     tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,
@@ -68,6 +74,7 @@ pub use scattered_smoothing::{
     ScatteredSmoothingOptions, TensorScatteredSmoothing,
 };
 pub use spline::TensorBSpline;
+pub use view::TensorBSplineRef;
 
 #[cfg(test)]
 mod eval_tests;

@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
-use crate::tensor::eval::{accumulate, basis_vector};
+use crate::tensor::contract::{accumulate, basis_vector};
 use crate::tensor::spline::{check_len, TensorBSpline};
 
 impl TensorBSpline {

@@ -91,6 +91,22 @@ pub(crate) fn checked_size(what: &'static str, shape: &[usize], dim: usize) -> R
     })
 }
 
+/// The number of directions `n_degrees` (as [`check_n_vars`]) and one knot vector per degree.
+///
+/// # Errors
+/// As [`check_n_vars`]; [`Error::LengthMismatch`] for `n_knots != n_degrees`.
+pub(crate) fn check_knot_count(n_degrees: usize, n_knots: usize) -> Result<()> {
+    check_n_vars(n_degrees)?;
+    if n_knots != n_degrees {
+        return Err(Error::LengthMismatch {
+            what: "knot vectors (one per degree)",
+            expected: n_degrees,
+            got: n_knots,
+        });
+    }
+    Ok(())
+}
+
 /// Refuses zero parameter directions.
 ///
 /// # Errors
@@ -149,14 +165,7 @@ impl TensorBSpline {
         knots: Vec<KnotVector>,
         control: Points,
     ) -> Result<Self> {
-        check_n_vars(degrees.len())?;
-        if knots.len() != degrees.len() {
-            return Err(Error::LengthMismatch {
-                what: "knot vectors (one per degree)",
-                expected: degrees.len(),
-                got: knots.len(),
-            });
-        }
+        check_knot_count(degrees.len(), knots.len())?;
         let mut shape = Vec::with_capacity(degrees.len());
         for (kv, &p) in knots.iter().zip(&degrees) {
             kv.check_degree(p)?;

@@ -223,12 +223,19 @@ pub fn smoothing_knot_sequence(
     check_condition_args(degree, s)?;
     let cap = check_max_knots(degree, max_knots)?;
     let obs = Observations::new(data);
+    rounds_knots(|steps, seen| knot_rounds(&obs, degree, s, None, cap, steps, seen))
+}
+
+/// The knot vectors a knot-round loop `rounds(steps, seen)` passes to `seen`, in order, with
+/// no progress reported: the knot sequences of [`smoothing_knot_sequence`] and
+/// [`crate::fit::periodic_smoothing_knot_sequence`].
+pub(in crate::fit) fn rounds_knots<R>(
+    rounds: impl FnOnce(&Steps<'_, '_>, &mut dyn FnMut(&[f64])) -> Result<R>,
+) -> Result<Vec<Vec<f64>>> {
     let mut seq = Vec::new();
     let quiet = Progress::new();
     let steps = Steps::new(&quiet, "");
-    knot_rounds(&obs, degree, s, None, cap, &steps, &mut |t| {
-        seq.push(t.to_vec());
-    })?;
+    rounds(&steps, &mut |t| seq.push(t.to_vec()))?;
     Ok(seq)
 }
 
