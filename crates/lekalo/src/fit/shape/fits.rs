@@ -36,7 +36,9 @@ pub const SHAPE_RTOL: f64 = 5e-13;
 /// The data are reduced by banded QR to the triangle `R` (one pass, as [`least_squares`]: the
 /// same triangle gives the unconstrained fit); the cone program with the banded `RᵀR` is
 /// solved by Clarabel (interior point), so the work after the pass over the data grows with
-/// the number of coefficients only.
+/// the number of coefficients only. Only the pieces near or past their bounds enter the
+/// program: a working set grown until its optimum keeps every row, which makes it the whole
+/// program's optimum (`docs/theory/fitting.md#shape-constraints`).
 ///
 /// When the unconstrained fit already satisfies every constraint (to [`SHAPE_RTOL`]) it is
 /// returned unchanged. Functions only: the data are 1-D (`y` over parameters `x`).
@@ -69,6 +71,17 @@ pub fn constrained_least_squares(
     knots: &KnotVector,
     constraints: &ShapeConstraints,
 ) -> Result<CurveFit> {
+    constrained_least_squares_by(data, degree, knots, constraints, Rows::WorkingSet)
+}
+
+/// [`constrained_least_squares`] with the rows of the cone program chosen by `strategy`.
+pub(crate) fn constrained_least_squares_by(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    constraints: &ShapeConstraints,
+    strategy: Rows,
+) -> Result<CurveFit> {
     check_function_data(data)?;
     let n_ctrl = spline_space(data, degree, knots)?;
     let domain = knots.domain(degree);
@@ -99,6 +112,7 @@ pub fn constrained_least_squares(
         .into_iter()
         .map(|v| -v)
         .collect();
+    let start = scaled(&free, &scale, fixed.center[0]);
     let coef = solve_program(
         p,
         q,
@@ -107,6 +121,8 @@ pub fn constrained_least_squares(
         constraints,
         &scale,
         fixed.center[0],
+        &start,
+        strategy,
     )?;
     let curve = curve_of(
         degree,
@@ -179,7 +195,18 @@ pub fn constrained_smoothing_spline(
     debug_assert_eq!(p.n, n, "one coefficient per B-spline");
     let q: Vec<f64> = s.rhs.iter().map(|v| -v / scale.y).collect();
     let center = s.center[0];
-    let coef = solve_program(p, q, &s.knots, 3, constraints, &scale, center)?;
+    let start = scaled(&free.curve, &scale, center);
+    let coef = solve_program(
+        p,
+        q,
+        &s.knots,
+        3,
+        constraints,
+        &scale,
+        center,
+        &start,
+        Rows::WorkingSet,
+    )?;
     let curve = curve_of(3, s.knots.clone(), &coef, &scale, center);
     let report = FitReport::new(&curve, data, Some(lam));
     Ok(CurveFit { curve, report })
@@ -471,8 +498,64 @@ fn holds_by(
         .all(|(v, r)| *v <= SHAPE_RTOL * scale.of_derivative(r)))
 }
 
+/// Which rows of the cone program are solved: a working set of pieces grown until the answer
+/// keeps every row (what the fits use), or every row at once (crate-private, so that tests can
+/// compare the two).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Rows {
+    /// The working set (`docs/theory/fitting.md#shape-constraints`).
+    WorkingSet,
+    /// The whole program.
+    All,
+}
+
+/// The rows of one shape on one piece of a knot span: the unit the working set adds.
+struct Piece {
+    /// The index of the user's constraint.
+    owner: usize,
+    /// `d + 1` inequalities (`d ≠ 2`) or the three Bernstein coefficients of a quadratic.
+    rows: PieceRows,
+}
+
+/// The conditions of a [`Piece`] (`docs/theory/fitting.md#shape-constraints`, the table by `d`).
+enum PieceRows {
+    /// `b_j ≥ 0` for `d ≠ 2`.
+    Linear(Vec<Row>),
+    /// `(b₀, b₁, b₂)` of a quadratic `≥ 0` on `[0, 1]` (a cone in the program).
+    Quadratic([Row; 3]),
+}
+
+impl Piece {
+    /// The least value of the piece's conditions at the coefficients `c`, rows scaled to unit
+    /// largest coefficient as the solver sees them: the least row for linear conditions, the
+    /// exact minimum on `[0, 1]` of the quadratic (its three coefficients scaled together).
+    fn slack(&self, c: &[f64], n: usize) -> f64 {
+        let unit = |r: &Row, m: f64| r.eval(c, n) / if m > 0.0 { m } else { 1.0 };
+        match &self.rows {
+            PieceRows::Linear(rows) => rows
+                .iter()
+                .map(|r| unit(r, r.max_abs()))
+                .fold(f64::INFINITY, f64::min),
+            PieceRows::Quadratic(b) => {
+                let m = b.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+                min_on_unit(&b.clone().map(|r| unit(&r, m)))
+            }
+        }
+    }
+}
+
+/// Slack (rows scaled to unit largest coefficient, coefficients in units of the data) below
+/// which a piece joins the working set: above the polish's activity threshold, so that every
+/// row the polish of the whole program would make an equality is in the working set.
+const WORKING_MARGIN: f64 = 1e-6;
+
+/// Rounds of the working set before the whole program is solved instead.
+const WORKING_ROUNDS: usize = 12;
+
 /// Builds and solves the cone program of the constraints for the objective `½cᵀPc + qᵀc` in
-/// scaled coefficients `c = (control − center)/Y`; returns the scaled coefficients.
+/// scaled coefficients `c = (control − center)/Y`; returns the scaled coefficients. With
+/// [`Rows::WorkingSet`], `start` (the unconstrained optimum, scaled) chooses the first pieces.
+#[allow(clippy::too_many_arguments)] // objective (two), knots, degree, constraints, scales (two), start, strategy
 fn solve_program(
     p: SymBand,
     q: Vec<f64>,
@@ -481,11 +564,13 @@ fn solve_program(
     constraints: &ShapeConstraints,
     scale: &Scale,
     center: f64,
+    start: &[f64],
+    strategy: Rows,
 ) -> Result<Vec<f64>> {
     let n = p.n;
-    let mut prog = ConeProgram::new(p, q);
     let mut scratch = BasisScratch::new(degree);
     let domain = (knots[degree], knots[n]);
+    let mut pieces_all: Vec<Piece> = Vec::new();
     for (owner, s) in constraints.shapes.iter().enumerate() {
         let r = s.shape.derivative_order();
         if r > degree {
@@ -506,17 +591,17 @@ fn solve_program(
                 aux: None,
                 constant: -sigma * level,
             };
-            if d == 2 {
-                prog.quadratics.push(([row(0), row(1), row(2)], owner));
+            let rows = if d == 2 {
+                PieceRows::Quadratic([row(0), row(1), row(2)])
             } else {
-                for j in 0..=d {
-                    prog.inequalities.push((row(j), owner));
-                }
-            }
+                PieceRows::Linear((0..=d).map(row).collect())
+            };
+            pieces_all.push(Piece { owner, rows });
         }
     }
     let n_shapes = constraints.shapes.len();
     let kv = KnotVector::from_raw(knots.to_vec());
+    let mut equalities = Vec::with_capacity(constraints.points.len());
     for (i, c) in constraints.points.iter().enumerate() {
         let span = kv.find_span(degree, c.x)?;
         let w = degree + 1;
@@ -524,7 +609,7 @@ fn solve_program(
         basis_ders_into(knots, degree, span, c.x, degree, &mut scratch, &mut ders);
         let r = c.derivative;
         let value = (c.value - if r == 0 { center } else { 0.0 }) / scale.y;
-        prog.equalities.push((
+        equalities.push((
             Row {
                 first: span - degree,
                 coef: ders[r * w..(r + 1) * w].to_vec(),
@@ -534,9 +619,85 @@ fn solve_program(
             n_shapes + i,
         ));
     }
-    let interior = prog
-        .solve(0.0)
-        .map_err(|f| failure_error(f, |i| constraints.describe(i)))?;
+    let program = |chosen: &[bool]| {
+        let mut prog = ConeProgram::new(p.clone(), q.clone());
+        prog.equalities.clone_from(&equalities);
+        for (piece, _) in pieces_all.iter().zip(chosen).filter(|(_, c)| **c) {
+            match &piece.rows {
+                PieceRows::Linear(rows) => prog
+                    .inequalities
+                    .extend(rows.iter().map(|r| (r.clone(), piece.owner))),
+                PieceRows::Quadratic(b) => prog.quadratics.push((b.clone(), piece.owner)),
+            }
+        }
+        prog
+    };
+    let finish = |prog: &ConeProgram, interior: Vec<f64>| {
+        finish_program(prog, interior, degree, knots, constraints, scale, center)
+    };
+    let fail = |f| failure_error(f, |i| constraints.describe(i));
+    let all = vec![true; pieces_all.len()];
+    if strategy == Rows::All || start.len() != n {
+        let prog = program(&all);
+        let interior = prog.solve(0.0).map_err(fail)?;
+        return finish(&prog, interior);
+    }
+    // The working set: the pieces the unconstrained optimum violates or nearly violates, and
+    // their neighbours of the same constraint; grown by the pieces each answer violates. An
+    // answer of the relaxation that keeps every row of the whole program is its optimum.
+    let mut chosen = vec![false; pieces_all.len()];
+    let grow = |chosen: &mut [bool], c: &[f64]| {
+        let mut added = false;
+        for i in 0..pieces_all.len() {
+            if chosen[i] || pieces_all[i].slack(c, n) >= WORKING_MARGIN {
+                continue;
+            }
+            added = true;
+            chosen[i] = true;
+            let owner = pieces_all[i].owner;
+            for j in [i.wrapping_sub(1), i + 1] {
+                if pieces_all.get(j).is_some_and(|pj| pj.owner == owner) {
+                    chosen[j] = true;
+                }
+            }
+        }
+        added
+    };
+    grow(&mut chosen, start);
+    if equalities.is_empty() && !chosen.contains(&true) {
+        // nothing near a bound (the unconstrained fit failed the exact check by rounding only):
+        // the program needs a row, and the whole one is small enough then
+        chosen.fill(true);
+    }
+    for _ in 0..WORKING_ROUNDS {
+        let prog = program(&chosen);
+        let interior = prog.solve(0.0).map_err(fail)?;
+        if grow(&mut chosen, &interior) {
+            continue;
+        }
+        let c = finish(&prog, interior)?;
+        if !grow(&mut chosen, &c) {
+            return Ok(c);
+        }
+    }
+    let prog = program(&all);
+    let interior = prog.solve(0.0).map_err(fail)?;
+    finish(&prog, interior)
+}
+
+/// The exact answer from the interior-point answer `interior` of `prog`: its polish on the
+/// active face, checked against every constraint exactly
+/// (`docs/theory/fitting.md#shape-constraints`).
+fn finish_program(
+    prog: &ConeProgram,
+    interior: Vec<f64>,
+    degree: usize,
+    knots: &[f64],
+    constraints: &ShapeConstraints,
+    scale: &Scale,
+    center: f64,
+) -> Result<Vec<f64>> {
+    let n = prog.p.n;
     let rows = ShapeCheck::new(
         &curve_of(degree, knots.to_vec(), &interior[..n], scale, center),
         constraints,
@@ -554,8 +715,8 @@ fn solve_program(
     // constraint, polish the same face tightened by the margin
     let bound = prog.objective(&interior) + POLISH_RTOL * (1.0 + prog.objective(&interior).abs());
     let mut start = interior.clone();
-    for margin in [0.0, FEASIBILITY_MARGIN] {
-        let (exact, last) = polish_exact(&prog, &start, margin, bound, &check)?;
+    for margin in [0.0, ROUNDING_MARGIN, FEASIBILITY_MARGIN] {
+        let (exact, last) = polish_exact(prog, &start, margin, bound, &check)?;
         if let Some(c) = exact {
             return Ok(c);
         }
@@ -611,9 +772,24 @@ fn polish_exact(
 /// exactly; the answer moves by about this much.
 const FEASIBILITY_MARGIN: f64 = 1e-10;
 
+/// Margin (as [`FEASIBILITY_MARGIN`]) of the first tightened polish: above the rounding of a
+/// face's solve (a few ulps of rows whose largest coefficient is up to `1/h^r` for spans `h`),
+/// small enough that the objective rises by far less than [`POLISH_RTOL`].
+const ROUNDING_MARGIN: f64 = 1e-13;
+
 /// Relative rise of the objective above the interior-point answer's that a polished answer may
 /// show (rounding) and still be taken.
 const POLISH_RTOL: f64 = 1e-11;
+
+/// The scaled coefficients `(control − center)/Y` of `curve` (the inverse of [`curve_of`]).
+fn scaled(curve: &BSplineCurve, scale: &Scale, center: f64) -> Vec<f64> {
+    curve
+        .control_points()
+        .as_slice()
+        .iter()
+        .map(|v| (v - center) / scale.y)
+        .collect()
+}
 
 /// The curve of scaled coefficients `c`: control points `center + Y·c`.
 fn curve_of(degree: usize, knots: Vec<f64>, c: &[f64], scale: &Scale, center: f64) -> BSplineCurve {

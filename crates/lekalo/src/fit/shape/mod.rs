@@ -6,14 +6,16 @@
 //! of a knot span it is a condition on the Bernstein coefficients of `y⁽ʳ⁾` there, which are
 //! linear in the control points; the condition is exact (necessary and sufficient) where the
 //! constrained derivative has degree `d = p − r ≤ 2` and sufficient only for `d ≥ 3`. The fit is
-//! the solution of a convex quadratic program with second-order cones, solved by Clarabel.
+//! the solution of a convex quadratic program with second-order cones, solved by Clarabel on a
+//! working set of pieces grown until its answer keeps every row (then the whole program's
+//! optimum).
 //!
 //! | file | what it does |
 //! |---|---|
 //! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
 //! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` (crate-private) |
-//! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, infeasibility certificates mapped back to constraints (crate-private) |
-//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`], [`shape_violations`] |
+//! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, the polish on the active face, infeasibility certificates mapped back to constraints (crate-private) |
+//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`], [`shape_violations`]; the rows of each piece and the working set |
 
 mod bernstein;
 mod constraints;

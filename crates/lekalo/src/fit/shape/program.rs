@@ -33,7 +33,8 @@ impl Row {
         self.constant *= f;
     }
 
-    fn max_abs(&self) -> f64 {
+    /// The largest coefficient in absolute value (the auxiliary's included).
+    pub(crate) fn max_abs(&self) -> f64 {
         let a = self.aux.map_or(0.0, |(_, a)| a.abs());
         self.coef.iter().fold(a, |m, v| m.max(v.abs()))
     }
@@ -304,7 +305,9 @@ impl ConeProgram {
             }
         }
         if kept.len() > n {
-            return None;
+            // a degenerate face (a flat stretch keeps value, slope and curvature rows at
+            // once): more rows than coefficients, so some depend on the others
+            kept = independent(kept, n);
         }
         for (r, ineq, _) in &mut kept {
             if *ineq {
@@ -488,6 +491,43 @@ pub(crate) fn add_rows(a: &Row, b: &Row, f: f64) -> Row {
         aux: None,
         constant: a.constant + f * b.constant,
     }
+}
+
+/// Share of a row's length below which what remains of it, once its components along the rows
+/// kept before it are removed, counts as zero (the row depends on them).
+const DEPENDENT_RTOL: f64 = 1e-9;
+
+/// The rows, in order, that do not depend linearly on the rows kept before them (modified
+/// Gram–Schmidt on the coefficient vectors, Golub & Van Loan §5.2.8): on a consistent face
+/// (every row zero at a point) the dropped rows are zero wherever the kept ones are, so the face
+/// is the same and its equality-constrained optimum too. At most `n` rows remain.
+fn independent<T>(rows: Vec<(Row, bool, T)>, n: usize) -> Vec<(Row, bool, T)> {
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut out = Vec::with_capacity(n.min(rows.len()));
+    for item in rows {
+        let r = &item.0;
+        if r.aux.is_some() {
+            out.push(item);
+            continue;
+        }
+        if basis.len() >= n {
+            continue;
+        }
+        let mut v = vec![0.0; n];
+        v[r.first..r.first + r.coef.len()].copy_from_slice(&r.coef);
+        let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        for b in &basis {
+            let d: f64 = b.iter().zip(&v).map(|(x, y)| x * y).sum();
+            v.iter_mut().zip(b).for_each(|(y, x)| *y -= d * x);
+        }
+        let rest = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if rest > DEPENDENT_RTOL * length {
+            v.iter_mut().for_each(|x| *x /= rest);
+            basis.push(v);
+            out.push(item);
+        }
+    }
+    out
 }
 
 /// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,

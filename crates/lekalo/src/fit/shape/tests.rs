@@ -361,3 +361,85 @@ fn bad_constraints_are_refused() {
     let e = constrained_smoothing_spline(&data, Lambda::Given(0.0), &nan).unwrap_err();
     assert!(matches!(e, crate::Error::NegativeSmoothing { .. }), "{e:?}");
 }
+
+/// The working set (pieces grown from the unconstrained fit's violations) returns the optimum of
+/// the whole cone program: the same coefficients to rounding, on data whose constraints are
+/// active on a few spans only (a dip in a rising convex curve, a bound crossed near one end).
+#[test]
+fn the_working_set_gives_the_whole_program_s_answer() {
+    let (x, y) = noisy(2000, |t| {
+        t * t + 0.3 * t + 0.08 * (-((t - 0.6) / 0.05).powi(2)).exp() * (40.0 * t).sin()
+    });
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 40).unwrap();
+    for c in [
+        ShapeConstraints::new().with(Shape::Increasing),
+        ShapeConstraints::new()
+            .with(Shape::Increasing)
+            .with(Shape::Convex)
+            .with(Shape::AtLeast(0.0)),
+        ShapeConstraints::new()
+            .with_on(Shape::Concave, 0.5, 0.7)
+            .with(Shape::AtMost(1.2))
+            .with_point(0.0, 0, 0.0),
+    ] {
+        let ws =
+            fits::constrained_least_squares_by(&data, 3, &kv, &c, fits::Rows::WorkingSet).unwrap();
+        let all = fits::constrained_least_squares_by(&data, 3, &kv, &c, fits::Rows::All).unwrap();
+        let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+        assert!(
+            ws.report.weighted_rss > free.report.weighted_rss,
+            "{c:?}: constraints inactive"
+        );
+        let (a, b) = (
+            ws.curve.control_points().as_slice(),
+            all.curve.control_points().as_slice(),
+        );
+        let size = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let worst = a
+            .iter()
+            .zip(b)
+            .map(|(u, v)| (u - v).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= 1e-12 * size,
+            "{c:?}: coefficients differ by {worst:e} (size {size})"
+        );
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+    /// Whatever the data, the working-set answer keeps every constraint exactly (the check of
+    /// `shape_violations`, by the exact minimum on each piece).
+    #[test]
+    fn the_working_set_answer_keeps_every_constraint(
+        m in 60usize..400,
+        spans in 4usize..30,
+        wiggle in 0.0f64..0.5,
+        freq in 2.0f64..30.0,
+        which in 0usize..4,
+    ) {
+        let (x, y) = noisy(m, |t| t * t + wiggle * (freq * t).sin());
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let kv = KnotVector::clamped_uniform(3, spans).unwrap();
+        let c = match which {
+            0 => ShapeConstraints::new().with(Shape::Increasing),
+            1 => ShapeConstraints::new().with(Shape::Convex).with(Shape::AtLeast(0.0)),
+            2 => ShapeConstraints::new()
+                .with(Shape::Increasing)
+                .with(Shape::Convex)
+                .with(Shape::AtLeast(0.0)),
+            _ => ShapeConstraints::new()
+                .with_on(Shape::Decreasing, 0.0, 0.4)
+                .with(Shape::AtMost(1.0)),
+        };
+        let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+        let scale = y.iter().map(|v| (v - y[0]).abs()).fold(0.0, f64::max);
+        let v = shape_violations(&fit.curve, &c).unwrap();
+        // the domain is [0, 1]: the scale of y⁽ʳ⁾ is that of y
+        for (s, v) in c.shapes.iter().zip(&v) {
+            proptest::prop_assert!(*v <= SHAPE_RTOL * scale, "{s}: violated by {v:e}");
+        }
+    }
+}
