@@ -127,6 +127,9 @@ impl PyFace {
     /// within the tolerance (``lekalo::topology::mesh_faces``; docs/theory/topology.md,
     /// "Meshing a trimmed face"). Edges without a pcurve get one by projection first, as
     /// ``with_projected_pcurves(tolerance)``; an edge off the surface raises ``ValueError``.
+    /// A face whose loops go once round a closed surface without a seam edge (a band between
+    /// two circles, a cap round a pole) is cut along a seam, without a crack there
+    /// (docs/theory/topology.md, "Bands and caps without a seam edge").
     fn mesh<'py>(
         &self,
         py: Python<'py>,

@@ -88,6 +88,42 @@ TUBE = """
 """
 
 
+# the same cylinder between its circles at z = 0 and z = 2 as two loops, no seam edge: the lower
+# circle counter-clockwise from above, the upper clockwise (the face on the left of each)
+BAND = TUBE.split("#210=")[0] + """
+#210=CARTESIAN_POINT('',(1.,0.,0.));
+#211=CARTESIAN_POINT('',(1.,0.,2.));
+#212=VERTEX_POINT('',#210);
+#213=VERTEX_POINT('',#211);
+#230=EDGE_CURVE('',#212,#212,#208,.T.);
+#231=EDGE_CURVE('',#213,#213,#209,.T.);
+#240=ORIENTED_EDGE('',*,*,#230,.T.);
+#241=EDGE_LOOP('',(#240));
+#242=FACE_OUTER_BOUND('',#241,.T.);
+#243=ORIENTED_EDGE('',*,*,#231,.F.);
+#244=EDGE_LOOP('',(#243));
+#245=FACE_BOUND('',#244,.T.);
+#246=ADVANCED_FACE('band',(#242,#245),#205,.T.);
+"""
+
+# the northern half of the unit sphere: one loop, its equator counter-clockwise from above
+CAP = """
+#301=CARTESIAN_POINT('',(0.,0.,0.));
+#302=DIRECTION('',(0.,0.,1.));
+#303=DIRECTION('',(1.,0.,0.));
+#304=AXIS2_PLACEMENT_3D('',#301,#302,#303);
+#305=SPHERICAL_SURFACE('',#304,1.);
+#306=CIRCLE('',#304,1.);
+#307=CARTESIAN_POINT('',(1.,0.,0.));
+#308=VERTEX_POINT('',#307);
+#309=EDGE_CURVE('',#308,#308,#306,.T.);
+#310=ORIENTED_EDGE('',*,*,#309,.T.);
+#311=EDGE_LOOP('',(#310));
+#312=FACE_OUTER_BOUND('',#311,.T.);
+#313=ADVANCED_FACE('cap',(#312),#305,.T.);
+"""
+
+
 def write(tmp_path, name, data):
     path = tmp_path / name
     path.write_text(HEAD + data + TAIL)
@@ -252,3 +288,42 @@ def test_mesh_of_a_tube_without_pcurves_projects_its_edges(tmp_path):
     assert np.all(np.einsum("ij,ij->i", n[:, :2], centroids[:, :2]) > 0)
     with pytest.raises(ValueError, match="tolerance"):
         f.with_projected_pcurves(0.0)
+
+
+def open_edges(vertices, triangles):
+    """The edges used by one triangle only, their ends taken by their coordinates."""
+    key = [tuple(p) for p in vertices]
+    count = {}
+    for t in triangles:
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            e = tuple(sorted((key[t[i]], key[t[j]])))
+            count[e] = count.get(e, 0) + 1
+    return [e for e, n in count.items() if n == 1]
+
+
+@pytest.mark.parametrize(
+    "name, data, exact, perimeter, on_loop",
+    [
+        # 2 pi r h, the two circles
+        ("band", BAND, 4.0 * np.pi, 4.0 * np.pi, lambda p: min(abs(p[2]), abs(p[2] - 2.0))),
+        # 2 pi r^2 (1 - cos theta) at theta = pi/2, the equator
+        ("cap", CAP, 2.0 * np.pi, 2.0 * np.pi, lambda p: abs(p[2])),
+    ],
+)
+def test_mesh_of_a_band_and_a_cap_without_a_seam_edge(tmp_path, name, data, exact, perimeter, on_loop):
+    f = lekalo.read_step(write(tmp_path, f"{name}.step", data), faces=True)["faces"][0]
+    tol = 1e-3
+    vertices, triangles = f.mesh(tol)
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    n = np.cross(b - a, c - a)
+    area = 0.5 * np.linalg.norm(n, axis=1).sum()
+    # radius 1: within tol of the area per unit area and tol times the loops' length
+    assert abs(area - exact) <= (exact + perimeter) * tol
+    # no crack along the cut: every open edge is on the face's loops
+    edges = open_edges(vertices, triangles)
+    assert edges
+    assert all(on_loop(p) < 1e-9 for e in edges for p in e)
+    # normals out of the cylinder, out of the sphere
+    centroids = (a + b + c) / 3.0
+    out = centroids if name == "cap" else centroids * [1.0, 1.0, 0.0]
+    assert np.all(np.einsum("ij,ij->i", n, out) > 0)

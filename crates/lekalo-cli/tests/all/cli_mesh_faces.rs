@@ -212,3 +212,103 @@ fn mesh_of_faces_projects_the_missing_pcurves_and_lists_the_faces_off_their_surf
         .stderr(predicates::str::contains("does not lie on"));
     assert!(!p(&d, "lifted.obj").exists());
 }
+
+/// A band of the cylinder of radius 1 between its circles at `z = 0` and `z = 2`: two loops, each
+/// one circle going once round, no seam edge and no pcurve (the face on the left of each circle
+/// seen from outside: the lower counter-clockwise from above, the upper clockwise).
+const BAND: &str = "ISO-10303-21;
+HEADER;
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));
+ENDSEC;
+DATA;
+#201=CARTESIAN_POINT('',(0.,0.,0.));
+#202=DIRECTION('',(0.,0.,1.));
+#203=DIRECTION('',(1.,0.,0.));
+#204=AXIS2_PLACEMENT_3D('',#201,#202,#203);
+#205=CYLINDRICAL_SURFACE('',#204,1.);
+#206=CARTESIAN_POINT('',(0.,0.,2.));
+#207=AXIS2_PLACEMENT_3D('',#206,#202,#203);
+#208=CIRCLE('',#204,1.);
+#209=CIRCLE('',#207,1.);
+#210=CARTESIAN_POINT('',(1.,0.,0.));
+#211=CARTESIAN_POINT('',(1.,0.,2.));
+#212=VERTEX_POINT('',#210);
+#213=VERTEX_POINT('',#211);
+#230=EDGE_CURVE('',#212,#212,#208,.T.);
+#231=EDGE_CURVE('',#213,#213,#209,.T.);
+#240=ORIENTED_EDGE('',*,*,#230,.T.);
+#241=EDGE_LOOP('',(#240));
+#242=FACE_OUTER_BOUND('',#241,.T.);
+#243=ORIENTED_EDGE('',*,*,#231,.F.);
+#244=EDGE_LOOP('',(#243));
+#245=FACE_BOUND('',#244,.T.);
+#246=ADVANCED_FACE('band',(#242,#245),#205,.T.);
+ENDSEC;
+END-ISO-10303-21;
+";
+
+/// The band has no seam edge: the mesher cuts it along a seam. Its mesh has the band's area,
+/// its only open edges are on the two circles (no crack along the cut), and its normals point
+/// out of the cylinder.
+#[test]
+fn mesh_of_a_band_without_a_seam_edge_cuts_it_along_a_seam() {
+    let d = dir_with(&[("band.step", BAND)]);
+    convert_faces(&d, &["-q"], "band.step", "band.jsonl").success();
+    let tol = 1e-3;
+    let out = lekalo()
+        .args(["mesh", "--tolerance", "1e-3", "--json"])
+        .arg(p(&d, "band.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "band.obj"))
+        .assert()
+        .success();
+    let summary = last_stderr_json(&out);
+    assert_eq!(summary["faces"].as_u64(), Some(1));
+    assert_eq!(summary["skipped"].as_u64(), Some(0));
+    let (v, f) = read_obj(&fs::read_to_string(p(&d, "band.obj")).unwrap());
+    // 2π r h = 4π within tol per unit area and tol times the two circles' length
+    let pi = std::f64::consts::PI;
+    let area = obj_area(&v, &f);
+    assert!(
+        (area - 4.0 * pi).abs() <= (4.0 * pi + 4.0 * pi) * tol,
+        "{area}"
+    );
+    // edges used by one triangle only, the vertices taken by their printed coordinates: all on
+    // the circles
+    let key = |k: usize| format!("{:?}", v[k]);
+    let mut count = std::collections::HashMap::new();
+    for t in &f {
+        for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+            let (a, b) = (key(t[i]), key(t[j]));
+            *count
+                .entry(if a < b { (a, b) } else { (b, a) })
+                .or_insert(0) += 1;
+        }
+    }
+    let on_circle = |s: &str| {
+        let z: f64 = s
+            .trim_end_matches(']')
+            .rsplit(", ")
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        z.abs() < 1e-9 || (z - 2.0).abs() < 1e-9
+    };
+    for ((a, b), n) in &count {
+        assert!(
+            *n <= 2 && (*n == 2 || (on_circle(a) && on_circle(b))),
+            "{a} {b} {n}"
+        );
+    }
+    for t in &f {
+        let [a, b, c] = t.map(|k| v[k]);
+        let (e, g) = (
+            [0, 1, 2].map(|i| b[i] - a[i]),
+            [0, 1, 2].map(|i| c[i] - a[i]),
+        );
+        let n = [e[1] * g[2] - e[2] * g[1], e[2] * g[0] - e[0] * g[2]];
+        let m = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+        assert!(n[0] * m[0] + n[1] * m[1] > 0.0, "a triangle faces in");
+    }
+}

@@ -11,6 +11,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 use super::face::{Edge, Face};
 use super::inside::winding_number;
 use super::pcurve::SurfaceClosure;
+use super::seam::{cut_along_seam, SeamPlan};
 use super::shell::{EdgeUse, Shell};
 use crate::query::{check_tol, triangle_bound, Mesh, MAX_MESH_VERTICES};
 use crate::{Error, Points, Result, Surface};
@@ -331,6 +332,16 @@ pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
             }
             loops.push(poly);
         }
+        // loops going round a closed surface (a band, a cap): the face cut along a seam
+        let eval = |uv: [f64; 2]| plan.surface_at(uv);
+        let seam = SeamPlan {
+            closure: &plan.closure,
+            domain: plan.face.surface().domain(),
+            same_sense: plan.face.same_sense(),
+            h: plan.h,
+            eval: &eval,
+        };
+        let loops = cut_along_seam(&seam, loops)?;
         out.push(mesh_one(plan, &loops, tolerance, &mut budget)?);
     }
     Ok(out)
@@ -500,7 +511,11 @@ fn mesh_one(
             if !keep[f.fix().index()] {
                 continue;
             }
-            tris.push(vs);
+            // two vertices at one point (along a pole): refined as the others, but without
+            // area in space
+            if !(0..3).any(|i| xyz[vs[i]] == xyz[vs[(i + 1) % 3]]) {
+                tris.push(vs);
+            }
             let b = plan.curv.triangle(p);
             if b > tol {
                 refine.push(c);

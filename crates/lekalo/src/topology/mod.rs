@@ -8,6 +8,7 @@
 //! | `shell.rs` | [`Shell`]: which edges of a set of faces are one edge (shared by two faces, or a seam), and which edge ends are one vertex |
 //! | `mesh.rs` | [`mesh_faces`] and [`Face::mesh`]: triangle meshes of trimmed faces within a tolerance, edges sampled once for the faces that share them, constrained Delaunay triangulation |
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
+//! | `seam.rs` | faces whose loops go round a closed surface without a seam edge (bands, caps round a pole), cut along a seam into one region of `(u, v)` for the mesher |
 //! | `inside.rs` | [`TrimRegion`]: the loops in `(u, v)` as polygons and the point-in-face test by winding numbers |
 //!
 //! See `docs/theory/topology.md`.
@@ -16,6 +17,7 @@ mod face;
 mod inside;
 mod mesh;
 mod pcurve;
+mod seam;
 mod shell;
 
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};

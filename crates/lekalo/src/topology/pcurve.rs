@@ -417,7 +417,9 @@ impl Face {
     /// [`Error::InvalidArgument`] for a `tolerance` that is not positive and finite; (`what`
     /// "face edge") naming the loop, the edge, the parameter and the distance when an edge is
     /// farther from the surface; (`what` "face loop") when a loop goes round a closed surface
-    /// without a seam edge, so that it does not close in `(u, v)`; [`Error::TooLarge`] when a
+    /// more than once (a loop going round once, of a band or a cap without a seam edge, is
+    /// kept: its end a period from its start, and the mesher cuts the face along a seam);
+    /// [`Error::TooLarge`] when a
     /// pcurve would have more than [`MAX_PCURVE_POINTS`] points.
     pub fn with_projected_pcurves(&self, tolerance: f64) -> Result<Face> {
         if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -547,10 +549,13 @@ fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>>
             made[(start + j) % n].shift([-turns[0], -turns[1]]);
         }
     }
+    // a loop going once round (a band's, a cap's) is cut along a seam by the mesher; more
+    // than once, it does not bound a face
     let last = made[(start + n - 1) % n].ends()?.1;
     for d in 0..2 {
         if let Some(p) = proj.closure.period[d] {
-            if (last[d] - first[d]).abs() > 0.5 * p {
+            let times = ((last[d] - first[d]) / p).round().abs();
+            if times >= 2.0 {
                 let which = if li == 0 {
                     "the outer loop".to_string()
                 } else {
@@ -559,7 +564,7 @@ fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>>
                 return Err(Error::InvalidArgument {
                     what: "face loop",
                     reason: format!(
-                        "{which} goes round the closed surface in {} without a seam edge, so it does not close in (u, v); the face needs a seam edge (or its pcurves) to be meshed",
+                        "{which} goes round the closed surface in {} {times} times; a loop of a face goes round it at most once (a band or a cap, cut along a seam to be meshed)",
                         if d == 0 { "u" } else { "v" }
                     ),
                 });

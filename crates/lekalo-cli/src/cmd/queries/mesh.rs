@@ -24,7 +24,9 @@ and the bound instead of writing geometry to standard output.
 Faces (a JSON Lines file of face envelopes, as `convert --faces` writes): one mesh of all faces,
 each trimmed by its loops, the faces meeting at the same points along their shared edges. An
 edge without its curve in the surface's (u, v) gets one by projecting it onto the surface; a
-face that cannot be meshed (an edge off its surface) is listed with the reason and left out.
+face whose loops go round a closed surface without a seam edge (a band between two circles, a
+cap round a pole) is cut along a seam; a face that cannot be meshed (an edge off its surface)
+is listed with the reason and left out.
 
 Examples:
   lekalo mesh surface.json --tolerance 1e-3 -o surface.obj
