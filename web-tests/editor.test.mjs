@@ -558,6 +558,57 @@ test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps
   }
 });
 
+test('A long request shows a progress bar with the time left, Stop cancels it, and the editor goes on', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+  // the API's answer is held back, as on a slow machine or a large construction
+  await page.route('**/api/bspline', async (route) => {
+    await sleep(1500);
+    await route.continue().catch(() => {}); // a stopped request is already gone
+  });
+  const click = async (p) => { const [x, y] = await canvasToPage(page, p); await page.mouse.click(x, y); };
+  await click([3, 2]);
+  // after half a second: the bar, what is computed, the time so far from the server's
+  // progress route (the held request has not reached the server: no share yet)
+  await page.waitForSelector('#progress', { state: 'visible', timeout: 3000 });
+  assert.equal(await page.textContent('#progress-what'), 'Computing…');
+  await page.waitForFunction(() => /^\d+\.\d s$/.test(document.getElementById('progress-text').textContent));
+  assert.equal(await page.getAttribute('#progress-bar', 'value'), null, 'no share before a report');
+  await page.waitForSelector('#progress', { state: 'hidden', timeout: 5000 });
+  await idle(page);
+  let s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  const answer = await api('/api/bspline', { control: s.control, degree: s.degree, samples: 400 });
+  await assertCurveIs(page, answer.points, 'the held answer, drawn when it came');
+  assert.equal(await shownErrors(page), '');
+
+  // the server's report: a share and the time left
+  await page.route('**/api/progress?*', (route) => route.fulfill({ contentType: 'application/json',
+    body: JSON.stringify({ job: 'j', running: true, done: 30, total: 100, elapsed_s: 0.6, remaining_s: 1.4 }) }));
+  const drawn = await page.getAttribute('#curve', 'd');
+  await click([5, 4]);
+  await page.waitForSelector('#progress', { state: 'visible', timeout: 3000 });
+  await page.waitForFunction(() => document.getElementById('progress-text').textContent === '30 % · about 1.4 s left');
+  assert.equal(await page.getAttribute('#progress-bar', 'max'), '100');
+  assert.equal(await page.evaluate(() => document.getElementById('progress-bar').value), 30);
+  await shot(page, 'progress', false);
+  await page.click('#progress-stop');
+  await page.waitForSelector('#progress', { state: 'hidden', timeout: 3000 });
+  await idle(page);
+  assert.match(await shownErrors(page), /^Stopped: the computation was cancelled/);
+  assert.equal(await page.getAttribute('#curve', 'd'), drawn, 'the last computed curve stays drawn');
+
+  // the editor goes on: the next change computes and clears the note
+  await page.unroute('**/api/bspline');
+  await page.unroute('**/api/progress?*');
+  await click([6, 1]);
+  await idle(page);
+  s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  const after = await api('/api/bspline', { control: s.control, degree: s.degree, samples: 400 });
+  await assertCurveIs(page, after.points, 'after Stop');
+  assert.equal(await shownErrors(page), '');
+});
+
 let failed = 0;
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   args: CHROMIUM_ARGS, headless: true });

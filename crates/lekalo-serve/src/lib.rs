@@ -33,6 +33,7 @@ pub mod budget;
 pub mod error;
 pub mod expr;
 pub mod fit;
+pub mod jobs;
 pub mod pool;
 pub mod query;
 pub mod view;
@@ -108,8 +109,8 @@ pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
 
 /// Every route of the application: path, method and handler. The router is built from this
 /// table, and a test checks it against [`OPENAPI`] both ways. The pages, `/api/health` and
-/// `/api/openapi.json` are answered on the runtime's workers; every other route computes in
-/// the [`Pool`].
+/// `/api/openapi.json` and `/api/progress` are answered on the runtime's workers; every other
+/// route computes in the [`Pool`].
 pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
     let page =
         |body: &'static str, mime: &'static str| get(move || async move { asset(body, mime) });
@@ -135,6 +136,7 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
             Method::GET,
             get(|| async { ([(header::CONTENT_TYPE, "application/json")], OPENAPI) }),
         ),
+        ("/api/progress", Method::GET, get(jobs::progress)),
         ("/api/evaluate", Method::POST, pool::post(api::evaluate)),
         (
             "/api/interpolate",

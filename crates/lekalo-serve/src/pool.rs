@@ -14,6 +14,8 @@
 //!   flag is also set when the request is dropped: the client went away or the request timeout
 //!   (408) passed. A thread keeps its place in the pool until its kernel has stopped, so the pool
 //!   bounds the threads that compute, not only the requests that wait.
+//! - A request with a job id ([`crate::jobs::JOB_HEADER`]) has its computation's progress
+//!   reports kept under that id while it runs, for `GET /api/progress` ([`crate::jobs`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -21,7 +23,7 @@ use std::time::Duration;
 
 use axum::body::Bytes;
 use axum::extract::State;
-use axum::http::{header, StatusCode};
+use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::MethodRouter;
 use axum::Json;
@@ -30,6 +32,7 @@ use serde_json::json;
 use tokio::sync::Semaphore;
 
 use crate::error::ApiResult;
+use crate::jobs::{bad_id, job_id, BadJobId, Jobs};
 use crate::Limits;
 
 /// Seconds a client is asked to wait after a 503 (`Retry-After`).
@@ -45,6 +48,8 @@ pub struct Pool {
     /// One permit per admitted request, running or waiting ([`Limits::workers`] +
     /// [`Limits::queue`]).
     admitted: Arc<Semaphore>,
+    /// The progress of the admitted computations that carry a job id.
+    jobs: Arc<Jobs>,
 }
 
 impl Pool {
@@ -57,6 +62,7 @@ impl Pool {
             limits,
             running: Arc::new(Semaphore::new(workers)),
             admitted: Arc::new(Semaphore::new(workers + queue)),
+            jobs: Arc::default(),
         }
     }
 
@@ -64,6 +70,11 @@ impl Pool {
     #[must_use]
     pub fn limits(&self) -> &Limits {
         &self.limits
+    }
+
+    /// The progress of the running computations that carry a job id.
+    pub(crate) fn jobs(&self) -> &Jobs {
+        &self.jobs
     }
 }
 
@@ -94,7 +105,11 @@ pub type Compute = fn(&Job<'_>, &Bytes) -> ApiResult<Response>;
 
 /// The `POST` route of a computing handler: its requests run in the [`Pool`].
 pub fn post(f: Compute) -> MethodRouter<Arc<Pool>> {
-    axum::routing::post(move |State(pool): State<Arc<Pool>>, body: Bytes| run(pool, body, f))
+    axum::routing::post(
+        move |State(pool): State<Arc<Pool>>, headers: HeaderMap, body: Bytes| {
+            run(pool, headers, body, f)
+        },
+    )
 }
 
 /// Sets the flag when dropped: the request's future was dropped before the computation ended
@@ -108,10 +123,17 @@ impl Drop for CancelOnDrop {
 }
 
 /// Runs `f` on `body` in the pool, within the deadline (module docs).
-async fn run(pool: Arc<Pool>, body: Bytes, f: Compute) -> Response {
+async fn run(pool: Arc<Pool>, headers: HeaderMap, body: Bytes, f: Compute) -> Response {
+    let id = match job_id(&headers) {
+        Ok(id) => id,
+        Err(BadJobId) => return bad_id(),
+    };
     let Ok(admission) = Arc::clone(&pool.admitted).try_acquire_owned() else {
         return busy(pool.limits());
     };
+    // reports are kept from admission until the request ends, whatever the outcome
+    let registered = id.map(|id| pool.jobs.register(id));
+    let tracker = registered.as_ref().map(|r| Arc::clone(&r.tracker));
     let cancel = Arc::new(AtomicBool::new(false));
     let _cancel_on_drop = CancelOnDrop(Arc::clone(&cancel));
     let limits = pool.limits;
@@ -123,9 +145,19 @@ async fn run(pool: Arc<Pool>, body: Bytes, f: Compute) -> Response {
         };
         tokio::task::spawn_blocking(move || {
             let _held = (permit, admission);
+            let report = |done: u64, total: u64| {
+                if let Some(t) = &tracker {
+                    t.report(done, total);
+                }
+            };
+            let progress = Progress::new().with_cancel(&flag);
             let job = Job {
                 limits: &limits,
-                progress: Progress::new().with_cancel(&flag),
+                progress: if tracker.is_some() {
+                    progress.with_report(&report)
+                } else {
+                    progress
+                },
             };
             f(&job, &body)
         })

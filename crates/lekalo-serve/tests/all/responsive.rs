@@ -476,3 +476,76 @@ async fn a_fit_past_the_deadline_is_stopped_and_its_worker_freed() {
     let (code, _) = raw(addr, "GET", "/api/health", "").await;
     assert_eq!(code, 200);
 }
+
+/// `GET /api/progress`: the answer of one loopback request, as JSON.
+async fn progress_of(addr: std::net::SocketAddr, job: &str) -> Value {
+    let (code, text) = raw(addr, "GET", &format!("/api/progress?job={job}"), "").await;
+    assert_eq!(code, 200, "{text}");
+    serde_json::from_str(&text).expect("JSON")
+}
+
+/// A heavy request that carries a job id reports its progress while it runs: the share done
+/// grows, the time left is estimated, and once the request has ended (at the deadline) the job
+/// is no longer running. A job id the server cannot keep is refused, naming the header's rule.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_computation_with_a_job_id_reports_its_progress_until_it_ends() {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let limits = Limits {
+        workers: 1,
+        deadline: Duration::from_secs(3),
+        timeout: Duration::from_secs(30),
+        ..permissive()
+    };
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind");
+    let addr = listener.local_addr().expect("addr");
+    tokio::spawn(async move { axum::serve(listener, router(limits)).await });
+    let body = heavy();
+    let request = tokio::spawn(async move {
+        let mut s = tokio::net::TcpStream::connect(addr).await.expect("connect");
+        let req = format!(
+            "POST /api/evaluate HTTP/1.1\r\nhost: x\r\nconnection: close\r\nx-lekalo-job: heavy-1\r\ncontent-type: application/json\r\ncontent-length: {}\r\n\r\n{body}",
+            body.len()
+        );
+        s.write_all(req.as_bytes()).await.expect("write");
+        let mut answer = String::new();
+        s.read_to_string(&mut answer).await.expect("read");
+        answer
+    });
+    let mut reports = Vec::new();
+    for _ in 0..40 {
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        let p = progress_of(addr, "heavy-1").await;
+        if p["running"] == true && p["done"].as_u64() > Some(0) {
+            reports.push(p);
+            if reports.len() == 2 {
+                break;
+            }
+            tokio::time::sleep(Duration::from_millis(300)).await;
+        }
+    }
+    assert_eq!(reports.len(), 2, "two reports while it runs: {reports:?}");
+    let done = |p: &Value| p["done"].as_u64().expect("done");
+    let total = reports[0]["total"].as_u64().expect("total");
+    assert!(
+        total >= done(&reports[1]) && done(&reports[1]) > done(&reports[0]),
+        "{reports:?}"
+    );
+    assert!(
+        reports[1]["remaining_s"].as_f64().is_some_and(|r| r > 0.0),
+        "{reports:?}"
+    );
+    assert!(
+        reports[1]["elapsed_s"].as_f64() > reports[0]["elapsed_s"].as_f64(),
+        "{reports:?}"
+    );
+    let answer = request.await.expect("task");
+    assert!(answer.starts_with("HTTP/1.1 504"), "{answer}");
+    let after = progress_of(addr, "heavy-1").await;
+    assert_eq!(after["running"], false, "{after}");
+    // an id the server cannot keep
+    let (code, text) = raw(addr, "GET", "/api/progress?job=a%20b", "").await;
+    assert_eq!(code, 400, "{text}");
+    assert!(text.contains("job id"), "{text}");
+}
