@@ -7,74 +7,21 @@
 //! Linux's `/proc/self/task/*/schedstat`; 0 elsewhere) of a whole read, file read included; the
 //! memory the result of a read holds (the bytes allocated that are still live once the file's
 //! text is dropped), and the peak of the bytes allocated during the reads (text included), both
-//! counted by this program's allocator; and the peak resident memory of the process (`VmHWM` of
+//! counted by this program's allocator (`lekalo_testkit::alloc`); and the peak resident memory of the process (`VmHWM` of
 //! Linux's `/proc/self/status`, which the allocator's overhead and the program's code add to;
 //! 0 elsewhere), all in MB.
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-/// The system allocator, counting the bytes live and their peak (two relaxed atomic additions
-/// an allocation, a few nanoseconds).
-struct Counting;
-
-/// Bytes allocated and not yet freed.
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-/// The most bytes live at once.
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grow(n: usize) {
-    let now = LIVE.fetch_add(n, Ordering::Relaxed) + n;
-    PEAK.fetch_max(now, Ordering::Relaxed);
-}
-
-// SAFETY: every call is passed to `System` unchanged, with the caller's pointer and layout, and
-// its result returned unchanged; the counters are only added to.
-#[allow(unsafe_code)]
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        // SAFETY: the caller's contract for `alloc` is `System::alloc`'s
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            grow(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        // SAFETY: as `alloc`
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            grow(layout.size());
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: `ptr` was allocated by `System` with `layout` (every allocation goes there)
-        unsafe { System.dealloc(ptr, layout) };
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // SAFETY: as `dealloc`, with the caller's contract for `realloc`
-        let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-            grow(new_size);
-        }
-        p
-    }
-}
+use lekalo_testkit::alloc::{live, peak, Counting};
 
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
 /// Shapes and faces read from `path`, and the bytes the result holds.
 fn read(path: &Path, faces: bool) -> Result<(usize, usize, usize), Box<dyn std::error::Error>> {
-    let before = LIVE.load(Ordering::Relaxed);
+    let before = live();
     let (text, name) = lekalo_io::read_input(path)?;
     let ext = path
         .extension()
@@ -85,7 +32,7 @@ fn read(path: &Path, faces: bool) -> Result<(usize, usize, usize), Box<dyn std::
     // the result held while the text is dropped: what is then live beyond `before` is the result
     let result = |text: String, counts: (usize, usize)| {
         drop(text);
-        let bytes = LIVE.load(Ordering::Relaxed).saturating_sub(before);
+        let bytes = live().saturating_sub(before);
         (counts.0, counts.1, bytes)
     };
     Ok(match (iges, faces) {
@@ -158,7 +105,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         counts.0,
         counts.1,
         counts.2 as f64 / 1e6,
-        PEAK.load(Ordering::Relaxed) as f64 / 1e6,
+        peak() as f64 / 1e6,
         peak_rss_mb()
     );
     Ok(())

@@ -12,9 +12,12 @@
 //! - [`oracle`]: B-spline and Bezier curves by their definitions (Cox–de Boor recursion,
 //!   Bernstein formula), for comparison with the fast kernels.
 //! - [`vectors`]: the test vectors of docs/theory/interpolation.md#test-vectors.
+//! - [`alloc`]: an allocator that counts the bytes live and their peak, for the tests and
+//!   examples that measure memory.
 //! - [`layout`]: every crate's integration tests are one binary, `tests/all/main.rs`; its check
 //!   that no test file is left out.
 
+pub mod alloc;
 pub mod close;
 pub mod layout;
 pub mod oracle;
