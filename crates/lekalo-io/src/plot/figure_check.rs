@@ -1,7 +1,8 @@
 //! Checks of a written figure, as a reader would make them: every text and legend box inside
 //! the canvas, no two legend entries overlapping, no NaN or infinite coordinate, every labelled
 //! series visible (a fair part of it showing past everything drawn after it, markers as well as
-//! lines, unless declared coincident), no text on another text, a legend entry or a curve,
+//! lines, unless declared coincident) and large enough to see (not every line under a pixel
+//! and a half), no text on another text, a legend entry or a curve,
 //! colour bars with labelled ends, axes with names, captions whose colour and dash words
 //! describe the lines as drawn, and a rendered image that is not blank.
 //!
@@ -83,6 +84,10 @@ struct Drawn {
     color: String,
     style: &'static str,
     coincides: Option<String>,
+    /// The length of each line element (`polyline`, `line`), in page units.
+    pieces: Vec<f64>,
+    /// The radius of each marker, stroke included.
+    radii: Vec<f64>,
 }
 
 /// The line style of a `stroke-dasharray`.
@@ -123,6 +128,8 @@ fn drawn(g: Node<'_, '_>) -> Drawn {
         color: String::new(),
         style: "markers",
         coincides: g.attribute("data-coincides").map(str::to_string),
+        pieces: Vec::new(),
+        radii: Vec::new(),
     };
     let mut line_style = None;
     for n in g.descendants().filter(Node::is_element) {
@@ -176,6 +183,13 @@ fn drawn(g: Node<'_, '_>) -> Drawn {
         if d.color.is_empty() {
             d.color = n.attribute("stroke").unwrap_or_default().to_string();
         }
+        if !segs.is_empty() {
+            d.pieces.push(
+                segs.iter()
+                    .map(|[a, b]| (b[0] - a[0]).hypot(b[1] - a[1]))
+                    .sum(),
+            );
+        }
         for [a, b] in segs {
             d.shapes.push(Shape::Seg(a, b, sw / 2.0));
             let len = (b[0] - a[0]).hypot(b[1] - a[1]);
@@ -195,6 +209,7 @@ fn drawn(g: Node<'_, '_>) -> Drawn {
             d.samples.push((b, sw / 2.0, false));
         }
         if let Some((c, r)) = disc {
+            d.radii.push(r);
             d.shapes.push(Shape::Disc(c, r));
             d.samples.push((c, r, true));
         }
@@ -259,6 +274,38 @@ impl ShapeGrid {
 
 /// Least share of a labelled series that must show past everything drawn after it.
 const MIN_VISIBLE: f64 = 0.2;
+
+/// Shortest line a reader sees as a line, and smallest marker radius a reader sees as a
+/// marker, in page units (pixels at scale 1).
+const MIN_PIECE: f64 = 1.5;
+const MIN_RADIUS: f64 = 1.0;
+
+/// Series too small to see: a labelled series whose every line is shorter than [`MIN_PIECE`]
+/// (deviations of a fit drawn at scale, far under a pixel) and that has no marker of radius
+/// [`MIN_RADIUS`] or more.
+fn too_small(groups: &[Drawn], problems: &mut Vec<String>) {
+    for g in groups {
+        if g.label.is_empty() || (g.pieces.is_empty() && g.radii.is_empty()) {
+            continue;
+        }
+        let longest = g.pieces.iter().copied().fold(0.0, f64::max);
+        let largest = g.radii.iter().copied().fold(0.0, f64::max);
+        if longest < MIN_PIECE && largest < MIN_RADIUS {
+            let what = if g.radii.is_empty() {
+                format!(
+                    "its {} lines are all under {MIN_PIECE} px long (the longest {longest:.2} px)",
+                    g.pieces.len()
+                )
+            } else {
+                format!("its marks are all under {MIN_RADIUS} px across the radius and {MIN_PIECE} px along lines")
+            };
+            problems.push(format!(
+                "series {:?} is too small to see: {what}; draw it stretched by a factor the legend names, or on its own scale",
+                g.label
+            ));
+        }
+    }
+}
 
 /// Does the caption say that `over` coincides with `hidden` (one sentence naming both, in
 /// quotes, with the word "coincide")?
@@ -641,6 +688,7 @@ pub fn check_svg(svg: &str, caption: Option<&str>) -> Vec<String> {
         .map(drawn)
         .collect();
     hidden_series(&groups, caption, &mut problems);
+    too_small(&groups, &mut problems);
     colliding_texts(&texts, &legend, &groups, &mut problems);
     colorbar_ends(&doc, &mut problems);
     axis_labels(&doc, &mut problems);
@@ -728,6 +776,44 @@ mod tests {
 
     fn has(problems: &[String], what: &str) -> bool {
         problems.iter().any(|p| p.contains(what))
+    }
+
+    #[test]
+    fn a_series_under_a_pixel_is_too_small_to_see() {
+        // a fit's deviations drawn at the data's scale: sticks of 1e-4 on a unit plot
+        let y = |x: f64| 0.5 + 0.4 * (3.0 * x).sin();
+        let curve: Vec<[f64; 2]> = (0..=100)
+            .map(|k| [f64::from(k) / 100.0, y(f64::from(k) / 100.0)])
+            .collect();
+        let sticks = |scale: f64| -> Vec<Vec<[f64; 2]>> {
+            (0..=20)
+                .map(|k| {
+                    let x = f64::from(k) / 20.0;
+                    vec![[x, y(x)], [x, y(x) + scale * (7.0 * x).sin()]]
+                })
+                .collect()
+        };
+        let figure = |scale: f64| {
+            let mut fig = named("residuals", false);
+            fig.series.push(Series::new(
+                Some("fit"),
+                curve.clone(),
+                Style::Line,
+                "#0072B2",
+            ));
+            let mut dev = Series::new(Some("deviations"), Vec::new(), Style::Line, "#D55E00");
+            dev.paths = sticks(scale);
+            fig.series.push(dev);
+            fig.to_svg()
+        };
+        let p = check_svg(&figure(1e-4), None);
+        assert!(
+            has(&p, "series \"deviations\" is too small to see"),
+            "{p:?}"
+        );
+        assert!(!has(&p, "\"fit\" is too small"), "{p:?}");
+        // stretched to be seen: no problem
+        assert_eq!(check_svg(&figure(0.2), None), Vec::<String>::new());
     }
 
     #[test]
