@@ -213,7 +213,8 @@ impl Reader<'_> {
             .ok_or_else(|| format!("{what} #{id} is not defined"))
     }
 
-    /// A `CARTESIAN_POINT`, 3-D coordinates in millimetres.
+    /// A `CARTESIAN_POINT`, 3-D coordinates in millimetres, moved by the placement of the part
+    /// being read ([`Reader::motion`]).
     pub(super) fn location(&self, p: &P) -> Result<Vec<f64>, Why> {
         let (id, inst) = self.instance(p, "a point")?;
         let fast = inst
@@ -234,11 +235,23 @@ impl Reader<'_> {
         };
         if v.len() == 3 {
             v.iter_mut().for_each(|x| *x *= self.scale);
+            if let Some(m) = self.motion.get() {
+                m.point(&mut v);
+            }
         }
         Ok(v)
     }
 
+    /// A `DIRECTION`, 3-D ones turned by the placement of the part being read.
     fn direction(&self, p: &P) -> Result<Vec<f64>, Why> {
+        let mut d = self.direction_as_written(p)?;
+        if let Some(m) = self.motion.get() {
+            m.direction(&mut d);
+        }
+        Ok(d)
+    }
+
+    fn direction_as_written(&self, p: &P) -> Result<Vec<f64>, Why> {
         let (id, inst) = self.instance(p, "a direction")?;
         if let Some(v) = inst.has("DIRECTION").then(|| inst.numbers()).flatten() {
             return Ok(v);
@@ -296,7 +309,7 @@ impl Reader<'_> {
         ))
     }
 
-    fn placement(&self, p: &P) -> Result<Placement, Why> {
+    pub(super) fn placement(&self, p: &P) -> Result<Placement, Why> {
         self.frame(p)?
             .space
             .ok_or_else(|| "a surface placed by a 2-D placement".to_string())

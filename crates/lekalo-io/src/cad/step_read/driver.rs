@@ -5,6 +5,7 @@ use std::cell::{Cell, RefCell};
 use std::collections::{HashMap, HashSet};
 
 use super::analytic::{ANALYTIC_CURVES, ANALYTIC_SURFACES};
+use super::assembly::{assembly, Assembly};
 use super::bounds::{face_bounds, line_ranges};
 use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMETRY, TESSELLATED};
 use super::faces::read_faces;
@@ -142,6 +143,65 @@ fn read(
         used: Cell::new(0),
         over: RefCell::new(None),
         basis_sizes: RefCell::new(HashMap::new()),
+        motion: Cell::new(None),
+    };
+    // the parts an assembly places are read at each of their occurrences, one pass each
+    let placed = assembly(&rd);
+    let mut read = convert(&rd, placed.as_ref(), 0, with_faces, &meter)?;
+    let quiet = Progress::new();
+    let quiet = Meter {
+        progress: &quiet,
+        source,
+        len: text.len() as u64,
+    };
+    for pass in 1..placed.as_ref().map_or(1, Assembly::passes) {
+        let more = convert(&rd, placed.as_ref(), pass, with_faces, &quiet)?;
+        read.shapes.extend(more.shapes);
+        read.faces.extend(more.faces);
+    }
+    // stable: the occurrences of an instance in the order of the passes
+    read.shapes.sort_by_key(|(id, _)| *id);
+    read.faces.sort_by_key(|f| f.id);
+    meter.finish();
+    Ok(StepRead {
+        shapes: read.shapes,
+        skipped: read.skipped,
+        faces: read.faces,
+        skipped_faces: read.skipped_faces,
+        schema: parsed.schema,
+        length_unit,
+        scale_to_mm: scale,
+    })
+}
+
+/// What one pass over the instances reads.
+struct Converted {
+    shapes: Vec<(u64, Shape)>,
+    skipped: Vec<StepSkipped>,
+    faces: Vec<super::StepFace>,
+    skipped_faces: Vec<StepSkipped>,
+}
+
+/// Reads the geometry (and with `with_faces` the faces) of the instances that pass `pass` of
+/// the assembly `placed` reads, each at its placement (every instance, as written, when the file
+/// places no part).
+fn convert(
+    rd: &Reader<'_>,
+    placed: Option<&Assembly>,
+    pass: usize,
+    with_faces: bool,
+    meter: &Meter<'_>,
+) -> IoResult<Converted> {
+    let source = rd.source;
+    let parsed = rd.p;
+    // whether the instance `id` is read in this pass, with the motion of its part set
+    let enter = |id: u64| -> bool {
+        let how = match placed {
+            Some(a) => a.motion(id, pass),
+            None => Some(None),
+        };
+        rd.motion.set(how.flatten());
+        how.is_some()
     };
     // a refusal by the size limit, wherever it happened (a skipped entity included)
     let too_large = |rd: &Reader<'_>| {
@@ -169,6 +229,9 @@ fn read(
     let mut budget = parsed.instances.len().saturating_mul(4);
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Trims, k, ids.len())?;
+        if !enter(id) {
+            continue;
+        }
         let inst = parsed.instances.known(&id);
         if let Some(r) = inst.get("TRIMMED_CURVE") {
             match rd.trimmed(r, &mut budget) {
@@ -183,16 +246,22 @@ fn read(
             }
         }
     }
-    if let Some(e) = too_large(&rd) {
+    if let Some(e) = too_large(rd) {
         return Err(e);
     }
-    let lines = line_ranges(&rd);
+    // the ranges of lines and unbounded surfaces are parameters, the same at any placement:
+    // found as written
+    rd.motion.set(None);
+    let lines = line_ranges(rd);
     let mut unbounded = HashSet::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Curves, k, ids.len())?;
+        if !enter(id) {
+            continue;
+        }
         let inst = parsed.instances.known(&id);
         let bad = |why: Why| {
-            too_large(&rd).unwrap_or_else(|| {
+            too_large(rd).unwrap_or_else(|| {
                 IoError::syntax(
                     rd.at(id),
                     format!("entity #{id} {}: {why}", inst.type_name()),
@@ -251,12 +320,16 @@ fn read(
             );
         }
     }
-    if let Some(e) = too_large(&rd) {
+    if let Some(e) = too_large(rd) {
         return Err(e);
     }
-    let bounds = face_bounds(&rd, &unbounded, &curves);
+    rd.motion.set(None);
+    let bounds = face_bounds(rd, &unbounded, &curves);
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Surfaces, k, ids.len())?;
+        if !enter(id) {
+            continue;
+        }
         let inst = parsed.instances.known(&id);
         let Some(name) = first_of(&inst, ANALYTIC_SURFACES) else {
             continue;
@@ -266,10 +339,9 @@ fn read(
             Err(reason) => skip(&mut skipped, id, name, reason),
         }
     }
-    if let Some(e) = too_large(&rd) {
+    if let Some(e) = too_large(rd) {
         return Err(e);
     }
-    shapes.sort_by_key(|(id, _)| *id);
     skipped.sort_by_key(|s| s.id);
     let (faces, skipped_faces) = if with_faces {
         let surfaces: HashMap<u64, &lekalo::Surface> = shapes
@@ -281,23 +353,20 @@ fn read(
             .collect();
         let surface_skips: HashMap<u64, &str> =
             skipped.iter().map(|s| (s.id, s.reason.as_str())).collect();
-        let r = read_faces(&rd, ids, &surfaces, &surface_skips, &meter)?;
-        if let Some(e) = too_large(&rd) {
+        let r = read_faces(rd, ids, &surfaces, &surface_skips, meter, &enter)?;
+        if let Some(e) = too_large(rd) {
             return Err(e);
         }
         r
     } else {
         (Vec::new(), Vec::new())
     };
-    meter.finish();
-    Ok(StepRead {
+    rd.motion.set(None);
+    Ok(Converted {
         shapes,
         skipped,
         faces,
         skipped_faces,
-        schema: parsed.schema,
-        length_unit,
-        scale_to_mm: scale,
     })
 }
 

@@ -53,6 +53,10 @@ pub(super) struct Reader<'a> {
     /// The control points of each basis of trimmed curves met, by id (see
     /// [`Reader::trimmed`]).
     pub(super) basis_sizes: RefCell<std::collections::HashMap<u64, usize>>,
+    /// The placement of the part whose geometry is being read, in an assembly
+    /// (`assembly.rs`): 3-D points and directions are moved by it; `None` reads them as
+    /// written.
+    pub(super) motion: Cell<Option<super::assembly::Motion>>,
 }
 
 impl Reader<'_> {
@@ -257,6 +261,11 @@ impl Reader<'_> {
             let s = self.scale;
             pts = Points::from_flat(3, pts.as_slice().iter().map(|x| x * s).collect())
                 .map_err(|e| e.to_string())?;
+        }
+        if let (3, Some(m)) = (pts.dim(), self.motion.get()) {
+            let mut flat = pts.as_slice().to_vec();
+            flat.chunks_exact_mut(3).for_each(|p| m.point(p));
+            pts = Points::from_flat(3, flat).map_err(|e| e.to_string())?;
         }
         Ok(pts)
     }

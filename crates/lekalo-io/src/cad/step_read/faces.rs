@@ -96,19 +96,24 @@ struct EdgeGeom {
 
 /// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file: the faces read, and those
 /// skipped with the reason. `surfaces` are the surfaces read by id, `surface_skips` why the
-/// others were not; `meter` is told the instances looked at and can cancel the read.
+/// others were not; `meter` is told the instances looked at and can cancel the read; `enter`
+/// says whether a face is read in this pass and sets the placement of its part.
 pub(super) fn read_faces(
     rd: &Reader<'_>,
     ids: &[u64],
     surfaces: &HashMap<u64, &Surface>,
     surface_skips: &HashMap<u64, &str>,
     meter: &Meter<'_>,
+    enter: &dyn Fn(u64) -> bool,
 ) -> IoResult<(Vec<StepFace>, Vec<StepSkipped>)> {
     let mut faces = Vec::new();
     let mut skipped = Vec::new();
     let mut edges: HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>> = HashMap::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Faces, k, ids.len())?;
+        if !enter(id) {
+            continue;
+        }
         let inst = rd.p.instances.known(&id);
         let Some((entity, r)) = ["ADVANCED_FACE", "FACE_SURFACE"]
             .iter()

@@ -517,3 +517,118 @@ fn unsorted_ids_are_sorted_with_their_instances() {
     assert_eq!(p.instances.known(&5).get("C").unwrap(), &[P::Num(1.0)]);
     assert_eq!(p.instances.known(&9).line(), 3);
 }
+
+/// An assembly: a bracket placed twice in the root (turned a quarter about z and moved to
+/// x = 10; moved to z = 5), and a pin in a sub-assembly (pin at x = 1 in the sub-assembly,
+/// written with the parent's representation first; the sub-assembly at y = 100 in the root).
+const ASSEMBLY: &str = "ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION((''),'2;1');
+FILE_NAME('a','2024-01-01T00:00:00',(''),(''),'','','');
+FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));
+ENDSEC;
+DATA;
+#10 = PRODUCT_DEFINITION('root','',$,$);
+#11 = PRODUCT_DEFINITION('bracket','',$,$);
+#12 = PRODUCT_DEFINITION('sub','',$,$);
+#13 = PRODUCT_DEFINITION('pin','',$,$);
+#20 = PRODUCT_DEFINITION_SHAPE('','',#10);
+#21 = PRODUCT_DEFINITION_SHAPE('','',#11);
+#22 = PRODUCT_DEFINITION_SHAPE('','',#12);
+#23 = PRODUCT_DEFINITION_SHAPE('','',#13);
+#30 = SHAPE_REPRESENTATION('root',(#100),#99);
+#31 = SHAPE_REPRESENTATION('bracket',(#110),#99);
+#32 = SHAPE_REPRESENTATION('sub',(#113),#99);
+#33 = SHAPE_REPRESENTATION('pin',(#117,#65),#99);
+#35 = GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#60),#99);
+#36 = SHAPE_REPRESENTATION_RELATIONSHIP('','',#31,#35);
+#40 = SHAPE_DEFINITION_REPRESENTATION(#20,#30);
+#41 = SHAPE_DEFINITION_REPRESENTATION(#21,#31);
+#42 = SHAPE_DEFINITION_REPRESENTATION(#22,#32);
+#43 = SHAPE_DEFINITION_REPRESENTATION(#23,#33);
+#50 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','b1','',#10,#11,$);
+#51 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('2','b2','',#10,#11,$);
+#52 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('3','s','',#10,#12,$);
+#53 = NEXT_ASSEMBLY_USAGE_OCCURRENCE('4','p','',#12,#13,$);
+#54 = PRODUCT_DEFINITION_SHAPE('','',#50);
+#55 = PRODUCT_DEFINITION_SHAPE('','',#51);
+#56 = PRODUCT_DEFINITION_SHAPE('','',#52);
+#57 = PRODUCT_DEFINITION_SHAPE('','',#53);
+#60 = B_SPLINE_CURVE_WITH_KNOTS('bracket edge',1,(#61,#62),.UNSPECIFIED.,.F.,.F.,(2,2),(0.,1.),.UNSPECIFIED.);
+#61 = CARTESIAN_POINT('',(0.,0.,0.));
+#62 = CARTESIAN_POINT('',(1.,0.,0.));
+#65 = B_SPLINE_CURVE_WITH_KNOTS('pin edge',1,(#66,#67),.UNSPECIFIED.,.F.,.F.,(2,2),(0.,1.),.UNSPECIFIED.);
+#66 = CARTESIAN_POINT('',(0.,0.,0.));
+#67 = CARTESIAN_POINT('',(0.,0.,1.));
+#70 = ITEM_DEFINED_TRANSFORMATION('','',#110,#111);
+#71 = ITEM_DEFINED_TRANSFORMATION('','',#110,#112);
+#72 = ITEM_DEFINED_TRANSFORMATION('','',#113,#114);
+#73 = ITEM_DEFINED_TRANSFORMATION('','',#116,#117);
+#80 = ( REPRESENTATION_RELATIONSHIP('','',#31,#30) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#70) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#81 = ( REPRESENTATION_RELATIONSHIP('','',#31,#30) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#71) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#82 = ( REPRESENTATION_RELATIONSHIP('','',#32,#30) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#72) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#83 = ( REPRESENTATION_RELATIONSHIP('','',#32,#33) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#73) SHAPE_REPRESENTATION_RELATIONSHIP() );
+#90 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#80,#54);
+#91 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#81,#55);
+#92 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#82,#56);
+#93 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#83,#57);
+#97 = CARTESIAN_POINT('',(0.,0.,0.));
+#98 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );
+#99 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#98)) REPRESENTATION_CONTEXT('','') );
+#100 = AXIS2_PLACEMENT_3D('',#97,$,$);
+#110 = AXIS2_PLACEMENT_3D('',#97,$,$);
+#111 = AXIS2_PLACEMENT_3D('',#120,#121,#122);
+#112 = AXIS2_PLACEMENT_3D('',#123,$,$);
+#113 = AXIS2_PLACEMENT_3D('',#97,$,$);
+#114 = AXIS2_PLACEMENT_3D('',#124,$,$);
+#116 = AXIS2_PLACEMENT_3D('',#125,$,$);
+#117 = AXIS2_PLACEMENT_3D('',#97,$,$);
+#120 = CARTESIAN_POINT('',(10.,0.,0.));
+#121 = DIRECTION('',(0.,0.,1.));
+#122 = DIRECTION('',(0.,1.,0.));
+#123 = CARTESIAN_POINT('',(0.,0.,5.));
+#124 = CARTESIAN_POINT('',(0.,100.,0.));
+#125 = CARTESIAN_POINT('',(1.,0.,0.));
+ENDSEC;
+END-ISO-10303-21;
+";
+
+#[test]
+fn parts_of_an_assembly_are_read_at_each_of_their_placements() {
+    let r = read_step(ASSEMBLY, "assembly.step").unwrap();
+    let ends: Vec<(u64, Vec<f64>)> = r
+        .shapes
+        .iter()
+        .map(|(id, s)| match s {
+            Shape::Curve(Object::BSpline(c)) => (*id, c.control_points().as_slice().to_vec()),
+            other => panic!("#{id}: {other:?}"),
+        })
+        .collect();
+    let near = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-14);
+    assert_eq!(ends.len(), 3, "{ends:?}");
+    // the bracket at both its occurrences, in the order written
+    assert_eq!(ends[0].0, 60);
+    assert!(
+        near(&ends[0].1, &[10.0, 0.0, 0.0, 10.0, 1.0, 0.0]),
+        "{ends:?}"
+    );
+    assert_eq!(ends[1].0, 60);
+    assert!(
+        near(&ends[1].1, &[0.0, 0.0, 5.0, 1.0, 0.0, 5.0]),
+        "{ends:?}"
+    );
+    // the pin through the sub-assembly
+    assert_eq!(ends[2].0, 65);
+    assert!(
+        near(&ends[2].1, &[1.0, 100.0, 0.0, 1.0, 100.0, 1.0]),
+        "{ends:?}"
+    );
+    // without the occurrences, every instance is read once, as written
+    let flat: String = ASSEMBLY
+        .lines()
+        .filter(|l| !l.contains("NEXT_ASSEMBLY_USAGE_OCCURRENCE"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let r = read_step(&flat, "parts.step").unwrap();
+    assert_eq!(r.shapes.len(), 2);
+}
