@@ -11,10 +11,21 @@
 //   offset_arc         the same for a rational half circle of radius 1
 //   mesh_50x50         BRepMesh_IncrementalMesh of a bicubic 50x50-patch face, deflection 1e-4
 //
+// Mode `ssi` (occt_queries ssi REPEATS DIR): the surface-surface workloads of
+// examples/query_peer.rs, read from the files DIR/ssi_NAME.txt that `query_peer ssi REPEATS DIR`
+// writes (the exact NURBS nets: poles, weights, knots; or a plane), intersected by
+// GeomAPI_IntSS at the tolerance given there (median of REPEATS runs, more for a fast one). Each
+// line of the answer is sampled at 1,000 parameters (written to DIR/occt_ssi_NAME.txt for
+// query_peer to measure exactly) and measured with GeomAPI_ProjectPointOnSurf against both
+// surfaces; its length is GCPnts_AbscissaPoint::Length, and the lines are chained end to end
+// (ends within 1e-5) to count the loops. lekalo's points (DIR/lekalo_ssi_NAME.txt) are
+// measured the same way.
+//
 // Build (Debian: libocct-modeling-algorithms-dev libocct-modeling-data-dev):
 //   g++ -O2 -std=c++17 -I/usr/include/opencascade bench/peers/occt_queries.cpp -o occt_queries \
 //     -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
 // Usage: occt_queries [REPEATS] [PROJECT_POINTS] [ANSWERS_DIR]
+//        occt_queries ssi REPEATS DIR
 // With ANSWERS_DIR, the answers are written there for bench/peers/compare_queries.py:
 // occt_project.txt (the distance of each projected point) and occt_intersect.txt (t_a t_b x y
 // of each intersection point); and the meshed face, occt_mesh.brep, for
@@ -28,7 +39,11 @@
 #include <Geom2d_OffsetCurve.hxx>
 #include <IntRes2d_IntersectionPoint.hxx>
 #include <Geom2d_BSplineCurve.hxx>
+#include <GeomAPI_IntSS.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_Plane.hxx>
+#include <TColStd_Array2OfReal.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -76,7 +91,149 @@ static void clamped(int n, TColStd_Array1OfReal &k, TColStd_Array1OfInteger &m) 
   }
 }
 
+// a surface of an ssi_NAME.txt file: "du dv nu nv", the full knot vectors in u and in v, then
+// "x y z w" of each pole, (i, j) at line i*nv + j; or "plane ox oy oz nx ny nz"
+static Handle(Geom_Surface) read_surface(std::ifstream &in) {
+  std::string first;
+  in >> first;
+  if (first == "plane") {
+    double o[3], n[3];
+    in >> o[0] >> o[1] >> o[2] >> n[0] >> n[1] >> n[2];
+    return new Geom_Plane(gp_Pnt(o[0], o[1], o[2]), gp_Dir(n[0], n[1], n[2]));
+  }
+  int du = std::stoi(first), dv, nu, nv;
+  in >> dv >> nu >> nv;
+  auto knots = [&](int count, std::vector<double> &k, std::vector<int> &m) {
+    for (int i = 0; i < count; ++i) {
+      double x;
+      in >> x;
+      if (!k.empty() && x == k.back()) ++m.back();
+      else k.push_back(x), m.push_back(1);
+    }
+  };
+  std::vector<double> ku, kv;
+  std::vector<int> mu, mv;
+  knots(nu + du + 1, ku, mu);
+  knots(nv + dv + 1, kv, mv);
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  TColStd_Array2OfReal w(1, nu, 1, nv);
+  for (int i = 1; i <= nu; ++i)
+    for (int j = 1; j <= nv; ++j) {
+      double x, y, z, ww;
+      in >> x >> y >> z >> ww;
+      poles.SetValue(i, j, gp_Pnt(x, y, z));
+      w.SetValue(i, j, ww);
+    }
+  TColStd_Array1OfReal aku(1, (int)ku.size()), akv(1, (int)kv.size());
+  TColStd_Array1OfInteger amu(1, (int)mu.size()), amv(1, (int)mv.size());
+  for (size_t i = 0; i < ku.size(); ++i) aku.SetValue(i + 1, ku[i]), amu.SetValue(i + 1, mu[i]);
+  for (size_t i = 0; i < kv.size(); ++i) akv.SetValue(i + 1, kv[i]), amv.SetValue(i + 1, mv[i]);
+  return new Geom_BSplineSurface(poles, w, aku, akv, amu, amv, du, dv);
+}
+
+// distance of p to surface s by GeomAPI_ProjectPointOnSurf (-1 when it finds no point)
+static double surface_distance(const gp_Pnt &p, const Handle(Geom_Surface) &s) {
+  GeomAPI_ProjectPointOnSurf proj(p, s);
+  return proj.NbPoints() > 0 ? proj.LowerDistance() : -1.0;
+}
+
+static int ssi(int repeats, const std::string &dir) {
+  for (const char *name : {"ssi_sphere_cylinder", "section_torus", "ssi_cylinders"}) {
+    std::ifstream in(dir + "/ssi_" + name + ".txt");
+    if (!in) {
+      std::fprintf(stderr, "occt_queries ssi: no %s/ssi_%s.txt; run query_peer ssi first\n",
+                   dir.c_str(), name);
+      return 1;
+    }
+    std::string word, case_name;
+    double tol = 0.0;
+    in >> word >> case_name >> tol;
+    Handle(Geom_Surface) a = read_surface(in), b = read_surface(in);
+    int lines = 0;
+    bool done = false;
+    double t = median_s(repeats, [&] {
+      GeomAPI_IntSS inter(a, b, tol);
+      done = inter.IsDone();
+      lines = done ? inter.NbLines() : -1;
+    });
+    GeomAPI_IntSS inter(a, b, tol);
+    std::FILE *f = std::fopen((dir + "/occt_ssi_" + name + ".txt").c_str(), "w");
+    double da = 0.0, db = 0.0;
+    std::string facts;
+    std::vector<std::pair<gp_Pnt, gp_Pnt>> ends;
+    std::vector<double> lengths;
+    for (int i = 1; done && i <= inter.NbLines(); ++i) {
+      Handle(Geom_Curve) c = inter.Line(i);
+      double t0 = c->FirstParameter(), t1 = c->LastParameter();
+      std::fprintf(f, "branch %d\n", i - 1);
+      const int m = 1000;
+      for (int k = 0; k < m; ++k) {
+        gp_Pnt p = c->Value(t0 + (t1 - t0) * k / (m - 1));
+        std::fprintf(f, "%.17g %.17g %.17g\n", p.X(), p.Y(), p.Z());
+        da = std::max(da, surface_distance(p, a));
+        db = std::max(db, surface_distance(p, b));
+      }
+      GeomAdaptor_Curve ad(c);
+      double len = GCPnts_AbscissaPoint::Length(ad, 1e-9);
+      lengths.push_back(len);
+      ends.emplace_back(c->Value(t0), c->Value(t1));
+      char buf[160];
+      std::snprintf(buf, sizeof buf, " [%s%s length %.9f]", c->DynamicType()->Name(),
+                    c->Value(t0).Distance(c->Value(t1)) <= 1e-5 ? " closed" : "", len);
+      facts += buf;
+    }
+    std::fclose(f);
+    // chain the lines end to end into loops (ends within 1e-5)
+    int n = (int)ends.size(), loops = 0;
+    std::vector<bool> used(n, false);
+    std::string loop_lengths;
+    for (int s0 = 0; s0 < n; ++s0) {
+      if (used[s0]) continue;
+      used[s0] = true;
+      double len = lengths[s0];
+      gp_Pnt head = ends[s0].first, tail = ends[s0].second;
+      for (bool grew = true; grew && head.Distance(tail) > 1e-5;) {
+        grew = false;
+        for (int j = 0; j < n; ++j) {
+          if (used[j]) continue;
+          if (ends[j].first.Distance(tail) <= 1e-5) tail = ends[j].second;
+          else if (ends[j].second.Distance(tail) <= 1e-5) tail = ends[j].first;
+          else continue;
+          used[j] = true, grew = true, len += lengths[j];
+          break;
+        }
+      }
+      ++loops;
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " %.9f%s", len, head.Distance(tail) <= 1e-5 ? " closed" : "");
+      loop_lengths += buf;
+    }
+    // lekalo's points measured the same way
+    double la = 0.0, lb = 0.0;
+    long lp = 0;
+    std::ifstream lk(dir + "/lekalo_ssi_" + name + ".txt");
+    std::string line;
+    while (std::getline(lk, line)) {
+      if (line.rfind("branch", 0) == 0) continue;
+      double x, y, z;
+      if (std::sscanf(line.c_str(), "%lf %lf %lf", &x, &y, &z) != 3) continue;
+      gp_Pnt p(x, y, z);
+      la = std::max(la, surface_distance(p, a));
+      lb = std::max(lb, surface_distance(p, b));
+      ++lp;
+    }
+    std::printf("%s %.6e s lines %d%s chained into %d:%s; max distance to A %.3e to B %.3e\n",
+                name, t, lines, facts.c_str(), loops, loop_lengths.c_str(), da, db);
+    if (lp > 0)
+      std::printf("occt-check %s lekalo's %ld points: max distance to A %.3e to B %.3e "
+                  "(GeomAPI_ProjectPointOnSurf)\n", name, lp, la, lb);
+  }
+  return 0;
+}
+
 int main(int argc, char **argv) {
+  if (argc > 1 && std::string(argv[1]) == "ssi")
+    return ssi(argc > 2 ? std::atoi(argv[2]) : 5, argc > 3 ? argv[3] : "target/peers-occt/answers");
   int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
   int nproj = argc > 2 ? std::atoi(argv[2]) : 100000;
   std::string answers = argc > 3 ? argv[3] : "";

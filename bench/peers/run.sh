@@ -95,6 +95,12 @@ if occt_build occt_queries GeomAPI_ProjectPointOnCurve.hxx -lTKMesh -lTKTopAlgo 
   target/release/examples/query_peer "$repeats" 100000 "$answers"
   target/peers-occt/occt_queries "$repeats" "${OCCT_QUERY_POINTS:-1000}" "$answers"
   target/release/examples/query_peer "$repeats" | sed 's/^lekalo /lekalo-after /'
+  # surface-surface intersection: query_peer writes the surfaces' nets for occt_queries, which
+  # measures both sides' points with GeomAPI_ProjectPointOnSurf; lekalo's second run measures
+  # Open CASCADE's points with the exact distances (docs/performance/queries.md)
+  target/release/examples/query_peer ssi "$repeats" "$answers"
+  target/peers-occt/occt_queries ssi "$repeats" "$answers"
+  target/release/examples/query_peer ssi "$repeats" "$answers" | sed 's/^lekalo /lekalo-after /'
   uptime
   python3 bench/peers/compare_queries.py "$answers"
   # the true deviation of Open CASCADE's mesh (the face occt_queries wrote to $answers), and

@@ -8,7 +8,7 @@
 //! - `mesh_50x50`: a bicubic surface with 50×50 patches meshed to 1e-4 of its size;
 //! - `ssi_sphere_cylinder`: the unit sphere and a cylinder of radius 0.6 about its axis (exact
 //!   NURBS), intersected to 1e-6 (two circles); `section_torus`: a torus cut by an oblique
-//!   plane to 1e-6 (no peer program yet).
+//!   plane to 1e-6 (Open CASCADE's side: `occt_queries ssi`, with `query_peer ssi`).
 //!
 //! Run: `cargo bench -p lekalo --bench query`. Smoke: `cargo test -p lekalo --benches`.
 

@@ -4,14 +4,14 @@
 //! tangency of the surfaces or where the branch closes (Barnhill and Kersey 1990).
 
 use super::super::super::pieces::{dist, dot};
-use super::super::segment_distance;
+use super::segment_distance3;
 use super::system::{newton, tangent, Jet, System, K};
 use crate::error::{Error, Result};
 
 /// Most points of one branch (reaching it is [`Error::TooLarge`]).
 pub(super) const MAX_BRANCH_POINTS: usize = 1 << 20;
 /// Longest step, relative to the surfaces' scale.
-const MAX_STEP: f64 = 0.05;
+pub(super) const MAX_STEP: f64 = 0.05;
 /// Shortest step, relative to the scale: a step halved below it ends the branch.
 const MIN_STEP: f64 = 1e-9;
 /// Largest turning of the tangent over one step (radians): a step turning more is halved, so a
@@ -210,7 +210,7 @@ impl March<'_> {
             if xs.len() >= 3 {
                 let start = ps[0];
                 let near =
-                    segment_distance(&start, &jet.p, &jn.p) <= 2.0 * self.tol + 1e-12 * self.scale;
+                    segment_distance3(&start, &jet.p, &jn.p) <= 2.0 * self.tol + 1e-12 * self.scale;
                 let between = dot(
                     &[
                         start[0] - jet.p[0],

@@ -19,12 +19,13 @@ use super::super::pieces::{check_tolerance, dist};
 use super::super::project::check_query;
 use super::super::surface::QuerySurface;
 use super::refine::order_from_growth;
-use super::{segment_distance, Contact};
+use super::Contact;
 use crate::error::{Error, Result};
 use crate::fit::{fit_tolerance, Deviation, ToleranceOptions};
 use crate::interpolate::Parametrization;
 use crate::{BSplineCurve, Points, PointsRef};
 use march::{March, Stop, Traced, SIN_STOP};
+use rayon::prelude::*;
 use seeds::Found;
 use system::{norm, surface_jet, PlaneSection, TwoSurfaces, K};
 
@@ -234,6 +235,82 @@ fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
     Ok(())
 }
 
+/// The segments of the traced branches in a uniform grid of cubes, each segment listed in every
+/// cube its box widened by `cover` meets, so that whether a point lies within `cover` of a
+/// branch is decided by the segments of its own cube (the search of [`assemble`] for starting
+/// points not yet on a branch, in time independent of the branches' length).
+struct SegmentGrid {
+    cover: f64,
+    cell: f64,
+    cells: std::collections::HashMap<[i64; 3], Vec<(usize, usize)>>,
+}
+
+impl SegmentGrid {
+    /// A grid of cubes of side `cell` (at least `4 cover`; the longest step of the marching
+    /// keeps a segment within a few cubes).
+    fn new(cover: f64, cell: f64) -> Self {
+        SegmentGrid {
+            cover,
+            cell: cell.max(4.0 * cover),
+            cells: std::collections::HashMap::new(),
+        }
+    }
+
+    // `as` saturates: a coordinate beyond 2^63 cells (not met: coordinates are finite and the
+    // cell a fraction of the scale) shares the last cell, which only costs comparisons
+    #[allow(clippy::cast_possible_truncation)]
+    fn key(&self, x: f64) -> i64 {
+        (x / self.cell).floor() as i64
+    }
+
+    /// Lists the segments (or the single point) of branch `b`.
+    fn insert(&mut self, b: usize, ps: &[[f64; 3]]) {
+        let segs = ps.len().saturating_sub(1).max(1);
+        for s in 0..segs {
+            let (p, q) = (ps[s], ps[(s + 1).min(ps.len() - 1)]);
+            let lo: Vec<i64> = (0..3)
+                .map(|c| self.key(p[c].min(q[c]) - self.cover))
+                .collect();
+            let hi: Vec<i64> = (0..3)
+                .map(|c| self.key(p[c].max(q[c]) + self.cover))
+                .collect();
+            for i in lo[0]..=hi[0] {
+                for j in lo[1]..=hi[1] {
+                    for k in lo[2]..=hi[2] {
+                        self.cells.entry([i, j, k]).or_default().push((b, s));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether `p` lies within `cover` of a listed segment of `traced`.
+    fn covers(&self, p: &[f64; 3], traced: &[Traced]) -> bool {
+        let key = [self.key(p[0]), self.key(p[1]), self.key(p[2])];
+        self.cells.get(&key).is_some_and(|list| {
+            list.iter().any(|&(b, s)| {
+                let ps = &traced[b].ps;
+                let n = ps.len();
+                segment_distance3(p, &ps[s], &ps[(s + 1).min(n - 1)]) <= self.cover
+            })
+        })
+    }
+}
+
+/// Distance from `x` to the segment `[a, b]` in space.
+pub(super) fn segment_distance3(x: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let ax = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    let t = if l2 > 0.0 {
+        ((ax[0] * ab[0] + ax[1] * ab[1] + ax[2] * ab[2]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let d = [ax[0] - t * ab[0], ax[1] - t * ab[1], ax[2] - t * ab[2]];
+    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+}
+
 /// Traces the branches from the starting points and builds the answers: crossing branches
 /// (fitted), tangent points and lines, the overlap. `probe(x, p)` is the distance of a point
 /// `p` of the first surface (near the section point `x`) to the second object; `uv_b` the
@@ -242,7 +319,7 @@ fn assemble(
     march: &March<'_>,
     found: Found,
     probe: &dyn Fn(&[f64; K], &[f64; 3]) -> f64,
-    uv_b: impl Fn(&[f64; K]) -> [f64; 2],
+    uv_b: impl Fn(&[f64; K]) -> [f64; 2] + Sync,
     two: bool,
 ) -> Result<Vec<IntersectionBranch>> {
     let sys = march.sys;
@@ -251,21 +328,18 @@ fn assemble(
     let mut traced: Vec<Traced> = Vec::new();
     // tangent candidates: (x, p, sine)
     let mut touch: Vec<([f64; K], [f64; 3], f64)> = Vec::new();
+    let mut grid = SegmentGrid::new(cover, march::MAX_STEP * scale);
     for x in &found.seeds {
         let Some(jet) = sys.jet(x) else { continue };
         if jet.sin < SIN_STOP {
             touch.push((*x, jet.p, jet.sin));
             continue;
         }
-        let covered = traced.iter().any(|t| {
-            t.ps.windows(2)
-                .any(|w| segment_distance(&jet.p, &w[0], &w[1]) <= cover)
-                || (t.ps.len() == 1 && dist(&t.ps[0], &jet.p) <= cover)
-        });
-        if covered {
+        if grid.covers(&jet.p, &traced) {
             continue;
         }
         let t = march.branch(*x, &jet)?;
+        grid.insert(traced.len(), &t.ps);
         for (end, stop) in [(0, t.stops[0]), (t.xs.len() - 1, t.stops[1])] {
             if stop == Stop::Tangent {
                 let s = sys.jet(&t.xs[end]).map_or(0.0, |j| j.sin);
@@ -274,31 +348,38 @@ fn assemble(
         }
         traced.push(t);
     }
+    // the branches' fits are independent: in parallel
+    let fitted: Vec<Result<Option<IntersectionBranch>>> = traced
+        .into_par_iter()
+        .map(|t| {
+            let n = t.ps.len();
+            if n < 2 {
+                return Ok(None);
+            }
+            let closed = t.stops[0] == Stop::Closed || dist(&t.ps[0], &t.ps[n - 1]) <= tol;
+            let uv_a: Vec<[f64; 2]> = t.xs.iter().map(|x| [x[0], x[1]]).collect();
+            let uvb: Vec<[f64; 2]> = if two {
+                t.xs.iter().map(&uv_b).collect()
+            } else {
+                Vec::new()
+            };
+            let (curve, ca, cb) = fit_branch(march, &t, two)?;
+            Ok(Some(IntersectionBranch {
+                kind: Contact::Crossing,
+                closed,
+                points: t.ps,
+                uv_a,
+                uv_b: uvb,
+                curve: Some(curve),
+                curve_uv_a: Some(ca),
+                curve_uv_b: cb,
+                tolerance: tol,
+            }))
+        })
+        .collect();
     let mut out = Vec::new();
-    for t in traced {
-        let n = t.ps.len();
-        if n < 2 {
-            continue;
-        }
-        let closed = t.stops[0] == Stop::Closed || dist(&t.ps[0], &t.ps[n - 1]) <= tol;
-        let uv_a: Vec<[f64; 2]> = t.xs.iter().map(|x| [x[0], x[1]]).collect();
-        let uvb: Vec<[f64; 2]> = if two {
-            t.xs.iter().map(&uv_b).collect()
-        } else {
-            Vec::new()
-        };
-        let (curve, ca, cb) = fit_branch(march, &t, two)?;
-        out.push(IntersectionBranch {
-            kind: Contact::Crossing,
-            closed,
-            points: t.ps,
-            uv_a,
-            uv_b: uvb,
-            curve: Some(curve),
-            curve_uv_a: Some(ca),
-            curve_uv_b: cb,
-            tolerance: tol,
-        });
+    for b in fitted {
+        out.extend(b?);
     }
     // tangent points: single-linkage groups within the merge distance
     let merge = TANGENT_MERGE * scale;

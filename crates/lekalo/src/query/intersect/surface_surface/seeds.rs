@@ -224,9 +224,20 @@ pub(super) fn surface_seeds(
         let da = dist(&box_a[..3], &box_a[3..]);
         let db = dist(&box_b[..3], &box_b[3..]);
         let size = da.max(db);
-        let free = loop_free(normal_cone(sa, &pair.a.2), normal_cone(sb, &pair.b.2));
-        if (free && size <= LEAF * scale) || size <= TINY * scale || pair.depth >= MAX_DEPTH {
-            leaf_seeds(sa, sb, &pair, sys, eps, tol, &mut found.seeds);
+        // the cones decide only among pairs small enough to be leaves
+        let free = size <= LEAF * scale
+            && loop_free(normal_cone(sa, &pair.a.2), normal_cone(sb, &pair.b.2));
+        if free || size <= TINY * scale || pair.depth >= MAX_DEPTH {
+            leaf_seeds(
+                sa,
+                sb,
+                &pair,
+                (&box_a, &box_b),
+                sys,
+                eps,
+                tol,
+                &mut found.seeds,
+            );
             continue;
         }
         if !free
@@ -275,13 +286,35 @@ pub(super) fn surface_seeds(
     Ok(found)
 }
 
+/// Whether the side of a sub-patch net (`i = 0`, `i = p`, `j = 0`, `j = q` for `side` 0 to 3) can
+/// meet the box `other` (minima then maxima) within `tol`: the box of the side's control points
+/// holds the side (convex hull property, positive weights) and must overlap it.
+fn side_meets(s: &QuerySurface, net: &[f64], side: usize, other: &[f64], tol: f64) -> bool {
+    let (p, q) = (s.p, s.q);
+    let pts: Vec<[f64; 3]> = match side {
+        0 => (0..=q).map(|j| net_point(s, net, 0, j)).collect(),
+        1 => (0..=q).map(|j| net_point(s, net, p, j)).collect(),
+        2 => (0..=p).map(|i| net_point(s, net, i, 0)).collect(),
+        _ => (0..=p).map(|i| net_point(s, net, i, q)).collect(),
+    };
+    (0..3).all(|c| {
+        let lo = pts.iter().map(|x| x[c]).fold(f64::INFINITY, f64::min);
+        let hi = pts.iter().map(|x| x[c]).fold(f64::NEG_INFINITY, f64::max);
+        lo <= other[3 + c] + tol && other[c] <= hi + tol
+    })
+}
+
 /// Seeds of a leaf pair: Newton's method with one unknown held on each of the eight sides of the
-/// two sub-patches (from the side's middle and the other's middle), and the free minimum-norm
-/// Newton from both middles; the points it reaches within a tenth of the tolerance.
+/// two sub-patches (from the side's middle and the other's middle) whose control points' box
+/// meets the other sub-patch's box (a side that does not cannot hold a point of the
+/// intersection), and the free minimum-norm Newton from both middles; the points it reaches
+/// within a tenth of the tolerance.
+#[allow(clippy::too_many_arguments)]
 fn leaf_seeds(
     sa: &QuerySurface,
     sb: &QuerySurface,
     pair: &Pair,
+    (box_a, box_b): (&[f64], &[f64]),
     sys: &dyn System,
     eps: f64,
     tol: f64,
@@ -315,7 +348,15 @@ fn leaf_seeds(
         }
     };
     push(newton(sys, mid, None, None, eps));
-    for (i, value) in sides {
+    for (n, (i, value)) in sides.into_iter().enumerate() {
+        let meets = if n < 4 {
+            side_meets(sa, &pair.a.2, n, box_b, tol)
+        } else {
+            side_meets(sb, &pair.b.2, n - 4, box_a, tol)
+        };
+        if !meets {
+            continue;
+        }
         let mut x = mid;
         x[i] = value;
         push(newton(sys, x, Some(i), None, eps));

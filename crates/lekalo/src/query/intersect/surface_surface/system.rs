@@ -32,7 +32,7 @@ impl Jet {
 }
 
 /// A section's equations.
-pub(super) trait System {
+pub(super) trait System: Sync {
     /// Number of unknowns (2 or 4).
     fn k(&self) -> usize;
     /// The parameter box, one interval per unknown.
@@ -43,19 +43,90 @@ pub(super) trait System {
     fn first(&self) -> &QuerySurface;
 }
 
+/// Patches of degree up to this in both directions are evaluated on the stack
+/// ([`patch_first_order`]); higher degrees by `QuerySurface::eval_patch`.
+const STACK_DEGREE: usize = 7;
+
+/// Value and first derivative of the Bézier curve of `n + 1` points of `hd ≤ 4` scalars
+/// (`n ≤ STACK_DEGREE`) at `t`: de Casteljau down to two points `b₀, b₁`, the value
+/// `(1 − t) b₀ + t b₁`, the derivative `n (b₁ − b₀)` (P&T §1.4, eq. 1.9).
+fn bezier_first(ctrl: &[f64], hd: usize, t: f64) -> ([f64; 4], [f64; 4]) {
+    let n = ctrl.len() / hd - 1;
+    let mut b = [[0.0; 4]; STACK_DEGREE + 1];
+    for (i, row) in b.iter_mut().enumerate().take(n + 1) {
+        row[..hd].copy_from_slice(&ctrl[i * hd..(i + 1) * hd]);
+    }
+    if n == 0 {
+        return (b[0], [0.0; 4]);
+    }
+    for level in 0..n - 1 {
+        for i in 0..n - level {
+            for d in 0..hd {
+                b[i][d] = (1.0 - t) * b[i][d] + t * b[i + 1][d];
+            }
+        }
+    }
+    let (mut val, mut der) = ([0.0; 4], [0.0; 4]);
+    for d in 0..hd {
+        val[d] = (1.0 - t) * b[0][d] + t * b[1][d];
+        der[d] = n as f64 * (b[1][d] - b[0][d]);
+    }
+    (val, der)
+}
+
+/// Normalised point and local first derivatives of a (homogeneous, `hd` scalars a point) Bézier
+/// patch net of degrees `(p, q) ≤ STACK_DEGREE` at local `(u, v)`, without allocating: every
+/// row's value and `v` derivative, then the `u` curves through them (P&T §3.4), then the
+/// quotient rule for a rational patch (P&T eq. 4.20).
+fn patch_first_order(
+    net: &[f64],
+    (p, q, hd): (usize, usize, usize),
+    rational: bool,
+    u: f64,
+    v: f64,
+) -> [[f64; 3]; 3] {
+    let mut rows = [0.0; (STACK_DEGREE + 1) * 4];
+    let mut rows_v = [0.0; (STACK_DEGREE + 1) * 4];
+    for i in 0..=p {
+        let (a, av) = bezier_first(&net[i * (q + 1) * hd..(i + 1) * (q + 1) * hd], hd, v);
+        rows[i * hd..(i + 1) * hd].copy_from_slice(&a[..hd]);
+        rows_v[i * hd..(i + 1) * hd].copy_from_slice(&av[..hd]);
+    }
+    let (s, su) = bezier_first(&rows[..(p + 1) * hd], hd, u);
+    let (sv, _) = bezier_first(&rows_v[..(p + 1) * hd], hd, u);
+    if !rational {
+        return [
+            [s[0], s[1], s[2]],
+            [su[0], su[1], su[2]],
+            [sv[0], sv[1], sv[2]],
+        ];
+    }
+    let w = s[3];
+    let pt = [s[0] / w, s[1] / w, s[2] / w];
+    let mut out = [pt, [0.0; 3], [0.0; 3]];
+    for d in 0..3 {
+        out[1][d] = (su[d] - su[3] * pt[d]) / w;
+        out[2][d] = (sv[d] - sv[3] * pt[d]) / w;
+    }
+    out
+}
+
 /// Point, `S_u` and `S_v` of a surface at global `(u, v)` (original coordinates): the patch
 /// holding it (`QuerySurface::locate`) and its local derivatives over the patch's widths.
 pub(super) fn surface_jet(s: &QuerySurface, u: f64, v: f64) -> Option<[[f64; 3]; 3]> {
     let (k, lu, lv) = s.locate(u, v).ok()?;
     let ((u0, u1), (v0, v1)) = s.ranges[k];
-    let (p, d) = s.eval_patch(k, lu, lv);
+    let [pt, du, dv] = if s.p <= STACK_DEGREE && s.q <= STACK_DEGREE && s.hd <= 4 && s.dim == 3 {
+        patch_first_order(s.patch(k), (s.p, s.q, s.hd), s.rational, lu, lv)
+    } else {
+        let (p, d) = s.eval_patch(k, lu, lv);
+        [[p[0], p[1], p[2]], [d[0], d[1], d[2]], [d[3], d[4], d[5]]]
+    };
     let mut out = [[0.0; 3]; 3];
-    let mut q = [0.0; 3];
-    s.denormalise(&p, &mut q);
-    out[0] = q;
+    s.denormalise(&pt, &mut out[0]);
     for c in 0..3 {
-        out[1][c] = d[c] * s.scale / (u1 - u0);
-        out[2][c] = d[3 + c] * s.scale / (v1 - v0);
+        out[1][c] = du[c] * s.scale / (u1 - u0);
+        out[2][c] = dv[c] * s.scale / (v1 - v0);
     }
     Some(out)
 }
@@ -335,4 +406,56 @@ pub(super) fn newton(
         }
     }
     Some((best.1, best.2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{patch_first_order, surface_jet};
+    use crate::surface::Placement;
+    use crate::{BSplineSurface, KnotVector, NurbsSurface, Points, QuerySurface};
+
+    /// The stack evaluation agrees with the general one (`eval_patch`, second derivatives and
+    /// allocation) on a rational torus and a bicubic net, at points over several patches.
+    #[test]
+    fn first_order_matches_general_evaluation() {
+        let f = Placement::new([0.3, -0.2, 0.1], None, None).unwrap();
+        let torus = NurbsSurface::torus(&f, 3.0, 1.0, (0.0, 6.0), (0.0, 5.0)).unwrap();
+        let net: Vec<f64> = (0..6 * 5)
+            .flat_map(|k| {
+                let (i, j) = ((k / 5) as f64, (k % 5) as f64);
+                [i, j, (0.7 * i).sin() * (0.4 * j).cos()]
+            })
+            .collect();
+        let bicubic = BSplineSurface::from_knot_vectors(
+            3,
+            3,
+            KnotVector::clamped_uniform(3, 6).unwrap(),
+            KnotVector::clamped_uniform(3, 5).unwrap(),
+            Points::from_flat(3, net).unwrap(),
+            (6, 5),
+        )
+        .unwrap();
+        for s in [
+            QuerySurface::from_nurbs(&torus).unwrap(),
+            QuerySurface::from_bspline(&bicubic).unwrap(),
+        ] {
+            let ((u0, u1), (v0, v1)) = s.domain();
+            for k in 0..50 {
+                let (a, b) = (
+                    (0.618_033_988_749_895 * f64::from(k)).fract(),
+                    (0.754_877_666_246_693 * f64::from(k)).fract(),
+                );
+                let (u, v) = (u0 + a * (u1 - u0), v0 + b * (v1 - v0));
+                let (patch, lu, lv) = s.locate(u, v).unwrap();
+                let fast = patch_first_order(s.patch(patch), (s.p, s.q, s.hd), s.rational, lu, lv);
+                let (p, d) = s.eval_patch(patch, lu, lv);
+                for c in 0..3 {
+                    assert!((fast[0][c] - p[c]).abs() <= 1e-14, "{k} {c}");
+                    assert!((fast[1][c] - d[c]).abs() <= 1e-13 * (1.0 + d[c].abs()));
+                    assert!((fast[2][c] - d[3 + c]).abs() <= 1e-13 * (1.0 + d[3 + c].abs()));
+                }
+                assert!(surface_jet(&s, u, v).is_some());
+            }
+        }
+    }
 }

@@ -39,7 +39,7 @@ fn covered(branches: &[IntersectionBranch], p: &[f64; 3], d: f64) -> bool {
     branches.iter().any(|b| {
         b.points
             .windows(2)
-            .any(|w| super::segment_distance(p, &w[0], &w[1]) <= d)
+            .any(|w| super::segment_distance3(p, &w[0], &w[1]) <= d)
     })
 }
 
