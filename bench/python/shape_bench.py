@@ -1,0 +1,128 @@
+"""Shape-constrained least squares: lekalo against a general-purpose modelling tool (CVXPY) with
+the same solver (Clarabel), side by side on the same data and the same exact formulation.
+
+    python bench/python/shape_bench.py [--points 100000] [--coefficients 200] [--repeats 3]
+
+Needs CVXPY, which is not a requirement of the project: run it from an environment that has both
+lekalo and CVXPY (e.g. `pip install cvxpy` into a copy of the test environment).
+
+Data: the workload of `cargo bench -p lekalo --bench fit_shape`: N points on [0, 1],
+y = x² + 0.05 sin 9x + 0.02 of a deterministic saw-tooth noise, a clamped uniform cubic knot
+vector with C coefficients, the fit increasing, convex and y ≥ 0 on the whole domain.
+
+Prints the best of --repeats times of:
+- lekalo: `lekalo.make_lsq_spline(x, y, t, 3, increasing=True, convex=True, min=0.0)`, the whole
+  fit from the data, and `make_lsq_spline` without constraints beside it;
+- CVXPY: `Problem.solve(solver=CLARABEL)`, the first call (CVXPY compiles the problem) and the
+  best of the later ones (the compilation cached: the solver's work alone), of the conic program of
+  `crates/lekalo/tests/data/shape_golden.py` (Bernstein coefficients of y', y'' and y on every
+  span; the quadratic derivative's exact second-order-cone condition), its objective given as
+  the normal equations' quadratic form. Only the modelling tool's own work is timed: the normal equations and the Bernstein rows, built with NumPy and
+  SciPy, are prepared once before the clock starts, so the ratio favours CVXPY.
+Then the ratio, and the two fits' largest difference at the data relative to the data's range.
+The figures belong in docs/performance/fitting.md, "Shape constraints", with the machine's load.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+import lekalo
+
+
+def best_of(repeats, f):
+    best, out = float("inf"), None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = f()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def workload(n, m):
+    x = np.arange(n) / (n - 1)
+    k = np.arange(n)
+    saw = ((k * 7919) % 1009) / 504.5 - 1.0
+    y = x * x + 0.05 * np.sin(9.0 * x) + 0.02 * saw
+    inner = np.linspace(0.0, 1.0, m - 3 + 1)
+    t = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
+    return x, y, t
+
+
+def bernstein_rows(t, k, r, lo, hi):
+    """(d + 1) x n: the Bernstein coefficients of y^(r) on [lo, hi], rows over the coefficients
+    (values of the n basis functions' derivatives at d + 1 points, solved against the
+    Bernstein-Vandermonde matrix, as shape_golden.py does)."""
+    n = len(t) - k - 1
+    d = k - r
+    tau = (np.arange(d + 1) + 0.5) / (d + 1)
+    basis = BSpline(t, np.eye(n), k)
+    vals = (basis.derivative(r) if r > 0 else basis)(lo + (hi - lo) * tau)
+    bv = np.array([[math.comb(d, i) * s ** i * (1 - s) ** (d - i) for i in range(d + 1)]
+                   for s in tau])
+    return np.linalg.solve(bv, vals)
+
+
+def cvxpy_problem(x, y, t, k=3):
+    import cvxpy as cp
+
+    n = len(t) - k - 1
+    B = BSpline.design_matrix(x, t, k)
+    H = (B.T @ B).toarray()
+    g = B.T @ y
+    c = cp.Variable(n)
+    cons = []
+    for s in range(k, n):
+        lo, hi = t[s], t[s + 1]
+        if hi <= lo:
+            continue
+        # increasing: y' of degree 2, the exact cone condition
+        b = bernstein_rows(t, k, 1, lo, hi) @ c
+        aux = cp.Variable()
+        cons += [b[1] + aux >= 0, cp.SOC(b[0] + b[2], cp.hstack([b[0] - b[2], 2 * aux]))]
+        # convex: y'' of degree 1, its two Bernstein coefficients
+        cons += [bernstein_rows(t, k, 2, lo, hi) @ c >= 0]
+        # y >= 0: the cubic's Bernstein coefficients (sufficient, as lekalo's first program)
+        cons += [bernstein_rows(t, k, 0, lo, hi) @ c >= 0]
+    obj = cp.quad_form(c, cp.psd_wrap(H)) - 2 * g @ c + float(y @ y)
+    return cp.Problem(cp.Minimize(obj), cons), c
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--points", type=int, default=100_000)
+    ap.add_argument("--coefficients", type=int, default=200)
+    ap.add_argument("--repeats", type=int, default=3)
+    a = ap.parse_args()
+    x, y, t = workload(a.points, a.coefficients)
+    shape = dict(increasing=True, convex=True, min=0.0)
+    t_free, _ = best_of(a.repeats, lambda: lekalo.make_lsq_spline(x, y, t, 3))
+    t_lek, fit = best_of(a.repeats, lambda: lekalo.make_lsq_spline(x, y, t, 3, **shape))
+    import cvxpy as cp
+
+    prob, c = cvxpy_problem(x, y, t)
+    t_first, _ = best_of(1, lambda: prob.solve(solver=cp.CLARABEL))
+    # later solves reuse CVXPY's compilation of the problem: only the solver's work
+    t_cvx, _ = best_of(a.repeats, lambda: prob.solve(solver=cp.CLARABEL))
+    ours = np.asarray(fit(x)).reshape(-1)
+    theirs = BSpline(t, c.value, 3)(x)
+    gap = float(np.max(np.abs(ours - theirs)) / (y.max() - y.min()))
+    print(f"{a.points} points, {a.coefficients} cubic coefficients, increasing, convex, y >= 0")
+    print(f"lekalo make_lsq_spline, unconstrained  {t_free * 1e3:9.2f} ms")
+    print(f"lekalo make_lsq_spline, constrained    {t_lek * 1e3:9.2f} ms "
+          f"({t_lek / t_free:.1f}x the unconstrained)")
+    print(f"CVXPY + Clarabel, compile and solve    {t_first * 1e3:9.2f} ms "
+          f"({prob.status}, {len(prob.constraints)} constraint blocks)")
+    print(f"CVXPY + Clarabel, solve again          {t_cvx * 1e3:9.2f} ms")
+    print(f"ratio CVXPY / lekalo: {t_first / t_lek:.1f}x with CVXPY's compilation, "
+          f"{t_cvx / t_lek:.1f}x its solve alone")
+    print(f"largest difference of the fits at the data, relative to the data's range: {gap:.2e}")
+
+
+if __name__ == "__main__":
+    main()
