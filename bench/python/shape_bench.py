@@ -19,7 +19,8 @@ Prints the best of --repeats times of:
   span; the quadratic derivative's exact second-order-cone condition), its objective given as
   the normal equations' quadratic form. Only the modelling tool's own work is timed: the normal equations and the Bernstein rows, built with NumPy and
   SciPy, are prepared once before the clock starts, so the ratio favours CVXPY.
-Then the ratio, and the two fits' largest difference at the data relative to the data's range.
+Then the ratio, and the two fits' largest difference at the data relative to the data's range
+(CVXPY at Clarabel's default tolerances, as a user calls it).
 The figures belong in docs/performance/fitting.md, "Shape constraints", with the machine's load.
 """
 
