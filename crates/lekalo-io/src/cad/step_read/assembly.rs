@@ -16,6 +16,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::entities::Reader;
+use super::motion::Motion;
 use super::P;
 
 /// Most occurrences of parts an assembly may place (a nesting that multiplies beyond this is
@@ -23,80 +24,6 @@ use super::P;
 const MAX_OCCURRENCES: usize = 1 << 16;
 /// Deepest nesting of assemblies followed (a cycle of occurrences ends there).
 const MAX_DEPTH: usize = 64;
-
-/// A rigid motion `x ↦ R x + t` of 3-D coordinates.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Motion {
-    /// Rows of `R`.
-    r: [[f64; 3]; 3],
-    t: [f64; 3],
-}
-
-impl Motion {
-    const IDENTITY: Motion = Motion {
-        r: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        t: [0.0; 3],
-    };
-
-    /// The motion from a frame's coordinates to those of the space it is placed in: the
-    /// columns of `R` are the frame's axes, `t` its origin.
-    fn of(p: &lekalo::surface::Placement) -> Motion {
-        let (x, y, z) = (p.x, p.y, p.z);
-        Motion {
-            r: [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]],
-            t: p.origin,
-        }
-    }
-
-    /// `x ↦ Rᵀ (x − t)`: `R` is orthonormal.
-    fn inverse(&self) -> Motion {
-        let r = &self.r;
-        let rt = [
-            [r[0][0], r[1][0], r[2][0]],
-            [r[0][1], r[1][1], r[2][1]],
-            [r[0][2], r[1][2], r[2][2]],
-        ];
-        let t = rotate(&rt, self.t);
-        Motion {
-            r: rt,
-            t: [-t[0], -t[1], -t[2]],
-        }
-    }
-
-    /// `outer ∘ self`.
-    fn then(&self, outer: &Motion) -> Motion {
-        let mut r = [[0.0; 3]; 3];
-        for (i, row) in r.iter_mut().enumerate() {
-            for (j, v) in row.iter_mut().enumerate() {
-                *v = (0..3).map(|k| outer.r[i][k] * self.r[k][j]).sum();
-            }
-        }
-        let t = rotate(&outer.r, self.t);
-        Motion {
-            r,
-            t: [t[0] + outer.t[0], t[1] + outer.t[1], t[2] + outer.t[2]],
-        }
-    }
-
-    /// Moves a point (3-D; other dimensions are left alone).
-    pub(super) fn point(&self, p: &mut [f64]) {
-        if let Ok(q) = <[f64; 3]>::try_from(&*p) {
-            let m = rotate(&self.r, q);
-            p.copy_from_slice(&[m[0] + self.t[0], m[1] + self.t[1], m[2] + self.t[2]]);
-        }
-    }
-
-    /// Turns a direction (3-D; other dimensions are left alone).
-    pub(super) fn direction(&self, d: &mut [f64]) {
-        if let Ok(q) = <[f64; 3]>::try_from(&*d) {
-            d.copy_from_slice(&rotate(&self.r, q));
-        }
-    }
-}
-
-fn rotate(r: &[[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2])
-}
 
 /// The parts an assembly places, and which instances of the file are whose geometry.
 #[derive(Debug, Default)]
@@ -332,36 +259,4 @@ fn occurrences(
     }
     memo.insert(pd, out.clone());
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn motions_compose_and_invert() {
-        let p = lekalo::surface::Placement::new(
-            [1.0, 2.0, 3.0],
-            Some([0.0, 0.0, 1.0]),
-            Some([0.0, 1.0, 0.0]),
-        )
-        .expect("placement");
-        let m = Motion::of(&p);
-        let mut x = [1.0, 0.0, 0.0];
-        m.point(&mut x);
-        // the frame's x axis is the space's y
-        assert_eq!(x, [1.0, 3.0, 3.0]);
-        m.inverse().point(&mut x);
-        assert!(x
-            .iter()
-            .zip([1.0, 0.0, 0.0])
-            .all(|(a, b)| (a - b).abs() < 1e-15));
-        let twice = m.then(&m);
-        let mut y = [0.0; 3];
-        twice.point(&mut y);
-        let mut z = [0.0; 3];
-        m.point(&mut z);
-        m.point(&mut z);
-        assert_eq!(y, z);
-    }
 }

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
+from ._knots import _augknt, _not_a_knot, _periodic_knots
 
 
 def _normalize_axis(axis: int, ndim: int) -> int:
@@ -67,6 +68,10 @@ def _curve(t: np.ndarray, cc: np.ndarray, k: int):
 class BSpline:
     """Univariate spline in the B-spline basis, ``S(x) = sum_j c_j B_{j,k;t}(x)``, as
     ``scipy.interpolate.BSpline``; evaluation, derivatives and integrals by lekalo."""
+
+    # the classes ``from_power_basis`` converts: ``CubicSpline``, registered by ``_ppoly``, which
+    # builds on this module (so this module does not import it)
+    _power_basis_types: tuple = ()
 
     def __init__(self, t: Any, c: Any, k: int, extrapolate: Any = True, axis: int = 0) -> None:
         self.k = operator.index(k)
@@ -287,10 +292,7 @@ class BSpline:
         for ``bc_type``. lekalo's ``CubicSpline`` is a B-spline already; on the same knots its
         coefficients are returned, on a refinement of them lekalo inserts the missing knots
         (``refine_knots``, Boehm)."""
-        from ._interpolate import _augknt, _not_a_knot, _periodic_knots
-        from ._ppoly import CubicSpline
-
-        if not isinstance(pp, CubicSpline):
+        if not isinstance(pp, cls._power_basis_types):
             raise NotImplementedError(f"Only CubicSpline objects are accepted for now. Got {type(pp)} instead.")
         x, spline = pp.x, pp._spline
         k = spline.k

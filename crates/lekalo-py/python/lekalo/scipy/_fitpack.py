@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
+from ._bivariate import _dblint, _evaluate, _surfit
 from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _pad_rows
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
@@ -382,8 +383,6 @@ def bisplrep(
     minimal-norm solution of a rank-deficient system (threshold ``eps``). ``task = 1`` (resume
     from the knots of the previous call) is not available. SciPy's checks, warnings and
     ``full_output``."""
-    from ._fitpack2 import _SURFIT_MESSAGES, _surfit  # noqa: F401
-
     x, y, z = map(np.ravel, [x, y, z])
     m = len(x)
     if not (m == len(y) == len(z)):
@@ -467,8 +466,6 @@ def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
     partial derivative ``(dx, dy)``) on the grid ``x × y`` (increasing), squeezed as SciPy
     squeezes it; lekalo's ``TensorBSpline``, coordinates outside the base box taken at its
     edge as FITPACK's ``bispev``."""
-    from ._fitpack2 import _evaluate
-
     tx, ty, c, kx, ky = tck
     if not (0 <= dx < kx):
         raise ValueError(f"0 <= dx = {dx} < kx = {kx} must hold")
@@ -494,7 +491,5 @@ def dblint(xa: float, xb: float, ya: float, yb: float, tck: Any) -> float:
     """``scipy.interpolate.dblint``: ``∫_xa^xb ∫_ya^yb`` of the 2-D spline
     ``tck = [tx, ty, c, kx, ky]`` over the base box (limits taken into it, as FITPACK),
     lekalo's ``TensorBSpline.integral``."""
-    from ._fitpack2 import _dblint
-
     tx, ty, c, kx, ky = tck
     return _dblint((tx, ty, c), (kx, ky), xa, xb, ya, yb)

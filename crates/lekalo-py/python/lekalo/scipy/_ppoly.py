@@ -907,3 +907,6 @@ def pchip_interpolate(xi: Any, yi: Any, x: Any, der: Any = 0, axis: int = 0):
     if np.ndim(der) == 0:
         return p.derivative(der)(x)
     return [p.derivative(nu)(x) for nu in der]
+
+
+BSpline._power_basis_types = (CubicSpline,)

@@ -1,0 +1,160 @@
+"""The 2-D FITPACK routines behind ``lekalo.scipy``'s functions (``bisplrep``, ``bisplev``,
+``dblint``) and classes (``RectBivariateSpline``, ``SmoothBivariateSpline``,
+``LSQBivariateSpline``): SciPy's ``(tx, ty, c, kx, ky)`` as lekalo's ``TensorBSpline``, its
+values and partial derivatives (``bispev``, ``parder``, ``bispeu``, ``pardeu``), its integral
+(``dblint``), and ``surfit`` as lekalo's scattered smoothing, with FITPACK's messages."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import _lekalo
+
+
+def _tensor(tx: Any, ty: Any, c: Any, kx: int, ky: int):
+    """lekalo's ``TensorBSpline`` of FITPACK's ``(tx, ty, c, kx, ky)`` (``c`` flat, ``x`` slowest)."""
+    tx = np.ascontiguousarray(tx, dtype=np.float64)
+    ty = np.ascontiguousarray(ty, dtype=np.float64)
+    nx, ny = len(tx) - kx - 1, len(ty) - ky - 1
+    c = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[: nx * ny]).reshape(nx, ny)
+    return _lekalo.TensorBSpline((tx, ty), c, [int(kx), int(ky)])
+
+
+def _clip(v: np.ndarray, t: np.ndarray, k: int) -> np.ndarray:
+    """FITPACK's evaluation (``fpbisp``) takes a coordinate outside the base interval at its end."""
+    return np.clip(np.asarray(v, dtype=np.float64), t[k], t[len(t) - k - 1])
+
+
+def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bool) -> np.ndarray:
+    """SciPy's ``bispev``/``parder`` (``grid``) and ``bispeu``/``pardeu`` (points): values of the
+    spline or of its partial derivative ``(dx, dy)``, computed as the values of the derivative
+    spline (lekalo's ``TensorBSpline.derivative``, as ``partial_derivative`` returns it)."""
+    tx, ty, c = tck[:3]
+    kx, ky = degrees
+    tx = np.asarray(tx, dtype=np.float64)
+    ty = np.asarray(ty, dtype=np.float64)
+    if dx or dy:
+        if not (0 <= dx < kx and 0 <= dy < ky):
+            raise ValueError(
+                f"Error code returned by {'parder' if grid else 'pardeu'}: 10 (derivative orders "
+                f"dx={dx}, dy={dy} must satisfy 0 <= dx < kx={kx}, 0 <= dy < ky={ky})"
+            )
+        spline = _tensor(tx, ty, c, kx, ky).derivative([int(dx), int(dy)])
+        tx, ty = (np.asarray(t) for t in spline.t)
+        kx, ky = kx - dx, ky - dy
+    else:
+        # values: lekalo's tensor_values on the arrays in place (no spline built, nothing of
+        # the coefficients copied), coordinates outside the base box taken at its edge
+        tx = np.ascontiguousarray(tx)
+        ty = np.ascontiguousarray(ty)
+        nx, ny = len(tx) - kx - 1, len(ty) - ky - 1
+        net = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[: nx * ny]).reshape(nx, ny)
+        if grid:
+            _check_grid_size(x, y)
+            xs = np.ascontiguousarray(_clip(x, tx, kx).ravel())
+            ys = np.ascontiguousarray(_clip(y, ty, ky).ravel())
+            return _lekalo.tensor_grid_values((tx, ty), net, (int(kx), int(ky)), (xs, ys))
+        pts = np.empty(np.shape(x) + (2,))
+        pts[..., 0] = x
+        pts[..., 1] = y
+        return _lekalo.tensor_values((tx, ty), net, (int(kx), int(ky)), pts, None, "clamp")
+    if grid:
+        _check_grid_size(x, y)
+        xs = _clip(x, tx, kx).ravel()
+        ys = _clip(y, ty, ky).ravel()
+        return np.asarray(spline.grid(np.ascontiguousarray(xs), np.ascontiguousarray(ys)))
+    pts = np.stack([_clip(x, tx, kx).ravel(), _clip(y, ty, ky).ravel()], axis=-1)
+    return np.asarray(spline(np.ascontiguousarray(pts))).reshape(np.shape(x))
+
+
+def _check_grid_size(x: Any, y: Any) -> None:
+    if np.size(x) * np.size(y) > _lekalo.MAX_SCALARS:
+        raise MemoryError(
+            f"a grid of {np.size(x)} x {np.size(y)} values exceeds lekalo's size limit "
+            f"{_lekalo.MAX_SCALARS} (MAX_SCALARS); evaluate it in parts"
+        )
+
+
+def _dblint(tck: Any, degrees: Any, xa: float, xb: float, ya: float, yb: float) -> float:
+    tx, ty, c = tck[:3]
+    kx, ky = degrees
+    tx = np.asarray(tx, dtype=np.float64)
+    ty = np.asarray(ty, dtype=np.float64)
+    bounds = [
+        (float(_clip(xa, tx, kx)), float(_clip(xb, tx, kx))),
+        (float(_clip(ya, ty, ky)), float(_clip(yb, ty, ky))),
+    ]
+    return float(np.asarray(_tensor(tx, ty, c, kx, ky).integral(bounds)).ravel()[0])
+
+
+# FITPACK's surfit messages as SciPy words them (``ier`` -> text), for its warnings.
+_SURFIT_MESSAGES = {
+    1: """
+The required storage space exceeds the available storage space: nxest
+or nyest too small, or s too small.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    4: """
+No more knots can be added because the number of b-spline coefficients
+(nx-kx-1)*(ny-ky-1) already exceeds the number of data points m:
+either s or m too small.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    5: """
+No more knots can be added because the additional knot would (quasi)
+coincide with an old one: s too small or too large a weight to an
+inaccurate data point.
+The weighted least-squares spline corresponds to the current set of
+knots.""",
+    -3: """
+The coefficients of the spline returned have been computed as the
+minimal norm least-squares solution of a (numerically) rank deficient
+system (deficiency=%i). If deficiency is large, the results may be
+inaccurate. Deficiency may strongly depend on the value of eps.""",
+}
+
+# lekalo's reason for stopping the knot rounds above s -> FITPACK's ier
+_LIMIT_IER = {"max-knots": 1, "coefficients-exceed-data": 4, "knots-coincide": 5}
+
+
+def _box(x: np.ndarray, y: np.ndarray, bbox: Any):
+    """FITPACK's box: ``bbox = [xb, xe, yb, ye]``, ``None`` entries taken from the data."""
+    xb, xe, yb, ye = (None if b is None else float(b) for b in bbox)
+    return (
+        (float(x.min()) if xb is None else xb, float(x.max()) if xe is None else xe),
+        (float(y.min()) if yb is None else yb, float(y.max()) if ye is None else ye),
+    )
+
+
+def _surfit(x: Any, y: Any, z: Any, w: Any, box: Any, kx: int, ky: int, s: float, eps: float,
+            nxest: int, nyest: int):
+    """FITPACK's ``surfit`` with ``iopt = 0``: lekalo's ``fit_tensor_scattered_smoothing`` with
+    the minimal-norm rank choice and the knot bounds ``nxest``, ``nyest``; FITPACK's weights
+    multiply the residual (lekalo's are their squares). Returns ``(tx, ty, c, fp, ier)``."""
+    pts = np.ascontiguousarray(np.stack([x, y], axis=-1), dtype=np.float64)
+    ww = None if w is None else np.asarray(w, dtype=np.float64) ** 2
+    spline, fp, p, rank, limit = _lekalo.fit_tensor_scattered_smoothing(
+        pts, np.ascontiguousarray(z, dtype=np.float64), float(s), [int(kx), int(ky)], w=ww,
+        bbox=box, max_knots=[int(nxest), int(nyest)], eps=float(eps),
+    )
+    tx, ty = (np.asarray(t) for t in spline.t)
+    c = np.asarray(spline.c).ravel()
+    ncof = c.size
+    polynomial = len(tx) == 2 * kx + 2 and len(ty) == 2 * ky + 2
+    # FITPACK's order: a knot limit; the polynomial below s (rank not reported); the rank; an
+    # interpolating spline; the polynomial within the tolerance of s
+    if limit is not None:
+        ier = _LIMIT_IER[limit]
+    elif polynomial and fp < s - 1e-3 * s:
+        ier = -2
+    elif rank != ncof:
+        ier = -rank
+    elif p is None and fp <= 0.0:
+        ier = -1
+    elif p is None and polynomial:
+        ier = -2
+    else:
+        ier = 0
+    return tx, ty, c, fp, ier
