@@ -141,8 +141,8 @@ fn derivative_factor(u: &[f64], p: usize, i: usize, nu: usize) -> Result<f64> {
 
 /// One derivative step on the knots `u` of degree `p`: `dst` (one row fewer than `src`) from
 /// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`. The denominators are checked
-/// first in one branch-free pass (the error searched for only when one is not positive), so that
-/// the step itself is a straight loop the compiler vectorises.
+/// without a branch a row (the error searched for only when one is not positive), so that the
+/// step is a straight loop the compiler vectorises.
 fn derivative_step(
     u: &[f64],
     p: usize,
@@ -153,6 +153,24 @@ fn derivative_step(
 ) -> Result<()> {
     let rows = dst.len() / dim;
     let (lo, hi) = (&u[1..=rows], &u[p + 1..=rows + p]);
+    let pf = p as f64;
+    if dim == 1 {
+        // one pass: the quotients written and the denominators' signs gathered without a
+        // branch, the error searched for afterwards when one is not positive
+        let (x0, x1) = (&src[..rows], &src[1..=rows]);
+        let mut ok = true;
+        for ((((o, a), b), c0), c1) in dst.iter_mut().zip(lo).zip(hi).zip(x0).zip(x1) {
+            let denom = b - a;
+            ok &= denom > 0.0;
+            *o = pf / denom * (c1 - c0);
+        }
+        if !ok {
+            for i in 0..rows {
+                derivative_factor(u, p, i, nu)?;
+            }
+        }
+        return Ok(());
+    }
     let ok = lo
         .iter()
         .zip(hi)
@@ -161,14 +179,6 @@ fn derivative_step(
         for i in 0..rows {
             derivative_factor(u, p, i, nu)?;
         }
-    }
-    let pf = p as f64;
-    if dim == 1 {
-        let (x0, x1) = (&src[..rows], &src[1..=rows]);
-        for ((((o, a), b), c0), c1) in dst.iter_mut().zip(lo).zip(hi).zip(x0).zip(x1) {
-            *o = pf / (b - a) * (c1 - c0);
-        }
-        return Ok(());
     }
     for (i, row) in dst.chunks_exact_mut(dim).enumerate() {
         let s = pf / (hi[i] - lo[i]);
