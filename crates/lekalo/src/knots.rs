@@ -77,13 +77,20 @@ impl KnotVector {
             });
         }
         check_finite("knots", knots)?;
-        for i in 1..knots.len() {
-            if knots[i] < knots[i - 1] {
-                return Err(Error::KnotsNotSorted {
-                    index: i,
-                    value: knots[i],
-                    previous: knots[i - 1],
-                });
+        // one branch-free pass (vectorised), the first offending knot searched only on failure
+        let sorted = knots
+            .iter()
+            .zip(&knots[1..])
+            .fold(true, |ok, (a, b)| ok & (b >= a));
+        if !sorted {
+            for i in 1..knots.len() {
+                if knots[i] < knots[i - 1] {
+                    return Err(Error::KnotsNotSorted {
+                        index: i,
+                        value: knots[i],
+                        previous: knots[i - 1],
+                    });
+                }
             }
         }
         let (min, max) = (knots[0], knots[knots.len() - 1]);

@@ -267,18 +267,15 @@ fn insert_once_into(
     if !(x >= min && x <= max) {
         return Err(Error::ParameterOutOfDomain { t: x, min, max });
     }
+    // FITPACK's linear search for the first l ≥ k with x < t_{l+1} (or l = last), as a binary
+    // search on the sorted knots (the same l: every knot before it is ≤ x)
     let last = n - k - 2;
-    let mut l = k;
-    while !(x < t[l + 1] || l == last) {
-        l += 1;
-    }
+    let inner = &t[k + 1..=last];
+    let mut l = k + inner.partition_point(|&v| v <= x);
     if t[l] >= t[l + 1] {
         // FITPACK's `insert` then searches the other way, t_l < x ≤ t_{l+1}: x at the end of
         // an interval followed by repeated knots (a second insertion at the right end)
-        l = k;
-        while !(x <= t[l + 1] || l == last) {
-            l += 1;
-        }
+        l = k + inner.partition_point(|&v| v < x);
     }
     if t[l] >= t[l + 1] {
         return Err(Error::InvalidArgument {

@@ -140,7 +140,9 @@ fn derivative_factor(u: &[f64], p: usize, i: usize, nu: usize) -> Result<f64> {
 }
 
 /// One derivative step on the knots `u` of degree `p`: `dst` (one row fewer than `src`) from
-/// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`.
+/// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`. The denominators are checked
+/// without a branch a row (the error searched for only when one is not positive), so that the
+/// step is a straight loop the compiler vectorises.
 fn derivative_step(
     u: &[f64],
     p: usize,
@@ -149,8 +151,37 @@ fn derivative_step(
     src: &[f64],
     dst: &mut [f64],
 ) -> Result<()> {
+    let rows = dst.len() / dim;
+    let (lo, hi) = (&u[1..=rows], &u[p + 1..=rows + p]);
+    let pf = p as f64;
+    if dim == 1 {
+        // one pass: the quotients written and the denominators' signs gathered without a
+        // branch, the error searched for afterwards when one is not positive
+        let (x0, x1) = (&src[..rows], &src[1..=rows]);
+        let mut ok = true;
+        for ((((o, a), b), c0), c1) in dst.iter_mut().zip(lo).zip(hi).zip(x0).zip(x1) {
+            let denom = b - a;
+            ok &= denom > 0.0;
+            *o = pf / denom * (c1 - c0);
+        }
+        if !ok {
+            for i in 0..rows {
+                derivative_factor(u, p, i, nu)?;
+            }
+        }
+        return Ok(());
+    }
+    let ok = lo
+        .iter()
+        .zip(hi)
+        .fold(true, |ok, (a, b)| ok & (b - a > 0.0));
+    if !ok {
+        for i in 0..rows {
+            derivative_factor(u, p, i, nu)?;
+        }
+    }
     for (i, row) in dst.chunks_exact_mut(dim).enumerate() {
-        let s = derivative_factor(u, p, i, nu)?;
+        let s = pf / (hi[i] - lo[i]);
         let (a, b) = (
             &src[i * dim..(i + 1) * dim],
             &src[(i + 1) * dim..(i + 2) * dim],
@@ -217,11 +248,36 @@ pub fn antiderivative_coefficients_into(
     if out.len() != rows * dim {
         return Err(buffer_size(rows * dim, out.len()));
     }
-    out[..n * dim].copy_from_slice(&c[..n * dim]);
     let (first, last) = (t[0], t[t.len() - 1]);
+    if nu == 0 {
+        out[..n * dim].copy_from_slice(&c[..n * dim]);
+    } else {
+        // the first step straight from `c` (its knots are `t`), the running sums written
+        // as they grow
+        let scale = 1.0 / (k as f64 + 1.0);
+        let (lo, hi) = (&t[..n], &t[k + 1..=n + k]);
+        if dim == 1 {
+            let mut acc = 0.0;
+            for (((o, x), a), b) in out[..n].iter_mut().zip(&c[..n]).zip(lo).zip(hi) {
+                *o = acc;
+                acc += x * ((b - a) * scale);
+            }
+            out[n] = acc;
+        } else {
+            let mut acc = vec![0.0; dim];
+            for (j, (a, b)) in lo.iter().zip(hi).enumerate() {
+                let w = (b - a) * scale;
+                let row = &mut out[j * dim..(j + 1) * dim];
+                for ((o, s), x) in row.iter_mut().zip(acc.iter_mut()).zip(&c[j * dim..]) {
+                    *o = *s;
+                    *s += x * w;
+                }
+            }
+            out[n * dim..(n + 1) * dim].copy_from_slice(&acc);
+        }
+    }
     let mut acc = vec![0.0; dim];
-    let mut x = vec![0.0; dim];
-    for step in 0..nu {
+    for step in 1..nu {
         // the knots of this step: t with each end knot repeated `step` times more
         let u = |i: usize| {
             if i < step {
@@ -239,10 +295,10 @@ pub fn antiderivative_coefficients_into(
         for j in 0..m {
             let w = (u(j + p + 1) - u(j)) * scale;
             let row = &mut out[j * dim..(j + 1) * dim];
-            x.copy_from_slice(row);
-            row.copy_from_slice(&acc);
-            for (a, xi) in acc.iter_mut().zip(&x) {
-                *a += xi * w;
+            for (o, s) in row.iter_mut().zip(acc.iter_mut()) {
+                let x = *o;
+                *o = *s;
+                *s += x * w;
             }
         }
         out[m * dim..(m + 1) * dim].copy_from_slice(&acc);
