@@ -15,21 +15,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import time
 
 import numpy as np
 from scipy.interpolate import make_smoothing_spline
 
 import lekalo
-
-
-def best_of(repeats, f):
-    best, out = float("inf"), None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = f()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
+from timing import best_of
 
 
 def main():

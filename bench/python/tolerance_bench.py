@@ -31,13 +31,13 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import splev, splprep
 
 import lekalo
+from timing import best_of
 
 
 def helix(n):
@@ -60,15 +60,6 @@ def occt_fit(binary, pts, tol, limit):
         except subprocess.TimeoutExpired:
             return None
     return json.loads(out.stdout)
-
-
-def best_of(repeats, f):
-    best, out = float("inf"), None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = f()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def main():

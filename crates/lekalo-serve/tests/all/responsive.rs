@@ -60,6 +60,17 @@ async fn call(
     (status, value, headers)
 }
 
+/// The application with `limits`, served on a free loopback port in the background: its
+/// address.
+async fn serving(limits: Limits) -> std::net::SocketAddr {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind");
+    let addr = listener.local_addr().expect("addr");
+    tokio::spawn(async move { axum::serve(listener, router(limits)).await });
+    addr
+}
+
 /// One HTTP/1.1 request on a fresh loopback connection: the status code and the body.
 async fn raw(addr: std::net::SocketAddr, method: &str, route: &str, body: &str) -> (u16, String) {
     use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -93,11 +104,7 @@ async fn health_is_answered_while_heavy_requests_compute_and_the_deadline_stops_
         timeout: Duration::from_secs(30),
         ..permissive()
     };
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind");
-    let addr = listener.local_addr().expect("addr");
-    tokio::spawn(async move { axum::serve(listener, router(limits)).await });
+    let addr = serving(limits).await;
     let started = Instant::now();
     let body = heavy();
     let heavy: Vec<_> = (0..3)
@@ -432,11 +439,7 @@ async fn a_fit_past_the_deadline_is_stopped_and_its_worker_freed() {
         body_bytes: 64 << 20,
         ..permissive()
     };
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind");
-    let addr = listener.local_addr().expect("addr");
-    tokio::spawn(async move { axum::serve(listener, router(limits)).await });
+    let addr = serving(limits).await;
     let body = slow_fit(400_000);
     let started = Instant::now();
     let slow = tokio::spawn(async move { raw(addr, "POST", "/api/fit", &body).await });
@@ -496,11 +499,7 @@ async fn a_computation_with_a_job_id_reports_its_progress_until_it_ends() {
         timeout: Duration::from_secs(30),
         ..permissive()
     };
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind");
-    let addr = listener.local_addr().expect("addr");
-    tokio::spawn(async move { axum::serve(listener, router(limits)).await });
+    let addr = serving(limits).await;
     let body = heavy();
     let request = tokio::spawn(async move {
         let mut s = tokio::net::TcpStream::connect(addr).await.expect("connect");
