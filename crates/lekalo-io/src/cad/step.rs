@@ -58,7 +58,14 @@ pub struct StepWriter {
     /// The shape representation of the faces written by `add_faces` (`step_faces.rs`).
     pub(crate) faces_rep: Option<usize>,
     name: String,
+    /// The largest dimension of the curves added by `add_curve`.
+    curve_dim: usize,
 }
+
+/// The type of the representation context of a file of curves that all had 2 (or fewer)
+/// coordinates: their points are padded with `z = 0` for CAD systems (which read no 2-D curve
+/// from a curve set), and lekalo's reader gives them back in 2-D.
+pub(crate) const PLANE_DRAWING: &str = "2D drawing in the plane z = 0";
 
 /// Ids of the fixed preamble entities.
 pub(crate) const CONTEXT_ID: usize = 14;
@@ -92,6 +99,7 @@ impl StepWriter {
             surfaces: Vec::new(),
             faces_rep: None,
             name: name.to_string(),
+            curve_dim: 0,
         }
     }
 
@@ -138,6 +146,7 @@ impl StepWriter {
         self.check_no_faces()?;
         let id = self.write_curve(c, 3)?;
         self.curves.push(id);
+        self.curve_dim = self.curve_dim.max(c.points.dim());
         Ok(id)
     }
 
@@ -252,6 +261,12 @@ impl StepWriter {
         let rep = if let Some(rep) = self.faces_rep {
             rep
         } else if self.surfaces.is_empty() {
+            if self.curve_dim <= 2 {
+                self.lines[CONTEXT_ID - 1] = self.lines[CONTEXT_ID - 1].replace(
+                    "'3D context with units and uncertainty'",
+                    &step_string(PLANE_DRAWING),
+                );
+            }
             let set = self.add(format!("GEOMETRIC_CURVE_SET('',{})", ref_list(&items)));
             self.add(format!(
                 "GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#{set}),#{CONTEXT_ID})"

@@ -296,6 +296,49 @@ impl Curve {
         Points::from_flat(self.dim(), data)
     }
 
+    /// The curve of the same kind, degree, knots and weights on other control points, of any
+    /// dimension. A spline's coordinates are independent combinations of the same basis
+    /// functions (`docs/theory.md`, "Curves and surfaces of any kind"), so a map applied to the
+    /// control points alone gives that map of the curve for every linear map, e.g. dropping a
+    /// coordinate projects the curve onto the remaining axes (for NURBS, a map that commutes
+    /// with the rational combination: linear and affine ones).
+    ///
+    /// ```
+    /// use lekalo::{BSplineCurve, Curve, Points};
+    /// let ctrl = Points::from_flat(3, vec![1.0, 1.0, 0.0, 2.0, 3.0, 0.0, 4.0, 3.0, 0.0])?;
+    /// let c = Curve::from(BSplineCurve::new(2, vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], ctrl)?);
+    /// let flat = c.with_control_points(Points::from_2d(&[[1.0, 1.0], [2.0, 3.0], [4.0, 3.0]])?)?;
+    /// assert_eq!(flat.eval(1.5)?, vec![2.125, 2.75]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] when the number of points differs from the curve's; as the
+    /// kind's constructor for non-finite points.
+    pub fn with_control_points(&self, points: Points) -> Result<Curve> {
+        if points.len() != self.control_points().len() {
+            return Err(Error::LengthMismatch {
+                what: "control points (one for each of the curve's)",
+                expected: self.control_points().len(),
+                got: points.len(),
+            });
+        }
+        Ok(match self {
+            Curve::Bezier(_) => Curve::Bezier(BezierCurve::new(points)?),
+            Curve::BSpline(c) => Curve::BSpline(BSplineCurve::new(
+                c.degree(),
+                c.knots().as_slice().to_vec(),
+                points,
+            )?),
+            Curve::Nurbs(c) => Curve::Nurbs(NurbsCurve::new(
+                c.degree(),
+                c.knots().as_slice().to_vec(),
+                points,
+                c.weights(),
+            )?),
+        })
+    }
+
     /// The axis-aligned box of the control points `(min, max)`, which holds the curve (convex
     /// hull property; for NURBS with positive weights as well).
     #[must_use]

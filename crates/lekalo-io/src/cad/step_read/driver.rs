@@ -12,7 +12,8 @@ use super::faces::read_faces;
 use super::parse::parse;
 use super::progress::{Meter, Pass};
 use super::units::{length_unit, plane_angle_unit};
-use super::{StepRead, StepSkipped, Why};
+use super::{StepRead, StepSkipped, Why, P};
+use crate::cad::step::PLANE_DRAWING;
 use lekalo::Progress;
 
 use crate::error::{IoError, IoResult};
@@ -162,9 +163,10 @@ fn read(
     // stable: the occurrences of an instance in the order of the passes
     read.shapes.sort_by_key(|(id, _)| *id);
     read.faces.sort_by_key(|f| f.id);
+    let shapes = plane_drawing(&rd, read.shapes, read.faces.is_empty())?;
     meter.finish();
     Ok(StepRead {
-        shapes: read.shapes,
+        shapes,
         skipped: read.skipped,
         faces: read.faces,
         skipped_faces: read.skipped_faces,
@@ -172,6 +174,52 @@ fn read(
         length_unit,
         scale_to_mm: scale,
     })
+}
+
+/// A drawing in the plane read back as one. STEP has no place for a 2-D curve that CAD systems
+/// read (Open CASCADE transfers neither 2-D points in a 2-D context nor a `PCURVE` on a plane
+/// from a curve set), so lekalo writes 2-D curves padded with `z = 0` and names its context a
+/// [`PLANE_DRAWING`] (`docs/formats.md`). A file with that context that holds curves only, every
+/// control point at `z = 0` exactly, gives its curves back with their `(x, y)` coordinates;
+/// any other file, and one edited to put a curve out of the plane, keeps every curve 3-D.
+fn plane_drawing(
+    rd: &Reader<'_>,
+    shapes: Vec<(u64, Shape)>,
+    no_faces: bool,
+) -> IoResult<Vec<(u64, Shape)>> {
+    let in_plane = |s: &Shape| match s {
+        Shape::Curve(c) => {
+            let p = c.control_points();
+            p.dim() == 3 && p.iter().all(|x| x[2] == 0.0)
+        }
+        _ => false,
+    };
+    let marked = rd.p.instances.ids().iter().any(|id| {
+        let i = rd.p.instances.known(id);
+        i.get("REPRESENTATION_CONTEXT")
+            .is_some_and(|ps| matches!(ps.get(1), Some(P::Str(t)) if t == PLANE_DRAWING))
+    });
+    if !marked || !no_faces || shapes.is_empty() || !shapes.iter().all(|(_, s)| in_plane(s)) {
+        return Ok(shapes);
+    }
+    shapes
+        .into_iter()
+        .map(|(id, s)| match s {
+            Shape::Curve(c) => {
+                let xy: Vec<f64> = c
+                    .control_points()
+                    .iter()
+                    .flat_map(|x| [x[0], x[1]])
+                    .collect();
+                let flat = lekalo::Points::from_flat(2, xy).and_then(|p| c.with_control_points(p));
+                // the same knots and weights on finite points: the kind's checks hold again
+                flat.map(|c| (id, Shape::Curve(c))).map_err(|e| {
+                    IoError::syntax(rd.at(id), format!("entity #{id} in the plane z = 0: {e}"))
+                })
+            }
+            other => Ok((id, other)),
+        })
+        .collect()
 }
 
 /// What one pass over the instances reads.

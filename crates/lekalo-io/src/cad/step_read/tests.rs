@@ -129,6 +129,67 @@ fn our_own_files_round_trip_bit_for_bit() {
 }
 
 #[test]
+fn a_drawing_in_the_plane_comes_back_in_the_plane() {
+    let three_d = |r: &StepRead| {
+        r.shapes
+            .iter()
+            .all(|(_, s)| matches!(s, Shape::Curve(c) if c.dim() == 3))
+    };
+    let arc = Object::Nurbs(
+        NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            Points::from_2d(&[[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap(),
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+        )
+        .unwrap(),
+    );
+    let line = Object::BSpline(
+        lekalo::BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [3.0, -1.0 / 3.0]]).unwrap(),
+        )
+        .unwrap(),
+    );
+    let mut w = StepWriter::new("drawing");
+    w.add_object(&arc).unwrap();
+    w.add_object(&line).unwrap();
+    let text = w.finish("2000-01-01T00:00:00");
+    // padded with z = 0 for CAD systems, which read no 2-D curve from a curve set
+    assert!(text.contains("CARTESIAN_POINT('',(1.,0.,0.))"), "{text}");
+    let r = read_step(&text, "drawing.step").unwrap();
+    let got: Vec<Shape> = r.shapes.into_iter().map(|(_, s)| s).collect();
+    assert_eq!(got, vec![Shape::Curve(arc.clone()), Shape::Curve(line)]);
+
+    // a 3-D curve in the plane z = 0 stays 3-D, and so do 2-D curves written beside it
+    let flat3 = Object::BSpline(
+        lekalo::BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_3d(&[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]).unwrap(),
+        )
+        .unwrap(),
+    );
+    let mut w = StepWriter::new("mixed");
+    w.add_object(&arc).unwrap();
+    w.add_object(&flat3).unwrap();
+    let r = read_step(&w.finish("2000-01-01T00:00:00"), "mixed.step").unwrap();
+    assert!(three_d(&r));
+    // a CAD system's curves in the plane z = 0 are read as it wrote them
+    let r = read_step(OCC_STYLE, "occ.step").unwrap();
+    assert!(three_d(&r));
+
+    // a file of lekalo's drawing edited to put a point out of the plane keeps all curves 3-D
+    let text = text.replace(
+        "CARTESIAN_POINT('',(1.,0.,0.))",
+        "CARTESIAN_POINT('',(1.,0.,5.E-1))",
+    );
+    let r = read_step(&text, "edited.step").unwrap();
+    assert!(three_d(&r));
+}
+
+#[test]
 fn errors_name_the_line_and_never_panic() {
     let e = read_step(
         "ISO-10303-21;\nDATA;\n#1=FOO(1.0E99999999999999999999);\nENDSEC;",
