@@ -4,6 +4,8 @@
 //! - `step_faces.rs`: the STEP writer of faces (boundary representations);
 //! - `step_read/`: the STEP reader (a folder);
 //! - `iges/`: IGES read and write;
+//! - `motion.rs`: rigid (and, for IGES, affine) maps of coordinates, `x ↦ R x + t`: a STEP
+//!   placement or an IGES transformation matrix, composed and inverted;
 //! - `faces_write_tests.rs`: faces written to STEP and IGES and read back;
 //! - `limits_tests.rs`: the readers' size limit (`--max-size`) on generated files.
 //!
@@ -16,6 +18,7 @@ pub(crate) mod faces_write_tests;
 pub(crate) mod iges;
 #[cfg(test)]
 mod limits_tests;
+pub(crate) mod motion;
 pub(crate) mod step;
 mod step_faces;
 pub(crate) mod step_read;

@@ -1,24 +1,29 @@
-//! Rigid motions of 3-D coordinates, `x ↦ R x + t`: the placement of an `AXIS2_PLACEMENT_3D`
-//! (ISO 10303-42 §4.4.3) as the map from its frame's coordinates to its space's, composed and
-//! inverted to carry a part of an assembly into the file's frame (`assembly.rs`).
+//! Maps of 3-D coordinates, `x ↦ R x + t`: the placement of a STEP `AXIS2_PLACEMENT_3D`
+//! (ISO 10303-42 §4.4.3) as the rigid map from its frame's coordinates to its space's,
+//! composed and inverted to carry a part of an assembly into the file's frame
+//! (`step_read/assembly.rs`); an IGES transformation matrix (entity 124, IGES 5.3 §4.21) as the
+//! matrix the file gives, chained to the matrix that one points at (`iges/read.rs`). A B-spline
+//! or NURBS follows an affine map of its control points (affine invariance, The NURBS Book
+//! §4.2), so moving the points moves the curve or surface exactly.
 
-/// A rigid motion `x ↦ R x + t` of 3-D coordinates.
+/// A map `x ↦ R x + t` of 3-D coordinates: rigid for STEP placements (`R` orthonormal), as
+/// written for IGES matrices.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Motion {
+pub(crate) struct Motion {
     /// Rows of `R`.
     r: [[f64; 3]; 3],
     t: [f64; 3],
 }
 
 impl Motion {
-    pub(super) const IDENTITY: Motion = Motion {
+    pub(crate) const IDENTITY: Motion = Motion {
         r: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
         t: [0.0; 3],
     };
 
     /// The motion from a frame's coordinates to those of the space it is placed in: the
     /// columns of `R` are the frame's axes, `t` its origin.
-    pub(super) fn of(p: &lekalo::surface::Placement) -> Motion {
+    pub(crate) fn of(p: &lekalo::surface::Placement) -> Motion {
         let (x, y, z) = (p.x, p.y, p.z);
         Motion {
             r: [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]],
@@ -26,8 +31,13 @@ impl Motion {
         }
     }
 
-    /// `x ↦ Rᵀ (x − t)`: `R` is orthonormal.
-    pub(super) fn inverse(&self) -> Motion {
+    /// The map of the rows `r` of `R` and the translation `t`, as a file gives them.
+    pub(crate) fn affine(r: [[f64; 3]; 3], t: [f64; 3]) -> Motion {
+        Motion { r, t }
+    }
+
+    /// `x ↦ Rᵀ (x − t)`, for a rigid motion (`R` orthonormal).
+    pub(crate) fn inverse(&self) -> Motion {
         let r = &self.r;
         let rt = [
             [r[0][0], r[1][0], r[2][0]],
@@ -42,7 +52,7 @@ impl Motion {
     }
 
     /// `outer ∘ self`.
-    pub(super) fn then(&self, outer: &Motion) -> Motion {
+    pub(crate) fn then(&self, outer: &Motion) -> Motion {
         let mut r = [[0.0; 3]; 3];
         for (i, row) in r.iter_mut().enumerate() {
             for (j, v) in row.iter_mut().enumerate() {
@@ -57,7 +67,7 @@ impl Motion {
     }
 
     /// Moves a point (3-D; other dimensions are left alone).
-    pub(super) fn point(&self, p: &mut [f64]) {
+    pub(crate) fn point(&self, p: &mut [f64]) {
         if let Ok(q) = <[f64; 3]>::try_from(&*p) {
             let m = rotate(&self.r, q);
             p.copy_from_slice(&[m[0] + self.t[0], m[1] + self.t[1], m[2] + self.t[2]]);
@@ -65,7 +75,7 @@ impl Motion {
     }
 
     /// Turns a direction (3-D; other dimensions are left alone).
-    pub(super) fn direction(&self, d: &mut [f64]) {
+    pub(crate) fn direction(&self, d: &mut [f64]) {
         if let Ok(q) = <[f64; 3]>::try_from(&*d) {
             d.copy_from_slice(&rotate(&self.r, q));
         }

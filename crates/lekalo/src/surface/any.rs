@@ -186,6 +186,55 @@ impl Surface {
         }
     }
 
+    /// The surface of the same kind, degrees, knots and weights on another net of the same
+    /// size, row by row, of any dimension: as [`Curve::with_control_points`], a linear or affine
+    /// map of the net is that map of the surface (affine invariance, P&T §4.4).
+    ///
+    /// ```
+    /// use lekalo::{BezierSurface, Points, Surface};
+    /// let net = Points::from_flat(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0])?;
+    /// let s = Surface::from(BezierSurface::new(net, (2, 2))?);
+    /// let up = Points::from_flat(3, vec![0.0, 0.0, 5.0, 0.0, 1.0, 5.0, 1.0, 0.0, 5.0, 1.0, 1.0, 5.0])?;
+    /// assert_eq!(s.with_control_points(up)?.eval(0.5, 0.25)?, vec![0.5, 0.25, 5.0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] when the number of points differs from the net's; as the
+    /// kind's constructor for non-finite points.
+    pub fn with_control_points(&self, points: Points) -> Result<Surface> {
+        let (nu, nv) = self.net_size();
+        if points.len() != nu * nv {
+            return Err(Error::LengthMismatch {
+                what: "control points (one for each of the surface's)",
+                expected: nu * nv,
+                got: points.len(),
+            });
+        }
+        let (du, dv) = self.degrees();
+        let (ku, kv) = self.knots();
+        Ok(match self {
+            Surface::Bezier(_) => Surface::Bezier(BezierSurface::new(points, (nu, nv))?),
+            Surface::BSpline(_) => Surface::BSpline(BSplineSurface::new(
+                du,
+                dv,
+                ku.as_slice().to_vec(),
+                kv.as_slice().to_vec(),
+                points,
+                (nu, nv),
+            )?),
+            Surface::Nurbs(s) => Surface::Nurbs(NurbsSurface::new(
+                du,
+                dv,
+                ku.as_slice().to_vec(),
+                kv.as_slice().to_vec(),
+                points,
+                s.weights(),
+                (nu, nv),
+            )?),
+        })
+    }
+
     /// Weights of a NURBS surface, row by row; `None` for polynomial surfaces.
     #[must_use]
     pub fn weights(&self) -> Option<Vec<f64>> {

@@ -12,8 +12,10 @@
 //!
 //! Reals are written in the shortest form that reads back to the same `f64` and read correctly
 //! rounded (`D` exponents accepted), so a round trip is exact. The units of the Global section
-//! (flag 1–11) convert coordinates to millimetres. Entities of other types, and 126/128 entities
-//! with a transformation matrix, are listed as skipped.
+//! (flag 1–11) convert coordinates to millimetres. A curve or surface whose directory entry
+//! points at a transformation matrix (entity 124, chained to the matrices it points at) is read
+//! in the file's coordinates, its control points mapped. Entities of other types are listed as
+//! skipped.
 //!
 //! | file | subject |
 //! |---|---|
@@ -21,6 +23,8 @@
 //! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
 //! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102) as faces ([`read_iges_faces`]) |
 
+//! | `matrix.rs` | transformation matrices (entity 124) and their chains, applied to the control points |
+//! | `matrix_tests.rs` | matrices applied, chained, in the file's unit, and refused |
 //! | `fields.rs` | the lexical layer: parameter fields split at the delimiters (Hollerith strings kept whole), reals, counts, the units of the Global section |
 //! | `read.rs` | [`read_iges`] and its limited and progress-reporting forms: the sections, the size limits, the entities 126 and 128 (and, through `splines.rs`, 110, 112, 114) as shapes |
 //! | `write.rs` | [`IgesWriter`]: entities 126 and 128 as Directory Entry and Parameter Data records |
@@ -31,6 +35,9 @@ mod faces;
 mod faces_tests;
 mod faces_write;
 mod fields;
+mod matrix;
+#[cfg(test)]
+mod matrix_tests;
 mod read;
 mod splines;
 #[cfg(test)]

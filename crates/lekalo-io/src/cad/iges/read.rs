@@ -5,7 +5,7 @@ use lekalo::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface, Points, Pro
 
 use super::faces::{self, Raw};
 use super::fields::{count, fields, real, unit};
-use super::{splines, IgesRead};
+use super::{matrix, splines, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
@@ -164,6 +164,11 @@ pub(super) fn read_entities(
         unit(flag, &name).unwrap_or_else(|| (format!("{name} (assumed MM)"), 1.0));
     // model space scale: model units per drawing unit; coordinates are in model units
     let _ = scale_field;
+    let matrices = matrix::matrices(&d, &p, delim, record, unit_mm);
+    let place = |s: Shape, m: Option<&crate::cad::motion::Motion>| match m {
+        Some(m) => matrix::moved(s, m),
+        None => Ok(s),
+    };
     let mut shapes = Vec::new();
     let mut skipped = Vec::new();
     let entities = d.len() / 2;
@@ -255,14 +260,29 @@ pub(super) fn read_entities(
             });
             continue;
         }
-        if !keep && !matches!(field(a, 6).as_str(), "" | "0") {
-            skipped.push(StepSkipped {
-                id: seq,
-                entity: format!("IGES entity {ty}"),
-                reason: "has a transformation matrix (entity 124), which is not applied".into(),
-            });
-            continue;
-        }
+        // the curve or surface is defined in the coordinates of its transformation matrix
+        let motion = match field(a, 6).as_str() {
+            "" | "0" => None,
+            _ if keep => None,
+            at => match count(at).map_or_else(
+                || {
+                    Err(format!(
+                        "its transformation matrix pointer \"{at}\" is not a directory entry"
+                    ))
+                },
+                |at| matrix::chain(&matrices, at as u64),
+            ) {
+                Ok(m) => Some(m),
+                Err(reason) => {
+                    skipped.push(StepSkipped {
+                        id: seq,
+                        entity: format!("IGES entity {ty}"),
+                        reason,
+                    });
+                    continue;
+                }
+            },
+        };
         let start = count(&field(a, 1)).unwrap_or(0);
         let n = count(&field(b, 3)).unwrap_or(0);
         if start == 0 || n == 0 || start.checked_add(n - 1).is_none_or(|last| last > p.len()) {
@@ -321,7 +341,8 @@ pub(super) fn read_entities(
             } else {
                 splines::spline_surface(&num, f.len(), unit_mm)
             };
-            shapes.push((seq, shape.map_err(bad)?));
+            let shape = shape.map_err(bad)?;
+            shapes.push((seq, place(shape, motion.as_ref()).map_err(lib)?));
             continue;
         }
         // The counts are checked against the parameters the entity holds before anything is
@@ -368,7 +389,7 @@ pub(super) fn read_entities(
             } else {
                 Object::Nurbs(NurbsCurve::new(m, knots, ctrl, w).map_err(lib)?)
             };
-            shapes.push((seq, Shape::Curve(obj)));
+            shapes.push((seq, place(Shape::Curve(obj), motion.as_ref()).map_err(lib)?));
         } else {
             let (k1, k2, m1, m2, poly) = (c(1)?, c(2)?, c(3)?, c(4)?, c(7)? == 1);
             let plus = |a: usize, b: usize| a.checked_add(b);
@@ -421,7 +442,7 @@ pub(super) fn read_entities(
             } else {
                 Surface::Nurbs(NurbsSurface::new(m1, m2, ku, kv, ctrl, w, (nu, nv)).map_err(lib)?)
             };
-            shapes.push((seq, Shape::Surface(s)));
+            shapes.push((seq, place(Shape::Surface(s), motion.as_ref()).map_err(lib)?));
         }
     }
     if progress.is_active() {

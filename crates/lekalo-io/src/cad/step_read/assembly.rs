@@ -16,8 +16,8 @@
 use std::collections::{HashMap, HashSet};
 
 use super::entities::Reader;
-use super::motion::Motion;
 use super::P;
+use crate::cad::motion::Motion;
 
 /// Most occurrences of parts an assembly may place (a nesting that multiplies beyond this is
 /// read at the first occurrences only).

@@ -56,7 +56,7 @@ pub(super) struct Reader<'a> {
     /// The placement of the part whose geometry is being read, in an assembly
     /// (`assembly.rs`): 3-D points and directions are moved by it; `None` reads them as
     /// written.
-    pub(super) motion: Cell<Option<super::motion::Motion>>,
+    pub(super) motion: Cell<Option<crate::cad::motion::Motion>>,
 }
 
 impl Reader<'_> {

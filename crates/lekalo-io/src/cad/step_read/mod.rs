@@ -35,7 +35,6 @@
 //! |---|---|
 //! | `parse.rs` | the exchange structure's lexer and parser: the whole text checked, each instance kept as its id, offset and type (its parameters parsed when asked for), and the header's schema |
 //! | `entities.rs` | decoding of the B-spline curve and surface entities (given or implied knots); the geometry that is skipped |
-//! | `motion.rs` | rigid motions: a placement as a map of coordinates, composed and inverted |
 //! | `assembly.rs` | the placements of parts in assemblies (occurrences and their item-defined transformations), and which instances are each placed part's geometry |
 //! | `analytic.rs` | placements, lines, conics, polylines and the analytic surfaces, converted by the library; trimmed curves over any of them |
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
@@ -55,7 +54,6 @@ mod entities;
 mod faces;
 #[cfg(test)]
 pub(crate) mod faces_tests;
-mod motion;
 mod parse;
 mod progress;
 #[cfg(test)]
