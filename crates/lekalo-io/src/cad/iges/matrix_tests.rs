@@ -68,6 +68,21 @@ fn with_matrices(text: &str, matrices: &[([f64; 12], u32)]) -> String {
     )
 }
 
+/// `text` with the directory entry at sequence `seq` pointing at the matrix `at` (field 7).
+fn pointing(text: &str, seq: usize, at: usize) -> String {
+    let own = format!("D{seq:>7}");
+    text.lines()
+        .map(|l| {
+            if l.ends_with(&own) {
+                format!("{}{at:>8}{}", &l[..48], &l[56..])
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// A quarter turn about z, then `t`.
 fn turn(t: [f64; 3]) -> [f64; 12] {
     [
@@ -188,33 +203,14 @@ fn matrices_that_place_nothing_are_reasons_to_skip() {
         reason(&short)
     );
     // a pointer at the entity itself, not at a matrix
-    let lines: Vec<String> = with_matrices(&text, &[(turn([0.0; 3]), 0)])
-        .lines()
-        .map(|l| {
-            if l.ends_with("D      1") {
-                format!("{}{:>8}{}", &l[..48], 1, &l[56..])
-            } else {
-                l.to_string()
-            }
-        })
-        .collect();
-    let own = lines.join("\n");
+    let own = pointing(&with_matrices(&text, &[(turn([0.0; 3]), 0)]), 1, 1);
     assert!(
         reason(&own).contains("not an entity 124"),
         "{}",
         reason(&own)
     );
     // two matrices that point at each other
-    let cycle = with_matrices(&text, &[(turn([0.0; 3]), 0), (turn([0.0; 3]), 0)])
-        .lines()
-        .map(|l| {
-            if l.ends_with("D      5") {
-                format!("{}{:>8}{}", &l[..48], 3, &l[56..])
-            } else {
-                l.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
+    let two = with_matrices(&text, &[(turn([0.0; 3]), 0), (turn([0.0; 3]), 0)]);
+    let cycle = pointing(&two, 5, 3);
     assert!(reason(&cycle).contains("cycle"), "{}", reason(&cycle));
 }
