@@ -184,11 +184,25 @@ class _PPolyBase:
     def _tail(self) -> tuple:
         return self._spline.c.shape[1:] if self._c is None else self._c.shape[2:]
 
+    # lekalo's evaluation of the class's coefficient arrays in place (at points, at a number)
+    _values_in_place = None
+    _value_in_place = None
+
     def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
         """The value (or ``nu``-th derivative) at ``x``, shape ``x.shape`` inserted at ``axis``
-        into the coefficients' trailing shape."""
+        into the coefficients' trailing shape. Real coefficients given (not read off a spline)
+        on increasing breakpoints: lekalo's evaluation of SciPy's arrays in place (``c`` and
+        ``x`` as they are now, changed in place or not), one pass; otherwise lekalo's B-spline
+        of the piecewise polynomial."""
         if extrapolate is None:
             extrapolate = self.extrapolate
+        c = self._c
+        if c is not None and c.dtype == np.float64 and c.flags.c_contiguous and c.size:
+            xb = self.x
+            if xb.dtype == np.float64 and xb[-1] > xb[0]:
+                if type(x) is float and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
+                    return np.array(self._value_in_place(c, xb, x, nu, bool(extrapolate)))
+                return self._call_in_place(c, xb, x, nu, extrapolate)
         if isinstance(x, float) and nu == 0 and extrapolate != "periodic":
             # one number in: lekalo's bspline_value on the B-spline's arrays (the B-spline's
             # own call for what it does not take)
@@ -226,6 +240,28 @@ class _PPolyBase:
                 xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
             vals = ev.eval_extrapolated(xf, nu)
         out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
+        if self.axis != 0:
+            axes = list(range(out.ndim))
+            axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
+            out = out.transpose(axes)
+        return out
+
+    def _call_in_place(self, c: np.ndarray, xb: np.ndarray, x: Any, nu: Any, extrapolate: Any) -> np.ndarray:
+        """``__call__`` on the coefficient arrays in place (real, C-contiguous, increasing
+        breakpoints): periodic points wrapped into ``[x[0], x[-1]]`` first, as SciPy does."""
+        x = np.asarray(x)
+        if x.dtype == object:
+            x = x.astype(np.float64)
+        nu = operator.index(nu)
+        if nu < 0:
+            raise ValueError("Order of derivative cannot be negative")
+        xf = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+        if extrapolate == "periodic":
+            xf = xb[0] + (xf - xb[0]) % (xb[-1] - xb[0])
+            extrapolate = False
+        cc = c if c.ndim <= 3 else c.reshape(c.shape[0], c.shape[1], -1)
+        vals = self._values_in_place(cc, xb, xf, nu, bool(extrapolate))
+        out = vals.reshape(x.shape + c.shape[2:])
         if self.axis != 0:
             axes = list(range(out.ndim))
             axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
@@ -353,26 +389,31 @@ class PPoly(_PPolyBase):
     # the same without the B-spline form, for evaluation: (c, x, copies of them, pp)
     _pp_direct_ = None
 
+    _values_in_place = staticmethod(_lekalo.ppoly_values)
+    _value_in_place = staticmethod(_lekalo.ppoly_value)
+
     def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
-        """The value (or ``nu``-th derivative) at ``x``. With real coefficients given and the
-        end pieces continued, Horner's rule in each piece on the coefficients themselves
-        without the B-spline form being made: in place on increasing breakpoints (lekalo's
-        ``ppoly_values``, ``PowerFormRef``), through lekalo's pp-form on decreasing ones
+        """The value (or ``nu``-th derivative) at ``x``. Real coefficients given: Horner's rule
+        in each piece on the coefficients themselves, without the B-spline form being made: in
+        place on increasing breakpoints (lekalo's ``ppoly_values``, ``PowerFormRef``), through
+        lekalo's pp-form on decreasing ones with the end pieces continued
         (``PiecewisePolynomial.eval_extrapolated``); the other cases as the base class."""
         c = self._c
         ext = self.extrapolate if extrapolate is None else extrapolate
-        if c is not None and ext is True and self._degree >= 1 and c.size and c.dtype == np.float64:
+        if (
+            c is not None
+            and ext is True
+            and self._degree >= 1
+            and c.size
+            and c.dtype == np.float64
+            and not self.x[-1] > self.x[0]
+        ):
             nu = operator.index(nu)
             xa = np.asarray(x)
             if 0 <= nu <= self._degree and xa.dtype != object:
                 xf = np.ascontiguousarray(xa.ravel(), dtype=np.float64)
                 if np.isfinite(xf).all():
-                    if self.x[-1] > self.x[0]:
-                        # increasing breakpoints: Horner on SciPy's arrays in place
-                        cc = np.ascontiguousarray(c).reshape(c.shape[0], c.shape[1], -1)
-                        vals = _lekalo.ppoly_values(cc, np.ascontiguousarray(self.x, dtype=np.float64), xf, nu)
-                    else:
-                        vals = self._pp_direct().eval_extrapolated(xf, nu)
+                    vals = self._pp_direct().eval_extrapolated(xf, nu)
                     out = vals.reshape(xa.shape + c.shape[2:])
                     if self.axis != 0:
                         axes = list(range(out.ndim))
@@ -576,6 +617,9 @@ class BPoly(_PPolyBase):
     B-spline coefficients of the same function on knots of multiplicity ``k + 1`` at every
     breakpoint, so lekalo's B-spline computes every number; coefficients of results are
     lekalo's Bézier pieces (``to_bezier_segments``)."""
+
+    _values_in_place = staticmethod(_lekalo.bpoly_values)
+    _value_in_place = staticmethod(_lekalo.bpoly_value)
 
     @staticmethod
     def _spline_form(x: np.ndarray, cc: np.ndarray):
