@@ -1,8 +1,8 @@
 //! A piecewise polynomial in the Bernstein basis of each piece read in place from SciPy's
 //! `BPoly` arrays ([`BernsteinFormRef`]): coefficients `c` of shape `(k + 1, pieces, dim)` on
-//! non-decreasing breakpoints, evaluated in each piece without a copy or a change of basis, the
-//! end pieces continued (or NaN). The piece of a point is found as the B-spline evaluator finds
-//! it (`piece_search.rs`). `docs/theory/pp.md#piecewise-polynomials`.
+//! monotonic breakpoints (either order, as SciPy allows), evaluated in each piece without a
+//! copy or a change of basis, the end pieces continued (or NaN). The piece of a point is found
+//! as the B-spline evaluator finds it (`piece_search.rs`). `docs/theory/pp.md#piecewise-polynomials`.
 
 use crate::curve::Beyond;
 use crate::error::Result;
@@ -10,8 +10,8 @@ use crate::error::Result;
 use crate::error::Error;
 use crate::pp::piece_search::{check_arrays, PieceSearch};
 
-/// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}`, with
-/// `s = (x − x_i)/(x_{i+1} − x_i)`,
+/// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on
+/// decreasing breakpoints), with `s = (x − x_i)/(x_{i+1} − x_i)`,
 /// `f(x) = Σ_{a=0}^{k} c[a, i]·b_{a,k}(s)`, `b_{a,k}(s) = C(k, a)·s^a·(1 − s)^{k−a}`,
 /// `c[a, i, d]` at `(a·pieces + i)·dim + d`. Repeated breakpoints (empty pieces) are allowed
 /// and never evaluated.
@@ -25,7 +25,7 @@ pub struct BernsteinFormRef<'a> {
 
 impl<'a> BernsteinFormRef<'a> {
     /// The piecewise polynomial of order `order` (`k + 1` coefficients a piece, degree `k`) on
-    /// `breakpoints` (`pieces + 1` of them, non-decreasing, the first below the last) with the
+    /// `breakpoints` (`pieces + 1` of them, monotonic, the ends different) with the
     /// Bernstein coefficients `c` (`order·pieces·dim` numbers, SciPy's layout). The order of the
     /// breakpoints is the caller's to guarantee (SciPy's constructor checks it): only their
     /// ends are checked here, so that a call costs no pass over the arrays.
@@ -46,7 +46,7 @@ impl<'a> BernsteinFormRef<'a> {
     /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
     /// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
     /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-    /// if the first breakpoint is not below the last.
+    /// if the first and the last breakpoint are equal.
     pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
         check_arrays(c, order, breakpoints, dim)?;
         Ok(BernsteinFormRef {
@@ -58,12 +58,12 @@ impl<'a> BernsteinFormRef<'a> {
     }
 
     /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), on the piece `j` with
-    /// `x_j ≤ x < x_{j+1}` at `s = (x − x_j)/h_j`, `h_j = x_{j+1} − x_j`. Degree `k ≤ 3`: the
-    /// Bernstein sum written out, in the operations and order of SciPy's `evaluate_bpoly1`
+    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy) at
+    /// `s = (x − x_j)/h_j`, `h_j = x_{j+1} − x_j`. Degree `k ≤ 3`: the Bernstein sum written out, in the operations and order of SciPy's `evaluate_bpoly1`
     /// (so the same bits); higher degrees: de Casteljau's algorithm (Farin, *Curves and
     /// Surfaces for CAGD*, 5th ed., §4.1), `k(k + 1)/2` convex combinations, stable for `s` in
     /// `[0, 1]`. Derivatives: `D^nu f = k!/(k − nu)!·h^{−nu}·Σ_a Δ^nu c_a·b_{a,k−nu}(s)` with
-    /// the forward differences `Δ^nu c_a` (Farin §5.3). Outside `[x_0, x_m]` the end pieces are
+    /// the forward differences `Δ^nu c_a` (Farin §5.3). Outside the breakpoints the end pieces are
     /// continued (the same polynomials at `s < 0` or `s > 1`) or NaN is written, as `beyond`
     /// says (SciPy's `extrapolate`); NaN at a NaN or infinite `x`. Orders `nu > k` give zeros.
     /// The piece by the bucket table of the B-spline evaluator when there are at least as many
@@ -302,6 +302,22 @@ mod tests {
             let mut one = [0.0];
             f.par_eval_beyond(&[x], 0, Beyond::Continue, &mut one).unwrap();
             assert_eq!(one[0].to_bits(), v.to_bits(), "x = {x}: batch and single");
+        }
+        // the same function on the breakpoints reversed: the pieces reversed and each one's
+        // coefficients reversed (b_{a,k}(1 − s) = b_{k−a,k}(s)), as in SciPy's BPoly tests
+        let rb: Vec<f64> = b.iter().rev().copied().collect();
+        let rc: Vec<f64> = (0..400).map(|i| c[(3 - i / 100) * 100 + 99 - i % 100]).collect();
+        let g = BernsteinFormRef::new(&rc, 4, &rb, 1).unwrap();
+        for nu in 0..=2 {
+            let (mut up, mut down) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
+            f.par_eval_beyond(&xs, nu, Beyond::Continue, &mut up).unwrap();
+            g.par_eval_beyond(&xs, nu, Beyond::Continue, &mut down).unwrap();
+            for ((&x, u), d) in xs.iter().zip(&up).zip(&down) {
+                if b.iter().any(|&t| (t - x).abs() < 1e-9) {
+                    continue; // the jumps: the right limit going up, the left one going down
+                }
+                assert!((u - d).abs() <= 1e-12 * (1.0 + u.abs()), "x = {x}, nu = {nu}: {u} {d}");
+            }
         }
         let mut two = [0.0; 2];
         f.par_eval_beyond(&[-0.5, 37.5], 1, Beyond::Nan, &mut two).unwrap();

@@ -2,14 +2,17 @@
 //! loop shared by the in-place evaluators of [`crate::pp::PowerFormRef`] and
 //! [`crate::pp::BernsteinFormRef`].
 //!
-//! Breakpoints `x_0 ≤ … ≤ x_m` (`x_0 < x_m`) may repeat; the pieces between repeated ones are
-//! empty and never evaluated. A point `x_0 ≤ x < x_m` lies in the piece `j` with
-//! `x_j ≤ x < x_{j+1}` (the last `j` with `x_j ≤ x`, which is never empty); from `x_m` on the
-//! last non-empty piece is continued, below `x_0` the first (SciPy's `extrapolate=True`), or
-//! NaN is written (`extrapolate=False`, [`Beyond::Nan`]). Large batches find their pieces
-//! through the bucket table of the B-spline evaluator ([`PieceLocator`], O(1) a point for
-//! spread-out breakpoints, O(log m) at worst), built per call in O(m) when there are at least
-//! as many points as pieces; smaller ones by binary search, O(log m) a point and nothing built.
+//! Increasing breakpoints `x_0 ≤ … ≤ x_m` (`x_0 < x_m`) may repeat; the pieces between
+//! repeated ones are empty and never evaluated. A point `x_0 ≤ x < x_m` lies in the piece `j`
+//! with `x_j ≤ x < x_{j+1}` (the last `j` with `x_j ≤ x`, which is never empty); from `x_m` on
+//! the last non-empty piece is continued, below `x_0` the first (SciPy's `extrapolate=True`),
+//! or NaN is written (`extrapolate=False`, [`Beyond::Nan`]). Decreasing breakpoints
+//! `x_0 ≥ … ≥ x_m` (`x_0 > x_m`) are SciPy's other order: piece `j` holds `x_j ≥ x > x_{j+1}`,
+//! the last piece also `x_m`, which is the increasing rule for `−x` on `−x_0 ≤ … ≤ −x_m`
+//! (negation is exact), and is searched so. Large batches find their pieces through the bucket
+//! table of the B-spline evaluator ([`PieceLocator`], O(1) a point for spread-out breakpoints,
+//! O(log m) at worst), built per call in O(m) when there are at least as many points as
+//! pieces; smaller ones by binary search, O(log m) a point and nothing built.
 
 use rayon::prelude::*;
 
@@ -26,15 +29,15 @@ pub(crate) const PAR_MIN_POINTS: usize = 1 << 14;
 const PAR_CHUNK: usize = 1 << 13;
 
 /// The checks of SciPy's arrays that cost no pass over them: `c` holds `order·pieces·dim`
-/// numbers for `pieces + 1 ≥ 2` breakpoints, the end breakpoints are finite and the first is
-/// below the last (the order of the others is the caller's to guarantee, as SciPy's
-/// constructor checks it).
+/// numbers for `pieces + 1 ≥ 2` breakpoints, the end breakpoints are finite and differ (the
+/// order of the others, monotonic the way the ends go, is the caller's to guarantee, as
+/// SciPy's constructor checks it).
 ///
 /// # Errors
 /// [`Error::TooFew`] for fewer than two breakpoints, an order or a dimension of 0;
 /// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
 /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-/// if the first breakpoint is not below the last.
+/// if the first and the last breakpoint are equal.
 pub(crate) fn check_arrays(c: &[f64], order: usize, breakpoints: &[f64], dim: usize) -> Result<()> {
     if breakpoints.len() < 2 {
         return Err(Error::TooFew {
@@ -68,7 +71,7 @@ pub(crate) fn check_arrays(c: &[f64], order: usize, breakpoints: &[f64], dim: us
     }
     let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
     check_finite("breakpoints (the ends)", &[lo, hi])?;
-    if lo >= hi {
+    if lo == hi {
         return Err(Error::EmptyDomain { min: lo, max: hi });
     }
     Ok(())
@@ -78,52 +81,78 @@ pub(crate) fn check_arrays(c: &[f64], order: usize, breakpoints: &[f64], dim: us
 #[derive(Debug)]
 pub(crate) struct PieceSearch<'a> {
     breakpoints: &'a [f64],
+    /// Decreasing breakpoints: the search runs on `−x`.
+    descending: bool,
     /// The first and the last non-empty piece.
     first: usize,
     last: usize,
-    /// The bucket table, for batches with at least as many points as pieces.
-    locator: Option<PieceLocator>,
+    /// The bucket table, for batches with at least as many points as pieces, and the
+    /// breakpoints it is built on (`−x_j` when decreasing, else empty: the breakpoints).
+    locator: Option<(PieceLocator, Vec<f64>)>,
 }
 
 impl<'a> PieceSearch<'a> {
-    /// The search on `breakpoints` (at least two, non-decreasing, the first below the last:
-    /// the caller's constructor checks the ends, SciPy's the order) for a batch of `points`
-    /// points.
+    /// The search on `breakpoints` (at least two, monotonic, the ends different: see
+    /// [`check_arrays`]) for a batch of `points` points.
     pub(crate) fn new(breakpoints: &'a [f64], points: usize) -> Self {
         let pieces = breakpoints.len() - 1;
-        let non_empty = |j: &usize| breakpoints[*j] < breakpoints[*j + 1];
+        let descending = breakpoints[pieces] < breakpoints[0];
+        let non_empty = |j: &usize| breakpoints[*j] != breakpoints[*j + 1];
         let first = (0..pieces).find(non_empty).unwrap_or(0);
         let last = (0..pieces).rev().find(non_empty).unwrap_or(pieces - 1);
-        let locator = (points >= pieces).then(|| PieceLocator::new(breakpoints));
+        let locator = (points >= pieces).then(|| {
+            if descending {
+                let negated: Vec<f64> = breakpoints.iter().map(|v| -v).collect();
+                (PieceLocator::new(&negated), negated)
+            } else {
+                (PieceLocator::new(breakpoints), Vec::new())
+            }
+        });
         PieceSearch {
             breakpoints,
+            descending,
             first,
             last,
             locator,
         }
     }
 
-    /// `(x_0, x_m)`.
+    /// `(min, max)` of the breakpoints.
     #[inline(always)]
     pub(crate) fn domain(&self) -> (f64, f64) {
-        (self.breakpoints[0], self.breakpoints[self.breakpoints.len() - 1])
+        let (a, b) = (self.breakpoints[0], self.breakpoints[self.breakpoints.len() - 1]);
+        if self.descending {
+            (b, a)
+        } else {
+            (a, b)
+        }
     }
 
-    /// The piece that evaluates the finite `x`: its own inside `[x_0, x_m)`, the last
-    /// non-empty one from `x_m` on, the first below `x_0`.
+    /// The piece that evaluates the finite `x`: its own inside the breakpoints, the end pieces
+    /// outside (see the module documentation).
     #[inline(always)]
     pub(crate) fn piece(&self, x: f64) -> usize {
-        let (lo, hi) = self.domain();
-        if x >= hi {
+        let b = self.breakpoints;
+        let m = b.len() - 1;
+        // the increasing rule for y = ±x on the breakpoints ±x_j
+        let (y, start, end) = if self.descending {
+            (-x, -b[0], -b[m])
+        } else {
+            (x, b[0], b[m])
+        };
+        if y >= end {
             return self.last;
         }
-        if x < lo {
+        if y < start {
             return self.first;
         }
         match &self.locator {
-            Some(table) => table.find(self.breakpoints, x),
-            // x_0 ≤ x < x_m: at least one breakpoint at or below x, the last one below x_m
-            None => self.breakpoints.partition_point(|&v| v <= x) - 1,
+            Some((table, negated)) => {
+                table.find(if self.descending { negated.as_slice() } else { b }, y)
+            }
+            // start ≤ y < end: at least one breakpoint at or below y, the last one below end
+            None if self.descending => b.partition_point(|&v| -v <= y) - 1,
+            None => b.partition_point(|&v| v <= y) - 1,
         }
     }
 
@@ -214,14 +243,21 @@ mod tests {
     use super::*;
     use crate::oracle::proptest_config;
 
-    /// The piece by definition: the last `j` with `x_j ≤ x` inside, the end pieces outside.
+    /// The piece by definition: increasing, the last `j` with `x_j ≤ x` inside; decreasing,
+    /// the last `j` with `x_j ≥ x`; the end pieces outside.
     fn piece_by_definition(b: &[f64], x: f64) -> usize {
         let pieces = b.len() - 1;
-        let non_empty: Vec<usize> = (0..pieces).filter(|&j| b[j] < b[j + 1]).collect();
-        if x < b[0] {
-            non_empty[0]
-        } else if x >= b[pieces] {
-            non_empty[non_empty.len() - 1]
+        let non_empty: Vec<usize> = (0..pieces).filter(|&j| b[j] != b[j + 1]).collect();
+        let (first, last) = (non_empty[0], non_empty[non_empty.len() - 1]);
+        let descending = b[pieces] < b[0];
+        let beyond_start = if descending { x > b[0] } else { x < b[0] };
+        let at_or_beyond_end = if descending { x <= b[pieces] } else { x >= b[pieces] };
+        if beyond_start {
+            first
+        } else if at_or_beyond_end {
+            last
+        } else if descending {
+            (0..pieces).rev().find(|&j| b[j] >= x).unwrap_or(0)
         } else {
             (0..pieces).rev().find(|&j| b[j] <= x).unwrap_or(0)
         }
@@ -232,18 +268,20 @@ mod tests {
 
         /// The bucket table and the binary search find the piece of the definition, with
         /// repeated breakpoints (empty pieces, also at the ends), at the breakpoints
-        /// themselves and beyond the ends.
+        /// themselves and beyond the ends, in either order.
         #[test]
         fn both_searches_find_the_piece_of_the_definition(
             gaps in prop::collection::vec(prop_oneof![1 => Just(0.0), 4 => 1e-3f64..3.0], 1..=40),
             start in -1e3f64..1e3,
             us in prop::collection::vec(-0.2f64..1.2, 1..=60),
+            descending in any::<bool>(),
         ) {
             let mut b = vec![start];
             for g in &gaps {
-                b.push(b[b.len() - 1] + g);
+                let next = if descending { b[b.len() - 1] - g } else { b[b.len() - 1] + g };
+                b.push(next);
             }
-            prop_assume!(b[b.len() - 1] > b[0]);
+            prop_assume!(b[b.len() - 1] != b[0]);
             let (lo, hi) = (b[0], b[b.len() - 1]);
             let xs: Vec<f64> = us.iter().map(|u| lo + (hi - lo) * u).chain(b.iter().copied()).collect();
             let small = PieceSearch::new(&b, 0);

@@ -1,7 +1,7 @@
 //! A piecewise polynomial in the local power basis read in place from SciPy's `PPoly` arrays
 //! ([`PowerFormRef`]): coefficients `c` of shape `(k, pieces, dim)`, the highest power first,
-//! on non-decreasing breakpoints, evaluated by Horner's rule in each piece with the end pieces
-//! continued (or NaN), without a copy into a [`PiecewisePolynomial`] (the same operations, so
+//! on monotonic breakpoints (either order, as SciPy allows), evaluated by Horner's rule in each
+//! piece with the end pieces continued (or NaN), without a copy into a [`PiecewisePolynomial`] (the same operations, so
 //! the same bits). The piece of a point is found as the B-spline evaluator finds it (a bucket
 //! table for large batches, `piece_search.rs`), and the common orders have kernels with the
 //! order fixed at compile time. `docs/theory/pp.md#piecewise-polynomials`.
@@ -15,8 +15,9 @@ use crate::pp::piece_search::{check_arrays, PieceSearch};
 use crate::pp::ppform::PiecewisePolynomial;
 
 /// Borrowed coefficients of SciPy's `PPoly`: `f(x) = Σ_m c[m, i]·(x − x_i)^{k−1−m}` on
-/// `x_i ≤ x < x_{i+1}`, `c[m, i, d]` at `(m·pieces + i)·dim + d`. Repeated breakpoints (empty
-/// pieces) are allowed and never evaluated.
+/// `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on decreasing breakpoints), `c[m, i, d]` at
+/// `(m·pieces + i)·dim + d`. Repeated breakpoints (empty pieces) are allowed and never
+/// evaluated.
 #[derive(Debug, Clone, Copy)]
 pub struct PowerFormRef<'a> {
     c: &'a [f64],
@@ -27,7 +28,7 @@ pub struct PowerFormRef<'a> {
 
 impl<'a> PowerFormRef<'a> {
     /// The piecewise polynomial of order `order` (`k` coefficients a piece) on `breakpoints`
-    /// (`pieces + 1` of them, non-decreasing, the first below the last) with the coefficients
+    /// (`pieces + 1` of them, monotonic, the ends different) with the coefficients
     /// `c` (`k·pieces·dim` numbers, SciPy's layout). The order of the breakpoints is the
     /// caller's to guarantee (SciPy's constructor checks it): only their ends are checked here,
     /// so that a call costs no pass over the arrays.
@@ -47,7 +48,7 @@ impl<'a> PowerFormRef<'a> {
     /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
     /// [`Error::LengthMismatch`] if `c` does not hold `k·pieces·dim` numbers;
     /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-    /// if the first breakpoint is not below the last.
+    /// if the first and the last breakpoint are equal.
     pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
         check_arrays(c, order, breakpoints, dim)?;
         Ok(PowerFormRef {
@@ -73,8 +74,9 @@ impl<'a> PowerFormRef<'a> {
     /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point):
     /// `D^r Σ_s c_s u^s = Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` by Horner's rule in `u = x − x_j` on the
     /// piece `j` with `x_j ≤ x < x_{j+1}`, as [`PiecewisePolynomial::eval_extrapolated_into`]
-    /// (the same operations in the same order, so the same bits). Outside `[x_0, x_m]` the end
-    /// pieces are continued or NaN is written, as `beyond` says (SciPy's `extrapolate`); NaN at
+    /// (the same operations in the same order, so the same bits), on the piece `j` with
+    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy). Outside the
+    /// breakpoints the end pieces are continued or NaN is written, as `beyond` says (SciPy's `extrapolate`); NaN at
     /// a NaN or infinite `x`. Orders `nu ≥ k` give zeros. The piece by the bucket table of the
     /// B-spline evaluator when there are at least as many points as pieces (O(1) a point for
     /// spread-out breakpoints), else by binary search; on the rayon pool from 16384 points.

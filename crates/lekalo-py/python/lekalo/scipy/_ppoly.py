@@ -190,8 +190,8 @@ class _PPolyBase:
 
     def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
         """The value (or ``nu``-th derivative) at ``x``, shape ``x.shape`` inserted at ``axis``
-        into the coefficients' trailing shape. Real coefficients given (not read off a spline)
-        on increasing breakpoints: lekalo's evaluation of SciPy's arrays in place (``c`` and
+        into the coefficients' trailing shape. Real coefficients given (not read off a spline):
+        lekalo's evaluation of SciPy's arrays in place (``c`` and
         ``x`` as they are now, changed in place or not), one pass; otherwise lekalo's B-spline
         of the piecewise polynomial."""
         if extrapolate is None:
@@ -199,7 +199,7 @@ class _PPolyBase:
         c = self._c
         if c is not None and c.dtype == np.float64 and c.flags.c_contiguous and c.size:
             xb = self.x
-            if xb.dtype == np.float64 and xb[-1] > xb[0]:
+            if xb.dtype == np.float64 and xb[-1] != xb[0]:
                 if type(x) is float and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
                     return np.array(self._value_in_place(c, xb, x, nu, bool(extrapolate)))
                 return self._call_in_place(c, xb, x, nu, extrapolate)
@@ -247,8 +247,8 @@ class _PPolyBase:
         return out
 
     def _call_in_place(self, c: np.ndarray, xb: np.ndarray, x: Any, nu: Any, extrapolate: Any) -> np.ndarray:
-        """``__call__`` on the coefficient arrays in place (real, C-contiguous, increasing
-        breakpoints): periodic points wrapped into ``[x[0], x[-1]]`` first, as SciPy does."""
+        """``__call__`` on the coefficient arrays in place (real, C-contiguous): periodic
+        points wrapped into ``[x[0], x[-1]]`` first, as SciPy does."""
         x = np.asarray(x)
         if x.dtype == object:
             x = x.astype(np.float64)
@@ -386,54 +386,11 @@ class PPoly(_PPolyBase):
 
     # lekalo's pp-form of the given coefficients, made on the first evaluation: (spline, pp)
     _pp_ = None
-    # the same without the B-spline form, for evaluation: (c, x, copies of them, pp)
-    _pp_direct_ = None
 
+    # Horner's rule in each piece on the given coefficients in place, on breakpoints in either
+    # order (lekalo's ppoly_values, PowerFormRef), without the B-spline form being made
     _values_in_place = staticmethod(_lekalo.ppoly_values)
     _value_in_place = staticmethod(_lekalo.ppoly_value)
-
-    def __call__(self, x: Any, nu: int = 0, extrapolate: Any = None) -> np.ndarray:
-        """The value (or ``nu``-th derivative) at ``x``. Real coefficients given: Horner's rule
-        in each piece on the coefficients themselves, without the B-spline form being made: in
-        place on increasing breakpoints (lekalo's ``ppoly_values``, ``PowerFormRef``), through
-        lekalo's pp-form on decreasing ones with the end pieces continued
-        (``PiecewisePolynomial.eval_extrapolated``); the other cases as the base class."""
-        c = self._c
-        ext = self.extrapolate if extrapolate is None else extrapolate
-        if (
-            c is not None
-            and ext is True
-            and self._degree >= 1
-            and c.size
-            and c.dtype == np.float64
-            and not self.x[-1] > self.x[0]
-        ):
-            nu = operator.index(nu)
-            xa = np.asarray(x)
-            if 0 <= nu <= self._degree and xa.dtype != object:
-                xf = np.ascontiguousarray(xa.ravel(), dtype=np.float64)
-                if np.isfinite(xf).all():
-                    vals = self._pp_direct().eval_extrapolated(xf, nu)
-                    out = vals.reshape(xa.shape + c.shape[2:])
-                    if self.axis != 0:
-                        axes = list(range(out.ndim))
-                        axes = axes[xa.ndim : xa.ndim + self.axis] + axes[: xa.ndim] + axes[xa.ndim + self.axis :]
-                        out = out.transpose(axes)
-                    return out
-        return super().__call__(x, nu, extrapolate)
-
-    def _pp_direct(self):
-        """lekalo's pp-form of the given coefficients, made again when ``c`` or ``x`` changed
-        (in place too, as SciPy sees such changes)."""
-        kept = self._pp_direct_
-        c, x = self._c, self.x
-        if kept is not None and kept[0] is c and kept[1] is x and np.array_equal(c, kept[2]) and np.array_equal(x, kept[3]):
-            return kept[4]
-        xp, cp = _pieces(x, c)
-        cc, _ = _columns(cp)
-        pp = self._lekalo_pp(xp, cc)
-        self._pp_direct_ = (c, x, c.copy(), x.copy(), pp)
-        return pp
 
     @staticmethod
     def _lekalo_pp(x: np.ndarray, cc: np.ndarray):
@@ -618,6 +575,8 @@ class BPoly(_PPolyBase):
     breakpoint, so lekalo's B-spline computes every number; coefficients of results are
     lekalo's Bézier pieces (``to_bezier_segments``)."""
 
+    # the Bernstein sum in each piece on the given coefficients in place, on breakpoints in
+    # either order (lekalo's bpoly_values, BernsteinFormRef), without the B-spline form
     _values_in_place = staticmethod(_lekalo.bpoly_values)
     _value_in_place = staticmethod(_lekalo.bpoly_value)
 
