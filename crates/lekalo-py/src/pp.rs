@@ -7,7 +7,9 @@ use lekalo_io::Shape;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, points_into_array, vec1, vec_array, FloatArray};
+use crate::convert::{
+    array, check_size, filled, floats, points_into_array, vec1, vec_array, FloatArray,
+};
 use crate::convert::{out_shape, reduce};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
@@ -563,7 +565,8 @@ fn beyond(extrapolate: bool) -> Beyond {
 }
 
 /// An evaluator of SciPy's arrays in place: `(c, order, x, dim, points, nu, beyond, out)`.
-type InPlace = fn(&[f64], usize, &[f64], usize, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
+type InPlace =
+    fn(&[f64], usize, &[f64], usize, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
 
 fn power_form(
     c: &[f64],

@@ -5,9 +5,9 @@
 //! as the B-spline evaluator finds it (`piece_search.rs`). `docs/theory/pp.md#piecewise-polynomials`.
 
 use crate::curve::Beyond;
-use crate::error::Result;
 #[cfg(doc)]
 use crate::error::Error;
+use crate::error::Result;
 use crate::pp::piece_search::{check_arrays, PieceSearch};
 
 /// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on
@@ -92,12 +92,19 @@ impl<'a> BernsteinFormRef<'a> {
         if nu == 0 && k <= 3 {
             macro_rules! written_out {
                 ($k:literal) => {
-                    search.for_each_point(xs, dim, beyond, out, || (), |(), j, x, o| {
-                        let s = (x - b[j]) / (b[j + 1] - b[j]);
-                        for (d, v) in o.iter_mut().enumerate() {
-                            *v = bernstein_sum::<$k>(s, |a| at(a, j, d));
-                        }
-                    })
+                    search.for_each_point(
+                        xs,
+                        dim,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let s = (x - b[j]) / (b[j + 1] - b[j]);
+                            for (d, v) in o.iter_mut().enumerate() {
+                                *v = bernstein_sum::<$k>(s, |a| at(a, j, d));
+                            }
+                        },
+                    )
                 };
             }
             return match k {
@@ -195,7 +202,14 @@ mod tests {
     /// rounding, the larger of the sum of the terms' magnitudes and the bound
     /// `k!/(k − nu)!·(2(|s| + |1 − s|))^nu·(|s| + |1 − s|)^{k−nu}·max|c| / h^nu` on what the
     /// Bernstein evaluation adds up.
-    fn oracle(c: &[f64], order: usize, b: &[f64], dim: usize, x: f64, nu: usize) -> Vec<(f64, f64)> {
+    fn oracle(
+        c: &[f64],
+        order: usize,
+        b: &[f64],
+        dim: usize,
+        x: f64,
+        nu: usize,
+    ) -> Vec<(f64, f64)> {
         let pieces = b.len() - 1;
         let non_empty: Vec<usize> = (0..pieces).filter(|&j| b[j] < b[j + 1]).collect();
         let j = if x < b[0] {
@@ -227,7 +241,12 @@ mod tests {
                         }
                         let falling: f64 = (p - nu + 1..=p).map(|q| q as f64).product();
                         let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
-                        let term = ca * binomial(k, a) * binomial(k - a, m) * sign * falling * pow(s, p - nu);
+                        let term = ca
+                            * binomial(k, a)
+                            * binomial(k - a, m)
+                            * sign
+                            * falling
+                            * pow(s, p - nu);
                         v += term;
                         magnitude += term.abs();
                     }
@@ -284,7 +303,8 @@ mod tests {
         let f = BernsteinFormRef::new(&c, 4, &b, 1).unwrap();
         let xs: Vec<f64> = (0..40_000).map(|i| f64::from(i) * 0.001 - 1.0).collect();
         let mut par = vec![0.0; xs.len()];
-        f.par_eval_beyond(&xs, 0, Beyond::Continue, &mut par).unwrap();
+        f.par_eval_beyond(&xs, 0, Beyond::Continue, &mut par)
+            .unwrap();
         for (&x, &v) in xs.iter().zip(&par).step_by(97) {
             let j = if x < b[0] {
                 0
@@ -300,32 +320,45 @@ mod tests {
                 + cc(3) * s * s * s;
             assert_eq!(v.to_bits(), scipy.to_bits(), "x = {x}");
             let mut one = [0.0];
-            f.par_eval_beyond(&[x], 0, Beyond::Continue, &mut one).unwrap();
+            f.par_eval_beyond(&[x], 0, Beyond::Continue, &mut one)
+                .unwrap();
             assert_eq!(one[0].to_bits(), v.to_bits(), "x = {x}: batch and single");
         }
         // the same function on the breakpoints reversed: the pieces reversed and each one's
         // coefficients reversed (b_{a,k}(1 − s) = b_{k−a,k}(s)), as in SciPy's BPoly tests
         let rb: Vec<f64> = b.iter().rev().copied().collect();
-        let rc: Vec<f64> = (0..400).map(|i| c[(3 - i / 100) * 100 + 99 - i % 100]).collect();
+        let rc: Vec<f64> = (0..400)
+            .map(|i| c[(3 - i / 100) * 100 + 99 - i % 100])
+            .collect();
         let g = BernsteinFormRef::new(&rc, 4, &rb, 1).unwrap();
         for nu in 0..=2 {
             let (mut up, mut down) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
-            f.par_eval_beyond(&xs, nu, Beyond::Continue, &mut up).unwrap();
-            g.par_eval_beyond(&xs, nu, Beyond::Continue, &mut down).unwrap();
+            f.par_eval_beyond(&xs, nu, Beyond::Continue, &mut up)
+                .unwrap();
+            g.par_eval_beyond(&xs, nu, Beyond::Continue, &mut down)
+                .unwrap();
             for ((&x, u), d) in xs.iter().zip(&up).zip(&down) {
                 if b.iter().any(|&t| (t - x).abs() < 1e-9) {
                     continue; // the jumps: the right limit going up, the left one going down
                 }
-                assert!((u - d).abs() <= 1e-12 * (1.0 + u.abs()), "x = {x}, nu = {nu}: {u} {d}");
+                assert!(
+                    (u - d).abs() <= 1e-12 * (1.0 + u.abs()),
+                    "x = {x}, nu = {nu}: {u} {d}"
+                );
             }
         }
         let mut two = [0.0; 2];
-        f.par_eval_beyond(&[-0.5, 37.5], 1, Beyond::Nan, &mut two).unwrap();
+        f.par_eval_beyond(&[-0.5, 37.5], 1, Beyond::Nan, &mut two)
+            .unwrap();
         assert!(two.iter().all(|v| v.is_nan()), "outside: {two:?}");
-        f.par_eval_beyond(&[1.0, 2.0], 4, Beyond::Nan, &mut two).unwrap();
+        f.par_eval_beyond(&[1.0, 2.0], 4, Beyond::Nan, &mut two)
+            .unwrap();
         assert_eq!(two, [0.0, 0.0], "orders above the degree");
         let e = BernsteinFormRef::new(&c[..399], 4, &b, 1).unwrap_err();
-        assert!(matches!(e, Error::LengthMismatch { expected: 400, .. }), "{e}");
+        assert!(
+            matches!(e, Error::LengthMismatch { expected: 400, .. }),
+            "{e}"
+        );
         let e = BernsteinFormRef::new(&c[..4], 4, &[1.0, 1.0], 1).unwrap_err();
         assert!(matches!(e, Error::EmptyDomain { .. }), "{e}");
         let e = BernsteinFormRef::new(&c[..4], 0, &[0.0, 1.0], 1).unwrap_err();

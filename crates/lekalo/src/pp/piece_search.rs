@@ -120,7 +120,10 @@ impl<'a> PieceSearch<'a> {
     /// `(min, max)` of the breakpoints.
     #[inline(always)]
     pub(crate) fn domain(&self) -> (f64, f64) {
-        let (a, b) = (self.breakpoints[0], self.breakpoints[self.breakpoints.len() - 1]);
+        let (a, b) = (
+            self.breakpoints[0],
+            self.breakpoints[self.breakpoints.len() - 1],
+        );
         if self.descending {
             (b, a)
         } else {
@@ -147,9 +150,14 @@ impl<'a> PieceSearch<'a> {
             return self.first;
         }
         match &self.locator {
-            Some((table, negated)) => {
-                table.find(if self.descending { negated.as_slice() } else { b }, y)
-            }
+            Some((table, negated)) => table.find(
+                if self.descending {
+                    negated.as_slice()
+                } else {
+                    b
+                },
+                y,
+            ),
             // start ≤ y < end: at least one breakpoint at or below y, the last one below end
             None if self.descending => b.partition_point(|&v| -v <= y) - 1,
             None => b.partition_point(|&v| v <= y) - 1,
@@ -251,7 +259,11 @@ mod tests {
         let (first, last) = (non_empty[0], non_empty[non_empty.len() - 1]);
         let descending = b[pieces] < b[0];
         let beyond_start = if descending { x > b[0] } else { x < b[0] };
-        let at_or_beyond_end = if descending { x <= b[pieces] } else { x >= b[pieces] };
+        let at_or_beyond_end = if descending {
+            x <= b[pieces]
+        } else {
+            x >= b[pieces]
+        };
         if beyond_start {
             first
         } else if at_or_beyond_end {
@@ -317,7 +329,11 @@ mod tests {
             .for_each_point(&xs, 2, Beyond::Nan, &mut out, || (), kernel)
             .unwrap();
         assert!(out[..2].iter().all(|v| v.is_nan()) && out[8..10].iter().all(|v| v.is_nan()));
-        assert_eq!(&out[2..8], &[0.0, 0.5, 2.0, 1.0, 2.0, 3.0], "inside, ends included");
+        assert_eq!(
+            &out[2..8],
+            &[0.0, 0.5, 2.0, 1.0, 2.0, 3.0],
+            "inside, ends included"
+        );
 
         let many: Vec<f64> = (0..3 * PAR_MIN_POINTS)
             .map(|i| -0.5 + 4.0 * i as f64 / (3 * PAR_MIN_POINTS) as f64)
@@ -336,11 +352,21 @@ mod tests {
         let e = search
             .for_each_point(&xs, 2, Beyond::Continue, &mut out[..3], || (), kernel)
             .unwrap_err();
-        assert!(matches!(e, Error::LengthMismatch { expected: 14, .. }), "{e}");
+        assert!(
+            matches!(e, Error::LengthMismatch { expected: 14, .. }),
+            "{e}"
+        );
         let e = search
-            .for_each_point(&[0.5, 2.0], 1, Beyond::Continue, &mut [0.0; 2], || (), |(), _, x, o| {
-                o[0] = if x > 1.0 { f64::INFINITY } else { x };
-            })
+            .for_each_point(
+                &[0.5, 2.0],
+                1,
+                Beyond::Continue,
+                &mut [0.0; 2],
+                || (),
+                |(), _, x, o| {
+                    o[0] = if x > 1.0 { f64::INFINITY } else { x };
+                },
+            )
             .unwrap_err();
         assert!(matches!(e, Error::NonFinite { index: 1, .. }), "{e}");
     }

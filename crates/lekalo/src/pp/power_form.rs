@@ -7,9 +7,9 @@
 //! order fixed at compile time. `docs/theory/pp.md#piecewise-polynomials`.
 
 use crate::curve::Beyond;
-use crate::error::{check_finite, Result};
 #[cfg(doc)]
 use crate::error::Error;
+use crate::error::{check_finite, Result};
 use crate::pp::piece_search::{check_arrays, PieceSearch};
 #[cfg(doc)]
 use crate::pp::ppform::PiecewisePolynomial;
@@ -97,9 +97,16 @@ impl<'a> PowerFormRef<'a> {
         let b = self.breakpoints;
         macro_rules! fixed {
             ($k:literal) => {
-                search.for_each_point(xs, dim, beyond, out, || (), |(), j, x, o| {
-                    self.values_fixed::<$k>(j, x - b[j], o);
-                })
+                search.for_each_point(
+                    xs,
+                    dim,
+                    beyond,
+                    out,
+                    || (),
+                    |(), j, x, o| {
+                        self.values_fixed::<$k>(j, x - b[j], o);
+                    },
+                )
             };
         }
         match (nu, k) {
@@ -108,9 +115,16 @@ impl<'a> PowerFormRef<'a> {
             (0, 4) => fixed!(4),
             (0, 5) => fixed!(5),
             (0, 6) => fixed!(6),
-            _ => search.for_each_point(xs, dim, beyond, out, || (), |(), j, x, o| {
-                self.derivative_at(j, x - b[j], nu, o);
-            }),
+            _ => search.for_each_point(
+                xs,
+                dim,
+                beyond,
+                out,
+                || (),
+                |(), j, x, o| {
+                    self.derivative_at(j, x - b[j], nu, o);
+                },
+            ),
         }
     }
 
