@@ -529,12 +529,18 @@ pub(crate) fn piecewise_hermite_bernstein(
     Ok(PyBSplineCurve::wrap(curve))
 }
 
-/// SciPy's coefficient array `c` (shape `(k, pieces)` or `(k, pieces, dim)`, float64) and
-/// breakpoints `x` (`pieces + 1`), read in place: `(c, x, order, dim)`.
-fn scipy_arrays<'a, 'py>(
-    ca: &'a FloatArray<'py>,
-    xa: &'a FloatArray<'py>,
-) -> PyResult<(&'a [f64], &'a [f64], usize, usize)> {
+/// SciPy's coefficient array `c` (`order·pieces·dim` numbers) and breakpoints `x`, read in
+/// place.
+struct ScipyArrays<'a> {
+    c: &'a [f64],
+    x: &'a [f64],
+    order: usize,
+    dim: usize,
+}
+
+/// Checks the shapes of SciPy's `c` (`(k, pieces)` or `(k, pieces, dim)`, float64) and `x`
+/// (`pieces + 1` breakpoints).
+fn scipy_arrays<'a>(ca: &'a FloatArray<'_>, xa: &'a FloatArray<'_>) -> PyResult<ScipyArrays<'a>> {
     let (order, pieces, dim) = match ca.shape()[..] {
         [order, pieces] => (order, pieces, 1),
         [order, pieces, dim] => (order, pieces, dim),
@@ -552,7 +558,12 @@ fn scipy_arrays<'a, 'py>(
             pieces + 1
         )));
     }
-    Ok((ca.data(), xa.data(), order, dim))
+    Ok(ScipyArrays {
+        c: ca.data(),
+        x: xa.data(),
+        order,
+        dim,
+    })
 }
 
 /// SciPy's `extrapolate` (a bool) as the library's [`Beyond`].
@@ -564,34 +575,27 @@ fn beyond(extrapolate: bool) -> Beyond {
     }
 }
 
-/// An evaluator of SciPy's arrays in place: `(c, order, x, dim, points, nu, beyond, out)`.
-type InPlace =
-    fn(&[f64], usize, &[f64], usize, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
+/// An evaluator of SciPy's arrays in place: `(arrays, points, nu, beyond, out)`.
+type InPlace = fn(&ScipyArrays<'_>, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
 
 fn power_form(
-    c: &[f64],
-    order: usize,
-    x: &[f64],
-    dim: usize,
+    a: &ScipyArrays<'_>,
     xs: &[f64],
     nu: usize,
     beyond: Beyond,
     out: &mut [f64],
 ) -> lekalo::Result<()> {
-    PowerFormRef::new(c, order, x, dim)?.par_eval_beyond(xs, nu, beyond, out)
+    PowerFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
 }
 
 fn bernstein_form(
-    c: &[f64],
-    order: usize,
-    x: &[f64],
-    dim: usize,
+    a: &ScipyArrays<'_>,
     xs: &[f64],
     nu: usize,
     beyond: Beyond,
     out: &mut [f64],
 ) -> lekalo::Result<()> {
-    BernsteinFormRef::new(c, order, x, dim)?.par_eval_beyond(xs, nu, beyond, out)
+    BernsteinFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
 }
 
 /// The values at `xp` (any shape, result `xp.shape + (dim,)`) by `eval`, the arrays read in
@@ -604,17 +608,18 @@ fn values_in_place<'py>(
     eval: InPlace,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
-    let (c, x, order, dim) = scipy_arrays(&ca, &xa)?;
+    let arrays = scipy_arrays(&ca, &xa)?;
     let pa = floats(xp, "xp")?;
     let xs = pa.data();
+    let dim = arrays.dim;
     check_size("xp", &[xs.len(), dim])?;
     filled(py, &out_shape(&pa, &[dim]), |out| {
-        eval(c, order, x, dim, xs, nu, beyond(extrapolate), out)
+        eval(&arrays, xs, nu, beyond(extrapolate), out)
     })
 }
 
 /// The value at the number `xp` by `eval` of a scalar piecewise polynomial (`dim` 1), the
-/// arrays read in place, nothing allocated but the few numbers of the result.
+/// arrays read in place.
 fn value_in_place(
     (c, x): (&Bound<'_, PyAny>, &Bound<'_, PyAny>),
     xp: f64,
@@ -623,14 +628,15 @@ fn value_in_place(
     eval: InPlace,
 ) -> PyResult<f64> {
     let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
-    let (c, x, order, dim) = scipy_arrays(&ca, &xa)?;
-    if dim != 1 {
+    let arrays = scipy_arrays(&ca, &xa)?;
+    if arrays.dim != 1 {
         return Err(bad(format!(
-            "c: {dim} values a point; the scalar call takes c of shape (k, pieces)"
+            "c: {} values a point; the scalar call takes c of shape (k, pieces)",
+            arrays.dim
         )));
     }
     let mut out = [0.0];
-    eval(c, order, x, 1, &[xp], nu, beyond(extrapolate), &mut out).map_err(lib_err)?;
+    eval(&arrays, &[xp], nu, beyond(extrapolate), &mut out).map_err(lib_err)?;
     Ok(out[0])
 }
 
