@@ -84,6 +84,9 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pp::quasi_interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(pp::hermite_bernstein, m)?)?;
     m.add_function(wrap_pyfunction!(pp::ppoly_values, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::ppoly_value, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::bpoly_values, m)?)?;
+    m.add_function(wrap_pyfunction!(pp::bpoly_value, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_periodic, m)?)?;
     m.add_function(wrap_pyfunction!(periodic::insert_knot_raw, m)?)?;
     m.add_function(wrap_pyfunction!(pp::piecewise_hermite_bernstein, m)?)?;

@@ -1,13 +1,15 @@
 //! Piecewise polynomials in pp-form, the spaces `P_{k,ξ,ν}` and quasi-interpolation
 //! (document 003, docs/theory/pp.md).
 
-use lekalo::pp::Solution;
-use lekalo::{PiecewisePolynomial, PpSpace, Tau, TauRule};
+use lekalo::pp::{BernsteinFormRef, PowerFormRef, Solution};
+use lekalo::{Beyond, PiecewisePolynomial, PpSpace, Tau, TauRule};
 use lekalo_io::Shape;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::convert::{array, check_size, filled, floats, points_into_array, vec1, vec_array};
+use crate::convert::{
+    array, check_size, filled, floats, points_into_array, vec1, vec_array, FloatArray,
+};
 use crate::convert::{out_shape, reduce};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
@@ -527,28 +529,28 @@ pub(crate) fn piecewise_hermite_bernstein(
     Ok(PyBSplineCurve::wrap(curve))
 }
 
-/// `ppoly_values(c, x, xp, nu=0)`: the `nu`-th derivative of SciPy's `PPoly` with coefficients
-/// `c` (shape `(k, pieces, dim)`, float64, the highest power first) on the non-decreasing
-/// breakpoints `x` at the points `xp` (any shape, result `xp.shape + (dim,)`), the end pieces
-/// continued (`lekalo::pp::PowerFormRef::par_eval_extrapolated`: Horner's rule on the arrays in
-/// place, nothing copied).
-#[pyfunction]
-#[pyo3(signature = (c, x, xp, nu = 0))]
-pub(crate) fn ppoly_values<'py>(
-    py: Python<'py>,
-    c: &Bound<'py, PyAny>,
-    x: &Bound<'py, PyAny>,
-    xp: &Bound<'py, PyAny>,
-    nu: usize,
-) -> PyResult<Bound<'py, PyAny>> {
-    let ca = floats(c, "c")?;
-    let [order, pieces, dim] = ca.shape()[..] else {
-        return Err(bad(format!(
-            "c: shape {:?}; expected (k, pieces, dim)",
-            ca.shape()
-        )));
+/// SciPy's coefficient array `c` (`order·pieces·dim` numbers) and breakpoints `x`, read in
+/// place.
+struct ScipyArrays<'a> {
+    c: &'a [f64],
+    x: &'a [f64],
+    order: usize,
+    dim: usize,
+}
+
+/// Checks the shapes of SciPy's `c` (`(k, pieces)` or `(k, pieces, dim)`, float64) and `x`
+/// (`pieces + 1` breakpoints).
+fn scipy_arrays<'a>(ca: &'a FloatArray<'_>, xa: &'a FloatArray<'_>) -> PyResult<ScipyArrays<'a>> {
+    let (order, pieces, dim) = match ca.shape()[..] {
+        [order, pieces] => (order, pieces, 1),
+        [order, pieces, dim] => (order, pieces, dim),
+        _ => {
+            return Err(bad(format!(
+                "c: shape {:?}; expected (k, pieces) or (k, pieces, dim)",
+                ca.shape()
+            )))
+        }
     };
-    let xa = floats(x, "x")?;
     if xa.shape() != [pieces + 1] {
         return Err(bad(format!(
             "x: shape {:?}; expected {} breakpoints for {pieces} pieces",
@@ -556,11 +558,150 @@ pub(crate) fn ppoly_values<'py>(
             pieces + 1
         )));
     }
-    let f = lekalo::pp::PowerFormRef::new(ca.data(), order, xa.data(), dim).map_err(lib_err)?;
+    Ok(ScipyArrays {
+        c: ca.data(),
+        x: xa.data(),
+        order,
+        dim,
+    })
+}
+
+/// SciPy's `extrapolate` (a bool) as the library's [`Beyond`].
+fn beyond(extrapolate: bool) -> Beyond {
+    if extrapolate {
+        Beyond::Continue
+    } else {
+        Beyond::Nan
+    }
+}
+
+/// An evaluator of SciPy's arrays in place: `(arrays, points, nu, beyond, out)`.
+type InPlace = fn(&ScipyArrays<'_>, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
+
+fn power_form(
+    a: &ScipyArrays<'_>,
+    xs: &[f64],
+    nu: usize,
+    beyond: Beyond,
+    out: &mut [f64],
+) -> lekalo::Result<()> {
+    PowerFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
+}
+
+fn bernstein_form(
+    a: &ScipyArrays<'_>,
+    xs: &[f64],
+    nu: usize,
+    beyond: Beyond,
+    out: &mut [f64],
+) -> lekalo::Result<()> {
+    BernsteinFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
+}
+
+/// The values at `xp` (any shape, result `xp.shape + (dim,)`) by `eval`, the arrays read in
+/// place, the result written once into NumPy's array.
+fn values_in_place<'py>(
+    py: Python<'py>,
+    (c, x, xp): (&Bound<'py, PyAny>, &Bound<'py, PyAny>, &Bound<'py, PyAny>),
+    nu: usize,
+    extrapolate: bool,
+    eval: InPlace,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
+    let arrays = scipy_arrays(&ca, &xa)?;
     let pa = floats(xp, "xp")?;
     let xs = pa.data();
+    let dim = arrays.dim;
     check_size("xp", &[xs.len(), dim])?;
     filled(py, &out_shape(&pa, &[dim]), |out| {
-        f.par_eval_extrapolated(xs, nu, out)
+        eval(&arrays, xs, nu, beyond(extrapolate), out)
     })
+}
+
+/// The value at the number `xp` by `eval` of a scalar piecewise polynomial (`dim` 1), the
+/// arrays read in place.
+fn value_in_place(
+    (c, x): (&Bound<'_, PyAny>, &Bound<'_, PyAny>),
+    xp: f64,
+    nu: usize,
+    extrapolate: bool,
+    eval: InPlace,
+) -> PyResult<f64> {
+    let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
+    let arrays = scipy_arrays(&ca, &xa)?;
+    if arrays.dim != 1 {
+        return Err(bad(format!(
+            "c: {} values a point; the scalar call takes c of shape (k, pieces)",
+            arrays.dim
+        )));
+    }
+    let mut out = [0.0];
+    eval(&arrays, &[xp], nu, beyond(extrapolate), &mut out).map_err(lib_err)?;
+    Ok(out[0])
+}
+
+/// `ppoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `PPoly`
+/// with coefficients `c` (shape `(k, pieces)` or `(k, pieces, dim)`, float64, the highest power
+/// first) on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
+/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
+/// (`lekalo::pp::PowerFormRef::par_eval_beyond`: Horner's rule on the arrays in place, nothing
+/// copied).
+#[pyfunction]
+#[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
+pub(crate) fn ppoly_values<'py>(
+    py: Python<'py>,
+    c: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    xp: &Bound<'py, PyAny>,
+    nu: usize,
+    extrapolate: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    values_in_place(py, (c, x, xp), nu, extrapolate, power_form)
+}
+
+/// `ppoly_value(c, x, xp, nu=0, extrapolate=True)`: [`ppoly_values`] at one number `xp` of a
+/// scalar `PPoly` (`c` of shape `(k, pieces)`), a float.
+#[pyfunction]
+#[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
+pub(crate) fn ppoly_value(
+    c: &Bound<'_, PyAny>,
+    x: &Bound<'_, PyAny>,
+    xp: f64,
+    nu: usize,
+    extrapolate: bool,
+) -> PyResult<f64> {
+    value_in_place((c, x), xp, nu, extrapolate, power_form)
+}
+
+/// `bpoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `BPoly`
+/// with Bernstein coefficients `c` (shape `(k + 1, pieces)` or `(k + 1, pieces, dim)`, float64)
+/// on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
+/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
+/// (`lekalo::pp::BernsteinFormRef::par_eval_beyond`: the Bernstein sum in each piece on the
+/// arrays in place, nothing copied).
+#[pyfunction]
+#[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
+pub(crate) fn bpoly_values<'py>(
+    py: Python<'py>,
+    c: &Bound<'py, PyAny>,
+    x: &Bound<'py, PyAny>,
+    xp: &Bound<'py, PyAny>,
+    nu: usize,
+    extrapolate: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    values_in_place(py, (c, x, xp), nu, extrapolate, bernstein_form)
+}
+
+/// `bpoly_value(c, x, xp, nu=0, extrapolate=True)`: [`bpoly_values`] at one number `xp` of a
+/// scalar `BPoly` (`c` of shape `(k + 1, pieces)`), a float.
+#[pyfunction]
+#[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
+pub(crate) fn bpoly_value(
+    c: &Bound<'_, PyAny>,
+    x: &Bound<'_, PyAny>,
+    xp: f64,
+    nu: usize,
+    extrapolate: bool,
+) -> PyResult<f64> {
+    value_in_place((c, x), xp, nu, extrapolate, bernstein_form)
 }

@@ -68,3 +68,62 @@ def test_ppoly_in_place_with_repeated_breakpoints_and_changes():
     theirs.c[1, 2, 0] += 5.0
     np.testing.assert_allclose(ours(xp), theirs(xp), rtol=1e-13, atol=1e-13)
     assert ours(0.5).shape == theirs(0.5).shape
+
+
+@pytest.mark.parametrize("descending", [False, True])
+def test_bpoly_in_place_has_scipy_bits_and_sees_changes(descending):
+    rng = np.random.default_rng(5)
+    x = np.sort(rng.uniform(0, 10, 12))
+    c = rng.uniform(-2, 2, (4, 11))
+    if descending:
+        x, c = x[::-1].copy(), c[::-1, ::-1].copy()
+    ours, theirs = ls.BPoly(c.copy(), x), si.BPoly(c.copy(), x)
+    xp = rng.uniform(-2, 12, 300)
+    # the cubic's Bernstein sum written out as SciPy writes it: the same bits
+    assert np.array_equal(ours(xp), theirs(xp))
+    for nu in (1, 2, 3, 4):
+        np.testing.assert_allclose(ours(xp, nu), theirs(xp, nu), rtol=1e-11, atol=1e-11)
+    # one number, changes in place, no extrapolation, periodic: as SciPy
+    ours.c[2, 5] += 3.0
+    theirs.c[2, 5] += 3.0
+    assert np.array_equal(ours(xp), theirs(xp))
+    at = float(xp[7])
+    assert ours(at).shape == () and ours(at) == theirs(at)
+    got, want = ours(xp, extrapolate=False), theirs(xp, extrapolate=False)
+    assert np.array_equal(np.isnan(got), np.isnan(want))
+    np.testing.assert_array_equal(got[~np.isnan(got)], want[~np.isnan(want)])
+    np.testing.assert_allclose(ours(xp, extrapolate="periodic"), theirs(xp, extrapolate="periodic"), rtol=1e-13)
+    assert np.isnan(ours(np.array([np.nan, 1.0])))[0]
+
+
+def test_bpoly_of_high_degree_and_vector_values():
+    rng = np.random.default_rng(9)
+    x = np.r_[0.0, np.sort(rng.uniform(0, 3, 6)), 3.0]
+    c = rng.standard_normal((7, 7, 2, 3))
+    ours, theirs = ls.BPoly(c, x), si.BPoly(c, x)
+    xp = rng.uniform(-0.5, 3.5, (20, 5))
+    for nu in (0, 1, 3):
+        got = ours(xp, nu)
+        assert got.shape == theirs(xp, nu).shape
+        np.testing.assert_allclose(got, theirs(xp, nu), rtol=1e-11, atol=1e-11)
+
+
+def test_cubics_read_their_coefficients_for_large_batches():
+    rng = np.random.default_rng(11)
+    x = np.linspace(0, 10, 200) + rng.uniform(-0.01, 0.01, 200)
+    y = np.sin(x)
+    xp = rng.uniform(-0.5, 10.5, 5000)
+    for make in (
+        lambda m: m.CubicSpline(x, y),
+        lambda m: m.PchipInterpolator(x, y),
+        lambda m: m.Akima1DInterpolator(x, y, extrapolate=True),
+        lambda m: m.CubicHermiteSpline(x, y, np.cos(x)),
+    ):
+        ours, theirs = make(ls), make(si)
+        small = ours(xp[:10])
+        assert ours._c is None, "a small batch evaluates the spline"
+        np.testing.assert_allclose(ours(xp), theirs(xp), rtol=1e-13, atol=1e-13)
+        assert ours._c is not None, "a large batch reads the coefficients once"
+        np.testing.assert_allclose(ours(xp[:10]), small, rtol=1e-14, atol=1e-14)
+        np.testing.assert_allclose(ours(xp, 1), theirs(xp, 1), rtol=1e-12, atol=1e-12)
+        assert abs(float(ours(0.3)) - float(theirs(0.3))) < 1e-13

@@ -42,7 +42,7 @@ use crate::curve::bspline::BSplineCurve;
 use crate::error::{Error, Result};
 
 mod kernels;
-mod locate;
+pub(crate) mod locate;
 mod nurbs;
 
 use kernels::{basis_fixed, power_ders, power_dyn, power_fixed};

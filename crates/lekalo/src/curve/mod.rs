@@ -26,7 +26,7 @@
 //! - `curvature.rs`: [`curvature`] and [`principal_normal`] from the first two derivatives,
 //!   [`torsion`] from three.
 //! - `fast_eval.rs`: [`CurveEvaluator`], batch evaluation by polynomial pieces; in
-//!   `fast_eval/`: `locate.rs` (piece location), `kernels.rs` (fixed-size kernels), `nurbs.rs`
+//!   `fast_eval/`: `locate.rs` (piece location, shared with `pp::piece_search`), `kernels.rs` (fixed-size kernels), `nurbs.rs`
 //!   ([`NurbsEvaluator`]), `tests.rs`.
 
 mod any;
@@ -34,7 +34,7 @@ pub(crate) mod bezier;
 pub(crate) mod bspline;
 mod conics;
 mod curvature;
-mod fast_eval;
+pub(crate) mod fast_eval;
 mod integral;
 mod knot_insertion;
 pub(crate) mod knot_removal;

@@ -8,7 +8,11 @@
 //! - `extrapolation.rs`: evaluation with the end pieces continued
 //!   ([`PiecewisePolynomial::eval_extrapolated_into`]).
 //! - `power_form.rs`: [`PowerFormRef`], SciPy's `PPoly` arrays evaluated in place (Horner,
-//!   the end pieces continued).
+//!   the end pieces continued or NaN).
+//! - `bernstein_form.rs`: [`BernsteinFormRef`], SciPy's `BPoly` arrays evaluated in place
+//!   (the Bernstein sum or de Casteljau in each piece).
+//! - `piece_search.rs`: the piece of a point on breakpoints read in place (the B-spline
+//!   evaluator's bucket table or a binary search) and the batch loop the two share.
 //! - `hermite_bernstein.rs`: Hermite interpolation in Bernstein form with derivatives of any
 //!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
 //! - `hermite_bspline.rs`: cubic Hermite data written into the knots and coefficients of a
@@ -19,6 +23,7 @@
 //! - `quasi_interpolation.rs`: the de Boor–Fix dual functionals: pp-form to B-spline
 //!   conversion and [`quasi_interpolate`].
 
+mod bernstein_form;
 mod decreasing;
 mod divided_difference;
 mod expression;
@@ -26,11 +31,13 @@ mod extrapolation;
 mod hermite_bernstein;
 mod hermite_bspline;
 mod integral;
+mod piece_search;
 mod power_form;
 pub(crate) mod ppform;
 mod quasi_interpolation;
 mod roots;
 
+pub use bernstein_form::BernsteinFormRef;
 pub use divided_difference::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
     NewtonForm,

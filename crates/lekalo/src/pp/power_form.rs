@@ -1,18 +1,23 @@
 //! A piecewise polynomial in the local power basis read in place from SciPy's `PPoly` arrays
 //! ([`PowerFormRef`]): coefficients `c` of shape `(k, pieces, dim)`, the highest power first,
-//! on non-decreasing breakpoints, evaluated by Horner's rule in each piece with the end pieces
-//! continued, without a copy into a [`PiecewisePolynomial`] (the same operations, so the same
-//! bits). `docs/theory/pp.md#piecewise-polynomials`.
+//! on monotonic breakpoints (either order, as SciPy allows), evaluated by Horner's rule in each
+//! piece with the end pieces continued (or NaN), without a copy into a [`PiecewisePolynomial`] (the same operations, so
+//! the same bits). The piece of a point is found as the B-spline evaluator finds it (a bucket
+//! table for large batches, `piece_search.rs`), and the common orders have kernels with the
+//! order fixed at compile time. `docs/theory/pp.md#piecewise-polynomials`.
 
-use rayon::prelude::*;
-
-use crate::error::{check_finite, Error, Result};
+use crate::curve::Beyond;
+#[cfg(doc)]
+use crate::error::Error;
+use crate::error::{check_finite, Result};
+use crate::pp::piece_search::{check_arrays, PieceSearch};
 #[cfg(doc)]
 use crate::pp::ppform::PiecewisePolynomial;
 
 /// Borrowed coefficients of SciPy's `PPoly`: `f(x) = Σ_m c[m, i]·(x − x_i)^{k−1−m}` on
-/// `x_i ≤ x < x_{i+1}`, `c[m, i, d]` at `(m·pieces + i)·dim + d`. Repeated breakpoints (empty
-/// pieces) are allowed and never evaluated.
+/// `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on decreasing breakpoints), `c[m, i, d]` at
+/// `(m·pieces + i)·dim + d`. Repeated breakpoints (empty pieces) are allowed and never
+/// evaluated.
 #[derive(Debug, Clone, Copy)]
 pub struct PowerFormRef<'a> {
     c: &'a [f64],
@@ -21,12 +26,9 @@ pub struct PowerFormRef<'a> {
     dim: usize,
 }
 
-/// Batches below this many points run on the calling thread.
-const PAR_MIN_POINTS: usize = 4096;
-
 impl<'a> PowerFormRef<'a> {
     /// The piecewise polynomial of order `order` (`k` coefficients a piece) on `breakpoints`
-    /// (`pieces + 1` of them, non-decreasing, the first below the last) with the coefficients
+    /// (`pieces + 1` of them, monotonic, the ends different) with the coefficients
     /// `c` (`k·pieces·dim` numbers, SciPy's layout). The order of the breakpoints is the
     /// caller's to guarantee (SciPy's constructor checks it): only their ends are checked here,
     /// so that a call costs no pass over the arrays.
@@ -46,43 +48,9 @@ impl<'a> PowerFormRef<'a> {
     /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
     /// [`Error::LengthMismatch`] if `c` does not hold `k·pieces·dim` numbers;
     /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-    /// if the first breakpoint is not below the last.
+    /// if the first and the last breakpoint are equal.
     pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
-        if breakpoints.len() < 2 {
-            return Err(Error::TooFew {
-                what: "breakpoints",
-                min: 2,
-                got: breakpoints.len(),
-            });
-        }
-        if order == 0 || dim == 0 {
-            return Err(Error::TooFew {
-                what: if order == 0 {
-                    "coefficients a piece (order)"
-                } else {
-                    "numbers a value (dim)"
-                },
-                min: 1,
-                got: 0,
-            });
-        }
-        let pieces = breakpoints.len() - 1;
-        let want = order
-            .checked_mul(pieces)
-            .and_then(|v| v.checked_mul(dim))
-            .unwrap_or(usize::MAX);
-        if c.len() != want {
-            return Err(Error::LengthMismatch {
-                what: "coefficients (order × pieces × dim)",
-                expected: want,
-                got: c.len(),
-            });
-        }
-        let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
-        check_finite("breakpoints (the ends)", &[lo, hi])?;
-        if lo >= hi {
-            return Err(Error::EmptyDomain { min: lo, max: hi });
-        }
+        check_arrays(c, order, breakpoints, dim)?;
         Ok(PowerFormRef {
             c,
             order,
@@ -91,81 +59,105 @@ impl<'a> PowerFormRef<'a> {
         })
     }
 
-    /// The piece of `x`: `x_j ≤ x < x_{j+1}` (the last non-empty piece at and beyond the right
-    /// end, the first non-empty one below the left end), as the pp-form without its empty
-    /// pieces finds it.
-    #[inline]
-    fn piece(&self, x: f64) -> usize {
-        let b = self.breakpoints;
-        let last = b.len() - 2;
-        let mut j = b.partition_point(|&v| v <= x).saturating_sub(1);
-        if j >= last {
-            j = last;
-            while j > 0 && b[j] >= b[j + 1] {
-                j -= 1;
-            }
-        } else if x < b[0] {
-            while j < last && b[j] >= b[j + 1] {
-                j += 1;
-            }
-        }
-        j
-    }
-
     /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), the end pieces
-    /// continued: `D^r Σ_s c_s u^s = Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` by Horner's rule in
-    /// `u = x − x_j`, as [`PiecewisePolynomial::eval_extrapolated_into`] (the same operations
-    /// in the same order). Orders `nu ≥ k` give zeros. On the thread pool from a few thousand
-    /// points.
+    /// continued; every `x` must be finite. As [`PowerFormRef::par_eval_beyond`] with
+    /// [`Beyond::Continue`], which see.
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
     /// [`Error::NonFinite`] for a NaN or infinite `x`, or a value that overflows.
     pub fn par_eval_extrapolated(&self, xs: &[f64], nu: usize, out: &mut [f64]) -> Result<()> {
-        let dim = self.dim;
-        let want = xs.len().saturating_mul(dim);
-        if out.len() != want {
-            return Err(Error::LengthMismatch {
-                what: "output (points × dim)",
-                expected: want,
-                got: out.len(),
-            });
-        }
         check_finite("x", xs)?;
-        if xs.len() < PAR_MIN_POINTS {
-            self.eval_slice(xs, nu, out);
-        } else {
-            let chunk = xs
-                .len()
-                .div_ceil(4 * rayon::current_num_threads().max(1))
-                .max(1024);
-            xs.par_chunks(chunk)
-                .zip(out.par_chunks_mut(chunk * dim))
-                .for_each(|(x, o)| self.eval_slice(x, nu, o));
-        }
-        check_finite(
-            "piecewise polynomial value (overflow: rescale the coefficients)",
-            out,
-        )
+        self.par_eval_beyond(xs, nu, Beyond::Continue, out)
     }
 
-    fn eval_slice(&self, xs: &[f64], r: usize, out: &mut [f64]) {
+    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point):
+    /// `D^r Σ_s c_s u^s = Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` by Horner's rule in `u = x − x_j` on the
+    /// piece `j` with `x_j ≤ x < x_{j+1}`, as [`PiecewisePolynomial::eval_extrapolated_into`]
+    /// (the same operations in the same order, so the same bits), on the piece `j` with
+    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy). Outside the
+    /// breakpoints the end pieces are continued or NaN is written, as `beyond` says (SciPy's `extrapolate`); NaN at
+    /// a NaN or infinite `x`. Orders `nu ≥ k` give zeros. The piece by the bucket table of the
+    /// B-spline evaluator when there are at least as many points as pieces (O(1) a point for
+    /// spread-out breakpoints), else by binary search; on the rayon pool from 16384 points.
+    /// O(points·k·dim), plus O(pieces) for the table.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
+    /// [`Error::NonFinite`] for a value that overflows.
+    pub fn par_eval_beyond(
+        &self,
+        xs: &[f64],
+        nu: usize,
+        beyond: Beyond,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let search = PieceSearch::new(self.breakpoints, xs.len());
+        let (k, dim) = (self.order, self.dim);
+        let b = self.breakpoints;
+        macro_rules! fixed {
+            ($k:literal) => {
+                search.for_each_point(
+                    xs,
+                    dim,
+                    beyond,
+                    out,
+                    || (),
+                    |(), j, x, o| {
+                        self.values_fixed::<$k>(j, x - b[j], o);
+                    },
+                )
+            };
+        }
+        match (nu, k) {
+            (0, 2) => fixed!(2),
+            (0, 3) => fixed!(3),
+            (0, 4) => fixed!(4),
+            (0, 5) => fixed!(5),
+            (0, 6) => fixed!(6),
+            _ => search.for_each_point(
+                xs,
+                dim,
+                beyond,
+                out,
+                || (),
+                |(), j, x, o| {
+                    self.derivative_at(j, x - b[j], nu, o);
+                },
+            ),
+        }
+    }
+
+    /// Values on piece `j` at `u = x − x_j` with the order `K` known at compile time: the
+    /// operations of [`PowerFormRef::derivative_at`] with `nu = 0` (its factor `1` is exact).
+    #[inline(always)]
+    fn values_fixed<const K: usize>(&self, j: usize, u: f64, o: &mut [f64]) {
+        let (dim, pieces) = (self.dim, self.breakpoints.len() - 1);
+        for (d, v) in o.iter_mut().enumerate() {
+            let mut acc = 0.0;
+            for m in 0..K {
+                // row m holds the power K − 1 − m: the highest first, as Horner reads them
+                acc = acc * u + self.c[(m * pieces + j) * dim + d];
+            }
+            *v = acc;
+        }
+    }
+
+    /// `D^r` on piece `j` at `u = x − x_j`, any order.
+    #[inline(always)]
+    fn derivative_at(&self, j: usize, u: f64, r: usize, o: &mut [f64]) {
         let (k, dim) = (self.order, self.dim);
         let pieces = self.breakpoints.len() - 1;
-        for (&x, o) in xs.iter().zip(out.chunks_exact_mut(dim)) {
-            o.fill(0.0);
-            if r >= k {
-                continue;
-            }
-            let j = self.piece(x);
-            let u = x - self.breakpoints[j];
-            for s in (r..k).rev() {
-                let falling: f64 = (s - r + 1..=s).map(|v| v as f64).product();
-                // power s is row k − 1 − s of SciPy's array
-                let at = ((k - 1 - s) * pieces + j) * dim;
-                for (v, &cs) in o.iter_mut().zip(&self.c[at..at + dim]) {
-                    *v = *v * u + falling * cs;
-                }
+        o.fill(0.0);
+        if r >= k {
+            return;
+        }
+        for s in (r..k).rev() {
+            let falling: f64 = (s - r + 1..=s).map(|v| v as f64).product();
+            // power s is row k − 1 − s of SciPy's array
+            let at = ((k - 1 - s) * pieces + j) * dim;
+            for (v, &cs) in o.iter_mut().zip(&self.c[at..at + dim]) {
+                *v = *v * u + falling * cs;
             }
         }
     }
@@ -176,6 +168,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::error::Error;
     use crate::oracle::proptest_config;
     use crate::pp::ppform::PiecewisePolynomial;
 

@@ -1,0 +1,373 @@
+//! A piecewise polynomial in the Bernstein basis of each piece read in place from SciPy's
+//! `BPoly` arrays ([`BernsteinFormRef`]): coefficients `c` of shape `(k + 1, pieces, dim)` on
+//! monotonic breakpoints (either order, as SciPy allows), evaluated in each piece without a
+//! copy or a change of basis, the end pieces continued (or NaN). The piece of a point is found
+//! as the B-spline evaluator finds it (`piece_search.rs`). `docs/theory/pp.md#piecewise-polynomials`.
+
+use crate::curve::Beyond;
+#[cfg(doc)]
+use crate::error::Error;
+use crate::error::Result;
+use crate::pp::piece_search::{check_arrays, PieceSearch};
+
+/// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on
+/// decreasing breakpoints), with `s = (x − x_i)/(x_{i+1} − x_i)`,
+/// `f(x) = Σ_{a=0}^{k} c[a, i]·b_{a,k}(s)`, `b_{a,k}(s) = C(k, a)·s^a·(1 − s)^{k−a}`,
+/// `c[a, i, d]` at `(a·pieces + i)·dim + d`. Repeated breakpoints (empty pieces) are allowed
+/// and never evaluated.
+#[derive(Debug, Clone, Copy)]
+pub struct BernsteinFormRef<'a> {
+    c: &'a [f64],
+    order: usize,
+    breakpoints: &'a [f64],
+    dim: usize,
+}
+
+impl<'a> BernsteinFormRef<'a> {
+    /// The piecewise polynomial of order `order` (`k + 1` coefficients a piece, degree `k`) on
+    /// `breakpoints` (`pieces + 1` of them, monotonic, the ends different) with the
+    /// Bernstein coefficients `c` (`order·pieces·dim` numbers, SciPy's layout). The order of the
+    /// breakpoints is the caller's to guarantee (SciPy's constructor checks it): only their
+    /// ends are checked here, so that a call costs no pass over the arrays.
+    ///
+    /// ```
+    /// use lekalo::pp::BernsteinFormRef;
+    /// use lekalo::Beyond;
+    /// // s² on [0, 1] (Bernstein coefficients 0, 0, 1), then 1 + 2(x − 1) on [1, 3]
+    /// let c = [0.0, 1.0, 0.0, 3.0, 1.0, 5.0];
+    /// let f = BernsteinFormRef::new(&c, 3, &[0.0, 1.0, 3.0], 1)?;
+    /// let mut out = [0.0; 3];
+    /// f.par_eval_beyond(&[0.5, 2.0, 4.0], 0, Beyond::Continue, &mut out)?;
+    /// assert_eq!(out, [0.25, 3.0, 7.0]);
+    /// # Ok::<(), lekalo::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
+    /// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
+    /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
+    /// if the first and the last breakpoint are equal.
+    pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
+        check_arrays(c, order, breakpoints, dim)?;
+        Ok(BernsteinFormRef {
+            c,
+            order,
+            breakpoints,
+            dim,
+        })
+    }
+
+    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), on the piece `j` with
+    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy) at
+    /// `s = (x − x_j)/h_j`, `h_j = x_{j+1} − x_j`. Degree `k ≤ 3`: the Bernstein sum written out, in the operations and order of SciPy's `evaluate_bpoly1`
+    /// (so the same bits); higher degrees: de Casteljau's algorithm (Farin, *Curves and
+    /// Surfaces for CAGD*, 5th ed., §4.1), `k(k + 1)/2` convex combinations, stable for `s` in
+    /// `[0, 1]`. Derivatives: `D^nu f = k!/(k − nu)!·h^{−nu}·Σ_a Δ^nu c_a·b_{a,k−nu}(s)` with
+    /// the forward differences `Δ^nu c_a` (Farin §5.3). Outside the breakpoints the end pieces are
+    /// continued (the same polynomials at `s < 0` or `s > 1`) or NaN is written, as `beyond`
+    /// says (SciPy's `extrapolate`); NaN at a NaN or infinite `x`. Orders `nu > k` give zeros.
+    /// The piece by the bucket table of the B-spline evaluator when there are at least as many
+    /// points as pieces (O(1) a point for spread-out breakpoints), else by binary search; on
+    /// the rayon pool from 16384 points. O(points·k²·dim) above degree 3, O(points·k·dim) up
+    /// to it; one scratch of `k + 1` numbers a task.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
+    /// [`Error::NonFinite`] for a value that overflows.
+    pub fn par_eval_beyond(
+        &self,
+        xs: &[f64],
+        nu: usize,
+        beyond: Beyond,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let search = PieceSearch::new(self.breakpoints, xs.len());
+        let (k, dim) = (self.order - 1, self.dim);
+        let b = self.breakpoints;
+        let pieces = b.len() - 1;
+        let at = |a: usize, j: usize, d: usize| self.c[(a * pieces + j) * dim + d];
+        if nu > k {
+            return search.for_each_point(xs, dim, beyond, out, || (), |(), _, _, o| o.fill(0.0));
+        }
+        if nu == 0 && k <= 3 {
+            macro_rules! written_out {
+                ($k:literal) => {
+                    search.for_each_point(
+                        xs,
+                        dim,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let s = (x - b[j]) / (b[j + 1] - b[j]);
+                            for (d, v) in o.iter_mut().enumerate() {
+                                *v = bernstein_sum::<$k>(s, |a| at(a, j, d));
+                            }
+                        },
+                    )
+                };
+            }
+            return match k {
+                0 => written_out!(0),
+                1 => written_out!(1),
+                2 => written_out!(2),
+                _ => written_out!(3),
+            };
+        }
+        // Δ^nu c, scaled by k!/(k − nu)!, then the sum of degree k − nu
+        let falling: f64 = (k - nu + 1..=k).map(|v| v as f64).product();
+        search.for_each_point(
+            xs,
+            dim,
+            beyond,
+            out,
+            || vec![0.0; k + 1],
+            |w, j, x, o| {
+                let h = b[j + 1] - b[j];
+                let s = (x - b[j]) / h;
+                let h_nu = (0..nu).fold(1.0, |p, _| p * h);
+                for (d, v) in o.iter_mut().enumerate() {
+                    for (a, wa) in w.iter_mut().enumerate() {
+                        *wa = at(a, j, d);
+                    }
+                    for r in 1..=nu {
+                        for a in 0..=k - r {
+                            w[a] = w[a + 1] - w[a];
+                        }
+                    }
+                    let w = &mut w[..=k - nu];
+                    for wa in w.iter_mut() {
+                        *wa *= falling;
+                    }
+                    *v = match k - nu {
+                        0 => bernstein_sum::<0>(s, |a| w[a]),
+                        1 => bernstein_sum::<1>(s, |a| w[a]),
+                        2 => bernstein_sum::<2>(s, |a| w[a]),
+                        3 => bernstein_sum::<3>(s, |a| w[a]),
+                        _ => de_casteljau(s, w),
+                    } / h_nu;
+                }
+            },
+        )
+    }
+}
+
+/// `Σ_{a=0}^{K} c(a)·b_{a,K}(s)` for `K ≤ 3`, written out as SciPy's `evaluate_bpoly1` writes
+/// it (each product left to right, the terms summed left to right), so that the values have
+/// its bits.
+#[inline(always)]
+fn bernstein_sum<const K: usize>(s: f64, c: impl Fn(usize) -> f64) -> f64 {
+    let s1 = 1.0 - s;
+    match K {
+        0 => c(0),
+        1 => c(0) * s1 + c(1) * s,
+        2 => c(0) * s1 * s1 + c(1) * 2.0 * s1 * s + c(2) * s * s,
+        _ => {
+            c(0) * s1 * s1 * s1
+                + c(1) * 3.0 * s1 * s1 * s
+                + c(2) * 3.0 * s1 * s * s
+                + c(3) * s * s * s
+        }
+    }
+}
+
+/// `Σ_a w_a·b_{a,k}(s)` by de Casteljau's algorithm (`k = w.len() − 1`), overwriting `w`.
+#[inline(always)]
+fn de_casteljau(s: f64, w: &mut [f64]) -> f64 {
+    let s1 = 1.0 - s;
+    for r in 1..w.len() {
+        for a in 0..w.len() - r {
+            w[a] = s1 * w[a] + s * w[a + 1];
+        }
+    }
+    w[0]
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::error::Error;
+    use crate::oracle::proptest_config;
+
+    /// `C(k, a)` as a float.
+    fn binomial(k: usize, a: usize) -> f64 {
+        (0..a).fold(1.0, |p, i| p * (k - i) as f64 / (i + 1) as f64)
+    }
+
+    /// The oracle: `D^nu` of the Bernstein sum on the piece of `x` (the last non-empty one
+    /// with `x_j ≤ x`, the end pieces outside), each basis polynomial expanded in powers of
+    /// `s` and differentiated term by term; per coordinate the value and the scale of its
+    /// rounding, the larger of the sum of the terms' magnitudes and the bound
+    /// `k!/(k − nu)!·(2(|s| + |1 − s|))^nu·(|s| + |1 − s|)^{k−nu}·max|c| / h^nu` on what the
+    /// Bernstein evaluation adds up.
+    fn oracle(
+        c: &[f64],
+        order: usize,
+        b: &[f64],
+        dim: usize,
+        x: f64,
+        nu: usize,
+    ) -> Vec<(f64, f64)> {
+        let pieces = b.len() - 1;
+        let non_empty: Vec<usize> = (0..pieces).filter(|&j| b[j] < b[j + 1]).collect();
+        let j = if x < b[0] {
+            non_empty[0]
+        } else if x >= b[pieces] {
+            non_empty[non_empty.len() - 1]
+        } else {
+            (0..pieces).rev().find(|&j| b[j] <= x).unwrap_or(0)
+        };
+        let k = order - 1;
+        if nu > k {
+            return vec![(0.0, 0.0); dim];
+        }
+        let h = b[j + 1] - b[j];
+        let s = (x - b[j]) / h;
+        let pow = |v: f64, e: usize| v.powi(i32::try_from(e).unwrap());
+        let reach = s.abs() + (1.0 - s).abs();
+        // b_{a,k}(s) = Σ_m C(k,a) C(k−a, m) (−1)^m s^{a+m}
+        (0..dim)
+            .map(|d| {
+                let (mut v, mut magnitude, mut largest) = (0.0, 0.0, 0.0f64);
+                for a in 0..=k {
+                    let ca = c[(a * pieces + j) * dim + d];
+                    largest = largest.max(ca.abs());
+                    for m in 0..=k - a {
+                        let p = a + m;
+                        if p < nu {
+                            continue;
+                        }
+                        let falling: f64 = (p - nu + 1..=p).map(|q| q as f64).product();
+                        let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+                        let term = ca
+                            * binomial(k, a)
+                            * binomial(k - a, m)
+                            * sign
+                            * falling
+                            * pow(s, p - nu);
+                        v += term;
+                        magnitude += term.abs();
+                    }
+                }
+                let falling: f64 = (k - nu + 1..=k).map(|q| q as f64).product();
+                let bound = falling * pow(2.0 * reach, nu) * pow(reach, k - nu) * largest;
+                (v / pow(h, nu), magnitude.max(bound) / pow(h, nu))
+            })
+            .collect()
+    }
+
+    proptest! {
+        #![proptest_config(proptest_config(64))]
+
+        /// Every degree and derivative order agrees with the expanded oracle inside and beyond
+        /// the breakpoints, with empty pieces.
+        #[test]
+        fn values_and_derivatives_agree_with_the_expansion(
+            order in 1usize..=7,
+            dim in 1usize..=2,
+            gaps in prop::collection::vec(prop_oneof![1 => Just(0.0), 4 => 0.2f64..2.0], 1..=6),
+            seed in prop::collection::vec(-3.0f64..3.0, 100),
+            us in prop::collection::vec(-0.2f64..1.2, 1..=20),
+            nu in 0usize..=7,
+        ) {
+            let mut b = vec![-1.0];
+            for g in &gaps {
+                b.push(b[b.len() - 1] + g);
+            }
+            prop_assume!(b[b.len() - 1] > b[0]);
+            let pieces = b.len() - 1;
+            let c: Vec<f64> = (0..order * pieces * dim).map(|i| seed[i % seed.len()]).collect();
+            let f = BernsteinFormRef::new(&c, order, &b, dim).unwrap();
+            let (lo, hi) = (b[0], b[pieces]);
+            let xs: Vec<f64> = us.iter().map(|u| lo + (hi - lo) * u).chain(b.iter().copied()).collect();
+            let mut out = vec![0.0; xs.len() * dim];
+            f.par_eval_beyond(&xs, nu, Beyond::Continue, &mut out).unwrap();
+            for (&x, o) in xs.iter().zip(out.chunks_exact(dim)) {
+                let want = oracle(&c, order, &b, dim, x, nu);
+                for (g, (w, scale)) in o.iter().zip(&want) {
+                    // a few roundings of each of at most 2^7 terms, relative to their scale
+                    prop_assert!((g - w).abs() <= 1e-13 * (scale + 1e-300), "x = {}, nu = {}: {} against {}", x, nu, g, w);
+                }
+            }
+        }
+    }
+
+    /// A cubic's values have the bits of SciPy's written-out sum; a parallel batch has the
+    /// bits of a sequential one; outside without extrapolation, NaN; errors by name.
+    #[test]
+    fn scipy_bits_batches_and_errors() {
+        let b: Vec<f64> = (0..=100).map(|i| f64::from(i) * 0.37).collect();
+        let c: Vec<f64> = (0..400).map(|i| f64::from(i % 13) * 0.3 - 2.0).collect();
+        let f = BernsteinFormRef::new(&c, 4, &b, 1).unwrap();
+        let xs: Vec<f64> = (0..40_000).map(|i| f64::from(i) * 0.001 - 1.0).collect();
+        let mut par = vec![0.0; xs.len()];
+        f.par_eval_beyond(&xs, 0, Beyond::Continue, &mut par)
+            .unwrap();
+        for (&x, &v) in xs.iter().zip(&par).step_by(97) {
+            let j = if x < b[0] {
+                0
+            } else {
+                (b.partition_point(|&t| t <= x) - 1).min(99)
+            };
+            let s = (x - b[j]) / (b[j + 1] - b[j]);
+            let s1 = 1.0 - s;
+            let cc = |a: usize| c[a * 100 + j];
+            let scipy = cc(0) * s1 * s1 * s1
+                + cc(1) * 3.0 * s1 * s1 * s
+                + cc(2) * 3.0 * s1 * s * s
+                + cc(3) * s * s * s;
+            assert_eq!(v.to_bits(), scipy.to_bits(), "x = {x}");
+            let mut one = [0.0];
+            f.par_eval_beyond(&[x], 0, Beyond::Continue, &mut one)
+                .unwrap();
+            assert_eq!(one[0].to_bits(), v.to_bits(), "x = {x}: batch and single");
+        }
+        // the same function on the breakpoints reversed: the pieces reversed and each one's
+        // coefficients reversed (b_{a,k}(1 − s) = b_{k−a,k}(s)), as in SciPy's BPoly tests
+        let rb: Vec<f64> = b.iter().rev().copied().collect();
+        let rc: Vec<f64> = (0..400)
+            .map(|i| c[(3 - i / 100) * 100 + 99 - i % 100])
+            .collect();
+        let g = BernsteinFormRef::new(&rc, 4, &rb, 1).unwrap();
+        for nu in 0..=2 {
+            let (mut up, mut down) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
+            f.par_eval_beyond(&xs, nu, Beyond::Continue, &mut up)
+                .unwrap();
+            g.par_eval_beyond(&xs, nu, Beyond::Continue, &mut down)
+                .unwrap();
+            for ((&x, u), d) in xs.iter().zip(&up).zip(&down) {
+                if b.iter().any(|&t| (t - x).abs() < 1e-9) {
+                    continue; // the jumps: the right limit going up, the left one going down
+                }
+                assert!(
+                    (u - d).abs() <= 1e-12 * (1.0 + u.abs()),
+                    "x = {x}, nu = {nu}: {u} {d}"
+                );
+            }
+        }
+        let mut two = [0.0; 2];
+        f.par_eval_beyond(&[-0.5, 37.5], 1, Beyond::Nan, &mut two)
+            .unwrap();
+        assert!(two.iter().all(|v| v.is_nan()), "outside: {two:?}");
+        f.par_eval_beyond(&[1.0, 2.0], 4, Beyond::Nan, &mut two)
+            .unwrap();
+        assert_eq!(two, [0.0, 0.0], "orders above the degree");
+        let e = BernsteinFormRef::new(&c[..399], 4, &b, 1).unwrap_err();
+        assert!(
+            matches!(e, Error::LengthMismatch { expected: 400, .. }),
+            "{e}"
+        );
+        let e = BernsteinFormRef::new(&c[..4], 4, &[1.0, 1.0], 1).unwrap_err();
+        assert!(matches!(e, Error::EmptyDomain { .. }), "{e}");
+        let e = BernsteinFormRef::new(&c[..4], 0, &[0.0, 1.0], 1).unwrap_err();
+        assert!(matches!(e, Error::TooFew { .. }), "{e}");
+        let huge = [f64::MAX, f64::MAX];
+        let g = BernsteinFormRef::new(&huge, 2, &[0.0, 1.0], 1).unwrap();
+        let e = g
+            .par_eval_beyond(&[3.0], 0, Beyond::Continue, &mut two[..1])
+            .unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+    }
+}
