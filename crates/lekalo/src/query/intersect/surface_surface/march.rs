@@ -84,7 +84,13 @@ pub(super) enum Stop {
 
 /// A point's tangent: in the unknowns and in space, at unit speed in space, oriented along the
 /// branch (`None` at an end at a tangency, where the normals are parallel).
-pub(super) type Tangent = Option<([f64; K], [f64; 3])>;
+pub(super) type Tangent = Option<Unit>;
+
+/// A unit tangent: in the unknowns and in space.
+pub(super) type Unit = ([f64; K], [f64; 3]);
+
+/// A corrected point of a cubic step: its parameter on the step, unknowns, point and tangent.
+type Sample = (f64, [f64; K], [f64; 3], Unit);
 
 /// A traced branch: unknowns, points and tangents, how each end stopped, and the largest
 /// `|S_u| + |S_v|` of each surface on it (0 for a plane).
@@ -456,7 +462,8 @@ impl March<'_> {
         let len = c * super::fit::arc_over_chord(turn);
         let ka = if reach[0] > 0.0 { reach[0] } else { 1.0 };
         let kb = if reach[1] > 0.0 { reach[1] } else { 1.0 };
-        let correct = |u: f64| -> Option<([f64; K], Jet, ([f64; K], [f64; 3]), f64)> {
+        // the corrected point at `u`, its jet and tangent, and its distance from the cubic
+        let correct = |u: f64| -> Option<([f64; K], Jet, Unit, f64)> {
             let (u2, u3) = (u * u, u * u * u);
             let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
             let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
@@ -509,7 +516,7 @@ impl March<'_> {
         // (u, unknowns, point, tangent) of the last point placed; the points still to place,
         // nearest last
         let mut last = (0.0, a.x, a.p, (a.tx, a.tp));
-        let mut todo: Vec<(f64, [f64; K], [f64; 3], ([f64; K], [f64; 3]))> = Vec::new();
+        let mut todo: Vec<Sample> = Vec::new();
         for i in 1..=m {
             if i == m {
                 todo.push((1.0, b.x, b.p, (b.tx, b.tp)));

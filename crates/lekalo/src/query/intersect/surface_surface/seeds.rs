@@ -146,6 +146,9 @@ fn separated(sa: &QuerySurface, na: &[f64], sb: &QuerySurface, nb: &[f64], tol: 
     })
 }
 
+/// A direction across a sub-patch and the interval of its control points along it.
+type Slab = ([f64; 3], (f64, f64));
+
 /// Global parameters of local `t` in a sub-range `r` of patch range `g`.
 fn global(g: (f64, f64), r: (f64, f64), t: f64) -> f64 {
     g.0 + (r.0 + t * (r.1 - r.0)) * (g.1 - g.0)
@@ -359,7 +362,7 @@ fn side_meets(
     s: &QuerySurface,
     net: &[f64],
     side: usize,
-    (other, across): (&[f64], Option<([f64; 3], (f64, f64))>),
+    (other, across): (&[f64], Option<Slab>),
     tol: f64,
 ) -> bool {
     let (p, q) = (s.p, s.q);

@@ -55,9 +55,7 @@ fn bezier_first<const HD: usize>(ctrl: &[f64], t: f64) -> ([f64; HD], [f64; HD])
     let n = ctrl.len() / HD - 1;
     let mut b = [[0.0; HD]; STACK_DEGREE + 1];
     for (row, c) in b.iter_mut().zip(ctrl.chunks_exact(HD)) {
-        for d in 0..HD {
-            row[d] = c[d];
-        }
+        row.copy_from_slice(c);
     }
     if n == 0 {
         return (b[0], [0.0; HD]);
