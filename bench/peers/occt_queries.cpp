@@ -25,7 +25,7 @@
 //   g++ -O2 -std=c++17 -I/usr/include/opencascade bench/peers/occt_queries.cpp -o occt_queries \
 //     -lTKMesh -lTKTopAlgo -lTKBRep -lTKGeomAlgo -lTKGeomBase -lTKG3d -lTKG2d -lTKMath -lTKernel
 // Usage: occt_queries [REPEATS] [PROJECT_POINTS] [ANSWERS_DIR]
-//        occt_queries ssi REPEATS DIR
+//        occt_queries ssi REPEATS DIR [CASE]   (CASE: only that workload, e.g. under callgrind)
 // With ANSWERS_DIR, the answers are written there for bench/peers/compare_queries.py:
 // occt_project.txt (the distance of each projected point) and occt_intersect.txt (t_a t_b x y
 // of each intersection point); and the meshed face, occt_mesh.brep, for
@@ -137,8 +137,9 @@ static double surface_distance(const gp_Pnt &p, const Handle(Geom_Surface) &s) {
   return proj.NbPoints() > 0 ? proj.LowerDistance() : -1.0;
 }
 
-static int ssi(int repeats, const std::string &dir) {
+static int ssi(int repeats, const std::string &dir, const std::string &only) {
   for (const char *name : {"ssi_sphere_cylinder", "section_torus", "ssi_cylinders"}) {
+    if (!only.empty() && only != name) continue;
     std::ifstream in(dir + "/ssi_" + name + ".txt");
     if (!in) {
       std::fprintf(stderr, "occt_queries ssi: no %s/ssi_%s.txt; run query_peer ssi first\n",
@@ -233,7 +234,8 @@ static int ssi(int repeats, const std::string &dir) {
 
 int main(int argc, char **argv) {
   if (argc > 1 && std::string(argv[1]) == "ssi")
-    return ssi(argc > 2 ? std::atoi(argv[2]) : 5, argc > 3 ? argv[3] : "target/peers-occt/answers");
+    return ssi(argc > 2 ? std::atoi(argv[2]) : 5, argc > 3 ? argv[3] : "target/peers-occt/answers",
+               argc > 4 ? argv[4] : "");
   int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
   int nproj = argc > 2 ? std::atoi(argv[2]) : 100000;
   std::string answers = argc > 3 ? argv[3] : "";

@@ -10,8 +10,9 @@
 //!
 //! `cargo run --release --example query_peer -- [REPEATS [PROJECT_POINTS [ANSWERS_DIR]]]`
 //!
-//! `cargo run --release --example query_peer -- ssi REPEATS DIR`: the surface–surface workloads
-//! only (`query_workloads::ssi_cases`): writes each case's surfaces to `DIR/ssi_NAME.txt` for
+//! `cargo run --release --example query_peer -- ssi REPEATS DIR [CASE]`: the surface–surface
+//! workloads only (`query_workloads::ssi_cases`; only the one named CASE if given, e.g. to count
+//! its instructions with `valgrind --tool=callgrind`): writes each case's surfaces to `DIR/ssi_NAME.txt` for
 //! `occt_queries ssi REPEATS DIR` (degrees, net size, full knot vectors, then `x y z w` of each
 //! control point, `(i, j)` at line `i·nv + j`; or a line `plane ox oy oz nx ny nz`), times the
 //! intersection (median of `REPEATS` runs, more for a fast one) and prints the branches: their
@@ -129,9 +130,12 @@ fn chain(pieces: &[(Vec<[f64; 3]>, f64)]) -> String {
 }
 
 /// The surface–surface workloads (see the module's doc).
-fn ssi(repeats: usize, dir: &str) -> Result<(), lekalo::Error> {
+fn ssi(repeats: usize, dir: &str, only: Option<&str>) -> Result<(), lekalo::Error> {
     std::fs::create_dir_all(dir).expect("answers directory");
     for case in ssi_cases() {
+        if only.is_some_and(|name| name != case.name) {
+            continue;
+        }
         let mut text = format!("case {} {:e}\n", case.name, SSI_TOLERANCE);
         text += &surface_text(&case.a);
         match &case.b {
@@ -167,11 +171,12 @@ fn ssi(repeats: usize, dir: &str) -> Result<(), lekalo::Error> {
         for (k, br) in branches.iter().enumerate() {
             let _ = write!(
                 facts,
-                " [{:?}{} {} points length {:.9}]",
+                " [{:?}{} {} points length {:.9} curve {} control points]",
                 br.kind,
                 if br.closed { " closed" } else { "" },
                 br.points.len(),
-                br.length()
+                br.length(),
+                br.curve.as_ref().map_or(0, |c| c.control_points().len())
             );
             dmax.0 = dmax.0.max(worst(&br.points, &case.a_exact));
             dmax.1 = dmax.1.max(worst(&br.points, &case.b_exact));
@@ -222,7 +227,8 @@ fn main() -> Result<(), lekalo::Error> {
         let dir = args
             .next()
             .unwrap_or_else(|| "target/peers-occt/answers".into());
-        return ssi(repeats, &dir);
+        let only = args.next();
+        return ssi(repeats, &dir, only.as_deref());
     }
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100_000);

@@ -222,14 +222,14 @@ impl QuerySurface {
         // split in u: the rows form a curve of (q + 1)·hd-points
         let (a, b) = split_curve(net, (q + 1) * hd, p);
         let mut out = Vec::with_capacity(4);
+        let row = (q + 1) * hd;
         for (ur, half) in [((u.0, um), a), ((um, u.1), b)] {
-            // split in v: each row separately
-            let mut lo = Vec::with_capacity(half.len());
-            let mut hi = Vec::with_capacity(half.len());
-            for row in half.chunks_exact((q + 1) * hd) {
-                let (l, h) = split_curve(row, hd, q);
-                lo.extend(l);
-                hi.extend(h);
+            // split in v: each row separately, into its place in the two nets
+            let mut lo = vec![0.0; half.len()];
+            let mut hi = vec![0.0; half.len()];
+            for (i, r) in half.chunks_exact(row).enumerate() {
+                let span = i * row..(i + 1) * row;
+                split_curve_into(r, hd, q, &mut lo[span.clone()], &mut hi[span]);
             }
             out.push((ur, (v.0, vm), lo));
             out.push((ur, (vm, v.1), hi));
@@ -275,6 +275,29 @@ impl QuerySurface {
 
 /// A sub-patch: its local `u` and `v` ranges and its net.
 pub(crate) type SubNet = ((f64, f64), (f64, f64), Vec<f64>);
+
+/// Halves of a Bezier curve of degree `n` with `stride`-scalar points, split at 1/2, written into
+/// `left` and `right` (each as long as `ctrl`) without allocating: de Casteljau in place in
+/// `right` (after level `l` its first `n − l + 1` points are the level-`l` points, the others
+/// already the right half's), the left half's points taken from its front.
+pub(crate) fn split_curve_into(
+    ctrl: &[f64],
+    stride: usize,
+    n: usize,
+    left: &mut [f64],
+    right: &mut [f64],
+) {
+    right.copy_from_slice(ctrl);
+    left[..stride].copy_from_slice(&ctrl[..stride]);
+    for level in 1..=n {
+        for i in 0..=n - level {
+            for d in 0..stride {
+                right[i * stride + d] = 0.5 * (right[i * stride + d] + right[(i + 1) * stride + d]);
+            }
+        }
+        left[level * stride..(level + 1) * stride].copy_from_slice(&right[..stride]);
+    }
+}
 
 /// Halves of a Bezier curve of degree `n` with `stride`-scalar points, split at 1/2.
 pub(crate) fn split_curve(ctrl: &[f64], stride: usize, n: usize) -> (Vec<f64>, Vec<f64>) {

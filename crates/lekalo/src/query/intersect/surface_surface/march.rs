@@ -21,6 +21,56 @@ const MAX_TURN: f64 = 0.2;
 /// stops there.
 pub(super) const SIN_STOP: f64 = 1e-4;
 
+/// Share of the tolerance the cubic Hermite step may deviate from the branch (in the fitted
+/// coordinates, at the filled points): the rest is the margin of the fit, which measures every
+/// point.
+const HERMITE_SHARE: f64 = 0.5;
+/// Share of the tolerance the chords between filled points aim at (each is checked against the
+/// whole tolerance).
+const CHORD_SHARE: f64 = 0.9;
+/// Most points filled into one step.
+const MAX_FILL: usize = 1 << 14;
+
+/// A point of a branch with its unit tangent (in the unknowns and in space).
+struct Node {
+    x: [f64; K],
+    p: [f64; 3],
+    tx: [f64; K],
+    tp: [f64; 3],
+}
+
+/// The points filled between two marched points, and the largest distance of the cubic Hermite
+/// step from them; `refused` when the step's middle alone missed [`HERMITE_SHARE`] of the
+/// tolerance (no points then).
+#[derive(Default)]
+struct Fill {
+    xs: Vec<[f64; K]>,
+    ps: Vec<[f64; 3]>,
+    ts: Vec<Tangent>,
+    err: f64,
+    refused: bool,
+}
+
+impl Fill {
+    fn append(self, xs: &mut Vec<[f64; K]>, ps: &mut Vec<[f64; 3]>, ts: &mut Vec<Tangent>) {
+        xs.extend(self.xs);
+        ps.extend(self.ps);
+        ts.extend(self.ts);
+    }
+}
+
+/// A tangent turned to agree with `along`.
+fn oriented(t: Option<([f64; K], [f64; 3])>, along: &[f64; 3]) -> Tangent {
+    t.map(|(mut a, mut b)| {
+        if dot(&b, along) < 0.0 {
+            for c in a.iter_mut().chain(b.iter_mut()) {
+                *c = -*c;
+            }
+        }
+        (a, b)
+    })
+}
+
 /// How a traced piece of a branch ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Stop {
@@ -32,12 +82,48 @@ pub(super) enum Stop {
     Tangent,
 }
 
-/// A traced branch: unknowns and points, how each end stopped.
+/// A point's tangent: in the unknowns and in space, at unit speed in space, oriented along the
+/// branch (`None` at an end at a tangency, where the normals are parallel).
+pub(super) type Tangent = Option<Unit>;
+
+/// A unit tangent: in the unknowns and in space.
+pub(super) type Unit = ([f64; K], [f64; 3]);
+
+/// A corrected point of a cubic step: its parameter on the step, unknowns, point and tangent.
+type Sample = (f64, [f64; K], [f64; 3], Unit);
+
+/// A traced branch: unknowns, points and tangents, how each end stopped, and the largest
+/// `|S_u| + |S_v|` of each surface on it (0 for a plane).
 #[derive(Debug, Clone)]
 pub(super) struct Traced {
     pub(super) xs: Vec<[f64; K]>,
     pub(super) ps: Vec<[f64; 3]>,
+    pub(super) tangents: Vec<Tangent>,
     pub(super) stops: [Stop; 2],
+    pub(super) reach: [f64; 2],
+}
+
+/// One direction of marching: what [`Traced`] holds, one stop.
+struct Walk {
+    xs: Vec<[f64; K]>,
+    ps: Vec<[f64; 3]>,
+    ts: Vec<Tangent>,
+    stop: Stop,
+    reach: [f64; 2],
+}
+
+/// `|S_u| + |S_v|` of both surfaces at a jet (the second's derivatives are the Jacobian's last
+/// two columns; zero for a plane section).
+fn reach_of(jet: &Jet) -> [f64; 2] {
+    let col = |c: usize| [jet.j[0][c], jet.j[1][c], jet.j[2][c]];
+    [
+        norm3(&jet.dp[0]) + norm3(&jet.dp[1]),
+        norm3(&col(2)) + norm3(&col(3)),
+    ]
+}
+
+fn norm3(a: &[f64; 3]) -> f64 {
+    dot(a, a).sqrt()
 }
 
 /// The marching's settings: tolerance, scale.
@@ -57,21 +143,33 @@ impl March<'_> {
     /// The branch through the point `x0` (on the section): marched forwards; unless that closes
     /// it, marched backwards from `x0` too and the two joined.
     pub(super) fn branch(&self, x0: [f64; K], j0: &Jet) -> Result<Traced> {
-        let (fx, fp, fstop) = self.walk(x0, j0, 1.0)?;
-        if fstop == Stop::Closed {
+        let f = self.walk(x0, j0, 1.0)?;
+        if f.stop == Stop::Closed {
             return Ok(Traced {
-                xs: fx,
-                ps: fp,
+                xs: f.xs,
+                ps: f.ps,
+                tangents: f.ts,
                 stops: [Stop::Closed, Stop::Closed],
+                reach: f.reach,
             });
         }
-        let (mut bx, mut bp, bstop) = self.walk(x0, j0, -1.0)?;
+        let b = self.walk(x0, j0, -1.0)?;
+        let (mut bx, mut bp, mut bt) = (b.xs, b.ps, b.ts);
         bx.reverse();
         bp.reverse();
+        bt.reverse();
         bx.pop();
         bp.pop();
-        bx.extend(fx);
-        bp.extend(fp);
+        bt.pop();
+        // the backward walk's tangents point backwards
+        for (tx, tp) in bt.iter_mut().flatten() {
+            for c in tx.iter_mut().chain(tp.iter_mut()) {
+                *c = -*c;
+            }
+        }
+        bx.extend(f.xs);
+        bp.extend(f.ps);
+        bt.extend(f.ts);
         if bx.len() > MAX_BRANCH_POINTS {
             return Err(Error::TooLarge {
                 what: "points of an intersection branch",
@@ -82,24 +180,27 @@ impl March<'_> {
         Ok(Traced {
             xs: bx,
             ps: bp,
-            stops: [bstop, fstop],
+            tangents: bt,
+            stops: [b.stop, f.stop],
+            reach: [f.reach[0].max(b.reach[0]), f.reach[1].max(b.reach[1])],
         })
     }
 
     /// One direction of marching from `x0` (`sign` ±1 along the tangent), `x0` first.
-    #[allow(clippy::type_complexity)]
-    fn walk(
-        &self,
-        x0: [f64; K],
-        j0: &Jet,
-        sign: f64,
-    ) -> Result<(Vec<[f64; K]>, Vec<[f64; 3]>, Stop)> {
+    fn walk(&self, x0: [f64; K], j0: &Jet, sign: f64) -> Result<Walk> {
         let k = self.sys.k();
         let bounds = self.sys.bounds();
         let mut xs = vec![x0];
         let mut ps = vec![j0.p];
+        let mut reach = reach_of(j0);
         let Some((mut tx, mut tp)) = tangent(j0, k) else {
-            return Ok((xs, ps, Stop::Tangent));
+            return Ok(Walk {
+                xs,
+                ps,
+                ts: vec![None],
+                stop: Stop::Tangent,
+                reach,
+            });
         };
         for i in 0..K {
             tx[i] *= sign;
@@ -107,10 +208,22 @@ impl March<'_> {
         for c in &mut tp {
             *c *= sign;
         }
+        let mut ts = vec![Some((tx, tp))];
+        let done = |xs, ps, ts, stop, reach| {
+            Ok(Walk {
+                xs,
+                ps,
+                ts,
+                stop,
+                reach,
+            })
+        };
         let (hmax, hmin) = (MAX_STEP * self.scale, MIN_STEP * self.scale);
         let mut h = hmax;
         let (mut x, mut jet) = (x0, j0.clone());
         let mut prev_sin = jet.sin;
+        let mut prev_p = jet.p;
+        let mut steps = 0_usize;
         loop {
             if xs.len() > MAX_BRANCH_POINTS {
                 return Err(Error::TooLarge {
@@ -120,8 +233,9 @@ impl March<'_> {
                 });
             }
             if h < hmin {
-                let stop = self.end_tangent(&mut xs, &mut ps, &tx, prev_sin, &jet);
-                return Ok((xs, ps, stop));
+                let stop =
+                    self.end_tangent(&mut xs, &mut ps, &mut ts, &tx, (prev_sin, &prev_p), &jet);
+                return done(xs, ps, ts, stop, reach);
             }
             // predictor, cut at the first side of the box it would cross
             let mut frac = 1.0_f64;
@@ -147,27 +261,58 @@ impl March<'_> {
             if let Some((i, l)) = side {
                 if frac * h <= 1e-12 * self.scale {
                     // on the side already, heading out
-                    return Ok((xs, ps, Stop::Boundary));
+                    return done(xs, ps, ts, Stop::Boundary, reach);
                 }
                 let mut xp = x;
                 for c in 0..k {
                     xp[c] += frac * h * tx[c];
                 }
                 xp[i] = l;
-                match newton(self.sys, xp, Some(i), None, self.eps()) {
-                    Some((xn, jn))
-                        if jn.gap(k) <= 0.1 * self.tol
-                            && self.turn_ok(&tp, &jn, k, dist(&jn.p, &jet.p)) =>
-                    {
-                        xs.push(xn);
-                        ps.push(jn.p);
-                        return Ok((xs, ps, Stop::Boundary));
-                    }
-                    _ => {
-                        h *= 0.5;
-                        continue;
-                    }
+                let Some((xn, jn)) = newton(self.sys, xp, Some(i), None, self.eps()) else {
+                    h *= 0.5;
+                    continue;
+                };
+                if !(jn.gap(k) <= 0.1 * self.tol) {
+                    h *= 0.5;
+                    continue;
                 }
+                let end = oriented(tangent(&jn, k), &tp);
+                let fill = match end {
+                    // a side point where the normals are parallel ends the branch by a chord
+                    None => self
+                        .turn_ok(&tp, &jn, k, dist(&jn.p, &jet.p))
+                        .then(Fill::default),
+                    Some((ntx, ntp)) => {
+                        let turn = dot(&ntp, &tp).clamp(-1.0, 1.0).acos();
+                        let a = Node {
+                            x,
+                            p: jet.p,
+                            tx,
+                            tp,
+                        };
+                        let b = Node {
+                            x: xn,
+                            p: jn.p,
+                            tx: ntx,
+                            tp: ntp,
+                        };
+                        (turn <= MAX_TURN)
+                            .then(|| self.fill(&a, &b, reach))
+                            .flatten()
+                            .filter(|f| !f.refused && f.err <= self.tol)
+                    }
+                };
+                let Some(fill) = fill else {
+                    h *= 0.5;
+                    continue;
+                };
+                fill.append(&mut xs, &mut ps, &mut ts);
+                xs.push(xn);
+                ps.push(jn.p);
+                ts.push(end);
+                let r = reach_of(&jn);
+                reach = [reach[0].max(r[0]), reach[1].max(r[1])];
+                return done(xs, ps, ts, Stop::Boundary, reach);
             }
             let mut xp = x;
             for c in 0..k {
@@ -200,17 +345,22 @@ impl March<'_> {
                 }
             }
             let turn = dot(&ntp, &tp).clamp(-1.0, 1.0).acos();
-            // the chord of an arc turning by θ over length h deviates from it by ≈ hθ/8
-            let sag = step * turn / 8.0;
-            if turn > MAX_TURN || sag > self.tol {
+            if turn > MAX_TURN {
                 h *= 0.5;
                 continue;
             }
-            // closed: the start lies between the last point and this one
-            if xs.len() >= 3 {
+            let a = Node {
+                x,
+                p: jet.p,
+                tx,
+                tp,
+            };
+            // closed: the start lies between the last point and this one (near their chord,
+            // which deviates from the branch by about hθ/8)
+            if steps >= 2 {
                 let start = ps[0];
-                let near =
-                    segment_distance3(&start, &jet.p, &jn.p) <= 2.0 * self.tol + 1e-12 * self.scale;
+                let near = segment_distance3(&start, &jet.p, &jn.p)
+                    <= 2.0 * self.tol + step * turn / 4.0 + 1e-12 * self.scale;
                 let between = dot(
                     &[
                         start[0] - jet.p[0],
@@ -224,30 +374,186 @@ impl March<'_> {
                     xs[0][c] >= x[c].min(xn[c]) - slack && xs[0][c] <= x[c].max(xn[c]) + slack
                 });
                 if near && between && same {
+                    let Some((sx, sp)) = ts[0] else {
+                        return done(xs, ps, ts, Stop::Tangent, reach);
+                    };
+                    let b = Node {
+                        x: xs[0],
+                        p: start,
+                        tx: sx,
+                        tp: sp,
+                    };
+                    let Some(fill) = self
+                        .fill(&a, &b, reach)
+                        .filter(|f| !f.refused && f.err <= self.tol)
+                    else {
+                        h *= 0.5;
+                        continue;
+                    };
+                    fill.append(&mut xs, &mut ps, &mut ts);
                     xs.push(xs[0]);
                     ps.push(start);
-                    return Ok((xs, ps, Stop::Closed));
+                    ts.push(ts[0]);
+                    return done(xs, ps, ts, Stop::Closed, reach);
                 }
             }
+            let b = Node {
+                x: xn,
+                p: jn.p,
+                tx: ntx,
+                tp: ntp,
+            };
+            let Some(fill) = self.fill(&a, &b, reach) else {
+                h *= 0.5;
+                continue;
+            };
+            if fill.refused || fill.err > self.tol {
+                // the cubic's error grows like h⁴
+                h *= (0.9 * (HERMITE_SHARE * self.tol / fill.err).powf(0.25)).clamp(0.1, 0.5);
+                continue;
+            }
+            steps += 1;
+            let err = fill.err;
+            fill.append(&mut xs, &mut ps, &mut ts);
             xs.push(xn);
             ps.push(jn.p);
+            ts.push(Some((ntx, ntp)));
+            let r = reach_of(&jn);
+            reach = [reach[0].max(r[0]), reach[1].max(r[1])];
             prev_sin = jet.sin;
+            prev_p = jet.p;
             x = xn;
             jet = jn;
             tx = ntx;
             tp = ntp;
             if jet.sin < SIN_STOP {
-                let stop = self.end_tangent(&mut xs, &mut ps, &tx, prev_sin, &jet);
-                return Ok((xs, ps, stop));
+                let stop =
+                    self.end_tangent(&mut xs, &mut ps, &mut ts, &tx, (prev_sin, &prev_p), &jet);
+                return done(xs, ps, ts, stop, reach);
             }
-            // next step from the discrete curvature κ ≈ θ/h: sagitta h²κ/8 at the tolerance
-            let grow = if turn > 0.0 {
-                (8.0 * self.tol / (turn / step)).sqrt() / h
+            // next step: the cubic's error, measured at the filled points, grows like h⁴
+            let grow = if err > 0.0 {
+                (HERMITE_SHARE * self.tol / err).powf(0.25)
             } else {
                 2.0
             };
             h = (h * grow.clamp(0.5, 2.0) * 0.9).clamp(hmin, hmax);
         }
+    }
+
+    /// The points between two marched points `a` and `b` at which the chords are within the
+    /// tolerance of the branch: the cubic Hermite interpolant of the two in the unknowns and in
+    /// space (arc-length parameter, the chord lengthened by the turning of the tangent), sampled
+    /// at `m` equal steps (`m` even, from the chords' sagitta `(c/m)(θ/m)/8`), each sample
+    /// corrected onto the section (Newton's method on the plane through it orthogonal to the
+    /// cubic's tangent). The middle is corrected first: the cubic's error there (in the fitted
+    /// coordinates of `fit.rs`, `reach` scaling the parameters) decides the step, and a step
+    /// whose middle misses [`HERMITE_SHARE`] of the tolerance is refused without the others.
+    /// Every chord between filled points is then checked by the turning of the corrected
+    /// tangents (`cθ/8 ≤ ε`), and a point halfway (in the cubic's parameter) is added where it
+    /// fails. `None` when a correction fails or more than [`MAX_FILL`] points would be needed.
+    fn fill(&self, a: &Node, b: &Node, reach: [f64; 2]) -> Option<Fill> {
+        let k = self.sys.k();
+        let c = dist(&a.p, &b.p);
+        if c == 0.0 {
+            return Some(Fill::default());
+        }
+        let turn = dot(&a.tp, &b.tp).clamp(-1.0, 1.0).acos();
+        let len = c * super::fit::arc_over_chord(turn);
+        let ka = if reach[0] > 0.0 { reach[0] } else { 1.0 };
+        let kb = if reach[1] > 0.0 { reach[1] } else { 1.0 };
+        // the corrected point at `u`, its jet and tangent, and its distance from the cubic
+        let correct = |u: f64| -> Option<([f64; K], Jet, Unit, f64)> {
+            let (u2, u3) = (u * u, u * u * u);
+            let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
+            let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
+            let (d00, d10) = (6.0 * u2 - 6.0 * u, 3.0 * u2 - 4.0 * u + 1.0);
+            let (d01, d11) = (6.0 * u - 6.0 * u2, 3.0 * u2 - 2.0 * u);
+            let mut xh = [0.0; K];
+            for i in 0..k {
+                xh[i] = h00 * a.x[i] + h01 * b.x[i] + len * (h10 * a.tx[i] + h11 * b.tx[i]);
+            }
+            let mut ph = [0.0; 3];
+            let mut dir = [0.0; 3];
+            for i in 0..3 {
+                ph[i] = h00 * a.p[i] + h01 * b.p[i] + len * (h10 * a.tp[i] + h11 * b.tp[i]);
+                dir[i] = (d00 * a.p[i] + d01 * b.p[i]) / len + d10 * a.tp[i] + d11 * b.tp[i];
+            }
+            let l = dot(&dir, &dir).sqrt();
+            if !(l > 0.0) {
+                return None;
+            }
+            let dir = [dir[0] / l, dir[1] / l, dir[2] / l];
+            let (xq, jq) = newton(self.sys, xh, None, Some((dir, ph)), self.eps())?;
+            if !(jq.gap(k) <= 0.1 * self.tol) {
+                return None;
+            }
+            let t = oriented(tangent(&jq, k), &dir)?;
+            let f = [ka, ka, kb, kb];
+            let mut d2: f64 = (0..3).map(|i| (jq.p[i] - ph[i]).powi(2)).sum();
+            for i in 0..k {
+                d2 += (f[i] * (xq[i] - xh[i])).powi(2);
+            }
+            Some((xq, jq, t, d2.sqrt()))
+        };
+        let mid = correct(0.5)?;
+        if mid.3 > HERMITE_SHARE * self.tol {
+            return Some(Fill {
+                err: mid.3,
+                refused: true,
+                ..Fill::default()
+            });
+        }
+        let want = (c * turn / (8.0 * CHORD_SHARE * self.tol))
+            .sqrt()
+            .ceil()
+            .min(MAX_FILL as f64);
+        // `want` is a whole number in [0, MAX_FILL]
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let m = ((want as usize).max(2) + 1) & !1;
+        let mut mid = Some(mid);
+        let mut out = Fill::default();
+        // (u, unknowns, point, tangent) of the last point placed; the points still to place,
+        // nearest last
+        let mut last = (0.0, a.x, a.p, (a.tx, a.tp));
+        let mut todo: Vec<Sample> = Vec::new();
+        for i in 1..=m {
+            if i == m {
+                todo.push((1.0, b.x, b.p, (b.tx, b.tp)));
+            } else {
+                let u = i as f64 / m as f64;
+                let (xq, jq, t, dev) = if 2 * i == m {
+                    mid.take().or_else(|| correct(0.5))?
+                } else {
+                    correct(u)?
+                };
+                out.err = out.err.max(dev);
+                todo.push((u, xq, jq.p, t));
+            }
+            // place it, with points halfway in between while a chord's sagitta (cθ/8, θ the
+            // turning of the corrected tangents) exceeds the tolerance
+            while let Some(&next) = todo.last() {
+                let th = dot(&last.3 .1, &next.3 .1).clamp(-1.0, 1.0).acos();
+                if dist(&last.2, &next.2) * th / 8.0 <= self.tol {
+                    todo.pop();
+                    if next.0 < 1.0 {
+                        out.xs.push(next.1);
+                        out.ps.push(next.2);
+                        out.ts.push(Some(next.3));
+                    }
+                    last = next;
+                    continue;
+                }
+                let u = 0.5 * (last.0 + next.0);
+                if out.xs.len() + todo.len() > MAX_FILL || !(next.0 - last.0 > 1e-9) {
+                    return None;
+                }
+                let (xq, jq, t, dev) = correct(u)?;
+                out.err = out.err.max(dev);
+                todo.push((u, xq, jq.p, t));
+            }
+        }
+        Some(out)
     }
 
     /// Whether a point reached on a side continues the branch as a step of the marching
@@ -271,14 +577,15 @@ impl March<'_> {
         &self,
         xs: &mut Vec<[f64; K]>,
         ps: &mut Vec<[f64; 3]>,
+        ts: &mut Vec<Tangent>,
         tx: &[f64; K],
-        prev_sin: f64,
+        (prev_sin, prev_p): (f64, &[f64; 3]),
         jet: &Jet,
     ) -> Stop {
         let k = self.sys.k();
         let n = ps.len();
         if n >= 2 && prev_sin > jet.sin {
-            let h = dist(&ps[n - 1], &ps[n - 2]);
+            let h = dist(&ps[n - 1], prev_p);
             let s = jet.sin * h / (prev_sin - jet.sin);
             if s.is_finite() && s <= 4.0 * h + self.tol {
                 let mut xe = xs[n - 1];
@@ -290,6 +597,7 @@ impl March<'_> {
                     {
                         xs.push(xq);
                         ps.push(jq.p);
+                        ts.push(None);
                     }
                 }
             }

@@ -9,8 +9,10 @@
 //! | `system.rs` | the equations (two surfaces, or a surface and a plane), their tangent and Newton's method |
 //! | `seeds.rs` | the subdivision: boxes, normal cones, starting points on the sides of sub-patches |
 //! | `march.rs` | marching along a branch: predictor, corrector, step control, stops |
+//! | `fit.rs` | the fitted curves of a branch: a cubic Hermite spline through its points and tangents |
 //! | `mod.rs` | [`QuerySurface::intersect_surface`], [`QuerySurface::intersect_plane`], the branches' kinds and fitted curves |
 
+mod fit;
 mod march;
 mod seeds;
 mod system;
@@ -21,9 +23,7 @@ use super::super::surface::QuerySurface;
 use super::refine::order_from_growth;
 use super::Contact;
 use crate::error::{Error, Result};
-use crate::fit::{fit_tolerance, Deviation, ToleranceOptions};
-use crate::interpolate::Parametrization;
-use crate::{BSplineCurve, Points, PointsRef};
+use crate::BSplineCurve;
 use march::{March, Stop, Traced, SIN_STOP};
 use rayon::prelude::*;
 use seeds::Found;
@@ -97,9 +97,11 @@ impl QuerySurface {
     /// 3. Points where the normals are parallel (sine below `10⁻⁴`) are **tangent** answers
     ///    (those within 1/64 of the scale merged, chained into a line of contact when they
     ///    spread); sub-patches that coincide within the tolerance are an **overlap**.
-    /// 4. Each crossing branch is fitted ([`fit_tolerance`], cubic, in the seven coordinates
-    ///    `(x, y, z, k₁u₁, k₁v₁, k₂u₂, k₂v₂)`, `kᵢ` the largest `|S_u| + |S_v|` on the branch) and
-    ///    split into the curve in space and the two parameter curves.
+    /// 4. Each crossing branch is fitted as a C¹ cubic Hermite spline through a subset of its
+    ///    points with the marching's tangents, in the seven coordinates
+    ///    `(x, y, z, k₁u₁, k₁v₁, k₂u₂, k₂v₂)` (`kᵢ` the largest `|S_u| + |S_v|` on the branch),
+    ///    the subset chosen so that the spline is within the tolerance of every point at its
+    ///    arc-length parameter, and split into the curve in space and the two parameter curves.
     ///
     /// ```
     /// use lekalo::query::Contact;
@@ -141,7 +143,7 @@ impl QuerySurface {
         }
         let scale = self.scale.max(other.scale);
         check_section_tolerance(tolerance, scale)?;
-        let sys = TwoSurfaces { a: self, b: other };
+        let sys = TwoSurfaces::new(self, other);
         let march = March {
             sys: &sys,
             tol: tolerance,
@@ -204,11 +206,7 @@ impl QuerySurface {
         check_section_tolerance(tolerance, self.scale)?;
         let n = [normal[0] / nn, normal[1] / nn, normal[2] / nn];
         let o = [origin[0], origin[1], origin[2]];
-        let sys = PlaneSection {
-            s: self,
-            origin: o,
-            normal: n,
-        };
+        let sys = PlaneSection::new(self, o, n);
         let march = March {
             sys: &sys,
             tol: tolerance,
@@ -268,12 +266,8 @@ impl SegmentGrid {
         let segs = ps.len().saturating_sub(1).max(1);
         for s in 0..segs {
             let (p, q) = (ps[s], ps[(s + 1).min(ps.len() - 1)]);
-            let lo: Vec<i64> = (0..3)
-                .map(|c| self.key(p[c].min(q[c]) - self.cover))
-                .collect();
-            let hi: Vec<i64> = (0..3)
-                .map(|c| self.key(p[c].max(q[c]) + self.cover))
-                .collect();
+            let lo: [i64; 3] = std::array::from_fn(|c| self.key(p[c].min(q[c]) - self.cover));
+            let hi: [i64; 3] = std::array::from_fn(|c| self.key(p[c].max(q[c]) + self.cover));
             for i in lo[0]..=hi[0] {
                 for j in lo[1]..=hi[1] {
                     for k in lo[2]..=hi[2] {
@@ -363,15 +357,19 @@ fn assemble(
             } else {
                 Vec::new()
             };
-            let (curve, ca, cb) = fit_branch(march, &t, two)?;
+            let fitted = fit::fit_branch(&t, tol, two)?;
+            let (curve, ca, cb) = match fitted {
+                Some((c, a, b)) => (Some(c), Some(a), b),
+                None => (None, None, None),
+            };
             Ok(Some(IntersectionBranch {
                 kind: Contact::Crossing,
                 closed,
                 points: t.ps,
                 uv_a,
                 uv_b: uvb,
-                curve: Some(curve),
-                curve_uv_a: Some(ca),
+                curve,
+                curve_uv_a: ca,
                 curve_uv_b: cb,
                 tolerance: tol,
             }))
@@ -504,64 +502,6 @@ fn contact_order(
         })
         .min()
         .unwrap_or(1)
-}
-
-/// The fitted curves of a traced branch: one tolerance fit of the points with their scaled
-/// parameters appended (see [`QuerySurface::intersect_surface`]), split into the curve in space
-/// and the parameter curves.
-#[allow(clippy::type_complexity)]
-fn fit_branch(
-    march: &March<'_>,
-    t: &Traced,
-    two: bool,
-) -> Result<(BSplineCurve, BSplineCurve, Option<BSplineCurve>)> {
-    let sys = march.sys;
-    let n = t.ps.len();
-    let mut ka = 0.0_f64;
-    let mut kb = 0.0_f64;
-    for x in &t.xs {
-        if let Some(j) = sys.jet(x) {
-            ka = ka.max(norm(&j.dp[0]) + norm(&j.dp[1]));
-            if two {
-                // the second surface's derivatives are the Jacobian's last columns
-                let tu = [j.j[0][2], j.j[1][2], j.j[2][2]];
-                let tv = [j.j[0][3], j.j[1][3], j.j[2][3]];
-                kb = kb.max(norm(&tu) + norm(&tv));
-            }
-        }
-    }
-    let ka = if ka > 0.0 { ka } else { 1.0 };
-    let kb = if kb > 0.0 { kb } else { 1.0 };
-    let width = if two { 7 } else { 5 };
-    let mut data = Vec::with_capacity(n * width);
-    for (p, x) in t.ps.iter().zip(&t.xs) {
-        data.extend_from_slice(p);
-        data.extend_from_slice(&[ka * x[0], ka * x[1]]);
-        if two {
-            data.extend_from_slice(&[kb * x[2], kb * x[3]]);
-        }
-    }
-    let opts = ToleranceOptions {
-        degree: 3.min(n - 1),
-        tol: march.tol,
-        deviation: Deviation::Parameter,
-        parametrization: Parametrization::ChordLength,
-    };
-    let fit = fit_tolerance(PointsRef::from_flat(width, &data)?, &opts)?;
-    let c = &fit.curve;
-    let knots = c.knots().as_slice().to_vec();
-    let ctrl = c.control_points().as_slice();
-    let part = |from: usize, dim: usize, f: f64| -> Result<BSplineCurve> {
-        let pts: Vec<f64> = ctrl
-            .chunks_exact(width)
-            .flat_map(|r| r[from..from + dim].iter().map(move |v| v / f))
-            .collect();
-        BSplineCurve::new(c.degree(), knots.clone(), Points::from_flat(dim, pts)?)
-    };
-    let space = part(0, 3, 1.0)?;
-    let pa = part(3, 2, ka)?;
-    let pb = if two { Some(part(5, 2, kb)?) } else { None };
-    Ok((space, pa, pb))
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ use super::super::super::surface::{QuerySurface, SubNet};
 use super::super::{boxes_overlap, MAX_PAIRS};
 use super::system::{cross, newton, norm, surface_jet, System, K};
 use crate::error::{Error, Result};
+use std::rc::Rc;
 
 /// Sub-patch pairs whose normal cones are disjoint are searched from their sides once both are
 /// at most this fraction of the scale across.
@@ -110,6 +111,44 @@ fn loop_free(a: Option<([f64; 3], f64)>, b: Option<([f64; 3], f64)>) -> bool {
     theta.min(std::f64::consts::PI - theta) > ax + by
 }
 
+/// A direction across a sub-patch: the cross product of its net's diagonals (the normal at its
+/// middle for a flat enough patch), unit; `None` when they are parallel.
+fn across(s: &QuerySurface, net: &[f64]) -> Option<[f64; 3]> {
+    let (p, q) = (s.p, s.q);
+    let d = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let n = cross(
+        &d(net_point(s, net, p, q), net_point(s, net, 0, 0)),
+        &d(net_point(s, net, p, 0), net_point(s, net, 0, q)),
+    );
+    let l = norm(&n);
+    (l > 0.0 && l.is_finite()).then(|| [n[0] / l, n[1] / l, n[2] / l])
+}
+
+/// The interval of `n·P` over a net's control points (Cartesian): it holds `n·S` of the whole
+/// sub-patch (convex hull property; positive weights for a rational net).
+fn slab(s: &QuerySurface, net: &[f64], n: &[f64; 3]) -> (f64, f64) {
+    net.chunks_exact(s.hd)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+            let w = if s.rational { c[3] } else { 1.0 };
+            let x = (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / w;
+            (lo.min(x), hi.max(x))
+        })
+}
+
+/// Whether a plane separates two sub-patches by more than `tol`: the slabs of their control
+/// points along the direction across either one are disjoint (a separating-axis test; for a
+/// sub-patch nearly flat across its own direction the slab is thin, so it prunes pairs that
+/// their boxes, tilted to the axes, do not).
+fn separated(sa: &QuerySurface, na: &[f64], sb: &QuerySurface, nb: &[f64], tol: f64) -> bool {
+    [across(sa, na), across(sb, nb)].iter().flatten().any(|n| {
+        let (a, b) = (slab(sa, na, n), slab(sb, nb, n));
+        a.1 + tol < b.0 || b.1 + tol < a.0
+    })
+}
+
+/// A direction across a sub-patch and the interval of its control points along it.
+type Slab = ([f64; 3], (f64, f64));
+
 /// Global parameters of local `t` in a sub-range `r` of patch range `g`.
 fn global(g: (f64, f64), r: (f64, f64), t: f64) -> f64 {
     g.0 + (r.0 + t * (r.1 - r.0)) * (g.1 - g.0)
@@ -177,10 +216,36 @@ fn coincide(
 /// A node of the search over two surfaces: patch indices, local ranges and nets of both.
 struct Pair {
     ka: usize,
-    a: SubNet,
+    a: Rc<Sub>,
     kb: usize,
-    b: SubNet,
+    b: Rc<Sub>,
     depth: u32,
+}
+
+/// A sub-patch of the search: local ranges and net (in `.0`), and the box of its control points
+/// (minima then maxima), computed once and shared by every pair it is in.
+struct Sub(SubNet, [f64; 6]);
+
+impl Sub {
+    fn new(s: &QuerySurface, net: SubNet) -> Rc<Sub> {
+        let mut b = [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for c in net.2.chunks_exact(s.hd) {
+            let w = if s.rational { c[3] } else { 1.0 };
+            for d in 0..3 {
+                let x = c[d] / w;
+                b[d] = b[d].min(x);
+                b[3 + d] = b[3 + d].max(x);
+            }
+        }
+        Rc::new(Sub(net, b))
+    }
 }
 
 /// The starting points of the intersection of two 3-D surfaces, as the module describes.
@@ -200,9 +265,9 @@ pub(super) fn surface_seeds(
         for (kb, nb) in nets_b.iter().enumerate() {
             stack.push(Pair {
                 ka,
-                a: ((0.0, 1.0), (0.0, 1.0), na.clone()),
+                a: Sub::new(sa, ((0.0, 1.0), (0.0, 1.0), na.clone())),
                 kb,
-                b: ((0.0, 1.0), (0.0, 1.0), nb.clone()),
+                b: Sub::new(sb, ((0.0, 1.0), (0.0, 1.0), nb.clone())),
                 depth: 0,
             });
         }
@@ -217,8 +282,10 @@ pub(super) fn surface_seeds(
                 max: MAX_PAIRS,
             });
         }
-        let (box_a, box_b) = (sa.net_box(&pair.a.2), sb.net_box(&pair.b.2));
-        if !boxes_overlap(&box_a, &box_b, 3, tol) {
+        let (box_a, box_b) = (pair.a.1, pair.b.1);
+        if !boxes_overlap(&box_a, &box_b, 3, tol)
+            || separated(sa, &pair.a.0 .2, sb, &pair.b.0 .2, tol)
+        {
             continue;
         }
         let da = dist(&box_a[..3], &box_a[3..]);
@@ -226,7 +293,7 @@ pub(super) fn surface_seeds(
         let size = da.max(db);
         // the cones decide only among pairs small enough to be leaves
         let free = size <= LEAF * scale
-            && loop_free(normal_cone(sa, &pair.a.2), normal_cone(sb, &pair.b.2));
+            && loop_free(normal_cone(sa, &pair.a.0 .2), normal_cone(sb, &pair.b.0 .2));
         if free || size <= TINY * scale || pair.depth >= MAX_DEPTH {
             leaf_seeds(
                 sa,
@@ -245,39 +312,39 @@ pub(super) fn surface_seeds(
             && size >= 4.0 * (tol * scale).sqrt()
             && coincide(
                 sa,
-                (pair.ka, pair.a.0, pair.a.1, &pair.a.2),
+                (pair.ka, pair.a.0 .0, pair.a.0 .1, &pair.a.0 .2),
                 sb,
-                (pair.kb, pair.b.0, pair.b.1, &pair.b.2),
+                (pair.kb, pair.b.0 .0, pair.b.0 .1, &pair.b.0 .2),
                 tol,
             )
         {
             let (ga, gb) = (sa.ranges[pair.ka], sb.ranges[pair.kb]);
             found.overlaps.push([
-                global(ga.0, pair.a.0, 0.5),
-                global(ga.1, pair.a.1, 0.5),
-                global(gb.0, pair.b.0, 0.5),
-                global(gb.1, pair.b.1, 0.5),
+                global(ga.0, pair.a.0 .0, 0.5),
+                global(ga.1, pair.a.0 .1, 0.5),
+                global(gb.0, pair.b.0 .0, 0.5),
+                global(gb.1, pair.b.0 .1, 0.5),
             ]);
             continue;
         }
         let d = pair.depth + 1;
         if da >= db {
-            for a in sa.split4(&pair.a.2, pair.a.0, pair.a.1) {
+            for a in sa.split4(&pair.a.0 .2, pair.a.0 .0, pair.a.0 .1) {
                 stack.push(Pair {
                     ka: pair.ka,
-                    a,
+                    a: Sub::new(sa, a),
                     kb: pair.kb,
-                    b: pair.b.clone(),
+                    b: Rc::clone(&pair.b),
                     depth: d,
                 });
             }
         } else {
-            for b in sb.split4(&pair.b.2, pair.b.0, pair.b.1) {
+            for b in sb.split4(&pair.b.0 .2, pair.b.0 .0, pair.b.0 .1) {
                 stack.push(Pair {
                     ka: pair.ka,
-                    a: pair.a.clone(),
+                    a: Rc::clone(&pair.a),
                     kb: pair.kb,
-                    b,
+                    b: Sub::new(sb, b),
                     depth: d,
                 });
             }
@@ -287,9 +354,17 @@ pub(super) fn surface_seeds(
 }
 
 /// Whether the side of a sub-patch net (`i = 0`, `i = p`, `j = 0`, `j = q` for `side` 0 to 3) can
-/// meet the box `other` (minima then maxima) within `tol`: the box of the side's control points
-/// holds the side (convex hull property, positive weights) and must overlap it.
-fn side_meets(s: &QuerySurface, net: &[f64], side: usize, other: &[f64], tol: f64) -> bool {
+/// meet the other sub-patch, whose box is `other` (minima then maxima) and whose slab across its
+/// direction `n` is `(n, lo, hi)` (see [`slab`]), within `tol`: the box of the side's control
+/// points holds the side (convex hull property, positive weights) and must overlap the box, and
+/// their interval along `n` must meet the slab.
+fn side_meets(
+    s: &QuerySurface,
+    net: &[f64],
+    side: usize,
+    (other, across): (&[f64], Option<Slab>),
+    tol: f64,
+) -> bool {
     let (p, q) = (s.p, s.q);
     let pts: Vec<[f64; 3]> = match side {
         0 => (0..=q).map(|j| net_point(s, net, 0, j)).collect(),
@@ -297,17 +372,27 @@ fn side_meets(s: &QuerySurface, net: &[f64], side: usize, other: &[f64], tol: f6
         2 => (0..=p).map(|i| net_point(s, net, i, 0)).collect(),
         _ => (0..=p).map(|i| net_point(s, net, i, q)).collect(),
     };
-    (0..3).all(|c| {
+    let in_box = (0..3).all(|c| {
         let lo = pts.iter().map(|x| x[c]).fold(f64::INFINITY, f64::min);
         let hi = pts.iter().map(|x| x[c]).fold(f64::NEG_INFINITY, f64::max);
         lo <= other[3 + c] + tol && other[c] <= hi + tol
-    })
+    });
+    in_box
+        && across.is_none_or(|(n, (lo, hi))| {
+            let (a, b) = pts
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    let d = dot(&n, x);
+                    (a.min(d), b.max(d))
+                });
+            a <= hi + tol && lo <= b + tol
+        })
 }
 
 /// Seeds of a leaf pair: Newton's method with one unknown held on each of the eight sides of the
 /// two sub-patches (from the side's middle and the other's middle) whose control points' box
-/// meets the other sub-patch's box (a side that does not cannot hold a point of the
-/// intersection), and the free minimum-norm Newton from both middles; the points it reaches
+/// meets the other sub-patch's box and whose control points' interval across the other
+/// sub-patch meets its slab (a side that does not cannot hold a point of the intersection), and the free minimum-norm Newton from both middles; the points it reaches
 /// within a tenth of the tolerance.
 #[allow(clippy::too_many_arguments)]
 fn leaf_seeds(
@@ -321,8 +406,8 @@ fn leaf_seeds(
     out: &mut Vec<[f64; K]>,
 ) {
     let (ga, gb) = (sa.ranges[pair.ka], sb.ranges[pair.kb]);
-    let (ua, va) = (pair.a.0, pair.a.1);
-    let (ub, vb) = (pair.b.0, pair.b.1);
+    let (ua, va) = (pair.a.0 .0, pair.a.0 .1);
+    let (ub, vb) = (pair.b.0 .0, pair.b.0 .1);
     let mid = [
         global(ga.0, ua, 0.5),
         global(ga.1, va, 0.5),
@@ -348,11 +433,13 @@ fn leaf_seeds(
         }
     };
     push(newton(sys, mid, None, None, eps));
+    let slab_of = |s: &QuerySurface, net: &[f64]| across(s, net).map(|n| (n, slab(s, net, &n)));
+    let (across_a, across_b) = (slab_of(sa, &pair.a.0 .2), slab_of(sb, &pair.b.0 .2));
     for (n, (i, value)) in sides.into_iter().enumerate() {
         let meets = if n < 4 {
-            side_meets(sa, &pair.a.2, n, box_b, tol)
+            side_meets(sa, &pair.a.0 .2, n, (box_b, across_b), tol)
         } else {
-            side_meets(sb, &pair.b.2, n - 4, box_a, tol)
+            side_meets(sb, &pair.b.0 .2, n - 4, (box_a, across_a), tol)
         };
         if !meets {
             continue;

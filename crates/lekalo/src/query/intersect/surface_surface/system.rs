@@ -47,28 +47,30 @@ pub(super) trait System: Sync {
 /// ([`patch_first_order`]); higher degrees by `QuerySurface::eval_patch`.
 const STACK_DEGREE: usize = 7;
 
-/// Value and first derivative of the Bézier curve of `n + 1` points of `hd ≤ 4` scalars
+/// Value and first derivative of the Bézier curve of `n + 1` points of `HD ≤ 4` scalars
 /// (`n ≤ STACK_DEGREE`) at `t`: de Casteljau down to two points `b₀, b₁`, the value
-/// `(1 − t) b₀ + t b₁`, the derivative `n (b₁ − b₀)` (P&T §1.4, eq. 1.9).
-fn bezier_first(ctrl: &[f64], hd: usize, t: f64) -> ([f64; 4], [f64; 4]) {
-    let n = ctrl.len() / hd - 1;
-    let mut b = [[0.0; 4]; STACK_DEGREE + 1];
-    for (i, row) in b.iter_mut().enumerate().take(n + 1) {
-        row[..hd].copy_from_slice(&ctrl[i * hd..(i + 1) * hd]);
+/// `(1 − t) b₀ + t b₁`, the derivative `n (b₁ − b₀)` (P&T §1.4, eq. 1.9). The point size is a
+/// constant so that every copy is a fixed-size move, not a call to `memcpy`.
+fn bezier_first<const HD: usize>(ctrl: &[f64], t: f64) -> ([f64; HD], [f64; HD]) {
+    let n = ctrl.len() / HD - 1;
+    let mut b = [[0.0; HD]; STACK_DEGREE + 1];
+    for (row, c) in b.iter_mut().zip(ctrl.chunks_exact(HD)) {
+        row.copy_from_slice(c);
     }
     if n == 0 {
-        return (b[0], [0.0; 4]);
+        return (b[0], [0.0; HD]);
     }
+    let s = 1.0 - t;
     for level in 0..n - 1 {
         for i in 0..n - level {
-            for d in 0..hd {
-                b[i][d] = (1.0 - t) * b[i][d] + t * b[i + 1][d];
+            for d in 0..HD {
+                b[i][d] = s * b[i][d] + t * b[i + 1][d];
             }
         }
     }
-    let (mut val, mut der) = ([0.0; 4], [0.0; 4]);
-    for d in 0..hd {
-        val[d] = (1.0 - t) * b[0][d] + t * b[1][d];
+    let (mut val, mut der) = ([0.0; HD], [0.0; HD]);
+    for d in 0..HD {
+        val[d] = s * b[0][d] + t * b[1][d];
         der[d] = n as f64 * (b[1][d] - b[0][d]);
     }
     (val, der)
@@ -85,28 +87,46 @@ fn patch_first_order(
     u: f64,
     v: f64,
 ) -> [[f64; 3]; 3] {
+    if hd == 4 {
+        patch_first_order_n::<4>(net, (p, q), rational, u, v)
+    } else {
+        patch_first_order_n::<3>(net, (p, q), rational, u, v)
+    }
+}
+
+/// [`patch_first_order`] for points of `HD` scalars (3: polynomial, 4: rational).
+fn patch_first_order_n<const HD: usize>(
+    net: &[f64],
+    (p, q): (usize, usize),
+    rational: bool,
+    u: f64,
+    v: f64,
+) -> [[f64; 3]; 3] {
     let mut rows = [0.0; (STACK_DEGREE + 1) * 4];
     let mut rows_v = [0.0; (STACK_DEGREE + 1) * 4];
-    for i in 0..=p {
-        let (a, av) = bezier_first(&net[i * (q + 1) * hd..(i + 1) * (q + 1) * hd], hd, v);
-        rows[i * hd..(i + 1) * hd].copy_from_slice(&a[..hd]);
-        rows_v[i * hd..(i + 1) * hd].copy_from_slice(&av[..hd]);
+    for (i, row) in net.chunks_exact((q + 1) * HD).take(p + 1).enumerate() {
+        let (a, av) = bezier_first::<HD>(row, v);
+        for d in 0..HD {
+            rows[i * HD + d] = a[d];
+            rows_v[i * HD + d] = av[d];
+        }
     }
-    let (s, su) = bezier_first(&rows[..(p + 1) * hd], hd, u);
-    let (sv, _) = bezier_first(&rows_v[..(p + 1) * hd], hd, u);
-    if !rational {
+    let (s, su) = bezier_first::<HD>(&rows[..(p + 1) * HD], u);
+    let (sv, _) = bezier_first::<HD>(&rows_v[..(p + 1) * HD], u);
+    if !rational || HD < 4 {
         return [
             [s[0], s[1], s[2]],
             [su[0], su[1], su[2]],
             [sv[0], sv[1], sv[2]],
         ];
     }
-    let w = s[3];
+    // the weight is the last scalar (HD = 4 here)
+    let w = s[HD - 1];
     let pt = [s[0] / w, s[1] / w, s[2] / w];
     let mut out = [pt, [0.0; 3], [0.0; 3]];
     for d in 0..3 {
-        out[1][d] = (su[d] - su[3] * pt[d]) / w;
-        out[2][d] = (sv[d] - sv[3] * pt[d]) / w;
+        out[1][d] = (su[d] - su[HD - 1] * pt[d]) / w;
+        out[2][d] = (sv[d] - sv[HD - 1] * pt[d]) / w;
     }
     out
 }
@@ -116,12 +136,13 @@ fn patch_first_order(
 pub(super) fn surface_jet(s: &QuerySurface, u: f64, v: f64) -> Option<[[f64; 3]; 3]> {
     let (k, lu, lv) = s.locate(u, v).ok()?;
     let ((u0, u1), (v0, v1)) = s.ranges[k];
-    let [pt, du, dv] = if s.p <= STACK_DEGREE && s.q <= STACK_DEGREE && s.hd <= 4 && s.dim == 3 {
-        patch_first_order(s.patch(k), (s.p, s.q, s.hd), s.rational, lu, lv)
-    } else {
-        let (p, d) = s.eval_patch(k, lu, lv);
-        [[p[0], p[1], p[2]], [d[0], d[1], d[2]], [d[3], d[4], d[5]]]
-    };
+    let [pt, du, dv] =
+        if s.p <= STACK_DEGREE && s.q <= STACK_DEGREE && (s.hd == 3 || s.hd == 4) && s.dim == 3 {
+            patch_first_order(s.patch(k), (s.p, s.q, s.hd), s.rational, lu, lv)
+        } else {
+            let (p, d) = s.eval_patch(k, lu, lv);
+            [[p[0], p[1], p[2]], [d[0], d[1], d[2]], [d[3], d[4], d[5]]]
+        };
     let mut out = [[0.0; 3]; 3];
     s.denormalise(&pt, &mut out[0]);
     for c in 0..3 {
@@ -155,8 +176,22 @@ fn sine(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 /// Two surfaces: `F(u₁, v₁, u₂, v₂) = S₁(u₁, v₁) − S₂(u₂, v₂)`.
 pub(super) struct TwoSurfaces<'a> {
-    pub(super) a: &'a QuerySurface,
-    pub(super) b: &'a QuerySurface,
+    a: &'a QuerySurface,
+    b: &'a QuerySurface,
+    /// The parameter box, computed once (every Newton solve clamps to it).
+    bounds: [(f64, f64); K],
+}
+
+impl<'a> TwoSurfaces<'a> {
+    pub(super) fn new(a: &'a QuerySurface, b: &'a QuerySurface) -> Self {
+        let (ua, va) = a.domain();
+        let (ub, vb) = b.domain();
+        TwoSurfaces {
+            a,
+            b,
+            bounds: [ua, va, ub, vb],
+        }
+    }
 }
 
 impl System for TwoSurfaces<'_> {
@@ -169,9 +204,7 @@ impl System for TwoSurfaces<'_> {
     }
 
     fn bounds(&self) -> [(f64, f64); K] {
-        let (ua, va) = self.a.domain();
-        let (ub, vb) = self.b.domain();
-        [ua, va, ub, vb]
+        self.bounds
     }
 
     fn jet(&self, x: &[f64; K]) -> Option<Jet> {
@@ -193,9 +226,23 @@ impl System for TwoSurfaces<'_> {
 
 /// A surface and a plane: `f(u, v) = n·(S(u, v) − o)`, `n` a unit normal.
 pub(super) struct PlaneSection<'a> {
-    pub(super) s: &'a QuerySurface,
-    pub(super) origin: [f64; 3],
-    pub(super) normal: [f64; 3],
+    s: &'a QuerySurface,
+    origin: [f64; 3],
+    normal: [f64; 3],
+    /// The parameter box, computed once.
+    bounds: [(f64, f64); K],
+}
+
+impl<'a> PlaneSection<'a> {
+    pub(super) fn new(s: &'a QuerySurface, origin: [f64; 3], normal: [f64; 3]) -> Self {
+        let (u, v) = s.domain();
+        PlaneSection {
+            s,
+            origin,
+            normal,
+            bounds: [u, v, (0.0, 0.0), (0.0, 0.0)],
+        }
+    }
 }
 
 impl System for PlaneSection<'_> {
@@ -208,14 +255,17 @@ impl System for PlaneSection<'_> {
     }
 
     fn bounds(&self) -> [(f64, f64); K] {
-        let (u, v) = self.s.domain();
-        [u, v, (0.0, 0.0), (0.0, 0.0)]
+        self.bounds
     }
 
     fn jet(&self, x: &[f64; K]) -> Option<Jet> {
         let [p, su, sv] = surface_jet(self.s, x[0], x[1])?;
         let n = &self.normal;
-        let d: Vec<f64> = (0..3).map(|c| p[c] - self.origin[c]).collect();
+        let d = [
+            p[0] - self.origin[0],
+            p[1] - self.origin[1],
+            p[2] - self.origin[2],
+        ];
         let mut j = [[0.0; K]; 3];
         j[0][0] = dot(n, &su);
         j[0][1] = dot(n, &sv);
@@ -270,7 +320,11 @@ pub(super) fn solve(mut a: [[f64; K]; K], mut b: [f64; K], n: usize) -> Option<[
 pub(super) fn tangent(jet: &Jet, k: usize) -> Option<([f64; K], [f64; 3])> {
     let mut t = [0.0; K];
     for (i, ti) in t.iter_mut().enumerate().take(k) {
-        let cols: Vec<usize> = (0..k).filter(|&c| c != i).collect();
+        // the columns other than i
+        let mut cols = [0; K];
+        for (n, c) in (0..k).filter(|&c| c != i).enumerate() {
+            cols[n] = c;
+        }
         let det = if k == 2 {
             jet.j[0][cols[0]]
         } else {
@@ -341,7 +395,11 @@ pub(super) fn newton(
         }
         let m = k - 1;
         let dx = if let Some(i) = fixed {
-            let cols: Vec<usize> = (0..k).filter(|&c| c != i).collect();
+            let mut all = [0; K];
+            for (n, c) in (0..k).filter(|&c| c != i).enumerate() {
+                all[n] = c;
+            }
+            let cols = &all[..m];
             let mut a = [[0.0; K]; K];
             let mut b = [0.0; K];
             for r in 0..m {

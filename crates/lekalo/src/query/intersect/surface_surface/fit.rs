@@ -1,0 +1,192 @@
+//! The fitted curves of a traced branch (`docs/theory/queries.md#fitted-curves`): the cubic
+//! Hermite spline through a subset of the marched points with the marching's own tangents, the
+//! subset chosen so that the spline is within the tolerance of every marched point.
+//!
+//! The marching already knows, at every point, the tangent of the branch in the unknowns (the null
+//! vector of the Jacobian, scaled to unit speed in space), so the data of a C¹ cubic Hermite spline
+//! are there without a least-squares solve; this is how Open CASCADE returns its walking lines
+//! (`ApproxInt`/`GeomInt_WLApprox` fit the walking line's points and tangents). The points are
+//! parametrised by arc length (chords corrected by the turning of the tangent) and the nodes are
+//! chosen greedily: from each node, the farthest point such that the Hermite segment between them
+//! passes within the tolerance of every marched point in between, at its parameter (doubling,
+//! then bisection).
+
+use super::super::super::pieces::{dist, dot};
+use super::march::Traced;
+use super::system::K;
+use crate::error::Result;
+use crate::interpolate::CubicHermite;
+use crate::{BSplineCurve, Points};
+
+/// Widest row: the point in space and the scaled parameters on both surfaces.
+const W: usize = 7;
+
+/// The curve in space and the parameter curves of a branch, all on the same knots, `None` when
+/// the branch has fewer than two distinct points. The fitted coordinates are
+/// `(x, y, z, k₁u₁, k₁v₁, k₂u₂, k₂v₂)` (the last two for two surfaces only), `kᵢ` the largest
+/// `|S_u| + |S_v|` of surface `i` on the branch, so that a parameter error `δ` moves the surface
+/// point by at most `kᵢδ`; the spline is within `tol` of every marched point in those
+/// coordinates, at the point's arc-length parameter.
+#[allow(clippy::type_complexity)]
+pub(super) fn fit_branch(
+    t: &Traced,
+    tol: f64,
+    two: bool,
+) -> Result<Option<(BSplineCurve, BSplineCurve, Option<BSplineCurve>)>> {
+    let width = if two { 7 } else { 5 };
+    let ka = if t.reach[0] > 0.0 { t.reach[0] } else { 1.0 };
+    let kb = if t.reach[1] > 0.0 { t.reach[1] } else { 1.0 };
+    let row = |x: &[f64; K], p: &[f64; 3]| -> [f64; W] {
+        [p[0], p[1], p[2], ka * x[0], ka * x[1], kb * x[2], kb * x[3]]
+    };
+    // the distinct points, in order
+    let n = t.ps.len();
+    let mut kept: Vec<usize> = Vec::with_capacity(n);
+    for i in 0..n {
+        if kept.last().is_none_or(|&j| t.ps[j] != t.ps[i]) {
+            kept.push(i);
+        }
+    }
+    let m = kept.len();
+    if m < 2 {
+        return Ok(None);
+    }
+    let rows: Vec<[f64; W]> = kept.iter().map(|&i| row(&t.xs[i], &t.ps[i])).collect();
+    // unit space tangents, oriented along the branch (the chord through the neighbours)
+    let tangents: Vec<Option<[f64; W]>> = (0..m)
+        .map(|a| {
+            let (tx, tp) = t.tangents[kept[a]]?;
+            let (lo, hi) = (a.saturating_sub(1), (a + 1).min(m - 1));
+            let chord: Vec<f64> = (0..3).map(|c| rows[hi][c] - rows[lo][c]).collect();
+            let sign = if dot(&tp, &chord) < 0.0 { -1.0 } else { 1.0 };
+            let mut g = row(&tx, &tp);
+            for v in &mut g {
+                *v *= sign;
+            }
+            Some(g)
+        })
+        .collect();
+    // arc length: each chord c lengthened to the arc of a circle turning by θ, c·(θ/2)/sin(θ/2)
+    let mut s = vec![0.0; m];
+    for a in 1..m {
+        let c = dist(&rows[a - 1][..3], &rows[a][..3]);
+        let theta = match (&tangents[a - 1], &tangents[a]) {
+            (Some(g0), Some(g1)) => dot(&g0[..3], &g1[..3]).clamp(-1.0, 1.0).acos(),
+            _ => 0.0,
+        };
+        s[a] = s[a - 1] + c * arc_over_chord(theta);
+    }
+    // a point without a tangent (an end at a tangency): the derivative of the parabola through
+    // it and its two neighbours
+    let slopes: Vec<[f64; W]> = (0..m)
+        .map(|a| tangents[a].unwrap_or_else(|| parabola_slope(&rows, &s, a)))
+        .collect();
+    let within = |a: usize, b: usize| -> bool {
+        let h = s[b] - s[a];
+        (a + 1..b).all(|k| {
+            let u = (s[k] - s[a]) / h;
+            let (u2, u3) = (u * u, u * u * u);
+            let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
+            let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
+            let mut d2 = 0.0;
+            for c in 0..width {
+                let v = h00 * rows[a][c]
+                    + h01 * rows[b][c]
+                    + h * (h10 * slopes[a][c] + h11 * slopes[b][c]);
+                d2 += (v - rows[k][c]) * (v - rows[k][c]);
+            }
+            d2 <= tol * tol
+        })
+    };
+    let mut nodes = vec![0];
+    let (mut a, mut guess) = (0, 8);
+    while a < m - 1 {
+        // the farthest b with every point in between within tol: doubling, then bisection
+        let mut good = a + 1;
+        let mut bad = m;
+        let mut b = (a + guess).min(m - 1);
+        while b > good {
+            if within(a, b) {
+                good = b;
+                b = (a + 2 * (b - a)).min(m - 1);
+            } else {
+                bad = b;
+                break;
+            }
+        }
+        while bad - good > 1 {
+            let mid = (good + bad) / 2;
+            if within(a, mid) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        nodes.push(good);
+        guess = good - a;
+        a = good;
+    }
+    // parameters on [0, 1]: derivatives with respect to s / L are L times those in s
+    let len = s[m - 1];
+    let params: Vec<f64> = nodes.iter().map(|&a| s[a] / len).collect();
+    let mut pts = Vec::with_capacity(nodes.len() * width);
+    let mut ders = Vec::with_capacity(nodes.len() * width);
+    for &a in &nodes {
+        pts.extend_from_slice(&rows[a][..width]);
+        ders.extend(slopes[a][..width].iter().map(|v| v * len));
+    }
+    let spline = CubicHermite::new(
+        params,
+        Points::from_flat(width, pts)?,
+        Points::from_flat(width, ders)?,
+    )?
+    .to_bspline();
+    let knots = spline.knots().as_slice().to_vec();
+    let ctrl = spline.control_points().as_slice();
+    let part = |from: usize, dim: usize, f: f64| -> Result<BSplineCurve> {
+        let pts: Vec<f64> = ctrl
+            .chunks_exact(width)
+            .flat_map(|r| r[from..from + dim].iter().map(move |v| v / f))
+            .collect();
+        BSplineCurve::new(3, knots.clone(), Points::from_flat(dim, pts)?)
+    };
+    let space = part(0, 3, 1.0)?;
+    let pa = part(3, 2, ka)?;
+    let pb = if two { Some(part(5, 2, kb)?) } else { None };
+    Ok(Some((space, pa, pb)))
+}
+
+/// The ratio of arc to chord of a circular arc turning by `theta`: `(θ/2)/sin(θ/2)`
+/// (`1 + θ²/24` for small θ, where the quotient loses digits).
+pub(super) fn arc_over_chord(theta: f64) -> f64 {
+    if theta < 1e-4 {
+        1.0 + theta * theta / 24.0
+    } else {
+        (0.5 * theta) / (0.5 * theta).sin()
+    }
+}
+
+/// The derivative at `s[a]` of the parabola through row `a` and its two neighbours (at an end,
+/// the next two; for two rows, the chord's slope).
+fn parabola_slope(rows: &[[f64; W]], s: &[f64], a: usize) -> [f64; W] {
+    let m = rows.len();
+    let mut out = [0.0; W];
+    if m == 2 {
+        let h = s[1] - s[0];
+        for (c, o) in out.iter_mut().enumerate() {
+            *o = (rows[1][c] - rows[0][c]) / h;
+        }
+        return out;
+    }
+    let i0 = a.saturating_sub(1).min(m - 3);
+    let (t0, t1, t2) = (s[i0], s[i0 + 1], s[i0 + 2]);
+    let x = s[a];
+    // derivatives of the Lagrange basis at x
+    let l0 = ((x - t1) + (x - t2)) / ((t0 - t1) * (t0 - t2));
+    let l1 = ((x - t0) + (x - t2)) / ((t1 - t0) * (t1 - t2));
+    let l2 = ((x - t0) + (x - t1)) / ((t2 - t0) * (t2 - t1));
+    for (c, o) in out.iter_mut().enumerate() {
+        *o = l0 * rows[i0][c] + l1 * rows[i0 + 1][c] + l2 * rows[i0 + 2][c];
+    }
+    out
+}
