@@ -380,6 +380,9 @@ pub(crate) fn write_step(
     lekalo_io::write_atomic(&path, text.as_bytes(), &[]).map_err(io_err)
 }
 
+/// The vertices and triangles of a mesh of faces, and the faces not meshed with the reasons.
+type MeshedFaces<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, String)>);
+
 /// Meshes faces together within ``tolerance`` (in the model's units), as ``lekalo mesh`` does
 /// with a face JSON Lines file: ``(vertices, triangles, failures)``, the faces that can be
 /// meshed as one mesh (an ``(n, 3)`` float array and an ``(m, 3)`` uint32 array, the faces
@@ -394,7 +397,7 @@ pub(crate) fn mesh_faces<'py>(
     py: Python<'py>,
     faces: Vec<Bound<'py, PyFace>>,
     tolerance: f64,
-) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, String)>)> {
+) -> PyResult<MeshedFaces<'py>> {
     let list: Vec<&lekalo::Face> = faces.iter().map(|f| &f.get().inner.face).collect();
     let (m, failures) = py
         .detach(|| {

@@ -41,6 +41,10 @@ impl FaceMeshes {
 /// on, so the key under which they are kept while faces drop out of the set.
 type EdgeKey = Vec<(usize, usize, usize, bool)>;
 
+/// One use of an edge while it is sampled: its face's plan, the edge, and whether it runs the
+/// edge as the first use does.
+type Use<'a> = (&'a FacePlan<'a>, &'a Edge, bool);
+
 /// The samples of a face's edges, loop by loop, each with whether the face runs the edge as
 /// its samples do: what a face's mesh depends on besides the face.
 type FaceSamples = Vec<Option<(Arc<EdgeSamples>, bool)>>;
@@ -155,7 +159,7 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
     let edge_of = |fi: usize, lp: usize, ei: usize| -> Option<&Edge> {
         faces.get(fi)?.loops().nth(lp)?.edges().get(ei)
     };
-    let uses_of = |key: &EdgeKey| -> Vec<(&FacePlan<'_>, &Edge, bool)> {
+    let uses_of = |key: &EdgeKey| -> Vec<Use<'_>> {
         key.iter()
             .filter_map(|&(fi, lp, ei, same)| {
                 Some((plans[fi].as_ref()?, edge_of(fi, lp, ei)?, same))
@@ -279,7 +283,7 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
 fn blame<'a>(
     key: &EdgeKey,
     e: Error,
-    uses_of: &dyn Fn(&EdgeKey) -> Vec<(&'a FacePlan<'a>, &'a Edge, bool)>,
+    uses_of: &dyn Fn(&EdgeKey) -> Vec<Use<'a>>,
     tolerance: f64,
     failed: &mut [Option<Error>],
 ) {
