@@ -1,6 +1,7 @@
 //! `Face` and `read_step`: the faces of a STEP file (a surface trimmed by loops of edges, each
 //! edge a 3-D curve with its pcurve in the surface's `(u, v)`), with the point-in-face test on
-//! NumPy arrays; `read_step` also gives the file's curves and surfaces.
+//! NumPy arrays; `read_step` also gives the file's curves and surfaces; `mesh_faces` meshes
+//! faces together.
 
 use lekalo::topology::TrimRegion;
 use lekalo_io::{Shape, StepFace};
@@ -377,6 +378,50 @@ pub(crate) fn write_step(
         })
         .map_err(io_err)?;
     lekalo_io::write_atomic(&path, text.as_bytes(), &[]).map_err(io_err)
+}
+
+/// The vertices and triangles of a mesh of faces, and the faces not meshed with the reasons.
+type MeshedFaces<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, String)>);
+
+/// Meshes faces together within ``tolerance`` (in the model's units), as ``lekalo mesh`` does
+/// with a face JSON Lines file: ``(vertices, triangles, failures)``, the faces that can be
+/// meshed as one mesh (an ``(n, 3)`` float array and an ``(m, 3)`` uint32 array, the faces
+/// meeting at the same points along their shared edges) and, for each face that cannot,
+/// ``(index, reason)`` with its index in ``faces``. Edges without a pcurve get one by projection
+/// first, as ``Face.with_projected_pcurves(tolerance)``. Each face is meshed once and a face
+/// that fails leaves the others as they are without it (``lekalo::topology::mesh_faces_each``;
+/// docs/theory/topology.md, "Faces that cannot be meshed"). Raises ``ValueError`` for a
+/// tolerance that is not positive and finite, or too small for the faces' sizes together.
+#[pyfunction]
+pub(crate) fn mesh_faces<'py>(
+    py: Python<'py>,
+    faces: Vec<Bound<'py, PyFace>>,
+    tolerance: f64,
+) -> PyResult<MeshedFaces<'py>> {
+    let list: Vec<&lekalo::Face> = faces.iter().map(|f| &f.get().inner.face).collect();
+    let (m, failures) = py
+        .detach(|| {
+            let mut ready = Vec::with_capacity(list.len());
+            let mut failures = Vec::new();
+            for (k, f) in list.iter().enumerate() {
+                match f.with_projected_pcurves(tolerance) {
+                    Ok(g) => ready.push((k, g)),
+                    Err(e) => failures.push((k, e.to_string())),
+                }
+            }
+            let r = lekalo::topology::mesh_faces_each(
+                &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
+                tolerance,
+            )?;
+            failures.extend(r.failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
+            failures.sort_by_key(|(k, _)| *k);
+            Ok::<_, lekalo::Error>((r.join()?, failures))
+        })
+        .map_err(lib_err)?;
+    let nt = m.triangles.len();
+    let tri: Vec<u32> = m.triangles.iter().flatten().copied().collect();
+    let tri = PyArray1::from_vec(py, tri).reshape([nt, 3])?.into_any();
+    Ok((points_into_array(py, m.vertices)?, tri, failures))
 }
 
 /// Writes faces to an IGES file as trimmed surfaces (entity 144 over 128, each loop a 142 with

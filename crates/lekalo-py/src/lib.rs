@@ -70,6 +70,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(faces::read_iges, m)?)?;
     m.add_function(wrap_pyfunction!(faces::write_step, m)?)?;
     m.add_function(wrap_pyfunction!(faces::write_iges, m)?)?;
+    m.add_function(wrap_pyfunction!(faces::mesh_faces, m)?)?;
     m.add_class::<faces::PyFace>()?;
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;

@@ -327,3 +327,33 @@ def test_mesh_of_a_band_and_a_cap_without_a_seam_edge(tmp_path, name, data, exac
     centroids = (a + b + c) / 3.0
     out = centroids if name == "cap" else centroids * [1.0, 1.0, 0.0]
     assert np.all(np.einsum("ij,ij->i", n, out) > 0)
+
+
+def test_mesh_faces_lists_the_faces_that_fail_and_meshes_the_others_as_without_them(tmp_path):
+    import json
+
+    plate = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    tube = lekalo.read_step(write(tmp_path, "tube.step", TUBE), faces=True)["faces"][0]
+    # the plate without pcurves, its plane lifted 1 mm off its edges: its projection fails
+    d = json.loads(plate.to_json())
+    for lp in [d["outer"], *d.get("inner", [])]:
+        for e in lp:
+            e.pop("pcurve", None)
+    for c in d["surface"]["control"]:
+        c[2] += 1.0
+    lifted = lekalo.Face.from_json(json.dumps(d))
+    tol = 1e-3
+    vertices, triangles, failures = lekalo.mesh_faces([tube, lifted, plate], tol)
+    assert [k for k, _ in failures] == [1]
+    assert "does not lie on the face's surface" in failures[0][1]
+    assert triangles.dtype == np.uint32 and triangles.max() < len(vertices)
+    alone_v, alone_t, none = lekalo.mesh_faces([tube, plate], tol)
+    assert none == []
+    assert np.array_equal(vertices, alone_v) and np.array_equal(triangles, alone_t)
+    # the tube and the plate share no edge: the joined mesh is the two meshes one after the other
+    tv, tt = tube.mesh(tol)
+    pv, pt = plate.mesh(tol)
+    assert np.array_equal(vertices, np.vstack([tv, pv]))
+    assert np.array_equal(triangles, np.vstack([tt, pt + len(tv)]))
+    with pytest.raises(ValueError, match="tolerance"):
+        lekalo.mesh_faces([plate], 0.0)

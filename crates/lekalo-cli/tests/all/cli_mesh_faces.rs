@@ -197,6 +197,20 @@ fn mesh_of_faces_projects_the_missing_pcurves_and_lists_the_faces_off_their_surf
     let pi = std::f64::consts::PI;
     let bound = (4.0 * pi + (4.0 * pi + 4.0) + (40.0 + 4.0 * pi)) * tol;
     assert!((area - exact).abs() <= bound, "{area}");
+    // the faces that are meshed are the mesh of these faces alone, in one pass
+    fs::write(p(&d, "good.jsonl"), format!("{}\n{bare}\n", tube.trim())).unwrap();
+    lekalo()
+        .args(["mesh", "--tolerance", "1e-3"])
+        .arg(p(&d, "good.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "good.obj"))
+        .assert()
+        .success();
+    assert_eq!(
+        fs::read_to_string(p(&d, "all.obj")).unwrap(),
+        fs::read_to_string(p(&d, "good.obj")).unwrap(),
+        "a face left out changes the others' mesh"
+    );
     // the lifted face alone: nothing to mesh, and the reason
     fs::write(p(&d, "lifted.jsonl"), format!("{lifted_text}\n")).unwrap();
     lekalo()

@@ -4,7 +4,9 @@
 //! (Chew, "Constrained Delaunay triangulations", Algorithmica 4 (1989) 97–108; de Berg et al.,
 //! "Computational Geometry", 3rd ed., 2008, ch. 9), refined where a triangle's deviation bound
 //! is above the tolerance. Faces of a set are meshed with each shared edge sampled once, so the
-//! faces' meshes meet at the same points along it.
+//! faces' meshes meet at the same points along it. This file meshes one face from its edges'
+//! samples; `mesh_set.rs` drives a set of faces (each edge sampled once, each face meshed
+//! once, the failures by face).
 
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 
@@ -12,7 +14,7 @@ use super::face::{Edge, Face};
 use super::inside::winding_number;
 use super::pcurve::SurfaceClosure;
 use super::seam::{cut_along_seam, SeamPlan};
-use super::shell::{EdgeUse, Shell};
+use super::shell::EdgeUse;
 use crate::query::{check_tol, triangle_bound, Mesh, MAX_MESH_VERTICES};
 use crate::{Error, Points, Result, Surface};
 
@@ -71,7 +73,7 @@ impl Curvature {
 }
 
 /// What one face needs while its edges are sampled: its surface's bounds and grid spacing.
-struct FacePlan<'a> {
+pub(super) struct FacePlan<'a> {
     face: &'a Face,
     curv: Curvature,
     /// Grid spacing in `u` and `v`.
@@ -130,11 +132,8 @@ fn dist(a: &[f64], b: &[f64]) -> f64 {
 /// the surface at the pcurve's midpoint is farther than `tol / 2` from the chord's midpoint,
 /// the segment's parameter step has `M(e) > 4 tol` (its part of the triangles' bound), or
 /// the step is longer than the face's grid spacing.
-fn sample_edge(
-    uses: &[(&FacePlan<'_>, &Edge, bool)],
-    tol: f64,
-    budget: &mut usize,
-) -> Result<Vec<f64>> {
+fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f64>> {
+    let budget = MAX_MESH_VERTICES;
     let spans = uses
         .iter()
         .flat_map(|(_, e, _)| {
@@ -186,169 +185,162 @@ fn sample_edge(
             stack.pop();
             out.push(s);
             at = s;
-            if out.len() > *budget {
+            if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "points on the edges of the faces to mesh (make the tolerance larger)",
+                    what: "points on an edge of the faces to mesh (make the tolerance larger)",
                     size: out.len(),
-                    max: *budget,
+                    max: budget,
                 });
             }
         }
     }
-    *budget -= out.len();
     Ok(out)
 }
 
-/// Meshes of `faces`, one per face, each within `tolerance` of its surface over its trimmed
-/// region, the faces' meshes meeting without cracks along their shared edges
-/// (`docs/theory/topology.md`, "Meshing a trimmed face"):
-///
-/// * every edge of the [`Shell`] of the faces is sampled once, at fractions of its first
-///   use's curve, halved where on any of its faces the surface at the pcurve's midpoint
-///   departs from the chord by more than `tolerance / 2`, where the parameter step `e` has
-///   `M(e) > 4·tolerance`, or where it is longer than the face's grid spacing; each use takes
-///   the same points of the 3-D curve, its `(u, v)` from its pcurve at the same fraction (run
-///   backwards by a use that runs the edge the other way), so the faces' boundary vertices
-///   coincide;
-/// * the interior points are the points of a uniform `(u, v)` grid whose triangles are within
-///   the tolerance by the bound of the untrimmed mesher (`M(e) = A e_u² + 2B |e_u e_v| +
-///   C e_v²`, `A, B, C` bounds on `|S_uu|, |S_uv|, |S_vv|` from the Bezier nets, and the
-///   triangle bound `½ max Σ λ_i λ_j M_ij`; `docs/theory/queries.md#tessellation`) that lie
-///   inside the trims (winding numbers of the sampled loops) farther than
-///   [`TRIM_CLEARANCE`] of the spacing from every trim segment;
-/// * a constrained Delaunay triangulation of these points with the loops' segments as
-///   constraints (Chew 1989; de Berg et al. 2008, ch. 9; the `spade` crate) keeps the
-///   triangles inside the trims: those joined across edges that are not constraints form one
-///   region, outside when it reaches the convex hull, else inside when the centroid of its
-///   largest triangle is (so a sliver of three nearly collinear trim points, whose own
-///   centroid is within rounding of the trim, takes its region's side); a triangle whose bound is above the
-///   tolerance gets its centroid inserted, and the triangulation is made again, at most
-///   [`MAX_REFINE_ROUNDS`] times.
-///
-/// Vertices on the edges are the edges' 3-D points, the others the surface's. Triangles run
-/// counter-clockwise in `(u, v)` where the face's normal is the surface's and the other way
-/// where it is not, so their normals are the face's. The reported deviation is the largest
-/// triangle bound (for a rational surface the bounds of its nets, an estimate; the edges'
-/// chords are checked at their midpoints).
+/// The plan of one face's mesh: its surface's second-derivative bounds, the grid spacing whose
+/// triangles are within `tolerance` by the bound of the untrimmed mesher (each of the three edge
+/// terms `M(e) = A e_u² + 2B |e_u e_v| + C e_v²` at most `6·tolerance`, split evenly;
+/// `docs/theory/queries.md#tessellation`), its seams; with the number of grid cells over its
+/// domain.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] for a tolerance that is not finite or below
-/// [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) of a surface's size, for
-/// an edge without pcurve, or a tolerance whose grid would exceed
-/// [`MAX_MESH_VERTICES`](crate::query::MAX_MESH_VERTICES) points (naming the tolerance and the
-/// number of points); [`Error::TooLarge`] when the edges' points or the refined meshes exceed
-/// that many vertices.
-pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
-    let mut plans = Vec::with_capacity(faces.len());
-    let mut grid_total = 0.0_f64;
-    for f in faces {
-        let (curv, scale) = Curvature::of(f.surface())?;
-        check_tol(tolerance, scale)?;
-        let ((u0, u1), (v0, v1)) = f.surface().domain();
-        // a grid whose two triangles of a cell are within the tolerance: each of the three
-        // edge terms at most 6·tol (triangle_bound ≤ max M / 6), split evenly
-        let h = |c: f64, w: f64| {
-            if c > 0.0 {
-                (2.0 * tolerance / c).sqrt().min(w)
-            } else {
-                w
-            }
-        };
-        let mut hu = h(curv.a, u1 - u0);
-        let mut hv = h(curv.c, v1 - v0);
-        if 2.0 * curv.b * hu * hv > 2.0 * tolerance {
-            let r = (2.0 * tolerance / (2.0 * curv.b * hu * hv)).sqrt();
-            hu *= r;
-            hv *= r;
+/// [`Error::InvalidArgument`] for a tolerance below
+/// [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) of the surface's size, a
+/// rational surface with a weight that is not positive, or a grid of more than
+/// [`MAX_MESH_VERTICES`] points (naming the tolerance that would do).
+pub(super) fn plan_face(f: &Face, tolerance: f64) -> Result<(FacePlan<'_>, f64)> {
+    let (curv, scale) = Curvature::of(f.surface())?;
+    check_tol(tolerance, scale)?;
+    let ((u0, u1), (v0, v1)) = f.surface().domain();
+    // a grid whose two triangles of a cell are within the tolerance: each of the three
+    // edge terms at most 6·tol (triangle_bound ≤ max M / 6), split evenly
+    let h = |c: f64, w: f64| {
+        if c > 0.0 {
+            (2.0 * tolerance / c).sqrt().min(w)
+        } else {
+            w
         }
-        let cells = ((u1 - u0) / hu).ceil().max(1.0) * ((v1 - v0) / hv).ceil().max(1.0);
-        grid_total += cells;
-        plans.push(FacePlan {
-            face: f,
-            curv,
-            h: [hu.max(f64::MIN_POSITIVE), hv.max(f64::MIN_POSITIVE)],
-            closure: SurfaceClosure::of(f.surface(), tolerance)?,
-        });
+    };
+    let mut hu = h(curv.a, u1 - u0);
+    let mut hv = h(curv.c, v1 - v0);
+    if 2.0 * curv.b * hu * hv > 2.0 * tolerance {
+        let r = (2.0 * tolerance / (2.0 * curv.b * hu * hv)).sqrt();
+        hu *= r;
+        hv *= r;
     }
+    let cells = ((u1 - u0) / hu).ceil().max(1.0) * ((v1 - v0) / hv).ceil().max(1.0);
+    check_grid(tolerance, cells)?;
+    let plan = FacePlan {
+        face: f,
+        curv,
+        h: [hu.max(f64::MIN_POSITIVE), hv.max(f64::MIN_POSITIVE)],
+        closure: SurfaceClosure::of(f.surface(), tolerance)?,
+    };
+    Ok((plan, cells))
+}
+
+/// Refuses a grid of `cells` points at `tolerance` above [`MAX_MESH_VERTICES`], naming the
+/// tolerance that would do.
+pub(super) fn check_grid(tolerance: f64, cells: f64) -> Result<()> {
     #[allow(clippy::cast_precision_loss)] // 2^26 is exact
     let max = MAX_MESH_VERTICES as f64;
-    if grid_total > max {
+    if cells > max {
         return Err(Error::InvalidArgument {
             what: "tessellation tolerance",
             reason: format!(
-                "{tolerance:e} needs a grid of about {grid_total:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
-                tolerance * grid_total / max
+                "{tolerance:e} needs a grid of about {cells:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
+                tolerance * cells / max
             ),
         });
     }
-    let shell = Shell::new(faces)?;
-    let mut budget = MAX_MESH_VERTICES;
-    // each edge of the shell sampled once: fractions along its first use and the 3-D points
-    let mut samples: Vec<(Vec<f64>, Vec<Vec<f64>>)> = Vec::with_capacity(shell.edges().len());
-    for se in shell.edges() {
-        let uses: Vec<(&FacePlan<'_>, &Edge, bool)> = se
-            .uses
-            .iter()
-            .filter_map(|&(u, same)| Some((&plans[u.face], edge_of(faces, u)?, same)))
-            .collect();
-        if uses.is_empty() {
-            samples.push((Vec::new(), Vec::new()));
-            continue;
-        }
-        let s = sample_edge(&uses, tolerance, &mut budget)?;
-        let first = uses[0].1;
-        let pts = s
-            .iter()
-            .map(|&x| curve_at(first, x))
-            .collect::<Result<Vec<_>>>()?;
-        samples.push((s, pts));
-    }
-    let mut out = Vec::with_capacity(faces.len());
-    for (fi, plan) in plans.iter().enumerate() {
-        // the loops as polygons in (u, v), with their 3-D points
-        let mut loops: Vec<Vec<([f64; 2], Vec<f64>)>> = Vec::new();
-        for (li, lp) in plan.face.loops().enumerate() {
-            let mut poly = Vec::new();
-            for (ei, e) in lp.edges().iter().enumerate() {
-                let u = EdgeUse {
-                    face: fi,
-                    lp: li,
-                    edge: ei,
-                };
-                let Some((g, same)) = shell.edge_of(u) else {
-                    continue;
-                };
-                let (s, pts) = &samples[g];
-                let n = s.len();
-                if n < 2 {
-                    continue;
-                }
-                // the last point is the next edge's first
-                for k in 0..n - 1 {
-                    let j = if same { k } else { n - 1 - k };
-                    let su = if same { s[j] } else { 1.0 - s[j] };
-                    poly.push((pcurve_at(e, su)?, pts[j].clone()));
-                }
-            }
-            loops.push(poly);
-        }
-        // loops going round a closed surface (a band, a cap): the face cut along a seam
-        let eval = |uv: [f64; 2]| plan.surface_at(uv);
-        let seam = SeamPlan {
-            closure: &plan.closure,
-            domain: plan.face.surface().domain(),
-            same_sense: plan.face.same_sense(),
-            h: plan.h,
-            eval: &eval,
-        };
-        let loops = cut_along_seam(&seam, loops)?;
-        out.push(mesh_one(plan, &loops, tolerance, &mut budget)?);
-    }
-    Ok(out)
+    Ok(())
 }
 
-fn edge_of<'a>(faces: &[&'a Face], u: EdgeUse) -> Option<&'a Edge> {
-    faces.get(u.face)?.loops().nth(u.lp)?.edges().get(u.edge)
+/// The samples of one edge of a shell: fractions `s` along its first use and the 3-D points of
+/// its curve there.
+#[derive(Debug, PartialEq)]
+pub(super) struct EdgeSamples {
+    s: Vec<f64>,
+    pts: Vec<Vec<f64>>,
+}
+
+/// One edge of a shell sampled for all its uses (`(plan, edge, same direction)`, the first
+/// use defining the direction): the fractions of [`sample_edge`] and the first use's curve
+/// there.
+///
+/// # Errors
+/// As [`Curve::eval`](crate::Curve::eval) and the pcurves' evaluation, an edge without pcurve
+/// ([`Error::InvalidArgument`]), or more than [`MAX_MESH_VERTICES`] points
+/// ([`Error::TooLarge`]).
+pub(super) fn sample_shared_edge(
+    uses: &[(&FacePlan<'_>, &Edge, bool)],
+    tolerance: f64,
+) -> Result<EdgeSamples> {
+    let Some(first) = uses.first() else {
+        return Ok(EdgeSamples {
+            s: Vec::new(),
+            pts: Vec::new(),
+        });
+    };
+    let s = sample_edge(uses, tolerance)?;
+    let pts = s
+        .iter()
+        .map(|&x| curve_at(first.1, x))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(EdgeSamples { s, pts })
+}
+
+/// The mesh of face `fi` of a set from the samples of its edges (`samples` of a use: the edge's
+/// samples and whether the use runs it the way they do): the loops as polygons in `(u, v)`
+/// through the samples, cut along a seam where they go round a closed surface, triangulated
+/// and refined ([`mesh_faces`](super::mesh_faces)).
+///
+/// # Errors
+/// As [`mesh_faces`](super::mesh_faces) for one face.
+pub(super) fn mesh_face<'s>(
+    plan: &FacePlan<'_>,
+    fi: usize,
+    samples: &dyn Fn(EdgeUse) -> Option<(&'s EdgeSamples, bool)>,
+    tolerance: f64,
+) -> Result<Mesh> {
+    // the loops as polygons in (u, v), with their 3-D points
+    let mut loops: Vec<Vec<([f64; 2], Vec<f64>)>> = Vec::new();
+    for (li, lp) in plan.face.loops().enumerate() {
+        let mut poly = Vec::new();
+        for (ei, e) in lp.edges().iter().enumerate() {
+            let u = EdgeUse {
+                face: fi,
+                lp: li,
+                edge: ei,
+            };
+            let Some((es, same)) = samples(u) else {
+                continue;
+            };
+            let (s, pts) = (&es.s, &es.pts);
+            let n = s.len();
+            if n < 2 {
+                continue;
+            }
+            // the last point is the next edge's first
+            for k in 0..n - 1 {
+                let j = if same { k } else { n - 1 - k };
+                let su = if same { s[j] } else { 1.0 - s[j] };
+                poly.push((pcurve_at(e, su)?, pts[j].clone()));
+            }
+        }
+        loops.push(poly);
+    }
+    // loops going round a closed surface (a band, a cap): the face cut along a seam
+    let eval = |uv: [f64; 2]| plan.surface_at(uv);
+    let seam = SeamPlan {
+        closure: &plan.closure,
+        domain: plan.face.surface().domain(),
+        same_sense: plan.face.same_sense(),
+        h: plan.h,
+        eval: &eval,
+    };
+    let loops = cut_along_seam(&seam, loops)?;
+    mesh_one(plan, &loops, tolerance, MAX_MESH_VERTICES)
 }
 
 /// True when `(u, v)` is inside the polygons (the outer's winding number not zero, every
@@ -377,7 +369,7 @@ fn mesh_one(
     plan: &FacePlan<'_>,
     loops: &[Vec<([f64; 2], Vec<f64>)>],
     tol: f64,
-    budget: &mut usize,
+    budget: usize,
 ) -> Result<Mesh> {
     let polys: Vec<Vec<f64>> = loops
         .iter()
@@ -484,11 +476,11 @@ fn mesh_one(
                 }
                 let x = plan.surface_at(p)?;
                 add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
-                if uv.len() > *budget {
+                if uv.len() > budget {
                     return Err(Error::TooLarge {
                         what: "vertices of the faces' mesh (make the tolerance larger)",
                         size: uv.len(),
-                        max: *budget,
+                        max: budget,
                     });
                 }
             }
@@ -529,16 +521,15 @@ fn mesh_one(
         for c in refine {
             let x = plan.surface_at(c)?;
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
-            if uv.len() > *budget {
+            if uv.len() > budget {
                 return Err(Error::TooLarge {
                     what: "vertices of the faces' mesh (make the tolerance larger)",
                     size: uv.len(),
-                    max: *budget,
+                    max: budget,
                 });
             }
         }
     };
-    *budget -= uv.len();
     let dim = surface.dim();
     let mut flat = Vec::with_capacity(dim * xyz.len());
     for x in &xyz {
@@ -638,54 +629,6 @@ fn inside_triangles(cdt: &Cdt, polys: &[Vec<f64>], uv: &[[f64; 2]], ours: &[usiz
         }
     }
     keep
-}
-
-impl Face {
-    /// A triangle mesh of the face's trimmed region within `tolerance` ([`mesh_faces`] of the
-    /// face alone).
-    ///
-    /// # Errors
-    /// As [`mesh_faces`].
-    pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
-        let mut m = mesh_faces(&[self], tolerance)?;
-        Ok(m.remove(0))
-    }
-}
-
-/// The meshes as one: vertices and triangles in order, each vertex with its own face's
-/// `(u, v)`, the deviation the largest.
-///
-/// # Errors
-/// [`Error::Dimension`] when the meshes' points differ in dimension.
-#[allow(clippy::cast_possible_truncation)] // vertex counts below MAX_MESH_VERTICES
-pub fn join_meshes(meshes: &[Mesh]) -> Result<Mesh> {
-    let dim = meshes.first().map_or(3, |m| m.vertices.dim());
-    let mut flat = Vec::new();
-    let mut uv = Vec::new();
-    let mut triangles = Vec::new();
-    let mut deviation = 0.0_f64;
-    for m in meshes {
-        let base = uv.len() as u32;
-        flat.extend_from_slice(m.vertices.as_slice());
-        uv.extend_from_slice(&m.uv);
-        triangles.extend(m.triangles.iter().map(|t| t.map(|k| k + base)));
-        deviation = deviation.max(m.deviation);
-    }
-    for m in meshes {
-        if m.vertices.dim() != dim {
-            return Err(Error::Dimension {
-                what: "mesh vertices",
-                expected: dim,
-                got: m.vertices.dim(),
-            });
-        }
-    }
-    Ok(Mesh {
-        vertices: Points::from_flat(dim, flat)?,
-        uv,
-        triangles,
-        deviation,
-    })
 }
 
 #[cfg(test)]

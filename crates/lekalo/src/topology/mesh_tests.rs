@@ -3,6 +3,7 @@
 
 use super::super::tests::{hole, plane, square};
 use super::*;
+use crate::topology::{join_meshes, mesh_faces, mesh_faces_each};
 use crate::topology::{Loop, LOOP_CLOSURE_RTOL};
 use crate::{BSplineCurve, BSplineSurface, Curve};
 use proptest::prelude::*;
@@ -239,4 +240,127 @@ fn pcurves_past_the_domain_by_rounding_are_meshed() {
         })
         .sum();
     assert!((area - 1.0).abs() < 1e-9, "area {area}");
+}
+
+/// The saddle's face left of `x = 0.5` and the one right of it, which runs their shared edge
+/// backwards; with `pcurve_off` the right face's first edge has no pcurve.
+fn two_saddle_faces(pcurve_off: bool) -> (Face, Face) {
+    let a = saddle_loop(&[[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]]);
+    let shared = &a.edges()[1];
+    let back = Edge::new(
+        shared.curve().reverse().unwrap(),
+        Some(shared.pcurve().unwrap().reverse().unwrap()),
+    )
+    .unwrap();
+    let mut first = saddle_edge([0.5, 0.0], [1.0, 0.0]);
+    if pcurve_off {
+        first = Edge::new(first.curve().clone(), None).unwrap();
+    }
+    let b = Loop::new(vec![
+        first,
+        saddle_edge([1.0, 0.0], [1.0, 1.0]),
+        saddle_edge([1.0, 1.0], [0.5, 1.0]),
+        back,
+    ])
+    .unwrap();
+    (
+        Face::new(saddle(), a, vec![], true, LOOP_CLOSURE_RTOL).unwrap(),
+        Face::new(saddle(), b, vec![], true, LOOP_CLOSURE_RTOL).unwrap(),
+    )
+}
+
+/// A face that fails while its edges are sampled (an edge without pcurve), sharing an edge
+/// with another: the others are meshed once each, exactly as they are without it, and the
+/// failure names the face by its index.
+#[test]
+fn a_face_failing_on_its_edges_leaves_the_others_as_without_it_each_meshed_once() {
+    let (fa, bad) = two_saddle_faces(true);
+    let fc = Face::new(
+        saddle(),
+        saddle_loop(&[[0.0, 0.0], [0.3, 0.1], [0.2, 0.4]]),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let tol = 1e-4;
+    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&fa, &bad, &fc], tol).unwrap();
+    assert_eq!(meshed, 2, "each face that can be meshed is meshed once");
+    assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
+    assert_eq!(
+        r.failures[0].0, 1,
+        "the face without a pcurve is the second"
+    );
+    assert!(
+        matches!(&r.failures[0].1, Error::InvalidArgument { what: "face loop", reason } if reason.contains("no curve in the surface's (u, v)")),
+        "{:?}",
+        r.failures[0].1
+    );
+    let without = mesh_faces_each(&[&fa, &fc], tol).unwrap();
+    assert!(without.failures.is_empty(), "{:?}", without.failures);
+    let index: Vec<usize> = r.meshes.iter().map(|(i, _)| *i).collect();
+    assert_eq!(index, [0, 2]);
+    assert_eq!(r.meshes[0].1, without.meshes[0].1);
+    assert_eq!(r.meshes[1].1, without.meshes[1].1);
+    // the set as one: the failing face's error
+    assert_eq!(
+        mesh_faces(&[&fa, &bad, &fc], tol).unwrap_err(),
+        r.failures[0].1
+    );
+    // without the failure, the shared edge is sampled for both faces, which meet along it
+    let (good_a, good_b) = two_saddle_faces(false);
+    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&good_a, &good_b], tol).unwrap();
+    assert_eq!(meshed, 2);
+    assert!(r.failures.is_empty());
+}
+
+/// A face that fails when it is meshed (a band of a cylinder whose two circles run the same
+/// way, refused by the cut along a seam), sharing its circle with a good band: the good faces
+/// are as they are without it, and none is meshed again since the failed face's use did not
+/// change the samples of their shared circle.
+#[test]
+fn a_face_failing_when_meshed_leaves_the_others_as_without_it() {
+    use crate::surface::Placement;
+    use crate::{NurbsCurve, NurbsSurface};
+    use std::f64::consts::TAU;
+    let circle = |z: f64, up: bool| {
+        let c = Curve::from(
+            NurbsCurve::circle(&[0.0, 0.0, z], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], 1.0).unwrap(),
+        );
+        Edge::new(if up { c } else { c.reverse().unwrap() }, None).unwrap()
+    };
+    let frame = Placement::new([0.0; 3], None, None).unwrap();
+    let cyl = Surface::from(NurbsSurface::cylinder(&frame, 1.0, (0.0, TAU), (0.0, 3.0)).unwrap());
+    let band = |lo: Edge, hi: Edge| {
+        Face::new(
+            cyl.clone(),
+            Loop::new(vec![lo]).unwrap(),
+            vec![Loop::new(vec![hi]).unwrap()],
+            true,
+            LOOP_CLOSURE_RTOL,
+        )
+        .unwrap()
+        .with_projected_pcurves(1e-7)
+        .unwrap()
+    };
+    let good = band(circle(0.5, true), circle(2.5, false));
+    // the circle at z = 2.5 run up: the same edge as the good band's, the other way
+    let bad = band(circle(2.5, true), circle(2.9, true));
+    let (other, _) = two_saddle_faces(false);
+    let tol = 1e-3;
+    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&good, &bad, &other], tol).unwrap();
+    assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
+    assert_eq!(r.failures[0].0, 1);
+    assert!(
+        r.failures[0].1.to_string().contains("same sense"),
+        "{}",
+        r.failures[0].1
+    );
+    let without = mesh_faces_each(&[&good, &other], tol).unwrap();
+    assert_eq!(r.meshes.len(), 2);
+    assert_eq!(r.meshes[0], (0, without.meshes[0].1.clone()));
+    assert_eq!(r.meshes[1], (2, without.meshes[1].1.clone()));
+    // both bands on one cylinder: the failed band's use samples the circle as the good
+    // band's does, so the good band keeps its mesh and every face is meshed once
+    assert_eq!(meshed, 3, "a face meshed twice");
 }

@@ -6,7 +6,8 @@
 //! |---|---|
 //! | `face.rs` | [`Face`], [`Loop`] and [`Edge`]: a surface, its outer and inner loops, each edge a 3-D curve with its curve in the surface's `(u, v)`; validation (dimensions, loops closed within a tolerance relative to the model size) |
 //! | `shell.rs` | [`Shell`]: which edges of a set of faces are one edge (shared by two faces, or a seam), and which edge ends are one vertex |
-//! | `mesh.rs` | [`mesh_faces`] and [`Face::mesh`]: triangle meshes of trimmed faces within a tolerance, edges sampled once for the faces that share them, constrained Delaunay triangulation |
+//! | `mesh.rs` | one trimmed face's triangle mesh within a tolerance from its edges' samples: edge sampling, grid, constrained Delaunay triangulation, refinement |
+//! | `mesh_set.rs` | [`mesh_faces`], [`mesh_faces_each`] and [`Face::mesh`]: a set of faces meshed with each shared edge sampled once and each face meshed once, in parallel; the faces that fail listed by index with their errors ([`FaceMeshes`]) |
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
 //! | `seam.rs` | faces whose loops go round a closed surface without a seam edge (bands, caps round a pole), cut along a seam into one region of `(u, v)` for the mesher |
 //! | `inside.rs` | [`TrimRegion`]: the loops in `(u, v)` as polygons and the point-in-face test by winding numbers |
@@ -16,13 +17,15 @@
 mod face;
 mod inside;
 mod mesh;
+mod mesh_set;
 mod pcurve;
 mod seam;
 mod shell;
 
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 pub use inside::{winding_number, TrimRegion, TRIM_SAMPLES_PER_SPAN};
-pub use mesh::{join_meshes, mesh_faces, TRIM_CLEARANCE};
+pub use mesh::TRIM_CLEARANCE;
+pub use mesh_set::{join_meshes, mesh_faces, mesh_faces_each, FaceMeshes};
 pub use pcurve::{SurfaceClosure, MAX_PCURVE_POINTS, PCURVE_SAMPLING_RTOL};
 pub use shell::{EdgeUse, SharedEdge, Shell};
 #[cfg(test)]

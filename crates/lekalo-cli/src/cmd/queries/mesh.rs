@@ -82,25 +82,19 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 Err(e) => skipped.push((k, e.to_string())),
             }
         }
-        // a face whose mesh fails alone is left out and the others meshed together
-        let mut meshed = lekalo::topology::mesh_faces(
+        // one pass: each face meshed once, a face that fails listed with its error and the
+        // others meshed as they are without it
+        let meshed = lekalo::topology::mesh_faces_each(
             &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
             a.tolerance,
+        )
+        .map_err(bad)?;
+        skipped.extend(
+            meshed
+                .failures
+                .iter()
+                .map(|(i, e)| (ready[*i].0, e.to_string())),
         );
-        if meshed.is_err() && ready.len() > 1 {
-            let mut keep = Vec::with_capacity(ready.len());
-            for (k, f) in ready {
-                match f.mesh(a.tolerance) {
-                    Ok(_) => keep.push((k, f)),
-                    Err(e) => skipped.push((k, e.to_string())),
-                }
-            }
-            ready = keep;
-            meshed = lekalo::topology::mesh_faces(
-                &ready.iter().map(|(_, f)| f).collect::<Vec<_>>(),
-                a.tolerance,
-            );
-        }
         skipped.sort_by_key(|(k, _)| *k);
         let name = |k: usize| {
             let f = &faces[k];
@@ -110,7 +104,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 format!("#{} ({})", f.id, f.name)
             }
         };
-        if ready.is_empty() {
+        if meshed.meshes.is_empty() {
             let first = skipped
                 .first()
                 .map(|(k, r)| format!("; face {}: {r}", name(*k)))
@@ -132,14 +126,12 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 eprintln!("  face {}: {r}", name(*k));
             }
         }
-        let m = meshed
-            .and_then(|ms| lekalo::topology::join_meshes(&ms))
-            .map_err(bad)?;
+        let m = meshed.join().map_err(bad)?;
         let reasons: Vec<serde_json::Value> = skipped
             .iter()
             .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
             .collect();
-        let summary = json!({"faces": ready.len(), "skipped": skipped.len(), "skipped_faces": reasons, "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": reasons, "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         return write_mesh(a, cx, &m, &fmt, &summary);
     }
     let (text, name) = lekalo_io::read_input(&a.input)?;
