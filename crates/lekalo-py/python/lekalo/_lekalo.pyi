@@ -682,6 +682,9 @@ def fit_tensor_grid_smoothing(
 def fit_tensor_scattered(
     x: ArrayLike, y: ArrayLike, t: Sequence[ArrayLike], k: Optional[Union[int, Sequence[int]]] = None, *, w: Optional[ArrayLike] = None, eps: Optional[float] = None, full_output: bool = False
 ) -> Union[Tuple[TensorBSpline, Array, float], Tuple[TensorBSpline, Array, float, int]]: ...
+def tensor_value(
+    t: Sequence[Array], c: Array, k: Union[int, Sequence[int]], x: Sequence[float], beyond: Literal["continue", "clamp", "nan"] = "continue"
+) -> float: ...
 def tensor_values(
     t: Sequence[Array],
     c: Array,
@@ -691,7 +694,7 @@ def tensor_values(
     beyond: Literal["continue", "clamp", "nan"] = "continue",
 ) -> Array: ...
 def tensor_grid_values(
-    t: Sequence[Array], c: Array, k: Union[int, Sequence[int]], axes: Sequence[Array], nu: Optional[Sequence[int]] = None
+    t: Sequence[Array], c: Array, k: Union[int, Sequence[int]], axes: Sequence[Array], nu: Optional[Sequence[int]] = None, clamp: bool = False
 ) -> Array: ...
 def ppoly_values(c: Array, x: Array, xp: ArrayLike, nu: int = 0) -> Array: ...
 def tensor_design_matrix(

@@ -50,6 +50,7 @@ pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
 pub use curvature::{curvature, principal_normal, torsion};
 pub use fast_eval::{Beyond, CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
+pub(crate) use fast_eval::PieceLocator;
 pub use integral::{bspline_value, bspline_value_by};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;
 pub use nurbs::NurbsCurve;

@@ -15,7 +15,7 @@ const LINEAR_SEARCH_MAX: usize = 8;
 /// `lo_b ≤ j ≤ hi_b`, where `lo_b` is the last piece whose start maps below `b` and `hi_b` the
 /// last whose start maps to at most `b`: the table is exact despite rounding.
 #[derive(Debug, Clone)]
-pub(super) struct PieceLocator {
+pub(crate) struct PieceLocator {
     x0: f64,
     scale: f64,
     /// `(lo_b, hi_b)` per bucket.
@@ -23,7 +23,7 @@ pub(super) struct PieceLocator {
 }
 
 impl PieceLocator {
-    pub(super) fn new(breaks: &[f64]) -> Self {
+    pub(crate) fn new(breaks: &[f64]) -> Self {
         let pieces = breaks.len() - 1;
         let nb = pieces * BUCKETS_PER_PIECE;
         let x0 = breaks[0];
@@ -59,7 +59,7 @@ impl PieceLocator {
 
     /// Piece `j` with `x_j ≤ t < x_{j+1}` (the last piece at `t = x_m`); `t` in the domain.
     #[inline(always)]
-    pub(super) fn find(&self, breaks: &[f64], t: f64) -> usize {
+    pub(crate) fn find(&self, breaks: &[f64], t: f64) -> usize {
         let (lo, hi) = self.range[self.bucket(t)];
         if hi - lo <= 1 {
             // the common case, without a branch on t (random parameters mispredict it)
