@@ -9,7 +9,7 @@
 
 use lekalo::tensor::{tensor_value_by, Beyond};
 use lekalo::TensorBSplineRef;
-use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
+use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::convert::{check_size, filled, floats, FloatArray};
@@ -204,11 +204,12 @@ fn beyond_arg(beyond: &str) -> PyResult<Beyond> {
 
 /// `tensor_value(t, c, k, x, beyond="continue")`: the scalar spline `(t, c, k)` at the one
 /// point `x` (`N` numbers), as a float. `t` holds one 1-D float64 array per variable; `c` is a
-/// C-contiguous float64 array of any shape whose first `Π_a n_a` numbers are the net in
-/// row-major order (SciPy's `(n_1, …, n_N)` array, or FITPACK's flat, padded `c`);
-/// `beyond` as in `tensor_values`. Only the `O(Σ_a log|t_a| + Π_a (k_a + 1))` numbers the
-/// value needs are read (`lekalo::tensor::tensor_value_by`): the knots are not checked sorted,
-/// as SciPy does not check them at a call; unsorted knots give some number, never a crash.
+/// 1-D float64 array whose first `Π_a n_a` numbers are the net in row-major order (SciPy's
+/// `(n_1, …, n_N)` array flattened as a view, or FITPACK's flat, padded `c`); `beyond` as in
+/// `tensor_values`. Only the `O(Σ_a log|t_a| + Π_a (k_a + 1))` numbers the value needs are read,
+/// in place and without borrowing the arrays (`lekalo::tensor::tensor_value_by`): the knots are
+/// not checked sorted, as SciPy does not check them at a call; unsorted knots give some number,
+/// never a crash.
 #[pyfunction]
 #[pyo3(signature = (t, c, k, x, beyond = "continue"))]
 pub(crate) fn tensor_value(
@@ -219,7 +220,7 @@ pub(crate) fn tensor_value(
     beyond: &str,
 ) -> PyResult<f64> {
     let rule = beyond_arg(beyond)?;
-    let arrays: Vec<Bound<'_, PyArray1<f64>>> = t
+    let knots: Vec<Bound<'_, PyArray1<f64>>> = t
         .try_iter()
         .map_err(|_| bad("t: expected a sequence of 1-D arrays, one per variable".into()))?
         .enumerate()
@@ -231,35 +232,18 @@ pub(crate) fn tensor_value(
             })
         })
         .collect::<PyResult<_>>()?;
-    let n = arrays.len();
-    let degrees = degrees_arg(k, n)?;
-    let knots: Vec<_> = arrays
-        .iter()
-        .map(|a| a.try_readonly())
-        .collect::<Result<_, _>>()
-        .map_err(|e| bad(format!("t: {e}")))?;
-    let knots: Vec<&[f64]> = knots
-        .iter()
-        .enumerate()
-        .map(|(a, r)| {
-            r.as_slice()
-                .map_err(|_| bad(format!("t[{a}]: the array is not contiguous; pass np.ascontiguousarray(t[{a}])")))
-        })
-        .collect::<PyResult<_>>()?;
-    let c = c.cast::<PyArrayDyn<f64>>().map_err(|_| {
-        bad("c: expected a float64 array; convert with np.asarray(c, dtype=np.float64)".into())
+    let degrees = degrees_arg(k, knots.len())?;
+    let c = c.cast::<PyArray1<f64>>().map_err(|_| {
+        bad("c: expected a 1-D float64 array; pass c.reshape(-1) of a C-contiguous float64 array".into())
     })?;
-    let c = c.try_readonly().map_err(|e| bad(format!("c: {e}")))?;
-    let c = c
-        .as_slice()
-        .map_err(|_| bad("c: the array is not C-contiguous; pass np.ascontiguousarray(c)".into()))?;
     let lens: Vec<usize> = knots.iter().map(|k| k.len()).collect();
+    // the few numbers the value needs, read in place (no copy, no borrow of the arrays)
     tensor_value_by(
         &degrees,
         &lens,
-        |a, i| knots[a][i],
+        |a, i| knots[a].get_owned(i).unwrap_or(f64::NAN),
         c.len(),
-        |f| c[f],
+        |f| c.get_owned(f).unwrap_or(f64::NAN),
         &x,
         rule,
     )

@@ -85,22 +85,66 @@ fn lane<const W: usize, const L: usize>(b: &[[f64; L]; W], l: usize) -> [f64; W]
     std::array::from_fn(|r| b[r][l])
 }
 
+/// One bivariate value of order `W` at `x` (spans found).
+#[inline(always)]
+fn one2<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 2], x: [f64; 2]) -> f64 {
+    let p = W - 1;
+    let b = basis_lanes::<W, 2>([s.knots[0], s.knots[1]], spans, x);
+    let first = [spans[0] - p, spans[1] - p];
+    contract2::<W>(s.net, first, s.stride(0), &lane(&b, 0), &lane(&b, 1))
+}
+
+/// One trivariate value of order `W` at `x` (spans found).
+#[inline(always)]
+fn one3<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 3], x: [f64; 3]) -> f64 {
+    let p = W - 1;
+    let k = [s.knots[0], s.knots[1], s.knots[2]];
+    // a fourth lane repeats the first, so that the lanes fill whole vectors
+    let b = basis_lanes::<W, 4>(
+        [k[0], k[1], k[2], k[0]],
+        [spans[0], spans[1], spans[2], spans[0]],
+        [x[0], x[1], x[2], x[0]],
+    );
+    let first = [spans[0] - p, spans[1] - p, spans[2] - p];
+    let strides = [s.stride(0), s.stride(1)];
+    contract3::<W>(s.net, first, strides, &lane(&b, 0), &lane(&b, 1), &lane(&b, 2))
+}
+
+/// The bivariate batch two points at a time: the bases of both points' directions in the four
+/// lanes of one [`basis_lanes`], so that the two points share each vector division (the
+/// triangle's divisions are the latency of a point). A pair with a point that gives NaN, and
+/// the last point of an odd batch, take [`one2`]; the same bits either way.
 #[inline(always)]
 fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
     let s = run.s;
-    let stride = s.stride(0);
     let (k0, k1) = (s.knots[0], s.knots[1]);
-    let p = W - 1;
-    let mut spans = [0usize; 2];
-    let mut x = [0.0; 2];
-    for (xp, o) in run.xs.chunks_exact(2).zip(out.iter_mut()) {
-        if !locate(run.mode, xp, run.domains, run.tables, &mut spans, &mut x)? {
-            *o = f64::NAN;
+    let (stride, p) = (s.stride(0), W - 1);
+    let (mut sa, mut sb) = ([0usize; 2], [0usize; 2]);
+    let (mut xa, mut xb) = ([0.0; 2], [0.0; 2]);
+    let mut pairs = run.xs.chunks_exact(4);
+    let mut outs = out.chunks_exact_mut(2);
+    for (xp, o) in (&mut pairs).zip(&mut outs) {
+        let a = locate(run.mode, &xp[..2], run.domains, run.tables, &mut sa, &mut xa)?;
+        let b = locate(run.mode, &xp[2..], run.domains, run.tables, &mut sb, &mut xb)?;
+        if !(a && b) {
+            o[0] = if a { one2::<W>(s, sa, xa) } else { f64::NAN };
+            o[1] = if b { one2::<W>(s, sb, xb) } else { f64::NAN };
             continue;
         }
-        let b = basis_lanes::<W, 2>([k0, k1], spans, x);
-        let (b0, b1) = (lane(&b, 0), lane(&b, 1));
-        *o = contract2::<W>(s.net, [spans[0] - p, spans[1] - p], stride, &b0, &b1);
+        let n = basis_lanes::<W, 4>(
+            [k0, k1, k0, k1],
+            [sa[0], sa[1], sb[0], sb[1]],
+            [xa[0], xa[1], xb[0], xb[1]],
+        );
+        o[0] = contract2::<W>(s.net, [sa[0] - p, sa[1] - p], stride, &lane(&n, 0), &lane(&n, 1));
+        o[1] = contract2::<W>(s.net, [sb[0] - p, sb[1] - p], stride, &lane(&n, 2), &lane(&n, 3));
+    }
+    for (xp, o) in pairs.remainder().chunks_exact(2).zip(outs.into_remainder()) {
+        *o = if locate(run.mode, xp, run.domains, run.tables, &mut sa, &mut xa)? {
+            one2::<W>(s, sa, xa)
+        } else {
+            f64::NAN
+        };
     }
     Ok(())
 }
@@ -108,25 +152,14 @@ fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<
 #[inline(always)]
 fn values3_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
     let s = run.s;
-    let strides = [s.stride(0), s.stride(1)];
-    let (k0, k1, k2) = (s.knots[0], s.knots[1], s.knots[2]);
-    let p = W - 1;
     let mut spans = [0usize; 3];
     let mut x = [0.0; 3];
     for (xp, o) in run.xs.chunks_exact(3).zip(out.iter_mut()) {
-        if !locate(run.mode, xp, run.domains, run.tables, &mut spans, &mut x)? {
-            *o = f64::NAN;
-            continue;
-        }
-        // a fourth lane repeats the first, so that the lanes fill whole vectors
-        let b = basis_lanes::<W, 4>(
-            [k0, k1, k2, k0],
-            [spans[0], spans[1], spans[2], spans[0]],
-            [x[0], x[1], x[2], x[0]],
-        );
-        let (b0, b1, b2) = (lane(&b, 0), lane(&b, 1), lane(&b, 2));
-        let first = [spans[0] - p, spans[1] - p, spans[2] - p];
-        *o = contract3::<W>(s.net, first, strides, &b0, &b1, &b2);
+        *o = if locate(run.mode, xp, run.domains, run.tables, &mut spans, &mut x)? {
+            one3::<W>(s, spans, x)
+        } else {
+            f64::NAN
+        };
     }
     Ok(())
 }

@@ -314,7 +314,9 @@ const PAR_ROW_BLOCKS: usize = 4;
 /// first term. The rows go in blocks of [`ROWS`], their `C` stored interleaved (`C[k]` of the
 /// block's rows side by side), so that each `x_b` computes [`ROWS`] values with whole-vector
 /// operations on neighbouring numbers instead of [`ROWS`] dot products of scattered ones.
-fn last_two(
+/// Compiled again with AVX2 ([`last_two`]), 4-wide vectors, the same bits.
+#[inline(always)]
+fn last_two_body(
     s: &TensorBSplineRef<'_>,
     src: &[f64],
     spans: &[usize],
@@ -377,33 +379,53 @@ fn last_two(
 
 /// The dot products of [`last_two`] for `W = p_b + 1` basis functions: value `(r, j)` of the
 /// block is `Σ_q N_{b,q}(x_j)·C_r[g_j + q]`, summed from `q = 0`, for the block's `rows ≤
-/// ROWS` rows at once.
+/// ROWS` rows at once (a full block writes its four rows through four slices, with no index
+/// check a value).
 #[inline(always)]
 fn dots<const W: usize>(c: &[f64], last: &AxisTable, rows: usize, out: &mut [f64]) {
     let m = last.spans.len();
-    for (j, (&span, nv)) in last
-        .spans
-        .iter()
-        .zip(last.values.chunks_exact(W))
-        .enumerate()
-    {
+    let at = |span: usize, nv: &[f64]| -> [f64; ROWS] {
         let base = (span + 1 - W) * ROWS;
-        let run = |q: usize| -> &[f64; ROWS] {
-            c[base + q * ROWS..base + (q + 1) * ROWS]
-                .try_into()
-                .expect("ROWS interleaved numbers")
-        };
+        let win = &c[base..base + W * ROWS];
         let mut acc = [0.0; ROWS];
-        for (a, &x) in acc.iter_mut().zip(run(0)) {
-            *a = nv[0] * x;
+        for r in 0..ROWS {
+            acc[r] = nv[0] * win[r];
         }
         for q in 1..W {
-            for (a, &x) in acc.iter_mut().zip(run(q)) {
-                *a += nv[q] * x;
+            for r in 0..ROWS {
+                acc[r] += nv[q] * win[q * ROWS + r];
             }
         }
-        for (r, &a) in acc[..rows].iter().enumerate() {
-            out[r * m + j] = a;
+        acc
+    };
+    let columns = last.spans.iter().zip(last.values.chunks_exact(W));
+    if rows == ROWS {
+        let (o0, rest) = out.split_at_mut(m);
+        let (o1, rest) = rest.split_at_mut(m);
+        let (o2, o3) = rest.split_at_mut(m);
+        let outs = o0.iter_mut().zip(o1).zip(o2).zip(o3.iter_mut());
+        for ((&span, nv), (((y0, y1), y2), y3)) in columns.zip(outs) {
+            let acc = at(span, nv);
+            (*y0, *y1, *y2, *y3) = (acc[0], acc[1], acc[2], acc[3]);
+        }
+    } else {
+        for (j, (&span, nv)) in columns.enumerate() {
+            let acc = at(span, nv);
+            for (r, &a) in acc[..rows].iter().enumerate() {
+                out[r * m + j] = a;
+            }
         }
     }
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`last_two_body`], with AVX2 where the processor has it (the same bits).
+    fn last_two(
+        s: &TensorBSplineRef<'_>,
+        src: &[f64],
+        spans: &[usize],
+        values: &[f64],
+        last: &AxisTable,
+        out: &mut [f64],
+    ) = last_two_body;
 }

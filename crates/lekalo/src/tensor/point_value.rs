@@ -127,30 +127,40 @@ pub fn tensor_value_by(
         spans.push(span_by(&|i| knot(a, i), p, size, t.clamp(lo, hi)));
     }
     // the basis vectors, direction a at offsets[a]..
-    let mut bases = Vec::with_capacity(degrees.iter().map(|p| p + 1).sum());
+    let top = degrees.iter().copied().max().unwrap_or(0);
+    let mut scratch = BasisScratch::new(top);
+    let mut knots = Vec::with_capacity(2 * top + 1);
+    let mut bases = vec![0.0; degrees.iter().map(|p| p + 1).sum()];
+    let mut start = 0;
     for (a, (&p, &i)) in degrees.iter().zip(&spans).enumerate() {
         // t_{i−p+1} ..= t_{i+p} after one unused slot: t_i at index p, the span given to A2.2
-        let knots: Vec<f64> = std::iter::once(f64::NAN)
-            .chain((i + 1 - p..=i + p).map(|j| knot(a, j)))
-            .collect();
-        let mut scratch = BasisScratch::new(p);
-        let start = bases.len();
-        bases.resize(start + p + 1, 0.0);
-        basis_funs_into(&knots, p, p, point[a], &mut scratch, &mut bases[start..]);
+        knots.clear();
+        knots.push(f64::NAN);
+        knots.extend((i + 1 - p..=i + p).map(|j| knot(a, j)));
+        let out = &mut bases[start..start + p + 1];
+        basis_funs_into(&knots, p, p, point[a], &mut scratch, out);
+        start += p + 1;
     }
-    // the window of coefficients, first direction slowest
+    // the window of coefficients, first direction slowest: runs of p_{N−1} + 1 consecutive
+    // coefficients, one for each position of an odometer over the other directions
+    let last = n - 1;
+    let run = degrees[last] + 1;
+    let mut strides = vec![1usize; n];
+    for a in (0..last).rev() {
+        strides[a] = strides[a + 1] * sizes[a + 1];
+    }
     let mut values = Vec::with_capacity(window);
     let mut odometer = vec![0usize; n];
-    loop {
-        let mut f = 0;
-        for a in 0..n {
-            f = f * sizes[a] + spans[a] - degrees[a] + odometer[a];
+    'runs: loop {
+        let mut f = spans[last] - degrees[last];
+        for a in 0..last {
+            f += (spans[a] - degrees[a] + odometer[a]) * strides[a];
         }
-        values.push(coefficient(f));
-        let mut a = n;
+        values.extend((f..f + run).map(&coefficient));
+        let mut a = last;
         loop {
             if a == 0 {
-                break;
+                break 'runs;
             }
             a -= 1;
             odometer[a] += 1;
@@ -158,9 +168,6 @@ pub fn tensor_value_by(
                 break;
             }
             odometer[a] = 0;
-        }
-        if odometer.iter().all(|&o| o == 0) {
-            break;
         }
     }
     // contract the leading direction, one after the other, each sum from its first term
@@ -171,13 +178,12 @@ pub fn tensor_value_by(
         offset += p + 1;
         let len = values.len() / (p + 1);
         next.truncate(len);
-        for (j, &b) in basis.iter().enumerate() {
+        for (r, &v) in next.iter_mut().zip(&values[..len]) {
+            *r = basis[0] * v;
+        }
+        for (j, &b) in basis.iter().enumerate().skip(1) {
             for (r, &v) in next.iter_mut().zip(&values[j * len..(j + 1) * len]) {
-                if j == 0 {
-                    *r = b * v;
-                } else {
-                    *r += b * v;
-                }
+                *r += b * v;
             }
         }
         std::mem::swap(&mut values, &mut next);

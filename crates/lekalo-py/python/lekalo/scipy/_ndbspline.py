@@ -46,7 +46,8 @@ class NdBSpline:
         cc = self._c[..., None] if self._c.dtype.kind == "c" and self._c.ndim == ndim else self._c
         self._cc = cc.view(np.float64) if cc.dtype.kind == "c" else cc
         # real values, one number a point: a point given as a tuple takes lekalo's tensor_value
-        self._scalar = self._cc.ndim == ndim
+        # on the coefficients as one flat view (changes made in place are seen)
+        self._flat = self._cc.reshape(-1) if self._cc.ndim == ndim else None
 
     @property
     def k(self) -> tuple:
@@ -68,12 +69,12 @@ class NdBSpline:
         One point given as a tuple of numbers is lekalo's ``tensor_value``, which reads only the
         few knots and coefficients it needs."""
         extrapolate = self.extrapolate if extrapolate is None else bool(extrapolate)
-        if nu is None and type(xi) is tuple and self._scalar:
+        if nu is None and type(xi) is tuple and self._flat is not None:
             # anything tensor_value does not take (a coordinate that is not a number, the wrong
             # count) goes the array way, which raises SciPy's errors
             try:
                 return np.array(
-                    _lekalo.tensor_value(self._t, self._cc, self._k, xi, "continue" if extrapolate else "nan")
+                    _lekalo.tensor_value(self._t, self._flat, self._k, xi, "continue" if extrapolate else "nan")
                 )
             except Exception:
                 pass
