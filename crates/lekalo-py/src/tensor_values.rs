@@ -234,7 +234,10 @@ pub(crate) fn tensor_value(
         .collect::<PyResult<_>>()?;
     let degrees = degrees_arg(k, knots.len())?;
     let c = c.cast::<PyArray1<f64>>().map_err(|_| {
-        bad("c: expected a 1-D float64 array; pass c.reshape(-1) of a C-contiguous float64 array".into())
+        bad(
+            "c: expected a 1-D float64 array; pass c.reshape(-1) of a C-contiguous float64 array"
+                .into(),
+        )
     })?;
     let lens: Vec<usize> = knots.iter().map(|k| k.len()).collect();
     // the few numbers the value needs, read in place (no copy, no borrow of the arrays)

@@ -10,32 +10,10 @@ use crate::error::{check_finite, Error, Result};
 use crate::knots::span_in;
 use crate::tensor::contract::TensorScratch;
 use crate::tensor::fixed::Fixed;
-use crate::tensor::locate::SpanTable;
+use crate::tensor::locate::Beyond;
+use crate::tensor::locate::{locate, Mode, SpanTable};
 use crate::tensor::spline::{check_len, checked_size, TensorBSpline};
 use crate::tensor::view::TensorBSplineRef;
-
-/// What a batch does at a point outside the domain (or with a coordinate that is not finite):
-/// [`TensorBSplineRef::par_eval_batch_beyond`]. A point with a NaN or infinite coordinate gets
-/// `NaN` values in every mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Beyond {
-    /// The polynomials of the end spans continued (SciPy's `NdBSpline(..., extrapolate=True)`).
-    Continue,
-    /// Each coordinate taken at the nearest end of its domain (FITPACK's `fpbisp`, SciPy's
-    /// `bisplev` and `RectBivariateSpline.ev`).
-    Clamp,
-    /// `NaN` values (SciPy's `extrapolate=False`).
-    Nan,
-}
-
-/// How a batch treats the points: refuse those outside the domain, continue the end spans
-/// (points checked finite before), or one of the [`Beyond`] rules.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Mode {
-    Refuse,
-    Extrapolate,
-    Beyond(Beyond),
-}
 
 impl TensorBSpline {
     /// `S(x)` into `out` (`dim` numbers). One allocation (the scratch); for many points use
@@ -328,8 +306,7 @@ impl TensorBSplineRef<'_> {
         let n = self.n_vars();
         let domains = self.domain();
         let d = self.degrees;
-        if orders.is_none() && (n == 2 || n == 3) && self.dim == 1 && d.iter().all(|&p| p == d[0])
-        {
+        if orders.is_none() && (n == 2 || n == 3) && self.dim == 1 && d.iter().all(|&p| p == d[0]) {
             let run = Fixed {
                 s: self,
                 xs,
@@ -392,53 +369,6 @@ impl TensorBSplineRef<'_> {
         self.contract_prepared(scratch, out);
         Ok(())
     }
-}
-
-/// The spans of the point `x` into `spans` and the coordinates at which the basis functions are
-/// evaluated into `point`: `false` when the point's values are `NaN` ([`Beyond`] rules).
-/// Inside the domain every mode finds the span of [`span_in`] (by the bucket search of
-/// [`SpanTable`]) and evaluates at `x`.
-///
-/// # Errors
-/// [`Error::ParameterOutOfDomain`] outside the domain in the refusing mode.
-#[inline(always)]
-pub(super) fn locate(
-    mode: Mode,
-    x: &[f64],
-    domains: &[(f64, f64)],
-    tables: &[SpanTable],
-    spans: &mut [usize],
-    point: &mut [f64],
-) -> Result<bool> {
-    if let Mode::Beyond(b) = mode {
-        for (&t, &(lo, hi)) in x.iter().zip(domains) {
-            if !t.is_finite() || (b == Beyond::Nan && !(t >= lo && t <= hi)) {
-                return Ok(false);
-            }
-        }
-    }
-    for (a, table) in tables.iter().enumerate() {
-        let (lo, hi) = domains[a];
-        let t = x[a];
-        spans[a] = match mode {
-            Mode::Refuse if !(t >= lo && t <= hi) => {
-                return Err(Error::ParameterOutOfDomain {
-                    t,
-                    min: lo,
-                    max: hi,
-                })
-            }
-            Mode::Refuse => table.find(t),
-            // finite, checked: the span of the nearest domain end
-            _ => table.find(t.clamp(lo, hi)),
-        };
-        point[a] = if mode == Mode::Beyond(Beyond::Clamp) {
-            t.clamp(lo, hi)
-        } else {
-            t
-        };
-    }
-    Ok(true)
 }
 
 /// Batches below this many points run on the calling thread (the thread pool's hand-over costs

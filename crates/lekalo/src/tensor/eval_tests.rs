@@ -213,7 +213,11 @@ fn twin_splines(n: usize, p: usize, gaps: &[f64], net: &[f64]) -> (TensorBSpline
     let scalar = net[..size].to_vec();
     let twice: Vec<f64> = scalar.iter().flat_map(|&v| [v, v]).collect();
     let make = |dim: usize, c: Vec<f64>| {
-        TensorBSpline::new(vec![p; n], knots.clone(), Points::from_flat(dim, c).unwrap())
+        TensorBSpline::new(
+            vec![p; n],
+            knots.clone(),
+            Points::from_flat(dim, c).unwrap(),
+        )
     };
     (make(1, scalar).unwrap(), make(2, twice).unwrap())
 }

@@ -7,8 +7,7 @@
 
 use crate::error::Result;
 use crate::tensor::contract::{contract2, contract3};
-use crate::tensor::eval::{locate, Mode};
-use crate::tensor::locate::SpanTable;
+use crate::tensor::locate::{locate, Mode, SpanTable};
 use crate::tensor::view::TensorBSplineRef;
 
 /// A batch for the fixed-size kernels: the spline, the points (`N` numbers each), what to do
@@ -107,7 +106,14 @@ fn one3<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 3], x: [f64; 3]
     );
     let first = [spans[0] - p, spans[1] - p, spans[2] - p];
     let strides = [s.stride(0), s.stride(1)];
-    contract3::<W>(s.net, first, strides, &lane(&b, 0), &lane(&b, 1), &lane(&b, 2))
+    contract3::<W>(
+        s.net,
+        first,
+        strides,
+        &lane(&b, 0),
+        &lane(&b, 1),
+        &lane(&b, 2),
+    )
 }
 
 /// The bivariate batch two points at a time: the bases of both points' directions in the four
@@ -124,8 +130,22 @@ fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<
     let mut pairs = run.xs.chunks_exact(4);
     let mut outs = out.chunks_exact_mut(2);
     for (xp, o) in (&mut pairs).zip(&mut outs) {
-        let a = locate(run.mode, &xp[..2], run.domains, run.tables, &mut sa, &mut xa)?;
-        let b = locate(run.mode, &xp[2..], run.domains, run.tables, &mut sb, &mut xb)?;
+        let a = locate(
+            run.mode,
+            &xp[..2],
+            run.domains,
+            run.tables,
+            &mut sa,
+            &mut xa,
+        )?;
+        let b = locate(
+            run.mode,
+            &xp[2..],
+            run.domains,
+            run.tables,
+            &mut sb,
+            &mut xb,
+        )?;
         if !(a && b) {
             o[0] = if a { one2::<W>(s, sa, xa) } else { f64::NAN };
             o[1] = if b { one2::<W>(s, sb, xb) } else { f64::NAN };
@@ -136,8 +156,20 @@ fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<
             [sa[0], sa[1], sb[0], sb[1]],
             [xa[0], xa[1], xb[0], xb[1]],
         );
-        o[0] = contract2::<W>(s.net, [sa[0] - p, sa[1] - p], stride, &lane(&n, 0), &lane(&n, 1));
-        o[1] = contract2::<W>(s.net, [sb[0] - p, sb[1] - p], stride, &lane(&n, 2), &lane(&n, 3));
+        o[0] = contract2::<W>(
+            s.net,
+            [sa[0] - p, sa[1] - p],
+            stride,
+            &lane(&n, 0),
+            &lane(&n, 1),
+        );
+        o[1] = contract2::<W>(
+            s.net,
+            [sb[0] - p, sb[1] - p],
+            stride,
+            &lane(&n, 2),
+            &lane(&n, 3),
+        );
     }
     for (xp, o) in pairs.remainder().chunks_exact(2).zip(outs.into_remainder()) {
         *o = if locate(run.mode, xp, run.domains, run.tables, &mut sa, &mut xa)? {

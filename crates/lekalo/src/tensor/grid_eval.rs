@@ -109,7 +109,14 @@ impl TensorBSplineRef<'_> {
                     let at = i * rows;
                     let count = o.len() / m[1];
                     let spans = &t0.spans[at..at + count];
-                    last_two(self, self.net, spans, &t0.values[at * w..(at + count) * w], t1, o);
+                    last_two(
+                        self,
+                        self.net,
+                        spans,
+                        &t0.values[at * w..(at + count) * w],
+                        t1,
+                        o,
+                    );
                 };
                 if size >= PAR_MIN_VALUES {
                     out.par_chunks_mut(rows * m[1]).enumerate().for_each(block);

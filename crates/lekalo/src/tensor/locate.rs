@@ -1,10 +1,36 @@
-//! Knot-span location for batches of points: per direction, the bucket table of the curve
+//! Knot-span location for batches of points, and what a batch does at a point beyond the
+//! domain ([`Beyond`], the spans and coordinates of a point under a batch's rule, `locate`).
+//! Per direction, the bucket table of the curve
 //! evaluator ([`PieceLocator`], `curve/fast_eval/locate.rs`) over the distinct knots of the
 //! domain, built once per batch in `O(|T_a|)`. A point's span then costs O(1) for spread-out
 //! knots and O(log m) at worst, in any order of the points, where a binary search (P&T
 //! Algorithm A2.1) costs `log2 |T_a|` unpredictable branches.
 
 use crate::curve::PieceLocator;
+use crate::error::{Error, Result};
+
+/// What a batch does at a point outside the domain (or with a coordinate that is not finite):
+/// [`TensorBSplineRef::par_eval_batch_beyond`]. A point with a NaN or infinite coordinate gets
+/// `NaN` values in every mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Beyond {
+    /// The polynomials of the end spans continued (SciPy's `NdBSpline(..., extrapolate=True)`).
+    Continue,
+    /// Each coordinate taken at the nearest end of its domain (FITPACK's `fpbisp`, SciPy's
+    /// `bisplev` and `RectBivariateSpline.ev`).
+    Clamp,
+    /// `NaN` values (SciPy's `extrapolate=False`).
+    Nan,
+}
+
+/// How a batch treats the points: refuse those outside the domain, continue the end spans
+/// (points checked finite before), or one of the [`Beyond`] rules.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Mode {
+    Refuse,
+    Extrapolate,
+    Beyond(Beyond),
+}
 
 /// The span search of one direction: [`SpanTable::find`] gives the span of
 /// [`span_in`](crate::knots::span_in) (`t_i ≤ t < t_{i+1}`, the last non-empty span at the right
@@ -53,6 +79,53 @@ impl SpanTable {
     }
 }
 
+/// The spans of the point `x` into `spans` and the coordinates at which the basis functions are
+/// evaluated into `point`: `false` when the point's values are `NaN` ([`Beyond`] rules).
+/// Inside the domain every mode finds the span of [`span_in`] (by the bucket search of
+/// [`SpanTable`]) and evaluates at `x`.
+///
+/// # Errors
+/// [`Error::ParameterOutOfDomain`] outside the domain in the refusing mode.
+#[inline(always)]
+pub(super) fn locate(
+    mode: Mode,
+    x: &[f64],
+    domains: &[(f64, f64)],
+    tables: &[SpanTable],
+    spans: &mut [usize],
+    point: &mut [f64],
+) -> Result<bool> {
+    if let Mode::Beyond(b) = mode {
+        for (&t, &(lo, hi)) in x.iter().zip(domains) {
+            if !t.is_finite() || (b == Beyond::Nan && !(t >= lo && t <= hi)) {
+                return Ok(false);
+            }
+        }
+    }
+    for (a, table) in tables.iter().enumerate() {
+        let (lo, hi) = domains[a];
+        let t = x[a];
+        spans[a] = match mode {
+            Mode::Refuse if !(t >= lo && t <= hi) => {
+                return Err(Error::ParameterOutOfDomain {
+                    t,
+                    min: lo,
+                    max: hi,
+                })
+            }
+            Mode::Refuse => table.find(t),
+            // finite, checked: the span of the nearest domain end
+            _ => table.find(t.clamp(lo, hi)),
+        };
+        point[a] = if mode == Mode::Beyond(Beyond::Clamp) {
+            t.clamp(lo, hi)
+        } else {
+            t
+        };
+    }
+    Ok(true)
+}
+
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;
@@ -63,8 +136,11 @@ mod tests {
 
     /// Knots of degree `p`: clamped or not, with repeated interior knots, uneven spacing.
     fn knots() -> impl Strategy<Value = (Vec<f64>, usize)> {
-        (0usize..=5, prop::collection::vec((0.0f64..1.0, 1usize..=3), 1..12)).prop_map(
-            |(p, raw)| {
+        (
+            0usize..=5,
+            prop::collection::vec((0.0f64..1.0, 1usize..=3), 1..12),
+        )
+            .prop_map(|(p, raw)| {
                 let mut t: Vec<f64> = vec![-1.0; p + 1];
                 let mut inner: Vec<(f64, usize)> = raw;
                 inner.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -73,8 +149,7 @@ mod tests {
                 }
                 t.extend(vec![2.0; p + 1]);
                 (t, p)
-            },
-        )
+            })
     }
 
     proptest! {

@@ -4,9 +4,9 @@
 //! beyond what the few numbers read need. The `N`-variate twin of
 //! [`bspline_value_by`](crate::bspline_value_by).
 
-use crate::basis::{basis_funs_into, BasisScratch};
+use crate::basis::{basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
-use crate::tensor::eval::Beyond;
+use crate::tensor::locate::Beyond;
 
 /// Largest number of directions of [`tensor_value_by`] (the window of `Π_a (p_a + 1)`
 /// coefficients is gathered on the heap, its size checked).
@@ -128,7 +128,8 @@ pub fn tensor_value_by(
     }
     // the basis vectors, direction a at offsets[a]..
     let top = degrees.iter().copied().max().unwrap_or(0);
-    let mut scratch = BasisScratch::new(top);
+    // the fixed-order triangle up to degree 5 (no scratch), the general one above
+    let mut scratch: Option<BasisScratch> = None;
     let mut knots = Vec::with_capacity(2 * top + 1);
     let mut bases = vec![0.0; degrees.iter().map(|p| p + 1).sum()];
     let mut start = 0;
@@ -138,7 +139,19 @@ pub fn tensor_value_by(
         knots.push(f64::NAN);
         knots.extend((i + 1 - p..=i + p).map(|j| knot(a, j)));
         let out = &mut bases[start..start + p + 1];
-        basis_funs_into(&knots, p, p, point[a], &mut scratch, out);
+        let t = point[a];
+        match p {
+            0 => out[0] = 1.0,
+            1 => out.copy_from_slice(&basis_funs_fixed::<2>(&knots, p, t)),
+            2 => out.copy_from_slice(&basis_funs_fixed::<3>(&knots, p, t)),
+            3 => out.copy_from_slice(&basis_funs_fixed::<4>(&knots, p, t)),
+            4 => out.copy_from_slice(&basis_funs_fixed::<5>(&knots, p, t)),
+            5 => out.copy_from_slice(&basis_funs_fixed::<6>(&knots, p, t)),
+            _ => {
+                let scratch = scratch.get_or_insert_with(|| BasisScratch::new(top));
+                basis_funs_into(&knots, p, p, t, scratch, out);
+            }
+        }
         start += p + 1;
     }
     // the window of coefficients, first direction slowest: runs of p_{N−1} + 1 consecutive
