@@ -11,7 +11,7 @@ use lekalo::{
     ScatteredSmoothingOptions, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyList, PyTuple};
 
 use crate::convert::{array, check_size, filled, floats, vec1, vec_array, FloatArray};
 use crate::error::{bad, lib_err, named};
@@ -36,8 +36,12 @@ pub(crate) struct PyTensorBSpline {
 
 /// Degrees from `k`: one integer for every variable, or one per variable.
 pub(crate) fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
-    if let Ok(p) = k.extract::<usize>() {
-        return Ok(vec![p; n]);
+    // a tuple or list is not tried as one integer first (the failed extraction builds an
+    // exception, a good part of a scalar call)
+    if !(k.is_instance_of::<PyTuple>() || k.is_instance_of::<PyList>()) {
+        if let Ok(p) = k.extract::<usize>() {
+            return Ok(vec![p; n]);
+        }
     }
     let list: Vec<usize> = k.extract().map_err(|_| {
         bad("k: expected a non-negative integer or one per variable (a tuple of ints)".into())

@@ -4,13 +4,16 @@
 //! keeps no second copy and sees its arrays changed in place. Points beyond the domain follow
 //! one of the `Beyond` rules: `"continue"` (the end spans' polynomials), `"clamp"` (FITPACK:
 //! the coordinate taken at the domain's end) or `"nan"`; a NaN or infinite coordinate gives NaN.
+//! The value at one point (`tensor_value`, the scalar calls) reads only the numbers it needs
+//! (`lekalo::tensor::tensor_value_by`), with no check of the whole arrays.
 
-use lekalo::tensor::Beyond;
+use lekalo::tensor::{tensor_value_by, Beyond};
 use lekalo::TensorBSplineRef;
+use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::convert::{check_size, filled, floats, FloatArray};
-use crate::error::{bad, named};
+use crate::error::{bad, lib_err, named};
 use crate::tensor::degrees_arg;
 
 /// The knot arrays of `t`, one 1-D float64 array per variable, borrowed.
@@ -107,16 +110,7 @@ pub(crate) fn tensor_values(
     nu: Option<Vec<usize>>,
     beyond: &str,
 ) -> PyResult<Py<PyAny>> {
-    let rule = match beyond {
-        "continue" => Beyond::Continue,
-        "clamp" => Beyond::Clamp,
-        "nan" => Beyond::Nan,
-        other => {
-            return Err(bad(format!(
-                "beyond: {other:?} is not one of continue, clamp, nan"
-            )))
-        }
-    };
+    let rule = beyond_arg(beyond)?;
     let knots = knot_arrays(t)?;
     let n = knots.len();
     let degrees = degrees_arg(k, n)?;
@@ -140,12 +134,13 @@ pub(crate) fn tensor_values(
     Ok(out.unbind())
 }
 
-/// `tensor_grid_values(t, c, k, axes, nu=None)`: the spline `(t, c, k)` (or its partial
-/// derivative of orders `nu`) on the grid `axes[0] × … × axes[N-1]` (each inside its domain),
-/// shape `(len(axes[0]), …, len(axes[N-1]), *trailing)`, by sum factorisation
-/// (`TensorBSplineRef::eval_grid`). Nothing of `t` or `c` is copied.
+/// `tensor_grid_values(t, c, k, axes, nu=None, clamp=False)`: the spline `(t, c, k)` (or its
+/// partial derivative of orders `nu`) on the grid `axes[0] × … × axes[N-1]` (each inside its
+/// domain, or with `clamp` each parameter taken at the nearest end of its domain first, as
+/// FITPACK's `bispev`), shape `(len(axes[0]), …, len(axes[N-1]), *trailing)`, by sum
+/// factorisation (`TensorBSplineRef::eval_grid`). Nothing of `t` or `c` is copied.
 #[pyfunction]
-#[pyo3(signature = (t, c, k, axes, nu = None))]
+#[pyo3(signature = (t, c, k, axes, nu = None, clamp = false))]
 pub(crate) fn tensor_grid_values(
     py: Python<'_>,
     t: &Bound<'_, PyAny>,
@@ -153,6 +148,7 @@ pub(crate) fn tensor_grid_values(
     k: &Bound<'_, PyAny>,
     axes: &Bound<'_, PyAny>,
     nu: Option<Vec<usize>>,
+    clamp: bool,
 ) -> PyResult<Py<PyAny>> {
     let knots = knot_arrays(t)?;
     let n = knots.len();
@@ -174,15 +170,92 @@ pub(crate) fn tensor_grid_values(
     }
     let lead: Vec<usize> = lists.iter().map(|l| l.data().len()).collect();
     check_size("axes", &[&lead[..], &[s.dim()]].concat())?;
-    let refs: Vec<&[f64]> = lists.iter().map(FloatArray::data).collect();
+    let clamped: Vec<Vec<f64>> = if clamp {
+        lists
+            .iter()
+            .zip(s.domain())
+            .map(|(l, (lo, hi))| l.data().iter().map(|t| t.clamp(lo, hi)).collect())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let refs: Vec<&[f64]> = if clamp {
+        clamped.iter().map(Vec::as_slice).collect()
+    } else {
+        lists.iter().map(FloatArray::data).collect()
+    };
     let out = filled(py, &[&lead[..], &trailing].concat(), |out| {
         s.eval_grid(&refs, orders.as_deref(), out)
     })?;
     Ok(out.unbind())
 }
 
+/// The rule of `beyond` (`"continue"`, `"clamp"` or `"nan"`).
+fn beyond_arg(beyond: &str) -> PyResult<Beyond> {
+    match beyond {
+        "continue" => Ok(Beyond::Continue),
+        "clamp" => Ok(Beyond::Clamp),
+        "nan" => Ok(Beyond::Nan),
+        other => Err(bad(format!(
+            "beyond: {other:?} is not one of continue, clamp, nan"
+        ))),
+    }
+}
+
+/// `tensor_value(t, c, k, x, beyond="continue")`: the scalar spline `(t, c, k)` at the one
+/// point `x` (`N` numbers), as a float. `t` holds one 1-D float64 array per variable; `c` is a
+/// 1-D float64 array whose first `Π_a n_a` numbers are the net in row-major order (SciPy's
+/// `(n_1, …, n_N)` array flattened as a view, or FITPACK's flat, padded `c`); `beyond` as in
+/// `tensor_values`. Only the `O(Σ_a log|t_a| + Π_a (k_a + 1))` numbers the value needs are read,
+/// in place and without borrowing the arrays (`lekalo::tensor::tensor_value_by`): the knots are
+/// not checked sorted, as SciPy does not check them at a call; unsorted knots give some number,
+/// never a crash.
+#[pyfunction]
+#[pyo3(signature = (t, c, k, x, beyond = "continue"))]
+pub(crate) fn tensor_value(
+    t: &Bound<'_, PyAny>,
+    c: &Bound<'_, PyAny>,
+    k: &Bound<'_, PyAny>,
+    x: Vec<f64>,
+    beyond: &str,
+) -> PyResult<f64> {
+    let rule = beyond_arg(beyond)?;
+    let knots: Vec<Bound<'_, PyArray1<f64>>> = t
+        .try_iter()
+        .map_err(|_| bad("t: expected a sequence of 1-D arrays, one per variable".into()))?
+        .enumerate()
+        .map(|(a, item)| {
+            item?.cast_into::<PyArray1<f64>>().map_err(|_| {
+                bad(format!(
+                    "t[{a}]: expected a 1-D float64 array; convert with np.asarray(t[{a}], dtype=np.float64)"
+                ))
+            })
+        })
+        .collect::<PyResult<_>>()?;
+    let degrees = degrees_arg(k, knots.len())?;
+    let c = c.cast::<PyArray1<f64>>().map_err(|_| {
+        bad(
+            "c: expected a 1-D float64 array; pass c.reshape(-1) of a C-contiguous float64 array"
+                .into(),
+        )
+    })?;
+    let lens: Vec<usize> = knots.iter().map(|k| k.len()).collect();
+    // the few numbers the value needs, read in place (no copy, no borrow of the arrays)
+    tensor_value_by(
+        &degrees,
+        &lens,
+        |a, i| knots[a].get_owned(i).unwrap_or(f64::NAN),
+        c.len(),
+        |f| c.get_owned(f).unwrap_or(f64::NAN),
+        &x,
+        rule,
+    )
+    .map_err(lib_err)
+}
+
 /// Registers the in-place evaluation of `(t, c, k)` splines.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(tensor_value, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_values, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_grid_values, m)?)?;
     Ok(())

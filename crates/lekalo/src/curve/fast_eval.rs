@@ -46,7 +46,8 @@ pub(crate) mod locate;
 mod nurbs;
 
 use kernels::{basis_fixed, power_ders, power_dyn, power_fixed};
-use locate::{inner_ball, PieceLocator};
+use locate::inner_ball;
+pub(crate) use locate::PieceLocator;
 pub use nurbs::NurbsEvaluator;
 
 /// Highest degree for which [`EvalKernel::Auto`] chooses the power form. The power form's

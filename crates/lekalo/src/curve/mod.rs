@@ -49,6 +49,7 @@ pub use any::Curve;
 pub use bezier::{BezierCurve, BezierSegment};
 pub use bspline::BSplineCurve;
 pub use curvature::{curvature, principal_normal, torsion};
+pub(crate) use fast_eval::PieceLocator;
 pub use fast_eval::{Beyond, CurveEvaluator, EvalKernel, NurbsEvaluator, POWER_FORM_MAX_DEGREE};
 pub use integral::{bspline_value, bspline_value_by};
 pub use knot_removal::DEFAULT_REMOVAL_RTOL;

@@ -1,6 +1,7 @@
 //! The contraction of a tensor-product B-spline at a point (sum factorisation over the window
 //! of the spans): the scratch sized once for a spline, the basis vectors of every direction,
-//! the general window contraction and the fixed-size kernel of trivariate scalar splines.
+//! the general window contraction and the fixed-size kernels of bivariate and trivariate scalar
+//! splines.
 //! Formulas: `docs/theory/tensor.md#tensor-product-splines`.
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
@@ -185,8 +186,8 @@ fn contract_window(
     let n0 = &values[offsets[0]..offsets[0] + p0 + 1];
     let first0 = spans[0] - p0;
     let stride0 = strides[0];
-    if n == 3 && dim == 1 {
-        if let Some(v) = contract3_scalar(s, w) {
+    if (n == 2 || n == 3) && dim == 1 {
+        if let Some(v) = contract_scalar_fixed(s, w) {
             out[0] = v;
             return;
         }
@@ -251,18 +252,30 @@ fn contract_window(
     contract(last, &stages[last - 1], out);
 }
 
-/// [`contract_window`] for three directions, scalar values and one degree `p ≤ 5` in every
-/// direction, with the window's sizes known at compile time: the same operations on each
+/// [`contract_window`] for two or three directions, scalar values and one degree `p ≤ 5` in
+/// every direction, with the window's sizes known at compile time: the same operations on each
 /// number in the same order (so the same bits), without the odometer and the run-length loops.
-/// Written out by hand because this contraction is the whole cost of a point of a trivariate
-/// lookup table; `None` for the other cases.
-fn contract3_scalar(s: &TensorBSplineRef<'_>, w: &Window<'_>) -> Option<f64> {
+/// Written out by hand because this contraction is the whole cost of a point of a bivariate or
+/// trivariate lookup table; `None` for the other cases.
+fn contract_scalar_fixed(s: &TensorBSplineRef<'_>, w: &Window<'_>) -> Option<f64> {
     let d = s.degrees;
-    if d[1] != d[0] || d[2] != d[0] {
+    if d.iter().any(|&p| p != d[0]) {
         return None;
     }
-    let first = [w.spans[0] - d[0], w.spans[1] - d[1], w.spans[2] - d[2]];
     let basis = |a: usize| &w.values[w.offsets[a]..w.offsets[a] + d[a] + 1];
+    if d.len() == 2 {
+        let first = [w.spans[0] - d[0], w.spans[1] - d[1]];
+        let (b0, b1, stride) = (basis(0), basis(1), w.strides[0]);
+        return Some(match d[0] {
+            1 => contract2::<2>(s.net, first, stride, b0, b1),
+            2 => contract2::<3>(s.net, first, stride, b0, b1),
+            3 => contract2::<4>(s.net, first, stride, b0, b1),
+            4 => contract2::<5>(s.net, first, stride, b0, b1),
+            5 => contract2::<6>(s.net, first, stride, b0, b1),
+            _ => return None,
+        });
+    }
+    let first = [w.spans[0] - d[0], w.spans[1] - d[1], w.spans[2] - d[2]];
     let (b0, b1, b2) = (basis(0), basis(1), basis(2));
     let strides = [w.strides[0], w.strides[1]];
     Some(match d[0] {
@@ -273,6 +286,43 @@ fn contract3_scalar(s: &TensorBSplineRef<'_>, w: &Window<'_>) -> Option<f64> {
         5 => contract3::<6>(s.net, first, strides, b0, b1, b2),
         _ => return None,
     })
+}
+
+/// The two stages of [`contract_window`] for `Q = p + 1` basis functions per direction and
+/// `dim = 1`: `B_1[i] = Σ_j N_0[j]·P[f_0 + j][f_1 + i]`, then `Σ_j N_1[j]·B_1[j]`, each sum from
+/// `j = 0` up ([`accumulate`]'s order). `stride` is the distance between consecutive indices of
+/// direction 0 in the net. `Q²` multiply-adds on `Q` runs of `Q` contiguous numbers.
+#[inline(always)]
+pub(super) fn contract2<const Q: usize>(
+    net: &[f64],
+    first: [usize; 2],
+    stride: usize,
+    n0: &[f64],
+    n1: &[f64],
+) -> f64 {
+    let (n0, n1): (&[f64; Q], &[f64; Q]) = (
+        n0.try_into().expect("Q basis functions"),
+        n1.try_into().expect("Q basis functions"),
+    );
+    let mut b1 = [0.0; Q];
+    for (j, &v) in n0.iter().enumerate() {
+        let at = (first[0] + j) * stride + first[1];
+        let p: &[f64; Q] = net[at..at + Q].try_into().expect("a run of Q numbers");
+        if j == 0 {
+            for (r, x) in b1.iter_mut().zip(p) {
+                *r = v * x;
+            }
+        } else {
+            for (r, x) in b1.iter_mut().zip(p) {
+                *r += v * x;
+            }
+        }
+    }
+    let mut r = n1[0] * b1[0];
+    for j in 1..Q {
+        r += n1[j] * b1[j];
+    }
+    r
 }
 
 /// The three stages of [`contract_window`] for `Q = p + 1` basis functions per direction and

@@ -6,35 +6,14 @@
 
 use rayon::prelude::*;
 
-use crate::basis::basis_funs_fixed;
 use crate::error::{check_finite, Error, Result};
-use crate::knots::{span_in, SpanCursor};
-use crate::tensor::contract::{contract3, TensorScratch};
+use crate::knots::span_in;
+use crate::tensor::contract::TensorScratch;
+use crate::tensor::fixed::Fixed;
+use crate::tensor::locate::Beyond;
+use crate::tensor::locate::{locate, Mode, SpanTable};
 use crate::tensor::spline::{check_len, checked_size, TensorBSpline};
 use crate::tensor::view::TensorBSplineRef;
-
-/// What a batch does at a point outside the domain (or with a coordinate that is not finite):
-/// [`TensorBSplineRef::par_eval_batch_beyond`]. A point with a NaN or infinite coordinate gets
-/// `NaN` values in every mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Beyond {
-    /// The polynomials of the end spans continued (SciPy's `NdBSpline(..., extrapolate=True)`).
-    Continue,
-    /// Each coordinate taken at the nearest end of its domain (FITPACK's `fpbisp`, SciPy's
-    /// `bisplev` and `RectBivariateSpline.ev`).
-    Clamp,
-    /// `NaN` values (SciPy's `extrapolate=False`).
-    Nan,
-}
-
-/// How a batch treats the points: refuse those outside the domain, continue the end spans
-/// (points checked finite before), or one of the [`Beyond`] rules.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Mode {
-    Refuse,
-    Extrapolate,
-    Beyond(Beyond),
-}
 
 impl TensorBSpline {
     /// `S(x)` into `out` (`dim` numbers). One allocation (the scratch); for many points use
@@ -104,7 +83,8 @@ impl TensorBSplineRef<'_> {
     pub fn eval_batch(&self, xs: &[f64], orders: Option<&[usize]>, out: &mut [f64]) -> Result<()> {
         self.check_batch(xs, out)?;
         let mut scratch = TensorScratch::new(self, orders)?;
-        self.batch_slice(xs, orders, Mode::Refuse, &mut scratch, out)
+        let tables = self.span_tables();
+        self.batch_slice(xs, orders, Mode::Refuse, &tables, &mut scratch, out)
     }
 
     /// As [`TensorBSpline::par_eval_batch`].
@@ -182,19 +162,20 @@ impl TensorBSplineRef<'_> {
         self.check_batch(xs, out)?;
         // validates the orders once, before the threads start
         let mut scratch = TensorScratch::new(self, orders)?;
+        let tables = self.span_tables();
         let n = self.n_vars();
         let points = xs.len() / n;
         if points < PAR_MIN_POINTS {
-            return self.batch_slice(xs, orders, mode, &mut scratch, out);
+            return self.batch_slice(xs, orders, mode, &tables, &mut scratch, out);
         }
         if points >= SORT_MIN_POINTS
             && self.net.len() >= SORT_MIN_NET
             && n <= SORT_MAX_VARS
             && (mode != Mode::Refuse || self.all_inside(xs))
         {
-            return self.par_batch_sorted(xs, orders, mode, out);
+            return self.par_batch_sorted(xs, orders, mode, &tables, out);
         }
-        self.par_chunked(xs, orders, mode, out)
+        self.par_chunked(xs, orders, mode, &tables, out)
     }
 
     /// The points of `xs` in parallel chunks (four a thread, at least [`PAR_CHUNK`] points),
@@ -205,6 +186,7 @@ impl TensorBSplineRef<'_> {
         xs: &[f64],
         orders: Option<&[usize]>,
         mode: Mode,
+        tables: &[SpanTable],
         out: &mut [f64],
     ) -> Result<()> {
         let (n, dim) = (self.n_vars(), self.dim);
@@ -216,7 +198,7 @@ impl TensorBSplineRef<'_> {
             .zip(out.par_chunks_mut(chunk * dim))
             .map(|(x, o)| {
                 let mut scratch = TensorScratch::new(self, orders)?;
-                self.batch_slice(x, orders, mode, &mut scratch, o)
+                self.batch_slice(x, orders, mode, tables, &mut scratch, o)
             })
             .collect();
         results.into_iter().collect()
@@ -245,6 +227,7 @@ impl TensorBSplineRef<'_> {
         xs: &[f64],
         orders: Option<&[usize]>,
         mode: Mode,
+        tables: &[SpanTable],
         out: &mut [f64],
     ) -> Result<()> {
         let (n, dim) = (self.n_vars(), self.dim);
@@ -279,7 +262,7 @@ impl TensorBSplineRef<'_> {
             sorted_xs.extend_from_slice(&xs[k * n..(k + 1) * n]);
         }
         let mut sorted_out = vec![0.0; out.len()];
-        self.par_chunked(&sorted_xs, orders, mode, &mut sorted_out)?;
+        self.par_chunked(&sorted_xs, orders, mode, tables, &mut sorted_out)?;
         for (&(_, k), v) in order.iter().zip(sorted_out.chunks_exact(dim)) {
             out[k * dim..(k + 1) * dim].copy_from_slice(v);
         }
@@ -298,52 +281,60 @@ impl TensorBSplineRef<'_> {
         check_len("output (points × dim)", xs.len() / n * self.dim, out.len())
     }
 
-    /// The points of `xs` in order, each by [`locate`] then the kernel.
+    /// The span table of every direction ([`SpanTable`]), built once a batch.
+    fn span_tables(&self) -> Vec<SpanTable> {
+        self.knots
+            .iter()
+            .zip(self.degrees)
+            .map(|(k, &p)| SpanTable::new(k, p))
+            .collect()
+    }
+
+    /// The points of `xs` in order, each by [`locate`] then the kernel: the fixed-size kernels
+    /// of [`Fixed`] for scalar values in two or three directions of one degree `p ≤ 5`, the
+    /// general kernel ([`TensorScratch`], [`contract_prepared`](Self::contract_prepared))
+    /// otherwise.
     fn batch_slice(
         &self,
         xs: &[f64],
         orders: Option<&[usize]>,
         mode: Mode,
+        tables: &[SpanTable],
         scratch: &mut TensorScratch,
         out: &mut [f64],
     ) -> Result<()> {
         let n = self.n_vars();
-        let mut cursors: Vec<_> = self
-            .knots
-            .iter()
-            .zip(self.degrees)
-            .map(|(k, &p)| SpanCursor::over(k, p))
-            .collect();
         let domains = self.domain();
-        if orders.is_none() && n == 3 && self.dim == 1 {
-            let d = self.degrees;
-            if d[1] == d[0] && d[2] == d[0] {
-                let run = Batch3 {
-                    s: self,
-                    xs,
-                    mode,
-                    domains: &domains,
+        let d = self.degrees;
+        if orders.is_none() && (n == 2 || n == 3) && self.dim == 1 && d.iter().all(|&p| p == d[0]) {
+            let run = Fixed {
+                s: self,
+                xs,
+                mode,
+                domains: &domains,
+                tables,
+            };
+            macro_rules! fixed {
+                ($w:literal) => {
+                    if n == 2 {
+                        run.values2::<$w>(out)
+                    } else {
+                        run.values3::<$w>(out)
+                    }
                 };
-                match d[0] {
-                    1 => return run.values::<2>(&mut cursors, out),
-                    2 => return run.values::<3>(&mut cursors, out),
-                    3 => return run.values::<4>(&mut cursors, out),
-                    4 => return run.values::<5>(&mut cursors, out),
-                    5 => return run.values::<6>(&mut cursors, out),
-                    _ => {}
-                }
+            }
+            match d[0] {
+                1 => return fixed!(2),
+                2 => return fixed!(3),
+                3 => return fixed!(4),
+                4 => return fixed!(5),
+                5 => return fixed!(6),
+                _ => {}
             }
         }
         let mut point = vec![0.0; n];
         for (x, o) in xs.chunks_exact(n).zip(out.chunks_exact_mut(self.dim)) {
-            if !locate(
-                mode,
-                x,
-                &domains,
-                &mut cursors,
-                &mut scratch.spans,
-                &mut point,
-            )? {
+            if !locate(mode, x, &domains, tables, &mut scratch.spans, &mut point)? {
                 o.fill(f64::NAN);
                 continue;
             }
@@ -376,85 +367,6 @@ impl TensorBSplineRef<'_> {
         }
         scratch.fill_bases(self, x, orders);
         self.contract_prepared(scratch, out);
-        Ok(())
-    }
-}
-
-/// The spans of the point `x` into `spans` and the coordinates at which the basis functions are
-/// evaluated into `point`: `false` when the point's values are `NaN` ([`Beyond`] rules).
-/// Inside the domain every mode finds the span of [`SpanCursor::find`] and evaluates at `x`.
-///
-/// # Errors
-/// [`Error::ParameterOutOfDomain`] outside the domain in the refusing mode.
-#[inline]
-fn locate(
-    mode: Mode,
-    x: &[f64],
-    domains: &[(f64, f64)],
-    cursors: &mut [SpanCursor<'_>],
-    spans: &mut [usize],
-    point: &mut [f64],
-) -> Result<bool> {
-    if let Mode::Beyond(b) = mode {
-        for (&t, &(lo, hi)) in x.iter().zip(domains) {
-            if !t.is_finite() || (b == Beyond::Nan && !(t >= lo && t <= hi)) {
-                return Ok(false);
-            }
-        }
-    }
-    for (a, c) in cursors.iter_mut().enumerate() {
-        let (lo, hi) = domains[a];
-        let t = x[a];
-        spans[a] = match mode {
-            Mode::Refuse => c.find(t)?,
-            // finite, checked: the span of the nearest domain end
-            _ => c.find_unchecked(t.clamp(lo, hi)),
-        };
-        point[a] = if mode == Mode::Beyond(Beyond::Clamp) {
-            t.clamp(lo, hi)
-        } else {
-            t
-        };
-    }
-    Ok(true)
-}
-
-/// A batch of values of a trivariate scalar spline of one degree `p ≤ 5` in every direction:
-/// per point the three spans (searched from the previous point's), the basis vectors by the
-/// fixed-order A2.2 ([`basis_funs_fixed`], the same operations in the same order as
-/// [`basis_funs_into`]) and the fixed-size contraction [`contract3`], with no scratch and no
-/// odometer. The same bits as the general kernel (tested); it is the whole cost of the
-/// evaluation of a trivariate lookup table at scattered points.
-struct Batch3<'a, 'b> {
-    s: &'a TensorBSplineRef<'b>,
-    xs: &'a [f64],
-    mode: Mode,
-    domains: &'a [(f64, f64)],
-}
-
-impl Batch3<'_, '_> {
-    fn values<const W: usize>(
-        &self,
-        cursors: &mut [SpanCursor<'_>],
-        out: &mut [f64],
-    ) -> Result<()> {
-        let s = self.s;
-        let strides = [s.stride(0), s.stride(1)];
-        let (k0, k1, k2) = (s.knots[0], s.knots[1], s.knots[2]);
-        let p = W - 1;
-        let mut spans = [0usize; 3];
-        let mut x = [0.0; 3];
-        for (xp, o) in self.xs.chunks_exact(3).zip(out.iter_mut()) {
-            if !locate(self.mode, xp, self.domains, cursors, &mut spans, &mut x)? {
-                *o = f64::NAN;
-                continue;
-            }
-            let b0: [f64; W] = basis_funs_fixed(k0, spans[0], x[0]);
-            let b1: [f64; W] = basis_funs_fixed(k1, spans[1], x[1]);
-            let b2: [f64; W] = basis_funs_fixed(k2, spans[2], x[2]);
-            let first = [spans[0] - p, spans[1] - p, spans[2] - p];
-            *o = contract3::<W>(s.net, first, strides, &b0, &b1, &b2);
-        }
         Ok(())
     }
 }

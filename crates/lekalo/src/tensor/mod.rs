@@ -10,10 +10,16 @@
 //! - `view.rs`: [`TensorBSplineRef`], a spline whose arrays are borrowed, its validation, sizes
 //!   and domain.
 //! - `contract.rs`: the point kernel: scratch sized once for a spline, the basis vectors of
-//!   every direction, the window contraction (sum factorisation) and the fixed-size trivariate
-//!   kernel.
+//!   every direction, the window contraction (sum factorisation) and the fixed-size bivariate
+//!   and trivariate kernels.
 //! - `eval.rs`: evaluation at points: single points, partial derivatives, sequential, parallel
-//!   and cell-ordered batches, the points beyond the domain ([`Beyond`]).
+//!   and cell-ordered batches.
+//! - `fixed.rs`: the batch kernels of scalar splines in two or three directions of one degree
+//!   (the bases of all directions at once, fixed-size contractions).
+//! - `locate.rs`: the span search of batches, a bucket table per direction (O(1) a point), and
+//!   what a batch does at a point beyond the domain ([`Beyond`]).
+//! - `point_value.rs`: [`tensor_value_by`], the value at one point of a scalar spline whose
+//!   arrays are read through accessors (SciPy's scalar calls on arrays in place).
 //! - `grid_eval.rs`: evaluation on the outer product of per-direction parameter lists
 //!   ([`TensorBSpline::eval_grid`]) by sum factorisation, the same bits as point by point.
 //! - `slice.rs`: knot insertion per direction, slicing (fixing parameters), conversion to and
@@ -44,11 +50,14 @@ mod contract;
 mod design_matrix;
 mod eval;
 mod fit;
+mod fixed;
 mod grid_eval;
 mod grid_smoothing;
 mod integral;
 mod interpolate;
+mod locate;
 mod nurbs;
+mod point_value;
 mod scattered;
 mod scattered_qr;
 mod scattered_smoothing;
@@ -58,13 +67,14 @@ mod view;
 
 pub use any::Tensor;
 pub use design_matrix::{tensor_design_matrix, TensorDesignMatrix};
-pub use eval::Beyond;
 pub use fit::tensor_grid_least_squares;
 pub use grid_smoothing::{
     tensor_grid_smoothing, tensor_grid_smoothing_with_progress, TensorGridSmoothing,
 };
 pub use interpolate::TensorInterpolation;
+pub use locate::Beyond;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
+pub use point_value::{tensor_value_by, MAX_POINT_VALUE_VARS};
 pub use scattered::{
     tensor_scattered_least_squares, tensor_scattered_least_squares_with, TensorScatteredFit,
 };

@@ -40,7 +40,7 @@ fn naive_basis(kv: &KnotVector, p: usize, t: f64) -> Vec<f64> {
 }
 
 /// `S(x) = Σ_i Π_a N_{i_a}(x_a)·P_i` summed over the whole net, no span search.
-fn naive_eval(s: &TensorBSpline, x: &[f64]) -> Vec<f64> {
+pub(super) fn naive_eval(s: &TensorBSpline, x: &[f64]) -> Vec<f64> {
     let bases: Vec<Vec<f64>> = (0..s.n_vars())
         .map(|a| naive_basis(&s.knots()[a], s.degrees()[a], x[a]))
         .collect();

@@ -53,9 +53,10 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
         net = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[: nx * ny]).reshape(nx, ny)
         if grid:
             _check_grid_size(x, y)
-            xs = np.ascontiguousarray(_clip(x, tx, kx).ravel())
-            ys = np.ascontiguousarray(_clip(y, ty, ky).ravel())
-            return _lekalo.tensor_grid_values((tx, ty), net, (int(kx), int(ky)), (xs, ys))
+            # coordinates outside the base box are taken at its edge by tensor_grid_values
+            xs = np.ascontiguousarray(x, dtype=np.float64).ravel()
+            ys = np.ascontiguousarray(y, dtype=np.float64).ravel()
+            return _lekalo.tensor_grid_values((tx, ty), net, (int(kx), int(ky)), (xs, ys), None, True)
         pts = np.empty(np.shape(x) + (2,))
         pts[..., 0] = x
         pts[..., 1] = y
@@ -67,6 +68,17 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
         return np.asarray(spline.grid(np.ascontiguousarray(xs), np.ascontiguousarray(ys)))
     pts = np.stack([_clip(x, tx, kx).ravel(), _clip(y, ty, ky).ravel()], axis=-1)
     return np.asarray(spline(np.ascontiguousarray(pts))).reshape(np.shape(x))
+
+
+def _value(tck: Any, degrees: Any, x: float, y: float):
+    """The spline's value at the one point ``(x, y)`` (a coordinate outside the base box taken at
+    its edge, as FITPACK), lekalo's ``tensor_value`` reading the few knots and coefficients it
+    needs in place; ``None`` when the arrays are not float64 arrays it can read (the caller then
+    takes the array way, which converts them and raises SciPy's errors)."""
+    try:
+        return _lekalo.tensor_value(tck[:2], tck[2], degrees, (x, y), "clamp")
+    except Exception:
+        return None
 
 
 def _check_grid_size(x: Any, y: Any) -> None:

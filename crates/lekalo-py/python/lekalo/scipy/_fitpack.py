@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bivariate import _dblint, _evaluate, _surfit
+from ._bivariate import _dblint, _evaluate, _surfit, _value
 from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _pad_rows
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
@@ -471,6 +471,10 @@ def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
         raise ValueError(f"0 <= dx = {dx} < kx = {kx} must hold")
     if not (0 <= dy < ky):
         raise ValueError(f"0 <= dy = {dy} < ky = {ky} must hold")
+    if isinstance(x, float) and isinstance(y, float) and not dx and not dy:
+        v = _value((tx, ty, c), (kx, ky), x, y)
+        if v is not None:
+            return np.float64(v)
     x, y = map(np.atleast_1d, [x, y])
     if len(x.shape) != 1 or len(y.shape) != 1:
         raise ValueError("First two entries should be rank-1 arrays.")

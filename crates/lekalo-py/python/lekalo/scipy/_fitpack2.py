@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _tensor
+from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _tensor, _value
 from ._bspline import _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
@@ -250,6 +250,10 @@ class BivariateSpline(_BivariateSplineBase):
 
     def ev(self, xi: Any, yi: Any, dx: int = 0, dy: int = 0) -> np.ndarray:
         """The spline at the points ``(xi[i], yi[i])``."""
+        if isinstance(xi, float) and isinstance(yi, float) and not dx and not dy:
+            v = _value(self.tck, self.degrees, xi, yi)
+            if v is not None:
+                return np.array(v)
         return self.__call__(xi, yi, dx=dx, dy=dy, grid=False)
 
     def integral(self, xa: float, xb: float, ya: float, yb: float) -> float:

@@ -1,0 +1,207 @@
+//! The fixed-size batch kernels of scalar splines in two or three directions of one degree
+//! `p ≤ 5` (a bivariate or trivariate lookup table at scattered points: SciPy's
+//! `RectBivariateSpline.ev`, `NdBSpline`): per point the spans by the bucket search
+//! ([`SpanTable`]), the basis vectors of every direction at once ([`basis_lanes`]) and the
+//! contraction with the window's sizes known at compile time ([`contract2`], [`contract3`]).
+//! No scratch, no odometer, no allocation a point; the same bits as the general kernel.
+
+use crate::error::Result;
+use crate::tensor::contract::{contract2, contract3};
+use crate::tensor::locate::{locate, Mode, SpanTable};
+use crate::tensor::view::TensorBSplineRef;
+
+/// A batch for the fixed-size kernels: the spline, the points (`N` numbers each), what to do
+/// beyond the domain, and the domains and span tables of the directions.
+pub(super) struct Fixed<'a, 'b> {
+    pub(super) s: &'a TensorBSplineRef<'b>,
+    pub(super) xs: &'a [f64],
+    pub(super) mode: Mode,
+    pub(super) domains: &'a [(f64, f64)],
+    pub(super) tables: &'a [SpanTable],
+}
+
+impl Fixed<'_, '_> {
+    /// The values of a bivariate batch of order `W = p + 1` into `out` (one number a point).
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`](crate::Error::ParameterOutOfDomain) at the first point
+    /// outside the domain in the refusing mode.
+    pub(super) fn values2<const W: usize>(&self, out: &mut [f64]) -> Result<()> {
+        values2::<W>(self, out)
+    }
+
+    /// The values of a trivariate batch of order `W = p + 1` into `out` (one number a point).
+    ///
+    /// # Errors
+    /// As [`Fixed::values2`].
+    pub(super) fn values3<const W: usize>(&self, out: &mut [f64]) -> Result<()> {
+        values3::<W>(self, out)
+    }
+}
+
+/// The `W = p + 1` non-zero basis functions of `L` directions at `x` (direction `l` on its
+/// knots `knots[l]`, span `spans[l]`), as `out[r][l]`: P&T *The NURBS Book* Algorithm A2.2,
+/// `out[0] = 1`, then for `j = 1..p` with `left_j = x − t_{s+1−j}`, `right_j = t_{s+j} − x`,
+/// `temp = out[r] / (right_{r+1} + left_{j−r})`, `out[r] = saved + right_{r+1}·temp`,
+/// `saved = left_{j−r}·temp`. Lane `l` performs the operations of
+/// [`basis_funs_fixed`](crate::basis::basis_funs_fixed) in the same order (so the same bits);
+/// written lane by lane so that the `L` directions share each vector division and
+/// multiplication.
+#[inline(always)]
+fn basis_lanes<const W: usize, const L: usize>(
+    knots: [&[f64]; L],
+    spans: [usize; L],
+    x: [f64; L],
+) -> [[f64; L]; W] {
+    let mut left = [[0.0; L]; W];
+    let mut right = [[0.0; L]; W];
+    let mut out = [[0.0; L]; W];
+    out[0] = [1.0; L];
+    for j in 1..W {
+        for l in 0..L {
+            left[j][l] = x[l] - knots[l][spans[l] + 1 - j];
+            right[j][l] = knots[l][spans[l] + j] - x[l];
+        }
+        let mut saved = [0.0; L];
+        for r in 0..j {
+            let mut temp = [0.0; L];
+            for l in 0..L {
+                temp[l] = out[r][l] / (right[r + 1][l] + left[j - r][l]);
+            }
+            for l in 0..L {
+                out[r][l] = saved[l] + right[r + 1][l] * temp[l];
+                saved[l] = left[j - r][l] * temp[l];
+            }
+        }
+        out[j] = saved;
+    }
+    out
+}
+
+/// Column `l` of the lanes of [`basis_lanes`]: the basis vector of direction `l`.
+#[inline(always)]
+fn lane<const W: usize, const L: usize>(b: &[[f64; L]; W], l: usize) -> [f64; W] {
+    std::array::from_fn(|r| b[r][l])
+}
+
+/// One bivariate value of order `W` at `x` (spans found).
+#[inline(always)]
+fn one2<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 2], x: [f64; 2]) -> f64 {
+    let p = W - 1;
+    let b = basis_lanes::<W, 2>([s.knots[0], s.knots[1]], spans, x);
+    let first = [spans[0] - p, spans[1] - p];
+    contract2::<W>(s.net, first, s.stride(0), &lane(&b, 0), &lane(&b, 1))
+}
+
+/// One trivariate value of order `W` at `x` (spans found).
+#[inline(always)]
+fn one3<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 3], x: [f64; 3]) -> f64 {
+    let p = W - 1;
+    let k = [s.knots[0], s.knots[1], s.knots[2]];
+    // a fourth lane repeats the first, so that the lanes fill whole vectors
+    let b = basis_lanes::<W, 4>(
+        [k[0], k[1], k[2], k[0]],
+        [spans[0], spans[1], spans[2], spans[0]],
+        [x[0], x[1], x[2], x[0]],
+    );
+    let first = [spans[0] - p, spans[1] - p, spans[2] - p];
+    let strides = [s.stride(0), s.stride(1)];
+    contract3::<W>(
+        s.net,
+        first,
+        strides,
+        &lane(&b, 0),
+        &lane(&b, 1),
+        &lane(&b, 2),
+    )
+}
+
+/// The bivariate batch two points at a time: the bases of both points' directions in the four
+/// lanes of one [`basis_lanes`], so that the two points share each vector division (the
+/// triangle's divisions are the latency of a point). A pair with a point that gives NaN, and
+/// the last point of an odd batch, take [`one2`]; the same bits either way.
+#[inline(always)]
+fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
+    let s = run.s;
+    let (k0, k1) = (s.knots[0], s.knots[1]);
+    let (stride, p) = (s.stride(0), W - 1);
+    let (mut sa, mut sb) = ([0usize; 2], [0usize; 2]);
+    let (mut xa, mut xb) = ([0.0; 2], [0.0; 2]);
+    let mut pairs = run.xs.chunks_exact(4);
+    let mut outs = out.chunks_exact_mut(2);
+    for (xp, o) in (&mut pairs).zip(&mut outs) {
+        let a = locate(
+            run.mode,
+            &xp[..2],
+            run.domains,
+            run.tables,
+            &mut sa,
+            &mut xa,
+        )?;
+        let b = locate(
+            run.mode,
+            &xp[2..],
+            run.domains,
+            run.tables,
+            &mut sb,
+            &mut xb,
+        )?;
+        if !(a && b) {
+            o[0] = if a { one2::<W>(s, sa, xa) } else { f64::NAN };
+            o[1] = if b { one2::<W>(s, sb, xb) } else { f64::NAN };
+            continue;
+        }
+        let n = basis_lanes::<W, 4>(
+            [k0, k1, k0, k1],
+            [sa[0], sa[1], sb[0], sb[1]],
+            [xa[0], xa[1], xb[0], xb[1]],
+        );
+        o[0] = contract2::<W>(
+            s.net,
+            [sa[0] - p, sa[1] - p],
+            stride,
+            &lane(&n, 0),
+            &lane(&n, 1),
+        );
+        o[1] = contract2::<W>(
+            s.net,
+            [sb[0] - p, sb[1] - p],
+            stride,
+            &lane(&n, 2),
+            &lane(&n, 3),
+        );
+    }
+    for (xp, o) in pairs.remainder().chunks_exact(2).zip(outs.into_remainder()) {
+        *o = if locate(run.mode, xp, run.domains, run.tables, &mut sa, &mut xa)? {
+            one2::<W>(s, sa, xa)
+        } else {
+            f64::NAN
+        };
+    }
+    Ok(())
+}
+
+#[inline(always)]
+fn values3_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
+    let s = run.s;
+    let mut spans = [0usize; 3];
+    let mut x = [0.0; 3];
+    for (xp, o) in run.xs.chunks_exact(3).zip(out.iter_mut()) {
+        *o = if locate(run.mode, xp, run.domains, run.tables, &mut spans, &mut x)? {
+            one3::<W>(s, spans, x)
+        } else {
+            f64::NAN
+        };
+    }
+    Ok(())
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`values2_body`], with AVX2 where the processor has it (the same bits).
+    fn values2<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> = values2_body;
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`values3_body`], with AVX2 where the processor has it (the same bits).
+    fn values3<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> = values3_body;
+}
