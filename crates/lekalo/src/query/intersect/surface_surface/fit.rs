@@ -12,7 +12,7 @@
 //! then bisection).
 
 use super::super::super::pieces::{dist, dot};
-use super::march::Traced;
+use super::march::{arc_over_chord, Traced};
 use super::system::K;
 use crate::error::Result;
 use crate::interpolate::CubicHermite;
@@ -154,16 +154,6 @@ pub(super) fn fit_branch(
     let pa = part(3, 2, ka)?;
     let pb = if two { Some(part(5, 2, kb)?) } else { None };
     Ok(Some((space, pa, pb)))
-}
-
-/// The ratio of arc to chord of a circular arc turning by `theta`: `(θ/2)/sin(θ/2)`
-/// (`1 + θ²/24` for small θ, where the quotient loses digits).
-pub(super) fn arc_over_chord(theta: f64) -> f64 {
-    if theta < 1e-4 {
-        1.0 + theta * theta / 24.0
-    } else {
-        (0.5 * theta) / (0.5 * theta).sin()
-    }
 }
 
 /// The derivative at `s[a]` of the parabola through row `a` and its two neighbours (at an end,

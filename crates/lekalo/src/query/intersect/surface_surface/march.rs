@@ -459,7 +459,7 @@ impl March<'_> {
             return Some(Fill::default());
         }
         let turn = dot(&a.tp, &b.tp).clamp(-1.0, 1.0).acos();
-        let len = c * super::fit::arc_over_chord(turn);
+        let len = c * arc_over_chord(turn);
         let ka = if reach[0] > 0.0 { reach[0] } else { 1.0 };
         let kb = if reach[1] > 0.0 { reach[1] } else { 1.0 };
         // the corrected point at `u`, its jet and tangent, and its distance from the cubic
@@ -603,5 +603,15 @@ impl March<'_> {
             }
         }
         Stop::Tangent
+    }
+}
+
+/// The ratio of arc to chord of a circular arc turning by `theta`: `(θ/2)/sin(θ/2)`
+/// (`1 + θ²/24` for small θ, where the quotient loses digits).
+pub(super) fn arc_over_chord(theta: f64) -> f64 {
+    if theta < 1e-4 {
+        1.0 + theta * theta / 24.0
+    } else {
+        (0.5 * theta) / (0.5 * theta).sin()
     }
 }
