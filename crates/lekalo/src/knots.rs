@@ -467,6 +467,31 @@ impl KnotVector {
     }
 }
 
+/// The span `i` in `p..size` of `t` in the domain: the last `i` with `t_i ≤ t`, by binary search
+/// over `p + 1..size` (Algorithm A2.1), then the nearest non-empty span (below it at the right
+/// end and in runs of repeated knots, above it at the left end); always in `p..size`, whatever
+/// the knots.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty span
+pub(crate) fn span_by(knot: &impl Fn(usize) -> f64, p: usize, size: usize, t: f64) -> usize {
+    let (mut a, mut b) = (p + 1, size);
+    while a < b {
+        let m = a + (b - a) / 2;
+        if knot(m) <= t {
+            a = m + 1;
+        } else {
+            b = m;
+        }
+    }
+    let mut i = (a - 1).clamp(p, size - 1);
+    while i > p && !(knot(i) < knot(i + 1)) {
+        i -= 1;
+    }
+    while i < size - 1 && !(knot(i) < knot(i + 1)) {
+        i += 1;
+    }
+    i
+}
+
 /// [`KnotVector::span_unchecked`] on sorted knots given as a slice (at least `2·degree + 2`
 /// of them, `t` in the non-empty domain): the span `i` with `t_i ≤ t < t_{i+1}`, at the right
 /// end the last non-empty span (P&T Algorithm A2.1 by binary search).

@@ -288,25 +288,8 @@ pub fn bspline_value_by(
     if !t.is_finite() || (beyond == Beyond::Nan && !(lo <= t && t <= hi)) {
         return Ok(f64::NAN);
     }
-    // the last span i in k..n with t_i <= t (the first for t < t_k): a binary search over
-    // k + 1..n, then the nearest non-empty span, below it at the right end and in runs of
-    // repeated knots, above it at the left end
-    let (mut a, mut b) = (k + 1, n);
-    while a < b {
-        let m = a + (b - a) / 2;
-        if knot(m) <= t {
-            a = m + 1;
-        } else {
-            b = m;
-        }
-    }
-    let mut i = (a - 1).clamp(k, n - 1);
-    while i > k && !(knot(i) < knot(i + 1)) {
-        i -= 1;
-    }
-    while i < n - 1 && !(knot(i) < knot(i + 1)) {
-        i += 1;
-    }
+    // the last span i in k..n with t_i <= t (the first for t < t_k), non-empty
+    let i = crate::knots::span_by(&knot, k, n, t);
     // the knots t_{i-k+1} ..= t_{i+k} that the triangle reads, after one unused slot: t_i is
     // at index k of the window, which is the span the triangle is given
     let window: Vec<f64> = std::iter::once(f64::NAN)

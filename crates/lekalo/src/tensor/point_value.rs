@@ -6,6 +6,7 @@
 
 use crate::basis::{basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
+use crate::knots::span_by;
 use crate::tensor::locate::Beyond;
 
 /// Largest number of directions of [`tensor_value_by`] (the window of `Π_a (p_a + 1)`
@@ -202,31 +203,6 @@ pub fn tensor_value_by(
         std::mem::swap(&mut values, &mut next);
     }
     Ok(values[0])
-}
-
-/// The span `i` in `p..size` of `t` in the domain: the last `i` with `t_i ≤ t`, by binary search
-/// over `p + 1..size` (Algorithm A2.1), then the nearest non-empty span (below it at the right
-/// end and in runs of repeated knots, above it at the left end); always in `p..size`, whatever
-/// the knots.
-#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty span
-fn span_by(knot: &impl Fn(usize) -> f64, p: usize, size: usize, t: f64) -> usize {
-    let (mut a, mut b) = (p + 1, size);
-    while a < b {
-        let m = a + (b - a) / 2;
-        if knot(m) <= t {
-            a = m + 1;
-        } else {
-            b = m;
-        }
-    }
-    let mut i = (a - 1).clamp(p, size - 1);
-    while i > p && !(knot(i) < knot(i + 1)) {
-        i -= 1;
-    }
-    while i < size - 1 && !(knot(i) < knot(i + 1)) {
-        i += 1;
-    }
-    i
 }
 
 #[cfg(test)]
