@@ -61,10 +61,15 @@ pub(crate) fn request_error(e: serde_path_to_error::Error<serde_json::Error>) ->
     if inner.is_syntax() || inner.is_eof() {
         return ApiError::bad("", format!("not valid JSON: {inner}"));
     }
-    ApiError::bad(
-        if path == "." { String::new() } else { path },
-        inner.to_string(),
-    )
+    if path == "." {
+        return ApiError::bad("", inner.to_string());
+    }
+    // the field is named: its message is shown next to its control, where the position of the
+    // value in the request's text ("at line 1 column 58") means nothing
+    let text = inner.to_string();
+    let position = format!(" at line {} column {}", inner.line(), inner.column());
+    let message = text.strip_suffix(&position).unwrap_or(&text).to_string();
+    ApiError::bad(path, message)
 }
 
 /// A curve object in the CLI's format, read as the CLI reads a file named `field`, with its
@@ -133,12 +138,15 @@ struct EvaluateRequest {
 #[derive(Debug, Default, Deserialize)]
 pub(crate) struct ViewOptionsFlat {
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     samples: Option<usize>,
     #[serde(default)]
     comb: bool,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     basis_samples: Option<usize>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     at: Option<f64>,
 }
 
@@ -184,14 +192,18 @@ fn default_degree() -> usize {
 }
 
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct InterpolateRequest {
+    #[serde(deserialize_with = "crate::fields::rows")]
     points: Vec<Vec<f64>>,
     #[serde(default = "default_degree")]
+    #[serde(deserialize_with = "crate::fields::count")]
     degree: usize,
     /// A word of [`lekalo::vocabulary::PARAMETRIZATION`].
     #[serde(default)]
     parametrization: Option<String>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     exponent: Option<f64>,
     /// A word of [`lekalo::vocabulary::KNOT_PLACEMENT`].
     #[serde(default)]
@@ -200,8 +212,10 @@ struct InterpolateRequest {
     #[serde(default)]
     end: Option<String>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_numbers")]
     start_derivative: Option<Vec<f64>>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_numbers")]
     end_derivative: Option<Vec<f64>>,
     #[serde(flatten)]
     view: ViewOptionsFlat,
@@ -284,12 +298,15 @@ enum Ends {
 }
 
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct BezierRequest {
     curve: Value,
     op: BezierOp,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     by: Option<usize>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     target: Option<usize>,
     #[serde(default)]
     ends: Ends,
@@ -345,8 +362,10 @@ pub(crate) fn bezier(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
 struct DeformRequest {
     first: Value,
     second: Value,
+    #[serde(deserialize_with = "crate::fields::count")]
     continuity: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     samples: Option<usize>,
 }
 
@@ -399,13 +418,18 @@ fn bezier_of(obj: Object, field: &str) -> ApiResult<BezierCurve> {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CornersRequest {
+    #[serde(deserialize_with = "crate::fields::rows")]
     points: Vec<Vec<f64>>,
+    #[serde(deserialize_with = "crate::fields::count")]
     continuity: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     fraction: Option<f64>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     length: Option<f64>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     samples: Option<usize>,
 }
 
@@ -457,11 +481,14 @@ pub(crate) fn blend_corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BlendSplineRequest {
+    #[serde(deserialize_with = "crate::fields::rows")]
     points: Vec<Vec<f64>>,
+    #[serde(deserialize_with = "crate::fields::count")]
     continuity: usize,
     #[serde(default)]
     closed: bool,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     samples: Option<usize>,
 }
 
@@ -503,12 +530,16 @@ pub(crate) fn blend_spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
 }
 
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct KnotRequest {
     curve: Value,
+    #[serde(deserialize_with = "crate::fields::number")]
     t: f64,
     #[serde(default = "one")]
+    #[serde(deserialize_with = "crate::fields::count")]
     times: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     tolerance: Option<f64>,
     #[serde(flatten)]
     view: ViewOptionsFlat,
@@ -622,12 +653,17 @@ fn download(text: String, mime: &'static str, name: &str) -> Response {
 }
 
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct BuildRequest {
+    #[serde(deserialize_with = "crate::fields::rows")]
     control: Vec<Vec<f64>>,
+    #[serde(deserialize_with = "crate::fields::count")]
     degree: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_numbers")]
     knots: Option<Vec<f64>>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_numbers")]
     weights: Option<Vec<f64>>,
     #[serde(flatten)]
     view: ViewOptionsFlat,
@@ -671,7 +707,9 @@ pub(crate) fn bspline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
 /// `POST /api/bezier/build`: a Bezier curve from its control points, drawn.
 pub(crate) fn bezier_build(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
     struct Req {
+        #[serde(deserialize_with = "crate::fields::rows")]
         control: Vec<Vec<f64>>,
         #[serde(flatten)]
         view: ViewOptionsFlat,

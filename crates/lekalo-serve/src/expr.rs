@@ -22,19 +22,25 @@ fn default_intervals() -> usize {
 #[serde(deny_unknown_fields)]
 struct QuasiRequest {
     expression: String,
+    #[serde(deserialize_with = "crate::fields::numbers")]
     breakpoints: Vec<f64>,
+    #[serde(deserialize_with = "crate::fields::count")]
     order: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_counts")]
     continuity: Option<Vec<usize>>,
     /// A word of [`lekalo::vocabulary::TAU_RULE`].
     #[serde(default)]
     rule: Option<String>,
     /// Explicit `τ_i`, one per B-spline (instead of `rule`).
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_numbers")]
     tau: Option<Vec<f64>>,
     #[serde(default = "default_intervals")]
+    #[serde(deserialize_with = "crate::fields::count")]
     intervals: usize,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     basis_samples: Option<usize>,
 }
 

@@ -43,16 +43,21 @@ fn default_degree() -> usize {
 }
 
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct FitRequest {
+    #[serde(deserialize_with = "crate::fields::rows")]
     points: Vec<Vec<f64>>,
     #[serde(default)]
     smoothing: Smoothing,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     lambda: Option<f64>,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     s: Option<f64>,
     /// Degree of the smoothing condition (the smoothing spline is cubic).
     #[serde(default = "default_degree")]
+    #[serde(deserialize_with = "crate::fields::count")]
     degree: usize,
     /// The points are samples `(x, y)` of a function: `x` is the parameter.
     #[serde(default)]
@@ -72,9 +77,11 @@ struct FitRequest {
     concave: bool,
     /// Lower bound of the function (`--min`).
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     min: Option<f64>,
     /// Upper bound of the function (`--max`).
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     max: Option<f64>,
     #[serde(flatten)]
     view: ViewOptionsFlat,

@@ -32,6 +32,7 @@ pub mod api;
 pub mod budget;
 pub mod error;
 pub mod expr;
+mod fields;
 pub mod fit;
 pub mod jobs;
 pub mod pool;

@@ -23,6 +23,7 @@ fn query_curve(obj: &Object) -> ApiResult<QueryCurve> {
 #[serde(deny_unknown_fields)]
 struct ProjectRequest {
     curve: Value,
+    #[serde(deserialize_with = "crate::fields::numbers")]
     point: Vec<f64>,
 }
 
@@ -71,8 +72,10 @@ fn default_tolerance() -> f64 {
 struct MeasureRequest {
     curve: Value,
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::numbers")]
     at_length: Vec<f64>,
     #[serde(default = "default_tolerance")]
+    #[serde(deserialize_with = "crate::fields::number")]
     tolerance: f64,
 }
 

@@ -26,15 +26,18 @@ pub(crate) fn default_samples() -> usize {
 pub struct ViewOptions {
     /// Samples along the curve (2 ..= [`Limits::max_samples`](crate::Limits::max_samples)).
     #[serde(default = "default_samples")]
+    #[serde(deserialize_with = "crate::fields::count")]
     pub samples: usize,
     /// Also the curvature comb (curvature and principal normal at each sample).
     #[serde(default)]
     pub comb: bool,
     /// Samples of each basis function over the domain (none when absent).
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_count")]
     pub basis_samples: Option<usize>,
     /// Parameter at which the active basis functions are reported.
     #[serde(default)]
+    #[serde(deserialize_with = "crate::fields::opt_number")]
     pub at: Option<f64>,
 }
 

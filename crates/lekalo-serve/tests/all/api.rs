@@ -485,3 +485,110 @@ async fn bounded_load_on_loopback_every_request_answered() {
     assert_eq!(answered, 200, "every request answered");
     assert_eq!(raw(addr, "/api/interpolate", &good).await, 200, "still up");
 }
+
+/// A misspelled field is refused, naming it, by every route that takes a request object (the
+/// documented rule "a request naming an unknown field is an error"): a typo must not leave the
+/// default in place and answer as if it had been understood.
+#[tokio::test]
+async fn every_route_refuses_a_misspelled_field() {
+    let curve = json!({"lekalo": 1, "type": "bspline_curve", "degree": 2,
+        "knots": [0, 0, 0, 0.5, 1, 1, 1], "control": [[0, 0], [1, 2], [2, 2], [3, 0]]});
+    let bezier = json!({"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 2], [2, 0]]});
+    let points = json!([[0, 0], [1, 2], [2, 1], [3, 3], [4, 0], [5, 1]]);
+    for (route, body) in [
+        ("/api/evaluate", json!({"curve": curve})),
+        ("/api/bspline", json!({"control": points, "degree": 3})),
+        ("/api/bezier/build", json!({"control": points})),
+        ("/api/interpolate", json!({"points": points})),
+        ("/api/bezier", json!({"curve": bezier, "op": "elevate"})),
+        (
+            "/api/blend/deform",
+            json!({"first": bezier, "second": bezier, "continuity": 1}),
+        ),
+        (
+            "/api/blend/corners",
+            json!({"points": points, "continuity": 1}),
+        ),
+        (
+            "/api/blend/spline",
+            json!({"points": points, "continuity": 1}),
+        ),
+        (
+            "/api/quasi",
+            json!({"expression": "x", "breakpoints": [0, 1, 2], "order": 2}),
+        ),
+        ("/api/fit", json!({"points": points, "smoothing": "gcv"})),
+        ("/api/project", json!({"curve": curve, "point": [1, 1]})),
+        ("/api/measure", json!({"curve": curve})),
+        ("/api/knot/insert", json!({"curve": curve, "t": 0.25})),
+        ("/api/knot/remove", json!({"curve": curve, "t": 0.5})),
+        ("/api/export/json", json!({"curve": curve})),
+    ] {
+        // the body as it is is answered
+        let (s, v) = call(route, body.to_string()).await;
+        assert_eq!(s, StatusCode::OK, "{route}: {v}");
+        let mut typo = body.clone();
+        typo["degre"] = json!(2);
+        let (f, msg) = bad(route, typo.to_string()).await;
+        assert!(
+            msg.contains("unknown field `degre`"),
+            "{route}: a misspelled field answered with field {f:?}: {msg}"
+        );
+    }
+}
+
+/// A count that is not a whole number, or a coordinate that is not a number, is refused next
+/// to its field in the editor's words: no Rust type (`usize`, `f64`) and no position in the
+/// request's text, which the person at the editor never sees.
+#[tokio::test]
+async fn type_errors_name_the_kind_of_value_not_a_rust_type() {
+    let points = json!([[0, 0], [1, 2], [2, 1], [3, 3]]);
+    for (route, body, field, says) in [
+        (
+            "/api/interpolate",
+            json!({"points": points, "degree": 2.5}),
+            "degree",
+            "2.5`, expected a whole number ≥ 0",
+        ),
+        (
+            "/api/blend/corners",
+            json!({"points": points, "continuity": -1}),
+            "continuity",
+            "-1`, expected a whole number ≥ 0",
+        ),
+        (
+            "/api/quasi",
+            json!({"expression": "x", "breakpoints": [0, 1, 2], "order": 2.5}),
+            "order",
+            "expected a whole number ≥ 0",
+        ),
+        (
+            "/api/bspline",
+            json!({"control": [[0, 0], [1, "a"]], "degree": 1}),
+            "control[1][1]",
+            "string \"a\", expected a number",
+        ),
+        (
+            "/api/fit",
+            json!({"points": points, "lambda": "big"}),
+            "lambda",
+            "expected a number",
+        ),
+    ] {
+        let (f, msg) = bad(route, body.to_string()).await;
+        assert_eq!(f, field, "{route}: {msg}");
+        assert!(msg.contains(says), "{route}: {msg}");
+        assert!(
+            !msg.contains("usize") && !msg.contains("f64") && !msg.contains("line 1"),
+            "{route}: {msg}"
+        );
+    }
+    // a whole number written as JavaScript may write it is that number
+    let (s, v) = call(
+        "/api/interpolate",
+        json!({"points": points, "degree": 2.0}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert_eq!(v["degree"], json!(2), "{v}");
+}
