@@ -173,8 +173,14 @@ def test_fitpack_functions():
             for ext in (0, 1, 3):
                 close(ls.splev(XX, tb, der, ext), si.splev(XX, ta, der, ext), 1e-11)
         close(ls.splev(2.0, tb), si.splev(2.0, ta))
-        with pytest.raises(ValueError):
+        with pytest.raises(ValueError) as ea:
+            si.splev(XX, ta, ext=2)
+        with pytest.raises(ValueError) as eb:
             ls.splev(XX, tb, ext=2)
+        # SciPy's message first, then the x outside and what the other ext values do
+        assert str(eb.value).startswith(str(ea.value)), (str(eb.value), str(ea.value))
+        assert "x = -1 is outside the base interval" in str(eb.value)
+        assert "ext=0" in str(eb.value)
         assert ls.splint(0.5, 3.0, tb) == pytest.approx(si.splint(0.5, 3.0, ta), rel=1e-12)
         assert ls.splint(-2.0, 9.0, tb) == pytest.approx(si.splint(-2.0, 9.0, ta), rel=1e-12)
         for n in (1, 2):
@@ -228,6 +234,16 @@ def test_interp_errors_match():
         with pytest.raises(ValueError) as eb:
             ls.make_interp_spline(**bad)
         assert type(eb.value) is type(ea.value)
+
+
+def test_univariate_spline_ext_raise_names_the_x_and_the_choices():
+    x, y = data(n=15, seed=11)
+    with pytest.raises(ValueError) as ea:
+        si.UnivariateSpline(x, y, ext="raise")(9.0)
+    with pytest.raises(ValueError) as eb:
+        ls.UnivariateSpline(x, y, ext="raise")(9.0)
+    assert str(eb.value).startswith(str(ea.value)), (str(eb.value), str(ea.value))
+    assert "x = 9 is outside" in str(eb.value)
 
 
 def spaced(n=9, tail=(2,), seed=1):

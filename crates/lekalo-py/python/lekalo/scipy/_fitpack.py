@@ -120,7 +120,12 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
     lo, hi = t[k], t[n]
     outside = (x < lo) | (x > hi)
     if ext == 2 and outside.any():
-        raise ValueError("Error code returned by splev: 1")
+        # SciPy's words first (code matching on them keeps working), then which x and the choices
+        raise ValueError(
+            f"Found x value not in the domain: x = {x[outside][0]:g} is outside the base interval "
+            f"[{lo:g}, {hi:g}] of the spline; ext=2 ('raise') refuses it, ext=0 ('extrapolate') "
+            "continues the end polynomials, ext=1 ('zeros') gives 0, ext=3 ('const') the boundary value"
+        )
     # FITPACK clips to the boundary value for ext=3 only for the function itself; its
     # derivatives (splder) extrapolate
     xx = np.clip(x, lo, hi) if ext == 3 and der == 0 else x
