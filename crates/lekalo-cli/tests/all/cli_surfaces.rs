@@ -320,3 +320,51 @@ fn a_curvature_map_spans_the_library_curvatures_on_its_grid() {
 
 #[path = "cli_surfaces/tensor.rs"]
 mod tensor;
+
+/// The help of `eval`, `convert` and `project` names a surface's parameter columns as the
+/// commands write them: the columns of the header before the point's `x`, listed as `u, v`.
+#[test]
+fn help_names_a_surfaces_columns_as_written() {
+    let d = tempfile::tempdir().unwrap();
+    let s = d.path().join("s.json");
+    fs::write(&s, SURFACE).unwrap();
+    let header = |args: &[&str]| {
+        let out = lekalo().args(args).arg(&s).assert().success();
+        let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+        let first = text.lines().next().unwrap_or_default().to_string();
+        let before_x: Vec<&str> = first.split(',').take_while(|c| *c != "x").collect();
+        before_x.join(", ")
+    };
+    let csv = d.path().join("s.csv");
+    lekalo()
+        .args(["convert", "--samples", "4", "-o"])
+        .arg(&csv)
+        .arg(&s)
+        .assert()
+        .success();
+    let converted = fs::read_to_string(&csv).unwrap();
+    let first = converted.lines().next().unwrap_or_default();
+    let before_x: Vec<&str> = first.split(',').take_while(|c| *c != "x").collect();
+    let cases = [
+        ("eval", header(&["eval", "--uv", "0.5,0.5"])),
+        ("project", header(&["project", "--point", "1,0.5,2"])),
+        ("convert", before_x.join(", ")),
+    ];
+    for (command, columns) in cases {
+        assert_eq!(
+            columns,
+            if command == "project" {
+                "index, u, v"
+            } else {
+                "u, v"
+            }
+        );
+        let named = columns.trim_start_matches("index, ");
+        let help = lekalo().args([command, "--help"]).assert().success();
+        let text = String::from_utf8(help.get_output().stdout.clone()).unwrap();
+        assert!(
+            text.contains(&format!("{named}, ")) || text.contains(&format!("{named})")),
+            "`lekalo {command} --help` does not name the columns {named}:\n{text}"
+        );
+    }
+}

@@ -48,7 +48,7 @@ Examples:
   lekalo convert curves.jsonl -o again.igs
   lekalo convert again.igs -o from-iges.jsonl
 
-Surfaces also convert to csv: u, cx, x, y, z on a √samples × √samples grid.
+Surfaces also convert to csv: u, v, x, y, z on a √samples × √samples grid.
 CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and NURBS
 curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
 complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),

@@ -37,7 +37,7 @@ Examples:
 
 Surfaces: evaluated at --uv U,V pairs (repeat the option, or list several pairs), at the rows
 of --uv-file, or on an evenly spaced --grid NUxNV (--samples N: N × N; default 5 × 5). Columns:
-u, cx, the point, the partial derivatives du{a}v{b}x … of every total order up to
+u, v, the point, the partial derivatives du{a}v{b}x … of every total order up to
 --derivatives (du1v0x is ∂x/∂u), with --normals the unit normal nx, ny, nz, with --curvature
 the principal curvatures k1 ≥ k2, gaussian and mean (sign: positive where the surface bends
 towards the normal (S_u × S_v)/|S_u × S_v|).

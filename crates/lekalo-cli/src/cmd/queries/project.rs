@@ -22,7 +22,7 @@ and distance. A batch of points comes from --points (CSV, whitespace columns or 
 `make`); batches run in parallel with results independent of the thread count. With --all TOL
 every local minimum within TOL of the least distance is listed (one row each).
 
-Output CSV: a header row, then the columns index (of the query point), t (or u, cx), the closest
+Output CSV: a header row, then the columns index (of the query point), t (or u, v), the closest
 point's coordinates, distance: `index,t,x,y,distance` for a planar curve.
 
 Examples:
