@@ -314,11 +314,9 @@ fn every_help_example_runs() {
         .map(|p| p[..1].to_vec())
         .collect();
     groups.dedup();
-    let mut shown: Vec<Vec<String>> = Vec::new();
     for group in &groups {
         let list = examples(&help_of(group));
         ran += run_all(&group.join(" "), &list, &mut failures);
-        shown.extend(list);
     }
     for path in &leaves {
         let name = path.join(" ");
@@ -327,8 +325,9 @@ fn every_help_example_runs() {
         }
         let list = examples(&help_of(path));
         ran += run_all(&name, &list, &mut failures);
-        shown.extend(list);
-        if !shown.iter().any(|a| a.starts_with(path)) {
+        // a reader asks the subcommand itself: its own help shows it at work (its group's
+        // list is one `--help` away, unseen)
+        if !list.iter().any(|a| a.starts_with(path)) {
             failures.push(format!("`lekalo {name} --help` shows no example of it"));
         }
     }

@@ -66,6 +66,13 @@ pub(crate) struct Common {
 #[derive(Subcommand, Debug)]
 enum KnotOp {
     /// Insert a knot `--times` times (Boehm; P&T Algorithm A5.1).
+    #[command(after_help = "\
+The curve or surface keeps its shape; each copy adds one control point. A knot may reach
+multiplicity degree at most (degree + 1 at the ends of the domain).
+
+Examples:
+  lekalo knot insert curve.json --at 0.5 --times 2 -o inserted.json
+  lekalo knot insert surface.json --dir v --at 0.5 -o surface2.json")]
     Insert {
         #[command(flatten)]
         c: Common,
@@ -77,6 +84,10 @@ enum KnotOp {
         times: usize,
     },
     /// Insert many knots at once (Oslo refinement; P&T Algorithm A5.4).
+    #[command(after_help = "\
+Examples:
+  lekalo knot refine curve.json --knots 0.25,0.5,0.75 -o refined.json
+  lekalo knot refine surface.json --dir u --knots 1/3,2/3 -o finer.json")]
     Refine {
         #[command(flatten)]
         c: Common,
@@ -86,6 +97,11 @@ enum KnotOp {
     },
     /// Remove a knot (or every removable knot) within a tolerance (P&T Algorithm A5.8);
     /// reports on stderr what was removed. Curves only.
+    #[command(after_help = "\
+Examples:
+  lekalo knot insert curve.json --at 0.5 --times 2 -o inserted.json
+  lekalo knot remove inserted.json --at 0.5 --times 2 -o back.json   # the copies inserted come out again
+  lekalo knot remove curve.json --all --tolerance 1e-6 --json        # every knot that can go, and a report")]
     Remove {
         #[command(flatten)]
         c: Common,
@@ -112,6 +128,10 @@ enum KnotOp {
         json: crate::report::JsonFlag,
     },
     /// Split at a parameter into two objects (JSON Lines).
+    #[command(after_help = "\
+Examples:
+  lekalo knot split curve.json --at 0.5 -o halves.jsonl   # two curves that meet at t = 0.5
+  lekalo knot split surface.json --dir v --at 0.5 -o halves.jsonl")]
     Split {
         #[command(flatten)]
         c: Common,
@@ -120,11 +140,18 @@ enum KnotOp {
         at: String,
     },
     /// Reverse the direction of the parameter.
+    #[command(after_help = "\
+Examples:
+  lekalo knot reverse curve.json -o reversed.json
+  lekalo knot reverse surface.json --dir v -o flipped.json")]
     Reverse {
         #[command(flatten)]
         c: Common,
     },
     /// Map the domain affinely onto `[a, b]` (curves).
+    #[command(after_help = "\
+Examples:
+  lekalo knot reparam curve.json --interval 0,1 -o unit.json   # the same curve on the domain [0, 1]")]
     Reparam {
         #[command(flatten)]
         c: Common,
@@ -133,12 +160,20 @@ enum KnotOp {
         interval: String,
     },
     /// Decompose into Bezier pieces (JSON Lines), each on its own interval of the domain.
+    #[command(after_help = "\
+Examples:
+  lekalo knot decompose curve.json -o pieces.jsonl     # one Bezier curve a line
+  lekalo knot decompose surface.json -o patches.jsonl  # one Bezier patch a line")]
     Decompose {
         #[command(flatten)]
         c: Common,
     },
     /// Join Bezier pieces (JSON Lines of single-segment curves, as `decompose` writes them)
     /// into one B-spline or NURBS curve.
+    #[command(after_help = "\
+Examples:
+  lekalo knot decompose curve.json -o pieces.jsonl
+  lekalo knot join pieces.jsonl -o joined.json   # the curve again, its interior knots at multiplicity degree")]
     Join {
         /// JSON Lines of the pieces, in order.
         input: PathBuf,
