@@ -15,7 +15,7 @@ use crate::demo::{Caption, Section};
 pub(super) fn queries(s: &mut Section) -> Result<()> {
     s.caption = "A cubic B-spline and a circle: their intersections (crossing points, with \
         parameters on both), the closest points of a few query points (the segment to each foot \
-        is normal to the curve), the offset of the spline at distance 0.3 with its cusps, and \
+        is normal to the curve), the offset of the spline at distance 1.5 with its cusps and the loop trimmed, and \
         the curvature maxima. Checks: the arc length of the circle is 2πr; every intersection \
         lies on both curves; every projection's residual is orthogonal to the tangent."
         .into();
@@ -102,16 +102,53 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         "0",
         1e-9,
     );
-    let off = qs.offset(0.3, 1e-5)?;
+    // on the concave side of the sharpest bend (κ ≈ 1.6 at its top, radius ≈ 0.62), 1.5 away:
+    // the offset point turns back at two cusps where 1.5·κ = 1 and crosses itself in a loop
+    let d = -1.5;
+    let off = qs.offset(d, 1e-5)?;
+    s.check(
+        "cusps of the offset at d = −1.5 (where 1.5·κ = 1)",
+        off.cusps.len() as f64,
+        2.0,
+        "2",
+        0.0,
+    );
+    s.check(
+        "loops trimmed from the offset",
+        off.loops.len() as f64,
+        1.0,
+        "1",
+        0.0,
+    );
+    let whole = Object::BSpline(off.curve.clone()).sample(400)?;
+    let mut untrimmed = Series::new(
+        Some("offset before trimming"),
+        whole.iter().map(|p| [p[0], p[1]]).collect(),
+        Style::Line,
+        "#777777",
+    );
+    untrimmed.dash = Some("2 3".into());
+    fig.series.push(untrimmed);
     for (i, part) in off.trimmed.iter().enumerate() {
         let pts = Object::BSpline(part.clone()).sample(200)?;
         fig.series.push(Series::new(
-            (i == 0).then_some("offset d = 0.3 (loops trimmed)"),
+            (i == 0).then_some("offset d = −1.5, loop trimmed"),
             pts.iter().map(|p| [p[0], p[1]]).collect(),
             Style::Dashed,
             PALETTE[2],
         ));
     }
+    let cusps: Vec<[f64; 2]> = off
+        .cusps
+        .iter()
+        .map(|&t| off.curve.eval(t).map(|p| [p[0], p[1]]))
+        .collect::<lekalo::Result<_>>()?;
+    fig.series.push(Series::new(
+        Some("cusps"),
+        cusps,
+        Style::Markers,
+        PALETTE[7],
+    ));
     fig.series.push(Series {
         label: Some("closest points".into()),
         paths: feet,
@@ -141,11 +178,13 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
     s.figure(
         fig,
         Caption::new(format!(
-            "A planar cubic with its offset at d = 0.3, the closest points of a few query points, \
-             its intersections with a second curve and its curvature maxima. The offset has {} \
-             cusps where 0.3·κ = 1; {} loop(s) between them are trimmed.",
-            off.cusps.len(),
-            off.loops.len()
+            "A planar cubic with its offset at d = −1.5 (to the right of its direction), the \
+             closest points of a few query points, its intersections with a circle and its \
+             curvature maxima. Past the sharpest bend the offset (grey, dotted) turns back at {} \
+             cusps (black) where 1.5·κ = 1 and crosses itself; the loop between the crossing \
+             points is cut out. Outside the loop “offset d = −1.5, loop trimmed” (green, \
+             dashed) coincides with “offset before trimming”.",
+            off.cusps.len()
         ))
         .theory("queries.md#offsets"),
     );
