@@ -207,9 +207,14 @@ fn sizes_set_by_an_option_are_refused_before_allocation_naming_it() {
         "{err}"
     );
     // a tolerance of 1e-8 aborted on memory; 1e-300 was printed as a 300-digit decimal
+    // 0 was "0e0 is below 1e-12 times the object's size 1e0" with no tolerance to use
     for (tol, says) in [
         ("1e-8", "use a tolerance of at least"),
-        ("1e-300", "rounding would decide the bound"),
+        (
+            "1e-300",
+            "rounding would decide the bound; use a tolerance of at least",
+        ),
+        ("0", "0 is below 1e-12 times the object's size"),
     ] {
         let (code, err) = code_and_stderr(d.path(), &["mesh", "s.json", "-t", tol, "-o", "m.obj"]);
         assert_eq!(code, 2, "{err}");

@@ -4,7 +4,7 @@
 use super::intersect::segment_distance;
 use super::pieces::QueryCurve;
 use super::surface::{split_curve, QuerySurface};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{check_finite, readable, Error, Result};
 use crate::Points;
 
 /// Smallest tolerance accepted, relative to the object's size: below it rounding, not the
@@ -94,8 +94,12 @@ pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
         return Err(Error::InvalidArgument {
             what: "tessellation tolerance",
             reason: format!(
-                "{tol:e} is below {MIN_RELATIVE_TOLERANCE:e} times the object's size {scale:e}; \
-                 rounding would decide the bound"
+                "{} is below {} times the object's size {}, where rounding would decide the \
+                 bound; use a tolerance of at least {}",
+                readable(&tol),
+                readable(&MIN_RELATIVE_TOLERANCE),
+                readable(&scale),
+                readable(&(MIN_RELATIVE_TOLERANCE * scale))
             ),
         });
     }
