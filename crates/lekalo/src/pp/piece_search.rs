@@ -1,6 +1,5 @@
 //! Piece location on breakpoints read in place (SciPy's `PPoly.x`, `BPoly.x`), and the batch
-//! loop shared by the in-place evaluators of [`crate::pp::PowerFormRef`] and
-//! [`crate::pp::BernsteinFormRef`].
+//! loop of the in-place view [`crate::pp::PiecewiseRef`] (either basis).
 //!
 //! Increasing breakpoints `x_0 ≤ … ≤ x_m` (`x_0 < x_m`) may repeat; the pieces between
 //! repeated ones are empty and never evaluated. A point `x_0 ≤ x < x_m` lies in the piece `j`
@@ -18,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::curve::fast_eval::locate::PieceLocator;
 use crate::curve::Beyond;
-use crate::error::{check_finite, Error, Result};
+use crate::error::{Error, Result};
 
 /// Batches of at least this many points run on the rayon pool (as the B-spline evaluator's
 /// batches from Python).
@@ -27,55 +26,6 @@ pub(crate) const PAR_MIN_POINTS: usize = 1 << 14;
 /// Smallest number of points a parallel task takes (the per-task cost, a wake-up, stays
 /// negligible).
 const PAR_CHUNK: usize = 1 << 13;
-
-/// The checks of SciPy's arrays that cost no pass over them: `c` holds `order·pieces·dim`
-/// numbers for `pieces + 1 ≥ 2` breakpoints, the end breakpoints are finite and differ (the
-/// order of the others, monotonic the way the ends go, is the caller's to guarantee, as
-/// SciPy's constructor checks it).
-///
-/// # Errors
-/// [`Error::TooFew`] for fewer than two breakpoints, an order or a dimension of 0;
-/// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
-/// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-/// if the first and the last breakpoint are equal.
-pub(crate) fn check_arrays(c: &[f64], order: usize, breakpoints: &[f64], dim: usize) -> Result<()> {
-    if breakpoints.len() < 2 {
-        return Err(Error::TooFew {
-            what: "breakpoints",
-            min: 2,
-            got: breakpoints.len(),
-        });
-    }
-    if order == 0 || dim == 0 {
-        return Err(Error::TooFew {
-            what: if order == 0 {
-                "coefficients a piece (order)"
-            } else {
-                "numbers a value (dim)"
-            },
-            min: 1,
-            got: 0,
-        });
-    }
-    let pieces = breakpoints.len() - 1;
-    let want = order
-        .checked_mul(pieces)
-        .and_then(|v| v.checked_mul(dim))
-        .unwrap_or(usize::MAX);
-    if c.len() != want {
-        return Err(Error::LengthMismatch {
-            what: "coefficients (order × pieces × dim)",
-            expected: want,
-            got: c.len(),
-        });
-    }
-    let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
-    check_finite("breakpoints (the ends)", &[lo, hi])?;
-    if lo == hi {
-        return Err(Error::EmptyDomain { min: lo, max: hi });
-    }
-    Ok(())
-}
 
 /// The piece of a point on breakpoints read in place (see the module documentation).
 #[derive(Debug)]
@@ -93,7 +43,7 @@ pub(crate) struct PieceSearch<'a> {
 
 impl<'a> PieceSearch<'a> {
     /// The search on `breakpoints` (at least two, monotonic, the ends different: see
-    /// [`check_arrays`]) for a batch of `points` points.
+    /// [`crate::pp::PiecewiseRef::new`]) for a batch of `points` points.
     pub(crate) fn new(breakpoints: &'a [f64], points: usize) -> Self {
         let pieces = breakpoints.len() - 1;
         let descending = breakpoints[pieces] < breakpoints[0];
