@@ -23,6 +23,13 @@ use crate::error::{Error, Result};
 /// batches from Python).
 pub(crate) const PAR_MIN_POINTS: usize = 1 << 14;
 
+/// Points whose pieces are found before their values are computed (see `for_each_point`): a
+/// stack array of this many piece numbers.
+const BLOCK: usize = 64;
+
+/// The piece number of a point whose value is not defined (NaN is written).
+const UNDEFINED: usize = usize::MAX;
+
 /// Smallest number of points a parallel task takes (the per-task cost, a wake-up, stays
 /// negligible).
 const PAR_CHUNK: usize = 1 << 13;
@@ -147,16 +154,38 @@ impl<'a> PieceSearch<'a> {
         let (lo, hi) = self.domain();
         let continued = beyond == Beyond::Continue;
         let defined = |x: f64| (lo <= x && x <= hi) || (continued && x.is_finite());
-        // true when every defined value is finite
+        // true when every defined value is finite. In blocks: the pieces of a block first,
+        // then its values, so that the processor overlaps the searches (a chain of dependent
+        // loads a point) of many points, and the evaluations of many, instead of the few whose
+        // search and evaluation together fit in its window
         let run = |xs: &[f64], out: &mut [f64]| -> bool {
             let mut scratch = new_scratch();
             let mut finite = true;
-            for (&x, o) in xs.iter().zip(out.chunks_exact_mut(dim)) {
-                if defined(x) {
-                    kernel(&mut scratch, self.piece(x), x, o);
-                    finite &= o.iter().all(|v| v.is_finite());
-                } else {
-                    o.fill(f64::NAN);
+            let mut pieces = [UNDEFINED; BLOCK];
+            for (xs, out) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK * dim)) {
+                for (j, &x) in pieces.iter_mut().zip(xs) {
+                    *j = if defined(x) { self.piece(x) } else { UNDEFINED };
+                }
+                if dim == 1 {
+                    // scalar values (SciPy's 1-D `y`): a row is one number, its length known
+                    // to the kernel
+                    for ((&x, o), &j) in xs.iter().zip(out.iter_mut()).zip(&pieces) {
+                        if j == UNDEFINED {
+                            *o = f64::NAN;
+                        } else {
+                            kernel(&mut scratch, j, x, std::slice::from_mut(o));
+                            finite &= o.is_finite();
+                        }
+                    }
+                    continue;
+                }
+                for ((&x, o), &j) in xs.iter().zip(out.chunks_exact_mut(dim)).zip(&pieces) {
+                    if j == UNDEFINED {
+                        o.fill(f64::NAN);
+                    } else {
+                        kernel(&mut scratch, j, x, o);
+                        finite &= o.iter().all(|v| v.is_finite());
+                    }
                 }
             }
             finite

@@ -168,11 +168,19 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
     /// Piece `j` (`j < pieces`).
     #[inline(always)]
     fn piece(&self, j: usize) -> Piece<'a> {
+        self.piece_of_dim(j, self.dim)
+    }
+
+    /// Piece `j` with the dimension `dim` (`self.dim`) given where the caller knows it as a
+    /// constant.
+    #[inline(always)]
+    fn piece_of_dim(&self, j: usize, dim: usize) -> Piece<'a> {
+        debug_assert_eq!(dim, self.dim, "the dimension of the arrays");
         Piece {
             c: self.c,
             breakpoints: self.breakpoints,
             order: self.order,
-            dim: self.dim,
+            dim,
             j,
         }
     }
@@ -215,19 +223,35 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
         if nu >= k {
             return search.for_each_point(xs, dim, beyond, out, || (), |(), _, _, o| o.fill(0.0));
         }
+        // the values with the order fixed, and the dimension too when it is 1 (the piece's
+        // stride then a constant)
         macro_rules! fixed {
             ($k:literal) => {
-                search.for_each_point(
-                    xs,
-                    dim,
-                    beyond,
-                    out,
-                    || (),
-                    |(), j, x, o| {
-                        let piece = self.piece(j);
-                        B::values::<$k>(&piece, B::local(&piece, x), o);
-                    },
-                )
+                if dim == 1 {
+                    search.for_each_point(
+                        xs,
+                        1,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let piece = self.piece_of_dim(j, 1);
+                            B::values::<$k>(&piece, B::local(&piece, x), o);
+                        },
+                    )
+                } else {
+                    search.for_each_point(
+                        xs,
+                        dim,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let piece = self.piece(j);
+                            B::values::<$k>(&piece, B::local(&piece, x), o);
+                        },
+                    )
+                }
             };
         }
         match (nu, k) {
@@ -282,25 +306,28 @@ mod tests {
         }
     }
 
-    /// The power form's kernel as it was written before the view became generic, for one
-    /// coordinate: `Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` by Horner's rule, the highest power first.
-    fn horner_loop(
-        c: &[f64],
-        k: usize,
-        pieces: usize,
+    /// SciPy's arrays, as the test's direct loops read them.
+    #[derive(Clone, Copy)]
+    struct Arrays<'a> {
+        c: &'a [f64],
+        order: usize,
+        b: &'a [f64],
         dim: usize,
-        j: usize,
-        d: usize,
-        u: f64,
-        r: usize,
-    ) -> f64 {
+    }
+
+    /// The power form's kernel as it was written before the view became generic, for
+    /// coordinate `d` on piece `j`: `Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` in `u = x − x_j` by Horner's
+    /// rule, the highest power first.
+    fn horner_loop(a: &Arrays<'_>, j: usize, d: usize, x: f64, r: usize) -> f64 {
+        let (k, pieces) = (a.order, a.b.len() - 1);
         if r >= k {
             return 0.0;
         }
+        let u = x - a.b[j];
         let mut v = 0.0;
         for s in (r..k).rev() {
             let falling: f64 = (s - r + 1..=s).map(|q| q as f64).product();
-            v = v * u + falling * c[((k - 1 - s) * pieces + j) * dim + d];
+            v = v * u + falling * a.c[((k - 1 - s) * pieces + j) * a.dim + d];
         }
         v
     }
@@ -308,17 +335,8 @@ mod tests {
     /// The Bernstein form's kernel as it was written before the view became generic, for one
     /// coordinate: the forward differences `Δ^nu c` scaled by `k!/(k − nu)!`, then SciPy's
     /// written-out sum up to degree 3 or de Casteljau's convex combinations, over `h^nu`.
-    #[allow(clippy::too_many_arguments)]
-    fn bernstein_loop(
-        c: &[f64],
-        order: usize,
-        b: &[f64],
-        dim: usize,
-        j: usize,
-        d: usize,
-        x: f64,
-        nu: usize,
-    ) -> f64 {
+    fn bernstein_loop(arrays: &Arrays<'_>, j: usize, d: usize, x: f64, nu: usize) -> f64 {
+        let Arrays { c, order, b, dim } = *arrays;
         let (k, pieces) = (order - 1, b.len() - 1);
         if nu > k {
             return 0.0;
@@ -416,6 +434,7 @@ mod tests {
             let (mut got_p, mut got_b) = (vec![0.0; xs.len() * dim], vec![0.0; xs.len() * dim]);
             power.par_eval_beyond(&xs, nu, beyond, &mut got_p).unwrap();
             bernstein.par_eval_beyond(&xs, nu, beyond, &mut got_b).unwrap();
+            let arrays = Arrays { c: &c, order, b: &b, dim };
             for (i, &x) in xs.iter().enumerate() {
                 let outside = !(bmin..=bmax).contains(&x);
                 let j = piece_of(&b, x);
@@ -424,8 +443,8 @@ mod tests {
                         (f64::NAN, f64::NAN)
                     } else {
                         (
-                            horner_loop(&c, order, pieces, dim, j, d, x - b[j], nu),
-                            bernstein_loop(&c, order, &b, dim, j, d, x, nu),
+                            horner_loop(&arrays, j, d, x, nu),
+                            bernstein_loop(&arrays, j, d, x, nu),
                         )
                     };
                     let (gp, gb) = (got_p[i * dim + d], got_b[i * dim + d]);
