@@ -1,7 +1,7 @@
 //! Piecewise polynomials in pp-form, the spaces `P_{k,ξ,ν}` and quasi-interpolation
 //! (document 003, docs/theory/pp.md).
 
-use lekalo::pp::{BernsteinFormRef, PowerFormRef, Solution};
+use lekalo::pp::{BernsteinBasis, PieceBasis, PiecewiseRef, PowerBasis, Solution};
 use lekalo::{Beyond, PiecewisePolynomial, PpSpace, Tau, TauRule};
 use lekalo_io::Shape;
 use pyo3::prelude::*;
@@ -578,24 +578,24 @@ fn beyond(extrapolate: bool) -> Beyond {
 /// An evaluator of SciPy's arrays in place: `(arrays, points, nu, beyond, out)`.
 type InPlace = fn(&ScipyArrays<'_>, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
 
-fn power_form(
+/// SciPy's arrays evaluated in place in the basis `B` (`lekalo::pp::PiecewiseRef`).
+fn in_place<B: PieceBasis>(
     a: &ScipyArrays<'_>,
     xs: &[f64],
     nu: usize,
     beyond: Beyond,
     out: &mut [f64],
 ) -> lekalo::Result<()> {
-    PowerFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
+    PiecewiseRef::<B>::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
 }
 
-fn bernstein_form(
-    a: &ScipyArrays<'_>,
-    xs: &[f64],
-    nu: usize,
-    beyond: Beyond,
-    out: &mut [f64],
-) -> lekalo::Result<()> {
-    BernsteinFormRef::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
+/// `then` on the arrays `c` and `x` read in place, their shapes checked ([`scipy_arrays`]).
+fn with_scipy_arrays<R>(
+    (c, x): (&Bound<'_, PyAny>, &Bound<'_, PyAny>),
+    then: impl FnOnce(&ScipyArrays<'_>) -> PyResult<R>,
+) -> PyResult<R> {
+    let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
+    then(&scipy_arrays(&ca, &xa)?)
 }
 
 /// The values at `xp` (any shape, result `xp.shape + (dim,)`) by `eval`, the arrays read in
@@ -607,14 +607,14 @@ fn values_in_place<'py>(
     extrapolate: bool,
     eval: InPlace,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
-    let arrays = scipy_arrays(&ca, &xa)?;
-    let pa = floats(xp, "xp")?;
-    let xs = pa.data();
-    let dim = arrays.dim;
-    check_size("xp", &[xs.len(), dim])?;
-    filled(py, &out_shape(&pa, &[dim]), |out| {
-        eval(&arrays, xs, nu, beyond(extrapolate), out)
+    with_scipy_arrays((c, x), |arrays| {
+        let pa = floats(xp, "xp")?;
+        let xs = pa.data();
+        let dim = arrays.dim;
+        check_size("xp", &[xs.len(), dim])?;
+        filled(py, &out_shape(&pa, &[dim]), |out| {
+            eval(arrays, xs, nu, beyond(extrapolate), out)
+        })
     })
 }
 
@@ -627,24 +627,24 @@ fn value_in_place(
     extrapolate: bool,
     eval: InPlace,
 ) -> PyResult<f64> {
-    let (ca, xa) = (floats(c, "c")?, floats(x, "x")?);
-    let arrays = scipy_arrays(&ca, &xa)?;
-    if arrays.dim != 1 {
-        return Err(bad(format!(
-            "c: {} values a point; the scalar call takes c of shape (k, pieces)",
-            arrays.dim
-        )));
-    }
-    let mut out = [0.0];
-    eval(&arrays, &[xp], nu, beyond(extrapolate), &mut out).map_err(lib_err)?;
-    Ok(out[0])
+    with_scipy_arrays((c, x), |arrays| {
+        if arrays.dim != 1 {
+            return Err(bad(format!(
+                "c: {} values a point; the scalar call takes c of shape (k, pieces)",
+                arrays.dim
+            )));
+        }
+        let mut out = [0.0];
+        eval(arrays, &[xp], nu, beyond(extrapolate), &mut out).map_err(lib_err)?;
+        Ok(out[0])
+    })
 }
 
 /// `ppoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `PPoly`
 /// with coefficients `c` (shape `(k, pieces)` or `(k, pieces, dim)`, float64, the highest power
 /// first) on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
 /// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
-/// (`lekalo::pp::PowerFormRef::par_eval_beyond`: Horner's rule on the arrays in place, nothing
+/// (`lekalo::pp::PowerFormRef`, `PiecewiseRef::par_eval_beyond`: Horner's rule on the arrays in place, nothing
 /// copied).
 #[pyfunction]
 #[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
@@ -656,7 +656,7 @@ pub(crate) fn ppoly_values<'py>(
     nu: usize,
     extrapolate: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    values_in_place(py, (c, x, xp), nu, extrapolate, power_form)
+    values_in_place(py, (c, x, xp), nu, extrapolate, in_place::<PowerBasis>)
 }
 
 /// `ppoly_value(c, x, xp, nu=0, extrapolate=True)`: [`ppoly_values`] at one number `xp` of a
@@ -670,14 +670,14 @@ pub(crate) fn ppoly_value(
     nu: usize,
     extrapolate: bool,
 ) -> PyResult<f64> {
-    value_in_place((c, x), xp, nu, extrapolate, power_form)
+    value_in_place((c, x), xp, nu, extrapolate, in_place::<PowerBasis>)
 }
 
 /// `bpoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `BPoly`
 /// with Bernstein coefficients `c` (shape `(k + 1, pieces)` or `(k + 1, pieces, dim)`, float64)
 /// on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
 /// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
-/// (`lekalo::pp::BernsteinFormRef::par_eval_beyond`: the Bernstein sum in each piece on the
+/// (`lekalo::pp::BernsteinFormRef`, `PiecewiseRef::par_eval_beyond`: the Bernstein sum in each piece on the
 /// arrays in place, nothing copied).
 #[pyfunction]
 #[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
@@ -689,7 +689,7 @@ pub(crate) fn bpoly_values<'py>(
     nu: usize,
     extrapolate: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    values_in_place(py, (c, x, xp), nu, extrapolate, bernstein_form)
+    values_in_place(py, (c, x, xp), nu, extrapolate, in_place::<BernsteinBasis>)
 }
 
 /// `bpoly_value(c, x, xp, nu=0, extrapolate=True)`: [`bpoly_values`] at one number `xp` of a
@@ -703,5 +703,5 @@ pub(crate) fn bpoly_value(
     nu: usize,
     extrapolate: bool,
 ) -> PyResult<f64> {
-    value_in_place((c, x), xp, nu, extrapolate, bernstein_form)
+    value_in_place((c, x), xp, nu, extrapolate, in_place::<BernsteinBasis>)
 }

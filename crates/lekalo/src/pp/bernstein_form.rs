@@ -1,164 +1,105 @@
-//! A piecewise polynomial in the Bernstein basis of each piece read in place from SciPy's
-//! `BPoly` arrays ([`BernsteinFormRef`]): coefficients `c` of shape `(k + 1, pieces, dim)` on
-//! monotonic breakpoints (either order, as SciPy allows), evaluated in each piece without a
-//! copy or a change of basis, the end pieces continued (or NaN). The piece of a point is found
-//! as the B-spline evaluator finds it (`piece_search.rs`). `docs/theory/pp.md#piecewise-polynomials`.
+//! The Bernstein basis of each piece of SciPy's `BPoly` ([`BernsteinBasis`]) and its arrays
+//! read in place ([`BernsteinFormRef`]): coefficients `c` of shape `(k + 1, pieces, dim)`,
+//! evaluated in each piece without a copy or a change of basis. The arrays, the piece search
+//! and the batch drivers are the generic view's (`piecewise_ref.rs`).
+//! `docs/theory/pp.md#extrapolation-in-pp-form`.
 
-use crate::curve::Beyond;
-#[cfg(doc)]
-use crate::error::Error;
-use crate::error::Result;
-use crate::pp::piece_search::{check_arrays, PieceSearch};
+use crate::pp::piecewise_ref::{Piece, PieceBasis, PiecewiseRef};
+
+/// The Bernstein basis of each piece of SciPy's `BPoly`: on piece `j`,
+/// `t = s = (x − x_j)/h_j`, `h_j = x_{j+1} − x_j`, and `f(x) = Σ_{a=0}^{k} c[a, j]·b_{a,k}(s)`,
+/// `b_{a,k}(s) = C(k, a)·s^a·(1 − s)^{k−a}`. Degree `k ≤ 3`: the Bernstein sum written out, in
+/// the operations and order of SciPy's `evaluate_bpoly1` (so the same bits); higher degrees:
+/// de Casteljau's algorithm (Farin, *Curves and Surfaces for CAGD*, 5th ed., §4.1),
+/// `k(k + 1)/2` convex combinations, stable for `s` in `[0, 1]`. Derivatives:
+/// `D^nu f = k!/(k − nu)!·h^{−nu}·Σ_a Δ^nu c_a·b_{a,k−nu}(s)` with the forward differences
+/// `Δ^nu c_a` (Farin §5.3). Beyond the ends the same polynomials at `s < 0` or `s > 1`.
+/// O(k²·dim) a point above degree 3, O(k·dim) up to it; a scratch of `k + 1` numbers for
+/// derivatives.
+#[derive(Debug, Clone, Copy)]
+pub struct BernsteinBasis;
+
+impl PieceBasis for BernsteinBasis {
+    #[inline(always)]
+    fn local(piece: &Piece<'_>, x: f64) -> f64 {
+        (x - piece.start()) / piece.width()
+    }
+
+    /// The written-out sum up to degree 3, de Casteljau's algorithm on the stack above.
+    #[inline(always)]
+    fn values<const K: usize>(piece: &Piece<'_>, s: f64, o: &mut [f64]) {
+        for (d, v) in o.iter_mut().enumerate() {
+            *v = if K <= 4 {
+                bernstein_sum(K - 1, s, |a| piece.coefficient(a, d))
+            } else {
+                let mut w = [0.0; K];
+                for (a, wa) in w.iter_mut().enumerate() {
+                    *wa = piece.coefficient(a, d);
+                }
+                de_casteljau(s, &mut w)
+            };
+        }
+    }
+
+    #[inline(always)]
+    fn derivative(piece: &Piece<'_>, s: f64, nu: usize, w: &mut [f64], o: &mut [f64]) {
+        let k = piece.order() - 1;
+        // Δ^nu c, scaled by k!/(k − nu)!, then the sum of degree k − nu
+        let falling: f64 = (k - nu + 1..=k).map(|v| v as f64).product();
+        let h = piece.width();
+        let h_nu = (0..nu).fold(1.0, |p, _| p * h);
+        for (d, v) in o.iter_mut().enumerate() {
+            for (a, wa) in w.iter_mut().enumerate() {
+                *wa = piece.coefficient(a, d);
+            }
+            for r in 1..=nu {
+                for a in 0..=k - r {
+                    w[a] = w[a + 1] - w[a];
+                }
+            }
+            let w = &mut w[..=k - nu];
+            for wa in w.iter_mut() {
+                *wa *= falling;
+            }
+            *v = match k - nu {
+                degree @ 0..=3 => bernstein_sum(degree, s, |a| w[a]),
+                _ => de_casteljau(s, w),
+            } / h_nu;
+        }
+    }
+
+    fn scratch_len(order: usize) -> usize {
+        order
+    }
+}
 
 /// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on
 /// decreasing breakpoints), with `s = (x − x_i)/(x_{i+1} − x_i)`,
-/// `f(x) = Σ_{a=0}^{k} c[a, i]·b_{a,k}(s)`, `b_{a,k}(s) = C(k, a)·s^a·(1 − s)^{k−a}`,
-/// `c[a, i, d]` at `(a·pieces + i)·dim + d`. Repeated breakpoints (empty pieces) are allowed
-/// and never evaluated.
-#[derive(Debug, Clone, Copy)]
-pub struct BernsteinFormRef<'a> {
-    c: &'a [f64],
-    order: usize,
-    breakpoints: &'a [f64],
-    dim: usize,
-}
+/// `f(x) = Σ_{a=0}^{k} c[a, i]·b_{a,k}(s)`, `c[a, i, d]` at `(a·pieces + i)·dim + d`
+/// ([`BernsteinBasis`]; order `k + 1`). Repeated breakpoints (empty pieces) are allowed and
+/// never evaluated. The constructor and the evaluations are [`PiecewiseRef`]'s.
+///
+/// ```
+/// use lekalo::pp::BernsteinFormRef;
+/// use lekalo::Beyond;
+/// // s² on [0, 1] (Bernstein coefficients 0, 0, 1), then 1 + 2(x − 1) on [1, 3]
+/// let c = [0.0, 1.0, 0.0, 3.0, 1.0, 5.0];
+/// let f = BernsteinFormRef::new(&c, 3, &[0.0, 1.0, 3.0], 1)?;
+/// let mut out = [0.0; 3];
+/// f.par_eval_beyond(&[0.5, 2.0, 4.0], 0, Beyond::Continue, &mut out)?;
+/// assert_eq!(out, [0.25, 3.0, 7.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+pub type BernsteinFormRef<'a> = PiecewiseRef<'a, BernsteinBasis>;
 
-impl<'a> BernsteinFormRef<'a> {
-    /// The piecewise polynomial of order `order` (`k + 1` coefficients a piece, degree `k`) on
-    /// `breakpoints` (`pieces + 1` of them, monotonic, the ends different) with the
-    /// Bernstein coefficients `c` (`order·pieces·dim` numbers, SciPy's layout). The order of the
-    /// breakpoints is the caller's to guarantee (SciPy's constructor checks it): only their
-    /// ends are checked here, so that a call costs no pass over the arrays.
-    ///
-    /// ```
-    /// use lekalo::pp::BernsteinFormRef;
-    /// use lekalo::Beyond;
-    /// // s² on [0, 1] (Bernstein coefficients 0, 0, 1), then 1 + 2(x − 1) on [1, 3]
-    /// let c = [0.0, 1.0, 0.0, 3.0, 1.0, 5.0];
-    /// let f = BernsteinFormRef::new(&c, 3, &[0.0, 1.0, 3.0], 1)?;
-    /// let mut out = [0.0; 3];
-    /// f.par_eval_beyond(&[0.5, 2.0, 4.0], 0, Beyond::Continue, &mut out)?;
-    /// assert_eq!(out, [0.25, 3.0, 7.0]);
-    /// # Ok::<(), lekalo::Error>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`Error::TooFew`] for fewer than two breakpoints or an order of 0;
-    /// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
-    /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-    /// if the first and the last breakpoint are equal.
-    pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
-        check_arrays(c, order, breakpoints, dim)?;
-        Ok(BernsteinFormRef {
-            c,
-            order,
-            breakpoints,
-            dim,
-        })
-    }
-
-    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), on the piece `j` with
-    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy) at
-    /// `s = (x − x_j)/h_j`, `h_j = x_{j+1} − x_j`. Degree `k ≤ 3`: the Bernstein sum written out, in the operations and order of SciPy's `evaluate_bpoly1`
-    /// (so the same bits); higher degrees: de Casteljau's algorithm (Farin, *Curves and
-    /// Surfaces for CAGD*, 5th ed., §4.1), `k(k + 1)/2` convex combinations, stable for `s` in
-    /// `[0, 1]`. Derivatives: `D^nu f = k!/(k − nu)!·h^{−nu}·Σ_a Δ^nu c_a·b_{a,k−nu}(s)` with
-    /// the forward differences `Δ^nu c_a` (Farin §5.3). Outside the breakpoints the end pieces are
-    /// continued (the same polynomials at `s < 0` or `s > 1`) or NaN is written, as `beyond`
-    /// says (SciPy's `extrapolate`); NaN at a NaN or infinite `x`. Orders `nu > k` give zeros.
-    /// The piece by the bucket table of the B-spline evaluator when there are at least as many
-    /// points as pieces (O(1) a point for spread-out breakpoints), else by binary search; on
-    /// the rayon pool from 16384 points. O(points·k²·dim) above degree 3, O(points·k·dim) up
-    /// to it; one scratch of `k + 1` numbers a task.
-    ///
-    /// # Errors
-    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
-    /// [`Error::NonFinite`] for a value that overflows.
-    pub fn par_eval_beyond(
-        &self,
-        xs: &[f64],
-        nu: usize,
-        beyond: Beyond,
-        out: &mut [f64],
-    ) -> Result<()> {
-        let search = PieceSearch::new(self.breakpoints, xs.len());
-        let (k, dim) = (self.order - 1, self.dim);
-        let b = self.breakpoints;
-        let pieces = b.len() - 1;
-        let at = |a: usize, j: usize, d: usize| self.c[(a * pieces + j) * dim + d];
-        if nu > k {
-            return search.for_each_point(xs, dim, beyond, out, || (), |(), _, _, o| o.fill(0.0));
-        }
-        if nu == 0 && k <= 3 {
-            macro_rules! written_out {
-                ($k:literal) => {
-                    search.for_each_point(
-                        xs,
-                        dim,
-                        beyond,
-                        out,
-                        || (),
-                        |(), j, x, o| {
-                            let s = (x - b[j]) / (b[j + 1] - b[j]);
-                            for (d, v) in o.iter_mut().enumerate() {
-                                *v = bernstein_sum::<$k>(s, |a| at(a, j, d));
-                            }
-                        },
-                    )
-                };
-            }
-            return match k {
-                0 => written_out!(0),
-                1 => written_out!(1),
-                2 => written_out!(2),
-                _ => written_out!(3),
-            };
-        }
-        // Δ^nu c, scaled by k!/(k − nu)!, then the sum of degree k − nu
-        let falling: f64 = (k - nu + 1..=k).map(|v| v as f64).product();
-        search.for_each_point(
-            xs,
-            dim,
-            beyond,
-            out,
-            || vec![0.0; k + 1],
-            |w, j, x, o| {
-                let h = b[j + 1] - b[j];
-                let s = (x - b[j]) / h;
-                let h_nu = (0..nu).fold(1.0, |p, _| p * h);
-                for (d, v) in o.iter_mut().enumerate() {
-                    for (a, wa) in w.iter_mut().enumerate() {
-                        *wa = at(a, j, d);
-                    }
-                    for r in 1..=nu {
-                        for a in 0..=k - r {
-                            w[a] = w[a + 1] - w[a];
-                        }
-                    }
-                    let w = &mut w[..=k - nu];
-                    for wa in w.iter_mut() {
-                        *wa *= falling;
-                    }
-                    *v = match k - nu {
-                        0 => bernstein_sum::<0>(s, |a| w[a]),
-                        1 => bernstein_sum::<1>(s, |a| w[a]),
-                        2 => bernstein_sum::<2>(s, |a| w[a]),
-                        3 => bernstein_sum::<3>(s, |a| w[a]),
-                        _ => de_casteljau(s, w),
-                    } / h_nu;
-                }
-            },
-        )
-    }
-}
-
-/// `Σ_{a=0}^{K} c(a)·b_{a,K}(s)` for `K ≤ 3`, written out as SciPy's `evaluate_bpoly1` writes
+/// `Σ_{a=0}^{k} c(a)·b_{a,k}(s)` for `k ≤ 3`, written out as SciPy's `evaluate_bpoly1` writes
 /// it (each product left to right, the terms summed left to right), so that the values have
 /// its bits.
 #[inline(always)]
-fn bernstein_sum<const K: usize>(s: f64, c: impl Fn(usize) -> f64) -> f64 {
+fn bernstein_sum(k: usize, s: f64, c: impl Fn(usize) -> f64) -> f64 {
+    debug_assert!(k <= 3, "the written-out sum stops at degree 3");
     let s1 = 1.0 - s;
-    match K {
+    match k {
         0 => c(0),
         1 => c(0) * s1 + c(1) * s,
         2 => c(0) * s1 * s1 + c(1) * 2.0 * s1 * s + c(2) * s * s,
@@ -188,6 +129,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::curve::Beyond;
     use crate::error::Error;
     use crate::oracle::proptest_config;
 

@@ -7,12 +7,16 @@
 //!   ([`PiecewisePolynomial::from_decreasing`], [`PiecewisePolynomial::to_decreasing`]).
 //! - `extrapolation.rs`: evaluation with the end pieces continued
 //!   ([`PiecewisePolynomial::eval_extrapolated_into`]).
-//! - `power_form.rs`: [`PowerFormRef`], SciPy's `PPoly` arrays evaluated in place (Horner,
-//!   the end pieces continued or NaN).
-//! - `bernstein_form.rs`: [`BernsteinFormRef`], SciPy's `BPoly` arrays evaluated in place
-//!   (the Bernstein sum or de Casteljau in each piece).
+//! - `piecewise_ref.rs`: [`PiecewiseRef`], SciPy's coefficient arrays evaluated in place,
+//!   generic over the basis of the pieces ([`PieceBasis`]): the checks of the arrays and the
+//!   batch drivers (derivative order, the end pieces continued or NaN, kernels of fixed order,
+//!   the thread pool), written once.
+//! - `power_form.rs`: [`PowerBasis`] (Horner's rule in `x − x_j`), [`PowerFormRef`] for
+//!   SciPy's `PPoly`.
+//! - `bernstein_form.rs`: [`BernsteinBasis`] (the Bernstein sum or de Casteljau in
+//!   `(x − x_j)/h_j`), [`BernsteinFormRef`] for SciPy's `BPoly`.
 //! - `piece_search.rs`: the piece of a point on breakpoints read in place (the B-spline
-//!   evaluator's bucket table or a binary search) and the batch loop the two share.
+//!   evaluator's bucket table or a binary search) and the batch loop over the points.
 //! - `hermite_bernstein.rs`: Hermite interpolation in Bernstein form with derivatives of any
 //!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
 //! - `hermite_bspline.rs`: cubic Hermite data written into the knots and coefficients of a
@@ -32,12 +36,13 @@ mod hermite_bernstein;
 mod hermite_bspline;
 mod integral;
 mod piece_search;
+mod piecewise_ref;
 mod power_form;
 pub(crate) mod ppform;
 mod quasi_interpolation;
 mod roots;
 
-pub use bernstein_form::BernsteinFormRef;
+pub use bernstein_form::{BernsteinBasis, BernsteinFormRef};
 pub use divided_difference::{
     bspline_divided_difference, divided_difference, divided_difference_explicit, truncated_power,
     NewtonForm,
@@ -45,7 +50,8 @@ pub use divided_difference::{
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use hermite_bernstein::{hermite_bernstein, piecewise_hermite_bernstein, MAX_HERMITE_DEGREE};
 pub use hermite_bspline::{cubic_hermite_bspline_into, cubic_hermite_bspline_len};
-pub use power_form::PowerFormRef;
+pub use piecewise_ref::{Piece, PieceBasis, PiecewiseRef, FIXED_ORDER_MAX};
+pub use power_form::{PowerBasis, PowerFormRef};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
 pub use quasi_interpolation::{
     quasi_interpolate, quasi_interpolate_expression, sample_quasi_interpolant,

@@ -1,6 +1,5 @@
 //! Piece location on breakpoints read in place (SciPy's `PPoly.x`, `BPoly.x`), and the batch
-//! loop shared by the in-place evaluators of [`crate::pp::PowerFormRef`] and
-//! [`crate::pp::BernsteinFormRef`].
+//! loop of the in-place view [`crate::pp::PiecewiseRef`] (either basis).
 //!
 //! Increasing breakpoints `x_0 ≤ … ≤ x_m` (`x_0 < x_m`) may repeat; the pieces between
 //! repeated ones are empty and never evaluated. A point `x_0 ≤ x < x_m` lies in the piece `j`
@@ -18,64 +17,22 @@ use rayon::prelude::*;
 
 use crate::curve::fast_eval::locate::PieceLocator;
 use crate::curve::Beyond;
-use crate::error::{check_finite, Error, Result};
+use crate::error::{Error, Result};
 
 /// Batches of at least this many points run on the rayon pool (as the B-spline evaluator's
 /// batches from Python).
 pub(crate) const PAR_MIN_POINTS: usize = 1 << 14;
 
+/// Points whose pieces are found before their values are computed (see `for_each_point`): a
+/// stack array of this many piece numbers.
+const BLOCK: usize = 64;
+
+/// The piece number of a point whose value is not defined (NaN is written).
+const UNDEFINED: usize = usize::MAX;
+
 /// Smallest number of points a parallel task takes (the per-task cost, a wake-up, stays
 /// negligible).
 const PAR_CHUNK: usize = 1 << 13;
-
-/// The checks of SciPy's arrays that cost no pass over them: `c` holds `order·pieces·dim`
-/// numbers for `pieces + 1 ≥ 2` breakpoints, the end breakpoints are finite and differ (the
-/// order of the others, monotonic the way the ends go, is the caller's to guarantee, as
-/// SciPy's constructor checks it).
-///
-/// # Errors
-/// [`Error::TooFew`] for fewer than two breakpoints, an order or a dimension of 0;
-/// [`Error::LengthMismatch`] if `c` does not hold `order·pieces·dim` numbers;
-/// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
-/// if the first and the last breakpoint are equal.
-pub(crate) fn check_arrays(c: &[f64], order: usize, breakpoints: &[f64], dim: usize) -> Result<()> {
-    if breakpoints.len() < 2 {
-        return Err(Error::TooFew {
-            what: "breakpoints",
-            min: 2,
-            got: breakpoints.len(),
-        });
-    }
-    if order == 0 || dim == 0 {
-        return Err(Error::TooFew {
-            what: if order == 0 {
-                "coefficients a piece (order)"
-            } else {
-                "numbers a value (dim)"
-            },
-            min: 1,
-            got: 0,
-        });
-    }
-    let pieces = breakpoints.len() - 1;
-    let want = order
-        .checked_mul(pieces)
-        .and_then(|v| v.checked_mul(dim))
-        .unwrap_or(usize::MAX);
-    if c.len() != want {
-        return Err(Error::LengthMismatch {
-            what: "coefficients (order × pieces × dim)",
-            expected: want,
-            got: c.len(),
-        });
-    }
-    let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
-    check_finite("breakpoints (the ends)", &[lo, hi])?;
-    if lo == hi {
-        return Err(Error::EmptyDomain { min: lo, max: hi });
-    }
-    Ok(())
-}
 
 /// The piece of a point on breakpoints read in place (see the module documentation).
 #[derive(Debug)]
@@ -93,7 +50,7 @@ pub(crate) struct PieceSearch<'a> {
 
 impl<'a> PieceSearch<'a> {
     /// The search on `breakpoints` (at least two, monotonic, the ends different: see
-    /// [`check_arrays`]) for a batch of `points` points.
+    /// [`crate::pp::PiecewiseRef::new`]) for a batch of `points` points.
     pub(crate) fn new(breakpoints: &'a [f64], points: usize) -> Self {
         let pieces = breakpoints.len() - 1;
         let descending = breakpoints[pieces] < breakpoints[0];
@@ -197,16 +154,38 @@ impl<'a> PieceSearch<'a> {
         let (lo, hi) = self.domain();
         let continued = beyond == Beyond::Continue;
         let defined = |x: f64| (lo <= x && x <= hi) || (continued && x.is_finite());
-        // true when every defined value is finite
+        // true when every defined value is finite. In blocks: the pieces of a block first,
+        // then its values, so that the processor overlaps the searches (a chain of dependent
+        // loads a point) of many points, and the evaluations of many, instead of the few whose
+        // search and evaluation together fit in its window
         let run = |xs: &[f64], out: &mut [f64]| -> bool {
             let mut scratch = new_scratch();
             let mut finite = true;
-            for (&x, o) in xs.iter().zip(out.chunks_exact_mut(dim)) {
-                if defined(x) {
-                    kernel(&mut scratch, self.piece(x), x, o);
-                    finite &= o.iter().all(|v| v.is_finite());
-                } else {
-                    o.fill(f64::NAN);
+            let mut pieces = [UNDEFINED; BLOCK];
+            for (xs, out) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK * dim)) {
+                for (j, &x) in pieces.iter_mut().zip(xs) {
+                    *j = if defined(x) { self.piece(x) } else { UNDEFINED };
+                }
+                if dim == 1 {
+                    // scalar values (SciPy's 1-D `y`): a row is one number, its length known
+                    // to the kernel
+                    for ((&x, o), &j) in xs.iter().zip(out.iter_mut()).zip(&pieces) {
+                        if j == UNDEFINED {
+                            *o = f64::NAN;
+                        } else {
+                            kernel(&mut scratch, j, x, std::slice::from_mut(o));
+                            finite &= o.is_finite();
+                        }
+                    }
+                    continue;
+                }
+                for ((&x, o), &j) in xs.iter().zip(out.chunks_exact_mut(dim)).zip(&pieces) {
+                    if j == UNDEFINED {
+                        o.fill(f64::NAN);
+                    } else {
+                        kernel(&mut scratch, j, x, o);
+                        finite &= o.iter().all(|v| v.is_finite());
+                    }
                 }
             }
             finite

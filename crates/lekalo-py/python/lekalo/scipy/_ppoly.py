@@ -53,6 +53,27 @@ def _spline_derivative(s: BSpline, nu: int) -> BSpline:
     return BSpline.construct_fast(np.asarray(curve.knots), c, s.k - nu, s.extrapolate, s.axis)
 
 
+def _points_and_order(x: Any, nu: Any) -> tuple[np.ndarray, int]:
+    """The points as an array (an object array as float64) and the derivative order as a
+    non-negative int, with SciPy's errors: the argument checks of both call paths."""
+    x = np.asarray(x)
+    if x.dtype == object:
+        x = x.astype(np.float64)
+    nu = operator.index(nu)
+    if nu < 0:
+        raise ValueError("Order of derivative cannot be negative")
+    return x, nu
+
+
+def _points_at_axis(out: np.ndarray, ndim: int, axis: int) -> np.ndarray:
+    """Values of shape ``x.shape + tail`` (``ndim`` the dimension of ``x``) with the point axes
+    moved to ``axis`` of the tail, SciPy's layout."""
+    if axis == 0:
+        return out
+    axes = list(range(out.ndim))
+    return out.transpose(axes[ndim : ndim + axis] + axes[:ndim] + axes[ndim + axis :])
+
+
 # The least batch for which a piecewise polynomial made from a spline reads its coefficients
 # (O(pieces), once) to evaluate them in place, Horner's rule on SciPy's layout, about twice as
 # fast a point as the B-spline evaluator's basis kernel (docs/moving-from-scipy.md). The two
@@ -234,12 +255,7 @@ class _PPolyBase:
                 except Exception:
                     pass
             return s(x, 0, extrapolate)
-        x = np.asarray(x)
-        if x.dtype == object:
-            x = x.astype(np.float64)
-        nu = operator.index(nu)
-        if nu < 0:
-            raise ValueError("Order of derivative cannot be negative")
+        x, nu = _points_and_order(x, nu)
         if nu > self._degree:
             return self.derivative(nu)(x, 0, extrapolate)
         s = self._spline
@@ -261,21 +277,12 @@ class _PPolyBase:
                 xf = s.t[s.k] + (xf - s.t[s.k]) % (s.t[n] - s.t[s.k])
             vals = ev.eval_extrapolated(xf, nu)
         out = _from_columns(vals, np.iscomplexobj(s.c)).reshape(x.shape + s.c.shape[1:])
-        if self.axis != 0:
-            axes = list(range(out.ndim))
-            axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
-            out = out.transpose(axes)
-        return out
+        return _points_at_axis(out, x.ndim, self.axis)
 
     def _call_in_place(self, c: np.ndarray, xb: np.ndarray, x: Any, nu: Any, extrapolate: Any) -> np.ndarray:
         """``__call__`` on the coefficient arrays in place (real, C-contiguous): periodic
         points wrapped into ``[x[0], x[-1]]`` first, as SciPy does."""
-        x = np.asarray(x)
-        if x.dtype == object:
-            x = x.astype(np.float64)
-        nu = operator.index(nu)
-        if nu < 0:
-            raise ValueError("Order of derivative cannot be negative")
+        x, nu = _points_and_order(x, nu)
         xf = np.ascontiguousarray(x.ravel(), dtype=np.float64)
         if extrapolate == "periodic":
             xf = xb[0] + (xf - xb[0]) % (xb[-1] - xb[0])
@@ -283,11 +290,7 @@ class _PPolyBase:
         cc = c if c.ndim <= 3 else c.reshape(c.shape[0], c.shape[1], -1)
         vals = self._values_in_place(cc, xb, xf, nu, bool(extrapolate))
         out = vals.reshape(x.shape + c.shape[2:])
-        if self.axis != 0:
-            axes = list(range(out.ndim))
-            axes = axes[x.ndim : x.ndim + self.axis] + axes[: x.ndim] + axes[x.ndim + self.axis :]
-            out = out.transpose(axes)
-        return out
+        return _points_at_axis(out, x.ndim, self.axis)
 
     def derivative(self, nu: int = 1):
         """The ``nu``-th derivative as a piecewise polynomial of the same class (order reduced

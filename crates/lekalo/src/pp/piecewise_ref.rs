@@ -1,0 +1,497 @@
+//! A piecewise polynomial read in place from SciPy's coefficient arrays ([`PiecewiseRef`]),
+//! generic over the basis of its pieces ([`PieceBasis`]): the local power basis of `PPoly`
+//! ([`PowerFormRef`], `power_form.rs`) or the Bernstein basis of `BPoly` ([`BernsteinFormRef`],
+//! `bernstein_form.rs`). The arrays, their checks and the batch drivers (the piece search,
+//! extrapolation or NaN, the derivative order, the kernels of fixed order, the thread pool) are
+//! written once here; a basis says only how the local coordinate of a piece is formed and how a
+//! piece is evaluated at it. `docs/theory/pp.md#extrapolation-in-pp-form`.
+//!
+//! Layout (SciPy's): coefficients `c` of shape `(k, pieces, dim)`, `c[m, i, d]` at
+//! `(m·pieces + i)·dim + d`, on `pieces + 1` monotonic breakpoints (either order, as SciPy
+//! allows); repeated breakpoints bound empty pieces, never evaluated (`piece_search.rs`).
+
+use std::fmt::Debug;
+use std::marker::PhantomData;
+
+use crate::curve::Beyond;
+use crate::error::{check_finite, Error, Result};
+use crate::pp::piece_search::PieceSearch;
+#[cfg(doc)]
+use crate::pp::{BernsteinFormRef, PowerFormRef};
+
+/// The orders up to which the values (`nu = 0`) have a kernel with the order fixed at compile
+/// time (the loops over the coefficients unrolled); higher orders and derivatives take the
+/// kernel of any order.
+pub const FIXED_ORDER_MAX: usize = 6;
+
+/// One piece `j` of a [`PiecewiseRef`]: its coefficients read in place and its breakpoints.
+#[derive(Debug, Clone, Copy)]
+pub struct Piece<'a> {
+    c: &'a [f64],
+    breakpoints: &'a [f64],
+    order: usize,
+    dim: usize,
+    j: usize,
+}
+
+impl Piece<'_> {
+    /// `c[m, j, d]`: coefficient `m` (`0 ≤ m < order`) of coordinate `d` of this piece.
+    #[inline(always)]
+    #[must_use]
+    pub fn coefficient(&self, m: usize, d: usize) -> f64 {
+        let pieces = self.breakpoints.len() - 1;
+        self.c[(m * pieces + self.j) * self.dim + d]
+    }
+
+    /// The coefficients of this piece, `order` of them, for every coordinate.
+    #[inline(always)]
+    #[must_use]
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// The breakpoint `x_j` that starts the piece (its left end, or its right end on decreasing
+    /// breakpoints).
+    #[inline(always)]
+    #[must_use]
+    pub fn start(&self) -> f64 {
+        self.breakpoints[self.j]
+    }
+
+    /// `h_j = x_{j+1} − x_j` (negative on decreasing breakpoints, never 0 for a piece that is
+    /// evaluated).
+    #[inline(always)]
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.breakpoints[self.j + 1] - self.breakpoints[self.j]
+    }
+}
+
+mod sealed {
+    /// Only the bases of this module implement [`super::PieceBasis`].
+    pub trait Sealed {}
+    impl Sealed for crate::pp::power_form::PowerBasis {}
+    impl Sealed for crate::pp::bernstein_form::BernsteinBasis {}
+}
+
+/// What differs between the bases of a [`PiecewiseRef`]: the local coordinate `t` of a point
+/// `x` in its piece and the evaluation of the piece at `t`. Implemented by
+/// [`crate::pp::PowerBasis`] (`t = x − x_j`, Horner's rule) and [`crate::pp::BernsteinBasis`]
+/// (`t = (x − x_j)/h_j`, the Bernstein sum or de Casteljau's algorithm); sealed.
+pub trait PieceBasis: sealed::Sealed + Debug + Clone + Copy + Send + Sync {
+    /// The local coordinate of the finite `x` in `piece`.
+    fn local(piece: &Piece<'_>, x: f64) -> f64;
+
+    /// The values (`nu = 0`) of `piece` at `t` into `o` (`dim` numbers), the order `K` of the
+    /// piece known at compile time (`1 ≤ K ≤` [`FIXED_ORDER_MAX`]). The same operations in the
+    /// same order as [`PieceBasis::derivative`] with `nu = 0`, so the same bits.
+    fn values<const K: usize>(piece: &Piece<'_>, t: f64, o: &mut [f64]);
+
+    /// `D^nu` (`nu < order`, with respect to `x`) of `piece` at `t` into `o` (`dim` numbers),
+    /// `scratch` of [`PieceBasis::scratch_len`] numbers.
+    fn derivative(piece: &Piece<'_>, t: f64, nu: usize, scratch: &mut [f64], o: &mut [f64]);
+
+    /// The scratch [`PieceBasis::derivative`] needs for pieces of order `order`.
+    fn scratch_len(order: usize) -> usize;
+}
+
+/// Borrowed coefficients of a piecewise polynomial in SciPy's layout (see the module
+/// documentation), each piece in the basis `B`: on `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` on
+/// decreasing breakpoints) `f(x) = Σ_m c[m, j]·φ_m(t)` in the local coordinate `t` of `B`.
+/// [`PowerFormRef`] is SciPy's `PPoly`, [`BernsteinFormRef`] its `BPoly`.
+#[derive(Debug, Clone, Copy)]
+pub struct PiecewiseRef<'a, B: PieceBasis> {
+    c: &'a [f64],
+    order: usize,
+    breakpoints: &'a [f64],
+    dim: usize,
+    basis: PhantomData<B>,
+}
+
+impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
+    /// The piecewise polynomial of order `order` (`k` coefficients a piece) on `breakpoints`
+    /// (`pieces + 1` of them, monotonic, the ends different) with the coefficients `c`
+    /// (`k·pieces·dim` numbers, SciPy's layout). The order of the breakpoints is the caller's
+    /// to guarantee (SciPy's constructor checks it): only their ends are checked here, so that a
+    /// call costs no pass over the arrays. O(1).
+    ///
+    /// # Errors
+    /// [`Error::TooFew`] for fewer than two breakpoints, an order or a dimension of 0;
+    /// [`Error::LengthMismatch`] if `c` does not hold `k·pieces·dim` numbers;
+    /// [`Error::NonFinite`] for an end breakpoint that is not finite; [`Error::EmptyDomain`]
+    /// if the first and the last breakpoint are equal.
+    pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
+        if breakpoints.len() < 2 {
+            return Err(Error::TooFew {
+                what: "breakpoints",
+                min: 2,
+                got: breakpoints.len(),
+            });
+        }
+        if order == 0 || dim == 0 {
+            return Err(Error::TooFew {
+                what: if order == 0 {
+                    "coefficients a piece (order)"
+                } else {
+                    "numbers a value (dim)"
+                },
+                min: 1,
+                got: 0,
+            });
+        }
+        let pieces = breakpoints.len() - 1;
+        let want = order
+            .checked_mul(pieces)
+            .and_then(|v| v.checked_mul(dim))
+            .unwrap_or(usize::MAX);
+        if c.len() != want {
+            return Err(Error::LengthMismatch {
+                what: "coefficients (order × pieces × dim)",
+                expected: want,
+                got: c.len(),
+            });
+        }
+        let (lo, hi) = (breakpoints[0], breakpoints[pieces]);
+        check_finite("breakpoints (the ends)", &[lo, hi])?;
+        if lo == hi {
+            return Err(Error::EmptyDomain { min: lo, max: hi });
+        }
+        Ok(PiecewiseRef {
+            c,
+            order,
+            breakpoints,
+            dim,
+            basis: PhantomData,
+        })
+    }
+
+    /// Piece `j` (`j < pieces`).
+    #[inline(always)]
+    fn piece(&self, j: usize) -> Piece<'a> {
+        self.piece_of_dim(j, self.dim)
+    }
+
+    /// Piece `j` with the dimension `dim` (`self.dim`) given where the caller knows it as a
+    /// constant.
+    #[inline(always)]
+    fn piece_of_dim(&self, j: usize, dim: usize) -> Piece<'a> {
+        debug_assert_eq!(dim, self.dim, "the dimension of the arrays");
+        Piece {
+            c: self.c,
+            breakpoints: self.breakpoints,
+            order: self.order,
+            dim,
+            j,
+        }
+    }
+
+    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point), the end pieces
+    /// continued; every `x` must be finite. As [`PiecewiseRef::par_eval_beyond`] with
+    /// [`Beyond::Continue`], which see.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
+    /// [`Error::NonFinite`] for a NaN or infinite `x`, or a value that overflows.
+    pub fn par_eval_extrapolated(&self, xs: &[f64], nu: usize, out: &mut [f64]) -> Result<()> {
+        check_finite("x", xs)?;
+        self.par_eval_beyond(xs, nu, Beyond::Continue, out)
+    }
+
+    /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point): on the piece `j` with
+    /// `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` when decreasing, as SciPy) the basis `B`'s
+    /// evaluation at the local coordinate of `x` ([`PieceBasis`]). Outside the breakpoints the
+    /// end pieces are continued or NaN is written, as `beyond` says (SciPy's `extrapolate`);
+    /// NaN at a NaN or infinite `x`. Orders `nu ≥ k` give zeros. The values of orders up to
+    /// [`FIXED_ORDER_MAX`] by kernels with the order fixed at compile time. The piece by the
+    /// bucket table of the B-spline evaluator when there are at least as many points as pieces
+    /// (O(1) a point for spread-out breakpoints), else by binary search; on the rayon pool from
+    /// 16384 points. O(points·(cost of a piece)), plus O(pieces) for the table; one scratch of
+    /// [`PieceBasis::scratch_len`] numbers a task for derivatives.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point;
+    /// [`Error::NonFinite`] for a value that overflows.
+    pub fn par_eval_beyond(
+        &self,
+        xs: &[f64],
+        nu: usize,
+        beyond: Beyond,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let search = PieceSearch::new(self.breakpoints, xs.len());
+        let (k, dim) = (self.order, self.dim);
+        if nu >= k {
+            return search.for_each_point(xs, dim, beyond, out, || (), |(), _, _, o| o.fill(0.0));
+        }
+        // the values with the order fixed, and the dimension too when it is 1 (the piece's
+        // stride then a constant)
+        macro_rules! fixed {
+            ($k:literal) => {
+                if dim == 1 {
+                    search.for_each_point(
+                        xs,
+                        1,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let piece = self.piece_of_dim(j, 1);
+                            B::values::<$k>(&piece, B::local(&piece, x), o);
+                        },
+                    )
+                } else {
+                    search.for_each_point(
+                        xs,
+                        dim,
+                        beyond,
+                        out,
+                        || (),
+                        |(), j, x, o| {
+                            let piece = self.piece(j);
+                            B::values::<$k>(&piece, B::local(&piece, x), o);
+                        },
+                    )
+                }
+            };
+        }
+        match (nu, k) {
+            (0, 1) => fixed!(1),
+            (0, 2) => fixed!(2),
+            (0, 3) => fixed!(3),
+            (0, 4) => fixed!(4),
+            (0, 5) => fixed!(5),
+            (0, 6) => fixed!(6),
+            _ => search.for_each_point(
+                xs,
+                dim,
+                beyond,
+                out,
+                || vec![0.0; B::scratch_len(k)],
+                |w, j, x, o| {
+                    let piece = self.piece(j);
+                    B::derivative(&piece, B::local(&piece, x), nu, w, o);
+                },
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::oracle::proptest_config;
+    use crate::pp::{BernsteinFormRef, PowerFormRef};
+
+    /// The piece of `x` by definition: increasing, the last `j` with `x_j ≤ x`; decreasing, the
+    /// last `j` with `x_j ≥ x`; the first or last non-empty piece beyond the ends.
+    fn piece_of(b: &[f64], x: f64) -> usize {
+        let pieces = b.len() - 1;
+        let non_empty: Vec<usize> = (0..pieces).filter(|&j| b[j] != b[j + 1]).collect();
+        let descending = b[pieces] < b[0];
+        let (before, at_or_after_end) = if descending {
+            (x > b[0], x <= b[pieces])
+        } else {
+            (x < b[0], x >= b[pieces])
+        };
+        if before {
+            non_empty[0]
+        } else if at_or_after_end {
+            non_empty[non_empty.len() - 1]
+        } else if descending {
+            (0..pieces).rev().find(|&j| b[j] >= x).unwrap_or(0)
+        } else {
+            (0..pieces).rev().find(|&j| b[j] <= x).unwrap_or(0)
+        }
+    }
+
+    /// SciPy's arrays, as the test's direct loops read them.
+    #[derive(Clone, Copy)]
+    struct Arrays<'a> {
+        c: &'a [f64],
+        order: usize,
+        b: &'a [f64],
+        dim: usize,
+    }
+
+    /// The power form's kernel as it was written before the view became generic, for
+    /// coordinate `d` on piece `j`: `Σ_{s≥r} c_s·s!/(s−r)!·u^{s−r}` in `u = x − x_j` by Horner's
+    /// rule, the highest power first.
+    fn horner_loop(a: &Arrays<'_>, j: usize, d: usize, x: f64, r: usize) -> f64 {
+        let (k, pieces) = (a.order, a.b.len() - 1);
+        if r >= k {
+            return 0.0;
+        }
+        let u = x - a.b[j];
+        let mut v = 0.0;
+        for s in (r..k).rev() {
+            let falling: f64 = (s - r + 1..=s).map(|q| q as f64).product();
+            v = v * u + falling * a.c[((k - 1 - s) * pieces + j) * a.dim + d];
+        }
+        v
+    }
+
+    /// The Bernstein form's kernel as it was written before the view became generic, for one
+    /// coordinate: the forward differences `Δ^nu c` scaled by `k!/(k − nu)!`, then SciPy's
+    /// written-out sum up to degree 3 or de Casteljau's convex combinations, over `h^nu`.
+    fn bernstein_loop(arrays: &Arrays<'_>, j: usize, d: usize, x: f64, nu: usize) -> f64 {
+        let Arrays { c, order, b, dim } = *arrays;
+        let (k, pieces) = (order - 1, b.len() - 1);
+        if nu > k {
+            return 0.0;
+        }
+        let h = b[j + 1] - b[j];
+        let s = (x - b[j]) / h;
+        let s1 = 1.0 - s;
+        let mut w: Vec<f64> = (0..=k).map(|a| c[(a * pieces + j) * dim + d]).collect();
+        let (falling, h_nu) = if nu == 0 {
+            (1.0, 1.0)
+        } else {
+            (
+                (k - nu + 1..=k).map(|v| v as f64).product(),
+                (0..nu).fold(1.0, |p, _| p * h),
+            )
+        };
+        for r in 1..=nu {
+            for a in 0..=k - r {
+                w[a] = w[a + 1] - w[a];
+            }
+        }
+        w.truncate(k - nu + 1);
+        if nu > 0 {
+            for wa in &mut w {
+                *wa *= falling;
+            }
+        }
+        let sum = match w.len() - 1 {
+            0 => w[0],
+            1 => w[0] * s1 + w[1] * s,
+            2 => w[0] * s1 * s1 + w[1] * 2.0 * s1 * s + w[2] * s * s,
+            3 => {
+                w[0] * s1 * s1 * s1
+                    + w[1] * 3.0 * s1 * s1 * s
+                    + w[2] * 3.0 * s1 * s * s
+                    + w[3] * s * s * s
+            }
+            _ => {
+                for r in 1..w.len() {
+                    for a in 0..w.len() - r {
+                        w[a] = s1 * w[a] + s * w[a + 1];
+                    }
+                }
+                w[0]
+            }
+        };
+        if nu == 0 {
+            sum
+        } else {
+            sum / h_nu
+        }
+    }
+
+    proptest! {
+        #![proptest_config(proptest_config(96))]
+
+        /// The generic view gives, bit for bit, what a direct loop of Horner's rule (power
+        /// form) or of the Bernstein sum and de Casteljau's algorithm (Bernstein form) gives on
+        /// the piece of each point: random coefficients, orders 1..=8, derivative orders up to
+        /// beyond the degree, increasing and decreasing breakpoints with empty pieces, inside
+        /// and beyond the ends, continued or NaN.
+        #[test]
+        fn the_generic_view_has_the_bits_of_the_direct_loops(
+            order in 1usize..=8,
+            dim in 1usize..=3,
+            gaps in prop::collection::vec(prop_oneof![1 => Just(0.0), 4 => 0.05f64..2.0], 1..=9),
+            start in -5.0f64..5.0,
+            descending in any::<bool>(),
+            seed in prop::collection::vec(-4.0f64..4.0, 1..=300),
+            us in prop::collection::vec(-0.3f64..1.3, 1..=50),
+            nu in 0usize..=9,
+            many in any::<bool>(),
+            continued in any::<bool>(),
+        ) {
+            let mut b = vec![start];
+            for g in &gaps {
+                let last = b[b.len() - 1];
+                b.push(if descending { last - g } else { last + g });
+            }
+            prop_assume!(b[b.len() - 1] != b[0]);
+            let pieces = b.len() - 1;
+            let c: Vec<f64> = (0..order * pieces * dim).map(|i| seed[i % seed.len()] * (1.0 + i as f64 * 1e-3)).collect();
+            let (lo, hi) = (b[0], b[pieces]);
+            let mut xs: Vec<f64> = us.iter().map(|u| lo + (hi - lo) * u).chain(b.iter().copied()).collect();
+            if many {
+                // at least as many points as pieces: the bucket table rather than the bisection
+                while xs.len() < 4 * pieces {
+                    xs.extend_from_within(..);
+                }
+            }
+            let beyond = if continued { Beyond::Continue } else { Beyond::Nan };
+            let (bmin, bmax) = (lo.min(hi), lo.max(hi));
+            let power = PowerFormRef::new(&c, order, &b, dim).unwrap();
+            let bernstein = BernsteinFormRef::new(&c, order, &b, dim).unwrap();
+            let (mut got_p, mut got_b) = (vec![0.0; xs.len() * dim], vec![0.0; xs.len() * dim]);
+            power.par_eval_beyond(&xs, nu, beyond, &mut got_p).unwrap();
+            bernstein.par_eval_beyond(&xs, nu, beyond, &mut got_b).unwrap();
+            let arrays = Arrays { c: &c, order, b: &b, dim };
+            for (i, &x) in xs.iter().enumerate() {
+                let outside = !(bmin..=bmax).contains(&x);
+                let j = piece_of(&b, x);
+                for d in 0..dim {
+                    let (want_p, want_b) = if outside && !continued {
+                        (f64::NAN, f64::NAN)
+                    } else {
+                        (
+                            horner_loop(&arrays, j, d, x, nu),
+                            bernstein_loop(&arrays, j, d, x, nu),
+                        )
+                    };
+                    let (gp, gb) = (got_p[i * dim + d], got_b[i * dim + d]);
+                    prop_assert!(gp.to_bits() == want_p.to_bits() || (gp.is_nan() && want_p.is_nan()),
+                        "power, x = {}, nu = {}, order = {}: {} against {}", x, nu, order, gp, want_p);
+                    prop_assert!(gb.to_bits() == want_b.to_bits() || (gb.is_nan() && want_b.is_nan()),
+                        "Bernstein, x = {}, nu = {}, order = {}: {} against {}", x, nu, order, gb, want_b);
+                }
+            }
+        }
+    }
+
+    /// The arrays are refused by name: too few breakpoints, an order or dimension of 0, a
+    /// wrong coefficient count, ends not finite or equal.
+    #[test]
+    fn bad_arrays_are_refused_by_name() {
+        let c = [1.0; 8];
+        let e = PowerFormRef::new(&c, 4, &[0.0], 2).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::TooFew {
+                    what: "breakpoints",
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = BernsteinFormRef::new(&c, 0, &[0.0, 1.0], 2).unwrap_err();
+        assert!(matches!(e, Error::TooFew { .. }), "{e}");
+        let e = PowerFormRef::new(&c, 4, &[0.0, 1.0], 0).unwrap_err();
+        assert!(matches!(e, Error::TooFew { .. }), "{e}");
+        let e = PowerFormRef::new(&c[..7], 4, &[0.0, 1.0], 2).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::LengthMismatch {
+                    expected: 8,
+                    got: 7,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = BernsteinFormRef::new(&c, 4, &[0.0, f64::NAN], 2).unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        let e = BernsteinFormRef::new(&c, 4, &[2.0, 2.0], 2).unwrap_err();
+        assert!(matches!(e, Error::EmptyDomain { .. }), "{e}");
+    }
+}
