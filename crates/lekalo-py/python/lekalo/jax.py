@@ -61,7 +61,7 @@ except ImportError as e:  # pragma: no cover - the message is the point
         "lekalo.jax needs JAX; install it with `pip install lekalo[jax]` (or `pip install jax`)"
     ) from e
 
-from . import _lekalo
+from . import _jax_ffi, _lekalo
 from ._lekalo import InputError
 
 __all__ = [
@@ -73,6 +73,8 @@ __all__ = [
     "fit_smoothing",
     "interpolate",
 ]
+
+_jax_ffi.register_targets()
 
 
 def _require_x64(name):
@@ -190,35 +192,39 @@ def _curve_lin_shapes(m, dim, width):
 # -- curves ------------------------------------------------------------------------------------
 
 
-def _curve_values_cb(degree, *arrays):
-    return _values_cb(_lekalo.bspline_curve_jvp, (degree,), (1, 2, 1), *arrays)
+def _curve_out_shape(res):
+    """``C(u)``'s shape from the residuals ``(knots, ctrl, u)``: ``u.shape + (dim,)``."""
+    _, ctrl, u = res
+    return u.shape + ctrl.shape[-1:]
 
 
-def _curve_linearize_cb(degree, *arrays):
-    return _fields_cb(_lekalo.bspline_curve_linearize, (degree,), (1, 2, 1), _CURVE_KEYS, *arrays)
+# the curve's JVP (tangents of the control points and of u) and VJP, as XLA FFI targets
+_CURVE_LINEAR = _jax_ffi.LinearPair(
+    "bspline_eval", "lekalo_bspline_jvp", "lekalo_bspline_vjp",
+    kinds=("control", "parameter"), like=(1, 2), out_shape=_curve_out_shape,
+)
+
+
+def _curve_values(degree, knots, ctrl, u):
+    shape = _struct(u.shape + ctrl.shape[-1:])
+    return _jax_ffi.call("lekalo_bspline_eval", shape, (("degree", degree),), knots, ctrl, u)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(0,))
 def _curve(degree, knots, ctrl, u):
-    shape = _struct(u.shape + ctrl.shape[-1:])
-    return _callback(partial(_curve_values_cb, degree), shape, knots, ctrl, u)
+    return _curve_values(degree, knots, ctrl, u)
 
 
 @partial(_curve.defjvp, symbolic_zeros=True)
 def _curve_jvp(degree, primals, tangents):
-    knots, ctrl, u = primals
     dk, dc, du = tangents
     _no_knot_tangent("bspline_eval", dk)
-    m, dim, w = u.shape[0], ctrl.shape[-1], degree + 1
-    cb, shapes = partial(_curve_linearize_cb, degree), _curve_lin_shapes(m, dim, w)
-    values, slopes, first, basis = _linearized("bspline_eval", cb, shapes, knots, ctrl, u)
-    tangent = jnp.zeros((m, dim), jnp.float64)
-    if not isinstance(dc, SymbolicZero):
-        rows = first[:, None] + jnp.arange(w)  # (m, p + 1) control-point indices
-        tangent = tangent + jnp.einsum("mk,mkd->md", basis, dc[rows])
-    if not isinstance(du, SymbolicZero):
-        tangent = tangent + slopes * du[:, None]
-    return values, tangent
+    guard = partial(_first_order_only, "bspline_eval")
+    knots, ctrl, u = (guard(a) for a in primals)
+    values = _curve_values(degree, knots, ctrl, u)
+    lin = [None if isinstance(t, SymbolicZero) else t for t in (dc, du)]
+    tangent = _CURVE_LINEAR.tangent((knots, ctrl, u), lin, (("degree", degree),))
+    return values, jnp.zeros_like(values) if tangent is None else tangent
 
 
 def bspline_eval(knots, control_points, u, degree):
@@ -431,6 +437,12 @@ def _interp_solve_transposed_cb(k, params, t, g):
         return (np.asarray(_lekalo.interpolation_vjp(k, kn, x, v)),)
 
     return _looped(one, (1, 1, 2), params, t, g)[0]
+
+
+def _curve_linearize_cb(degree, *arrays):
+    """The curve's linearisation (``lekalo.bspline_curve_linearize``) by host callback: the
+    interpolation's JVP rule reads ``C'`` and the collocation rows from it."""
+    return _fields_cb(_lekalo.bspline_curve_linearize, (degree,), (1, 2, 1), _CURVE_KEYS, *arrays)
 
 
 def _collocation_solve(k, params, t, first, basis, b):
