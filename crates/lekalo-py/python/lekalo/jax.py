@@ -17,11 +17,21 @@
   parameters.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
-points and the parameters; the knots and degrees are constants. The values come from lekalo through
-``jax.pure_callback`` (bit-for-bit the library's de Boor evaluation); the derivatives from the
-library's linearisation (``lekalo.bspline_curve_linearize``): the sparse basis matrix, ``p + 1``
-entries a parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for
-VJP), plus ``C'(u)`` times the parameter tangent (``docs/theory/derivatives.md``).
+points and the parameters; the knots and degrees are constants.
+
+``bspline_eval`` runs inside the compiled program: its values, JVP and VJP are XLA custom calls
+(FFI targets written against XLA's C ABI in the native module, ``lekalo._jax_ffi``), no host
+callback. The values are lekalo's evaluation (the reference de Boor evaluation for small
+batches, the fast evaluator of ``lekalo.BSplineCurve.__call__`` from 16 parameters a polynomial
+piece; the two agree to 1e-14 relative to the control points); the JVP and VJP are lekalo's
+kernels (``lekalo.bspline_curve_jvp``, ``lekalo.bspline_curve_vjp``), so ``jax.grad`` runs
+lekalo's reverse-mode kernel.
+
+The other functions still call lekalo through ``jax.pure_callback`` (bit-for-bit the
+library's evaluation, about 0.3 ms a call for the callback alone); their derivatives come from
+the library's linearisation (e.g. ``lekalo.bspline_curve_linearize``): the sparse basis matrix,
+``p + 1`` entries a parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a
+scatter, for VJP), plus ``C'(u)`` times the parameter tangent (``docs/theory/derivatives.md``).
 
 Requirements and limits, each with a clear error:
 
@@ -29,10 +39,11 @@ Requirements and limits, each with a clear error:
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
 - no derivatives with respect to the knots (``NotImplementedError``): pass them as constants;
-- parameters must lie in the domain: outside it, the error raised inside the callback reaches
-  the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's message, which names the
-  parameter and the domain (eagerly and under ``jit``);
-- runs on the CPU (the callback copies device arrays to the host).
+- parameters must lie in the domain: outside it, the error raised inside lekalo (the FFI
+  target or the callback) reaches the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's
+  message, which names the parameter and the domain (eagerly and under ``jit``);
+- runs on the CPU: the FFI targets are registered for the CPU platform only, and the callbacks
+  copy device arrays to the host.
 
 >>> import jax, jax.numpy as jnp
 >>> jax.config.update("jax_enable_x64", True)
@@ -231,7 +242,7 @@ def bspline_eval(knots, control_points, u, degree):
     """``C(u)`` of the B-spline curve of ``degree`` on ``knots`` with ``control_points``
     (``(n, dim)``, or ``(n,)`` for a function), at the parameters ``u`` (any shape, in the
     domain ``[knots[degree], knots[n]]``). Returns ``u.shape + (dim,)`` (``u.shape`` for 1-D
-    control points), bit-for-bit lekalo's de Boor evaluation.
+    control points), lekalo's evaluation as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
     respect to ``control_points`` and ``u``; ``knots`` and ``degree`` are constants (``degree``
