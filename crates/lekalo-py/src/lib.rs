@@ -20,7 +20,8 @@
 //!   place, without a curve built: `tck`;
 //! - many curves at once: `batch`;
 //! - derivatives of evaluation for automatic differentiation: `derivatives` (the kernels under
-//!   `lekalo.jax`).
+//!   `lekalo.jax`); `xla_ffi`: kernels as XLA FFI handlers, called by `lekalo.jax` from inside
+//!   compiled JAX programs.
 
 mod batch;
 mod blend;
@@ -44,6 +45,7 @@ mod tck;
 mod tensor;
 mod tensor_values;
 mod words;
+mod xla_ffi;
 
 use pyo3::prelude::*;
 
@@ -103,5 +105,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor_values::register(m)?;
     tck::register(m)?;
     hermite_tck::register(m)?;
+    xla_ffi::register(m)?;
     Ok(())
 }

@@ -413,6 +413,7 @@ def bspline_curve_vjp(
 def bspline_curve_linearize(
     degree: int, knots: ArrayLike, control: ArrayLike, t: ArrayLike
 ) -> dict: ...
+def xla_ffi_handlers() -> Dict[str, int]: ...
 def nurbs_curve_jvp(
     degree: int,
     knots: ArrayLike,

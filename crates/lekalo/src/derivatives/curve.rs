@@ -4,8 +4,9 @@
 use super::checks::{
     check_cotangent, check_input, check_len, check_output, check_scalars, zeroed_output,
 };
+use super::power_sums::control_cotangent_by_power_sums;
 use super::slopes::basis_with_slopes;
-use crate::curve::BSplineCurve;
+use crate::curve::{BSplineCurve, POWER_FORM_MAX_DEGREE};
 use crate::error::Result;
 
 /// The linearisation of a curve's batch evaluation at parameters `t_0 … t_{m−1}`: what
@@ -191,7 +192,11 @@ impl BSplineCurve {
     /// each when given (`None` skips it). The buffers are overwritten. This is the transpose of
     /// [`BSplineCurve::eval_batch_jvp`]: `⟨ḡ, J ẋ⟩ = ⟨Jᵀ ḡ, ẋ⟩`. Basis functions by P&T
     /// A2.3; each parameter scatters into `p + 1` control points. O(m·(p² + p·dim)) plus the
-    /// zeroing of `control_cotangent`.
+    /// zeroing of `control_cotangent`. The control cotangent alone, for at least as many
+    /// parameters as control points (a gradient with respect to the control points), takes a
+    /// division-free path, the same sums to rounding: per-piece power sums for degree ≤
+    /// [`POWER_FORM_MAX_DEGREE`] (the transpose of the power-form evaluation, `power_sums.rs`),
+    /// A2.2 with the reciprocals of the knot differences computed once a span above it.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
@@ -234,6 +239,14 @@ impl BSplineCurve {
             ts.len(),
             parameter_cotangent.as_deref(),
         )?;
+        if let (Some(gp), None) = (control_cotangent.as_deref_mut(), &parameter_cotangent) {
+            if ts.len() >= self.control_points().len() {
+                if self.degree() <= POWER_FORM_MAX_DEGREE {
+                    return control_cotangent_by_power_sums(self, ts, cotangent, gp);
+                }
+                return self.control_cotangent_by_reciprocals(ts, cotangent, gp);
+            }
+        }
         let (p, knots) = (self.degree(), self.knots().as_slice());
         let mut cursor = self.knots().span_cursor(p);
         let mut basis = PointBasis::new(p);
@@ -254,6 +267,64 @@ impl BSplineCurve {
             }
         }
         Ok(())
+    }
+
+    /// `P̄_j = Σ_i N_{j,p}(t_i) ḡ_i` alone (into `gp`, zeroed), for batches with at least as many
+    /// parameters as control points: the basis functions by P&T Algorithm A2.2 with the
+    /// reciprocals `1 / (t_{s+r+1} − t_{s+r+1−l})` of every span `s` computed once
+    /// ([`span_reciprocals`]), so that a parameter costs no division and no derivative, and the
+    /// common orders and dimensions monomorphised. The same numbers as the general path to
+    /// rounding (a product by a reciprocal for a quotient). O(n·p² + m·(p² + p·dim)).
+    fn control_cotangent_by_reciprocals(
+        &self,
+        ts: &[f64],
+        cotangent: &[f64],
+        gp: &mut [f64],
+    ) -> Result<()> {
+        let (p, dim) = (self.degree(), self.dim());
+        let knots = self.knots().as_slice();
+        let recip = span_reciprocals(knots, p, self.control_points().len())?;
+        let mut cursor = self.knots().span_cursor(p);
+        macro_rules! fixed {
+            ($w:literal, $d:literal) => {{
+                for (&t, g) in ts.iter().zip(cotangent.chunks_exact($d)) {
+                    let span = cursor.find(t)?;
+                    let n = basis_by_reciprocals::<$w>(knots, &recip, span, t);
+                    let net = &mut gp[(span - p) * $d..(span + 1) * $d];
+                    for (nk, c) in n.iter().zip(net.chunks_exact_mut($d)) {
+                        for d in 0..$d {
+                            c[d] += nk * g[d];
+                        }
+                    }
+                }
+                Ok(())
+            }};
+        }
+        match (p, dim) {
+            (1, 1) => fixed!(2, 1),
+            (1, 2) => fixed!(2, 2),
+            (1, 3) => fixed!(2, 3),
+            (2, 1) => fixed!(3, 1),
+            (2, 2) => fixed!(3, 2),
+            (2, 3) => fixed!(3, 3),
+            (3, 1) => fixed!(4, 1),
+            (3, 2) => fixed!(4, 2),
+            (3, 3) => fixed!(4, 3),
+            _ => {
+                let mut n = vec![0.0; 3 * (p + 1)];
+                for (&t, g) in ts.iter().zip(cotangent.chunks_exact(dim)) {
+                    let span = cursor.find(t)?;
+                    basis_by_reciprocals_dyn(knots, &recip, p, span, t, &mut n);
+                    let net = &mut gp[(span - p) * dim..(span + 1) * dim];
+                    for (nk, c) in n[..=p].iter().zip(net.chunks_exact_mut(dim)) {
+                        for (x, gi) in c.iter_mut().zip(g) {
+                            *x += nk * gi;
+                        }
+                    }
+                }
+                Ok(())
+            }
+        }
     }
 
     /// The linearisation of [`BSplineCurve::eval_batch`] at `ts`: the values `C(t_i)`
@@ -305,5 +376,83 @@ impl BSplineCurve {
             b.copy_from_slice(basis.values());
         }
         Ok(lin)
+    }
+}
+
+/// `1 / (t_{s+r+1} − t_{s+r+1−l})` for every span `s` in `p..n`, level `l = 1..=p`, `r = 0..l`,
+/// at `[(s − p)·p(p+1)/2 + l(l−1)/2 + r]`: the denominators of P&T Algorithm A2.2. For a
+/// non-empty span each interval `[t_{s+r+1−l}, t_{s+r+1}]` contains `[t_s, t_{s+1}]`, so the
+/// differences are positive; empty spans (never located) get infinities, unused.
+fn span_reciprocals(knots: &[f64], p: usize, n: usize) -> Result<Vec<f64>> {
+    let tri = p * (p + 1) / 2;
+    let size = check_scalars("reciprocal table (spans × p(p + 1)/2)", n - p, tri)?;
+    let mut recip = Vec::with_capacity(size);
+    for s in p..n {
+        for l in 1..=p {
+            for r in 0..l {
+                recip.push(1.0 / (knots[s + r + 1] - knots[s + r + 1 - l]));
+            }
+        }
+    }
+    Ok(recip)
+}
+
+/// The `W = p + 1` non-zero basis functions at `t` in `span` by A2.2 with the reciprocals of
+/// [`span_reciprocals`] (order fixed at compile time, so the triangle stays in registers).
+#[inline(always)]
+fn basis_by_reciprocals<const W: usize>(
+    knots: &[f64],
+    recip: &[f64],
+    span: usize,
+    t: f64,
+) -> [f64; W] {
+    let p = W - 1;
+    let tri = p * W / 2;
+    let rc = &recip[(span - p) * tri..(span - p + 1) * tri];
+    let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
+    nv[0] = 1.0;
+    let mut off = 0;
+    for l in 1..W {
+        left[l] = t - knots[span + 1 - l];
+        right[l] = knots[span + l] - t;
+        let mut saved = 0.0;
+        for r in 0..l {
+            let temp = nv[r] * rc[off + r];
+            nv[r] = saved + right[r + 1] * temp;
+            saved = left[l - r] * temp;
+        }
+        nv[l] = saved;
+        off += l;
+    }
+    nv
+}
+
+/// [`basis_by_reciprocals`] for any degree: the values into `n[..=p]`, `n` scratch of length
+/// `3(p + 1)`.
+fn basis_by_reciprocals_dyn(
+    knots: &[f64],
+    recip: &[f64],
+    p: usize,
+    span: usize,
+    t: f64,
+    n: &mut [f64],
+) {
+    let tri = p * (p + 1) / 2;
+    let rc = &recip[(span - p) * tri..(span - p + 1) * tri];
+    let (nv, rest) = n.split_at_mut(p + 1);
+    let (left, right) = rest.split_at_mut(p + 1);
+    nv[0] = 1.0;
+    let mut off = 0;
+    for l in 1..=p {
+        left[l] = t - knots[span + 1 - l];
+        right[l] = knots[span + l] - t;
+        let mut saved = 0.0;
+        for r in 0..l {
+            let temp = nv[r] * rc[off + r];
+            nv[r] = saved + right[r + 1] * temp;
+            saved = left[l - r] * temp;
+        }
+        nv[l] = saved;
+        off += l;
     }
 }

@@ -26,6 +26,8 @@
 //!   factorisation, forward or transposed).
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
+//! - `power_sums.rs`: the control-point cotangent of a curve by per-piece power sums (the
+//!   transpose of the power-form evaluation), the fast path of a gradient in the control points.
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
@@ -34,6 +36,7 @@ mod curve;
 mod fitting;
 mod interpolation;
 mod nurbs;
+mod power_sums;
 mod slopes;
 mod surface;
 mod tensor;

@@ -178,12 +178,32 @@ proptest! {
         let scale = max_abs(&g) * (max_abs(&tan) + 1.0) * g.len() as f64;
         prop_assert!((lhs - rhs).abs() <= 1e-13 * scale, "<g, J x> = {lhs}, <J^T g, x> = {rhs}");
         // each output alone
+        // (with at least as many parameters as control points, the control cotangent alone
+        // takes the division-free path: the same sums to rounding)
         let mut gp1 = vec![0.0; dp.len()];
         c.eval_batch_vjp(&ts, &g, Some(&mut gp1), None).unwrap();
-        prop_assert_eq!(&gp1, &gp);
+        assert_rel(&gp1, &gp, 1e-13, max_abs(&g), "control cotangent alone");
         let mut gt1 = vec![0.0; ts.len()];
         c.eval_batch_vjp(&ts, &g, None, Some(&mut gt1)).unwrap();
         prop_assert_eq!(&gt1, &gt);
+    }
+
+    /// The division-free paths of the control cotangent (many parameters, no parameter
+    /// cotangent: power sums up to degree 3, reciprocals above) against the general one, on
+    /// the parameters repeated to outnumber the control points, in every degree and dimension
+    /// of the cases (so each monomorphised order and dimension and the generic kernels).
+    #[test]
+    fn curve_control_cotangent_by_reciprocals_matches_the_general_path(
+        (c, ts, _dp, _dt, g) in curve_case()
+    ) {
+        let n = c.control_points().len();
+        let reps = n.div_ceil(ts.len());
+        let (ts, g) = (ts.repeat(reps), g.repeat(reps));
+        prop_assert!(ts.len() >= n, "the fast path needs m >= n");
+        let (mut fast, mut general) = (vec![0.0; n * c.dim()], vec![0.0; n * c.dim()]);
+        c.eval_batch_vjp(&ts, &g, Some(&mut fast), None).unwrap();
+        c.eval_batch_vjp(&ts, &g, Some(&mut general), Some(&mut vec![0.0; ts.len()])).unwrap();
+        assert_rel(&fast, &general, 1e-13, max_abs(&g), "control cotangent by reciprocals");
     }
 
     #[test]
@@ -464,6 +484,19 @@ fn curve_errors_name_the_argument() {
         .eval_batch_vjp(&[f64::NAN], &[1.0, 1.0], Some(&mut gp), None)
         .unwrap_err();
     assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e:?}");
+    // the division-free path (as many parameters as control points) checks the domain too
+    let many = vec![0.5; gp.len()];
+    let mut bad = many.clone();
+    bad[1] = 1.5;
+    let ones = vec![1.0; many.len() * 2];
+    c.eval_batch_vjp(&many, &ones, Some(&mut gp), None).unwrap();
+    let e = c
+        .eval_batch_vjp(&bad, &ones, Some(&mut gp), None)
+        .unwrap_err();
+    assert!(
+        matches!(e, Error::ParameterOutOfDomain { t, .. } if t == 1.5),
+        "{e:?}"
+    );
     let e = c.eval_batch_linearize(&[-0.1]).unwrap_err();
     assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e:?}");
 }
