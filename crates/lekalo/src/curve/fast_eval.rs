@@ -45,6 +45,7 @@ mod kernels;
 pub(crate) mod locate;
 mod nurbs;
 
+pub(crate) use kernels::{basis_by_reciprocals, basis_by_reciprocals_dyn, push_span_reciprocals};
 use kernels::{basis_fixed, power_ders, power_dyn, power_fixed};
 use locate::inner_ball;
 pub(crate) use locate::PieceLocator;
@@ -253,11 +254,7 @@ impl CurveEvaluator {
         let tri = p * (p + 1) / 2;
         let mut recip = Vec::with_capacity(self.spans.len() * tri);
         for &i in &self.spans {
-            for l in 1..=p {
-                for r in 0..l {
-                    recip.push(1.0 / (knots[i + r + 1] - knots[i + r + 1 - l]));
-                }
-            }
+            push_span_reciprocals(knots, p, i, &mut recip);
         }
         KernelData::Basis {
             knots: knots.to_vec(),
@@ -604,23 +601,8 @@ impl CurveEvaluator {
         let dim = self.dim;
         let i = self.spans[j];
         let tri = p * (p + 1) / 2;
-        let rc = &recip[j * tri..(j + 1) * tri];
-        let (nv, rest) = n.split_at_mut(p + 1);
-        let (left, right) = rest.split_at_mut(p + 1);
-        nv[0] = 1.0;
-        let mut off = 0;
-        for l in 1..=p {
-            left[l] = t - knots[i + 1 - l];
-            right[l] = knots[i + l] - t;
-            let mut saved = 0.0;
-            for r in 0..l {
-                let temp = nv[r] * rc[off + r];
-                nv[r] = saved + right[r + 1] * temp;
-                saved = left[l - r] * temp;
-            }
-            nv[l] = saved;
-            off += l;
-        }
+        basis_by_reciprocals_dyn(knots, &recip[j * tri..(j + 1) * tri], p, i, t, n);
+        let nv = &n[..=p];
         o.fill(0.0);
         for (r, &nr) in nv.iter().enumerate() {
             let base = (i - p + r) * dim;

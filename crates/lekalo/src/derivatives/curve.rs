@@ -6,6 +6,9 @@ use super::checks::{
 };
 use super::power_sums::control_cotangent_by_power_sums;
 use super::slopes::basis_with_slopes;
+use crate::curve::fast_eval::{
+    basis_by_reciprocals, basis_by_reciprocals_dyn, push_span_reciprocals,
+};
 use crate::curve::{BSplineCurve, POWER_FORM_MAX_DEGREE};
 use crate::error::Result;
 
@@ -289,7 +292,8 @@ impl BSplineCurve {
             ($w:literal, $d:literal) => {{
                 for (&t, g) in ts.iter().zip(cotangent.chunks_exact($d)) {
                     let span = cursor.find(t)?;
-                    let n = basis_by_reciprocals::<$w>(knots, &recip, span, t);
+                    let n =
+                        basis_by_reciprocals::<$w>(knots, span_triangle(&recip, p, span), span, t);
                     let net = &mut gp[(span - p) * $d..(span + 1) * $d];
                     for (nk, c) in n.iter().zip(net.chunks_exact_mut($d)) {
                         for d in 0..$d {
@@ -314,7 +318,14 @@ impl BSplineCurve {
                 let mut n = vec![0.0; 3 * (p + 1)];
                 for (&t, g) in ts.iter().zip(cotangent.chunks_exact(dim)) {
                     let span = cursor.find(t)?;
-                    basis_by_reciprocals_dyn(knots, &recip, p, span, t, &mut n);
+                    basis_by_reciprocals_dyn(
+                        knots,
+                        span_triangle(&recip, p, span),
+                        p,
+                        span,
+                        t,
+                        &mut n,
+                    );
                     let net = &mut gp[(span - p) * dim..(span + 1) * dim];
                     for (nk, c) in n[..=p].iter().zip(net.chunks_exact_mut(dim)) {
                         for (x, gi) in c.iter_mut().zip(g) {
@@ -379,80 +390,21 @@ impl BSplineCurve {
     }
 }
 
-/// `1 / (t_{s+r+1} − t_{s+r+1−l})` for every span `s` in `p..n`, level `l = 1..=p`, `r = 0..l`,
-/// at `[(s − p)·p(p+1)/2 + l(l−1)/2 + r]`: the denominators of P&T Algorithm A2.2. For a
-/// non-empty span each interval `[t_{s+r+1−l}, t_{s+r+1}]` contains `[t_s, t_{s+1}]`, so the
-/// differences are positive; empty spans (never located) get infinities, unused.
+/// Span `span`'s triangle of the table of [`span_reciprocals`].
+fn span_triangle(recip: &[f64], p: usize, span: usize) -> &[f64] {
+    let tri = p * (p + 1) / 2;
+    &recip[(span - p) * tri..(span - p + 1) * tri]
+}
+
+/// The reciprocal tables of every span `s` in `p..n`, span `s`'s triangle at
+/// `[(s − p)·p(p+1)/2 ..]` ([`push_span_reciprocals`]: the denominators of P&T Algorithm A2.2).
+/// Empty spans (never located) get infinities, unused.
 fn span_reciprocals(knots: &[f64], p: usize, n: usize) -> Result<Vec<f64>> {
     let tri = p * (p + 1) / 2;
     let size = check_scalars("reciprocal table (spans × p(p + 1)/2)", n - p, tri)?;
     let mut recip = Vec::with_capacity(size);
     for s in p..n {
-        for l in 1..=p {
-            for r in 0..l {
-                recip.push(1.0 / (knots[s + r + 1] - knots[s + r + 1 - l]));
-            }
-        }
+        push_span_reciprocals(knots, p, s, &mut recip);
     }
     Ok(recip)
-}
-
-/// The `W = p + 1` non-zero basis functions at `t` in `span` by A2.2 with the reciprocals of
-/// [`span_reciprocals`] (order fixed at compile time, so the triangle stays in registers).
-#[inline(always)]
-fn basis_by_reciprocals<const W: usize>(
-    knots: &[f64],
-    recip: &[f64],
-    span: usize,
-    t: f64,
-) -> [f64; W] {
-    let p = W - 1;
-    let tri = p * W / 2;
-    let rc = &recip[(span - p) * tri..(span - p + 1) * tri];
-    let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
-    nv[0] = 1.0;
-    let mut off = 0;
-    for l in 1..W {
-        left[l] = t - knots[span + 1 - l];
-        right[l] = knots[span + l] - t;
-        let mut saved = 0.0;
-        for r in 0..l {
-            let temp = nv[r] * rc[off + r];
-            nv[r] = saved + right[r + 1] * temp;
-            saved = left[l - r] * temp;
-        }
-        nv[l] = saved;
-        off += l;
-    }
-    nv
-}
-
-/// [`basis_by_reciprocals`] for any degree: the values into `n[..=p]`, `n` scratch of length
-/// `3(p + 1)`.
-fn basis_by_reciprocals_dyn(
-    knots: &[f64],
-    recip: &[f64],
-    p: usize,
-    span: usize,
-    t: f64,
-    n: &mut [f64],
-) {
-    let tri = p * (p + 1) / 2;
-    let rc = &recip[(span - p) * tri..(span - p + 1) * tri];
-    let (nv, rest) = n.split_at_mut(p + 1);
-    let (left, right) = rest.split_at_mut(p + 1);
-    nv[0] = 1.0;
-    let mut off = 0;
-    for l in 1..=p {
-        left[l] = t - knots[span + 1 - l];
-        right[l] = knots[span + l] - t;
-        let mut saved = 0.0;
-        for r in 0..l {
-            let temp = nv[r] * rc[off + r];
-            nv[r] = saved + right[r + 1] * temp;
-            saved = left[l - r] * temp;
-        }
-        nv[l] = saved;
-        off += l;
-    }
 }

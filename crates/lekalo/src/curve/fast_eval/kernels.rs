@@ -39,7 +39,41 @@ pub(super) fn basis_fixed<const W: usize, const D: usize>(
 ) {
     let p = W - 1;
     let tri = p * W / 2;
-    let rc = &recip[j * tri..(j + 1) * tri];
+    let nv = basis_by_reciprocals::<W>(knots, &recip[j * tri..(j + 1) * tri], span, t);
+    let mut acc = [0.0; D];
+    let c = &control[(span - p) * D..(span + 1) * D];
+    for r in 0..W {
+        for d in 0..D {
+            acc[d] += nv[r] * c[r * D + d];
+        }
+    }
+    o[..D].copy_from_slice(&acc);
+}
+
+/// Appends the reciprocals `1 / (t_{i+r+1} − t_{i+r+1−l})` of span `i`, level `l = 1..=p`,
+/// `r = 0..l`, at `[l(l−1)/2 + r]` of the span's triangle: the denominators of P&T Algorithm
+/// A2.2, computed once a span so that a point costs no division. For a non-empty span each
+/// interval `[t_{i+r+1−l}, t_{i+r+1}]` contains `[t_i, t_{i+1}]`, so the differences are
+/// positive.
+pub(crate) fn push_span_reciprocals(knots: &[f64], p: usize, i: usize, out: &mut Vec<f64>) {
+    for l in 1..=p {
+        for r in 0..l {
+            out.push(1.0 / (knots[i + r + 1] - knots[i + r + 1 - l]));
+        }
+    }
+}
+
+/// The `W = p + 1` non-zero basis functions at `t` in `span` by P&T Algorithm A2.2, with the
+/// span's reciprocals `rc` ([`push_span_reciprocals`]) in place of its divisions; the order is
+/// fixed at compile time so that the triangle stays in registers. The same operations in the
+/// same order as [`basis_by_reciprocals_dyn`].
+#[inline(always)]
+pub(crate) fn basis_by_reciprocals<const W: usize>(
+    knots: &[f64],
+    rc: &[f64],
+    span: usize,
+    t: f64,
+) -> [f64; W] {
     let (mut nv, mut left, mut right) = ([0.0; W], [0.0; W], [0.0; W]);
     nv[0] = 1.0;
     let mut off = 0;
@@ -55,14 +89,36 @@ pub(super) fn basis_fixed<const W: usize, const D: usize>(
         nv[l] = saved;
         off += l;
     }
-    let mut acc = [0.0; D];
-    let c = &control[(span - p) * D..(span + 1) * D];
-    for r in 0..W {
-        for d in 0..D {
-            acc[d] += nv[r] * c[r * D + d];
+    nv
+}
+
+/// [`basis_by_reciprocals`] for any degree `p`: the values into `n[..=p]`, `n` scratch of
+/// length `3(p + 1)`.
+#[inline(always)]
+pub(crate) fn basis_by_reciprocals_dyn(
+    knots: &[f64],
+    rc: &[f64],
+    p: usize,
+    span: usize,
+    t: f64,
+    n: &mut [f64],
+) {
+    let (nv, rest) = n.split_at_mut(p + 1);
+    let (left, right) = rest.split_at_mut(p + 1);
+    nv[0] = 1.0;
+    let mut off = 0;
+    for l in 1..=p {
+        left[l] = t - knots[span + 1 - l];
+        right[l] = knots[span + l] - t;
+        let mut saved = 0.0;
+        for r in 0..l {
+            let temp = nv[r] * rc[off + r];
+            nv[r] = saved + right[r + 1] * temp;
+            saved = left[l - r] * temp;
         }
+        nv[l] = saved;
+        off += l;
     }
-    o[..D].copy_from_slice(&acc);
 }
 
 /// Derivatives of orders `0..=kmax` on piece `j` by repeated synthetic division (Knuth, TAOCP
