@@ -10,17 +10,8 @@ jax = pytest.importorskip("jax")
 import jax.numpy as jnp  # noqa: E402
 
 import lekalo  # noqa: E402
+from jax_support import assert_rel, central, x64  # noqa: E402,F401  (x64: autouse fixture)
 from lekalo.jax import bspline_eval, bspline_surface_eval, interpolate, nurbs_eval  # noqa: E402
-
-RTOL = 1e-7
-
-
-@pytest.fixture(autouse=True)
-def x64():
-    old = jax.config.jax_enable_x64
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
 
 
 def curve_case(dim=3):
@@ -39,26 +30,6 @@ def surface_case():
     u = np.array([0.1, 0.3, 0.6, 0.85])
     v = np.array([0.2, 0.45, 0.7, 0.1])
     return ku, kv, net, u, v
-
-
-def central(f, x, h):
-    """Jacobian of f at x by central differences, shape f(x).shape + x.shape."""
-    x = np.asarray(x, dtype=float)
-    cols = []
-    for i in range(x.size):
-        e = np.zeros(x.size)
-        e[i] = h
-        e = e.reshape(x.shape)
-        cols.append((np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * h))
-    return np.stack(cols, axis=-1).reshape(np.shape(f(x)) + x.shape)
-
-
-def assert_rel(a, b, what):
-    a, b = np.asarray(a), np.asarray(b)
-    assert a.shape == b.shape, (what, a.shape, b.shape)
-    err = np.max(np.abs(a - b))
-    scale = max(np.max(np.abs(b)), 1.0)
-    assert err <= RTOL * scale, f"{what}: error {err:.3e} above {RTOL} x {scale:.3e}"
 
 
 def test_values_are_lekalos_bit_for_bit_and_agree_with_scipy():

@@ -11,17 +11,8 @@ jax = pytest.importorskip("jax")
 import jax.numpy as jnp  # noqa: E402
 
 import lekalo  # noqa: E402
+from jax_support import assert_rel, central, x64  # noqa: E402,F401  (x64: autouse fixture)
 from lekalo.jax import fit_least_squares, fit_smoothing, tensor_bspline_eval  # noqa: E402
-
-from test_jax import assert_rel, central  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def x64():
-    old = jax.config.jax_enable_x64
-    jax.config.update("jax_enable_x64", True)
-    yield
-    jax.config.update("jax_enable_x64", old)
 
 
 def lsq_case(dim=2):
