@@ -83,13 +83,16 @@ const ARGUMENTS: [(&str, &str); 6] = [
     ("expression", "f"),
 ];
 
-/// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system) or
+/// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system, a
+/// mesh whose bound stayed above its tolerance) or
 /// `lekalo.InputError` (everything else), an argument named by its keyword
 /// ([`ARGUMENTS`]).
 pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     let numerical = matches!(
         e,
-        lekalo::Error::SingularSystem { .. } | lekalo::Error::IllConditioned { .. }
+        lekalo::Error::SingularSystem { .. }
+            | lekalo::Error::IllConditioned { .. }
+            | lekalo::Error::ToleranceNotMet { .. }
     );
     if let lekalo::Error::InvalidArgument { what, reason } = &e {
         if let Some((_, name)) = ARGUMENTS.iter().find(|(k, _)| k == what) {

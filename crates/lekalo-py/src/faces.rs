@@ -6,6 +6,7 @@
 use lekalo::topology::TrimRegion;
 use lekalo_io::{Shape, StepFace};
 use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -390,8 +391,11 @@ type MeshedFaces<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, Strin
 /// ``(index, reason)`` with its index in ``faces``. Edges without a pcurve get one by projection
 /// first, as ``Face.with_projected_pcurves(tolerance)``. Each face is meshed once and a face
 /// that fails leaves the others as they are without it (``lekalo::topology::mesh_faces_each``;
-/// docs/theory/topology.md, "Faces that cannot be meshed"). Raises ``ValueError`` for a
-/// tolerance that is not positive and finite, or too small for the faces' sizes together.
+/// docs/theory/topology.md, "Faces that cannot be meshed"). A face whose proved deviation
+/// bound stays above the tolerance (refinement stopped at its limit) is in the mesh, and a
+/// ``UserWarning`` names it (its index), its bound and the tolerance that would do. Raises
+/// ``ValueError`` for a tolerance that is not positive and finite, or too small for the faces'
+/// sizes together.
 #[pyfunction]
 pub(crate) fn mesh_faces<'py>(
     py: Python<'py>,
@@ -399,7 +403,7 @@ pub(crate) fn mesh_faces<'py>(
     tolerance: f64,
 ) -> PyResult<MeshedFaces<'py>> {
     let list: Vec<&lekalo::Face> = faces.iter().map(|f| &f.get().inner.face).collect();
-    let (m, failures) = py
+    let (m, failures, coarse) = py
         .detach(|| {
             let mut ready = Vec::with_capacity(list.len());
             let mut failures = Vec::new();
@@ -415,9 +419,24 @@ pub(crate) fn mesh_faces<'py>(
             )?;
             failures.extend(r.failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
             failures.sort_by_key(|(k, _)| *k);
-            Ok::<_, lekalo::Error>((r.join()?, failures))
+            let coarse: Vec<(usize, String)> = r
+                .above_tolerance
+                .iter()
+                .map(|(i, e)| (ready[*i].0, e.to_string()))
+                .collect();
+            Ok::<_, lekalo::Error>((r.join()?, failures, coarse))
         })
         .map_err(lib_err)?;
+    // a face whose proved bound stayed above the tolerance is kept, with a warning (the CLI
+    // writes the mesh and exits with 2)
+    for (k, reason) in &coarse {
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &std::ffi::CString::new(format!("face {k}: {reason}")).unwrap_or_default(),
+            1,
+        )?;
+    }
     let nt = m.triangles.len();
     let tri: Vec<u32> = m.triangles.iter().flatten().copied().collect();
     let tri = PyArray1::from_vec(py, tri).reshape([nt, 3])?.into_any();

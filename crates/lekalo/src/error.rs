@@ -336,6 +336,30 @@ pub enum Error {
         /// The largest size accepted.
         max: usize,
     },
+
+    /// A mesh whose proved deviation bound is above the tolerance asked for: its refinement
+    /// stopped at its limit (rounds or halvings) with triangles still above it. A mesh is never
+    /// reported within a tolerance its bound does not prove; the fix is a larger tolerance, or
+    /// the mesh as it is with this bound.
+    ///
+    /// ```
+    /// use lekalo::Error;
+    /// let e = Error::ToleranceNotMet { what: "mesh of face 3", deviation: 0.25, tolerance: 0.1 };
+    /// assert!(e.to_string().contains("at least 0.25"));
+    /// ```
+    #[error(
+        "{what}: its proved deviation bound {} is above the tolerance {} (refinement \
+         stopped at its limit); use a tolerance of at least {}",
+        readable(.deviation), readable(.tolerance), readable(.deviation)
+    )]
+    ToleranceNotMet {
+        /// What was meshed.
+        what: String,
+        /// The mesh's proved deviation bound.
+        deviation: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
     // -- blending --
     /// Two curves that must share an end point (a deformation's ends, or the corner of a
     /// corner transition) do not: their distance exceeds the tolerance, which is

@@ -88,6 +88,20 @@ impl Mesh {
     }
 }
 
+/// [`Error::ToleranceNotMet`] for the mesh of `what` when its proved deviation bound is above
+/// `tolerance` by more than rounding (bounds are computed in coordinates normalised by the
+/// object's size and scaled back, a few ulps).
+pub(crate) fn check_deviation(what: &str, deviation: f64, tolerance: f64) -> Result<()> {
+    if deviation > tolerance * (1.0 + 8.0 * f64::EPSILON) {
+        return Err(Error::ToleranceNotMet {
+            what: what.into(),
+            deviation,
+            tolerance,
+        });
+    }
+    Ok(())
+}
+
 pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
     check_finite("tessellation tolerance", &[tol])?;
     if !(tol >= MIN_RELATIVE_TOLERANCE * scale) {
@@ -270,6 +284,24 @@ impl QuerySurface {
 pub(crate) mod tests {
     use super::*;
     use crate::{BSplineCurve, BSplineSurface};
+
+    #[test]
+    fn a_deviation_above_the_tolerance_is_an_error_naming_the_bound() {
+        assert_eq!(check_deviation("surface mesh", 0.1, 0.1), Ok(()));
+        // a few ulps of rounding from the normalised coordinates are not above
+        let rounded = 0.1 * (1.0 + 4.0 * f64::EPSILON);
+        assert_eq!(check_deviation("surface mesh", rounded, 0.1), Ok(()));
+        let e = check_deviation("surface mesh", 0.13, 0.1).unwrap_err();
+        assert_eq!(
+            e,
+            Error::ToleranceNotMet {
+                what: "surface mesh".into(),
+                deviation: 0.13,
+                tolerance: 0.1
+            }
+        );
+        assert!(e.to_string().contains("at least 0.13"), "{e}");
+    }
 
     #[test]
     fn polyline_deviation_holds_on_samples() {

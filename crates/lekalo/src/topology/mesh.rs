@@ -10,76 +10,42 @@
 
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation as _};
 
+use super::curvature::Curvature;
 use super::face::{Edge, Face};
 use super::inside::winding_number;
 use super::pcurve::SurfaceClosure;
 use super::seam::{cut_along_seam, SeamPlan};
 use super::shell::EdgeUse;
-use crate::query::{check_tol, triangle_bound, Mesh, MAX_MESH_VERTICES};
-use crate::{Error, Points, Result, Surface};
+use crate::query::{check_tol, Mesh, MAX_MESH_VERTICES};
+use crate::{Error, Points, Result};
 
 /// Samples per knot span of an edge's curve and pcurves before bisection.
 const START_SAMPLES_PER_SPAN: usize = 4;
 /// Most bisections of one segment of an edge.
 const MAX_EDGE_DEPTH: u32 = 30;
+/// Points on a pole side of the domain within this fraction of the domain's width of it, and
+/// apart along it by more, are a loop's run along the pole.
+const POLE_RTOL: f64 = 1e-9;
+/// Most points inserted along one run of a loop along a pole.
+const MAX_POLE_STEPS: f64 = 1e6;
 /// Most rounds of refinement of the triangles above the tolerance.
-const MAX_REFINE_ROUNDS: usize = 24;
+pub(super) const MAX_REFINE_ROUNDS: usize = 24;
 /// Grid points closer to a trim than this fraction of the grid spacing are left out, so no
 /// sliver triangle joins a grid point to a nearby trim segment.
 pub const TRIM_CLEARANCE: f64 = 0.3;
 
-/// Bounds on the second derivatives of a surface in its own parameters and units: `a ≥ |S_uu|`,
-/// `b ≥ |S_uv|`, `c ≥ |S_vv|` over the whole surface, from each Bezier patch's net
-/// (`QuerySurface::net_bounds`, `docs/theory/queries.md#tessellation`) scaled back from the
-/// patch's unit square and the normalised coordinates.
-#[derive(Clone, Copy)]
-struct Curvature {
-    a: f64,
-    b: f64,
-    c: f64,
-}
-
-impl Curvature {
-    fn of(s: &Surface) -> Result<(Self, f64)> {
-        let q = s.to_query()?;
-        let (mut a, mut b, mut c) = (0.0_f64, 0.0_f64, 0.0_f64);
-        for (k, &((u0, u1), (v0, v1))) in q.ranges.iter().enumerate() {
-            let (pa, pb, pc) = q.net_bounds(q.patch(k)).ok_or(Error::InvalidArgument {
-                what: "face surface",
-                reason: "a weight is not positive; a rational surface needs positive weights"
-                    .into(),
-            })?;
-            let (du, dv) = (u1 - u0, v1 - v0);
-            if du > 0.0 && dv > 0.0 {
-                a = a.max(pa * q.scale / (du * du));
-                b = b.max(pb * q.scale / (du * dv));
-                c = c.max(pc * q.scale / (dv * dv));
-            }
-        }
-        Ok((Curvature { a, b, c }, q.scale))
-    }
-
-    /// `M(e) ≥ max |D²S[e, e]|` for the parameter step `e`.
-    fn along(&self, eu: f64, ev: f64) -> f64 {
-        self.a * eu * eu + 2.0 * self.b * (eu * ev).abs() + self.c * ev * ev
-    }
-
-    /// The deviation bound of the linear interpolant over a parameter triangle
-    /// ([`triangle_bound`] of its edges' `M`).
-    fn triangle(&self, p: [[f64; 2]; 3]) -> f64 {
-        let m = |i: usize, j: usize| self.along(p[j][0] - p[i][0], p[j][1] - p[i][1]);
-        triangle_bound([m(0, 1), m(0, 2), m(1, 2)])
-    }
-}
-
-/// What one face needs while its edges are sampled: its surface's bounds and grid spacing.
+/// What one face needs while its edges are sampled: its surface's bounds and grid spacing,
+/// patch by patch.
 pub(super) struct FacePlan<'a> {
     face: &'a Face,
     curv: Curvature,
-    /// Grid spacing in `u` and `v`.
+    /// The least grid spacing in `u` and in `v` (the steps along seam and pole lines).
     h: [f64; 2],
     /// The surface's seams: a pcurve projected across one leaves the domain by whole periods.
     closure: SurfaceClosure,
+    /// Most rounds of refinement ([`MAX_REFINE_ROUNDS`]; fewer in tests of the report of a
+    /// mesh above its tolerance).
+    rounds: usize,
 }
 
 impl FacePlan<'_> {
@@ -91,6 +57,53 @@ impl FacePlan<'_> {
         let s = self.face.surface();
         let w = self.closure.wrap(s.domain(), uv);
         s.eval(w[0], w[1])
+    }
+}
+
+impl FacePlan<'_> {
+    /// The free parameter (0 = `u`) when `a` and `b` are two points of one pole of the surface
+    /// (a side that is one point, [`SurfaceClosure`]) apart along it by more than rounding.
+    fn along_pole(&self, a: [f64; 2], b: [f64; 2]) -> Option<usize> {
+        let dom = self.face.surface().domain();
+        let (wa, wb) = (self.closure.wrap(dom, a), self.closure.wrap(dom, b));
+        let sides = [dom.0 .0, dom.0 .1, dom.1 .0, dom.1 .1];
+        let widths = [dom.0 .1 - dom.0 .0, dom.1 .1 - dom.1 .0];
+        (0..4).find_map(|k| {
+            let (fixed, free) = (k / 2, 1 - k / 2);
+            let on = |w: [f64; 2]| (w[fixed] - sides[k]).abs() <= POLE_RTOL * widths[fixed];
+            (self.closure.pole[k]
+                && on(wa)
+                && on(wb)
+                && (a[free] - b[free]).abs() > POLE_RTOL * widths[free])
+                .then_some(free)
+        })
+    }
+
+    /// The polygon with points inserted along each segment that runs along a pole, at most
+    /// the grid spacing apart, each the segment's first point in space (the pole's): the
+    /// triangles there are then within the tolerance as elsewhere, and those with two
+    /// vertices at the pole are left out as having no area.
+    fn fill_poles(&self, poly: Vec<([f64; 2], Vec<f64>)>) -> Vec<([f64; 2], Vec<f64>)> {
+        let n = poly.len();
+        let mut out = Vec::with_capacity(n);
+        for k in 0..n {
+            let (a, b) = (&poly[k], &poly[(k + 1) % n]);
+            out.push(a.clone());
+            if let Some(free) = self.along_pole(a.0, b.0) {
+                let len = (b.0[free] - a.0[free]).abs();
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // clamped
+                let steps = (len / self.h[free]).ceil().clamp(1.0, MAX_POLE_STEPS) as usize;
+                for i in 1..steps {
+                    let t = i as f64 / steps as f64;
+                    let uv = [
+                        a.0[0] + (b.0[0] - a.0[0]) * t,
+                        a.0[1] + (b.0[1] - a.0[1]) * t,
+                    ];
+                    out.push((uv, a.1.clone()));
+                }
+            }
+        }
+        out
     }
 }
 
@@ -161,11 +174,11 @@ fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f6
             let (b, pb) = point(u, s1)?;
             let (_, pm) = point(u, sm)?;
             let mid: Vec<f64> = pa.iter().zip(&pb).map(|(x, y)| 0.5 * (x + y)).collect();
-            let (eu, ev) = (b[0] - a[0], b[1] - a[1]);
+            let c = &u.0.curv;
             if dist(&pm, &mid) > 0.5 * tol
-                || u.0.curv.along(eu, ev) > 4.0 * tol
-                || eu.abs() > u.0.h[0]
-                || ev.abs() > u.0.h[1]
+                || c.segment(a, b) > 4.0 * tol
+                || (b[0] - a[0]).abs() > c.spacing_over(0, a[0], b[0])
+                || (b[1] - a[1]).abs() > c.spacing_over(1, a[1], b[1])
             {
                 return Ok(true);
             }
@@ -197,44 +210,34 @@ fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f6
     Ok(out)
 }
 
-/// The plan of one face's mesh: its surface's second-derivative bounds, the grid spacing whose
-/// triangles are within `tolerance` by the bound of the untrimmed mesher (each of the three edge
-/// terms `M(e) = A e_u² + 2B |e_u e_v| + C e_v²` at most `6·tolerance`, split evenly;
-/// `docs/theory/queries.md#tessellation`), its seams; with the number of grid cells over its
-/// domain.
+/// The plan of one face's mesh: its surface's second-derivative bounds patch by patch and the
+/// grid spacing of each knot span whose triangles are within `tolerance` by the bound of the
+/// untrimmed mesher (each of the three edge terms `M(e) = A e_u² + 2B |e_u e_v| + C e_v²` at
+/// most `6·tolerance`, split evenly; [`Curvature::of`]; `docs/theory/queries.md#tessellation`),
+/// its seams; with the number of grid cells over its domain.
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for a tolerance below
 /// [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) of the surface's size, a
 /// rational surface with a weight that is not positive, or a grid of more than
 /// [`MAX_MESH_VERTICES`] points (naming the tolerance that would do).
-pub(super) fn plan_face(f: &Face, tolerance: f64) -> Result<(FacePlan<'_>, f64)> {
-    let (curv, scale) = Curvature::of(f.surface())?;
+pub(super) fn plan_face(f: &Face, tolerance: f64, rounds: usize) -> Result<(FacePlan<'_>, f64)> {
+    let closure = SurfaceClosure::of(f.surface(), tolerance)?;
+    let (curv, scale) = Curvature::of(f.surface(), &closure, tolerance)?;
     check_tol(tolerance, scale)?;
     let ((u0, u1), (v0, v1)) = f.surface().domain();
-    // a grid whose two triangles of a cell are within the tolerance: each of the three
-    // edge terms at most 6·tol (triangle_bound ≤ max M / 6), split evenly
-    let h = |c: f64, w: f64| {
-        if c > 0.0 {
-            (2.0 * tolerance / c).sqrt().min(w)
-        } else {
-            w
-        }
-    };
-    let mut hu = h(curv.a, u1 - u0);
-    let mut hv = h(curv.c, v1 - v0);
-    if 2.0 * curv.b * hu * hv > 2.0 * tolerance {
-        let r = (2.0 * tolerance / (2.0 * curv.b * hu * hv)).sqrt();
-        hu *= r;
-        hv *= r;
-    }
-    let cells = ((u1 - u0) / hu).ceil().max(1.0) * ((v1 - v0) / hv).ceil().max(1.0);
+    let cells = curv.cells();
     check_grid(tolerance, cells)?;
+    let h = [
+        curv.spacing_over(0, u0, u1).min(u1 - u0),
+        curv.spacing_over(1, v0, v1).min(v1 - v0),
+    ];
     let plan = FacePlan {
         face: f,
         curv,
-        h: [hu.max(f64::MIN_POSITIVE), hv.max(f64::MIN_POSITIVE)],
-        closure: SurfaceClosure::of(f.surface(), tolerance)?,
+        h: h.map(|x| x.max(f64::MIN_POSITIVE)),
+        closure,
+        rounds,
     };
     Ok((plan, cells))
 }
@@ -306,7 +309,8 @@ pub(super) fn mesh_face<'s>(
     // the loops as polygons in (u, v), with their 3-D points
     let mut loops: Vec<Vec<([f64; 2], Vec<f64>)>> = Vec::new();
     for (li, lp) in plan.face.loops().enumerate() {
-        let mut poly = Vec::new();
+        // each edge's points, all of them
+        let mut edges: Vec<Vec<([f64; 2], Vec<f64>)>> = Vec::new();
         for (ei, e) in lp.edges().iter().enumerate() {
             let u = EdgeUse {
                 face: fi,
@@ -321,14 +325,26 @@ pub(super) fn mesh_face<'s>(
             if n < 2 {
                 continue;
             }
-            // the last point is the next edge's first
-            for k in 0..n - 1 {
+            let mut pe = Vec::with_capacity(n);
+            for k in 0..n {
                 let j = if same { k } else { n - 1 - k };
                 let su = if same { s[j] } else { 1.0 - s[j] };
-                poly.push((pcurve_at(e, su)?, pts[j].clone()));
+                pe.push((pcurve_at(e, su)?, pts[j].clone()));
+            }
+            edges.push(pe);
+        }
+        // the last point of an edge is the next edge's first, unless the loop runs along a
+        // pole between them (the pole's free parameter changes at one point in space)
+        let mut poly = Vec::new();
+        for (k, pe) in edges.iter().enumerate() {
+            let next = &edges[(k + 1) % edges.len()][0];
+            let last = &pe[pe.len() - 1];
+            poly.extend_from_slice(&pe[..pe.len() - 1]);
+            if plan.along_pole(last.0, next.0).is_some() {
+                poly.push(last.clone());
             }
         }
-        loops.push(poly);
+        loops.push(plan.fill_poles(poly));
     }
     // loops going round a closed surface (a band, a cap): the face cut along a seam
     let eval = |uv: [f64; 2]| plan.surface_at(uv);
@@ -376,7 +392,6 @@ fn mesh_one(
         .map(|l| l.iter().flat_map(|(uv, _)| *uv).collect())
         .collect();
     let surface = plan.face.surface();
-    let h = plan.h;
     let mut uv: Vec<[f64; 2]> = Vec::new();
     let mut xyz: Vec<Vec<f64>> = Vec::new();
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
@@ -389,6 +404,10 @@ fn mesh_one(
         reason: format!("a point of a trim cannot be triangulated ({e:?}); its (u, v) is not finite or too large"),
     }
     };
+    // the Delaunay triangulation is of the points with v scaled by h_u / h_v (the least
+    // spacings): a refinement at centroids then makes triangles of the cells' shape rather
+    // than slivers across them where the spacing differs much between u and v
+    let aspect = (plan.h[0] / plan.h[1]).clamp(1e-6, 1e6);
     let add = |cdt: &mut Cdt,
                ours: &mut Vec<usize>,
                uv: &mut Vec<[f64; 2]>,
@@ -405,7 +424,14 @@ fn mesh_one(
                 x
             }
         });
-        let vh = cdt.insert(Point2::new(p[0], p[1])).map_err(insert_err)?;
+        // triangulated with v scaled to the grid's aspect, so cells are about square there
+        let q = p[1] * aspect;
+        let q = if q.abs() < spade::MIN_ALLOWED_VALUE {
+            0.0
+        } else {
+            q
+        };
+        let vh = cdt.insert(Point2::new(p[0], q)).map_err(insert_err)?;
         if vh.index() >= ours.len() {
             ours.push(uv.len());
             uv.push(p);
@@ -413,15 +439,25 @@ fn mesh_one(
         }
         Ok(vh)
     };
-    // the segments of the loops, bucketed by grid cell for the clearance test
-    let ((u0, _), (v0, _)) = surface.domain();
-    let cell = |p: [f64; 2]| {
-        (
-            ((p[0] - u0) / h[0]).floor() as i64,
-            ((p[1] - v0) / h[1]).floor() as i64,
-        )
+    // the grid lines over the loops' box: each knot span at its own spacing
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in loops.iter().flatten() {
+        for d in 0..2 {
+            lo[d] = lo[d].min(p.0[d]);
+            hi[d] = hi[d].max(p.0[d]);
+        }
+    }
+    let lines = if lo[0].is_finite() {
+        [
+            plan.curv.lines(0, lo[0], hi[0], budget)?,
+            plan.curv.lines(1, lo[1], hi[1], budget)?,
+        ]
+    } else {
+        [Vec::new(), Vec::new()]
     };
-    let mut buckets: Buckets = std::collections::HashMap::new();
+    let grid = Grid { lines };
+    // the segments of the loops, bucketed by grid cell for the clearance test
+    let mut buckets = Buckets::default();
     for l in loops {
         let n = l.len();
         if n == 0 {
@@ -433,56 +469,35 @@ fn mesh_one(
         }
         for k in 0..n {
             let (a, b) = (l[k].0, l[(k + 1) % n].0);
-            let (ca, cb) = (cell(a), cell(b));
-            for c in [ca, cb] {
-                buckets.entry(c).or_default().push((a, b));
-            }
+            buckets.insert(&grid, a, b);
             if handles[k] != handles[(k + 1) % n] {
                 cdt.try_add_constraint(handles[k], handles[(k + 1) % n]);
             }
         }
     }
-    // grid points inside the trims, clear of them
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in loops.iter().flatten() {
-        for d in 0..2 {
-            lo[d] = lo[d].min(p.0[d]);
-            hi[d] = hi[d].max(p.0[d]);
-        }
-    }
-    if lo[0].is_finite() {
-        let steps = |d: usize| ((hi[d] - lo[d]) / h[d]).ceil().max(1.0) as usize;
-        let (nu, nv) = (steps(0), steps(1));
-        for i in 1..nu {
-            for j in 1..nv {
-                let p = [
-                    lo[0] + (hi[0] - lo[0]) * i as f64 / nu as f64,
-                    lo[1] + (hi[1] - lo[1]) * j as f64 / nv as f64,
-                ];
-                if !inside(&polys, p[0], p[1]) {
-                    continue;
-                }
-                let (ci, cj) = cell(p);
-                let near = (ci - 1..=ci + 1).any(|a| {
-                    (cj - 1..=cj + 1).any(|b| {
-                        buckets.get(&(a, b)).is_some_and(|segs| {
-                            segs.iter()
-                                .any(|&(s, t)| seg_dist(p, s, t, h) < TRIM_CLEARANCE)
-                        })
-                    })
+    // grid points inside the trims, clear of them by a fraction of their cells' spacing
+    let [lu, lv] = &grid.lines;
+    for i in 1..lu.len().saturating_sub(1) {
+        for j in 1..lv.len().saturating_sub(1) {
+            let p = [lu[i], lv[j]];
+            if !inside(&polys, p[0], p[1]) {
+                continue;
+            }
+            let h = [
+                (lu[i] - lu[i - 1]).min(lu[i + 1] - lu[i]),
+                (lv[j] - lv[j - 1]).min(lv[j + 1] - lv[j]),
+            ];
+            if buckets.near(&grid, p, h) {
+                continue;
+            }
+            let x = plan.surface_at(p)?;
+            add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
+            if uv.len() > budget {
+                return Err(Error::TooLarge {
+                    what: "vertices of the faces' mesh (make the tolerance larger)",
+                    size: uv.len(),
+                    max: budget,
                 });
-                if near {
-                    continue;
-                }
-                let x = plan.surface_at(p)?;
-                add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
-                if uv.len() > budget {
-                    return Err(Error::TooLarge {
-                        what: "vertices of the faces' mesh (make the tolerance larger)",
-                        size: uv.len(),
-                        max: budget,
-                    });
-                }
             }
         }
     }
@@ -514,7 +529,7 @@ fn mesh_one(
             }
             worst = worst.max(b);
         }
-        if refine.is_empty() || round == MAX_REFINE_ROUNDS {
+        if refine.is_empty() || round >= plan.rounds {
             break (tris, worst);
         }
         round += 1;
@@ -554,8 +569,66 @@ fn mesh_one(
     })
 }
 
-/// Trim segments by grid cell.
-type Buckets = std::collections::HashMap<(i64, i64), Vec<([f64; 2], [f64; 2])>>;
+/// The grid lines of a face's mesh in `u` and `v` ([`Curvature::lines`]).
+struct Grid {
+    lines: [Vec<f64>; 2],
+}
+
+impl Grid {
+    /// The cell index along `d` holding `x` (clamped to the grid).
+    fn cell(&self, d: usize, x: f64) -> usize {
+        let l = &self.lines[d];
+        l.partition_point(|&t| t <= x)
+            .saturating_sub(1)
+            .min(l.len().saturating_sub(2))
+    }
+}
+
+/// Most grid cells a trim segment is filed under; a longer one is tested against every grid
+/// point (seam and pole lines are sampled at the least spacing, and the edges at their spans'
+/// spacing, so a segment meets a few cells).
+const MAX_SEGMENT_CELLS: usize = 256;
+
+/// Trim segments by grid cell, and those meeting too many cells to file.
+#[derive(Default)]
+struct Buckets {
+    cells: std::collections::HashMap<(usize, usize), Vec<Segment>>,
+    long: Vec<Segment>,
+}
+
+/// A trim segment's ends in `(u, v)`.
+type Segment = ([f64; 2], [f64; 2]);
+
+impl Buckets {
+    fn insert(&mut self, g: &Grid, a: [f64; 2], b: [f64; 2]) {
+        if g.lines[0].len() < 2 || g.lines[1].len() < 2 {
+            return;
+        }
+        let (i0, i1) = (g.cell(0, a[0].min(b[0])), g.cell(0, a[0].max(b[0])));
+        let (j0, j1) = (g.cell(1, a[1].min(b[1])), g.cell(1, a[1].max(b[1])));
+        if (i1 - i0 + 1).saturating_mul(j1 - j0 + 1) > MAX_SEGMENT_CELLS {
+            self.long.push((a, b));
+            return;
+        }
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                self.cells.entry((i, j)).or_default().push((a, b));
+            }
+        }
+    }
+
+    /// True when a trim segment is closer to `p` than [`TRIM_CLEARANCE`] of the spacing `h`.
+    fn near(&self, g: &Grid, p: [f64; 2], h: [f64; 2]) -> bool {
+        let close = |&(s, t): &([f64; 2], [f64; 2])| seg_dist(p, s, t, h) < TRIM_CLEARANCE;
+        let r = [TRIM_CLEARANCE * h[0], TRIM_CLEARANCE * h[1]];
+        let (i0, i1) = (g.cell(0, p[0] - r[0]), g.cell(0, p[0] + r[0]));
+        let (j0, j1) = (g.cell(1, p[1] - r[1]), g.cell(1, p[1] + r[1]));
+        self.long.iter().any(close)
+            || (i0..=i1).any(|i| {
+                (j0..=j1).any(|j| self.cells.get(&(i, j)).is_some_and(|v| v.iter().any(close)))
+            })
+    }
+}
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
 

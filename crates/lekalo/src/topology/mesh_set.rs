@@ -10,9 +10,11 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use super::face::{Edge, Face};
-use super::mesh::{check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan};
+use super::mesh::{
+    check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan, MAX_REFINE_ROUNDS,
+};
 use super::shell::{EdgeUse, Shell};
-use crate::query::{Mesh, MAX_MESH_VERTICES};
+use crate::query::{check_deviation, Mesh, MAX_MESH_VERTICES};
 use crate::{Error, Points, Result};
 
 /// The meshes of a set of faces that could be meshed, and the errors of those that could not
@@ -24,6 +26,10 @@ pub struct FaceMeshes {
     pub meshes: Vec<(usize, Mesh)>,
     /// The index of each face not meshed, with the reason, in the order of the set.
     pub failures: Vec<(usize, Error)>,
+    /// The index of each face meshed (in [`FaceMeshes::meshes`]) whose proved deviation bound
+    /// is above the tolerance, refinement having stopped at its limit, with
+    /// [`Error::ToleranceNotMet`] naming the bound, in the order of the set.
+    pub above_tolerance: Vec<(usize, Error)>,
 }
 
 impl FaceMeshes {
@@ -91,7 +97,7 @@ type FaceSamples = Vec<Option<(Arc<EdgeSamples>, bool)>>;
 /// ([`mesh_faces_each`] keeps the others).
 pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
     let r = mesh_faces_each(faces, tolerance)?;
-    if let Some((_, e)) = r.failures.into_iter().next() {
+    if let Some((_, e)) = r.failures.into_iter().chain(r.above_tolerance).next() {
         return Err(e);
     }
     Ok(r.meshes.into_iter().map(|(_, m)| m).collect())
@@ -125,12 +131,16 @@ pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
 /// the meshes together exceed that many vertices. A face's own errors are in
 /// [`FaceMeshes::failures`].
 pub fn mesh_faces_each(faces: &[&Face], tolerance: f64) -> Result<FaceMeshes> {
-    Ok(mesh_counted(faces, tolerance)?.0)
+    Ok(mesh_counted(faces, tolerance, MAX_REFINE_ROUNDS)?.0)
 }
 
 /// [`mesh_faces_each`] with the number of faces meshed (each face meshed once, its
-/// neighbours again when it fails at step 3).
-pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshes, usize)> {
+/// neighbours again when it fails at step 3), at most `rounds` rounds of refinement.
+pub(super) fn mesh_counted(
+    faces: &[&Face],
+    tolerance: f64,
+    rounds: usize,
+) -> Result<(FaceMeshes, usize)> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::InvalidArgument {
             what: "tessellation tolerance",
@@ -141,8 +151,10 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
     let mut failed: Vec<Option<Error>> = vec![None; n];
     let mut plans: Vec<Option<FacePlan<'_>>> = Vec::with_capacity(n);
     let mut grid_total = 0.0_f64;
-    let planned: Vec<Result<(FacePlan<'_>, f64)>> =
-        faces.par_iter().map(|f| plan_face(f, tolerance)).collect();
+    let planned: Vec<Result<(FacePlan<'_>, f64)>> = faces
+        .par_iter()
+        .map(|f| plan_face(f, tolerance, rounds))
+        .collect();
     for (i, p) in planned.into_iter().enumerate() {
         match p {
             Ok((plan, cells)) => {
@@ -255,6 +267,7 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
     let mut out = FaceMeshes {
         meshes: Vec::new(),
         failures: Vec::new(),
+        above_tolerance: Vec::new(),
     };
     let mut vertices = 0_usize;
     for (i, (f, m)) in failed.into_iter().zip(meshed).enumerate() {
@@ -262,6 +275,9 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
             (Some(e), _) => out.failures.push((i, e)),
             (None, Some((_, m))) => {
                 vertices = vertices.saturating_add(m.vertices.len());
+                if let Err(e) = check_deviation("the face's mesh", m.deviation, tolerance) {
+                    out.above_tolerance.push((i, e));
+                }
                 out.meshes.push((i, m));
             }
             (None, None) => {}

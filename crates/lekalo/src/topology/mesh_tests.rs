@@ -1,11 +1,12 @@
 //! Meshes of trimmed faces: a square with a round hole (area and hole), a curved B-spline
 //! face with a corner cut off, two faces sharing an edge (no crack).
 
+use super::super::mesh::MAX_REFINE_ROUNDS;
 use super::super::tests::{hole, plane, square};
 use super::*;
-use crate::topology::{join_meshes, mesh_faces, mesh_faces_each};
+use crate::topology::{join_meshes, mesh_faces, mesh_faces_each, FaceMeshes};
 use crate::topology::{Loop, LOOP_CLOSURE_RTOL};
-use crate::{BSplineCurve, BSplineSurface, Curve};
+use crate::{BSplineCurve, BSplineSurface, Curve, Surface};
 use proptest::prelude::*;
 
 fn area3(m: &Mesh) -> f64 {
@@ -284,7 +285,8 @@ fn a_face_failing_on_its_edges_leaves_the_others_as_without_it_each_meshed_once(
     )
     .unwrap();
     let tol = 1e-4;
-    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&fa, &bad, &fc], tol).unwrap();
+    let (r, meshed) =
+        super::super::mesh_set::mesh_counted(&[&fa, &bad, &fc], tol, MAX_REFINE_ROUNDS).unwrap();
     assert_eq!(meshed, 2, "each face that can be meshed is meshed once");
     assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
     assert_eq!(
@@ -309,7 +311,8 @@ fn a_face_failing_on_its_edges_leaves_the_others_as_without_it_each_meshed_once(
     );
     // without the failure, the shared edge is sampled for both faces, which meet along it
     let (good_a, good_b) = two_saddle_faces(false);
-    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&good_a, &good_b], tol).unwrap();
+    let (r, meshed) =
+        super::super::mesh_set::mesh_counted(&[&good_a, &good_b], tol, MAX_REFINE_ROUNDS).unwrap();
     assert_eq!(meshed, 2);
     assert!(r.failures.is_empty());
 }
@@ -348,7 +351,9 @@ fn a_face_failing_when_meshed_leaves_the_others_as_without_it() {
     let bad = band(circle(2.5, true), circle(2.9, true));
     let (other, _) = two_saddle_faces(false);
     let tol = 1e-3;
-    let (r, meshed) = super::super::mesh_set::mesh_counted(&[&good, &bad, &other], tol).unwrap();
+    let (r, meshed) =
+        super::super::mesh_set::mesh_counted(&[&good, &bad, &other], tol, MAX_REFINE_ROUNDS)
+            .unwrap();
     assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
     assert_eq!(r.failures[0].0, 1);
     assert!(
@@ -363,4 +368,193 @@ fn a_face_failing_when_meshed_leaves_the_others_as_without_it() {
     // both bands on one cylinder: the failed band's use samples the circle as the good
     // band's does, so the good band keeps its mesh and every face is meshed once
     assert_eq!(meshed, 3, "a face meshed twice");
+}
+
+/// The edge of `s` along the parameter line from `a` to `b` (one parameter fixed): its 3-D
+/// curve the iso-parametric curve (reversed when running back), its pcurve the line.
+fn iso_edge(s: &Surface, a: [f64; 2], b: [f64; 2]) -> Edge {
+    use crate::Direction;
+    let (dir, value, back) = if a[1] == b[1] {
+        (Direction::U, a[1], b[0] < a[0])
+    } else {
+        (Direction::V, a[0], b[1] < a[1])
+    };
+    let c = s.iso_curve(dir, value).unwrap();
+    let c = if back { c.reverse().unwrap() } else { c };
+    let d = [b[0] - a[0], b[1] - a[1]];
+    Edge::new(
+        c,
+        Some(Curve::from(
+            BSplineCurve::line_segment(&a, &d, 0.0, 1.0).unwrap(),
+        )),
+    )
+    .unwrap()
+}
+
+/// The face of `s` bounded by the parameter lines from each of `corners` to the next (the
+/// last to the first when `closed`; else the loop closes in space, through a pole).
+fn domain_face(s: Surface, corners: &[[f64; 2]], closed: bool) -> Face {
+    let n = corners.len() - usize::from(!closed);
+    let edges = (0..n)
+        .map(|k| iso_edge(&s, corners[k], corners[(k + 1) % corners.len()]))
+        .collect();
+    Face::new(
+        s,
+        Loop::new(edges).unwrap(),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap()
+}
+
+/// A ruled surface over `[0, 1]²`, `S(u, v) = (x(u), v, z(u))` with `x(u) = u` (the control
+/// points at the Greville abscissae), quadratic in `u` with a short first knot span
+/// `[0, 0.01]` where `z` bends sharply (`|z''|` near 10³ there, near 0.4 on the long span):
+/// the bound of each patch is its own, so the short span gets its small steps and the long
+/// one large steps. With the largest bound over the surface everywhere, the grid alone was
+/// 2,200 columns (some 4,400 triangles); with each span's own bound it is about 60.
+#[test]
+fn a_short_knot_span_refines_its_own_span_only() {
+    let x = [0.0, 0.005, 0.505, 1.0];
+    let z = [0.0, 0.05, 0.0, 0.0];
+    let mut pts = Vec::new();
+    for i in 0..4 {
+        for v in [0.0, 1.0] {
+            pts.push([x[i], v, z[i]]);
+        }
+    }
+    let s = Surface::from(
+        BSplineSurface::new(
+            2,
+            1,
+            vec![0.0, 0.0, 0.0, 0.01, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_3d(&pts).unwrap(),
+            (4, 2),
+        )
+        .unwrap(),
+    );
+    let f = domain_face(
+        s.clone(),
+        &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        true,
+    );
+    let tol = 1e-4;
+    let m = f.mesh(tol).unwrap();
+    assert!(m.deviation <= tol, "bound {} above {tol}", m.deviation);
+    assert!(
+        m.triangles.len() < 400,
+        "{} triangles: the short span's bound spread over the face",
+        m.triangles.len()
+    );
+    // the short span has the most vertices per unit of u
+    let (short, long) = m.uv.iter().fold(
+        (0, 0),
+        |(a, b), p| {
+            if p[0] < 0.01 {
+                (a + 1, b)
+            } else {
+                (a, b + 1)
+            }
+        },
+    );
+    assert!(
+        short * 10 > long,
+        "{short} vertices on the short span, {long} on the long one"
+    );
+    // the vertices are on the surface and the triangles' midpoints within the bound
+    for t in &m.triangles {
+        let c = t.iter().fold([0.0; 5], |c, &k| {
+            let (p, q) = (m.uv[k as usize], m.vertices.point(k as usize));
+            [
+                c[0] + p[0] / 3.0,
+                c[1] + p[1] / 3.0,
+                c[2] + q[0] / 3.0,
+                c[3] + q[1] / 3.0,
+                c[4] + q[2] / 3.0,
+            ]
+        });
+        let on = s.eval(c[0], c[1]).unwrap();
+        let d = ((on[0] - c[2]).powi(2) + (on[1] - c[3]).powi(2) + (on[2] - c[4]).powi(2)).sqrt();
+        assert!(d <= m.deviation + 1e-12, "centroid {d} off the surface");
+    }
+}
+
+/// A planar sector with a collapsed edge: `S(u, v) = u·A(v)`, `A` a quadratic B-spline arc
+/// round three quarters of a turn, so the side `u = 0` is one point (a pole). Its loop (out
+/// along `v = 0`, round `u = 1`, back along `v = 1`) reaches the pole at `v = 1` and leaves it
+/// at `v = 0`: in `(u, v)` it runs along the pole between them. That run, taken as one segment
+/// (or cut off by the polygon), kept triangles whose bound no refinement could lower: the
+/// mesh reported a deviation far above the tolerance. Points along the pole (one point in
+/// space) bring it within.
+#[test]
+fn a_loop_along_a_pole_is_meshed_within_the_tolerance() {
+    let arc = [
+        [1.0, 0.0],
+        [1.0, 1.0],
+        [-1.0, 1.0],
+        [-1.0, -1.0],
+        [0.0, -1.0],
+    ];
+    let mut pts = Vec::new();
+    for r in [0.0, 1.0] {
+        for a in arc {
+            pts.push([r * a[0], r * a[1], 0.0]);
+        }
+    }
+    let s = Surface::from(
+        BSplineSurface::new(
+            1,
+            2,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0],
+            Points::from_3d(&pts).unwrap(),
+            (2, 5),
+        )
+        .unwrap(),
+    );
+    let f = domain_face(s, &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], false);
+    for tol in [1e-2, 1e-3] {
+        let m = f.mesh(tol).unwrap();
+        assert!(m.deviation <= tol, "bound {} above {tol}", m.deviation);
+        // the sector's area: the mesh's within its length times the tolerance
+        let a = area3(&m);
+        assert!(a > 1.0, "area {a}: the sector is not covered");
+    }
+}
+
+/// Every mesh of `r` is within `tol` or named in `above_tolerance` with its bound.
+fn check_reported(r: &FaceMeshes, tol: f64) {
+    for (i, m) in &r.meshes {
+        let listed = r.above_tolerance.iter().find(|(k, _)| k == i);
+        match listed {
+            None => assert!(m.deviation <= tol, "face {i}: {} unreported", m.deviation),
+            Some((_, e)) => assert_eq!(
+                e,
+                &Error::ToleranceNotMet {
+                    what: "the face's mesh".into(),
+                    deviation: m.deviation,
+                    tolerance: tol,
+                }
+            ),
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+    /// Whatever the rounds of refinement, each face's mesh is within the tolerance or reported.
+    #[test]
+    fn every_mesh_is_within_its_tolerance_or_reported(
+        e in 1.5f64..4.0,
+        rounds in 0usize..4,
+        cut in 0.3f64..0.9,
+    ) {
+        let c = [[0.0, 0.0], [1.0, 0.0], [1.0, cut], [cut, 1.0], [0.0, 1.0]];
+        let f = Face::new(saddle(), saddle_loop(&c), vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+        let tol = 10f64.powf(-e);
+        let (r, _) = super::super::mesh_set::mesh_counted(&[&f], tol, rounds).unwrap();
+        check_reported(&r, tol);
+    }
 }

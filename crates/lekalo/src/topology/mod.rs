@@ -6,6 +6,7 @@
 //! |---|---|
 //! | `face.rs` | [`Face`], [`Loop`] and [`Edge`]: a surface, its outer and inner loops, each edge a 3-D curve with its curve in the surface's `(u, v)`; validation (dimensions, loops closed within a tolerance relative to the model size) |
 //! | `shell.rs` | [`Shell`]: which edges of a set of faces are one edge (shared by two faces, or a seam), and which edge ends are one vertex |
+//! | `curvature.rs` | second-derivative bounds of a face's surface patch by patch, and the grid spacing of each knot span they give |
 //! | `mesh.rs` | one trimmed face's triangle mesh within a tolerance from its edges' samples: edge sampling, grid, constrained Delaunay triangulation, refinement |
 //! | `mesh_set.rs` | [`mesh_faces`], [`mesh_faces_each`] and [`Face::mesh`]: a set of faces meshed with each shared edge sampled once and each face meshed once, in parallel; the faces that fail listed by index with their errors ([`FaceMeshes`]) |
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
@@ -14,6 +15,7 @@
 //!
 //! See `docs/theory/topology.md`.
 
+mod curvature;
 mod face;
 mod inside;
 mod mesh;

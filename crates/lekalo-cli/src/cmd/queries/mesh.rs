@@ -126,13 +126,39 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 eprintln!("  face {}: {r}", name(*k));
             }
         }
-        let m = meshed.join().map_err(bad)?;
-        let reasons: Vec<serde_json::Value> = skipped
+        // faces whose proved bound stayed above the tolerance: written, named, and exit 2
+        let coarse: Vec<(usize, String)> = meshed
+            .above_tolerance
             .iter()
-            .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
+            .map(|(i, e)| (ready[*i].0, e.to_string()))
             .collect();
-        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": reasons, "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
-        return write_mesh(a, cx, &m, &fmt, &summary);
+        for (k, r) in &coarse {
+            eprintln!("warning: face {}: {r}", name(*k));
+        }
+        let m = meshed.join().map_err(bad)?;
+        let listed = |l: &[(usize, String)]| -> Vec<serde_json::Value> {
+            l.iter()
+                .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
+                .collect()
+        };
+        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        write_mesh(a, cx, &m, &fmt, &summary)?;
+        if let Some((k, _)) = coarse.first() {
+            // the joined mesh's deviation is the largest of its faces'
+            let worst = m.deviation;
+            return bad_input(format!(
+                "{}: --tolerance {}: the mesh is written, but {} of its faces (first face {}) \
+                 could not be refined within it: their proved deviation bound reaches {}; \
+                 use --tolerance {} or more for a mesh within its tolerance",
+                a.input.display(),
+                lekalo_io::fmt_number(a.tolerance),
+                coarse.len(),
+                name(*k),
+                lekalo_io::fmt_number(worst),
+                lekalo_io::fmt_number(worst)
+            ));
+        }
+        return Ok(());
     }
     let (text, name) = lekalo_io::read_input(&a.input)?;
     let shape = Shape::from_json_str(&text, &name)?;

@@ -13,7 +13,9 @@ use super::strips::Lattice;
 use super::{Leaf, Rule, MAX_ROUNDS, PATCH_WIDTH};
 use crate::error::{Error, Result};
 use crate::query::surface::QuerySurface;
-use crate::query::tessellate::{check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES};
+use crate::query::tessellate::{
+    check_deviation, check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES,
+};
 use crate::{Points, Progress};
 
 /// What a mesh reports to its [`Progress`] hook: the work in thousandths, the first split of
@@ -115,7 +117,9 @@ impl QuerySurface {
     /// a tolerance below [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) times
     /// the size, or a tolerance whose mesh is estimated (before meshing) at more than
     /// [`MAX_MESH_TRIANGLES`] triangles;
-    /// [`Error::TooLarge`] beyond [`MAX_MESH_VERTICES`].
+    /// [`Error::TooLarge`] beyond [`MAX_MESH_VERTICES`]; [`Error::ToleranceNotMet`] when a
+    /// part reached the most halvings ([`MAX_LEVELS`](super::MAX_LEVELS) in each direction)
+    /// with its bound still above the tolerance.
     pub fn mesh(&self, tolerance: f64) -> Result<Mesh> {
         self.mesh_with_progress(tolerance, &Progress::new())
     }
@@ -139,6 +143,7 @@ impl QuerySurface {
             self.mesh_polynomial(tol, &grid, 0, &hook)
         }?;
         hook.stage(MeshProgress::EMIT, MeshProgress::TOTAL, 1, 1)?;
+        check_deviation("surface mesh", mesh.deviation, tolerance)?;
         Ok(mesh)
     }
 
