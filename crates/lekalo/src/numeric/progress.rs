@@ -172,7 +172,9 @@ mod tests {
         stop.store(true, Ordering::Relaxed);
         assert_eq!(
             p.step("work", 2, 2),
-            Err(Error::Cancelled { what: "work" }),
+            Err(Error::Cancelled {
+                what: "work".into()
+            }),
             "cancelled"
         );
         assert!(!Progress::new().is_active(), "the default does nothing");

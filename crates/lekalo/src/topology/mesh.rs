@@ -45,7 +45,7 @@ impl Curvature {
         let (mut a, mut b, mut c) = (0.0_f64, 0.0_f64, 0.0_f64);
         for (k, &((u0, u1), (v0, v1))) in q.ranges.iter().enumerate() {
             let (pa, pb, pc) = q.net_bounds(q.patch(k)).ok_or(Error::InvalidArgument {
-                what: "face surface",
+                what: "face surface".into(),
                 reason: "a weight is not positive; a rational surface needs positive weights"
                     .into(),
             })?;
@@ -97,7 +97,7 @@ impl FacePlan<'_> {
 /// One use of an edge: its face, and its pcurve's parameter at a fraction of the edge.
 fn pcurve_at(e: &Edge, s: f64) -> Result<[f64; 2]> {
     let p = e.pcurve().ok_or(Error::InvalidArgument {
-        what: "face loop",
+        what: "face loop".into(),
         reason:
             "an edge has no curve in the surface's (u, v); meshing a face needs every edge's pcurve"
                 .into(),
@@ -187,7 +187,8 @@ fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f6
             at = s;
             if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "points on an edge of the faces to mesh (make the tolerance larger)",
+                    what: "points on an edge of the faces to mesh (make the tolerance larger)"
+                        .into(),
                     size: out.len(),
                     max: budget,
                 });
@@ -246,7 +247,7 @@ pub(super) fn check_grid(tolerance: f64, cells: f64) -> Result<()> {
     let max = MAX_MESH_VERTICES as f64;
     if cells > max {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance",
+            what: "tessellation tolerance".into(),
             reason: format!(
                 "{tolerance:e} needs a grid of about {cells:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
                 tolerance * cells / max
@@ -385,7 +386,7 @@ fn mesh_one(
     let mut ours: Vec<usize> = Vec::new();
     let insert_err = |e: spade::InsertionError| {
         Error::InvalidArgument {
-        what: "face loop",
+        what: "face loop".into(),
         reason: format!("a point of a trim cannot be triangulated ({e:?}); its (u, v) is not finite or too large"),
     }
     };
@@ -478,7 +479,7 @@ fn mesh_one(
                 add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
                 if uv.len() > budget {
                     return Err(Error::TooLarge {
-                        what: "vertices of the faces' mesh (make the tolerance larger)",
+                        what: "vertices of the faces' mesh (make the tolerance larger)".into(),
                         size: uv.len(),
                         max: budget,
                     });
@@ -523,7 +524,7 @@ fn mesh_one(
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
             if uv.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "vertices of the faces' mesh (make the tolerance larger)",
+                    what: "vertices of the faces' mesh (make the tolerance larger)".into(),
                     size: uv.len(),
                     max: budget,
                 });

@@ -133,7 +133,7 @@ pub fn mesh_faces_each(faces: &[&Face], tolerance: f64) -> Result<FaceMeshes> {
 pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshes, usize)> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance",
+            what: "tessellation tolerance".into(),
             reason: format!("{tolerance} is not a positive finite tolerance"),
         });
     }
@@ -269,7 +269,7 @@ pub(super) fn mesh_counted(faces: &[&Face], tolerance: f64) -> Result<(FaceMeshe
     }
     if vertices > MAX_MESH_VERTICES {
         return Err(Error::TooLarge {
-            what: "vertices of the faces' meshes (make the tolerance larger)",
+            what: "vertices of the faces' meshes (make the tolerance larger)".into(),
             size: vertices,
             max: MAX_MESH_VERTICES,
         });
@@ -342,7 +342,7 @@ fn join<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> Result<Mesh> {
     for m in &meshes {
         if m.vertices.dim() != dim {
             return Err(Error::Dimension {
-                what: "mesh vertices",
+                what: "mesh vertices".into(),
                 expected: dim,
                 got: m.vertices.dim(),
             });

@@ -742,17 +742,17 @@ fn errors() {
     assert!(matches!(
         CornerTransition::new(&a, 1.0, &c, 0.5, 1),
         Err(Error::InvalidArgument {
-            what: "window start t_start",
+            what,
             ..
         })
-    ));
+     if what.words() == "window start t_start"));
     assert!(matches!(
         CornerTransition::new(&a, 0.5, &c, 0.0, 1),
         Err(Error::InvalidArgument {
-            what: "window end t_end",
+            what,
             ..
         })
-    ));
+     if what.words() == "window end t_end"));
     assert!(matches!(
         CornerTransition::new(&a, 0.5, &c, 0.5, 0),
         Err(Error::InvalidArgument { .. })
@@ -879,10 +879,10 @@ fn approximation_of_arc_splines() {
     assert!(matches!(
         spline(&ZIGZAG, &Parabolas, 1, false, SplineParameters::Uniform).approximate(-1.0),
         Err(Error::InvalidArgument {
-            what: "tolerance",
+            what,
             ..
         })
-    ));
+     if what.words() == "tolerance"));
 }
 
 // Corner transitions between single Bezier / rational Bezier pieces have an exact form.

@@ -34,10 +34,7 @@ fn cubic() -> BSplineCurve {
 
 fn assert_too_large(r: Result<Points, Error>, what: &str) {
     match r {
-        Err(Error::TooLarge {
-            what: "derivative order",
-            ..
-        }) => {}
+        Err(Error::TooLarge { what, .. }) if what.words() == "derivative order" => {}
         other => panic!("{what}: expected TooLarge(derivative order), got {other:?}"),
     }
 }
@@ -253,15 +250,15 @@ fn overflowing_widths_are_refused() {
         matches!(
             r,
             Err(Error::InvalidArgument {
-                what: "breakpoints",
+                what,
                 ..
             })
-        ),
+         if what.words() == "breakpoints"),
         "{r:?}"
     );
     let r = KnotVector::new(vec![-f64::MAX, -f64::MAX, f64::MAX, f64::MAX]);
     assert!(
-        matches!(r, Err(Error::InvalidArgument { what: "knots", .. })),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "knots"),
         "{r:?}"
     );
     let r = KnotVector::averaged(&[-f64::MAX, 0.0, f64::MAX], 1);
@@ -269,10 +266,10 @@ fn overflowing_widths_are_refused() {
         matches!(
             r,
             Err(Error::InvalidArgument {
-                what: "parameters",
+                what,
                 ..
             })
-        ),
+         if what.words() == "parameters"),
         "{r:?}"
     );
     let r = PpSpace::unconstrained(&[-f64::MAX, f64::MAX], 2);
@@ -280,10 +277,10 @@ fn overflowing_widths_are_refused() {
         matches!(
             r,
             Err(Error::InvalidArgument {
-                what: "breakpoints",
+                what,
                 ..
             })
-        ),
+         if what.words() == "breakpoints"),
         "{r:?}"
     );
     // the widest finite interval is still accepted
@@ -493,7 +490,7 @@ fn interpolation_of_data_spanning_beyond_f64_is_refused() {
             .knot_placement(lekalo::KnotPlacement::Averaged)
             .interpolate(q.as_view());
         assert!(
-            matches!(r, Err(Error::InvalidArgument { what: "points", .. })),
+            matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "points"),
             "degree {degree}: {r:?}"
         );
     }

@@ -575,10 +575,10 @@ fn remove_knot_errors() {
     assert!(matches!(
         c.remove_knot(0.5, 1, f64::NAN),
         Err(Error::NonFinite {
-            what: "tolerance",
+            what,
             ..
         })
-    ));
+     if what.words() == "tolerance"));
     assert!(matches!(
         c.remove_knot(0.5, 1, f64::INFINITY),
         Err(Error::NonFinite { .. })
@@ -586,10 +586,10 @@ fn remove_knot_errors() {
     assert!(matches!(
         c.remove_knot(0.5, 1, -1.0),
         Err(Error::InvalidArgument {
-            what: "tolerance",
+            what,
             ..
         })
-    ));
+     if what.words() == "tolerance"));
     assert!(matches!(
         c.remove_knot(1.5, 1, 0.1),
         Err(Error::ParameterOutOfDomain { .. })
@@ -601,24 +601,24 @@ fn remove_knot_errors() {
     assert!(matches!(
         c.remove_knot(1.0, 1, 0.1),
         Err(Error::InvalidArgument {
-            what: "knot to remove",
+            what,
             ..
         })
-    ));
+     if what.words() == "knot to remove"));
     assert!(matches!(
         c.remove_knot(0.25, 1, 0.1),
         Err(Error::InvalidArgument {
-            what: "knot to remove",
+            what,
             ..
         })
-    ));
+     if what.words() == "knot to remove"));
     assert!(matches!(
         c.remove_knot(0.5, 3, 0.1),
         Err(Error::InvalidArgument {
-            what: "knot removal count",
+            what,
             ..
         })
-    ));
+     if what.words() == "knot removal count"));
     assert!(matches!(
         c.remove_all_removable_knots(f64::NAN),
         Err(Error::NonFinite { .. })
