@@ -724,14 +724,7 @@ mod tests {
         assert_eq!(check_finite("x", &[1.0, 2.0]), Ok(()));
         let e = check_finite("x", &[1.0, f64::INFINITY, f64::NAN]).unwrap_err();
         assert!(
-            matches!(
-                e,
-                Error::NonFinite {
-                    what,
-                    index: 1,
-                    ..
-                }
-             if what.words() == "x"),
+            matches!(e, Error::NonFinite { what, index: 1, .. } if what.words() == "x"),
             "got {e:?}"
         );
     }

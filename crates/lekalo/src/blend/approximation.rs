@@ -358,11 +358,8 @@ mod tests {
         ));
         assert!(matches!(
             approximate_curve(&line, 21, 1e-3),
-            Err(Error::InvalidArgument {
-                what,
-                ..
-            })
-         if what.words() == "Hermite order r"));
+            Err(Error::InvalidArgument { what, .. }) if what.words() == "Hermite order r"
+        ));
         assert!(matches!(
             approximate_curve(&line, 1, f64::NAN),
             Err(Error::InvalidArgument { .. })

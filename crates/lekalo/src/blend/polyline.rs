@@ -563,11 +563,8 @@ mod tests {
             assert!(
                 matches!(
                     e,
-                    Err(Error::InvalidArgument {
-                        what,
-                        ..
-                    })
-                 if what.arg() == Some(Arg::CornerFraction)),
+                    Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::CornerFraction)
+                ),
                 "{f}: {e:?}"
             );
         }
@@ -578,11 +575,8 @@ mod tests {
             assert!(
                 matches!(
                     e,
-                    Err(Error::InvalidArgument {
-                        what,
-                        ..
-                    })
-                 if what.arg() == Some(Arg::Continuity)),
+                    Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::Continuity)
+                ),
                 "{k}: {e:?}"
             );
         }

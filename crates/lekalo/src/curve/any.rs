@@ -803,8 +803,8 @@ mod tests {
         assert!(
             matches!(
                 Curve::join(&mixed),
-                Err(Error::InvalidArgument { what, .. })
-             if what.words() == "pieces"),
+                Err(Error::InvalidArgument { what, .. }) if what.words() == "pieces"
+            ),
             "mixed kinds"
         );
         assert!(

@@ -147,12 +147,9 @@ mod tests {
             Err(Error::TooFew { .. })
         ));
         assert!(matches!(
-            pchip_slopes(
-                &[0.0, 0.0, 1.0],
-                PointsRef::from_flat(1, &[1.0, 2.0, 3.0]).unwrap()
-            ),
-            Err(Error::InvalidArgument { what, .. })
-         if what.words() == "x"));
+            pchip_slopes(&[0.0, 0.0, 1.0], PointsRef::from_flat(1, &[1.0, 2.0, 3.0]).unwrap()),
+            Err(Error::InvalidArgument { what, .. }) if what.words() == "x"
+        ));
         assert!(matches!(
             pchip_slopes(
                 &[0.0, f64::NAN],

@@ -189,11 +189,8 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::InvalidArgument {
-                    what,
-                    ..
-                }
-             if what.arg() == Some(Arg::Breakpoints)),
+                Error::InvalidArgument { what, .. } if what.arg() == Some(Arg::Breakpoints)
+            ),
             "{e}"
         );
     }

@@ -650,11 +650,8 @@ mod tests {
         ));
         assert!(matches!(
             make(vec![1.0, f64::NAN, 1.0, 1.0]),
-            Err(Error::NonFinite {
-                what,
-                ..
-            })
-         if what.arg() == Some(Arg::Weights)));
+            Err(Error::NonFinite { what, .. }) if what.arg() == Some(Arg::Weights)
+        ));
         assert!(matches!(
             NurbsSurface::new(
                 1,

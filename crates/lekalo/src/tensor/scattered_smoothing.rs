@@ -586,19 +586,16 @@ mod tests {
         };
         assert!(matches!(
             fit(&x, 2, &z, &[3, 2], 1.0, &few),
-            Err(Error::InvalidArgument {
-                what,
-                ..
-            })
-         if what.arg() == Some(Arg::MaxKnots)));
+            Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::MaxKnots)
+        ));
         let bad_eps = ScatteredSmoothingOptions {
             rank: RankDeficiency::MinimumNorm { eps: 1.0 },
             ..ScatteredSmoothingOptions::default()
         };
         assert!(matches!(
             fit(&x, 2, &z, &[3, 2], 1.0, &bad_eps),
-            Err(Error::InvalidArgument { what, .. })
-         if what.arg() == Some(Arg::Eps)));
+            Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::Eps)
+        ));
     }
 
     /// With a knot bound the rounds stop at it with the least-squares spline and say so.

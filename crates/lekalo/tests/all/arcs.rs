@@ -338,14 +338,14 @@ fn circles_with_a_normal_lie_in_their_plane() {
     }
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0; 3], 1.0),
-        Err(Error::InvalidArgument { what, .. })
-     if what.words() == "normal"));
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "normal"
+    ));
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0, f64::NAN, 1.0], 1.0),
         Err(Error::NonFinite { .. })
     ));
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0, 0.0, 1.0], -1.0),
-        Err(Error::InvalidArgument { what, .. })
-     if what.words() == "radius"));
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "radius"
+    ));
 }

@@ -286,15 +286,15 @@ fn bad_inputs_are_named_errors() {
     assert!(
         matches!(
             smoothing_spline(&data, Lambda::Given(-1e-3)),
-            Err(Error::NegativeSmoothing { what, .. })
-         if what.words() == "λ"),
+            Err(Error::NegativeSmoothing { what, .. }) if what.words() == "λ"
+        ),
         "λ<0"
     );
     assert!(
         matches!(
             smoothing_condition(&data, 3, -1.0),
-            Err(Error::NegativeSmoothing { what, .. })
-         if what.words() == "s"),
+            Err(Error::NegativeSmoothing { what, .. }) if what.words() == "s"
+        ),
         "s<0"
     );
     let q: Vec<f64> = x.iter().flat_map(|&v| [v, v.sin()]).collect();

@@ -247,13 +247,7 @@ fn averaged_with_end_derivatives_with_the_fewest_parameters() {
 fn overflowing_widths_are_refused() {
     let r = PiecewisePolynomial::new(vec![-f64::MAX, 1e300], 2, 1, vec![1.0, 1.0]);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what,
-                ..
-            })
-         if what.words() == "breakpoints"),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "breakpoints"),
         "{r:?}"
     );
     let r = KnotVector::new(vec![-f64::MAX, -f64::MAX, f64::MAX, f64::MAX]);
@@ -263,24 +257,12 @@ fn overflowing_widths_are_refused() {
     );
     let r = KnotVector::averaged(&[-f64::MAX, 0.0, f64::MAX], 1);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what,
-                ..
-            })
-         if what.words() == "parameters"),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "parameters"),
         "{r:?}"
     );
     let r = PpSpace::unconstrained(&[-f64::MAX, f64::MAX], 2);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what,
-                ..
-            })
-         if what.words() == "breakpoints"),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "breakpoints"),
         "{r:?}"
     );
     // the widest finite interval is still accepted

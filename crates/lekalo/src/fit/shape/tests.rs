@@ -342,11 +342,8 @@ fn bad_constraints_are_refused() {
         assert!(
             matches!(
                 e,
-                crate::Error::InvalidArgument {
-                    what,
-                    ..
-                }
-             if what.words() == "shape constraints"),
+                crate::Error::InvalidArgument { what, .. } if what.words() == "shape constraints"
+            ),
             "{e:?}"
         );
     }
