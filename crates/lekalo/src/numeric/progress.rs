@@ -172,9 +172,7 @@ mod tests {
         stop.store(true, Ordering::Relaxed);
         assert_eq!(
             p.step("work", 2, 2),
-            Err(Error::Cancelled {
-                what: "work".into()
-            }),
+            Err(Error::Cancelled { what: "work" }),
             "cancelled"
         );
         assert!(!Progress::new().is_active(), "the default does nothing");
