@@ -9,7 +9,7 @@ use std::ffi::OsStr;
 use clap::builder::{PossibleValue, TypedValueParser};
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use lekalo::vocabulary::Vocabulary;
-use lekalo::Error;
+use lekalo::{Arg, Error};
 
 /// A clap value parser of one vocabulary.
 #[derive(Clone, Copy)]
@@ -70,31 +70,49 @@ where
     }
 }
 
-/// The command line's name of each argument key of the library's errors (the `what` of
-/// [`Error::InvalidArgument`]): the one table from the library's keys to the options.
-const OPTIONS: [(&str, &str); 7] = [
-    ("knots", "--knots"),
-    ("parametrization", "--param"),
-    ("end", "--end"),
-    ("end derivatives", "--start-derivative/--end-derivative"),
-    ("rule", "--rule"),
-    ("direction", "--dir"),
-    ("expression", "--function"),
-];
-
-/// The option of a library argument key, if the command line has one.
-pub(crate) fn option_of(key: &str) -> Option<&'static str> {
-    OPTIONS.iter().find(|(k, _)| *k == key).map(|(_, o)| *o)
+/// The command line's name of each argument key of the library's errors ([`Error::arg`]): the
+/// one table from the library's keys to the options, `None` for an argument that no option of
+/// the command line sets (or that different commands spell differently), whose errors are
+/// written in the library's words. Exhaustive, so that a new key does not compile until it is
+/// named here.
+pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
+    Some(match arg {
+        Arg::Knots => "--knots",
+        Arg::Parametrization | Arg::Exponent => "--param",
+        Arg::End => "--end",
+        Arg::EndDerivatives => "--start-derivative/--end-derivative",
+        Arg::StartDerivative => "--start-derivative",
+        Arg::EndDerivative => "--end-derivative",
+        Arg::Rule => "--rule",
+        Arg::Direction => "--dir",
+        Arg::Expression => "--function",
+        Arg::Continuity => "--continuity",
+        Arg::Weights
+        | Arg::ControlPoints
+        | Arg::Breakpoints
+        | Arg::ContinuityConditions
+        | Arg::CornerWindow
+        | Arg::CornerFraction
+        | Arg::CornerLength
+        | Arg::Lambda
+        | Arg::S
+        | Arg::Tolerance
+        | Arg::Times
+        | Arg::Knot
+        | Arg::Eps
+        | Arg::MaxKnots
+        | Arg::Bbox => return None,
+    })
 }
 
-/// The message of a failed command: a library error about an argument the command line has
-/// an option for is written with that option (`--knots: …`), any other as it is, with its
-/// context (`file: …`).
+/// The message of a failed command: a library error refusing the value of an argument the
+/// command line has an option for is written with that option (`--knots: …`), any other as
+/// it is, with its context (`file: …`).
 pub(crate) fn message(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
-        if let Some(Error::InvalidArgument { what, reason }) = cause.downcast_ref::<Error>() {
-            if let Some(option) = option_of(what) {
+        if let Some(lib @ Error::InvalidArgument { reason, .. }) = cause.downcast_ref::<Error>() {
+            if let Some(option) = lib.arg().and_then(option) {
                 parts.push(format!("{option}: {reason}"));
                 break;
             }
@@ -111,27 +129,45 @@ mod tests {
     #[test]
     fn every_vocabulary_key_has_an_option() {
         for (key, _, _) in lekalo::vocabulary::all() {
-            assert!(option_of(key).is_some(), "no option for the key {key}");
+            assert!(option(key).is_some(), "no option for the key {key}");
         }
-        let e = anyhow::Error::from(Error::InvalidArgument {
-            what: "knots",
-            reason: "use the placement auto".into(),
-        });
-        assert_eq!(message(&e), "error: --knots: use the placement auto");
+    }
+
+    /// Each key the command line names: a library error refusing it is written with the
+    /// option, also under a context; a key without an option keeps the library's words.
+    #[test]
+    fn errors_about_a_key_name_its_option() {
+        for &arg in Arg::ALL {
+            let e = anyhow::Error::from(Error::InvalidArgument {
+                what: arg.into(),
+                reason: "why".into(),
+            });
+            let wrapped = anyhow::Error::from(Error::InvalidArgument {
+                what: arg.into(),
+                reason: "why".into(),
+            })
+            .context("pts.csv");
+            match option(arg) {
+                Some(o) => {
+                    assert!(o.starts_with("--"), "{o}");
+                    assert_eq!(message(&e), format!("error: {o}: why"));
+                    assert_eq!(message(&wrapped), format!("error: pts.csv: {o}: why"));
+                }
+                None => assert_eq!(message(&e), format!("error: invalid {arg}: why")),
+            }
+        }
+        let e = lekalo::vocabulary::KNOT_PLACEMENT
+            .parse("everywhere")
+            .unwrap_err();
+        assert_eq!(
+            message(&anyhow::Error::from(e)),
+            "error: --knots: \"everywhere\" is not one of auto, averaged, uniform, at-params"
+        );
         let other = anyhow::Error::from(Error::InvalidArgument {
-            what: "something else",
+            what: "something else".into(),
             reason: "why".into(),
         });
         assert_eq!(message(&other), "error: invalid something else: why");
-        let wrapped = anyhow::Error::from(Error::InvalidArgument {
-            what: "knots",
-            reason: "use the placement auto".into(),
-        })
-        .context("pts.csv");
-        assert_eq!(
-            message(&wrapped),
-            "error: pts.csv: --knots: use the placement auto"
-        );
     }
 
     /// Every option of every subcommand that chooses among the words of a vocabulary offers
@@ -148,7 +184,7 @@ mod tests {
                 let Some(long) = arg.get_long() else { continue };
                 let Some((_, words, _)) = vocabularies
                     .iter()
-                    .find(|(key, _, _)| option_of(key) == Some(&format!("--{long}")))
+                    .find(|(key, _, _)| option(*key) == Some(&format!("--{long}")))
                 else {
                     continue;
                 };

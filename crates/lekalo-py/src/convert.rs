@@ -250,7 +250,7 @@ pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
     }
     if n > MAX_SCALARS {
         return Err(lib_err(lekalo::Error::TooLarge {
-            what: "output",
+            what: "output".into(),
             size: n,
             max: MAX_SCALARS,
         }))

@@ -584,7 +584,7 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
                     .eval_derivatives(self.inner.domain().0, order)
                     .err()
                     .unwrap_or(lekalo::Error::InvalidArgument {
-                        what: "order",
+                        what: "order".into(),
                         reason: "too large".into(),
                     }),
             ));

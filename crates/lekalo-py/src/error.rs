@@ -6,6 +6,7 @@
 //! Both are `ValueError`s (NumPy's `LinAlgError` is one), so code that caught the old
 //! `lekalo.Error(ValueError)` still catches every error.
 
+use lekalo::Arg;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
@@ -72,21 +73,44 @@ fn raise(numerical: bool, message: String) -> PyErr {
     })
 }
 
-/// The Python name of each argument key of the library's errors (the `what` of
-/// `InvalidArgument`): the one table from the library's keys to the keyword arguments.
-const ARGUMENTS: [(&str, &str); 6] = [
-    ("knots", "knots"),
-    ("parametrization", "parametrization"),
-    ("end", "end"),
-    ("end derivatives", "d_start/d_end"),
-    ("rule", "rule"),
-    ("expression", "f"),
-];
+/// The Python name of each argument key of the library's errors ([`lekalo::Error::arg`]): the
+/// one table from the library's keys to the keyword arguments, `None` for an argument that no
+/// keyword of the package sets alone (or that functions spell differently), whose errors keep
+/// the library's words. Exhaustive, so that a new key does not compile until it is named here.
+pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
+    Some(match arg {
+        Arg::Knots => "knots",
+        Arg::Parametrization | Arg::Exponent => "parametrization",
+        Arg::End => "end",
+        Arg::EndDerivatives => "d_start/d_end",
+        Arg::StartDerivative => "d_start",
+        Arg::EndDerivative => "d_end",
+        Arg::Rule => "rule",
+        Arg::Expression => "f",
+        Arg::Lambda => "lam",
+        Arg::S => "s",
+        Arg::Eps => "eps",
+        Arg::MaxKnots => "max_knots",
+        Arg::Bbox => "bbox",
+        Arg::Weights
+        | Arg::ControlPoints
+        | Arg::Direction
+        | Arg::Breakpoints
+        | Arg::ContinuityConditions
+        | Arg::Continuity
+        | Arg::CornerWindow
+        | Arg::CornerFraction
+        | Arg::CornerLength
+        | Arg::Tolerance
+        | Arg::Times
+        | Arg::Knot => return None,
+    })
+}
 
 /// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system, a
 /// mesh whose bound stayed above its tolerance) or
-/// `lekalo.InputError` (everything else), an argument named by its keyword
-/// ([`ARGUMENTS`]).
+/// `lekalo.InputError` (everything else); a refused value of an argument with a keyword
+/// ([`argument`]) is named by the keyword (`knots: …`).
 pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     let numerical = matches!(
         e,
@@ -94,8 +118,8 @@ pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
             | lekalo::Error::IllConditioned { .. }
             | lekalo::Error::ToleranceNotMet { .. }
     );
-    if let lekalo::Error::InvalidArgument { what, reason } = &e {
-        if let Some((_, name)) = ARGUMENTS.iter().find(|(k, _)| k == what) {
+    if let lekalo::Error::InvalidArgument { reason, .. } = &e {
+        if let Some(name) = e.arg().and_then(argument) {
             return raise(false, format!("{name}: {reason}"));
         }
     }

@@ -7,14 +7,14 @@
 use lekalo::tensor::tensor_design_matrix as lk_design_matrix;
 use lekalo::{
     tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares_with,
-    tensor_scattered_smoothing, KnotLimit, KnotVector, Points, PointsRef, RankDeficiency,
+    tensor_scattered_smoothing, Arg, KnotLimit, KnotVector, Points, PointsRef, RankDeficiency,
     ScatteredSmoothingOptions, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
 use crate::convert::{array, check_size, filled, floats, vec1, vec_array, FloatArray};
-use crate::error::{bad, lib_err, named};
+use crate::error::{argument, bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
 fn constructor_arg(e: &lekalo::Error) -> &'static str {
@@ -330,11 +330,10 @@ impl PyTensorBSpline {
             .detach(|| interpolation.interpolate_at(&refs, pts))
             .map_err(|e| match e {
                 lekalo::Error::Degree { .. } => named("degrees", &e),
-                lekalo::Error::InvalidArgument {
-                    what: "knot vectors",
-                    ..
+                lekalo::Error::InvalidArgument { .. } if e.arg() == Some(Arg::Knots) => {
+                    named("knots", &e)
                 }
-                | lekalo::Error::SingularSystem { .. } => named("knots", &e),
+                lekalo::Error::SingularSystem { .. } => named("knots", &e),
                 lekalo::Error::KnotsNotSorted { .. }
                 | lekalo::Error::InvalidArgument { .. }
                 | lekalo::Error::NonFinite { .. } => named("axes", &e),
@@ -572,7 +571,7 @@ pub(crate) fn fit_tensor_scattered<'py>(
     let f = py
         .detach(|| tensor_scattered_least_squares_with(xs, ys, wv, &degrees, knots, rank_arg(eps)))
         .map_err(|e| match e {
-            lekalo::Error::InvalidArgument { what: "eps", .. } => named("eps", &e),
+            lekalo::Error::InvalidArgument { .. } if e.arg() == Some(Arg::Eps) => named("eps", &e),
             other => fit_err(other, "x"),
         })?;
     let spline = PyTensorBSpline {
@@ -646,14 +645,10 @@ pub(crate) fn fit_tensor_scattered_smoothing<'py>(
         .map_err(|e| match e {
             lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
             lekalo::Error::EmptyDomain { .. } => named("bbox", &e),
-            lekalo::Error::InvalidArgument { what, .. } if what == "eps" || what == "max_knots" => {
-                named(what, &e)
-            }
-            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("bbox") => {
-                named("bbox", &e)
-            }
-            lekalo::Error::LengthMismatch { what, .. } if what.starts_with("max_knots") => {
-                named("max_knots", &e)
+            lekalo::Error::InvalidArgument { .. } | lekalo::Error::LengthMismatch { .. }
+                if matches!(e.arg(), Some(Arg::Eps | Arg::MaxKnots | Arg::Bbox)) =>
+            {
+                named(e.arg().and_then(argument).unwrap_or("x"), &e)
             }
             other => fit_err(other, "x"),
         })?;

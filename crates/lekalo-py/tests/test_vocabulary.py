@@ -89,3 +89,32 @@ def test_error_kinds():
     assert issubclass(lekalo.NumericalError, np.linalg.LinAlgError)
     with pytest.raises(lekalo.InputError):
         lekalo.interpolate(np.array([[0.0, np.nan], [1.0, 1.0]]), 1)
+
+
+# The library's errors carry a typed key of the argument they refuse; the binding writes the
+# refusal under the keyword of that argument (one table, `argument` in src/error.rs), never by
+# reading the message.
+@pytest.mark.parametrize(
+    "call, keyword, rest",
+    [
+        (lambda: lekalo.interpolate(Q, 3, knots="uniform", end="natural"), "knots", "averaged or uniform knots do not go with"),
+        (lambda: lekalo.interpolate(Q, 3, end="natural", d_start=[1.0, 0.0]), "d_start/d_end", "end derivatives are used by"),
+        (lambda: lekalo.interpolate(Q, 3, end="derivatives", d_start=[1.0, 0.0]), "d_start/d_end", "the end condition derivatives needs"),
+    ],
+)
+def test_a_refused_argument_is_named_by_its_keyword(call, keyword, rest):
+    with pytest.raises(lekalo.InputError) as e:
+        call()
+    message = str(e.value)
+    assert message.startswith(f"{keyword}: {rest}"), message
+    assert "lekalo::" not in message and "Arg" not in message, message
+
+
+def test_scattered_fit_options_are_named_by_their_keywords():
+    rng = np.random.default_rng(3)
+    x = rng.uniform(0.0, 1.0, (60, 2))
+    y = np.sin(x[:, 0]) + x[:, 1]
+    with pytest.raises(lekalo.InputError, match=r"^eps: "):
+        lekalo.fit_tensor_scattered_smoothing(x, y, 0.1, eps=2.0)
+    with pytest.raises(lekalo.InputError, match=r"^max_knots: "):
+        lekalo.fit_tensor_scattered_smoothing(x, y, 0.1, max_knots=[8])

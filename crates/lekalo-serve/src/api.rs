@@ -17,7 +17,7 @@ use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use lekalo::vocabulary::{self, EndKind};
 use lekalo::{
-    smooth_polyline_corners, BSplineCurve, BezierCurve, BlendSplineOptions, BlendSplinePieces,
+    smooth_polyline_corners, Arg, BSplineCurve, BezierCurve, BlendSplineOptions, BlendSplinePieces,
     CornerWindow, CurveInterpolation, Deformation, EndConditions, KnotPlacement, KnotVector,
     NurbsCurve, Parabolas, Parametrization, Points, SplineParameters,
 };
@@ -392,12 +392,13 @@ pub(crate) fn blend_deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     )?))
 }
 
-/// The field of a deformation error: the continuity (its range, the derivatives it needs),
-/// the first curve's dimension, or the second curve (its end points must meet the first's).
+/// The field of a deformation error: the field of its argument key (the continuity, its
+/// range), the continuity for the degree it sets, or the second curve (its dimension, its end
+/// points that must meet the first's).
 fn deform_field(e: &lekalo::Error) -> &'static str {
     match e {
-        lekalo::Error::InvalidArgument { .. } | lekalo::Error::Degree { .. } => "continuity",
-        _ => "second",
+        lekalo::Error::Degree { .. } => "continuity",
+        _ => field_of(e).unwrap_or("second"),
     }
 }
 
@@ -452,17 +453,11 @@ pub(crate) fn blend_corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> 
         (None, Some(l)) => (CornerWindow::Length(l), "length"),
         (f, None) => (CornerWindow::Fraction(f.unwrap_or(0.25)), "fraction"),
     };
-    // the library names the argument an error is about (`what`): the field is the request's
+    // the library names the argument an error is about: the window is the field given
     let s = smooth_polyline_corners(pts.as_view(), window, r.continuity).map_err(|e| {
-        let field = match &e {
-            lekalo::Error::InvalidArgument { what, .. } | lekalo::Error::NonFinite { what, .. } => {
-                match *what {
-                    "continuity degree k" => "continuity",
-                    "corner window" | "corner window fraction" | "corner window length" => field,
-                    _ => "points",
-                }
-            }
-            _ => "points",
+        let field = match e.arg() {
+            Some(Arg::CornerWindow | Arg::CornerFraction | Arg::CornerLength) => field,
+            _ => field_of(&e).unwrap_or("points"),
         };
         ApiError::lib(field, &e)
     })?;
@@ -505,8 +500,8 @@ pub(crate) fn blend_spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         parameters: SplineParameters::Uniform,
     };
     let field = |e: &lekalo::Error| match e {
-        lekalo::Error::InvalidArgument { .. } | lekalo::Error::Degree { .. } => "continuity",
-        _ => "points",
+        lekalo::Error::Degree { .. } => "continuity",
+        _ => field_of(e).unwrap_or("points"),
     };
     // piece by piece, so that the deadline stops it and the size is known before the NURBS
     // is assembled

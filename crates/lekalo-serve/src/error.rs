@@ -2,14 +2,14 @@
 //! the pool) with the library's message and the request field that caused it, so that the
 //! editor can show the message next to the control that set the field.
 //!
-//! The field of a library error comes from its typed parts, never from its message: the
-//! variant, and the argument key of the variants that carry one (`what`), looked up exactly in
-//! [`KEY_FIELDS`], the one table from the library's keys to the request's fields (as the CLI's
-//! table from the keys to its options).
+//! The field of a library error comes from its typed parts, never from its message: its
+//! argument key ([`lekalo::Error::arg`]), mapped by [`field`], the one table from the
+//! library's keys to the request's fields, or else the handler's choice among its own fields.
 
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::Json;
+use lekalo::Arg;
 use lekalo_io::IoError;
 use serde_json::json;
 
@@ -77,75 +77,87 @@ impl ApiError {
     }
 }
 
-/// The library's argument keys (the `what` of its errors) that name a request field, and the
-/// field. A key not in the table leaves the choice to the handler, which knows which of its
-/// fields the library read.
-pub const KEY_FIELDS: [(&str, &str); 31] = [
-    ("knots", "knots"),
-    ("knots (control points + degree + 1)", "knots"),
-    ("weights", "weights"),
-    ("weights (one per control point)", "weights"),
-    ("control points", "control"),
-    ("Bezier control points", "control"),
-    ("parametrization", "parametrization"),
-    ("parametrisation exponent", "exponent"),
-    ("end", "end"),
-    ("start derivative", "start_derivative"),
-    ("end derivative", "end_derivative"),
-    ("start second derivative", "start_derivative"),
-    ("end second derivative", "end_derivative"),
-    ("rule", "rule"),
-    ("expression", "expression"),
-    ("derivative order of an expression", "expression"),
-    ("x of the expression", "expression"),
-    ("derivative of the expression (index = order)", "expression"),
-    ("value of the expression (division by zero)", "expression"),
-    ("ln of a non-positive value in the expression", "expression"),
-    ("breakpoints", "breakpoints"),
-    ("continuity conditions", "continuity"),
-    (
-        "continuity conditions (one per interior breakpoint)",
-        "continuity",
-    ),
-    ("continuity degree k", "continuity"),
-    ("λ", "lambda"),
-    ("s", "s"),
-    ("arc-length tolerance", "tolerance"),
-    ("knot insertion count", "times"),
-    ("knot removal count", "times"),
-    ("knot to remove", "t"),
-    ("tolerance", "tolerance"),
-];
-
-/// The argument key of a library error, for the variants that carry one.
+/// The request field of each argument key of the library's errors ([`lekalo::Error::arg`]): the
+/// one table from the library's keys to the request's fields (as the CLI's table from the keys
+/// to its options), `None` for an argument that no request field sets alone, whose field the
+/// handler chooses (it knows which of its fields the library read). Exhaustive, so that a new
+/// key does not compile until it is named here.
 #[must_use]
-pub fn key_of(e: &lekalo::Error) -> Option<&'static str> {
-    use lekalo::Error as E;
-    match e {
-        E::NonFinite { what, .. }
-        | E::TooFew { what, .. }
-        | E::LengthMismatch { what, .. }
-        | E::Dimension { what, .. }
-        | E::InvalidArgument { what, .. }
-        | E::TooLarge { what, .. }
-        | E::NegativeSmoothing { what, .. } => Some(what),
-        _ => None,
-    }
+pub const fn field(arg: Arg) -> Option<&'static str> {
+    Some(match arg {
+        Arg::Knots => "knots",
+        Arg::Weights => "weights",
+        Arg::ControlPoints => "control",
+        Arg::Parametrization => "parametrization",
+        Arg::Exponent => "exponent",
+        Arg::End => "end",
+        Arg::StartDerivative => "start_derivative",
+        Arg::EndDerivative => "end_derivative",
+        Arg::Rule => "rule",
+        Arg::Expression => "expression",
+        Arg::Breakpoints => "breakpoints",
+        Arg::ContinuityConditions | Arg::Continuity => "continuity",
+        Arg::CornerFraction => "fraction",
+        Arg::CornerLength => "length",
+        Arg::Lambda => "lambda",
+        Arg::S => "s",
+        Arg::Tolerance => "tolerance",
+        Arg::Times => "times",
+        Arg::Knot => "t",
+        Arg::EndDerivatives
+        | Arg::Direction
+        | Arg::CornerWindow
+        | Arg::Eps
+        | Arg::MaxKnots
+        | Arg::Bbox => return None,
+    })
 }
 
-/// The request field of a library error, by its key in [`KEY_FIELDS`] (exact match).
+/// The request field of a library error: the field of its argument key ([`field`]).
 #[must_use]
 pub fn field_of(e: &lekalo::Error) -> Option<&'static str> {
-    let key = key_of(e)?;
-    KEY_FIELDS
-        .iter()
-        .find(|(k, _)| *k == key)
-        .map(|(_, field)| *field)
+    e.arg().and_then(field)
 }
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
         let body = json!({ "error": self.message, "field": self.field });
         (self.status, Json(body)).into_response()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each key: a library error about it answers with the key's field (or the handler's
+    /// default for a key without one), and with the library's message unchanged.
+    #[test]
+    fn errors_about_a_key_answer_with_its_field() {
+        for &arg in Arg::ALL {
+            let e = lekalo::Error::InvalidArgument {
+                what: arg.into(),
+                reason: "why".into(),
+            };
+            assert_eq!(field_of(&e), field(arg), "{arg:?}");
+            let a = ApiError::lib_or("points", &e);
+            assert_eq!(a.field.as_deref(), Some(field(arg).unwrap_or("points")));
+            assert_eq!(a.message, format!("invalid {arg}: why"));
+        }
+        let nan = lekalo::KnotVector::new(vec![0.0, f64::NAN]).unwrap_err();
+        assert_eq!(
+            ApiError::lib_or("curve", &nan).field.as_deref(),
+            Some("knots")
+        );
+        let buffer = lekalo::Error::LengthMismatch {
+            what: "output buffer".into(),
+            expected: 2,
+            got: 1,
+        };
+        assert_eq!(
+            field_of(&buffer),
+            None,
+            "an error without a key has no field"
+        );
     }
 }

@@ -52,7 +52,7 @@ pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
 pub fn bernstein_all(n: usize, t: f64, out: &mut [f64]) -> Result<()> {
     if n.checked_add(1) != Some(out.len()) {
         return Err(Error::LengthMismatch {
-            what: "output buffer (degree + 1)",
+            what: "output buffer (degree + 1)".into(),
             expected: n.saturating_add(1),
             got: out.len(),
         });
@@ -394,7 +394,7 @@ pub fn basis_functions_many(
     let total = t.len().saturating_mul(w);
     if total > crate::error::MAX_SCALARS {
         return Err(Error::TooLarge {
-            what: "basis values",
+            what: "basis values".into(),
             size: total,
             max: crate::error::MAX_SCALARS,
         });
@@ -545,7 +545,7 @@ pub fn basis_function_recursive(knots: &KnotVector, i: usize, p: usize, t: f64) 
     let last_needed = i.checked_add(p).and_then(|v| v.checked_add(1));
     if last_needed.is_none_or(|end| end >= k.len()) {
         return Err(Error::InvalidArgument {
-            what: "basis function index",
+            what: "basis function index".into(),
             reason: format!(
                 "N_{{{i},{p}}} needs knots up to index {}, but the last knot index is {}",
                 i.saturating_add(p).saturating_add(1),

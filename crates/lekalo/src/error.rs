@@ -5,6 +5,8 @@
 //! is kept apart from numerical failure ([`Error::SingularSystem`], [`Error::IllConditioned`]).
 //! Each message names the argument, the offending values and, where there is one, the fix.
 
+use crate::arg::{Arg, What};
+
 /// Result alias used throughout the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
@@ -24,8 +26,8 @@ pub enum Error {
     /// ```
     #[error("{what}[{index}] is {value}: every number must be finite (no NaN or infinity)")]
     NonFinite {
-        /// Which argument holds the number.
-        what: &'static str,
+        /// Which argument holds the number (its key, [`Error::arg`], when it is one).
+        what: What,
         /// Index of the number inside that argument (flat index for point data).
         index: usize,
         /// The offending value.
@@ -43,7 +45,7 @@ pub enum Error {
     #[error("{what}: need at least {min}, got {got}")]
     TooFew {
         /// What is counted (e.g. "control points").
-        what: &'static str,
+        what: What,
         /// The least number accepted.
         min: usize,
         /// The number given.
@@ -62,7 +64,7 @@ pub enum Error {
     #[error("{what}: expected {expected}, got {got}")]
     LengthMismatch {
         /// Which length (names both sides, e.g. "knots (control points + degree + 1)").
-        what: &'static str,
+        what: What,
         /// The length required.
         expected: usize,
         /// The length given.
@@ -79,8 +81,8 @@ pub enum Error {
     /// ```
     #[error("dimension of {what}: expected {expected}, got {got}")]
     Dimension {
-        /// Which argument.
-        what: &'static str,
+        /// Which argument (its key, [`Error::arg`], when it is one).
+        what: What,
         /// The dimension required (0 where any positive dimension would do).
         expected: usize,
         /// The dimension (or data length) found.
@@ -288,14 +290,17 @@ pub enum Error {
     /// An argument with a value the operation cannot use (the message says which and why).
     ///
     /// ```
-    /// use lekalo::Error;
-    /// let e = Error::InvalidArgument { what: "tension", reason: "must lie in [0, 1]".into() };
+    /// use lekalo::{Arg, Error};
+    /// let e = Error::InvalidArgument { what: "tension".into(), reason: "must lie in [0, 1]".into() };
     /// assert_eq!(e.to_string(), "invalid tension: must lie in [0, 1]");
+    /// // an error about an argument key names it in the key's words
+    /// let e = Error::InvalidArgument { what: Arg::Knots.into(), reason: "use auto".into() };
+    /// assert_eq!((e.to_string(), e.arg()), ("invalid knots: use auto".into(), Some(Arg::Knots)));
     /// ```
     #[error("invalid {what}: {reason}")]
     InvalidArgument {
-        /// Which argument.
-        what: &'static str,
+        /// Which argument (its key, [`Error::arg`], when it is one).
+        what: What,
         /// Why it is invalid and what would be valid.
         reason: String,
     },
@@ -324,13 +329,13 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::Error;
-    /// let e = Error::TooLarge { what: "control points", size: usize::MAX, max: 1 << 28 };
+    /// let e = Error::TooLarge { what: "control points".into(), size: usize::MAX, max: 1 << 28 };
     /// assert!(e.to_string().contains("too large"));
     /// ```
     #[error("{what}: size {size} is too large (at most {max})")]
     TooLarge {
         /// What is too large.
-        what: &'static str,
+        what: What,
         /// The size asked for.
         size: usize,
         /// The largest size accepted.
@@ -480,7 +485,8 @@ pub enum Error {
     /// let y = [0.0, 1.0, 0.0, 1.0];
     /// let data = FitData::new(PointsRef::from_flat(1, &y)?, &[0.0, 1.0, 2.0, 3.0])?;
     /// let e = smoothing_spline(&data, Lambda::Given(-1.0)).unwrap_err();
-    /// assert!(matches!(e, Error::NegativeSmoothing { what: "λ", .. }));
+    /// assert!(matches!(e, Error::NegativeSmoothing { .. }));
+    /// assert_eq!(e.arg(), Some(lekalo::Arg::Lambda));
     /// # Ok::<(), lekalo::Error>(())
     /// ```
     #[error(
@@ -488,8 +494,8 @@ pub enum Error {
         readable(.value)
     )]
     NegativeSmoothing {
-        /// "λ" (penalty weight) or "s" (residual target).
-        what: &'static str,
+        /// [`Arg::Lambda`] (penalty weight) or [`Arg::S`] (residual target).
+        what: What,
         /// The value given.
         value: f64,
     },
@@ -574,11 +580,38 @@ pub enum Error {
     },
 }
 
+impl Error {
+    /// The argument the error is about, when it is one of the keys ([`Arg`]): what a front end
+    /// maps to its own name for the argument (`--knots`, `"knots"`, `knots=`), never the message.
+    ///
+    /// ```
+    /// use lekalo::{Arg, KnotVector};
+    /// let e = KnotVector::new(vec![0.0, 1.0, 0.5]).unwrap_err();
+    /// assert_eq!(e.arg(), Some(Arg::Knots));
+    /// ```
+    #[must_use]
+    pub fn arg(&self) -> Option<Arg> {
+        match self {
+            Error::NonFinite { what, .. }
+            | Error::TooFew { what, .. }
+            | Error::LengthMismatch { what, .. }
+            | Error::Dimension { what, .. }
+            | Error::InvalidArgument { what, .. }
+            | Error::TooLarge { what, .. }
+            | Error::NegativeSmoothing { what, .. } => what.arg(),
+            Error::KnotsNotSorted { .. } | Error::KnotMultiplicity { .. } => Some(Arg::Knots),
+            Error::NonPositiveWeight { .. } => Some(Arg::Weights),
+            Error::NonPositiveTolerance { .. } => Some(Arg::Tolerance),
+            _ => None,
+        }
+    }
+}
+
 /// Checks that every number in `values` is finite.
 ///
 /// # Errors
 /// [`Error::NonFinite`] naming `what` and the first bad index.
-pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
+pub(crate) fn check_finite(what: impl Into<What>, values: &[f64]) -> Result<()> {
     // a branch-free pass first, the search for the first bad value only if there is one: every
     // point set passes here, and millions of numbers took milliseconds one comparison at a time.
     // `0·v` is ±0 for a finite v and NaN otherwise, and NaN stays in a sum: eight independent
@@ -596,7 +629,7 @@ pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<()> {
     }
     match values.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(Error::NonFinite {
-            what,
+            what: what.into(),
             index,
             value: values[index],
         }),
@@ -684,7 +717,7 @@ pub const MAX_SURFACE_DERIVATIVE_ORDER: usize = 1 << 6;
 pub(crate) fn check_derivative_order(order: usize, max: usize) -> Result<()> {
     if order > max {
         return Err(Error::TooLarge {
-            what: "derivative order",
+            what: "derivative order".into(),
             size: order,
             max,
         });
@@ -715,14 +748,7 @@ mod tests {
         assert_eq!(check_finite("x", &[1.0, 2.0]), Ok(()));
         let e = check_finite("x", &[1.0, f64::INFINITY, f64::NAN]).unwrap_err();
         assert!(
-            matches!(
-                e,
-                Error::NonFinite {
-                    what: "x",
-                    index: 1,
-                    ..
-                }
-            ),
+            matches!(e, Error::NonFinite { what, index: 1, .. } if what.words() == "x"),
             "got {e:?}"
         );
     }

@@ -13,6 +13,7 @@
 //! knots at the parameters (eq. 8); and the Curry–Schoenberg rule of document 003 (Theorem 4.5,
 //! docs/theory/pp.md#curry-schoenberg-knots).
 
+use crate::{Arg, What};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{check_degree_bound, check_finite, Error, Result, MAX_SCALARS};
@@ -64,19 +65,19 @@ impl KnotVector {
     pub(crate) fn check_values(knots: &[f64]) -> Result<()> {
         if knots.len() < 2 {
             return Err(Error::TooFew {
-                what: "knots",
+                what: Arg::Knots.into(),
                 min: 2,
                 got: knots.len(),
             });
         }
         if knots.len() > MAX_SCALARS {
             return Err(Error::TooLarge {
-                what: "knots",
+                what: Arg::Knots.into(),
                 size: knots.len(),
                 max: MAX_SCALARS,
             });
         }
-        check_finite("knots", knots)?;
+        check_finite(Arg::Knots, knots)?;
         // one branch-free pass (vectorised), the first offending knot searched only on failure
         let sorted = knots
             .iter()
@@ -97,7 +98,7 @@ impl KnotVector {
         if min >= max {
             return Err(Error::EmptyDomain { min, max });
         }
-        check_width("knots", min, max)?;
+        check_width(Arg::Knots, min, max)?;
         Ok(())
     }
 
@@ -131,7 +132,7 @@ impl KnotVector {
         let expected = n_ctrl.saturating_add(degree).saturating_add(1);
         if self.knots.len() != expected {
             return Err(Error::LengthMismatch {
-                what: "knots (control points + degree + 1)",
+                what: What::of(Arg::Knots, "knots (control points + degree + 1)"),
                 expected,
                 got: self.knots.len(),
             });
@@ -314,14 +315,17 @@ impl KnotVector {
         let interior = breakpoints.len() - 2;
         if continuity.len() != interior {
             return Err(Error::LengthMismatch {
-                what: "continuity conditions (one per interior breakpoint)",
+                what: What::of(
+                    Arg::ContinuityConditions,
+                    "continuity conditions (one per interior breakpoint)",
+                ),
                 expected: interior,
                 got: continuity.len(),
             });
         }
         if let Some(i) = continuity.iter().position(|&nu| nu > order) {
             return Err(Error::InvalidArgument {
-                what: "continuity conditions",
+                what: Arg::ContinuityConditions.into(),
                 reason: format!(
                     "ν at breakpoint {} is {}, more than the order {order}",
                     i + 1,
@@ -594,15 +598,15 @@ impl<'a> SpanCursor<'a> {
 pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
     if breakpoints.len() < 2 {
         return Err(Error::TooFew {
-            what: "breakpoints",
+            what: Arg::Breakpoints.into(),
             min: 2,
             got: breakpoints.len(),
         });
     }
-    check_finite("breakpoints", breakpoints)?;
+    check_finite(Arg::Breakpoints, breakpoints)?;
     if let Some(i) = breakpoints.windows(2).position(|w| w[0] >= w[1]) {
         return Err(Error::InvalidArgument {
-            what: "breakpoints",
+            what: Arg::Breakpoints.into(),
             reason: format!(
                 "must be strictly increasing, but breakpoint {i} = {} is not less than breakpoint {} = {}",
                 breakpoints[i],
@@ -612,7 +616,7 @@ pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
         });
     }
     check_width(
-        "breakpoints",
+        Arg::Breakpoints,
         breakpoints[0],
         breakpoints[breakpoints.len() - 1],
     )
@@ -651,7 +655,7 @@ pub fn uniform_parameters(a: f64, b: f64, n: usize) -> Vec<f64> {
 pub fn check_parameters(params: &[f64]) -> Result<()> {
     if params.len() < 2 {
         return Err(Error::TooFew {
-            what: "parameters",
+            what: "parameters".into(),
             min: 2,
             got: params.len(),
         });
@@ -678,7 +682,8 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] naming `what` if `max − min` overflows.
-pub(crate) fn check_width(what: &'static str, min: f64, max: f64) -> Result<()> {
+pub(crate) fn check_width(what: impl Into<What>, min: f64, max: f64) -> Result<()> {
+    let what: What = what.into();
     if !(max - min).is_finite() {
         return Err(Error::InvalidArgument {
             what,
@@ -715,7 +720,7 @@ fn check_interpolation_degree(
 fn check_size(n: usize) -> Result<()> {
     if n > MAX_SCALARS {
         return Err(Error::TooLarge {
-            what: "knots",
+            what: Arg::Knots.into(),
             size: n,
             max: MAX_SCALARS,
         });

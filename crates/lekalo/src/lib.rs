@@ -53,11 +53,13 @@
 //! ```
 
 // -- foundations: points, knots, B-spline bases, errors --
+mod arg;
 pub mod basis;
 mod error;
 mod knots;
 mod points;
 
+pub use arg::{Arg, What};
 pub use error::{
     ControlSupport, Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
     MAX_SURFACE_DERIVATIVE_ORDER,

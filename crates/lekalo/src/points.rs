@@ -9,6 +9,7 @@
 //! Typed constructors ([`Points::from_2d`], [`Points::from_3d`]) and accessors
 //! ([`Points::point2`], [`Points::point3`]) are conveniences at the edges.
 
+use crate::{Arg, What};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
@@ -76,21 +77,21 @@ impl Points {
     pub fn from_flat(dim: usize, data: Vec<f64>) -> Result<Self> {
         if dim == 0 {
             return Err(Error::Dimension {
-                what: "points",
+                what: "points".into(),
                 expected: 1,
                 got: 0,
             });
         }
         if data.len() > MAX_SCALARS {
             return Err(Error::TooLarge {
-                what: "point data",
+                what: "point data".into(),
                 size: data.len(),
                 max: MAX_SCALARS,
             });
         }
         if data.len() % dim != 0 {
             return Err(Error::Dimension {
-                what: "point data (length is not a multiple of the dimension)",
+                what: "point data (length is not a multiple of the dimension)".into(),
                 expected: dim,
                 got: data.len(),
             });
@@ -116,7 +117,7 @@ impl Points {
     /// empty; [`Error::NonFinite`].
     pub fn from_rows<R: AsRef<[f64]>>(rows: &[R]) -> Result<Self> {
         let first = rows.first().ok_or(Error::TooFew {
-            what: "points",
+            what: "points".into(),
             min: 1,
             got: 0,
         })?;
@@ -126,7 +127,7 @@ impl Points {
             let row = row.as_ref();
             if row.len() != dim {
                 return Err(Error::Dimension {
-                    what: "point rows (all rows must have the same length)",
+                    what: "point rows (all rows must have the same length)".into(),
                     expected: dim,
                     got: row.len(),
                 });
@@ -285,12 +286,12 @@ impl Points {
 pub(crate) fn homogenize(points: &Points, weights: &[f64]) -> Result<Points> {
     if weights.len() != points.len() {
         return Err(Error::LengthMismatch {
-            what: "weights (one per control point)",
+            what: What::of(Arg::Weights, "weights (one per control point)"),
             expected: points.len(),
             got: weights.len(),
         });
     }
-    check_finite("weights", weights)?;
+    check_finite(Arg::Weights, weights)?;
     if let Some(index) = weights.iter().position(|&w| w <= 0.0) {
         return Err(Error::NonPositiveWeight {
             index,
@@ -325,7 +326,7 @@ pub(crate) fn check_homogeneous(h: &Points) -> Result<()> {
     let hd = h.dim();
     if hd < 2 {
         return Err(Error::Dimension {
-            what: "homogeneous control points (dim + 1 for the weight)",
+            what: "homogeneous control points (dim + 1 for the weight)".into(),
             expected: 2,
             got: hd,
         });
@@ -372,7 +373,7 @@ impl<'a> PointsRef<'a> {
     pub fn from_flat(dim: usize, data: &'a [f64]) -> Result<Self> {
         if dim == 0 || data.len() % dim != 0 {
             return Err(Error::Dimension {
-                what: "point data (length is not a multiple of the dimension)",
+                what: "point data (length is not a multiple of the dimension)".into(),
                 expected: dim.max(1),
                 got: data.len(),
             });

@@ -20,6 +20,7 @@
 //! # Ok::<(), lekalo::Error>(())
 //! ```
 
+use crate::Arg;
 use crate::{Direction, EndCondition, Error, KnotPlacement, Parametrization, Result, TauRule};
 
 /// One value of an option: its canonical name, the value, and what it means (for help texts).
@@ -36,9 +37,9 @@ pub struct Word<T: 'static> {
 /// The words of one option: canonical words first, then the older spellings still read.
 #[derive(Debug)]
 pub struct Vocabulary<T: 'static> {
-    /// The option's key: the `what` of the errors it gives, which each front end maps to its
-    /// own name for the option.
-    pub key: &'static str,
+    /// The option's key: the argument of the errors it gives ([`Error::arg`]), which each
+    /// front end maps to its own name for the option.
+    pub key: Arg,
     /// The canonical words, in the order help texts list them.
     pub words: &'static [Word<T>],
     /// Older spellings, each with the value it stands for.
@@ -59,8 +60,8 @@ impl<T: Copy + PartialEq + 'static> Vocabulary<T> {
     /// Reads `text` (surrounding white space and letter case ignored).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] with `what` = [`Vocabulary::key`], listing the canonical
-    /// words.
+    /// [`Error::InvalidArgument`] about [`Vocabulary::key`] ([`Error::arg`]), listing the
+    /// canonical words.
     pub fn parse(&self, text: &str) -> Result<Spelled<T>> {
         let word = text.trim().to_ascii_lowercase();
         if let Some(w) = self.words.iter().find(|w| w.name == word) {
@@ -76,7 +77,7 @@ impl<T: Copy + PartialEq + 'static> Vocabulary<T> {
             });
         }
         Err(Error::InvalidArgument {
-            what: self.key,
+            what: self.key.into(),
             reason: format!("\"{}\" is not one of {}", text.trim(), self.one_of()),
         })
     }
@@ -103,7 +104,7 @@ impl<T: Copy + PartialEq + 'static> Vocabulary<T> {
 /// Parameter values of interpolation points (document 000 §1; P&T eq. 9.4–9.6). A number is
 /// read by the front ends as the exponent of [`Parametrization::Exponent`].
 pub const PARAMETRIZATION: Vocabulary<Parametrization> = Vocabulary {
-    key: "parametrization",
+    key: Arg::Parametrization,
     words: &[
         Word {
             name: "uniform",
@@ -129,7 +130,7 @@ pub const PARAMETRIZATION: Vocabulary<Parametrization> = Vocabulary {
 
 /// Knot placement of interpolation (document 000 eq. 2, 3, 4, 8).
 pub const KNOT_PLACEMENT: Vocabulary<KnotPlacement> = Vocabulary {
-    key: "knots",
+    key: Arg::Knots,
     words: &[
         Word {
             name: "auto",
@@ -189,14 +190,14 @@ impl EndKind {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`]: `what` = `"end derivatives"` when a derivative is missing
+    /// [`Error::InvalidArgument`] about [`Arg::EndDerivatives`] when a derivative is missing
     /// for a kind that needs both or given to one that uses none.
     pub fn condition(self, start: Option<Vec<f64>>, end: Option<Vec<f64>>) -> Result<EndCondition> {
         let name = END_CONDITION.name(self).unwrap_or("free");
         let both = |start: Option<Vec<f64>>, end: Option<Vec<f64>>| match (start, end) {
             (Some(a), Some(b)) => Ok((a, b)),
             _ => Err(Error::InvalidArgument {
-                what: "end derivatives",
+                what: Arg::EndDerivatives.into(),
                 reason: format!(
                     "the end condition {name} needs a derivative at the start and at the end, \
                      each a vector of the points' dimension"
@@ -215,7 +216,7 @@ impl EndKind {
             }
             _ if unused => {
                 return Err(Error::InvalidArgument {
-                    what: "end derivatives",
+                    what: Arg::EndDerivatives.into(),
                     reason: format!(
                         "end derivatives are used by the end conditions derivatives and second, \
                          not by {name}"
@@ -231,7 +232,7 @@ impl EndKind {
 
 /// End conditions of interpolation (document 000 §1–4).
 pub const END_CONDITION: Vocabulary<EndKind> = Vocabulary {
-    key: "end",
+    key: Arg::End,
     words: &[
         Word {
             name: "free",
@@ -271,7 +272,7 @@ pub const END_CONDITION: Vocabulary<EndKind> = Vocabulary {
 
 /// The points `τ` of the de Boor–Fix functionals (document 003 §5.1, step 5).
 pub const TAU_RULE: Vocabulary<TauRule> = Vocabulary {
-    key: "rule",
+    key: Arg::Rule,
     words: &[
         Word {
             name: "first-knot-after",
@@ -310,7 +311,7 @@ pub const TAU_RULE: Vocabulary<TauRule> = Vocabulary {
 
 /// A parameter direction of a surface.
 pub const DIRECTION: Vocabulary<Direction> = Vocabulary {
-    key: "direction",
+    key: Arg::Direction,
     words: &[
         Word {
             name: "u",
@@ -372,10 +373,10 @@ impl std::str::FromStr for Parametrization {
 
 /// Every vocabulary, by key: what the spelling test of the front ends walks.
 #[must_use]
-pub fn all() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
+pub fn all() -> Vec<(Arg, Vec<&'static str>, Vec<&'static str>)> {
     fn entry<T: Copy + PartialEq>(
         v: &Vocabulary<T>,
-    ) -> (&'static str, Vec<&'static str>, Vec<&'static str>) {
+    ) -> (Arg, Vec<&'static str>, Vec<&'static str>) {
         (
             v.key,
             v.names(),
@@ -422,7 +423,7 @@ mod tests {
                 );
             }
             assert!(
-                matches!(v.parse("nonsense"), Err(Error::InvalidArgument { what, .. }) if what == v.key)
+                matches!(v.parse("nonsense"), Err(e @ Error::InvalidArgument { .. }) if e.arg() == Some(v.key))
             );
         }
         check(&PARAMETRIZATION);

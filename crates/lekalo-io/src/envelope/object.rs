@@ -15,7 +15,7 @@
 //! a `type` name, a repr struct and two match arms; readers of older versions reject unknown
 //! types by name.
 
-use lekalo::{BSplineCurve, BezierCurve, Curve, NurbsCurve, Points};
+use lekalo::{Arg, BSplineCurve, BezierCurve, Curve, NurbsCurve, Points};
 use serde::de::IgnoredAny;
 use serde::Deserialize;
 use serde_json::{Map, Value};
@@ -339,26 +339,13 @@ pub(crate) fn curve_from_head(text: &str, at: &Location, head: &Head) -> IoResul
     }
 }
 
-/// The field that a library error is about, when its kind says so.
+/// The field that a library error is about: the field of its argument key, or of its kind.
 fn field_of(e: &lekalo::Error) -> Option<&'static str> {
-    use lekalo::Error as E;
-    match e {
-        E::KnotsNotSorted { .. } | E::KnotMultiplicity { .. } | E::EmptyDomain { .. } => {
-            Some("knots")
-        }
-        E::NonPositiveWeight { .. } => Some("weights"),
-        E::Degree { .. } => Some("degree"),
-        E::LengthMismatch { what, .. } | E::NonFinite { what, .. } | E::TooFew { what, .. } => {
-            if what.contains("weight") {
-                Some("weights")
-            } else if what.contains("knot") {
-                Some("knots")
-            } else if what.contains("point") {
-                Some("control")
-            } else {
-                None
-            }
-        }
+    match (e.arg(), e) {
+        (Some(Arg::Knots), _) | (None, lekalo::Error::EmptyDomain { .. }) => Some("knots"),
+        (Some(Arg::Weights), _) => Some("weights"),
+        (Some(Arg::ControlPoints), _) => Some("control"),
+        (None, lekalo::Error::Degree { .. }) => Some("degree"),
         _ => None,
     }
 }

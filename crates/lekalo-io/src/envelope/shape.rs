@@ -8,7 +8,7 @@
 //!  "control": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]], "weights": [1, 2, 2, 1]}
 //! ```
 
-use lekalo::{NurbsSurface, PiecewisePolynomial, Points};
+use lekalo::{Arg, NurbsSurface, PiecewisePolynomial, Points, What};
 use serde::Deserialize;
 
 use crate::error::{IoError, IoResult, Location};
@@ -106,7 +106,7 @@ pub fn read_nurbs_surface(text: &str, source: &str) -> IoResult<NurbsSurface> {
         return Err(invalid(
             "weights",
             lekalo::Error::LengthMismatch {
-                what: "weights (one per control point)",
+                what: What::of(Arg::Weights, "weights (one per control point)"),
                 expected: n,
                 got: r.weights.len(),
             },

@@ -12,7 +12,7 @@
 //! of each direction, `knots[a].len() − degrees[a] − 1`); a `nurbs_tensor` adds one weight per
 //! control point in the same order.
 
-use lekalo::{Points, Tensor, TensorBSpline, TensorNurbs};
+use lekalo::{Arg, Points, Tensor, TensorBSpline, TensorNurbs, What};
 use serde::Deserialize;
 
 use crate::error::{IoError, IoResult, Location};
@@ -123,7 +123,7 @@ pub fn read_tensor(text: &str, source: &str) -> IoResult<Tensor> {
                 return Err(invalid(
                     "weights",
                     lekalo::Error::LengthMismatch {
-                        what: "weights (one per control point)",
+                        what: What::of(Arg::Weights, "weights (one per control point)"),
                         expected: control.len(),
                         got: w.len(),
                     },

@@ -47,7 +47,7 @@ pub fn mesh_text(m: &Mesh, format: MeshFormat) -> IoResult<String> {
         return Err(IoError::Invalid {
             at: Location::new("mesh"),
             error: lekalo::Error::Dimension {
-                what: "mesh vertices (meshes are written for 3-D surfaces)",
+                what: "mesh vertices (meshes are written for 3-D surfaces)".into(),
                 expected: 3,
                 got: m.vertices.dim(),
             },

@@ -19,7 +19,7 @@ pub fn grid_to_obj(grid: &Grid<'_>, normals: Option<&Grid<'_>>) -> lekalo::Resul
     if let Some(n) = normals {
         if n.nu != grid.nu || n.nv != grid.nv || n.dim != 3 {
             return Err(lekalo::Error::LengthMismatch {
-                what: "normals grid (same rows and columns as the surface, dimension 3)",
+                what: "normals grid (same rows and columns as the surface, dimension 3)".into(),
                 expected: grid.nu * grid.nv * 3,
                 got: n.data.len(),
             });

@@ -27,7 +27,7 @@ impl<'a> Grid<'a> {
     pub fn new(nu: usize, nv: usize, dim: usize, data: &'a [f64]) -> lekalo::Result<Self> {
         if nu < 2 || nv < 2 {
             return Err(lekalo::Error::TooFew {
-                what: "grid rows and columns",
+                what: "grid rows and columns".into(),
                 min: 2,
                 got: nu.min(nv),
             });
@@ -35,7 +35,7 @@ impl<'a> Grid<'a> {
         let expected = nu.saturating_mul(nv).saturating_mul(dim);
         if data.len() != expected || dim == 0 {
             return Err(lekalo::Error::LengthMismatch {
-                what: "grid data (rows × columns × dimension)",
+                what: "grid data (rows × columns × dimension)".into(),
                 expected,
                 got: data.len(),
             });

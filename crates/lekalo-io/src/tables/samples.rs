@@ -56,7 +56,7 @@ pub fn sample_table(obj: &Object, ts: &[f64], spec: SampleSpec) -> lekalo::Resul
     let dim = obj.dim();
     if spec.torsion && dim != 3 {
         return Err(lekalo::Error::Dimension {
-            what: "curve for torsion",
+            what: "curve for torsion".into(),
             expected: 3,
             got: dim,
         });

@@ -47,7 +47,7 @@ pub fn surface_sample_table(
     let dim = s.dim();
     if (spec.normals || spec.curvature) && dim != 3 {
         return Err(lekalo::Error::Dimension {
-            what: "surface for normals and curvature",
+            what: "surface for normals and curvature".into(),
             expected: 3,
             got: dim,
         });

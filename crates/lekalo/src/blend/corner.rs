@@ -11,6 +11,7 @@ use crate::curve::bezier::check_unit;
 use crate::curve::nurbs::NurbsCurve;
 use crate::error::{Error, Result};
 use crate::points::Points;
+use crate::Arg;
 use crate::BezierCurve;
 
 /// A corner-transition piece in exact form: `form` restricted to `range` (unit parameters) plus
@@ -123,13 +124,13 @@ impl<C1: ParametricCurve, C2: ParametricCurve> CornerTransition<C1, C2> {
     pub fn new(before: C1, t_start: f64, after: C2, t_end: f64, continuity: usize) -> Result<Self> {
         if continuity == 0 || continuity > JumpPolynomial::MAX_K {
             return Err(Error::InvalidArgument {
-                what: "continuity degree k",
+                what: Arg::Continuity.into(),
                 reason: format!("got {continuity}; must be in 1..={}", JumpPolynomial::MAX_K),
             });
         }
         if before.dim() != after.dim() {
             return Err(Error::Dimension {
-                what: "curve after the corner (must match the one before)",
+                what: "curve after the corner (must match the one before)".into(),
                 expected: before.dim(),
                 got: after.dim(),
             });
@@ -138,13 +139,13 @@ impl<C1: ParametricCurve, C2: ParametricCurve> CornerTransition<C1, C2> {
         let (a2, b2) = after.domain();
         if !(t_start > a1 && t_start < b1) {
             return Err(Error::InvalidArgument {
-                what: "window start t_start",
+                what: "window start t_start".into(),
                 reason: format!("{t_start} must lie strictly inside ({a1}, {b1})"),
             });
         }
         if !(t_end > a2 && t_end < b2) {
             return Err(Error::InvalidArgument {
-                what: "window end t_end",
+                what: "window end t_end".into(),
                 reason: format!("{t_end} must lie strictly inside ({a2}, {b2})"),
             });
         }

@@ -2,6 +2,7 @@
 //! docs/theory/blending.md#deformation-of-curves): [`ParametricCurve`], [`Deformation`] (the
 //! mathematics is documented there), exact Bezier/NURBS forms; corners are in `corner.rs`.
 
+use crate::{Arg, What};
 use std::sync::Arc;
 
 use crate::blend::bernstein as bernstein_ops;
@@ -120,7 +121,7 @@ pub(crate) fn check_out_len(out: &[f64], order: usize, dim: usize) -> Result<()>
     let expected = (order + 1) * dim;
     if out.len() != expected {
         return Err(Error::LengthMismatch {
-            what: "derivative output ((order + 1) · dim)",
+            what: "derivative output ((order + 1) · dim)".into(),
             expected,
             got: out.len(),
         });
@@ -297,7 +298,7 @@ impl<F: Fn(f64, usize, &mut [f64]) -> Result<()>> FnCurve<F> {
     pub fn new(dim: usize, domain: (f64, f64), f: F) -> Result<Self> {
         if dim == 0 {
             return Err(Error::Dimension {
-                what: "user curve",
+                what: "user curve".into(),
                 expected: 1,
                 got: 0,
             });
@@ -468,7 +469,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     pub fn new(first: C1, second: C2, continuity: usize) -> Result<Self> {
         if continuity == 0 || continuity > JumpPolynomial::MAX_K + 1 {
             return Err(Error::InvalidArgument {
-                what: "continuity degree k",
+                what: Arg::Continuity.into(),
                 reason: format!(
                     "got {continuity}; the deformation uses w_(k-1), so k must be in 1..={}",
                     JumpPolynomial::MAX_K + 1
@@ -477,7 +478,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
         }
         if first.dim() != second.dim() {
             return Err(Error::Dimension {
-                what: "second curve (must match the first)",
+                what: "second curve (must match the first)".into(),
                 expected: first.dim(),
                 got: second.dim(),
             });
@@ -562,7 +563,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
             (self.first.bezier_form(), self.second.bezier_form())
         else {
             return Err(Error::InvalidArgument {
-                what: "curves of the deformation",
+                what: "curves of the deformation".into(),
                 reason: "both must be polynomial Bezier pieces for an exact Bezier form; \
                          use to_nurbs for rational pieces"
                     .into(),
@@ -586,7 +587,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     pub fn to_nurbs(&self) -> Result<NurbsCurve> {
         let (Some(f1), Some(f2)) = (self.first.bezier_form(), self.second.bezier_form()) else {
             return Err(Error::InvalidArgument {
-                what: "curves of the deformation",
+                what: "curves of the deformation".into(),
                 reason: "both must be Bezier or rational Bezier pieces for an exact form".into(),
             });
         };
@@ -598,7 +599,7 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
 fn unreachable_form() -> Result<BezierCurve> {
     debug_assert!(false, "blend of polynomial pieces must be polynomial");
     Err(Error::InvalidArgument {
-        what: "curves of the deformation",
+        what: "curves of the deformation".into(),
         reason: "internal: expected a polynomial blend".into(),
     })
 }
@@ -661,8 +662,9 @@ pub(crate) fn blend_derivatives(
     second: &mut [f64],
     w: &[f64],
     dim: usize,
-    what: &'static str,
+    what: impl Into<What>,
 ) -> Result<()> {
+    let what: What = what.into();
     for (s, f) in second.iter_mut().zip(out.iter()) {
         *s -= f;
     }

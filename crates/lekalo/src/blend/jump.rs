@@ -174,7 +174,7 @@ impl JumpPolynomial {
         crate::curve::bezier::check_unit(u)?;
         if out.is_empty() {
             return Err(Error::TooFew {
-                what: "output buffer for w_k derivatives",
+                what: "output buffer for w_k derivatives".into(),
                 min: 1,
                 got: 0,
             });

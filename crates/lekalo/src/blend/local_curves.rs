@@ -282,7 +282,7 @@ impl ParametricCurve for ArcPiece {
         crate::blend::deformation::check_order(order)?;
         if out.len() != (order + 1) * dim {
             return Err(Error::LengthMismatch {
-                what: "derivative output ((order + 1) · dim)",
+                what: "derivative output ((order + 1) · dim)".into(),
                 expected: (order + 1) * dim,
                 got: out.len(),
             });
@@ -377,7 +377,7 @@ impl LocalCurves for CircularArcs {
                 let slope = |s: f64| f01 + c * (2.0 * s + dl);
                 if slope(-dl) <= 0.0 || slope(dr) <= 0.0 {
                     return Err(Error::InvalidArgument {
-                        what: "spline parameters for GlobalAngle arcs",
+                        what: "spline parameters for GlobalAngle arcs".into(),
                         reason: format!(
                             "the angle on the circle through the points would not be monotone \
                              (arc angles {alpha:.3e}, {beta:.3e} for parameter steps {dl:.3e}, \
@@ -395,7 +395,7 @@ impl LocalCurves for CircularArcs {
                 let limit = std::f64::consts::PI * (1.0 - 1e-9);
                 if alpha >= limit || beta >= limit {
                     return Err(Error::InvalidArgument {
-                        what: "points for rational quadratic arcs",
+                        what: "points for rational quadratic arcs".into(),
                         reason: format!(
                             "an arc spans {:.1}°, but a rational quadratic Bezier arc must be \
                              shorter than 180°; add points or use UniformAngle",

@@ -224,7 +224,7 @@ impl<'a> BlendSplinePieces<'a> {
         let m = self.segment_count();
         if i >= m {
             return Err(Error::InvalidArgument {
-                what: "segment index",
+                what: "segment index".into(),
                 reason: format!("{i} is not below the segment count {m}"),
             });
         }

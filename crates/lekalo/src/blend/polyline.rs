@@ -4,6 +4,7 @@
 
 use crate::error::{check_finite, Error, Result};
 use crate::points::{Points, PointsRef};
+use crate::Arg;
 use crate::{BSplineCurve, BezierCurve, BezierSegment};
 
 /// The largest continuity degree [`smooth_polyline_corners`] accepts. The curve has degree
@@ -113,14 +114,14 @@ pub fn smooth_polyline_corners(
     let n = points.len();
     if n < 3 {
         return Err(Error::TooFew {
-            what: "polyline points (a corner needs three)",
+            what: "polyline points (a corner needs three)".into(),
             min: 3,
             got: n,
         });
     }
     if continuity == 0 || continuity > MAX_POLYLINE_CONTINUITY {
         return Err(Error::InvalidArgument {
-            what: "continuity degree k",
+            what: Arg::Continuity.into(),
             reason: format!("got {continuity}; must be in 1..={MAX_POLYLINE_CONTINUITY}"),
         });
     }
@@ -207,7 +208,7 @@ fn segment_lengths(points: PointsRef<'_>) -> Result<Vec<f64>> {
             let len = crate::blend::deformation::dist(points.point(i), points.point(i + 1));
             if len <= 4.0 * f64::EPSILON * scale || len == 0.0 {
                 return Err(Error::InvalidArgument {
-                    what: "polyline points",
+                    what: "polyline points".into(),
                     reason: format!(
                         "points {i} and {} coincide (segment length {len:e}); remove the \
                          repeated point",
@@ -217,7 +218,7 @@ fn segment_lengths(points: PointsRef<'_>) -> Result<Vec<f64>> {
             }
             if !len.is_finite() {
                 return Err(Error::NonFinite {
-                    what: "polyline segment length (index = segment; rescale the points)",
+                    what: "polyline segment length (index = segment; rescale the points)".into(),
                     index: i,
                     value: len,
                 });
@@ -232,10 +233,10 @@ fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
     let corners = lengths.len() - 1;
     let windows: Vec<f64> = match window {
         CornerWindow::Fraction(f) => {
-            check_finite("corner window fraction", &[f])?;
+            check_finite(Arg::CornerFraction, &[f])?;
             if !(f > 0.0 && f <= 0.5) {
                 return Err(Error::InvalidArgument {
-                    what: "corner window fraction",
+                    what: Arg::CornerFraction.into(),
                     reason: format!(
                         "got {f}; it must lie in (0, 0.5] (a fraction of the shorter segment at \
                          each corner)"
@@ -247,10 +248,10 @@ fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
                 .collect()
         }
         CornerWindow::Length(r) => {
-            check_finite("corner window length", &[r])?;
+            check_finite(Arg::CornerLength, &[r])?;
             if r <= 0.0 {
                 return Err(Error::InvalidArgument {
-                    what: "corner window length",
+                    what: Arg::CornerLength.into(),
                     reason: format!("got {r}; it must be positive"),
                 });
             }
@@ -268,7 +269,7 @@ fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
                 .map(|(i, l)| if i == 0 || i == last { *l } else { l / 2.0 })
                 .fold(f64::INFINITY, f64::min);
             return Err(Error::InvalidArgument {
-                what: "corner window",
+                what: Arg::CornerWindow.into(),
                 reason: format!(
                     "segment {i} (points {i} to {}) is {len} long but its corner windows take \
                      {}; the largest window length that fits every segment is {fits} (or give \
@@ -549,12 +550,12 @@ mod tests {
             2,
         );
         assert!(
-            matches!(&e, Err(Error::InvalidArgument { what: "polyline points", reason }) if reason.contains("points 1 and 2 coincide")),
+            matches!(&e, Err(Error::InvalidArgument { what, reason }) if reason.contains("points 1 and 2 coincide") && what.words() == "polyline points"),
             "{e:?}"
         );
         let e = smooth(&ZIGZAG, CornerWindow::Length(1.6), 2);
         assert!(
-            matches!(&e, Err(Error::InvalidArgument { what: "corner window", reason }) if reason.contains("segment 1 (points 1 to 2)")),
+            matches!(&e, Err(Error::InvalidArgument { what, reason }) if reason.contains("segment 1 (points 1 to 2)") && what.arg() == Some(Arg::CornerWindow)),
             "{e:?}"
         );
         for f in [0.0, -0.1, 0.6] {
@@ -562,10 +563,7 @@ mod tests {
             assert!(
                 matches!(
                     e,
-                    Err(Error::InvalidArgument {
-                        what: "corner window fraction",
-                        ..
-                    })
+                    Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::CornerFraction)
                 ),
                 "{f}: {e:?}"
             );
@@ -577,10 +575,7 @@ mod tests {
             assert!(
                 matches!(
                     e,
-                    Err(Error::InvalidArgument {
-                        what: "continuity degree k",
-                        ..
-                    })
+                    Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::Continuity)
                 ),
                 "{k}: {e:?}"
             );

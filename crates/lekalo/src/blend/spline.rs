@@ -8,6 +8,7 @@ use crate::curve::bspline::BSplineCurve;
 use crate::curve::nurbs::NurbsCurve;
 use crate::error::{Error, Result};
 use crate::points::{Points, PointsRef};
+use crate::Arg;
 
 /// Global parameters `s_i` of the points (`Δ_i = s_{i+1} − s_i`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -235,7 +236,7 @@ impl BlendSpline {
     pub fn segment_derivatives(&self, i: usize, u: f64, order: usize) -> Result<Points> {
         crate::blend::deformation::check_order(order)?;
         let seg = self.segments.get(i).ok_or_else(|| Error::InvalidArgument {
-            what: "segment index",
+            what: "segment index".into(),
             reason: format!("{i} is not below the segment count {}", self.segments.len()),
         })?;
         let mut d = seg.eval_derivatives(u, order)?;
@@ -331,14 +332,14 @@ pub(crate) fn spline_deltas(
     let min = if options.closed { 3 } else { 2 };
     if n < min {
         return Err(Error::TooFew {
-            what: "spline points",
+            what: "spline points".into(),
             min,
             got: n,
         });
     }
     if options.continuity == 0 {
         return Err(Error::InvalidArgument {
-            what: "continuity degree k",
+            what: Arg::Continuity.into(),
             reason: "must be at least 1 (k = 1: tangent continuity with w_0(u) = u)".into(),
         });
     }
@@ -423,7 +424,7 @@ pub(crate) fn blend_segment(
 /// [`Error::InvalidArgument`] if its local curves have none.
 pub(crate) fn exact_form(segment: &Segment) -> Result<BezierForm> {
     segment.bezier_form().ok_or_else(|| Error::InvalidArgument {
-        what: "local curves",
+        what: "local curves".into(),
         reason: "the exact form needs polynomial or rational Bezier local curves \
                  (Parabolas or RationalQuadratic arcs)"
             .into(),
@@ -456,7 +457,7 @@ impl ParametricCurve for BlendSpline {
         let d = self.eval_derivatives(t, order)?;
         if out.len() != d.as_slice().len() {
             return Err(Error::LengthMismatch {
-                what: "derivative output ((order + 1) · dim)",
+                what: "derivative output ((order + 1) · dim)".into(),
                 expected: d.as_slice().len(),
                 got: out.len(),
             });

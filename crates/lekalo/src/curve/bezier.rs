@@ -1,6 +1,7 @@
 //! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002, Bezier curves,
 //! document 004 eq. 1), of any degree and dimension.
 
+use crate::{Arg, What};
 use serde::{Deserialize, Serialize};
 
 use crate::basis::bernstein_all_unchecked;
@@ -49,7 +50,7 @@ impl BezierCurve {
     pub fn new(control: Points) -> Result<Self> {
         if control.is_empty() {
             return Err(Error::TooFew {
-                what: "Bezier control points",
+                what: What::of(Arg::ControlPoints, "Bezier control points"),
                 min: 1,
                 got: 0,
             });
@@ -168,7 +169,7 @@ impl BezierCurve {
         let expected = ts.len().saturating_mul(dim);
         if out.len() != expected {
             return Err(Error::LengthMismatch {
-                what: "output buffer (parameters × dimension)",
+                what: "output buffer (parameters × dimension)".into(),
                 expected,
                 got: out.len(),
             });
@@ -302,7 +303,7 @@ impl BezierCurve {
         check_unit(t)?;
         if t == 0.0 || t == 1.0 {
             return Err(Error::InvalidArgument {
-                what: "split parameter",
+                what: "split parameter".into(),
                 reason: format!("t = {t} is an end of [0, 1]; split strictly inside (0, 1)"),
             });
         }
@@ -407,7 +408,7 @@ fn de_casteljau_into(ctrl: &[f64], dim: usize, t: f64, scratch: &mut [f64], out:
 fn check_out(got: usize, dim: usize) -> Result<()> {
     if got != dim {
         return Err(Error::LengthMismatch {
-            what: "output point (dimension)",
+            what: "output point (dimension)".into(),
             expected: dim,
             got,
         });

@@ -9,6 +9,7 @@
 //! vectors (such as the lecture's `[0, 0, 1, 2, 3, 3]`, document 002, B-splines) and acts on the
 //! curve over its domain; knots of multiplicity `p + 1` (jumps) are allowed throughout.
 
+use crate::Arg;
 use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_fixed, basis_funs_into, BasisScratch};
@@ -85,7 +86,7 @@ impl BSplineCurve {
     pub fn from_knot_vector(degree: usize, knots: KnotVector, control: Points) -> Result<Self> {
         if control.is_empty() {
             return Err(Error::TooFew {
-                what: "control points",
+                what: Arg::ControlPoints.into(),
                 min: degree.saturating_add(1),
                 got: 0,
             });
@@ -157,7 +158,7 @@ impl BSplineCurve {
     pub fn graph(&self) -> Result<BSplineCurve> {
         if self.dim() != 1 {
             return Err(Error::Dimension {
-                what: "function for its graph",
+                what: "function for its graph".into(),
                 expected: 1,
                 got: self.dim(),
             });
@@ -277,7 +278,7 @@ impl BSplineCurve {
         let dim = self.dim();
         if out.len() != ts.len() * dim {
             return Err(Error::LengthMismatch {
-                what: "output buffer (parameters × dimension)",
+                what: "output buffer (parameters × dimension)".into(),
                 expected: ts.len() * dim,
                 got: out.len(),
             });
@@ -575,7 +576,7 @@ impl BSplineCurve {
 fn check_out(got: usize, dim: usize) -> Result<()> {
     if got != dim {
         return Err(Error::LengthMismatch {
-            what: "output point (dimension)",
+            what: "output point (dimension)".into(),
             expected: dim,
             got,
         });

@@ -79,7 +79,7 @@ impl NurbsCurve {
         let n = norm2(&normal);
         if n == 0.0 || !n.is_finite() {
             return Err(Error::InvalidArgument {
-                what: "normal",
+                what: "normal".into(),
                 reason: "the normal is the zero vector; give the direction of the circle's axis"
                     .into(),
             });
@@ -154,7 +154,7 @@ impl NurbsCurve {
         let full = std::f64::consts::TAU;
         if sweep == 0.0 || sweep.abs() > full * (1.0 + ARC_SWEEP_SLACK) {
             return Err(Error::InvalidArgument {
-                what: "arc angles",
+                what: "arc angles".into(),
                 reason: format!(
                     "the sweep end_angle − start_angle = {sweep} must be non-zero and at most 2π \
                      in magnitude"
@@ -237,7 +237,7 @@ impl NurbsCurve {
         let w: Vec<f64> = a.iter().zip(c).map(|(p, q)| p - q).collect();
         if !u.iter().chain(&v).chain(&w).all(|x| x.is_finite()) {
             return Err(Error::NonFinite {
-                what: "arc point differences (overflow)",
+                what: "arc point differences (overflow)".into(),
                 index: 0,
                 value: f64::INFINITY,
             });
@@ -247,7 +247,7 @@ impl NurbsCurve {
         for (len, names) in [(lu, "a and b"), (lv, "b and c"), (lw, "a and c")] {
             if len <= ARC_COINCIDENT_TOL * scale {
                 return Err(Error::InvalidArgument {
-                    what: "arc points",
+                    what: "arc points".into(),
                     reason: format!(
                         "points {names} coincide (distance {len:e} ≤ {ARC_COINCIDENT_TOL:e} × \
                          {scale:e}, the largest distance between the points); a circle needs \
@@ -262,7 +262,7 @@ impl NurbsCurve {
         let sin_beta = wedge_norm(&uh, &vh);
         if sin_beta <= ARC_COLLINEAR_TOL {
             return Err(Error::InvalidArgument {
-                what: "arc points",
+                what: "arc points".into(),
                 reason: format!(
                     "the three points are collinear (sine of the angle at b is {sin_beta:e} ≤ \
                      {ARC_COLLINEAR_TOL:e}); no circle passes through them — use a line"
@@ -362,7 +362,7 @@ impl NurbsCurve {
         let full = std::f64::consts::TAU;
         if sweep == 0.0 || sweep.abs() > full * (1.0 + ARC_SWEEP_SLACK) {
             return Err(Error::InvalidArgument {
-                what: "arc angles",
+                what: "arc angles".into(),
                 reason: format!(
                     "the sweep end_angle − start_angle = {sweep} must be non-zero and at most 2π \
                      in magnitude"
@@ -422,7 +422,7 @@ impl BSplineCurve {
     pub fn line_segment(point: &[f64], direction: &[f64], t0: f64, t1: f64) -> Result<Self> {
         if point.is_empty() || direction.len() != point.len() {
             return Err(Error::Dimension {
-                what: "line direction",
+                what: "line direction".into(),
                 expected: point.len().max(1),
                 got: direction.len(),
             });
@@ -432,7 +432,7 @@ impl BSplineCurve {
         check_finite("line parameters", &[t0, t1])?;
         if norm2(direction) == 0.0 {
             return Err(Error::InvalidArgument {
-                what: "line direction",
+                what: "line direction".into(),
                 reason: "the direction is the zero vector; give the direction of the line".into(),
             });
         }
@@ -545,7 +545,7 @@ fn arc_frame(center: &[f64], x_axis: &[f64], y_axis: &[f64]) -> Result<(Vec<f64>
         let n = norm2(v);
         if !(n > 0.0 && n.is_finite()) {
             return Err(Error::InvalidArgument {
-                what,
+                what: what.into(),
                 reason: "the axis is the zero vector; give a direction in the plane of the arc"
                     .into(),
             });
@@ -557,7 +557,7 @@ fn arc_frame(center: &[f64], x_axis: &[f64], y_axis: &[f64]) -> Result<(Vec<f64>
     let c = dot(&x, &y);
     if c.abs() > ARC_AXIS_ORTHOGONALITY_TOL {
         return Err(Error::InvalidArgument {
-            what: "y_axis",
+            what: "y_axis".into(),
             reason: format!(
                 "the axes must be orthogonal, but the cosine of their angle is {c:e} (more than \
                  {ARC_AXIS_ORTHOGONALITY_TOL:e}); pass y_axis − (x̂·y_axis) x̂"
@@ -576,7 +576,7 @@ fn check_arc_dims(
 ) -> Result<()> {
     if dim < 2 {
         return Err(Error::Dimension {
-            what: first,
+            what: first.into(),
             expected: 2,
             got: dim,
         });
@@ -584,7 +584,7 @@ fn check_arc_dims(
     for &(what, v) in others {
         if v.len() != dim {
             return Err(Error::Dimension {
-                what,
+                what: what.into(),
                 expected: dim,
                 got: v.len(),
             });
@@ -596,7 +596,7 @@ fn check_arc_dims(
 fn check_radius(radius: f64) -> Result<()> {
     if !(radius > 0.0 && radius.is_finite()) {
         return Err(Error::InvalidArgument {
-            what: "radius",
+            what: "radius".into(),
             reason: format!("{radius} is not a positive finite number"),
         });
     }

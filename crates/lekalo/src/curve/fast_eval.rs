@@ -161,7 +161,7 @@ impl CurveEvaluator {
         let ev = Self::build(curve, kernel);
         if kernel == EvalKernel::PowerForm && ev.kernel() != EvalKernel::PowerForm {
             return Err(Error::InvalidArgument {
-                what: "evaluation kernel",
+                what: "evaluation kernel".into(),
                 reason: "the power form's coefficients overflow for these control points; \
                          use EvalKernel::Basis or EvalKernel::Auto"
                     .into(),
@@ -617,7 +617,7 @@ fn check_batch(n: usize, row: usize, got: usize) -> Result<()> {
     let expected = n * row;
     if got != expected {
         return Err(Error::LengthMismatch {
-            what: "output buffer (parameters × values per parameter)",
+            what: "output buffer (parameters × values per parameter)".into(),
             expected,
             got,
         });

@@ -178,7 +178,7 @@ impl BSplineCurve {
         let dim = self.dim();
         if out.len() != ts.len() * dim {
             return Err(Error::LengthMismatch {
-                what: "output buffer (parameters × dimension)",
+                what: "output buffer (parameters × dimension)".into(),
                 expected: ts.len() * dim,
                 got: out.len(),
             });
@@ -264,7 +264,7 @@ pub fn bspline_value_by(
     beyond: Beyond,
 ) -> Result<f64> {
     let invalid = |reason: String| Error::InvalidArgument {
-        what: "spline (knots, degree, coefficients)",
+        what: "spline (knots, degree, coefficients)".into(),
         reason,
     };
     if n_knots < 2 * k + 2 {

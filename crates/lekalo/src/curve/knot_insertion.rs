@@ -7,6 +7,7 @@ use crate::curve::bezier::{BezierCurve, BezierSegment};
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::points::Points;
+use crate::Arg;
 
 impl BSplineCurve {
     /// Inserts the knot `t` `times` times by Boehm's algorithm (P&T §5.2, Algorithm A5.1):
@@ -44,7 +45,7 @@ impl BSplineCurve {
         let total = s.saturating_add(times);
         if total > p {
             return Err(Error::InvalidArgument {
-                what: "knot insertion count",
+                what: Arg::Times.into(),
                 reason: format!(
                     "inserting {t} {times} times would give it multiplicity {total}, more than \
                      the degree {p}; insert it at most {} times",
@@ -139,7 +140,7 @@ impl BSplineCurve {
             let total = self.knots.multiplicity(x[i]) + run;
             if total > p {
                 return Err(Error::InvalidArgument {
-                    what: "refinement knots",
+                    what: "refinement knots".into(),
                     reason: format!(
                         "knot {} would get multiplicity {total}, more than the degree {p}",
                         x[i]
@@ -151,7 +152,7 @@ impl BSplineCurve {
         let size = (self.control.len() + x.len()).saturating_mul(self.dim());
         if size > MAX_SCALARS {
             return Err(Error::TooLarge {
-                what: "refined control points",
+                what: "refined control points".into(),
                 size,
                 max: MAX_SCALARS,
             });
@@ -233,7 +234,7 @@ impl BSplineCurve {
         }
         if t == min || t == max {
             return Err(Error::InvalidArgument {
-                what: "split parameter",
+                what: "split parameter".into(),
                 reason: format!(
                     "t = {t} is an end of the domain [{min}, {max}]; split strictly inside it"
                 ),
@@ -352,7 +353,7 @@ impl BSplineCurve {
     /// differ (elevate them first); [`Error::Dimension`] if the dimensions differ.
     pub fn from_bezier_segments(segments: &[BezierSegment]) -> Result<BSplineCurve> {
         let first = segments.first().ok_or(Error::TooFew {
-            what: "Bezier segments",
+            what: "Bezier segments".into(),
             min: 1,
             got: 0,
         })?;
@@ -361,7 +362,7 @@ impl BSplineCurve {
         for (i, seg) in segments.iter().enumerate() {
             if let Some(value) = [seg.start, seg.end].into_iter().find(|v| !v.is_finite()) {
                 return Err(Error::NonFinite {
-                    what: "Bezier segment start/end (index = segment)",
+                    what: "Bezier segment start/end (index = segment)".into(),
                     index: i,
                     value,
                 });
@@ -384,14 +385,14 @@ impl BSplineCurve {
             }
             if seg.curve.dim() != dim {
                 return Err(Error::Dimension {
-                    what: "Bezier segment control points (all segments share a dimension)",
+                    what: "Bezier segment control points (all segments share a dimension)".into(),
                     expected: dim,
                     got: seg.curve.dim(),
                 });
             }
             if i > 0 && seg.start != segments[i - 1].end {
                 return Err(Error::InvalidArgument {
-                    what: "Bezier segments",
+                    what: "Bezier segments".into(),
                     reason: format!(
                         "segment {i} starts at {} but segment {} ends at {}; the segments must \
                          be consecutive",

@@ -21,6 +21,7 @@
 use crate::curve::bspline::BSplineCurve;
 use crate::error::{Error, Result};
 use crate::points::Points;
+use crate::{Arg, What};
 
 /// Relative part of [`BSplineCurve::default_removal_tolerance`]: `1e-12` times the extent
 /// (bounding-box diagonal) of the control net.
@@ -107,7 +108,7 @@ impl BSplineCurve {
         }
         if t == min || t == max {
             return Err(Error::InvalidArgument {
-                what: "knot to remove",
+                what: What::of(Arg::Knot, "knot to remove"),
                 reason: format!(
                     "t = {t} is an end of the domain [{min}, {max}]; only knots strictly inside \
                      the domain can be removed"
@@ -117,13 +118,13 @@ impl BSplineCurve {
         let s = self.knots().multiplicity(t);
         if s == 0 {
             return Err(Error::InvalidArgument {
-                what: "knot to remove",
+                what: What::of(Arg::Knot, "knot to remove"),
                 reason: format!("t = {t} is not a knot of the curve; pass one of its knots"),
             });
         }
         if times > s {
             return Err(Error::InvalidArgument {
-                what: "knot removal count",
+                what: What::of(Arg::Times, "knot removal count"),
                 reason: format!(
                     "knot {t} has multiplicity {s}, so it cannot be removed {times} times; \
                      remove it at most {s} times"
@@ -210,14 +211,14 @@ fn within(deviation: f64, tolerance: f64) -> bool {
 pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
     if !tolerance.is_finite() {
         return Err(Error::NonFinite {
-            what: "tolerance",
+            what: Arg::Tolerance.into(),
             index: 0,
             value: tolerance,
         });
     }
     if tolerance < 0.0 {
         return Err(Error::InvalidArgument {
-            what: "tolerance",
+            what: Arg::Tolerance.into(),
             reason: format!(
                 "{tolerance} is negative; pass an absolute distance ≥ 0 (e.g. the curve's \
                  default_removal_tolerance)"

@@ -172,7 +172,7 @@ impl NurbsCurve {
         let dim = self.dim();
         if out.len() != dim {
             return Err(Error::LengthMismatch {
-                what: "output point (dimension)",
+                what: "output point (dimension)".into(),
                 expected: dim,
                 got: out.len(),
             });
@@ -224,7 +224,7 @@ impl NurbsCurve {
         let dim = self.dim();
         if out.len() != ts.len() * dim {
             return Err(Error::LengthMismatch {
-                what: "output buffer (parameters × dimension)",
+                what: "output buffer (parameters × dimension)".into(),
                 expected: ts.len() * dim,
                 got: out.len(),
             });

@@ -7,6 +7,7 @@
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
+use crate::Arg;
 
 /// Inserts `x` `times` times into the periodic spline of degree `k` with the knots `knots`
 /// (`n` of them, base interval `[t_k, t_{n−k−1}]`) and the `n − k − 1` coefficients `control`,
@@ -132,7 +133,7 @@ fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize
     KnotVector::check_values(knots)?;
     if control.len() != n - k - 1 {
         return Err(Error::LengthMismatch {
-            what: "coefficients (knots − degree − 1)",
+            what: "coefficients (knots − degree − 1)".into(),
             expected: n - k - 1,
             got: control.len(),
         });
@@ -143,7 +144,7 @@ fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize
         .filter(|v| v.checked_mul(dim + 1).is_some_and(|s| s <= MAX_SCALARS));
     if total.is_none() {
         return Err(Error::TooLarge {
-            what: "knots after insertion",
+            what: "knots after insertion".into(),
             size: usize::MAX,
             max: MAX_SCALARS,
         });
@@ -185,14 +186,14 @@ pub fn insert_knot_into(
     let rows = n + times - k - 1;
     if out_knots.len() != n + times {
         return Err(Error::LengthMismatch {
-            what: "knot buffer (knots + insertions)",
+            what: "knot buffer (knots + insertions)".into(),
             expected: n + times,
             got: out_knots.len(),
         });
     }
     if out_control.len() < rows * dim || out_control.len() % dim != 0 {
         return Err(Error::LengthMismatch {
-            what: "coefficient buffer (rows × dimension, at least the coefficients)",
+            what: "coefficient buffer (rows × dimension, at least the coefficients)".into(),
             expected: rows * dim,
             got: out_control.len(),
         });
@@ -279,7 +280,7 @@ fn insert_once_into(
     }
     if t[l] >= t[l + 1] {
         return Err(Error::InvalidArgument {
-            what: "knot to insert",
+            what: Arg::Knot.into(),
             reason: format!(
                 "{x} lies in an empty knot interval [{}, {}]",
                 t[l],
@@ -290,7 +291,7 @@ fn insert_once_into(
     // 1-based l of FITPACK is l + 1: refused when l + 1 ≤ 2k and l + 1 ≥ n − 2k
     if periodic && l < 2 * k && l + 1 + 2 * k >= n {
         return Err(Error::InvalidArgument {
-            what: "knot to insert",
+            what: Arg::Knot.into(),
             reason: format!(
                 "{x} lies in knot interval {l} of {n} knots; to carry the periodic extension \
                  (degree {k}) the interval must be at least {} or at most {}: insert into a \

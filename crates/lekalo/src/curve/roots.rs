@@ -39,7 +39,7 @@ use crate::pp::{PiecewisePolynomial, Solution};
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must be refused
 pub fn bspline_zeros(t: &[f64], k: usize, c: &[f64]) -> Result<Vec<f64>> {
     let invalid = |reason: String| Error::InvalidArgument {
-        what: "spline (knots, degree, coefficients)",
+        what: "spline (knots, degree, coefficients)".into(),
         reason,
     };
     if t.len() < 2 * k + 2 {

@@ -11,12 +11,13 @@
 
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::error::{check_degree_bound, check_finite, Error, Result};
+use crate::Arg;
 
 /// The checks shared by the functions of this module: `t.len() ≥ 2k + 2`, `dim ≥ 1`, at least
 /// `n = t.len() − k − 1` coefficient rows in `c`; returns `n`.
 fn coefficient_count(t: &[f64], k: usize, c: &[f64], dim: usize) -> Result<usize> {
     let invalid = |reason: String| Error::InvalidArgument {
-        what: "spline (knots, degree, coefficients)",
+        what: "spline (knots, degree, coefficients)".into(),
         reason,
     };
     if dim == 0 {
@@ -45,7 +46,7 @@ fn coefficient_count(t: &[f64], k: usize, c: &[f64], dim: usize) -> Result<usize
 /// A buffer of the wrong size: the caller's mistake, named.
 fn buffer_size(expected: usize, got: usize) -> Error {
     Error::LengthMismatch {
-        what: "result buffer (rows × dimension)",
+        what: "result buffer (rows × dimension)".into(),
         expected,
         got,
     }
@@ -84,7 +85,7 @@ pub fn derivative_coefficients_into(
     let n = coefficient_count(t, k, c, dim)?;
     if nu > k {
         return Err(Error::InvalidArgument {
-            what: "derivative order",
+            what: "derivative order".into(),
             reason: format!("order {nu} exceeds the degree {k}: use orders 0 … {k}"),
         });
     }
@@ -127,7 +128,7 @@ fn derivative_factor(u: &[f64], p: usize, i: usize, nu: usize) -> Result<f64> {
     let denom = u[i + p + 1] - u[i + 1];
     if denom.is_nan() || denom <= 0.0 {
         return Err(Error::InvalidArgument {
-            what: "knots",
+            what: Arg::Knots.into(),
             reason: format!(
                 "knot {} is repeated {} times or more: the spline is not differentiable {nu} \
                  times there; take fewer derivatives",
@@ -386,7 +387,7 @@ pub fn integral_into(
     check_finite("integration limits [a, b]", &[a, b])?;
     if !(t[k] < t[n]) {
         return Err(Error::InvalidArgument {
-            what: "spline (knots, degree, coefficients)",
+            what: "spline (knots, degree, coefficients)".into(),
             reason: format!("the domain [t_k, t_n] = [{}, {}] is empty", t[k], t[n]),
         });
     }

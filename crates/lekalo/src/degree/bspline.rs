@@ -77,7 +77,7 @@ impl BSplineCurve {
         let dim = self.dim();
         let (a, b) = self.domain();
         let q = p.checked_add(by).ok_or(Error::TooLarge {
-            what: "elevated degree",
+            what: "elevated degree".into(),
             size: usize::MAX,
             max: crate::MAX_DEGREE,
         })?;
@@ -110,7 +110,7 @@ impl BSplineCurve {
         }
         if next != segments.len() {
             return Err(Error::InvalidArgument {
-                what: "curve to elevate",
+                what: "curve to elevate".into(),
                 reason: format!(
                     "its {} Bezier pieces do not match the {next} knot intervals of the \
                      elevated curve",
@@ -138,7 +138,7 @@ impl BSplineCurve {
                 .map(|(k, _)| k)
                 // B_i is positive somewhere in the domain, so one of its intervals is non-empty
                 .ok_or_else(|| Error::InvalidArgument {
-                    what: "curve to elevate",
+                    what: "curve to elevate".into(),
                     reason: format!("control point {i} of the elevated curve has no piece"),
                 })?;
             let j = piece_of[k];
@@ -244,7 +244,7 @@ impl BSplineCurve {
         let segments = self.to_bezier_segments();
         if ends == EndConditions::Free && segments.len() > 1 {
             return Err(Error::InvalidArgument {
-                what: "end conditions",
+                what: "end conditions".into(),
                 reason: format!(
                     "free ends would tear the {} pieces of the B-spline apart at their joins; \
                      keep the end points or the end tangents",

@@ -53,8 +53,10 @@ use crate::degree::reduction::{
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
+use crate::What;
 
-pub(crate) fn finite_result(what: &'static str, data: Vec<f64>, dim: usize) -> Result<Points> {
+pub(crate) fn finite_result(what: impl Into<What>, data: Vec<f64>, dim: usize) -> Result<Points> {
+    let what: What = what.into();
     if check_finite(what, &data).is_err() {
         return Err(Error::IllConditioned {
             reason: format!("{what} overflowed f64"),
@@ -112,7 +114,7 @@ impl BezierCurve {
     pub fn from_monomial(coefficients: Points) -> Result<BezierCurve> {
         if coefficients.is_empty() {
             return Err(Error::TooFew {
-                what: "monomial coefficients",
+                what: "monomial coefficients".into(),
                 min: 1,
                 got: 0,
             });

@@ -4,6 +4,7 @@
 //! weights, and the banded kernel shared by [`BezierCurve::elevate_degree`] and
 //! [`ElevationPlan`] (kernels on flat point-major slices; callers validate).
 
+use crate::What;
 use std::cell::RefCell;
 
 use crate::error::{Error, Result, MAX_SCALARS};
@@ -170,7 +171,8 @@ pub(crate) fn elevate(src: &[f64], dim: usize, r: usize) -> Vec<f64> {
 }
 
 /// Checks that `points × dim` scalars can be allocated.
-pub(crate) fn check_size(what: &'static str, points: usize, dim: usize) -> Result<()> {
+pub(crate) fn check_size(what: impl Into<What>, points: usize, dim: usize) -> Result<()> {
+    let what: What = what.into();
     match points.checked_mul(dim) {
         Some(size) if size <= MAX_SCALARS => Ok(()),
         other => Err(Error::TooLarge {

@@ -4,6 +4,7 @@
 use crate::degree::elevation::{apply_band, check_size, elevation_band, BAND_PAD};
 use crate::error::{Error, Result};
 use crate::points::Points;
+use crate::Arg;
 use crate::BezierCurve;
 
 /// Precomputed one-step elevation from degree `n` to `n + r` (document 004 eq. 8, closed form
@@ -46,7 +47,7 @@ impl ElevationPlan {
         // degrees above MAX_DEGREE would pass the size check and then loop `to` times
         if to > crate::MAX_DEGREE {
             return Err(Error::TooLarge {
-                what: "elevation target degree",
+                what: "elevation target degree".into(),
                 size: to,
                 max: crate::MAX_DEGREE,
             });
@@ -86,21 +87,21 @@ impl ElevationPlan {
     pub fn apply_into(&self, control: &[f64], dim: usize, out: &mut [f64]) -> Result<()> {
         if dim == 0 {
             return Err(Error::Dimension {
-                what: "control points",
+                what: Arg::ControlPoints.into(),
                 expected: 1,
                 got: 0,
             });
         }
         if control.len() != (self.from + 1) * dim {
             return Err(Error::LengthMismatch {
-                what: "control point coordinates ((from degree + 1) × dim)",
+                what: "control point coordinates ((from degree + 1) × dim)".into(),
                 expected: (self.from + 1) * dim,
                 got: control.len(),
             });
         }
         if out.len() != (self.to + 1) * dim {
             return Err(Error::LengthMismatch {
-                what: "output coordinates ((to degree + 1) × dim)",
+                what: "output coordinates ((to degree + 1) × dim)".into(),
                 expected: (self.to + 1) * dim,
                 got: out.len(),
             });

@@ -59,7 +59,7 @@ impl RationalMatrix {
         let size = rows.saturating_mul(cols);
         if size > max {
             return Err(Error::TooLarge {
-                what: "exact rational matrix (entries)",
+                what: "exact rational matrix (entries)".into(),
                 size,
                 max,
             });
@@ -84,7 +84,7 @@ impl RationalMatrix {
         let mut m = Self::zeros(rows, cols)?;
         if values.len() != rows * cols {
             return Err(Error::LengthMismatch {
-                what: "matrix entries (rows × cols)",
+                what: "matrix entries (rows × cols)".into(),
                 expected: rows * cols,
                 got: values.len(),
             });
@@ -150,7 +150,7 @@ impl RationalMatrix {
     pub fn mul(&self, rhs: &RationalMatrix) -> Result<Self> {
         if self.cols != rhs.rows {
             return Err(Error::LengthMismatch {
-                what: "matrix product (rows of the right factor = columns of the left)",
+                what: "matrix product (rows of the right factor = columns of the left)".into(),
                 expected: self.cols,
                 got: rhs.rows,
             });
@@ -184,14 +184,14 @@ impl RationalMatrix {
     pub fn apply_to_points(&self, points: &[BigRational], dim: usize) -> Result<Vec<BigRational>> {
         if dim == 0 {
             return Err(Error::Dimension {
-                what: "points",
+                what: "points".into(),
                 expected: 1,
                 got: 0,
             });
         }
         if points.len() != self.rows * dim {
             return Err(Error::LengthMismatch {
-                what: "point coordinates (matrix rows × dimension)",
+                what: "point coordinates (matrix rows × dimension)".into(),
                 expected: self.rows * dim,
                 got: points.len(),
             });

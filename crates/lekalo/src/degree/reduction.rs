@@ -185,7 +185,7 @@ pub(crate) fn real_degree_and_net(
 pub(crate) fn absolute_tolerance(tolerance: f64, net: &[f64]) -> Result<f64> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(Error::InvalidArgument {
-            what: "degree tolerance",
+            what: "degree tolerance".into(),
             reason: format!(
                 "{tolerance} is not a finite non-negative number (relative to the largest \
                  absolute control-point coordinate; the default is {DEFAULT_DEGREE_TOLERANCE})"

@@ -25,6 +25,7 @@ use crate::degree::monomial::{
 use crate::degree::reduction::{absolute_tolerance, real_degree_and_net, try_reduce_exact};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
+use crate::What;
 use crate::{BezierSurface, DEFAULT_DEGREE_TOLERANCE};
 
 /// Checks that `net` holds `(degree_u + 1)·(degree_v + 1)` points.
@@ -35,7 +36,7 @@ fn check_net(net: &Points, degree_u: usize, degree_v: usize) -> Result<()> {
     match expected {
         Some(e) if e == net.len() => Ok(()),
         _ => Err(Error::LengthMismatch {
-            what: "control net points ((degree_u + 1) × (degree_v + 1))",
+            what: "control net points ((degree_u + 1) × (degree_v + 1))".into(),
             expected: expected.unwrap_or(usize::MAX),
             got: net.len(),
         }),
@@ -129,7 +130,8 @@ fn check_monomial_degrees(degree_u: usize, degree_v: usize) -> Result<()> {
     Ok(())
 }
 
-fn finite_net(what: &'static str, data: Vec<f64>, dim: usize) -> Result<Points> {
+fn finite_net(what: impl Into<What>, data: Vec<f64>, dim: usize) -> Result<Points> {
+    let what: What = what.into();
     if check_finite(what, &data).is_err() {
         return Err(Error::IllConditioned {
             reason: format!("{what} overflowed f64"),

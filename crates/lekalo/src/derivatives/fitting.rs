@@ -15,6 +15,7 @@ use crate::fit::{
 };
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
+use crate::{Arg, What};
 
 /// The observation rows `B` of a fit (`width` non-zero basis functions a data point, starting at
 /// `first[k]`) and the data weights `W`.
@@ -127,7 +128,8 @@ impl Rows {
     }
 
     /// The length and finiteness of a buffer of `count` points of dimension `dim ≥ 1`.
-    fn check(what: &'static str, v: &[f64], count: usize, dim: usize) -> Result<()> {
+    fn check(what: impl Into<What>, v: &[f64], count: usize, dim: usize) -> Result<()> {
+        let what: What = what.into();
         if dim == 0 {
             return Err(Error::Dimension {
                 what,
@@ -430,13 +432,13 @@ impl SmoothingMap {
     pub fn new(params: &[f64], lambda: f64, weights: Option<&[f64]>) -> Result<Self> {
         if !(lambda >= 0.0 && lambda.is_finite()) {
             return Err(Error::NegativeSmoothing {
-                what: "λ",
+                what: Arg::Lambda.into(),
                 value: lambda,
             });
         }
         if lambda == 0.0 {
             return Err(Error::InvalidArgument {
-                what: "λ of the smoothing-spline derivatives",
+                what: What::of(Arg::Lambda, "λ of the smoothing-spline derivatives"),
                 reason: "λ = 0 is the natural interpolating spline, not covered here; give λ > 0"
                     .into(),
             });

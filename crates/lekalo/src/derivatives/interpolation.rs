@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::interpolate::collocation::{factor_collocation, Factors};
 use crate::knots::{check_parameters, KnotVector};
 use crate::numeric::linalg::BandedCrout;
+use crate::What;
 
 /// The linear map from data values to control points of interpolation with a given degree,
 /// knot vector and parameters (no end derivatives: as many parameters as control points),
@@ -95,7 +96,8 @@ impl InterpolationMap {
         Ok(out)
     }
 
-    fn check(&self, v: &[f64], dim: usize, what: &'static str) -> Result<()> {
+    fn check(&self, v: &[f64], dim: usize, what: impl Into<What>) -> Result<()> {
+        let what: What = what.into();
         if dim == 0 {
             return Err(Error::Dimension {
                 what,

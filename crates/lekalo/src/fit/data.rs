@@ -31,14 +31,14 @@ impl<'a> FitData<'a> {
     pub fn new(points: PointsRef<'a>, params: &'a [f64]) -> Result<Self> {
         if points.is_empty() {
             return Err(Error::TooFew {
-                what: "data points to fit",
+                what: "data points to fit".into(),
                 min: 1,
                 got: 0,
             });
         }
         if params.len() != points.len() {
             return Err(Error::LengthMismatch {
-                what: "data parameters (one per data point)",
+                what: "data parameters (one per data point)".into(),
                 expected: points.len(),
                 got: params.len(),
             });
@@ -59,7 +59,7 @@ impl<'a> FitData<'a> {
     pub fn with_weights(self, weights: &'a [f64]) -> Result<Self> {
         if weights.len() != self.points.len() {
             return Err(Error::LengthMismatch {
-                what: "data weights (one per data point)",
+                what: "data weights (one per data point)".into(),
                 expected: self.points.len(),
                 got: weights.len(),
             });
@@ -158,7 +158,7 @@ impl FitReport {
     pub fn of(curve: &BSplineCurve, data: &FitData<'_>) -> Result<Self> {
         if curve.dim() != data.points.dim() {
             return Err(Error::Dimension {
-                what: "curve for a fit report (the data's dimension)",
+                what: "curve for a fit report (the data's dimension)".into(),
                 expected: data.points.dim(),
                 got: curve.dim(),
             });

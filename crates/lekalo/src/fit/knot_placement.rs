@@ -45,7 +45,7 @@ pub fn place_knots(params: &[f64], degree: usize, n_ctrl: usize) -> Result<KnotV
     }
     if params.len() < n_ctrl {
         return Err(Error::TooFew {
-            what: "data points for the control points asked for (Schoenberg–Whitney)",
+            what: "data points for the control points asked for (Schoenberg–Whitney)".into(),
             min: n_ctrl,
             got: params.len(),
         });

@@ -1,6 +1,7 @@
 //! Weighted least squares with given knots, with end points and end derivatives imposed exactly
 //! (`docs/theory/fitting.md#least-squares`, `#constraints`).
 
+use crate::Arg;
 use std::cell::Cell;
 
 use super::banded::{BandedQr, QrRows};
@@ -197,15 +198,15 @@ impl Fixed {
             if let Some(d) = d {
                 if d.len() != dim {
                     return Err(Error::Dimension {
-                        what: "end derivative of a least-squares fit",
+                        what: "end derivative of a least-squares fit".into(),
                         expected: dim,
                         got: d.len(),
                     });
                 }
-                check_finite("end derivative", d)?;
+                check_finite(Arg::EndDerivative, d)?;
                 if !has_point {
                     return Err(Error::InvalidArgument {
-                        what: "end constraints",
+                        what: "end constraints".into(),
                         reason: format!(
                             "a derivative at the {end} needs the {end} point interpolated too \
                              (set the point constraint)"
@@ -220,7 +221,7 @@ impl Fixed {
         let clamped_start = t[..=p].iter().all(|&v| v == t[0]);
         let clamped_end = t[n_ctrl..].iter().all(|&v| v == t[t.len() - 1]);
         let unclamped = |end: &str| Error::InvalidArgument {
-            what: "end constraints",
+            what: "end constraints".into(),
             reason: format!(
                 "the knots are not clamped at the {end} (degree + 1 equal end knots), so the \
                  {end} point is not a control point; use clamped knots"
@@ -252,13 +253,13 @@ impl Fixed {
         }
         if p == 0 && (ends.start_derivative.is_some() || ends.end_derivative.is_some()) {
             return Err(Error::InvalidArgument {
-                what: "end constraints",
+                what: "end constraints".into(),
                 reason: "a piecewise constant curve has no end derivative; use degree ≥ 1".into(),
             });
         }
         if f.count() > n_ctrl {
             return Err(Error::TooFew {
-                what: "control points for the end conditions (each fixes one or two)",
+                what: "control points for the end conditions (each fixes one or two)".into(),
                 min: f.count(),
                 got: n_ctrl,
             });

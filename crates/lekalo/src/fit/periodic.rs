@@ -139,7 +139,7 @@ pub fn periodic_least_squares_with_progress(
 /// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
 /// [`Error::EmptyDomain`] / [`Error::NonFinite`] for a bad domain;
 /// [`Error::ParameterOutOfDomain`]; [`Error::TooFew`] for fewer than `degree + 1` distinct
-/// parameters; [`Error::InvalidArgument`] (`what = "s"`) for `s` below the residual that
+/// parameters; [`Error::InvalidArgument`] (about [`Arg::S`](crate::Arg::S)) for `s` below the residual that
 /// repeated parameters with different values leave to every function (`b` repeats `a`);
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn periodic_smoothing_condition(
@@ -298,7 +298,8 @@ fn periodic_observations(
     if obs.sites.len() < k + 1 {
         return Err(Error::TooFew {
             what: "distinct data parameters in the period for the smoothing condition \
-                   (degree + 1)",
+                   (degree + 1)"
+                .into(),
             min: k + 1,
             got: obs.sites.len(),
         });
@@ -453,7 +454,7 @@ fn smooth_periodic(
 fn check_breaks(breaks: &[f64]) -> Result<()> {
     if breaks.len() < 2 {
         return Err(Error::TooFew {
-            what: "breakpoints of a closed fit (the period's start and end)",
+            what: "breakpoints of a closed fit (the period's start and end)".into(),
             min: 2,
             got: breaks.len(),
         });
@@ -468,7 +469,7 @@ fn check_breaks(breaks: &[f64]) -> Result<()> {
     }
     if let Some(i) = (1..breaks.len()).find(|&i| breaks[i] == breaks[i - 1]) {
         return Err(Error::InvalidArgument {
-            what: "breakpoints of a closed fit",
+            what: "breakpoints of a closed fit".into(),
             reason: format!(
                 "breakpoint {i} repeats breakpoint {} = {}; give strictly increasing breakpoints",
                 i - 1,

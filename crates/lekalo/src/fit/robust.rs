@@ -93,7 +93,7 @@ pub fn robust_least_squares(
     };
     if !(c > 0.0 && c.is_finite()) {
         return Err(Error::InvalidArgument {
-            what: "robust tuning constant",
+            what: "robust tuning constant".into(),
             reason: format!(
                 "{c}: it must be positive and finite (1.345 for Huber, 4.685 for Tukey)"
             ),

@@ -1,6 +1,7 @@
 //! Penalised smoothing splines, `Σ w_k |Q_k − f(ū_k)|² + λ ∫ |f''|²`, with λ given or chosen by
 //! generalised cross-validation (`docs/theory/fitting.md#penalised`, `#gcv`).
 
+use crate::Arg;
 use std::cell::Cell;
 
 use super::banded::SymBand;
@@ -75,7 +76,7 @@ pub fn smoothing_spline_with_progress(
     if let Lambda::Given(l) = lambda {
         if !(l >= 0.0 && l.is_finite()) {
             return Err(Error::NegativeSmoothing {
-                what: "λ",
+                what: Arg::Lambda.into(),
                 value: l,
             });
         }
@@ -111,7 +112,7 @@ pub fn smoothing_spline_with_progress(
 pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
     if !(lambda > 0.0 && lambda.is_finite()) {
         return Err(Error::NegativeSmoothing {
-            what: "λ",
+            what: Arg::Lambda.into(),
             value: lambda,
         });
     }
@@ -146,7 +147,7 @@ impl Smoother {
         let n = x.len();
         if n < 3 {
             return Err(Error::TooFew {
-                what: "data points for a smoothing spline",
+                what: "data points for a smoothing spline".into(),
                 min: 3,
                 got: n,
             });
@@ -161,7 +162,7 @@ impl Smoother {
             }
             if x[i] == x[i - 1] {
                 return Err(Error::InvalidArgument {
-                    what: "smoothing spline parameters",
+                    what: "smoothing spline parameters".into(),
                     reason: format!(
                         "parameters {} and {i} are both {}: they must be strictly increasing \
                          (merge repeated points into one, adding their weights)",

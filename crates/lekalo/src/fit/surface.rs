@@ -2,6 +2,7 @@
 //! scattered `(u, v, z)` data on given tensor-product knots with weights and a smoothing penalty
 //! (`docs/theory/fitting.md#surfaces`).
 
+use crate::Arg;
 use std::cell::Cell;
 
 use super::banded::SymBand;
@@ -130,7 +131,7 @@ pub fn surface_grid_least_squares_at(
     ] {
         if params.len() != n {
             return Err(Error::LengthMismatch {
-                what,
+                what: what.into(),
                 expected: n,
                 got: params.len(),
             });
@@ -177,7 +178,7 @@ pub fn surface_grid_least_squares_at(
 fn check_grid(grid: PointsRef<'_>, (nu, nv): (usize, usize)) -> Result<()> {
     if nu.checked_mul(nv) != Some(grid.len()) || nu < 2 || nv < 2 {
         return Err(Error::LengthMismatch {
-            what: "grid points (nu · nv, each at least 2)",
+            what: "grid points (nu · nv, each at least 2)".into(),
             expected: nu.saturating_mul(nv),
             got: grid.len(),
         });
@@ -254,14 +255,14 @@ pub fn surface_scattered_least_squares_with_progress(
     let dim = data.dim();
     if dim < 3 {
         return Err(Error::Dimension {
-            what: "scattered surface data (u, v, then at least one value per row)",
+            what: "scattered surface data (u, v, then at least one value per row)".into(),
             expected: 3,
             got: dim,
         });
     }
     if !(penalty >= 0.0 && penalty.is_finite()) {
         return Err(Error::NegativeSmoothing {
-            what: "λ",
+            what: Arg::Lambda.into(),
             value: penalty,
         });
     }
@@ -316,7 +317,7 @@ pub fn surface_scattered_least_squares_with_progress(
     let size = m.saturating_mul(band.saturating_add(1));
     if size > crate::error::MAX_SCALARS {
         return Err(Error::TooLarge {
-            what: "normal matrix of the scattered fit (control points × band width)",
+            what: "normal matrix of the scattered fit (control points × band width)".into(),
             size,
             max: crate::error::MAX_SCALARS,
         });

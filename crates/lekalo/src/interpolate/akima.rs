@@ -128,12 +128,8 @@ mod tests {
             Err(Error::TooFew { .. })
         ));
         assert!(matches!(
-            akima_slopes(
-                &[0.0, 0.0],
-                PointsRef::from_flat(1, &[1.0, 2.0]).unwrap(),
-                true
-            ),
-            Err(Error::InvalidArgument { what: "x", .. })
+            akima_slopes(&[0.0, 0.0], PointsRef::from_flat(1, &[1.0, 2.0]).unwrap(), true),
+            Err(Error::InvalidArgument { what, .. }) if what.words() == "x"
         ));
     }
 }

@@ -20,7 +20,7 @@ const MIN_CONDITION_LIMIT: f64 = 1.0;
 pub(crate) fn check_condition_limit(limit: f64) -> Result<()> {
     if limit.is_nan() || limit < MIN_CONDITION_LIMIT {
         return Err(Error::InvalidArgument {
-            what: "condition limit (max_condition)",
+            what: "condition limit (max_condition)".into(),
             reason: format!(
                 "{limit} is not a number ≥ {MIN_CONDITION_LIMIT} (every matrix has κ_1 ≥ 1); \
                  pass e.g. 1e8 to keep about 8 significant digits"

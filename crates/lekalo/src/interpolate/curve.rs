@@ -52,6 +52,7 @@ use crate::interpolate::parametrization::{
 use crate::interpolate::periodic::periodic;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
+use crate::{Arg, What};
 
 /// Where the knots go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -289,9 +290,9 @@ impl CurveInterpolation {
         if parameters.len() != expected {
             return Err(Error::LengthMismatch {
                 what: if periodic {
-                    "parameters (points + 1 for the closing parameter)"
+                    "parameters (points + 1 for the closing parameter)".into()
                 } else {
-                    "parameters (one per point)"
+                    "parameters (one per point)".into()
                 },
                 expected,
                 got: parameters.len(),
@@ -366,7 +367,7 @@ impl CurveInterpolation {
         }
         if points.len() < 2 {
             return Err(Error::TooFew {
-                what: "points to interpolate",
+                what: "points to interpolate".into(),
                 min: 2,
                 got: points.len(),
             });
@@ -390,8 +391,8 @@ impl CurveInterpolation {
                 free_end(points, params, p, knots, kappa)
             }
             (EndCondition::FirstDerivatives { start, end }, placement) => {
-                check_vector("start derivative", start, dim)?;
-                check_vector("end derivative", end, dim)?;
+                check_vector(Arg::StartDerivative, start, dim)?;
+                check_vector(Arg::EndDerivative, end, dim)?;
                 let at_params = match placement {
                     KnotPlacement::Auto => p == 3,
                     KnotPlacement::AtParameters => true,
@@ -443,8 +444,16 @@ impl CurveInterpolation {
                 let zero = vec![0.0; dim];
                 let (start, end) = match &self.end {
                     EndCondition::SecondDerivatives { start, end } => {
-                        check_vector("start second derivative", start, dim)?;
-                        check_vector("end second derivative", end, dim)?;
+                        check_vector(
+                            What::of(Arg::StartDerivative, "start second derivative"),
+                            start,
+                            dim,
+                        )?;
+                        check_vector(
+                            What::of(Arg::EndDerivative, "end second derivative"),
+                            end,
+                            dim,
+                        )?;
                         (start.as_slice(), end.as_slice())
                     }
                     _ => (zero.as_slice(), zero.as_slice()),
@@ -453,7 +462,7 @@ impl CurveInterpolation {
             }
             (EndCondition::Periodic, KnotPlacement::Auto) if kappa.is_some() => {
                 Err(Error::InvalidArgument {
-                    what: "condition estimate (max_condition / condition)",
+                    what: "condition estimate (max_condition / condition)".into(),
                     reason: "not available for periodic curves yet: their cyclic system is \
                              solved by block elimination; drop max_condition for closed curves"
                         .into(),
@@ -497,7 +506,7 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
         .fold(0.0_f64, f64::max);
     if !extent.is_finite() {
         return Err(Error::InvalidArgument {
-            what: "points",
+            what: "points".into(),
             reason: format!(
                 "coordinates differ from the first point by more than the largest f64 \
                  ({extent:e}); the interpolant is computed from such differences: rescale the \
@@ -563,14 +572,15 @@ fn check_residual(curve: &BSplineCurve, points: PointsRef<'_>, params: &[f64]) -
 
 fn unsupported(knots: &str, end: &str) -> Error {
     Error::InvalidArgument {
-        what: "knots",
+        what: Arg::Knots.into(),
         reason: format!(
             "{knots} knots do not go with {end} end conditions; use the knot placement \"auto\""
         ),
     }
 }
 
-fn check_vector(what: &'static str, v: &[f64], dim: usize) -> Result<()> {
+fn check_vector(what: impl Into<What>, v: &[f64], dim: usize) -> Result<()> {
+    let what: What = what.into();
     if v.len() != dim {
         return Err(Error::Dimension {
             what,

@@ -9,6 +9,7 @@ use crate::interpolate::collocation::{solve_collocation, Factors};
 use crate::interpolate::fast::free_end_cubic;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
+use crate::Arg;
 
 /// A prescribed derivative at one end of an interpolating curve: `C^{(order)}(t̄) = value`,
 /// derivatives with respect to the curve parameter; `value` has the points' dimension.
@@ -66,14 +67,14 @@ pub fn interpolate_with_end_derivatives(
     let m = points.len();
     if m == 0 {
         return Err(Error::TooFew {
-            what: "points to interpolate",
+            what: "points to interpolate".into(),
             min: 1,
             got: 0,
         });
     }
     if params.len() != m {
         return Err(Error::LengthMismatch {
-            what: "parameters (one per point)",
+            what: "parameters (one per point)".into(),
             expected: m,
             got: params.len(),
         });
@@ -84,7 +85,8 @@ pub fn interpolate_with_end_derivatives(
     if conditions != n {
         return Err(Error::LengthMismatch {
             what: "conditions (points + end derivatives) to equal the control points \
-                   (knots − degree − 1)",
+                   (knots − degree − 1)"
+                .into(),
             expected: n,
             got: conditions,
         });
@@ -92,14 +94,14 @@ pub fn interpolate_with_end_derivatives(
     for d in start.iter().chain(end) {
         if d.value.len() != dim {
             return Err(Error::Dimension {
-                what: "an end derivative (the points' dimension)",
+                what: "an end derivative (the points' dimension)".into(),
                 expected: dim,
                 got: d.value.len(),
             });
         }
         if d.order > p {
             return Err(Error::InvalidArgument {
-                what: "end derivative order",
+                what: "end derivative order".into(),
                 reason: format!(
                     "order {} exceeds the degree {p}: the derivative of that order is zero; \
                      use orders 0 … {p}",
@@ -109,7 +111,7 @@ pub fn interpolate_with_end_derivatives(
         }
         if let Some(index) = d.value.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite {
-                what: "end derivative",
+                what: Arg::EndDerivative.into(),
                 index,
                 value: d.value[index],
             });
@@ -117,14 +119,14 @@ pub fn interpolate_with_end_derivatives(
     }
     if let Some(index) = params.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
-            what: "parameters",
+            what: "parameters".into(),
             index,
             value: params[index],
         });
     }
     if let Some(w) = params.windows(2).position(|w| w[1] <= w[0]) {
         return Err(Error::InvalidArgument {
-            what: "parameters",
+            what: "parameters".into(),
             reason: format!(
                 "parameter {} = {} does not exceed parameter {w} = {}; pass strictly \
                  increasing parameters (one per point)",
@@ -136,7 +138,7 @@ pub fn interpolate_with_end_derivatives(
     }
     if let Some(index) = points.as_slice().iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
-            what: "points",
+            what: "points".into(),
             index,
             value: points.as_slice()[index],
         });

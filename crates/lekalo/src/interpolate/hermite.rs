@@ -67,7 +67,7 @@ pub fn hermite_segment_coefficients(
     let dim = p0.len();
     if dim == 0 {
         return Err(Error::Dimension {
-            what: "Hermite segment end point",
+            what: "Hermite segment end point".into(),
             expected: 1,
             got: 0,
         });
@@ -76,7 +76,7 @@ pub fn hermite_segment_coefficients(
     for (what, v) in inputs {
         if v.len() != dim {
             return Err(Error::Dimension {
-                what,
+                what: what.into(),
                 expected: dim,
                 got: v.len(),
             });
@@ -155,7 +155,7 @@ pub fn cubic_through_four_points(points: PointsRef<'_>) -> Result<BezierCurve> {
 fn check_four(points: PointsRef<'_>) -> Result<()> {
     if points.len() != 4 {
         return Err(Error::LengthMismatch {
-            what: "points of the four-point cubic",
+            what: "points of the four-point cubic".into(),
             expected: 4,
             got: points.len(),
         });
@@ -219,14 +219,14 @@ impl CubicHermite {
         check_data(&params, points.as_view())?;
         if tangents.len() != points.len() {
             return Err(Error::LengthMismatch {
-                what: "tangents (one per point)",
+                what: "tangents (one per point)".into(),
                 expected: points.len(),
                 got: tangents.len(),
             });
         }
         if tangents.dim() != points.dim() {
             return Err(Error::Dimension {
-                what: "tangents",
+                what: "tangents".into(),
                 expected: points.dim(),
                 got: tangents.dim(),
             });
@@ -390,14 +390,14 @@ impl CubicHermite {
 fn check_data(params: &[f64], points: PointsRef<'_>) -> Result<()> {
     if points.len() < 2 {
         return Err(Error::TooFew {
-            what: "Hermite points",
+            what: "Hermite points".into(),
             min: 2,
             got: points.len(),
         });
     }
     if params.len() != points.len() {
         return Err(Error::LengthMismatch {
-            what: "parameters (one per point)",
+            what: "parameters (one per point)".into(),
             expected: points.len(),
             got: params.len(),
         });
@@ -436,7 +436,7 @@ fn estimate_tangents(
                 TangentEstimate::Cardinal { tension } => {
                     if !(0.0..=1.0).contains(&tension) {
                         return Err(Error::InvalidArgument {
-                            what: "tension",
+                            what: "tension".into(),
                             reason: format!("{tension} does not lie in [0, 1] (0 is Catmull–Rom)"),
                         });
                     }
@@ -458,7 +458,7 @@ fn estimate_tangents(
     // steps): refuse instead of returning infinite or NaN tangents
     if let Some((index, &value)) = d.iter().enumerate().find(|(_, v)| !v.is_finite()) {
         return Err(Error::NonFinite {
-            what: "estimated tangents (the data's slopes overflow f64)",
+            what: "estimated tangents (the data's slopes overflow f64)".into(),
             index,
             value,
         });

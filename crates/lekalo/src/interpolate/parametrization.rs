@@ -3,6 +3,7 @@
 
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
+use crate::Arg;
 
 /// How data points are assigned parameters `t̄_0 = 0 < … < t̄_n = 1`
 /// (docs/theory/interpolation.md#parametrisation, P&T eq. 9.3–9.6): `t̄_k − t̄_{k−1} ∝ |q_k −
@@ -29,7 +30,7 @@ impl Parametrization {
         };
         if !(e.is_finite() && e >= 0.0) {
             return Err(Error::InvalidArgument {
-                what: "parametrisation exponent",
+                what: Arg::Exponent.into(),
                 reason: format!(
                     "{e} is not a finite number ≥ 0 (0 uniform, 0.5 centripetal, 1 chord length)"
                 ),
@@ -73,7 +74,7 @@ pub(crate) fn parametrize_impl(
     let n_pts = points.len();
     if n_pts < 2 {
         return Err(Error::TooFew {
-            what: "points to parametrise",
+            what: "points to parametrise".into(),
             min: 2,
             got: n_pts,
         });
@@ -126,7 +127,7 @@ pub(crate) fn parametrize_into<'a>(
         if !d.is_finite() {
             let (first, second) = names(k);
             return Err(Error::InvalidArgument {
-                what: "points",
+                what: "points".into(),
                 reason: format!("the distance between points {first} and {second} overflows"),
             });
         }
@@ -160,7 +161,7 @@ pub(crate) fn parametrize_into<'a>(
 #[cold]
 fn too_close((first, second): (usize, usize)) -> Error {
     Error::InvalidArgument {
-        what: "points",
+        what: "points".into(),
         reason: format!(
             "points {first} and {second} are too close relative to the others for distinct parameters"
         ),
@@ -179,7 +180,7 @@ pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
         }
         if params[i] == params[i - 1] {
             return Err(Error::InvalidArgument {
-                what: "parameters",
+                what: "parameters".into(),
                 reason: format!(
                     "parameters {} and {i} are both {}: interpolation parameters must be strictly increasing",
                     i - 1,

@@ -98,14 +98,14 @@ pub(crate) fn check_function_data(x: &[f64], y: PointsRef<'_>) -> Result<()> {
     let n = x.len();
     if n < 2 {
         return Err(Error::TooFew {
-            what: "points (x)",
+            what: "points (x)".into(),
             min: 2,
             got: n,
         });
     }
     if y.len() != n {
         return Err(Error::LengthMismatch {
-            what: "y (one value per x)",
+            what: "y (one value per x)".into(),
             expected: n,
             got: y.len(),
         });
@@ -114,7 +114,7 @@ pub(crate) fn check_function_data(x: &[f64], y: PointsRef<'_>) -> Result<()> {
     check_finite("y", y.as_slice())?;
     if let Some(i) = x.windows(2).position(|w| w[1] <= w[0]) {
         return Err(Error::InvalidArgument {
-            what: "x",
+            what: "x".into(),
             reason: format!(
                 "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
                  and merge repeated abscissae",
@@ -147,11 +147,8 @@ mod tests {
             Err(Error::TooFew { .. })
         ));
         assert!(matches!(
-            pchip_slopes(
-                &[0.0, 0.0, 1.0],
-                PointsRef::from_flat(1, &[1.0, 2.0, 3.0]).unwrap()
-            ),
-            Err(Error::InvalidArgument { what: "x", .. })
+            pchip_slopes(&[0.0, 0.0, 1.0], PointsRef::from_flat(1, &[1.0, 2.0, 3.0]).unwrap()),
+            Err(Error::InvalidArgument { what, .. }) if what.words() == "x"
         ));
         assert!(matches!(
             pchip_slopes(

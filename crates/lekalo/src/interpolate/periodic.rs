@@ -28,7 +28,7 @@ pub(crate) fn periodic(points: PointsRef<'_>, params: &[f64], p: usize) -> Resul
     check_degree_bound(p)?;
     if n < 2 {
         return Err(Error::TooFew {
-            what: "points of a closed curve (any degree)",
+            what: "points of a closed curve (any degree)".into(),
             min: 2,
             got: n,
         });

@@ -402,13 +402,13 @@ fn surface(
         nv,
     } = grid;
     let total = nu.checked_mul(nv).ok_or(Error::TooLarge {
-        what: "grid size",
+        what: "grid size".into(),
         size: usize::MAX,
         max: crate::error::MAX_SCALARS,
     })?;
     if grid.len() != total {
         return Err(Error::LengthMismatch {
-            what: "grid points (nu × nv)",
+            what: "grid points (nu × nv)".into(),
             expected: total,
             got: grid.len(),
         });
@@ -416,7 +416,7 @@ fn surface(
     for (n, what) in [(nu, "grid rows (nu)"), (nv, "grid columns (nv)")] {
         if n < 2 {
             return Err(Error::TooFew {
-                what,
+                what: what.into(),
                 min: 2,
                 got: n,
             });

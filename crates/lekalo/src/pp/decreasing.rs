@@ -4,6 +4,7 @@
 
 use crate::error::{check_finite, Error, Result};
 use crate::pp::ppform::PiecewisePolynomial;
+use crate::Arg;
 
 /// Re-expands `order` coefficients (lowest power first) of `p(u)` as those of `p(s + δ)`, in
 /// place, for each of `dim` interleaved columns: the repeated synthetic division of Horner's
@@ -60,10 +61,10 @@ impl PiecewisePolynomial {
         dim: usize,
         coefficients: &[f64],
     ) -> Result<Self> {
-        check_finite("breakpoints", breakpoints)?;
+        check_finite(Arg::Breakpoints, breakpoints)?;
         if let Some(i) = breakpoints.windows(2).position(|w| w[0] <= w[1]) {
             return Err(Error::InvalidArgument {
-                what: "breakpoints",
+                what: Arg::Breakpoints.into(),
                 reason: format!(
                     "must be strictly decreasing, but breakpoint {i} = {} is not greater than breakpoint {} = {}",
                     breakpoints[i],
@@ -188,10 +189,7 @@ mod tests {
         assert!(
             matches!(
                 e,
-                Error::InvalidArgument {
-                    what: "breakpoints",
-                    ..
-                }
+                Error::InvalidArgument { what, .. } if what.arg() == Some(Arg::Breakpoints)
             ),
             "{e}"
         );

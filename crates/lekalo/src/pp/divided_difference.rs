@@ -64,7 +64,7 @@ pub fn divided_difference_explicit(points: &[f64], values: &[f64]) -> Result<f64
     let x = sorted_points(points)?;
     if values.len() != points.len() {
         return Err(Error::LengthMismatch {
-            what: "values (one per point)",
+            what: "values (one per point)".into(),
             expected: points.len(),
             got: values.len(),
         });
@@ -72,7 +72,7 @@ pub fn divided_difference_explicit(points: &[f64], values: &[f64]) -> Result<f64
     check_finite("values", values)?;
     if let Some(w) = x.windows(2).find(|w| w[0] == w[1]) {
         return Err(Error::InvalidArgument {
-            what: "points",
+            what: "points".into(),
             reason: format!(
                 "the explicit formula (Lemma 2.1) needs distinct points, but {} repeats; use \
                  divided_difference with derivatives for repeated points",
@@ -235,7 +235,7 @@ pub fn bspline_divided_difference(
     let order = degree.saturating_add(1); // saturated: then the check below fails
     if i.checked_add(order).is_none_or(|end| end >= all.len()) {
         return Err(Error::InvalidArgument {
-            what: "basis function index",
+            what: "basis function index".into(),
             reason: format!(
                 "b_{{{i},{order}}} needs knots up to index {}, but the last knot index is {}",
                 i.saturating_add(order),
@@ -268,7 +268,7 @@ pub fn bspline_divided_difference(
 fn sorted_points(points: &[f64]) -> Result<Vec<f64>> {
     if points.is_empty() {
         return Err(Error::TooFew {
-            what: "points of a divided difference",
+            what: "points of a divided difference".into(),
             min: 1,
             got: 0,
         });

@@ -13,6 +13,7 @@
 //! functions `sin cos tan exp ln log sqrt abs atan sinh cosh tanh`.
 
 use crate::error::{Error, Result};
+use crate::{Arg, What};
 
 /// Longest expression text accepted.
 pub const MAX_EXPRESSION_LEN: usize = 1000;
@@ -77,7 +78,7 @@ pub struct Expression {
 
 fn syntax(reason: String) -> Error {
     Error::InvalidArgument {
-        what: "expression",
+        what: Arg::Expression.into(),
         reason,
     }
 }
@@ -273,7 +274,7 @@ impl Expression {
     /// Parses `text` (grammar in the module documentation).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] (`what` = "expression") naming the character where the text
+    /// [`Error::InvalidArgument`] (about [`Arg::Expression`](crate::Arg::Expression)) naming the character where the text
     /// stops making sense, an unknown name, a text longer than [`MAX_EXPRESSION_LEN`] or nested
     /// too deeply.
     pub fn parse(text: &str) -> Result<Expression> {
@@ -318,14 +319,14 @@ impl Expression {
     pub fn derivatives(&self, x: f64, order: usize) -> Result<Vec<f64>> {
         if order > MAX_EXPRESSION_ORDER {
             return Err(Error::TooLarge {
-                what: "derivative order of an expression",
+                what: What::of(Arg::Expression, "derivative order of an expression"),
                 size: order,
                 max: MAX_EXPRESSION_ORDER,
             });
         }
         if !x.is_finite() {
             return Err(Error::NonFinite {
-                what: "x of the expression",
+                what: What::of(Arg::Expression, "x of the expression"),
                 index: 0,
                 value: x,
             });
@@ -345,7 +346,10 @@ impl Expression {
             let v = c * factorial;
             if !v.is_finite() {
                 return Err(Error::NonFinite {
-                    what: "derivative of the expression (index = order)",
+                    what: What::of(
+                        Arg::Expression,
+                        "derivative of the expression (index = order)",
+                    ),
                     index: r,
                     value: v,
                 });
@@ -390,7 +394,10 @@ fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
 fn div(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
     if b[0] == 0.0 {
         return Err(Error::NonFinite {
-            what: "value of the expression (division by zero)",
+            what: What::of(
+                Arg::Expression,
+                "value of the expression (division by zero)",
+            ),
             index: 0,
             value: f64::INFINITY,
         });
@@ -425,7 +432,7 @@ fn pow(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
                 return Ok(vec![0.0]);
             }
             return Err(Error::InvalidArgument {
-                what: "expression",
+                what: Arg::Expression.into(),
                 reason: format!("0^{e} has no derivative here; move the point off 0"),
             });
         }
@@ -457,7 +464,10 @@ fn exp(a: &[f64]) -> Vec<f64> {
 fn ln(a: &[f64]) -> Result<Vec<f64>> {
     if a[0] <= 0.0 {
         return Err(Error::NonFinite {
-            what: "ln of a non-positive value in the expression",
+            what: What::of(
+                Arg::Expression,
+                "ln of a non-positive value in the expression",
+            ),
             index: 0,
             value: a[0],
         });
@@ -514,7 +524,7 @@ fn call(f: Func, a: &[f64]) -> Result<Vec<f64>> {
         Func::Sqrt => {
             if a[0] < 0.0 || (a[0] == 0.0 && n > 1) {
                 return Err(Error::InvalidArgument {
-                    what: "expression",
+                    what: Arg::Expression.into(),
                     reason: format!(
                         "sqrt of {} has no {}; keep its argument positive",
                         a[0],
@@ -537,7 +547,7 @@ fn call(f: Func, a: &[f64]) -> Result<Vec<f64>> {
         Func::Abs => {
             if a[0] == 0.0 && n > 1 {
                 return Err(Error::InvalidArgument {
-                    what: "expression",
+                    what: Arg::Expression.into(),
                     reason: "abs has no derivative where its argument is 0; put the breakpoints there or move the function".into(),
                 });
             }

@@ -30,7 +30,7 @@ impl PiecewisePolynomial {
     pub fn eval_extrapolated_into(&self, x: f64, nu: usize, out: &mut [f64]) -> Result<()> {
         if out.len() != self.dim() {
             return Err(Error::LengthMismatch {
-                what: "output point (dimension)",
+                what: "output point (dimension)".into(),
                 expected: self.dim(),
                 got: out.len(),
             });

@@ -51,7 +51,7 @@ pub fn cubic_hermite_bspline_into(
     check_breakpoints(x)?;
     if dim == 0 {
         return Err(Error::InvalidArgument {
-            what: "Hermite values",
+            what: "Hermite values".into(),
             reason: "the dimension is 0; pass at least one column of values".into(),
         });
     }
@@ -59,7 +59,7 @@ pub fn cubic_hermite_bspline_into(
     let rows = n.checked_mul(dim).filter(|&r| r <= MAX_SCALARS / 2);
     let Some(rows) = rows else {
         return Err(Error::InvalidArgument {
-            what: "Hermite values",
+            what: "Hermite values".into(),
             reason: format!("{n} breakpoints of dimension {dim} exceed the size limit"),
         });
     };
@@ -76,7 +76,7 @@ pub fn cubic_hermite_bspline_into(
     ] {
         if expected != got {
             return Err(Error::LengthMismatch {
-                what,
+                what: what.into(),
                 expected,
                 got,
             });
@@ -85,7 +85,7 @@ pub fn cubic_hermite_bspline_into(
     for (what, v) in [("Hermite values", y), ("Hermite slopes", dydx)] {
         if let Some(index) = v.iter().position(|a| !a.is_finite()) {
             return Err(Error::NonFinite {
-                what,
+                what: what.into(),
                 index,
                 value: v[index],
             });

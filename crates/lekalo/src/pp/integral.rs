@@ -34,7 +34,7 @@ impl PiecewisePolynomial {
             .checked_add(n)
             .filter(|&o| o.checked_mul(l * dim).is_some_and(|s| s <= MAX_SCALARS))
             .ok_or(Error::TooLarge {
-                what: "antiderivative coefficients",
+                what: "antiderivative coefficients".into(),
                 size: usize::MAX,
                 max: MAX_SCALARS,
             })?;

@@ -146,7 +146,7 @@ impl<'a> PieceSearch<'a> {
         let want = xs.len().saturating_mul(dim);
         if out.len() != want || dim == 0 {
             return Err(Error::LengthMismatch {
-                what: "output (points × dim)",
+                what: "output (points × dim)".into(),
                 expected: want,
                 got: out.len(),
             });
@@ -212,7 +212,7 @@ impl<'a> PieceSearch<'a> {
             .position(|(&x, o)| defined(x) && !o.iter().all(|v| v.is_finite()))
             .unwrap_or(0);
         Err(Error::NonFinite {
-            what: "piecewise polynomial value (overflow: rescale the coefficients)",
+            what: "piecewise polynomial value (overflow: rescale the coefficients)".into(),
             index,
             value: out[index * dim..(index + 1) * dim]
                 .iter()

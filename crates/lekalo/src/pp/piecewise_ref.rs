@@ -18,6 +18,7 @@ use crate::error::{check_finite, Error, Result};
 use crate::pp::piece_search::PieceSearch;
 #[cfg(doc)]
 use crate::pp::{BernsteinFormRef, PowerFormRef};
+use crate::Arg;
 
 /// The orders up to which the values (`nu = 0`) have a kernel with the order fixed at compile
 /// time (the loops over the coefficients unrolled); higher orders and derivatives take the
@@ -123,7 +124,7 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
     pub fn new(c: &'a [f64], order: usize, breakpoints: &'a [f64], dim: usize) -> Result<Self> {
         if breakpoints.len() < 2 {
             return Err(Error::TooFew {
-                what: "breakpoints",
+                what: Arg::Breakpoints.into(),
                 min: 2,
                 got: breakpoints.len(),
             });
@@ -131,9 +132,9 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
         if order == 0 || dim == 0 {
             return Err(Error::TooFew {
                 what: if order == 0 {
-                    "coefficients a piece (order)"
+                    "coefficients a piece (order)".into()
                 } else {
-                    "numbers a value (dim)"
+                    "numbers a value (dim)".into()
                 },
                 min: 1,
                 got: 0,
@@ -146,7 +147,7 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
             .unwrap_or(usize::MAX);
         if c.len() != want {
             return Err(Error::LengthMismatch {
-                what: "coefficients (order × pieces × dim)",
+                what: "coefficients (order × pieces × dim)".into(),
                 expected: want,
                 got: c.len(),
             });
@@ -464,13 +465,7 @@ mod tests {
         let c = [1.0; 8];
         let e = PowerFormRef::new(&c, 4, &[0.0], 2).unwrap_err();
         assert!(
-            matches!(
-                e,
-                Error::TooFew {
-                    what: "breakpoints",
-                    ..
-                }
-            ),
+            matches!(e, Error::TooFew { what, .. } if what.arg() == Some(Arg::Breakpoints)),
             "{e}"
         );
         let e = BernsteinFormRef::new(&c, 0, &[0.0, 1.0], 2).unwrap_err();

@@ -99,7 +99,7 @@ impl PiecewisePolynomial {
         }
         if dim == 0 {
             return Err(Error::Dimension {
-                what: "piecewise polynomial values",
+                what: "piecewise polynomial values".into(),
                 expected: 1,
                 got: 0,
             });
@@ -109,13 +109,13 @@ impl PiecewisePolynomial {
             .and_then(|v| v.checked_mul(dim))
             .filter(|&v| v <= MAX_SCALARS)
             .ok_or(Error::TooLarge {
-                what: "piecewise polynomial coefficients",
+                what: "piecewise polynomial coefficients".into(),
                 size: usize::MAX,
                 max: MAX_SCALARS,
             })?;
         if coefficients.len() != expected {
             return Err(Error::LengthMismatch {
-                what: "coefficients (pieces × order × dim)",
+                what: "coefficients (pieces × order × dim)".into(),
                 expected,
                 got: coefficients.len(),
             });
@@ -236,7 +236,7 @@ impl PiecewisePolynomial {
     pub fn eval_into(&self, x: f64, out: &mut [f64]) -> Result<()> {
         if out.len() != self.dim {
             return Err(Error::LengthMismatch {
-                what: "output point (dimension)",
+                what: "output point (dimension)".into(),
                 expected: self.dim,
                 got: out.len(),
             });
@@ -339,7 +339,7 @@ impl PiecewisePolynomial {
     pub fn jump(&self, i: usize, j: usize) -> Result<Vec<f64>> {
         if i == 0 || i >= self.n_pieces() {
             return Err(Error::InvalidArgument {
-                what: "breakpoint index",
+                what: "breakpoint index".into(),
                 reason: format!(
                     "jumps exist at interior breakpoints 1..={}, got {i}",
                     self.n_pieces().saturating_sub(1)

@@ -114,7 +114,7 @@ impl Tau<'_> {
         let n = check_knots(knots, order)?;
         if values.len() != n {
             return Err(Error::LengthMismatch {
-                what: "τ values (one per B-spline)",
+                what: "τ values (one per B-spline)".into(),
                 expected: n,
                 got: values.len(),
             });
@@ -123,14 +123,14 @@ impl Tau<'_> {
         for (i, &t) in values.iter().enumerate() {
             if !t.is_finite() {
                 return Err(Error::NonFinite {
-                    what: "τ value (index = position in the list)",
+                    what: "τ value (index = position in the list)".into(),
                     index: i,
                     value: t,
                 });
             }
             if !(x[i]..=x[i + order]).contains(&t) {
                 return Err(Error::InvalidArgument {
-                    what: "τ value",
+                    what: "τ value".into(),
                     reason: format!(
                         "τ number {} is {t}, outside the support [{}, {}] of its B-spline; each \
                          τ_i must lie in [x_i, x_(i+k)]",
@@ -293,7 +293,7 @@ impl PiecewisePolynomial {
     pub fn to_bspline<'a>(&self, space: &PpSpace, tau: impl Into<Tau<'a>>) -> Result<BSplineCurve> {
         if !space.contains(self, DEFAULT_CONTINUITY_RTOL) {
             return Err(Error::InvalidArgument {
-                what: "piecewise polynomial",
+                what: "piecewise polynomial".into(),
                 reason: format!(
                     "not in the space P_{{k,ξ,ν}} with k = {}, {} breakpoints and ν = {:?}: it \
                      needs the same breakpoints, order at most k and the continuity \
@@ -353,7 +353,7 @@ pub fn quasi_interpolate<'a, F: FnMut(f64, usize) -> f64>(
             let v = f(tau, r);
             if !v.is_finite() {
                 return Err(Error::NonFinite {
-                    what: "f^(r)(τ) returned by the function (index = r)",
+                    what: "f^(r)(τ) returned by the function (index = r)".into(),
                     index: r,
                     value: v,
                 });
@@ -403,7 +403,7 @@ pub fn sample_quasi_interpolant<'a, F: FnMut(f64, usize) -> f64>(
 ) -> Result<QuasiSamples> {
     if n_intervals == 0 {
         return Err(Error::TooFew {
-            what: "grid intervals",
+            what: "grid intervals".into(),
             min: 1,
             got: 0,
         });

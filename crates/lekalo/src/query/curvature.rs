@@ -154,7 +154,7 @@ impl QueryCurve {
     pub fn torsion_at(&self, t: f64) -> Result<Option<f64>> {
         if self.dim != 3 {
             return Err(Error::Dimension {
-                what: "curve for torsion",
+                what: "curve for torsion".into(),
                 expected: 3,
                 got: self.dim,
             });
@@ -187,7 +187,7 @@ impl QueryCurve {
     pub fn inflections(&self) -> Result<Vec<f64>> {
         if self.dim != 2 {
             return Err(Error::Dimension {
-                what: "curve for inflections",
+                what: "curve for inflections".into(),
                 expected: 2,
                 got: self.dim,
             });
@@ -464,7 +464,7 @@ impl QuerySurface {
     pub fn curvature(&self, u: f64, v: f64) -> Result<SurfaceCurvature> {
         if self.dim != 3 {
             return Err(Error::Dimension {
-                what: "surface for curvature",
+                what: "surface for curvature".into(),
                 expected: 3,
                 got: self.dim,
             });
@@ -480,7 +480,7 @@ impl QuerySurface {
         let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         if !(nl > 0.0) {
             return Err(Error::InvalidArgument {
-                what: "surface point",
+                what: "surface point".into(),
                 reason: format!("S_u × S_v = 0 at ({u}, {v}): the surface is singular there"),
             });
         }

@@ -2,6 +2,7 @@
 //! inverse (the parameter at a given length), points at equal arc-length steps and an
 //! approximately arc-length-parametrised B-spline (`docs/theory/queries.md#arc-length`).
 
+use crate::{Arg, What};
 use std::sync::OnceLock;
 
 use rayon::prelude::*;
@@ -168,7 +169,7 @@ impl QueryCurve {
     /// curve whose length is beyond the range of a double (a curve near ±1e308), which would
     /// otherwise be reported as infinite.
     pub fn arc_length(&self, rtol: f64) -> Result<ArcLength<'_>> {
-        check_tolerance("arc-length tolerance", rtol)?;
+        check_tolerance(What::of(Arg::Tolerance, "arc-length tolerance"), rtol)?;
         let rtol = rtol.max(1e-15);
         let n = self.piece_count();
         let runs: Vec<Intervals> = (0..n.div_ceil(PIECES_PER_TASK))
@@ -198,7 +199,7 @@ impl QueryCurve {
         let total = cum[cum.len() - 1] * self.scale;
         if !total.is_finite() {
             return Err(Error::InvalidArgument {
-                what: "curve for its arc length",
+                what: "curve for its arc length".into(),
                 reason: format!(
                     "the length is {total}, beyond the largest double (about 1.8e308); \
                      scale the curve down (its size is {:e}) and scale the length back",
@@ -337,7 +338,7 @@ impl ArcLength<'_> {
         let slack = 4.0 * self.error_estimate() + 8.0 * f64::EPSILON * total;
         if !(length >= -slack && length <= total + slack) {
             return Err(Error::InvalidArgument {
-                what: "arc length",
+                what: "arc length".into(),
                 reason: format!("{length} is not within [0, {total}] (the curve's length)"),
             });
         }
@@ -394,7 +395,7 @@ impl ArcLength<'_> {
     pub fn equal_steps(&self, n: usize) -> Result<Vec<f64>> {
         if n == 0 {
             return Err(Error::TooFew {
-                what: "arc-length steps",
+                what: "arc-length steps".into(),
                 min: 1,
                 got: 0,
             });
@@ -425,7 +426,7 @@ impl ArcLength<'_> {
         let total = self.total();
         if total <= 0.0 {
             return Err(Error::InvalidArgument {
-                what: "curve",
+                what: "curve".into(),
                 reason: "it has zero length; no arc-length parametrisation exists".into(),
             });
         }
@@ -456,7 +457,7 @@ impl ArcLength<'_> {
             }
             if m >= 1 << 16 {
                 return Err(Error::TooLarge {
-                    what: "arc-length spline steps (tolerance not reached)",
+                    what: "arc-length spline steps (tolerance not reached)".into(),
                     size: m * 2,
                     max: 1 << 16,
                 });

@@ -32,7 +32,7 @@ const GOLDEN_STEPS: usize = 20;
 /// The error of a point where the base curve has no normal.
 fn no_normal(t: f64) -> Error {
     Error::InvalidArgument {
-        what: "curve to offset",
+        what: "curve to offset".into(),
         reason: format!("C'(t) = 0 at t = {t}: the normal, hence the offset, is undefined"),
     }
 }
@@ -349,7 +349,7 @@ impl QueryCurve {
             let spans = breaks.len() - 1;
             if spans * SAMPLES_PER_SPAN + 1 > MAX_SAMPLES {
                 return Err(Error::TooLarge {
-                    what: "samples of the exact offset (tolerance not reached)",
+                    what: "samples of the exact offset (tolerance not reached)".into(),
                     size: spans * SAMPLES_PER_SPAN + 1,
                     max: MAX_SAMPLES,
                 });
@@ -367,7 +367,7 @@ impl QueryCurve {
                         let h = breaks[k + 1] - breaks[k];
                         if h <= MIN_SPAN * (hi - lo) {
                             return Err(Error::InvalidArgument {
-                                what: "offset tolerance",
+                                what: "offset tolerance".into(),
                                 reason: format!(
                                     "{tolerance} is not reached even on spans of {h:e} near \
                                      t = {}: raise it above the rounding of the curve's \
@@ -444,7 +444,7 @@ impl QueryCurve {
     pub fn offset(&self, d: f64, tolerance: f64) -> Result<Offset> {
         if self.dim != 2 {
             return Err(Error::Dimension {
-                what: "curve to offset",
+                what: "curve to offset".into(),
                 expected: 2,
                 got: self.dim,
             });
@@ -455,7 +455,7 @@ impl QueryCurve {
         let rounding = 1e-14 * (self.scale + d.abs());
         if tolerance < rounding {
             return Err(Error::InvalidArgument {
-                what: "offset tolerance",
+                what: "offset tolerance".into(),
                 reason: format!(
                     "{tolerance} is below the rounding of the offset's coordinates (about \
                      1e-14 of the curve's size plus the distance: {rounding:e}); raise it"

@@ -3,6 +3,7 @@
 //! roots the queries solve for (`docs/theory/queries.md#bezier-pieces`).
 
 use crate::error::{check_finite, Error, Result};
+use crate::{Arg, What};
 use crate::{BSplineCurve, BezierCurve, NurbsCurve};
 
 /// Highest degree the queries accept: their polynomials have degree up to `3p`, and the
@@ -121,7 +122,7 @@ impl QueryCurve {
                 ),
             });
         }
-        check_finite("control points", &ctrl)?;
+        check_finite(Arg::ControlPoints, &ctrl)?;
         let hd = dim + usize::from(rational);
         let (centre, scale) = normalise(&mut ctrl, dim, rational);
         let stride = (degree + 1) * hd;
@@ -628,7 +629,8 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Checks a tolerance: finite and positive.
-pub(crate) fn check_tolerance(what: &'static str, tol: f64) -> Result<()> {
+pub(crate) fn check_tolerance(what: impl Into<What>, tol: f64) -> Result<()> {
+    let what: What = what.into();
     if !(tol > 0.0 && tol.is_finite()) {
         return Err(Error::InvalidArgument {
             what,

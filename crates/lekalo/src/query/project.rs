@@ -11,6 +11,7 @@
 //! Surfaces: best-first subdivision of the Bezier patches, pruned by the distance to the
 //! sub-patch boxes, then a clamped Newton iteration from each surviving small sub-patch.
 
+use crate::What;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -71,7 +72,8 @@ struct Cand {
     d: f64,
 }
 
-pub(crate) fn check_query(what: &'static str, point: &[f64], dim: usize) -> Result<()> {
+pub(crate) fn check_query(what: impl Into<What>, point: &[f64], dim: usize) -> Result<()> {
+    let what: What = what.into();
     if point.len() != dim {
         return Err(Error::Dimension {
             what,
@@ -320,7 +322,7 @@ impl QueryCurve {
     pub fn project_all(&self, point: &[f64], tolerance: f64) -> Result<Vec<CurveProjection>> {
         if !(tolerance >= 0.0 && tolerance.is_finite()) {
             return Err(Error::InvalidArgument {
-                what: "projection tolerance",
+                what: "projection tolerance".into(),
                 reason: format!("{tolerance} is not a non-negative finite distance"),
             });
         }
@@ -359,7 +361,7 @@ impl QueryCurve {
     pub fn project_batch(&self, points: PointsRef<'_>) -> Result<Vec<CurveProjection>> {
         if points.dim() != self.dim {
             return Err(Error::Dimension {
-                what: "query points",
+                what: "query points".into(),
                 expected: self.dim,
                 got: points.dim(),
             });

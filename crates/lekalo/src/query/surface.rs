@@ -4,6 +4,7 @@
 
 use super::pieces::MAX_QUERY_DEGREE;
 use crate::error::{check_finite, Error, Result};
+use crate::Arg;
 use crate::{BSplineSurface, NurbsSurface};
 
 /// A surface prepared for geometric queries: its Bezier patches (P&T A5.7), translated and
@@ -71,7 +72,7 @@ impl QuerySurface {
                 ),
             });
         }
-        check_finite("control points", &nets)?;
+        check_finite(Arg::ControlPoints, &nets)?;
         let hd = dim + usize::from(rational);
         let (centre, scale) = super::pieces::normalise(&mut nets, dim, rational);
         Ok(QuerySurface {

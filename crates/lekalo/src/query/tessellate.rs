@@ -106,7 +106,7 @@ pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
     check_finite("tessellation tolerance", &[tol])?;
     if !(tol >= MIN_RELATIVE_TOLERANCE * scale) {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance",
+            what: "tessellation tolerance".into(),
             reason: format!(
                 "{} is below {} times the object's size {}, where rounding would decide the \
                  bound; use a tolerance of at least {}",
@@ -236,7 +236,7 @@ impl QueryCurve {
         let max = MAX_POLYLINE_POINTS as f64;
         if points > max {
             return Err(Error::InvalidArgument {
-                what: "tessellation tolerance",
+                what: "tessellation tolerance".into(),
                 reason: format!(
                     "{tolerance:e} needs about {points:.1e} polyline points, more than the \
                      {MAX_POLYLINE_POINTS} a polyline may have; use a tolerance of at least {:.1e}",

@@ -9,6 +9,7 @@
 //! and `v` is the parameter of ISO 10303-42 for cylinders and cones, the arc parameter on
 //! `[0, 1]` for spheres and tori).
 
+use crate::What;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 use crate::curve::nurbs::NurbsCurve;
@@ -70,7 +71,7 @@ impl Placement {
         let c = dot3(r, z);
         let x = [r[0] - c * z[0], r[1] - c * z[1], r[2] - c * z[2]];
         let x = unit3(x, "placement ref_direction").map_err(|_| Error::InvalidArgument {
-            what: "placement ref_direction",
+            what: "placement ref_direction".into(),
             reason: "the reference direction is along the axis; give one across it".into(),
         })?;
         let y = cross(z, x);
@@ -99,7 +100,8 @@ impl Placement {
     }
 }
 
-fn check_range(what: &'static str, (a, b): (f64, f64)) -> Result<()> {
+fn check_range(what: impl Into<What>, (a, b): (f64, f64)) -> Result<()> {
+    let what: What = what.into();
     check_finite(what, &[a, b])?;
     if a < b {
         Ok(())
@@ -111,7 +113,8 @@ fn check_range(what: &'static str, (a, b): (f64, f64)) -> Result<()> {
     }
 }
 
-fn check_positive(what: &'static str, x: f64) -> Result<()> {
+fn check_positive(what: impl Into<What>, x: f64) -> Result<()> {
+    let what: What = what.into();
     if x > 0.0 && x.is_finite() {
         Ok(())
     } else {
@@ -214,7 +217,7 @@ impl NurbsSurface {
         check_finite("cone radius", &[radius, semi_angle])?;
         if radius < 0.0 || !(semi_angle > 0.0 && semi_angle < FRAC_PI_2) {
             return Err(Error::InvalidArgument {
-                what: "cone",
+                what: "cone".into(),
                 reason: format!(
                     "radius {radius} must be at least 0 and the semi-angle {semi_angle} between 0 and π/2 (radians)"
                 ),
@@ -260,7 +263,7 @@ impl NurbsSurface {
         let limit = FRAC_PI_2 * (1.0 + LATITUDE_SLACK);
         if latitudes.0 < -limit || latitudes.1 > limit {
             return Err(Error::InvalidArgument {
-                what: "sphere latitudes",
+                what: "sphere latitudes".into(),
                 reason: format!(
                     "[{}, {}] leaves [−π/2, π/2]; latitudes are radians from the equator",
                     latitudes.0, latitudes.1

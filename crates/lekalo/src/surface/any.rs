@@ -206,7 +206,7 @@ impl Surface {
         let (nu, nv) = self.net_size();
         if points.len() != nu * nv {
             return Err(Error::LengthMismatch {
-                what: "control points (one for each of the surface's)",
+                what: "control points (one for each of the surface's)".into(),
                 expected: nu * nv,
                 got: points.len(),
             });
@@ -322,7 +322,7 @@ impl Surface {
     ) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
         if nu < 2 || nv < 2 {
             return Err(Error::TooFew {
-                what: "samples per direction",
+                what: "samples per direction".into(),
                 min: 2,
                 got: nu.min(nv),
             });
@@ -332,7 +332,7 @@ impl Surface {
         let values = count.saturating_mul(dim.max(3));
         if values > crate::MAX_SCALARS {
             return Err(Error::TooLarge {
-                what: "surface samples",
+                what: "surface samples".into(),
                 size: values,
                 max: crate::MAX_SCALARS,
             });

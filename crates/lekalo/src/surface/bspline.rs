@@ -118,7 +118,7 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
     ] {
         if n == 0 {
             return Err(Error::TooFew {
-                what,
+                what: what.into(),
                 min: 1,
                 got: 0,
             });
@@ -128,13 +128,13 @@ pub(crate) fn check_net(control: &Points, (nu, nv): (usize, usize)) -> Result<us
         .checked_mul(nv)
         .filter(|&c| c <= MAX_SCALARS)
         .ok_or(Error::TooLarge {
-            what: "control net (rows × columns)",
+            what: "control net (rows × columns)".into(),
             size: nu.saturating_mul(nv),
             max: MAX_SCALARS,
         })?;
     if control.len() != count {
         return Err(Error::LengthMismatch {
-            what: "control points (rows × columns of the net)",
+            what: "control points (rows × columns of the net)".into(),
             expected: count,
             got: control.len(),
         });
@@ -160,7 +160,7 @@ fn check_direction(knots: &KnotVector, degree: usize, n: usize, dir: Direction) 
     let expected = n.saturating_add(degree).saturating_add(1);
     if knots.len() != expected {
         return Err(Error::LengthMismatch {
-            what: dir.knot_count(),
+            what: dir.knot_count().into(),
             expected,
             got: knots.len(),
         });
@@ -200,12 +200,12 @@ impl Direction {
 fn name_knots(e: Error, dir: Direction) -> Error {
     match e {
         Error::NonFinite { index, value, .. } => Error::NonFinite {
-            what: dir.knots(),
+            what: dir.knots().into(),
             index,
             value,
         },
         Error::TooFew { min, got, .. } => Error::TooFew {
-            what: dir.knots(),
+            what: dir.knots().into(),
             min,
             got,
         },
@@ -619,7 +619,7 @@ impl BSplineSurface {
             .checked_add(1)
             .filter(|&s| s.saturating_mul(s).saturating_mul(dim) <= MAX_SCALARS);
         let side = side.ok_or(Error::TooLarge {
-            what: "derivative table ((order + 1)² points)",
+            what: "derivative table ((order + 1)² points)".into(),
             size: order,
             max: 1 << 15,
         })?;
@@ -732,7 +732,7 @@ impl BSplineSurface {
 pub(crate) fn check_out(got: usize, dim: usize) -> Result<()> {
     if got != dim {
         return Err(Error::LengthMismatch {
-            what: "output point (dimension)",
+            what: "output point (dimension)".into(),
             expected: dim,
             got,
         });
@@ -755,7 +755,7 @@ pub(crate) fn check_unit(t: f64) -> Result<()> {
 pub(crate) fn check_buffer(got: usize, expected: usize) -> Result<()> {
     if got != expected {
         return Err(Error::LengthMismatch {
-            what: "output buffer (number of parameter points × dimension)",
+            what: "output buffer (number of parameter points × dimension)".into(),
             expected,
             got,
         });
@@ -766,7 +766,7 @@ pub(crate) fn check_buffer(got: usize, expected: usize) -> Result<()> {
 pub(crate) fn check_normal_dim(dim: usize) -> Result<()> {
     if dim != 3 {
         return Err(Error::Dimension {
-            what: "surface points (a normal S_u × S_v needs 3-D points)",
+            what: "surface points (a normal S_u × S_v needs 3-D points)".into(),
             expected: 3,
             got: dim,
         });
@@ -786,7 +786,7 @@ pub(crate) fn unit_normal(su: &[f64], sv: &[f64], u: f64, v: f64) -> Result<[f64
     let (ln, lu, lv) = (len(&n), len(su), len(sv));
     if !ln.is_finite() || ln <= NORMAL_DEGENERACY_TOL * lu * lv {
         return Err(Error::InvalidArgument {
-            what: "surface point for a normal",
+            what: "surface point for a normal".into(),
             reason: format!(
                 "the normal is undefined at (u, v) = ({u}, {v}): |S_u × S_v| = {ln:e} is at most \
                  {NORMAL_DEGENERACY_TOL:e} · |S_u| · |S_v| (|S_u| = {lu:e}, |S_v| = {lv:e}); \

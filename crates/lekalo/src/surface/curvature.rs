@@ -58,7 +58,7 @@ pub fn surface_curvature(
     for s in [su, sv, suu, suv, svv] {
         if s.len() != 3 {
             return Err(Error::Dimension {
-                what: "surface derivative for curvature",
+                what: "surface derivative for curvature".into(),
                 expected: 3,
                 got: s.len(),
             });
@@ -74,7 +74,7 @@ pub fn surface_curvature(
     let ln = dot(&n, &n).sqrt();
     if !det.is_finite() || !ln.is_finite() || det <= DEGENERACY_TOL_SQ * e * g || ln == 0.0 {
         return Err(Error::InvalidArgument {
-            what: "surface point for curvature",
+            what: "surface point for curvature".into(),
             reason: format!(
                 "the tangent plane is degenerate: EG − F² = {det:e} with E = {e:e}, G = {g:e} \
                  (a pole, collapsed edge or cusp) — evaluate nearby"
@@ -88,7 +88,7 @@ pub fn surface_curvature(
     let mean = (e * nn - 2.0 * f * m + g * l) / (2.0 * det);
     if !gaussian.is_finite() || !mean.is_finite() {
         return Err(Error::NonFinite {
-            what: "surface curvature",
+            what: "surface curvature".into(),
             index: 0,
             value: if gaussian.is_finite() { mean } else { gaussian },
         });

@@ -52,13 +52,13 @@ impl BSplineSurface {
             .try_fold(1usize, |a, &b| a.checked_mul(b))
             .filter(|&n| n <= MAX_SCALARS)
             .ok_or(Error::TooLarge {
-                what: "power-form patch coefficients",
+                what: "power-form patch coefficients".into(),
                 size: usize::MAX,
                 max: MAX_SCALARS,
             })?;
         if coefficients.len() != expected {
             return Err(Error::LengthMismatch {
-                what: "patch coefficients (u patches × v patches × u order × v order × dim)",
+                what: "patch coefficients (u patches × v patches × u order × v order × dim)".into(),
                 expected,
                 got: coefficients.len(),
             });

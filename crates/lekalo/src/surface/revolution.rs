@@ -8,6 +8,7 @@ use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
 use crate::surface::nurbs::NurbsSurface;
+use crate::What;
 
 /// `v / |v|`, or an error naming `what` for a zero or non-finite vector.
 pub(crate) fn unit3(v: [f64; 3], what: &'static str) -> Result<[f64; 3]> {
@@ -15,7 +16,7 @@ pub(crate) fn unit3(v: [f64; 3], what: &'static str) -> Result<[f64; 3]> {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     if !(n > 0.0 && n.is_finite()) {
         return Err(Error::InvalidArgument {
-            what,
+            what: what.into(),
             reason: "the vector is zero or overflows; give a direction".into(),
         });
     }
@@ -34,7 +35,8 @@ pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn check_3d(curve: &NurbsCurve, what: &'static str) -> Result<()> {
+fn check_3d(curve: &NurbsCurve, what: impl Into<What>) -> Result<()> {
+    let what: What = what.into();
     if curve.dim() != 3 {
         return Err(Error::Dimension {
             what,

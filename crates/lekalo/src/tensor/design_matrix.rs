@@ -81,7 +81,8 @@ pub fn tensor_design_matrix(
     }
     if points.len() % n != 0 {
         return Err(Error::LengthMismatch {
-            what: "point coordinates (a whole number of points, one coordinate per direction)",
+            what: "point coordinates (a whole number of points, one coordinate per direction)"
+                .into(),
             expected: points.len() / n * n + n,
             got: points.len(),
         });

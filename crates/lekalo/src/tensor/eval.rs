@@ -273,7 +273,7 @@ impl TensorBSplineRef<'_> {
         let n = self.n_vars();
         if xs.len() % n != 0 {
             return Err(Error::LengthMismatch {
-                what: "point coordinates (a multiple of the number of directions)",
+                what: "point coordinates (a multiple of the number of directions)".into(),
                 expected: xs.len() / n * n,
                 got: xs.len(),
             });

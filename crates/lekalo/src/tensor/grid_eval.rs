@@ -80,7 +80,7 @@ impl TensorBSplineRef<'_> {
         let dim = self.dim();
         if axes.len() != n {
             return Err(Error::LengthMismatch {
-                what: "grid parameter lists (one per direction)",
+                what: "grid parameter lists (one per direction)".into(),
                 expected: n,
                 got: axes.len(),
             });
@@ -89,7 +89,7 @@ impl TensorBSplineRef<'_> {
         let size = checked_size("grid values (product of the list lengths × dim)", &m, dim)?;
         if out.len() != size {
             return Err(Error::LengthMismatch {
-                what: "grid output (product of the list lengths × dim)",
+                what: "grid output (product of the list lengths × dim)".into(),
                 expected: size,
                 got: out.len(),
             });

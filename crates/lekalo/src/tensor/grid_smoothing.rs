@@ -14,6 +14,7 @@ use crate::numeric::progress::Progress;
 use crate::points::{Points, PointsRef};
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
 use crate::KnotVector;
+use crate::{Arg, What};
 
 /// The result of [`tensor_grid_smoothing`].
 #[derive(Debug, Clone, PartialEq)]
@@ -114,7 +115,11 @@ pub fn tensor_grid_smoothing_with_progress(
     check_n_vars(n)?;
     check_len("degrees (one per grid direction)", n, degrees.len())?;
     if let Some(b) = bbox {
-        check_len("bbox intervals (one per grid direction)", n, b.len())?;
+        check_len(
+            What::of(Arg::Bbox, "bbox intervals (one per grid direction)"),
+            n,
+            b.len(),
+        )?;
     }
     for &k in degrees {
         check_condition_args(k, s)?;
@@ -137,7 +142,7 @@ pub fn tensor_grid_smoothing_with_progress(
         check_strictly_increasing(x)?;
         if x.len() <= k {
             return Err(Error::TooFew {
-                what: "grid coordinates in a direction (more than its degree)",
+                what: "grid coordinates in a direction (more than its degree)".into(),
                 min: k + 1,
                 got: x.len(),
             });

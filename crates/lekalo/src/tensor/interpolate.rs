@@ -16,6 +16,7 @@ use crate::knots::KnotVector;
 use crate::numeric::linalg::BandedCrout;
 use crate::points::{Points, PointsRef};
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
+use crate::{Arg, What};
 
 /// Numbers of grid data above which the sweeps run on the rayon pool (the lines of a sweep are
 /// independent, so the result is the same bit for bit).
@@ -363,7 +364,7 @@ impl TensorInterpolation {
         let expected = t.len() + p + 1;
         if kv.len() != expected {
             return Err(Error::InvalidArgument {
-                what: "knot vectors",
+                what: What::of(Arg::Knots, "knot vectors"),
                 reason: format!(
                     "direction {a}: {} knots for {} values of degree {p}; give {expected} \
                      (values + degree + 1)",
@@ -376,7 +377,7 @@ impl TensorInterpolation {
         let (lo, hi) = (knots[p], knots[t.len()]);
         if t[0] < lo || t[t.len() - 1] > hi {
             return Err(Error::InvalidArgument {
-                what: "knot vectors",
+                what: What::of(Arg::Knots, "knot vectors"),
                 reason: format!(
                     "direction {a}: the coordinates [{}, {}] leave the knots' domain \
                      [{lo}, {hi}]; give knots whose domain covers the grid",
@@ -417,7 +418,7 @@ impl TensorInterpolation {
                 EndCondition::Natural | EndCondition::Periodic => {}
                 EndCondition::FirstDerivatives { .. } | EndCondition::SecondDerivatives { .. } => {
                     return Err(Error::InvalidArgument {
-                        what: "end conditions",
+                        what: "end conditions".into(),
                         reason: format!(
                             "direction {a}: prescribed end derivatives are one vector per end, \
                              but a grid of two or more directions would need one per grid line \
@@ -445,7 +446,7 @@ impl TensorInterpolation {
                 check_condition_limit(limit)?;
                 if !all_free {
                     return Err(Error::InvalidArgument {
-                        what: "condition limit (max_condition)",
+                        what: "condition limit (max_condition)".into(),
                         reason: "available for grids whose directions all have free ends; drop \
                                  max_condition with natural or periodic ends"
                             .into(),
@@ -460,7 +461,7 @@ impl TensorInterpolation {
             if *self.end(a) != EndCondition::Free {
                 if self.given_knots(a).is_some() {
                     return Err(Error::InvalidArgument {
-                        what: "knot vectors",
+                        what: What::of(Arg::Knots, "knot vectors"),
                         reason: format!(
                             "direction {a}: given knots go with free ends; drop the knots or \
                              the natural or periodic end condition"
@@ -516,7 +517,7 @@ impl TensorInterpolation {
             }
             KnotPlacement::AtParameters => {
                 return Err(Error::InvalidArgument {
-                    what: "knot placements",
+                    what: "knot placements".into(),
                     reason: format!(
                         "direction {a}: knots at the parameters go with end derivatives or \
                          natural ends; use Averaged or Uniform with free ends"
@@ -587,9 +588,9 @@ fn check_count(a: usize, m: usize) -> Result<()> {
     if m < 2 {
         return Err(Error::TooFew {
             what: if a == 0 {
-                "grid values in direction 0"
+                "grid values in direction 0".into()
             } else {
-                "grid values in a direction (each needs 2)"
+                "grid values in a direction (each needs 2)".into()
             },
             min: 2,
             got: m,
@@ -609,7 +610,7 @@ fn check_grid(values: PointsRef<'_>, shape: &[usize]) -> Result<()> {
     )?;
     if values.len() != count {
         return Err(Error::LengthMismatch {
-            what: "grid values (product of the shape)",
+            what: "grid values (product of the shape)".into(),
             expected: count,
             got: values.len(),
         });

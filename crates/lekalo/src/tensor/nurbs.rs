@@ -274,7 +274,7 @@ impl TensorNurbs {
             .try_fold(1usize, |t, &k| t.checked_mul(k.checked_add(1)?))
             .filter(|&t| t <= MAX_TENSOR_DERIVATIVE_TABLE)
             .ok_or(Error::TooLarge {
-                what: "partial derivative table (product of orders + 1)",
+                what: "partial derivative table (product of orders + 1)".into(),
                 size: orders
                     .iter()
                     .fold(1usize, |t, &k| t.saturating_mul(k.saturating_add(1))),

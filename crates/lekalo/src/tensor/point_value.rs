@@ -70,14 +70,14 @@ pub fn tensor_value_by(
     ] {
         if got != n {
             return Err(Error::LengthMismatch {
-                what,
+                what: what.into(),
                 expected: n,
                 got,
             });
         }
     }
     let invalid = |reason: String| Error::InvalidArgument {
-        what: "tensor spline (knots, degrees, coefficients)",
+        what: "tensor spline (knots, degrees, coefficients)".into(),
         reason,
     };
     if n == 0 || n > MAX_POINT_VALUE_VARS {

@@ -43,7 +43,7 @@ fn check_data(
     let count = x.len();
     if count == 0 {
         return Err(Error::TooFew {
-            what: "scattered data points",
+            what: "scattered data points".into(),
             min: 1,
             got: 0,
         });
@@ -138,7 +138,8 @@ pub fn tensor_scattered_least_squares(
     let size = n_ctrl.saturating_mul(band.saturating_add(1));
     if size > MAX_SCALARS {
         return Err(Error::TooLarge {
-            what: "normal matrix of the scattered fit (control points × (half-bandwidth + 1))",
+            what: "normal matrix of the scattered fit (control points × (half-bandwidth + 1))"
+                .into(),
             size,
             max: MAX_SCALARS,
         });

@@ -11,6 +11,7 @@ use crate::fit::banded::{BandedQr, RANK_RTOL};
 use crate::fit::jump_rows;
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
+use crate::Arg;
 
 /// What a scattered least-squares fit does with a control point the data do not determine (no
 /// data point of positive weight under its basis function, or too few or too nearly aligned).
@@ -35,7 +36,7 @@ impl RankDeficiency {
         match self {
             RankDeficiency::MinimumNorm { eps } if !(eps > 0.0 && eps < 1.0) => {
                 Err(Error::InvalidArgument {
-                    what: "eps",
+                    what: Arg::Eps.into(),
                     reason: format!(
                         "the rank threshold eps = {eps} is outside (0, 1); FITPACK's default is \
                          1e-16"
@@ -156,7 +157,7 @@ pub(super) fn observe(
     let size = n.saturating_mul(bw);
     if size > MAX_SCALARS {
         return Err(Error::TooLarge {
-            what: "triangle of the scattered fit (control points × band width)",
+            what: "triangle of the scattered fit (control points × band width)".into(),
             size,
             max: MAX_SCALARS,
         });

@@ -12,6 +12,7 @@ use crate::tensor::scattered::{check_weights, empty_support};
 use crate::tensor::scattered_qr::{observe, solve, to_natural, with_jumps, Layout, Observation};
 use crate::tensor::spline::{check_len, check_n_vars, TensorBSpline};
 use crate::RankDeficiency;
+use crate::{Arg, What};
 
 /// The options of [`tensor_scattered_smoothing`] beyond the data, the degrees and `s`.
 #[derive(Debug, Clone, PartialEq)]
@@ -170,7 +171,7 @@ pub fn tensor_scattered_smoothing_with_progress(
     let window: usize = degrees.iter().map(|k| k + 1).product();
     if count < window {
         return Err(Error::TooFew {
-            what: "scattered data points (at least Π (k_a + 1))",
+            what: "scattered data points (at least Π (k_a + 1))".into(),
             min: window,
             got: count,
         });
@@ -186,7 +187,7 @@ pub fn tensor_scattered_smoothing_with_progress(
         .find(|(_, v)| !v.is_finite())
     {
         return Err(Error::NonFinite {
-            what: "scattered data coordinates",
+            what: "scattered data coordinates".into(),
             index,
             value,
         });
@@ -196,7 +197,11 @@ pub fn tensor_scattered_smoothing_with_progress(
         let coord = x.iter().map(|r| r[a]);
         let (lo, hi) = match &options.bbox {
             Some(b) => {
-                check_len("bbox intervals (one per variable)", n_vars, b.len())?;
+                check_len(
+                    What::of(Arg::Bbox, "bbox intervals (one per variable)"),
+                    n_vars,
+                    b.len(),
+                )?;
                 b[a]
             }
             None => coord
@@ -218,10 +223,14 @@ pub fn tensor_scattered_smoothing_with_progress(
         let k = degrees[a];
         let max = match &options.max_knots {
             Some(m) => {
-                check_len("max_knots (one per variable)", n_vars, m.len())?;
+                check_len(
+                    What::of(Arg::MaxKnots, "max_knots (one per variable)"),
+                    n_vars,
+                    m.len(),
+                )?;
                 if m[a] < 2 * k + 2 {
                     return Err(Error::InvalidArgument {
-                        what: "max_knots",
+                        what: Arg::MaxKnots.into(),
                         reason: format!(
                             "{} knots in variable {a} cannot hold a spline of degree {k}; give \
                              at least 2(k + 1) = {}",
@@ -577,10 +586,7 @@ mod tests {
         };
         assert!(matches!(
             fit(&x, 2, &z, &[3, 2], 1.0, &few),
-            Err(Error::InvalidArgument {
-                what: "max_knots",
-                ..
-            })
+            Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::MaxKnots)
         ));
         let bad_eps = ScatteredSmoothingOptions {
             rank: RankDeficiency::MinimumNorm { eps: 1.0 },
@@ -588,7 +594,7 @@ mod tests {
         };
         assert!(matches!(
             fit(&x, 2, &z, &[3, 2], 1.0, &bad_eps),
-            Err(Error::InvalidArgument { what: "eps", .. })
+            Err(Error::InvalidArgument { what, .. }) if what.arg() == Some(Arg::Eps)
         ));
     }
 

@@ -26,7 +26,7 @@ impl TensorBSpline {
     fn check_axis(&self, a: usize) -> Result<()> {
         if a >= self.n_vars() {
             return Err(Error::InvalidArgument {
-                what: "direction (axis)",
+                what: "direction (axis)".into(),
                 reason: format!(
                     "{a} is not a direction of a spline in {} parameters (0 to {})",
                     self.n_vars(),
@@ -219,7 +219,7 @@ impl TensorBSpline {
         )?;
         if fixed.iter().all(Option::is_some) {
             return Err(Error::InvalidArgument {
-                what: "fixed parameters",
+                what: "fixed parameters".into(),
                 reason: "every parameter is fixed: leave at least one free, or use eval".into(),
             });
         }

@@ -1,6 +1,7 @@
 //! [`TensorBSpline`]: the type, its validation, and evaluation at points (values, partial
 //! derivatives, batches). Formulas: `docs/theory/tensor.md#tensor-product-splines`.
 
+use crate::What;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result, MAX_SCALARS};
@@ -79,7 +80,8 @@ impl From<TensorBSpline> for TensorBSplineRepr {
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming `what` and the size (saturated at `usize::MAX` on overflow).
-pub(crate) fn checked_size(what: &'static str, shape: &[usize], dim: usize) -> Result<usize> {
+pub(crate) fn checked_size(what: impl Into<What>, shape: &[usize], dim: usize) -> Result<usize> {
+    let what: What = what.into();
     let size = shape
         .iter()
         .try_fold(dim, |acc, &n| acc.checked_mul(n))
@@ -99,7 +101,7 @@ pub(crate) fn check_knot_count(n_degrees: usize, n_knots: usize) -> Result<()> {
     check_n_vars(n_degrees)?;
     if n_knots != n_degrees {
         return Err(Error::LengthMismatch {
-            what: "knot vectors (one per degree)",
+            what: "knot vectors (one per degree)".into(),
             expected: n_degrees,
             got: n_knots,
         });
@@ -114,7 +116,7 @@ pub(crate) fn check_knot_count(n_degrees: usize, n_knots: usize) -> Result<()> {
 pub(crate) fn check_n_vars(n: usize) -> Result<()> {
     if n == 0 {
         return Err(Error::TooFew {
-            what: "parameter directions",
+            what: "parameter directions".into(),
             min: 1,
             got: 0,
         });
@@ -177,7 +179,8 @@ impl TensorBSpline {
         let size = checked_size("control net (product of the net sizes)", &shape, 1)?;
         if control.len() != size {
             return Err(Error::LengthMismatch {
-                what: "control points (product of the net sizes knots[a].len() − degrees[a] − 1)",
+                what: "control points (product of the net sizes knots[a].len() − degrees[a] − 1)"
+                    .into(),
                 expected: size,
                 got: control.len(),
             });
@@ -347,7 +350,8 @@ impl TensorBSpline {
 
 /// # Errors
 /// [`Error::LengthMismatch`].
-pub(crate) fn check_len(what: &'static str, expected: usize, got: usize) -> Result<()> {
+pub(crate) fn check_len(what: impl Into<What>, expected: usize, got: usize) -> Result<()> {
+    let what: What = what.into();
     if expected != got {
         return Err(Error::LengthMismatch {
             what,

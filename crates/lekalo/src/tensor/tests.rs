@@ -579,13 +579,7 @@ fn every_error_is_named() {
         .interpolate_at(&[&[0.0, 1.0, 1.0, 3.0], &[0.0, 1.0, 2.0]], values)
         .unwrap_err();
     assert!(
-        matches!(
-            e,
-            Error::InvalidArgument {
-                what: "parameters",
-                ..
-            }
-        ),
+        matches!(e, Error::InvalidArgument { what, .. } if what.words() == "parameters"),
         "{e:?}"
     );
     let e = TensorInterpolation::new(vec![])
@@ -604,13 +598,7 @@ fn every_error_is_named() {
         .interpolate(values, &[4, 3])
         .unwrap_err();
     assert!(
-        matches!(
-            e,
-            Error::InvalidArgument {
-                what: "end conditions",
-                ..
-            }
-        ),
+        matches!(e, Error::InvalidArgument { what, .. } if what.words() == "end conditions"),
         "{e:?}"
     );
     let e = fit

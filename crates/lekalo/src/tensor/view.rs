@@ -5,6 +5,7 @@
 use crate::error::{check_finite, Error, Result};
 use crate::knots::{check_width, KnotVector};
 use crate::tensor::spline::{check_knot_count, checked_size, TensorBSpline};
+use crate::Arg;
 
 /// A tensor-product B-spline whose degrees, knot vectors and control net are borrowed: the
 /// evaluation kernels of [`TensorBSpline`] on data held elsewhere (a [`TensorBSpline`] through
@@ -61,7 +62,7 @@ impl<'a> TensorBSplineRef<'a> {
         check_knot_count(degrees.len(), knots.len())?;
         if dim == 0 {
             return Err(Error::InvalidArgument {
-                what: "dim",
+                what: "dim".into(),
                 reason: "a control point needs at least one number".into(),
             });
         }
@@ -73,7 +74,7 @@ impl<'a> TensorBSplineRef<'a> {
         let size = checked_size("control net (product of the net sizes)", &shape, dim)?;
         if net.len() != size {
             return Err(Error::LengthMismatch {
-                what: "control net numbers (product of the net sizes knots[a].len() − degrees[a] − 1, times dim)",
+                what: "control net numbers (product of the net sizes knots[a].len() − degrees[a] − 1, times dim)".into(),
                 expected: size,
                 got: net.len(),
             });
@@ -132,12 +133,12 @@ impl<'a> TensorBSplineRef<'a> {
 fn check_knots(t: &[f64], p: usize) -> Result<usize> {
     if t.len() < 2 {
         return Err(Error::TooFew {
-            what: "knots",
+            what: Arg::Knots.into(),
             min: 2,
             got: t.len(),
         });
     }
-    check_finite("knots", t)?;
+    check_finite(Arg::Knots, t)?;
     for i in 1..t.len() {
         if t[i] < t[i - 1] {
             return Err(Error::KnotsNotSorted {
@@ -154,7 +155,7 @@ fn check_knots(t: &[f64], p: usize) -> Result<usize> {
             max: last,
         });
     }
-    check_width("knots", first, last)?;
+    check_width(Arg::Knots, first, last)?;
     if t.len() / 2 <= p {
         return Err(Error::Degree {
             degree: p,

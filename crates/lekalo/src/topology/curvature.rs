@@ -185,7 +185,7 @@ impl Curvature {
         let mut abc = vec![[0.0_f64; 3]; nu * nv];
         for &(((a0, a1), (b0, b1)), ref net) in &parts {
             let (pa, pb, pc) = q.net_bounds(net).ok_or(Error::InvalidArgument {
-                what: "face surface",
+                what: "face surface".into(),
                 reason: "a weight is not positive; a rational surface needs positive weights"
                     .into(),
             })?;
@@ -318,7 +318,7 @@ impl Curvature {
             out.push(x);
             if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "grid lines of a face's mesh (make the tolerance larger)",
+                    what: "grid lines of a face's mesh (make the tolerance larger)".into(),
                     size: out.len(),
                     max: budget,
                 });

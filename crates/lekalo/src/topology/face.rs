@@ -39,7 +39,7 @@ impl Edge {
         if let Some(p) = &pcurve {
             if p.dim() != 2 {
                 return Err(Error::Dimension {
-                    what: "pcurve (a curve in the surface's (u, v))",
+                    what: "pcurve (a curve in the surface's (u, v))".into(),
                     expected: 2,
                     got: p.dim(),
                 });
@@ -77,7 +77,7 @@ impl Loop {
     pub fn new(edges: Vec<Edge>) -> Result<Self> {
         if edges.is_empty() {
             return Err(Error::TooFew {
-                what: "edges in a loop",
+                what: "edges in a loop".into(),
                 min: 1,
                 got: 0,
             });
@@ -184,7 +184,7 @@ impl Face {
     ) -> Result<Self> {
         if !(rtol.is_finite() && rtol >= 0.0) {
             return Err(Error::InvalidArgument {
-                what: "loop closure tolerance",
+                what: "loop closure tolerance".into(),
                 reason: format!("{rtol} must be finite and at least 0"),
             });
         }
@@ -199,7 +199,7 @@ impl Face {
             for e in &lp.edges {
                 if e.curve.dim() != dim {
                     return Err(Error::Dimension {
-                        what: "edge curve (the surface's dimension)",
+                        what: "edge curve (the surface's dimension)".into(),
                         expected: dim,
                         got: e.curve.dim(),
                     });
@@ -216,7 +216,7 @@ impl Face {
                         format!("inner loop {i}")
                     };
                     return Err(Error::InvalidArgument {
-                        what: "face loop",
+                        what: "face loop".into(),
                         reason: format!(
                             "{which} does not close: edge {k} ends {gap:.3e} from the start of edge {} (tolerance {tol:.3e}, {rtol:e} of the model size); the edges are not in loop order, or a wrong edge is in the loop",
                             (k + 1) % lp.edges.len()

@@ -40,7 +40,7 @@ impl Face {
             for (k, e) in lp.edges().iter().enumerate() {
                 let Some(p) = e.pcurve() else {
                     return Err(Error::InvalidArgument {
-                        what: "face loop",
+                        what: "face loop".into(),
                         reason: format!(
                             "edge {k} of loop {i} has no curve in the surface's (u, v); the point-in-face test needs every edge's pcurve"
                         ),
@@ -51,7 +51,7 @@ impl Face {
                 total = total.saturating_add(n);
                 if total > MAX_TRIM_POINTS {
                     return Err(Error::TooLarge {
-                        what: "points of a face's trim polygons",
+                        what: "points of a face's trim polygons".into(),
                         size: total,
                         max: MAX_TRIM_POINTS,
                     });

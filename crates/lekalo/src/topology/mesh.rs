@@ -110,7 +110,7 @@ impl FacePlan<'_> {
 /// One use of an edge: its face, and its pcurve's parameter at a fraction of the edge.
 fn pcurve_at(e: &Edge, s: f64) -> Result<[f64; 2]> {
     let p = e.pcurve().ok_or(Error::InvalidArgument {
-        what: "face loop",
+        what: "face loop".into(),
         reason:
             "an edge has no curve in the surface's (u, v); meshing a face needs every edge's pcurve"
                 .into(),
@@ -200,7 +200,8 @@ fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f6
             at = s;
             if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "points on an edge of the faces to mesh (make the tolerance larger)",
+                    what: "points on an edge of the faces to mesh (make the tolerance larger)"
+                        .into(),
                     size: out.len(),
                     max: budget,
                 });
@@ -249,7 +250,7 @@ pub(super) fn check_grid(tolerance: f64, cells: f64) -> Result<()> {
     let max = MAX_MESH_VERTICES as f64;
     if cells > max {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance",
+            what: "tessellation tolerance".into(),
             reason: format!(
                 "{tolerance:e} needs a grid of about {cells:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
                 tolerance * cells / max
@@ -400,7 +401,7 @@ fn mesh_one(
     let mut ours: Vec<usize> = Vec::new();
     let insert_err = |e: spade::InsertionError| {
         Error::InvalidArgument {
-        what: "face loop",
+        what: "face loop".into(),
         reason: format!("a point of a trim cannot be triangulated ({e:?}); its (u, v) is not finite or too large"),
     }
     };
@@ -494,7 +495,7 @@ fn mesh_one(
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
             if uv.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "vertices of the faces' mesh (make the tolerance larger)",
+                    what: "vertices of the faces' mesh (make the tolerance larger)".into(),
                     size: uv.len(),
                     max: budget,
                 });
@@ -538,7 +539,7 @@ fn mesh_one(
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
             if uv.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "vertices of the faces' mesh (make the tolerance larger)",
+                    what: "vertices of the faces' mesh (make the tolerance larger)".into(),
                     size: uv.len(),
                     max: budget,
                 });

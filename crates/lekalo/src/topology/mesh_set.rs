@@ -143,7 +143,7 @@ pub(super) fn mesh_counted(
 ) -> Result<(FaceMeshes, usize)> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance",
+            what: "tessellation tolerance".into(),
             reason: format!("{tolerance} is not a positive finite tolerance"),
         });
     }
@@ -285,7 +285,7 @@ pub(super) fn mesh_counted(
     }
     if vertices > MAX_MESH_VERTICES {
         return Err(Error::TooLarge {
-            what: "vertices of the faces' meshes (make the tolerance larger)",
+            what: "vertices of the faces' meshes (make the tolerance larger)".into(),
             size: vertices,
             max: MAX_MESH_VERTICES,
         });
@@ -358,7 +358,7 @@ fn join<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> Result<Mesh> {
     for m in &meshes {
         if m.vertices.dim() != dim {
             return Err(Error::Dimension {
-                what: "mesh vertices",
+                what: "mesh vertices".into(),
                 expected: dim,
                 got: m.vertices.dim(),
             });

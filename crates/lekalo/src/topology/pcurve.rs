@@ -9,7 +9,7 @@
 
 use super::face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 use crate::query::QuerySurface;
-use crate::{BSplineCurve, Curve, Error, Points, Result, Surface};
+use crate::{Arg, BSplineCurve, Curve, Error, Points, Result, Surface, What};
 
 /// Samples per knot span of an edge's curve before bisection.
 const START_SAMPLES_PER_SPAN: usize = 4;
@@ -281,14 +281,14 @@ impl<'a> Projector<'a> {
         let n0 = spans.saturating_mul(START_SAMPLES_PER_SPAN).max(2);
         if n0 > MAX_PCURVE_POINTS {
             return Err(Error::TooLarge {
-                what: "points of a projected pcurve",
+                what: "points of a projected pcurve".into(),
                 size: n0,
                 max: MAX_PCURVE_POINTS,
             });
         }
         let far = |t: f64, d: f64| {
             Error::InvalidArgument {
-            what: "face edge",
+            what: "face edge".into(),
             reason: format!(
                 "{} does not lie on the face's surface: its point at t = {t} is {d:.3e} from it (tolerance {:.3e}); the edge belongs to another surface, or the model was sewn with a larger tolerance",
                 which(),
@@ -326,7 +326,7 @@ impl<'a> Projector<'a> {
                 out.push(Sample { t, uv, pole });
                 if out.len() > MAX_PCURVE_POINTS {
                     return Err(Error::TooLarge {
-                        what: "points of a projected pcurve (make the tolerance larger)",
+                        what: "points of a projected pcurve (make the tolerance larger)".into(),
                         size: out.len(),
                         max: MAX_PCURVE_POINTS,
                     });
@@ -424,7 +424,7 @@ impl Face {
     pub fn with_projected_pcurves(&self, tolerance: f64) -> Result<Face> {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(Error::InvalidArgument {
-                what: "pcurve tolerance",
+                what: What::of(Arg::Tolerance, "pcurve tolerance"),
                 reason: format!("{tolerance} must be finite and positive"),
             });
         }
@@ -562,7 +562,7 @@ fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>>
                     format!("inner loop {li}")
                 };
                 return Err(Error::InvalidArgument {
-                    what: "face loop",
+                    what: "face loop".into(),
                     reason: format!(
                         "{which} goes round the closed surface in {} {times} times; a loop of a face goes round it at most once (a band or a cap, cut along a seam to be meshed)",
                         if d == 0 { "u" } else { "v" }

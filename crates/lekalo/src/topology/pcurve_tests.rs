@@ -377,7 +377,7 @@ fn an_edge_off_the_surface_is_refused_with_its_distance() {
     let Error::InvalidArgument { what, reason } = e else {
         panic!("{e:?}")
     };
-    assert_eq!(what, "face edge");
+    assert_eq!(what.words(), "face edge");
     assert!(
         reason.contains("edge 1 of the outer loop") && reason.contains("does not lie on"),
         "{reason}"

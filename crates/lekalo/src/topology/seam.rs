@@ -30,7 +30,7 @@ pub(super) struct SeamPlan<'a> {
 
 fn refuse(reason: String) -> Error {
     Error::InvalidArgument {
-        what: "face loop",
+        what: "face loop".into(),
         reason,
     }
 }

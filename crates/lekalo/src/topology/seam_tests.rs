@@ -207,7 +207,7 @@ fn refusal(e: Error) -> String {
     let Error::InvalidArgument { what, reason } = e else {
         panic!("{e:?}")
     };
-    assert_eq!(what, "face loop");
+    assert_eq!(what.words(), "face loop");
     reason
 }
 

@@ -91,7 +91,7 @@ fn a_loop_that_does_not_close_is_refused_with_the_edge() {
     let Error::InvalidArgument { what, reason } = e else {
         panic!("{e:?}")
     };
-    assert_eq!(what, "face loop");
+    assert_eq!(what.words(), "face loop");
     assert!(
         reason.contains("outer loop") && reason.contains("edge 2"),
         "{reason}"

@@ -237,7 +237,7 @@ fn circular_arc_rejects_bad_input() {
     let (c, x, y) = ([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]);
     let bad = |r: Result<NurbsCurve>, what: &str| {
         assert!(
-            matches!(&r, Err(Error::InvalidArgument { what: w, .. }) if *w == what),
+            matches!(&r, Err(Error::InvalidArgument { what: w, .. }) if w.words() == what),
             "{what}: {r:?}"
         );
     };
@@ -338,7 +338,7 @@ fn circles_with_a_normal_lie_in_their_plane() {
     }
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0; 3], 1.0),
-        Err(Error::InvalidArgument { what: "normal", .. })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "normal"
     ));
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0, f64::NAN, 1.0], 1.0),
@@ -346,6 +346,6 @@ fn circles_with_a_normal_lie_in_their_plane() {
     ));
     assert!(matches!(
         NurbsCurve::circle_with_normal([0.0; 3], [0.0, 0.0, 1.0], -1.0),
-        Err(Error::InvalidArgument { what: "radius", .. })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "radius"
     ));
 }

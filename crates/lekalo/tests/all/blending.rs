@@ -741,17 +741,11 @@ fn errors() {
     let c = bezier(&[[2.0, 0.0], [3.0, 1.0]]);
     assert!(matches!(
         CornerTransition::new(&a, 1.0, &c, 0.5, 1),
-        Err(Error::InvalidArgument {
-            what: "window start t_start",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "window start t_start"
     ));
     assert!(matches!(
         CornerTransition::new(&a, 0.5, &c, 0.0, 1),
-        Err(Error::InvalidArgument {
-            what: "window end t_end",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "window end t_end"
     ));
     assert!(matches!(
         CornerTransition::new(&a, 0.5, &c, 0.5, 0),
@@ -878,10 +872,7 @@ fn approximation_of_arc_splines() {
     }
     assert!(matches!(
         spline(&ZIGZAG, &Parabolas, 1, false, SplineParameters::Uniform).approximate(-1.0),
-        Err(Error::InvalidArgument {
-            what: "tolerance",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "tolerance"
     ));
 }
 

@@ -276,7 +276,10 @@ fn invalid_limit_is_invalid_argument() {
             .interpolate(q.as_view())
             .unwrap_err();
         assert!(
-            matches!(e, Error::InvalidArgument { what, .. } if what.contains("max_condition")),
+            matches!(
+                e,
+                Error::InvalidArgument { what, .. } if what.words().contains("max_condition")
+            ),
             "{limit}: {e:?}"
         );
     }

@@ -34,10 +34,7 @@ fn cubic() -> BSplineCurve {
 
 fn assert_too_large(r: Result<Points, Error>, what: &str) {
     match r {
-        Err(Error::TooLarge {
-            what: "derivative order",
-            ..
-        }) => {}
+        Err(Error::TooLarge { what, .. }) if what.words() == "derivative order" => {}
         other => panic!("{what}: expected TooLarge(derivative order), got {other:?}"),
     }
 }
@@ -250,40 +247,22 @@ fn averaged_with_end_derivatives_with_the_fewest_parameters() {
 fn overflowing_widths_are_refused() {
     let r = PiecewisePolynomial::new(vec![-f64::MAX, 1e300], 2, 1, vec![1.0, 1.0]);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what: "breakpoints",
-                ..
-            })
-        ),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "breakpoints"),
         "{r:?}"
     );
     let r = KnotVector::new(vec![-f64::MAX, -f64::MAX, f64::MAX, f64::MAX]);
     assert!(
-        matches!(r, Err(Error::InvalidArgument { what: "knots", .. })),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "knots"),
         "{r:?}"
     );
     let r = KnotVector::averaged(&[-f64::MAX, 0.0, f64::MAX], 1);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what: "parameters",
-                ..
-            })
-        ),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "parameters"),
         "{r:?}"
     );
     let r = PpSpace::unconstrained(&[-f64::MAX, f64::MAX], 2);
     assert!(
-        matches!(
-            r,
-            Err(Error::InvalidArgument {
-                what: "breakpoints",
-                ..
-            })
-        ),
+        matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "breakpoints"),
         "{r:?}"
     );
     // the widest finite interval is still accepted
@@ -493,7 +472,7 @@ fn interpolation_of_data_spanning_beyond_f64_is_refused() {
             .knot_placement(lekalo::KnotPlacement::Averaged)
             .interpolate(q.as_view());
         assert!(
-            matches!(r, Err(Error::InvalidArgument { what: "points", .. })),
+            matches!(r, Err(Error::InvalidArgument { what, .. }) if what.words() == "points"),
             "degree {degree}: {r:?}"
         );
     }

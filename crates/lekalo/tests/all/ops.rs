@@ -574,10 +574,7 @@ fn remove_knot_errors() {
     let c = quadratic();
     assert!(matches!(
         c.remove_knot(0.5, 1, f64::NAN),
-        Err(Error::NonFinite {
-            what: "tolerance",
-            ..
-        })
+        Err(Error::NonFinite { what, .. }) if what.words() == "tolerance"
     ));
     assert!(matches!(
         c.remove_knot(0.5, 1, f64::INFINITY),
@@ -585,10 +582,7 @@ fn remove_knot_errors() {
     ));
     assert!(matches!(
         c.remove_knot(0.5, 1, -1.0),
-        Err(Error::InvalidArgument {
-            what: "tolerance",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "tolerance"
     ));
     assert!(matches!(
         c.remove_knot(1.5, 1, 0.1),
@@ -600,24 +594,15 @@ fn remove_knot_errors() {
     ));
     assert!(matches!(
         c.remove_knot(1.0, 1, 0.1),
-        Err(Error::InvalidArgument {
-            what: "knot to remove",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "knot to remove"
     ));
     assert!(matches!(
         c.remove_knot(0.25, 1, 0.1),
-        Err(Error::InvalidArgument {
-            what: "knot to remove",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "knot to remove"
     ));
     assert!(matches!(
         c.remove_knot(0.5, 3, 0.1),
-        Err(Error::InvalidArgument {
-            what: "knot removal count",
-            ..
-        })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "knot removal count"
     ));
     assert!(matches!(
         c.remove_all_removable_knots(f64::NAN),

@@ -871,7 +871,7 @@ fn reverse_overflow_is_an_error() {
     let ctrl = Points::from_flat(1, vec![0.0, 1.0]).unwrap();
     assert!(matches!(
         BSplineCurve::new(1, vec![-1.7e308, 1e308, 1.5e308, 1.7e308], ctrl.clone()),
-        Err(Error::InvalidArgument { what: "knots", .. })
+        Err(Error::InvalidArgument { what, .. }) if what.words() == "knots"
     ));
     // domain [1e308, 1.5e308]: a + b overflows when the knots are mirrored
     let c = BSplineCurve::new(1, vec![0.0, 1e308, 1.5e308, 1.7e308], ctrl).unwrap();

@@ -73,12 +73,8 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             }
             match f.face.with_projected_pcurves(a.tolerance) {
                 Ok(g) => ready.push((k, g)),
-                Err(
-                    e @ lekalo::Error::InvalidArgument {
-                        what: "pcurve tolerance",
-                        ..
-                    },
-                ) => return Err(bad(e).into()),
+                // a bad tolerance fails every face alike: refused, not listed per face
+                Err(e) if e.arg() == Some(lekalo::Arg::Tolerance) => return Err(bad(e).into()),
                 Err(e) => skipped.push((k, e.to_string())),
             }
         }

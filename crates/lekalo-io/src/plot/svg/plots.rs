@@ -164,7 +164,7 @@ pub fn residual_series(
 ) -> lekalo::Result<Series> {
     if feet.dim() != data.dim() || feet.len() != data.len() {
         return Err(lekalo::Error::Dimension {
-            what: "closest points of the data points",
+            what: "closest points of the data points".into(),
             expected: data.dim() * data.len(),
             got: feet.dim() * feet.len(),
         });

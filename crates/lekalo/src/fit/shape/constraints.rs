@@ -204,7 +204,7 @@ impl ShapeConstraints {
     /// leaves the domain, a point outside it, or a derivative order above the degree.
     pub(crate) fn validate(&self, (lo, hi): (f64, f64), degree: usize) -> Result<()> {
         let bad = |reason: String| Error::InvalidArgument {
-            what: "shape constraints",
+            what: "shape constraints".into(),
             reason,
         };
         for s in &self.shapes {

@@ -17,6 +17,7 @@ use crate::knots::KnotVector;
 use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
+use crate::{Arg, What};
 
 /// Violation, relative to the data's scale, below which a constraint counts as holding when the
 /// unconstrained fit is tested (then it is returned unchanged) and when the constrained one is
@@ -170,7 +171,10 @@ pub fn constrained_smoothing_spline(
     if let Lambda::Given(l) = lambda {
         if !(l > 0.0 && l.is_finite()) {
             return Err(Error::NegativeSmoothing {
-                what: "λ (a shape-constrained smoothing spline needs λ > 0)",
+                what: What::of(
+                    Arg::Lambda,
+                    "λ (a shape-constrained smoothing spline needs λ > 0)",
+                ),
                 value: l,
             });
         }
@@ -246,7 +250,7 @@ pub fn constrained_smoothing_condition(
 ) -> Result<CurveFit> {
     if !(s >= 0.0 && s.is_finite()) {
         return Err(Error::NegativeSmoothing {
-            what: "s",
+            what: Arg::S.into(),
             value: s,
         });
     }
@@ -287,7 +291,7 @@ pub fn constrained_smoothing_condition(
     }
     let least = near.1.report.weighted_rss;
     Err(Error::InvalidArgument {
-        what: "s (smoothing condition)",
+        what: What::of(Arg::S, "s (smoothing condition)"),
         reason: format!(
             "the shape constraints leave a residual sum of squares of at least about {least:e} \
              (at the smallest penalty tried), above s = {s:e}; give s ≥ {least:e}, or fewer \
@@ -346,7 +350,7 @@ fn bisect_condition(
 pub fn shape_violations(curve: &BSplineCurve, constraints: &ShapeConstraints) -> Result<Vec<f64>> {
     if curve.dim() != 1 {
         return Err(Error::Dimension {
-            what: "curve checked against shape constraints (a function y(x))",
+            what: "curve checked against shape constraints (a function y(x))".into(),
             expected: 1,
             got: curve.dim(),
         });
@@ -440,7 +444,7 @@ impl ShapeCheck {
 fn check_function_data(data: &FitData<'_>) -> Result<()> {
     if data.points().dim() != 1 {
         return Err(Error::Dimension {
-            what: "data of a shape-constrained fit (values y over x)",
+            what: "data of a shape-constrained fit (values y over x)".into(),
             expected: 1,
             got: data.points().dim(),
         });

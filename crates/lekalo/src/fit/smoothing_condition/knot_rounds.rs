@@ -25,7 +25,7 @@ pub(super) fn knot_rounds(
     let md = obs.sites.len();
     if md < k + 1 {
         return Err(Error::TooFew {
-            what: "distinct data parameters for the smoothing condition (degree + 1)",
+            what: "distinct data parameters for the smoothing condition (degree + 1)".into(),
             min: k + 1,
             got: md,
         });

@@ -6,6 +6,7 @@ use crate::basis::{basis_funs_into, BasisScratch, SpanBasis};
 use crate::error::{readable, Error, Result};
 use crate::fit::banded::{BandedQr, QrRows};
 use crate::fit::data::FitData;
+use crate::Arg;
 
 /// The data sorted by parameter, relative to the first point and weighted for the rows of the
 /// least-squares problem.
@@ -91,7 +92,7 @@ pub(in crate::fit) fn check_reachable(obs: &Observations, s: f64) -> Result<()> 
     let floor = reachable_floor(obs);
     if floor > s {
         return Err(Error::InvalidArgument {
-            what: "s",
+            what: Arg::S.into(),
             reason: format!(
                 "s = {} is below {}, the weighted residual sum of squares that every function \
                  leaves where points share a parameter (x) with different values (at best it \

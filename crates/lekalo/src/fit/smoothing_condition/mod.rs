@@ -15,6 +15,7 @@ mod lsq_pass;
 mod tests;
 mod weight;
 
+use crate::Arg;
 use knot_rounds::knot_rounds;
 pub(crate) use knot_rounds::next_nplus;
 pub(in crate::fit) use knot_rounds::{Added, Knots};
@@ -86,7 +87,7 @@ pub const SMOOTHING_RTOL: f64 = 1e-3;
 /// # Errors
 /// [`Error::NegativeSmoothing`] for `s < 0` or NaN; [`Error::Degree`] for degree 0;
 /// [`Error::TooFew`] for fewer than `degree + 1` distinct parameters;
-/// [`Error::InvalidArgument`] (`what = "s"`) for `s` below the residual that repeated
+/// [`Error::InvalidArgument`] (about [`Arg::S`](crate::Arg::S)) for `s` below the residual that repeated
 /// parameters with different values leave to every function;
 /// [`Error::SingularSystem`] when zero weights leave a coefficient without data.
 pub fn smoothing_condition(data: &FitData<'_>, degree: usize, s: f64) -> Result<CurveFit> {
@@ -245,7 +246,7 @@ pub(in crate::fit) fn check_max_knots(degree: usize, max_knots: Option<usize>) -
     match max_knots {
         None => Ok(usize::MAX),
         Some(n) if n < 2 * degree + 2 => Err(Error::TooFew {
-            what: "knots allowed (max_knots, SciPy's nest): the polynomial has 2·degree + 2",
+            what: "knots allowed (max_knots, SciPy's nest): the polynomial has 2·degree + 2".into(),
             min: 2 * degree + 2,
             got: n,
         }),
@@ -313,7 +314,7 @@ pub(in crate::fit) fn finish(
 pub(crate) fn check_condition_args(degree: usize, s: f64) -> Result<()> {
     if !(s >= 0.0 && s.is_finite()) {
         return Err(Error::NegativeSmoothing {
-            what: "s",
+            what: Arg::S.into(),
             value: s,
         });
     }

@@ -147,7 +147,7 @@ pub fn fit_tolerance_with_progress(
     }
     if points.len() < p + 1 {
         return Err(Error::TooFew {
-            what: "points for a tolerance fit (degree + 1)",
+            what: "points for a tolerance fit (degree + 1)".into(),
             min: p + 1,
             got: points.len(),
         });

@@ -98,7 +98,7 @@ pub(super) fn refine(
     distinct.dedup();
     if distinct.len() < p + 1 {
         return Err(Error::TooFew {
-            what: "distinct data parameters for a tolerance fit (degree + 1)",
+            what: "distinct data parameters for a tolerance fit (degree + 1)".into(),
             min: p + 1,
             got: distinct.len(),
         });

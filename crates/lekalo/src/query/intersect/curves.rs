@@ -57,7 +57,7 @@ impl QueryCurve {
         if self.dim != 2 || other.dim != 2 {
             if self.dim != other.dim {
                 return Err(Error::Dimension {
-                    what: "curves for an intersection",
+                    what: "curves for an intersection".into(),
                     expected: self.dim,
                     got: other.dim,
                 });
@@ -202,7 +202,7 @@ impl QueryCurve {
         for c in [self, other] {
             if c.dim != 2 {
                 return Err(Error::Dimension {
-                    what: "curves for a planar intersection",
+                    what: "curves for a planar intersection".into(),
                     expected: 2,
                     got: c.dim,
                 });

@@ -562,7 +562,7 @@ impl<'a> Search<'a> {
             visited += 1;
             if visited > MAX_PAIRS {
                 return Err(Error::TooLarge {
-                    what: "sub-curve pairs examined by the intersection",
+                    what: "sub-curve pairs examined by the intersection".into(),
                     size: visited,
                     max: MAX_PAIRS,
                 });

@@ -63,7 +63,7 @@ impl QueryCurve {
             visited += 1;
             if visited > MAX_PAIRS {
                 return Err(Error::TooLarge {
-                    what: "sub-curve pairs examined by the intersection",
+                    what: "sub-curve pairs examined by the intersection".into(),
                     size: visited,
                     max: MAX_PAIRS,
                 });

@@ -60,7 +60,7 @@ impl QueryCurve {
         let nn = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
         if !(nn > 0.0) {
             return Err(Error::InvalidArgument {
-                what: "plane normal",
+                what: "plane normal".into(),
                 reason: "it is the zero vector".into(),
             });
         }
@@ -185,7 +185,7 @@ impl QueryCurve {
     ) -> Result<Vec<SurfaceIntersection>> {
         if surface.dim != self.dim {
             return Err(Error::Dimension {
-                what: "surface for a curve–surface intersection",
+                what: "surface for a curve–surface intersection".into(),
                 expected: self.dim,
                 got: surface.dim,
             });
@@ -220,7 +220,7 @@ impl QueryCurve {
                     visited += 1;
                     if visited > MAX_PAIRS {
                         return Err(Error::TooLarge {
-                            what: "curve-surface sub-pairs",
+                            what: "curve-surface sub-pairs".into(),
                             size: visited,
                             max: MAX_PAIRS,
                         });

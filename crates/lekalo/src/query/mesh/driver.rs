@@ -164,7 +164,7 @@ impl QuerySurface {
         let max = MAX_MESH_TRIANGLES as f64;
         if triangles > max {
             return Err(Error::InvalidArgument {
-                what: "tessellation tolerance",
+                what: "tessellation tolerance".into(),
                 reason: format!(
                     "{tolerance:e} needs about {triangles:.1e} triangles, more than the \
                      {MAX_MESH_TRIANGLES} a mesh may have; use a tolerance of at least {:.1e}",
@@ -205,7 +205,7 @@ impl QuerySurface {
         uv: &mut Vec<[f64; 2]>,
     ) -> Result<u32> {
         let centre = u32::try_from(uv.len()).map_err(|_| Error::TooLarge {
-            what: "mesh vertices",
+            what: "mesh vertices".into(),
             size: uv.len(),
             max: MAX_MESH_VERTICES,
         })?;
@@ -230,7 +230,7 @@ impl QuerySurface {
     ) -> Result<Mesh> {
         if uv.len() > MAX_MESH_VERTICES {
             return Err(Error::TooLarge {
-                what: "mesh vertices",
+                what: "mesh vertices".into(),
                 size: uv.len(),
                 max: MAX_MESH_VERTICES,
             });

@@ -74,7 +74,7 @@ impl QuerySurface {
                 let n = count.fetch_add(1, Ordering::Relaxed) + 1;
                 if n > MAX_MESH_VERTICES {
                     return Err(Error::TooLarge {
-                        what: "mesh vertices",
+                        what: "mesh vertices".into(),
                         size: n,
                         max: MAX_MESH_VERTICES,
                     });

@@ -29,7 +29,7 @@ impl QuerySurface {
             let (a, b, c) = self
                 .net_bounds(&net)
                 .ok_or_else(|| Error::InvalidArgument {
-                    what: "surface to mesh",
+                    what: "surface to mesh".into(),
                     reason: format!(
                         "patch {k} has a weight that is not positive; the deviation bound needs \
                      positive weights"
@@ -46,7 +46,7 @@ impl QuerySurface {
                 let n = count.fetch_add(1, Ordering::Relaxed) + 1;
                 if n > MAX_MESH_VERTICES {
                     return Err(Error::TooLarge {
-                        what: "mesh vertices",
+                        what: "mesh vertices".into(),
                         size: n,
                         max: MAX_MESH_VERTICES,
                     });

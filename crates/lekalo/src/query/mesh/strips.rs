@@ -19,7 +19,7 @@ impl Lattice {
         let mut keys: Vec<(u64, u64, u32, u8)> = Vec::new();
         for (n, (gu, gv)) in rects.enumerate() {
             let n = u32::try_from(n).map_err(|_| Error::TooLarge {
-                what: "mesh vertices",
+                what: "mesh vertices".into(),
                 size: n,
                 max: MAX_MESH_VERTICES,
             })?;

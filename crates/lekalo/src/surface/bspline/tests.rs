@@ -159,12 +159,15 @@ fn constructor_errors_name_the_direction() {
     // knots_v has 4 knots but 3 + 1 + 1 = 5 are needed
     let e = BSplineSurface::new(1, 1, k2.clone(), k2.clone(), net.clone(), (2, 3)).unwrap_err();
     assert!(
-        matches!(e, Error::LengthMismatch { what, expected: 5, got: 4 } if what.starts_with("knots in v")),
+        matches!(
+            e,
+            Error::LengthMismatch { what, expected: 5, got: 4 } if what.words().starts_with("knots in v")
+        ),
         "{e}"
     );
     let e = BSplineSurface::new(1, 1, k3.clone(), k3.clone(), net.clone(), (2, 3)).unwrap_err();
     assert!(
-        matches!(e, Error::LengthMismatch { what, .. } if what.starts_with("knots in u")),
+        matches!(e, Error::LengthMismatch { what, .. } if what.words().starts_with("knots in u")),
         "{e}"
     );
     // degree 2 in u with 2 rows
@@ -182,25 +185,12 @@ fn constructor_errors_name_the_direction() {
         "{e}"
     );
     assert!(matches!(
-        BSplineSurface::new(
-            1,
-            1,
-            vec![0.0, 0.0, f64::NAN, 1.0],
-            k3.clone(),
-            net.clone(),
-            (2, 3)
-        ),
-        Err(Error::NonFinite {
-            what: "knots_u",
-            ..
-        })
+        BSplineSurface::new(1, 1, vec![0.0, 0.0, f64::NAN, 1.0], k3.clone(), net.clone(), (2, 3)),
+        Err(Error::NonFinite { what, .. }) if what.words() == "knots_u"
     ));
     assert!(matches!(
         BSplineSurface::new(1, 1, k2.clone(), vec![0.0], net.clone(), (2, 3)),
-        Err(Error::TooFew {
-            what: "knots_v",
-            ..
-        })
+        Err(Error::TooFew { what, .. }) if what.words() == "knots_v"
     ));
     assert!(matches!(
         BSplineSurface::new(

@@ -175,7 +175,7 @@ impl March<'_> {
         bt.extend(f.ts);
         if bx.len() > MAX_BRANCH_POINTS {
             return Err(Error::TooLarge {
-                what: "points of an intersection branch",
+                what: "points of an intersection branch".into(),
                 size: bx.len(),
                 max: MAX_BRANCH_POINTS,
             });
@@ -230,7 +230,7 @@ impl March<'_> {
         loop {
             if xs.len() > MAX_BRANCH_POINTS {
                 return Err(Error::TooLarge {
-                    what: "points of an intersection branch",
+                    what: "points of an intersection branch".into(),
                     size: xs.len(),
                     max: MAX_BRANCH_POINTS,
                 });

@@ -23,6 +23,7 @@ use super::super::surface::QuerySurface;
 use super::refine::order_from_growth;
 use super::Contact;
 use crate::error::{Error, Result};
+use crate::Arg;
 use crate::BSplineCurve;
 use march::{March, Stop, Traced, SIN_STOP};
 use rayon::prelude::*;
@@ -135,7 +136,7 @@ impl QuerySurface {
         for s in [self, other] {
             if s.dim != 3 {
                 return Err(Error::Dimension {
-                    what: "surfaces to intersect",
+                    what: "surfaces to intersect".into(),
                     expected: 3,
                     got: s.dim,
                 });
@@ -189,7 +190,7 @@ impl QuerySurface {
     ) -> Result<Vec<IntersectionBranch>> {
         if self.dim != 3 {
             return Err(Error::Dimension {
-                what: "surface of a plane section",
+                what: "surface of a plane section".into(),
                 expected: 3,
                 got: self.dim,
             });
@@ -199,7 +200,7 @@ impl QuerySurface {
         let nn = norm(normal);
         if !(nn > 0.0) {
             return Err(Error::InvalidArgument {
-                what: "plane normal",
+                what: "plane normal".into(),
                 reason: "it is the zero vector".into(),
             });
         }
@@ -220,10 +221,10 @@ impl QuerySurface {
 }
 
 fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
-    check_tolerance("tolerance", tolerance)?;
+    check_tolerance(Arg::Tolerance, tolerance)?;
     if tolerance < 1e-12 * scale {
         return Err(Error::InvalidArgument {
-            what: "tolerance",
+            what: Arg::Tolerance.into(),
             reason: format!(
                 "{tolerance} is below 1e-12 of the surfaces' size {scale}: rounding, not the \
                  geometry, would decide it; give a larger tolerance"

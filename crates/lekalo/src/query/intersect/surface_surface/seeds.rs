@@ -277,7 +277,7 @@ pub(super) fn surface_seeds(
         visited += 1;
         if visited > MAX_PAIRS {
             return Err(Error::TooLarge {
-                what: "surface-surface sub-patch pairs",
+                what: "surface-surface sub-patch pairs".into(),
                 size: visited,
                 max: MAX_PAIRS,
             });
@@ -487,7 +487,7 @@ pub(super) fn plane_seeds(
         visited += 1;
         if visited > MAX_PAIRS {
             return Err(Error::TooLarge {
-                what: "plane-section cells",
+                what: "plane-section cells".into(),
                 size: visited,
                 max: MAX_PAIRS,
             });
