@@ -335,6 +335,7 @@ impl PyTensorBSpline {
                 }
                 lekalo::Error::SingularSystem { .. } => named("knots", &e),
                 lekalo::Error::KnotsNotSorted { .. }
+                | lekalo::Error::NotIncreasing { .. }
                 | lekalo::Error::InvalidArgument { .. }
                 | lekalo::Error::NonFinite { .. } => named("axes", &e),
                 other => lib_err(other),
@@ -400,6 +401,7 @@ fn fit_err(e: lekalo::Error, coordinates: &str) -> PyErr {
         lekalo::Error::Degree { .. } => named("k", &e),
         lekalo::Error::ParameterOutOfDomain { .. }
         | lekalo::Error::KnotsNotSorted { .. }
+        | lekalo::Error::NotIncreasing { .. }
         | lekalo::Error::NonFinite { .. } => named(coordinates, &e),
         lekalo::Error::InvalidDataWeight { .. } => named("w", &e),
         other => lib_err(other),

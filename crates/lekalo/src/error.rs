@@ -128,6 +128,35 @@ pub enum Error {
         previous: f64,
     },
 
+    /// Parameters, abscissae or breakpoints that must be in increasing order and decrease
+    /// somewhere (data that is not sorted: lekalo never reorders it, since the order is the
+    /// curve's).
+    ///
+    /// ```
+    /// use lekalo::{natural_cubic_spline, Error, Points};
+    /// let y = Points::from_flat(1, vec![1.0, 3.0, 2.0]).unwrap();
+    /// let e = natural_cubic_spline(&[0.0, 2.0, 1.0], y.as_view()).unwrap_err();
+    /// assert!(matches!(e, Error::NotIncreasing { index: 2, .. }));
+    /// assert!(e.to_string().starts_with("parameters must be in increasing order"), "{e}");
+    /// ```
+    #[error(
+        "{what} must be in increasing order, but {what}[{index}] = {} is less than {what}[{}] = {}; sort the \
+         data by them (lekalo never reorders your data)",
+        readable(.value),
+        index - 1,
+        readable(.previous)
+    )]
+    NotIncreasing {
+        /// Which sequence (`parameters`, `x`, `breakpoints`).
+        what: What,
+        /// Index of the first value smaller than its predecessor.
+        index: usize,
+        /// That value.
+        value: f64,
+        /// Its predecessor.
+        previous: f64,
+    },
+
     /// A knot repeated more often than the degree allows.
     ///
     /// ```
@@ -349,7 +378,7 @@ pub enum Error {
     ///
     /// ```
     /// use lekalo::Error;
-    /// let e = Error::ToleranceNotMet { what: "mesh of face 3", deviation: 0.25, tolerance: 0.1 };
+    /// let e = Error::ToleranceNotMet { what: "mesh of face 3".into(), deviation: 0.25, tolerance: 0.1 };
     /// assert!(e.to_string().contains("at least 0.25"));
     /// ```
     #[error(
@@ -598,7 +627,8 @@ impl Error {
             | Error::Dimension { what, .. }
             | Error::InvalidArgument { what, .. }
             | Error::TooLarge { what, .. }
-            | Error::NegativeSmoothing { what, .. } => what.arg(),
+            | Error::NegativeSmoothing { what, .. }
+            | Error::NotIncreasing { what, .. } => what.arg(),
             Error::KnotsNotSorted { .. } | Error::KnotMultiplicity { .. } => Some(Arg::Knots),
             Error::NonPositiveWeight { .. } => Some(Arg::Weights),
             Error::NonPositiveTolerance { .. } => Some(Arg::Tolerance),

@@ -120,13 +120,7 @@ impl KnotVector {
     /// [`Error::EmptyDomain`].
     pub fn validate_for(&self, degree: usize, n_ctrl: usize) -> Result<()> {
         if n_ctrl <= degree {
-            return Err(Error::Degree {
-                degree,
-                reason: format!(
-                    "{n_ctrl} control points carry a degree of at most {}",
-                    n_ctrl.saturating_sub(1)
-                ),
-            });
+            return Err(too_few_for_degree(n_ctrl, degree));
         }
         // n_ctrl > degree, so only the sum can overflow (and then cannot match any length)
         let expected = n_ctrl.saturating_add(degree).saturating_add(1);
@@ -167,13 +161,7 @@ impl KnotVector {
     /// [`Error::Degree`] if `n_ctrl < degree + 1`; [`Error::TooLarge`].
     pub fn clamped_uniform(degree: usize, n_ctrl: usize) -> Result<Self> {
         if n_ctrl <= degree {
-            return Err(Error::Degree {
-                degree,
-                reason: format!(
-                    "{n_ctrl} control points carry a degree of at most {}",
-                    n_ctrl.saturating_sub(1)
-                ),
-            });
+            return Err(too_few_for_degree(n_ctrl, degree));
         }
         check_degree_bound(degree)?;
         check_size(n_ctrl.saturating_add(degree + 1))?;
@@ -650,7 +638,7 @@ pub fn uniform_parameters(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// `t̄_0 < t̄_n`.
 ///
 /// # Errors
-/// [`Error::TooFew`], [`Error::NonFinite`], [`Error::KnotsNotSorted`] (naming the parameter
+/// [`Error::TooFew`], [`Error::NonFinite`], [`Error::NotIncreasing`] (naming the parameter
 /// index), [`Error::EmptyDomain`]; [`Error::InvalidArgument`] if `t̄_n − t̄_0` overflows.
 pub fn check_parameters(params: &[f64]) -> Result<()> {
     if params.len() < 2 {
@@ -664,7 +652,8 @@ pub fn check_parameters(params: &[f64]) -> Result<()> {
     check_finite("parameters", params)?;
     for i in 1..params.len() {
         if params[i] < params[i - 1] {
-            return Err(Error::KnotsNotSorted {
+            return Err(Error::NotIncreasing {
+                what: "parameters".into(),
                 index: i,
                 value: params[i],
                 previous: params[i - 1],
@@ -715,6 +704,25 @@ fn check_interpolation_degree(
         });
     }
     Ok(())
+}
+
+/// [`Error::Degree`] for `n_ctrl ≤ degree` control points: a B-spline of degree `p` needs at
+/// least `p + 1` of them (one polynomial piece, P&T §2.2).
+pub(crate) fn too_few_for_degree(n_ctrl: usize, degree: usize) -> Error {
+    let (noun, verb) = if n_ctrl == 1 {
+        ("control point", "carries")
+    } else {
+        ("control points", "carry")
+    };
+    Error::Degree {
+        degree,
+        reason: format!(
+            "{n_ctrl} {noun} {verb} a degree of at most {}; give at least {} control points or \
+             lower the degree",
+            n_ctrl.saturating_sub(1),
+            degree.saturating_add(1)
+        ),
+    }
 }
 
 fn check_size(n: usize) -> Result<()> {

@@ -2,7 +2,7 @@
 //! Schoenberg–Whitney check (`docs/theory/fitting.md#knot-placement`).
 
 use crate::error::{check_degree_bound, Error, Result};
-use crate::knots::{check_parameters, KnotVector};
+use crate::knots::{check_parameters, too_few_for_degree, KnotVector};
 
 /// Clamped knots for a least-squares fit with `n_ctrl` control points of `degree` to data with
 /// the sorted parameters `ū_0 ≤ … ≤ ū_m`, by Piegl & Tiller eq. 9.68–9.69: with
@@ -35,13 +35,7 @@ pub fn place_knots(params: &[f64], degree: usize, n_ctrl: usize) -> Result<KnotV
         });
     }
     if n_ctrl <= degree {
-        return Err(Error::Degree {
-            degree,
-            reason: format!(
-                "{n_ctrl} control points carry a degree of at most {}",
-                n_ctrl.saturating_sub(1)
-            ),
-        });
+        return Err(too_few_for_degree(n_ctrl, degree));
     }
     if params.len() < n_ctrl {
         return Err(Error::TooFew {

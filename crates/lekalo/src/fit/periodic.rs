@@ -19,7 +19,7 @@ use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::interpolate::parametrization::parametrize_impl;
 use crate::numeric::progress::Progress;
 use crate::points::PointsRef;
-use crate::Parametrization;
+use crate::{Arg, Parametrization};
 
 /// Parameters of the points of a closed polygon: one per point and one more, the end of the
 /// period, for the chord back to the first point (as closed interpolation does). Use the first
@@ -69,7 +69,7 @@ pub fn closed_parameters(points: PointsRef<'_>, method: Parametrization) -> Resu
 ///
 /// # Errors
 /// [`Error::Degree`]; [`Error::TooFew`] for fewer than two breakpoints;
-/// [`Error::NonFinite`] / [`Error::KnotsNotSorted`] / [`Error::KnotMultiplicity`] for
+/// [`Error::NonFinite`] / [`Error::NotIncreasing`] / [`Error::KnotMultiplicity`] for
 /// breakpoints that are not finite and strictly increasing; [`Error::ParameterOutOfDomain`]
 /// for a data parameter outside `[a, b]`; [`Error::SchoenbergWhitney`] when the data leave a
 /// control point without data (too few distinct parameters for the spans).
@@ -461,7 +461,8 @@ fn check_breaks(breaks: &[f64]) -> Result<()> {
     }
     check_finite("breakpoints of a closed fit", breaks)?;
     if let Some(i) = (1..breaks.len()).find(|&i| breaks[i] < breaks[i - 1]) {
-        return Err(Error::KnotsNotSorted {
+        return Err(Error::NotIncreasing {
+            what: Arg::Breakpoints.into(),
             index: i,
             value: breaks[i],
             previous: breaks[i - 1],

@@ -52,7 +52,7 @@ pub enum Lambda {
 ///
 /// # Errors
 /// [`Error::NegativeSmoothing`] for `λ < 0` or NaN; [`Error::TooFew`] for fewer than 3
-/// points; [`Error::KnotsNotSorted`] / [`Error::InvalidArgument`] for parameters that are not
+/// points; [`Error::NotIncreasing`] / [`Error::InvalidArgument`] for parameters that are not
 /// strictly increasing (merge repeated parameters first, adding their weights);
 /// [`Error::SingularSystem`] if the weighted data cannot fix a line (fewer than two points of
 /// positive weight).
@@ -154,7 +154,8 @@ impl Smoother {
         }
         for i in 1..n {
             if x[i] < x[i - 1] {
-                return Err(Error::KnotsNotSorted {
+                return Err(Error::NotIncreasing {
+                    what: "x".into(),
                     index: i,
                     value: x[i],
                     previous: x[i - 1],

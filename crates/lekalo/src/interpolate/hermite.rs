@@ -213,7 +213,7 @@ impl CubicHermite {
     /// # Errors
     /// [`Error::TooFew`] for fewer than 2 points; [`Error::LengthMismatch`] if the counts
     /// differ; [`Error::Dimension`] if points and tangents differ in dimension;
-    /// [`Error::NonFinite`], [`Error::KnotsNotSorted`], [`Error::InvalidArgument`] for bad
+    /// [`Error::NonFinite`], [`Error::NotIncreasing`], [`Error::InvalidArgument`] for bad
     /// parameters.
     pub fn new(params: Vec<f64>, points: Points, tangents: Points) -> Result<Self> {
         check_data(&params, points.as_view())?;

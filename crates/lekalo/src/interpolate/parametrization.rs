@@ -172,7 +172,8 @@ pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
     check_finite("parameters", params)?;
     for i in 1..params.len() {
         if params[i] < params[i - 1] {
-            return Err(Error::KnotsNotSorted {
+            return Err(Error::NotIncreasing {
+                what: "parameters".into(),
                 index: i,
                 value: params[i],
                 previous: params[i - 1],

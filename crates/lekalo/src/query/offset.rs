@@ -444,7 +444,9 @@ impl QueryCurve {
     pub fn offset(&self, d: f64, tolerance: f64) -> Result<Offset> {
         if self.dim != 2 {
             return Err(Error::Dimension {
-                what: "curve to offset".into(),
+                what:
+                    "curve to offset (an offset is taken in the plane: give a curve of 2-D points)"
+                        .into(),
                 expected: 2,
                 got: self.dim,
             });

@@ -1044,7 +1044,7 @@ fn error_degree_dimension_counts_and_arguments() {
     ));
     assert!(matches!(
         CurveInterpolation::new(3).interpolate_at(v, &[0.0, 0.5, 0.4, 0.8, 1.0]),
-        Err(Error::KnotsNotSorted { index: 2, .. })
+        Err(Error::NotIncreasing { index: 2, .. })
     ));
     let invalid = |r: Result<BSplineCurve, Error>| {
         assert!(matches!(r, Err(Error::InvalidArgument { .. })), "{r:?}")
