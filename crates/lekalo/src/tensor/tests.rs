@@ -574,7 +574,7 @@ fn every_error_is_named() {
     let e = fit
         .interpolate_at(&[&[0.0, 2.0, 1.0, 3.0], &[0.0, 1.0, 2.0]], values)
         .unwrap_err();
-    assert!(matches!(e, Error::KnotsNotSorted { index: 2, .. }), "{e:?}");
+    assert!(matches!(e, Error::NotIncreasing { index: 2, .. }), "{e:?}");
     let e = fit
         .interpolate_at(&[&[0.0, 1.0, 1.0, 3.0], &[0.0, 1.0, 2.0]], values)
         .unwrap_err();
