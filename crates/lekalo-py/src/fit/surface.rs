@@ -20,7 +20,8 @@ use crate::surfaces::PyBSplineSurface;
 /// `parametrization` averaged over the grid lines, or given (`u`: `nu` numbers, `v`: `nv`); the
 /// knots are placed over them for `n_ctrl`, or given (`tu`, `tv`, which then set the net's size).
 #[pyfunction]
-#[pyo3(signature = (grid, n_ctrl = None, degree = (3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None))]
+#[pyo3(signature = (grid, n_ctrl = None, degree = (3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None),
+       text_signature = "(grid, n_ctrl=None, degree=(3, 3), *, parametrization=None, u=None, v=None, tu=None, tv=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_surface_grid(
     py: Python<'_>,
@@ -92,7 +93,8 @@ pub(crate) fn fit_surface_grid(
 /// copies of `bbox[1]`, and `tv` likewise;
 /// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`.
 #[pyfunction]
-#[pyo3(signature = (data, tu, tv, degree = (3, 3), *, w = None, penalty = 0.0))]
+#[pyo3(signature = (data, tu, tv, degree = (3, 3), *, w = None, penalty = 0.0),
+       text_signature = "(data, tu, tv, degree=(3, 3), *, w=None, penalty=0.0)")]
 pub(crate) fn fit_surface_scattered<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
