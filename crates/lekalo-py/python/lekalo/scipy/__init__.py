@@ -113,10 +113,11 @@ __all__ = [
 # scipy.interpolate's names outside its spline part, with what to use instead: importing one
 # from lekalo.scipy raises ImportError with that advice and the list above, not Python's bare
 # "cannot import name".
-_ELSEWHERE = "it is not a spline; import it from scipy.interpolate"
+_ELSEWHERE = "it is outside SciPy's spline functions; import it from scipy.interpolate"
 _GRID = (
-    "it is not a spline; import it from scipy.interpolate (for a spline on a grid, "
-    "lekalo.scipy has make_ndbspl, NdBSpline and RectBivariateSpline)"
+    "it is outside SciPy's spline functions; import it from scipy.interpolate, or for a cubic "
+    "spline on the grid use make_ndbspl(points, values, k=3) from lekalo.scipy (SciPy's "
+    "not-a-knot ends; RegularGridInterpolator's method='cubic' has its own)"
 )
 _NOT_PROVIDED = {
     "interp1d": (
