@@ -275,6 +275,38 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
     }
 }
 
+/// A pair of counts (the degrees `(3, 3)` of a surface, its control net `(nu, nv)`), read as
+/// [`IntArg`] is: [`IntPair::count`] names the argument when it is not two whole numbers.
+pub(crate) struct IntPair(Result<(usize, usize), String>);
+
+impl IntPair {
+    /// The default value `(a, b)`.
+    pub(crate) const fn of(a: usize, b: usize) -> Self {
+        Self(Ok((a, b)))
+    }
+
+    /// The pair, or `lekalo.InputError` naming the argument `name` and what is allowed.
+    pub(crate) fn count(&self, name: &str) -> PyResult<(usize, usize)> {
+        self.0.clone().map_err(|got| {
+            bad(format!(
+                "{name} must be a pair of whole numbers 0, 1, 2, ... (for u and v), got {got}"
+            ))
+        })
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for IntPair {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(pair) = obj.extract::<(usize, usize)>() {
+            return Ok(Self(Ok(pair)));
+        }
+        let r = obj.repr()?.to_string();
+        Ok(Self(Err(r.chars().take(40).collect())))
+    }
+}
+
 /// Refuses outputs past the library's size limit before allocating them.
 pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
     let mut n: usize = 1;

@@ -117,11 +117,16 @@ def test_integer_and_float32_arrays_read_as_float64():
         (lambda c: lekalo.BSplineCurve(-2, [0, 1], [[0, 0]]), "degree"),
         (lambda c: lekalo.interpolate([[0, 0], [1, 1], [2, 0]], degree=-1), "degree"),
         (lambda c: lekalo.CurveQuery(c).equal_steps(-3), "n"),
+        (lambda c: lekalo.make_lsq_spline(np.linspace(0, 1, 9), np.ones(9), [0, 0, 1, 1], k=-1), "k"),
+        (lambda c: lekalo.make_splrep(np.linspace(0, 1, 9), np.ones(9), k=-1), "k"),
+        (lambda c: lekalo.generate_knots(np.linspace(0, 1, 9), np.ones(9), nest=-1), "nest"),
+        (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), degree=(-1, 3)), "degree"),
+        (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), n_ctrl=(4, -4)), "n_ctrl"),
     ],
 )
 def test_negative_counts_and_orders_are_named_input_errors(call, name):
     # not Python's OverflowError "can't convert negative int to unsigned"
-    with pytest.raises(lekalo.InputError, match=rf"(^|: ){name} must be a (whole|non-negative)") as e:
+    with pytest.raises(lekalo.InputError, match=rf"(^|: ){name} must be a (whole|non-negative|pair of whole)") as e:
         call(lecture_curve())
     assert isinstance(e.value, ValueError)
 
