@@ -63,13 +63,15 @@ pub(crate) fn end_arg(
 /// Global B-spline interpolation through `points` (`(n, dim)`, or `(n,)` values): document
 /// 000 and docs/theory/interpolation.md.
 ///
+/// - `degree`: 3 by default, at most one less than the number of points;
 /// - `parametrization`: 'uniform', 'chord' (default), 'centripetal' or an exponent;
 /// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at-params'`;
 /// - `end`: 'free' (default), 'natural', 'periodic', 'derivatives' / 'second' with `d_start`,
 ///   `d_end`;
 /// - `params`: explicit parameters (strictly increasing; one more than the points for
 ///   'periodic'), replacing `parametrization`;
-/// - `max_condition`: refuse systems whose condition estimate exceeds it.
+/// - `max_condition`: refuse systems whose condition estimate exceeds it;
+/// - `drop_duplicates`: drop exact consecutive repeats of a point instead of refusing them.
 ///
 /// >>> import numpy as np, lekalo
 /// >>> q = np.array([[0, 0], [3, 4], [-1, 4], [-4, 0], [-4, -3]], dtype=float)
