@@ -234,7 +234,11 @@ fn write_atomic_core(
     }
     let tmp = {
         let mut guard = pending();
-        let tmp = builder.tempfile_in(&dir).map_err(write_err)?;
+        // tempfile adds its own name for the file (".lekalo-XXXXXX.tmp"), which the user never
+        // gave: the error names the output, with the operating system's reason only
+        let tmp = builder
+            .tempfile_in(&dir)
+            .map_err(|e| write_err(temporary_file_error(&e, &dir)))?;
         guard.push(tmp.path().to_path_buf());
         tmp
     };
@@ -250,6 +254,24 @@ fn write_atomic_core(
     pending().retain(|p| *p != tmp_path);
     // on failure the temporary file was dropped (and removed) inside the closure
     result.map_err(write_err)
+}
+
+/// The error of creating the temporary file in `dir` in the words of the output's folder:
+/// tempfile's own text names the temporary file (".lekalo-XXXXXX.tmp"), which the user never
+/// gave.
+fn temporary_file_error(e: &std::io::Error, dir: &Path) -> std::io::Error {
+    let reason = match e.kind() {
+        std::io::ErrorKind::NotFound => format!(
+            "the folder {} does not exist; create it or choose another output path",
+            dir.display()
+        ),
+        std::io::ErrorKind::PermissionDenied => format!(
+            "no permission to create a file in {}; choose another output path",
+            dir.display()
+        ),
+        kind => format!("cannot create a file in {}: {kind}", dir.display()),
+    };
+    std::io::Error::new(e.kind(), reason)
 }
 
 /// Bytes written to a temporary file between two requests to flush it to the disk.
@@ -608,6 +630,12 @@ mod tests {
             matches!(e, IoError::Write { .. }) && !e.is_bad_input(),
             "{e}"
         );
+        let text = e.to_string();
+        assert!(
+            text.contains("no/such/dir/x") && text.contains("does not exist; create it"),
+            "the output and the reason: {text}"
+        );
+        assert!(!text.contains(".lekalo-"), "no temporary name: {text}");
         let e = write_atomic(dir.path(), b"", &[]).unwrap_err();
         assert!(e.to_string().contains("it is a directory"), "{e}");
         let e = read_input(&dir.path().join("missing.json")).unwrap_err();

@@ -19,6 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 
+use crate::convert::IntArg;
 use crate::convert::{array, floats};
 use crate::error::bad;
 use crate::interp::{end_arg, knots_arg, parametrization_arg};
@@ -181,19 +182,21 @@ pub(crate) fn ragged_dict<'py>(
 /// `RAYON_NUM_THREADS`; more than the processors are lowered to them); the result is the same
 /// for every thread count.
 #[pyfunction]
-#[pyo3(signature = (points, offsets, degree = 3, *, parametrization = None, knots = "auto",
-                    end = "free", threads = None))]
+#[pyo3(signature = (points, offsets, degree = IntArg::of(3), *, parametrization = None, knots = "auto",
+                    end = "free", threads = None), text_signature = "(points, offsets, degree=3, *, parametrization=None, knots=\"auto\", end=\"free\", threads=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn interpolate_batch<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     offsets: &Bound<'py, PyAny>,
-    degree: usize,
+    degree: IntArg,
     parametrization: Option<&Bound<'py, PyAny>>,
     knots: &str,
     end: &str,
-    threads: Option<usize>,
+    threads: Option<IntArg>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let threads = threads.map(|n| n.count("threads")).transpose()?;
+    let degree = degree.count("degree")?;
     let mut ci = CurveInterpolation::new(degree)
         .knot_placement(knots_arg(knots)?)
         .end_condition(end_arg(end, None, None)?);
@@ -221,15 +224,17 @@ pub(crate) fn interpolate_batch<'py>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_batch<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     knot_offsets: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     control_offsets: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
     t_offsets: &Bound<'py, PyAny>,
-    threads: Option<usize>,
+    threads: Option<IntArg>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let threads = threads.map(|n| n.count("threads")).transpose()?;
+    let degree = degree.count("degree")?;
     let ka = floats(knots, "knots")?;
     let k = ka.vector("knots")?;
     let ca = floats(control, "control")?;

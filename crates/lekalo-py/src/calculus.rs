@@ -8,6 +8,7 @@ use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use crate::convert::out_shape;
+use crate::convert::IntArg;
 use crate::convert::{array, check_size, filled, floats};
 use crate::curves::{basis_kernel, PyBSplineCurve, PAR_MIN};
 use crate::error::{bad, lib_err};
@@ -15,8 +16,9 @@ use crate::error::{bad, lib_err};
 #[pymethods]
 impl PyBSplineCurve {
     /// The `n`-th antiderivative, degree `p + n` (de Boor ch. X; SciPy's `splantider`).
-    #[pyo3(signature = (n = 1))]
-    fn antiderivative(&self, py: Python<'_>, n: usize) -> PyResult<Self> {
+    #[pyo3(signature = (n = IntArg::of(1)), text_signature = "($self, n=1)")]
+    fn antiderivative(&self, py: Python<'_>, n: IntArg) -> PyResult<Self> {
+        let n = n.count("n")?;
         antiderivative(py, &self.inner, n).map(Self::wrap)
     }
 
@@ -36,14 +38,15 @@ impl PyBSplineCurve {
     /// the kept fast evaluator's basis kernel (`CurveEvaluator::eval_batch_beyond`; on the
     /// rayon pool for large batches): outside the domain the end polynomials continued (`extrapolate=True`)
     /// or NaN, NaN at NaN or infinite parameters. SciPy's `BSpline.__call__` in one pass.
-    #[pyo3(signature = (t, nu = 0, extrapolate = true))]
+    #[pyo3(signature = (t, nu = IntArg::of(0), extrapolate = true), text_signature = "($self, t, nu=0, extrapolate=True)")]
     fn eval_beyond<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
-        nu: usize,
+        nu: IntArg,
         extrapolate: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let nu = nu.count("nu")?;
         let dim = self.inner.dim();
         let ta = floats(t, "t")?;
         let ts = ta.data();
@@ -115,13 +118,14 @@ impl PyBSplineCurve {
     }
 
     /// The `nu`-th derivative at `t` (`t.shape + (dim,)`), continued beyond the domain.
-    #[pyo3(signature = (t, nu = 0))]
+    #[pyo3(signature = (t, nu = IntArg::of(0)), text_signature = "($self, t, nu=0)")]
     fn eval_extrapolated<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
-        nu: usize,
+        nu: IntArg,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let nu = nu.count("nu")?;
         eval_extrapolated(py, &self.inner, t, nu)
     }
 }
@@ -134,11 +138,12 @@ impl PyBSplineCurve {
 #[pyo3(signature = (t, k, c, x, extrapolate = true))]
 pub(crate) fn bspline_value(
     t: &Bound<'_, PyAny>,
-    k: usize,
+    k: IntArg,
     c: &Bound<'_, PyAny>,
     x: f64,
     extrapolate: bool,
 ) -> PyResult<f64> {
+    let k = k.count("k")?;
     let beyond = if extrapolate {
         Beyond::Continue
     } else {

@@ -2,14 +2,16 @@
 //! caller's memory when the layout allows.
 //!
 //! Inputs are float64 arrays (or sequences of numbers, converted once by NumPy). A C-contiguous
-//! array is borrowed, never copied; a Fortran-ordered one is copied once into the point-major
-//! layout the library works in; any other strided view is refused with the fix in the message
-//! (`np.ascontiguousarray`). Other dtypes are refused rather than silently converted, so that
-//! an integer or float32 array never costs a hidden copy.
+//! float64 array is borrowed, never copied; a Fortran-ordered one is copied once into the
+//! point-major layout the library works in; any other strided view is refused with the fix in
+//! the message (`np.ascontiguousarray`). Integer and narrower float arrays (`int64`,
+//! `float32`) are converted once to float64, as SciPy converts them; complex, object, string
+//! and boolean arrays are refused, naming the dtype.
 
 use lekalo::{Points, PointsRef, MAX_SCALARS};
 use numpy::{
-    PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray, PyUntypedArrayMethods,
+    PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
@@ -166,10 +168,24 @@ pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Float
         )));
     }
     if let Ok(a) = obj.cast::<PyUntypedArray>() {
-        return Err(bad(format!(
-            "{what}: dtype {} is not float64; convert with np.asarray({what}, dtype=np.float64)",
-            a.dtype()
-        )));
+        let dtype = a.dtype();
+        // integers and narrower floats are real numbers: converted once, as SciPy does
+        if !matches!(dtype.kind(), b'i' | b'u' | b'f') {
+            return Err(bad(format!(
+                "{what}: dtype {dtype} is not a real number type (integers and floats are \
+                 read); pass real coordinates, e.g. np.asarray({what}, dtype=np.float64)"
+            )));
+        }
+        let arr = obj
+            .py()
+            .import("numpy")?
+            .call_method1("asarray", (obj, "float64"))
+            .map_err(|e| {
+                bad(format!(
+                    "{what}: dtype {dtype} cannot be read as float64 ({e})"
+                ))
+            })?;
+        return floats(&arr, what);
     }
     if obj.is_instance_of::<PyFloat>() || obj.is_instance_of::<PyInt>() {
         let v: f64 = obj.extract()?;
@@ -221,6 +237,18 @@ impl IntArg {
             ))
         })
     }
+
+    /// The count, order or degree argument `name` (`nu`, `order`, `n`, `times`, `k`), or
+    /// `lekalo.InputError` naming it and what is allowed: every such argument of the binding
+    /// is read here, so that `-1` is refused in these words rather than as Python's
+    /// "can't convert negative int to unsigned".
+    pub(crate) fn count(&self, name: &str) -> PyResult<usize> {
+        self.0.clone().map_err(|got| {
+            bad(format!(
+                "{name} must be a whole number 0, 1, 2, ..., got {got}"
+            ))
+        })
+    }
 }
 
 impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
@@ -230,7 +258,12 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
         if let Ok(n) = obj.extract::<usize>() {
             return Ok(Self(Ok(n)));
         }
-        let got = if let Ok(shape) = obj.getattr("shape") {
+        // a NumPy scalar such as np.int64(-1) has the shape (): it is shown as a number
+        let array_shape = obj
+            .getattr("shape")
+            .ok()
+            .filter(|s| s.len().is_ok_and(|n| n > 0));
+        let got = if let Some(shape) = array_shape {
             format!("an array of shape {}", shape.str()?)
         } else if let Ok(n) = obj.len() {
             format!("a {} of {n} items", obj.get_type().name()?)
@@ -239,6 +272,38 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
             r.chars().take(40).collect()
         };
         Ok(Self(Err(got)))
+    }
+}
+
+/// A pair of counts (the degrees `(3, 3)` of a surface, its control net `(nu, nv)`), read as
+/// [`IntArg`] is: [`IntPair::count`] names the argument when it is not two whole numbers.
+pub(crate) struct IntPair(Result<(usize, usize), String>);
+
+impl IntPair {
+    /// The default value `(a, b)`.
+    pub(crate) const fn of(a: usize, b: usize) -> Self {
+        Self(Ok((a, b)))
+    }
+
+    /// The pair, or `lekalo.InputError` naming the argument `name` and what is allowed.
+    pub(crate) fn count(&self, name: &str) -> PyResult<(usize, usize)> {
+        self.0.clone().map_err(|got| {
+            bad(format!(
+                "{name} must be a pair of whole numbers 0, 1, 2, ... (for u and v), got {got}"
+            ))
+        })
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for IntPair {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(pair) = obj.extract::<(usize, usize)>() {
+            return Ok(Self(Ok(pair)));
+        }
+        let r = obj.repr()?.to_string();
+        Ok(Self(Err(r.chars().take(40).collect())))
     }
 }
 

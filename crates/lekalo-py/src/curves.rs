@@ -190,20 +190,21 @@ macro_rules! curve_class {
             /// extrapolation). `out`, a float64 C-contiguous array of the result's shape, receives
             /// the points without a new allocation (NumPy's `out=`; for repeated evaluation)
             /// and is returned.
-            #[pyo3(signature = (t, nu = 0, *, out = None))]
+            #[pyo3(signature = (t, nu = IntArg::of(0), *, out = None))]
             fn __call__(
                 &self,
                 py: Python<'_>,
                 t: &Bound<'_, PyAny>,
-                nu: usize,
+                nu: IntArg,
                 out: Option<&Bound<'_, PyAny>>,
             ) -> PyResult<Py<PyAny>> {
+                let nu = nu.count("nu")?;
                 if nu > 0 && out.is_some() {
                     return Err(bad("out: only for points (nu = 0)".into()));
                 }
                 if nu > lekalo::MAX_DERIVATIVE_ORDER {
                     // the library's error for the order
-                    return pick_order(py, self.derivatives(py, t, nu)?, nu);
+                    return pick_order(py, self.derivatives(py, t, IntArg::of(nu))?, nu);
                 }
                 let dim = self.inner.dim();
                 let ta = floats(t, "t")?;
@@ -236,8 +237,9 @@ macro_rules! curve_class {
             }
 
             /// Inserts `t` `times` times (Boehm; P&T A5.1): the same curve, more control points.
-            #[pyo3(signature = (t, times = 1))]
-            fn insert_knot(&self, py: Python<'_>, t: f64, times: usize) -> PyResult<Self> {
+            #[pyo3(signature = (t, times = IntArg::of(1)), text_signature = "($self, t, times=1)")]
+            fn insert_knot(&self, py: Python<'_>, t: f64, times: IntArg) -> PyResult<Self> {
+                let times = times.count("times")?;
                 Ok(Self::wrap(
                     py.detach(|| self.inner.insert_knot(t, times))
                         .map_err(lib_err)?,
@@ -255,14 +257,15 @@ macro_rules! curve_class {
             /// Removes knot `t` up to `times` times while the curve moves less than
             /// `tolerance` (default: relative to the control net's size; P&T A5.8). Returns
             /// `(curve, removed)`.
-            #[pyo3(signature = (t, times = 1, tolerance = None))]
+            #[pyo3(signature = (t, times = IntArg::of(1), tolerance = None), text_signature = "($self, t, times=1, tolerance=None)")]
             fn remove_knot(
                 &self,
                 py: Python<'_>,
                 t: f64,
-                times: usize,
+                times: IntArg,
                 tolerance: Option<f64>,
             ) -> PyResult<(Self, usize)> {
+                let times = times.count("times")?;
                 let tol = tolerance.unwrap_or_else(|| self.inner.default_removal_tolerance());
                 let (c, k) = py
                     .detach(|| self.inner.remove_knot(t, times, tol))
@@ -396,10 +399,11 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
     }
 
     /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (t, nu = 0))]
-    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+    #[pyo3(signature = (t, nu = IntArg::of(0)))]
+    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: IntArg) -> PyResult<Py<PyAny>> {
+        let nu = nu.count("nu")?;
         if nu > 0 {
-            return pick_order(py, self.derivatives(py, t, nu)?, nu);
+            return pick_order(py, self.derivatives(py, t, IntArg::of(nu))?, nu);
         }
         let c = &self.inner;
         eval_pointwise(py, t, c.dim(), |t, o| c.eval_into(t, o))
@@ -410,8 +414,9 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
         &self,
         py: Python<'_>,
         t: &Bound<'_, PyAny>,
-        order: usize,
+        order: IntArg,
     ) -> PyResult<Py<PyAny>> {
+        let order = order.count("order")?;
         let c = &self.inner;
         derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
     }
@@ -422,14 +427,16 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
     }
 
     /// Degree elevation by `by` (document 004): the same curve with more control points.
-    #[pyo3(signature = (by = 1))]
-    fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
+    #[pyo3(signature = (by = IntArg::of(1)), text_signature = "($self, by=1)")]
+    fn elevate_degree(&self, py: Python<'_>, by: IntArg) -> PyResult<Self> {
+        let by = by.count("by")?;
         Ok(Self::wrap(detached(py, || self.inner.elevate_degree(by))?))
     }
 
     /// Exact degree change to `target` (document 004): elevation, or reduction that is refused
     /// below the real degree.
-    fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
+    fn change_degree(&self, py: Python<'_>, target: IntArg) -> PyResult<Self> {
+        let target = target.count("target")?;
         Ok(Self::wrap(detached(py, || {
             self.inner.change_degree(target)
         })?))
@@ -441,9 +448,10 @@ curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
     fn reduce_degree_approx(
         &self,
         py: Python<'_>,
-        target: usize,
+        target: IntArg,
         ends: &str,
     ) -> PyResult<(Self, f64)> {
+        let target = target.count("target")?;
         let ends = ends_arg(ends)?;
         let r = py
             .detach(|| self.inner.reduce_degree_approx(target, ends))
@@ -550,7 +558,8 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
 
     /// A clamped B-spline with uniform interior knots on `[0, 1]` over the control points.
     #[staticmethod]
-    fn clamped(degree: usize, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+    fn clamped(degree: IntArg, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let degree = degree.count("degree")?;
         let p = owned_points(control, "control")?;
         let kv = lekalo::KnotVector::clamped_uniform(degree, p.len()).map_err(lib_err)?;
         Ok(Self::wrap(
@@ -570,8 +579,9 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
         &self,
         py: Python<'_>,
         t: &Bound<'_, PyAny>,
-        order: usize,
+        order: IntArg,
     ) -> PyResult<Py<PyAny>> {
+        let order = order.count("order")?;
         let dim = self.inner.dim();
         let ta = floats(t, "t")?;
         let ts = ta.data();
@@ -619,13 +629,15 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
     }
 
     /// Degree elevation by `by`, piece by piece (document 004).
-    #[pyo3(signature = (by = 1))]
-    fn elevate_degree(&self, py: Python<'_>, by: usize) -> PyResult<Self> {
+    #[pyo3(signature = (by = IntArg::of(1)), text_signature = "($self, by=1)")]
+    fn elevate_degree(&self, py: Python<'_>, by: IntArg) -> PyResult<Self> {
+        let by = by.count("by")?;
         Ok(Self::wrap(detached(py, || self.inner.elevate_degree(by))?))
     }
 
     /// Exact degree change to `target` (refused below the real degree of a piece).
-    fn change_degree(&self, py: Python<'_>, target: usize) -> PyResult<Self> {
+    fn change_degree(&self, py: Python<'_>, target: IntArg) -> PyResult<Self> {
+        let target = target.count("target")?;
         Ok(Self::wrap(detached(py, || {
             self.inner.change_degree(target)
         })?))
@@ -701,11 +713,12 @@ impl PyNurbsCurve {
 curve_class!(PyNurbsCurve, Nurbs, "nurbs_curve", knots, {
     #[new]
     fn new(
-        degree: usize,
+        degree: IntArg,
         knots: &Bound<'_, PyAny>,
         control: &Bound<'_, PyAny>,
         weights: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
+        let degree = degree.count("degree")?;
         let k = vec1(knots, "knots")?;
         let p = owned_points(control, "control")?;
         let w = vec1(weights, "weights")?;
@@ -768,8 +781,9 @@ curve_class!(PyNurbsCurve, Nurbs, "nurbs_curve", knots, {
         &self,
         py: Python<'_>,
         t: &Bound<'_, PyAny>,
-        order: usize,
+        order: IntArg,
     ) -> PyResult<Py<PyAny>> {
+        let order = order.count("order")?;
         let c = &self.inner;
         derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
     }

@@ -16,6 +16,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::convert::IntArg;
 use crate::convert::{array, check_size, floats, out_shape, vec1, FloatArray};
 use crate::error::{bad, lib_err};
 use crate::surfaces::bspline_surface_arg;
@@ -167,13 +168,14 @@ fn weights_arg(w: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<f64>>> {
 #[pyo3(signature = (degree, knots, control, t, control_tangent = None, t_tangent = None))]
 pub(crate) fn bspline_curve_jvp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
     control_tangent: Option<&Bound<'py, PyAny>>,
     t_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.count("degree")?;
     let (ca, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
     let n = check_size("t", &[ta.data().len(), c.dim()])?;
     let dc = same_shape(control_tangent, "control_tangent", ca.shape(), "control")?;
@@ -191,12 +193,13 @@ pub(crate) fn bspline_curve_jvp<'py>(
 #[pyo3(signature = (degree, knots, control, t, cotangent))]
 pub(crate) fn bspline_curve_vjp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.count("degree")?;
     let (ca, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
     let ga = cotangent_arg(cotangent, &out_shape(&ta, &[c.dim()]))?;
     let g = data_of(&ga).unwrap_or(&[]);
@@ -215,11 +218,12 @@ pub(crate) fn bspline_curve_vjp<'py>(
 #[pyo3(signature = (degree, knots, control, t))]
 pub(crate) fn bspline_curve_linearize<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let degree = degree.count("degree")?;
     let (_, c, ta) = curve_at(control, t, |ca| curve(degree, knots, ca))?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
@@ -269,7 +273,7 @@ fn nurbs(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn nurbs_curve_jvp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     weights: &Bound<'py, PyAny>,
@@ -278,6 +282,7 @@ pub(crate) fn nurbs_curve_jvp<'py>(
     weights_tangent: Option<&Bound<'py, PyAny>>,
     t_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.count("degree")?;
     let (ca, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
     let n = check_size("t", &[ta.data().len(), c.dim()])?;
     let w_shape = [c.weights().len()];
@@ -297,13 +302,14 @@ pub(crate) fn nurbs_curve_jvp<'py>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn nurbs_curve_vjp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     weights: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree = degree.count("degree")?;
     let (ca, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
     let ga = cotangent_arg(cotangent, &out_shape(&ta, &[c.dim()]))?;
     let g = data_of(&ga).unwrap_or(&[]);
@@ -327,12 +333,13 @@ pub(crate) fn nurbs_curve_vjp<'py>(
 #[pyo3(signature = (degree, knots, control, weights, t))]
 pub(crate) fn nurbs_curve_linearize<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     weights: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let degree = degree.count("degree")?;
     let (_, c, ta) = curve_at(control, t, |ca| nurbs(degree, knots, ca, weights))?;
     let ts = ta.data();
     let lin = py.detach(|| c.eval_batch_linearize(ts)).map_err(lib_err)?;
@@ -361,11 +368,12 @@ fn dim_of(a: &FloatArray<'_>, what: &str) -> PyResult<usize> {
 #[pyo3(signature = (degree, knots, params, data_tangent))]
 pub(crate) fn interpolation_jvp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     data_tangent: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let degree = degree.count("degree")?;
     let map = interpolation_map(degree, knots, params)?;
     map_points(py, data_tangent, "data_tangent", None, |v, dim| {
         map.jvp(v, dim)
@@ -379,11 +387,12 @@ pub(crate) fn interpolation_jvp<'py>(
 #[pyo3(signature = (degree, knots, params, control_cotangent))]
 pub(crate) fn interpolation_vjp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     control_cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let degree = degree.count("degree")?;
     let map = interpolation_map(degree, knots, params)?;
     map_points(
         py,
@@ -426,12 +435,13 @@ fn least_squares_map(
 #[pyo3(signature = (degree, knots, params, data_tangent, w = None))]
 pub(crate) fn least_squares_jvp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     data_tangent: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let degree = degree.count("degree")?;
     let map = least_squares_map(degree, knots, params, w)?;
     let len = Some(map.n_ctrl());
     map_points(py, data_tangent, "data_tangent", len, |v, d| map.jvp(v, d))
@@ -443,12 +453,13 @@ pub(crate) fn least_squares_jvp<'py>(
 #[pyo3(signature = (degree, knots, params, control_cotangent, w = None))]
 pub(crate) fn least_squares_vjp<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     control_cotangent: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let degree = degree.count("degree")?;
     let map = least_squares_map(degree, knots, params, w)?;
     let len = Some(map.n_data());
     map_points(py, control_cotangent, "control_cotangent", len, |v, d| {
@@ -525,11 +536,12 @@ fn fit_linearization_dict(py: Python<'_>, lin: FitLinearization) -> PyResult<Bou
 #[pyo3(signature = (degree, knots, params, w = None))]
 pub(crate) fn least_squares_linearize<'py>(
     py: Python<'py>,
-    degree: usize,
+    degree: IntArg,
     knots: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let degree = degree.count("degree")?;
     let map = least_squares_map(degree, knots, params, w)?;
     fit_linearization_dict(py, map.linearize())
 }
@@ -563,8 +575,8 @@ fn pairs(u: &Bound<'_, PyAny>, v: &Bound<'_, PyAny>) -> PyResult<(Vec<[f64; 2]>,
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn bspline_surface_jvp<'py>(
     py: Python<'py>,
-    degree_u: usize,
-    degree_v: usize,
+    degree_u: IntArg,
+    degree_v: IntArg,
     knots_u: &Bound<'py, PyAny>,
     knots_v: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
@@ -574,6 +586,8 @@ pub(crate) fn bspline_surface_jvp<'py>(
     u_tangent: Option<&Bound<'py, PyAny>>,
     v_tangent: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree_u = degree_u.count("degree_u")?;
+    let degree_v = degree_v.count("degree_v")?;
     let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
     let dim = s.dim();
@@ -601,8 +615,8 @@ pub(crate) fn bspline_surface_jvp<'py>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn bspline_surface_vjp<'py>(
     py: Python<'py>,
-    degree_u: usize,
-    degree_v: usize,
+    degree_u: IntArg,
+    degree_v: IntArg,
     knots_u: &Bound<'py, PyAny>,
     knots_v: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
@@ -610,6 +624,8 @@ pub(crate) fn bspline_surface_vjp<'py>(
     v: &Bound<'py, PyAny>,
     cotangent: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let degree_u = degree_u.count("degree_u")?;
+    let degree_v = degree_v.count("degree_v")?;
     let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
     let ga = cotangent_arg(cotangent, &[shape.as_slice(), &[s.dim()]].concat())?;
@@ -636,14 +652,16 @@ pub(crate) fn bspline_surface_vjp<'py>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn bspline_surface_linearize<'py>(
     py: Python<'py>,
-    degree_u: usize,
-    degree_v: usize,
+    degree_u: IntArg,
+    degree_v: IntArg,
     knots_u: &Bound<'py, PyAny>,
     knots_v: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     u: &Bound<'py, PyAny>,
     v: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let degree_u = degree_u.count("degree_u")?;
+    let degree_v = degree_v.count("degree_v")?;
     let s = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
     let (uv, shape) = pairs(u, v)?;
     let lin = py.detach(|| s.eval_batch_linearize(&uv)).map_err(lib_err)?;

@@ -10,6 +10,7 @@ use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
+use crate::convert::IntArg;
 use crate::convert::{array, points_into_array, uv_args};
 use crate::curves::curve_to_py;
 use crate::error::{io_err, lib_err};
@@ -243,13 +244,14 @@ fn read_cad<R: Send>(
 /// bounds the entities and the control points and knots of the file, as the CLI's
 /// ``--max-size``.
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = 10_000_000))]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000)), text_signature = "(path, *, faces=False, max_size=10000000)")]
 pub(crate) fn read_step<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
-    max_size: usize,
+    max_size: IntArg,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let max_size = max_size.count("max_size")?;
     let r = read_cad(py, &path, |text, name| {
         if faces {
             lekalo_io::read_step_faces(text, name, max_size)
@@ -275,13 +277,14 @@ pub(crate) fn read_step<'py>(
 /// surfaces, entities 144 and 143, as ``Face``) and ``"skipped_faces"``; as ``read_step``
 /// otherwise (ids are directory-entry sequence numbers).
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = 10_000_000))]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000)), text_signature = "(path, *, faces=False, max_size=10000000)")]
 pub(crate) fn read_iges<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
-    max_size: usize,
+    max_size: IntArg,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let max_size = max_size.count("max_size")?;
     let r = read_cad(py, &path, |text, name| {
         if faces {
             lekalo_io::read_iges_faces(text, name, max_size)

@@ -63,13 +63,15 @@ pub(crate) fn end_arg(
 /// Global B-spline interpolation through `points` (`(n, dim)`, or `(n,)` values): document
 /// 000 and docs/theory/interpolation.md.
 ///
+/// - `degree`: 3 by default, at most one less than the number of points;
 /// - `parametrization`: 'uniform', 'chord' (default), 'centripetal' or an exponent;
 /// - `knots`: `'auto'` (default), `'averaged'`, `'uniform'`, `'at-params'`;
 /// - `end`: 'free' (default), 'natural', 'periodic', 'derivatives' / 'second' with `d_start`,
 ///   `d_end`;
 /// - `params`: explicit parameters (strictly increasing; one more than the points for
 ///   'periodic'), replacing `parametrization`;
-/// - `max_condition`: refuse systems whose condition estimate exceeds it.
+/// - `max_condition`: refuse systems whose condition estimate exceeds it;
+/// - `drop_duplicates`: drop exact consecutive repeats of a point instead of refusing them.
 ///
 /// >>> import numpy as np, lekalo
 /// >>> q = np.array([[0, 0], [3, 4], [-1, 4], [-4, 0], [-4, -3]], dtype=float)
@@ -79,7 +81,7 @@ pub(crate) fn end_arg(
 #[pyfunction]
 #[pyo3(signature = (points, degree = IntArg::of(3), *, parametrization = None, knots = "auto", end = "free",
                     d_start = None, d_end = None, params = None, max_condition = None,
-                    drop_duplicates = false))]
+                    drop_duplicates = false), text_signature = "(points, degree=3, *, parametrization=None, knots=\"auto\", end=\"free\", d_start=None, d_end=None, params=None, max_condition=None, drop_duplicates=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn interpolate(
     py: Python<'_>,
@@ -219,16 +221,17 @@ fn end_derivatives_arg(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<V
 /// >>> bool(np.allclose(c(np.linspace(0, 3, 7))[:, 0], np.linspace(0, 3, 7) ** 3))
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, t, k = 3, *, start = None, end = None))]
+#[pyo3(signature = (x, y, t, k = IntArg::of(3), *, start = None, end = None), text_signature = "(x, y, t, k=3, *, start=None, end=None)")]
 pub(crate) fn interpolate_with_end_derivatives(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
     y: &Bound<'_, PyAny>,
     t: &Bound<'_, PyAny>,
-    k: usize,
+    k: IntArg,
     start: Option<&Bound<'_, PyAny>>,
     end: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
+    let k = k.count("k")?;
     let xa = floats(x, "x")?;
     let xs = xa.vector("x")?;
     let ya = floats(y, "y")?;
@@ -245,15 +248,17 @@ pub(crate) fn interpolate_with_end_derivatives(
 /// Tensor-product interpolation of a grid `(nu, nv, dim)` of points (document 000 applied in
 /// both directions): the B-spline surface through every grid point.
 #[pyfunction]
-#[pyo3(signature = (grid, degree_u = 3, degree_v = 3, *, parametrization = None, max_condition = None))]
+#[pyo3(signature = (grid, degree_u = IntArg::of(3), degree_v = IntArg::of(3), *, parametrization = None, max_condition = None), text_signature = "(grid, degree_u=3, degree_v=3, *, parametrization=None, max_condition=None)")]
 pub(crate) fn interpolate_surface(
     py: Python<'_>,
     grid: &Bound<'_, PyAny>,
-    degree_u: usize,
-    degree_v: usize,
+    degree_u: IntArg,
+    degree_v: IntArg,
     parametrization: Option<&Bound<'_, PyAny>>,
     max_condition: Option<f64>,
 ) -> PyResult<PyBSplineSurface> {
+    let degree_u = degree_u.count("degree_u")?;
+    let degree_v = degree_v.count("degree_v")?;
     let m = parametrization_or_chord(parametrization)?;
     let ga = floats(grid, "grid")?;
     let (pts, (nu, nv)) = grid_points(&ga, "grid")?;

@@ -7,6 +7,7 @@ use lekalo::{Points, PointsRef};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
+use crate::convert::IntArg;
 use crate::convert::{floats, points_into_array, vec1, vec_array};
 use crate::error::lib_err;
 
@@ -35,15 +36,17 @@ fn inserted<'py>(
 /// >>> t.tolist(), c[:, 0].tolist()
 /// ([-1.0, 0.0, 0.5, 1.0, 2.0, 2.5], [1.0, 0.5, 0.0, 1.0])
 #[pyfunction]
-#[pyo3(signature = (k, knots, control, x, times = 1))]
+#[pyo3(signature = (k, knots, control, x, times = IntArg::of(1)), text_signature = "(k, knots, control, x, times=1)")]
 pub(crate) fn insert_knot_periodic<'py>(
     py: Python<'py>,
-    k: usize,
+    k: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     x: f64,
-    times: usize,
+    times: IntArg,
 ) -> PyResult<Bound<'py, PyTuple>> {
+    let k = k.count("k")?;
+    let times = times.count("times")?;
     inserted(py, knots, control, |t, c| {
         lekalo::insert_knot_periodic(k, t, c, x, times)
     })
@@ -59,15 +62,17 @@ pub(crate) fn insert_knot_periodic<'py>(
 /// >>> t.tolist(), c[:, 0].tolist()
 /// ([0.0, 0.0, 0.0, 1.0, 1.0], [0.0, 0.0, 1.0])
 #[pyfunction]
-#[pyo3(signature = (k, knots, control, x, times = 1))]
+#[pyo3(signature = (k, knots, control, x, times = IntArg::of(1)), text_signature = "(k, knots, control, x, times=1)")]
 pub(crate) fn insert_knot_raw<'py>(
     py: Python<'py>,
-    k: usize,
+    k: IntArg,
     knots: &Bound<'py, PyAny>,
     control: &Bound<'py, PyAny>,
     x: f64,
-    times: usize,
+    times: IntArg,
 ) -> PyResult<Bound<'py, PyTuple>> {
+    let k = k.count("k")?;
+    let times = times.count("times")?;
     inserted(py, knots, control, |t, c| {
         lekalo::insert_knot_raw(k, t, c, x, times)
     })

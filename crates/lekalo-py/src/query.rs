@@ -15,10 +15,17 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert::out_shape;
+use crate::convert::IntArg;
 use crate::convert::{array, check_size, floats, points_into_array, uv_args, vec1, vec_array};
 use crate::curves::{curve_of, PyBSplineCurve};
 use crate::error::{bad, lib_err};
 use crate::surfaces::surface_of;
+
+/// `length_at` and `param_at` write their default `rtol` as `1e-13` in their text signatures.
+const _RTOL_SPELLED: () = assert!(
+    DEFAULT_LENGTH_RTOL == 1e-13,
+    "update the text signatures of length_at and param_at"
+);
 
 /// Applies `f` to every number of the array-like `t` (any shape) and returns the results in an
 /// array of `t`'s shape (a Python float for a scalar `t`).
@@ -209,7 +216,8 @@ impl PyCurveQuery {
 
     /// The length from the start of the domain to every parameter of `t` (any shape), with the
     /// length table built once to the relative tolerance `rtol`.
-    #[pyo3(signature = (t, rtol = DEFAULT_LENGTH_RTOL))]
+    // the text signature spells DEFAULT_LENGTH_RTOL for help(); _RTOL_SPELLED keeps them equal
+    #[pyo3(signature = (t, rtol = DEFAULT_LENGTH_RTOL), text_signature = "($self, t, rtol=1e-13)")]
     fn length_at(&self, py: Python<'_>, t: &Bound<'_, PyAny>, rtol: f64) -> PyResult<Py<PyAny>> {
         let al = py.detach(|| self.inner.arc_length(rtol)).map_err(lib_err)?;
         map_params(py, t, "t", |x| al.length_at(x))
@@ -217,7 +225,7 @@ impl PyCurveQuery {
 
     /// The inverse of `length_at`: the parameter where the length from the start reaches every
     /// number of `s` (any shape; `0 ≤ s ≤ length()`).
-    #[pyo3(signature = (s, rtol = DEFAULT_LENGTH_RTOL))]
+    #[pyo3(signature = (s, rtol = DEFAULT_LENGTH_RTOL), text_signature = "($self, s, rtol=1e-13)")]
     fn param_at(&self, py: Python<'_>, s: &Bound<'_, PyAny>, rtol: f64) -> PyResult<Py<PyAny>> {
         let sa = floats(s, "s")?;
         let ss = sa.data();
@@ -235,7 +243,8 @@ impl PyCurveQuery {
     }
 
     /// Parameters of `n + 1` points at equal arc-length steps from start to end.
-    fn equal_steps<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyAny>> {
+    fn equal_steps<'py>(&self, py: Python<'py>, n: IntArg) -> PyResult<Bound<'py, PyAny>> {
+        let n = n.count("n")?;
         let t = py
             .detach(|| {
                 self.inner

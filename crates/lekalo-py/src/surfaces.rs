@@ -7,6 +7,7 @@ use lekalo_io::{Shape, Surface};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
+use crate::convert::IntArg;
 use crate::convert::{array, check_size, filled, floats, grid_points, uv_args, vec1, vec_array};
 use crate::convert::{out_shape, reduce};
 use crate::curves::{PyBSplineCurve, PyBezierCurve, PyNurbsCurve};
@@ -111,8 +112,9 @@ macro_rules! surface_common {
             }
 
             /// Inserts `u` into the `u` knots `times` times (P&T A5.3).
-            #[pyo3(signature = (u, times = 1))]
-            fn insert_knot_u(&self, py: Python<'_>, u: f64, times: usize) -> PyResult<Self> {
+            #[pyo3(signature = (u, times = IntArg::of(1)), text_signature = "($self, u, times=1)")]
+            fn insert_knot_u(&self, py: Python<'_>, u: f64, times: IntArg) -> PyResult<Self> {
+                let times = times.count("times")?;
                 let inner = py
                     .detach(|| self.inner.insert_knot_u(u, times))
                     .map_err(lib_err)?;
@@ -120,8 +122,9 @@ macro_rules! surface_common {
             }
 
             /// Inserts `v` into the `v` knots `times` times (P&T A5.3).
-            #[pyo3(signature = (v, times = 1))]
-            fn insert_knot_v(&self, py: Python<'_>, v: f64, times: usize) -> PyResult<Self> {
+            #[pyo3(signature = (v, times = IntArg::of(1)), text_signature = "($self, v, times=1)")]
+            fn insert_knot_v(&self, py: Python<'_>, v: f64, times: IntArg) -> PyResult<Self> {
+                let times = times.count("times")?;
                 let inner = py
                     .detach(|| self.inner.insert_knot_v(v, times))
                     .map_err(lib_err)?;
@@ -201,8 +204,9 @@ macro_rules! surface_common {
                 py: Python<'_>,
                 u: &Bound<'_, PyAny>,
                 v: &Bound<'_, PyAny>,
-                order: usize,
+                order: IntArg,
             ) -> PyResult<Py<PyAny>> {
+                let order = order.count("order")?;
                 let (ua, uv) = uv_args(u, v)?;
                 let dim = self.inner.dim();
                 let k = order.saturating_add(1);
@@ -319,7 +323,9 @@ surface_common!(PyBezierSurface, Bezier, "bezier_surface", {
     }
 
     /// Degree elevation by `(by_u, by_v)` (document 004).
-    fn elevate_degree(&self, py: Python<'_>, by_u: usize, by_v: usize) -> PyResult<Self> {
+    fn elevate_degree(&self, py: Python<'_>, by_u: IntArg, by_v: IntArg) -> PyResult<Self> {
+        let by_u = by_u.count("by_u")?;
+        let by_v = by_v.count("by_v")?;
         Ok(Self {
             inner: py
                 .detach(|| self.inner.elevate_degree(by_u, by_v))
@@ -328,7 +334,9 @@ surface_common!(PyBezierSurface, Bezier, "bezier_surface", {
     }
 
     /// Exact degree change to `(new_u, new_v)`, refused below the real degrees.
-    fn change_degree(&self, py: Python<'_>, new_u: usize, new_v: usize) -> PyResult<Self> {
+    fn change_degree(&self, py: Python<'_>, new_u: IntArg, new_v: IntArg) -> PyResult<Self> {
+        let new_u = new_u.count("new_u")?;
+        let new_v = new_v.count("new_v")?;
         Ok(Self {
             inner: py
                 .detach(|| self.inner.change_degree(new_u, new_v))
@@ -369,12 +377,14 @@ pub(crate) struct PyBSplineSurface {
 surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCurve, {
     #[new]
     fn new(
-        degree_u: usize,
-        degree_v: usize,
+        degree_u: IntArg,
+        degree_v: IntArg,
         knots_u: &Bound<'_, PyAny>,
         knots_v: &Bound<'_, PyAny>,
         control: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
+        let degree_u = degree_u.count("degree_u")?;
+        let degree_v = degree_v.count("degree_v")?;
         let inner = bspline_surface_arg((degree_u, degree_v), knots_u, knots_v, control)?;
         Ok(Self { inner })
     }
@@ -386,7 +396,9 @@ surface_common!(PyBSplineSurface, BSpline, "bspline_surface", knots PyBSplineCur
     }
 
     /// Degree elevation by `(by_u, by_v)`.
-    fn elevate_degree(&self, py: Python<'_>, by_u: usize, by_v: usize) -> PyResult<Self> {
+    fn elevate_degree(&self, py: Python<'_>, by_u: IntArg, by_v: IntArg) -> PyResult<Self> {
+        let by_u = by_u.count("by_u")?;
+        let by_v = by_v.count("by_v")?;
         Ok(Self {
             inner: py
                 .detach(|| self.inner.elevate_degree(by_u, by_v))
@@ -406,13 +418,15 @@ pub(crate) struct PyNurbsSurface {
 surface_common!(PyNurbsSurface, Nurbs, "nurbs_surface", knots PyNurbsCurve, {
     #[new]
     fn new(
-        degree_u: usize,
-        degree_v: usize,
+        degree_u: IntArg,
+        degree_v: IntArg,
         knots_u: &Bound<'_, PyAny>,
         knots_v: &Bound<'_, PyAny>,
         control: &Bound<'_, PyAny>,
         weights: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
+        let degree_u = degree_u.count("degree_u")?;
+        let degree_v = degree_v.count("degree_v")?;
         let (ku, kv, p, size) = knots_and_net(knots_u, knots_v, control)?;
         let w = floats(weights, "weights")?;
         if w.shape() != [size.0, size.1] {

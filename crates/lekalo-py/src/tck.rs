@@ -13,6 +13,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
+use crate::convert::IntArg;
 use crate::convert::{check_size, filled, floats, FloatArray};
 use crate::error::{bad, lib_err};
 
@@ -47,14 +48,16 @@ fn columns(c: &FloatArray<'_>) -> PyResult<usize> {
 /// >>> lekalo._lekalo.tck_derivative(t, np.array([[0.0], [0.0], [1.0]]), 2)[:, 0].tolist()
 /// [0.0, 2.0, 0.0, 0.0]
 #[pyfunction]
-#[pyo3(signature = (t, c, k, nu = 1))]
+#[pyo3(signature = (t, c, k, nu = IntArg::of(1)), text_signature = "(t, c, k, nu=1)")]
 pub(crate) fn tck_derivative<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
-    k: usize,
-    nu: usize,
+    k: IntArg,
+    nu: IntArg,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let k = k.count("k")?;
+    let nu = nu.count("nu")?;
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let (ts, dim) = (knots(&ta)?, columns(&ca)?);
@@ -80,14 +83,16 @@ pub(crate) fn tck_derivative<'py>(
 /// >>> lekalo._lekalo.tck_antiderivative(np.array([0.0, 1.0]), np.array([[1.0]]), 0)[:, 0].tolist()
 /// [0.0, 1.0, 1.0, 1.0]
 #[pyfunction]
-#[pyo3(signature = (t, c, k, nu = 1))]
+#[pyo3(signature = (t, c, k, nu = IntArg::of(1)), text_signature = "(t, c, k, nu=1)")]
 pub(crate) fn tck_antiderivative<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
-    k: usize,
-    nu: usize,
+    k: IntArg,
+    nu: IntArg,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let k = k.count("k")?;
+    let nu = nu.count("nu")?;
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let (ts, dim) = (knots(&ta)?, columns(&ca)?);
@@ -115,10 +120,11 @@ pub(crate) fn tck_integral<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
     a: f64,
     b: f64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let k = k.count("k")?;
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let (ts, dim) = (knots(&ta)?, columns(&ca)?);
@@ -140,17 +146,19 @@ pub(crate) fn tck_integral<'py>(
 /// >>> t.tolist(), c[:, 0].tolist()
 /// ([0.0, 0.0, 0.5, 1.0, 1.0], [0.0, 0.5, 1.0, 0.0, 0.0])
 #[pyfunction]
-#[pyo3(signature = (t, c, k, x, m = 1, periodic = false))]
+#[pyo3(signature = (t, c, k, x, m = IntArg::of(1), periodic = false), text_signature = "(t, c, k, x, m=1, periodic=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn tck_insert<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
     x: f64,
-    m: usize,
+    m: IntArg,
     periodic: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
+    let k = k.count("k")?;
+    let m = m.count("m")?;
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let (ts, dim) = (knots(&ta)?, columns(&ca)?);
@@ -183,8 +191,9 @@ pub(crate) fn tck_zeros<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let k = k.count("k")?;
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let ts = knots(&ta)?;

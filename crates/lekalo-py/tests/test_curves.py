@@ -61,7 +61,7 @@ def test_shapes_and_layouts():
 @pytest.mark.parametrize(
     "make, match",
     [
-        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.array([[1, 1], [2, 3], [4, 3]])), "dtype int64 is not float64"),
+        (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.array([[1, 1], [2, 3], [4, 3]]) + 0j), "dtype complex128 is not a real number type"),
         (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.ones((3, 4))[:, ::2]), "not contiguous"),
         (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], [[1, np.nan], [2, 3], [4, 3]]), "finite"),
         (lambda: lekalo.BSplineCurve(2, [0, 0, 2, 1, 3, 3], [[1, 1], [2, 3], [4, 3]]), "knots"),
@@ -69,7 +69,8 @@ def test_shapes_and_layouts():
         (lambda: lekalo.BSplineCurve(2, [0, 0, 1, 2, 3, 3], np.ones((3, 2, 2))), "2-D array"),
         (lambda: lecture_curve()(0.5), "outside the domain"),
         (lambda: lecture_curve()(np.array([1.5, np.nan])), "outside the domain|finite"),
-        (lambda: lecture_curve()(np.zeros(3, dtype=np.float32)), "float32"),
+        (lambda: lecture_curve()(np.array(["1.5", "2"])), "dtype <U3 is not a real number type"),
+        (lambda: lecture_curve()(np.array([1.5, None])), "dtype object is not a real number type"),
         (lambda: lecture_curve()("abc"), "sequence of numbers"),
         (lambda: lecture_curve().derivatives(1.5, 10**9), "order|too large"),
         (lambda: lekalo.interpolate(np.zeros((1, 2))), "need at least|too few|points"),
@@ -82,6 +83,51 @@ def test_shapes_and_layouts():
 def test_named_errors(make, match):
     with pytest.raises(lekalo.Error, match=match) as e:
         make()
+    assert isinstance(e.value, ValueError)
+
+
+def test_integer_and_float32_arrays_read_as_float64():
+    # as SciPy, which converts them: the same curve as from float64 arrays or lists of ints
+    pts = [[0, 0], [1, 2], [2, 0], [3, 1]]
+    ref = lekalo.interpolate(np.array(pts, dtype=np.float64))
+    for dtype in (np.int64, np.int32, np.uint8, np.float32):
+        assert lekalo.interpolate(np.array(pts, dtype=dtype)) == ref, dtype
+    assert lekalo.interpolate(pts) == ref
+    c = lecture_curve()
+    t = np.array([1, 2])
+    assert np.array_equal(c(t), c(t.astype(np.float64)))
+    assert np.array_equal(c(t.astype(np.float32)), c(t.astype(np.float64)))
+    knots = np.array([0, 0, 1, 2, 3, 3])
+    assert lekalo.BSplineCurve(2, knots, np.array([[1, 1], [2, 3], [4, 3]])) == c
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda c: c.derivatives(1.5, -1), "order"),
+        (lambda c: c(1.5, -1), "nu"),
+        (lambda c: c(1.5, nu=np.int64(-2)), "nu"),
+        (lambda c: c.antiderivative(-1), "n"),
+        (lambda c: c.insert_knot(1.5, -1), "times"),
+        (lambda c: c.elevate_degree(-1), "by"),
+        (lambda c: c.eval_extrapolated(1.5, -1), "nu"),
+        (lambda c: lekalo.BezierCurve([[0, 0], [1, 1], [2, 0]])(0.5, -1), "nu"),
+        (lambda c: lekalo.BezierCurve([[0, 0], [1, 1], [2, 0]]).derivatives(0.5, -1), "order"),
+        (lambda c: lekalo.BSplineCurve.clamped(-1, [[0, 0], [1, 1]]), "degree"),
+        (lambda c: lekalo.BSplineCurve(-2, [0, 1], [[0, 0]]), "degree"),
+        (lambda c: lekalo.interpolate([[0, 0], [1, 1], [2, 0]], degree=-1), "degree"),
+        (lambda c: lekalo.CurveQuery(c).equal_steps(-3), "n"),
+        (lambda c: lekalo.make_lsq_spline(np.linspace(0, 1, 9), np.ones(9), [0, 0, 1, 1], k=-1), "k"),
+        (lambda c: lekalo.make_splrep(np.linspace(0, 1, 9), np.ones(9), k=-1), "k"),
+        (lambda c: lekalo.generate_knots(np.linspace(0, 1, 9), np.ones(9), nest=-1), "nest"),
+        (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), degree=(-1, 3)), "degree"),
+        (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), n_ctrl=(4, -4)), "n_ctrl"),
+    ],
+)
+def test_negative_counts_and_orders_are_named_input_errors(call, name):
+    # not Python's OverflowError "can't convert negative int to unsigned"
+    with pytest.raises(lekalo.InputError, match=rf"(^|: ){name} must be a (whole|non-negative|pair of whole)") as e:
+        call(lecture_curve())
     assert isinstance(e.value, ValueError)
 
 

@@ -280,16 +280,22 @@ fn interpolation_field(e: &lekalo::Error) -> &'static str {
     }
 }
 
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum BezierOp {
     Elevate,
     ReduceExact,
     ReduceApprox,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
+impl crate::fields::Choice for BezierOp {
+    const WORDS: &'static [(&'static str, Self)] = &[
+        ("elevate", Self::Elevate),
+        ("reduce_exact", Self::ReduceExact),
+        ("reduce_approx", Self::ReduceApprox),
+    ];
+}
+
+#[derive(Debug, Clone, Copy, Default)]
 enum Ends {
     Free,
     #[default]
@@ -297,10 +303,19 @@ enum Ends {
     Tangents,
 }
 
+impl crate::fields::Choice for Ends {
+    const WORDS: &'static [(&'static str, Self)] = &[
+        ("free", Self::Free),
+        ("points", Self::Points),
+        ("tangents", Self::Tangents),
+    ];
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BezierRequest {
     curve: Value,
+    #[serde(deserialize_with = "crate::fields::choice")]
     op: BezierOp,
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_count")]
@@ -308,7 +323,7 @@ struct BezierRequest {
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_count")]
     target: Option<usize>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::fields::choice")]
     ends: Ends,
     #[serde(flatten)]
     view: ViewOptionsFlat,

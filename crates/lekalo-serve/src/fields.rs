@@ -83,6 +83,47 @@ impl<'de> Deserialize<'de> for Num {
     }
 }
 
+/// A field whose value is one word of a short list (`"smoothing": "gcv"`), read by [`choice`]:
+/// a misspelt word is answered in the editor's words, as [`crate::words`] answers the
+/// library's vocabularies, not in serde's ("unknown variant").
+pub(crate) trait Choice: Sized + Copy + 'static {
+    /// The words and the values they name, in the order the message lists them.
+    const WORDS: &'static [(&'static str, Self)];
+}
+
+struct ChoiceVisitor<T>(std::marker::PhantomData<T>);
+
+impl<T: Choice> Visitor<'_> for ChoiceVisitor<T> {
+    type Value = T;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "one of {}", words_of::<T>())
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<T, E> {
+        T::WORDS
+            .iter()
+            .find(|(w, _)| *w == v)
+            .map(|(_, value)| *value)
+            .ok_or_else(|| {
+                E::custom(format!(
+                    "unknown value \"{v}\"; use one of {}",
+                    words_of::<T>()
+                ))
+            })
+    }
+}
+
+fn words_of<T: Choice>() -> String {
+    let words: Vec<&str> = T::WORDS.iter().map(|(w, _)| *w).collect();
+    words.join(", ")
+}
+
+/// One word of `T`'s list ([`Choice`]).
+pub(crate) fn choice<'de, D: Deserializer<'de>, T: Choice>(d: D) -> Result<T, D::Error> {
+    d.deserialize_str(ChoiceVisitor(std::marker::PhantomData))
+}
+
 /// A whole number ≥ 0.
 pub(crate) fn count<'de, D: Deserializer<'de>>(d: D) -> Result<usize, D::Error> {
     Count::deserialize(d).map(|c| c.0)
@@ -137,6 +178,42 @@ mod tests {
         degree: usize,
         #[serde(default, deserialize_with = "rows")]
         points: Vec<Vec<f64>>,
+    }
+
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    enum Side {
+        Left,
+        Right,
+    }
+
+    impl Choice for Side {
+        const WORDS: &'static [(&'static str, Self)] =
+            &[("left", Self::Left), ("right", Self::Right)];
+    }
+
+    #[derive(Debug, serde::Deserialize)]
+    struct S {
+        #[serde(deserialize_with = "choice")]
+        side: Side,
+    }
+
+    #[test]
+    fn a_choice_is_read_and_a_misspelt_word_refused_with_the_words() {
+        let s: S = serde_json::from_str(r#"{"side": "right"}"#).expect("a word of the list");
+        assert_eq!(s.side, Side::Right, "the value of the word");
+        for (text, needle) in [
+            (
+                r#"{"side": "rigth"}"#,
+                "unknown value \"rigth\"; use one of left, right",
+            ),
+            (r#"{"side": 2}"#, "expected one of left, right"),
+        ] {
+            let e = serde_json::from_str::<S>(text)
+                .expect_err("refused")
+                .to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+            assert!(!e.contains("variant"), "{text}: serde's word: {e}");
+        }
     }
 
     fn message(text: &str) -> String {

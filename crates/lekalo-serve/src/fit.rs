@@ -26,8 +26,7 @@ use crate::error::{field_of, ApiError, ApiResult};
 use crate::pool::Job;
 
 /// How the amount of smoothing is given.
-#[derive(Debug, Clone, Copy, Deserialize, Default, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 enum Smoothing {
     /// The penalty weight λ of `∫|f''|²` (`lekalo fit --smooth λ`).
     #[default]
@@ -36,6 +35,11 @@ enum Smoothing {
     Gcv,
     /// Fewest knots with weighted residual sum of squares `≤ s` (`lekalo fit --s S`).
     S,
+}
+
+impl crate::fields::Choice for Smoothing {
+    const WORDS: &'static [(&'static str, Self)] =
+        &[("lambda", Self::Lambda), ("gcv", Self::Gcv), ("s", Self::S)];
 }
 
 fn default_degree() -> usize {
@@ -47,7 +51,7 @@ fn default_degree() -> usize {
 struct FitRequest {
     #[serde(deserialize_with = "crate::fields::rows")]
     points: Vec<Vec<f64>>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::fields::choice")]
     smoothing: Smoothing,
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_number")]

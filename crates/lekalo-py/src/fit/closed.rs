@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::{weight_vec, with_report, Data, WeightsAre};
+use crate::convert::IntArg;
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::lib_err;
@@ -66,16 +67,17 @@ fn closed_fit(
 /// >>> bool(r["weighted_rss"] <= 1e-4)
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None))]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None)")]
 pub(crate) fn fit_periodic<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let k = k.count("k")?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let (rows, xs, w) = data.periodic()?;
     let t = t.map(|t| vec1(t, "t")).transpose()?;
@@ -94,16 +96,17 @@ pub(crate) fn fit_periodic<'py>(
 /// >>> bool(np.allclose(c(u[0]), c(u[-1])))
 /// True
 #[pyfunction]
-#[pyo3(signature = (points, *, w = None, k = 3, s = 0.0, t = None, parametrization = None))]
+#[pyo3(signature = (points, *, w = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None), text_signature = "(points, *, w=None, k=3, s=0.0, t=None, parametrization=None)")]
 pub(crate) fn fit_closed<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
+    let k = k.count("k")?;
     let pa = floats(points, "points")?;
     let pts = pa.points("points")?;
     let m = parametrization_or_chord(parametrization)?;

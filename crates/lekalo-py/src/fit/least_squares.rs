@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::{knot_vector, report_dict, shape_constraints, with_report, Data, WeightsAre};
+use crate::convert::IntArg;
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err};
@@ -55,14 +56,14 @@ fn ends_constraints(
 /// >>> bool((np.diff(c(np.linspace(0, 1, 200))[:, 0]) >= -1e-12).all())
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, t, k = 3, w = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (x, y, t, k = IntArg::of(3), w = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, t, k=3, w=None, *, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_lsq_spline<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
     w: Option<&Bound<'py, PyAny>>,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
@@ -73,6 +74,7 @@ pub(crate) fn make_lsq_spline<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
+    let k = k.count("k")?;
     let shape = shape_constraints([
         increasing, decreasing, convex, concave, min, max, through, slope_at,
     ])?;
@@ -99,14 +101,14 @@ pub(crate) fn make_lsq_spline<'py>(
 /// library's, `Σ w_k |C(ū_k) − Q_k|²`. The shape constraints are those of `make_lsq_spline`
 /// (for 1-D `points`, without `clamp_ends`: give end values as `through`).
 #[pyfunction]
-#[pyo3(signature = (points, params, t, k = 3, *, w = None, clamp_ends = false, d_start = None, d_end = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (points, params, t, k = IntArg::of(3), *, w = None, clamp_ends = false, d_start = None, d_end = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(points, params, t, k=3, *, w=None, clamp_ends=False, d_start=None, d_end=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_least_squares<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     params: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
     w: Option<&Bound<'py, PyAny>>,
     clamp_ends: bool,
     d_start: Option<&Bound<'py, PyAny>>,
@@ -120,6 +122,7 @@ pub(crate) fn fit_least_squares<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let k = k.count("k")?;
     let shape = shape_constraints([
         increasing, decreasing, convex, concave, min, max, through, slope_at,
     ])?;
@@ -152,15 +155,16 @@ pub(crate) fn fit_least_squares<'py>(
 /// `(curve, report)` with `params`, `deviations`, `max_deviation`, `worst_index`,
 /// `worst_param`.
 #[pyfunction]
-#[pyo3(signature = (points, tol, k = 3, *, deviation = "distance", parametrization = None))]
+#[pyo3(signature = (points, tol, k = IntArg::of(3), *, deviation = "distance", parametrization = None), text_signature = "(points, tol, k=3, *, deviation=\"distance\", parametrization=None)")]
 pub(crate) fn fit_tolerance<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     tol: f64,
-    k: usize,
+    k: IntArg,
     deviation: &str,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let k = k.count("k")?;
     let mut opts = ToleranceOptions::new(k, tol);
     opts.deviation = match deviation {
         "distance" => Deviation::Distance,
@@ -193,19 +197,21 @@ pub(crate) fn fit_tolerance<'py>(
 /// Tukey; `docs/theory/fitting.md#robust`). Returns `(curve, report)`; the report adds the final
 /// `robust_weights`, the noise `scale` σ and the number of `iterations`.
 #[pyfunction]
-#[pyo3(signature = (x, y, t, k = 3, *, w = None, loss = "huber", c = None, max_iter = 50))]
+#[pyo3(signature = (x, y, t, k = IntArg::of(3), *, w = None, loss = "huber", c = None, max_iter = IntArg::of(50)), text_signature = "(x, y, t, k=3, *, w=None, loss=\"huber\", c=None, max_iter=50)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_robust<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     t: &Bound<'py, PyAny>,
-    k: usize,
+    k: IntArg,
     w: Option<&Bound<'py, PyAny>>,
     loss: &str,
     c: Option<f64>,
-    max_iter: usize,
+    max_iter: IntArg,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let k = k.count("k")?;
+    let max_iter = max_iter.count("max_iter")?;
     let loss = match loss {
         "huber" => RobustLoss::Huber(c.unwrap_or(1.345)),
         "tukey" => RobustLoss::Tukey(c.unwrap_or(4.685)),
@@ -232,13 +238,15 @@ pub(crate) fn fit_robust<'py>(
 /// parameters `params` (P&T eq. 9.68–9.69, `docs/theory/fitting.md#knot-placement`): every
 /// knot span holds data.
 #[pyfunction]
-#[pyo3(signature = (params, n_ctrl, k = 3))]
+#[pyo3(signature = (params, n_ctrl, k = IntArg::of(3)), text_signature = "(params, n_ctrl, k=3)")]
 pub(crate) fn place_knots<'py>(
     py: Python<'py>,
     params: &Bound<'py, PyAny>,
-    n_ctrl: usize,
-    k: usize,
+    n_ctrl: IntArg,
+    k: IntArg,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let n_ctrl = n_ctrl.count("n_ctrl")?;
+    let k = k.count("k")?;
     let pa = floats(params, "params")?;
     let p = pa.vector("params")?;
     let kv = py

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::{knot_vector, shape_constraints, weight_vec, with_report, Data, WeightsAre};
+use crate::convert::IntArg;
 use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err, named};
@@ -128,18 +129,19 @@ pub(crate) fn gcv_score(
 /// >>> bool(abs(((c(x)[:, 0] - y) ** 2).sum() - 0.5) <= 1e-3 * 0.5)
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None))]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splrep(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
     y: &Bound<'_, PyAny>,
     w: Option<&Bound<'_, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
     t: Option<&Bound<'_, PyAny>>,
     domain: Option<(f64, f64)>,
 ) -> PyResult<PyBSplineCurve> {
+    let k = k.count("k")?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     Ok(PyBSplineCurve::wrap(
         condition_fit(py, &data, k, s, t, domain)?.curve,
@@ -184,14 +186,14 @@ fn condition_fit(
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 /// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, t = None, domain = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
     domain: Option<(f64, f64)>,
@@ -204,6 +206,7 @@ pub(crate) fn fit_smoothing_condition<'py>(
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
+    let k = k.count("k")?;
     let shape = shape_constraints([
         increasing, decreasing, convex, concave, min, max, through, slope_at,
     ])?;
@@ -244,18 +247,20 @@ pub(crate) fn fit_smoothing_condition<'py>(
 /// >>> [len(t) for t in lekalo.generate_knots(x, y, s=1e-7)]
 /// [8, 9, 10, 11, 12]
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = 3, s = 0.0, nest = None, periodic = false))]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, nest = None, periodic = false), text_signature = "(x, y, *, w=None, k=3, s=0.0, nest=None, periodic=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn generate_knots<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
-    nest: Option<usize>,
+    nest: Option<IntArg>,
     periodic: bool,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let k = k.count("k")?;
+    let nest = nest.map(|n| n.count("nest")).transpose()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let seq = if periodic {
         let (rows, xs, w) = data.periodic()?;
@@ -280,18 +285,19 @@ pub(crate) fn generate_knots<'py>(
 /// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`).
 /// Returns `(curve, u)`.
 #[pyfunction]
-#[pyo3(signature = (points, *, w = None, u = None, k = 3, s = 0.0, t = None, parametrization = None))]
+#[pyo3(signature = (points, *, w = None, u = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None), text_signature = "(points, *, w=None, u=None, k=3, s=0.0, t=None, parametrization=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splprep<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
     w: Option<&Bound<'py, PyAny>>,
     u: Option<&Bound<'py, PyAny>>,
-    k: usize,
+    k: IntArg,
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
+    let k = k.count("k")?;
     let pa = floats(points, "points")?;
     let pts = pa.curve_points("points", k + 1)?;
     let params = match u {

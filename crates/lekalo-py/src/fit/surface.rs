@@ -9,6 +9,7 @@ use lekalo::KnotVector;
 use pyo3::prelude::*;
 
 use super::knot_vector;
+use crate::convert::IntPair;
 use crate::convert::{floats, grid_points, vec1, vec_array};
 use crate::error::{bad, lib_err, named};
 use crate::interp::parametrization_or_chord;
@@ -20,19 +21,22 @@ use crate::surfaces::PyBSplineSurface;
 /// `parametrization` averaged over the grid lines, or given (`u`: `nu` numbers, `v`: `nv`); the
 /// knots are placed over them for `n_ctrl`, or given (`tu`, `tv`, which then set the net's size).
 #[pyfunction]
-#[pyo3(signature = (grid, n_ctrl = None, degree = (3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None))]
+#[pyo3(signature = (grid, n_ctrl = None, degree = IntPair::of(3, 3), *, parametrization = None, u = None, v = None, tu = None, tv = None),
+       text_signature = "(grid, n_ctrl=None, degree=(3, 3), *, parametrization=None, u=None, v=None, tu=None, tv=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_surface_grid(
     py: Python<'_>,
     grid: &Bound<'_, PyAny>,
-    n_ctrl: Option<(usize, usize)>,
-    degree: (usize, usize),
+    n_ctrl: Option<IntPair>,
+    degree: IntPair,
     parametrization: Option<&Bound<'_, PyAny>>,
     u: Option<&Bound<'_, PyAny>>,
     v: Option<&Bound<'_, PyAny>>,
     tu: Option<&Bound<'_, PyAny>>,
     tv: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyBSplineSurface> {
+    let n_ctrl = n_ctrl.map(|n| n.count("n_ctrl")).transpose()?;
+    let degree = degree.count("degree")?;
     let m = parametrization_or_chord(parametrization)?;
     let ga = floats(grid, "grid")?;
     let (pts, (nu, nv)) = grid_points(&ga, "grid")?;
@@ -92,16 +96,18 @@ pub(crate) fn fit_surface_grid(
 /// copies of `bbox[1]`, and `tv` likewise;
 /// `docs/theory/fitting.md#surfaces`). Returns `(surface, residuals, weighted_rss)`.
 #[pyfunction]
-#[pyo3(signature = (data, tu, tv, degree = (3, 3), *, w = None, penalty = 0.0))]
+#[pyo3(signature = (data, tu, tv, degree = IntPair::of(3, 3), *, w = None, penalty = 0.0),
+       text_signature = "(data, tu, tv, degree=(3, 3), *, w=None, penalty=0.0)")]
 pub(crate) fn fit_surface_scattered<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
     tu: &Bound<'py, PyAny>,
     tv: &Bound<'py, PyAny>,
-    degree: (usize, usize),
+    degree: IntPair,
     w: Option<&Bound<'py, PyAny>>,
     penalty: f64,
 ) -> PyResult<(PyBSplineSurface, Bound<'py, PyAny>, f64)> {
+    let degree = degree.count("degree")?;
     let da = floats(data, "data")?;
     let pts = da.points("data")?;
     let wa = w.map(|w| floats(w, "w")).transpose()?;

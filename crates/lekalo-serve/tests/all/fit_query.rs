@@ -182,9 +182,14 @@ async fn fitting_errors_name_the_field() {
             "limit",
         ),
         (
-            json!({"points": pts, "smoothing": "spline"}),
+            json!({"points": pts, "smoothing": "lamda"}),
             "smoothing",
-            "unknown variant",
+            "unknown value \"lamda\"; use one of lambda, gcv, s",
+        ),
+        (
+            json!({"points": pts, "smoothing": 1}),
+            "smoothing",
+            "expected one of lambda, gcv, s",
         ),
         (
             json!({"points": [[0, 0], [0, 0], [1, 1], [2, 0]], "lambda": 1}),

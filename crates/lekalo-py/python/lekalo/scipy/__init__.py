@@ -109,3 +109,56 @@ __all__ = [
     "PPoly",
     "BPoly",
 ]
+
+# scipy.interpolate's names outside its spline part, with what to use instead: importing one
+# from lekalo.scipy raises ImportError with that advice and the list above, not Python's bare
+# "cannot import name".
+_ELSEWHERE = "it is outside SciPy's spline functions; import it from scipy.interpolate"
+_GRID = (
+    "it is outside SciPy's spline functions; import it from scipy.interpolate, or for a cubic "
+    "spline on the grid use make_ndbspl(points, values, k=3) from lekalo.scipy (SciPy's "
+    "not-a-knot ends; RegularGridInterpolator's method='cubic' has its own)"
+)
+_NOT_PROVIDED = {
+    "interp1d": (
+        "SciPy keeps it as legacy; for interp1d(x, y, kind='cubic') use "
+        "make_interp_spline(x, y, k=3) or CubicSpline(x, y), for kind='linear' "
+        "make_interp_spline(x, y, k=1)"
+    ),
+    "interp2d": "SciPy has removed it; use RectBivariateSpline(x, y, z) on a grid",
+    "interpn": _GRID,
+    "RegularGridInterpolator": _GRID,
+    "griddata": _ELSEWHERE,
+    "LinearNDInterpolator": _ELSEWHERE,
+    "NearestNDInterpolator": _ELSEWHERE,
+    "CloughTocher2DInterpolator": _ELSEWHERE,
+    "RBFInterpolator": _ELSEWHERE,
+    "Rbf": _ELSEWHERE,
+    "BarycentricInterpolator": _ELSEWHERE,
+    "barycentric_interpolate": _ELSEWHERE,
+    "KroghInterpolator": _ELSEWHERE,
+    "krogh_interpolate": _ELSEWHERE,
+    "FloaterHormannInterpolator": _ELSEWHERE,
+    "AAA": _ELSEWHERE,
+    "approximate_taylor_polynomial": _ELSEWHERE,
+    "lagrange": _ELSEWHERE,
+    "pade": _ELSEWHERE,
+    "NdPPoly": "not provided yet; import it from scipy.interpolate",
+    "RectSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
+    "SmoothSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
+    "LSQSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
+}
+
+
+def __getattr__(name: str):
+    """Raises ImportError with advice for a scipy.interpolate name lekalo.scipy does not provide
+    (``from lekalo.scipy import interp1d``); any other missing name is an AttributeError, so
+    ``hasattr`` stays False for it."""
+    advice = _NOT_PROVIDED.get(name)
+    if advice is None:
+        raise AttributeError(f"module 'lekalo.scipy' has no attribute {name!r}")
+    raise ImportError(
+        f"lekalo.scipy does not provide {name}: {advice}. lekalo.scipy provides SciPy's spline "
+        f"part: {', '.join(__all__)}",
+        name=name,
+    )
