@@ -10,7 +10,7 @@ use pyo3::types::PyTuple;
 use crate::convert::{
     array, check_size, filled, floats, points_into_array, vec1, vec_array, FloatArray,
 };
-use crate::convert::{out_shape, reduce};
+use crate::convert::{out_shape, reduce, IntArg};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
 use crate::words::word;
@@ -157,8 +157,9 @@ impl PyPiecewisePolynomial {
     }
 
     /// Values at `x` (any shape): `x.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (x, nu = 0))]
-    fn __call__(&self, py: Python<'_>, x: &Bound<'_, PyAny>, nu: usize) -> PyResult<Py<PyAny>> {
+    #[pyo3(signature = (x, nu = IntArg::of(0)))]
+    fn __call__(&self, py: Python<'_>, x: &Bound<'_, PyAny>, nu: IntArg) -> PyResult<Py<PyAny>> {
+        let nu = nu.count("nu")?;
         let xa = floats(x, "x")?;
         let xs = xa.data();
         let dim = self.inner.dim();
@@ -181,13 +182,14 @@ impl PyPiecewisePolynomial {
     /// The `nu`-th derivative at `x` (any shape, result `x.shape + (dim,)`), the end pieces
     /// continued beyond the breakpoints (SciPy's `PPoly` with `extrapolate=True`); Horner's
     /// rule on the pp-form (`lekalo::PiecewisePolynomial::eval_extrapolated_into`).
-    #[pyo3(signature = (x, nu = 0))]
+    #[pyo3(signature = (x, nu = IntArg::of(0)), text_signature = "($self, x, nu=0)")]
     fn eval_extrapolated<'py>(
         &self,
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
-        nu: usize,
+        nu: IntArg,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let nu = nu.count("nu")?;
         let xa = floats(x, "x")?;
         let xs = xa.data();
         let dim = self.inner.dim();
@@ -202,8 +204,12 @@ impl PyPiecewisePolynomial {
     /// The `n`-th antiderivative (order `k + n`, continuous), its derivatives of orders
     /// `0 … n − 1` zero at `anchor` (default: the first breakpoint); in pp-form, as SciPy's
     /// `PPoly.antiderivative` (`lekalo::PiecewisePolynomial::antiderivative`).
-    #[pyo3(signature = (n = 1, anchor = None))]
-    fn antiderivative(&self, py: Python<'_>, n: usize, anchor: Option<f64>) -> PyResult<Self> {
+    #[pyo3(
+        signature = (n = IntArg::of(1), anchor = None),
+        text_signature = "($self, n=1, anchor=None)"
+    )]
+    fn antiderivative(&self, py: Python<'_>, n: IntArg, anchor: Option<f64>) -> PyResult<Self> {
+        let n = n.count("n")?;
         let at = anchor.unwrap_or(self.inner.breakpoints()[0]);
         let p = py
             .detach(|| self.inner.antiderivative(n, at))
@@ -227,11 +233,11 @@ impl PyPiecewisePolynomial {
     }
 
     /// The `j`-th derivative as a piecewise polynomial.
-    #[pyo3(signature = (j = 1))]
-    fn derivative(&self, j: usize) -> Self {
-        Self {
-            inner: self.inner.derivative(j),
-        }
+    #[pyo3(signature = (j = IntArg::of(1)), text_signature = "($self, j=1)")]
+    fn derivative(&self, j: IntArg) -> PyResult<Self> {
+        Ok(Self {
+            inner: self.inner.derivative(j.count("j")?),
+        })
     }
 
     /// The real solutions of `f(x) = y`, one float array per coordinate, increasing piece by

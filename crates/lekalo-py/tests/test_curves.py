@@ -101,6 +101,11 @@ def test_integer_and_float32_arrays_read_as_float64():
     assert lekalo.BSplineCurve(2, knots, np.array([[1, 1], [2, 3], [4, 3]])) == c
 
 
+def _pp():
+    """A piecewise quadratic in one coordinate on [0, 1, 2] (pieces by power coefficients)."""
+    return lekalo.PiecewisePolynomial([0.0, 1.0, 2.0], np.ones((2, 3, 1)))
+
+
 @pytest.mark.parametrize(
     "call, name",
     [
@@ -122,6 +127,10 @@ def test_integer_and_float32_arrays_read_as_float64():
         (lambda c: lekalo.generate_knots(np.linspace(0, 1, 9), np.ones(9), nest=-1), "nest"),
         (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), degree=(-1, 3)), "degree"),
         (lambda c: lekalo.fit_surface_grid(np.ones((5, 5, 3)), n_ctrl=(4, -4)), "n_ctrl"),
+        (lambda c: _pp()(0.5, -1), "nu"),
+        (lambda c: _pp().eval_extrapolated(0.5, -1), "nu"),
+        (lambda c: _pp().derivative(-1), "j"),
+        (lambda c: _pp().antiderivative(-1), "n"),
     ],
 )
 def test_negative_counts_and_orders_are_named_input_errors(call, name):
