@@ -19,6 +19,8 @@ use crate::pp::piecewise_ref::{Piece, PieceBasis, PiecewiseRef};
 #[derive(Debug, Clone, Copy)]
 pub struct BernsteinBasis;
 
+impl super::piecewise_ref::sealed::Sealed for BernsteinBasis {}
+
 impl PieceBasis for BernsteinBasis {
     #[inline(always)]
     fn local(piece: &Piece<'_>, x: f64) -> f64 {

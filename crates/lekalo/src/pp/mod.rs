@@ -10,7 +10,7 @@
 //! - `piecewise_ref.rs`: [`PiecewiseRef`], SciPy's coefficient arrays evaluated in place,
 //!   generic over the basis of the pieces ([`PieceBasis`]): the checks of the arrays and the
 //!   batch drivers (derivative order, the end pieces continued or NaN, kernels of fixed order,
-//!   the thread pool), written once.
+//!   the thread pool), written once; its tests in `piecewise_ref_tests.rs`.
 //! - `power_form.rs`: [`PowerBasis`] (Horner's rule in `x − x_j`), [`PowerFormRef`] for
 //!   SciPy's `PPoly`.
 //! - `bernstein_form.rs`: [`BernsteinBasis`] (the Bernstein sum or de Casteljau in
@@ -37,6 +37,8 @@ mod hermite_bspline;
 mod integral;
 mod piece_search;
 mod piecewise_ref;
+#[cfg(test)]
+mod piecewise_ref_tests;
 mod power_form;
 pub(crate) mod ppform;
 mod quasi_interpolation;

@@ -16,6 +16,8 @@ use crate::pp::ppform::PiecewisePolynomial;
 #[derive(Debug, Clone, Copy)]
 pub struct PowerBasis;
 
+impl super::piecewise_ref::sealed::Sealed for PowerBasis {}
+
 impl PieceBasis for PowerBasis {
     #[inline(always)]
     fn local(piece: &Piece<'_>, x: f64) -> f64 {
