@@ -82,13 +82,18 @@ fn dim_of(dims: &[i64]) -> Result<usize, String> {
         .ok_or_else(|| format!("control points of shape {dims:?}: expected (n, dim)"))
 }
 
-/// The curve of batch element `b`, built (and validated) by [`BSplineCurve::new`].
+/// The curve of batch element `b` (the knots and control points being the first two operands
+/// of every target, their element sizes `size[0]` and `size[1]`), built (and validated) by
+/// [`BSplineCurve::new`].
 fn curve(
     degree: usize,
     knots: &[f64],
     control: &[f64],
+    size: &[usize],
+    b: usize,
     dim: usize,
 ) -> Result<BSplineCurve, String> {
+    let (knots, control) = (element(knots, size[0], b), element(control, size[1], b));
     let points = Points::from_flat(dim, control.to_vec()).map_err(|e| e.to_string())?;
     BSplineCurve::new(degree, knots.to_vec(), points).map_err(|e| e.to_string())
 }
@@ -114,12 +119,7 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
         ("values", values.dims, 2),
     ])?;
     for b in 0..batch {
-        let c = curve(
-            degree,
-            element(knots.data, size[0], b),
-            element(ctrl.data, size[1], b),
-            dim,
-        )?;
+        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
         let (ts, out) = (
             element(t.data, size[2], b),
             element_mut(values.data, size[3], b),
@@ -161,12 +161,7 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
     let mut values = vec![0.0; size[3]];
     for b in 0..batch {
-        let c = curve(
-            degree,
-            element(knots.data, size[0], b),
-            element(ctrl.data, size[1], b),
-            dim,
-        )?;
+        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
         let dc_b = dc.map(|a| element(a.data, size[1], b));
         let dt_b = dt.map(|a| element(a.data, size[2], b));
         let ts = element(t.data, size[2], b);
@@ -211,12 +206,7 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     let (batch, size) = batch_layout(&layout)?;
     let (mut gc, mut gt) = (gc, gt);
     for b in 0..batch {
-        let c = curve(
-            degree,
-            element(knots.data, size[0], b),
-            element(ctrl.data, size[1], b),
-            dim,
-        )?;
+        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
         let gc_b = gc.as_mut().map(|a| element_mut(a.data, size[1], b));
         let gt_b = gt.as_mut().map(|a| element_mut(a.data, size[2], b));
         let (ts, gb) = (element(t.data, size[2], b), element(g.data, size[3], b));
