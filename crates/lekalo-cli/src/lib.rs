@@ -121,7 +121,7 @@ enum Command {
     Demo(DemoArgs),
     /// Interpolate points by a curve (every parametrisation, knot placement, end condition),
     /// a grid by a surface, a function y(x) by a natural or Hermite spline.
-    Interpolate(cmd::interpolate::InterpolateArgs),
+    Interpolate(Box<cmd::interpolate::InterpolateArgs>),
     /// Bezier order change: elevate, reduce, real-degree, change (curves and surfaces; B-splines piece by piece).
     Bezier(cmd::bezier::BezierArgs),
     /// Blending: deformation of curves, splines through points, corner smoothing.

@@ -179,9 +179,12 @@ fn wrong_knots_exit_2_naming_the_option_and_direction() {
     fails(&["--knots-u", "0.05,0.1"], "Schoenberg–Whitney");
     fails(
         &["--knots-in", "4=0.5"],
-        "--knots-in 4: the grid has 3 directions",
+        "--knots-in 4: the spline has 3 directions",
     );
-    fails(&["--knots-in", "0=0.5"], "numbered 1 to 3");
+    fails(
+        &["--knots-in", "0=0.5"],
+        "is not a direction number (from 1)",
+    );
     fails(
         &["--knots-v", "0.5", "--knots-in", "2=0.5"],
         "direction 2 already has knots from --knots-v",

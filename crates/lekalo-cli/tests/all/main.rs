@@ -13,6 +13,7 @@ mod cli_fit_options;
 mod cli_fit_tensor;
 mod cli_gallery;
 mod cli_grid_knots;
+mod cli_grid_params;
 mod cli_help_examples;
 mod cli_interpolate;
 mod cli_intersect_surfaces;

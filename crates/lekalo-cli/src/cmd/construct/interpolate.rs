@@ -44,9 +44,12 @@ Curves (document 000): global B-spline interpolation, any degree, every parametr
 knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the points row by row.
 Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
 slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
-takes one degree or one per direction. A grid's knots in a direction: its interior knots
-(values − degree − 1, inside the parameters' range) by --knots-u, --knots-v (directions 1, 2)
-or --knots-in K=LIST (direction K); the other directions' by averaging.
+takes one degree or one per direction; their parameters are equally spaced unless --param
+says otherwise. A grid's parameters in a direction (the axis of a lookup table): --params-u,
+--params-v (directions 1, 2) or --params-in K=LIST|FILE (direction K); the other directions'
+from --param, averaged over the grid's lines. A grid's knots in a direction: its interior
+knots (values − degree − 1, inside the parameters' range) by --knots-u, --knots-v or
+--knots-in K=LIST; the other directions' by averaging.
 Functions y(x) (--function): the first column is x; natural cubic spline, or Hermite with
 --hermite. Hermite curves (document 002, Hermite segment): --hermite TANGENTS.
 
@@ -61,6 +64,7 @@ Examples:
   lekalo interpolate grid.csv --grid 4x3 --degree 3 --degree-v 2 -o surface.obj
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,1 --param uniform -o tensor.json
   lekalo interpolate values.csv --grid 6x5x4 --degree 3,3,2 --param uniform --knots-u 0.4,0.6 --knots-in 3=0.5
+  lekalo interpolate values.csv --grid 6x5x4 --params-u 0,1,2,4,8,16 --params-in 3=-1,0,1,3 -o table.json
   lekalo interpolate xy.csv --function -o spline.svg             # natural y(x)
   lekalo interpolate xy.csv --function --hermite monotone
   lekalo interpolate pts.csv --hermite cardinal --tension 0.5 -o hermite.json
@@ -76,9 +80,10 @@ pub(crate) struct InterpolateArgs {
     /// Degree in v of a surface (default: --degree, at most columns − 1).
     #[arg(long)]
     degree_v: Option<usize>,
-    /// Parametrisation.
-    #[arg(long, value_parser = Words(&vocabulary::PARAMETRIZATION), default_value = "chord")]
-    param: Parametrization,
+    /// Parametrisation (default: chord; uniform for a grid of values in 3 or more directions,
+    /// whose values are not points in space).
+    #[arg(long, value_parser = Words(&vocabulary::PARAMETRIZATION))]
+    param: Option<Parametrization>,
     /// General parametrisation exponent e ≥ 0 (overrides --param; 0.5 is centripetal).
     #[arg(long)]
     exponent: Option<f64>,
@@ -89,10 +94,11 @@ pub(crate) struct InterpolateArgs {
     #[arg(long, value_parser = Words(&vocabulary::END_CONDITION), default_value = "free")]
     end: EndKind,
     /// Derivative at the start: the first (`--end derivatives`) or second (`--end second`),
-    /// comma-separated. Formerly `--d0`.
+    /// comma-separated (`--d0`, the older spelling, still works with a warning).
     #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
     d0: Option<String>,
-    /// Derivative at the end, as --start-derivative. Formerly `--dn`.
+    /// Derivative at the end, as --start-derivative (`--dn`, the older spelling, still works
+    /// with a warning).
     #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface; with three or
@@ -130,6 +136,33 @@ pub(crate) struct InterpolateArgs {
         allow_hyphen_values = true
     )]
     knots_in: Vec<String>,
+    /// Parameters of a grid's first direction (the rows of a surface grid): one strictly
+    /// increasing value per row, a list or a file of one value a line, e.g. the axis of a
+    /// lookup table (default: from --param, averaged over the grid's lines).
+    #[arg(
+        long,
+        value_name = "LIST|FILE",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    params_u: Option<String>,
+    /// Parameters of a grid's second direction (v), as --params-u.
+    #[arg(
+        long,
+        value_name = "LIST|FILE",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    params_v: Option<String>,
+    /// Parameters of direction K of a grid (K from 1), as --params-u; repeat for several
+    /// directions (e.g. --params-in 3=0,0.5,2,4).
+    #[arg(
+        long,
+        value_name = "K=LIST|FILE",
+        requires = "grid",
+        allow_hyphen_values = true
+    )]
+    params_in: Vec<String>,
     /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
     #[arg(
         long,
@@ -173,7 +206,13 @@ pub(crate) fn run(a: &InterpolateArgs, cx: &Context) -> Result<()> {
 }
 
 fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
-    let param = parametrization(a.param, a.exponent);
+    let param = parametrization(a.param.unwrap_or(Parametrization::ChordLength), a.exponent);
+    if a.grid.is_some() && a.params.is_some() {
+        return bad_input(
+            "--params gives a curve's parameters; a grid's are --params-u, --params-v and \
+             --params-in K=LIST, one list per direction",
+        );
+    }
     if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.function
@@ -215,9 +254,12 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
             grid: g,
             factors: crate::cmd::tensor::grid_factors(g)?,
             degree: &a.degree,
-            param,
+            // the values of a grid in 3 or more directions are not points in space: equally
+            // spaced parameters unless another parametrisation is asked for
+            param: parametrization(a.param.unwrap_or(Parametrization::Uniform), a.exponent),
             max_condition: a.max_condition,
             knots: grid_knots(a),
+            params: grid_params(a),
             output: a.out.output.as_deref(),
             to: a.out.to.as_deref(),
         };
@@ -246,20 +288,24 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
             _ => (single_degree(a)?, a.degree_v),
         };
         let degree_v = listed_v.unwrap_or(degree.min(nv.saturating_sub(1)).max(1));
-        if grid_knots(a).any() {
-            // given knots: the tensor interpolation of two directions, which is the surface's
+        if grid_knots(a).any() || grid_params(a).any() {
+            // given knots or parameters: the tensor interpolation of two directions, which is
+            // the surface's
             let mut interp =
                 lekalo::TensorInterpolation::new(vec![degree, degree_v]).parametrization(param);
             if let Some(limit) = a.max_condition {
                 interp = interp.max_condition(limit);
             }
-            let s = crate::cmd::tensor::interpolate_with_knots(
+            let s = crate::cmd::tensor::interpolate_given(
                 interp,
                 &[degree, degree_v],
                 &pts,
-                &[nu, nv],
-                grid_knots(a),
+                (g.as_str(), &[nu, nv]),
+                (grid_knots(a), grid_params(a)),
+                cx,
             )?;
+            let mut inputs = inputs;
+            inputs.extend(grid_params(a).files());
             return write_surface(&s.to_surface()?, &a.out, &inputs, cx);
         }
         let mut fit = SurfaceInterpolation::new(degree, degree_v).parametrization(param);
@@ -353,11 +399,20 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
 }
 
 /// The interior knots given per direction of a grid.
-fn grid_knots(a: &InterpolateArgs) -> crate::cmd::tensor::GridKnots<'_> {
-    crate::cmd::tensor::GridKnots {
+fn grid_knots(a: &InterpolateArgs) -> crate::cmd::tensor::GridLists<'_> {
+    crate::cmd::tensor::GridLists {
         u: a.knots_u.as_deref(),
         v: a.knots_v.as_deref(),
         per_direction: &a.knots_in,
+    }
+}
+
+/// The parameters given per direction of a grid.
+fn grid_params(a: &InterpolateArgs) -> crate::cmd::tensor::GridLists<'_> {
+    crate::cmd::tensor::GridLists {
+        u: a.params_u.as_deref(),
+        v: a.params_v.as_deref(),
+        per_direction: &a.params_in,
     }
 }
 

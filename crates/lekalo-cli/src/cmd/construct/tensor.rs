@@ -4,6 +4,7 @@
 //! presentation only; the spline work is the library's ([`lekalo::TensorInterpolation`],
 //! [`lekalo::Tensor`]).
 
+use std::cmp::Ordering;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -43,91 +44,200 @@ pub(crate) fn degrees_for(degree: &[usize], n: usize) -> Result<Vec<usize>> {
     }
 }
 
-/// The interior knots of one direction, with the option that gave them (for the messages).
-type GivenKnots = Option<(String, Vec<f64>)>;
+/// A list given for one direction, with the option that gave it (for the messages).
+pub(crate) type Given = Option<(String, Vec<f64>)>;
 
-/// The interior knots given to `interpolate --grid` per direction: `--knots-u` and
-/// `--knots-v` (directions 1 and 2, as `fit` spells them) and `--knots-in K=LIST` (direction
-/// `K`, counted from 1 as the columns `x1 … xN` of `eval`).
+/// Lists given per direction of a grid: `--X-u` and `--X-v` (directions 1 and 2, as `fit`
+/// spells them) and `--X-in K=LIST` (direction `K`, counted from 1 as the columns `x1 … xN`
+/// of `eval`), for the knots (`X` = `knots`) or the parameters (`X` = `params`).
 #[derive(Clone, Copy, Default)]
-pub(crate) struct GridKnots<'a> {
+pub(crate) struct GridLists<'a> {
     pub(crate) u: Option<&'a str>,
     pub(crate) v: Option<&'a str>,
     pub(crate) per_direction: &'a [String],
 }
 
-impl GridKnots<'_> {
-    /// Whether any direction's knots are given.
+impl GridLists<'_> {
+    /// Whether any direction's list is given.
     pub(crate) fn any(&self) -> bool {
         self.u.is_some() || self.v.is_some() || !self.per_direction.is_empty()
     }
 
-    /// The interior knots of each of `n` directions, or `None` where the library places them.
-    fn per_direction(&self, n: usize) -> Result<Vec<GivenKnots>> {
-        let mut out: Vec<GivenKnots> = vec![None; n];
-        let mut put = |k: usize, option: String, text: &str| -> Result<()> {
-            if k == 0 || k > n {
-                return bad_input(format!(
-                    "{option}: the grid has {n} directions, numbered 1 to {n} (direction x1 is \
-                     the slowest in the file)"
-                ));
-            }
-            if let Some((first, _)) = &out[k - 1] {
-                return bad_input(format!(
-                    "{option}: direction {k} already has knots from {first}; give each \
-                     direction's knots once"
-                ));
-            }
-            let knots = if text.trim().is_empty() {
-                Vec::new()
-            } else {
-                numbers(text, &option)?
-            };
-            out[k - 1] = Some((option, knots));
-            Ok(())
-        };
-        if let Some(t) = self.u {
-            put(1, "--knots-u".into(), t)?;
-        }
-        if let Some(t) = self.v {
-            put(2, "--knots-v".into(), t)?;
-        }
-        for given in self.per_direction {
-            let Some((k, list)) = given.split_once('=') else {
-                return bad_input(format!(
-                    "--knots-in: \"{given}\" is not K=LIST; give the direction and its \
-                     interior knots, e.g. --knots-in 3=0.25,0.5"
-                ));
-            };
-            let Ok(k) = k.trim().parse::<usize>() else {
-                return bad_input(format!(
-                    "--knots-in: \"{}\" in \"{given}\" is not a direction number (1 to {n})",
-                    k.trim()
-                ));
-            };
-            put(k, format!("--knots-in {k}"), list)?;
-        }
-        Ok(out)
+    /// The files among the lists (a list may be the name of a file of one value a line), so
+    /// that the output is never written over one of them.
+    pub(crate) fn files(&self) -> Vec<PathBuf> {
+        let entries = self
+            .per_direction
+            .iter()
+            .filter_map(|e| e.split_once('=').map(|e| e.1));
+        self.u
+            .into_iter()
+            .chain(self.v)
+            .chain(entries)
+            .map(Path::new)
+            .filter(|p| p.is_file())
+            .map(Path::to_path_buf)
+            .collect()
     }
 }
 
-/// The tensor spline of `interp` through a grid of `values` with the given interior knots in
-/// some directions: the parameters are the library's ([`TensorInterpolation::grid_parameters`]),
-/// each given direction's knot vector is clamped at the ends of its parameters, and its
-/// Schoenberg–Whitney condition is checked direction by direction so that a failure names the
-/// option and the direction.
-pub(crate) fn interpolate_with_knots(
+/// The direction `K` (from 1) and the list of `K=LIST` given to `option`.
+pub(crate) fn direction_of<'t>(given: &'t str, option: &str) -> Result<(usize, &'t str)> {
+    let Some((k, list)) = given.split_once('=') else {
+        return bad_input(format!(
+            "{option}: \"{given}\" is not K=LIST; give the direction (from 1) and its list, \
+             e.g. {option} 3=0.25,0.5"
+        ));
+    };
+    match k.trim().parse::<usize>() {
+        Ok(k) if k >= 1 => Ok((k, list)),
+        _ => bad_input(format!(
+            "{option}: \"{}\" in \"{given}\" is not a direction number (from 1)",
+            k.trim()
+        )),
+    }
+}
+
+/// A list per direction of `n`: from `lists.u` (direction 1), `lists.v` (direction 2) and its
+/// `K=LIST` entries, named by the options `(u, v, per direction)` and the `noun` they give
+/// (`knots`, `parameters`), read by `read(text, option)`; `None` where none is given.
+pub(crate) fn per_direction(
+    n: usize,
+    lists: GridLists<'_>,
+    (u_option, v_option, k_option): (&str, &str, &str),
+    noun: &str,
+    read: impl Fn(&str, &str) -> Result<Vec<f64>>,
+) -> Result<Vec<Given>> {
+    let mut out: Vec<Given> = vec![None; n];
+    let mut put = |k: usize, option: String, text: &str| -> Result<()> {
+        if k > n {
+            return bad_input(format!(
+                "{option}: the spline has {n} directions, numbered 1 to {n} (x1 … x{n}; in a \
+                 grid file, x1 is the slowest)"
+            ));
+        }
+        if let Some((first, _)) = &out[k - 1] {
+            return bad_input(format!(
+                "{option}: direction {k} already has {noun} from {first}; give each \
+                 direction's {noun} once"
+            ));
+        }
+        out[k - 1] = Some((option.clone(), read(text, &option)?));
+        Ok(())
+    };
+    if let Some(t) = lists.u {
+        put(1, u_option.into(), t)?;
+    }
+    if let Some(t) = lists.v {
+        put(2, v_option.into(), t)?;
+    }
+    for given in lists.per_direction {
+        let (k, list) = direction_of(given, k_option)?;
+        put(k, format!("{k_option} {k}"), list)?;
+    }
+    Ok(out)
+}
+
+/// The interior knots given per direction (`--knots-u`, `--knots-v`, `--knots-in K=LIST`;
+/// an empty list is a direction without interior knots).
+pub(crate) fn given_knots(n: usize, lists: GridLists<'_>) -> Result<Vec<Given>> {
+    let read = |text: &str, option: &str| {
+        if text.trim().is_empty() {
+            Ok(Vec::new())
+        } else {
+            numbers(text, option)
+        }
+    };
+    let options = ("--knots-u", "--knots-v", "--knots-in");
+    per_direction(n, lists, options, "knots", read)
+}
+
+/// The grid parameters given per direction (`--params-u`, `--params-v`, `--params-in
+/// K=LIST|FILE`: a list or a file of one value a line), each checked to hold one strictly
+/// increasing parameter per grid value of its direction of `shape` (`--grid grid`).
+pub(crate) fn given_parameters(
+    lists: GridLists<'_>,
+    shape: &[usize],
+    grid: &str,
+    cx: &Context,
+) -> Result<Vec<Given>> {
+    let options = ("--params-u", "--params-v", "--params-in");
+    let read = |text: &str, option: &str| crate::cmd::explicit::parameters(cx, text, option);
+    let given = per_direction(shape.len(), lists, options, "parameters", read)?;
+    for (i, entry) in given.iter().enumerate() {
+        let Some((option, t)) = entry else { continue };
+        if t.len() != shape[i] {
+            return bad_input(format!(
+                "{option}: {} values for the {} grid values of direction {} (--grid {grid}); \
+                 give one parameter per grid line",
+                t.len(),
+                shape[i],
+                i + 1
+            ));
+        }
+        if let Some(w) = t
+            .windows(2)
+            .position(|w| w[0].partial_cmp(&w[1]) != Some(Ordering::Less))
+        {
+            return bad_input(format!(
+                "{option}: parameters {} and {} of direction {} are not increasing; give \
+                 strictly increasing parameters",
+                t[w],
+                t[w + 1],
+                i + 1
+            ));
+        }
+    }
+    Ok(given)
+}
+
+/// The parameters of every direction of a grid: those given, and for the others those of
+/// `interp`'s parametrisation averaged over the grid's lines
+/// ([`TensorInterpolation::grid_parameters`], whose failure names `--param`).
+pub(crate) fn grid_parameters(
+    interp: &TensorInterpolation,
+    given: Vec<Given>,
+    values: &Points,
+    shape: &[usize],
+) -> Result<Vec<Vec<f64>>> {
+    let averaged = if given.iter().any(Option::is_none) {
+        interp
+            .grid_parameters(values.as_view(), shape)
+            .map_err(|e| {
+                BadInput(format!(
+                    "--param (the parameters of the grid's directions without --params-u, \
+                     --params-v or --params-in): {e}"
+                ))
+            })?
+    } else {
+        Vec::new()
+    };
+    Ok(given
+        .into_iter()
+        .enumerate()
+        .map(|(i, entry)| entry.map_or_else(|| averaged[i].clone(), |(_, t)| t))
+        .collect())
+}
+
+/// The tensor spline of `interp` through a grid of `values` at the parameters and with the
+/// interior knots given in some directions: the other directions' parameters are the
+/// library's ([`grid_parameters`]), each given direction's knot vector is clamped at the ends
+/// of its parameters, and its Schoenberg–Whitney condition is checked direction by direction
+/// so that a failure names the option and the direction.
+pub(crate) fn interpolate_given(
     interp: TensorInterpolation,
     degrees: &[usize],
     values: &Points,
-    shape: &[usize],
-    knots: GridKnots<'_>,
+    (grid, shape): (&str, &[usize]),
+    (knots, params): (GridLists<'_>, GridLists<'_>),
+    cx: &Context,
 ) -> Result<TensorBSpline> {
-    let given = knots.per_direction(shape.len())?;
-    if given.iter().all(Option::is_none) {
+    let given = given_knots(shape.len(), knots)?;
+    let given_params = given_parameters(params, shape, grid, cx)?;
+    if given.iter().chain(&given_params).all(Option::is_none) {
         return Ok(interp.interpolate(values.as_view(), shape)?);
     }
-    let params = interp.grid_parameters(values.as_view(), shape)?;
+    let params = grid_parameters(&interp, given_params, values, shape)?;
     let mut vectors = Vec::with_capacity(shape.len());
     for (a, entry) in given.into_iter().enumerate() {
         let Some((option, inner)) = entry else {
@@ -175,7 +285,8 @@ pub(crate) struct GridInterpolation<'a> {
     pub(crate) degree: &'a [usize],
     pub(crate) param: Parametrization,
     pub(crate) max_condition: Option<f64>,
-    pub(crate) knots: GridKnots<'a>,
+    pub(crate) knots: GridLists<'a>,
+    pub(crate) params: GridLists<'a>,
     pub(crate) output: Option<&'a Path>,
     pub(crate) to: Option<&'a str>,
 }
@@ -196,18 +307,25 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
     if let Some(limit) = g.max_condition {
         interp = interp.max_condition(limit);
     }
-    let s =
-        interpolate_with_knots(interp, &degrees, &values, &g.factors, g.knots).map_err(|e| {
-            match e.downcast::<lekalo::Error>() {
-                Ok(e @ lekalo::Error::Degree { .. }) => {
-                    BadInput(format!("--degree (grid {}): {e}", g.grid)).into()
-                }
-                Ok(other) => anyhow::Error::from(other),
-                Err(other) => other,
-            }
-        })?;
+    let s = interpolate_given(
+        interp,
+        &degrees,
+        &values,
+        (g.grid, &g.factors),
+        (g.knots, g.params),
+        cx,
+    )
+    .map_err(|e| match e.downcast::<lekalo::Error>() {
+        Ok(e @ lekalo::Error::Degree { .. }) => {
+            BadInput(format!("--degree (grid {}): {e}", g.grid)).into()
+        }
+        Ok(other) => anyhow::Error::from(other),
+        Err(other) => other,
+    })?;
     let text = lekalo_io::tensor_to_json(&Tensor::BSpline(s));
-    emit(g.output, text.as_bytes(), &[file.to_path_buf()], cx)
+    let mut inputs = vec![file.to_path_buf()];
+    inputs.extend(g.params.files());
+    emit(g.output, text.as_bytes(), &inputs, cx)
 }
 
 /// The values of the grid `grid` (`factors`) in `file`, their count checked against the grid's

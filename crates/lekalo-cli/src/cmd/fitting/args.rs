@@ -132,15 +132,18 @@ pub(crate) struct FitArgs {
     /// Interpolate the first and last points exactly.
     #[arg(long)]
     pub(crate) clamp_ends: bool,
-    /// First derivative at the start (with --clamp-ends), comma-separated. Formerly `--d0`.
+    /// First derivative at the start (with --clamp-ends), comma-separated (`--d0`, the older
+    /// spelling, still works with a warning).
     #[arg(long = "start-derivative", alias = "d0", allow_hyphen_values = true)]
     pub(crate) d0: Option<String>,
-    /// First derivative at the end (with --clamp-ends), comma-separated. Formerly `--dn`.
+    /// First derivative at the end (with --clamp-ends), comma-separated (`--dn`, the older
+    /// spelling, still works with a warning).
     #[arg(long = "end-derivative", alias = "dn", allow_hyphen_values = true)]
     pub(crate) dn: Option<String>,
-    /// Parametrisation of parametric curves.
-    #[arg(long, value_parser = Words(&lekalo::vocabulary::PARAMETRIZATION), default_value = "chord")]
-    pub(crate) param: lekalo::Parametrization,
+    /// Parametrisation of parametric curves and grids (default: chord; uniform for a grid of
+    /// values in 3 or more directions, whose values are not points in space).
+    #[arg(long, value_parser = Words(&lekalo::vocabulary::PARAMETRIZATION))]
+    pub(crate) param: Option<lekalo::Parametrization>,
     /// A closed curve (periodic spline; with --function, a periodic function whose last row
     /// repeats the first).
     #[arg(long)]
@@ -219,6 +222,35 @@ pub(crate) struct FitArgs {
 }
 
 impl FitArgs {
+    /// The parametrisation of curves and surfaces: `--param`, chord length by default.
+    pub(super) fn param(&self) -> lekalo::Parametrization {
+        self.param.unwrap_or(lekalo::Parametrization::ChordLength)
+    }
+
+    /// The parametrisation of a grid of values in 3 or more directions: `--param`, equally
+    /// spaced by default (the values are not points in space).
+    pub(super) fn grid_param(&self) -> lekalo::Parametrization {
+        self.param.unwrap_or(lekalo::Parametrization::Uniform)
+    }
+
+    /// The interior knots given per direction (`--knots-u`, `--knots-v`, `--knots-in`).
+    pub(super) fn grid_knots(&self) -> crate::cmd::tensor::GridLists<'_> {
+        crate::cmd::tensor::GridLists {
+            u: self.knots_u.as_deref(),
+            v: self.knots_v.as_deref(),
+            per_direction: &self.knots_in,
+        }
+    }
+
+    /// The grid parameters given per direction (`--params-u`, `--params-v`, `--params-in`).
+    pub(super) fn grid_params(&self) -> crate::cmd::tensor::GridLists<'_> {
+        crate::cmd::tensor::GridLists {
+            u: self.params_u.as_deref(),
+            v: self.params_v.as_deref(),
+            per_direction: &self.params_in,
+        }
+    }
+
     /// The degree of a curve: `--degree` with one value.
     pub(super) fn degree(&self) -> Result<usize> {
         match self.degrees[..] {

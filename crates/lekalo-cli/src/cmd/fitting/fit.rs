@@ -115,7 +115,7 @@ fn fit_curve(
         )?;
         (y, x)
     } else {
-        let u = parametrize(pts.as_view(), a.param)?;
+        let u = parametrize(pts.as_view(), a.param())?;
         (pts.clone(), u)
     };
     let mut data = FitData::new(values.as_view(), &params)?;
@@ -196,7 +196,7 @@ fn fit_curve(
             );
         }
         let mut opts = ToleranceOptions::new(a.degree()?, tol);
-        opts.parametrization = a.param;
+        opts.parametrization = a.param();
         if a.parameter_deviation {
             opts.deviation = Deviation::Parameter;
         }

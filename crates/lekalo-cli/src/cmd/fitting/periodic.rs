@@ -56,7 +56,7 @@ pub(super) fn run_periodic(
         )?;
         (y, x.clone(), (x[0], end))
     } else {
-        let u = closed_parameters(pts.as_view(), a.param)?;
+        let u = closed_parameters(pts.as_view(), a.param())?;
         let n = pts.len();
         (pts.clone(), u[..n].to_vec(), (u[0], u[n]))
     };

@@ -88,7 +88,7 @@ pub(super) fn run_surface(
         let (uu, vv) = match (gu, gv) {
             (Some(u), Some(v)) => (u, v),
             (gu, gv) => {
-                let (cu, cv) = surface_grid_parameters(pts.as_view(), (nu, nv), a.param)?;
+                let (cu, cv) = surface_grid_parameters(pts.as_view(), (nu, nv), a.param())?;
                 (gu.unwrap_or(cu), gv.unwrap_or(cv))
             }
         };

@@ -17,11 +17,13 @@ use lekalo::{
 use serde_json::{json, Value};
 
 use super::args::{clamped, span, with_ends, FitArgs};
-use crate::cmd::tensor::{checked_grid_values, degrees_for, grid_factors};
+use crate::cmd::tensor::{
+    checked_grid_values, degrees_for, direction_of, given_knots, given_parameters, grid_factors,
+    grid_parameters, Given,
+};
 use crate::context::Context;
 use crate::exit::{bad_input, BadInput};
 use crate::output::{emit, format_of};
-use crate::values::numbers;
 
 /// The number of variables of a tensor fit (three or more, or any number for `--scattered
 /// --s`), or `None` for curves and surfaces: the factors of `--grid`; for `--scattered`, the
@@ -97,20 +99,7 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
         }
         None => vec![None; n],
     };
-    let inner: Vec<Given> = per_direction(
-        n,
-        a.knots_u.as_deref(),
-        a.knots_v.as_deref(),
-        &a.knots_in,
-        ("--knots-u", "--knots-v", "--knots-in"),
-        |text, option| {
-            if text.trim().is_empty() {
-                Ok(Vec::new())
-            } else {
-                numbers(text, option)
-            }
-        },
-    )?;
+    let inner: Vec<Given> = given_knots(n, a.grid_knots())?;
     let ranges = match &a.bbox {
         Some(b) => boxes(b, n)?.into_iter().map(Some).collect(),
         None => vec![None; n],
@@ -249,59 +238,11 @@ fn run_grid(a: &FitArgs, dirs: &[Direction], inputs: &[PathBuf], cx: &Context) -
     }
     let g = a.grid.as_deref().unwrap_or_default();
     let shape = grid_factors(g)?;
-    let n = shape.len();
     let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
     let values = checked_grid_values(g, &shape, &a.points, cx)?;
-    let given = per_direction(
-        n,
-        a.params_u.as_deref(),
-        a.params_v.as_deref(),
-        &a.params_in,
-        ("--params-u", "--params-v", "--params-in"),
-        |text, option| crate::cmd::explicit::parameters(cx, text, option),
-    )?;
-    for (i, entry) in given.iter().enumerate() {
-        let Some((option, t)) = entry else { continue };
-        if t.len() != shape[i] {
-            return bad_input(format!(
-                "{option}: {} values for the {} grid values of direction {} (--grid {g}); give \
-                 one parameter per grid line",
-                t.len(),
-                shape[i],
-                i + 1
-            ));
-        }
-        if let Some(w) = t
-            .windows(2)
-            .position(|w| w[0].partial_cmp(&w[1]) != Some(Ordering::Less))
-        {
-            return bad_input(format!(
-                "{option}: parameters {} and {} of direction {} are not increasing; give \
-                 strictly increasing parameters",
-                t[w],
-                t[w + 1],
-                i + 1
-            ));
-        }
-    }
-    let averaged = if given.iter().any(Option::is_none) {
-        TensorInterpolation::new(degrees.clone())
-            .parametrization(a.param)
-            .grid_parameters(values.as_view(), &shape)
-            .map_err(|e| {
-                BadInput(format!(
-                    "--param (the parameters of the grid's directions without --params-u, \
-                     --params-v or --params-in): {e}"
-                ))
-            })?
-    } else {
-        Vec::new()
-    };
-    let params: Vec<Vec<f64>> = given
-        .into_iter()
-        .enumerate()
-        .map(|(i, entry)| entry.map_or_else(|| averaged[i].clone(), |(_, t)| t))
-        .collect();
+    let given = given_parameters(a.grid_params(), &shape, g, cx)?;
+    let interp = TensorInterpolation::new(degrees.clone()).parametrization(a.grid_param());
+    let params = grid_parameters(&interp, given, &values, &shape)?;
     let refs: Vec<&[f64]> = params.iter().map(Vec::as_slice).collect();
     let (s, net) = if let Some(target) = a.s {
         // the fewest knots whose residual is at most S (lekalo::tensor_grid_smoothing)
@@ -689,65 +630,6 @@ fn refuse_curve_options(a: &FitArgs) -> Result<()> {
         given.join(", "),
         if given.len() == 1 { "is" } else { "are" }
     ))
-}
-
-/// A list given for one direction, with the option that gave it (for the messages).
-type Given = Option<(String, Vec<f64>)>;
-
-/// The direction `K` (from 1) and the list of `K=LIST` given to `option`.
-fn direction_of<'t>(given: &'t str, option: &str) -> Result<(usize, &'t str)> {
-    let Some((k, list)) = given.split_once('=') else {
-        return bad_input(format!(
-            "{option}: \"{given}\" is not K=LIST; give the direction (from 1) and its list, \
-             e.g. {option} 3=0.25,0.5"
-        ));
-    };
-    match k.trim().parse::<usize>() {
-        Ok(k) if k >= 1 => Ok((k, list)),
-        _ => bad_input(format!(
-            "{option}: \"{}\" in \"{given}\" is not a direction number (from 1)",
-            k.trim()
-        )),
-    }
-}
-
-/// A list per direction of `n`: from `u` (direction 1), `v` (direction 2) and `K=LIST` entries,
-/// named by the options `(u, v, per direction)`, read by `read(text, option)`; `None` where
-/// none is given.
-fn per_direction(
-    n: usize,
-    u: Option<&str>,
-    v: Option<&str>,
-    entries: &[String],
-    (u_option, v_option, k_option): (&str, &str, &str),
-    read: impl Fn(&str, &str) -> Result<Vec<f64>>,
-) -> Result<Vec<Given>> {
-    let mut out: Vec<Given> = vec![None; n];
-    let mut put = |k: usize, option: String, text: &str| -> Result<()> {
-        if k > n {
-            return bad_input(format!(
-                "{option}: the fit has {n} variables, directions 1 to {n} (x1 … x{n})"
-            ));
-        }
-        if let Some((first, _)) = &out[k - 1] {
-            return bad_input(format!(
-                "{option}: direction {k} is already given by {first}; give each direction once"
-            ));
-        }
-        out[k - 1] = Some((option.clone(), read(text, &option)?));
-        Ok(())
-    };
-    if let Some(t) = u {
-        put(1, u_option.into(), t)?;
-    }
-    if let Some(t) = v {
-        put(2, v_option.into(), t)?;
-    }
-    for given in entries {
-        let (k, list) = direction_of(given, k_option)?;
-        put(k, format!("{k_option} {k}"), list)?;
-    }
-    Ok(out)
 }
 
 /// The sizes `AxBxC…` of `option`, each at least 1.
