@@ -2,9 +2,9 @@
 //! caller's memory when the layout allows.
 //!
 //! Inputs are float64 arrays (or sequences of numbers, converted once by NumPy). A C-contiguous
-//! float64 array is borrowed, never copied; a Fortran-ordered one is copied once into the
-//! point-major layout the library works in; any other strided view is refused with the fix in
-//! the message (`np.ascontiguousarray`). Integer and narrower float arrays (`int64`,
+//! float64 array is borrowed, never copied; a Fortran-ordered one or any other strided view (a
+//! column `y[:, 0]`, a stepped or reversed slice) is copied once into the point-major layout
+//! the library works in. Integer and narrower float arrays (`int64`,
 //! `float32`) are converted once to float64, as SciPy converts them; complex, object, string
 //! and boolean arrays are refused, naming the dtype.
 
@@ -153,19 +153,16 @@ pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Float
                 scalar: false,
             });
         }
-        if a.is_fortran_contiguous() {
-            // the library's layout is point-major: one copy in C order
-            let owned: Vec<f64> = ro.as_array().iter().copied().collect();
-            return Ok(FloatArray {
-                borrowed: None,
-                owned,
-                shape,
-                scalar: false,
-            });
-        }
-        return Err(bad(format!(
-            "{what}: the array is not contiguous (a strided view, shape {shape:?}); pass np.ascontiguousarray({what})"
-        )));
+        // Fortran order or a strided view (a column `y[:, 0]`, a reversed or stepped slice):
+        // one copy in C order, the library's point-major layout, as NumPy's own functions
+        // copy what they cannot read in place
+        let owned: Vec<f64> = ro.as_array().iter().copied().collect();
+        return Ok(FloatArray {
+            borrowed: None,
+            owned,
+            shape,
+            scalar: false,
+        });
     }
     if let Ok(a) = obj.cast::<PyUntypedArray>() {
         let dtype = a.dtype();
