@@ -19,19 +19,22 @@
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
 points and the parameters; the knots and degrees are constants.
 
-``bspline_eval`` runs inside the compiled program: its values, JVP and VJP are XLA custom calls
-(FFI targets written against XLA's C ABI in the native module, ``lekalo._jax_ffi``), no host
-callback. The values are lekalo's evaluation (the reference de Boor evaluation for small
-batches, the fast evaluator of ``lekalo.BSplineCurve.__call__`` from 16 parameters a polynomial
-piece; the two agree to 1e-14 relative to the control points); the JVP and VJP are lekalo's
-kernels (``lekalo.bspline_curve_jvp``, ``lekalo.bspline_curve_vjp``), so ``jax.grad`` runs
-lekalo's reverse-mode kernel.
+The four evaluations run inside the compiled program: their values, JVPs and VJPs are XLA
+custom calls (FFI targets written against XLA's C ABI in the native module,
+``lekalo._jax_ffi``), no host callback. The values are lekalo's evaluation (for curves, the
+reference de Boor evaluation for small batches and the fast evaluator of
+``lekalo.BSplineCurve.__call__`` / ``lekalo.NurbsCurve.__call__`` from 16 parameters a
+polynomial piece, the two agreeing to 1e-14 relative to the control points; for surfaces and
+tensor splines, bit for bit ``eval_batch``); the JVPs and VJPs are lekalo's kernels
+(``lekalo.bspline_curve_jvp``, ``lekalo.nurbs_curve_vjp``, ``lekalo.bspline_surface_vjp``,
+``lekalo.tensor_bspline_vjp`` and their twins), so ``jax.grad`` runs lekalo's reverse-mode
+kernel.
 
-The other functions still call lekalo through ``jax.pure_callback`` (bit-for-bit the
-library's evaluation, about 0.3 ms a call for the callback alone); their derivatives come from
-the library's linearisation (e.g. ``lekalo.bspline_curve_linearize``): the sparse basis matrix,
-``p + 1`` entries a parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a
-scatter, for VJP), plus ``C'(u)`` times the parameter tangent (``docs/theory/derivatives.md``).
+``interpolate`` and the fits still call lekalo through ``jax.pure_callback`` (bit-for-bit the
+library's solution, about 0.2 to 0.3 ms a call for the callback alone); their derivatives come
+from the library's linearisation: the sparse basis matrix, ``p + 1`` entries a parameter,
+applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for VJP)
+(``docs/theory/derivatives.md``).
 
 Requirements and limits, each with a clear error:
 
@@ -39,9 +42,11 @@ Requirements and limits, each with a clear error:
 - first derivatives: a second derivative (``jax.hessian``, ``jacfwd(jacrev(...))``) raises
   ``NotImplementedError``;
 - no derivatives with respect to the knots (``NotImplementedError``): pass them as constants;
-- parameters must lie in the domain: outside it, the error raised inside lekalo (the FFI
-  target or the callback) reaches the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's
-  message, which names the parameter and the domain (eagerly and under ``jit``);
+- parameters must lie in the domain (and NURBS weights be positive): otherwise the error
+  raised inside lekalo (the FFI target or the callback) reaches the caller carrying lekalo's
+  message, which names the parameter and the domain (eagerly and under ``jit``), as
+  ``jax.errors.JaxRuntimeError``, or as ``ValueError`` when JAX runs an already compiled
+  function through its C++ fast path;
 - runs on the CPU: the FFI targets are registered for the CPU platform only, and the callbacks
   copy device arrays to the host.
 
@@ -154,10 +159,11 @@ _NURBS = _jax_ffi.Kernel(
 def nurbs_eval(knots, control_points, weights, u, degree):
     """``C(u)`` of the NURBS curve of ``degree`` on ``knots`` with Euclidean ``control_points``
     (``(n, dim)``) and positive ``weights`` (``(n,)``), at the parameters ``u`` (any shape).
-    Returns ``u.shape + (dim,)``, bit-for-bit lekalo's evaluation.
+    Returns ``u.shape + (dim,)``, lekalo's evaluation as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
     respect to ``control_points``, ``weights`` and ``u``; ``knots`` and ``degree`` are constants.
+    A non-positive weight raises lekalo's error from the custom call.
     """
     name = "nurbs_eval"
     _require_x64(name)
@@ -201,7 +207,7 @@ def bspline_surface_eval(knots_u, knots_v, control_points, u, v, degree_u, degre
     """``S(u, v)`` of the tensor-product B-spline surface of degrees ``(degree_u, degree_v)`` on
     ``knots_u``, ``knots_v`` with the control net ``control_points`` (``(nu, nv, dim)``), at
     parameters ``u``, ``v`` of one shape. Returns ``u.shape + (dim,)``, bit-for-bit lekalo's
-    evaluation.
+    evaluation, as an XLA custom call (no host callback).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
     respect to ``control_points``, ``u`` and ``v``; knots and degrees are constants.
@@ -258,10 +264,10 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
     ``lekalo.TensorBSpline(knots, control_points, degrees)(x)``.
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``control_points`` and ``x``: the net's Jacobian is the product of the ``N``
-    basis vectors on the ``Π (p_a + 1)`` block a point touches (a JAX gather whose transpose is
-    a scatter-add), the points' the partial derivatives ``∂S/∂x_a``
-    (``lekalo.tensor_bspline_linearize``). The knots and degrees are constants.
+    respect to ``control_points`` and ``x``, by lekalo's kernels as XLA custom calls
+    (``lekalo.tensor_bspline_jvp`` and ``lekalo.tensor_bspline_vjp``: the net's Jacobian is the
+    product of the ``N`` basis vectors on the ``Π (p_a + 1)`` block a point touches, the points'
+    the partial derivatives ``∂S/∂x_a``). The knots and degrees are constants.
     """
     name = "tensor_bspline_eval"
     _require_x64(name)
