@@ -16,7 +16,8 @@ workloads, each a `jax.jit`-compiled function of its arrays:
 - interpolate + evaluate, and its gradient with respect to the data values (the spline built
   inside the function: lekalo's `interpolate`, interpax's `CubicSpline(x, y)`);
 - small call: one parameter, evaluation and gradient: the cost of calling from JAX, beside the
-  floor of any host callback (a `jax.pure_callback` that returns its input).
+  floor of any host callback (a `jax.pure_callback` that returns its input) and that of JAX's
+  own dispatch of a compiled function of the same arrays (`c[:1] * u`, no custom call).
 
 Timing: the median of --repeats samples, each a call (ended by `block_until_ready`) repeated to
 at least --sample seconds, after one call that compiles; lekalo is timed just before and just
@@ -154,8 +155,12 @@ def main() -> None:
     # the floor of a small call: one host callback that returns its input, nothing of lekalo
     noop = jax.jit(lambda s: jax.pure_callback(np.asarray, jax.ShapeDtypeStruct(s.shape, s.dtype), s))
     floor = timed(lambda: noop(u1j), a.repeats, a.sample)
+    # and JAX's own dispatch of a compiled function of the same arguments, no custom call
+    plain = jax.jit(lambda c, s: c[:1] * s)
+    dispatch = timed(lambda: plain(ctrl, u1j), a.repeats, a.sample)
     print(f"\nthe floor of a small call: a jit-compiled jax.pure_callback returning its input, "
-          f"{floor * 1e6:.0f} us")
+          f"{floor * 1e6:.0f} us; a jit-compiled c[:1] * u of the same arrays (JAX's dispatch, "
+          f"no custom call), {dispatch * 1e6:.0f} us")
     missed = [r[0] for r in rows if not r[6]]
     print(f"\n{len(rows) - len(missed)} of {len(rows)} workloads meet their goal"
           + (f"; missed: {', '.join(missed)}" if missed else ""))

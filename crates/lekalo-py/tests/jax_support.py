@@ -38,3 +38,10 @@ def assert_rel(a, b, what):
     err = np.max(np.abs(a - b)) if a.size else 0.0
     scale = max(np.max(np.abs(b)) if b.size else 0.0, 1.0)
     assert err <= RTOL * scale, f"{what}: error {err:.3e} above {RTOL} x {scale:.3e}"
+
+
+# What an error inside one of lekalo's FFI targets reaches the caller as: JAX raises
+# `jax.errors.JaxRuntimeError` from a call that compiles, and `ValueError` (the error's code is
+# XLA's INVALID_ARGUMENT) from a call of an already compiled function through JAX's C++ fast
+# path; both carry lekalo's message.
+RUNTIME_ERRORS = (jax.errors.JaxRuntimeError, ValueError)

@@ -132,11 +132,12 @@ impl KnotVector {
             });
         }
         let max = degree + 1;
-        for (knot, multiplicity) in self.distinct() {
-            if multiplicity > max {
+        // the runs of equal knots, without allocating (this runs at every construction)
+        for run in self.knots.chunk_by(|a, b| a == b) {
+            if run.len() > max {
                 return Err(Error::KnotMultiplicity {
-                    knot,
-                    multiplicity,
+                    knot: run[0],
+                    multiplicity: run.len(),
                     max,
                 });
             }

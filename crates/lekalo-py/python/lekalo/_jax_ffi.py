@@ -1,5 +1,6 @@
-"""lekalo's XLA FFI targets inside JAX: their registration, and the pair of JAX primitives that
-makes a kernel's JVP and VJP differentiable by JAX's rules (``lekalo.jax`` builds on this).
+"""lekalo's XLA FFI targets inside JAX: their registration, the pair of JAX primitives that
+makes a kernel's JVP and VJP differentiable by JAX's rules, and ``Kernel``, the differentiable
+function of a kernel's three targets (``lekalo.jax`` builds on this).
 
 The native module exports typed XLA custom-call handlers (``_lekalo.xla_ffi_handlers()``,
 written against XLA's FFI C ABI in ``crates/lekalo-py/src/xla_ffi/``), registered here for the
@@ -17,6 +18,10 @@ kernel and forward mode its JVP kernel, both in compiled code. Under ``vmap`` th
 moved to the front and unbatched operands broadcast, the layout every handler accepts (one
 kernel call a batch element). Which linear inputs are present is a static parameter: a
 symbolic-zero tangent is not passed, and a cotangent that is not wanted is not computed.
+
+Every kernel has the same operands: its knot vectors (constants), then its differentiable
+arrays, one a kind (control points, weights, parameters...). ``Kernel`` is the ``custom_jvp``
+function of such a kernel: values by its ``_eval`` target, tangents by ``LinearPair``.
 """
 
 from __future__ import annotations
@@ -28,10 +33,12 @@ import numpy as np
 
 import jax
 import jax.numpy as jnp
+from jax.custom_derivatives import SymbolicZero
 from jax.extend.core import Primitive
 from jax.interpreters import ad, batching, mlir
 
 from . import _lekalo
+from ._jax_support import _first_order_only, _no_knot_tangent
 
 _REGISTERED = False
 
@@ -191,3 +198,48 @@ def _batcher(prim):
         return out, ([0] * len(out) if prim.multiple_results else 0)
 
     return rule
+
+
+class Kernel:
+    """A lekalo kernel as a differentiable JAX function of ``(static, knots, arrays)``:
+    ``knots`` a tuple of knot vectors (constants: a tangent raises ``NotImplementedError``),
+    ``arrays`` a tuple of the differentiable arrays, one for each of ``kinds`` (the targets'
+    ``with_<kind>`` flags), ``static`` the targets' integer attributes as ``(name, value)``
+    pairs. The values are the target ``{prefix}_eval``, of shape ``out_shape(residuals)``
+    (``residuals = knots + arrays``, as arrays or their shapes); the JVP and VJP the targets
+    ``{prefix}_jvp`` and ``{prefix}_vjp`` through a ``LinearPair`` (one for each number of knot
+    vectors). First derivatives only; ``name`` is the public function's, for the errors."""
+
+    def __init__(self, name, prefix, kinds, out_shape):
+        self.name, self.prefix, self.kinds, self.out_shape = name, prefix, tuple(kinds), out_shape
+        self._pairs = {}
+
+        def values(static, knots, arrays):
+            residuals = (*knots, *arrays)
+            shape = jax.ShapeDtypeStruct(out_shape(residuals), jnp.float64)
+            return call(f"{prefix}_eval", shape, static, *residuals)
+
+        def jvp(static, primals, tangents):
+            (knots, arrays), (dk, da) = primals, tangents
+            _no_knot_tangent(name, *dk)
+            guard = functools.partial(_first_order_only, name)
+            knots, arrays = tuple(map(guard, knots)), tuple(map(guard, arrays))
+            out = values(static, knots, arrays)
+            lin = [None if isinstance(t, SymbolicZero) else t for t in da]
+            tangent = self._pair(len(knots)).tangent((*knots, *arrays), lin, static)
+            return out, jnp.zeros_like(out) if tangent is None else tangent
+
+        self._f = jax.custom_jvp(values, nondiff_argnums=(0,))
+        self._f.defjvp(jvp, symbolic_zeros=True)
+
+    def _pair(self, n_knots):
+        if n_knots not in self._pairs:
+            like = tuple(range(n_knots, n_knots + len(self.kinds)))
+            self._pairs[n_knots] = LinearPair(
+                self.name, f"{self.prefix}_jvp", f"{self.prefix}_vjp",
+                kinds=self.kinds, like=like, out_shape=self.out_shape,
+            )
+        return self._pairs[n_knots]
+
+    def __call__(self, static, knots, arrays):
+        return self._f(tuple(static), tuple(knots), tuple(arrays))

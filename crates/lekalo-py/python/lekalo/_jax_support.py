@@ -1,6 +1,6 @@
 """What every function of ``lekalo.jax`` shares: argument checks, the first-order guard, and
 the host-callback plumbing (``jax.pure_callback`` with a loop over batch axes) of the functions
-that have no XLA FFI target yet."""
+that have no XLA FFI target yet (``interpolate`` and the fits)."""
 
 from __future__ import annotations
 
@@ -103,12 +103,6 @@ def _linearized(name, cb, shapes, *args):
     a second derivative of ``lekalo.jax.{name}`` raises."""
     guard = partial(_first_order_only, name)
     return _callback(cb, shapes, *(guard(a) for a in args))
-
-
-def _values_cb(kernel, static, core_ndims, *arrays):
-    """The values (first result) of the JVP kernel ``kernel(*static, *element)``, each batch
-    element of ``arrays`` in turn."""
-    return _looped(lambda *a: (kernel(*static, *a)[0],), core_ndims, *arrays)[0]
 
 
 def _fields_cb(kernel, static, core_ndims, keys, *arrays):

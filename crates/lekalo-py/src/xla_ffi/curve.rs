@@ -16,8 +16,12 @@
 
 use lekalo::{BSplineCurve, Points};
 
-use super::abi::{handle, Call, CallFrame, XlaError};
-use super::batch_layout;
+use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::operands::{
+    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
+    Batch,
+};
+use super::Handler;
 
 /// Parameters a polynomial piece from which the values come from the curve's fast evaluator
 /// ([`lekalo::CurveEvaluator`], per-piece power form: a few ns a point, the same points as
@@ -25,10 +29,7 @@ use super::batch_layout;
 /// evaluator costs about as much as evaluating 10 to 15 parameters a piece by the reference
 /// (measured for a cubic on 1000 pieces), so smaller batches, a single parameter above all,
 /// keep the reference. Both agree to `1e-14` relative to the control net's scale.
-const FAST_PER_PIECE: usize = 16;
-
-/// An `XLA_FFI_Handler`.
-pub(super) type Handler = extern "C" fn(*mut CallFrame) -> *mut XlaError;
+pub(super) const FAST_PER_PIECE: usize = 16;
 
 /// The handlers of this module, by target name.
 pub(super) const HANDLERS: &[(&str, Handler)] = &[
@@ -57,72 +58,48 @@ extern "C" fn bspline_vjp(frame: *mut CallFrame) -> *mut XlaError {
     )
 }
 
-/// The `degree` attribute and the two optional-buffer flags (false when absent).
-fn attributes(call: &Call<'_>) -> Result<(usize, bool, bool), String> {
-    let degree = call.attr("degree")?;
-    let degree =
-        usize::try_from(degree).map_err(|_| format!("degree must be >= 0, got {degree}"))?;
-    let flag = |name| call.attr(name).map(|v| v != 0).unwrap_or(false);
-    Ok((degree, flag("with_control"), flag("with_parameter")))
-}
-
-/// Element `b` of a batch of elements of `size` numbers.
-fn element(data: &[f64], size: usize, b: usize) -> &[f64] {
-    &data[b * size..(b + 1) * size]
-}
-
-fn element_mut(data: &mut [f64], size: usize, b: usize) -> &mut [f64] {
-    &mut data[b * size..(b + 1) * size]
-}
-
-/// The dimension of the control points: the last axis of `(..., n, dim)`.
-fn dim_of(dims: &[i64]) -> Result<usize, String> {
-    dims.last()
-        .and_then(|&d| usize::try_from(d).ok())
-        .ok_or_else(|| format!("control points of shape {dims:?}: expected (n, dim)"))
-}
-
 /// The curve of batch element `b` (the knots and control points being the first two operands
-/// of every target, their element sizes `size[0]` and `size[1]`), built (and validated) by
+/// of every target, their element sizes `sk` and `sc`), built (and validated) by
 /// [`BSplineCurve::new`].
 fn curve(
     degree: usize,
-    knots: &[f64],
-    control: &[f64],
-    size: &[usize],
-    b: usize,
+    (knots, sk): (&In<'_>, usize),
+    (control, sc): (&In<'_>, usize),
     dim: usize,
+    b: usize,
 ) -> Result<BSplineCurve, String> {
-    let (knots, control) = (element(knots, size[0], b), element(control, size[1], b));
+    let control = element(control.data, sc, b);
     let points = Points::from_flat(dim, control.to_vec()).map_err(|e| e.to_string())?;
-    BSplineCurve::new(degree, knots.to_vec(), points).map_err(|e| e.to_string())
+    BSplineCurve::new(degree, element(knots.data, sk, b).to_vec(), points)
+        .map_err(|e| e.to_string())
 }
 
-fn count_error(what: &str, want: usize, got: usize) -> String {
-    format!("expected {want} {what}, got {got} (lekalo.jax and its native module disagree)")
+/// The knots, control points and parameters, the residuals of every target: the batch, their
+/// element sizes and the dimension.
+fn layout<'a>(res: &[In<'a>]) -> Result<(Batch<'a>, [usize; 3], usize), String> {
+    let [knots, ctrl, t] = res else {
+        return Err(count_error("arguments", 3, res.len()));
+    };
+    let batch = Batch::of("knots", knots.dims, 1)?;
+    let sizes = [
+        batch.size("knots", knots.dims, 1)?,
+        batch.size("control points", ctrl.dims, 2)?,
+        batch.size("u", t.dims, 1)?,
+    ];
+    Ok((batch, sizes, last_axis("control points", ctrl.dims)?))
 }
 
 fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
-    let (degree, _, _) = attributes(call)?;
+    let degree = count_attr(call, "degree")?;
     let Call { args, rets, .. } = call;
-    let [knots, ctrl, t] = &args[..] else {
-        return Err(count_error("arguments", 3, args.len()));
-    };
-    let [values] = &mut rets[..] else {
-        return Err(count_error("results", 1, rets.len()));
-    };
-    let dim = dim_of(ctrl.dims)?;
-    let (batch, size) = batch_layout(&[
-        ("knots", knots.dims, 1),
-        ("control points", ctrl.dims, 2),
-        ("u", t.dims, 1),
-        ("values", values.dims, 2),
-    ])?;
-    for b in 0..batch {
-        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
+    let (batch, [sk, sc, st], dim) = layout(args)?;
+    let values = single(rets)?;
+    let sv = batch.size("values", values.dims, 2)?;
+    for b in 0..batch.count {
+        let c = curve(degree, (&args[0], sk), (&args[1], sc), dim, b)?;
         let (ts, out) = (
-            element(t.data, size[2], b),
-            element_mut(values.data, size[3], b),
+            element(args[2].data, st, b),
+            element_mut(values.data, sv, b),
         );
         let pieces = c.control_points().len() - degree;
         let done = if ts.len() >= FAST_PER_PIECE * pieces {
@@ -136,41 +113,29 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let (degree, with_control, with_parameter) = attributes(call)?;
+    let degree = count_attr(call, "degree")?;
+    let present = flags(call, ["with_control", "with_parameter"]);
     let Call { args, rets, .. } = call;
-    let want = 3 + usize::from(with_control) + usize::from(with_parameter);
-    if args.len() != want {
-        return Err(count_error("arguments", want, args.len()));
+    let (res, [dc, dt]) = tangents(args, 3, present)?;
+    let (batch, [sk, sc, st], dim) = layout(res)?;
+    let tangent = single(rets)?;
+    let sv = batch.size("tangent", tangent.dims, 2)?;
+    if let Some(a) = dc {
+        batch.expect("control-point tangent", a.dims, 2, sc)?;
     }
-    let [tangent] = &mut rets[..] else {
-        return Err(count_error("results", 1, rets.len()));
-    };
-    let (knots, ctrl, t) = (&args[0], &args[1], &args[2]);
-    let dc = with_control.then(|| &args[3]);
-    let dt = with_parameter.then(|| &args[args.len() - 1]);
-    let dim = dim_of(ctrl.dims)?;
-    let mut layout = vec![
-        ("knots", knots.dims, 1),
-        ("control points", ctrl.dims, 2),
-        ("u", t.dims, 1),
-        ("tangent", tangent.dims, 2),
-    ];
-    layout.extend(dc.map(|a| ("control-point tangent", a.dims, 2)));
-    layout.extend(dt.map(|a| ("parameter tangent", a.dims, 1)));
-    let (batch, size) = batch_layout(&layout)?;
+    if let Some(a) = dt {
+        batch.expect("parameter tangent", a.dims, 1, st)?;
+    }
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let mut values = vec![0.0; size[3]];
-    for b in 0..batch {
-        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
-        let dc_b = dc.map(|a| element(a.data, size[1], b));
-        let dt_b = dt.map(|a| element(a.data, size[2], b));
-        let ts = element(t.data, size[2], b);
+    let mut values = vec![0.0; sv];
+    for b in 0..batch.count {
+        let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
         c.eval_batch_jvp(
-            ts,
-            dc_b,
-            dt_b,
+            element(res[2].data, st, b),
+            dc.map(|a| element(a.data, sc, b)),
+            dt.map(|a| element(a.data, st, b)),
             &mut values,
-            element_mut(tangent.data, size[3], b),
+            element_mut(tangent.data, sv, b),
         )
         .map_err(|e| e.to_string())?;
     }
@@ -178,40 +143,29 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
 }
 
 fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-    let (degree, with_control, with_parameter) = attributes(call)?;
+    let degree = count_attr(call, "degree")?;
+    let present = flags(call, ["with_control", "with_parameter"]);
     let Call { args, rets, .. } = call;
-    let [knots, ctrl, t, g] = &args[..] else {
-        return Err(count_error("arguments", 4, args.len()));
-    };
-    let want = usize::from(with_control) + usize::from(with_parameter);
-    if rets.len() != want {
-        return Err(count_error("results", want, rets.len()));
+    let (res, [g]) = tangents(args, 3, [true])?;
+    let g = g.ok_or("no cotangent")?;
+    let (batch, [sk, sc, st], dim) = layout(res)?;
+    let sg = batch.size("cotangent", g.dims, 2)?;
+    let [mut gc, mut gt] = cotangents(rets, present)?;
+    if let Some(a) = &gc {
+        batch.expect("control-point cotangent", a.dims, 2, sc)?;
     }
-    let dim = dim_of(ctrl.dims)?;
-    let mut layout = vec![
-        ("knots", knots.dims, 1),
-        ("control points", ctrl.dims, 2),
-        ("u", t.dims, 1),
-        ("cotangent", g.dims, 2),
-    ];
-    let (gc, gt) = match &mut rets[..] {
-        [] => (None, None),
-        [one] if with_control => (Some(one), None),
-        [one] => (None, Some(one)),
-        [gc, gt] => (Some(gc), Some(gt)),
-        _ => return Err(count_error("results", want, rets.len())),
-    };
-    layout.extend(gc.as_ref().map(|a| ("control-point cotangent", a.dims, 2)));
-    layout.extend(gt.as_ref().map(|a| ("parameter cotangent", a.dims, 1)));
-    let (batch, size) = batch_layout(&layout)?;
-    let (mut gc, mut gt) = (gc, gt);
-    for b in 0..batch {
-        let c = curve(degree, knots.data, ctrl.data, &size, b, dim)?;
-        let gc_b = gc.as_mut().map(|a| element_mut(a.data, size[1], b));
-        let gt_b = gt.as_mut().map(|a| element_mut(a.data, size[2], b));
-        let (ts, gb) = (element(t.data, size[2], b), element(g.data, size[3], b));
-        c.eval_batch_vjp(ts, gb, gc_b, gt_b)
-            .map_err(|e| e.to_string())?;
+    if let Some(a) = &gt {
+        batch.expect("parameter cotangent", a.dims, 1, st)?;
+    }
+    for b in 0..batch.count {
+        let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
+        c.eval_batch_vjp(
+            element(res[2].data, st, b),
+            element(g.data, sg, b),
+            gc.as_mut().map(|a| element_mut(a.data, sc, b)),
+            gt.as_mut().map(|a| element_mut(a.data, st, b)),
+        )
+        .map_err(|e| e.to_string())?;
     }
     Ok(())
 }

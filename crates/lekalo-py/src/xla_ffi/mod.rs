@@ -3,8 +3,13 @@
 //!
 //! - `abi`: the C ABI of `xla/ffi/api/c_api.h` mirrored in Rust, the decoding of a call frame
 //!   into slices, the metadata query, errors and caught panics;
+//! - `operands`: what every handler does with its buffers, once: the batch axes, a batch
+//!   element's slice, the `with_<kind>` flags and the split of a derivative target's operands;
 //! - `curve`: B-spline curve evaluation and its JVP and VJP with respect to the control points
-//!   and the parameters (`lekalo::derivatives`, `docs/theory/derivatives.md`).
+//!   and the parameters (`lekalo::derivatives`, `docs/theory/derivatives.md`);
+//! - `nurbs`: the same for NURBS curves, also with respect to the weights;
+//! - `surface`: tensor-product B-spline surfaces, with respect to the net and `(u, v)`;
+//! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
 //!
 //! Batching (`jax.vmap`): every argument and result may carry the same leading batch axes (the
 //! layout of `vmap_method="broadcast_all"`); a handler runs the kernel once a batch element.
@@ -12,9 +17,16 @@
 
 mod abi;
 mod curve;
+mod nurbs;
+mod operands;
+mod surface;
+mod tensor;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+/// An `XLA_FFI_Handler`.
+type Handler = extern "C" fn(*mut abi::CallFrame) -> *mut abi::XlaError;
 
 /// Registers the functions of this module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -27,40 +39,14 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 #[pyfunction]
 fn xla_ffi_handlers(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for (name, handler) in curve::HANDLERS {
+    let all = [
+        curve::HANDLERS,
+        nurbs::HANDLERS,
+        surface::HANDLERS,
+        tensor::HANDLERS,
+    ];
+    for (name, handler) in all.into_iter().flatten() {
         d.set_item(name, *handler as usize)?;
     }
     Ok(d)
-}
-
-/// The leading batch axes shared by all buffers, each buffer having `core` trailing axes:
-/// returns the number of batch elements and, a buffer, the size of one element.
-fn batch_layout(dims: &[(&str, &[i64], usize)]) -> Result<(usize, Vec<usize>), String> {
-    let Some(&(_, first, first_core)) = dims.first() else {
-        return Ok((1, Vec::new()));
-    };
-    let lead = first.len().checked_sub(first_core).ok_or_else(|| {
-        format!(
-            "{} has rank {}, fewer than {first_core}",
-            dims[0].0,
-            first.len()
-        )
-    })?;
-    let batch_dims = &first[..lead];
-    let to_usize = |d: &[i64]| -> Option<usize> {
-        d.iter()
-            .try_fold(1usize, |acc, &x| acc.checked_mul(usize::try_from(x).ok()?))
-    };
-    let batch = to_usize(batch_dims).ok_or("bad batch dimensions")?;
-    let mut sizes = Vec::with_capacity(dims.len());
-    for &(what, d, core) in dims {
-        if d.len() != lead + core || d[..lead] != *batch_dims {
-            return Err(format!(
-                "{what} has shape {d:?}; the leading (batch) axes must be {batch_dims:?}, \
-                 followed by {core} axes"
-            ));
-        }
-        sizes.push(to_usize(&d[lead..]).ok_or("bad dimensions")?);
-    }
-    Ok((batch, sizes))
 }

@@ -1,0 +1,184 @@
+//! NURBS curve evaluation `C(t) = Σ_j N_{j,p}(t) w_j P_j / Σ_j N_{j,p}(t) w_j` as XLA FFI
+//! handlers, with its JVP and VJP with respect to the Euclidean control points `P`, the weights
+//! `w` and the parameters `t` (`docs/theory/derivatives.md`, "NURBS curves"):
+//!
+//! | target | arguments | attributes | results |
+//! |---|---|---|---|
+//! | `lekalo_nurbs_eval` | knots `(nk,)`, control `(n, dim)`, weights `(n,)`, t `(m,)` | `degree` | `C(t)` `(m, dim)` |
+//! | `lekalo_nurbs_jvp` | knots, control, weights, t, [`Ṗ` `(n, dim)`], [`ẇ` `(n,)`], [`ṫ` `(m,)`] | `degree`, `with_control`, `with_weight`, `with_parameter` | `Ċ` `(m, dim)` |
+//! | `lekalo_nurbs_vjp` | knots, control, weights, t, `ḡ` `(m, dim)` | `degree`, `with_control`, `with_weight`, `with_parameter` | [`P̄` `(n, dim)`], [`w̄` `(n,)`], [`t̄` `(m,)`] |
+//!
+//! The bracketed buffers are present when the attribute of the same name is true; every buffer
+//! may have leading batch axes (the same for all). The values are [`NurbsCurve::eval_batch`]'s
+//! (P&T A4.1), or for large batches ([`FAST_PER_PIECE`] parameters a piece) those of the fast
+//! [`lekalo::NurbsEvaluator`]; the JVP [`NurbsCurve::eval_batch_jvp`]'s, the VJP
+//! [`NurbsCurve::eval_batch_vjp`]'s.
+
+use lekalo::{NurbsCurve, Points};
+
+use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::curve::FAST_PER_PIECE;
+use super::operands::{
+    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
+    Batch,
+};
+use super::Handler;
+
+/// The handlers of this module, by target name.
+pub(super) const HANDLERS: &[(&str, Handler)] = &[
+    ("lekalo_nurbs_eval", nurbs_eval),
+    ("lekalo_nurbs_jvp", nurbs_jvp),
+    ("lekalo_nurbs_vjp", nurbs_vjp),
+];
+
+/// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
+const KINDS: [&str; 3] = ["with_control", "with_weight", "with_parameter"];
+
+extern "C" fn nurbs_eval(frame: *mut CallFrame) -> *mut XlaError {
+    handle(frame, "lekalo.jax.nurbs_eval", eval_body)
+}
+
+extern "C" fn nurbs_jvp(frame: *mut CallFrame) -> *mut XlaError {
+    handle(
+        frame,
+        "lekalo.jax.nurbs_eval (forward derivative)",
+        jvp_body,
+    )
+}
+
+extern "C" fn nurbs_vjp(frame: *mut CallFrame) -> *mut XlaError {
+    handle(
+        frame,
+        "lekalo.jax.nurbs_eval (reverse derivative)",
+        vjp_body,
+    )
+}
+
+/// The residuals of every target (knots, control points, weights, parameters): the batch, the
+/// element size of each, and the dimension.
+struct Layout<'a> {
+    batch: Batch<'a>,
+    /// Element sizes of the knots, the control points, the weights and the parameters.
+    sizes: [usize; 4],
+    dim: usize,
+}
+
+impl<'a> Layout<'a> {
+    fn of(res: &[In<'a>]) -> Result<Self, String> {
+        let [knots, ctrl, w, t] = res else {
+            return Err(count_error("arguments", 4, res.len()));
+        };
+        let batch = Batch::of("knots", knots.dims, 1)?;
+        let sizes = [
+            batch.size("knots", knots.dims, 1)?,
+            batch.size("control points", ctrl.dims, 2)?,
+            batch.size("weights", w.dims, 1)?,
+            batch.size("u", t.dims, 1)?,
+        ];
+        let dim = last_axis("control points", ctrl.dims)?;
+        Ok(Layout { batch, sizes, dim })
+    }
+
+    /// The curve of batch element `b`, built (and validated: sorted knots, one positive weight
+    /// a control point) by [`NurbsCurve::new`].
+    fn curve(&self, degree: usize, res: &[In<'_>], b: usize) -> Result<NurbsCurve, String> {
+        let [sk, sc, sw, _] = self.sizes;
+        let control = element(res[1].data, sc, b).to_vec();
+        let points = Points::from_flat(self.dim, control).map_err(|e| e.to_string())?;
+        let (knots, weights) = (element(res[0].data, sk, b), element(res[2].data, sw, b));
+        NurbsCurve::new(degree, knots.to_vec(), points, weights.to_vec()).map_err(|e| e.to_string())
+    }
+
+    /// The parameters of batch element `b`.
+    fn ts<'d>(&self, res: &'d [In<'_>], b: usize) -> &'d [f64] {
+        element(res[3].data, self.sizes[3], b)
+    }
+}
+
+fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degree = count_attr(call, "degree")?;
+    let Call { args, rets, .. } = call;
+    let layout = Layout::of(args)?;
+    let values = single(rets)?;
+    let sv = layout.batch.size("values", values.dims, 2)?;
+    for b in 0..layout.batch.count {
+        let c = layout.curve(degree, args, b)?;
+        let (ts, out) = (layout.ts(args, b), element_mut(values.data, sv, b));
+        let pieces = c.homogeneous().control_points().len() - degree;
+        let done = if ts.len() >= FAST_PER_PIECE * pieces {
+            c.evaluator().eval_batch(ts, out)
+        } else {
+            c.eval_batch(ts, out)
+        };
+        done.map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degree = count_attr(call, "degree")?;
+    let present = flags(call, KINDS);
+    let Call { args, rets, .. } = call;
+    let (res, [dc, dw, dt]) = tangents(args, 4, present)?;
+    let layout = Layout::of(res)?;
+    let (batch, [_, sc, sw, st]) = (&layout.batch, layout.sizes);
+    let tangent = single(rets)?;
+    let sv = batch.size("tangent", tangent.dims, 2)?;
+    for (a, what, core, size) in [
+        (dc, "control-point tangent", 2, sc),
+        (dw, "weight tangent", 1, sw),
+        (dt, "parameter tangent", 1, st),
+    ] {
+        if let Some(a) = a {
+            batch.expect(what, a.dims, core, size)?;
+        }
+    }
+    // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
+    let mut values = vec![0.0; sv];
+    for b in 0..batch.count {
+        let c = layout.curve(degree, res, b)?;
+        c.eval_batch_jvp(
+            layout.ts(res, b),
+            dc.map(|a| element(a.data, sc, b)),
+            dw.map(|a| element(a.data, sw, b)),
+            dt.map(|a| element(a.data, st, b)),
+            &mut values,
+            element_mut(tangent.data, sv, b),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degree = count_attr(call, "degree")?;
+    let present = flags(call, KINDS);
+    let Call { args, rets, .. } = call;
+    let (res, [g]) = tangents(args, 4, [true])?;
+    let g = g.ok_or("no cotangent")?;
+    let layout = Layout::of(res)?;
+    let (batch, [_, sc, sw, st]) = (&layout.batch, layout.sizes);
+    let sg = batch.size("cotangent", g.dims, 2)?;
+    let [mut gc, mut gw, mut gt] = cotangents(rets, present)?;
+    for (a, what, core, size) in [
+        (&gc, "control-point cotangent", 2, sc),
+        (&gw, "weight cotangent", 1, sw),
+        (&gt, "parameter cotangent", 1, st),
+    ] {
+        if let Some(a) = a {
+            batch.expect(what, a.dims, core, size)?;
+        }
+    }
+    for b in 0..batch.count {
+        let c = layout.curve(degree, res, b)?;
+        c.eval_batch_vjp(
+            layout.ts(res, b),
+            element(g.data, sg, b),
+            gc.as_mut().map(|a| element_mut(a.data, sc, b)),
+            gw.as_mut().map(|a| element_mut(a.data, sw, b)),
+            gt.as_mut().map(|a| element_mut(a.data, st, b)),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,210 @@
+//! Evaluation of a tensor-product B-spline in `N` variables,
+//! `S(x) = Σ_k Π_a N_{k_a,p_a}(x_a) P_k`, as XLA FFI handlers, with its JVP and VJP with
+//! respect to the control net `P` and the points `x`
+//! (`docs/theory/derivatives.md#tensor-product-splines`):
+//!
+//! | target | arguments | attributes | results |
+//! |---|---|---|---|
+//! | `lekalo_tensor_eval` | `knots_0` … `knots_{N−1}` (1-D each), net `(n_0, …, n_{N−1}, dim)`, x `(m, N)` | `n_vars`, `degree_0` … `degree_{N−1}` | `S` `(m, dim)` |
+//! | `lekalo_tensor_jvp` | the same, [`Ṗ` as the net], [`ẋ` `(m, N)`] | the same, `with_control`, `with_point` | `Ṡ` `(m, dim)` |
+//! | `lekalo_tensor_vjp` | the same, `ḡ` `(m, dim)` | the same, `with_control`, `with_point` | [`P̄` as the net], [`x̄` `(m, N)`] |
+//!
+//! The bracketed buffers are present when the attribute of the same name is true; every buffer
+//! may have leading batch axes (the same for all). The values are
+//! [`TensorBSpline::eval_batch`]'s (P&T A2.2 a direction), the JVP
+//! [`TensorBSpline::eval_batch_jvp`]'s, the VJP [`TensorBSpline::eval_batch_vjp`]'s.
+
+use lekalo::{Points, TensorBSpline};
+
+use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::operands::{
+    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
+    Batch,
+};
+use super::Handler;
+
+/// The handlers of this module, by target name.
+pub(super) const HANDLERS: &[(&str, Handler)] = &[
+    ("lekalo_tensor_eval", tensor_eval),
+    ("lekalo_tensor_jvp", tensor_jvp),
+    ("lekalo_tensor_vjp", tensor_vjp),
+];
+
+/// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
+const KINDS: [&str; 2] = ["with_control", "with_point"];
+
+extern "C" fn tensor_eval(frame: *mut CallFrame) -> *mut XlaError {
+    handle(frame, "lekalo.jax.tensor_bspline_eval", eval_body)
+}
+
+extern "C" fn tensor_jvp(frame: *mut CallFrame) -> *mut XlaError {
+    handle(
+        frame,
+        "lekalo.jax.tensor_bspline_eval (forward derivative)",
+        jvp_body,
+    )
+}
+
+extern "C" fn tensor_vjp(frame: *mut CallFrame) -> *mut XlaError {
+    handle(
+        frame,
+        "lekalo.jax.tensor_bspline_eval (reverse derivative)",
+        vjp_body,
+    )
+}
+
+/// The degrees, one a variable (attributes `n_vars`, `degree_0`, …).
+fn degrees(call: &Call<'_>) -> Result<Vec<usize>, String> {
+    let n = count_attr(call, "n_vars")?;
+    if n == 0 {
+        return Err("a tensor-product spline needs at least one variable".into());
+    }
+    (0..n)
+        .map(|a| count_attr(call, &format!("degree_{a}")))
+        .collect()
+}
+
+/// The residuals of every target (`N` knot vectors, the net, the points): the batch, the
+/// element size of each (knots first, then the net and the points) and the dimension.
+struct Layout<'a> {
+    batch: Batch<'a>,
+    sizes: Vec<usize>,
+    dim: usize,
+}
+
+impl<'a> Layout<'a> {
+    fn of(res: &[In<'a>], degrees: &[usize]) -> Result<Self, String> {
+        let n = degrees.len();
+        if res.len() != n + 2 {
+            return Err(count_error("arguments", n + 2, res.len()));
+        }
+        let (knots, net, x) = (&res[..n], &res[n], &res[n + 1]);
+        let batch = Batch::of("knots[0]", knots[0].dims, 1)?;
+        let mut sizes = Vec::with_capacity(n + 2);
+        for (a, k) in knots.iter().enumerate() {
+            sizes.push(batch.size(&format!("knots[{a}]"), k.dims, 1)?);
+        }
+        sizes.push(batch.size("control net", net.dims, n + 1)?);
+        sizes.push(batch.size("points", x.dims, 2)?);
+        if x.dims.last().and_then(|&d| usize::try_from(d).ok()) != Some(n) {
+            return Err(format!(
+                "points of shape {:?}: the last axis must hold the {n} coordinates",
+                x.dims
+            ));
+        }
+        // the net's axes must be those the knots and degrees imply (their product alone is
+        // what the constructor can check)
+        let axes = &net.dims[net.dims.len() - n - 1..net.dims.len() - 1];
+        for (a, ((&size, &p), &axis)) in sizes.iter().zip(degrees).zip(axes).enumerate() {
+            if usize::try_from(axis).ok() != size.checked_sub(p + 1) {
+                return Err(format!(
+                    "control net of shape {:?}: axis {a} has {axis} points, knots[{a}] \
+                     ({size} knots) of degree {p} need {}",
+                    net.dims,
+                    size.saturating_sub(p + 1)
+                ));
+            }
+        }
+        let dim = last_axis("control net", net.dims)?;
+        Ok(Layout { batch, sizes, dim })
+    }
+
+    /// The spline of batch element `b`, built (and validated) by [`TensorBSpline::new`].
+    fn spline(&self, degrees: &[usize], res: &[In<'_>], b: usize) -> Result<TensorBSpline, String> {
+        let n = degrees.len();
+        let knots = (0..n)
+            .map(|a| element(res[a].data, self.sizes[a], b).to_vec())
+            .collect();
+        let net = element(res[n].data, self.sizes[n], b).to_vec();
+        let points = Points::from_flat(self.dim, net).map_err(|e| e.to_string())?;
+        TensorBSpline::new(degrees.to_vec(), knots, points).map_err(|e| e.to_string())
+    }
+
+    /// The element sizes of the net and of the points.
+    fn net_and_points(&self) -> (usize, usize) {
+        let n = self.sizes.len() - 2;
+        (self.sizes[n], self.sizes[n + 1])
+    }
+}
+
+fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degrees = degrees(call)?;
+    let Call { args, rets, .. } = call;
+    let layout = Layout::of(args, &degrees)?;
+    let (_, sx) = layout.net_and_points();
+    let values = single(rets)?;
+    let sv = layout.batch.size("values", values.dims, 2)?;
+    let x = &args[degrees.len() + 1];
+    for b in 0..layout.batch.count {
+        let s = layout.spline(&degrees, args, b)?;
+        s.eval_batch(
+            element(x.data, sx, b),
+            None,
+            element_mut(values.data, sv, b),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degrees = degrees(call)?;
+    let present = flags(call, KINDS);
+    let Call { args, rets, .. } = call;
+    let (res, [dc, dx]) = tangents(args, degrees.len() + 2, present)?;
+    let layout = Layout::of(res, &degrees)?;
+    let (batch, (sn, sx)) = (&layout.batch, layout.net_and_points());
+    let n = degrees.len();
+    let tangent = single(rets)?;
+    let sv = batch.size("tangent", tangent.dims, 2)?;
+    if let Some(a) = dc {
+        batch.expect("control-net tangent", a.dims, n + 1, sn)?;
+    }
+    if let Some(a) = dx {
+        batch.expect("point tangent", a.dims, 2, sx)?;
+    }
+    // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
+    let mut values = vec![0.0; sv];
+    for b in 0..batch.count {
+        let s = layout.spline(&degrees, res, b)?;
+        s.eval_batch_jvp(
+            element(res[n + 1].data, sx, b),
+            dc.map(|a| element(a.data, sn, b)),
+            dx.map(|a| element(a.data, sx, b)),
+            &mut values,
+            element_mut(tangent.data, sv, b),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
+    let degrees = degrees(call)?;
+    let present = flags(call, KINDS);
+    let Call { args, rets, .. } = call;
+    let n = degrees.len();
+    let (res, [g]) = tangents(args, n + 2, [true])?;
+    let g = g.ok_or("no cotangent")?;
+    let layout = Layout::of(res, &degrees)?;
+    let (batch, (sn, sx)) = (&layout.batch, layout.net_and_points());
+    let sg = batch.size("cotangent", g.dims, 2)?;
+    let [mut gc, mut gx] = cotangents(rets, present)?;
+    if let Some(a) = &gc {
+        batch.expect("control-net cotangent", a.dims, n + 1, sn)?;
+    }
+    if let Some(a) = &gx {
+        batch.expect("point cotangent", a.dims, 2, sx)?;
+    }
+    for b in 0..batch.count {
+        let s = layout.spline(&degrees, res, b)?;
+        s.eval_batch_vjp(
+            element(res[n + 1].data, sx, b),
+            element(g.data, sg, b),
+            gc.as_mut().map(|a| element_mut(a.data, sn, b)),
+            gx.as_mut().map(|a| element_mut(a.data, sx, b)),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
