@@ -38,7 +38,8 @@ impl ApiError {
     }
 
     /// A 400 answer from a library error about `field` (504 for [`lekalo::Error::Cancelled`]:
-    /// the deadline passed).
+    /// the deadline passed). `field` is what the handler chose after asking the error's key
+    /// ([`field_of`]); a handler with one default field calls [`ApiError::lib_or`].
     pub fn lib(field: &str, e: &lekalo::Error) -> Self {
         let mut a = ApiError::bad(field, e.to_string());
         if matches!(e, lekalo::Error::Cancelled { .. }) {
