@@ -73,8 +73,8 @@ where
 /// The command line's name of each argument key of the library's errors ([`Error::arg`]): the
 /// one table from the library's keys to the options, `None` for an argument that no option of
 /// the command line sets (or that different commands spell differently), whose errors are
-/// written in the library's words; each such key is listed with its reason in
-/// [`WITHOUT_OPTION`]. Exhaustive, so that a new key does not compile until it is named here.
+/// written in the library's words; each such key is listed with its reason in `WITHOUT_OPTION`
+/// (beside the tests). Exhaustive, so that a new key does not compile until it is named here.
 pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
     Some(match arg {
         Arg::Knots => "--knots",
