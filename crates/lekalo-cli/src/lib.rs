@@ -21,8 +21,9 @@
 //! - `demo/`: `lekalo demo`.
 //!
 //! Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad arguments, a value
-//! outside the domain — the message names the file, line and field); 3 internal failure
-//! (cannot write the output, rendering failed, a demo check did not reproduce its document);
+//! outside the domain, an output path whose folder does not exist — the message names the file,
+//! line and field, or the option); 3 internal failure (writing failed on valid input, e.g. a
+//! full disk; rendering failed; a demo check did not reproduce its document);
 //! 128 + the signal when interrupted (130 for Ctrl-C, 143 for SIGTERM).
 
 use std::ffi::OsString;

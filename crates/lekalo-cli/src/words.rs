@@ -73,8 +73,8 @@ where
 /// The command line's name of each argument key of the library's errors ([`Error::arg`]): the
 /// one table from the library's keys to the options, `None` for an argument that no option of
 /// the command line sets (or that different commands spell differently), whose errors are
-/// written in the library's words. Exhaustive, so that a new key does not compile until it is
-/// named here.
+/// written in the library's words; each such key is listed with its reason in `WITHOUT_OPTION`
+/// (beside the tests). Exhaustive, so that a new key does not compile until it is named here.
 pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
     Some(match arg {
         Arg::Knots => "--knots",
@@ -86,40 +86,80 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
         Arg::Rule => "--rule",
         Arg::Direction => "--dir",
         Arg::Expression => "--function",
-        Arg::Continuity => "--continuity",
+        Arg::Continuity | Arg::ContinuityConditions => "--continuity",
+        Arg::CornerWindow | Arg::CornerFraction | Arg::CornerLength => "--window",
+        Arg::S => "--s",
+        Arg::Tolerance => "--tolerance",
+        Arg::Times => "--times",
+        Arg::Knot => "--at",
+        Arg::Bbox => "--bbox",
         Arg::Weights
         | Arg::ControlPoints
         | Arg::Breakpoints
-        | Arg::ContinuityConditions
-        | Arg::CornerWindow
-        | Arg::CornerFraction
-        | Arg::CornerLength
         | Arg::Lambda
-        | Arg::S
-        | Arg::Tolerance
-        | Arg::Times
-        | Arg::Knot
         | Arg::Eps
-        | Arg::MaxKnots
-        | Arg::Bbox => return None,
+        | Arg::MaxKnots => return None,
     })
 }
 
-/// The message of a failed command: a library error refusing the value of an argument the
-/// command line has an option for is written with that option (`--knots: …`), any other as
-/// it is, with its context (`file: …`).
+/// The keys without an option ([`option`] is `None`), each with the reason; the table test
+/// fails for a key that has neither an option nor a line here.
+#[cfg(test)]
+const WITHOUT_OPTION: &[(Arg, &str)] = &[
+    (
+        Arg::Weights,
+        "`make --weights` sets NURBS weights, `fit --weights` data weights; the library's \
+         weights also come from curves it builds itself",
+    ),
+    (
+        Arg::ControlPoints,
+        "`make --control` is one source; `fit --ctrl` (a count) and the curves the library \
+         builds are others",
+    ),
+    (
+        Arg::Breakpoints,
+        "`pp quasi --breakpoints`, but also the breakpoints a closed fit and a pp-form file give",
+    ),
+    (
+        Arg::Lambda,
+        "`fit --smooth` for curves, `fit --penalty` for scattered surfaces",
+    ),
+    (
+        Arg::Eps,
+        "no option sets the rank threshold (Python's `eps`)",
+    ),
+    (
+        Arg::MaxKnots,
+        "no option sets the knot budget (Python's `max_knots`)",
+    ),
+];
+
+/// The message of a failed command: a library error about an argument the command line has an
+/// option for is written under that option: a refused value with the library's reason
+/// (`--knots: …`), any other error about it whole (`--tolerance: tolerance -1: it must be …`);
+/// any other error as it is, with its context (`file: …`).
 pub(crate) fn message(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
-        if let Some(lib @ Error::InvalidArgument { reason, .. }) = cause.downcast_ref::<Error>() {
+        if let Some(lib) = cause.downcast_ref::<Error>() {
             if let Some(option) = lib.arg().and_then(option) {
-                parts.push(format!("{option}: {reason}"));
+                parts.push(match lib {
+                    Error::InvalidArgument { reason, .. } => format!("{option}: {reason}"),
+                    _ => format!("{option}: {lib}"),
+                });
                 break;
             }
         }
         parts.push(cause.to_string());
     }
     format!("error: {}", parts.join(": "))
+}
+
+/// A library error about the input `path` (a file, or `-`): the error stays in the chain under
+/// the path, so that [`message`] names the option of its argument key and the exit code is
+/// that of bad input.
+pub(crate) fn in_file(path: &std::path::Path, e: Error) -> anyhow::Error {
+    anyhow::Error::from(e).context(path.display().to_string())
 }
 
 #[cfg(test)]
@@ -131,6 +171,38 @@ mod tests {
         for (key, _, _) in lekalo::vocabulary::all() {
             assert!(option(key).is_some(), "no option for the key {key}");
         }
+    }
+
+    /// Every key has an option, or is listed in `WITHOUT_OPTION` with the reason: a new key, or
+    /// a key whose option is forgotten, fails here.
+    #[test]
+    fn every_key_has_an_option_or_a_reason() {
+        for &arg in Arg::ALL {
+            let listed = WITHOUT_OPTION.iter().any(|(a, _)| *a == arg);
+            match option(arg) {
+                Some(o) => assert!(!listed, "{arg:?} has the option {o} and a reason for none"),
+                None => assert!(
+                    listed,
+                    "{arg:?} has no option of the command line and no reason"
+                ),
+            }
+        }
+        assert_eq!(option(Arg::Tolerance), Some("--tolerance"));
+    }
+
+    /// An error about a key that is not a refused value is written whole under the option.
+    #[test]
+    fn other_errors_about_a_key_name_its_option() {
+        let e = in_file(
+            std::path::Path::new("pts.csv"),
+            Error::NonPositiveTolerance { value: -1.0 },
+        );
+        assert_eq!(
+            message(&e),
+            "error: pts.csv: --tolerance: tolerance -1: it must be finite and > 0 (a distance in \
+             the data's units)"
+        );
+        assert_eq!(crate::exit::exit_code(&e), crate::exit::EXIT_BAD_INPUT);
     }
 
     /// Each key the command line names: a library error refusing it is written with the

@@ -98,8 +98,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[PathBuf]) -> IoResult<(
 ///
 /// # Errors
 /// [`IoError::WouldOverwriteInput`] if `path` is one of `inputs`; [`IoError::WriteProtected`]
-/// for a write-protected target without `force`; [`IoError::Write`] if the target is a
-/// directory, the directory is not writable or the rename fails.
+/// for a write-protected target without `force`; [`IoError::OutputPath`] if the target is a
+/// directory, or its folder does not exist or is not writable; [`IoError::Write`] if writing
+/// or the rename fails.
 pub fn write_atomic_with(
     path: &Path,
     bytes: &[u8],
@@ -206,9 +207,10 @@ fn write_atomic_core(
             return fill(&mut w).and_then(|()| w.flush()).map_err(write_err);
         }
         Target::Directory => {
-            return Err(write_err(std::io::Error::other(
-                "it is a directory; give a file name",
-            )))
+            return Err(IoError::OutputPath {
+                path: path.to_path_buf(),
+                reason: "it is a directory; give a file name".into(),
+            })
         }
         Target::File(resolved) => resolved,
     };
@@ -238,7 +240,7 @@ fn write_atomic_core(
         // gave: the error names the output, with the operating system's reason only
         let tmp = builder
             .tempfile_in(&dir)
-            .map_err(|e| write_err(temporary_file_error(&e, &dir)))?;
+            .map_err(|e| temporary_file_error(path, &e, &dir))?;
         guard.push(tmp.path().to_path_buf());
         tmp
     };
@@ -256,22 +258,32 @@ fn write_atomic_core(
     result.map_err(write_err)
 }
 
-/// The error of creating the temporary file in `dir` in the words of the output's folder:
-/// tempfile's own text names the temporary file (".lekalo-XXXXXX.tmp"), which the user never
-/// gave.
-fn temporary_file_error(e: &std::io::Error, dir: &Path) -> std::io::Error {
-    let reason = match e.kind() {
-        std::io::ErrorKind::NotFound => format!(
+/// The error of creating the temporary file in `dir` for the output `path`, in the words of the
+/// output's folder: tempfile's own text names the temporary file (".lekalo-XXXXXX.tmp"), which
+/// the user never gave. A missing or closed folder is the user's choice of path
+/// ([`IoError::OutputPath`]); anything else a failure to write ([`IoError::Write`]).
+fn temporary_file_error(path: &Path, e: &std::io::Error, dir: &Path) -> IoError {
+    let output_path = |reason: String| IoError::OutputPath {
+        path: path.to_path_buf(),
+        reason,
+    };
+    match e.kind() {
+        std::io::ErrorKind::NotFound => output_path(format!(
             "the folder {} does not exist; create it or choose another output path",
             dir.display()
-        ),
-        std::io::ErrorKind::PermissionDenied => format!(
+        )),
+        std::io::ErrorKind::PermissionDenied => output_path(format!(
             "no permission to create a file in {}; choose another output path",
             dir.display()
-        ),
-        kind => format!("cannot create a file in {}: {kind}", dir.display()),
-    };
-    std::io::Error::new(e.kind(), reason)
+        )),
+        kind => IoError::Write {
+            path: path.to_path_buf(),
+            error: std::io::Error::new(
+                kind,
+                format!("cannot create a file in {}: {kind}", dir.display()),
+            ),
+        },
+    }
 }
 
 /// Bytes written to a temporary file between two requests to flush it to the disk.
@@ -625,9 +637,10 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "two");
         // only the output remains: no temporary files left behind
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        // a missing folder is the caller's choice of path, not a failure to write
         let e = write_atomic(&dir.path().join("no/such/dir/x"), b"", &[]).unwrap_err();
         assert!(
-            matches!(e, IoError::Write { .. }) && !e.is_bad_input(),
+            matches!(e, IoError::OutputPath { .. }) && e.is_bad_input(),
             "{e}"
         );
         let text = e.to_string();
@@ -638,6 +651,7 @@ mod tests {
         assert!(!text.contains(".lekalo-"), "no temporary name: {text}");
         let e = write_atomic(dir.path(), b"", &[]).unwrap_err();
         assert!(e.to_string().contains("it is a directory"), "{e}");
+        assert!(e.is_bad_input(), "a folder given as the output: {e}");
         let e = read_input(&dir.path().join("missing.json")).unwrap_err();
         assert!(e.to_string().contains("missing.json"), "{e}");
     }

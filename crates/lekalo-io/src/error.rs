@@ -84,7 +84,18 @@ pub enum IoError {
         /// The operating system's error.
         error: std::io::Error,
     },
-    /// An output file could not be written.
+    /// The output path cannot be written as given: its folder does not exist or may not be
+    /// written in, or it names a folder. The user's input (the reason says the fix: create the
+    /// folder, or choose another path), unlike a failure while writing ([`IoError::Write`]).
+    #[error("cannot write {}: {reason}", path.display())]
+    OutputPath {
+        /// The output path as given.
+        path: PathBuf,
+        /// What is wrong with it and the fix, naming the folder.
+        reason: String,
+    },
+    /// An output file could not be written (the disk is full, the device failed, the rename
+    /// failed).
     #[error("cannot write {}: {error}", path.display())]
     Write {
         /// The file.
@@ -141,6 +152,7 @@ impl IoError {
             IoError::Syntax { .. }
             | IoError::Invalid { .. }
             | IoError::Read { .. }
+            | IoError::OutputPath { .. }
             | IoError::WouldOverwriteInput { .. }
             | IoError::WriteProtected { .. }
             | IoError::TooLarge { .. }

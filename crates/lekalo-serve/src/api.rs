@@ -93,7 +93,7 @@ pub(crate) fn points(job: &Job<'_>, rows: &[Vec<f64>], field: &str) -> ApiResult
             ),
         ));
     }
-    Points::from_rows(rows).map_err(|e| ApiError::lib(field, &e))
+    Points::from_rows(rows).map_err(|e| ApiError::lib_or(field, &e))
 }
 
 /// The answer of an order change: the view with its degree, real degree and the deviation of
@@ -343,7 +343,9 @@ pub(crate) fn bezier(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
             let by = r.by.unwrap_or(1);
             job.limits
                 .check_degree(c.degree().saturating_add(by), "by")?;
-            let e = c.elevate_degree(by).map_err(|e| ApiError::lib("by", &e))?;
+            let e = c
+                .elevate_degree(by)
+                .map_err(|e| ApiError::lib_or("by", &e))?;
             (e, None)
         }
         BezierOp::ReduceExact => (c.reduce_degree_exact(), None),
@@ -357,7 +359,7 @@ pub(crate) fn bezier(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
             };
             let red = c
                 .reduce_degree_approx(target, ends)
-                .map_err(|e| ApiError::lib("target", &e))?;
+                .map_err(|e| ApiError::lib_or("target", &e))?;
             (
                 red.curve,
                 Some(Deviation {
@@ -394,7 +396,9 @@ pub(crate) fn blend_deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     job.limits.check_degree(r.continuity, "continuity")?;
     let d = Deformation::new(&first, &second, r.continuity)
         .map_err(|e| ApiError::lib(deform_field(&e), &e))?;
-    let b = d.to_bezier().map_err(|e| ApiError::lib("continuity", &e))?;
+    let b = d
+        .to_bezier()
+        .map_err(|e| ApiError::lib_or("continuity", &e))?;
     let opts = ViewOptions {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
@@ -526,7 +530,7 @@ pub(crate) fn blend_spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     job.limits.check_points(pieces.control_count(), "points")?;
     let n = pieces
         .to_nurbs(&job.progress)
-        .map_err(|e| ApiError::lib("points", &e))?;
+        .map_err(|e| ApiError::lib_or("points", &e))?;
     let opts = ViewOptions {
         samples: r.samples.unwrap_or_else(default_samples),
         ..ViewOptions::default()
@@ -726,7 +730,7 @@ pub(crate) fn bezier_build(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     }
     let r: Req = parse(body)?;
     let c = BezierCurve::new(points(job, &r.control, "control")?)
-        .map_err(|e| ApiError::lib("control", &e))?;
+        .map_err(|e| ApiError::lib_or("control", &e))?;
     let real = c.real_degree();
     let v = view_in(job, &Object::Bezier(c), &r.view.options(), "control")?;
     Ok(bezier_answer(v, real, None))

@@ -38,7 +38,8 @@ impl ApiError {
     }
 
     /// A 400 answer from a library error about `field` (504 for [`lekalo::Error::Cancelled`]:
-    /// the deadline passed).
+    /// the deadline passed). `field` is what the handler chose after asking the error's key
+    /// ([`field_of`]); a handler with one default field calls [`ApiError::lib_or`].
     pub fn lib(field: &str, e: &lekalo::Error) -> Self {
         let mut a = ApiError::bad(field, e.to_string());
         if matches!(e, lekalo::Error::Cancelled { .. }) {
@@ -129,6 +130,35 @@ impl IntoResponse for ApiError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The keys without a field ([`field`] is `None`), each with the reason.
+    const WITHOUT_FIELD: &[(Arg, &str)] = &[
+        (
+            Arg::EndDerivatives,
+            "both derivatives: the interpolation handler names the one at fault",
+        ),
+        (Arg::Direction, "no request takes a surface direction"),
+        (
+            Arg::CornerWindow,
+            "the window is `fraction` or `length`: the corners handler names the one given",
+        ),
+        (Arg::Eps, "no request fits scattered data"),
+        (Arg::MaxKnots, "no request fits scattered data"),
+        (Arg::Bbox, "no request fits scattered data"),
+    ];
+
+    /// Every key has a field, or is listed in `WITHOUT_FIELD` with the reason: a new key, or a
+    /// key whose field is forgotten, fails here.
+    #[test]
+    fn every_key_has_a_field_or_a_reason() {
+        for &arg in Arg::ALL {
+            let listed = WITHOUT_FIELD.iter().any(|(a, _)| *a == arg);
+            match field(arg) {
+                Some(f) => assert!(!listed, "{arg:?} has the field {f} and a reason for none"),
+                None => assert!(listed, "{arg:?} has no request field and no reason"),
+            }
+        }
+    }
 
     /// Each key: a library error about it answers with the key's field (or the handler's
     /// default for a key without one), and with the library's message unchanged.

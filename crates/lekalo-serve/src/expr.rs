@@ -73,7 +73,7 @@ pub(crate) fn quasi(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     }
     // the interpolant's degree is order − 1
     limits.check_degree(r.order.saturating_sub(1), "order")?;
-    let f = Expression::parse(&r.expression).map_err(|e| ApiError::lib("expression", &e))?;
+    let f = Expression::parse(&r.expression).map_err(|e| ApiError::lib_or("expression", &e))?;
     // as `lekalo pp quasi`: ν = k − 1 continuous derivatives (C^(k−2)) at every interior
     // breakpoint unless `continuity` says otherwise
     let interior = r.breakpoints.len().saturating_sub(2);
@@ -126,7 +126,7 @@ pub(crate) fn quasi(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let s = sample_quasi_interpolant_expression(&space, tau(), &f, r.intervals)
         .map_err(|e| ApiError::lib_or(tau_field, &e))?;
     let q = lekalo::quasi_interpolate_expression(&space, tau(), &f)
-        .map_err(|e| ApiError::lib("expression", &e))?;
+        .map_err(|e| ApiError::lib_or("expression", &e))?;
     let opts = ViewOptions {
         samples: r.intervals + 1,
         basis_samples: r.basis_samples,

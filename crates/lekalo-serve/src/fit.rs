@@ -145,17 +145,18 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let (values, params) = if function {
         let x: Vec<f64> = pts.iter().map(|p| p[0]).collect();
         let y = Points::from_flat(1, pts.iter().map(|p| p[1]).collect())
-            .map_err(|e| ApiError::lib("points", &e))?;
+            .map_err(|e| ApiError::lib_or("points", &e))?;
         (y, x)
     } else {
         let u = parametrize(
             pts.as_view(),
             parametrization(r.parametrization.as_deref(), None)?,
         )
-        .map_err(|e| ApiError::lib("points", &e))?;
+        .map_err(|e| ApiError::lib_or("points", &e))?;
         (pts, u)
     };
-    let data = FitData::new(values.as_view(), &params).map_err(|e| ApiError::lib("points", &e))?;
+    let data =
+        FitData::new(values.as_view(), &params).map_err(|e| ApiError::lib_or("points", &e))?;
     let given = |v: Option<f64>, name: &str| {
         v.ok_or_else(|| ApiError::bad(name, format!("smoothing = {name} needs the value {name}")))
     };
@@ -201,7 +202,9 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     };
     // a function is drawn as its graph (x, y(x))
     let curve = if function {
-        fit.curve.graph().map_err(|e| ApiError::lib("points", &e))?
+        fit.curve
+            .graph()
+            .map_err(|e| ApiError::lib_or("points", &e))?
     } else {
         fit.curve
     };

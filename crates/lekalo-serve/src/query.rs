@@ -16,7 +16,7 @@ use crate::pool::Job;
 
 /// The curve of an object, prepared for queries (as `lekalo measure` and `lekalo project`).
 fn query_curve(obj: &Object) -> ApiResult<QueryCurve> {
-    obj.to_query().map_err(|e| ApiError::lib("curve", &e))
+    obj.to_query().map_err(|e| ApiError::lib_or("curve", &e))
 }
 
 #[derive(Debug, Deserialize)]
@@ -52,7 +52,7 @@ pub(crate) fn project(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     }
     let p = q
         .project(&r.point)
-        .map_err(|e| ApiError::lib("point", &e))?;
+        .map_err(|e| ApiError::lib_or("point", &e))?;
     Ok(answer(
         &Projection {
             t: p.t,
@@ -106,13 +106,13 @@ pub(crate) fn measure(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         .map_err(|e| ApiError::lib_or("curve", &e))?;
     let params = table
         .param_at_batch(&r.at_length)
-        .map_err(|e| ApiError::lib("at_length", &e))?;
+        .map_err(|e| ApiError::lib_or("at_length", &e))?;
     let at_length = r
         .at_length
         .iter()
         .zip(params)
         .map(|(&length, t)| {
-            let point = obj.eval(t).map_err(|e| ApiError::lib("curve", &e))?;
+            let point = obj.eval(t).map_err(|e| ApiError::lib_or("curve", &e))?;
             Ok(AtLength { length, t, point })
         })
         .collect::<ApiResult<Vec<_>>>()?;

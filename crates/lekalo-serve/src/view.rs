@@ -215,11 +215,11 @@ pub fn view_in(
             if i % per_step == 0 {
                 progress
                     .step("curvature comb", i as u64, n as u64)
-                    .map_err(|e| ApiError::lib("curve", &e))?;
+                    .map_err(|e| ApiError::lib_or("curve", &e))?;
             }
             let d = obj
                 .eval_derivatives(ti, 2)
-                .map_err(|e| ApiError::lib("curve", &e))?;
+                .map_err(|e| ApiError::lib_or("curve", &e))?;
             let rows: Vec<&[f64]> = d.iter().collect();
             let (d1, d2) = (rows[1], rows[2]);
             curvature.push(lekalo::curvature(d1, d2));
@@ -254,8 +254,8 @@ fn eval_batch(obj: &Object, ts: &[f64], progress: &Progress<'_>) -> ApiResult<Po
     let dim = obj.dim();
     let mut out = vec![0.0; ts.len() * dim];
     obj.eval_batch_with_progress(ts, &mut out, progress)
-        .map_err(|e| ApiError::lib("curve", &e))?;
-    Points::from_flat(dim, out).map_err(|e| ApiError::lib("curve", &e))
+        .map_err(|e| ApiError::lib_or("curve", &e))?;
+    Points::from_flat(dim, out).map_err(|e| ApiError::lib_or("curve", &e))
 }
 
 /// The basis functions of degree `p` over `knots`, sampled at `m` parameters
@@ -272,7 +272,7 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
         })
         .collect();
     let (spans, values) =
-        basis_functions_many(knots, p, &t).map_err(|e| ApiError::lib("knots", &e))?;
+        basis_functions_many(knots, p, &t).map_err(|e| ApiError::lib_or("knots", &e))?;
     for (j, (&span, vals)) in spans.iter().zip(values.chunks_exact(p + 1)).enumerate() {
         for (r, &v) in vals.iter().enumerate() {
             let Some(f) = functions.get_mut(span + r - p) else {
@@ -293,7 +293,8 @@ fn basis_view(knots: &KnotVector, p: usize, m: usize, at: Option<f64>) -> ApiRes
     }
     let (active, active_values) = match at {
         Some(x) => {
-            let (span, vals) = basis_functions(knots, p, x).map_err(|e| ApiError::lib("at", &e))?;
+            let (span, vals) =
+                basis_functions(knots, p, x).map_err(|e| ApiError::lib_or("at", &e))?;
             ((span - p..=span).collect(), vals)
         }
         None => (Vec::new(), Vec::new()),

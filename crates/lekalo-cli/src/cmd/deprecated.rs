@@ -7,6 +7,7 @@ const DEPRECATED: &[(&[&str], &str, &str)] = &[
     (&["interpolate"], "--dn", "--end-derivative"),
     (&["fit"], "--d0", "--start-derivative"),
     (&["fit"], "--dn", "--end-derivative"),
+    (&["fit"], "--tol", "--tolerance"),
     (&["blend", "spline"], "--params", "--param"),
     (&["blend", "deform"], "-k", "--continuity"),
     (&["blend", "spline"], "-k", "--continuity"),
@@ -61,5 +62,7 @@ mod tests {
         assert!(w("lekalo blend spline pts.csv --continuity 3").is_empty());
         assert!(w("lekalo knot insert c.json --at 0.5").is_empty());
         assert!(w("lekalo knots curry-schoenberg -k 3")[0].contains("--order"));
+        assert!(w("lekalo fit pts.csv --tol 0.1")[0].contains("--tolerance"));
+        assert!(w("lekalo fit pts.csv --tolerance 0.1").is_empty());
     }
 }

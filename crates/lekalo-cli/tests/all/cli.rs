@@ -231,17 +231,115 @@ fn bad_input_names_file_line_and_field() {
         .stderr(contains("degree"));
 }
 
+/// An output in a folder that does not exist is the user's input (exit code 2), named with the
+/// folder and the fix, for every command that writes (they share one atomic writer); nothing
+/// is created.
 #[test]
-fn internal_failure_is_exit_code_3() {
+fn an_output_in_a_missing_folder_is_bad_input() {
+    let d = dir_with(&[("ok.json", LECTURE), ("pts.csv", "0,0\n1,2\n2,1\n3,3\n")]);
+    let folder = p(&d, "no/such/dir");
+    let commands: [(&[&str], &str); 4] = [
+        (&["convert", "ok.json"], "out.json"),
+        (&["interpolate", "pts.csv"], "out.json"),
+        (&["knot", "insert", "ok.json", "--at", "1.5"], "out.json"),
+        (&["eval", "ok.json", "--samples", "5"], "out.csv"),
+    ];
+    for (args, name) in commands {
+        let out = folder.join(name);
+        lekalo()
+            .current_dir(d.path())
+            .args(args)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(2)
+            .stderr(contains(format!(
+                "cannot write {}: the folder {} does not exist; create it or choose \
+                 another output path",
+                out.display(),
+                folder.display()
+            )));
+    }
+    assert!(!d.path().join("no").exists());
+}
+
+/// An error about the tolerance names the option `--tolerance`, the one spelling of every
+/// command (the library's key `Arg::Tolerance`, through the command line's table), and exits
+/// with 2; `fit --tol`, the older spelling, is still read with a warning.
+#[test]
+fn an_error_about_the_tolerance_names_the_option() {
+    let d = dir_with(&[
+        ("c.json", LECTURE),
+        ("pts.csv", "0,0\n1,2\n2,1\n3,3\n4,0\n5,1\n"),
+    ]);
+    let cases: [(&[&str], &str); 8] = [
+        (
+            &["fit", "pts.csv", "--tolerance", "-1"],
+            "error: --tolerance: tolerance -1: it must be finite and > 0",
+        ),
+        (
+            &["offset", "c.json", "--distance", "0.1", "--tolerance=-1"],
+            "error: c.json: --tolerance: -1 is not a positive finite tolerance",
+        ),
+        (
+            &["intersect", "c.json", "c.json", "--tolerance=NaN"],
+            "error: c.json: --tolerance: NaN is not a positive finite tolerance",
+        ),
+        (
+            &["intersect", "c.json", "--self", "--tolerance=0"],
+            "error: c.json: --tolerance: 0 is not a positive finite tolerance",
+        ),
+        (
+            &["measure", "c.json", "--tolerance=0"],
+            "error: c.json: --tolerance: 0 is not a positive finite tolerance",
+        ),
+        (
+            &["knot", "remove", "c.json", "--at", "1", "--tolerance=-1"],
+            "error: --tolerance: ",
+        ),
+        (
+            &[
+                "blend",
+                "spline",
+                "pts.csv",
+                "--local",
+                "arcs",
+                "--tolerance=0",
+            ],
+            "error: --tolerance: ",
+        ),
+        (&["mesh", "c.json", "--tolerance=-1"], "--tolerance -1: "),
+    ];
+    for (args, needle) in cases {
+        lekalo()
+            .current_dir(d.path())
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(contains(needle));
+    }
+    lekalo()
+        .current_dir(d.path())
+        .args(["fit", "pts.csv", "--tol", "0.5"])
+        .assert()
+        .success()
+        .stderr(contains(
+            "`--tol` of `lekalo fit` is deprecated; write `--tolerance`",
+        ));
+}
+
+/// A failure to write on valid input (the device is full) is an internal failure: exit code 3.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_device_is_exit_code_3() {
     let d = dir_with(&[("ok.json", LECTURE)]);
     lekalo()
         .arg("convert")
         .arg(p(&d, "ok.json"))
-        .arg("-o")
-        .arg(p(&d, "no/such/dir/out.json"))
+        .args(["-o", "/dev/full"])
         .assert()
         .code(3)
-        .stderr(contains("cannot write"));
+        .stderr(contains("cannot write /dev/full"));
 }
 
 #[test]
@@ -800,7 +898,7 @@ fn closed_output_pipes_end_quietly() {
     )
     .unwrap();
     let mut child = std::process::Command::new(bin)
-        .args(["fit", "scan.csv", "--tol", "0.01", "-o", "fit.json"])
+        .args(["fit", "scan.csv", "--tolerance", "0.01", "-o", "fit.json"])
         .current_dir(d.path())
         .stderr(std::process::Stdio::piped())
         .spawn()

@@ -208,7 +208,7 @@ fn tolerance_fit_stays_within_tol_and_writes_a_file() {
         .args([
             "fit",
             input.to_str().unwrap(),
-            "--tol",
+            "--tolerance",
             "1e-3",
             "-o",
             output.to_str().unwrap(),
@@ -219,7 +219,13 @@ fn tolerance_fit_stays_within_tol_and_writes_a_file() {
     let v: serde_json::Value = serde_json::from_str(&fs::read_to_string(&output).unwrap()).unwrap();
     assert_eq!(v["type"], "bspline_curve");
     let r = run_json(
-        &["fit", input.to_str().unwrap(), "--tol", "1e-3", "--json"],
+        &[
+            "fit",
+            input.to_str().unwrap(),
+            "--tolerance",
+            "1e-3",
+            "--json",
+        ],
         "",
     );
     assert!(r["report"]["max_deviation"].as_f64().unwrap() <= 1e-3);
@@ -299,7 +305,7 @@ fn bad_inputs_exit_2_with_the_reason() {
             vec!["fit", "-", "--function", "--s", "-2"],
             "must be finite and ≥ 0",
         ),
-        (vec!["fit", "-", "--tol", "0"], "tolerance"),
+        (vec!["fit", "-", "--tolerance", "0"], "tolerance"),
         (
             vec![
                 "fit",
@@ -400,7 +406,10 @@ fn periodic_fits_close_the_curve() {
     );
     assert!(v["report"]["max_residual"].as_f64().unwrap() < 1e-3);
     for (args, why) in [
-        (vec!["fit", "-", "--periodic", "--tol", "0.1"], "--periodic"),
+        (
+            vec!["fit", "-", "--periodic", "--tolerance", "0.1"],
+            "--periodic",
+        ),
         (vec!["fit", "-", "--periodic", "--clamp-ends"], "no ends"),
         (vec!["fit", "-", "--periodic", "--s", "-1"], "s"),
     ] {
@@ -636,8 +645,8 @@ fn shape_constraints_from_options() {
             "or --knots with --s",
         ),
         (
-            &["fit", "-", "--function", "--tol", "0.1", "--convex"][..],
-            "drop --tol, --robust",
+            &["fit", "-", "--function", "--tolerance", "0.1", "--convex"][..],
+            "drop --tolerance, --robust",
         ),
         (
             &["fit", "-", "--function", "--min", "0@1"][..],

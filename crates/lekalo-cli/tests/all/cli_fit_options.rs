@@ -202,7 +202,7 @@ fn domain_refuses_what_it_cannot_do_and_says_why() {
         ],
     );
     assert!(e.contains("--knots: the knot 13 is not inside"), "{e}");
-    for mode in [["--smooth", "gcv"], ["--tol", "0.1"]] {
+    for mode in [["--smooth", "gcv"], ["--tolerance", "0.1"]] {
         let e = refusal(
             &d,
             &[

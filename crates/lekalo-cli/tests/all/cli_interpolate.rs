@@ -351,7 +351,7 @@ fn coinciding_points_are_named_by_their_lines() {
     let d = tempfile::tempdir().unwrap();
     let pts = d.path().join("dup.csv");
     fs::write(&pts, "x,y\n0,0\n# a comment\n1,1\n\n1,1\n3,9\n").unwrap();
-    for args in [&["interpolate"][..], &["fit", "--tol", "0.1"]] {
+    for args in [&["interpolate"][..], &["fit", "--tolerance", "0.1"]] {
         lekalo()
             .args(args)
             .arg(&pts)

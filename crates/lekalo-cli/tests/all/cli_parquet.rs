@@ -222,7 +222,7 @@ fn fit_a_batch_as_one_file_each() {
     for mode in [
         &["--ctrl", "8"][..],
         &["--smooth", "1e-4"],
-        &["--tol", "0.01"],
+        &["--tolerance", "0.01"],
     ] {
         let out = p(&d, "fitted.parquet");
         lekalo()

@@ -527,7 +527,11 @@ fn offset_refuses_bad_input() {
     for (file, args, says) in [
         ("space.json", ["--distance", "1"], "dimension"),
         ("wave.json", ["--distance", "nan"], "offset distance"),
-        ("wave.json", ["--tolerance", "0"], "offset tolerance"),
+        (
+            "wave.json",
+            ["--tolerance", "0"],
+            "--tolerance: 0 is not a positive",
+        ),
     ] {
         lekalo()
             .arg("offset")

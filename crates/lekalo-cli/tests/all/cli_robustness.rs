@@ -852,7 +852,7 @@ fn an_interrupted_fit_stops_cleanly_with_the_signal_code_in_every_mode() {
     let modes: [&[&str]; 4] = [
         &["--smooth", "gcv"],
         &["--s", "1e-9"],
-        &["--tol", "1e-7"],
+        &["--tolerance", "1e-7"],
         &["--periodic", "--s", "1e-9"],
     ];
     let mut interrupted = 0;

@@ -182,6 +182,20 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     )
     .await;
     assert_eq!(field, "target");
+    // the library's refusal of the target degree and the limit on the elevated degree name
+    // their fields; the library's key, when its error has one, would name another
+    let (field, msg) = bad(
+        "/api/bezier",
+        json!({"curve": obj, "op": "reduce_approx", "target": 2, "ends": "tangents"}).to_string(),
+    )
+    .await;
+    assert_eq!(field, "target", "{msg}");
+    let (field, msg) = bad(
+        "/api/bezier",
+        json!({"curve": obj, "op": "elevate", "by": 1_000_000}).to_string(),
+    )
+    .await;
+    assert_eq!(field, "by", "{msg}");
 
     let down = [[0.0, 0.0], [2.0, -2.0], [4.0, 0.0]];
     let second = BezierCurve::new(Points::from_2d(&down).expect("points")).expect("curve");
@@ -251,6 +265,13 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
     )
     .await;
     assert_eq!(field, "t", "{msg}");
+    // a refused tolerance is named by the library's key, through the server's table
+    let (field, msg) = bad(
+        "/api/knot/remove",
+        json!({"curve": curve, "t": 0.5, "tolerance": -1.0}).to_string(),
+    )
+    .await;
+    assert_eq!(field, "tolerance", "{msg}");
 }
 
 #[tokio::test]

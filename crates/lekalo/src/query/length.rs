@@ -422,7 +422,10 @@ impl ArcLength<'_> {
     /// [`Error::TooLarge`] if `2^16` steps do not reach the tolerance (a cusp or a tolerance
     /// near rounding).
     pub fn parametrized_spline(&self, tolerance: f64) -> Result<(BSplineCurve, f64)> {
-        check_tolerance("arc-length spline tolerance", tolerance)?;
+        check_tolerance(
+            What::of(Arg::Tolerance, "arc-length spline tolerance"),
+            tolerance,
+        )?;
         let total = self.total();
         if total <= 0.0 {
             return Err(Error::InvalidArgument {

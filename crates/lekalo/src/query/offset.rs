@@ -7,7 +7,7 @@ use super::pieces::{check_tolerance, dist, QueryCurve};
 use crate::basis::BasisScratch;
 use crate::error::{check_finite, Error, Result};
 use crate::fit::{least_squares, EndConstraints, FitData};
-use crate::{BSplineCurve, KnotVector, PointsRef};
+use crate::{Arg, BSplineCurve, KnotVector, PointsRef, What};
 
 /// Samples of the exact offset in every knot span of the fit (and one at every knot): a
 /// cubic piece has four coefficients, so the least-squares problem is well posed span by span.
@@ -367,7 +367,7 @@ impl QueryCurve {
                         let h = breaks[k + 1] - breaks[k];
                         if h <= MIN_SPAN * (hi - lo) {
                             return Err(Error::InvalidArgument {
-                                what: "offset tolerance".into(),
+                                what: What::of(Arg::Tolerance, "offset tolerance"),
                                 reason: format!(
                                     "{tolerance} is not reached even on spans of {h:e} near \
                                      t = {}: raise it above the rounding of the curve's \
@@ -452,12 +452,12 @@ impl QueryCurve {
             });
         }
         check_finite("offset distance", &[d])?;
-        check_tolerance("offset tolerance", tolerance)?;
+        check_tolerance(What::of(Arg::Tolerance, "offset tolerance"), tolerance)?;
         // the offset's coordinates are known to about 1e-16 of the curve's size plus |d|
         let rounding = 1e-14 * (self.scale + d.abs());
         if tolerance < rounding {
             return Err(Error::InvalidArgument {
-                what: "offset tolerance".into(),
+                what: What::of(Arg::Tolerance, "offset tolerance"),
                 reason: format!(
                     "{tolerance} is below the rounding of the offset's coordinates (about \
                      1e-14 of the curve's size plus the distance: {rounding:e}); raise it"

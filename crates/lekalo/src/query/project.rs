@@ -11,7 +11,7 @@
 //! Surfaces: best-first subdivision of the Bezier patches, pruned by the distance to the
 //! sub-patch boxes, then a clamped Newton iteration from each surviving small sub-patch.
 
-use crate::What;
+use crate::{Arg, What};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -322,7 +322,7 @@ impl QueryCurve {
     pub fn project_all(&self, point: &[f64], tolerance: f64) -> Result<Vec<CurveProjection>> {
         if !(tolerance >= 0.0 && tolerance.is_finite()) {
             return Err(Error::InvalidArgument {
-                what: "projection tolerance".into(),
+                what: What::of(Arg::Tolerance, "projection tolerance"),
                 reason: format!("{tolerance} is not a non-negative finite distance"),
             });
         }

@@ -5,7 +5,10 @@ use super::intersect::segment_distance;
 use super::pieces::QueryCurve;
 use super::surface::{split_curve, QuerySurface};
 use crate::error::{check_finite, readable, Error, Result};
-use crate::Points;
+use crate::{Arg, Points, What};
+
+/// The tolerance of a mesh or polyline, as its errors name it.
+pub(crate) const TESSELLATION_TOLERANCE: What = What::of(Arg::Tolerance, "tessellation tolerance");
 
 /// Smallest tolerance accepted, relative to the object's size: below it rounding, not the
 /// geometry, would decide whether a chord is within the tolerance.
@@ -103,10 +106,10 @@ pub(crate) fn check_deviation(what: &str, deviation: f64, tolerance: f64) -> Res
 }
 
 pub(crate) fn check_tol(tol: f64, scale: f64) -> Result<()> {
-    check_finite("tessellation tolerance", &[tol])?;
+    check_finite(TESSELLATION_TOLERANCE, &[tol])?;
     if !(tol >= MIN_RELATIVE_TOLERANCE * scale) {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance".into(),
+            what: TESSELLATION_TOLERANCE,
             reason: format!(
                 "{} is below {} times the object's size {}, where rounding would decide the \
                  bound; use a tolerance of at least {}",
@@ -236,7 +239,7 @@ impl QueryCurve {
         let max = MAX_POLYLINE_POINTS as f64;
         if points > max {
             return Err(Error::InvalidArgument {
-                what: "tessellation tolerance".into(),
+                what: TESSELLATION_TOLERANCE,
                 reason: format!(
                     "{tolerance:e} needs about {points:.1e} polyline points, more than the \
                      {MAX_POLYLINE_POINTS} a polyline may have; use a tolerance of at least {:.1e}",
@@ -301,6 +304,42 @@ pub(crate) mod tests {
             }
         );
         assert!(e.to_string().contains("at least 0.13"), "{e}");
+    }
+
+    /// A refused tolerance of any query carries the key `Arg::Tolerance`, so that every front
+    /// end names its own tolerance argument (`--tolerance`, `tolerance`), whatever the words of
+    /// the message.
+    #[test]
+    fn every_refused_query_tolerance_carries_the_key() {
+        let c = BSplineCurve::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [1.0, 3.0], [2.0, -2.0], [4.0, 2.0], [5.0, 0.0]])
+                .unwrap(),
+        )
+        .unwrap();
+        let q = QueryCurve::from_bspline(&c).unwrap();
+        for bad in [f64::NAN, -1.0, 0.0] {
+            let errors = [
+                ("polyline", q.polyline(bad).map(|_| ())),
+                ("offset", q.offset(0.1, bad).map(|_| ())),
+                ("intersect", q.intersect(&q, bad).map(|_| ())),
+                ("self_intersections", q.self_intersections(bad).map(|_| ())),
+                ("arc_length", q.arc_length(bad).map(|_| ())),
+                (
+                    "parametrized_spline",
+                    q.arc_length(1e-12)
+                        .and_then(|a| a.parametrized_spline(bad))
+                        .map(|_| ()),
+                ),
+            ];
+            for (what, r) in errors {
+                let e = r.expect_err(what);
+                assert_eq!(e.arg(), Some(Arg::Tolerance), "{what}({bad}): {e}");
+            }
+        }
+        let e = q.project_all(&[1.0, 1.0], -1.0).unwrap_err();
+        assert_eq!(e.arg(), Some(Arg::Tolerance), "project_all: {e}");
     }
 
     #[test]

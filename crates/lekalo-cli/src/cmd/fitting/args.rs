@@ -35,7 +35,7 @@ Modes (one of them; least squares by default):
   --s S              fewest knots with weighted residual sum of squares <= S (like splrep);
                      with --knots, the least k-th derivative jumps on those knots with RSS = S;
                      --domain A:B sets the end knots
-  --tol TOL          within TOL of every point (distance), few control points
+  --tolerance TOL    within TOL of every point (distance), few control points
   --robust huber|tukey   least squares that resists outliers (final weights in the report)
   --periodic         a closed curve (or periodic function), with --lsq/--ctrl/--knots or --s
 Surfaces: --grid ROWSxCOLS or --scattered (rows u,v,z), with --ctrl-grid NUxNV or the interior
@@ -65,7 +65,7 @@ Examples:
   lekalo fit xy.csv --function --smooth gcv --json
   lekalo fit xy.csv --function --s 0.05 --weights w.txt
   lekalo fit xy.csv --function --s 0.5 --knots 10,20
-  lekalo fit track.csv --tol 0.01 -o track.svg
+  lekalo fit track.csv --tolerance 0.01 -o track.svg
   lekalo fit xy.csv --function --ctrl 12 --robust tukey --json
   lekalo fit xy.csv --function --ctrl 10 --increasing --convex=0:15 --min 0
   lekalo fit xy.csv --function --smooth 1 --max 0.9 --concave=5:20 --through 0=0
@@ -92,10 +92,15 @@ pub(crate) struct FitArgs {
     /// Smoothing condition: the weighted residual sum of squares target.
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub(crate) s: Option<f64>,
-    /// Fit within this distance of every point.
-    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    /// Fit within this distance of every point. Formerly `--tol`.
+    #[arg(
+        long = "tolerance",
+        alias = "tol",
+        value_name = "TOL",
+        allow_hyphen_values = true
+    )]
     pub(crate) tol: Option<f64>,
-    /// With --tol: measure the deviation at the data parameters instead of the distance.
+    /// With --tolerance: measure the deviation at the data parameters instead of the distance.
     #[arg(long)]
     pub(super) parameter_deviation: bool,
     /// Iteratively reweighted least squares with this loss.
@@ -317,7 +322,7 @@ impl FitArgs {
             if self.smooth.is_some() || self.tol.is_some() {
                 return bad_input(
                     "--domain sets the end knots of least squares (--lsq, --ctrl, --knots, \
-                     --robust) and of --s; --smooth and --tol place their own knots: drop \
+                     --robust) and of --s; --smooth and --tolerance place their own knots: drop \
                      --domain",
                 );
             }

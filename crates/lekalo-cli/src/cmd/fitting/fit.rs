@@ -35,7 +35,7 @@ fn fit(a: &FitArgs, cx: &Context) -> Result<()> {
         a.robust.is_some(),
     ];
     if modes.iter().filter(|&&m| m).count() > 1 {
-        return bad_input("choose one mode: --lsq, --smooth, --s, --tol or --robust");
+        return bad_input("choose one mode: --lsq, --smooth, --s, --tolerance or --robust");
     }
     a.check_options_used()?;
     if crate::items::is_parquet(&a.points) {
@@ -132,7 +132,7 @@ fn fit_curve(
         }
         if a.tol.is_some() || a.robust.is_some() || (a.s.is_some() && a.knots.is_some()) {
             return bad_input(
-                "shape constraints go with least squares (--lsq, the default), --smooth, or --s without --knots (the smoothing spline whose residual is S); drop --tol, --robust, or --knots with --s",
+                "shape constraints go with least squares (--lsq, the default), --smooth, or --s without --knots (the smoothing spline whose residual is S); drop --tolerance, --robust, or --knots with --s",
             );
         }
         if a.clamp_ends || a.d0.is_some() || a.dn.is_some() {
@@ -192,7 +192,7 @@ fn fit_curve(
     } else if let Some(tol) = a.tol {
         if a.function {
             return bad_input(
-                "--tol fits parametric curves (distance to the curve); drop --function",
+                "--tolerance fits parametric curves (distance to the curve); drop --function",
             );
         }
         let mut opts = ToleranceOptions::new(a.degree()?, tol);
@@ -205,7 +205,7 @@ fn fit_curve(
         let t = with_progress(cx, "fitting to the tolerance", large, |p| {
             fit_tolerance_with_progress(pts.as_view(), &opts, p)
         })?;
-        report["tol"] = json!(tol);
+        report["tolerance"] = json!(tol);
         report["max_deviation"] = json!(t.max_deviation);
         report["worst_index"] = json!(t.worst_index);
         report["worst_param"] = json!(t.worst_param);

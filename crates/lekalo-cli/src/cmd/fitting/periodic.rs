@@ -35,7 +35,7 @@ pub(super) fn run_periodic(
     if a.smooth.is_some() || a.tol.is_some() || a.robust.is_some() {
         return bad_input(
             "--periodic fits by least squares (--lsq, --ctrl, --knots) or with --s; drop \
-             --smooth, --tol and --robust",
+             --smooth, --tolerance and --robust",
         );
     }
     if a.clamp_ends || a.d0.is_some() || a.dn.is_some() {

@@ -53,7 +53,7 @@ pub(super) fn report_line(r: &Value) -> String {
         "fit: {} control points, residual max {} (point {}), RMS {}, weighted RSS {}",
         r["control_points"], r["max_residual"], r["max_index"], r["rms"], r["weighted_rss"]
     );
-    for key in ["lambda", "s", "tol", "max_deviation"] {
+    for key in ["lambda", "s", "tolerance", "max_deviation"] {
         if !r[key].is_null() {
             s.push_str(&format!(", {key} {}", r[key]));
         }

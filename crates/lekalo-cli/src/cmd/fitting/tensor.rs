@@ -595,7 +595,7 @@ fn refuse_curve_options(a: &FitArgs) -> Result<()> {
     let given: Vec<&str> = [
         (a.smooth.is_some(), "--smooth"),
         (a.s.is_some() && a.grid.is_none() && !a.scattered, "--s"),
-        (a.tol.is_some(), "--tol"),
+        (a.tol.is_some(), "--tolerance"),
         (a.robust.is_some(), "--robust"),
         (a.periodic, "--periodic"),
         (a.function, "--function"),

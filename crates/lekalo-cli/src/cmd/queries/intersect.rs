@@ -12,10 +12,11 @@ use serde_json::{json, Map, Value};
 
 use crate::cmd::measure::{query_curve, query_surface};
 use crate::context::Context;
-use crate::exit::{bad_input, BadInput};
+use crate::exit::bad_input;
 use crate::items::{load_one, open, Items};
 use crate::output::{emit, format_of, report};
 use crate::values::numbers;
+use crate::words::in_file;
 
 /// Arguments of `lekalo intersect`.
 #[derive(Args, Debug)]
@@ -80,7 +81,8 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
     };
     let tolerance = a.tolerance.unwrap_or(1e-9);
     let qa = query_curve(&first, &a.first)?;
-    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.first.display()));
+    // kept in the chain: an error about the tolerance names --tolerance
+    let bad = |e: lekalo::Error| in_file(&a.first, e);
     let mut inputs = vec![a.first.clone()];
     let hits: Vec<Value> = if let Some(plane) = &a.plane {
         let nums = numbers(plane, "--plane")?;
@@ -201,7 +203,7 @@ fn run_surfaces(a: &IntersectArgs, s: &lekalo_io::Surface, cx: &Context) -> Resu
             ));
         }
         qa.intersect_plane(&nums[..3], &nums[3..], tolerance)
-            .map_err(|e| BadInput(format!("{}: {e}", a.first.display())))?
+            .map_err(|e| in_file(&a.first, e))?
     } else if a.self_ {
         return bad_input("--self takes a planar curve; give a second surface or --plane");
     } else {
@@ -217,8 +219,8 @@ fn run_surfaces(a: &IntersectArgs, s: &lekalo_io::Surface, cx: &Context) -> Resu
         };
         let qb = query_surface(&t, second)?;
         qa.intersect_surface(&qb, tolerance).map_err(|e| {
-            BadInput(format!(
-                "{} and {}: {e}",
+            anyhow::Error::from(e).context(format!(
+                "{} and {}",
                 a.first.display(),
                 second.display()
             ))

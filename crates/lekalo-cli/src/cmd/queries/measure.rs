@@ -15,6 +15,7 @@ use crate::exit::{bad_input, BadInput};
 use crate::items::load_one;
 use crate::output::emit;
 use crate::values::numbers;
+use crate::words::in_file;
 
 /// Arguments of `lekalo measure`.
 #[derive(Args, Debug)]
@@ -75,7 +76,8 @@ pub(crate) fn run(a: &MeasureArgs, cx: &Context) -> Result<()> {
     }
     let obj = load_one(cx, &a.input)?;
     let q = query_curve(&obj, &a.input)?;
-    let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", a.input.display()));
+    // kept in the chain: an error about the tolerance names --tolerance
+    let bad = |e: lekalo::Error| in_file(&a.input, e);
     let table = q.arc_length(a.tolerance).map_err(bad)?;
     let mut lengths = Vec::new();
     if let Some(s) = &a.at_length {

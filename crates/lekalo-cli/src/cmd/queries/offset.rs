@@ -12,9 +12,9 @@ use serde_json::json;
 
 use crate::cmd::measure::query_curve;
 use crate::context::Context;
-use crate::exit::BadInput;
 use crate::items::load_one;
 use crate::output::{emit, report};
+use crate::words::in_file;
 
 /// Arguments of `lekalo offset`.
 #[derive(Args, Debug)]
@@ -72,7 +72,8 @@ pub(crate) fn run(a: &OffsetArgs, cx: &Context) -> Result<()> {
     let q = query_curve(&load_one(cx, &a.input)?, &a.input)?;
     let off = q
         .offset(a.distance, a.tolerance)
-        .map_err(|e| BadInput(format!("{}: {e}", a.input.display())))?;
+        // kept in the chain: an error about the tolerance names --tolerance
+        .map_err(|e| in_file(&a.input, e))?;
     let text = if a.json {
         report_json(a, &off)
     } else {

@@ -6,6 +6,7 @@ use super::super::project::CurveProjection;
 use super::planar::{overlapping_pairs, PlaneNets, Raw, Search, Sub};
 use super::{Contact, CurveIntersection};
 use crate::error::{Error, Result};
+use crate::{Arg, What};
 
 /// Step of the probes beside a solution, as a fraction of the first curve's domain: the gap
 /// there tells a crossing from a contact or an overlap.
@@ -53,7 +54,10 @@ impl QueryCurve {
     /// [`Error::Dimension`] unless both curves are planar; [`Error::InvalidArgument`] for a bad
     /// tolerance; [`Error::TooLarge`] if more than 2^20 sub-curve pairs would be examined.
     pub fn intersect(&self, other: &QueryCurve, tolerance: f64) -> Result<Vec<CurveIntersection>> {
-        check_tolerance("intersection tolerance", tolerance)?;
+        check_tolerance(
+            What::of(Arg::Tolerance, "intersection tolerance"),
+            tolerance,
+        )?;
         if self.dim != 2 || other.dim != 2 {
             if self.dim != other.dim {
                 return Err(Error::Dimension {
@@ -109,7 +113,10 @@ impl QueryCurve {
     /// As [`QueryCurve::intersect`].
     pub fn self_intersections(&self, tolerance: f64) -> Result<Vec<CurveIntersection>> {
         self.check_planar(self)?;
-        check_tolerance("intersection tolerance", tolerance)?;
+        check_tolerance(
+            What::of(Arg::Tolerance, "intersection tolerance"),
+            tolerance,
+        )?;
         let (na, _, scale) = self.planar_frame(self);
         let tol = tolerance / scale;
         let mut search = Search::new(&na, &na, tol);

@@ -18,6 +18,7 @@ type SurfaceSolution = (f64, (f64, f64), Vec<f64>, bool);
 const PROBE: f64 = 1e-6;
 use crate::error::{Error, Result};
 use crate::numeric::damped::{levenberg_marquardt, Residual};
+use crate::{Arg, What};
 
 impl QueryCurve {
     /// Where the curve meets the plane (hyperplane) through `origin` with normal `normal`: the
@@ -190,7 +191,10 @@ impl QueryCurve {
                 got: surface.dim,
             });
         }
-        check_tolerance("intersection tolerance", tolerance)?;
+        check_tolerance(
+            What::of(Arg::Tolerance, "intersection tolerance"),
+            tolerance,
+        )?;
         // (t, (u, v), point, transversal)
         let mut found: Vec<SurfaceSolution> = Vec::new();
         let h = PROBE * (self.domain().1 - self.domain().0);
