@@ -28,7 +28,7 @@ use crate::BSplineCurve;
 use march::{March, Stop, Traced, SIN_STOP};
 use rayon::prelude::*;
 use seeds::Found;
-use system::{norm, surface_jet, PlaneSection, TwoSurfaces, K};
+use system::{newton, norm, surface_jet, PlaneSection, TwoSurfaces, K};
 
 /// Tangent points closer than this fraction of the scale are one contact (and chained into a
 /// line of contact when they spread further).
@@ -329,16 +329,26 @@ fn assemble(
     // tangent candidates: (x, p, sine)
     let mut touch: Vec<([f64; K], [f64; 3], f64)> = Vec::new();
     let mut grid = SegmentGrid::new(cover, march::MAX_STEP * scale);
+    let k = sys.k();
     for x in &found.seeds {
         let Some(jet) = sys.jet(x) else { continue };
+        if jet.sin >= SIN_STOP && grid.covers(&jet.p, &traced) {
+            continue;
+        }
+        // a starting point solved to a looser residual is corrected to the marching's
+        let (x, jet) = if jet.gap(k) > march.eps() {
+            match newton(sys, *x, None, None, march.eps()) {
+                Some(r) => r,
+                None => continue,
+            }
+        } else {
+            (*x, jet)
+        };
         if jet.sin < SIN_STOP {
-            touch.push((*x, jet.p, jet.sin));
+            touch.push((x, jet.p, jet.sin));
             continue;
         }
-        if grid.covers(&jet.p, &traced) {
-            continue;
-        }
-        let t = march.branch(*x, &jet)?;
+        let t = march.branch(x, &jet)?;
         grid.insert(traced.len(), &t.ps);
         for (end, stop) in [(0, t.stops[0]), (t.xs.len() - 1, t.stops[1])] {
             if stop == Stop::Tangent {

@@ -255,7 +255,9 @@ impl Sub {
     }
 }
 
-/// The starting points of the intersection of two 3-D surfaces, as the module describes.
+/// The starting points of the intersection of two 3-D surfaces, as the module describes, solved
+/// to a residual of a hundredth of the tolerance (or `eps` if larger): most land on a branch
+/// already traced and are dropped, and the marching corrects the others to `eps` first.
 pub(super) fn surface_seeds(
     sa: &QuerySurface,
     sb: &QuerySurface,
@@ -308,7 +310,7 @@ pub(super) fn surface_seeds(
                 (&pair, free),
                 (&box_a, &box_b),
                 sys,
-                eps,
+                (1e-2 * tol).max(eps),
                 tol,
                 &mut found.seeds,
             );
