@@ -348,6 +348,9 @@ fn assemble(
             touch.push((x, jet.p, jet.sin));
             continue;
         }
+        if grid.covers(&jet.p, &traced) {
+            continue;
+        }
         let t = march.branch(x, &jet)?;
         grid.insert(traced.len(), &t.ps);
         for (end, stop) in [(0, t.stops[0]), (t.xs.len() - 1, t.stops[1])] {
