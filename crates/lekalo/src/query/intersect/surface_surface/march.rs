@@ -1,7 +1,8 @@
 //! Marching along a branch of a section (`docs/theory/queries.md#marching`): predictor along the
 //! tangent, Newton corrector on the plane through the predicted point orthogonal to the tangent,
-//! step length from the turning of the tangent, stops at the sides of the parameter box, at a
-//! tangency of the surfaces or where the branch closes (Barnhill and Kersey 1990).
+//! step length from the error of the cubic Hermite interpolant of the step's ends, the points in
+//! between filled from the cubics of corrected points, stops at the sides of the parameter box,
+//! at a tangency of the surfaces or where the branch closes (Barnhill and Kersey 1990).
 
 use super::super::super::pieces::{dist, dot};
 use super::segment_distance3;
@@ -25,9 +26,15 @@ pub(super) const SIN_STOP: f64 = 1e-4;
 /// coordinates, at the filled points): the rest is the margin of the fit, which measures every
 /// point.
 const HERMITE_SHARE: f64 = 0.5;
-/// Share of the tolerance the chords between filled points aim at (each is checked against the
-/// whole tolerance).
+/// Share of the tolerance the halves of a cubic Hermite step may deviate from the branch (at
+/// their corrected middles): the filled points, on the quarters' cubics, are closer still, so
+/// every point of a branch is within this share of the tolerance of both surfaces.
+const INTERP_SHARE: f64 = 0.1;
+/// Share of the tolerance the chords between filled points aim at.
 const CHORD_SHARE: f64 = 0.9;
+/// Share of the tolerance every chord's sagitta is checked against (the rest is the margin for
+/// the quarter cubics' error).
+const CHORD_CHECK: f64 = 0.95;
 /// Most points filled into one step.
 const MAX_FILL: usize = 1 << 14;
 
@@ -445,99 +452,139 @@ impl March<'_> {
     }
 
     /// The points between two marched points `a` and `b` at which the chords are within the
-    /// tolerance of the branch: the cubic Hermite interpolant of the two in the unknowns and in
-    /// space (arc-length parameter, the chord lengthened by the turning of the tangent), sampled
-    /// at `m` equal steps (`m` even, from the chords' sagitta `(c/m)(θ/m)/8`), each sample
-    /// corrected onto the section (Newton's method on the plane through it orthogonal to the
-    /// cubic's tangent). The middle is corrected first: the cubic's error there (in the fitted
-    /// coordinates of `fit.rs`, `reach` scaling the parameters) decides the step, and a step
-    /// whose middle misses [`HERMITE_SHARE`] of the tolerance is refused without the others.
-    /// Every chord between filled points is then checked by the turning of the corrected
-    /// tangents (`cθ/8 ≤ ε`), and a point halfway (in the cubic's parameter) is added where it
+    /// tolerance of the branch. The cubic Hermite interpolant of the two in the unknowns and in
+    /// space ([`hermite`]) has its middle corrected onto the section (Newton's method on the
+    /// plane through it orthogonal to the cubic's tangent); the distance moved (in the fitted
+    /// coordinates of `fit.rs`, `reach` scaling the parameters) is the step's error, and a step
+    /// whose middle misses [`HERMITE_SHARE`] of the tolerance is refused there. The middles of
+    /// the two halves (the cubics of the ends and the corrected middle) are corrected the same
+    /// way: their distances measure the halves' error, and a step whose halves miss
+    /// [`INTERP_SHARE`] of the tolerance is refused too (with an error 16 times theirs, the
+    /// `h⁴` law). The points in between are then the four quarter cubics' points, not corrected:
+    /// each quarter's cubic interpolates corrected points a quarter of the step apart, closer to
+    /// the branch than the halves' measured error (about 1/16 of it, by the same law), so every
+    /// point is within [`INTERP_SHARE`] of the tolerance of both surfaces. They are placed at
+    /// equal parameter steps, `m` a quarter from the chords' sagitta `(c/m)(θ/m)/8` at
+    /// [`CHORD_SHARE`] of the tolerance; every chord is then checked by the turning of the
+    /// cubic's tangents at its ends (`cθ/8`, against [`CHORD_CHECK`] of it, the rest left for
+    /// the cubic's error), and a point halfway (in the cubic's parameter) is added where it
     /// fails. `None` when a correction fails or more than [`MAX_FILL`] points would be needed.
     fn fill(&self, a: &Node, b: &Node, reach: [f64; 2]) -> Option<Fill> {
-        let k = self.sys.k();
-        let c = dist(&a.p, &b.p);
-        if c == 0.0 {
+        if dist(&a.p, &b.p) == 0.0 {
             return Some(Fill::default());
         }
-        let turn = dot(&a.tp, &b.tp).clamp(-1.0, 1.0).acos();
-        let len = c * arc_over_chord(turn);
-        let ka = if reach[0] > 0.0 { reach[0] } else { 1.0 };
-        let kb = if reach[1] > 0.0 { reach[1] } else { 1.0 };
-        // the corrected point at `u`, its jet and tangent, and its distance from the cubic
-        let correct = |u: f64| -> Option<([f64; K], Jet, Unit, f64)> {
-            let (u2, u3) = (u * u, u * u * u);
-            let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
-            let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
-            let (d00, d10) = (6.0 * u2 - 6.0 * u, 3.0 * u2 - 4.0 * u + 1.0);
-            let (d01, d11) = (6.0 * u - 6.0 * u2, 3.0 * u2 - 2.0 * u);
-            let mut xh = [0.0; K];
-            for i in 0..k {
-                xh[i] = h00 * a.x[i] + h01 * b.x[i] + len * (h10 * a.tx[i] + h11 * b.tx[i]);
-            }
-            let mut ph = [0.0; 3];
-            let mut dir = [0.0; 3];
-            for i in 0..3 {
-                ph[i] = h00 * a.p[i] + h01 * b.p[i] + len * (h10 * a.tp[i] + h11 * b.tp[i]);
-                dir[i] = (d00 * a.p[i] + d01 * b.p[i]) / len + d10 * a.tp[i] + d11 * b.tp[i];
-            }
-            let l = dot(&dir, &dir).sqrt();
-            if !(l > 0.0) {
-                return None;
-            }
-            let dir = [dir[0] / l, dir[1] / l, dir[2] / l];
-            let (xq, jq) = newton(self.sys, xh, None, Some((dir, ph)), self.eps())?;
-            if !(jq.gap(k) <= 0.1 * self.tol) {
-                return None;
-            }
-            let t = oriented(tangent(&jq, k), &dir)?;
-            let f = [ka, ka, kb, kb];
-            let mut d2: f64 = (0..3).map(|i| (jq.p[i] - ph[i]).powi(2)).sum();
-            for i in 0..k {
-                d2 += (f[i] * (xq[i] - xh[i])).powi(2);
-            }
-            Some((xq, jq, t, d2.sqrt()))
-        };
-        let mid = correct(0.5)?;
-        if mid.3 > HERMITE_SHARE * self.tol {
+        let scale = [
+            if reach[0] > 0.0 { reach[0] } else { 1.0 },
+            if reach[1] > 0.0 { reach[1] } else { 1.0 },
+        ];
+        let (m, err) = self.correct_middle(a, b, scale)?;
+        if err > HERMITE_SHARE * self.tol {
             return Some(Fill {
-                err: mid.3,
+                err,
                 refused: true,
                 ..Fill::default()
             });
         }
+        let (q1, e1) = self.correct_middle(a, &m, scale)?;
+        let (q3, e3) = self.correct_middle(&m, b, scale)?;
+        let halves = e1.max(e3);
+        if halves > INTERP_SHARE * self.tol {
+            return Some(Fill {
+                err: err.max(16.0 * halves),
+                refused: true,
+                ..Fill::default()
+            });
+        }
+        let mut out = Fill {
+            err,
+            ..Fill::default()
+        };
+        let nodes = [a, &q1, &m, &q3, b];
+        for (i, w) in nodes.windows(2).enumerate() {
+            self.fill_quarter(w[0], w[1], &mut out)?;
+            if i < 3 {
+                let n = w[1];
+                out.xs.push(n.x);
+                out.ps.push(n.p);
+                out.ts.push(Some((n.tx, n.tp)));
+            }
+        }
+        Some(out)
+    }
+
+    /// The middle of the cubic Hermite interpolant of `a` and `b`, corrected onto the section,
+    /// with its tangent, and the distance it moved in the fitted coordinates (`scale` the
+    /// factors of the two surfaces' parameters).
+    fn correct_middle(&self, a: &Node, b: &Node, scale: [f64; 2]) -> Option<(Node, f64)> {
+        let k = self.sys.k();
+        let len = step_length(a, b);
+        let (xh, ph, _, dp) = hermite(a, b, len, 0.5);
+        let l = dot(&dp, &dp).sqrt();
+        if !(l > 0.0) {
+            return None;
+        }
+        let dir = [dp[0] / l, dp[1] / l, dp[2] / l];
+        let (xq, jq) = newton(self.sys, xh, None, Some((dir, ph)), self.eps())?;
+        if !(jq.gap(k) <= 0.1 * self.tol) {
+            return None;
+        }
+        let (tx, tp) = oriented(tangent(&jq, k), &dir)?;
+        let f = [scale[0], scale[0], scale[1], scale[1]];
+        let mut d2: f64 = (0..3).map(|i| (jq.p[i] - ph[i]).powi(2)).sum();
+        for i in 0..k {
+            d2 += (f[i] * (xq[i] - xh[i])).powi(2);
+        }
+        Some((
+            Node {
+                x: xq,
+                p: jq.p,
+                tx,
+                tp,
+            },
+            d2.sqrt(),
+        ))
+    }
+
+    /// The points of the cubic Hermite interpolant of `a` and `b` (corrected points a quarter
+    /// of a step apart) strictly between them, appended to `out` (see [`March::fill`]).
+    fn fill_quarter(&self, a: &Node, b: &Node, out: &mut Fill) -> Option<()> {
+        let c = dist(&a.p, &b.p);
+        if c == 0.0 {
+            return Some(());
+        }
+        let turn = dot(&a.tp, &b.tp).clamp(-1.0, 1.0).acos();
+        let len = c * arc_over_chord(turn);
         let want = (c * turn / (8.0 * CHORD_SHARE * self.tol))
             .sqrt()
             .ceil()
             .min(MAX_FILL as f64);
         // `want` is a whole number in [0, MAX_FILL]
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let m = ((want as usize).max(2) + 1) & !1;
-        let mut mid = Some(mid);
-        let mut out = Fill::default();
+        let m = (want as usize).max(1);
+        let at = |u: f64| -> Option<Sample> {
+            let (x, p, dx, dp) = hermite(a, b, len, u);
+            let l = dot(&dp, &dp).sqrt();
+            if !(l > 0.0) {
+                return None;
+            }
+            let tx = std::array::from_fn(|i| dx[i] / l);
+            Some((u, x, p, (tx, [dp[0] / l, dp[1] / l, dp[2] / l])))
+        };
         // (u, unknowns, point, tangent) of the last point placed; the points still to place,
         // nearest last
-        let mut last = (0.0, a.x, a.p, (a.tx, a.tp));
+        let mut last: Sample = (0.0, a.x, a.p, (a.tx, a.tp));
         let mut todo: Vec<Sample> = Vec::new();
         for i in 1..=m {
-            if i == m {
-                todo.push((1.0, b.x, b.p, (b.tx, b.tp)));
+            todo.push(if i == m {
+                (1.0, b.x, b.p, (b.tx, b.tp))
             } else {
-                let u = i as f64 / m as f64;
-                let (xq, jq, t, dev) = if 2 * i == m {
-                    mid.take().or_else(|| correct(0.5))?
-                } else {
-                    correct(u)?
-                };
-                out.err = out.err.max(dev);
-                todo.push((u, xq, jq.p, t));
-            }
+                at(i as f64 / m as f64)?
+            });
             // place it, with points halfway in between while a chord's sagitta (cθ/8, θ the
-            // turning of the corrected tangents) exceeds the tolerance
+            // turning of the cubic's tangents) exceeds its share of the tolerance
             while let Some(&next) = todo.last() {
                 let th = dot(&last.3 .1, &next.3 .1).clamp(-1.0, 1.0).acos();
-                if dist(&last.2, &next.2) * th / 8.0 <= self.tol {
+                if dist(&last.2, &next.2) * th / 8.0 <= CHORD_CHECK * self.tol {
                     todo.pop();
                     if next.0 < 1.0 {
                         out.xs.push(next.1);
@@ -547,16 +594,13 @@ impl March<'_> {
                     last = next;
                     continue;
                 }
-                let u = 0.5 * (last.0 + next.0);
                 if out.xs.len() + todo.len() > MAX_FILL || !(next.0 - last.0 > 1e-9) {
                     return None;
                 }
-                let (xq, jq, t, dev) = correct(u)?;
-                out.err = out.err.max(dev);
-                todo.push((u, xq, jq.p, t));
+                todo.push(at(0.5 * (last.0 + next.0))?);
             }
         }
-        Some(out)
+        Some(())
     }
 
     /// Whether a point reached on a side continues the branch as a step of the marching
@@ -617,4 +661,35 @@ pub(super) fn arc_over_chord(theta: f64) -> f64 {
     } else {
         (0.5 * theta) / (0.5 * theta).sin()
     }
+}
+
+/// The length of the cubic Hermite step from `a` to `b`: the chord lengthened to the arc of a
+/// circle turning by the angle between their tangents.
+fn step_length(a: &Node, b: &Node) -> f64 {
+    let turn = dot(&a.tp, &b.tp).clamp(-1.0, 1.0).acos();
+    dist(&a.p, &b.p) * arc_over_chord(turn)
+}
+
+/// The cubic Hermite interpolant of `a` and `b` (ends and unit tangents, the tangents scaled by
+/// the step's length `len`) at `u` in `[0, 1]`: the unknowns, the point, and their derivatives
+/// in `u` (the Hermite basis, de Boor, *A Practical Guide to Splines*, ch. IV).
+fn hermite(a: &Node, b: &Node, len: f64, u: f64) -> ([f64; K], [f64; 3], [f64; K], [f64; 3]) {
+    let (u2, u3) = (u * u, u * u * u);
+    let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
+    let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
+    let (d00, d10) = (6.0 * u2 - 6.0 * u, 3.0 * u2 - 4.0 * u + 1.0);
+    let (d01, d11) = (6.0 * u - 6.0 * u2, 3.0 * u2 - 2.0 * u);
+    let x = std::array::from_fn(|i| {
+        h00 * a.x[i] + h01 * b.x[i] + len * (h10 * a.tx[i] + h11 * b.tx[i])
+    });
+    let dx = std::array::from_fn(|i| {
+        d00 * a.x[i] + d01 * b.x[i] + len * (d10 * a.tx[i] + d11 * b.tx[i])
+    });
+    let p = std::array::from_fn(|i| {
+        h00 * a.p[i] + h01 * b.p[i] + len * (h10 * a.tp[i] + h11 * b.tp[i])
+    });
+    let dp = std::array::from_fn(|i| {
+        d00 * a.p[i] + d01 * b.p[i] + len * (d10 * a.tp[i] + d11 * b.tp[i])
+    });
+    (x, p, dx, dp)
 }

@@ -28,7 +28,7 @@ use crate::BSplineCurve;
 use march::{March, Stop, Traced, SIN_STOP};
 use rayon::prelude::*;
 use seeds::Found;
-use system::{norm, surface_jet, PlaneSection, TwoSurfaces, K};
+use system::{newton, norm, surface_jet, PlaneSection, TwoSurfaces, K};
 
 /// Tangent points closer than this fraction of the scale are one contact (and chained into a
 /// line of contact when they spread further).
@@ -61,8 +61,10 @@ pub struct IntersectionBranch {
     /// The branch in the second surface's parameter plane (none for a plane section).
     pub curve_uv_b: Option<BSplineCurve>,
     /// The tolerance of the answer: every point is within a tenth of it of both surfaces (the
-    /// corrector aims at a thousandth), consecutive points are joined by chords within it of
-    /// the branch, and the fitted curves are within it of the points.
+    /// marched points are corrected to a millionth of it, the points filled between them lie on
+    /// cubics through corrected points whose measured error is below a tenth), consecutive
+    /// points are joined by chords within it of the branch, and the fitted curves are within it
+    /// of the points.
     pub tolerance: f64,
 }
 
@@ -87,14 +89,17 @@ impl QuerySurface {
     ///    disjoint (no closed loop inside: Sederberg and Meyers, *CAGD* 5, 1988) and both are
     ///    at most 1/8 of the scale across, or until they are 1/512 of it; then Newton's method
     ///    finds the points where the intersection crosses the sides of either sub-patch (one
-    ///    unknown held) and one from the middles.
+    ///    unknown held) and, in a pair whose cones are not disjoint, one from the middles;
+    ///    each solve kept near its pair.
     /// 2. **Marching** from each starting point not already on a branch, both ways along
     ///    `n₁ × n₂`: a predictor step, a Newton corrector on `S₁ = S₂` and the plane
-    ///    orthogonal to the step, the step set so that the chord deviates at most `tolerance`
-    ///    from the branch (turning of the tangent θ over a step h: `hθ/8`), stopping at a side
-    ///    of either parameter domain, where the branch closes, or where the normals become
-    ///    parallel (Barnhill and Kersey, *CAGD* 7, 1990; Patrikalakis and Maekawa, *Shape
-    ///    Interrogation*, §5.8).
+    ///    orthogonal to the step, the step set by the error of the cubic Hermite interpolant of
+    ///    its ends (measured at its corrected middle and its halves' middles), the points in
+    ///    between filled from the cubics of the corrected points so that every chord deviates at
+    ///    most `tolerance` from the branch (turning of the tangent θ over a chord c: `cθ/8`),
+    ///    stopping at a side of either parameter domain, where the branch closes, or where the
+    ///    normals become parallel (Barnhill and Kersey, *CAGD* 7, 1990; Patrikalakis and
+    ///    Maekawa, *Shape Interrogation*, §5.8).
     /// 3. Points where the normals are parallel (sine below `10⁻⁴`) are **tangent** answers
     ///    (those within 1/64 of the scale merged, chained into a line of contact when they
     ///    spread); sub-patches that coincide within the tolerance are an **overlap**.
@@ -324,16 +329,29 @@ fn assemble(
     // tangent candidates: (x, p, sine)
     let mut touch: Vec<([f64; K], [f64; 3], f64)> = Vec::new();
     let mut grid = SegmentGrid::new(cover, march::MAX_STEP * scale);
+    let k = sys.k();
     for x in &found.seeds {
         let Some(jet) = sys.jet(x) else { continue };
+        if jet.sin >= SIN_STOP && grid.covers(&jet.p, &traced) {
+            continue;
+        }
+        // a starting point solved to a looser residual is corrected to the marching's
+        let (x, jet) = if jet.gap(k) > march.eps() {
+            match newton(sys, *x, None, None, march.eps()) {
+                Some(r) => r,
+                None => continue,
+            }
+        } else {
+            (*x, jet)
+        };
         if jet.sin < SIN_STOP {
-            touch.push((*x, jet.p, jet.sin));
+            touch.push((x, jet.p, jet.sin));
             continue;
         }
         if grid.covers(&jet.p, &traced) {
             continue;
         }
-        let t = march.branch(*x, &jet)?;
+        let t = march.branch(x, &jet)?;
         grid.insert(traced.len(), &t.ps);
         for (end, stop) in [(0, t.stops[0]), (t.xs.len() - 1, t.stops[1])] {
             if stop == Stop::Tangent {

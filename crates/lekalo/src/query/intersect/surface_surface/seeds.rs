@@ -8,7 +8,7 @@
 use super::super::super::pieces::{bern_roots, dist, dot, Bern};
 use super::super::super::surface::{QuerySurface, SubNet};
 use super::super::{boxes_overlap, MAX_PAIRS};
-use super::system::{cross, newton, norm, surface_jet, System, K};
+use super::system::{cross, newton, newton_within, norm, surface_jet, System, K};
 use crate::error::{Error, Result};
 use std::rc::Rc;
 
@@ -19,6 +19,11 @@ const LEAF: f64 = 0.125;
 const TINY: f64 = 1.0 / 512.0;
 /// Deepest subdivision (splits of either sub-patch).
 const MAX_DEPTH: u32 = 40;
+/// A leaf pair's Newton solves are given up once an iterate leaves the pair's parameter ranges
+/// widened by this share of their widths on every side: a point of the intersection inside the
+/// pair is reached from the pair's middles without going that far, and a point outside it is
+/// the business of the pair that holds it.
+const REGION: f64 = 0.5;
 
 /// What the search found: starting points, and the middles of sub-patch pairs on which the
 /// surfaces coincide.
@@ -67,23 +72,24 @@ fn normal_cone(s: &QuerySurface, net: &[f64]) -> Option<([f64; 3], f64)> {
             dv.push(sub(net_point(s, net, i, j + 1), net_point(s, net, i, j)));
         }
     }
-    let mut ns = Vec::with_capacity(du.len() * dv.len());
     let big = du
         .iter()
         .chain(&dv)
         .map(|d| norm(d))
         .fold(0.0_f64, f64::max);
-    for a in &du {
-        for b in &dv {
-            let n = cross(a, b);
-            let l = norm(&n);
-            if l > 1e-12 * big * big {
-                ns.push([n[0] / l, n[1] / l, n[2] / l]);
-            }
-        }
-    }
+    // the unit products, visited twice (their sum, then the widest angle from it) rather than
+    // stored
+    let units = || {
+        du.iter().flat_map(|a| {
+            dv.iter().filter_map(move |b| {
+                let n = cross(a, b);
+                let l = norm(&n);
+                (l > 1e-12 * big * big).then(|| [n[0] / l, n[1] / l, n[2] / l])
+            })
+        })
+    };
     let mut axis = [0.0; 3];
-    for n in &ns {
+    for n in units() {
         for c in 0..3 {
             axis[c] += n[c];
         }
@@ -93,10 +99,11 @@ fn normal_cone(s: &QuerySurface, net: &[f64]) -> Option<([f64; 3], f64)> {
         return None;
     }
     let axis = [axis[0] / l, axis[1] / l, axis[2] / l];
-    let half = ns
-        .iter()
-        .map(|n| dot(n, &axis).clamp(-1.0, 1.0).acos())
-        .fold(0.0_f64, f64::max);
+    // the widest angle is that of the smallest cosine (acos decreases)
+    let half = units()
+        .map(|n| dot(&n, &axis).clamp(-1.0, 1.0))
+        .fold(1.0_f64, f64::min)
+        .acos();
     (half < 0.45 * std::f64::consts::PI).then_some((axis, half))
 }
 
@@ -248,7 +255,9 @@ impl Sub {
     }
 }
 
-/// The starting points of the intersection of two 3-D surfaces, as the module describes.
+/// The starting points of the intersection of two 3-D surfaces, as the module describes, solved
+/// to a residual of a hundredth of the tolerance (or `eps` if larger): most land on a branch
+/// already traced and are dropped, and the marching corrects the others to `eps` first.
 pub(super) fn surface_seeds(
     sa: &QuerySurface,
     sb: &QuerySurface,
@@ -298,10 +307,10 @@ pub(super) fn surface_seeds(
             leaf_seeds(
                 sa,
                 sb,
-                &pair,
+                (&pair, free),
                 (&box_a, &box_b),
                 sys,
-                eps,
+                (1e-2 * tol).max(eps),
                 tol,
                 &mut found.seeds,
             );
@@ -392,13 +401,16 @@ fn side_meets(
 /// Seeds of a leaf pair: Newton's method with one unknown held on each of the eight sides of the
 /// two sub-patches (from the side's middle and the other's middle) whose control points' box
 /// meets the other sub-patch's box and whose control points' interval across the other
-/// sub-patch meets its slab (a side that does not cannot hold a point of the intersection), and the free minimum-norm Newton from both middles; the points it reaches
-/// within a tenth of the tolerance.
+/// sub-patch meets its slab (a side that does not cannot hold a point of the intersection), and,
+/// unless the pair is `free` of closed loops (its normal cones disjoint, so that every branch in
+/// it crosses a side), the free minimum-norm Newton from both middles; the points it reaches
+/// within a tenth of the tolerance. Every solve is given up once it leaves the pair's ranges
+/// widened by [`REGION`].
 #[allow(clippy::too_many_arguments)]
 fn leaf_seeds(
     sa: &QuerySurface,
     sb: &QuerySurface,
-    pair: &Pair,
+    (pair, free): (&Pair, bool),
     (box_a, box_b): (&[f64], &[f64]),
     sys: &dyn System,
     eps: f64,
@@ -424,6 +436,17 @@ fn leaf_seeds(
         (3, global(gb.1, vb, 0.0)),
         (3, global(gb.1, vb, 1.0)),
     ];
+    // the pair's ranges widened by REGION of their widths on every side
+    let widen = |t0: f64, t1: f64| {
+        let w = REGION * (t1 - t0);
+        (t0 - w, t1 + w)
+    };
+    let region = [
+        widen(global(ga.0, ua, 0.0), global(ga.0, ua, 1.0)),
+        widen(global(ga.1, va, 0.0), global(ga.1, va, 1.0)),
+        widen(global(gb.0, ub, 0.0), global(gb.0, ub, 1.0)),
+        widen(global(gb.1, vb, 0.0), global(gb.1, vb, 1.0)),
+    ];
     let k = sys.k();
     let mut push = |r: Option<([f64; K], super::system::Jet)>| {
         if let Some((x, j)) = r {
@@ -432,7 +455,9 @@ fn leaf_seeds(
             }
         }
     };
-    push(newton(sys, mid, None, None, eps));
+    if !free {
+        push(newton_within(sys, mid, None, None, eps, Some(&region)));
+    }
     let slab_of = |s: &QuerySurface, net: &[f64]| across(s, net).map(|n| (n, slab(s, net, &n)));
     let (across_a, across_b) = (slab_of(sa, &pair.a.0 .2), slab_of(sb, &pair.b.0 .2));
     for (n, (i, value)) in sides.into_iter().enumerate() {
@@ -446,7 +471,7 @@ fn leaf_seeds(
         }
         let mut x = mid;
         x[i] = value;
-        push(newton(sys, x, Some(i), None, eps));
+        push(newton_within(sys, x, Some(i), None, eps, Some(&region)));
     }
 }
 

@@ -375,6 +375,19 @@ pub(super) fn newton(
     plane: Option<([f64; 3], [f64; 3])>,
     eps: f64,
 ) -> Option<([f64; K], Jet)> {
+    newton_within(sys, x0, fixed, plane, eps, None)
+}
+
+/// [`newton`], given up (`None`) as soon as an iterate leaves `region` (one interval per
+/// unknown): a search for a point near `x0` that need not follow Newton's method elsewhere.
+pub(super) fn newton_within(
+    sys: &dyn System,
+    x0: [f64; K],
+    fixed: Option<usize>,
+    plane: Option<([f64; 3], [f64; 3])>,
+    eps: f64,
+    region: Option<&[(f64, f64); K]>,
+) -> Option<([f64; K], Jet)> {
     let k = sys.k();
     let bounds = sys.bounds();
     let mut x = x0;
@@ -455,6 +468,9 @@ pub(super) fn newton(
         clamp(&mut next, &bounds, k);
         if next == x {
             break;
+        }
+        if region.is_some_and(|r| (0..k).any(|i| !(next[i] >= r[i].0 && next[i] <= r[i].1))) {
+            return None;
         }
         x = next;
         jet = sys.jet(&x)?;

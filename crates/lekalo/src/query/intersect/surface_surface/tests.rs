@@ -299,6 +299,61 @@ fn small_closed_loop_is_found() {
     }
 }
 
+/// Two bicubic bumps side by side over `[−1.5, 1.5] × [−1, 1]` (peaks about 0.298 high at
+/// `x ≈ ±0.47`, the saddle between them 1/6 high).
+fn twin_bumps() -> QuerySurface {
+    let mut pts = Vec::new();
+    for i in 0..7 {
+        for j in 0..5 {
+            let z = if (i == 2 || i == 4) && j == 2 {
+                1.0
+            } else {
+                0.0
+            };
+            pts.push([-1.5 + 0.5 * f64::from(i), -1.0 + 0.5 * f64::from(j), z]);
+        }
+    }
+    let ku = vec![0.0, 0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0];
+    let kv = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+    let s = BSplineSurface::new(3, 3, ku, kv, Points::from_3d(&pts).unwrap(), (7, 5)).unwrap();
+    QuerySurface::from_bspline(&s).unwrap()
+}
+
+#[test]
+fn a_small_loop_beside_a_traced_one_is_found() {
+    // the plane z = 0.2, a little above the saddle, cuts each bump in a small closed loop; the
+    // loops come within a few tenths of each other over the saddle, so the second is searched
+    // for next to the first, already traced
+    let a = twin_bumps();
+    let b = plane([0.0, 0.0, 0.2], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 2.0);
+    for br in [
+        a.intersect_surface(&b, TOL).unwrap(),
+        a.intersect_plane(&[0.0, 0.0, 0.2], &[0.0, 0.0, 1.0], TOL)
+            .unwrap(),
+    ] {
+        assert_eq!(br.len(), 2, "{br:?}");
+        let mut sides = Vec::new();
+        for b in &br {
+            assert_eq!(b.kind, Contact::Crossing);
+            assert!(b.closed, "{b:?}");
+            let x = b.points.iter().map(|p| p[0]);
+            let (lo, hi) = x.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v), h.max(v))
+            });
+            assert!(lo * hi > 0.0 && hi - lo < 1.0, "one loop a side: {lo} {hi}");
+            sides.push(lo.signum());
+            for (p, x) in b.points.iter().zip(&b.uv_a) {
+                assert!((p[2] - 0.2).abs() <= TOL / 10.0, "{p:?}");
+                let q = super::surface_jet(&a, x[0], x[1]).unwrap()[0];
+                assert!(super::super::super::pieces::dist(p, &q) <= TOL / 10.0);
+            }
+            check_fit(b, &a, None);
+        }
+        sides.sort_by(f64::total_cmp);
+        assert_eq!(sides, vec![-1.0, 1.0]);
+    }
+}
+
 #[test]
 fn tangent_plane_touches() {
     let s = sphere(1.0);
