@@ -74,10 +74,13 @@ pub(super) fn knot_rounds(
         fpold = fp;
         pass.residuals(obs, &c);
         knots.span_sums(obs, &pass, &t);
-        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2, cap) {
+        let full = nmax - 2 * k - 2;
+        match knots.add_up_to(&obs.sites, nplus, full, cap) {
             Added::Some => {}
             Added::Full => knots.interpolation(&obs.sites),
-            // no span holds a parameter strictly inside: as close to interpolation as it gets
+            // no span can be split without crowding an end: the knots of interpolation, when
+            // `cap` allows them
+            Added::None if full <= cap => knots.interpolation(&obs.sites),
             Added::None => return Ok(Rounds::Done { t, c }),
         }
     }
@@ -101,6 +104,10 @@ pub(in crate::fit) struct Knots {
     pub(in crate::fit) interior: Vec<f64>,
     pub(in crate::fit) fpint: Vec<f64>,
     pub(in crate::fit) nrdata: Vec<usize>,
+    /// The distinct parameters the first and the last span keep strictly inside when split
+    /// (`⌊(k − 1)/2⌋` at clamped ends, see [`Knots::add_one`]; 0 for closed curves, which
+    /// have no end).
+    pub(in crate::fit) end_keep: usize,
 }
 
 impl Knots {
@@ -116,6 +123,7 @@ impl Knots {
             interior: Vec::new(),
             fpint: vec![0.0],
             nrdata: vec![sites.len().saturating_sub(2)],
+            end_keep: k.saturating_sub(1) / 2,
         }
     }
 
@@ -200,10 +208,25 @@ impl Knots {
     /// Adds one knot at the middle distinct parameter of the span with the largest residual
     /// sum among those with a parameter strictly inside (FITPACK `fpknot`). Returns `false`
     /// when no span can be split.
+    ///
+    /// Unlike FITPACK, the first and the last span are split only when the new end span keeps
+    /// [`Knots::end_keep`] `= ⌊(k − 1)/2⌋` distinct parameters strictly inside, as the knots
+    /// of interpolation do. Knots sit at parameters, so every span may end up without one
+    /// strictly inside; a window of B-splines away from the ends still holds `k − 1` more
+    /// parameters than it has B-splines, but one reaching a clamped end holds only as many
+    /// more as its end span keeps. With none, the Schoenberg–Whitney conditions hold only by
+    /// giving each B-spline there the parameter beside its first knot, where it is small
+    /// (`1/k!` on equal spans against a peak of `0.55` for `k = 5`), and the least-squares
+    /// triangle is singular to rounding after a few such knots. With `end_keep` each one gets
+    /// the parameter at its middle knot, as in interpolation.
     fn add_one(&mut self, sites: &[f64]) -> bool {
+        let last = self.nrdata.len() - 1;
         let (mut best, mut fpmax, mut begin) = (None, 0.0, 0usize);
         for (j, (&f, &nd)) in self.fpint.iter().zip(&self.nrdata).enumerate() {
-            if nd > 0 && f > fpmax {
+            // the split below leaves `nd/2` parameters before the knot, `nd − nd/2 − 1` after
+            let keeps_ends = (j > 0 || nd / 2 >= self.end_keep)
+                && (j < last || nd.saturating_sub(nd / 2 + 1) >= self.end_keep);
+            if nd > 0 && keeps_ends && f > fpmax {
                 fpmax = f;
                 best = Some((j, begin));
             }
