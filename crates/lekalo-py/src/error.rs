@@ -126,6 +126,27 @@ pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     raise(numerical, e.to_string())
 }
 
+/// The library's error for a function `y(x)`: the sequence it finds decreasing
+/// ([`lekalo::Error::NotIncreasing`], which the library's interpolation calls its
+/// "parameters") is the argument `x`, and the message names it so; other errors as
+/// [`lib_err`].
+pub(crate) fn function_err(e: lekalo::Error) -> PyErr {
+    match e {
+        lekalo::Error::NotIncreasing {
+            index,
+            value,
+            previous,
+            ..
+        } => lib_err(lekalo::Error::NotIncreasing {
+            what: "x".into(),
+            index,
+            value,
+            previous,
+        }),
+        other => lib_err(other),
+    }
+}
+
 /// The file-format crate's error as `lekalo.InputError`.
 pub(crate) fn io_err(e: lekalo_io::IoError) -> PyErr {
     raise(false, e.to_string())

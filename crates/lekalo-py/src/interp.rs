@@ -15,7 +15,7 @@ use crate::convert::{
     check_size, filled, floats, grid_points, owned_points, points_array, vec1, vec_array, IntArg,
 };
 use crate::curves::{PyBSplineCurve, PyBezierCurve};
-use crate::error::{bad, lib_err};
+use crate::error::{bad, function_err, lib_err};
 use crate::surfaces::PyBSplineSurface;
 use crate::words::word;
 use lekalo::vocabulary;
@@ -186,7 +186,7 @@ pub(crate) fn natural_cubic_spline(
     let xs = xa.vector("x")?;
     let ya = floats(y, "y")?;
     let ys = ya.points("y")?;
-    let c = py.detach(|| lk_natural(xs, ys)).map_err(lib_err)?;
+    let c = py.detach(|| lk_natural(xs, ys)).map_err(function_err)?;
     Ok(PyBSplineCurve::wrap(c))
 }
 
@@ -241,7 +241,7 @@ pub(crate) fn interpolate_with_end_derivatives(
     let end = end_derivatives_arg(end, "end")?;
     let c = py
         .detach(|| lk_end_derivatives(ys, xs, &knots, k, &start, &end))
-        .map_err(lib_err)?;
+        .map_err(function_err)?;
     Ok(PyBSplineCurve::wrap(c))
 }
 
@@ -360,7 +360,7 @@ impl PyCubicHermite {
             ya.points("y")?,
             estimate_arg(tangents, tension)?,
         )
-        .map_err(lib_err)?;
+        .map_err(function_err)?;
         Ok(Self { inner: h })
     }
 

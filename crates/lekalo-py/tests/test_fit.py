@@ -11,6 +11,7 @@ import pytest
 from scipy import interpolate as si
 
 import lekalo
+import lekalo.scipy
 
 RNG = np.random.default_rng(23)
 RTOL = 1e-10  # relative to max |y|, see the module docstring
@@ -139,6 +140,50 @@ def test_make_splrep_meets_the_smoothing_condition():
     xs, ys = x[::10].copy(), y[::10].copy()
     c0 = lekalo.make_splrep(xs, ys, s=0.0)
     assert np.abs(c0(xs)[:, 0] - ys).max() < 1e-12
+
+
+def test_make_splrep_meets_s_where_fitpack_crowds_knots_at_an_end():
+    # degree 5 on x = 0..32 with 2, 3, 4, 13, 17 twice and s = 1.23 x the floor (the weighted
+    # spread of the repeated x about their means): FITPACK's knot placement reaches knots at
+    # every x up to the one beside the end, where SciPy's make_splrep fails with a NaN residual
+    # and lekalo's core returned a singular system; it now meets SciPy's condition
+    # sum((w (y - f(x)))**2) <= s, with the core's answer
+    y = np.array([
+        -4.029037990677428, 9.626101361258689, 0.0, 0.0, -8.09980283348563, -9.509489074122564,
+        0.0, 0.0, 0.0, 1.8918808915477918, 1.9405890176149876, 0.0, 0.0, 7.846190464689588, 0.0,
+        -9.204206745791021, -4.016889001352744, -9.307541950201875, -4.755798299639974, 0.0,
+        3.833506526127549, 0.0, 0.0, 0.0, 1.1354758863512153, 7.549532139157431, 0.0, 0.0,
+        -7.34383642430111, 8.75869212873954, -8.867087234609334, 8.056407855360233, 0.0,
+        9.000191895698398, -4.641608455235483, 0.0, 0.0, 0.0,
+    ])
+    w2 = np.array([
+        1.3948055878700059, 1.2355587283940903, 0.1, 0.1, 0.1, 2.9646235104941034, 0.1,
+        2.0818083801274727, 0.1, 0.1, 0.1, 0.2165681611212658, 0.1, 2.2251924929218525, 0.1,
+        0.1, 0.1, 2.731590005783488, 0.1, 0.1, 0.1, 0.23721576009323747, 0.11836492440495122,
+        0.5492957943882473, 0.8533706638154716, 0.4221225413728792, 1.8056462804377271, 0.1,
+        2.0050406311688556, 2.1142023999314556, 1.7751549551796757, 2.351344344566852, 0.1,
+        2.3651192272081234, 0.1, 0.1, 2.850006039009024, 0.1,
+    ])
+    x = np.sort(np.r_[np.arange(33.0), [17.0, 2.0, 4.0, 3.0, 13.0]])
+    floor = 0.0
+    for v in np.unique(x):
+        at = x == v
+        mean = (w2[at] * y[at]).sum() / w2[at].sum()
+        floor += (w2[at] * (y[at] - mean) ** 2).sum()
+    s = 1.2304497694341847 * floor
+    w = np.sqrt(w2)  # SciPy's weights multiply the residual
+    core, rep = lekalo.fit_smoothing_condition(x, y, w=w2, k=5, s=s)
+    ours = lekalo.make_splrep(x, y, w=w, k=5, s=s)
+    dropin = lekalo.scipy.make_splrep(x, y, w=w, k=5, s=s)
+    assert np.array_equal(ours.knots, core.knots) and np.array_equal(dropin.t, core.knots)
+    for f in (ours(x)[:, 0], dropin(x)):
+        rss = ((w * (y - f)) ** 2).sum()
+        assert (1 - 2e-3) * s <= rss <= s * (1 + 1e-12), (rss, s)
+        assert np.allclose(f, core(x)[:, 0], rtol=0, atol=1e-12 * np.abs(y).max())
+    assert np.isclose(rep["weighted_rss"], ((w * (y - core(x)[:, 0])) ** 2).sum(), rtol=1e-10)
+    # below the floor no function meets s: refused naming s
+    with pytest.raises(lekalo.InputError, match="^s: "):
+        lekalo.make_splrep(x, y, w=w, k=5, s=0.999 * floor)
 
 
 def test_make_splprep_parametric():

@@ -229,6 +229,27 @@ def test_basis_functions_refuse_bad_input(x, degree, match):
         lekalo.basis_functions(t, degree, x)
 
 
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda x, y: lekalo.natural_cubic_spline(x, y),
+        lambda x, y: lekalo.CubicHermite.function(x, y),
+        lambda x, y: lekalo.pchip_slopes(x, y),
+        lambda x, y: lekalo.akima_slopes(x, y),
+        lambda x, y: lekalo.interpolate_with_end_derivatives(
+            x, y, [0, 0, 0, 0, 1, 2, 3, 3, 3, 3], 3, start=[(1, 0.0)], end=[(2, 0.0)]
+        ),
+    ],
+)
+def test_functions_of_x_name_an_unsorted_x(call):
+    # a function y(x) calls its abscissae x, as the caller does, not the library's "parameters"
+    x = np.array([0.0, 2.0, 1.0, 3.0])
+    with pytest.raises(lekalo.InputError) as e:
+        call(x, np.sin(x))
+    message = str(e.value)
+    assert "x[2] = 1" in message and "x[1] = 2" in message and "parameters" not in message, message
+
+
 def test_scipy_argument_order_is_refused_with_the_lekalo_call():
     x = np.linspace(0, 1, 12)
     y = np.sin(x)

@@ -338,6 +338,7 @@ fn periodic_rounds(
         interior: Vec::new(),
         fpint: Vec::new(),
         nrdata: Vec::new(),
+        end_keep: 0,
     };
     let breaks = |interior: &[f64]| {
         let mut v = Vec::with_capacity(interior.len() + 2);

@@ -49,8 +49,8 @@ impl EndDerivative {
 /// # Errors
 /// [`Error::TooFew`] for no point; [`Error::Dimension`] for a condition whose value does not
 /// have the points' dimension; [`Error::LengthMismatch`] if the conditions do not number the
-/// control points; [`Error::InvalidArgument`] for an order above `p`, decreasing or repeated
-/// parameters; [`Error::ParameterOutOfDomain`] for a parameter outside the knots' domain;
+/// control points; [`Error::NotIncreasing`] for decreasing parameters;
+/// [`Error::InvalidArgument`] for an order above `p` or repeated parameters; [`Error::ParameterOutOfDomain`] for a parameter outside the knots' domain;
 /// [`Error::NonFinite`] for non-finite input; [`Error::SingularSystem`] if the conditions do not
 /// determine the spline (e.g. a parameter-free knot span, Schoenberg–Whitney, or two conditions
 /// of one order at one end).
@@ -125,6 +125,14 @@ pub fn interpolate_with_end_derivatives(
         });
     }
     if let Some(w) = params.windows(2).position(|w| w[1] <= w[0]) {
+        if params[w + 1] < params[w] {
+            return Err(Error::NotIncreasing {
+                what: "parameters".into(),
+                index: w + 1,
+                value: params[w + 1],
+                previous: params[w],
+            });
+        }
         return Err(Error::InvalidArgument {
             what: "parameters".into(),
             reason: format!(

@@ -415,6 +415,122 @@ fn robust_fit_rejects_outliers_and_returns_weights() {
     );
 }
 
+/// The weighted residual of the per-abscissa weighted means: the least any function leaves on
+/// data whose abscissae `x` (sorted) repeat.
+fn repeated_abscissae_floor(x: &[f64], y: &[f64], w: &[f64]) -> f64 {
+    let mut floor = 0.0;
+    let mut i = 0;
+    while i < x.len() {
+        let j = i + x[i..].iter().take_while(|&&v| v == x[i]).count();
+        let total: f64 = w[i..j].iter().sum();
+        let mean = (i..j).map(|l| w[l] * y[l]).sum::<f64>() / total;
+        floor += (i..j).map(|l| w[l] * (y[l] - mean).powi(2)).sum::<f64>();
+        i = j;
+    }
+    floor
+}
+
+/// The smoothing condition on `x = 0, 1, …, count − 1` with the abscissae `repeats` given
+/// twice, `s = s_frac ×` the floor, at degree 5: the residual meets `s` (and is smoothed up to
+/// it); just below the floor `s` is refused, just above it is met.
+fn check_crowded_case(count: u32, repeats: &[f64], y: &[f64], w: &[f64], s_frac: f64) {
+    let mut x: Vec<f64> = (0..count).map(f64::from).collect();
+    x.extend(repeats);
+    x.sort_by(f64::total_cmp);
+    let floor = repeated_abscissae_floor(&x, y, w);
+    let data = FitData::new(PointsRef::from_flat(1, y).unwrap(), &x)
+        .unwrap()
+        .with_weights(w)
+        .unwrap();
+    let s = s_frac * floor;
+    let fit = smoothing_condition(&data, 5, s).unwrap();
+    let rss = fit.report.weighted_rss;
+    assert!(rss <= s, "rss {rss} > s {s}");
+    assert!(
+        rss >= (1.0 - 2e-3) * s,
+        "smoothed up to s: rss {rss}, s {s}"
+    );
+    let below = smoothing_condition(&data, 5, 0.999 * floor).unwrap_err();
+    assert_eq!(below.arg(), Some(lekalo::Arg::S), "{below}");
+    let fit = smoothing_condition(&data, 5, 1.001 * floor).unwrap();
+    let rss = fit.report.weighted_rss;
+    assert!(rss <= 1.001 * floor, "rss {rss} > s {}", 1.001 * floor);
+}
+
+/// The values of [`crowded_knots_at_the_right_end_meet_s`].
+#[rustfmt::skip]
+const CROWDED_RIGHT_Y: [f64; 38] = [
+    -4.029037990677428, 9.626101361258689, 0.0, 0.0, -8.09980283348563, -9.509489074122564, 0.0,
+    0.0, 0.0, 1.8918808915477918, 1.9405890176149876, 0.0, 0.0, 7.846190464689588, 0.0,
+    -9.204206745791021, -4.016889001352744, -9.307541950201875, -4.755798299639974, 0.0,
+    3.833506526127549, 0.0, 0.0, 0.0, 1.1354758863512153, 7.549532139157431, 0.0, 0.0,
+    -7.34383642430111, 8.75869212873954, -8.867087234609334, 8.056407855360233, 0.0,
+    9.000191895698398, -4.641608455235483, 0.0, 0.0, 0.0,
+];
+/// The weights of [`crowded_knots_at_the_right_end_meet_s`].
+#[rustfmt::skip]
+const CROWDED_RIGHT_W: [f64; 38] = [
+    1.3948055878700059, 1.2355587283940903, 0.1, 0.1, 0.1, 2.9646235104941034, 0.1,
+    2.0818083801274727, 0.1, 0.1, 0.1, 0.2165681611212658, 0.1, 2.2251924929218525, 0.1, 0.1,
+    0.1, 2.731590005783488, 0.1, 0.1, 0.1, 0.23721576009323747, 0.11836492440495122,
+    0.5492957943882473, 0.8533706638154716, 0.4221225413728792, 1.8056462804377271, 0.1,
+    2.0050406311688556, 2.1142023999314556, 1.7751549551796757, 2.351344344566852, 0.1,
+    2.3651192272081234, 0.1, 0.1, 2.850006039009024, 0.1,
+];
+
+/// A case `repeated_abscissae_meet_s_or_refuse_it` found: degree 5 on x = 0..33 with 2, 3, 4,
+/// 13 and 17 given twice, s = 1.23 × the floor. FITPACK's knot placement puts knots at every
+/// abscissa from 18 to 31, beside the end 32, where the Schoenberg–Whitney conditions hold
+/// only with each B-spline at the abscissa beside its first knot (value 1/120): the
+/// least-squares triangle was singular to rounding (`SingularSystem`; SciPy's `make_splrep`
+/// fails on these data with a NaN residual). The end spans now keep abscissae inside.
+#[test]
+fn crowded_knots_at_the_right_end_meet_s() {
+    let repeats = [17.0, 2.0, 4.0, 3.0, 13.0];
+    check_crowded_case(
+        33,
+        &repeats,
+        &CROWDED_RIGHT_Y,
+        &CROWDED_RIGHT_W,
+        1.2304497694341847,
+    );
+}
+
+/// The values of [`crowded_knots_at_the_left_end_meet_s`].
+#[rustfmt::skip]
+const CROWDED_LEFT_Y: [f64; 25] = [
+    -9.884917716512438, 0.20619622277116625, -1.5080572793390183, 0.7989035515817979,
+    -5.744026951344858, -9.434101416978985, 8.720320192302626, -7.539327710847384,
+    4.48929621090105, -3.4080204139698176, 6.234932804419154, -1.9475974991850202,
+    -4.477394922707304, -0.20702676127000655, -5.06512860434476, 3.501317300933641,
+    -7.9767193645563745, 4.433046530215647, 1.7381540119675756, 6.121879521455199,
+    1.1659922630334227, -4.054051098803591, 4.039427905616245, 8.037978180881089, 0.0,
+];
+/// The weights of [`crowded_knots_at_the_left_end_meet_s`].
+#[rustfmt::skip]
+const CROWDED_LEFT_W: [f64; 25] = [
+    2.5889000223258107, 1.1002386304362053, 2.4307474547815113, 0.7287108624385706,
+    2.963717840423507, 1.2946247864666927, 1.314724191199277, 2.272142686543174,
+    1.7124522578306773, 0.1, 2.374471917770636, 0.1, 0.9600560148966404, 2.95351372188263,
+    0.9860450057605835, 2.6028686141702932, 0.132020521515427, 1.903233728647324,
+    1.8698823339006398, 1.792734045391442, 0.1, 0.26125324220492746, 1.3870349217161808, 0.1,
+    0.1,
+];
+
+/// The same at the left end (found by the same property): degree 5 on x = 0..23 with 0 and 6
+/// given twice; the knots 1, 2, …, 11 left a triangle that passed the rank test but gave
+/// coefficients of 10¹⁶ and a residual above `s`.
+#[test]
+fn crowded_knots_at_the_left_end_meet_s() {
+    check_crowded_case(
+        23,
+        &[0.0, 6.0],
+        &CROWDED_LEFT_Y,
+        &CROWDED_LEFT_W,
+        1.1506528797924371,
+    );
+}
+
 fn knots_strategy() -> impl Strategy<Value = (usize, Vec<f64>)> {
     (1usize..=3, proptest::collection::vec(0.05f64..0.95, 0..5)).prop_map(|(p, mut inner)| {
         inner.sort_by(f64::total_cmp);
@@ -529,6 +645,32 @@ proptest! {
             Err(e @ Error::InvalidArgument { .. }) if e.arg() == Some(lekalo::Arg::S) => {
                 prop_assert!(s <= floor * (1.0 + 1e-12), "s = {s} above the floor {floor} was refused");
             }
+            Err(e) => prop_assert!(false, "unexpected error {e}"),
+        }
+    }
+
+    /// On distinct abscissae with any spacing, values and weights, the smoothing condition
+    /// meets any `s > 0` at every degree, down to near interpolation where FITPACK's knot
+    /// placement alone would crowd knots at an end and leave a singular system.
+    #[test]
+    fn distinct_abscissae_meet_any_s(
+        degree in 1usize..=5,
+        gaps in proptest::collection::vec(0.05f64..3.0, 7..90),
+        values in proptest::collection::vec(-10.0f64..10.0, 91),
+        weights in proptest::collection::vec(0.01f64..3.0, 91),
+        s_exp in -9.0f64..0.0,
+    ) {
+        let mut x = vec![0.0];
+        for g in &gaps {
+            x.push(x[x.len() - 1] + g);
+        }
+        let m = x.len();
+        let (y, w) = (&values[..m], &weights[..m]);
+        let total: f64 = y.iter().zip(w).map(|(v, q)| q * v * v).sum();
+        let s = 10f64.powf(s_exp) * total;
+        let data = FitData::new(PointsRef::from_flat(1, y).unwrap(), &x).unwrap().with_weights(w).unwrap();
+        match smoothing_condition(&data, degree, s) {
+            Ok(fit) => prop_assert!(fit.report.weighted_rss <= s + 1e-12 * total, "rss {} > s {s}", fit.report.weighted_rss),
             Err(e) => prop_assert!(false, "unexpected error {e}"),
         }
     }

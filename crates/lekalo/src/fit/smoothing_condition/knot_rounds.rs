@@ -74,10 +74,13 @@ pub(super) fn knot_rounds(
         fpold = fp;
         pass.residuals(obs, &c);
         knots.span_sums(obs, &pass, &t);
-        match knots.add_up_to(&obs.sites, nplus, nmax - 2 * k - 2, cap) {
+        let full = nmax - 2 * k - 2;
+        match knots.add_up_to(&obs.sites, nplus, full, cap) {
             Added::Some => {}
             Added::Full => knots.interpolation(&obs.sites),
-            // no span holds a parameter strictly inside: as close to interpolation as it gets
+            // no span can be split without crowding an end: the knots of interpolation, when
+            // `cap` allows them
+            Added::None if full <= cap => knots.interpolation(&obs.sites),
             Added::None => return Ok(Rounds::Done { t, c }),
         }
     }
@@ -101,6 +104,9 @@ pub(in crate::fit) struct Knots {
     pub(in crate::fit) interior: Vec<f64>,
     pub(in crate::fit) fpint: Vec<f64>,
     pub(in crate::fit) nrdata: Vec<usize>,
+    /// The parameters the spans nearest a clamped end keep strictly inside, `⌊(k − 1)/2⌋`
+    /// ([`end_deficit`]); 0 for closed curves, which have no end.
+    pub(in crate::fit) end_keep: usize,
 }
 
 impl Knots {
@@ -116,6 +122,7 @@ impl Knots {
             interior: Vec::new(),
             fpint: vec![0.0],
             nrdata: vec![sites.len().saturating_sub(2)],
+            end_keep: k.saturating_sub(1) / 2,
         }
     }
 
@@ -198,12 +205,17 @@ impl Knots {
     }
 
     /// Adds one knot at the middle distinct parameter of the span with the largest residual
-    /// sum among those with a parameter strictly inside (FITPACK `fpknot`). Returns `false`
-    /// when no span can be split.
+    /// sum among those with a parameter strictly inside (FITPACK `fpknot`), unless the split
+    /// would leave an end short of parameters ([`Knots::end_deficit`] above
+    /// [`END_DEFICIT_MAX`]; then the next span). Returns `false` when no span can be split.
     fn add_one(&mut self, sites: &[f64]) -> bool {
+        let spans = self.nrdata.len();
+        // the ends' deficits reach only as far as their walks; a split beyond leaves them
+        let (front, back) = (self.end_walk(false), self.end_walk(true));
         let (mut best, mut fpmax, mut begin) = (None, 0.0, 0usize);
         for (j, (&f, &nd)) in self.fpint.iter().zip(&self.nrdata).enumerate() {
-            if nd > 0 && f > fpmax {
+            let near_an_end = j < front || j + back >= spans;
+            if nd > 0 && f > fpmax && (!near_an_end || self.split_keeps_ends(j)) {
                 fpmax = f;
                 best = Some((j, begin));
             }
@@ -224,6 +236,63 @@ impl Knots {
             .insert(j + 1, fpmax * (maxpt - ihalf) as f64 / am);
         true
     }
+
+    /// How many spans from one end (`back`: the last) [`Knots::end_deficit`] reads.
+    fn end_walk(&self, back: bool) -> usize {
+        let counts = self.nrdata.iter().copied();
+        if back {
+            end_deficit(counts.rev(), self.end_keep).1
+        } else {
+            end_deficit(counts, self.end_keep).1
+        }
+    }
+
+    /// Whether splitting span `j` as [`Knots::add_one`] does (`nd/2` parameters before the
+    /// knot, `nd − nd/2 − 1` after) keeps both ends' deficits within [`END_DEFICIT_MAX`].
+    fn split_keeps_ends(&self, j: usize) -> bool {
+        let nd = self.nrdata[j];
+        let (before, after) = (nd / 2, nd.saturating_sub(nd / 2 + 1));
+        let (head, tail) = (&self.nrdata[..j], &self.nrdata[j + 1..]);
+        let front = head.iter().copied().chain([before, after]);
+        let back = tail.iter().rev().copied().chain([after, before]);
+        let front = end_deficit(front.chain(tail.iter().copied()), self.end_keep).0;
+        let back = end_deficit(back.chain(head.iter().rev().copied()), self.end_keep).0;
+        front <= END_DEFICIT_MAX && back <= END_DEFICIT_MAX
+    }
+}
+
+/// The largest [`end_deficit`] the knot rounds allow at either end.
+const END_DEFICIT_MAX: usize = 1;
+
+/// The Schoenberg–Whitney deficit at a clamped end, and the number of spans read: with `c_r`
+/// the distinct parameters strictly inside the `r` spans nearest the end (`counts` in that
+/// order), `Σ_r max(0, e − c_r)` over `r` until `c_r ≥ e`, where `e = ⌊(k − 1)/2⌋`.
+///
+/// Knots sit at parameters, so every span may end up without one strictly inside. A window
+/// of `q` B-splines away from the ends still holds `k − 1` parameters more than it has
+/// B-splines (the `q + k − 1` knots inside its support), but the window of the B-splines on
+/// the `r` spans nearest a clamped end holds only `c_r` more: the end's `k + 1` knots carry
+/// one parameter. The knots of interpolation keep `c_r = e`, each B-spline meeting a parameter
+/// at a middle knot of its support. Each unit of deficit shifts the B-splines of a window one
+/// parameter towards their first knot, where they are small (`1/k!` beside it on equal spans
+/// against a peak of 0.55 for `k = 5`), and the least-squares problem's condition grows by the
+/// largest root of the Euler–Frobenius polynomial of the shift (about 3.7 for `k = 3`, 23 for
+/// `k = 5` at deficit 2) per span. FITPACK's `fpknot` knows no deficit: on data where the
+/// residual stays largest near an end it places a knot at every parameter up to the one
+/// beside it, and the triangle is singular to rounding. The rounds allow a deficit of
+/// [`END_DEFICIT_MAX`] `= 1`, which keeps FITPACK's knots for `k = 3, 4` when one end span is
+/// left empty (`docs/theory/fitting.md#smoothing-condition`).
+fn end_deficit(counts: impl Iterator<Item = usize>, e: usize) -> (usize, usize) {
+    let (mut c, mut deficit, mut read) = (0usize, 0usize, 0usize);
+    for nd in counts {
+        if c >= e || deficit > END_DEFICIT_MAX {
+            break;
+        }
+        read += 1;
+        c += nd;
+        deficit += e.saturating_sub(c);
+    }
+    (deficit, read)
 }
 
 /// FITPACK's number of knots to add next: `min(2·nplus, max(⌊nplus·fpms/decrease⌋,
@@ -238,4 +307,24 @@ pub(crate) fn next_nplus(nplus: usize, fpms: f64, decrease: f64, acc: f64) -> us
         nplus * 2
     };
     (nplus * 2).min(npl1.max(nplus / 2).max(1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::end_deficit;
+
+    #[test]
+    fn end_deficit_sums_the_missing_parameters_until_the_end_holds_enough() {
+        // e = 0 (degree ≤ 2): nothing to keep, nothing read
+        assert_eq!(end_deficit([0, 0, 4].into_iter(), 0), (0, 0));
+        // enough in the end span
+        assert_eq!(end_deficit([3, 0, 0].into_iter(), 2), (0, 1));
+        // cubic, one empty end span (FITPACK's knots): deficit 1, enough one span in
+        assert_eq!(end_deficit([0, 2, 0].into_iter(), 1), (1, 2));
+        // quintic, one parameter in each of the two spans nearest the end: 1, then enough
+        assert_eq!(end_deficit([1, 1, 0].into_iter(), 2), (1, 2));
+        // quintic, knots at every parameter up to the end: the reading stops once above 1
+        assert_eq!(end_deficit([0, 0, 0, 0].into_iter(), 2), (2, 1));
+        assert_eq!(end_deficit([1, 0, 0].into_iter(), 2), (2, 2));
+    }
 }

@@ -45,12 +45,15 @@ pub const SMOOTHING_RTOL: f64 = 1e-3;
 /// 2. Otherwise add knots where the residual is largest, as FITPACK's `fpcurf`/`fpknot`: the
 ///    residual is summed per knot span (a point on a knot counts half to each side), and the span
 ///    with the largest sum among those with a distinct parameter strictly inside is split at its
-///    middle such parameter, the sum shared in proportion. The number added per round starts at
+///    middle such parameter, the sum shared in proportion, unless the split leaves an end short
+///    of parameters (unlike FITPACK, whose knots can crowd an end until the system is singular
+///    to rounding; `docs/theory/fitting.md#smoothing-condition`). The number added per round starts at
 ///    1 and follows `nplus = min(2·nplus, max(⌊nplus·(fp − s)/(fp_old − fp)⌋, nplus/2, 1))`.
 ///    Each round is one least-squares pass: the data rows are reduced into a banded triangle
 ///    `R` (Householder blocks of the rows of one knot span, `docs/theory/fitting.md#banded-qr`)
 ///    and kept only for the span residuals. The round stops when `fp ≤ s`, or when the knots are
-///    those of interpolation (`s = 0` starts there).
+///    those of interpolation (`s = 0` starts there, and a round where no span can be split goes
+///    there).
 /// 3. On this final knot set, smooth: add the rows `b_j / p` of FITPACK's `fpdisc` (the jumps of
 ///    the `p`-th derivative at the interior knots, scaled by `k!·(spans/length)^k`) and find `p`
 ///    with `|fp(p) − s| < SMOOTHING_RTOL·s` by FITPACK's rational interpolation (`fprati`),
@@ -59,8 +62,8 @@ pub const SMOOTHING_RTOL: f64 = 1e-3;
 ///    no pass over the data.
 ///
 /// On data with distinct parameters this is FITPACK's algorithm step for step, so the knots and
-/// coefficients are SciPy's to rounding (tested on stored SciPy values). It differs where FITPACK
-/// would return a residual above `s`: a least-squares fit with `s < fp < s + SMOOTHING_RTOL·s`
+/// coefficients are SciPy's to rounding (tested on stored SciPy values), except where a split
+/// would leave an end short of parameters (above). It differs where FITPACK would return a residual above `s`: a least-squares fit with `s < fp < s + SMOOTHING_RTOL·s`
 /// gets more knots instead of being accepted, and a smoothed fit with `fp > s` continues the
 /// same iteration towards `s − SMOOTHING_RTOL·s/2`, so the result never exceeds `s`.
 /// Repeated parameters are allowed: knots are placed among the distinct ones. Where points share
