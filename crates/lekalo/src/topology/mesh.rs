@@ -191,10 +191,13 @@ fn dist(a: &[f64], b: &[f64]) -> f64 {
 /// it, for all its uses (`(plan, edge, same direction)`): start at
 /// [`START_SAMPLES_PER_SPAN`] per knot span of its curve and of its pcurves of degree above 1
 /// (a projected pcurve of degree 1 has many short spans, which the tests below sample as
-/// finely as they need), then halve a segment while, on any use's face,
+/// finely as they need), and at least `⌈MIN_LOOP_SEGMENTS / k⌉` on a loop of `k` edges
+/// ([`MIN_LOOP_SEGMENTS`]), then halve a segment while the edge's curve there is farther than
+/// `tol / 2` from its chord ([`chord_gap`], a convex-hull bound) or, on any use's face,
 /// the surface at the pcurve's midpoint is farther than `tol / 2` from the chord's midpoint,
-/// the segment's parameter step has `M(e) > 4 tol` (its part of the triangles' bound), or
-/// the step is longer than the face's grid spacing.
+/// the segment's parameter step has `M(e) > 4 tol` (its part of the triangles' bound), the
+/// step is longer than the face's grid spacing, or longer than [`MAX_PERIOD_STEP`] of a
+/// period in a closed direction.
 fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f64>> {
     let budget = MAX_MESH_VERTICES;
     let spans = uses
