@@ -558,3 +558,69 @@ proptest! {
         check_reported(&r, tol);
     }
 }
+
+/// A small bicubic patch of a bearing exported from a CAD system (its net copied here), the
+/// face bounded by its domain's four sides. At a tolerance far above its curvature's bound one
+/// cell of the grid meets it, and the mesh has no more triangles than the uniform grid whose
+/// triangles meet the tolerance by the same bound (`Curvature::triangle`). Each edge started
+/// at four segments per knot span whatever the tolerance: 14 triangles where 2 do, on each of
+/// a hundred such faces of the part.
+#[test]
+fn a_single_patch_face_has_no_more_triangles_than_the_uniform_grid_needs() {
+    let net = [
+        [-0.004492467, -0.02130646, 0.01790605],
+        [-0.003696251, -0.02156766, 0.01789697],
+        [-0.003145416, -0.02229409, 0.01795252],
+        [-0.003112558, -0.02312631, 0.01804525],
+        [-0.004544573, -0.02143059, 0.01681363],
+        [-0.003748849, -0.02169207, 0.01680459],
+        [-0.003198486, -0.02241827, 0.01686014],
+        [-0.003165644, -0.02325012, 0.01695282],
+        [-0.004596675, -0.02155471, 0.0157212],
+        [-0.003801435, -0.02181648, 0.01571221],
+        [-0.003251562, -0.02254244, 0.01576776],
+        [-0.003218729, -0.02337392, 0.01586039],
+        [-0.004648815, -0.02167881, 0.01462876],
+        [-0.003854049, -0.02194086, 0.01461984],
+        [-0.003304633, -0.02266659, 0.01467537],
+        [-0.003271815, -0.0234977, 0.01476796],
+    ];
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    let s = Surface::from(
+        BSplineSurface::new(
+            3,
+            3,
+            knots.clone(),
+            knots,
+            Points::from_3d(&net).unwrap(),
+            (4, 4),
+        )
+        .unwrap(),
+    );
+    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let f = domain_face(s, &corners, true);
+    for tol in [0.1, 1e-4, 1e-5] {
+        let m = f.mesh(tol).unwrap();
+        assert!(m.deviation <= tol, "{} > {tol}", m.deviation);
+        // the fewest n × n cells whose triangles are within tol by the mesh's own bound
+        let (plan, _) = plan_face(&f, tol, MAX_REFINE_ROUNDS).unwrap();
+        let n = (1..=64)
+            .find(|&n| {
+                let h = 1.0 / n as f64;
+                (0..n).all(|i| {
+                    (0..n).all(|j| {
+                        let (u0, v0) = (i as f64 * h, j as f64 * h);
+                        let (a, b, c, d) = ([u0, v0], [u0 + h, v0], [u0 + h, v0 + h], [u0, v0 + h]);
+                        plan.curv.triangle([a, b, c]) <= tol && plan.curv.triangle([a, c, d]) <= tol
+                    })
+                })
+            })
+            .unwrap();
+        assert!(
+            m.triangles.len() <= 2 * n * n,
+            "{} triangles at {tol}, where the uniform {n} × {n} grid's {} are within it",
+            m.triangles.len(),
+            2 * n * n
+        );
+    }
+}
