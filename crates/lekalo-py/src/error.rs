@@ -126,9 +126,9 @@ pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     raise(numerical, e.to_string())
 }
 
-/// The library's error for a function `y(x)`: the sequence it finds decreasing
-/// ([`lekalo::Error::NotIncreasing`], which the library's interpolation calls its
-/// "parameters") is the argument `x`, and the message names it so; other errors as
+/// The library's error for a function `y(x)`: the sequence it finds decreasing or repeating
+/// ([`lekalo::Error::NotIncreasing`], [`lekalo::Error::Repeated`], which the library's
+/// interpolation calls its "parameters") is the argument `x`, and the message names it so; other errors as
 /// [`lib_err`].
 pub(crate) fn function_err(e: lekalo::Error) -> PyErr {
     match e {
@@ -142,6 +142,11 @@ pub(crate) fn function_err(e: lekalo::Error) -> PyErr {
             index,
             value,
             previous,
+        }),
+        lekalo::Error::Repeated { index, value, .. } => lib_err(lekalo::Error::Repeated {
+            what: "x".into(),
+            index,
+            value,
         }),
         other => lib_err(other),
     }

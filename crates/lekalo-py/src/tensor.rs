@@ -336,6 +336,7 @@ impl PyTensorBSpline {
                 lekalo::Error::SingularSystem { .. } => named("knots", &e),
                 lekalo::Error::KnotsNotSorted { .. }
                 | lekalo::Error::NotIncreasing { .. }
+                | lekalo::Error::Repeated { .. }
                 | lekalo::Error::InvalidArgument { .. }
                 | lekalo::Error::NonFinite { .. } => named("axes", &e),
                 other => lib_err(other),
@@ -402,6 +403,7 @@ fn fit_err(e: lekalo::Error, coordinates: &str) -> PyErr {
         lekalo::Error::ParameterOutOfDomain { .. }
         | lekalo::Error::KnotsNotSorted { .. }
         | lekalo::Error::NotIncreasing { .. }
+        | lekalo::Error::Repeated { .. }
         | lekalo::Error::NonFinite { .. } => named(coordinates, &e),
         lekalo::Error::InvalidDataWeight { .. } => named("w", &e),
         other => lib_err(other),

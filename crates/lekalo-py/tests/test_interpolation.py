@@ -317,3 +317,20 @@ def test_end_derivatives_per_end_refusals():
         lekalo.interpolate_with_end_derivatives(x, x, t, 3, start=[(1, 0.0)])
     with pytest.raises(lekalo.Error, match="order"):
         lekalo.interpolate_with_end_derivatives(x, x, t, 3, start=[(4, 0.0)], end=[(1, 0.0)])
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda x, y: lekalo.natural_cubic_spline(x, y),
+        lambda x, y: lekalo.CubicHermite.function(x, y),
+    ],
+)
+def test_functions_of_x_name_a_repeated_x(call):
+    # two values at one x: the message names x and both indices, and says what to do
+    x = np.array([0.0, 1.0, 1.0, 3.0])
+    with pytest.raises(lekalo.InputError) as e:
+        call(x, np.array([0.0, 1.0, 2.0, 3.0]))
+    message = str(e.value)
+    assert "x[1] and x[2] are both 1" in message and "merge" in message, message
+    assert "parameters" not in message, message

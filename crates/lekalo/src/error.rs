@@ -157,6 +157,31 @@ pub enum Error {
         previous: f64,
     },
 
+    /// Parameters, abscissae or breakpoints that must be strictly increasing and repeat a
+    /// value (two data at one parameter: an interpolant cannot take two values there).
+    ///
+    /// ```
+    /// use lekalo::{natural_cubic_spline, Error, Points};
+    /// let y = Points::from_flat(1, vec![1.0, 3.0, 2.0]).unwrap();
+    /// let e = natural_cubic_spline(&[0.0, 1.0, 1.0], y.as_view()).unwrap_err();
+    /// assert!(matches!(e, Error::Repeated { index: 2, .. }));
+    /// assert!(e.to_string().starts_with("parameters[1] and parameters[2] are both 1"), "{e}");
+    /// ```
+    #[error(
+        "{what}[{}] and {what}[{index}] are both {}: {what} must be strictly increasing; merge \
+         the data at a repeated value into one (or fit instead of interpolating)",
+        index - 1,
+        readable(.value)
+    )]
+    Repeated {
+        /// Which sequence (`parameters`, `x`, `breakpoints`).
+        what: What,
+        /// Index of the first value equal to its predecessor.
+        index: usize,
+        /// That value.
+        value: f64,
+    },
+
     /// A knot repeated more often than the degree allows.
     ///
     /// ```
@@ -628,7 +653,8 @@ impl Error {
             | Error::InvalidArgument { what, .. }
             | Error::TooLarge { what, .. }
             | Error::NegativeSmoothing { what, .. }
-            | Error::NotIncreasing { what, .. } => what.arg(),
+            | Error::NotIncreasing { what, .. }
+            | Error::Repeated { what, .. } => what.arg(),
             Error::KnotsNotSorted { .. } | Error::KnotMultiplicity { .. } => Some(Arg::Knots),
             Error::NonPositiveWeight { .. } => Some(Arg::Weights),
             Error::NonPositiveTolerance { .. } => Some(Arg::Tolerance),

@@ -180,13 +180,10 @@ pub(crate) fn check_strictly_increasing(params: &[f64]) -> Result<()> {
             });
         }
         if params[i] == params[i - 1] {
-            return Err(Error::InvalidArgument {
+            return Err(Error::Repeated {
                 what: "parameters".into(),
-                reason: format!(
-                    "parameters {} and {i} are both {}: interpolation parameters must be strictly increasing",
-                    i - 1,
-                    params[i]
-                ),
+                index: i,
+                value: params[i],
             });
         }
     }

@@ -1049,7 +1049,10 @@ fn error_degree_dimension_counts_and_arguments() {
     let invalid = |r: Result<BSplineCurve, Error>| {
         assert!(matches!(r, Err(Error::InvalidArgument { .. })), "{r:?}")
     };
-    invalid(CurveInterpolation::new(3).interpolate_at(v, &[0.0, 0.5, 0.5, 0.8, 1.0]));
+    assert!(matches!(
+        CurveInterpolation::new(3).interpolate_at(v, &[0.0, 0.5, 0.5, 0.8, 1.0]),
+        Err(Error::Repeated { index: 2, .. })
+    ));
     invalid(
         CurveInterpolation::new(3)
             .parametrization(Parametrization::Exponent(-1.0))
