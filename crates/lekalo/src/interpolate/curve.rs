@@ -278,7 +278,7 @@ impl CurveInterpolation {
     ///
     /// # Errors
     /// As [`CurveInterpolation::interpolate`]; [`Error::LengthMismatch`] if the parameter count
-    /// is wrong; [`Error::NotIncreasing`] / [`Error::InvalidArgument`] for decreasing / equal
+    /// is wrong; [`Error::NotIncreasing`] / [`Error::Repeated`] for decreasing / equal
     /// parameters. Duplicates are not dropped here (they would shift the parameters).
     pub fn interpolate_at(
         &self,

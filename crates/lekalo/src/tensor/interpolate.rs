@@ -235,8 +235,8 @@ impl TensorInterpolation {
     /// # Errors
     /// As [`TensorInterpolation::interpolate`], except the parametrisation's; besides
     /// [`Error::NonFinite`] for a coordinate that is NaN or infinite (the values are finite
-    /// by construction of [`PointsRef`]), [`Error::KnotsNotSorted`]
-    /// for a coordinate below its predecessor and [`Error::InvalidArgument`] for a repeated
+    /// by construction of [`PointsRef`]), [`Error::NotIncreasing`]
+    /// for a coordinate below its predecessor and [`Error::Repeated`] for a repeated
     /// coordinate; for `N = 1` the errors of [`CurveInterpolation::interpolate_at`].
     pub fn interpolate_at(
         &self,

@@ -579,7 +579,7 @@ fn every_error_is_named() {
         .interpolate_at(&[&[0.0, 1.0, 1.0, 3.0], &[0.0, 1.0, 2.0]], values)
         .unwrap_err();
     assert!(
-        matches!(e, Error::InvalidArgument { what, .. } if what.words() == "parameters"),
+        matches!(e, Error::Repeated { what, index: 2, .. } if what.words() == "parameters"),
         "{e:?}"
     );
     let e = TensorInterpolation::new(vec![])
