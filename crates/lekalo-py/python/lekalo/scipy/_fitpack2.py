@@ -20,6 +20,7 @@ from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _te
 from ._bspline import _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
+from ._splrep import make_splrep
 
 _EXTRAP_MODES = {0: 0, "extrapolate": 0, 1: 1, "zeros": 1, 2: 2, "raise": 2, 3: 3, "const": 3}
 
@@ -79,7 +80,8 @@ class UnivariateSpline:
         self._data = (x, y, w, xb, xe, k, s)
         self._eval_args = splrep(x, y, w=w, xb=xb, xe=xe, k=k, s=s, t=t)
         ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
-        self._fp = float(np.sum((ww * (splev(x, self._eval_args) - y)) ** 2))
+        # FITPACK reports fp = 0 for the interpolating spline (s = 0), not the rounding left
+        self._fp = 0.0 if s == 0 else float(np.sum((ww * (splev(x, self._eval_args) - y)) ** 2))
 
     @classmethod
     def _from_tck(cls, tck: Any, ext: int = 0) -> "UnivariateSpline":
@@ -134,7 +136,55 @@ class UnivariateSpline:
         return UnivariateSpline._from_tck(splantider(self._eval_args, n), ext=self.ext)
 
     def set_smoothing_factor(self, s: float) -> None:
-        raise NotImplementedError("lekalo.scipy: UnivariateSpline.set_smoothing_factor is not available yet")
+        """Refit with the smoothing factor ``s``, continuing from the knots of the last fit as
+        FITPACK's ``curfit`` with ``iopt=1`` (SciPy's ``fpcurf1``): where ``s`` is at least the
+        residual of the least-squares polynomial, or the last fit had no interior knot, the fit
+        starts over (a new ``UnivariateSpline(..., s=s)``); where the least-squares spline on the
+        current knots already has a residual at most ``s``, it is smoothed on those knots
+        (lekalo's ``smoothing_on_knots``, ``make_splrep(t=..., s=...)``). Adding knots to the
+        current ones is not available yet (``NotImplementedError``)."""
+        x, y, w, xb, xe, k, s_old = self._data
+        if x is None:
+            raise TypeError(
+                "set_smoothing_factor needs the data of a fit; this spline was made from knots and "
+                "coefficients (a derivative or antiderivative): make a UnivariateSpline from the data"
+            )
+        if s_old is None:
+            warnings.warn("smoothing factor unchanged for LSQ spline with fixed knots", stacklevel=2)
+            return
+        s = float(s)
+        if not s >= 0.0:
+            raise ValueError("s should be s >= 0.0")
+        xb = x[0] if xb is None else float(xb)
+        xe = x[-1] if xe is None else float(xe)
+        ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
+        t = self._eval_args[0]
+        if s > 0.0 and s_old == 0.0:
+            # FITPACK's iopt=1 after s=0 reads a residual that its interpolation never set
+            raise NotImplementedError(
+                "lekalo.scipy: UnivariateSpline.set_smoothing_factor after an interpolating fit "
+                "(s=0) is not available: make a new UnivariateSpline(x, y, s=s) instead"
+            )
+        fresh = s == 0.0 or len(t) == 2 * k + 2
+        if not fresh:
+            poly = make_lsq_spline(x, y, np.r_[[xb] * (k + 1), [xe] * (k + 1)], k, w=w)
+            fresh = s >= float(np.sum((ww * (poly(x) - y)) ** 2))
+        if fresh:
+            self._fit(x, y, w, (xb, xe), k, s, None)
+            return
+        lsq = make_lsq_spline(x, y, t, k, w=w)
+        fp = float(np.sum((ww * (lsq(x) - y)) ** 2))
+        if fp > s:
+            raise NotImplementedError(
+                f"lekalo.scipy: UnivariateSpline.set_smoothing_factor({s!r}) is below the least-squares "
+                f"residual on the current knots ({fp:.6g}): FITPACK would add knots to them, which is "
+                "not available yet; make a new UnivariateSpline(x, y, s=s) instead (FITPACK's knots "
+                "placed from the start)"
+            )
+        spl = make_splrep(x, y, w=w, t=t, k=k, s=s)
+        self._data = (x, y, w, xb, xe, k, s)
+        self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
+        self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
 
 
 class InterpolatedUnivariateSpline(UnivariateSpline):
