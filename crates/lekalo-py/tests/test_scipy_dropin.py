@@ -556,6 +556,27 @@ def test_univariate_spline_set_smoothing_factor():
     close(lsq(xs), before)
 
 
+def test_boolean_weights_mask_points_out_as_in_scipy():
+    """SciPy's ``UnivariateSpline`` docstring masks NaN data with ``w=~np.isnan(y)``: a boolean
+    array of weights is read as 0.0 and 1.0 by ``splrep``, ``UnivariateSpline`` and
+    ``make_smoothing_spline``, and weights of the wrong length are SciPy's errors."""
+    x = np.linspace(0.0, 10.0, 30)
+    y = np.sin(x)
+    y[4] = np.nan
+    w = np.isnan(y)
+    y[w] = 0.0
+    a, b = si.UnivariateSpline(x, y, w=~w), ls.UnivariateSpline(x, y, w=~w)
+    close(b.get_knots(), a.get_knots())
+    close(b(XX), a(XX), 1e-6)
+    close(ls.splev(XX, ls.splrep(x, y, w=~w, s=1.0)), si.splev(XX, si.splrep(x, y, w=~w, s=1.0)), 1e-6)
+    ok = np.ones(30, dtype=bool)
+    close(ls.make_smoothing_spline(x, y, w=ok, lam=0.1)(XX), si.make_smoothing_spline(x, y, w=ok, lam=0.1)(XX), 1e-8)
+    with pytest.raises(ValueError, match="Invalid vector of weights"):
+        ls.make_smoothing_spline(x, y, w=~w)
+    with pytest.raises(TypeError, match=r"len\(w\)=29 is not equal to m=30"):
+        ls.splrep(x, y, w=np.ones(29), s=1.0)
+
+
 def test_ndbspline():
     rng = np.random.default_rng(8)
     t = (np.r_[[0.0] * 4, 1.0, 2.5, [4.0] * 4], np.r_[[0.0] * 3, 2.0, [3.0] * 3])

@@ -26,6 +26,11 @@ def splrep(
     x = np.atleast_1d(np.asarray(x, dtype=np.float64))
     y = np.atleast_1d(np.asarray(y, dtype=np.float64))
     m = len(x)
+    if w is not None:
+        # FITPACK's wrapper reads any real array as doubles: boolean masks (SciPy's ``w=~isnan(y)``) too
+        w = np.atleast_1d(np.asarray(w, dtype=np.float64))
+        if len(w) != m:
+            raise TypeError(f"len(w)={len(w)} is not equal to m={m}")
     if s is None:
         s = 0.0 if w is None else m - np.sqrt(2 * m)
     if not (1 <= k <= 5):

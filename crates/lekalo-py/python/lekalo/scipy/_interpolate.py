@@ -217,6 +217,11 @@ def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axi
         raise ValueError(f"``x`` should be 1D and {x.shape = } == {y.shape = }")
     if x.shape[0] < 5:
         raise ValueError("``x`` and ``y`` length must be at least 5")
+    if w is not None:
+        # SciPy reads the weights as an array (a boolean mask too) and refuses any w <= 0
+        w = np.ascontiguousarray(w, dtype=float)
+        if any(w <= 0):
+            raise ValueError("Invalid vector of weights")
     tail = y.shape[1:]
     n = x.shape[0]
     cols = _real_columns(y, n)
