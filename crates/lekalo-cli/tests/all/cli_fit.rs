@@ -366,6 +366,30 @@ fn closed_loop() -> String {
     s
 }
 
+/// Closed data that end on their first point again, to rounding: the refusal names the seam and
+/// the fix (leave the repeated point out), and the fit without it runs.
+#[test]
+fn periodic_fit_of_data_repeating_their_first_point_names_the_fix() {
+    let mut data = String::new();
+    for k in 0..40 {
+        let t = std::f64::consts::TAU * f64::from(k) / 40.0;
+        writeln!(data, "{} {}", t.cos(), 0.6 * t.sin()).unwrap();
+    }
+    let open_data = data.clone();
+    writeln!(data, "1 -1.5e-16").unwrap();
+    lekalo()
+        .args(["fit", "-", "--periodic", "--s", "0.01"])
+        .write_stdin(data)
+        .assert()
+        .code(2)
+        .stderr(contains("points 40 and 0").and(contains("leave out a repeated first point")));
+    lekalo()
+        .args(["fit", "-", "--periodic", "--s", "0.01"])
+        .write_stdin(open_data)
+        .assert()
+        .success();
+}
+
 #[test]
 fn periodic_fits_close_the_curve() {
     let data = closed_loop();

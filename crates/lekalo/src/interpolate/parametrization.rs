@@ -158,12 +158,21 @@ pub(crate) fn parametrize_into<'a>(
     Ok(())
 }
 
+/// Two consecutive points whose chord is lost in the rounding of the parameters' sum: the
+/// message names the fix, and for the closing chord of a closed polygon (`second` = 0) that
+/// the data need not repeat their first point.
 #[cold]
 fn too_close((first, second): (usize, usize)) -> Error {
+    let seam = if second == 0 && first > 0 {
+        "; a closed curve joins the last point to the first itself, so leave out a repeated first point at the end"
+    } else {
+        ""
+    };
     Error::InvalidArgument {
         what: "points".into(),
         reason: format!(
-            "points {first} and {second} are too close relative to the others for distinct parameters"
+            "points {first} and {second} are too close relative to the others for distinct parameters: \
+             merge or remove one of them, or use uniform parameters{seam}"
         ),
     }
 }
@@ -266,5 +275,41 @@ pub(crate) fn distances<const D: usize>(a: &[f64], b: &[f64], dim: usize, out: &
         .zip(out.iter_mut())
     {
         *o = distance_fixed::<D>(p, q);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::points::Points;
+
+    /// Closed data that repeat their first point to rounding: the closing chord is lost in the
+    /// sum, and the message names the seam and the fix; an open polygon's pair gets the fix
+    /// without the seam.
+    #[test]
+    fn points_too_close_for_distinct_parameters_name_the_fix() {
+        let mut pts: Vec<[f64; 2]> = (0..40)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 40.0;
+                [a.cos(), 0.6 * a.sin()]
+            })
+            .collect();
+        pts.push([1.0, -1.5e-16]);
+        let q = Points::from_2d(&pts).expect("finite points");
+        let msg = parametrize_impl(q.as_view(), Parametrization::ChordLength, true)
+            .expect_err("the closing chord is below the parameters' rounding")
+            .to_string();
+        assert!(msg.contains("points 40 and 0"), "{msg}");
+        assert!(msg.contains("leave out a repeated first point"), "{msg}");
+        let open = Points::from_2d(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1e-17], [2.0, 0.0]])
+            .expect("finite points");
+        let msg = parametrize(open.as_view(), Parametrization::ChordLength)
+            .expect_err("the chord 1 -> 2 is below the parameters' rounding")
+            .to_string();
+        assert!(
+            msg.contains("points 1 and 2") && msg.contains("merge or remove one of them"),
+            "{msg}"
+        );
+        assert!(!msg.contains("closed curve"), "{msg}");
     }
 }
