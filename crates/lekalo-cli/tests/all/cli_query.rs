@@ -5,6 +5,7 @@
 
 use std::fs;
 
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 
 use crate::common;
@@ -364,6 +365,30 @@ fn intersect_names_each_kind_of_contact() {
         .assert()
         .code(2)
         .stderr(contains("dimension"));
+}
+
+/// JSON Lines of surfaces (a batch, not face envelopes): the refusal says what mesh reads and
+/// what to do, not a JSON parse error about trailing characters.
+#[test]
+fn mesh_of_a_batch_of_surfaces_names_what_it_reads() {
+    let line = serde_json::to_string(&serde_json::from_str::<serde_json::Value>(SURFACE).unwrap())
+        .unwrap();
+    let d = dir_with(&[
+        ("two.jsonl", &format!("{line}\n{line}\n")),
+        ("one.jsonl", &format!("{line}\n")),
+    ]);
+    lekalo()
+        .args(["mesh", "--tolerance", "1e-3"])
+        .arg(p(&d, "two.jsonl"))
+        .assert()
+        .code(2)
+        .stderr(contains("2 objects").and(contains("write each line to a .json file")));
+    lekalo()
+        .args(["mesh", "--tolerance", "1e-3", "-o"])
+        .arg(p(&d, "one.obj"))
+        .arg(p(&d, "one.jsonl"))
+        .assert()
+        .success();
 }
 
 #[test]

@@ -157,6 +157,15 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         return Ok(());
     }
     let (text, name) = lekalo_io::read_input(&a.input)?;
+    let objects = text.lines().filter(|l| !l.trim().is_empty()).count();
+    if crate::items::is_json_lines(&a.input, false) && objects > 1 {
+        // JSON Lines that are not face envelopes (a batch of curves or surfaces): one object a call
+        return bad_input(format!(
+            "{}: {objects} objects; mesh reads one curve or surface, or faces (JSON Lines of face \
+             envelopes, as `convert --faces` writes): write each line to a .json file and mesh each",
+            a.input.display()
+        ));
+    }
     let shape = Shape::from_json_str(&text, &name)?;
     let (body, summary) = match shape {
         Shape::Surface(s) => {
