@@ -216,6 +216,12 @@ pub(super) fn shape(s: &mut Section) -> Result<()> {
     let pts: Vec<[f64; 2]> = x.iter().zip(&y).map(|(a, b)| [*a, *b]).collect();
     fig.series
         .push(Series::new(Some("data"), pts, Style::Dots, PALETTE[2]));
+    // the bounds, so that the overshoot of the free fit and the constrained one at 1 are seen
+    for (label, v) in [(Some("bounds 0 and 1"), 0.0), (None, 1.0)] {
+        let mut bound = Series::new(label, vec![[0.0, v], [1.0, v]], Style::Line, "#777777");
+        bound.dash = Some("2 4".into());
+        fig.series.push(bound);
+    }
     fig.series.push(Series::new(
         Some("least squares"),
         graph(&free.curve)?,
@@ -232,9 +238,9 @@ pub(super) fn shape(s: &mut Section) -> Result<()> {
         fig,
         Caption::new(
             "Noisy samples (green dots), the unconstrained least-squares cubic with 12 control \
-             points (orange, dashed), which dips and rises above 1, and the same fit constrained \
-             to increase and to stay between 0 and 1 (blue): the optimum of the constrained \
-             problem, exact on every span.",
+             points (orange, dashed), which falls where the noise falls and rises above the \
+             bound 1 (grey, dotted), and the same fit constrained to increase and to stay between \
+             0 and 1 (blue): the optimum of the constrained problem, exact on every span.",
         )
         .theory("fitting.md#shape-constraints"),
     );
