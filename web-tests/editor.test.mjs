@@ -357,6 +357,74 @@ test('Queries: the closest point follows the pointer, the arc length and the par
   assert.match(await page.textContent('[data-err="at_length"]'), /invalid arc length/);
 });
 
+test('Fitting with a shape from an empty canvas: a shape and a residual target s each grey out the other, with the reason', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'fit');
+  await idle(page);
+  await page.click('#clear');
+  await idle(page);
+  for (const q of [[1, 1], [2, 2.2], [3, 1.8], [4, 3.5], [5, 3], [6, 4.6], [7, 4.1]]) {
+    const [x, y] = await canvasToPage(page, q);
+    await page.mouse.click(x, y);
+    await idle(page);
+  }
+  await page.check('#fit-increasing');
+  await idle(page);
+  assert.equal(await shownErrors(page), '');
+  const sOption = page.locator('#fit-mode option[value="s"]');
+  const offered = () => sOption.evaluate((o) => !o.disabled);
+  assert.ok(!(await offered()), 'with a shape ticked, the residual target s is not offered');
+  assert.match(await sOption.getAttribute('title'), /penalty λ or GCV/);
+  await page.uncheck('#fit-increasing');
+  await idle(page);
+  assert.ok(await offered(), 'without a shape, s is offered again');
+  await page.selectOption('#fit-mode', 's');
+  await idle(page);
+  assert.equal(await shownErrors(page), '');
+  assert.ok(await page.locator('#fit-increasing').isDisabled(), 'with s, the shapes are greyed out');
+  assert.match(await page.getAttribute('fieldset.shape', 'title'), /not with a residual target s/);
+});
+
+test('Queries from an empty canvas: one point is measured without an error, two give a point at a length', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await page.click('#clear');
+  await idle(page);
+  await page.check('#query');
+  await idle(page);
+  const spots = [[2, 2], [4, 4], [6, 1]];
+  let [x, y] = await canvasToPage(page, spots[0]);
+  await page.mouse.click(x, y);
+  await idle(page);
+  assert.equal(await shownErrors(page), '', 'a single point (length 0) is no error');
+  assert.match(await page.textContent('#query-info'), /arc length 0/);
+  assert.match(await page.textContent('#query-at'), /Place a second point/);
+  for (const q of spots.slice(1)) {
+    [x, y] = await canvasToPage(page, q);
+    await page.mouse.click(x, y);
+    await idle(page);
+  }
+  assert.equal(await shownErrors(page), '');
+  const curve = await page.evaluate(() => window.lekaloEditor.last.view.curve);
+  const m = await api('/api/measure', { curve, at_length: [1] });
+  assert.match(await page.textContent('#query-at'), new RegExp(`t = ${m.at_length[0].t.toPrecision(8)}`));
+});
+
+test('Blending two curves: the help names the colours A and B are drawn in', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'blend');
+  await idle(page);
+  const help = await page.textContent('#help');
+  const fills = await page.evaluate(() => [...document.querySelectorAll('#points circle')]
+    .map((c) => getComputedStyle(c).fill));
+  const na = await page.evaluate(() => window.lekaloEditor.state.blend.a.length);
+  // A's points are drawn white, B's pink: the help says so
+  assert.ok(fills.slice(0, na).every((f) => f === 'rgb(255, 255, 255)'), `A: ${fills}`);
+  assert.ok(fills.slice(na).every((f) => f === 'rgb(255, 221, 221)'), `B: ${fills}`);
+  assert.match(help, /Curve A \(white points/);
+  assert.match(help, /curve B \(pink points/);
+});
+
 test('Knots dragged on the ruler and a weight edited (NURBS): the curve is the API\'s', async (page) => {
   await page.goto(base);
   await idle(page);

@@ -192,7 +192,9 @@ async function pump() {
     try {
       const answer = await compute();
       if (state.query && state.mode !== 'quasi' && answer.view) {
-        answer.measure = await post('/api/measure', { curve: answer.view.curve, at_length: [state.queryLength] })
+        // a curve of one control point is a point: its length only, no point at a length along it
+        const along = (answer.view.curve.control || []).length > 1 ? [state.queryLength] : [];
+        answer.measure = await post('/api/measure', { curve: answer.view.curve, at_length: along })
           .catch((e) => ({ error: e }));
       }
       clearErrors();
@@ -750,6 +752,16 @@ function syncControls() {
   const shape = s.fit.shape || {};
   for (const k of ['increasing', 'decreasing', 'convex', 'concave']) $(`fit-${k}`).checked = !!shape[k];
   for (const k of ['min', 'max']) $(`fit-${k}`).value = shape[k] === undefined ? '' : shape[k];
+  // a shape is kept with the penalty λ or GCV, not with a residual target s: each choice
+  // greys out the other, and says why
+  const shaped = ['increasing', 'decreasing', 'convex', 'concave'].some((k) => shape[k])
+    || ['min', 'max'].some((k) => shape[k] !== undefined && shape[k] !== '');
+  const sOption = $('fit-mode').querySelector('option[value="s"]');
+  sOption.disabled = shaped && s.fit.smoothing !== 's';
+  sOption.title = sOption.disabled ? 'a shape is kept with the penalty λ or GCV: clear the shape to choose a residual target s' : '';
+  const shapeBox = document.querySelector('fieldset.shape');
+  shapeBox.disabled = s.fit.smoothing === 's';
+  shapeBox.title = shapeBox.disabled ? 'a shape is kept with the penalty λ or GCV, not with a residual target s' : '';
   $('query').checked = s.query;
   $('query-length').value = s.queryLength;
   $('query-panel').hidden = !s.query || s.mode === 'quasi';
@@ -776,7 +788,7 @@ const HELP = {
   bspline: 'Click to add a control point, drag to move, Alt+click to delete. Drag the interior knots on the ruler. Select a point to edit its weight (NURBS).',
   interpolate: 'Click to add a data point, drag to move, Alt+click to delete. With end tangents, drag the two handles.',
   bezier: 'Click to add a control point, drag to move, Alt+click to delete; then change the order.',
-  blend: 'Curve A (filled points) and curve B (open points) share their end points; the solid curve is the C^k deformation of A into B. Click to add a point to B.',
+  blend: 'Curve A (white points, grey dashed polygon) and curve B (pink points, red dashed polygon) share their end points; the solid curve is the C^k deformation of A into B. Click to add a point to B.',
   corners: 'Click to add a point of the polyline (dashed), drag to move, Alt+click to delete; each corner is rounded over a window with C^k, turning one way.',
   spline: 'Click to add a point, drag to move, Alt+click to delete; the curve through the points blends local parabolas with C^k.',
   quasi: 'Type f(x); the quasi-interpolant q (solid) and f (dashed); the lower panel plots f − q.',
@@ -854,13 +866,13 @@ function bind() {
   for (const k of ['increasing', 'decreasing', 'convex', 'concave']) {
     $(`fit-${k}`).addEventListener('change', () => {
       state.fit.shape = Object.assign({}, state.fit.shape, { [k]: $(`fit-${k}`).checked });
-      commit(); update();
+      commit(); syncControls(); update();
     });
   }
   for (const k of ['min', 'max']) {
     $(`fit-${k}`).addEventListener('change', () => {
       state.fit.shape = Object.assign({}, state.fit.shape, { [k]: $(`fit-${k}`).value });
-      commit(); update();
+      commit(); syncControls(); update();
     });
   }
   $('fit-noise').addEventListener('click', () => {
@@ -959,6 +971,9 @@ function drawQuery(answer) {
     mark.setAttribute('visibility', 'hidden');
     $('query-at').textContent = '';
     showError(m.error);
+  } else if (!m.at_length.length) {
+    mark.setAttribute('visibility', 'hidden');
+    $('query-at').textContent = 'Place a second point to find a length along the curve.';
   } else {
     const a = m.at_length[0];
     mark.setAttribute('cx', sx(a.point[0])); mark.setAttribute('cy', sy(a.point[1]));

@@ -138,7 +138,7 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     if constrained && r.smoothing == Smoothing::S {
         return Err(ApiError::bad(
             "smoothing",
-            "shape constraints go with smoothing = lambda or gcv, not s",
+            "a shape is kept with smoothing by a penalty (lambda or gcv), not with a residual target s: choose lambda or gcv, or leave the shape out",
         ));
     }
     let function = r.function || constrained;
