@@ -282,6 +282,7 @@ fn surfaces(s: &mut Section) -> Result<()> {
         .map(|b| b.points.iter().map(|p| view.project(*p)).collect())
         .collect();
     let count = crossing.len();
+    let branches = if count == 1 { "branch" } else { "branches" };
     fig.series.push(Series {
         label: Some("intersection branches".into()),
         paths: crossing,
@@ -294,7 +295,7 @@ fn surfaces(s: &mut Section) -> Result<()> {
         fig,
         Caption::new(format!(
             "The unit sphere and a cylinder of radius 0.6 about the same axis (wireframes) meet in \
-             two circles at z = ±0.8: {count} crossing branch(es) traced by marching from starting \
+             two circles at z = ±0.8: {count} crossing {branches} traced by marching from starting \
              points found by subdivision, every point within 1e-6 of both surfaces (a branch \
              is cut where it crosses the seam of a closed surface's parameter domain)."
         ))
