@@ -208,6 +208,19 @@ def test_fit_tolerance():
     assert np.allclose(np.linalg.norm(c(rep["params"]) - pts, axis=1), rep["deviations"], atol=1e-13)
 
 
+def test_fit_tolerance_takes_the_tolerance_keyword_of_every_query():
+    # one name for an absolute tolerance across the package (and `--tolerance` on the command
+    # line); `tol` is not a keyword of lekalo's own functions
+    x = np.linspace(0, 1, 60)
+    pts = np.column_stack([x, np.sin(3 * x)])
+    c, rep = lekalo.fit_tolerance(pts, tolerance=1e-3)
+    assert rep["max_deviation"] <= 1e-3
+    with pytest.raises(TypeError):
+        lekalo.fit_tolerance(pts, tol=1e-3)
+    with pytest.raises(lekalo.InputError, match="^tolerance -1: "):
+        lekalo.fit_tolerance(pts, tolerance=-1.0)
+
+
 def test_fit_tolerance_of_noisy_data_as_the_readme_shows():
     # the package README's example: a tolerance of twice the noise gives few control points
     x = np.linspace(0, 1, 200)

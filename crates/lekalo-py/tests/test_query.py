@@ -39,6 +39,13 @@ def test_length_and_its_inverse():
     assert np.allclose(np.diff(qc.length_at(steps)), ref / 8, rtol=1e-9)
     spline, dev = qc.arc_length_spline(1e-6)
     assert dev <= 1e-6 and spline.domain[1] == pytest.approx(ref, rel=1e-10)
+    # the arc length's tolerance is relative (`rtol`, as NumPy's), every other one an absolute
+    # distance (`tolerance`): a refused one is named by the keyword the caller typed
+    for call in (lambda: qc.length_at(t, rtol=-1.0), lambda: qc.param_at(s, rtol=float("nan"))):
+        with pytest.raises(lekalo.InputError, match="^rtol: "):
+            call()
+    with pytest.raises(lekalo.InputError, match="^tolerance: "):
+        qc.arc_length_spline(-1.0)
 
 
 def test_projection_batch_matches_dense_sampling():
