@@ -10,6 +10,11 @@ use crate::{Arg, Points, What};
 /// The tolerance of a mesh or polyline, as its errors name it.
 pub(crate) const TESSELLATION_TOLERANCE: What = What::of(Arg::Tolerance, "tessellation tolerance");
 
+/// The vertices of a mesh, as its size errors name them: their number is set by the tolerance,
+/// so the errors carry its key and the front ends name their tolerance argument.
+pub(crate) const MESH_VERTICES: What =
+    What::of(Arg::Tolerance, "mesh vertices (make the tolerance larger)");
+
 /// Smallest tolerance accepted, relative to the object's size: below it rounding, not the
 /// geometry, would decide whether a chord is within the tolerance.
 pub const MIN_RELATIVE_TOLERANCE: f64 = 1e-12;
