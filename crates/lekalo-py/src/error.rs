@@ -88,6 +88,9 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
         Arg::Rule => "rule",
         Arg::Expression => "f",
         Arg::Lambda => "lam",
+        Arg::Tolerance => "tolerance",
+        // relative, as NumPy's and SciPy's `rtol` (`CurveQuery.length_at`, `param_at`)
+        Arg::RelativeTolerance => "rtol",
         Arg::S => "s",
         Arg::Eps => "eps",
         Arg::MaxKnots => "max_knots",
@@ -101,7 +104,6 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
         | Arg::CornerWindow
         | Arg::CornerFraction
         | Arg::CornerLength
-        | Arg::Tolerance
         | Arg::Times
         | Arg::Knot => return None,
     })

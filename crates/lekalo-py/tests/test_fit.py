@@ -208,6 +208,19 @@ def test_fit_tolerance():
     assert np.allclose(np.linalg.norm(c(rep["params"]) - pts, axis=1), rep["deviations"], atol=1e-13)
 
 
+def test_fit_tolerance_takes_the_tolerance_keyword_of_every_query():
+    # one name for an absolute tolerance across the package (and `--tolerance` on the command
+    # line); `tol` is not a keyword of lekalo's own functions
+    x = np.linspace(0, 1, 60)
+    pts = np.column_stack([x, np.sin(3 * x)])
+    c, rep = lekalo.fit_tolerance(pts, tolerance=1e-3)
+    assert rep["max_deviation"] <= 1e-3
+    with pytest.raises(TypeError):
+        lekalo.fit_tolerance(pts, tol=1e-3)
+    with pytest.raises(lekalo.InputError, match="^tolerance -1: "):
+        lekalo.fit_tolerance(pts, tolerance=-1.0)
+
+
 def test_fit_tolerance_of_noisy_data_as_the_readme_shows():
     # the package README's example: a tolerance of twice the noise gives few control points
     x = np.linspace(0, 1, 200)
@@ -333,6 +346,38 @@ def test_bad_input_is_a_named_error(call, match):
     x, y = noisy(40)
     with pytest.raises(lekalo.Error, match=match):
         call(x, y)
+
+
+def test_a_repeated_x_in_a_smoothing_spline_is_one_point_at_the_weighted_mean():
+    # Σ w_k (y_k − f(x))² over the points at one x is (Σ w_k)(ȳ − f(x))² + const: the same
+    # minimiser as one point at the weighted mean ȳ with the summed weight
+    # (docs/theory/fitting.md#penalised); SciPy refuses a repeated x, and so does lekalo.scipy
+    # data of their own (the module's generator feeds the other tests)
+    x = np.linspace(0.0, 1.0, 40)
+    y = np.sin(6 * x) + 0.05 * np.cos(37 * x)
+    w = 1.0 + 0.5 * np.sin(11 * x) ** 2
+    xr = np.insert(x, [10, 25], x[[10, 25]])
+    yr = np.insert(y, [10, 25], [y[10] + 0.3, y[25] - 0.2])
+    wr = np.insert(w, [10, 25], [2.0, 0.5])
+    ym, wm = y.copy(), w.copy()
+    for i, (dy, dw) in zip((10, 25), ((0.3, 2.0), (-0.2, 0.5))):
+        wm[i] = w[i] + dw
+        ym[i] = (w[i] * y[i] + dw * (y[i] + dy)) / wm[i]
+    xx = np.linspace(0, 1, 201)
+    for lam in (1e-4, 1e-2, 0.0):
+        c, rep = lekalo.fit_smoothing(xr, yr, w=wr, lam=lam)
+        ref = lekalo.make_smoothing_spline(x, ym, w=wm, lam=lam)
+        assert np.abs(c(xx) - ref(xx)).max() <= RTOL * np.abs(y).max(), lam
+        assert len(rep["residuals"]) == len(xr)
+    c, rep = lekalo.fit_smoothing(xr, yr, w=wr)  # λ by GCV over all 42 points
+    assert rep["lam"] > 0
+    with pytest.raises(ValueError, match="ascending"):
+        lekalo.scipy.make_smoothing_spline(xr, yr)
+    with pytest.raises(ValueError):
+        si.make_smoothing_spline(xr, yr)
+    # a decreasing x is still refused, and named x
+    with pytest.raises(lekalo.InputError, match=r"^x must be in increasing order"):
+        lekalo.make_smoothing_spline(x[::-1].copy(), y)
 
 
 def test_nan_and_schoenberg_whitney_are_errors():

@@ -39,6 +39,13 @@ def test_length_and_its_inverse():
     assert np.allclose(np.diff(qc.length_at(steps)), ref / 8, rtol=1e-9)
     spline, dev = qc.arc_length_spline(1e-6)
     assert dev <= 1e-6 and spline.domain[1] == pytest.approx(ref, rel=1e-10)
+    # the arc length's tolerance is relative (`rtol`, as NumPy's), every other one an absolute
+    # distance (`tolerance`): a refused one is named by the keyword the caller typed
+    for call in (lambda: qc.length_at(t, rtol=-1.0), lambda: qc.param_at(s, rtol=float("nan"))):
+        with pytest.raises(lekalo.InputError, match="^rtol: "):
+            call()
+    with pytest.raises(lekalo.InputError, match="^tolerance: "):
+        qc.arc_length_spline(-1.0)
 
 
 def test_projection_batch_matches_dense_sampling():
@@ -114,7 +121,8 @@ def test_surface_queries():
     assert dev <= 1e-3 and np.allclose(surf(mu, mv), verts, atol=1e-12)
     # a tolerance whose mesh would not fit in memory is refused before meshing (mesh(1e-8) of
     # a small surface killed the interpreter with SIGABRT)
-    with pytest.raises(lekalo.Error, match="tessellation tolerance: 1e-10 needs about"):
+    # named by the keyword, from the error's key (the library says "tessellation tolerance")
+    with pytest.raises(lekalo.InputError, match="^tolerance: 1e-10 needs about"):
         q.mesh(1e-10)
     # a plane has zero curvature; a sphere-free check: K = k1·k2, H = (k1 + k2)/2
     g, h, k1, k2 = q.curvature(np.array([0.3, 0.7]), np.array([0.4, 0.2]))

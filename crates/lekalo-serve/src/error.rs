@@ -102,7 +102,8 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         Arg::CornerLength => "length",
         Arg::Lambda => "lambda",
         Arg::S => "s",
-        Arg::Tolerance => "tolerance",
+        // the measure request's `tolerance` is the arc length's relative tolerance
+        Arg::Tolerance | Arg::RelativeTolerance => "tolerance",
         Arg::Times => "times",
         Arg::Knot => "t",
         Arg::EndDerivatives

@@ -83,8 +83,12 @@ args! {
     Lambda => "λ",
     /// The residual target `s` of a smoothing condition.
     S => "s",
-    /// A tolerance of a fit, a query or a knot removal.
+    /// An absolute tolerance, a distance in the data's units: of a fit, a query, a tessellation
+    /// or a knot removal.
     Tolerance => "tolerance",
+    /// A relative tolerance, a ratio to the quantity computed: of the arc length's adaptive
+    /// quadrature ([`crate::QueryCurve::arc_length`]).
+    RelativeTolerance => "relative tolerance",
     /// How many times a knot is inserted or removed.
     Times => "knot insertion count",
     /// The knot to insert or remove.

@@ -308,7 +308,10 @@ fn an_error_about_the_tolerance_names_the_option() {
             ],
             "error: --tolerance: ",
         ),
-        (&["mesh", "c.json", "--tolerance=-1"], "--tolerance -1: "),
+        (
+            &["mesh", "c.json", "--tolerance=-1"],
+            "error: c.json: --tolerance: ",
+        ),
     ];
     for (args, needle) in cases {
         lekalo()

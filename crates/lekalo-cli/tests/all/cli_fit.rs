@@ -151,6 +151,74 @@ fn smoothing_modes_report_lambda_and_s() {
     assert_eq!(v["report"]["s"].as_f64().unwrap(), 0.01);
 }
 
+/// A repeated x in a smoothing spline: the same curve as one point at the mean of the two
+/// values with weight 2 (`docs/theory/fitting.md#penalised`), also with λ by GCV (which counts
+/// every row), not an error.
+#[test]
+fn a_repeated_x_in_a_smoothing_fit_is_one_point_at_the_weighted_mean() {
+    let rows: Vec<(f64, f64)> = function_samples()
+        .lines()
+        .map(|l| {
+            let mut it = l.split(' ').map(|v| v.parse::<f64>().unwrap());
+            (it.next().unwrap(), it.next().unwrap())
+        })
+        .collect();
+    let (mut repeated, mut merged, mut weights) = (String::new(), String::new(), String::new());
+    for (k, &(x, y)) in rows.iter().enumerate() {
+        writeln!(repeated, "{x} {y}").unwrap();
+        if k == 10 || k == 40 {
+            writeln!(repeated, "{x} {}", y + 0.2).unwrap();
+            writeln!(merged, "{x} {}", y + 0.1).unwrap();
+            writeln!(weights, "2").unwrap();
+        } else {
+            writeln!(merged, "{x} {y}").unwrap();
+            writeln!(weights, "1").unwrap();
+        }
+    }
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("w.txt"), weights).unwrap();
+    let w = d.path().join("w.txt");
+    let control = |v: &serde_json::Value| -> Vec<f64> {
+        v["object"]["control"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|p| p.as_array().unwrap().iter().map(|c| c.as_f64().unwrap()))
+            .collect()
+    };
+    for lambda in ["1e-3", "0"] {
+        let a = run_json(
+            &["fit", "-", "--function", "--smooth", lambda, "--json"],
+            &repeated,
+        );
+        let b = run_json(
+            &[
+                "fit",
+                "-",
+                "--function",
+                "--smooth",
+                lambda,
+                "--weights",
+                w.to_str().unwrap(),
+                "--json",
+            ],
+            &merged,
+        );
+        assert_eq!(a["object"]["knots"], b["object"]["knots"], "λ = {lambda}");
+        let (ca, cb) = (control(&a), control(&b));
+        assert_eq!(ca.len(), cb.len());
+        for (p, q) in ca.iter().zip(&cb) {
+            // data of size 1: the two solves differ by rounding
+            assert!((p - q).abs() < 1e-10, "λ = {lambda}: {p} vs {q}");
+        }
+    }
+    let v = run_json(
+        &["fit", "-", "--function", "--smooth", "gcv", "--json"],
+        &repeated,
+    );
+    assert!(v["report"]["lambda"].as_f64().unwrap() > 0.0);
+}
+
 #[test]
 fn smoothing_on_given_knots_meets_s_on_those_knots() {
     let data = function_samples();

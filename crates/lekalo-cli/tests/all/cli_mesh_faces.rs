@@ -69,7 +69,7 @@ fn mesh_of_faces_refuses_a_tolerance_too_small() {
         .arg(p(&d, "faces.jsonl"))
         .assert()
         .failure()
-        .stderr(predicates::str::contains("--tolerance 0"));
+        .stderr(predicates::str::contains("--tolerance: 0 "));
 }
 
 /// Removes every edge's pcurve from a face's JSON.

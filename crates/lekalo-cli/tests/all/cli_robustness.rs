@@ -207,7 +207,8 @@ fn sizes_set_by_an_option_are_refused_before_allocation_naming_it() {
         "{err}"
     );
     // a tolerance of 1e-8 aborted on memory; 1e-300 was printed as a 300-digit decimal
-    // 0 was "0e0 is below 1e-12 times the object's size 1e0" with no tolerance to use
+    // 0 was "0e0 is below 1e-12 times the object's size 1e0" with no tolerance to use; each
+    // refusal carries the key of the tolerance, so it is written under the option
     for (tol, says) in [
         ("1e-8", "use a tolerance of at least"),
         (
@@ -219,7 +220,7 @@ fn sizes_set_by_an_option_are_refused_before_allocation_naming_it() {
         let (code, err) = code_and_stderr(d.path(), &["mesh", "s.json", "-t", tol, "-o", "m.obj"]);
         assert_eq!(code, 2, "{err}");
         assert!(
-            err.contains(&format!("--tolerance {tol}: ")) && err.contains(says),
+            err.contains(&format!("error: s.json: --tolerance: {tol} ")) && err.contains(says),
             "{err}"
         );
         assert!(err.len() < 400, "numbers in exponent notation: {err}");

@@ -630,7 +630,7 @@ def fit_smoothing_condition(
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_tolerance(
-    points: ArrayLike, tol: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None
+    points: ArrayLike, tolerance: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_robust(
     x: ArrayLike,

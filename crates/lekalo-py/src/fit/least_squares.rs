@@ -149,23 +149,23 @@ pub(crate) fn fit_least_squares<'py>(
     with_report(py, f)
 }
 
-/// A B-spline of degree `k` within `tol` (a distance in the data's units) of every point,
+/// A B-spline of degree `k` within `tolerance` (a distance in the data's units) of every point,
 /// with few control points (`docs/theory/fitting.md#tolerance`). `deviation` is `"distance"`
 /// (to the curve, by projection) or `"parameter"` (at the data parameter). Returns
 /// `(curve, report)` with `params`, `deviations`, `max_deviation`, `worst_index`,
 /// `worst_param`.
 #[pyfunction]
-#[pyo3(signature = (points, tol, k = IntArg::of(3), *, deviation = "distance", parametrization = None), text_signature = "(points, tol, k=3, *, deviation=\"distance\", parametrization=None)")]
+#[pyo3(signature = (points, tolerance, k = IntArg::of(3), *, deviation = "distance", parametrization = None), text_signature = "(points, tolerance, k=3, *, deviation=\"distance\", parametrization=None)")]
 pub(crate) fn fit_tolerance<'py>(
     py: Python<'py>,
     points: &Bound<'py, PyAny>,
-    tol: f64,
+    tolerance: f64,
     k: IntArg,
     deviation: &str,
     parametrization: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let k = k.count("k")?;
-    let mut opts = ToleranceOptions::new(k, tol);
+    let mut opts = ToleranceOptions::new(k, tolerance);
     opts.deviation = match deviation {
         "distance" => Deviation::Distance,
         "parameter" => Deviation::Parameter,

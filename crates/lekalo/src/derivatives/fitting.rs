@@ -399,7 +399,8 @@ impl LeastSquaresMap {
 
 /// The linear map from data values to control points of the cubic smoothing spline with a
 /// given `λ > 0` ([`crate::fit::smoothing_spline`] with [`crate::fit::Lambda::Given`]): with
-/// `B` the clamped cubic B-splines with knots at the data parameters (`N + 2` control points),
+/// `B` the clamped cubic B-splines with knots at the `M` distinct data parameters (`M + 2` control
+/// points; `M = N` unless a parameter repeats),
 /// `P = (BᵀWB + λΩ)⁻¹ BᵀW Q`. It keeps the fit's `UᵀDU` factorisation of the symmetric banded
 /// matrix; [`SmoothingMap::jvp`] applies `(BᵀWB + λΩ)⁻¹ BᵀW`, [`SmoothingMap::vjp`] its
 /// transpose `W B (BᵀWB + λΩ)⁻¹`, O(N·dim) each (`docs/theory/derivatives.md#fits`).
@@ -422,7 +423,8 @@ pub struct SmoothingMap {
 }
 
 impl SmoothingMap {
-    /// Factors the smoothing system of the strictly increasing `params` with optional weights
+    /// Factors the smoothing system of the non-decreasing `params` (a repeated one as the
+    /// smoothing spline takes it) with optional weights
     /// `w_k ≥ 0` for the penalty weight `lambda > 0`.
     ///
     /// # Errors
@@ -449,23 +451,21 @@ impl SmoothingMap {
             data = data.with_weights(w)?;
         }
         let sys = smoothing_system(&data, lambda)?;
-        let m = params.len();
-        let first = (0..m).map(|k| (k + 3).min(m + 1) - 3).collect();
         let basis = sys.basis.iter().flatten().copied().collect();
         Ok(SmoothingMap {
             rows: Rows {
-                first,
+                first: sys.first,
                 basis,
                 width: 4,
                 weights: sys.weights,
-                n: m + 2,
+                n: sys.knots.len() - 4,
             },
             matrix: sys.matrix,
             knots: sys.knots,
         })
     }
 
-    /// Number of control points of the fit (`N + 2`).
+    /// Number of control points of the fit (`M + 2`).
     #[must_use]
     pub fn n_ctrl(&self) -> usize {
         self.rows.n
@@ -477,7 +477,7 @@ impl SmoothingMap {
         self.rows.first.len()
     }
 
-    /// The fit's knot vector: the data parameters, the end ones repeated four times.
+    /// The fit's knot vector: the distinct data parameters, the end ones repeated four times.
     #[must_use]
     pub fn knots(&self) -> &[f64] {
         &self.knots
@@ -521,10 +521,10 @@ impl SmoothingMap {
     }
 
     /// Reverse-mode derivative: the data cotangent `Q̄ = W B (BᵀWB + λΩ)⁻¹ P̄` for a
-    /// control-point cotangent `P̄` (`(N + 2) × dim`, point-major).
+    /// control-point cotangent `P̄` (`(M + 2) × dim`, point-major).
     ///
     /// # Errors
-    /// [`Error::LengthMismatch`] unless `control_cotangent.len() == (N + 2) · dim`;
+    /// [`Error::LengthMismatch`] unless `control_cotangent.len() == (M + 2) · dim`;
     /// [`Error::NonFinite`]; [`Error::Dimension`] for `dim == 0`.
     pub fn vjp(&self, control_cotangent: &[f64], dim: usize) -> Result<Vec<f64>> {
         self.rows
@@ -612,10 +612,11 @@ mod tests {
             prop_assert!((lhs - rhs).abs() <= 1e-12 * (l1 + r1), "{} against {}", lhs, rhs);
         }
 
-        /// The smoothing JVP is the smoothing spline of the tangent, and the VJP its transpose.
+        /// The smoothing JVP is the smoothing spline of the tangent, and the VJP its transpose;
+        /// also with repeated parameters (a zero gap), which share one basis row.
         #[test]
         fn smoothing_jvp_is_the_fit_and_vjp_its_transpose(
-            gaps in prop::collection::vec(0.01f64..1.0, 4..30),
+            gaps in prop::collection::vec(prop_oneof![4 => 0.01f64..1.0, 1 => Just(0.0)], 4..30),
             log_lambda in -9.0f64..0.0,
             dim in 1usize..=3,
             weighted in any::<bool>(),
@@ -623,6 +624,7 @@ mod tests {
         ) {
             let ts = params_of(&gaps);
             let m = ts.len();
+            prop_assume!(gaps.iter().filter(|g| **g > 0.0).count() >= 2, "three distinct parameters");
             // λ relative to the data's scale, over the range the GCV scan covers (up to where
             // the fit is all but the least-squares line, `λ ≈ Σw·L³`): beyond it `G` is as
             // ill-conditioned as `λ/(Σw·L³)` and both sides of the checks lose digits to it
@@ -739,8 +741,14 @@ mod tests {
         assert!(matches!(e, Error::NegativeSmoothing { .. }), "{e:?}");
         let e = SmoothingMap::new(&ts, 0.0, None).unwrap_err();
         assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
-        let e = SmoothingMap::new(&[0.0, 0.5, 0.5, 1.0], 1.0, None).unwrap_err();
-        assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+        // a repeated parameter is the smoothing spline's (one basis row for both points); a
+        // decreasing one, or fewer than three distinct, are refused as the fit refuses them
+        let map = SmoothingMap::new(&[0.0, 0.5, 0.5, 1.0], 1.0, None).unwrap();
+        assert_eq!((map.n_data(), map.n_ctrl()), (4, 5));
+        let e = SmoothingMap::new(&[0.0, 0.5, 0.4, 1.0], 1.0, None).unwrap_err();
+        assert!(matches!(e, Error::NotIncreasing { index: 2, .. }), "{e:?}");
+        let e = SmoothingMap::new(&[0.0, 0.5, 0.5, 0.5], 1.0, None).unwrap_err();
+        assert!(matches!(e, Error::TooFew { got: 2, .. }), "{e:?}");
         let map = SmoothingMap::new(&ts, 1.0, None).unwrap();
         let e = map.vjp(&[1.0; 6], 1).unwrap_err();
         assert!(

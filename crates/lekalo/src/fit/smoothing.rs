@@ -29,10 +29,16 @@ pub enum Lambda {
 /// curves (each coordinate over the same parameters).
 ///
 /// The minimiser is a natural cubic spline with knots at the data parameters. It is computed in
-/// the B-spline basis of the clamped cubic spline with those knots (`N + 2` coefficients):
+/// the B-spline basis of the clamped cubic spline with those knots (`M + 2` coefficients for
+/// `M` distinct parameters):
 /// `(BᵀWB + λ Ω) c = BᵀW Q` with `Ω_ij = ∫ B_i'' B_j''` (exact by Simpson's rule, `B''` is
 /// linear on each span), a symmetric positive definite matrix of half-bandwidth 3, factored as
 /// `UᵀDU`. The natural end conditions come out of the minimisation. O(N) time and memory.
+///
+/// A repeated parameter is allowed: the points at it share one row of `B`, so the minimiser is
+/// the one of a single point at their weighted mean whose weight is the sum of theirs
+/// (`Σ w_k |Q_k − f|² = (Σ w_k) |Q̄ − f|² + const`); the report and the GCV score count every
+/// point. With `λ = 0` the result interpolates those means.
 ///
 /// With [`Lambda::Gcv`], λ minimises [`gcv_score`], whose trace term uses the band of the
 /// inverse (Hutchinson & de Hoog 1985): a coarse scan in `log λ` from all but interpolation
@@ -52,10 +58,9 @@ pub enum Lambda {
 ///
 /// # Errors
 /// [`Error::NegativeSmoothing`] for `λ < 0` or NaN; [`Error::TooFew`] for fewer than 3
-/// points; [`Error::NotIncreasing`] / [`Error::InvalidArgument`] for parameters that are not
-/// strictly increasing (merge repeated parameters first, adding their weights);
-/// [`Error::SingularSystem`] if the weighted data cannot fix a line (fewer than two points of
-/// positive weight).
+/// points or 3 distinct parameters; [`Error::NotIncreasing`] for parameters that decrease;
+/// [`Error::SingularSystem`] if the weighted data cannot fix a line (points of positive weight
+/// at fewer than two distinct parameters).
 pub fn smoothing_spline(data: &FitData<'_>, lambda: Lambda) -> Result<CurveFit> {
     smoothing_spline_with_progress(data, lambda, &Progress::new())
 }
@@ -88,7 +93,10 @@ pub fn smoothing_spline_with_progress(
         Lambda::Gcv => s.minimise_gcv(&steps)?,
     };
     if lam == 0.0 {
-        let curve = natural_cubic_spline(data.params(), data.points())?;
+        let curve = match merged(data)? {
+            Some((x, q)) => natural_cubic_spline(&x, q.as_view())?,
+            None => natural_cubic_spline(data.params(), data.points())?,
+        };
         let report = FitReport::new(&curve, data, Some(0.0));
         steps.finish();
         return Ok(CurveFit { curve, report });
@@ -98,6 +106,44 @@ pub fn smoothing_spline_with_progress(
     let report = FitReport::new(&curve, data, Some(lam));
     steps.finish();
     Ok(CurveFit { curve, report })
+}
+
+/// The data with the points at each repeated parameter merged into one at their weighted mean
+/// (their plain mean when their weights are all zero), or `None` when no parameter repeats:
+/// what the smoothing spline with `λ = 0` interpolates, the limit of its minimisers as `λ → 0`
+/// (`docs/theory/fitting.md#penalised`). The parameters are non-decreasing ([`Smoother::new`]).
+fn merged(data: &FitData<'_>) -> Result<Option<(Vec<f64>, Points)>> {
+    let x = data.params();
+    if x.windows(2).all(|w| w[0] != w[1]) {
+        return Ok(None);
+    }
+    let pts = data.points();
+    let dim = pts.dim();
+    let mut xs = Vec::with_capacity(x.len());
+    let mut q = Vec::with_capacity(x.len() * dim);
+    let mut start = 0;
+    while start < x.len() {
+        let end = start + x[start..].iter().take_while(|&&v| v == x[start]).count();
+        xs.push(x[start]);
+        if end - start == 1 {
+            q.extend_from_slice(pts.point(start));
+        } else {
+            let wsum: f64 = (start..end).map(|k| data.weight(k)).sum();
+            // all weights zero: the plain mean
+            let weight = |k: usize| if wsum > 0.0 { data.weight(k) } else { 1.0 };
+            let total: f64 = (start..end).map(weight).sum();
+            for c in 0..dim {
+                // a convex combination: no partial sum exceeds the largest value
+                q.push(
+                    (start..end)
+                        .map(|k| weight(k) / total * pts.point(k)[c])
+                        .sum(),
+                );
+            }
+        }
+        start = end;
+    }
+    Ok(Some((xs, Points::from_flat(dim, q)?)))
 }
 
 /// The generalised cross-validation score of the smoothing spline with weight `λ > 0`
@@ -126,9 +172,13 @@ const GCV_MIN_DOF: f64 = 0.5;
 /// The banded pieces of the problem, assembled once for all λ (also the objective of the
 /// shape-constrained smoothing spline, `super::shape`).
 pub(super) struct Smoother {
+    /// Number of data points (each point at a repeated parameter counted).
     n: usize,
     dim: usize,
     pub(super) knots: Vec<f64>,
+    /// Per data point: the index of its first non-zero B-spline (points at one parameter
+    /// share it).
+    first: Vec<usize>,
     /// Per data point: the 4 non-zero basis values.
     basis: Vec<[f64; 4]>,
     weights: Vec<f64>,
@@ -152,8 +202,13 @@ impl Smoother {
                 got: n,
             });
         }
-        for i in 1..n {
-            if x[i] < x[i - 1] {
+        // the distinct parameters (the knots) and the index of each point's among them: points
+        // at one parameter share their basis row, so BᵀWB and BᵀWQ add their weights and
+        // weighted values, as for one point at their weighted mean (docs/theory/fitting.md#penalised)
+        let mut xs: Vec<f64> = Vec::with_capacity(n);
+        let mut first = Vec::with_capacity(n);
+        for i in 0..n {
+            if i > 0 && x[i] < x[i - 1] {
                 return Err(Error::NotIncreasing {
                     what: "x".into(),
                     index: i,
@@ -161,25 +216,31 @@ impl Smoother {
                     previous: x[i - 1],
                 });
             }
-            if x[i] == x[i - 1] {
-                return Err(Error::InvalidArgument {
-                    what: "smoothing spline parameters".into(),
-                    reason: format!(
-                        "parameters {} and {i} are both {}: they must be strictly increasing \
-                         (merge repeated points into one, adding their weights)",
-                        i - 1,
-                        x[i]
-                    ),
-                });
+            if i == 0 || x[i] > x[i - 1] {
+                xs.push(x[i]);
             }
+            first.push(xs.len() - 1);
+        }
+        let nd = xs.len();
+        if nd < 3 {
+            return Err(Error::TooFew {
+                what: "distinct parameters for a smoothing spline".into(),
+                min: 3,
+                got: nd,
+            });
+        }
+        // x_k lies in span j + 3 (j its distinct index; the last one in the last span, nd + 1),
+        // whose first B-spline is j (nd − 1 for the last)
+        for f in &mut first {
+            *f = (*f + 3).min(nd + 1) - 3;
         }
         let pts = data.points();
         let dim = pts.dim();
-        let m = n + 2;
-        let mut knots = Vec::with_capacity(n + 6);
-        knots.extend([x[0]; 3]);
-        knots.extend_from_slice(x);
-        knots.extend([x[n - 1]; 3]);
+        let m = nd + 2;
+        let mut knots = Vec::with_capacity(nd + 6);
+        knots.extend([xs[0]; 3]);
+        knots.extend_from_slice(&xs);
+        knots.extend([xs[nd - 1]; 3]);
         let center = pts.point(0).to_vec();
         let mut scratch = BasisScratch::new(3);
         let mut basis = Vec::with_capacity(n);
@@ -189,10 +250,8 @@ impl Smoother {
         let mut rhs = vec![0.0; m * dim];
         let mut nb = [0.0; 4];
         for k in 0..n {
-            // x_k lies in span k + 3 (the last point in the last span, n + 1)
-            let span = (k + 3).min(n + 1);
-            basis_funs_into(&knots, 3, span, x[k], &mut scratch, &mut nb);
-            let first = span - 3;
+            let first = first[k];
+            basis_funs_into(&knots, 3, first + 3, x[k], &mut scratch, &mut nb);
             let w = data.weight(k);
             for a in 0..4 {
                 for b in a..4 {
@@ -214,12 +273,12 @@ impl Smoother {
         let mut ders = [0.0; 12];
         let mut left = [0.0; 4];
         let mut right = [0.0; 4];
-        for l in 0..n - 1 {
+        for l in 0..nd - 1 {
             let span = l + 3;
-            let h = x[l + 1] - x[l];
-            basis_ders_into(&knots, 3, span, x[l], 2, &mut scratch, &mut ders);
+            let h = xs[l + 1] - xs[l];
+            basis_ders_into(&knots, 3, span, xs[l], 2, &mut scratch, &mut ders);
             left.copy_from_slice(&ders[8..12]);
-            basis_ders_into(&knots, 3, span, x[l + 1], 2, &mut scratch, &mut ders);
+            basis_ders_into(&knots, 3, span, xs[l + 1], 2, &mut scratch, &mut ders);
             right.copy_from_slice(&ders[8..12]);
             let first = span - 3;
             for a in 0..4 {
@@ -237,6 +296,7 @@ impl Smoother {
             n,
             dim,
             knots,
+            first,
             basis,
             weights,
             y,
@@ -256,7 +316,7 @@ impl Smoother {
         m.factor().map_err(|i| Error::SingularSystem {
             reason: format!(
                 "the smoothing system has no positive pivot at coefficient {i} (λ = {lam}); the \
-                 data need at least two points of positive weight"
+                 data need points of positive weight at two distinct parameters at least"
             ),
         })?;
         let mut c = self.rhs.clone();
@@ -268,7 +328,7 @@ impl Smoother {
         let (n, d) = (self.n, self.dim);
         let mut sum = 0.0;
         for k in 0..n {
-            let first = (k + 3).min(n + 1) - 3;
+            let first = self.first[k];
             let nb = &self.basis[k];
             for col in 0..d {
                 let f: f64 = (0..4).map(|a| nb[a] * c[(first + a) * d + col]).sum();
@@ -386,12 +446,14 @@ impl Smoother {
 pub(crate) struct SmoothingSystem {
     /// `BᵀWB + λΩ`, factored `UᵀDU`.
     pub(crate) matrix: SymBand,
-    /// Per data point, the 4 non-zero cubic B-splines, starting at coefficient
-    /// `min(k + 3, N + 1) − 3`.
+    /// Per data point, the index of its first non-zero cubic B-spline: `min(j + 3, M + 1) − 3`
+    /// for the `j`-th of the `M` distinct parameters (points at one parameter share it).
+    pub(crate) first: Vec<usize>,
+    /// Per data point, the 4 non-zero cubic B-splines, starting at coefficient `first`.
     pub(crate) basis: Vec<[f64; 4]>,
     /// The data weights `w_k`.
     pub(crate) weights: Vec<f64>,
-    /// The clamped cubic knot vector of the fit (knots at the data parameters).
+    /// The clamped cubic knot vector of the fit (knots at the distinct data parameters).
     pub(crate) knots: Vec<f64>,
 }
 
@@ -404,6 +466,7 @@ pub(crate) fn smoothing_system(data: &FitData<'_>, lam: f64) -> Result<Smoothing
     let (_, matrix) = s.solve(lam)?;
     Ok(SmoothingSystem {
         matrix,
+        first: s.first,
         basis: s.basis,
         weights: s.weights,
         knots: s.knots,
@@ -569,5 +632,65 @@ mod tests {
             (form - quad).abs() < 1e-12 * quad.abs().max(1.0),
             "{form} vs {quad}"
         );
+    }
+
+    /// Points at a repeated parameter: the same minimiser as one point at their weighted mean
+    /// with the summed weight (docs/theory/fitting.md#penalised), for a given λ and for λ = 0;
+    /// the report counts every point, and the knots are the distinct parameters.
+    #[test]
+    fn a_repeated_parameter_is_one_point_at_the_weighted_mean_with_the_summed_weight() {
+        let x = [0.0, 0.5, 1.0, 1.0, 1.0, 2.0, 3.0, 3.5, 3.5];
+        let y = [0.0, 0.4, 1.0, 2.0, 0.5, 1.5, 0.2, -1.0, 3.0];
+        let w = [1.0, 2.0, 1.0, 3.0, 0.5, 1.0, 1.0, 0.0, 2.0];
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
+            .unwrap()
+            .with_weights(&w)
+            .unwrap();
+        // merged by hand: x = 1 carries weight 4.5 at (1 + 6 + 0.25) / 4.5; x = 3.5 weight 2 at 3
+        let xm = [0.0, 0.5, 1.0, 2.0, 3.0, 3.5];
+        let ym = [0.0, 0.4, 7.25 / 4.5, 1.5, 0.2, 3.0];
+        let wm = [1.0, 2.0, 4.5, 1.0, 1.0, 2.0];
+        let merged = FitData::new(PointsRef::from_flat(1, &ym).unwrap(), &xm)
+            .unwrap()
+            .with_weights(&wm)
+            .unwrap();
+        for lam in [1e-3, 0.1, 10.0, 0.0] {
+            let a = smoothing_spline(&data, Lambda::Given(lam)).unwrap();
+            let b = smoothing_spline(&merged, Lambda::Given(lam)).unwrap();
+            assert_eq!(a.curve.knots(), b.curve.knots(), "λ = {lam}");
+            for t in [0.0, 0.3, 1.0, 1.7, 2.9, 3.5] {
+                let (fa, fb) = (a.curve.eval(t).unwrap()[0], b.curve.eval(t).unwrap()[0]);
+                assert!(
+                    (fa - fb).abs() < 1e-13 * 3.0,
+                    "λ = {lam}, t = {t}: {fa} vs {fb}"
+                );
+            }
+            assert_eq!(a.report.residuals.len(), 9, "every point's residual");
+        }
+        // λ = 0 interpolates the weighted means
+        let a = smoothing_spline(&data, Lambda::Given(0.0)).unwrap();
+        assert!((a.curve.eval(1.0).unwrap()[0] - 7.25 / 4.5).abs() < 1e-14);
+        // all weights zero at a repeated parameter: the plain mean
+        let w0 = [1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+        let data0 = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x)
+            .unwrap()
+            .with_weights(&w0)
+            .unwrap();
+        let a = smoothing_spline(&data0, Lambda::Given(0.0)).unwrap();
+        assert!((a.curve.eval(1.0).unwrap()[0] - 3.5 / 3.0).abs() < 1e-14);
+        // GCV chooses a λ for the data with repeats, scored over all nine points
+        let g = smoothing_spline(&data, Lambda::Gcv).unwrap();
+        assert!(g.report.lambda.unwrap() > 0.0, "{:?}", g.report.lambda);
+        // fewer than three distinct parameters
+        let e = smoothing_spline(
+            &FitData::new(
+                PointsRef::from_flat(1, &[0.0, 1.0, 2.0]).unwrap(),
+                &[0.0, 0.0, 1.0],
+            )
+            .unwrap(),
+            Lambda::Given(1.0),
+        )
+        .unwrap_err();
+        assert!(matches!(e, Error::TooFew { min: 3, got: 2, .. }), "{e}");
     }
 }

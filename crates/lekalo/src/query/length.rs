@@ -169,7 +169,10 @@ impl QueryCurve {
     /// curve whose length is beyond the range of a double (a curve near ±1e308), which would
     /// otherwise be reported as infinite.
     pub fn arc_length(&self, rtol: f64) -> Result<ArcLength<'_>> {
-        check_tolerance(What::of(Arg::Tolerance, "arc-length tolerance"), rtol)?;
+        check_tolerance(
+            What::of(Arg::RelativeTolerance, "arc-length relative tolerance"),
+            rtol,
+        )?;
         let rtol = rtol.max(1e-15);
         let n = self.piece_count();
         let runs: Vec<Intervals> = (0..n.div_ceil(PIECES_PER_TASK))

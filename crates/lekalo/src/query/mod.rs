@@ -50,7 +50,7 @@ pub use offset::Offset;
 pub use pieces::{QueryCurve, MAX_QUERY_DEGREE};
 pub use project::{CurveProjection, SurfaceProjection, MAX_QUERY_RANGE};
 pub use surface::QuerySurface;
-pub(crate) use tessellate::{check_deviation, check_tol};
+pub(crate) use tessellate::{check_deviation, check_tol, TESSELLATION_TOLERANCE};
 pub use tessellate::{
     Mesh, Polyline, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYLINE_POINTS,
     MIN_RELATIVE_TOLERANCE,

@@ -10,6 +10,11 @@ use crate::{Arg, Points, What};
 /// The tolerance of a mesh or polyline, as its errors name it.
 pub(crate) const TESSELLATION_TOLERANCE: What = What::of(Arg::Tolerance, "tessellation tolerance");
 
+/// The vertices of a mesh, as its size errors name them: their number is set by the tolerance,
+/// so the errors carry its key and the front ends name their tolerance argument.
+pub(crate) const MESH_VERTICES: What =
+    What::of(Arg::Tolerance, "mesh vertices (make the tolerance larger)");
+
 /// Smallest tolerance accepted, relative to the object's size: below it rounding, not the
 /// geometry, would decide whether a chord is within the tolerance.
 pub const MIN_RELATIVE_TOLERANCE: f64 = 1e-12;
@@ -306,9 +311,9 @@ pub(crate) mod tests {
         assert!(e.to_string().contains("at least 0.13"), "{e}");
     }
 
-    /// A refused tolerance of any query carries the key `Arg::Tolerance`, so that every front
-    /// end names its own tolerance argument (`--tolerance`, `tolerance`), whatever the words of
-    /// the message.
+    /// A refused tolerance of any query carries the key `Arg::Tolerance` (the arc length's,
+    /// relative, `Arg::RelativeTolerance`), so that every front end names its own tolerance
+    /// argument (`--tolerance`, `tolerance`, `rtol`), whatever the words of the message.
     #[test]
     fn every_refused_query_tolerance_carries_the_key() {
         let c = BSplineCurve::new(
@@ -325,7 +330,6 @@ pub(crate) mod tests {
                 ("offset", q.offset(0.1, bad).map(|_| ())),
                 ("intersect", q.intersect(&q, bad).map(|_| ())),
                 ("self_intersections", q.self_intersections(bad).map(|_| ())),
-                ("arc_length", q.arc_length(bad).map(|_| ())),
                 (
                     "parametrized_spline",
                     q.arc_length(1e-12)
@@ -340,6 +344,14 @@ pub(crate) mod tests {
         }
         let e = q.project_all(&[1.0, 1.0], -1.0).unwrap_err();
         assert_eq!(e.arg(), Some(Arg::Tolerance), "project_all: {e}");
+        for bad in [f64::NAN, -1.0, 0.0] {
+            let e = q.arc_length(bad).map(|_| ()).unwrap_err();
+            assert_eq!(
+                e.arg(),
+                Some(Arg::RelativeTolerance),
+                "arc_length({bad}): {e}"
+            );
+        }
     }
 
     #[test]

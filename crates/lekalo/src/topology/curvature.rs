@@ -5,7 +5,7 @@
 
 use super::pcurve::SurfaceClosure;
 use crate::query::triangle_bound;
-use crate::{Error, Result, Surface};
+use crate::{Arg, Error, Result, Surface, What};
 
 /// Halvings of each Bezier patch in each direction before its bounds are taken: the bounds of
 /// a part's net (a rational one's above all, whose weights and radius shrink with it) come
@@ -318,7 +318,10 @@ impl Curvature {
             out.push(x);
             if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "grid lines of a face's mesh (make the tolerance larger)".into(),
+                    what: What::of(
+                        Arg::Tolerance,
+                        "grid lines of a face's mesh (make the tolerance larger)",
+                    ),
                     size: out.len(),
                     max: budget,
                 });

@@ -16,8 +16,8 @@ use super::inside::winding_number;
 use super::pcurve::{SurfaceClosure, PCURVE_SAMPLING_RTOL};
 use super::seam::{cut_along_seam, SeamPlan};
 use super::shell::EdgeUse;
-use crate::query::{check_tol, Mesh, MAX_MESH_VERTICES};
-use crate::{Curve, Error, Points, Result};
+use crate::query::{check_tol, Mesh, MAX_MESH_VERTICES, TESSELLATION_TOLERANCE};
+use crate::{Arg, Curve, Error, Points, Result, What};
 
 /// Segments per knot span of an edge's curve and pcurves before bisection.
 const START_SAMPLES_PER_SPAN: usize = 1;
@@ -278,8 +278,10 @@ fn sample_edge(uses: &[(&FacePlan<'_>, &Edge, bool)], tol: f64) -> Result<Vec<f6
             at = s;
             if out.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "points on an edge of the faces to mesh (make the tolerance larger)"
-                        .into(),
+                    what: What::of(
+                        Arg::Tolerance,
+                        "points on an edge of the faces to mesh (make the tolerance larger)",
+                    ),
                     size: out.len(),
                     max: budget,
                 });
@@ -333,7 +335,7 @@ pub(super) fn check_grid(tolerance: f64, cells: f64) -> Result<()> {
     let max = MAX_MESH_VERTICES as f64;
     if cells > max {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance".into(),
+            what: TESSELLATION_TOLERANCE,
             reason: format!(
                 "{tolerance:e} needs a grid of about {cells:.1e} points inside the faces, more than the {MAX_MESH_VERTICES} a mesh may have; use a tolerance of at least {:.1e}",
                 tolerance * cells / max
@@ -578,7 +580,10 @@ fn mesh_one(
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, p, x)?;
             if uv.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "vertices of the faces' mesh (make the tolerance larger)".into(),
+                    what: What::of(
+                        Arg::Tolerance,
+                        "vertices of the faces' mesh (make the tolerance larger)",
+                    ),
                     size: uv.len(),
                     max: budget,
                 });
@@ -622,7 +627,10 @@ fn mesh_one(
             add(&mut cdt, &mut ours, &mut uv, &mut xyz, c, x)?;
             if uv.len() > budget {
                 return Err(Error::TooLarge {
-                    what: "vertices of the faces' mesh (make the tolerance larger)".into(),
+                    what: What::of(
+                        Arg::Tolerance,
+                        "vertices of the faces' mesh (make the tolerance larger)",
+                    ),
                     size: uv.len(),
                     max: budget,
                 });

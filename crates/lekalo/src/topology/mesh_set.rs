@@ -14,8 +14,8 @@ use super::mesh::{
     check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan, MAX_REFINE_ROUNDS,
 };
 use super::shell::{EdgeUse, Shell};
-use crate::query::{check_deviation, Mesh, MAX_MESH_VERTICES};
-use crate::{Error, Points, Result};
+use crate::query::{check_deviation, Mesh, MAX_MESH_VERTICES, TESSELLATION_TOLERANCE};
+use crate::{Arg, Error, Points, Result, What};
 
 /// The meshes of a set of faces that could be meshed, and the errors of those that could not
 /// ([`mesh_faces_each`]).
@@ -143,7 +143,7 @@ pub(super) fn mesh_counted(
 ) -> Result<(FaceMeshes, usize)> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::InvalidArgument {
-            what: "tessellation tolerance".into(),
+            what: TESSELLATION_TOLERANCE,
             reason: format!("{tolerance} is not a positive finite tolerance"),
         });
     }
@@ -285,7 +285,10 @@ pub(super) fn mesh_counted(
     }
     if vertices > MAX_MESH_VERTICES {
         return Err(Error::TooLarge {
-            what: "vertices of the faces' meshes (make the tolerance larger)".into(),
+            what: What::of(
+                Arg::Tolerance,
+                "vertices of the faces' meshes (make the tolerance larger)",
+            ),
             size: vertices,
             max: MAX_MESH_VERTICES,
         });

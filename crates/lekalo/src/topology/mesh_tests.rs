@@ -217,9 +217,21 @@ fn a_tolerance_too_small_for_the_grid_is_refused_with_the_tolerance() {
         LOOP_CLOSURE_RTOL,
     )
     .unwrap();
-    let e = f.mesh(1e-11).unwrap_err().to_string();
+    let e = f.mesh(1e-11).unwrap_err();
+    // the key of the tolerance: each front end names its own tolerance argument
+    assert_eq!(e.arg(), Some(crate::Arg::Tolerance), "{e}");
+    let e = e.to_string();
     assert!(e.contains("1e-11") && e.contains("points"), "{e}");
-    assert!(f.mesh(f64::NAN).is_err());
+    let nan = f.mesh(f64::NAN).unwrap_err();
+    assert_eq!(nan.arg(), Some(crate::Arg::Tolerance), "{nan}");
+    for bad in [0.0, -1.0, f64::NAN] {
+        let e = mesh_faces(&[&f], bad).unwrap_err();
+        assert_eq!(
+            e.arg(),
+            Some(crate::Arg::Tolerance),
+            "mesh_faces({bad}): {e}"
+        );
+    }
 }
 
 /// A CAD system's pcurves leave the surface's domain by their rounding (here by 4e-16 at

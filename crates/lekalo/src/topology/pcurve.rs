@@ -326,7 +326,10 @@ impl<'a> Projector<'a> {
                 out.push(Sample { t, uv, pole });
                 if out.len() > MAX_PCURVE_POINTS {
                     return Err(Error::TooLarge {
-                        what: "points of a projected pcurve (make the tolerance larger)".into(),
+                        what: What::of(
+                            Arg::Tolerance,
+                            "points of a projected pcurve (make the tolerance larger)",
+                        ),
                         size: out.len(),
                         max: MAX_PCURVE_POINTS,
                     });

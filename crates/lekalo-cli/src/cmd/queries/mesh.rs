@@ -10,8 +10,9 @@ use serde_json::json;
 
 use crate::cmd::measure::{query_curve, query_surface};
 use crate::context::Context;
-use crate::exit::{bad_input, BadInput};
+use crate::exit::bad_input;
 use crate::output::{emit, format_of};
+use crate::words::in_file;
 
 /// Arguments of `lekalo mesh`.
 #[derive(Args, Debug)]
@@ -52,14 +53,9 @@ pub(crate) struct MeshArgs {
 }
 
 pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
-    // the tolerance alone sets the size of the result: its refusals name the option
-    let bad = |e: lekalo::Error| {
-        BadInput(format!(
-            "{}: --tolerance {}: {e}",
-            a.input.display(),
-            lekalo_io::fmt_number(a.tolerance)
-        ))
-    };
+    // kept in the chain: a refused tolerance (too small, or a mesh too large to make) carries
+    // the key of the tolerance and is written under --tolerance; other errors as they are
+    let bad = |e: lekalo::Error| in_file(&a.input, e);
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
     if let Some(faces) = crate::cmd::files::cad::face_lines(&a.input)? {
         // an edge without its (u, v) curve gets one by projection; a face that still cannot be
@@ -74,7 +70,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             match f.face.with_projected_pcurves(a.tolerance) {
                 Ok(g) => ready.push((k, g)),
                 // a bad tolerance fails every face alike: refused, not listed per face
-                Err(e) if e.arg() == Some(lekalo::Arg::Tolerance) => return Err(bad(e).into()),
+                Err(e) if e.arg() == Some(lekalo::Arg::Tolerance) => return Err(bad(e)),
                 Err(e) => skipped.push((k, e.to_string())),
             }
         }

@@ -14,7 +14,8 @@ use super::{Leaf, Rule, MAX_ROUNDS, PATCH_WIDTH};
 use crate::error::{Error, Result};
 use crate::query::surface::QuerySurface;
 use crate::query::tessellate::{
-    check_deviation, check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES,
+    check_deviation, check_tol, Mesh, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MESH_VERTICES,
+    TESSELLATION_TOLERANCE,
 };
 use crate::{Points, Progress};
 
@@ -164,7 +165,7 @@ impl QuerySurface {
         let max = MAX_MESH_TRIANGLES as f64;
         if triangles > max {
             return Err(Error::InvalidArgument {
-                what: "tessellation tolerance".into(),
+                what: TESSELLATION_TOLERANCE,
                 reason: format!(
                     "{tolerance:e} needs about {triangles:.1e} triangles, more than the \
                      {MAX_MESH_TRIANGLES} a mesh may have; use a tolerance of at least {:.1e}",
@@ -205,7 +206,7 @@ impl QuerySurface {
         uv: &mut Vec<[f64; 2]>,
     ) -> Result<u32> {
         let centre = u32::try_from(uv.len()).map_err(|_| Error::TooLarge {
-            what: "mesh vertices".into(),
+            what: MESH_VERTICES,
             size: uv.len(),
             max: MAX_MESH_VERTICES,
         })?;
@@ -230,7 +231,7 @@ impl QuerySurface {
     ) -> Result<Mesh> {
         if uv.len() > MAX_MESH_VERTICES {
             return Err(Error::TooLarge {
-                what: "mesh vertices".into(),
+                what: MESH_VERTICES,
                 size: uv.len(),
                 max: MAX_MESH_VERTICES,
             });

@@ -9,7 +9,7 @@ use super::MAX_LEVELS;
 use super::{Leaf, Rule, MAX_DIRECT_PARTS, PATCH_WIDTH};
 use crate::error::{Error, Result};
 use crate::query::surface::QuerySurface;
-use crate::query::tessellate::MAX_MESH_VERTICES;
+use crate::query::tessellate::{MAX_MESH_VERTICES, MESH_VERTICES};
 
 impl QuerySurface {
     /// The net of the part `u × v` (integer ranges) of patch `k` (de Casteljau at its ends).
@@ -74,7 +74,7 @@ impl QuerySurface {
                 let n = count.fetch_add(1, Ordering::Relaxed) + 1;
                 if n > MAX_MESH_VERTICES {
                     return Err(Error::TooLarge {
-                        what: "mesh vertices".into(),
+                        what: MESH_VERTICES,
                         size: n,
                         max: MAX_MESH_VERTICES,
                     });

@@ -8,7 +8,7 @@ use super::MAX_LEVELS;
 use super::{Leaf, PATCH_WIDTH};
 use crate::error::{Error, Result};
 use crate::query::surface::QuerySurface;
-use crate::query::tessellate::MAX_MESH_VERTICES;
+use crate::query::tessellate::{MAX_MESH_VERTICES, MESH_VERTICES};
 
 impl QuerySurface {
     /// The parts of patch `k` of a rational surface within the normalised tolerance `tol`:
@@ -46,7 +46,7 @@ impl QuerySurface {
                 let n = count.fetch_add(1, Ordering::Relaxed) + 1;
                 if n > MAX_MESH_VERTICES {
                     return Err(Error::TooLarge {
-                        what: "mesh vertices".into(),
+                        what: MESH_VERTICES,
                         size: n,
                         max: MAX_MESH_VERTICES,
                     });

@@ -3,7 +3,7 @@
 
 use super::Rect;
 use crate::error::{Error, Result};
-use crate::query::tessellate::MAX_MESH_VERTICES;
+use crate::query::tessellate::{MAX_MESH_VERTICES, MESH_VERTICES};
 
 /// The parts' corners on the global integer lattice: the mesh's vertices, one a point, each
 /// with the part and corner it comes from, sorted by `(u, v)`, and the same sorted by `(v, u)`,
@@ -19,7 +19,7 @@ impl Lattice {
         let mut keys: Vec<(u64, u64, u32, u8)> = Vec::new();
         for (n, (gu, gv)) in rects.enumerate() {
             let n = u32::try_from(n).map_err(|_| Error::TooLarge {
-                what: "mesh vertices".into(),
+                what: MESH_VERTICES,
                 size: n,
                 max: MAX_MESH_VERTICES,
             })?;

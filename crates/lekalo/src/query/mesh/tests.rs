@@ -39,8 +39,11 @@ fn tiny_tolerances_are_refused_before_meshing() {
     let s = BSplineSurface::new(2, 2, knots.clone(), knots, net, (3, 3)).unwrap();
     let q = QuerySurface::from_bspline(&s).unwrap();
     let start = std::time::Instant::now();
-    let e = q.mesh(1e-8).unwrap_err().to_string();
+    let e = q.mesh(1e-8).unwrap_err();
     assert!(start.elapsed().as_secs() < 5, "refused before meshing");
+    // the key of the tolerance: each front end names its own tolerance argument
+    assert_eq!(e.arg(), Some(crate::Arg::Tolerance), "{e}");
+    let e = e.to_string();
     assert!(
         e.contains("tessellation tolerance")
             && e.contains("1e-8 needs about")
