@@ -89,6 +89,7 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
         Arg::Continuity | Arg::ContinuityConditions => "--continuity",
         Arg::CornerWindow | Arg::CornerFraction | Arg::CornerLength => "--window",
         Arg::S => "--s",
+        Arg::KnotRounds => "--knot-rounds",
         Arg::Tolerance => "--tolerance",
         Arg::Times => "--times",
         Arg::Knot => "--at",

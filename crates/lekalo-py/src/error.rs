@@ -89,6 +89,7 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
         Arg::Expression => "f",
         Arg::Lambda => "lam",
         Arg::S => "s",
+        Arg::KnotRounds => "knot_rounds",
         Arg::Eps => "eps",
         Arg::MaxKnots => "max_knots",
         Arg::Bbox => "bbox",

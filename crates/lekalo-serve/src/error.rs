@@ -102,6 +102,7 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         Arg::CornerLength => "length",
         Arg::Lambda => "lambda",
         Arg::S => "s",
+        Arg::KnotRounds => "knot_rounds",
         Arg::Tolerance => "tolerance",
         Arg::Times => "times",
         Arg::Knot => "t",

@@ -83,6 +83,8 @@ args! {
     Lambda => "λ",
     /// The residual target `s` of a smoothing condition.
     S => "s",
+    /// How the smoothing condition's rounds place their knots ([`crate::vocabulary::KNOT_ROUNDS`]).
+    KnotRounds => "knot rounds",
     /// A tolerance of a fit, a query or a knot removal.
     Tolerance => "tolerance",
     /// How many times a knot is inserted or removed.
