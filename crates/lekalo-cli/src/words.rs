@@ -89,6 +89,7 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
         Arg::Continuity | Arg::ContinuityConditions => "--continuity",
         Arg::CornerWindow | Arg::CornerFraction | Arg::CornerLength => "--window",
         Arg::S => "--s",
+        Arg::KnotRounds => "--knot-rounds",
         // `measure --tolerance` is the arc length's relative tolerance (its help says so)
         Arg::Tolerance | Arg::RelativeTolerance => "--tolerance",
         Arg::Times => "--times",

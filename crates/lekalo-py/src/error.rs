@@ -92,6 +92,7 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
         // relative, as NumPy's and SciPy's `rtol` (`CurveQuery.length_at`, `param_at`)
         Arg::RelativeTolerance => "rtol",
         Arg::S => "s",
+        Arg::KnotRounds => "knot_rounds",
         Arg::Eps => "eps",
         Arg::MaxKnots => "max_knots",
         Arg::Bbox => "bbox",

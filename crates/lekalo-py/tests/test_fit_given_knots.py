@@ -5,10 +5,11 @@ On given knots both solve the same problem by the same iteration for the smoothi
 the same start, so where SciPy's iteration ends with a residual at most s the coefficients agree
 to rounding of the banded solves (1e-12 against values of order 1). Where it ends above s (within
 its tolerance of 0.1% of s), lekalo continues the same iteration to a residual in
-[(1 - 0.1%) s, s]. The knot sequences are FITPACK's knot placement: the last is the knot vector
-of SciPy's ``splrep`` (FITPACK itself) exactly. SciPy's own ``generate_knots`` adds the knots of
-a round one at a time with a new least-squares fit between them, so its intermediate vectors (and
-sometimes its last) can differ from FITPACK's; lekalo follows FITPACK.
+[(1 - 0.1%) s, s]. The knot sequences are FITPACK's knot placement by default: the last is the
+knot vector of SciPy's ``splrep`` (FITPACK itself) exactly. SciPy's own ``generate_knots`` adds
+the knots of a round one at a time with a new least-squares fit between them, so its
+intermediate vectors (and often its last) differ from FITPACK's; ``knot_rounds="refit"`` does
+the same, and ``lekalo.scipy`` uses it, so both give SciPy's vectors exactly.
 """
 
 import numpy as np
@@ -82,6 +83,33 @@ def test_generate_knots_ends_on_fitpacks_knots(s):
     assert len(seq[0]) == 8  # the polynomial first
     # the last knot vector is the one the smoothing condition smooths on
     assert np.array_equal(lekalo.make_splrep(x, y, s=s).knots, seq[-1])
+
+
+@pytest.mark.parametrize("s", [1e-3, 0.1, 1.0])
+def test_refitted_rounds_are_scipys_generate_knots_and_make_splrep(s):
+    import lekalo.scipy as ls
+
+    x, y = noisy(200, seed=5)
+    ref = list(si.generate_knots(x, y, s=s))
+    for seq in (lekalo.generate_knots(x, y, s=s, knot_rounds="refit"), list(ls.generate_knots(x, y, s=s))):
+        assert len(seq) == len(ref)
+        assert all(np.array_equal(a, b) for a, b in zip(seq, ref))
+    assert np.array_equal(lekalo.make_splrep(x, y, s=s, knot_rounds="refit").knots, ref[-1])
+    assert np.array_equal(ls.make_splrep(x, y, s=s).t, si.make_splrep(x, y, s=s).t)
+    # a parametric curve: SciPy's make_splprep places the same knots
+    pts = [np.cos(x) + 0.01 * y, np.sin(x)]
+    assert np.array_equal(ls.make_splprep(pts, s=s)[0].t, si.make_splprep(pts, s=s)[0].t)
+    if s < 1.0:
+        # below, SciPy's make_splrep and its splrep place different knots on these data
+        assert not np.array_equal(ref[-1], si.splrep(x, y, s=s)[0])
+
+
+def test_knot_rounds_is_one_of_two_words():
+    x, y = noisy()
+    with pytest.raises(ValueError, match="knot_rounds.*'shared', 'refit'"):
+        lekalo.make_splrep(x, y, s=1.0, knot_rounds="fresh")
+    with pytest.raises(ValueError, match="knot_rounds"):
+        lekalo.generate_knots(x, y, s=1.0, periodic=True, knot_rounds="refit")
 
 
 def test_generate_knots_stops_at_nest_and_refuses_a_smaller_nest():

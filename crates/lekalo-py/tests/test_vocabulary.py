@@ -20,6 +20,7 @@ KNOTS = ["auto", "averaged", "uniform", "at-params"]
 PARAMETRIZATION = ["uniform", "chord", "centripetal"]
 END = ["free", "derivatives", "second", "natural", "periodic"]
 RULE = ["first-knot-after", "left-end-of-support", "midpoint", "greville", "first-interval-midpoint"]
+KNOT_ROUNDS = ["shared", "refit"]
 
 
 def quiet(f, *args, **kwargs):
@@ -49,6 +50,12 @@ def test_every_end_word(word):
 def test_every_rule_word(word):
     space = lekalo.PpSpace([0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], 3, [2] * 5)
     quiet(lekalo.quasi_interpolate, space, lambda x, r: np.cos(x) if r == 0 else 0.0, rule=word)
+
+
+@pytest.mark.parametrize("word", KNOT_ROUNDS)
+def test_every_knot_rounds_word(word):
+    x = np.linspace(0.0, 1.0, 40)
+    quiet(lekalo.make_splrep, x, np.sin(6 * x), s=1e-3, knot_rounds=word)
 
 
 @pytest.mark.parametrize(
@@ -81,6 +88,9 @@ def test_the_cli_offers_the_same_words():
     for words in (KNOTS, PARAMETRIZATION, END):
         for w in words:
             assert f"{w}:" in text or f"{w} " in text, (w, text)
+    text = subprocess.run([exe, "fit", "--help"], capture_output=True, text=True, check=True).stdout
+    for w in KNOT_ROUNDS:
+        assert w in text, (w, text)
 
 
 def test_error_kinds():

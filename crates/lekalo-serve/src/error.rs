@@ -102,6 +102,7 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         Arg::CornerLength => "length",
         Arg::Lambda => "lambda",
         Arg::S => "s",
+        Arg::KnotRounds => "knot_rounds",
         // the measure request's `tolerance` is the arc length's relative tolerance
         Arg::Tolerance | Arg::RelativeTolerance => "tolerance",
         Arg::Times => "times",

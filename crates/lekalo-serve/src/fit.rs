@@ -6,15 +6,15 @@
 //!
 //! The smoothing spline and the smoothing condition run with the job's progress hook
 //! ([`lekalo::fit::smoothing_spline_with_progress`],
-//! [`lekalo::fit::smoothing_condition_with_progress`]): at the deadline they stop between two
+//! [`lekalo::fit::smoothing_condition_with_rounds`]): at the deadline they stop between two
 //! GCV scores, knot rounds or smoothing weights, and the request is answered with 504 while its
 //! pool thread is freed. The constrained fit is one cone program, bounded by the points' budget.
 
 use axum::body::Bytes;
 use axum::response::Response;
 use lekalo::fit::{
-    constrained_smoothing_spline, smoothing_condition_with_progress,
-    smoothing_spline_with_progress, CurveFit, FitData, Lambda, Shape, ShapeConstraints,
+    constrained_smoothing_spline, smoothing_condition_with_rounds, smoothing_spline_with_progress,
+    CurveFit, FitData, KnotRounds, Lambda, Shape, ShapeConstraints,
 };
 use lekalo::{parametrize, Points};
 use lekalo_io::Object;
@@ -59,6 +59,10 @@ struct FitRequest {
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_number")]
     s: Option<f64>,
+    /// How the smoothing condition places its knots: a word of
+    /// [`lekalo::vocabulary::KNOT_ROUNDS`] (`lekalo fit --knot-rounds`).
+    #[serde(default)]
+    knot_rounds: Option<String>,
     /// Degree of the smoothing condition (the smoothing spline is cubic).
     #[serde(default = "default_degree")]
     #[serde(deserialize_with = "crate::fields::count")]
@@ -178,7 +182,14 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
         Smoothing::S => {
             let degree = job.limits.check_degree(r.degree, "degree")?;
-            smoothing_condition_with_progress(&data, degree, given(r.s, "s")?, &job.progress)
+            let rounds = crate::words::word(
+                &lekalo::vocabulary::KNOT_ROUNDS,
+                "knot_rounds",
+                r.knot_rounds.as_deref(),
+                KnotRounds::Shared,
+            )?;
+            let s = given(r.s, "s")?;
+            smoothing_condition_with_rounds(&data, degree, s, None, rounds, &job.progress)
                 .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
         }
     };

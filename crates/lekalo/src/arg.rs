@@ -83,6 +83,8 @@ args! {
     Lambda => "λ",
     /// The residual target `s` of a smoothing condition.
     S => "s",
+    /// How the smoothing condition's rounds place their knots ([`crate::vocabulary::KNOT_ROUNDS`]).
+    KnotRounds => "knot rounds",
     /// An absolute tolerance, a distance in the data's units: of a fit, a query, a tessellation
     /// or a knot removal.
     Tolerance => "tolerance",

@@ -20,6 +20,7 @@
 //! # Ok::<(), lekalo::Error>(())
 //! ```
 
+use crate::fit::KnotRounds;
 use crate::Arg;
 use crate::{Direction, EndCondition, Error, KnotPlacement, Parametrization, Result, TauRule};
 
@@ -309,6 +310,25 @@ pub const TAU_RULE: Vocabulary<TauRule> = Vocabulary {
     ],
 };
 
+/// How the smoothing condition's knot rounds place a round's second and later knots
+/// ([`KnotRounds`]; `docs/theory/fitting.md#smoothing-condition`).
+pub const KNOT_ROUNDS: Vocabulary<KnotRounds> = Vocabulary {
+    key: Arg::KnotRounds,
+    words: &[
+        Word {
+            name: "shared",
+            value: KnotRounds::Shared,
+            meaning: "one fit a round, a split span's residual shared between its halves (FITPACK's curfit, SciPy's splrep; the default)",
+        },
+        Word {
+            name: "refit",
+            value: KnotRounds::Refit,
+            meaning: "a fit after every knot (SciPy's make_splrep and generate_knots)",
+        },
+    ],
+    aliases: &[],
+};
+
 /// A parameter direction of a surface.
 pub const DIRECTION: Vocabulary<Direction> = Vocabulary {
     key: Arg::Direction,
@@ -349,6 +369,7 @@ spelled_by!(KnotPlacement, KNOT_PLACEMENT);
 spelled_by!(EndKind, END_CONDITION);
 spelled_by!(TauRule, TAU_RULE);
 spelled_by!(Direction, DIRECTION);
+spelled_by!(KnotRounds, KNOT_ROUNDS);
 
 impl std::fmt::Display for Parametrization {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -559,3 +559,66 @@ fn help_lists_the_options() {
         assert!(help.contains(option), "{option} missing from fit --help");
     }
 }
+
+/// 400 samples of `sin(8x)·e^(−x)` on [0, 1] with a fixed pseudo-noise of amplitude 0.05 (the
+/// data of `scripts/knot_rounds_golden.py`).
+fn noisy_samples() -> String {
+    let mut s = String::new();
+    for k in 0..400_i32 {
+        let x = f64::from(k) / 399.0;
+        let j = f64::from(k + 17);
+        let noise = (j * 0.618_033_988_749_894_9 + 0.1 * j.sin()).fract() - 0.5;
+        let y = (8.0 * x).sin() * (-x).exp() + 0.05 * noise;
+        writeln!(s, "{x} {y}").unwrap();
+    }
+    s
+}
+
+/// `--knot-rounds`: FITPACK's shared rounds (splrep's 16 knots on this data) by default,
+/// SciPy's `make_splrep` rounds (a fit after every knot: 15 knots) with `refit`; both within
+/// `--s`. Where the rounds do not apply it is refused, and an unknown word lists the two.
+#[test]
+fn knot_rounds_choose_fitpacks_or_scipys_make_splrep_knots() {
+    let d = dir_with(&[("xy.txt", &noisy_samples())]);
+    let s = 400.0 * 0.05 * 0.05 / 12.0;
+    let fit = |rounds: Option<&str>| {
+        let mut args = vec!["fit", "xy.txt", "--function", "--json"];
+        let s_text = s.to_string();
+        args.extend(["--s", &s_text]);
+        if let Some(r) = rounds {
+            args.extend(["--knot-rounds", r]);
+        }
+        json_of(lekalo().current_dir(d.path()).args(&args))
+    };
+    for (rounds, knots) in [(None, 16), (Some("shared"), 16), (Some("refit"), 15)] {
+        let f = fit(rounds);
+        assert_eq!(numbers(&f["object"]["knots"]).len(), knots, "{rounds:?}");
+        let rss = f["report"]["weighted_rss"].as_f64().unwrap();
+        assert!(rss <= s && rss >= 0.999 * s, "{rounds:?}: rss {rss}");
+    }
+    let e = refusal(
+        &d,
+        &[
+            "fit",
+            "xy.txt",
+            "--function",
+            "--s",
+            "0.1",
+            "--knot-rounds",
+            "fresh",
+        ],
+    );
+    assert!(e.contains("shared") && e.contains("refit"), "{e}");
+    let e = refusal(
+        &d,
+        &["fit", "xy.txt", "--function", "--knot-rounds", "refit"],
+    );
+    assert!(e.contains("--s"), "{e}");
+    for extra in [&["--knots", "0.5"][..], &["--increasing"], &["--periodic"]] {
+        let mut args = vec!["fit", "xy.txt", "--function", "--s", "0.1"];
+        args.extend(extra);
+        args.extend(["--knot-rounds", "refit"]);
+        let e = refusal(&d, &args);
+        assert!(e.contains("drop --knot-rounds"), "{e}");
+    }
+}

@@ -556,6 +556,7 @@ def make_splrep(
     s: float = 0.0,
     t: Optional[ArrayLike] = None,
     domain: Optional[Tuple[float, float]] = None,
+    knot_rounds: Optional[str] = None,
 ) -> BSplineCurve: ...
 def make_splprep(
     points: ArrayLike,
@@ -566,6 +567,7 @@ def make_splprep(
     s: float = 0.0,
     t: Optional[ArrayLike] = None,
     parametrization: Optional[Param] = None,
+    knot_rounds: Optional[str] = None,
 ) -> Tuple[BSplineCurve, Array]: ...
 def generate_knots(
     x: ArrayLike,
@@ -576,6 +578,7 @@ def generate_knots(
     s: float = 0.0,
     nest: Optional[int] = None,
     periodic: bool = False,
+    knot_rounds: Optional[str] = None,
 ) -> List[Array]: ...
 def fit_least_squares(
     points: ArrayLike,
@@ -620,6 +623,7 @@ def fit_smoothing_condition(
     s: float = 0.0,
     t: Optional[ArrayLike] = None,
     domain: Optional[Tuple[float, float]] = None,
+    knot_rounds: Optional[str] = None,
     increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,

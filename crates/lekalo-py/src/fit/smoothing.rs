@@ -4,9 +4,10 @@
 
 use lekalo::fit::{
     constrained_smoothing_condition, constrained_smoothing_spline, gcv_score as lk_gcv,
-    periodic_smoothing_knot_sequence, smoothing_condition, smoothing_condition_in,
-    smoothing_knot_sequence, smoothing_on_knots, smoothing_spline, CurveFit, FitData, Lambda,
+    periodic_smoothing_knot_sequence, smoothing_condition_with_rounds, smoothing_knot_sequence,
+    smoothing_on_knots, smoothing_spline, CurveFit, FitData, KnotRounds, Lambda,
 };
+use lekalo::Progress;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -16,6 +17,14 @@ use crate::convert::{floats, vec1, vec_array};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, lib_err, named};
 use crate::interp::parametrization_or_chord;
+use crate::words::word;
+
+/// `knot_rounds=`: a word of [`lekalo::vocabulary::KNOT_ROUNDS`], `"shared"` when absent.
+fn knot_rounds(text: Option<&str>) -> PyResult<KnotRounds> {
+    text.map_or(Ok(KnotRounds::Shared), |t| {
+        word(&lekalo::vocabulary::KNOT_ROUNDS, "knot_rounds", t)
+    })
+}
 
 fn lambda_arg(lam: Option<f64>) -> Lambda {
     lam.map_or(Lambda::Gcv, Lambda::Given)
@@ -117,6 +126,9 @@ pub(crate) fn gcv_score(
 /// derivative jumps least with the residual `s` (`docs/theory/fitting.md#smoothing-on-given-knots`).
 /// Weights as SciPy's: the condition is `Σ (w_k (y_k − f(x_k)))² ≤ s`. `domain=(a, b)`, holding
 /// the data, puts the end knots at `a` and `b` (SciPy's `xb`, `xe`; without `t`).
+/// `knot_rounds` chooses how each round of knot addition places its knots: `"shared"` (the
+/// default) as FITPACK's `curfit` and SciPy's `splrep`, `"refit"` as SciPy's `make_splrep` (a
+/// fit after every knot; `docs/theory/fitting.md#smoothing-condition`).
 /// Returns the curve; `fit_smoothing_condition` also returns the report.
 ///
 /// >>> import numpy as np, lekalo
@@ -128,8 +140,10 @@ pub(crate) fn gcv_score(
 /// >>> c = lekalo.make_splrep(x, y, s=0.5, t=t)
 /// >>> bool(abs(((c(x)[:, 0] - y) ** 2).sum() - 0.5) <= 1e-3 * 0.5)
 /// True
+/// >>> len(lekalo.make_splrep(x, y, s=1e-4, knot_rounds="refit").knots) >= 8
+/// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splrep(
     py: Python<'_>,
@@ -140,16 +154,18 @@ pub(crate) fn make_splrep(
     s: f64,
     t: Option<&Bound<'_, PyAny>>,
     domain: Option<(f64, f64)>,
+    knot_rounds: Option<&str>,
 ) -> PyResult<PyBSplineCurve> {
     let k = k.count("k")?;
+    let rounds = self::knot_rounds(knot_rounds)?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     Ok(PyBSplineCurve::wrap(
-        condition_fit(py, &data, k, s, t, domain)?.curve,
+        condition_fit(py, &data, k, s, t, domain, rounds)?.curve,
     ))
 }
 
-/// The smoothing condition on FITPACK's knots (end knots at `domain` when given) or, with `t`,
-/// the smoothing on those knots.
+/// The smoothing condition on FITPACK's knots placed in `rounds` (end knots at `domain` when
+/// given) or, with `t`, the smoothing on those knots.
 fn condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
@@ -157,6 +173,7 @@ fn condition_fit(
     s: f64,
     t: Option<&Bound<'_, PyAny>>,
     domain: Option<(f64, f64)>,
+    rounds: KnotRounds,
 ) -> PyResult<CurveFit> {
     let fd = data.fit_data("x")?;
     let kv = t.map(knot_vector).transpose()?;
@@ -165,10 +182,9 @@ fn condition_fit(
             "domain: the knots t set the domain (their end knots); drop domain or t".into(),
         ));
     }
-    py.detach(|| match (&kv, domain) {
-        (Some(kv), _) => smoothing_on_knots(&fd, k, kv, s),
-        (None, Some(domain)) => smoothing_condition_in(&fd, k, s, domain),
-        (None, None) => smoothing_condition(&fd, k, s),
+    py.detach(|| match &kv {
+        Some(kv) => smoothing_on_knots(&fd, k, kv, s),
+        None => smoothing_condition_with_rounds(&fd, k, s, domain, rounds, &Progress::new()),
     })
     .map_err(|e| match e {
         lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. }
@@ -186,7 +202,7 @@ fn condition_fit(
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 /// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
@@ -197,6 +213,7 @@ pub(crate) fn fit_smoothing_condition<'py>(
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
     domain: Option<(f64, f64)>,
+    knot_rounds: Option<&str>,
     increasing: Option<&Bound<'py, PyAny>>,
     decreasing: Option<&Bound<'py, PyAny>>,
     convex: Option<&Bound<'py, PyAny>>,
@@ -210,10 +227,17 @@ pub(crate) fn fit_smoothing_condition<'py>(
     let shape = shape_constraints([
         increasing, decreasing, convex, concave, min, max, through, slope_at,
     ])?;
+    let rounds = self::knot_rounds(knot_rounds)?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     if shape.is_empty() {
-        let f = condition_fit(py, &data, k, s, t, domain)?;
+        let f = condition_fit(py, &data, k, s, t, domain, rounds)?;
         return with_report(py, f);
+    }
+    if knot_rounds.is_some() {
+        return Err(bad(
+            "knot_rounds: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop knot_rounds"
+                .into(),
+        ));
     }
     if domain.is_some() {
         return Err(bad(
@@ -240,14 +264,15 @@ pub(crate) fn fit_smoothing_condition<'py>(
 /// `make_splrep(x, y, s=s)` smooths on. `nest` stops the rounds once a vector has that many
 /// knots. Weights as SciPy's (`Σ (w_k (y_k − f(x_k)))² ≤ s`). With `periodic=True` the rounds
 /// of `fit_periodic` (the last row of `x`, `y` repeats the first, on the period
-/// `[x[0], x[-1]]`).
+/// `[x[0], x[-1]]`). `knot_rounds` as in `make_splrep`: `"refit"` gives SciPy's
+/// `generate_knots`, `"shared"` (the default) the rounds of FITPACK's `curfit`.
 ///
 /// >>> import numpy as np, lekalo
 /// >>> x = np.arange(8.0); y = np.sin(x * np.pi / 8)
 /// >>> [len(t) for t in lekalo.generate_knots(x, y, s=1e-7)]
 /// [8, 9, 10, 11, 12]
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, nest = None, periodic = false), text_signature = "(x, y, *, w=None, k=3, s=0.0, nest=None, periodic=False)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, nest = None, periodic = false, knot_rounds = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, nest=None, periodic=False, knot_rounds=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn generate_knots<'py>(
     py: Python<'py>,
@@ -258,8 +283,15 @@ pub(crate) fn generate_knots<'py>(
     s: f64,
     nest: Option<IntArg>,
     periodic: bool,
+    knot_rounds: Option<&str>,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let k = k.count("k")?;
+    let rounds = self::knot_rounds(knot_rounds)?;
+    if periodic && rounds != KnotRounds::Shared {
+        return Err(bad(
+            "knot_rounds: the periodic rounds share each round's residual (FITPACK's fpperi); drop knot_rounds or periodic".into(),
+        ));
+    }
     let nest = nest.map(|n| n.count("nest")).transpose()?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let seq = if periodic {
@@ -273,7 +305,7 @@ pub(crate) fn generate_knots<'py>(
         py.detach(|| periodic_smoothing_knot_sequence(&fd, k, s, domain, nest))
     } else {
         let fd = data.fit_data("x")?;
-        py.detach(|| smoothing_knot_sequence(&fd, k, s, nest))
+        py.detach(|| smoothing_knot_sequence(&fd, k, s, nest, rounds))
     }
     .map_err(lib_err)?;
     Ok(seq.iter().map(|t| vec_array(py, t)).collect())
@@ -282,10 +314,10 @@ pub(crate) fn generate_knots<'py>(
 /// A parametric curve through points `(n, dim)` with the fewest knots within the residual `s`
 /// (SciPy's `make_splprep`, points as rows instead of SciPy's list of coordinate arrays).
 /// Parameters `u` default to chord length on `[0, 1]` (`parametrization` chooses another);
-/// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`).
+/// weights as SciPy's (`Σ (w_k |r_k|)² ≤ s`); `knot_rounds` as in `make_splrep`.
 /// Returns `(curve, u)`.
 #[pyfunction]
-#[pyo3(signature = (points, *, w = None, u = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None), text_signature = "(points, *, w=None, u=None, k=3, s=0.0, t=None, parametrization=None)")]
+#[pyo3(signature = (points, *, w = None, u = None, k = IntArg::of(3), s = 0.0, t = None, parametrization = None, knot_rounds = None), text_signature = "(points, *, w=None, u=None, k=3, s=0.0, t=None, parametrization=None, knot_rounds=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_splprep<'py>(
     py: Python<'py>,
@@ -296,8 +328,10 @@ pub(crate) fn make_splprep<'py>(
     s: f64,
     t: Option<&Bound<'py, PyAny>>,
     parametrization: Option<&Bound<'py, PyAny>>,
+    knot_rounds: Option<&str>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyAny>)> {
     let k = k.count("k")?;
+    let rounds = self::knot_rounds(knot_rounds)?;
     let pa = floats(points, "points")?;
     let pts = pa.curve_points("points", k + 1)?;
     let params = match u {
@@ -316,7 +350,7 @@ pub(crate) fn make_splprep<'py>(
     let f = py
         .detach(|| match &kv {
             Some(kv) => smoothing_on_knots(&fd, k, kv, s),
-            None => smoothing_condition(&fd, k, s),
+            None => smoothing_condition_with_rounds(&fd, k, s, None, rounds, &Progress::new()),
         })
         .map_err(lib_err)?;
     Ok((PyBSplineCurve::wrap(f.curve), vec_array(py, &params)))

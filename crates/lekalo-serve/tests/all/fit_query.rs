@@ -7,7 +7,10 @@
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use http_body_util::BodyExt;
-use lekalo::fit::{smoothing_condition, smoothing_spline, CurveFit, FitData, Lambda};
+use lekalo::fit::{
+    smoothing_condition, smoothing_condition_with_rounds, smoothing_spline, CurveFit, FitData,
+    KnotRounds, Lambda,
+};
 use lekalo::{
     parametrize, quasi_interpolate, BSplineCurve, Expression, Parametrization, Points, PpSpace,
     QueryCurve, Tau, TauRule,
@@ -134,6 +137,22 @@ async fn fitting_answers_the_library_s_curve_and_report() {
     );
     assert!(v["report"]["weighted_rss"].as_f64().expect("rss") <= 1.0);
     assert_eq!(v["report"]["s"].as_f64(), Some(1.0));
+    // the refitted rounds of SciPy's make_splrep, as the library places them (other knots than
+    // the shared rounds' on these data)
+    for s in [0.01, 0.1] {
+        let v = ok(
+            "/api/fit",
+            &json!({"points": pts, "smoothing": "s", "s": s, "knot_rounds": "refit"}),
+        )
+        .await;
+        let quiet = lekalo::Progress::new();
+        let fit = library_fit(&pts, |d| {
+            smoothing_condition_with_rounds(d, 3, s, None, KnotRounds::Refit, &quiet)
+        });
+        check_report(&v, &fit);
+        let shared = library_fit(&pts, |d| smoothing_condition(d, 3, s));
+        assert_ne!(shared.curve.knots(), fit.curve.knots(), "s = {s}");
+    }
 
     // samples y(x) of a function: x is the parameter, the fit is one-dimensional and the view
     // draws its graph (x, y(x))
@@ -180,6 +199,11 @@ async fn fitting_errors_name_the_field() {
             json!({"points": pts, "smoothing": "s", "s": 1, "degree": 500}),
             "degree",
             "limit",
+        ),
+        (
+            json!({"points": pts, "smoothing": "s", "s": 1, "knot_rounds": "fresh"}),
+            "knot_rounds",
+            "unknown value \"fresh\"; use one of shared, refit",
         ),
         (
             json!({"points": pts, "smoothing": "lamda"}),

@@ -4,9 +4,10 @@
 
 use lekalo::fit::{
     check_schoenberg_whitney, fit_tolerance, gcv_score, least_squares, place_knots,
-    robust_least_squares, smoothing_condition, smoothing_condition_in, smoothing_spline,
-    surface_scattered_least_squares, Deviation, EndConstraints, FitData, Lambda, RobustLoss,
-    ToleranceOptions,
+    robust_least_squares, smoothing_condition, smoothing_condition_in,
+    smoothing_condition_with_rounds, smoothing_knot_sequence, smoothing_spline,
+    surface_scattered_least_squares, Deviation, EndConstraints, FitData, KnotRounds, Lambda,
+    RobustLoss, ToleranceOptions,
 };
 use lekalo::{BSplineCurve, Error, KnotVector, Points, PointsRef};
 use proptest::prelude::*;
@@ -165,6 +166,55 @@ fn smoothing_condition_matches_scipy_splrep() {
     check_splrep(&x[..40], &y[..40], None, 2, 0.0, &more["interp_k2"]);
     let w5 = &more["weighted_k5"];
     check_splrep(&x, &y, Some(&vec_of(&w5["w"])), 5, s, w5);
+}
+
+/// The refitted rounds against SciPy's `generate_knots` and `make_splrep`
+/// (`tests/data/knot_rounds_golden.json`, made by `scripts/knot_rounds_golden.py`): every knot
+/// vector of the sequence exactly (knots are data sites), and the smoothed coefficients to
+/// rounding where SciPy's residual is within `s` (else lekalo's stays within `s`). The shared
+/// rounds end on FITPACK's `splrep` knots instead, a different count on these cases.
+#[test]
+fn refitted_knot_rounds_match_scipy_generate_knots_and_make_splrep() {
+    let g: Value = serde_json::from_str(include_str!("../data/knot_rounds_golden.json"))
+        .expect("golden JSON parses");
+    let (x, y, w_fp) = (vec_of(&g["x"]), vec_of(&g["y"]), vec_of(&g["w"]));
+    let w: Vec<f64> = w_fp.iter().map(|v| v * v).collect();
+    for case in g["cases"].as_array().expect("cases") {
+        let k = usize::try_from(case["k"].as_u64().expect("k")).expect("k");
+        let s = case["s"].as_f64().expect("s");
+        let mut data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        if case["weighted"].as_bool().expect("weighted") {
+            data = data.with_weights(&w).unwrap();
+        }
+        let seq = smoothing_knot_sequence(&data, k, s, None, KnotRounds::Refit).unwrap();
+        let reference: Vec<Vec<f64>> = case["sequence"]
+            .as_array()
+            .expect("sequence")
+            .iter()
+            .map(vec_of)
+            .collect();
+        assert_eq!(seq, reference, "degree {k}, s {s}: the knot sequence");
+        let quiet = lekalo::Progress::new();
+        let fit =
+            smoothing_condition_with_rounds(&data, k, s, None, KnotRounds::Refit, &quiet).unwrap();
+        assert_eq!(fit.curve.knots().as_slice(), vec_of(&case["t"]).as_slice());
+        let rss = fit.report.weighted_rss;
+        assert!(
+            rss <= s && rss >= (1.0 - 1e-3) * s,
+            "degree {k}: rss {rss}, s {s}"
+        );
+        if case["fp"].as_f64().expect("fp") <= s {
+            let c: Vec<f64> = fit.curve.control_points().iter().map(|p| p[0]).collect();
+            assert_close(&c, &vec_of(&case["c"]), 1e-9, "coefficients");
+        }
+        let shared = smoothing_knot_sequence(&data, k, s, None, KnotRounds::Shared).unwrap();
+        let n_splrep = usize::try_from(case["n_knots_splrep"].as_u64().expect("n")).expect("n");
+        assert_eq!(
+            shared.last().map(Vec::len),
+            Some(n_splrep),
+            "shared: splrep's count"
+        );
+    }
 }
 
 /// `smoothing_condition_in` against `splrep(x, y, s=…, xb=−0.25, xe=1.5)`: FITPACK's knots,
@@ -650,8 +700,9 @@ proptest! {
     }
 
     /// On distinct abscissae with any spacing, values and weights, the smoothing condition
-    /// meets any `s > 0` at every degree, down to near interpolation where FITPACK's knot
-    /// placement alone would crowd knots at an end and leave a singular system.
+    /// meets any `s > 0` at every degree, in shared and refitted rounds, down to near
+    /// interpolation where FITPACK's knot placement alone would crowd knots at an end and
+    /// leave a singular system.
     #[test]
     fn distinct_abscissae_meet_any_s(
         degree in 1usize..=5,
@@ -669,9 +720,12 @@ proptest! {
         let total: f64 = y.iter().zip(w).map(|(v, q)| q * v * v).sum();
         let s = 10f64.powf(s_exp) * total;
         let data = FitData::new(PointsRef::from_flat(1, y).unwrap(), &x).unwrap().with_weights(w).unwrap();
-        match smoothing_condition(&data, degree, s) {
-            Ok(fit) => prop_assert!(fit.report.weighted_rss <= s + 1e-12 * total, "rss {} > s {s}", fit.report.weighted_rss),
-            Err(e) => prop_assert!(false, "unexpected error {e}"),
+        let quiet = lekalo::Progress::new();
+        for rounds in [KnotRounds::Shared, KnotRounds::Refit] {
+            match smoothing_condition_with_rounds(&data, degree, s, None, rounds, &quiet) {
+                Ok(fit) => prop_assert!(fit.report.weighted_rss <= s + 1e-12 * total, "{rounds:?}: rss {} > s {s}", fit.report.weighted_rss),
+                Err(e) => prop_assert!(false, "{rounds:?}: unexpected error {e}"),
+            }
         }
     }
 }

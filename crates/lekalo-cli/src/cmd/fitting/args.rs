@@ -92,6 +92,10 @@ pub(crate) struct FitArgs {
     /// Smoothing condition: the weighted residual sum of squares target.
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub(crate) s: Option<f64>,
+    /// With --s: how each round of knot addition places its knots (shared: FITPACK's `curfit`, as
+    /// SciPy's `splrep`, the default; refit: a fit after every knot, as SciPy's `make_splrep`).
+    #[arg(long, requires = "s", value_parser = Words(&lekalo::vocabulary::KNOT_ROUNDS))]
+    pub(crate) knot_rounds: Option<lekalo::fit::KnotRounds>,
     /// Fit within this distance of every point. Formerly `--tol`.
     #[arg(
         long = "tolerance",
@@ -227,6 +231,18 @@ pub(crate) struct FitArgs {
 }
 
 impl FitArgs {
+    /// Whether any shape constraint (`--increasing` … `--slope-at`) is given.
+    pub(super) fn shape_given(&self) -> bool {
+        !(self.increasing.is_empty()
+            && self.decreasing.is_empty()
+            && self.convex.is_empty()
+            && self.concave.is_empty()
+            && self.min.is_empty()
+            && self.max.is_empty()
+            && self.through.is_empty()
+            && self.slope_at.is_empty())
+    }
+
     /// The parametrisation of curves and surfaces: `--param`, chord length by default.
     pub(super) fn param(&self) -> lekalo::Parametrization {
         self.param.unwrap_or(lekalo::Parametrization::ChordLength)
@@ -332,6 +348,14 @@ impl FitArgs {
                      of the domain; with --domain the domain reaches beyond the data: drop one",
                 );
             }
+        }
+        if self.knot_rounds.is_some()
+            && (surface || self.periodic || self.knots.is_some() || self.shape_given())
+        {
+            return bad_input(
+                "--knot-rounds chooses how --s places the knots of an open curve; with --knots, \
+                 --periodic, a surface or shape constraints it has no rounds: drop --knot-rounds",
+            );
         }
         if surface && self.knots.is_some() {
             return bad_input(

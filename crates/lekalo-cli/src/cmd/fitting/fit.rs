@@ -6,9 +6,9 @@ use anyhow::Result;
 use lekalo::fit::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
     fit_tolerance_with_progress, least_squares_with_progress, place_knots, robust_least_squares,
-    smoothing_condition_in_with_progress, smoothing_condition_with_progress,
-    smoothing_on_knots_with_progress, smoothing_spline_with_progress, CurveFit, Deviation,
-    EndConstraints, FitData, Lambda, RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
+    smoothing_condition_with_rounds, smoothing_on_knots_with_progress,
+    smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
+    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -180,13 +180,11 @@ fn fit_curve(
             with_progress(cx, "smoothing on the knots", large, |p| {
                 smoothing_on_knots_with_progress(&data, degree, &knots, s, p)
             })?
-        } else if let Some(domain) = domain_arg(a, &params)? {
-            with_progress(cx, "smoothing condition", large, |p| {
-                smoothing_condition_in_with_progress(&data, degree, s, domain, p)
-            })?
         } else {
+            let domain = domain_arg(a, &params)?;
+            let rounds = a.knot_rounds.unwrap_or_default();
             with_progress(cx, "smoothing condition", large, |p| {
-                smoothing_condition_with_progress(&data, degree, s, p)
+                smoothing_condition_with_rounds(&data, degree, s, domain, rounds, p)
             })?
         }
     } else if let Some(tol) = a.tol {

@@ -605,17 +605,7 @@ fn refuse_curve_options(a: &FitArgs) -> Result<()> {
             "--start-derivative/--end-derivative",
         ),
         (a.ctrl.is_some(), "--ctrl"),
-        (
-            !(a.increasing.is_empty()
-                && a.decreasing.is_empty()
-                && a.convex.is_empty()
-                && a.concave.is_empty()
-                && a.min.is_empty()
-                && a.max.is_empty()
-                && a.through.is_empty()
-                && a.slope_at.is_empty()),
-            "shape constraints",
-        ),
+        (a.shape_given(), "shape constraints"),
     ]
     .iter()
     .filter(|(on, _)| *on)

@@ -107,17 +107,20 @@ def _smooth(
     elif periodic:
         curve, _ = _lekalo.fit_periodic(x, y, w=w * w, k=k, s=float(s))
     elif y.ndim == 1:
-        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), domain=domain)
+        curve = _lekalo.make_splrep(x, y, w=w, k=k, s=float(s), domain=domain, knot_rounds="refit")
     else:
-        curve, _ = _lekalo.make_splprep(y, w=w, u=x, k=k, s=float(s))
+        curve, _ = _lekalo.make_splprep(y, w=w, u=x, k=k, s=float(s), knot_rounds="refit")
     return np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control)
 
 
 def _knot_sequence(x: np.ndarray, y: np.ndarray, w: np.ndarray, k: int, s: float, nest: Any, periodic: bool) -> list:
-    """lekalo's rounds of the smoothing condition (``generate_knots``), SciPy's ``nest`` check."""
+    """lekalo's rounds of the smoothing condition (``generate_knots``; refitted after every
+    knot as SciPy's, except the periodic rounds, which share them as FITPACK's ``fpperi``),
+    SciPy's ``nest`` check."""
     if nest is not None and nest < 2 * (k + 1):
         raise ValueError(f"`nest` too small: {nest = } < 2*(k+1) = {2*(k+1)}.")
-    return _lekalo.generate_knots(x, y, w=w, k=k, s=float(s), nest=nest, periodic=periodic)
+    rounds = None if periodic else "refit"
+    return _lekalo.generate_knots(x, y, w=w, k=k, s=float(s), nest=nest, periodic=periodic, knot_rounds=rounds)
 
 
 def generate_knots(

@@ -3,7 +3,7 @@
 //! `docs/theory/fitting.md#smoothing-condition`).
 
 use super::lsq_pass::{back_substitute, LsqPass, Observations};
-use super::{Rounds, SMOOTHING_RTOL};
+use super::{KnotRounds, Rounds, SMOOTHING_RTOL};
 use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::fit::progress::Steps;
@@ -11,13 +11,14 @@ use crate::fit::progress::Steps;
 /// Step 2 of [`smoothing_condition`](super::smoothing_condition): the rounds of least squares and knot addition, at most
 /// `cap` interior knots, each round's knot vector passed to `seen` before its pass, each round a
 /// step of `steps`; the end knots at `domain` (checked to hold the data), else at the data's
-/// ends.
+/// ends; a round's second and later knots placed as `rounds` says.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn knot_rounds(
     obs: &Observations,
     k: usize,
     s: f64,
     domain: Option<(f64, f64)>,
+    rounds: KnotRounds,
     cap: usize,
     steps: &Steps<'_, '_>,
     seen: &mut dyn FnMut(&[f64]),
@@ -75,7 +76,11 @@ pub(super) fn knot_rounds(
         pass.residuals(obs, &c);
         knots.span_sums(obs, &pass, &t);
         let full = nmax - 2 * k - 2;
-        match knots.add_up_to(&obs.sites, nplus, full, cap) {
+        let added = match rounds {
+            KnotRounds::Shared => knots.add_up_to(&obs.sites, nplus, full, cap),
+            KnotRounds::Refit => knots.add_refitting(obs, &mut pass, nplus, full, cap)?,
+        };
+        match added {
             Added::Some => {}
             Added::Full => knots.interpolation(&obs.sites),
             // no span can be split without crowding an end: the knots of interpolation, when
@@ -97,6 +102,7 @@ pub(in crate::fit) enum Added {
 
 /// The interior knots of the rounds with FITPACK's bookkeeping per span: the residual sum
 /// `fpint` and the number of distinct parameters strictly inside, `nrdata`.
+#[derive(Clone)]
 pub(in crate::fit) struct Knots {
     pub(in crate::fit) k: usize,
     pub(in crate::fit) a: f64,
@@ -195,6 +201,59 @@ impl Knots {
                 break;
             }
         }
+        self.added_since(before, full)
+    }
+
+    /// [`Knots::add_up_to`] with the least squares refitted after each knot
+    /// ([`KnotRounds::Refit`], SciPy's `generate_knots`): each knot goes to the span whose
+    /// residual sum, taken afresh from the fit on the knots so far, is largest, as SciPy places
+    /// it, even where the split leaves an end short of parameters, as long as the least
+    /// squares on the new knots keeps full rank (every pivot of its triangle above
+    /// [`RANK_RTOL`](crate::fit::banded::RANK_RTOL) of the largest); otherwise the knot is
+    /// taken back and placed as [`Knots::add_one`] places it, with the guard of the ends. The
+    /// bookkeeping of `nrdata` is the same; `fpint` is recomputed instead of shared.
+    fn add_refitting(
+        &mut self,
+        obs: &Observations,
+        pass: &mut LsqPass,
+        nplus: usize,
+        full: usize,
+        cap: usize,
+    ) -> Result<Added> {
+        let before = self.count();
+        for _ in 0..nplus {
+            let kept = self.clone();
+            if !self.add_one_by(&obs.sites, false) {
+                break;
+            }
+            if self.refit(obs, pass).is_err() {
+                *self = kept;
+                if !self.add_one(&obs.sites) {
+                    break;
+                }
+                self.refit(obs, pass)?;
+            }
+            if self.count() >= full || self.count() >= cap {
+                break;
+            }
+        }
+        Ok(self.added_since(before, full))
+    }
+
+    /// The least squares on the current knots, its residual sums per span in `fpint`.
+    ///
+    /// # Errors
+    /// [`Error::SingularSystem`] when the triangle loses rank.
+    fn refit(&mut self, obs: &Observations, pass: &mut LsqPass) -> Result<()> {
+        let t = self.vector();
+        let c = back_substitute(&pass.run(obs, &t))?;
+        pass.residuals(obs, &c);
+        self.span_sums(obs, pass, &t);
+        Ok(())
+    }
+
+    /// What adding knots did, from the count `before` and the count of interpolation `full`.
+    fn added_since(&self, before: usize, full: usize) -> Added {
         if self.count() >= full {
             Added::Full
         } else if self.count() == before {
@@ -209,12 +268,18 @@ impl Knots {
     /// would leave an end short of parameters ([`Knots::end_deficit`] above
     /// [`END_DEFICIT_MAX`]; then the next span). Returns `false` when no span can be split.
     fn add_one(&mut self, sites: &[f64]) -> bool {
+        self.add_one_by(sites, true)
+    }
+
+    /// [`Knots::add_one`], with the guard of the ends when `guarded`, else SciPy's `fpknot`
+    /// (the largest residual sum among the spans with a parameter strictly inside).
+    fn add_one_by(&mut self, sites: &[f64], guarded: bool) -> bool {
         let spans = self.nrdata.len();
         // the ends' deficits reach only as far as their walks; a split beyond leaves them
         let (front, back) = (self.end_walk(false), self.end_walk(true));
         let (mut best, mut fpmax, mut begin) = (None, 0.0, 0usize);
         for (j, (&f, &nd)) in self.fpint.iter().zip(&self.nrdata).enumerate() {
-            let near_an_end = j < front || j + back >= spans;
+            let near_an_end = guarded && (j < front || j + back >= spans);
             if nd > 0 && f > fpmax && (!near_an_end || self.split_keeps_ends(j)) {
                 fpmax = f;
                 best = Some((j, begin));

@@ -30,6 +30,24 @@ use crate::numeric::progress::Progress;
 use crate::points::Points;
 use crate::BSplineCurve;
 
+/// How a round of the smoothing condition's knot addition places its second and later knots
+/// (step 2 of [`smoothing_condition`]; `docs/theory/fitting.md#smoothing-condition`). The first
+/// knot of a round is the same for both; so are the number of knots a round adds and when the
+/// rounds stop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum KnotRounds {
+    /// FITPACK's `fpcurf`/`fpknot` (Dierckx 1993, §5.2.1), as SciPy's `splrep`, `splprep` and
+    /// `UnivariateSpline`: one least-squares pass a round; the residual sum of a split span is
+    /// shared between its two halves in proportion to the parameters each holds.
+    #[default]
+    Shared,
+    /// SciPy's `generate_knots`, `make_splrep` and `make_splprep` (`_fitpack_repro`): the least
+    /// squares refitted after each knot, and the next knot placed by the residual sums of that
+    /// fit. One pass a knot: more work, and a different knot vector once a round adds more than
+    /// one knot.
+    Refit,
+}
+
 /// Relative accuracy of the final residual: the result has
 /// `(1 − SMOOTHING_RTOL)·s ≤ Σ w_k |C(ū_k) − Q_k|² ≤ s` when it is smoothed (FITPACK's
 /// `tol = 0.001`, which SciPy's `splrep` keeps).
@@ -110,7 +128,7 @@ pub fn smoothing_condition_with_progress(
     s: f64,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
-    condition_fit(data, degree, s, None, progress)
+    smoothing_condition_with_rounds(data, degree, s, None, KnotRounds::Shared, progress)
 }
 
 /// [`smoothing_condition`] on the domain `(a, b)`, which holds the data and may reach beyond
@@ -159,7 +177,7 @@ pub fn smoothing_condition_in_with_progress(
     domain: (f64, f64),
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
-    condition_fit(data, degree, s, Some(domain), progress)
+    smoothing_condition_with_rounds(data, degree, s, Some(domain), KnotRounds::Shared, progress)
 }
 
 /// The domain `(a, b)` of a fit: finite, `a < b`, holding every data parameter.
@@ -171,13 +189,31 @@ fn check_domain(data: &FitData<'_>, (a, b): (f64, f64)) -> Result<()> {
     check_in_domain(data.params(), (a, b))
 }
 
-/// [`smoothing_condition_with_progress`] and [`smoothing_condition_in_with_progress`]: on the
-/// data's own domain when `domain` is `None`.
-fn condition_fit(
+/// [`smoothing_condition_with_progress`] (`domain` `None`: the data's own ends) and
+/// [`smoothing_condition_in_with_progress`] (`domain` given) with a round's knots placed as
+/// `rounds` says: [`KnotRounds::Refit`] gives SciPy's `make_splrep(x, y, s=…)` (the knots of
+/// SciPy's `generate_knots`), [`KnotRounds::Shared`] FITPACK's `curfit` (SciPy's `splrep`).
+///
+/// ```
+/// use lekalo::fit::{smoothing_condition_with_rounds, FitData, KnotRounds};
+/// use lekalo::{PointsRef, Progress};
+/// let x: Vec<f64> = (0..200).map(|k| k as f64 / 199.0).collect();
+/// let y: Vec<f64> = x.iter().enumerate().map(|(k, t)| (6.0 * t).sin() + 0.01 * ((k * 7919 % 13) as f64 - 6.0)).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let quiet = Progress::new();
+/// let fit = smoothing_condition_with_rounds(&data, 3, 0.3, None, KnotRounds::Refit, &quiet)?;
+/// assert!(fit.report.weighted_rss <= 0.3);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smoothing_condition_in_with_progress`].
+pub fn smoothing_condition_with_rounds(
     data: &FitData<'_>,
     degree: usize,
     s: f64,
     domain: Option<(f64, f64)>,
+    rounds: KnotRounds,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
     check_condition_args(degree, s)?;
@@ -188,7 +224,7 @@ fn condition_fit(
     let obs = Observations::new(data);
     check_reachable(&obs, s)?;
     let k = degree;
-    knot_rounds(&obs, k, s, domain, usize::MAX, &steps, &mut |_| {})?.into_fit(
+    knot_rounds(&obs, k, s, domain, rounds, usize::MAX, &steps, &mut |_| {})?.into_fit(
         data,
         &obs,
         k,
@@ -200,17 +236,19 @@ fn condition_fit(
 /// The knot vectors of the rounds of [`smoothing_condition`], in order: the clamped knot vector
 /// of each least-squares pass of step 2 (the first without interior knots, unless `s = 0`,
 /// whose only round is on the knots of interpolation). The last is the knot vector the
-/// smoothing condition smooths on. This is SciPy's `generate_knots(x, y, k=…, s=…, nest=…)`
-/// (Dierckx, "Curve and Surface Fitting with Splines", 1993, ch. 5): `max_knots` (SciPy's `nest`, at least `2·degree + 2`) stops the
-/// rounds once a knot vector has that many knots; `None` runs them to the end.
+/// smoothing condition smooths on (Dierckx, "Curve and Surface Fitting with Splines", 1993,
+/// ch. 5). With [`KnotRounds::Refit`] this is SciPy's `generate_knots(x, y, k=…, s=…, nest=…)`;
+/// with [`KnotRounds::Shared`] the rounds of FITPACK's `curfit` (SciPy's `splrep`).
+/// `max_knots` (SciPy's `nest`, at least `2·degree + 2`) stops the rounds once a knot vector
+/// has that many knots; `None` runs them to the end.
 ///
 /// ```
-/// use lekalo::fit::{smoothing_knot_sequence, FitData};
+/// use lekalo::fit::{smoothing_knot_sequence, FitData, KnotRounds};
 /// use lekalo::PointsRef;
 /// let x: Vec<f64> = (0..8).map(|k| k as f64).collect();
 /// let y: Vec<f64> = x.iter().map(|v| (v * std::f64::consts::PI / 8.0).sin()).collect();
 /// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
-/// let seq = smoothing_knot_sequence(&data, 3, 1e-7, None)?;
+/// let seq = smoothing_knot_sequence(&data, 3, 1e-7, None, KnotRounds::Refit)?;
 /// let counts: Vec<usize> = seq.iter().map(Vec::len).collect();
 /// assert_eq!(counts, vec![8, 9, 10, 11, 12]);
 /// # Ok::<(), lekalo::Error>(())
@@ -223,11 +261,12 @@ pub fn smoothing_knot_sequence(
     degree: usize,
     s: f64,
     max_knots: Option<usize>,
+    rounds: KnotRounds,
 ) -> Result<Vec<Vec<f64>>> {
     check_condition_args(degree, s)?;
     let cap = check_max_knots(degree, max_knots)?;
     let obs = Observations::new(data);
-    rounds_knots(|steps, seen| knot_rounds(&obs, degree, s, None, cap, steps, seen))
+    rounds_knots(|steps, seen| knot_rounds(&obs, degree, s, None, rounds, cap, steps, seen))
 }
 
 /// The knot vectors a knot-round loop `rounds(steps, seen)` passes to `seen`, in order, with
