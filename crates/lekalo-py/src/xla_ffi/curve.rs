@@ -16,12 +16,11 @@
 
 use lekalo::{BSplineCurve, Points};
 
-use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::abi::{Call, In};
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
-use super::Handler;
 
 /// Parameters a polynomial piece from which the values come from the curve's fast evaluator
 /// ([`lekalo::CurveEvaluator`], per-piece power form: a few ns a point, the same points as
@@ -31,31 +30,12 @@ use super::Handler;
 /// keep the reference. Both agree to `1e-14` relative to the control net's scale.
 pub(super) const FAST_PER_PIECE: usize = 16;
 
-/// The handlers of this module, by target name.
-pub(super) const HANDLERS: &[(&str, Handler)] = &[
-    ("lekalo_bspline_eval", bspline_eval),
-    ("lekalo_bspline_jvp", bspline_jvp),
-    ("lekalo_bspline_vjp", bspline_vjp),
-];
-
-extern "C" fn bspline_eval(frame: *mut CallFrame) -> *mut XlaError {
-    handle(frame, "lekalo.jax.bspline_eval", eval_body)
-}
-
-extern "C" fn bspline_jvp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.bspline_eval (forward derivative)",
-        jvp_body,
-    )
-}
-
-extern "C" fn bspline_vjp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.bspline_eval (reverse derivative)",
-        vjp_body,
-    )
+ffi_targets! {
+    stem: "bspline",
+    function: "bspline_eval",
+    eval: eval_body,
+    jvp: jvp_body,
+    vjp: vjp_body,
 }
 
 /// The curve of batch element `b` (the knots and control points being the first two operands

@@ -15,6 +15,35 @@
 //! layout of `vmap_method="broadcast_all"`); a handler runs the kernel once a batch element.
 //! Python registers the handlers from [`handlers`] (`lekalo.jax`), one address a target name.
 
+/// A family's `HANDLERS`: the three `extern "C"` entry points of targets `lekalo_<stem>_eval`,
+/// `_jvp` and `_vjp`, each [`abi::handle`] around its body, with the Python function's name
+/// (`lekalo.jax.<function>`, "(forward derivative)", "(reverse derivative)") in its errors.
+macro_rules! ffi_targets {
+    (stem: $stem:literal, function: $function:literal,
+     eval: $eval:path, jvp: $jvp:path, vjp: $vjp:path $(,)?) => {
+        /// The handlers of this module, by target name.
+        pub(super) const HANDLERS: &[(&str, super::Handler)] = {
+            use super::abi::{handle, CallFrame, XlaError};
+            extern "C" fn eval(frame: *mut CallFrame) -> *mut XlaError {
+                handle(frame, concat!("lekalo.jax.", $function), $eval)
+            }
+            extern "C" fn jvp(frame: *mut CallFrame) -> *mut XlaError {
+                let target = concat!("lekalo.jax.", $function, " (forward derivative)");
+                handle(frame, target, $jvp)
+            }
+            extern "C" fn vjp(frame: *mut CallFrame) -> *mut XlaError {
+                let target = concat!("lekalo.jax.", $function, " (reverse derivative)");
+                handle(frame, target, $vjp)
+            }
+            &[
+                (concat!("lekalo_", $stem, "_eval"), eval),
+                (concat!("lekalo_", $stem, "_jvp"), jvp),
+                (concat!("lekalo_", $stem, "_vjp"), vjp),
+            ]
+        };
+    };
+}
+
 mod abi;
 mod curve;
 mod nurbs;

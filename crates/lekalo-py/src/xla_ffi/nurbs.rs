@@ -16,43 +16,23 @@
 
 use lekalo::{NurbsCurve, Points};
 
-use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::abi::{Call, In};
 use super::curve::FAST_PER_PIECE;
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
-use super::Handler;
 
-/// The handlers of this module, by target name.
-pub(super) const HANDLERS: &[(&str, Handler)] = &[
-    ("lekalo_nurbs_eval", nurbs_eval),
-    ("lekalo_nurbs_jvp", nurbs_jvp),
-    ("lekalo_nurbs_vjp", nurbs_vjp),
-];
+ffi_targets! {
+    stem: "nurbs",
+    function: "nurbs_eval",
+    eval: eval_body,
+    jvp: jvp_body,
+    vjp: vjp_body,
+}
 
 /// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
 const KINDS: [&str; 3] = ["with_control", "with_weight", "with_parameter"];
-
-extern "C" fn nurbs_eval(frame: *mut CallFrame) -> *mut XlaError {
-    handle(frame, "lekalo.jax.nurbs_eval", eval_body)
-}
-
-extern "C" fn nurbs_jvp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.nurbs_eval (forward derivative)",
-        jvp_body,
-    )
-}
-
-extern "C" fn nurbs_vjp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.nurbs_eval (reverse derivative)",
-        vjp_body,
-    )
-}
 
 /// The residuals of every target (knots, control points, weights, parameters): the batch, the
 /// element size of each, and the dimension.

@@ -15,42 +15,22 @@
 
 use lekalo::{BSplineSurface, Points};
 
-use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::abi::{Call, In};
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
-use super::Handler;
 
-/// The handlers of this module, by target name.
-pub(super) const HANDLERS: &[(&str, Handler)] = &[
-    ("lekalo_surface_eval", surface_eval),
-    ("lekalo_surface_jvp", surface_jvp),
-    ("lekalo_surface_vjp", surface_vjp),
-];
+ffi_targets! {
+    stem: "surface",
+    function: "bspline_surface_eval",
+    eval: eval_body,
+    jvp: jvp_body,
+    vjp: vjp_body,
+}
 
 /// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
 const KINDS: [&str; 2] = ["with_control", "with_parameter"];
-
-extern "C" fn surface_eval(frame: *mut CallFrame) -> *mut XlaError {
-    handle(frame, "lekalo.jax.bspline_surface_eval", eval_body)
-}
-
-extern "C" fn surface_jvp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.bspline_surface_eval (forward derivative)",
-        jvp_body,
-    )
-}
-
-extern "C" fn surface_vjp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.bspline_surface_eval (reverse derivative)",
-        vjp_body,
-    )
-}
 
 /// The residuals of every target (two knot vectors, the net, the pairs): the batch, the
 /// element size of each, the net's size and the dimension.

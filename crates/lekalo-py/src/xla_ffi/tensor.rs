@@ -16,42 +16,22 @@
 
 use lekalo::{Points, TensorBSpline};
 
-use super::abi::{handle, Call, CallFrame, In, XlaError};
+use super::abi::{Call, In};
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
-use super::Handler;
 
-/// The handlers of this module, by target name.
-pub(super) const HANDLERS: &[(&str, Handler)] = &[
-    ("lekalo_tensor_eval", tensor_eval),
-    ("lekalo_tensor_jvp", tensor_jvp),
-    ("lekalo_tensor_vjp", tensor_vjp),
-];
+ffi_targets! {
+    stem: "tensor",
+    function: "tensor_bspline_eval",
+    eval: eval_body,
+    jvp: jvp_body,
+    vjp: vjp_body,
+}
 
 /// The attributes naming the tangents (JVP) and cotangents (VJP) present, in operand order.
 const KINDS: [&str; 2] = ["with_control", "with_point"];
-
-extern "C" fn tensor_eval(frame: *mut CallFrame) -> *mut XlaError {
-    handle(frame, "lekalo.jax.tensor_bspline_eval", eval_body)
-}
-
-extern "C" fn tensor_jvp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.tensor_bspline_eval (forward derivative)",
-        jvp_body,
-    )
-}
-
-extern "C" fn tensor_vjp(frame: *mut CallFrame) -> *mut XlaError {
-    handle(
-        frame,
-        "lekalo.jax.tensor_bspline_eval (reverse derivative)",
-        vjp_body,
-    )
-}
 
 /// The degrees, one a variable (attributes `n_vars`, `degree_0`, …).
 fn degrees(call: &Call<'_>) -> Result<Vec<usize>, String> {

@@ -1,16 +1,11 @@
 //! JVP, VJP and linearisation of B-spline curve batch evaluation `C(t_i) = Σ_j N_{j,p}(t_i) P_j`
 //! with respect to the control points `P` and the parameters `t` (`docs/theory/derivatives.md`).
 
-use super::checks::{
-    check_cotangent, check_input, check_len, check_output, check_scalars, zeroed_output,
-};
-use super::power_sums::control_cotangent_by_power_sums;
+use super::checks::{check_input, check_len, check_output, check_scalars, zeroed_output};
+use super::control_cotangent::control_cotangent_large;
 use super::slopes::basis_with_slopes;
-use crate::curve::fast_eval::{
-    basis_by_reciprocals, basis_by_reciprocals_dyn, push_span_reciprocals,
-};
-use crate::curve::{BSplineCurve, POWER_FORM_MAX_DEGREE};
-use crate::error::Result;
+use crate::curve::BSplineCurve;
+use crate::error::{check_finite, Result};
 
 /// The linearisation of a curve's batch evaluation at parameters `t_0 … t_{m−1}`: what
 /// [`BSplineCurve::eval_batch_linearize`] returns, enough to apply the Jacobian and its transpose
@@ -197,9 +192,11 @@ impl BSplineCurve {
     /// A2.3; each parameter scatters into `p + 1` control points. O(m·(p² + p·dim)) plus the
     /// zeroing of `control_cotangent`. The control cotangent alone, for at least as many
     /// parameters as control points (a gradient with respect to the control points), takes a
-    /// division-free path, the same sums to rounding: per-piece power sums for degree ≤
-    /// [`POWER_FORM_MAX_DEGREE`] (the transpose of the power-form evaluation, `power_sums.rs`),
-    /// A2.2 with the reciprocals of the knot differences computed once a span above it.
+    /// division-free path, the same sums to rounding: each parameter's span from a bucket table
+    /// of the pieces (O(1) for spread-out knots, in any order), then per-piece power sums for
+    /// degree ≤ [`crate::POWER_FORM_MAX_DEGREE`] (the transpose of the power-form evaluation,
+    /// `power_sums.rs`), A2.2 with the reciprocals of the knot differences computed once a span
+    /// above it (`control_cotangent.rs`); the cotangent's finiteness is then read from the sums.
     ///
     /// ```
     /// use lekalo::{BSplineCurve, KnotVector, Points};
@@ -225,11 +222,10 @@ impl BSplineCurve {
         mut parameter_cotangent: Option<&mut [f64]>,
     ) -> Result<()> {
         let dim = self.dim();
-        check_cotangent(
+        check_len(
             "cotangent (parameters × dimension)",
-            ts.len(),
-            dim,
-            cotangent,
+            ts.len().saturating_mul(dim),
+            cotangent.len(),
         )?;
         let ctrl = self.control_points().as_slice();
         zeroed_output(
@@ -244,12 +240,11 @@ impl BSplineCurve {
         )?;
         if let (Some(gp), None) = (control_cotangent.as_deref_mut(), &parameter_cotangent) {
             if ts.len() >= self.control_points().len() {
-                if self.degree() <= POWER_FORM_MAX_DEGREE {
-                    return control_cotangent_by_power_sums(self, ts, cotangent, gp);
-                }
-                return self.control_cotangent_by_reciprocals(ts, cotangent, gp);
+                // checks the cotangent finite from the sums
+                return control_cotangent_large(self, ts, cotangent, gp);
             }
         }
+        check_finite("cotangent", cotangent)?;
         let (p, knots) = (self.degree(), self.knots().as_slice());
         let mut cursor = self.knots().span_cursor(p);
         let mut basis = PointBasis::new(p);
@@ -270,72 +265,6 @@ impl BSplineCurve {
             }
         }
         Ok(())
-    }
-
-    /// `P̄_j = Σ_i N_{j,p}(t_i) ḡ_i` alone (into `gp`, zeroed), for batches with at least as many
-    /// parameters as control points: the basis functions by P&T Algorithm A2.2 with the
-    /// reciprocals `1 / (t_{s+r+1} − t_{s+r+1−l})` of every span `s` computed once
-    /// ([`span_reciprocals`]), so that a parameter costs no division and no derivative, and the
-    /// common orders and dimensions monomorphised. The same numbers as the general path to
-    /// rounding (a product by a reciprocal for a quotient). O(n·p² + m·(p² + p·dim)).
-    fn control_cotangent_by_reciprocals(
-        &self,
-        ts: &[f64],
-        cotangent: &[f64],
-        gp: &mut [f64],
-    ) -> Result<()> {
-        let (p, dim) = (self.degree(), self.dim());
-        let knots = self.knots().as_slice();
-        let recip = span_reciprocals(knots, p, self.control_points().len())?;
-        let mut cursor = self.knots().span_cursor(p);
-        macro_rules! fixed {
-            ($w:literal, $d:literal) => {{
-                for (&t, g) in ts.iter().zip(cotangent.chunks_exact($d)) {
-                    let span = cursor.find(t)?;
-                    let n =
-                        basis_by_reciprocals::<$w>(knots, span_triangle(&recip, p, span), span, t);
-                    let net = &mut gp[(span - p) * $d..(span + 1) * $d];
-                    for (nk, c) in n.iter().zip(net.chunks_exact_mut($d)) {
-                        for d in 0..$d {
-                            c[d] += nk * g[d];
-                        }
-                    }
-                }
-                Ok(())
-            }};
-        }
-        match (p, dim) {
-            (1, 1) => fixed!(2, 1),
-            (1, 2) => fixed!(2, 2),
-            (1, 3) => fixed!(2, 3),
-            (2, 1) => fixed!(3, 1),
-            (2, 2) => fixed!(3, 2),
-            (2, 3) => fixed!(3, 3),
-            (3, 1) => fixed!(4, 1),
-            (3, 2) => fixed!(4, 2),
-            (3, 3) => fixed!(4, 3),
-            _ => {
-                let mut n = vec![0.0; 3 * (p + 1)];
-                for (&t, g) in ts.iter().zip(cotangent.chunks_exact(dim)) {
-                    let span = cursor.find(t)?;
-                    basis_by_reciprocals_dyn(
-                        knots,
-                        span_triangle(&recip, p, span),
-                        p,
-                        span,
-                        t,
-                        &mut n,
-                    );
-                    let net = &mut gp[(span - p) * dim..(span + 1) * dim];
-                    for (nk, c) in n[..=p].iter().zip(net.chunks_exact_mut(dim)) {
-                        for (x, gi) in c.iter_mut().zip(g) {
-                            *x += nk * gi;
-                        }
-                    }
-                }
-                Ok(())
-            }
-        }
     }
 
     /// The linearisation of [`BSplineCurve::eval_batch`] at `ts`: the values `C(t_i)`
@@ -388,23 +317,4 @@ impl BSplineCurve {
         }
         Ok(lin)
     }
-}
-
-/// Span `span`'s triangle of the table of [`span_reciprocals`].
-fn span_triangle(recip: &[f64], p: usize, span: usize) -> &[f64] {
-    let tri = p * (p + 1) / 2;
-    &recip[(span - p) * tri..(span - p + 1) * tri]
-}
-
-/// The reciprocal tables of every span `s` in `p..n`, span `s`'s triangle at
-/// `[(s − p)·p(p+1)/2 ..]` ([`push_span_reciprocals`]: the denominators of P&T Algorithm A2.2).
-/// Empty spans (never located) get infinities, unused.
-fn span_reciprocals(knots: &[f64], p: usize, n: usize) -> Result<Vec<f64>> {
-    let tri = p * (p + 1) / 2;
-    let size = check_scalars("reciprocal table (spans × p(p + 1)/2)", n - p, tri)?;
-    let mut recip = Vec::with_capacity(size);
-    for s in p..n {
-        push_span_reciprocals(knots, p, s, &mut recip);
-    }
-    Ok(recip)
 }

@@ -26,12 +26,17 @@
 //!   factorisation, forward or transposed).
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
-//! - `power_sums.rs`: the control-point cotangent of a curve by per-piece power sums (the
-//!   transpose of the power-form evaluation), the fast path of a gradient in the control points.
+//! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
+//!   many parameters as control points (a gradient in the control points): the span location,
+//!   the cotangent check and the monomorphised dispatch its two kernels share, and the A2.2
+//!   kernel with reciprocals precomputed a span, for degrees above the power form's;
+//! - `power_sums.rs`: the other kernel, by per-piece power sums (the transpose of the
+//!   power-form evaluation), for degree ≤ 3.
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
 mod checks;
+mod control_cotangent;
 mod curve;
 mod fitting;
 mod interpolation;

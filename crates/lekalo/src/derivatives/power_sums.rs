@@ -19,19 +19,20 @@ use crate::curve::BSplineCurve;
 use crate::error::Result;
 
 use super::checks::check_scalars;
+use super::control_cotangent::{common_orders, Located};
 
-/// `gp += Bᵀ ḡ` (`gp` zeroed by the caller, as the control points; `cotangent` `m × dim`) by
-/// per-piece power sums, for `p ≤ 3`.
+/// `gp += Bᵀ ḡ` (`gp` zeroed by the caller, as the control points; `located` the parameters
+/// and the `m × dim` cotangent) by per-piece power sums, for `p ≤ 3`; whether every sum is
+/// finite (a non-finite cotangent makes the zeroth sum of its span non-finite).
 ///
 /// # Errors
-/// [`crate::Error::ParameterOutOfDomain`] at the first parameter outside the domain;
-/// [`crate::Error::TooLarge`] if the sums would exceed [`crate::MAX_SCALARS`].
+/// As [`Located::walk`]; [`crate::Error::TooLarge`] if the sums would exceed
+/// [`crate::MAX_SCALARS`].
 pub(super) fn control_cotangent_by_power_sums(
     curve: &BSplineCurve,
-    ts: &[f64],
-    cotangent: &[f64],
+    located: &Located<'_>,
     gp: &mut [f64],
-) -> Result<()> {
+) -> Result<bool> {
     let (p, dim) = (curve.degree(), curve.dim());
     let w = p + 1;
     let knots = curve.knots().as_slice();
@@ -47,50 +48,52 @@ pub(super) fn control_cotangent_by_power_sums(
     let origin: Vec<(f64, f64)> = (p..n)
         .map(|s| (knots[s], 1.0 / (knots[s + 1] - knots[s])))
         .collect();
-    let mut cursor = curve.knots().span_cursor(p);
+    // The sums of the current span are kept in registers and added to the table when the span
+    // changes: a sorted batch stays in one span for many parameters, and summing in the table
+    // would chain every parameter to the previous one's store (a store-to-load latency each).
     macro_rules! fixed {
         ($w:literal, $d:literal) => {{
-            for (&t, g) in ts.iter().zip(cotangent.chunks_exact($d)) {
-                let j = cursor.find(t)? - p;
-                let (x, inv) = origin[j];
+            let (mut current, mut acc) = (usize::MAX, [0.0; $w * $d]);
+            let (mut x, mut inv) = (0.0, 0.0);
+            let walked = located.walk($d, |span, t, g| {
+                if span != current {
+                    if current != usize::MAX {
+                        add_to_row(&mut sums, current - p, &acc);
+                    }
+                    (current, acc) = (span, [0.0; $w * $d]);
+                    (x, inv) = origin[span - p];
+                }
                 let u = (t - x) * inv;
-                let row = &mut sums[j * $w * $d..(j + 1) * $w * $d];
                 let mut uk = 1.0;
                 for k in 0..$w {
                     for d in 0..$d {
-                        row[k * $d + d] += uk * g[d];
+                        acc[k * $d + d] += uk * g[d];
                     }
                     uk *= u;
                 }
+            });
+            if current != usize::MAX {
+                add_to_row(&mut sums, current - p, &acc);
             }
+            walked
         }};
     }
-    match (p, dim) {
-        (1, 1) => fixed!(2, 1),
-        (1, 2) => fixed!(2, 2),
-        (1, 3) => fixed!(2, 3),
-        (2, 1) => fixed!(3, 1),
-        (2, 2) => fixed!(3, 2),
-        (2, 3) => fixed!(3, 3),
-        (3, 1) => fixed!(4, 1),
-        (3, 2) => fixed!(4, 2),
-        (3, 3) => fixed!(4, 3),
-        _ => {
-            for (&t, g) in ts.iter().zip(cotangent.chunks_exact(dim)) {
-                let j = cursor.find(t)? - p;
-                let (x, inv) = origin[j];
-                let u = (t - x) * inv;
-                let row = &mut sums[j * w * dim..(j + 1) * w * dim];
-                let mut uk = 1.0;
-                for k in 0..w {
-                    for (s, gd) in row[k * dim..(k + 1) * dim].iter_mut().zip(g) {
-                        *s += uk * gd;
-                    }
-                    uk *= u;
+    common_orders!(p, dim, fixed, {
+        located.walk(dim, |span, t, g| {
+            let j = span - p;
+            let (x, inv) = origin[j];
+            let u = (t - x) * inv;
+            let row = &mut sums[j * w * dim..(j + 1) * w * dim];
+            let mut uk = 1.0;
+            for k in 0..w {
+                for (s, gd) in row[k * dim..(k + 1) * dim].iter_mut().zip(g) {
+                    *s += uk * gd;
                 }
+                uk *= u;
             }
-        }
-    }
+        })
+    })?;
+    let mut finite = true;
     // P̄_{s−p+r} += Σ_k a_{rk} S_{s,k}, a_{rk} = h^k N^{(k)}(x⁺) / k!
     let mut scratch = BasisScratch::new(p);
     let mut ders = vec![0.0; w * w];
@@ -99,6 +102,7 @@ pub(super) fn control_cotangent_by_power_sums(
         if knots[s] >= knots[s + 1] || row.iter().all(|&v| v == 0.0) {
             continue;
         }
+        finite &= row[..dim].iter().all(|v| v.is_finite());
         let h = knots[s + 1] - knots[s];
         basis_ders_into(knots, p, s, knots[s], p, &mut scratch, &mut ders);
         let mut factor = 1.0; // h^k / k!
@@ -116,5 +120,14 @@ pub(super) fn control_cotangent_by_power_sums(
             factor *= h / next;
         }
     }
-    Ok(())
+    Ok(finite)
+}
+
+/// `sums[j] += acc` (row `j` of the power-sum table, `acc.len()` numbers a row).
+#[inline(always)]
+fn add_to_row(sums: &mut [f64], j: usize, acc: &[f64]) {
+    let row = &mut sums[j * acc.len()..(j + 1) * acc.len()];
+    for (s, a) in row.iter_mut().zip(acc) {
+        *s += a;
+    }
 }

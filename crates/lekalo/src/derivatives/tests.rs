@@ -501,6 +501,44 @@ fn curve_errors_name_the_argument() {
     assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e:?}");
 }
 
+/// The division-free control cotangent (at least as many parameters as control points) reads
+/// the cotangent's finiteness from its sums instead of checking it first: a non-finite
+/// cotangent is still refused with its index, also before a parameter outside the domain, in
+/// the power-sum kernel (degree 3) and the reciprocal one (degree 5), while finite numbers
+/// whose sums overflow are no error.
+#[test]
+fn curve_large_batch_control_cotangent_checks_the_cotangent() {
+    for p in [3, 5] {
+        let n = 2 * p + 2;
+        let ctrl = Points::from_flat(2, (0..2 * n).map(|i| i as f64).collect()).unwrap();
+        let knots = crate::knots::KnotVector::clamped_uniform(p, n).unwrap();
+        let c = BSplineCurve::from_knot_vector(p, knots, ctrl).unwrap();
+        let ts: Vec<f64> = (0..3 * n).map(|i| i as f64 / (3 * n - 1) as f64).collect();
+        let mut gp = vec![0.0; 2 * n];
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut g = vec![1.0; 2 * ts.len()];
+            g[7] = bad;
+            let e = c.eval_batch_vjp(&ts, &g, Some(&mut gp), None).unwrap_err();
+            assert!(
+                matches!(e, Error::NonFinite { index: 7, .. }),
+                "degree {p}: {e:?}"
+            );
+            let mut outside = ts.clone();
+            outside[0] = 2.0;
+            let e = c
+                .eval_batch_vjp(&outside, &g, Some(&mut gp), None)
+                .unwrap_err();
+            assert!(
+                matches!(e, Error::NonFinite { index: 7, .. }),
+                "degree {p}: {e:?}"
+            );
+        }
+        let huge = vec![f64::MAX; 2 * ts.len()];
+        c.eval_batch_vjp(&ts, &huge, Some(&mut gp), None).unwrap();
+        assert!(gp.iter().any(|v| !v.is_finite()), "degree {p}: overflowed");
+    }
+}
+
 #[test]
 fn surface_errors_name_the_argument() {
     let s = bilinear();

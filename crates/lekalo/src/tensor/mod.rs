@@ -73,6 +73,7 @@ pub use grid_smoothing::{
 };
 pub use interpolate::TensorInterpolation;
 pub use locate::Beyond;
+pub(crate) use locate::SpanTable;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use point_value::{tensor_value_by, MAX_POINT_VALUE_VARS};
 pub use scattered::{
