@@ -181,8 +181,8 @@ impl ConeProgram {
     /// ulps outside a constraint.
     ///
     /// # Errors
-    /// [`Error::Cancelled`] when `steps`' hook is cancelled (checked between rounds, and every
-    /// [`ROWS_PER_STEP`] rows of a degenerate face).
+    /// [`Error::Cancelled`] when `steps`' hook is cancelled (checked between rounds, and at
+    /// every row of a degenerate face's independence test).
     pub(crate) fn polish(
         &self,
         c: &[f64],
@@ -517,8 +517,8 @@ const DEPENDENT_RTOL: f64 = 1e-9;
 /// Gram–Schmidt on the coefficient vectors, Golub & Van Loan §5.2.8): on a consistent face
 /// (every row zero at a point) the dropped rows are zero wherever the kept ones are, so the face
 /// is the same and its equality-constrained optimum too. At most `n` rows remain. Each row costs
-/// O(rows kept · n): `steps` is ticked every [`ROWS_PER_STEP`] rows, so that a cancelled hook
-/// stops a face of thousands of rows ([`Error::Cancelled`]).
+/// O(rows kept · n), far more than a tick of `steps`, which comes before each row so that a
+/// cancelled hook stops a face of thousands of rows ([`Error::Cancelled`]).
 fn independent<T>(
     rows: Vec<(Row, bool, T)>,
     n: usize,
@@ -526,10 +526,8 @@ fn independent<T>(
 ) -> Result<Vec<(Row, bool, T)>> {
     let mut basis: Vec<Vec<f64>> = Vec::new();
     let mut out = Vec::with_capacity(n.min(rows.len()));
-    for (i, item) in rows.into_iter().enumerate() {
-        if i % ROWS_PER_STEP == ROWS_PER_STEP - 1 {
-            steps.tick()?;
-        }
+    for item in rows {
+        steps.tick()?;
         let r = &item.0;
         if r.aux.is_some() {
             out.push(item);
@@ -554,9 +552,6 @@ fn independent<T>(
     }
     Ok(out)
 }
-
-/// Rows of [`independent`] between two ticks of the progress hook.
-const ROWS_PER_STEP: usize = 64;
 
 /// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,
 /// whatever their first columns.
