@@ -62,7 +62,7 @@ def test_make_ndbspl_refuses_a_huge_degree_and_an_empty_axis_by_name():
     with pytest.raises(lekalo.InputError, match=r"degree 1099511627777 is not allowed here.*5 values"):
         make_ndbspl((x, x, x), np.zeros((5, 5, 5)), k=2**40 + 1)
     # an empty axis raised IndexError from the knots' construction
-    with pytest.raises(lekalo.InputError, match=r"0 values"):
+    with pytest.raises(lekalo.InputError, match=r"grid values in a direction .*need at least 2, got 0"):
         make_ndbspl((x, x, np.array([])), np.zeros((5, 5, 0)))
 
 
