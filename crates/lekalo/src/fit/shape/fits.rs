@@ -197,9 +197,11 @@ pub fn constrained_smoothing_spline_with_progress(
         }
     }
     let s = Smoother::new(data)?;
+    // one count for the GCV scores and the cone program's rounds, so that `done` never goes back
+    let steps = Steps::new(progress, SHAPE_STEPS);
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv(&Steps::new(progress, "GCV"))?,
+        Lambda::Gcv => s.minimise_gcv(&steps)?,
     };
     let n = s.knots.len() - 4;
     let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
@@ -207,6 +209,7 @@ pub fn constrained_smoothing_spline_with_progress(
     let free = smoothing_spline(data, Lambda::Given(lam))?;
     let scale = Scale::of(data, domain);
     if holds(&free.curve, constraints, &scale)? {
+        steps.finish();
         return Ok(free);
     }
     let mut p = s.gram.clone();
@@ -217,7 +220,6 @@ pub fn constrained_smoothing_spline_with_progress(
     let q: Vec<f64> = s.rhs.iter().map(|v| -v / scale.y).collect();
     let center = s.center[0];
     let start = scaled(&free.curve, &scale, center);
-    let steps = Steps::new(progress, SHAPE_STEPS);
     let coef = solve_program(
         p,
         q,
