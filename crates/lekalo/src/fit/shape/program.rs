@@ -309,7 +309,7 @@ impl ConeProgram {
         tags: Vec<Option<usize>>,
         margin: f64,
         steps: &Steps<'_, '_>,
-    ) -> Result<Option<(Vec<f64>, Vec<Option<f64>>)>> {
+    ) -> Result<Option<FaceOptimum>> {
         let n = self.p.n;
         let n_tags = tags.iter().flatten().count();
         let mut kept: Vec<(Row, bool, Option<usize>)> = Vec::with_capacity(rows.len());
@@ -552,6 +552,10 @@ fn independent<T>(
     }
     Ok(out)
 }
+
+/// The optimum on a face: the coefficients, and the multiplier of each tagged slope row (`None`
+/// if it was dropped).
+type FaceOptimum = (Vec<f64>, Vec<Option<f64>>);
 
 /// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,
 /// whatever their first columns.
