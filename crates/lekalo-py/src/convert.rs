@@ -206,7 +206,7 @@ pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Float
     floats(&arr, what)
 }
 
-/// The values of the strided array `a` in C order, refused above [`MAX_SCALARS`] (InputError)
+/// The values of the strided array `a` in C order, refused above [`MAX_SCALARS`] (`InputError`)
 /// or when the memory cannot be reserved (`MemoryError`), before anything is copied.
 fn c_order_copy(a: &PyReadonlyArrayDyn<'_, f64>, what: &str) -> PyResult<Vec<f64>> {
     let view = a.as_array();
