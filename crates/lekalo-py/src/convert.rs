@@ -13,6 +13,7 @@ use numpy::{
     PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
     PyUntypedArrayMethods,
 };
+use pyo3::exceptions::PyMemoryError;
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
@@ -155,8 +156,11 @@ pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Float
         }
         // Fortran order or a strided view (a column `y[:, 0]`, a reversed or stepped slice):
         // one copy in C order, the library's point-major layout, as NumPy's own functions
-        // copy what they cannot read in place
-        let owned: Vec<f64> = ro.as_array().iter().copied().collect();
+        // copy what they cannot read in place. A view can be far larger than the memory behind
+        // it (`np.broadcast_to(0.0, (2000,) * 3)` is 8 bytes for 6.4e10 bytes of values): the
+        // copy is checked against the size limit and reserved fallibly, so that it raises
+        // instead of aborting the interpreter
+        let owned = c_order_copy(&ro, what)?;
         return Ok(FloatArray {
             borrowed: None,
             owned,
@@ -200,6 +204,31 @@ pub(crate) fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Float
         ))
     })?;
     floats(&arr, what)
+}
+
+/// The values of the strided array `a` in C order, refused above [`MAX_SCALARS`] (`InputError`)
+/// or when the memory cannot be reserved (`MemoryError`), before anything is copied.
+fn c_order_copy(a: &PyReadonlyArrayDyn<'_, f64>, what: &str) -> PyResult<Vec<f64>> {
+    let view = a.as_array();
+    let n = view.len();
+    if n > MAX_SCALARS {
+        return Err(bad(format!(
+            "{what}: an array of shape {:?} that is not C-contiguous is copied to be read, and \
+             its {n} values are above the size limit {MAX_SCALARS}; pass a smaller array",
+            view.shape()
+        )));
+    }
+    let mut owned = Vec::new();
+    owned.try_reserve_exact(n).map_err(|_| {
+        PyMemoryError::new_err(format!(
+            "{what}: cannot reserve memory for a C-order copy of {n} values ({} bytes) of an \
+             array of shape {:?} that is not C-contiguous; pass a smaller array",
+            n.saturating_mul(8),
+            view.shape()
+        ))
+    })?;
+    owned.extend(view.iter().copied());
+    Ok(owned)
 }
 
 /// Reads points `(n, d)` (or `(n,)` for dimension 1) into owned [`Points`].
@@ -311,12 +340,14 @@ pub(crate) fn check_size(what: &str, counts: &[usize]) -> PyResult<usize> {
         n = n.saturating_mul(c);
     }
     if n > MAX_SCALARS {
-        return Err(lib_err(lekalo::Error::TooLarge {
+        // the library's message, prefixed with the argument (not the Python error's repr,
+        // which would repeat the class name inside the message)
+        let e = lekalo::Error::TooLarge {
             what: "output".into(),
             size: n,
             max: MAX_SCALARS,
-        }))
-        .map_err(|e: PyErr| bad(format!("{what}: {e}")));
+        };
+        return Err(bad(format!("{what}: {e}")));
     }
     Ok(n)
 }

@@ -8,13 +8,15 @@
 //! ([`lekalo::fit::smoothing_spline_with_progress`],
 //! [`lekalo::fit::smoothing_condition_with_rounds`]): at the deadline they stop between two
 //! GCV scores, knot rounds or smoothing weights, and the request is answered with 504 while its
-//! pool thread is freed. The constrained fit is one cone program, bounded by the points' budget.
+//! pool thread is freed. The constrained fit
+//! ([`lekalo::fit::constrained_smoothing_spline_with_progress`]) stops likewise between two GCV
+//! scores or two rounds of its cone program's working set and polish.
 
 use axum::body::Bytes;
 use axum::response::Response;
 use lekalo::fit::{
-    constrained_smoothing_spline, smoothing_condition_with_rounds, smoothing_spline_with_progress,
-    CurveFit, FitData, KnotRounds, Lambda, Shape, ShapeConstraints,
+    constrained_smoothing_spline_with_progress, smoothing_condition_with_rounds,
+    smoothing_spline_with_progress, CurveFit, FitData, KnotRounds, Lambda, Shape, ShapeConstraints,
 };
 use lekalo::{parametrize, Points};
 use lekalo_io::Object;
@@ -170,7 +172,7 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
                 Smoothing::Lambda => Lambda::Given(given(r.lambda, "lambda")?),
                 _ => Lambda::Gcv,
             };
-            constrained_smoothing_spline(&data, lambda, &rules)
+            constrained_smoothing_spline_with_progress(&data, lambda, &rules, &job.progress)
                 .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?
         }
         Smoothing::Lambda => {

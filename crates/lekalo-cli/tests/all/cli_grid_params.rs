@@ -263,3 +263,38 @@ fn wrong_parameters_name_the_option_and_the_direction() {
         .code(2);
     assert_eq!(fs::read_to_string(&w).unwrap(), "-1\n0\n1\n3\n");
 }
+
+/// An output path equal to a `--params-in` file (or to the values file) is refused by
+/// `interpolate --grid` and `fit --grid` in three directions, and the file keeps its bytes.
+#[test]
+fn an_output_equal_to_a_parameter_file_or_the_values_is_refused() {
+    let d = tempfile::tempdir().unwrap();
+    let values = table(d.path());
+    let params = d.path().join("w.txt");
+    let text: String = W.iter().map(|w| format!("{w:?}\n")).collect();
+    fs::write(&params, &text).unwrap();
+    let given = format!("3={}", params.display());
+    for (command, extra) in [
+        ("interpolate", vec![]),
+        ("fit", vec!["--ctrl-grid", "5x4x4"]),
+    ] {
+        for target in [&params, &values] {
+            let before = fs::read(target).unwrap();
+            lekalo()
+                .arg(command)
+                .arg(&values)
+                .args(["--grid", "5x4x4", "--degree", "2", "--params-in", &given])
+                .args(&extra)
+                .args(["--to", "json", "-o"])
+                .arg(target)
+                .assert()
+                .code(2)
+                .stderr(contains("it is an input file"));
+            assert_eq!(
+                fs::read(target).unwrap(),
+                before,
+                "{command}: {target:?} changed"
+            );
+        }
+    }
+}

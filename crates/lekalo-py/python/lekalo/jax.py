@@ -275,6 +275,8 @@ def tensor_bspline_eval(knots, control_points, x, degrees):
         raise InputError(f"lekalo.jax.{name}: degrees must be a tuple of Python ints, one a variable")
     degrees = tuple(_degree(d, f"degrees[{a}]", name) for a, d in enumerate(degrees))
     n = len(degrees)
+    if n == 0:
+        raise InputError(f"lekalo.jax.{name}: degrees is empty; a tensor spline has at least one variable")
     if not hasattr(knots, "__len__") or len(knots) != n:
         raise InputError(
             f"lekalo.jax.{name}: knots must be a tuple of {n} 1-D arrays, one a variable"

@@ -548,3 +548,49 @@ async fn a_computation_with_a_job_id_reports_its_progress_until_it_ends() {
     assert_eq!(code, 400, "{text}");
     assert!(text.contains("job id"), "{text}");
 }
+
+/// A shape-constrained fit past the deadline is stopped there as the others are: its cone
+/// program (GCV, working set, polish) checks the job's cancel flag, so that with one worker a
+/// small constrained fit is computed soon after the slow one's 504 (it ran on for minutes,
+/// holding the worker, when the constrained fit took no hook).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_shape_constrained_fit_past_the_deadline_frees_its_worker() {
+    let limits = Limits {
+        workers: 1,
+        queue: 1,
+        deadline: Duration::from_millis(500),
+        timeout: Duration::from_secs(60),
+        ..permissive()
+    };
+    let addr = serving(limits).await;
+    let constrained = |n: usize| {
+        // a rising wave with dips, kept increasing: the constraint is active on many spans
+        let points: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
+                let x = 10.0 * k as f64 / n as f64;
+                [
+                    x,
+                    x + (5.0 * x).sin() + 0.1 * ((k * 7919 % 13) as f64 - 6.0),
+                ]
+            })
+            .collect();
+        json!({"points": points, "smoothing": "gcv", "increasing": true}).to_string()
+    };
+    let (code, text) = raw(addr, "POST", "/api/fit", &constrained(3000)).await;
+    assert_eq!(code, 504, "{text}");
+    let small = constrained(40);
+    let mut answers = Vec::new();
+    for _ in 0..8 {
+        let (code, text) = raw(addr, "POST", "/api/fit", &small).await;
+        answers.push(code);
+        if code == 200 {
+            break;
+        }
+        assert_eq!(code, 504, "{text}");
+    }
+    assert_eq!(
+        answers.last(),
+        Some(&200),
+        "the worker stayed busy: {answers:?}"
+    );
+}

@@ -80,8 +80,8 @@ pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL}
 pub(crate) use rows::for_each_row;
 pub use shape::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
-    shape_violations, PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL,
-    SHAPE_RTOL,
+    constrained_smoothing_spline_with_progress, shape_violations, PointCondition, Shape,
+    ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
 };
 pub(crate) use smoothing::smoothing_system;
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};

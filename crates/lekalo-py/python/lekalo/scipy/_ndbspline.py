@@ -166,7 +166,10 @@ def make_ndbspl(points: Any, values: Any, k: Any = 3, *, solver: Any = None, **s
     for kd in k:
         if kd % 2 != 1:
             raise ValueError(f"Odd degree for now only. Got {kd}.")
-    t = tuple(_not_a_knot(x, kd) for x, kd in zip(axes, k))
+    # an axis too short for its degree (or empty, or not 1-D) gets no knots here: the library
+    # refuses it with its own message (the degree, the count and the degrees allowed) before
+    # anything is allocated, where not-a-knot knots of a huge degree would be allocated first
+    t = tuple(_not_a_knot(x, kd) if x.ndim == 1 and x.shape[0] > kd else None for x, kd in zip(axes, k))
     values = np.asarray(values)
     complex_ = np.iscomplexobj(values)
     v = np.ascontiguousarray(values, dtype=complex if complex_ else float)

@@ -124,6 +124,7 @@ pub(crate) fn constrained_least_squares_by(
         fixed.center[0],
         &start,
         strategy,
+        &Steps::new(&Progress::new(), SHAPE_STEPS),
     )?;
     let curve = curve_of(
         degree,
@@ -167,6 +168,22 @@ pub fn constrained_smoothing_spline(
     lambda: Lambda,
     constraints: &ShapeConstraints,
 ) -> Result<CurveFit> {
+    constrained_smoothing_spline_with_progress(data, lambda, constraints, &Progress::new())
+}
+
+/// [`constrained_smoothing_spline`] reporting to `progress` and stopping when it is cancelled:
+/// the GCV scores (with [`Lambda::Gcv`]), then the rounds of the working set and of the polish
+/// of the cone program, each reported as one step of unknown total (`(done, done + 1)`, then
+/// `(done, done)` at the end). The hook never changes the result.
+///
+/// # Errors
+/// Those of [`constrained_smoothing_spline`]; [`Error::Cancelled`] once `progress` is cancelled.
+pub fn constrained_smoothing_spline_with_progress(
+    data: &FitData<'_>,
+    lambda: Lambda,
+    constraints: &ShapeConstraints,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
     check_function_data(data)?;
     if let Lambda::Given(l) = lambda {
         if !(l > 0.0 && l.is_finite()) {
@@ -180,9 +197,11 @@ pub fn constrained_smoothing_spline(
         }
     }
     let s = Smoother::new(data)?;
+    // one count for the GCV scores and the cone program's rounds, so that `done` never goes back
+    let steps = Steps::new(progress, SHAPE_STEPS);
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv(&Steps::new(&Progress::new(), "GCV"))?,
+        Lambda::Gcv => s.minimise_gcv(&steps)?,
     };
     let n = s.knots.len() - 4;
     let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
@@ -190,6 +209,7 @@ pub fn constrained_smoothing_spline(
     let free = smoothing_spline(data, Lambda::Given(lam))?;
     let scale = Scale::of(data, domain);
     if holds(&free.curve, constraints, &scale)? {
+        steps.finish();
         return Ok(free);
     }
     let mut p = s.gram.clone();
@@ -210,7 +230,9 @@ pub fn constrained_smoothing_spline(
         center,
         &start,
         Rows::WorkingSet,
+        &steps,
     )?;
+    steps.finish();
     let curve = curve_of(3, s.knots.clone(), &coef, &scale, center);
     let report = FitReport::new(&curve, data, Some(lam));
     Ok(CurveFit { curve, report })
@@ -553,6 +575,9 @@ impl Piece {
 /// row the polish of the whole program would make an equality is in the working set.
 const WORKING_MARGIN: f64 = 1e-6;
 
+/// What the steps of the cone program of a shape-constrained fit are reported as.
+const SHAPE_STEPS: &str = "shape-constrained fit";
+
 /// Rounds of the working set before the whole program is solved instead.
 const WORKING_ROUNDS: usize = 12;
 
@@ -570,6 +595,7 @@ fn solve_program(
     center: f64,
     start: &[f64],
     strategy: Rows,
+    steps: &Steps<'_, '_>,
 ) -> Result<Vec<f64>> {
     let n = p.n;
     let mut scratch = BasisScratch::new(degree);
@@ -637,7 +663,14 @@ fn solve_program(
         prog
     };
     let finish = |prog: &ConeProgram, interior: Vec<f64>| {
-        finish_program(prog, interior, degree, knots, constraints, scale, center)
+        finish_program(
+            prog,
+            interior,
+            (degree, knots),
+            constraints,
+            (scale, center),
+            steps,
+        )
     };
     let fail = |f| failure_error(f, |i| constraints.describe(i));
     let all = vec![true; pieces_all.len()];
@@ -674,6 +707,7 @@ fn solve_program(
         chosen.fill(true);
     }
     for _ in 0..WORKING_ROUNDS {
+        steps.tick()?;
         let prog = program(&chosen);
         let interior = prog.solve(0.0).map_err(fail)?;
         if grow(&mut chosen, &interior) {
@@ -695,11 +729,10 @@ fn solve_program(
 fn finish_program(
     prog: &ConeProgram,
     interior: Vec<f64>,
-    degree: usize,
-    knots: &[f64],
+    (degree, knots): (usize, &[f64]),
     constraints: &ShapeConstraints,
-    scale: &Scale,
-    center: f64,
+    (scale, center): (&Scale, f64),
+    steps: &Steps<'_, '_>,
 ) -> Result<Vec<f64>> {
     let n = prog.p.n;
     let rows = ShapeCheck::new(
@@ -720,7 +753,7 @@ fn finish_program(
     let bound = prog.objective(&interior) + POLISH_RTOL * (1.0 + prog.objective(&interior).abs());
     let mut start = interior.clone();
     for margin in [0.0, ROUNDING_MARGIN, FEASIBILITY_MARGIN] {
-        let (exact, last) = polish_exact(prog, &start, margin, bound, &check)?;
+        let (exact, last) = polish_exact(prog, &start, (margin, bound), &check, steps)?;
         if let Some(c) = exact {
             return Ok(c);
         }
@@ -746,14 +779,15 @@ fn finish_program(
 fn polish_exact(
     prog: &ConeProgram,
     start: &[f64],
-    margin: f64,
-    bound: f64,
+    (margin, bound): (f64, f64),
     check: &dyn Fn(&[f64]) -> Result<bool>,
+    steps: &Steps<'_, '_>,
 ) -> Result<(Option<Vec<f64>>, Vec<f64>)> {
     let mut best = None;
     let mut current = start.to_vec();
     for _ in 0..4 {
-        let Some(c) = prog.polish(&current, margin) else {
+        steps.tick()?;
+        let Some(c) = prog.polish(&current, margin, steps)? else {
             break;
         };
         let moved = c

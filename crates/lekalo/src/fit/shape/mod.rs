@@ -25,7 +25,7 @@ mod program;
 pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
 pub use fits::{
     constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
-    shape_violations, CONDITION_RTOL, SHAPE_RTOL,
+    constrained_smoothing_spline_with_progress, shape_violations, CONDITION_RTOL, SHAPE_RTOL,
 };
 
 #[cfg(test)]

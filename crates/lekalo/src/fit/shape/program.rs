@@ -8,7 +8,8 @@
 //! O(n) per interior-point iteration for `n` coefficients, whatever the number of data points.
 
 use super::super::banded::SymBand;
-use crate::error::Error;
+use crate::error::{Error, Result};
+use crate::fit::progress::Steps;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -178,7 +179,16 @@ impl ConeProgram {
     /// coefficient): the optimum on the same face of the program tightened as in
     /// [`ConeProgram::solve`], for answers that the rounding of the face's solve leaves a few
     /// ulps outside a constraint.
-    pub(crate) fn polish(&self, c: &[f64], margin: f64) -> Option<Vec<f64>> {
+    ///
+    /// # Errors
+    /// [`Error::Cancelled`] when `steps`' hook is cancelled (checked between rounds, and at
+    /// every row of a degenerate face's independence test).
+    pub(crate) fn polish(
+        &self,
+        c: &[f64],
+        margin: f64,
+        steps: &Steps<'_, '_>,
+    ) -> Result<Option<Vec<f64>>> {
         let n = self.p.n;
         let unit = |r: &Row| {
             let m = r.max_abs();
@@ -236,7 +246,10 @@ impl ConeProgram {
                 rows.push((slope, false));
                 slope_of.push(Some(k));
             }
-            let (x, nu) = self.solve_face(rows, slope_of, margin)?;
+            steps.tick()?;
+            let Some((x, nu)) = self.solve_face(rows, slope_of, margin, steps)? else {
+                return Ok(None);
+            };
             let scale = nu.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
             answer = Some(x);
             if touches.is_empty() || scale == 0.0 {
@@ -258,7 +271,7 @@ impl ConeProgram {
                 break;
             }
         }
-        answer
+        Ok(answer)
     }
 
     /// The rows "value = 0" and "slope = 0" at `τ` of quadratic `qi`, each scaled by the
@@ -295,7 +308,8 @@ impl ConeProgram {
         rows: Vec<(Row, bool)>,
         tags: Vec<Option<usize>>,
         margin: f64,
-    ) -> Option<(Vec<f64>, Vec<Option<f64>>)> {
+        steps: &Steps<'_, '_>,
+    ) -> Result<Option<FaceOptimum>> {
         let n = self.p.n;
         let n_tags = tags.iter().flatten().count();
         let mut kept: Vec<(Row, bool, Option<usize>)> = Vec::with_capacity(rows.len());
@@ -307,7 +321,7 @@ impl ConeProgram {
         if kept.len() > n {
             // a degenerate face (a flat stretch keeps value, slope and curvature rows at
             // once): more rows than coefficients, so some depend on the others
-            kept = independent(kept, n);
+            kept = independent(kept, n, steps)?;
         }
         for (r, ineq, _) in &mut kept {
             if *ineq {
@@ -316,7 +330,9 @@ impl ConeProgram {
         }
         for _ in 0..POLISH_ROUNDS {
             let eq: Vec<(Row, usize)> = kept.iter().map(|(r, _, _)| (r.clone(), 0)).collect();
-            let sol = self.run(&eq, &[], &[]).ok()?;
+            let Ok(sol) = self.run(&eq, &[], &[]) else {
+                return Ok(None);
+            };
             let (x, z) = sol.split_at(n);
             let zmax = z.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let worst = kept
@@ -336,14 +352,14 @@ impl ConeProgram {
                             nu[*k] = Some(if m > 0.0 { zi / m } else { 0.0 });
                         }
                     }
-                    return Some((x.to_vec(), nu));
+                    return Ok(Some((x.to_vec(), nu)));
                 }
                 Some(i) => {
                     kept.remove(i);
                 }
             }
         }
-        None
+        Ok(None)
     }
 
     /// Clarabel on the objective with the rows given; the variables (coefficients, then one
@@ -500,11 +516,18 @@ const DEPENDENT_RTOL: f64 = 1e-9;
 /// The rows, in order, that do not depend linearly on the rows kept before them (modified
 /// Gram–Schmidt on the coefficient vectors, Golub & Van Loan §5.2.8): on a consistent face
 /// (every row zero at a point) the dropped rows are zero wherever the kept ones are, so the face
-/// is the same and its equality-constrained optimum too. At most `n` rows remain.
-fn independent<T>(rows: Vec<(Row, bool, T)>, n: usize) -> Vec<(Row, bool, T)> {
+/// is the same and its equality-constrained optimum too. At most `n` rows remain. Each row costs
+/// O(rows kept · n), far more than a tick of `steps`, which comes before each row so that a
+/// cancelled hook stops a face of thousands of rows ([`Error::Cancelled`]).
+fn independent<T>(
+    rows: Vec<(Row, bool, T)>,
+    n: usize,
+    steps: &Steps<'_, '_>,
+) -> Result<Vec<(Row, bool, T)>> {
     let mut basis: Vec<Vec<f64>> = Vec::new();
     let mut out = Vec::with_capacity(n.min(rows.len()));
     for item in rows {
+        steps.tick()?;
         let r = &item.0;
         if r.aux.is_some() {
             out.push(item);
@@ -527,8 +550,12 @@ fn independent<T>(rows: Vec<(Row, bool, T)>, n: usize) -> Vec<(Row, bool, T)> {
             out.push(item);
         }
     }
-    out
+    Ok(out)
 }
+
+/// The optimum on a face: the coefficients, and the multiplier of each tagged slope row (`None`
+/// if it was dropped).
+type FaceOptimum = (Vec<f64>, Vec<Option<f64>>);
 
 /// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,
 /// whatever their first columns.

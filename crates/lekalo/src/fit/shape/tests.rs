@@ -440,3 +440,27 @@ proptest::proptest! {
         }
     }
 }
+
+/// The constrained smoothing spline with a hook: the same bits as without, monotone reports
+/// ending at their total, and a set cancel flag stops it with `Cancelled` (the server's deadline
+/// relies on it: the cone program of thousands of points otherwise ran for minutes).
+#[test]
+fn constrained_smoothing_with_a_hook_is_unchanged_and_stops_when_cancelled() {
+    use crate::fit::progress::tests::{check_hook, same_bits};
+    // a rising wave with dips, kept increasing: the constraint is active on several spans
+    let (x, y) = noisy(200, |t| t + 0.2 * (25.0 * t).sin());
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let c = ShapeConstraints::new().with(Shape::Increasing);
+    for lambda in [Lambda::Gcv, Lambda::Given(1e-6)] {
+        check_hook(
+            "constrained smoothing spline",
+            |p| constrained_smoothing_spline_with_progress(&data, lambda, &c, p),
+            |a, b| {
+                same_bits(
+                    a.curve.control_points().as_slice(),
+                    b.curve.control_points().as_slice(),
+                ) && same_bits(&a.report.residuals, &b.report.residuals)
+            },
+        );
+    }
+}
