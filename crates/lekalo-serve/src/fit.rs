@@ -2,7 +2,8 @@
 //! [`lekalo::fit`] (`docs/theory/fitting.md`): the cubic smoothing spline with λ given or chosen
 //! by generalised cross-validation, or the fewest knots whose weighted residual sum of squares
 //! is at most `s` (FITPACK's smoothing condition); with shape constraints (increasing,
-//! convex, bounds…) the constrained smoothing spline of a function y(x).
+//! convex, bounds…) the constrained smoothing spline of a function y(x), its λ given, by GCV,
+//! or found so that the residual is `s` (`lekalo fit --increasing --s S`).
 //!
 //! The smoothing spline and the smoothing condition run with the job's progress hook
 //! ([`lekalo::fit::smoothing_spline_with_progress`],
@@ -13,7 +14,7 @@
 use axum::body::Bytes;
 use axum::response::Response;
 use lekalo::fit::{
-    constrained_smoothing_spline, smoothing_condition_with_rounds, smoothing_spline_with_progress,
+    constrained_smoothing_condition, constrained_smoothing_spline, smoothing_condition_with_rounds, smoothing_spline_with_progress,
     CurveFit, FitData, KnotRounds, Lambda, Shape, ShapeConstraints,
 };
 use lekalo::{parametrize, Points};
@@ -139,10 +140,10 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         rules = rules.with(Shape::AtMost(v));
     }
     let constrained = !rules.shapes.is_empty();
-    if constrained && r.smoothing == Smoothing::S {
+    if constrained && r.smoothing == Smoothing::S && r.knot_rounds.is_some() {
         return Err(ApiError::bad(
-            "smoothing",
-            "a shape is kept with smoothing by a penalty (lambda or gcv), not with a residual target s: choose lambda or gcv, or leave the shape out",
+            "knot_rounds",
+            "with a shape the residual target s is met by the cubic smoothing spline (knots at the data), which has no knot rounds: leave knot_rounds out",
         ));
     }
     let function = r.function || constrained;
@@ -180,6 +181,10 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         }
         Smoothing::Gcv => smoothing_spline_with_progress(&data, Lambda::Gcv, &job.progress)
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
+        Smoothing::S if constrained => {
+            constrained_smoothing_condition(&data, given(r.s, "s")?, &rules)
+                .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
+        }
         Smoothing::S => {
             let degree = job.limits.check_degree(r.degree, "degree")?;
             let rounds = crate::words::word(
