@@ -357,13 +357,14 @@ test('Queries: the closest point follows the pointer, the arc length and the par
   assert.match(await page.textContent('[data-err="at_length"]'), /invalid arc length/);
 });
 
-test('Fitting with a shape from an empty canvas: a shape and a residual target s each grey out the other, with the reason', async (page) => {
+test('Fitting with a shape from an empty canvas: a shape is kept with the penalty and with a residual target s', async (page) => {
   await page.goto(base);
   await page.selectOption('#mode', 'fit');
   await idle(page);
   await page.click('#clear');
   await idle(page);
-  for (const q of [[1, 1], [2, 2.2], [3, 1.8], [4, 3.5], [5, 3], [6, 4.6], [7, 4.1]]) {
+  const pts = [[1, 1], [2, 2.2], [3, 1.8], [4, 3.5], [5, 3], [6, 4.6], [7, 4.1]];
+  for (const q of pts) {
     const [x, y] = await canvasToPage(page, q);
     await page.mouse.click(x, y);
     await idle(page);
@@ -371,18 +372,18 @@ test('Fitting with a shape from an empty canvas: a shape and a residual target s
   await page.check('#fit-increasing');
   await idle(page);
   assert.equal(await shownErrors(page), '');
-  const sOption = page.locator('#fit-mode option[value="s"]');
-  const offered = () => sOption.evaluate((o) => !o.disabled);
-  assert.ok(!(await offered()), 'with a shape ticked, the residual target s is not offered');
-  assert.match(await sOption.getAttribute('title'), /penalty λ or GCV/);
-  await page.uncheck('#fit-increasing');
-  await idle(page);
-  assert.ok(await offered(), 'without a shape, s is offered again');
   await page.selectOption('#fit-mode', 's');
   await idle(page);
-  assert.equal(await shownErrors(page), '');
-  assert.ok(await page.locator('#fit-increasing').isDisabled(), 'with s, the shapes are greyed out');
-  assert.match(await page.getAttribute('fieldset.shape', 'title'), /not with a residual target s/);
+  assert.equal(await shownErrors(page), '', 'a shape with s is no error');
+  assert.ok(await page.locator('#fit-increasing').isChecked(), 'the shape stays ticked');
+  // the drawn fit is the library's constrained fit whose residual is s
+  const state = await page.evaluate(() => window.lekaloEditor.state.fit);
+  const drawn = await page.evaluate(() => window.lekaloEditor.last.view.curve);
+  const points = await page.evaluate(() => window.lekaloEditor.state.fit.points);
+  const s = Math.pow(10, state.s);
+  const ref = await api('/api/fit', { points, smoothing: 's', s, increasing: true });
+  assert.deepEqual(drawn, ref.view.curve);
+  assert.ok(ref.report.weighted_rss <= s * (1 + 1e-3), `rss ${ref.report.weighted_rss}, s ${s}`);
 });
 
 test('Queries from an empty canvas: one point is measured without an error, two give a point at a length', async (page) => {

@@ -752,16 +752,6 @@ function syncControls() {
   const shape = s.fit.shape || {};
   for (const k of ['increasing', 'decreasing', 'convex', 'concave']) $(`fit-${k}`).checked = !!shape[k];
   for (const k of ['min', 'max']) $(`fit-${k}`).value = shape[k] === undefined ? '' : shape[k];
-  // a shape is kept with the penalty λ or GCV, not with a residual target s: each choice
-  // greys out the other, and says why
-  const shaped = ['increasing', 'decreasing', 'convex', 'concave'].some((k) => shape[k])
-    || ['min', 'max'].some((k) => shape[k] !== undefined && shape[k] !== '');
-  const sOption = $('fit-mode').querySelector('option[value="s"]');
-  sOption.disabled = shaped && s.fit.smoothing !== 's';
-  sOption.title = sOption.disabled ? 'a shape is kept with the penalty λ or GCV: clear the shape to choose a residual target s' : '';
-  const shapeBox = document.querySelector('fieldset.shape');
-  shapeBox.disabled = s.fit.smoothing === 's';
-  shapeBox.title = shapeBox.disabled ? 'a shape is kept with the penalty λ or GCV, not with a residual target s' : '';
   $('query').checked = s.query;
   $('query-length').value = s.queryLength;
   $('query-panel').hidden = !s.query || s.mode === 'quasi';

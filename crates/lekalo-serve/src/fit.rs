@@ -2,21 +2,24 @@
 //! [`lekalo::fit`] (`docs/theory/fitting.md`): the cubic smoothing spline with λ given or chosen
 //! by generalised cross-validation, or the fewest knots whose weighted residual sum of squares
 //! is at most `s` (FITPACK's smoothing condition); with shape constraints (increasing,
-//! convex, bounds…) the constrained smoothing spline of a function y(x).
+//! convex, bounds…) the constrained smoothing spline of a function y(x), its λ given, by GCV,
+//! or found so that the residual is `s` (`lekalo fit --increasing --s S`).
 //!
 //! The smoothing spline and the smoothing condition run with the job's progress hook
 //! ([`lekalo::fit::smoothing_spline_with_progress`],
 //! [`lekalo::fit::smoothing_condition_with_rounds`]): at the deadline they stop between two
 //! GCV scores, knot rounds or smoothing weights, and the request is answered with 504 while its
-//! pool thread is freed. The constrained fit
-//! ([`lekalo::fit::constrained_smoothing_spline_with_progress`]) stops likewise between two GCV
-//! scores or two rounds of its cone program's working set and polish.
+//! pool thread is freed. The constrained fits
+//! ([`lekalo::fit::constrained_smoothing_spline_with_progress`],
+//! [`lekalo::fit::constrained_smoothing_condition_with_progress`]) stop likewise between two GCV
+//! scores or two rounds of their cone programs' working sets and polish.
 
 use axum::body::Bytes;
 use axum::response::Response;
 use lekalo::fit::{
-    constrained_smoothing_spline_with_progress, smoothing_condition_with_rounds,
-    smoothing_spline_with_progress, CurveFit, FitData, KnotRounds, Lambda, Shape, ShapeConstraints,
+    constrained_smoothing_condition_with_progress, constrained_smoothing_spline_with_progress,
+    smoothing_condition_with_rounds, smoothing_spline_with_progress, CurveFit, FitData, KnotRounds,
+    Lambda, Shape, ShapeConstraints,
 };
 use lekalo::{parametrize, Points};
 use lekalo_io::Object;
@@ -141,10 +144,10 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         rules = rules.with(Shape::AtMost(v));
     }
     let constrained = !rules.shapes.is_empty();
-    if constrained && r.smoothing == Smoothing::S {
+    if constrained && r.smoothing == Smoothing::S && r.knot_rounds.is_some() {
         return Err(ApiError::bad(
-            "smoothing",
-            "a shape is kept with smoothing by a penalty (lambda or gcv), not with a residual target s: choose lambda or gcv, or leave the shape out",
+            "knot_rounds",
+            "with a shape the residual target s is met by the cubic smoothing spline (knots at the data), which has no knot rounds: leave knot_rounds out",
         ));
     }
     let function = r.function || constrained;
@@ -182,6 +185,11 @@ pub(crate) fn fit(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         }
         Smoothing::Gcv => smoothing_spline_with_progress(&data, Lambda::Gcv, &job.progress)
             .map_err(|e| ApiError::lib(fit_field(&e, "lambda"), &e))?,
+        Smoothing::S if constrained => {
+            let s = given(r.s, "s")?;
+            constrained_smoothing_condition_with_progress(&data, s, &rules, &job.progress)
+                .map_err(|e| ApiError::lib(fit_field(&e, "s"), &e))?
+        }
         Smoothing::S => {
             let degree = job.limits.check_degree(r.degree, "degree")?;
             let rounds = crate::words::word(

@@ -394,7 +394,9 @@ async fn quasi_interpolation_takes_every_tau_rule_and_explicit_tau() {
 /// constrained spline, and it rises; `s` with constraints is refused at `smoothing`.
 #[tokio::test]
 async fn fitting_with_shape_constraints_is_the_library_s() {
-    use lekalo::fit::{constrained_smoothing_spline, Shape, ShapeConstraints};
+    use lekalo::fit::{
+        constrained_smoothing_condition, constrained_smoothing_spline, Shape, ShapeConstraints,
+    };
     let pts: Vec<[f64; 2]> = (0..30)
         .map(|k| {
             let x = f64::from(k) / 29.0;
@@ -418,10 +420,25 @@ async fn fitting_with_shape_constraints_is_the_library_s() {
     let drawn = v["view"]["points"].as_array().unwrap();
     let ys: Vec<f64> = drawn.iter().map(|p| p[1].as_f64().unwrap()).collect();
     assert!(ys.windows(2).all(|w| w[1] >= w[0] - 1e-12), "rises: {ys:?}");
-    let (field, msg) = bad(
+    // a residual target s with a shape: the constrained smoothing spline whose residual is s,
+    // as `lekalo fit --increasing --s S`
+    let v = ok(
         "/api/fit",
-        &json!({"points": pts, "smoothing": "s", "s": 0.1, "convex": true}),
+        &json!({"points": pts, "smoothing": "s", "s": 0.05, "increasing": true}),
     )
     .await;
-    assert_eq!(field, "smoothing", "{msg}");
+    let inc = ShapeConstraints::new().with(Shape::Increasing);
+    let fit = constrained_smoothing_condition(&data, 0.05, &inc).unwrap();
+    let graph = Object::BSpline(fit.curve.graph().unwrap());
+    assert_eq!(v["view"]["curve"], graph.to_json_value());
+    assert_eq!(
+        v["report"]["weighted_rss"].as_f64(),
+        Some(fit.report.weighted_rss)
+    );
+    let (field, msg) = bad(
+        "/api/fit",
+        &json!({"points": pts, "smoothing": "s", "s": 0.1, "convex": true, "knot_rounds": "refit"}),
+    )
+    .await;
+    assert_eq!(field, "knot_rounds", "{msg}");
 }

@@ -79,7 +79,8 @@ pub use periodic::{
 pub use robust::{robust_least_squares, RobustFit, RobustLoss, ROBUST_SCALE_RTOL};
 pub(crate) use rows::for_each_row;
 pub use shape::{
-    constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
+    constrained_least_squares, constrained_smoothing_condition,
+    constrained_smoothing_condition_with_progress, constrained_smoothing_spline,
     constrained_smoothing_spline_with_progress, shape_violations, PointCondition, Shape,
     ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
 };

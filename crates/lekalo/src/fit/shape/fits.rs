@@ -184,6 +184,21 @@ pub fn constrained_smoothing_spline_with_progress(
     constraints: &ShapeConstraints,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
+    // one count for the GCV scores and the cone program's rounds, so that `done` never goes back
+    let steps = Steps::new(progress, SHAPE_STEPS);
+    let fit = spline_in_steps(data, lambda, constraints, &steps)?;
+    steps.finish();
+    Ok(fit)
+}
+
+/// [`constrained_smoothing_spline_with_progress`] counting its GCV scores and rounds on `steps`
+/// (left unfinished, for a caller that fits several λ on one count).
+fn spline_in_steps(
+    data: &FitData<'_>,
+    lambda: Lambda,
+    constraints: &ShapeConstraints,
+    steps: &Steps<'_, '_>,
+) -> Result<CurveFit> {
     check_function_data(data)?;
     if let Lambda::Given(l) = lambda {
         if !(l > 0.0 && l.is_finite()) {
@@ -197,11 +212,9 @@ pub fn constrained_smoothing_spline_with_progress(
         }
     }
     let s = Smoother::new(data)?;
-    // one count for the GCV scores and the cone program's rounds, so that `done` never goes back
-    let steps = Steps::new(progress, SHAPE_STEPS);
     let lam = match lambda {
         Lambda::Given(l) => l,
-        Lambda::Gcv => s.minimise_gcv(&steps)?,
+        Lambda::Gcv => s.minimise_gcv(steps)?,
     };
     let n = s.knots.len() - 4;
     let domain = (s.knots[0], s.knots[s.knots.len() - 1]);
@@ -209,7 +222,6 @@ pub fn constrained_smoothing_spline_with_progress(
     let free = smoothing_spline(data, Lambda::Given(lam))?;
     let scale = Scale::of(data, domain);
     if holds(&free.curve, constraints, &scale)? {
-        steps.finish();
         return Ok(free);
     }
     let mut p = s.gram.clone();
@@ -230,9 +242,8 @@ pub fn constrained_smoothing_spline_with_progress(
         center,
         &start,
         Rows::WorkingSet,
-        &steps,
+        steps,
     )?;
-    steps.finish();
     let curve = curve_of(3, s.knots.clone(), &coef, &scale, center);
     let report = FitReport::new(&curve, data, Some(lam));
     Ok(CurveFit { curve, report })
@@ -270,17 +281,48 @@ pub fn constrained_smoothing_condition(
     s: f64,
     constraints: &ShapeConstraints,
 ) -> Result<CurveFit> {
+    constrained_smoothing_condition_with_progress(data, s, constraints, &Progress::new())
+}
+
+/// [`constrained_smoothing_condition`] reporting to `progress` and stopping when it is
+/// cancelled: the steps of every constrained smoothing spline it fits (GCV scores, rounds of
+/// the cone program) on one count of unknown total, as
+/// [`constrained_smoothing_spline_with_progress`] reports them. The hook never changes the
+/// result.
+///
+/// # Errors
+/// Those of [`constrained_smoothing_condition`]; [`Error::Cancelled`] once `progress` is
+/// cancelled.
+pub fn constrained_smoothing_condition_with_progress(
+    data: &FitData<'_>,
+    s: f64,
+    constraints: &ShapeConstraints,
+    progress: &Progress<'_>,
+) -> Result<CurveFit> {
+    let steps = Steps::new(progress, SHAPE_STEPS);
+    let fit = condition_in_steps(data, s, constraints, &steps)?;
+    steps.finish();
+    Ok(fit)
+}
+
+/// [`constrained_smoothing_condition`] counting on `steps`.
+fn condition_in_steps(
+    data: &FitData<'_>,
+    s: f64,
+    constraints: &ShapeConstraints,
+    steps: &Steps<'_, '_>,
+) -> Result<CurveFit> {
     if !(s >= 0.0 && s.is_finite()) {
         return Err(Error::NegativeSmoothing {
             what: Arg::S.into(),
             value: s,
         });
     }
-    let start = constrained_smoothing_spline(data, Lambda::Gcv, constraints)?;
+    let start = spline_in_steps(data, Lambda::Gcv, constraints, steps)?;
     let Some(lam0) = start.report.lambda.filter(|l| *l > 0.0) else {
         return Ok(start);
     };
-    let fit_at = |lam: f64| constrained_smoothing_spline(data, Lambda::Given(lam), constraints);
+    let fit_at = |lam: f64| spline_in_steps(data, Lambda::Given(lam), constraints, steps);
     let close = |f: &CurveFit| (f.report.weighted_rss - s).abs() <= CONDITION_RTOL * s;
     if close(&start) {
         return Ok(start);

@@ -24,7 +24,8 @@ mod program;
 
 pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
 pub use fits::{
-    constrained_least_squares, constrained_smoothing_condition, constrained_smoothing_spline,
+    constrained_least_squares, constrained_smoothing_condition,
+    constrained_smoothing_condition_with_progress, constrained_smoothing_spline,
     constrained_smoothing_spline_with_progress, shape_violations, CONDITION_RTOL, SHAPE_RTOL,
 };
 
