@@ -7,12 +7,13 @@
 //! are there without a least-squares solve; this is how Open CASCADE returns its walking lines
 //! (`ApproxInt`/`GeomInt_WLApprox` fit the walking line's points and tangents). The points are
 //! parametrised by arc length (chords corrected by the turning of the tangent) and the nodes are
-//! chosen greedily: from each node, the farthest point such that the Hermite segment between them
-//! passes within the tolerance of every marched point in between, at its parameter (doubling,
-//! then bisection).
+//! chosen greedily: from each node, a point such that the Hermite segment between them passes
+//! within the tolerance of every marched point in between, at its parameter, as far as the `h⁴`
+//! law of the cubic's error predicts from the candidates' measured errors (within a tenth of
+//! the farthest, as the law goes).
 
 use super::super::super::pieces::{dist, dot};
-use super::march::{arc_over_chord, Traced};
+use super::march::{arc_over_chord, turn_angle, Traced};
 use super::system::K;
 use crate::error::Result;
 use crate::interpolate::CubicHermite;
@@ -20,6 +21,10 @@ use crate::{BSplineCurve, Points};
 
 /// Widest row: the point in space and the scaled parameters on both surfaces.
 const W: usize = 7;
+/// Most candidates tried for one node of the fit (each checked at every point it spans).
+const PREDICTIONS: usize = 6;
+/// Share of the length the `h⁴` law allows that a predicted candidate aims at.
+const SAFETY: f64 = 0.95;
 
 /// The curve in space and the parameter curves of a branch, all on the same knots, `None` when
 /// the branch has fewer than two distinct points. The fitted coordinates are
@@ -57,7 +62,7 @@ pub(super) fn fit_branch(
         .map(|a| {
             let (tx, tp) = t.tangents[kept[a]]?;
             let (lo, hi) = (a.saturating_sub(1), (a + 1).min(m - 1));
-            let chord: Vec<f64> = (0..3).map(|c| rows[hi][c] - rows[lo][c]).collect();
+            let chord: [f64; 3] = std::array::from_fn(|c| rows[hi][c] - rows[lo][c]);
             let sign = if dot(&tp, &chord) < 0.0 { -1.0 } else { 1.0 };
             let mut g = row(&tx, &tp);
             for v in &mut g {
@@ -71,7 +76,7 @@ pub(super) fn fit_branch(
     for a in 1..m {
         let c = dist(&rows[a - 1][..3], &rows[a][..3]);
         let theta = match (&tangents[a - 1], &tangents[a]) {
-            (Some(g0), Some(g1)) => dot(&g0[..3], &g1[..3]).clamp(-1.0, 1.0).acos(),
+            (Some(g0), Some(g1)) => turn_angle(&g0[..3], &g1[..3]),
             _ => 0.0,
         };
         s[a] = s[a - 1] + c * arc_over_chord(theta);
@@ -81,9 +86,12 @@ pub(super) fn fit_branch(
     let slopes: Vec<[f64; W]> = (0..m)
         .map(|a| tangents[a].unwrap_or_else(|| parabola_slope(&rows, &s, a)))
         .collect();
-    let within = |a: usize, b: usize| -> bool {
+    // the largest distance of the Hermite segment from a to b from the points in between, at
+    // their parameters
+    let worst = |a: usize, b: usize| -> f64 {
         let h = s[b] - s[a];
-        (a + 1..b).all(|k| {
+        let mut e2 = 0.0_f64;
+        for k in a + 1..b {
             let u = (s[k] - s[a]) / h;
             let (u2, u3) = (u * u, u * u * u);
             let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
@@ -95,35 +103,56 @@ pub(super) fn fit_branch(
                     + h * (h10 * slopes[a][c] + h11 * slopes[b][c]);
                 d2 += (v - rows[k][c]) * (v - rows[k][c]);
             }
-            d2 <= tol * tol
-        })
+            e2 = e2.max(d2);
+        }
+        e2.sqrt()
+    };
+    // the last point at most at arc length `target`, strictly between `good` and `bad`
+    let before = |target: f64, good: usize, bad: usize| -> Option<usize> {
+        let b = s[..bad].partition_point(|&x| x <= target).saturating_sub(1);
+        (b > good).then_some(b)
     };
     let mut nodes = vec![0];
-    let (mut a, mut guess) = (0, 8);
+    let (mut a, mut span) = (0, None);
     while a < m - 1 {
-        // the farthest b with every point in between within tol: doubling, then bisection
-        let mut good = a + 1;
-        let mut bad = m;
-        let mut b = (a + guess).min(m - 1);
-        while b > good {
-            if within(a, b) {
+        // the next node: a point `good` whose segment passes, chosen below a point `bad` whose
+        // segment fails (or the end); each candidate predicted from the last one's error by the
+        // h⁴ law of the cubic's error, until the prediction gains less than a tenth
+        let (mut good, mut bad) = (a + 1, m);
+        let mut b = match span {
+            Some(l) => before(s[a] + l, good, bad).unwrap_or(good),
+            None => (a + 8).min(m - 1),
+        };
+        for _ in 0..PREDICTIONS {
+            let e = worst(a, b);
+            let passed = e <= tol;
+            if passed {
                 good = b;
-                b = (a + 2 * (b - a)).min(m - 1);
             } else {
                 bad = b;
+            }
+            let factor = if e > 0.0 {
+                (SAFETY * (tol / e).powf(0.25)).clamp(0.5, 2.0)
+            } else {
+                2.0
+            };
+            if passed && factor < 1.1 {
                 break;
             }
-        }
-        while bad - good > 1 {
-            let mid = (good + bad) / 2;
-            if within(a, mid) {
-                good = mid;
+            let target = s[a] + factor * (s[b] - s[a]);
+            let next = if passed {
+                before(target, good, bad)
             } else {
-                bad = mid;
+                // below the failure: the prediction, or halfway to the last pass
+                before(target, good, bad).or_else(|| before(0.5 * (s[good] + s[b]), good, bad))
+            };
+            match next {
+                Some(n) => b = n,
+                None => break,
             }
         }
         nodes.push(good);
-        guess = good - a;
+        span = Some(s[good] - s[a]);
         a = good;
     }
     // parameters on [0, 1]: derivatives with respect to s / L are L times those in s
