@@ -37,6 +37,10 @@ const CHORD_SHARE: f64 = 0.9;
 const CHORD_CHECK: f64 = 0.95;
 /// Most points filled into one step.
 const MAX_FILL: usize = 1 << 14;
+/// Points a walk makes room for at its start (a closed curve of a few unit radii at a
+/// tolerance of `10⁻⁶` has a few thousand), so that a walk of that size copies none of them
+/// while it grows.
+const TRAIL_CAPACITY: usize = 2048;
 
 /// A point of a branch with its unit tangent (in the unknowns and in space).
 struct Node {
@@ -218,10 +222,12 @@ impl March<'_> {
         let k = self.sys.k();
         let bounds = self.sys.bounds();
         let mut tr = Trail {
-            xs: vec![x0],
-            ps: vec![j0.p],
-            ts: Vec::new(),
+            xs: Vec::with_capacity(TRAIL_CAPACITY),
+            ps: Vec::with_capacity(TRAIL_CAPACITY),
+            ts: Vec::with_capacity(TRAIL_CAPACITY),
         };
+        tr.xs.push(x0);
+        tr.ps.push(j0.p);
         let mut reach = reach_of(j0);
         let done = |tr: Trail, stop, reach| {
             Ok(Walk {
