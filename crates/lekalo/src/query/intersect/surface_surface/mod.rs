@@ -281,23 +281,25 @@ impl SegmentGrid {
         let mut s0 = 0;
         while s0 < segs {
             // the run: segments s0.. while their box spans at most a cube
-            let mut bx = [
-                ps[s0][0], ps[s0][1], ps[s0][2], ps[s0][0], ps[s0][1], ps[s0][2],
-            ];
+            let (mut lo, mut hi) = (ps[s0], ps[s0]);
             let mut s1 = s0;
             while s1 < segs && s1 - s0 < RUN {
-                let q = ps[(s1 + 1).min(ps.len() - 1)];
-                let mut grown = bx;
-                for c in 0..3 {
-                    grown[c] = grown[c].min(q[c]);
-                    grown[3 + c] = grown[3 + c].max(q[c]);
-                }
-                if s1 > s0 && (0..3).any(|c| grown[3 + c] - grown[c] > self.cell) {
+                let q = &ps[(s1 + 1).min(ps.len() - 1)];
+                let (l, h) = (
+                    [lo[0].min(q[0]), lo[1].min(q[1]), lo[2].min(q[2])],
+                    [hi[0].max(q[0]), hi[1].max(q[1]), hi[2].max(q[2])],
+                );
+                if s1 > s0
+                    && (h[0] - l[0] > self.cell
+                        || h[1] - l[1] > self.cell
+                        || h[2] - l[2] > self.cell)
+                {
                     break;
                 }
-                bx = grown;
+                (lo, hi) = (l, h);
                 s1 += 1;
             }
+            let bx = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
             let run = self.runs.len();
             self.runs.push((b, s0, s1, bx));
             let lo: [i64; 3] = std::array::from_fn(|c| self.key(bx[c] - self.cover));
