@@ -12,7 +12,7 @@
 //! law of the cubic's error predicts from the candidates' measured errors (within a tenth of
 //! the farthest, as the law goes).
 
-use super::super::super::pieces::{dist, dot};
+use super::super::super::pieces::dist;
 use super::march::{arc_over_chord, turn_angle, Traced};
 use super::system::K;
 use crate::error::Result;
@@ -57,55 +57,55 @@ pub(super) fn fit_branch(
         return Ok(None);
     }
     let rows: Vec<[f64; W]> = kept.iter().map(|&i| row(&t.xs[i], &t.ps[i])).collect();
-    // unit space tangents, oriented along the branch (the chord through the neighbours)
-    let tangents: Vec<Option<[f64; W]>> = (0..m)
-        .map(|a| {
-            let (tx, tp) = t.tangents[kept[a]]?;
-            let (lo, hi) = (a.saturating_sub(1), (a + 1).min(m - 1));
-            let chord: [f64; 3] = std::array::from_fn(|c| rows[hi][c] - rows[lo][c]);
-            let sign = if dot(&tp, &chord) < 0.0 { -1.0 } else { 1.0 };
-            let mut g = row(&tx, &tp);
-            for v in &mut g {
-                *v *= sign;
+    // unit space tangents, oriented along the branch (the chord through the neighbours), and
+    // the arc length: each chord c lengthened to the arc of a circle turning by θ,
+    // c·(θ/2)/sin(θ/2); a point without a tangent (an end at a tangency) marked, to take the
+    // derivative of the parabola through it and its two neighbours
+    let mut slopes: Vec<[f64; W]> = Vec::with_capacity(m);
+    let mut missing = Vec::new();
+    let mut s = Vec::with_capacity(m);
+    for a in 0..m {
+        match t.tangents[kept[a]] {
+            Some((tx, tp)) => {
+                let (lo, hi) = (a.saturating_sub(1), (a + 1).min(m - 1));
+                let (r0, r1) = (&rows[lo], &rows[hi]);
+                let along =
+                    tp[0] * (r1[0] - r0[0]) + tp[1] * (r1[1] - r0[1]) + tp[2] * (r1[2] - r0[2]);
+                let mut g = row(&tx, &tp);
+                if along < 0.0 {
+                    for v in &mut g {
+                        *v = -*v;
+                    }
+                }
+                slopes.push(g);
             }
-            Some(g)
-        })
-        .collect();
-    // arc length: each chord c lengthened to the arc of a circle turning by θ, c·(θ/2)/sin(θ/2)
-    let mut s = vec![0.0; m];
-    for a in 1..m {
-        let c = dist(&rows[a - 1][..3], &rows[a][..3]);
-        let theta = match (&tangents[a - 1], &tangents[a]) {
-            (Some(g0), Some(g1)) => turn_angle(&g0[..3], &g1[..3]),
-            _ => 0.0,
-        };
-        s[a] = s[a - 1] + c * arc_over_chord(theta);
+            None => {
+                missing.push(a);
+                slopes.push([0.0; W]);
+            }
+        }
+        s.push(if a == 0 {
+            0.0
+        } else {
+            let c = dist(&rows[a - 1][..3], &rows[a][..3]);
+            let theta = match (&t.tangents[kept[a - 1]], &t.tangents[kept[a]]) {
+                (Some(_), Some(_)) => turn_angle(&slopes[a - 1][..3], &slopes[a][..3]),
+                _ => 0.0,
+            };
+            s[a - 1] + c * arc_over_chord(theta)
+        });
     }
-    // a point without a tangent (an end at a tangency): the derivative of the parabola through
-    // it and its two neighbours
-    let slopes: Vec<[f64; W]> = (0..m)
-        .map(|a| tangents[a].unwrap_or_else(|| parabola_slope(&rows, &s, a)))
-        .collect();
+    for a in missing {
+        slopes[a] = parabola_slope(&rows, &s, a);
+    }
     // the largest distance of the Hermite segment from a to b from the points in between, at
     // their parameters
     let worst = |a: usize, b: usize| -> f64 {
-        let h = s[b] - s[a];
-        let mut e2 = 0.0_f64;
-        for k in a + 1..b {
-            let u = (s[k] - s[a]) / h;
-            let (u2, u3) = (u * u, u * u * u);
-            let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
-            let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
-            let mut d2 = 0.0;
-            for c in 0..width {
-                let v = h00 * rows[a][c]
-                    + h01 * rows[b][c]
-                    + h * (h10 * slopes[a][c] + h11 * slopes[b][c]);
-                d2 += (v - rows[k][c]) * (v - rows[k][c]);
-            }
-            e2 = e2.max(d2);
+        if two {
+            hermite_worst::<7>(&rows, &slopes, &s, a, b)
+        } else {
+            hermite_worst::<5>(&rows, &slopes, &s, a, b)
         }
-        e2.sqrt()
     };
     // the last point at most at arc length `target`, strictly between `good` and `bad`
     let before = |target: f64, good: usize, bad: usize| -> Option<usize> {
@@ -183,6 +183,35 @@ pub(super) fn fit_branch(
     let pa = part(3, 2, ka)?;
     let pb = if two { Some(part(5, 2, kb)?) } else { None };
     Ok(Some((space, pa, pb)))
+}
+
+/// The largest distance, in the first `WD` coordinates, of the cubic Hermite segment between
+/// rows `a` and `b` (slopes with respect to arc length `s`) from the rows strictly between them,
+/// each at its parameter `s[k]` (the Hermite basis, de Boor, *A Practical Guide to Splines*,
+/// ch. IV).
+fn hermite_worst<const WD: usize>(
+    rows: &[[f64; W]],
+    slopes: &[[f64; W]],
+    s: &[f64],
+    a: usize,
+    b: usize,
+) -> f64 {
+    let h = s[b] - s[a];
+    let (ra, rb, ga, gb) = (&rows[a], &rows[b], &slopes[a], &slopes[b]);
+    let mut e2 = 0.0_f64;
+    for k in a + 1..b {
+        let u = (s[k] - s[a]) / h;
+        let (u2, u3) = (u * u, u * u * u);
+        let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
+        let (h01, h11) = (3.0 * u2 - 2.0 * u3, u3 - u2);
+        let mut d2 = 0.0;
+        for c in 0..WD {
+            let v = h00 * ra[c] + h01 * rb[c] + h * (h10 * ga[c] + h11 * gb[c]);
+            d2 += (v - rows[k][c]) * (v - rows[k][c]);
+        }
+        e2 = e2.max(d2);
+    }
+    e2.sqrt()
 }
 
 /// The derivative at `s[a]` of the parabola through row `a` and its two neighbours (at an end,
