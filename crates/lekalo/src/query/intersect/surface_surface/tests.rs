@@ -562,7 +562,10 @@ fn turn_angles_match_the_dot_product() {
         // the series of arc over chord against the quotient, on both sides of its threshold
         let t = 0.02 * f64::from(k) / 200.0 + 1e-3;
         let quotient = (0.5 * t) / (0.5 * t).sin();
-        assert!((super::march::arc_over_chord(t) - quotient).abs() <= 4e-16, "{t}");
+        assert!(
+            (super::march::arc_over_chord(t) - quotient).abs() <= 4e-16,
+            "{t}"
+        );
         let bound = turn_bound(&a, &b);
         assert!(
             bound >= exact * (1.0 - 1e-15) && bound <= exact * (1.0 + 1e-2) + 1e-15,
