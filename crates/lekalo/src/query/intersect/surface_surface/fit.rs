@@ -141,7 +141,8 @@ pub(super) fn fit_branch(
             }
             let target = s[a] + factor * (s[b] - s[a]);
             let next = if passed {
-                before(target, good, bad)
+                // at least the next point (a tiny last span must not hold the next one back)
+                before(target, good, bad).or((good + 1 < bad).then_some(good + 1))
             } else {
                 // below the failure: the prediction, or halfway to the last pass
                 before(target, good, bad).or_else(|| before(0.5 * (s[good] + s[b]), good, bad))
