@@ -239,14 +239,21 @@ fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
     Ok(())
 }
 
-/// The segments of the traced branches in a uniform grid of cubes, each segment listed in every
-/// cube its box widened by `cover` meets, so that whether a point lies within `cover` of a
-/// branch is decided by the segments of its own cube (the search of [`assemble`] for starting
-/// points not yet on a branch, in time independent of the branches' length).
+/// Most segments of a branch listed as one run in [`SegmentGrid`].
+const RUN: usize = 64;
+
+/// The segments of the traced branches in a uniform grid of cubes, listed by runs: consecutive
+/// segments of a branch whose box spans at most a cube (and at most [`RUN`] of them), each run
+/// listed in every cube its box widened by `cover` meets, so that whether a point lies within
+/// `cover` of a branch is decided by the runs of its own cube (the search of [`assemble`] for
+/// starting points not yet on a branch, in time independent of the branches' length; listing
+/// runs rather than single segments keeps the grid's cost a few entries per cube crossed).
 struct SegmentGrid {
     cover: f64,
     cell: f64,
-    cells: std::collections::HashMap<[i64; 3], Vec<(usize, usize)>>,
+    /// Branch, first and one past the last segment, box (minima then maxima) of each run.
+    runs: Vec<(usize, usize, usize, [f64; 6])>,
+    cells: std::collections::HashMap<[i64; 3], Vec<usize>>,
 }
 
 impl SegmentGrid {
@@ -256,6 +263,7 @@ impl SegmentGrid {
         SegmentGrid {
             cover,
             cell: cell.max(4.0 * cover),
+            runs: Vec::new(),
             cells: std::collections::HashMap::new(),
         }
     }
@@ -267,20 +275,43 @@ impl SegmentGrid {
         (x / self.cell).floor() as i64
     }
 
-    /// Lists the segments (or the single point) of branch `b`.
+    /// Lists the segments (or the single point) of branch `b`, by runs.
     fn insert(&mut self, b: usize, ps: &[[f64; 3]]) {
         let segs = ps.len().saturating_sub(1).max(1);
-        for s in 0..segs {
-            let (p, q) = (ps[s], ps[(s + 1).min(ps.len() - 1)]);
-            let lo: [i64; 3] = std::array::from_fn(|c| self.key(p[c].min(q[c]) - self.cover));
-            let hi: [i64; 3] = std::array::from_fn(|c| self.key(p[c].max(q[c]) + self.cover));
+        let mut s0 = 0;
+        while s0 < segs {
+            // the run: segments s0.. while their box spans at most a cube
+            let (mut lo, mut hi) = (ps[s0], ps[s0]);
+            let mut s1 = s0;
+            while s1 < segs && s1 - s0 < RUN {
+                let q = &ps[(s1 + 1).min(ps.len() - 1)];
+                let (l, h) = (
+                    [lo[0].min(q[0]), lo[1].min(q[1]), lo[2].min(q[2])],
+                    [hi[0].max(q[0]), hi[1].max(q[1]), hi[2].max(q[2])],
+                );
+                if s1 > s0
+                    && (h[0] - l[0] > self.cell
+                        || h[1] - l[1] > self.cell
+                        || h[2] - l[2] > self.cell)
+                {
+                    break;
+                }
+                (lo, hi) = (l, h);
+                s1 += 1;
+            }
+            let bx = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
+            let run = self.runs.len();
+            self.runs.push((b, s0, s1, bx));
+            let lo: [i64; 3] = std::array::from_fn(|c| self.key(bx[c] - self.cover));
+            let hi: [i64; 3] = std::array::from_fn(|c| self.key(bx[3 + c] + self.cover));
             for i in lo[0]..=hi[0] {
                 for j in lo[1]..=hi[1] {
                     for k in lo[2]..=hi[2] {
-                        self.cells.entry([i, j, k]).or_default().push((b, s));
+                        self.cells.entry([i, j, k]).or_default().push(run);
                     }
                 }
             }
+            s0 = s1;
         }
     }
 
@@ -288,10 +319,15 @@ impl SegmentGrid {
     fn covers(&self, p: &[f64; 3], traced: &[Traced]) -> bool {
         let key = [self.key(p[0]), self.key(p[1]), self.key(p[2])];
         self.cells.get(&key).is_some_and(|list| {
-            list.iter().any(|&(b, s)| {
-                let ps = &traced[b].ps;
+            list.iter().any(|&r| {
+                let (b, s0, s1, bx) = &self.runs[r];
+                if (0..3).any(|c| p[c] < bx[c] - self.cover || p[c] > bx[3 + c] + self.cover) {
+                    return false;
+                }
+                let ps = &traced[*b].ps;
                 let n = ps.len();
-                segment_distance3(p, &ps[s], &ps[(s + 1).min(n - 1)]) <= self.cover
+                (*s0..*s1)
+                    .any(|s| segment_distance3(p, &ps[s], &ps[(s + 1).min(n - 1)]) <= self.cover)
             })
         })
     }

@@ -47,39 +47,41 @@ pub(super) trait System: Sync {
 /// ([`patch_first_order`]); higher degrees by `QuerySurface::eval_patch`.
 const STACK_DEGREE: usize = 7;
 
-/// Value and first derivative of the Bézier curve of `n + 1` points of `HD ≤ 4` scalars
-/// (`n ≤ STACK_DEGREE`) at `t`: de Casteljau down to two points `b₀, b₁`, the value
-/// `(1 − t) b₀ + t b₁`, the derivative `n (b₁ − b₀)` (P&T §1.4, eq. 1.9). The point size is a
-/// constant so that every copy is a fixed-size move, not a call to `memcpy`.
-fn bezier_first<const HD: usize>(ctrl: &[f64], t: f64) -> ([f64; HD], [f64; HD]) {
-    let n = ctrl.len() / HD - 1;
-    let mut b = [[0.0; HD]; STACK_DEGREE + 1];
-    for (row, c) in b.iter_mut().zip(ctrl.chunks_exact(HD)) {
-        row.copy_from_slice(c);
-    }
-    if n == 0 {
-        return (b[0], [0.0; HD]);
-    }
+/// The Bernstein polynomials `Bᵢⁿ(t)`, `i = 0..=n` (`n ≤ STACK_DEGREE`), and their derivatives
+/// `n (Bᵢ₋₁ⁿ⁻¹(t) − Bᵢⁿ⁻¹(t))` (P&T §1.3, eqs. 1.7 and 1.9): the triangle
+/// `Bⱼˡ = (1 − t) Bⱼˡ⁻¹ + t Bⱼ₋₁ˡ⁻¹` of positive terms on `[0, 1]`, computed once per direction
+/// of a patch and shared by all its control points.
+#[inline(always)]
+fn bernstein_first(n: usize, t: f64) -> ([f64; STACK_DEGREE + 1], [f64; STACK_DEGREE + 1]) {
+    let mut b = [0.0; STACK_DEGREE + 1];
+    let mut d = [0.0; STACK_DEGREE + 1];
+    b[0] = 1.0;
     let s = 1.0 - t;
-    for level in 0..n - 1 {
-        for i in 0..n - level {
-            for d in 0..HD {
-                b[i][d] = s * b[i][d] + t * b[i + 1][d];
+    for level in 1..=n {
+        if level == n {
+            // b holds degree n − 1 here
+            let nf = n as f64;
+            for i in 0..=n {
+                let lo = if i > 0 { b[i - 1] } else { 0.0 };
+                let hi = if i < n { b[i] } else { 0.0 };
+                d[i] = nf * (lo - hi);
             }
         }
+        let mut prev = 0.0;
+        for bj in b.iter_mut().take(level + 1) {
+            let cur = *bj;
+            *bj = s * cur + t * prev;
+            prev = cur;
+        }
     }
-    let (mut val, mut der) = ([0.0; HD], [0.0; HD]);
-    for d in 0..HD {
-        val[d] = s * b[0][d] + t * b[1][d];
-        der[d] = n as f64 * (b[1][d] - b[0][d]);
-    }
-    (val, der)
+    (b, d)
 }
 
 /// Normalised point and local first derivatives of a (homogeneous, `hd` scalars a point) Bézier
-/// patch net of degrees `(p, q) ≤ STACK_DEGREE` at local `(u, v)`, without allocating: every
-/// row's value and `v` derivative, then the `u` curves through them (P&T §3.4), then the
-/// quotient rule for a rational patch (P&T eq. 4.20).
+/// patch net of degrees `(p, q) ≤ STACK_DEGREE` at local `(u, v)`, without allocating: the
+/// Bernstein polynomials of both directions and their derivatives ([`bernstein_first`]), every
+/// row's value and `v` derivative, then their combinations in `u` (the tensor product,
+/// P&T §3.4 and eq. 3.17), then the quotient rule for a rational patch (P&T eq. 4.20).
 fn patch_first_order(
     net: &[f64],
     (p, q, hd): (usize, usize, usize),
@@ -94,7 +96,9 @@ fn patch_first_order(
     }
 }
 
-/// [`patch_first_order`] for points of `HD` scalars (3: polynomial, 4: rational).
+/// [`patch_first_order`] for points of `HD` scalars (3: polynomial, 4: rational): the degrees
+/// of the planes, cylinders, spheres, tori and bicubics met most are passed as constants, so
+/// that the loops of [`tensor_first_order`] are unrolled for them.
 fn patch_first_order_n<const HD: usize>(
     net: &[f64],
     (p, q): (usize, usize),
@@ -102,17 +106,42 @@ fn patch_first_order_n<const HD: usize>(
     u: f64,
     v: f64,
 ) -> [[f64; 3]; 3] {
-    let mut rows = [0.0; (STACK_DEGREE + 1) * 4];
-    let mut rows_v = [0.0; (STACK_DEGREE + 1) * 4];
+    match (p, q) {
+        (1, 1) => tensor_first_order::<HD>(net, (1, 1), rational, u, v),
+        (2, 1) => tensor_first_order::<HD>(net, (2, 1), rational, u, v),
+        (1, 2) => tensor_first_order::<HD>(net, (1, 2), rational, u, v),
+        (2, 2) => tensor_first_order::<HD>(net, (2, 2), rational, u, v),
+        (3, 3) => tensor_first_order::<HD>(net, (3, 3), rational, u, v),
+        _ => tensor_first_order::<HD>(net, (p, q), rational, u, v),
+    }
+}
+
+/// The body of [`patch_first_order_n`], inlined into each of its cases.
+#[inline(always)]
+fn tensor_first_order<const HD: usize>(
+    net: &[f64],
+    (p, q): (usize, usize),
+    rational: bool,
+    u: f64,
+    v: f64,
+) -> [[f64; 3]; 3] {
+    let (bu, du) = bernstein_first(p, u);
+    let (bv, dv) = bernstein_first(q, v);
+    let (mut s, mut su, mut sv) = ([0.0; HD], [0.0; HD], [0.0; HD]);
     for (i, row) in net.chunks_exact((q + 1) * HD).take(p + 1).enumerate() {
-        let (a, av) = bezier_first::<HD>(row, v);
+        let (mut r, mut rv) = ([0.0; HD], [0.0; HD]);
+        for (j, c) in row.chunks_exact(HD).enumerate() {
+            for d in 0..HD {
+                r[d] += bv[j] * c[d];
+                rv[d] += dv[j] * c[d];
+            }
+        }
         for d in 0..HD {
-            rows[i * HD + d] = a[d];
-            rows_v[i * HD + d] = av[d];
+            s[d] += bu[i] * r[d];
+            su[d] += du[i] * r[d];
+            sv[d] += bu[i] * rv[d];
         }
     }
-    let (s, su) = bezier_first::<HD>(&rows[..(p + 1) * HD], u);
-    let (sv, _) = bezier_first::<HD>(&rows_v[..(p + 1) * HD], u);
     if !rational || HD < 4 {
         return [
             [s[0], s[1], s[2]],

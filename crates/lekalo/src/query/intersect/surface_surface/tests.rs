@@ -426,6 +426,154 @@ fn bad_input_is_refused() {
     ));
 }
 
+/// The nearest distance from `p` to a fitted curve: the closest of 4,096 samples a span, then
+/// golden-section refinement around it (the curve's points are a few thousandths apart per
+/// sample, so the bracket holds the nearest point).
+fn distance_to_curve(c: &crate::BSplineCurve, p: &[f64; 3], samples: &[(f64, [f64; 3])]) -> f64 {
+    let d = |x: &[f64]| (0..3).map(|k| (x[k] - p[k]).powi(2)).sum::<f64>().sqrt();
+    let (i, _) = samples
+        .iter()
+        .enumerate()
+        .map(|(i, (_, q))| (i, d(q)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap();
+    let (mut lo, mut hi) = (
+        samples[i.saturating_sub(1)].0,
+        samples[(i + 1).min(samples.len() - 1)].0,
+    );
+    let f = |t: f64| d(&c.eval(t).unwrap());
+    let g = 0.5 * (5.0_f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if f(a) <= f(b) {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    f(0.5 * (lo + hi))
+}
+
+#[test]
+fn torus_section_points_and_fitted_curves_within_the_tolerance() {
+    // the oblique section of the benchmark: the torus R = 3, r = 1 and the plane through
+    // (0, 0, 0.2) with normal (0.3, 0.1, 1): one closed loop, cut at the torus's seams
+    let f = frame([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let torus = QuerySurface::from_nurbs(
+        &NurbsSurface::torus(&f, 3.0, 1.0, (0.0, TAU), (0.0, TAU)).unwrap(),
+    )
+    .unwrap();
+    let (o, n) = ([0.0, 0.0, 0.2], [0.3, 0.1, 1.0]);
+    let nn = (0.3_f64 * 0.3 + 0.1 * 0.1 + 1.0).sqrt();
+    let b = torus.intersect_plane(&o, &n, TOL).unwrap();
+    let on_plane = |p: &[f64; 3]| (0..3).map(|k| (p[k] - o[k]) * n[k]).sum::<f64>() / nn;
+    let on_torus = |p: &[f64; 3]| (p[0].hypot(p[1]) - 3.0).hypot(p[2]) - 1.0;
+    for x in &b {
+        assert_eq!(x.kind, Contact::Crossing);
+        for p in &x.points {
+            assert!(on_plane(p).abs() <= TOL / 10.0 && on_torus(p).abs() <= TOL / 10.0);
+        }
+        // every point within the tolerance of the fitted curve in space, and the curve on
+        // the torus through its parameter curve
+        let c = x.curve.as_ref().unwrap();
+        let (lo, hi) = c.domain();
+        let m = 4096 * c.control_points().len();
+        let samples: Vec<(f64, [f64; 3])> = (0..=m)
+            .map(|i| {
+                let t = lo + (hi - lo) * i as f64 / m as f64;
+                let q = c.eval(t).unwrap();
+                (t, [q[0], q[1], q[2]])
+            })
+            .collect();
+        for p in x.points.iter().step_by(7) {
+            let d = distance_to_curve(c, p, &samples);
+            assert!(d <= TOL, "point {p:?} is {d} from the fitted curve");
+        }
+        check_fit(x, &torus, None);
+    }
+    // the pieces chain into one closed loop of the length Open CASCADE's fitted lines have
+    let total: f64 = b.iter().map(IntersectionBranch::length).sum();
+    assert!((total - 32.576_785_5).abs() <= 1e-5, "{total}");
+    let ends: Vec<[f64; 3]> = b
+        .iter()
+        .flat_map(|x| [x.points[0], x.points[x.points.len() - 1]])
+        .collect();
+    for e in &ends {
+        let partners = ends
+            .iter()
+            .filter(|f| super::super::super::pieces::dist(e, &f[..]) <= 1e-5)
+            .count();
+        assert!(partners >= 2, "an end without a partner: {e:?}");
+    }
+}
+
+#[test]
+fn the_segment_grid_agrees_with_every_segment() {
+    // a helix of 2,000 segments (runs of up to 64 segments a cube) and points scattered around
+    // it: covered exactly when within `cover` of some segment
+    let ps: Vec<[f64; 3]> = (0..2001)
+        .map(|i| {
+            let t = f64::from(i) * 0.004;
+            [t.cos(), t.sin(), 0.05 * t]
+        })
+        .collect();
+    let traced = vec![super::march::Traced {
+        xs: vec![[0.0; 4]; ps.len()],
+        ps: ps.clone(),
+        tangents: vec![None; ps.len()],
+        stops: [super::march::Stop::Boundary; 2],
+        reach: [1.0, 0.0],
+    }];
+    let cover = 1e-3;
+    let mut grid = super::SegmentGrid::new(cover, 0.1);
+    grid.insert(0, &ps);
+    let mut near = 0;
+    for k in 0..4000 {
+        let (a, b, c) = (
+            (0.618_033_988_749_895 * f64::from(k)).fract(),
+            (0.754_877_666_246_693 * f64::from(k)).fract(),
+            (0.569_840_290_998_053 * f64::from(k)).fract(),
+        );
+        let t = 8.0 * a;
+        // within a few covers of the helix, on both sides of the threshold
+        let r = 1.0 + 4.0 * cover * (b - 0.5);
+        let p = [r * t.cos(), r * t.sin(), 0.05 * t + 4.0 * cover * (c - 0.5)];
+        let brute = ps
+            .windows(2)
+            .any(|w| super::segment_distance3(&p, &w[0], &w[1]) <= cover);
+        assert_eq!(grid.covers(&p, &traced), brute, "{p:?}");
+        near += usize::from(brute);
+    }
+    assert!(near > 500 && near < 3500, "both sides tested: {near}");
+}
+
+#[test]
+fn turn_angles_match_the_dot_product() {
+    use super::march::{turn_angle, turn_bound};
+    for k in 0..200 {
+        let theta = 3.1 * f64::from(k) / 200.0 + 1e-7 * f64::from(k % 3);
+        let a = [1.0, 0.0, 0.0];
+        let b = [theta.cos(), theta.sin(), 0.0];
+        let exact = theta;
+        assert!(
+            (turn_angle(&a, &b) - exact).abs() <= 1e-14 * (1.0 + exact),
+            "{theta}"
+        );
+        // the series of arc over chord against the quotient, on both sides of its threshold
+        let t = 0.02 * f64::from(k) / 200.0 + 1e-3;
+        let quotient = (0.5 * t) / (0.5 * t).sin();
+        assert!(
+            (super::march::arc_over_chord(t) - quotient).abs() <= 4e-16,
+            "{t}"
+        );
+        let bound = turn_bound(&a, &b);
+        assert!(
+            bound >= exact * (1.0 - 1e-15) && bound <= exact * (1.0 + 1e-2) + 1e-15,
+            "{theta}"
+        );
+    }
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(12))]
     /// Every point of every branch is within the tolerance of both surfaces, for planes in
