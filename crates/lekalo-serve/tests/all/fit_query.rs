@@ -424,11 +424,11 @@ async fn fitting_with_shape_constraints_is_the_library_s() {
     // as `lekalo fit --increasing --s S`
     let v = ok(
         "/api/fit",
-        &json!({"points": pts, "smoothing": "s", "s": 0.05, "increasing": true}),
+        &json!({"points": pts, "smoothing": "s", "s": 0.1, "increasing": true}),
     )
     .await;
     let inc = ShapeConstraints::new().with(Shape::Increasing);
-    let fit = constrained_smoothing_condition(&data, 0.05, &inc).unwrap();
+    let fit = constrained_smoothing_condition(&data, 0.1, &inc).unwrap();
     let graph = Object::BSpline(fit.curve.graph().unwrap());
     assert_eq!(v["view"]["curve"], graph.to_json_value());
     assert_eq!(
