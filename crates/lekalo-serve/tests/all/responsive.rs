@@ -409,6 +409,25 @@ async fn library_errors_name_the_field_they_are_about() {
     }
 }
 
+/// Whether the only worker is free again after a fit stopped at its deadline: the small fit
+/// `small` is answered (200) within eight tries, each earlier try answered 504.
+async fn a_small_fit_is_answered(addr: std::net::SocketAddr, small: &str) {
+    let mut answers = Vec::new();
+    for _ in 0..8 {
+        let (code, text) = raw(addr, "POST", "/api/fit", small).await;
+        answers.push(code);
+        if code == 200 {
+            break;
+        }
+        assert_eq!(code, 504, "{text}");
+    }
+    assert_eq!(
+        answers.last(),
+        Some(&200),
+        "the worker stayed busy: {answers:?}"
+    );
+}
+
 /// A smoothing fit of `n` noisy samples `(x, y)` by generalised cross-validation: hundreds of
 /// GCV scores, each a pass over the points: about 10 s at 400,000 points in a test build, of
 /// which reading the request takes about 0.5 s.
@@ -461,21 +480,7 @@ async fn a_fit_past_the_deadline_is_stopped_and_its_worker_freed() {
         started.elapsed()
     );
     // the only worker stopped the slow fit: a small one is computed
-    let small = slow_fit(50);
-    let mut answers = Vec::new();
-    for _ in 0..8 {
-        let (code, text) = raw(addr, "POST", "/api/fit", &small).await;
-        answers.push(code);
-        if code == 200 {
-            break;
-        }
-        assert_eq!(code, 504, "{text}");
-    }
-    assert_eq!(
-        answers.last(),
-        Some(&200),
-        "the worker stayed busy: {answers:?}"
-    );
+    a_small_fit_is_answered(addr, &slow_fit(50)).await;
     let (code, _) = raw(addr, "GET", "/api/health", "").await;
     assert_eq!(code, 200);
 }
@@ -578,19 +583,5 @@ async fn a_shape_constrained_fit_past_the_deadline_frees_its_worker() {
     };
     let (code, text) = raw(addr, "POST", "/api/fit", &constrained(3000)).await;
     assert_eq!(code, 504, "{text}");
-    let small = constrained(40);
-    let mut answers = Vec::new();
-    for _ in 0..8 {
-        let (code, text) = raw(addr, "POST", "/api/fit", &small).await;
-        answers.push(code);
-        if code == 200 {
-            break;
-        }
-        assert_eq!(code, 504, "{text}");
-    }
-    assert_eq!(
-        answers.last(),
-        Some(&200),
-        "the worker stayed busy: {answers:?}"
-    );
+    a_small_fit_is_answered(addr, &constrained(40)).await;
 }

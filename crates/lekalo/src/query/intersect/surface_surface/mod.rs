@@ -131,7 +131,8 @@ impl QuerySurface {
     ///
     /// # Errors
     /// [`Error::Dimension`] unless both surfaces are 3-D; [`Error::InvalidArgument`] for a
-    /// tolerance that is not positive and finite or below `10⁻¹²` of the scale;
+    /// tolerance that is not positive and finite, below `10⁻¹²` of the scale or above `10⁻²` of
+    /// it;
     /// [`Error::TooLarge`] past `2²⁰` sub-patch pairs or points of a branch; errors of the fit.
     pub fn intersect_surface(
         &self,
@@ -236,8 +237,24 @@ fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
             ),
         });
     }
+    if tolerance > MAX_TOLERANCE_OF_SCALE * scale {
+        return Err(Error::InvalidArgument {
+            what: Arg::Tolerance.into(),
+            reason: format!(
+                "{tolerance} is above 1/100 of the surfaces' size {scale}: points that far off \
+                 the surfaces cannot tell one branch from another (an open crossing could close \
+                 into a loop); give at most {:e}",
+                MAX_TOLERANCE_OF_SCALE * scale
+            ),
+        });
+    }
     Ok(())
 }
+
+/// The largest tolerance of a section, as a fraction of the surfaces' size: a tolerance
+/// comparable to the distances at which branches are told apart (tangent points within 1/64 of
+/// the size are one contact) would let the marching and the chaining join what is separate.
+const MAX_TOLERANCE_OF_SCALE: f64 = 1e-2;
 
 /// Most segments of a branch listed as one run in [`SegmentGrid`].
 const RUN: usize = 64;

@@ -410,6 +410,16 @@ fn bad_input_is_refused() {
     ));
     assert!(s.intersect_surface(&s, -1.0).is_err());
     assert!(s.intersect_surface(&s, f64::NAN).is_err());
+    // a tolerance comparable to the surfaces' size cannot tell branches apart: refused, naming
+    // the largest it takes (a crossing of a plane and the sphere)
+    let p = plane([0.0, 0.0, 0.2], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 2.0);
+    for tol in [1.0, 10.0] {
+        let e = s.intersect_surface(&p, tol).unwrap_err();
+        assert_eq!(e.arg(), Some(crate::Arg::Tolerance), "{e}");
+        assert!(e.to_string().contains("give at most"), "{e}");
+        assert!(s.intersect_plane(&[0.0, 0.0, 0.2], &[0.0, 0.0, 1.0], tol).is_err());
+    }
+    assert_eq!(s.intersect_surface(&p, 1e-3).unwrap().len(), 1);
     let flat = BSplineSurface::new(
         1,
         1,
