@@ -417,7 +417,9 @@ fn bad_input_is_refused() {
         let e = s.intersect_surface(&p, tol).unwrap_err();
         assert_eq!(e.arg(), Some(crate::Arg::Tolerance), "{e}");
         assert!(e.to_string().contains("give at most"), "{e}");
-        assert!(s.intersect_plane(&[0.0, 0.0, 0.2], &[0.0, 0.0, 1.0], tol).is_err());
+        assert!(s
+            .intersect_plane(&[0.0, 0.0, 0.2], &[0.0, 0.0, 1.0], tol)
+            .is_err());
     }
     assert_eq!(s.intersect_surface(&p, 1e-3).unwrap().len(), 1);
     let flat = BSplineSurface::new(
