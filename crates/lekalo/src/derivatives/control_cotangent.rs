@@ -3,12 +3,11 @@
 //! the control points): what its two kernels share, and the kernel for degrees above
 //! [`POWER_FORM_MAX_DEGREE`].
 //!
-//! Shared: the span of every parameter through the bucket table of the pieces ([`SpanTable`],
-//! O(1) a parameter for spread-out knots, in any order, where the binary search of P&T
-//! Algorithm A2.1 costs `log2 n` unpredictable branches), the cotangent's finiteness read from
-//! the sums instead of a pass of its own (a non-finite `ḡ_i` reaches every sum it enters: its
+//! Shared by the two kernels: the parameters located in their spans and the monomorphised
+//! common orders and dimensions (`located.rs`), and the cotangent's finiteness read from the
+//! sums instead of a pass of its own (a non-finite `ḡ_i` reaches every sum it enters: its
 //! weight in the zeroth power sum is exactly 1, and in the basis kernel `N·∞` is infinite or
-//! NaN), and the monomorphised common orders and dimensions ([`common_orders`]).
+//! NaN).
 //!
 //! Kernels: per-piece power sums for degree ≤ [`POWER_FORM_MAX_DEGREE`] (`power_sums.rs`, the
 //! transpose of the power-form evaluation), P&T Algorithm A2.2 with the reciprocals of the
@@ -18,31 +17,11 @@ use crate::curve::fast_eval::{
     basis_by_reciprocals, basis_by_reciprocals_dyn, push_span_reciprocals,
 };
 use crate::curve::{BSplineCurve, POWER_FORM_MAX_DEGREE};
-use crate::error::{check_finite, Error, Result};
-use crate::tensor::SpanTable;
+use crate::error::{check_finite, Result};
 
 use super::checks::check_scalars;
+use super::located::{common_orders, Located};
 use super::power_sums::control_cotangent_by_power_sums;
-
-/// `f!(W, D)` for the common orders `W = p + 1` (degree 1 to 3) and dimensions `D` (1 to 3), with
-/// `W` and `D` literals so that the kernel is monomorphised; `$dynamic` otherwise.
-macro_rules! common_orders {
-    ($p:expr, $dim:expr, $fixed:ident, $dynamic:expr) => {
-        match ($p, $dim) {
-            (1, 1) => $fixed!(2, 1),
-            (1, 2) => $fixed!(2, 2),
-            (1, 3) => $fixed!(2, 3),
-            (2, 1) => $fixed!(3, 1),
-            (2, 2) => $fixed!(3, 2),
-            (2, 3) => $fixed!(3, 3),
-            (3, 1) => $fixed!(4, 1),
-            (3, 2) => $fixed!(4, 2),
-            (3, 3) => $fixed!(4, 3),
-            _ => $dynamic,
-        }
-    };
-}
-pub(super) use common_orders;
 
 /// `gp = Bᵀ ḡ` (`gp` zeroed by the caller, as the control points; `cotangent` `m × dim` of the
 /// right length, not yet checked finite), for `m ≥ n`: per-piece power sums for degree ≤
@@ -50,9 +29,9 @@ pub(super) use common_orders;
 /// rounding.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite cotangent (before any parameter error, as the general
-/// path); [`Error::ParameterOutOfDomain`] at the first parameter outside the domain;
-/// [`Error::TooLarge`] if the per-span tables would exceed [`crate::MAX_SCALARS`].
+/// [`crate::Error::NonFinite`] for a non-finite cotangent (before any parameter error, as the general
+/// path); [`crate::Error::ParameterOutOfDomain`] at the first parameter outside the domain;
+/// [`crate::Error::TooLarge`] if the per-span tables would exceed [`crate::MAX_SCALARS`].
 pub(super) fn control_cotangent_large(
     curve: &BSplineCurve,
     ts: &[f64],
@@ -71,45 +50,6 @@ pub(super) fn control_cotangent_large(
         check_finite("cotangent", cotangent)?;
     }
     Ok(())
-}
-
-/// The parameters and their cotangents, to be walked in their spans.
-pub(super) struct Located<'a> {
-    table: SpanTable,
-    domain: (f64, f64),
-    ts: &'a [f64],
-    cotangent: &'a [f64],
-}
-
-impl<'a> Located<'a> {
-    fn new(curve: &BSplineCurve, ts: &'a [f64], cotangent: &'a [f64]) -> Self {
-        let p = curve.degree();
-        Located {
-            table: SpanTable::new(curve.knots().as_slice(), p),
-            domain: curve.domain(),
-            ts,
-            cotangent,
-        }
-    }
-
-    /// `f(span, t_i, ḡ_i)` for every parameter in order (`ḡ_i` the `dim` numbers of parameter
-    /// `i`; `dim` a literal in the monomorphised kernels, so the slices have a known length).
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] if the cotangent is not finite, else
-    /// [`Error::ParameterOutOfDomain`], at the first parameter outside the domain.
-    #[inline(always)]
-    pub(super) fn walk(&self, dim: usize, mut f: impl FnMut(usize, f64, &[f64])) -> Result<()> {
-        let (min, max) = self.domain;
-        for (&t, g) in self.ts.iter().zip(self.cotangent.chunks_exact(dim)) {
-            if !(t >= min && t <= max) {
-                check_finite("cotangent", self.cotangent)?;
-                return Err(Error::ParameterOutOfDomain { t, min, max });
-            }
-            f(self.table.find(t), t, g);
-        }
-        Ok(())
-    }
 }
 
 /// `P̄_j = Σ_i N_{j,p}(t_i) ḡ_i` into `gp` (zeroed): the basis functions by P&T Algorithm A2.2

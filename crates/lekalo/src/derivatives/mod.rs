@@ -27,9 +27,11 @@
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
 //! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
-//!   many parameters as control points (a gradient in the control points): the span location,
-//!   the cotangent check and the monomorphised dispatch its two kernels share, and the A2.2
-//!   kernel with reciprocals precomputed a span, for degrees above the power form's;
+//!   many parameters as control points (a gradient in the control points): the choice of its
+//!   two kernels, the cotangent check, and the A2.2 kernel with reciprocals precomputed a span,
+//!   for degrees above the power form's;
+//! - `located.rs`: what the two kernels share: the parameters located in their spans by the
+//!   bucket table, and the monomorphised dispatch over common orders and dimensions;
 //! - `power_sums.rs`: the other kernel, by per-piece power sums (the transpose of the
 //!   power-form evaluation), for degree ≤ 3.
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
@@ -40,6 +42,7 @@ mod control_cotangent;
 mod curve;
 mod fitting;
 mod interpolation;
+mod located;
 mod nurbs;
 mod power_sums;
 mod slopes;

@@ -19,7 +19,7 @@ use crate::curve::BSplineCurve;
 use crate::error::Result;
 
 use super::checks::check_scalars;
-use super::control_cotangent::{common_orders, Located};
+use super::located::{common_orders, Located};
 
 /// `gp += Bᵀ ḡ` (`gp` zeroed by the caller, as the control points; `located` the parameters
 /// and the `m × dim` cotangent) by per-piece power sums, for `p ≤ 3`; whether every sum is
