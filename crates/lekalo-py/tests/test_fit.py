@@ -174,12 +174,14 @@ def test_make_splrep_meets_s_where_fitpack_crowds_knots_at_an_end():
     w = np.sqrt(w2)  # SciPy's weights multiply the residual
     core, rep = lekalo.fit_smoothing_condition(x, y, w=w2, k=5, s=s)
     ours = lekalo.make_splrep(x, y, w=w, k=5, s=s)
+    # SciPy's make_splrep knots (a fit after every knot), which lekalo.scipy places
+    refit = lekalo.make_splrep(x, y, w=w, k=5, s=s, knot_rounds="refit")
     dropin = lekalo.scipy.make_splrep(x, y, w=w, k=5, s=s)
-    assert np.array_equal(ours.knots, core.knots) and np.array_equal(dropin.t, core.knots)
-    for f in (ours(x)[:, 0], dropin(x)):
+    assert np.array_equal(ours.knots, core.knots) and np.array_equal(dropin.t, refit.knots)
+    for f, same in ((ours(x)[:, 0], core(x)[:, 0]), (dropin(x), refit(x)[:, 0])):
         rss = ((w * (y - f)) ** 2).sum()
         assert (1 - 2e-3) * s <= rss <= s * (1 + 1e-12), (rss, s)
-        assert np.allclose(f, core(x)[:, 0], rtol=0, atol=1e-12 * np.abs(y).max())
+        assert np.allclose(f, same, rtol=0, atol=1e-12 * np.abs(y).max())
     assert np.isclose(rep["weighted_rss"], ((w * (y - core(x)[:, 0])) ** 2).sum(), rtol=1e-10)
     # below the floor no function meets s: refused naming s
     with pytest.raises(lekalo.InputError, match="^s: "):
