@@ -150,8 +150,10 @@ fn merged(data: &FitData<'_>) -> Result<Option<(Vec<f64>, Points)>> {
 /// (Craven & Wahba 1979): `V(λ) = (RSS_w(λ) / (N·d)) / (1 − tr A(λ)/N)²`, with
 /// `RSS_w = Σ_k w_k |Q_k − f_λ(ū_k)|²` over the `d` coordinates and
 /// `tr A = tr((BᵀWB + λΩ)⁻¹ BᵀWB)` from the band of the inverse. With unit weights and 1-D data
-/// this is the score SciPy's `make_smoothing_spline` minimises. Where `N − tr A < 0.5` (all but
-/// interpolation, where the score is 0/0 in rounding) the score is `+∞`. O(N).
+/// this is the score SciPy's `make_smoothing_spline` minimises. Near interpolation both the
+/// numerator and the denominator vanish; where either is within rounding of zero (`N − tr A <
+/// √ε·N`, or `RSS_w < ε·TSS_w`, the weighted total sum of squares about the weighted mean) the
+/// score is `+∞` (`docs/theory/fitting.md#gcv`). O(N).
 ///
 /// # Errors
 /// As [`smoothing_spline`]; [`Error::NegativeSmoothing`] for `λ ≤ 0`.
@@ -165,9 +167,12 @@ pub fn gcv_score(data: &FitData<'_>, lambda: f64) -> Result<f64> {
     Smoother::new(data)?.gcv(lambda)
 }
 
-/// Least residual degrees of freedom `N − tr A(λ)` at which the GCV score is evaluated: closer
-/// to interpolation both its numerator and denominator vanish and rounding decides the value.
-const GCV_MIN_DOF: f64 = 0.5;
+/// Least share of `N` left to the residual degrees of freedom `N − tr A(λ)`, and square root of
+/// the least share of the data's total sum of squares left to `RSS_w(λ)`, at which the GCV score
+/// is evaluated: `√ε`. Closer to interpolation both vanish and rounding decides the score; above
+/// them each keeps about half its digits (a residual RMS of `√ε` times the data's spread is
+/// eight orders of magnitude above the rounding of the fitted values).
+const GCV_ROUNDING_SHARE: f64 = 1.490_116_119_384_765_6e-8;
 
 /// The banded pieces of the problem, assembled once for all λ (also the objective of the
 /// shape-constrained smoothing spline, `super::shape`).
@@ -189,6 +194,9 @@ pub(super) struct Smoother {
     pub(super) omega: SymBand,
     /// `BᵀW(Q − center)`, flat.
     pub(super) rhs: Vec<f64>,
+    /// `TSS_w = Σ_k w_k |Q_k − Q̄|²`, `Q̄` the weighted mean: the data's spread, the scale of
+    /// the GCV score's rounding floor.
+    spread: f64,
 }
 
 impl Smoother {
@@ -268,6 +276,15 @@ impl Smoother {
             basis.push(nb);
             weights.push(w);
         }
+        let wsum: f64 = weights.iter().sum();
+        let spread = (0..dim)
+            .map(|c| {
+                let mean = (0..n).map(|k| weights[k] * y[k * dim + c]).sum::<f64>() / wsum;
+                (0..n)
+                    .map(|k| weights[k] * (y[k * dim + c] - mean).powi(2))
+                    .sum::<f64>()
+            })
+            .sum();
         // Ω over each span [x_l, x_{l+1}]: B'' is linear, ∫ f g = h/6 (2 f0 g0 + f0 g1 + f1 g0 + 2 f1 g1)
         let mut omega = SymBand::zeros(m, 3);
         let mut ders = [0.0; 12];
@@ -304,6 +321,7 @@ impl Smoother {
             gram,
             omega,
             rhs,
+            spread,
         })
     }
 
@@ -352,9 +370,10 @@ impl Smoother {
             }
         }
         let n = self.n as f64;
-        // near interpolation (fewer than half a residual degree of freedom) the score is 0/0 in
-        // rounding: not a candidate
-        if n - tr < GCV_MIN_DOF {
+        // near interpolation the score is 0/0 in rounding: not a candidate
+        if n - tr < GCV_ROUNDING_SHARE * n
+            || rss < GCV_ROUNDING_SHARE * GCV_ROUNDING_SHARE * self.spread
+        {
             return Ok(f64::INFINITY);
         }
         let denom = 1.0 - tr / n;
@@ -632,6 +651,33 @@ mod tests {
             (form - quad).abs() < 1e-12 * quad.abs().max(1.0),
             "{form} vs {quad}"
         );
+    }
+
+    /// Data without noise: the score falls towards interpolation, where it is 0/0 only in
+    /// rounding. Eleven points of `sin` on `[0, 10]` keep finite scores down to λ = 1e-7 (N − tr A
+    /// and RSS about proportional to λ), and GCV chooses a λ whose score is no worse than any of
+    /// them: the fit all but interpolates, as SciPy's (its λ 5.9e-6 gives 0.909292 at x = 2). A
+    /// floor of half a residual degree of freedom scored λ ≤ 0.0046 `+∞` and chose a 25 % higher
+    /// score, 0.905 at x = 2.
+    #[test]
+    fn gcv_on_data_without_noise_all_but_interpolates() {
+        let x: Vec<f64> = (0..=10).map(f64::from).collect();
+        let y: Vec<f64> = x.iter().map(|t| t.sin()).collect();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let fit = smoothing_spline(&data, Lambda::Gcv).unwrap();
+        let chosen = gcv_score(&data, fit.report.lambda.unwrap()).unwrap();
+        for lam in [1e-7, 1e-6, 5.9e-6, 1e-4, 1e-3, 1e-2] {
+            let v = gcv_score(&data, lam).unwrap();
+            assert!(v.is_finite(), "λ = {lam}: score {v}");
+            assert!(
+                chosen <= v * (1.0 + 1e-6),
+                "chosen {chosen} above {v} at λ = {lam}"
+            );
+        }
+        let at2 = fit.curve.eval(2.0).unwrap()[0];
+        assert!((at2 - 2f64.sin()).abs() < 1e-5, "{at2}");
+        // interpolation itself (λ → 0) stays out: its score is rounding
+        assert_eq!(gcv_score(&data, 1e-13).unwrap(), f64::INFINITY);
     }
 
     /// Points at a repeated parameter: the same minimiser as one point at their weighted mean

@@ -206,7 +206,8 @@ def make_smoothing_spline(x: Any, y: Any, w: Any = None, lam: Any = None, *, axi
     """``scipy.interpolate.make_smoothing_spline``: the penalised cubic smoothing spline with
     knots at the data, ``lam`` given or chosen by generalised cross-validation, lekalo's
     ``make_smoothing_spline`` (with ``lam`` the same spline to rounding; the GCV ``lam`` is
-    found by lekalo's own minimiser, so it agrees to the minimiser's tolerance)."""
+    the least score of a scan over the whole range, where SciPy's bounded search can stop at
+    another local minimum: ``docs/scipy.md``)."""
     x = np.ascontiguousarray(x, dtype=float)
     y = np.asarray(y)
     axis = _normalize_axis(axis, y.ndim)
