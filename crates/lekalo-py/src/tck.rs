@@ -6,7 +6,8 @@
 //! is built, so nothing is validated or copied beyond what the computation reads.
 
 use lekalo::curve::{
-    antiderivative_coefficients_into, bspline_zeros, derivative_coefficients_into, integral_into,
+    antiderivative_coefficients_into, basis_integrals_into, bspline_zeros,
+    derivative_coefficients_into, integral_into,
 };
 use lekalo::{insert_knot_into, PointsRef};
 use numpy::{PyArray1, PyArrayMethods};
@@ -135,6 +136,30 @@ pub(crate) fn tck_integral<'py>(
     Ok(PyArray1::from_vec(py, out))
 }
 
+/// `∫_a^b N_{i,k}` for each of the `len(t) − k − 1` B-splines on the knots `t`, limits in the
+/// domain `[t_k, t_n]` (FITPACK's `fpintb`, `lekalo::curve::basis_integrals_into`).
+///
+/// >>> import numpy as np, lekalo
+/// >>> lekalo._lekalo.tck_basis_integrals(np.array([0.0, 0.0, 1.0, 2.0, 2.0]), 1, 0.0, 1.0).tolist()
+/// [0.5, 0.5, 0.0]
+#[pyfunction]
+pub(crate) fn tck_basis_integrals<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    k: IntArg,
+    a: f64,
+    b: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let k = k.count("k")?;
+    let ta = floats(t, "t")?;
+    let ts = knots(&ta)?;
+    let n = ts.len().saturating_sub(k).saturating_sub(1);
+    let mut out = vec![0.0; n];
+    py.detach(|| basis_integrals_into(ts, k, a, b, &mut out))
+        .map_err(lib_err)?;
+    Ok(PyArray1::from_vec(py, out))
+}
+
 /// The spline `(t, c, k)` with `x` inserted `m` times (Boehm's insertion at any multiplicity, as
 /// FITPACK's `fpinst`; with `periodic`, the periodic extension kept): `(knots, coefficients)`,
 /// the coefficients `(len(knots), dim)` in SciPy's layout (zero rows after the
@@ -213,6 +238,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tck_derivative, m)?)?;
     m.add_function(wrap_pyfunction!(tck_antiderivative, m)?)?;
     m.add_function(wrap_pyfunction!(tck_integral, m)?)?;
+    m.add_function(wrap_pyfunction!(tck_basis_integrals, m)?)?;
     m.add_function(wrap_pyfunction!(tck_insert, m)?)?;
     m.add_function(wrap_pyfunction!(tck_zeros, m)?)?;
     Ok(())

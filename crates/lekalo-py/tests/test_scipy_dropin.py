@@ -810,3 +810,33 @@ def test_splrep_with_wider_end_knots_is_fitpacks(t):
     tb, cb, _ = ls.splrep(x, y, xb=-1.0, xe=5.0, t=t)
     np.testing.assert_allclose(tb, ta, atol=1e-15)
     np.testing.assert_allclose(cb, ca, atol=1e-10 * np.abs(ca).max())
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [dict(s=0), dict(s=0.5), dict(s=100), dict(t=[3, 6]), dict(task=-1, t=[3, 6]),
+     dict(s=0.5, per=1), dict(s=0, per=1), dict(w=np.full(21, 2.0), s=0.5)],
+)
+def test_splrep_full_output_reports_fitpacks_fp_ier_and_message(kw):
+    # interpolation (-1), the least-squares polynomial (-2), the smoothing condition and least
+    # squares on given knots (0): FITPACK's residual, code and words
+    x = np.linspace(0, 10, 21)
+    y = np.cos(x)
+    _, fpa, iera, msga = si.splrep(x, y, full_output=True, **kw)
+    _, fpb, ierb, msgb = ls.splrep(x, y, full_output=True, **kw)
+    assert (ierb, msgb) == (iera, msga)
+    # the smoothing condition meets s within FITPACK's 0.001 s, not at FITPACK's bits
+    assert fpb == pytest.approx(fpa, rel=1e-3 if kw.get("s") else 1e-12, abs=1e-15)
+
+
+@pytest.mark.parametrize("a, b", [(0.0, 3.0), (-1.0, 30.0), (3.0, 0.0), (2.2, 7.7)])
+def test_splint_full_output_gives_the_integrals_of_the_b_splines(a, b):
+    x = np.linspace(0, 10, 21)
+    tck = si.splrep(x, np.cos(x))
+    n = len(tck[0]) - tck[2] - 1
+    va, wa = si.splint(a, b, tck, full_output=True)
+    vb, wb = ls.splint(a, b, tck, full_output=True)
+    assert vb == pytest.approx(va, abs=1e-14)
+    # FITPACK leaves the last k + 1 entries unset; lekalo's are zero
+    np.testing.assert_allclose(wb[:n], wa[:n], rtol=0, atol=1e-15)
+    assert wb.shape == (len(tck[0]),) and not wb[n:].any()

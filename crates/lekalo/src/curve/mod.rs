@@ -57,4 +57,7 @@ pub use nurbs::NurbsCurve;
 pub use periodic_insertion::{insert_knot_into, insert_knot_periodic, insert_knot_raw};
 pub use power_form::POWER_FORM_CONTINUITY_RTOL;
 pub use roots::bspline_zeros;
-pub use tck::{antiderivative_coefficients_into, derivative_coefficients_into, integral_into};
+pub use tck::{
+    antiderivative_coefficients_into, basis_integrals_into, derivative_coefficients_into,
+    integral_into,
+};

@@ -16,31 +16,40 @@ use crate::Arg;
 /// The checks shared by the functions of this module: `t.len() ≥ 2k + 2`, `dim ≥ 1`, at least
 /// `n = t.len() − k − 1` coefficient rows in `c`; returns `n`.
 fn coefficient_count(t: &[f64], k: usize, c: &[f64], dim: usize) -> Result<usize> {
-    let invalid = |reason: String| Error::InvalidArgument {
-        what: "spline (knots, degree, coefficients)".into(),
-        reason,
-    };
     if dim == 0 {
-        return Err(invalid(
+        return Err(invalid_spline(
             "the coefficients have no column (dimension 0)".into(),
         ));
     }
-    let need = k.checked_mul(2).and_then(|v| v.checked_add(2));
-    if need.is_none_or(|need| t.len() < need) {
-        return Err(invalid(format!(
-            "{} knots for degree {k}: at least 2k + 2 are needed",
-            t.len()
-        )));
-    }
-    let n = t.len() - k - 1;
+    let n = basis_count(t, k)?;
     if c.len() < n * dim {
-        return Err(invalid(format!(
+        return Err(invalid_spline(format!(
             "{} coefficient rows for {} knots of degree {k}: at least {n} are needed",
             c.len() / dim,
             t.len()
         )));
     }
     Ok(n)
+}
+
+/// The number `n = t.len() − k − 1` of B-splines of degree `k` on the knots `t`, which must be
+/// at least `2k + 2`.
+fn basis_count(t: &[f64], k: usize) -> Result<usize> {
+    let need = k.checked_mul(2).and_then(|v| v.checked_add(2));
+    if need.is_none_or(|need| t.len() < need) {
+        return Err(invalid_spline(format!(
+            "{} knots for degree {k}: at least 2k + 2 are needed",
+            t.len()
+        )));
+    }
+    Ok(t.len() - k - 1)
+}
+
+fn invalid_spline(reason: String) -> Error {
+    Error::InvalidArgument {
+        what: "spline (knots, degree, coefficients)".into(),
+        reason,
+    }
 }
 
 /// A buffer of the wrong size: the caller's mistake, named.
@@ -448,6 +457,91 @@ pub fn integral_into(
     check_finite("integral (overflow: rescale the coefficients)", out)
 }
 
+/// The integrals `∫_a^b N_{i,k}(x) dx` of the `n = t.len() − k − 1` B-splines of degree `k`
+/// on the knots `t` into `out` (FITPACK's `fpintb`, what SciPy's `splint(..., full_output=1)`
+/// returns), for limits in the domain `[t_k, t_n]`: with `Ñ_l` the B-splines of degree `k + 1`
+/// on the knots `t̃` of [`antiderivative_coefficients_into`] (each end knot once more),
+/// `∫_{t_0}^x N_{i,k} = (t_{i+k+1} − t_i)/(k + 1) · Σ_{l>i} Ñ_l(x)` (de Boor, *A Practical
+/// Guide to Splines*, ch. X, eq. (31) for the unit coefficient vector `e_i`), and inside the
+/// domain the tail sums are 1 left of the window of `x` and 0 right of it. `a > b` gives the
+/// negatives. O(n + k²).
+///
+/// ```
+/// use lekalo::curve::basis_integrals_into;
+/// // the quadratic B-splines on [0, 1] (Bernstein): each integrates to 1/3
+/// let t = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+/// let mut out = [0.0; 3];
+/// basis_integrals_into(&t, 2, 0.0, 1.0, &mut out)?;
+/// assert!(out.iter().all(|v| (v - 1.0 / 3.0).abs() < 1e-15));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for fewer than `2k + 2` knots or an empty domain;
+/// [`Error::Degree`] if `k + 1` exceeds [`crate::MAX_DEGREE`];
+/// [`Error::ParameterOutOfDomain`] for a limit outside the domain or NaN;
+/// [`Error::LengthMismatch`] for `out` not of `n` numbers.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty domain
+pub fn basis_integrals_into(t: &[f64], k: usize, a: f64, b: f64, out: &mut [f64]) -> Result<()> {
+    let n = basis_count(t, k)?;
+    check_degree_bound(k.saturating_add(1))?;
+    if out.len() != n {
+        return Err(buffer_size(n, out.len()));
+    }
+    if !(t[k] < t[n]) {
+        return Err(Error::InvalidArgument {
+            what: "spline (knots, degree)".into(),
+            reason: format!("the domain [t_k, t_n] = [{}, {}] is empty", t[k], t[n]),
+        });
+    }
+    for x in [a, b] {
+        if !(x >= t[k] && x <= t[n]) {
+            return Err(Error::ParameterOutOfDomain {
+                t: x,
+                min: t[k],
+                max: t[n],
+            });
+        }
+    }
+    let (a, b, sign) = if b < a { (b, a, -1.0) } else { (a, b, 1.0) };
+    let q = k + 1;
+    let ext = |i: usize| t[i.saturating_sub(1).min(t.len() - 1)];
+    let mut scratch = BasisScratch::new(q);
+    let mut window = vec![0.0; 2 * q];
+    // the span σ of x in t̃ and the tails Σ_{l ≥ σ−q+j} Ñ_l(x), j = 0 ..= q (tail[q + 1] = 0)
+    let mut tails_at = |x: f64| {
+        let sigma = span_of(t, k, n, x) + 1;
+        for (i, w) in window.iter_mut().enumerate() {
+            *w = ext(sigma + 1 + i - q);
+        }
+        let mut basis = vec![0.0; q + 1];
+        basis_funs_into(&window, q, q - 1, x, &mut scratch, &mut basis);
+        let mut tail = vec![0.0; q + 2];
+        for j in (0..=q).rev() {
+            tail[j] = tail[j + 1] + basis[j];
+        }
+        (sigma, tail)
+    };
+    let (sa, ta) = tails_at(a);
+    let (sb, tb) = tails_at(b);
+    // Σ_{l>i} Ñ_l(x): 1 for i < σ − q, 0 for i ≥ σ, the window's tail between
+    let tail = |i: usize, sigma: usize, tails: &[f64]| {
+        if i + q < sigma {
+            1.0
+        } else if i >= sigma {
+            0.0
+        } else {
+            tails[i + 1 + q - sigma]
+        }
+    };
+    let scale = 1.0 / (q as f64);
+    for (i, o) in out.iter_mut().enumerate() {
+        let w = (t[i + q] - t[i]) * scale;
+        *o = sign * w * (tail(i, sb, &tb) - tail(i, sa, &ta));
+    }
+    Ok(())
+}
+
 /// `acc += Σ_{j=from}^{to−1} c_j (t_{j+k+1} − t_j) · scale`; one column in four independent
 /// sums.
 #[allow(clippy::too_many_arguments)]
@@ -569,6 +663,48 @@ mod tests {
                 prop_assert!((o - w).abs() <= 1e-12 * scale, "{} against {}", o, w);
             }
         }
+
+        /// Each basis integral is the integral of the spline with that unit coefficient vector
+        /// (one column a B-spline: the identity as coefficients), and inside the domain they add
+        /// up to `b − a` (the B-splines sum to one).
+        #[test]
+        fn basis_integrals_are_the_integrals_of_unit_coefficients(k in 0usize..6, extra in 0usize..12, seed in any::<u64>(), a in 0.0f64..10.0, b in 0.0f64..10.0) {
+            let n = k + 1 + extra;
+            let (t, _) = spline(k, n, 1, seed);
+            let mut out = vec![f64::NAN; n];
+            basis_integrals_into(&t, k, a, b, &mut out).unwrap();
+            let identity: Vec<f64> = (0..n * n).map(|i| f64::from(u8::from(i / n == i % n))).collect();
+            let mut want = vec![f64::NAN; n];
+            integral_into(&t, k, &identity, n, a, b, &mut want).unwrap();
+            for (o, w) in out.iter().zip(&want) {
+                prop_assert!((o - w).abs() <= 1e-14 * 10.0, "{} against {}", o, w);
+            }
+            let total: f64 = out.iter().sum();
+            prop_assert!((total - (b - a)).abs() <= 1e-13 * 10.0, "sum {} for b − a = {}", total, b - a);
+        }
+    }
+
+    #[test]
+    fn basis_integrals_refuse_limits_outside_the_domain() {
+        let t = [0.0, 0.0, 1.0, 2.0, 2.0];
+        let mut out = [0.0; 3];
+        for x in [-0.5, 2.5, f64::NAN] {
+            assert!(matches!(
+                basis_integrals_into(&t, 1, x, 1.0, &mut out),
+                Err(Error::ParameterOutOfDomain { .. })
+            ));
+        }
+        assert!(matches!(
+            basis_integrals_into(&t, 1, 0.0, 1.0, &mut out[..2]),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(matches!(
+            basis_integrals_into(&t[..3], 1, 0.0, 1.0, &mut out),
+            Err(Error::InvalidArgument { .. })
+        ));
+        // the hat functions on 0, 1, 2: ∫_0^1 gives 1/2, 1/2, 0; reversed limits the negatives
+        basis_integrals_into(&t, 1, 1.0, 0.0, &mut out).unwrap();
+        assert_eq!(out, [-0.5, -0.5, 0.0]);
     }
 
     #[test]

@@ -78,8 +78,26 @@ def splrep(
         spl = BSpline.construct_fast(np.ascontiguousarray(curve.knots), np.ascontiguousarray(curve.control[:, 0]), k)
     tck = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), spl.k)
     if full_output:
-        return tck, 0.0, 0, ""
+        # FITPACK's fp (the weighted residual sum of squares), ier and message: -1 for the
+        # interpolating spline (fp = 0 as FITPACK reports it), -2 where the smoothing condition
+        # kept the least-squares polynomial (no interior knot), 0 otherwise
+        if s == 0 and t is None:
+            return tck, 0.0, -1, _CURFIT_MESSAGES[-1]
+        rows = slice(None, -1) if per else slice(None)
+        ww = 1.0 if w is None else w[rows]
+        fp = float(np.sum((ww * (spl(x[rows]) - y[rows])) ** 2))
+        ier = -2 if t is None and not per and spl.t.shape[0] == 2 * k + 2 else 0
+        return tck, fp, ier, _CURFIT_MESSAGES[ier]
     return tck
+
+
+# FITPACK's curfit messages as SciPy's splrep words them
+_CURFIT_MESSAGES = {
+    0: "The spline has a residual sum of squares fp such that abs(fp-s)/s<=0.001",
+    -1: "The spline is an interpolating spline (fp=0)",
+    -2: "The spline is weighted least-squares polynomial of degree k.\n"
+    "fp gives the upper bound fp0 for the smoothing factor s",
+}
 
 
 def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
@@ -163,7 +181,14 @@ def splint(a: float, b: float, tck: Any, full_output: int = 0):
     val = BSpline.construct_fast(t, c, k, extrapolate=False).integrate(a, b, extrapolate=False)
     val = float(val)
     if full_output:
-        return val, None
+        # FITPACK's wrk: the integrals of the B-splines over [a, b] clipped to the base interval
+        # (lekalo's basis_integrals_into, FITPACK's fpintb); the last k + 1 entries, which
+        # FITPACK leaves unset, are zero
+        n = t.shape[0] - k - 1
+        lo, hi = t[k], t[n]
+        wrk = np.zeros(t.shape[0])
+        wrk[:n] = _lekalo.tck_basis_integrals(np.ascontiguousarray(t), k, min(max(a, lo), hi), min(max(b, lo), hi))
+        return val, wrk
     return val
 
 
