@@ -14,6 +14,9 @@
 //!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
 //!   basis matrix, what an automatic-differentiation framework needs to build its own linear
 //!   map).
+//! - `borrowed.rs`: [`BorrowedCurve`], the values, JVP and VJP of `curve.rs` for a few
+//!   parameters on borrowed knots and control points, reading and checking only the spans used
+//!   (no O(n) copy or validation a call).
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
@@ -37,6 +40,7 @@
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
+mod borrowed;
 mod checks;
 mod control_cotangent;
 mod curve;
@@ -51,6 +55,7 @@ mod tensor;
 #[cfg(test)]
 mod tests;
 
+pub use borrowed::BorrowedCurve;
 pub use curve::CurveLinearization;
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
 pub use interpolation::InterpolationMap;
