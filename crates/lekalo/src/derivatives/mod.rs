@@ -23,6 +23,9 @@
 //! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
 //!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
 //!   factorisation).
+//! - `interpolant.rs`: [`Interpolant`], interpolation as a function of the data and of the
+//!   parameters, with the JVP and VJP of both (`interpolation.rs`'s solves and the
+//!   interpolant's derivative at the parameters).
 //! - `fitting.rs`: [`LeastSquaresMap`] and [`SmoothingMap`], the derivatives of the
 //!   least-squares fit on given knots and parameters and of the smoothing spline with a given
 //!   `λ` with respect to the data (a sparse product and a solve with the fit's banded
@@ -45,6 +48,7 @@ mod checks;
 mod control_cotangent;
 mod curve;
 mod fitting;
+mod interpolant;
 mod interpolation;
 mod located;
 mod nurbs;
@@ -58,6 +62,7 @@ mod tests;
 pub use borrowed::BorrowedCurve;
 pub use curve::CurveLinearization;
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
+pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
 pub use surface::SurfaceLinearization;
