@@ -247,11 +247,55 @@ def test_interpolation_refuses_what_it_cannot_do():
     bunched = np.r_[x[:3] * 0.1, x[3:]]
     bunched[3:6] = [0.03, 0.04, 0.05]
     bunched = np.sort(bunched)
-    with pytest.raises(jax.errors.JaxRuntimeError, match="Schoenberg"):
+    with pytest.raises(RUNTIME_ERRORS, match="Schoenberg"):
         interpolate(q, bunched, t).block_until_ready()
     jax.config.update("jax_enable_x64", False)
     with pytest.raises(lekalo.InputError, match="jax_enable_x64"):
         interpolate(q, x, t)
+
+
+def test_interpolation_runs_as_ffi_targets_and_bad_data_gives_lekalos_message():
+    q, x, t = interpolation_case()
+    f = lambda a, b: interpolate(a, b, t)  # noqa: E731
+    loss = lambda a, b: jnp.sum(f(a, b) ** 2)  # noqa: E731
+    for g in (f, jax.grad(loss, argnums=(0, 1)), jax.jacfwd(loss, argnums=(0, 1))):
+        text = jax.jit(g).lower(q, x).as_text()
+        assert "lekalo_interpolate" in text and "callback" not in text
+    nan_q = q.copy()
+    nan_q[4, 1] = np.nan
+    nan_x = x.copy()
+    nan_x[3] = np.nan
+    for a, b, message in ((nan_q, x, "must be finite"), (q, nan_x, r"parameters\[3\] is NaN")):
+        for call in (f, jax.jit(f), jax.jit(jax.grad(loss, argnums=(0, 1))), jax.jacfwd(loss, argnums=1)):
+            with pytest.raises(RUNTIME_ERRORS, match=message):
+                jax.block_until_ready(call(a, b))
+        batched = jax.jit(jax.vmap(f))
+        with pytest.raises(RUNTIME_ERRORS, match=message):
+            jax.block_until_ready(batched(np.stack([q, a]), np.stack([x, b])))
+    # unsorted parameters, knots that are not sorted: lekalo's messages
+    with pytest.raises(RUNTIME_ERRORS, match="lekalo.jax.interpolate"):
+        jax.block_until_ready(f(q, x[::-1].copy()))
+    bad_t = t.copy()
+    bad_t[5] = 0.9
+    with pytest.raises(RUNTIME_ERRORS, match="non-decreasing"):
+        jax.block_until_ready(interpolate(q, x, bad_t))
+    # empty arrays and a zero dimension (XLA would skip the call): refused before it
+    with pytest.raises(lekalo.InputError, match=r"shape \(0, 2\) are empty"):
+        interpolate(np.zeros((0, 2)), np.zeros(0), np.zeros(4))
+    with pytest.raises(lekalo.InputError, match="at least 4 points of at least one coordinate"):
+        jax.jit(lambda a: interpolate(a, x, t))(np.zeros((9, 0)))
+    # too few points for the degree: lekalo's message from the target
+    with pytest.raises(RUNTIME_ERRORS, match="lekalo.jax.interpolate"):
+        jax.block_until_ready(interpolate(q[:2], x[:2], np.r_[[0.0] * 4, [1.0] * 2]))
+    # wrong dtypes: integers are converted, anything else is refused before the call
+    got = interpolate(np.round(q * 4).astype(np.int32), x, t)
+    assert np.array_equal(np.asarray(got), plain_interpolate(np.round(q * 4), x, t))
+    with pytest.raises(lekalo.InputError, match="real numbers"):
+        interpolate(q.astype(np.complex128), x, t)
+    with pytest.raises(lekalo.InputError, match=r"\(m, dim\) or \(m,\)"):
+        interpolate(q[None], x, t)
+    # the process lives on, and the next call works
+    assert np.array_equal(np.asarray(jax.jit(f)(q, x)), plain_interpolate(q, x, t))
 
 
 def test_unsupported_transformations_say_so():

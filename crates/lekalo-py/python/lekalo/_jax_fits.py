@@ -1,7 +1,9 @@
 """Control points from data as JAX functions: ``interpolate``, ``fit_least_squares`` and
 ``fit_smoothing`` of ``lekalo.jax``, differentiable with respect to the data (and the
 interpolation's parameters) by the library's linearisations and adjoint solves with the same
-banded factorisation (``docs/theory/derivatives.md``)."""
+banded factorisation (``docs/theory/derivatives.md``). ``interpolate`` runs as lekalo's XLA FFI
+targets (values, JVP and VJP compiled into the program); the fits call lekalo through
+``jax.pure_callback``."""
 
 from __future__ import annotations
 
@@ -13,13 +15,11 @@ import numpy as np
 from jax.custom_derivatives import SymbolicZero
 
 from . import _lekalo
+from ._jax_ffi import Kernel
 from ._lekalo import InputError
 from ._jax_support import (
-    _CURVE_KEYS,
     _callback,
-    _curve_lin_shapes,
     _degree,
-    _fields_cb,
     _first_order_only,
     _float64,
     _linearized,
@@ -33,78 +33,13 @@ from ._jax_support import (
 # -- interpolation -------------------------------------------------------------------------------
 
 
-def _interp_solve_cb(k, params, t, b):
-    def one(x, kn, v):
-        return (np.asarray(_lekalo.interpolation_jvp(k, kn, x, v)),)
-
-    return _looped(one, (1, 1, 2), params, t, b)[0]
+def _interp_out_shape(res):
+    """The control points' shape from the residuals ``(t, points, params)``: the points'."""
+    return res[1].shape
 
 
-def _interp_solve_transposed_cb(k, params, t, g):
-    def one(x, kn, v):
-        return (np.asarray(_lekalo.interpolation_vjp(k, kn, x, v)),)
-
-    return _looped(one, (1, 1, 2), params, t, g)[0]
-
-
-def _curve_linearize_cb(degree, *arrays):
-    """The curve's linearisation (``lekalo.bspline_curve_linearize``) by host callback: the
-    interpolation's JVP rule reads ``C'`` and the collocation rows from it."""
-    return _fields_cb(_lekalo.bspline_curve_linearize, (degree,), (1, 2, 1), _CURVE_KEYS, *arrays)
-
-
-def _collocation_solve(k, params, t, first, basis, b):
-    """``A⁻¹ b`` for the collocation matrix ``A[r, i] = N_{i,k}(params[r])`` (rows ``first``,
-    ``basis``) as a ``jax.lax.custom_linear_solve``: the solve is lekalo's
-    ``interpolation_jvp``, the transposed solve (reverse mode) its ``interpolation_vjp``, both
-    with the one banded factorisation; ``A`` itself (a gather, for JAX's own bookkeeping) is
-    never inverted by JAX."""
-    rows = first[:, None] + jnp.arange(basis.shape[1])
-
-    def matvec(x):
-        return jnp.einsum("mk,mkd->md", basis, x[rows])
-
-    def solve(_, rhs):
-        return _callback(partial(_interp_solve_cb, k), _struct(rhs.shape), params, t, rhs)
-
-    def solve_transposed(_, rhs):
-        cb = partial(_interp_solve_transposed_cb, k)
-        return _callback(cb, _struct(rhs.shape), params, t, rhs)
-
-    return jax.lax.custom_linear_solve(matvec, b, solve, solve_transposed)
-
-
-@partial(jax.custom_jvp, nondiff_argnums=(0,))
-def _interp(k, points, params, t):
-    return _callback(partial(_interp_solve_cb, k), _struct(points.shape), params, t, points)
-
-
-@partial(_interp.defjvp, symbolic_zeros=True)
-def _interp_jvp(k, primals, tangents):
-    points, params, t = primals
-    dq, dx, dt = tangents
-    name = "interpolate"
-    _no_knot_tangent(name, dt)
-    guard = partial(_first_order_only, name)
-    ctrl = _interp(k, guard(points), guard(params), guard(t))
-    if isinstance(dq, SymbolicZero) and isinstance(dx, SymbolicZero):
-        return ctrl, jnp.zeros_like(ctrl)
-    m, dim = points.shape
-    # the interpolant's linearisation at its own parameters: the rows of A and C'(params)
-    _, slopes, first, basis = _callback(
-        partial(_curve_linearize_cb, k),
-        _curve_lin_shapes(m, dim, k + 1),
-        guard(t),
-        ctrl,
-        guard(params),
-    )
-    # A(x) P = Q, so A Ṗ = Q̇ - Ȧ P = Q̇ - C'(x) ẋ
-    rhs = jnp.zeros((m, dim), jnp.float64)
-    if not isinstance(dq, SymbolicZero):
-        rhs = rhs + dq
-    if not isinstance(dx, SymbolicZero):
-        rhs = rhs - slopes * dx[:, None]
-    return ctrl, _collocation_solve(k, guard(params), guard(t), first, basis, rhs)
+# values, JVP and VJP as the FFI targets ``lekalo_interpolate_*`` (``xla_ffi/interpolate.rs``)
+_INTERP = Kernel("interpolate", "lekalo_interpolate", ("data", "parameter"), _interp_out_shape)
 
 
 def _points_at_params(name, k, points, params, t):
@@ -135,11 +70,12 @@ def interpolate(points, params, t, k=3):
     ``(m,)``).
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``points`` and ``params``: ``Ṗ = A⁻¹ (Q̇ - C'(params) ẋ)``, the solve being
-    lekalo's ``interpolation_jvp`` and, in reverse mode, the adjoint solve
-    ``interpolation_vjp`` (a ``jax.lax.custom_linear_solve``), ``C'`` the interpolant's
-    derivative (``docs/theory/derivatives.md``, "Interpolation"). At a parameter on an interior
-    knot where ``C'`` jumps (a knot of multiplicity ``k`` or more), the right-hand derivative is
+    respect to ``points`` and ``params``: ``Ṗ = A⁻¹ (Q̇ - C'(params) ẋ)`` and, in reverse mode,
+    ``Q̄ = A⁻ᵀ P̄``, ``x̄_r = -C'(params_r) · Q̄_r`` (the adjoint solve with the same banded
+    factors), ``C'`` the interpolant's derivative (``lekalo::derivatives::Interpolant``,
+    ``docs/theory/derivatives.md``, "Interpolation"). Values, JVP and VJP are lekalo's XLA FFI
+    targets, compiled into the program (no host callback). At a parameter on an interior knot
+    where ``C'`` jumps (a knot of multiplicity ``k`` or more), the right-hand derivative is
     used. ``t`` and ``k`` are constants. The parameters must satisfy the Schoenberg–Whitney
     condition (``t[r] < params[r] < t[r + k + 1]``, ends excepted); otherwise lekalo's error
     reaches the caller as ``jax.errors.JaxRuntimeError``.
@@ -152,7 +88,13 @@ def interpolate(points, params, t, k=3):
             f"lekalo.jax.{name}: {m} points of degree {k} need {m + k + 1} knots (points + "
             f"degree + 1: as many control points as points), got t of shape {t.shape}"
         )
-    out = _interp(k, q, params, t)
+    if q.size == 0:
+        # XLA skips a custom call with an empty result, so lekalo would never see this call
+        raise InputError(
+            f"lekalo.jax.{name}: points of shape {q.shape} are empty; interpolation of degree "
+            f"{k} needs at least {k + 1} points of at least one coordinate"
+        )
+    out = _INTERP((("degree", k),), (t,), (q, params))
     return out[:, 0] if scalar else out
 
 

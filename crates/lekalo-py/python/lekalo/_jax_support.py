@@ -103,18 +103,3 @@ def _linearized(name, cb, shapes, *args):
     a second derivative of ``lekalo.jax.{name}`` raises."""
     guard = partial(_first_order_only, name)
     return _callback(cb, shapes, *(guard(a) for a in args))
-
-
-def _fields_cb(kernel, static, core_ndims, keys, *arrays):
-    """The entries ``keys`` of the dict ``kernel(*static, *element)`` returns (a
-    linearisation), each batch element of ``arrays`` in turn."""
-    return _looped(lambda *a: tuple(kernel(*static, *a)[k] for k in keys), core_ndims, *arrays)
-
-
-_CURVE_KEYS = ("values", "derivatives", "first", "basis")
-
-
-def _curve_lin_shapes(m, dim, width):
-    """The shapes of a curve's linearisation at ``m`` parameters: values and derivatives
-    ``(m, dim)``, first indices ``(m,)``, basis ``(m, width)``."""
-    return (_struct((m, dim)), _struct((m, dim)), _struct((m,), jnp.int64), _struct((m, width)))

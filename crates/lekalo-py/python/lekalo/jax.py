@@ -25,15 +25,20 @@ custom calls (FFI targets written against XLA's C ABI in the native module,
 reference de Boor evaluation for small batches and the fast evaluator of
 ``lekalo.BSplineCurve.__call__`` / ``lekalo.NurbsCurve.__call__`` from 16 parameters a
 polynomial piece, the two agreeing to 1e-14 relative to the control points; for surfaces and
-tensor splines, bit for bit ``eval_batch``); the JVPs and VJPs are lekalo's kernels
+tensor splines, bit for bit ``eval_batch``). A B-spline curve evaluated at fewer than one
+parameter for every ``degree + 1`` control points (a small call) is evaluated in place on the
+arrays, checking only the knots and control points of the spans used (the same numbers, and
+lekalo's error for a bad number in them); the JVPs and VJPs are lekalo's kernels
 (``lekalo.bspline_curve_jvp``, ``lekalo.nurbs_curve_vjp``, ``lekalo.bspline_surface_vjp``,
 ``lekalo.tensor_bspline_vjp`` and their twins), so ``jax.grad`` runs lekalo's reverse-mode
 kernel.
 
-``interpolate`` and the fits still call lekalo through ``jax.pure_callback`` (bit-for-bit the
-library's solution, about 0.2 to 0.3 ms a call for the callback alone); their derivatives come
-from the library's linearisation: the sparse basis matrix, ``p + 1`` entries a parameter,
-applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for VJP)
+``interpolate`` runs the same way, as FFI targets for its values, JVP and VJP (the banded
+solve, its adjoint and the interpolant's derivative at the parameters,
+``lekalo::derivatives::Interpolant``). The fits still call lekalo through ``jax.pure_callback``
+(bit-for-bit the library's solution, about 0.2 to 0.3 ms a call for the callback alone); their
+derivatives come from the library's linearisation: the sparse basis matrix, ``p + 1`` entries a
+parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for VJP)
 (``docs/theory/derivatives.md``).
 
 Requirements and limits, each with a clear error:

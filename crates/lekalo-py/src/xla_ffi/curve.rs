@@ -12,8 +12,12 @@
 //! may have leading batch axes (the same for all). The values are
 //! [`BSplineCurve::eval_batch`]'s (P&T A2.2), or for large batches ([`FAST_PER_PIECE`]) those of
 //! the fast [`lekalo::CurveEvaluator`]; the JVP
-//! [`BSplineCurve::eval_batch_jvp`]'s, the VJP [`BSplineCurve::eval_batch_vjp`]'s.
+//! [`BSplineCurve::eval_batch_jvp`]'s, the VJP [`BSplineCurve::eval_batch_vjp`]'s. For a batch
+//! element with few parameters against its pieces ([`in_place`]) the three are
+//! [`BorrowedCurve`]'s on the operand buffers themselves (the same numbers): no copy, and only
+//! the knots and control points the parameters' spans read are checked.
 
+use lekalo::derivatives::BorrowedCurve;
 use lekalo::{BSplineCurve, Points};
 
 use super::abi::{Call, In};
@@ -36,6 +40,26 @@ ffi_targets! {
     eval: eval_body,
     jvp: jvp_body,
     vjp: vjp_body,
+}
+
+/// Whether `m` parameters on `n` control points of `degree` are evaluated in place
+/// ([`BorrowedCurve`]) rather than on a built curve: when they read fewer knots and control
+/// points than building it copies and validates, `m · (degree + 1) ≤ n` (each parameter reads
+/// and checks `2p + 2` knots and `p + 1` points, building checks all `n + p + 1` and `n`).
+fn in_place(m: usize, n: usize, degree: usize) -> bool {
+    m.saturating_mul(degree + 1) <= n
+}
+
+/// The borrowed curve of batch element `b` (as [`curve`]).
+fn borrowed<'a>(
+    degree: usize,
+    (knots, sk): (&In<'a>, usize),
+    (control, sc): (&In<'a>, usize),
+    dim: usize,
+    b: usize,
+) -> Result<BorrowedCurve<'a>, String> {
+    let (knots, control) = (element(knots.data, sk, b), element(control.data, sc, b));
+    BorrowedCurve::new(degree, knots, control, dim).map_err(|e| e.to_string())
 }
 
 /// The curve of batch element `b` (the knots and control points being the first two operands
@@ -75,12 +99,18 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
     let (batch, [sk, sc, st], dim) = layout(args)?;
     let values = single(rets)?;
     let sv = batch.size("values", values.dims, 2)?;
+    let small = in_place(st, sc / dim.max(1), degree);
     for b in 0..batch.count {
-        let c = curve(degree, (&args[0], sk), (&args[1], sc), dim, b)?;
         let (ts, out) = (
             element(args[2].data, st, b),
             element_mut(values.data, sv, b),
         );
+        if small {
+            let c = borrowed(degree, (&args[0], sk), (&args[1], sc), dim, b)?;
+            c.eval_batch(ts, out).map_err(|e| e.to_string())?;
+            continue;
+        }
+        let c = curve(degree, (&args[0], sk), (&args[1], sc), dim, b)?;
         let pieces = c.control_points().len() - degree;
         let done = if ts.len() >= FAST_PER_PIECE * pieces {
             c.evaluator().eval_batch(ts, out)
@@ -106,9 +136,21 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
     if let Some(a) = dt {
         batch.expect("parameter tangent", a.dims, 1, st)?;
     }
+    let small = in_place(st, sc / dim.max(1), degree);
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let mut values = vec![0.0; sv];
+    let mut values = vec![0.0; if small { 0 } else { sv }];
     for b in 0..batch.count {
+        if small {
+            let c = borrowed(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
+            c.eval_batch_jvp(
+                element(res[2].data, st, b),
+                dc.map(|a| element(a.data, sc, b)),
+                dt.map(|a| element(a.data, st, b)),
+                element_mut(tangent.data, sv, b),
+            )
+            .map_err(|e| e.to_string())?;
+            continue;
+        }
         let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
         c.eval_batch_jvp(
             element(res[2].data, st, b),
@@ -137,7 +179,19 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     if let Some(a) = &gt {
         batch.expect("parameter cotangent", a.dims, 1, st)?;
     }
+    let small = in_place(st, sc / dim.max(1), degree);
     for b in 0..batch.count {
+        if small {
+            let c = borrowed(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
+            c.eval_batch_vjp(
+                element(res[2].data, st, b),
+                element(g.data, sg, b),
+                gc.as_mut().map(|a| element_mut(a.data, sc, b)),
+                gt.as_mut().map(|a| element_mut(a.data, st, b)),
+            )
+            .map_err(|e| e.to_string())?;
+            continue;
+        }
         let c = curve(degree, (&res[0], sk), (&res[1], sc), dim, b)?;
         c.eval_batch_vjp(
             element(res[2].data, st, b),

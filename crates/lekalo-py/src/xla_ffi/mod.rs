@@ -8,6 +8,8 @@
 //! - `curve`: B-spline curve evaluation and its JVP and VJP with respect to the control points
 //!   and the parameters (`lekalo::derivatives`, `docs/theory/derivatives.md`);
 //! - `nurbs`: the same for NURBS curves, also with respect to the weights;
+//! - `interpolate`: interpolation at given parameters and knots, and its JVP and VJP with
+//!   respect to the data and the parameters (`lekalo::derivatives::Interpolant`);
 //! - `surface`: tensor-product B-spline surfaces, with respect to the net and `(u, v)`;
 //! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
 //!
@@ -46,6 +48,7 @@ macro_rules! ffi_targets {
 
 mod abi;
 mod curve;
+mod interpolate;
 mod nurbs;
 mod operands;
 mod surface;
@@ -70,6 +73,7 @@ fn xla_ffi_handlers(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let all = [
         curve::HANDLERS,
+        interpolate::HANDLERS,
         nurbs::HANDLERS,
         surface::HANDLERS,
         tensor::HANDLERS,

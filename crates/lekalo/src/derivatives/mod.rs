@@ -14,12 +14,18 @@
 //!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
 //!   basis matrix, what an automatic-differentiation framework needs to build its own linear
 //!   map).
+//! - `borrowed.rs`: [`BorrowedCurve`], the values, JVP and VJP of `curve.rs` for a few
+//!   parameters on borrowed knots and control points, reading and checking only the spans used
+//!   (no O(n) copy or validation a call).
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
 //! - `interpolation.rs`: [`InterpolationMap`], the derivatives of interpolation at fixed
 //!   parameters and knots with respect to the data (a solve and an adjoint solve with one banded
 //!   factorisation).
+//! - `interpolant.rs`: [`Interpolant`], interpolation as a function of the data and of the
+//!   parameters, with the JVP and VJP of both (`interpolation.rs`'s solves and the
+//!   interpolant's derivative at the parameters).
 //! - `fitting.rs`: [`LeastSquaresMap`] and [`SmoothingMap`], the derivatives of the
 //!   least-squares fit on given knots and parameters and of the smoothing spline with a given
 //!   `λ` with respect to the data (a sparse product and a solve with the fit's banded
@@ -37,10 +43,12 @@
 //! - `slopes.rs`: the basis functions and their first derivatives in one Cox–de Boor pass.
 //! - `checks.rs`: the length and finiteness checks the kernels share.
 
+mod borrowed;
 mod checks;
 mod control_cotangent;
 mod curve;
 mod fitting;
+mod interpolant;
 mod interpolation;
 mod located;
 mod nurbs;
@@ -51,8 +59,10 @@ mod tensor;
 #[cfg(test)]
 mod tests;
 
+pub use borrowed::BorrowedCurve;
 pub use curve::CurveLinearization;
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
+pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
 pub use surface::SurfaceLinearization;
