@@ -218,6 +218,8 @@ mod tests {
             assert!(!seen[p as usize], "position {p} taken twice");
             seen[p as usize] = true;
         }
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let cell = |x: &[f64]| {
             x.iter().zip(&domains).fold(0usize, |key, (&t, &(lo, hi))| {
                 let c = ((t - lo) / (hi - lo) * bins as f64).clamp(0.0, (bins - 1) as f64);
