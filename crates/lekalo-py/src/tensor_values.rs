@@ -220,8 +220,15 @@ pub(crate) fn tensor_value(
     beyond: &str,
 ) -> PyResult<f64> {
     let rule = beyond_arg(beyond)?;
-    let knots: Vec<Bound<'_, PyArray1<f64>>> = t
-        .try_iter()
+    let knots = knot_vectors(t)?;
+    let degrees = degrees_arg(k, knots.len())?;
+    let c = flat_coefficients(c)?;
+    value_at(&knots, &c, &degrees, &x, rule)
+}
+
+/// The knot vectors of `t`, one 1-D float64 array per variable, held (not borrowed).
+fn knot_vectors<'py>(t: &Bound<'py, PyAny>) -> PyResult<Vec<Bound<'py, PyArray1<f64>>>> {
+    t.try_iter()
         .map_err(|_| bad("t: expected a sequence of 1-D arrays, one per variable".into()))?
         .enumerate()
         .map(|(a, item)| {
@@ -231,26 +238,98 @@ pub(crate) fn tensor_value(
                 ))
             })
         })
-        .collect::<PyResult<_>>()?;
-    let degrees = degrees_arg(k, knots.len())?;
-    let c = c.cast::<PyArray1<f64>>().map_err(|_| {
+        .collect()
+}
+
+/// The coefficients `c` as one 1-D float64 array, held (not borrowed).
+fn flat_coefficients<'py>(c: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    c.cast::<PyArray1<f64>>().cloned().map_err(|_| {
         bad(
             "c: expected a 1-D float64 array; pass c.reshape(-1) of a C-contiguous float64 array"
                 .into(),
         )
-    })?;
+    })
+}
+
+/// The value of `tensor_value`: the few numbers the value needs, read in place (no copy, no
+/// borrow of the arrays).
+fn value_at(
+    knots: &[Bound<'_, PyArray1<f64>>],
+    c: &Bound<'_, PyArray1<f64>>,
+    degrees: &[usize],
+    x: &[f64],
+    rule: Beyond,
+) -> PyResult<f64> {
     let lens: Vec<usize> = knots.iter().map(|k| k.len()).collect();
-    // the few numbers the value needs, read in place (no copy, no borrow of the arrays)
     tensor_value_by(
-        &degrees,
+        degrees,
         &lens,
         |a, i| knots[a].get_owned(i).unwrap_or(f64::NAN),
         c.len(),
         |f| c.get_owned(f).unwrap_or(f64::NAN),
-        &x,
+        x,
         rule,
     )
     .map_err(lib_err)
+}
+
+/// `TensorValueAt(t, c, k)`: the scalar spline `(t, c, k)` of `tensor_value`, its arrays
+/// checked for type and held once (not copied), so that a call at one point (`value`) only
+/// converts the point: the scalar calls of `lekalo.scipy.NdBSpline`. The arrays are read in
+/// place at every call, so changes made to them in place are seen.
+#[pyclass(module = "lekalo._lekalo", name = "TensorValueAt", frozen)]
+pub(crate) struct TensorValueAt {
+    knots: Vec<Py<PyArray1<f64>>>,
+    c: Py<PyArray1<f64>>,
+    degrees: Vec<usize>,
+}
+
+#[pymethods]
+impl TensorValueAt {
+    #[new]
+    fn new(t: &Bound<'_, PyAny>, c: &Bound<'_, PyAny>, k: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let knots = knot_vectors(t)?;
+        let degrees = degrees_arg(k, knots.len())?;
+        let c = flat_coefficients(c)?;
+        Ok(TensorValueAt {
+            knots: knots.into_iter().map(Bound::unbind).collect(),
+            c: c.unbind(),
+            degrees,
+        })
+    }
+
+    /// The value at the point `x` (`N` numbers): the end polynomials continued beyond the box
+    /// (`extrapolate`) or NaN, and NaN at a NaN or infinite coordinate, as `tensor_value`.
+    #[pyo3(signature = (x, extrapolate = true))]
+    fn value(&self, py: Python<'_>, x: Vec<f64>, extrapolate: bool) -> PyResult<f64> {
+        let knots: Vec<Bound<'_, PyArray1<f64>>> =
+            self.knots.iter().map(|k| k.bind(py).clone()).collect();
+        let rule = if extrapolate {
+            Beyond::Continue
+        } else {
+            Beyond::Nan
+        };
+        value_at(&knots, self.c.bind(py), &self.degrees, &x, rule)
+    }
+
+    /// Pickled by its constructor's arguments (the arrays it holds).
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (
+        Bound<'py, PyAny>,
+        (Vec<Py<PyArray1<f64>>>, Py<PyArray1<f64>>, Vec<usize>),
+    ) {
+        (
+            py.get_type::<Self>().into_any(),
+            (
+                self.knots.iter().map(|k| k.clone_ref(py)).collect(),
+                self.c.clone_ref(py),
+                self.degrees.clone(),
+            ),
+        )
+    }
 }
 
 /// Registers the in-place evaluation of `(t, c, k)` splines.
@@ -258,5 +337,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tensor_value, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_values, m)?)?;
     m.add_function(wrap_pyfunction!(tensor_grid_values, m)?)?;
+    m.add_class::<TensorValueAt>()?;
     Ok(())
 }

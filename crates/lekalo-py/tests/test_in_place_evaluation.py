@@ -127,3 +127,55 @@ def test_cubics_read_their_coefficients_for_large_batches():
         np.testing.assert_allclose(ours(xp[:10]), small, rtol=1e-14, atol=1e-14)
         np.testing.assert_allclose(ours(xp, 1), theirs(xp, 1), rtol=1e-12, atol=1e-12)
         assert abs(float(ours(0.3)) - float(theirs(0.3))) < 1e-13
+
+
+def test_ndbspline_scalar_calls_are_the_batch_bits_and_see_changes():
+    """A point given as a tuple (the held arrays of TensorValueAt) has the bits of the same point
+    in a batch, inside, beyond the box, at NaN, for one degree in every variable and for mixed
+    degrees; changes made to c in place are seen; the object pickles."""
+    import pickle
+
+    rng = np.random.default_rng(3)
+    for k in (1, 2, 3, 5, (3, 2, 1)):
+        ks = (k,) * 3 if np.ndim(k) == 0 else k
+        t = tuple(np.r_[[0.0] * (kd + 1), np.sort(rng.uniform(0, 1, 4)), [1.0] * (kd + 1)] for kd in ks)
+        c = rng.standard_normal(tuple(len(td) - kd - 1 for td, kd in zip(t, ks)))
+        for extrapolate in (True, False):
+            ours = ls.NdBSpline(t, c.copy(), k, extrapolate=extrapolate)
+            xi = rng.uniform(-0.3, 1.3, (40, 3))
+            xi[5, 2] = np.nan
+            batch = ours(xi)
+            for x, want in zip(xi, batch):
+                got = ours(tuple(float(v) for v in x))
+                assert isinstance(got, np.ndarray) and got.shape == ()
+                assert np.array_equal(got, want, equal_nan=True), (k, extrapolate, x)
+            theirs = si.NdBSpline(t, c, k, extrapolate=extrapolate)
+            np.testing.assert_allclose(ours((0.3, 0.6, 0.2)), theirs((0.3, 0.6, 0.2)), rtol=1e-13, atol=1e-13)
+            ours.c[1, 1, 1] += 2.0
+            assert ours((0.3, 0.6, 0.2)) == ours(np.array([[0.3, 0.6, 0.2]]))[0]
+            again = pickle.loads(pickle.dumps(ours))
+            assert again((0.3, 0.6, 0.2)) == ours((0.3, 0.6, 0.2))
+    # a tuple the scalar path does not take goes the array way, with SciPy's errors
+    with pytest.raises(ValueError):
+        ours((0.3, 0.6))
+
+
+@pytest.mark.parametrize("count", [2**14 - 1, 2**14, 2**14 + 1])
+def test_ndbspline_large_batches_in_cell_order_have_the_bits_of_small_ones(count):
+    """Batches at the cell-order size on a net above 2^15 numbers, the points random, sorted
+    backwards and with NaN and out-of-box points: the bits of the same points in small batches
+    (which keep the order of the points), and SciPy's values."""
+    rng = np.random.default_rng(count)
+    t = (np.r_[[0.0] * 3, np.linspace(0, 1, 34), [1.0] * 3],) * 3
+    c = rng.standard_normal((36, 36, 36))
+    ours = ls.NdBSpline(t, c, 3)
+    xi = rng.uniform(-0.2, 1.2, (count, 3))
+    xi[::97, 1] = np.nan
+    backwards = xi[np.lexsort(xi.T[::-1])[::-1]]
+    for points in (xi, backwards):
+        for extrapolate in (True, False):
+            whole = ours(points, extrapolate=extrapolate)
+            parts = np.concatenate([ours(p, extrapolate=extrapolate) for p in np.array_split(points, 8)])
+            assert np.array_equal(whole, parts, equal_nan=True)
+    want = si.NdBSpline(t, c, 3)(xi)
+    np.testing.assert_allclose(ours(xi), want, rtol=1e-12, atol=1e-12)

@@ -694,6 +694,10 @@ def fit_tensor_scattered(
 def tensor_value(
     t: Sequence[Array], c: Array, k: Union[int, Sequence[int]], x: Sequence[float], beyond: Literal["continue", "clamp", "nan"] = "continue"
 ) -> float: ...
+class TensorValueAt:
+    def __init__(self, t: Sequence[Array], c: Array, k: Union[int, Sequence[int]]) -> None: ...
+    def value(self, x: Sequence[float], extrapolate: bool = True) -> float: ...
+
 def tensor_values(
     t: Sequence[Array],
     c: Array,

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use crate::error::{check_finite, Error, Result};
 use crate::knots::span_in;
+use crate::tensor::cell_order::{bins_per_direction, CellOrder};
 use crate::tensor::contract::TensorScratch;
 use crate::tensor::fixed::Fixed;
 use crate::tensor::locate::Beyond;
@@ -215,13 +216,13 @@ impl TensorBSplineRef<'_> {
     }
 
     /// [`TensorBSplineRef::par_batch`] for a large batch on a large net, every point
-    /// evaluable: the points are visited in the order of a coarse grid of cells over the domain
-    /// ([`SORT_BINS`] per direction, the first direction slowest, as the net), so that
-    /// consecutive points read neighbouring control points from the cache and the span
-    /// searches start next to their answer. Each point is evaluated by the same kernel on the
-    /// same numbers, so the values are the bits of the unsorted batch; only the order of the
-    /// work changes. Memory: the permutation and a sorted copy of the points and values
-    /// (`points·(2 + N + dim)` numbers).
+    /// evaluable: the points are visited in the cell order of [`CellOrder`] (a counting sort
+    /// by the cell of a coarse grid over the domain, the first direction slowest, as the net),
+    /// so that consecutive points read neighbouring control points from the cache and the
+    /// span searches start next to their answer. Each point is evaluated by the same kernel on
+    /// the same numbers, so the values are the bits of the unsorted batch; only the order of
+    /// the work changes. Memory: the permutation and its inverse, and a sorted copy of the
+    /// points and values (`points·(1 + N + dim)` numbers).
     fn par_batch_sorted(
         &self,
         xs: &[f64],
@@ -232,40 +233,13 @@ impl TensorBSplineRef<'_> {
     ) -> Result<()> {
         let (n, dim) = (self.n_vars(), self.dim);
         let points = xs.len() / n;
-        checked_size("sorted copy of the points", &[points], 2 + n + dim)?;
-        let domains = self.domain();
-        let bins = SORT_BINS as f64;
-        let mut order: Vec<(u64, usize)> = xs
-            .par_chunks_exact(n)
-            .enumerate()
-            .map(|(k, x)| {
-                let mut key = 0u64;
-                for (&t, &(lo, hi)) in x.iter().zip(&domains) {
-                    let width = hi - lo;
-                    let cell = if width > 0.0 {
-                        ((t - lo) / width * bins).clamp(0.0, bins - 1.0)
-                    } else {
-                        0.0
-                    };
-                    // truncation of a number in [0, SORT_BINS − 1]; a NaN coordinate (a point
-                    // whose values are NaN) saturates to cell 0
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    let cell = cell as u64;
-                    key = key * SORT_BINS + cell;
-                }
-                (key, k)
-            })
-            .collect();
-        order.par_sort_unstable_by_key(|&(key, _)| key);
-        let mut sorted_xs = Vec::with_capacity(xs.len());
-        for &(_, k) in &order {
-            sorted_xs.extend_from_slice(&xs[k * n..(k + 1) * n]);
-        }
+        checked_size("sorted copy of the points", &[points], 1 + n + dim)?;
+        let order = CellOrder::new(xs, n, &self.domain(), bins_per_direction(points, n));
+        let mut sorted_xs = vec![0.0; xs.len()];
+        order.gather(xs, n, &mut sorted_xs);
         let mut sorted_out = vec![0.0; out.len()];
         self.par_chunked(&sorted_xs, orders, mode, tables, &mut sorted_out)?;
-        for (&(_, k), v) in order.iter().zip(sorted_out.chunks_exact(dim)) {
-            out[k * dim..(k + 1) * dim].copy_from_slice(v);
-        }
+        order.scatter_back(&sorted_out, dim, out);
         Ok(())
     }
 
@@ -379,10 +353,9 @@ const PAR_MIN_POINTS: usize = 2048;
 const SORT_MIN_POINTS: usize = 1 << 14;
 /// Nets below this many numbers (256 KiB) stay in the cache whatever the order of the points.
 const SORT_MIN_NET: usize = 1 << 15;
-/// Cells per direction of the ordering grid.
-const SORT_BINS: u64 = 64;
-/// Directions whose cell indices fit one 64-bit key (6 bits each).
-const SORT_MAX_VARS: usize = 10;
+/// Most directions of a batch in cell order (two cells a direction at least, at most
+/// [`MAX_CELLS`](crate::tensor::cell_order::MAX_CELLS) cells).
+const SORT_MAX_VARS: usize = 15;
 
 /// Points per parallel chunk at least (scratch set-up and scheduling amortised).
 const PAR_CHUNK: usize = 256;

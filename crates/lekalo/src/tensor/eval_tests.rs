@@ -279,3 +279,69 @@ proptest! {
         }
     }
 }
+
+/// Batches at the cell-order sizes (just below, at and above `2^14` points, on a net above
+/// `2^15` numbers) whose points come in every order (random, all in one cell, cells descending,
+/// the first direction fastest) with NaN, infinite and out-of-box points, under every
+/// [`Beyond`] rule: the bits of the point-by-point batch, which never takes the cell order.
+#[test]
+fn cell_ordered_batches_have_the_bits_of_single_points_in_any_order() {
+    let p: usize = 3;
+    let m: usize = 36; // 46,656 numbers
+    let k: Vec<f64> = (0..m + p + 1)
+        .map(|i| (i.saturating_sub(p).min(m - p)) as f64 / (m - p) as f64)
+        .collect();
+    let net: Vec<f64> = (0..m * m * m)
+        .map(|i| ((i * 7919) % 1013) as f64 / 1013.0 - 0.5)
+        .collect();
+    let s = TensorBSpline::new(
+        vec![p; 3],
+        vec![k.clone(), k.clone(), k],
+        Points::from_flat(1, net).unwrap(),
+    )
+    .unwrap();
+    let mut rng = 0x2545_f491_u64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for count in [(1 << 14) - 1, 1 << 14, (1 << 14) + 1, 40_000] {
+        let random: Vec<f64> = (0..3 * count).map(|_| 1.4 * next() - 0.2).collect();
+        let one_cell: Vec<f64> = (0..3 * count).map(|_| 0.5 + 1e-3 * next()).collect();
+        // cells descending, and the last direction slowest (against the net's order)
+        let descending: Vec<f64> = (0..count)
+            .flat_map(|i| {
+                let u = 1.0 - i as f64 / count as f64;
+                [(7.0 * u).fract(), (31.0 * u).fract(), u]
+            })
+            .collect();
+        for (name, mut xs) in [
+            ("random", random),
+            ("one cell", one_cell),
+            ("descending", descending),
+        ] {
+            for i in (0..count).step_by(101) {
+                xs[3 * i + i % 3] = [f64::NAN, f64::INFINITY, -2.0, 1.0, 0.0][i % 5];
+            }
+            for beyond in [Beyond::Continue, Beyond::Clamp, Beyond::Nan] {
+                let mut batch = vec![0.0; count];
+                s.view()
+                    .par_eval_batch_beyond(&xs, None, beyond, &mut batch)
+                    .unwrap();
+                let mut single = vec![0.0; count];
+                for (x, o) in xs.chunks_exact(3).zip(single.iter_mut()) {
+                    s.view()
+                        .par_eval_batch_beyond(x, None, beyond, std::slice::from_mut(o))
+                        .unwrap();
+                }
+                assert_eq!(
+                    bits(&batch),
+                    bits(&single),
+                    "{count} points, {name}, {beyond:?}"
+                );
+            }
+        }
+    }
+}

@@ -14,6 +14,8 @@
 //!   and trivariate kernels.
 //! - `eval.rs`: evaluation at points: single points, partial derivatives, sequential, parallel
 //!   and cell-ordered batches.
+//! - `cell_order.rs`: the cell order of a large batch (a counting sort of the points by the
+//!   cell of a coarse grid over the domain), its gather and the values put back.
 //! - `fixed.rs`: the batch kernels of scalar splines in two or three directions of one degree
 //!   (the bases of all directions at once, fixed-size contractions).
 //! - `locate.rs`: the span search of batches, a bucket table per direction (O(1) a point), and
@@ -46,6 +48,7 @@
 //!   scattered data is at most `s`, with the knots of FITPACK `surfit`.
 
 mod any;
+mod cell_order;
 mod contract;
 mod design_matrix;
 mod eval;

@@ -7,6 +7,7 @@
 use crate::basis::{basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{Error, Result};
 use crate::knots::span_by;
+use crate::tensor::contract::contract3;
 use crate::tensor::locate::Beyond;
 
 /// Largest number of directions of [`tensor_value_by`] (the window of `Π_a (p_a + 1)`
@@ -127,6 +128,53 @@ pub fn tensor_value_by(
         });
         spans.push(span_by(&|i| knot(a, i), p, size, t.clamp(lo, hi)));
     }
+    if n == 3 && degrees.iter().all(|&p| p == degrees[0]) {
+        let at = |a: usize| (spans[a], point[a]);
+        let sizes = [sizes[1], sizes[2]];
+        match degrees[0] {
+            1 => {
+                return Ok(value3::<2>(
+                    [at(0), at(1), at(2)],
+                    sizes,
+                    &knot,
+                    &coefficient,
+                ))
+            }
+            2 => {
+                return Ok(value3::<3>(
+                    [at(0), at(1), at(2)],
+                    sizes,
+                    &knot,
+                    &coefficient,
+                ))
+            }
+            3 => {
+                return Ok(value3::<4>(
+                    [at(0), at(1), at(2)],
+                    sizes,
+                    &knot,
+                    &coefficient,
+                ))
+            }
+            4 => {
+                return Ok(value3::<5>(
+                    [at(0), at(1), at(2)],
+                    sizes,
+                    &knot,
+                    &coefficient,
+                ))
+            }
+            5 => {
+                return Ok(value3::<6>(
+                    [at(0), at(1), at(2)],
+                    sizes,
+                    &knot,
+                    &coefficient,
+                ))
+            }
+            _ => {}
+        }
+    }
     // the basis vectors, direction a at offsets[a]..
     let top = degrees.iter().copied().max().unwrap_or(0);
     // the fixed-order triangle up to degree 5 (no scratch), the general one above
@@ -205,12 +253,50 @@ pub fn tensor_value_by(
     Ok(values[0])
 }
 
+/// [`tensor_value_by`] of a trivariate spline of one degree `p = W − 1 ≤ 5` at a located point
+/// (`(span, coordinate)` per direction; `sizes`, the net sizes of directions 1 and 2): the basis
+/// vectors by the fixed-order triangle ([`basis_funs_fixed`]) and the window of `W³`
+/// coefficients gathered on the stack and contracted by the batch kernels' [`contract3`], the
+/// same operations in the same order as the general contraction below (direction 0 first,
+/// each sum from its first term), so the same bits, with nothing allocated.
+#[inline(always)]
+fn value3<const W: usize>(
+    at: [(usize, f64); 3],
+    sizes: [usize; 2],
+    knot: &impl Fn(usize, usize) -> f64,
+    coefficient: &impl Fn(usize) -> f64,
+) -> f64 {
+    let p = W - 1;
+    let bases: [[f64; W]; 3] = std::array::from_fn(|a| {
+        let (i, t) = at[a];
+        // t_{i−p+1} ..= t_{i+p} after one unused slot: t_i at index p, the span given to A2.2
+        let mut local = [f64::NAN; 12];
+        for (j, k) in local[1..2 * W - 1].iter_mut().enumerate() {
+            *k = knot(a, i + 1 - p + j);
+        }
+        basis_funs_fixed::<W>(&local[..2 * W - 1], p, t)
+    });
+    let first = at.map(|(i, _)| i - p);
+    let mut window = [[[0.0; W]; W]; W];
+    for (j0, plane) in window.iter_mut().enumerate() {
+        for (j1, run) in plane.iter_mut().enumerate() {
+            let f = ((first[0] + j0) * sizes[0] + first[1] + j1) * sizes[1] + first[2];
+            for (j2, v) in run.iter_mut().enumerate() {
+                *v = coefficient(f + j2);
+            }
+        }
+    }
+    let flat = window.as_flattened().as_flattened();
+    contract3::<W>(flat, [0, 0, 0], [W * W, W], &bases[0], &bases[1], &bases[2])
+}
+
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;
 
     use super::*;
     use crate::oracle::proptest_config;
+    use crate::points::Points;
     use crate::tensor::tests::spline;
     use crate::tensor::TensorBSpline;
 
@@ -256,6 +342,68 @@ mod tests {
                 for (x, w) in xs.chunks_exact(n).zip(&want) {
                     let got = value(&s, c, x, rule).unwrap();
                     prop_assert_eq!(got.to_bits(), w.to_bits(), "{:?} at {:?}", rule, x);
+                }
+            }
+        }
+    }
+
+    /// Trivariate splines of one degree (the stack path, degrees 1 to 5) and of mixed degrees
+    /// (the general path): the bits of the batch, inside and beyond the box, under every rule,
+    /// on uneven knots with a repeated interior knot.
+    #[test]
+    fn trivariate_point_values_have_the_bits_of_the_batch() {
+        let mut rng = 0x5851_f42d_u64;
+        let mut next = move || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for degrees in [
+            [1, 1, 1],
+            [2, 2, 2],
+            [3, 3, 3],
+            [4, 4, 4],
+            [5, 5, 5],
+            [3, 2, 3],
+        ] {
+            let knots: Vec<Vec<f64>> = degrees
+                .iter()
+                .enumerate()
+                .map(|(a, &p)| {
+                    let mut t = vec![-1.0 - a as f64; p + 1];
+                    let mut inner: Vec<f64> = (0..3 + a).map(|_| 2.0 * next() - 1.0).collect();
+                    inner.push(inner[0]);
+                    inner.sort_by(f64::total_cmp);
+                    t.extend(inner);
+                    t.extend(vec![1.5; p + 1]);
+                    t
+                })
+                .collect();
+            let size: usize = knots
+                .iter()
+                .zip(&degrees)
+                .map(|(t, p)| t.len() - p - 1)
+                .product();
+            let net: Vec<f64> = (0..size).map(|_| next() - 0.5).collect();
+            let s = TensorBSpline::new(degrees.to_vec(), knots, Points::from_flat(1, net).unwrap())
+                .unwrap();
+            let domains = s.domain();
+            let xs: Vec<f64> = (0..3 * 200)
+                .map(|i| {
+                    let (lo, hi) = domains[i % 3];
+                    lo + (hi - lo) * (1.6 * next() - 0.3)
+                })
+                .collect();
+            let c = s.control_points().as_slice();
+            for rule in [Beyond::Continue, Beyond::Clamp, Beyond::Nan] {
+                let mut want = vec![0.0; 200];
+                s.view()
+                    .par_eval_batch_beyond(&xs, None, rule, &mut want)
+                    .unwrap();
+                for (x, w) in xs.chunks_exact(3).zip(&want) {
+                    let got = value(&s, c, x, rule).unwrap();
+                    assert_eq!(got.to_bits(), w.to_bits(), "{degrees:?} {rule:?} at {x:?}");
                 }
             }
         }

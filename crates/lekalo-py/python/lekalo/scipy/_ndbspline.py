@@ -46,8 +46,10 @@ class NdBSpline:
         cc = self._c[..., None] if self._c.dtype.kind == "c" and self._c.ndim == ndim else self._c
         self._cc = cc.view(np.float64) if cc.dtype.kind == "c" else cc
         # real values, one number a point: a point given as a tuple takes lekalo's tensor_value
-        # on the coefficients as one flat view (changes made in place are seen)
+        # on the coefficients as one flat view (changes made in place are seen), its arrays
+        # held once by a TensorValueAt so that a call converts only the point
         self._flat = self._cc.reshape(-1) if self._cc.ndim == ndim else None
+        self._at = None if self._flat is None else _lekalo.TensorValueAt(self._t, self._flat, self._k)
 
     @property
     def k(self) -> tuple:
@@ -66,16 +68,14 @@ class NdBSpline:
         ``(..., ndim)``: lekalo's ``tensor_values`` on the knots and coefficients in place
         (``TensorBSplineRef::par_eval_batch_beyond``); beyond the base box the end polynomials
         continued (``extrapolate``) or nan, and nan at a NaN or infinite coordinate, as SciPy.
-        One point given as a tuple of numbers is lekalo's ``tensor_value``, which reads only the
-        few knots and coefficients it needs."""
+        One point given as a tuple of numbers is lekalo's ``tensor_value`` (through the arrays held by
+        a ``TensorValueAt``), which reads only the few knots and coefficients it needs."""
         extrapolate = self.extrapolate if extrapolate is None else bool(extrapolate)
-        if nu is None and type(xi) is tuple and self._flat is not None:
+        if nu is None and type(xi) is tuple and self._at is not None:
             # anything tensor_value does not take (a coordinate that is not a number, the wrong
             # count) goes the array way, which raises SciPy's errors
             try:
-                return np.array(
-                    _lekalo.tensor_value(self._t, self._flat, self._k, xi, "continue" if extrapolate else "nan")
-                )
+                return np.array(self._at.value(xi, extrapolate))
             except Exception:
                 pass
         ndim = len(self._t)
