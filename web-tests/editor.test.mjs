@@ -331,6 +331,78 @@ test('Fitting with a shape: ticking increasing and y ≥ 0 draws the API\'s cons
   await shot(page, 'fit-shape', false);
 });
 
+test('Fitting with bounds: y ≥ a and y ≤ b are drawn as labelled dashed lines at their heights over the fit', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'fit');
+  await idle(page);
+  assert.equal(await page.locator('#bounds line').count(), 0, 'no bound, no line');
+  await setValue(page, '#fit-min', 1);
+  await setValue(page, '#fit-max', 5);
+  assert.equal(await shownErrors(page), '');
+  const f = await page.evaluate(() => window.lekaloEditor.state.fit);
+  const expected = await api('/api/fit', { points: f.points, smoothing: 'lambda', lambda: Math.pow(10, f.lambda),
+    min: 1, max: 5, samples: 400 });
+  await assertCurveIs(page, expected.view.points, 'bounded fit');
+  const ys = expected.view.points.map((p) => p[1]);
+  assert.ok(ys.every((y) => y >= 1 - 1e-9 && y <= 5 + 1e-9), 'the fit stays within the bounds');
+  const lines = await page.evaluate(() => [...document.querySelectorAll('#bounds line')].map((l) => ({
+    bound: l.dataset.bound, x1: +l.getAttribute('x1'), x2: +l.getAttribute('x2'), y: +l.getAttribute('y1'),
+    dash: getComputedStyle(l).strokeDasharray, stroke: getComputedStyle(l).stroke })));
+  assert.deepEqual(lines.map((l) => l.bound), ['y ≥ 1', 'y ≤ 5']);
+  const [a, b] = expected.view.domain;
+  for (const [l, y] of [[lines[0], 1], [lines[1], 5]]) {
+    const [x0, sy] = await page.evaluate((p) => window.lekaloEditor.toScreen(p), [a, y]);
+    const [x1] = await page.evaluate((p) => window.lekaloEditor.toScreen(p), [b, y]);
+    assert.ok(Math.abs(l.y - sy) < 1e-6 && Math.abs(l.x1 - x0) < 1e-6 && Math.abs(l.x2 - x1) < 1e-6, `${l.bound} drawn at ${JSON.stringify(l)}`);
+    assert.notEqual(l.dash, 'none', `${l.bound} dashed`);
+  }
+  assert.deepEqual(await page.locator('#bound-labels text').allTextContents(), ['y ≥ 1', 'y ≤ 5'], 'labelled');
+  // the labels are drawn over the data points, not hidden under them
+  assert.ok(await page.evaluate(() => document.getElementById('points')
+    .compareDocumentPosition(document.getElementById('bound-labels')) & Node.DOCUMENT_POSITION_FOLLOWING), 'labels above the points');
+  // the exported SVG keeps them
+  const svg = await downloadText(page, '#export-svg');
+  assert.match(svg.text, /class="bound"/);
+  await shot(page, 'fit-bounds', false);
+  // an emptied field removes its line
+  await setValue(page, '#fit-max', '');
+  assert.deepEqual(await page.locator('#bound-labels text').allTextContents(), ['y ≥ 1']);
+});
+
+test('Blending: the info line names the result as the library does, its pieces and the continuity the API reports', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'blend');
+  await idle(page);
+  await setValue(page, '#bl-k', 3);
+  const deform = await page.evaluate(() => window.lekaloEditor.last.view);
+  assert.equal(deform.continuity, 3, 'the API reports the library\'s continuity');
+  let info = await page.textContent('#info');
+  assert.doesNotMatch(info, /knot/, `a Bezier curve has no knots: ${info}`);
+  assert.match(info, new RegExp(`^Bezier curve of degree ${deform.degree} \\(one polynomial piece, ${deform.control.length} control points\\)`), info);
+  assert.match(info, /C\^3 contact with A at the start and with B at the end/, info);
+
+  await page.selectOption('#mode', 'corners');
+  await idle(page);
+  await setValue(page, '#co-k', 3);
+  const pts = await page.evaluate(() => window.lekaloEditor.state.corners.points);
+  const corners = await api('/api/blend/corners', { points: pts, continuity: 3, fraction: 0.25, samples: 400 });
+  assert.equal(corners.continuity, 3);
+  info = await page.textContent('#info');
+  assert.match(info, new RegExp(`^B-spline curve of degree 7 in ${corners.knot_marks.length - 1} polynomial pieces .*C\\^3 at every join`), info);
+
+  await page.selectOption('#mode', 'spline');
+  await idle(page);
+  const sp = await page.evaluate(() => window.lekaloEditor.last.view);
+  info = await page.textContent('#info');
+  assert.match(info, new RegExp(`^NURBS curve of degree ${sp.degree} in ${sp.knot_marks.length - 1} polynomial pieces .*C\\^${sp.continuity} at every join`), info);
+
+  // the Bezier mode's curve has no knots either
+  await page.selectOption('#mode', 'bezier');
+  await idle(page);
+  info = await page.textContent('#info');
+  assert.match(info, /^Bezier curve of degree 3, 4 control points; real degree 3$/, info);
+});
+
 test('Queries: the closest point follows the pointer, the arc length and the parameter at a length are the API\'s', async (page) => {
   await page.goto(base);
   await idle(page);
@@ -589,6 +661,70 @@ test('From an empty canvas in every mode: Clear, then each placed point is drawn
     }
   }
   await shot(page, 'from-empty', false);
+});
+
+test('An emptied number field is named next to itself, not read as 0; a k too high for the server names k and the degree', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'corners');
+  await idle(page);
+  await setValue(page, '#co-window', '');
+  assert.equal(await page.textContent('[data-mode="corners"] [data-err="fraction"]'), 'Type a number here (the field is empty).');
+  assert.equal(await page.evaluate(() => window.lekaloEditor.state.corners.window), 25, 'the window is kept');
+  await setValue(page, '#co-window', 30);
+  assert.equal(await shownErrors(page), '');
+  await setValue(page, '#co-k', 40);
+  assert.match(await page.textContent('[data-mode="corners"] [data-err="continuity"]'),
+    /^continuity k = 40 makes a curve of degree 81, above the server's limit 64/);
+});
+
+test('Keyboard only: Tab to the drawing, Enter places points, N and the arrows move one, Delete deletes it; the curve is the API\'s', async (page) => {
+  await page.goto(base);
+  await idle(page);
+  await page.focus('#clear');
+  await page.keyboard.press('Enter');
+  await idle(page);
+  assert.equal(await page.locator('#points circle').count(), 0, 'cleared by keyboard');
+  // the next Tab stops from Clear reach the drawing
+  let reached = false;
+  for (let i = 0; i < 40 && !reached; i++) {
+    await page.keyboard.press('Tab');
+    reached = await page.evaluate(() => document.activeElement === document.getElementById('canvas'));
+  }
+  assert.ok(reached, 'the drawing is reachable by Tab');
+  assert.equal(await page.getAttribute('#kbd-cross', 'visibility'), 'visible', 'the cross shows where Enter places a point');
+  const press = async (key, times = 1) => { for (let i = 0; i < times; i++) await page.keyboard.press(key); await idle(page); };
+  // three points: at the cross (5, 3.125), then 2 to the right, then 1 up and 1 further right
+  await press('Enter');
+  await press('Shift+ArrowRight', 2);
+  // moving the cross moves the point just placed (it is selected): Escape first
+  assert.deepEqual(await page.evaluate(() => window.lekaloEditor.state.bspline.control), [[7, 3.125]], 'the selected point follows the arrows');
+  await press('Escape');
+  await press('Shift+ArrowLeft', 4);
+  await press('Enter');
+  await press('Escape');
+  await press('ArrowUp', 10);
+  await press('Enter');
+  let s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.deepEqual(s.control, [[7, 3.125], [3, 3.125], [3, 4.125]]);
+  assert.equal(await shownErrors(page), '');
+  let answer = await api('/api/bspline', { control: s.control, degree: 2, samples: 400 });
+  await assertCurveIs(page, answer.points, 'three points placed by keyboard');
+  // N selects the first point; the arrows move it; Delete removes it
+  await press('Escape');
+  await press('n');
+  assert.equal(await page.evaluate(() => document.querySelector('#points circle.selected').dataset.index), '0');
+  await press('ArrowDown', 5);
+  s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.deepEqual(s.control[0], [7, 2.625]);
+  answer = await api('/api/bspline', { control: s.control, degree: 2, samples: 400 });
+  await assertCurveIs(page, answer.points, 'a point moved by keyboard');
+  await press('Delete');
+  s = await page.evaluate(() => window.lekaloEditor.state.bspline);
+  assert.deepEqual(s.control, [[3, 3.125], [3, 4.125]]);
+  // Ctrl+Z brings it back
+  await press('Control+z');
+  assert.equal(await page.locator('#points circle').count(), 3, 'undo restores the deleted point');
+  await shot(page, 'keyboard', false);
 });
 
 test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates', async (page) => {

@@ -29,6 +29,7 @@ use tower_http::timeout::TimeoutLayer;
 
 mod answer;
 pub mod api;
+pub mod blend;
 pub mod budget;
 pub mod error;
 pub mod expr;
@@ -101,30 +102,76 @@ impl Default for Limits {
 }
 
 const INDEX_HTML: &str = include_str!("../assets/index.html");
-const APP_JS: &str = include_str!("../assets/app.js");
 const APP_CSS: &str = include_str!("../assets/app.css");
+
+/// The editor's script: ES modules by job (`assets/js/main.js` says which file does what),
+/// loaded by the page as modules from these paths. No bundler: the browser follows the
+/// imports.
+pub const EDITOR_SCRIPTS: &[(&str, &str)] = &[
+    ("/js/api.js", include_str!("../assets/js/api.js")),
+    ("/js/draw.js", include_str!("../assets/js/draw.js")),
+    ("/js/errors.js", include_str!("../assets/js/errors.js")),
+    ("/js/files.js", include_str!("../assets/js/files.js")),
+    ("/js/idle.js", include_str!("../assets/js/idle.js")),
+    ("/js/keyboard.js", include_str!("../assets/js/keyboard.js")),
+    ("/js/main.js", include_str!("../assets/js/main.js")),
+    (
+        "/js/modes/bezier.js",
+        include_str!("../assets/js/modes/bezier.js"),
+    ),
+    (
+        "/js/modes/blend.js",
+        include_str!("../assets/js/modes/blend.js"),
+    ),
+    (
+        "/js/modes/bspline.js",
+        include_str!("../assets/js/modes/bspline.js"),
+    ),
+    (
+        "/js/modes/common.js",
+        include_str!("../assets/js/modes/common.js"),
+    ),
+    (
+        "/js/modes/fit.js",
+        include_str!("../assets/js/modes/fit.js"),
+    ),
+    (
+        "/js/modes/index.js",
+        include_str!("../assets/js/modes/index.js"),
+    ),
+    (
+        "/js/modes/interpolate.js",
+        include_str!("../assets/js/modes/interpolate.js"),
+    ),
+    (
+        "/js/modes/quasi.js",
+        include_str!("../assets/js/modes/quasi.js"),
+    ),
+    ("/js/panels.js", include_str!("../assets/js/panels.js")),
+    ("/js/pointer.js", include_str!("../assets/js/pointer.js")),
+    ("/js/queries.js", include_str!("../assets/js/queries.js")),
+    ("/js/schedule.js", include_str!("../assets/js/schedule.js")),
+    ("/js/screen.js", include_str!("../assets/js/screen.js")),
+    ("/js/state.js", include_str!("../assets/js/state.js")),
+];
 
 /// The `OpenAPI` 3.1 description of the routes (`docs/openapi.json`), served at
 /// `/api/openapi.json`.
 pub const OPENAPI: &str = include_str!("../../../docs/openapi.json");
 
-/// Every route of the application: path, method and handler. The router is built from this
-/// table, and a test checks it against [`OPENAPI`] both ways. The pages, `/api/health` and
+/// Every route of the application: path, method and handler (the editor's scripts are
+/// [`EDITOR_SCRIPTS`]). The router is built from this table, and a test checks it against
+/// [`OPENAPI`] both ways. The pages, `/api/health` and
 /// `/api/openapi.json` and `/api/progress` are answered on the runtime's workers; every other
 /// route computes in the [`Pool`].
 pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
     let page =
         |body: &'static str, mime: &'static str| get(move || async move { asset(body, mime) });
-    vec![
+    let mut routes = vec![
         (
             "/",
             Method::GET,
             page(INDEX_HTML, "text/html; charset=utf-8"),
-        ),
-        (
-            "/app.js",
-            Method::GET,
-            page(APP_JS, "text/javascript; charset=utf-8"),
         ),
         (
             "/app.css",
@@ -151,21 +198,13 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
             Method::POST,
             pool::post(api::bezier_build),
         ),
-        (
-            "/api/blend/deform",
-            Method::POST,
-            pool::post(api::blend_deform),
-        ),
+        ("/api/blend/deform", Method::POST, pool::post(blend::deform)),
         (
             "/api/blend/corners",
             Method::POST,
-            pool::post(api::blend_corners),
+            pool::post(blend::corners),
         ),
-        (
-            "/api/blend/spline",
-            Method::POST,
-            pool::post(api::blend_spline),
-        ),
+        ("/api/blend/spline", Method::POST, pool::post(blend::spline)),
         ("/api/quasi", Method::POST, pool::post(expr::quasi)),
         ("/api/fit", Method::POST, pool::post(fit::fit)),
         ("/api/project", Method::POST, pool::post(query::project)),
@@ -191,7 +230,15 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
             Method::POST,
             pool::post(api::export_step),
         ),
-    ]
+    ];
+    routes.extend(EDITOR_SCRIPTS.iter().map(|&(path, body)| {
+        (
+            path,
+            Method::GET,
+            page(body, "text/javascript; charset=utf-8"),
+        )
+    }));
+    routes
 }
 
 /// The application: editor assets and the API under `/api/` ([`routes`]), with the body and

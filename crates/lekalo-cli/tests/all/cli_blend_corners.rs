@@ -127,3 +127,51 @@ fn the_tour_corner_is_fair() {
     assert_eq!(extrema.len(), 1, "{v}");
     assert_eq!(extrema[0]["kind"], "max");
 }
+
+#[test]
+fn the_pp_form_of_the_corners_reports_their_continuity() {
+    // the joins' knots have multiplicity 2k + 1 = the degree; `pp convert` then `info` measure
+    // the curve itself: C^k at every join, also for the symmetric zigzag whose x is a line
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("zigzag.csv"), zigzag_csv()).unwrap();
+    fs::write(d.path().join("teeth.csv"), "0,0\n1,2\n2,0\n3,2\n4,0\n").unwrap();
+    for (input, k) in [("zigzag.csv", "2"), ("teeth.csv", "2"), ("teeth.csv", "3")] {
+        lekalo()
+            .current_dir(d.path())
+            .args([
+                "blend",
+                "corners",
+                input,
+                "--window",
+                "30%",
+                "--continuity",
+                k,
+            ])
+            .args(["-o", "smooth.json"])
+            .assert()
+            .success();
+        lekalo()
+            .current_dir(d.path())
+            .args([
+                "pp",
+                "convert",
+                "smooth.json",
+                "-o",
+                "smooth.pp.json",
+                "--force",
+            ])
+            .assert()
+            .success();
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(["info", "smooth.pp.json", "--json"])
+            .assert()
+            .success();
+        let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+        let joins = v["continuity"].as_array().expect("continuity");
+        assert_eq!(joins.len(), 6, "{input}: {v}");
+        for j in joins {
+            assert_eq!(j["smoothness"], format!("C^{k}"), "{input}, k = {k}: {j}");
+        }
+    }
+}

@@ -12,7 +12,7 @@ use axum::http::{header, Request, StatusCode};
 use http_body_util::BodyExt;
 use lekalo::{
     BSplineCurve, BezierCurve, CurveInterpolation, Deformation, EndConditions, Parametrization,
-    Points,
+    PiecewisePolynomial, Points, DEFAULT_CONTINUITY_RTOL,
 };
 use lekalo_io::Object;
 use lekalo_serve::{router, Limits};
@@ -144,6 +144,82 @@ async fn interpolation_is_the_library_s() {
     )
     .await;
     assert_eq!(field, "degree", "{msg}");
+}
+
+/// The smoothness at every interior break of a B-spline curve, as the library measures it on
+/// its piecewise polynomial form: the `m` of `C^m` (`ν − 1`, `lekalo::PiecewisePolynomial::continuity`).
+fn measured_continuity(curve: &Value) -> Vec<usize> {
+    let Object::BSpline(c) = Object::from_json_str(&curve.to_string(), "answer").expect("curve")
+    else {
+        panic!("a B-spline curve: {curve}");
+    };
+    PiecewisePolynomial::from_bspline(&c)
+        .expect("pp form")
+        .continuity(DEFAULT_CONTINUITY_RTOL)
+        .into_iter()
+        .map(|nu| nu - 1)
+        .collect()
+}
+
+#[tokio::test]
+async fn the_blends_report_the_continuity_the_library_gives_them() {
+    // corners: the knots at the joins have multiplicity 2k + 1 = degree (C^0 by the knots
+    // alone); the answer's continuity is the library's k, and the drawn curve has it
+    let zigzag = json!([[0, 0], [1, 2], [2, 0], [3, 2], [4, 0]]);
+    for k in 1..=4 {
+        let v = ok(
+            "/api/blend/corners",
+            &json!({"points": zigzag, "continuity": k, "fraction": 0.3}),
+        )
+        .await;
+        assert_eq!(v["continuity"], k, "corners, k = {k}");
+        let degree = v["degree"].as_u64().expect("degree");
+        assert!(
+            v["knot_marks"][1]["multiplicity"].as_u64() == Some(degree),
+            "a join's knot has the multiplicity of the degree: {}",
+            v["knot_marks"][1]
+        );
+        let m = measured_continuity(&v["curve"]);
+        assert!(!m.is_empty(), "interior joins");
+        assert_eq!(m.iter().min(), Some(&k), "k = {k}: measured {m:?}");
+    }
+    // the curve through points: C^k at its joins (parabolas), as the library's options say
+    let v = ok(
+        "/api/blend/spline",
+        &json!({"points": zigzag, "continuity": 3}),
+    )
+    .await;
+    assert_eq!(v["continuity"], 3);
+    // a k whose curve is above the degree limit is refused naming k and the degree it makes
+    for route in ["/api/blend/corners", "/api/blend/spline"] {
+        let (field, msg) = bad(
+            route,
+            json!({"points": zigzag, "continuity": 40}).to_string(),
+        )
+        .await;
+        assert_eq!(field, "continuity", "{msg}");
+        assert!(
+            msg.starts_with(
+                "continuity k = 40 makes a curve of degree 81, above the server's limit 64"
+            ),
+            "{route}: {msg}"
+        );
+    }
+    // the deformation: the order of its contact with the two curves at the ends
+    let up = BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [2.0, 2.0], [4.0, 0.0]]).expect("p"))
+        .expect("up");
+    let down =
+        BezierCurve::new(Points::from_2d(&[[0.0, 0.0], [2.0, -2.0], [4.0, 0.0]]).expect("p"))
+            .expect("down");
+    let v = ok(
+        "/api/blend/deform",
+        &json!({"first": Object::Bezier(up.clone()).to_json_value(),
+                "second": Object::Bezier(down.clone()).to_json_value(), "continuity": 3}),
+    )
+    .await;
+    let d = Deformation::new(&up, &down, 3).expect("deformation");
+    assert_eq!(v["continuity"], d.continuity());
+    assert_eq!(v["curve"]["type"], "bezier_curve");
 }
 
 #[tokio::test]

@@ -129,7 +129,7 @@ async fn health_is_answered_while_heavy_requests_compute_and_the_deadline_stops_
             "health was answered while the heavy requests were still in flight"
         );
         // the editor's page too
-        let (code, _) = raw(addr, "GET", "/app.js", "").await;
+        let (code, _) = raw(addr, "GET", "/js/main.js", "").await;
         assert_eq!(code, 200);
     }
     for h in heavy {

@@ -170,6 +170,15 @@ impl<'a> BlendSplinePieces<'a> {
         self.degree
     }
 
+    /// The continuity degree `k` of the options: the spline is `C^k` at its joins when the
+    /// local curves declare [`Continuity::Parametric`](crate::Continuity::Parametric) (the
+    /// parabolas do), `G^k` otherwise; as
+    /// [`BlendSpline::continuity_degree`](crate::BlendSpline::continuity_degree).
+    #[must_use]
+    pub fn continuity_degree(&self) -> usize {
+        self.options.continuity
+    }
+
     /// The dimension of the points (the NURBS's homogeneous points have one more coordinate).
     #[must_use]
     pub fn dim(&self) -> usize {

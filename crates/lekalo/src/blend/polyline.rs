@@ -27,6 +27,7 @@ pub enum CornerWindow {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SmoothedPolyline {
     curve: BSplineCurve,
+    continuity: usize,
     windows: Vec<f64>,
     straight: Vec<(f64, f64)>,
 }
@@ -37,6 +38,14 @@ impl SmoothedPolyline {
     #[must_use]
     pub fn curve(&self) -> &BSplineCurve {
         &self.curve
+    }
+
+    /// The continuity degree `k`: the curve is `C^k` at every join of a transition with a
+    /// straight part (or with the next transition), although its knots there have multiplicity
+    /// `2k + 1`, which alone would promise only `C^0`.
+    #[must_use]
+    pub fn continuity(&self) -> usize {
+        self.continuity
     }
 
     /// The curve, owned.
@@ -90,7 +99,7 @@ use crate::blend::corner::CornerTransition;
 /// use lekalo::{smooth_polyline_corners, CornerWindow, Points};
 /// let square = Points::from_2d(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])?;
 /// let s = smooth_polyline_corners(square.as_view(), CornerWindow::Fraction(0.25), 2)?;
-/// assert_eq!(s.curve().degree(), 5);
+/// assert_eq!((s.curve().degree(), s.continuity()), (5, 2));
 /// assert_eq!(s.windows(), &[0.5, 0.5]);
 /// // the middle segment's straight part: x = 2, y from 0.5 to 1.5, at unit speed
 /// let (a, _) = s.straight_spans()[1];
@@ -192,6 +201,7 @@ pub fn smooth_polyline_corners(
     }
     Ok(SmoothedPolyline {
         curve: BSplineCurve::from_bezier_segments(&segments)?,
+        continuity,
         windows,
         straight,
     })
@@ -477,9 +487,31 @@ mod tests {
     }
 
     #[test]
+    fn the_pp_form_measures_the_continuity_the_result_reports() -> Result<()> {
+        // every join has D^2 … D^k = 0 on both sides: the continuity test must scale the
+        // jumps by the derivatives' size over the pieces, not by their (zero) values at the joins
+        // (the symmetric zigzag's x is a straight line in the parameter: its D^2 … vanish)
+        let symmetric = [[0.0, 0.0], [1.0, 2.0], [2.0, 0.0], [3.0, 2.0], [4.0, 0.0]];
+        for (k, rows) in (1..=4).flat_map(|k| [(k, &ZIGZAG), (k, &symmetric)]) {
+            let s = smooth(rows, CornerWindow::Fraction(0.3), k)?;
+            let nu = crate::PiecewisePolynomial::from_bspline(s.curve())?
+                .continuity(crate::DEFAULT_CONTINUITY_RTOL);
+            assert!(!nu.is_empty(), "joins");
+            assert!(
+                nu.iter().all(|&n| n == s.continuity() + 1),
+                "k = {k}: ν = {nu:?}, C^{} reported",
+                s.continuity()
+            );
+        }
+        Ok(())
+    }
+
+    #[test]
     fn is_c_k_at_every_join_and_not_smoother() -> Result<()> {
         for k in 1..=4 {
             let s = smooth(&ZIGZAG, CornerWindow::Fraction(0.4), k)?;
+            // the continuity the result reports is the one its joins have
+            let k = s.continuity();
             let jump = max_relative_jump(s.curve(), k);
             assert!(jump < 1e-13, "k = {k}: derivative jump {jump:e}");
             // the (k+1)-th derivative jumps at a corner: the check above can fail

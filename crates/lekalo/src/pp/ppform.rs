@@ -23,7 +23,8 @@ use crate::points::Points;
 
 /// Relative tolerance of [`PpSpace::contains`] (and of the membership check of
 /// [`PiecewisePolynomial::to_bspline`]): a jump of `D^j f` counts as zero if it is at most this
-/// times the largest `|D^j f|` at the breakpoints.
+/// times the size of `D^j f` over the pieces (the largest of its bounds on each piece from the
+/// piece's coefficients).
 pub const DEFAULT_CONTINUITY_RTOL: f64 = 1e-9;
 
 /// A piecewise polynomial in pp-form: breakpoints, order and local power coefficients
@@ -400,19 +401,37 @@ impl PiecewisePolynomial {
         nu
     }
 
-    /// The largest `|D^j f|` at the ends of the pieces, per coordinate: the scale of the
-    /// continuity test of [`PpSpace::contains`] and [`PiecewisePolynomial::continuity`].
+    /// The size of `D^j f` over the pieces and the coordinates: the largest of the bounds
+    /// `Σ_{s ≥ j} s!/(s − j)! |c_{p,s,d}| h_p^{s−j} ≥ max |D^j f_d|` on piece `p` of length `h_p`
+    /// (`f_d = Σ_s c_{p,s,d} (x − ξ_p)^s` there), the same for every coordinate `d` (a curve's
+    /// coordinates share their unit). It is the scale of the continuity test of
+    /// [`PpSpace::contains`] and [`PiecewisePolynomial::continuity`]: a jump of `D^j f` counts
+    /// as zero when it is below `rtol` times this size. The values at the breakpoints alone
+    /// would not do: where every join is `C^j` with `D^j f = 0` there (a polyline's corners
+    /// rounded with `C^k`, `k ≥ j`), they are rounding, and rounding would count as a jump;
+    /// nor would a scale per coordinate, for a coordinate whose `D^j f_d` vanishes (`x` along
+    /// a zigzag whose segments all have the same `x` direction).
     fn derivative_scale(&self, j: usize) -> Vec<f64> {
-        let mut scale = vec![0.0f64; self.dim];
-        let mut value = vec![0.0; self.dim];
+        let (k, dim) = (self.order, self.dim);
+        let mut scale = vec![0.0f64; dim];
+        if j >= k {
+            return scale;
+        }
         for p in 0..self.n_pieces() {
-            for x in [self.breakpoints[p], self.breakpoints[p + 1]] {
-                self.piece_derivative_into(p, x, j, &mut value);
-                for (s, v) in scale.iter_mut().zip(&value) {
-                    *s = s.max(v.abs());
+            let h = self.breakpoints[p + 1] - self.breakpoints[p];
+            let c = &self.coefficients[p * k * dim..(p + 1) * k * dim];
+            for (d, out) in scale.iter_mut().enumerate() {
+                // Horner in h of the falling-factorial-weighted |c_s|, as piece_derivative_into
+                let mut bound = 0.0;
+                for s in (j..k).rev() {
+                    let falling: f64 = (s - j + 1..=s).map(|v| v as f64).product();
+                    bound = bound * h + falling * c[s * dim + d].abs();
                 }
+                *out = out.max(bound);
             }
         }
+        let size = scale.iter().copied().fold(0.0, f64::max);
+        scale.fill(size);
         scale
     }
 
@@ -604,8 +623,9 @@ impl PpSpace {
     }
 
     /// True if `f` belongs to the space: same breakpoints (exactly), order `≤ k`, and every jump
-    /// `jump_{ξ_i} D^{j} f`, `j < ν_i`, is at most `rtol` times the largest `|D^j f|` at the
-    /// breakpoints (per coordinate), see [`DEFAULT_CONTINUITY_RTOL`].
+    /// `jump_{ξ_i} D^{j} f`, `j < ν_i`, is at most `rtol` times the size of `D^j f` over the
+    /// pieces and coordinates (a bound of its largest value on each piece from the piece's
+    /// coefficients), see [`DEFAULT_CONTINUITY_RTOL`].
     #[must_use]
     pub fn contains(&self, f: &PiecewisePolynomial, rtol: f64) -> bool {
         if f.breakpoints != self.breakpoints || f.order > self.order {
