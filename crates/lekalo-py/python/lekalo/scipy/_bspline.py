@@ -32,6 +32,17 @@ def _as_float_array(x: Any, check_finite: bool = False) -> np.ndarray:
     return x
 
 
+def _one_number(x: Any) -> float | None:
+    """``x`` as a Python float when it is one real number (a ``float``, NumPy's ``float64``, or a
+    0-d float64 array), else ``None``: the argument of the scalar calls, which take one Rust call
+    on the arrays in place and give the bits of the array call at that one point."""
+    if isinstance(x, float):
+        return x
+    if type(x) is np.ndarray and x.ndim == 0 and x.dtype == np.float64:
+        return float(x)
+    return None
+
+
 def _real_columns(c: np.ndarray, n: int) -> np.ndarray:
     """The first ``n`` coefficients as an ``(n, m)`` float64 array (complex: real and imaginary
     parts as separate columns, so that lekalo computes with real points)."""
@@ -184,11 +195,12 @@ class BSpline:
         followed by the coefficients' trailing shape, the interpolation axis at ``axis``)."""
         if extrapolate is None:
             extrapolate = self.extrapolate
-        if isinstance(x, float) and nu == 0 and self.k and extrapolate != "periodic":
+        xf = _one_number(x)
+        if xf is not None and nu == 0 and self.k and extrapolate != "periodic":
             # one number in: lekalo's bspline_value on the arrays as they are (no curve built);
             # anything it does not take (complex or N-D coefficients, ...) goes the array way
             try:
-                return np.array(_lekalo.bspline_value(self.t, self.k, self.c, x, bool(extrapolate)))
+                return np.array(_lekalo.bspline_value(self.t, self.k, self.c, xf, bool(extrapolate)))
             except Exception:
                 pass
         x = np.asarray(x)

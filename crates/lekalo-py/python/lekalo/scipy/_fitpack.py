@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bivariate import _dblint, _evaluate, _surfit, _value
-from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _pad_rows
+from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _one_number, _pad_rows
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
@@ -98,11 +98,12 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
             raise ValueError(f"Extrapolation mode {ext} is not supported by BSpline.") from e
         return tck(x, der, extrapolate=extrapolate)
     t, c, k = tck
-    if isinstance(x, float) and der == 0 and ext == 0 and k and type(c) is np.ndarray and c.ndim == 1:
+    xf = _one_number(x)
+    if xf is not None and der == 0 and ext == 0 and k and type(c) is np.ndarray and c.ndim == 1:
         # one number in: lekalo's bspline_value on the arrays as they are; anything it does not
         # take (knots that are not a float64 array, ...) goes the array way
         try:
-            return np.array(_lekalo.bspline_value(t, k, c, x, True))
+            return np.array(_lekalo.bspline_value(t, k, c, xf, True))
         except Exception:
             pass
     try:
@@ -481,8 +482,9 @@ def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
         raise ValueError(f"0 <= dx = {dx} < kx = {kx} must hold")
     if not (0 <= dy < ky):
         raise ValueError(f"0 <= dy = {dy} < ky = {ky} must hold")
-    if isinstance(x, float) and isinstance(y, float) and not dx and not dy:
-        v = _value((tx, ty, c), (kx, ky), x, y)
+    xf, yf = _one_number(x), _one_number(y)
+    if xf is not None and yf is not None and not dx and not dy:
+        v = _value((tx, ty, c), (kx, ky), xf, yf)
         if v is not None:
             return np.float64(v)
     x, y = map(np.atleast_1d, [x, y])

@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _tensor, _value
-from ._bspline import _pad_rows
+from ._bspline import _one_number, _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
 from ._splrep import make_splrep
@@ -94,7 +94,7 @@ class UnivariateSpline:
         return self
 
     def __call__(self, x: Any, nu: int = 0, ext: Any = None) -> np.ndarray:
-        if isinstance(x, float):  # splev's scalar call
+        if _one_number(x) is not None:  # splev's scalar call
             return splev(x, self._eval_args, der=nu, ext=self.ext if ext is None else _ext_mode(ext))
         x = np.asarray(x)
         if x.size == 0:
@@ -259,7 +259,15 @@ class _BivariateSplineBase:
 
     def __call__(self, x: Any, y: Any, dx: int = 0, dy: int = 0, grid: bool = True) -> np.ndarray:
         """The spline (or its partial derivative ``(dx, dy)``) on the grid ``x × y`` (``grid``,
-        shape ``(len(x), len(y))``, both increasing) or at the points ``(x, y)`` broadcast."""
+        shape ``(len(x), len(y))``, both increasing) or at the points ``(x, y)`` broadcast. One
+        number each (values only): lekalo's ``tensor_value`` on the arrays in place, the array
+        call's bits in its shape."""
+        if not dx and not dy:
+            xf, yf = _one_number(x), _one_number(y)
+            if xf is not None and yf is not None:
+                v = _value(self.tck, self.degrees, xf, yf)
+                if v is not None:
+                    return np.array([[v]] if grid else v)
         x = np.asarray(x)
         y = np.asarray(y)
         dtype = np.asarray(self.tck[2]).dtype
@@ -300,8 +308,9 @@ class BivariateSpline(_BivariateSplineBase):
 
     def ev(self, xi: Any, yi: Any, dx: int = 0, dy: int = 0) -> np.ndarray:
         """The spline at the points ``(xi[i], yi[i])``."""
-        if isinstance(xi, float) and isinstance(yi, float) and not dx and not dy:
-            v = _value(self.tck, self.degrees, xi, yi)
+        xf, yf = _one_number(xi), _one_number(yi)
+        if xf is not None and yf is not None and not dx and not dy:
+            v = _value(self.tck, self.degrees, xf, yf)
             if v is not None:
                 return np.array(v)
         return self.__call__(xi, yi, dx=dx, dy=dy, grid=False)

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bspline import BSpline, _as_float_array, _curve, _from_columns, _get_dtype, _real_columns
+from ._bspline import BSpline, _as_float_array, _curve, _from_columns, _get_dtype, _one_number, _real_columns
 from ._interpolate import make_interp_spline
 
 
@@ -231,7 +231,13 @@ class _PPolyBase:
         if extrapolate is None:
             extrapolate = self.extrapolate
         c = self._c
-        if c is None and self._values_in_place is not None and getattr(x, "size", 0) >= max(self.x.size - 1, _READ_COEFFICIENTS_MIN):
+        xf = _one_number(x)
+        if (
+            c is None
+            and xf is None
+            and self._values_in_place is not None
+            and getattr(x, "size", 0) >= max(self.x.size - 1, _READ_COEFFICIENTS_MIN)
+        ):
             s = self._spline_
             if s is not None and s.c.dtype == np.float64:
                 c = self.c
@@ -242,16 +248,16 @@ class _PPolyBase:
                 ok = c.dtype == np.float64 and c.flags.c_contiguous and c.size > 0 and xb.dtype == np.float64
                 checked = self._in_place = (c, xb, bool(ok and xb[-1] != xb[0]))
             if checked[2]:
-                if type(x) is float and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
-                    return np.array(self._value_in_place(c, xb, x, nu, bool(extrapolate)))
+                if xf is not None and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
+                    return np.array(self._value_in_place(c, xb, xf, nu, bool(extrapolate)))
                 return self._call_in_place(c, xb, x, nu, extrapolate)
-        if isinstance(x, float) and nu == 0 and extrapolate != "periodic":
+        if xf is not None and nu == 0 and extrapolate != "periodic":
             # one number in: lekalo's bspline_value on the B-spline's arrays (the B-spline's
             # own call for what it does not take)
             s = self._spline
             if s.k:
                 try:
-                    return np.array(_lekalo.bspline_value(s.t, s.k, s.c, x, bool(extrapolate)))
+                    return np.array(_lekalo.bspline_value(s.t, s.k, s.c, xf, bool(extrapolate)))
                 except Exception:
                     pass
             return s(x, 0, extrapolate)
