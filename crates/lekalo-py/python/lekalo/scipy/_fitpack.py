@@ -249,7 +249,9 @@ def sproot(tck: Any, mest: int = 10):
         raise TypeError(f"The number of knots {len(t)}>=8")
     n = len(t) - k - 1
     cc = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[:n].reshape(n, 1))
-    if not (np.all(np.diff(t) >= 0) and np.all(np.diff(t[k:n + 1]) > 0)):
+    # neighbours compared (boolean arrays), not differences formed: the same test, NaN failing
+    # both, without two float temporaries the size of the knots
+    if not ((t[1:] >= t[:-1]).all() and (t[k + 1 : n + 1] > t[k:n]).all()):
         raise TypeError("Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold.")
     z = _lekalo.tck_zeros(t, cc[:, 0], k)
     # the base interval, widened by rounding: a zero at an end falls on either side of it

@@ -209,9 +209,8 @@ class LSQUnivariateSpline(UnivariateSpline):
         self, x: Any, y: Any, t: Any, w: Any = None, bbox: Any = (None, None), k: int = 3, ext: Any = 0,
         check_finite: bool = False,
     ) -> None:
+        # (validate_input refuses a decreasing x, with s=None, in SciPy's first words)
         x, y, w, bbox, self.ext = self.validate_input(x, y, w, bbox, k, None, ext, check_finite)
-        if not np.all(np.diff(x) >= 0.0):
-            raise ValueError("x must be increasing")
         x = np.asarray(x, dtype=np.float64)
         xb = x[0] if bbox[0] is None else float(bbox[0])
         xe = x[-1] if bbox[1] is None else float(bbox[1])
@@ -225,8 +224,13 @@ class LSQUnivariateSpline(UnivariateSpline):
         spl = make_lsq_spline(x, np.asarray(y, dtype=np.float64), tt, k, w=w)
         self._data = (x, y, w, xb, xe, k, None)
         self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
-        ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
-        self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
+        # the weighted residual sum of squares, sum((w * (spl(x) - y))**2), its terms formed in
+        # the one fresh array of the values (the same numbers and sum, no other temporaries)
+        r = spl(x)
+        np.subtract(r, y, out=r)
+        if w is not None:
+            np.multiply(np.asarray(w, dtype=np.float64), r, out=r)
+        self._fp = float(np.sum(np.square(r, out=r)))
 
 
 # -- the 2-D FITPACK classes (docs/scipy.md): tensor-product splines of lekalo's core --------
