@@ -271,7 +271,11 @@ class _BivariateSplineBase:
             if xf is not None and yf is not None:
                 v = _value(self.tck, self.degrees, xf, yf)
                 if v is not None:
-                    return np.array([[v]] if grid else v)
+                    if not grid:
+                        return np.array(v)
+                    out = np.empty((1, 1))  # (quicker than np.array([[v]]), the same array)
+                    out[0, 0] = v
+                    return out
         x = np.asarray(x)
         y = np.asarray(y)
         dtype = np.asarray(self.tck[2]).dtype
