@@ -98,7 +98,7 @@ enum Rule {
         #[arg(long, allow_hyphen_values = true)]
         at: String,
         /// Parameters beyond the domain take the end span's basis polynomials continued
-        /// (SciPy's design_matrix(extrapolate=True)) instead of being refused.
+        /// (as SciPy's design matrix does when extrapolating) instead of being refused.
         #[arg(long)]
         extrapolate: bool,
     },
