@@ -7,6 +7,7 @@ use lekalo::{
     CubicHermite, CurveInterpolation, EndCondition, EndDerivative, KnotPlacement, Parametrization,
     TangentEstimate,
 };
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
 
@@ -172,6 +173,80 @@ pub(crate) fn basis_functions<'py>(
         spans.into_any(),
         crate::convert::array(py, values, &[m, degree + 1])?,
     ))
+}
+
+/// SciPy's `BSpline.design_matrix(x, t, k, extrapolate)` as the three arrays of its CSR matrix,
+/// `(data, indices, indptr)`, each written once (`lekalo::basis::design_matrix_into`, P&T
+/// A2.2): row `j` holds `N_{s−k..=s,k}(x_j)` in the columns `s − k..=s`, `s` the span of
+/// `x_j`; the index arrays are int32 when the `len(x)·(k + 1)` entries allow it, as SciPy's,
+/// else int64. With `extrapolate` the end spans' polynomials continue beyond `[t_k, t_n]`;
+/// without, a point outside is an error.
+///
+/// >>> import numpy as np, lekalo
+/// >>> data, indices, indptr = lekalo._lekalo.design_matrix_csr(np.array([0.0, 0.0, 1.0, 2.0, 2.0]), 1, np.array([0.5, 2.0]))
+/// >>> data.tolist(), indices.tolist(), indptr.tolist()
+/// ([0.5, 0.5, 0.0, 1.0], [0, 1, 1, 2], [0, 2, 4])
+#[pyfunction]
+#[pyo3(signature = (t, k, x, extrapolate = false))]
+pub(crate) fn design_matrix_csr<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    k: IntArg,
+    x: &Bound<'py, PyAny>,
+    extrapolate: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let k = k.count("k")?;
+    let knots = lekalo::KnotVector::new(vec1(t, "t")?).map_err(lib_err)?;
+    let xa = floats(x, "x")?;
+    let xs = xa.vector("x")?;
+    let w = k
+        .checked_add(1)
+        .ok_or_else(|| bad(format!("k: {k} is not a degree")))?;
+    let nnz = check_size("design matrix", &[xs.len(), w])?;
+    if i32::try_from(nnz).is_ok_and(|v| v < i32::MAX) {
+        csr_arrays::<i32>(py, &knots, k, xs, extrapolate)
+    } else {
+        csr_arrays::<i64>(py, &knots, k, xs, extrapolate)
+    }
+}
+
+/// [`design_matrix_csr`] with index arrays of type `I` (wide enough for `len(xs)·(k + 1)`).
+fn csr_arrays<'py, I>(
+    py: Python<'py>,
+    knots: &lekalo::KnotVector,
+    k: usize,
+    xs: &[f64],
+    extrapolate: bool,
+) -> PyResult<Bound<'py, PyTuple>>
+where
+    I: numpy::Element + Copy + Default + Send + TryFrom<usize>,
+{
+    let w = k + 1;
+    let nnz = xs.len() * w;
+    let data = PyArray1::<f64>::zeros(py, nnz, false);
+    let indices = PyArray1::<I>::zeros(py, nnz, false);
+    let indptr = PyArray1::<I>::zeros(py, xs.len() + 1, false);
+    {
+        let (mut d, mut ix, mut ip) = (data.readwrite(), indices.readwrite(), indptr.readwrite());
+        let not_contiguous = |e: numpy::AsSliceError| bad(format!("design matrix: {e}"));
+        let d = d.as_slice_mut().map_err(not_contiguous)?;
+        let ix = ix.as_slice_mut().map_err(not_contiguous)?;
+        let ip = ip.as_slice_mut().map_err(not_contiguous)?;
+        // every index is below nnz, which fits I (the caller's choice): the default never shows
+        let index = |v: usize| I::try_from(v).unwrap_or_default();
+        py.detach(|| {
+            for (j, p) in ip.iter_mut().enumerate() {
+                *p = index(j * w);
+            }
+            lekalo::basis::design_matrix_into(knots, k, xs, extrapolate, d, |j, first| {
+                for (i, slot) in ix[j * w..(j + 1) * w].iter_mut().enumerate() {
+                    *slot = index(first + i);
+                }
+            })
+        })
+        .map_err(lib_err)?;
+    }
+    PyTuple::new(py, [data.into_any(), indices.into_any(), indptr.into_any()])
 }
 
 /// The natural cubic spline `y(x)` through `(x_k, y_k)` (zero second derivatives at the ends;

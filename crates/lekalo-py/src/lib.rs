@@ -77,6 +77,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::interpolate, m)?)?;
     m.add_function(wrap_pyfunction!(interp::parametrize, m)?)?;
     m.add_function(wrap_pyfunction!(interp::basis_functions, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::design_matrix_csr, m)?)?;
     m.add_function(wrap_pyfunction!(interp::natural_cubic_spline, m)?)?;
     m.add_function(wrap_pyfunction!(
         interp::interpolate_with_end_derivatives,

@@ -411,6 +411,74 @@ pub fn basis_functions_many(
     Ok((spans, values))
 }
 
+/// The design (collocation) matrix `B_{j,i} = N_{i,p}(t_j)` of the spline space of `degree` on
+/// `knots` at the parameters `t`, in compressed rows written into the caller's buffers: row `j`
+/// holds its `p + 1` non-zero entries `N_{s−p..=s,p}(t_j)` (`s` the span of `t_j`) in
+/// `values[j·(p+1)..(j+1)·(p+1)]`, and `first_column(j, s − p)` is called with the column of
+/// the first of them (a CSR matrix's column indices are `s − p, …, s`; its row pointers
+/// `0, p + 1, 2(p + 1), …`). Inside the domain the numbers are those of
+/// [`basis_functions_many`], bit for bit (the same span search and Cox–de Boor scheme, P&T
+/// Algorithm A2.2). With `extrapolate`, a parameter beyond `[t_p, t_n]` takes the basis
+/// polynomials of the end span continued: the same recurrence on that span at `t_j` (its
+/// denominators are knot differences, positive whatever `t_j`), as SciPy's
+/// `BSpline.design_matrix(extrapolate=True)`. O(m·p²) for `m` parameters, no allocation.
+///
+/// ```
+/// use lekalo::{basis::{basis_functions_many, design_matrix_into}, KnotVector};
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0]).unwrap();
+/// let mut values = [0.0; 9];
+/// let mut first = [0; 3];
+/// design_matrix_into(&kv, 2, &[0.5, 3.0, 4.0], true, &mut values, |j, c| first[j] = c)?;
+/// assert_eq!(first, [0, 2, 2]);
+/// assert_eq!(values[..6], basis_functions_many(&kv, 2, &[0.5, 3.0])?.1[..]);
+/// // beyond the end: the last span's polynomials at 4, which still sum to one
+/// assert!((values[6..].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Degree`] for a degree the knots cannot carry; [`Error::LengthMismatch`] if
+/// `values` does not hold `t.len()·(p + 1)` numbers; [`Error::NonFinite`] for the first NaN or
+/// infinite parameter; without `extrapolate`, [`Error::ParameterOutOfDomain`] for the first
+/// parameter outside `[t_p, t_n]`.
+pub fn design_matrix_into(
+    knots: &KnotVector,
+    degree: usize,
+    t: &[f64],
+    extrapolate: bool,
+    values: &mut [f64],
+    mut first_column: impl FnMut(usize, usize),
+) -> Result<()> {
+    knots.check_degree(degree)?;
+    let w = degree + 1;
+    let expected = t.len().saturating_mul(w);
+    if values.len() != expected {
+        return Err(Error::LengthMismatch {
+            what: "design matrix values (parameters × (degree + 1))".into(),
+            expected,
+            got: values.len(),
+        });
+    }
+    let (lo, hi) = knots.domain(degree);
+    let mut cursor = knots.span_cursor(degree);
+    let mut scratch = BasisScratch::new(degree);
+    for (j, (&tj, out)) in t.iter().zip(values.chunks_exact_mut(w)).enumerate() {
+        if !tj.is_finite() {
+            return Err(Error::NonFinite {
+                what: "x".into(),
+                index: j,
+                value: tj,
+            });
+        }
+        // beyond the domain (extrapolating): the end span, found at the nearest end
+        let at = if extrapolate { tj.max(lo).min(hi) } else { tj };
+        let span = cursor.find(at)?;
+        basis_funs_into(knots.as_slice(), degree, span, tj, &mut scratch, out);
+        first_column(j, span - degree);
+    }
+    Ok(())
+}
+
 /// Derivatives of orders `0..=n_ders` of the non-zero basis functions at `t` (P&T Algorithm
 /// A2.3): returns the span `i` and `(n_ders + 1) × (p + 1)` values row by row; row `k` holds
 /// `N^{(k)}_{i−p..=i,p}(t)`. Orders above `p` are zero. At a knot the derivatives are the
@@ -610,6 +678,78 @@ mod tests {
                 prop_assert!((v - r).abs() <= 1e-14, "N_{{{},{}}}({}) = {} against {}", i, p, t, v, r);
             }
         }
+    }
+
+    proptest! {
+        /// Inside the domain the rows are `basis_functions_many`'s, bit for bit; beyond it the end
+        /// span's polynomials keep the partition of unity and reproduce `x` from the Greville
+        /// abscissae (Marsden's identity holds for the polynomial pieces, continued or not).
+        #[test]
+        fn design_rows_are_the_basis_and_continue_the_end_polynomials(
+            gaps in prop::collection::vec(0.1..2.0_f64, 2..9),
+            p in 1usize..5,
+            s in prop::collection::vec(-0.5..=1.5_f64, 1..20),
+        ) {
+            let mut inner = vec![0.0];
+            for g in &gaps {
+                inner.push(inner[inner.len() - 1] + g);
+            }
+            let (a, b) = (inner[0], inner[inner.len() - 1]);
+            let knots: Vec<f64> = std::iter::repeat_n(a, p)
+                .chain(inner.iter().copied())
+                .chain(std::iter::repeat_n(b, p))
+                .collect();
+            let kv = KnotVector::new(knots.clone()).unwrap();
+            let x: Vec<f64> = s.iter().map(|s| a + s * (b - a)).collect();
+            let w = p + 1;
+            let mut values = vec![0.0; x.len() * w];
+            let mut first = vec![usize::MAX; x.len()];
+            design_matrix_into(&kv, p, &x, true, &mut values, |j, c| first[j] = c).unwrap();
+            let greville = |i: usize| knots[i + 1..=i + p].iter().sum::<f64>() / p as f64;
+            for (j, &xj) in x.iter().enumerate() {
+                let row = &values[j * w..(j + 1) * w];
+                if (a..=b).contains(&xj) {
+                    let (spans, inside) = basis_functions_many(&kv, p, &[xj]).unwrap();
+                    prop_assert_eq!(first[j], spans[0] - p);
+                    prop_assert_eq!(row, &inside[..]);
+                }
+                // rounding relative to the terms summed (beyond the domain they grow like
+                // (distance / knot gap)^p and cancel)
+                let size: f64 = row.iter().map(|v| v.abs()).sum();
+                prop_assert!((row.iter().sum::<f64>() - 1.0).abs() <= 1e-13 * size);
+                let terms = row.iter().enumerate().map(|(i, v)| v * greville(first[j] + i));
+                let linear: f64 = terms.clone().sum();
+                let linear_size: f64 = terms.map(f64::abs).sum::<f64>() + xj.abs();
+                prop_assert!((linear - xj).abs() <= 1e-13 * linear_size, "{} against {}", linear, xj);
+            }
+        }
+    }
+
+    #[test]
+    fn design_rows_refuse_what_they_cannot_write() {
+        let kv = KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 2.0]).unwrap();
+        let mut values = [0.0; 4];
+        let e = design_matrix_into(&kv, 1, &[0.5], false, &mut values, |_, _| {});
+        assert!(
+            matches!(
+                e,
+                Err(Error::LengthMismatch {
+                    expected: 2,
+                    got: 4,
+                    ..
+                })
+            ),
+            "{e:?}"
+        );
+        let e = design_matrix_into(&kv, 1, &[0.5, f64::NAN], true, &mut values, |_, _| {});
+        assert!(matches!(e, Err(Error::NonFinite { index: 1, .. })), "{e:?}");
+        let e = design_matrix_into(&kv, 1, &[0.5, 2.5], false, &mut values, |_, _| {});
+        assert!(
+            matches!(e, Err(Error::ParameterOutOfDomain { .. })),
+            "{e:?}"
+        );
+        let e = design_matrix_into(&kv, 2, &[0.5], false, &mut [0.0; 3], |_, _| {});
+        assert!(matches!(e, Err(Error::Degree { .. })), "{e:?}");
     }
 
     fn binom(n: usize, k: usize) -> f64 {

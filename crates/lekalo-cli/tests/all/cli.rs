@@ -396,6 +396,54 @@ fn knots_basis_at_parameters() {
 }
 
 #[test]
+fn knots_basis_extrapolates_the_end_spans_when_asked() {
+    // degree 1 on {0,0,1,2,2}: beyond 2 the last span's lines (2 − t, t − 1), before 0 the
+    // first span's (1 − t, t)
+    let out = lekalo()
+        .args([
+            "knots",
+            "basis",
+            "--knots",
+            "0,0,1,2,2",
+            "--degree",
+            "1",
+            "--at",
+            "3,-1,0.5",
+            "--extrapolate",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["basis"][0]["first"], 1);
+    assert_eq!(j["basis"][0]["values"], serde_json::json!([-1.0, 2.0]));
+    assert_eq!(j["basis"][1]["first"], 0);
+    assert_eq!(j["basis"][1]["values"], serde_json::json!([2.0, -1.0]));
+    assert_eq!(j["basis"][2]["values"], serde_json::json!([0.5, 0.5]));
+    // without the flag the same parameter is refused
+    lekalo()
+        .args([
+            "knots",
+            "basis",
+            "--knots",
+            "0,0,1,2,2",
+            "--degree",
+            "1",
+            "--at",
+            "3",
+        ])
+        .assert()
+        .code(2)
+        .stderr(contains("outside the domain"));
+}
+
+#[test]
 fn knots_build_and_inspect() {
     // averaged chord-length knots of P&T Example 9.1, interior 28/51
     // (docs/theory/interpolation.md#averaged-knots)

@@ -70,13 +70,17 @@ pub fn bspline_zeros(t: &[f64], k: usize, c: &[f64]) -> Result<Vec<f64>> {
             t[k], t[n]
         )));
     }
-    let spans: Vec<usize> = (k..n).filter(|&s| t[s] < t[s + 1]).collect();
-    let (first, last) = (spans[0], spans[spans.len() - 1]);
+    // the non-empty spans, walked without collecting them (a list of a million spans is fresh
+    // memory whose page faults cost more than the walk); t_k < t_n, so there is one
+    let nonempty = |s: &usize| t[*s] < t[*s + 1];
+    let (Some(first), Some(last)) = ((k..n).find(nonempty), (k..n).rev().find(nonempty)) else {
+        return Ok(Vec::new());
+    };
     let mut scratch = BasisScratch::new(k);
     let mut ders = vec![0.0; (k + 1) * (k + 1)];
     let mut power = vec![0.0; k + 1];
     let mut out: Vec<f64> = Vec::new();
-    for &s in &spans {
+    for s in (first..=last).filter(nonempty) {
         let window = &c[s - k..=s];
         if window.iter().all(|&v| v > 0.0) || window.iter().all(|&v| v < 0.0) {
             continue;

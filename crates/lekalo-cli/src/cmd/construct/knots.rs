@@ -97,6 +97,10 @@ enum Rule {
         /// Parameters in the domain [t(p), t(n+1)], comma-separated (fractions like 5/17 allowed).
         #[arg(long, allow_hyphen_values = true)]
         at: String,
+        /// Parameters beyond the domain take the end span's basis polynomials continued
+        /// (as SciPy's design matrix does when extrapolating) instead of being refused.
+        #[arg(long)]
+        extrapolate: bool,
     },
 }
 
@@ -178,7 +182,11 @@ pub(crate) fn run(a: &KnotsArgs, cx: &Context) -> Result<()> {
             )?,
             order.checked_sub(1),
         ),
-        Rule::Basis { source, at } => return basis(a, source, at, cx),
+        Rule::Basis {
+            source,
+            at,
+            extrapolate,
+        } => return basis(a, source, at, *extrapolate, cx),
         Rule::Inspect(source) => source.read(&mut inputs, cx)?,
     };
     let text = describe(&kv, degree, a.json)?;
@@ -186,21 +194,55 @@ pub(crate) fn run(a: &KnotsArgs, cx: &Context) -> Result<()> {
 }
 
 /// `lekalo knots basis`: the knots and degree of a curve file or of `--knots`/`--degree`, the
-/// basis at the parameters of `--at`.
-fn basis(a: &KnotsArgs, source: &KnotSource, at: &str, cx: &Context) -> Result<()> {
+/// basis at the parameters of `--at` (continued beyond the domain with `--extrapolate`).
+fn basis(
+    a: &KnotsArgs,
+    source: &KnotSource,
+    at: &str,
+    extrapolate: bool,
+    cx: &Context,
+) -> Result<()> {
     let mut inputs = Vec::new();
     let (kv, Some(p)) = source.read(&mut inputs, cx)? else {
         return bad_input("--knots needs --degree");
     };
     let t = numbers(at, "--at")?;
-    let text = basis_table(&kv, p, &t, a.json)?;
+    let text = basis_table(&kv, p, &t, extrapolate, a.json)?;
     emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
 }
 
 /// The non-zero basis functions of degree `p` at each parameter of `t`
-/// (`lekalo::basis::basis_functions_many`), as text (a line per parameter) or JSON.
-fn basis_table(kv: &KnotVector, p: usize, t: &[f64], as_json: bool) -> Result<String> {
-    let (spans, values) = lekalo::basis::basis_functions_many(kv, p, t)?;
+/// (`lekalo::basis::design_matrix_into`, the end spans' polynomials beyond the domain with
+/// `extrapolate`), as text (a line per parameter) or JSON.
+fn basis_table(
+    kv: &KnotVector,
+    p: usize,
+    t: &[f64],
+    extrapolate: bool,
+    as_json: bool,
+) -> Result<String> {
+    // a degree the knots can carry (p + 1 <= half their number), so the table's size is bounded
+    if kv.len() / 2 <= p {
+        return bad_input(format!(
+            "--degree {p}: {} knots carry a degree of at most {}",
+            kv.len(),
+            (kv.len() / 2).saturating_sub(1)
+        ));
+    }
+    let w = p + 1;
+    let size = t.len().saturating_mul(w);
+    if size > lekalo::MAX_SCALARS {
+        return bad_input(format!(
+            "--at: {} parameters × {w} values exceed {}; give fewer parameters",
+            t.len(),
+            lekalo::MAX_SCALARS
+        ));
+    }
+    let mut values = vec![0.0; size];
+    let mut spans = vec![0; t.len()];
+    lekalo::basis::design_matrix_into(kv, p, t, extrapolate, &mut values, |j, first| {
+        spans[j] = first + p;
+    })?;
     let rows = t.iter().zip(&spans).zip(values.chunks_exact(p + 1));
     if as_json {
         let rows: Vec<_> = rows

@@ -32,6 +32,17 @@ def _as_float_array(x: Any, check_finite: bool = False) -> np.ndarray:
     return x
 
 
+def _one_number(x: Any) -> float | None:
+    """``x`` as a Python float when it is one real number (a ``float``, NumPy's ``float64``, or a
+    0-d float64 array), else ``None``: the argument of the scalar calls, which take one Rust call
+    on the arrays in place and give the bits of the array call at that one point."""
+    if isinstance(x, float):
+        return x
+    if type(x) is np.ndarray and x.ndim == 0 and x.dtype == np.float64:
+        return float(x)
+    return None
+
+
 def _real_columns(c: np.ndarray, n: int) -> np.ndarray:
     """The first ``n`` coefficients as an ``(n, m)`` float64 array (complex: real and imaginary
     parts as separate columns, so that lekalo computes with real points)."""
@@ -141,9 +152,10 @@ class BSpline:
 
     @classmethod
     def design_matrix(cls, x: Any, t: Any, k: int, extrapolate: bool = False):
-        """The sparse matrix ``B_{j,k}(x_i)`` (``scipy.sparse.csr_array``), lekalo's basis
-        functions at each ``x`` (``basis_functions``); with ``extrapolate``, the end spans'
-        basis polynomials continue beyond ``[t[k], t[n]]``."""
+        """The sparse matrix ``B_{j,k}(x_i)`` (``scipy.sparse.csr_array``): its three arrays
+        written once by lekalo's ``design_matrix_csr`` (``design_matrix_into``: the basis
+        functions at each ``x``, P&T A2.2); with ``extrapolate``, the end spans' basis
+        polynomials continue beyond ``[t[k], t[n]]``."""
         from scipy.sparse import csr_array
 
         x = _as_float_array(x, True)
@@ -160,21 +172,12 @@ class BSpline:
         if extrapolate == "periodic":
             x = t[k] + (x - t[k]) % (t[n] - t[k])
             extrapolate = False
-        elif not extrapolate and ((min(x) < t[k]) or (max(x) > t[n])):
+        elif not extrapolate and (x.min() < t[k] or x.max() > t[n]):
+            # NumPy's reductions (SciPy's builtin min and max walk the array as Python floats;
+            # both refuse an empty x with a ValueError)
             raise ValueError(f"Out of bounds: x = {x}.")
-        spans, rows = _lekalo.basis_functions(t, k, np.clip(x, t[k], t[n]))
-        outside = (x < t[k]) | (x > t[n])
-        if outside.any():
-            # the end spans' basis polynomials at x: the curve whose control points are the
-            # unit vectors of R^n, continued beyond the domain
-            eye = _lekalo.BSplineCurve(k, t, np.eye(n))
-            full = eye.eval_extrapolated(x[outside])
-            cols = (spans[outside] - k)[:, None] + np.arange(k + 1)
-            rows = np.array(rows, copy=True)
-            rows[outside] = np.take_along_axis(full, cols, axis=1)
-        indices = (spans - k)[:, None] + np.arange(k + 1)
-        indptr = np.arange(0, len(x) * (k + 1) + 1, k + 1)
-        return csr_array((rows.ravel(), indices.ravel(), indptr), shape=(len(x), n))
+        data, indices, indptr = _lekalo.design_matrix_csr(t, k, x, extrapolate)
+        return csr_array((data, indices, indptr), shape=(len(x), n))
 
     def _n(self) -> int:
         return self.t.shape[0] - self.k - 1
@@ -184,11 +187,12 @@ class BSpline:
         followed by the coefficients' trailing shape, the interpolation axis at ``axis``)."""
         if extrapolate is None:
             extrapolate = self.extrapolate
-        if isinstance(x, float) and nu == 0 and self.k and extrapolate != "periodic":
+        xf = _one_number(x)
+        if xf is not None and nu == 0 and self.k and extrapolate != "periodic":
             # one number in: lekalo's bspline_value on the arrays as they are (no curve built);
             # anything it does not take (complex or N-D coefficients, ...) goes the array way
             try:
-                return np.array(_lekalo.bspline_value(self.t, self.k, self.c, x, bool(extrapolate)))
+                return np.array(_lekalo.bspline_value(self.t, self.k, self.c, xf, bool(extrapolate)))
             except Exception:
                 pass
         x = np.asarray(x)

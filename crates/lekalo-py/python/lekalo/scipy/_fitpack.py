@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bivariate import _dblint, _evaluate, _surfit, _value
-from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _pad_rows
+from ._bspline import BSpline, _antiderivative_tc, _derivative_tc, _insert_tc, _one_number, _pad_rows
 from ._interpolate import _not_a_knot, make_interp_spline, make_lsq_spline
 
 
@@ -116,11 +116,12 @@ def splev(x: Any, tck: Any, der: int = 0, ext: int = 0):
             raise ValueError(f"Extrapolation mode {ext} is not supported by BSpline.") from e
         return tck(x, der, extrapolate=extrapolate)
     t, c, k = tck
-    if isinstance(x, float) and der == 0 and ext == 0 and k and type(c) is np.ndarray and c.ndim == 1:
+    xf = _one_number(x)
+    if xf is not None and der == 0 and ext == 0 and k and type(c) is np.ndarray and c.ndim == 1:
         # one number in: lekalo's bspline_value on the arrays as they are; anything it does not
         # take (knots that are not a float64 array, ...) goes the array way
         try:
-            return np.array(_lekalo.bspline_value(t, k, c, x, True))
+            return np.array(_lekalo.bspline_value(t, k, c, xf, True))
         except Exception:
             pass
     try:
@@ -273,7 +274,9 @@ def sproot(tck: Any, mest: int = 10):
         raise TypeError(f"The number of knots {len(t)}>=8")
     n = len(t) - k - 1
     cc = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[:n].reshape(n, 1))
-    if not (np.all(np.diff(t) >= 0) and np.all(np.diff(t[k:n + 1]) > 0)):
+    # neighbours compared (boolean arrays), not differences formed: the same test, NaN failing
+    # both, without two float temporaries the size of the knots
+    if not ((t[1:] >= t[:-1]).all() and (t[k + 1 : n + 1] > t[k:n]).all()):
         raise TypeError("Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold.")
     z = _lekalo.tck_zeros(t, cc[:, 0], k)
     # the base interval, widened by rounding: a zero at an end falls on either side of it
@@ -506,8 +509,9 @@ def bisplev(x: Any, y: Any, tck: Any, dx: int = 0, dy: int = 0):
         raise ValueError(f"0 <= dx = {dx} < kx = {kx} must hold")
     if not (0 <= dy < ky):
         raise ValueError(f"0 <= dy = {dy} < ky = {ky} must hold")
-    if isinstance(x, float) and isinstance(y, float) and not dx and not dy:
-        v = _value((tx, ty, c), (kx, ky), x, y)
+    xf, yf = _one_number(x), _one_number(y)
+    if xf is not None and yf is not None and not dx and not dy:
+        v = _value((tx, ty, c), (kx, ky), xf, yf)
         if v is not None:
             return np.float64(v)
     x, y = map(np.atleast_1d, [x, y])

@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import _lekalo
 from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _tensor, _value
-from ._bspline import _pad_rows
+from ._bspline import _one_number, _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
 from ._splrep import make_splrep
@@ -94,7 +94,7 @@ class UnivariateSpline:
         return self
 
     def __call__(self, x: Any, nu: int = 0, ext: Any = None) -> np.ndarray:
-        if isinstance(x, float):  # splev's scalar call
+        if _one_number(x) is not None:  # splev's scalar call
             return splev(x, self._eval_args, der=nu, ext=self.ext if ext is None else _ext_mode(ext))
         x = np.asarray(x)
         if x.size == 0:
@@ -209,9 +209,8 @@ class LSQUnivariateSpline(UnivariateSpline):
         self, x: Any, y: Any, t: Any, w: Any = None, bbox: Any = (None, None), k: int = 3, ext: Any = 0,
         check_finite: bool = False,
     ) -> None:
+        # (validate_input refuses a decreasing x, with s=None, in SciPy's first words)
         x, y, w, bbox, self.ext = self.validate_input(x, y, w, bbox, k, None, ext, check_finite)
-        if not np.all(np.diff(x) >= 0.0):
-            raise ValueError("x must be increasing")
         x = np.asarray(x, dtype=np.float64)
         xb = x[0] if bbox[0] is None else float(bbox[0])
         xe = x[-1] if bbox[1] is None else float(bbox[1])
@@ -225,8 +224,13 @@ class LSQUnivariateSpline(UnivariateSpline):
         spl = make_lsq_spline(x, np.asarray(y, dtype=np.float64), tt, k, w=w)
         self._data = (x, y, w, xb, xe, k, None)
         self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
-        ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
-        self._fp = float(np.sum((ww * (spl(x) - y)) ** 2))
+        # the weighted residual sum of squares, sum((w * (spl(x) - y))**2), its terms formed in
+        # the one fresh array of the values (the same numbers and sum, no other temporaries)
+        r = spl(x)
+        np.subtract(r, y, out=r)
+        if w is not None:
+            np.multiply(np.asarray(w, dtype=np.float64), r, out=r)
+        self._fp = float(np.sum(np.square(r, out=r)))
 
 
 # -- the 2-D FITPACK classes (docs/scipy.md): tensor-product splines of lekalo's core --------
@@ -259,7 +263,19 @@ class _BivariateSplineBase:
 
     def __call__(self, x: Any, y: Any, dx: int = 0, dy: int = 0, grid: bool = True) -> np.ndarray:
         """The spline (or its partial derivative ``(dx, dy)``) on the grid ``x × y`` (``grid``,
-        shape ``(len(x), len(y))``, both increasing) or at the points ``(x, y)`` broadcast."""
+        shape ``(len(x), len(y))``, both increasing) or at the points ``(x, y)`` broadcast. One
+        number each (values only): lekalo's ``tensor_value`` on the arrays in place, the array
+        call's bits in its shape."""
+        if not dx and not dy:
+            xf, yf = _one_number(x), _one_number(y)
+            if xf is not None and yf is not None:
+                v = _value(self.tck, self.degrees, xf, yf)
+                if v is not None:
+                    if not grid:
+                        return np.array(v)
+                    out = np.empty((1, 1))  # (quicker than np.array([[v]]), the same array)
+                    out[0, 0] = v
+                    return out
         x = np.asarray(x)
         y = np.asarray(y)
         dtype = np.asarray(self.tck[2]).dtype
@@ -300,8 +316,9 @@ class BivariateSpline(_BivariateSplineBase):
 
     def ev(self, xi: Any, yi: Any, dx: int = 0, dy: int = 0) -> np.ndarray:
         """The spline at the points ``(xi[i], yi[i])``."""
-        if isinstance(xi, float) and isinstance(yi, float) and not dx and not dy:
-            v = _value(self.tck, self.degrees, xi, yi)
+        xf, yf = _one_number(xi), _one_number(yi)
+        if xf is not None and yf is not None and not dx and not dy:
+            v = _value(self.tck, self.degrees, xf, yf)
             if v is not None:
                 return np.array(v)
         return self.__call__(xi, yi, dx=dx, dy=dy, grid=False)

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bspline import BSpline, _as_float_array, _curve, _from_columns, _get_dtype, _real_columns
+from ._bspline import BSpline, _as_float_array, _curve, _from_columns, _get_dtype, _one_number, _real_columns
 from ._interpolate import make_interp_spline
 
 
@@ -231,7 +231,13 @@ class _PPolyBase:
         if extrapolate is None:
             extrapolate = self.extrapolate
         c = self._c
-        if c is None and self._values_in_place is not None and getattr(x, "size", 0) >= max(self.x.size - 1, _READ_COEFFICIENTS_MIN):
+        xf = _one_number(x)
+        if (
+            c is None
+            and xf is None
+            and self._values_in_place is not None
+            and getattr(x, "size", 0) >= max(self.x.size - 1, _READ_COEFFICIENTS_MIN)
+        ):
             s = self._spline_
             if s is not None and s.c.dtype == np.float64:
                 c = self.c
@@ -242,16 +248,16 @@ class _PPolyBase:
                 ok = c.dtype == np.float64 and c.flags.c_contiguous and c.size > 0 and xb.dtype == np.float64
                 checked = self._in_place = (c, xb, bool(ok and xb[-1] != xb[0]))
             if checked[2]:
-                if type(x) is float and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
-                    return np.array(self._value_in_place(c, xb, x, nu, bool(extrapolate)))
+                if xf is not None and c.ndim == 2 and type(nu) is int and nu >= 0 and extrapolate != "periodic":
+                    return np.array(self._value_in_place(c, xb, xf, nu, bool(extrapolate)))
                 return self._call_in_place(c, xb, x, nu, extrapolate)
-        if isinstance(x, float) and nu == 0 and extrapolate != "periodic":
+        if xf is not None and nu == 0 and extrapolate != "periodic":
             # one number in: lekalo's bspline_value on the B-spline's arrays (the B-spline's
             # own call for what it does not take)
             s = self._spline
             if s.k:
                 try:
-                    return np.array(_lekalo.bspline_value(s.t, s.k, s.c, x, bool(extrapolate)))
+                    return np.array(_lekalo.bspline_value(s.t, s.k, s.c, xf, bool(extrapolate)))
                 except Exception:
                     pass
             return s(x, 0, extrapolate)
@@ -739,13 +745,14 @@ class BPoly(_PPolyBase):
 
 
 def _prepare_input(x: Any, y: Any, axis: int):
-    x = _as_float_array(x, True)
-    y = np.asarray(y)
-    if np.issubdtype(y.dtype, np.complexfloating):
-        dtype = complex
-    else:
-        dtype = float
-    y = y.astype(dtype, copy=False)
+    """SciPy's ``prepare_input`` of the piecewise cubics (its checks and messages, in its order),
+    without its temporaries the size of the data: the increasing test compares neighbours
+    (a boolean array) instead of forming ``np.diff(x)``, which no caller uses."""
+    x, y = np.asarray(x), np.asarray(y)
+    if np.iscomplexobj(x):
+        raise ValueError("`x` must contain real values.")
+    x = np.asarray(x, dtype=np.float64)
+    y = y.astype(complex if np.iscomplexobj(y) else float, copy=False)
     axis = axis % y.ndim
     if x.ndim != 1:
         raise ValueError("`x` must be 1-dimensional.")
@@ -753,15 +760,15 @@ def _prepare_input(x: Any, y: Any, axis: int):
         raise ValueError("`x` must contain at least 2 elements.")
     if x.shape[0] != y.shape[axis]:
         raise ValueError(f"The length of `y` along `axis`={axis} doesn't match the length of `x`")
-    if not np.all(np.isfinite(x)):
+    if not np.isfinite(x).all():
         raise ValueError("`x` must contain only finite values.")
-    if not np.all(np.isfinite(y)):
+    if not np.isfinite(y).all():
         raise ValueError("`y` must contain only finite values.")
-    dx = np.diff(x)
-    if np.any(dx <= 0):
+    # x[i + 1] - x[i] <= 0 exactly when x[i + 1] <= x[i] (finite numbers, gradual underflow)
+    if (x[1:] <= x[:-1]).any():
         raise ValueError("`x` must be strictly increasing sequence.")
     y = np.moveaxis(y, axis, 0)
-    return x, dx, y, axis
+    return np.ascontiguousarray(x), y, axis
 
 
 class CubicSpline(PPoly):
@@ -771,7 +778,7 @@ class CubicSpline(PPoly):
     the result has SciPy's ``PPoly`` interface."""
 
     def __init__(self, x: Any, y: Any, axis: int = 0, bc_type: Any = "not-a-knot", extrapolate: Any = None) -> None:
-        x, dx, y, axis = _prepare_input(x, y, axis)
+        x, y, axis = _prepare_input(x, y, axis)
         n = x.shape[0]
         if extrapolate is None:
             extrapolate = "periodic" if bc_type == "periodic" else True
@@ -844,7 +851,7 @@ class CubicHermiteSpline(PPoly):
     def __init__(self, x: Any, y: Any, dydx: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
             extrapolate = True
-        x, dx, y, axis = _prepare_input(x, y, axis)
+        x, y, axis = _prepare_input(x, y, axis)
         dydx = np.moveaxis(np.asarray(dydx), axis, 0)
         if dydx.shape != y.shape:
             raise ValueError("The shapes of `y` and `dydx` must be identical.")
@@ -876,7 +883,7 @@ class PchipInterpolator(PPoly):
     def __init__(self, x: Any, y: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
             extrapolate = True
-        x, _, y, axis = _prepare_input(x, y, axis)
+        x, y, axis = _prepare_input(x, y, axis)
         if np.iscomplexobj(y):
             msg = (
                 "`PchipInterpolator` only works with real values for `y`. If you are trying to "
@@ -901,7 +908,7 @@ class Akima1DInterpolator(PPoly):
     def __init__(self, x: Any, y: Any, axis: int = 0, *, method: str = "akima", extrapolate: Any = None) -> None:
         if method not in {"akima", "makima"}:
             raise NotImplementedError(f"`method`={method} is unsupported.")
-        x, _, y, axis = _prepare_input(x, y, axis)
+        x, y, axis = _prepare_input(x, y, axis)
         if np.iscomplexobj(y):
             msg = (
                 "`Akima1DInterpolator` only works with real values for `y`. If you are trying to "
