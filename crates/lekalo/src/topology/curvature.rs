@@ -8,8 +8,9 @@ use crate::query::triangle_bound;
 use crate::{Arg, Error, Result, Surface, What};
 
 /// Halvings of each Bezier patch in each direction before its bounds are taken: the bounds of
-/// a part's net (a rational one's above all, whose weights and radius shrink with it) come
-/// closer to the surface's own derivatives there, at `4^SUB_LEVELS` nets a patch.
+/// a part's net (a rational one's above all, whose weights' spread and distance from the affine
+/// map through its corners shrink with it) come closer to the surface's own derivatives there,
+/// at `4^SUB_LEVELS` nets a patch.
 const SUB_LEVELS: usize = 3;
 
 /// The `u` and `v` ranges of a part of a patch.

@@ -636,3 +636,47 @@ fn a_single_patch_face_has_no_more_triangles_than_the_uniform_grid_needs() {
         );
     }
 }
+
+/// A rod of a CAD part as a face: the quarter-arc NURBS cylinder of radius 1.0795 and length
+/// 1147.7625 bounded by its end circles, meshed at 0.1. Its grid follows the rational bounds
+/// of `Curvature`: taken about a constant centre, the long straight direction entered every
+/// term and the face took some 10⁵ triangles, where eight steps round and one along are within
+/// 0.1 (the chord of an eighth of the circle deviates by `r (1 − cos(π/8)) ≈ 0.082`).
+#[test]
+fn a_long_rational_rod_face_has_no_more_triangles_than_a_few_uniform_grids() {
+    use crate::surface::Placement;
+    use crate::{NurbsCurve, NurbsSurface};
+    use std::f64::consts::{PI, TAU};
+    let (r, length, tol) = (1.0795, 1147.7625, 0.1);
+    let circle = |z: f64, up: bool| {
+        let c = Curve::from(
+            NurbsCurve::circle(&[0.0, 0.0, z], &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], r).unwrap(),
+        );
+        Edge::new(if up { c } else { c.reverse().unwrap() }, None).unwrap()
+    };
+    let frame = Placement::new([0.0; 3], None, None).unwrap();
+    let rod = Surface::from(NurbsSurface::cylinder(&frame, r, (0.0, TAU), (0.0, length)).unwrap());
+    let f = Face::new(
+        rod,
+        Loop::new(vec![circle(0.0, true)]).unwrap(),
+        vec![Loop::new(vec![circle(length, false)]).unwrap()],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap()
+    .with_projected_pcurves(1e-7)
+    .unwrap();
+    // the fewest equal steps round whose chords are within the tolerance
+    let n = (3..64)
+        .find(|&n| r * (1.0 - (PI / n as f64).cos()) <= tol)
+        .unwrap();
+    assert_eq!(n, 8);
+    let m = f.mesh(tol).unwrap();
+    assert!(m.deviation <= tol, "{}", m.deviation);
+    assert!(
+        m.triangles.len() <= 4 * 2 * n,
+        "{} triangles, where {} of a uniform grid are within {tol}",
+        m.triangles.len(),
+        2 * n
+    );
+}

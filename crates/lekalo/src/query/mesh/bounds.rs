@@ -149,14 +149,21 @@ impl QuerySurface {
     /// Polynomial: `A = p(p−1)·max|Δ²_u P|`, `B = pq·max|Δ_uΔ_v P|`, `C = q(q−1)·max|Δ²_v P|`
     /// (the derivatives are Bezier patches with those nets; convex hull).
     ///
-    /// Rational `S = P/w` (weights `w ≥ w_min > 0`, net translated to the centre `c` of its
-    /// Cartesian points, `R` their largest distance from `c`): on a triangle with interpolant
-    /// `L`, `S − L = f/w` with `f = (P − c w) − w (L − c)` vanishing at the vertices, and by
-    /// Leibniz `f_uu = P_uu − w_uu (L − c) − 2 w_u L_u`,
-    /// `f_uv = P_uv − w_uv (L − c) − w_u L_v − w_v L_u`, with `|L − c| ≤ R` and, for the
-    /// triangles used (a leg along `u` or `v`, the others no steeper than the diagonal),
-    /// `|L_u| ≤ G_u + 2 G_v`, `|L_v| ≤ G_v + 2 G_u`, `G_u ≥ max|S_u|`. `None` if a weight is not
-    /// positive.
+    /// Rational `S = P/w` (weights `w ≥ w_min > 0`; the standard quotient-rule estimates,
+    /// Floater, *Derivatives of rational Bézier curves*, CAGD 9, 1992, and Zheng & Sederberg,
+    /// *Estimating tessellation parameter intervals for rational curves and surfaces*, ACM TOG
+    /// 19, 2000, applied to the surface less an affine map): with `Λ = c + a u + b v` the affine
+    /// map fitted to the part's four corners (points of the surface) and `h = S − Λ = g/w`,
+    /// `g = P − wΛ` is a polynomial whose Bezier net of degree `(p + 1, q + 1)` is formed
+    /// exactly (`u·B_i^p = (i + 1)/(p + 1)·B_{i+1}^{p+1}`, then degree elevation), so its
+    /// differences keep the cancellation of a part that is straight in one direction. `Λ` is
+    /// affine, so `S_uu = h_uu` and by Leibniz
+    /// `h_uu = (g_uu − 2 w_u h_u − w_uu h)/w`, `h_uv = (g_uv − w_u h_v − w_v h_u − w_uv h)/w`,
+    /// `h_u = (g_u − w_u h)/w`, with `|h| ≤ R = max |g_ij|/w'_ij` (`w'` the weights elevated
+    /// alike; convex hull). These bound the surface's own second derivatives, so they hold for
+    /// any triangle inside the part, and shrink to them as the part does (`R`, `h_u`, `h_v`
+    /// are of second and first order in its size; `docs/theory/queries.md#tessellation`).
+    /// `None` if a weight is not positive.
     pub(crate) fn net_bounds(&self, net: &[f64]) -> Option<(f64, f64, f64)> {
         let (p, q, hd, dim) = (self.p, self.q, self.hd, self.dim);
         let at = |i: usize, j: usize| (i * (q + 1) + j) * hd;
@@ -198,92 +205,113 @@ impl QuerySurface {
         }
         let w = |i: usize, j: usize| net[at(i, j) + dim];
         let mut w_min = f64::INFINITY;
-        let (mut lo, mut hi) = (vec![f64::INFINITY; dim], vec![f64::NEG_INFINITY; dim]);
         for i in 0..=p {
             for j in 0..=q {
-                let wij = w(i, j);
-                w_min = w_min.min(wij);
-                for d in 0..dim {
-                    let x = net[at(i, j) + d] / wij;
-                    lo[d] = lo[d].min(x);
-                    hi[d] = hi[d].max(x);
-                }
+                w_min = w_min.min(w(i, j));
             }
         }
         if !(w_min > 0.0) {
             return None;
         }
-        let centre: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| 0.5 * (l + h)).collect();
+        // Λ = c + a u + b v: the least-squares affine fit to the four corners
+        let corner = |i: usize, j: usize, d: usize| net[at(i, j) + d] / w(i, j);
+        let (mut a, mut b, mut c) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
+        for d in 0..dim {
+            let (s00, s10) = (corner(0, 0, d), corner(p, 0, d));
+            let (s01, s11) = (corner(0, q, d), corner(p, q, d));
+            a[d] = 0.5 * ((s10 - s00) + (s11 - s01));
+            b[d] = 0.5 * ((s01 - s00) + (s11 - s10));
+            c[d] = 0.25 * (s00 + s10 + s01 + s11) - 0.5 * (a[d] + b[d]);
+        }
+        // the nets of u·w (degree (p + 1, q)) and v·w (degree (p, q + 1)), both elevated to
+        // (p + 1, q + 1), as is the homogeneous net
+        let (pe, qe) = (p + 1, q + 1);
+        let mut uw = vec![0.0; (pe + 1) * (q + 1)];
+        for k in 1..=pe {
+            for j in 0..=q {
+                uw[k * (q + 1) + j] = k as f64 / pe as f64 * w(k - 1, j);
+            }
+        }
+        let uw = elevate(&uw, (pe, q), (0, 1), 1);
+        let mut vw = vec![0.0; (p + 1) * (qe + 1)];
+        for i in 0..=p {
+            for l in 1..=qe {
+                vw[i * (qe + 1) + l] = l as f64 / qe as f64 * w(i, l - 1);
+            }
+        }
+        let vw = elevate(&vw, (p, qe), (1, 0), 1);
+        let elevated = elevate(net, (p, q), (1, 1), hd);
+        // g = P − wΛ, and R ≥ |g/w|
+        let mut g = vec![0.0; (pe + 1) * (qe + 1) * dim];
         let mut radius = 0.0_f64;
-        for i in 0..=p {
-            for j in 0..=q {
-                let r2: f64 = (0..dim)
-                    .map(|d| (net[at(i, j) + d] / w(i, j) - centre[d]).powi(2))
-                    .sum();
-                radius = radius.max(r2.sqrt());
+        for (k, x) in elevated.chunks_exact(hd).enumerate() {
+            let mut r2 = 0.0;
+            for d in 0..dim {
+                let t = x[d] - c[d] * x[dim] - a[d] * uw[k] - b[d] * vw[k];
+                g[k * dim + d] = t;
+                r2 += t * t;
             }
+            // an elevated weight is a convex combination of weights, at least w_min
+            radius = radius.max(r2.sqrt() / x[dim]);
         }
-        // coordinate d of the translated homogeneous net P − c w; the weight as coordinate dim
-        let x = |i: usize, j: usize, d: usize| {
-            if d == dim {
-                w(i, j)
-            } else {
-                net[at(i, j) + d] - centre[d] * w(i, j)
-            }
-        };
-        // [|Δ²_u|, |Δ_uΔ_v|, |Δ²_v|, |Δ_u|, |Δ_v|] of the point part, then of the weight
-        let mut pt = [0.0_f64; 5];
-        let mut wt = [0.0_f64; 5];
-        for i in 0..=p {
-            for j in 0..=q {
-                let mut s = [0.0_f64; 5];
-                for d in 0..=dim {
-                    let diffs = [
-                        (i + 2 <= p).then(|| x(i + 2, j, d) - 2.0 * x(i + 1, j, d) + x(i, j, d)),
-                        (i < p && j < q).then(|| {
-                            x(i + 1, j + 1, d) - x(i + 1, j, d) - x(i, j + 1, d) + x(i, j, d)
-                        }),
-                        (j + 2 <= q).then(|| x(i, j + 2, d) - 2.0 * x(i, j + 1, d) + x(i, j, d)),
-                        (i < p).then(|| x(i + 1, j, d) - x(i, j, d)),
-                        (j < q).then(|| x(i, j + 1, d) - x(i, j, d)),
-                    ];
-                    for (m, t) in diffs.iter().enumerate() {
-                        if let Some(t) = t {
-                            if d == dim {
-                                wt[m] = wt[m].max(t.abs());
-                            } else {
-                                s[m] += t * t;
-                            }
-                        }
-                    }
-                }
-                for m in 0..5 {
-                    pt[m] = pt[m].max(s[m].sqrt());
-                }
-            }
-        }
-        let factors = [
-            pf * (pf - 1.0).max(0.0),
-            pf * qf,
-            qf * (qf - 1.0).max(0.0),
-            pf,
-            qf,
-        ];
-        let (mut pd, mut wd) = ([0.0; 5], [0.0; 5]);
-        for m in 0..5 {
-            pd[m] = factors[m] * pt[m];
-            wd[m] = factors[m] * wt[m];
-        }
-        // slopes of S: |S_u| ≤ (|P_u| + |w_u| R) / w_min; of L on the part's triangles
-        let su = (pd[3] + wd[3] * radius) / w_min;
-        let sv = (pd[4] + wd[4] * radius) / w_min;
-        let (gu, gv) = (su + 2.0 * sv, sv + 2.0 * su);
+        let gd = difference_bounds(&g, (pe, qe), dim);
+        let weights: Vec<f64> = net.chunks_exact(hd).map(|x| x[dim]).collect();
+        let wd = difference_bounds(&weights, (p, q), 1);
+        // |h_u|, |h_v|
+        let hu = (gd[3] + wd[3] * radius) / w_min;
+        let hv = (gd[4] + wd[4] * radius) / w_min;
         Some((
-            (pd[0] + wd[0] * radius + 2.0 * wd[3] * gu) / w_min,
-            (pd[1] + wd[1] * radius + wd[3] * gv + wd[4] * gu) / w_min,
-            (pd[2] + wd[2] * radius + 2.0 * wd[4] * gv) / w_min,
+            (gd[0] + 2.0 * wd[3] * hu + wd[0] * radius) / w_min,
+            (gd[1] + wd[3] * hv + wd[4] * hu + wd[1] * radius) / w_min,
+            (gd[2] + 2.0 * wd[4] * hv + wd[2] * radius) / w_min,
         ))
     }
+}
+
+/// Bounds on `|F_uu|, |F_uv|, |F_vv|, |F_u|, |F_v|` over `[0, 1]²` of the tensor Bezier patch
+/// `F` of degree `n` with net `net` (`dim` scalars a point): the largest norms of the net's
+/// differences `Δ²_u`, `Δ_uΔ_v`, `Δ²_v`, `Δ_u`, `Δ_v` times `n_u(n_u − 1)`, `n_u n_v`,
+/// `n_v(n_v − 1)`, `n_u`, `n_v` (the derivatives are Bezier patches with those nets; convex
+/// hull).
+fn difference_bounds(net: &[f64], n: (usize, usize), dim: usize) -> [f64; 5] {
+    let (p, q) = n;
+    let x = |i: usize, j: usize, d: usize| net[(i * (q + 1) + j) * dim + d];
+    let mut m = [0.0_f64; 5];
+    for i in 0..=p {
+        for j in 0..=q {
+            let mut s = [0.0_f64; 5];
+            for d in 0..dim {
+                let diffs = [
+                    (i + 2 <= p).then(|| x(i + 2, j, d) - 2.0 * x(i + 1, j, d) + x(i, j, d)),
+                    (i < p && j < q)
+                        .then(|| x(i + 1, j + 1, d) - x(i + 1, j, d) - x(i, j + 1, d) + x(i, j, d)),
+                    (j + 2 <= q).then(|| x(i, j + 2, d) - 2.0 * x(i, j + 1, d) + x(i, j, d)),
+                    (i < p).then(|| x(i + 1, j, d) - x(i, j, d)),
+                    (j < q).then(|| x(i, j + 1, d) - x(i, j, d)),
+                ];
+                for (k, t) in diffs.iter().enumerate() {
+                    if let Some(t) = t {
+                        s[k] += t * t;
+                    }
+                }
+            }
+            for (x, s) in m.iter_mut().zip(s) {
+                *x = x.max(s.sqrt());
+            }
+        }
+    }
+    let (pf, qf) = (p as f64, q as f64);
+    let factors = [
+        pf * (pf - 1.0).max(0.0),
+        pf * qf,
+        qf * (qf - 1.0).max(0.0),
+        pf,
+        qf,
+    ];
+    for (x, f) in m.iter_mut().zip(factors) {
+        *x *= f;
+    }
+    m
 }
 
 impl QuerySurface {

@@ -95,8 +95,9 @@ impl QuerySurface {
     /// `(A + 2B + C)/8`, which holds for any triangle inside it, is within the tolerance). The
     /// polynomial mesh is then thinned: a vertex is removed, its polygon fanned from one corner,
     /// where every new triangle is within the tolerance with `M_e` the largest of the parts it
-    /// covers ([`QuerySurface::decimate`]). On a rational surface, whose bound needs triangles
-    /// no steeper than the part's diagonal, such a part is a fan about its centre. Vertices are
+    /// covers ([`QuerySurface::decimate`]). On a rational surface, whose parts are accepted by
+    /// `(A + 2B + C)/8` (bounds on the surface's own second derivatives, which hold for any
+    /// triangle inside the part), such a part is a fan about its centre. Vertices are
     /// the parts' corner control points (points of the surface) and the fans' centres. The
     /// reported deviation is the largest triangle bound. Patches are split in parallel; the
     /// mesh does not depend on the thread count.
@@ -273,7 +274,7 @@ impl QuerySurface {
                 triangles.push([ring[0], ring[2], ring[3]]);
                 continue;
             }
-            // the bound needs triangles no steeper than the diagonal: a fan about the centre
+            // (A + 2B + C)/8 holds for any triangle inside the part: a fan about the centre
             let centre = self.centre_vertex(grid, l, &mut verts, &mut uv)?;
             for i in 0..ring.len() {
                 triangles.push([centre, ring[i], ring[(i + 1) % ring.len()]]);
