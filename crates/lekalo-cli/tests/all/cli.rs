@@ -290,8 +290,8 @@ fn an_error_about_the_tolerance_names_the_option() {
             "error: c.json: --tolerance: 0 is not a positive finite tolerance",
         ),
         (
-            &["measure", "c.json", "--tolerance=0"],
-            "error: c.json: --tolerance: 0 is not a positive finite tolerance",
+            &["measure", "c.json", "--rtol=0"],
+            "error: c.json: --rtol: 0 is not a positive finite tolerance",
         ),
         (
             &["knot", "remove", "c.json", "--at", "1", "--tolerance=-1"],
