@@ -4,6 +4,7 @@
 //! `every_test_file_is_a_module` checks that none is left out.
 
 mod api;
+mod connections;
 mod fit_query;
 mod openapi;
 mod responsive;
