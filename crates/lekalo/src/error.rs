@@ -747,7 +747,7 @@ fn support_box(lower: &[f64], upper: &[f64]) -> String {
     let sides: Vec<String> = lower
         .iter()
         .zip(upper)
-        .map(|(a, b)| format!("[{a}, {b}]", a = readable(&a), b = readable(&b)))
+        .map(|(a, b)| format!("[{a}, {b}]", a = readable(a), b = readable(b)))
         .collect();
     sides.join(" × ")
 }
