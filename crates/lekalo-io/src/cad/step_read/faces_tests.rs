@@ -392,7 +392,8 @@ fn face_json_errors_name_the_field() {
     // an optional field of the wrong type, or an id beyond 64 bits, is named, not defaulted
     // (an id of 10^30 was read as 0)
     let huge: serde_json::Value = serde_json::from_str("1e30").unwrap();
-    let cases: [(&str, &dyn Fn(&mut serde_json::Value)); 8] = [
+    type Change<'a> = &'a dyn Fn(&mut serde_json::Value);
+    let cases: [(&str, Change<'_>); 8] = [
         ("field `id`", &|w| w["id"] = huge.clone()),
         ("field `id`", &|w| w["id"] = serde_json::json!(-1)),
         ("field `surface_id`", &|w| w["surface_id"] = "5".into()),
