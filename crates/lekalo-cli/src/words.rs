@@ -90,8 +90,9 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
         Arg::CornerWindow | Arg::CornerFraction | Arg::CornerLength => "--window",
         Arg::S => "--s",
         Arg::KnotRounds => "--knot-rounds",
-        // `measure --tolerance` is the arc length's relative tolerance (its help says so)
-        Arg::Tolerance | Arg::RelativeTolerance => "--tolerance",
+        Arg::Tolerance => "--tolerance",
+        // `measure --rtol`: the arc length's relative tolerance
+        Arg::RelativeTolerance => "--rtol",
         Arg::Times => "--times",
         Arg::Knot => "--at",
         Arg::Bbox => "--bbox",

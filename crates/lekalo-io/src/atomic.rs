@@ -424,9 +424,32 @@ pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
 /// memory for it cannot be reserved.
 pub fn read_input(path: &Path) -> IoResult<(String, String)> {
     let (bytes, name) = read_input_bytes(path)?;
+    if let Some(kind) = utf16(&bytes) {
+        return Err(IoError::Read {
+            path: PathBuf::from(name),
+            error: std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("{kind} text; lekalo reads UTF-8: save the file as UTF-8"),
+            ),
+        });
+    }
     let text =
         String::from_utf8(bytes).map_err(|e| not_utf8(&name, e.utf8_error().valid_up_to()))?;
     Ok((strip_bom(text), name))
+}
+
+/// The kind of UTF-16 text `bytes` starts with: a UTF-16 byte-order mark, or a zero byte in one
+/// of the first two (an ASCII character in UTF-16), which no UTF-8 text of lekalo's formats
+/// holds. Such a file is otherwise refused at its first byte or read as JSON with an error in
+/// column 1, which names neither the encoding nor the fix.
+fn utf16(bytes: &[u8]) -> Option<&'static str> {
+    match bytes {
+        [0xFF, 0xFE, ..] => Some("UTF-16 (little-endian, with a byte-order mark)"),
+        [0xFE, 0xFF, ..] => Some("UTF-16 (big-endian, with a byte-order mark)"),
+        [0, b, ..] if *b != 0 => Some("UTF-16 (big-endian)"),
+        [a, 0, ..] if *a != 0 => Some("UTF-16 (little-endian)"),
+        _ => None,
+    }
 }
 
 /// The error of a text that is not UTF-8 at byte `at`.
@@ -674,6 +697,42 @@ mod tests {
                 read.len()
             );
         }
+    }
+
+    /// UTF-16 text, with or without a byte-order mark, is named as such with the fix; UTF-8
+    /// with a byte-order mark is read.
+    #[test]
+    fn utf16_text_is_named_with_the_fix() {
+        let dir = tempfile::tempdir().unwrap();
+        let text = "{\"a\": 1}";
+        let le: Vec<u8> = text.encode_utf16().flat_map(u16::to_le_bytes).collect();
+        let be: Vec<u8> = text.encode_utf16().flat_map(u16::to_be_bytes).collect();
+        let cases: [(&str, Vec<u8>, &str); 4] = [
+            (
+                "le-bom.json",
+                [&[0xFF, 0xFE][..], &le].concat(),
+                "little-endian, with a byte-order mark",
+            ),
+            (
+                "be-bom.json",
+                [&[0xFE, 0xFF][..], &be].concat(),
+                "big-endian, with a byte-order mark",
+            ),
+            ("le.json", le, "UTF-16 (little-endian)"),
+            ("be.json", be, "UTF-16 (big-endian)"),
+        ];
+        for (name, bytes, kind) in cases {
+            let path = dir.path().join(name);
+            std::fs::write(&path, bytes).unwrap();
+            let e = read_input(&path).unwrap_err().to_string();
+            assert!(
+                e.contains(kind) && e.contains("save the file as UTF-8"),
+                "{name}: {e}"
+            );
+        }
+        let path = dir.path().join("bom8.json");
+        std::fs::write(&path, [&[0xEF, 0xBB, 0xBF][..], text.as_bytes()].concat()).unwrap();
+        assert_eq!(read_input(&path).unwrap().0, text, "UTF-8 with a mark");
     }
 
     /// A file above the parallel threshold, and not a whole number of parts long, is read in

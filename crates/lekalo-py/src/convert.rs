@@ -277,6 +277,16 @@ impl IntArg {
     }
 }
 
+/// A list of counts or orders `name` (`nu`, `continuity`), each read as [`IntArg::count`]
+/// naming its index (`nu[0] must be a whole number …`), so that a negative or huge entry is
+/// `lekalo.InputError` rather than Python's `OverflowError`.
+pub(crate) fn counts(v: &[IntArg], name: &str) -> PyResult<Vec<usize>> {
+    v.iter()
+        .enumerate()
+        .map(|(i, n)| n.count(&format!("{name}[{i}]")))
+        .collect()
+}
+
 impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
     type Error = PyErr;
 

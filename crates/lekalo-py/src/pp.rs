@@ -10,7 +10,7 @@ use pyo3::types::PyTuple;
 use crate::convert::{
     array, check_size, filled, floats, points_into_array, vec1, vec_array, FloatArray,
 };
-use crate::convert::{out_shape, reduce, IntArg};
+use crate::convert::{counts, out_shape, reduce, IntArg};
 use crate::curves::PyBSplineCurve;
 use crate::error::{bad, io_err, lib_err};
 use crate::words::word;
@@ -275,7 +275,8 @@ impl PyPiecewisePolynomial {
 
     /// The jump of the `j`-th derivative at interior breakpoint `i` (1-based as in the
     /// document: breakpoint `ξ_{i+1}`, see the library's `jump`).
-    fn jump<'py>(&self, py: Python<'py>, i: usize, j: usize) -> PyResult<Bound<'py, PyAny>> {
+    fn jump<'py>(&self, py: Python<'py>, i: IntArg, j: IntArg) -> PyResult<Bound<'py, PyAny>> {
+        let (i, j) = (i.count("i")?, j.count("j")?);
         Ok(vec_array(py, &self.inner.jump(i, j).map_err(lib_err)?))
     }
 
@@ -364,9 +365,11 @@ impl PyPpSpace {
     #[pyo3(signature = (breakpoints, order, continuity = None))]
     fn new(
         breakpoints: &Bound<'_, PyAny>,
-        order: usize,
-        continuity: Option<Vec<usize>>,
+        order: IntArg,
+        continuity: Option<Vec<IntArg>>,
     ) -> PyResult<Self> {
+        let order = order.count("order")?;
+        let continuity = continuity.map(|v| counts(&v, "continuity")).transpose()?;
         let x = vec1(breakpoints, "breakpoints")?;
         let s = match continuity {
             Some(nu) => PpSpace::new(&x, &nu, order),

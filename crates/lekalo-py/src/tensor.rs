@@ -13,7 +13,9 @@ use lekalo::{
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
-use crate::convert::{array, check_size, filled, floats, vec1, vec_array, FloatArray};
+use crate::convert::{
+    array, check_size, counts, filled, floats, vec1, vec_array, FloatArray, IntArg,
+};
 use crate::error::{argument, bad, lib_err, named};
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
@@ -133,8 +135,8 @@ impl PyTensorBSpline {
         [lead, &self.trailing].concat()
     }
 
-    fn orders(&self, nu: Option<Vec<usize>>) -> PyResult<Option<Vec<usize>>> {
-        match nu {
+    fn orders(&self, nu: Option<Vec<IntArg>>) -> PyResult<Option<Vec<usize>>> {
+        match nu.map(|v| counts(&v, "nu")).transpose()? {
             Some(v) if v.len() != self.inner.n_vars() => Err(bad(format!(
                 "nu: {} orders for {} variables; give one derivative order per variable",
                 v.len(),
@@ -232,7 +234,7 @@ impl PyTensorBSpline {
         &self,
         py: Python<'_>,
         x: &Bound<'_, PyAny>,
-        nu: Option<Vec<usize>>,
+        nu: Option<Vec<IntArg>>,
         extrapolate: bool,
     ) -> PyResult<Py<PyAny>> {
         let n = self.inner.n_vars();
@@ -266,7 +268,7 @@ impl PyTensorBSpline {
         &self,
         py: Python<'_>,
         axes: &Bound<'_, PyTuple>,
-        nu: Option<Vec<usize>>,
+        nu: Option<Vec<IntArg>>,
     ) -> PyResult<Py<PyAny>> {
         let lists = axes_arg(axes.as_any(), "axes")?;
         let n = self.inner.n_vars();
@@ -357,7 +359,8 @@ impl PyTensorBSpline {
 
     /// The partial-derivative spline of orders `nu` (one per variable): degrees lowered by
     /// the orders (`TensorBSpline::derivative`, P&T §3.3 direction by direction).
-    fn derivative(&self, nu: Vec<usize>) -> PyResult<Self> {
+    fn derivative(&self, nu: Vec<IntArg>) -> PyResult<Self> {
+        let nu = counts(&nu, "nu")?;
         let inner = self.inner.derivative(&nu).map_err(|e| named("nu", &e))?;
         Ok(Self {
             inner,

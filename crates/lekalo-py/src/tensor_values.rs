@@ -12,7 +12,7 @@ use lekalo::TensorBSplineRef;
 use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::convert::{check_size, filled, floats, FloatArray};
+use crate::convert::{check_size, counts, filled, floats, FloatArray, IntArg};
 use crate::error::{bad, lib_err, named};
 use crate::tensor::degrees_arg;
 
@@ -83,8 +83,8 @@ fn spline_ref<'a>(
 }
 
 /// Derivative orders `nu` (one per variable; all zero is the values).
-fn orders(nu: Option<Vec<usize>>, n: usize) -> PyResult<Option<Vec<usize>>> {
-    match nu {
+fn orders(nu: Option<Vec<IntArg>>, n: usize) -> PyResult<Option<Vec<usize>>> {
+    match nu.map(|v| counts(&v, "nu")).transpose()? {
         Some(v) if v.len() != n => Err(bad(format!(
             "nu: {} orders for {n} variables; give one derivative order per variable",
             v.len()
@@ -107,7 +107,7 @@ pub(crate) fn tensor_values(
     c: &Bound<'_, PyAny>,
     k: &Bound<'_, PyAny>,
     x: &Bound<'_, PyAny>,
-    nu: Option<Vec<usize>>,
+    nu: Option<Vec<IntArg>>,
     beyond: &str,
 ) -> PyResult<Py<PyAny>> {
     let rule = beyond_arg(beyond)?;
@@ -147,7 +147,7 @@ pub(crate) fn tensor_grid_values(
     c: &Bound<'_, PyAny>,
     k: &Bound<'_, PyAny>,
     axes: &Bound<'_, PyAny>,
-    nu: Option<Vec<usize>>,
+    nu: Option<Vec<IntArg>>,
     clamp: bool,
 ) -> PyResult<Py<PyAny>> {
     let knots = knot_arrays(t)?;

@@ -2,6 +2,7 @@
 far larger than their memory, absurd degrees, empty axes; each is an exception with lekalo's
 message, never an abort of the interpreter (docs/robustness.md)."""
 
+import re
 import subprocess
 import sys
 import textwrap
@@ -80,3 +81,54 @@ def test_jax_tensor_eval_refuses_zero_variables():
             lj.tensor_bspline_eval([], np.zeros(()), np.zeros((4, 0)), [])
     finally:
         jax.config.update("jax_enable_x64", old)
+
+
+@pytest.mark.parametrize("nu", [[-1, 0], [0, -5], [2**64, 0], [0, 2**70]])
+def test_negative_and_huge_derivative_orders_are_lekalos_error_not_overflow(nu):
+    # `nu` was read as unsigned integers: -1 raised OverflowError ("can't convert negative int
+    # to unsigned") from PyO3 instead of lekalo's error naming the entry
+    t = np.r_[[0.0] * 3, 0.5, [1.0] * 3]
+    s = lekalo.TensorBSpline([t, t], np.zeros((4, 4)), 2)
+    at = np.array([[0.3, 0.6]])
+    bad = "nu[0]" if nu[0] != 0 else "nu[1]"
+    pattern = rf"^{re.escape(bad)} must be a whole number 0, 1, 2, \.\.\., got"
+    for call in (
+        lambda: s(at, nu=nu),
+        lambda: s.grid([0.3], [0.6], nu=nu),
+        lambda: s.derivative(nu),
+        lambda: _lekalo.tensor_values([t, t], np.zeros((4, 4)), 2, at, nu),
+        lambda: _lekalo.tensor_grid_values([t, t], np.zeros((4, 4)), 2, [[0.3], [0.6]], nu),
+    ):
+        with pytest.raises(lekalo.InputError, match=pattern):
+            call()
+
+
+def test_a_huge_but_representable_derivative_order_is_refused_or_zero_not_a_crash():
+    t = np.r_[[0.0] * 3, 0.5, [1.0] * 3]
+    s = lekalo.TensorBSpline([t, t], np.ones((4, 4)), 2)
+    try:
+        v = s(np.array([[0.3, 0.6]]), nu=[2**62, 0])
+    except lekalo.InputError as e:
+        assert "nu" in str(e) or "derivative" in str(e), str(e)
+    else:
+        assert np.all(v == 0), v
+
+
+@pytest.mark.parametrize(
+    "args, pattern",
+    [
+        (([0, 0.5, 1], -1), r"^order must be a whole number"),
+        (([0, 0.5, 1], 3, [-1]), r"^continuity\[0\] must be a whole number"),
+    ],
+)
+def test_pp_space_counts_are_lekalos_error_not_overflow(args, pattern):
+    with pytest.raises(lekalo.InputError, match=pattern):
+        lekalo.PpSpace(*args)
+
+
+def test_pp_jump_indices_are_lekalos_error_not_overflow():
+    c = lekalo.BSplineCurve(2, [0, 0, 0, 0.5, 1, 1, 1], [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0]])
+    f = lekalo.PiecewisePolynomial.from_bspline(c)
+    for i, j, name in ((-1, 0, "i"), (1, -1, "j"), (2**70, 0, "i")):
+        with pytest.raises(lekalo.InputError, match=rf"^{name} must be a whole number"):
+            f.jump(i, j)

@@ -163,7 +163,7 @@ def test_given_knots_errors_name_the_argument():
     values = np.zeros((6, 5))
     with pytest.raises(lekalo.InputError, match="^knots: 1 entries for 2 variables"):
         lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[None])
-    with pytest.raises(lekalo.InputError, match=r"^knots: .*direction 0: 9 knots for 6 values"):
+    with pytest.raises(lekalo.InputError, match=r"^knots: .*1st direction: 9 knots for 6 values"):
         lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[0.0] * 4, 2.5, [5.0] * 4], None])
     with pytest.raises(lekalo.InputError, match=r"^knots: .*Schoenberg"):
         lekalo.TensorBSpline.interpolate_grid(axes, values, knots=[np.r_[[0.0] * 4, 0.1, 0.2, [5.0] * 4], None])

@@ -103,8 +103,9 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         Arg::Lambda => "lambda",
         Arg::S => "s",
         Arg::KnotRounds => "knot_rounds",
-        // the measure request's `tolerance` is the arc length's relative tolerance
-        Arg::Tolerance | Arg::RelativeTolerance => "tolerance",
+        Arg::Tolerance => "tolerance",
+        // the measure request's `rtol`: the arc length's relative tolerance
+        Arg::RelativeTolerance => "rtol",
         Arg::Times => "times",
         Arg::Knot => "t",
         Arg::EndDerivatives

@@ -13,7 +13,8 @@
 //! `/api/health` and the editor's files are answered while the pool is full; a request that
 //! finds the pool and its queue full gets 503, and one whose computation passes the deadline
 //! gets 504, the computation being stopped through the library's [`lekalo::Progress`] hook.
-//! Answers carry no CORS headers, so pages of other origins cannot read them.
+//! Answers carry no CORS headers, so pages of other origins cannot read them. Connections are
+//! bounded in number and in the time to send a request's head ([`listen`]).
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -36,6 +37,7 @@ pub mod expr;
 mod fields;
 pub mod fit;
 pub mod jobs;
+pub mod listen;
 pub mod pool;
 pub mod query;
 pub mod view;
@@ -47,7 +49,7 @@ pub use pool::{Job, Pool};
 /// Limits of the server and of one request, with the defaults of `lekalo serve`
 /// (`docs/serve.md`, section "Security and limits"). Every field has an option of
 /// `lekalo serve` (`--max-body`, `--timeout`, `--deadline`, `--workers`, `--queue`,
-/// `--max-degree`, `--max-samples`, `--max-points`, `--max-work`).
+/// `--max-connections`, `--max-degree`, `--max-samples`, `--max-points`, `--max-work`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
     /// Largest request body in bytes (413 above it). Default 2 MiB.
@@ -64,6 +66,9 @@ pub struct Limits {
     /// Computations that may wait for a worker; one more is refused with 503 and
     /// `Retry-After`. Default 64.
     pub queue: usize,
+    /// Connections served at once; beyond them a connection gets only the pages and the light
+    /// routes, computing routes answering 503 ([`listen`]). Default 4096.
+    pub connections: usize,
     /// Highest degree of any curve a request sends or asks for (a Bezier curve of `n + 1`
     /// control points has degree `n`), and the order − 1 of a quasi-interpolant. Default
     /// [`api::MAX_API_DEGREE`] (64).
@@ -93,6 +98,7 @@ impl Default for Limits {
             deadline: Duration::from_secs(5),
             workers: std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
             queue: 64,
+            connections: 4096,
             max_degree: api::MAX_API_DEGREE,
             max_samples: api::MAX_SAMPLES,
             max_points: api::MAX_POINTS,
@@ -244,7 +250,13 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
 /// The application: editor assets and the API under `/api/` ([`routes`]), with the body and
 /// time limits and a [`Pool`] sized by `limits`.
 pub fn router(limits: Limits) -> Router {
-    routes()
+    app(Arc::new(Pool::new(limits)), routes())
+}
+
+/// The router of `routes` on `pool`, with the 404 fallback and the body and time limits.
+fn app(pool: Arc<Pool>, routes: Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)>) -> Router {
+    let limits = *pool.limits();
+    routes
         .into_iter()
         .fold(Router::new(), |r, (path, _, handler)| {
             r.route(path, handler)
@@ -257,7 +269,7 @@ pub fn router(limits: Limits) -> Router {
                 ),
             )
         })
-        .with_state(Arc::new(Pool::new(limits)))
+        .with_state(pool)
         .layer(DefaultBodyLimit::disable())
         .layer(RequestBodyLimitLayer::new(limits.body_bytes))
         .layer(TimeoutLayer::with_status_code(
@@ -298,10 +310,9 @@ pub fn run(
     rt.block_on(async move {
         let listener = tokio::net::TcpListener::bind(addr).await?;
         ready(listener.local_addr()?);
-        axum::serve(listener, router(limits))
-            .with_graceful_shutdown(async {
-                let _ = tokio::signal::ctrl_c().await;
-            })
-            .await
+        listen::serve(listener, limits, async {
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
     })
 }

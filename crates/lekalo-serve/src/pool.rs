@@ -7,7 +7,9 @@
 //!   answers, so `/api/health` and the editor's files are answered while every computation
 //!   thread is busy.
 //! - At most [`Limits::queue`] more wait for a thread; a request beyond that is answered at once
-//!   with 503, a `Retry-After` header and the JSON error, before its body is parsed.
+//!   with 503, a `Retry-After` header and the JSON error, before its body is read. A body is
+//!   read only once its request is admitted, so the bodies held in memory are at most
+//!   `(workers + queue) · --max-body` bytes, however many clients send at once.
 //! - A computation that has not finished [`Limits::deadline`] after its request was read
 //!   (waiting included) is answered with 504; its cancel flag is set, and the library's kernels,
 //!   which check the flag between chunks of work, stop with [`lekalo::Error::Cancelled`]. The
@@ -21,7 +23,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::body::Bytes;
+use axum::body::{Body, Bytes};
 use axum::extract::State;
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
@@ -106,7 +108,7 @@ pub type Compute = fn(&Job<'_>, &Bytes) -> ApiResult<Response>;
 /// The `POST` route of a computing handler: its requests run in the [`Pool`].
 pub fn post(f: Compute) -> MethodRouter<Arc<Pool>> {
     axum::routing::post(
-        move |State(pool): State<Arc<Pool>>, headers: HeaderMap, body: Bytes| {
+        move |State(pool): State<Arc<Pool>>, headers: HeaderMap, body: Body| {
             run(pool, headers, body, f)
         },
     )
@@ -123,13 +125,18 @@ impl Drop for CancelOnDrop {
 }
 
 /// Runs `f` on `body` in the pool, within the deadline (module docs).
-async fn run(pool: Arc<Pool>, headers: HeaderMap, body: Bytes, f: Compute) -> Response {
+async fn run(pool: Arc<Pool>, headers: HeaderMap, body: Body, f: Compute) -> Response {
     let id = match job_id(&headers) {
         Ok(id) => id,
         Err(BadJobId) => return bad_id(),
     };
     let Ok(admission) = Arc::clone(&pool.admitted).try_acquire_owned() else {
         return busy(pool.limits());
+    };
+    // read under the admission: the time is the request's (`--timeout`, 408)
+    let body = match axum::body::to_bytes(body, pool.limits.body_bytes).await {
+        Ok(body) => body,
+        Err(e) => return unreadable(&e, pool.limits()),
     };
     // reports are kept from admission until the request ends, whatever the outcome
     let registered = id.map(|id| pool.jobs.register(id));
@@ -196,6 +203,34 @@ fn busy(limits: &Limits) -> Response {
             ),
             "field": null,
         })),
+    )
+        .into_response()
+}
+
+/// 413 for a body above `--max-body` sent without a length (one with a larger
+/// `Content-Length` is refused by the limit layer before the handler); 400 for a body that
+/// could not be read (a broken chunked encoding; a client gone reads nothing).
+fn unreadable(e: &axum::Error, limits: &Limits) -> Response {
+    let mut source: Option<&(dyn std::error::Error + 'static)> = Some(e);
+    while let Some(s) = source {
+        if s.is::<http_body_util::LengthLimitError>() {
+            return (
+                StatusCode::PAYLOAD_TOO_LARGE,
+                Json(json!({
+                    "error": format!(
+                        "the request body is larger than {} bytes (lekalo serve --max-body)",
+                        limits.body_bytes
+                    ),
+                    "field": null,
+                })),
+            )
+                .into_response();
+        }
+        source = s.source();
+    }
+    (
+        StatusCode::BAD_REQUEST,
+        Json(json!({"error": format!("the request body could not be read: {e}"), "field": null})),
     )
         .into_response()
 }

@@ -63,7 +63,7 @@ pub(crate) fn project(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     ))
 }
 
-fn default_tolerance() -> f64 {
+fn default_rtol() -> f64 {
     1e-12
 }
 
@@ -74,9 +74,10 @@ struct MeasureRequest {
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::numbers")]
     at_length: Vec<f64>,
-    #[serde(default = "default_tolerance")]
+    /// The arc length's relative tolerance (`lekalo measure --rtol`).
+    #[serde(default = "default_rtol")]
     #[serde(deserialize_with = "crate::fields::number")]
-    tolerance: f64,
+    rtol: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -102,7 +103,7 @@ pub(crate) fn measure(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let obj = curve(job, &r.curve, "curve")?;
     let q = query_curve(&obj)?;
     let table = q
-        .arc_length(r.tolerance)
+        .arc_length(r.rtol)
         .map_err(|e| ApiError::lib_or("curve", &e))?;
     let params = table
         .param_at_batch(&r.at_length)

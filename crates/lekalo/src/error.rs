@@ -709,6 +709,26 @@ impl std::fmt::Display for Readable {
     }
 }
 
+/// A direction of a tensor-product spline as messages name it, by its ordinal counted from the
+/// first (`1st direction`, `2nd direction`, ...): index `a` of the library (Python's axis `a`)
+/// is the command line's direction `a + 1` (`--params-in 1=...`, the columns `x1 … xN`), and an
+/// ordinal reads right in both numberings.
+pub(crate) struct NthDirection(pub(crate) usize);
+
+impl std::fmt::Display for NthDirection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = self.0.saturating_add(1);
+        let suffix = match (n % 10, n % 100) {
+            (_, 11..=13) => "th",
+            (1, _) => "st",
+            (2, _) => "nd",
+            (3, _) => "rd",
+            _ => "th",
+        };
+        write!(f, "{n}{suffix} direction")
+    }
+}
+
 /// A control point of a tensor-product spline in `N` variables and its support, the box
 /// `Π_a [t_{a,i_a}, t_{a,i_a+p_a+1}]` where its basis function is positive
 /// ([`Error::EmptySupport`]).
@@ -727,7 +747,7 @@ fn support_box(lower: &[f64], upper: &[f64]) -> String {
     let sides: Vec<String> = lower
         .iter()
         .zip(upper)
-        .map(|(a, b)| format!("[{a}, {b}]"))
+        .map(|(a, b)| format!("[{a}, {b}]", a = readable(a), b = readable(b)))
         .collect();
     sides.join(" × ")
 }
@@ -806,6 +826,30 @@ mod tests {
         assert!(
             matches!(e, Error::NonFinite { what, index: 1, .. } if what.words() == "x"),
             "got {e:?}"
+        );
+    }
+
+    #[test]
+    fn directions_are_named_by_ordinals() {
+        let words: Vec<String> = [0, 1, 2, 3, 10, 11, 12, 20, 21, 111]
+            .iter()
+            .map(|&a| NthDirection(a).to_string())
+            .collect();
+        assert_eq!(
+            words,
+            [
+                "1st direction",
+                "2nd direction",
+                "3rd direction",
+                "4th direction",
+                "11th direction",
+                "12th direction",
+                "13th direction",
+                "21st direction",
+                "22nd direction",
+                "112th direction"
+            ],
+            "ordinals"
         );
     }
 

@@ -13,6 +13,7 @@
 //! knots at the parameters (eq. 8); and the Curry–Schoenberg rule of document 003 (Theorem 4.5,
 //! docs/theory/pp.md#curry-schoenberg-knots).
 
+use crate::error::readable;
 use crate::{Arg, What};
 use serde::{Deserialize, Serialize};
 
@@ -598,9 +599,9 @@ pub(crate) fn check_breakpoints(breakpoints: &[f64]) -> Result<()> {
             what: Arg::Breakpoints.into(),
             reason: format!(
                 "must be strictly increasing, but breakpoint {i} = {} is not less than breakpoint {} = {}",
-                breakpoints[i],
+                readable(&breakpoints[i]),
                 i + 1,
-                breakpoints[i + 1]
+                readable(&breakpoints[i + 1])
             ),
         });
     }
@@ -677,7 +678,11 @@ pub(crate) fn check_width(what: impl Into<What>, min: f64, max: f64) -> Result<(
     if !(max - min).is_finite() {
         return Err(Error::InvalidArgument {
             what,
-            reason: format!("the width of [{min}, {max}] overflows; rescale them"),
+            reason: format!(
+                "the width of [{min}, {max}] overflows; rescale them",
+                min = readable(&min),
+                max = readable(&max)
+            ),
         });
     }
     Ok(())

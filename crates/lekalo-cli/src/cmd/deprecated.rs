@@ -8,6 +8,7 @@ const DEPRECATED: &[(&[&str], &str, &str)] = &[
     (&["fit"], "--d0", "--start-derivative"),
     (&["fit"], "--dn", "--end-derivative"),
     (&["fit"], "--tol", "--tolerance"),
+    (&["measure"], "--tolerance", "--rtol"),
     (&["blend", "spline"], "--params", "--param"),
     (&["blend", "deform"], "-k", "--continuity"),
     (&["blend", "spline"], "-k", "--continuity"),

@@ -55,6 +55,11 @@ pub(crate) struct ServeArgs {
     /// Computations that may wait for a worker; one more gets 503 with Retry-After.
     #[arg(long, value_name = "N", default_value_t = Limits::default().queue)]
     queue: usize,
+    /// Connections served at once; beyond them a connection gets only the editor's page and
+    /// /api/health, and every computing route 503 with Retry-After.
+    #[arg(long, value_name = "N", default_value_t = Limits::default().connections,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+    max_connections: usize,
     /// Highest degree of a curve a request sends or asks for.
     #[arg(long, value_name = "P", default_value_t = Limits::default().max_degree)]
     max_degree: usize,
@@ -92,6 +97,7 @@ pub(crate) fn run(a: &ServeArgs, cx: &Context) -> Result<()> {
         deadline: Duration::from_secs_f64(a.deadline),
         workers: a.workers.map_or(defaults.workers, |w| w as usize),
         queue: a.queue,
+        connections: a.max_connections,
         max_degree: a.max_degree,
         max_samples: a.max_samples,
         max_points: a.max_points,

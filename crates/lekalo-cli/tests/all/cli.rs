@@ -290,8 +290,8 @@ fn an_error_about_the_tolerance_names_the_option() {
             "error: c.json: --tolerance: 0 is not a positive finite tolerance",
         ),
         (
-            &["measure", "c.json", "--tolerance=0"],
-            "error: c.json: --tolerance: 0 is not a positive finite tolerance",
+            &["measure", "c.json", "--rtol=0"],
+            "error: c.json: --rtol: 0 is not a positive finite tolerance",
         ),
         (
             &["knot", "remove", "c.json", "--at", "1", "--tolerance=-1"],
@@ -329,6 +329,22 @@ fn an_error_about_the_tolerance_names_the_option() {
         .stderr(contains(
             "`--tol` of `lekalo fit` is deprecated; write `--tolerance`",
         ));
+    // the relative tolerance is --rtol; the old spelling works, hidden, with a warning
+    lekalo()
+        .current_dir(d.path())
+        .args(["measure", "c.json", "--tolerance", "1e-9"])
+        .assert()
+        .success()
+        .stdout(contains("length "))
+        .stderr(contains(
+            "`--tolerance` of `lekalo measure` is deprecated; write `--rtol`",
+        ));
+    lekalo()
+        .current_dir(d.path())
+        .args(["measure", "--help"])
+        .assert()
+        .success()
+        .stdout(contains("--rtol <RTOL>").and(contains("--tolerance <").not()));
 }
 
 /// A failure to write on valid input (the device is full) is an internal failure: exit code 3.

@@ -103,15 +103,40 @@ pub fn read_face(text: &str, source: &str) -> IoResult<StepFace> {
     if v.get("type").and_then(Value::as_str) != Some("face") {
         return Err(err("type", "expected an object of type \"face\"".into()));
     }
-    let id = v.get("id").and_then(Value::as_u64).unwrap_or(0);
-    let name = v
-        .get("name")
-        .and_then(Value::as_str)
-        .unwrap_or_default()
-        .to_string();
-    let surface_id = v.get("surface_id").and_then(Value::as_u64).unwrap_or(0);
-    let same_sense = v.get("same_sense").and_then(Value::as_bool).unwrap_or(true);
-    let pcurves = v.get("pcurves").and_then(Value::as_str).map(str::to_string);
+    // the optional fields: left out (or null) takes the default; any other type or an id that
+    // is not a whole number of 64 bits is an error naming the field, never a silent default
+    let whole = |x: &Value, name: &str| {
+        x.as_u64().ok_or_else(|| {
+            err(
+                name,
+                format!("{x} is not an id: give a whole number from 0 to 2^64 − 1"),
+            )
+        })
+    };
+    let given = |x: &Value, name: &str| v.get(name).is_some() && !x.is_null();
+    let null = Value::Null;
+    let id = match v.get("id").unwrap_or(&null) {
+        x if given(x, "id") => whole(x, "id")?,
+        _ => 0,
+    };
+    let surface_id = match v.get("surface_id").unwrap_or(&null) {
+        x if given(x, "surface_id") => whole(x, "surface_id")?,
+        _ => 0,
+    };
+    let text = |name: &str| -> IoResult<Option<String>> {
+        match v.get(name) {
+            None | Some(Value::Null) => Ok(None),
+            Some(Value::String(s)) => Ok(Some(s.clone())),
+            Some(x) => Err(err(name, format!("{x} is not a text: give a JSON string"))),
+        }
+    };
+    let name = text("name")?.unwrap_or_default();
+    let pcurves = text("pcurves")?;
+    let same_sense = match v.get("same_sense") {
+        None | Some(Value::Null) => true,
+        Some(Value::Bool(b)) => *b,
+        Some(x) => return Err(err("same_sense", format!("{x} is not true or false"))),
+    };
     let Some(sv) = v.get("surface") else {
         return Err(err("surface", "a face needs its surface".into()));
     };
@@ -145,7 +170,10 @@ pub fn read_face(text: &str, source: &str) -> IoResult<StepFace> {
             let Some(c) = curve("curve")? else {
                 return Err(err(&here, "an edge needs its curve".into()));
             };
-            ids.push(e.get("edge_id").and_then(Value::as_u64).unwrap_or(0));
+            ids.push(match e.get("edge_id") {
+                None | Some(Value::Null) => 0,
+                Some(x) => whole(x, &format!("{here}.edge_id"))?,
+            });
             edges.push(
                 Edge::new(c, curve("pcurve")?).map_err(|error| IoError::Invalid {
                     at: field(&format!("{here}.pcurve")),
@@ -165,8 +193,18 @@ pub fn read_face(text: &str, source: &str) -> IoResult<StepFace> {
     let (outer, outer_ids) = read_loop(ov, "outer")?;
     let mut edge_ids = vec![outer_ids];
     let mut inner = Vec::new();
-    if let Some(list) = v.get("inner").and_then(Value::as_array) {
-        for (i, lv) in list.iter().enumerate() {
+    let inner_loops = match v.get("inner") {
+        None | Some(Value::Null) => &[][..],
+        Some(Value::Array(list)) => &list[..],
+        Some(x) => {
+            return Err(err(
+                "inner",
+                format!("{x} is not a list of loops: give [] for a face without holes"),
+            ))
+        }
+    };
+    {
+        for (i, lv) in inner_loops.iter().enumerate() {
             let (lp, ids) = read_loop(lv, &format!("inner[{i}]"))?;
             inner.push(lp);
             edge_ids.push(ids);

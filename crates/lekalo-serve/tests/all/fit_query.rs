@@ -313,9 +313,16 @@ async fn query_errors_name_the_field() {
         ),
         (
             "/api/measure",
-            json!({"curve": curve, "tolerance": -1}),
-            "tolerance",
+            json!({"curve": curve, "rtol": -1}),
+            "rtol",
             "",
+        ),
+        // the relative tolerance is `rtol`, as on the command line and in Python
+        (
+            "/api/measure",
+            json!({"curve": curve, "tolerance": 1e-6}),
+            "",
+            "unknown field `tolerance`",
         ),
         (
             "/api/measure",

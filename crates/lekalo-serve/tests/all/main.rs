@@ -5,6 +5,7 @@
 
 mod api;
 mod assets;
+mod connections;
 mod fit_query;
 mod openapi;
 mod responsive;

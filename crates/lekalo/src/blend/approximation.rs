@@ -3,6 +3,7 @@
 use crate::blend::deformation::ParametricCurve;
 use crate::blend::spline::BlendSpline;
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::Arg;
@@ -84,7 +85,10 @@ fn check_tolerance(tolerance: f64) -> Result<()> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidArgument {
             what: Arg::Tolerance.into(),
-            reason: format!("{tolerance} must be positive and finite"),
+            reason: format!(
+                "{tolerance} must be positive and finite",
+                tolerance = readable(&tolerance)
+            ),
         });
     }
     Ok(())
@@ -198,7 +202,9 @@ fn approximate_interval(
                 what: Arg::Tolerance.into(),
                 reason: format!(
                     "{tolerance:e} not reached with {m} pieces on [{a}, {b}] (error {error:e}); \
-                     raise the tolerance or the order"
+                     raise the tolerance or the order",
+                    a = readable(&a),
+                    b = readable(&b)
                 ),
             });
         }

@@ -2,6 +2,7 @@
 //! (docs/theory/blending.md#polyline-corners); the construction is documented on
 //! [`smooth_polyline_corners`].
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::points::{Points, PointsRef};
 use crate::Arg;
@@ -241,33 +242,33 @@ fn segment_lengths(points: PointsRef<'_>) -> Result<Vec<f64>> {
 /// The window `r_j` of each interior corner, checked against the segments.
 fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
     let corners = lengths.len() - 1;
-    let windows: Vec<f64> = match window {
-        CornerWindow::Fraction(f) => {
-            check_finite(Arg::CornerFraction, &[f])?;
-            if !(f > 0.0 && f <= 0.5) {
-                return Err(Error::InvalidArgument {
-                    what: Arg::CornerFraction.into(),
-                    reason: format!(
+    let windows: Vec<f64> =
+        match window {
+            CornerWindow::Fraction(f) => {
+                check_finite(Arg::CornerFraction, &[f])?;
+                if !(f > 0.0 && f <= 0.5) {
+                    return Err(Error::InvalidArgument {
+                        what: Arg::CornerFraction.into(),
+                        reason: format!(
                         "got {f}; it must lie in (0, 0.5] (a fraction of the shorter segment at \
-                         each corner)"
-                    ),
-                });
+                         each corner)", f = readable(&f)),
+                    });
+                }
+                (0..corners)
+                    .map(|j| f * lengths[j].min(lengths[j + 1]))
+                    .collect()
             }
-            (0..corners)
-                .map(|j| f * lengths[j].min(lengths[j + 1]))
-                .collect()
-        }
-        CornerWindow::Length(r) => {
-            check_finite(Arg::CornerLength, &[r])?;
-            if r <= 0.0 {
-                return Err(Error::InvalidArgument {
-                    what: Arg::CornerLength.into(),
-                    reason: format!("got {r}; it must be positive"),
-                });
+            CornerWindow::Length(r) => {
+                check_finite(Arg::CornerLength, &[r])?;
+                if r <= 0.0 {
+                    return Err(Error::InvalidArgument {
+                        what: Arg::CornerLength.into(),
+                        reason: format!("got {r}; it must be positive", r = readable(&r)),
+                    });
+                }
+                vec![r; corners]
             }
-            vec![r; corners]
-        }
-    };
+        };
     let last = lengths.len() - 1;
     for (i, &len) in lengths.iter().enumerate() {
         let left = if i == 0 { 0.0 } else { windows[i - 1] };
@@ -285,7 +286,9 @@ fn corner_windows(lengths: &[f64], window: CornerWindow) -> Result<Vec<f64>> {
                      {}; the largest window length that fits every segment is {fits} (or give \
                      a fraction)",
                     i + 1,
-                    left + right
+                    readable(&(left + right)),
+                    len = readable(&len),
+                    fits = readable(&fits)
                 ),
             });
         }

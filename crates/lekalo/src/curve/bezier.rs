@@ -1,6 +1,7 @@
 //! Bezier curves `P(t) = Σ_{i=0}^{n} b_{n,i}(t) P_i`, `t ∈ [0, 1]` (document 002, Bezier curves,
 //! document 004 eq. 1), of any degree and dimension.
 
+use crate::error::readable;
 use crate::{Arg, What};
 use serde::{Deserialize, Serialize};
 
@@ -304,7 +305,10 @@ impl BezierCurve {
         if t == 0.0 || t == 1.0 {
             return Err(Error::InvalidArgument {
                 what: "split parameter".into(),
-                reason: format!("t = {t} is an end of [0, 1]; split strictly inside (0, 1)"),
+                reason: format!(
+                    "t = {t} is an end of [0, 1]; split strictly inside (0, 1)",
+                    t = readable(&t)
+                ),
             });
         }
         let n = self.degree();

@@ -4,6 +4,7 @@
 
 use crate::curve::bspline::BSplineCurve;
 use crate::curve::nurbs::NurbsCurve;
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::numeric::linalg::norm2;
 use crate::points::Points;
@@ -597,7 +598,10 @@ fn check_radius(radius: f64) -> Result<()> {
     if !(radius > 0.0 && radius.is_finite()) {
         return Err(Error::InvalidArgument {
             what: "radius".into(),
-            reason: format!("{radius} is not a positive finite number"),
+            reason: format!(
+                "{radius} is not a positive finite number",
+                radius = readable(&radius)
+            ),
         });
     }
     Ok(())

@@ -14,6 +14,7 @@
 
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::curve::{BSplineCurve, Beyond};
+use crate::error::readable;
 use crate::error::{check_degree_bound, check_finite, Error, Result};
 use crate::points::Points;
 
@@ -282,7 +283,9 @@ pub fn bspline_value_by(
     let (lo, hi) = (knot(k), knot(n));
     if !(lo < hi) {
         return Err(invalid(format!(
-            "the domain [t_k, t_n] = [{lo}, {hi}] is empty"
+            "the domain [t_k, t_n] = [{lo}, {hi}] is empty",
+            lo = readable(&lo),
+            hi = readable(&hi)
         )));
     }
     if !t.is_finite() || (beyond == Beyond::Nan && !(lo <= t && t <= hi)) {

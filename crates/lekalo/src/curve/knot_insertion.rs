@@ -5,6 +5,7 @@
 
 use crate::curve::bezier::{BezierCurve, BezierSegment};
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::points::Points;
 use crate::Arg;
@@ -49,7 +50,8 @@ impl BSplineCurve {
                 reason: format!(
                     "inserting {t} {times} times would give it multiplicity {total}, more than \
                      the degree {p}; insert it at most {} times",
-                    p.saturating_sub(s)
+                    p.saturating_sub(s),
+                    t = readable(&t)
                 ),
             });
         }
@@ -143,7 +145,7 @@ impl BSplineCurve {
                     what: "refinement knots".into(),
                     reason: format!(
                         "knot {} would get multiplicity {total}, more than the degree {p}",
-                        x[i]
+                        readable(&x[i])
                     ),
                 });
             }
@@ -236,7 +238,10 @@ impl BSplineCurve {
             return Err(Error::InvalidArgument {
                 what: "split parameter".into(),
                 reason: format!(
-                    "t = {t} is an end of the domain [{min}, {max}]; split strictly inside it"
+                    "t = {t} is an end of the domain [{min}, {max}]; split strictly inside it",
+                    t = readable(&t),
+                    min = readable(&min),
+                    max = readable(&max)
                 ),
             });
         }

@@ -19,6 +19,7 @@
 //! so the guarantee also holds for several copies and for knots of multiplicity `p + 1`.
 
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::{Arg, What};
@@ -111,7 +112,10 @@ impl BSplineCurve {
                 what: What::of(Arg::Knot, "knot to remove"),
                 reason: format!(
                     "t = {t} is an end of the domain [{min}, {max}]; only knots strictly inside \
-                     the domain can be removed"
+                     the domain can be removed",
+                    t = readable(&t),
+                    min = readable(&min),
+                    max = readable(&max)
                 ),
             });
         }
@@ -119,7 +123,10 @@ impl BSplineCurve {
         if s == 0 {
             return Err(Error::InvalidArgument {
                 what: What::of(Arg::Knot, "knot to remove"),
-                reason: format!("t = {t} is not a knot of the curve; pass one of its knots"),
+                reason: format!(
+                    "t = {t} is not a knot of the curve; pass one of its knots",
+                    t = readable(&t)
+                ),
             });
         }
         if times > s {
@@ -127,7 +134,8 @@ impl BSplineCurve {
                 what: What::of(Arg::Times, "knot removal count"),
                 reason: format!(
                     "knot {t} has multiplicity {s}, so it cannot be removed {times} times; \
-                     remove it at most {s} times"
+                     remove it at most {s} times",
+                    t = readable(&t)
                 ),
             });
         }
@@ -221,7 +229,8 @@ pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
             what: Arg::Tolerance.into(),
             reason: format!(
                 "{tolerance} is negative; pass an absolute distance ≥ 0 (e.g. the curve's \
-                 default_removal_tolerance)"
+                 default_removal_tolerance)",
+                tolerance = readable(&tolerance)
             ),
         });
     }

@@ -4,6 +4,7 @@
 //! and without it, at any multiplicity (`iopt = 0`,
 //! docs/theory/curves.md#knot-insertion-on-raw-knots).
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
@@ -283,8 +284,9 @@ fn insert_once_into(
             what: Arg::Knot.into(),
             reason: format!(
                 "{x} lies in an empty knot interval [{}, {}]",
-                t[l],
-                t[l + 1]
+                readable(&t[l]),
+                readable(&t[l + 1]),
+                x = readable(&x)
             ),
         });
     }
@@ -297,7 +299,8 @@ fn insert_once_into(
                  (degree {k}) the interval must be at least {} or at most {}: insert into a \
                  spline with more interior knots",
                 2 * k,
-                n - 2 * k - 2
+                n - 2 * k - 2,
+                x = readable(&x)
             ),
         });
     }

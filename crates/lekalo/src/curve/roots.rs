@@ -2,6 +2,7 @@
 //! itself (`docs/theory/curves.md#zeros-of-a-spline`).
 
 use crate::basis::{basis_ders_into, BasisScratch};
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::pp::{PiecewisePolynomial, Solution};
 
@@ -60,8 +61,8 @@ pub fn bspline_zeros(t: &[f64], k: usize, c: &[f64]) -> Result<Vec<f64>> {
         return Err(invalid(format!(
             "knots {i} and {} ({} and {}) are not finite and non-decreasing",
             i + 1,
-            t[i],
-            t[i + 1]
+            readable(&t[i]),
+            readable(&t[i + 1])
         )));
     }
     if !(t[k] < t[n]) || !t[0].is_finite() || !t[t.len() - 1].is_finite() {

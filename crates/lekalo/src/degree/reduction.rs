@@ -4,6 +4,7 @@
 //! point-major slices; callers validate).
 
 use crate::degree::elevation::{elevate, elevation_weights_into};
+use crate::error::readable;
 use crate::error::{Error, Result};
 
 /// Default relative tolerance of the degree-defect test: a reduction is accepted as exact when it
@@ -188,7 +189,8 @@ pub(crate) fn absolute_tolerance(tolerance: f64, net: &[f64]) -> Result<f64> {
             what: "degree tolerance".into(),
             reason: format!(
                 "{tolerance} is not a finite non-negative number (relative to the largest \
-                 absolute control-point coordinate; the default is {DEFAULT_DEGREE_TOLERANCE})"
+                 absolute control-point coordinate; the default is {DEFAULT_DEGREE_TOLERANCE})",
+                tolerance = readable(&tolerance)
             ),
         });
     }

@@ -3,6 +3,7 @@
 
 use super::data::{CurveFit, FitData};
 use super::lsq::{least_squares, EndConstraints};
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 
@@ -95,7 +96,8 @@ pub fn robust_least_squares(
         return Err(Error::InvalidArgument {
             what: "robust tuning constant".into(),
             reason: format!(
-                "{c}: it must be positive and finite (1.345 for Huber, 4.685 for Tukey)"
+                "{c}: it must be positive and finite (1.345 for Huber, 4.685 for Tukey)",
+                c = readable(&c)
             ),
         });
     }

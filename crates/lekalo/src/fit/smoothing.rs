@@ -1,6 +1,7 @@
 //! Penalised smoothing splines, `Σ w_k |Q_k − f(ū_k)|² + λ ∫ |f''|²`, with λ given or chosen by
 //! generalised cross-validation (`docs/theory/fitting.md#penalised`, `#gcv`).
 
+use crate::error::readable;
 use crate::Arg;
 use std::cell::Cell;
 
@@ -334,7 +335,8 @@ impl Smoother {
         m.factor().map_err(|i| Error::SingularSystem {
             reason: format!(
                 "the smoothing system has no positive pivot at coefficient {i} (λ = {lam}); the \
-                 data need points of positive weight at two distinct parameters at least"
+                 data need points of positive weight at two distinct parameters at least",
+                lam = readable(&lam)
             ),
         })?;
         let mut c = self.rhs.clone();

@@ -5,6 +5,7 @@
 
 use crate::basis::{basis_funs_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::numeric::linalg::BandedCrout;
@@ -23,7 +24,8 @@ pub(crate) fn check_condition_limit(limit: f64) -> Result<()> {
             what: "condition limit (max_condition)".into(),
             reason: format!(
                 "{limit} is not a number ≥ {MIN_CONDITION_LIMIT} (every matrix has κ_1 ≥ 1); \
-                 pass e.g. 1e8 to keep about 8 significant digits"
+                 pass e.g. 1e8 to keep about 8 significant digits",
+                limit = readable(&limit)
             ),
         });
     }
@@ -205,7 +207,8 @@ pub(crate) fn sw_failure(row: usize, t: f64) -> Error {
     Error::SingularSystem {
         reason: format!(
             "Schoenberg–Whitney condition fails: the basis function of unknown {row} vanishes at \
-             its parameter {t}; place the knots by averaging or use other parameters"
+             its parameter {t}; place the knots by averaging or use other parameters",
+            t = readable(&t)
         ),
     }
 }

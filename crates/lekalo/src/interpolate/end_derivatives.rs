@@ -3,6 +3,7 @@
 
 use crate::basis::{basis_ders_into, BasisScratch};
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::fit::banded::BandedQr;
 use crate::interpolate::collocation::{solve_collocation, Factors};
@@ -139,8 +140,8 @@ pub fn interpolate_with_end_derivatives(
                 "parameter {} = {} does not exceed parameter {w} = {}; pass strictly \
                  increasing parameters (one per point)",
                 w + 1,
-                params[w + 1],
-                params[w]
+                readable(&params[w + 1]),
+                readable(&params[w])
             ),
         });
     }

@@ -16,6 +16,7 @@
 
 use crate::curve::bezier::BezierCurve;
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::interpolate::parametrization::{
     check_strictly_increasing, parametrize, Parametrization,
@@ -437,7 +438,10 @@ fn estimate_tangents(
                     if !(0.0..=1.0).contains(&tension) {
                         return Err(Error::InvalidArgument {
                             what: "tension".into(),
-                            reason: format!("{tension} does not lie in [0, 1] (0 is Catmull–Rom)"),
+                            reason: format!(
+                                "{tension} does not lie in [0, 1] (0 is Catmull–Rom)",
+                                tension = readable(&tension)
+                            ),
                         });
                     }
                     1.0 - tension

@@ -1,6 +1,7 @@
 //! Parameters of the data points: uniform, chord length, centripetal or any exponent
 //! (document 000 §1; P&T eq. 9.3–9.6), and the overflow-safe distances they are built from.
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
 use crate::Arg;
@@ -32,7 +33,8 @@ impl Parametrization {
             return Err(Error::InvalidArgument {
                 what: Arg::Exponent.into(),
                 reason: format!(
-                    "{e} is not a finite number ≥ 0 (0 uniform, 0.5 centripetal, 1 chord length)"
+                    "{e} is not a finite number ≥ 0 (0 uniform, 0.5 centripetal, 1 chord length)",
+                    e = readable(&e)
                 ),
             });
         }

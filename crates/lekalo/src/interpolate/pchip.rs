@@ -3,6 +3,7 @@
 //! SciPy's `PchipInterpolator` and MATLAB's `pchip` use). The Hermite cubic through the data
 //! with these slopes is [`crate::CubicHermite`].
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::points::{Points, PointsRef};
 
@@ -119,8 +120,8 @@ pub(crate) fn check_function_data(x: &[f64], y: PointsRef<'_>) -> Result<()> {
                 "must be strictly increasing, but x[{}] = {} follows x[{i}] = {}; sort the data \
                  and merge repeated abscissae",
                 i + 1,
-                x[i + 1],
-                x[i]
+                readable(&x[i + 1]),
+                readable(&x[i])
             ),
         });
     }

@@ -2,6 +2,7 @@
 //! the same function in lekalo's pp-form on increasing breakpoints, and back, by a Taylor shift
 //! of each piece to its other end (docs/theory/pp.md#decreasing-breakpoints).
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::pp::ppform::PiecewisePolynomial;
 use crate::Arg;
@@ -67,9 +68,9 @@ impl PiecewisePolynomial {
                 what: Arg::Breakpoints.into(),
                 reason: format!(
                     "must be strictly decreasing, but breakpoint {i} = {} is not greater than breakpoint {} = {}",
-                    breakpoints[i],
+                    readable(&breakpoints[i]),
                     i + 1,
-                    breakpoints[i + 1]
+                    readable(&breakpoints[i + 1])
                 ),
             });
         }

@@ -12,6 +12,7 @@
 //! `+ - * /`, powers `^` (or `**`, right-associative), unary minus, parentheses and the
 //! functions `sin cos tan exp ln log sqrt abs atan sinh cosh tanh`.
 
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::{Arg, What};
 
@@ -433,7 +434,10 @@ fn pow(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
             }
             return Err(Error::InvalidArgument {
                 what: Arg::Expression.into(),
-                reason: format!("0^{e} has no derivative here; move the point off 0"),
+                reason: format!(
+                    "0^{e} has no derivative here; move the point off 0",
+                    e = readable(&e)
+                ),
             });
         }
         // p = a^e: k a₀ p_k = Σ_{j=1..k} ((e + 1) j − k) a_j p_{k−j}  (Griewank–Walther Table 13.1)

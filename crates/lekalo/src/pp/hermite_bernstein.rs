@@ -11,6 +11,7 @@
 
 use crate::curve::bspline::BSplineCurve;
 use crate::degree::elevation::elevate;
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::check_breakpoints;
 use crate::points::{Points, PointsRef};
@@ -53,7 +54,11 @@ pub fn hermite_bernstein(
     if !(a.is_finite() && b.is_finite() && a < b) {
         return Err(Error::InvalidArgument {
             what: "Hermite interval".into(),
-            reason: format!("the ends must be finite with a < b, got a = {a}, b = {b}"),
+            reason: format!(
+                "the ends must be finite with a < b, got a = {a}, b = {b}",
+                a = readable(&a),
+                b = readable(&b)
+            ),
         });
     }
     if at_a.dim() != at_b.dim() {

@@ -13,6 +13,7 @@
 //! `λ_i b_j = δ_{ij}` fails (docs/theory/pp.md#one-sided-derivatives).
 
 use crate::curve::bspline::BSplineCurve;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
@@ -135,8 +136,9 @@ impl Tau<'_> {
                         "τ number {} is {t}, outside the support [{}, {}] of its B-spline; each \
                          τ_i must lie in [x_i, x_(i+k)]",
                         i + 1,
-                        x[i],
-                        x[i + order]
+                        readable(&x[i]),
+                        readable(&x[i + order]),
+                        t = readable(&t)
                     ),
                 });
             }

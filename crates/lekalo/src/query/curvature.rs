@@ -4,6 +4,7 @@
 
 use super::pieces::{bern_roots, Bern, QueryCurve};
 use super::surface::QuerySurface;
+use crate::error::readable;
 use crate::error::{Error, Result};
 
 /// Relative tolerance below which [`QueryCurve::curvature_extrema`] treats two curvatures as
@@ -481,7 +482,11 @@ impl QuerySurface {
         if !(nl > 0.0) {
             return Err(Error::InvalidArgument {
                 what: "surface point".into(),
-                reason: format!("S_u × S_v = 0 at ({u}, {v}): the surface is singular there"),
+                reason: format!(
+                    "S_u × S_v = 0 at ({u}, {v}): the surface is singular there",
+                    u = readable(&u),
+                    v = readable(&v)
+                ),
             });
         }
         let n = [n[0] / nl, n[1] / nl, n[2] / nl];

@@ -2,6 +2,7 @@
 //! inverse (the parameter at a given length), points at equal arc-length steps and an
 //! approximately arc-length-parametrised B-spline (`docs/theory/queries.md#arc-length`).
 
+use crate::error::readable;
 use crate::{Arg, What};
 use std::sync::OnceLock;
 
@@ -206,7 +207,8 @@ impl QueryCurve {
                 reason: format!(
                     "the length is {total}, beyond the largest double (about 1.8e308); \
                      scale the curve down (its size is {:e}) and scale the length back",
-                    self.scale
+                    self.scale,
+                    total = readable(&total)
                 ),
             });
         }
@@ -342,7 +344,11 @@ impl ArcLength<'_> {
         if !(length >= -slack && length <= total + slack) {
             return Err(Error::InvalidArgument {
                 what: "arc length".into(),
-                reason: format!("{length} is not within [0, {total}] (the curve's length)"),
+                reason: format!(
+                    "{length} is not within [0, {total}] (the curve's length)",
+                    length = readable(&length),
+                    total = readable(&total)
+                ),
             });
         }
         let target = (length / c.scale).clamp(0.0, self.cum[self.cum.len() - 1]);

@@ -5,6 +5,7 @@
 use super::intersect::CurveIntersection;
 use super::pieces::{check_tolerance, dist, QueryCurve};
 use crate::basis::BasisScratch;
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::fit::{least_squares, EndConstraints, FitData};
 use crate::{Arg, BSplineCurve, KnotVector, PointsRef, What};
@@ -33,7 +34,10 @@ const GOLDEN_STEPS: usize = 20;
 fn no_normal(t: f64) -> Error {
     Error::InvalidArgument {
         what: "curve to offset".into(),
-        reason: format!("C'(t) = 0 at t = {t}: the normal, hence the offset, is undefined"),
+        reason: format!(
+            "C'(t) = 0 at t = {t}: the normal, hence the offset, is undefined",
+            t = readable(&t)
+        ),
     }
 }
 
@@ -372,7 +376,8 @@ impl QueryCurve {
                                     "{tolerance} is not reached even on spans of {h:e} near \
                                      t = {}: raise it above the rounding of the curve's \
                                      coordinates",
-                                    breaks[k]
+                                    breaks[k],
+                                    tolerance = readable(&tolerance)
                                 ),
                             });
                         }
@@ -460,7 +465,8 @@ impl QueryCurve {
                 what: What::of(Arg::Tolerance, "offset tolerance"),
                 reason: format!(
                     "{tolerance} is below the rounding of the offset's coordinates (about \
-                     1e-14 of the curve's size plus the distance: {rounding:e}); raise it"
+                     1e-14 of the curve's size plus the distance: {rounding:e}); raise it",
+                    tolerance = readable(&tolerance)
                 ),
             });
         }

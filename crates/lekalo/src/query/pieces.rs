@@ -2,6 +2,7 @@
 //! unit box, with a bounding-volume tree over them; and the scalar Bernstein polynomials whose
 //! roots the queries solve for (`docs/theory/queries.md#bezier-pieces`).
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 use crate::{Arg, What};
 use crate::{BSplineCurve, BezierCurve, NurbsCurve};
@@ -634,7 +635,10 @@ pub(crate) fn check_tolerance(what: impl Into<What>, tol: f64) -> Result<()> {
     if !(tol > 0.0 && tol.is_finite()) {
         return Err(Error::InvalidArgument {
             what,
-            reason: format!("{tol} is not a positive finite tolerance"),
+            reason: format!(
+                "{tol} is not a positive finite tolerance",
+                tol = readable(&tol)
+            ),
         });
     }
     Ok(())

@@ -11,6 +11,7 @@
 //! Surfaces: best-first subdivision of the Bezier patches, pruned by the distance to the
 //! sub-patch boxes, then a clamped Newton iteration from each surviving small sub-patch.
 
+use crate::error::readable;
 use crate::{Arg, What};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -323,7 +324,10 @@ impl QueryCurve {
         if !(tolerance >= 0.0 && tolerance.is_finite()) {
             return Err(Error::InvalidArgument {
                 what: What::of(Arg::Tolerance, "projection tolerance"),
-                reason: format!("{tolerance} is not a non-negative finite distance"),
+                reason: format!(
+                    "{tolerance} is not a non-negative finite distance",
+                    tolerance = readable(&tolerance)
+                ),
             });
         }
         let q = self.query(point)?;

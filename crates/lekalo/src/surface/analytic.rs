@@ -9,6 +9,7 @@
 //! and `v` is the parameter of ISO 10303-42 for cylinders and cones, the arc parameter on
 //! `[0, 1]` for spheres and tori).
 
+use crate::error::readable;
 use crate::What;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -108,7 +109,11 @@ fn check_range(what: impl Into<What>, (a, b): (f64, f64)) -> Result<()> {
     } else {
         Err(Error::InvalidArgument {
             what,
-            reason: format!("the range [{a}, {b}] is empty; give a lower bound below the upper"),
+            reason: format!(
+                "the range [{a}, {b}] is empty; give a lower bound below the upper",
+                a = readable(&a),
+                b = readable(&b)
+            ),
         })
     }
 }
@@ -120,7 +125,7 @@ fn check_positive(what: impl Into<What>, x: f64) -> Result<()> {
     } else {
         Err(Error::InvalidArgument {
             what,
-            reason: format!("{x} is not a positive finite length"),
+            reason: format!("{x} is not a positive finite length", x = readable(&x)),
         })
     }
 }
@@ -219,8 +224,7 @@ impl NurbsSurface {
             return Err(Error::InvalidArgument {
                 what: "cone".into(),
                 reason: format!(
-                    "radius {radius} must be at least 0 and the semi-angle {semi_angle} between 0 and π/2 (radians)"
-                ),
+                    "radius {radius} must be at least 0 and the semi-angle {semi_angle} between 0 and π/2 (radians)", radius = readable(&radius)),
             });
         }
         check_range("cone heights", heights)?;

@@ -13,6 +13,7 @@
 //!   `S_{u^k v^l} = ∂^{k+l} S / ∂u^k ∂v^l` for `0 ≤ k, l ≤ d`.
 //! - Batch evaluation writes into a caller buffer, reusing one scratch space.
 
+use crate::error::readable;
 use serde::{Deserialize, Serialize};
 
 use crate::basis::{basis_ders_into, basis_funs_into, BasisScratch};
@@ -790,7 +791,9 @@ pub(crate) fn unit_normal(su: &[f64], sv: &[f64], u: f64, v: f64) -> Result<[f64
             reason: format!(
                 "the normal is undefined at (u, v) = ({u}, {v}): |S_u × S_v| = {ln:e} is at most \
                  {NORMAL_DEGENERACY_TOL:e} · |S_u| · |S_v| (|S_u| = {lu:e}, |S_v| = {lv:e}); \
-                 this is a degenerate point (pole, collapsed edge or cusp) — evaluate nearby"
+                 this is a degenerate point (pole, collapsed edge or cusp) — evaluate nearby",
+                u = readable(&u),
+                v = readable(&v)
             ),
         });
     }

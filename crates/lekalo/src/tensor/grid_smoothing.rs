@@ -4,7 +4,7 @@
 //! `docs/theory/tensor.md#smoothing-on-grids`.
 
 use crate::basis::{basis_funs_into, BasisScratch};
-use crate::error::{Error, Result};
+use crate::error::{Error, NthDirection, Result};
 use crate::fit::banded::BandedQr;
 use crate::fit::{
     check_condition_args, jump_rows, next_nplus, smooth_weight, Steps, SMOOTHING_RTOL,
@@ -484,8 +484,9 @@ fn solve(grid: &Grid<'_>, axes: &[Axis<'_>], p: f64) -> Result<Solved> {
             }
             qr.solve(&mut c).map_err(|col| Error::SingularSystem {
                 reason: format!(
-                    "coefficient {col} of grid direction {a} has no grid coordinate under its \
-                     basis function; give fewer knots or more coordinates there"
+                    "coefficient {col} of the grid's {} has no grid coordinate under its basis \
+                     function; give fewer knots or more coordinates there",
+                    NthDirection(a)
                 ),
             })?;
             next.extend_from_slice(&c);

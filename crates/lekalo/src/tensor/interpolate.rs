@@ -4,7 +4,7 @@
 
 use rayon::prelude::*;
 
-use crate::error::{Error, Result};
+use crate::error::{readable, Error, NthDirection, Result};
 use crate::interpolate::collocation::{
     check_condition_limit, condition_exceeded, factor_collocation, Factors,
 };
@@ -366,8 +366,9 @@ impl TensorInterpolation {
             return Err(Error::InvalidArgument {
                 what: What::of(Arg::Knots, "knot vectors"),
                 reason: format!(
-                    "direction {a}: {} knots for {} values of degree {p}; give {expected} \
+                    "{}: {} knots for {} values of degree {p}; give {expected} \
                      (values + degree + 1)",
+                    NthDirection(a),
                     kv.len(),
                     t.len()
                 ),
@@ -379,10 +380,13 @@ impl TensorInterpolation {
             return Err(Error::InvalidArgument {
                 what: What::of(Arg::Knots, "knot vectors"),
                 reason: format!(
-                    "direction {a}: the coordinates [{}, {}] leave the knots' domain \
-                     [{lo}, {hi}]; give knots whose domain covers the grid",
-                    t[0],
-                    t[t.len() - 1]
+                    "{}: the coordinates [{}, {}] leave the knots' domain [{}, {}]; give \
+                     knots whose domain covers the grid",
+                    NthDirection(a),
+                    readable(&t[0]),
+                    readable(&t[t.len() - 1]),
+                    readable(&lo),
+                    readable(&hi)
                 ),
             });
         }
@@ -409,7 +413,8 @@ impl TensorInterpolation {
                         return Err(Error::Degree {
                             degree: p,
                             reason: format!(
-                                "direction {a} has {m} values and takes a degree from 1 to {}",
+                                "the {} has {m} values and takes a degree from 1 to {}",
+                                NthDirection(a),
                                 m - 1
                             ),
                         });
@@ -420,9 +425,10 @@ impl TensorInterpolation {
                     return Err(Error::InvalidArgument {
                         what: "end conditions".into(),
                         reason: format!(
-                            "direction {a}: prescribed end derivatives are one vector per end, \
-                             but a grid of two or more directions would need one per grid line \
-                             (data on the grid's faces); use Free, Natural or Periodic"
+                            "{}: prescribed end derivatives are one vector per end, but a grid \
+                             of two or more directions would need one per grid line (data on \
+                             the grid's faces); use Free, Natural or Periodic",
+                            NthDirection(a)
                         ),
                     });
                 }
@@ -463,8 +469,9 @@ impl TensorInterpolation {
                     return Err(Error::InvalidArgument {
                         what: What::of(Arg::Knots, "knot vectors"),
                         reason: format!(
-                            "direction {a}: given knots go with free ends; drop the knots or \
-                             the natural or periodic end condition"
+                            "{}: given knots go with free ends; drop the knots or the natural \
+                             or periodic end condition",
+                            NthDirection(a)
                         ),
                     });
                 }
@@ -519,8 +526,9 @@ impl TensorInterpolation {
                 return Err(Error::InvalidArgument {
                     what: "knot placements".into(),
                     reason: format!(
-                        "direction {a}: knots at the parameters go with end derivatives or \
-                         natural ends; use Averaged or Uniform with free ends"
+                        "{}: knots at the parameters go with end derivatives or natural ends; \
+                         use Averaged or Uniform with free ends",
+                        NthDirection(a)
                     ),
                 })
             }
@@ -588,7 +596,7 @@ fn check_count(a: usize, m: usize) -> Result<()> {
     if m < 2 {
         return Err(Error::TooFew {
             what: if a == 0 {
-                "grid values in direction 0".into()
+                "grid values in the 1st direction".into()
             } else {
                 "grid values in a direction (each needs 2)".into()
             },

@@ -5,7 +5,7 @@
 //! [`bspline_value_by`](crate::bspline_value_by).
 
 use crate::basis::{basis_funs_fixed, basis_funs_into, BasisScratch};
-use crate::error::{Error, Result};
+use crate::error::{readable, Error, NthDirection, Result};
 use crate::knots::span_by;
 use crate::tensor::contract::contract3;
 use crate::tensor::locate::Beyond;
@@ -93,7 +93,8 @@ pub fn tensor_value_by(
     for (a, (&p, &len)) in degrees.iter().zip(n_knots).enumerate() {
         if len < 2 * p + 2 {
             return Err(invalid(format!(
-                "direction {a}: {len} knots for degree {p}: at least {} are needed",
+                "{}: {len} knots for degree {p}: at least {} are needed",
+                NthDirection(a),
                 2 * p + 2
             )));
         }
@@ -114,7 +115,10 @@ pub fn tensor_value_by(
         let (lo, hi) = (knot(a, p), knot(a, size));
         if !(lo < hi) {
             return Err(invalid(format!(
-                "direction {a}: the domain [t_k, t_n] = [{lo}, {hi}] is empty"
+                "{}: the domain [t_k, t_n] = [{}, {}] is empty",
+                NthDirection(a),
+                readable(&lo),
+                readable(&hi)
             )));
         }
         let t = x[a];

@@ -6,6 +6,7 @@
 //! `docs/theory/tensor.md#smoothing-scattered-data`.
 
 use crate::basis::{basis_funs_into, BasisScratch};
+use crate::error::readable;
 use crate::error::{Error, Result, MAX_SCALARS};
 use crate::fit::banded::{BandedQr, RANK_RTOL};
 use crate::fit::jump_rows;
@@ -39,7 +40,8 @@ impl RankDeficiency {
                     what: Arg::Eps.into(),
                     reason: format!(
                         "the rank threshold eps = {eps} is outside (0, 1); FITPACK's default is \
-                         1e-16"
+                         1e-16",
+                        eps = readable(&eps)
                     ),
                 })
             }

@@ -3,7 +3,7 @@
 //! `SmoothBivariateSpline` and `bisplrep`), here in any number of variables.
 //! `docs/theory/tensor.md#smoothing-scattered-data`.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, NthDirection, Result};
 use crate::fit::{check_condition_args, smooth_weight, Steps, SMOOTHING_RTOL};
 use crate::knots::KnotVector;
 use crate::numeric::progress::Progress;
@@ -232,9 +232,10 @@ pub fn tensor_scattered_smoothing_with_progress(
                     return Err(Error::InvalidArgument {
                         what: Arg::MaxKnots.into(),
                         reason: format!(
-                            "{} knots in variable {a} cannot hold a spline of degree {k}; give \
-                             at least 2(k + 1) = {}",
+                            "{} knots in the {} cannot hold a spline of degree {k}; give at \
+                             least 2(k + 1) = {}",
                             m[a],
+                            NthDirection(a),
                             2 * k + 2
                         ),
                     });

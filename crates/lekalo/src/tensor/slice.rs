@@ -8,7 +8,7 @@
 //! curve operation applies block by block (P&T §5.3 for surfaces).
 
 use crate::curve::bspline::BSplineCurve;
-use crate::error::{Error, Result};
+use crate::error::{Error, NthDirection, Result};
 use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::surface::bspline::BSplineSurface;
@@ -28,7 +28,8 @@ impl TensorBSpline {
             return Err(Error::InvalidArgument {
                 what: "direction (axis)".into(),
                 reason: format!(
-                    "{a} is not a direction of a spline in {} parameters (0 to {})",
+                    "there is no {}: the spline has {} (axes 0 to {} in Python)",
+                    NthDirection(a),
                     self.n_vars(),
                     self.n_vars() - 1
                 ),

@@ -1058,7 +1058,7 @@ fn given_knot_vectors_are_used_as_given() {
     };
     let e = wrong(KnotVector::averaged(&lists[0][..6], 3).unwrap());
     assert!(
-        e.contains("direction 0: 10 knots for 7 values") && e.contains("give 11"),
+        e.contains("1st direction: 10 knots for 7 values") && e.contains("give 11"),
         "{e}"
     );
     let mut narrow = vec![0.5; 4];

@@ -2,6 +2,7 @@
 //! `advanced_face`), each edge directed along its loop, with its 3-D curve and, where known,
 //! its curve in the surface's parameters (`pcurve`).
 
+use crate::error::readable;
 use crate::{Curve, Error, Result, Surface};
 
 /// The default tolerance of [`Face::new`] on the gaps of a loop, relative to the model size
@@ -185,7 +186,10 @@ impl Face {
         if !(rtol.is_finite() && rtol >= 0.0) {
             return Err(Error::InvalidArgument {
                 what: "loop closure tolerance".into(),
-                reason: format!("{rtol} must be finite and at least 0"),
+                reason: format!(
+                    "{rtol} must be finite and at least 0",
+                    rtol = readable(&rtol)
+                ),
             });
         }
         let dim = surface.dim();

@@ -4,6 +4,7 @@
 //! its own edges), and a face that fails left out with its error while the others are meshed
 //! as they would be without it.
 
+use crate::error::readable;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -144,7 +145,10 @@ pub(super) fn mesh_counted(
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::InvalidArgument {
             what: TESSELLATION_TOLERANCE,
-            reason: format!("{tolerance} is not a positive finite tolerance"),
+            reason: format!(
+                "{tolerance} is not a positive finite tolerance",
+                tolerance = readable(&tolerance)
+            ),
         });
     }
     let n = faces.len();

@@ -8,6 +8,7 @@
 //! unwrapped across the seams of closed surfaces and kept continuous through poles.
 
 use super::face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
+use crate::error::readable;
 use crate::query::QuerySurface;
 use crate::{Arg, BSplineCurve, Curve, Error, Points, Result, Surface, What};
 
@@ -292,8 +293,7 @@ impl<'a> Projector<'a> {
             reason: format!(
                 "{} does not lie on the face's surface: its point at t = {t} is {d:.3e} from it (tolerance {:.3e}); the edge belongs to another surface, or the model was sewn with a larger tolerance",
                 which(),
-                self.on_surface
-            ),
+                self.on_surface, t = readable(&t)),
         }
         };
         let at = |s: f64| (a + (b - a) * s).clamp(a, b);
@@ -428,7 +428,10 @@ impl Face {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(Error::InvalidArgument {
                 what: What::of(Arg::Tolerance, "pcurve tolerance"),
-                reason: format!("{tolerance} must be finite and positive"),
+                reason: format!(
+                    "{tolerance} must be finite and positive",
+                    tolerance = readable(&tolerance)
+                ),
             });
         }
         if self.has_pcurves() {

@@ -40,9 +40,10 @@ pub(crate) struct MeasureArgs {
     /// File of lengths (numbers separated by commas, spaces or newlines): a batch.
     #[arg(long, value_name = "FILE")]
     lengths: Option<PathBuf>,
-    /// Relative tolerance of the arc length.
-    #[arg(long, default_value_t = 1e-12)]
-    tolerance: f64,
+    /// Relative tolerance of the arc length (a ratio to the length; `--tolerance` is the old
+    /// spelling, hidden and deprecated: elsewhere it is an absolute distance).
+    #[arg(long, alias = "tolerance", default_value_t = 1e-12)]
+    rtol: f64,
     /// Output JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -76,9 +77,9 @@ pub(crate) fn run(a: &MeasureArgs, cx: &Context) -> Result<()> {
     }
     let obj = load_one(cx, &a.input)?;
     let q = query_curve(&obj, &a.input)?;
-    // kept in the chain: an error about the tolerance names --tolerance
+    // kept in the chain: an error about the tolerance names --rtol
     let bad = |e: lekalo::Error| in_file(&a.input, e);
-    let table = q.arc_length(a.tolerance).map_err(bad)?;
+    let table = q.arc_length(a.rtol).map_err(bad)?;
     let mut lengths = Vec::new();
     if let Some(s) = &a.at_length {
         lengths.extend(numbers(s, "--at-length")?);

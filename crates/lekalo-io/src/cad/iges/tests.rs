@@ -7,6 +7,32 @@ use crate::error::IoError;
 use crate::object::Object;
 use crate::shape::Surface;
 
+/// The file name goes into the Global section as Hollerith strings, whose counts are bytes:
+/// non-ASCII and control characters are written `?`, and a name longer than a line continues
+/// on the next; every line keeps its 80 columns and the file reads back.
+#[test]
+fn names_of_any_characters_and_length_keep_the_columns() {
+    let c = Object::BSpline(
+        BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [1.0, 2.0]]).unwrap(),
+        )
+        .unwrap(),
+    );
+    let long = format!("{},;H'é", "x".repeat(150));
+    for name in ["q'é☃.igs", "a\nb\r,;.igs", long.as_str(), ""] {
+        let mut w = IgesWriter::new();
+        w.add_object(&c).unwrap();
+        let text = w.finish(name, "20000101.000000");
+        for l in text.lines() {
+            assert_eq!(l.len(), 80, "{name:?}: {l}");
+        }
+        let r = read_iges(&text, "t.igs").unwrap_or_else(|e| panic!("{name:?}: {e}"));
+        assert_eq!(r.shapes.len(), 1, "{name:?}");
+    }
+}
+
 #[test]
 fn round_trip_every_kind_bit_for_bit() {
     let w = std::f64::consts::FRAC_1_SQRT_2;

@@ -154,7 +154,7 @@ impl IgesWriter {
             let _ = writeln!(out, "{text:<72}{section}{seq:>7}");
         };
         line(&mut out, "lekalo spline export", 'S', 1);
-        let h = |s: &str| format!("{}H{s}", s.len());
+        let h = |s: &str| hollerith(s);
         let max_coord = self
             .entities
             .iter()
@@ -237,6 +237,26 @@ impl IgesWriter {
 
 /// Tokens joined by `,` (the last followed by `;`), packed into lines of at most `width`
 /// characters without splitting a token.
+/// A Hollerith string `nHtext` of printable ASCII: the count is of bytes and the file's columns
+/// are bytes, so any other character (non-ASCII, a control such as a newline) is written `?`,
+/// as STEP strings are ([`crate::cad::step`]).
+fn hollerith(s: &str) -> String {
+    let clean: String = s
+        .chars()
+        .map(|c| {
+            if c.is_ascii() && !c.is_ascii_control() {
+                c
+            } else {
+                '?'
+            }
+        })
+        .collect();
+    format!("{}H{clean}", clean.len())
+}
+
+/// Tokens joined by `,` and ended by `;`, in lines of at most `width` bytes; a token longer
+/// than a line (a long Hollerith name) continues on the next lines, as the section's
+/// columns 1 to `width` are read as one stream.
 fn pack(tokens: &[String], width: usize) -> Vec<String> {
     let mut lines = Vec::new();
     let mut cur = String::new();
@@ -246,6 +266,11 @@ fn pack(tokens: &[String], width: usize) -> Vec<String> {
             lines.push(std::mem::take(&mut cur));
         }
         cur.push_str(&piece);
+        // tokens are ASCII: cutting at a byte count keeps characters whole
+        while cur.len() > width {
+            let rest = cur.split_off(width);
+            lines.push(std::mem::replace(&mut cur, rest));
+        }
     }
     if !cur.is_empty() {
         lines.push(cur);

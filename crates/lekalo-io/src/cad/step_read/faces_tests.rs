@@ -389,6 +389,33 @@ fn face_json_errors_name_the_field() {
         e.contains("field `outer`") && e.contains("edges in a loop"),
         "{e}"
     );
+    // an optional field of the wrong type, or an id beyond 64 bits, is named, not defaulted
+    // (an id of 10^30 was read as 0)
+    let huge: serde_json::Value = serde_json::from_str("1e30").unwrap();
+    type Change<'a> = &'a dyn Fn(&mut serde_json::Value);
+    let cases: [(&str, Change<'_>); 8] = [
+        ("field `id`", &|w| w["id"] = huge.clone()),
+        ("field `id`", &|w| w["id"] = serde_json::json!(-1)),
+        ("field `surface_id`", &|w| w["surface_id"] = "5".into()),
+        ("field `outer[0].edge_id`", &|w| {
+            w["outer"][0]["edge_id"] = 1.5.into()
+        }),
+        ("field `name`", &|w| w["name"] = serde_json::json!(["a"])),
+        ("field `same_sense`", &|w| w["same_sense"] = 1.into()),
+        ("field `pcurves`", &|w| w["pcurves"] = true.into()),
+        ("field `inner`", &|w| w["inner"] = serde_json::json!({})),
+    ];
+    for (needle, f) in cases {
+        let e = with(f);
+        assert!(e.contains(needle), "{needle}: {e}");
+    }
+    // left out or null: the defaults
+    let mut w = v.clone();
+    for key in ["id", "name", "surface_id", "same_sense", "pcurves"] {
+        w[key] = serde_json::Value::Null;
+    }
+    let f = crate::read_face(&w.to_string(), "f.jsonl").unwrap();
+    assert_eq!((f.id, f.name.as_str()), (0, ""));
 }
 
 /// Open CASCADE writes the pcurves of B-spline faces as 2-D lines on the edges' parameters:

@@ -1,6 +1,7 @@
 //! What a shape-constrained fit is asked to keep: the constraints and their validation
 //! (`docs/theory/fitting.md#shape-constraints`).
 
+use crate::error::readable;
 use crate::error::{check_finite, Error, Result};
 
 /// A shape that `y(x)` keeps on an interval: a sign of a derivative, or a bound on the values.
@@ -214,13 +215,19 @@ impl ShapeConstraints {
                 if a >= b {
                     return Err(bad(format!(
                         "the interval [{a}, {b}] of \"{s}\" is empty: give its start before its \
-                         end"
+                         end",
+                        a = readable(&a),
+                        b = readable(&b)
                     )));
                 }
                 if a < lo || b > hi {
                     return Err(bad(format!(
                         "the interval [{a}, {b}] of \"{s}\" leaves the domain [{lo}, {hi}] of the \
-                         fit: shrink it to the domain"
+                         fit: shrink it to the domain",
+                        a = readable(&a),
+                        b = readable(&b),
+                        lo = readable(&lo),
+                        hi = readable(&hi)
                     )));
                 }
             }
@@ -229,7 +236,9 @@ impl ShapeConstraints {
             check_finite("point condition", &[q.x, q.value])?;
             if q.x < lo || q.x > hi {
                 return Err(bad(format!(
-                    "the point of \"{q}\" is outside the domain [{lo}, {hi}] of the fit"
+                    "the point of \"{q}\" is outside the domain [{lo}, {hi}] of the fit",
+                    lo = readable(&lo),
+                    hi = readable(&hi)
                 )));
             }
             if q.derivative > degree {

@@ -15,7 +15,7 @@ mod tests;
 use deviation::{deviations_full, project};
 use refine::{fit_sample_first, refine, SAMPLE_ABOVE, SAMPLE_SIZE};
 
-use crate::error::{Error, Result};
+use crate::error::{readable, Error, Result};
 use crate::interpolate::{parametrize, Parametrization};
 use crate::numeric::progress::Progress;
 use crate::points::PointsRef;
@@ -177,8 +177,10 @@ pub fn fit_tolerance_with_progress(
         // every site carries a knot (interpolation) and rounding still exceeds tol
         return Err(Error::IllConditioned {
             reason: format!(
-                "the closest fit found deviates by {max_deviation} at point {worst_index}, more \
-                 than the tolerance {tol}; raise the tolerance above the data's rounding"
+                "the closest fit found deviates by {} at point {worst_index}, more than the \
+                 tolerance {}; raise the tolerance above the data's rounding",
+                readable(&max_deviation),
+                readable(&tol)
             ),
         });
     }

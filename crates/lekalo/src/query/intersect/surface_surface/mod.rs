@@ -22,6 +22,7 @@ use super::super::project::check_query;
 use super::super::surface::QuerySurface;
 use super::refine::order_from_growth;
 use super::Contact;
+use crate::error::readable;
 use crate::error::{Error, Result};
 use crate::Arg;
 use crate::BSplineCurve;
@@ -233,7 +234,9 @@ fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
             what: Arg::Tolerance.into(),
             reason: format!(
                 "{tolerance} is below 1e-12 of the surfaces' size {scale}: rounding, not the \
-                 geometry, would decide it; give a larger tolerance"
+                 geometry, would decide it; give a larger tolerance",
+                tolerance = readable(&tolerance),
+                scale = readable(&scale)
             ),
         });
     }
@@ -244,7 +247,9 @@ fn check_section_tolerance(tolerance: f64, scale: f64) -> Result<()> {
                 "{tolerance} is above 1/100 of the surfaces' size {scale}: points that far off \
                  the surfaces cannot tell one branch from another (an open crossing could close \
                  into a loop); give at most {:e}",
-                MAX_TOLERANCE_OF_SCALE * scale
+                MAX_TOLERANCE_OF_SCALE * scale,
+                tolerance = readable(&tolerance),
+                scale = readable(&scale)
             ),
         });
     }
