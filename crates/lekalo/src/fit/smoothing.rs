@@ -93,16 +93,29 @@ pub fn smoothing_spline_with_progress(
         Lambda::Given(l) => l,
         Lambda::Gcv => s.minimise_gcv(&steps)?,
     };
-    if lam == 0.0 {
+    let interpolant = |reported: f64| -> Result<CurveFit> {
         let curve = match merged(data)? {
             Some((x, q)) => natural_cubic_spline(&x, q.as_view())?,
             None => natural_cubic_spline(data.params(), data.points())?,
         };
-        let report = FitReport::new(&curve, data, Some(0.0));
+        let report = FitReport::new(&curve, data, Some(reported));
         steps.finish();
-        return Ok(CurveFit { curve, report });
+        Ok(CurveFit { curve, report })
+    };
+    if lam == 0.0 {
+        return interpolant(0.0);
     }
-    let (coef, _) = s.solve(lam)?;
+    let (coef, _) = match s.solve(lam) {
+        Ok(solved) => solved,
+        // with every weight positive BᵀWB + λΩ is positive definite for λ > 0 (Ω vanishes
+        // only on lines, which B maps to zero at no three distinct parameters): a failed
+        // factorisation is λΩ below the rounding of BᵀWB, where the minimiser is its λ → 0
+        // limit, the natural interpolant, to rounding (SciPy's banded form solves such λ too)
+        Err(Error::SingularSystem { .. }) if s.weights.iter().all(|&w| w > 0.0) => {
+            return interpolant(lam);
+        }
+        Err(e) => return Err(e),
+    };
     let curve = s.curve(&coef);
     let report = FitReport::new(&curve, data, Some(lam));
     steps.finish();
@@ -680,6 +693,35 @@ mod tests {
         assert!((at2 - 2f64.sin()).abs() < 1e-5, "{at2}");
         // interpolation itself (λ → 0) stays out: its score is rounding
         assert_eq!(gcv_score(&data, 1e-13).unwrap(), f64::INFINITY);
+    }
+
+    /// λ so small that `λΩ` vanishes in the rounding of `BᵀWB`: the natural interpolant, the
+    /// minimiser's limit, as SciPy's `make_smoothing_spline(lam=1e-300)` gives; zero weights
+    /// keep the refusal (the limit then ignores those points).
+    #[test]
+    fn a_penalty_below_rounding_gives_the_interpolant() {
+        let x: Vec<f64> = (0..=10).map(f64::from).collect();
+        let y: Vec<f64> = x.iter().map(|t| t.sin()).collect();
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let zero = smoothing_spline(&data, Lambda::Given(0.0)).unwrap();
+        for lam in [1e-300, 1e-30, 1e-16] {
+            let fit = smoothing_spline(&data, Lambda::Given(lam)).unwrap();
+            assert_eq!(fit.report.lambda, Some(lam));
+            for t in [0.5, 2.0, 7.3] {
+                let (a, b) = (
+                    fit.curve.eval(t).unwrap()[0],
+                    zero.curve.eval(t).unwrap()[0],
+                );
+                assert!((a - b).abs() < 1e-12, "λ = {lam}, t = {t}: {a} vs {b}");
+            }
+        }
+        let mut w = vec![1.0; 11];
+        w[4] = 0.0;
+        let weighted = data.with_weights(&w).unwrap();
+        assert!(matches!(
+            smoothing_spline(&weighted, Lambda::Given(1e-300)),
+            Err(Error::SingularSystem { .. })
+        ));
     }
 
     /// Points at a repeated parameter: the same minimiser as one point at their weighted mean
