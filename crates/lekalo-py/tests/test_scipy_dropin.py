@@ -840,3 +840,25 @@ def test_splint_full_output_gives_the_integrals_of_the_b_splines(a, b):
     # FITPACK leaves the last k + 1 entries unset; lekalo's are zero
     np.testing.assert_allclose(wb[:n], wa[:n], rtol=0, atol=1e-15)
     assert wb.shape == (len(tck[0]),) and not wb[n:].any()
+
+
+@pytest.mark.parametrize("lam", [1e-300, 1e-20])
+def test_make_smoothing_spline_with_a_penalty_below_rounding_interpolates(lam):
+    # SciPy solves such lam in the natural basis; lekalo gives the same limit, the interpolant
+    x = np.linspace(0, 10, 11)
+    y = np.sin(x)
+    t = np.linspace(0, 10, 41)
+    np.testing.assert_allclose(
+        ls.make_smoothing_spline(x, y, lam=lam)(t), si.make_smoothing_spline(x, y, lam=lam)(t), rtol=0, atol=1e-13
+    )
+
+
+def test_make_smoothing_spline_gcv_on_data_without_noise_all_but_interpolates():
+    # the GCV score falls towards interpolation; SciPy's choice and lekalo's lie on that flat
+    # stretch, both within 1e-5 of the interpolant
+    x = np.linspace(0, 10, 11)
+    y = np.sin(x)
+    t = np.linspace(0, 10, 41)
+    interp = si.make_smoothing_spline(x, y, lam=1e-300)(t)
+    np.testing.assert_allclose(ls.make_smoothing_spline(x, y)(t), interp, rtol=0, atol=1e-5)
+    np.testing.assert_allclose(si.make_smoothing_spline(x, y)(t), interp, rtol=0, atol=1e-4)
