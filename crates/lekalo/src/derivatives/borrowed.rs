@@ -17,7 +17,7 @@
 //! order of sums.
 
 use super::checks::{check_input, check_len, check_output, zeroed_output};
-use super::curve::PointBasis;
+use super::curve::{combine, PointBasis};
 use crate::curve::BSplineCurve;
 use crate::error::{check_finite, Error, Result};
 use crate::knots::{span_by, too_few_for_degree};
@@ -237,18 +237,6 @@ impl<'a> BorrowedCurve<'a> {
             }
         }
         Ok(())
-    }
-}
-
-/// `out = Σ_k n_k · net[first + k]`, summed from zero in the order of `k` (the order of
-/// [`BSplineCurve::eval_batch`], so the same bits).
-fn combine(net: &[f64], dim: usize, first: usize, n: &[f64], out: &mut [f64]) {
-    out.fill(0.0);
-    let net = &net[first * dim..(first + n.len()) * dim];
-    for (nk, c) in n.iter().zip(net.chunks_exact(dim)) {
-        for (o, x) in out.iter_mut().zip(c) {
-            *o += nk * x;
-        }
     }
 }
 

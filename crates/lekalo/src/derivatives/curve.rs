@@ -76,7 +76,7 @@ impl PointBasis {
 
 /// `out = Σ_k n_k · net[first + k]` (points of `dim` numbers), summed from zero in the order of
 /// `k`: the order of the forward evaluation, so the same bits.
-fn combine(net: &[f64], dim: usize, first: usize, n: &[f64], out: &mut [f64]) {
+pub(super) fn combine(net: &[f64], dim: usize, first: usize, n: &[f64], out: &mut [f64]) {
     out.fill(0.0);
     let net = &net[first * dim..(first + n.len()) * dim];
     for (nk, c) in n.iter().zip(net.chunks_exact(dim)) {
