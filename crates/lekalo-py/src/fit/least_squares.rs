@@ -3,8 +3,8 @@
 //! (IRLS) least squares, the fit to a distance tolerance, and the placement of knots.
 
 use lekalo::fit::{
-    constrained_least_squares, least_squares, place_knots as lk_place_knots, robust_least_squares,
-    Deviation, EndConstraints, RobustLoss, ToleranceOptions,
+    constrained_least_squares, least_squares, least_squares_curve, place_knots as lk_place_knots,
+    robust_least_squares, Deviation, EndConstraints, RobustLoss, ToleranceOptions,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -81,16 +81,17 @@ pub(crate) fn make_lsq_spline<'py>(
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let fd = data.fit_data("x")?;
     let kv = knot_vector(t)?;
-    let f = py
+    // the curve alone: the fit's report (a second pass over the data) is not returned here
+    let curve = py
         .detach(|| {
             if shape.is_empty() {
-                least_squares(&fd, k, &kv, &EndConstraints::none())
+                least_squares_curve(&fd, k, &kv, &EndConstraints::none())
             } else {
-                constrained_least_squares(&fd, k, &kv, &shape)
+                constrained_least_squares(&fd, k, &kv, &shape).map(|f| f.curve)
             }
         })
         .map_err(lib_err)?;
-    Ok(PyBSplineCurve::wrap(f.curve))
+    Ok(PyBSplineCurve::wrap(curve))
 }
 
 /// Least squares on given knots with optional end constraints, returning `(curve, report)`:

@@ -144,6 +144,51 @@ pub fn least_squares_with_progress(
     ends: &EndConstraints,
     progress: &Progress<'_>,
 ) -> Result<CurveFit> {
+    let curve = fit_curve(data, degree, knots, ends, progress)?;
+    let report = FitReport::new(&curve, data, None);
+    let n = data.len() as u64;
+    // the fit is complete: a flag set this late does not discard it
+    let _ = progress.step(LSQ_WORK, n, n);
+    Ok(CurveFit { curve, report })
+}
+
+/// The curve of [`least_squares`] without its [`FitReport`]: the same solve, the same bits,
+/// without the report's second pass over the data (a basis evaluation and a residual a point,
+/// and an array of the residuals), for callers that measure the fit their own way (SciPy's
+/// `make_lsq_spline` and `LSQUnivariateSpline`).
+///
+/// ```
+/// use lekalo::fit::{least_squares, least_squares_curve, EndConstraints, FitData};
+/// use lekalo::{KnotVector, PointsRef};
+/// let x: Vec<f64> = (0..20).map(|k| k as f64 / 19.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| (3.0 * t).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0])?;
+/// let ends = EndConstraints::none();
+/// let curve = least_squares_curve(&data, 3, &kv, &ends)?;
+/// assert_eq!(curve, least_squares(&data, 3, &kv, &ends)?.curve);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`least_squares`].
+pub fn least_squares_curve(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+) -> Result<BSplineCurve> {
+    fit_curve(data, degree, knots, ends, &Progress::new())
+}
+
+/// The solve of [`least_squares_with_progress`], up to the curve.
+fn fit_curve(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+    progress: &Progress<'_>,
+) -> Result<BSplineCurve> {
     let n_ctrl = spline_space(data, degree, knots)?;
     let fixed = Fixed::new(data, degree, knots, n_ctrl, ends)?;
     if fixed.count() == 0 {
@@ -151,12 +196,11 @@ pub fn least_squares_with_progress(
     }
     let qr = accumulate(data, degree, knots, n_ctrl, &fixed, degree + 1, progress)?;
     let control = solve_control(&qr, data, degree, knots, n_ctrl, &fixed)?;
-    let curve = BSplineCurve::from_raw(degree, knots.as_slice().to_vec(), control);
-    let report = FitReport::new(&curve, data, None);
-    let n = data.len() as u64;
-    // the fit is complete: a flag set this late does not discard it
-    let _ = progress.step(LSQ_WORK, n, n);
-    Ok(CurveFit { curve, report })
+    Ok(BSplineCurve::from_raw(
+        degree,
+        knots.as_slice().to_vec(),
+        control,
+    ))
 }
 
 /// What a least-squares pass reports to a [`Progress`] hook.
