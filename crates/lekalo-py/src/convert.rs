@@ -405,21 +405,47 @@ pub(crate) fn filled<'py, F>(
 where
     F: FnOnce(&mut [f64]) -> lekalo::Result<()> + Send,
 {
-    let n = shape.iter().product::<usize>();
-    let arr = if n >= EMPTY_MIN {
-        let empty = py.import("numpy")?.getattr("empty")?;
-        empty
-            .call1((PyTuple::new(py, shape)?,))?
-            .cast_into::<PyArrayDyn<f64>>()?
-    } else {
-        PyArrayDyn::<f64>::zeros(py, shape, false)
-    };
+    let arr = new_array(py, shape)?;
     {
         let mut rw = arr.readwrite();
         let buf = rw.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
         py.detach(|| fill(buf)).map_err(lib_err)?;
     }
     Ok(arr.into_any())
+}
+
+/// [`filled`] for two results written by one call (a spline's knots and coefficients): both
+/// arrays allocated as [`filled`]'s, then `fill` with the GIL released.
+pub(crate) fn filled_pair<'py, F>(
+    py: Python<'py>,
+    shapes: [&[usize]; 2],
+    fill: F,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)>
+where
+    F: FnOnce(&mut [f64], &mut [f64]) -> lekalo::Result<()> + Send,
+{
+    let (a, b) = (new_array(py, shapes[0])?, new_array(py, shapes[1])?);
+    {
+        let (mut wa, mut wb) = (a.readwrite(), b.readwrite());
+        let sa = wa.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
+        let sb = wb.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
+        py.detach(|| fill(sa, sb)).map_err(lib_err)?;
+    }
+    Ok((a.into_any(), b.into_any()))
+}
+
+/// A new C-ordered float64 array of `shape` for a result: `numpy.empty` from [`EMPTY_MIN`]
+/// numbers on (not swept with zeros), the C API's zeros below.
+fn new_array<'py>(py: Python<'py>, shape: &[usize]) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let n = shape.iter().product::<usize>();
+    Ok(if n >= EMPTY_MIN {
+        let empty = py.import("numpy")?.getattr("empty")?;
+        empty
+            .call1((PyTuple::new(py, shape)?,))?
+            .cast_into::<PyArrayDyn<f64>>()?
+    } else {
+        PyArrayDyn::<f64>::zeros(py, shape, false)
+    })
 }
 
 /// A NumPy array of the given shape over `data` (moved, not copied).

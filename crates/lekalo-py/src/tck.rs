@@ -6,16 +6,17 @@
 //! is built, so nothing is validated or copied beyond what the computation reads.
 
 use lekalo::curve::{
-    antiderivative_coefficients_into, basis_integrals_into, bspline_zeros,
-    derivative_coefficients_into, integral_into,
+    antiderivative_coefficients_into, antiderivative_knots_into, basis_integrals_into,
+    bspline_zeros, derivative_coefficients_into, integral_into,
 };
-use lekalo::{insert_knot_into, PointsRef};
-use numpy::{PyArray1, PyArrayMethods};
+use lekalo::insert_knot_into;
+use numpy::PyArray1;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::convert::IntArg;
-use crate::convert::{check_size, filled, floats, FloatArray};
+use crate::convert::{check_size, filled, filled_pair, floats, FloatArray};
 use crate::error::{bad, lib_err};
 
 /// The knots: a 1-D array (not checked finite here: the library refuses what it cannot use).
@@ -75,14 +76,16 @@ pub(crate) fn tck_derivative<'py>(
     })
 }
 
-/// The coefficients of the `nu`-th antiderivative of the spline `(t, c, k)`,
-/// `(len(t) + 2nu, dim)` in SciPy's layout (the rows past `n + nu` copies of the last; its knots
-/// are `t` with each end knot repeated `nu` times more), without a curve built
-/// (`lekalo::curve::antiderivative_coefficients_into`).
+/// The `nu`-th antiderivative of the spline `(t, c, k)` in SciPy's layout (`splantider`):
+/// `(knots, coefficients)`, the knots `t` with each end knot repeated `nu` times more
+/// (`lekalo::curve::antiderivative_knots_into`), the coefficients `(len(t) + 2nu, dim)` (the
+/// rows past `n + nu` copies of the last; `lekalo::curve::antiderivative_coefficients_into`),
+/// each array allocated once, without a curve built.
 ///
 /// >>> import numpy as np, lekalo
-/// >>> lekalo._lekalo.tck_antiderivative(np.array([0.0, 1.0]), np.array([[1.0]]), 0)[:, 0].tolist()
-/// [0.0, 1.0, 1.0, 1.0]
+/// >>> t, c = lekalo._lekalo.tck_antiderivative(np.array([0.0, 1.0]), np.array([[1.0]]), 0)
+/// >>> t.tolist(), c[:, 0].tolist()
+/// ([0.0, 0.0, 1.0, 1.0], [0.0, 1.0, 1.0, 1.0])
 #[pyfunction]
 #[pyo3(signature = (t, c, k, nu = IntArg::of(1)), text_signature = "(t, c, k, nu=1)")]
 pub(crate) fn tck_antiderivative<'py>(
@@ -91,7 +94,7 @@ pub(crate) fn tck_antiderivative<'py>(
     c: &Bound<'py, PyAny>,
     k: IntArg,
     nu: IntArg,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<Bound<'py, PyTuple>> {
     let k = k.count("k")?;
     let nu = nu.count("nu")?;
     let ta = floats(t, "t")?;
@@ -103,9 +106,11 @@ pub(crate) fn tck_antiderivative<'py>(
         .ok_or_else(|| bad(format!("antiderivative order {nu} is too large")))?;
     check_size("antiderivative coefficients", &[rows, dim])?;
     let cs = ca.data();
-    filled(py, &[rows, dim], |out| {
-        antiderivative_coefficients_into(ts, k, cs, dim, nu, out)
-    })
+    let (new_t, new_c) = filled_pair(py, [&[rows], &[rows, dim]], |out_t, out_c| {
+        antiderivative_coefficients_into(ts, k, cs, dim, nu, out_c)?;
+        antiderivative_knots_into(ts, nu, out_t)
+    })?;
+    PyTuple::new(py, [new_t, new_c])
 }
 
 /// `∫_a^b` of the spline `(t, c, k)`, `(dim,)`, the end polynomials continued beyond the
@@ -163,8 +168,9 @@ pub(crate) fn tck_basis_integrals<'py>(
 /// The spline `(t, c, k)` with `x` inserted `m` times (Boehm's insertion at any multiplicity, as
 /// FITPACK's `fpinst`; with `periodic`, the periodic extension kept): `(knots, coefficients)`,
 /// the coefficients `(len(knots), dim)` in SciPy's layout (zero rows after the
-/// `len(knots) − k − 1` coefficients), each array allocated once (`lekalo::insert_knot_into`).
-/// `c` has exactly `len(t) − k − 1` rows.
+/// `len(knots) − k − 1` coefficients), each array allocated once (`lekalo::insert_knot_into`:
+/// the knots and coefficients the insertion reads are checked, the others copied as they are,
+/// as FITPACK copies them). `c` has exactly `len(t) − k − 1` rows.
 ///
 /// >>> import numpy as np, lekalo
 /// >>> t, c = lekalo._lekalo.tck_insert(np.array([0.0, 0.0, 1.0, 1.0]), np.array([[0.0], [1.0]]), 1, 0.5)
@@ -187,36 +193,36 @@ pub(crate) fn tck_insert<'py>(
     let ta = floats(t, "t")?;
     let ca = floats(c, "c")?;
     let (ts, dim) = (knots(&ta)?, columns(&ca)?);
-    let control = PointsRef::from_flat(dim, ca.data()).map_err(lib_err)?;
+    let cs = ca.data();
     let len = ts
         .len()
         .checked_add(m)
         .ok_or_else(|| bad(format!("m = {m} insertions are too many")))?;
     check_size("coefficients after insertion", &[len, dim])?;
-    let new_t = PyArray1::<f64>::zeros(py, len, false);
-    let new_c = {
-        let mut tw = new_t.readwrite();
-        let out_t = tw.as_slice_mut().map_err(|e| bad(format!("result: {e}")))?;
-        filled(py, &[len, dim], |out_c| {
-            insert_knot_into(k, ts, control, x, m, periodic, out_t, out_c)
-        })?
-    };
-    PyTuple::new(py, [new_t.into_any(), new_c])
+    let (new_t, new_c) = filled_pair(py, [&[len], &[len, dim]], |out_t, out_c| {
+        insert_knot_into(k, ts, cs, dim, x, m, periodic, out_t, out_c)
+    })?;
+    PyTuple::new(py, [new_t, new_c])
 }
 
 /// The zeros of the scalar spline `(t, c, k)` in its base interval, increasing, the first and
 /// last spans' polynomials also searched beyond it (`lekalo::curve::bspline_zeros`: spans whose
 /// coefficients share one strict sign skipped, the others solved in power form). `c` is 1-D.
+/// With `fitpack_knots`, FITPACK's condition on the knots of `sproot`,
+/// `t_1 ≤ … ≤ t_4 < t_5 < … < t_{n−3} ≤ … ≤ t_n` (sorted, and `t[k] … t[n]` increasing
+/// strictly; NaN fails), is checked in one pass and refused as FITPACK's `TypeError`.
 ///
 /// >>> import numpy as np, lekalo
 /// >>> lekalo._lekalo.tck_zeros(np.array([0.0, 0.0, 1.0, 2.0, 2.0]), np.array([-1.0, 1.0, -1.0]), 1).tolist()
 /// [0.5, 1.5]
 #[pyfunction]
+#[pyo3(signature = (t, c, k, fitpack_knots = false))]
 pub(crate) fn tck_zeros<'py>(
     py: Python<'py>,
     t: &Bound<'py, PyAny>,
     c: &Bound<'py, PyAny>,
     k: IntArg,
+    fitpack_knots: bool,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let k = k.count("k")?;
     let ta = floats(t, "t")?;
@@ -228,9 +234,33 @@ pub(crate) fn tck_zeros<'py>(
             ca.shape()
         )));
     }
+    if fitpack_knots && !fitpack_zero_knots(ts, k) {
+        return Err(PyTypeError::new_err(format!(
+            "Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold: the knots must be \
+             sorted, and t[{k}] … t[len(t) − {}] distinct (no NaN)",
+            k + 1
+        )));
+    }
     let cs = ca.data();
     let z = py.detach(|| bspline_zeros(ts, k, cs)).map_err(lib_err)?;
     Ok(PyArray1::from_vec(py, z))
+}
+
+/// FITPACK's condition on the knots of `sproot` (`fpchec`'s order conditions): `t` sorted and
+/// `t[k] < … < t[n]`, `n = len(t) − k − 1`, in one branch-free pass (NaN fails every
+/// comparison). Fewer than `k + 2` knots pass here; the library refuses them.
+fn fitpack_zero_knots(t: &[f64], k: usize) -> bool {
+    let Some(n) = t.len().checked_sub(k + 1).filter(|&n| n > k) else {
+        return true;
+    };
+    // three runs of neighbours, one pass in all: sorted up to t[k], increasing strictly from
+    // t[k] to t[n], sorted after
+    let pairs = |u: &[f64], strict: bool| {
+        u.iter()
+            .zip(&u[1..])
+            .fold(true, |ok, (a, b)| ok & if strict { a < b } else { a <= b })
+    };
+    pairs(&t[..=k], false) & pairs(&t[k..=n], true) & pairs(&t[n..], false)
 }
 
 /// Registers the functions of this module.

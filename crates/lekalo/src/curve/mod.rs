@@ -14,8 +14,8 @@
 //!   `fpinst`); [`insert_knot_into`], either into the caller's buffers.
 //! - `roots.rs`: [`bspline_zeros`], the zeros of a scalar spline span by span, spans without a
 //!   sign change among their coefficients skipped.
-//! - `tck.rs`: [`derivative_coefficients_into`], [`antiderivative_coefficients_into`] and
-//!   [`integral_into`]: calculus on a spline given as arrays (SciPy's `(t, c, k)`), read in
+//! - `tck.rs`: [`derivative_coefficients_into`], [`antiderivative_coefficients_into`] (with
+//!   [`antiderivative_knots_into`]) and [`integral_into`]: calculus on a spline given as arrays (SciPy's `(t, c, k)`), read in
 //!   place and written into the caller's buffers.
 //! - `nurbs.rs`: [`NurbsCurve`], a B-spline over homogeneous points.
 //! - `conics.rs`: exact circles, circular and elliptic arcs as rational quadratics; straight
@@ -58,6 +58,6 @@ pub use periodic_insertion::{insert_knot_into, insert_knot_periodic, insert_knot
 pub use power_form::POWER_FORM_CONTINUITY_RTOL;
 pub use roots::bspline_zeros;
 pub use tck::{
-    antiderivative_coefficients_into, basis_integrals_into, derivative_coefficients_into,
-    integral_into,
+    antiderivative_coefficients_into, antiderivative_knots_into, basis_integrals_into,
+    derivative_coefficients_into, integral_into,
 };

@@ -102,7 +102,13 @@ fn insert_repeatedly(
     times: usize,
     periodic: bool,
 ) -> Result<(Vec<f64>, Points)> {
-    check_insertion(k, knots, control, times)?;
+    check_insertion(
+        k,
+        knots,
+        (control.len(), control.dim()),
+        times,
+        Checks::Whole,
+    )?;
     let (n, dim) = (knots.len(), control.dim());
     let mut t = vec![0.0; n + times];
     let mut c = vec![0.0; (n + times - k - 1) * dim];
@@ -114,14 +120,36 @@ fn insert_repeatedly(
         x,
         times,
         periodic,
+        Checks::Whole,
         &mut t,
         &mut c,
     )?;
     Ok((t, Points::from_raw(c, dim)))
 }
 
-/// The checks of the insertion functions: degree, knots, coefficient count, result size.
-fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize) -> Result<()> {
+/// What the insertion functions check of the spline they are given.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Checks {
+    /// The whole knot vector (finite, sorted, a non-empty domain) and every coefficient of the
+    /// result finite: the functions that return a new spline.
+    Whole,
+    /// What the insertion reads: the knots of the interval of `x` and the `2k` around it that
+    /// Boehm's weights use (and, periodic, the `2k + 2` at each end that carry the period),
+    /// finite and non-decreasing, and the `k` new coefficients finite; the others are copied
+    /// as they are, as FITPACK copies them (SciPy's `insert` layout, O(k) checks on top of
+    /// the copy).
+    Read,
+}
+
+/// The checks of the insertion functions: degree, knots ([`Checks`]), coefficient count,
+/// result size.
+fn check_insertion(
+    k: usize,
+    knots: &[f64],
+    (rows, dim): (usize, usize),
+    times: usize,
+    checks: Checks,
+) -> Result<()> {
     let n = knots.len();
     if k == 0 || n < 2 * k + 2 {
         return Err(Error::Degree {
@@ -131,15 +159,16 @@ fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize
             ),
         });
     }
-    KnotVector::check_values(knots)?;
-    if control.len() != n - k - 1 {
+    if checks == Checks::Whole {
+        KnotVector::check_values(knots)?;
+    }
+    if rows != n - k - 1 {
         return Err(Error::LengthMismatch {
             what: "coefficients (knots − degree − 1)".into(),
             expected: n - k - 1,
-            got: control.len(),
+            got: rows,
         });
     }
-    let dim = control.dim();
     let total = n
         .checked_add(times)
         .filter(|v| v.checked_mul(dim + 1).is_some_and(|s| s <= MAX_SCALARS));
@@ -154,36 +183,53 @@ fn check_insertion(k: usize, knots: &[f64], control: PointsRef<'_>, times: usize
 }
 
 /// [`insert_knot_raw`] (or, with `periodic`, [`insert_knot_periodic`]) written into the caller's
-/// buffers, SciPy's layout: `out_knots` takes the `n + times` knots, `out_control` at least
-/// `n + times − k − 1` rows of `control.dim()` numbers, the new coefficients and then zeros
+/// buffers, SciPy's layout: the coefficients `control` are `n − k − 1` rows of `dim` numbers
+/// (SciPy's array, not a checked [`PointsRef`]); `out_knots` takes the `n + times` knots,
+/// `out_control` at least `n + times − k − 1` rows, the new coefficients and then zeros
 /// (`scipy.interpolate.insert` pads the coefficients to the knots' length). The spline is read
-/// in place; with `times = 1` nothing else is allocated.
+/// in place; with `times = 1` nothing else is allocated. What the insertion reads is checked,
+/// not the whole spline: the knots of the interval of `x` and the `2k` around it (with
+/// `periodic`, also the `2k + 2` at each end), and the `k` new coefficients; the other knots
+/// and coefficients are copied as they are, as FITPACK's `insert` copies them, so that the call
+/// is the copy plus O(k log n) work (on knots that are not sorted elsewhere the interval found
+/// is not `x`'s: sort them first).
 ///
 /// ```
-/// use lekalo::{insert_knot_into, PointsRef};
+/// use lekalo::insert_knot_into;
 /// let t = [0.0, 0.0, 1.0, 1.0];
 /// let (mut t2, mut c2) = ([0.0; 5], [f64::NAN; 5]);
-/// insert_knot_into(1, &t, PointsRef::from_flat(1, &[0.0, 1.0])?, 0.5, 1, false, &mut t2, &mut c2)?;
+/// insert_knot_into(1, &t, &[0.0, 1.0], 1, 0.5, 1, false, &mut t2, &mut c2)?;
 /// assert_eq!(t2, [0.0, 0.0, 0.5, 1.0, 1.0]);
 /// assert_eq!(c2, [0.0, 0.5, 1.0, 0.0, 0.0]);
 /// # Ok::<(), lekalo::Error>(())
 /// ```
 ///
 /// # Errors
-/// As [`insert_knot_raw`]; [`Error::LengthMismatch`] for buffers of other sizes.
+/// As [`insert_knot_raw`], the knot-vector errors ([`Error::KnotsNotSorted`],
+/// [`Error::NonFinite`]) for the knots read and [`Error::NonFinite`] for a new coefficient;
+/// [`Error::Dimension`] for `dim = 0` or coefficients that are not whole rows;
+/// [`Error::LengthMismatch`] for buffers of other sizes.
 #[allow(clippy::too_many_arguments)] // the spline, the insertion and the two buffers
 pub fn insert_knot_into(
     k: usize,
     knots: &[f64],
-    control: PointsRef<'_>,
+    control: &[f64],
+    dim: usize,
     x: f64,
     times: usize,
     periodic: bool,
     out_knots: &mut [f64],
     out_control: &mut [f64],
 ) -> Result<()> {
-    check_insertion(k, knots, control, times)?;
-    let (n, dim) = (knots.len(), control.dim());
+    if dim == 0 || control.len() % dim != 0 {
+        return Err(Error::Dimension {
+            what: "coefficients (length is not a multiple of the dimension)".into(),
+            expected: dim.max(1),
+            got: control.len(),
+        });
+    }
+    check_insertion(k, knots, (control.len() / dim, dim), times, Checks::Read)?;
+    let n = knots.len();
     let rows = n + times - k - 1;
     if out_knots.len() != n + times {
         return Err(Error::LengthMismatch {
@@ -204,11 +250,12 @@ pub fn insert_knot_into(
     insert_checked_into(
         k,
         knots,
-        control.as_slice(),
+        control,
         dim,
         x,
         times,
         periodic,
+        Checks::Read,
         out_knots,
         head,
     )
@@ -225,6 +272,7 @@ fn insert_checked_into(
     x: f64,
     times: usize,
     periodic: bool,
+    checks: Checks,
     out_t: &mut [f64],
     out_c: &mut [f64],
 ) -> Result<()> {
@@ -240,14 +288,38 @@ fn insert_checked_into(
             .map_or((knots, control), |(t, c)| (t.as_slice(), c.as_slice()));
         let mut tt = vec![0.0; t.len() + 1];
         let mut cc = vec![0.0; c.len() + dim];
-        insert_once_into(k, t, c, dim, x, periodic, &mut tt, &mut cc)?;
+        insert_once_into(k, t, c, dim, x, periodic, checks, &mut tt, &mut cc)?;
         held = Some((tt, cc));
     }
     let (t, c) = held
         .as_ref()
         .map_or((knots, control), |(t, c)| (t.as_slice(), c.as_slice()));
-    insert_once_into(k, t, c, dim, x, periodic, out_t, out_c)?;
-    check_finite("coefficients after insertion", out_c)
+    insert_once_into(k, t, c, dim, x, periodic, checks, out_t, out_c)?;
+    if checks == Checks::Whole {
+        check_finite("coefficients after insertion", out_c)?;
+    }
+    Ok(())
+}
+
+/// The knots `t[from..to]` finite and non-decreasing, or the error naming the first that is
+/// not (its index in the whole vector).
+fn check_knot_window(t: &[f64], from: usize, to: usize) -> Result<()> {
+    let window = &t[from..to];
+    if let Some(i) = window.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            what: Arg::Knots.into(),
+            index: from + i,
+            value: window[i],
+        });
+    }
+    if let Some(i) = window.windows(2).position(|w| w[1] < w[0]) {
+        return Err(Error::KnotsNotSorted {
+            index: from + i + 1,
+            value: window[i + 1],
+            previous: window[i],
+        });
+    }
+    Ok(())
 }
 
 /// One insertion (FITPACK's `insert` and `fpinst` with `iopt = 1` when `periodic`, else
@@ -261,6 +333,7 @@ fn insert_once_into(
     dim: usize,
     x: f64,
     periodic: bool,
+    checks: Checks,
     tt: &mut [f64],
     cc: &mut [f64],
 ) -> Result<()> {
@@ -278,6 +351,15 @@ fn insert_once_into(
         // FITPACK's `insert` then searches the other way, t_l < x ≤ t_{l+1}: x at the end of
         // an interval followed by repeated knots (a second insertion at the right end)
         l = k + inner.partition_point(|&v| v < x);
+    }
+    if checks == Checks::Read {
+        // the knots Boehm's weights read (t_{l+1−k} … t_{l+k}, the interval's two among them;
+        // l + k ≤ n − 2), and those that carry the period
+        check_knot_window(t, l + 1 - k, l + k + 1)?;
+        if periodic {
+            check_knot_window(t, 0, 2 * k + 2)?;
+            check_knot_window(t, n - 2 * k - 2, n)?;
+        }
     }
     if t[l] >= t[l + 1] {
         return Err(Error::InvalidArgument {
@@ -316,6 +398,16 @@ fn insert_once_into(
         let fac = (x - tt[i]) / (tt[i + k + 1] - tt[i]);
         for d in 0..dim {
             cc[i * dim + d] = fac * c[i * dim + d] + (1.0 - fac) * c[(i - 1) * dim + d];
+        }
+    }
+    if checks == Checks::Read {
+        let new_rows = &cc[(l + 1 - k) * dim..(l + 1) * dim];
+        if let Some(i) = new_rows.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                what: "coefficients after insertion".into(),
+                index: (l + 1 - k) * dim + i,
+                value: new_rows[i],
+            });
         }
     }
     if !periodic {
@@ -460,5 +552,71 @@ mod tests {
         let e = insert_knot_periodic(k, &t, PointsRef::from_flat(1, &c[..7]).unwrap(), 1.0, 1)
             .unwrap_err();
         assert!(matches!(e, Error::LengthMismatch { .. }), "{e}");
+    }
+
+    /// `insert_knot_into` checks what it reads: on a valid spline it gives the bits of
+    /// `insert_knot_raw` (which checks everything); a NaN coefficient or knot away from `x` is
+    /// copied as FITPACK copies it, one among the coefficients or knots the insertion reads is
+    /// refused, unsorted knots away from `x` give a result, not a panic, and coefficients that
+    /// are not whole rows are refused.
+    #[test]
+    fn insert_into_checks_what_it_reads() {
+        let k = 3;
+        let t: Vec<f64> = [0.0; 3]
+            .into_iter()
+            .chain((0..=20).map(f64::from))
+            .chain([20.0; 3])
+            .collect();
+        let n = t.len();
+        let c: Vec<f64> = (0..n - k - 1).map(|i| (i as f64 * 0.7).sin()).collect();
+        let run = |t: &[f64], c: &[f64], x: f64, times: usize| {
+            let mut tt = vec![f64::NAN; t.len() + times];
+            let mut cc = vec![f64::NAN; t.len() + times];
+            insert_knot_into(k, t, c, 1, x, times, false, &mut tt, &mut cc).map(|()| (tt, cc))
+        };
+        for (x, times) in [(0.0, 1), (4.5, 1), (4.5, 3), (11.0, 2), (20.0, 1)] {
+            let (tt, cc) = run(&t, &c, x, times).unwrap();
+            let view = PointsRef::from_flat(1, &c).unwrap();
+            let (t2, c2) = insert_knot_raw(k, &t, view, x, times).unwrap();
+            assert_eq!(tt, t2, "knots at {x}");
+            let m = c2.as_slice().len();
+            assert_eq!(&cc[..m], c2.as_slice(), "coefficients at {x}");
+            assert!(cc[m..].iter().all(|&v| v == 0.0), "padding at {x}");
+        }
+        // a NaN coefficient far from x: copied; among the k + 1 that x's interval reads: refused
+        let mut bad = c.clone();
+        bad[18] = f64::NAN;
+        let (_, cc) = run(&t, &bad, 4.5, 1).unwrap();
+        assert!(cc[19].is_nan() && cc[..19].iter().all(|v| v.is_finite()));
+        let e = run(&t, &bad, 16.5, 1).unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        // a NaN knot, or a knot out of order, far from x: copied; near it: refused
+        for v in [f64::NAN, 6.0] {
+            let mut tb = t.clone();
+            tb[18] = v;
+            let (tt, _) = run(&tb, &c, 4.5, 1).unwrap();
+            assert_eq!(tt[19].to_bits(), v.to_bits());
+            let e = run(&tb, &c, 14.5, 1).unwrap_err();
+            assert!(
+                matches!(e, Error::NonFinite { .. } | Error::KnotsNotSorted { .. }),
+                "{e}"
+            );
+        }
+        // knots reversed: whatever interval the search finds, no panic
+        let reversed: Vec<f64> = t.iter().rev().copied().collect();
+        for x in [0.0, 3.0, 10.0, 20.0] {
+            let _ = run(&reversed, &c, x, 2);
+        }
+        // a periodic insertion reads the period's ends: a NaN there is refused
+        let mut tp = t.clone();
+        tp[n - 1] = f64::NAN;
+        let mut tt = vec![0.0; n + 1];
+        let mut cc = vec![0.0; n + 1];
+        let e = insert_knot_into(k, &tp, &c, 1, 10.5, 1, true, &mut tt, &mut cc).unwrap_err();
+        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        for dim in [0, 2] {
+            let e = insert_knot_into(k, &t, &c, dim, 10.5, 1, false, &mut tt, &mut cc).unwrap_err();
+            assert!(matches!(e, Error::Dimension { .. }), "{e}");
+        }
     }
 }

@@ -104,7 +104,13 @@ pub fn derivative_coefficients_into(
     }
     let m = n - nu; // coefficients of the result
     match nu {
-        0 => out[..n * dim].copy_from_slice(&c[..n * dim]),
+        0 => {
+            out[..n * dim].copy_from_slice(&c[..n * dim]);
+            check_finite(
+                "derivative coefficients (overflow: rescale the coefficients)",
+                &out[..n * dim],
+            )?;
+        }
         // one step straight from the input
         1 => derivative_step(t, k, nu, dim, &c[..n * dim], &mut out[..m * dim])?,
         // the result may have fewer rows than the steps before it: the steps in a work copy,
@@ -122,13 +128,14 @@ pub fn derivative_coefficients_into(
                 )?;
             }
             out[..m * dim].copy_from_slice(&work[..m * dim]);
+            check_finite(
+                "derivative coefficients (overflow: rescale the coefficients)",
+                &out[..m * dim],
+            )?;
         }
     }
     out[m * dim..].fill(0.0);
-    check_finite(
-        "derivative coefficients (overflow: rescale the coefficients)",
-        &out[..(n - nu) * dim],
-    )
+    Ok(())
 }
 
 /// `p / (u_{i+p+1} − u_{i+1})`, the factor of derivative row `i` on the knots `u` of degree `p`,
@@ -150,9 +157,9 @@ fn derivative_factor(u: &[f64], p: usize, i: usize, nu: usize) -> Result<f64> {
 }
 
 /// One derivative step on the knots `u` of degree `p`: `dst` (one row fewer than `src`) from
-/// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`. The denominators are checked
-/// without a branch a row (the error searched for only when one is not positive), so that the
-/// step is a straight loop the compiler vectorises.
+/// `src`, `dst_i = p (src_{i+1} − src_i) / (u_{i+p+1} − u_{i+1})`, the rows checked finite. The
+/// denominators and the results are checked without a branch a row (the error searched for only
+/// when one fails), so that the step is a straight loop the compiler vectorises.
 fn derivative_step(
     u: &[f64],
     p: usize,
@@ -165,19 +172,16 @@ fn derivative_step(
     let (lo, hi) = (&u[1..=rows], &u[p + 1..=rows + p]);
     let pf = p as f64;
     if dim == 1 {
-        // one pass: the quotients written and the denominators' signs gathered without a
-        // branch, the error searched for afterwards when one is not positive
-        let (x0, x1) = (&src[..rows], &src[1..=rows]);
-        let mut ok = true;
-        for ((((o, a), b), c0), c1) in dst.iter_mut().zip(lo).zip(hi).zip(x0).zip(x1) {
-            let denom = b - a;
-            ok &= denom > 0.0;
-            *o = pf / denom * (c1 - c0);
-        }
-        if !ok {
+        // one pass: the quotients written, the denominators' signs and the results'
+        // finiteness gathered without a branch
+        if !quotient_pass(lo, hi, &src[..rows], &src[1..=rows], pf, dst) {
             for i in 0..rows {
                 derivative_factor(u, p, i, nu)?;
             }
+            return check_finite(
+                "derivative coefficients (overflow: rescale the coefficients)",
+                dst,
+            );
         }
         return Ok(());
     }
@@ -200,7 +204,38 @@ fn derivative_step(
             *o = s * (x1 - x0);
         }
     }
-    Ok(())
+    check_finite(
+        "derivative coefficients (overflow: rescale the coefficients)",
+        dst,
+    )
+}
+
+/// `dst_i = pf / (hi_i − lo_i) · (x1_i − x0_i)`; whether every denominator is positive and
+/// every quotient finite (`|v| < ∞` is false for ±∞ and NaN), gathered as one flag.
+#[inline(always)]
+fn quotient_pass_body(
+    lo: &[f64],
+    hi: &[f64],
+    x0: &[f64],
+    x1: &[f64],
+    pf: f64,
+    dst: &mut [f64],
+) -> bool {
+    let mut ok = true;
+    for ((((o, a), b), c0), c1) in dst.iter_mut().zip(lo).zip(hi).zip(x0).zip(x1) {
+        let denom = b - a;
+        let v = pf / denom * (c1 - c0);
+        ok &= (denom > 0.0) & (v.abs() < f64::INFINITY);
+        *o = v;
+    }
+    ok
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`quotient_pass_body`], compiled with AVX2 (4-wide divisions, the loop's bound) where
+    /// the processor has it ([`crate::numeric::isa`]; the same IEEE operations, the same bits).
+    #[inline(never)]
+    fn quotient_pass(lo: &[f64], hi: &[f64], x0: &[f64], x1: &[f64], pf: f64, dst: &mut [f64]) -> bool = quotient_pass_body;
 }
 
 /// [`derivative_step`] in place: the first `rows − 1` rows of `buf` replaced by the step's
@@ -314,15 +349,58 @@ pub fn antiderivative_coefficients_into(
         out[m * dim..(m + 1) * dim].copy_from_slice(&acc);
     }
     let m = n + nu;
-    check_finite(
-        "antiderivative coefficients (overflow: rescale the coefficients)",
-        &out[..m * dim],
-    )?;
+    // every row is a partial sum of the last step, whose last row is the whole sum: a sum that
+    // once meets ±∞ or NaN stays ±∞ or NaN (∞ + finite = ∞, ∞ − ∞ = NaN), so the rows are all
+    // finite when the last one is, and the whole check is needed only to name the first that is not
+    if !out[(m - 1) * dim..m * dim].iter().all(|v| v.is_finite()) {
+        check_finite(
+            "antiderivative coefficients (overflow: rescale the coefficients)",
+            &out[..m * dim],
+        )?;
+    }
     let (filled, rest) = out.split_at_mut(m * dim);
     let last_row = &filled[(m - 1) * dim..];
     for row in rest.chunks_exact_mut(dim) {
         row.copy_from_slice(last_row);
     }
+    Ok(())
+}
+
+/// The knots of the `nu`-th antiderivative of a spline on the knots `t` into `out`: `t` with
+/// its first and last knots each repeated `nu` times more (`t.len() + 2nu` numbers), the knots
+/// of [`antiderivative_coefficients_into`] (SciPy's `splantider`).
+///
+/// ```
+/// use lekalo::curve::antiderivative_knots_into;
+/// let mut out = [f64::NAN; 6];
+/// antiderivative_knots_into(&[0.0, 0.0, 1.0, 1.0], 1, &mut out)?;
+/// assert_eq!(out, [0.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for an empty `t`; [`Error::LengthMismatch`] for `out` not of
+/// `t.len() + 2nu` numbers.
+pub fn antiderivative_knots_into(t: &[f64], nu: usize, out: &mut [f64]) -> Result<()> {
+    let (Some(&first), Some(&last)) = (t.first(), t.last()) else {
+        return Err(invalid_spline("no knots".into()));
+    };
+    let len = nu
+        .checked_mul(2)
+        .and_then(|v| v.checked_add(t.len()))
+        .ok_or_else(|| invalid_spline(format!("antiderivative order {nu} is too large")))?;
+    if out.len() != len {
+        return Err(Error::LengthMismatch {
+            what: "knot buffer (knots + 2 × order)".into(),
+            expected: len,
+            got: out.len(),
+        });
+    }
+    let (head, rest) = out.split_at_mut(nu);
+    let (middle, tail) = rest.split_at_mut(t.len());
+    head.fill(first);
+    middle.copy_from_slice(t);
+    tail.fill(last);
     Ok(())
 }
 
@@ -557,21 +635,7 @@ fn running_sum(
 ) {
     if dim == 1 {
         let (cs, lo, hi) = (&c[from..to], &t[from..to], &t[from + k + 1..to + k + 1]);
-        let mut s = [0.0; 4];
-        let mut chunks = cs
-            .chunks_exact(4)
-            .zip(lo.chunks_exact(4).zip(hi.chunks_exact(4)));
-        for (x, (a, b)) in chunks.by_ref() {
-            for r in 0..4 {
-                s[r] += x[r] * (b[r] - a[r]);
-            }
-        }
-        let done = cs.len() / 4 * 4;
-        let mut tail = 0.0;
-        for j in done..cs.len() {
-            tail += cs[j] * (hi[j] - lo[j]);
-        }
-        acc[0] += ((s[0] + s[1]) + (s[2] + s[3]) + tail) * scale;
+        acc[0] += weighted_sum(cs, lo, hi) * scale;
         return;
     }
     for j in from..to {
@@ -580,6 +644,35 @@ fn running_sum(
             *s += x * w;
         }
     }
+}
+
+/// `Σ_j c_j (hi_j − lo_j)` in four interleaved partial sums (lane `r` takes the terms
+/// `j ≡ r mod 4`), joined as `(s_0 + s_1) + (s_2 + s_3)`, then the terms past the last multiple
+/// of four in order.
+#[inline(always)]
+fn weighted_sum_body(cs: &[f64], lo: &[f64], hi: &[f64]) -> f64 {
+    let mut s = [0.0; 4];
+    let mut chunks = cs
+        .chunks_exact(4)
+        .zip(lo.chunks_exact(4).zip(hi.chunks_exact(4)));
+    for (x, (a, b)) in chunks.by_ref() {
+        for r in 0..4 {
+            s[r] += x[r] * (b[r] - a[r]);
+        }
+    }
+    let done = cs.len() / 4 * 4;
+    let mut tail = 0.0;
+    for j in done..cs.len() {
+        tail += cs[j] * (hi[j] - lo[j]);
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`weighted_sum_body`], its four lanes one AVX2 vector where the processor has it
+    /// ([`crate::numeric::isa`]; the same operations in the same order, the same bits).
+    #[inline(never)]
+    fn weighted_sum(cs: &[f64], lo: &[f64], hi: &[f64]) -> f64 = weighted_sum_body;
 }
 
 #[cfg(test)]
@@ -740,5 +833,79 @@ mod tests {
             ),
             Err(Error::NonFinite { .. })
         ));
+    }
+
+    /// The AVX2 copies of the two kernels ([`quotient_pass`], [`weighted_sum`]) return the
+    /// bits of the baseline ones, on lengths around the vector width.
+    #[test]
+    fn avx2_kernels_match_the_baseline_bit_for_bit() {
+        for len in [0usize, 1, 3, 4, 5, 7, 8, 9, 63, 64, 65, 1000] {
+            let (t, c) = spline(3, len + 5, 1, len as u64);
+            let (lo, hi) = (&t[1..=len], &t[4..len + 4]);
+            let (x0, x1) = (&c[..len], &c[1..=len]);
+            let (mut a, mut b) = (vec![0.0; len], vec![0.0; len]);
+            let ok_a = quotient_pass_body(lo, hi, x0, x1, 3.0, &mut a);
+            let ok_b = quotient_pass(lo, hi, x0, x1, 3.0, &mut b);
+            assert_eq!(ok_a, ok_b, "flags at {len}");
+            assert!(
+                a.iter().zip(&b).all(|(u, v)| u.to_bits() == v.to_bits()),
+                "quotients at {len}"
+            );
+            let (u, v) = (weighted_sum_body(x0, lo, hi), weighted_sum(x0, lo, hi));
+            assert_eq!(u.to_bits(), v.to_bits(), "sums at {len}");
+        }
+    }
+
+    /// Results that overflow are refused, naming the first row that did, whichever check
+    /// found them (the fused flag of the derivative's pass, the antiderivative's last row);
+    /// a NaN coefficient is refused the same way.
+    #[test]
+    fn overflow_and_nan_are_refused_at_their_row() {
+        let (t, mut c) = spline(3, 200, 1, 7);
+        // a huge coefficient: its differences over knot gaps below 3 overflow, first at row 119
+        c[120] = f64::MAX;
+        c[121] = -f64::MAX;
+        let mut out = vec![0.0; t.len() - 2];
+        match derivative_coefficients_into(&t, 3, &c, 1, 1, &mut out) {
+            Err(Error::NonFinite { index, .. }) => assert_eq!(index, 119),
+            other => panic!("expected NonFinite at 119, got {other:?}"),
+        }
+        // the running sum of a hundred huge terms of one sign passes f64::MAX
+        c[100..].fill(f64::MAX);
+        let mut out = vec![0.0; t.len() + 2];
+        let err = antiderivative_coefficients_into(&t, 3, &c, 1, 1, &mut out).unwrap_err();
+        assert!(matches!(err, Error::NonFinite { .. }), "{err:?}");
+        let (t, mut c) = spline(2, 100, 2, 3);
+        c[2 * 50 + 1] = f64::NAN;
+        let mut out = vec![0.0; (t.len() + 2) * 2];
+        match antiderivative_coefficients_into(&t, 2, &c, 2, 1, &mut out) {
+            Err(Error::NonFinite { index, .. }) => assert_eq!(index, 2 * 51 + 1),
+            other => panic!("expected NonFinite at row 51, got {other:?}"),
+        }
+        let mut out = vec![0.0; (t.len() - 2) * 2];
+        assert!(matches!(
+            derivative_coefficients_into(&t, 2, &c, 2, 1, &mut out),
+            Err(Error::NonFinite { .. })
+        ));
+        let mut out = vec![0.0; t.len() - 2];
+        let mut c1: Vec<f64> = c.iter().step_by(2).copied().collect();
+        c1[60] = f64::NAN;
+        match derivative_coefficients_into(&t, 2, &c1, 1, 1, &mut out) {
+            Err(Error::NonFinite { index, .. }) => assert_eq!(index, 59),
+            other => panic!("expected NonFinite at 59, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn antiderivative_knots_repeat_the_ends() {
+        let mut out = [f64::NAN; 8];
+        antiderivative_knots_into(&[0.0, 1.0, 2.0, 3.0], 2, &mut out).unwrap();
+        assert_eq!(out, [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0]);
+        assert!(matches!(
+            antiderivative_knots_into(&[0.0, 1.0], 1, &mut out),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(antiderivative_knots_into(&[], 1, &mut out[..2]).is_err());
+        assert!(antiderivative_knots_into(&[0.0], usize::MAX, &mut out).is_err());
     }
 }

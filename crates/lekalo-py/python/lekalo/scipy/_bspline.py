@@ -342,6 +342,8 @@ def _insert_tc(t: np.ndarray, c: np.ndarray, k: int, x: float, m: int, periodic:
     ``tck_insert`` on the arrays as they are (``insert_knot_into``: Boehm's insertion at any
     multiplicity, or with ``periodic`` the periodic extension kept, both FITPACK's ``fpinst``)."""
     x = float(x)
+    if t.ndim != 1 or t.shape[0] < 2 * k + 2:
+        raise ValueError(f"Cannot insert a knot: {t.shape[0]} knots for degree {k}, at least 2k + 2 = {2 * k + 2} are needed.")
     if x < t[k] or x > t[-k - 1]:
         raise ValueError(f"Cannot insert a knot at {x}.")
     if m <= 0:
@@ -430,11 +432,10 @@ def _antiderivative_tc(t: np.ndarray, c: np.ndarray, k: int, nu: int):
     tail = c.shape[1:]
     complex_ = np.iscomplexobj(c)
     try:
-        # one call on the arrays as they are, SciPy's layout out (the rows past n + nu copies of
-        # the last); a B-spline without support adds nothing to the running sum, so its
-        # coefficient repeats the previous one, as SciPy's
-        cn = _lekalo.tck_antiderivative(t, _real_columns(c, n), k, nu)
-        t_new = np.r_[(t[0],) * nu, t, (t[-1],) * nu]
+        # one call on the arrays as they are, SciPy's layout out (the knots and coefficients each
+        # written once, the rows past n + nu copies of the last); a B-spline without support adds
+        # nothing to the running sum, so its coefficient repeats the previous one, as SciPy's
+        t_new, cn = _lekalo.tck_antiderivative(t, _real_columns(c, n), k, nu)
         return t_new, _from_columns(cn, complex_).reshape((t_new.shape[0],) + tail)
     except _lekalo.Error:
         pass  # what the library refuses, refused below in SciPy's words

@@ -179,8 +179,20 @@ def splint(a: float, b: float, tck: Any, full_output: int = 0):
         pass
     t = np.asarray(t, dtype=np.float64)
     c = np.asarray(c, dtype=np.float64)
-    val = BSpline.construct_fast(t, c, k, extrapolate=False).integrate(a, b, extrapolate=False)
-    val = float(val)
+    n = t.shape[0] - k - 1
+    if c.ndim == 1 and c.shape[0] >= n > 0:
+        # one call on the arrays as they are: the limits ordered and clipped to the base
+        # interval (BSpline.integrate's rules without extrapolation, the same numbers)
+        lo, hi, sign = (a, b, 1) if not b < a else (b, a, -1)
+        lo, hi = max(lo, t[k]), min(hi, t[n])
+        if lo < hi:
+            val = float(_lekalo.tck_integral(t, c[:n], k, float(lo), float(hi))[0])
+            val = val if sign > 0 else -val
+        else:
+            # FITPACK's: NaN for a NaN limit, else 0 (not -0 for reversed limits)
+            val = float("nan") if a != a or b != b else 0.0
+    else:
+        val = float(BSpline.construct_fast(t, c, k, extrapolate=False).integrate(a, b, extrapolate=False))
     if full_output:
         # FITPACK's wrk: the integrals of the B-splines over [a, b] clipped to the base interval
         # (lekalo's basis_integrals_into, FITPACK's fpintb); the last k + 1 entries, which
@@ -273,12 +285,12 @@ def sproot(tck: Any, mest: int = 10):
     if len(t) < 8:
         raise TypeError(f"The number of knots {len(t)}>=8")
     n = len(t) - k - 1
-    cc = np.ascontiguousarray(np.asarray(c, dtype=np.float64)[:n].reshape(n, 1))
-    # neighbours compared (boolean arrays), not differences formed: the same test, NaN failing
-    # both, without two float temporaries the size of the knots
-    if not ((t[1:] >= t[:-1]).all() and (t[k + 1 : n + 1] > t[k:n]).all()):
-        raise TypeError("Invalid input data. t1<=..<=t4<t5<..<tn-3<=..<=tn must hold.")
-    z = _lekalo.tck_zeros(t, cc[:, 0], k)
+    c = np.asarray(c, dtype=np.float64).reshape(-1)
+    if c.shape[0] < n:
+        raise ValueError(f"sproot: {c.shape[0]} coefficients for {len(t)} knots of a cubic; at least {n} are needed")
+    # FITPACK's knot condition (sorted, t[k] < ... < t[n]) checked by lekalo in one pass over
+    # the knots, refused as FITPACK's TypeError
+    z = _lekalo.tck_zeros(t, c[:n], k, fitpack_knots=True)
     # the base interval, widened by rounding: a zero at an end falls on either side of it
     a, b = t[k], t[n]
     tol = 4 * np.finfo(float).eps * max(abs(a), abs(b), b - a)
