@@ -349,10 +349,11 @@ pub fn antiderivative_coefficients_into(
         out[m * dim..(m + 1) * dim].copy_from_slice(&acc);
     }
     let m = n + nu;
-    // every row is a partial sum of the last step, whose last row is the whole sum: a sum that
-    // once meets ±∞ or NaN stays ±∞ or NaN (∞ + finite = ∞, ∞ − ∞ = NaN), so the rows are all
-    // finite when the last one is, and the whole check is needed only to name the first that is not
-    if !out[(m - 1) * dim..m * dim].iter().all(|v| v.is_finite()) {
+    // with nu ≥ 1 every row is a partial sum of the last step, whose last row is the whole sum:
+    // a sum that once meets ±∞ or NaN stays ±∞ or NaN (∞ + finite = ∞, ∞ − ∞ = NaN), so the rows
+    // are all finite when the last one is, and the whole check is needed only to name the first
+    // that is not (nu = 0 copies the coefficients: all of them checked)
+    if nu == 0 || !out[(m - 1) * dim..m * dim].iter().all(|v| v.is_finite()) {
         check_finite(
             "antiderivative coefficients (overflow: rescale the coefficients)",
             &out[..m * dim],
@@ -887,6 +888,17 @@ mod tests {
             derivative_coefficients_into(&t, 2, &c, 2, 1, &mut out),
             Err(Error::NonFinite { .. })
         ));
+        // order 0 copies the coefficients, NaN and all: refused at its index either way
+        let mut out = vec![0.0; t.len() * 2];
+        for result in [
+            antiderivative_coefficients_into(&t, 2, &c, 2, 0, &mut out),
+            derivative_coefficients_into(&t, 2, &c, 2, 0, &mut out),
+        ] {
+            match result {
+                Err(Error::NonFinite { index, .. }) => assert_eq!(index, 2 * 50 + 1),
+                other => panic!("expected NonFinite at row 50, got {other:?}"),
+            }
+        }
         let mut out = vec![0.0; t.len() - 2];
         let mut c1: Vec<f64> = c.iter().step_by(2).copied().collect();
         c1[60] = f64::NAN;
