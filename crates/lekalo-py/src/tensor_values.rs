@@ -3,7 +3,8 @@
 //! checked in `O(Σ|t_a|)`, the coefficients never copied), so that an object of `lekalo.scipy`
 //! keeps no second copy and sees its arrays changed in place. Points beyond the domain follow
 //! one of the `Beyond` rules: `"continue"` (the end spans' polynomials), `"clamp"` (FITPACK:
-//! the coordinate taken at the domain's end) or `"nan"`; a NaN or infinite coordinate gives NaN.
+//! the coordinate taken at the domain's end, an infinite one too) or `"nan"`; a NaN coordinate
+//! gives NaN, and so does an infinite one but under `"clamp"`.
 //! The value at one point (`tensor_value`, the scalar calls) reads only the numbers it needs
 //! (`lekalo::tensor::tensor_value_by`), with no check of the whole arrays.
 
@@ -97,8 +98,8 @@ fn orders(nu: Option<Vec<IntArg>>, n: usize) -> PyResult<Option<Vec<usize>>> {
 /// `tensor_values(t, c, k, x, nu=None, beyond="continue")`: the spline `(t, c, k)` (or its
 /// partial derivative of orders `nu`) at the points `x` of shape `(..., N)`, shape
 /// `(..., *trailing)`; `beyond` is `"continue"`, `"clamp"` or `"nan"` for a point outside the
-/// domain (`TensorBSplineRef::par_eval_batch_beyond`), and a NaN or infinite coordinate gives
-/// NaN. Nothing of `t`, `c` or `x` is copied.
+/// domain (`TensorBSplineRef::par_eval_batch_beyond`), and a NaN coordinate gives NaN (an
+/// infinite one too, but under `"clamp"`, which takes it at the domain's end). Nothing of `t`, `c` or `x` is copied.
 #[pyfunction]
 #[pyo3(signature = (t, c, k, x, nu = None, beyond = "continue"))]
 pub(crate) fn tensor_values(

@@ -116,8 +116,9 @@ impl TensorBSplineRef<'_> {
     }
 
     /// The values (or the partial derivative of `orders`) at every point of `xs`, whatever
-    /// the point: a coordinate that is NaN or infinite gives `NaN` values; a finite point
-    /// outside the domain is treated by `beyond` ([`Beyond`]); inside the domain the bits of
+    /// the point: a coordinate that is NaN gives `NaN` values, and so does an infinite one
+    /// except under [`Beyond::Clamp`] (taken at the domain's end); a finite point outside the
+    /// domain is treated by `beyond` ([`Beyond`]); inside the domain the bits of
     /// [`TensorBSpline::eval`] (or `eval_partial`). Parallel above a few thousand points, as
     /// [`TensorBSpline::par_eval_batch`].
     ///
@@ -136,6 +137,12 @@ impl TensorBSplineRef<'_> {
     /// assert_eq!(out[0], 1.5);
     /// s.view().par_eval_batch_beyond(&xs, None, Beyond::Nan, &mut out)?;
     /// assert!(out[0].is_nan());
+    /// // an infinite coordinate: NaN, or taken at the domain's end when clamped (FITPACK)
+    /// let ys = [f64::INFINITY, 0.5, f64::NEG_INFINITY, 0.25];
+    /// s.view().par_eval_batch_beyond(&ys, None, Beyond::Clamp, &mut out)?;
+    /// assert_eq!(out, [1.5, 0.25]);
+    /// s.view().par_eval_batch_beyond(&ys, None, Beyond::Continue, &mut out)?;
+    /// assert!(out[0].is_nan() && out[1].is_nan());
     /// # Ok::<(), lekalo::Error>(())
     /// ```
     ///

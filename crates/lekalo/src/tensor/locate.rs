@@ -10,14 +10,14 @@ use crate::curve::PieceLocator;
 use crate::error::{Error, Result};
 
 /// What a batch does at a point outside the domain (or with a coordinate that is not finite):
-/// [`TensorBSplineRef::par_eval_batch_beyond`]. A point with a NaN or infinite coordinate gets
-/// `NaN` values in every mode.
+/// [`TensorBSplineRef::par_eval_batch_beyond`]. A point with a NaN coordinate gets `NaN` values
+/// in every mode, one with an infinite coordinate in every mode but [`Beyond::Clamp`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Beyond {
     /// The polynomials of the end spans continued (SciPy's `NdBSpline(..., extrapolate=True)`).
     Continue,
-    /// Each coordinate taken at the nearest end of its domain (FITPACK's `fpbisp`, SciPy's
-    /// `bisplev` and `RectBivariateSpline.ev`).
+    /// Each coordinate taken at the nearest end of its domain, `±∞` included (FITPACK's
+    /// `fpbisp`, SciPy's `bisplev` and `RectBivariateSpline.ev`).
     Clamp,
     /// `NaN` values (SciPy's `extrapolate=False`).
     Nan,
@@ -97,7 +97,7 @@ pub(super) fn locate(
 ) -> Result<bool> {
     if let Mode::Beyond(b) = mode {
         for (&t, &(lo, hi)) in x.iter().zip(domains) {
-            if !t.is_finite() || (b == Beyond::Nan && !(t >= lo && t <= hi)) {
+            if !beyond_defined(t, b, lo, hi) {
                 return Ok(false);
             }
         }
@@ -114,7 +114,7 @@ pub(super) fn locate(
                 })
             }
             Mode::Refuse => table.find(t),
-            // finite, checked: the span of the nearest domain end
+            // checked (finite, or infinite and clamped): the span of the nearest domain end
             _ => table.find(t.clamp(lo, hi)),
         };
         point[a] = if mode == Mode::Beyond(Beyond::Clamp) {
@@ -124,6 +124,18 @@ pub(super) fn locate(
         };
     }
     Ok(true)
+}
+
+/// Whether a coordinate `t` has values under the rule `beyond` on the domain `[lo, hi]`: not
+/// NaN; finite unless clamped (an infinite coordinate is taken at its end, as FITPACK's
+/// `fpbisp` takes it); inside the domain for [`Beyond::Nan`].
+#[inline(always)]
+pub(super) fn beyond_defined(t: f64, beyond: Beyond, lo: f64, hi: f64) -> bool {
+    match beyond {
+        Beyond::Clamp => !t.is_nan(),
+        Beyond::Continue => t.is_finite(),
+        Beyond::Nan => t >= lo && t <= hi,
+    }
 }
 
 #[cfg(test)]

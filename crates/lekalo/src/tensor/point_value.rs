@@ -8,7 +8,7 @@ use crate::basis::{basis_funs_fixed, basis_funs_into, BasisScratch};
 use crate::error::{readable, Error, NthDirection, Result};
 use crate::knots::span_by;
 use crate::tensor::contract::contract3;
-use crate::tensor::locate::Beyond;
+use crate::tensor::locate::{beyond_defined, Beyond};
 
 /// Largest number of directions of [`tensor_value_by`] (the window of `Π_a (p_a + 1)`
 /// coefficients is gathered on the heap, its size checked).
@@ -30,7 +30,8 @@ pub const MAX_POINT_VALUE_VARS: usize = 32;
 ///
 /// Beyond the domain `[t_{p_a}, t_{n_a}]` of a direction: [`Beyond::Continue`] continues the
 /// polynomial of the end span, [`Beyond::Clamp`] takes the coordinate at the nearest end,
-/// [`Beyond::Nan`] gives NaN; a NaN or infinite coordinate gives NaN. The knots are not checked
+/// [`Beyond::Nan`] gives NaN; a NaN coordinate gives NaN, an infinite one NaN except under
+/// [`Beyond::Clamp`], which takes it at its end (FITPACK's `fpbisp`). The knots are not checked
 /// sorted (that costs `O(|T_a|)`): unsorted knots give some number, never a panic, as SciPy's
 /// evaluation gives some number.
 ///
@@ -122,7 +123,7 @@ pub fn tensor_value_by(
             )));
         }
         let t = x[a];
-        if !t.is_finite() || (beyond == Beyond::Nan && !(lo <= t && t <= hi)) {
+        if !beyond_defined(t, beyond, lo, hi) {
             return Ok(f64::NAN);
         }
         point.push(if beyond == Beyond::Clamp {
@@ -322,7 +323,7 @@ mod tests {
         #![proptest_config(proptest_config(64))]
 
         /// For scalar splines, the value read through accessors has the bits of the batch
-        /// beyond the domain, at points inside, outside and with NaN coordinates.
+        /// beyond the domain, at points inside, outside and with NaN or infinite coordinates.
         #[test]
         fn point_value_has_the_bits_of_the_batch(
             s in spline(),
@@ -338,6 +339,11 @@ mod tests {
             xs.truncate(xs.len() / n * n);
             if xs.len() >= n {
                 xs[0] = f64::NAN;
+            }
+            // infinite coordinates: NaN, or the domain's end when clamped
+            if xs.len() >= 3 * n {
+                xs[n] = f64::INFINITY;
+                xs[2 * n + n - 1] = f64::NEG_INFINITY;
             }
             let c = s.control_points().as_slice();
             for rule in [Beyond::Continue, Beyond::Clamp, Beyond::Nan] {

@@ -6,7 +6,6 @@ values and partial derivatives (``bispev``, ``parder``, ``bispeu``, ``pardeu``),
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -72,18 +71,12 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
 
 
 def _value(tck: Any, degrees: Any, x: float, y: float):
-    """The spline's value at the one point ``(x, y)`` (a coordinate outside the base box taken at
-    its edge, as FITPACK), lekalo's ``tensor_value`` reading the few knots and coefficients it
+    """The spline's value at the one point ``(x, y)`` (a coordinate outside the base box, or
+    infinite, taken at its edge, as FITPACK), lekalo's ``tensor_value`` reading the few knots and coefficients it
     needs in place; ``None`` when the arrays are not float64 arrays it can read (the caller then
     takes the array way, which converts them and raises SciPy's errors)."""
     try:
-        if not (math.isfinite(x) and math.isfinite(y)):
-            if math.isnan(x) or math.isnan(y):
-                return math.nan  # FITPACK's value at a NaN coordinate
-            # an infinite coordinate is taken at its edge, as FITPACK takes it
-            (tx, ty), (kx, ky) = tck[:2], degrees
-            x = float(tx[kx] if x < 0 else tx[len(tx) - kx - 1]) if math.isinf(x) else x
-            y = float(ty[ky] if y < 0 else ty[len(ty) - ky - 1]) if math.isinf(y) else y
+        # "clamp": an infinite coordinate taken at its edge and NaN at a NaN one, as FITPACK
         return _lekalo.tensor_value(tck[:2], tck[2], degrees, (x, y), "clamp")
     except Exception:
         return None

@@ -221,7 +221,20 @@ class BSpline:
             return np.full((x.shape[0], m), np.nan, dtype=self.c.dtype)
         # one pass in lekalo: NaN at non-finite x (and outside without extrapolation), the end
         # polynomials continued otherwise (CurveEvaluator::eval_batch_beyond)
-        curve = _curve(self.t, _real_columns(self.c, n), self.k)
+        cc = _real_columns(self.c, n)
+        try:
+            curve = _curve(self.t, cc, self.k)
+        except ValueError:
+            if np.isfinite(cc).all():
+                raise
+            # NaN or infinite coefficients (lekalo's curves refuse them, SciPy evaluates them):
+            # the spline as a 1-variate tensor product, whose evaluation reads the coefficients
+            # in place, unchecked, so that each value is NaN or infinite where SciPy's is
+            values = _lekalo.tensor_values(
+                (self.t,), cc, (self.k,), x[:, None], [nu] if nu else None,
+                "continue" if extrapolate else "nan",
+            )
+            return _from_columns(values, complex_)
         out = _from_columns(curve.eval_beyond(x, nu, extrapolate), complex_)
         if self.k == 0 and nu == 0 and self.t[n - 1] == self.t[n]:
             # SciPy's span search ends in the last interval even when it is empty: a

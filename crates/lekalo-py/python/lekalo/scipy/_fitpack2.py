@@ -369,7 +369,9 @@ class RectBivariateSpline(BivariateSpline):
     (``s = 0``: interpolation), lekalo's ``fit_tensor_grid_smoothing``
     (``docs/theory/tensor.md#smoothing-on-grids``). lekalo's iteration for the smoothing weight
     keeps the residual at or below ``s`` and its own bound on the iterations; ``maxit`` is
-    accepted and not used."""
+    accepted and not used. Values that are NaN or infinite give, as SciPy, the knots of
+    interpolation, ``fp = 0`` and NaN coefficients (SciPy leaves its last row and column
+    finite, an accident of its order of rotations; here every one is NaN)."""
 
     def __init__(
         self, x: Any, y: Any, z: Any, bbox: Any = [None] * 4, kx: int = 3, ky: int = 3, s: Any = 0,  # noqa: B006
@@ -398,12 +400,24 @@ class RectBivariateSpline(BivariateSpline):
             (y[0] if yb is None else yb, y[-1] if ye is None else ye),
         ]
         z = np.ascontiguousarray(z, dtype=np.float64)
-        spline, fp, _ = _lekalo.fit_tensor_grid_smoothing(
-            [x, y], z, float(0.0 if s is None else s), [int(kx), int(ky)], bbox=box
-        )
+        s = float(0.0 if s is None else s)
+        try:
+            spline, fp, _ = _lekalo.fit_tensor_grid_smoothing([x, y], z, s, [int(kx), int(ky)], bbox=box)
+            c = np.asarray(spline.c).ravel()
+        except ValueError:
+            if np.isfinite(z).all():
+                raise
+            # values that are NaN or infinite: FITPACK's residuals are NaN, so no knot set is
+            # accepted before the knots of interpolation (whatever s), where its fpregr sets
+            # fp = 0, and the solve spreads the NaN over the coefficients; the same knots here
+            # (lekalo's, which do not depend on the values), fp = 0 and every coefficient NaN
+            spline, _, _ = _lekalo.fit_tensor_grid_smoothing(
+                [x, y], np.zeros_like(z), 0.0, [int(kx), int(ky)], bbox=box
+            )
+            fp, c = 0.0, np.full(np.asarray(spline.c).size, np.nan)
         tx, ty = spline.t
         self.fp = fp
-        self.tck = (np.asarray(tx), np.asarray(ty), np.asarray(spline.c).ravel())
+        self.tck = (np.asarray(tx), np.asarray(ty), c)
         self.degrees = kx, ky
 
 
