@@ -13,6 +13,7 @@ use crate::interpolate::parametrization::check_strictly_increasing;
 use crate::numeric::progress::Progress;
 use crate::points::{Points, PointsRef};
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
+use crate::tensor::TensorInterpolation;
 use crate::KnotVector;
 use crate::{Arg, What};
 
@@ -37,7 +38,9 @@ pub struct TensorGridSmoothing {
 /// `docs/theory/tensor.md#smoothing-on-grids`.
 ///
 /// - `s = 0`: interpolation on FITPACK's knots (the interior knots at the nodes for odd
-///   degrees, at their midpoints for even degrees, dropping `⌊k/2⌋ + 1` at each end).
+///   degrees, at their midpoints for even degrees, dropping `⌊k/2⌋ + 1` at each end), solved
+///   as [`TensorInterpolation`] solves a grid (banded elimination, one sweep a direction); the
+///   residual is `0`, as FITPACK reports it.
 /// - `s > 0`: start from the polynomial (no interior knot). While the least-squares spline
 ///   leaves `fp > s`, add knots in one direction (a direction that reaches the knot count of
 ///   interpolation takes the knots of interpolation, as SciPy's `regrid` does): the direction whose estimated number of new
@@ -160,6 +163,13 @@ pub fn tensor_grid_smoothing_with_progress(
         }
         axes.push(Axis::new(x, k, lo, hi));
     }
+    let steps = Steps::new(progress, "smoothing on a grid (knot rounds, weights)");
+    if s == 0.0 {
+        steps.tick()?;
+        let fit = interpolation(params, values, degrees, &mut axes)?;
+        steps.finish();
+        return Ok(fit);
+    }
     let dim = values.dim();
     let center = values.as_slice()[..dim].to_vec();
     let q: Vec<f64> = values
@@ -173,7 +183,6 @@ pub fn tensor_grid_smoothing_with_progress(
         dim,
         count,
     };
-    let steps = Steps::new(progress, "smoothing on a grid (knot rounds, weights)");
     let fit = rounds(&grid, &mut axes, s, &steps)?;
     steps.finish();
     let knots: Vec<KnotVector> = axes
@@ -190,6 +199,36 @@ pub fn tensor_grid_smoothing_with_progress(
         spline,
         residual: fit.fp,
         p: fit.p,
+    })
+}
+
+/// `s = 0`: the interpolating spline on FITPACK's knots (`fpregr`). The system is square (one
+/// coefficient a node in each direction) and its solution the same as the least squares of
+/// [`solve`], so it is solved as [`TensorInterpolation`] solves it: each direction's
+/// collocation matrix factored once by banded elimination without pivoting (totally positive,
+/// de Boor 1976), one sweep of solves a direction, instead of Givens rotations on every line.
+/// The residual is reported as FITPACK reports it for interpolation, `0` (what remains is
+/// rounding).
+fn interpolation(
+    params: &[&[f64]],
+    values: PointsRef<'_>,
+    degrees: &[usize],
+    axes: &mut [Axis<'_>],
+) -> Result<TensorGridSmoothing> {
+    let knots = axes
+        .iter_mut()
+        .map(|ax| {
+            ax.interpolation();
+            KnotVector::new(ax.knots()).map(Some)
+        })
+        .collect::<Result<_>>()?;
+    let spline = TensorInterpolation::new(degrees.to_vec())
+        .knot_vectors(knots)
+        .interpolate_at(params, values)?;
+    Ok(TensorGridSmoothing {
+        spline,
+        residual: 0.0,
+        p: None,
     })
 }
 
@@ -328,13 +367,6 @@ struct Solved {
 
 /// The knot rounds and the smoothing weight (FITPACK `fpregr`).
 fn rounds(grid: &Grid<'_>, axes: &mut [Axis<'_>], s: f64, steps: &Steps<'_, '_>) -> Result<Solved> {
-    if s == 0.0 {
-        for ax in axes.iter_mut() {
-            ax.interpolation();
-        }
-        steps.tick()?;
-        return solve(grid, axes, f64::INFINITY);
-    }
     let acc = SMOOTHING_RTOL * s;
     let bound: usize = grid.params.iter().map(|p| p.len()).sum();
     let (mut fp0, mut fpold) = (0.0, 0.0);
