@@ -3,7 +3,8 @@
 
 use super::bernstein::{bernstein_rows, min_on_unit, pieces};
 use super::constraints::ShapeConstraints;
-use super::program::{failure_error, gram_of_triangle, triangle_transpose_times, ConeProgram, Row};
+use super::program::{failure_error, gram_of_triangle, triangle_transpose_times, ConeProgram};
+use super::row::Row;
 use crate::basis::{basis_ders_into, BasisScratch};
 use crate::error::{Error, Result};
 use crate::fit::banded::SymBand;

@@ -14,13 +14,17 @@
 //! |---|---|
 //! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
 //! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` (crate-private) |
+//! | `row.rs` | `Row`: a linear function of the coefficients local to a span, the unit of every program (crate-private) |
 //! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, the polish on the active face, infeasibility certificates mapped back to constraints (crate-private) |
+//! | `face_rows.rs` | the rows of a polished face: duplicates dropped, and on a degenerate face the independent ones, by Givens rotations along the band (crate-private) |
 //! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`], [`shape_violations`]; the rows of each piece and the working set |
 
 mod bernstein;
 mod constraints;
+mod face_rows;
 mod fits;
 mod program;
+mod row;
 
 pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
 pub use fits::{

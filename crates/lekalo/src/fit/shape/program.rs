@@ -8,50 +8,14 @@
 //! O(n) per interior-point iteration for `n` coefficients, whatever the number of data points.
 
 use super::super::banded::SymBand;
+use super::face_rows::{distinct, independent};
+use super::row::{add_rows, Row};
 use crate::error::{Error, Result};
 use crate::fit::progress::Steps;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-
-/// A linear function of the variables, `g(x) = Σ coef_i x_{first+i} + aux_coef·x_aux + constant`.
-#[derive(Debug, Clone)]
-pub(crate) struct Row {
-    pub(crate) first: usize,
-    pub(crate) coef: Vec<f64>,
-    /// An auxiliary variable (index among the auxiliaries) and its coefficient.
-    pub(crate) aux: Option<(usize, f64)>,
-    pub(crate) constant: f64,
-}
-
-impl Row {
-    fn scale(&mut self, f: f64) {
-        self.coef.iter_mut().for_each(|v| *v *= f);
-        if let Some((_, a)) = &mut self.aux {
-            *a *= f;
-        }
-        self.constant *= f;
-    }
-
-    /// The largest coefficient in absolute value (the auxiliary's included).
-    pub(crate) fn max_abs(&self) -> f64 {
-        let a = self.aux.map_or(0.0, |(_, a)| a.abs());
-        self.coef.iter().fold(a, |m, v| m.max(v.abs()))
-    }
-
-    /// `g(x)` at the variables `x` (coefficients, then auxiliaries from `n`).
-    pub(crate) fn eval(&self, x: &[f64], n: usize) -> f64 {
-        let mut s = self.constant;
-        for (i, c) in self.coef.iter().enumerate() {
-            s += c * x[self.first + i];
-        }
-        if let Some((k, a)) = self.aux {
-            s += a * x[n + k];
-        }
-        s
-    }
-}
 
 /// The program: objective, rows, and the index of the user's constraint each row comes from.
 #[derive(Debug)]
@@ -312,12 +276,12 @@ impl ConeProgram {
     ) -> Result<Option<FaceOptimum>> {
         let n = self.p.n;
         let n_tags = tags.iter().flatten().count();
-        let mut kept: Vec<(Row, bool, Option<usize>)> = Vec::with_capacity(rows.len());
-        for ((r, ineq), tag) in rows.into_iter().zip(tags) {
-            if !kept.iter().any(|(k, _, _)| same_row(k, &r)) {
-                kept.push((r, ineq, tag));
-            }
-        }
+        let tagged: Vec<(Row, bool, Option<usize>)> = rows
+            .into_iter()
+            .zip(tags)
+            .map(|((r, ineq), tag)| (r, ineq, tag))
+            .collect();
+        let mut kept = distinct(tagged, n);
         if kept.len() > n {
             // a degenerate face (a flat stretch keeps value, slope and curvature rows at
             // once): more rows than coefficients, so some depend on the others
@@ -499,78 +463,9 @@ impl ConeProgram {
     }
 }
 
-/// `a + f·b` for two rows of the same columns (no auxiliary).
-pub(crate) fn add_rows(a: &Row, b: &Row, f: f64) -> Row {
-    Row {
-        first: a.first,
-        coef: a.coef.iter().zip(&b.coef).map(|(x, y)| x + f * y).collect(),
-        aux: None,
-        constant: a.constant + f * b.constant,
-    }
-}
-
-/// Share of a row's length below which what remains of it, once its components along the rows
-/// kept before it are removed, counts as zero (the row depends on them).
-const DEPENDENT_RTOL: f64 = 1e-9;
-
-/// The rows, in order, that do not depend linearly on the rows kept before them (modified
-/// Gram–Schmidt on the coefficient vectors, Golub & Van Loan §5.2.8): on a consistent face
-/// (every row zero at a point) the dropped rows are zero wherever the kept ones are, so the face
-/// is the same and its equality-constrained optimum too. At most `n` rows remain. Each row costs
-/// O(rows kept · n), far more than a tick of `steps`, which comes before each row so that a
-/// cancelled hook stops a face of thousands of rows ([`Error::Cancelled`]).
-fn independent<T>(
-    rows: Vec<(Row, bool, T)>,
-    n: usize,
-    steps: &Steps<'_, '_>,
-) -> Result<Vec<(Row, bool, T)>> {
-    let mut basis: Vec<Vec<f64>> = Vec::new();
-    let mut out = Vec::with_capacity(n.min(rows.len()));
-    for item in rows {
-        steps.tick()?;
-        let r = &item.0;
-        if r.aux.is_some() {
-            out.push(item);
-            continue;
-        }
-        if basis.len() >= n {
-            continue;
-        }
-        let mut v = vec![0.0; n];
-        v[r.first..r.first + r.coef.len()].copy_from_slice(&r.coef);
-        let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        for b in &basis {
-            let d: f64 = b.iter().zip(&v).map(|(x, y)| x * y).sum();
-            v.iter_mut().zip(b).for_each(|(y, x)| *y -= d * x);
-        }
-        let rest = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if rest > DEPENDENT_RTOL * length {
-            v.iter_mut().for_each(|x| *x /= rest);
-            basis.push(v);
-            out.push(item);
-        }
-    }
-    Ok(out)
-}
-
 /// The optimum on a face: the coefficients, and the multiplier of each tagged slope row (`None`
 /// if it was dropped).
 type FaceOptimum = (Vec<f64>, Vec<Option<f64>>);
-
-/// Whether two rows (scaled to unit largest coefficient) are the same function to rounding,
-/// whatever their first columns.
-fn same_row(a: &Row, b: &Row) -> bool {
-    let lo = a.first.min(b.first);
-    let hi = (a.first + a.coef.len()).max(b.first + b.coef.len());
-    let at = |r: &Row, j: usize| {
-        j.checked_sub(r.first)
-            .and_then(|i| r.coef.get(i))
-            .copied()
-            .unwrap_or(0.0)
-    };
-    (lo..hi).all(|j| (at(a, j) - at(b, j)).abs() <= 1e-10)
-        && (a.constant - b.constant).abs() <= 1e-10
-}
 
 /// The minimiser `τ*` on `[0, 1]` of the quadratic with Bernstein coefficients `b`, and the
 /// minimum.
