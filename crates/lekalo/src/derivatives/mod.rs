@@ -30,6 +30,8 @@
 //!   least-squares fit on given knots and parameters and of the smoothing spline with a given
 //!   `λ` with respect to the data (a sparse product and a solve with the fit's banded
 //!   factorisation, forward or transposed).
+//! - `fits.rs`: [`LeastSquaresFit`] and [`SmoothingFit`], the two fits as functions of their
+//!   data on flat buffers: the fits' control points bit for bit, and `fitting.rs`'s JVP and VJP.
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
 //! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
@@ -47,6 +49,7 @@ mod borrowed;
 mod checks;
 mod control_cotangent;
 mod curve;
+mod fits;
 mod fitting;
 mod interpolant;
 mod interpolation;
@@ -61,6 +64,7 @@ mod tests;
 
 pub use borrowed::BorrowedCurve;
 pub use curve::CurveLinearization;
+pub use fits::{LeastSquaresFit, SmoothingFit};
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
 pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
