@@ -97,6 +97,101 @@ def test_fit_gradients_vmap_and_kernels():
     assert lekalo.smoothing_linearize(x, 1e-3)["triangle"].shape == (42, 4)
 
 
+def test_fits_compile_to_the_ffi_targets_not_a_callback():
+    x, y, t, w = lsq_case()
+    lsq = lambda q: jnp.sum(fit_least_squares(q, x, t, 3, w=w) ** 2)  # noqa: E731
+    sm = lambda q: jnp.sum(fit_smoothing(x, q, w, 1e-3) ** 2)  # noqa: E731
+    for f, stem in ((lsq, "lekalo_fit_least_squares"), (sm, "lekalo_fit_smoothing")):
+        values = jax.jit(f).lower(y).as_text()
+        assert f"{stem}_eval" in values and "callback" not in values
+        grad = jax.jit(jax.grad(f)).lower(y).as_text()
+        assert f"{stem}_vjp" in grad and "callback" not in grad
+        forward = jax.jit(lambda q: jax.jvp(f, (q,), (q,))[1]).lower(y).as_text()
+        assert f"{stem}_jvp" in forward and "callback" not in forward
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_fit_jacobians_under_vmap_and_eagerly_match_central_differences(mode):
+    x, y, t, w = lsq_case()
+    batch = np.stack([y, np.cos(5 * y) + 10.0])
+    for weights in (None, w):
+        f = lambda q: fit_least_squares(q, x, t, 3, w=weights)  # noqa: E731
+        plain = lambda q: plain_lsq(q, x, t, weights)  # noqa: E731
+        jac = jax.vmap(getattr(jax, mode)(f))(batch)
+        eager = getattr(jax, mode)(f)(batch[1])
+        for i in range(2):
+            assert_rel(jac[i], central(plain, batch[i], 1e-3), f"{mode} under vmap, element {i}")
+        assert_rel(eager, central(plain, batch[1], 1e-3), f"{mode} eagerly")
+        g = lambda q: fit_smoothing(x, q, weights, 2e-4)  # noqa: E731
+        splain = lambda q: plain_smoothing(x, q, weights, 2e-4)  # noqa: E731
+        jac = jax.jit(jax.vmap(getattr(jax, mode)(g)))(batch)
+        for i in range(2):
+            assert_rel(jac[i], central(splain, batch[i], 1e-3), f"{mode} of the smoothing, {i}")
+        # 1-D data under vmap
+        y1 = batch[:, :, 0]
+        j1 = jax.vmap(getattr(jax, mode)(lambda q: fit_smoothing(x, q, weights, 2e-4)))(y1)
+        assert_rel(j1[0], central(lambda q: splain(q)[:, 0], y1[0], 1e-3), f"{mode}, 1-D y")
+
+
+def test_fit_errors_carry_lekalos_message_under_jit_and_vmap():
+    x, y, t, w = lsq_case()
+    bad = y.copy()
+    bad[4, 1] = np.nan
+    for f in (
+        lambda q: fit_least_squares(q, x, t, 3),
+        jax.jit(lambda q: fit_least_squares(q, x, t, 3)),
+        lambda q: fit_smoothing(x, q, None, 1e-3),
+        jax.jit(lambda q: fit_smoothing(x, q, None, 1e-3)),
+    ):
+        with pytest.raises(RUNTIME_ERRORS, match="must be finite"):
+            np.asarray(f(bad))
+    with pytest.raises(RUNTIME_ERRORS, match="must be finite"):
+        np.asarray(jax.vmap(lambda q: fit_least_squares(q, x, t, 3))(np.stack([y, bad])))
+    with pytest.raises(RUNTIME_ERRORS, match="must be finite"):
+        np.asarray(jax.jit(jax.grad(lambda q: jnp.sum(fit_smoothing(x, q, None, 1e-3))))(bad))
+    # a singular fit: every parameter below 0.75, so the last spans hold no data
+    xs = x * 0.7
+    singular = lambda q: fit_least_squares(q, xs, t, 3)  # noqa: E731
+    for f in (singular, jax.jit(singular), jax.jit(jax.grad(lambda q: jnp.sum(singular(q))))):
+        with pytest.raises(RUNTIME_ERRORS, match="Schoenberg.Whitney"):
+            np.asarray(f(y))
+    with pytest.raises(RUNTIME_ERRORS, match="Schoenberg.Whitney"):
+        np.asarray(jax.vmap(jax.jacfwd(singular))(np.stack([y, y])))
+    # weight zero on all the data of the last span is as singular
+    w0 = np.where(x > 0.8, 0.0, 1.0)
+    with pytest.raises(RUNTIME_ERRORS, match="Schoenberg.Whitney"):
+        np.asarray(fit_least_squares(y, x, t, 3, w=w0))
+    with pytest.raises(RUNTIME_ERRORS, match="outside"):
+        np.asarray(fit_least_squares(y, x + 0.5, t, 3))
+    with pytest.raises(RUNTIME_ERRORS, match="repeated"):
+        np.asarray(fit_smoothing(np.concatenate([x[:5], x[4:-1]]), y, None, 1e-3))
+    with pytest.raises(RUNTIME_ERRORS, match="weight"):
+        np.asarray(fit_smoothing(x, y, -w, 1e-3))
+    # wrong shapes, dtypes and empty arrays: lekalo.InputError before any call
+    with pytest.raises(lekalo.InputError, match="empty"):
+        fit_least_squares(np.zeros((40, 0)), x, t)
+    with pytest.raises(lekalo.InputError, match="empty"):
+        fit_smoothing(np.zeros(0), np.zeros(0), None, 1e-3)
+    with pytest.raises(lekalo.InputError, match="real numbers"):
+        fit_least_squares(y.astype(complex), x, t)
+    with pytest.raises(lekalo.InputError, match="real numbers"):
+        fit_smoothing(x, y > 0, None, 1e-3)
+    with pytest.raises(lekalo.InputError, match=r"\(m, dim\) or \(m,\)"):
+        fit_least_squares(y[None], x, t)
+    with pytest.raises(lekalo.InputError, match="w must be one a data point"):
+        fit_least_squares(y, x, t, w=w[:-1])
+    with pytest.raises(lekalo.InputError, match="x must be one a value"):
+        fit_smoothing(x[:-1], y, None, 1e-3)
+    with pytest.raises(lekalo.InputError, match="at least 2"):
+        fit_least_squares(y, x, t[:5])
+    with pytest.raises(lekalo.InputError, match="lam must be finite"):
+        fit_smoothing(x, y, None, -1.0)
+    with pytest.raises(NotImplementedError, match="data values only"):
+        jax.jacrev(lambda ws: fit_least_squares(y, x, t, 3, w=ws))(w)
+    with pytest.raises(NotImplementedError, match="data values only"):
+        jax.grad(lambda xs: jnp.sum(fit_smoothing(xs, y, None, 1e-3)))(x)
+
+
 def tensor_case(scalar=False):
     rng = np.random.default_rng(5)
     knots = (

@@ -1,33 +1,21 @@
 """Control points from data as JAX functions: ``interpolate``, ``fit_least_squares`` and
 ``fit_smoothing`` of ``lekalo.jax``, differentiable with respect to the data (and the
 interpolation's parameters) by the library's linearisations and adjoint solves with the same
-banded factorisation (``docs/theory/derivatives.md``). ``interpolate`` runs as lekalo's XLA FFI
-targets (values, JVP and VJP compiled into the program); the fits call lekalo through
-``jax.pure_callback``."""
+banded factorisation (``docs/theory/derivatives.md``). Each runs as lekalo's XLA FFI targets
+(values, JVP and VJP compiled into the program, no host callback)."""
 
 from __future__ import annotations
 
-from functools import partial
+from functools import lru_cache, partial
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 from jax.custom_derivatives import SymbolicZero
 
-from . import _lekalo
 from ._jax_ffi import Kernel
 from ._lekalo import InputError
-from ._jax_support import (
-    _callback,
-    _degree,
-    _first_order_only,
-    _float64,
-    _linearized,
-    _looped,
-    _no_knot_tangent,
-    _require_x64,
-    _struct,
-)
+from ._jax_support import _degree, _float64, _require_x64
 
 
 # -- interpolation -------------------------------------------------------------------------------
@@ -101,94 +89,50 @@ def interpolate(points, params, t, k=3):
 # -- fits ----------------------------------------------------------------------------------------
 
 
-def _constant_only(name, what, *tangents):
-    if any(not isinstance(t, SymbolicZero) for t in tangents):
+@partial(jax.custom_jvp, nondiff_argnums=(0, 1))
+def _constant(name, what, x):
+    """``x``, refusing a derivative with respect to it: the fits are differentiated with respect
+    to the data values only."""
+    return x
+
+
+@partial(_constant.defjvp, symbolic_zeros=True)
+def _constant_jvp(name, what, primals, tangents):
+    if not isinstance(tangents[0], SymbolicZero):
         raise NotImplementedError(
             f"lekalo.jax.{name}: derivatives with respect to {what} are not supported (the fit "
             "is differentiated with respect to the data values only); pass them as constants "
             "(close over them, or wrap them in jax.lax.stop_gradient)"
         )
+    return primals[0], jnp.zeros_like(primals[0])
 
 
-def _banded_normal_solve(tri, z):
-    """``(RᵀR)⁻¹ z`` for the banded upper triangle ``R`` (row ``i`` of ``tri`` holds
-    ``R[i, i:i + bw]``) and ``z`` of shape ``(n, d)``: a forward sweep with ``Rᵀ`` and a backward
-    sweep with ``R``, each a ``lax.scan`` over the rows carrying the ``bw - 1`` neighbours solved
-    last. Linear in ``z``, so JAX transposes it (reverse mode) and batches it (``vmap``)."""
-    n, bw = tri.shape
-    diag = tri[:, 0]
-    if bw == 1:
-        return z / (diag * diag)[:, None]
-    i = jnp.arange(n)[:, None]
-    k = jnp.arange(1, bw)[None, :]
-    # Rᵀ y = z: y_i = (z_i - Σ_k R[i - k, i] y_{i - k}) / R[i, i]
-    lower = jnp.where(i - k >= 0, tri[jnp.clip(i - k, 0), k], 0.0)
-    # R x = y: x_i = (y_i - Σ_k R[i, i + k] x_{i + k}) / R[i, i]
-    upper = jnp.where(i + k < n, tri[:, 1:], 0.0)
+@lru_cache(maxsize=None)
+def _least_squares_kernel(k):
+    """The FFI targets ``lekalo_fit_least_squares_*`` (``xla_ffi/fits.rs``) for degree ``k``:
+    residuals ``(t, params, w, points)``, control points ``(len(t) - k - 1, dim)``."""
 
-    def sweep(window, row):
-        zi, coef, d = row
-        xi = (zi - coef @ window) / d
-        return jnp.concatenate([xi[None], window[:-1]]), xi
+    def out_shape(res):
+        t, q = res[0], res[3]
+        return q.shape[:-2] + (t.shape[-1] - k - 1, q.shape[-1])
 
-    start = jnp.zeros((bw - 1,) + z.shape[1:], z.dtype)
-    _, y = jax.lax.scan(sweep, start, (z, lower, diag))
-    _, x = jax.lax.scan(sweep, start, (y, upper, diag), reverse=True)
-    return x
+    return Kernel("fit_least_squares", "lekalo_fit_least_squares", ("data",), out_shape)
 
 
-def _fit_tangent(first, basis, weights, tri, dq):
-    """``(RᵀR)⁻¹ BᵀW dq`` from a fit's linearisation: a scatter-add of the weighted sparse rows,
-    then the banded solve (``docs/theory/derivatives.md``, "Fits")."""
-    rows = first[:, None] + jnp.arange(basis.shape[1])
-    contrib = (weights[:, None] * basis)[..., None] * dq[:, None, :]
-    z = jnp.zeros((tri.shape[0], dq.shape[1]), dq.dtype).at[rows].add(contrib)
-    return _banded_normal_solve(tri, z)
+def _smoothing_out_shape(res):
+    """The control points' shape from the residuals ``(x, w, lam, y)``: ``(len(x) + 2, dim)``."""
+    y = res[3]
+    return y.shape[:-2] + (y.shape[-2] + 2, y.shape[-1])
 
 
-def _fit_linearization_shapes(m, width, n, bw):
-    return (_struct((m,), jnp.int64), _struct((m, width)), _struct((m,)), _struct((n, bw)))
+# values, JVP and VJP as the FFI targets ``lekalo_fit_smoothing_*`` (``xla_ffi/fits.rs``)
+_SMOOTHING = Kernel("fit_smoothing", "lekalo_fit_smoothing", ("data",), _smoothing_out_shape)
 
 
-def _lin_tuple(d):
-    return d["first"], d["basis"], d["weights"], d["triangle"]
-
-
-def _lsq_values_cb(k, weighted, points, params, t, w):
-    def one(q, x, kn, ws):
-        fit = _lekalo.fit_least_squares(q, x, kn, k, w=ws if weighted else None)[0]
-        return (np.asarray(fit.control).reshape(len(kn) - k - 1, q.shape[-1]),)
-
-    return _looped(one, (2, 1, 1, 1), points, params, t, w)[0]
-
-
-def _lsq_linearize_cb(k, weighted, params, t, w):
-    def one(x, kn, ws):
-        return _lin_tuple(_lekalo.least_squares_linearize(k, kn, x, ws if weighted else None))
-
-    return _looped(one, (1, 1, 1), params, t, w)
-
-
-@partial(jax.custom_jvp, nondiff_argnums=(0, 1))
-def _lsq(k, weighted, points, params, t, w):
-    shape = _struct((t.shape[0] - k - 1, points.shape[1]))
-    return _callback(partial(_lsq_values_cb, k, weighted), shape, points, params, t, w)
-
-
-@partial(_lsq.defjvp, symbolic_zeros=True)
-def _lsq_jvp(k, weighted, primals, tangents):
-    points, params, t, w = primals
-    dq, dx, dt, dw = tangents
-    name = "fit_least_squares"
-    _constant_only(name, "the parameters, the knots or the weights", dx, dt, dw)
-    guard = partial(_first_order_only, name)
-    values = _lsq(k, weighted, guard(points), params, t, w)
-    if isinstance(dq, SymbolicZero):
-        return values, jnp.zeros_like(values)
-    n, m = t.shape[0] - k - 1, params.shape[0]
-    shapes = _fit_linearization_shapes(m, k + 1, n, k + 1)
-    lin = _linearized(name, partial(_lsq_linearize_cb, k, weighted), shapes, params, t, w)
-    return values, _fit_tangent(*lin, dq)
+def _nonempty(name, what, q, need):
+    if q.size == 0:
+        # XLA skips a custom call with an empty result, so lekalo would never see this call
+        raise InputError(f"lekalo.jax.{name}: {what} of shape {q.shape} are empty; {need}")
 
 
 def _points_arg(points, name, what):
@@ -216,9 +160,14 @@ def fit_least_squares(points, params, t, k=3, *, w=None):
     ``Σ w_k |C(params_k) - points_k|²``.
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``points``: the fit is linear in them, ``P = (BᵀWB)⁻¹ BᵀW Q``, and its
-    derivatives apply the sparse rows of ``B`` and the triangle of lekalo's banded QR
-    (``lekalo.least_squares_linearize``). ``params``, ``t``, ``w`` and ``k`` are constants.
+    respect to ``points``: the fit is linear in them, ``P = (BᵀWB)⁻¹ BᵀW Q``, so
+    ``Ṗ = (BᵀWB)⁻¹ BᵀW Q̇`` and ``Q̄ = W B (BᵀWB)⁻¹ P̄``, with the sparse rows of ``B`` and the
+    triangle of lekalo's banded QR (``lekalo::derivatives::LeastSquaresFit``,
+    ``docs/theory/derivatives.md``, "Fits"). Values, JVP and VJP are lekalo's XLA FFI targets,
+    compiled into the program (no host callback). ``params``, ``t``, ``w`` and ``k`` are
+    constants (a derivative with respect to them raises ``NotImplementedError``). A problem
+    with the data (a basis function with no data under it, NaN values, parameters outside the
+    knots) reaches the caller as ``jax.errors.JaxRuntimeError`` carrying lekalo's message.
     """
     name = "fit_least_squares"
     k, params, t, scalar, q = _points_at_params(name, k, points, params, t)
@@ -229,45 +178,12 @@ def fit_least_squares(points, params, t, k=3, *, w=None):
             f"{2 * (k + 1)} knots, got shape {t.shape}"
         )
     weighted, w = _weights_arg(w, m, name)
-    out = _lsq(k, weighted, q, params, t, w)
+    _nonempty(name, "points", q, "the fit needs data points of at least one coordinate")
+    what = "the parameters, the knots or the weights"
+    t, params, w = (_constant(name, what, a) for a in (t, params, w))
+    static = (("degree", k), ("weighted", int(weighted)))
+    out = _least_squares_kernel(k)(static, (t, params, w), (q,))
     return out[:, 0] if scalar else out
-
-
-def _smoothing_values_cb(lam, weighted, x, y, w):
-    def one(xs, ys, ws):
-        fit = _lekalo.fit_smoothing(xs, ys, ws if weighted else None, lam)[0]
-        return (np.asarray(fit.control).reshape(xs.shape[0] + 2, ys.shape[-1]),)
-
-    return _looped(one, (1, 2, 1), x, y, w)[0]
-
-
-def _smoothing_linearize_cb(lam, weighted, x, w):
-    def one(xs, ws):
-        return _lin_tuple(_lekalo.smoothing_linearize(xs, lam, ws if weighted else None))
-
-    return _looped(one, (1, 1), x, w)
-
-
-@partial(jax.custom_jvp, nondiff_argnums=(0, 1))
-def _smoothing(lam, weighted, x, y, w):
-    shape = _struct((x.shape[0] + 2, y.shape[1]))
-    return _callback(partial(_smoothing_values_cb, lam, weighted), shape, x, y, w)
-
-
-@partial(_smoothing.defjvp, symbolic_zeros=True)
-def _smoothing_jvp(lam, weighted, primals, tangents):
-    x, y, w = primals
-    dx, dy, dw = tangents
-    name = "fit_smoothing"
-    _constant_only(name, "x or the weights", dx, dw)
-    guard = partial(_first_order_only, name)
-    values = _smoothing(lam, weighted, x, guard(y), w)
-    if isinstance(dy, SymbolicZero):
-        return values, jnp.zeros_like(values)
-    m = x.shape[0]
-    shapes = _fit_linearization_shapes(m, 4, m + 2, 4)
-    lin = _linearized(name, partial(_smoothing_linearize_cb, lam, weighted), shapes, x, w)
-    return values, _fit_tangent(*lin, dy)
 
 
 def fit_smoothing(x, y, w=None, lam=None):
@@ -278,10 +194,13 @@ def fit_smoothing(x, y, w=None, lam=None):
     ``jnp.concatenate([x[:1].repeat(3), x, x[-1:].repeat(3)])``.
 
     Differentiable (first order, forward and reverse mode, under ``jit`` and ``vmap``) with
-    respect to ``y``: the fit is linear in it, ``P = (BᵀWB + lam Ω)⁻¹ BᵀW y``, applied with the
-    fit's banded factorisation (``lekalo.smoothing_linearize``). ``x``, ``w`` and ``lam`` are
-    constants; ``lam`` must be given (a Python float): the GCV choice depends on the data and is
-    not differentiated.
+    respect to ``y``: the fit is linear in it, ``P = (BᵀWB + lam Ω)⁻¹ BᵀW y``, so
+    ``Ṗ = (BᵀWB + lam Ω)⁻¹ BᵀW ẏ`` and ``ȳ = W B (BᵀWB + lam Ω)⁻¹ P̄``, with the fit's banded
+    factorisation (``lekalo::derivatives::SmoothingFit``). Values, JVP and VJP are lekalo's XLA
+    FFI targets (no host callback). ``x``, ``w`` and ``lam`` are constants; ``lam`` must be
+    given (a Python float): the GCV choice depends on the data and is not differentiated.
+    ``x`` must be strictly increasing (the result has one control point a value, plus 2);
+    lekalo's errors on the data reach the caller as ``jax.errors.JaxRuntimeError``.
     """
     name = "fit_smoothing"
     _require_x64(name)
@@ -300,5 +219,8 @@ def fit_smoothing(x, y, w=None, lam=None):
     if x.shape != (m,):
         raise InputError(f"lekalo.jax.{name}: x must be one a value, shape ({m},), got {x.shape}")
     weighted, w = _weights_arg(w, m, name)
-    out = _smoothing(lam, weighted, x, q, w)
+    _nonempty(name, "y", q, "the smoothing spline needs at least 3 values of at least one coordinate")
+    x, w = (_constant(name, "x or the weights", a) for a in (x, w))
+    lam = jnp.asarray(lam, jnp.float64)
+    out = _SMOOTHING((("weighted", int(weighted)),), (x, w, lam), (q,))
     return out[:, 0] if scalar else out

@@ -46,7 +46,7 @@ ffi_targets! {
 /// ([`BorrowedCurve`]) rather than on a built curve: when they read fewer knots and control
 /// points than building it copies and validates, `m · (degree + 1) ≤ n` (each parameter reads
 /// and checks `2p + 2` knots and `p + 1` points, building checks all `n + p + 1` and `n`).
-fn in_place(m: usize, n: usize, degree: usize) -> bool {
+pub(super) fn in_place(m: usize, n: usize, degree: usize) -> bool {
     m.saturating_mul(degree + 1) <= n
 }
 

@@ -10,6 +10,9 @@
 //! - `nurbs`: the same for NURBS curves, also with respect to the weights;
 //! - `interpolate`: interpolation at given parameters and knots, and its JVP and VJP with
 //!   respect to the data and the parameters (`lekalo::derivatives::Interpolant`);
+//! - `fits`: the least-squares fit on given knots and the smoothing spline with a given `λ`,
+//!   and their JVP and VJP with respect to the data (`lekalo::derivatives::LeastSquaresFit`,
+//!   `SmoothingFit`);
 //! - `surface`: tensor-product B-spline surfaces, with respect to the net and `(u, v)`;
 //! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
 //!
@@ -48,6 +51,7 @@ macro_rules! ffi_targets {
 
 mod abi;
 mod curve;
+mod fits;
 mod interpolate;
 mod nurbs;
 mod operands;
@@ -73,6 +77,8 @@ fn xla_ffi_handlers(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     let all = [
         curve::HANDLERS,
+        fits::HANDLERS[0],
+        fits::HANDLERS[1],
         interpolate::HANDLERS,
         nurbs::HANDLERS,
         surface::HANDLERS,

@@ -12,12 +12,16 @@
 //! may have leading batch axes (the same for all). The values are [`NurbsCurve::eval_batch`]'s
 //! (P&T A4.1), or for large batches ([`FAST_PER_PIECE`] parameters a piece) those of the fast
 //! [`lekalo::NurbsEvaluator`]; the JVP [`NurbsCurve::eval_batch_jvp`]'s, the VJP
-//! [`NurbsCurve::eval_batch_vjp`]'s.
+//! [`NurbsCurve::eval_batch_vjp`]'s. For a batch element with few parameters against its
+//! control points (`curve.rs`'s [`in_place`]) the three are [`BorrowedNurbs`]'s on the operand
+//! buffers themselves (the same numbers): no copy, and only the knots, control points and
+//! weights the parameters' spans read are checked.
 
+use lekalo::derivatives::BorrowedNurbs;
 use lekalo::{NurbsCurve, Points};
 
 use super::abi::{Call, In};
-use super::curve::FAST_PER_PIECE;
+use super::curve::{in_place, FAST_PER_PIECE};
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
@@ -69,6 +73,31 @@ impl<'a> Layout<'a> {
         NurbsCurve::new(degree, knots.to_vec(), points, weights.to_vec()).map_err(|e| e.to_string())
     }
 
+    /// The curve of batch element `b` on the operand buffers, checked only where read.
+    fn borrowed<'d>(
+        &self,
+        degree: usize,
+        res: &'d [In<'_>],
+        b: usize,
+    ) -> Result<BorrowedNurbs<'d>, String> {
+        let [sk, sc, sw, _] = self.sizes;
+        let (knots, control) = (element(res[0].data, sk, b), element(res[1].data, sc, b));
+        BorrowedNurbs::new(
+            degree,
+            knots,
+            control,
+            element(res[2].data, sw, b),
+            self.dim,
+        )
+        .map_err(|e| e.to_string())
+    }
+
+    /// Whether the batch elements are evaluated in place ([`in_place`]).
+    fn small(&self, degree: usize) -> bool {
+        let n = self.sizes[1] / self.dim.max(1);
+        in_place(self.sizes[3], n, degree)
+    }
+
     /// The parameters of batch element `b`.
     fn ts<'d>(&self, res: &'d [In<'_>], b: usize) -> &'d [f64] {
         element(res[3].data, self.sizes[3], b)
@@ -81,9 +110,15 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
     let layout = Layout::of(args)?;
     let values = single(rets)?;
     let sv = layout.batch.size("values", values.dims, 2)?;
+    let small = layout.small(degree);
     for b in 0..layout.batch.count {
-        let c = layout.curve(degree, args, b)?;
         let (ts, out) = (layout.ts(args, b), element_mut(values.data, sv, b));
+        if small {
+            let c = layout.borrowed(degree, args, b)?;
+            c.eval_batch(ts, out).map_err(|e| e.to_string())?;
+            continue;
+        }
+        let c = layout.curve(degree, args, b)?;
         let pieces = c.homogeneous().control_points().len() - degree;
         let done = if ts.len() >= FAST_PER_PIECE * pieces {
             c.evaluator().eval_batch(ts, out)
@@ -113,9 +148,22 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
             batch.expect(what, a.dims, core, size)?;
         }
     }
+    let small = layout.small(degree);
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let mut values = vec![0.0; sv];
+    let mut values = vec![0.0; if small { 0 } else { sv }];
     for b in 0..batch.count {
+        if small {
+            let c = layout.borrowed(degree, res, b)?;
+            c.eval_batch_jvp(
+                layout.ts(res, b),
+                dc.map(|a| element(a.data, sc, b)),
+                dw.map(|a| element(a.data, sw, b)),
+                dt.map(|a| element(a.data, st, b)),
+                element_mut(tangent.data, sv, b),
+            )
+            .map_err(|e| e.to_string())?;
+            continue;
+        }
         let c = layout.curve(degree, res, b)?;
         c.eval_batch_jvp(
             layout.ts(res, b),
@@ -149,7 +197,20 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
             batch.expect(what, a.dims, core, size)?;
         }
     }
+    let small = layout.small(degree);
     for b in 0..batch.count {
+        if small {
+            let c = layout.borrowed(degree, res, b)?;
+            c.eval_batch_vjp(
+                layout.ts(res, b),
+                element(g.data, sg, b),
+                gc.as_mut().map(|a| element_mut(a.data, sc, b)),
+                gw.as_mut().map(|a| element_mut(a.data, sw, b)),
+                gt.as_mut().map(|a| element_mut(a.data, st, b)),
+            )
+            .map_err(|e| e.to_string())?;
+            continue;
+        }
         let c = layout.curve(degree, res, b)?;
         c.eval_batch_vjp(
             layout.ts(res, b),

@@ -397,6 +397,28 @@ impl LeastSquaresMap {
     }
 }
 
+/// `λ` of the smoothing-spline derivatives: finite and positive.
+///
+/// # Errors
+/// [`Error::NegativeSmoothing`] for `λ < 0` or not finite; [`Error::InvalidArgument`] for
+/// `λ = 0` (the natural interpolating spline: use [`super::InterpolationMap`]).
+pub(super) fn check_lambda(lambda: f64) -> Result<()> {
+    if !(lambda >= 0.0 && lambda.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: Arg::Lambda.into(),
+            value: lambda,
+        });
+    }
+    if lambda == 0.0 {
+        return Err(Error::InvalidArgument {
+            what: What::of(Arg::Lambda, "λ of the smoothing-spline derivatives"),
+            reason: "λ = 0 is the natural interpolating spline, not covered here; give λ > 0"
+                .into(),
+        });
+    }
+    Ok(())
+}
+
 /// The linear map from data values to control points of the cubic smoothing spline with a
 /// given `λ > 0` ([`crate::fit::smoothing_spline`] with [`crate::fit::Lambda::Given`]): with
 /// `B` the clamped cubic B-splines with knots at the `M` distinct data parameters (`M + 2` control
@@ -432,19 +454,7 @@ impl SmoothingMap {
     /// for `lambda == 0` (the natural interpolating spline: use [`super::InterpolationMap`]); as
     /// [`crate::fit::smoothing_spline`] for the parameters and weights.
     pub fn new(params: &[f64], lambda: f64, weights: Option<&[f64]>) -> Result<Self> {
-        if !(lambda >= 0.0 && lambda.is_finite()) {
-            return Err(Error::NegativeSmoothing {
-                what: Arg::Lambda.into(),
-                value: lambda,
-            });
-        }
-        if lambda == 0.0 {
-            return Err(Error::InvalidArgument {
-                what: What::of(Arg::Lambda, "λ of the smoothing-spline derivatives"),
-                reason: "λ = 0 is the natural interpolating spline, not covered here; give λ > 0"
-                    .into(),
-            });
-        }
+        check_lambda(lambda)?;
         let zeros = vec![0.0; params.len()];
         let mut data = FitData::new(PointsRef::from_flat(1, &zeros)?, params)?;
         if let Some(w) = weights {

@@ -14,9 +14,9 @@
 //!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
 //!   basis matrix, what an automatic-differentiation framework needs to build its own linear
 //!   map).
-//! - `borrowed.rs`: [`BorrowedCurve`], the values, JVP and VJP of `curve.rs` for a few
-//!   parameters on borrowed knots and control points, reading and checking only the spans used
-//!   (no O(n) copy or validation a call).
+//! - `borrowed/`: [`BorrowedCurve`] and [`BorrowedNurbs`], the values, JVP and VJP of
+//!   `curve.rs` and `nurbs.rs` for a few parameters on borrowed knots, control points and
+//!   weights, reading and checking only the spans used (no O(n) copy or validation a call).
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
@@ -30,6 +30,8 @@
 //!   least-squares fit on given knots and parameters and of the smoothing spline with a given
 //!   `λ` with respect to the data (a sparse product and a solve with the fit's banded
 //!   factorisation, forward or transposed).
+//! - `fits.rs`: [`LeastSquaresFit`] and [`SmoothingFit`], the two fits as functions of their
+//!   data on flat buffers: the fits' control points bit for bit, and `fitting.rs`'s JVP and VJP.
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
 //! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
@@ -47,6 +49,7 @@ mod borrowed;
 mod checks;
 mod control_cotangent;
 mod curve;
+mod fits;
 mod fitting;
 mod interpolant;
 mod interpolation;
@@ -59,8 +62,9 @@ mod tensor;
 #[cfg(test)]
 mod tests;
 
-pub use borrowed::BorrowedCurve;
+pub use borrowed::{BorrowedCurve, BorrowedNurbs};
 pub use curve::CurveLinearization;
+pub use fits::{LeastSquaresFit, SmoothingFit};
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
 pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;

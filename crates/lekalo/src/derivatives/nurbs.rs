@@ -23,17 +23,17 @@ pub type NurbsLinearization = CurveLinearization;
 
 /// One point's sums: `A`, `W`, `C`, `A'`, `W'`, `C'` from the homogeneous net `h`
 /// (`dim + 1` numbers a point, weight last).
-struct Rational {
+pub(super) struct Rational {
     /// `C = A / W` (`dim` numbers).
-    value: Vec<f64>,
+    pub(super) value: Vec<f64>,
     /// `C'` (`dim` numbers).
-    slope: Vec<f64>,
+    pub(super) slope: Vec<f64>,
     /// `W(t)`.
     weight: f64,
 }
 
 impl Rational {
-    fn new(dim: usize) -> Self {
+    pub(super) fn new(dim: usize) -> Self {
         Rational {
             value: vec![0.0; dim],
             slope: vec![0.0; dim],
@@ -43,7 +43,14 @@ impl Rational {
 
     /// The sums at one parameter. `value` is summed as `NurbsCurve::eval_batch` sums it (from
     /// zero, in the order of the control points, then divided by `W`): the same bits.
-    fn at(&mut self, h: &[f64], dim: usize, first: usize, b: &PointBasis, with_slope: bool) {
+    pub(super) fn at(
+        &mut self,
+        h: &[f64],
+        dim: usize,
+        first: usize,
+        b: &PointBasis,
+        with_slope: bool,
+    ) {
         let hd = dim + 1;
         let net = &h[first * hd..(first + b.values().len()) * hd];
         self.value.fill(0.0);
@@ -70,6 +77,84 @@ impl Rational {
             for (s, c) in self.slope.iter_mut().zip(&self.value) {
                 *s = (*s - dw * c) / w;
             }
+        }
+    }
+}
+
+/// The tangents of one parameter's JVP: of the control points (`n × dim`), of the weights (`n`)
+/// and of the parameter itself.
+pub(super) type PointTangents<'a> = (Option<&'a [f64]>, Option<&'a [f64]>, Option<f64>);
+
+/// `Ċ = Σ_k R_k Ṗ_{first+k} + Σ_k N_k (P_{first+k} − C) ẇ_{first+k} / W + C' ṫ` at one
+/// parameter into `d`: `net` the `p + 1` homogeneous points of its span (`dim + 1` numbers
+/// each, weight last), `r` its sums ([`Rational::at`] on `net`, with the slope when `ṫ` is
+/// given), `b` its basis. The one body of the built curve's and the borrowed curve's JVP.
+#[inline(always)]
+pub(super) fn jvp_point(
+    net: &[f64],
+    dim: usize,
+    first: usize,
+    b: &PointBasis,
+    r: &Rational,
+    (control_tangent, weight_tangent, parameter_tangent): PointTangents<'_>,
+    d: &mut [f64],
+) {
+    let hd = dim + 1;
+    d.fill(0.0);
+    for (k, (&nk, pt)) in b.values().iter().zip(net.chunks_exact(hd)).enumerate() {
+        let j = first + k;
+        let wj = pt[dim];
+        if let Some(dp) = control_tangent {
+            let rk = nk * wj / r.weight;
+            for (x, v) in d.iter_mut().zip(&dp[j * dim..(j + 1) * dim]) {
+                *x += rk * v;
+            }
+        }
+        if let Some(dw) = weight_tangent {
+            let s = nk * dw[j] / r.weight;
+            for ((x, hc), c) in d.iter_mut().zip(pt).zip(&r.value) {
+                *x += s * (hc / wj - c);
+            }
+        }
+    }
+    if let Some(dt) = parameter_tangent {
+        for (x, s) in d.iter_mut().zip(&r.slope) {
+            *x += s * dt;
+        }
+    }
+}
+
+/// `P̄_{first+k} += R_k ḡ` and `w̄_{first+k} += N_k ḡ · (P_{first+k} − C) / W` at one parameter
+/// with cotangent `g` (arguments as [`jvp_point`]): the one body of the built curve's and the
+/// borrowed curve's VJP (the parameter's cotangent `ḡ · C'` is the caller's).
+#[inline(always)]
+pub(super) fn vjp_point(
+    net: &[f64],
+    dim: usize,
+    first: usize,
+    b: &PointBasis,
+    r: &Rational,
+    g: &[f64],
+    (mut control_cotangent, mut weight_cotangent): (Option<&mut [f64]>, Option<&mut [f64]>),
+) {
+    let hd = dim + 1;
+    for (k, (&nk, pt)) in b.values().iter().zip(net.chunks_exact(hd)).enumerate() {
+        let j = first + k;
+        let wj = pt[dim];
+        if let Some(gp) = control_cotangent.as_deref_mut() {
+            let rk = nk * wj / r.weight;
+            for (x, gi) in gp[j * dim..(j + 1) * dim].iter_mut().zip(g) {
+                *x += rk * gi;
+            }
+        }
+        if let Some(gw) = weight_cotangent.as_deref_mut() {
+            let dot: f64 = g
+                .iter()
+                .zip(pt)
+                .zip(&r.value)
+                .map(|((gi, hc), c)| gi * (hc / wj - c))
+                .sum();
+            gw[j] += nk * dot / r.weight;
         }
     }
 }
@@ -146,31 +231,12 @@ impl NurbsCurve {
             .zip(tangent_out.chunks_exact_mut(dim));
         for (i, (&t, (o, d))) in ts.iter().zip(points).enumerate() {
             let first = b.at(knots, p, cursor.find(t)?, t);
-            r.at(h, dim, first, &b, parameter_tangent.is_some());
+            let net = &h[first * hd..(first + p + 1) * hd];
+            r.at(net, dim, 0, &b, parameter_tangent.is_some());
             o.copy_from_slice(&r.value);
-            d.fill(0.0);
-            for (k, &nk) in b.values().iter().enumerate() {
-                let j = first + k;
-                let pt = &h[j * hd..(j + 1) * hd];
-                let wj = pt[dim];
-                if let Some(dp) = control_tangent {
-                    let rk = nk * wj / r.weight;
-                    for (x, v) in d.iter_mut().zip(&dp[j * dim..(j + 1) * dim]) {
-                        *x += rk * v;
-                    }
-                }
-                if let Some(dw) = weight_tangent {
-                    let s = nk * dw[j] / r.weight;
-                    for ((x, hc), c) in d.iter_mut().zip(pt).zip(&r.value) {
-                        *x += s * (hc / wj - c);
-                    }
-                }
-            }
-            if let Some(dt) = parameter_tangent {
-                for (x, s) in d.iter_mut().zip(&r.slope) {
-                    *x += s * dt[i];
-                }
-            }
+            let dt = parameter_tangent.map(|dt| dt[i]);
+            let tangents = (control_tangent, weight_tangent, dt);
+            jvp_point(net, dim, first, &b, &r, tangents, d);
         }
         Ok(())
     }
@@ -228,27 +294,13 @@ impl NurbsCurve {
         let mut r = Rational::new(dim);
         for (i, (&t, g)) in ts.iter().zip(cotangent.chunks_exact(dim)).enumerate() {
             let first = b.at(knots, p, cursor.find(t)?, t);
-            r.at(h, dim, first, &b, parameter_cotangent.is_some());
-            for (k, &nk) in b.values().iter().enumerate() {
-                let j = first + k;
-                let pt = &h[j * hd..(j + 1) * hd];
-                let wj = pt[dim];
-                if let Some(gp) = control_cotangent.as_deref_mut() {
-                    let rk = nk * wj / r.weight;
-                    for (x, gi) in gp[j * dim..(j + 1) * dim].iter_mut().zip(g) {
-                        *x += rk * gi;
-                    }
-                }
-                if let Some(gw) = weight_cotangent.as_deref_mut() {
-                    let dot: f64 = g
-                        .iter()
-                        .zip(pt)
-                        .zip(&r.value)
-                        .map(|((gi, hc), c)| gi * (hc / wj - c))
-                        .sum();
-                    gw[j] += nk * dot / r.weight;
-                }
-            }
+            let net = &h[first * hd..(first + p + 1) * hd];
+            r.at(net, dim, 0, &b, parameter_cotangent.is_some());
+            let outs = (
+                control_cotangent.as_deref_mut(),
+                weight_cotangent.as_deref_mut(),
+            );
+            vjp_point(net, dim, first, &b, &r, g, outs);
             if let Some(gt) = parameter_cotangent.as_deref_mut() {
                 gt[i] = r.slope.iter().zip(g).map(|(s, gi)| s * gi).sum();
             }

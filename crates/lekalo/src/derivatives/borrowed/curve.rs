@@ -16,13 +16,12 @@
 //! path) [`BSplineCurve::eval_batch_vjp`]: the same basis (`slopes.rs`) and the same
 //! order of sums.
 
-use super::checks::{check_input, check_len, check_output, zeroed_output};
-use super::curve::{combine, PointBasis};
+use super::{invalid_span, locate_span, window_counts};
 use crate::curve::BSplineCurve;
+use crate::derivatives::checks::{check_input, check_len, check_output, zeroed_output};
+use crate::derivatives::curve::{combine, PointBasis};
 use crate::error::{check_finite, Error, Result};
-use crate::knots::{span_by, too_few_for_degree};
 use crate::points::Points;
-use crate::{Arg, What};
 
 /// A B-spline curve of degree `p` on borrowed knots (`n + p + 1`) and point-major control
 /// points (`n × dim`), checked only where read (module docs).
@@ -58,24 +57,7 @@ impl<'a> BorrowedCurve<'a> {
     /// [`Error::Dimension`] for `dim = 0`; [`Error::LengthMismatch`] for a partial point or a
     /// wrong number of knots; [`Error::Degree`] for fewer than `p + 1` control points.
     pub fn new(degree: usize, knots: &'a [f64], control: &'a [f64], dim: usize) -> Result<Self> {
-        if dim == 0 {
-            return Err(Error::Dimension {
-                what: Arg::ControlPoints.into(),
-                expected: 1,
-                got: 0,
-            });
-        }
-        let n = control.len() / dim;
-        check_len(Arg::ControlPoints, n * dim, control.len())?;
-        if n <= degree {
-            return Err(too_few_for_degree(n, degree));
-        }
-        let expected = n.saturating_add(degree).saturating_add(1);
-        check_len(
-            What::of(Arg::Knots, "knots (control points + degree + 1)"),
-            expected,
-            knots.len(),
-        )?;
+        let n = window_counts(degree, knots, control, dim)?;
         Ok(BorrowedCurve {
             degree,
             knots,
@@ -87,28 +69,12 @@ impl<'a> BorrowedCurve<'a> {
 
     /// The span `i` of `t` (`t_i ≤ t ≤ t_{i+1}`, `t_i < t_{i+1}`) after checking `t` in the
     /// domain `[t_p, t_n]` and the knots and control points the span reads (module docs).
-    #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN must fail every comparison
     fn locate(&self, t: f64) -> Result<usize> {
-        let (p, n, k) = (self.degree, self.n, self.knots);
-        let (min, max) = (k[p], k[n]);
-        if !(min < max && t >= min && t <= max) {
-            return Err(self.explain(Error::ParameterOutOfDomain { t, min, max }));
-        }
-        let i = span_by(&|j| k[j], p, n, t);
-        // i in p..n, so i − p ≥ 0 and i + p + 1 ≤ n + p = len − 1
-        let window = &k[i - p..=i + p + 1];
-        let sorted = window.iter().all(|x| x.is_finite())
-            && window.windows(2).all(|w| w[0] <= w[1])
-            && k[i] < k[i + 1]
-            && k[i] <= t
-            && (t < k[i + 1] || t == max);
-        let points = &self.control[(i - p) * self.dim..(i + 1) * self.dim];
-        if !sorted || !points.iter().all(|x| x.is_finite()) {
-            let local = Error::InvalidArgument {
-                what: Arg::Knots.into(),
-                reason: format!("the knots around t = {t} are not a valid span"),
-            };
-            return Err(self.explain(local));
+        let (p, dim) = (self.degree, self.dim);
+        let i = locate_span(self.knots, p, self.n, t).map_err(|e| self.explain(e))?;
+        let points = &self.control[(i - p) * dim..(i + 1) * dim];
+        if !points.iter().all(|x| x.is_finite()) {
+            return Err(self.explain(invalid_span(t)));
         }
         Ok(i)
     }

@@ -1,0 +1,255 @@
+//! The least-squares fit on given knots and parameters and the smoothing spline with a given
+//! `λ` as XLA FFI handlers, with their JVP and VJP with respect to the data values
+//! (`lekalo::derivatives::{LeastSquaresFit, SmoothingFit}`, `docs/theory/derivatives.md`,
+//! "Fits"):
+//!
+//! | target | arguments | attributes | results |
+//! |---|---|---|---|
+//! | `lekalo_fit_least_squares_eval` | knots `(n + p + 1,)`, params `(m,)`, w `(m,)`, points `(m, dim)` | `degree`, `weighted` | `P` `(n, dim)` |
+//! | `lekalo_fit_smoothing_eval` | x `(m,)`, w `(m,)`, λ `()`, y `(m, dim)` | `weighted` | `P` `(m + 2, dim)` |
+//! | `…_jvp` | the same, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
+//! | `…_vjp` | the same, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
+//!
+//! The bracketed buffers are present when `with_data` is true; `w` is read only when `weighted`
+//! is true (unweighted is the fit without weights, not weights of 1); every buffer may have the
+//! same leading batch axes. The control points are bit for bit `lekalo.fit_least_squares`'s and
+//! `lekalo.fit_smoothing`'s.
+
+use lekalo::derivatives::{LeastSquaresFit, SmoothingFit};
+
+use super::abi::{self, Call, In};
+use super::operands::{
+    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
+    Batch,
+};
+use super::Handler;
+
+/// The handlers of both fits, by target name.
+pub(super) const HANDLERS: [&[(&str, Handler)]; 2] = [least_squares::HANDLERS, smoothing::HANDLERS];
+
+/// The handlers of `lekalo.jax.fit_least_squares`.
+pub(super) mod least_squares {
+    ffi_targets! {
+        stem: "fit_least_squares",
+        function: "fit_least_squares",
+        eval: eval_body,
+        jvp: jvp_body,
+        vjp: vjp_body,
+    }
+
+    use super::{run_eval, run_jvp, run_vjp, Fit};
+    use crate::xla_ffi::abi::Call;
+
+    /// Knots, params, weights and points, with their core axes.
+    const RESIDUALS: [(&str, usize); 4] = [("t", 1), ("params", 1), ("w", 1), ("points", 2)];
+
+    /// `degree`, `weighted`.
+    fn fit(call: &Call<'_>) -> Result<Fit, String> {
+        Ok(Fit::LeastSquares {
+            degree: super::count_attr(call, "degree")?,
+            weighted: call.attr("weighted")? != 0,
+        })
+    }
+
+    fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_eval(fit(call)?, &RESIDUALS, call)
+    }
+
+    fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_jvp(fit(call)?, &RESIDUALS, call)
+    }
+
+    fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_vjp(fit(call)?, &RESIDUALS, call)
+    }
+}
+
+/// The handlers of `lekalo.jax.fit_smoothing`.
+pub(super) mod smoothing {
+    ffi_targets! {
+        stem: "fit_smoothing",
+        function: "fit_smoothing",
+        eval: eval_body,
+        jvp: jvp_body,
+        vjp: vjp_body,
+    }
+
+    use super::{run_eval, run_jvp, run_vjp, Fit};
+    use crate::xla_ffi::abi::Call;
+
+    /// x, weights, λ and y, with their core axes.
+    const RESIDUALS: [(&str, usize); 4] = [("x", 1), ("w", 1), ("lam", 0), ("y", 2)];
+
+    /// `weighted`.
+    fn fit(call: &Call<'_>) -> Result<Fit, String> {
+        Ok(Fit::Smoothing {
+            weighted: call.attr("weighted")? != 0,
+        })
+    }
+
+    fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_eval(fit(call)?, &RESIDUALS, call)
+    }
+
+    fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_jvp(fit(call)?, &RESIDUALS, call)
+    }
+
+    fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_vjp(fit(call)?, &RESIDUALS, call)
+    }
+}
+
+/// Which fit a target computes, with its attributes.
+#[derive(Clone, Copy)]
+enum Fit {
+    LeastSquares { degree: usize, weighted: bool },
+    Smoothing { weighted: bool },
+}
+
+/// What a target computes for one batch element.
+#[derive(Clone, Copy)]
+enum Op<'a> {
+    /// The control points of the data (the last residual).
+    Values,
+    /// `Ṗ` for the data tangent.
+    Jvp(&'a [f64]),
+    /// `Q̄` for the control-point cotangent.
+    Vjp(&'a [f64]),
+}
+
+/// The residuals of a fit target (`names`: each one's name and core axes; the data last, as
+/// `(m, dim)`): the batch, their element sizes and the dimension.
+fn layout<'a>(
+    res: &[In<'a>],
+    names: &[(&str, usize)],
+) -> Result<(Batch<'a>, Vec<usize>, usize), String> {
+    if res.len() != names.len() {
+        return Err(count_error("arguments", names.len(), res.len()));
+    }
+    let batch = Batch::of(names[0].0, res[0].dims, names[0].1)?;
+    let sizes = res
+        .iter()
+        .zip(names)
+        .map(|(a, &(name, core))| batch.size(name, a.dims, core))
+        .collect::<Result<Vec<_>, _>>()?;
+    let data = &res[res.len() - 1];
+    Ok((
+        batch,
+        sizes,
+        last_axis(names[names.len() - 1].0, data.dims)?,
+    ))
+}
+
+/// `op` for batch element `b` of the residuals `res` (element sizes `sizes`).
+fn apply(
+    fit: Fit,
+    res: &[In<'_>],
+    sizes: &[usize],
+    dim: usize,
+    b: usize,
+    op: Op<'_>,
+) -> Result<Vec<f64>, String> {
+    let operand = |i: usize| element(res[i].data, sizes[i], b);
+    let data = operand(3);
+    match fit {
+        Fit::LeastSquares { degree, weighted } => {
+            let w = weighted.then(|| operand(2));
+            let fit = LeastSquaresFit::new(degree, operand(0), operand(1), data, dim, w)
+                .map_err(|e| e.to_string())?;
+            match op {
+                Op::Values => fit.control_points(),
+                Op::Jvp(t) => fit.jvp(t),
+                Op::Vjp(g) => fit.vjp(g),
+            }
+        }
+        Fit::Smoothing { weighted } => {
+            let lam = operand(2).first().copied().ok_or("lam is empty")?;
+            let w = weighted.then(|| operand(1));
+            let fit =
+                SmoothingFit::new(operand(0), data, dim, lam, w).map_err(|e| e.to_string())?;
+            match op {
+                Op::Values => fit.control_points(),
+                Op::Jvp(t) => fit.jvp(t),
+                Op::Vjp(g) => fit.vjp(g),
+            }
+        }
+    }
+    .map_err(|e| e.to_string())
+}
+
+/// Copies a batch element's result into its slot of `size` numbers, after checking its length:
+/// the smoothing spline of data with a repeated `x` has fewer control points than the shape
+/// `lekalo.jax` gave the result.
+fn store(fit: Fit, out: &mut [f64], got: &[f64]) -> Result<(), String> {
+    if got.len() != out.len() {
+        return Err(match fit {
+            Fit::Smoothing { .. } => format!(
+                "x has repeated values: the smoothing spline has one control point for each \
+                 distinct x plus 2 ({} numbers), not len(x) + 2 ({}); give strictly increasing x",
+                got.len(),
+                out.len()
+            ),
+            Fit::LeastSquares { .. } => format!(
+                "the fit has {} numbers, the result {} (lekalo.jax and its native module \
+                 disagree)",
+                got.len(),
+                out.len()
+            ),
+        });
+    }
+    out.copy_from_slice(got);
+    Ok(())
+}
+
+fn run_eval(fit: Fit, names: &[(&str, usize)], call: &mut Call<'_>) -> Result<(), String> {
+    let Call { args, rets, .. } = call;
+    let (batch, sizes, dim) = layout(args, names)?;
+    let control = single(rets)?;
+    let size = batch.size("control points", control.dims, 2)?;
+    for b in 0..batch.count {
+        let got = apply(fit, args, &sizes, dim, b, Op::Values)?;
+        store(fit, element_mut(control.data, size, b), &got)?;
+    }
+    Ok(())
+}
+
+fn run_jvp(fit: Fit, names: &[(&str, usize)], call: &mut Call<'_>) -> Result<(), String> {
+    let present = flags(call, ["with_data"]);
+    let Call { args, rets, .. } = call;
+    let (res, [dq]) = tangents(args, names.len(), present)?;
+    let (batch, sizes, dim) = layout(res, names)?;
+    let sq = sizes[names.len() - 1];
+    let tangent = single(rets)?;
+    let size = batch.size("control-point tangent", tangent.dims, 2)?;
+    let Some(dq) = dq else {
+        tangent.data.fill(0.0);
+        return Ok(());
+    };
+    batch.expect("data tangent", dq.dims, 2, sq)?;
+    for b in 0..batch.count {
+        let got = apply(fit, res, &sizes, dim, b, Op::Jvp(element(dq.data, sq, b)))?;
+        store(fit, element_mut(tangent.data, size, b), &got)?;
+    }
+    Ok(())
+}
+
+fn run_vjp(fit: Fit, names: &[(&str, usize)], call: &mut Call<'_>) -> Result<(), String> {
+    let present = flags(call, ["with_data"]);
+    let Call { args, rets, .. } = call;
+    let (res, [g]) = tangents(args, names.len(), [true])?;
+    let g = g.ok_or("no cotangent")?;
+    let (batch, sizes, dim) = layout(res, names)?;
+    let sq = sizes[names.len() - 1];
+    let size = batch.size("control-point cotangent", g.dims, 2)?;
+    let [gq] = cotangents(rets, present)?;
+    let Some(gq) = gq else {
+        return Ok(());
+    };
+    batch.expect("data cotangent", gq.dims, 2, sq)?;
+    for b in 0..batch.count {
+        let got = apply(fit, res, &sizes, dim, b, Op::Vjp(element(g.data, size, b)))?;
+        store(fit, element_mut(gq.data, sq, b), &got)?;
+    }
+    Ok(())
+}
