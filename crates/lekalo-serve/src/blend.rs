@@ -9,6 +9,9 @@
 
 use axum::body::Bytes;
 use axum::response::Response;
+use lekalo::blend::{
+    check_deformation_continuity, deformation_bezier_degree, max_deformation_continuity,
+};
 use lekalo::{
     smooth_polyline_corners, Arg, BezierCurve, BlendSplineOptions, BlendSplinePieces, CornerWindow,
     Deformation, Parabolas, SplineParameters,
@@ -75,8 +78,19 @@ pub(crate) fn deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let r: DeformRequest = parse(body)?;
     let first = bezier_of(curve(job, &r.first, "first")?, "first")?;
     let second = bezier_of(curve(job, &r.second, "second")?, "second")?;
-    // the blend's degree grows with k (document 001): bounded before it is built
-    job.limits.check_degree(r.continuity, "continuity")?;
+    // the blend's degree (2k − 1) + max(d₁, d₂) grows with k (document 001): bounded before it
+    // is built, and a k out of range is refused naming the range the server's limit leaves
+    let (d1, d2) = (first.degree(), second.degree());
+    let max_k = max_deformation_continuity(d1, d2, job.limits.max_degree);
+    if r.continuity > max_k {
+        degree_of_k(
+            job,
+            r.continuity,
+            deformation_bezier_degree(d1, d2, r.continuity),
+        )?;
+    }
+    check_deformation_continuity(r.continuity, max_k.max(1))
+        .map_err(|e| ApiError::lib("continuity", &e))?;
     let d = Deformation::new(&first, &second, r.continuity)
         .map_err(|e| ApiError::lib(deform_field(&e), &e))?;
     let b = d
