@@ -524,6 +524,31 @@ test('Queries from an empty canvas: one point is measured without an error, two 
   assert.match(await page.textContent('#query-at'), new RegExp(`t = ${m.at_length[0].t.toPrecision(8)}`));
 });
 
+test('The curvature comb in every blending mode is the API\'s; quasi-interpolation greys out the comb and the queries', async (page) => {
+  for (const mode of ['blend', 'corners', 'spline']) {
+    await page.goto(base);
+    await page.selectOption('#mode', mode);
+    await idle(page);
+    assert.equal(await page.getAttribute('#comb-path', 'd'), '', `${mode}: no comb before the box is ticked`);
+    await page.check('#comb');
+    await idle(page);
+    const v = await page.evaluate(() => window.lekaloEditor.last.view);
+    assert.ok(v.comb && v.comb.curvature.length === v.points.length, `${mode}: the answer carries the comb`);
+    // one tooth every fourth sample, then the polyline of the tips
+    const teeth = ((await page.getAttribute('#comb-path', 'd')).match(/M/g) || []).length;
+    assert.equal(teeth, Math.ceil(v.points.length / 4) + 1, `${mode}: the comb is drawn`);
+  }
+  await page.selectOption('#mode', 'quasi');
+  await idle(page);
+  for (const id of ['#comb', '#query']) {
+    assert.ok(await page.isDisabled(id), `${id} greyed out in quasi-interpolation`);
+    assert.match(await page.evaluate((s) => document.querySelector(s).closest('label').title, id), /Not in quasi-interpolation/);
+  }
+  await page.selectOption('#mode', 'bspline');
+  await idle(page);
+  assert.ok(!(await page.isDisabled('#comb')) && !(await page.isDisabled('#query')), 'enabled again in the other modes');
+});
+
 test('Blending two curves: the help names the colours A and B are drawn in', async (page) => {
   await page.goto(base);
   await page.selectOption('#mode', 'blend');

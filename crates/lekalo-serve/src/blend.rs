@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::answer::{answer, SMALL};
-use crate::api::{curve, default_samples, parse, points, view_in, CurveView, ViewOptions};
+use crate::api::{curve, parse, points, view_in, CurveView, ViewOptionsFlat};
 use crate::error::{field_of, ApiError, ApiResult};
 use crate::pool::Job;
 
@@ -67,9 +67,9 @@ struct DeformRequest {
     second: Value,
     #[serde(deserialize_with = "crate::fields::count")]
     continuity: usize,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/deform`: two curves with common end points joined by the deformation of
@@ -96,10 +96,7 @@ pub(crate) fn deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let b = d
         .to_bezier()
         .map_err(|e| ApiError::lib_or("continuity", &e))?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let view = view_in(job, &Object::Bezier(b), &opts, "continuity")?;
     Ok(blend_answer(view, d.continuity()))
 }
@@ -141,9 +138,9 @@ struct CornersRequest {
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_number")]
     length: Option<f64>,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/corners`: every corner of a polyline smoothed with continuity `k` over a
@@ -172,10 +169,7 @@ pub(crate) fn corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         };
         ApiError::lib(field, &e)
     })?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let continuity = s.continuity();
     let view = view_in(job, &Object::BSpline(s.into_curve()), &opts, "points")?;
     Ok(blend_answer(view, continuity))
@@ -190,9 +184,9 @@ struct BlendSplineRequest {
     continuity: usize,
     #[serde(default)]
     closed: bool,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/spline`: the curve through the points by blending local parabolas with
@@ -220,10 +214,7 @@ pub(crate) fn spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let n = pieces
         .to_nurbs(&job.progress)
         .map_err(|e| ApiError::lib_or("points", &e))?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let view = view_in(job, &Object::Nurbs(n), &opts, "points")?;
     Ok(blend_answer(view, pieces.continuity_degree()))
 }
