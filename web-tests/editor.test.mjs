@@ -79,6 +79,42 @@ async function shownErrors(page) {
   return page.evaluate(() => [...document.querySelectorAll('.err')].map((e) => e.textContent).filter((t) => t).join(' | '));
 }
 
+// what each bound label covers: curve segments it crosses, data points (circles) it overlaps,
+// other labels it overlaps, and whether it leaves the canvas; all in the canvas's coordinates
+async function boundLabelClashes(page) {
+  return page.evaluate(() => {
+    const nums = (document.getElementById('curve').getAttribute('d').match(/-?\d+(\.\d+)?(e-?\d+)?/g) || []).map(Number);
+    const pts = [];
+    for (let i = 0; i + 1 < nums.length; i += 2) pts.push([nums[i], nums[i + 1]]);
+    // a segment meets the box [l, t, r, b] (Liang–Barsky)
+    const meets = ([x1, y1], [x2, y2], [l, t, r, b]) => {
+      let u0 = 0, u1 = 1;
+      const dx = x2 - x1, dy = y2 - y1;
+      for (const [p, q] of [[-dx, x1 - l], [dx, r - x1], [-dy, y1 - t], [dy, b - y1]]) {
+        if (p === 0) { if (q < 0) return false; continue; }
+        const u = q / p;
+        if (p < 0) { if (u > u1) return false; u0 = Math.max(u0, u); } else { if (u < u0) return false; u1 = Math.min(u1, u); }
+      }
+      return true;
+    };
+    const boxes = [...document.querySelectorAll('#bound-labels text')].map((t) => {
+      const b = t.getBBox();
+      return { text: t.textContent, box: [b.x, b.y, b.x + b.width, b.y + b.height] };
+    });
+    return boxes.map(({ text, box }, i) => {
+      const [l, t, r, b] = box;
+      const segments = pts.slice(1).filter((q, k) => meets(pts[k], q, box)).length;
+      const points = [...document.querySelectorAll('#points circle')].filter((c) => {
+        const cx = +c.getAttribute('cx'), cy = +c.getAttribute('cy'), rad = +c.getAttribute('r');
+        return Math.hypot(Math.max(l - cx, 0, cx - r), Math.max(t - cy, 0, cy - b)) < rad;
+      }).length;
+      const labels = boxes.filter((o, j) => j !== i && l < o.box[2] && o.box[0] < r && t < o.box[3] && o.box[1] < b).length;
+      const outside = l < 0 || t < 0 || r > 800 || b > 500;
+      return { text, box: box.map((v) => Math.round(v)), segments, points, labels, outside };
+    });
+  });
+}
+
 const tests = [];
 const test = (name, fn) => tests.push({ name, fn });
 
@@ -357,6 +393,11 @@ test('Fitting with bounds: y ≥ a and y ≤ b are drawn as labelled dashed line
     assert.notEqual(l.dash, 'none', `${l.bound} dashed`);
   }
   assert.deepEqual(await page.locator('#bound-labels text').allTextContents(), ['y ≥ 1', 'y ≤ 5'], 'labelled');
+  // each label is readable: on no curve, point or other label, inside the canvas (here the
+  // fit touches y ≤ 5 near the right end, where a label at the line's end would sit on it)
+  for (const c of await boundLabelClashes(page)) {
+    assert.ok(c.segments === 0 && c.points === 0 && c.labels === 0 && !c.outside, `${c.text} label covers ${JSON.stringify(c)}`);
+  }
   // the labels are drawn over the data points, not hidden under them
   assert.ok(await page.evaluate(() => document.getElementById('points')
     .compareDocumentPosition(document.getElementById('bound-labels')) & Node.DOCUMENT_POSITION_FOLLOWING), 'labels above the points');
@@ -483,6 +524,31 @@ test('Queries from an empty canvas: one point is measured without an error, two 
   assert.match(await page.textContent('#query-at'), new RegExp(`t = ${m.at_length[0].t.toPrecision(8)}`));
 });
 
+test('The curvature comb in every blending mode is the API\'s; quasi-interpolation greys out the comb and the queries', async (page) => {
+  for (const mode of ['blend', 'corners', 'spline']) {
+    await page.goto(base);
+    await page.selectOption('#mode', mode);
+    await idle(page);
+    assert.equal(await page.getAttribute('#comb-path', 'd'), '', `${mode}: no comb before the box is ticked`);
+    await page.check('#comb');
+    await idle(page);
+    const v = await page.evaluate(() => window.lekaloEditor.last.view);
+    assert.ok(v.comb && v.comb.curvature.length === v.points.length, `${mode}: the answer carries the comb`);
+    // one tooth every fourth sample, then the polyline of the tips
+    const teeth = ((await page.getAttribute('#comb-path', 'd')).match(/M/g) || []).length;
+    assert.equal(teeth, Math.ceil(v.points.length / 4) + 1, `${mode}: the comb is drawn`);
+  }
+  await page.selectOption('#mode', 'quasi');
+  await idle(page);
+  for (const id of ['#comb', '#query']) {
+    assert.ok(await page.isDisabled(id), `${id} greyed out in quasi-interpolation`);
+    assert.match(await page.evaluate((s) => document.querySelector(s).closest('label').title, id), /Not in quasi-interpolation/);
+  }
+  await page.selectOption('#mode', 'bspline');
+  await idle(page);
+  assert.ok(!(await page.isDisabled('#comb')) && !(await page.isDisabled('#query')), 'enabled again in the other modes');
+});
+
 test('Blending two curves: the help names the colours A and B are drawn in', async (page) => {
   await page.goto(base);
   await page.selectOption('#mode', 'blend');
@@ -528,6 +594,7 @@ test('Knots dragged on the ruler and a weight edited (NURBS): the curve is the A
 test('JSON export, reload, import: the same curve; STEP download; undo and redo', async (page) => {
   await page.goto(base);
   await idle(page);
+  await assertHeaderComplete(page, 'at 1200 px');
   await setValue(page, '#bs-degree', 2);
   const d = await page.getAttribute('#curve', 'd');
   const json = await downloadText(page, '#export-json');
@@ -727,6 +794,35 @@ test('Keyboard only: Tab to the drawing, Enter places points, N and the arrows m
   await shot(page, 'keyboard', false);
 });
 
+// every control of the header is shown whole: inside the window, its text not cut, and a file
+// input drawn by the browser (whose "No file chosen" it truncates itself) at least as wide as it
+// needs, or not drawn at all; the import control is visible and says what it does
+async function assertHeaderComplete(page, what) {
+  const controls = await page.evaluate(() => [...document.querySelectorAll('header button, header label, header select, header input')].map((e) => {
+    const r = e.getBoundingClientRect();
+    const style = getComputedStyle(e);
+    let natural = 0;
+    if (e.type === 'file') {
+      const probe = e.cloneNode();
+      probe.style.cssText = 'position:absolute;visibility:hidden;width:auto;opacity:1';
+      document.body.appendChild(probe);
+      natural = probe.getBoundingClientRect().width;
+      probe.remove();
+    }
+    return { id: e.id || e.textContent.trim().slice(0, 20), type: e.type || e.tagName, left: r.left, right: r.right, width: r.width, height: r.height,
+      drawn: r.width > 2 && r.height > 2 && style.opacity !== '0' && style.visibility !== 'hidden',
+      cut: e.tagName !== 'INPUT' && e.tagName !== 'SELECT' && e.scrollWidth > e.clientWidth + 1, natural, inner: window.innerWidth };
+  }));
+  for (const c of controls) {
+    if (!c.drawn) continue;
+    assert.ok(c.left >= -0.5 && c.right <= c.inner + 0.5, `${what}: ${c.id} inside the window (${c.left}..${c.right})`);
+    assert.ok(!c.cut, `${what}: ${c.id} shows its whole text`);
+    if (c.type === 'file') assert.ok(c.width >= c.natural - 0.5, `${what}: the file input is drawn ${c.width} px wide of the ${c.natural} px its text needs`);
+  }
+  const label = controls.find((c) => c.id.startsWith('Import JSON'));
+  assert.ok(label && label.drawn, `${what}: the import control is visible`);
+}
+
 test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps its shape and shows coordinates', async (page) => {
   for (const viewport of [{ width: 800, height: 900 }, { width: 390, height: 844 }]) {
     await page.setViewportSize(viewport);
@@ -747,6 +843,7 @@ test('Narrow windows: at 800 px and on a phone every mode fits, the canvas keeps
       assert.ok(Math.abs(box.canvas.width / box.canvas.height - 800 / 500) < 0.01, `${what}: canvas aspect ${box.canvas.width}×${box.canvas.height}`);
       const labels = await page.locator('#grid text.grid-label').allTextContents();
       assert.ok(labels.length >= 8 && (mode === 'quasi' || labels.includes('5')), `${what}: grid coordinates ${labels}`);
+      await assertHeaderComplete(page, what);
     }
     // a click lands where the pointer is, whatever the drawing's scale
     await page.goto(base);

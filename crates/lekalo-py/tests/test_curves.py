@@ -337,6 +337,24 @@ def test_quasi_tau_like_cli():
         lekalo.quasi_interpolate(space, xcosx, rule=np.full(11, np.nan))
 
 
+def test_quasi_of_a_function_undefined_at_a_breakpoint_names_where_and_the_fix():
+    """ln x on breakpoints from 0: τ = 0 is where it is undefined; the message says so, under
+    the argument f, with the fix (breakpoints where f is defined)."""
+    space = lekalo.PpSpace([0.0, 1.0, 2.0], 3)
+
+    def log(t, r):
+        return [np.log(t), 1 / t, -1 / t**2][r] if t > 0 else -np.inf
+
+    with np.errstate(divide="ignore"):
+        with pytest.raises(lekalo.InputError) as e:
+            lekalo.quasi_interpolate(space, log, rule="left-end-of-support")
+    msg = str(e.value)
+    assert msg.startswith("f: undefined at x = 0: the function returned -inf for its value"), msg
+    assert "choose breakpoints where f is defined" in msg, msg
+    # breakpoints inside the domain: no refusal
+    assert np.all(np.isfinite(lekalo.quasi_interpolate(lekalo.PpSpace([0.5, 1.0, 2.0], 3), log).control))
+
+
 def all_objects():
     c = lekalo.interpolate(RNG.standard_normal((7, 3)))
     yield c

@@ -81,6 +81,22 @@ def test_make_smoothing_spline_given_lambda_is_scipys(lam):
     assert ours <= theirs * (1 + 1e-12)
 
 
+def test_a_penalty_too_small_for_points_of_weight_zero_names_them_and_lambda():
+    """Points of weight 0 leave their stretch of the curve to the penalty alone; a λ below the
+    rounding of the other terms cannot fix it there. The message names λ, the points and the
+    fix, not the weights of the data as a whole."""
+    x = np.arange(11.0)
+    y = np.sin(x)
+    w = np.ones(11)
+    w[4] = 0.0
+    with pytest.raises(lekalo.NumericalError) as e:
+        lekalo.make_smoothing_spline(x, y, w=w, lam=1e-300)
+    msg = str(e.value)
+    assert "λ = 1e-300 is too small" in msg and "the point of weight 0 at x = 4" in msg, msg
+    assert "raise λ" in msg and "two distinct parameters" not in msg, msg
+    assert np.all(np.isfinite(lekalo.make_smoothing_spline(x, y, w=w, lam=1e-6).control))
+
+
 def objective(f, f2, x, y, w, lam):
     # Σ w (y − f)² + λ ∫ f''²; f'' is linear between the data (the knots), so two-point
     # Gauss–Legendre on each interval integrates f''² exactly

@@ -9,6 +9,9 @@
 
 use axum::body::Bytes;
 use axum::response::Response;
+use lekalo::blend::{
+    check_deformation_continuity, deformation_bezier_degree, max_deformation_continuity,
+};
 use lekalo::{
     smooth_polyline_corners, Arg, BezierCurve, BlendSplineOptions, BlendSplinePieces, CornerWindow,
     Deformation, Parabolas, SplineParameters,
@@ -18,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::answer::{answer, SMALL};
-use crate::api::{curve, default_samples, parse, points, view_in, CurveView, ViewOptions};
+use crate::api::{curve, parse, points, view_in, CurveView, ViewOptionsFlat};
 use crate::error::{field_of, ApiError, ApiResult};
 use crate::pool::Job;
 
@@ -64,9 +67,9 @@ struct DeformRequest {
     second: Value,
     #[serde(deserialize_with = "crate::fields::count")]
     continuity: usize,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/deform`: two curves with common end points joined by the deformation of
@@ -75,17 +78,25 @@ pub(crate) fn deform(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let r: DeformRequest = parse(body)?;
     let first = bezier_of(curve(job, &r.first, "first")?, "first")?;
     let second = bezier_of(curve(job, &r.second, "second")?, "second")?;
-    // the blend's degree grows with k (document 001): bounded before it is built
-    job.limits.check_degree(r.continuity, "continuity")?;
+    // the blend's degree (2k − 1) + max(d₁, d₂) grows with k (document 001): bounded before it
+    // is built, and a k out of range is refused naming the range the server's limit leaves
+    let (d1, d2) = (first.degree(), second.degree());
+    let max_k = max_deformation_continuity(d1, d2, job.limits.max_degree);
+    if r.continuity > max_k {
+        degree_of_k(
+            job,
+            r.continuity,
+            deformation_bezier_degree(d1, d2, r.continuity),
+        )?;
+    }
+    check_deformation_continuity(r.continuity, max_k.max(1))
+        .map_err(|e| ApiError::lib("continuity", &e))?;
     let d = Deformation::new(&first, &second, r.continuity)
         .map_err(|e| ApiError::lib(deform_field(&e), &e))?;
     let b = d
         .to_bezier()
         .map_err(|e| ApiError::lib_or("continuity", &e))?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let view = view_in(job, &Object::Bezier(b), &opts, "continuity")?;
     Ok(blend_answer(view, d.continuity()))
 }
@@ -127,9 +138,9 @@ struct CornersRequest {
     #[serde(default)]
     #[serde(deserialize_with = "crate::fields::opt_number")]
     length: Option<f64>,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/corners`: every corner of a polyline smoothed with continuity `k` over a
@@ -158,10 +169,7 @@ pub(crate) fn corners(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
         };
         ApiError::lib(field, &e)
     })?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let continuity = s.continuity();
     let view = view_in(job, &Object::BSpline(s.into_curve()), &opts, "points")?;
     Ok(blend_answer(view, continuity))
@@ -176,9 +184,9 @@ struct BlendSplineRequest {
     continuity: usize,
     #[serde(default)]
     closed: bool,
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::fields::opt_count")]
-    samples: Option<usize>,
+    /// The view options (`samples`, `comb`, `basis_samples`, `at`), as the other routes.
+    #[serde(flatten)]
+    view: ViewOptionsFlat,
 }
 
 /// `POST /api/blend/spline`: the curve through the points by blending local parabolas with
@@ -206,10 +214,7 @@ pub(crate) fn spline(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let n = pieces
         .to_nurbs(&job.progress)
         .map_err(|e| ApiError::lib_or("points", &e))?;
-    let opts = ViewOptions {
-        samples: r.samples.unwrap_or_else(default_samples),
-        ..ViewOptions::default()
-    };
+    let opts = r.view.options();
     let view = view_in(job, &Object::Nurbs(n), &opts, "points")?;
     Ok(blend_answer(view, pieces.continuity_degree()))
 }

@@ -134,6 +134,24 @@ fn bad_input_exit_code_2_names_the_problem() {
         .assert()
         .code(2)
         .stderr(contains("tan"));
+    // a function undefined at a breakpoint: where, why, and the fix, under the option
+    lekalo()
+        .args([
+            "pp",
+            "quasi",
+            "--function",
+            "log(x)",
+            "--breakpoints",
+            "0,1,2",
+        ])
+        .assert()
+        .code(2)
+        .stderr(contains(
+            "error: --function: undefined at x = 0: ln of 0 (a logarithm needs a positive \
+             argument); quasi-interpolation evaluates f on the whole range of the breakpoints, \
+             [0, 2] (f and its derivatives up to order 2 at the points τ, f where the error is \
+             measured): choose breakpoints where f is defined, or another f",
+        ));
     let d = tempfile::tempdir().unwrap();
     let bad = d.path().join("bad.pp.json");
     fs::write(

@@ -50,7 +50,7 @@ export function draw(answer, others) {
   $('exact').setAttribute('d', m === 'quasi' ? pathOf(answer.t.map((t, i) => [t, answer.exact[i]])) : '');
   $('other').setAttribute('d', others.dashed ? pathOf(others.dashed, others.closed) : '');
   $('other2').setAttribute('d', '');
-  drawBounds(others.bounds || [], v);
+  drawBounds(others.bounds || [], v, pts);
   drawComb(v, pts);
   drawKnots(v, m === 'quasi' ? (p, t) => [t, p[0]] : (p) => p);
   drawPoints();
@@ -82,17 +82,87 @@ export function drawGrid() {
 }
 
 // the bounds `y ≥ a`, `y ≤ b` a fit is held within: a dashed line over the fit's x range
-// (under the curve), labelled at its right end above the points (on the side of the line the
-// fit keeps to, with a white halo)
-function drawBounds(bounds, v) {
+// (under the curve), each labelled where its text covers no curve, point or other label:
+// `placeLabel` tries the side of the line the fit never goes to first (below y ≥ a, above
+// y ≤ b), from the right end of the line leftwards, then the side the fit keeps to
+function drawBounds(bounds, v, curve) {
   const g = $('bounds'), labels = $('bound-labels');
   g.textContent = '';
   labels.textContent = '';
   const [x0, x1] = v.domain;
-  for (const { y, text, below } of bounds) {
-    el('line', { x1: sx(x0), x2: sx(x1), y1: sy(y), y2: sy(y), class: 'bound', 'data-bound': text }, g);
-    el('text', { x: sx(x1), y: sy(y) + (below ? 16 : -7), class: 'bound-label', 'text-anchor': 'end' }, labels).textContent = text;
+  const segments = [];
+  for (let i = 1; i < curve.length; i++) {
+    segments.push([sx(curve[i - 1][0]), sy(curve[i - 1][1]), sx(curve[i][0]), sy(curve[i][1])]);
   }
+  const dots = editable().map((p) => [sx(p[0]), sy(p[1])]);
+  // the labels keep a readable size on screen however the drawing is scaled (as the grid's)
+  const shown = $('canvas').getBoundingClientRect().width || W;
+  const size = Math.min(26, 13 * W / shown);
+  // the room the labels may use: the canvas without the grid's coordinates (drawGrid's font)
+  const grid = Math.min(24, 11 * W / shown);
+  const room = [8 + 1.8 * grid, 0, W, H - 4 - 1.2 * grid];
+  const placed = [];
+  for (const { y, text, outside } of bounds) {
+    el('line', { x1: sx(x0), x2: sx(x1), y1: sy(y), y2: sy(y), class: 'bound', 'data-bound': text }, g);
+    const t = el('text', { x: 0, y: 0, class: 'bound-label', 'text-anchor': 'end', 'font-size': size.toFixed(1) }, labels);
+    t.textContent = text;
+    placed.push(placeLabel(t, [sx(x0), sx(x1), sy(y)], outside, size, room, segments, dots, placed));
+  }
+}
+
+// the box [left, top, right, bottom] of a label of font size `size` and width `w`, its right end
+// at `right`, on the side `side` (-1 above, +1 below) of the line at height `ly`
+function labelBox(right, ly, side, size, w) {
+  const gap = 0.4 * size, height = 1.2 * size;
+  const top = side < 0 ? ly - gap - height : ly + gap;
+  return [right - w - 3, top, right + 3, top + height];
+}
+
+// how many curve segments, points (radius 6) and labels the box covers; a box outside the
+// room [left, top, right, bottom] the labels may use covers too much to be used
+function covered(box, room, segments, dots, placed) {
+  const [l, t, r, b] = box;
+  if (l < room[0] || t < room[1] || r > room[2] || b > room[3]) return Infinity;
+  let n = 0;
+  for (const s of segments) if (segmentMeetsBox(s, box)) n++;
+  for (const [x, y] of dots) if (x > l - 6 && x < r + 6 && y > t - 6 && y < b + 6) n++;
+  for (const o of placed) if (l < o[2] && o[0] < r && t < o[3] && o[1] < b) n++;
+  return n;
+}
+
+// a segment [x1, y1, x2, y2] meets the box (Liang–Barsky clipping)
+function segmentMeetsBox([x1, y1, x2, y2], [l, t, r, b]) {
+  let u0 = 0, u1 = 1;
+  const dx = x2 - x1, dy = y2 - y1;
+  for (const [p, q] of [[-dx, x1 - l], [dx, r - x1], [-dy, y1 - t], [dy, b - y1]]) {
+    if (p === 0) { if (q < 0) return false; continue; }
+    const u = q / p;
+    if (p < 0) { if (u > u1) return false; if (u > u0) u0 = u; } else { if (u < u0) return false; if (u < u1) u1 = u; }
+  }
+  return true;
+}
+
+// places the text `t` of a bound's line [left, right, height] at the first position whose box
+// covers nothing (else the one covering least) and answers that box
+function placeLabel(t, [left, right, ly], outside, size, room, segments, dots, placed) {
+  const w = t.getComputedTextLength();
+  let best = null;
+  for (const side of [outside, -outside]) {
+    // from the right end of the line to its left end, then beside the y axis
+    const ends = [];
+    for (let r = Math.min(right, W - 4); r - w >= Math.max(left, room[0]) - 1; r -= Math.max(8, w / 3)) ends.push(r);
+    ends.push(room[0] + w + 4);
+    for (const r of ends) {
+      const box = labelBox(r, ly, side, size, w);
+      const n = covered(box, room, segments, dots, placed);
+      if (!best || n < best.n) best = { n, box, r, side };
+      if (n === 0) break;
+    }
+    if (best.n === 0) break;
+  }
+  t.setAttribute('x', best.r);
+  t.setAttribute('y', best.box[1] + 0.95 * size);
+  return best.box;
 }
 
 function drawComb(v, pts) {

@@ -60,7 +60,7 @@ const SVG_STYLE = `.bg{fill:#fff}.gridline{stroke:#eee}.grid-label{fill:#888}.cu
 .exact{fill:none;stroke:#d62728;stroke-dasharray:6 4}.comb{fill:none;stroke:#2ca02c;stroke-width:0.8}
 .knot{fill:#ff7f0e}.cp{fill:#fff;stroke:#333;stroke-width:1.5}.cp.second{fill:#fdd}.data{fill:#1f4e9c}
 .fit-data{fill:#888}.handle{fill:#2ca02c}.handle-line{stroke:#2ca02c}
-.bound{stroke:#d62728;stroke-width:1.5;stroke-dasharray:8 4}.bound-label{fill:#d62728;font:13px sans-serif;paint-order:stroke;stroke:#fff;stroke-width:4px}`;
+.bound{stroke:#d62728;stroke-width:1.5;stroke-dasharray:8 4}.bound-label{fill:#d62728;font-family:sans-serif;paint-order:stroke;stroke:#fff;stroke-width:4px}`;
 
 function exportPng() {
   const url = URL.createObjectURL(new Blob([svgText()], { type: 'image/svg+xml' }));

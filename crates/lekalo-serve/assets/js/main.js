@@ -35,6 +35,15 @@ function syncControls() {
   $('query-length').value = s.queryLength;
   $('query-panel').hidden = !s.query || s.mode === 'quasi';
   if (!s.query) hideProjection();
+  // quasi-interpolation plots the functions f and q over x, not a curve of the plane: the comb
+  // and the closest point do not apply there, and their boxes are greyed out saying so
+  const planar = s.mode !== 'quasi';
+  for (const id of ['comb', 'query']) {
+    const label = $(id).closest('label');
+    label.dataset.title = label.dataset.title ?? label.title;
+    $(id).disabled = !planar;
+    label.title = planar ? label.dataset.title : 'Not in quasi-interpolation: it draws the functions f and q over x, not a curve of the plane.';
+  }
   document.querySelectorAll('.panel[data-mode]').forEach((p) => { p.hidden = p.dataset.mode !== s.mode; });
   // the lower panel: the basis functions, or for quasi-interpolation its error over them; the
   // blending modes have no basis to show

@@ -285,12 +285,33 @@ async fn bezier_order_change_blend_and_knots_are_the_library_s() {
         v["curve"],
         Object::Bezier(d.to_bezier().expect("exact")).to_json_value()
     );
-    let (field, _) = bad(
+    // k out of range names the range the server's degree limit leaves for these cubics,
+    // (2k − 1) + 3 ≤ 64: k ≤ 31, not the library's own bound
+    let (field, msg) = bad(
         "/api/blend/deform",
         json!({"first": obj, "second": obj, "continuity": 0}).to_string(),
     )
     .await;
     assert_eq!(field, "continuity");
+    assert!(msg.contains("must be in 1..=31"), "{msg}");
+    let v = ok(
+        "/api/blend/deform",
+        &json!({"first": obj, "second": obj, "continuity": 31}),
+    )
+    .await;
+    assert_eq!(v["degree"], 64, "the highest k the limit allows is served");
+    let (field, msg) = bad(
+        "/api/blend/deform",
+        json!({"first": obj, "second": obj, "continuity": 32}).to_string(),
+    )
+    .await;
+    assert_eq!(field, "continuity");
+    assert!(
+        msg.starts_with(
+            "continuity k = 32 makes a curve of degree 66, above the server's limit 64"
+        ),
+        "{msg}"
+    );
     // corners smoothed over a window (as `lekalo blend corners`), the curve through the points
     // by blended parabolas (as `lekalo blend spline`)
     let zigzag = json!([[0, 0], [1, 2], [2, 0], [3, 2]]);

@@ -14,6 +14,64 @@ use crate::error::{Error, Result};
 use crate::points::Points;
 use crate::BezierCurve;
 
+/// The largest continuity degree `k` a [`Deformation`] accepts: it uses `w_{k−1}`, so
+/// [`JumpPolynomial::MAX_K`] + 1.
+pub const MAX_DEFORMATION_CONTINUITY: usize = JumpPolynomial::MAX_K + 1;
+
+/// `continuity` if it lies in `1..=max` (`max` capped at [`MAX_DEFORMATION_CONTINUITY`]): the
+/// check of [`Deformation::new`], open to a caller with a tighter bound (a server's degree limit),
+/// so that the refusal names the bound that applies where the caller is.
+///
+/// ```
+/// use lekalo::blend::check_deformation_continuity;
+/// assert_eq!(check_deformation_continuity(2, 64)?, 2);
+/// let e = check_deformation_continuity(0, 64).unwrap_err();
+/// assert!(e.to_string().contains("must be in 1..=64"), "{e}");
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidArgument`] about [`Arg::Continuity`] for `continuity` outside `1..=max`.
+pub fn check_deformation_continuity(continuity: usize, max: usize) -> Result<usize> {
+    let max = max.min(MAX_DEFORMATION_CONTINUITY);
+    if continuity == 0 || continuity > max {
+        return Err(Error::InvalidArgument {
+            what: Arg::Continuity.into(),
+            reason: format!(
+                "got {continuity}; k must be in 1..={max} (k = 1 is the linear blend; the \
+                 deformation uses w_(k-1))"
+            ),
+        });
+    }
+    Ok(continuity)
+}
+
+/// The degree `(2k − 1) + max(d_1, d_2)` of [`Deformation::to_bezier`] of two polynomial pieces
+/// of degrees `d_1`, `d_2` with continuity degree `k ≥ 1` (saturating, for any `k`).
+///
+/// ```
+/// use lekalo::blend::deformation_bezier_degree;
+/// assert_eq!(deformation_bezier_degree(2, 2, 2), 5); // two parabolas, C²
+/// ```
+#[must_use]
+pub fn deformation_bezier_degree(d1: usize, d2: usize, continuity: usize) -> usize {
+    (continuity.max(1).saturating_mul(2) - 1).saturating_add(d1.max(d2))
+}
+
+/// The largest continuity degree `k` whose [`Deformation::to_bezier`] of pieces of degrees `d_1`,
+/// `d_2` has degree at most `max_degree` ([`deformation_bezier_degree`]), at most
+/// [`MAX_DEFORMATION_CONTINUITY`]; 0 when even `k = 1` passes `max_degree`.
+///
+/// ```
+/// use lekalo::blend::max_deformation_continuity;
+/// assert_eq!(max_deformation_continuity(3, 3, 64), 31); // degree 61 + 3 = 64
+/// assert_eq!(max_deformation_continuity(64, 1, 64), 0);
+/// ```
+#[must_use]
+pub fn max_deformation_continuity(d1: usize, d2: usize, max_degree: usize) -> usize {
+    ((max_degree + 1).saturating_sub(d1.max(d2)) / 2).min(MAX_DEFORMATION_CONTINUITY)
+}
+
 /// A parametric curve `c : [a, b] → R^dim` that can report its derivatives: the input of
 /// [`Deformation`], [`CornerTransition`](crate::CornerTransition) and the local curves of splines.
 ///
@@ -463,19 +521,11 @@ impl<C1: ParametricCurve, C2: ParametricCurve> Deformation<C1, C2> {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] if `continuity == 0` (use `k ≥ 1`; `k = 1` is the linear blend)
-    /// or above `JumpPolynomial::MAX_K + 1`; [`Error::Dimension`] if the dimensions differ;
+    /// or above [`MAX_DEFORMATION_CONTINUITY`]; [`Error::Dimension`] if the dimensions differ;
     /// [`Error::EndPointMismatch`] if the curves do not share both end points (relative tolerance
     /// [`ENDPOINT_TOLERANCE`]); evaluation errors of the curves.
     pub fn new(first: C1, second: C2, continuity: usize) -> Result<Self> {
-        if continuity == 0 || continuity > JumpPolynomial::MAX_K + 1 {
-            return Err(Error::InvalidArgument {
-                what: Arg::Continuity.into(),
-                reason: format!(
-                    "got {continuity}; the deformation uses w_(k-1), so k must be in 1..={}",
-                    JumpPolynomial::MAX_K + 1
-                ),
-            });
-        }
+        check_deformation_continuity(continuity, MAX_DEFORMATION_CONTINUITY)?;
         if first.dim() != second.dim() {
             return Err(Error::Dimension {
                 what: "second curve (must match the first)".into(),

@@ -2,7 +2,8 @@
 //! into another, splines blended from local curves, corner smoothing.
 //!
 //! - `jump.rs`: [`JumpPolynomial`], the jump-smoothing polynomials `w_k`.
-//! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms.
+//! - `deformation.rs`: [`ParametricCurve`], [`Deformation`] and their exact Bezier/NURBS forms;
+//!   the range of its continuity degree `k` ([`check_deformation_continuity`]).
 //! - `spline.rs`: [`BlendSpline`], interpolating splines blended from local three-point curves.
 //! - `pieces.rs`: [`BlendSplinePieces`], the exact NURBS form of a blend spline segment by
 //!   segment, for splines through millions of points.
@@ -26,7 +27,11 @@ mod spline;
 
 pub use approximation::{approximate_curve, Approximation};
 pub use corner::CornerTransition;
-pub use deformation::{BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE};
+pub use deformation::{
+    check_deformation_continuity, deformation_bezier_degree, max_deformation_continuity,
+    BezierForm, Deformation, FnCurve, ParametricCurve, ENDPOINT_TOLERANCE,
+    MAX_DEFORMATION_CONTINUITY,
+};
 pub use jump::JumpPolynomial;
 pub use local_curves::{
     ArcParametrization, CircularArcs, Continuity, FnLocalCurves, LocalCurves, Parabolas,

@@ -61,7 +61,8 @@ pub enum Lambda {
 /// [`Error::NegativeSmoothing`] for `λ < 0` or NaN; [`Error::TooFew`] for fewer than 3
 /// points or 3 distinct parameters; [`Error::NotIncreasing`] for parameters that decrease;
 /// [`Error::SingularSystem`] if the weighted data cannot fix a line (points of positive weight
-/// at fewer than two distinct parameters).
+/// at fewer than two distinct parameters), or if λ is too small for a stretch of points of
+/// weight 0 (the message names them and says to raise λ).
 pub fn smoothing_spline(data: &FitData<'_>, lambda: Lambda) -> Result<CurveFit> {
     smoothing_spline_with_progress(data, lambda, &Progress::new())
 }
@@ -198,6 +199,8 @@ pub(super) struct Smoother {
     /// Per data point: the index of its first non-zero B-spline (points at one parameter
     /// share it).
     first: Vec<usize>,
+    /// Per data point: its parameter `ū_k`.
+    params: Vec<f64>,
     /// Per data point: the 4 non-zero basis values.
     basis: Vec<[f64; 4]>,
     weights: Vec<f64>,
@@ -328,6 +331,7 @@ impl Smoother {
             dim,
             knots,
             first,
+            params: x.to_vec(),
             basis,
             weights,
             y,
@@ -345,16 +349,62 @@ impl Smoother {
         for (a, o) in m.a.iter_mut().zip(&self.omega.a) {
             *a += lam * o;
         }
-        m.factor().map_err(|i| Error::SingularSystem {
-            reason: format!(
-                "the smoothing system has no positive pivot at coefficient {i} (λ = {lam}); the \
-                 data need points of positive weight at two distinct parameters at least",
-                lam = readable(&lam)
-            ),
-        })?;
+        m.factor().map_err(|i| self.singular(i, lam))?;
         let mut c = self.rhs.clone();
         m.solve(&mut c, self.dim);
         Ok((c, m))
+    }
+
+    /// The refusal of a factorisation that found no positive pivot at coefficient `i`, naming
+    /// its cause: points of positive weight at fewer than two distinct parameters (no λ fixes
+    /// a line), or else λΩ below the rounding of `BᵀWB` where points of weight 0 leave the
+    /// coefficient to the penalty alone (with every weight positive that λ gives the
+    /// interpolant instead, [`smoothing_spline`]).
+    fn singular(&self, i: usize, lam: f64) -> Error {
+        let mut weighted = self
+            .params
+            .iter()
+            .zip(&self.weights)
+            .filter(|(_, &w)| w > 0.0)
+            .map(|(x, _)| x);
+        let first = weighted.next();
+        if !weighted.any(|x| Some(x) != first) {
+            return Error::SingularSystem {
+                reason: "the points of positive weight lie at fewer than two distinct parameters \
+                         and no smoothing weight λ fixes a line through them; give points at two \
+                         other parameters a positive weight"
+                    .into(),
+            };
+        }
+        // the points of weight 0 under the coefficient's B-spline, support [t_i, t_(i+4)]
+        let (a, b) = (self.knots[i], self.knots[(i + 4).min(self.knots.len() - 1)]);
+        let unweighted: Vec<String> = self
+            .params
+            .iter()
+            .zip(&self.weights)
+            .filter(|(&x, &w)| w == 0.0 && x >= a && x <= b)
+            .map(|(x, _)| readable(x).to_string())
+            .collect();
+        let which = match unweighted.len() {
+            0 => "points of weight 0".to_string(),
+            1 => format!("the point of weight 0 at x = {}", unweighted[0]),
+            n if n <= 4 => format!("the points of weight 0 at x = {}", unweighted.join(", ")),
+            n => format!(
+                "{n} points of weight 0 between x = {} and {}",
+                unweighted[0],
+                unweighted[n - 1]
+            ),
+        };
+        Error::SingularSystem {
+            reason: format!(
+                "λ = {lam} is too small: near x = {a} to {b} {which} leave the curve to the \
+                 penalty λ∫|f''|² alone, and it is below the rounding of the other points' \
+                 terms; raise λ, or give those points a positive weight",
+                lam = readable(&lam),
+                a = readable(&a),
+                b = readable(&b),
+            ),
+        }
     }
 
     fn rss(&self, c: &[f64]) -> f64 {
@@ -718,10 +768,36 @@ mod tests {
         let mut w = vec![1.0; 11];
         w[4] = 0.0;
         let weighted = data.with_weights(&w).unwrap();
-        assert!(matches!(
-            smoothing_spline(&weighted, Lambda::Given(1e-300)),
-            Err(Error::SingularSystem { .. })
-        ));
+        let e = smoothing_spline(&weighted, Lambda::Given(1e-300)).unwrap_err();
+        assert!(matches!(e, Error::SingularSystem { .. }), "{e}");
+        // the message names the cause, the point of weight 0 and λ, not the data's weights
+        let text = e.to_string();
+        assert!(
+            text.contains("λ = 1e-300 is too small")
+                && text.contains("the point of weight 0 at x = 4")
+                && text.contains("raise λ"),
+            "{text}"
+        );
+        assert!(!text.contains("two distinct parameters"), "{text}");
+        // a larger λ is solved
+        assert!(smoothing_spline(&weighted, Lambda::Given(1e-6)).is_ok());
+    }
+
+    /// Points of positive weight at one parameter only: no λ fixes a line, and the message says
+    /// so and what to give a weight.
+    #[test]
+    fn one_weighted_parameter_names_the_weights() {
+        let x: Vec<f64> = (0..=5).map(f64::from).collect();
+        let y = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0];
+        let mut w = vec![0.0; 6];
+        w[2] = 1.0;
+        let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+        let weighted = data.with_weights(&w).unwrap();
+        let e = smoothing_spline(&weighted, Lambda::Given(1.0)).unwrap_err();
+        assert!(
+            e.to_string().contains("fewer than two distinct parameters"),
+            "{e}"
+        );
     }
 
     /// Points at a repeated parameter: the same minimiser as one point at their weighted mean

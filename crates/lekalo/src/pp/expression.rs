@@ -313,10 +313,11 @@ impl Expression {
     /// `f^(r)(x)` for `r = 0 ..= order`, by Taylor arithmetic (exact up to rounding).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] when `x` or a result is NaN or infinite (a pole, `ln` of a
-    /// non-positive number, `sqrt` of a negative one); [`Error::InvalidArgument`] for a
-    /// derivative that does not exist (`sqrt` or `abs` at 0, a power of 0 with a
-    /// non-integer exponent); [`Error::TooLarge`] for `order > MAX_EXPRESSION_ORDER`.
+    /// [`Error::NonFinite`] when `x` is NaN or infinite; [`Error::InvalidArgument`] (about
+    /// [`Arg::Expression`], naming `x`) where the function or a derivative is undefined (a pole,
+    /// `ln` of a non-positive number, `sqrt` of a negative one, `sqrt` or `abs` at 0 with a
+    /// derivative, a power of 0 with a non-integer exponent) or beyond the range of `f64`;
+    /// [`Error::TooLarge`] for `order > MAX_EXPRESSION_ORDER`.
     pub fn derivatives(&self, x: f64, order: usize) -> Result<Vec<f64>> {
         if order > MAX_EXPRESSION_ORDER {
             return Err(Error::TooLarge {
@@ -337,7 +338,7 @@ impl Expression {
         if order > 0 {
             seed[1] = 1.0;
         }
-        let jet = eval(&self.root, &seed)?;
+        let jet = eval(&self.root, &seed).map_err(|e| undefined_at(x, e))?;
         let mut factorial = 1.0;
         let mut out = Vec::with_capacity(order + 1);
         for (r, c) in jet.iter().enumerate() {
@@ -346,18 +347,34 @@ impl Expression {
             }
             let v = c * factorial;
             if !v.is_finite() {
-                return Err(Error::NonFinite {
-                    what: What::of(
-                        Arg::Expression,
-                        "derivative of the expression (index = order)",
-                    ),
-                    index: r,
-                    value: v,
-                });
+                let which = if r == 0 {
+                    "its value".to_string()
+                } else {
+                    format!("its derivative of order {r}")
+                };
+                return Err(undefined_at(
+                    x,
+                    Error::InvalidArgument {
+                        what: Arg::Expression.into(),
+                        reason: format!("{which} is {v} (beyond the range of f64)"),
+                    },
+                ));
             }
             out.push(v);
         }
         Ok(out)
+    }
+}
+
+/// An error of the expression's arithmetic at `x` as the argument's refusal naming `x` (`undefined
+/// at x = 0: ln of 0 ...`), so that the caller's message says where the function fails.
+fn undefined_at(x: f64, e: Error) -> Error {
+    match e {
+        Error::InvalidArgument { reason, .. } => Error::InvalidArgument {
+            what: Arg::Expression.into(),
+            reason: format!("undefined at x = {}: {reason}", readable(&x)),
+        },
+        other => other,
     }
 }
 
@@ -394,13 +411,9 @@ fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
 
 fn div(a: &[f64], b: &[f64]) -> Result<Vec<f64>> {
     if b[0] == 0.0 {
-        return Err(Error::NonFinite {
-            what: What::of(
-                Arg::Expression,
-                "value of the expression (division by zero)",
-            ),
-            index: 0,
-            value: f64::INFINITY,
+        return Err(Error::InvalidArgument {
+            what: Arg::Expression.into(),
+            reason: "division by zero".into(),
         });
     }
     let mut c = vec![0.0; a.len()];
@@ -467,13 +480,12 @@ fn exp(a: &[f64]) -> Vec<f64> {
 
 fn ln(a: &[f64]) -> Result<Vec<f64>> {
     if a[0] <= 0.0 {
-        return Err(Error::NonFinite {
-            what: What::of(
-                Arg::Expression,
-                "ln of a non-positive value in the expression",
+        return Err(Error::InvalidArgument {
+            what: Arg::Expression.into(),
+            reason: format!(
+                "ln of {} (a logarithm needs a positive argument)",
+                readable(&a[0])
             ),
-            index: 0,
-            value: a[0],
         });
     }
     let mut l = vec![0.0; a.len()];
@@ -686,10 +698,20 @@ mod tests {
 
     #[test]
     fn domain_errors_are_reported() {
+        // each names x, the operation and why, about the expression
         let e = Expression::parse("1/x").unwrap().eval(0.0).unwrap_err();
-        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        assert_eq!(
+            (e.to_string(), e.arg()),
+            (
+                "invalid expression: undefined at x = 0: division by zero".into(),
+                Some(Arg::Expression)
+            )
+        );
         let e = Expression::parse("ln(x)").unwrap().eval(-1.0).unwrap_err();
-        assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "invalid expression: undefined at x = -1: ln of -1 (a logarithm needs a positive argument)"
+        );
         let e = Expression::parse("sqrt(x)")
             .unwrap()
             .derivatives(0.0, 1)

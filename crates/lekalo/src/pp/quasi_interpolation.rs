@@ -19,6 +19,7 @@ use crate::knots::KnotVector;
 use crate::points::Points;
 use crate::pp::expression::Expression;
 use crate::pp::ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};
+use crate::Arg;
 
 /// How the point `τ_i ∈ [x_i, x_{i+k}]` of the dual functional `λ_i` is chosen.
 ///
@@ -343,7 +344,8 @@ impl PiecewisePolynomial {
 /// ```
 ///
 /// # Errors
-/// [`Error::NonFinite`] if `f` returns NaN or infinity; errors of [`Tau::points`].
+/// [`Error::InvalidArgument`] about [`Arg::Expression`] if `f` returns NaN or infinity, naming
+/// the point and the fix; errors of [`Tau::points`].
 pub fn quasi_interpolate<'a, F: FnMut(f64, usize) -> f64>(
     space: &PpSpace,
     tau: impl Into<Tau<'a>>,
@@ -354,11 +356,21 @@ pub fn quasi_interpolate<'a, F: FnMut(f64, usize) -> f64>(
         for (r, o) in out.iter_mut().enumerate() {
             let v = f(tau, r);
             if !v.is_finite() {
-                return Err(Error::NonFinite {
-                    what: "f^(r)(τ) returned by the function (index = r)".into(),
-                    index: r,
-                    value: v,
-                });
+                let which = if r == 0 {
+                    "its value".to_string()
+                } else {
+                    format!("its derivative of order {r}")
+                };
+                return Err(needed_on(
+                    space,
+                    Error::InvalidArgument {
+                        what: Arg::Expression.into(),
+                        reason: format!(
+                            "undefined at x = {}: the function returned {v} for {which}",
+                            readable(&tau)
+                        ),
+                    },
+                ));
             }
             *o = v;
         }
@@ -488,7 +500,7 @@ pub fn quasi_interpolate_expression<'a>(
     };
     let q = quasi_interpolate(space, tau, |x, r| d.value(x, r));
     match d.failure {
-        Some(e) => Err(e),
+        Some(e) => Err(needed_on(space, e)),
         None => q,
     }
 }
@@ -512,8 +524,42 @@ pub fn sample_quasi_interpolant_expression<'a>(
     };
     let s = sample_quasi_interpolant(space, tau, |x, r| d.value(x, r), n_intervals);
     match d.failure {
-        Some(e) => Err(e),
+        Some(e) => Err(needed_on(space, e)),
         None => s,
+    }
+}
+
+/// The expression's refusal at a point (`undefined at x = 0: ln of 0 …`) with what
+/// quasi-interpolation needs of `f`, and the fix: `f` and its first `k − 1` derivatives on the
+/// whole breakpoint range, where the `τ_i` and the sampling grid lie.
+fn needed_on(space: &PpSpace, e: Error) -> Error {
+    match e {
+        Error::InvalidArgument { what, reason } if what.arg() == Some(Arg::Expression) => {
+            let (a, b) = match space.breakpoints() {
+                [first, .., last] => (*first, *last),
+                _ => (f64::NAN, f64::NAN),
+            };
+            let k = space.order();
+            let at_tau = if k > 1 {
+                format!(
+                    "f and its derivatives up to order {} at the points τ",
+                    k - 1
+                )
+            } else {
+                "f at the points τ".to_string()
+            };
+            Error::InvalidArgument {
+                what,
+                reason: format!(
+                    "{reason}; quasi-interpolation evaluates f on the whole range of the \
+                     breakpoints, [{a}, {b}] ({at_tau}, f where the error is measured): choose \
+                     breakpoints where f is defined, or another f",
+                    a = readable(&a),
+                    b = readable(&b),
+                ),
+            }
+        }
+        other => other,
     }
 }
 
@@ -533,6 +579,32 @@ mod tests {
 
     fn thesis_space() -> PpSpace {
         PpSpace::new(&[0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0], &[2; 5], 3).unwrap()
+    }
+
+    // ln x with a breakpoint at 0: the refusal names x = 0, why, the range f is needed on and
+    // the fix, about the expression; the default rule's τ avoid 0, the error's grid does not
+    #[test]
+    fn a_function_undefined_on_the_breakpoints_names_where_and_the_fix() {
+        let f = Expression::parse("log(x)").unwrap();
+        let space = thesis_space();
+        assert!(quasi_interpolate_expression(&space, TauRule::FirstKnotAfter, &f).is_ok());
+        for e in [
+            quasi_interpolate_expression(&space, TauRule::LeftEndOfSupport, &f).unwrap_err(),
+            sample_quasi_interpolant_expression(&space, TauRule::FirstKnotAfter, &f, 60)
+                .unwrap_err(),
+        ] {
+            assert_eq!(e.arg(), Some(Arg::Expression));
+            assert_eq!(
+                e.to_string(),
+                "invalid expression: undefined at x = 0: ln of 0 (a logarithm needs a positive \
+                 argument); quasi-interpolation evaluates f on the whole range of the \
+                 breakpoints, [0, 3] (f and its derivatives up to order 2 at the points τ, f \
+                 where the error is measured): choose breakpoints where f is defined, or \
+                 another f"
+            );
+        }
+        let inside = PpSpace::new(&[0.5, 1.0, 2.0, 3.0], &[2; 2], 3).unwrap();
+        assert!(quasi_interpolate_expression(&inside, TauRule::FirstKnotAfter, &f).is_ok());
     }
 
     // For k = 3, λ_i(x²) = x_{i+1} x_{i+2} for every τ (docs/theory/pp.md#de-boor-fix-functionals).
@@ -643,10 +715,24 @@ mod tests {
             sample_quasi_interpolant(&space, TauRule::Midpoint, xcosx, 0),
             Err(Error::TooFew { .. })
         ));
-        assert!(matches!(
-            quasi_interpolate(&space, TauRule::Midpoint, |_, _| f64::NAN),
-            Err(Error::NonFinite { .. })
-        ));
+        // a function that is not finite at a τ: where, and the fix, about the function
+        let e = quasi_interpolate(&space, TauRule::LeftEndOfSupport, |x: f64, r| {
+            if r == 0 {
+                x.ln()
+            } else {
+                1.0 / x
+            }
+        })
+        .unwrap_err();
+        assert_eq!(e.arg(), Some(Arg::Expression));
+        assert!(
+            e.to_string().starts_with(
+                "invalid expression: undefined at x = 0: the function returned -inf for its \
+                 value; quasi-interpolation evaluates f on the whole range of the breakpoints, \
+                 [0, 3]"
+            ),
+            "{e}"
+        );
         // a pp with a kink is not in the C¹ space
         let kink = PiecewisePolynomial::new(
             vec![0.0, 0.5, 0.9, 1.4, 2.1, 2.7, 3.0],

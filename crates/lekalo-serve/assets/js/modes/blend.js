@@ -15,6 +15,10 @@ export function blendCurves() {
   return [bezierObject(a), bezierObject([a[0], ...b, a[a.length - 1]])];
 }
 
+// what the drawing asks of a blend: its samples and, when ticked, the curvature comb (the
+// blending modes have no basis panel)
+function drawn(view) { return { samples: view.samples, comb: view.comb }; }
+
 // the polynomial pieces of the drawn curve: one between consecutive distinct knots
 function pieces(v) { return plural(Math.max(1, v.knot_marks.length - 1), 'polynomial piece'); }
 
@@ -27,9 +31,9 @@ export const blend = {
   fewest: 0,
   point: 'point',
   help: 'Curve A (white points, grey dashed polygon) and curve B (pink points, red dashed polygon) share their end points; the solid curve is the C^k deformation of A into B. Click to add a point to B.',
-  compute(s) {
+  compute(s, view) {
     const [first, second] = blendCurves();
-    return post('/api/blend/deform', { first, second, continuity: s.blend.k, samples: 400 })
+    return post('/api/blend/deform', { first, second, continuity: s.blend.k, ...drawn(view) })
       .then((v) => ({ view: v }));
   },
   others() { return { polygon: state.blend.a, dashed: blendCurves()[1].control }; },
@@ -47,9 +51,9 @@ export const corners = {
   fewest: 3,
   point: 'point',
   help: 'Click to add a point of the polyline (dashed), drag to move, Alt+click to delete; each corner is rounded over a window with C^k, turning one way.',
-  compute(s) {
+  compute(s, view) {
     const c = s.corners;
-    return post('/api/blend/corners', { points: c.points, continuity: c.k, fraction: c.window / 100, samples: 400 })
+    return post('/api/blend/corners', { points: c.points, continuity: c.k, fraction: c.window / 100, ...drawn(view) })
       .then((v) => ({ view: v }));
   },
   others() { return { dashed: state.corners.points }; },
@@ -68,9 +72,9 @@ export const spline = {
   fewest: 2,
   point: 'point',
   help: 'Click to add a point, drag to move, Alt+click to delete; the curve through the points blends local parabolas with C^k.',
-  compute(s) {
+  compute(s, view) {
     const c = s.spline;
-    return post('/api/blend/spline', { points: c.points, continuity: c.k, closed: c.closed, samples: 400 })
+    return post('/api/blend/spline', { points: c.points, continuity: c.k, closed: c.closed, ...drawn(view) })
       .then((v) => ({ view: v }));
   },
   others() { return { dashed: state.spline.points, closed: state.spline.closed }; },

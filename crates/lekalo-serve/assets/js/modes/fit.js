@@ -33,8 +33,9 @@ export const mode = {
   others() {
     const b = bounds(state.fit.shape || {});
     const out = [];
-    if (b.min !== undefined) out.push({ y: b.min, text: `y ≥ ${b.min}`, below: false });
-    if (b.max !== undefined) out.push({ y: b.max, text: `y ≤ ${b.max}`, below: true });
+    // `outside`: the side of the line the fit never goes to (+1 below, -1 above)
+    if (b.min !== undefined) out.push({ y: b.min, text: `y ≥ ${b.min}`, outside: 1 });
+    if (b.max !== undefined) out.push({ y: b.max, text: `y ≤ ${b.max}`, outside: -1 });
     return { bounds: out };
   },
   show(answer) {
