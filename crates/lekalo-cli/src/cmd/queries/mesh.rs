@@ -118,6 +118,16 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 eprintln!("  face {}: {r}", name(*k));
             }
         }
+        // trims repaired before meshing (clipped to the domain within the tolerance, edges
+        // and holes of no length dropped): named, and listed in the summary
+        let repaired: Vec<(usize, String)> = meshed
+            .repairs
+            .iter()
+            .map(|(i, r)| (ready[*i].0, r.to_string()))
+            .collect();
+        for (k, r) in &repaired {
+            eprintln!("note: face {}: {r}", name(*k));
+        }
         // faces whose proved bound stayed above the tolerance: written, named, and exit 2
         let coarse: Vec<(usize, String)> = meshed
             .above_tolerance
@@ -133,7 +143,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
                 .collect()
         };
-        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "repaired": listed(&repaired), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         write_mesh(a, cx, &m, &fmt, &summary)?;
         if let Some((k, _)) = coarse.first() {
             // the joined mesh's deviation is the largest of its faces'
