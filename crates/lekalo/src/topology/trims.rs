@@ -43,8 +43,10 @@ pub enum TrimDefect {
         edge: usize,
         /// A point of the pcurve outside the domain.
         at: [f64; 2],
-        /// The domain `((u₀, u₁), (v₀, v₁))`.
-        domain: ((f64, f64), (f64, f64)),
+        /// The parameter it is past: 0 for `u`, 1 for `v`.
+        direction: usize,
+        /// The side of the domain it is past (`u₀` or `u₁`, `v₀` or `v₁`).
+        bound: f64,
     },
     /// The outer loop has no length in `(u, v)`: it bounds no region.
     ZeroLength,
@@ -85,14 +87,17 @@ impl std::fmt::Display for TrimDefect {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let pt = |p: &[f64; 2]| format!("({}, {})", readable(&p[0]), readable(&p[1]));
         match self {
-            TrimDefect::OutsideDomain { edge, at, domain } => write!(
+            TrimDefect::OutsideDomain {
+                edge,
+                at,
+                direction,
+                bound,
+            } => write!(
                 f,
-                "leaves the surface's domain [{}, {}] × [{}, {}]: edge {edge}'s curve in (u, v) reaches {}; its pcurve is not in this surface's parameters (export the face with pcurves on its surface, or leave the pcurves out and lekalo projects the edges onto the surface)",
-                readable(&domain.0 .0),
-                readable(&domain.0 .1),
-                readable(&domain.1 .0),
-                readable(&domain.1 .1),
-                pt(at)
+                "leaves the surface's domain: edge {edge}'s curve in (u, v) reaches {}, past its side {} = {}; its pcurve is not in this surface's parameters (export the face with pcurves on its surface, or leave the pcurves out and lekalo projects the edges onto the surface)",
+                pt(at),
+                if *direction == 0 { "u" } else { "v" },
+                readable(bound)
             ),
             TrimDefect::ZeroLength => write!(
                 f,
@@ -298,7 +303,8 @@ impl Face {
                                 defect: TrimDefect::OutsideDomain {
                                     edge: ei,
                                     at: *p,
-                                    domain,
+                                    direction: d,
+                                    bound: if p[d] < a { a } else { b },
                                 },
                             });
                         }

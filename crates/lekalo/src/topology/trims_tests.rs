@@ -73,7 +73,7 @@ fn a_trim_partly_outside_the_domain_is_refused_with_its_edge() {
     let e = f.mesh(1e-3).unwrap_err();
     let msg = e.to_string();
     assert!(
-        msg.starts_with("the outer loop leaves the surface's domain [0, 4] × [0, 4]: edge 0")
+        msg.starts_with("the outer loop leaves the surface's domain: edge 0's curve in (u, v) reaches (5, 1), past its side u = 4")
             && msg.contains("lekalo projects the edges"),
         "{msg}"
     );
