@@ -146,7 +146,10 @@ pub(crate) fn open(cx: &Context, path: &Path, jsonl: bool) -> Result<Items> {
             Items::Lines(m) => m.len(),
             _ => 1,
         };
-        eprintln!("read {n} object(s) from {name} in {:.1?}", start.elapsed());
+        crate::output::report(&format!(
+            "read {n} object(s) from {name} in {:.1?}",
+            start.elapsed()
+        ));
     }
     Ok(loaded)
 }
@@ -177,7 +180,7 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
         .iter()
         .filter(|(_, s)| matches!(s, lekalo_io::Shape::Curve(_)))
         .count();
-    eprintln!(
+    crate::output::report(&format!(
         "{name}: read {curves} curve(s) and {} surface(s); schema {}; length unit {}{}",
         r.shapes.len() - curves,
         r.schema.as_deref().unwrap_or("not named"),
@@ -190,7 +193,7 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
                 lekalo_io::fmt_number(r.scale_to_mm)
             )
         }
-    );
+    ));
     report_skipped(cx, name, &r.skipped, "#");
 }
 
@@ -205,16 +208,16 @@ pub(crate) fn report_skipped(
     if skipped.is_empty() {
         return;
     }
-    eprintln!("{name}: skipped {} entities:", skipped.len());
+    crate::output::report(&format!("{name}: skipped {} entities:", skipped.len()));
     for k in lekalo_io::skipped_by_kind(skipped) {
-        eprintln!(
+        crate::output::report(&format!(
             "  {:>6} {}: {} (first {prefix}{})",
             k.count, k.entity, k.reason, k.first_id
-        );
+        ));
     }
     if cx.is_verbose() {
         for s in skipped {
-            eprintln!("  {prefix}{} {}: {}", s.id, s.entity, s.reason);
+            crate::output::report(&format!("  {prefix}{} {}: {}", s.id, s.entity, s.reason));
         }
     }
 }
@@ -264,11 +267,11 @@ pub(crate) fn read_cad(
                 .iter()
                 .filter(|(_, s)| matches!(s, lekalo_io::Shape::Curve(_)))
                 .count();
-            eprintln!(
+            crate::output::report(&format!(
                 "{name}: read {curves} curve(s) and {} surface(s); length unit {}",
                 r.shapes.len() - curves,
                 r.length_unit
-            );
+            ));
             report_skipped(cx, name, &r.skipped, "D");
         }
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));

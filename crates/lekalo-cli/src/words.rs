@@ -35,9 +35,9 @@ where
             Ok(w) => {
                 if w.old_spelling {
                     if let Some(name) = self.0.name(w.value) {
-                        eprintln!(
+                        crate::output::report(&format!(
                             "note: {option} {text} is an older spelling; write {option} {name}"
-                        );
+                        ));
                     }
                 }
                 Ok(w.value)

@@ -156,6 +156,21 @@ impl PyFace {
         Ok((points_into_array(py, m.vertices)?, tri))
     }
 
+    /// Checks the loops in ``(u, v)`` bound one region of the surface's domain
+    /// (``lekalo::Face::checked_trims``; docs/theory/topology.md, "Faces with bad trims"), as
+    /// ``mesh`` does first: raises ``ValueError`` naming the loop and the defect (a pcurve
+    /// outside the domain, an outer loop of no length, loops crossing themselves or each
+    /// other, a hole outside the outer loop or inside another hole); returns the repairs
+    /// ``mesh`` makes (pcurves clipped to the domain within 1e-4 of its width, edges and holes
+    /// of no length dropped) as a list of sentences, empty for a valid face. A face with an
+    /// edge without pcurve is not checked (``with_projected_pcurves`` first).
+    fn check_trims(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        let (_, repairs) = py
+            .detach(|| self.inner.face.checked_trims())
+            .map_err(lib_err)?;
+        Ok(repairs.iter().map(ToString::to_string).collect())
+    }
+
     /// The face with a pcurve for every edge: each edge without one gets the projection of its
     /// 3-D curve onto the surface, a degree-1 B-spline over the curve's parameters whose image
     /// is within ``tolerance`` of the projected edge, unwrapped across the seams of closed
@@ -396,7 +411,9 @@ type MeshedFaces<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Vec<(usize, Strin
 /// that fails leaves the others as they are without it (``lekalo::topology::mesh_faces_each``;
 /// docs/theory/topology.md, "Faces that cannot be meshed"). A face whose proved deviation
 /// bound stays above the tolerance (refinement stopped at its limit) is in the mesh, and a
-/// ``UserWarning`` names it (its index), its bound and the tolerance that would do. Raises
+/// ``UserWarning`` names it (its index), its bound and the tolerance that would do; so does a
+/// face whose trims were repaired (``Face.check_trims``). A face whose loops do not bound one
+/// region of its surface's domain is among the failures, its reason naming the loop. Raises
 /// ``ValueError`` for a tolerance that is not positive and finite, or too small for the faces'
 /// sizes together.
 #[pyfunction]
@@ -422,10 +439,12 @@ pub(crate) fn mesh_faces<'py>(
             )?;
             failures.extend(r.failures.iter().map(|(i, e)| (ready[*i].0, e.to_string())));
             failures.sort_by_key(|(k, _)| *k);
+            // bounds above the tolerance, then trims repaired before meshing
             let coarse: Vec<(usize, String)> = r
                 .above_tolerance
                 .iter()
                 .map(|(i, e)| (ready[*i].0, e.to_string()))
+                .chain(r.repairs.iter().map(|(i, x)| (ready[*i].0, x.to_string())))
                 .collect();
             Ok::<_, lekalo::Error>((r.join()?, failures, coarse))
         })

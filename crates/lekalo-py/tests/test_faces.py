@@ -357,3 +357,57 @@ def test_mesh_faces_lists_the_faces_that_fail_and_meshes_the_others_as_without_t
     assert np.array_equal(triangles, np.vstack([tt, pt + len(tv)]))
     with pytest.raises(ValueError, match="tolerance"):
         lekalo.mesh_faces([plate], 0.0)
+
+
+def _plate_with(plate, inner, face_id):
+    import json
+
+    d = json.loads(plate.to_json())
+    d["id"] = face_id
+    d["inner"] = inner
+    return lekalo.Face.from_json(json.dumps(d))
+
+
+def _moved(loop, du):
+    import copy
+
+    loop = copy.deepcopy(loop)
+    for e in loop:
+        for key in ("curve", "pcurve"):
+            for c in e[key]["control"]:
+                c[0] += du
+    return loop
+
+
+def test_faces_with_bad_trims_are_refused_naming_the_loop_and_repairs_are_warned(tmp_path):
+    import json
+
+    plate = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)["faces"][0]
+    assert plate.check_trims() == []
+    hole = json.loads(plate.to_json())["inner"][0]
+    # the hole moved 4 along u leaves the plane's domain [0, 10]
+    outside = _plate_with(plate, [_moved(hole, 4.0)], 77)
+    with pytest.raises(ValueError, match=r"inner loop 1 leaves the surface's domain: .* past its side u = 10;"):
+        outside.check_trims()
+    with pytest.raises(ValueError, match="inner loop 1 leaves"):
+        outside.mesh(1e-2)
+    # two holes crossing
+    crossing = _plate_with(plate, [hole, _moved(hole, 1.0)], 79)
+    with pytest.raises(ValueError, match="inner loop 2 crosses inner loop 1"):
+        crossing.check_trims()
+    # a hole of one point: dropped, the repair named
+    def line(c):
+        return {"lekalo": 1, "type": "bspline_curve", "degree": 1,
+                "knots": [0, 0, 1, 1], "control": [c, c]}
+
+    point = _plate_with(plate, [[{"curve": line([5.0, 5.0, 0.0]),
+                                  "pcurve": line([5.0, 5.0])}]], 78)
+    assert point.check_trims() == ["inner loop 1 has no length (a hole of one point): dropped"]
+    with pytest.warns(UserWarning, match="face 1: inner loop 1 has no length"):
+        vertices, triangles, failures = lekalo.mesh_faces([outside, point, crossing], 1e-2)
+    assert [k for k, _ in failures] == [0, 2]
+    assert "leaves the surface's domain" in failures[0][1]
+    assert "crosses inner loop 1" in failures[1][1]
+    # the plate without its hole: area 100
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    assert abs(0.5 * np.abs(np.cross(b - a, c - a)[:, 2]).sum() - 100.0) < 1e-9

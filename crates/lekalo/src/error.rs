@@ -419,6 +419,25 @@ pub enum Error {
         /// The tolerance asked for.
         tolerance: f64,
     },
+    // -- topology --
+    /// A face's loops in its surface's `(u, v)` do not bound one region of the domain
+    /// ([`Face::checked_trims`](crate::Face::checked_trims)): a pcurve outside the domain, an
+    /// outer loop of no length, loops that cross themselves or each other, a hole outside the
+    /// outer loop or inside another hole. `lp` is 0 for the outer loop, `i` for the `i`-th
+    /// inner loop.
+    ///
+    /// ```
+    /// use lekalo::{topology::TrimDefect, Error};
+    /// let e = Error::InvalidTrim { lp: 2, defect: TrimDefect::OutsideOuter };
+    /// assert!(e.to_string().starts_with("inner loop 2 is a hole outside the outer loop"));
+    /// ```
+    #[error("{} {defect}", crate::topology::loop_name(*.lp))]
+    InvalidTrim {
+        /// The loop at fault: 0 for the outer loop, `i` for the `i`-th inner loop.
+        lp: usize,
+        /// What is wrong with it, and what to do.
+        defect: crate::topology::TrimDefect,
+    },
     // -- blending --
     /// Two curves that must share an end point (a deformation's ends, or the corner of a
     /// corner transition) do not: their distance exceeds the tolerance, which is

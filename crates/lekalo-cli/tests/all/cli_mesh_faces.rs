@@ -326,3 +326,115 @@ fn mesh_of_a_band_without_a_seam_edge_cuts_it_along_a_seam() {
         assert!(n[0] * m[0] + n[1] * m[1] > 0.0, "a triangle faces in");
     }
 }
+
+/// The loop `l` (a JSON list of edges) moved by `du` in `u` (and `x`: the plate's plane is
+/// `(u, v, 0)`).
+fn shifted(l: &Value, du: f64) -> Value {
+    let mut l = l.clone();
+    for e in l.as_array_mut().unwrap() {
+        for key in ["curve", "pcurve"] {
+            for c in e[key]["control"].as_array_mut().unwrap() {
+                c[0] = Value::from(c[0].as_f64().unwrap() + du);
+            }
+        }
+    }
+    l
+}
+
+#[test]
+fn mesh_of_faces_with_bad_trims_lists_them_and_reports_the_repairs() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    convert_faces(&d, &["-q"], "plate.step", "plate.jsonl").success();
+    let plate: Value =
+        serde_json::from_str(fs::read_to_string(p(&d, "plate.jsonl")).unwrap().trim()).unwrap();
+    let hole = &plate["inner"][0];
+    // #77: the hole moved 4 along u reaches u = 11, past the plane's domain [0, 10]
+    let mut outside = plate.clone();
+    outside["id"] = Value::from(77);
+    outside["inner"] = Value::from(vec![shifted(hole, 4.0)]);
+    // #78: a hole of one point, dropped
+    let mut point = plate.clone();
+    point["id"] = Value::from(78);
+    let line = |dim: usize| {
+        let c = if dim == 2 {
+            vec![5.0, 5.0]
+        } else {
+            vec![5.0, 5.0, 0.0]
+        };
+        serde_json::json!({"lekalo": 1, "type": "bspline_curve", "degree": 1,
+            "knots": [0, 0, 1, 1], "control": [c.clone(), c]})
+    };
+    point["inner"] = serde_json::json!([[{"curve": line(3), "pcurve": line(2)}]]);
+    // #79: two holes crossing
+    let mut crossing = plate.clone();
+    crossing["id"] = Value::from(79);
+    crossing["inner"] = Value::from(vec![hole.clone(), shifted(hole, 1.0)]);
+    let text: String = [&plate, &outside, &point, &crossing]
+        .iter()
+        .map(|f| format!("{f}\n"))
+        .collect();
+    fs::write(p(&d, "bad.jsonl"), text).unwrap();
+    let out = lekalo()
+        .args(["mesh", "--tolerance", "1e-2", "--json"])
+        .arg(p(&d, "bad.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "bad.obj"))
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("2 of 4 faces not meshed"))
+        .stderr(predicates::str::contains(
+            "face #78 (plate): inner loop 1 has no length (a hole of one point): dropped",
+        ));
+    let summary = last_stderr_json(&out);
+    assert_eq!(summary["faces"].as_u64(), Some(2));
+    let skipped = summary["skipped_faces"].as_array().unwrap();
+    assert_eq!(skipped.len(), 2);
+    assert_eq!(skipped[0]["id"].as_u64(), Some(77));
+    let reason = skipped[0]["reason"].as_str().unwrap();
+    assert!(
+        reason.starts_with(
+            "inner loop 1 leaves the surface's domain: edge 0's curve in (u, v) reaches (11, 5), past its side u = 10"
+        ),
+        "{reason}"
+    );
+    assert_eq!(skipped[1]["id"].as_u64(), Some(79));
+    let reason = skipped[1]["reason"].as_str().unwrap();
+    assert!(
+        reason.starts_with("inner loop 2 crosses inner loop 1 near (u, v) = "),
+        "{reason}"
+    );
+    assert_eq!(summary["repaired"][0]["id"].as_u64(), Some(78));
+    // the plate and the plate without the hole of one point: 100 − 4π + 100
+    let (v, f) = read_obj(&fs::read_to_string(p(&d, "bad.obj")).unwrap());
+    let area = obj_area(&v, &f);
+    let exact = 200.0 - 4.0 * std::f64::consts::PI;
+    assert!(area >= exact - 1e-9 && area - exact <= 0.2, "{area}");
+}
+
+/// A STEP plate whose hole crosses its outer loop, meshed from the STEP file itself: refused
+/// naming the face's instance, the loops and where they cross; exit 2, nothing written.
+#[test]
+fn mesh_of_a_step_face_whose_hole_crosses_its_boundary_names_the_face_and_loops() {
+    let crossing = PLATE
+        .replace(
+            "#60=CARTESIAN_POINT('',(5.,5.,0.));",
+            "#60=CARTESIAN_POINT('',(9.5,5.,0.));",
+        )
+        .replace(
+            "#63=CARTESIAN_POINT('',(7.,5.,0.));",
+            "#63=CARTESIAN_POINT('',(11.5,5.,0.));",
+        );
+    assert_ne!(crossing, PLATE);
+    let d = dir_with(&[("cross.step", crossing.as_str())]);
+    lekalo()
+        .args(["mesh", "-q", "--tolerance", "1e-2"])
+        .arg(p(&d, "cross.step"))
+        .arg("-o")
+        .arg(p(&d, "cross.obj"))
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "face #70 (plate): inner loop 1 crosses the outer loop near (u, v) = (10, ",
+        ));
+    assert!(!p(&d, "cross.obj").exists());
+}

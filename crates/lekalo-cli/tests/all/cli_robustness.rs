@@ -987,3 +987,39 @@ fn hints_name_options_not_library_items() {
         .stderr(contains("use the knot placement \"auto\""))
         .stderr(contains("KnotPlacement").not());
 }
+
+/// A refusal with its notes on a standard error already closed (`lekalo info bad.step 2>&1 |
+/// head -1`) exits with 2, as it does with standard error open: the notes' `eprintln!` panicked
+/// on the closed pipe and the command exited with 3, an internal error. The STEP file's two
+/// trimmed curves refer to each other: skipped with the reason, no stack overflow.
+#[test]
+fn a_refusal_with_standard_error_closed_is_still_a_refusal() {
+    let cycle = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=DIRECTION('',(1.,0.,0.));\n#3=VECTOR('',#2,1.);\n\
+#4=LINE('',#1,#3);\n\
+#5=TRIMMED_CURVE('',#6,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n\
+#6=TRIMMED_CURVE('',#5,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n\
+ENDSEC;\nEND-ISO-10303-21;\n";
+    let d = dir_with(&[("cycle.step", cycle)]);
+    lekalo()
+        .arg("info")
+        .arg(p(&d, "cycle.step"))
+        .assert()
+        .code(2)
+        .stderr(contains("a cycle of references?"))
+        .stderr(contains("no curve or surface lekalo reads"));
+    let mut child = std::process::Command::new(bin())
+        .arg("info")
+        .arg(p(&d, "cycle.step"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    let status = child.wait().unwrap();
+    assert_eq!(
+        status.code(),
+        Some(2),
+        "info with a closed standard error: {status}"
+    );
+}

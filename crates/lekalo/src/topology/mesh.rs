@@ -68,6 +68,22 @@ impl FacePlan<'_> {
 }
 
 impl FacePlan<'_> {
+    /// `uv` clipped to the surface's domain in each direction in which it does not close: a
+    /// pcurve past the domain by its CAD system's rounding or tolerance (at most
+    /// [`LOOP_CLOSURE_RTOL`](super::LOOP_CLOSURE_RTOL) of the width, [`Face::checked_trims`])
+    /// bounds the region up to the domain's side, not past it.
+    fn clip(&self, uv: [f64; 2]) -> [f64; 2] {
+        let ((u0, u1), (v0, v1)) = self.face.surface().domain();
+        let dom = [(u0, u1), (v0, v1)];
+        let mut out = uv;
+        for d in 0..2 {
+            if self.closure.period[d].is_none() {
+                out[d] = out[d].clamp(dom[d].0, dom[d].1);
+            }
+        }
+        out
+    }
+
     /// The free parameter (0 = `u`) when `a` and `b` are two points of one pole of the surface
     /// (a side that is one point, [`SurfaceClosure`]) apart along it by more than rounding.
     fn along_pole(&self, a: [f64; 2], b: [f64; 2]) -> Option<usize> {
@@ -415,7 +431,7 @@ pub(super) fn mesh_face<'s>(
             for k in 0..n {
                 let j = if same { k } else { n - 1 - k };
                 let su = if same { s[j] } else { 1.0 - s[j] };
-                pe.push((pcurve_at(e, su)?, pts[j].clone()));
+                pe.push((plan.clip(pcurve_at(e, su)?), pts[j].clone()));
             }
             edges.push(pe);
         }

@@ -15,6 +15,7 @@ use super::mesh::{
     check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan, MAX_REFINE_ROUNDS,
 };
 use super::shell::{EdgeUse, Shell};
+use super::trims::TrimRepair;
 use crate::query::{check_deviation, Mesh, MAX_MESH_VERTICES, TESSELLATION_TOLERANCE};
 use crate::{Arg, Error, Points, Result, What};
 
@@ -31,6 +32,10 @@ pub struct FaceMeshes {
     /// is above the tolerance, refinement having stopped at its limit, with
     /// [`Error::ToleranceNotMet`] naming the bound, in the order of the set.
     pub above_tolerance: Vec<(usize, Error)>,
+    /// The index of each face whose trims were repaired before meshing ([`Face::checked_trims`]:
+    /// pcurves clipped to the domain within the tolerance, edges or holes of no length
+    /// dropped), with the repair, in the order of the set.
+    pub repairs: Vec<(usize, TrimRepair)>,
 }
 
 impl FaceMeshes {
@@ -93,7 +98,8 @@ type FaceSamples = Vec<Option<(Arc<EdgeSamples>, bool)>>;
 /// [`MIN_RELATIVE_TOLERANCE`](crate::query::MIN_RELATIVE_TOLERANCE) of a surface's size, for
 /// an edge without pcurve, or a tolerance whose grid would exceed
 /// [`MAX_MESH_VERTICES`](crate::query::MAX_MESH_VERTICES) points (naming the tolerance and the
-/// number of points); [`Error::TooLarge`] when the edges' points or the refined meshes exceed
+/// number of points); [`Error::InvalidTrim`] for loops that do not bound one region of the
+/// domain ([`Face::checked_trims`]); [`Error::TooLarge`] when the edges' points or the refined meshes exceed
 /// that many vertices; the error of the first face that cannot be meshed
 /// ([`mesh_faces_each`] keeps the others).
 pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
@@ -109,6 +115,10 @@ pub fn mesh_faces(faces: &[&Face], tolerance: f64) -> Result<Vec<Mesh>> {
 /// cannot, its index and its error; each face is meshed once (`docs/theory/topology.md`,
 /// "Faces that cannot be meshed"):
 ///
+/// 0. every face's trims are checked ([`Face::checked_trims`]): a face whose loops do not bound
+///    one region of its domain fails with [`Error::InvalidTrim`]; edges and holes of no length
+///    are dropped and pcurves past the domain within the tolerance clipped, each repair listed
+///    in [`FaceMeshes::repairs`];
 /// 1. every face is planned (its surface's bounds and grid; a surface that cannot be meshed at
 ///    this tolerance fails there);
 /// 2. the edges of the [`Shell`] of the faces not failed are sampled once each, in parallel;
@@ -153,13 +163,41 @@ pub(super) fn mesh_counted(
     }
     let n = faces.len();
     let mut failed: Vec<Option<Error>> = vec![None; n];
+    // step 0: the trims checked, repaired where the repair is unambiguous
+    let checked: Vec<Result<(Option<Face>, Vec<TrimRepair>)>> =
+        faces.par_iter().map(|f| f.checked_trims()).collect();
+    let mut repaired: Vec<Option<Face>> = Vec::with_capacity(n);
+    let mut repairs = Vec::new();
+    for (i, c) in checked.into_iter().enumerate() {
+        match c {
+            Ok((g, r)) => {
+                repaired.push(g);
+                repairs.extend(r.into_iter().map(|x| (i, x)));
+            }
+            Err(e) => {
+                failed[i] = Some(e);
+                repaired.push(None);
+            }
+        }
+    }
+    let faces: Vec<&Face> = faces
+        .iter()
+        .zip(&repaired)
+        .map(|(f, g)| g.as_ref().unwrap_or(f))
+        .collect();
+    let faces = faces.as_slice();
     let mut plans: Vec<Option<FacePlan<'_>>> = Vec::with_capacity(n);
     let mut grid_total = 0.0_f64;
-    let planned: Vec<Result<(FacePlan<'_>, f64)>> = faces
+    let planned: Vec<Option<Result<(FacePlan<'_>, f64)>>> = faces
         .par_iter()
-        .map(|f| plan_face(f, tolerance, rounds))
+        .zip(&failed)
+        .map(|(f, bad)| bad.is_none().then(|| plan_face(f, tolerance, rounds)))
         .collect();
     for (i, p) in planned.into_iter().enumerate() {
+        let Some(p) = p else {
+            plans.push(None);
+            continue;
+        };
         match p {
             Ok((plan, cells)) => {
                 grid_total += cells;
@@ -272,7 +310,12 @@ pub(super) fn mesh_counted(
         meshes: Vec::new(),
         failures: Vec::new(),
         above_tolerance: Vec::new(),
+        repairs: Vec::new(),
     };
+    out.repairs = repairs
+        .into_iter()
+        .filter(|(i, _)| failed[*i].is_none())
+        .collect();
     let mut vertices = 0_usize;
     for (i, (f, m)) in failed.into_iter().zip(meshed).enumerate() {
         match (f, m) {

@@ -11,6 +11,7 @@
 //! | `mesh_set.rs` | [`mesh_faces`], [`mesh_faces_each`] and [`Face::mesh`]: a set of faces meshed with each shared edge sampled once and each face meshed once, in parallel; the faces that fail listed by index with their errors ([`FaceMeshes`]) |
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
 //! | `seam.rs` | faces whose loops go round a closed surface without a seam edge (bands, caps round a pole), cut along a seam into one region of `(u, v)` for the mesher |
+//! | `trims.rs` | [`Face::checked_trims`], [`TrimDefect`], [`TrimRepair`]: the loops checked to bound one region of the domain (pcurves in the domain, no loop of no length, no crossings, holes inside the outer loop), clipped or dropped where the repair is unambiguous |
 //! | `inside.rs` | [`TrimRegion`]: the loops in `(u, v)` as polygons and the point-in-face test by winding numbers |
 //!
 //! See `docs/theory/topology.md`.
@@ -23,6 +24,7 @@ mod mesh_set;
 mod pcurve;
 mod seam;
 mod shell;
+mod trims;
 
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 pub use inside::{winding_number, TrimRegion, TRIM_SAMPLES_PER_SPAN};
@@ -30,5 +32,7 @@ pub use mesh::TRIM_CLEARANCE;
 pub use mesh_set::{join_meshes, mesh_faces, mesh_faces_each, FaceMeshes};
 pub use pcurve::{SurfaceClosure, MAX_PCURVE_POINTS, PCURVE_SAMPLING_RTOL};
 pub use shell::{EdgeUse, SharedEdge, Shell};
+pub(crate) use trims::loop_name;
+pub use trims::{TrimDefect, TrimRepair};
 #[cfg(test)]
 mod tests;

@@ -158,11 +158,11 @@ pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRea
     };
     if !cx.is_quiet() {
         let with = r.faces.iter().filter(|f| f.pcurves.is_none()).count();
-        eprintln!(
+        crate::output::report(&format!(
             "{name}: read {} face(s), {with} with pcurves; length unit {}",
             r.faces.len(),
             r.length_unit
-        );
+        ));
         crate::items::report_skipped(cx, &name, &r.skipped_faces, if iges { "D" } else { "#" });
     }
     Ok(r)

@@ -22,12 +22,15 @@ the tolerance, a bound proved from the control net (and the weights). Curves: a 
 format follows the output's extension (.obj, .stl, .ply) or --format; --json prints the counts
 and the bound instead of writing geometry to standard output.
 
-Faces (a JSON Lines file of face envelopes, as `convert --faces` writes): one mesh of all faces,
+Faces (a JSON Lines file of face envelopes, as `convert --faces` writes, or the faces of a STEP
+or IGES file): one mesh of all faces,
 each trimmed by its loops, the faces meeting at the same points along their shared edges. An
 edge without its curve in the surface's (u, v) gets one by projecting it onto the surface; a
 face whose loops go round a closed surface without a seam edge (a band between two circles, a
-cap round a pole) is cut along a seam; a face that cannot be meshed (an edge off its surface)
-is listed with the reason and left out.
+cap round a pole) is cut along a seam; a face that cannot be meshed (an edge off its surface,
+loops outside the surface's domain, crossing themselves or each other, a hole outside its
+outer loop) is listed with the reason and left out. Pcurves past the domain by at most 1e-4 of
+its width are clipped to it, and edges and holes of no length dropped: listed as repaired.
 
 Examples:
   lekalo mesh surface.json --tolerance 1e-3 -o surface.obj
@@ -35,7 +38,8 @@ Examples:
   lekalo mesh surface.json --tolerance 1e-4 -o surface.stl
   lekalo mesh curve.json --tolerance 1e-3 -o curve.obj")]
 pub(crate) struct MeshArgs {
-    /// Surface or curve file (JSON), or faces (JSON Lines of face envelopes).
+    /// Surface or curve file (JSON), or faces (JSON Lines of face envelopes, or a STEP or IGES
+    /// file).
     input: PathBuf,
     /// Largest deviation (in the object's units).
     #[arg(long, short = 't')]
@@ -57,7 +61,13 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     // the key of the tolerance and is written under --tolerance; other errors as they are
     let bad = |e: lekalo::Error| in_file(&a.input, e);
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
-    if let Some(faces) = crate::cmd::files::cad::face_lines(&a.input)? {
+    // the faces of a STEP or IGES file as those of a face JSON Lines file (`convert --faces`)
+    let faces = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
+        Some(crate::cmd::files::cad::read_faces(&a.input, cx)?.faces)
+    } else {
+        crate::cmd::files::cad::face_lines(&a.input)?
+    };
+    if let Some(faces) = faces {
         // an edge without its (u, v) curve gets one by projection; a face that still cannot be
         // meshed is counted with the reason
         let mut ready: Vec<(usize, lekalo::Face)> = Vec::with_capacity(faces.len());
@@ -108,15 +118,25 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             ));
         }
         if !skipped.is_empty() {
-            eprintln!(
+            crate::output::report(&format!(
                 "warning: {}: {} of {} faces not meshed:",
                 a.input.display(),
                 skipped.len(),
                 faces.len()
-            );
+            ));
             for (k, r) in &skipped {
-                eprintln!("  face {}: {r}", name(*k));
+                crate::output::report(&format!("  face {}: {r}", name(*k)));
             }
+        }
+        // trims repaired before meshing (clipped to the domain within the tolerance, edges
+        // and holes of no length dropped): named, and listed in the summary
+        let repaired: Vec<(usize, String)> = meshed
+            .repairs
+            .iter()
+            .map(|(i, r)| (ready[*i].0, r.to_string()))
+            .collect();
+        for (k, r) in &repaired {
+            crate::output::report(&format!("note: face {}: {r}", name(*k)));
         }
         // faces whose proved bound stayed above the tolerance: written, named, and exit 2
         let coarse: Vec<(usize, String)> = meshed
@@ -125,7 +145,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
             .map(|(i, e)| (ready[*i].0, e.to_string()))
             .collect();
         for (k, r) in &coarse {
-            eprintln!("warning: face {}: {r}", name(*k));
+            crate::output::report(&format!("warning: face {}: {r}", name(*k)));
         }
         let m = meshed.join().map_err(bad)?;
         let listed = |l: &[(usize, String)]| -> Vec<serde_json::Value> {
@@ -133,7 +153,7 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
                 .map(|(k, r)| json!({"id": faces[*k].id, "name": faces[*k].name, "reason": r}))
                 .collect()
         };
-        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
+        let summary = json!({"faces": meshed.meshes.len(), "skipped": skipped.len(), "skipped_faces": listed(&skipped), "above_tolerance": listed(&coarse), "repaired": listed(&repaired), "vertices": m.vertices.len(), "triangles": m.triangles.len(), "deviation": m.deviation});
         write_mesh(a, cx, &m, &fmt, &summary)?;
         if let Some((k, _)) = coarse.first() {
             // the joined mesh's deviation is the largest of its faces'

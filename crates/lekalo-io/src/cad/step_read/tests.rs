@@ -369,6 +369,39 @@ fn units_that_are_not_positive_lengths_are_refused() {
     }
 }
 
+/// A length unit that cannot be read was taken for millimetres: an SI unit other than the metre
+/// (`SI_UNIT(.MILLI.,.FURLONG.)`), an unknown prefix, a conversion referring to itself. Each is
+/// refused naming its entity; `SI_UNIT(.METRE.)` without a prefix is the metre.
+#[test]
+fn length_units_that_cannot_be_read_are_refused_not_assumed() {
+    let unit = "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );";
+    for bad in [
+        "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.FURLONG.) );",
+        "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.ZEPTO.,.METRE.) );",
+        "#11 = ( CONVERSION_BASED_UNIT('LOOP',#13) LENGTH_UNIT() NAMED_UNIT(*) );
+#13 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(2.),#11);",
+        "#11 = ( CONVERSION_BASED_UNIT('INCH',#999) LENGTH_UNIT() NAMED_UNIT(*) );",
+    ] {
+        let e = refused(&OCC_STYLE.replace(unit, bad));
+        assert!(
+            e.starts_with("h.step:22: entity #11: a length unit lekalo cannot read"),
+            "{bad}: {e}"
+        );
+    }
+    let r = read_step(
+        &OCC_STYLE.replace(
+            unit,
+            "#11 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.METRE.) );",
+        ),
+        "m.step",
+    )
+    .unwrap();
+    assert_eq!((r.length_unit.as_str(), r.scale_to_mm), ("metre", 1000.0));
+    // no unit declared: millimetres, said to be assumed
+    let r = read_step(&OCC_STYLE.replace(unit, ""), "none.step").unwrap();
+    assert_eq!(r.length_unit, "millimetre (assumed)");
+}
+
 /// A STEP file of `n` cubic curves (about 600 bytes each) written by [`StepWriter`].
 fn many_curves(n: usize) -> String {
     let mut w = StepWriter::new("curves");

@@ -26,8 +26,23 @@ pub(super) fn length_unit(p: &Parsed<'_>, source: &str) -> IoResult<(String, f64
             .copied()
             .find(|id| p.instances.known(id).has("LENGTH_UNIT"))
     });
-    let Some((u, (name, mm))) = unit.and_then(|u| Some((u, unit_factor(p, u, 0)?))) else {
+    let Some(u) = unit else {
         return Ok(("millimetre (assumed)".to_string(), 1.0));
+    };
+    // a length unit declared but not readable (an unknown prefix or unit name, a conversion
+    // without its measure, a cycle of conversions) is refused: assuming millimetres would scale
+    // the geometry silently
+    let Some((name, mm)) = unit_factor(p, u, 0) else {
+        let mut at = Location::new(source);
+        if let Some(i) = p.instances.get(&u) {
+            at = at.at_line(i.line());
+        }
+        return Err(IoError::syntax(
+            at,
+            format!(
+                "entity #{u}: a length unit lekalo cannot read (an SI_UNIT must name METRE with a known prefix or none, a CONVERSION_BASED_UNIT a LENGTH_MEASURE_WITH_UNIT of such a unit); correct the unit, or remove it and the file is read in millimetres"
+            ),
+        ));
     };
     if !(mm.is_finite() && mm > 0.0) {
         let mut at = Location::new(source);
@@ -48,7 +63,8 @@ pub(super) fn length_unit(p: &Parsed<'_>, source: &str) -> IoResult<(String, f64
 fn unit_factor(p: &Parsed<'_>, id: u64, depth: usize) -> Option<(String, f64)> {
     let inst = p.instances.get(&id)?;
     if let Some(si) = inst.get("SI_UNIT") {
-        let prefix = match si.first() {
+        // `SI_UNIT(prefix, name)`, the prefix `$` or left out
+        let prefix = match si.len().checked_sub(2).and_then(|k| si.get(k)) {
             Some(P::Enum(e)) => Some(e.as_str()),
             _ => None,
         };
@@ -72,6 +88,10 @@ fn unit_factor(p: &Parsed<'_>, id: u64, depth: usize) -> Option<(String, f64)> {
             Some("ATTO") => 1e-15,
             Some(_) => return None,
         };
+        // the unit's name, after the prefix: a length unit is the metre
+        if !matches!(si.last(), Some(P::Enum(n)) if n == "METRE") {
+            return None;
+        }
         let name = prefix.map_or_else(
             || "metre".to_string(),
             |p| format!("{}metre", p.to_ascii_lowercase()),

@@ -86,6 +86,12 @@ def make_interp_spline(
         c = np.ascontiguousarray(y, dtype=_get_dtype(y.dtype))
         return BSpline.construct_fast(t, c, k, axis=axis)
     k = operator.index(k)
+    if k > _lekalo.MAX_DEGREE:
+        # refused before the knots of that degree are made: SciPy allocates 2 (k + 1) of them
+        raise ValueError(
+            f"k = {k} is above the largest degree lekalo interpolates, {_lekalo.MAX_DEGREE}; "
+            "use a smaller k"
+        )
     if bc_type == "periodic" and t is not None:
         raise NotImplementedError(
             "For periodic case t is constructed automatically and can not be passed manually"

@@ -753,6 +753,9 @@ def _prepare_input(x: Any, y: Any, axis: int):
         raise ValueError("`x` must contain real values.")
     x = np.asarray(x, dtype=np.float64)
     y = y.astype(complex if np.iscomplexobj(y) else float, copy=False)
+    if y.ndim == 0:
+        # SciPy takes `axis % y.ndim` here: ZeroDivisionError
+        raise ValueError("`y` must have at least 1 dimension, its `axis` as long as `x`; got a number")
     axis = axis % y.ndim
     if x.ndim != 1:
         raise ValueError("`x` must be 1-dimensional.")
