@@ -321,9 +321,21 @@ def mesh_check(faces_path, faces, tolerance, tmp):
             v.append([float(x) for x in line.split()[1:4]])
         elif line.startswith("f "):
             t.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
-    # the points the faces' meshes have in common are one vertex (the same coordinates)
-    v, weld = np.unique(np.asarray(v), axis=0, return_inverse=True)
-    t = weld.reshape(-1)[np.asarray(t)]
+    # the points the faces' meshes have in common are one vertex: those within 1e-9 of the
+    # model's size of each other (the faces' meshes meet at points computed on either side)
+    v, t = np.asarray(v), np.asarray(t)
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+    radius = 1e-9 * float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    pairs = cKDTree(v).query_pairs(radius, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(v),) * 2)
+    _, weld = connected_components(graph, directed=False)
+    t = weld[t]
+    t = t[(t[:, 0] != t[:, 1]) & (t[:, 1] != t[:, 2]) & (t[:, 2] != t[:, 0])]
+    first = np.zeros(weld.max() + 1, dtype=np.intp)
+    first[weld] = np.arange(len(v))
+    v = v[first]
     # boundary segments: used by one triangle
     seg = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
     uniq, count = np.unique(seg, axis=0, return_counts=True)
@@ -346,7 +358,6 @@ def mesh_check(faces_path, faces, tolerance, tmp):
         shared.append(GeomAdaptor_Curve(c))
     gap, cracks = 0.0, 0
     if len(naked) and shared:
-        from scipy.spatial import cKDTree
         tree = cKDTree(np.asarray(samples_))
         owner = np.asarray(owner)
 

@@ -210,8 +210,7 @@ impl StepWriter {
                         p.reverse().map_err(lib)?
                     };
                     let c2 = self.write_any_curve(&p, 2)?;
-                    let rep =
-                        self.add(format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx2})"));
+                    let rep = self.add(format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx2})"));
                     pcurves.push(self.add(format!("PCURVE('',#{},#{rep})", surfaces[u.face])));
                 }
                 let geometry = if pcurves.is_empty() {
