@@ -219,6 +219,31 @@ fn faces_whose_curves_of_a_shared_edge_differ_keep_their_own() {
     }
     assert_eq!(text.matches("EDGE_CURVE(").count(), 13, "{text}");
     assert_eq!(text.matches("VERTEX_POINT(").count(), 8, "{text}");
+    // on a domain where a0 + (a1 - a0) rounds past a1, one curve used both ways stays shared
+    let domain = (0.006528133149406, 0.123620277680534);
+    assert!(domain.0 + (domain.1 - domain.0) * 1.0 > domain.1);
+    let mut faces = cube();
+    for f in &mut faces {
+        let lp = f.face.outer();
+        let edges = lp
+            .edges()
+            .iter()
+            .map(|e| {
+                let c = e.curve().reparametrize(domain.0, domain.1).unwrap();
+                Edge::new(c, e.pcurve().cloned()).unwrap()
+            })
+            .collect();
+        f.face = Face::new(
+            f.face.surface().clone(),
+            Loop::new(edges).unwrap(),
+            vec![],
+            true,
+            LOOP_CLOSURE_RTOL,
+        )
+        .unwrap();
+    }
+    let (text, _) = step_round_trip(&faces);
+    assert_eq!(text.matches("EDGE_CURVE(").count(), 12, "{text}");
 }
 
 #[test]

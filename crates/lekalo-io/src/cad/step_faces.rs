@@ -55,7 +55,10 @@ fn same_curve(a: &Curve, b: &Curve, same: bool) -> bool {
     for k in 0..9 {
         let s = f64::from(k) / 8.0;
         let t = if same { s } else { 1.0 - s };
-        match (a.eval(a0 + (a1 - a0) * s), b.eval(b0 + (b1 - b0) * t)) {
+        // clamped: a0 + (a1 - a0) rounds past a1 on some domains
+        let ta = (a0 + (a1 - a0) * s).clamp(a0.min(a1), a0.max(a1));
+        let tb = (b0 + (b1 - b0) * t).clamp(b0.min(b1), b0.max(b1));
+        match (a.eval(ta), b.eval(tb)) {
             (Ok(p), Ok(q)) => pairs.push((p, q)),
             _ => return false,
         }
