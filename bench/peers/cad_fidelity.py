@@ -508,7 +508,7 @@ def main():
               f"| {fmt(r['surface'])}{mark(r['surface'] > LIMIT)}, "
               f"{fmt(r['edges'])}{mark(r['edges'] > LIMIT)} "
               f"| {r['loops']}{mark(r['loops'])} | {wb[0]} | {wb[1]} "
-              f"| {t0:.3f} / {t1:.3f} ({t1 / t0:.1f}x){mark(t0 > t1)} "
+              f"| {t0:.3f} / {t1:.3f} ({t1 / t0 if t0 > 0 else math.nan:.1f}x){mark(t0 > t1)} "
               f"| {dev:.3g}{mark(dev > args.tolerance)}, {left}{mark(left)}, "
               f"{fmt(gap)} ({cracks}){mark(gap > args.tolerance)}, {tris} |", flush=True)
 
