@@ -180,8 +180,11 @@ def occ_faces(shape):
     out = []
     ex = TopExp_Explorer(shape, TopAbs_FACE)
     while ex.More():
-        out.append(OccFace(TopoDS.Face(ex.Current())))
+        face = TopoDS.Face(ex.Current())
         ex.Next()
+        # a face without a surface (a triangulation only) has no geometry to compare
+        if BRep_Tool.Surface_s(face) is not None:
+            out.append(OccFace(face))
     return out
 
 
