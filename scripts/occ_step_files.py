@@ -146,12 +146,7 @@ def write_iges(path, unit, curves_, surfaces_):
 
 
 def read_step(path):
-    if path.endswith(".igs"):
-        from OCP.IGESControl import IGESControl_Reader
-        r = IGESControl_Reader()
-    else:
-        r = STEPControl_Reader()
-    assert r.ReadFile(path) == IFSelect_RetDone, path
+    r = reader(path)
     r.TransferRoots()
     shape = r.OneShape()
     out = []
@@ -173,6 +168,17 @@ def read_step(path):
         ex.Next()
         out.append(surface_json(BRepAdaptor_Surface(f).BSpline()))
     return out
+
+
+def reader(path):
+    """Open CASCADE's reader of the file (IGES for .igs and .iges, else STEP), the file read."""
+    if path.lower().endswith((".igs", ".iges")):
+        from OCP.IGESControl import IGESControl_Reader
+        r = IGESControl_Reader()
+    else:
+        r = STEPControl_Reader()
+    assert r.ReadFile(path) == IFSelect_RetDone, path
+    return r
 
 
 def flat_knots(knots, mults):
@@ -285,12 +291,7 @@ def compare(orig, back):
 
 
 def occ_objects(path):
-    if path.endswith(".igs"):
-        from OCP.IGESControl import IGESControl_Reader
-        r = IGESControl_Reader()
-    else:
-        r = STEPControl_Reader()
-    assert r.ReadFile(path) == IFSelect_RetDone, path
+    r = reader(path)
     r.TransferRoots()
     shape = r.OneShape()
     out = []
@@ -345,12 +346,7 @@ def check(lekalo):
 
 
 def occ_shape(path):
-    if path.endswith(".igs"):
-        from OCP.IGESControl import IGESControl_Reader
-        r = IGESControl_Reader()
-    else:
-        r = STEPControl_Reader()
-    assert r.ReadFile(path) == IFSelect_RetDone, path
+    r = reader(path)
     r.TransferRoots()
     return r.OneShape()
 

@@ -55,6 +55,11 @@ def build():
     whether Open CASCADE is timed."""
     subprocess.run(["cargo", "build", "--quiet", "--release", "-p", "lekalo-io",
                     "--example", "cad_read"], cwd=ROOT, check=True)
+    return build_occt()
+
+
+def build_occt():
+    """Builds Open CASCADE's reader when the headers are there; returns whether it is timed."""
     return occt_build.build("occt_cad_read.cpp", "STEPControl_Reader.hxx",
                             ["-lTKSTEP", "-lTKIGES", "-lTKXSBase", "-lTKBRep", "-lTKTopAlgo",
                              "-lTKG3d", "-lTKMath", "-lTKernel"]) == OCCT

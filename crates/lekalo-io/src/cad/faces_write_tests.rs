@@ -193,6 +193,60 @@ fn cube_is_a_closed_shell_of_shared_edges() {
 }
 
 #[test]
+fn faces_whose_curves_of_a_shared_edge_differ_keep_their_own() {
+    // the bottom face's edge from (1, 0, 0) to (0, 0, 0) bows by 1e-9 (a quadratic): the shell
+    // joins it with the front face's straight edge, but each face keeps its curve
+    let mut faces = cube();
+    let f = &faces[0].face;
+    let mut edges = f.outer().edges().to_vec();
+    let bowed = Points::from_3d(&[[1.0, 0.0, 0.0], [0.5, 1e-9, 0.0], [0.0, 0.0, 0.0]]).unwrap();
+    edges[3] = Edge::new(
+        Curve::from(BSplineCurve::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], bowed).unwrap()),
+        edges[3].pcurve().cloned(),
+    )
+    .unwrap();
+    faces[0].face = Face::new(
+        f.surface().clone(),
+        Loop::new(edges).unwrap(),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap();
+    let (text, back) = step_round_trip(&faces);
+    for (a, b) in faces.iter().zip(&back) {
+        assert!(faces_match(&a.face, &b.face), "{}: {text}", a.name);
+    }
+    assert_eq!(text.matches("EDGE_CURVE(").count(), 13, "{text}");
+    assert_eq!(text.matches("VERTEX_POINT(").count(), 8, "{text}");
+    // on a domain where a0 + (a1 - a0) rounds past a1, one curve used both ways stays shared
+    let domain = (0.006528133149406, 0.123620277680534);
+    assert!(domain.0 + (domain.1 - domain.0) * 1.0 > domain.1);
+    let mut faces = cube();
+    for f in &mut faces {
+        let lp = f.face.outer();
+        let edges = lp
+            .edges()
+            .iter()
+            .map(|e| {
+                let c = e.curve().reparametrize(domain.0, domain.1).unwrap();
+                Edge::new(c, e.pcurve().cloned()).unwrap()
+            })
+            .collect();
+        f.face = Face::new(
+            f.face.surface().clone(),
+            Loop::new(edges).unwrap(),
+            vec![],
+            true,
+            LOOP_CLOSURE_RTOL,
+        )
+        .unwrap();
+    }
+    let (text, _) = step_round_trip(&faces);
+    assert_eq!(text.matches("EDGE_CURVE(").count(), 12, "{text}");
+}
+
+#[test]
 fn faces_and_loose_geometry_do_not_mix() {
     let faces = cube();
     let mut w = StepWriter::new("x");

@@ -6,8 +6,9 @@
 //! `PCURVE` in that face's `(u, v)` through a `DEFINITIONAL_REPRESENTATION` in a 2-D parametric
 //! context.
 //!
-//! Edges and vertices shared by faces are written once ([`lekalo::topology::Shell`]): the
-//! `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
+//! Edges and vertices shared by faces are written once ([`lekalo::topology::Shell`]) when the
+//! faces' curves of the edge are one curve (else each keeps its own `EDGE_CURVE` between the
+//! shared vertices): the `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
 //! `ORIENTED_EDGE` with orientation `.F.`, and its pcurve is written reversed to run along the
 //! edge. Faces that close a volume (every edge used twice, once each way) go into a
 //! `CLOSED_SHELL` of a `MANIFOLD_SOLID_BREP` in an `ADVANCED_BREP_SHAPE_REPRESENTATION`; other
@@ -17,6 +18,8 @@
 //! Read back by [`crate::read_step_faces`], a face has the same surface, loops, edge curves and
 //! pcurves bit for bit, except the curves of a use that runs an edge backwards, which are
 //! reversed twice (knots within a rounding unit of the domain).
+
+use std::collections::HashMap;
 
 use lekalo::topology::{Edge, EdgeUse, Shell};
 use lekalo::{Curve, Surface};
@@ -40,6 +43,35 @@ fn edge_at(faces: &[StepFace], u: EdgeUse) -> Option<&Edge> {
         .nth(u.lp)?
         .edges()
         .get(u.edge)
+}
+
+/// Whether two edge curves are one curve, `a` run forwards or (`!same`) backwards: equal at
+/// nine parameters spread over their domains within `1e-12` of their size (a curve and its
+/// reverse agree to rounding).
+fn same_curve(a: &Curve, b: &Curve, same: bool) -> bool {
+    let (a0, a1) = a.domain();
+    let (b0, b1) = b.domain();
+    let mut pairs = Vec::with_capacity(9);
+    for k in 0..9 {
+        let s = f64::from(k) / 8.0;
+        let t = if same { s } else { 1.0 - s };
+        // clamped: a0 + (a1 - a0) rounds past a1 on some domains
+        let ta = (a0 + (a1 - a0) * s).clamp(a0.min(a1), a0.max(a1));
+        let tb = (b0 + (b1 - b0) * t).clamp(b0.min(b1), b0.max(b1));
+        match (a.eval(ta), b.eval(tb)) {
+            (Ok(p), Ok(q)) => pairs.push((p, q)),
+            _ => return false,
+        }
+    }
+    let size = pairs
+        .iter()
+        .flat_map(|(p, _)| p.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    pairs.iter().all(|(p, q)| {
+        p.iter()
+            .zip(q)
+            .all(|(x, y)| (x - y).abs() <= 1e-12 * size.max(f64::MIN_POSITIVE))
+    })
 }
 
 fn flag(b: bool) -> &'static str {
@@ -138,39 +170,72 @@ impl StepWriter {
             let pt = self.add_point(p);
             vertices.push(self.add(format!("VERTEX_POINT('',#{pt})")));
         }
-        let mut edges = Vec::with_capacity(shell.edges().len());
+        // each use's EDGE_CURVE and whether the use runs it forwards
+        let mut edge_of: HashMap<EdgeUse, (usize, bool)> = HashMap::new();
         for e in shell.edges() {
-            let (first, _) = e.uses[0];
-            let Some(first_edge) = edge_at(faces, first) else {
-                continue;
-            };
-            let c3 = self.write_any_curve(first_edge.curve(), 3)?;
-            let mut pcurves = Vec::new();
+            // the uses whose 3-D curves are one curve share an EDGE_CURVE; uses the shell
+            // joined within its tolerance but whose curves differ (two trimmed surfaces of an
+            // IGES file, each bounded by its own curve) get one each, so that every face keeps
+            // its curves
+            let mut groups: Vec<Vec<(EdgeUse, bool)>> = Vec::new();
             for &(u, same) in &e.uses {
-                let Some(p) = edge_at(faces, u).and_then(|e| e.pcurve()) else {
+                let Some(edge) = edge_at(faces, u) else {
                     continue;
                 };
-                let p = if same {
-                    p.clone()
-                } else {
-                    p.reverse().map_err(lib)?
-                };
-                let c2 = self.write_any_curve(&p, 2)?;
-                let rep = self.add(format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx2})"));
-                pcurves.push(self.add(format!("PCURVE('',#{},#{rep})", surfaces[u.face])));
+                let mut found = None;
+                for (i, g) in groups.iter().enumerate() {
+                    if let Some(first) = edge_at(faces, g[0].0) {
+                        if same_curve(first.curve(), edge.curve(), g[0].1 == same) {
+                            found = Some(i);
+                            break;
+                        }
+                    }
+                }
+                match found {
+                    Some(i) => groups[i].push((u, same)),
+                    None => groups.push(vec![(u, same)]),
+                }
             }
-            let geometry = if pcurves.is_empty() {
-                c3
-            } else {
-                let seam = e.uses.len() == 2 && e.uses[0].0.face == e.uses[1].0.face;
-                let kind = if seam { "SEAM_CURVE" } else { "SURFACE_CURVE" };
-                self.add(format!("{kind}('',#{c3},{},.CURVE_3D.)", refs(&pcurves)))
-            };
-            let [v0, v1] = e.vertices;
-            edges.push(self.add(format!(
-                "EDGE_CURVE('',#{},#{},#{geometry},.T.)",
-                vertices[v0], vertices[v1]
-            )));
+            for g in groups {
+                let (first, first_same) = g[0];
+                let Some(first_edge) = edge_at(faces, first) else {
+                    continue;
+                };
+                let c3 = self.write_any_curve(first_edge.curve(), 3)?;
+                let mut pcurves = Vec::new();
+                for &(u, same) in &g {
+                    let Some(p) = edge_at(faces, u).and_then(|e| e.pcurve()) else {
+                        continue;
+                    };
+                    let p = if same == first_same {
+                        p.clone()
+                    } else {
+                        p.reverse().map_err(lib)?
+                    };
+                    let c2 = self.write_any_curve(&p, 2)?;
+                    let rep = self.add(format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx2})"));
+                    pcurves.push(self.add(format!("PCURVE('',#{},#{rep})", surfaces[u.face])));
+                }
+                let geometry = if pcurves.is_empty() {
+                    c3
+                } else {
+                    let seam = g.len() == 2 && g[0].0.face == g[1].0.face;
+                    let kind = if seam { "SEAM_CURVE" } else { "SURFACE_CURVE" };
+                    self.add(format!("{kind}('',#{c3},{},.CURVE_3D.)", refs(&pcurves)))
+                };
+                let [v0, v1] = if first_same {
+                    e.vertices
+                } else {
+                    [e.vertices[1], e.vertices[0]]
+                };
+                let id = self.add(format!(
+                    "EDGE_CURVE('',#{},#{},#{geometry},.T.)",
+                    vertices[v0], vertices[v1]
+                ));
+                for &(u, same) in &g {
+                    edge_of.insert(u, (id, same == first_same));
+                }
+            }
         }
         let mut face_ids = Vec::with_capacity(faces.len());
         for (fi, f) in faces.iter().enumerate() {
@@ -183,14 +248,10 @@ impl StepWriter {
                         lp: li,
                         edge: k,
                     };
-                    let Some((g, same)) = shell.edge_of(u) else {
+                    let Some(&(id, same)) = edge_of.get(&u) else {
                         continue;
                     };
-                    oriented.push(self.add(format!(
-                        "ORIENTED_EDGE('',*,*,#{},{})",
-                        edges[g],
-                        flag(same)
-                    )));
+                    oriented.push(self.add(format!("ORIENTED_EDGE('',*,*,#{id},{})", flag(same))));
                 }
                 let lp_id = self.add(format!("EDGE_LOOP('',{})", refs(&oriented)));
                 let kind = if li == 0 {

@@ -16,7 +16,7 @@ use serde_json::Value;
 use crate::error::{IoError, IoResult, Location};
 use crate::object::{CurveJson, FORMAT_VERSION};
 use crate::shape::Shape;
-use crate::step_read::{StepFace, STEP_LOOP_RTOL};
+use crate::step_read::{StepFace, STEP_SHARED_VERTEX_RTOL};
 
 /// The edges of a loop as a JSON list, each envelope in its writer's field order.
 fn edges_text(lp: &Loop, ids: Option<&Vec<u64>>) -> String {
@@ -80,8 +80,11 @@ pub fn face_to_json_line(f: &StepFace) -> String {
     )
 }
 
-/// Reads a face envelope ([`face_to_json_line`]), checked as [`Face::new`] checks it (loops
-/// closed within [`STEP_LOOP_RTOL`] of the model size, as the STEP reader checks them). `id`, `name`, `surface_id`,
+/// Reads a face envelope ([`face_to_json_line`]), checked as [`Face::new`] checks it: loops
+/// closed within [`STEP_SHARED_VERTEX_RTOL`] of the model size, the largest gap the STEP
+/// reader accepts (in a loop its file's vertices close), so that every face it reads comes back
+/// from its JSON line (the envelope has no vertices to tell the two tolerances apart).
+/// `id`, `name`, `surface_id`,
 /// `edge_id`, `same_sense` (true) and `pcurves` may be left out.
 ///
 /// # Errors
@@ -210,12 +213,13 @@ pub fn read_face(text: &str, source: &str) -> IoResult<StepFace> {
             edge_ids.push(ids);
         }
     }
-    let face = Face::new(surface, outer, inner, same_sense, STEP_LOOP_RTOL).map_err(|error| {
-        IoError::Invalid {
-            at: field("outer"),
-            error,
-        }
-    })?;
+    let face =
+        Face::new(surface, outer, inner, same_sense, STEP_SHARED_VERTEX_RTOL).map_err(|error| {
+            IoError::Invalid {
+                at: field("outer"),
+                error,
+            }
+        })?;
     Ok(StepFace {
         id,
         name,

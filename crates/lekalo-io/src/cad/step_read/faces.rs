@@ -30,6 +30,13 @@ use crate::shape::Surface;
 /// on parts of 100 mm.
 pub const STEP_LOOP_RTOL: f64 = 1e-3;
 
+/// The tolerance on the gaps of a loop whose edges share their `VERTEX_POINT`s in the file (each
+/// edge ends at the vertex where the next starts), relative to the model size: `1e-2`. Such a
+/// loop is closed by the file's topology, and its gaps are those of curves that miss their
+/// vertices by the exporter's precision (Open CASCADE widens the vertices' tolerances to cover
+/// them); only a loop that the vertices do not close is held to [`STEP_LOOP_RTOL`].
+pub const STEP_SHARED_VERTEX_RTOL: f64 = 1e-2;
+
 /// A face read from a STEP file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepFace {
@@ -75,6 +82,8 @@ enum Pcurves {
 /// One use of an edge in a loop: its 3-D curve and candidate pcurves, directed along the loop.
 struct Use {
     edge: u64,
+    /// The ids of the vertices it starts and ends at, along the loop.
+    vertices: [u64; 2],
     curve: Curve,
     pcurves: Vec<Curve>,
 }
@@ -90,6 +99,8 @@ struct EdgeGeom {
     range: (f64, f64),
     /// The start and end vertices.
     ends: [Vec<f64>; 2],
+    /// The ids of the start and end `VERTEX_POINT`s.
+    vertices: [u64; 2],
     pcurves: Vec<u64>,
     same_sense: bool,
 }
@@ -178,6 +189,8 @@ fn read_face(
     let mut inner: Vec<(Loop, Vec<u64>)> = Vec::new();
     let mut missing = 0usize;
     let mut pcurve_error: Option<String> = None;
+    // whether every loop is closed by its shared vertices
+    let mut closed_by_vertices = true;
     for b in bounds {
         let bid = reference(Some(b)).ok_or("a bound is not a reference")?;
         let binst =
@@ -228,12 +241,17 @@ fn read_face(
         if !orientation {
             uses.reverse();
             for u in &mut uses {
+                u.vertices.reverse();
                 u.curve = u.curve.reverse().map_err(|e| e.to_string())?;
                 for p in &mut u.pcurves {
                     *p = p.reverse().map_err(|e| e.to_string())?;
                 }
             }
         }
+        closed_by_vertices &= uses
+            .iter()
+            .zip(uses.iter().cycle().skip(1))
+            .all(|(a, b)| a.vertices[1] == b.vertices[0]);
         let (edge_list, ids, no_pcurve) = choose_pcurves(uses)?;
         missing += no_pcurve;
         let lp = Loop::new(edge_list).map_err(|e| format!("EDGE_LOOP #{lid}: {e}"))?;
@@ -260,7 +278,11 @@ fn read_face(
         outer,
         inner_loops,
         same_sense,
-        STEP_LOOP_RTOL,
+        if closed_by_vertices {
+            STEP_SHARED_VERTEX_RTOL
+        } else {
+            STEP_LOOP_RTOL
+        },
     )
     .map_err(|e| e.to_string())?;
     let pcurves = match policy {
@@ -354,6 +376,7 @@ fn edge_use(
         .or_insert_with(|| edge_geom(rd, eid).map(std::rc::Rc::new))
         .clone()?;
     let mut curve = geom.curve.clone();
+    let mut vertices = geom.vertices;
     let mut pcurves = Vec::new();
     if let Pcurves::Plane(f) = policy {
         pcurves.push(on_plane(&curve, f)?);
@@ -369,6 +392,7 @@ fn edge_use(
         }
     }
     if !forward {
+        vertices.reverse();
         curve = curve.reverse().map_err(|e| e.to_string())?;
         for p in &mut pcurves {
             *p = p.reverse().map_err(|e| e.to_string())?;
@@ -376,6 +400,7 @@ fn edge_use(
     }
     Ok(Use {
         edge: eid,
+        vertices,
         curve,
         pcurves,
     })
@@ -392,9 +417,11 @@ fn edge_geom(rd: &Reader<'_>, eid: u64) -> Result<EdgeGeom, Why> {
         .get("EDGE_CURVE")
         .ok_or_else(|| format!("edge #{eid} is a {}, not an EDGE_CURVE", inst.type_name()))?;
     let mut ends: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+    let mut vertices = [0u64; 2];
     for (k, end) in ends.iter_mut().enumerate() {
         let vid =
             reference(r.get(k + 1)).ok_or_else(|| format!("EDGE_CURVE #{eid} has no vertex"))?;
+        vertices[k] = vid;
         let vinst = rd.p.instances.get(&vid);
         let v = vinst
             .as_ref()
@@ -455,6 +482,7 @@ fn edge_geom(rd: &Reader<'_>, eid: u64) -> Result<EdgeGeom, Why> {
         domain,
         range,
         ends,
+        vertices,
         pcurves,
         same_sense,
     })

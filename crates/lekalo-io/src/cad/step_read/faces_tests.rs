@@ -270,6 +270,47 @@ fn cylinder_with_a_seam() {
 }
 
 #[test]
+fn a_loop_closed_by_its_shared_vertices_tolerates_curves_that_miss_them() {
+    // the right edge's line runs at x = 10.03, 0.03 off its vertices (10, 0) and (10, 10):
+    // gaps of 2.1e-3 of the model size (the diagonal, 14.2), above STEP_LOOP_RTOL
+    let off = PLATE.replace(
+        "#35=LINE('',#12,#34);",
+        "#35=LINE('',#15,#34);\n#15=CARTESIAN_POINT('',(10.03,0.,0.));",
+    );
+    let r = read(&off);
+    assert!(r.skipped_faces.is_empty(), "{:?}", r.skipped_faces);
+    let f = face(&r, 70);
+    // the curve is the file's, cut at the vertices' projections: it keeps its offset
+    let right = &f.face.outer().edges()[1];
+    let (a, b) = ends(right.curve());
+    assert!(
+        close(&a, &[10.03, 0.0, 0.0]) && close(&b, &[10.03, 10.0, 0.0]),
+        "{a:?} {b:?}"
+    );
+    let gap = f.face.outer().largest_gap(false).unwrap().unwrap().0;
+    assert!(
+        gap > STEP_LOOP_RTOL * f.face.model_size()
+            && gap < STEP_SHARED_VERTEX_RTOL * f.face.model_size(),
+        "{gap}"
+    );
+    // the same gap where the right edge starts at a vertex of its own (at the same point):
+    // the vertices do not close the loop, which is held to STEP_LOOP_RTOL
+    let apart = off
+        .replace(
+            "#42=EDGE_CURVE('',#22,#23,#35,.T.);",
+            "#42=EDGE_CURVE('',#25,#23,#35,.T.);",
+        )
+        .replace(
+            "#24=VERTEX_POINT('',#14);",
+            "#24=VERTEX_POINT('',#14);\n#25=VERTEX_POINT('',#12);",
+        );
+    let r = read(&apart);
+    assert!(r.faces.is_empty());
+    let why = &r.skipped_faces[0].reason;
+    assert!(why.contains("outer loop does not close"), "{why}");
+}
+
+#[test]
 fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
     // a loop naming an edge that is not in the file
     let missing = PLATE.replace(

@@ -61,7 +61,7 @@ mod tests;
 mod units;
 
 pub use driver::{read_step, read_step_faces, read_step_limited, read_step_with_progress};
-pub use faces::{StepFace, STEP_LOOP_RTOL};
+pub use faces::{StepFace, STEP_LOOP_RTOL, STEP_SHARED_VERTEX_RTOL};
 
 use crate::shape::Shape;
 
