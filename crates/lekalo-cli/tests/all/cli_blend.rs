@@ -156,7 +156,8 @@ fn bad_input_exit_code_2_names_the_problem() {
         .assert()
         .code(2)
         .stderr(contains(
-            "error: --continuity: got 0; the deformation uses w_(k-1)",
+            "error: --continuity: got 0; k must be in 1..=1025 (k = 1 is the linear blend; \
+             the deformation uses w_(k-1))",
         ));
     lekalo()
         .args(["blend", "corner", "--from", "1.5", "--until", "0.5"])
