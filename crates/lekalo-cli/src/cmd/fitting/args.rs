@@ -56,8 +56,10 @@ every x, not only at the data; repeat an option for several intervals):
   --increasing[=A:B] --decreasing[=A:B] --convex[=A:B] --concave[=A:B]
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
 
-The report (residual max and RMS, λ or s, control points) goes to standard error, or with
---json the output is {\"object\": …, \"report\": …}; --per-point adds every residual.
+The report (residual max and RMS, λ or s, control points; with --tolerance first the deviation
+that the tolerance bounds, then the residuals at the fitted parameters, which may exceed it)
+goes to standard error, or with --json the output is {\"object\": …, \"report\": …};
+--per-point adds every residual.
 
 Examples:
   lekalo fit scan.csv --ctrl 20 -o fit.json
