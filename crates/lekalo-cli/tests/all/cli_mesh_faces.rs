@@ -61,6 +61,32 @@ fn mesh_of_face_lines_leaves_the_hole_out() {
 }
 
 #[test]
+fn mesh_of_face_lines_on_standard_input_is_that_of_the_file() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
+    let lines = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    let from_file = lekalo()
+        .args(["mesh", "--tolerance", "1e-3", "--json"])
+        .arg(p(&d, "faces.jsonl"))
+        .arg("-o")
+        .arg(p(&d, "file.obj"))
+        .assert()
+        .success();
+    // `-` is read once and recognised by its first line, as a file of face envelopes is
+    let from_stdin = lekalo()
+        .args(["mesh", "-", "--tolerance", "1e-3", "--json", "-o"])
+        .arg(p(&d, "stdin.obj"))
+        .write_stdin(lines)
+        .assert()
+        .success();
+    assert_eq!(last_stderr_json(&from_stdin), last_stderr_json(&from_file));
+    assert_eq!(
+        fs::read_to_string(p(&d, "stdin.obj")).unwrap(),
+        fs::read_to_string(p(&d, "file.obj")).unwrap()
+    );
+}
+
+#[test]
 fn mesh_of_faces_refuses_a_tolerance_too_small() {
     let d = dir_with(&[("plate.step", PLATE)]);
     convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();

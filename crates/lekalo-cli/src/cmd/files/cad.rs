@@ -176,6 +176,12 @@ pub(crate) fn face_lines(path: &Path) -> Result<Option<Vec<lekalo_io::StepFace>>
         return Ok(None);
     }
     let (text, name) = lekalo_io::read_input(path)?;
+    face_lines_in(&text, &name)
+}
+
+/// The faces of `text` (read from `name`) when its first line is a face envelope, `None`
+/// otherwise: for input read once whatever it is, as standard input must be.
+pub(crate) fn face_lines_in(text: &str, name: &str) -> Result<Option<Vec<lekalo_io::StepFace>>> {
     let mut lines = text
         .lines()
         .enumerate()

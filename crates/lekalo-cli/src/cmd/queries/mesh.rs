@@ -62,10 +62,17 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
     let bad = |e: lekalo::Error| in_file(&a.input, e);
     let fmt = format_of(a.format.as_deref(), a.output.as_deref(), "obj");
     // the faces of a STEP or IGES file as those of a face JSON Lines file (`convert --faces`)
-    let faces = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
-        Some(crate::cmd::files::cad::read_faces(&a.input, cx)?.faces)
+    // any other input is read once (standard input cannot be read twice) and holds faces when
+    // its first line is a face envelope, whatever the file's name
+    let (faces, read) = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
+        (
+            Some(crate::cmd::files::cad::read_faces(&a.input, cx)?.faces),
+            None,
+        )
     } else {
-        crate::cmd::files::cad::face_lines(&a.input)?
+        let (text, name) = lekalo_io::read_input(&a.input)?;
+        let faces = crate::cmd::files::cad::face_lines_in(&text, &name)?;
+        (faces, Some((text, name)))
     };
     if let Some(faces) = faces {
         // an edge without its (u, v) curve gets one by projection; a face that still cannot be
@@ -172,7 +179,10 @@ pub(crate) fn run(a: &MeshArgs, cx: &Context) -> Result<()> {
         }
         return Ok(());
     }
-    let (text, name) = lekalo_io::read_input(&a.input)?;
+    let (text, name) = match read {
+        Some(read) => read,
+        None => lekalo_io::read_input(&a.input)?,
+    };
     let objects = text.lines().filter(|l| !l.trim().is_empty()).count();
     if crate::items::is_json_lines(&a.input, false) && objects > 1 {
         // JSON Lines that are not face envelopes (a batch of curves or surfaces): one object a call
