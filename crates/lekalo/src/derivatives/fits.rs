@@ -252,6 +252,29 @@ mod tests {
         }
     }
 
+    /// The JVP of each unit data vector `e_j` (`j` in `js`) against the central differences of
+    /// `values` in `y[j]`, and the VJP of `g` against `g · (∂values/∂y_j)`, both to 1e-8.
+    fn check_against_differences(
+        values: impl Fn(&[f64]) -> Vec<f64>,
+        jvp: impl Fn(&[f64]) -> Vec<f64>,
+        gq: &[f64],
+        g: &[f64],
+        y: &[f64],
+        js: [usize; 4],
+    ) {
+        for j in js {
+            let mut e = vec![0.0; y.len()];
+            e[j] = 1.0;
+            let fd = column(&values, y, j);
+            assert_close(&jvp(&e), &fd, 1e-8);
+            let dot: f64 = g.iter().zip(&fd).map(|(a, b)| a * b).sum();
+            assert!(
+                (gq[j] - dot).abs() <= 1e-8 * dot.abs().max(1.0),
+                "VJP entry {j}"
+            );
+        }
+    }
+
     #[test]
     fn least_squares_derivatives_are_differences_of_the_values() {
         let (x, y, w) = case();
@@ -265,17 +288,8 @@ mod tests {
             };
             let g: Vec<f64> = (0..12).map(|i| (i as f64 * 0.7).sin()).collect();
             let gq = fit.vjp(&g).unwrap();
-            for j in [0, 7, 31, 49] {
-                let mut e = vec![0.0; 50];
-                e[j] = 1.0;
-                let fd = column(values, &y, j);
-                assert_close(&fit.jvp(&e).unwrap(), &fd, 1e-8);
-                let dot: f64 = g.iter().zip(&fd).map(|(a, b)| a * b).sum();
-                assert!(
-                    (gq[j] - dot).abs() <= 1e-8 * dot.abs().max(1.0),
-                    "VJP entry {j}"
-                );
-            }
+            let jvp = |e: &[f64]| fit.jvp(e).unwrap();
+            check_against_differences(values, jvp, &gq, &g, &y, [0, 7, 31, 49]);
         }
     }
 
@@ -291,17 +305,8 @@ mod tests {
             assert_eq!(fit.control_points().unwrap().len(), 27 * 2);
             let g: Vec<f64> = (0..54).map(|i| (i as f64 * 0.3).cos()).collect();
             let gq = fit.vjp(&g).unwrap();
-            for j in [0, 12, 33, 49] {
-                let mut e = vec![0.0; 50];
-                e[j] = 1.0;
-                let fd = column(values, &y, j);
-                assert_close(&fit.jvp(&e).unwrap(), &fd, 1e-8);
-                let dot: f64 = g.iter().zip(&fd).map(|(a, b)| a * b).sum();
-                assert!(
-                    (gq[j] - dot).abs() <= 1e-8 * dot.abs().max(1.0),
-                    "VJP entry {j}"
-                );
-            }
+            let jvp = |e: &[f64]| fit.jvp(e).unwrap();
+            check_against_differences(values, jvp, &gq, &g, &y, [0, 12, 33, 49]);
         }
     }
 
