@@ -17,20 +17,25 @@
 //! | `row.rs` | `Row`: a linear function of the coefficients local to a span, the unit of every program (crate-private) |
 //! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, the polish on the active face, infeasibility certificates mapped back to constraints (crate-private) |
 //! | `face_rows.rs` | the rows of a polished face: duplicates dropped, and on a degenerate face the independent ones, by Givens rotations along the band (crate-private) |
-//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`], [`shape_violations`]; the rows of each piece and the working set |
+//! | `check.rs` | [`shape_violations`], [`SHAPE_RTOL`]: the exact check of a curve against the constraints, and the scales it is measured in (crate-private otherwise) |
+//! | `working_set.rs` | the cone program on a working set of pieces grown until its optimum keeps every row, the polish and the exact check of its answer (crate-private) |
+//! | `fits.rs` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: the unconstrained fit first, the working set when it breaks a constraint |
 
 mod bernstein;
+mod check;
 mod constraints;
 mod face_rows;
 mod fits;
 mod program;
 mod row;
+mod working_set;
 
+pub use check::{shape_violations, SHAPE_RTOL};
 pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
 pub use fits::{
     constrained_least_squares, constrained_smoothing_condition,
     constrained_smoothing_condition_with_progress, constrained_smoothing_spline,
-    constrained_smoothing_spline_with_progress, shape_violations, CONDITION_RTOL, SHAPE_RTOL,
+    constrained_smoothing_spline_with_progress, CONDITION_RTOL,
 };
 
 #[cfg(test)]

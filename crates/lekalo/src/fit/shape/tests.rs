@@ -381,8 +381,10 @@ fn the_working_set_gives_the_whole_program_s_answer() {
             .with_point(0.0, 0, 0.0),
     ] {
         let ws =
-            fits::constrained_least_squares_by(&data, 3, &kv, &c, fits::Rows::WorkingSet).unwrap();
-        let all = fits::constrained_least_squares_by(&data, 3, &kv, &c, fits::Rows::All).unwrap();
+            fits::constrained_least_squares_by(&data, 3, &kv, &c, working_set::Rows::WorkingSet)
+                .unwrap();
+        let all =
+            fits::constrained_least_squares_by(&data, 3, &kv, &c, working_set::Rows::All).unwrap();
         let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
         assert!(
             ws.report.weighted_rss > free.report.weighted_rss,
