@@ -6,6 +6,9 @@
 //! Each message names the argument, the offending values and, where there is one, the fix.
 
 use crate::arg::{Arg, What};
+use crate::message::support_box;
+pub use crate::message::ControlSupport;
+pub(crate) use crate::message::{readable, NthDirection};
 
 /// Result alias used throughout the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
@@ -712,71 +715,6 @@ pub(crate) fn check_finite(what: impl Into<What>, values: &[f64]) -> Result<()> 
     }
 }
 
-/// A number as error messages write it: as Rust writes it for `1e-5 ≤ |x| < 1e16`, zero and
-/// non-finite values (`0.25`, `3`, `NaN`), in exponent notation otherwise (`1e-300`, `2.5e300`),
-/// so that no message holds a 300-digit decimal.
-pub(crate) struct Readable(f64);
-
-impl std::fmt::Display for Readable {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let x = self.0;
-        if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
-            write!(f, "{x}")
-        } else {
-            write!(f, "{x:e}")
-        }
-    }
-}
-
-/// A direction of a tensor-product spline as messages name it, by its ordinal counted from the
-/// first (`1st direction`, `2nd direction`, ...): index `a` of the library (Python's axis `a`)
-/// is the command line's direction `a + 1` (`--params-in 1=...`, the columns `x1 … xN`), and an
-/// ordinal reads right in both numberings.
-pub(crate) struct NthDirection(pub(crate) usize);
-
-impl std::fmt::Display for NthDirection {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = self.0.saturating_add(1);
-        let suffix = match (n % 10, n % 100) {
-            (_, 11..=13) => "th",
-            (1, _) => "st",
-            (2, _) => "nd",
-            (3, _) => "rd",
-            _ => "th",
-        };
-        write!(f, "{n}{suffix} direction")
-    }
-}
-
-/// A control point of a tensor-product spline in `N` variables and its support, the box
-/// `Π_a [t_{a,i_a}, t_{a,i_a+p_a+1}]` where its basis function is positive
-/// ([`Error::EmptySupport`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ControlSupport {
-    /// The control point's index in each direction.
-    pub index: Vec<usize>,
-    /// The lower corner of its support (one knot per direction).
-    pub lower: Vec<f64>,
-    /// The upper corner of its support.
-    pub upper: Vec<f64>,
-}
-
-/// The box `[a_0, b_0] × … × [a_{N−1}, b_{N−1}]` of [`Error::EmptySupport`].
-fn support_box(lower: &[f64], upper: &[f64]) -> String {
-    let sides: Vec<String> = lower
-        .iter()
-        .zip(upper)
-        .map(|(a, b)| format!("[{a}, {b}]", a = readable(a), b = readable(b)))
-        .collect();
-    sides.join(" × ")
-}
-
-/// [`Readable`] of a field (the messages above take their fields by reference).
-#[allow(clippy::trivially_copy_pass_by_ref)] // called with the `&f64` thiserror passes
-pub(crate) fn readable(x: &f64) -> Readable {
-    Readable(*x)
-}
-
 /// Largest number of scalars any single object may hold (2^31 f64 = 16 GiB): larger requests are
 /// refused with [`Error::TooLarge`] instead of being allocated.
 pub const MAX_SCALARS: usize = 1 << 31;
@@ -828,7 +766,7 @@ pub(crate) fn check_degree_bound(degree: usize) -> Result<()> {
     if degree > MAX_DEGREE {
         return Err(Error::Degree {
             degree,
-            reason: format!("at most {MAX_DEGREE} (lekalo::MAX_DEGREE) is supported"),
+            reason: format!("at most {MAX_DEGREE} is supported"),
         });
     }
     Ok(())
@@ -845,6 +783,18 @@ mod tests {
         assert!(
             matches!(e, Error::NonFinite { what, index: 1, .. } if what.words() == "x"),
             "got {e:?}"
+        );
+    }
+
+    #[test]
+    fn the_degree_bound_names_the_number_not_the_constant() {
+        let e = check_degree_bound(MAX_DEGREE + 1).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "degree {} is not allowed here: at most {MAX_DEGREE} is supported",
+                MAX_DEGREE + 1
+            )
         );
     }
 

@@ -57,6 +57,7 @@ mod arg;
 pub mod basis;
 mod error;
 mod knots;
+mod message;
 mod points;
 
 pub use arg::{Arg, What};
