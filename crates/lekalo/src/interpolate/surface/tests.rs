@@ -1,3 +1,4 @@
+use super::grid_params::{chord_params, chord_params_body, line_params};
 use super::*;
 
 /// The bit patterns of `v`, for comparisons that must be exact.
