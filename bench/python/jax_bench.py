@@ -18,9 +18,14 @@ workloads, each a `jax.jit`-compiled function of its arrays:
 - small call: one parameter, evaluation and gradient: the cost of calling from JAX, beside the
   floor of any host callback (a `jax.pure_callback` that returns its input) and that of JAX's
   own dispatch of a compiled function of the same arrays (`c[:1] * u`, no custom call);
-- small calls of lekalo alone (interpax has no NURBS or fits): `nurbs_eval` and its gradient
-  at one parameter on the same knots (weights 1 + 0.5 sin), `fit_least_squares` of 40 points
-  on 7 cubic control points and `fit_smoothing` of 40 points, values and gradient in the data.
+- the floor of an FFI call: JAX's dispatch of lekalo's target on a curve of degree 0 with one
+  control point (next to nothing read or computed); lekalo's own share of a small call is its
+  time less this one;
+- small calls of lekalo alone (interpax has no NURBS, fits or tensor splines): `nurbs_eval` and
+  its gradient at one parameter on the same knots (weights 1 + 0.5 sin), `fit_least_squares`
+  of 40 points on 7 cubic control points and `fit_smoothing` of 40 points, values and gradient
+  in the data, a bicubic surface on a 24 × 24 net at one pair and a tricubic tensor spline on a
+  24³ net at one point, values and gradient in the net (the in-place path).
 
 Timing: the median of --repeats samples, each a call (ended by `block_until_ready`) repeated to
 at least --sample seconds, after one call that compiles; lekalo is timed just before and just
@@ -51,10 +56,12 @@ from scipy import interpolate as si  # noqa: E402
 import lekalo  # noqa: E402
 from lekalo.jax import (  # noqa: E402
     bspline_eval,
+    bspline_surface_eval,
     fit_least_squares,
     fit_smoothing,
     interpolate,
     nurbs_eval,
+    tensor_bspline_eval,
 )
 
 LARGE_GOAL = 10.0
@@ -167,9 +174,18 @@ def main() -> None:
     # and JAX's own dispatch of a compiled function of the same arguments, no custom call
     plain = jax.jit(lambda c, s: c[:1] * s)
     dispatch = timed(lambda: plain(ctrl, u1j), a.repeats, a.sample)
+    # and JAX's dispatch of a trivial FFI call: lekalo's target on a curve of degree 0 with one
+    # control point (two knots), one parameter, so that next to nothing is read or computed
+    k0, p0, t0 = jnp.asarray([0.0, 1.0]), jnp.asarray([[2.0]]), jnp.asarray([0.42])
+    trivial = jax.jit(lambda c, s: bspline_eval(k0, c, s, 0))
+    ffi_floor = timed(lambda: trivial(p0, t0), a.repeats, a.sample)
     print(f"\nthe floor of a small call: a jit-compiled jax.pure_callback returning its input, "
           f"{floor * 1e6:.0f} us; a jit-compiled c[:1] * u of the same arrays (JAX's dispatch, "
-          f"no custom call), {dispatch * 1e6:.0f} us")
+          f"no custom call), {dispatch * 1e6:.0f} us; a trivial FFI call (bspline_eval of degree "
+          f"0 on one control point), {ffi_floor * 1e6:.0f} us")
+    for name, _, _, ours, _, _, _, _, _ in [r for r in rows if r[1] == 1]:
+        print(f"lekalo's own share of '{name}' (its time less the trivial FFI call): "
+              f"{(ours - ffi_floor) * 1e6:.1f} us")
     # lekalo alone: small calls of the other targets
     ws = jnp.asarray(1.0 + 0.5 * np.sin(np.arange(n)))
     c2 = ctrl[:, None]
@@ -194,6 +210,23 @@ def main() -> None:
     print("|---|---|")
     for name, f in alone:
         print(f"| {name} | {timed(f, a.repeats, a.sample) * 1e6:.1f} |", flush=True)
+    # surfaces and tensor splines: one point on a large net (the in-place path)
+    rng2 = np.random.default_rng(2)
+    k24 = jnp.asarray(np.r_[[0.0] * 3, np.linspace(0, 1, 22), [1.0] * 3])
+    net = jnp.asarray(rng2.uniform(-1, 1, (24, 24, 3)))
+    tnet = jnp.asarray(rng2.uniform(-1, 1, (24, 24, 24)))
+    a1, b1, x1 = jnp.asarray([0.42]), jnp.asarray([0.37]), jnp.asarray([[0.42, 0.37, 0.61]])
+    surf = lambda c: bspline_surface_eval(k24, k24, c, a1, b1, 3, 3)  # noqa: E731
+    tens = lambda c: tensor_bspline_eval((k24, k24, k24), c, x1, (3, 3, 3))  # noqa: E731
+    nets = [
+        ("bspline_surface_eval, one pair, bicubic 24 x 24 net", jax.jit(surf), net),
+        ("its gradient in the net", jax.jit(jax.grad(lambda c: jnp.sum(surf(c)))), net),
+        ("tensor_bspline_eval, one point, tricubic 24^3 net", jax.jit(tens), tnet),
+        ("its gradient in the net", jax.jit(jax.grad(lambda c: jnp.sum(tens(c)))), tnet),
+    ]
+    for name, f, c in nets:
+        print(f"| {name} | {timed(lambda: f(c), a.repeats, a.sample) * 1e6:.1f} |", flush=True)
+    print(f"\nload average at the end {os.getloadavg()[0]:.1f}")
     missed = [r[0] for r in rows if not r[6]]
     print(f"\n{len(rows) - len(missed)} of {len(rows)} workloads meet their goal"
           + (f"; missed: {', '.join(missed)}" if missed else ""))

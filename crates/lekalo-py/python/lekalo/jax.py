@@ -25,9 +25,10 @@ custom calls (FFI targets written against XLA's C ABI in the native module,
 reference de Boor evaluation for small batches and the fast evaluator of
 ``lekalo.BSplineCurve.__call__`` / ``lekalo.NurbsCurve.__call__`` from 16 parameters a
 polynomial piece, the two agreeing to 1e-14 relative to the control points; for surfaces and
-tensor splines, bit for bit ``eval_batch``). A B-spline curve evaluated at fewer than one
-parameter for every ``degree + 1`` control points (a small call) is evaluated in place on the
-arrays, checking only the knots and control points of the spans used (the same numbers, and
+tensor splines, bit for bit ``eval_batch``). A curve evaluated at fewer than one parameter for
+every ``degree + 1`` control points, and a surface or tensor spline at fewer than one point for
+every ``Π (degree + 1)`` net points (a small call), is evaluated in place on the arrays,
+checking only the knots and control points of the spans (cells) used (the same numbers, and
 lekalo's error for a bad number in them); the JVPs and VJPs are lekalo's kernels
 (``lekalo.bspline_curve_jvp``, ``lekalo.nurbs_curve_vjp``, ``lekalo.bspline_surface_vjp``,
 ``lekalo.tensor_bspline_vjp`` and their twins), so ``jax.grad`` runs lekalo's reverse-mode
@@ -35,11 +36,10 @@ kernel.
 
 ``interpolate`` runs the same way, as FFI targets for its values, JVP and VJP (the banded
 solve, its adjoint and the interpolant's derivative at the parameters,
-``lekalo::derivatives::Interpolant``). The fits still call lekalo through ``jax.pure_callback``
-(bit-for-bit the library's solution, about 0.2 to 0.3 ms a call for the callback alone); their
-derivatives come from the library's linearisation: the sparse basis matrix, ``p + 1`` entries a
-parameter, applied by a JAX gather (JVP) whose transpose JAX derives (a scatter, for VJP)
-(``docs/theory/derivatives.md``).
+``lekalo::derivatives::Interpolant``), and so do the fits (``fit_least_squares``,
+``fit_smoothing``: bit-for-bit the library's control points, and the derivatives in the data by
+the fit's banded factorisation, ``lekalo::derivatives::LeastSquaresFit``, ``SmoothingFit``).
+No function here calls back to Python.
 
 Requirements and limits, each with a clear error:
 
@@ -48,12 +48,11 @@ Requirements and limits, each with a clear error:
   ``NotImplementedError``;
 - no derivatives with respect to the knots (``NotImplementedError``): pass them as constants;
 - parameters must lie in the domain (and NURBS weights be positive): otherwise the error
-  raised inside lekalo (the FFI target or the callback) reaches the caller carrying lekalo's
+  raised inside lekalo's FFI target reaches the caller carrying lekalo's
   message, which names the parameter and the domain (eagerly and under ``jit``), as
   ``jax.errors.JaxRuntimeError``, or as ``ValueError`` when JAX runs an already compiled
   function through its C++ fast path;
-- runs on the CPU: the FFI targets are registered for the CPU platform only, and the callbacks
-  copy device arrays to the host.
+- runs on the CPU: the FFI targets are registered for the CPU platform only.
 
 >>> import jax, jax.numpy as jnp
 >>> jax.config.update("jax_enable_x64", True)

@@ -11,8 +11,12 @@
 //! The bracketed buffers are present when the attribute of the same name is true; every buffer
 //! may have leading batch axes (the same for all). The values are
 //! [`BSplineSurface::eval_batch`]'s (P&T A3.5), the JVP [`BSplineSurface::eval_batch_jvp`]'s,
-//! the VJP [`BSplineSurface::eval_batch_vjp`]'s.
+//! the VJP [`BSplineSurface::eval_batch_vjp`]'s. For a batch element with few pairs against
+//! its net ([`in_place`]) the three are [`BorrowedSurface`]'s on the operand buffers themselves
+//! (the same numbers): no copy of the net, and only the knots and net points the pairs' cells
+//! read are checked.
 
+use lekalo::derivatives::BorrowedSurface;
 use lekalo::{BSplineSurface, Points};
 
 use super::abi::{Call, In};
@@ -92,6 +96,24 @@ impl<'a> Layout<'a> {
         .map_err(|e| e.to_string())
     }
 
+    /// The surface of batch element `b` on the operand buffers (as [`Layout::surface`]).
+    fn borrowed<'r>(
+        &self,
+        degrees: (usize, usize),
+        res: &[In<'r>],
+        b: usize,
+    ) -> Result<BorrowedSurface<'r>, String> {
+        let [sku, skv, sn, _] = self.sizes;
+        let knots = (element(res[0].data, sku, b), element(res[1].data, skv, b));
+        let net = element(res[2].data, sn, b);
+        BorrowedSurface::new(degrees, knots, net, self.net, self.dim).map_err(|e| e.to_string())
+    }
+
+    /// Whether the batch's elements are evaluated in place ([`in_place`]).
+    fn in_place(&self, (p, q): (usize, usize)) -> bool {
+        in_place(self.sizes[3] / 2, self.net, (p, q))
+    }
+
     /// The parameter pairs of batch element `b`.
     fn uv(&self, res: &[In<'_>], b: usize) -> Vec<[f64; 2]> {
         pairs(element(res[3].data, self.sizes[3], b))
@@ -105,6 +127,14 @@ fn pairs(flat: &[f64]) -> Vec<[f64; 2]> {
     flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect()
 }
 
+/// Whether `m` pairs on a net of `nu × nv` points of degrees `(p, q)` are evaluated in place
+/// ([`BorrowedSurface`]) rather than on a built surface: when they read fewer net points than
+/// building it copies and validates, `m · (p + 1)(q + 1) ≤ nu · nv` (each pair reads and
+/// checks a `(p + 1) × (q + 1)` block and `2p + 2 + 2q + 2` knots).
+fn in_place(m: usize, (nu, nv): (usize, usize), (p, q): (usize, usize)) -> bool {
+    m.saturating_mul((p + 1).saturating_mul(q + 1)) <= nu.saturating_mul(nv)
+}
+
 fn degrees(call: &Call<'_>) -> Result<(usize, usize), String> {
     Ok((count_attr(call, "degree_u")?, count_attr(call, "degree_v")?))
 }
@@ -115,10 +145,15 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
     let layout = Layout::of(args)?;
     let values = single(rets)?;
     let sv = layout.batch.size("values", values.dims, 2)?;
+    let small = layout.in_place(degrees);
     for b in 0..layout.batch.count {
-        let s = layout.surface(degrees, args, b)?;
-        s.eval_batch(&layout.uv(args, b), element_mut(values.data, sv, b))
-            .map_err(|e| e.to_string())?;
+        let (uv, out) = (layout.uv(args, b), element_mut(values.data, sv, b));
+        let done = if small {
+            layout.borrowed(degrees, args, b)?.eval_batch(&uv, out)
+        } else {
+            layout.surface(degrees, args, b)?.eval_batch(&uv, out)
+        };
+        done.map_err(|e| e.to_string())?;
     }
     Ok(())
 }
@@ -139,18 +174,20 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
         batch.expect("parameter tangent", a.dims, 2, sp)?;
     }
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let mut values = vec![0.0; sv];
+    let small = layout.in_place(degrees);
+    let mut values = vec![0.0; if small { 0 } else { sv }];
     for b in 0..batch.count {
-        let s = layout.surface(degrees, res, b)?;
         let duv = duv.map(|a| pairs(element(a.data, sp, b)));
-        s.eval_batch_jvp(
-            &layout.uv(res, b),
-            dc.map(|a| element(a.data, sn, b)),
-            duv.as_deref(),
-            &mut values,
-            element_mut(tangent.data, sv, b),
-        )
-        .map_err(|e| e.to_string())?;
+        let (uv, dc) = (layout.uv(res, b), dc.map(|a| element(a.data, sn, b)));
+        let out = element_mut(tangent.data, sv, b);
+        let done = if small {
+            let s = layout.borrowed(degrees, res, b)?;
+            s.eval_batch_jvp(&uv, dc, duv.as_deref(), out)
+        } else {
+            let s = layout.surface(degrees, res, b)?;
+            s.eval_batch_jvp(&uv, dc, duv.as_deref(), &mut values, out)
+        };
+        done.map_err(|e| e.to_string())?;
     }
     Ok(())
 }
@@ -173,15 +210,21 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     }
     // the parameter cotangent as pairs, copied into the result after each element
     let mut pairs_out = vec![[0.0; 2]; if guv.is_some() { sp / 2 } else { 0 }];
+    let small = layout.in_place(degrees);
     for b in 0..batch.count {
-        let s = layout.surface(degrees, res, b)?;
-        s.eval_batch_vjp(
-            &layout.uv(res, b),
-            element(g.data, sg, b),
-            gc.as_mut().map(|a| element_mut(a.data, sn, b)),
-            guv.is_some().then_some(&mut pairs_out[..]),
-        )
-        .map_err(|e| e.to_string())?;
+        let (uv, g) = (layout.uv(res, b), element(g.data, sg, b));
+        let gc = gc.as_mut().map(|a| element_mut(a.data, sn, b));
+        let guv_b = guv.is_some().then_some(&mut pairs_out[..]);
+        let done = if small {
+            layout
+                .borrowed(degrees, res, b)?
+                .eval_batch_vjp(&uv, g, gc, guv_b)
+        } else {
+            layout
+                .surface(degrees, res, b)?
+                .eval_batch_vjp(&uv, g, gc, guv_b)
+        };
+        done.map_err(|e| e.to_string())?;
         if let Some(a) = guv.as_mut() {
             element_mut(a.data, sp, b).copy_from_slice(pairs_out.as_flattened());
         }

@@ -12,8 +12,12 @@
 //! The bracketed buffers are present when the attribute of the same name is true; every buffer
 //! may have leading batch axes (the same for all). The values are
 //! [`TensorBSpline::eval_batch`]'s (P&T A2.2 a direction), the JVP
-//! [`TensorBSpline::eval_batch_jvp`]'s, the VJP [`TensorBSpline::eval_batch_vjp`]'s.
+//! [`TensorBSpline::eval_batch_jvp`]'s, the VJP [`TensorBSpline::eval_batch_vjp`]'s. For a
+//! batch element with few points against its net ([`in_place`]) the three are
+//! [`BorrowedTensor`]'s on the operand buffers themselves (the same numbers): no copy of the
+//! net, and only the knots and net points the points' cells read are checked.
 
+use lekalo::derivatives::BorrowedTensor;
 use lekalo::{Points, TensorBSpline};
 
 use super::abi::{Call, In};
@@ -100,6 +104,34 @@ impl<'a> Layout<'a> {
         TensorBSpline::new(degrees.to_vec(), knots, points).map_err(|e| e.to_string())
     }
 
+    /// The spline of batch element `b` on the operand buffers (as [`Layout::spline`]).
+    fn borrowed<'r>(
+        &self,
+        degrees: &'r [usize],
+        res: &[In<'r>],
+        b: usize,
+    ) -> Result<BorrowedTensor<'r>, String> {
+        let n = degrees.len();
+        let knots = (0..n)
+            .map(|a| element(res[a].data, self.sizes[a], b))
+            .collect();
+        let net = element(res[n].data, self.sizes[n], b);
+        BorrowedTensor::new(degrees, knots, net, self.dim).map_err(|e| e.to_string())
+    }
+
+    /// Whether `m` points on this net are evaluated in place ([`BorrowedTensor`]) rather than
+    /// on a built spline: when they read fewer net points than building it copies and
+    /// validates, `m · Π_a (p_a + 1) ≤ Π_a n_a` (each point reads and checks a
+    /// `Π_a (p_a + 1)` block and `2p_a + 2` knots a direction).
+    fn in_place(&self, degrees: &[usize]) -> bool {
+        let n = degrees.len();
+        let m = self.sizes[n + 1] / n.max(1);
+        let block = degrees
+            .iter()
+            .fold(1usize, |acc, p| acc.saturating_mul(p + 1));
+        m.saturating_mul(block) <= self.sizes[n] / self.dim.max(1)
+    }
+
     /// The element sizes of the net and of the points.
     fn net_and_points(&self) -> (usize, usize) {
         let n = self.sizes.len() - 2;
@@ -115,14 +147,15 @@ fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
     let values = single(rets)?;
     let sv = layout.batch.size("values", values.dims, 2)?;
     let x = &args[degrees.len() + 1];
+    let small = layout.in_place(&degrees);
     for b in 0..layout.batch.count {
-        let s = layout.spline(&degrees, args, b)?;
-        s.eval_batch(
-            element(x.data, sx, b),
-            None,
-            element_mut(values.data, sv, b),
-        )
-        .map_err(|e| e.to_string())?;
+        let (xs, out) = (element(x.data, sx, b), element_mut(values.data, sv, b));
+        let done = if small {
+            layout.borrowed(&degrees, args, b)?.eval_batch(xs, out)
+        } else {
+            layout.spline(&degrees, args, b)?.eval_batch(xs, None, out)
+        };
+        done.map_err(|e| e.to_string())?;
     }
     Ok(())
 }
@@ -144,17 +177,22 @@ fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
         batch.expect("point tangent", a.dims, 2, sx)?;
     }
     // the values the JVP kernel also computes, not returned (XLA has them from the evaluation)
-    let mut values = vec![0.0; sv];
+    let small = layout.in_place(&degrees);
+    let mut values = vec![0.0; if small { 0 } else { sv }];
     for b in 0..batch.count {
-        let s = layout.spline(&degrees, res, b)?;
-        s.eval_batch_jvp(
-            element(res[n + 1].data, sx, b),
-            dc.map(|a| element(a.data, sn, b)),
-            dx.map(|a| element(a.data, sx, b)),
-            &mut values,
-            element_mut(tangent.data, sv, b),
-        )
-        .map_err(|e| e.to_string())?;
+        let xs = element(res[n + 1].data, sx, b);
+        let dc = dc.map(|a| element(a.data, sn, b));
+        let dx = dx.map(|a| element(a.data, sx, b));
+        let out = element_mut(tangent.data, sv, b);
+        let done = if small {
+            layout
+                .borrowed(&degrees, res, b)?
+                .eval_batch_jvp(xs, dc, dx, out)
+        } else {
+            let s = layout.spline(&degrees, res, b)?;
+            s.eval_batch_jvp(xs, dc, dx, &mut values, out)
+        };
+        done.map_err(|e| e.to_string())?;
     }
     Ok(())
 }
@@ -176,15 +214,21 @@ fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
     if let Some(a) = &gx {
         batch.expect("point cotangent", a.dims, 2, sx)?;
     }
+    let small = layout.in_place(&degrees);
     for b in 0..batch.count {
-        let s = layout.spline(&degrees, res, b)?;
-        s.eval_batch_vjp(
-            element(res[n + 1].data, sx, b),
-            element(g.data, sg, b),
-            gc.as_mut().map(|a| element_mut(a.data, sn, b)),
-            gx.as_mut().map(|a| element_mut(a.data, sx, b)),
-        )
-        .map_err(|e| e.to_string())?;
+        let (xs, g) = (element(res[n + 1].data, sx, b), element(g.data, sg, b));
+        let gc = gc.as_mut().map(|a| element_mut(a.data, sn, b));
+        let gx = gx.as_mut().map(|a| element_mut(a.data, sx, b));
+        let done = if small {
+            layout
+                .borrowed(&degrees, res, b)?
+                .eval_batch_vjp(xs, g, gc, gx)
+        } else {
+            layout
+                .spline(&degrees, res, b)?
+                .eval_batch_vjp(xs, g, gc, gx)
+        };
+        done.map_err(|e| e.to_string())?;
     }
     Ok(())
 }

@@ -86,6 +86,117 @@ pub(super) fn combine(net: &[f64], dim: usize, first: usize, n: &[f64], out: &mu
     }
 }
 
+/// The buffers of a curve's JVP ([`BSplineCurve::eval_batch_jvp`] and the borrowed curve's):
+/// the tangent output `ts_len × dim`, the control-point tangent as the control points
+/// (`control_len` numbers) and the parameter tangent one a parameter, the tangents finite.
+pub(super) fn check_jvp_buffers(
+    (ts_len, dim, control_len): (usize, usize, usize),
+    control_tangent: Option<&[f64]>,
+    parameter_tangent: Option<&[f64]>,
+    tangent_out: &[f64],
+) -> Result<()> {
+    check_len(
+        "tangent output buffer (parameters × dimension)",
+        ts_len.saturating_mul(dim),
+        tangent_out.len(),
+    )?;
+    check_input(
+        "control-point tangent (as the control points)",
+        control_len,
+        control_tangent,
+    )?;
+    check_input(
+        "parameter tangent (one a parameter)",
+        ts_len,
+        parameter_tangent,
+    )
+}
+
+/// The buffers of a curve's VJP ([`BSplineCurve::eval_batch_vjp`] and the borrowed curve's):
+/// the cotangent `ts_len × dim`, the control-point cotangent as the control points
+/// (`control_len` numbers, zeroed here) and the parameter cotangent one a parameter. The
+/// cotangent's finiteness is the caller's (the large-batch path reads it from its sums).
+pub(super) fn check_vjp_buffers(
+    (ts_len, dim, control_len): (usize, usize, usize),
+    cotangent: &[f64],
+    control_cotangent: Option<&mut [f64]>,
+    parameter_cotangent: Option<&[f64]>,
+) -> Result<()> {
+    check_len(
+        "cotangent (parameters × dimension)",
+        ts_len.saturating_mul(dim),
+        cotangent.len(),
+    )?;
+    zeroed_output(
+        "control-point cotangent buffer (as the control points)",
+        control_len,
+        control_cotangent,
+    )?;
+    check_output(
+        "parameter cotangent buffer (one a parameter)",
+        ts_len,
+        parameter_cotangent,
+    )
+}
+
+/// The tangent at one parameter, `d = Σ_k N_k Ṗ_{first+k} + C'(t) ṫ` (`dt` the parameter's
+/// tangent `ṫ`; `None` tangents are zero), from its basis (`first` the span's first control
+/// point, `slope` scratch of `dim` numbers): the body of every curve JVP loop, so that the built
+/// and the borrowed curve sum in the same order (the same bits).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)] // a net, its layout, a basis, two tangents and two buffers
+pub(super) fn jvp_point(
+    ctrl: &[f64],
+    dim: usize,
+    first: usize,
+    basis: &PointBasis,
+    control_tangent: Option<&[f64]>,
+    dt: Option<f64>,
+    slope: &mut [f64],
+    d: &mut [f64],
+) {
+    match control_tangent {
+        Some(dp) => combine(dp, dim, first, basis.values(), d),
+        None => d.fill(0.0),
+    }
+    if let Some(dt) = dt {
+        combine(ctrl, dim, first, basis.slopes(), slope);
+        for (x, s) in d.iter_mut().zip(slope.iter()) {
+            *x += s * dt;
+        }
+    }
+}
+
+/// The cotangents of one parameter for its output cotangent `g`: `N_k g` summed into the
+/// control points `first ..= first + p` of `control_cotangent`, and `g · C'(t)` into
+/// `parameter` (each when given; `slope` scratch of `dim` numbers): the body of every curve VJP
+/// loop, shared as [`jvp_point`] is.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)] // a net, its layout, a basis, a cotangent and three buffers
+pub(super) fn vjp_point(
+    ctrl: &[f64],
+    dim: usize,
+    first: usize,
+    basis: &PointBasis,
+    g: &[f64],
+    control_cotangent: Option<&mut [f64]>,
+    parameter: Option<&mut f64>,
+    slope: &mut [f64],
+) {
+    if let Some(gp) = control_cotangent {
+        let net = &mut gp[first * dim..(first + basis.values().len()) * dim];
+        for (nk, c) in basis.values().iter().zip(net.chunks_exact_mut(dim)) {
+            for (x, gi) in c.iter_mut().zip(g) {
+                *x += nk * gi;
+            }
+        }
+    }
+    if let Some(gt) = parameter {
+        combine(ctrl, dim, first, basis.slopes(), slope);
+        *gt = slope.iter().zip(g).map(|(s, gi)| s * gi).sum();
+    }
+}
+
 impl BSplineCurve {
     /// Checks `ts` and the point-major output `out` (`ts.len() × dim`).
     fn check_batch(&self, ts_len: usize, out_len: usize) -> Result<usize> {
@@ -138,21 +249,9 @@ impl BSplineCurve {
         tangent_out: &mut [f64],
     ) -> Result<()> {
         let dim = self.check_batch(ts.len(), out.len())?;
-        check_len(
-            "tangent output buffer (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            tangent_out.len(),
-        )?;
-        check_input(
-            "control-point tangent (as the control points)",
-            self.control_points().as_slice().len(),
-            control_tangent,
-        )?;
-        check_input(
-            "parameter tangent (one a parameter)",
-            ts.len(),
-            parameter_tangent,
-        )?;
+        let ctrl_len = self.control_points().as_slice().len();
+        let sizes = (ts.len(), dim, ctrl_len);
+        check_jvp_buffers(sizes, control_tangent, parameter_tangent, tangent_out)?;
         let (p, knots, ctrl) = (
             self.degree(),
             self.knots().as_slice(),
@@ -167,16 +266,8 @@ impl BSplineCurve {
         for (i, (&t, (o, d))) in ts.iter().zip(points).enumerate() {
             let first = basis.at(knots, p, cursor.find(t)?, t);
             combine(ctrl, dim, first, basis.values(), o);
-            match control_tangent {
-                Some(dp) => combine(dp, dim, first, basis.values(), d),
-                None => d.fill(0.0),
-            }
-            if let Some(dt) = parameter_tangent {
-                combine(ctrl, dim, first, basis.slopes(), &mut slope);
-                for (x, s) in d.iter_mut().zip(&slope) {
-                    *x += s * dt[i];
-                }
-            }
+            let dt = parameter_tangent.map(|dt| dt[i]);
+            jvp_point(ctrl, dim, first, &basis, control_tangent, dt, &mut slope, d);
         }
         Ok(())
     }
@@ -222,20 +313,11 @@ impl BSplineCurve {
         mut parameter_cotangent: Option<&mut [f64]>,
     ) -> Result<()> {
         let dim = self.dim();
-        check_len(
-            "cotangent (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            cotangent.len(),
-        )?;
         let ctrl = self.control_points().as_slice();
-        zeroed_output(
-            "control-point cotangent buffer (as the control points)",
-            ctrl.len(),
+        check_vjp_buffers(
+            (ts.len(), dim, ctrl.len()),
+            cotangent,
             control_cotangent.as_deref_mut(),
-        )?;
-        check_output(
-            "parameter cotangent buffer (one a parameter)",
-            ts.len(),
             parameter_cotangent.as_deref(),
         )?;
         if let (Some(gp), None) = (control_cotangent.as_deref_mut(), &parameter_cotangent) {
@@ -251,18 +333,9 @@ impl BSplineCurve {
         let mut slope = vec![0.0; dim];
         for (i, (&t, g)) in ts.iter().zip(cotangent.chunks_exact(dim)).enumerate() {
             let first = basis.at(knots, p, cursor.find(t)?, t);
-            if let Some(gp) = control_cotangent.as_deref_mut() {
-                let net = &mut gp[first * dim..(first + p + 1) * dim];
-                for (nk, c) in basis.values().iter().zip(net.chunks_exact_mut(dim)) {
-                    for (x, gi) in c.iter_mut().zip(g) {
-                        *x += nk * gi;
-                    }
-                }
-            }
-            if let Some(gt) = parameter_cotangent.as_deref_mut() {
-                combine(ctrl, dim, first, basis.slopes(), &mut slope);
-                gt[i] = slope.iter().zip(g).map(|(s, gi)| s * gi).sum();
-            }
+            let gt = parameter_cotangent.as_deref_mut().map(|gt| &mut gt[i]);
+            let gp = control_cotangent.as_deref_mut();
+            vjp_point(ctrl, dim, first, &basis, g, gp, gt, &mut slope);
         }
         Ok(())
     }

@@ -14,9 +14,10 @@
 //!   [`crate::BSplineCurve::eval_batch_linearize`] (values, `C'(t)` and the sparse rows of the
 //!   basis matrix, what an automatic-differentiation framework needs to build its own linear
 //!   map).
-//! - `borrowed/`: [`BorrowedCurve`] and [`BorrowedNurbs`], the values, JVP and VJP of
-//!   `curve.rs` and `nurbs.rs` for a few parameters on borrowed knots, control points and
-//!   weights, reading and checking only the spans used (no O(n) copy or validation a call).
+//! - `borrowed/`: [`BorrowedCurve`], [`BorrowedNurbs`], [`BorrowedSurface`] and
+//!   [`BorrowedTensor`], the values, JVP and VJP of `curve.rs`, `nurbs.rs`, `surface.rs` and
+//!   `tensor.rs` for a few parameters on borrowed knots, control points (nets) and weights,
+//!   reading and checking only the spans used (no O(n) copy or validation a call).
 //! - `nurbs.rs`: the same three for [`crate::NurbsCurve`], with respect to the control points,
 //!   the weights and the parameters.
 //! - `surface.rs`: the same three for [`crate::BSplineSurface`] at pairs `(u, v)`.
@@ -62,7 +63,7 @@ mod tensor;
 #[cfg(test)]
 mod tests;
 
-pub use borrowed::{BorrowedCurve, BorrowedNurbs};
+pub use borrowed::{BorrowedCurve, BorrowedNurbs, BorrowedSurface, BorrowedTensor};
 pub use curve::CurveLinearization;
 pub use fits::{LeastSquaresFit, SmoothingFit};
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};

@@ -13,13 +13,17 @@
 //! message; a parameter outside the domain gives [`Error::ParameterOutOfDomain`], as
 //! [`BSplineCurve::eval_batch`] does. The values are bit-for-bit those of
 //! [`BSplineCurve::eval_batch`], [`BSplineCurve::eval_batch_jvp`] and (below its large-batch
-//! path) [`BSplineCurve::eval_batch_vjp`]: the same basis (`slopes.rs`) and the same
-//! order of sums.
+//! path) [`BSplineCurve::eval_batch_vjp`]: the same basis (`slopes.rs`) and the same code,
+//! the built curve's buffer checks and per-parameter bodies (`derivatives/curve.rs`,
+//! `check_jvp_buffers`, `jvp_point`, `check_vjp_buffers`, `vjp_point`, forced inline), so
+//! only the location of the span differs.
 
 use super::{invalid_span, locate_span, window_counts};
 use crate::curve::BSplineCurve;
-use crate::derivatives::checks::{check_input, check_len, check_output, zeroed_output};
-use crate::derivatives::curve::{combine, PointBasis};
+use crate::derivatives::checks::check_len;
+use crate::derivatives::curve::{
+    check_jvp_buffers, check_vjp_buffers, combine, jvp_point, vjp_point, PointBasis,
+};
 use crate::error::{check_finite, Error, Result};
 use crate::points::Points;
 
@@ -121,35 +125,23 @@ impl<'a> BorrowedCurve<'a> {
         tangent_out: &mut [f64],
     ) -> Result<()> {
         let (p, dim) = (self.degree, self.dim);
-        check_len(
-            "tangent output buffer (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            tangent_out.len(),
-        )?;
-        check_input(
-            "control-point tangent (as the control points)",
-            self.control.len(),
-            control_tangent,
-        )?;
-        check_input(
-            "parameter tangent (one a parameter)",
-            ts.len(),
-            parameter_tangent,
-        )?;
+        let sizes = (ts.len(), dim, self.control.len());
+        check_jvp_buffers(sizes, control_tangent, parameter_tangent, tangent_out)?;
         let mut basis = PointBasis::new(p);
         let mut slope = vec![0.0; dim];
         for (i, (&t, d)) in ts.iter().zip(tangent_out.chunks_exact_mut(dim)).enumerate() {
             let first = basis.at(self.knots, p, self.locate(t)?, t);
-            match control_tangent {
-                Some(dp) => combine(dp, dim, first, basis.values(), d),
-                None => d.fill(0.0),
-            }
-            if let Some(dt) = parameter_tangent {
-                combine(self.control, dim, first, basis.slopes(), &mut slope);
-                for (x, s) in d.iter_mut().zip(&slope) {
-                    *x += s * dt[i];
-                }
-            }
+            let dt = parameter_tangent.map(|dt| dt[i]);
+            jvp_point(
+                self.control,
+                dim,
+                first,
+                &basis,
+                control_tangent,
+                dt,
+                &mut slope,
+                d,
+            );
         }
         Ok(())
     }
@@ -169,19 +161,10 @@ impl<'a> BorrowedCurve<'a> {
         mut parameter_cotangent: Option<&mut [f64]>,
     ) -> Result<()> {
         let (p, dim) = (self.degree, self.dim);
-        check_len(
-            "cotangent (parameters × dimension)",
-            ts.len().saturating_mul(dim),
-            cotangent.len(),
-        )?;
-        zeroed_output(
-            "control-point cotangent buffer (as the control points)",
-            self.control.len(),
+        check_vjp_buffers(
+            (ts.len(), dim, self.control.len()),
+            cotangent,
             control_cotangent.as_deref_mut(),
-        )?;
-        check_output(
-            "parameter cotangent buffer (one a parameter)",
-            ts.len(),
             parameter_cotangent.as_deref(),
         )?;
         check_finite("cotangent", cotangent)?;
@@ -189,18 +172,9 @@ impl<'a> BorrowedCurve<'a> {
         let mut slope = vec![0.0; dim];
         for (i, (&t, g)) in ts.iter().zip(cotangent.chunks_exact(dim)).enumerate() {
             let first = basis.at(self.knots, p, self.locate(t)?, t);
-            if let Some(gp) = control_cotangent.as_deref_mut() {
-                let net = &mut gp[first * dim..(first + p + 1) * dim];
-                for (nk, c) in basis.values().iter().zip(net.chunks_exact_mut(dim)) {
-                    for (x, gi) in c.iter_mut().zip(g) {
-                        *x += nk * gi;
-                    }
-                }
-            }
-            if let Some(gt) = parameter_cotangent.as_deref_mut() {
-                combine(self.control, dim, first, basis.slopes(), &mut slope);
-                gt[i] = slope.iter().zip(g).map(|(s, gi)| s * gi).sum();
-            }
+            let gt = parameter_cotangent.as_deref_mut().map(|gt| &mut gt[i]);
+            let gp = control_cotangent.as_deref_mut();
+            vjp_point(self.control, dim, first, &basis, g, gp, gt, &mut slope);
         }
         Ok(())
     }

@@ -5,16 +5,24 @@
 //! here each parameter reads and checks its span's `2p + 2` knots and `p + 1` control points.
 //!
 //! - `curve.rs`: [`BorrowedCurve`], a B-spline curve;
-//! - `nurbs.rs`: [`BorrowedNurbs`], a NURBS curve (also its `p + 1` weights a parameter).
+//! - `nurbs.rs`: [`BorrowedNurbs`], a NURBS curve (also its `p + 1` weights a parameter);
+//! - `surface.rs`: [`BorrowedSurface`], a tensor-product B-spline surface (a pair reads
+//!   `2p + 2` and `2q + 2` knots and a `(p + 1) × (q + 1)` block of the net);
+//! - `tensor.rs`: [`BorrowedTensor`], a tensor-product B-spline in `N` variables (a point
+//!   reads `2p_a + 2` knots a direction and a `Π_a (p_a + 1)` block of the net).
 //!
-//! What both share is here: the O(1) checks of the counts and the location of a parameter's
-//! span with the checks of its knots.
+//! What they share is here: the O(1) checks of a curve's counts, the location of a parameter's
+//! span with the checks of its knots, and the gather and scatter of a block of a net.
 
 mod curve;
 mod nurbs;
+mod surface;
+mod tensor;
 
 pub use curve::BorrowedCurve;
 pub use nurbs::BorrowedNurbs;
+pub use surface::BorrowedSurface;
+pub use tensor::BorrowedTensor;
 
 use crate::derivatives::checks::check_len;
 use crate::error::{Error, Result};
@@ -80,4 +88,79 @@ fn invalid_span(t: f64) -> Error {
         what: Arg::Knots.into(),
         reason: format!("the knots around t = {t} are not a valid span"),
     }
+}
+
+/// Calls `f(offset, k)` for the `k`-th point of the block `first_a ..= first_a + widths_a − 1`
+/// (every direction `a`) of a point-major net whose direction `a` has `strides[a]` numbers
+/// between consecutive indices, in the net's order (the last direction fastest): `offset` is
+/// the point's first number in the net. The block is in the net (the spans located by
+/// [`locate_span`] keep `first_a + widths_a ≤ n_a`).
+fn for_each_block_point(
+    first: &[usize],
+    widths: &[usize],
+    strides: &[usize],
+    mut f: impl FnMut(usize, usize),
+) {
+    let mut odometer = vec![0usize; first.len()];
+    let mut k = 0;
+    loop {
+        let offset = odometer
+            .iter()
+            .zip(first)
+            .zip(strides)
+            .map(|((i, f), s)| (f + i) * s)
+            .sum();
+        f(offset, k);
+        k += 1;
+        // advance the last direction fastest
+        let mut a = odometer.len();
+        loop {
+            if a == 0 {
+                return;
+            }
+            a -= 1;
+            odometer[a] += 1;
+            if odometer[a] < widths[a] {
+                break;
+            }
+            odometer[a] = 0;
+        }
+    }
+}
+
+/// The block of the net `net` at `first` of `widths` points a direction (`dim` numbers a
+/// point, `strides` as [`for_each_block_point`]), copied in the net's order: the net of the
+/// local spline.
+fn gather_block(
+    net: &[f64],
+    dim: usize,
+    first: &[usize],
+    widths: &[usize],
+    strides: &[usize],
+) -> Vec<f64> {
+    let mut block = Vec::with_capacity(widths.iter().product::<usize>() * dim);
+    for_each_block_point(first, widths, strides, |o, _| {
+        block.extend_from_slice(&net[o..o + dim]);
+    });
+    block
+}
+
+/// `net[block] += local`: a local net's cotangent summed into the whole net's, point by point
+/// (as [`gather_block`] lays the block out).
+fn add_block(
+    local: &[f64],
+    dim: usize,
+    first: &[usize],
+    widths: &[usize],
+    strides: &[usize],
+    net: &mut [f64],
+) {
+    for_each_block_point(first, widths, strides, |o, k| {
+        for (x, l) in net[o..o + dim]
+            .iter_mut()
+            .zip(&local[k * dim..(k + 1) * dim])
+        {
+            *x += l;
+        }
+    });
 }
