@@ -179,3 +179,47 @@ def test_ndbspline_large_batches_in_cell_order_have_the_bits_of_small_ones(count
             assert np.array_equal(whole, parts, equal_nan=True)
     want = si.NdBSpline(t, c, 3)(xi)
     np.testing.assert_allclose(ours(xi), want, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("cls", [ls.PPoly, ls.BPoly])
+@pytest.mark.parametrize("degree", range(6))
+@pytest.mark.parametrize("ends_repeated", [False, True])
+def test_large_scalar_batches_have_the_bits_of_single_points(cls, degree, ends_repeated):
+    # a batch of many points a piece takes the branch-free path (one split a bucket of the
+    # piece table, NaN selected afterwards); each point alone takes the general one: the same
+    # bits, at NaN, infinities, beyond the ends and at the breakpoints, continued or NaN, with
+    # and without the empty end pieces of PPoly.from_spline
+    rng = np.random.default_rng(degree)
+    x = np.sort(rng.uniform(-2.0, 3.0, 40))
+    if ends_repeated:
+        x = np.r_[[x[0]] * 3, x, [x[-1]] * 3]
+    c = rng.standard_normal((degree + 1, x.size - 1))
+    f, g = cls(c, x), getattr(si, cls.__name__)(c, x)
+    xp = np.r_[rng.uniform(-3.0, 4.0, 20000), x, np.nan, np.inf, -np.inf, x[0] - 1e-9, x[-1] + 1e-9]
+    for extrapolate in (True, False):
+        batch = f(xp, extrapolate=extrapolate)
+        single = np.array([f(float(v), extrapolate=extrapolate) for v in xp])
+        nan = np.isnan(single)
+        assert np.array_equal(np.isnan(batch), nan)
+        bits = np.where(nan, 0.0, batch).view(np.int64) == np.where(nan, 0.0, single).view(np.int64)
+        assert bits.all(), xp[~bits][:5]
+        # SciPy at the finite points (at ±∞ lekalo gives NaN for every degree, SciPy a value
+        # for degree 0), inside the ends when the end pieces are empty (beyond them SciPy
+        # continues the empty piece, lekalo the last non-empty one)
+        finite = np.isfinite(xp)
+        if ends_repeated:
+            finite &= (x[0] <= xp) & (xp < x[-1])
+        want = g(xp[finite], extrapolate=extrapolate)
+        assert np.array_equal(np.isnan(batch[finite]), np.isnan(want))
+        ok = ~np.isnan(want)
+        np.testing.assert_allclose(batch[finite][ok], want[ok], rtol=1e-12, atol=1e-12 * np.abs(want[ok]).max())
+
+
+def test_large_scalar_batches_refuse_wrong_dtypes_and_take_empty_input():
+    x = np.linspace(0.0, 1.0, 11)
+    c = np.ones((4, 10))
+    f = ls.PPoly(c, x)
+    assert f(np.array([], dtype=np.float64)).shape == (0,)
+    np.testing.assert_array_equal(f(np.full(100, 0.5, dtype=np.float32)), f(np.full(100, 0.5)))
+    with pytest.raises((TypeError, ValueError)):
+        f(np.array(["a"] * 100))

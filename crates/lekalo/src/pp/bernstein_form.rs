@@ -29,17 +29,12 @@ impl PieceBasis for BernsteinBasis {
 
     /// The written-out sum up to degree 3, de Casteljau's algorithm on the stack above.
     #[inline(always)]
-    fn values<const K: usize>(piece: &Piece<'_>, s: f64, o: &mut [f64]) {
-        for (d, v) in o.iter_mut().enumerate() {
-            *v = if K <= 4 {
-                bernstein_sum(K - 1, s, |a| piece.coefficient(a, d))
-            } else {
-                let mut w = [0.0; K];
-                for (a, wa) in w.iter_mut().enumerate() {
-                    *wa = piece.coefficient(a, d);
-                }
-                de_casteljau(s, &mut w)
-            };
+    fn value<const K: usize>(c: &[f64; K], s: f64) -> f64 {
+        if K <= 4 {
+            bernstein_sum(K - 1, s, |a| c[a])
+        } else {
+            let mut w = *c;
+            de_casteljau(s, &mut w)
         }
     }
 

@@ -15,7 +15,7 @@
 
 use rayon::prelude::*;
 
-use crate::curve::fast_eval::locate::PieceLocator;
+use crate::curve::fast_eval::locate::{PieceLocator, SplitLocator};
 use crate::curve::Beyond;
 use crate::error::{Error, Result};
 
@@ -46,6 +46,12 @@ pub(crate) struct PieceSearch<'a> {
     /// The bucket table, for batches with at least as many points as pieces, and the
     /// breakpoints it is built on (`−x_j` when decreasing, else empty: the breakpoints).
     locator: Option<(PieceLocator, Vec<f64>)>,
+    /// The bucket table as one split a bucket ([`SplitLocator`]), when the breakpoints increase
+    /// and every bucket holds at most two pieces: then every point, defined or not, has a piece
+    /// without a branch, the first and last non-empty pieces beyond the ends
+    /// (`for_each_scalar`). Both tables are built on `x_first … x_{last+1}`, without the empty
+    /// pieces at the ends (SciPy's `PPoly.from_spline` repeats the end knots).
+    split: Option<SplitLocator>,
 }
 
 impl<'a> PieceSearch<'a> {
@@ -57,20 +63,28 @@ impl<'a> PieceSearch<'a> {
         let non_empty = |j: &usize| breakpoints[*j] != breakpoints[*j + 1];
         let first = (0..pieces).find(non_empty).unwrap_or(0);
         let last = (0..pieces).rev().find(non_empty).unwrap_or(pieces - 1);
+        // the tables are built on the breakpoints of the non-empty end pieces and the pieces
+        // between them (x_first … x_{last+1}): a piece found there is offset by `first`
+        let inner = &breakpoints[first..=last + 1];
         let locator = (points >= pieces).then(|| {
             if descending {
-                let negated: Vec<f64> = breakpoints.iter().map(|v| -v).collect();
+                let negated: Vec<f64> = inner.iter().map(|v| -v).collect();
                 (PieceLocator::new(&negated), negated)
             } else {
-                (PieceLocator::new(breakpoints), Vec::new())
+                (PieceLocator::new(inner), Vec::new())
             }
         });
+        let split = match &locator {
+            Some((table, _)) if !descending => table.split_table(inner),
+            _ => None,
+        };
         PieceSearch {
             breakpoints,
             descending,
             first,
             last,
             locator,
+            split,
         }
     }
 
@@ -107,17 +121,138 @@ impl<'a> PieceSearch<'a> {
             return self.first;
         }
         match &self.locator {
-            Some((table, negated)) => table.find(
-                if self.descending {
+            Some((table, negated)) => {
+                let inner = if self.descending {
                     negated.as_slice()
                 } else {
-                    b
-                },
-                y,
-            ),
+                    &b[self.first..=self.last + 1]
+                };
+                self.first + table.find(inner, y)
+            }
             // start ≤ y < end: at least one breakpoint at or below y, the last one below end
             None if self.descending => b.partition_point(|&v| -v <= y) - 1,
             None => b.partition_point(|&v| v <= y) - 1,
+        }
+    }
+
+    /// Whether [`PieceSearch::for_each_scalar`] runs (see the field `split`).
+    #[inline]
+    pub(crate) fn has_split_table(&self) -> bool {
+        self.split.is_some()
+    }
+
+    /// [`PieceSearch::for_each_point`] for scalar values (`dim = 1`) when the split table
+    /// exists ([`PieceSearch::has_split_table`]; else `for_each_point` itself): the value
+    /// `value(piece, x)` of every point written, the same pieces and the same NaN as
+    /// `for_each_point`, without a branch a point. Every point gets a piece from the table
+    /// (the end pieces beyond the ends, some piece at NaN or ±∞), its value is computed, and
+    /// NaN is selected where the value is not defined, so the loops are straight and the
+    /// searches of a block overlap.
+    ///
+    /// # Errors
+    /// As [`PieceSearch::for_each_point`]'s.
+    pub(crate) fn for_each_scalar<F>(
+        &self,
+        xs: &[f64],
+        beyond: Beyond,
+        out: &mut [f64],
+        value: F,
+    ) -> Result<()>
+    where
+        F: Fn(usize, f64) -> f64 + Sync,
+    {
+        let Some(split) = &self.split else {
+            return self.for_each_point(
+                xs,
+                1,
+                beyond,
+                out,
+                || (),
+                |(), j, x, o| {
+                    o[0] = value(j, x);
+                },
+            );
+        };
+        if out.len() != xs.len() {
+            return Err(Error::LengthMismatch {
+                what: "output (points × dim)".into(),
+                expected: xs.len(),
+                got: out.len(),
+            });
+        }
+        let (lo, hi) = self.domain();
+        let continued = beyond == Beyond::Continue;
+        // continued: every finite point (the domain's ends are finite); else the domain only
+        let defined = |x: f64| {
+            if continued {
+                x.is_finite()
+            } else {
+                lo <= x && x <= hi
+            }
+        };
+        let run = |xs: &[f64], out: &mut [f64]| -> bool {
+            let mut finite = true;
+            let mut pieces = [0usize; BLOCK];
+            for (xs, out) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+                for (j, &x) in pieces.iter_mut().zip(xs) {
+                    *j = self.first + split.find(x);
+                }
+                for ((&x, o), &j) in xs.iter().zip(out.iter_mut()).zip(&pieces) {
+                    let v = value(j, x);
+                    let ok = defined(x);
+                    *o = if ok { v } else { f64::NAN };
+                    finite &= !ok | (v.abs() < f64::INFINITY);
+                }
+            }
+            finite
+        };
+        if self.run_blocks(xs, out, 1, run) {
+            return Ok(());
+        }
+        Err(self.overflow(xs, 1, out, defined))
+    }
+
+    /// `run` on the batch (`out` of `dim` numbers a point), on the rayon pool from
+    /// [`PAR_MIN_POINTS`] points in chunks whose results do not depend on the split; whether
+    /// every chunk reported its values finite.
+    fn run_blocks<R>(&self, xs: &[f64], out: &mut [f64], dim: usize, run: R) -> bool
+    where
+        R: Fn(&[f64], &mut [f64]) -> bool + Sync,
+    {
+        if xs.len() < PAR_MIN_POINTS {
+            return run(xs, out);
+        }
+        let chunk = xs
+            .len()
+            .div_ceil(4 * rayon::current_num_threads().max(1))
+            .max(PAR_CHUNK);
+        xs.par_chunks(chunk)
+            .zip(out.par_chunks_mut(chunk * dim))
+            .map(|(x, o)| run(x, o))
+            .reduce(|| true, |a, b| a && b)
+    }
+
+    /// The error of the first defined value that is not finite (an overflow), for the message.
+    fn overflow(
+        &self,
+        xs: &[f64],
+        dim: usize,
+        out: &[f64],
+        defined: impl Fn(f64) -> bool,
+    ) -> Error {
+        let index = xs
+            .iter()
+            .zip(out.chunks_exact(dim))
+            .position(|(&x, o)| defined(x) && !o.iter().all(|v| v.is_finite()))
+            .unwrap_or(0);
+        Error::NonFinite {
+            what: "piecewise polynomial value (overflow: rescale the coefficients)".into(),
+            index,
+            value: out[index * dim..(index + 1) * dim]
+                .iter()
+                .copied()
+                .find(|v| !v.is_finite())
+                .unwrap_or(f64::NAN),
         }
     }
 
@@ -190,36 +325,10 @@ impl<'a> PieceSearch<'a> {
             }
             finite
         };
-        let finite = if xs.len() < PAR_MIN_POINTS {
-            run(xs, out)
-        } else {
-            let chunk = xs
-                .len()
-                .div_ceil(4 * rayon::current_num_threads().max(1))
-                .max(PAR_CHUNK);
-            xs.par_chunks(chunk)
-                .zip(out.par_chunks_mut(chunk * dim))
-                .map(|(x, o)| run(x, o))
-                .reduce(|| true, |a, b| a && b)
-        };
-        if finite {
+        if self.run_blocks(xs, out, dim, run) {
             return Ok(());
         }
-        // the first defined value that is not finite, for the message
-        let index = xs
-            .iter()
-            .zip(out.chunks_exact(dim))
-            .position(|(&x, o)| defined(x) && !o.iter().all(|v| v.is_finite()))
-            .unwrap_or(0);
-        Err(Error::NonFinite {
-            what: "piecewise polynomial value (overflow: rescale the coefficients)".into(),
-            index,
-            value: out[index * dim..(index + 1) * dim]
-                .iter()
-                .copied()
-                .find(|v| !v.is_finite())
-                .unwrap_or(f64::NAN),
-        })
+        Err(self.overflow(xs, dim, out, defined))
     }
 }
 

@@ -82,10 +82,20 @@ pub trait PieceBasis: sealed::Sealed + Debug + Clone + Copy + Send + Sync {
     /// The local coordinate of the finite `x` in `piece`.
     fn local(piece: &Piece<'_>, x: f64) -> f64;
 
-    /// The values (`nu = 0`) of `piece` at `t` into `o` (`dim` numbers), the order `K` of the
-    /// piece known at compile time (`1 ≤ K ≤` [`FIXED_ORDER_MAX`]). The same operations in the
-    /// same order as [`PieceBasis::derivative`] with `nu = 0`, so the same bits.
-    fn values<const K: usize>(piece: &Piece<'_>, t: f64, o: &mut [f64]);
+    /// The value (`nu = 0`) at `t` of one coordinate of a piece of order `K` known at compile
+    /// time (`1 ≤ K ≤` [`FIXED_ORDER_MAX`]) whose coefficients are `c` (`c[m]` the
+    /// coefficient of row `m` of SciPy's array). The same operations in the same order as
+    /// [`PieceBasis::derivative`] with `nu = 0`, so the same bits.
+    fn value<const K: usize>(c: &[f64; K], t: f64) -> f64;
+
+    /// The values (`nu = 0`) of `piece` at `t` into `o` (`dim` numbers): [`PieceBasis::value`]
+    /// on each coordinate's coefficients.
+    #[inline(always)]
+    fn values<const K: usize>(piece: &Piece<'_>, t: f64, o: &mut [f64]) {
+        for (d, v) in o.iter_mut().enumerate() {
+            *v = Self::value::<K>(&std::array::from_fn(|m| piece.coefficient(m, d)), t);
+        }
+    }
 
     /// `D^nu` (`nu < order`, with respect to `x`) of `piece` at `t` into `o` (`dim` numbers),
     /// `scratch` of [`PieceBasis::scratch_len`] numbers.
@@ -165,6 +175,25 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
         })
     }
 
+    /// The number of pieces (empty ones included).
+    #[inline(always)]
+    fn pieces(&self) -> usize {
+        self.breakpoints.len() - 1
+    }
+
+    /// The coefficients of each piece of a scalar piecewise polynomial (`dim = 1`) of order
+    /// `K` side by side, `rows[j][m] = c[m, j]`. O(K·pieces).
+    fn rows<const K: usize>(&self) -> Vec<[f64; K]> {
+        debug_assert!(
+            self.dim == 1 && self.order == K,
+            "a scalar piece of order K"
+        );
+        let pieces = self.breakpoints.len() - 1;
+        (0..pieces)
+            .map(|j| std::array::from_fn(|m| self.c[m * pieces + j]))
+            .collect()
+    }
+
     /// Piece `j` (`j < pieces`).
     #[inline(always)]
     fn piece(&self, j: usize) -> Piece<'a> {
@@ -227,7 +256,22 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
         // stride then a constant)
         macro_rules! fixed {
             ($k:literal) => {
-                if dim == 1 {
+                if dim == 1 && search.has_split_table() && xs.len() >= 4 * self.pieces() {
+                    // scalar values on a split table, no branch a point; with four points a
+                    // piece or more, the coefficients of each piece first laid side by side
+                    // (one cache line a point instead of K, for O(K·pieces))
+                    let rows = self.rows::<$k>();
+                    search.for_each_scalar(xs, beyond, out, |j, x| {
+                        let piece = self.piece_of_dim(j, 1);
+                        B::value::<$k>(&rows[j], B::local(&piece, x))
+                    })
+                } else if dim == 1 && search.has_split_table() {
+                    search.for_each_scalar(xs, beyond, out, |j, x| {
+                        let piece = self.piece_of_dim(j, 1);
+                        let c = std::array::from_fn(|m| piece.coefficient(m, 0));
+                        B::value::<$k>(&c, B::local(&piece, x))
+                    })
+                } else if dim == 1 {
                     search.for_each_point(
                         xs,
                         1,

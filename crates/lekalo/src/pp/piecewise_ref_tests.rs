@@ -147,6 +147,9 @@ proptest! {
         let mut xs: Vec<f64> = us.iter().map(|u| lo + (hi - lo) * u).chain(b.iter().copied()).collect();
         if many {
             // at least as many points as pieces: the bucket table rather than the bisection
+            // (for scalar values on breakpoints without empty end pieces, its split form,
+            // which finds a piece for every point and selects NaN afterwards)
+            xs.extend([f64::NAN, f64::INFINITY, f64::NEG_INFINITY]);
             while xs.len() < 4 * pieces {
                 xs.extend_from_within(..);
             }
@@ -161,9 +164,9 @@ proptest! {
         let arrays = Arrays { c: &c, order, b: &b, dim };
         for (i, &x) in xs.iter().enumerate() {
             let outside = !(bmin..=bmax).contains(&x);
-            let j = piece_of(&b, x);
+            let j = if x.is_nan() { 0 } else { piece_of(&b, x) };
             for d in 0..dim {
-                let (want_p, want_b) = if outside && !continued {
+                let (want_p, want_b) = if !x.is_finite() || (outside && !continued) {
                     (f64::NAN, f64::NAN)
                 } else {
                     (
@@ -211,4 +214,102 @@ fn bad_arrays_are_refused_by_name() {
     assert!(matches!(e, Error::NonFinite { .. }), "{e}");
     let e = BernsteinFormRef::new(&c, 4, &[2.0, 2.0], 2).unwrap_err();
     assert!(matches!(e, Error::EmptyDomain { .. }), "{e}");
+}
+
+/// Every point of `xs` evaluated in one batch and alone (the binary search and the general
+/// loop) gives the same bits, in both bases, orders 1 to 6 (degrees 0 to 5), continued or NaN.
+fn batch_has_the_bits_of_single_points(b: &[f64], xs: &[f64]) {
+    let pieces = b.len() - 1;
+    for order in 1..=6 {
+        let c: Vec<f64> = (0..order * pieces)
+            .map(|i| ((i * 7919) % 23) as f64 / 7.0 - 1.5)
+            .collect();
+        let power = PowerFormRef::new(&c, order, b, 1).unwrap();
+        let bernstein = BernsteinFormRef::new(&c, order, b, 1).unwrap();
+        for beyond in [Beyond::Continue, Beyond::Nan] {
+            let (mut got_p, mut got_b) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
+            power.par_eval_beyond(xs, 0, beyond, &mut got_p).unwrap();
+            bernstein
+                .par_eval_beyond(xs, 0, beyond, &mut got_b)
+                .unwrap();
+            for (i, &x) in xs.iter().enumerate() {
+                let (mut one_p, mut one_b) = ([0.0], [0.0]);
+                power.par_eval_beyond(&[x], 0, beyond, &mut one_p).unwrap();
+                bernstein
+                    .par_eval_beyond(&[x], 0, beyond, &mut one_b)
+                    .unwrap();
+                for (got, one, basis) in [
+                    (got_p[i], one_p[0], "power"),
+                    (got_b[i], one_b[0], "Bernstein"),
+                ] {
+                    assert!(
+                        got.to_bits() == one.to_bits() || (got.is_nan() && one.is_nan()),
+                        "{basis}, order {order}, {beyond:?}, x = {x}: {got} against {one}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Scalar values on the split table (a batch of at least as many points as pieces, on the
+/// thread pool, and one of fewer than four points a piece, which reads the coefficients in
+/// place): the bits of each point evaluated alone, at NaN, ±∞, beyond the ends and at every
+/// breakpoint, with and without empty pieces at the ends (SciPy's `PPoly.from_spline` repeats
+/// the end knots); an overflow is refused with the index of its point.
+#[test]
+fn the_split_table_has_the_bits_of_single_points() {
+    use crate::pp::piece_search::{PieceSearch, PAR_MIN_POINTS};
+    let pieces = 37;
+    // uneven breakpoints, none repeated
+    let b: Vec<f64> = (0..=pieces)
+        .map(|i| {
+            let u = i as f64 / pieces as f64;
+            -3.0 + 7.0 * u + 0.05 * (7.0 * u).sin()
+        })
+        .collect();
+    let ends_repeated: Vec<f64> = [b[0]; 3]
+        .iter()
+        .chain(&b)
+        .chain(&[b[pieces]; 3])
+        .copied()
+        .collect();
+    for b in [&b, &ends_repeated] {
+        let mut xs: Vec<f64> = (0..PAR_MIN_POINTS + 999)
+            .map(|i| -4.0 + 9.0 * ((i as f64 * 0.618_033_988_749_895) % 1.0))
+            .collect();
+        xs.extend(b.iter().copied());
+        xs.extend([f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -3.0, 4.0]);
+        xs.rotate_right(b.len() + 5);
+        for xs in [&xs[..], &xs[..2 * b.len()]] {
+            assert!(
+                PieceSearch::new(b, xs.len()).has_split_table(),
+                "the split table"
+            );
+            batch_has_the_bits_of_single_points(b, xs);
+        }
+    }
+    // a value that overflows is refused, naming its point
+    let mut c = vec![1.0; 4 * pieces];
+    for m in 0..4 {
+        c[m * pieces + 5] = f64::MAX; // every coefficient of piece 5: Horner overflows for u > 0
+    }
+    let f = PowerFormRef::new(&c, 4, &b, 1).unwrap();
+    let mut xs: Vec<f64> = (0..4 * pieces)
+        .map(|i| -3.0 + 7.0 * i as f64 / (4 * pieces) as f64)
+        .collect();
+    let at = xs
+        .iter()
+        .position(|&x| x > b[5] + 0.5 * (b[6] - b[5]))
+        .unwrap();
+    xs[at] = b[5] + 0.99 * (b[6] - b[5]);
+    xs[..at].iter_mut().for_each(|x| *x = b[0]);
+    let mut out = vec![0.0; xs.len()];
+    let e = f
+        .par_eval_beyond(&xs, 0, Beyond::Continue, &mut out)
+        .unwrap_err();
+    assert!(
+        matches!(e, Error::NonFinite { index, .. } if index == at),
+        "{e}"
+    );
 }

@@ -27,15 +27,13 @@ impl PieceBasis for PowerBasis {
     /// Horner's rule with the order `K` known at compile time: the operations of
     /// [`PieceBasis::derivative`] with `nu = 0` (its factor `1` is exact).
     #[inline(always)]
-    fn values<const K: usize>(piece: &Piece<'_>, u: f64, o: &mut [f64]) {
-        for (d, v) in o.iter_mut().enumerate() {
-            let mut acc = 0.0;
-            for m in 0..K {
-                // row m holds the power K − 1 − m: the highest first, as Horner reads them
-                acc = acc * u + piece.coefficient(m, d);
-            }
-            *v = acc;
+    fn value<const K: usize>(c: &[f64; K], u: f64) -> f64 {
+        let mut acc = 0.0;
+        // row m holds the power K − 1 − m: the highest first, as Horner reads them
+        for &cm in c {
+            acc = acc * u + cm;
         }
+        acc
     }
 
     #[inline(always)]

@@ -74,6 +74,62 @@ impl PieceLocator {
             lo + breaks[lo + 1..=hi].partition_point(|&x| x <= t)
         }
     }
+
+    /// The table as a [`SplitLocator`] when every bucket holds at most two pieces (the common
+    /// case of spread-out breakpoints), else `None`. O(buckets).
+    pub(crate) fn split_table(&self, breaks: &[f64]) -> Option<SplitLocator> {
+        let entries = self
+            .range
+            .iter()
+            .map(|&(lo, hi)| match hi - lo {
+                0 => Some(Split { at: f64::NAN, lo }),
+                1 => Some(Split {
+                    at: breaks[lo + 1],
+                    lo,
+                }),
+                _ => None,
+            })
+            .collect::<Option<Vec<Split>>>()?;
+        Some(SplitLocator {
+            x0: self.x0,
+            scale: self.scale,
+            entries,
+        })
+    }
+}
+
+/// One bucket of a [`SplitLocator`]: its first candidate piece `lo`, and the breakpoint `at`
+/// from which the next one starts (NaN when the bucket holds one piece: no comparison is true).
+#[derive(Debug, Clone, Copy)]
+struct Split {
+    at: f64,
+    lo: usize,
+}
+
+/// A [`PieceLocator`] whose buckets hold at most two pieces each, stored as one entry a bucket
+/// (the first piece and the breakpoint of the second), so that a point costs one table read
+/// and one comparison, without a branch: `j = lo_b + [t ≥ x_{lo_b + 1}]`. For `t` in the
+/// domain it finds [`PieceLocator::find`]'s piece (the same bucket, the same comparison); for
+/// any other `t` (beyond the ends, infinite, NaN) some piece `j < pieces`: below the domain the
+/// first, from its end on the last (the buckets are clamped, and `t` is then at or beyond every
+/// breakpoint), at NaN the first bucket's.
+#[derive(Debug, Clone)]
+pub(crate) struct SplitLocator {
+    x0: f64,
+    scale: f64,
+    entries: Vec<Split>,
+}
+
+impl SplitLocator {
+    /// The piece of `t`: see the type's documentation. O(1).
+    #[inline(always)]
+    pub(crate) fn find(&self, t: f64) -> usize {
+        // the bucket of PieceLocator::bucket, the same operations
+        #[allow(clippy::cast_possible_truncation)]
+        let b = (((t - self.x0) * self.scale) as usize).min(self.entries.len() - 1);
+        let Split { at, lo } = self.entries[b];
+        lo + usize::from(t >= at)
+    }
 }
 
 /// Centre `m` and radius `r` of a ball inside the open interval `(a, b)` such that the computed

@@ -70,6 +70,60 @@ fn locator_is_exact_for_uneven_and_extreme_breaks() {
     }
 }
 
+/// The split form of the table finds the table's piece for every parameter of the domain,
+/// the end pieces beyond it, and some piece at NaN and ±∞; it exists only when no bucket holds
+/// more than two pieces.
+#[test]
+fn split_table_finds_the_pieces_of_the_table() {
+    let cases: Vec<Vec<f64>> = vec![
+        vec![0.0, 1.0],
+        vec![0.0, 1.0, 2.0],
+        (0..50)
+            .map(|i| f64::from(i) + 0.3 * (f64::from(i) * 1.7).sin())
+            .collect(),
+        vec![1e6, 1e6 + 1.0, 1e6 + 1.5, 1e6 + 3.0],
+    ];
+    for breaks in cases {
+        let loc = PieceLocator::new(&breaks);
+        let split = loc
+            .split_table(&breaks)
+            .expect("spread-out breakpoints: a split table");
+        let m = breaks.len() - 1;
+        let (lo, hi) = (breaks[0], breaks[m]);
+        let mut ts: Vec<f64> = breaks.clone();
+        for i in 0..=997 {
+            ts.push(lo + (hi - lo) * f64::from(i) / 997.0);
+        }
+        for &x in &breaks {
+            for k in 1..4 {
+                ts.push(f64::from_bits(x.to_bits().wrapping_sub(k)));
+                ts.push(f64::from_bits(x.to_bits().wrapping_add(k)));
+            }
+        }
+        for &t in &ts {
+            let got = split.find(t);
+            if t < lo {
+                assert_eq!(got, 0, "below the domain, t = {t:e}");
+            } else if t >= hi {
+                assert_eq!(got, m - 1, "at or beyond the end, t = {t:e}");
+            } else {
+                assert_eq!(got, loc.find(&breaks, t), "t = {t:e} in {breaks:?}");
+            }
+        }
+        for t in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1e300, 1e300] {
+            assert!(split.find(t) < m, "a piece at {t}");
+        }
+    }
+    // buckets of more than two pieces (clustered breakpoints): no split table
+    let clustered = [0.0, 1e-9, 2e-9, 3e-9, 1.0];
+    assert!(
+        PieceLocator::new(&clustered)
+            .split_table(&clustered)
+            .is_none(),
+        "clustered"
+    );
+}
+
 #[test]
 fn find_span_matches_knot_vector() {
     let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.1, 0.1, 0.4, 0.45, 0.9, 1.0, 1.0, 1.0]).unwrap();
