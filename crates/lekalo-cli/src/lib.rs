@@ -109,11 +109,11 @@ enum Command {
     Make(cmd::make::MakeArgs),
     /// Evaluate points, derivatives and curvature at given parameters or on a uniform sampling.
     Eval(cmd::eval::EvalArgs),
-    /// Show degree, knots, domain, bounding box of a curve (or of every curve of a batch).
+    /// Show degree, knots, domain, bounding box of a curve, surface, pp-form or spline in N parameters (of every object of a batch; with --faces, the faces of a STEP or IGES file).
     Info(cmd::info::InfoArgs),
     /// Build knot vectors (uniform, averaged, from parameters, Curry–Schoenberg) or inspect one.
     Knots(cmd::knots::KnotsArgs),
-    /// Convert between formats: JSON, JSON Lines, CSV samples, SVG, PNG, STEP, OBJ.
+    /// Convert between formats: JSON, JSON Lines, CSV samples, SVG, PNG, STEP and IGES (both ways), OBJ, NumPy .npz, Parquet.
     Convert(cmd::convert::ConvertArgs),
     /// Plot a curve (control polygon, knots, data points) or its basis functions to SVG/PNG.
     Plot(cmd::plot::PlotArgs),

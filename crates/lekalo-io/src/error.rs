@@ -77,7 +77,7 @@ pub enum IoError {
         error: lekalo::Error,
     },
     /// An input file could not be read.
-    #[error("cannot read {}: {error}", path.display())]
+    #[error("cannot read {}: {}", .path.display(), read_reason(.error))]
     Read {
         /// The file.
         path: PathBuf,
@@ -183,3 +183,16 @@ impl IoError {
 
 /// Result of the formats crate.
 pub type IoResult<T> = std::result::Result<T, IoError>;
+
+/// Why an input could not be read, in the user's words with the fix: the operating system's
+/// text without its error number for a missing file, a folder or a refused permission, the
+/// error's own text (already worded for the user) otherwise.
+fn read_reason(error: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match error.kind() {
+        ErrorKind::NotFound => "no such file; check the name and the folder (paths are relative to the current folder), or make the file first".into(),
+        ErrorKind::IsADirectory => "it is a folder; give a file in it".into(),
+        ErrorKind::PermissionDenied => "permission denied; make the file readable (chmod +r) or copy it".into(),
+        _ => error.to_string(),
+    }
+}

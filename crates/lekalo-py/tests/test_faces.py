@@ -411,3 +411,11 @@ def test_faces_with_bad_trims_are_refused_naming_the_loop_and_repairs_are_warned
     # the plate without its hole: area 100
     a, b, c = (vertices[triangles[:, k]] for k in range(3))
     assert abs(0.5 * np.abs(np.cross(b - a, c - a)[:, 2]).sum() - 100.0) < 1e-9
+
+
+def test_a_missing_cad_file_is_named_with_the_fix(tmp_path):
+    # the operating system's "No such file or directory (os error 2)" named no fix
+    for read in (lekalo.read_step, lekalo.read_iges):
+        with pytest.raises(lekalo.InputError, match="no such file; check the name") as e:
+            read(str(tmp_path / "nope.step"))
+        assert "os error" not in str(e.value)

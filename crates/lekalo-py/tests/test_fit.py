@@ -356,7 +356,9 @@ def test_fit_surface_grid_at_given_parameters_and_knots():
         (lambda x, y: lekalo.fit_tolerance(np.column_stack([x, y]), 0.0), "tolerance"),
         (lambda x, y: lekalo.fit_robust(x, y, [0, 0, 0, 0, 1, 1, 1, 1], loss="cauchy"), "loss"),
         (lambda x, y: lekalo.fit_tolerance(np.column_stack([x, y]), 1e-3, deviation="x"), "deviation"),
-        (lambda x, y: lekalo.make_lsq_spline(x, y[:-1].copy(), [0, 0, 0, 0, 1, 1, 1, 1]), "one per data point"),
+        (lambda x, y: lekalo.make_lsq_spline(x, y[:-1].copy(), [0, 0, 0, 0, 1, 1, 1, 1]), "x and y differ in length: x has 40 values, y has 39 rows"),
+        (lambda x, y: lekalo.make_smoothing_spline(x[:-1].copy(), y), "x and y differ in length: x has 39 values, y has 40 rows"),
+        (lambda x, y: lekalo.make_splrep(x, y[:-1].copy(), s=0.1), "give one x per row of y"),
         (lambda x, y: lekalo.make_lsq_spline(x.astype(np.complex128), y, [0, 0, 0, 0, 1, 1, 1, 1]), "not a real number type"),
     ],
 )

@@ -128,3 +128,17 @@ def test_duckdb_and_pandas_read_the_curves_and_samples(tmp_path):
         [exe, "interpolate", str(pts), "--samples", "9", "-o", str(fused)], check=True
     )
     assert pd.read_parquet(fused).equals(pd.read_parquet(samples))
+
+
+def test_the_npz_snippet_of_formats_md_runs_as_written(tmp_path, monkeypatch):
+    # the first python block of docs/formats.md, in a folder holding curve.npz, as after
+    # `lekalo convert curve.json -o curve.npz`; the file it writes reads back as its cubic
+    import re
+
+    doc = Path(__file__).resolve().parents[3] / "docs" / "formats.md"
+    code = re.findall(r"^```python\n(.*?)^```", doc.read_text(encoding="utf-8"), re.S | re.M)[0]
+    monkeypatch.chdir(tmp_path)
+    io.save_npz_curve("curve.npz", 2, np.array([0, 0, 0, 1, 1, 1.0]), np.eye(3)[:, :2])
+    exec(compile(code, "docs/formats.md, python block 1", "exec"), {})
+    back = io.load_npz_curve("mine.npz")
+    assert back["degree"] == 3 and len(back["control_points"]) == 5

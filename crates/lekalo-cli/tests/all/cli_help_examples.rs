@@ -8,6 +8,7 @@
 
 use crate::common;
 mod doc_blocks;
+mod doc_options;
 
 use std::fs;
 use std::path::Path;

@@ -280,6 +280,19 @@ fn knot_family_matches_the_library() {
         .success();
     let joined = BSplineCurve::from_bezier_segments(&c.to_bezier_segments()).unwrap();
     assert_eq!(read("j.json"), Shape::Curve(Object::BSpline(joined)));
+    // docs/cli.md: `knot remove --all` on the joined curve gives the original knots back
+    lekalo()
+        .args(["knot", "remove"])
+        .arg(p(&d, "j.json"))
+        .arg("--all")
+        .arg("-o")
+        .arg(p(&d, "back.json"))
+        .assert()
+        .success();
+    let Shape::Curve(Object::BSpline(back)) = read("back.json") else {
+        panic!("knot remove writes a B-spline curve")
+    };
+    assert_eq!(back.knots(), c.knots(), "the original knots");
     // errors: a parameter outside the domain, remove on a surface
     lekalo()
         .args(["knot", "insert"])

@@ -377,6 +377,28 @@ fn high_degree_bezier_work_is_limited_under_a_memory_limit() {
 }
 
 #[test]
+fn a_missing_input_or_a_folder_is_named_with_the_fix_not_an_os_error_number() {
+    let d = dir_with(&[("c.json", LECTURE)]);
+    fs::create_dir(d.path().join("data")).unwrap();
+    for (args, reason) in [
+        (
+            &["fit", "scna.csv", "--ctrl", "8"][..],
+            "cannot read scna.csv: no such file; check the name and the folder",
+        ),
+        (
+            &["eval", "cuve.json", "--at", "1.5"][..],
+            "make the file first",
+        ),
+        (&["info", "data"][..], "cannot read data: it is a folder"),
+    ] {
+        let (code, err) = code_and_stderr(d.path(), args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(reason), "{args:?}: {err}");
+        assert!(!err.contains("os error"), "{args:?}: {err}");
+    }
+}
+
+#[test]
 fn a_first_line_with_a_number_is_data_not_a_header() {
     let d = dir_with(&[
         ("h.csv", "0,0a\n1,1\n2,0\n3,1\n4,4\n"),

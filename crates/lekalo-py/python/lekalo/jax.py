@@ -75,7 +75,9 @@ try:
     import jax.numpy as jnp
 except ImportError as e:  # pragma: no cover - the message is the point
     raise ImportError(
-        "lekalo.jax needs JAX; install it with `pip install lekalo[jax]` (or `pip install jax`)"
+        "lekalo.jax needs JAX 0.4.34 or newer, which is not installed: `pip install jax`, "
+        "or install lekalo with its extra, `pip install \"./crates/lekalo-py[jax]\"` from a "
+        "clone of the repository"
     ) from e
 
 from . import _jax_ffi

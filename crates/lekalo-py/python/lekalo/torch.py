@@ -34,8 +34,9 @@ try:
     import torch
 except ImportError as e:  # pragma: no cover - the message is the point
     raise ImportError(
-        "lekalo.torch needs PyTorch; install it with `pip install lekalo[torch]` "
-        "(or `pip install torch`)"
+        "lekalo.torch needs PyTorch 2.0 or newer, which is not installed: `pip install torch`, "
+        "or install lekalo with its extra, `pip install \"./crates/lekalo-py[torch]\"` from a "
+        "clone of the repository"
     ) from e
 
 from . import _lekalo

@@ -84,9 +84,17 @@ impl<'py> Data<'py> {
         Ok((rows, xs, w))
     }
 
-    /// The library's validated data (lengths, finiteness, weights ≥ 0).
+    /// The library's validated data (lengths, finiteness, weights ≥ 0). Lengths that differ
+    /// are named by the arguments, as SciPy names them (`x` and `y`), not by the library's
+    /// "data parameters".
     fn fit_data(&self, xname: &str) -> PyResult<FitData<'_>> {
-        let d = FitData::new(self.y.points("y")?, self.x.vector(xname)?).map_err(lib_err)?;
+        let d = FitData::new(self.y.points("y")?, self.x.vector(xname)?).map_err(|e| match e {
+            lekalo::Error::LengthMismatch { expected, got, .. } => bad(format!(
+                "{xname} and y differ in length: {xname} has {got} values, y has {expected} rows \
+                 (one data point a row); give one {xname} per row of y"
+            )),
+            e => lib_err(e),
+        })?;
         match &self.w {
             Some(w) => d.with_weights(w).map_err(lib_err),
             None => Ok(d),

@@ -39,7 +39,7 @@ pub fn place_knots(params: &[f64], degree: usize, n_ctrl: usize) -> Result<KnotV
     }
     if params.len() < n_ctrl {
         return Err(Error::TooFew {
-            what: "data points for the control points asked for (Schoenberg–Whitney)".into(),
+            what: "data points, one at least per control point asked for (Schoenberg–Whitney: ask for fewer control points or give more points)".into(),
             min: n_ctrl,
             got: params.len(),
         });
@@ -165,6 +165,10 @@ mod tests {
         let u = [0.0, 0.5, 1.0];
         let e = place_knots(&u, 2, 4).unwrap_err();
         assert!(matches!(e, Error::TooFew { min: 4, got: 3, .. }), "{e:?}");
+        assert!(
+            e.to_string().contains("ask for fewer control points"),
+            "the message names the fix: {e}"
+        );
         // duplicates do not count twice
         let kv = KnotVector::clamped_uniform(1, 3).unwrap();
         let e = check_schoenberg_whitney(&[0.0, 0.0, 1.0, 1.0], 1, &kv).unwrap_err();

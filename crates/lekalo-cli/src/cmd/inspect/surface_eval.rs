@@ -36,11 +36,13 @@ const MAX_SAMPLES: usize = 10_000_000;
 
 /// Parses `NUxNV` (also `NU,NV` or a single `N` for N × N).
 pub(crate) fn grid_size(text: &str, what: &str) -> Result<(usize, usize)> {
-    let parts: Vec<&str> = text
-        .split(['x', 'X', ',', '×'])
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .collect();
+    let parts: Vec<&str> = text.split(['x', 'X', ',', '×']).map(str::trim).collect();
+    // a size left out ("5x", "x7") is a slip, not a square grid
+    if parts.len() > 1 && parts.iter().any(|s| s.is_empty()) {
+        return bad_input(format!(
+            "{what}: \"{text}\" is missing a size; write NUxNV, e.g. 5x7 (or one number N for N × N)"
+        ));
+    }
     let parse = |s: &str| {
         s.parse::<usize>().map_err(|_| {
             BadInput(format!(
@@ -129,5 +131,9 @@ mod tests {
         assert!(grid_size("0x3", "g").is_err());
         assert!(grid_size("ax3", "g").is_err());
         assert!(grid_size("1x2x3", "g").is_err());
+        // a half-written size is refused, not read as a square grid
+        assert!(grid_size("5x", "g").is_err(), "5x");
+        assert!(grid_size("x7", "g").is_err(), "x7");
+        assert!(grid_size("", "g").is_err(), "empty");
     }
 }

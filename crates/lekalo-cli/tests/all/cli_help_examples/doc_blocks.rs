@@ -1,6 +1,7 @@
 //! The documentation runs as written: every `sh` block of `README.md` and `docs/cli.md` is run
-//! line by line by `sh`, in order, in one fresh folder per page, with the test build of `lekalo`
-//! first on `PATH`. A line `#   TEXT` right under a command quotes the command's output: the
+//! line by line by `sh`, in order, in one empty folder per page (each page makes its own input
+//! files, as a reader starting from nothing would), with the test build of `lekalo` first on
+//! `PATH`. A line `#   TEXT` right under a command quotes the command's output: the
 //! quoted lines must be the first lines of its standard output, compared up to an ellipsis `…`
 //! where the text has one (the rest of the line is a comment), in full otherwise. Commands that
 //! cannot run here are listed in [`NOT_RUN`] with the reason; every entry must still be in the
@@ -47,7 +48,7 @@ const NOT_RUN: &[(&str, &str)] = &[
     ),
     (
         "lekalo interpolate scans.parquet",
-        "reads a Parquet file of point groups (cli_parquet.rs makes them and runs these commands)",
+        "reads a Parquet file of point groups of the reader's own (cli_parquet.rs makes them and runs these commands)",
     ),
     (
         "lekalo eval curves.parquet",
@@ -181,19 +182,9 @@ fn readme_and_cli_docs_run_as_written() {
         failures.push(format!("only {ran} README commands ran"));
     }
 
-    // docs/cli.md is a map, not a tour: its blocks read the fixture files of the help examples
-    // (curve.json, scan.csv, xy.csv, track.csv, quintic.json, part.step, …) and those of
-    // `eval` (helix.json), `project` (queries.csv) and `interpolate` (pts.csv of four points)
+    // docs/cli.md too runs in an empty folder: its first block makes the files the others read
     let cli = fs::read_to_string(format!("{root}/docs/cli.md")).expect("docs/cli.md");
     let d = tempfile::tempdir().expect("a temporary folder");
-    super::fixtures(d.path(), "fit");
-    for (file, text) in ["eval", "project", "interpolate"]
-        .into_iter()
-        .flat_map(super::overrides)
-        .filter(|(f, _)| *f != "surface-net.csv")
-    {
-        fs::write(d.path().join(file), text).expect("a fixture file");
-    }
     let ran = run_page("docs/cli.md", &cli, d.path(), &mut used, &mut failures);
     if ran < 40 {
         failures.push(format!("only {ran} docs/cli.md commands ran"));
