@@ -104,8 +104,46 @@ pub(crate) fn open(cx: &Context, path: &Path, jsonl: bool) -> Result<Items> {
         return Ok(Items::One(lekalo_io::read_npz_curve(&bytes, &name)?));
     }
     let (text, name) = lekalo_io::read_input(path)?;
+    open_text(cx, path, jsonl, &text, &name, start)
+}
+
+/// True for standard input (`-`).
+pub(crate) fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// True for JSON Lines on standard input, which has no extension to tell: more than one
+/// non-blank line, the first of them a whole object envelope (`{"lekalo": 1, "type": …}` on
+/// one line), as `mesh -` decides. A pretty-printed object's first line is `{` alone.
+fn stdin_lines(text: &str) -> bool {
+    let mut lines = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'));
+    let first = lines.next();
+    first.is_some_and(|l| lekalo_io::envelope_type(l).is_some()) && lines.next().is_some()
+}
+
+/// True for JSON Lines input: a `.jsonl`/`.ndjson` file, `jsonl` (`--jsonl`), or standard
+/// input whose first line says so ([`stdin_lines`]).
+pub(crate) fn lines_input(path: &Path, jsonl: bool, text: &str) -> bool {
+    is_json_lines(path, jsonl) || (is_stdin(path) && stdin_lines(text))
+}
+
+/// The items of `text`, the input `path` read once and named `name` ([`open`]): for standard
+/// input, which cannot be read twice, read before by the caller to see whether it holds faces
+/// (`crate::cmd::files::cad::face_input`). On standard input, JSON Lines are recognised by
+/// their first line ([`stdin_lines`]) and STEP and IGES files by their first bytes.
+pub(crate) fn open_text(
+    cx: &Context,
+    path: &Path,
+    jsonl: bool,
+    text: &str,
+    name: &str,
+    start: Instant,
+) -> Result<Items> {
     // a CAD file: one shape as the JSON of that shape, several curves as a batch
-    if let Some(mut shapes) = read_cad(cx, path, &text, &name)? {
+    if let Some(mut shapes) = read_cad(cx, path, text, name)? {
         return match shapes.len() {
             0 => bad_input(format!("{name}: no curve or surface lekalo reads")),
             1 => Ok(match shapes.remove(0) {
@@ -133,10 +171,10 @@ pub(crate) fn open(cx: &Context, path: &Path, jsonl: bool) -> Result<Items> {
             }
         };
     }
-    let loaded = if is_json_lines(path, jsonl) {
-        Items::Lines(lekalo_io::read_json_lines(&text, &name))
+    let loaded = if lines_input(path, jsonl, text) {
+        Items::Lines(lekalo_io::read_json_lines(text, name))
     } else {
-        match Shape::from_json_str(&text, &name)? {
+        match Shape::from_json_str(text, name)? {
             Shape::Curve(o) => Items::One(o),
             other => Items::Other(other),
         }
@@ -170,6 +208,20 @@ pub(crate) fn is_iges(path: &Path) -> bool {
     matches!(extension(path).as_deref(), Some("igs" | "iges"))
 }
 
+/// True for STEP text: it opens with the keyword of ISO 10303-21 (§5), `ISO-10303-21;`.
+pub(crate) fn is_step_text(text: &str) -> bool {
+    text.trim_start().starts_with("ISO-10303-21")
+}
+
+/// True for IGES text: its first record is 72 columns and the Start section's letter `S` in
+/// column 73 (IGES 5.3 §2.2), as every IGES file opens.
+pub(crate) fn is_iges_text(text: &str) -> bool {
+    text.lines()
+        .next()
+        .and_then(|l| l.as_bytes().get(72))
+        .is_some_and(|&c| c == b'S')
+}
+
 /// What a STEP file gave: curves, surfaces, schema, unit, skipped entities (not with `-q`).
 fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
     if cx.is_quiet() {
@@ -197,8 +249,13 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
     report_skipped(cx, name, &r.skipped, "#");
 }
 
-/// The entities a CAD file holds that were not read: one line per type and reason with the
-/// count and the first id, and with `-v` every entity.
+/// Kinds of skipped entities listed on standard error (the most frequent first); the rest are
+/// counted on one line.
+const SKIPPED_KINDS_LISTED: usize = 20;
+
+/// The entities a CAD file holds that were not read: one line per type and reason (the
+/// entities a reason names aside: [`lekalo_io::skipped_by_kind`]) with the count and the
+/// first id, at most [`SKIPPED_KINDS_LISTED`] of them, and with `-v` every entity.
 pub(crate) fn report_skipped(
     cx: &Context,
     name: &str,
@@ -209,10 +266,23 @@ pub(crate) fn report_skipped(
         return;
     }
     crate::output::report(&format!("{name}: skipped {} entities:", skipped.len()));
-    for k in lekalo_io::skipped_by_kind(skipped) {
+    let kinds = lekalo_io::skipped_by_kind(skipped);
+    for k in kinds.iter().take(SKIPPED_KINDS_LISTED) {
         crate::output::report(&format!(
             "  {:>6} {}: {} (first {prefix}{})",
             k.count, k.entity, k.reason, k.first_id
+        ));
+    }
+    if let Some(rest) = kinds.get(SKIPPED_KINDS_LISTED..).filter(|r| !r.is_empty()) {
+        let n: usize = rest.iter().map(|k| k.count).sum();
+        crate::output::report(&format!(
+            "  … and {} more kinds of {n} entities{}",
+            rest.len(),
+            if cx.is_verbose() {
+                ", listed below"
+            } else {
+                " (-v lists every entity)"
+            }
         ));
     }
     if cx.is_verbose() {
@@ -242,22 +312,23 @@ pub(crate) fn read_with_progress<R>(
     )
 }
 
-/// The curves and surfaces of a STEP or IGES file, by its extension (`None` for any other
-/// file), with what was read and skipped reported on standard error (not with `-q`).
+/// The curves and surfaces of a STEP or IGES file, by its extension or, on standard input, by
+/// its first bytes (`None` for any other file), with what was read and skipped reported on standard error (not with `-q`).
 pub(crate) fn read_cad(
     cx: &Context,
     path: &Path,
     text: &str,
     name: &str,
 ) -> Result<Option<Vec<lekalo_io::Shape>>> {
-    if is_step(path) {
+    let stdin = is_stdin(path);
+    if is_step(path) || (stdin && is_step_text(text)) {
         let r = read_with_progress(cx, name, text, |p| {
             lekalo_io::read_step_with_progress(text, name, cx.max_size, false, p)
         })?;
         report_step(cx, name, &r);
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
     }
-    if is_iges(path) {
+    if is_iges(path) || (stdin && is_iges_text(text)) {
         let r = read_with_progress(cx, name, text, |p| {
             lekalo_io::read_iges_with_progress(text, name, cx.max_size, false, p)
         })?;

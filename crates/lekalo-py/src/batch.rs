@@ -71,6 +71,15 @@ pub(crate) fn offsets_arg(
             .map(<[i64]>::to_vec)
             .unwrap_or_else(|_| a.as_array().iter().copied().collect())
     } else if let Ok(a) = obj.cast::<PyUntypedArray>() {
+        // an int64 array of another shape fails the extraction above too: say which is wrong
+        if a.ndim() != 1 {
+            return Err(bad(format!(
+                "{what}: expected a 1-D array of offsets, got {} dimensions (shape {:?}); \
+                 pass one offset per curve boundary, e.g. np.ravel({what})",
+                a.ndim(),
+                a.shape()
+            )));
+        }
         return Err(bad(format!(
             "{what}: dtype {} is not int64; convert with np.asarray({what}, dtype=np.int64)",
             a.dtype()

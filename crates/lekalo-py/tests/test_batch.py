@@ -73,6 +73,9 @@ def test_batch_functions_like_make_interp_spline():
         ([0, 5, 3, 10], "non-decreasing"),
         ([0, 5], "last offset"),
         (np.array([0, 10], dtype=np.float64), "not int64"),
+        # an int64 array of the wrong shape was refused as "dtype int64 is not int64"
+        (np.array([[0, 5], [5, 10]], dtype=np.int64), r"1-D array of offsets, got 2 dimensions \(shape \[2, 2\]\)"),
+        (np.array(10, dtype=np.int64), "1-D array of offsets, got 0 dimensions"),
         ([0, 1, 10], "curve 0"),
     ],
 )

@@ -49,7 +49,48 @@ pub const MAX_API_DEGREE: usize = 64;
 /// (`points[3]`, `degree`).
 pub(crate) fn parse<T: DeserializeOwned>(body: &Bytes) -> ApiResult<T> {
     let de = &mut serde_json::Deserializer::from_slice(body);
-    serde_path_to_error::deserialize(de).map_err(request_error)
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let whole = e.path().to_string() == "." && !e.inner().is_syntax() && !e.inner().is_eof();
+        whole
+            .then(|| unplaced(body))
+            .flatten()
+            .unwrap_or_else(|| request_error(e))
+    })
+}
+
+/// The view options every drawing request takes ([`ViewOptionsFlat`]).
+const VIEW_FIELDS: &[&str] = &["samples", "comb", "basis_samples", "at"];
+
+/// The error of a valid JSON `body` that serde refused without a path: a body that is not an
+/// object (`[1, 2]`, `null`), refused by what it is rather than by the handler's type name; or
+/// a bad view option, which the requests take through `#[serde(flatten)]`, where serde
+/// loses the path (`"samples": -1` was refused with the field `""`): read again on its own, it
+/// is named. `None` when neither is the cause.
+fn unplaced(body: &Bytes) -> Option<ApiError> {
+    let value: Value = serde_json::from_slice(body).ok()?;
+    let Value::Object(map) = value else {
+        let what = match value {
+            Value::Array(_) => "an array",
+            Value::String(_) => "a string",
+            Value::Number(_) => "a number",
+            Value::Bool(_) => "true or false",
+            _ => "null",
+        };
+        return Some(ApiError::bad(
+            "",
+            format!(
+                "the request body is {what}; it must be a JSON object of the route's fields \
+                 (docs/openapi.json)"
+            ),
+        ));
+    };
+    let view: serde_json::Map<String, Value> = map
+        .into_iter()
+        .filter(|(k, _)| VIEW_FIELDS.contains(&k.as_str()))
+        .collect();
+    serde_path_to_error::deserialize::<_, ViewOptionsFlat>(Value::Object(view))
+        .err()
+        .map(request_error)
 }
 
 /// The answer to a body that is not the request's JSON: the field of a type error, or

@@ -57,9 +57,7 @@ struct QuasiAnswer {
 
 pub(crate) fn quasi(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let limits = job.limits;
-    let de = &mut serde_json::Deserializer::from_slice(body);
-    let r: QuasiRequest =
-        serde_path_to_error::deserialize(de).map_err(crate::api::request_error)?;
+    let r: QuasiRequest = crate::api::parse(body)?;
     limits.check_points(r.breakpoints.len(), "breakpoints")?;
     if !(1..limits.max_samples).contains(&r.intervals) {
         return Err(ApiError::bad(

@@ -20,13 +20,10 @@ use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::extract::DefaultBodyLimit;
 use axum::http::{header, Method, StatusCode};
 use axum::response::IntoResponse;
 use axum::routing::{get, MethodRouter};
 use axum::Router;
-use tower_http::limit::RequestBodyLimitLayer;
-use tower_http::timeout::TimeoutLayer;
 
 mod answer;
 pub mod api;
@@ -40,6 +37,7 @@ pub mod jobs;
 pub mod listen;
 pub mod pool;
 pub mod query;
+pub mod transport;
 pub mod view;
 mod words;
 
@@ -52,7 +50,8 @@ pub use pool::{Job, Pool};
 /// `--max-connections`, `--max-degree`, `--max-samples`, `--max-points`, `--max-work`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
-    /// Largest request body in bytes (413 above it). Default 2 MiB.
+    /// Largest request body in bytes, as sent and once decompressed (413 above it;
+    /// [`transport`]). Default 2 MiB.
     pub body_bytes: usize,
     /// Longest time to read a request and answer it (408 after it), which also bounds a
     /// client that sends its body slowly. Default 10 s.
@@ -253,10 +252,11 @@ pub fn router(limits: Limits) -> Router {
     app(Arc::new(Pool::new(limits)), routes())
 }
 
-/// The router of `routes` on `pool`, with the 404 fallback and the body and time limits.
+/// The router of `routes` on `pool`, with the 404 fallback and the transport layers (body
+/// size, decoding and time: [`transport`]).
 fn app(pool: Arc<Pool>, routes: Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)>) -> Router {
     let limits = *pool.limits();
-    routes
+    let router = routes
         .into_iter()
         .fold(Router::new(), |r, (path, _, handler)| {
             r.route(path, handler)
@@ -269,13 +269,8 @@ fn app(pool: Arc<Pool>, routes: Vec<(&'static str, Method, MethodRouter<Arc<Pool
                 ),
             )
         })
-        .with_state(pool)
-        .layer(DefaultBodyLimit::disable())
-        .layer(RequestBodyLimitLayer::new(limits.body_bytes))
-        .layer(TimeoutLayer::with_status_code(
-            StatusCode::REQUEST_TIMEOUT,
-            limits.timeout,
-        ))
+        .with_state(pool);
+    transport::layered(router, limits)
 }
 
 fn asset(body: &'static str, mime: &'static str) -> impl IntoResponse {

@@ -216,13 +216,7 @@ fn unreadable(e: &axum::Error, limits: &Limits) -> Response {
         if s.is::<http_body_util::LengthLimitError>() {
             return (
                 StatusCode::PAYLOAD_TOO_LARGE,
-                Json(json!({
-                    "error": format!(
-                        "the request body is larger than {} bytes (lekalo serve --max-body)",
-                        limits.body_bytes
-                    ),
-                    "field": null,
-                })),
+                Json(json!({"error": crate::transport::too_large(limits), "field": null})),
             )
                 .into_response();
         }

@@ -431,7 +431,12 @@ fn write_tables<W: std::io::Write + Send>(
 }
 
 /// Curves between Parquet and JSON Lines, whichever `input` is (`lekalo convert`).
-pub(crate) fn convert_curves(cx: &Context, input: &Path, out: Option<&Path>) -> Result<()> {
+pub(crate) fn convert_curves(
+    cx: &Context,
+    input: &Path,
+    read: Option<(String, String)>,
+    out: Option<&Path>,
+) -> Result<()> {
     let key = &cx.group_column;
     let inputs = [input.to_path_buf()];
     if is_parquet(input) {
@@ -454,7 +459,11 @@ pub(crate) fn convert_curves(cx: &Context, input: &Path, out: Option<&Path>) -> 
         return super::lines::finish(cx, lines, out, &inputs);
     }
     let out = parquet_output(out, "curves")?;
-    let (text, name) = lekalo_io::read_input(input)?;
+    // standard input is read by the caller, once
+    let (text, name) = match read {
+        Some(read) => read,
+        None => lekalo_io::read_input(input)?,
+    };
     let rows: Vec<(GroupKey, Result<Object, String>)> = lekalo_io::read_json_lines(&text, &name)
         .into_iter()
         .map(|(line, o)| {

@@ -86,6 +86,73 @@ fn mesh_of_face_lines_on_standard_input_is_that_of_the_file() {
     );
 }
 
+/// `info -` and `convert -` read standard input once and take it for faces when its first line
+/// is a face envelope, as `mesh -` does; for JSON Lines of curves when its first line is a whole
+/// object and more follow; for a STEP file when it opens with `ISO-10303-21;`. Each gives what
+/// the same command gives for the file.
+#[test]
+fn info_and_convert_of_standard_input_read_what_the_file_holds() {
+    let d = dir_with(&[("plate.step", PLATE)]);
+    convert_faces(&d, &["-q"], "plate.step", "faces.jsonl").success();
+    let lines = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    let from_file = lekalo()
+        .args(["info", "--json"])
+        .arg(p(&d, "faces.jsonl"))
+        .assert()
+        .success();
+    let from_stdin = lekalo()
+        .args(["info", "--json", "-"])
+        .write_stdin(lines.clone())
+        .assert()
+        .success();
+    let stdout = |a: &assert_cmd::assert::Assert| {
+        String::from_utf8_lossy(&a.get_output().stdout).into_owned()
+    };
+    assert_eq!(stdout(&from_stdin), stdout(&from_file));
+    let report: Value = serde_json::from_str(&stdout(&from_file)).unwrap();
+    assert_eq!(report["faces_total"].as_u64(), Some(1), "{report}");
+    lekalo()
+        .args(["convert", "-", "-o"])
+        .arg(p(&d, "again.jsonl"))
+        .write_stdin(lines.clone())
+        .assert()
+        .success();
+    assert_eq!(fs::read_to_string(p(&d, "again.jsonl")).unwrap(), lines);
+    // the STEP file itself on standard input: its faces, and its shapes
+    lekalo()
+        .args(["convert", "-", "--faces", "-q", "-o"])
+        .arg(p(&d, "step.jsonl"))
+        .write_stdin(PLATE)
+        .assert()
+        .success();
+    assert_eq!(fs::read_to_string(p(&d, "step.jsonl")).unwrap(), lines);
+    lekalo()
+        .args(["convert", "-q", "-o"])
+        .arg(p(&d, "shapes-file.jsonl"))
+        .arg(p(&d, "plate.step"))
+        .assert()
+        .success();
+    lekalo()
+        .args(["convert", "-", "-q", "-o"])
+        .arg(p(&d, "shapes-stdin.jsonl"))
+        .write_stdin(PLATE)
+        .assert()
+        .success();
+    assert_eq!(
+        fs::read_to_string(p(&d, "shapes-stdin.jsonl")).unwrap(),
+        fs::read_to_string(p(&d, "shapes-file.jsonl")).unwrap()
+    );
+    // two curves, one a line, on standard input: a batch, as from a .jsonl file
+    let curve = r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]}"#;
+    let two = format!("{curve}\n{curve}\n");
+    let out = lekalo()
+        .args(["info", "--json", "-"])
+        .write_stdin(two)
+        .assert()
+        .success();
+    assert_eq!(stdout(&out).lines().count(), 2, "{}", stdout(&out));
+}
+
 #[test]
 fn mesh_of_faces_refuses_a_tolerance_too_small() {
     let d = dir_with(&[("plate.step", PLATE)]);

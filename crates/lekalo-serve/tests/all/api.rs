@@ -428,6 +428,42 @@ async fn hostile_json_is_refused_with_a_named_error() {
         let (f, msg) = bad("/api/interpolate", body).await;
         assert_eq!(f, field, "{body}: {msg}");
     }
+    // the view options, which the requests take through serde's `flatten`, are named as well
+    // (they were refused with the field "")
+    let curve: Value = serde_json::from_str(CURVE).expect("json");
+    for (route, key, value) in [
+        ("/api/evaluate", "samples", json!(-1)),
+        ("/api/evaluate", "samples", json!(3.5)),
+        ("/api/evaluate", "basis_samples", json!(1e20)),
+        ("/api/evaluate", "comb", json!("yes")),
+        ("/api/evaluate", "at", json!("x")),
+        ("/api/bspline", "samples", json!(-2)),
+    ] {
+        let mut body = if route == "/api/evaluate" {
+            json!({"curve": curve})
+        } else {
+            json!({"control": [[0, 0], [1, 1]], "degree": 1})
+        };
+        body[key] = value;
+        let (f, msg) = bad(route, body.to_string()).await;
+        assert_eq!(f, key, "{route} {body}: {msg}");
+    }
+    // a body that is not an object is refused as such, not by the handler's type name
+    for (body, what) in [
+        ("[1, 2]", "an array"),
+        ("null", "null"),
+        ("\"x\"", "a string"),
+    ] {
+        let (f, msg) = bad("/api/evaluate", body).await;
+        assert_eq!(f, "", "{body}");
+        assert!(
+            msg.starts_with(&format!(
+                "the request body is {what}; it must be a JSON object"
+            )),
+            "{msg}"
+        );
+        assert!(!msg.contains("Request"), "{msg}");
+    }
     let deep = format!("{}{}", "[".repeat(100_000), "]".repeat(100_000));
     // nesting where any JSON is allowed (the curve object) stops at serde_json's depth limit
     let (f, msg) = bad("/api/evaluate", format!("{{\"curve\": {deep}}}")).await;

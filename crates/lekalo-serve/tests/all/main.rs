@@ -9,6 +9,7 @@ mod connections;
 mod fit_query;
 mod openapi;
 mod responsive;
+mod transport;
 
 #[test]
 fn every_test_file_is_a_module() {

@@ -30,11 +30,22 @@ pub(crate) fn load_shape(path: &Path, cx: &Context) -> Result<Shape> {
 /// comments), a STEP file's curves and surfaces, or a single JSON object.
 pub(crate) fn load_shapes(path: &Path, cx: &Context) -> Result<Vec<Shape>> {
     let (text, name) = lekalo_io::read_input(path)?;
-    if let Some(shapes) = read_cad(cx, path, &text, &name)? {
+    shapes_of_text(cx, path, &text, &name)
+}
+
+/// [`load_shapes`] of `text`, the input `path` read once and named `name` (standard input
+/// read before to see whether it holds faces: [`face_input`]).
+pub(crate) fn shapes_of_text(
+    cx: &Context,
+    path: &Path,
+    text: &str,
+    name: &str,
+) -> Result<Vec<Shape>> {
+    if let Some(shapes) = read_cad(cx, path, text, name)? {
         return Ok(shapes);
     }
-    if !is_json_lines(path, false) {
-        return Ok(vec![Shape::from_json_str(&text, &name)?]);
+    if !crate::items::lines_input(path, false, text) {
+        return Ok(vec![Shape::from_json_str(text, name)?]);
     }
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -59,9 +70,13 @@ pub(crate) fn convert_shapes(
     to: Option<&str>,
     step_name: &str,
     timestamp: &str,
+    read: Option<&(String, String)>,
     cx: &Context,
 ) -> Result<()> {
-    let shapes = load_shapes(input, cx)?;
+    let shapes = match read {
+        Some((text, name)) => shapes_of_text(cx, input, text, name)?,
+        None => load_shapes(input, cx)?,
+    };
     let format = format_of(to, output, "jsonl");
     let bytes = match format.as_str() {
         "jsonl" => shapes
@@ -130,14 +145,29 @@ pub(crate) fn convert_shapes(
 /// error (not with `-q`). IGES faces come in the same record, ids being directory-entry
 /// sequence numbers.
 pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRead> {
-    let iges = is_iges(path);
-    if !is_step(path) && !iges {
+    read_faces_of(path, None, cx)
+}
+
+/// [`read_faces`] of the input `path`, or of its text and name `read` already (standard input,
+/// read once: [`face_input`]), a STEP or IGES file by its extension or its first bytes.
+pub(crate) fn read_faces_of(
+    path: &Path,
+    read: Option<(String, String)>,
+    cx: &Context,
+) -> Result<lekalo_io::StepRead> {
+    let sniffed = read.as_ref().map(|(text, _)| text.as_str());
+    let iges = is_iges(path) || sniffed.is_some_and(crate::items::is_iges_text);
+    let step = is_step(path) || sniffed.is_some_and(crate::items::is_step_text);
+    if !step && !iges {
         return bad_input(format!(
             "{}: --faces reads the faces of a STEP file (.step, .stp, .p21) or the trimmed surfaces of an IGES file (.igs, .iges)",
             path.display()
         ));
     }
-    let (text, name) = lekalo_io::read_input(path)?;
+    let (text, name) = match read {
+        Some(read) => read,
+        None => lekalo_io::read_input(path)?,
+    };
     let r = if iges {
         let r = crate::items::read_with_progress(cx, &name, &text, |p| {
             lekalo_io::read_iges_with_progress(&text, &name, cx.max_size, true, p)
@@ -179,6 +209,25 @@ pub(crate) fn face_lines(path: &Path) -> Result<Option<Vec<lekalo_io::StepFace>>
     face_lines_in(&text, &name)
 }
 
+/// The input of a command that reads faces or anything else (`info`, `convert`, `mesh`):
+/// the faces of face JSON Lines, or else, for standard input, its text and name, read here
+/// once (it cannot be read twice) for [`crate::items::open_text`]; a file other than face
+/// JSON Lines is left unread (`(None, None)`), for its reader to open by its kind.
+pub(crate) type FaceInput = (Option<Vec<lekalo_io::StepFace>>, Option<(String, String)>);
+
+/// Reads `path` as [`FaceInput`] says: standard input is taken for faces when its first line
+/// is a face envelope (docs/formats.md, "Faces"), as a file named `.jsonl` is.
+pub(crate) fn face_input(path: &Path) -> Result<FaceInput> {
+    if !crate::items::is_stdin(path) {
+        return Ok((face_lines(path)?, None));
+    }
+    let (text, name) = lekalo_io::read_input(path)?;
+    match face_lines_in(&text, &name)? {
+        Some(faces) => Ok((Some(faces), None)),
+        None => Ok((None, Some((text, name)))),
+    }
+}
+
 /// The faces of `text` (read from `name`) when its first line is a face envelope, `None`
 /// otherwise: for input read once whatever it is, as standard input must be.
 pub(crate) fn face_lines_in(text: &str, name: &str) -> Result<Option<Vec<lekalo_io::StepFace>>> {
@@ -205,6 +254,7 @@ pub(crate) fn face_lines_in(text: &str, name: &str) -> Result<Option<Vec<lekalo_
 pub(crate) fn convert_faces(
     input: &Path,
     faces: Option<Vec<lekalo_io::StepFace>>,
+    read: Option<(String, String)>,
     output: Option<&Path>,
     to: Option<&str>,
     (name, timestamp): (&str, &str),
@@ -218,7 +268,7 @@ pub(crate) fn convert_faces(
     }
     let faces = match faces {
         Some(f) => f,
-        None => read_faces(input, cx)?.faces,
+        None => read_faces_of(input, read, cx)?.faces,
     };
     if faces.is_empty() && format != "jsonl" {
         return bad_input(format!("{}: no faces to write", input.display()));
@@ -244,12 +294,23 @@ pub(crate) fn convert_faces(
 
 /// True when `convert` should take the many-shapes path: a STEP input, or JSON Lines holding
 /// something other than curves.
-pub(crate) fn wants_shapes(input: &Path, jsonl: bool, out_format: &str) -> bool {
+pub(crate) fn wants_shapes(
+    input: &Path,
+    jsonl: bool,
+    out_format: &str,
+    stdin: Option<&str>,
+) -> bool {
     if is_step(input) || is_iges(input) {
         return true;
     }
     if matches!(out_format, "iges" | "igs") {
         return true;
+    }
+    if let Some(text) = stdin {
+        return crate::items::is_step_text(text)
+            || crate::items::is_iges_text(text)
+            || (crate::items::lines_input(input, jsonl, text)
+                && (text.contains("_surface\"") || text.contains("piecewise_polynomial")));
     }
     if !is_json_lines(input, jsonl) || input.as_os_str() == "-" {
         return false;

@@ -99,11 +99,13 @@ fn step_name(a: &ConvertArgs) -> String {
 }
 
 pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
-    let face_lines = crate::cmd::cad::face_lines(&a.input)?;
+    // standard input is read once here: faces, or the text for the readers below
+    let (face_lines, stdin) = crate::cmd::cad::face_input(&a.input)?;
     if a.faces || face_lines.is_some() {
         return crate::cmd::cad::convert_faces(
             &a.input,
             face_lines,
+            stdin,
             a.output.as_deref(),
             a.to.as_deref(),
             (&step_name(a), STEP_TIMESTAMP),
@@ -112,10 +114,17 @@ pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
     }
     let parquet = crate::items::is_parquet;
     if parquet(&a.input) || a.output.as_deref().is_some_and(parquet) {
-        return crate::batch::parquet::convert_curves(cx, &a.input, a.output.as_deref());
+        return crate::batch::parquet::convert_curves(cx, &a.input, stdin, a.output.as_deref());
     }
+    // the input's items: of the text read from standard input, or opened by the file's kind
+    let open_read = |cx: &Context, jsonl: bool| match &stdin {
+        Some((text, name)) => {
+            crate::items::open_text(cx, &a.input, jsonl, text, name, std::time::Instant::now())
+        }
+        None => open(cx, &a.input, jsonl),
+    };
     if shapes::surface_csv_wanted(a.to.as_deref(), a.output.as_deref()) {
-        if let Ok(Items::Other(Shape::Surface(s))) = open(&cx.quiet(), &a.input, false) {
+        if let Ok(Items::Other(Shape::Surface(s))) = open_read(&cx.quiet(), false) {
             let side = a.samples.clamp(2, 10_000_000).isqrt().max(2);
             let table = lekalo_io::surface_sample_table(
                 &s,
@@ -134,6 +143,7 @@ pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
         &a.input,
         a.jsonl,
         &format_of(a.to.as_deref(), a.output.as_deref(), "json"),
+        stdin.as_ref().map(|(text, _)| text.as_str()),
     ) {
         return crate::cmd::cad::convert_shapes(
             &a.input,
@@ -141,15 +151,16 @@ pub(crate) fn run(a: &ConvertArgs, cx: &Context) -> Result<()> {
             a.to.as_deref(),
             &step_name(a),
             STEP_TIMESTAMP,
+            stdin.as_ref(),
             cx,
         );
     }
     // bad lines of JSON Lines: reported after the good ones are written (exit code 2)
     let mut failed: Vec<String> = Vec::new();
     let mut total = 0;
-    let objects: Vec<Object> = match open(cx, &a.input, a.jsonl)? {
+    let objects: Vec<Object> = match open_read(cx, a.jsonl)? {
         Items::Parquet(input) => {
-            return crate::batch::parquet::convert_curves(cx, &input, a.output.as_deref())
+            return crate::batch::parquet::convert_curves(cx, &input, None, a.output.as_deref())
         }
         Items::One(o) => vec![o],
         Items::Other(shape) => {

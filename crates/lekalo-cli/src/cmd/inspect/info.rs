@@ -190,8 +190,13 @@ fn points_file_hint(path: &std::path::Path, e: anyhow::Error) -> anyhow::Error {
 
 pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
     let inputs = vec![a.input.clone()];
-    let face_lines = crate::cmd::files::cad::face_lines(&a.input)?;
+    // standard input is read once here: faces, or the text for the readers below
+    let (face_lines, stdin) = crate::cmd::files::cad::face_input(&a.input)?;
     if a.faces || face_lines.is_some() {
+        let iges = crate::items::is_iges(&a.input)
+            || stdin
+                .as_ref()
+                .is_some_and(|(text, _)| crate::items::is_iges_text(text));
         let r = match face_lines {
             Some(faces) => lekalo_io::StepRead {
                 shapes: Vec::new(),
@@ -202,31 +207,31 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
                 length_unit: "millimetre".into(),
                 scale_to_mm: 1.0,
             },
-            None => crate::cmd::files::cad::read_faces(&a.input, cx)?,
+            None => crate::cmd::files::cad::read_faces_of(&a.input, stdin, cx)?,
         };
         return crate::report::print_report(
             a.json,
             &faces_json(&r),
-            |j| {
-                faces_text(
-                    j,
-                    if crate::items::is_iges(&a.input) {
-                        "D"
-                    } else {
-                        "#"
-                    },
-                )
-            },
+            |j| faces_text(j, if iges { "D" } else { "#" }),
             a.output.as_deref(),
             &inputs,
             cx,
         );
     }
     let samples = cx.in_range(a.samples, 2, 1_000_000, "--samples")?;
-    let loaded = if crate::items::is_step(&a.input) || crate::items::is_iges(&a.input) {
+    let cad_text = stdin
+        .as_ref()
+        .filter(|(text, _)| crate::items::is_step_text(text) || crate::items::is_iges_text(text));
+    let loaded = if crate::items::is_step(&a.input)
+        || crate::items::is_iges(&a.input)
+        || cad_text.is_some()
+    {
         // a CAD file: one shape is described as any object; several (curves and surfaces
         // mixed) as JSON Lines, one per shape in the file's order
-        let mut shapes = crate::cmd::files::cad::load_shapes(&a.input, cx)?;
+        let mut shapes = match cad_text {
+            Some((text, name)) => crate::cmd::files::cad::shapes_of_text(cx, &a.input, text, name)?,
+            None => crate::cmd::files::cad::load_shapes(&a.input, cx)?,
+        };
         match shapes.len() {
             0 => {
                 return bad_input(format!(
@@ -240,6 +245,9 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
             },
             _ => return cad_info(a, cx, &shapes, samples, &inputs),
         }
+    } else if let Some((text, name)) = stdin {
+        let now = std::time::Instant::now();
+        crate::items::open_text(cx, &a.input, a.jsonl, &text, &name, now)?
     } else {
         open(cx, &a.input, a.jsonl).map_err(|e| points_file_hint(&a.input, e))?
     };

@@ -21,6 +21,7 @@
 //! the reason; edges whose parameter-space curves are missing or do not match the model-space
 //! pieces are kept without pcurves, with the reason in [`StepFace::pcurves`].
 
+use std::cell::Cell;
 use std::collections::HashMap;
 
 use lekalo::topology::{Edge, Face, Loop};
@@ -41,7 +42,8 @@ pub(super) struct Raw {
     pub(super) matrix: bool,
 }
 
-/// Composite curves nested deeper than this are refused (a file could make them cyclic).
+/// Composite curves nested deeper than this are refused; real files nest one or two (a cycle
+/// is refused as such before this depth is reached).
 const MAX_NESTING: usize = 8;
 
 /// Reads an IGES file as [`super::read_iges_limited`] does and, in [`IgesRead::faces`], its
@@ -54,7 +56,8 @@ const MAX_NESTING: usize = 8;
 ///
 /// # Errors
 /// As [`super::read_iges_limited`]; [`IoError::TooLarge`] when the faces' surfaces and edges
-/// hold more than `max_size` control points together.
+/// hold more than `max_size` control points together, or the composite curves of their
+/// boundaries copy more than that out of the curves they list.
 pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
     read_faces_with_progress(text, source, max_size, &lekalo::Progress::new())
 }
@@ -78,6 +81,9 @@ pub(super) fn read_faces_with_progress(
             .collect(),
         raw: &raw,
         unit: r.scale_to_mm,
+        max_size,
+        spent: Cell::new(0),
+        over: Cell::new(None),
     };
     for (id, s) in &r.shapes {
         match s {
@@ -118,6 +124,14 @@ pub(super) fn read_faces_with_progress(
                 }
                 faces.push(f);
             }
+            Err(reason) if cx.over.get().is_some() => {
+                return Err(IoError::TooLarge {
+                    what: format!(
+                        "{source}: face D{id}: {reason}; composite curves that list the same curves many times expand to that many copies; raise the limit with --max-size {} if the machine has the memory",
+                        cx.spent.get()
+                    ),
+                });
+            }
             Err(reason) => skipped.push(StepSkipped {
                 id,
                 entity: format!("IGES entity {}", raw[&id].ty),
@@ -137,6 +151,12 @@ struct Faces<'a> {
     skips: HashMap<u64, &'a str>,
     raw: &'a HashMap<u64, Raw>,
     unit: f64,
+    /// The read's size limit (`--max-size`), in control points.
+    max_size: usize,
+    /// Control points copied out of curves into boundaries so far, by every face.
+    spent: Cell<usize>,
+    /// The curve at which `spent` passed `max_size`, once it has.
+    over: Cell<Option<u64>>,
 }
 
 /// A loop read: its edges, the sequence numbers of their model-space curves, and why the edges
@@ -171,9 +191,21 @@ impl Faces<'_> {
     }
 
     /// The curves of entity `id`: itself, or the constituents of a composite curve in order,
-    /// with their sequence numbers.
-    fn pieces(&self, id: u64, depth: usize, out: &mut Vec<(u64, Curve)>) -> Result<(), String> {
+    /// with their sequence numbers. `path` holds the composite curves being expanded, outermost
+    /// first: a composite curve that lists one of them (itself among them) is a cycle, refused
+    /// naming its entities (`D7 → D9 → D7`), and nesting is at most [`MAX_NESTING`] deep. The
+    /// control points copied count against the read's size limit ([`Faces::spend`]), so a
+    /// curve listed many times over by composite curves that list each other many times (a
+    /// chain of `n` composites each listing the next `k` times expands to `k^n` curves) is
+    /// refused after `--max-size` control points, not expanded.
+    fn pieces(
+        &self,
+        id: u64,
+        path: &mut Vec<u64>,
+        out: &mut Vec<(u64, Curve)>,
+    ) -> Result<(), String> {
         if let Some(c) = self.curves.get(&id) {
+            self.spend(id, c.control_points().len())?;
             out.push((id, (*c).clone()));
             return Ok(());
         }
@@ -185,15 +217,31 @@ impl Faces<'_> {
                 "its composite curve D{id} has a transformation matrix (entity 124), which is not applied"
             ));
         }
-        if depth >= MAX_NESTING {
+        let named = |ids: &[u64]| {
+            ids.iter()
+                .map(|d| format!("D{d}"))
+                .chain(std::iter::once(format!("D{id}")))
+                .collect::<Vec<_>>()
+                .join(" → ")
+        };
+        if let Some(k) = path.iter().position(|&d| d == id) {
             return Err(format!(
-                "composite curve D{id} is nested more than {MAX_NESTING} deep (a cycle?)"
+                "composite curve D{id} contains itself: {}; a composite curve lists the curves it \
+                 is made of, never one that contains it",
+                named(&path[k..])
+            ));
+        }
+        if path.len() >= MAX_NESTING {
+            return Err(format!(
+                "composite curves nested more than {MAX_NESTING} deep (D{} → D{} → … → D{id})",
+                path[0], path[1]
             ));
         }
         let n = Self::pointer(e, id, 1, "the number of curves N")?;
         if n == 0 {
             return Err(format!("composite curve D{id} has no curves (N = 0)"));
         }
+        path.push(id);
         for k in 0..n {
             let k = usize::try_from(k).unwrap_or(usize::MAX).saturating_add(2);
             if k >= e.fields.len() {
@@ -203,7 +251,24 @@ impl Faces<'_> {
                 ));
             }
             let c = Self::pointer(e, id, k, "a constituent curve")?;
-            self.pieces(c, depth + 1, out)?;
+            self.pieces(c, path, out)?;
+        }
+        path.pop();
+        Ok(())
+    }
+
+    /// Counts `points` control points copied out of curve `id` against the read's size limit;
+    /// past it, marks the read as over the limit ([`read_faces_with_progress`] then fails with
+    /// [`IoError::TooLarge`]) and answers why.
+    fn spend(&self, id: u64, points: usize) -> Result<(), String> {
+        let spent = self.spent.get().saturating_add(points);
+        self.spent.set(spent);
+        if spent > self.max_size {
+            self.over.set(Some(id));
+            return Err(format!(
+                "the boundaries copy {spent} control points at curve D{id}, above the size limit {}",
+                self.max_size
+            ));
         }
         Ok(())
     }
@@ -245,7 +310,7 @@ impl Faces<'_> {
             ));
         }
         let mut model = Vec::new();
-        self.pieces(c, 0, &mut model)
+        self.pieces(c, &mut Vec::new(), &mut model)
             .map_err(|why| format!("boundary D{id}: {why}"))?;
         let mut plane = Vec::new();
         let plane = if b == 0 {
@@ -253,7 +318,7 @@ impl Faces<'_> {
                 "boundary D{id} has no parameter-space curve (BPTR = 0)"
             ))
         } else {
-            self.pieces(b, 0, &mut plane)
+            self.pieces(b, &mut Vec::new(), &mut plane)
                 .map(|()| plane)
                 .map_err(|why| format!("boundary D{id}: {why}"))
         };
@@ -294,7 +359,7 @@ impl Faces<'_> {
                 Ok(v)
             };
             let mut m = Vec::new();
-            self.pieces(crv, 0, &mut m)
+            self.pieces(crv, &mut Vec::new(), &mut m)
                 .map_err(|why| format!("boundary D{id}: {why}"))?;
             model.extend(oriented(m)?);
             let mut pk = Vec::new();
@@ -306,7 +371,7 @@ impl Faces<'_> {
                 (0..kk).try_for_each(|i| {
                     let at = usize::try_from(i).map_or(usize::MAX, |i| k.saturating_add(3 + i));
                     let p = Self::pointer(e, id, at, "a parameter-space curve")?;
-                    self.pieces(p, 0, &mut pk)
+                    self.pieces(p, &mut Vec::new(), &mut pk)
                         .map_err(|why| format!("boundary D{id}: {why}"))
                 })
             };

@@ -318,3 +318,109 @@ fn the_python_fixture_is_the_plate() {
     }
     assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
 }
+
+/// The reason face `id` of `text` was skipped.
+fn skip_reason(text: &str, id: u64) -> String {
+    let r = read_iges_faces(text, "plate.igs", usize::MAX).unwrap();
+    let s = r.skipped_faces.iter().find(|s| s.id == id);
+    s.unwrap_or_else(|| panic!("face D{id} not skipped: {r:?}"))
+        .reason
+        .clone()
+}
+
+/// Composite curves that contain themselves, directly or through others, and a trimmed surface
+/// whose boundary refers back to it: each face skipped, naming the entities of the cycle in
+/// order; never a stack overflow or an endless loop.
+#[test]
+fn reference_cycles_are_refused_naming_their_entities() {
+    // D31 lists a line and itself
+    let own = plate(&["102,2,3,31", "142,0,1,21,31,1", "144,1,1,0,33"]);
+    let why = skip_reason(&own, 35);
+    assert!(
+        why.contains("composite curve D31 contains itself: D31 → D31"),
+        "{why}"
+    );
+    // D31 lists D33, which lists D31, below the 142's model-space curve
+    let two = plate(&["102,1,33", "102,2,3,31", "142,0,1,21,31,1", "144,1,1,0,35"]);
+    let why = skip_reason(&two, 37);
+    assert!(why.contains("D31 → D33 → D31"), "{why}");
+    assert!(why.starts_with("boundary D35: "), "{why}");
+    // the boundary's model-space curve is the trimmed surface itself
+    let back = plate(&["142,0,1,21,33,1", "144,1,1,0,31"]);
+    let why = skip_reason(&back, 33);
+    assert!(why.contains("D33 is an entity 144, not a curve"), "{why}");
+    // a bounded surface (143) whose boundary (141) lists a cycle of composite curves
+    let bounded = plate(&[
+        "102,1,33",
+        "102,1,31",
+        "141,0,0,1,1,31,1,1,21",
+        "143,0,1,1,35",
+    ]);
+    let why = skip_reason(&bounded, 37);
+    assert!(why.contains("D31 → D33 → D31"), "{why}");
+}
+
+/// A chain of 100,000 composite curves, each listing the next: refused at the nesting limit,
+/// naming where it starts, in well under a second of work per face.
+#[test]
+fn a_chain_of_100000_composite_curves_is_refused_at_the_nesting_limit() {
+    let n = 100_000u64;
+    let mut entities: Vec<String> = (0..n)
+        .map(|k| {
+            if k + 1 == n {
+                "102,1,3".to_string()
+            } else {
+                format!("102,1,{}", 31 + 2 * (k + 1))
+            }
+        })
+        .collect();
+    let boundary = 31 + 2 * n;
+    entities.push("142,0,1,21,31,1".into());
+    entities.push(format!("144,1,1,0,{boundary}"));
+    let refs: Vec<&str> = entities.iter().map(String::as_str).collect();
+    let text = plate(&refs);
+    let start = std::time::Instant::now();
+    let why = skip_reason(&text, boundary + 2);
+    assert!(
+        why.contains("composite curves nested more than 8 deep (D31 → D33 → … → D"),
+        "{why}"
+    );
+    assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+}
+
+/// Composite curves that list the next one twenty times over, seven deep (20^7 copies of one
+/// line): the copies count against the size limit and the read fails with `TooLarge` naming
+/// `--max-size` once past it, instead of expanding them; within the limit the same
+/// references (listed twice, three deep) are read.
+#[test]
+fn composite_curves_listed_many_times_over_stop_at_the_size_limit() {
+    let chain = |times: usize, depth: u64| {
+        let mut entities: Vec<String> = (0..depth)
+            .map(|k| {
+                let next = if k + 1 == depth { 3 } else { 31 + 2 * (k + 1) };
+                let list = vec![next.to_string(); times].join(",");
+                format!("102,{times},{list}")
+            })
+            .collect();
+        entities.push("142,0,1,21,31,1".into());
+        entities.push(format!("144,1,1,0,{}", 31 + 2 * depth));
+        entities
+    };
+    let entities = chain(20, 7);
+    let refs: Vec<&str> = entities.iter().map(String::as_str).collect();
+    let start = std::time::Instant::now();
+    let e = read_iges_faces(&plate(&refs), "plate.igs", 1_000_000).unwrap_err();
+    assert!(matches!(e, crate::IoError::TooLarge { .. }), "{e}");
+    let msg = e.to_string();
+    assert!(
+        msg.contains("face D47") && msg.contains("above the size limit 1000000"),
+        "{msg}"
+    );
+    assert!(msg.contains("--max-size"), "{msg}");
+    assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    // small repetitions read (the loop does not close, which is the face's own matter)
+    let entities = chain(2, 3);
+    let refs: Vec<&str> = entities.iter().map(String::as_str).collect();
+    let why = skip_reason(&plate(&refs), 39);
+    assert!(!why.contains("size limit"), "{why}");
+}

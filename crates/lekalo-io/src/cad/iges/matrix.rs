@@ -87,10 +87,33 @@ pub(super) fn matrices(
 }
 
 /// The map of the matrix at directory entry `at` followed by the ones it points at, or why it
-/// cannot be applied.
+/// cannot be applied: a pointer at something that is not an entity 124, a matrix that cannot
+/// be read, matrices that point back at one of the chain (named in order, `D5 → D7 → D5`) or
+/// a chain longer than [`MAX_CHAIN`].
 pub(super) fn chain(matrices: &HashMap<u64, Matrix>, mut at: u64) -> Result<Motion, String> {
     let mut total = Motion::IDENTITY;
-    for _ in 0..MAX_CHAIN {
+    let mut path: Vec<u64> = Vec::new();
+    let named = |ids: &[u64]| {
+        ids.iter()
+            .map(|d| format!("D{d}"))
+            .collect::<Vec<_>>()
+            .join(" → ")
+    };
+    loop {
+        if let Some(k) = path.iter().position(|&d| d == at) {
+            path.push(at);
+            return Err(format!(
+                "its transformation matrices form a cycle, {}: each matrix must point at the \
+                 one applied after it, or at none (0)",
+                named(&path[k..])
+            ));
+        }
+        if path.len() >= MAX_CHAIN {
+            return Err(format!(
+                "its transformation matrices are chained more than {MAX_CHAIN} deep ({} → …)",
+                named(&path[..4])
+            ));
+        }
         let Some(m) = matrices.get(&at) else {
             return Err(format!(
                 "its transformation matrix pointer D{at} is not an entity 124"
@@ -100,11 +123,9 @@ pub(super) fn chain(matrices: &HashMap<u64, Matrix>, mut at: u64) -> Result<Moti
         if m.then == 0 {
             return Ok(total);
         }
+        path.push(at);
         at = m.then;
     }
-    Err(format!(
-        "its transformation matrices point at each other more than {MAX_CHAIN} deep (a cycle?)"
-    ))
 }
 
 /// `shape` in the coordinates of the map `m`: its control points mapped (weights and knots

@@ -212,5 +212,9 @@ fn matrices_that_place_nothing_are_reasons_to_skip() {
     // two matrices that point at each other
     let two = with_matrices(&text, &[(turn([0.0; 3]), 0), (turn([0.0; 3]), 0)]);
     let cycle = pointing(&two, 5, 3);
-    assert!(reason(&cycle).contains("cycle"), "{}", reason(&cycle));
+    assert!(
+        reason(&cycle).contains("form a cycle, D3 → D5 → D3"),
+        "{}",
+        reason(&cycle)
+    );
 }

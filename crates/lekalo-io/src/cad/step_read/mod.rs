@@ -81,7 +81,8 @@ pub struct StepSkipped {
 pub struct SkippedKind {
     /// Entity type, e.g. `CIRCLE` or `IGES entity 144`.
     pub entity: String,
-    /// Why they were skipped.
+    /// Why they were skipped: the reason of the first of them (the entity `first_id`), whose
+    /// references to other entities may differ from the others' ([`skipped_by_kind`]).
     pub reason: String,
     /// How many entities of the file share the type and the reason.
     pub count: usize,
@@ -89,24 +90,55 @@ pub struct SkippedKind {
     pub first_id: u64,
 }
 
+/// `reason` with its references to entities masked (`#123` and `D45` become `#…` and `D…`):
+/// the reasons of a million trimmed curves each too deep below the next differ by the curve
+/// they name only, and are one kind of skip.
+fn reason_kind(reason: &str) -> String {
+    let mut out = String::with_capacity(reason.len());
+    let mut prev: Option<char> = None;
+    let mut chars = reason.chars().peekable();
+    while let Some(c) = chars.next() {
+        let at_word = prev.is_none_or(|p| !p.is_alphanumeric());
+        let reference = c == '#' || (c == 'D' && at_word);
+        out.push(c);
+        prev = Some(c);
+        if reference && chars.peek().is_some_and(char::is_ascii_digit) {
+            while chars.next_if(char::is_ascii_digit).is_some() {}
+            out.push('…');
+            prev = Some('…');
+        }
+    }
+    out
+}
+
 /// The skipped entities of [`StepRead::skipped`] or [`crate::IgesRead::skipped`] grouped by
-/// type and reason: the report of what a file holds that was not read, most frequent first
-/// (then by type). Linear in the number of entries.
+/// type and reason, the entities a reason names masked (`curve #12 is …` and `curve #13 is …`
+/// are one kind): the report of what a file holds that was not read, most frequent first
+/// (then by type). Each kind keeps the reason of its first entity. Linear in the number of
+/// entries.
 ///
 /// ```
 /// use lekalo_io::{skipped_by_kind, StepSkipped};
-/// let s = |id, e: &str| StepSkipped { id, entity: e.into(), reason: "r".into() };
-/// let k = skipped_by_kind(&[s(4, "B"), s(2, "A"), s(7, "B")]);
+/// let s = |id, e: &str, r: &str| StepSkipped { id, entity: e.into(), reason: r.into() };
+/// let k = skipped_by_kind(&[
+///     s(4, "B", "r"),
+///     s(2, "A", "r"),
+///     s(7, "B", "r"),
+///     s(9, "T", "curve #8 is too deep"),
+///     s(8, "T", "curve #7 is too deep"),
+/// ]);
 /// assert_eq!((k[0].entity.as_str(), k[0].count, k[0].first_id), ("B", 2, 4));
-/// assert_eq!((k[1].entity.as_str(), k[1].count), ("A", 1));
+/// assert_eq!((k[1].entity.as_str(), k[1].count, k[1].first_id), ("T", 2, 8));
+/// assert_eq!(k[1].reason, "curve #7 is too deep");
+/// assert_eq!((k[2].entity.as_str(), k[2].count), ("A", 1));
 /// ```
 #[must_use]
 pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
-    let mut at: std::collections::HashMap<(&str, &str), usize> = std::collections::HashMap::new();
+    let mut at: std::collections::HashMap<(&str, String), usize> = std::collections::HashMap::new();
     let mut out: Vec<SkippedKind> = Vec::new();
     for s in skipped {
         let k = *at
-            .entry((s.entity.as_str(), s.reason.as_str()))
+            .entry((s.entity.as_str(), reason_kind(&s.reason)))
             .or_insert_with(|| {
                 out.push(SkippedKind {
                     entity: s.entity.clone(),
@@ -116,8 +148,12 @@ pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
                 });
                 out.len() - 1
             });
-        out[k].count += 1;
-        out[k].first_id = out[k].first_id.min(s.id);
+        let kind = &mut out[k];
+        kind.count += 1;
+        if s.id < kind.first_id {
+            kind.first_id = s.id;
+            kind.reason.clone_from(&s.reason);
+        }
     }
     out.sort_by(|a, b| b.count.cmp(&a.count).then_with(|| a.entity.cmp(&b.entity)));
     out
