@@ -9,7 +9,8 @@
 //! - `surface.rs`: [`BorrowedSurface`], a tensor-product B-spline surface (a pair reads
 //!   `2p + 2` and `2q + 2` knots and a `(p + 1) × (q + 1)` block of the net);
 //! - `tensor.rs`: [`BorrowedTensor`], a tensor-product B-spline in `N` variables (a point
-//!   reads `2p_a + 2` knots a direction and a `Π_a (p_a + 1)` block of the net).
+//!   reads `2p_a + 2` knots a direction and a `Π_a (p_a + 1)` block of the net);
+//! - `test_nets.rs` (tests only): the knot vectors and nets of the surface and tensor tests.
 //!
 //! What they share is here: the O(1) checks of a curve's counts, the location of a parameter's
 //! span with the checks of its knots, and the gather and scatter of a block of a net.
@@ -18,6 +19,8 @@ mod curve;
 mod nurbs;
 mod surface;
 mod tensor;
+#[cfg(test)]
+mod test_nets;
 
 pub use curve::BorrowedCurve;
 pub use nurbs::BorrowedNurbs;

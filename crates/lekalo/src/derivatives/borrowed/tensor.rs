@@ -269,35 +269,13 @@ impl<'a> BorrowedTensor<'a> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_nets::{knots, net};
     use super::BorrowedTensor;
     use crate::error::Error;
     use crate::oracle::proptest_config;
     use crate::points::Points;
     use crate::tensor::TensorBSpline;
     use proptest::prelude::*;
-
-    /// Clamped knots of degree `p` for `n` control points, interior knots from `gaps` (a zero
-    /// gap repeats a knot, at most `p` times).
-    fn knots(p: usize, n: usize, gaps: &[f64]) -> Vec<f64> {
-        let mut k = vec![0.0; p + 1];
-        let mut x = 0.0;
-        for j in 0..n - p - 1 {
-            let run = k.iter().rev().take_while(|&&v| v == x).count();
-            let g = gaps[j % gaps.len()];
-            x += if g == 0.0 && run >= p { 0.5 } else { g };
-            k.push(x);
-        }
-        x += 1.0;
-        k.extend(vec![x; p + 1]);
-        k
-    }
-
-    #[allow(clippy::cast_precision_loss)]
-    fn net(len: usize, seed: f64) -> Vec<f64> {
-        (0..len)
-            .map(|i| (i as f64 * 0.7 + seed).sin() * 3.0)
-            .collect()
-    }
 
     fn built(degrees: &[usize], knots: &[Vec<f64>], ctrl: &[f64], dim: usize) -> TensorBSpline {
         TensorBSpline::new(
