@@ -13,19 +13,7 @@ use lekalo_serve::Limits;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
-/// The server with `limits` on a free loopback port, in the background: its address.
-async fn serving(limits: Limits) -> SocketAddr {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind");
-    let addr = listener.local_addr().expect("addr");
-    tokio::spawn(lekalo_serve::listen::serve(
-        listener,
-        limits,
-        std::future::pending(),
-    ));
-    addr
-}
+use crate::serving;
 
 /// One request on a fresh connection: the whole answer (status line, headers, body).
 async fn request(addr: SocketAddr, method: &str, route: &str, body: &str) -> String {

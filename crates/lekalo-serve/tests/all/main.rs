@@ -11,6 +11,21 @@ mod openapi;
 mod responsive;
 mod transport;
 
+/// The server with `limits` on a free loopback port, in the background, as `lekalo serve` runs
+/// it ([`lekalo_serve::listen::serve`]): its address.
+async fn serving(limits: lekalo_serve::Limits) -> std::net::SocketAddr {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind");
+    let addr = listener.local_addr().expect("addr");
+    tokio::spawn(lekalo_serve::listen::serve(
+        listener,
+        limits,
+        std::future::pending(),
+    ));
+    addr
+}
+
 #[test]
 fn every_test_file_is_a_module() {
     lekalo_testkit::assert_every_test_file_is_a_module(concat!(

@@ -15,18 +15,7 @@ use serde_json::Value;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
-async fn serving(limits: Limits) -> SocketAddr {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind");
-    let addr = listener.local_addr().expect("addr");
-    tokio::spawn(lekalo_serve::listen::serve(
-        listener,
-        limits,
-        std::future::pending(),
-    ));
-    addr
-}
+use crate::serving;
 
 /// Sends `bytes` on a fresh connection and reads the whole answer (the server closes it).
 async fn exchange(addr: SocketAddr, bytes: &[u8]) -> String {
