@@ -95,20 +95,51 @@ def skipped(stderr):
 # ---- lekalo's objects as Open CASCADE geometry (its evaluator, independent of lekalo's)
 
 
+def c0_knots(flat, degree, rows, axis):
+    """Open CASCADE holds no interior knot of multiplicity degree + 1 (lekalo's exact form of
+    IGES piecewise polynomials, entities 112 and 114): where the two control rows (weighted
+    points) at such a knot agree (an IGES file prints its patches'
+    coefficients to a few digits, so the patches meet only that closely: Open CASCADE joins
+    them too) within 1e-5 of the size, the two rows become their midpoint and one knot goes."""
+    flat = list(flat)
+    k = degree + 1
+    while k < len(flat) - degree - 1:
+        if flat[k] == flat[k - degree] and flat[k] < flat[-1]:
+            i = k - degree - 1  # the last row of the left piece; the next starts the right
+            a, b = np.take(rows, i, axis=axis), np.take(rows, i + 1, axis=axis)
+            if np.abs(a - b).max() <= 1e-5 * max(np.abs(rows).max(), 1e-300):
+                rows = np.delete(rows, i + 1, axis=axis)
+                index = [slice(None)] * rows.ndim
+                index[axis] = i
+                rows[tuple(index)] = 0.5 * (a + b)
+                del flat[k]
+                continue
+        k += 1
+    return flat, rows
+
+
 def to_occ(obj):
     """A lekalo curve or surface (JSON) as Open CASCADE's Geom_BSplineCurve / Surface."""
     if obj["type"].endswith("_surface"):
         nu, nv = obj["net"]
-        ctrl = obj["control"]
-        net = [[ctrl[i * nv + j] for j in range(nv)] for i in range(nu)]
         w = obj.get("weights")
-        weights = [[w[i * nv + j] for j in range(nv)] for i in range(nu)] if w else None
-        uk, um = distinct(obj["knots_u"])
-        vk, vm = distinct(obj["knots_v"])
+        net = np.asarray(obj["control"], dtype=float).reshape(nu, nv, -1)
+        ww = np.asarray(w, dtype=float).reshape(nu, nv, 1) if w else np.ones((nu, nv, 1))
+        rows = np.concatenate([net * ww, ww], axis=2)
+        ku, rows = c0_knots(obj["knots_u"], obj["degree_u"], rows, 0)
+        kv, rows = c0_knots(obj["knots_v"], obj["degree_v"], rows, 1)
+        net = (rows[:, :, :-1] / rows[:, :, -1:]).tolist()
+        weights = rows[:, :, -1].tolist() if w else None
+        uk, um = distinct(ku)
+        vk, vm = distinct(kv)
         return occ.surface(net, uk, vk, um, vm, obj["degree_u"], obj["degree_v"], weights)
-    k, m = distinct(obj["knots"])
-    pts = [list(p) + [0.0] * (3 - len(p)) for p in obj["control"]]
-    return occ.curve(pts, k, m, obj["degree"], obj.get("weights"))
+    w = obj.get("weights")
+    pts = np.asarray([list(p) + [0.0] * (3 - len(p)) for p in obj["control"]], dtype=float)
+    ww = np.asarray(w, dtype=float).reshape(-1, 1) if w else np.ones((len(pts), 1))
+    knots, rows = c0_knots(obj["knots"], obj["degree"], np.concatenate([pts * ww, ww], axis=1), 0)
+    k, m = distinct(knots)
+    return occ.curve((rows[:, :-1] / rows[:, -1:]).tolist(), k, m, obj["degree"],
+                     rows[:, -1].tolist() if w else None)
 
 
 def distinct(flat):
