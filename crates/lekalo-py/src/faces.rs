@@ -289,7 +289,8 @@ pub(crate) fn read_step<'py>(
 
 /// Reads an IGES file: ``{"shapes": [...], "skipped": [...], "length_unit": str,
 /// "scale_to_mm": float}``, and with ``faces=True`` also ``"faces"`` (the trimmed and bounded
-/// surfaces, entities 144 and 143, as ``Face``) and ``"skipped_faces"``; as ``read_step``
+/// surfaces, entities 144 and 143, and the independent surfaces nothing trims, untrimmed, as
+/// ``Face``) and ``"skipped_faces"``; as ``read_step``
 /// otherwise (ids are directory-entry sequence numbers).
 #[pyfunction]
 #[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000)), text_signature = "(path, *, faces=False, max_size=10000000)")]

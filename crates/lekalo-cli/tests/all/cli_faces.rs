@@ -290,6 +290,28 @@ fn iges_trimmed_surfaces_convert_and_list_as_faces() {
     assert_eq!(v["skipped"][0]["id"].as_u64(), Some(33));
 }
 
+/// An IGES file of curves and surfaces and no trimmed surface (the plate's geometry written
+/// again, each entity independent): its surface is an untrimmed face bounded by its domain,
+/// as Open CASCADE reads it.
+#[test]
+fn iges_surfaces_nothing_trims_convert_as_untrimmed_faces() {
+    let d = dir_with(&[("plate.igs", PLATE_IGES)]);
+    let run = |args: &[&str]| lekalo().current_dir(d.path()).args(args).assert();
+    run(&["convert", "plate.igs", "-o", "loose.igs"]).success();
+    let loose = fs::read_to_string(p(&d, "loose.igs")).unwrap();
+    assert!(!loose.contains("\n     144"), "no trimmed surface: {loose}");
+    run(&["convert", "--faces", "loose.igs", "-o", "faces.jsonl"])
+        .success()
+        .stderr(contains("read 1 face(s), 1 with pcurves"));
+    let text = fs::read_to_string(p(&d, "faces.jsonl")).unwrap();
+    assert_eq!(text.lines().count(), 1);
+    let f = lekalo_io::read_face(text.trim(), "faces.jsonl").unwrap();
+    assert_eq!(f.id, f.surface_id);
+    assert_eq!(f.edge_ids, vec![vec![0; 4]]);
+    let region = f.face.trim_region().unwrap();
+    assert!(region.contains(0.5, 0.5) && region.contains(0.05, 0.95));
+}
+
 /// The plate's faces as JSON Lines, then STEP and IGES from them, read back: the same faces.
 #[test]
 fn face_lines_convert_to_step_and_iges_and_back() {

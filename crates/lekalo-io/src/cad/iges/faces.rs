@@ -17,6 +17,11 @@
 //! N`, then per curve `CRVPT, SENSE, K, PSCPT(1)…PSCPT(K)`) lists model-space curves, each with
 //! its parameter-space curves, reversed where `SENSE = 2`.
 //!
+//! A surface (128 or 114) whose directory entry says it is independent (subordinate entity
+//! switch `00`) and that no trimmed or bounded surface or boundary refers to is a face of its own,
+//! untrimmed: its outer loop is the boundary of its domain, as for `N1 = 0`. Open CASCADE's
+//! IGES reader makes the same face of it.
+//!
 //! A face whose surface, boundary or model-space curves are not read is listed as skipped with
 //! the reason; edges whose parameter-space curves are missing or do not match the model-space
 //! pieces are kept without pcurves, with the reason in [`StepFace::pcurves`].
@@ -47,9 +52,11 @@ pub(super) struct Raw {
 const MAX_NESTING: usize = 8;
 
 /// Reads an IGES file as [`super::read_iges_limited`] does and, in [`IgesRead::faces`], its
-/// trimmed surfaces (entity 144) and bounded surfaces (entity 143) as faces; the ones that cannot be read are in
-/// [`IgesRead::skipped_faces`] with the reason. In each [`StepFace`], `id` is the sequence
-/// number of the 144's (or 143's) directory entry, `surface_id` the surface's, `edge_ids` the model-space
+/// trimmed surfaces (entity 144), bounded surfaces (entity 143) and independent surfaces that
+/// nothing bounds (untrimmed, see the module docs) as faces, in the order of the file; the ones
+/// that cannot be read are in [`IgesRead::skipped_faces`] with the reason. In each
+/// [`StepFace`], `id` is the sequence number of the 144's (or 143's, or the untrimmed
+/// surface's) directory entry, `surface_id` the surface's, `edge_ids` the model-space
 /// curves' (0 for the edges of an untrimmed outer boundary) and `name` is empty. Loops must
 /// close within [`STEP_LOOP_RTOL`] of the model size. The control points copied into faces
 /// count against `max_size` as well.
@@ -70,7 +77,7 @@ pub(super) fn read_faces_with_progress(
     max_size: usize,
     progress: &lekalo::Progress<'_>,
 ) -> IoResult<IgesRead> {
-    let (mut r, raw) = read_entities(text, source, max_size, true, progress)?;
+    let (mut r, raw, independent) = read_entities(text, source, max_size, true, progress)?;
     let mut cx = Faces {
         curves: HashMap::new(),
         surfaces: HashMap::new(),
@@ -96,17 +103,42 @@ pub(super) fn read_faces_with_progress(
             _ => {}
         }
     }
-    let mut ids: Vec<u64> = raw
+    // an independent surface (114, 128) that no trimmed or bounded surface, nor a boundary,
+    // refers to is a face of its own, bounded by its domain, as Open CASCADE reads it
+    let bounded: std::collections::HashSet<u64> = raw
+        .iter()
+        .filter_map(|(id, e)| {
+            let k = match e.ty.as_str() {
+                "144" => 1,
+                "142" | "143" => 2,
+                "141" => 3,
+                _ => return None,
+            };
+            Faces::pointer(e, *id, k, "the surface").ok()
+        })
+        .collect();
+    let mut ids: Vec<(u64, bool)> = raw
         .iter()
         .filter(|(_, e)| e.ty == "144" || e.ty == "143")
-        .map(|(id, _)| *id)
+        .map(|(id, _)| (*id, true))
+        .chain(
+            independent
+                .into_iter()
+                .filter(|id| cx.surfaces.contains_key(id) && !bounded.contains(id))
+                .map(|id| (id, false)),
+        )
         .collect();
     ids.sort_unstable();
     let mut faces = Vec::new();
     let mut skipped = Vec::new();
     let mut used = 0usize;
-    for id in ids {
-        match cx.face(id) {
+    for (id, trimmed) in ids {
+        let read = if trimmed {
+            cx.face(id)
+        } else {
+            cx.untrimmed(id)
+        };
+        match read {
             Ok(f) => {
                 let points = f.face.surface().control_points().len()
                     + f.face
@@ -134,7 +166,11 @@ pub(super) fn read_faces_with_progress(
             }
             Err(reason) => skipped.push(StepSkipped {
                 id,
-                entity: format!("IGES entity {}", raw[&id].ty),
+                entity: if trimmed {
+                    format!("IGES entity {}", raw[&id].ty)
+                } else {
+                    "IGES independent surface".into()
+                },
                 reason,
             }),
         }
@@ -499,6 +535,25 @@ impl Faces<'_> {
             surface_id: sptr,
             face,
             edge_ids: ids,
+            pcurves: why,
+        })
+    }
+
+    /// The untrimmed face of the independent surface `id`: its domain's boundary
+    /// ([`Self::domain_loop`]) the outer loop, no inner loops.
+    fn untrimmed(&self, id: u64) -> Result<StepFace, String> {
+        let Some(surface) = self.surfaces.get(&id) else {
+            return Err(self.why_not(id, "surface"));
+        };
+        let (outer, ids, why) = Self::domain_loop(surface)?;
+        let face = Face::new((*surface).clone(), outer, Vec::new(), true, STEP_LOOP_RTOL)
+            .map_err(|e| format!("as an untrimmed face: {e}"))?;
+        Ok(StepFace {
+            id,
+            name: String::new(),
+            surface_id: id,
+            face,
+            edge_ids: vec![ids],
             pcurves: why,
         })
     }

@@ -424,3 +424,57 @@ fn composite_curves_listed_many_times_over_stop_at_the_size_limit() {
     let why = skip_reason(&plate(&refs), 39);
     assert!(!why.contains("size limit"), "{why}");
 }
+
+/// An entity 114 of one bicubic patch `S(u, v) = (10 u, 10 v, z)` on `[0, 1]²` (IGES 5.3
+/// §4.19: `CTYPE, PTYPE, M, N`, the breakpoints, then 16 coefficients of `u^a v^b` at
+/// `4 b + a` per coordinate).
+fn patch_114(z: f64) -> Vec<String> {
+    let mut c = vec!["0.".to_string(); 48];
+    c[1] = "10.".into();
+    c[16 + 4] = "10.".into();
+    c[32] = format!("{z:?}");
+    let mut f: Vec<String> = "114,3,0,1,1,0.,1.,0.,1."
+        .split(',')
+        .map(String::from)
+        .collect();
+    f.extend(c);
+    f
+}
+
+#[test]
+fn an_independent_surface_nothing_trims_is_an_untrimmed_face() {
+    let mut w = IgesWriter::new();
+    // D1 independent; D3 physically dependent (subordinate switch 01): a part of something
+    // else, not a face
+    w.entities.push((114, 0, patch_114(0.0), "00000000"));
+    w.entities.push((114, 0, patch_114(5.0), "00010000"));
+    let text = w.finish("patches.igs", "20000101.000000");
+    let r = read_iges_faces(&text, "patches.igs", usize::MAX).unwrap();
+    assert_eq!(r.shapes.len(), 2, "both read as surfaces");
+    assert!(r.skipped_faces.is_empty(), "{:?}", r.skipped_faces);
+    let [f] = r.faces.as_slice() else {
+        panic!("one face, of D1: {:?}", r.faces.len())
+    };
+    assert_eq!((f.id, f.surface_id), (1, 1));
+    assert_eq!(f.edge_ids, vec![vec![0; 4]]);
+    assert_eq!(f.face.loops().count(), 1, "no inner loops");
+    let corners: Vec<Vec<f64>> = f
+        .face
+        .outer()
+        .edges()
+        .iter()
+        .map(|e| e.curve().eval(e.curve().domain().0).unwrap())
+        .collect();
+    let want = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+    for (got, want) in corners.iter().zip(want) {
+        assert!(
+            (got[0] - want[0]).abs() < 1e-12 && (got[1] - want[1]).abs() < 1e-12 && got[2] == 0.0,
+            "corners {corners:?}"
+        );
+    }
+    assert_eq!(f.face.outer().largest_gap(true).unwrap().unwrap().0, 0.0);
+    // the surfaces the plate's trimmed surface or its boundaries refer to are no faces of
+    // their own
+    let plate = read_iges_faces(&plate(&["144,1,1,1,23,29"]), "plate.igs", usize::MAX).unwrap();
+    assert_eq!(plate.faces.len(), 1, "the trimmed plate only");
+}

@@ -21,7 +21,7 @@
 //! |---|---|
 //! | `splines.rs` | entities 110, 112 and 114 as exact B-splines |
 //! | `faces_write.rs` | faces written as trimmed surfaces (144 over 128, boundaries 142 with composite curves 102 of 126) |
-//! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102) as faces ([`read_iges_faces`]) |
+//! | `faces.rs` | trimmed (144) and bounded (143) surfaces with their boundaries (142, 141) and composite curves (102), and untrimmed independent surfaces, as faces ([`read_iges_faces`]) |
 
 //! | `matrix.rs` | transformation matrices (entity 124) and their chains, applied to the control points |
 //! | `matrix_tests.rs` | matrices applied, chained, in the file's unit, and refused |
@@ -65,7 +65,8 @@ pub struct IgesRead {
     pub length_unit: String,
     /// The factor that converted coordinates to millimetres.
     pub scale_to_mm: f64,
-    /// The trimmed surfaces (entities 144 and 143) read as faces, with the sequence number of
+    /// The trimmed surfaces (entities 144 and 143), and the independent surfaces nothing trims,
+    /// read as faces, with the sequence number of
     /// their directory entry in `id` ([`read_iges_faces`]; empty from [`read_iges`]).
     pub faces: Vec<StepFace>,
     /// The trimmed and bounded surfaces not read as faces, with the reason

@@ -54,7 +54,7 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
 /// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
-    read_entities(text, source, max_size, false, &Progress::new()).map(|(r, _)| r)
+    read_entities(text, source, max_size, false, &Progress::new()).map(|(r, _, _)| r)
 }
 
 /// What an IGES read reports itself as.
@@ -96,22 +96,25 @@ pub fn read_iges_with_progress(
     if faces {
         faces::read_faces_with_progress(text, source, max_size, progress)
     } else {
-        read_entities(text, source, max_size, false, progress).map(|(r, _)| r)
+        read_entities(text, source, max_size, false, progress).map(|(r, _, _)| r)
     }
 }
 
 /// The entities of a file as [`read_iges_limited`] reads them and, with `topology`, the
 /// parameters of the composite curves, curves on surfaces, boundaries, bounded and trimmed
 /// surfaces (entities 102, 141, 142, 143, 144) by sequence number, which the faces are built
-/// from. `progress` is told the directory entries read.
+/// from, and the sequence numbers of the surfaces (114, 128) whose directory entry says they are
+/// independent (subordinate entity switch `00`, IGES 5.3 §2.2.4.4.9: no other entity needs
+/// them), which stand alone as untrimmed faces. `progress` is told the directory entries read.
 pub(super) fn read_entities(
     text: &str,
     source: &str,
     max_size: usize,
     topology: bool,
     progress: &Progress<'_>,
-) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>)> {
+) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>, Vec<u64>)> {
     let mut raw = std::collections::HashMap::new();
+    let mut independent = Vec::new();
     let mut g = String::new();
     let mut d: Vec<(usize, &str)> = Vec::new();
     let mut p: Vec<(usize, &str)> = Vec::new();
@@ -252,6 +255,13 @@ pub(super) fn read_entities(
             continue;
         }
         let at = Location::new(source).at_line(*line);
+        // the status number (columns 65-72, digits in fixed columns, blanks read as 0): its
+        // digits 3-4 are the subordinate entity switch, `00` for an independent entity
+        let alone = a
+            .get(66..68)
+            .unwrap_or("")
+            .trim_matches(|c| c == ' ' || c == '0')
+            .is_empty();
         if ty == "110" && !matches!(field(b, 4).as_str(), "" | "0") {
             skipped.push(StepSkipped {
                 id: seq,
@@ -342,6 +352,9 @@ pub(super) fn read_entities(
                 splines::spline_surface(&num, f.len(), unit_mm)
             };
             let shape = shape.map_err(bad)?;
+            if ty == "114" && topology && alone {
+                independent.push(seq);
+            }
             shapes.push((seq, place(shape, motion.as_ref()).map_err(lib)?));
             continue;
         }
@@ -442,6 +455,9 @@ pub(super) fn read_entities(
             } else {
                 Surface::Nurbs(NurbsSurface::new(m1, m2, ku, kv, ctrl, w, (nu, nv)).map_err(lib)?)
             };
+            if topology && alone {
+                independent.push(seq);
+            }
             shapes.push((seq, place(Shape::Surface(s), motion.as_ref()).map_err(lib)?));
         }
     }
@@ -459,5 +475,6 @@ pub(super) fn read_entities(
             skipped_faces: Vec::new(),
         },
         raw,
+        independent,
     ))
 }

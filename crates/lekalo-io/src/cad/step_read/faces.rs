@@ -105,8 +105,12 @@ struct EdgeGeom {
     same_sense: bool,
 }
 
+/// Why a `TRIANGULATED_FACE` or `COMPLEX_TRIANGULATED_FACE` is not read as a face.
+const TRIANGLES_ONLY: &str = "a face of triangles (tessellated geometry), not a face bounded by curves on a surface; its surface, when it links one, is read as a surface by `lekalo convert` without --faces";
+
 /// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file: the faces read, and those
-/// skipped with the reason. `surfaces` are the surfaces read by id, `surface_skips` why the
+/// skipped with the reason (faces of triangles, `TRIANGULATED_FACE` and
+/// `COMPLEX_TRIANGULATED_FACE`, among them). `surfaces` are the surfaces read by id, `surface_skips` why the
 /// others were not; `meter` is told the instances looked at and can cancel the read; `enter`
 /// says whether a face is read in this pass and sets the placement of its part.
 pub(super) fn read_faces(
@@ -130,6 +134,18 @@ pub(super) fn read_faces(
             .iter()
             .find_map(|n| Some((*n, inst.get(n)?)))
         else {
+            // a face of triangles (AP242 tessellated geometry) is a face lekalo does not read:
+            // listed, not dropped in silence
+            if let Some(entity) = ["TRIANGULATED_FACE", "COMPLEX_TRIANGULATED_FACE"]
+                .into_iter()
+                .find(|n| inst.get(n).is_some())
+            {
+                skipped.push(StepSkipped {
+                    id,
+                    entity: entity.to_string(),
+                    reason: TRIANGLES_ONLY.into(),
+                });
+            }
             continue;
         };
         match read_face(rd, id, r, surfaces, surface_skips, &mut edges) {

@@ -492,3 +492,28 @@ fn line_pcurves_of_open_cascade_lie_under_their_edges() {
         assert!(region.contains(0.5 * (u0 + u1), 0.5 * (v0 + v1)));
     }
 }
+
+#[test]
+fn a_face_of_triangles_is_listed_as_skipped_not_dropped() {
+    // the plate and, beside it, a face of one triangle on the plate's plane (AP242)
+    let r = read(&format!(
+        "{PLATE}
+#200=COORDINATES_LIST('',3,((0.,0.,0.),(1.,0.,0.),(0.,1.,0.)));
+#201=COMPLEX_TRIANGULATED_FACE('',#200,3,((0.,0.,1.)),#5,(),(),((1,2,3)));
+#202=TRIANGULATED_FACE('',#200,3,((0.,0.,1.)),#5,(),((1,2,3)));"
+    ));
+    assert_eq!(r.faces.len(), 1, "the plate");
+    let listed: Vec<(u64, &str)> = r
+        .skipped_faces
+        .iter()
+        .map(|s| (s.id, s.entity.as_str()))
+        .collect();
+    assert_eq!(
+        listed,
+        vec![
+            (201, "COMPLEX_TRIANGULATED_FACE"),
+            (202, "TRIANGULATED_FACE")
+        ]
+    );
+    assert!(r.skipped_faces[0].reason.contains("a face of triangles"));
+}
