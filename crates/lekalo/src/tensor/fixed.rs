@@ -1,8 +1,9 @@
 //! The fixed-size batch kernels of scalar splines in two or three directions of one degree
 //! `p ≤ 5` (a bivariate or trivariate lookup table at scattered points: SciPy's
-//! `RectBivariateSpline.ev`, `NdBSpline`): per point the spans by the bucket search
-//! ([`SpanTable`]), the basis vectors of every direction at once ([`basis_lanes`]) and the
-//! contraction with the window's sizes known at compile time ([`contract2`], [`contract3`]).
+//! `RectBivariateSpline.ev`, `NdBSpline`): the points in blocks of four, their spans by the
+//! bucket search ([`SpanTable`]), the basis vectors of a direction for the whole block at once
+//! ([`basis_lanes`], a point a lane) and the contraction of each point with the window's sizes
+//! known at compile time ([`contract2`], [`contract3`]).
 //! No scratch, no odometer, no allocation a point; the same bits as the general kernel.
 
 use crate::error::Result;
