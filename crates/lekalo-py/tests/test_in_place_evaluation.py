@@ -223,3 +223,62 @@ def test_large_scalar_batches_refuse_wrong_dtypes_and_take_empty_input():
     np.testing.assert_array_equal(f(np.full(100, 0.5, dtype=np.float32)), f(np.full(100, 0.5)))
     with pytest.raises((TypeError, ValueError)):
         f(np.array(["a"] * 100))
+
+
+@pytest.mark.parametrize("degrees", [(1, 1), (2, 2), (3, 3), (4, 4), (5, 5), (3, 1), (1, 4)])
+@pytest.mark.parametrize("count", [1, 3, 4, 5, 9, 2047, 2048, 2049])
+def test_bivariate_and_ndbspline_batches_of_every_size_are_scipy_s_and_their_points_bits(degrees, count):
+    """The batches of ``RectBivariateSpline.ev`` and ``NdBSpline`` at sizes around the kernels'
+    blocks of four points and the parallel threshold, degrees 1 to 5 and mixed, with NaN,
+    infinite and out-of-box coordinates at every position of a block: SciPy's values, and each
+    point's value the bits of that point alone."""
+    kx, ky = degrees
+    rng = np.random.default_rng(count * 10 + kx)
+    x, y = np.linspace(0.0, 1.0, 12), np.linspace(0.0, 2.0, 11)
+    z = np.sin(3 * x)[:, None] * np.cos(2 * y)[None, :] + x[:, None] * y[None, :]
+    ours, theirs = ls.RectBivariateSpline(x, y, z, kx=kx, ky=ky), si.RectBivariateSpline(x, y, z, kx=kx, ky=ky)
+    px, py = rng.uniform(-0.3, 1.3, count), rng.uniform(-0.5, 2.5, count)
+    for i, bad in enumerate([np.nan, np.inf, -np.inf, 1.6]):
+        if 5 * i < count:
+            (px if i % 2 else py)[5 * i] = bad
+    got, want = ours.ev(px, py), theirs.ev(px, py)
+    assert np.array_equal(np.isnan(got), np.isnan(want))
+    ok = ~np.isnan(want)
+    np.testing.assert_allclose(got[ok], want[ok], rtol=1e-12, atol=1e-12)
+    alone = np.array([ours.ev(px[i : i + 1], py[i : i + 1])[0] for i in range(count)])
+    assert np.array_equal(got, alone, equal_nan=True)
+    # the same points through NdBSpline (two variables), extrapolated and not
+    t, c = ours.get_knots(), ours.get_coeffs().reshape(len(ours.get_knots()[0]) - kx - 1, -1)
+    nd_ours, nd_theirs = ls.NdBSpline(t, c, degrees), si.NdBSpline(t, c, degrees)
+    pts = np.stack([px, py], axis=-1)
+    for extrapolate in (True, False):
+        got, want = nd_ours(pts, extrapolate=extrapolate), nd_theirs(pts, extrapolate=extrapolate)
+        assert np.array_equal(np.isnan(got), np.isnan(want))
+        ok = ~np.isnan(want)
+        scale = max([1.0, *np.abs(want[ok])])
+        np.testing.assert_allclose(got[ok], want[ok], rtol=1e-12, atol=1e-12 * scale)
+        alone = np.array([nd_ours(pts[i : i + 1], extrapolate=extrapolate)[0] for i in range(count)])
+        assert np.array_equal(got, alone, equal_nan=True)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("count", [3, 4, 5, 2049])
+def test_trivariate_batches_of_every_size_are_scipy_s_and_their_points_bits(k, count):
+    """``NdBSpline`` in three variables of one degree (the blocked fixed-size kernel) at sizes
+    around its blocks and the parallel threshold, with NaN, infinite and out-of-box points."""
+    rng = np.random.default_rng(100 * k + count)
+    t = (np.r_[[0.0] * k, np.linspace(0, 1, 6), [1.0] * k],) * 3
+    c = rng.standard_normal((5 + k,) * 3)
+    ours, theirs = ls.NdBSpline(t, c, k), si.NdBSpline(t, c, k)
+    xi = rng.uniform(-0.2, 1.2, (count, 3))
+    for i, bad in enumerate([np.nan, np.inf, -np.inf, 3.0]):
+        if 5 * i < count:
+            xi[5 * i, i % 3] = bad
+    for extrapolate in (True, False):
+        got, want = ours(xi, extrapolate=extrapolate), theirs(xi, extrapolate=extrapolate)
+        assert np.array_equal(np.isnan(got), np.isnan(want))
+        ok = ~np.isnan(want)
+        scale = max([1.0, *np.abs(want[ok])])
+        np.testing.assert_allclose(got[ok], want[ok], rtol=1e-11, atol=1e-11 * scale)
+        alone = np.array([ours(xi[i : i + 1], extrapolate=extrapolate)[0] for i in range(count)])
+        assert np.array_equal(got, alone, equal_nan=True)

@@ -77,6 +77,63 @@ def test_rect_bivariate_spline_ev_takes_infinite_coordinates_at_the_edge():
     np.testing.assert_allclose(ours.ev(px[:6], py[:6], dx=1), theirs.ev(px[:6], py[:6], dx=1), rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.parametrize(
+    "ends",
+    [dict(x0=True), dict(x1=True), dict(y0=True), dict(y1=True), dict(x0=True, x1=True, y1=True), dict(bbox=True)],
+    ids=lambda e: "-".join(e),
+)
+@pytest.mark.parametrize("options", [dict(), dict(s=0.1), dict(kx=1, ky=2), dict(kx=5, ky=4), dict(kx=2, ky=3, s=5.0)])
+def test_rect_bivariate_spline_of_an_infinite_box_end_is_scipy_s(ends, options):
+    x, y, bbox = X.copy(), Y.copy(), [None] * 4
+    if ends.get("x0"):
+        x[0] = -np.inf
+    if ends.get("x1"):
+        x[-1] = np.inf
+    if ends.get("y0"):
+        y[0] = -np.inf
+    if ends.get("y1"):
+        y[-1] = np.inf
+    if ends.get("bbox"):
+        bbox = [-np.inf, None, None, np.inf]
+    theirs = si.RectBivariateSpline(x, y, Z, bbox=bbox, **options)
+    ours = ls.RectBivariateSpline(x, y, Z, bbox=bbox, **options)
+    # FITPACK's knots of interpolation with the infinite ends, fp = 0, NaN coefficients
+    for a, b in zip(ours.get_knots(), theirs.get_knots()):
+        np.testing.assert_allclose(a, b, rtol=1e-15, atol=0.0)
+    assert ours.fp == theirs.fp == 0.0
+    assert ours.get_coeffs().shape == theirs.get_coeffs().shape
+    assert np.isnan(ours.get_coeffs()).all() and np.isnan(theirs.get_coeffs()).all()
+    # every value NaN, as SciPy's: grid, points, one point, bisplev, integral, derivatives
+    xs, ys = np.linspace(0.0, 0.9, 7), np.linspace(0.0, 1.8, 6)
+    kx, ky = ours.degrees
+    d = (1, 0) if kx > 1 else (0, 1)
+    for got, want in [
+        (ours(xs, ys), theirs(xs, ys)),
+        (ours.ev(xs, ys[:1].repeat(7)), theirs.ev(xs, ys[:1].repeat(7))),
+        (ours.ev(0.5, 0.5), theirs.ev(0.5, 0.5)),
+        (ours(0.5, 0.5), theirs(0.5, 0.5)),
+        (ours(xs, ys, *d), theirs(xs, ys, *d)),
+        (ls.bisplev(xs, ys, (*ours.tck, *ours.degrees)), si.bisplev(xs, ys, (*theirs.tck, *theirs.degrees))),
+        (ours.integral(0.1, 0.5, 0.2, 1.0), theirs.integral(0.1, 0.5, 0.2, 1.0)),
+    ]:
+        assert np.shape(got) == np.shape(want)
+        assert np.isnan(got).all() and np.isnan(want).all()
+    d_ours, d_theirs = ours.partial_derivative(*d), theirs.partial_derivative(*d)
+    assert d_ours.degrees == d_theirs.degrees == (kx - d[0], ky - d[1])
+    for a, b in zip(d_ours.tck, d_theirs.tck):
+        np.testing.assert_allclose(a, b, rtol=1e-15, atol=0.0)
+    assert np.isnan(d_ours(xs, xs, grid=False)).all() and np.isnan(d_theirs(xs, xs, grid=False)).all()
+
+
+def test_rect_bivariate_spline_of_an_infinite_coordinate_beyond_a_finite_bbox_raises():
+    x = X.copy()
+    x[-1] = np.inf
+    with pytest.raises(ValueError):
+        si.RectBivariateSpline(x, Y, Z, bbox=[0.0, 1.0, None, None])
+    with pytest.raises(ValueError):
+        ls.RectBivariateSpline(x, Y, Z, bbox=[0.0, 1.0, None, None])
+
+
 @pytest.mark.parametrize("bad", [np.nan, np.inf])
 @pytest.mark.parametrize("extrapolate", [True, False])
 @pytest.mark.parametrize("tail", [(), (2,)])

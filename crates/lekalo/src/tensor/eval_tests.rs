@@ -348,3 +348,111 @@ fn cell_ordered_batches_have_the_bits_of_single_points_in_any_order() {
         }
     }
 }
+
+/// The fixed-size kernels take their points in blocks (four a triangle of lanes): batches of
+/// every size around a block and around the parallel threshold, with a NaN, an infinite and an
+/// out-of-box point at every position of a block, in two and three directions of degrees 1 to 5
+/// under every [`Beyond`] rule, have the bits of each point evaluated alone (the one-point path)
+/// and of the general kernel (the same net as two equal coordinates); the refusing batch names
+/// the first point outside the domain, wherever it stands in its block.
+#[test]
+fn blocked_fixed_kernels_have_the_bits_of_single_points_at_every_size() {
+    let mut rng = 0x9e37_79b9_u64;
+    let mut next = move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let gaps: Vec<f64> = (0..3 * 14)
+        .map(|i| if i % 7 == 3 { 0.0 } else { 0.1 + next() })
+        .collect();
+    let net: Vec<f64> = (0..12usize.pow(3)).map(|_| 20.0 * next() - 10.0).collect();
+    for n in 2..=3 {
+        for p in 1..=5 {
+            let (one, two) = twin_splines(n, p, &gaps[..n * (2 * p + 5).min(14)], &net);
+            let domains = one.domain();
+            for count in (1..=9).chain([2047, 2048, 2049, 2053]) {
+                let mut xs: Vec<f64> = (0..count * n)
+                    .map(|i| {
+                        let (lo, hi) = domains[i % n];
+                        lo + (hi - lo) * (1.4 * next() - 0.2)
+                    })
+                    .collect();
+                // a NaN, an infinite and a far point at positions 0..4 of successive blocks
+                for (i, bad) in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e3]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let at = 5 * i;
+                    if at < count {
+                        xs[at * n + i % n] = bad;
+                    }
+                }
+                for rule in [Beyond::Continue, Beyond::Clamp, Beyond::Nan] {
+                    let mut batch = vec![0.0; count];
+                    one.view()
+                        .par_eval_batch_beyond(&xs, None, rule, &mut batch)
+                        .unwrap();
+                    let mut general = vec![0.0; 2 * count];
+                    two.view()
+                        .par_eval_batch_beyond(&xs, None, rule, &mut general)
+                        .unwrap();
+                    for (k, x) in xs.chunks_exact(n).enumerate() {
+                        let mut alone = [0.0];
+                        one.view()
+                            .par_eval_batch_beyond(x, None, rule, &mut alone)
+                            .unwrap();
+                        assert_eq!(
+                            batch[k].to_bits(),
+                            alone[0].to_bits(),
+                            "n = {n}, p = {p}, {count} points, {rule:?}, point {k} {x:?}"
+                        );
+                        assert_eq!(
+                            batch[k].to_bits(),
+                            general[2 * k].to_bits(),
+                            "n = {n}, p = {p}, {count} points, {rule:?}, point {k}"
+                        );
+                    }
+                }
+                // the refusing batch: the first point outside, in the order of the points
+                let clamped: Vec<f64> = xs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &t)| {
+                        let (lo, hi) = domains[i % n];
+                        if t.is_nan() {
+                            lo
+                        } else {
+                            t.clamp(lo, hi)
+                        }
+                    })
+                    .collect();
+                let mut inside = clamped.clone();
+                let first = count.min(6) - 1;
+                let second = count - 1;
+                if second != first {
+                    inside[second * n] = domains[0].1 + 1.0;
+                }
+                inside[first * n + n - 1] = domains[n - 1].0 - 2.0;
+                let mut out = vec![0.0; count];
+                let e = one.eval_batch(&inside, None, &mut out).unwrap_err();
+                assert_eq!(
+                    e,
+                    Error::ParameterOutOfDomain {
+                        t: inside[first * n + n - 1],
+                        min: domains[n - 1].0,
+                        max: domains[n - 1].1
+                    },
+                    "n = {n}, p = {p}, {count} points"
+                );
+                let mut want = vec![0.0; 2 * count];
+                two.eval_batch(&clamped, None, &mut want).unwrap();
+                one.eval_batch(&clamped, None, &mut out).unwrap();
+                for (k, (o, w)) in out.iter().zip(want.chunks_exact(2)).enumerate() {
+                    assert_eq!(o.to_bits(), w[0].to_bits(), "n = {n}, p = {p}, point {k}");
+                }
+            }
+        }
+    }
+}

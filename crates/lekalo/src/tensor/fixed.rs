@@ -1,8 +1,9 @@
 //! The fixed-size batch kernels of scalar splines in two or three directions of one degree
 //! `p ≤ 5` (a bivariate or trivariate lookup table at scattered points: SciPy's
-//! `RectBivariateSpline.ev`, `NdBSpline`): per point the spans by the bucket search
-//! ([`SpanTable`]), the basis vectors of every direction at once ([`basis_lanes`]) and the
-//! contraction with the window's sizes known at compile time ([`contract2`], [`contract3`]).
+//! `RectBivariateSpline.ev`, `NdBSpline`): the points in blocks of four, their spans by the
+//! bucket search ([`SpanTable`]), the basis vectors of a direction for the whole block at once
+//! ([`basis_lanes`], a point a lane) and the contraction of each point with the window's sizes
+//! known at compile time ([`contract2`], [`contract3`]).
 //! No scratch, no odometer, no allocation a point; the same bits as the general kernel.
 
 use crate::error::Result;
@@ -116,62 +117,67 @@ fn one3<const W: usize>(s: &TensorBSplineRef<'_>, spans: [usize; 3], x: [f64; 3]
     )
 }
 
-/// The bivariate batch two points at a time: the bases of both points' directions in the four
-/// lanes of one [`basis_lanes`], so that the two points share each vector division (the
-/// triangle's divisions are the latency of a point). A pair with a point that gives NaN, and
-/// the last point of an odd batch, take [`one2`]; the same bits either way.
+/// Points of the bivariate batch whose bases share each [`basis_lanes`] (one lane a point).
+const BLOCK2: usize = 4;
+
+/// The bivariate batch [`BLOCK2`] points at a time: the spans of the block's points first,
+/// then one [`basis_lanes`] a direction with the block's points in its lanes (one 4-wide
+/// vector with AVX2), so that the points share each vector division and the two directions'
+/// triangles, independent, overlap their divisions' latency (the latency of a point). A block
+/// with a point that gives NaN, and the last points of a batch, take [`one2`]; the same bits
+/// either way.
 #[inline(always)]
 fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
     let s = run.s;
     let (k0, k1) = (s.knots[0], s.knots[1]);
     let (stride, p) = (s.stride(0), W - 1);
-    let (mut sa, mut sb) = ([0usize; 2], [0usize; 2]);
-    let (mut xa, mut xb) = ([0.0; 2], [0.0; 2]);
-    let mut pairs = run.xs.chunks_exact(4);
-    let mut outs = out.chunks_exact_mut(2);
-    for (xp, o) in (&mut pairs).zip(&mut outs) {
-        let a = locate(
-            run.mode,
-            &xp[..2],
-            run.domains,
-            run.tables,
-            &mut sa,
-            &mut xa,
-        )?;
-        let b = locate(
-            run.mode,
-            &xp[2..],
-            run.domains,
-            run.tables,
-            &mut sb,
-            &mut xb,
-        )?;
-        if !(a && b) {
-            o[0] = if a { one2::<W>(s, sa, xa) } else { f64::NAN };
-            o[1] = if b { one2::<W>(s, sb, xb) } else { f64::NAN };
+    let mut spans = [[0usize; 2]; BLOCK2];
+    let mut xs = [[0.0; 2]; BLOCK2];
+    let mut blocks = run.xs.chunks_exact(2 * BLOCK2);
+    let mut outs = out.chunks_exact_mut(BLOCK2);
+    for (xb, o) in (&mut blocks).zip(&mut outs) {
+        let mut all = true;
+        let mut ok = [false; BLOCK2];
+        for (b, x) in xb.chunks_exact(2).enumerate() {
+            ok[b] = locate(
+                run.mode,
+                x,
+                run.domains,
+                run.tables,
+                &mut spans[b],
+                &mut xs[b],
+            )?;
+            all &= ok[b];
+        }
+        if !all {
+            for b in 0..BLOCK2 {
+                o[b] = if ok[b] {
+                    one2::<W>(s, spans[b], xs[b])
+                } else {
+                    f64::NAN
+                };
+            }
             continue;
         }
-        let n = basis_lanes::<W, 4>(
-            [k0, k1, k0, k1],
-            [sa[0], sa[1], sb[0], sb[1]],
-            [xa[0], xa[1], xb[0], xb[1]],
-        );
-        o[0] = contract2::<W>(
-            s.net,
-            [sa[0] - p, sa[1] - p],
-            stride,
-            &lane(&n, 0),
-            &lane(&n, 1),
-        );
-        o[1] = contract2::<W>(
-            s.net,
-            [sb[0] - p, sb[1] - p],
-            stride,
-            &lane(&n, 2),
-            &lane(&n, 3),
-        );
+        // a triangle a direction, the block's points in its lanes
+        let n0 = basis_lanes::<W, BLOCK2>([k0; BLOCK2], spans.map(|s| s[0]), xs.map(|x| x[0]));
+        let n1 = basis_lanes::<W, BLOCK2>([k1; BLOCK2], spans.map(|s| s[1]), xs.map(|x| x[1]));
+        for (b, o) in o.iter_mut().enumerate() {
+            *o = contract2::<W>(
+                s.net,
+                [spans[b][0] - p, spans[b][1] - p],
+                stride,
+                &lane(&n0, b),
+                &lane(&n1, b),
+            );
+        }
     }
-    for (xp, o) in pairs.remainder().chunks_exact(2).zip(outs.into_remainder()) {
+    let (mut sa, mut xa) = ([0usize; 2], [0.0; 2]);
+    for (xp, o) in blocks
+        .remainder()
+        .chunks_exact(2)
+        .zip(outs.into_remainder())
+    {
         *o = if locate(run.mode, xp, run.domains, run.tables, &mut sa, &mut xa)? {
             one2::<W>(s, sa, xa)
         } else {
@@ -181,12 +187,68 @@ fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<
     Ok(())
 }
 
+/// Points of the trivariate batch whose bases share each [`basis_lanes`] (one lane a point).
+const BLOCK3: usize = 4;
+
+/// The trivariate batch [`BLOCK3`] points at a time, one [`basis_lanes`] a direction with the
+/// block's points in its lanes, as [`values2_body`] does in two directions; a block with a point that gives NaN, and the last points of a batch, take
+/// [`one3`]. The same bits either way.
 #[inline(always)]
 fn values3_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
     let s = run.s;
+    let k = [s.knots[0], s.knots[1], s.knots[2]];
+    let p = W - 1;
+    let strides = [s.stride(0), s.stride(1)];
+    let mut spans = [[0usize; 3]; BLOCK3];
+    let mut xs = [[0.0; 3]; BLOCK3];
+    let mut blocks = run.xs.chunks_exact(3 * BLOCK3);
+    let mut outs = out.chunks_exact_mut(BLOCK3);
+    for (xb, o) in (&mut blocks).zip(&mut outs) {
+        let mut all = true;
+        let mut ok = [false; BLOCK3];
+        for (b, x) in xb.chunks_exact(3).enumerate() {
+            ok[b] = locate(
+                run.mode,
+                x,
+                run.domains,
+                run.tables,
+                &mut spans[b],
+                &mut xs[b],
+            )?;
+            all &= ok[b];
+        }
+        if !all {
+            for b in 0..BLOCK3 {
+                o[b] = if ok[b] {
+                    one3::<W>(s, spans[b], xs[b])
+                } else {
+                    f64::NAN
+                };
+            }
+            continue;
+        }
+        // a triangle a direction, the block's points in its lanes
+        let n: [[[f64; BLOCK3]; W]; 3] = std::array::from_fn(|a| {
+            basis_lanes::<W, BLOCK3>([k[a]; BLOCK3], spans.map(|s| s[a]), xs.map(|x| x[a]))
+        });
+        for (b, o) in o.iter_mut().enumerate() {
+            *o = contract3::<W>(
+                s.net,
+                [spans[b][0] - p, spans[b][1] - p, spans[b][2] - p],
+                strides,
+                &lane(&n[0], b),
+                &lane(&n[1], b),
+                &lane(&n[2], b),
+            );
+        }
+    }
     let mut spans = [0usize; 3];
     let mut x = [0.0; 3];
-    for (xp, o) in run.xs.chunks_exact(3).zip(out.iter_mut()) {
+    for (xp, o) in blocks
+        .remainder()
+        .chunks_exact(3)
+        .zip(outs.into_remainder())
+    {
         *o = if locate(run.mode, xp, run.domains, run.tables, &mut spans, &mut x)? {
             one3::<W>(s, spans, x)
         } else {

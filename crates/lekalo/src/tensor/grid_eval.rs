@@ -4,6 +4,7 @@
 
 use rayon::prelude::*;
 
+use crate::basis::basis_funs_fixed;
 use crate::error::{Error, Result};
 use crate::knots::SpanCursor;
 use crate::tensor::contract::{accumulate, basis_vector, TensorScratch};
@@ -172,7 +173,16 @@ impl TensorBSplineRef<'_> {
             let mut ders = vec![0.0; (k.min(p) + 1) * (p + 1)];
             for (&x, v) in xs.iter().zip(values.chunks_exact_mut(p + 1)) {
                 let span = cursor.find(x)?;
-                basis_vector(knots, p, span, x, k, &mut basis, &mut ders, v);
+                // values of degree ≤ 5: the fixed-order triangle (the same operations, so the
+                // same bits), the general one otherwise
+                match (k, p) {
+                    (0, 1) => v.copy_from_slice(&basis_funs_fixed::<2>(knots, span, x)),
+                    (0, 2) => v.copy_from_slice(&basis_funs_fixed::<3>(knots, span, x)),
+                    (0, 3) => v.copy_from_slice(&basis_funs_fixed::<4>(knots, span, x)),
+                    (0, 4) => v.copy_from_slice(&basis_funs_fixed::<5>(knots, span, x)),
+                    (0, 5) => v.copy_from_slice(&basis_funs_fixed::<6>(knots, span, x)),
+                    _ => basis_vector(knots, p, span, x, k, &mut basis, &mut ders, v),
+                }
                 spans.push(span);
             }
             tables.push(AxisTable { spans, values });
@@ -337,6 +347,7 @@ fn last_two_body(
     let m = last.spans.len();
     let mut row = vec![0.0; len];
     let mut c = vec![0.0; len * ROWS];
+    let mut tile = vec![0.0; m * ROWS];
     for ((block_spans, block_values), o) in spans
         .chunks(ROWS)
         .zip(values.chunks(ROWS * (pa + 1)))
@@ -357,12 +368,12 @@ fn last_two_body(
         }
         let rows = block_spans.len();
         match pb {
-            0 => dots::<1>(&c, last, rows, o),
-            1 => dots::<2>(&c, last, rows, o),
-            2 => dots::<3>(&c, last, rows, o),
-            3 => dots::<4>(&c, last, rows, o),
-            4 => dots::<5>(&c, last, rows, o),
-            5 => dots::<6>(&c, last, rows, o),
+            0 => dots::<1>(&c, last, rows, &mut tile, o),
+            1 => dots::<2>(&c, last, rows, &mut tile, o),
+            2 => dots::<3>(&c, last, rows, &mut tile, o),
+            3 => dots::<4>(&c, last, rows, &mut tile, o),
+            4 => dots::<5>(&c, last, rows, &mut tile, o),
+            5 => dots::<6>(&c, last, rows, &mut tile, o),
             _ => {
                 for (j, (&span, nv)) in last
                     .spans
@@ -386,14 +397,24 @@ fn last_two_body(
 
 /// The dot products of [`last_two`] for `W = p_b + 1` basis functions: value `(r, j)` of the
 /// block is `Σ_q N_{b,q}(x_j)·C_r[g_j + q]`, summed from `q = 0`, for the block's `rows ≤
-/// ROWS` rows at once (a full block writes its four rows through four slices, with no index
-/// check a value).
+/// ROWS` rows at once. The values of a column are computed together, as one vector of
+/// [`ROWS`] numbers (the runs of `C` are interleaved), and stored together into `tile`
+/// (`ROWS` numbers a column); the block's rows are then copied out of `tile`, so that no
+/// value is extracted from a vector on its own.
 #[inline(always)]
-fn dots<const W: usize>(c: &[f64], last: &AxisTable, rows: usize, out: &mut [f64]) {
+fn dots<const W: usize>(
+    c: &[f64],
+    last: &AxisTable,
+    rows: usize,
+    tile: &mut [f64],
+    out: &mut [f64],
+) {
     let m = last.spans.len();
-    let at = |span: usize, nv: &[f64]| -> [f64; ROWS] {
+    let columns = last.spans.iter().zip(last.values.chunks_exact(W));
+    for (t, (&span, nv)) in tile.chunks_exact_mut(ROWS).zip(columns) {
         let base = (span + 1 - W) * ROWS;
         let win = &c[base..base + W * ROWS];
+        let nv: &[f64; W] = nv.try_into().expect("W basis functions");
         let mut acc = [0.0; ROWS];
         for r in 0..ROWS {
             acc[r] = nv[0] * win[r];
@@ -403,24 +424,11 @@ fn dots<const W: usize>(c: &[f64], last: &AxisTable, rows: usize, out: &mut [f64
                 acc[r] += nv[q] * win[q * ROWS + r];
             }
         }
-        acc
-    };
-    let columns = last.spans.iter().zip(last.values.chunks_exact(W));
-    if rows == ROWS {
-        let (o0, rest) = out.split_at_mut(m);
-        let (o1, rest) = rest.split_at_mut(m);
-        let (o2, o3) = rest.split_at_mut(m);
-        let outs = o0.iter_mut().zip(o1).zip(o2).zip(o3.iter_mut());
-        for ((&span, nv), (((y0, y1), y2), y3)) in columns.zip(outs) {
-            let acc = at(span, nv);
-            (*y0, *y1, *y2, *y3) = (acc[0], acc[1], acc[2], acc[3]);
-        }
-    } else {
-        for (j, (&span, nv)) in columns.enumerate() {
-            let acc = at(span, nv);
-            for (r, &a) in acc[..rows].iter().enumerate() {
-                out[r * m + j] = a;
-            }
+        t.copy_from_slice(&acc);
+    }
+    for (r, o) in out.chunks_exact_mut(m).take(rows).enumerate() {
+        for (o, t) in o.iter_mut().zip(tile.chunks_exact(ROWS)) {
+            *o = t[r];
         }
     }
 }

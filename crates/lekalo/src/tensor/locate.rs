@@ -42,6 +42,20 @@ pub(crate) struct SpanTable {
     /// Knot span index `i` (`t_i = x_j < t_{i+1}`) of piece `j`.
     spans: Vec<usize>,
     locator: PieceLocator,
+    /// The answer of every bucket of `locator` whose parameters fall in at most two pieces.
+    buckets: Vec<Bucket>,
+}
+
+/// What a bucket of the span table answers without reading the pieces: the break `x_{j+1}`
+/// between its two candidate pieces `j`, `j + 1` (`+∞` for a bucket inside one piece) and the
+/// spans of both, so that a parameter's span is one read of the table and one comparison
+/// instead of three dependent reads (bucket, break, span). `break_at` is NaN for a bucket with
+/// more candidates (very uneven knots), which the piece search answers.
+#[derive(Debug, Clone, Copy)]
+struct Bucket {
+    break_at: f64,
+    below: u32,
+    above: u32,
 }
 
 impl SpanTable {
@@ -60,10 +74,34 @@ impl SpanTable {
         debug_assert!(!spans.is_empty(), "validated knots have a non-empty domain");
         breaks.push(knots[n]);
         let locator = PieceLocator::new(&breaks);
+        let buckets = locator
+            .ranges()
+            .iter()
+            .map(|&(lo, hi)| {
+                let span = |j: usize| u32::try_from(spans[j]).ok();
+                match (span(lo), span(hi)) {
+                    (Some(below), Some(above)) if hi - lo <= 1 => Bucket {
+                        break_at: if hi > lo {
+                            breaks[lo + 1]
+                        } else {
+                            f64::INFINITY
+                        },
+                        below,
+                        above,
+                    },
+                    _ => Bucket {
+                        break_at: f64::NAN,
+                        below: 0,
+                        above: 0,
+                    },
+                }
+            })
+            .collect();
         SpanTable {
             breaks,
             spans,
             locator,
+            buckets,
         }
     }
 
@@ -75,7 +113,12 @@ impl SpanTable {
             t >= self.breaks[0] && t <= self.breaks[self.breaks.len() - 1],
             "t in the domain"
         );
-        self.spans[self.locator.find(&self.breaks, t)]
+        let b = self.buckets[self.locator.bucket(t)];
+        if b.break_at.is_nan() {
+            return self.spans[self.locator.find(&self.breaks, t)];
+        }
+        // u32 spans widen losslessly
+        (if b.break_at <= t { b.above } else { b.below }) as usize
     }
 }
 
@@ -162,6 +205,28 @@ mod tests {
                 t.extend(vec![2.0; p + 1]);
                 (t, p)
             })
+    }
+
+    /// Knots crowded at one end (thousands of pieces in the first bucket, where the bucket
+    /// table defers to the piece search) and spread at the other: the binary search's span.
+    #[test]
+    fn span_table_of_crowded_knots_finds_the_binary_search_span() {
+        for p in 0..=5 {
+            let mut t = vec![0.0; p + 1];
+            t.extend((1..3000).map(|i| f64::from(i) * 1e-9));
+            t.extend((1..40).map(|i| f64::from(i) / 40.0));
+            t.extend(vec![1.0; p + 1]);
+            let table = SpanTable::new(&t, p);
+            let mut xs: Vec<f64> = (0..=4000).map(|i| f64::from(i) / 4000.0).collect();
+            xs.extend((0..=3000).map(|i| f64::from(i) * 1e-9));
+            for &k in &t {
+                xs.extend([k, k.next_down(), k.next_up()]);
+            }
+            xs.retain(|&x| (0.0..=1.0).contains(&x));
+            for x in xs {
+                assert_eq!(table.find(x), span_in(&t, p, x), "p = {p}, t = {x:e}");
+            }
+        }
     }
 
     proptest! {

@@ -41,6 +41,11 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
                 f"Error code returned by {'parder' if grid else 'pardeu'}: 10 (derivative orders "
                 f"dx={dx}, dy={dy} must satisfy 0 <= dx < kx={kx}, 0 <= dy < ky={ky})"
             )
+    if not _finite_box(tx, ty):
+        if grid:
+            _check_grid_size(x, y)
+        return np.full((np.size(x), np.size(y)) if grid else np.shape(x), np.nan)
+    if dx or dy:
         spline = _tensor(tx, ty, c, kx, ky).derivative([int(dx), int(dy)])
         tx, ty = (np.asarray(t) for t in spline.t)
         kx, ky = kx - dx, ky - dy
@@ -70,6 +75,51 @@ def _evaluate(tck: Any, degrees: Any, x: Any, y: Any, dx: int, dy: int, grid: bo
     return np.asarray(spline(np.ascontiguousarray(pts))).reshape(np.shape(x))
 
 
+def _finite_box(tx: np.ndarray, ty: np.ndarray) -> bool:
+    """Whether the knots are finite. A box with an infinite end (``RectBivariateSpline`` of a
+    grid whose first or last coordinate is infinite, or of an infinite ``bbox``) has knots
+    there that FITPACK keeps: its basis on such a span is ``inf/inf``, so every value, derivative
+    and integral of the spline is NaN, as SciPy's, and its coefficients are NaN."""
+    return bool(np.isfinite(tx).all() and np.isfinite(ty).all())
+
+
+def _grid_of_infinite_box(x: np.ndarray, y: np.ndarray, box: Any, kx: int, ky: int):
+    """FITPACK's ``regrid`` on a box with an infinite end (``x[0] = -inf`` or ``x[-1] = inf``,
+    the only places a strictly increasing grid holds one, or an infinite ``bbox`` end): the
+    knots of interpolation, whose interior knots are data points (odd degree) or midpoints of
+    neighbours (even degree) away from the ends, so they are lekalo's knots of the grid with
+    finite stand-ins for the infinite ends, and the box's ends (infinite) repeated ``k + 1``
+    times at each side; ``fp = 0`` and every coefficient NaN, as SciPy returns them (its
+    residuals and solve meet ``inf``). Returns ``(tx, ty, c)``, or ``None`` when the box is
+    finite."""
+    if all(np.isfinite(e) for end in box for e in end):
+        return None
+    axes, boxes = [], []
+    for v, (lo, hi) in zip((x, y), box):
+        w = v.copy()
+        finite = w[np.isfinite(w)]
+        first = finite[0] if finite.size else 0.0
+        last = finite[-1] if finite.size else 0.0
+        if np.isneginf(w[0]):
+            w[0] = first - 1.0
+        if np.isposinf(w[-1]):
+            w[-1] = last + 1.0
+        axes.append(w)
+        boxes.append((w[0] - 1.0 if np.isinf(lo) else lo, w[-1] + 1.0 if np.isinf(hi) else hi))
+    spline, _, _ = _lekalo.fit_tensor_grid_smoothing(
+        axes, np.zeros((x.size, y.size)), 0.0, [int(kx), int(ky)], bbox=boxes
+    )
+    knots = []
+    for t, k, (lo, hi) in zip(spline.t, (kx, ky), box):
+        t = np.array(t)
+        if np.isinf(lo):
+            t[: k + 1] = lo
+        if np.isinf(hi):
+            t[len(t) - k - 1 :] = hi
+        knots.append(t)
+    return knots[0], knots[1], np.full(np.asarray(spline.c).size, np.nan)
+
+
 def _value(tck: Any, degrees: Any, x: float, y: float):
     """The spline's value at the one point ``(x, y)`` (a coordinate outside the base box, or
     infinite, taken at its edge, as FITPACK), lekalo's ``tensor_value`` reading the few knots and coefficients it
@@ -95,6 +145,8 @@ def _dblint(tck: Any, degrees: Any, xa: float, xb: float, ya: float, yb: float) 
     kx, ky = degrees
     tx = np.asarray(tx, dtype=np.float64)
     ty = np.asarray(ty, dtype=np.float64)
+    if not _finite_box(tx, ty):
+        return float("nan")
     bounds = [
         (float(_clip(xa, tx, kx)), float(_clip(xb, tx, kx))),
         (float(_clip(ya, ty, ky)), float(_clip(yb, ty, ky))),

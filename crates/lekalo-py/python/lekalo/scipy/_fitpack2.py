@@ -16,7 +16,17 @@ from typing import Any
 import numpy as np
 
 from .. import _lekalo
-from ._bivariate import _SURFIT_MESSAGES, _box, _dblint, _evaluate, _surfit, _tensor, _value
+from ._bivariate import (
+    _SURFIT_MESSAGES,
+    _box,
+    _dblint,
+    _evaluate,
+    _finite_box,
+    _grid_of_infinite_box,
+    _surfit,
+    _tensor,
+    _value,
+)
 from ._bspline import _one_number, _pad_rows
 from ._fitpack import spalde, splantider, splder, splev, splint, splrep, sproot
 from ._interpolate import make_lsq_spline
@@ -303,6 +313,13 @@ class _BivariateSplineBase:
             raise ValueError("order of derivative must be positive or zero")
         if not (dx < kx and dy < ky):
             raise ValueError("order of derivative must be less than degree of spline")
+        tx, ty = (np.asarray(t, dtype=np.float64) for t in self.tck[:2])
+        if not _finite_box(tx, ty):
+            # an infinite end of the box: FITPACK's pardtc drops dx (dy) knots at each end and
+            # its coefficients are NaN, as every value of such a spline
+            tx, ty = tx[dx : len(tx) - dx], ty[dy : len(ty) - dy]
+            size = (len(tx) - (kx - dx) - 1) * (len(ty) - (ky - dy) - 1)
+            return _DerivedBivariateSpline._from_tck((tx, ty, np.full(size, np.nan), kx - dx, ky - dy))
         d = _tensor(*self.tck, kx, ky).derivative([int(dx), int(dy)])
         tx, ty = d.t
         return _DerivedBivariateSpline._from_tck(
@@ -401,6 +418,13 @@ class RectBivariateSpline(BivariateSpline):
         ]
         z = np.ascontiguousarray(z, dtype=np.float64)
         s = float(0.0 if s is None else s)
+        infinite = _grid_of_infinite_box(x, y, box, kx, ky)
+        if infinite is not None:
+            # an infinite end of the box: SciPy's knots of interpolation, fp = 0, NaN values
+            self.fp = 0.0
+            self.tck = infinite
+            self.degrees = kx, ky
+            return
         try:
             spline, fp, _ = _lekalo.fit_tensor_grid_smoothing([x, y], z, s, [int(kx), int(ky)], bbox=box)
             c = np.asarray(spline.c).ravel()

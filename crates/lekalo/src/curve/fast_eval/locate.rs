@@ -49,8 +49,15 @@ impl PieceLocator {
         loc
     }
 
+    /// The candidate pieces `(lo_b, hi_b)` of every bucket, in the order of the buckets (for
+    /// tables that keep more per bucket, the tensor span search's).
+    pub(crate) fn ranges(&self) -> &[(usize, usize)] {
+        &self.range
+    }
+
+    /// The bucket `β(t)` of `t` (see the type's docs).
     #[inline(always)]
-    fn bucket(&self, t: f64) -> usize {
+    pub(crate) fn bucket(&self, t: f64) -> usize {
         // saturating float-to-int cast: monotone, NaN → 0 (NaN never gets here)
         #[allow(clippy::cast_possible_truncation)]
         let b = ((t - self.x0) * self.scale) as usize;
