@@ -622,19 +622,19 @@ crate::numeric::isa::avx2_dispatch! {
 fn sorted_one_way_body(x: &[f64]) -> bool {
     const BLOCK: usize = 1024;
     let n = x.len();
-    // `up`: some neighbour is not ≥ its predecessor; `down`: some is not ≤ it
-    let (mut up, mut down) = (false, false);
+    // every neighbour ≥ its predecessor so far; every one ≤ it (a NaN is neither)
+    let (mut ascending, mut descending) = (true, true);
     let mut start = 0;
-    while start + 1 < n && !(up && down) {
+    while start + 1 < n && (ascending || descending) {
         let end = (start + BLOCK).min(n - 1);
         let (from, to) = (&x[start..end], &x[start + 1..=end]);
         for (a, b) in from.iter().zip(to) {
-            up |= !(b >= a);
-            down |= !(b <= a);
+            ascending &= b >= a;
+            descending &= b <= a;
         }
         start = end;
     }
-    !(up && down)
+    ascending || descending
 }
 
 /// Validates breakpoints `ξ_1 < … < ξ_{l+1}` (document 003 §4): at least two, finite,

@@ -172,7 +172,7 @@ fn akima_secants_body(x: &[f64], y: &[f64], m: &mut [f64]) -> bool {
     for j in 0..n - 1 {
         let h = x1[j] - x0[j];
         m[j] = (y1[j] - y0[j]) / h;
-        bad |= u64::from(!(h > 0.0)) | u64::from(!y0[j].is_finite());
+        bad |= u64::from(h.is_nan() | (h <= 0.0)) | u64::from(!y0[j].is_finite());
     }
     bad |= u64::from(!y[n - 1].is_finite());
     bad == 0
@@ -285,7 +285,10 @@ mod tests {
         let mut xs = x.clone();
         xs[10] = xs[9];
         assert!(matches!(run(&xs, &y), Err(Error::InvalidArgument { .. })));
-        assert!(matches!(run(&x[..1], &y[..1]), Err(Error::TooFew { .. })));
+        assert!(matches!(
+            akima_slopes_into(&x[..1], &y[..1], false, &mut [0.0; 1]),
+            Err(Error::TooFew { .. })
+        ));
         assert!(matches!(
             run(&x, &y[..3]),
             Err(Error::LengthMismatch { .. })

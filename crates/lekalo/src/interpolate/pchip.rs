@@ -104,12 +104,8 @@ pub fn pchip_slopes_into(x: &[f64], y: &[f64], slopes: &mut [f64]) -> Result<()>
     }
     let ok = pchip_interior(x, y, slopes) && (x[n - 1] - x[0]).is_finite();
     if !ok {
-        // the first bad number named, then an overflowing slope
+        // the first bad number named (an overflowing slope below, as pchip_slopes names it)
         check_function_data(x, data)?;
-        check_finite(
-            "PCHIP slopes (overflow: rescale the data)",
-            &slopes[1..n - 1],
-        )?;
     }
     let (h0, h1) = (x[1] - x[0], x[2] - x[1]);
     let (m0, m1) = ((y[1] - y[0]) / h0, (y[2] - y[1]) / h1);
@@ -117,7 +113,7 @@ pub fn pchip_slopes_into(x: &[f64], y: &[f64], slopes: &mut [f64]) -> Result<()>
     let (h0, h1) = (x[n - 1] - x[n - 2], x[n - 2] - x[n - 3]);
     let (m0, m1) = ((y[n - 1] - y[n - 2]) / h0, (y[n - 2] - y[n - 3]) / h1);
     slopes[n - 1] = edge(h0, h1, m0, m1);
-    if slopes[0].is_finite() && slopes[n - 1].is_finite() {
+    if ok && slopes[0].is_finite() && slopes[n - 1].is_finite() {
         return Ok(());
     }
     check_finite("PCHIP slopes (overflow: rescale the data)", slopes)
@@ -137,13 +133,19 @@ fn pchip_interior_body(x: &[f64], y: &[f64], slopes: &mut [f64]) -> bool {
     let mut start = 1;
     while start + 1 < n {
         let len = PCHIP_BLOCK.min(n - 1 - start);
-        // steps and secants of the intervals start − 1 ..= start + len − 1
-        let xs = &x[start - 1..=start + len];
-        let ys = &y[start - 1..=start + len];
-        for j in 0..=len {
-            h[j] = xs[j + 1] - xs[j];
-            m[j] = (ys[j + 1] - ys[j]) / h[j];
-            bad |= u64::from(!(h[j] > 0.0)) | u64::from(!ys[j].is_finite());
+        // steps and secants of the intervals start − 1 ..= start + len − 1 (zipped slices of
+        // one length, so that the loop is vectorised)
+        let (x0, x1) = (&x[start - 1..start + len], &x[start..=start + len]);
+        let (y0, y1) = (&y[start - 1..start + len], &y[start..=start + len]);
+        for ((hj, mj), ((xa, xb), (ya, yb))) in h[..=len]
+            .iter_mut()
+            .zip(&mut m[..=len])
+            .zip(x0.iter().zip(x1).zip(y0.iter().zip(y1)))
+        {
+            let step = xb - xa;
+            *hj = step;
+            *mj = (yb - ya) / step;
+            bad |= u64::from(step.is_nan() | (step <= 0.0)) | u64::from(!ya.is_finite());
         }
         let out = &mut slopes[start..start + len];
         for (i, o) in out.iter_mut().enumerate() {
@@ -308,7 +310,10 @@ mod tests {
             run(&xs, &y),
             Err(Error::NonFinite { index: 100, .. })
         ));
-        assert!(matches!(run(&x[..1], &y[..1]), Err(Error::TooFew { .. })));
+        assert!(matches!(
+            pchip_slopes_into(&x[..1], &y[..1], &mut [0.0; 1]),
+            Err(Error::TooFew { .. })
+        ));
         assert!(matches!(
             run(&x, &y[..149]),
             Err(Error::LengthMismatch { .. })

@@ -150,7 +150,7 @@ fn hermite_scalar_body(x: &[f64], y: &[f64], dydx: &[f64], control: &mut [f64]) 
             let h = xs[i + 1] - xs[i];
             b1[i] = ys[i] + h * ds[i] / 3.0;
             b2[i] = ys[i + 1] - h * ds[i + 1] / 3.0;
-            bad |= u64::from(!(h > 0.0))
+            bad |= u64::from(h.is_nan() | (h <= 0.0))
                 | u64::from(!ys[i].is_finite())
                 | u64::from(!ds[i].is_finite());
         }
