@@ -16,6 +16,7 @@
 //! - CAD files: `faces` (`read_step`, `read_iges`, `write_step`, `write_iges`, `Face`: a surface
 //!   trimmed by loops of edges);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
+//! - SciPy's test of a piecewise polynomial's breakpoints (sorted one way): `breakpoints`;
 //! - SciPy's `(t, c, k)` arrays: derivative and antiderivative coefficients and integrals read in
 //!   place, without a curve built: `tck`;
 //! - many curves at once: `batch`;
@@ -25,6 +26,7 @@
 
 mod batch;
 mod blend;
+mod breakpoints;
 mod calculus;
 mod convert;
 mod curves;
@@ -98,6 +100,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::evaluate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(calculus::bspline_value, m)?)?;
     blend::register(m)?;
+    breakpoints::register(m)?;
     derivatives::register(m)?;
     fit::register(m)?;
     query::register(m)?;

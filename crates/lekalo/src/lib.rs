@@ -65,7 +65,7 @@ pub use error::{
     ControlSupport, Error, Result, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_SCALARS,
     MAX_SURFACE_DERIVATIVE_ORDER,
 };
-pub use knots::{check_parameters, uniform_parameters, KnotVector, SpanCursor};
+pub use knots::{breakpoints_sorted, check_parameters, uniform_parameters, KnotVector, SpanCursor};
 pub use points::{Points, PointsRef};
 
 // -- curves: Bezier, B-spline, NURBS, knot operations, fast evaluation --
@@ -90,10 +90,10 @@ pub use surface::{
 pub mod interpolate;
 
 pub use interpolate::{
-    akima_slopes, cubic_through_four_points, four_point_cubic_coefficients,
+    akima_slopes, akima_slopes_into, cubic_through_four_points, four_point_cubic_coefficients,
     hermite_segment_coefficients, interpolate_with_end_derivatives, natural_cubic_spline,
-    parametrize, pchip_slopes, CubicHermite, CurveInterpolation, EndCondition, EndDerivative,
-    InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
+    parametrize, pchip_slopes, pchip_slopes_into, CubicHermite, CurveInterpolation, EndCondition,
+    EndDerivative, InterpolationWorkspace, KnotPlacement, Parametrization, SurfaceInterpolation,
     SurfaceInterpolationReport, TangentEstimate, HERMITE_MATRIX, INTERPOLATION_RESIDUAL_RTOL,
 };
 // the grid interpolation functions before `SurfaceInterpolation`, kept for existing code

@@ -17,8 +17,10 @@
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
 //! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
-//! - `akima.rs`: [`akima_slopes`], Akima's and the modified Akima (makima) slopes.
-//! - `pchip.rs`: [`pchip_slopes`], shape-preserving slopes for Hermite interpolation (PCHIP).
+//! - `akima.rs`: [`akima_slopes`], Akima's and the modified Akima (makima) slopes (dimension 1
+//!   in vectorised passes: [`akima_slopes_into`]).
+//! - `pchip.rs`: [`pchip_slopes`], shape-preserving slopes for Hermite interpolation (PCHIP)
+//!   (dimension 1 in one vectorised pass: [`pchip_slopes_into`]).
 
 mod akima;
 pub(crate) mod collocation;
@@ -33,7 +35,7 @@ mod pchip;
 mod periodic;
 mod surface;
 
-pub use akima::akima_slopes;
+pub use akima::{akima_slopes, akima_slopes_into};
 pub use curve::{
     natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
 };
@@ -45,7 +47,7 @@ pub use hermite::{
     CubicHermite, TangentEstimate, HERMITE_MATRIX,
 };
 pub use parametrization::{parametrize, Parametrization};
-pub use pchip::pchip_slopes;
+pub use pchip::{pchip_slopes, pchip_slopes_into};
 #[allow(deprecated)]
 pub use surface::{
     interpolate_surface, interpolate_surface_condition, interpolate_surface_max_condition,

@@ -203,3 +203,36 @@ fn cursor_agrees_with_binary_search_in_any_order() {
     }
     assert!(c.find(-0.1).is_err());
 }
+
+#[test]
+fn breakpoints_sorted_is_numpys_test_of_the_differences() {
+    // np.all(dx >= 0) or np.all(dx <= 0) on dx = np.diff(x), across the block size
+    let naive = |x: &[f64]| {
+        let d: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+        d.iter().all(|&v| v >= 0.0) || d.iter().all(|&v| v <= 0.0)
+    };
+    let up: Vec<f64> = (0..3000).map(|i| f64::from(i / 3)).collect();
+    let down: Vec<f64> = up.iter().rev().copied().collect();
+    let mut cases = vec![vec![], vec![1.0], vec![2.0, 2.0], up.clone(), down.clone()];
+    for at in [1, 1023, 1024, 1025, 2999] {
+        for bad in [f64::NAN, -5.0, 5000.0] {
+            let mut x = up.clone();
+            x[at] = bad;
+            cases.push(x);
+            let mut x = down.clone();
+            x[at] = bad;
+            cases.push(x);
+        }
+    }
+    cases.push(vec![0.0, f64::INFINITY]);
+    cases.push(vec![0.0, f64::INFINITY, f64::INFINITY]);
+    cases.push(vec![f64::NEG_INFINITY, f64::NEG_INFINITY]);
+    for x in &cases {
+        assert_eq!(
+            breakpoints_sorted(x),
+            naive(x),
+            "{:?}",
+            &x[..x.len().min(4)]
+        );
+    }
+}

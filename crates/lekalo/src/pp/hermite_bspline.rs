@@ -48,14 +48,16 @@ pub fn cubic_hermite_bspline_into(
     knots: &mut [f64],
     control: &mut [f64],
 ) -> Result<()> {
-    check_breakpoints(x)?;
+    let n = x.len();
+    if n < 2 {
+        check_breakpoints(x)?;
+    }
     if dim == 0 {
         return Err(Error::InvalidArgument {
             what: "Hermite values".into(),
             reason: "the dimension is 0; pass at least one column of values".into(),
         });
     }
-    let n = x.len();
     let rows = n.checked_mul(dim).filter(|&r| r <= MAX_SCALARS / 2);
     let Some(rows) = rows else {
         return Err(Error::InvalidArgument {
@@ -82,6 +84,19 @@ pub fn cubic_hermite_bspline_into(
             });
         }
     }
+    knots[..4].fill(x[0]);
+    for (pair, &b) in knots[4..n_knots - 4].chunks_exact_mut(2).zip(&x[1..n - 1]) {
+        pair.fill(b);
+    }
+    knots[n_knots - 4..].fill(x[n - 1]);
+    if dim == 1 {
+        // the checks folded into the pass that writes the coefficients; on failure the
+        // checks below name the first bad number
+        if hermite_scalar_pass(x, y, dydx, control) && (x[n - 1] - x[0]).is_finite() {
+            return Ok(());
+        }
+    }
+    check_breakpoints(x)?;
     for (what, v) in [("Hermite values", y), ("Hermite slopes", dydx)] {
         if let Some(index) = v.iter().position(|a| !a.is_finite()) {
             return Err(Error::NonFinite {
@@ -91,11 +106,6 @@ pub fn cubic_hermite_bspline_into(
             });
         }
     }
-    knots[..4].fill(x[0]);
-    for (pair, &b) in knots[4..n_knots - 4].chunks_exact_mut(2).zip(&x[1..n - 1]) {
-        pair.fill(b);
-    }
-    knots[n_knots - 4..].fill(x[n - 1]);
     control[..dim].copy_from_slice(&y[..dim]);
     let inner = &mut control[dim..(n_ctrl - 1) * dim];
     for (k, seg) in inner.chunks_exact_mut(2 * dim).enumerate() {
@@ -114,6 +124,53 @@ pub fn cubic_hermite_bspline_into(
     }
     control[(n_ctrl - 1) * dim..].copy_from_slice(&y[(n - 1) * dim..]);
     Ok(())
+}
+
+/// Pieces a block of [`hermite_scalar_body`]: the inner Bézier points of this many pieces are
+/// formed in two stack arrays (4-wide divisions with AVX2), then interleaved into the output.
+const HERMITE_BLOCK: usize = 64;
+
+/// The coefficients of values of dimension 1 (`control`: `2n` numbers), the arithmetic of the
+/// general loop of [`cubic_hermite_bspline_into`] (the same bits), a block of pieces at a
+/// time so that the two divisions a piece are vectorised. Returns whether every step
+/// `x_{k+1} − x_k` is positive (false for NaN) and every value and slope finite; `x_0` and
+/// `x_{n−1}` finite then follows from a finite `x_{n−1} − x_0`, which the caller checks.
+#[inline(always)]
+fn hermite_scalar_body(x: &[f64], y: &[f64], dydx: &[f64], control: &mut [f64]) -> bool {
+    let n = x.len();
+    let mut bad = 0_u64;
+    let (mut b1, mut b2) = ([0.0; HERMITE_BLOCK], [0.0; HERMITE_BLOCK]);
+    let mut start = 0;
+    while start + 1 < n {
+        let m = HERMITE_BLOCK.min(n - 1 - start);
+        let xs = &x[start..=start + m];
+        let ys = &y[start..=start + m];
+        let ds = &dydx[start..=start + m];
+        for i in 0..m {
+            let h = xs[i + 1] - xs[i];
+            b1[i] = ys[i] + h * ds[i] / 3.0;
+            b2[i] = ys[i + 1] - h * ds[i + 1] / 3.0;
+            bad |= u64::from(h.is_nan() | (h <= 0.0))
+                | u64::from(!ys[i].is_finite())
+                | u64::from(!ds[i].is_finite());
+        }
+        let out = &mut control[2 * start + 1..2 * (start + m) + 1];
+        for (pair, (p, q)) in out.chunks_exact_mut(2).zip(b1[..m].iter().zip(&b2[..m])) {
+            pair[0] = *p;
+            pair[1] = *q;
+        }
+        start += m;
+    }
+    bad |= u64::from(!y[n - 1].is_finite()) | u64::from(!dydx[n - 1].is_finite());
+    control[0] = y[0];
+    control[2 * n - 1] = y[n - 1];
+    bad == 0
+}
+
+crate::numeric::isa::avx2_dispatch! {
+    /// [`hermite_scalar_body`] compiled with AVX2 where the processor has it, else as built
+    /// ([`crate::numeric::isa`]: the same bits).
+    fn hermite_scalar_pass(x: &[f64], y: &[f64], dydx: &[f64], control: &mut [f64]) -> bool = hermite_scalar_body;
 }
 
 #[cfg(test)]
@@ -138,6 +195,76 @@ mod tests {
         cubic_hermite_bspline_into(&x, &y, &d, 2, &mut t, &mut c).unwrap();
         assert_eq!(t.as_slice(), curve.knots().as_slice());
         assert_eq!(c.as_slice(), curve.control_points().as_slice());
+    }
+
+    #[test]
+    fn the_pass_of_dimension_one_is_the_general_loop_bit_for_bit() {
+        // a dimension-2 call takes the general loop: two equal columns give the numbers the
+        // one-column pass must give; lengths across the block size
+        for n in [2, 3, 64, 65, 66, 130, 200] {
+            let x: Vec<f64> = (0..n)
+                .map(|i| f64::from(i) * 0.7 + (f64::from(i) * 1.3).sin() * 0.2)
+                .collect();
+            let y: Vec<f64> = (0..n).map(|i| (f64::from(i) * 0.37).cos() * 1e3).collect();
+            let d: Vec<f64> = (0..n).map(|i| (f64::from(i) * 0.11).sin() / 7.0).collect();
+            let twice = |v: &[f64]| v.iter().flat_map(|&a| [a, a]).collect::<Vec<_>>();
+            let (nk, nc) = cubic_hermite_bspline_len(n as usize);
+            let (mut t1, mut c1) = (vec![0.0; nk], vec![0.0; nc]);
+            let (mut t2, mut c2) = (vec![0.0; nk], vec![0.0; 2 * nc]);
+            cubic_hermite_bspline_into(&x, &y, &d, 1, &mut t1, &mut c1).unwrap();
+            cubic_hermite_bspline_into(&x, &twice(&y), &twice(&d), 2, &mut t2, &mut c2).unwrap();
+            assert_eq!(t1, t2, "n = {n}");
+            let first: Vec<f64> = c2.iter().step_by(2).copied().collect();
+            assert_eq!(
+                c1.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                first.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                "n = {n}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_pass_of_dimension_one_names_the_first_bad_number() {
+        let n = 100;
+        let x: Vec<f64> = (0..n).map(f64::from).collect();
+        let ok = vec![1.0; n as usize];
+        let (nk, nc) = cubic_hermite_bspline_len(n as usize);
+        let (mut t, mut c) = (vec![0.0; nk], vec![0.0; nc]);
+        let mut run = |x: &[f64], y: &[f64], d: &[f64]| {
+            cubic_hermite_bspline_into(x, y, d, 1, &mut t, &mut c)
+        };
+        let mut bad = ok.clone();
+        bad[70] = f64::INFINITY;
+        assert!(matches!(
+            run(&x, &bad, &ok),
+            Err(Error::NonFinite { index: 70, .. })
+        ));
+        bad[99] = f64::NAN;
+        bad[70] = 1.0;
+        assert!(matches!(
+            run(&x, &ok, &bad),
+            Err(Error::NonFinite { index: 99, .. })
+        ));
+        let mut xs = x.clone();
+        xs[80] = xs[79];
+        assert!(matches!(
+            run(&xs, &ok, &ok),
+            Err(Error::InvalidArgument { .. })
+        ));
+        xs[80] = f64::NAN;
+        assert!(matches!(
+            run(&xs, &ok, &ok),
+            Err(Error::NonFinite { index: 80, .. })
+        ));
+        let mut xs = x.clone();
+        xs[0] = f64::NEG_INFINITY;
+        assert!(run(&xs, &ok, &ok).is_err());
+        xs[0] = -1.7e308;
+        xs[99] = 1.7e308;
+        assert!(
+            matches!(run(&xs, &ok, &ok), Err(Error::InvalidArgument { .. })),
+            "the width overflows"
+        );
     }
 
     #[test]

@@ -101,8 +101,10 @@ class _PPolyBase:
             raise ValueError("Coefficients array must be at least 2-dimensional.")
         if not (0 <= axis < c.ndim - 1):
             raise ValueError(f"axis={axis} must be between 0 and {c.ndim - 1}")
-        c = np.moveaxis(c, axis + 1, 0)
-        c = np.moveaxis(c, axis + 1, 0)
+        if axis:
+            # the interpolation axes first (twice the identity for axis 0)
+            c = np.moveaxis(c, axis + 1, 0)
+            c = np.moveaxis(c, axis + 1, 0)
         if x.ndim != 1:
             raise ValueError("x must be 1-dimensional")
         if x.size < 2:
@@ -113,8 +115,8 @@ class _PPolyBase:
             raise ValueError("number of intervals must be positive")
         if c.shape[1] != x.size - 1:
             raise ValueError("number of coefficients != len(x)-1")
-        dx = np.diff(x)
-        if not (np.all(dx >= 0) or np.all(dx <= 0)):
+        # SciPy's np.all(dx >= 0) or np.all(dx <= 0) on dx = np.diff(x), in one pass
+        if not _lekalo.breakpoints_sorted(x):
             raise ValueError("`x` must be strictly increasing or decreasing.")
         dtype = complex if np.iscomplexobj(c) else float
         self._c = np.ascontiguousarray(c, dtype=dtype)
@@ -854,6 +856,11 @@ class CubicHermiteSpline(PPoly):
     def __init__(self, x: Any, y: Any, dydx: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
             extrapolate = True
+        if _direct_data(x, y, axis) and _direct_data(x, dydx, axis):
+            spline = _direct_spline(_lekalo.hermite_tck, x, y, dydx)
+            if spline is not None:
+                self._init_from_spline(spline, x, extrapolate, 0)
+                return
         x, y, axis = _prepare_input(x, y, axis)
         dydx = np.moveaxis(np.asarray(dydx), axis, 0)
         if dydx.shape != y.shape:
@@ -861,6 +868,36 @@ class CubicHermiteSpline(PPoly):
         if not np.all(np.isfinite(dydx)):
             raise ValueError("`dydx` must contain only finite values.")
         self._init_from_spline(_hermite_spline(x, y, dydx, axis), x, extrapolate, axis)
+
+
+def _direct_data(x: Any, y: Any, axis: Any) -> bool:
+    """Whether ``x`` and ``y`` are what most calls pass: 1-D float64 NumPy arrays of one
+    length, at least 2, interpolated along ``axis`` 0. Then SciPy's checks (finite numbers,
+    ``x`` strictly increasing) are exactly those of lekalo's one-pass kernels, and
+    :func:`_direct_spline` makes the spline without ``_prepare_input``'s passes."""
+    return (
+        type(x) is np.ndarray
+        and type(y) is np.ndarray
+        and x.dtype == np.float64
+        and y.dtype == np.float64
+        and x.ndim == 1
+        and y.ndim == 1
+        and x.shape == y.shape
+        and x.shape[0] >= 2
+        and (axis == 0 or axis == -1)
+    )
+
+
+def _direct_spline(kernel: Any, *data: np.ndarray) -> BSpline | None:
+    """The cubic B-spline with double knots that ``kernel`` (lekalo's ``hermite_tck`` or
+    ``pchip_tck``: the slopes, the knots and the coefficients in one pass each, the checks
+    folded in) writes for data that passed :func:`_direct_data`; ``None`` on data it refuses,
+    for the general path to raise SciPy's error in SciPy's order."""
+    try:
+        t, c = kernel(*data)
+    except _lekalo.InputError:
+        return None
+    return BSpline.construct_fast(t, c.reshape(-1), 3)
 
 
 def _hermite_spline(x: np.ndarray, y: np.ndarray, dydx: np.ndarray, axis: int) -> BSpline:
@@ -886,6 +923,11 @@ class PchipInterpolator(PPoly):
     def __init__(self, x: Any, y: Any, axis: int = 0, extrapolate: Any = None) -> None:
         if extrapolate is None:
             extrapolate = True
+        if _direct_data(x, y, axis):
+            spline = _direct_spline(_lekalo.pchip_tck, x, y)
+            if spline is not None:
+                self._init_from_spline(spline, x, extrapolate, 0)
+                return
         x, y, axis = _prepare_input(x, y, axis)
         if np.iscomplexobj(y):
             msg = (
@@ -911,6 +953,11 @@ class Akima1DInterpolator(PPoly):
     def __init__(self, x: Any, y: Any, axis: int = 0, *, method: str = "akima", extrapolate: Any = None) -> None:
         if method not in {"akima", "makima"}:
             raise NotImplementedError(f"`method`={method} is unsupported.")
+        if _direct_data(x, y, axis):
+            spline = _direct_spline(lambda x_, y_: _lekalo.akima_tck(x_, y_, method), x, y)
+            if spline is not None:
+                self._init_from_spline(spline, x, False if extrapolate is None else extrapolate, 0)
+                return
         x, y, axis = _prepare_input(x, y, axis)
         if np.iscomplexobj(y):
             msg = (
