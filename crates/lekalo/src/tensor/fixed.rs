@@ -191,8 +191,8 @@ fn values2_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<
 const BLOCK3: usize = 4;
 
 /// The trivariate batch [`BLOCK3`] points at a time, one [`basis_lanes`] a direction with the
-/// block's points in its lanes, as [`values2_body`] does in two directions; a block with a point that gives NaN, and the last points of a batch, take
-/// [`one3`]. The same bits either way.
+/// block's points in its lanes, as [`values2_body`] does in two directions; a block with a point
+/// that gives NaN, and the last points of a batch, take [`one3`]. The same bits either way.
 #[inline(always)]
 fn values3_body<const W: usize>(run: &Fixed<'_, '_>, out: &mut [f64]) -> Result<()> {
     let s = run.s;
