@@ -10,6 +10,7 @@ use pyo3::types::PyTuple;
 
 use crate::convert::{filled_pair, floats, FloatArray};
 use crate::error::bad;
+use crate::slopes::akima_modified;
 
 /// `(t, c)`: the cubic B-spline (knots `(2n + 4,)`, coefficients `(2n, m)`) of the cubic
 /// Hermite spline with values `y` and slopes `dydx` (both `(n, m)`, or `(n,)` as one column) at
@@ -76,24 +77,7 @@ pub(crate) fn pchip_tck<'py>(
     x: &Bound<'py, PyAny>,
     y: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let xa = floats(x, "x")?;
-    let ya = floats(y, "y")?;
-    let xs = one_d(&xa, "x")?;
-    let n = xs.len();
-    if !matches!(ya.shape(), [m] | [m, 1] if *m == n) {
-        return Err(bad(format!(
-            "y: expected one value per breakpoint, shape ({n},) or ({n}, 1), got {:?}",
-            ya.shape()
-        )));
-    }
-    let ys = ya.data();
-    let (n_knots, n_ctrl) = cubic_hermite_bspline_len(n);
-    let (t, c) = filled_pair(py, [&[n_knots], &[n_ctrl, 1]], |knots, out| {
-        let mut slopes = vec![0.0; n];
-        pchip_slopes_into(xs, ys, &mut slopes)?;
-        cubic_hermite_bspline_into(xs, ys, &slopes, 1, knots, out)
-    })?;
-    PyTuple::new(py, [t, c])
+    scalar_tck(py, x, y, pchip_slopes_into)
 }
 
 /// `(t, c)`: [`hermite_tck`] with the slopes of SciPy's `Akima1DInterpolator` (`method`
@@ -113,15 +97,21 @@ pub(crate) fn akima_tck<'py>(
     y: &Bound<'py, PyAny>,
     method: &str,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let modified = match method {
-        "akima" => false,
-        "makima" => true,
-        other => {
-            return Err(bad(format!(
-                "method: expected 'akima' or 'makima', got {other:?}"
-            )))
-        }
-    };
+    let modified = akima_modified(method)?;
+    scalar_tck(py, x, y, |xs, ys, slopes| {
+        akima_slopes_into(xs, ys, modified, slopes)
+    })
+}
+
+/// `(t, c)` of the cubic Hermite spline through the values `y` of dimension 1 (`(n,)` or
+/// `(n, 1)`) at `x` with the slopes `slopes_into` writes: the slopes in one scratch array, then
+/// `cubic_hermite_bspline_into` into the two NumPy arrays, the data read in place.
+fn scalar_tck<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    slopes_into: impl FnOnce(&[f64], &[f64], &mut [f64]) -> lekalo::Result<()> + Send,
+) -> PyResult<Bound<'py, PyTuple>> {
     let xa = floats(x, "x")?;
     let ya = floats(y, "y")?;
     let xs = one_d(&xa, "x")?;
@@ -136,7 +126,7 @@ pub(crate) fn akima_tck<'py>(
     let (n_knots, n_ctrl) = cubic_hermite_bspline_len(n);
     let (t, c) = filled_pair(py, [&[n_knots], &[n_ctrl, 1]], |knots, out| {
         let mut slopes = vec![0.0; n];
-        akima_slopes_into(xs, ys, modified, &mut slopes)?;
+        slopes_into(xs, ys, &mut slopes)?;
         cubic_hermite_bspline_into(xs, ys, &slopes, 1, knots, out)
     })?;
     PyTuple::new(py, [t, c])

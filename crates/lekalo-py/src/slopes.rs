@@ -36,15 +36,7 @@ pub(crate) fn akima_slopes<'py>(
     y: &Bound<'py, PyAny>,
     method: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let modified = match method {
-        "akima" => false,
-        "makima" => true,
-        other => {
-            return Err(crate::error::bad(format!(
-                "method: expected 'akima' or 'makima', got {other:?}"
-            )))
-        }
-    };
+    let modified = akima_modified(method)?;
     let xa = floats(x, "x")?;
     let xs = xa.vector("x")?;
     let ya = floats(y, "y")?;
@@ -60,4 +52,16 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pchip_slopes, m)?)?;
     m.add_function(wrap_pyfunction!(akima_slopes, m)?)?;
     Ok(())
+}
+
+/// Whether `method` asks for Moler's modified Akima weights: `"makima"` yes, `"akima"` no, any
+/// other spelling refused with the two SciPy accepts.
+pub(crate) fn akima_modified(method: &str) -> PyResult<bool> {
+    match method {
+        "akima" => Ok(false),
+        "makima" => Ok(true),
+        other => Err(crate::error::bad(format!(
+            "method: expected 'akima' or 'makima', got {other:?}"
+        ))),
+    }
 }
