@@ -62,6 +62,28 @@ async fn health(addr: SocketAddr) {
 
 const CURVE: &str = r#"{"curve": {"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]]}, "samples": 8}"#;
 
+/// `data` in each encoding the server reads, with the encoding's name.
+fn encoded(data: &[u8]) -> [(&'static str, Vec<u8>); 3] {
+    [
+        ("gzip", gzip(data)),
+        ("deflate", deflate(data)),
+        ("br", brotli(data)),
+    ]
+}
+
+/// The answer to `body` posted to `/api/evaluate` with `content-encoding: name`.
+async fn evaluate_encoded(addr: SocketAddr, name: &str, body: &[u8]) -> String {
+    exchange(
+        addr,
+        &post(
+            "/api/evaluate",
+            &format!("content-encoding: {name}\r\n"),
+            body,
+        ),
+    )
+    .await
+}
+
 fn gzip(data: &[u8]) -> Vec<u8> {
     let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
     e.write_all(data).expect("gzip");
@@ -91,20 +113,8 @@ async fn compressed_bodies_are_read() {
     let plain = exchange(addr, &post("/api/evaluate", "", CURVE.as_bytes())).await;
     let (code, want) = status_and_json(&plain);
     assert_eq!(code, 200, "{plain}");
-    for (name, body) in [
-        ("gzip", gzip(CURVE.as_bytes())),
-        ("deflate", deflate(CURVE.as_bytes())),
-        ("br", brotli(CURVE.as_bytes())),
-    ] {
-        let answer = exchange(
-            addr,
-            &post(
-                "/api/evaluate",
-                &format!("content-encoding: {name}\r\n"),
-                &body,
-            ),
-        )
-        .await;
+    for (name, body) in encoded(CURVE.as_bytes()) {
+        let answer = evaluate_encoded(addr, name, &body).await;
         let (code, got) = status_and_json(&answer);
         assert_eq!((code, &got), (200, &want), "{name}");
     }
@@ -118,22 +128,10 @@ async fn decompression_bombs_are_refused_at_the_body_limit() {
     let addr = serving(Limits::default()).await;
     let mut inflated = b"{\"points\": [".to_vec();
     inflated.resize(256 << 20, b' ');
-    for (name, body) in [
-        ("gzip", gzip(&inflated)),
-        ("deflate", deflate(&inflated)),
-        ("br", brotli(&inflated)),
-    ] {
+    for (name, body) in encoded(&inflated) {
         assert!(body.len() < 300_000, "{name}: {} bytes", body.len());
         let start = Instant::now();
-        let answer = exchange(
-            addr,
-            &post(
-                "/api/evaluate",
-                &format!("content-encoding: {name}\r\n"),
-                &body,
-            ),
-        )
-        .await;
+        let answer = evaluate_encoded(addr, name, &body).await;
         let (code, json) = status_and_json(&answer);
         assert_eq!(code, 413, "{name}: {answer:.300}");
         let message = json["error"].as_str().expect("message");
