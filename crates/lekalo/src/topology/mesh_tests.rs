@@ -3,9 +3,10 @@
 
 use super::super::mesh::MAX_REFINE_ROUNDS;
 use super::super::tests::{hole, plane, square};
+use super::edge_sampling::dist;
 use super::*;
 use crate::topology::{join_meshes, mesh_faces, mesh_faces_each, FaceMeshes};
-use crate::topology::{Loop, LOOP_CLOSURE_RTOL};
+use crate::topology::{Edge, Loop, LOOP_CLOSURE_RTOL};
 use crate::{BSplineCurve, BSplineSurface, Curve, Surface};
 use proptest::prelude::*;
 

@@ -8,6 +8,7 @@
 //! | `shell.rs` | [`Shell`]: which edges of a set of faces are one edge (shared by two faces, or a seam), and which edge ends are one vertex |
 //! | `curvature.rs` | second-derivative bounds of a face's surface patch by patch, and the grid spacing of each knot span they give |
 //! | `mesh.rs` | one trimmed face's triangle mesh within a tolerance from its edges' samples: edge sampling, grid, constrained Delaunay triangulation, refinement |
+//! | `mesh/edge_sampling.rs` | the fractions at which an edge shared by faces is sampled once for all of them: bisection until its curve is near its chords and, on each face, the surface near the chord's midpoints and the step within the face's grid spacing |
 //! | `mesh_set.rs` | [`mesh_faces`], [`mesh_faces_each`] and [`Face::mesh`]: a set of faces meshed with each shared edge sampled once and each face meshed once, in parallel; the faces that fail listed by index with their errors ([`FaceMeshes`]) |
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
 //! | `seam.rs` | faces whose loops go round a closed surface without a seam edge (bands, caps round a pole), cut along a seam into one region of `(u, v)` for the mesher |
