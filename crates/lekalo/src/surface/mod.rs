@@ -4,6 +4,8 @@
 //!   capabilities delegated once, and [`Direction`] (`u` or `v`).
 //! - `bspline.rs`: [`BSplineSurface`] and the conventions shared by all surfaces (net layout,
 //!   derivative tables).
+//! - `bspline/derivatives.rs`: its partial derivatives (P&T A3.6) and unit normals, with the
+//!   normal's degeneracy test shared by all three kinds.
 //! - `bezier.rs`: [`BezierSurface`] on `[0, 1]²`.
 //! - `nurbs.rs`: [`NurbsSurface`], a B-spline surface over homogeneous points.
 //! - `knot_ops.rs`: knot insertion, refinement, splitting, Bezier patches ([`BezierPatch`],

@@ -1,6 +1,6 @@
 use super::*;
 
-fn bilinear() -> BSplineSurface {
+pub(super) fn bilinear() -> BSplineSurface {
     let net = Points::from_3d(&[
         [0.0, 0.0, 0.0],
         [0.0, 1.0, 0.0],
@@ -63,59 +63,6 @@ fn bilinear_patch_closed_form() {
             assert!((d.point(4)[2] - 1.0).abs() < 1e-15, "S_uv");
         }
     }
-}
-
-#[test]
-fn normals_need_3d_and_a_regular_point() {
-    // a 2-D surface has no normal
-    let net = Points::from_2d(&[[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]]).unwrap();
-    let k = vec![0.0, 0.0, 1.0, 1.0];
-    let s2 = BSplineSurface::new(1, 1, k.clone(), k.clone(), net, (2, 2)).unwrap();
-    assert!(matches!(
-        s2.normal(0.5, 0.5),
-        Err(Error::Dimension {
-            expected: 3,
-            got: 2,
-            ..
-        })
-    ));
-    // a triangle: the edge u = 1 collapsed to a point, S_v = 0 there
-    let net = Points::from_3d(&[
-        [0.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [1.0, 0.5, 0.0],
-        [1.0, 0.5, 0.0],
-    ])
-    .unwrap();
-    let tri = BSplineSurface::new(1, 1, k.clone(), k, net, (2, 2)).unwrap();
-    assert!(tri.normal(0.5, 0.5).is_ok());
-    let e = tri.normal(1.0, 0.5).unwrap_err();
-    assert!(
-        matches!(&e, Error::InvalidArgument { reason, .. } if reason.contains("undefined")),
-        "{e}"
-    );
-    assert!(matches!(
-        tri.normal(1.5, 0.5),
-        Err(Error::ParameterOutOfDomain { .. })
-    ));
-}
-
-#[test]
-fn absurd_derivative_orders_are_refused() {
-    let s = bilinear();
-    assert_eq!(s.eval_derivatives(0.5, 0.5, 64).unwrap().len(), 65 * 65);
-    assert!(matches!(
-        s.eval_derivatives(0.5, 0.5, 65),
-        Err(Error::TooLarge {
-            size: 65,
-            max: 64,
-            ..
-        })
-    ));
-    assert!(matches!(
-        s.eval_derivatives(0.5, 0.5, usize::MAX),
-        Err(Error::TooLarge { .. })
-    ));
 }
 
 #[test]
