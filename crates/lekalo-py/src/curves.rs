@@ -1,5 +1,9 @@
 //! `BezierCurve`, `BSplineCurve`, `NurbsCurve`: thin wrappers over the library's types.
 //!
+//! This file holds the helpers and the `curve_class!` macro of the methods the three classes
+//! share, and `BSplineCurve`; `curves/bezier.rs` holds `BezierCurve`, `curves/nurbs.rs`
+//! `NurbsCurve`.
+//!
 //! Evaluation takes parameters of any shape and returns `t.shape + (dim,)` (a scalar `t` gives
 //! `(dim,)`); derivatives `t.shape + (order + 1, dim)`. Large batches run on the rayon pool
 //! with results identical to the sequential ones (the library's `par_eval_batch`). The GIL is
@@ -357,138 +361,13 @@ macro_rules! curve_class {
     };
 }
 
-// ---------------------------------------------------------------------------------------------
+// declared after `curve_class!`, whose textual scope they need (`macro_rules!` macros are in
+// scope only below their definition)
+mod bezier;
+mod nurbs;
 
-/// A Bezier curve `C(t) = Σ B_{i,n}(t) P_i`, `t ∈ [0, 1]` (docs/theory/curves.md#bezier-curves).
-///
-/// Call: `c(t, nu=0)`: the points at `t` (any shape), `t.shape + (dim,)`; `nu > 0` gives the
-/// `nu`-th derivative.
-///
-/// >>> import numpy as np, lekalo
-/// >>> c = lekalo.BezierCurve([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
-/// >>> c(0.5)
-/// array([1., 1.])
-#[pyclass(module = "lekalo", name = "BezierCurve", frozen)]
-pub(crate) struct PyBezierCurve {
-    pub(crate) inner: BezierCurve,
-}
-
-impl PyBezierCurve {
-    pub(crate) fn wrap(inner: BezierCurve) -> Self {
-        PyBezierCurve { inner }
-    }
-}
-
-curve_class!(PyBezierCurve, Bezier, "bezier_curve", {
-    #[new]
-    fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let p = owned_points(control, "control")?;
-        Ok(Self::wrap(BezierCurve::new(p).map_err(lib_err)?))
-    }
-
-    /// The control points, `(n + 1, dim)`.
-    #[getter]
-    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        points_array(py, self.inner.control_points())
-    }
-
-    /// The parameter domain, always `(0.0, 1.0)`.
-    #[getter]
-    fn domain(&self) -> (f64, f64) {
-        (0.0, 1.0)
-    }
-
-    /// Points at `t` (any shape): `t.shape + (dim,)`; `nu > 0` gives the `nu`-th derivative.
-    #[pyo3(signature = (t, nu = IntArg::of(0)))]
-    fn __call__(&self, py: Python<'_>, t: &Bound<'_, PyAny>, nu: IntArg) -> PyResult<Py<PyAny>> {
-        let nu = nu.count("nu")?;
-        if nu > 0 {
-            return pick_order(py, self.derivatives(py, t, IntArg::of(nu))?, nu);
-        }
-        let c = &self.inner;
-        eval_pointwise(py, t, c.dim(), |t, o| c.eval_into(t, o))
-    }
-
-    /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)`.
-    fn derivatives(
-        &self,
-        py: Python<'_>,
-        t: &Bound<'_, PyAny>,
-        order: IntArg,
-    ) -> PyResult<Py<PyAny>> {
-        let order = order.count("order")?;
-        let c = &self.inner;
-        derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
-    }
-
-    /// The hodograph `C'` as a Bezier curve of degree `n − 1`.
-    fn derivative(&self, py: Python<'_>) -> Self {
-        Self::wrap(py.detach(|| self.inner.derivative()))
-    }
-
-    /// Degree elevation by `by` (document 004): the same curve with more control points.
-    #[pyo3(signature = (by = IntArg::of(1)), text_signature = "($self, by=1)")]
-    fn elevate_degree(&self, py: Python<'_>, by: IntArg) -> PyResult<Self> {
-        let by = by.count("by")?;
-        Ok(Self::wrap(detached(py, || self.inner.elevate_degree(by))?))
-    }
-
-    /// Exact degree change to `target` (document 004): elevation, or reduction that is refused
-    /// below the real degree.
-    fn change_degree(&self, py: Python<'_>, target: IntArg) -> PyResult<Self> {
-        let target = target.count("target")?;
-        Ok(Self::wrap(detached(py, || {
-            self.inner.change_degree(target)
-        })?))
-    }
-
-    /// Least-squares degree reduction to `target` keeping `ends` ('free', 'points',
-    /// 'tangents'); returns `(curve, max_deviation_bound)`.
-    #[pyo3(signature = (target, ends = "points"))]
-    fn reduce_degree_approx(
-        &self,
-        py: Python<'_>,
-        target: IntArg,
-        ends: &str,
-    ) -> PyResult<(Self, f64)> {
-        let target = target.count("target")?;
-        let ends = ends_arg(ends)?;
-        let r = py
-            .detach(|| self.inner.reduce_degree_approx(target, ends))
-            .map_err(lib_err)?;
-        Ok((Self::wrap(r.curve.clone()), r.max_deviation_bound))
-    }
-
-    /// The real degree: the least degree that represents the same curve (document 004).
-    fn real_degree(&self) -> usize {
-        self.inner.real_degree()
-    }
-
-    /// The monomial coefficients `a_k` with `C(t) = Σ a_k t^k`, `(n + 1, dim)`.
-    fn to_monomial<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        points_into_array(py, self.inner.to_monomial().map_err(lib_err)?)
-    }
-
-    /// The Bezier curve with the given monomial coefficients `(n + 1, dim)`.
-    #[staticmethod]
-    fn from_monomial(coefficients: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let p = owned_points(coefficients, "coefficients")?;
-        Ok(Self::wrap(BezierCurve::from_monomial(p).map_err(lib_err)?))
-    }
-
-    /// The same curve as a clamped B-spline on `[0, 1]`.
-    fn to_bspline(&self) -> PyBSplineCurve {
-        PyBSplineCurve::wrap(self.inner.to_bspline())
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "BezierCurve(degree={}, dim={})",
-            self.inner.degree(),
-            self.inner.dim()
-        )
-    }
-});
+pub(crate) use bezier::PyBezierCurve;
+pub(crate) use nurbs::PyNurbsCurve;
 
 // ---------------------------------------------------------------------------------------------
 
@@ -666,145 +545,6 @@ curve_class!(PyBSplineCurve, BSpline, "bspline_curve", knots, {
 });
 
 // ---------------------------------------------------------------------------------------------
-
-/// A NURBS curve `C(t) = Σ N_{i,p}(t) w_i P_i / Σ N_{i,p}(t) w_i`
-/// (docs/theory/curves.md#nurbs-curves).
-///
-/// Call: `c(t, nu=0, *, out=None)`: the points at `t` (any shape), `t.shape + (dim,)`; `nu > 0`
-/// gives the `nu`-th derivative; `out`, a float64 C-contiguous array of that shape, receives
-/// the points (NumPy's `out=`). Outside the domain `lekalo.Error` (no extrapolation).
-///
-/// >>> import lekalo
-/// >>> c = lekalo.NurbsCurve.circle([0, 0], [1, 0], [0, 1], 2.0)
-/// >>> bool(abs((c(0.3) ** 2).sum() - 4.0) < 1e-12)
-/// True
-#[pyclass(module = "lekalo", name = "NurbsCurve", frozen)]
-pub(crate) struct PyNurbsCurve {
-    pub(crate) inner: NurbsCurve,
-    evaluator: OnceLock<NurbsEvaluator>,
-}
-
-impl PyNurbsCurve {
-    pub(crate) fn wrap(inner: NurbsCurve) -> Self {
-        PyNurbsCurve {
-            inner,
-            evaluator: OnceLock::new(),
-        }
-    }
-
-    /// The fast evaluator, built on first use and kept.
-    fn evaluator(&self) -> &NurbsEvaluator {
-        self.evaluator.get_or_init(|| self.inner.evaluator())
-    }
-
-    /// Derivatives of orders `0..=order` at `ts` into `out`, `(order + 1) · dim` numbers a
-    /// parameter.
-    fn derivatives_into(&self, ts: &[f64], order: usize, out: &mut [f64]) -> lekalo::Result<()> {
-        let row = (order + 1) * self.inner.dim();
-        ts.iter()
-            .zip(out.chunks_exact_mut(row))
-            .try_for_each(|(&t, o)| {
-                o.copy_from_slice(self.inner.eval_derivatives(t, order)?.as_slice());
-                Ok(())
-            })
-    }
-}
-
-curve_class!(PyNurbsCurve, Nurbs, "nurbs_curve", knots, {
-    #[new]
-    fn new(
-        degree: IntArg,
-        knots: &Bound<'_, PyAny>,
-        control: &Bound<'_, PyAny>,
-        weights: &Bound<'_, PyAny>,
-    ) -> PyResult<Self> {
-        let degree = degree.count("degree")?;
-        let k = vec1(knots, "knots")?;
-        let p = owned_points(control, "control")?;
-        let w = vec1(weights, "weights")?;
-        Ok(Self::wrap(
-            NurbsCurve::new(degree, k, p, w).map_err(lib_err)?,
-        ))
-    }
-
-    /// A full circle of `radius` about `center` in the plane of the orthonormal axes
-    /// `x_axis`, `y_axis` (exact: nine control points, degree 2).
-    #[staticmethod]
-    fn circle(
-        center: &Bound<'_, PyAny>,
-        x_axis: &Bound<'_, PyAny>,
-        y_axis: &Bound<'_, PyAny>,
-        radius: f64,
-    ) -> PyResult<Self> {
-        let (c, x, y) = (
-            vec1(center, "center")?,
-            vec1(x_axis, "x_axis")?,
-            vec1(y_axis, "y_axis")?,
-        );
-        Ok(Self::wrap(
-            NurbsCurve::circle(&c, &x, &y, radius).map_err(lib_err)?,
-        ))
-    }
-
-    /// The circular arc through three points `a`, `b`, `c` (from `a` to `c`).
-    #[staticmethod]
-    fn arc_through_points(
-        a: &Bound<'_, PyAny>,
-        b: &Bound<'_, PyAny>,
-        c: &Bound<'_, PyAny>,
-    ) -> PyResult<Self> {
-        let (a, b, c) = (vec1(a, "a")?, vec1(b, "b")?, vec1(c, "c")?);
-        Ok(Self::wrap(
-            NurbsCurve::arc_through_points(&a, &b, &c).map_err(lib_err)?,
-        ))
-    }
-
-    /// The Euclidean control points, `(n + 1, dim)`.
-    #[getter]
-    fn control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        points_into_array(py, self.inner.control_points())
-    }
-
-    /// The weights, `(n + 1,)`.
-    #[getter]
-    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        vec_array(py, &self.inner.weights())
-    }
-
-    /// The homogeneous B-spline `(w·P, w)`.
-    fn homogeneous(&self) -> PyBSplineCurve {
-        PyBSplineCurve::wrap(self.inner.homogeneous().clone())
-    }
-
-    /// Derivatives of orders `0..=order` at `t`: `t.shape + (order + 1, dim)`.
-    fn derivatives(
-        &self,
-        py: Python<'_>,
-        t: &Bound<'_, PyAny>,
-        order: IntArg,
-    ) -> PyResult<Py<PyAny>> {
-        let order = order.count("order")?;
-        let c = &self.inner;
-        derivatives_pointwise(py, t, order, c.dim(), |t, k| c.eval_derivatives(t, k))
-    }
-
-    /// The rational Bezier pieces as NURBS curves.
-    fn to_bezier_segments(&self, py: Python<'_>) -> Vec<Self> {
-        py.detach(|| self.inner.to_bezier_segments())
-            .into_iter()
-            .map(Self::wrap)
-            .collect()
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "NurbsCurve(degree={}, n_control={}, dim={})",
-            self.inner.degree(),
-            self.inner.weights().len(),
-            self.inner.dim()
-        )
-    }
-});
 
 /// `curve`'s fast evaluator with the basis kernel (which every curve has).
 pub(crate) fn basis_kernel(curve: &BSplineCurve) -> CurveEvaluator {
