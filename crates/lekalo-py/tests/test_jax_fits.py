@@ -110,6 +110,25 @@ def test_fits_compile_to_the_ffi_targets_not_a_callback():
         assert f"{stem}_jvp" in forward and "callback" not in forward
 
 
+def test_smoothing_derivatives_reuse_the_forward_factorisation_with_the_same_bits():
+    """Under differentiation the smoothing spline's forward pass returns its factorisation with
+    the values (the `_factor` target) and the JVP and VJP apply it: a gradient compiles to that
+    call and the VJP, with no second values call, and the derivatives have the bits of the
+    NumPy kernels, which assemble and factor the system on their own (the previous path)."""
+    x, y, _, w = lsq_case()
+    g = np.cos(np.arange(84.0)).reshape(42, 2)
+    dq = np.sin(np.arange(80.0)).reshape(40, 2)
+    for weights in (None, w):
+        loss = lambda q: jnp.sum(jnp.asarray(g) * fit_smoothing(x, q, weights, 1e-3))  # noqa: E731
+        text = jax.jit(jax.grad(loss)).lower(y).as_text()
+        assert "lekalo_fit_smoothing_factor" in text and "lekalo_fit_smoothing_eval" not in text
+        got = np.asarray(jax.jit(jax.grad(loss))(y))
+        assert np.array_equal(got, lekalo.smoothing_vjp(x, 1e-3, g, weights)), "VJP bits"
+        vals, tan = jax.jvp(lambda q: fit_smoothing(x, q, weights, 1e-3), (y,), (dq,))
+        assert np.array_equal(np.asarray(vals), plain_smoothing(x, y, weights, 1e-3)), "values"
+        assert np.array_equal(np.asarray(tan), lekalo.smoothing_jvp(x, 1e-3, dq, weights)), "JVP"
+
+
 @pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
 def test_fit_jacobians_under_vmap_and_eagerly_match_central_differences(mode):
     x, y, t, w = lsq_case()

@@ -208,9 +208,16 @@ class Kernel:
     pairs. The values are the target ``{prefix}_eval``, of shape ``out_shape(residuals)``
     (``residuals = knots + arrays``, as arrays or their shapes); the JVP and VJP the targets
     ``{prefix}_jvp`` and ``{prefix}_vjp`` through a ``LinearPair`` (one for each number of knot
-    vectors). First derivatives only; ``name`` is the public function's, for the errors."""
+    vectors). First derivatives only; ``name`` is the public function's, for the errors.
 
-    def __init__(self, name, prefix, kinds, out_shape):
+    A kernel whose derivatives reuse the factorisation of its values gives
+    ``factor_shape(residuals)``, the shape of its factors: under differentiation its values come
+    from the target ``{prefix}_factor``, which returns them with the factors, and the factors
+    join the JVP's and VJP's residuals after the knot vectors, so that neither factors the system
+    again (``jax.grad`` runs the values and the VJP: one factorisation, not two). The
+    ``out_shape`` of such a kernel reads the residuals from the end (the data last)."""
+
+    def __init__(self, name, prefix, kinds, out_shape, factor_shape=None):
         self.name, self.prefix, self.kinds, self.out_shape = name, prefix, tuple(kinds), out_shape
         self._pairs = {}
 
@@ -219,12 +226,24 @@ class Kernel:
             shape = jax.ShapeDtypeStruct(out_shape(residuals), jnp.float64)
             return call(f"{prefix}_eval", shape, static, *residuals)
 
+        def values_and_factors(static, knots, arrays):
+            residuals = (*knots, *arrays)
+            shapes = [
+                jax.ShapeDtypeStruct(out_shape(residuals), jnp.float64),
+                jax.ShapeDtypeStruct(factor_shape(residuals), jnp.float64),
+            ]
+            return call(f"{prefix}_factor", shapes, static, *residuals)
+
         def jvp(static, primals, tangents):
             (knots, arrays), (dk, da) = primals, tangents
             _no_knot_tangent(name, *dk)
             guard = functools.partial(_first_order_only, name)
             knots, arrays = tuple(map(guard, knots)), tuple(map(guard, arrays))
-            out = values(static, knots, arrays)
+            if factor_shape is None:
+                out = values(static, knots, arrays)
+            else:
+                out, factors = values_and_factors(static, knots, arrays)
+                knots = (*knots, factors)
             lin = [None if isinstance(t, SymbolicZero) else t for t in da]
             tangent = self._pair(len(knots)).tangent((*knots, *arrays), lin, static)
             return out, jnp.zeros_like(out) if tangent is None else tangent

@@ -13,6 +13,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax.custom_derivatives import SymbolicZero
 
+from . import _lekalo
 from ._jax_ffi import Kernel
 from ._lekalo import InputError
 from ._jax_support import _degree, _float64, _require_x64
@@ -120,13 +121,26 @@ def _least_squares_kernel(k):
 
 
 def _smoothing_out_shape(res):
-    """The control points' shape from the residuals ``(x, w, lam, y)``: ``(len(x) + 2, dim)``."""
-    y = res[3]
+    """The control points' shape from the residuals ``(x, w, lam, y)`` (with the factors before
+    ``y`` in the derivatives'): ``(len(x) + 2, dim)``."""
+    y = res[-1]
     return y.shape[:-2] + (y.shape[-2] + 2, y.shape[-1])
 
 
-# values, JVP and VJP as the FFI targets ``lekalo_fit_smoothing_*`` (``xla_ffi/fits.rs``)
-_SMOOTHING = Kernel("fit_smoothing", "lekalo_fit_smoothing", ("data",), _smoothing_out_shape)
+def _smoothing_factor_shape(res):
+    """The shape of the smoothing spline's factors from the residuals ``(x, w, lam, y)``: the
+    map of its factorisation as numbers (``lekalo::derivatives::SmoothingMap::to_flat``)."""
+    y = res[-1]
+    return y.shape[:-2] + (_lekalo.smoothing_map_flat_len(y.shape[-2]),)
+
+
+# values, JVP and VJP as the FFI targets ``lekalo_fit_smoothing_*`` (``xla_ffi/fits.rs``); under
+# differentiation the values and the factors come from ``lekalo_fit_smoothing_factor``, whose
+# factorisation the JVP and VJP reuse
+_SMOOTHING = Kernel(
+    "fit_smoothing", "lekalo_fit_smoothing", ("data",), _smoothing_out_shape,
+    factor_shape=_smoothing_factor_shape,
+)
 
 
 def _nonempty(name, what, q, need):

@@ -23,6 +23,7 @@ pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(smoothing_vjp, m)?)?;
     m.add_function(wrap_pyfunction!(least_squares_linearize, m)?)?;
     m.add_function(wrap_pyfunction!(smoothing_linearize, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_map_flat_len, m)?)?;
     Ok(())
 }
 
@@ -266,4 +267,14 @@ pub(crate) fn smoothing_linearize<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let map = smoothing_map(x, lam, w)?;
     fit_linearization_dict(py, map.linearize())
+}
+
+/// The number of numbers of a smoothing spline's map of `n_data` data points of distinct
+/// parameters as `lekalo.jax` keeps it between the values and their derivatives
+/// (`lekalo::derivatives::SmoothingMap::flat_len`).
+#[pyfunction]
+pub(crate) fn smoothing_map_flat_len(n_data: IntArg) -> PyResult<usize> {
+    let n = n_data.count("n_data")?;
+    SmoothingMap::flat_len(n)
+        .ok_or_else(|| crate::error::bad(format!("n_data: {n} data points are too many")))
 }

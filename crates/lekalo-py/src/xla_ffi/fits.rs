@@ -7,15 +7,21 @@
 //! |---|---|---|---|
 //! | `lekalo_fit_least_squares_eval` | knots `(n + p + 1,)`, params `(m,)`, w `(m,)`, points `(m, dim)` | `degree`, `weighted` | `P` `(n, dim)` |
 //! | `lekalo_fit_smoothing_eval` | x `(m,)`, w `(m,)`, λ `()`, y `(m, dim)` | `weighted` | `P` `(m + 2, dim)` |
-//! | `…_jvp` | the same, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
-//! | `…_vjp` | the same, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
+//! | `lekalo_fit_smoothing_factor` | as `…_eval` | as `…_eval` | `P`, F `(11 m + 14,)` |
+//! | `lekalo_fit_least_squares_jvp` | as `…_eval`, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
+//! | `lekalo_fit_least_squares_vjp` | as `…_eval`, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
+//! | `lekalo_fit_smoothing_jvp` | x, w, λ, F, y, [`Q̇`] | the same, `with_data` | `Ṗ` as `P` |
+//! | `lekalo_fit_smoothing_vjp` | x, w, λ, F, y, `P̄` | the same, `with_data` | [`Q̄`] |
 //!
 //! The bracketed buffers are present when `with_data` is true; `w` is read only when `weighted`
 //! is true (unweighted is the fit without weights, not weights of 1); every buffer may have the
 //! same leading batch axes. The control points are bit for bit `lekalo.fit_least_squares`'s and
-//! `lekalo.fit_smoothing`'s.
+//! `lekalo.fit_smoothing`'s. The smoothing spline's forward pass under differentiation is its
+//! `…_factor` target: the values and F, the map of the same factorisation as numbers
+//! ([`SmoothingMap::to_flat`]), which its JVP and VJP apply without assembling and factoring
+//! `BᵀWB + λΩ` again (the same bits as factoring it again).
 
-use lekalo::derivatives::{LeastSquaresFit, SmoothingFit};
+use lekalo::derivatives::{LeastSquaresFit, SmoothingFit, SmoothingMap};
 
 use super::abi::{self, Call, In};
 use super::operands::{
@@ -70,15 +76,19 @@ pub(super) mod smoothing {
         stem: "fit_smoothing",
         function: "fit_smoothing",
         eval: eval_body,
+        factor: factor_body,
         jvp: jvp_body,
         vjp: vjp_body,
     }
 
-    use super::{run_eval, run_jvp, run_vjp, Fit};
+    use super::{run_eval, run_factor, run_jvp, run_vjp, Fit};
     use crate::xla_ffi::abi::Call;
 
     /// x, weights, λ and y, with their core axes.
     const RESIDUALS: [(&str, usize); 4] = [("x", 1), ("w", 1), ("lam", 0), ("y", 2)];
+
+    /// The derivatives' residuals: x, weights, λ, the factors of the forward pass and y.
+    const FACTORED: [(&str, usize); 5] = [("x", 1), ("w", 1), ("lam", 0), ("factors", 1), ("y", 2)];
 
     /// `weighted`.
     fn fit(call: &Call<'_>) -> Result<Fit, String> {
@@ -91,20 +101,32 @@ pub(super) mod smoothing {
         run_eval(fit(call)?, &RESIDUALS, call)
     }
 
+    fn factor_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_factor(fit(call)?, &RESIDUALS, call)
+    }
+
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_jvp(fit(call)?, &RESIDUALS, call)
+        run_jvp(Fit::Factored, &FACTORED, call)
     }
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_vjp(fit(call)?, &RESIDUALS, call)
+        run_vjp(Fit::Factored, &FACTORED, call)
     }
 }
 
 /// Which fit a target computes, with its attributes.
 #[derive(Clone, Copy)]
 enum Fit {
-    LeastSquares { degree: usize, weighted: bool },
-    Smoothing { weighted: bool },
+    LeastSquares {
+        degree: usize,
+        weighted: bool,
+    },
+    Smoothing {
+        weighted: bool,
+    },
+    /// The smoothing spline's derivatives by the map its forward pass kept (the residual before
+    /// the data, [`SmoothingMap::to_flat`]).
+    Factored,
 }
 
 /// What a target computes for one batch element.
@@ -151,7 +173,7 @@ fn apply(
     op: Op<'_>,
 ) -> Result<Vec<f64>, String> {
     let operand = |i: usize| element(res[i].data, sizes[i], b);
-    let data = operand(3);
+    let data = operand(res.len() - 1);
     match fit {
         Fit::LeastSquares { degree, weighted } => {
             let w = weighted.then(|| operand(2));
@@ -174,8 +196,38 @@ fn apply(
                 Op::Vjp(g) => fit.vjp(g),
             }
         }
+        Fit::Factored => {
+            let map = SmoothingMap::from_flat(operand(3), data.len() / dim.max(1))
+                .map_err(|e| e.to_string())?;
+            match op {
+                Op::Values => return Err("the values come from the fit, not its factors".into()),
+                Op::Jvp(t) => map.jvp(t, dim),
+                Op::Vjp(g) => map.vjp(g, dim),
+            }
+        }
     }
     .map_err(|e| e.to_string())
+}
+
+/// The smoothing spline's values and the map of their one factorisation as numbers
+/// ([`SmoothingFit::control_points_and_map`], [`SmoothingMap::to_flat`]) for batch element `b`
+/// of the residuals `res` (element sizes `sizes`).
+fn values_and_factors(
+    fit: Fit,
+    res: &[In<'_>],
+    sizes: &[usize],
+    dim: usize,
+    b: usize,
+) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let Fit::Smoothing { weighted } = fit else {
+        return Err("only the smoothing spline keeps its factors".into());
+    };
+    let operand = |i: usize| element(res[i].data, sizes[i], b);
+    let lam = operand(2).first().copied().ok_or("lam is empty")?;
+    let w = weighted.then(|| operand(1));
+    let fit = SmoothingFit::new(operand(0), operand(3), dim, lam, w).map_err(|e| e.to_string())?;
+    let (values, map) = fit.control_points_and_map().map_err(|e| e.to_string())?;
+    Ok((values, map.to_flat()))
 }
 
 /// Copies a batch element's result into its slot of `size` numbers, after checking its length:
@@ -190,7 +242,7 @@ fn store(fit: Fit, out: &mut [f64], got: &[f64]) -> Result<(), String> {
                 got.len(),
                 out.len()
             ),
-            Fit::LeastSquares { .. } => format!(
+            Fit::LeastSquares { .. } | Fit::Factored => format!(
                 "the fit has {} numbers, the result {} (lekalo.jax and its native module \
                  disagree)",
                 got.len(),
@@ -210,6 +262,24 @@ fn run_eval(fit: Fit, names: &[(&str, usize)], call: &mut Call<'_>) -> Result<()
     for b in 0..batch.count {
         let got = apply(fit, args, &sizes, dim, b, Op::Values)?;
         store(fit, element_mut(control.data, size, b), &got)?;
+    }
+    Ok(())
+}
+
+/// The values and the factors of the forward pass ([`values_and_factors`]) into the two
+/// results, the factors' length checked as [`store`] checks the values'.
+fn run_factor(fit: Fit, names: &[(&str, usize)], call: &mut Call<'_>) -> Result<(), String> {
+    let Call { args, rets, .. } = call;
+    let (batch, sizes, dim) = layout(args, names)?;
+    let [control, factors] = &mut rets[..] else {
+        return Err(count_error("results", 2, rets.len()));
+    };
+    let size = batch.size("control points", control.dims, 2)?;
+    let flat = batch.size("factors", factors.dims, 1)?;
+    for b in 0..batch.count {
+        let (values, f) = values_and_factors(fit, args, &sizes, dim, b)?;
+        store(fit, element_mut(control.data, size, b), &values)?;
+        store(fit, element_mut(factors.data, flat, b), &f)?;
     }
     Ok(())
 }

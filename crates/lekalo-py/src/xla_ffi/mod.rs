@@ -23,15 +23,32 @@
 /// A family's `HANDLERS`: the three `extern "C"` entry points of targets `lekalo_<stem>_eval`,
 /// `_jvp` and `_vjp`, each [`abi::handle`] around its body, with the Python function's name
 /// (`lekalo.jax.<function>`, "(forward derivative)", "(reverse derivative)") in its errors.
+///
+/// A family whose derivatives reuse a factorisation of the forward pass adds
+/// `factor: $factor`, the target `lekalo_<stem>_factor`: the values and the factors that its
+/// JVP and VJP targets then take as a residual instead of factoring again.
 macro_rules! ffi_targets {
     (stem: $stem:literal, function: $function:literal,
      eval: $eval:path, jvp: $jvp:path, vjp: $vjp:path $(,)?) => {
+        ffi_targets!(@targets $stem, $function, $eval, $jvp, $vjp, []);
+    };
+    (stem: $stem:literal, function: $function:literal,
+     eval: $eval:path, factor: $factor:path, jvp: $jvp:path, vjp: $vjp:path $(,)?) => {
+        ffi_targets!(@targets $stem, $function, $eval, $jvp, $vjp, [$factor]);
+    };
+    (@targets $stem:literal, $function:literal, $eval:path, $jvp:path, $vjp:path,
+     [$($factor:path)?]) => {
         /// The handlers of this module, by target name.
         pub(super) const HANDLERS: &[(&str, super::Handler)] = {
             use super::abi::{handle, CallFrame, XlaError};
             extern "C" fn eval(frame: *mut CallFrame) -> *mut XlaError {
                 handle(frame, concat!("lekalo.jax.", $function), $eval)
             }
+            $(
+                extern "C" fn factor(frame: *mut CallFrame) -> *mut XlaError {
+                    handle(frame, concat!("lekalo.jax.", $function), $factor)
+                }
+            )?
             extern "C" fn jvp(frame: *mut CallFrame) -> *mut XlaError {
                 let target = concat!("lekalo.jax.", $function, " (forward derivative)");
                 handle(frame, target, $jvp)
@@ -42,6 +59,8 @@ macro_rules! ffi_targets {
             }
             &[
                 (concat!("lekalo_", $stem, "_eval"), eval),
+                // (`$factor` named so that the entry repeats with it)
+                $((concat!("lekalo_", $stem, "_factor"), { let _ = stringify!($factor); factor }),)?
                 (concat!("lekalo_", $stem, "_jvp"), jvp),
                 (concat!("lekalo_", $stem, "_vjp"), vjp),
             ]

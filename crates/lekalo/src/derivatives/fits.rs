@@ -11,7 +11,9 @@
 
 use super::fitting::{check_lambda, LeastSquaresMap, SmoothingMap};
 use crate::error::Result;
-use crate::fit::{least_squares, smoothing_spline, EndConstraints, FitData, Lambda};
+use crate::fit::{
+    least_squares, smoothing_spline, smoothing_values_and_system, EndConstraints, FitData, Lambda,
+};
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
 
@@ -197,6 +199,20 @@ impl<'a> SmoothingFit<'a> {
         SmoothingMap::new(self.data.params(), self.lambda, self.data.weights())
     }
 
+    /// The control points of [`SmoothingFit::control_points`] (bit for bit) and the map of
+    /// [`SmoothingFit::map`] (the same factors) from one assembly and one factorisation of
+    /// `BᵀWB + λΩ`: for a caller that differentiates after the values (JAX's forward pass keeps
+    /// the map for the reverse one) and would otherwise factor the system twice.
+    ///
+    /// # Errors
+    /// As [`SmoothingFit::map`]; where the factorisation fails with every weight positive
+    /// (`λ` below the rounding of `BᵀWB`), [`SmoothingFit::control_points`] gives the
+    /// interpolant, which has no map, and this its error.
+    pub fn control_points_and_map(&self) -> Result<(Vec<f64>, SmoothingMap)> {
+        let (control, sys) = smoothing_values_and_system(&self.data, self.lambda)?;
+        Ok((control, SmoothingMap::of_system(sys)))
+    }
+
     /// Forward-mode derivative: `Ṗ = (BᵀWB + λΩ)⁻¹ BᵀW Q̇` for a data tangent `Q̇` (`m × dim`).
     ///
     /// # Errors
@@ -307,6 +323,50 @@ mod tests {
             let gq = fit.vjp(&g).unwrap();
             let jvp = |e: &[f64]| fit.jvp(e).unwrap();
             check_against_differences(values, jvp, &gq, &g, &y, [0, 12, 33, 49]);
+        }
+    }
+
+    /// One factorisation for the values and the map: the values are the fit's and the map's
+    /// JVP and VJP those of the map factored on its own, bit for bit, also through the map's
+    /// flat form; a flat form of the wrong length or with a first index out of the band is
+    /// refused.
+    #[test]
+    fn values_and_map_from_one_factorisation_have_the_bits_of_each() {
+        use crate::derivatives::SmoothingMap;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let (x, y, w) = case();
+        let t: Vec<f64> = (0..50).map(|i| (i as f64 * 0.37).sin()).collect();
+        let g: Vec<f64> = (0..54).map(|i| (i as f64 * 0.3).cos()).collect();
+        for weights in [None, Some(w.as_slice())] {
+            let fit = SmoothingFit::new(&x, &y, 2, 1e-3, weights).unwrap();
+            let (values, map) = fit.control_points_and_map().unwrap();
+            assert_eq!(bits(&values), bits(&fit.control_points().unwrap()));
+            let alone = fit.map().unwrap();
+            let flat = map.to_flat();
+            assert_eq!(Some(flat.len()), SmoothingMap::flat_len(25), "flat length");
+            let back = SmoothingMap::from_flat(&flat, 25).unwrap();
+            for m in [&map, &back] {
+                assert_eq!(bits(&m.jvp(&t, 2).unwrap()), bits(&fit.jvp(&t).unwrap()));
+                assert_eq!(
+                    bits(&m.vjp(&g, 2).unwrap()),
+                    bits(&alone.vjp(&g, 2).unwrap())
+                );
+                assert_eq!(m.knots(), alone.knots(), "knots");
+            }
+        }
+        let flat = SmoothingFit::new(&x, &y, 2, 1e-3, None)
+            .unwrap()
+            .control_points_and_map()
+            .unwrap()
+            .1
+            .to_flat();
+        let e = SmoothingMap::from_flat(&flat[1..], 25).unwrap_err();
+        assert!(matches!(e, Error::LengthMismatch { .. }), "{e:?}");
+        for bad in [-1.0, 0.5, 24.0, f64::NAN] {
+            let mut f = flat.clone();
+            f[3] = bad;
+            let e = SmoothingMap::from_flat(&f, 25).unwrap_err();
+            assert!(matches!(e, Error::InvalidArgument { .. }), "{bad}: {e:?}");
         }
     }
 

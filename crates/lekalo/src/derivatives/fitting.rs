@@ -12,6 +12,7 @@ use crate::fit::banded::SymBand;
 use crate::fit::banded::{BandedQr, QrRows, RANK_RTOL};
 use crate::fit::{
     check_in_domain, check_schoenberg_whitney, for_each_row, smoothing_system, FitData,
+    SmoothingSystem,
 };
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
@@ -460,9 +461,14 @@ impl SmoothingMap {
         if let Some(w) = weights {
             data = data.with_weights(w)?;
         }
-        let sys = smoothing_system(&data, lambda)?;
+        Ok(SmoothingMap::of_system(smoothing_system(&data, lambda)?))
+    }
+
+    /// The map of a smoothing system already assembled and factored (the fit's own, from its
+    /// values: [`super::SmoothingFit::control_points_and_map`]).
+    pub(super) fn of_system(sys: SmoothingSystem) -> Self {
         let basis = sys.basis.iter().flatten().copied().collect();
-        Ok(SmoothingMap {
+        SmoothingMap {
             rows: Rows {
                 first: sys.first,
                 basis,
@@ -472,6 +478,97 @@ impl SmoothingMap {
             },
             matrix: sys.matrix,
             knots: sys.knots,
+        }
+    }
+
+    /// Length of [`SmoothingMap::to_flat`] for `n_data` data points of distinct parameters
+    /// (`n_data + 2` control points): `11·n_data + 14`; `None` on overflow.
+    #[must_use]
+    pub fn flat_len(n_data: usize) -> Option<usize> {
+        n_data.checked_mul(11)?.checked_add(14)
+    }
+
+    /// The whole map as numbers, for a caller that keeps it between the values and their
+    /// derivatives (an automatic-differentiation framework's residual): for `N` data points and
+    /// `n` control points, `first` (`N`, as floats, exact below 2⁵³), the rows of `B` (`4N`),
+    /// the weights (`N`), the factored `UᵀDU` band (`4n`, `D[i]` then `U[i][i+1..i+3]`) and the
+    /// knots (`n + 4`): `6N + 5n + 4` numbers. [`SmoothingMap::from_flat`] reads it back into
+    /// the same map, so that its JVP and VJP have the same bits.
+    #[must_use]
+    pub fn to_flat(&self) -> Vec<f64> {
+        let r = &self.rows;
+        let mut out = Vec::with_capacity(6 * r.first.len() + 5 * r.n + 4);
+        out.extend(r.first.iter().map(|&f| f as f64));
+        out.extend_from_slice(&r.basis);
+        out.extend_from_slice(&r.weights);
+        out.extend_from_slice(&self.matrix.a);
+        out.extend_from_slice(&self.knots);
+        out
+    }
+
+    /// The map written by [`SmoothingMap::to_flat`] for `n_data` data points, checked enough
+    /// that applying it cannot index out of its bounds.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] unless `flat` has `6·n_data + 5n + 4` numbers for some
+    /// `n ≥ 4`; [`Error::InvalidArgument`] for a first index that is not a whole number in
+    /// `0..=n − 4`.
+    pub fn from_flat(flat: &[f64], n_data: usize) -> Result<Self> {
+        let what = "factors of a smoothing spline (SmoothingMap::to_flat)";
+        let rows_len = n_data.checked_mul(6).ok_or(Error::TooLarge {
+            what: what.into(),
+            size: n_data,
+            max: usize::MAX / 6,
+        })?;
+        let n = flat
+            .len()
+            .checked_sub(rows_len + 4)
+            .map(|rest| rest / 5)
+            .filter(|&n| n >= 4 && rows_len + 5 * n + 4 == flat.len())
+            .ok_or(Error::LengthMismatch {
+                what: what.into(),
+                expected: rows_len + 5 * (n_data + 2) + 4,
+                got: flat.len(),
+            })?;
+        let (first, rest) = flat.split_at(n_data);
+        let (basis, rest) = rest.split_at(4 * n_data);
+        let (weights, rest) = rest.split_at(n_data);
+        let (band, knots) = rest.split_at(4 * n);
+        let first = first
+            .iter()
+            .enumerate()
+            .map(|(k, &f)| {
+                if f >= 0.0 && f.fract() == 0.0 && f <= (n - 4) as f64 {
+                    // a whole number in 0..=n − 4: exact
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let i = f as usize;
+                    Ok(i)
+                } else {
+                    Err(Error::InvalidArgument {
+                        what: what.into(),
+                        reason: format!(
+                            "data point {k} has first basis function {f}, not a whole number \
+                             in 0..={}",
+                            n - 4
+                        ),
+                    })
+                }
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(SmoothingMap {
+            rows: Rows {
+                first,
+                basis: basis.to_vec(),
+                width: 4,
+                weights: weights.to_vec(),
+                n,
+            },
+            matrix: SymBand {
+                n,
+                b: 3,
+                a: band.to_vec(),
+            },
+            knots: knots.to_vec(),
         })
     }
 

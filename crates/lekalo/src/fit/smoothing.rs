@@ -513,13 +513,19 @@ impl Smoother {
     }
 
     fn curve(&self, c: &[f64]) -> BSplineCurve {
+        let ctrl = self.control(c);
+        BSplineCurve::from_raw(3, self.knots.clone(), Points::from_raw(ctrl, self.dim))
+    }
+
+    /// The control points of the coefficients `c` (minus the center): `c + 1 center`.
+    fn control(&self, c: &[f64]) -> Vec<f64> {
         let mut ctrl = c.to_vec();
         for p in ctrl.chunks_exact_mut(self.dim) {
             for (v, o) in p.iter_mut().zip(&self.center) {
                 *v += o;
             }
         }
-        BSplineCurve::from_raw(3, self.knots.clone(), Points::from_raw(ctrl, self.dim))
+        ctrl
     }
 }
 
@@ -546,15 +552,36 @@ pub(crate) struct SmoothingSystem {
 /// # Errors
 /// As [`smoothing_spline`] with [`Lambda::Given`]`(lam)`.
 pub(crate) fn smoothing_system(data: &FitData<'_>, lam: f64) -> Result<SmoothingSystem> {
+    Ok(smoothing_values_and_system(data, lam)?.1)
+}
+
+/// The control points of [`smoothing_spline`] with [`Lambda::Given`]`(lam)` for `lam > 0`, bit
+/// for bit (flat, point-major), with the [`SmoothingSystem`] of the same assembly and the same
+/// factorisation: the values and what their derivatives need, with `BᵀWB + λΩ` assembled and
+/// factored once (`BᵀWB` and `Ω` do not depend on the data values, so the system is that of
+/// [`smoothing_system`]).
+///
+/// # Errors
+/// As [`smoothing_system`]. Where the factorisation fails with every weight positive,
+/// [`smoothing_spline`] returns the interpolant instead, which has no such system: this returns
+/// the factorisation's error.
+pub(crate) fn smoothing_values_and_system(
+    data: &FitData<'_>,
+    lam: f64,
+) -> Result<(Vec<f64>, SmoothingSystem)> {
     let s = Smoother::new(data)?;
-    let (_, matrix) = s.solve(lam)?;
-    Ok(SmoothingSystem {
-        matrix,
-        first: s.first,
-        basis: s.basis,
-        weights: s.weights,
-        knots: s.knots,
-    })
+    let (coef, matrix) = s.solve(lam)?;
+    let control = s.control(&coef);
+    Ok((
+        control,
+        SmoothingSystem {
+            matrix,
+            first: s.first,
+            basis: s.basis,
+            weights: s.weights,
+            knots: s.knots,
+        },
+    ))
 }
 
 /// Brent's minimisation (golden section with parabolic steps) of `f` on `[a, b]` from the
