@@ -455,7 +455,7 @@ fn faces_text(j: &Value, prefix: &str) -> String {
             let _ = writeln!(
                 s,
                 "  {:>6} {}: {} (first {prefix}{})",
-                k["count"],
+                k["count"].as_u64().unwrap_or(0),
                 k["entity"].as_str().unwrap_or_default(),
                 k["reason"].as_str().unwrap_or_default(),
                 k["first_id"]
