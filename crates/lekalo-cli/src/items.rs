@@ -253,20 +253,25 @@ fn report_step(cx: &Context, name: &str, r: &lekalo_io::StepRead) {
 /// counted on one line.
 const SKIPPED_KINDS_LISTED: usize = 20;
 
+/// How many skipped entities a CAD read keeps one by one: every one with `-v` (which lists
+/// them) or when `all` is asked for, else the reader's default (the rest are counted by kind).
+pub(crate) fn listed(cx: &Context, all: bool) -> usize {
+    if all || cx.is_verbose() {
+        usize::MAX
+    } else {
+        lekalo_io::SKIPPED_LISTED
+    }
+}
+
 /// The entities a CAD file holds that were not read: one line per type and reason (the
-/// entities a reason names aside: [`lekalo_io::skipped_by_kind`]) with the count and the
+/// entities a reason names aside: [`lekalo_io::Skips::kinds`]) with the count and the
 /// first id, at most [`SKIPPED_KINDS_LISTED`] of them, and with `-v` every entity.
-pub(crate) fn report_skipped(
-    cx: &Context,
-    name: &str,
-    skipped: &[lekalo_io::StepSkipped],
-    prefix: &str,
-) {
+pub(crate) fn report_skipped(cx: &Context, name: &str, skipped: &lekalo_io::Skips, prefix: &str) {
     if skipped.is_empty() {
         return;
     }
     crate::output::report(&format!("{name}: skipped {} entities:", skipped.len()));
-    let kinds = lekalo_io::skipped_by_kind(skipped);
+    let kinds = skipped.kinds();
     for k in kinds.iter().take(SKIPPED_KINDS_LISTED) {
         crate::output::report(&format!(
             "  {:>6} {}: {} (first {prefix}{})",
@@ -323,14 +328,14 @@ pub(crate) fn read_cad(
     let stdin = is_stdin(path);
     if is_step(path) || (stdin && is_step_text(text)) {
         let r = read_with_progress(cx, name, text, |p| {
-            lekalo_io::read_step_with_progress(text, name, cx.max_size, false, p)
+            lekalo_io::read_step_with_progress(text, name, cx.max_size, false, listed(cx, false), p)
         })?;
         report_step(cx, name, &r);
         return Ok(Some(r.shapes.into_iter().map(|(_, s)| s).collect()));
     }
     if is_iges(path) || (stdin && is_iges_text(text)) {
         let r = read_with_progress(cx, name, text, |p| {
-            lekalo_io::read_iges_with_progress(text, name, cx.max_size, false, p)
+            lekalo_io::read_iges_with_progress(text, name, cx.max_size, false, listed(cx, false), p)
         })?;
         if !cx.is_quiet() {
             let curves = r

@@ -419,11 +419,17 @@ pub fn check_not_input(path: &Path, inputs: &[PathBuf]) -> IoResult<()> {
 /// A UTF-8 byte-order mark at the start is removed (editors on Windows write one), so that it
 /// cannot glue itself to the first field of every text format.
 ///
+/// A STEP or IGES file (by its extension) is the exception: those formats are ASCII, anything
+/// else belongs in a string (a name, a description) written with escapes, yet CAD systems
+/// write names in Latin-1 or another 8-bit code page. Each byte of such a file that is not part
+/// of UTF-8 text is read as `?` (one byte for one, so IGES columns and Hollerith counts hold),
+/// and the geometry is read; only names can show the `?`.
+///
 /// # Errors
-/// [`IoError::Read`] if the file is missing, unreadable or not UTF-8; [`IoError::TooLarge`] if
-/// memory for it cannot be reserved.
+/// [`IoError::Read`] if the file is missing, unreadable or not UTF-8 (outside STEP and IGES);
+/// [`IoError::TooLarge`] if memory for it cannot be reserved.
 pub fn read_input(path: &Path) -> IoResult<(String, String)> {
-    let (bytes, name) = read_input_bytes(path)?;
+    let (mut bytes, name) = read_input_bytes(path)?;
     if let Some(kind) = utf16(&bytes) {
         return Err(IoError::Read {
             path: PathBuf::from(name),
@@ -433,9 +439,33 @@ pub fn read_input(path: &Path) -> IoResult<(String, String)> {
             ),
         });
     }
+    if is_cad_file(path) {
+        eight_bit_as_question_marks(&mut bytes);
+    }
     let text =
         String::from_utf8(bytes).map_err(|e| not_utf8(&name, e.utf8_error().valid_up_to()))?;
     Ok((strip_bom(text), name))
+}
+
+/// Whether `path` names a STEP or IGES file by its extension (any case).
+fn is_cad_file(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        ["step", "stp", "p21", "igs", "iges"]
+            .iter()
+            .any(|c| e.eq_ignore_ascii_case(c))
+    })
+}
+
+/// Replaces, in place, every byte of `bytes` that is not part of a UTF-8 character by `?`:
+/// valid characters are kept and the length is unchanged. O(n).
+fn eight_bit_as_question_marks(bytes: &mut [u8]) {
+    let mut at = 0;
+    while let Err(e) = std::str::from_utf8(&bytes[at..]) {
+        let bad = at + e.valid_up_to();
+        let len = e.error_len().unwrap_or(bytes.len() - bad);
+        bytes[bad..bad + len].fill(b'?');
+        at = bad + len;
+    }
 }
 
 /// The kind of UTF-16 text `bytes` starts with: a UTF-16 byte-order mark, or a zero byte in one
@@ -737,6 +767,27 @@ mod tests {
 
     /// A file above the parallel threshold, and not a whole number of parts long, is read in
     /// parallel to exactly its bytes; text that is not UTF-8 is named with its byte.
+    #[test]
+    fn eight_bit_names_in_cad_files_are_read_as_question_marks() {
+        let dir = tempfile::tempdir().unwrap();
+        // a Latin-1 name (0xFC), a truncated UTF-8 character at the end, and a valid 'é'
+        let bytes = b"#1=CARTESIAN_POINT('M\xfcller \xc3\xa9',(0.,0.,0.));\n\xe2\x82";
+        for ext in ["step", "STP", "igs"] {
+            let path = dir.path().join(format!("latin1.{ext}"));
+            std::fs::write(&path, bytes).unwrap();
+            let (text, _) = read_input(&path).unwrap();
+            assert_eq!(text.len(), bytes.len(), "one byte for one");
+            assert!(
+                text.starts_with("#1=CARTESIAN_POINT('M?ller é',") && text.ends_with("\n??"),
+                "{text}"
+            );
+        }
+        let path = dir.path().join("latin1.csv");
+        std::fs::write(&path, bytes).unwrap();
+        let e = read_input(&path).unwrap_err().to_string();
+        assert!(e.contains("not UTF-8 text (byte 21)"), "{e}");
+    }
+
     #[test]
     fn large_files_are_read_whole_in_parallel() {
         let dir = tempfile::tempdir().unwrap();

@@ -255,24 +255,26 @@ fn read_cad<R: Send>(
 
 /// Reads a STEP file: ``{"shapes": [...], "skipped": [...], "length_unit": str, "schema":
 /// str | None}``, and with ``faces=True`` also ``"faces"`` (a list of ``Face``) and
-/// ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``. ``max_size``
-/// bounds the entities and the control points and knots of the file, as the CLI's
-/// ``--max-size``.
+/// ``"skipped_faces"``. Skipped entries are dicts ``{"id", "entity", "reason"}``: the first
+/// ``skipped_listed`` by id (default 1000; ``None`` keeps every one); ``"skipped_total"`` counts
+/// them all and ``"skipped_kinds"`` counts them by type and reason (dicts ``{"entity",
+/// "reason", "count", "first_id"}``, the most frequent first); with ``faces=True`` likewise
+/// ``"skipped_faces_total"`` and ``"skipped_faces_kinds"``. ``max_size`` bounds the entities
+/// and the control points and knots of the file, as the CLI's ``--max-size``.
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000)), text_signature = "(path, *, faces=False, max_size=10000000)")]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000))), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000)")]
 pub(crate) fn read_step<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
     max_size: IntArg,
+    skipped_listed: Option<IntArg>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let max_size = max_size.count("max_size")?;
+    let listed = listed(skipped_listed)?;
     let r = read_cad(py, &path, |text, name| {
-        if faces {
-            lekalo_io::read_step_faces(text, name, max_size)
-        } else {
-            lekalo_io::read_step_limited(text, name, max_size)
-        }
+        let none = lekalo::Progress::new();
+        lekalo_io::read_step_with_progress(text, name, max_size, faces, listed, &none)
     })?;
     let out = cad_dict(
         py,
@@ -293,20 +295,19 @@ pub(crate) fn read_step<'py>(
 /// ``Face``) and ``"skipped_faces"``; as ``read_step``
 /// otherwise (ids are directory-entry sequence numbers).
 #[pyfunction]
-#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000)), text_signature = "(path, *, faces=False, max_size=10000000)")]
+#[pyo3(signature = (path, *, faces = false, max_size = IntArg::of(10_000_000), skipped_listed = Some(IntArg::of(1000))), text_signature = "(path, *, faces=False, max_size=10000000, skipped_listed=1000)")]
 pub(crate) fn read_iges<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     faces: bool,
     max_size: IntArg,
+    skipped_listed: Option<IntArg>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let max_size = max_size.count("max_size")?;
+    let listed = listed(skipped_listed)?;
     let r = read_cad(py, &path, |text, name| {
-        if faces {
-            lekalo_io::read_iges_faces(text, name, max_size)
-        } else {
-            lekalo_io::read_iges_limited(text, name, max_size)
-        }
+        let none = lekalo::Progress::new();
+        lekalo_io::read_iges_with_progress(text, name, max_size, faces, listed, &none)
     })?;
     let out = cad_dict(
         py,
@@ -321,19 +322,39 @@ pub(crate) fn read_iges<'py>(
     Ok(out)
 }
 
+/// How many skipped entities a read lists: `skipped_listed`, every one for `None`.
+fn listed(skipped_listed: Option<IntArg>) -> PyResult<usize> {
+    skipped_listed.map_or(Ok(usize::MAX), |n| n.count("skipped_listed"))
+}
+
 /// The dictionary `read_step` and `read_iges` share: shapes, what was skipped, the length unit,
 /// and with `faces` the faces and the faces skipped.
 #[allow(clippy::too_many_arguments)]
 fn cad_dict<'py>(
     py: Python<'py>,
     shapes: Vec<(u64, Shape)>,
-    skipped_entities: &[lekalo_io::StepSkipped],
+    skipped_entities: &lekalo_io::Skips,
     length_unit: String,
     faces: bool,
     read_faces: Vec<StepFace>,
-    skipped_faces: &[lekalo_io::StepSkipped],
+    skipped_faces: &lekalo_io::Skips,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let skipped = |list: &[lekalo_io::StepSkipped]| -> PyResult<Bound<'py, PyList>> {
+    let kinds = |list: &lekalo_io::Skips| -> PyResult<Bound<'py, PyList>> {
+        let items = list
+            .kinds()
+            .iter()
+            .map(|k| {
+                let d = PyDict::new(py);
+                d.set_item("entity", &k.entity)?;
+                d.set_item("reason", &k.reason)?;
+                d.set_item("count", k.count)?;
+                d.set_item("first_id", k.first_id)?;
+                Ok(d)
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        PyList::new(py, items)
+    };
+    let skipped = |list: &lekalo_io::Skips| -> PyResult<Bound<'py, PyList>> {
         let items = list
             .iter()
             .map(|s| {
@@ -357,6 +378,8 @@ fn cad_dict<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     out.set_item("shapes", shapes)?;
     out.set_item("skipped", skipped(skipped_entities)?)?;
+    out.set_item("skipped_total", skipped_entities.len())?;
+    out.set_item("skipped_kinds", kinds(skipped_entities)?)?;
     out.set_item("length_unit", length_unit)?;
     if faces {
         let list = read_faces
@@ -365,6 +388,8 @@ fn cad_dict<'py>(
             .collect::<PyResult<Vec<_>>>()?;
         out.set_item("faces", list)?;
         out.set_item("skipped_faces", skipped(skipped_faces)?)?;
+        out.set_item("skipped_faces_total", skipped_faces.len())?;
+        out.set_item("skipped_faces_kinds", kinds(skipped_faces)?)?;
     }
     Ok(out)
 }

@@ -130,6 +130,28 @@ def write(tmp_path, name, data):
     return path
 
 
+def test_skipped_entities_are_listed_up_to_a_bound_and_counted_by_kind(tmp_path):
+    # 30 faces on a missing surface and 30 unbounded planes: the first `skipped_listed` of each
+    # are listed, all counted by kind; None lists every one
+    data = "".join(f"#{i}=ADVANCED_FACE('f',(),#999,.T.);\n" for i in range(1, 31))
+    data += "#40=CARTESIAN_POINT('',(0.,0.,0.));\n#41=AXIS2_PLACEMENT_3D('',#40,$,$);\n"
+    data += "".join(f"#{i}=PLANE('',#41);\n" for i in range(100, 130))
+    path = write(tmp_path, "many.step", data)
+    r = lekalo.read_step(path, faces=True, skipped_listed=5)
+    assert [s["id"] for s in r["skipped"]] == [100, 101, 102, 103, 104]
+    assert r["skipped_total"] == 30
+    assert r["skipped_kinds"] == [
+        {"entity": "PLANE", "reason": r["skipped"][0]["reason"], "count": 30, "first_id": 100}
+    ]
+    assert [s["id"] for s in r["skipped_faces"]] == [1, 2, 3, 4, 5]
+    assert r["skipped_faces_total"] == 30 and r["skipped_faces_kinds"][0]["count"] == 30
+    every = lekalo.read_step(path, faces=True, skipped_listed=None)
+    assert len(every["skipped"]) == 30 and len(every["skipped_faces"]) == 30
+    assert len(lekalo.read_step(path)["skipped"]) == 30  # the default lists 1000
+    with pytest.raises(lekalo.InputError, match="skipped_listed"):
+        lekalo.read_step(path, skipped_listed=-1)
+
+
 def test_plate_faces_loops_and_pcurves(tmp_path):
     r = lekalo.read_step(write(tmp_path, "plate.step", PLATE), faces=True)
     assert [f.id for f in r["faces"]] == [70]

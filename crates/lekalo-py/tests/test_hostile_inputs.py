@@ -93,3 +93,12 @@ def test_cubic_spline_of_a_number_is_refused_naming_y():
 def test_constructor_edges_are_refused_as_scipy_refuses_them(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def test_a_boolean_degree_is_the_integer_it_stands_for():
+    # SciPy reads k=True as 1; lekalo indexed the knots with the boolean (a mask) and raised
+    # "The truth value of an array ... is ambiguous"
+    t, c = np.array([0.0, 0.0, 1.0, 1.0]), np.array([2.0, 4.0])
+    s = ls.BSpline(t, c, True)
+    assert s.k == 1 and type(s.k) is int
+    np.testing.assert_array_equal(s(XS), ls.BSpline(t, c, 1)(XS))

@@ -16,9 +16,31 @@ use anyhow::{Context as _, Result};
 use crate::context::Context;
 use crate::exit::bad_input;
 
-/// Writes a line to standard error, ignoring a closed stderr (never panics).
+/// Writes a line to standard error, ignoring a closed stderr (never panics), its control
+/// characters shown as escapes ([`printable`]).
 pub(crate) fn report(line: &str) {
-    let _ = writeln!(std::io::stderr().lock(), "{line}");
+    let _ = writeln!(std::io::stderr().lock(), "{}", printable(line));
+}
+
+/// `line` with its control characters other than newline and tab written as `\u{1b}`: a
+/// message quotes names from the user's files (a JSON key, a Parquet column, a STEP entity's
+/// name), and one holding an escape sequence (`\u{1b}[2J` clears the screen) or a NUL must
+/// reach the terminal as text, not as a command to it.
+fn printable(line: &str) -> std::borrow::Cow<'_, str> {
+    let control = |c: char| c.is_control() && c != '\n' && c != '\t';
+    if !line.chars().any(control) {
+        return line.into();
+    }
+    line.chars()
+        .map(|c| {
+            if control(c) {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect::<String>()
+        .into()
 }
 
 /// The file an `-o` names: `None` for standard output (no `-o`, or `-`).
@@ -172,5 +194,17 @@ mod tests {
         assert_eq!(format_of(None, Some(Path::new("a.STP")), "json"), "step");
         assert_eq!(format_of(Some("PNG"), None, "json"), "png");
         assert_eq!(format_of(None, None, "csv"), "csv");
+    }
+
+    #[test]
+    fn control_characters_of_a_message_are_shown_as_escapes() {
+        assert_eq!(
+            printable("plain: é, ∞\ttab\nline"),
+            "plain: é, ∞\ttab\nline"
+        );
+        assert_eq!(
+            printable("unknown field `\u{1b}[2J\u{0}x\u{7f}\u{9b}`"),
+            "unknown field `\\u{1b}[2J\\u{0}x\\u{7f}\\u{9b}`"
+        );
     }
 }

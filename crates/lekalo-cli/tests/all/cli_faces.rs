@@ -142,6 +142,61 @@ fn info_faces_lists_loops_and_pcurves() {
     assert_eq!(v["skipped"][0]["id"].as_u64(), Some(82));
 }
 
+/// A file of 500 faces that cannot be read (two reasons): `info --faces` lists the first 20 and
+/// counts the rest by reason (it listed every one); `--all-skipped` lists them all; the JSON
+/// has the same listing, the total and the kinds.
+#[test]
+fn info_faces_bounds_the_skipped_faces_it_lists() {
+    let mut step = String::from("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n");
+    for i in 1..=500 {
+        let surface = if i % 2 == 1 { 999_999 } else { 999_998 };
+        step += &format!("#{i}=ADVANCED_FACE('f{i}',(),#{surface},.T.);\n");
+    }
+    step += "#999998=PARABOLA('',#999997,1.);\nENDSEC;\nEND-ISO-10303-21;\n";
+    let d = dir_with(&[("many.step", step.as_str())]);
+    let out = lekalo()
+        .args(["info", "--faces", "-q"])
+        .arg(p(&d, "many.step"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.matches("\nskipped #").count(), 20, "{text}");
+    assert!(text.contains("skipped #20 ADVANCED_FACE") && !text.contains("skipped #21 "));
+    assert!(
+        text.contains("skipped faces by reason (20 listed of 500; --all-skipped lists every one):")
+            && text
+                .contains("     250 ADVANCED_FACE: its surface #999999 is not defined (first #1)")
+            && text.contains("     250 ADVANCED_FACE: its surface #999998 was not read: not read"),
+        "{text}"
+    );
+    let all = lekalo()
+        .args(["info", "--faces", "--all-skipped", "-q"])
+        .arg(p(&d, "many.step"))
+        .output()
+        .unwrap();
+    let all = String::from_utf8(all.stdout).unwrap();
+    assert_eq!(all.matches("\nskipped #").count(), 500);
+    assert!(!all.contains("by reason"), "{all}");
+    let out = lekalo()
+        .args(["info", "--faces", "--json", "-q"])
+        .arg(p(&d, "many.step"))
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["skipped_total"], 500);
+    assert_eq!(v["skipped"].as_array().map(Vec::len), Some(20));
+    assert_eq!(v["skipped_kinds"][0]["count"], 250);
+    assert_eq!(v["skipped_kinds"].as_array().map(Vec::len), Some(2));
+    // the option belongs to --faces
+    lekalo()
+        .args(["info", "--all-skipped"])
+        .arg(p(&d, "many.step"))
+        .assert()
+        .code(2)
+        .stderr(contains("--faces"));
+}
+
 #[test]
 fn faces_refuse_what_they_cannot_write_or_read() {
     let d = dir_with(&[

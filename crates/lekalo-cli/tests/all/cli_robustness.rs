@@ -1045,3 +1045,25 @@ ENDSEC;\nEND-ISO-10303-21;\n";
         "info with a closed standard error: {status}"
     );
 }
+
+/// A message quotes names from the user's files: a JSON key holding an escape sequence
+/// (`\u001b[2J` clears the terminal) or a NUL reached standard error as raw bytes; every control
+/// character but newline and tab is now written as an escape.
+#[test]
+fn control_characters_from_a_file_reach_standard_error_as_escapes() {
+    let d = dir_with(&[(
+        "esc.json",
+        r#"{"lekalo": 1, "type": "bezier_curve", "control": [[0, 0], [1, 1]], "\u001b[2J\u0000": 1}"#,
+    )]);
+    let out = lekalo()
+        .arg("info")
+        .arg(p(&d, "esc.json"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("\\u{1b}[2J\\u{0}") && !err.contains('\u{1b}') && !err.contains('\0'),
+        "{err:?}"
+    );
+}

@@ -282,6 +282,58 @@ fn npy_malformed_files_give_named_errors() {
             "header",
             "expected ','",
         ),
+        // lying headers: never unpickled, never allocated from the header's word
+        (
+            "object array holding a pickle",
+            fixture(
+                1,
+                &dict("'|O'", "(3, 2)"),
+                b"\x80\x04\x95cos\nsystem\n(S'rm -rf ~'\ntR.",
+            ),
+            "descr",
+            "'|O' is not float64",
+        ),
+        (
+            "a billion rows on 48 bytes",
+            fixture(1, &dict("'<f8'", "(1000000000, 2)"), &le(&ROWS)),
+            "data",
+            "needs 16000000000 bytes of float64 data, the file has 48",
+        ),
+        (
+            "a shape whose product overflows",
+            fixture(1, &dict("'<f8'", "(4611686018427387904, 4)"), &le(&ROWS)),
+            "shape",
+            "is too large to address",
+        ),
+        (
+            "a negative size",
+            fixture(1, &dict("'<f8'", "(-3, 2)"), &le(&ROWS)),
+            "header",
+            "cannot read the value of 'shape'",
+        ),
+        (
+            "5000 nested parentheses",
+            fixture(
+                1,
+                &dict(
+                    "'<f8'",
+                    &format!("{}3, 2{}", "(".repeat(5000), ")".repeat(5000)),
+                ),
+                &le(&ROWS),
+            ),
+            "header",
+            "cannot read the value of 'shape'",
+        ),
+        (
+            "a version 2 header length of 4 GiB",
+            {
+                let mut b = fixture(2, &dict("'<f8'", "(3, 2)"), &le(&ROWS));
+                b[8..12].copy_from_slice(&0xFFFF_FFF0u32.to_le_bytes());
+                b
+            },
+            "header",
+            "4294967280 bytes long but the file ends",
+        ),
     ];
     for (what, bytes, field, message) in cases {
         let e = read_npy_points(&bytes, "bad.npy").unwrap_err();

@@ -67,9 +67,12 @@ export async function request(path, init) {
   }
 }
 
+// the header of every body the editor posts: JSON (the server refuses forms and uploads)
+export const JSON_BODY = { 'content-type': 'application/json' };
+
 // POST a JSON body; the answer's JSON, or an Error carrying the API's message, field and status
 export async function post(path, body) {
-  const r = await request(path, { method: 'POST', headers: { 'content-type': 'application/json' },
+  const r = await request(path, { method: 'POST', headers: JSON_BODY,
     body: JSON.stringify(body) });
   let data;
   try {

@@ -2,7 +2,7 @@
 // JSON or STEP (POST /api/export/json, /api/export/step), and of the canvas as SVG or PNG.
 import { $, H, SVGNS, W } from './screen.js';
 import { commit, state } from './state.js';
-import { request } from './api.js';
+import { JSON_BODY, request } from './api.js';
 import { showError } from './errors.js';
 import { tracked } from './idle.js';
 import { currentCurve } from './modes/common.js';
@@ -11,7 +11,7 @@ async function importFile(act) {
   const file = $('import').files[0];
   if (!file) return;
   try {
-    const r = await request('/api/import', { method: 'POST', body: await file.text() });
+    const r = await request('/api/import', { method: 'POST', headers: JSON_BODY, body: await file.text() });
     const v = await r.json();
     if (!r.ok) throw Object.assign(new Error(v.error), { field: v.field });
     if (v.curve.type === 'bezier_curve') {
@@ -31,7 +31,8 @@ async function importFile(act) {
 
 async function exportCurve(path, name) {
   try {
-    const r = await request(path, { method: 'POST', body: JSON.stringify({ curve: currentCurve('file') }) });
+    const r = await request(path, { method: 'POST', headers: JSON_BODY,
+      body: JSON.stringify({ curve: currentCurve('file') }) });
     if (!r.ok) throw Object.assign(new Error((await r.json()).error), { field: 'file' });
     download(await r.blob(), name);
   } catch (e) { showError(e); }

@@ -197,6 +197,61 @@ async fn unknown_encodings_and_corrupt_streams_are_refused() {
     health(addr).await;
 }
 
+/// The body's `Content-Type`: JSON, `+json` types, plain text (a browser's `fetch` of a string)
+/// and no header at all are read as JSON; a form (`curl -d`'s default), a multipart upload,
+/// XML, an image, or a charset other than UTF-8 is refused with 415 and the API's JSON error
+/// naming the header and what to send, whatever the body; `/api/health` answers throughout.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bodies_that_are_not_json_or_text_are_refused_by_their_content_type() {
+    let addr = serving(Limits::default()).await;
+    let raw = |content_type: Option<&str>, body: &str| {
+        let header = content_type.map_or(String::new(), |t| format!("content-type: {t}\r\n"));
+        format!(
+            "POST /api/evaluate HTTP/1.1\r\nhost: x\r\nconnection: close\r\n{header}content-length: {}\r\n\r\n{body}",
+            body.len()
+        )
+    };
+    for accepted in [
+        None,
+        Some("application/json"),
+        Some("Application/JSON; charset=UTF-8"),
+        Some("text/plain;charset=utf-8"),
+        Some("application/merge-patch+json"),
+    ] {
+        let answer = exchange(addr, raw(accepted, CURVE).as_bytes()).await;
+        assert_eq!(status_and_json(&answer).0, 200, "{accepted:?}: {answer}");
+    }
+    for refused in [
+        "application/x-www-form-urlencoded",
+        "multipart/form-data; boundary=XyZ",
+        "application/xml",
+        "image/png",
+        "application/octet-stream",
+        "",
+        "application/json; charset=utf-16",
+        "text/plain; charset=latin1",
+    ] {
+        let answer = exchange(addr, raw(Some(refused), CURVE).as_bytes()).await;
+        let (code, json) = status_and_json(&answer);
+        assert_eq!(code, 415, "{refused}: {answer}");
+        let message = json["error"].as_str().expect("message");
+        assert!(
+            message.contains(&format!("Content-Type \"{refused}\""))
+                && (message.contains("application/json") || message.contains("UTF-8")),
+            "{message}"
+        );
+        assert_eq!(json["field"], Value::Null);
+    }
+    // a form's body is refused before it is read: a declared length far beyond what is sent
+    let answer = exchange(
+        addr,
+        b"POST /api/evaluate HTTP/1.1\r\nhost: x\r\nconnection: close\r\ncontent-type: multipart/form-data; boundary=b\r\ncontent-length: 1000000\r\n\r\n--b\r\n",
+    )
+    .await;
+    assert_eq!(status_and_json(&answer).0, 415, "{answer}");
+    health(addr).await;
+}
+
 /// A chunked body that never ends, and one that trickles in a byte every 200 ms: both are cut
 /// off at `--timeout` with 408 and the JSON error naming it, and health answers meanwhile.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -145,16 +145,20 @@ pub(crate) fn convert_shapes(
 /// error (not with `-q`). IGES faces come in the same record, ids being directory-entry
 /// sequence numbers.
 pub(crate) fn read_faces(path: &Path, cx: &Context) -> Result<lekalo_io::StepRead> {
-    read_faces_of(path, None, cx)
+    read_faces_of(path, None, false, cx)
 }
 
 /// [`read_faces`] of the input `path`, or of its text and name `read` already (standard input,
-/// read once: [`face_input`]), a STEP or IGES file by its extension or its first bytes.
+/// read once: [`face_input`]), a STEP or IGES file by its extension or its first bytes; with
+/// `all_skipped` every skipped face is kept to be listed (else the first
+/// [`lekalo_io::SKIPPED_LISTED`], the rest counted by reason).
 pub(crate) fn read_faces_of(
     path: &Path,
     read: Option<(String, String)>,
+    all_skipped: bool,
     cx: &Context,
 ) -> Result<lekalo_io::StepRead> {
+    let listed = crate::items::listed(cx, all_skipped);
     let sniffed = read.as_ref().map(|(text, _)| text.as_str());
     let iges = is_iges(path) || sniffed.is_some_and(crate::items::is_iges_text);
     let step = is_step(path) || sniffed.is_some_and(crate::items::is_step_text);
@@ -170,7 +174,7 @@ pub(crate) fn read_faces_of(
     };
     let r = if iges {
         let r = crate::items::read_with_progress(cx, &name, &text, |p| {
-            lekalo_io::read_iges_with_progress(&text, &name, cx.max_size, true, p)
+            lekalo_io::read_iges_with_progress(&text, &name, cx.max_size, true, listed, p)
         })?;
         lekalo_io::StepRead {
             shapes: r.shapes,
@@ -183,7 +187,7 @@ pub(crate) fn read_faces_of(
         }
     } else {
         crate::items::read_with_progress(cx, &name, &text, |p| {
-            lekalo_io::read_step_with_progress(&text, &name, cx.max_size, true, p)
+            lekalo_io::read_step_with_progress(&text, &name, cx.max_size, true, listed, p)
         })?
     };
     if !cx.is_quiet() {
@@ -268,7 +272,7 @@ pub(crate) fn convert_faces(
     }
     let faces = match faces {
         Some(f) => f,
-        None => read_faces_of(input, read, cx)?.faces,
+        None => read_faces_of(input, read, false, cx)?.faces,
     };
     if faces.is_empty() && format != "jsonl" {
         return bad_input(format!("{}: no faces to write", input.display()));

@@ -27,6 +27,7 @@ Examples:
   lekalo info spline.pp.json        # order, breakpoints, continuity at each breakpoint
   lekalo info many.jsonl            # one JSON line per object, in parallel
   lekalo info part.step --faces     # faces: surface, loops and their edges, pcurves
+  lekalo info part.step --faces --all-skipped   # every skipped face, not the first 20
 
 A JSON Lines file of faces (convert --faces) is listed as --faces lists a STEP file's faces.")]
 pub(crate) struct InfoArgs {
@@ -48,7 +49,14 @@ pub(crate) struct InfoArgs {
     /// loops, edges, pcurves) instead of its curves and surfaces.
     #[arg(long)]
     faces: bool,
+    /// With --faces: list every face that was not read, each with its reason. By default the
+    /// first 20 are listed (by id) and the others counted by reason.
+    #[arg(long, requires = "faces")]
+    all_skipped: bool,
 }
+
+/// Faces not read that `info --faces` lists one by one without `--all-skipped`.
+const SKIPPED_FACES_LISTED: usize = 20;
 
 /// Most entries of a knot list shown by `info`; a longer list shows its first and last
 /// `LIST_MAX / 2` entries (the `*_total` fields give the full count), so that the report of a
@@ -200,18 +208,18 @@ pub(crate) fn run(a: &InfoArgs, cx: &Context) -> Result<()> {
         let r = match face_lines {
             Some(faces) => lekalo_io::StepRead {
                 shapes: Vec::new(),
-                skipped: Vec::new(),
+                skipped: lekalo_io::Skips::default(),
                 faces,
-                skipped_faces: Vec::new(),
+                skipped_faces: lekalo_io::Skips::default(),
                 schema: None,
                 length_unit: "millimetre".into(),
                 scale_to_mm: 1.0,
             },
-            None => crate::cmd::files::cad::read_faces_of(&a.input, stdin, cx)?,
+            None => crate::cmd::files::cad::read_faces_of(&a.input, stdin, a.all_skipped, cx)?,
         };
         return crate::report::print_report(
             a.json,
-            &faces_json(&r),
+            &faces_json(&r, a.all_skipped),
             |j| faces_text(j, if iges { "D" } else { "#" }),
             a.output.as_deref(),
             &inputs,
@@ -333,8 +341,10 @@ fn cad_info(
 }
 
 /// `info --faces`: the number of faces read and skipped, and each face's id, name, surface,
-/// loops (edge counts and `EDGE_CURVE` ids, outer first) and whether its edges have pcurves.
-fn faces_json(r: &lekalo_io::StepRead) -> Value {
+/// loops (edge counts and `EDGE_CURVE` ids, outer first) and whether its edges have pcurves;
+/// the faces not read, the first [`SKIPPED_FACES_LISTED`] by id (every one the read kept with
+/// `all`), and their count by type and reason (`skipped_kinds`).
+fn faces_json(r: &lekalo_io::StepRead, all: bool) -> Value {
     let faces: Vec<Value> = r
         .faces
         .iter()
@@ -359,10 +369,22 @@ fn faces_json(r: &lekalo_io::StepRead) -> Value {
             })
         })
         .collect();
+    let listed = if all {
+        usize::MAX
+    } else {
+        SKIPPED_FACES_LISTED
+    };
     let skipped: Vec<Value> = r
         .skipped_faces
         .iter()
+        .take(listed)
         .map(|s| json!({"id": s.id, "entity": s.entity, "reason": s.reason}))
+        .collect();
+    let kinds: Vec<Value> = r
+        .skipped_faces
+        .kinds()
+        .iter()
+        .map(|k| json!({"entity": k.entity, "reason": k.reason, "count": k.count, "first_id": k.first_id}))
         .collect();
     json!({
         "faces_total": r.faces.len(),
@@ -370,11 +392,13 @@ fn faces_json(r: &lekalo_io::StepRead) -> Value {
         "skipped_total": r.skipped_faces.len(),
         "faces": faces,
         "skipped": skipped,
+        "skipped_kinds": kinds,
     })
 }
 
-/// The text of [`faces_json`]: a summary line, then one line per face and per skipped face,
-/// ids after `prefix` (`#` for STEP instances, `D` for IGES directory entries).
+/// The text of [`faces_json`]: a summary line, then one line per face and per skipped face
+/// listed, and when not every skipped face is listed their count by reason; ids after `prefix`
+/// (`#` for STEP instances, `D` for IGES directory entries).
 fn faces_text(j: &Value, prefix: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -418,6 +442,25 @@ fn faces_text(j: &Value, prefix: &str) -> String {
             k["entity"].as_str().unwrap_or_default(),
             k["reason"].as_str().unwrap_or_default()
         );
+    }
+    let listed = j["skipped"].as_array().map_or(0, Vec::len);
+    let total = j["skipped_total"].as_u64().unwrap_or(0);
+    if (listed as u64) < total {
+        let _ = writeln!(
+            s,
+            "skipped faces by reason ({} listed of {total}; --all-skipped lists every one):",
+            listed
+        );
+        for k in j["skipped_kinds"].as_array().into_iter().flatten() {
+            let _ = writeln!(
+                s,
+                "  {:>6} {}: {} (first {prefix}{})",
+                k["count"].as_u64().unwrap_or(0),
+                k["entity"].as_str().unwrap_or_default(),
+                k["reason"].as_str().unwrap_or_default(),
+                k["first_id"]
+            );
+        }
     }
     s
 }

@@ -66,7 +66,13 @@ const MAX_NESTING: usize = 8;
 /// hold more than `max_size` control points together, or the composite curves of their
 /// boundaries copy more than that out of the curves they list.
 pub fn read_iges_faces(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
-    read_faces_with_progress(text, source, max_size, &lekalo::Progress::new())
+    read_faces_with_progress(
+        text,
+        source,
+        max_size,
+        crate::step_read::SKIPPED_LISTED,
+        &lekalo::Progress::new(),
+    )
 }
 
 /// [`read_iges_faces`] reporting the directory entries read to `progress`
@@ -75,16 +81,17 @@ pub(super) fn read_faces_with_progress(
     text: &str,
     source: &str,
     max_size: usize,
+    listed: usize,
     progress: &lekalo::Progress<'_>,
 ) -> IoResult<IgesRead> {
-    let (mut r, raw, independent) = read_entities(text, source, max_size, true, progress)?;
+    let (mut r, raw, independent, reasons) =
+        read_entities(text, source, max_size, true, listed, progress)?;
     let mut cx = Faces {
         curves: HashMap::new(),
         surfaces: HashMap::new(),
-        skips: r
-            .skipped
+        skips: reasons
             .iter()
-            .map(|s| (s.id, s.reason.as_str()))
+            .map(|(id, why)| (*id, why.as_str()))
             .collect(),
         raw: &raw,
         unit: r.scale_to_mm,
@@ -130,7 +137,7 @@ pub(super) fn read_faces_with_progress(
         .collect();
     ids.sort_unstable();
     let mut faces = Vec::new();
-    let mut skipped = Vec::new();
+    let mut skipped = crate::step_read::Skips::new(listed);
     let mut used = 0usize;
     for (id, trimmed) in ids {
         let read = if trimmed {
@@ -176,6 +183,7 @@ pub(super) fn read_faces_with_progress(
         }
     }
     r.faces = faces;
+    skipped.finish();
     r.skipped_faces = skipped;
     Ok(r)
 }

@@ -184,7 +184,7 @@ fn a_loop_that_does_not_close_skips_the_face() {
     // the composite outer boundary without its last line
     let text = plate(&["144,1,1,0,23"]).replacen("102,4,3,5,7,9;", "102,3,3,5,7;  ", 1);
     let r = read_iges_faces(&text, "plate.igs", usize::MAX).unwrap();
-    let [s] = r.skipped_faces.as_slice() else {
+    let [s] = r.skipped_faces.listed() else {
         panic!("{r:?}")
     };
     assert!(s.reason.contains("does not close"), "{}", s.reason);
@@ -294,7 +294,7 @@ fn a_bounded_surface_reads_its_boundaries_each_curve_in_its_sense() {
     assert_eq!(hole.curve().eval(a + 0.5).unwrap(), vec![5.0, 3.0, 0.0]);
     let region = f.face.trim_region().unwrap();
     assert!(region.contains(0.1, 0.1) && !region.contains(0.5, 0.5));
-    let [s] = r.skipped_faces.as_slice() else {
+    let [s] = r.skipped_faces.listed() else {
         panic!("{:?}", r.skipped_faces)
     };
     assert_eq!((s.id, s.entity.as_str()), (37, "IGES entity 143"));

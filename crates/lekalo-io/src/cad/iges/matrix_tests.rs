@@ -189,7 +189,7 @@ fn matrices_that_place_nothing_are_reasons_to_skip() {
     let reason = |moved: &str| {
         let r = read_iges(moved, "m.igs").unwrap();
         assert!(r.shapes.is_empty());
-        r.skipped[0].reason.clone()
+        r.skipped.listed()[0].reason.clone()
     };
     // a finite-element coordinate system
     let fem = with_matrices(&text, &[(turn([0.0; 3]), 10)]);

@@ -51,7 +51,7 @@ pub use write::IgesWriter;
 use write::INDEPENDENT;
 
 use crate::shape::Shape;
-use crate::step_read::{StepFace, StepSkipped};
+use crate::step_read::{Skips, StepFace};
 
 /// What [`read_iges`] found: the shapes with their directory-entry sequence numbers, what was
 /// skipped, the unit.
@@ -59,8 +59,9 @@ use crate::step_read::{StepFace, StepSkipped};
 pub struct IgesRead {
     /// Curves and surfaces, with the sequence number of their directory entry.
     pub shapes: Vec<(u64, Shape)>,
-    /// Entities not read (`id` is the directory entry's sequence number, `entity` its type).
-    pub skipped: Vec<StepSkipped>,
+    /// Entities not read (`id` is the directory entry's sequence number, `entity` its type):
+    /// counted by kind, the first listed.
+    pub skipped: Skips,
     /// The unit named by the Global section, e.g. `MM`, `IN`.
     pub length_unit: String,
     /// The factor that converted coordinates to millimetres.
@@ -70,6 +71,6 @@ pub struct IgesRead {
     /// their directory entry in `id` ([`read_iges_faces`]; empty from [`read_iges`]).
     pub faces: Vec<StepFace>,
     /// The trimmed and bounded surfaces not read as faces, with the reason
-    /// ([`read_iges_faces`]).
-    pub skipped_faces: Vec<StepSkipped>,
+    /// ([`read_iges_faces`]): counted by kind, the first listed.
+    pub skipped_faces: Skips,
 }

@@ -9,7 +9,33 @@ use super::{matrix, splines, IgesRead};
 use crate::error::{IoError, IoResult, Location};
 use crate::object::Object;
 use crate::shape::{Shape, Surface};
-use crate::step_read::StepSkipped;
+use crate::step_read::{Skips, StepSkipped, SKIPPED_LISTED};
+
+/// Parameter `k` of an entity's fields as a real; the error names it and quotes what is
+/// written (a number beyond a double, `1.D+400`, or a word, `NaN`).
+fn real_at(f: &[String], k: usize) -> Result<f64, String> {
+    let Some(text) = f.get(k) else {
+        return Err(format!("parameter {k} is missing"));
+    };
+    real(text).ok_or_else(|| {
+        let t = text.trim();
+        let digits = t.bytes().any(|b| b.is_ascii_digit());
+        if digits && t.replace(['D', 'd'], "E").parse::<f64>().is_ok_and(f64::is_infinite) {
+            format!("parameter {k} is {t}, outside the range of a double")
+        } else {
+            format!("parameter {k} is \"{t}\", not a number (IGES writes reals as 1.5, -2.E-3 or 1.D0; NaN and infinities have no IGES form)")
+        }
+    })
+}
+
+/// What [`read_entities`] gives: the read, the raw entities by sequence number, the
+/// independent surfaces and the reasons of the skipped entities (with `topology`).
+pub(super) type Entities = (
+    IgesRead,
+    std::collections::HashMap<u64, Raw>,
+    Vec<u64>,
+    std::collections::HashMap<u64, String>,
+);
 
 /// Reads the rational B-spline curves (126) and surfaces (128) of an IGES file.
 ///
@@ -54,7 +80,15 @@ pub fn read_iges(text: &str, source: &str) -> IoResult<IgesRead> {
 /// As [`read_iges`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_iges_limited(text: &str, source: &str, max_size: usize) -> IoResult<IgesRead> {
-    read_entities(text, source, max_size, false, &Progress::new()).map(|(r, _, _)| r)
+    read_entities(
+        text,
+        source,
+        max_size,
+        false,
+        SKIPPED_LISTED,
+        &Progress::new(),
+    )
+    .map(|(r, ..)| r)
 }
 
 /// What an IGES read reports itself as.
@@ -66,7 +100,8 @@ const REPORT_ENTITIES: usize = 1 << 10;
 /// [`read_iges_limited`] (or [`read_iges_faces`] with `faces`) that reports to `progress` and
 /// stops when its cancel flag is set: `(entities read, entities)` of the directory section,
 /// every 1024 entities and never inside one (the result is the same with or without the hook),
-/// `(total, total)` last.
+/// `(total, total)` last. `listed` bounds the skipped entities and faces listed one by one
+/// (the others are counted by kind), as in [`crate::read_step_with_progress`].
 ///
 /// ```
 /// use std::sync::atomic::AtomicBool;
@@ -78,7 +113,7 @@ const REPORT_ENTITIES: usize = 1 << 10;
 /// w.add_object(&Object::BSpline(c))?;
 /// let text = w.finish("line.igs", "2000-01-01T00:00:00");
 /// let stop = AtomicBool::new(true);
-/// let e = read_iges_with_progress(&text, "line.igs", 1000, false,
+/// let e = read_iges_with_progress(&text, "line.igs", 1000, false, lekalo_io::SKIPPED_LISTED,
 ///     &Progress::new().with_cancel(&stop)).unwrap_err();
 /// assert_eq!(e.to_string(), "line.igs: reading IGES: cancelled");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -91,12 +126,13 @@ pub fn read_iges_with_progress(
     source: &str,
     max_size: usize,
     faces: bool,
+    listed: usize,
     progress: &Progress<'_>,
 ) -> IoResult<IgesRead> {
     if faces {
-        faces::read_faces_with_progress(text, source, max_size, progress)
+        faces::read_faces_with_progress(text, source, max_size, listed, progress)
     } else {
-        read_entities(text, source, max_size, false, progress).map(|(r, _, _)| r)
+        read_entities(text, source, max_size, false, listed, progress).map(|(r, ..)| r)
     }
 }
 
@@ -105,14 +141,18 @@ pub fn read_iges_with_progress(
 /// surfaces (entities 102, 141, 142, 143, 144) by sequence number, which the faces are built
 /// from, and the sequence numbers of the surfaces (114, 128) whose directory entry says they are
 /// independent (subordinate entity switch `00`, IGES 5.3 §2.2.4.4.9: no other entity needs
-/// them), which stand alone as untrimmed faces. `progress` is told the directory entries read.
+/// them), which stand alone as untrimmed faces, and why each skipped entity was skipped, by
+/// sequence number, for the faces that name one (a directory entry takes two lines of 80
+/// columns, so these reasons are smaller than the file). `progress` is told the directory
+/// entries read; at most `listed` skips are listed in [`IgesRead::skipped`].
 pub(super) fn read_entities(
     text: &str,
     source: &str,
     max_size: usize,
     topology: bool,
+    listed: usize,
     progress: &Progress<'_>,
-) -> IoResult<(IgesRead, std::collections::HashMap<u64, Raw>, Vec<u64>)> {
+) -> IoResult<Entities> {
     let mut raw = std::collections::HashMap::new();
     let mut independent = Vec::new();
     let mut g = String::new();
@@ -316,11 +356,7 @@ pub(super) fn read_entities(
                 format!("entity {ty} (D{seq}): {why}"),
             )
         };
-        let r = |k: usize| {
-            f.get(k)
-                .and_then(|s| real(s))
-                .ok_or_else(|| bad(format!("parameter {k} is missing or not a number")))
-        };
+        let r = |k: usize| real_at(&f, k).map_err(bad);
         let c = |k: usize| {
             f.get(k)
                 .and_then(|s| count(s))
@@ -339,11 +375,7 @@ pub(super) fn read_entities(
             continue;
         }
         if ty == "110" || ty == "112" || ty == "114" {
-            let num = |k: usize| {
-                f.get(k)
-                    .and_then(|s| real(s))
-                    .ok_or_else(|| format!("parameter {k} is missing or not a number"))
-            };
+            let num = |k: usize| real_at(&f, k);
             let shape = if ty == "110" {
                 splines::line(&num, unit_mm)
             } else if ty == "112" {
@@ -465,16 +497,27 @@ pub(super) fn read_entities(
         // complete: a flag set this late does not discard the result
         let _ = progress.step(READING, entities as u64, entities as u64);
     }
+    let reasons = if topology {
+        skipped.iter().map(|s| (s.id, s.reason.clone())).collect()
+    } else {
+        std::collections::HashMap::new()
+    };
+    let mut listing = Skips::new(listed);
+    for s in skipped {
+        listing.push(s);
+    }
+    listing.finish();
     Ok((
         IgesRead {
             shapes,
-            skipped,
+            skipped: listing,
             length_unit,
             scale_to_mm: unit_mm,
             faces: Vec::new(),
-            skipped_faces: Vec::new(),
+            skipped_faces: Skips::default(),
         },
         raw,
         independent,
+        reasons,
     ))
 }

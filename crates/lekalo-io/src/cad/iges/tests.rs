@@ -181,6 +181,55 @@ pub(super) fn one_entity(global: &str, ty: u32, params: &str) -> String {
 
 const SEGMENT: &str = "126,1,1,0,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,1.,1.,0.,0.,1.,0.,0.,1.;";
 
+/// Numbers a double cannot hold (`1.D+400`) and words (`NaN`, `inf`) where a coordinate
+/// belongs are named with what is written; they were "parameter 20 is missing or not a
+/// number". A negative zero and `1.D0` are numbers.
+#[test]
+fn numbers_out_of_range_and_words_are_quoted() {
+    let c = Object::BSpline(
+        BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_2d(&[[0.0, 0.0], [7.0, 2.0]]).unwrap(),
+        )
+        .unwrap(),
+    );
+    let mut w = IgesWriter::new();
+    w.add_object(&c).unwrap();
+    let text = w.finish("n.igs", "20000101.000000");
+    // the parameter lines rewritten with the point's x (7.) at the start of the second line,
+    // where a longer number has room in the 64 columns
+    let p1 = text.lines().find(|l| l.ends_with("P      1")).expect("P 1");
+    let p2 = text.lines().find(|l| l.ends_with("P      2")).expect("P 2");
+    assert!(
+        p1.starts_with("126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,7.,2.,"),
+        "{p1}"
+    );
+    let with = |x: &str| {
+        let first = format!(
+            "{:<64}{}",
+            "126,1,1,1,0,1,0,0.,0.,1.,1.,1.,1.,0.,0.,0.,",
+            &p1[64..]
+        );
+        let second = format!("{:<64}{}", format!("{x},2.,0.,0.,1.,0.,0.,1.;"), &p2[64..]);
+        text.replacen(p1, &first, 1).replacen(p2, &second, 1)
+    };
+    let e = read_iges(&with("1.D+400"), "n.igs")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("is 1.D+400, outside the range of a double"),
+        "{e}"
+    );
+    for word in ["NaN", "inf", "1.E"] {
+        let e = read_iges(&with(word), "n.igs").unwrap_err().to_string();
+        assert!(e.contains(&format!("is \"{word}\", not a number")), "{e}");
+    }
+    for ok in ["-0.", "7.D0", "7"] {
+        assert!(read_iges(&with(ok), "n.igs").is_ok(), "{ok}");
+    }
+}
+
 #[test]
 fn hostile_global_sections_are_read_without_panics() {
     let r = read_iges(&one_entity("1H,,1H;;", 126, SEGMENT), "ok.igs").unwrap();
@@ -290,6 +339,7 @@ fn progress_reports_the_entities_and_cancels() {
         "l.igs",
         usize::MAX,
         false,
+        crate::SKIPPED_LISTED,
         &Progress::new().with_report(&report),
     )
     .unwrap();
@@ -307,6 +357,7 @@ fn progress_reports_the_entities_and_cancels() {
             "l.igs",
             usize::MAX,
             faces,
+            crate::SKIPPED_LISTED,
             &Progress::new().with_report(&report).with_cancel(&stop),
         )
         .unwrap_err();

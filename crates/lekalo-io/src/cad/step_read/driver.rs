@@ -11,6 +11,7 @@ use super::entities::{is_bspline_curve, is_bspline_surface, Reader, OTHER_GEOMET
 use super::faces::read_faces;
 use super::parse::parse;
 use super::progress::{Meter, Pass};
+use super::skips::{Skips, SKIPPED_LISTED};
 use super::units::{length_unit, plane_angle_unit};
 use super::{StepRead, StepSkipped, Why, P};
 use crate::cad::step::PLANE_DRAWING;
@@ -71,7 +72,14 @@ pub fn read_step(text: &str, source: &str) -> IoResult<StepRead> {
 /// As [`read_step`]; [`IoError::TooLarge`] naming the count and `--max-size` for a file above
 /// the limit.
 pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
-    read(text, source, max_size, false, &Progress::new())
+    read(
+        text,
+        source,
+        max_size,
+        false,
+        SKIPPED_LISTED,
+        &Progress::new(),
+    )
 }
 
 /// [`read_step_limited`] that reads the faces too ([`StepRead::faces`]): each `ADVANCED_FACE`
@@ -82,7 +90,14 @@ pub fn read_step_limited(text: &str, source: &str, max_size: usize) -> IoResult<
 /// # Errors
 /// As [`read_step_limited`].
 pub fn read_step_faces(text: &str, source: &str, max_size: usize) -> IoResult<StepRead> {
-    read(text, source, max_size, true, &Progress::new())
+    read(
+        text,
+        source,
+        max_size,
+        true,
+        SKIPPED_LISTED,
+        &Progress::new(),
+    )
 }
 
 /// [`read_step_limited`] (or [`read_step_faces`] with `faces`) that reports to `progress` and
@@ -91,6 +106,9 @@ pub fn read_step_faces(text: &str, source: &str, max_size: usize) -> IoResult<St
 /// (trimmed curves, curves and B-spline surfaces, analytic surfaces, faces); `done` never goes
 /// back and the last report is `(total, total)`. The hook is consulted every 64 KiB of text and
 /// every 1024 instances, never inside an entity, so the result is the same with or without it.
+/// `listed` bounds the skipped entities and faces listed one by one ([`Skips::listed`]; the
+/// others are counted by kind): [`SKIPPED_LISTED`] is what the other readers keep, `usize::MAX`
+/// lists every one (memory then grows with them).
 ///
 /// ```
 /// use std::sync::atomic::AtomicBool;
@@ -102,7 +120,7 @@ pub fn read_step_faces(text: &str, source: &str, max_size: usize) -> IoResult<St
 /// w.add_object(&Object::BSpline(c))?;
 /// let text = w.finish("2000-01-01T00:00:00");
 /// let stop = AtomicBool::new(true);
-/// let e = read_step_with_progress(&text, "line.step", 1000, false,
+/// let e = read_step_with_progress(&text, "line.step", 1000, false, lekalo_io::SKIPPED_LISTED,
 ///     &Progress::new().with_cancel(&stop)).unwrap_err();
 /// assert!(matches!(e, IoError::Cancelled { .. }), "{e}");
 /// assert_eq!(e.to_string(), "line.step: reading STEP: cancelled");
@@ -116,9 +134,10 @@ pub fn read_step_with_progress(
     source: &str,
     max_size: usize,
     faces: bool,
+    listed: usize,
     progress: &Progress<'_>,
 ) -> IoResult<StepRead> {
-    read(text, source, max_size, faces, progress)
+    read(text, source, max_size, faces, listed, progress)
 }
 
 fn read(
@@ -126,6 +145,7 @@ fn read(
     source: &str,
     max_size: usize,
     with_faces: bool,
+    listed: usize,
     progress: &Progress<'_>,
 ) -> IoResult<StepRead> {
     let meter = Meter {
@@ -148,7 +168,7 @@ fn read(
     };
     // the parts an assembly places are read at each of their occurrences, one pass each
     let placed = assembly(&rd);
-    let mut read = convert(&rd, placed.as_ref(), 0, with_faces, &meter)?;
+    let mut read = convert(&rd, placed.as_ref(), 0, with_faces, listed, &meter)?;
     let quiet = Progress::new();
     let quiet = Meter {
         progress: &quiet,
@@ -156,7 +176,7 @@ fn read(
         len: text.len() as u64,
     };
     for pass in 1..placed.as_ref().map_or(1, Assembly::passes) {
-        let more = convert(&rd, placed.as_ref(), pass, with_faces, &quiet)?;
+        let more = convert(&rd, placed.as_ref(), pass, with_faces, 0, &quiet)?;
         read.shapes.extend(more.shapes);
         read.faces.extend(more.faces);
     }
@@ -225,19 +245,20 @@ fn plane_drawing(
 /// What one pass over the instances reads.
 struct Converted {
     shapes: Vec<(u64, Shape)>,
-    skipped: Vec<StepSkipped>,
+    skipped: Skips,
     faces: Vec<super::StepFace>,
-    skipped_faces: Vec<StepSkipped>,
+    skipped_faces: Skips,
 }
 
 /// Reads the geometry (and with `with_faces` the faces) of the instances that pass `pass` of
 /// the assembly `placed` reads, each at its placement (every instance, as written, when the file
-/// places no part).
+/// places no part). The skips are counted by kind, at most `listed` of them kept.
 fn convert(
     rd: &Reader<'_>,
     placed: Option<&Assembly>,
     pass: usize,
     with_faces: bool,
+    listed: usize,
     meter: &Meter<'_>,
 ) -> IoResult<Converted> {
     let source = rd.source;
@@ -259,8 +280,8 @@ fn convert(
     };
     let ids = parsed.instances.ids();
     let mut shapes = Vec::new();
-    let mut skipped = Vec::new();
-    let skip = |skipped: &mut Vec<StepSkipped>, id: u64, entity: &str, reason: Why| {
+    let mut skipped = Skips::new(listed);
+    let skip = |skipped: &mut Skips, id: u64, entity: &str, reason: Why| {
         skipped.push(StepSkipped {
             id,
             entity: entity.to_string(),
@@ -352,20 +373,9 @@ fn convert(
                 unbounded.insert(id);
             }
         } else if let Some(name) = first_of(&inst, TESSELLATED) {
-            skip(
-                &mut skipped,
-                id,
-                name,
-                "tessellated geometry (a mesh of triangles or polylines), not a curve or surface"
-                    .into(),
-            );
+            skip(&mut skipped, id, name, TESSELLATED_REASON.into());
         } else if let Some(name) = first_of(&inst, OTHER_GEOMETRY) {
-            skip(
-                &mut skipped,
-                id,
-                name,
-                "not read (lekalo reads B-splines, NURBS, lines, conics, elementary and swept surfaces)".into(),
-            );
+            skip(&mut skipped, id, name, OTHER_REASON.into());
         }
     }
     if let Some(e) = too_large(rd) {
@@ -390,7 +400,7 @@ fn convert(
     if let Some(e) = too_large(rd) {
         return Err(e);
     }
-    skipped.sort_by_key(|s| s.id);
+    skipped.finish();
     let (faces, skipped_faces) = if with_faces {
         let surfaces: HashMap<u64, &lekalo::Surface> = shapes
             .iter()
@@ -399,15 +409,42 @@ fn convert(
                 _ => None,
             })
             .collect();
-        let surface_skips: HashMap<u64, &str> =
-            skipped.iter().map(|s| (s.id, s.reason.as_str())).collect();
-        let r = read_faces(rd, ids, &surfaces, &surface_skips, meter, &enter)?;
+        // why a surface a face names was skipped: found again when a face asks, rather than
+        // kept for every skipped entity (a few recent answers are kept for faces sharing one)
+        let recent: RefCell<HashMap<u64, Option<Why>>> = RefCell::new(HashMap::new());
+        let surface_skip = |sid: u64| -> Option<Why> {
+            if let Some(why) = recent.borrow().get(&sid) {
+                return why.clone();
+            }
+            let inst = parsed.instances.get(&sid)?;
+            let why = if first_of(&inst, TESSELLATED).is_some() {
+                Some(TESSELLATED_REASON.into())
+            } else if first_of(&inst, OTHER_GEOMETRY).is_some() {
+                Some(OTHER_REASON.into())
+            } else if first_of(&inst, ANALYTIC_SURFACES).is_some() {
+                // read again for its reason only: the size limit is not charged twice
+                let (used, over) = (rd.used.get(), rd.over.borrow().clone());
+                let why = rd.analytic_surface(sid, &inst, &bounds, &curves).err();
+                rd.used.set(used);
+                *rd.over.borrow_mut() = over;
+                why
+            } else {
+                None
+            };
+            let mut recent = recent.borrow_mut();
+            if recent.len() >= RECENT_SURFACE_SKIPS {
+                recent.clear();
+            }
+            recent.insert(sid, why.clone());
+            why
+        };
+        let r = read_faces(rd, ids, &surfaces, &surface_skip, listed, meter, &enter)?;
         if let Some(e) = too_large(rd) {
             return Err(e);
         }
         r
     } else {
-        (Vec::new(), Vec::new())
+        (Vec::new(), Skips::default())
     };
     rd.motion.set(None);
     Ok(Converted {
@@ -417,6 +454,17 @@ fn convert(
         skipped_faces,
     })
 }
+
+/// Why tessellated geometry is skipped.
+const TESSELLATED_REASON: &str =
+    "tessellated geometry (a mesh of triangles or polylines), not a curve or surface";
+
+/// Why the other geometry ([`OTHER_GEOMETRY`]) is skipped.
+const OTHER_REASON: &str =
+    "not read (lekalo reads B-splines, NURBS, lines, conics, elementary and swept surfaces)";
+
+/// How many surfaces' reasons for being skipped the face pass keeps at once.
+const RECENT_SURFACE_SKIPS: usize = 1024;
 
 /// The first record of `inst` named in `names`.
 fn first_of<'a>(inst: &super::Instance<'_>, names: &[&'a str]) -> Option<&'a str> {

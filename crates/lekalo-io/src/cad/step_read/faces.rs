@@ -21,6 +21,7 @@ use lekalo::{BSplineCurve, Curve, NurbsCurve, Points};
 use super::analytic::Basis;
 use super::entities::{is_bspline_surface, Reader};
 use super::progress::{Meter, Pass};
+use super::skips::Skips;
 use super::{list, unnamed, StepSkipped, Why, P};
 use crate::error::IoResult;
 use crate::shape::Surface;
@@ -110,19 +111,20 @@ const TRIANGLES_ONLY: &str = "a face of triangles (tessellated geometry), not a 
 
 /// Reads every `ADVANCED_FACE` and `FACE_SURFACE` of the file: the faces read, and those
 /// skipped with the reason (faces of triangles, `TRIANGULATED_FACE` and
-/// `COMPLEX_TRIANGULATED_FACE`, among them). `surfaces` are the surfaces read by id, `surface_skips` why the
-/// others were not; `meter` is told the instances looked at and can cancel the read; `enter`
+/// `COMPLEX_TRIANGULATED_FACE`, among them), counted by kind with at most `listed` of them
+/// kept. `surfaces` are the surfaces read by id, `surface_skip` why another was not; `meter` is told the instances looked at and can cancel the read; `enter`
 /// says whether a face is read in this pass and sets the placement of its part.
 pub(super) fn read_faces(
     rd: &Reader<'_>,
     ids: &[u64],
     surfaces: &HashMap<u64, &Surface>,
-    surface_skips: &HashMap<u64, &str>,
+    surface_skip: &dyn Fn(u64) -> Option<Why>,
+    listed: usize,
     meter: &Meter<'_>,
     enter: &dyn Fn(u64) -> bool,
-) -> IoResult<(Vec<StepFace>, Vec<StepSkipped>)> {
+) -> IoResult<(Vec<StepFace>, Skips)> {
     let mut faces = Vec::new();
-    let mut skipped = Vec::new();
+    let mut skipped = Skips::new(listed);
     let mut edges: HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>> = HashMap::new();
     for (k, &id) in ids.iter().enumerate() {
         meter.converted(Pass::Faces, k, ids.len())?;
@@ -148,7 +150,7 @@ pub(super) fn read_faces(
             }
             continue;
         };
-        match read_face(rd, id, r, surfaces, surface_skips, &mut edges) {
+        match read_face(rd, id, r, surfaces, surface_skip, &mut edges) {
             Ok(f) => faces.push(f),
             Err(reason) => skipped.push(StepSkipped {
                 id,
@@ -157,6 +159,7 @@ pub(super) fn read_faces(
             }),
         }
     }
+    skipped.finish();
     Ok((faces, skipped))
 }
 
@@ -165,7 +168,7 @@ fn read_face(
     id: u64,
     r: &[P],
     surfaces: &HashMap<u64, &Surface>,
-    surface_skips: &HashMap<u64, &str>,
+    surface_skip: &dyn Fn(u64) -> Option<Why>,
     edges: &mut HashMap<u64, Result<std::rc::Rc<EdgeGeom>, Why>>,
 ) -> Result<StepFace, Why> {
     let name = match r.first() {
@@ -174,7 +177,7 @@ fn read_face(
     };
     let sid = reference(r.get(2)).ok_or("face_geometry is not a reference to a surface")?;
     let Some(surface) = surfaces.get(&sid) else {
-        return Err(match surface_skips.get(&sid) {
+        return Err(match surface_skip(sid) {
             Some(why) => format!("its surface #{sid} was not read: {why}"),
             None => match rd.p.instances.get(&sid) {
                 Some(s) => format!(

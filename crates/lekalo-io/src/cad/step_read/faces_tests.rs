@@ -306,7 +306,7 @@ fn a_loop_closed_by_its_shared_vertices_tolerates_curves_that_miss_them() {
         );
     let r = read(&apart);
     assert!(r.faces.is_empty());
-    let why = &r.skipped_faces[0].reason;
+    let why = &r.skipped_faces.listed()[0].reason;
     assert!(why.contains("outer loop does not close"), "{why}");
 }
 
@@ -321,11 +321,14 @@ fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
     assert!(r.faces.is_empty());
     assert_eq!(r.skipped_faces.len(), 1);
     assert_eq!(
-        (r.skipped_faces[0].id, r.skipped_faces[0].entity.as_str()),
+        (
+            r.skipped_faces.listed()[0].id,
+            r.skipped_faces.listed()[0].entity.as_str()
+        ),
         (70, "ADVANCED_FACE")
     );
     assert!(
-        r.skipped_faces[0]
+        r.skipped_faces.listed()[0]
             .reason
             .contains("#999 of a loop is not defined"),
         "{:?}",
@@ -333,11 +336,11 @@ fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
     );
     // edges out of order do not close the loop
     let shuffled = PLATE.replace("(#51,#52,#53,#54)", "(#51,#53,#52,#54)");
-    let why = &read(&shuffled).skipped_faces[0].reason;
+    let why = read(&shuffled).skipped_faces.listed()[0].reason.clone();
     assert!(why.contains("outer loop does not close"), "{why}");
     // a surface curve whose 3-D curve is itself: a cycle of references
     let cyclic = PATCH.replace("#171=SURFACE_CURVE('',#121,", "#171=SURFACE_CURVE('',#171,");
-    let why = &read(&cyclic).skipped_faces[0].reason;
+    let why = read(&cyclic).skipped_faces.listed()[0].reason.clone();
     assert!(why.contains("a cycle of references"), "{why}");
     // a face on a surface lekalo does not read
     let offset = PATCH.replace(
@@ -346,7 +349,7 @@ fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
     );
     let r = read(&offset);
     assert!(
-        r.skipped_faces[0]
+        r.skipped_faces.listed()[0]
             .reason
             .contains("its surface #198 was not read"),
         "{:?}",
@@ -355,13 +358,15 @@ fn faces_that_cannot_be_read_are_skipped_with_the_reason() {
     // a bound that is not a face bound, a face without loops
     let r = read(&PATCH.replace("(#196),#105", "(#105),#105"));
     assert!(
-        r.skipped_faces[0].reason.contains("not a FACE_BOUND"),
+        r.skipped_faces.listed()[0]
+            .reason
+            .contains("not a FACE_BOUND"),
         "{:?}",
         r.skipped_faces
     );
     let r = read(&PATCH.replace("(#196),#105", "(),#105"));
     assert!(
-        r.skipped_faces[0].reason.contains("no EDGE_LOOP"),
+        r.skipped_faces.listed()[0].reason.contains("no EDGE_LOOP"),
         "{:?}",
         r.skipped_faces
     );
@@ -515,5 +520,7 @@ fn a_face_of_triangles_is_listed_as_skipped_not_dropped() {
             (202, "TRIANGULATED_FACE")
         ]
     );
-    assert!(r.skipped_faces[0].reason.contains("a face of triangles"));
+    assert!(r.skipped_faces.listed()[0]
+        .reason
+        .contains("a face of triangles"));
 }

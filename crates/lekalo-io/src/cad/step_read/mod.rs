@@ -40,6 +40,7 @@
 //! | `bounds.rs` | the ranges of lines from their edges, and of unbounded surfaces from their faces |
 //! | `units.rs` | the file's length unit and its factor to millimetres; its plane angle unit |
 //! | `faces.rs` | faces: `ADVANCED_FACE`, bounds, edge loops, oriented edges, edge curves cut at their vertices, pcurves in the surface's parameters ([`StepFace`]) |
+//! | `skips.rs` | the report of what was not read: counts by kind and the first entities listed ([`Skips`]), bounded by the kinds, not the entities |
 //! | `progress.rs` | the progress of a read through the library's hook: bytes parsed, instances converted per pass |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
 //! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs` | tests |
@@ -56,12 +57,14 @@ mod faces;
 pub(crate) mod faces_tests;
 mod parse;
 mod progress;
+mod skips;
 #[cfg(test)]
 mod tests;
 mod units;
 
 pub use driver::{read_step, read_step_faces, read_step_limited, read_step_with_progress};
 pub use faces::{StepFace, STEP_LOOP_RTOL, STEP_SHARED_VERTEX_RTOL};
+pub use skips::{Skips, OTHER_KINDS, SKIPPED_KINDS, SKIPPED_LISTED};
 
 use crate::shape::Shape;
 
@@ -90,27 +93,6 @@ pub struct SkippedKind {
     pub first_id: u64,
 }
 
-/// `reason` with its references to entities masked (`#123` and `D45` become `#…` and `D…`):
-/// the reasons of a million trimmed curves each too deep below the next differ by the curve
-/// they name only, and are one kind of skip.
-fn reason_kind(reason: &str) -> String {
-    let mut out = String::with_capacity(reason.len());
-    let mut prev: Option<char> = None;
-    let mut chars = reason.chars().peekable();
-    while let Some(c) = chars.next() {
-        let at_word = prev.is_none_or(|p| !p.is_alphanumeric());
-        let reference = c == '#' || (c == 'D' && at_word);
-        out.push(c);
-        prev = Some(c);
-        if reference && chars.peek().is_some_and(char::is_ascii_digit) {
-            while chars.next_if(char::is_ascii_digit).is_some() {}
-            out.push('…');
-            prev = Some('…');
-        }
-    }
-    out
-}
-
 /// The skipped entities of [`StepRead::skipped`] or [`crate::IgesRead::skipped`] grouped by
 /// type and reason, the entities a reason names masked (`curve #12 is …` and `curve #13 is …`
 /// are one kind): the report of what a file holds that was not read, most frequent first
@@ -134,29 +116,12 @@ fn reason_kind(reason: &str) -> String {
 /// ```
 #[must_use]
 pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
-    let mut at: std::collections::HashMap<(&str, String), usize> = std::collections::HashMap::new();
-    let mut out: Vec<SkippedKind> = Vec::new();
-    for s in skipped {
-        let k = *at
-            .entry((s.entity.as_str(), reason_kind(&s.reason)))
-            .or_insert_with(|| {
-                out.push(SkippedKind {
-                    entity: s.entity.clone(),
-                    reason: s.reason.clone(),
-                    count: 0,
-                    first_id: s.id,
-                });
-                out.len() - 1
-            });
-        let kind = &mut out[k];
-        kind.count += 1;
-        if s.id < kind.first_id {
-            kind.first_id = s.id;
-            kind.reason.clone_from(&s.reason);
-        }
+    let mut s = Skips::new(0);
+    for x in skipped {
+        s.push(x.clone());
     }
-    out.sort_by(|a, b| b.count.cmp(&a.count).then_with(|| a.entity.cmp(&b.entity)));
-    out
+    s.finish();
+    s.kinds().to_vec()
 }
 
 /// What [`read_step`] found.
@@ -164,12 +129,13 @@ pub fn skipped_by_kind(skipped: &[StepSkipped]) -> Vec<SkippedKind> {
 pub struct StepRead {
     /// The curves and surfaces read, with the id of their entity instance, in id order.
     pub shapes: Vec<(u64, Shape)>,
-    /// Geometric entities that were not read, in id order.
-    pub skipped: Vec<StepSkipped>,
+    /// Geometric entities that were not read: counted by kind, the first listed in id order.
+    pub skipped: Skips,
     /// The faces, in id order ([`read_step_faces`]; empty from [`read_step`]).
     pub faces: Vec<StepFace>,
-    /// The faces that were not read, with the reason, in id order ([`read_step_faces`]).
-    pub skipped_faces: Vec<StepSkipped>,
+    /// The faces that were not read, with the reason ([`read_step_faces`]): counted by kind,
+    /// the first listed in id order.
+    pub skipped_faces: Skips,
     /// The schema named in the header's `FILE_SCHEMA`, e.g. `AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }`.
     pub schema: Option<String>,
     /// The length unit of the unit context, e.g. `millimetre`, `metre`, `INCH (25.4 mm)`;

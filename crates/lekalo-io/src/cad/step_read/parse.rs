@@ -165,13 +165,21 @@ impl<'a> Lexer<'a> {
                         Some(None)
                     }
                     Some(b) if b.is_ascii_alphabetic() || b == b'!' => {
+                        let word = self.keyword_span()?;
+                        self.skip_ws()?;
+                        if self.peek() != Some(b'(') {
+                            // `NaN`, `inf`, `TRUE`: a bare word is no STEP value
+                            let word = String::from_utf8_lossy(word);
+                            return self.err(format!(
+                                "{word} is not a value: a word in a parameter list starts a typed parameter NAME(…); numbers are written with digits (1.5, -2.E-3; NaN and infinities have no STEP form), enumerations between dots (.T.), strings in quotes"
+                            ));
+                        }
+                        self.pos += 1;
                         let k = if self.keep {
-                            self.keyword()?
+                            String::from_utf8_lossy(word).to_ascii_uppercase()
                         } else {
-                            self.keyword_span()?;
                             String::new()
                         };
-                        self.expect(b'(')?;
                         Some(Some(k))
                     }
                     _ => None,

@@ -219,6 +219,33 @@ fn errors_name_the_line_and_never_panic() {
     }
 }
 
+#[test]
+fn numbers_a_double_cannot_hold_or_that_step_cannot_write_are_named() {
+    let point =
+        |x: &str| format!("ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',({x},0.,0.));\nENDSEC;\n");
+    // beyond a double: refused by its line, the number quoted
+    let e = refused(&point("1.E+400"));
+    assert!(
+        e.starts_with("h.step:3:") && e.contains("1.E+400 is outside the range"),
+        "{e}"
+    );
+    // bare words where a number belongs: named, with how STEP writes numbers; a NaN was
+    // "expected '(', found ','"
+    for word in ["NaN", "nan", "INF", "Infinity"] {
+        let e = refused(&point(word));
+        assert!(
+            e.starts_with("h.step:3:")
+                && e.contains(&format!("{word} is not a value"))
+                && e.contains("NaN and infinities have no STEP form"),
+            "{e}"
+        );
+    }
+    // a negative zero, a real without digits after the point and a tiny exponent are numbers
+    for ok in ["-0.", "1.", "1.E-400", "-0.0E0"] {
+        assert!(read_step(&point(ok), "ok.step").is_ok(), "{ok}");
+    }
+}
+
 /// `text` with its message, for the tests of hostile files below.
 fn refused(text: &str) -> String {
     read_step(text, "h.step").unwrap_err().to_string()
@@ -328,9 +355,9 @@ fn many_trims_of_one_long_basis_are_read_in_linear_time() {
     assert!(read > 0 && read < 10, "{read} trims read");
     assert_eq!(r.skipped.len(), n - read, "every other trim is listed");
     assert!(
-        r.skipped[0].reason.contains("trimmed more often"),
+        r.skipped.listed()[0].reason.contains("trimmed more often"),
         "{:?}",
-        r.skipped[0]
+        r.skipped.listed()[0]
     );
 }
 
@@ -441,6 +468,7 @@ fn progress_reports_the_bytes_then_the_entities_and_cancels() {
             "c.step",
             usize::MAX,
             faces,
+            crate::SKIPPED_LISTED,
             &lekalo::Progress::new()
                 .with_report(&report)
                 .with_cancel(&stop),
@@ -482,6 +510,7 @@ fn progress_reports_the_bytes_then_the_entities_and_cancels() {
             "c.step",
             usize::MAX,
             true,
+            crate::SKIPPED_LISTED,
             &lekalo::Progress::new()
                 .with_report(&report)
                 .with_cancel(&stop),

@@ -85,7 +85,8 @@ class BSpline:
     _power_basis_types: tuple = ()
 
     def __init__(self, t: Any, c: Any, k: int, extrapolate: Any = True, axis: int = 0) -> None:
-        self.k = operator.index(k)
+        # the degree as an int from here on: `k=True` (SciPy's 1) must not index the knots as a mask
+        k = self.k = int(operator.index(k))
         self.c = np.asarray(c)
         self.t = np.ascontiguousarray(t, dtype=np.float64)
         if extrapolate == "periodic":
