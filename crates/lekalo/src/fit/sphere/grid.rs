@@ -8,7 +8,7 @@
 //! 1993, §10.3 and §11.2). The pole rows of `c` are affine in the pole parameters `d`
 //! ([`SphereSpace`]); moved to the right-hand side, they leave a Kronecker least-squares
 //! problem in the free rows, solved by one banded QR along `u` and one cyclic banded QR along
-//! `v` (O(m_u m_v (n_u + n_φ)) for an `m_u × m_v` grid). The residual is affine in the free pole
+//! `v` (`O(m_u·m_v·(n_u + n_φ))` for an `m_u × m_v` grid). The residual is affine in the free pole
 //! parameters: the same two sweeps carry one right-hand side per free parameter, the Gram matrix
 //! of the residual parts gives the optimal parameters exactly (FITPACK `fpopsp` fits the same
 //! quadratic by finite differences).
@@ -65,7 +65,7 @@ impl<'a> SphereGrid<'a> {
                 format!("v[0] should be between [-pi, pi) (v[0] = {v0})"),
             ));
         }
-        if !(v1 < v0 + TWO_PI) {
+        if v1 >= v0 + TWO_PI || v1.is_nan() {
             return Err(invalid(
                 "v",
                 format!(
@@ -324,7 +324,9 @@ fn solve(grid: &SphereGrid<'_>, sp: &SphereSpace, par: &[Param; 6], p: f64) -> R
         })?;
         // back substitution along u: R_u cc = x for each layer and longitude
         let dmax = (0..nuu).fold(0.0_f64, |m, i| m.max(qr_u.r[i * 5].abs()));
-        if let Some(i) = (0..nuu).find(|&i| !(qr_u.r[i * 5].abs() > RANK_RTOL * dmax)) {
+        if let Some(i) =
+            (0..nuu).find(|&i| qr_u.r[i * 5].abs() <= RANK_RTOL * dmax || qr_u.r[i * 5].is_nan())
+        {
             return Err(Error::SingularSystem {
                 reason: format!(
                     "the fit on the sphere has no pivot in colatitude row {}; the grid cannot \
@@ -406,7 +408,7 @@ fn solve_small(a: &mut [f64], b: &mut [f64], n: usize) -> Vec<f64> {
         for j in 0..k {
             dk -= a[k * n + j] * a[k * n + j];
         }
-        if !(dk > RANK_RTOL * dmax) {
+        if dk <= RANK_RTOL * dmax || dk.is_nan() {
             skip[k] = true;
             for i in k..n {
                 a[i * n + k] = 0.0;
@@ -479,8 +481,8 @@ fn interpolation_phi(v: &[f64]) -> Vec<f64> {
 ///
 /// # Errors
 /// The errors of [`SphereGrid::new`]; [`Error::InvalidArgument`] for `s` negative or not
-/// finite ("s should be positive"), a pole flat without continuity ("if pole_continuity is
-/// False, so must be pole_flat") or a pole value not finite; [`Error::SingularSystem`] if the
+/// finite ("s should be positive"), a pole flat without continuity ("if `pole_continuity` is
+/// False, so must be `pole_flat`") or a pole value not finite; [`Error::SingularSystem`] if the
 /// grid cannot carry the knots; [`Error::Cancelled`] through `progress`.
 pub fn sphere_grid_smoothing(
     grid: &SphereGrid<'_>,

@@ -6,7 +6,7 @@
 //! The unknowns are the free coefficients of [`SphereSpace`] in the order
 //! `(v₀, a₀, b₀, rows 2 … nθ−3 of n_φ each, v₁, a₁, b₁)`: every data row then touches at most
 //! five consecutive θ rows, a band of width `≈ 4 n_φ + 3`, reduced to a triangle by Givens
-//! rotations as the rows arrive (Dierckx 1993, §11.1.2; O(m·n_φ²) for `m` points).
+//! rotations as the rows arrive (Dierckx 1993, §11.1.2; `O(m·n_φ²)` for `m` points).
 
 use super::space::{SphereSpace, PI, TWO_PI};
 use super::SphereFit;
@@ -386,7 +386,7 @@ fn finish(sp: &SphereSpace, c: Vec<f64>, fp: f64, rank: usize, n: usize) -> Resu
 /// continuous first derivatives across them (FITPACK `sphere`, `iopt = −1`; Dierckx §11.1).
 /// Minimises `Σ (w_k (r_k − s(θ_k, φ_k)))²`; a numerically rank-deficient system gets the
 /// solution of least norm with pivots at most `√eps` times the largest dropped (FITPACK
-/// `fprank`). O(m·n_φ²) time for `m` points and `n_φ` φ spans.
+/// `fprank`). `O(m·n_φ²)` time for `m` points and `n_φ` φ spans.
 ///
 /// # Errors
 /// The errors of [`SphereData::new`]; [`Error::InvalidArgument`] for knots outside their

@@ -199,7 +199,7 @@ fn grid_interpolates_at_zero_s_with_every_pole_condition() {
                     .map(|(a, b)| (a - b).abs())
                     .fold(0.0, f64::max);
                 assert!(err < 1e-12, "{pole:?}: error {err}");
-                let north = value.map_or_else(|| partial_of(&fit, 0.0), |v| v);
+                let north = value.unwrap_or_else(|| partial_of(&fit, 0.0));
                 assert!((partial_of(&fit, 0.0) - north).abs() < 1e-12, "{pole:?}");
                 for k in 0..8 {
                     let phi = v[0] + k as f64;
