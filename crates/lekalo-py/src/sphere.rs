@@ -110,7 +110,9 @@ pub(crate) fn fit_sphere_smoothing(
 /// (`sphere_grid_smoothing`). Returns `(spline, fp, p, rank, limit)`.
 #[pyfunction]
 #[pyo3(signature = (u, v, r, s = 0.0, *, pole_values = (None, None), pole_exact = (false, false),
-    pole_continuity = (false, false), pole_flat = (false, false)))]
+    pole_continuity = (false, false), pole_flat = (false, false)),
+    text_signature = "(u, v, r, s=0.0, *, pole_values=(None, None), pole_exact=(False, False), \
+        pole_continuity=(False, False), pole_flat=(False, False))")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_sphere_grid(
     py: Python<'_>,
