@@ -479,6 +479,22 @@ fn interpolation_phi(v: &[f64]) -> Vec<f64> {
 ///
 /// Free pole parameters are optimal for each solve (module docs).
 ///
+/// ```
+/// use lekalo::fit::{sphere_grid_smoothing, PoleCondition, SphereGrid};
+/// use lekalo::Progress;
+/// let u: Vec<f64> = (1..8).map(|i| 0.4 * i as f64).collect();
+/// let v: Vec<f64> = (0..10).map(|j| -3.0 + 0.6 * j as f64).collect();
+/// let r: Vec<f64> = u.iter().flat_map(|a| v.iter().map(move |b| a.cos() + a.sin() * b.cos())).collect();
+/// let grid = SphereGrid::new(&u, &v, &r)?;
+/// let smooth = PoleCondition { continuity: true, ..PoleCondition::default() };
+/// let fit = sphere_grid_smoothing(&grid, 0.0, [smooth; 2], &Progress::new())?;
+/// // s = 0 interpolates, and the pole at θ = 0 has one value
+/// let s = |t: f64, p: f64| fit.spline.eval(&[t, p]).unwrap()[0];
+/// assert!((s(u[2], v[3]) - r[2 * v.len() + 3]).abs() < 1e-12);
+/// assert!((s(0.0, -3.0) - s(0.0, 1.0)).abs() < 1e-12);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
 /// # Errors
 /// The errors of [`SphereGrid::new`]; [`Error::InvalidArgument`] for `s` negative or not
 /// finite ("s should be positive"), a pole flat without continuity ("if `pole_continuity` is

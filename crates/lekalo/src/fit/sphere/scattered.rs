@@ -388,6 +388,23 @@ fn finish(sp: &SphereSpace, c: Vec<f64>, fp: f64, rank: usize, n: usize) -> Resu
 /// solution of least norm with pivots at most `√eps` times the largest dropped (FITPACK
 /// `fprank`). `O(m·n_φ²)` time for `m` points and `n_φ` φ spans.
 ///
+/// ```
+/// use lekalo::fit::{sphere_least_squares, SphereData};
+/// // points on a spiral, the values of z² (a smooth function of the point)
+/// let (theta, phi): (Vec<f64>, Vec<f64>) = (1..400)
+///     .map(|k| ((1.0 - k as f64 / 200.0).acos(), (2.4 * k as f64) % std::f64::consts::TAU))
+///     .unzip();
+/// let r: Vec<f64> = theta.iter().map(|t| t.cos().powi(2)).collect();
+/// let data = SphereData::new(&theta, &phi, &r, None)?;
+/// let fit = sphere_least_squares(&data, &[0.8, 1.6, 2.4], &[1.5, 3.0, 4.5], 1e-16)?;
+/// let s = |t: f64, p: f64| fit.spline.eval(&[t, p]).unwrap()[0];
+/// assert!((s(0.5, 1.0) - 0.5f64.cos().powi(2)).abs() < 1e-2);
+/// // one value at each pole, and periodic in φ
+/// assert!((s(0.0, 0.0) - s(0.0, 3.0)).abs() < 1e-12);
+/// assert!((s(1.0, 0.0) - s(1.0, std::f64::consts::TAU)).abs() < 1e-12);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
 /// # Errors
 /// The errors of [`SphereData::new`]; [`Error::InvalidArgument`] for knots outside their
 /// interval ("tt should be between (0, pi)", "tp should be between (0, 2pi)") or not

@@ -18,7 +18,7 @@
 //! cubic splines interpolating `cos φ`, `sin φ` at the φ knots (FITPACK `fpsphe`, `fpgrsp`).
 
 use crate::error::{Error, Result};
-use crate::fit::banded::BandedQr;
+use crate::fit::cyclic::CyclicQr;
 use crate::points::Points;
 use crate::tensor::TensorBSpline;
 
@@ -186,28 +186,25 @@ impl SphereSpace {
 }
 
 /// The coefficients `(γ_j, σ_j)` of the periodic cubic splines on the knots `tp` that
-/// interpolate `cos φ` and `sin φ` at the `npp` knots of a period (FITPACK `fpsphe`: a cyclic
-/// banded system solved by Givens rotations). Fewer than four spans: zero (FITPACK's choice;
-/// the spline is then too coarse to carry a derivative across the pole).
+/// interpolate `cos φ` and `sin φ` at the `npp` knots of a period (FITPACK `fpsphe`): a cyclic
+/// tridiagonal system (three B-splines are non-zero at a knot), solved by the cyclic banded QR
+/// in O(npp). Fewer than four spans: zero (FITPACK's choice; the spline is then too coarse to
+/// carry a derivative across the pole).
 fn periodic_cos_sin(tp: &[f64], npp: usize) -> Result<Vec<[f64; 2]>> {
     if npp < 4 {
         return Ok(vec![[0.0; 2]; npp]);
     }
-    let mut qr = BandedQr::new(npp, npp, 2);
+    let mut qr = CyclicQr::new(npp, 3, 3, 2);
     let mut scratch = crate::basis::BasisScratch::new(3);
     let mut b = [0.0; 4];
-    let mut h = vec![0.0; npp];
-    for i in 0..npp {
+    // the two rows that wrap around the corner first, so that first band columns never
+    // decrease; B-spline l − 3 + q is coefficient (i + q) mod npp at the knot l = i + 3
+    for i in [npp - 2, npp - 1].into_iter().chain(0..npp - 2) {
         let l = i + 3;
         let arg = tp[l];
         crate::basis::basis_funs_into(tp, 3, l, arg, &mut scratch, &mut b);
-        h.fill(0.0);
-        // B-spline l − 3 + q is coefficient (i + q) mod npp
-        for (q, &v) in b.iter().enumerate() {
-            h[(i + q) % npp] += v;
-        }
         let mut y = [arg.cos(), arg.sin()];
-        qr.add_row(0, &mut h, &mut y);
+        qr.add_cyclic(i, &b[..3], &mut y);
     }
     let mut x = vec![0.0; 2 * npp];
     qr.solve(&mut x).map_err(|_| Error::SingularSystem {
