@@ -40,9 +40,9 @@ impl<'a> SphereGrid<'a> {
     /// # Errors
     /// [`Error::InvalidArgument`] naming `u` ("u should be between (0, pi)", "u must be
     /// strictly increasing"), `v` ("v[0] should be between [-pi, pi)", "v[-1] should be
-    /// v[0] + 2pi or less", "v must be strictly increasing") or `r` (a value not finite);
-    /// [`Error::LengthMismatch`] if `r` does not hold one value per grid node;
-    /// [`Error::TooFew`] for fewer than four longitudes.
+    /// v[0] + 2pi or less", "v must be strictly increasing"); [`Error::LengthMismatch`] if `r`
+    /// does not hold one value per grid node; [`Error::NonFinite`] for a value of `r` that is
+    /// NaN or infinite; [`Error::TooFew`] for an empty grid or fewer than four longitudes.
     pub fn new(u: &'a [f64], v: &'a [f64], r: &'a [f64]) -> Result<Self> {
         let (Some(&u0), Some(&u1), Some(&v0), Some(&v1)) =
             (u.first(), u.last(), v.first(), v.last())
@@ -496,7 +496,7 @@ fn interpolation_phi(v: &[f64]) -> Vec<f64> {
 /// ```
 ///
 /// # Errors
-/// The errors of [`SphereGrid::new`]; [`Error::InvalidArgument`] for `s` negative or not
+/// [`Error::InvalidArgument`] for `s` negative or not
 /// finite ("s should be positive"), a pole flat without continuity ("if `pole_continuity` is
 /// False, so must be `pole_flat`") or a pole value not finite; [`Error::SingularSystem`] if the
 /// grid cannot carry the knots; [`Error::Cancelled`] through `progress`.

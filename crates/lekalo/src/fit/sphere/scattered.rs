@@ -41,8 +41,8 @@ impl<'a> SphereData<'a> {
     /// # Errors
     /// [`Error::InvalidArgument`] naming `w` ("w should be positive": a weight negative or not
     /// finite), `theta` ("theta should be between [0, pi]"), `phi` ("phi should be between
-    /// [0, 2pi]") or `r` (a value not finite), and [`Error::LengthMismatch`] for lengths that
-    /// differ.
+    /// [0, 2pi]"); [`Error::LengthMismatch`] for lengths that differ; [`Error::NonFinite`]
+    /// for a value of `r` that is NaN or infinite.
     pub fn new(
         theta: &'a [f64],
         phi: &'a [f64],
@@ -406,7 +406,7 @@ fn finish(sp: &SphereSpace, c: Vec<f64>, fp: f64, rank: usize, n: usize) -> Resu
 /// ```
 ///
 /// # Errors
-/// The errors of [`SphereData::new`]; [`Error::InvalidArgument`] for knots outside their
+/// [`Error::InvalidArgument`] for knots outside their
 /// interval ("tt should be between (0, pi)", "tp should be between (0, 2pi)") or not
 /// increasing, or `eps` outside `(0, 1)`; [`Error::TooLarge`] for a triangle beyond
 /// [`MAX_SCALARS`](crate::MAX_SCALARS).
@@ -539,7 +539,7 @@ pub fn sphere_max_knots(m: usize) -> usize {
 /// knots.
 ///
 /// # Errors
-/// The errors of [`SphereData::new`]; [`Error::InvalidArgument`] for `s` negative or not
+/// [`Error::InvalidArgument`] for `s` negative or not
 /// finite ("s should be positive") or `eps` outside `(0, 1)`; [`Error::Cancelled`] through
 /// `progress`.
 pub fn sphere_smoothing(
