@@ -12,7 +12,8 @@
 //! - classes: `curves` (their calculus in `calculus`), `surfaces`, `tensor` (N variables,
 //!   SciPy's `NdBSpline`; `tensor_values`: SciPy's `(t, c, k)` arrays evaluated in place),
 //!   `interp` (interpolation, Hermite; SciPy's Hermite slopes in `slopes`), `pp`, `blend`; knot insertion into periodic splines given as arrays: `periodic`;
-//! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports);
+//! - fitting: `fit` (SciPy-named `make_*` functions and `fit_*` with reports); `sphere` (the
+//!   bicubic splines on the sphere of SciPy's three `*SphereBivariateSpline` classes);
 //! - CAD files: `faces` (`read_step`, `read_iges`, `write_step`, `write_iges`, `Face`: a surface
 //!   trimmed by loops of edges);
 //! - geometric queries: `query` (`CurveQuery`, `SurfaceQuery`);
@@ -42,6 +43,7 @@ mod pp;
 mod query;
 mod shape;
 mod slopes;
+mod sphere;
 mod surfaces;
 mod tck;
 mod tensor;
@@ -105,6 +107,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fit::register(m)?;
     query::register(m)?;
     slopes::register(m)?;
+    sphere::register(m)?;
     tensor::register(m)?;
     tensor_values::register(m)?;
     tck::register(m)?;

@@ -36,6 +36,16 @@ pub(crate) struct PyTensorBSpline {
     trailing: Vec<usize>,
 }
 
+impl PyTensorBSpline {
+    /// The Python object of a spline of scalar values (no trailing axes).
+    pub(crate) fn scalar(inner: TensorBSpline) -> Self {
+        PyTensorBSpline {
+            inner,
+            trailing: Vec::new(),
+        }
+    }
+}
+
 /// Degrees from `k`: one integer for every variable, or one per variable.
 pub(crate) fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
     // a tuple or list is not tried as one integer first (the failed extraction builds an

@@ -13,7 +13,7 @@ import lekalo.scipy
         ("interp1d", "make_interp_spline(x, y, k=3)"),
         ("interp2d", "RectBivariateSpline"),
         ("griddata", "import it from scipy.interpolate"),
-        ("SmoothSphereBivariateSpline", "spherical"),
+        ("NdPPoly", "import it from scipy.interpolate"),
     ],
 )
 def test_a_name_outside_the_spline_part_says_what_to_use(name, advice):

@@ -734,6 +734,38 @@ def fit_tensor_scattered_smoothing(
     eps: Optional[float] = None,
 ) -> Tuple[TensorBSpline, float, Optional[float], int, Optional[str]]: ...
 
+# -- bicubic splines on the sphere (docs/theory/sphere.md): (spline, fp, p, rank, limit)
+def fit_sphere_least_squares(
+    theta: ArrayLike,
+    phi: ArrayLike,
+    r: ArrayLike,
+    tt: ArrayLike,
+    tp: ArrayLike,
+    *,
+    w: Optional[ArrayLike] = None,
+    eps: float = 1e-16,
+) -> Tuple[TensorBSpline, float, Optional[float], int, Optional[str]]: ...
+def fit_sphere_smoothing(
+    theta: ArrayLike,
+    phi: ArrayLike,
+    r: ArrayLike,
+    s: float,
+    *,
+    w: Optional[ArrayLike] = None,
+    eps: float = 1e-16,
+) -> Tuple[TensorBSpline, float, Optional[float], int, Optional[str]]: ...
+def fit_sphere_grid(
+    u: ArrayLike,
+    v: ArrayLike,
+    r: ArrayLike,
+    s: float = 0.0,
+    *,
+    pole_values: Tuple[Optional[float], Optional[float]] = (None, None),
+    pole_exact: Tuple[bool, bool] = (False, False),
+    pole_continuity: Tuple[bool, bool] = (False, False),
+    pole_flat: Tuple[bool, bool] = (False, False),
+) -> Tuple[TensorBSpline, float, Optional[float], int, Optional[str]]: ...
+
 # -- geometric queries (docs/theory/queries.md)
 class CurveQuery:
     def __init__(self, curve: Union[BezierCurve, BSplineCurve, NurbsCurve]) -> None: ...

@@ -20,6 +20,7 @@
 //! | `rows.rs` | the rows of the observation matrix: the weighted non-zero B-splines at each data parameter (crate-private kernel) | [#banded-qr] |
 //! | `shape/` | [`constrained_least_squares`], [`constrained_smoothing_spline`], [`constrained_smoothing_condition`]: fits of `y(x)` kept increasing, convex, bounded, … for every `x`, by a cone program (Clarabel) | [#shape-constraints] |
 //! | `robust.rs` | [`robust_least_squares`]: IRLS with Huber or Tukey weights | [#robust] |
+//! | `sphere/` | [`sphere_least_squares`], [`sphere_smoothing`] (scattered data), [`sphere_grid_smoothing`] (a grid): bicubic splines on the sphere, periodic in the longitude, with pole conditions (FITPACK `sphere`/`spgrid`) | `docs/theory/sphere.md` |
 //! | `surface.rs` | [`surface_grid_least_squares`] (P&T §9.4.3; [`surface_grid_least_squares_at`] at given parameters and knots, [`surface_grid_parameters`]), [`surface_scattered_least_squares`] | [#surfaces] |
 //!
 //! [#banded-qr]: ../../docs/theory/fitting.md#banded-qr
@@ -63,6 +64,7 @@ mod shape;
 mod smoothing;
 mod smoothing_condition;
 mod smoothing_on_knots;
+mod sphere;
 mod surface;
 mod tolerance;
 
@@ -95,6 +97,10 @@ pub use smoothing_on_knots::{smoothing_on_knots, smoothing_on_knots_with_progres
 // the pieces of FITPACK's smoothing condition that the smoothing on tensor grids shares
 pub(crate) use progress::Steps;
 pub(crate) use smoothing_condition::{check_condition_args, jump_rows, next_nplus, smooth_weight};
+pub use sphere::{
+    sphere_grid_smoothing, sphere_least_squares, sphere_max_knots, sphere_smoothing, PoleCondition,
+    SphereData, SphereFit, SphereGrid,
+};
 pub use surface::{
     surface_grid_least_squares, surface_grid_least_squares_at, surface_grid_parameters,
     surface_scattered_least_squares, surface_scattered_least_squares_with_progress,

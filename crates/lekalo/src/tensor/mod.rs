@@ -83,6 +83,9 @@ pub use scattered::{
     tensor_scattered_least_squares, tensor_scattered_least_squares_with, TensorScatteredFit,
 };
 pub use scattered_qr::RankDeficiency;
+// the band triangle's rotation with fill-in and its minimal-norm solve, shared by the fits on
+// the sphere
+pub(crate) use scattered_qr::{rotate_full, solve as solve_triangle};
 pub use scattered_smoothing::{
     tensor_scattered_smoothing, tensor_scattered_smoothing_with_progress, KnotLimit,
     ScatteredSmoothingOptions, TensorScatteredSmoothing,

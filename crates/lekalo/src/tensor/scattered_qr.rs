@@ -223,7 +223,13 @@ pub(super) fn observe(
 /// triangle, with the fill-in the row takes up from the rows below (FITPACK's rotation of the
 /// rows of the jumps in `fpsurf`, and of a dropped row in `fprank`). `h` and `y` are
 /// overwritten.
-fn rotate_full(qr: &mut BandedQr, bw: usize, first: usize, h: &mut [f64], y: &mut [f64]) {
+pub(crate) fn rotate_full(
+    qr: &mut BandedQr,
+    bw: usize,
+    first: usize,
+    h: &mut [f64],
+    y: &mut [f64],
+) {
     let n = qr.n();
     let nc = y.len();
     for j in first..n {
@@ -300,7 +306,7 @@ pub(super) fn with_jumps(
 /// at full rank, [`RankDeficiency::Refuse`] failing with the layout index of the first pivot
 /// below `RANK_RTOL` times the largest, [`RankDeficiency::MinimumNorm`] the solution of least
 /// norm with the pivots at most `√eps` times the largest set to zero (FITPACK `fprank`).
-pub(super) fn solve(
+pub(crate) fn solve(
     mut qr: BandedQr,
     bw: usize,
     rank: RankDeficiency,

@@ -19,14 +19,15 @@ periodic, ``"clamped"``, first-derivative pairs, second derivatives for cubics, 
 knots and smoothing on grids, ``__call__``, ``ev``, ``partial_derivative``, ``integral``),
 ``LSQBivariateSpline`` and ``SmoothBivariateSpline`` (FITPACK's ``surfit``, minimal-norm
 solutions of rank-deficient systems), ``bisplrep`` (``task`` 0 and -1), ``bisplev``, ``dblint``, ``NdBSpline`` (extrapolating the end polynomials as SciPy, ``derivative``),
-``make_ndbspl`` (solved directly, one banded sweep per direction);
+``make_ndbspl`` (solved directly, one banded sweep per direction); the spherical
+``LSQSphereBivariateSpline``, ``SmoothSphereBivariateSpline`` and ``RectSphereBivariateSpline``
+(FITPACK's ``sphere`` and ``spgrid``, with the pole conditions; ``docs/theory/sphere.md``);
 ``PPoly`` and ``BPoly`` (evaluation, ``derivative``, ``antiderivative``, ``integrate``, ``roots``/``solve``,
 ``extend``, ``from_spline``, ``from_bernstein_basis``, ``from_power_basis``) and, in
 SciPy's ``PPoly`` form, ``CubicSpline``, ``CubicHermiteSpline``, ``PchipInterpolator``
 (``pchip``, ``pchip_interpolate``), ``Akima1DInterpolator``. Not yet: mixed end conditions,
 ``splrep``/``splprep`` with ``task``/``xb``/``xe``, ``PPoly``/``BPoly`` with decreasing
-breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, ``bisplrep`` with ``task=1``, the spherical 2-D
-classes,
+breakpoints, ``BPoly.from_derivatives``, periodic knot insertion, ``bisplrep`` with ``task=1``,
 ``NdBSpline.design_matrix``; ``docs/scipy.md`` lists what SciPy's own tests find missing. The theory is in ``docs/theory/curves.md`` ("Antiderivatives, integrals and
 extrapolation") and ``docs/theory/interpolation.md`` (PCHIP and Akima slopes).
 """
@@ -69,6 +70,11 @@ from ._ppoly import (
     pchip,
     pchip_interpolate,
 )
+from ._sphere import (
+    LSQSphereBivariateSpline,
+    RectSphereBivariateSpline,
+    SmoothSphereBivariateSpline,
+)
 from ._splrep import generate_knots, make_splprep, make_splrep
 
 __all__ = [
@@ -95,6 +101,9 @@ __all__ = [
     "RectBivariateSpline",
     "LSQBivariateSpline",
     "SmoothBivariateSpline",
+    "LSQSphereBivariateSpline",
+    "SmoothSphereBivariateSpline",
+    "RectSphereBivariateSpline",
     "bisplrep",
     "bisplev",
     "dblint",
@@ -144,9 +153,6 @@ _NOT_PROVIDED = {
     "lagrange": _ELSEWHERE,
     "pade": _ELSEWHERE,
     "NdPPoly": "not provided yet; import it from scipy.interpolate",
-    "RectSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
-    "SmoothSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
-    "LSQSphereBivariateSpline": "the spherical 2-D classes are not provided yet; import it from scipy.interpolate",
 }
 
 
