@@ -81,6 +81,12 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
     Some(match arg {
         Arg::Knots => "knots",
         Arg::Parametrization | Arg::Exponent => "parametrization",
+        // `interpolate(params=)`, `CubicHermite(params, points, tangents)`,
+        // `fit_least_squares(points, params, t)`
+        Arg::Parameters => "params",
+        Arg::Tangents => "tangents",
+        // SciPy's `w` of every fit
+        Arg::DataWeights => "w",
         Arg::End => "end",
         Arg::EndDerivatives => "d_start/d_end",
         Arg::StartDerivative => "d_start",
@@ -113,7 +119,9 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
 /// The library's error as `lekalo.NumericalError` (a singular or ill-conditioned system, a
 /// mesh whose bound stayed above its tolerance) or
 /// `lekalo.InputError` (everything else); a refused value of an argument with a keyword
-/// ([`argument`]) is named by the keyword (`knots: …`).
+/// ([`argument`]) is named by the keyword (`knots: …`), and any other error about such an
+/// argument is written whole under a keyword that is not the library's word for it (`params:
+/// parameters (one per point): expected 5, got 3`).
 pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
     let numerical = matches!(
         e,
@@ -121,9 +129,14 @@ pub(crate) fn lib_err(e: lekalo::Error) -> PyErr {
             | lekalo::Error::IllConditioned { .. }
             | lekalo::Error::ToleranceNotMet { .. }
     );
-    if let lekalo::Error::InvalidArgument { reason, .. } = &e {
-        if let Some(name) = e.arg().and_then(argument) {
-            return raise(false, format!("{name}: {reason}"));
+    if let Some((arg, name)) = e.arg().and_then(|a| Some((a, argument(a)?))) {
+        match &e {
+            lekalo::Error::InvalidArgument { reason, .. } => {
+                return raise(false, format!("{name}: {reason}"));
+            }
+            // the message already names a keyword that is the library's word (`tangents`)
+            _ if name != arg.words() => return raise(numerical, format!("{name}: {e}")),
+            _ => {}
         }
     }
     raise(numerical, e.to_string())
