@@ -410,3 +410,25 @@ fn a_wrong_count_names_its_option() {
         assert!(err.contains(want), "{args:?}: {err}");
     }
 }
+
+/// `--function` takes x from the first column: `--params` and `--tangents` with it are
+/// refused by name, not silently dropped (the curve was that of `--function` alone).
+#[test]
+fn function_refuses_params_and_tangents() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("xy.csv"), "0,0\n1,2\n2,1\n3,3\n").unwrap();
+    fs::write(d.path().join("tan.csv"), "1,0\n1,0\n1,0\n1,0\n").unwrap();
+    for (option, value) in [("--params", "0,1,2,3"), ("--tangents", "tan.csv")] {
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(["interpolate", "xy.csv", "--function", option, value])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{option}: {err}");
+        assert!(
+            err.contains("'--function' cannot be used with") && err.contains(option),
+            "{option}: {err}"
+        );
+    }
+}
