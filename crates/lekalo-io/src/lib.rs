@@ -82,7 +82,7 @@ pub use palette::{
 #[cfg(feature = "parquet")]
 pub use parquet::{
     read_curve_groups, read_point_groups, read_text_point_groups, GroupKey, ParquetBatchWriter,
-    PointGroup, DEFAULT_KEY,
+    PointGroup, TextPointGroups, DEFAULT_KEY,
 };
 pub use png::svg_to_png;
 pub use points_in::{

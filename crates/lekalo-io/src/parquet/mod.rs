@@ -32,7 +32,7 @@ mod write;
 
 pub use read_curves::read_curve_groups;
 pub use read_points::read_point_groups;
-pub use text_groups::read_text_point_groups;
+pub use text_groups::{read_text_point_groups, TextPointGroups};
 pub use write::ParquetBatchWriter;
 
 use crate::error::IoResult;

@@ -14,6 +14,9 @@ use super::GroupKey;
 use crate::error::{IoError, IoResult, Location};
 use crate::text_points::Fields;
 
+/// The coordinate columns' names and the keyed point sets of a table.
+pub type TextPointGroups = (Vec<String>, Vec<(GroupKey, Points)>);
+
 /// The coordinate columns' names and the point sets of `text` (named `source` in errors),
 /// keyed by its column `key`, in the order of their first rows.
 ///
@@ -21,11 +24,7 @@ use crate::text_points::Fields;
 /// [`IoError::Syntax`] naming the line (and column): no header, no column `key` in it, a row
 /// with another number of fields than the header, a coordinate that is not a finite number, a
 /// key that comes back after other keys, no coordinate column or no row.
-pub fn read_text_point_groups(
-    text: &str,
-    source: &str,
-    key: &str,
-) -> IoResult<(Vec<String>, Vec<(GroupKey, Points)>)> {
+pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<TextPointGroups> {
     let at = |line: usize| Location::new(source).at_line(line);
     let mut lines = text
         .lines()
