@@ -79,6 +79,12 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
     Some(match arg {
         Arg::Knots => "--knots",
         Arg::Parametrization | Arg::Exponent => "--param",
+        // `interpolate --params` (the parameters of the points, given)
+        Arg::Parameters => "--params",
+        // `interpolate --tangents` (a Hermite spline's tangents)
+        Arg::Tangents => "--tangents",
+        // `fit --weights` (data weights; `make --weights` sets NURBS weights, `Arg::Weights`)
+        Arg::DataWeights => "--weights",
         Arg::End => "--end",
         Arg::EndDerivatives => "--start-derivative/--end-derivative",
         Arg::StartDerivative => "--start-derivative",

@@ -12,7 +12,7 @@
 //! | points: CSV, whitespace text, JSON | yes | — | [`read_points`] |
 //! | points: NumPy `.npy` float64 `(n, d)` | yes | yes (samples) | [`read_npy_points`], [`npy_bytes`] |
 //! | curves: NumPy `.npz` (degree, knots, control points, weights) | yes | yes | [`read_npz_curve`], [`curve_to_npz`], [`write_npz_curve`] |
-//! | batches: Parquet point sets in, curves in and out, samples out (batch by batch) | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`] |
+//! | batches: Parquet point sets in, curves in and out, samples out (batch by batch); point sets from a CSV with a key column | yes | yes | [`read_point_groups`], [`read_curve_groups`], [`ParquetBatchWriter`], [`read_text_point_groups`] |
 //! | samples (t, point, derivatives, curvature): CSV, JSON | — | yes | [`sample_table`] |
 //! | SVG plots: curve, control polygon, knots, data, basis functions, wireframes | — | yes | [`Figure`] |
 //! | PNG (SVG rendered by resvg) | — | yes | [`svg_to_png`] |
@@ -81,7 +81,8 @@ pub use palette::{
 };
 #[cfg(feature = "parquet")]
 pub use parquet::{
-    read_curve_groups, read_point_groups, GroupKey, ParquetBatchWriter, PointGroup, DEFAULT_KEY,
+    read_curve_groups, read_point_groups, read_text_point_groups, GroupKey, ParquetBatchWriter,
+    PointGroup, TextPointGroups, DEFAULT_KEY,
 };
 pub use png::svg_to_png;
 pub use points_in::{

@@ -441,3 +441,29 @@ def test_a_missing_cad_file_is_named_with_the_fix(tmp_path):
         with pytest.raises(lekalo.InputError, match="no such file; check the name") as e:
             read(str(tmp_path / "nope.step"))
         assert "os error" not in str(e.value)
+
+
+def test_a_file_that_cannot_be_read_is_also_the_oserror_python_raises(tmp_path):
+    # a SciPy/NumPy user writes `except FileNotFoundError`, as for open() and np.load;
+    # `except lekalo.InputError` and `except ValueError` still catch it
+    import errno
+    import os
+
+    locked = write(tmp_path, "locked.step", PLATE)
+    os.chmod(locked, 0)
+    cases = [
+        (tmp_path / "nope.step", FileNotFoundError, lekalo.MissingFileError, errno.ENOENT),
+        (tmp_path, IsADirectoryError, lekalo.NotAFileError, errno.EISDIR),
+    ]
+    if not os.access(locked, os.R_OK):  # root reads any file
+        cases.append((locked, PermissionError, lekalo.FileAccessError, errno.EACCES))
+    for read in (lekalo.read_step, lekalo.read_iges):
+        for path, builtin, cls, code in cases:
+            with pytest.raises(builtin) as e:
+                read(str(path))
+            assert type(e.value) is cls
+            assert isinstance(e.value, lekalo.InputError) and isinstance(e.value, ValueError)
+            assert e.value.errno == code and e.value.filename == str(path)
+            assert str(e.value).startswith(f"cannot read {path}: "), str(e.value)
+            assert "os error" not in str(e.value) and "Errno" not in str(e.value)
+    os.chmod(locked, 0o644)

@@ -334,3 +334,24 @@ def test_functions_of_x_name_a_repeated_x(call):
     message = str(e.value)
     assert "x[1] and x[2] are both 1" in message and "merge" in message, message
     assert "parameters" not in message, message
+
+
+def test_a_wrong_count_names_its_keyword():
+    # the library's error carries the argument's key; Python writes it as its keyword
+    pts = np.array([[0, 0], [1, 2], [2, 1], [3, 3], [4, 0]], dtype=float)
+    with pytest.raises(
+        lekalo.InputError, match=re.escape("params: parameters (one per point): expected 5, got 3")
+    ):
+        lekalo.interpolate(pts, params=[0, 1, 2])
+    with pytest.raises(
+        lekalo.InputError, match=re.escape("params: parameters (one per point): expected 5, got 2")
+    ):
+        lekalo.CubicHermite([0, 1], pts, pts)
+    # a keyword that is the library's word is not written twice
+    with pytest.raises(lekalo.InputError) as e:
+        lekalo.CubicHermite([0, 1, 2, 3, 4], pts, pts[:2])
+    assert str(e.value) == "tangents (one per point): expected 5, got 2"
+    with pytest.raises(
+        lekalo.InputError, match=re.escape("w: data weights (one per data point): expected 5, got 2")
+    ):
+        lekalo.make_lsq_spline(np.arange(5.0), pts[:, 1], [0, 0, 0, 0, 4, 4, 4, 4], w=[1, 2])

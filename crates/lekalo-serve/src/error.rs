@@ -109,6 +109,9 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         Arg::Times => "times",
         Arg::Knot => "t",
         Arg::EndDerivatives
+        | Arg::Parameters
+        | Arg::Tangents
+        | Arg::DataWeights
         | Arg::Direction
         | Arg::CornerWindow
         | Arg::Eps
@@ -140,6 +143,12 @@ mod tests {
             Arg::EndDerivatives,
             "both derivatives: the interpolation handler names the one at fault",
         ),
+        (
+            Arg::Parameters,
+            "no request gives the points' parameters: they come from `parametrization`",
+        ),
+        (Arg::Tangents, "no request gives Hermite tangents"),
+        (Arg::DataWeights, "no request gives a fit's data weights"),
         (Arg::Direction, "no request takes a surface direction"),
         (
             Arg::CornerWindow,

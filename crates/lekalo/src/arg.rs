@@ -51,6 +51,13 @@ args! {
     ControlPoints => "control points",
     /// The parametrization of interpolation points ([`crate::vocabulary::PARAMETRIZATION`]).
     Parametrization => "parametrization",
+    /// The parameters of data points, one per point (of interpolation, of a Hermite spline, of
+    /// a fit), given by the caller.
+    Parameters => "parameters",
+    /// The tangents of a Hermite spline, one per point.
+    Tangents => "tangents",
+    /// The weights of data points in a fit (one per data point), not NURBS [`Arg::Weights`].
+    DataWeights => "data weights",
     /// The exponent `e` of a parametrization `|ΔQ|^e` ([`crate::Parametrization::Exponent`]).
     Exponent => "parametrisation exponent",
     /// The end condition of interpolation ([`crate::vocabulary::END_CONDITION`]).

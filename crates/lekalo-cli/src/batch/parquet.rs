@@ -5,7 +5,7 @@
 //! size, so memory is bounded by a few batches and one output row group. A bad group is
 //! written with its `error`, reported on stderr with its key, and does not stop the others;
 //! the exit code is then 2. Also the conversion of curves between Parquet and JSON Lines
-//! ([`convert_curves`]).
+//! ([`convert_curves`]), and of a CSV of point sets with a key column to a Parquet batch.
 
 use lekalo_io::CurveJson;
 use std::path::Path;
@@ -458,6 +458,9 @@ pub(crate) fn convert_curves(
         })?;
         return super::lines::finish(cx, lines, out, &inputs);
     }
+    if read.is_none() && is_point_table(input) {
+        return convert_point_table(cx, input, out);
+    }
     let out = parquet_output(out, "curves")?;
     // standard input is read by the caller, once
     let (text, name) = match read {
@@ -483,6 +486,37 @@ pub(crate) fn convert_curves(
         |w| w.write_curves("line", &[]),
     )?;
     finish(&failed, rows.len(), input)
+}
+
+/// A CSV or whitespace table (`.csv`, `.tsv`, `.txt`): point sets with a key column.
+fn is_point_table(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        ["csv", "tsv", "txt"]
+            .iter()
+            .any(|t| e.eq_ignore_ascii_case(t))
+    })
+}
+
+/// The point sets of a table with a key column (`group,x,y`, the key column named by
+/// `--group-column`), written as a batch in the long layout (`lekalo convert scans.csv -o
+/// scans.parquet`), the input of `interpolate`, `fit` on a Parquet file.
+fn convert_point_table(cx: &Context, input: &Path, out: Option<&Path>) -> Result<()> {
+    let out = parquet_output(out, "point sets")?;
+    let key = &cx.group_column;
+    let (text, name) = lekalo_io::read_input(input)?;
+    let (names, groups) = lekalo_io::read_text_point_groups(&text, &name, key)?;
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    write_parquet(
+        cx,
+        input,
+        out,
+        |writer| {
+            writer
+                .write_points(key, &names, &groups)
+                .map_err(write_error(out))
+        },
+        |w| w.write_points(key, &names, &[]),
+    )
 }
 
 fn key_json(k: &GroupKey) -> serde_json::Value {

@@ -360,3 +360,75 @@ fn coinciding_points_are_named_by_their_lines() {
             .stderr(contains("dup.csv lines 4 and 6: points 1 and 2 coincide"));
     }
 }
+
+/// A list of the wrong length is named by its option: the library's error carries the
+/// argument's key, which the command line writes as its own option, with the counts.
+#[test]
+fn a_wrong_count_names_its_option() {
+    let d = tempfile::tempdir().unwrap();
+    let path = |name: &str| d.path().join(name);
+    fs::write(path("pts.txt"), "0 0\n1 2\n2 1\n3 3\n4 0\n").unwrap();
+    fs::write(path("tan.txt"), "1 0\n1 1\n").unwrap();
+    fs::write(path("w.txt"), "1\n2\n").unwrap();
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["interpolate", "pts.txt", "--params", "0,1,2"],
+            "error: --params: parameters (one per point): expected 5, got 3",
+        ),
+        (
+            &[
+                "interpolate",
+                "pts.txt",
+                "--params",
+                "0,1,2",
+                "--end",
+                "derivatives",
+                "--start-derivative",
+                "1,0",
+                "--end-derivative",
+                "1,0",
+            ],
+            "error: --params: parameters (one per point): expected 5, got 3",
+        ),
+        (
+            &["interpolate", "pts.txt", "--tangents", "tan.txt"],
+            "error: --tangents: tangents (one per point): expected 5, got 2",
+        ),
+        (
+            &["fit", "pts.txt", "--ctrl", "4", "--weights", "w.txt"],
+            "--weights: data weights (one per data point): expected 5, got 2",
+        ),
+        (
+            &["fit", "pts.txt", "--function", "--weights", "w.txt"],
+            "--weights: data weights (one per data point): expected 5, got 2",
+        ),
+    ];
+    for (args, want) in cases {
+        let out = lekalo().current_dir(d.path()).args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}
+
+/// `--function` takes x from the first column: `--params` and `--tangents` with it are
+/// refused by name, not silently dropped (the curve was that of `--function` alone).
+#[test]
+fn function_refuses_params_and_tangents() {
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("xy.csv"), "0,0\n1,2\n2,1\n3,3\n").unwrap();
+    fs::write(d.path().join("tan.csv"), "1,0\n1,0\n1,0\n1,0\n").unwrap();
+    for (option, value) in [("--params", "0,1,2,3"), ("--tangents", "tan.csv")] {
+        let out = lekalo()
+            .current_dir(d.path())
+            .args(["interpolate", "xy.csv", "--function", option, value])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{option}: {err}");
+        assert!(
+            err.contains("'--function' cannot be used with") && err.contains(option),
+            "{option}: {err}"
+        );
+    }
+}

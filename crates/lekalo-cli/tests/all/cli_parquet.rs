@@ -360,3 +360,82 @@ fn interpolate_and_sample_in_one_pass() {
         .code(2)
         .stderr(contains("--samples samples the curves of a Parquet batch"));
 }
+
+/// A CSV of point sets with a key column converts to a batch that reads back as the same point
+/// sets (bit for bit, in order, with the CSV's keys), and each curve interpolated from the batch
+/// is the curve of its group's own file. A CSV without the key column is refused naming it
+/// and `--group-column`.
+#[test]
+fn a_csv_with_a_key_column_converts_to_a_batch() {
+    let mut csv = String::from("scan,x,y\n");
+    let mut one = String::new();
+    for k in [3, 1] {
+        for r in points(f64::from(k)).iter() {
+            csv.push_str(&format!("{k},{},{}\n", r[0], r[1]));
+            if k == 1 {
+                one.push_str(&format!("{},{}\n", r[0], r[1]));
+            }
+        }
+    }
+    let d = dir_with(&[("scans.csv", &csv), ("one.csv", &one)]);
+    lekalo()
+        .current_dir(d.path())
+        .args([
+            "--group-column",
+            "scan",
+            "convert",
+            "scans.csv",
+            "-o",
+            "scans.parquet",
+        ])
+        .assert()
+        .success();
+    let mut groups = Vec::new();
+    lekalo_io::read_point_groups(&p(&d, "scans.parquet"), Some("scan"), |g| {
+        groups.extend(g);
+        Ok(())
+    })
+    .unwrap();
+    let groups: Vec<(GroupKey, Points)> =
+        groups.into_iter().map(|(k, g)| (k, g.unwrap())).collect();
+    assert_eq!(
+        groups,
+        vec![
+            (GroupKey::Int(3), points(3.0)),
+            (GroupKey::Int(1), points(1.0))
+        ]
+    );
+    lekalo()
+        .current_dir(d.path())
+        .args([
+            "--group-column",
+            "scan",
+            "interpolate",
+            "scans.parquet",
+            "-o",
+            "curves.parquet",
+        ])
+        .assert()
+        .success();
+    lekalo()
+        .current_dir(d.path())
+        .args(["interpolate", "one.csv", "-o", "one.json"])
+        .assert()
+        .success();
+    let single =
+        Object::from_json_str(&fs::read_to_string(p(&d, "one.json")).unwrap(), "one").unwrap();
+    let batch = curves(&p(&d, "curves.parquet"), "scan");
+    assert_eq!(batch[1].0, GroupKey::Int(1));
+    assert_eq!(batch[1].1.as_ref().unwrap(), &single);
+    // the key column is named by --group-column; without it the message says so
+    lekalo()
+        .current_dir(d.path())
+        .args(["convert", "scans.csv", "-o", "again.parquet"])
+        .assert()
+        .code(2)
+        .stderr(contains(
+            "scans.csv:1: the header `scan,x,y` has no key column `group`; name the column \
+             that groups the points `group`, or give its name with --group-column NAME",
+        ));
+    assert!(!p(&d, "again.parquet").exists());
+}

@@ -227,6 +227,63 @@ fn project_single_batch_and_all() {
         .code(2);
 }
 
+/// Query points of another dimension than the curve's or surface's are refused naming where
+/// they come from, both dimensions and the fix, with `--all` too (no Rust `[3.0, 1.0]`).
+#[test]
+fn project_names_the_dimensions_and_the_fix() {
+    let d = dir_with(&[
+        ("poly.json", POLY),
+        ("q3.csv", "3,1,0\n0,3,1\n"),
+        (
+            "s.json",
+            r#"{"lekalo": 1, "type": "bezier_surface", "net": [2, 2], "control": [[0, 0, 0], [0, 4, 0], [4, 0, 0], [4, 4, 0]]}"#,
+        ),
+    ]);
+    let curve_fix = "poly.json is 2-D: give points of 2 coordinates (x,y), or a curve of the \
+                     points' dimension";
+    let cases: [(&[&str], &str, String); 5] = [
+        (
+            &["--point", "3,1,0"],
+            "poly.json",
+            format!("error: --point 3,1,0 has 3 coordinates, but the curve {curve_fix}"),
+        ),
+        (
+            &["--point", "3,1,0", "--all", "1e-9"],
+            "poly.json",
+            format!("error: --point 3,1,0 has 3 coordinates, but the curve {curve_fix}"),
+        ),
+        (
+            &["--points", "q3.csv"],
+            "poly.json",
+            format!("error: q3.csv: the points are 3-D, but the curve {curve_fix}"),
+        ),
+        (
+            &["--points", "q3.csv", "--all", "1e-9"],
+            "poly.json",
+            format!("error: q3.csv: the points are 3-D, but the curve {curve_fix}"),
+        ),
+        (
+            &["--point", "1"],
+            "s.json",
+            "error: --point 1 has 1 coordinate, but the surface s.json is 3-D: give points of 3 \
+             coordinates (x,y,z), or a surface of the points' dimension"
+                .to_string(),
+        ),
+    ];
+    for (args, input, want) in cases {
+        let out = lekalo()
+            .current_dir(d.path())
+            .arg("project")
+            .arg(input)
+            .args(args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end(), want, "{args:?}");
+    }
+}
+
 #[test]
 fn intersect_pairs_self_and_plane() {
     let d = dir_with(&[

@@ -39,7 +39,7 @@ pub enum Header {
 }
 
 /// The fields of one (trimmed, non-empty) line, without allocating.
-enum Fields<'a> {
+pub(crate) enum Fields<'a> {
     /// Split at `,` and `;` (found with `memchr2`), each field trimmed; `None` after the last.
     Separated(Option<&'a str>),
     /// Split at runs of white space.
@@ -47,7 +47,7 @@ enum Fields<'a> {
 }
 
 impl<'a> Fields<'a> {
-    fn of(line: &'a str) -> Self {
+    pub(crate) fn of(line: &'a str) -> Self {
         if memchr::memchr2(b',', b';', line.as_bytes()).is_some() {
             Fields::Separated(Some(line))
         } else {

@@ -18,7 +18,10 @@ Conventions (see the package README, "SciPy users start here"):
 - parameters outside a curve's domain raise ``lekalo.Error`` (no extrapolation);
 - every error is a ``lekalo.Error`` with the library's message: ``lekalo.InputError`` (also a
   ``ValueError``) for bad input, ``lekalo.NumericalError`` (also NumPy's ``LinAlgError``, as
-  SciPy raises) for a numerical failure on valid input.
+  SciPy raises) for a numerical failure on valid input; a file that cannot be read is also
+  the ``OSError`` Python raises for it (``lekalo.MissingFileError`` is a ``FileNotFoundError``,
+  ``lekalo.NotAFileError`` an ``IsADirectoryError``, ``lekalo.FileAccessError`` a
+  ``PermissionError``).
 
 >>> import numpy as np, lekalo
 >>> c = lekalo.interpolate(np.array([[0, 0], [1, 2], [3, 2], [4, 0]], dtype=float))
@@ -39,7 +42,10 @@ from ._lekalo import (
     CubicHermite,
     Error,
     Face,
+    FileAccessError,
     InputError,
+    MissingFileError,
+    NotAFileError,
     NumericalError,
     NurbsCurve,
     NurbsSurface,
@@ -136,6 +142,9 @@ __all__ = [
     "CubicHermite",
     "Error",
     "InputError",
+    "MissingFileError",
+    "NotAFileError",
+    "FileAccessError",
     "NumericalError",
     "NurbsCurve",
     "NurbsSurface",

@@ -45,12 +45,20 @@ impl BSplineCurve {
         let s = self.knots.multiplicity(t);
         let total = s.saturating_add(times);
         if total > p {
+            let room = p.saturating_sub(s);
+            // the fix: fewer insertions, or, where none is left, another knot or a higher degree
+            let fix = match (room, p) {
+                (0, 0) => "a curve of degree 0 takes no knot: elevate its degree first".to_string(),
+                (0, _) => "it has the largest multiplicity already: insert another knot, or \
+                           elevate the degree first"
+                    .to_string(),
+                _ => format!("insert it at most {room} times"),
+            };
             return Err(Error::InvalidArgument {
                 what: Arg::Times.into(),
                 reason: format!(
                     "inserting {t} {times} times would give it multiplicity {total}, more than \
-                     the degree {p}; insert it at most {} times",
-                    p.saturating_sub(s),
+                     the degree {p}; {fix}",
                     t = readable(&t)
                 ),
             });
@@ -432,4 +440,43 @@ impl BSplineCurve {
 /// Copies point `src_i` of `src` into point `dst_i` of `dst` (flat, `dim` per point).
 fn copy_point(dst: &mut [f64], dst_i: usize, src: &[f64], src_i: usize, dim: usize) {
     dst[dst_i * dim..(dst_i + 1) * dim].copy_from_slice(&src[src_i * dim..(src_i + 1) * dim]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A refused insertion says how many fit, or, where none does, what to do instead.
+    #[test]
+    fn a_refused_insertion_names_the_fix() {
+        let pts = Points::from_2d(&[[0., 0.], [1., 2.], [2., 0.], [3., 1.], [4., 0.]]).unwrap();
+        let cubic = BSplineCurve::new(3, vec![0., 0., 0., 0., 0.5, 1., 1., 1., 1.], pts).unwrap();
+        let flat =
+            BSplineCurve::new(0, vec![0., 1.], Points::from_2d(&[[1., 1.]]).unwrap()).unwrap();
+        let full = cubic.insert_knot(0.5, 2).unwrap();
+        let cases = [
+            (
+                &cubic,
+                3,
+                "multiplicity 4, more than the degree 3; insert it at most 2 times",
+            ),
+            (
+                &full,
+                1,
+                "multiplicity 4, more than the degree 3; it has the largest multiplicity already: \
+                 insert another knot, or elevate the degree first",
+            ),
+            (
+                &flat,
+                1,
+                "multiplicity 1, more than the degree 0; a curve of degree 0 takes no knot: \
+                 elevate its degree first",
+            ),
+        ];
+        for (c, times, want) in cases {
+            let e = c.insert_knot(0.5, times).unwrap_err();
+            assert_eq!(e.arg(), Some(Arg::Times), "{e}");
+            assert!(e.to_string().ends_with(want), "{e}");
+        }
+    }
 }

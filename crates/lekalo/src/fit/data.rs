@@ -4,6 +4,7 @@ use super::rows::for_each_row;
 use crate::error::{check_finite, Error, Result};
 use crate::points::PointsRef;
 use crate::BSplineCurve;
+use crate::{Arg, What};
 
 /// Points `Q_k` with parameters `ū_k` and optional weights `w_k`, validated once.
 ///
@@ -38,7 +39,7 @@ impl<'a> FitData<'a> {
         }
         if params.len() != points.len() {
             return Err(Error::LengthMismatch {
-                what: "data parameters (one per data point)".into(),
+                what: What::of(Arg::Parameters, "data parameters (one per data point)"),
                 expected: points.len(),
                 got: params.len(),
             });
@@ -59,7 +60,7 @@ impl<'a> FitData<'a> {
     pub fn with_weights(self, weights: &'a [f64]) -> Result<Self> {
         if weights.len() != self.points.len() {
             return Err(Error::LengthMismatch {
-                what: "data weights (one per data point)".into(),
+                what: What::of(Arg::DataWeights, "data weights (one per data point)"),
                 expected: self.points.len(),
                 got: weights.len(),
             });

@@ -290,9 +290,12 @@ impl CurveInterpolation {
         if parameters.len() != expected {
             return Err(Error::LengthMismatch {
                 what: if periodic {
-                    "parameters (points + 1 for the closing parameter)".into()
+                    What::of(
+                        Arg::Parameters,
+                        "parameters (points + 1 for the closing parameter)",
+                    )
                 } else {
-                    "parameters (one per point)".into()
+                    What::of(Arg::Parameters, "parameters (one per point)")
                 },
                 expected,
                 got: parameters.len(),

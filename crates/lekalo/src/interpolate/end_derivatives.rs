@@ -10,7 +10,7 @@ use crate::interpolate::collocation::{solve_collocation, Factors};
 use crate::interpolate::fast::free_end_cubic;
 use crate::knots::KnotVector;
 use crate::points::{Points, PointsRef};
-use crate::Arg;
+use crate::{Arg, What};
 
 /// A prescribed derivative at one end of an interpolating curve: `C^{(order)}(t̄) = value`,
 /// derivatives with respect to the curve parameter; `value` has the points' dimension.
@@ -75,7 +75,7 @@ pub fn interpolate_with_end_derivatives(
     }
     if params.len() != m {
         return Err(Error::LengthMismatch {
-            what: "parameters (one per point)".into(),
+            what: What::of(Arg::Parameters, "parameters (one per point)"),
             expected: m,
             got: params.len(),
         });

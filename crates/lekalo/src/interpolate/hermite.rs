@@ -22,6 +22,7 @@ use crate::interpolate::parametrization::{
     check_strictly_increasing, parametrize, Parametrization,
 };
 use crate::points::{Points, PointsRef};
+use crate::{Arg, What};
 
 /// The Hermite basis matrix `M_H` of document 002, Hermite segment: `[a b c d]ᵀ = M_H·[p_k p_{k+1}
 /// Dp_k Dp_{k+1}]ᵀ` for `P(u) = a u³ + b u² + c u + d`. It is the inverse of the corrected forward
@@ -220,7 +221,7 @@ impl CubicHermite {
         check_data(&params, points.as_view())?;
         if tangents.len() != points.len() {
             return Err(Error::LengthMismatch {
-                what: "tangents (one per point)".into(),
+                what: What::of(Arg::Tangents, "tangents (one per point)"),
                 expected: points.len(),
                 got: tangents.len(),
             });
@@ -398,7 +399,7 @@ fn check_data(params: &[f64], points: PointsRef<'_>) -> Result<()> {
     }
     if params.len() != points.len() {
         return Err(Error::LengthMismatch {
-            what: "parameters (one per point)".into(),
+            what: What::of(Arg::Parameters, "parameters (one per point)"),
             expected: points.len(),
             got: params.len(),
         });

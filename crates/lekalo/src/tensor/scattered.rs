@@ -10,6 +10,7 @@ use crate::tensor::scattered_qr::{
     observe, solve, to_natural, Layout, RankDeficiency, RowProducts,
 };
 use crate::tensor::spline::{check_len, check_n_vars, checked_size, TensorBSpline};
+use crate::{Arg, What};
 
 /// The result of [`tensor_scattered_least_squares`].
 #[derive(Debug, Clone, PartialEq)]
@@ -308,7 +309,11 @@ pub fn tensor_scattered_least_squares_with(
 
 /// Weights finite, non-negative, one per point, not all zero.
 pub(super) fn check_weights(w: &[f64], count: usize) -> Result<()> {
-    check_len("weights (one per data point)", count, w.len())?;
+    check_len(
+        What::of(Arg::DataWeights, "weights (one per data point)"),
+        count,
+        w.len(),
+    )?;
     if let Some((index, &weight)) = w
         .iter()
         .enumerate()

@@ -164,9 +164,13 @@ pub(crate) struct InterpolateArgs {
     )]
     params_in: Vec<String>,
     /// The points are (x, y...) samples of a function y(x): natural cubic spline (or Hermite).
+    /// The first column is x, the parameter: --params and --tangents are refused, not ignored.
     #[arg(
         long,
-        conflicts_with_all = ["end", "knots", "d0", "dn", "param", "exponent", "degree", "degree_v"]
+        conflicts_with_all = [
+            "end", "knots", "d0", "dn", "param", "exponent", "degree", "degree_v", "params",
+            "tangents"
+        ]
     )]
     function: bool,
     /// Cubic Hermite interpolation with estimated tangents.

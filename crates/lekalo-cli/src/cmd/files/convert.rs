@@ -49,6 +49,9 @@ Examples:
   lekalo convert again.igs -o from-iges.jsonl
 
 Surfaces also convert to csv: u, v, x, y, z on a √samples × √samples grid.
+Parquet batches (docs/formats.md#6c-parquet-batches-read-and-write): curves convert between
+.parquet and .jsonl; a CSV of point sets whose header names the key column (group,x,y, or
+--group-column NAME) converts to .parquet point sets, the input of interpolate and fit.
 CAD input: a STEP file (.step, .stp; AP203, AP214, AP242) gives its B-spline and NURBS
 curves and surfaces (B_SPLINE_CURVE_WITH_KNOTS, B_SPLINE_SURFACE_WITH_KNOTS, the rational
 complex entities, TRIMMED_CURVE by parameter values), in millimetres, as jsonl (default),

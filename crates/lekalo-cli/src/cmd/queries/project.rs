@@ -61,18 +61,63 @@ pub(crate) fn closest_points(
 ) -> Result<Points> {
     let q = query_curve(obj, path)?;
     if data.dim() != q.dim() {
-        return bad_input(format!(
-            "{}: the points are {}-D, the curve {} is {}-D",
-            data_path.display(),
-            data.dim(),
-            path.display(),
-            q.dim()
+        return bad_input(other_dimension(
+            &format!("{}: the points are {}-D", data_path.display(), data.dim()),
+            "curve",
+            path,
+            q.dim(),
         ));
     }
     let bad = |e: lekalo::Error| BadInput(format!("{}: {e}", path.display()));
     let feet = q.project_batch(data.as_view()).map_err(bad)?;
     Points::from_flat(q.dim(), feet.into_iter().flat_map(|r| r.point).collect())
         .map_err(|e| bad(e).into())
+}
+
+/// The message of query points (`what`: where they come from and their dimension) that are
+/// not of the dimension `dim` of the `kind` (curve or surface) in `path`, with the fix.
+fn other_dimension(what: &str, kind: &str, path: &Path, dim: usize) -> String {
+    format!(
+        "{what}, but the {kind} {} is {dim}-D: give points of {dim} coordinates ({}), or a {kind} \
+         of the points' dimension",
+        path.display(),
+        lekalo_io::coord_names(dim).join(",")
+    )
+}
+
+/// Refuses query points (`--point`, the rows of `--points`) not of the dimension `dim` of the
+/// `kind` read from `a.input`, naming the option or file, both dimensions and the fix.
+fn check_dimension(
+    a: &ProjectArgs,
+    single: &[f64],
+    file: Option<&Points>,
+    kind: &str,
+    dim: usize,
+) -> Result<()> {
+    if !single.is_empty() && single.len() != dim {
+        let given = a.point.as_deref().unwrap_or_default();
+        return bad_input(other_dimension(
+            &format!(
+                "--point {given} has {} coordinate{}",
+                single.len(),
+                if single.len() == 1 { "" } else { "s" }
+            ),
+            kind,
+            &a.input,
+            dim,
+        ));
+    }
+    if let (Some(pts), Some(path)) = (file, &a.points) {
+        if pts.dim() != dim {
+            return bad_input(other_dimension(
+                &format!("{}: the points are {}-D", path.display(), pts.dim()),
+                kind,
+                &a.input,
+                dim,
+            ));
+        }
+    }
+    Ok(())
 }
 
 pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
@@ -105,6 +150,7 @@ pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
     match shape {
         Shape::Curve(obj) => {
             let q = query_curve(&obj, &a.input)?;
+            check_dimension(a, &rows, file_points.as_ref(), "curve", q.dim())?;
             if let Some(tol) = a.all {
                 for (i, p) in pts.iter().enumerate() {
                     for r in q.project_all(p, tol).map_err(bad)? {
@@ -112,15 +158,7 @@ pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
                     }
                 }
             } else {
-                let dim = q.dim();
-                if let Some(bad_pt) = pts.iter().find(|p| p.len() != dim) {
-                    return bad_input(format!(
-                        "query point {:?} has dimension {}, the curve {dim}",
-                        bad_pt,
-                        bad_pt.len()
-                    ));
-                }
-                let flat = Points::from_flat(dim, pts.concat()).map_err(bad)?;
+                let flat = Points::from_flat(q.dim(), pts.concat()).map_err(bad)?;
                 for (i, r) in q
                     .project_batch(flat.as_view())
                     .map_err(bad)?
@@ -133,6 +171,7 @@ pub(crate) fn run(a: &ProjectArgs, cx: &Context) -> Result<()> {
         }
         Shape::Surface(s) => {
             let q = query_surface(&s, &a.input)?;
+            check_dimension(a, &rows, file_points.as_ref(), "surface", q.dim())?;
             for (i, p) in pts.iter().enumerate() {
                 let r = q.project(p).map_err(bad)?;
                 out_rows.push((i, vec![r.uv.0, r.uv.1], r.point, r.distance));

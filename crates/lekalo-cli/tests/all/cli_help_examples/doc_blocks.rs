@@ -1,6 +1,6 @@
-//! The documentation runs as written: every `sh` block of `README.md` and `docs/cli.md` is run
-//! line by line by `sh`, in order, in one empty folder per page (each page makes its own input
-//! files, as a reader starting from nothing would), with the test build of `lekalo` first on
+//! The documentation runs as written: every `sh` block of `README.md`, `docs/cli.md` and
+//! `docs/formats.md` is run line by line by `sh`, in order, in one empty folder per page (each
+//! page makes its own input files, as a reader starting from nothing would), with the test build of `lekalo` first on
 //! `PATH`. A line `#   TEXT` right under a command quotes the command's output: the
 //! quoted lines must be the first lines of its standard output, compared up to an ellipsis `…`
 //! where the text has one (the rest of the line is a comment), in full otherwise. Commands that
@@ -45,14 +45,6 @@ const NOT_RUN: &[(&str, &str)] = &[
     (
         "cargo run --release -p lekalo --example par_placement",
         "a timing example",
-    ),
-    (
-        "lekalo interpolate scans.parquet",
-        "reads a Parquet file of point groups of the reader's own (cli_parquet.rs makes them and runs these commands)",
-    ),
-    (
-        "lekalo eval curves.parquet",
-        "the Parquet block's second command (see the first)",
     ),
 ];
 
@@ -169,7 +161,7 @@ fn run_page(
 }
 
 #[test]
-fn readme_and_cli_docs_run_as_written() {
+fn readme_cli_and_formats_docs_run_as_written() {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
     let mut used = vec![false; NOT_RUN.len()];
     let mut failures = Vec::new();
@@ -188,6 +180,20 @@ fn readme_and_cli_docs_run_as_written() {
     let ran = run_page("docs/cli.md", &cli, d.path(), &mut used, &mut failures);
     if ran < 40 {
         failures.push(format!("only {ran} docs/cli.md commands ran"));
+    }
+
+    // docs/formats.md's Parquet block makes its point sets from a CSV before it reads them
+    let formats = fs::read_to_string(format!("{root}/docs/formats.md")).expect("docs/formats.md");
+    let d = tempfile::tempdir().expect("a temporary folder");
+    let ran = run_page(
+        "docs/formats.md",
+        &formats,
+        d.path(),
+        &mut used,
+        &mut failures,
+    );
+    if ran < 7 {
+        failures.push(format!("only {ran} docs/formats.md commands ran"));
     }
 
     for (i, (line, _)) in NOT_RUN.iter().enumerate() {
