@@ -118,9 +118,9 @@ pub fn interpolate_with_end_derivatives(
             });
         }
     }
-    // one pass over the parameters: each exceeds the one before (`!(b > a)` is also true for a
-    // NaN), so with finite ends every parameter is finite; the first non-finite parameter up to
-    // the first pair out of order is reported as such
+    // one pass over the parameters: each exceeds the one before (a pair with a NaN compares as
+    // neither), so with finite ends every parameter is finite; the first non-finite parameter up
+    // to the first pair out of order is reported as such
     let non_finite = |upto: usize| {
         params[..upto]
             .iter()
@@ -131,7 +131,9 @@ pub fn interpolate_with_end_derivatives(
                 value: params[index],
             })
     };
-    let disorder = params.windows(2).position(|w| !(w[1] > w[0]));
+    let disorder = params
+        .windows(2)
+        .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater));
     if let Some(e) = non_finite(disorder.map_or(m, |w| w + 2)) {
         return Err(e);
     }
