@@ -78,6 +78,19 @@ impl FloatArray<'_> {
         self.points(what)
     }
 
+    /// The array as a 1-D list of numbers, its finiteness left to the library call that
+    /// takes it (one that checks every number it reads, as its documentation says), so that the
+    /// data are read once.
+    pub(crate) fn vector_for_checking_call(&self, what: &str) -> PyResult<&[f64]> {
+        if self.shape.len() != 1 {
+            return Err(bad(format!(
+                "{what}: expected a 1-D array, got shape {:?}",
+                self.shape
+            )));
+        }
+        Ok(self.data())
+    }
+
     /// The array as a 1-D list of numbers, checked finite.
     pub(crate) fn vector(&self, what: &str) -> PyResult<&[f64]> {
         if self.shape.len() != 1 {

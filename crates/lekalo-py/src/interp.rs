@@ -308,7 +308,8 @@ pub(crate) fn interpolate_with_end_derivatives(
 ) -> PyResult<PyBSplineCurve> {
     let k = k.count("k")?;
     let xa = floats(x, "x")?;
-    let xs = xa.vector("x")?;
+    // interpolate_with_end_derivatives checks every parameter (finite, increasing)
+    let xs = xa.vector_for_checking_call("x")?;
     let ya = floats(y, "y")?;
     let ys = ya.points("y")?;
     let knots = lekalo::KnotVector::new(vec1(t, "t")?).map_err(lib_err)?;

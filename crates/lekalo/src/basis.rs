@@ -459,6 +459,17 @@ pub fn design_matrix_into(
             got: values.len(),
         });
     }
+    let located = match w {
+        2 => design_rows_located::<2>(knots, t, extrapolate, values, &mut first_column),
+        3 => design_rows_located::<3>(knots, t, extrapolate, values, &mut first_column),
+        4 => design_rows_located::<4>(knots, t, extrapolate, values, &mut first_column),
+        5 => design_rows_located::<5>(knots, t, extrapolate, values, &mut first_column),
+        6 => design_rows_located::<6>(knots, t, extrapolate, values, &mut first_column),
+        _ => None,
+    };
+    if let Some(done) = located {
+        return done;
+    }
     let (lo, hi) = knots.domain(degree);
     let mut cursor = knots.span_cursor(degree);
     let mut scratch = BasisScratch::new(degree);
@@ -477,6 +488,64 @@ pub fn design_matrix_into(
         first_column(j, span - degree);
     }
     Ok(())
+}
+
+/// The rows of [`design_matrix_into`] for the order `W = p + 1` known at compile time, the
+/// spans found by the bucket table of the B-spline evaluator
+/// ([`PieceLocator`](crate::curve::fast_eval::locate::PieceLocator): O(1) a parameter for
+/// spread-out knots and no branch to mispredict on unsorted parameters, where the span cursor
+/// searches from the previous span) and the values by [`basis_funs_fixed`] (the operations of
+/// [`basis_funs_into`] in the same order: the same bits). The same spans as the cursor: the
+/// piece `j` with `x_j ≤ t < x_{j+1}` of the distinct knots of the domain is the span of its
+/// last knot `x_j`, the last piece at the right end. `None` (nothing written) where the table
+/// would cost more than it saves: fewer parameters than pieces, or a domain of one point.
+fn design_rows_located<const W: usize>(
+    knots: &KnotVector,
+    t: &[f64],
+    extrapolate: bool,
+    values: &mut [f64],
+    first_column: &mut impl FnMut(usize, usize),
+) -> Option<Result<()>> {
+    let p = W - 1;
+    let k = knots.as_slice();
+    let n = k.len() - W;
+    let (mut breaks, mut spans) = (Vec::new(), Vec::new());
+    for i in p..n {
+        if k[i] < k[i + 1] {
+            breaks.push(k[i]);
+            spans.push(i);
+        }
+    }
+    if spans.is_empty() || t.len() < spans.len() {
+        return None;
+    }
+    breaks.push(k[n]);
+    let locator = crate::curve::fast_eval::locate::PieceLocator::new(&breaks);
+    let (lo, hi) = knots.domain(p);
+    for (j, (&tj, out)) in t.iter().zip(values.chunks_exact_mut(W)).enumerate() {
+        if !tj.is_finite() {
+            return Some(Err(Error::NonFinite {
+                what: "x".into(),
+                index: j,
+                value: tj,
+            }));
+        }
+        let at = if extrapolate {
+            tj.max(lo).min(hi)
+        } else if lo <= tj && tj <= hi {
+            tj
+        } else {
+            return Some(Err(Error::ParameterOutOfDomain {
+                t: tj,
+                min: lo,
+                max: hi,
+            }));
+        };
+        let span = spans[locator.find(&breaks, at)];
+        out.copy_from_slice(&basis_funs_fixed::<W>(k, span, tj));
+        first_column(j, span - p);
+    }
+    Some(Ok(()))
 }
 
 /// Derivatives of orders `0..=n_ders` of the non-zero basis functions at `t` (P&T Algorithm
@@ -722,6 +791,79 @@ mod tests {
                 let linear_size: f64 = terms.map(f64::abs).sum::<f64>() + xj.abs();
                 prop_assert!((linear - xj).abs() <= 1e-13 * linear_size, "{} against {}", linear, xj);
             }
+        }
+    }
+
+    /// Many unsorted parameters (the bucket table's spans, orders 2–6; order 7 by the span
+    /// cursor) give the rows of `basis_functions_many` bit for bit, on knots with a double
+    /// interior knot, at every knot and at both ends; beyond the domain, the end span's.
+    #[test]
+    fn design_rows_of_many_unsorted_parameters_are_the_basis_bit_for_bit() {
+        for p in 1..=6 {
+            let mut knots = vec![0.0; p + 1];
+            knots.extend([0.3, 0.7, 0.7, 1.1, 2.0, 2.05, 3.5]);
+            knots.extend(vec![4.0; p + 1]);
+            let kv = KnotVector::new(knots.clone()).unwrap();
+            // a fixed scramble of the domain, every knot, and the ends
+            let mut x: Vec<f64> = (0..500)
+                .map(|i| ((i * 7919) % 500) as f64 * 0.008)
+                .collect();
+            x.extend_from_slice(&knots);
+            let w = p + 1;
+            let mut values = vec![0.0; x.len() * w];
+            let mut first = vec![usize::MAX; x.len()];
+            design_matrix_into(&kv, p, &x, false, &mut values, |j, c| first[j] = c).unwrap();
+            let (spans, want) = basis_functions_many(&kv, p, &x).unwrap();
+            assert_eq!(
+                values, want,
+                "degree {p}: the values of basis_functions_many"
+            );
+            let firsts: Vec<usize> = spans.iter().map(|s| s - p).collect();
+            assert_eq!(first, firsts, "degree {p}: the first columns");
+            // beyond the ends: the end spans' polynomials, as the cursor's path gives them
+            let beyond = [-0.5, 4.5, -1e-9, 4.0 + 1e-9];
+            let mut many = x.clone();
+            many.extend_from_slice(&beyond);
+            let mut values = vec![0.0; many.len() * w];
+            let mut first = vec![usize::MAX; many.len()];
+            design_matrix_into(&kv, p, &many, true, &mut values, |j, c| first[j] = c).unwrap();
+            let mut few = [0.0; 4 * 7];
+            let mut few_first = [usize::MAX; 4];
+            // four parameters, fewer than the pieces: the span cursor's path
+            design_matrix_into(&kv, p, &beyond, true, &mut few[..4 * w], |j, c| {
+                few_first[j] = c;
+            })
+            .unwrap();
+            assert_eq!(&values[x.len() * w..], &few[..4 * w], "degree {p} beyond");
+            assert_eq!(&first[x.len()..], &few_first, "degree {p} beyond");
+            // refused: the first NaN and the first parameter outside, by index
+            let mut bad = x.clone();
+            bad[300] = f64::NAN;
+            let e = design_matrix_into(
+                &kv,
+                p,
+                &bad,
+                false,
+                &mut vec![0.0; bad.len() * w],
+                |_, _| {},
+            );
+            assert!(
+                matches!(e, Err(Error::NonFinite { index: 300, .. })),
+                "{e:?}"
+            );
+            bad[300] = 4.5;
+            let e = design_matrix_into(
+                &kv,
+                p,
+                &bad,
+                false,
+                &mut vec![0.0; bad.len() * w],
+                |_, _| {},
+            );
+            assert!(
+                matches!(e, Err(Error::ParameterOutOfDomain { t, .. }) if t == 4.5),
+                "{e:?}"
+            );
         }
     }
 

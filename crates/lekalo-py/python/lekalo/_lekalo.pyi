@@ -542,6 +542,9 @@ def make_lsq_spline(
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
 ) -> BSplineCurve: ...
+def make_lsq_spline_fp(
+    x: ArrayLike, y: ArrayLike, t: ArrayLike, k: int = 3, w: Optional[ArrayLike] = None
+) -> Tuple[BSplineCurve, float]: ...
 def make_smoothing_spline(
     x: ArrayLike,
     y: ArrayLike,

@@ -3,8 +3,9 @@
 //! (IRLS) least squares, the fit to a distance tolerance, and the placement of knots.
 
 use lekalo::fit::{
-    constrained_least_squares, least_squares, least_squares_curve, place_knots as lk_place_knots,
-    robust_least_squares, Deviation, EndConstraints, RobustLoss, ToleranceOptions,
+    constrained_least_squares, least_squares, least_squares_curve, least_squares_curve_rss,
+    place_knots as lk_place_knots, robust_least_squares, Deviation, EndConstraints, RobustLoss,
+    ToleranceOptions,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -92,6 +93,37 @@ pub(crate) fn make_lsq_spline<'py>(
         })
         .map_err(lib_err)?;
     Ok(PyBSplineCurve::wrap(curve))
+}
+
+/// SciPy's `LSQUnivariateSpline` (FITPACK's `curfit` on given knots): the weighted
+/// least-squares spline of degree `k` on the full knot vector `t`, minimising
+/// `Σ (w_k (f(x_k) − y_k))²` (`w` linear, SciPy's), and that minimum, FITPACK's `fp`, as the
+/// squares reflected out of the banded QR (`lekalo.fit.least_squares_curve_rss`: no evaluation
+/// pass after the solve). Returns `(curve, fp)`; `y` is `(n,)`.
+///
+/// >>> import numpy as np, lekalo
+/// >>> x = np.linspace(0, 1, 20); y = 1 - 2 * x + x ** 3
+/// >>> c, fp = lekalo._lekalo.make_lsq_spline_fp(x, y, [0, 0, 0, 0, 0.5, 1, 1, 1, 1], 3)
+/// >>> bool(fp < 1e-25)
+/// True
+#[pyfunction]
+#[pyo3(signature = (x, y, t, k = IntArg::of(3), w = None), text_signature = "(x, y, t, k=3, w=None)")]
+pub(crate) fn make_lsq_spline_fp<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    t: &Bound<'py, PyAny>,
+    k: IntArg,
+    w: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(PyBSplineCurve, f64)> {
+    let k = k.count("k")?;
+    let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
+    let fd = data.fit_data("x")?;
+    let kv = knot_vector(t)?;
+    let (curve, fp) = py
+        .detach(|| least_squares_curve_rss(&fd, k, &kv, &EndConstraints::none()))
+        .map_err(lib_err)?;
+    Ok((PyBSplineCurve::wrap(curve), fp))
 }
 
 /// Least squares on given knots with optional end constraints, returning `(curve, report)`:

@@ -10,7 +10,7 @@
 //! | file | what it does |
 //! |---|---|
 //! | `mod.rs` | the data and weights read once for every fit (and periodic data without its repeated row), the shape-constraint keywords, the report as a dict, [`register`] |
-//! | `least_squares.rs` | `make_lsq_spline`, `fit_least_squares`, `fit_robust`, `fit_tolerance`, `place_knots` |
+//! | `least_squares.rs` | `make_lsq_spline` (`make_lsq_spline_fp`: with FITPACK's `fp`), `fit_least_squares`, `fit_robust`, `fit_tolerance`, `place_knots` |
 //! | `smoothing.rs` | `make_smoothing_spline`, `fit_smoothing`, `gcv_score`, `make_splrep`, `make_splprep`, `fit_smoothing_condition`, `generate_knots` |
 //! | `surface.rs` | `fit_surface_grid`, `fit_surface_scattered` |
 //! | `closed.rs` | `fit_periodic`, `fit_closed` |
@@ -21,7 +21,9 @@ mod smoothing;
 mod surface;
 
 use closed::{fit_closed, fit_periodic};
-use least_squares::{fit_least_squares, fit_robust, fit_tolerance, make_lsq_spline, place_knots};
+use least_squares::{
+    fit_least_squares, fit_robust, fit_tolerance, make_lsq_spline, make_lsq_spline_fp, place_knots,
+};
 use smoothing::{
     fit_smoothing, fit_smoothing_condition, gcv_score, generate_knots, make_smoothing_spline,
     make_splprep, make_splrep,
@@ -172,6 +174,7 @@ fn periodic_rows(nx: usize, ny: usize) -> PyResult<usize> {
 /// Registers the fitting functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(make_lsq_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(make_lsq_spline_fp, m)?)?;
     m.add_function(wrap_pyfunction!(make_smoothing_spline, m)?)?;
     m.add_function(wrap_pyfunction!(make_splrep, m)?)?;
     m.add_function(wrap_pyfunction!(make_splprep, m)?)?;

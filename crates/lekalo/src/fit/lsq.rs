@@ -181,6 +181,42 @@ pub fn least_squares_curve(
     fit_curve(data, degree, knots, ends, &Progress::new())
 }
 
+/// [`least_squares_curve`] with the weighted residual sum of squares of the fit,
+/// `fp = Σ_k w_k |C(ū_k) − Q_k|²`, as FITPACK's `curfit` reports it (Dierckx, *Curve and
+/// Surface Fitting with Splines*, 1993, §4.1.2): the squares of the right-hand sides reflected
+/// out of the banded triangle as the rows arrive. With `A = QR`, `‖Ax − y‖² = ‖Rx − z‖² +
+/// ‖(Qᵀy)_{n..}‖²` and the least-squares `x` makes the first term zero, so `fp` is the second:
+/// no evaluation pass over the data after the solve. Orthogonal transformations keep the
+/// reflected-out vector within a small multiple of `ε·‖√w y‖` of its exact value (Golub & Van
+/// Loan §5.3.3), the same order as the rounding of evaluating the `N` residuals one by one (each
+/// within about `ε·|y_k|`), so the two agree to rounding relative to the data (tested); SciPy's
+/// `LSQUnivariateSpline.get_residual()` returns FITPACK's rotated-out sum.
+///
+/// ```
+/// use lekalo::fit::{least_squares, least_squares_curve_rss, EndConstraints, FitData};
+/// use lekalo::{KnotVector, PointsRef};
+/// let x: Vec<f64> = (0..40).map(|k| k as f64 / 39.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| (7.0 * t).sin()).collect();
+/// let data = FitData::new(PointsRef::from_flat(1, &y)?, &x)?;
+/// let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0])?;
+/// let (curve, fp) = least_squares_curve_rss(&data, 3, &kv, &EndConstraints::none())?;
+/// let fit = least_squares(&data, 3, &kv, &EndConstraints::none())?;
+/// assert_eq!(curve.control_points().as_slice(), fit.curve.control_points().as_slice());
+/// assert!((fp - fit.report.weighted_rss).abs() <= 1e-13 * fp.max(1e-300));
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`least_squares`].
+pub fn least_squares_curve_rss(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+) -> Result<(BSplineCurve, f64)> {
+    fit_curve_rss(data, degree, knots, ends, &Progress::new())
+}
+
 /// The solve of [`least_squares_with_progress`], up to the curve.
 fn fit_curve(
     data: &FitData<'_>,
@@ -189,6 +225,17 @@ fn fit_curve(
     ends: &EndConstraints,
     progress: &Progress<'_>,
 ) -> Result<BSplineCurve> {
+    fit_curve_rss(data, degree, knots, ends, progress).map(|(curve, _)| curve)
+}
+
+/// [`fit_curve`] and the sum of the squares rotated out (see [`least_squares_curve_rss`]).
+fn fit_curve_rss(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+    ends: &EndConstraints,
+    progress: &Progress<'_>,
+) -> Result<(BSplineCurve, f64)> {
     let n_ctrl = spline_space(data, degree, knots)?;
     let fixed = Fixed::new(data, degree, knots, n_ctrl, ends)?;
     if fixed.count() == 0 {
@@ -196,11 +243,8 @@ fn fit_curve(
     }
     let qr = accumulate(data, degree, knots, n_ctrl, &fixed, degree + 1, progress)?;
     let control = solve_control(&qr, data, degree, knots, n_ctrl, &fixed)?;
-    Ok(BSplineCurve::from_raw(
-        degree,
-        knots.as_slice().to_vec(),
-        control,
-    ))
+    let curve = BSplineCurve::from_raw(degree, knots.as_slice().to_vec(), control);
+    Ok((curve, qr.rss))
 }
 
 /// What a least-squares pass reports to a [`Progress`] hook.
@@ -320,7 +364,10 @@ impl Fixed {
 
 /// Rotates every data row into a banded QR of the free control points (band `bw ≥ p + 1`).
 /// Rows with zero weight are skipped; weights are divided by the largest one (the minimiser is
-/// unchanged) so that no square overflows. `progress` is told of the rows done and may stop
+/// unchanged) so that no square overflows. The result's `rss` is the sum of the squares rotated
+/// out of the right-hand sides in the data's own weights (multiplied back by the largest): the
+/// weighted residual sum of squares of the least-squares solution (see
+/// [`least_squares_curve_rss`]). `progress` is told of the rows done and may stop
 /// the pass between two blocks of rows.
 ///
 /// # Errors
@@ -345,7 +392,10 @@ pub(crate) fn accumulate(
         .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
     let mut y = vec![0.0; dim];
     let mut h = vec![0.0; degree + 1];
-    let scale = |k: usize| (data.weight(k) / wmax).sqrt();
+    // √(w_k / w_max), without a square root for unweighted data (each row reads it twice: the
+    // basis row and the right-hand side are scaled by it)
+    let weights = data.weights();
+    let scale = |k: usize| weights.map_or(1.0, |w| (w[k] / wmax).sqrt());
     let mut on_row = |k: usize, span: usize, nb: &[f64]| {
         let sw = scale(k);
         if sw == 0.0 {
@@ -357,7 +407,12 @@ pub(crate) fn accumulate(
         }
         // nb = √w·N: the fixed control points' share of the row (first and last spans only)
         let touches_fixed = first < ks || first + degree + 1 > n_ctrl - ke;
-        for (a, &b) in nb.iter().enumerate().filter(|_| touches_fixed) {
+        if !touches_fixed {
+            // the usual row: its p + 1 columns all unknowns, taken as they are
+            qr.push(first - ks, nb, &y);
+            return;
+        }
+        for (a, &b) in nb.iter().enumerate() {
             let col = first + a;
             let fixed_point = if col < ks {
                 Some(&fixed.start[col * dim..(col + 1) * dim])
@@ -399,7 +454,12 @@ pub(crate) fn accumulate(
     }
     match stopped.take() {
         Some(e) => Err(e),
-        None => Ok(qr.finish()),
+        None => {
+            let mut qr = qr.finish();
+            // the squares rotated out, of rows scaled by 1/√w_max: back to the data's weights
+            qr.rss *= wmax;
+            Ok(qr)
+        }
     }
 }
 
@@ -492,6 +552,56 @@ mod tests {
             free.report.weighted_rss <= fit.report.weighted_rss,
             "free fit is optimal"
         );
+    }
+
+    /// FITPACK's `fp` read off the QR is the weighted residual sum of squares evaluated at the
+    /// data, to rounding relative to the data: weighted or not, in 1-D and 2-D, with end
+    /// constraints (rows fixed out), for data far from the origin, and zero-weight rows skipped.
+    #[test]
+    fn rotated_out_squares_are_the_weighted_residual() {
+        let u: Vec<f64> = (0..300).map(|k| (k as f64 / 299.0).powf(1.3)).collect();
+        for (dim, offset) in [(1, 0.0), (2, 0.0), (1, 1e6)] {
+            let q: Vec<f64> = u
+                .iter()
+                .enumerate()
+                .flat_map(|(k, &t)| {
+                    let noise = 0.01 * ((k * 7919 % 101) as f64 / 50.0 - 1.0);
+                    [offset + (9.0 * t).sin() + noise, t * t - noise][..dim].to_vec()
+                })
+                .collect();
+            let w: Vec<f64> = (0..300)
+                .map(|k| {
+                    if k % 37 == 0 {
+                        0.0
+                    } else {
+                        0.5 + (k % 5) as f64
+                    }
+                })
+                .collect();
+            let kv = KnotVector::clamped_uniform(3, 20).unwrap();
+            for weighted in [false, true] {
+                let mut data = FitData::new(PointsRef::from_flat(dim, &q).unwrap(), &u).unwrap();
+                if weighted {
+                    data = data.with_weights(&w).unwrap();
+                }
+                for ends in [EndConstraints::none(), EndConstraints::points()] {
+                    let (curve, fp) = least_squares_curve_rss(&data, 3, &kv, &ends).unwrap();
+                    let fit = least_squares(&data, 3, &kv, &ends).unwrap();
+                    assert_eq!(
+                        curve.control_points().as_slice(),
+                        fit.curve.control_points().as_slice(),
+                        "the same solve"
+                    );
+                    let want = fit.report.weighted_rss;
+                    // rounding of the residuals relative to the data's size
+                    let scale = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    assert!(
+                        (fp - want).abs() <= 1e-12 * want + 1e-20 * scale * scale,
+                        "dim {dim}, offset {offset}, weighted {weighted}, {ends:?}: {fp} vs {want}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@
 //! | `banded.rs` | banded QR by Givens rotations or Householder blocks; banded `UᵀDU` and the band of its inverse (crate-private kernels) | [#banded-qr], [#gcv] |
 //! | `data.rs` | [`FitData`] (points, parameters, weights, validated once) and the [`FitReport`] of every fit | [#residuals] |
 //! | `knot_placement.rs` | [`place_knots`] (P&T eq. 9.68–9.69), [`check_schoenberg_whitney`] | [#knot-placement] |
-//! | `lsq.rs` | [`least_squares`] (the curve alone: [`least_squares_curve`]): weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
+//! | `lsq.rs` | [`least_squares`] (the curve alone: [`least_squares_curve`]; with FITPACK's `fp`: [`least_squares_curve_rss`]): weighted least squares with given knots, end points and end derivatives eliminated exactly (P&T A9.6/A9.7) | [#least-squares], [#constraints] |
 //! | `smoothing.rs` | [`smoothing_spline`]: `Σ w (y − f)² + λ ∫ f''²`, λ given or by GCV | [#penalised], [#gcv] |
 //! | `smoothing_condition/` | [`smoothing_condition`]: fewest knots with weighted RSS ≤ s (FITPACK `curfit`/`parcur` style), [`smoothing_condition_in`] on a domain wider than the data; [`smoothing_knot_sequence`]: its knot vectors round by round; [`KnotRounds`]: FITPACK's rounds or SciPy's `generate_knots` | [#smoothing-condition] |
 //! | `smoothing_on_knots.rs` | [`smoothing_on_knots`]: least jumps of the `k`-th derivative on given knots with weighted RSS = s | [#smoothing-on-given-knots] |
@@ -71,7 +71,10 @@ mod tolerance;
 pub(crate) use data::check_in_domain;
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
-pub use lsq::{least_squares, least_squares_curve, least_squares_with_progress, EndConstraints};
+pub use lsq::{
+    least_squares, least_squares_curve, least_squares_curve_rss, least_squares_with_progress,
+    EndConstraints,
+};
 pub use periodic::{
     closed_parameters, periodic_least_squares, periodic_least_squares_with_progress,
     periodic_smoothing_condition, periodic_smoothing_condition_with_progress,

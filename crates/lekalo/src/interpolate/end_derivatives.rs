@@ -118,14 +118,26 @@ pub fn interpolate_with_end_derivatives(
             });
         }
     }
-    if let Some(index) = params.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            what: "parameters".into(),
-            index,
-            value: params[index],
-        });
+    // one pass over the parameters: each exceeds the one before (a pair with a NaN compares as
+    // neither), so with finite ends every parameter is finite; the first non-finite parameter up
+    // to the first pair out of order is reported as such
+    let non_finite = |upto: usize| {
+        params[..upto]
+            .iter()
+            .position(|v| !v.is_finite())
+            .map(|index| Error::NonFinite {
+                what: "parameters".into(),
+                index,
+                value: params[index],
+            })
+    };
+    let disorder = params
+        .windows(2)
+        .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater));
+    if let Some(e) = non_finite(disorder.map_or(m, |w| w + 2)) {
+        return Err(e);
     }
-    if let Some(w) = params.windows(2).position(|w| w[1] <= w[0]) {
+    if let Some(w) = disorder {
         if params[w + 1] < params[w] {
             return Err(Error::NotIncreasing {
                 what: "parameters".into(),
@@ -218,7 +230,15 @@ fn collocation_only(
 ) -> Result<BSplineCurve> {
     let dim = points.dim();
     let (lo, hi) = knots.domain(p);
-    if let Some(&t) = params.iter().find(|&&t| !(lo <= t && t <= hi)) {
+    // the parameters increase (checked by the caller): all lie in the domain when the first
+    // and the last do; else the first outside is reported
+    let last = params[params.len() - 1];
+    if params[0] < lo || last > hi {
+        let t = if params[0] < lo {
+            params[0]
+        } else {
+            params.iter().copied().find(|&t| t > hi).unwrap_or(last)
+        };
         return Err(Error::ParameterOutOfDomain {
             t,
             min: lo,
@@ -451,6 +471,61 @@ mod tests {
             &[],
         );
         assert!(matches!(err, Err(Error::SingularSystem { .. })));
+    }
+
+    /// The one pass over the parameters names the first non-finite one up to the first pair out
+    /// of order, else that pair; the domain is checked at the ends of the increasing parameters.
+    #[test]
+    fn parameter_checks_of_one_pass_name_the_first_fault() {
+        let x: Vec<f64> = (0..8).map(f64::from).collect();
+        let y: Vec<f64> = x.iter().map(|v| v * v).collect();
+        let mut t = knots_for(&x, 3).as_slice().to_vec();
+        // the knots of two fewer conditions: collocation alone needs m + p − 1 = n control points
+        t.remove(4);
+        t.remove(t.len() - 5);
+        let kv0 = KnotVector::new(t).unwrap();
+        let run = |params: &[f64], kv: &KnotVector| {
+            let pts = PointsRef::from_flat(1, &y).unwrap();
+            interpolate_with_end_derivatives(pts, params, kv, 3, &[], &[])
+        };
+        assert!(run(&x, &kv0).is_ok(), "the clean case");
+        for (at, bad) in [
+            (0, f64::NEG_INFINITY),
+            (7, f64::INFINITY),
+            (7, f64::NAN),
+            (3, f64::NAN),
+        ] {
+            let mut p = x.clone();
+            p[at] = bad;
+            let e = run(&p, &kv0).unwrap_err();
+            assert!(
+                matches!(e, Error::NonFinite { index, .. } if index == at),
+                "{at}: {e:?}"
+            );
+        }
+        let mut p = x.clone();
+        p[2] = 5.5;
+        p[6] = f64::NAN;
+        let e = run(&p, &kv0).unwrap_err();
+        assert!(matches!(e, Error::NotIncreasing { index: 3, .. }), "{e:?}");
+        p = x.clone();
+        p[4] = p[3];
+        let e = run(&p, &kv0).unwrap_err();
+        assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+        p = x.clone();
+        p[7] = 7.5;
+        let e = run(&p, &kv0).unwrap_err();
+        assert!(
+            matches!(e, Error::ParameterOutOfDomain { t, .. } if t == 7.5),
+            "{e:?}"
+        );
+        p = x.clone();
+        p[0] = -0.5;
+        let e = run(&p, &kv0).unwrap_err();
+        assert!(
+            matches!(e, Error::ParameterOutOfDomain { t, .. } if t == -0.5),
+            "{e:?}"
+        );
     }
 
     #[test]

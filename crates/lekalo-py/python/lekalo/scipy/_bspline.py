@@ -156,8 +156,15 @@ class BSpline:
         """The sparse matrix ``B_{j,k}(x_i)`` (``scipy.sparse.csr_array``): its three arrays
         written once by lekalo's ``design_matrix_csr`` (``design_matrix_into``: the basis
         functions at each ``x``, P&T A2.2); with ``extrapolate``, the end spans' basis
-        polynomials continue beyond ``[t[k], t[n]]``."""
-        from scipy.sparse import csr_array
+        polynomials continue beyond ``[t[k], t[n]]``. The result is SciPy's own sparse type, so
+        SciPy must be installed (``ImportError`` naming it otherwise)."""
+        try:
+            from scipy.sparse import csr_array
+        except ImportError as e:
+            raise ImportError(
+                "lekalo.scipy: BSpline.design_matrix returns a scipy.sparse.csr_array, which needs "
+                "SciPy: install the package 'scipy' (pip install scipy)"
+            ) from e
 
         x = _as_float_array(x, True)
         t = _as_float_array(t, True)

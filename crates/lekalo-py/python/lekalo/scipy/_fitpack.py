@@ -69,7 +69,9 @@ def splrep(
         tt[: k + 1], tt[-k - 1 :] = xb, xe
         spl = make_lsq_spline(x, y, tt, k)
     elif s == 0 and w is None:
-        spl = make_interp_spline(x, y, k=k)
+        # lekalo's solve (k >= 2) refuses NaN and infinity itself: no NumPy pass over the data
+        # before it; k = 1 keeps the data as they are, so NumPy checks them
+        spl = make_interp_spline(x, y, k=k, check_finite=k <= 1)
     else:
         # FITPACK's knot placement and smoothing condition, lekalo's make_splrep: the same
         # knots; the coefficients meet FITPACK's tolerance |fp - s| <= 0.001 s, not its bits;

@@ -59,6 +59,15 @@ class UnivariateSpline:
     @staticmethod
     def validate_input(x: Any, y: Any, w: Any, bbox: Any, k: int, s: Any, ext: Any, check_finite: bool):
         """SciPy's checks, in its order and words."""
+        return UnivariateSpline._checked_input(x, y, w, bbox, k, s, ext, check_finite)
+
+    @staticmethod
+    def _checked_input(
+        x: Any, y: Any, w: Any, bbox: Any, k: int, s: Any, ext: Any, check_finite: bool, strict: bool = False
+    ):
+        """``validate_input``; with ``strict`` (``InterpolatedUnivariateSpline``) also SciPy's
+        "x must be strictly increasing", raised after the others as SciPy raises it, from the
+        same one pass over ``x``."""
         x, y, bbox = np.asarray(x), np.asarray(y), np.asarray(bbox)
         if w is not None:
             w = np.asarray(w)
@@ -66,8 +75,12 @@ class UnivariateSpline:
             w_finite = np.isfinite(w).all() if w is not None else True
             if not np.isfinite(x).all() or not np.isfinite(y).all() or not w_finite:
                 raise ValueError("x and y array must not contain NaNs or infs.")
+        increasing = True
         if s is None or s > 0:
-            if not np.all(np.diff(x) >= 0.0):
+            if strict:
+                # one comparison a pair: strictly increasing, else whether increasing at all
+                increasing = bool(np.all(x[1:] > x[:-1])) if x.ndim == 1 else bool(np.all(np.diff(x) > 0.0))
+            if not (strict and increasing) and not np.all(np.diff(x) >= 0.0):
                 raise ValueError("x must be increasing if s > 0")
         elif not np.all(np.diff(x) > 0.0):
             raise ValueError("x must be strictly increasing if s = 0")
@@ -81,7 +94,10 @@ class UnivariateSpline:
             raise ValueError("k should be 1 <= k <= 5")
         elif s is not None and not s >= 0.0:
             raise ValueError("s should be s >= 0.0")
-        return x, y, w, bbox, _ext_mode(ext)
+        ext = _ext_mode(ext)
+        if not increasing:
+            raise ValueError("x must be strictly increasing")
+        return x, y, w, bbox, ext
 
     def _fit(self, x: Any, y: Any, w: Any, bbox: Any, k: int, s: float, t: Any) -> None:
         xb, xe = bbox
@@ -89,9 +105,12 @@ class UnivariateSpline:
         y = np.asarray(y, dtype=np.float64)
         self._data = (x, y, w, xb, xe, k, s)
         self._eval_args = splrep(x, y, w=w, xb=xb, xe=xe, k=k, s=s, t=t)
+        if s == 0:
+            # FITPACK reports fp = 0 for the interpolating spline (s = 0), not the rounding left
+            self._fp = 0.0
+            return
         ww = np.ones_like(x) if w is None else np.asarray(w, dtype=np.float64)
-        # FITPACK reports fp = 0 for the interpolating spline (s = 0), not the rounding left
-        self._fp = 0.0 if s == 0 else float(np.sum((ww * (splev(x, self._eval_args) - y)) ** 2))
+        self._fp = float(np.sum((ww * (splev(x, self._eval_args) - y)) ** 2))
 
     @classmethod
     def _from_tck(cls, tck: Any, ext: int = 0) -> "UnivariateSpline":
@@ -198,17 +217,16 @@ class UnivariateSpline:
 
 
 class InterpolatedUnivariateSpline(UnivariateSpline):
-    """``scipy.interpolate.InterpolatedUnivariateSpline``: the interpolating spline (``s = 0``)."""
+    """``scipy.interpolate.InterpolatedUnivariateSpline``: the interpolating spline (``s = 0``).
+    ``get_residual()`` is FITPACK's ``fp = 0`` for interpolation, as SciPy's (not the rounding
+    left at the data)."""
 
     def __init__(
         self, x: Any, y: Any, w: Any = None, bbox: Any = (None, None), k: int = 3, ext: Any = 0,
         check_finite: bool = False,
     ) -> None:
-        x, y, w, bbox, self.ext = self.validate_input(x, y, w, bbox, k, None, ext, check_finite)
-        if not np.all(np.diff(x) > 0.0):
-            raise ValueError("x must be strictly increasing")
+        x, y, w, bbox, self.ext = self._checked_input(x, y, w, bbox, k, None, ext, check_finite, strict=True)
         self._fit(x, y, w, bbox, k, 0.0, None)
-        self._fp = 0.0
 
 
 class LSQUnivariateSpline(UnivariateSpline):
@@ -222,6 +240,9 @@ class LSQUnivariateSpline(UnivariateSpline):
         # (validate_input refuses a decreasing x, with s=None, in SciPy's first words)
         x, y, w, bbox, self.ext = self.validate_input(x, y, w, bbox, k, None, ext, check_finite)
         x = np.asarray(x, dtype=np.float64)
+        if x.shape[0] < k + 1:
+            # (SciPy reads x[0] first: an IndexError for no data)
+            raise ValueError("Need more x points.")
         xb = x[0] if bbox[0] is None else float(bbox[0])
         xe = x[-1] if bbox[1] is None else float(bbox[1])
         t = np.asarray(t, dtype=np.float64)
@@ -231,16 +252,19 @@ class LSQUnivariateSpline(UnivariateSpline):
         if not (np.all(inner[1:] >= inner[:-1]) and inner[0] < inner[1] and inner[-2] < inner[-1]):
             raise ValueError("Interior knots t must satisfy Schoenberg-Whitney conditions")
         tt = np.concatenate([[xb] * (k + 1), t, [xe] * (k + 1)])
-        spl = make_lsq_spline(x, np.asarray(y, dtype=np.float64), tt, k, w=w)
+        # make_lsq_spline's checks that lekalo's fit does not make in SciPy's words (x is sorted:
+        # validate_input); finiteness, lengths and Schoenberg-Whitney are lekalo's
+        if x[0] < xb or x[-1] > xe:
+            raise ValueError(f"Out of bounds w/ x = {x}.")
+        # the fit and FITPACK's fp, sum((w * (s(x) - y))**2), the squares reflected out of the
+        # banded QR (no evaluation pass over the data)
+        curve, fp = _lekalo.make_lsq_spline_fp(
+            x, np.asarray(y, dtype=np.float64), tt, k, None if w is None else np.asarray(w, dtype=np.float64)
+        )
+        c = np.ascontiguousarray(curve.control[:, 0])
         self._data = (x, y, w, xb, xe, k, None)
-        self._eval_args = (spl.t, _pad_rows(spl.c, spl.t.shape[0]), k)
-        # the weighted residual sum of squares, sum((w * (spl(x) - y))**2), its terms formed in
-        # the one fresh array of the values (the same numbers and sum, no other temporaries)
-        r = spl(x)
-        np.subtract(r, y, out=r)
-        if w is not None:
-            np.multiply(np.asarray(w, dtype=np.float64), r, out=r)
-        self._fp = float(np.sum(np.square(r, out=r)))
+        self._eval_args = (tt, _pad_rows(c, tt.shape[0]), k)
+        self._fp = fp
 
 
 # -- the 2-D FITPACK classes (docs/scipy.md): tensor-product splines of lekalo's core --------
