@@ -34,6 +34,7 @@ mod derivatives;
 mod error;
 mod faces;
 mod fit;
+mod hermite_pp;
 mod hermite_tck;
 mod interp;
 mod objects;
@@ -109,6 +110,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor_values::register(m)?;
     tck::register(m)?;
     hermite_tck::register(m)?;
+    hermite_pp::register(m)?;
     xla_ffi::register(m)?;
     Ok(())
 }
