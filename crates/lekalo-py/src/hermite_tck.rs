@@ -1,7 +1,8 @@
-//! SciPy's piecewise cubics from values and slopes, for `lekalo.scipy`: the knots and
-//! coefficients of the B-spline with double knots written straight into two NumPy arrays
+//! SciPy's piecewise cubics from values and slopes as B-splines: the knots and coefficients of
+//! the B-spline with double knots written straight into two NumPy arrays
 //! (`lekalo::pp::cubic_hermite_bspline_into`), the data read in place (C-contiguous float64
-//! arrays are borrowed, never copied), no curve built.
+//! arrays are borrowed, never copied), no curve built. (`lekalo.scipy`'s classes take SciPy's
+//! power coefficients instead, `hermite_pp.rs`.)
 
 use lekalo::pp::{cubic_hermite_bspline_into, cubic_hermite_bspline_len};
 use lekalo::{akima_slopes_into, pchip_slopes_into};

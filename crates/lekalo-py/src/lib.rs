@@ -35,6 +35,7 @@ mod derivatives;
 mod error;
 mod faces;
 mod fit;
+mod hermite_pp;
 mod hermite_tck;
 mod interp;
 mod objects;
@@ -112,6 +113,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor_values::register(m)?;
     tck::register(m)?;
     hermite_tck::register(m)?;
+    hermite_pp::register(m)?;
     xla_ffi::register(m)?;
     Ok(())
 }

@@ -587,7 +587,8 @@ fn beyond(extrapolate: bool) -> Beyond {
 /// An evaluator of SciPy's arrays in place: `(arrays, points, nu, beyond, out)`.
 type InPlace = fn(&ScipyArrays<'_>, &[f64], usize, Beyond, &mut [f64]) -> lekalo::Result<()>;
 
-/// SciPy's arrays evaluated in place in the basis `B` (`lekalo::pp::PiecewiseRef`).
+/// SciPy's arrays evaluated in place in the basis `B` (`lekalo::pp::PiecewiseRef`), with
+/// SciPy's values at infinities and overflows (`par_eval_as_scipy`).
 fn in_place<B: PieceBasis>(
     a: &ScipyArrays<'_>,
     xs: &[f64],
@@ -595,7 +596,7 @@ fn in_place<B: PieceBasis>(
     beyond: Beyond,
     out: &mut [f64],
 ) -> lekalo::Result<()> {
-    PiecewiseRef::<B>::new(a.c, a.order, a.x, a.dim)?.par_eval_beyond(xs, nu, beyond, out)
+    PiecewiseRef::<B>::new(a.c, a.order, a.x, a.dim)?.par_eval_as_scipy(xs, nu, beyond, out)
 }
 
 /// `then` on the arrays `c` and `x` read in place, their shapes checked ([`scipy_arrays`]).
@@ -652,9 +653,9 @@ fn value_in_place(
 /// `ppoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `PPoly`
 /// with coefficients `c` (shape `(k, pieces)` or `(k, pieces, dim)`, float64, the highest power
 /// first) on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
-/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
-/// (`lekalo::pp::PowerFormRef`, `PiecewiseRef::par_eval_beyond`: Horner's rule on the arrays in place, nothing
-/// copied).
+/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN points, SciPy's
+/// values at infinite points and where a value overflows (`lekalo::pp::PowerFormRef`,
+/// `PiecewiseRef::par_eval_as_scipy`: Horner's rule on the arrays in place, nothing copied).
 #[pyfunction]
 #[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
 pub(crate) fn ppoly_values<'py>(
@@ -685,9 +686,10 @@ pub(crate) fn ppoly_value(
 /// `bpoly_values(c, x, xp, nu=0, extrapolate=True)`: the `nu`-th derivative of SciPy's `BPoly`
 /// with Bernstein coefficients `c` (shape `(k + 1, pieces)` or `(k + 1, pieces, dim)`, float64)
 /// on the non-decreasing breakpoints `x` at the points `xp` (any shape, result
-/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN or infinite points
-/// (`lekalo::pp::BernsteinFormRef`, `PiecewiseRef::par_eval_beyond`: the Bernstein sum in each piece on the
-/// arrays in place, nothing copied).
+/// `xp.shape + (dim,)`), the end pieces continued or NaN outside, NaN at NaN points, SciPy's
+/// values at infinite points and where a value overflows (`lekalo::pp::BernsteinFormRef`,
+/// `PiecewiseRef::par_eval_as_scipy`: the Bernstein sum in each piece on the arrays in place,
+/// nothing copied).
 #[pyfunction]
 #[pyo3(signature = (c, x, xp, nu = 0, extrapolate = true))]
 pub(crate) fn bpoly_values<'py>(

@@ -18,6 +18,7 @@ MODULES = [
     "lekalo.scipy._fitpack",
     "lekalo.scipy._fitpack2",
     "lekalo.scipy._ppoly",
+    "lekalo.scipy._cubic",
     "lekalo.scipy._splrep",
     "lekalo.scipy._ndbspline",
     "lekalo.scipy._bivariate",

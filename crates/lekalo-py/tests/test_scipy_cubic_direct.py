@@ -1,7 +1,7 @@
 """The direct constructions of ``lekalo.scipy``'s piecewise cubics and piecewise polynomials:
 ``CubicHermiteSpline``, ``PchipInterpolator`` and ``Akima1DInterpolator`` made from 1-D float64
-arrays by one lekalo kernel each (``hermite_tck``, ``pchip_tck``, ``akima_tck``: the slopes,
-knots and coefficients with the checks folded in), and the breakpoint test of ``PPoly`` and
+arrays by one lekalo kernel each (``hermite_pp``, ``pchip_pp``, ``akima_pp``: the slopes and
+SciPy's power coefficients with the checks folded in), and the breakpoint test of ``PPoly`` and
 ``BPoly`` (``breakpoints_sorted``). Each against the general path (bit for bit), SciPy's values,
 and SciPy's errors on hostile input."""
 
@@ -39,7 +39,7 @@ def test_direct_spline_is_the_general_paths_bit_for_bit(name, n):
     x, y, d = _data(n)
     make = CLASSES[name]
     direct = make(ls, x, y, d)
-    # a column of values (n, 1) takes the general path: _prepare_input, the slopes, hermite_tck
+    # a column of values (n, 1) takes the general path: _prepare_input, the slopes, hermite_pp
     general = make(ls, x, y[:, None], d[:, None])
     np.testing.assert_array_equal(_bits(direct._spline.t), _bits(general._spline.t))
     np.testing.assert_array_equal(_bits(direct._spline.c), _bits(general._spline.c.ravel()))

@@ -16,6 +16,8 @@
 //! - `cubic_sweep.rs`: the fused collocation sweep of that fast path.
 //! - `periodic.rs`: closed (periodic) curves, the cyclic banded system.
 //! - `surface.rs`: tensor-product surface interpolation of a grid ([`SurfaceInterpolation`]).
+//! - `cubic_spline.rs`: SciPy's C² cubic spline by its slopes, one tridiagonal system with
+//!   SciPy's end rows ([`cubic_spline_slopes_into`], [`cubic_spline_power_into`]).
 //! - `hermite.rs`: cubic Hermite splines ([`CubicHermite`]) and the cubic through four points.
 //! - `akima.rs`: [`akima_slopes`], Akima's and the modified Akima (makima) slopes (dimension 1
 //!   in vectorised passes: [`akima_slopes_into`]).
@@ -24,6 +26,7 @@
 
 mod akima;
 pub(crate) mod collocation;
+mod cubic_spline;
 mod cubic_sweep;
 pub(crate) mod curve;
 mod end_conditions;
@@ -36,6 +39,7 @@ mod periodic;
 mod surface;
 
 pub use akima::{akima_slopes, akima_slopes_into};
+pub use cubic_spline::{cubic_spline_power_into, cubic_spline_slopes_into, CubicSplineEnd};
 pub use curve::{
     natural_cubic_spline, CurveInterpolation, KnotPlacement, INTERPOLATION_RESIDUAL_RTOL,
 };

@@ -68,6 +68,49 @@ impl PieceBasis for BernsteinBasis {
     fn scratch_len(order: usize) -> usize {
         order
     }
+
+    /// SciPy's `evaluate_bpoly1` at `s = (x − x_j)/h_j` (the written-out sums up to degree 3,
+    /// above it `Σ_a C(k, a)·s^a·(1 − s)^{k−a}·c_a` with the powers by `pow`), and for `nu > 0`
+    /// its `evaluate_bpoly1_deriv`: the coefficients `(k!/(k − nu)!)·Σ_j (−1)^{j+nu} C(nu, j)
+    /// c_{a+j}` summed by the same, divided by `h_j^nu` (`pow`).
+    fn scipy_derivative(piece: &Piece<'_>, x: f64, nu: usize, w: &mut [f64], o: &mut [f64]) {
+        let k = piece.order() - 1;
+        let h = piece.width();
+        let s = (x - piece.start()) / h;
+        let poch = (0..nu).fold(1.0, |p, a| p * (k - a) as f64);
+        for (d, v) in o.iter_mut().enumerate() {
+            if nu == 0 {
+                *v = scipy_bernstein_sum(k, s, |a| piece.coefficient(a, d));
+                continue;
+            }
+            for (a, wa) in w.iter_mut().enumerate().take(k - nu + 1) {
+                let (mut term, mut comb) = (0.0, 1.0);
+                for j in 0..=nu {
+                    let sign = if (j + nu) % 2 == 0 { 1.0 } else { -1.0 };
+                    term += piece.coefficient(j + a, d) * sign * comb;
+                    comb *= (nu - j) as f64 / (j + 1) as f64;
+                }
+                *wa = term * poch;
+            }
+            *v = scipy_bernstein_sum(k - nu, s, |a| w[a]) / h.powf(nu as f64);
+        }
+    }
+}
+
+/// SciPy's `evaluate_bpoly1`: [`bernstein_sum`] up to degree 3, above it the sum of
+/// `comb·s^a·(1 − s)^{k−a}·c_a` with `pow` for the powers and `comb` updated by
+/// `(k − a)/(a + 1)`, in its order.
+fn scipy_bernstein_sum(k: usize, s: f64, c: impl Fn(usize) -> f64) -> f64 {
+    if k <= 3 {
+        return bernstein_sum(k, s, c);
+    }
+    let s1 = 1.0 - s;
+    let (mut res, mut comb) = (0.0, 1.0);
+    for j in 0..=k {
+        res += comb * s.powf(j as f64) * s1.powf((k - j) as f64) * c(j);
+        comb *= (k - j) as f64 / (j as f64 + 1.0);
+    }
+    res
 }
 
 /// Borrowed coefficients of SciPy's `BPoly`: on `x_i ≤ x < x_{i+1}` (`x_i ≥ x > x_{i+1}` on

@@ -21,6 +21,8 @@
 //!   order at the breakpoints ([`hermite_bernstein`], [`piecewise_hermite_bernstein`]).
 //! - `hermite_bspline.rs`: cubic Hermite data written into the knots and coefficients of a
 //!   B-spline with double knots in one pass ([`cubic_hermite_bspline_into`]).
+//! - `hermite_power.rs`: cubic Hermite data written as SciPy's `PPoly` coefficients in one
+//!   pass ([`cubic_hermite_power_into`]), SciPy's numbers.
 //! - `integral.rs`: antiderivatives and integrals in pp-form
 //!   ([`PiecewisePolynomial::antiderivative`], [`PiecewisePolynomial::integral_extrapolated`]).
 //! - `roots.rs`: the real solutions of `f(x) = y` ([`PiecewisePolynomial::solve`], [`Solution`]).
@@ -34,6 +36,7 @@ mod expression;
 mod extrapolation;
 mod hermite_bernstein;
 mod hermite_bspline;
+mod hermite_power;
 mod integral;
 mod piece_search;
 mod piecewise_ref;
@@ -52,6 +55,7 @@ pub use divided_difference::{
 pub use expression::{Expression, MAX_EXPRESSION_LEN, MAX_EXPRESSION_ORDER};
 pub use hermite_bernstein::{hermite_bernstein, piecewise_hermite_bernstein, MAX_HERMITE_DEGREE};
 pub use hermite_bspline::{cubic_hermite_bspline_into, cubic_hermite_bspline_len};
+pub use hermite_power::cubic_hermite_power_into;
 pub use piecewise_ref::{Piece, PieceBasis, PiecewiseRef, FIXED_ORDER_MAX};
 pub use power_form::{PowerBasis, PowerFormRef};
 pub use ppform::{PiecewisePolynomial, PpSpace, DEFAULT_CONTINUITY_RTOL};

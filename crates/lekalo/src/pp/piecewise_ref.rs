@@ -103,6 +103,13 @@ pub trait PieceBasis: sealed::Sealed + Debug + Clone + Copy + Send + Sync {
 
     /// The scratch [`PieceBasis::derivative`] needs for pieces of order `order`.
     fn scratch_len(order: usize) -> usize;
+
+    /// `D^nu` (`nu < order`) of `piece` at any `x` (infinite included) into `o` (`dim`
+    /// numbers) by SciPy's own formula for the basis (its `evaluate_poly1` or
+    /// `evaluate_bpoly1`, the same operations in the same order), `scratch` of `order`
+    /// numbers: what SciPy's values are where IEEE infinities enter, at `x = ±∞` and where a
+    /// term overflows ([`PiecewiseRef::par_eval_as_scipy`]).
+    fn scipy_derivative(piece: &Piece<'_>, x: f64, nu: usize, scratch: &mut [f64], o: &mut [f64]);
 }
 
 /// Borrowed coefficients of a piecewise polynomial in SciPy's layout (see the module
@@ -224,6 +231,76 @@ impl<'a, B: PieceBasis> PiecewiseRef<'a, B> {
     pub fn par_eval_extrapolated(&self, xs: &[f64], nu: usize, out: &mut [f64]) -> Result<()> {
         check_finite("x", xs)?;
         self.par_eval_beyond(xs, nu, Beyond::Continue, out)
+    }
+
+    /// [`PiecewiseRef::par_eval_beyond`] with SciPy's values where IEEE infinities enter
+    /// (`docs/theory/pp.md#infinities-as-scipy-has-them`): at `x = ±∞` with the end pieces
+    /// continued, SciPy evaluates its end piece (the first or the last, empty or not) by its own
+    /// formula, which gives the constant of a piece of degree 0, `±∞`, or NaN where a zero
+    /// coefficient meets an infinite power; a value that overflows is SciPy's `±∞` or NaN, not
+    /// an error; and where `|x − x_j|^(k−1)` overflows while Horner's rule stays finite, SciPy's
+    /// NaN or `±∞`. Those points (infinite, beyond the bound where the powers overflow, or with
+    /// a value that is not finite) are evaluated again by [`PieceBasis::scipy_derivative`] on
+    /// SciPy's piece; every other value is [`PiecewiseRef::par_eval_beyond`]'s. One more pass
+    /// over the points and values, O(points·dim).
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] if `out` does not hold `dim` numbers a point.
+    pub fn par_eval_as_scipy(
+        &self,
+        xs: &[f64],
+        nu: usize,
+        beyond: Beyond,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let overflowed = match self.par_eval_beyond(xs, nu, beyond, out) {
+            Ok(()) => false,
+            // an overflow: every value is written; SciPy's are set below
+            Err(Error::NonFinite { .. }) => true,
+            Err(e) => return Err(e),
+        };
+        let (k, dim, pieces) = (self.order, self.dim, self.pieces());
+        let (first, last) = (self.breakpoints[0], self.breakpoints[pieces]);
+        let (lo, hi) = (first.min(last), first.max(last));
+        let continued = beyond == Beyond::Continue;
+        // below this |x| no power |x − x_j|^m (m < k) of SciPy's sum overflows
+        let reach = first.abs().max(last.abs());
+        let bound = 0.5 * f64::MAX.powf(1.0 / (k.max(2) - 1) as f64) - reach;
+        // a value that overflowed, or a point that is infinite, NaN or beyond the bound (one
+        // branch-free pass over the points): only then the points are looked at one by one
+        if !overflowed && xs.iter().fold(true, |ok, &x| ok & (x.abs() < bound)) {
+            return Ok(());
+        }
+        let mut scratch = vec![0.0; k];
+        for (&x, o) in xs.iter().zip(out.chunks_exact_mut(dim)) {
+            let usual = x.abs() < bound && o.iter().all(|v| v.is_finite());
+            let defined = (lo <= x && x <= hi) || (continued && !x.is_nan());
+            if usual || !defined {
+                continue;
+            }
+            if nu >= k {
+                o.fill(0.0);
+                continue;
+            }
+            let piece = self.piece(self.scipy_piece(x));
+            B::scipy_derivative(&piece, x, nu, &mut scratch, o);
+        }
+        Ok(())
+    }
+
+    /// SciPy's piece of a point that is not NaN (`find_interval_ascending` and
+    /// `_descending`): beyond the ends the first or the last piece, empty or not; inside the
+    /// piece `x_j ≤ x < x_{j+1}` (`x_j ≥ x > x_{j+1}` decreasing), the last one at the far end.
+    fn scipy_piece(&self, x: f64) -> usize {
+        let pieces = self.pieces();
+        let b = self.breakpoints;
+        let increasing = b[pieces] > b[0];
+        let j = if increasing {
+            b.partition_point(|&v| v <= x)
+        } else {
+            b.partition_point(|&v| v >= x)
+        };
+        j.saturating_sub(1).min(pieces - 1)
     }
 
     /// `D^nu f` at every `x` of `xs` into `out` (`dim` numbers a point): on the piece `j` with

@@ -52,6 +52,25 @@ impl PieceBasis for PowerBasis {
     fn scratch_len(_: usize) -> usize {
         0
     }
+
+    /// SciPy's `evaluate_poly1`: `Σ_{p ≥ nu} c_{k−1−p}·u^{p−nu}·p!/(p−nu)!` summed from the
+    /// constant term up, the powers of `u = x − x_j` by repeated multiplication, each term
+    /// `(c·u^m)·p!/(p − nu)!`.
+    fn scipy_derivative(piece: &Piece<'_>, x: f64, nu: usize, _: &mut [f64], o: &mut [f64]) {
+        let k = piece.order();
+        let u = x - piece.start();
+        for (d, v) in o.iter_mut().enumerate() {
+            let (mut res, mut z) = (0.0, 1.0);
+            for p in nu..k {
+                let prefactor = (p + 1 - nu..=p).rev().fold(1.0, |f, m| f * m as f64);
+                res += piece.coefficient(k - 1 - p, d) * z * prefactor;
+                if p + 1 < k {
+                    z *= u;
+                }
+            }
+            *v = res;
+        }
+    }
 }
 
 /// Borrowed coefficients of SciPy's `PPoly`: `f(x) = Σ_m c[m, i]·(x − x_i)^{k−1−m}` on

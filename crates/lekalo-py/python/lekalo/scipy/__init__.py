@@ -60,16 +60,15 @@ from ._fitpack2 import (
 )
 from ._interpolate import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._ndbspline import NdBSpline, make_ndbspl
-from ._ppoly import (
+from ._cubic import (
     Akima1DInterpolator,
-    BPoly,
     CubicHermiteSpline,
     CubicSpline,
     PchipInterpolator,
-    PPoly,
     pchip,
     pchip_interpolate,
 )
+from ._ppoly import BPoly, PPoly
 from ._sphere import (
     LSQSphereBivariateSpline,
     RectSphereBivariateSpline,

@@ -314,12 +314,13 @@ class BSpline:
     @classmethod
     def from_power_basis(cls, pp: Any, bc_type: str = "not-a-knot") -> "BSpline":
         """``BSpline.from_power_basis``: the B-spline form of a ``CubicSpline`` on SciPy's knots
-        for ``bc_type``. lekalo's ``CubicSpline`` is a B-spline already; on the same knots its
+        for ``bc_type``. lekalo's ``CubicSpline`` gives its B-spline form on its own knots
+        (``_bspline_form``, by ``make_interp_spline``'s engines); on the same knots its
         coefficients are returned, on a refinement of them lekalo inserts the missing knots
         (``refine_knots``, Boehm)."""
         if not isinstance(pp, cls._power_basis_types):
             raise NotImplementedError(f"Only CubicSpline objects are accepted for now. Got {type(pp)} instead.")
-        x, spline = pp.x, pp._spline
+        x, spline = pp.x, pp._bspline_form()
         k = spline.k
         if bc_type == "not-a-knot":
             t = _not_a_knot(x, k)
