@@ -165,11 +165,8 @@ impl StepWriter {
         let ctx2 = self.add(
             "(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()REPRESENTATION_CONTEXT('2D SPACE',''))".into(),
         );
-        let mut vertices = Vec::with_capacity(shell.vertices().len());
-        for p in shell.vertices() {
-            let pt = self.add_point(p);
-            vertices.push(self.add(format!("VERTEX_POINT('',#{pt})")));
-        }
+        // each vertex's VERTEX_POINT, written where an edge first uses it
+        let mut vertices: Vec<Option<usize>> = vec![None; shell.vertices().len()];
         // each use's EDGE_CURVE and whether the use runs it forwards
         let mut edge_of: HashMap<EdgeUse, (usize, bool)> = HashMap::new();
         for e in shell.edges() {
@@ -228,9 +225,29 @@ impl StepWriter {
                 } else {
                     [e.vertices[1], e.vertices[0]]
                 };
+                // a vertex no point of which keeps every edge there whole (its ends overlap
+                // along a line) is written at each curve's own end, its tolerance the gap
+                let (t0, t1) = first_edge.curve().domain();
+                let mut ends = [0; 2];
+                for (k, (v, t)) in [(v0, t0), (v1, t1)].into_iter().enumerate() {
+                    ends[k] = match vertices[v] {
+                        Some(id) if shell.vertex_meets_ends(v) => id,
+                        _ if shell.vertex_meets_ends(v) => {
+                            let pt = self.add_point(&shell.vertices()[v]);
+                            let id = self.add(format!("VERTEX_POINT('',#{pt})"));
+                            vertices[v] = Some(id);
+                            id
+                        }
+                        _ => {
+                            let p = first_edge.curve().eval(t).map_err(lib)?;
+                            let pt = self.add_point(&p);
+                            self.add(format!("VERTEX_POINT('',#{pt})"))
+                        }
+                    };
+                }
                 let id = self.add(format!(
                     "EDGE_CURVE('',#{},#{},#{geometry},.T.)",
-                    vertices[v0], vertices[v1]
+                    ends[0], ends[1]
                 ));
                 for &(u, same) in &g {
                     edge_of.insert(u, (id, same == first_same));
