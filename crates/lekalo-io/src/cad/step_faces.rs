@@ -8,7 +8,10 @@
 //!
 //! Edges and vertices shared by faces are written once ([`lekalo::topology::Shell`]) when the
 //! faces' curves of the edge are one curve (else each keeps its own `EDGE_CURVE` between the
-//! shared vertices): the `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
+//! shared vertices). A vertex whose edges' ends differ lies past every end along its curve, so
+//! that a reader trimming each edge at the vertex keeps the whole curve; where no point does
+//! (edges overlapping along a line at a crossing), each edge there gets a `VERTEX_POINT` of its
+//! own at its curve's end (`docs/theory/topology.md`, "The point of a vertex"). The `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
 //! `ORIENTED_EDGE` with orientation `.F.`, and its pcurve is written reversed to run along the
 //! edge. Faces that close a volume (every edge used twice, once each way) go into a
 //! `CLOSED_SHELL` of a `MANIFOLD_SOLID_BREP` in an `ADVANCED_BREP_SHAPE_REPRESENTATION`; other
