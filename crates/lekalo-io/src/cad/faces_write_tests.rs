@@ -310,3 +310,249 @@ fn iges_round_trip_of_fixtures_and_cube() {
     assert_eq!(w.finish("faces", "20000101.000000"), text);
     assert!(crate::IgesWriter::new().add_faces(&[]).is_err());
 }
+
+/// The points of the `VERTEX_POINT`s at the ends of each `EDGE_CURVE` of a STEP text, by the
+/// edge's id.
+fn edge_vertex_points(text: &str) -> std::collections::HashMap<u64, [Vec<f64>; 2]> {
+    let mut line_of = std::collections::HashMap::new();
+    for l in text.lines() {
+        if let Some((id, rest)) = l.strip_prefix('#').and_then(|l| l.split_once('=')) {
+            if let Ok(id) = id.parse::<u64>() {
+                line_of.insert(id, rest.to_string());
+            }
+        }
+    }
+    let refs = |s: &str| -> Vec<u64> {
+        s.split('#')
+            .skip(1)
+            .filter_map(|r| {
+                let digits: String = r.chars().take_while(char::is_ascii_digit).collect();
+                digits.parse().ok()
+            })
+            .collect()
+    };
+    let point = |vertex: u64| -> Vec<f64> {
+        let pt = refs(&line_of[&vertex])[0];
+        let l = &line_of[&pt];
+        let inner = &l[l.rfind('(').unwrap() + 1..l.find(')').unwrap()];
+        inner
+            .split(',')
+            .map(|x| x.trim().parse::<f64>().unwrap())
+            .collect()
+    };
+    line_of
+        .iter()
+        .filter(|(_, l)| l.starts_with("EDGE_CURVE("))
+        .map(|(&id, l)| {
+            let r = refs(l);
+            (id, [point(r[0]), point(r[1])])
+        })
+        .collect()
+}
+
+/// A square whose edges meet within the loop's tolerance but not exactly, each edge starting
+/// `1e-6` back along its own direction from the corner where the edge before it ends (as an
+/// IGES file's trimming curves meet): written to STEP, every vertex lies past the ends of its
+/// edges' curves, so that a reader trimming each edge at the nearest point of its curve to the
+/// vertex keeps the whole curve, and the vertex's distance to each end is the gap.
+#[test]
+fn a_vertex_between_edge_ends_that_differ_lies_past_every_end() {
+    let c = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let gap = 1e-6;
+    let segs: Vec<_> = (0..4)
+        .map(|k| {
+            let (a, b) = (c[k], c[(k + 1) % 4]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            ([a[0] - gap * d[0], a[1] - gap * d[1]], b)
+        })
+        .collect();
+    let faces = vec![StepFace {
+        id: 0,
+        name: "gapped square".into(),
+        surface_id: 0,
+        face: segments_face(0.0, 0.0, &segs),
+        edge_ids: vec![vec![0; 4]],
+        pcurves: None,
+    }];
+    let (text, back) = step_round_trip(&faces);
+    assert!(faces_match(&faces[0].face, &back[0].face), "curves kept");
+    let (meets, own) = check_vertices_keep_curves(&text, &back, gap);
+    assert_eq!(
+        (meets, own),
+        (8, 0),
+        "every corner one vertex past both ends"
+    );
+}
+
+/// Checks that every vertex of every edge of `back` (read from `text`) is past the nearer end
+/// of the edge's curve or at it, within `10 gap` of it; counts the vertices past an end and
+/// those at one.
+fn check_vertices_keep_curves(text: &str, back: &[StepFace], gap: f64) -> (usize, usize) {
+    let vertices = edge_vertex_points(text);
+    let (mut past, mut at) = (0, 0);
+    for f in back {
+        for (lp, ids) in f.face.loops().zip(&f.edge_ids) {
+            for (e, id) in lp.edges().iter().zip(ids) {
+                let curve = e.curve();
+                let (t0, t1) = curve.domain();
+                for v in &vertices[id] {
+                    // the end nearer the vertex, and the direction the curve leaves it in
+                    let ends = [(t0, -1.0), (t1, 1.0)].map(|(t, sign)| {
+                        let d = curve.eval_derivatives(t, 1).unwrap();
+                        (
+                            d.point(0).to_vec(),
+                            d.point(1).iter().map(|x| sign * x).collect::<Vec<_>>(),
+                        )
+                    });
+                    let dist = |p: &[f64]| {
+                        p.iter()
+                            .zip(v)
+                            .map(|(a, b)| (a - b).powi(2))
+                            .sum::<f64>()
+                            .sqrt()
+                    };
+                    let (p, out) = if dist(&ends[0].0) <= dist(&ends[1].0) {
+                        &ends[0]
+                    } else {
+                        &ends[1]
+                    };
+                    let along: f64 = v
+                        .iter()
+                        .zip(p)
+                        .zip(out)
+                        .map(|((x, y), o)| (x - y) * o)
+                        .sum();
+                    if dist(p) == 0.0 {
+                        at += 1;
+                    } else {
+                        assert!(
+                            along > 0.0,
+                            "vertex {v:?} not past the end {p:?} of edge #{id}"
+                        );
+                        past += 1;
+                    }
+                    assert!(dist(p) < 10.0 * gap, "vertex {v:?} far from the end {p:?}");
+                }
+            }
+        }
+    }
+    (past, at)
+}
+
+/// A plane face of `[x0 - 0.5, x0 + 1.5] × [y0 - 0.5, y0 + 1.5]` bounded by the segments
+/// `segs` in order (each an edge with its pcurve; the end of one may miss the start of the
+/// next), to build faces sharing edges by their curves.
+fn segments_face(x0: f64, y0: f64, segs: &[([f64; 2], [f64; 2])]) -> Face {
+    let uv = |p: [f64; 2]| [(p[0] - x0 + 0.5) / 2.0, (p[1] - y0 + 0.5) / 2.0];
+    let knots = vec![0.0, 0.0, 1.0, 1.0];
+    let edges = segs
+        .iter()
+        .map(|&(a, b)| {
+            let xyz = Points::from_3d(&[[a[0], a[1], 0.0], [b[0], b[1], 0.0]]).unwrap();
+            let p = Points::from_2d(&[uv(a), uv(b)]).unwrap();
+            Edge::new(
+                Curve::from(BSplineCurve::new(1, knots.clone(), xyz).unwrap()),
+                Some(Curve::from(BSplineCurve::new(1, knots.clone(), p).unwrap())),
+            )
+            .unwrap()
+        })
+        .collect();
+    let (xa, xb, ya, yb) = (x0 - 0.5, x0 + 1.5, y0 - 0.5, y0 + 1.5);
+    let net =
+        Points::from_3d(&[[xa, ya, 0.0], [xa, yb, 0.0], [xb, ya, 0.0], [xb, yb, 0.0]]).unwrap();
+    let s = BSplineSurface::new(1, 1, knots.clone(), knots, net, (2, 2)).unwrap();
+    Face::new(
+        Surface::from(s),
+        Loop::new(edges).unwrap(),
+        vec![],
+        true,
+        LOOP_CLOSURE_RTOL,
+    )
+    .unwrap()
+}
+
+/// Four squares meeting at a crossing whose horizontal arms overlap by `2e-6` (the left arm
+/// ends past the start of the right one): no point is past the ends of both, so each edge is
+/// written with a vertex of its own at its curve's end there, and its curve is kept whole.
+#[test]
+fn edges_overlapping_at_a_vertex_keep_their_own_ends() {
+    let e = 1e-6;
+    // the arms' ends at the crossing: left and right overlap along x
+    let (l, r, d, u) = (
+        [1.0 + e, 1.0],
+        [1.0 - e, 1.0],
+        [1.0, 1.0 - e],
+        [1.0, 1.0 + e],
+    );
+    let (arm_d, arm_l) = (([1.0, 0.0], d), ([0.0, 1.0], l));
+    let (arm_r, arm_u) = ((r, [2.0, 1.0]), (u, [1.0, 2.0]));
+    let rev = |(a, b): ([f64; 2], [f64; 2])| (b, a);
+    let faces = [
+        segments_face(
+            0.0,
+            0.0,
+            &[
+                ([0.0, 0.0], [1.0, 0.0]),
+                arm_d,
+                rev(arm_l),
+                ([0.0, 1.0], [0.0, 0.0]),
+            ],
+        ),
+        segments_face(
+            1.0,
+            0.0,
+            &[
+                ([1.0, 0.0], [2.0, 0.0]),
+                ([2.0, 0.0], [2.0, 1.0]),
+                rev(arm_r),
+                rev(arm_d),
+            ],
+        ),
+        segments_face(
+            1.0,
+            1.0,
+            &[
+                arm_r,
+                ([2.0, 1.0], [2.0, 2.0]),
+                ([2.0, 2.0], [1.0, 2.0]),
+                rev(arm_u),
+            ],
+        ),
+        segments_face(
+            0.0,
+            1.0,
+            &[
+                arm_l,
+                arm_u,
+                ([1.0, 2.0], [0.0, 2.0]),
+                ([0.0, 2.0], [0.0, 1.0]),
+            ],
+        ),
+    ];
+    let faces: Vec<StepFace> = faces
+        .into_iter()
+        .enumerate()
+        .map(|(i, face)| StepFace {
+            id: 0,
+            name: format!("quarter {i}"),
+            surface_id: 0,
+            face,
+            edge_ids: vec![vec![0; 4]],
+            pcurves: None,
+        })
+        .collect();
+    let (text, back) = step_round_trip(&faces);
+    for (a, b) in faces.iter().zip(&back) {
+        assert!(faces_match(&a.face, &b.face), "{}", a.name);
+    }
+    assert_eq!(
+        sharing(&back).iter().filter(|g| g.len() == 2).count(),
+        4,
+        "the arms shared"
+    );
+    let (_, at) = check_vertices_keep_curves(&text, &back, e);
+    assert!(
+        at >= 4,
+        "the arms' ends at the crossing are their own vertices: {at}"
+    );
+}

@@ -8,7 +8,10 @@
 //!
 //! Edges and vertices shared by faces are written once ([`lekalo::topology::Shell`]) when the
 //! faces' curves of the edge are one curve (else each keeps its own `EDGE_CURVE` between the
-//! shared vertices): the `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
+//! shared vertices). A vertex whose edges' ends differ lies past every end along its curve, so
+//! that a reader trimming each edge at the vertex keeps the whole curve; where no point does
+//! (edges overlapping along a line at a crossing), each edge there gets a `VERTEX_POINT` of its
+//! own at its curve's end (`docs/theory/topology.md`, "The point of a vertex"). The `EDGE_CURVE` runs as the first face that uses it runs it, the other use is an
 //! `ORIENTED_EDGE` with orientation `.F.`, and its pcurve is written reversed to run along the
 //! edge. Faces that close a volume (every edge used twice, once each way) go into a
 //! `CLOSED_SHELL` of a `MANIFOLD_SOLID_BREP` in an `ADVANCED_BREP_SHAPE_REPRESENTATION`; other
@@ -165,11 +168,8 @@ impl StepWriter {
         let ctx2 = self.add(
             "(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()REPRESENTATION_CONTEXT('2D SPACE',''))".into(),
         );
-        let mut vertices = Vec::with_capacity(shell.vertices().len());
-        for p in shell.vertices() {
-            let pt = self.add_point(p);
-            vertices.push(self.add(format!("VERTEX_POINT('',#{pt})")));
-        }
+        // each vertex's VERTEX_POINT, written where an edge first uses it
+        let mut vertices: Vec<Option<usize>> = vec![None; shell.vertices().len()];
         // each use's EDGE_CURVE and whether the use runs it forwards
         let mut edge_of: HashMap<EdgeUse, (usize, bool)> = HashMap::new();
         for e in shell.edges() {
@@ -228,9 +228,29 @@ impl StepWriter {
                 } else {
                     [e.vertices[1], e.vertices[0]]
                 };
+                // a vertex no point of which keeps every edge there whole (its ends overlap
+                // along a line) is written at each curve's own end, its tolerance the gap
+                let (t0, t1) = first_edge.curve().domain();
+                let mut ends = [0; 2];
+                for (k, (v, t)) in [(v0, t0), (v1, t1)].into_iter().enumerate() {
+                    ends[k] = match vertices[v] {
+                        Some(id) if shell.vertex_meets_ends(v) => id,
+                        _ if shell.vertex_meets_ends(v) => {
+                            let pt = self.add_point(&shell.vertices()[v]);
+                            let id = self.add(format!("VERTEX_POINT('',#{pt})"));
+                            vertices[v] = Some(id);
+                            id
+                        }
+                        _ => {
+                            let p = first_edge.curve().eval(t).map_err(lib)?;
+                            let pt = self.add_point(&p);
+                            self.add(format!("VERTEX_POINT('',#{pt})"))
+                        }
+                    };
+                }
                 let id = self.add(format!(
                     "EDGE_CURVE('',#{},#{},#{geometry},.T.)",
-                    vertices[v0], vertices[v1]
+                    ends[0], ends[1]
                 ));
                 for &(u, same) in &g {
                     edge_of.insert(u, (id, same == first_same));

@@ -177,17 +177,22 @@ pub(super) fn check_grid(tolerance: f64, cells: f64) -> Result<()> {
     Ok(())
 }
 
-/// The mesh of face `fi` of a set from the samples of its edges (`samples` of a use: the edge's
-/// samples and whether the use runs it the way they do): the loops as polygons in `(u, v)`
-/// through the samples, cut along a seam where they go round a closed surface, triangulated
-/// and refined ([`mesh_faces`](super::mesh_faces)).
+/// The samples of one use of an edge: the edge's samples, whether the use runs the edge the way
+/// they do, and the points of the vertices at the use's start and end.
+pub(super) type UseSamples<'s> = (&'s EdgeSamples, bool, [&'s [f64]; 2]);
+
+/// The mesh of face `fi` of a set from the samples of its edges (`samples` of a use, see
+/// [`UseSamples`]): the loops as polygons in `(u, v)` through the samples, each corner at its
+/// vertex's point in space (one point for every face meeting there, where the edges' ends
+/// differ within the file's tolerance), cut along a seam where they go round a closed surface,
+/// triangulated and refined ([`mesh_faces`](super::mesh_faces)).
 ///
 /// # Errors
 /// As [`mesh_faces`](super::mesh_faces) for one face.
 pub(super) fn mesh_face<'s>(
     plan: &FacePlan<'_>,
     fi: usize,
-    samples: &dyn Fn(EdgeUse) -> Option<(&'s EdgeSamples, bool)>,
+    samples: &dyn Fn(EdgeUse) -> Option<UseSamples<'s>>,
     tolerance: f64,
 ) -> Result<Mesh> {
     // the loops as polygons in (u, v), with their 3-D points
@@ -201,7 +206,7 @@ pub(super) fn mesh_face<'s>(
                 lp: li,
                 edge: ei,
             };
-            let Some((es, same)) = samples(u) else {
+            let Some((es, same, corners)) = samples(u) else {
                 continue;
             };
             let (s, pts) = (&es.s, &es.pts);
@@ -213,7 +218,12 @@ pub(super) fn mesh_face<'s>(
             for k in 0..n {
                 let j = if same { k } else { n - 1 - k };
                 let su = if same { s[j] } else { 1.0 - s[j] };
-                pe.push((plan.clip(pcurve_at(e, su)?), pts[j].clone()));
+                let x = match k {
+                    0 => corners[0].to_vec(),
+                    _ if k == n - 1 => corners[1].to_vec(),
+                    _ => pts[j].clone(),
+                };
+                pe.push((plan.clip(pcurve_at(e, su)?), x));
             }
             edges.push(pe);
         }

@@ -12,7 +12,8 @@ use rayon::prelude::*;
 
 use super::face::{Edge, Face};
 use super::mesh::{
-    check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan, MAX_REFINE_ROUNDS,
+    check_grid, mesh_face, plan_face, sample_shared_edge, EdgeSamples, FacePlan, UseSamples,
+    MAX_REFINE_ROUNDS,
 };
 use super::shell::{EdgeUse, Shell};
 use super::trims::TrimRepair;
@@ -59,7 +60,8 @@ type Use<'a> = (&'a FacePlan<'a>, &'a Edge, bool);
 
 /// The samples of a face's edges, loop by loop, each with whether the face runs the edge as
 /// its samples do: what a face's mesh depends on besides the face.
-type FaceSamples = Vec<Option<(Arc<EdgeSamples>, bool)>>;
+/// Each use's samples, direction and vertex points (see [`UseSamples`]), owned.
+type FaceSamples = Vec<Option<(Arc<EdgeSamples>, bool, [Vec<f64>; 2])>>;
 
 /// Meshes of `faces`, one per face, each within `tolerance` of its surface over its trimmed
 /// region, the faces' meshes meeting without cracks along their shared edges
@@ -265,11 +267,14 @@ pub(super) fn mesh_counted(
             for (lp, l) in live_faces[li].loops().enumerate() {
                 for edge in 0..l.edges().len() {
                     let u = EdgeUse { face: li, lp, edge };
-                    out.push(
-                        shell
-                            .edge_of(u)
-                            .and_then(|(g, same)| Some((sampled.get(&keys[g])?.clone(), same))),
-                    );
+                    out.push(shell.edge_of(u).and_then(|(g, same)| {
+                        let [a, b] = corners(&shell, g, same);
+                        Some((
+                            sampled.get(&keys[g])?.clone(),
+                            same,
+                            [a.to_vec(), b.to_vec()],
+                        ))
+                    }));
                 }
             }
             out
@@ -283,9 +288,13 @@ pub(super) fn mesh_counted(
             .into_par_iter()
             .filter_map(|(li, fk)| {
                 let fi = live[li];
-                let samples = |u: EdgeUse| -> Option<(&EdgeSamples, bool)> {
+                let samples = |u: EdgeUse| -> Option<UseSamples<'_>> {
                     let (g, same) = shell.edge_of(u)?;
-                    Some((sampled.get(&keys[g])?.as_ref(), same))
+                    Some((
+                        sampled.get(&keys[g])?.as_ref(),
+                        same,
+                        corners(&shell, g, same),
+                    ))
                 };
                 let plan = plans[fi].as_ref()?;
                 Some((fi, fk, mesh_face(plan, li, &samples, tolerance)))
@@ -341,6 +350,19 @@ pub(super) fn mesh_counted(
         });
     }
     Ok((out, count))
+}
+
+/// The points of the vertices at the start and end of a use of edge `g` of `shell` that runs
+/// it the way its first use does (`same`) or backwards.
+fn corners(shell: &Shell, g: usize, same: bool) -> [&[f64]; 2] {
+    let e = &shell.edges()[g];
+    let at = |v: usize| shell.vertices()[v].as_slice();
+    let [a, b] = e.vertices.map(at);
+    if same {
+        [a, b]
+    } else {
+        [b, a]
+    }
 }
 
 /// The faces to blame for an edge that could not be sampled for all its uses: those whose use

@@ -13,6 +13,7 @@
 //! | `pcurve.rs` | [`Face::with_projected_pcurves`] and [`SurfaceClosure`]: the pcurves a file leaves out, by projecting each edge onto the surface, unwrapped across seams and continuous through poles |
 //! | `seam.rs` | faces whose loops go round a closed surface without a seam edge (bands, caps round a pole), cut along a seam into one region of `(u, v)` for the mesher |
 //! | `trims.rs` | [`Face::checked_trims`], [`TrimDefect`], [`TrimRepair`]: the loops checked to bound one region of the domain (pcurves in the domain, no loop of no length, no crossings, holes inside the outer loop), clipped or dropped where the repair is unambiguous |
+//! | `vertex.rs` | the point of a vertex whose edges' ends do not coincide: past every end along its curve, so that each edge keeps its whole curve |
 //! | `inside.rs` | [`TrimRegion`]: the loops in `(u, v)` as polygons and the point-in-face test by winding numbers |
 //!
 //! See `docs/theory/topology.md`.
@@ -26,6 +27,7 @@ mod pcurve;
 mod seam;
 mod shell;
 mod trims;
+mod vertex;
 
 pub use face::{Edge, Face, Loop, LOOP_CLOSURE_RTOL};
 pub use inside::{winding_number, TrimRegion, TRIM_SAMPLES_PER_SPAN};

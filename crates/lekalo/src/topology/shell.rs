@@ -13,6 +13,7 @@
 use std::collections::HashMap;
 
 use super::face::{Edge, Face};
+use super::vertex::{vertex_point, EdgeEnd};
 use crate::{Curve, Result};
 
 /// One use of an edge: the face (its index in the set), the loop (0 for the outer loop, `i` for
@@ -46,6 +47,7 @@ pub struct SharedEdge {
 pub struct Shell {
     edges: Vec<SharedEdge>,
     vertices: Vec<Vec<f64>>,
+    meets_ends: Vec<bool>,
     of_use: HashMap<EdgeUse, (usize, bool)>,
 }
 
@@ -75,6 +77,27 @@ fn collapsed(c: &Curve) -> bool {
     pts.iter().all(|p| p == first.as_slice())
 }
 
+/// The unit direction in which `c` runs away from its end at `t` (`C'(t)` at its last end,
+/// `−C'(t)` at its first), or from its middle to the end where the derivative vanishes there
+/// (a curve whose end control points coincide); zero for a curve that does not move.
+fn outward(c: &Curve, t: f64, last: bool) -> Result<Vec<f64>> {
+    let d = c.eval_derivatives(t, 1)?;
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let sign = if last { 1.0 } else { -1.0 };
+    let mut dir: Vec<f64> = d.point(1).iter().map(|x| sign * x).collect();
+    if !(norm(&dir) > 0.0 && norm(&dir).is_finite()) {
+        let (a, b) = c.domain();
+        let mid = c.eval(0.5 * (a + b))?;
+        dir = d.point(0).iter().zip(&mid).map(|(p, m)| p - m).collect();
+    }
+    let n = norm(&dir);
+    Ok(if n > 0.0 && n.is_finite() {
+        dir.iter().map(|x| x / n).collect()
+    } else {
+        vec![0.0; dir.len()]
+    })
+}
+
 /// Union-find with path halving.
 fn find(parent: &mut [usize], mut x: usize) -> usize {
     while parent[x] != x {
@@ -87,7 +110,11 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 impl Shell {
     /// The shell of `faces`: uses of one edge found by their curves (see the module docs), the
     /// ends of edges that follow each other in a loop, or that are the same point bit for bit,
-    /// joined into vertices. A vertex's point is the start or end of the first edge met there.
+    /// joined into vertices. A vertex's point is the ends' point where they coincide; where they
+    /// do not (a file's edges meet within its tolerance), a point past every end along its
+    /// curve, so that each edge's nearest point to it is the edge's own end (see
+    /// `docs/theory/topology.md`, "The point of a vertex"), or the first edge's end when there
+    /// is none.
     ///
     /// ```
     /// use lekalo::topology::{Edge, Face, Loop, Shell, LOOP_CLOSURE_RTOL};
@@ -184,7 +211,7 @@ impl Shell {
                 }
             }
         }
-        let mut points: Vec<Option<Vec<f64>>> = vec![None; 2 * edges.len()];
+        let mut ends: Vec<Option<EdgeEnd>> = vec![None; 2 * edges.len()];
         let mut at_point: HashMap<Vec<u64>, usize> = HashMap::new();
         for (g, e) in edges.iter().enumerate() {
             let (u, _) = e.uses[0];
@@ -204,27 +231,34 @@ impl Shell {
                 } else {
                     at_point.insert(bits, node);
                 }
-                points[node] = Some(p);
+                let outward = outward(c, t, end == 1)?;
+                ends[node] = Some(EdgeEnd { point: p, outward });
             }
         }
+        // the ends of each vertex, the first edge's first
         let mut index: HashMap<usize, usize> = HashMap::new();
-        let mut vertices = Vec::new();
+        let mut classes: Vec<Vec<EdgeEnd>> = Vec::new();
         for node in 0..2 * edges.len() {
             let root = find(&mut parent, node);
             let v = match index.get(&root) {
                 Some(&v) => v,
                 None => {
-                    let v = vertices.len();
+                    let v = classes.len();
                     index.insert(root, v);
-                    vertices.push(points[root].clone().unwrap_or_default());
+                    classes.push(Vec::new());
                     v
                 }
             };
+            if let Some(e) = ends[node].take() {
+                classes[v].push(e);
+            }
             edges[node / 2].vertices[node % 2] = v;
         }
+        let (vertices, meets_ends) = classes.iter().map(|c| vertex_point(c)).unzip();
         Ok(Shell {
             edges,
             vertices,
+            meets_ends,
             of_use,
         })
     }
@@ -239,6 +273,16 @@ impl Shell {
     #[must_use]
     pub fn vertices(&self) -> &[Vec<f64>] {
         &self.vertices
+    }
+
+    /// True when every edge end joined at vertex `v` is the vertex's point or has it past the
+    /// end along its curve (the curve's nearest point to it is the end): a reader that trims
+    /// each edge at the nearest point of its curve to its vertices keeps every curve whole.
+    /// False where no point does (two edges of one line overlapping at a crossing), and for an
+    /// index past the vertices.
+    #[must_use]
+    pub fn vertex_meets_ends(&self, v: usize) -> bool {
+        self.meets_ends.get(v).copied().unwrap_or(false)
     }
 
     /// The edge a use belongs to (its index in [`Shell::edges`]) and whether the use runs the way
