@@ -49,22 +49,7 @@ pub fn cubic_hermite_bspline_into(
     control: &mut [f64],
 ) -> Result<()> {
     let n = x.len();
-    if n < 2 {
-        check_breakpoints(x)?;
-    }
-    if dim == 0 {
-        return Err(Error::InvalidArgument {
-            what: "Hermite values".into(),
-            reason: "the dimension is 0; pass at least one column of values".into(),
-        });
-    }
-    let rows = n.checked_mul(dim).filter(|&r| r <= MAX_SCALARS / 2);
-    let Some(rows) = rows else {
-        return Err(Error::InvalidArgument {
-            what: "Hermite values".into(),
-            reason: format!("{n} breakpoints of dimension {dim} exceed the size limit"),
-        });
-    };
+    let rows = hermite_rows(x, dim, 2)?;
     let (n_knots, n_ctrl) = cubic_hermite_bspline_len(n);
     for (what, expected, got) in [
         ("Hermite values (breakpoints × dimension)", rows, y.len()),
@@ -96,16 +81,7 @@ pub fn cubic_hermite_bspline_into(
             return Ok(());
         }
     }
-    check_breakpoints(x)?;
-    for (what, v) in [("Hermite values", y), ("Hermite slopes", dydx)] {
-        if let Some(index) = v.iter().position(|a| !a.is_finite()) {
-            return Err(Error::NonFinite {
-                what: what.into(),
-                index,
-                value: v[index],
-            });
-        }
-    }
+    check_hermite_numbers(x, y, dydx)?;
     control[..dim].copy_from_slice(&y[..dim]);
     let inner = &mut control[dim..(n_ctrl - 1) * dim];
     for (k, seg) in inner.chunks_exact_mut(2 * dim).enumerate() {
@@ -171,6 +147,52 @@ crate::numeric::isa::avx2_dispatch! {
     /// [`hermite_scalar_body`] compiled with AVX2 where the processor has it, else as built
     /// ([`crate::numeric::isa`]: the same bits).
     fn hermite_scalar_pass(x: &[f64], y: &[f64], dydx: &[f64], control: &mut [f64]) -> bool = hermite_scalar_body;
+}
+
+/// The number of scalars in `y` (and in `dydx`) of Hermite data at the breakpoints `x` of
+/// dimension `dim`, checked before anything is allocated or written: at least 2 breakpoints,
+/// `dim ≥ 1`, and `n·dim·per_row` within [`MAX_SCALARS`] (`per_row`: the output's scalars per
+/// input scalar), shared by the Hermite kernels of this folder.
+///
+/// # Errors
+/// [`Error::TooFew`] or [`Error::InvalidArgument`] as [`check_breakpoints`] for fewer than 2
+/// breakpoints; [`Error::InvalidArgument`] for `dim = 0` or a size over the limit.
+pub(super) fn hermite_rows(x: &[f64], dim: usize, per_row: usize) -> Result<usize> {
+    let n = x.len();
+    if n < 2 {
+        check_breakpoints(x)?;
+    }
+    if dim == 0 {
+        return Err(Error::InvalidArgument {
+            what: "Hermite values".into(),
+            reason: "the dimension is 0; pass at least one column of values".into(),
+        });
+    }
+    let rows = n.checked_mul(dim).filter(|&r| r <= MAX_SCALARS / per_row);
+    rows.ok_or_else(|| Error::InvalidArgument {
+        what: "Hermite values".into(),
+        reason: format!("{n} breakpoints of dimension {dim} exceed the size limit"),
+    })
+}
+
+/// The checks of Hermite data's numbers that the kernels' passes do not fold in: breakpoints
+/// finite and strictly increasing ([`check_breakpoints`]), then every value and slope finite,
+/// the first bad one named.
+///
+/// # Errors
+/// As [`check_breakpoints`]; [`Error::NonFinite`] for a value or slope that is not finite.
+pub(super) fn check_hermite_numbers(x: &[f64], y: &[f64], dydx: &[f64]) -> Result<()> {
+    check_breakpoints(x)?;
+    for (what, v) in [("Hermite values", y), ("Hermite slopes", dydx)] {
+        if let Some(index) = v.iter().position(|a| !a.is_finite()) {
+            return Err(Error::NonFinite {
+                what: what.into(),
+                index,
+                value: v[index],
+            });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -4,8 +4,8 @@
 //! `PchipInterpolator` and `Akima1DInterpolator`), computed from the data by SciPy's operations,
 //! so that they are SciPy's numbers and extrapolate as SciPy's do.
 
-use crate::error::{Error, Result, MAX_SCALARS};
-use crate::knots::check_breakpoints;
+use super::hermite_bspline::{check_hermite_numbers, hermite_rows};
+use crate::error::{Error, Result};
 
 /// Writes the cubic Hermite spline with values `y` and slopes `dydx` (each `n` rows of `dim`
 /// numbers, row-major) at the strictly increasing breakpoints `x` into `c` in SciPy's `PPoly`
@@ -44,22 +44,7 @@ pub fn cubic_hermite_power_into(
     c: &mut [f64],
 ) -> Result<()> {
     let n = x.len();
-    if n < 2 {
-        check_breakpoints(x)?;
-    }
-    if dim == 0 {
-        return Err(Error::InvalidArgument {
-            what: "Hermite values".into(),
-            reason: "the dimension is 0; pass at least one column of values".into(),
-        });
-    }
-    let rows = n.checked_mul(dim).filter(|&r| r <= MAX_SCALARS / 4);
-    let Some(rows) = rows else {
-        return Err(Error::InvalidArgument {
-            what: "Hermite values".into(),
-            reason: format!("{n} breakpoints of dimension {dim} exceed the size limit"),
-        });
-    };
+    let rows = hermite_rows(x, dim, 4)?;
     let coefficients = 4 * (n - 1) * dim;
     for (what, expected, got) in [
         ("Hermite values (breakpoints × dimension)", rows, y.len()),
@@ -84,16 +69,7 @@ pub fn cubic_hermite_power_into(
             return Ok(());
         }
     }
-    check_breakpoints(x)?;
-    for (what, v) in [("Hermite values", y), ("Hermite slopes", dydx)] {
-        if let Some(index) = v.iter().position(|a| !a.is_finite()) {
-            return Err(Error::NonFinite {
-                what: what.into(),
-                index,
-                value: v[index],
-            });
-        }
-    }
+    check_hermite_numbers(x, y, dydx)?;
     write_hermite_power(x, y, dydx, dim, c);
     Ok(())
 }
