@@ -102,9 +102,14 @@ def test_grid_smoothing_meets_s(poles, s):
     assert (1 - 1e-3) * s <= got.get_residual() <= s
     values = got(u, v)
     assert ((values - r) ** 2).sum() == pytest.approx(got.get_residual(), rel=1e-9)
-    # the same knots as FITPACK on this data
-    for a, b in zip(got.get_knots(), ref.get_knots()):
-        np.testing.assert_allclose(a, b, rtol=0, atol=1e-14)
+    # the same knots as FITPACK on this data, where FITPACK met its own condition: with a C1
+    # pole and s = 0.01 its rounds end at the interpolant (fp = 0 < s), which is not a
+    # smoothing result to compare knots with
+    if abs(ref.get_residual() - s) <= 1e-3 * s:
+        for a, b in zip(got.get_knots(), ref.get_knots()):
+            np.testing.assert_allclose(a, b, rtol=0, atol=1e-14)
+    else:
+        assert ref.get_residual() == 0.0
 
 
 def test_native_entries_return_tensor_splines():
