@@ -114,7 +114,7 @@ def test_fit_values_and_factors_give_the_fits_and_their_derivatives_bit_for_bit(
     for w in (None, rng.uniform(0.5, 2, 30)):
         control, f = lekalo.least_squares_values_and_factors(3, t, x, y, w)
         assert np.array_equal(control, lekalo.fit_least_squares(y, x, t, 3, w=w)[0].control)
-        assert f.shape == (lekalo.least_squares_map_flat_len(30, 6, 3),)
+        assert f.shape == (lekalo._lekalo.least_squares_map_flat_len(30, 6, 3),)
         g = np.sin(np.arange(12.0)).reshape(6, 2)
         assert np.array_equal(
             lekalo.least_squares_vjp(3, t, x, g, w, factors=f), lekalo.least_squares_vjp(3, t, x, g, w)
@@ -124,7 +124,7 @@ def test_fit_values_and_factors_give_the_fits_and_their_derivatives_bit_for_bit(
         )
         control, f = lekalo.smoothing_values_and_factors(x, y, 1e-3, w)
         assert np.array_equal(control, lekalo.fit_smoothing(x, y, w, 1e-3)[0].control)
-        assert f.shape == (lekalo.smoothing_map_flat_len(30),)
+        assert f.shape == (lekalo._lekalo.smoothing_map_flat_len(30),)
         g = np.sin(np.arange(64.0)).reshape(32, 2)
         assert np.array_equal(
             lekalo.smoothing_vjp(x, 1e-3, g, w, factors=f), lekalo.smoothing_vjp(x, 1e-3, g, w)

@@ -18,11 +18,16 @@
 use lekalo::derivatives::{ArcLengthGradient, ClosestParameters};
 use lekalo::{BSplineCurve, Points};
 
-use super::abi::{Call, In};
+use super::abi::{self, In};
 use super::operands::{
     cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
+use super::Handler;
+
+/// The handlers of both queries, by target name.
+pub(super) const HANDLERS: [&[(&str, Handler)]; 2] =
+    [arc_length::HANDLERS, closest_parameter::HANDLERS];
 
 /// The residuals' batch, element sizes (`names`: each one's name and core axes) and the
 /// dimension (the control points' last axis).
