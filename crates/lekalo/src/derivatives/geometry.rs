@@ -132,6 +132,9 @@ impl ArcLengthGradient {
     }
 }
 
+/// The control-point and point cotangents of [`ClosestParameters::vjp`], each when asked for.
+pub type Cotangents = (Option<Vec<f64>>, Option<Vec<f64>>);
+
 /// The parameters of the closest points of a B-spline curve to points `x_i`
 /// ([`crate::QueryCurve::project`]) and their derivatives with respect to the control points and
 /// the points (`docs/theory/derivatives.md#arc-length-and-closest-points`): per point, the basis
@@ -299,7 +302,7 @@ impl ClosestParameters {
         cotangent: &[f64],
         control: bool,
         points: bool,
-    ) -> Result<(Option<Vec<f64>>, Option<Vec<f64>>)> {
+    ) -> Result<Cotangents> {
         let (dim, w, m) = (self.dim, self.width, self.params.len());
         check_len("parameter cotangent (one a point)", m, cotangent.len())?;
         check_finite("parameter cotangent", cotangent)?;
