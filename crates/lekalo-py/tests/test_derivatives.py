@@ -99,3 +99,43 @@ def test_interpolation_kernels_against_scipy_and_each_other():
     assert np.isclose(np.sum(g * ref), np.sum(gy * y), rtol=1e-12)
     with pytest.raises(lekalo.InputError, match="knots"):
         lekalo.interpolation_vjp(3, knots[:-1], x, g)
+
+
+def test_fit_values_and_factors_give_the_fits_and_their_derivatives_bit_for_bit():
+    """A fit's values with its map as numbers (one factorisation): the values are the fit's and
+    the JVP and VJP through `factors=` those of the kernels that factor on their own, bit for
+    bit; factors of the wrong length are refused, naming them."""
+    rng = np.random.default_rng(5)
+    x = np.sort(rng.uniform(0, 1, 30))
+    x[0], x[-1] = 0.0, 1.0
+    y = np.stack([np.sin(3 * x), np.cos(2 * x) + 5.0], axis=-1)
+    t = np.array([0, 0, 0, 0, 0.3, 0.7, 1, 1, 1, 1.0])
+    dq = np.cos(np.arange(60.0)).reshape(30, 2)
+    for w in (None, rng.uniform(0.5, 2, 30)):
+        control, f = lekalo.least_squares_values_and_factors(3, t, x, y, w)
+        assert np.array_equal(control, lekalo.fit_least_squares(y, x, t, 3, w=w)[0].control)
+        assert f.shape == (lekalo._lekalo.least_squares_map_flat_len(30, 6, 3),)
+        g = np.sin(np.arange(12.0)).reshape(6, 2)
+        assert np.array_equal(
+            lekalo.least_squares_vjp(3, t, x, g, w, factors=f), lekalo.least_squares_vjp(3, t, x, g, w)
+        )
+        assert np.array_equal(
+            lekalo.least_squares_jvp(3, t, x, dq, w, factors=f), lekalo.least_squares_jvp(3, t, x, dq, w)
+        )
+        control, f = lekalo.smoothing_values_and_factors(x, y, 1e-3, w)
+        assert np.array_equal(control, lekalo.fit_smoothing(x, y, w, 1e-3)[0].control)
+        assert f.shape == (lekalo._lekalo.smoothing_map_flat_len(30),)
+        g = np.sin(np.arange(64.0)).reshape(32, 2)
+        assert np.array_equal(
+            lekalo.smoothing_vjp(x, 1e-3, g, w, factors=f), lekalo.smoothing_vjp(x, 1e-3, g, w)
+        )
+        assert np.array_equal(
+            lekalo.smoothing_jvp(x, 1e-3, dq, w, factors=f), lekalo.smoothing_jvp(x, 1e-3, dq, w)
+        )
+    # 1-D data: 1-D control points
+    c1, _ = lekalo.least_squares_values_and_factors(3, t, x, y[:, 0])
+    assert c1.shape == (6,)
+    with pytest.raises(lekalo.InputError, match="factors"):
+        lekalo.least_squares_vjp(3, t, x, np.ones((6, 2)), factors=np.ones(7))
+    with pytest.raises(lekalo.InputError, match="factors"):
+        lekalo.smoothing_vjp(x, 1e-3, np.ones((32, 2)), factors=np.ones(7))

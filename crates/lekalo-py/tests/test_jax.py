@@ -348,6 +348,8 @@ def test_the_docs_examples_run():
     assert namespace["g_data"].shape == (60, 2) and namespace["jac_y"].shape == (14, 12)
     assert namespace["grad_pts"].shape == (2, 3) and namespace["vals"].shape == (2,)
     assert namespace["g_ys"].shape == (8,) and namespace["g_xs"].shape == (8,)
+    assert namespace["coef"].shape == (2, 8) and namespace["g_len"].shape == (5, 2)
+    assert namespace["t_star"].shape == (2,) and namespace["dt_dq"].shape == (2, 2, 2)
 
 
 def test_the_module_docstring_examples_run():

@@ -110,23 +110,40 @@ def test_fits_compile_to_the_ffi_targets_not_a_callback():
         assert f"{stem}_jvp" in forward and "callback" not in forward
 
 
-def test_smoothing_derivatives_reuse_the_forward_factorisation_with_the_same_bits():
-    """Under differentiation the smoothing spline's forward pass returns its factorisation with
-    the values (the `_factor` target) and the JVP and VJP apply it: a gradient compiles to that
-    call and the VJP, with no second values call, and the derivatives have the bits of the
-    NumPy kernels, which assemble and factor the system on their own (the previous path)."""
-    x, y, _, w = lsq_case()
-    g = np.cos(np.arange(84.0)).reshape(42, 2)
+@pytest.mark.parametrize("kind", ["least_squares", "smoothing"])
+def test_fit_derivatives_reuse_the_forward_factorisation_with_the_same_bits(kind):
+    """Under differentiation a fit's forward pass returns its factorisation with the values
+    (the `_factor` target) and the JVP and VJP apply it: a gradient compiles to that call and
+    the VJP, with no second values call, and the derivatives have the bits of the NumPy
+    kernels, which factor the system on their own."""
+    x, y, t, w = lsq_case()
     dq = np.sin(np.arange(80.0)).reshape(40, 2)
+    if kind == "smoothing":
+        stem, g = "lekalo_fit_smoothing", np.cos(np.arange(84.0)).reshape(42, 2)
+        fit = lambda q, weights: fit_smoothing(x, q, weights, 1e-3)  # noqa: E731
+        plain = lambda q, weights: plain_smoothing(x, q, weights, 1e-3)  # noqa: E731
+        vjp = lambda weights: lekalo.smoothing_vjp(x, 1e-3, g, weights)  # noqa: E731
+        jvp = lambda weights: lekalo.smoothing_jvp(x, 1e-3, dq, weights)  # noqa: E731
+    else:
+        stem, g = "lekalo_fit_least_squares", np.cos(np.arange(14.0)).reshape(7, 2)
+        fit = lambda q, weights: fit_least_squares(q, x, t, 3, w=weights)  # noqa: E731
+        plain = lambda q, weights: plain_lsq(q, x, t, weights)  # noqa: E731
+        vjp = lambda weights: lekalo.least_squares_vjp(3, t, x, g, weights)  # noqa: E731
+        jvp = lambda weights: lekalo.least_squares_jvp(3, t, x, dq, weights)  # noqa: E731
     for weights in (None, w):
-        loss = lambda q: jnp.sum(jnp.asarray(g) * fit_smoothing(x, q, weights, 1e-3))  # noqa: E731
+        loss = lambda q: jnp.sum(jnp.asarray(g) * fit(q, weights))  # noqa: E731
         text = jax.jit(jax.grad(loss)).lower(y).as_text()
-        assert "lekalo_fit_smoothing_factor" in text and "lekalo_fit_smoothing_eval" not in text
+        assert f"{stem}_factor" in text and f"{stem}_eval" not in text
         got = np.asarray(jax.jit(jax.grad(loss))(y))
-        assert np.array_equal(got, lekalo.smoothing_vjp(x, 1e-3, g, weights)), "VJP bits"
-        vals, tan = jax.jvp(lambda q: fit_smoothing(x, q, weights, 1e-3), (y,), (dq,))
-        assert np.array_equal(np.asarray(vals), plain_smoothing(x, y, weights, 1e-3)), "values"
-        assert np.array_equal(np.asarray(tan), lekalo.smoothing_jvp(x, 1e-3, dq, weights)), "JVP"
+        assert np.array_equal(got, vjp(weights)), "VJP bits"
+        vals, tan = jax.jvp(lambda q: fit(q, weights), (y,), (dq,))
+        assert np.array_equal(np.asarray(vals), plain(y, weights)), "values"
+        assert np.array_equal(np.asarray(tan), jvp(weights)), "JVP"
+        # a batch of data sets: each element's values and factors, each one's VJP
+        batch = np.stack([y, 2 * y + 1])
+        per = np.asarray(jax.jit(jax.vmap(jax.grad(loss)))(batch))
+        for i in range(2):
+            assert np.array_equal(per[i], vjp(weights)), "vmap(grad) bits"
 
 
 @pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])

@@ -111,13 +111,24 @@ def _constant_jvp(name, what, primals, tangents):
 @lru_cache(maxsize=None)
 def _least_squares_kernel(k):
     """The FFI targets ``lekalo_fit_least_squares_*`` (``xla_ffi/fits.rs``) for degree ``k``:
-    residuals ``(t, params, w, points)``, control points ``(len(t) - k - 1, dim)``."""
+    residuals ``(t, params, w, points)`` (with the factors before the points in the
+    derivatives'), control points ``(len(t) - k - 1, dim)``. Under differentiation the values
+    and the factors come from ``lekalo_fit_least_squares_factor``, whose banded QR the JVP and
+    VJP reuse (``lekalo::derivatives::LeastSquaresMap::to_flat``)."""
 
     def out_shape(res):
-        t, q = res[0], res[3]
+        t, q = res[0], res[-1]
         return q.shape[:-2] + (t.shape[-1] - k - 1, q.shape[-1])
 
-    return Kernel("fit_least_squares", "lekalo_fit_least_squares", ("data",), out_shape)
+    def factor_shape(res):
+        t, q = res[0], res[-1]
+        n_flat = _lekalo.least_squares_map_flat_len(q.shape[-2], t.shape[-1] - k - 1, k)
+        return q.shape[:-2] + (n_flat,)
+
+    return Kernel(
+        "fit_least_squares", "lekalo_fit_least_squares", ("data",), out_shape,
+        factor_shape=factor_shape,
+    )
 
 
 def _smoothing_out_shape(res):

@@ -462,6 +462,8 @@ def least_squares_jvp(
     params: ArrayLike,
     data_tangent: ArrayLike,
     w: Optional[ArrayLike] = None,
+    *,
+    factors: Optional[ArrayLike] = None,
 ) -> Array: ...
 def least_squares_vjp(
     degree: int,
@@ -469,18 +471,41 @@ def least_squares_vjp(
     params: ArrayLike,
     control_cotangent: ArrayLike,
     w: Optional[ArrayLike] = None,
+    *,
+    factors: Optional[ArrayLike] = None,
 ) -> Array: ...
 def smoothing_jvp(
-    x: ArrayLike, lam: float, data_tangent: ArrayLike, w: Optional[ArrayLike] = None
+    x: ArrayLike,
+    lam: float,
+    data_tangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+    *,
+    factors: Optional[ArrayLike] = None,
 ) -> Array: ...
 def smoothing_vjp(
-    x: ArrayLike, lam: float, control_cotangent: ArrayLike, w: Optional[ArrayLike] = None
+    x: ArrayLike,
+    lam: float,
+    control_cotangent: ArrayLike,
+    w: Optional[ArrayLike] = None,
+    *,
+    factors: Optional[ArrayLike] = None,
 ) -> Array: ...
+def least_squares_values_and_factors(
+    degree: int,
+    knots: ArrayLike,
+    params: ArrayLike,
+    points: ArrayLike,
+    w: Optional[ArrayLike] = None,
+) -> Tuple[Array, Array]: ...
+def smoothing_values_and_factors(
+    x: ArrayLike, y: ArrayLike, lam: float, w: Optional[ArrayLike] = None
+) -> Tuple[Array, Array]: ...
 def least_squares_linearize(
     degree: int, knots: ArrayLike, params: ArrayLike, w: Optional[ArrayLike] = None
 ) -> dict: ...
 def smoothing_linearize(x: ArrayLike, lam: float, w: Optional[ArrayLike] = None) -> dict: ...
 def smoothing_map_flat_len(n_data: int) -> int: ...
+def least_squares_map_flat_len(n_data: int, n_ctrl: int, degree: int) -> int: ...
 def tensor_bspline_jvp(
     t: Sequence[ArrayLike],
     c: ArrayLike,

@@ -14,7 +14,12 @@
   the smoothing spline, differentiable with respect to the data;
 - ``interpolate(points, params, t, k=3)``: the control points of the interpolant through
   ``points`` at ``params`` on the knots ``t``, differentiable with respect to the data and the
-  parameters.
+  parameters;
+- ``arc_length(knots, control_points, degree)``: a B-spline curve's length, differentiable with
+  respect to the control points;
+- ``closest_parameter(knots, control_points, x, degree)``: the parameters of the curve's
+  closest points to the points ``x``, differentiable with respect to the control points and
+  ``x``.
 
 The evaluations are differentiable, in forward and reverse mode, with respect to the control
 points and the parameters; the knots and degrees are constants.
@@ -83,6 +88,7 @@ except ImportError as e:  # pragma: no cover - the message is the point
 from . import _jax_ffi
 from ._lekalo import InputError
 from ._jax_fits import fit_least_squares, fit_smoothing, interpolate
+from ._jax_geometry import arc_length, closest_parameter
 from ._jax_support import _degree, _float64, _require_x64
 
 __all__ = [
@@ -93,6 +99,8 @@ __all__ = [
     "fit_least_squares",
     "fit_smoothing",
     "interpolate",
+    "arc_length",
+    "closest_parameter",
 ]
 
 _jax_ffi.register_targets()

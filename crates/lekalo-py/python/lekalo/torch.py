@@ -12,7 +12,10 @@ lekalo's NumPy kernels, differentiable in reverse mode (``loss.backward()``,
 
 Each forward calls the library's kernel (the values are bit-for-bit lekalo's evaluation or fit)
 and each backward its vector-Jacobian product (``lekalo.bspline_curve_vjp``, ...,
-``lekalo.least_squares_vjp``, ``lekalo.smoothing_vjp``; ``docs/theory/derivatives.md``).
+``lekalo.least_squares_vjp``, ``lekalo.smoothing_vjp``; ``docs/theory/derivatives.md``). A fit's
+forward pass keeps the map of its factorisation (``lekalo.least_squares_values_and_factors``,
+``lekalo.smoothing_values_and_factors``), which its backward pass applies (``factors=``):
+one factorisation a fit, not two.
 Leading batch axes of the control points (or of the data of a fit) are looped over, one library
 call a batch element.
 
@@ -315,18 +318,23 @@ class _LeastSquares(torch.autograd.Function):
     def forward(ctx, q, params, t, k, w):
         y = _np(q)
         batch = tuple(y.shape[:-2])
-        ctx.args = (params, t, k, w, batch)
 
         def one(yy):
-            fit = _lekalo.fit_least_squares(yy, params, t, k, w=w)[0]
-            return np.asarray(fit.control).reshape(len(t) - k - 1, yy.shape[-1])
+            return _lekalo.least_squares_values_and_factors(k, t, params, yy, w)
 
-        return _out(_looped(one, batch, (y, True)), q)
+        # the values and the map of their one banded QR, which the backward pass applies
+        control, factors = _looped(one, batch, (y, True))
+        ctx.args = (params, t, k, w, batch, factors)
+        return _out(control, q)
 
     @staticmethod
     def backward(ctx, g):
-        params, t, k, w, batch = ctx.args
-        gq = _looped(lambda gg: _lekalo.least_squares_vjp(k, t, params, gg, w), batch, (_np(g), True))
+        params, t, k, w, batch, factors = ctx.args
+
+        def one(gg, f):
+            return _lekalo.least_squares_vjp(k, t, params, gg, w, factors=f)
+
+        gq = _looped(one, batch, (_np(g), True), (factors, True))
         return _out(gq, g), None, None, None, None
 
 
@@ -351,18 +359,23 @@ class _Smoothing(torch.autograd.Function):
     def forward(ctx, q, x, w, lam):
         y = _np(q)
         batch = tuple(y.shape[:-2])
-        ctx.args = (x, w, lam, batch)
 
         def one(yy):
-            fit = _lekalo.fit_smoothing(x, yy, w, lam)[0]
-            return np.asarray(fit.control).reshape(len(x) + 2, yy.shape[-1])
+            return _lekalo.smoothing_values_and_factors(x, yy, lam, w)
 
-        return _out(_looped(one, batch, (y, True)), q)
+        # the values and the map of their one factorisation, which the backward pass applies
+        control, factors = _looped(one, batch, (y, True))
+        ctx.args = (x, w, lam, batch, factors)
+        return _out(control, q)
 
     @staticmethod
     def backward(ctx, g):
-        x, w, lam, batch = ctx.args
-        gq = _looped(lambda gg: _lekalo.smoothing_vjp(x, lam, gg, w), batch, (_np(g), True))
+        x, w, lam, batch, factors = ctx.args
+
+        def one(gg, f):
+            return _lekalo.smoothing_vjp(x, lam, gg, w, factors=f)
+
+        gq = _looped(one, batch, (_np(g), True), (factors, True))
         return _out(gq, g), None, None, None
 
 

@@ -6,22 +6,24 @@
 //! | target | arguments | attributes | results |
 //! |---|---|---|---|
 //! | `lekalo_fit_least_squares_eval` | knots `(n + p + 1,)`, params `(m,)`, w `(m,)`, points `(m, dim)` | `degree`, `weighted` | `P` `(n, dim)` |
+//! | `lekalo_fit_least_squares_factor` | as `…_eval` | as `…_eval` | `P`, F `((p + 3) m + (p + 1) n,)` |
 //! | `lekalo_fit_smoothing_eval` | x `(m,)`, w `(m,)`, λ `()`, y `(m, dim)` | `weighted` | `P` `(m + 2, dim)` |
 //! | `lekalo_fit_smoothing_factor` | as `…_eval` | as `…_eval` | `P`, F `(11 m + 14,)` |
-//! | `lekalo_fit_least_squares_jvp` | as `…_eval`, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
-//! | `lekalo_fit_least_squares_vjp` | as `…_eval`, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
+//! | `lekalo_fit_least_squares_jvp` | knots, params, w, F, points, [`Q̇` `(m, dim)`] | the same, `with_data` | `Ṗ` as `P` |
+//! | `lekalo_fit_least_squares_vjp` | knots, params, w, F, points, `P̄` as `P` | the same, `with_data` | [`Q̄` `(m, dim)`] |
 //! | `lekalo_fit_smoothing_jvp` | x, w, λ, F, y, [`Q̇`] | the same, `with_data` | `Ṗ` as `P` |
 //! | `lekalo_fit_smoothing_vjp` | x, w, λ, F, y, `P̄` | the same, `with_data` | [`Q̄`] |
 //!
 //! The bracketed buffers are present when `with_data` is true; `w` is read only when `weighted`
 //! is true (unweighted is the fit without weights, not weights of 1); every buffer may have the
 //! same leading batch axes. The control points are bit for bit `lekalo.fit_least_squares`'s and
-//! `lekalo.fit_smoothing`'s. The smoothing spline's forward pass under differentiation is its
-//! `…_factor` target: the values and F, the map of the same factorisation as numbers
-//! ([`SmoothingMap::to_flat`]), which its JVP and VJP apply without assembling and factoring
-//! `BᵀWB + λΩ` again (the same bits as factoring it again).
+//! `lekalo.fit_smoothing`'s. A fit's forward pass under differentiation is its `…_factor`
+//! target: the values and F, the map of the same factorisation as numbers
+//! ([`LeastSquaresMap::to_flat`]: the rows of `B` and the triangle of their banded QR;
+//! [`SmoothingMap::to_flat`]: the rows and the `UᵀDU` of `BᵀWB + λΩ`), which its JVP and VJP
+//! apply without factoring again (the same bits as factoring again).
 
-use lekalo::derivatives::{LeastSquaresFit, SmoothingFit, SmoothingMap};
+use lekalo::derivatives::{LeastSquaresFit, LeastSquaresMap, SmoothingFit, SmoothingMap};
 
 use super::abi::{self, Call, In};
 use super::operands::{
@@ -39,15 +41,26 @@ pub(super) mod least_squares {
         stem: "fit_least_squares",
         function: "fit_least_squares",
         eval: eval_body,
+        factor: factor_body,
         jvp: jvp_body,
         vjp: vjp_body,
     }
 
-    use super::{run_eval, run_jvp, run_vjp, Fit};
+    use super::{run_eval, run_factor, run_jvp, run_vjp, Factors, Fit};
     use crate::xla_ffi::abi::Call;
 
     /// Knots, params, weights and points, with their core axes.
     const RESIDUALS: [(&str, usize); 4] = [("t", 1), ("params", 1), ("w", 1), ("points", 2)];
+
+    /// The derivatives' residuals: knots, params, weights, the factors of the forward pass and
+    /// the points.
+    const FACTORED: [(&str, usize); 5] = [
+        ("t", 1),
+        ("params", 1),
+        ("w", 1),
+        ("factors", 1),
+        ("points", 2),
+    ];
 
     /// `degree`, `weighted`.
     fn fit(call: &Call<'_>) -> Result<Fit, String> {
@@ -57,16 +70,26 @@ pub(super) mod least_squares {
         })
     }
 
+    /// The derivatives' map, of degree `degree`.
+    fn factored(call: &Call<'_>) -> Result<Fit, String> {
+        let degree = super::count_attr(call, "degree")?;
+        Ok(Fit::Factored(Factors::LeastSquares { degree }))
+    }
+
     fn eval_body(call: &mut Call<'_>) -> Result<(), String> {
         run_eval(fit(call)?, &RESIDUALS, call)
     }
 
+    fn factor_body(call: &mut Call<'_>) -> Result<(), String> {
+        run_factor(fit(call)?, &RESIDUALS, call)
+    }
+
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_jvp(fit(call)?, &RESIDUALS, call)
+        run_jvp(factored(call)?, &FACTORED, call)
     }
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_vjp(fit(call)?, &RESIDUALS, call)
+        run_vjp(factored(call)?, &FACTORED, call)
     }
 }
 
@@ -81,7 +104,7 @@ pub(super) mod smoothing {
         vjp: vjp_body,
     }
 
-    use super::{run_eval, run_factor, run_jvp, run_vjp, Fit};
+    use super::{run_eval, run_factor, run_jvp, run_vjp, Factors, Fit};
     use crate::xla_ffi::abi::Call;
 
     /// x, weights, λ and y, with their core axes.
@@ -106,11 +129,11 @@ pub(super) mod smoothing {
     }
 
     fn jvp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_jvp(Fit::Factored, &FACTORED, call)
+        run_jvp(Fit::Factored(Factors::Smoothing), &FACTORED, call)
     }
 
     fn vjp_body(call: &mut Call<'_>) -> Result<(), String> {
-        run_vjp(Fit::Factored, &FACTORED, call)
+        run_vjp(Fit::Factored(Factors::Smoothing), &FACTORED, call)
     }
 }
 
@@ -124,9 +147,17 @@ enum Fit {
     Smoothing {
         weighted: bool,
     },
-    /// The smoothing spline's derivatives by the map its forward pass kept (the residual before
-    /// the data, [`SmoothingMap::to_flat`]).
-    Factored,
+    /// A fit's derivatives by the map its forward pass kept (the residual before the data).
+    Factored(Factors),
+}
+
+/// Whose map a forward pass kept.
+#[derive(Clone, Copy)]
+enum Factors {
+    /// [`LeastSquaresMap::to_flat`] of degree `degree`.
+    LeastSquares { degree: usize },
+    /// [`SmoothingMap::to_flat`].
+    Smoothing,
 }
 
 /// What a target computes for one batch element.
@@ -196,22 +227,33 @@ fn apply(
                 Op::Vjp(g) => fit.vjp(g),
             }
         }
-        Fit::Factored => {
-            let map = SmoothingMap::from_flat(operand(3), data.len() / dim.max(1))
-                .map_err(|e| e.to_string())?;
-            match op {
-                Op::Values => return Err("the values come from the fit, not its factors".into()),
-                Op::Jvp(t) => map.jvp(t, dim),
-                Op::Vjp(g) => map.vjp(g, dim),
+        Fit::Factored(factors) => {
+            let (flat, m) = (operand(res.len() - 2), data.len() / dim.max(1));
+            match (factors, op) {
+                (_, Op::Values) => {
+                    return Err("the values come from the fit, not its factors".into());
+                }
+                (Factors::LeastSquares { degree }, Op::Jvp(t)) => {
+                    LeastSquaresMap::from_flat(flat, m, degree).and_then(|map| map.jvp(t, dim))
+                }
+                (Factors::LeastSquares { degree }, Op::Vjp(g)) => {
+                    LeastSquaresMap::from_flat(flat, m, degree).and_then(|map| map.vjp(g, dim))
+                }
+                (Factors::Smoothing, Op::Jvp(t)) => {
+                    SmoothingMap::from_flat(flat, m).and_then(|map| map.jvp(t, dim))
+                }
+                (Factors::Smoothing, Op::Vjp(g)) => {
+                    SmoothingMap::from_flat(flat, m).and_then(|map| map.vjp(g, dim))
+                }
             }
         }
     }
     .map_err(|e| e.to_string())
 }
 
-/// The smoothing spline's values and the map of their one factorisation as numbers
-/// ([`SmoothingFit::control_points_and_map`], [`SmoothingMap::to_flat`]) for batch element `b`
-/// of the residuals `res` (element sizes `sizes`).
+/// A fit's values and the map of their one factorisation as numbers
+/// ([`LeastSquaresFit::control_points_and_map`], [`SmoothingFit::control_points_and_map`] and
+/// the maps' `to_flat`) for batch element `b` of the residuals `res` (element sizes `sizes`).
 fn values_and_factors(
     fit: Fit,
     res: &[In<'_>],
@@ -219,15 +261,25 @@ fn values_and_factors(
     dim: usize,
     b: usize,
 ) -> Result<(Vec<f64>, Vec<f64>), String> {
-    let Fit::Smoothing { weighted } = fit else {
-        return Err("only the smoothing spline keeps its factors".into());
-    };
     let operand = |i: usize| element(res[i].data, sizes[i], b);
-    let lam = operand(2).first().copied().ok_or("lam is empty")?;
-    let w = weighted.then(|| operand(1));
-    let fit = SmoothingFit::new(operand(0), operand(3), dim, lam, w).map_err(|e| e.to_string())?;
-    let (values, map) = fit.control_points_and_map().map_err(|e| e.to_string())?;
-    Ok((values, map.to_flat()))
+    let s = |e: lekalo::Error| e.to_string();
+    match fit {
+        Fit::LeastSquares { degree, weighted } => {
+            let w = weighted.then(|| operand(2));
+            let fit = LeastSquaresFit::new(degree, operand(0), operand(1), operand(3), dim, w)
+                .map_err(s)?;
+            let (values, map) = fit.control_points_and_map().map_err(s)?;
+            Ok((values, map.to_flat()))
+        }
+        Fit::Smoothing { weighted } => {
+            let lam = operand(2).first().copied().ok_or("lam is empty")?;
+            let w = weighted.then(|| operand(1));
+            let fit = SmoothingFit::new(operand(0), operand(3), dim, lam, w).map_err(s)?;
+            let (values, map) = fit.control_points_and_map().map_err(s)?;
+            Ok((values, map.to_flat()))
+        }
+        Fit::Factored(_) => Err("a fit's factors come from its data, not from factors".into()),
+    }
 }
 
 /// Copies a batch element's result into its slot of `size` numbers, after checking its length:
@@ -242,7 +294,7 @@ fn store(fit: Fit, out: &mut [f64], got: &[f64]) -> Result<(), String> {
                 got.len(),
                 out.len()
             ),
-            Fit::LeastSquares { .. } | Fit::Factored => format!(
+            Fit::LeastSquares { .. } | Fit::Factored(_) => format!(
                 "the fit has {} numbers, the result {} (lekalo.jax and its native module \
                  disagree)",
                 got.len(),

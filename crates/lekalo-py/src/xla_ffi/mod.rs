@@ -13,6 +13,10 @@
 //! - `fits`: the least-squares fit on given knots and the smoothing spline with a given `λ`,
 //!   and their JVP and VJP with respect to the data (`lekalo::derivatives::LeastSquaresFit`,
 //!   `SmoothingFit`);
+//! - `geometry`: a B-spline curve's arc length (with respect to the control points) and the
+//!   parameters of its closest points to given points (with respect to the control points and
+//!   the points), with their JVP and VJP (`lekalo::derivatives::ArcLengthGradient`,
+//!   `ClosestParameters`);
 //! - `surface`: tensor-product B-spline surfaces, with respect to the net and `(u, v)`;
 //! - `tensor`: tensor-product B-splines in `N` variables, with respect to the net and the points.
 //!
@@ -71,6 +75,7 @@ macro_rules! ffi_targets {
 mod abi;
 mod curve;
 mod fits;
+mod geometry;
 mod interpolate;
 mod nurbs;
 mod operands;
@@ -98,6 +103,8 @@ fn xla_ffi_handlers(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         curve::HANDLERS,
         fits::HANDLERS[0],
         fits::HANDLERS[1],
+        geometry::HANDLERS[0],
+        geometry::HANDLERS[1],
         interpolate::HANDLERS,
         nurbs::HANDLERS,
         surface::HANDLERS,

@@ -12,7 +12,8 @@
 use super::fitting::{check_lambda, LeastSquaresMap, SmoothingMap};
 use crate::error::Result;
 use crate::fit::{
-    least_squares, smoothing_spline, smoothing_values_and_system, EndConstraints, FitData, Lambda,
+    least_squares, least_squares_values_and_qr, smoothing_spline, smoothing_values_and_system,
+    EndConstraints, FitData, Lambda,
 };
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
@@ -116,6 +117,19 @@ impl<'a> LeastSquaresFit<'a> {
             self.data.params(),
             self.data.weights(),
         )
+    }
+
+    /// The control points of [`LeastSquaresFit::control_points`] (bit for bit) and the map of
+    /// [`LeastSquaresFit::map`] (the same bits) from one banded QR of the data rows: for a
+    /// caller that differentiates after the values (JAX's forward pass keeps the map for the
+    /// reverse one) and would otherwise factor the rows twice.
+    ///
+    /// # Errors
+    /// As [`LeastSquaresFit::control_points`].
+    pub fn control_points_and_map(&self) -> Result<(Vec<f64>, LeastSquaresMap)> {
+        let (control, qr) = least_squares_values_and_qr(&self.data, self.degree, &self.knots)?;
+        let map = LeastSquaresMap::of_qr(&self.data, self.degree, &self.knots, qr)?;
+        Ok((control, map))
     }
 
     /// Forward-mode derivative: `Ṗ = (BᵀWB)⁻¹ BᵀW Q̇` for a data tangent `Q̇` (`m × dim`).
@@ -368,6 +382,61 @@ mod tests {
             let e = SmoothingMap::from_flat(&f, 25).unwrap_err();
             assert!(matches!(e, Error::InvalidArgument { .. }), "{bad}: {e:?}");
         }
+    }
+
+    /// The least-squares fit's values and map from one QR: the values are the fit's, the map
+    /// is the map factored on its own (every number of its linearisation, bit for bit; data in
+    /// any order, weighted or not), also through its flat form; a flat form of the wrong length
+    /// or with a first index out of the band is refused.
+    #[test]
+    fn least_squares_values_and_map_from_one_qr_have_the_bits_of_each() {
+        use crate::derivatives::LeastSquaresMap;
+        use crate::KnotVector;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let (mut x, y, w) = case();
+        x.swap(3, 17);
+        let knots = [0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0];
+        let kv = KnotVector::new(knots.to_vec()).unwrap();
+        let t: Vec<f64> = (0..50).map(|i| (i as f64 * 0.37).sin()).collect();
+        let g: Vec<f64> = (0..12).map(|i| (i as f64 * 0.7).sin()).collect();
+        for weights in [None, Some(w.as_slice())] {
+            let fit = LeastSquaresFit::new(3, &knots, &x, &y, 2, weights).unwrap();
+            let (values, map) = fit.control_points_and_map().unwrap();
+            assert_eq!(bits(&values), bits(&fit.control_points().unwrap()));
+            let alone = LeastSquaresMap::new(3, &kv, &x, weights).unwrap();
+            assert_eq!(map.linearize(), alone.linearize(), "the same map");
+            let flat = map.to_flat();
+            assert_eq!(Some(flat.len()), LeastSquaresMap::flat_len(25, 6, 3));
+            let back = LeastSquaresMap::from_flat(&flat, 25, 3).unwrap();
+            assert_eq!(back.linearize(), alone.linearize(), "read back");
+            for m in [&map, &back] {
+                assert_eq!(bits(&m.jvp(&t, 2).unwrap()), bits(&fit.jvp(&t).unwrap()));
+                assert_eq!(bits(&m.vjp(&g, 2).unwrap()), bits(&fit.vjp(&g).unwrap()));
+            }
+        }
+        let flat = LeastSquaresFit::new(3, &knots, &x, &y, 2, None)
+            .unwrap()
+            .control_points_and_map()
+            .unwrap()
+            .1
+            .to_flat();
+        for cut in [&flat[1..], &flat[..flat.len() - 1]] {
+            let e = LeastSquaresMap::from_flat(cut, 25, 3).unwrap_err();
+            assert!(matches!(e, Error::LengthMismatch { .. }), "{e:?}");
+        }
+        let e = LeastSquaresMap::from_flat(&flat, usize::MAX / 2, 3).unwrap_err();
+        assert!(matches!(e, Error::TooLarge { .. }), "{e:?}");
+        for bad in [-1.0, 0.5, 3.0, f64::NAN] {
+            let mut f = flat.clone();
+            f[3] = bad;
+            let e = LeastSquaresMap::from_flat(&f, 25, 3).unwrap_err();
+            assert!(matches!(e, Error::InvalidArgument { .. }), "{bad}: {e:?}");
+        }
+        // no data in the last spans: the fit's error, from the values and the map alike
+        let few: Vec<f64> = x.iter().map(|t| t * 0.25).collect();
+        let fit = LeastSquaresFit::new(3, &knots, &few, &y, 2, None).unwrap();
+        let e = fit.control_points_and_map().unwrap_err();
+        assert_eq!(e, fit.control_points().unwrap_err());
     }
 
     #[test]

@@ -9,11 +9,8 @@
 use super::checks::check_len;
 use crate::error::{check_finite, Error, Result};
 use crate::fit::banded::SymBand;
-use crate::fit::banded::{BandedQr, QrRows, RANK_RTOL};
-use crate::fit::{
-    check_in_domain, check_schoenberg_whitney, for_each_row, smoothing_system, FitData,
-    SmoothingSystem,
-};
+use crate::fit::banded::{BandedQr, RANK_RTOL};
+use crate::fit::{for_each_row, least_squares_qr, smoothing_system, FitData, SmoothingSystem};
 use crate::knots::KnotVector;
 use crate::points::PointsRef;
 use crate::{Arg, What};
@@ -233,8 +230,9 @@ pub struct FitLinearization {
 #[derive(Debug, Clone)]
 pub struct LeastSquaresMap {
     rows: Rows,
-    qr: BandedQr,
-    bw: usize,
+    /// The banded triangle `R` of the QR of `√W B`, `triangle[i·w + k] = R[i][i + k]`
+    /// (`w = rows.width`).
+    triangle: Vec<f64>,
 }
 
 impl LeastSquaresMap {
@@ -252,28 +250,35 @@ impl LeastSquaresMap {
         params: &[f64],
         weights: Option<&[f64]>,
     ) -> Result<Self> {
-        crate::error::check_degree_bound(degree)?;
         let zeros = vec![0.0; params.len()];
         let mut data = FitData::new(PointsRef::from_flat(1, &zeros)?, params)?;
         if let Some(w) = weights {
             data = data.with_weights(w)?;
         }
-        let n = knots
-            .len()
-            .checked_sub(degree + 1)
-            .ok_or_else(|| Error::Degree {
-                degree,
-                reason: format!("{} knots carry no spline of this degree", knots.len()),
-            })?;
-        knots.validate_for(degree, n)?;
-        check_schoenberg_whitney(params, degree, knots)?;
-        check_in_domain(params, knots.domain(degree))?;
+        let (_, qr) = least_squares_qr(&data, degree, knots)?;
+        Self::of_qr(&data, degree, knots, qr)
+    }
+
+    /// The map of the fit of `data` whose banded QR is `qr` ([`crate::fit::least_squares_qr`],
+    /// on any data values at the same parameters and weights: `R` does not depend on them): the
+    /// rows of `B` evaluated, and `R` checked for a rank deficiency.
+    ///
+    /// # Errors
+    /// [`Error::SchoenbergWhitney`] for a basis function with no data of positive weight under
+    /// it (a zero pivot of `R`).
+    pub(super) fn of_qr(
+        data: &FitData<'_>,
+        degree: usize,
+        knots: &KnotVector,
+        qr: BandedQr,
+    ) -> Result<Self> {
         let width = degree + 1;
-        let m = params.len();
+        let n = knots.len() - width;
+        let m = data.len();
         let wmax = data
             .weights()
             .map_or(1.0, |w| w.iter().fold(0.0_f64, |m, &v| m.max(v)));
-        let ws: Vec<f64> = (0..m)
+        let weights: Vec<f64> = (0..m)
             .map(|k| {
                 if wmax > 0.0 {
                     data.weight(k) / wmax
@@ -284,25 +289,14 @@ impl LeastSquaresMap {
             .collect();
         let mut first = vec![0; m];
         let mut basis = vec![0.0; m * width];
-        // √w·B rotated in data row by data row, in the order of the parameters (as the fit)
-        let mut rows_qr = QrRows::new(n, width, 1);
-        let mut h = vec![0.0; width];
         let on_row = |k: usize, span: usize, row: &[f64]| {
             first[k] = span - degree;
             basis[k * width..(k + 1) * width].copy_from_slice(row);
-            let sw = ws[k].sqrt();
-            if sw > 0.0 {
-                for (hv, b) in h.iter_mut().zip(row) {
-                    *hv = sw * b;
-                }
-                rows_qr.push(span - degree, &h, &[0.0]);
-            }
         };
         match data.order() {
-            None => for_each_row(knots, degree, params, 0..m, |_| 1.0, on_row),
-            Some(order) => for_each_row(knots, degree, params, order, |_| 1.0, on_row),
+            None => for_each_row(knots, degree, data.params(), 0..m, |_| 1.0, on_row),
+            Some(order) => for_each_row(knots, degree, data.params(), order, |_| 1.0, on_row),
         }
-        let qr = rows_qr.finish();
         let dmax = (0..n).fold(0.0_f64, |m, i| m.max(qr.r[i * width].abs()));
         if let Some(j) = (0..n).find(|&i| qr.r[i * width].abs() <= RANK_RTOL * dmax) {
             let t = knots.as_slice();
@@ -317,11 +311,80 @@ impl LeastSquaresMap {
                 first,
                 basis,
                 width,
-                weights: ws,
+                weights,
                 n,
             },
-            qr,
-            bw: width,
+            triangle: qr.r,
+        })
+    }
+
+    /// Length of [`LeastSquaresMap::to_flat`] for `n_data` data points and `n_ctrl` control
+    /// points of degree `degree`: `(degree + 3)·n_data + (degree + 1)·n_ctrl`; `None` on
+    /// overflow.
+    #[must_use]
+    pub fn flat_len(n_data: usize, n_ctrl: usize, degree: usize) -> Option<usize> {
+        let width = degree.checked_add(1)?;
+        n_data
+            .checked_mul(width.checked_add(2)?)?
+            .checked_add(n_ctrl.checked_mul(width)?)
+    }
+
+    /// The whole map as numbers, for a caller that keeps it between the values and their
+    /// derivatives (an automatic-differentiation framework's residual): for `N` data points, `n`
+    /// control points and `w = p + 1`, `first` (`N`, as floats, exact below 2⁵³), the rows of
+    /// `B` (`wN`), the weights (`N`) and the banded triangle `R` (`wn`, row `i` holding
+    /// `R[i][i..i + w]`): [`LeastSquaresMap::flat_len`] numbers.
+    /// [`LeastSquaresMap::from_flat`] reads it back into the same map, so that its JVP and VJP
+    /// have the same bits.
+    #[must_use]
+    pub fn to_flat(&self) -> Vec<f64> {
+        let r = &self.rows;
+        let mut out = Vec::with_capacity(r.first.len() * (r.width + 2) + self.triangle.len());
+        out.extend(r.first.iter().map(|&f| f as f64));
+        out.extend_from_slice(&r.basis);
+        out.extend_from_slice(&r.weights);
+        out.extend_from_slice(&self.triangle);
+        out
+    }
+
+    /// The map written by [`LeastSquaresMap::to_flat`] for `n_data` data points of degree
+    /// `degree`, checked enough that applying it cannot index out of its bounds.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] unless `flat` has `(p + 3)·n_data + (p + 1)·n` numbers for
+    /// some `n ≥ p + 1`; [`Error::InvalidArgument`] for a first index that is not a whole
+    /// number in `0..=n − p − 1`; [`Error::TooLarge`] when the sizes overflow.
+    pub fn from_flat(flat: &[f64], n_data: usize, degree: usize) -> Result<Self> {
+        let what = "factors of a least-squares fit (LeastSquaresMap::to_flat)";
+        let too_large = || Error::TooLarge {
+            what: what.into(),
+            size: n_data,
+            max: usize::MAX / degree.saturating_add(3),
+        };
+        let width = degree.checked_add(1).ok_or_else(too_large)?;
+        let rows_len = Self::flat_len(n_data, 0, degree).ok_or_else(too_large)?;
+        let n = flat
+            .len()
+            .checked_sub(rows_len)
+            .map(|rest| rest / width)
+            .filter(|&n| n >= width && rows_len + width * n == flat.len())
+            .ok_or(Error::LengthMismatch {
+                what: what.into(),
+                expected: rows_len + width * width,
+                got: flat.len(),
+            })?;
+        let (first, rest) = flat.split_at(n_data);
+        let (basis, rest) = rest.split_at(width * n_data);
+        let (weights, triangle) = rest.split_at(n_data);
+        Ok(LeastSquaresMap {
+            rows: Rows {
+                first: first_indices(first, n - width, what)?,
+                basis: basis.to_vec(),
+                width,
+                weights: weights.to_vec(),
+                n,
+            },
+            triangle: triangle.to_vec(),
         })
     }
 
@@ -368,15 +431,15 @@ impl LeastSquaresMap {
             basis: self.rows.basis.clone(),
             width: self.rows.width,
             weights: self.rows.weights.clone(),
-            triangle: self.qr.r.clone(),
-            bandwidth: self.bw,
+            triangle: self.triangle.clone(),
+            bandwidth: self.rows.width,
             n_ctrl: self.rows.n,
         }
     }
 
     /// `x ← (RᵀR)⁻¹ x`: a forward sweep with `Rᵀ`, a backward sweep with `R` (banded).
     fn solve_normal(&self, x: &mut [f64], dim: usize) {
-        let (n, bw, r) = (self.rows.n, self.bw, &self.qr.r);
+        let (n, bw, r) = (self.rows.n, self.rows.width, &self.triangle);
         for i in 0..n {
             for c in 0..dim {
                 let mut s = x[i * dim + c];
@@ -396,6 +459,35 @@ impl LeastSquaresMap {
             }
         }
     }
+}
+
+/// The first basis function of each data point as [`LeastSquaresMap::to_flat`] and
+/// [`SmoothingMap::to_flat`] write them (floats), read back as indices in `0..=max`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] (naming `what`) for a number that is not a whole number in
+/// `0..=max`.
+fn first_indices(first: &[f64], max: usize, what: &'static str) -> Result<Vec<usize>> {
+    first
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| {
+            if f >= 0.0 && f.fract() == 0.0 && f <= max as f64 {
+                // a whole number in 0..=max: exact
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let i = f as usize;
+                Ok(i)
+            } else {
+                Err(Error::InvalidArgument {
+                    what: what.into(),
+                    reason: format!(
+                        "data point {k} has first basis function {f}, not a whole number in \
+                         0..={max}"
+                    ),
+                })
+            }
+        })
+        .collect()
 }
 
 /// `λ` of the smoothing-spline derivatives: finite and positive.
@@ -534,30 +626,9 @@ impl SmoothingMap {
         let (basis, rest) = rest.split_at(4 * n_data);
         let (weights, rest) = rest.split_at(n_data);
         let (band, knots) = rest.split_at(4 * n);
-        let first = first
-            .iter()
-            .enumerate()
-            .map(|(k, &f)| {
-                if f >= 0.0 && f.fract() == 0.0 && f <= (n - 4) as f64 {
-                    // a whole number in 0..=n − 4: exact
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    let i = f as usize;
-                    Ok(i)
-                } else {
-                    Err(Error::InvalidArgument {
-                        what: what.into(),
-                        reason: format!(
-                            "data point {k} has first basis function {f}, not a whole number \
-                             in 0..={}",
-                            n - 4
-                        ),
-                    })
-                }
-            })
-            .collect::<Result<Vec<_>>>()?;
         Ok(SmoothingMap {
             rows: Rows {
-                first,
+                first: first_indices(first, n - 4, what)?,
                 basis: basis.to_vec(),
                 width: 4,
                 weights: weights.to_vec(),
@@ -640,234 +711,5 @@ impl SmoothingMap {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{LeastSquaresMap, SmoothingMap};
-    use crate::error::Error;
-    use crate::fit::{least_squares, smoothing_spline, EndConstraints, FitData, Lambda};
-    use crate::knots::KnotVector;
-    use crate::oracle::proptest_config;
-    use crate::points::PointsRef;
-    use proptest::prelude::*;
-
-    /// Sorted parameters from gaps, starting at 0.
-    fn params_of(gaps: &[f64]) -> Vec<f64> {
-        let mut ts = vec![0.0];
-        for g in gaps {
-            ts.push(ts[ts.len() - 1] + g);
-        }
-        ts
-    }
-
-    /// `<a, b>` and the scale against which its rounding is measured.
-    fn dot(a: &[f64], b: &[f64]) -> (f64, f64) {
-        let s: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
-        let m: f64 = a.iter().zip(b).map(|(x, y)| (x * y).abs()).sum();
-        (s, m)
-    }
-
-    fn close(a: &[f64], b: &[f64], rtol: f64) -> std::result::Result<(), TestCaseError> {
-        let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        for (i, (x, y)) in a.iter().zip(b).enumerate() {
-            prop_assert!(
-                (x - y).abs() <= rtol * scale,
-                "entry {}: {} against {}",
-                i,
-                x,
-                y
-            );
-        }
-        Ok(())
-    }
-
-    proptest! {
-        #![proptest_config(proptest_config(64))]
-
-        /// The least-squares JVP is the fit of the tangent (the fit is linear in the data), and
-        /// the VJP is its transpose.
-        #[test]
-        fn least_squares_jvp_is_the_fit_and_vjp_its_transpose(
-            p in 1usize..=4,
-            interior in 0usize..4,
-            gaps in prop::collection::vec(0.01f64..1.0, 25..40),
-            dim in 1usize..=3,
-            weighted in any::<bool>(),
-            seed in prop::collection::vec(-1.0f64..1.0, 40 * 3 * 3),
-        ) {
-            let ts = params_of(&gaps);
-            let (a, b) = (ts[0], ts[ts.len() - 1]);
-            let mut knots = vec![a; p + 1];
-            for j in 1..=interior {
-                knots.push(a + (b - a) * j as f64 / (interior + 1) as f64);
-            }
-            knots.extend(std::iter::repeat_n(b, p + 1));
-            let kv = KnotVector::new(knots).unwrap();
-            let m = ts.len();
-            let w: Vec<f64> = (0..m).map(|k| 0.5 + seed[2 * m * dim + k].abs()).collect();
-            let weights = weighted.then_some(w.as_slice());
-            let map = LeastSquaresMap::new(p, &kv, &ts, weights).unwrap();
-            let dq = &seed[..m * dim];
-            let dp = map.jvp(dq, dim).unwrap();
-            let mut data = FitData::new(PointsRef::from_flat(dim, dq).unwrap(), &ts).unwrap();
-            if let Some(w) = weights {
-                data = data.with_weights(w).unwrap();
-            }
-            let fit = least_squares(&data, p, &kv, &EndConstraints::none()).unwrap();
-            close(&dp, fit.curve.control_points().as_slice(), 1e-10)?;
-            let g = &seed[m * dim..m * dim + map.n_ctrl() * dim];
-            let gq = map.vjp(g, dim).unwrap();
-            let ((lhs, l1), (rhs, r1)) = (dot(g, &dp), dot(&gq, dq));
-            prop_assert!((lhs - rhs).abs() <= 1e-12 * (l1 + r1), "{} against {}", lhs, rhs);
-        }
-
-        /// The smoothing JVP is the smoothing spline of the tangent, and the VJP its transpose;
-        /// also with repeated parameters (a zero gap), which share one basis row.
-        #[test]
-        fn smoothing_jvp_is_the_fit_and_vjp_its_transpose(
-            gaps in prop::collection::vec(prop_oneof![4 => 0.01f64..1.0, 1 => Just(0.0)], 4..30),
-            log_lambda in -9.0f64..0.0,
-            dim in 1usize..=3,
-            weighted in any::<bool>(),
-            seed in prop::collection::vec(-1.0f64..1.0, 32 * 3 * 3),
-        ) {
-            let ts = params_of(&gaps);
-            let m = ts.len();
-            prop_assume!(gaps.iter().filter(|g| **g > 0.0).count() >= 2, "three distinct parameters");
-            // λ relative to the data's scale, over the range the GCV scan covers (up to where
-            // the fit is all but the least-squares line, `λ ≈ Σw·L³`): beyond it `G` is as
-            // ill-conditioned as `λ/(Σw·L³)` and both sides of the checks lose digits to it
-            let range = ts[m - 1] - ts[0];
-            let lam = 10f64.powf(log_lambda) * m as f64 * range.powi(3);
-            let w: Vec<f64> = (0..m).map(|k| 0.5 + seed[2 * 32 * 3 + k].abs()).collect();
-            let weights = weighted.then_some(w.as_slice());
-            let map = SmoothingMap::new(&ts, lam, weights).unwrap();
-            let dq = &seed[..m * dim];
-            let dp = map.jvp(dq, dim).unwrap();
-            let mut data = FitData::new(PointsRef::from_flat(dim, dq).unwrap(), &ts).unwrap();
-            if let Some(w) = weights {
-                data = data.with_weights(w).unwrap();
-            }
-            let fit = smoothing_spline(&data, Lambda::Given(lam)).unwrap();
-            prop_assert_eq!(fit.curve.knots().as_slice(), map.knots());
-            // the same operations as the fit (shifted data, the same factors): the same bits
-            prop_assert_eq!(dp.as_slice(), fit.curve.control_points().as_slice());
-            let g = &seed[32 * 3..32 * 3 + map.n_ctrl() * dim];
-            let gq = map.vjp(g, dim).unwrap();
-            let ((lhs, l1), (rhs, r1)) = (dot(g, &dp), dot(&gq, dq));
-            // rounding grows with the condition of G = RᵀR, at least (max R_ii / min R_ii)²
-            let lin = map.linearize();
-            let diag = lin.triangle.iter().step_by(lin.bandwidth);
-            let (hi, lo) = diag.fold((0.0f64, f64::INFINITY), |(h, l), &d| (h.max(d), l.min(d)));
-            let kappa = (hi / lo).powi(2);
-            let tol = 16.0 * f64::EPSILON * kappa.max(1.0) * (l1 + r1);
-            prop_assert!((lhs - rhs).abs() <= tol, "{} against {} (κ ≥ {:e})", lhs, rhs, kappa);
-        }
-    }
-
-    /// `(RᵀR)⁻¹ BᵀW q` from a [`FitLinearization`], dense: what a framework computes with it.
-    fn apply(lin: &super::FitLinearization, q: &[f64]) -> Vec<f64> {
-        let (n, bw) = (lin.n_ctrl, lin.bandwidth);
-        let mut x = vec![0.0; n];
-        for (k, &f) in lin.first.iter().enumerate() {
-            for a in 0..lin.width {
-                x[f + a] += lin.weights[k] * lin.basis[k * lin.width + a] * q[k];
-            }
-        }
-        let r = |i: usize, j: usize| {
-            if j >= i && j - i < bw {
-                lin.triangle[i * bw + j - i]
-            } else {
-                0.0
-            }
-        };
-        for i in 0..n {
-            x[i] = (x[i] - (0..i).map(|k| r(k, i) * x[k]).sum::<f64>()) / r(i, i);
-        }
-        for i in (0..n).rev() {
-            x[i] = (x[i] - (i + 1..n).map(|k| r(i, k) * x[k]).sum::<f64>()) / r(i, i);
-        }
-        x
-    }
-
-    #[test]
-    fn linearizations_give_the_maps() {
-        let ts: Vec<f64> = (0..30).map(|k| (k as f64 / 29.0).powf(1.3)).collect();
-        let q: Vec<f64> = ts.iter().map(|t| (5.0 * t).sin()).collect();
-        let w: Vec<f64> = (0..30).map(|k| 1.0 + (k % 3) as f64).collect();
-        let kv =
-            KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.5, 0.8, 1.0, 1.0, 1.0, 1.0]).unwrap();
-        let lsq = LeastSquaresMap::new(3, &kv, &ts, Some(&w)).unwrap();
-        let sm = SmoothingMap::new(&ts, 1e-4, Some(&w)).unwrap();
-        for (lin, want) in [
-            (lsq.linearize(), lsq.jvp(&q, 1).unwrap()),
-            (sm.linearize(), sm.jvp(&q, 1).unwrap()),
-        ] {
-            let got = apply(&lin, &q);
-            assert_eq!(got.len(), want.len());
-            for (a, b) in got.iter().zip(&want) {
-                assert!((a - b).abs() <= 1e-10 * b.abs().max(1.0), "{a} against {b}");
-            }
-        }
-    }
-
-    #[test]
-    fn errors_name_the_problem() {
-        let kv = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]).unwrap();
-        let ts = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
-        let map = LeastSquaresMap::new(2, &kv, &ts, None).unwrap();
-        let e = map.jvp(&[1.0; 5], 1).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                Error::LengthMismatch {
-                    expected: 6,
-                    got: 5,
-                    ..
-                }
-            ),
-            "{e:?}"
-        );
-        let e = map.vjp(&[1.0, f64::NAN, 0.0, 0.0], 1).unwrap_err();
-        assert!(matches!(e, Error::NonFinite { index: 1, .. }), "{e:?}");
-        let e = map.vjp(&[], 0).unwrap_err();
-        assert!(matches!(e, Error::Dimension { .. }), "{e:?}");
-        // no data under the last basis functions
-        let e = LeastSquaresMap::new(2, &kv, &[0.0, 0.1, 0.2, 0.3, 0.4], None).unwrap_err();
-        assert!(matches!(e, Error::SchoenbergWhitney { .. }), "{e:?}");
-        // weight 0 on the only data of the second span
-        let e = LeastSquaresMap::new(
-            2,
-            &kv,
-            &[0.0, 0.1, 0.2, 0.3, 0.7, 0.8],
-            Some(&[1.0, 1.0, 1.0, 1.0, 0.0, 0.0]),
-        )
-        .unwrap_err();
-        assert!(matches!(e, Error::SchoenbergWhitney { .. }), "{e:?}");
-        let e = LeastSquaresMap::new(2, &kv, &[0.0, 0.2, 0.4, 0.6, 1.5], None).unwrap_err();
-        assert!(matches!(e, Error::ParameterOutOfDomain { .. }), "{e:?}");
-        let e = SmoothingMap::new(&ts, -1.0, None).unwrap_err();
-        assert!(matches!(e, Error::NegativeSmoothing { .. }), "{e:?}");
-        let e = SmoothingMap::new(&ts, 0.0, None).unwrap_err();
-        assert!(matches!(e, Error::InvalidArgument { .. }), "{e:?}");
-        // a repeated parameter is the smoothing spline's (one basis row for both points); a
-        // decreasing one, or fewer than three distinct, are refused as the fit refuses them
-        let map = SmoothingMap::new(&[0.0, 0.5, 0.5, 1.0], 1.0, None).unwrap();
-        assert_eq!((map.n_data(), map.n_ctrl()), (4, 5));
-        let e = SmoothingMap::new(&[0.0, 0.5, 0.4, 1.0], 1.0, None).unwrap_err();
-        assert!(matches!(e, Error::NotIncreasing { index: 2, .. }), "{e:?}");
-        let e = SmoothingMap::new(&[0.0, 0.5, 0.5, 0.5], 1.0, None).unwrap_err();
-        assert!(matches!(e, Error::TooFew { got: 2, .. }), "{e:?}");
-        let map = SmoothingMap::new(&ts, 1.0, None).unwrap();
-        let e = map.vjp(&[1.0; 6], 1).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                Error::LengthMismatch {
-                    expected: 8,
-                    got: 6,
-                    ..
-                }
-            ),
-            "{e:?}"
-        );
-    }
-}
+#[path = "fitting_tests.rs"]
+mod tests;

@@ -33,6 +33,9 @@
 //!   factorisation, forward or transposed).
 //! - `fits.rs`: [`LeastSquaresFit`] and [`SmoothingFit`], the two fits as functions of their
 //!   data on flat buffers: the fits' control points bit for bit, and `fitting.rs`'s JVP and VJP.
+//! - `geometry.rs`: [`ArcLengthGradient`] and [`ClosestParameters`], the derivatives of a
+//!   B-spline curve's arc length (with respect to the control points) and of the parameters of
+//!   its closest points to given points (with respect to the control points and the points).
 //! - `tensor.rs`: the same three for [`crate::TensorBSpline`] in `N` directions, at points of
 //!   `N` coordinates.
 //! - `control_cotangent.rs`: the control-point cotangent of a curve for batches of at least as
@@ -52,6 +55,7 @@ mod control_cotangent;
 mod curve;
 mod fits;
 mod fitting;
+mod geometry;
 mod interpolant;
 mod interpolation;
 mod located;
@@ -67,6 +71,7 @@ pub use borrowed::{BorrowedCurve, BorrowedNurbs, BorrowedSurface, BorrowedTensor
 pub use curve::CurveLinearization;
 pub use fits::{LeastSquaresFit, SmoothingFit};
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
+pub use geometry::{ArcLengthGradient, ClosestParameters};
 pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;

@@ -217,6 +217,52 @@ pub fn least_squares_curve_rss(
     fit_curve_rss(data, degree, knots, ends, &Progress::new())
 }
 
+/// The checks of [`least_squares`] without end constraints and the banded QR of its weighted
+/// data rows, `QR = √W B` for the weights divided by the largest (right-hand sides: the data
+/// minus their first point); returns the number of control points and the QR. Its triangle `R`
+/// (`RᵀR = BᵀWB`, the weights so divided) depends on the parameters, knots and weights, not on
+/// the data values: the derivatives of the fit apply it
+/// ([`crate::derivatives::LeastSquaresMap`], `docs/theory/derivatives.md#fits`).
+///
+/// # Errors
+/// As [`least_squares`] with [`EndConstraints::none`], before the solve.
+pub(crate) fn least_squares_qr(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+) -> Result<(usize, BandedQr)> {
+    let n_ctrl = spline_space(data, degree, knots)?;
+    super::knot_placement::check_schoenberg_whitney(data.params(), degree, knots)?;
+    let fixed = Fixed::free(data);
+    let qr = accumulate(
+        data,
+        degree,
+        knots,
+        n_ctrl,
+        &fixed,
+        degree + 1,
+        &Progress::new(),
+    )?;
+    Ok((n_ctrl, qr))
+}
+
+/// The control points of [`least_squares`] with [`EndConstraints::none`] (flat, `n × dim`, the
+/// same bits: the same checks, rows and solve) and the QR they were solved with
+/// ([`least_squares_qr`]), for a caller that differentiates the fit after its values and would
+/// otherwise factor the same rows again.
+///
+/// # Errors
+/// As [`least_squares`] with [`EndConstraints::none`].
+pub(crate) fn least_squares_values_and_qr(
+    data: &FitData<'_>,
+    degree: usize,
+    knots: &KnotVector,
+) -> Result<(Vec<f64>, BandedQr)> {
+    let (n_ctrl, qr) = least_squares_qr(data, degree, knots)?;
+    let control = solve_control(&qr, data, degree, knots, n_ctrl, &Fixed::free(data))?;
+    Ok((control.into_vec(), qr))
+}
+
 /// The solve of [`least_squares_with_progress`], up to the curve.
 fn fit_curve(
     data: &FitData<'_>,

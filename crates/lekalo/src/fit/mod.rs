@@ -68,13 +68,13 @@ mod sphere;
 mod surface;
 mod tolerance;
 
-pub(crate) use data::check_in_domain;
 pub use data::{CurveFit, FitData, FitReport};
 pub use knot_placement::{check_schoenberg_whitney, place_knots};
 pub use lsq::{
     least_squares, least_squares_curve, least_squares_curve_rss, least_squares_with_progress,
     EndConstraints,
 };
+pub(crate) use lsq::{least_squares_qr, least_squares_values_and_qr};
 pub use periodic::{
     closed_parameters, periodic_least_squares, periodic_least_squares_with_progress,
     periodic_smoothing_condition, periodic_smoothing_condition_with_progress,

@@ -297,6 +297,23 @@ impl ArcLength<'_> {
         self.error * self.curve.scale
     }
 
+    /// Calls `f(t, weight)` for every Gauss–Legendre node of every adaptive interval, `t` the
+    /// node's parameter and `weight` its weight in the parameter (the rule's weight times the
+    /// interval's length in `t`): [`ArcLength::total`] is `Σ weight·|C'(t)|` to rounding, and
+    /// its derivatives with respect to the control points are those of this sum on the same
+    /// nodes (`crate::derivatives::ArcLengthGradient`).
+    pub(crate) fn for_each_node(&self, mut f: impl FnMut(f64, f64)) {
+        let (x, w) = gauss_legendre();
+        let c = self.curve;
+        for &(k, a, b) in &self.intervals {
+            let (t0, t1) = c.spans[k];
+            let h = (b - a) * (t1 - t0);
+            for (xi, wi) in x.iter().zip(w) {
+                f(c.global(k, a + (b - a) * xi), wi * h);
+            }
+        }
+    }
+
     /// Number of adaptive intervals.
     #[must_use]
     pub fn interval_count(&self) -> usize {

@@ -1,0 +1,124 @@
+"""lekalo.jax.arc_length and closest_parameter: values lekalo's (`CurveQuery.length`,
+`CurveQuery.project`), Jacobians from jacfwd and jacrev (eager, under jit and vmap) against
+central finite differences of those values to 1e-7 relative, and the errors. The mathematics
+is tested in the core (crates/lekalo/src/derivatives/geometry_tests.rs)."""
+
+import numpy as np
+import pytest
+
+jax = pytest.importorskip("jax")
+import jax.numpy as jnp  # noqa: E402
+
+import lekalo  # noqa: E402
+from jax_support import RUNTIME_ERRORS, assert_rel, central, x64  # noqa: E402,F401  (x64: autouse fixture)
+from lekalo.jax import arc_length, bspline_eval, closest_parameter  # noqa: E402
+
+KNOTS = np.array([0, 0, 0, 0, 0.3, 0.45, 0.7, 1, 1, 1, 1.0])
+
+
+def control(dim=2, shift=0.0):
+    i = np.arange(7 * dim, dtype=float)
+    return (np.sin((i * 7 + 3) * 0.61) * 2 + i // dim + shift).reshape(7, dim)
+
+
+def query(ctrl):
+    return lekalo.CurveQuery(lekalo.BSplineCurve(3, KNOTS, np.asarray(ctrl)))
+
+
+def plain_length(ctrl):
+    return np.array(query(ctrl).length())
+
+
+def points_near(ctrl):
+    c = lekalo.BSplineCurve(3, KNOTS, np.asarray(ctrl))
+    near = c(np.array([0.12, 0.4, 0.66, 0.9]))
+    return np.asarray(near) + 0.05 * np.cos(np.arange(near.size)).reshape(near.shape)
+
+
+def plain_params(ctrl, x):
+    return np.asarray(query(ctrl).project(x)[0], dtype=float)
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_arc_length_jacobians_match_central_differences(dim, mode):
+    ctrl = control(dim)
+    f = lambda c: arc_length(KNOTS, c, 3)  # noqa: E731
+    assert float(f(ctrl)) == float(plain_length(ctrl)), "the length is lekalo's"
+    assert float(jax.jit(f)(ctrl)) == float(plain_length(ctrl))
+    fd = central(plain_length, ctrl, 1e-5)
+    for jit in (False, True):
+        jac = getattr(jax, mode)(f)
+        jac = jax.jit(jac) if jit else jac
+        assert_rel(jac(ctrl), fd, f"{mode}, jit={jit}")
+    # 1-D control points: a curve in one dimension
+    if dim == 1:
+        assert_rel(jax.grad(f)(ctrl[:, 0]), fd[:, 0], "1-D control points")
+
+
+def test_arc_length_under_vmap_and_as_a_loss():
+    batch = np.stack([control(), control(shift=1.0) * 1.5])
+    f = lambda c: arc_length(KNOTS, c, 3)  # noqa: E731
+    vals = jax.vmap(f)(batch)
+    grads = jax.jit(jax.vmap(jax.grad(f)))(batch)
+    summed = jax.grad(lambda b: jnp.sum(jax.vmap(f)(b)))(batch)
+    for i in range(2):
+        assert float(vals[i]) == float(plain_length(batch[i]))
+        fd = central(plain_length, batch[i], 1e-5)
+        assert_rel(grads[i], fd, "vmap(grad)")
+        assert_rel(summed[i], fd, "grad(vmap)")
+    # a loss mixing the length and a fit to points, through both kernels in one program
+    u = jnp.linspace(0, 1, 9)
+    target = bspline_eval(KNOTS, jnp.asarray(control()), u, 3) + 0.1
+    loss = lambda c: arc_length(KNOTS, c, 3) + jnp.sum((bspline_eval(KNOTS, c, u, 3) - target) ** 2)  # noqa: E731
+    loss_np = lambda c: plain_length(c) + np.sum((np.asarray(bspline_eval(KNOTS, c, u, 3)) - target) ** 2)  # noqa: E731
+    assert_rel(jax.jit(jax.grad(loss))(control()), central(loss_np, control(), 1e-5), "loss")
+    text = jax.jit(jax.grad(f)).lower(control()).as_text()
+    assert "lekalo_arc_length_vjp" in text and "callback" not in text
+
+
+@pytest.mark.parametrize("mode", ["jacfwd", "jacrev"])
+def test_closest_parameter_jacobians_match_central_differences(mode):
+    for dim in (2, 3):
+        ctrl = control(dim)
+        x = points_near(ctrl)
+        f = lambda c, p: closest_parameter(KNOTS, c, p, 3)  # noqa: E731
+        assert np.array_equal(np.asarray(f(ctrl, x)), plain_params(ctrl, x)), "lekalo's parameters"
+        fd_c = central(lambda c: plain_params(c, x), ctrl, 1e-5)
+        fd_x = central(lambda p: plain_params(ctrl, p), x, 1e-5)
+        for jit in (False, True):
+            jac = getattr(jax, mode)(f, argnums=(0, 1))
+            jac = jax.jit(jac) if jit else jac
+            jc, jx = jac(ctrl, x)
+            assert_rel(jc, fd_c, f"{mode} in the control points, dim {dim}, jit={jit}")
+            assert_rel(jx, fd_x, f"{mode} in the points, dim {dim}, jit={jit}")
+
+
+def test_closest_parameter_vmap_one_point_ends_and_errors():
+    ctrl = control()
+    x = points_near(ctrl)
+    f = lambda c, p: closest_parameter(KNOTS, c, p, 3)  # noqa: E731
+    # one point: a scalar; vmap over points and over curves
+    assert f(ctrl, x[1]).shape == ()
+    per = jax.vmap(jax.grad(f, argnums=1), in_axes=(None, 0))(ctrl, x)
+    for i in range(4):
+        fd = central(lambda p: plain_params(ctrl, p[None])[0], x[i], 1e-5)
+        assert_rel(per[i], fd, "vmap(grad) over points")
+    batch = np.stack([ctrl, ctrl * 1.1 + 0.2])
+    jc = jax.jit(jax.vmap(jax.jacrev(f), in_axes=(0, None)))(batch, x)
+    for i in range(2):
+        assert_rel(jc[i], central(lambda c: plain_params(c, x), batch[i], 1e-5), "vmap(jacrev)")
+    # beyond the start the closest point is the start, and stays there
+    far = np.asarray(ctrl[0]) - 30.0
+    assert float(f(ctrl, far)) == 0.0
+    assert np.all(np.asarray(jax.grad(f, argnums=(0, 1))(ctrl, far)[0]) == 0.0)
+    with pytest.raises(RUNTIME_ERRORS, match="not finite|NaN|non-finite"):
+        jax.block_until_ready(f(ctrl, np.array([np.nan, 0.0])))
+    with pytest.raises(lekalo.InputError, match=r"\(\.\.\., 2\)"):
+        f(ctrl, np.zeros(3))
+    with pytest.raises(NotImplementedError, match="knots"):
+        jax.grad(lambda k: arc_length(k, ctrl, 3))(KNOTS)
+    with pytest.raises(NotImplementedError, match="first derivatives"):
+        jax.hessian(lambda c: arc_length(KNOTS, c, 3))(ctrl)
+    with pytest.raises(lekalo.InputError, match="knots"):
+        arc_length(KNOTS[:-1], ctrl, 3)
