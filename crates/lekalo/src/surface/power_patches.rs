@@ -149,7 +149,7 @@ impl BSplineSurface {
         }
         let dim = self.dim();
         let (p, q) = self.degree();
-        let (nu, nv) = self.net_size();
+        let nv = self.net_size().1;
         let mut rows: Vec<Vec<f64>> = self
             .control_points()
             .as_slice()
@@ -174,7 +174,6 @@ impl BSplineSurface {
                 net.extend_from_slice(&c[i * dim..(i + 1) * dim]);
             }
         }
-        debug_assert!(nu2 <= nu && nv2 <= nv);
         let s = BSplineSurface::new(p, q, ku, kv, Points::from_flat(dim, net)?, (nu2, nv2))?;
         Ok((s, joined_u + joined_v))
     }
