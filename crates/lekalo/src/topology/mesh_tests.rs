@@ -681,3 +681,64 @@ fn a_long_rational_rod_face_has_no_more_triangles_than_a_few_uniform_grids() {
         2 * n
     );
 }
+
+/// Two squares of the plane `z = 0`, `[0, 2]²` and `[2, 4] × [0, 2]`, sharing the edge
+/// `x = 2`; at its end `(2, 2)` the first face's next edge starts at `(2 − 5e-5, 2)` and the
+/// second face's edge before it ends at `(2 + 5e-5, 2)`, 1e-4 apart, as a file's edges meet
+/// within its tolerance. Each face closes its loop at the corner's vertex (one point for both),
+/// so their meshes have the same points along the shared edge; a face closing its loop at its
+/// own next edge's start left a crack whose gap the measure of the shared edge took as the
+/// edge's whole length.
+#[test]
+fn faces_whose_edges_meet_within_a_tolerance_close_their_loops_at_the_shared_vertex() {
+    use super::super::tests::segment;
+    let gap = 5e-5;
+    let shared = segment([2.0, 0.0], [2.0, 2.0]);
+    let back = Edge::new(
+        shared.curve().reverse().unwrap(),
+        Some(shared.pcurve().unwrap().reverse().unwrap()),
+    )
+    .unwrap();
+    let a = Loop::new(vec![
+        segment([0.0, 0.0], [2.0, 0.0]),
+        shared,
+        segment([2.0 - gap, 2.0], [0.0, 2.0]),
+        segment([0.0, 2.0], [0.0, 0.0]),
+    ])
+    .unwrap();
+    let b = Loop::new(vec![
+        segment([2.0, 0.0], [4.0, 0.0]),
+        segment([4.0, 0.0], [4.0, 2.0]),
+        segment([4.0, 2.0], [2.0 + gap, 2.0]),
+        back,
+    ])
+    .unwrap();
+    let fa = Face::new(plane(), a, vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let fb = Face::new(plane(), b, vec![], true, LOOP_CLOSURE_RTOL).unwrap();
+    let tol = 1e-3;
+    let ms = mesh_faces(&[&fa, &fb], tol).unwrap();
+    // the points of a mesh within the tolerance of the shared edge
+    let along = |m: &Mesh| -> Vec<Vec<f64>> {
+        (0..m.vertices.len())
+            .map(|k| m.vertices.point(k).to_vec())
+            .filter(|p| (p[0] - 2.0).abs() <= tol && p[1] >= -tol && p[1] <= 2.0 + tol)
+            .collect()
+    };
+    let (ea, eb) = (along(&ms[0]), along(&ms[1]));
+    assert!(ea.len() >= 2, "the shared edge's ends: {ea:?}");
+    for (p, q, which) in [(&ea, &eb, "first"), (&eb, &ea, "second")] {
+        for x in p {
+            assert!(
+                q.contains(x),
+                "{x:?} of the {which} face's mesh along the shared edge is no vertex of the other's: a crack at the corner"
+            );
+        }
+    }
+    // the corner is one point, near both ends
+    let top: Vec<&Vec<f64>> = ea.iter().filter(|p| p[1] > 2.0 - tol).collect();
+    assert_eq!(top.len(), 1, "one corner point: {top:?}");
+    assert!(dist(top[0], &[2.0, 2.0, 0.0]) <= 2.0 * gap, "{:?}", top[0]);
+    for m in &ms {
+        assert!(m.deviation <= tol, "{}", m.deviation);
+    }
+}

@@ -27,6 +27,9 @@ pub const PCURVE_SAMPLING_RTOL: f64 = 1e-3;
 const SIDE_SAMPLES: usize = 17;
 /// Most Newton steps of one warm-started projection.
 const NEWTON_STEPS: usize = 16;
+/// A loop's step along a pole within this fraction of a period of whole periods is no run
+/// along the pole (the loop leaves the pole where it arrived).
+const POLE_RUN_RTOL: f64 = 1e-9;
 
 /// How the sides of a surface meet, within a tolerance: the periods of the directions in
 /// which it closes (`S(u₀, v) = S(u₁, v)` for every `v`, a cylinder's seam) and the sides that
@@ -443,7 +446,7 @@ impl Face {
         let proj = Projector::new(self.surface(), sampling, on_surface)?;
         let mut loops: Vec<Vec<Made>> = Vec::new();
         for (li, lp) in self.loops().enumerate() {
-            loops.push(project_loop(&proj, lp, li)?);
+            loops.push(project_loop(&proj, lp, li, self.same_sense())?);
         }
         // the outer loop about the domain, each inner loop by whole periods next to it
         let ((u0, u1), (v0, v1)) = self.surface().domain();
@@ -507,8 +510,10 @@ impl Face {
 
 /// The pcurves of one loop: from its first edge with a pcurve (or its first edge), each
 /// missing one projected starting from the end of the one before; the loop must close in the
-/// closed directions (not go round the surface).
-fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>> {
+/// closed directions (not go round the surface). `left`: the face is on the left of the loop in
+/// `(u, v)` (its normal is the surface's, `same_sense`), which decides the runs along poles
+/// ([`orient_pole_runs`]).
+fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize, left: bool) -> Result<Vec<Made>> {
     let n = lp.edges().len();
     let start = lp
         .edges()
@@ -555,6 +560,7 @@ fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>>
             made[(start + j) % n].shift([-turns[0], -turns[1]]);
         }
     }
+    orient_pole_runs(proj, &mut made, start, left)?;
     // a loop going once round (a band's, a cap's) is cut along a seam by the mesher; more
     // than once, it does not bound a face
     let last = made[(start + n - 1) % n].ends()?.1;
@@ -578,6 +584,106 @@ fn project_loop(proj: &Projector<'_>, lp: &Loop, li: usize) -> Result<Vec<Made>>
         }
     }
     Ok(made)
+}
+
+/// The runs of a loop along poles turned to the face's side: a loop reaching a pole by one edge
+/// and leaving it by the next runs along the pole, one point in space, from the free parameter
+/// it arrives at to the one it leaves at; in a closed free direction that run may go either
+/// way round, a period apart, and each way bounds another region of `(u, v)` (a half sphere
+/// bounded by two meridians through both poles is either half). The face is on the left of its
+/// loops (ISO 10303-42 `face_bound`, seen from the face's normal), so along the pole
+/// `v = v₀` (the domain above it) the run goes towards `+u` when the face's normal is the
+/// surface's (`left`), and within one period; likewise `−u` along `v = v₁`, `−v` along
+/// `u = u₀`, `+v` along `u = u₁`, each reversed when not `left`. Each run but the one closing
+/// the loop is set so by moving the edges after it by whole periods; the runs are kept as
+/// projected when the loop then does not close with a run of its own sense (a loop's
+/// orientation reversed in the file) or not in the same place, or when an edge has a pcurve of
+/// the file (which no period moves).
+fn orient_pole_runs(
+    proj: &Projector<'_>,
+    made: &mut [Made],
+    start: usize,
+    left: bool,
+) -> Result<()> {
+    let n = made.len();
+    if made.iter().any(|m| matches!(m, Made::Given(_))) {
+        return Ok(());
+    }
+    let ((u0, u1), (v0, v1)) = proj.domain;
+    let bounds = [(u0, u1), (v0, v1)];
+    // the run into edge k: (free parameter, its signed step, the period) when edge k starts
+    // at a pole and the free direction closes
+    let run = |made: &[Made], k: usize| -> Result<Option<(usize, f64, f64)>> {
+        let Made::Projected(s) = &made[k] else {
+            return Ok(None);
+        };
+        let Some(free) = s[0].pole else {
+            return Ok(None);
+        };
+        let Some(period) = proj.closure.period[free] else {
+            return Ok(None);
+        };
+        let fixed = 1 - free;
+        let (lo, hi) = bounds[fixed];
+        let at = proj.closure.wrap(proj.domain, s[0].uv)[fixed];
+        let low_side = (at - lo).abs() <= (at - hi).abs();
+        // the domain's side of the pole is on the left of a run towards +free along the
+        // low side of v (free u) or the high side of u (free v)
+        let plus = low_side == (free == 0);
+        let sense = if plus == left { 1.0 } else { -1.0 };
+        let from = made[(k + n - 1) % n].ends()?.1[free];
+        let to = s[0].uv[free];
+        let step = to - from;
+        // within rounding of whole periods, the loop leaves where it arrives: no run to turn
+        let r = (sense * step).rem_euclid(period);
+        if r <= POLE_RUN_RTOL * period || r >= (1.0 - POLE_RUN_RTOL) * period {
+            return Ok(Some((free, 0.0, period)));
+        }
+        Ok(Some((free, sense * r - step, period)))
+    };
+    let before: Vec<[f64; 2]> = made
+        .iter()
+        .map(|m| m.ends().map(|e| e.0))
+        .collect::<Result<_>>()?;
+    let turns_of = |made: &[Made]| -> Result<[f64; 2]> {
+        let first = made[start].ends()?.0;
+        let last = made[(start + n - 1) % n].ends()?.1;
+        Ok([0, 1]
+            .map(|d| proj.closure.period[d].map_or(0.0, |p| ((last[d] - first[d]) / p).round())))
+    };
+    let turns = turns_of(made)?;
+    let mut moved = false;
+    for j in 1..n {
+        let k = (start + j) % n;
+        if let Some((free, by, period)) = run(made, k)? {
+            // no run (the loop leaves where it arrives, by whole periods) is left as it is
+            let rest = (by / period).round();
+            if rest != 0.0 {
+                let mut shift = [0.0; 2];
+                shift[free] = rest * period;
+                for i in j..n {
+                    made[(start + i) % n].shift(shift);
+                }
+                moved = true;
+            }
+        }
+    }
+    if !moved {
+        return Ok(());
+    }
+    // the loop must close as it did: by its own run at a pole where it starts at one, else
+    // with the same turns
+    let closes = match run(made, start)? {
+        Some((_, by, period)) => (by / period).round() == 0.0,
+        None => turns_of(made)? == turns,
+    };
+    if !closes {
+        for (m, b) in made.iter_mut().zip(&before) {
+            let now = m.ends()?.0;
+            m.shift([b[0] - now[0], b[1] - now[1]]);
+        }
+    }
+    Ok(())
 }
 
 fn dist(a: &[f64], b: &[f64]) -> f64 {

@@ -205,6 +205,13 @@ pub(super) fn read_entities(
         .unwrap_or(1.0);
     let (length_unit, unit_mm) =
         unit(flag, &name).unwrap_or_else(|| (format!("{name} (assumed MM)"), 1.0));
+    // the minimum user-intended resolution (field 19), in millimetres: patches of entity 114
+    // that meet within it are joined
+    let resolution_mm = gf
+        .get(18)
+        .and_then(|s| real(s))
+        .filter(|r| *r > 0.0)
+        .map_or(0.0, |r| r * unit_mm);
     // model space scale: model units per drawing unit; coordinates are in model units
     let _ = scale_field;
     let matrices = matrix::matrices(&d, &p, delim, record, unit_mm);
@@ -381,7 +388,7 @@ pub(super) fn read_entities(
             } else if ty == "112" {
                 splines::spline_curve(&num, f.len(), unit_mm)
             } else {
-                splines::spline_surface(&num, f.len(), unit_mm)
+                splines::spline_surface(&num, f.len(), unit_mm, resolution_mm)
             };
             let shape = shape.map_err(bad)?;
             if ty == "114" && topology && alone {

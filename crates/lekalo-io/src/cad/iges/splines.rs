@@ -84,8 +84,17 @@ pub(super) fn spline_curve(f: Field<'_>, len: usize, unit_mm: f64) -> Result<Sha
 }
 
 /// Entity 114 as a bicubic B-spline surface on its own parameters; coordinates times
-/// `unit_mm`.
-pub(super) fn spline_surface(f: Field<'_>, len: usize, unit_mm: f64) -> Result<Shape, String> {
+/// `unit_mm`. Neighbouring patches that meet within `resolution_mm` (the file's minimum
+/// resolution, 0 for none) are joined ([`BSplineSurface::join_patches_within`]): a file prints
+/// each patch's coefficients to a few digits, so patches meant to meet jump by a rounding, and a
+/// knot of multiplicity 4 at degree 3 is what neither STEP (ISO 10303-42) nor Open CASCADE
+/// accepts. The surface then moves by at most half the resolution.
+pub(super) fn spline_surface(
+    f: Field<'_>,
+    len: usize,
+    unit_mm: f64,
+    resolution_mm: f64,
+) -> Result<Shape, String> {
     let m = count(f, 3, "the number of u segments M")?;
     let n = count(f, 4, "the number of v segments N")?;
     if m == 0 || n == 0 {
@@ -129,6 +138,9 @@ pub(super) fn spline_surface(f: Field<'_>, len: usize, unit_mm: f64) -> Result<S
         }
     }
     let s = BSplineSurface::from_power_patches(&tu, &tv, (4, 4), 3, &coef)
+        .map_err(|e| e.to_string())?;
+    let (s, _) = s
+        .join_patches_within(resolution_mm)
         .map_err(|e| e.to_string())?;
     Ok(Shape::Surface(Surface::BSpline(s)))
 }
@@ -278,5 +290,61 @@ mod tests {
         let text = one_entity("1H,,1H;;", 114, "114,3,1,200000,200000,0.,1.;");
         let e = read_iges(&text, "s.igs").unwrap_err().to_string();
         assert!(e.contains("M = 200000 × N = 200000"), "{e}");
+    }
+
+    /// Two bicubic patches of the plane `z = 0` over `[0, 1]` and `[1, 2]` in `u`, the second
+    /// lifted by 2e-5 (a file's rounding of its coefficients): in a file whose minimum
+    /// resolution (Global field 19) is 1e-4 mm they are joined, the knot `u = 1` of
+    /// multiplicity 3 at degree 3 and the surface within half the resolution of the patches;
+    /// at a resolution of 1e-6 mm the jump is kept (multiplicity 4).
+    #[test]
+    fn parametric_spline_patches_meeting_within_the_resolution_are_joined() {
+        let lift = 2e-5;
+        let mut p: Vec<String> = ["114", "3", "1", "2", "1"].map(String::from).to_vec();
+        p.extend([0.0, 1.0, 2.0, 0.0, 1.0].map(num));
+        for i in 0..=2 {
+            for j in 0..=1 {
+                let (mut x, mut y, mut z) = ([0.0; 16], [0.0; 16], [0.0; 16]);
+                if i < 2 && j < 1 {
+                    x[0] = f64::from(u8::try_from(i).unwrap());
+                    x[1] = 1.0;
+                    y[4] = 1.0;
+                    z[0] = if i == 1 { lift } else { 0.0 };
+                }
+                for v in x.iter().chain(&y).chain(&z) {
+                    p.push(num(*v));
+                }
+            }
+        }
+        let params = format!("{};", p.join(","));
+        let surface = |resolution: &str| {
+            let global = format!("1H,,1H;,,,,,,,,,,,1.,2,2HMM,,,,{resolution};");
+            let r = read_iges(&one_entity(&global, 114, &params), "s.igs").unwrap();
+            let Shape::Surface(Surface::BSpline(s)) = &r.shapes[0].1 else {
+                panic!("114 is a B-spline surface")
+            };
+            s.clone()
+        };
+        let joined = surface("1.0E-4");
+        assert_eq!(joined.knots_u().multiplicity(1.0), 3, "joined at u = 1");
+        let mid = joined.eval(1.0, 0.5).unwrap()[2];
+        assert!(
+            (mid - 0.5 * lift).abs() < 1e-18,
+            "the mean of the two sides: {mid}"
+        );
+        for k in 0..=40 {
+            let u = 2.0 * f64::from(k) / 40.0;
+            let want = if u < 1.0 { 0.0 } else { lift };
+            let got = joined.eval(u, 0.5).unwrap();
+            assert!((got[2] - want).abs() <= 0.5 * lift + 1e-18, "{u}: {got:?}");
+            assert!(
+                (got[0] - u).abs() < 1e-12 && (got[1] - 0.5).abs() < 1e-12,
+                "{got:?}"
+            );
+        }
+        let kept = surface("1.0E-6");
+        assert_eq!(kept.knots_u().multiplicity(1.0), 4, "the jump is kept");
+        let z = kept.eval(1.5, 0.5).unwrap()[2];
+        assert!((z - lift).abs() < 1e-18, "the second patch as read: {z}");
     }
 }

@@ -43,7 +43,7 @@
 //! | `skips.rs` | the report of what was not read: counts by kind and the first entities listed ([`Skips`]), bounded by the kinds, not the entities |
 //! | `progress.rs` | the progress of a read through the library's hook: bytes parsed, instances converted per pass |
 //! | `driver.rs` | [`read_step`]: parse, unit, then each geometric entity read or listed as skipped; [`read_step_limited`] within a size limit |
-//! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs` | tests |
+//! | `tests.rs`, `analytic_tests.rs`, `faces_tests.rs`, `pole_tests.rs` | tests |
 
 mod analytic;
 #[cfg(test)]
@@ -56,6 +56,8 @@ mod faces;
 #[cfg(test)]
 pub(crate) mod faces_tests;
 mod parse;
+#[cfg(test)]
+mod pole_tests;
 mod progress;
 mod skips;
 #[cfg(test)]
