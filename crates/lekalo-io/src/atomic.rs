@@ -442,8 +442,8 @@ pub fn read_input(path: &Path) -> IoResult<(String, String)> {
     if is_cad_file(path) {
         eight_bit_as_question_marks(&mut bytes);
     }
-    let text =
-        String::from_utf8(bytes).map_err(|e| not_utf8(&name, e.utf8_error().valid_up_to()))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| not_utf8(&name, e.as_bytes(), e.utf8_error().valid_up_to()))?;
     Ok((strip_bom(text), name))
 }
 
@@ -482,13 +482,39 @@ fn utf16(bytes: &[u8]) -> Option<&'static str> {
     }
 }
 
-/// The error of a text that is not UTF-8 at byte `at`.
-pub(crate) fn not_utf8(name: &str, at: usize) -> IoError {
+/// `bytes`, a whole input named `name`, as UTF-8 text: the check of [`read_input`] for text
+/// that did not come from a file (a request's body).
+///
+/// ```
+/// let e = lekalo_io::utf8_text(b"{\n  \"x\xff\": 1}", "file").unwrap_err();
+/// assert!(e.to_string().contains("file: not UTF-8 text at line 2, column 5 (byte 6)"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`IoError::Read`] naming the line, column and byte of the first byte that is not UTF-8.
+pub fn utf8_text<'t>(bytes: &'t [u8], name: &str) -> IoResult<&'t str> {
+    std::str::from_utf8(bytes).map_err(|e| not_utf8(name, bytes, e.valid_up_to()))
+}
+
+/// The error of the text `bytes` (a whole input) that is not UTF-8 at byte `at`, which is named
+/// by its line and column (counted from 1, the column in characters) as well as its byte, so
+/// that an editor can go to it. The line's bytes before `at` are read as they are (a byte that
+/// is not UTF-8 among them counts as one character).
+pub(crate) fn not_utf8(name: &str, bytes: &[u8], at: usize) -> IoError {
+    let before = &bytes[..at.min(bytes.len())];
+    let line_start = memchr::memrchr(b'\n', before).map_or(0, |i| i + 1);
+    let line = 1 + memchr::memchr_iter(b'\n', before).count();
+    let column = 1 + String::from_utf8_lossy(&before[line_start..])
+        .chars()
+        .count();
     IoError::Read {
         path: PathBuf::from(name),
         error: std::io::Error::new(
             std::io::ErrorKind::InvalidData,
-            format!("not UTF-8 text (byte {at})"),
+            format!(
+                "not UTF-8 text at line {line}, column {column} (byte {at}); lekalo reads \
+                 UTF-8: save the file as UTF-8"
+            ),
         ),
     }
 }
@@ -785,7 +811,14 @@ mod tests {
         let path = dir.path().join("latin1.csv");
         std::fs::write(&path, bytes).unwrap();
         let e = read_input(&path).unwrap_err().to_string();
-        assert!(e.contains("not UTF-8 text (byte 21)"), "{e}");
+        assert!(
+            e.contains("not UTF-8 text at line 1, column 22 (byte 21)"),
+            "{e}"
+        );
+        // after a newline and a two-byte character: the line, and the column in characters
+        std::fs::write(&path, b"x,y\n\xc3\xa9,\xff\n").unwrap();
+        let e = read_input(&path).unwrap_err().to_string();
+        assert!(e.contains("at line 2, column 3 (byte 7)"), "{e}");
     }
 
     #[test]
@@ -802,10 +835,9 @@ mod tests {
         bytes[at] = 0xfe;
         std::fs::write(&path, &bytes).unwrap();
         let e = read_input(&path).unwrap_err();
-        assert!(
-            e.to_string()
-                .contains(&format!("not UTF-8 text (byte {at})")),
-            "{e}"
-        );
+        // every line of the pattern is 12 bytes long, ending in its `\n`
+        let (line, column) = (at / 12 + 1, at % 12 + 1);
+        let want = format!("not UTF-8 text at line {line}, column {column} (byte {at})");
+        assert!(e.to_string().contains(&want), "{e}");
     }
 }

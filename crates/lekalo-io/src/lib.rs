@@ -55,7 +55,7 @@ use tables::{numfmt, samples, surface_samples};
 pub use analysis::{curvature, uniform};
 pub use atomic::{
     check_not_input, note_read, protect_files_read, read_input, read_input_bytes,
-    remove_temporary_files, strip_bom, strip_bom_str, write_atomic, write_atomic_seek,
+    remove_temporary_files, strip_bom, strip_bom_str, utf8_text, write_atomic, write_atomic_seek,
     write_atomic_send, write_atomic_stream, write_atomic_with, WriteOptions, WriteSeek,
 };
 pub use error::{IoError, IoResult, Location};

@@ -11,7 +11,7 @@ use lekalo::Progress;
 use pyo3::prelude::*;
 
 use crate::convert::floats;
-use crate::error::lib_err;
+use crate::error::{bad, lib_err};
 use crate::tensor::PyTensorBSpline;
 
 /// `(spline, fp, p, rank, limit)` of a fit on the sphere.
@@ -127,6 +127,17 @@ pub(crate) fn fit_sphere_grid(
 ) -> PyResult<Fit> {
     let (ua, va, ra) = (floats(u, "u")?, floats(v, "v")?, floats(r, "r")?);
     let (uv, vv) = (ua.vector("u")?, va.vector("v")?);
+    // a grid of the right count in the wrong shape (`r.T`) was read row by row as if it were
+    // `(len(u), len(v))`: a fit of other data, with success
+    if ra.shape().len() > 1 && ra.shape() != [uv.len(), vv.len()] {
+        return Err(bad(format!(
+            "r has shape {:?}; it must hold one value per node of u × v, in the shape (len(u), \
+             len(v)) = ({}, {}): one row per colatitude u",
+            ra.shape(),
+            uv.len(),
+            vv.len()
+        )));
+    }
     let rv = ra.data();
     let pole = |value, exact, continuity, flat| PoleCondition {
         value,

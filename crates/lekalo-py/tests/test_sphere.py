@@ -4,6 +4,9 @@ SciPy's on the same data: FITPACK's least-squares spline on given knots to round
 knots for the smoothing condition and a residual within its tolerance of ``s`` (never above),
 FITPACK's interpolant on a grid with every pole condition, and SciPy's errors."""
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -148,3 +151,40 @@ def test_errors_in_scipys_words():
         ls.LSQSphereBivariateSpline(theta, phi, r, [1.0], [1.0])(4.0, 1.0)
     with pytest.raises(ValueError, match="u should be between"):
         ls.RectSphereBivariateSpline(np.r_[0.0, u[1:]], v, g)
+
+
+def test_hostile_data_is_refused_not_fitted():
+    """Data a fit on the sphere cannot honestly be made from is refused, where each was a
+    spline with success: the grid's values transposed (the right count in the wrong shape,
+    read row by row as if it were (len(u), len(v))), no data or one point (FITPACK's m >= 2),
+    and weights that are all 0."""
+    u, v, g = grid(0)
+    assert g.shape[0] != g.shape[1]
+    with pytest.raises(lekalo.InputError, match=r"one value per node of u × v, in the shape"):
+        lekalo.fit_sphere_grid(u, v, np.ascontiguousarray(g.T))
+    theta, phi, r = scattered(4, 50)
+    with pytest.raises(lekalo.InputError, match="need at least 2, got 0"):
+        lekalo.fit_sphere_smoothing(theta[:0], phi[:0], r[:0], 1.0)
+    with pytest.raises(lekalo.InputError, match="need at least 2, got 1"):
+        lekalo.fit_sphere_least_squares(theta[:1], phi[:1], r[:1], [1.0], [1.0])
+    with pytest.raises(ValueError, match="every weight is 0"):
+        ls.LSQSphereBivariateSpline(theta, phi, r, [1.0], [1.0], w=np.zeros(50))
+
+
+def test_a_triangle_the_system_cannot_hold_raises_instead_of_aborting():
+    """Knots whose least-squares triangle is within lekalo's size limit but more memory than
+    the process may have (an address-space limit of 3 GB, 9 GB asked for) raise a named
+    InputError: the allocation aborted the interpreter."""
+    code = """
+import resource, numpy as np, lekalo
+resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+rng = np.random.default_rng(1)
+th = rng.uniform(0.1, 3.0, 400); ph = rng.uniform(0.1, 6.1, 400)
+try:
+    lekalo.fit_sphere_least_squares(th, ph, np.cos(th), np.linspace(0.01, 3.1, 600), np.linspace(0.01, 6.2, 600))
+except lekalo.InputError as e:
+    print("refused:", e)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert "more memory than the system gives; give fewer knots" in out.stdout, out.stdout

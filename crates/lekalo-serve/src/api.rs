@@ -479,8 +479,7 @@ fn knot_field(e: &lekalo::Error) -> &'static str {
 /// `POST /api/import`: the body is the CLI's JSON text of one curve; answers its drawing, or
 /// the CLI's error for it.
 pub(crate) fn import(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
-    let text =
-        std::str::from_utf8(body).map_err(|_| ApiError::bad("", "the file is not UTF-8 text"))?;
+    let text = lekalo_io::utf8_text(body, "file").map_err(|e| ApiError::io("file", &e))?;
     let obj = Object::from_json_str(text, "file").map_err(|e| ApiError::io("file", &e))?;
     Ok(view_answer(&view_in(
         job,

@@ -331,15 +331,17 @@ fn a_large_file_read_in_parallel_is_read_as_standard_input() {
     let mut bytes = text.into_bytes();
     let at = bytes.len() - 1000;
     bytes[at] = 0xff;
+    let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
     fs::write(&big, &bytes).unwrap();
     let message = |cmd: &mut Command| {
         String::from_utf8_lossy(&cmd.assert().code(2).get_output().stderr).into_owned()
     };
     let file = message(lekalo().arg("interpolate").arg(&big));
     let stdin = message(lekalo().args(["interpolate", "-"]).write_stdin(bytes));
-    let want = format!("not UTF-8 text (byte {at})");
+    let want = format!("not UTF-8 text at line {line}, column ");
+    let byte = format!("(byte {at})");
     assert!(
-        file.contains(&want) && stdin.contains(&want),
+        file.contains(&want) && stdin.contains(&want) && file.contains(&byte),
         "{file}\n{stdin}"
     );
 }

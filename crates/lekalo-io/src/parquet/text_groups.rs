@@ -8,6 +8,8 @@
 //! when every key is one (as `i64`), strings otherwise; the other columns are the coordinates,
 //! in the file's order, every one finite. The rows of a group are consecutive.
 
+use std::collections::HashMap;
+
 use lekalo::Points;
 
 use super::GroupKey;
@@ -38,6 +40,24 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
         ));
     };
     let names: Vec<&str> = Fields::of(header).collect();
+    // a Parquet column per name: two of one name (`group,x,x`, or the key again, `group,group,x`)
+    // made a file whose columns cannot be told apart, or stopped the writer on the key's
+    // integer encoding asked of a column of numbers
+    let mut columns: HashMap<&str, usize> = HashMap::with_capacity(names.len());
+    for (k, n) in names.iter().enumerate() {
+        if let Some(&j) = columns.get(n) {
+            return Err(IoError::syntax(
+                at(header_no).at_field(*n),
+                format!(
+                    "the header `{header}` names `{n}` twice (columns {} and {}); give every \
+                     column its own name",
+                    j + 1,
+                    k + 1
+                ),
+            ));
+        }
+        columns.insert(n, k);
+    }
     let Some(key_col) = names.iter().position(|n| *n == key) else {
         return Err(IoError::syntax(
             at(header_no),
@@ -59,8 +79,10 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
             format!("the header `{header}` has no coordinate column; write `{key},x,y`"),
         ));
     }
-    // each row's key text, its line, and its coordinates into one flat buffer
+    // each row's key text, its line, and its coordinates into one flat buffer; the keys seen,
+    // with their first lines, in a map (a table of 10^6 groups was quadratic with a search)
     let mut keys: Vec<(String, usize, usize)> = Vec::new(); // key, line, rows of the run
+    let mut seen: HashMap<String, usize> = HashMap::new();
     let mut data: Vec<f64> = Vec::new();
     for (line_no, line) in lines {
         let mut n = 0usize;
@@ -95,7 +117,7 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
         match keys.last_mut() {
             Some((last, _, rows)) if last == row_key => *rows += 1,
             _ => {
-                if let Some((_, first, _)) = keys.iter().find(|(k, _, _)| k == row_key) {
+                if let Some(first) = seen.get(row_key) {
                     return Err(IoError::syntax(
                         at(line_no).at_field(key),
                         format!(
@@ -105,6 +127,7 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
                         ),
                     ));
                 }
+                seen.insert(row_key.to_string(), line_no);
                 keys.push((row_key.to_string(), line_no, 1));
             }
         }
@@ -115,7 +138,11 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
             "a header but no rows; write one row a point under it",
         ));
     }
+    drop(seen);
     let ints: Option<Vec<i64>> = keys.iter().map(|(k, _, _)| k.parse().ok()).collect();
+    if let Some(ints) = &ints {
+        same_integer(ints, &keys, source, key)?;
+    }
     let dim = coords.len();
     let mut groups = Vec::with_capacity(keys.len());
     let mut start = 0usize;
@@ -135,6 +162,33 @@ pub fn read_text_point_groups(text: &str, source: &str, key: &str) -> IoResult<T
         start = end;
     }
     Ok((coords, groups))
+}
+
+/// An error if two keys written differently are one integer (`1`, `01`, `+1`), which would
+/// make two groups of one key in the output: the rows of a group must be consecutive, and its
+/// key written one way.
+fn same_integer(
+    ints: &[i64],
+    keys: &[(String, usize, usize)],
+    source: &str,
+    key: &str,
+) -> IoResult<()> {
+    let mut first: HashMap<i64, usize> = HashMap::with_capacity(ints.len());
+    for (i, &v) in ints.iter().enumerate() {
+        if let Some(&j) = first.get(&v) {
+            let ((a, a_line, _), (b, b_line, _)) = (&keys[j], &keys[i]);
+            return Err(IoError::syntax(
+                Location::new(source).at_line(*b_line).at_field(key),
+                format!(
+                    "the key {b} is the integer {v}, as is the key {a} of line {a_line}: two \
+                     groups would have one key; write the key of a group one way, and its rows \
+                     one after another"
+                ),
+            ));
+        }
+        first.insert(v, i);
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -185,10 +239,44 @@ mod tests {
                 "s.csv:4: field `group`: the key 1 comes back after other keys (its rows began \
                  at line 2)",
             ),
+            (
+                "group,x,x\n1,0,0\n",
+                "s.csv:1: field `x`: the header `group,x,x` names `x` twice (columns 2 and 3)",
+            ),
+            (
+                "group,group,x\n1,0,0\n",
+                "s.csv:1: field `group`: the header `group,group,x` names `group` twice",
+            ),
+            (
+                "group,x,y\n1,0,0\n01,1,1\n",
+                "s.csv:3: field `group`: the key 01 is the integer 1, as is the key 1 of line 2",
+            ),
+            (
+                "group,x,y\n-0,0,0\n+7,1,1\n0,2,2\n",
+                "s.csv:4: field `group`: the key 0 is the integer 0, as is the key -0 of line 2",
+            ),
         ];
         for (text, want) in cases {
             let e = read_text_point_groups(text, "s.csv", "group").unwrap_err();
             assert!(e.to_string().contains(want), "{text:?}: {e}");
         }
+    }
+
+    /// A key column of 200,000 distinct keys: each new key was searched for among all before
+    /// it (quadratic: this test took minutes, 10^6 keys did not finish); with the keys in a
+    /// map every group is made and a key that comes back after 199,999 others is still found.
+    #[test]
+    fn many_distinct_keys_read_in_linear_time() {
+        let n = 200_000;
+        let mut text = String::from("group,x,y\n");
+        for i in 0..n {
+            text.push_str(&format!("{i},{i},1\n"));
+        }
+        let (_, g) = read_text_point_groups(&text, "s.csv", "group").unwrap();
+        assert_eq!(g.len(), n);
+        assert_eq!(g[n - 1].0, GroupKey::Int(199_999));
+        text.push_str("0,5,5\n");
+        let e = read_text_point_groups(&text, "s.csv", "group").unwrap_err();
+        assert!(e.to_string().contains("the key 0 comes back"), "{e}");
     }
 }

@@ -109,6 +109,17 @@ pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
             format!("not a NumPy .npz archive (a zip file): {e}; save the arrays with numpy.savez"),
         )
     })?;
+    if let Some(name) = repeated_member(bytes, z.central_directory_start()) {
+        let field = name.strip_suffix(".npy").unwrap_or(&name).to_string();
+        return Err(IoError::syntax(
+            Location::new(source).at_field(field),
+            format!(
+                "the archive has two members named {name}: NumPy's np.load reads the last, other \
+                 zip readers the first; write each array once (numpy.savez(path, degree=..., \
+                 knots=..., control_points=...))"
+            ),
+        ));
+    }
     let mut member = |name: &str, required: bool| -> IoResult<Option<(String, Vec<u8>)>> {
         let file = format!("{name}.npy");
         let label = format!("{source}: {file}");
@@ -185,6 +196,26 @@ pub fn read_npz_curve(bytes: &[u8], source: &str) -> IoResult<Object> {
         Some(w) => NurbsCurve::new(degree, knots, control, w).map(Object::Nurbs),
     };
     obj.map_err(|error| IoError::Invalid { at, error })
+}
+
+/// The first name that two entries of the zip central directory starting at byte `start` of
+/// `bytes` share (APPNOTE.TXT 4.3.12: signature `PK\x01\x02`, the name's length at byte 28,
+/// the extra field's at 30, the comment's at 32, the name at 46). The zip crate keeps one entry
+/// per name, so a repeated member is invisible through it. The walk stops at the first record
+/// that is not a central directory header; at most one name per 46 bytes of the archive.
+fn repeated_member(bytes: &[u8], start: u64) -> Option<String> {
+    let u16_at = |p: usize| usize::from(u16::from_le_bytes([bytes[p], bytes[p + 1]]));
+    let mut seen = std::collections::HashSet::new();
+    let mut p = usize::try_from(start).ok()?;
+    while p.checked_add(46).is_some_and(|e| e <= bytes.len()) && bytes[p..p + 4] == *b"PK\x01\x02" {
+        let (n, m, k) = (u16_at(p + 28), u16_at(p + 30), u16_at(p + 32));
+        let name = bytes.get(p + 46..p + 46 + n)?;
+        if !seen.insert(name) {
+            return Some(String::from_utf8_lossy(name).into_owned());
+        }
+        p += 46 + n + m + k;
+    }
+    None
 }
 
 #[cfg(test)]

@@ -92,6 +92,57 @@ fn archive(members: &[(&str, Vec<u8>)], method: CompressionMethod) -> Vec<u8> {
     z.finish().unwrap().into_inner()
 }
 
+/// An archive with two members of one name (NumPy reads the last, the zip crate kept one of
+/// them silently) is refused, naming the member, whichever it is and wherever the copies are.
+#[test]
+fn npz_members_of_one_name_are_refused() {
+    let f8 = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    let deg = |p: i64| write_npy("<i8", &[], &p.to_le_bytes()).unwrap();
+    let knots = write_npy("<f8", &[4], &f8(&[0.0, 0.0, 1.0, 1.0])).unwrap();
+    let ctrl = write_npy("<f8", &[2, 2], &f8(&[0.0, 0.0, 1.0, 1.0])).unwrap();
+    // the zip writer refuses a repeated name: the second is written under a name of the same
+    // length, then renamed in the bytes (the checksums cover the data, not the names)
+    let renamed = |members: &[(&str, Vec<u8>)], from: &str, to: &str| {
+        let mut b = archive(members, CompressionMethod::Stored);
+        let (from, to) = (from.as_bytes(), to.as_bytes());
+        let mut p = 0;
+        while let Some(i) = b[p..].windows(from.len()).position(|w| w == from) {
+            b[p + i..p + i + from.len()].copy_from_slice(to);
+            p += i + from.len();
+        }
+        b
+    };
+    let two_degrees = renamed(
+        &[
+            ("degree.npy", deg(1)),
+            ("knots.npy", knots.clone()),
+            ("control_points.npy", ctrl.clone()),
+            ("degreX.npy", deg(2)),
+        ],
+        "degreX.npy",
+        "degree.npy",
+    );
+    let e = read_npz_curve(&two_degrees, "c.npz")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("c.npz: field `degree`: the archive has two members named degree.npy"),
+        "{e}"
+    );
+    let two_knots = renamed(
+        &[
+            ("knots.npy", knots.clone()),
+            ("degree.npy", deg(1)),
+            ("knotX.npy", knots),
+            ("control_points.npy", ctrl),
+        ],
+        "knotX.npy",
+        "knots.npy",
+    );
+    let e = read_npz_curve(&two_knots, "c.npz").unwrap_err().to_string();
+    assert!(e.contains("two members named knots.npy"), "{e}");
+}
+
 #[test]
 fn npz_malformed_archives_give_named_errors() {
     let f8 = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };

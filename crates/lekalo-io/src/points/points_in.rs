@@ -68,7 +68,7 @@ pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResu
 /// let p = read_points_bytes(b"\xef\xbb\xbfx,y\n0,1\n2,3\n", "p.csv", Header::Auto).unwrap();
 /// assert_eq!(p.point(1), &[2.0, 3.0]);
 /// let e = read_points_bytes(b"0,1\n2,\xff\n", "p.csv", Header::Auto).unwrap_err();
-/// assert!(e.to_string().contains("not UTF-8 text (byte 6)"), "{e}");
+/// assert!(e.to_string().contains("not UTF-8 text at line 2, column 3 (byte 6)"), "{e}");
 /// ```
 ///
 /// # Errors
@@ -76,7 +76,7 @@ pub fn read_points_with(text: &str, source: &str, header_rule: Header) -> IoResu
 pub fn read_points_bytes(bytes: &[u8], source: &str, header_rule: Header) -> IoResult<Points> {
     let whole = || {
         let text = std::str::from_utf8(bytes)
-            .map_err(|e| crate::atomic::not_utf8(source, e.valid_up_to()))?;
+            .map_err(|e| crate::atomic::not_utf8(source, bytes, e.valid_up_to()))?;
         read_points_with(text, source, header_rule)
     };
     // the white space of `str::trim_start` in ASCII (with the vertical tab)

@@ -241,10 +241,10 @@ impl Reader<'_, '_> {
     }
 }
 
-/// `bytes`, which start at byte `offset` of the text, as UTF-8 text.
-fn utf8<'t>(bytes: &'t [u8], offset: usize, source: &str) -> IoResult<&'t str> {
-    std::str::from_utf8(bytes)
-        .map_err(|e| crate::atomic::not_utf8(source, offset + e.valid_up_to()))
+/// The bytes `a..b` of the whole text `bytes` as UTF-8 text (`a` at the start of a line).
+fn utf8<'t>(bytes: &'t [u8], a: usize, b: usize, source: &str) -> IoResult<&'t str> {
+    std::str::from_utf8(&bytes[a..b])
+        .map_err(|e| crate::atomic::not_utf8(source, bytes, a + e.valid_up_to()))
 }
 
 /// Below this many bytes after the first point, the rest is read on one thread.
@@ -351,7 +351,7 @@ pub(crate) fn read_delimited_from(
     let mut header: Option<Vec<String>> = None;
     let mut first: Option<(&str, usize, usize)> = None; // line, its number, where the rest starts
     for (n, (a, b)) in line_ranges(bytes).enumerate() {
-        let line = trim(utf8(&bytes[a..b], a, source)?);
+        let line = trim(utf8(bytes, a, b, source)?);
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
@@ -441,7 +441,10 @@ pub(crate) fn read_delimited_from(
                 len: 0,
             },
         };
-        r.lines(utf8(p.text, p.offset, source)?, p.first_line)?;
+        r.lines(
+            utf8(bytes, p.offset, p.offset + p.text.len(), source)?,
+            p.first_line,
+        )?;
         Ok(r.data.len)
     };
     let filled: Vec<IoResult<usize>> = if work.len() > 1 {
@@ -597,9 +600,12 @@ mod tests {
             let at = place.index(bytes.len());
             bytes[at] = bad;
             let want = std::str::from_utf8(&bytes).unwrap_err().valid_up_to();
+            // every byte before it is ASCII: the line and column are counted in bytes
+            let line = 1 + bytes[..want].iter().filter(|&&b| b == b'\n').count();
+            let column = want - bytes[..want].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
             for parallel_min in [0, usize::MAX] {
                 let e = read_delimited_from(&bytes, "p.csv", Header::Auto, parallel_min).unwrap_err();
-                let message = format!("p.csv: not UTF-8 text (byte {want})");
+                let message = format!("p.csv: not UTF-8 text at line {line}, column {column} (byte {want})");
                 prop_assert!(e.to_string().contains(&message), "{} (want {})", e, message);
             }
         }

@@ -414,6 +414,20 @@ async fn object_errors_are_the_cli_s_with_the_field() {
     assert_eq!(field, "weights");
 }
 
+/// An imported file that is not UTF-8 is named as the command line names it, by its field, line
+/// and column: it was `the file is not UTF-8 text` with the field `""`.
+#[tokio::test]
+async fn an_import_that_is_not_utf8_names_the_line_and_column() {
+    let mut body = CURVE.as_bytes().to_vec();
+    let at = CURVE.find("bspline_curve").expect("type");
+    body[at] = 0xe9; // a Latin-1 é
+    let (s, v, _) = call_with(Limits::default(), "/api/import", Body::from(body)).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert_eq!(v["field"], "file", "{v}");
+    let want = format!("not UTF-8 text at line 1, column {} (byte {at})", at + 1);
+    assert!(v["error"].as_str().expect("message").contains(&want), "{v}");
+}
+
 #[tokio::test]
 async fn hostile_json_is_refused_with_a_named_error() {
     for (body, field) in [

@@ -117,7 +117,7 @@ impl BSplineCurve {
         }
         let anti = self.antiderivative_once()?;
         let (fa, fb) = (anti.eval(a)?, anti.eval(b)?);
-        difference(fb, &fa)
+        difference(fb, &fa, (a, b), (lo, hi))
     }
 
     /// The definite integral `∫_a^b C(t) dt` for any finite `a`, `b`, the curve continued
@@ -136,12 +136,14 @@ impl BSplineCurve {
     /// ```
     ///
     /// # Errors
-    /// [`Error::NonFinite`] if a limit is NaN or infinite, or the result overflows.
+    /// [`Error::NonFinite`] if a limit is NaN or infinite, or the result overflows inside the
+    /// domain; [`Error::InvalidArgument`] naming the limits if the continued end polynomials'
+    /// integral passes the largest double.
     pub fn integral_extrapolated(&self, a: f64, b: f64) -> Result<Vec<f64>> {
         check_finite("integration limits [a, b]", &[a, b])?;
         let anti = self.antiderivative_once()?;
         let (fa, fb) = (anti.eval_extrapolated(a)?, anti.eval_extrapolated(b)?);
-        difference(fb, &fa)
+        difference(fb, &fa, (a, b), self.domain())
     }
 
     /// Point `C(t)` for any finite `t`: inside the domain `[t_p, t_{n+1}]` the curve; before it
@@ -308,18 +310,108 @@ pub fn bspline_value_by(
         .sum())
 }
 
-/// `b − a` coordinate by coordinate, checked for overflow.
-fn difference(mut b: Vec<f64>, a: &[f64]) -> Result<Vec<f64>> {
+/// `b − a` coordinate by coordinate, the integral from `ta` to `tb` over the domain `[lo, hi]`,
+/// checked for overflow ([`check_integral`]).
+fn difference(
+    mut b: Vec<f64>,
+    a: &[f64],
+    (ta, tb): (f64, f64),
+    (lo, hi): (f64, f64),
+) -> Result<Vec<f64>> {
     for (x, y) in b.iter_mut().zip(a) {
         *x -= y;
     }
-    check_finite("integral (overflow: rescale the control points)", &b)?;
+    check_integral(
+        &b,
+        ta,
+        tb,
+        lo,
+        hi,
+        "integral (overflow: rescale the control points)",
+    )?;
     Ok(b)
+}
+
+/// An error if `values`, the integral from `a` to `b` of a spline on the domain `[lo, hi]`, are
+/// not all finite. A limit outside the domain (the end polynomials continued,
+/// `docs/theory/curves.md#antiderivatives-integrals-and-extrapolation`) whose integral passes
+/// the largest double is named with the limits and the fix, an [`Error::InvalidArgument`] of
+/// the limits: `∫_{−1e308}^{1e308}` of a line is `+∞ − ∞`, which was reported as a NaN to
+/// rescale the coefficients. Inside the domain the coefficients are what overflows:
+/// [`Error::NonFinite`] of `inside`.
+pub(crate) fn check_integral(
+    values: &[f64],
+    a: f64,
+    b: f64,
+    lo: f64,
+    hi: f64,
+    inside: &'static str,
+) -> Result<()> {
+    let beyond = a.min(b) < lo || a.max(b) > hi;
+    if beyond && values.iter().any(|v| !v.is_finite()) {
+        return Err(Error::InvalidArgument {
+            what: "integration limits [a, b]".into(),
+            reason: format!(
+                "the integral from {} to {} is computed from the antiderivative of the spline's \
+                 end polynomials, continued that far beyond its domain [{}, {}], which passes \
+                 the largest double (1.8e308) there; integrate over a shorter interval, or \
+                 without extrapolation",
+                readable(&a),
+                readable(&b),
+                readable(&lo),
+                readable(&hi)
+            ),
+        });
+    }
+    check_finite(inside, values)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An integral continued so far that it passes the largest double is refused naming the
+    /// limits (it was a NaN, `+∞ − ∞`, reported as coefficients to rescale), by the curve and by
+    /// the arrays' kernel; a large one that fits is still computed.
+    #[test]
+    fn integrals_past_the_largest_double_name_the_limits() {
+        let line = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_flat(1, vec![0.0, 1.0]).unwrap(),
+        )
+        .unwrap();
+        let e = line.integral_extrapolated(-1e308, 1e308).unwrap_err();
+        assert!(
+            matches!(&e, Error::InvalidArgument { what, .. } if what.words() == "integration limits [a, b]"),
+            "{e:?}"
+        );
+        let m = e.to_string();
+        assert!(
+            m.contains("the integral from -1e308 to 1e308 is computed from the antiderivative"),
+            "{m}"
+        );
+        assert!(m.contains("integrate over a shorter interval"), "{m}");
+        let mut out = [0.0];
+        let e = crate::curve::integral_into(
+            &[0.0, 0.0, 1.0, 1.0],
+            1,
+            &[0.0, 1.0],
+            1,
+            1e308,
+            -1e308,
+            &mut out,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("the integral from 1e308 to -1e308 is computed"),
+            "{e}"
+        );
+        // ∫ t dt from -1e10 to 2e10 = 1.5e20, far outside the domain: finite, computed
+        let v = line.integral_extrapolated(-1e10, 2e10).unwrap();
+        assert!((v[0] / 1.5e20 - 1.0).abs() < 1e-12, "{v:?}");
+    }
 
     /// `bspline_value` is `eval_extrapolated` on the curve (knots of any multiplicity, the
     /// ends, beyond them), NaN where asked for, and refuses inconsistent sizes.

@@ -455,8 +455,9 @@ fn span_of(t: &[f64], k: usize, n: usize, x: f64) -> usize {
 /// # Errors
 /// [`Error::InvalidArgument`] for fewer than `2k + 2` knots, fewer coefficients than `n`, no
 /// column, or an empty domain; [`Error::Degree`] if `k + 1` exceeds [`crate::MAX_DEGREE`];
-/// [`Error::NonFinite`] for a non-finite limit or an overflowing result;
-/// [`Error::LengthMismatch`] for `out` not of `dim` numbers.
+/// [`Error::NonFinite`] for a non-finite limit or a result that overflows inside the domain;
+/// [`Error::InvalidArgument`] naming the limits for one that overflows beyond it (the end
+/// polynomials continued); [`Error::LengthMismatch`] for `out` not of `dim` numbers.
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN knots must read as an empty domain
 pub fn integral_into(
     t: &[f64],
@@ -479,6 +480,7 @@ pub fn integral_into(
             reason: format!("the domain [t_k, t_n] = [{}, {}] is empty", t[k], t[n]),
         });
     }
+    let limits = (a, b);
     let (a, b, sign) = if b < a { (b, a, -1.0) } else { (a, b, 1.0) };
     let q = k + 1;
     // the extended knots t̃ (each end knot once more): t̃_0 = t_0, t̃_i = t_{i−1}, t̃_{len+1} = t_last
@@ -533,7 +535,14 @@ pub fn integral_into(
     for o in out.iter_mut() {
         *o *= sign;
     }
-    check_finite("integral (overflow: rescale the coefficients)", out)
+    crate::curve::integral::check_integral(
+        out,
+        limits.0,
+        limits.1,
+        t[k],
+        t[n],
+        "integral (overflow: rescale the coefficients)",
+    )
 }
 
 /// The integrals `∫_a^b N_{i,k}(x) dx` of the `n = t.len() − k − 1` B-splines of degree `k`

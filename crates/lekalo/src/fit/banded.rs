@@ -52,6 +52,26 @@ impl BandedQr {
         }
     }
 
+    /// As [`BandedQr::new`], with the memory reserved fallibly: `None` if the system refuses
+    /// it (a size within [`crate::MAX_SCALARS`] can still be more than the machine has, and an
+    /// allocation that fails aborts the process, the Python interpreter with it).
+    pub(crate) fn try_new(n: usize, bw: usize, ncols: usize) -> Option<Self> {
+        let zeros = |len: usize| {
+            let mut v = Vec::new();
+            v.try_reserve_exact(len).ok()?;
+            v.resize(len, 0.0);
+            Some(v)
+        };
+        Some(BandedQr {
+            n,
+            bw,
+            ncols,
+            r: zeros(n.checked_mul(bw)?)?,
+            z: zeros(n.checked_mul(ncols)?)?,
+            rss: 0.0,
+        })
+    }
+
     /// Number of unknowns.
     pub(crate) fn n(&self) -> usize {
         self.n

@@ -41,8 +41,9 @@ impl<'a> SphereData<'a> {
     /// # Errors
     /// [`Error::InvalidArgument`] naming `w` ("w should be positive": a weight negative or not
     /// finite), `theta` ("theta should be between [0, pi]"), `phi` ("phi should be between
-    /// [0, 2pi]"); [`Error::LengthMismatch`] for lengths that differ; [`Error::NonFinite`]
-    /// for a value of `r` that is NaN or infinite.
+    /// [0, 2pi]"), every weight 0; [`Error::LengthMismatch`] for lengths that differ;
+    /// [`Error::NonFinite`] for a value of `r` that is NaN or infinite; [`Error::TooFew`] for
+    /// fewer than two points (FITPACK's `m >= 2`).
     pub fn new(
         theta: &'a [f64],
         phi: &'a [f64],
@@ -93,6 +94,21 @@ impl<'a> SphereData<'a> {
                 index: i,
                 value: r[i],
             });
+        }
+        // FITPACK's `m >= 2`: no data, or one point, made a spline with fp = 0 and no error
+        if theta.len() < 2 {
+            return Err(Error::TooFew {
+                what: "data points on the sphere (theta, phi, r)".into(),
+                min: 2,
+                got: theta.len(),
+            });
+        }
+        if w.is_some_and(|w| w.iter().all(|v| *v == 0.0)) {
+            return Err(invalid(
+                "w",
+                "every weight is 0, so no point is fitted; give at least one positive weight"
+                    .to_string(),
+            ));
         }
         Ok(SphereData { theta, phi, r, w })
     }
@@ -251,7 +267,15 @@ impl Observation {
             order.push((cols.row_range(sp, lt - 3).0, k));
         }
         order.sort_by_key(|&(first, _)| first);
-        let mut qr = BandedQr::new(cols.n, bw, 1);
+        let mut qr = BandedQr::try_new(cols.n, bw, 1).ok_or_else(|| Error::InvalidArgument {
+            what: "knots of the fit on the sphere (tt, tp)".into(),
+            reason: format!(
+                "their {} unknowns need a triangle of {size} numbers ({:.1} GB), more memory \
+                 than the system gives; give fewer knots",
+                cols.n,
+                size as f64 * 8e-9
+            ),
+        })?;
         let mut h = vec![0.0; bw];
         for &(first, k) in &order {
             let w = data.weight(k);
@@ -408,8 +432,8 @@ fn finish(sp: &SphereSpace, c: Vec<f64>, fp: f64, rank: usize, n: usize) -> Resu
 /// # Errors
 /// [`Error::InvalidArgument`] for knots outside their
 /// interval ("tt should be between (0, pi)", "tp should be between (0, 2pi)") or not
-/// increasing, or `eps` outside `(0, 1)`; [`Error::TooLarge`] for a triangle beyond
-/// [`MAX_SCALARS`](crate::MAX_SCALARS).
+/// increasing, `eps` outside `(0, 1)`, or knots whose triangle is more memory than the
+/// system gives; [`Error::TooLarge`] for a triangle beyond [`MAX_SCALARS`](crate::MAX_SCALARS).
 pub fn sphere_least_squares(
     data: &SphereData<'_>,
     theta_knots: &[f64],

@@ -412,3 +412,25 @@ proptest! {
         prop_assert!((fit.spline.eval(&[1.1, 2.2]).unwrap()[0] - c).abs() < 1e-11 * (1.0 + c.abs()));
     }
 }
+
+/// No data, one point, or weights that are all 0 are refused as FITPACK refuses them
+/// (`m >= 2`, a positive weight): each made a spline with `fp = 0` and no error.
+#[test]
+fn empty_data_or_all_zero_weights_are_refused() {
+    for m in [0, 1] {
+        let t = vec![1.0; m];
+        let e = SphereData::new(&t, &t, &t, None).unwrap_err();
+        assert!(
+            matches!(e, Error::TooFew { min: 2, got, .. } if got == m),
+            "{e:?}"
+        );
+    }
+    let (theta, phi) = spiral(50);
+    let r = vec![1.0; 50];
+    let w = vec![0.0; 50];
+    let e = SphereData::new(&theta, &phi, &r, Some(&w)).unwrap_err();
+    assert!(e.to_string().contains("every weight is 0"), "{e}");
+    let mut w = w;
+    w[7] = 1.0;
+    assert!(SphereData::new(&theta, &phi, &r, Some(&w)).is_ok());
+}
