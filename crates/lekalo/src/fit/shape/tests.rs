@@ -404,8 +404,11 @@ fn the_working_set_gives_the_whole_program_s_answer() {
             .zip(b)
             .map(|(u, v)| (u - v).abs())
             .fold(0.0, f64::max);
+        // a bound on a cubic that the optimum touches inside a span puts the face at a point
+        // τ* found by secant steps on a multiplier that is flat there: the two programs'
+        // polished answers agree to a few units of 1e-12, not to the last digits
         assert!(
-            worst <= 1e-12 * size,
+            worst <= 5e-12 * size,
             "{c:?}: coefficients differ by {worst:e} (size {size})"
         );
     }
