@@ -1,5 +1,6 @@
 //! The shape-constraint keyword arguments of the fit functions (`increasing`, `decreasing`,
-//! `convex`, `concave`, `min`, `max`, `through`, `slope_at`), read into the library's
+//! `convex`, `concave`, `min`, `max`, `through`, `slope_at`, `integral`, `periodic`), read into
+//! the library's
 //! [`ShapeConstraints`] (`docs/theory/fitting.md#shape-constraints`). Conversions only.
 
 use lekalo::fit::{Shape, ShapeConstraints};
@@ -18,12 +19,16 @@ pub(crate) struct ShapeArgs<'a, 'py> {
     pub(crate) max: Option<&'a Bound<'py, PyAny>>,
     pub(crate) through: Option<&'a Bound<'py, PyAny>>,
     pub(crate) slope_at: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) integral: Option<&'a Bound<'py, PyAny>>,
+    pub(crate) periodic: Option<&'a Bound<'py, PyAny>>,
 }
 
-impl ShapeArgs<'_, '_> {
+impl<'py> ShapeArgs<'_, 'py> {
     /// The constraints: a derivative shape is `True` (the whole domain), an interval `(a, b)`
-    /// or a list of intervals; a bound is a number `v` (everywhere), `(v, a, b)` or a list of
-    /// those; `through` and `slope_at` are `(x, v)` or a list of pairs.
+    /// or a list of intervals (`(x, x)`: at the point `x`); a bound is a number `v` (everywhere),
+    /// `(v, a, b)`, `(v, x)` at the point `x`, or a list of those; `through` and `slope_at` are
+    /// `(x, v)` or a list of pairs; `integral` is `(a, b, v)` (`∫_a^b y = v`) or a list of
+    /// those; `periodic` is a bool.
     pub(crate) fn constraints(&self) -> PyResult<ShapeConstraints> {
         let mut c = ShapeConstraints::new();
         let kinds = [
@@ -59,17 +64,30 @@ impl ShapeArgs<'_, '_> {
                     Shape::AtMost(v)
                 }
             };
+            // (v, a, b) on [a, b]; (v, x) at the point x: the interval [x, x]
+            let on = |item: &Bound<'py, PyAny>| -> Option<(f64, f64, f64)> {
+                if let Ok(t) = item.extract::<(f64, f64, f64)>() {
+                    Some(t)
+                } else {
+                    item.extract::<(f64, f64)>().ok().map(|(v, x)| (v, x, x))
+                }
+            };
             if let Ok(v) = arg.extract::<f64>() {
                 c = c.with(bound(v));
-            } else if let Ok((v, a, b)) = arg.extract::<(f64, f64, f64)>() {
+            } else if let Some((v, a, b)) = on(arg) {
                 c = c.with_on(bound(v), a, b);
-            } else if let Ok(list) = arg.extract::<Vec<(f64, f64, f64)>>() {
+            } else if let Some(list) = arg
+                .extract::<Vec<Bound<'py, PyAny>>>()
+                .ok()
+                .and_then(|items| items.iter().map(on).collect::<Option<Vec<_>>>())
+            {
                 for (v, a, b) in list {
                     c = c.with_on(bound(v), a, b);
                 }
             } else {
                 return Err(bad(format!(
-                    "{name}: give a number v, (v, a, b) for [a, b] or a list of (v, a, b)"
+                    "{name}: give a number v, (v, a, b) for [a, b], (v, x) at the point x, or a \
+                     list of those"
                 )));
             }
         }
@@ -84,6 +102,27 @@ impl ShapeArgs<'_, '_> {
             };
             for (x, v) in points {
                 c = c.with_point(x, order, v);
+            }
+        }
+        if let Some(arg) = self.integral {
+            let list = if let Ok(t) = arg.extract::<(f64, f64, f64)>() {
+                vec![t]
+            } else if let Ok(list) = arg.extract::<Vec<(f64, f64, f64)>>() {
+                list
+            } else {
+                return Err(bad(
+                    "integral: give (a, b, v) for ∫_a^b y dx = v, or a list of those".into(),
+                ));
+            };
+            for (a, b, v) in list {
+                c = c.with_integral(a, b, v);
+            }
+        }
+        if let Some(arg) = self.periodic {
+            match arg.extract::<bool>() {
+                Ok(true) => c = c.with_periodicity(),
+                Ok(false) => {}
+                Err(_) => return Err(bad("periodic: give True or False".into())),
             }
         }
         Ok(c)

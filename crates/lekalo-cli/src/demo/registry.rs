@@ -20,6 +20,8 @@ mod doc003;
 mod doc004;
 #[path = "fitting.rs"]
 mod fitting;
+#[path = "fitting_shape.rs"]
+mod fitting_shape;
 #[path = "queries.rs"]
 mod queries;
 
@@ -138,6 +140,12 @@ pub(crate) const ENTRIES: &[Entry] = &[
         title: "Fits that keep their shape: increasing and bounded",
         source: "docs/theory/fitting.md#shape-constraints",
         build: fitting::shape,
+    },
+    Entry {
+        id: "fitting-shape-kinds",
+        title: "Fits that keep their shape: decreasing, convex, concave on an interval, at points",
+        source: "docs/theory/fitting.md#shape-constraints",
+        build: fitting_shape::kinds,
     },
     Entry {
         id: "queries",

@@ -670,6 +670,78 @@ fn shape_constraints_from_options() {
         .collect();
     assert!(ctrl[0].abs() < 1e-12, "{ctrl:?}");
     let unconstrained = run_json(&["fit", "-", "--function", "--ctrl", "12", "--json"], &data);
+    // bounds at a point: `V@X` and `=X`, named as such in the report
+    let at = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--ctrl",
+            "12",
+            "--max=0.2@1.5",
+            "--increasing=0.25",
+            "--json",
+        ],
+        &data,
+    );
+    assert_eq!(
+        at["report"]["constraints"],
+        serde_json::json!(["increasing at 0.25", "max 0.2 at 1.5"]),
+        "{at}"
+    );
+    // an integral, and shape constraints with --periodic (least squares on the period)
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--ctrl",
+            "12",
+            "--integral",
+            "0:3=0.5",
+            "--json",
+        ],
+        &data,
+    );
+    assert_eq!(
+        v["report"]["constraints"],
+        serde_json::json!(["integral over [0, 3] = 0.5"]),
+        "{v}"
+    );
+    let v = run_json(
+        &[
+            "fit",
+            "-",
+            "--function",
+            "--periodic",
+            "--ctrl",
+            "10",
+            "--max",
+            "0.8",
+            "--json",
+        ],
+        &data,
+    );
+    assert_eq!(
+        v["report"]["constraints"],
+        serde_json::json!(["max 0.8", "periodic"]),
+        "{v}"
+    );
+    lekalo()
+        .args([
+            "fit",
+            "-",
+            "--function",
+            "--periodic",
+            "--s",
+            "0.1",
+            "--min",
+            "0",
+        ])
+        .write_stdin(data.clone())
+        .assert()
+        .code(2)
+        .stderr(contains("drop --s"));
     assert!(
         v["report"]["weighted_rss"].as_f64().unwrap()
             > unconstrained["report"]["weighted_rss"].as_f64().unwrap()
@@ -746,8 +818,8 @@ fn shape_constraints_from_options() {
             "drop --tolerance, --robust",
         ),
         (
-            &["fit", "-", "--function", "--min", "0@1"][..],
-            "is not an interval A:B",
+            &["fit", "-", "--function", "--min", "0@1,2,3"][..],
+            "is not an interval A:B or a point X",
         ),
         (
             &["fit", "-", "--function", "--through", "1"][..],

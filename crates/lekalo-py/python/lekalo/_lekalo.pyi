@@ -568,10 +568,12 @@ def make_lsq_spline(
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
-    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
-    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> BSplineCurve: ...
 def make_lsq_spline_fp(
     x: ArrayLike, y: ArrayLike, t: ArrayLike, k: int = 3, w: Optional[ArrayLike] = None
@@ -586,10 +588,12 @@ def make_smoothing_spline(
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
-    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
-    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> BSplineCurve: ...
 def make_splrep(
     x: ArrayLike,
@@ -601,6 +605,16 @@ def make_splrep(
     t: Optional[ArrayLike] = None,
     domain: Optional[Tuple[float, float]] = None,
     knot_rounds: Optional[str] = None,
+    increasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> BSplineCurve: ...
 def make_splprep(
     points: ArrayLike,
@@ -638,10 +652,12 @@ def fit_least_squares(
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
-    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
-    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_smoothing(
     x: ArrayLike,
@@ -653,10 +669,12 @@ def fit_smoothing(
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
-    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
-    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_smoothing_condition(
     x: ArrayLike,
@@ -672,10 +690,12 @@ def fit_smoothing_condition(
     decreasing: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     convex: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     concave: Union[bool, Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
-    min: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
-    max: Union[float, Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    min: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
+    max: Union[float, Tuple[float, float, float], Tuple[float, float], Sequence[Union[Tuple[float, float, float], Tuple[float, float]]], None] = None,
     through: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
     slope_at: Union[Tuple[float, float], Sequence[Tuple[float, float]], None] = None,
+    integral: Union[Tuple[float, float, float], Sequence[Tuple[float, float, float]], None] = None,
+    periodic: Optional[bool] = None,
 ) -> Tuple[BSplineCurve, dict]: ...
 def fit_tolerance(
     points: ArrayLike, tolerance: float, k: int = 3, *, deviation: str = "distance", parametrization: Optional[Param] = None

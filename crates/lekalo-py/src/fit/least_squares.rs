@@ -49,15 +49,16 @@ fn ends_constraints(
 ///
 /// Shape constraints (keyword arguments; `y` 1-D) make it the best fit that keeps its shape for
 /// every `x`, not only at the data (`docs/theory/fitting.md#shape-constraints`): `increasing`,
-/// `decreasing`, `convex`, `concave` are `True`, an interval `(a, b)` or a list of intervals;
-/// `min`, `max` are a number, `(v, a, b)` or a list of those; `through` and `slope_at` are
-/// `(x, v)` or a list of pairs (`y(x) = v`, `y'(x) = v`).
+/// `decreasing`, `convex`, `concave` are `True`, an interval `(a, b)` or a list of intervals
+/// (`(x, x)`: at the point `x` alone); `min`, `max` are a number, `(v, a, b)` on `[a, b]`,
+/// `(v, x)` at the point `x`, or a list of those; `through` and `slope_at` are `(x, v)` or a
+/// list of pairs (`y(x) = v`, `y'(x) = v`).
 ///
 /// >>> c = lekalo.make_lsq_spline(x, np.sin(6 * x), [0, 0, 0, 0, 0.5, 1, 1, 1, 1], increasing=True)
 /// >>> bool((np.diff(c(np.linspace(0, 1, 200))[:, 0]) >= -1e-12).all())
 /// True
 #[pyfunction]
-#[pyo3(signature = (x, y, t, k = IntArg::of(3), w = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, t, k=3, w=None, *, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
+#[pyo3(signature = (x, y, t, k = IntArg::of(3), w = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, t, k=3, w=None, *, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_lsq_spline<'py>(
     py: Python<'py>,
@@ -74,10 +75,12 @@ pub(crate) fn make_lsq_spline<'py>(
     max: Option<&Bound<'py, PyAny>>,
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
     let k = k.count("k")?;
     let shape = shape_constraints([
-        increasing, decreasing, convex, concave, min, max, through, slope_at,
+        increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
     let fd = data.fit_data("x")?;
@@ -134,7 +137,7 @@ pub(crate) fn make_lsq_spline_fp<'py>(
 /// library's, `Σ w_k |C(ū_k) − Q_k|²`. The shape constraints are those of `make_lsq_spline`
 /// (for 1-D `points`, without `clamp_ends`: give end values as `through`).
 #[pyfunction]
-#[pyo3(signature = (points, params, t, k = IntArg::of(3), *, w = None, clamp_ends = false, d_start = None, d_end = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(points, params, t, k=3, *, w=None, clamp_ends=False, d_start=None, d_end=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
+#[pyo3(signature = (points, params, t, k = IntArg::of(3), *, w = None, clamp_ends = false, d_start = None, d_end = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(points, params, t, k=3, *, w=None, clamp_ends=False, d_start=None, d_end=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_least_squares<'py>(
     py: Python<'py>,
@@ -154,10 +157,12 @@ pub(crate) fn fit_least_squares<'py>(
     max: Option<&Bound<'py, PyAny>>,
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let k = k.count("k")?;
     let shape = shape_constraints([
-        increasing, decreasing, convex, concave, min, max, through, slope_at,
+        increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(params, points, w, "params", WeightsAre::Squared)?;
     let fd = data.fit_data("params")?;

@@ -120,9 +120,11 @@ fn weight_vec(w: &Bound<'_, PyAny>, weights: WeightsAre) -> PyResult<Vec<f64>> {
 type ShapeKeyword<'a, 'py> = Option<&'a Bound<'py, PyAny>>;
 
 /// The shape-constraint keyword arguments of a fit, `[increasing, decreasing, convex, concave,
-/// min, max, through, slope_at]`, read into the library's constraints ([`ShapeArgs`]).
-fn shape_constraints(args: [ShapeKeyword<'_, '_>; 8]) -> PyResult<ShapeConstraints> {
-    let [increasing, decreasing, convex, concave, min, max, through, slope_at] = args;
+/// min, max, through, slope_at, integral, periodic]`, read into the library's constraints
+/// ([`ShapeArgs`]).
+fn shape_constraints(args: [ShapeKeyword<'_, '_>; 10]) -> PyResult<ShapeConstraints> {
+    let [increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic] =
+        args;
     ShapeArgs {
         increasing,
         decreasing,
@@ -132,6 +134,8 @@ fn shape_constraints(args: [ShapeKeyword<'_, '_>; 8]) -> PyResult<ShapeConstrain
         max,
         through,
         slope_at,
+        integral,
+        periodic,
     }
     .constraints()
 }

@@ -5,7 +5,7 @@
 use lekalo::fit::{
     constrained_smoothing_condition, constrained_smoothing_spline, gcv_score as lk_gcv,
     periodic_smoothing_knot_sequence, smoothing_condition_with_rounds, smoothing_knot_sequence,
-    smoothing_on_knots, smoothing_spline, CurveFit, FitData, KnotRounds, Lambda,
+    smoothing_on_knots, smoothing_spline, CurveFit, FitData, KnotRounds, Lambda, ShapeConstraints,
 };
 use lekalo::Progress;
 use pyo3::prelude::*;
@@ -44,7 +44,7 @@ fn lambda_arg(lam: Option<f64>) -> Lambda {
 /// the cubic splines with knots at the data; with `lam=None`, λ is the unconstrained spline's
 /// GCV choice.
 #[pyfunction]
-#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn make_smoothing_spline<'py>(
     py: Python<'py>,
@@ -60,16 +60,19 @@ pub(crate) fn make_smoothing_spline<'py>(
     max: Option<&Bound<'py, PyAny>>,
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
     Ok(fit_smoothing(
         py, x, y, w, lam, increasing, decreasing, convex, concave, min, max, through, slope_at,
+        integral, periodic,
     )?
     .0)
 }
 
 /// As `make_smoothing_spline`, returning `(curve, report)`; `report["lam"]` is the λ used.
 #[pyfunction]
-#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None))]
+#[pyo3(signature = (x, y, w = None, lam = None, *, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing<'py>(
     py: Python<'py>,
@@ -85,9 +88,11 @@ pub(crate) fn fit_smoothing<'py>(
     max: Option<&Bound<'py, PyAny>>,
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let shape = shape_constraints([
-        increasing, decreasing, convex, concave, min, max, through, slope_at,
+        increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
     let fd = data.fit_data("x")?;
@@ -129,6 +134,9 @@ pub(crate) fn gcv_score(
 /// `knot_rounds` chooses how each round of knot addition places its knots: `"shared"` (the
 /// default) as FITPACK's `curfit` and SciPy's `splrep`, `"refit"` as SciPy's `make_splrep` (a
 /// fit after every knot; `docs/theory/fitting.md#smoothing-condition`).
+/// Shape constraints (keyword arguments as `make_smoothing_spline`'s) make it the constrained
+/// cubic smoothing spline whose residual is `s` (knots at the data, its λ found by bisection;
+/// no `t`, `domain` or `knot_rounds`, `k = 3`; `docs/theory/fitting.md#shape-constraints`).
 /// Returns the curve; `fit_smoothing_condition` also returns the report.
 ///
 /// >>> import numpy as np, lekalo
@@ -142,26 +150,82 @@ pub(crate) fn gcv_score(
 /// True
 /// >>> len(lekalo.make_splrep(x, y, s=1e-4, knot_rounds="refit").knots) >= 8
 /// True
+/// >>> c = lekalo.make_splrep(x, y, s=2.0, increasing=True)
+/// >>> bool((np.diff(c(np.linspace(0, 1, 500))[:, 0]) >= -1e-12).all())
+/// True
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn make_splrep(
-    py: Python<'_>,
-    x: &Bound<'_, PyAny>,
-    y: &Bound<'_, PyAny>,
-    w: Option<&Bound<'_, PyAny>>,
+pub(crate) fn make_splrep<'py>(
+    py: Python<'py>,
+    x: &Bound<'py, PyAny>,
+    y: &Bound<'py, PyAny>,
+    w: Option<&Bound<'py, PyAny>>,
     k: IntArg,
     s: f64,
-    t: Option<&Bound<'_, PyAny>>,
+    t: Option<&Bound<'py, PyAny>>,
     domain: Option<(f64, f64)>,
     knot_rounds: Option<&str>,
+    increasing: Option<&Bound<'py, PyAny>>,
+    decreasing: Option<&Bound<'py, PyAny>>,
+    convex: Option<&Bound<'py, PyAny>>,
+    concave: Option<&Bound<'py, PyAny>>,
+    min: Option<&Bound<'py, PyAny>>,
+    max: Option<&Bound<'py, PyAny>>,
+    through: Option<&Bound<'py, PyAny>>,
+    slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<PyBSplineCurve> {
     let k = k.count("k")?;
-    let rounds = self::knot_rounds(knot_rounds)?;
+    let shape = shape_constraints([
+        increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
+    ])?;
     let data = Data::read(x, y, w, "x", WeightsAre::Linear)?;
-    Ok(PyBSplineCurve::wrap(
-        condition_fit(py, &data, k, s, t, domain, rounds)?.curve,
-    ))
+    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds), &shape)?;
+    Ok(PyBSplineCurve::wrap(f.curve))
+}
+
+/// The smoothing condition with or without shape constraints: [`condition_fit`] when there are
+/// none, else the constrained cubic smoothing spline whose residual is `s` (knots at the data:
+/// `t`, `domain`, `knot_rounds` and `k ≠ 3` refused by name).
+fn shaped_condition_fit(
+    py: Python<'_>,
+    data: &Data<'_>,
+    (k, s, t, domain, knot_rounds): (
+        usize,
+        f64,
+        Option<&Bound<'_, PyAny>>,
+        Option<(f64, f64)>,
+        Option<&str>,
+    ),
+    shape: &ShapeConstraints,
+) -> PyResult<CurveFit> {
+    let rounds = self::knot_rounds(knot_rounds)?;
+    if shape.is_empty() {
+        return condition_fit(py, data, k, s, t, domain, rounds);
+    }
+    if knot_rounds.is_some() {
+        return Err(bad(
+            "knot_rounds: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop knot_rounds"
+                .into(),
+        ));
+    }
+    if domain.is_some() {
+        return Err(bad(
+            "domain: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop domain"
+                .into(),
+        ));
+    }
+    if t.is_some() || k != 3 {
+        return Err(bad(
+            "with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data): drop t and k"
+                .into(),
+        ));
+    }
+    let fd = data.fit_data("x")?;
+    py.detach(|| constrained_smoothing_condition(&fd, s, shape))
+        .map_err(lib_err)
 }
 
 /// The smoothing condition on FITPACK's knots placed in `rounds` (end knots at `domain` when
@@ -202,7 +266,7 @@ fn condition_fit(
 /// residual is `s` (its λ, found by bisection, in `report["lam"]`; no `t`, `k = 3`).
 /// `domain=(a, b)` as in `make_splrep`: the end knots, reaching beyond the data.
 #[pyfunction]
-#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None)")]
+#[pyo3(signature = (x, y, *, w = None, k = IntArg::of(3), s = 0.0, t = None, domain = None, knot_rounds = None, increasing = None, decreasing = None, convex = None, concave = None, min = None, max = None, through = None, slope_at = None, integral = None, periodic = None), text_signature = "(x, y, *, w=None, k=3, s=0.0, t=None, domain=None, knot_rounds=None, increasing=None, decreasing=None, convex=None, concave=None, min=None, max=None, through=None, slope_at=None, integral=None, periodic=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_smoothing_condition<'py>(
     py: Python<'py>,
@@ -222,39 +286,15 @@ pub(crate) fn fit_smoothing_condition<'py>(
     max: Option<&Bound<'py, PyAny>>,
     through: Option<&Bound<'py, PyAny>>,
     slope_at: Option<&Bound<'py, PyAny>>,
+    integral: Option<&Bound<'py, PyAny>>,
+    periodic: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyBSplineCurve, Bound<'py, PyDict>)> {
     let k = k.count("k")?;
     let shape = shape_constraints([
-        increasing, decreasing, convex, concave, min, max, through, slope_at,
+        increasing, decreasing, convex, concave, min, max, through, slope_at, integral, periodic,
     ])?;
-    let rounds = self::knot_rounds(knot_rounds)?;
     let data = Data::read(x, y, w, "x", WeightsAre::Squared)?;
-    if shape.is_empty() {
-        let f = condition_fit(py, &data, k, s, t, domain, rounds)?;
-        return with_report(py, f);
-    }
-    if knot_rounds.is_some() {
-        return Err(bad(
-            "knot_rounds: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop knot_rounds"
-                .into(),
-        ));
-    }
-    if domain.is_some() {
-        return Err(bad(
-            "domain: with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data); drop domain"
-                .into(),
-        ));
-    }
-    if t.is_some() || k != 3 {
-        return Err(bad(
-            "with shape constraints the smoothing condition fits the cubic smoothing spline (knots at the data): drop t and k"
-                .into(),
-        ));
-    }
-    let fd = data.fit_data("x")?;
-    let f = py
-        .detach(|| constrained_smoothing_condition(&fd, s, &shape))
-        .map_err(lib_err)?;
+    let f = shaped_condition_fit(py, &data, (k, s, t, domain, knot_rounds), &shape)?;
     with_report(py, f)
 }
 

@@ -86,8 +86,8 @@ pub(crate) use rows::for_each_row;
 pub use shape::{
     constrained_least_squares, constrained_smoothing_condition,
     constrained_smoothing_condition_with_progress, constrained_smoothing_spline,
-    constrained_smoothing_spline_with_progress, shape_violations, PointCondition, Shape,
-    ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
+    constrained_smoothing_spline_with_progress, shape_violations, IntegralCondition,
+    PointCondition, Shape, ShapeConstraint, ShapeConstraints, CONDITION_RTOL, SHAPE_RTOL,
 };
 pub use smoothing::{gcv_score, smoothing_spline, smoothing_spline_with_progress, Lambda};
 pub(crate) use smoothing::{smoothing_system, smoothing_values_and_system, SmoothingSystem};

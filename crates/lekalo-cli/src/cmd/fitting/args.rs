@@ -52,9 +52,10 @@ rows in any number of variables (FITPACK's surfit, SciPy's SmoothBivariateSpline
 from --degree P,Q,R…, else --bbox, else 2), weighted RSS within 0.1 % of S and never above.
 
 Shape constraints (--function fits by --lsq, --smooth, or --s without --knots; each holds for
-every x, not only at the data; repeat an option for several intervals):
+every x, not only at the data; repeat an option for several intervals; =X or @X: at a point):
   --increasing[=A:B] --decreasing[=A:B] --convex[=A:B] --concave[=A:B]
   --min V[@A:B] --max V[@A:B]   bounds on y;  --through X=V  y(X) = V;  --slope-at X=V  y'(X) = V
+  --integral A:B=V  the integral of y over [A, B];  with --periodic (--lsq): a periodic y(x)
 
 The report (residual max and RMS, λ or s, control points; with --tolerance first the deviation
 that the tolerance bounds, then the residuals at the fitted parameters, which may exceed it)
@@ -198,23 +199,23 @@ pub(crate) struct FitArgs {
     /// Smoothing penalty of scattered surfaces (second differences of the net).
     #[arg(long, default_value_t = 0.0)]
     pub(super) penalty: f64,
-    /// Keep y(x) increasing (y' ≥ 0) everywhere, or with `=A:B` on [A, B].
+    /// Keep y(x) increasing (y' ≥ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
     #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) increasing: Vec<String>,
-    /// Keep y(x) decreasing (y' ≤ 0) everywhere, or with `=A:B` on [A, B].
+    /// Keep y(x) decreasing (y' ≤ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
     #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) decreasing: Vec<String>,
-    /// Keep y(x) convex (y'' ≥ 0) everywhere, or with `=A:B` on [A, B].
+    /// Keep y(x) convex (y'' ≥ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
     #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) convex: Vec<String>,
-    /// Keep y(x) concave (y'' ≤ 0) everywhere, or with `=A:B` on [A, B].
+    /// Keep y(x) concave (y'' ≤ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.
     #[arg(long, value_name = "A:B", num_args = 0..=1, require_equals = true, default_missing_value = "", action = ArgAction::Append)]
     pub(super) concave: Vec<String>,
-    /// Lower bound y ≥ V everywhere, or `V@A:B` on [A, B].
-    #[arg(long, value_name = "V[@A:B]", allow_hyphen_values = true, action = ArgAction::Append)]
+    /// Lower bound y ≥ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X.
+    #[arg(long, value_name = "V[@A:B|@X]", allow_hyphen_values = true, action = ArgAction::Append)]
     pub(super) min: Vec<String>,
-    /// Upper bound y ≤ V everywhere, or `V@A:B` on [A, B].
-    #[arg(long, value_name = "V[@A:B]", allow_hyphen_values = true, action = ArgAction::Append)]
+    /// Upper bound y ≤ V everywhere, `V@A:B` on [A, B], or `V@X` at the point X.
+    #[arg(long, value_name = "V[@A:B|@X]", allow_hyphen_values = true, action = ArgAction::Append)]
     pub(super) max: Vec<String>,
     /// A point the fit passes through: `X=V` for y(X) = V.
     #[arg(long, value_name = "X=V", allow_hyphen_values = true, action = ArgAction::Append)]
@@ -222,6 +223,9 @@ pub(crate) struct FitArgs {
     /// The slope at a point: `X=V` for y'(X) = V.
     #[arg(long, value_name = "X=V", allow_hyphen_values = true, action = ArgAction::Append)]
     pub(super) slope_at: Vec<String>,
+    /// An integral: `A:B=V` for ∫_A^B y dx = V.
+    #[arg(long, value_name = "A:B=V", allow_hyphen_values = true, action = ArgAction::Append)]
+    pub(super) integral: Vec<String>,
     /// Write {"object", "report"} as JSON instead of the object alone.
     #[arg(long)]
     pub(super) json: bool,
@@ -233,7 +237,7 @@ pub(crate) struct FitArgs {
 }
 
 impl FitArgs {
-    /// Whether any shape constraint (`--increasing` … `--slope-at`) is given.
+    /// Whether any shape constraint (`--increasing` … `--integral`) is given.
     pub(super) fn shape_given(&self) -> bool {
         !(self.increasing.is_empty()
             && self.decreasing.is_empty()
@@ -242,7 +246,8 @@ impl FitArgs {
             && self.min.is_empty()
             && self.max.is_empty()
             && self.through.is_empty()
-            && self.slope_at.is_empty())
+            && self.slope_at.is_empty()
+            && self.integral.is_empty())
     }
 
     /// The parametrisation of curves and surfaces: `--param`, chord length by default.

@@ -330,7 +330,7 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
 }
 
 /// The shape constraints of the options, in the order of the options' kinds.
-fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
+pub(super) fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
     let mut c = ShapeConstraints::new();
     let interval = |text: &str, option: &str| -> Result<Option<(f64, f64)>> {
         if text.is_empty() {
@@ -339,7 +339,11 @@ fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
         let ab = numbers(&text.replacen(':', ",", 1), option)?;
         match ab[..] {
             [a, b] => Ok(Some((a, b))),
-            _ => bad_input(format!("{option}: \"{text}\" is not an interval A:B")),
+            // one point: the shape at X only
+            [x] => Ok(Some((x, x))),
+            _ => bad_input(format!(
+                "{option}: \"{text}\" is not an interval A:B or a point X"
+            )),
         }
     };
     let kinds: [(&[String], Shape, &str); 4] = [
@@ -361,7 +365,7 @@ fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
             let (v, on) = text.split_once('@').unwrap_or((text, ""));
             let v = match numbers(v, option)?[..] {
                 [v] => v,
-                _ => return bad_input(format!("{option}: \"{text}\" is not V or V@A:B")),
+                _ => return bad_input(format!("{option}: \"{text}\" is not V, V@A:B or V@X")),
             };
             let shape = if option == "--min" {
                 Shape::AtLeast(v)
@@ -385,6 +389,20 @@ fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
                 }
                 _ => return bad_input(format!("{option}: \"{text}\" is not X=V")),
             }
+        }
+    }
+    for text in &a.integral {
+        let parsed = text.split_once('=').map(|(ab, v)| {
+            (
+                numbers(&ab.replacen(':', ",", 1), "--integral"),
+                numbers(v, "--integral"),
+            )
+        });
+        match parsed {
+            Some((Ok(ab), Ok(v))) if ab.len() == 2 && v.len() == 1 => {
+                c = c.with_integral(ab[0], ab[1], v[0]);
+            }
+            _ => return bad_input(format!("--integral: \"{text}\" is not A:B=V")),
         }
     }
     Ok(c)

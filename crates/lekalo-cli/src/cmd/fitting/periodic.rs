@@ -4,14 +4,15 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use lekalo::fit::{
-    closed_parameters, periodic_least_squares_with_progress,
+    closed_parameters, constrained_least_squares, periodic_least_squares_with_progress,
     periodic_smoothing_condition_with_progress, periodic_smoothing_on_knots_with_progress, FitData,
 };
-use lekalo::Points;
+use lekalo::{KnotVector, Points};
 use lekalo_io::Object;
 use serde_json::json;
 
 use super::args::FitArgs;
+use super::fit::shape_constraints;
 use super::report::finish;
 use crate::cancel::with_progress;
 use crate::context::Context;
@@ -71,6 +72,24 @@ pub(super) fn run_periodic(
         data = data.with_weights(&w)?;
     }
     let mut report = json!({ "periodic": true, "period": [domain.0, domain.1] });
+    let shape = shape_constraints(a)?;
+    if !shape.is_empty() {
+        if !a.function {
+            return bad_input(
+                "shape constraints (--increasing, --convex, --min, --through, …) are for functions y(x): add --function",
+            );
+        }
+        if a.s.is_some() {
+            return bad_input(
+                "--periodic with shape constraints fits by least squares (--lsq, --ctrl, \
+                 --knots); drop --s",
+            );
+        }
+        report["constraints"] = json!((0..shape.len())
+            .map(|i| shape.describe(i))
+            .chain(std::iter::once("periodic".to_string()))
+            .collect::<Vec<_>>());
+    }
     // a bar on a terminal for large data; Ctrl-C stops the fit between two steps
     let large = data.len() > super::args::LARGE;
     let degree = a.degree()?;
@@ -106,9 +125,19 @@ pub(super) fn run_periodic(
             breaks.extend((1..n).map(|j| lo + (hi - lo) * j as f64 / n as f64));
         }
         breaks.push(hi);
-        with_progress(cx, "closed least squares", large, |p| {
-            periodic_least_squares_with_progress(&data, degree, &breaks, p)
-        })?
+        if shape.is_empty() {
+            with_progress(cx, "closed least squares", large, |p| {
+                periodic_least_squares_with_progress(&data, degree, &breaks, p)
+            })?
+        } else {
+            // the periodic splines on these breakpoints are the clamped ones whose derivatives
+            // below the degree agree at the ends: the library's periodicity constraint
+            let mut t = vec![lo; degree];
+            t.extend(&breaks);
+            t.extend(std::iter::repeat_n(hi, degree));
+            let kv = KnotVector::new(t)?;
+            constrained_least_squares(&data, degree, &kv, &shape.with_periodicity())?
+        }
     };
     let shown = if a.function { pts } else { &values };
     finish(

@@ -5,7 +5,9 @@
 use crate::basis::{basis_ders_into, BasisScratch};
 
 /// The pieces `[α, β]` of the non-empty knot spans that meet `[a, b]` with positive length, as
-/// `(span, α, β)`, spans `p ≤ span < n_ctrl` (the domain `[t_p, t_{n_ctrl}]`).
+/// `(span, α, β)`, spans `p ≤ span < n_ctrl` (the domain `[t_p, t_{n_ctrl}]`). For `a = b` (a
+/// shape at one point) the one piece `[a, a]` of the span holding `a` (the last non-empty span
+/// at the domain's end): its Bernstein coefficients are all the value there.
 pub(crate) fn pieces(
     knots: &[f64],
     degree: usize,
@@ -13,6 +15,13 @@ pub(crate) fn pieces(
     a: f64,
     b: f64,
 ) -> Vec<(usize, f64, f64)> {
+    if a == b {
+        let span = (degree..n_ctrl)
+            .rev()
+            .find(|&s| knots[s] < knots[s + 1] && knots[s] <= a)
+            .unwrap_or(degree);
+        return vec![(span, a, a)];
+    }
     (degree..n_ctrl)
         .filter_map(|s| {
             let (lo, hi) = (knots[s].max(a), knots[s + 1].min(b));
@@ -67,6 +76,30 @@ pub(crate) fn bernstein_rows(
         .collect()
 }
 
+/// The weights `w` with `g(τ) = Σ w_j b_j` and `g'(τ)/d = Σ w'_j b_j` for the polynomial of
+/// degree `d` with Bernstein coefficients `b` (`B^d_j(τ)`, and `B^{d−1}_{j−1}(τ) − B^{d−1}_j(τ)`).
+pub(crate) fn bernstein_weights(d: usize, tau: f64) -> (Vec<f64>, Vec<f64>) {
+    // (as `2·u·v` for d = 2, u = 1 − τ, v = τ: the rounding of the quadratic's own formula)
+    let power = |x: f64, k: usize| (1..k).fold(if k == 0 { 1.0 } else { x }, |acc, _| acc * x);
+    let basis = |d: usize, j: usize| {
+        let c = binomial(d, j);
+        if c == 1.0 {
+            power(1.0 - tau, d - j) * power(tau, j)
+        } else {
+            c * power(1.0 - tau, d - j) * power(tau, j)
+        }
+    };
+    let value = (0..=d).map(|j| basis(d, j)).collect();
+    let slope = (0..=d)
+        .map(|j| {
+            let left = if j > 0 { basis(d - 1, j - 1) } else { 0.0 };
+            let right = if j < d { basis(d - 1, j) } else { 0.0 };
+            left - right
+        })
+        .collect();
+    (value, slope)
+}
+
 /// `C(n, k)` as a float (small arguments: degrees).
 pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
@@ -86,7 +119,30 @@ pub(crate) fn min_on_unit(b: &[f64]) -> f64 {
             })
             .fold(f64::INFINITY, f64::min);
     }
-    let mut m = b[0].min(b[d]);
+    argmin_on_unit(b).1
+}
+
+/// Where on `[0, 1]` the polynomial of degree `d ≤ 3` with Bernstein coefficients `b` takes its
+/// minimum, and the minimum: the ends and the roots of the derivative inside (the quadratic
+/// formula in its stable form). For `d > 3` the better end only.
+pub(crate) fn argmin_on_unit(b: &[f64]) -> (f64, f64) {
+    let d = b.len() - 1;
+    let ends = if b[0] <= b[d] {
+        (0.0, b[0])
+    } else {
+        (1.0, b[d])
+    };
+    match interior_min(b) {
+        Some(inside) if inside.1 < ends.1 => inside,
+        _ => ends,
+    }
+}
+
+/// The least value of the polynomial of degree `d ≤ 3` with Bernstein coefficients `b` at the
+/// roots of its derivative strictly inside `(0, 1)`, and where (`None` without such a root): a
+/// cubic can vanish at an end and touch zero inside as well.
+pub(crate) fn interior_min(b: &[f64]) -> Option<(f64, f64)> {
+    let mut best: Option<(f64, f64)> = None;
     // derivative's Bernstein coefficients d (b_{j+1} − b_j), as a monomial a0 + a1 τ + a2 τ²
     let db: Vec<f64> = b.windows(2).map(|w| w[1] - w[0]).collect();
     let roots: Vec<f64> = match db.len() {
@@ -109,9 +165,12 @@ pub(crate) fn min_on_unit(b: &[f64]) -> f64 {
         _ => vec![],
     };
     for t in roots.into_iter().filter(|t| *t > 0.0 && *t < 1.0) {
-        m = m.min(de_casteljau(b, t));
+        let v = de_casteljau(b, t);
+        if best.is_none_or(|(_, m)| v < m) {
+            best = Some((t, v));
+        }
     }
-    m
+    best
 }
 
 /// Real roots of `a x² + b x + c` (the stable form: `q = −(b + sign(b)√Δ)/2`, roots `q/a`,

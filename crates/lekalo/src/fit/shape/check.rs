@@ -15,8 +15,11 @@ use crate::BSplineCurve;
 /// of the domain.
 pub const SHAPE_RTOL: f64 = 5e-13;
 
-/// For each constraint (shapes, then points), by how much `curve` violates it (0 when it holds):
-/// `max(0, −min σ(y⁽ʳ⁾ − v))` over the interval for a shape, `|y⁽ʳ⁾(x) − value|` for a point.
+/// For each constraint (shapes, points, integrals, then periodicity), by how much `curve`
+/// violates it (0 when it holds): `max(0, −min σ(y⁽ʳ⁾ − v))` over the interval for a shape,
+/// `|y⁽ʳ⁾(x) − value|` for a point, `|∫_a^b y − value| / (b − a)` for an integral (in units of
+/// `y`), and `max_r L^r |y⁽ʳ⁾(end) − y⁽ʳ⁾(start)|` over `r < p` for periodicity (`L` the
+/// domain's length).
 /// The minimum on each piece of a knot span is exact for `d = p − r ≤ 3` (end values and the
 /// roots of the derivative by the quadratic formula) and a lower bound for `d ≥ 4` (least
 /// Bernstein coefficient on 64 sub-pieces), so a reported 0 always means the shape holds.
@@ -113,6 +116,26 @@ impl ShapeCheck {
                 .point(q.derivative)[0];
             out.push((y - q.value).abs());
         }
+        for g in &constraints.integrals {
+            let (a, b) = g.interval;
+            out.push((curve.integral(a, b)?[0] - g.value).abs() / (b - a));
+        }
+        if constraints.periodic {
+            let (lo, hi) = curve.domain();
+            let p = curve.degree();
+            let top = p.saturating_sub(1);
+            let (d0, d1) = (
+                curve.eval_derivatives(lo, top)?,
+                curve.eval_derivatives(hi, top)?,
+            );
+            let mut worst = 0.0_f64;
+            let mut length_r = 1.0;
+            for r in 0..p {
+                worst = worst.max((d1.point(r)[0] - d0.point(r)[0]).abs() * length_r);
+                length_r *= hi - lo;
+            }
+            out.push(worst);
+        }
         Ok(out)
     }
 }
@@ -165,7 +188,10 @@ pub(super) fn holds_by(
         .shapes
         .iter()
         .map(|s| s.shape.derivative_order())
-        .chain(constraints.points.iter().map(|q| q.derivative));
+        .chain(constraints.points.iter().map(|q| q.derivative))
+        // integrals and periodicity are reported in units of y
+        .chain(constraints.integrals.iter().map(|_| 0))
+        .chain(constraints.periodic.then_some(0));
     Ok(v.iter()
         .zip(orders)
         .all(|(v, r)| *v <= SHAPE_RTOL * scale.of_derivative(r)))

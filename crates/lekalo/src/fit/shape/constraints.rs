@@ -79,7 +79,8 @@ impl std::fmt::Display for Shape {
 pub struct ShapeConstraint {
     /// The shape kept.
     pub shape: Shape,
-    /// Where: `None` for the whole domain, else `[a, b]` with `a < b` inside the domain.
+    /// Where: `None` for the whole domain, else `[a, b]` with `a ≤ b` inside the domain (`a = b`:
+    /// at the point `a` only, e.g. a bound on the value at a given `x`).
     pub interval: Option<(f64, f64)>,
 }
 
@@ -87,6 +88,7 @@ impl std::fmt::Display for ShapeConstraint {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.interval {
             None => write!(f, "{}", self.shape),
+            Some((a, b)) if a == b => write!(f, "{} at {a}", self.shape),
             Some((a, b)) => write!(f, "{} on [{a}, {b}]", self.shape),
         }
     }
@@ -113,8 +115,24 @@ impl std::fmt::Display for PointCondition {
     }
 }
 
-/// Everything a shape-constrained fit keeps: shapes on intervals and equalities at points, in
-/// any combination. Built by chaining:
+/// An equality of an integral: `∫_a^b y(x) dx = value`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IntegralCondition {
+    /// The interval `[a, b]`, `a < b`, inside the domain of the fit.
+    pub interval: (f64, f64),
+    /// The value the integral must take.
+    pub value: f64,
+}
+
+impl std::fmt::Display for IntegralCondition {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (a, b) = self.interval;
+        write!(f, "integral over [{a}, {b}] = {}", self.value)
+    }
+}
+
+/// Everything a shape-constrained fit keeps: shapes on intervals, equalities at points, of
+/// integrals and periodicity, in any combination. Built by chaining:
 ///
 /// ```
 /// use lekalo::fit::{Shape, ShapeConstraints};
@@ -122,10 +140,15 @@ impl std::fmt::Display for PointCondition {
 ///     .with(Shape::Increasing)
 ///     .with_on(Shape::Concave, 0.5, 1.0)
 ///     .with(Shape::AtLeast(0.0))
+///     .with_on(Shape::AtMost(2.0), 0.25, 0.25)
 ///     .with_point(0.0, 0, 0.0);
-/// assert_eq!(c.len(), 4);
+/// assert_eq!(c.len(), 5);
 /// assert_eq!(c.describe(1), "concave on [0.5, 1]");
-/// assert_eq!(c.describe(3), "y(0) = 0");
+/// assert_eq!(c.describe(3), "max 2 at 0.25");
+/// assert_eq!(c.describe(4), "y(0) = 0");
+/// let c = c.with_integral(0.0, 1.0, 0.5).with_periodicity();
+/// assert_eq!(c.describe(5), "integral over [0, 1] = 0.5");
+/// assert_eq!(c.describe(6), "periodic");
 /// ```
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ShapeConstraints {
@@ -133,6 +156,11 @@ pub struct ShapeConstraints {
     pub shapes: Vec<ShapeConstraint>,
     /// The equalities at points.
     pub points: Vec<PointCondition>,
+    /// The equalities of integrals.
+    pub integrals: Vec<IntegralCondition>,
+    /// Periodicity: `y⁽ʳ⁾` equal at both ends of the domain for `r = 0 … p − 1` (a function
+    /// that continues periodically with continuous derivatives up to order `p − 1`).
+    pub periodic: bool,
 }
 
 impl ShapeConstraints {
@@ -152,7 +180,7 @@ impl ShapeConstraints {
         self
     }
 
-    /// Adds `shape` on `[a, b]`.
+    /// Adds `shape` on `[a, b]` (`a = b`: at the point `a`).
     #[must_use]
     pub fn with_on(mut self, shape: Shape, a: f64, b: f64) -> Self {
         self.shapes.push(ShapeConstraint {
@@ -173,10 +201,27 @@ impl ShapeConstraints {
         self
     }
 
-    /// Number of constraints (shapes, then points).
+    /// Adds `∫_a^b y(x) dx = value`.
+    #[must_use]
+    pub fn with_integral(mut self, a: f64, b: f64, value: f64) -> Self {
+        self.integrals.push(IntegralCondition {
+            interval: (a, b),
+            value,
+        });
+        self
+    }
+
+    /// Adds periodicity (see [`ShapeConstraints::periodic`]).
+    #[must_use]
+    pub fn with_periodicity(mut self) -> Self {
+        self.periodic = true;
+        self
+    }
+
+    /// Number of constraints (shapes, points, integrals, then periodicity).
     #[must_use]
     pub fn len(&self) -> usize {
-        self.shapes.len() + self.points.len()
+        self.shapes.len() + self.points.len() + self.integrals.len() + usize::from(self.periodic)
     }
 
     /// Whether there is no constraint.
@@ -185,15 +230,20 @@ impl ShapeConstraints {
         self.len() == 0
     }
 
-    /// Constraint `i` (shapes first, then points) in words, as errors name it.
+    /// Constraint `i` (shapes, points, integrals, then periodicity) in words, as errors name it.
     #[must_use]
     pub fn describe(&self, i: usize) -> String {
-        match self.shapes.get(i) {
-            Some(s) => s.to_string(),
-            None => self
-                .points
-                .get(i - self.shapes.len())
-                .map_or_else(String::new, ToString::to_string),
+        let (ns, np, ni) = (self.shapes.len(), self.points.len(), self.integrals.len());
+        if i < ns {
+            self.shapes[i].to_string()
+        } else if i < ns + np {
+            self.points[i - ns].to_string()
+        } else if i < ns + np + ni {
+            self.integrals[i - ns - np].to_string()
+        } else if self.periodic && i == ns + np + ni {
+            "periodic".into()
+        } else {
+            String::new()
         }
     }
 
@@ -201,8 +251,8 @@ impl ShapeConstraints {
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite level, end or point;
-    /// [`Error::InvalidArgument`] (key `"shape constraints"`) for an interval that is empty or
-    /// leaves the domain, a point outside it, or a derivative order above the degree.
+    /// [`Error::InvalidArgument`] (key `"shape constraints"`) for an interval that ends before it
+    /// starts or leaves the domain, a point outside it, or a derivative order above the degree.
     pub(crate) fn validate(&self, (lo, hi): (f64, f64), degree: usize) -> Result<()> {
         let bad = |reason: String| Error::InvalidArgument {
             what: "shape constraints".into(),
@@ -212,10 +262,10 @@ impl ShapeConstraints {
             check_finite("shape constraint level", &[s.shape.level()])?;
             if let Some((a, b)) = s.interval {
                 check_finite("shape constraint interval", &[a, b])?;
-                if a >= b {
+                if a > b {
                     return Err(bad(format!(
-                        "the interval [{a}, {b}] of \"{s}\" is empty: give its start before its \
-                         end",
+                        "the interval [{a}, {b}] of \"{s}\" ends before it starts: give its \
+                         start first (or one number twice for a single point)",
                         a = readable(&a),
                         b = readable(&b)
                     )));
@@ -230,6 +280,20 @@ impl ShapeConstraints {
                         hi = readable(&hi)
                     )));
                 }
+            }
+        }
+        for g in &self.integrals {
+            let (a, b) = g.interval;
+            check_finite("integral condition", &[a, b, g.value])?;
+            if a >= b || a < lo || b > hi {
+                return Err(bad(format!(
+                    "the interval [{a}, {b}] of \"{g}\" is empty or leaves the domain [{lo}, \
+                     {hi}] of the fit: give a < b inside the domain",
+                    a = readable(&a),
+                    b = readable(&b),
+                    lo = readable(&lo),
+                    hi = readable(&hi)
+                )));
             }
         }
         for q in &self.points {

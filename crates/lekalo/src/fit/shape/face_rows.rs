@@ -48,13 +48,21 @@ pub(super) fn same_row(a: &Row, b: &Row) -> bool {
 /// The rows, in order, that are not the same (as [`same_row`]) as a row kept before them, for
 /// `n` coefficients. A row whose largest entry `|a_j|` exceeds [`SMALL_ROW`] can only equal a
 /// row with a non-zero entry in column `j`, so it is compared with the kept rows starting at
-/// most `w − 1` columns before `j` (`w` the widest row): O(rows · w²) on a band, with the same
-/// answer as comparing every pair.
-pub(super) fn distinct<T>(rows: Vec<(Row, bool, T)>, n: usize) -> Vec<(Row, bool, T)> {
-    let w = rows.iter().map(|(r, _, _)| r.coef.len()).max().unwrap_or(0);
+/// most `w − 1` columns before `j` (`w` the widest row of at most `band` columns): O(rows · w²)
+/// on a band, with the same answer as comparing every pair. Rows wider than `band` (an
+/// integral, periodicity: few, from the user's equalities) are compared with every kept row.
+pub(super) fn distinct<T>(rows: Vec<(Row, bool, T)>, n: usize, band: usize) -> Vec<(Row, bool, T)> {
+    let w = rows
+        .iter()
+        .map(|(r, _, _)| r.coef.len())
+        .filter(|&l| l <= band)
+        .max()
+        .unwrap_or(0);
     let mut kept: Vec<(Row, bool, T)> = Vec::with_capacity(rows.len());
     // kept rows by first column (indices into `kept`)
     let mut by_first: Vec<Vec<usize>> = vec![Vec::new(); n + 1];
+    // kept rows wider than the band (indices into `kept`)
+    let mut wide: Vec<usize> = Vec::new();
     for item in rows {
         let r = &item.0;
         let largest = r.coef.iter().enumerate().fold((0, 0.0_f64), |m, (i, v)| {
@@ -64,15 +72,19 @@ pub(super) fn distinct<T>(rows: Vec<(Row, bool, T)>, n: usize) -> Vec<(Row, bool
                 m
             }
         });
-        let seen = if largest.1 > SMALL_ROW && r.aux.is_none() {
+        let seen = if largest.1 > SMALL_ROW && r.aux.is_none() && r.coef.len() <= band {
             let j = r.first + largest.0;
             (j.saturating_sub(w.saturating_sub(1))..=j.min(n))
                 .flat_map(|f| &by_first[f])
                 .any(|&k| same_row(&kept[k].0, r))
+                || wide.iter().any(|&k| same_row(&kept[k].0, r))
         } else {
             kept.iter().any(|(k, _, _)| same_row(k, r))
         };
         if !seen {
+            if r.coef.len() > band {
+                wide.push(kept.len());
+            }
             by_first[r.first.min(n)].push(kept.len());
             kept.push(item);
         }
@@ -157,18 +169,22 @@ impl RowTriangle {
 /// remainder below [`DEPENDENT_RTOL`] of its length counting as zero. On a consistent face
 /// (every row zero at a point) the dropped rows are zero wherever the kept ones are, so the
 /// face is the same and its equality-constrained optimum too. At most `n` rows remain; rows
-/// with an auxiliary variable are kept as they are. O(w) per column a row travels; `steps`
+/// with an auxiliary variable, and rows wider than `band` (an integral, periodicity: the user's
+/// equalities, which a triangle of their width would make dense), are kept as they are. O(w)
+/// per column a row travels; `steps`
 /// ticks before each row, so that a cancelled hook stops a face of thousands of rows
 /// ([`crate::Error::Cancelled`]).
 pub(super) fn independent<T>(
     rows: Vec<(Row, bool, T)>,
     n: usize,
+    band: usize,
     steps: &Steps<'_, '_>,
 ) -> Result<Vec<(Row, bool, T)>> {
     let w = rows
         .iter()
         .filter(|(r, _, _)| r.aux.is_none())
         .map(|(r, _, _)| r.coef.len())
+        .filter(|&l| l <= band)
         .max()
         .unwrap_or(0);
     let mut triangle = RowTriangle::new(n, w.max(1));
@@ -177,7 +193,7 @@ pub(super) fn independent<T>(
     for item in rows {
         steps.tick()?;
         let r = &item.0;
-        if r.aux.is_some() {
+        if r.aux.is_some() || r.coef.len() > band {
             out.push(item);
             continue;
         }
@@ -240,7 +256,7 @@ mod tests {
             .map(|(i, (r, b, ()))| (r, b, i))
             .collect();
         let progress = Progress::new();
-        independent(tagged, n, &Steps::new(&progress, "test"))
+        independent(tagged, n, usize::MAX, &Steps::new(&progress, "test"))
             .unwrap()
             .into_iter()
             .map(|(_, _, i)| i)
@@ -338,7 +354,10 @@ mod tests {
             ),
             row(5, &[1.0, -0.5, 0.0, 0.0]),
         ];
-        let firsts: Vec<usize> = distinct(rows, n).iter().map(|(r, _, _)| r.first).collect();
+        let firsts: Vec<usize> = distinct(rows, n, usize::MAX)
+            .iter()
+            .map(|(r, _, _)| r.first)
+            .collect();
         assert_eq!(
             firsts,
             vec![2, 3, 5],

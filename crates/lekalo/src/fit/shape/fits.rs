@@ -27,9 +27,11 @@ const SHAPE_STEPS: &str = "shape-constrained fit";
 ///
 /// Each shape `σ(y⁽ʳ⁾ − v) ≥ 0` becomes conditions on the Bernstein coefficients of `y⁽ʳ⁾` on
 /// each piece of a knot span inside its interval (linear in the control points), exact where
-/// the constrained derivative has degree `d = p − r ≤ 2`: `d ≤ 1` by the coefficients' signs, `d = 2`
-/// by a rotated second-order cone `b₁ + √(b₀b₂) ≥ 0`. For `d ≥ 3` the coefficient signs are
-/// sufficient only (the fit is feasible but may be the optimum of a slightly stricter problem).
+/// the constrained derivative has degree `d = p − r ≤ 3`: `d ≤ 1` by the coefficients' signs, `d = 2`
+/// by a rotated second-order cone `b₁ + √(b₀b₂) ≥ 0`, `d = 3` by two such cones (the cubic as
+/// `τ·q₁ + (1 − τ)·q₂` with quadratics non-negative on the line, Markov–Lukács). For `d ≥ 4` the
+/// coefficient signs are sufficient only (the fit is feasible but may be the optimum of a
+/// slightly stricter problem).
 /// The data are reduced by banded QR to the triangle `R` (one pass, as [`least_squares`]: the
 /// same triangle gives the unconstrained fit); the cone program with the banded `RᵀR` is
 /// solved by Clarabel (interior point), so the work after the pass over the data grows with
@@ -139,7 +141,7 @@ pub(crate) fn constrained_least_squares_by(
 /// interval and every point equality. With [`Lambda::Gcv`], λ is the one generalised
 /// cross-validation chooses for the unconstrained spline. Exactness per shape as in
 /// [`constrained_least_squares`] with `p = 3`: increasing/decreasing (`d = 2`, cone) and
-/// convex/concave (`d = 1`) exact, bounds (`d = 3`) sufficient only.
+/// convex/concave (`d = 1`) and bounds (`d = 3`, two cones) all exact.
 ///
 /// When the unconstrained spline already satisfies every constraint (to [`SHAPE_RTOL`](super::SHAPE_RTOL)) it is
 /// returned unchanged. The objective is the banded `BᵀWB + λΩ` of [`smoothing_spline`].

@@ -1,19 +1,20 @@
 //! Fits of functions `y(x)` that keep their shape: increasing or decreasing, convex or concave,
-//! above or below bounds, on the whole domain or on intervals, with equalities of values and
-//! derivatives at points (`docs/theory/fitting.md#shape-constraints`).
+//! above or below bounds, on the whole domain, on intervals or at points, with equalities of
+//! values and derivatives at points, of integrals, and periodicity
+//! (`docs/theory/fitting.md#shape-constraints`).
 //!
 //! Every shape is a sign condition `σ(y⁽ʳ⁾ − v) ≥ 0` for every `x` of an interval. On each piece
 //! of a knot span it is a condition on the Bernstein coefficients of `y⁽ʳ⁾` there, which are
 //! linear in the control points; the condition is exact (necessary and sufficient) where the
-//! constrained derivative has degree `d = p − r ≤ 2` and sufficient only for `d ≥ 3`. The fit is
+//! constrained derivative has degree `d = p − r ≤ 3` and sufficient only for `d ≥ 4`. The fit is
 //! the solution of a convex quadratic program with second-order cones, solved by Clarabel on a
 //! working set of pieces grown until its answer keeps every row (then the whole program's
 //! optimum).
 //!
 //! | file | what it does |
 //! |---|---|
-//! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
-//! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` (crate-private) |
+//! | `constraints.rs` | [`Shape`], [`ShapeConstraint`], [`PointCondition`], [`IntegralCondition`], [`ShapeConstraints`]: what is kept, validated against the domain |
+//! | `bernstein.rs` | the Bernstein coefficients of `y⁽ʳ⁾` on a piece of a span as rows over the control points; the exact minimum of a polynomial of degree ≤ 3 on `[0, 1]` and where it is taken (crate-private) |
 //! | `row.rs` | `Row`: a linear function of the coefficients local to a span, the unit of every program (crate-private) |
 //! | `program.rs` | the cone program (banded objective, linear and second-order-cone rows), its solution by Clarabel, the polish on the active face, infeasibility certificates mapped back to constraints (crate-private) |
 //! | `face_rows.rs` | the rows of a polished face: duplicates dropped, and on a degenerate face the independent ones, by Givens rotations along the band (crate-private) |
@@ -31,7 +32,9 @@ mod row;
 mod working_set;
 
 pub use check::{shape_violations, SHAPE_RTOL};
-pub use constraints::{PointCondition, Shape, ShapeConstraint, ShapeConstraints};
+pub use constraints::{
+    IntegralCondition, PointCondition, Shape, ShapeConstraint, ShapeConstraints,
+};
 pub use fits::{
     constrained_least_squares, constrained_smoothing_condition,
     constrained_smoothing_condition_with_progress, constrained_smoothing_spline,

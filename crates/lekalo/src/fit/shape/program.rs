@@ -1,13 +1,15 @@
 //! The cone program of a shape-constrained fit and its solution by Clarabel
 //! (`docs/theory/fitting.md#shape-constraints`): minimise `½ cᵀPc + qᵀc` over the coefficients
 //! `c` and one auxiliary variable per second-order cone, subject to linear equalities, linear
-//! inequalities and three-dimensional second-order cones, all rows local to a knot span.
+//! inequalities and three-dimensional second-order cones (two per cubic, one per quadratic that
+//! must be non-negative on a piece), all rows local to a knot span.
 //!
 //! `P` is the banded matrix of the normal equations ([`SymBand`], half-bandwidth `p`), passed to
 //! the solver as a sparse upper triangle: Clarabel's sparse `LDLᵀ` of the KKT matrix then costs
 //! O(n) per interior-point iteration for `n` coefficients, whatever the number of data points.
 
 use super::super::banded::SymBand;
+use super::bernstein::{argmin_on_unit, bernstein_weights, interior_min};
 use super::face_rows::{distinct, independent};
 use super::row::{add_rows, Row};
 use crate::error::{Error, Result};
@@ -28,10 +30,14 @@ pub(crate) struct ConeProgram {
     pub(crate) equalities: Vec<(Row, usize)>,
     /// `g(x) ≥ 0`.
     pub(crate) inequalities: Vec<(Row, usize)>,
-    /// Bernstein coefficients `(b₀, b₁, b₂)` of a quadratic that must be `≥ 0` on `[0, 1]`:
-    /// each becomes `b₁ + s ≥ 0` and the cone `‖(b₀ − b₂, 2s)‖ ≤ b₀ + b₂` with an auxiliary
-    /// variable `s` (so `s² ≤ b₀b₂`, `b₀, b₂ ≥ 0`).
-    pub(crate) quadratics: Vec<([Row; 3], usize)>,
+    /// Bernstein coefficients `(b₀, …, b_d)` of a quadratic or cubic that must be `≥ 0` on
+    /// `[0, 1]`. A quadratic becomes `b₁ + s ≥ 0` and the cone `‖(b₀ − b₂, 2s)‖ ≤ b₀ + b₂`
+    /// with an auxiliary variable `s` (so `s² ≤ b₀b₂`, `b₀, b₂ ≥ 0`). A cubic becomes
+    /// `τ·q₁(τ) + (1 − τ)·q₂(τ)` with quadratics `q₁ = (3b₁ − 2a, s, b₃)` and
+    /// `q₂ = (b₀, a, 3b₂ − 2s)` (Bernstein coefficients, auxiliary variables `a`, `s`), each
+    /// non-negative on the whole line: `‖(u₀ − u₂, 2u₁)‖ ≤ u₀ + u₂` (Markov–Lukács: every cubic
+    /// non-negative on `[0, 1]` is such a sum, so the condition is exact).
+    pub(crate) polys: Vec<(Vec<Row>, usize)>,
 }
 
 /// How a cone program failed: the constraints whose rows carry the certificate of
@@ -56,7 +62,7 @@ const ACTIVE_TOL: f64 = 1e-7;
 /// negative (rounding) before the polished face is refused.
 const SIGN_RTOL: f64 = 1e-9;
 
-/// Secant steps for the touching points of quadratics in the polish.
+/// Secant steps for the touching points of quadratics and cubics in the polish.
 const TOUCH_ROUNDS: usize = 8;
 
 /// First step of the secant method for a touching point (in `τ ∈ [0, 1]`).
@@ -76,12 +82,13 @@ impl ConeProgram {
             q,
             equalities: Vec::new(),
             inequalities: Vec::new(),
-            quadratics: Vec::new(),
+            polys: Vec::new(),
         }
     }
 
     /// Solves the program by the interior-point method, every inequality tightened by
-    /// `margin` (`g ≥ margin`; quadratics `≥ margin` on `[0, 1]`); the coefficients or why not.
+    /// `margin` (`g ≥ margin`; quadratics and cubics `≥ margin` on `[0, 1]`); the coefficients
+    /// or why not.
     pub(crate) fn solve(&self, margin: f64) -> std::result::Result<Vec<f64>, Failure> {
         let tighten = |r: &Row| {
             let mut r = r.clone();
@@ -93,25 +100,59 @@ impl ConeProgram {
             .iter()
             .map(|(r, o)| (tighten(r), *o))
             .collect();
-        let mut cones = Vec::with_capacity(self.quadratics.len());
-        for (k, (quad, o)) in self.quadratics.iter().enumerate() {
-            // a constant's Bernstein coefficients are that constant: one margin for all three
-            let m = quad.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
-            let [b0, b1, b2] = quad.clone().map(|mut r| {
-                r.constant -= margin * m;
-                r
-            });
-            let (b0, b1, b2) = (&b0, &b1, &b2);
-            let mut b1s = b1.clone();
-            b1s.aux = Some((k, 1.0));
-            inequalities.push((b1s, *o));
-            let two_s = Row {
-                first: b0.first,
-                coef: vec![0.0; b0.coef.len()],
-                aux: Some((k, 2.0)),
+        let mut cones: Vec<([Row; 3], usize)> = Vec::with_capacity(2 * self.polys.len());
+        for (poly, o) in &self.polys {
+            // a constant's Bernstein coefficients are that constant: one margin for all
+            let m = poly.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+            let b: Vec<Row> = poly
+                .iter()
+                .map(|r| {
+                    let mut r = r.clone();
+                    r.constant -= margin * m;
+                    r
+                })
+                .collect();
+            // f·x_aux alone, and `row` plus f·x_aux
+            let only = |k: usize, f: f64| Row {
+                first: b[0].first,
+                coef: vec![0.0; b[0].coef.len()],
+                aux: Some((k, f)),
                 constant: 0.0,
             };
-            cones.push(([add_rows(b0, b2, 1.0), add_rows(b0, b2, -1.0), two_s], *o));
+            let plus = |mut row: Row, k: usize, f: f64| {
+                row.aux = Some((k, f));
+                row
+            };
+            if let [b0, b1, b2] = &b[..] {
+                let k = cones.len();
+                inequalities.push((plus(b1.clone(), k, 1.0), *o));
+                cones.push((
+                    [add_rows(b0, b2, 1.0), add_rows(b0, b2, -1.0), only(k, 2.0)],
+                    *o,
+                ));
+            } else if let [b0, b1, b2, b3] = &b[..] {
+                let (ka, ks) = (cones.len(), cones.len() + 1);
+                // q₁ = (u₀, s, b₃) with u₀ = 3b₁ − 2a: (u₀ + b₃, u₀ − b₃, 2s)
+                let mut u0 = b1.clone();
+                u0.scale(3.0);
+                cones.push((
+                    [
+                        plus(add_rows(&u0, b3, 1.0), ka, -2.0),
+                        plus(add_rows(&u0, b3, -1.0), ka, -2.0),
+                        only(ks, 2.0),
+                    ],
+                    *o,
+                ));
+                // q₂ = (b₀, a, w₂) with w₂ = 3b₂ − 2s: (b₀ + w₂, b₀ − w₂, 2a)
+                cones.push((
+                    [
+                        plus(add_rows(b0, b2, 3.0), ks, -2.0),
+                        plus(add_rows(b0, b2, -3.0), ks, 2.0),
+                        only(ka, 2.0),
+                    ],
+                    *o,
+                ));
+            }
         }
         let mut x = self.run(&self.equalities, &inequalities, &cones)?;
         x.truncate(self.p.n);
@@ -134,7 +175,7 @@ impl ConeProgram {
 
     /// The exact optimum on the face the interior-point answer `c` lies on (active-set
     /// polishing): every row within [`ACTIVE_TOL`] of its bound is made an equality, and so is
-    /// every quadratic whose minimum on `[0, 1]` is within it (the Bernstein coefficients that
+    /// every quadratic or cubic whose minimum on `[0, 1]` is within it (the Bernstein coefficients that
     /// vanish at an end, or value and slope at the touching point `τ*` inside), duplicates
     /// dropped, and the equality-constrained quadratic program solved. `None` when a multiplier of a made-equal row has the wrong sign (the face
     /// guessed is not the optimal one) or the solve fails; the caller also checks the answer
@@ -174,24 +215,31 @@ impl ConeProgram {
                 fixed.push((r, true));
             }
         }
-        // quadratics touching zero inside: (index, τ*)
+        // polynomials touching zero inside: (index, τ*)
         let mut touches: Vec<(usize, f64)> = Vec::new();
-        for (qi, ([b0, b1, b2], _)) in self.quadratics.iter().enumerate() {
-            let m = b0.max_abs().max(b1.max_abs()).max(b2.max_abs());
+        for (qi, (poly, _)) in self.polys.iter().enumerate() {
+            let m = poly.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
             if m == 0.0 {
                 continue;
             }
-            let b = [b0.eval(c, n) / m, b1.eval(c, n) / m, b2.eval(c, n) / m];
-            let near = b.map(|v| v.abs() <= ACTIVE_TOL);
-            // zero at an end (b₀ or b₂), with a zero slope there too (b₁), or flat (all three)
-            for (j, r) in [b0, b1, b2].into_iter().enumerate() {
-                if near[j] && (j != 1 || near[0] || near[2]) {
+            let b: Vec<f64> = poly.iter().map(|r| r.eval(c, n) / m).collect();
+            let d = b.len() - 1;
+            let near: Vec<bool> = b.iter().map(|v| v.abs() <= ACTIVE_TOL).collect();
+            // zero at an end (b₀ or b_d), with the next coefficients zero too for a root of
+            // higher order there (zero slope), or flat (all of them)
+            for (j, r) in poly.iter().enumerate() {
+                if near[..=j].iter().all(|v| *v) || near[j..].iter().all(|v| *v) {
                     fixed.push((unit(r), true));
                 }
             }
-            let (tau, value) = quadratic_min(b);
-            if !near[0] && !near[2] && value <= ACTIVE_TOL {
+            let (tau, value) = argmin_on_unit(&b);
+            if !near[0] && !near[d] && value <= ACTIVE_TOL {
                 touches.push((qi, tau));
+            } else if let Some((tau, value)) = interior_min(&b).filter(|_| d == 3) {
+                // a cubic vanishing at an end may touch zero inside too (a quadratic cannot)
+                if value <= ACTIVE_TOL {
+                    touches.push((qi, tau));
+                }
             }
         }
         // A double root inside, at the touching point τ: the value there is zero and so is the
@@ -238,28 +286,31 @@ impl ConeProgram {
         Ok(answer)
     }
 
-    /// The rows "value = 0" and "slope = 0" at `τ` of quadratic `qi`, each scaled by the
-    /// quadratic's largest coefficient (the same for every `τ`, so that multipliers compare).
+    /// The rows "value = 0" and "slope = 0" at `τ` of polynomial `qi`, each scaled by the
+    /// polynomial's largest coefficient (the same for every `τ`, so that multipliers compare).
     fn touch_rows(&self, qi: usize, tau: f64) -> (Row, Row) {
-        let [b0, b1, b2] = &self.quadratics[qi].0;
-        let m = b0.max_abs().max(b1.max_abs()).max(b2.max_abs());
-        let combine = |w: [f64; 3]| {
-            let mut row = b0.clone();
-            row.coef = b0
-                .coef
+        let poly = &self.polys[qi].0;
+        let m = poly.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
+        let combine = |w: &[f64]| {
+            let mut row = poly[0].clone();
+            for (i, v) in row.coef.iter_mut().enumerate() {
+                *v = poly
+                    .iter()
+                    .zip(w)
+                    .map(|(r, wj)| wj * r.coef[i])
+                    .sum::<f64>()
+                    / m;
+            }
+            row.constant = poly
                 .iter()
-                .zip(&b1.coef)
-                .zip(&b2.coef)
-                .map(|((x0, x1), x2)| (w[0] * x0 + w[1] * x1 + w[2] * x2) / m)
-                .collect();
-            row.constant = (w[0] * b0.constant + w[1] * b1.constant + w[2] * b2.constant) / m;
+                .zip(w)
+                .map(|(r, wj)| wj * r.constant)
+                .sum::<f64>()
+                / m;
             row
         };
-        let (u, v) = (1.0 - tau, tau);
-        (
-            combine([u * u, 2.0 * u * v, v * v]),
-            combine([-u, u - v, v]),
-        )
+        let (value, slope) = bernstein_weights(poly.len() - 1, tau);
+        (combine(&value), combine(&slope))
     }
 
     /// The optimum on the face where every row given is zero, rows equal to an earlier one
@@ -281,11 +332,13 @@ impl ConeProgram {
             .zip(tags)
             .map(|((r, ineq), tag)| (r, ineq, tag))
             .collect();
-        let mut kept = distinct(tagged, n);
+        // the rows of shapes and points span at most p + 1 columns (P's band)
+        let band = self.p.b + 1;
+        let mut kept = distinct(tagged, n, band);
         if kept.len() > n {
             // a degenerate face (a flat stretch keeps value, slope and curvature rows at
             // once): more rows than coefficients, so some depend on the others
-            kept = independent(kept, n, steps)?;
+            kept = independent(kept, n, band, steps)?;
         }
         for (r, ineq, _) in &mut kept {
             if *ineq {
@@ -466,30 +519,6 @@ impl ConeProgram {
 /// The optimum on a face: the coefficients, and the multiplier of each tagged slope row (`None`
 /// if it was dropped).
 type FaceOptimum = (Vec<f64>, Vec<Option<f64>>);
-
-/// The minimiser `τ*` on `[0, 1]` of the quadratic with Bernstein coefficients `b`, and the
-/// minimum.
-fn quadratic_min(b: [f64; 3]) -> (f64, f64) {
-    let at = |t: f64| {
-        let u = 1.0 - t;
-        u * u * b[0] + 2.0 * u * t * b[1] + t * t * b[2]
-    };
-    // q'(τ) = 2[(b₁ − b₀)(1 − τ) + (b₂ − b₁)τ] = 0
-    let (d0, d1) = (b[1] - b[0], b[2] - b[1]);
-    let mut best = if b[0] <= b[2] {
-        (0.0, b[0])
-    } else {
-        (1.0, b[2])
-    };
-    if d0 < 0.0 && d1 > 0.0 {
-        let t = d0 / (d0 - d1);
-        let v = at(t);
-        if v < best.1 {
-            best = (t, v);
-        }
-    }
-    best
-}
 
 /// The upper band of `RᵀR` for the banded triangle `R` (`r[i·bw + k] = R[i][i + k]`):
 /// the normal-equations matrix of a least-squares problem, half-bandwidth `bw − 1`. O(n·bw²).

@@ -176,6 +176,10 @@ fn golden_values_from_an_independent_conic_program() {
         let objective =
             fit.report.weighted_rss + lambda.map_or(0.0, |l| l * curvature_energy(&fit.curve));
         let reference = case["objective"].as_f64().unwrap();
+        eprintln!(
+            "{name}: objective {objective:.17e} reference {reference:.17e} ({:e} relative)",
+            (objective - reference) / reference
+        );
         for (xs, want) in [("x", "values_at_x"), ("grid", "values_at_grid")] {
             let (xs, want) = (floats(&case[xs]), floats(&case[want]));
             let mut got = vec![0.0; xs.len()];
@@ -400,8 +404,11 @@ fn the_working_set_gives_the_whole_program_s_answer() {
             .zip(b)
             .map(|(u, v)| (u - v).abs())
             .fold(0.0, f64::max);
+        // a bound on a cubic that the optimum touches inside a span puts the face at a point
+        // τ* found by secant steps on a multiplier that is flat there: the two programs'
+        // polished answers agree to a few units of 1e-12, not to the last digits
         assert!(
-            worst <= 1e-12 * size,
+            worst <= 5e-12 * size,
             "{c:?}: coefficients differ by {worst:e} (size {size})"
         );
     }
@@ -463,6 +470,195 @@ fn constrained_smoothing_with_a_hook_is_unchanged_and_stops_when_cancelled() {
                     b.curve.control_points().as_slice(),
                 ) && same_bits(&a.report.residuals, &b.report.residuals)
             },
+        );
+    }
+}
+
+/// A cubic kept above 0 where the data's parabola dips below it inside the one knot span: the
+/// exact condition (two cones per cubic, Markov–Lukács) reaches the optimum, which its
+/// relaxation to samples (`y(x_j) ≥ 0` at 40,001 points, a larger feasible set, solved as a
+/// linear-inequality program) bounds from below; the signs of the Bernstein coefficients
+/// (sufficient only) cannot reach it, as the fit's own coefficients, negative, show.
+#[test]
+fn a_bound_on_a_cubic_is_exact_not_stricter() {
+    use super::program::ConeProgram;
+    use super::row::Row;
+    use crate::fit::banded::SymBand;
+    let x: Vec<f64> = (0..101).map(|k| f64::from(k) / 100.0).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .map(|t| 4.0 * (t - 0.4) * (t - 0.4) - 0.05 + 0.3 * t * t * t)
+        .collect();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    // one span: the control points are the cubic's Bernstein coefficients
+    let kv = KnotVector::clamped_uniform(3, 4).unwrap();
+    let c = ShapeConstraints::new().with(Shape::AtLeast(0.0));
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let m = min_by_roots(&fit.curve, 0, 1.0, 0.0, 0.0, 1.0);
+    assert!(m >= -1e-12, "min y = {m}");
+    let ctrl = fit.curve.control_points().as_slice();
+    assert!(
+        ctrl.iter().any(|v| *v < -0.01),
+        "the fit's Bernstein coefficients {ctrl:?} are all ≥ 0: the stricter condition"
+    );
+    // the relaxation: ½cᵀ(BᵀB)c − (Bᵀy)ᵀc with y(x_j) ≥ 0 at samples
+    let mut p = SymBand::zeros(4, 3);
+    let mut q = vec![0.0; 4];
+    for (&xk, &yk) in x.iter().zip(&y) {
+        let (b, _) = super::bernstein::bernstein_weights(3, xk);
+        for i in 0..4 {
+            q[i] -= b[i] * yk;
+            for j in i..4 {
+                p.add(i, j, b[i] * b[j]);
+            }
+        }
+    }
+    let mut relaxed = ConeProgram::new(p, q);
+    for k in 0..=40_000 {
+        let (b, _) = super::bernstein::bernstein_weights(3, f64::from(k) / 40_000.0);
+        let row = Row {
+            first: 0,
+            coef: b,
+            aux: None,
+            constant: 0.0,
+        };
+        relaxed.inequalities.push((row, 0));
+    }
+    let cr = relaxed.solve(0.0).unwrap();
+    let yy: f64 = y.iter().map(|v| v * v).sum();
+    let rss_relaxed = 2.0 * relaxed.objective(&cr) + yy;
+    let rss = fit.report.weighted_rss;
+    assert!(
+        rss >= rss_relaxed * (1.0 - 1e-9) && rss <= rss_relaxed * (1.0 + 1e-6),
+        "residual {rss} against the sampled relaxation's {rss_relaxed}"
+    );
+}
+
+/// Bounds at given points (an interval `[x, x]`): a value bound the data cross is met with
+/// equality, so the fit is the one with that value prescribed (a point equality), and a slope
+/// bound at another point holds; both reported as kept.
+#[test]
+fn bounds_at_points_hold_and_bind_as_equalities() {
+    let (x, y) = noisy(120, |t| t + 0.2 * (5.0 * t).sin());
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 10).unwrap();
+    let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+    let at = |c: &BSplineCurve, x: f64, r: usize| c.eval_derivatives(x, r).unwrap().point(r)[0];
+    let cap = at(&free.curve, 0.5, 0) - 0.3;
+    let c = ShapeConstraints::new()
+        .with_on(Shape::AtMost(cap), 0.5, 0.5)
+        .with_on(Shape::AtLeast(-50.0), 0.9, 0.9);
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    assert_eq!(c.describe(0), format!("max {cap} at 0.5"));
+    let v = shape_violations(&fit.curve, &c).unwrap();
+    assert!(v.iter().all(|v| *v <= 1e-12), "{v:?}");
+    let pinned = ShapeConstraints::new().with_point(0.5, 0, cap);
+    let eq = constrained_least_squares(&data, 3, &kv, &pinned).unwrap();
+    for k in 0..=50 {
+        let t = f64::from(k) / 50.0;
+        let (a, b) = (at(&fit.curve, t, 0), at(&eq.curve, t, 0));
+        assert!((a - b).abs() <= 1e-10, "at {t}: {a} vs {b}");
+    }
+    // a sign of the slope at a point where the free fit falls: the slope there becomes 0
+    let (x, y) = noisy(120, |t| (std::f64::consts::TAU * t).sin());
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+    assert!(at(&free.curve, 0.5, 1) < -1.0, "the free fit rises at 0.5");
+    let c = ShapeConstraints::new().with_on(Shape::Increasing, 0.5, 0.5);
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let slope = at(&fit.curve, 0.5, 1);
+    assert!(slope.abs() <= 1e-12, "y'(0.5) = {slope}");
+    assert!(
+        fit.report.weighted_rss > free.report.weighted_rss,
+        "the slope's sign did not bind"
+    );
+}
+
+/// An integral prescribed: the fit's integral (by the curve's antiderivative, not the program's
+/// rows) takes the value; prescribing the free fit's own integral leaves the free fit; and it
+/// combines with a shape.
+#[test]
+fn integrals_hold_and_leave_a_consistent_fit_alone() {
+    let (x, y) = noisy(150, |t| 0.3 + t * t);
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 9).unwrap();
+    let free = least_squares(&data, 3, &kv, &EndConstraints::none()).unwrap();
+    let own = free.curve.integral(0.2, 0.7).unwrap()[0];
+    let same = ShapeConstraints::new().with_integral(0.2, 0.7, own);
+    let fit = constrained_least_squares(&data, 3, &kv, &same).unwrap();
+    for k in 0..=40 {
+        let t = f64::from(k) / 40.0;
+        let (a, b) = (
+            fit.curve.eval(t).unwrap()[0],
+            free.curve.eval(t).unwrap()[0],
+        );
+        assert!((a - b).abs() <= 1e-10, "at {t}: {a} vs {b}");
+    }
+    let c = ShapeConstraints::new()
+        .with_integral(0.0, 1.0, 1.0)
+        .with(Shape::Increasing);
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let got = fit.curve.integral(0.0, 1.0).unwrap()[0];
+    assert!((got - 1.0).abs() <= 1e-12, "integral {got}");
+    let m = min_by_roots(&fit.curve, 1, 1.0, 0.0, 0.0, 1.0);
+    assert!(m >= -1e-12, "min y' = {m}");
+    assert!(
+        fit.report.weighted_rss > free.report.weighted_rss,
+        "the integral did not bind"
+    );
+    let v = shape_violations(&fit.curve, &c).unwrap();
+    assert!(v.iter().all(|v| *v <= 1e-12), "{v:?}");
+    let bad = ShapeConstraints::new().with_integral(0.5, 2.0, 1.0);
+    assert!(
+        constrained_least_squares(&data, 3, &kv, &bad).is_err(),
+        "an integral leaving the domain is refused"
+    );
+}
+
+/// Periodicity on clamped knots: the clamped cubics whose value, slope and curvature agree at
+/// the ends are the periodic cubic splines with the same breakpoints, so the fit is the
+/// periodic least squares (`periodic_least_squares`, a cyclic banded QR) to rounding; with a
+/// bound it still closes.
+#[test]
+fn periodicity_gives_the_periodic_least_squares() {
+    let n = 120;
+    let x: Vec<f64> = (0..n).map(|k| f64::from(k) / f64::from(n)).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| {
+            (std::f64::consts::TAU * t).sin()
+                + 0.4 * t
+                + 0.05 * (((k * 7919) % 101) as f64 / 50.0 - 1.0)
+        })
+        .collect();
+    let data = FitData::new(PointsRef::from_flat(1, &y).unwrap(), &x).unwrap();
+    let kv = KnotVector::clamped_uniform(3, 13).unwrap();
+    let c = ShapeConstraints::new().with_periodicity();
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let breaks: Vec<f64> = (0..=10).map(|j| f64::from(j) / 10.0).collect();
+    let periodic = crate::fit::periodic_least_squares(&data, 3, &breaks).unwrap();
+    for k in 0..=100 {
+        let t = f64::from(k) / 100.0;
+        let (a, b) = (
+            fit.curve.eval(t).unwrap()[0],
+            periodic.curve.eval(t).unwrap()[0],
+        );
+        assert!((a - b).abs() <= 1e-9, "at {t}: {a} vs {b}");
+    }
+    let c = c.with(Shape::AtMost(0.9));
+    let fit = constrained_least_squares(&data, 3, &kv, &c).unwrap();
+    let v = shape_violations(&fit.curve, &c).unwrap();
+    assert!(v.iter().all(|v| *v <= 1e-12), "{v:?}");
+    let (d0, d1) = (
+        fit.curve.eval_derivatives(0.0, 2).unwrap(),
+        fit.curve.eval_derivatives(1.0, 2).unwrap(),
+    );
+    for r in 0..3 {
+        let (a, b) = (d0.point(r)[0], d1.point(r)[0]);
+        assert!(
+            (a - b).abs() <= 1e-9 * (1.0 + a.abs()),
+            "y^({r}): {a} vs {b}"
         );
     }
 }

@@ -31,22 +31,23 @@ pub(crate) enum Rows {
 struct Piece {
     /// The index of the user's constraint.
     owner: usize,
-    /// `d + 1` inequalities (`d ≠ 2`) or the three Bernstein coefficients of a quadratic.
+    /// `d + 1` inequalities (`d ≤ 1` or `d ≥ 4`) or the Bernstein coefficients of a quadratic
+    /// or cubic.
     rows: PieceRows,
 }
 
 /// The conditions of a [`Piece`] (`docs/theory/fitting.md#shape-constraints`, the table by `d`).
 enum PieceRows {
-    /// `b_j ≥ 0` for `d ≠ 2`.
+    /// `b_j ≥ 0` for `d ≤ 1` (exact) and `d ≥ 4` (sufficient).
     Linear(Vec<Row>),
-    /// `(b₀, b₁, b₂)` of a quadratic `≥ 0` on `[0, 1]` (a cone in the program).
-    Quadratic([Row; 3]),
+    /// `(b₀, …, b_d)` of a quadratic or cubic `≥ 0` on `[0, 1]` (cones in the program, exact).
+    Cone(Vec<Row>),
 }
 
 impl Piece {
     /// The least value of the piece's conditions at the coefficients `c`, rows scaled to unit
     /// largest coefficient as the solver sees them: the least row for linear conditions, the
-    /// exact minimum on `[0, 1]` of the quadratic (its three coefficients scaled together).
+    /// exact minimum on `[0, 1]` of the quadratic or cubic (its coefficients scaled together).
     fn slack(&self, c: &[f64], n: usize) -> f64 {
         let unit = |r: &Row, m: f64| r.eval(c, n) / if m > 0.0 { m } else { 1.0 };
         match &self.rows {
@@ -54,9 +55,9 @@ impl Piece {
                 .iter()
                 .map(|r| unit(r, r.max_abs()))
                 .fold(f64::INFINITY, f64::min),
-            PieceRows::Quadratic(b) => {
+            PieceRows::Cone(b) => {
                 let m = b.iter().fold(0.0_f64, |m, r| m.max(r.max_abs()));
-                min_on_unit(&b.clone().map(|r| unit(&r, m)))
+                min_on_unit(&b.iter().map(|r| unit(r, m)).collect::<Vec<_>>())
             }
         }
     }
@@ -110,8 +111,11 @@ pub(super) fn solve_program(
                 aux: None,
                 constant: -sigma * level,
             };
-            let rows = if d == 2 {
-                PieceRows::Quadratic([row(0), row(1), row(2)])
+            let rows = if lo == hi {
+                // a shape at one point: every Bernstein coefficient is the value there
+                PieceRows::Linear(vec![row(0)])
+            } else if d == 2 || d == 3 {
+                PieceRows::Cone((0..=d).map(row).collect())
             } else {
                 PieceRows::Linear((0..=d).map(row).collect())
             };
@@ -138,6 +142,13 @@ pub(super) fn solve_program(
             n_shapes + i,
         ));
     }
+    integral_and_periodic_rows(
+        &mut equalities,
+        (knots, degree, &kv),
+        constraints,
+        (scale, center),
+        &mut scratch,
+    )?;
     let program = |chosen: &[bool]| {
         let mut prog = ConeProgram::new(p.clone(), q.clone());
         prog.equalities.clone_from(&equalities);
@@ -146,7 +157,7 @@ pub(super) fn solve_program(
                 PieceRows::Linear(rows) => prog
                     .inequalities
                     .extend(rows.iter().map(|r| (r.clone(), piece.owner))),
-                PieceRows::Quadratic(b) => prog.quadratics.push((b.clone(), piece.owner)),
+                PieceRows::Cone(b) => prog.polys.push((b.clone(), piece.owner)),
             }
         }
         prog
@@ -212,6 +223,80 @@ pub(super) fn solve_program(
     finish(&prog, interior)
 }
 
+/// The equalities of integrals and of periodicity (owners after the shapes and points), in
+/// scaled coefficients `c = (control − center)/Y`. `∫_α^β y` on a piece of a span is `h/(p + 1)`
+/// times the sum of its Bernstein coefficients (each Bernstein polynomial integrates to
+/// `1/(p + 1)` on `[0, 1]`), and the basis sums to 1, so `∫_a^b y = Y·w·c + center·(b − a)`.
+/// Periodicity is `y⁽ʳ⁾(end) − y⁽ʳ⁾(start) = 0` for `r < p`, one row over the first and last
+/// `p + 1` coefficients each (the center cancels).
+fn integral_and_periodic_rows(
+    equalities: &mut Vec<(Row, usize)>,
+    (knots, degree, kv): (&[f64], usize, &KnotVector),
+    constraints: &ShapeConstraints,
+    (scale, center): (&Scale, f64),
+    scratch: &mut BasisScratch,
+) -> Result<()> {
+    let n = knots.len() - degree - 1;
+    let owner = constraints.shapes.len() + constraints.points.len();
+    for (i, g) in constraints.integrals.iter().enumerate() {
+        let (a, b) = g.interval;
+        let ps = pieces(knots, degree, n, a, b);
+        let (Some(&(s0, _, _)), Some(&(s1, _, _))) = (ps.first(), ps.last()) else {
+            continue;
+        };
+        let first = s0 - degree;
+        let mut coef = vec![0.0; s1 + 1 - first];
+        for (span, lo, hi) in ps {
+            let m = bernstein_rows(knots, degree, span, lo, hi, 0, scratch);
+            let f = (hi - lo) / (degree + 1) as f64;
+            for row in &m {
+                for (k, v) in row.iter().enumerate() {
+                    coef[span - degree + k - first] += f * v;
+                }
+            }
+        }
+        let constant = -(g.value - center * (b - a)) / scale.y;
+        equalities.push((
+            Row {
+                first,
+                coef,
+                aux: None,
+                constant,
+            },
+            owner + i,
+        ));
+    }
+    if constraints.periodic {
+        let w = degree + 1;
+        let (lo, hi) = (knots[degree], knots[n]);
+        let ders_at = |x: f64, scratch: &mut BasisScratch| -> Result<(usize, Vec<f64>)> {
+            let span = kv.find_span(degree, x)?;
+            let mut d = vec![0.0; w * w];
+            basis_ders_into(knots, degree, span, x, degree, scratch, &mut d);
+            Ok((span - degree, d))
+        };
+        let (f0, d0) = ders_at(lo, scratch)?;
+        let (f1, d1) = ders_at(hi, scratch)?;
+        for r in 0..degree {
+            let mut coef = vec![0.0; n];
+            for k in 0..w {
+                coef[f0 + k] -= d0[r * w + k];
+                coef[f1 + k] += d1[r * w + k];
+            }
+            equalities.push((
+                Row {
+                    first: 0,
+                    coef,
+                    aux: None,
+                    constant: 0.0,
+                },
+                owner + constraints.integrals.len(),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The exact answer from the interior-point answer `interior` of `prog`: its polish on the
 /// active face, checked against every constraint exactly
 /// (`docs/theory/fitting.md#shape-constraints`).
@@ -263,7 +348,7 @@ fn finish_program(
 }
 
 /// The polished answer from `start` (up to four rounds while a touching point of a quadratic
-/// moves), if one keeps every constraint exactly (`check`) with an objective at most `bound`;
+/// or cubic moves), if one keeps every constraint exactly (`check`) with an objective at most `bound`;
 /// and the last answer polished (or `start`).
 fn polish_exact(
     prog: &ConeProgram,
