@@ -297,12 +297,7 @@ impl ClosestParameters {
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] unless `cotangent` has one number a point; [`Error::NonFinite`].
-    pub fn vjp(
-        &self,
-        cotangent: &[f64],
-        control: bool,
-        points: bool,
-    ) -> Result<Cotangents> {
+    pub fn vjp(&self, cotangent: &[f64], control: bool, points: bool) -> Result<Cotangents> {
         let (dim, w, m) = (self.dim, self.width, self.params.len());
         check_len("parameter cotangent (one a point)", m, cotangent.len())?;
         check_finite("parameter cotangent", cotangent)?;

@@ -71,7 +71,7 @@ pub use borrowed::{BorrowedCurve, BorrowedNurbs, BorrowedSurface, BorrowedTensor
 pub use curve::CurveLinearization;
 pub use fits::{LeastSquaresFit, SmoothingFit};
 pub use fitting::{FitLinearization, LeastSquaresMap, SmoothingMap};
-pub use geometry::{ArcLengthGradient, ClosestParameters};
+pub use geometry::{ArcLengthGradient, ClosestParameters, Cotangents};
 pub use interpolant::Interpolant;
 pub use interpolation::InterpolationMap;
 pub use nurbs::NurbsLinearization;
