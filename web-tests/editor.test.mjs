@@ -340,7 +340,8 @@ test('Fitting: the smoothing slider changes λ and s; curve, residual and knot c
   expected = await api('/api/fit', { points: pts, smoothing: 's', s: 1, samples: 400 });
   await assertCurveIs(page, expected.view.points, 's = 1');
   info = await page.textContent('#fit-info');
-  assert.ok(info.includes(`${expected.report.interior_knots} interior knots`), info);
+  const k = expected.report.interior_knots;
+  assert.ok(info.includes(`${k} interior knot${k === 1 ? '' : 's'},`), info);
   assert.ok(expected.report.weighted_rss <= 1, 'the smoothing condition holds');
   assert.equal(await page.locator('#ruler-knots rect').count(), expected.view.knots.length, 'knots on the ruler');
   await shot(page, 'fit', true);
@@ -497,6 +498,23 @@ test('Fitting with a shape from an empty canvas: a shape is kept with the penalt
   const ref = await api('/api/fit', { points, smoothing: 's', s, increasing: true });
   assert.deepEqual(drawn, ref.view.curve);
   assert.ok(ref.report.weighted_rss <= s * (1 + 1e-3), `rss ${ref.report.weighted_rss}, s ${s}`);
+});
+
+test('Fitting from an empty canvas: the info line counts in words, "1 interior knot", not "1 interior knots"', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'fit');
+  await idle(page);
+  await page.click('#clear');
+  await idle(page);
+  for (const q of [[1, 1], [2, 2.2], [3, 1.8]]) {
+    const [x, y] = await canvasToPage(page, q);
+    await page.mouse.click(x, y);
+    await idle(page);
+  }
+  const answer = await page.evaluate(() => window.lekaloEditor.last);
+  assert.equal(answer.report.interior_knots, 1, 'three points smoothed: one interior knot');
+  const info = await page.textContent('#fit-info');
+  assert.match(info, /; 1 interior knot, \d+ control points/);
 });
 
 test('Queries from an empty canvas: one point is measured without an error, two give a point at a length', async (page) => {

@@ -235,10 +235,13 @@ pub(crate) fn past_deadline(deadline: Duration) -> Response {
         StatusCode::GATEWAY_TIMEOUT,
         Json(json!({
             "error": format!(
-                "the computation did not finish within the deadline of {} s (lekalo serve \
-                 --deadline) and was stopped; ask for fewer samples, fewer points or a lower \
-                 degree",
-                deadline.as_secs_f64()
+                "the computation did not finish within the server's deadline of {d} s and was \
+                 stopped: ask for less (fewer points, samples or shape constraints, a lower \
+                 degree), or give the server more time by starting it again with \
+                 `lekalo serve --deadline {more}`",
+                d = deadline.as_secs_f64(),
+                // a suggestion that is more than the deadline met, in whole seconds
+                more = (deadline.as_secs_f64() * 6.0).ceil().max(30.0)
             ),
             "field": null,
         })),

@@ -7,7 +7,7 @@ use lekalo::{
     sample_quasi_interpolant, CubicHermite, Parametrization, PiecewisePolynomial, Points, PpSpace,
     TangentEstimate, TauRule, HERMITE_MATRIX,
 };
-use lekalo_io::{Figure, Object, Series, Style, PALETTE};
+use lekalo_io::{Figure, Marker, Object, Series, Style, PALETTE};
 
 use super::doc000::{add_curve, add_points, show};
 use crate::demo::{trim, Caption, Section};
@@ -87,14 +87,24 @@ pub(super) fn hermite(s: &mut Section) -> Result<()> {
         "Hermite, Catmull–Rom tangents",
         PALETTE[0],
     )?;
-    add_points(&mut fig, &pts, "Hermite data", PALETTE[2], false);
     add_curve(
         &mut fig,
         &Object::Bezier(cubic.clone()),
         "cubic through 4 points",
         PALETTE[1],
     )?;
-    add_points(&mut fig, &four, "four points", PALETTE[1], false);
+    // squares under the Hermite data's circles: the three points the two share show both
+    fig.series.push(Series {
+        marker: Some(Marker::Square),
+        ..Series::new(
+            Some("four points"),
+            four.iter().map(|p| [p[0], p[1]]).collect(),
+            Style::Markers,
+            PALETTE[1],
+        )
+    });
+    // the Hermite data's circles over the squares: the square's corners show round them
+    add_points(&mut fig, &pts, "Hermite data", PALETTE[2], false);
     s.tables.push((
         "The four-point cubic as a Bezier curve (computed)".into(),
         vec!["data".into(), "Bezier control points".into()],
@@ -105,7 +115,8 @@ pub(super) fn hermite(s: &mut Section) -> Result<()> {
         Caption::new(
             "A C¹ cubic Hermite spline through five points with Catmull–Rom tangents (uniform \
              parameters), and the single cubic through four points taken at u = 0, 1/3, 2/3, 1. \
-             The first three points are shared; between them the curves differ because the \
+             The first three points are shared (orange squares \
+             peeking out of green circles); between them the curves differ because the \
              Hermite spline chooses its tangents locally and the single cubic has none to choose.",
         )
         .theory("interpolation.md#hermite-splines-and-tangent-estimates"),
@@ -141,7 +152,7 @@ pub(super) fn quasi(s: &mut Section) -> Result<()> {
         ("midpoint of support", TauRule::Midpoint),
         ("Greville abscissa", TauRule::Greville),
     ];
-    let mut errors = Figure::new("the error q − f of each rule", false);
+    let mut errors = Figure::new("The error q − f of each rule", false);
     errors.size = (640.0, 320.0);
     errors.axis_labels = ("x".into(), "q(x) − f(x)".into());
     for (n, (name, rule)) in rules.into_iter().enumerate() {

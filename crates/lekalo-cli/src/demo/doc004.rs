@@ -153,10 +153,10 @@ pub(super) fn elevation(s: &mut Section) -> Result<()> {
         s.figure(
             fig,
             Caption::new(format!(
-                "{name}: the old polygon (grey) and the elevated one with {by} more vertex{es} \
+                "Example 1, {name}: the old polygon (grey) and the elevated one with {by} more {vertices} \
                  define the same Bezier curve (blue); {where_}. The new polygon lies closer to \
                  the curve, which is what elevation is for.",
-                es = if by == 1 { "" } else { "es" }
+                vertices = if by == 1 { "vertex" } else { "vertices" }
             ))
             .theory("degree.md#degree-elevation"),
         );

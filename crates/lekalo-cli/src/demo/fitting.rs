@@ -66,7 +66,7 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
         ))
         .theory("fitting.md#tolerance"),
     );
-    let mut res = Figure::new("how far each point lies from each fit", false);
+    let mut res = Figure::new("How far each point lies from each fit", false);
     res.size = (640.0, 320.0);
     res.axis_labels = ("data point k".into(), "distance to the fit".into());
     let by_index = |d: &[f64]| -> Vec<[f64; 2]> {
@@ -103,7 +103,7 @@ pub(super) fn fitting(s: &mut Section) -> Result<()> {
         res,
         Caption::new(
             "The distance from each data point to each fit: least squares (blue, solid) and the \
-             smoothing spline (orange-red, dashed) at the point's parameter, the tolerance fit \
+             smoothing spline (orange, dashed) at the point's parameter, the tolerance fit \
              (pink, dotted) to its closest point. The grey dashed line is the tolerance; the \
              scatter is the noise, which the fits follow more or less closely (table below).",
         )

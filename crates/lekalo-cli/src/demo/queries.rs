@@ -7,7 +7,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use lekalo::query::{Contact, CurveIntersection};
 use lekalo::surface::Placement;
 use lekalo::{BSplineCurve, NurbsCurve, NurbsSurface, Points, QueryCurve, QuerySurface};
-use lekalo_io::{Figure, Object, Projection, Series, Style, PALETTE};
+use lekalo_io::{Figure, Marker, Object, Projection, Series, Style, PALETTE};
 
 use super::doc000::add_curve;
 use crate::demo::{Caption, Section};
@@ -77,6 +77,7 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         1e-10,
     );
     let mut feet = Vec::new();
+    let mut queries = Vec::new();
     let mut cos_max = 0.0_f64;
     for q in [
         [1.0, 2.5],
@@ -94,6 +95,7 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
                 .max(((r[0] * tan[0] + r[1] * tan[1]) / (p.distance * tan[0].hypot(tan[1]))).abs());
         }
         feet.push(vec![q, [p.point[0], p.point[1]]]);
+        queries.push(q);
     }
     s.check(
         "largest |cos| between residual and tangent",
@@ -157,6 +159,11 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         dash: None,
         marker: None,
     });
+    // the segments alone do not say which end is the query: the queries are marked
+    fig.series.push(Series {
+        marker: Some(Marker::Square),
+        ..Series::new(Some("query points"), queries, Style::Markers, PALETTE[3])
+    });
     fig.series.push(Series::new(
         Some("intersections"),
         hits,
@@ -179,7 +186,8 @@ pub(super) fn queries(s: &mut Section) -> Result<()> {
         fig,
         Caption::new(format!(
             "A planar cubic with its offset at d = −1.5 (to the right of its direction), the \
-             closest points of a few query points, its intersections with a circle and its \
+             closest points of a few query points (pink squares, each joined to its foot on the \
+             curve), its intersections with a circle and its \
              curvature maxima. Past the sharpest bend the offset (grey, dotted) turns back at {} \
              cusps (black) where 1.5·κ = 1 and crosses itself; the loop between the crossing \
              points is cut out. Outside the loop “offset d = −1.5, loop trimmed” (green, \

@@ -47,6 +47,48 @@ fn corners_agree_with_the_library_to_the_last_bit() {
 }
 
 #[test]
+fn the_corners_plot_shows_the_polyline_under_the_curve() {
+    // the README tour's polyline: the figure draws it (dashed, first) rather than marking its
+    // three points, two of which lay hidden under the curve's end marks
+    let d = tempfile::tempdir().unwrap();
+    fs::write(d.path().join("pts.txt"), "1 1\n2 3\n4 3\n").unwrap();
+    lekalo()
+        .current_dir(d.path())
+        .args([
+            "blend", "corners", "pts.txt", "--window", "25%", "-o", "r.svg",
+        ])
+        .assert()
+        .success();
+    let svg = fs::read_to_string(d.path().join("r.svg")).unwrap();
+    let corners = svg
+        .find("data-label=\"corners of the polyline\"")
+        .expect("the polyline's corners are marked and in the legend");
+    let curve = svg.find("data-label=\"curve\"").expect("the curve");
+    assert!(corners < curve, "the polyline is drawn under the curve");
+    // the dashed polyline through the three points, then one marker at its one corner
+    let dashed = svg[..corners]
+        .rfind("<polyline")
+        .map(|i| &svg[i..corners])
+        .expect("the polyline is drawn");
+    let points = dashed
+        .split("points=\"")
+        .nth(1)
+        .and_then(|p| p.split('"').next());
+    assert_eq!(
+        points.map(|p| p.split_whitespace().count()),
+        Some(3),
+        "{dashed}"
+    );
+    assert!(dashed.contains("stroke-dasharray"), "{dashed}");
+    assert_eq!(svg[corners..curve].matches("<circle").count(), 1);
+    assert!(
+        !svg.contains("data points"),
+        "its vertices are not data to fit"
+    );
+    assert_eq!(lekalo_io::check_svg(&svg, None), Vec::<String>::new());
+}
+
+#[test]
 fn corners_write_plots_and_samples() {
     let d = tempfile::tempdir().unwrap();
     fs::write(d.path().join("zigzag.csv"), zigzag_csv()).unwrap();

@@ -346,8 +346,14 @@ fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3], zsca
         }
     };
     let mut notes = Vec::new();
+    // a floor tick at the foot of the vertical axis would stand in the column of its labels and
+    // read as a height: it is left out, as the y axis's tick at the front corner is
+    let near = |k: usize| 0.05 * span(k);
     if hi[0] > lo[0] {
-        for v in nice_ticks(lo[0], hi[0]) {
+        for v in nice_ticks(lo[0], hi[0])
+            .into_iter()
+            .filter(|v| yz != yf || (v - xz).abs() > near(0))
+        {
             let (a, b) = (pr([v, yf, z0]), pr([v, yf + out_y, z0]));
             edges.push([a, b]);
             let (anchor, offset) = place(b);
@@ -359,10 +365,9 @@ fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3], zsca
     }
     if hi[1] > lo[1] {
         // the tick at the front corner would collide with the x axis's
-        let near = 0.05 * span(1);
         for v in nice_ticks(lo[1], hi[1])
             .into_iter()
-            .filter(|v| (v - yf).abs() > near)
+            .filter(|v| (v - yf).abs() > near(1) && (xz != xf || (v - yz).abs() > near(1)))
         {
             let (a, b) = (pr([xf, v, z0]), pr([xf + out_x, v, z0]));
             edges.push([a, b]);
@@ -434,7 +439,15 @@ fn axes_3d(fig: &mut Figure, proj: &Projection, lo: [f64; 3], hi: [f64; 3], zsca
         } else {
             format!("z (drawn ×{})", fmt_tick(zscale))
         };
-        notes.push((m, (0.0, -8.0 - TICK_GAP / 2.0), name, "middle"));
+        // beside the axis's top, on the side away from its tick labels: above it the name
+        // would stand in the legend's row and read as part of the last entry
+        let (side, _) = place(pr([xz + dx, yz + dy, hi[2]]));
+        let (anchor, side) = if side == "end" {
+            ("start", 6.0)
+        } else {
+            ("end", -6.0)
+        };
+        notes.push((m, (side, 4.0), name, anchor));
     }
     fig.faces.push(Face {
         points: Vec::new(),
@@ -525,5 +538,85 @@ mod tests {
             [true, false, false, false, true, false, false, false, true]
         );
         assert_eq!(iso_indices(3, 0), [false; 3]);
+    }
+
+    /// The numbers written beside one another in a column (texts of one anchor at the same
+    /// `x`, within 2 px), bottom to top: what a reader reads as one axis's scale.
+    fn columns(svg: &str) -> Vec<Vec<f64>> {
+        let mut notes: Vec<(String, f64, f64, f64)> = Vec::new();
+        for t in svg.split("<text ").skip(1) {
+            let attr = |name: &str| {
+                t.split(&format!("{name}=\"")[..])
+                    .nth(1)
+                    .and_then(|v| v.split('"').next())
+                    .map(str::to_string)
+            };
+            let text = t.split('>').nth(1).and_then(|v| v.split('<').next());
+            if attr("class").as_deref() != Some("note") {
+                continue;
+            }
+            let (Some(x), Some(y), Some(anchor), Some(Ok(v))) = (
+                attr("x").and_then(|v| v.parse().ok()),
+                attr("y").and_then(|v| v.parse().ok()),
+                attr("text-anchor"),
+                text.map(str::parse::<f64>),
+            ) else {
+                continue;
+            };
+            notes.push((anchor, x, y, v));
+        }
+        let mut out: Vec<Vec<f64>> = Vec::new();
+        let mut used = vec![false; notes.len()];
+        for i in 0..notes.len() {
+            if used[i] {
+                continue;
+            }
+            let mut col: Vec<(f64, f64)> = Vec::new();
+            for j in i..notes.len() {
+                if !used[j] && notes[j].0 == notes[i].0 && (notes[j].1 - notes[i].1).abs() < 2.0 {
+                    used[j] = true;
+                    col.push((notes[j].2, notes[j].3));
+                }
+            }
+            // bottom (largest page y) to top
+            col.sort_by(|a, b| b.0.total_cmp(&a.0));
+            out.push(col.into_iter().map(|c| c.1).collect());
+        }
+        out
+    }
+
+    #[test]
+    fn the_vertical_axis_reads_as_one_increasing_scale() {
+        // the gallery's surface through a 5 × 4 grid on z = sin x · cos y: its vertical axis
+        // stands at the foot of the x axis, whose tick 0 once stood in the column of the
+        // heights and read as a second "0" under z = 0
+        let mut data = Vec::new();
+        for i in 0..5 {
+            for j in 0..4 {
+                let (x, y) = (0.75 * f64::from(i), 0.7 * f64::from(j));
+                data.extend([x, y, x.sin() * y.cos()]);
+            }
+        }
+        let g = Grid::new(5, 4, 3, &data).unwrap();
+        for azimuth in [-60.0, -30.0, 30.0, 120.0, 210.0] {
+            let mut opts = SurfacePlot::new("sin x cos y");
+            opts.projection = Projection {
+                azimuth,
+                elevation: 25.0,
+            };
+            let svg = surface_plot(&g, None, &opts).to_svg();
+            for col in columns(&svg) {
+                assert!(
+                    col.windows(2).all(|w| w[1] > w[0]),
+                    "azimuth {azimuth}: a column of labels reads {col:?} upwards\n{svg}"
+                );
+            }
+            // the axis's name is beside its top, not in the legend's row above the plot
+            let z = svg
+                .split("<text ")
+                .find(|t| t.contains(">z</text>") && t.contains("class=\"note\""))
+                .expect("the vertical axis is named");
+            assert!(!z.contains("text-anchor=\"middle\""), "{z}");
+        }
     }
 }

@@ -138,6 +138,11 @@ async fn health_is_answered_while_heavy_requests_compute_and_the_deadline_stops_
         let v: Value = serde_json::from_str(&text).expect("JSON error");
         let msg = v["error"].as_str().expect("message");
         assert!(msg.contains("deadline of 2 s"), "{msg}");
+        // the fix in the editor user's words too: what to ask for, and how to give more time
+        assert!(
+            msg.contains("shape constraints") && msg.contains("`lekalo serve --deadline 30`"),
+            "{msg}"
+        );
     }
     // degree 3000 at 10,000 samples is minutes of work in a debug build: the answers came
     // at the deadline, not when the work would have ended

@@ -350,15 +350,32 @@ pub(crate) fn run(a: &BlendArgs, cx: &Context) -> Result<()> {
             let format = crate::output::format_of(out.to.as_deref(), out.output.as_deref(), "json");
             if format == "svg" || format == "png" {
                 // the control polygon runs along the straight parts, under the curve: the figure
-                // shows the curve over its polyline instead
-                let fig = lekalo_io::curve_figure(
+                // shows the curve over its polyline instead (dashed, drawn first, mostly under
+                // the curve's straight parts), and marks the polyline's corners, which the curve
+                // rounds off and leaves in view
+                let mut fig = lekalo_io::curve_figure(
                     &obj,
                     &lekalo_io::CurvePlot {
                         control_polygon: false,
-                        data_points: Some(&pts),
                         ..lekalo_io::CurvePlot::default()
                     },
                 )?;
+                let view = lekalo_io::Projection::default();
+                let polyline: Vec<[f64; 2]> = pts.iter().map(|p| view.to_plane(p)).collect();
+                let corners = polyline[1..polyline.len().saturating_sub(1).max(1)].to_vec();
+                fig.series.insert(
+                    0,
+                    lekalo_io::Series::new(
+                        Some("corners of the polyline"),
+                        corners,
+                        lekalo_io::Style::Markers,
+                        "#777777",
+                    ),
+                );
+                fig.series.insert(
+                    0,
+                    lekalo_io::Series::new(None, polyline, lekalo_io::Style::Dashed, "#777777"),
+                );
                 let bytes = crate::output::encode(&fig, &format, 2.0)?;
                 return crate::output::emit(out.output.as_deref(), &bytes, inputs, cx);
             }

@@ -499,8 +499,30 @@ pub(crate) fn info_text(j: &Value) -> String {
             })
             .unwrap_or_default()
     };
+    // numbers as the other objects' info writes them (`[0, 1]`, not JSON's `[0.0, 1.0]`)
+    let num = |v: &Value| {
+        v.as_f64()
+            .map_or_else(|| v.to_string(), lekalo_io::fmt_number)
+    };
+    let point = |v: &Value| {
+        let xs: Vec<String> = v
+            .as_array()
+            .map(|a| a.iter().map(num).collect())
+            .unwrap_or_default();
+        format!("[{}]", xs.join(", "))
+    };
     let mut s = String::new();
-    let _ = writeln!(s, "type            {}", j["type"].as_str().unwrap_or(""));
+    let kind = if j["rational"].as_bool() == Some(true) {
+        "NURBS"
+    } else {
+        "B-spline"
+    };
+    let _ = writeln!(
+        s,
+        "type            {kind} in {} variables ({})",
+        j["parameters"],
+        j["type"].as_str().unwrap_or("")
+    );
     let _ = writeln!(s, "parameters      {}", j["parameters"]);
     let _ = writeln!(s, "dimension       {}", j["dim"]);
     let _ = writeln!(s, "degrees         {}", list(&j["degrees"]));
@@ -512,13 +534,18 @@ pub(crate) fn info_text(j: &Value) -> String {
     );
     let domain: Vec<String> = j["domain"]
         .as_array()
-        .map(|a| a.iter().map(|d| format!("[{}, {}]", d[0], d[1])).collect())
+        .map(|a| {
+            a.iter()
+                .map(|d| format!("[{}, {}]", num(&d[0]), num(&d[1])))
+                .collect()
+        })
         .unwrap_or_default();
     let _ = writeln!(s, "domain          {}", domain.join(" × "));
     let _ = writeln!(
         s,
         "control box     {} .. {}",
-        j["control_box"]["min"], j["control_box"]["max"]
+        point(&j["control_box"]["min"]),
+        point(&j["control_box"]["max"])
     );
     s
 }

@@ -81,7 +81,12 @@ fn a_grid_of_values_interpolates_evaluates_and_reports() {
         .success()
         .stdout(contains("parameters      3"))
         .stdout(contains("degrees         3 × 3 × 2"))
-        .stdout(contains("net             5 × 4 × 3 = 60 control points"));
+        .stdout(contains("net             5 × 4 × 3 = 60 control points"))
+        // numbers as the other objects' info writes them, not JSON's 0.0
+        .stdout(contains(
+            "type            B-spline in 3 variables (bspline_tensor)",
+        ))
+        .stdout(contains("domain          [0, 1] × [0, 1] × [0, 1]"));
     let copy = d.path().join("copy.json");
     lekalo()
         .arg("convert")
@@ -278,5 +283,8 @@ fn a_nurbs_tensor_evaluates_with_its_weights() {
         .arg(&t)
         .assert()
         .success()
-        .stdout(contains("nurbs_tensor"));
+        .stdout(contains(
+            "type            NURBS in 3 variables (nurbs_tensor)",
+        ))
+        .stdout(contains("control box     [0] .. [7]"));
 }

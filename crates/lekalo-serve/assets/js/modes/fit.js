@@ -1,7 +1,7 @@
 // Mode "Fitting: smoothing noisy points" (POST /api/fit): the penalty λ, λ by cross-validation
 // or the residual target s, a slider over log λ or log s, and the shape of y(x) (increasing,
 // decreasing, convex, concave, y ≥ a, y ≤ b), drawn with the bounds the fit is held within.
-import { $ } from '../screen.js';
+import { $, plural } from '../screen.js';
 import { noisyPoints, state } from '../state.js';
 import { post } from '../api.js';
 
@@ -41,7 +41,7 @@ export const mode = {
   show(answer) {
     const r = answer.report;
     $('fit-info').textContent = `residual max ${r.max_residual.toPrecision(4)} (point ${r.max_index}), RMS ${r.rms.toPrecision(4)}; ` +
-      `${r.interior_knots} interior knots, ${r.control_points} control points` +
+      `${plural(r.interior_knots, 'interior knot')}, ${plural(r.control_points, 'control point')}` +
       (r.lambda !== null ? `; λ = ${r.lambda.toPrecision(4)}` : '');
   },
   sync(s) {

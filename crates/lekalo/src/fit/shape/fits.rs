@@ -14,6 +14,7 @@ use crate::fit::progress::Steps;
 use crate::fit::smoothing::Smoother;
 use crate::fit::{smoothing_spline, Lambda};
 use crate::knots::KnotVector;
+use crate::message::readable;
 use crate::numeric::progress::Progress;
 use crate::BSplineCurve;
 use crate::{Arg, What};
@@ -351,15 +352,36 @@ fn condition_in_steps(
         // even the straightest fit tried stays below s
         return Ok(near.1);
     }
-    let least = near.1.report.weighted_rss;
+    // the bound a user types back: four digits, rounded up so that it is enough
+    let least = digits_up(near.1.report.weighted_rss);
     Err(Error::InvalidArgument {
         what: What::of(Arg::S, "s (smoothing condition)"),
         reason: format!(
-            "the shape constraints leave a residual sum of squares of at least about {least:e} \
-             (at the smallest penalty tried), above s = {s:e}; give s ≥ {least:e}, or fewer \
-             constraints"
+            "the shape constraints leave a residual sum of squares of at least about {least} \
+             (at the smallest penalty tried), above s = {s}; give s ≥ {least}, or fewer \
+             constraints",
+            least = readable(&least),
+            s = readable(&s)
         ),
     })
+}
+
+/// `x > 0` rounded up to four significant digits (`53.522558…` → `53.53`), as a message
+/// suggests a bound; other values unchanged.
+fn digits_up(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return x;
+    }
+    // the decimal exponent of a finite positive double lies within ±324: the cast is exact
+    #[allow(clippy::cast_possible_truncation)]
+    let e = x.log10().floor() as i32;
+    let scale = 10f64.powi(3 - e);
+    let up = (x * scale).ceil() / scale;
+    if up >= x && up.is_finite() {
+        up
+    } else {
+        x
+    }
 }
 
 /// Relative distance of the residual from `s` at which [`constrained_smoothing_condition`]

@@ -303,6 +303,25 @@ fn the_smoothing_condition_is_met_under_constraints() {
     // below what the constraints allow: refused, naming s
     let e = constrained_smoothing_condition(&data, 1e-9, &c).unwrap_err();
     assert!(e.to_string().contains("give s ≥"), "{e}");
+    // numbers as a user writes them: no Rust exponent form (`5.35e1`, `1e0`) for plain
+    // values, and the bound suggested in four digits, rounded up so that it is enough
+    let text = e.to_string();
+    let bound: f64 = text
+        .split("give s ≥ ")
+        .nth(1)
+        .and_then(|t| t.split(',').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("a bound to type back: {text}"));
+    assert!(text.contains("above s = 1e-9;"), "{text}");
+    assert!(
+        format!("{bound:e}").len() <= "1.234e-5".len(),
+        "four digits: {text}"
+    );
+    let fit = constrained_smoothing_condition(&data, bound, &c).unwrap();
+    assert!(
+        fit.report.weighted_rss <= bound * (1.0 + CONDITION_RTOL),
+        "{text}"
+    );
     // above what a straight line leaves: the straightest fit
     let fit = constrained_smoothing_condition(&data, 1e3, &c).unwrap();
     assert!(fit.report.weighted_rss < 1e3);
