@@ -131,7 +131,7 @@ const WITHOUT_OPTION: &[(Arg, &str)] = &[
     ),
     (
         Arg::Lambda,
-        "`fit --smooth` for curves, `fit --penalty` for scattered surfaces",
+        "`fit --smooth` for curves, `fit --penalty` for scattered data on given knots",
     ),
     (
         Arg::Eps,

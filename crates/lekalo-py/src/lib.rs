@@ -48,6 +48,7 @@ mod sphere;
 mod surfaces;
 mod tck;
 mod tensor;
+mod tensor_fit;
 mod tensor_values;
 mod words;
 mod xla_ffi;
@@ -109,7 +110,7 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     query::register(m)?;
     slopes::register(m)?;
     sphere::register(m)?;
-    tensor::register(m)?;
+    tensor_fit::register(m)?;
     tensor_values::register(m)?;
     tck::register(m)?;
     hermite_tck::register(m)?;

@@ -4,19 +4,15 @@
 //! `dim = prod(trailing)`), degrees `k`. Evaluation at `(..., N)` arrays gives
 //! `(..., *trailing)`.
 
-use lekalo::tensor::tensor_design_matrix as lk_design_matrix;
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares_with,
-    tensor_scattered_smoothing, Arg, KnotLimit, KnotVector, Points, PointsRef, RankDeficiency,
-    ScatteredSmoothingOptions, TensorBSpline, TensorInterpolation,
+    Arg, EndCondition, KnotVector, Points, PointsRef, TensorBSpline, TensorInterpolation,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
-use crate::convert::{
-    array, check_size, counts, filled, floats, vec1, vec_array, FloatArray, IntArg,
-};
-use crate::error::{argument, bad, lib_err, named};
+use crate::convert::{array, check_size, counts, filled, floats, vec1, FloatArray, IntArg};
+use crate::error::{bad, lib_err, named};
+use crate::interp::end_arg;
 
 /// The argument of `TensorBSpline(t, c, k)` a constructor error is about.
 fn constructor_arg(e: &lekalo::Error) -> &'static str {
@@ -31,9 +27,9 @@ fn constructor_arg(e: &lekalo::Error) -> &'static str {
 /// validation and evaluation).
 #[pyclass(name = "TensorBSpline", module = "lekalo", frozen)]
 pub(crate) struct PyTensorBSpline {
-    inner: TensorBSpline,
+    pub(crate) inner: TensorBSpline,
     /// The coefficients' axes after the `N` net axes (`()` for scalar values).
-    trailing: Vec<usize>,
+    pub(crate) trailing: Vec<usize>,
 }
 
 impl PyTensorBSpline {
@@ -68,7 +64,7 @@ pub(crate) fn degrees_arg(k: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>
 }
 
 /// Degrees from `k` as [`degrees_arg`], cubic in every variable without `k`.
-fn degrees_or_cubic(k: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<usize>> {
+pub(crate) fn degrees_or_cubic(k: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<usize>> {
     match k {
         Some(k) => degrees_arg(k, n),
         None => Ok(vec![3; n]),
@@ -77,16 +73,36 @@ fn degrees_or_cubic(k: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<usiz
 
 /// Values on the grid of the coordinate `lists` (`va` of shape `(m_1, …, m_N, *trailing)`) as
 /// rows of the trailing size, and the trailing axes.
-fn grid_values<'a>(
+pub(crate) fn grid_values<'a>(
     va: &'a FloatArray<'_>,
     lists: &[Vec<f64>],
 ) -> PyResult<(PointsRef<'a>, Vec<usize>)> {
+    grid_values_of(va, lists, &vec![false; lists.len()])
+}
+
+/// [`grid_values`] where the axes of the `periodic` directions hold one coordinate more than
+/// the values, the return to the first line.
+fn grid_values_of<'a>(
+    va: &'a FloatArray<'_>,
+    lists: &[Vec<f64>],
+    periodic: &[bool],
+) -> PyResult<(PointsRef<'a>, Vec<usize>)> {
     let n = lists.len();
     let shape = va.shape();
-    let sizes: Vec<usize> = lists.iter().map(Vec::len).collect();
+    let sizes: Vec<usize> = lists
+        .iter()
+        .zip(periodic)
+        .map(|(x, &p)| x.len().saturating_sub(usize::from(p)))
+        .collect();
     if shape.len() < n || shape[..n] != sizes[..] {
+        let periodic_note = if periodic.iter().any(|&p| p) {
+            " (a periodic axis holds one coordinate more than the values, the return to the \
+             first line, whose values are not repeated)"
+        } else {
+            ""
+        };
         return Err(bad(format!(
-            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}"
+            "values: shape {shape:?} does not start with the axes' lengths {sizes:?}{periodic_note}"
         )));
     }
     let trailing = shape[n..].to_vec();
@@ -95,8 +111,29 @@ fn grid_values<'a>(
     Ok((pts, trailing))
 }
 
+/// `end` of `interpolate_grid`: one word of the end-condition vocabulary for every variable, or
+/// a sequence of one per variable.
+fn ends_arg(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<EndCondition>> {
+    if let Ok(word) = obj.extract::<String>() {
+        return Ok(vec![end_arg(&word, None, None)?; n]);
+    }
+    let words: Vec<String> = obj.extract().map_err(|_| {
+        bad(format!(
+            "end: expected a word (\"free\", \"natural\", \"periodic\") or a sequence of {n}, \
+             one per variable"
+        ))
+    })?;
+    if words.len() != n {
+        return Err(bad(format!(
+            "end: {} end conditions for {n} variables; give one per variable or one word for all",
+            words.len()
+        )));
+    }
+    words.iter().map(|w| end_arg(w, None, None)).collect()
+}
+
 /// One 1-D float array per variable.
-fn axes_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
+pub(crate) fn axes_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
     let items: Vec<Bound<'_, PyAny>> = obj
         .try_iter()
         .map_err(|_| {
@@ -317,26 +354,39 @@ impl PyTensorBSpline {
     /// (one integer or one per variable; free ends) and knots (`knots`: one entry per
     /// variable, a knot vector of `m_a + k_a + 1` knots or `None` for averaged knots):
     /// SciPy's `make_ndbspl` with its not-a-knot knots given (`TensorInterpolation::knot_vectors`,
-    /// `docs/theory/tensor.md#interpolation-on-grids`).
+    /// `docs/theory/tensor.md#interpolation-on-grids`). `end`: one end condition for every
+    /// variable or one per variable, `"free"` (default), `"natural"` (cubic) or `"periodic"`
+    /// (`TensorInterpolation::end_conditions`); a periodic axis holds one coordinate more than
+    /// its values, the return to the first line (SciPy's `make_interp_spline(x, y,
+    /// bc_type="periodic")` along that axis with the repeated last line of `y` dropped).
     #[staticmethod]
-    #[pyo3(signature = (axes, values, degrees = None, knots = None))]
+    #[pyo3(signature = (axes, values, degrees = None, knots = None, end = None))]
     fn interpolate_grid(
         py: Python<'_>,
         axes: &Bound<'_, PyAny>,
         values: &Bound<'_, PyAny>,
         degrees: Option<&Bound<'_, PyAny>>,
         knots: Option<&Bound<'_, PyAny>>,
+        end: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let lists = axes_arg(axes, "axes")?;
         let n = lists.len();
         let given = knots.map(|k| knots_arg(k, n)).transpose()?;
         let degrees = degrees_or_cubic(degrees, n)?;
+        let ends = end.map(|e| ends_arg(e, n)).transpose()?;
+        let periodic: Vec<bool> = match &ends {
+            Some(e) => e.iter().map(|c| *c == EndCondition::Periodic).collect(),
+            None => vec![false; n],
+        };
         let va = floats(values, "values")?;
-        let (pts, trailing) = grid_values(&va, &lists)?;
+        let (pts, trailing) = grid_values_of(&va, &lists, &periodic)?;
         let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
         let mut interpolation = TensorInterpolation::new(degrees);
         if let Some(given) = given {
             interpolation = interpolation.knot_vectors(given);
+        }
+        if let Some(ends) = ends {
+            interpolation = interpolation.end_conditions(ends);
         }
         let inner = py
             .detach(|| interpolation.interpolate_at(&refs, pts))
@@ -397,353 +447,6 @@ impl PyTensorBSpline {
             self.trailing
         )
     }
-}
-
-/// Knot vectors `t` (one 1-D array per variable) for the fits: validated, `t[a]` named in the
-/// errors.
-fn knot_vectors_arg(t: &Bound<'_, PyAny>) -> PyResult<Vec<KnotVector>> {
-    axes_arg(t, "t")?
-        .into_iter()
-        .enumerate()
-        .map(|(a, k)| KnotVector::new(k).map_err(|e| named(&format!("t[{a}]"), &e)))
-        .collect()
-}
-
-/// The argument of a fit an error is about (`x` or `axes` for the coordinates).
-fn fit_err(e: lekalo::Error, coordinates: &str) -> PyErr {
-    match e {
-        lekalo::Error::Degree { .. } => named("k", &e),
-        lekalo::Error::ParameterOutOfDomain { .. }
-        | lekalo::Error::KnotsNotSorted { .. }
-        | lekalo::Error::NotIncreasing { .. }
-        | lekalo::Error::Repeated { .. }
-        | lekalo::Error::NonFinite { .. } => named(coordinates, &e),
-        lekalo::Error::InvalidDataWeight { .. } => named("w", &e),
-        other => lib_err(other),
-    }
-}
-
-/// The least-squares tensor-product spline on a grid with given knots
-/// (`tensor_grid_least_squares`, `docs/theory/tensor.md#least-squares-on-grids`): `values` of
-/// shape `(m_1, …, m_N, *trailing)` at the coordinates `axes` (one strictly increasing 1-D
-/// array per variable), knots `t` (one 1-D array per variable, at most `m_a + k_a + 1` knots),
-/// degrees `k` (one integer or one per variable). SciPy's `make_lsq_spline` in each direction;
-/// for `N = 2`, `RectBivariateSpline`'s least squares on given knots.
-#[pyfunction]
-#[pyo3(signature = (axes, values, t, k = None))]
-pub(crate) fn fit_tensor_grid(
-    py: Python<'_>,
-    axes: &Bound<'_, PyAny>,
-    values: &Bound<'_, PyAny>,
-    t: &Bound<'_, PyAny>,
-    k: Option<&Bound<'_, PyAny>>,
-) -> PyResult<PyTensorBSpline> {
-    let lists = axes_arg(axes, "axes")?;
-    let n = lists.len();
-    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("{n} axes"))?;
-    let va = floats(values, "values")?;
-    let (pts, trailing) = grid_values(&va, &lists)?;
-    let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
-    let inner = py
-        .detach(|| tensor_grid_least_squares(&refs, pts, &degrees, knots))
-        .map_err(|e| fit_err(e, "axes"))?;
-    Ok(PyTensorBSpline { inner, trailing })
-}
-
-/// The smoothing spline on a grid (`tensor_grid_smoothing`,
-/// `docs/theory/tensor.md#smoothing-on-grids`): the tensor-product spline with the fewest knots
-/// found whose residual sum of squares over the grid is at most `s` (`s = 0`: interpolation on
-/// FITPACK's knots). `values` of shape `(m_1, …, m_N, *trailing)` at the coordinates `axes`
-/// (one strictly increasing 1-D array per variable), degrees `k` (one integer or one per
-/// variable, default 3), `bbox` one `(a, b)` per variable around its coordinates (default:
-/// their range). Returns `(spline, residual, p)`, `p` the smoothing weight (`None` for a
-/// least-squares result). SciPy's `RectBivariateSpline(x, y, z, s=…)` for `N = 2`.
-#[pyfunction]
-#[pyo3(signature = (axes, values, s, k = None, *, bbox = None))]
-pub(crate) fn fit_tensor_grid_smoothing(
-    py: Python<'_>,
-    axes: &Bound<'_, PyAny>,
-    values: &Bound<'_, PyAny>,
-    s: f64,
-    k: Option<&Bound<'_, PyAny>>,
-    bbox: Option<Vec<(f64, f64)>>,
-) -> PyResult<(PyTensorBSpline, f64, Option<f64>)> {
-    let lists = axes_arg(axes, "axes")?;
-    let n = lists.len();
-    let degrees = degrees_or_cubic(k, n)?;
-    if let Some(b) = &bbox {
-        if b.len() != n {
-            return Err(bad(format!(
-                "bbox: {} intervals for {n} axes; give one (a, b) per variable",
-                b.len()
-            )));
-        }
-    }
-    let va = floats(values, "values")?;
-    let (pts, trailing) = grid_values(&va, &lists)?;
-    let refs: Vec<&[f64]> = lists.iter().map(Vec::as_slice).collect();
-    let f = py
-        .detach(|| tensor_grid_smoothing(&refs, pts, &degrees, s, bbox.as_deref()))
-        .map_err(|e| match e {
-            lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
-            lekalo::Error::ParameterOutOfDomain { .. } | lekalo::Error::EmptyDomain { .. } => {
-                named("bbox", &e)
-            }
-            other => fit_err(other, "axes"),
-        })?;
-    Ok((
-        PyTensorBSpline {
-            inner: f.spline,
-            trailing,
-        },
-        f.residual,
-        f.p,
-    ))
-}
-
-/// The rank choice of the scattered fits: `eps = None` refuses a control point the data do not
-/// determine, a number is FITPACK's minimal-norm solution with that rank threshold.
-fn rank_arg(eps: Option<f64>) -> RankDeficiency {
-    eps.map_or(RankDeficiency::Refuse, |eps| RankDeficiency::MinimumNorm {
-        eps,
-    })
-}
-
-/// Points `x` of shape `(npts, N)` of a scattered fit: the array, `npts` and `N`.
-fn points_arg<'py>(x: &Bound<'py, PyAny>) -> PyResult<(FloatArray<'py>, usize, usize)> {
-    let xa = floats(x, "x")?;
-    let xshape = xa.shape();
-    let [npts, n] = xshape[..] else {
-        return Err(bad(format!(
-            "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
-        )));
-    };
-    Ok((xa, npts, n))
-}
-
-/// The knot vectors `t` (one per variable) and degrees `k` (default 3 in each) of a space in
-/// `n` variables; `of` says what the `n` variables are, for the message.
-fn knots_and_degrees(
-    t: &Bound<'_, PyAny>,
-    k: Option<&Bound<'_, PyAny>>,
-    n: usize,
-    of: &str,
-) -> PyResult<(Vec<KnotVector>, Vec<usize>)> {
-    let knots = knot_vectors_arg(t)?;
-    if knots.len() != n {
-        return Err(bad(format!(
-            "t: {} knot vectors for {of}; give one per variable",
-            knots.len()
-        )));
-    }
-    let degrees = degrees_or_cubic(k, n)?;
-    Ok((knots, degrees))
-}
-
-/// Values `y` of shape `(npts, *trailing)` of a scattered fit: the array and `trailing`.
-fn values_arg<'py>(y: &Bound<'py, PyAny>, npts: usize) -> PyResult<(FloatArray<'py>, Vec<usize>)> {
-    let ya = floats(y, "y")?;
-    let yshape = ya.shape();
-    if yshape.first() != Some(&npts) {
-        return Err(bad(format!(
-            "y: shape {yshape:?}; give one value (row) per point of x, {npts} in all"
-        )));
-    }
-    let trailing = yshape[1..].to_vec();
-    Ok((ya, trailing))
-}
-
-/// The least-squares tensor-product spline through scattered points with given knots
-/// (`tensor_scattered_least_squares_with`,
-/// `docs/theory/tensor.md#least-squares-on-scattered-data`): points `x` of shape `(npts, N)`,
-/// values `y` of shape `(npts, *trailing)`, knots `t` (one 1-D array per variable), degrees `k`,
-/// weights `w` (one per point). `eps = None` refuses a control point the data do not determine
-/// (`InputError` naming it); a number in `(0, 1)` gives FITPACK's minimal-norm solution, the
-/// pivots at most `sqrt(eps)` times the largest taken as zero
-/// (`docs/theory/tensor.md#rank-deficient-least-squares`). Returns
-/// `(spline, residuals, weighted_rss)`, and `(spline, residuals, weighted_rss, rank)` with
-/// `full_output=True` (SciPy's convention for extra results); SciPy's `LSQBivariateSpline` for
-/// `N = 2`.
-#[pyfunction]
-#[pyo3(signature = (x, y, t, k = None, *, w = None, eps = None, full_output = false))]
-#[allow(clippy::too_many_arguments)] // one parameter per Python argument
-pub(crate) fn fit_tensor_scattered<'py>(
-    py: Python<'py>,
-    x: &Bound<'py, PyAny>,
-    y: &Bound<'py, PyAny>,
-    t: &Bound<'py, PyAny>,
-    k: Option<&Bound<'py, PyAny>>,
-    w: Option<&Bound<'py, PyAny>>,
-    eps: Option<f64>,
-    full_output: bool,
-) -> PyResult<Bound<'py, PyTuple>> {
-    let (xa, npts, n) = points_arg(x)?;
-    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("points in {n} variables"))?;
-    let (ya, trailing) = values_arg(y, npts)?;
-    let dim: usize = trailing.iter().product();
-    let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
-    let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
-    let wa = w.map(|w| floats(w, "w")).transpose()?;
-    let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
-    let f = py
-        .detach(|| tensor_scattered_least_squares_with(xs, ys, wv, &degrees, knots, rank_arg(eps)))
-        .map_err(|e| match e {
-            lekalo::Error::InvalidArgument { .. } if e.arg() == Some(Arg::Eps) => named("eps", &e),
-            other => fit_err(other, "x"),
-        })?;
-    let spline = PyTensorBSpline {
-        inner: f.spline,
-        trailing,
-    }
-    .into_pyobject(py)?
-    .into_any();
-    let residuals = vec_array(py, &f.residuals);
-    let rss = f.weighted_rss.into_pyobject(py)?.into_any();
-    if full_output {
-        PyTuple::new(
-            py,
-            [spline, residuals, rss, f.rank.into_pyobject(py)?.into_any()],
-        )
-    } else {
-        PyTuple::new(py, [spline, residuals, rss])
-    }
-}
-
-/// `(spline, residual, p, rank, limit)` of `fit_tensor_scattered_smoothing`.
-type ScatteredSmoothing = (
-    PyTensorBSpline,
-    f64,
-    Option<f64>,
-    usize,
-    Option<&'static str>,
-);
-
-/// The smoothing spline of scattered data (`tensor_scattered_smoothing`,
-/// `docs/theory/tensor.md#smoothing-scattered-data`): the tensor-product spline with FITPACK
-/// `surfit`'s knots whose weighted residual sum of squares is `s` (within 0.1 %, never above).
-/// Points `x` of shape `(npts, N)`, values `y` of shape `(npts, *trailing)`, degrees `k` (one
-/// integer or one per variable, default 3), weights `w` (one per point, multiplying the squared
-/// residual), `bbox` one `(a, b)` per variable (default: the range of the points), `max_knots`
-/// the largest knot count per variable (end knots included, FITPACK's `nxest`), `eps` the rank
-/// choice of `fit_tensor_scattered`. Returns `(spline, residual, p, rank, limit)`: `p` the
-/// smoothing weight (`None` for a least-squares result), `rank` that of the last system, and
-/// `limit` why the knot rounds stopped above `s` (`None`, `"max-knots"`,
-/// `"coefficients-exceed-data"` or `"knots-coincide"`). SciPy's `SmoothBivariateSpline` for
-/// `N = 2`.
-#[pyfunction]
-#[pyo3(signature = (x, y, s, k = None, *, w = None, bbox = None, max_knots = None, eps = None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn fit_tensor_scattered_smoothing<'py>(
-    py: Python<'py>,
-    x: &Bound<'py, PyAny>,
-    y: &Bound<'py, PyAny>,
-    s: f64,
-    k: Option<&Bound<'py, PyAny>>,
-    w: Option<&Bound<'py, PyAny>>,
-    bbox: Option<Vec<(f64, f64)>>,
-    max_knots: Option<Vec<usize>>,
-    eps: Option<f64>,
-) -> PyResult<ScatteredSmoothing> {
-    let (xa, npts, n) = points_arg(x)?;
-    let (ya, trailing) = values_arg(y, npts)?;
-    let wa = w.map(|w| floats(w, "w")).transpose()?;
-    let degrees = degrees_or_cubic(k, n)?;
-    let dim: usize = trailing.iter().product();
-    let xs = PointsRef::from_flat(n.max(1), xa.data()).map_err(|e| named("x", &e))?;
-    let ys = PointsRef::from_flat(dim.max(1), ya.data()).map_err(|e| named("y", &e))?;
-    let wv = wa.as_ref().map(|w| w.vector("w")).transpose()?;
-    let options = ScatteredSmoothingOptions {
-        bbox,
-        max_knots,
-        rank: rank_arg(eps),
-    };
-    let f = py
-        .detach(|| tensor_scattered_smoothing(xs, ys, wv, &degrees, s, &options))
-        .map_err(|e| match e {
-            lekalo::Error::NegativeSmoothing { .. } => named("s", &e),
-            lekalo::Error::EmptyDomain { .. } => named("bbox", &e),
-            lekalo::Error::InvalidArgument { .. } | lekalo::Error::LengthMismatch { .. }
-                if matches!(e.arg(), Some(Arg::Eps | Arg::MaxKnots | Arg::Bbox)) =>
-            {
-                named(e.arg().and_then(argument).unwrap_or("x"), &e)
-            }
-            other => fit_err(other, "x"),
-        })?;
-    let limit = f.limit.map(|l| match l {
-        KnotLimit::MaxKnots => "max-knots",
-        KnotLimit::CoefficientsExceedData => "coefficients-exceed-data",
-        KnotLimit::KnotsCoincide => "knots-coincide",
-    });
-    Ok((
-        PyTensorBSpline {
-            inner: f.spline,
-            trailing,
-        },
-        f.residual,
-        f.p,
-        f.rank,
-        limit,
-    ))
-}
-
-/// A CSR matrix for Python: `(data, indices, indptr, shape)`.
-type Csr<'py> = (
-    Bound<'py, PyAny>,
-    Bound<'py, PyAny>,
-    Bound<'py, PyAny>,
-    (usize, usize),
-);
-
-/// The design matrix of the tensor-product B-spline space with knots `t` (one 1-D array per
-/// variable) and degrees `k` at the points `x` of shape `(npts, N)`
-/// (`lekalo::tensor::tensor_design_matrix`, `docs/theory/tensor.md#design-matrix`; SciPy's
-/// `NdBSpline.design_matrix`): `(data, indices, indptr, shape)` of a CSR matrix with one row per
-/// point and one column per control point (the net in C order), each row the Kronecker product
-/// of the per-variable basis rows. `extrapolate` continues the end spans' polynomials beyond the
-/// domain; without it a point outside is an error.
-#[pyfunction]
-#[pyo3(signature = (x, t, k = None, *, extrapolate = true))]
-pub(crate) fn tensor_design_matrix<'py>(
-    py: Python<'py>,
-    x: &Bound<'py, PyAny>,
-    t: &Bound<'py, PyAny>,
-    k: Option<&Bound<'py, PyAny>>,
-    extrapolate: bool,
-) -> PyResult<Csr<'py>> {
-    let xa = floats(x, "x")?;
-    let xshape = xa.shape();
-    let [_, n] = xshape[..] else {
-        return Err(bad(format!(
-            "x: shape {xshape:?}; give the points as an array of shape (npts, N)"
-        )));
-    };
-    let (knots, degrees) = knots_and_degrees(t, k, n, &format!("points in {n} variables"))?;
-    let xs = xa.data();
-    let m = py
-        .detach(|| lk_design_matrix(&degrees, &knots, xs, extrapolate))
-        .map_err(|e| fit_err(e, "x"))?;
-    let to_i64 = |v: Vec<usize>| -> Vec<i64> {
-        v.into_iter()
-            .map(|i| i64::try_from(i).unwrap_or(i64::MAX))
-            .collect()
-    };
-    let indptr: Vec<usize> = (0..=m.rows).map(|j| j * m.row_len).collect();
-    Ok((
-        vec_array(py, &m.values),
-        numpy::PyArray1::from_vec(py, to_i64(m.indices)).into_any(),
-        numpy::PyArray1::from_vec(py, to_i64(indptr)).into_any(),
-        (m.rows, m.columns),
-    ))
-}
-
-/// Registers the fits of tensor-product splines.
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(tensor_design_matrix, m)?)?;
-    m.add_function(wrap_pyfunction!(fit_tensor_grid, m)?)?;
-    m.add_function(wrap_pyfunction!(fit_tensor_grid_smoothing, m)?)?;
-    m.add_function(wrap_pyfunction!(fit_tensor_scattered, m)?)?;
-    m.add_function(wrap_pyfunction!(fit_tensor_scattered_smoothing, m)?)?;
-    Ok(())
 }
 
 /// The spline of `TensorBSpline(t, c, k)`, validated as the class validates it, and the

@@ -98,6 +98,42 @@ def test_interpolate_grid_agrees_with_make_ndbspl():
     close(ours.grid(xs, ys, zs), noisy)
 
 
+def test_periodic_and_natural_axes_are_make_interp_spline_along_each_axis():
+    # an uneven periodic axis between two not-a-knot ones, values offset by 1e8
+    rng = np.random.default_rng(11)
+    xs = np.sort(rng.uniform(0.0, 1.0, 7))
+    ys = np.concatenate([[0.0], np.sort(rng.uniform(0.0, 2.0 * np.pi, 8)), [2.0 * np.pi]])
+    zs = np.linspace(-1.0, 1.0, 6) ** 3
+    X, Y, Z = np.meshgrid(xs, ys, zs, indexing="ij")
+    values = 1e8 + np.cos(2 * X) * np.sin(Y) + Z * np.cos(Y) ** 2
+    c, t = values, []
+    for a, (x, bc) in enumerate(zip((xs, ys, zs), (None, "periodic", None))):
+        spl = interpolate.make_interp_spline(x, c, k=3, axis=a, bc_type=bc)
+        c = np.moveaxis(spl.c, 0, a)
+        t.append(spl.t)
+    ref = interpolate.NdBSpline(tuple(t), c, 3)
+    # lekalo's periodic axis does not repeat its first line: the values stop one short
+    ours = lekalo.TensorBSpline.interpolate_grid(
+        [xs, ys, zs], values[:, :-1], knots=[t[0], None, t[2]], end=["free", "periodic", "free"]
+    )
+    p = np.stack([rng.uniform(xs[0], xs[-1], 200), rng.uniform(0.0, 2 * np.pi, 200), rng.uniform(-1, 1, 200)], axis=-1)
+    close(ours(p), ref(p))
+    for nu in [(0, 1, 0), (1, 2, 0), (0, 3, 1)]:
+        close(ours(p, nu=nu) / 1e8, ref(p, nu=nu) / 1e8)
+    # natural cubic ends along every axis are make_interp_spline(bc_type="natural")
+    c, t = values, []
+    for a, x in enumerate((xs, ys, zs)):
+        spl = interpolate.make_interp_spline(x, c, k=3, axis=a, bc_type="natural")
+        c = np.moveaxis(spl.c, 0, a)
+        t.append(spl.t)
+    ours = lekalo.TensorBSpline.interpolate_grid([xs, ys, zs], values, end="natural")
+    close(ours(p), interpolate.NdBSpline(tuple(t), c, 3)(p))
+    with pytest.raises(lekalo.Error, match="^end: "):
+        lekalo.TensorBSpline.interpolate_grid([xs, ys, zs], values, end=["natural", "free"])
+    with pytest.raises(lekalo.Error, match="values: shape .*periodic"):
+        lekalo.TensorBSpline.interpolate_grid([xs, ys, zs], values, end=["free", "periodic", "free"])
+
+
 def test_errors_name_the_argument():
     rng = np.random.default_rng(0)
     t, c, k = random_spline(rng)
@@ -205,3 +241,63 @@ def test_design_matrix_times_the_net_is_the_spline():
     assert np.abs(b @ c.ravel() - spline(x, extrapolate=True)).max() <= 1e-12
     with pytest.raises(lekalo.InputError, match="x"):
         lekalo.tensor_design_matrix(x, t, k, extrapolate=False)
+
+
+def ticks_inside(call):
+    """Runs ``call`` in a thread while this thread ticks; whether a tick fell in the middle
+    fifth of the call: only possible if the call let go of the GIL."""
+    import threading
+    import time
+
+    span = {}
+
+    def work():
+        span["start"] = time.perf_counter()
+        call()
+        span["end"] = time.perf_counter()
+
+    ticks = []
+    worker = threading.Thread(target=work)
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+        time.sleep(0.0005)
+    worker.join()
+    mid, width = (span["start"] + span["end"]) / 2, (span["end"] - span["start"]) / 10
+    return span["end"] - span["start"], any(abs(t - mid) < width for t in ticks)
+
+
+def test_evaluation_and_construction_release_the_gil():
+    import time
+
+    from lekalo import scipy as ls
+
+    rng = np.random.default_rng(2)
+    axes = [np.linspace(0.0, 1.0, 40)] * 3
+    s = lekalo.TensorBSpline.interpolate_grid(axes, rng.standard_normal((40, 40, 40)))
+    nd = ls.NdBSpline(s.t, s.c, 3)
+
+    def sized(make, n0):
+        """The argument of ``make`` scaled from ``n0`` so that one call takes about 0.2 s."""
+        start = time.perf_counter()
+        make(n0)
+        took = max(time.perf_counter() - start, 1e-5)
+        return min(int(n0 * 0.2 / took) + 1, 40 * n0)
+
+    points = lambda n: rng.uniform(0.0, 1.0, (n, 3))  # noqa: E731
+    n = sized(lambda n: s(points(n)), 100_000)
+    x = points(n)
+    side = round(sized(lambda m: s.grid(*[np.linspace(0.0, 1.0, m)] * 3), 60 ** 3) ** (1 / 3)) + 1
+    fine = [np.linspace(0.0, 1.0, side)] * 3
+    big = [np.linspace(0.0, 1.0, 128)] * 3
+    table = rng.standard_normal((128, 128, 128))
+    for name, call, must in [
+        ("TensorBSpline.__call__", lambda: s(x), True),
+        ("TensorBSpline.grid", lambda: s.grid(*fine), True),
+        ("lekalo.scipy.NdBSpline.__call__", lambda: nd(x), True),
+        ("TensorBSpline.interpolate_grid", lambda: lekalo.TensorBSpline.interpolate_grid(big, table), False),
+    ]:
+        took, ticked = ticks_inside(call)
+        # one call, long enough to have a middle the other thread can reach
+        if must or took > 0.05:
+            assert ticked, f"{name} held the GIL for {took:.3f} s"

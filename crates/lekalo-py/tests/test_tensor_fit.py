@@ -1,7 +1,8 @@
 """``fit_tensor_grid`` and ``fit_tensor_scattered``: least squares in N variables with given
 knots, against SciPy's ``LSQBivariateSpline`` (N = 2, scattered and gridded data),
 ``make_lsq_spline`` applied along each axis (N = 3 grids) and a dense least-squares solve of
-the design matrix built from ``BSpline.design_matrix`` (N = 3 scattered data)."""
+the design matrix built from ``BSpline.design_matrix`` (N = 3 scattered data, with and without a
+second-difference penalty)."""
 
 import numpy as np
 import pytest
@@ -96,6 +97,50 @@ def test_scattered_fit_in_three_variables_is_the_least_squares_solution():
     assert rss == pytest.approx(float(np.sum((a @ c - y) ** 2)), rel=1e-9)
     # the sum of x lies in the space: its column is reproduced
     close(s(x)[:, 1], y[:, 1], 1e-11)
+
+
+def second_differences(shape):
+    """The second differences of a net of ``shape`` (first variable slowest) along every axis
+    with at least three control points, one row each."""
+    rows = []
+    index = np.arange(int(np.prod(shape))).reshape(shape)
+    for a, n in enumerate(shape):
+        for j in range(n - 2):
+            ids = [np.take(index, j + d, axis=a).ravel() for d in range(3)]
+            for i0, i1, i2 in zip(*ids):
+                r = np.zeros(index.size)
+                r[[i0, i1, i2]] = (1.0, -2.0, 1.0)
+                rows.append(r)
+    return np.array(rows)
+
+
+def test_penalty_fills_cells_without_data_in_three_variables():
+    rng = np.random.default_rng(6)
+    x = rng.uniform(-1, 2, (900, 3))
+    x = x[(x[:, 0] < 0.5) | (x[:, 1] < 0.0)]  # nothing in x0 > 0.5, x1 > 0
+    y = 1e8 + np.cos(x[:, 0] * x[:, 1]) + x[:, 2] ** 2
+    k = (2, 3, 1)
+    t = [clamped(2, [0.0, 1.0], -1, 2), clamped(3, [0.5], -1, 2), clamped(1, [-0.5, 0.5, 1.5], -1, 2)]
+    with pytest.raises(lekalo.InputError, match="holds 0 data points"):
+        lekalo.fit_tensor_scattered(x, y, t, k=k)
+    lam = 0.3
+    s, residuals, rss = lekalo.fit_tensor_scattered(x, y, t, k=k, penalty=lam)
+    # the least squares of the data stacked on sqrt(penalty) times the second differences
+    a = np.vstack([design_matrix(x, t, k), np.sqrt(lam) * second_differences(s.c.shape)])
+    rhs = np.concatenate([y - 1e8, np.zeros(len(a) - len(y))])
+    c, *_ = np.linalg.lstsq(a, rhs, rcond=None)
+    close(s.c.ravel() - 1e8, c, 1e-9)
+    close(residuals, np.abs(s(x) - y), 1e-6)
+    # two variables: the penalty of the scattered surface fit
+    pts = x[:, :2]
+    t2 = [clamped(2, [0.0, 1.0], -1, 2), clamped(1, [-0.5, 0.5, 1.5], -1, 2)]
+    s2, _, rss2 = lekalo.fit_tensor_scattered(pts, y, t2, k=(2, 1), penalty=lam)
+    surf, _, rss_surf = lekalo.fit_surface_scattered(np.column_stack([pts, y]), t2[0], t2[1], (2, 1), penalty=lam)
+    close(s2.c.ravel(), np.asarray(surf.control).ravel(), 1e-12)
+    with pytest.raises(lekalo.InputError, match="^penalty: "):
+        lekalo.fit_tensor_scattered(x, y, t, k=k, penalty=-1.0)
+    with pytest.raises(lekalo.InputError, match="^penalty: .*eps"):
+        lekalo.fit_tensor_scattered(x, y, t, k=k, penalty=1.0, eps=1e-16)
 
 
 def test_fit_errors_name_the_argument():

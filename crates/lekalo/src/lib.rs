@@ -109,10 +109,10 @@ pub mod tensor;
 pub use tensor::{
     tensor_grid_least_squares, tensor_grid_smoothing, tensor_grid_smoothing_with_progress,
     tensor_scattered_least_squares, tensor_scattered_least_squares_with,
-    tensor_scattered_smoothing, tensor_scattered_smoothing_with_progress, KnotLimit,
-    RankDeficiency, ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorBSplineRef,
-    TensorGridSmoothing, TensorInterpolation, TensorNurbs, TensorScatteredFit,
-    TensorScatteredSmoothing, MAX_TENSOR_DERIVATIVE_TABLE,
+    tensor_scattered_penalized_least_squares, tensor_scattered_smoothing,
+    tensor_scattered_smoothing_with_progress, KnotLimit, RankDeficiency, ScatteredSmoothingOptions,
+    Tensor, TensorBSpline, TensorBSplineRef, TensorGridSmoothing, TensorInterpolation, TensorNurbs,
+    TensorScatteredFit, TensorScatteredSmoothing, MAX_TENSOR_DERIVATIVE_TABLE,
 };
 
 // -- degree change of Bezier curves and surfaces --

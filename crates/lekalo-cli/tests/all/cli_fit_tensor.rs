@@ -1,7 +1,7 @@
 //! `fit --grid AxBxC` and `fit --scattered` in three variables: data sampled from a spline of
 //! the fitted space give that spline back (its control points), a knot count the grid cannot
 //! determine names the option and the direction, and a region without data is refused with
-//! exit 2 naming the control point.
+//! exit 2 naming the control point, or filled by `--penalty`.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -236,7 +236,42 @@ fn a_region_without_data_is_refused_naming_the_control_point() {
         .stderr(contains("control point (4, 4, 4) of the 4x4x4 net"))
         .stderr(contains("x1 in [0.5, 1], x2 in [0.5, 1], x3 in [0.5, 1]"))
         .stderr(contains("holds 0 data points"))
+        .stderr(contains("give --penalty"))
         .stderr(contains("EmptySupport").not());
+    // the penalty fills the corner: a linear field, whose net of degree 1 on even knots has
+    // no second differences, is recovered there
+    let fit = d.path().join("filled.json");
+    lekalo()
+        .arg("fit")
+        .arg(&x)
+        .args(["--scattered", "--ctrl-grid", "4x4x4", "--degree", "1"])
+        .args(["--penalty", "1e-3", "-o"])
+        .arg(&fit)
+        .assert()
+        .success();
+    let at = d.path().join("corner.txt");
+    fs::write(&at, "0.8,0.9,0.75\n").unwrap();
+    let v = sample(&fit, &at);
+    assert!((v[0] - 1.55).abs() < 1e-9, "{v:?}");
+    // a grid's fit takes no penalty
+    let axes = [axis(5), axis(5), axis(5)];
+    let mut grid = String::new();
+    for a in &axes[0] {
+        for b in &axes[1] {
+            for c in &axes[2] {
+                grid.push_str(&format!("{}\n", a + b * c));
+            }
+        }
+    }
+    let g = d.path().join("grid.csv");
+    fs::write(&g, grid).unwrap();
+    lekalo()
+        .arg("fit")
+        .arg(&g)
+        .args(["--grid", "5x5x5", "--ctrl-grid", "4x4x4", "--penalty", "1"])
+        .assert()
+        .code(2)
+        .stderr(contains("drop --penalty"));
 }
 
 #[test]

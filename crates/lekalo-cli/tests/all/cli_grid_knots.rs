@@ -1,6 +1,7 @@
 //! `interpolate --grid` with the interior knots of some directions given (`--knots-u`,
 //! `--knots-v`, `--knots-in K=LIST`): the knots are the written spline's, the other directions
-//! keep their averaged knots, and wrong knots exit with 2 naming the option and the direction.
+//! keep their averaged knots, and wrong knots exit with 2 naming the option and the direction;
+//! `--end` and `--knots` (placement) apply to every direction of the grid.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -199,4 +200,106 @@ fn wrong_knots_exit_2_naming_the_option_and_direction() {
         .assert()
         .code(2)
         .stderr(contains("--grid"));
+}
+
+/// `lekalo eval FILE --at …` of a tensor spline: the value column of each row.
+fn eval_at(spline: &Path, at: &[[f64; 3]]) -> Vec<f64> {
+    let list: Vec<String> = at.iter().flatten().map(|x| format!("{x:?}")).collect();
+    let out = lekalo()
+        .arg("eval")
+        .arg(spline)
+        .args(["--at", &list.join(","), "--json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let e: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    (0..at.len())
+        .map(|r| e["rows"][r][3].as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn end_conditions_and_knot_placement_apply_to_every_direction() {
+    let d = tempfile::tempdir().unwrap();
+    let v = values(d.path());
+    let run = |extra: &[&str], name: &str| {
+        let t = d.path().join(name);
+        lekalo()
+            .arg("interpolate")
+            .arg(&v)
+            .args(["--grid", "6x5x4", "--param", "uniform"])
+            .args(extra)
+            .arg("-o")
+            .arg(&t)
+            .assert()
+            .success();
+        let j: serde_json::Value = serde_json::from_str(&fs::read_to_string(&t).unwrap()).unwrap();
+        (t, j)
+    };
+    // periodic in every direction: the grid does not repeat its first line, and the spline
+    // takes the same value at both ends of each direction's domain
+    let (t, j) = run(&["--degree", "3,2,2", "--end", "periodic"], "periodic.json");
+    let domain: Vec<(f64, f64)> = (0..3)
+        .map(|a| {
+            let k = knots(&j, a);
+            let p = [3, 2, 2][a];
+            (k[p], k[k.len() - p - 1])
+        })
+        .collect();
+    // a point inside the box, then its direction a moved to either end of the domain
+    let inside: Vec<f64> = domain
+        .iter()
+        .zip([0.3, 0.45, 0.7])
+        .map(|(&(lo, hi), s)| lo + s * (hi - lo))
+        .collect();
+    for a in 0..3 {
+        let at = |x: f64| [0, 1, 2].map(|b| if b == a { x } else { inside[b] });
+        let v = eval_at(&t, &[at(domain[a].0), at(domain[a].1)]);
+        assert!((v[0] - v[1]).abs() < 1e-12, "direction {}: {v:?}", a + 1);
+    }
+    // the same values as one NumPy array: rows x1, x2, x3, y
+    let npy = d.path().join("values.npy");
+    let at: Vec<String> = inside.iter().map(|x| format!("{x:?}")).collect();
+    lekalo()
+        .arg("eval")
+        .arg(&t)
+        .args(["--at", &at.join(","), "-o"])
+        .arg(&npy)
+        .assert()
+        .success();
+    let (shape, flat) = lekalo_io::read_npy_array(&fs::read(&npy).unwrap(), "values.npy").unwrap();
+    assert_eq!(shape, [1, 4]);
+    assert_eq!(
+        flat[3],
+        eval_at(&t, &[[inside[0], inside[1], inside[2]]])[0]
+    );
+    // natural ends differ from free ones; uniform knots are evenly spaced
+    let (_, natural) = run(&["--end", "natural", "--degree", "3"], "natural.json");
+    let (_, free) = run(&["--degree", "3"], "free.json");
+    assert_ne!(natural["control"], free["control"]);
+    let (_, uniform) = run(&["--degree", "3", "--knots", "uniform"], "uniform.json");
+    let k0 = knots(&uniform, 0);
+    assert!(
+        (k0[4] - 1.0 / 3.0).abs() < 1e-15 && (k0[5] - 2.0 / 3.0).abs() < 1e-15,
+        "{k0:?}"
+    );
+    assert!((knots(&free, 0)[4] - 0.4).abs() < 1e-15);
+    // end derivatives, and periodic ends with given knots, are refused naming the options
+    lekalo()
+        .arg("interpolate")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--end", "derivatives"])
+        .args(["--start-derivative", "0", "--end-derivative", "0"])
+        .assert()
+        .code(2)
+        .stderr(contains("--end"));
+    lekalo()
+        .arg("interpolate")
+        .arg(&v)
+        .args(["--grid", "6x5x4", "--end", "periodic", "--knots-u", "0.5"])
+        .assert()
+        .code(2)
+        .stderr(contains("drop"));
 }

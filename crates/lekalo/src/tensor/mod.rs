@@ -38,7 +38,9 @@
 //! - `integral.rs`: [`TensorBSpline::integral`], the integral over a box.
 //! - `scattered.rs`: [`tensor_scattered_least_squares`], least squares on scattered points in
 //!   `N` variables by banded normal equations, and [`tensor_scattered_least_squares_with`], the
-//!   same with FITPACK's minimal-norm answer to a rank-deficient system.
+//!   same with FITPACK's minimal-norm answer to a rank-deficient system, and
+//!   [`tensor_scattered_penalized_least_squares`], with a second-difference penalty that fills
+//!   the cells without data.
 //! - `design_matrix.rs`: [`tensor_design_matrix`], the basis products at points (rows the
 //!   Kronecker products of the one-direction basis rows).
 //! - `scattered_qr.rs`: the observation matrix of scattered data as a band triangle (Givens
@@ -80,7 +82,8 @@ pub(crate) use locate::SpanTable;
 pub use nurbs::{TensorNurbs, MAX_TENSOR_DERIVATIVE_TABLE};
 pub use point_value::{tensor_value_by, MAX_POINT_VALUE_VARS};
 pub use scattered::{
-    tensor_scattered_least_squares, tensor_scattered_least_squares_with, TensorScatteredFit,
+    tensor_scattered_least_squares, tensor_scattered_least_squares_with,
+    tensor_scattered_penalized_least_squares, TensorScatteredFit,
 };
 pub use scattered_qr::RankDeficiency;
 // the band triangle's rotation with fill-in and its minimal-norm solve, shared by the fits on

@@ -120,6 +120,65 @@ pub fn tensor_scattered_least_squares(
     degrees: &[usize],
     knots: Vec<KnotVector>,
 ) -> Result<TensorScatteredFit> {
+    tensor_scattered_penalized_least_squares(x, values, weights, degrees, knots, 0.0)
+}
+
+/// [`tensor_scattered_least_squares`] with a smoothing penalty that fills the cells without
+/// data: minimises
+/// `Σ_k w_k |S(x_k) − y_k|² + penalty · Σ_a Σ (second differences of the net along direction a)²`,
+/// the discrete penalty of Eilers & Marx's P-splines (*Flexible smoothing with B-splines and
+/// penalties*, Statistical Science 11, 1996) summed over the directions, which for `N = 2` is
+/// [`surface_scattered_least_squares`](crate::fit::surface_scattered_least_squares)'s. A
+/// control point without data then takes the value its neighbours' second differences leave
+/// it, so data need not reach every cell; the penalty's null space (the nets linear in the
+/// index along each direction) must still be determined by the data. The differences are of
+/// the net, not of the function: on uneven knots or near clamped ends (where the Greville
+/// abscissae are uneven) a linear function has a penalty too, as in P-splines. `penalty = 0` is
+/// [`tensor_scattered_least_squares`]. The second differences of direction `a` couple control
+/// points `2 σ_a` apart in the net order, so the band is `max(Σ_a p_a σ_a, 2 σ_a)`.
+/// `docs/theory/tensor.md#least-squares-on-scattered-data`.
+///
+/// ```
+/// use lekalo::{tensor_scattered_penalized_least_squares, KnotVector, PointsRef};
+/// // points only in the part x < 0.4 of the cube: the control points at x = 0.6, 0.8, 1 have
+/// // no data, and the penalty fills them from their neighbours
+/// let mut x = Vec::new();
+/// let mut y = Vec::new();
+/// for i in 0..8 { for j in 0..8 { for k in 0..8 {
+///     let p = [0.05 * i as f64, j as f64 / 7.0, k as f64 / 7.0];
+///     y.push(1.0 + p[0] + 2.0 * p[1] - p[2]);
+///     x.extend(p);
+/// } } }
+/// let k = KnotVector::clamped_uniform(1, 6)?;
+/// let knots = vec![k.clone(), k.clone(), k];
+/// let fit = tensor_scattered_penalized_least_squares(
+///     PointsRef::from_flat(3, &x)?, PointsRef::from_flat(1, &y)?, None, &[1, 1, 1], knots, 1e-3,
+/// )?;
+/// // on even knots of degree 1 a linear function's net has no second differences: it is
+/// // recovered, data or not
+/// assert!((fit.spline.eval(&[0.9, 0.5, 0.5])?[0] - 2.4).abs() < 1e-9);
+/// # Ok::<(), lekalo::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`tensor_scattered_least_squares`], and [`Error::NegativeSmoothing`] for a penalty that
+/// is negative or not finite. With a positive penalty a control point without data is no
+/// error; [`Error::EmptySupport`] names one the data and the penalty together leave
+/// undetermined.
+pub fn tensor_scattered_penalized_least_squares(
+    x: PointsRef<'_>,
+    values: PointsRef<'_>,
+    weights: Option<&[f64]>,
+    degrees: &[usize],
+    knots: Vec<KnotVector>,
+    penalty: f64,
+) -> Result<TensorScatteredFit> {
+    if !(penalty >= 0.0 && penalty.is_finite()) {
+        return Err(Error::NegativeSmoothing {
+            what: What::of(Arg::Lambda, "penalty"),
+            value: penalty,
+        });
+    }
     let shape = check_data(x, values, weights, degrees, &knots)?;
     let (n_vars, count) = (x.dim(), x.len());
     let n_ctrl = checked_size(
@@ -132,10 +191,18 @@ pub fn tensor_scattered_least_squares(
         stride[a] = stride[a + 1] * shape[a + 1];
     }
     // two control points sharing a data point differ by at most Σ p_a σ_a in the net order
-    let band = degrees
+    let mut band = degrees
         .iter()
         .zip(&stride)
         .fold(0usize, |b, (&p, &s)| b.saturating_add(p.saturating_mul(s)));
+    // the second differences of direction a couple control points 2 σ_a apart
+    if penalty > 0.0 {
+        for (&n, &s) in shape.iter().zip(&stride) {
+            if n >= 3 {
+                band = band.max(s.saturating_mul(2));
+            }
+        }
+    }
     let size = n_ctrl.saturating_mul(band.saturating_add(1));
     if size > MAX_SCALARS {
         return Err(Error::TooLarge {
@@ -190,7 +257,9 @@ pub fn tensor_scattered_least_squares(
             }
         }
     }
-    if let Some(i) = support.iter().position(|&c| c == 0) {
+    if penalty > 0.0 {
+        add_second_differences(&mut normal, &shape, &stride, penalty);
+    } else if let Some(i) = support.iter().position(|&c| c == 0) {
         return Err(empty_support(i, 0, &shape, degrees, &knots));
     }
     if let Err(i) = normal.factor() {
@@ -305,6 +374,33 @@ pub fn tensor_scattered_least_squares_with(
         weighted_rss,
         rank,
     })
+}
+
+/// `penalty · Dᵀ D` added to the normal matrix for the second differences `D` of the net along
+/// every direction with at least three control points (Eilers & Marx's P-spline penalty): the
+/// directions in order, each line of the net along the direction in the net order, its
+/// differences in order (the order of the surface fit's, so that `N = 2` adds the same numbers
+/// in the same order).
+fn add_second_differences(normal: &mut SymBand, shape: &[usize], stride: &[usize], penalty: f64) {
+    const COEF: [f64; 3] = [1.0, -2.0, 1.0];
+    let total: usize = shape.iter().product();
+    for (&n, &s) in shape.iter().zip(stride) {
+        if n < 3 {
+            continue;
+        }
+        // the first control point of every line along the direction: its index there is 0
+        for start in (0..total).filter(|&i| (i / s) % n == 0) {
+            for j in 0..n - 2 {
+                let base = start + j * s;
+                let ids = [base, base + s, base + 2 * s];
+                for r in 0..3 {
+                    for c in r..3 {
+                        normal.add(ids[r], ids[c], penalty * COEF[r] * COEF[c]);
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Weights finite, non-negative, one per point, not all zero.
@@ -516,6 +612,134 @@ mod tests {
             assert!((p - q).abs() < 1e-11, "{p} {q}");
         }
         assert!((surf.weighted_rss - t.weighted_rss).abs() < 1e-12 * (1.0 + t.weighted_rss));
+    }
+
+    #[test]
+    fn two_variables_with_a_penalty_agree_with_the_surface_fit() {
+        // degree 1 in v: the second differences along u (2 n_v apart) widen the band
+        for (p, q) in [(3, 2), (1, 1)] {
+            let (ku, kv) = (unit_knots(p, 7), unit_knots(q, 6));
+            // no data in u > 0.6: the penalty fills those cells
+            let x: Vec<f64> = points(300, 2, 0.3)
+                .chunks_exact(2)
+                .flat_map(|c| [0.6 * c[0], c[1]])
+                .collect();
+            let mut rows = Vec::new();
+            let mut y = Vec::new();
+            for c in x.chunks_exact(2) {
+                let z = (3.0 * c[0]).sin() * (2.0 * c[1]).cos() + 1e3;
+                rows.extend([c[0], c[1], z]);
+                y.push(z);
+            }
+            let surf = crate::fit::surface_scattered_least_squares(
+                PointsRef::from_flat(3, &rows).unwrap(),
+                None,
+                (p, q),
+                (&ku, &kv),
+                0.01,
+            )
+            .unwrap();
+            let fit = |penalty| {
+                tensor_scattered_penalized_least_squares(
+                    PointsRef::from_flat(2, &x).unwrap(),
+                    PointsRef::from_flat(1, &y).unwrap(),
+                    None,
+                    &[p, q],
+                    vec![ku.clone(), kv.clone()],
+                    penalty,
+                )
+            };
+            let t = fit(0.01).unwrap();
+            let a = surf.surface.control_points().as_slice();
+            let b = t.spline.control_points().as_slice();
+            for (u, v) in a.iter().zip(b) {
+                assert!((u - v).abs() < 1e-11 * 1e3, "{u} {v}");
+            }
+            assert!(matches!(fit(0.0), Err(Error::EmptySupport { .. })));
+        }
+    }
+
+    #[test]
+    fn a_penalty_fills_cells_without_data_and_solves_its_normal_equations() {
+        // three variables of mixed degrees, one of them linear (its second differences reach
+        // beyond the data's band), the data in x0 < 0.5 only
+        let degrees = [1usize, 2, 1];
+        let knots: Vec<KnotVector> = [5, 4, 4]
+            .iter()
+            .zip(&degrees)
+            .map(|(&n, &p)| unit_knots(p, n))
+            .collect();
+        let x: Vec<f64> = points(600, 3, 0.2)
+            .chunks_exact(3)
+            .flat_map(|c| [0.5 * c[0], c[1], c[2]])
+            .collect();
+        let y: Vec<f64> = x
+            .chunks_exact(3)
+            .map(|c| 100.0 + (4.0 * c[0]).cos() + c[1] * c[2] * c[2])
+            .collect();
+        let fit = |penalty: f64| {
+            tensor_scattered_penalized_least_squares(
+                PointsRef::from_flat(3, &x).unwrap(),
+                PointsRef::from_flat(1, &y).unwrap(),
+                None,
+                &degrees,
+                knots.clone(),
+                penalty,
+            )
+        };
+        match fit(0.0) {
+            Err(Error::EmptySupport { support, points }) => {
+                assert_eq!(points, 0);
+                assert_eq!(support.index[0], 3, "{support:?}");
+            }
+            other => panic!("expected EmptySupport, got {other:?}"),
+        }
+        let penalty = 0.5;
+        let f = fit(penalty).unwrap();
+        let c = f.spline.control_points().as_slice();
+        let shape = f.spline.shape().to_vec();
+        let m = c.len();
+        // the gradient of the objective: Aᵀ(Ac − y) + penalty · DᵀD c = 0
+        let mut s = vec![0.0; y.len()];
+        f.spline.eval_batch(&x, None, &mut s).unwrap();
+        let mut grad = vec![0.0; m];
+        let mut scale = vec![0.0; m];
+        for (i, (g, sc)) in grad.iter_mut().zip(&mut scale).enumerate() {
+            for (k, b) in basis_at(&f.spline, i, &x).iter().enumerate() {
+                *g += b * (s[k] - y[k]);
+                *sc += b * (s[k] - y[k]).abs();
+            }
+        }
+        let stride = [shape[1] * shape[2], shape[2], 1];
+        for a in 0..3 {
+            for start in (0..m).filter(|&i| (i / stride[a]) % shape[a] == 0) {
+                for j in 0..shape[a] - 2 {
+                    let ids = [0, 1, 2].map(|d| start + (j + d) * stride[a]);
+                    let d2 = c[ids[0]] - 2.0 * c[ids[1]] + c[ids[2]];
+                    for (id, w) in ids.iter().zip([1.0, -2.0, 1.0]) {
+                        grad[*id] += penalty * w * d2;
+                        scale[*id] += penalty * (w * d2).abs();
+                    }
+                }
+            }
+        }
+        for (i, (g, sc)) in grad.iter().zip(&scale).enumerate() {
+            assert!(
+                g.abs() <= 1e-6 * (1.0 + sc),
+                "control point {i}: {g} of {sc}"
+            );
+        }
+        // the filled values stay near the field (no data: only the penalty's continuation)
+        let v = f.spline.eval(&[0.8, 0.5, 0.5]).unwrap()[0] - 100.0;
+        assert!(v.is_finite() && v.abs() < 3.0, "{v}");
+        assert!(matches!(
+            fit(-1.0),
+            Err(Error::NegativeSmoothing { value, .. }) if value == -1.0
+        ));
+        assert!(matches!(
+            fit(f64::NAN),
+            Err(Error::NegativeSmoothing { .. })
+        ));
     }
 
     proptest! {

@@ -45,7 +45,8 @@ knot placement and end condition. Surfaces (§5): --grid ROWSxCOLS reads the poi
 Grids in 3 or more directions (--grid AxBxC): one row of values per node, the first direction
 slowest (or a .npy array of shape (A, B, C[, d])), a spline in as many parameters; --degree
 takes one degree or one per direction; their parameters are equally spaced unless --param
-says otherwise. A grid's parameters in a direction (the axis of a lookup table): --params-u,
+says otherwise; --knots and --end (free, natural, periodic: the first line not repeated) apply
+to every direction. A grid's parameters in a direction (the axis of a lookup table): --params-u,
 --params-v (directions 1, 2) or --params-in K=LIST|FILE (direction K); the other directions'
 from --param, averaged over the grid's lines. A grid's knots in a direction: its interior
 knots (values − degree − 1, inside the parameters' range) by --knots-u, --knots-v or
@@ -103,11 +104,12 @@ pub(crate) struct InterpolateArgs {
     dn: Option<String>,
     /// Interpolate a grid of points (rows x columns, e.g. 4x3) by a surface; with three or
     /// more sizes (e.g. 5x4x3), a grid of values by a tensor-product spline in as many
-    /// parameters (rows: the first direction slowest).
+    /// parameters (rows: the first direction slowest), whose --end and --knots apply to every
+    /// direction.
     #[arg(
         long,
         value_name = "ROWSxCOLS[x…]",
-        conflicts_with_all = ["end", "knots", "d0", "dn", "function", "hermite"]
+        conflicts_with_all = ["d0", "dn", "function", "hermite"]
     )]
     grid: Option<String>,
     /// Interior knots of a grid's first direction (u, the rows of a surface grid), inside its
@@ -261,6 +263,8 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
             // the values of a grid in 3 or more directions are not points in space: equally
             // spaced parameters unless another parametrisation is asked for
             param: parametrization(a.param.unwrap_or(Parametrization::Uniform), a.exponent),
+            placement: a.knots,
+            end: a.end,
             max_condition: a.max_condition,
             knots: grid_knots(a),
             params: grid_params(a),
@@ -286,6 +290,12 @@ fn interpolate(a: &InterpolateArgs, cx: &Context) -> Result<()> {
         );
     }
     if let Some(g) = &a.grid {
+        if a.end != EndKind::Free || a.knots != KnotPlacement::Auto {
+            return bad_input(
+                "--end and --knots are for curves and for grids in 3 or more directions \
+                 (--grid AxBxC); a surface grid takes its knots by --knots-u and --knots-v",
+            );
+        }
         let (nu, nv) = net_size(g, "--grid")?;
         let (degree, listed_v) = match a.degree.as_slice() {
             [p, q] if a.degree_v.is_none() => (*p, Some(*q)),

@@ -10,7 +10,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use lekalo::fit::check_schoenberg_whitney;
-use lekalo::{KnotVector, Parametrization, Points, Tensor, TensorBSpline, TensorInterpolation};
+use lekalo::vocabulary::EndKind;
+use lekalo::{
+    EndCondition, KnotPlacement, KnotVector, Parametrization, Points, Tensor, TensorBSpline,
+    TensorInterpolation,
+};
 use serde_json::{json, Value};
 
 use crate::cmd::fit_args::clamped;
@@ -284,6 +288,10 @@ pub(crate) struct GridInterpolation<'a> {
     pub(crate) factors: Vec<usize>,
     pub(crate) degree: &'a [usize],
     pub(crate) param: Parametrization,
+    /// `--knots`, the knot placement of every direction.
+    pub(crate) placement: KnotPlacement,
+    /// `--end`, the end condition of every direction.
+    pub(crate) end: EndKind,
     pub(crate) max_condition: Option<f64>,
     pub(crate) knots: GridLists<'a>,
     pub(crate) params: GridLists<'a>,
@@ -301,9 +309,30 @@ pub(crate) fn interpolate(g: &GridInterpolation<'_>, file: &Path, cx: &Context) 
             g.factors.len()
         ));
     }
-    let degrees = degrees_for(g.degree, g.factors.len())?;
+    let n = g.factors.len();
+    let degrees = degrees_for(g.degree, n)?;
+    let end = match g.end {
+        EndKind::Free | EndKind::Natural | EndKind::Periodic => g.end.condition(None, None)?,
+        EndKind::Derivatives | EndKind::Second => {
+            return bad_input(
+                "--end: a grid in 3 or more directions takes free, natural or periodic ends \
+                 (end derivatives would be a grid of values themselves); drop --end or choose \
+                 one of these",
+            )
+        }
+    };
+    let periodic = end == EndCondition::Periodic;
+    if periodic && (g.knots.any() || g.params.any()) {
+        return bad_input(
+            "--end periodic places the knots and parameters of every direction itself; drop \
+             --knots-u/--knots-v/--knots-in and --params-u/--params-v/--params-in",
+        );
+    }
     let values = checked_grid_values(g.grid, &g.factors, file, cx)?;
-    let mut interp = TensorInterpolation::new(degrees.clone()).parametrization(g.param);
+    let mut interp = TensorInterpolation::new(degrees.clone())
+        .parametrization(g.param)
+        .knot_placements(vec![g.placement; n])
+        .end_conditions(vec![end; n]);
     if let Some(limit) = g.max_condition {
         interp = interp.max_condition(limit);
     }
@@ -439,7 +468,7 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
         columns.extend((1..=dim).map(|k| format!("y{k}")));
     }
     let rows = xs.chunks_exact(n).zip(out.chunks_exact(dim));
-    let text = match format_of(e.format, e.output, "csv").as_str() {
+    let bytes = match format_of(e.format, e.output, "csv").as_str() {
         "csv" => {
             let mut s = columns.join(",");
             s.push('\n');
@@ -452,16 +481,21 @@ pub(crate) fn eval(e: &TensorEval<'_>, t: &Tensor, cx: &Context) -> Result<()> {
                 s.push_str(&cells.join(","));
                 s.push('\n');
             }
-            s
+            s.into_bytes()
         }
         "json" => {
             let rows: Vec<Vec<f64>> = rows.map(|(x, y)| [x, y].concat()).collect();
-            format!("{:#}\n", json!({"columns": columns, "rows": rows}))
+            format!("{:#}\n", json!({"columns": columns, "rows": rows})).into_bytes()
         }
-        other => return bad_input(format!("--format {other}: use csv or json")),
+        // the rows of the csv, columns x1 … xN then the values, as one (m, N + dim) array
+        "npy" => {
+            let flat: Vec<f64> = rows.flat_map(|(x, y)| x.iter().chain(y).copied()).collect();
+            lekalo_io::npy_bytes(m, n + dim, &flat)?
+        }
+        other => return bad_input(format!("--format {other}: use csv, json or npy")),
     };
     let inputs: Vec<PathBuf> = vec![e.input.to_path_buf()];
-    emit(e.output, text.as_bytes(), &inputs, cx)
+    emit(e.output, &bytes, &inputs, cx)
 }
 
 /// The facts `info` reports of a tensor spline.

@@ -196,7 +196,8 @@ pub(crate) struct FitArgs {
     /// grid line along it, as --params-u; repeat for several directions.
     #[arg(long, value_name = "K=LIST|FILE", allow_hyphen_values = true)]
     pub(super) params_in: Vec<String>,
-    /// Smoothing penalty of scattered surfaces (second differences of the net).
+    /// Smoothing penalty of scattered least squares, surfaces and N variables (second
+    /// differences of the net along every direction).
     #[arg(long, default_value_t = 0.0)]
     pub(super) penalty: f64,
     /// Keep y(x) increasing (y' ≥ 0) everywhere, with `=A:B` on [A, B], or with `=X` at the point X.

@@ -2,7 +2,7 @@
 //! tensor-product spline with given knots (or control-point counts) per direction, written as
 //! `interpolate --grid` writes splines in `N` parameters. Parsing and presentation only; the
 //! fits are the library's ([`lekalo::tensor_grid_least_squares`],
-//! [`lekalo::tensor_scattered_least_squares`]).
+//! [`lekalo::tensor_scattered_penalized_least_squares`]).
 
 use std::cmp::Ordering;
 use std::path::PathBuf;
@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use lekalo::fit::{check_schoenberg_whitney, place_knots};
 use lekalo::{
-    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_least_squares,
+    tensor_grid_least_squares, tensor_grid_smoothing, tensor_scattered_penalized_least_squares,
     tensor_scattered_smoothing, KnotLimit, KnotVector, PointsRef, RankDeficiency,
     ScatteredSmoothingOptions, Tensor, TensorBSpline, TensorInterpolation,
 };
@@ -126,14 +126,15 @@ pub(super) fn run(a: &FitArgs, n: usize, cx: &Context) -> Result<()> {
         }
     }
     let mut inputs = vec![a.points.clone()];
+    if a.penalty != 0.0 && (a.grid.is_some() || a.s.is_some()) {
+        return bad_input(
+            "--penalty smooths the least squares of scattered data on given knots (--scattered \
+             with --ctrl-grid or knots); a grid's fit and --s take none: drop --penalty, or \
+             use --s to smooth",
+        );
+    }
     if a.grid.is_some() {
         return run_grid(a, &dirs, &inputs, cx);
-    }
-    if a.penalty != 0.0 {
-        return bad_input(
-            "--penalty smooths scattered surfaces (two variables); a fit in 3 or more variables \
-             is plain least squares: drop --penalty, or use fewer control points",
-        );
     }
     let weights = match &a.weights {
         Some(p) => {
@@ -389,12 +390,18 @@ fn run_scattered(
     }
     // The normal matrix is banded: Π n_a rows of Σ p_a·(Π_{b>a} n_b) + 1 numbers. Its size is
     // refused here, before the library allocates it.
+    // A penalty's second differences reach 2·Π_{b>a} n_b along direction a.
     let mut stride = 1usize;
     let mut band = 0usize;
+    let mut reach = 0usize;
     for (d, &c) in dirs.iter().zip(&net).rev() {
         band = band.saturating_add(d.degree.saturating_mul(stride));
+        if a.penalty != 0.0 && c >= 3 {
+            reach = reach.max(stride.saturating_mul(2));
+        }
         stride = stride.saturating_mul(c);
     }
+    let band = band.max(reach);
     let entries = stride.saturating_mul(band.saturating_add(1));
     if entries > cx.max_size {
         return bad_input(format!(
@@ -414,12 +421,13 @@ fn run_scattered(
         ys.extend_from_slice(&row[n..]);
     }
     let degrees: Vec<usize> = dirs.iter().map(|d| d.degree).collect();
-    let f = tensor_scattered_least_squares(
+    let f = tensor_scattered_penalized_least_squares(
         PointsRef::from_flat(n, &xs)?,
         PointsRef::from_flat(dim - n, &ys)?,
         weights,
         &degrees,
         knots,
+        a.penalty,
     )
     .map_err(|e| match e {
         lekalo::Error::EmptySupport { support, points } => {
@@ -433,11 +441,16 @@ fn run_scattered(
             } else {
                 ""
             };
+            let fill = if a.penalty == 0.0 {
+                ", or give --penalty L (e.g. 1e-3) to fill it from its neighbours"
+            } else {
+                ""
+            };
             anyhow::Error::from(BadInput(format!(
                 "{name}: control point ({}) of the {} net (counted from 1 in each direction) is \
                  not determined by the data: its region {} holds {points} data points of \
                  positive weight{many}; remove knots there ({} or a smaller --ctrl-grid), or \
-                 add data inside it",
+                 add data inside it{fill}",
                 index.join(", "),
                 shape_text(&net),
                 sides.join(", "),
@@ -446,7 +459,17 @@ fn run_scattered(
         }
         other => other.into(),
     })?;
-    finish(a, &f.spline, &net, &f.residuals, f.weighted_rss, inputs, cx)
+    let extra = (a.penalty != 0.0).then(|| json!({ "penalty": a.penalty }));
+    finish_with(
+        a,
+        &f.spline,
+        &net,
+        &f.residuals,
+        f.weighted_rss,
+        extra,
+        inputs,
+        cx,
+    )
 }
 
 /// `--scattered --s S`: the spline with FITPACK surfit's knots whose weighted residual sum of
