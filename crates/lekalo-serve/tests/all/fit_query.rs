@@ -295,7 +295,7 @@ fn bezier(control: &[[f64; 2]]) -> (Value, QueryCurve) {
 async fn intersections_and_their_kinds_are_the_library_s() {
     use lekalo::query::{Contact, CurveIntersection};
     // a cubic with a loop: one crossing of itself
-    let (looped, q) = bezier(&[[0.0, 0.0], [3.0, 2.0], [0.0, 2.0], [3.0, 0.0]]);
+    let (looped, q) = bezier(&[[0.0, 0.0], [4.0, 2.0], [-1.0, 2.0], [3.0, 0.0]]);
     let v = ok("/api/intersect", &json!({"curve": looped})).await;
     let lib = q.self_intersections(1e-9).expect("self-intersections");
     assert_eq!(lib.len(), 1, "{lib:?}");
