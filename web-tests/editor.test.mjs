@@ -471,6 +471,39 @@ test('Queries: the closest point follows the pointer, the arc length and the par
   assert.match(await page.textContent('[data-err="at_length"]'), /invalid arc length/);
 });
 
+test('Queries: a Bezier curve with a loop has its self-intersection circled with the kind and parameters the API gives', async (page) => {
+  await page.goto(base);
+  await page.selectOption('#mode', 'bezier');
+  await idle(page);
+  await page.click('#clear');
+  await idle(page);
+  await page.check('#query');
+  await idle(page);
+  for (const q of [[2, 1], [9, 5], [1, 5], [8, 1]]) {
+    const [x, y] = await canvasToPage(page, q);
+    await page.mouse.click(x, y);
+    await idle(page);
+  }
+  assert.equal(await shownErrors(page), '');
+  const curve = await page.evaluate(() => window.lekaloEditor.last.view.curve);
+  const r = await api('/api/intersect', { curve });
+  assert.equal(r.intersections.length, 1, JSON.stringify(r));
+  const h = r.intersections[0];
+  assert.equal(h.kind, 'crossing');
+  const marks = page.locator('#crossing-marks circle');
+  assert.equal(await marks.count(), 1);
+  assert.equal(await marks.first().getAttribute('data-kind'), 'crossing');
+  const [fx, fy] = await page.evaluate((pt) => window.lekaloEditor.toScreen(pt), h.point);
+  assert.ok(Math.abs(Number(await marks.first().getAttribute('cx')) - fx) < 1e-6, 'circled at the API\'s point');
+  assert.ok(Math.abs(Number(await marks.first().getAttribute('cy')) - fy) < 1e-6, 'circled at the API\'s point');
+  const text = await page.textContent('#query-crossings');
+  assert.match(text, new RegExp(`crossing at t = ${h.t_a.toPrecision(6)} and ${h.t_b.toPrecision(6)}`), text);
+  // the queries off: no marks
+  await page.uncheck('#query');
+  await idle(page);
+  assert.equal(await page.locator('#crossing-marks circle').count(), 0);
+});
+
 test('Fitting with a shape from an empty canvas: a shape is kept with the penalty and with a residual target s', async (page) => {
   await page.goto(base);
   await page.selectOption('#mode', 'fit');

@@ -214,6 +214,7 @@ pub fn routes() -> Vec<(&'static str, Method, MethodRouter<Arc<Pool>>)> {
         ("/api/fit", Method::POST, pool::post(fit::fit)),
         ("/api/project", Method::POST, pool::post(query::project)),
         ("/api/measure", Method::POST, pool::post(query::measure)),
+        ("/api/intersect", Method::POST, pool::post(query::intersect)),
         (
             "/api/knot/insert",
             Method::POST,

@@ -1,9 +1,12 @@
-//! `POST /api/project` and `POST /api/measure`: the closest point of a curve to a point and
-//! the arc length with parameters at given lengths (`lekalo project`, `lekalo measure`), thin
-//! calls of [`lekalo::QueryCurve`] (`docs/theory/queries.md`).
+//! `POST /api/project`, `POST /api/measure` and `POST /api/intersect`: the closest point of a
+//! curve to a point, the arc length with parameters at given lengths, and the intersections of
+//! two curves or the self-intersections of one, each with its kind of contact (`lekalo
+//! project`, `lekalo measure`, `lekalo intersect`), thin calls of [`lekalo::QueryCurve`]
+//! (`docs/theory/queries.md`).
 
 use axum::body::Bytes;
 use axum::response::Response;
+use lekalo::query::{Contact, CurveIntersection};
 use lekalo::QueryCurve;
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
@@ -125,6 +128,101 @@ pub(crate) fn measure(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
             error_estimate: table.error_estimate(),
             domain: [a, b],
             at_length,
+        },
+        size,
+    ))
+}
+
+/// The default distance under which points count as common (`lekalo intersect`'s for curves).
+fn default_intersect_tolerance() -> f64 {
+    1e-9
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IntersectRequest {
+    curve: Value,
+    /// The second curve; without it, the self-intersections of `curve`.
+    #[serde(default)]
+    other: Option<Value>,
+    #[serde(default = "default_intersect_tolerance")]
+    #[serde(deserialize_with = "crate::fields::number")]
+    tolerance: f64,
+}
+
+/// One answer as `lekalo intersect --json` writes it: the kind, the parameters on both curves
+/// and the point (with the order of a tangent contact, the gap of a near miss), or an overlap's
+/// intervals.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+enum Hit {
+    Point {
+        kind: &'static str,
+        t_a: f64,
+        t_b: f64,
+        point: Vec<f64>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        order: Option<u32>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        gap: Option<f64>,
+    },
+    Overlap {
+        kind: &'static str,
+        a: [f64; 2],
+        b: [f64; 2],
+    },
+}
+
+impl From<&CurveIntersection> for Hit {
+    fn from(h: &CurveIntersection) -> Self {
+        let kind = h.contact().name();
+        match h {
+            CurveIntersection::Point {
+                t_a,
+                t_b,
+                point,
+                contact,
+            } => Hit::Point {
+                kind,
+                t_a: *t_a,
+                t_b: *t_b,
+                point: point.clone(),
+                order: contact.order(),
+                gap: matches!(contact, Contact::NearMiss { .. }).then(|| contact.gap()),
+            },
+            CurveIntersection::Overlap { a, b } => Hit::Overlap {
+                kind,
+                a: [a.0, a.1],
+                b: [b.0, b.1],
+            },
+        }
+    }
+}
+
+#[derive(Debug, Serialize)]
+struct Intersections {
+    intersections: Vec<Hit>,
+}
+
+/// `POST /api/intersect`: every crossing, tangent contact, contact at an end, near miss and
+/// overlap of `curve` with `other` within `tolerance` (`QueryCurve::intersect`), or, without
+/// `other`, the self-intersections of the planar `curve` (`QueryCurve::self_intersections`);
+/// each answer with its kind (`docs/theory/queries.md#kinds-of-contact`).
+pub(crate) fn intersect(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
+    let r: IntersectRequest = parse(body)?;
+    let qa = query_curve(&curve(job, &r.curve, "curve")?)?;
+    let found = match &r.other {
+        Some(other) => {
+            let qb = query_curve(&curve(job, other, "other")?)?;
+            qa.intersect(&qb, r.tolerance)
+        }
+        None => qa.self_intersections(r.tolerance),
+    }
+    .map_err(|e| ApiError::lib_or("curve", &e))?;
+    let size = SMALL + found.len() * (qa.dim() + 6) * NUMBER_BYTES;
+    Ok(answer(
+        &Intersections {
+            intersections: found.iter().map(Hit::from).collect(),
         },
         size,
     ))

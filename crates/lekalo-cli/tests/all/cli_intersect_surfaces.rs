@@ -1,5 +1,5 @@
 //! End-to-end tests of `lekalo intersect` on surfaces: surface–surface and plane sections, the
-//! summary, the branches as JSON Lines and STEP, refusals.
+//! summary, the branches as JSON Lines and STEP, a curve against a surface, refusals.
 
 #![allow(clippy::missing_assert_message)] // assert_cmd's assertions print the output
 
@@ -212,4 +212,58 @@ fn misses_and_refusals() {
         .assert()
         .code(2)
         .stderr(contains("jsonl, json or step"));
+}
+
+/// A vertical line through the bump's top: one crossing at z = 1/4; the bump's side x = 0 lies
+/// on it: an overlap over the whole side. Kinds, parameters and points as the library gives them.
+#[test]
+fn a_curve_against_a_surface_crossing_and_overlap() {
+    const UP: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
+ "knots": [0, 0, 1, 1], "control": [[1, 1, -1], [1, 1, 1]]}"#;
+    const SIDE: &str = r#"{"lekalo": 1, "type": "bspline_curve", "degree": 1,
+ "knots": [0, 0, 1, 1], "control": [[0, 0, 0], [0, 2, 0]]}"#;
+    let d = dir_with(&[("bump.json", BUMP), ("up.json", UP), ("side.json", SIDE)]);
+    let v = json_of(lekalo().current_dir(d.path()).args([
+        "intersect",
+        "up.json",
+        "bump.json",
+        "--json",
+    ]));
+    let hits = v.as_array().unwrap();
+    assert_eq!(hits.len(), 1, "{v}");
+    assert_eq!(hits[0]["kind"], "crossing", "{v}");
+    let num = |x: &serde_json::Value| x.as_f64().unwrap();
+    assert!((num(&hits[0]["t"]) - 0.625).abs() <= 1e-12, "{v}");
+    assert!((num(&hits[0]["uv"][0]) - 0.5).abs() <= 1e-12, "{v}");
+    assert!((num(&hits[0]["uv"][1]) - 0.5).abs() <= 1e-12, "{v}");
+    assert!((num(&hits[0]["point"][2]) - 0.25).abs() <= 1e-12, "{v}");
+    // the CSV row: KIND,t,u,v,x,y,z
+    let out = output_of(
+        lekalo()
+            .current_dir(d.path())
+            .args(["intersect", "up.json", "bump.json"]),
+    );
+    let text = String::from_utf8(out).unwrap();
+    let cells: Vec<&str> = text.trim().split(',').collect();
+    assert_eq!(cells.len(), 7, "{text}");
+    assert_eq!(cells[0], "crossing", "{text}");
+    // the side of the bump lies on it: an overlap over the whole curve, uv at both ends
+    let v = json_of(lekalo().current_dir(d.path()).args([
+        "intersect",
+        "side.json",
+        "bump.json",
+        "--json",
+    ]));
+    assert_eq!(v.as_array().map(Vec::len), Some(1), "{v}");
+    assert_eq!(v[0]["kind"], "overlap", "{v}");
+    assert_eq!(v[0]["t"], serde_json::json!([0.0, 1.0]), "{v}");
+    assert!(num(&v[0]["uv"][0][0]).abs() <= 1e-9, "{v}");
+    assert!((num(&v[0]["uv"][1][1]) - 1.0).abs() <= 1e-9, "{v}");
+    let out =
+        output_of(
+            lekalo()
+                .current_dir(d.path())
+                .args(["intersect", "side.json", "bump.json"]),
+        );
+    assert_eq!(String::from_utf8(out).unwrap(), "overlap,0,1\n");
 }

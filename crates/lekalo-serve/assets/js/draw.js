@@ -22,13 +22,14 @@ export function drawEmpty(answer) {
   drawGrid();
   for (const id of ['curve', 'polygon', 'exact', 'other', 'other2', 'comb-path']) $(id).setAttribute('d', '');
   $('knot-marks').textContent = '';
+  $('crossing-marks').textContent = '';
   $('bounds').textContent = '';
   $('bound-labels').textContent = '';
   forgetPanels();
   drawPoints();
   hideProjection();
   $('length-mark').setAttribute('visibility', 'hidden');
-  for (const id of ['fit-info', 'bz-info', 'qi-info', 'query-info', 'query-at']) $(id).textContent = '';
+  for (const id of ['fit-info', 'bz-info', 'qi-info', 'query-info', 'query-at', 'query-crossings']) $(id).textContent = '';
   $('info').textContent = answer.note;
 }
 

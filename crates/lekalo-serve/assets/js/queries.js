@@ -1,7 +1,9 @@
-// Queries on the drawn curve (checkbox "closest point & length"): the point closest to the
-// pointer (POST /api/project), the arc length and the point at a typed length from the start
-// (POST /api/measure, asked by the computation loop with every drawing).
-import { $, sx, sy } from './screen.js';
+// Queries on the drawn curve (checkbox "closest point, length & self-intersections"): the point
+// closest to the pointer (POST /api/project), the arc length and the point at a typed length
+// from the start (POST /api/measure), and the points where the curve meets itself, each marked
+// with the kind of contact the library names (POST /api/intersect without a second curve); the
+// last two are asked by the computation loop with every drawing.
+import { $, el, sx, sy } from './screen.js';
 import { state, ui } from './state.js';
 import { post } from './api.js';
 import { showError } from './errors.js';
@@ -71,9 +73,44 @@ export function measure(view) {
   return post('/api/measure', { curve: view.curve, at_length: along }).catch((e) => ({ error: e }));
 }
 
+// the self-intersections of a drawing: no request for a curve of fewer than two control points
+export function selfIntersections(view) {
+  if ((view.curve.control || []).length < 2) return Promise.resolve({ intersections: [] });
+  return post('/api/intersect', { curve: view.curve }).catch((e) => ({ error: e }));
+}
+
+// a circle on every self-intersection point (data-kind: crossing, tangent, end or near-miss),
+// and the kinds and parameters of all, overlaps (intervals) included, as text
+function drawCrossings(answer) {
+  const g = $('crossing-marks');
+  g.textContent = '';
+  const c = answer.crossings;
+  if (!c || c.error || state.mode === 'quasi') {
+    $('query-crossings').textContent = '';
+    if (c && c.error) showError(c.error);
+    return;
+  }
+  const words = [];
+  for (const h of c.intersections) {
+    const p = h.point;
+    if (p) {
+      el('circle', { class: 'crossing-mark', 'data-kind': h.kind, r: 7, cx: sx(p[0]), cy: sy(p[1]) }, g);
+      const order = h.order ? ` of order ${h.order}` : '';
+      const gap = h.gap ? ` (gap ${h.gap.toPrecision(3)})` : '';
+      words.push(`${h.kind}${order}${gap} at t = ${h.t_a.toPrecision(6)} and ${h.t_b.toPrecision(6)}`);
+    } else {
+      words.push(`${h.kind} of t in [${h.a.map((t) => t.toPrecision(6)).join(', ')}] with [${h.b.map((t) => t.toPrecision(6)).join(', ')}]`);
+    }
+  }
+  $('query-crossings').textContent = words.length
+    ? `Self-intersections: ${words.join('; ')}.`
+    : 'The curve does not meet itself.';
+}
+
 export function drawQuery(answer) {
   const mark = $('length-mark');
   const m = answer.measure;
+  drawCrossings(answer);
   if (!m || state.mode === 'quasi') { mark.setAttribute('visibility', 'hidden'); hideProjection(); $('query-at').textContent = ''; return; }
   if (m.error) {
     mark.setAttribute('visibility', 'hidden');

@@ -1,11 +1,12 @@
 // The computation loop: at most one computation in flight; changes made during it (a point
 // dragged, a slider moved) collapse into the next one. Each computation asks the mode's route,
-// with the queries' measure when they are on, then draws the answer or shows the error.
+// with the queries' measure and self-intersections when they are on, then draws the answer or
+// shows the error.
 import { $, plural } from './screen.js';
 import { editable, state, ui } from './state.js';
 import { MODES } from './modes/index.js';
 import { draw, drawEmpty, describeCurve } from './draw.js';
-import { measure } from './queries.js';
+import { measure, selfIntersections } from './queries.js';
 import { clearErrors, showError } from './errors.js';
 import { setRunning } from './idle.js';
 
@@ -23,7 +24,10 @@ async function pump() {
     pending = false;
     try {
       const answer = await compute();
-      if (state.query && state.mode !== 'quasi' && answer.view) answer.measure = await measure(answer.view);
+      if (state.query && state.mode !== 'quasi' && answer.view) {
+        answer.measure = await measure(answer.view);
+        answer.crossings = await selfIntersections(answer.view);
+      }
       clearErrors();
       show(answer);
     } catch (e) {

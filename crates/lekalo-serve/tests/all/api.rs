@@ -688,6 +688,7 @@ async fn every_route_refuses_a_misspelled_field() {
         ("/api/fit", json!({"points": points, "smoothing": "gcv"})),
         ("/api/project", json!({"curve": curve, "point": [1, 1]})),
         ("/api/measure", json!({"curve": curve})),
+        ("/api/intersect", json!({"curve": curve, "other": bezier})),
         ("/api/knot/insert", json!({"curve": curve, "t": 0.25})),
         ("/api/knot/remove", json!({"curve": curve, "t": 0.5})),
         ("/api/export/json", json!({"curve": curve})),

@@ -1,6 +1,6 @@
 //! The fitting and query routes checked against the library: `/api/fit` (smoothing spline with
-//! λ given or by GCV, smoothing condition s), `/api/project`, `/api/measure`, and the τ rules
-//! and explicit τ values of `/api/quasi`.
+//! λ given or by GCV, smoothing condition s), `/api/project`, `/api/measure`, `/api/intersect`,
+//! and the τ rules and explicit τ values of `/api/quasi`.
 
 #![allow(clippy::missing_assert_message)] // assert_eq! prints both sides
 
@@ -281,6 +281,88 @@ async fn projection_and_arc_length_are_the_library_s() {
         .expect("length")
         .total();
     assert_eq!(v["length"].as_f64(), Some(lib));
+}
+
+/// A Bezier curve of the given 2-D control points, as the API's object and as the library's
+/// query curve.
+fn bezier(control: &[[f64; 2]]) -> (Value, QueryCurve) {
+    let v = json!({"lekalo": 1, "type": "bezier_curve", "control": control});
+    let c = lekalo::BezierCurve::new(Points::from_2d(control).expect("points")).expect("bezier");
+    (v, QueryCurve::from_bezier(&c).expect("query curve"))
+}
+
+#[tokio::test]
+async fn intersections_and_their_kinds_are_the_library_s() {
+    use lekalo::query::{Contact, CurveIntersection};
+    // a cubic with a loop: one crossing of itself
+    let (looped, q) = bezier(&[[0.0, 0.0], [4.0, 2.0], [-1.0, 2.0], [3.0, 0.0]]);
+    let v = ok("/api/intersect", &json!({"curve": looped})).await;
+    let lib = q.self_intersections(1e-9).expect("self-intersections");
+    assert_eq!(lib.len(), 1, "{lib:?}");
+    let CurveIntersection::Point {
+        t_a,
+        t_b,
+        point,
+        contact,
+    } = &lib[0]
+    else {
+        panic!("{lib:?}")
+    };
+    assert_eq!(*contact, Contact::Crossing);
+    assert_eq!(
+        v["intersections"],
+        json!([{"kind": "crossing", "t_a": t_a, "t_b": t_b, "point": point}])
+    );
+    // a parabola touching the line y = 1 at its top: a tangent contact of order 1
+    let (arch, qa) = bezier(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]]);
+    let (line, ql) = bezier(&[[0.0, 1.0], [2.0, 1.0]]);
+    let v = ok("/api/intersect", &json!({"curve": arch, "other": line})).await;
+    let lib = qa.intersect(&ql, 1e-9).expect("intersections");
+    let CurveIntersection::Point {
+        t_a,
+        t_b,
+        point,
+        contact,
+    } = &lib[0]
+    else {
+        panic!("{lib:?}")
+    };
+    assert_eq!(*contact, Contact::Tangent { order: 1 });
+    assert_eq!(
+        v["intersections"],
+        json!([{"kind": "tangent", "t_a": t_a, "t_b": t_b, "point": point, "order": 1}])
+    );
+    // the same line, 1e-10 lower than the top: a near miss with its gap, at tolerance 1e-9
+    let (low, qlow) = bezier(&[[0.0, 1.0 + 1e-10], [2.0, 1.0 + 1e-10]]);
+    let v = ok("/api/intersect", &json!({"curve": arch, "other": low})).await;
+    let lib = qa.intersect(&qlow, 1e-9).expect("intersections");
+    let Contact::NearMiss { gap } = lib[0].contact() else {
+        panic!("{lib:?}")
+    };
+    assert_eq!(v["intersections"][0]["kind"], "near-miss", "{v}");
+    assert_eq!(v["intersections"][0]["gap"].as_f64(), Some(gap), "{v}");
+    // a curve along a part of another: an overlap with both intervals
+    let (half, qh) = bezier(&[[1.0, 1.0], [2.0, 1.0]]);
+    let v = ok("/api/intersect", &json!({"curve": line, "other": half})).await;
+    let lib = ql.intersect(&qh, 1e-9).expect("intersections");
+    let CurveIntersection::Overlap { a, b } = &lib[0] else {
+        panic!("{lib:?}")
+    };
+    assert_eq!(
+        v["intersections"],
+        json!([{"kind": "overlap", "a": [a.0, a.1], "b": [b.0, b.1]}])
+    );
+    // errors name their field
+    let (f, msg) = bad(
+        "/api/intersect",
+        &json!({"curve": arch, "other": line, "tolerance": -1}),
+    )
+    .await;
+    assert_eq!(f, "tolerance", "{msg}");
+    let space = json!({"lekalo": 1, "type": "bezier_curve", "control": [[0, 0, 0], [1, 1, 1]]});
+    let (f, msg) = bad("/api/intersect", &json!({"curve": arch, "other": space})).await;
+    assert!(f == "curve" || f == "other", "{f}: {msg}");
+    assert!(msg.contains('3') && msg.contains('2'), "{msg}");
 }
 
 #[tokio::test]

@@ -147,6 +147,35 @@ impl QuerySurface {
         )
     }
 
+    /// Point and derivatives `S_u, S_v, S_uu, S_uv, S_vv` (five rows of `dim`) in original
+    /// coordinates and with respect to the global parameters, at global `(u, v)`: those of the
+    /// first patch whose range holds it ([`QuerySurface::eval_patch`], scaled to the patch's
+    /// range). `None` outside the domain or for NaN.
+    pub(crate) fn eval_global(&self, u: f64, v: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+        let k = self
+            .ranges
+            .iter()
+            .position(|&((u0, u1), (v0, v1))| (u0..=u1).contains(&u) && (v0..=v1).contains(&v))?;
+        let ((u0, u1), (v0, v1)) = self.ranges[k];
+        let (hu, hv) = (u1 - u0, v1 - v0);
+        let (pn, der) = self.eval_patch(k, (u - u0) / hu, (v - v0) / hv);
+        let mut p = vec![0.0; self.dim];
+        self.denormalise(&pn, &mut p);
+        let factor = [
+            1.0 / hu,
+            1.0 / hv,
+            1.0 / (hu * hu),
+            1.0 / (hu * hv),
+            1.0 / (hv * hv),
+        ];
+        let d: Vec<f64> = der
+            .chunks(self.dim)
+            .zip(factor)
+            .flat_map(|(row, f)| row.iter().map(move |x| x * self.scale * f))
+            .collect();
+        Some((p, d))
+    }
+
     /// Box of the Cartesian points of a (sub-)patch net: minima then maxima.
     pub(crate) fn net_box(&self, net: &[f64]) -> Vec<f64> {
         let dim = self.dim;

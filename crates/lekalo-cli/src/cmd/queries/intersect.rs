@@ -1,12 +1,14 @@
 //! `lekalo intersect`: curve–curve intersections (planar and in space), self-intersections,
-//! curve–plane; surface–surface intersections and plane sections of surfaces (branches written
+//! curve–plane, curve–surface; surface–surface intersections and plane sections of surfaces (branches written
 //! as JSON Lines or STEP); every answer with the kind of contact the library names.
 
 use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use lekalo::query::{Contact, CurveIntersection, IntersectionBranch, PlaneIntersection};
+use lekalo::query::{
+    Contact, CurveIntersection, IntersectionBranch, PlaneIntersection, SurfaceIntersection,
+};
 use lekalo_io::{Shape, StepWriter};
 use serde_json::{json, Map, Value};
 
@@ -25,11 +27,13 @@ Two curves (planar, or both in space): every crossing, tangent contact, contact 
 and near miss within the tolerance (parameters on both curves and the point), and every overlap
 (an interval on each). One planar curve with --self: its self-intersections. One curve with
 --plane: where it meets the plane through a point with a normal (any dimension), overlaps where
-it lies in the plane. Each answer names its kind: crossing, tangent (with its order of
-contact), end, near-miss (with its gap) or overlap.
+it lies in the plane. A curve and a 3-D surface (the curve first): where the curve meets the
+surface, overlaps where it lies on it. Each answer names its kind: crossing, tangent (with its
+order of contact), end, near-miss (with its gap) or overlap.
 
 Output CSV rows: KIND,t_a,t_b,x,y  or  overlap,a0,a1,b0,b1  (--plane: KIND,t,,x,y,z  or
-overlap,t0,t1). --json adds order (tangent) and gap (near-miss).
+overlap,t0,t1; a surface: KIND,t,u,v,x,y,z  or  overlap,t0,t1). --json adds order (tangent)
+and gap (near-miss), and for a surface uv (overlap: uv at both ends).
 
 Two surfaces (3-D B-spline, Bezier or NURBS), or one surface with --plane: the branches of the
 intersection, traced by marching from starting points found by subdivision (none is missed,
@@ -46,13 +50,14 @@ Examples:
   lekalo intersect a.json b.json --tolerance 1e-9 --json
   lekalo intersect loop.json --self
   lekalo intersect space.json --plane 0,0,1,0,0,1
+  lekalo intersect space.json surface.json
   lekalo intersect surface.json level.json -o branches.jsonl
   lekalo intersect surface.json level.json -o branches.json
   lekalo intersect surface.json --plane 0,0,0.1,0,0,1 --json -o section.step")]
 pub(crate) struct IntersectArgs {
     /// First curve.
     first: PathBuf,
-    /// Second curve, of the first one's dimension (omit with --self or --plane).
+    /// Second curve, of the first one's dimension, or a surface (omit with --self or --plane).
     second: Option<PathBuf>,
     /// Self-intersections of the first curve.
     #[arg(long = "self")]
@@ -110,12 +115,35 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
             return bad_input("give a second curve, --self or --plane");
         };
         inputs.push(second.clone());
-        let qb = query_curve(&load_one(cx, second)?, second)?;
-        qa.intersect(&qb, tolerance)
-            .map_err(bad)?
-            .iter()
-            .map(curves_json)
-            .collect()
+        match open(cx, second, false)? {
+            Items::Other(Shape::Surface(s)) => {
+                let qs = query_surface(&s, second)?;
+                qa.intersect_surface(&qs, tolerance)
+                    .map_err(|e| {
+                        anyhow::Error::from(e).context(format!(
+                            "{} and {}",
+                            a.first.display(),
+                            second.display()
+                        ))
+                    })?
+                    .iter()
+                    .map(surface_json)
+                    .collect()
+            }
+            other => {
+                let b = match other {
+                    Items::One(o) => o,
+                    // the refusals (several objects, not a curve) are load_one's
+                    _ => load_one(cx, second)?,
+                };
+                let qb = query_curve(&b, second)?;
+                qa.intersect(&qb, tolerance)
+                    .map_err(bad)?
+                    .iter()
+                    .map(curves_json)
+                    .collect()
+            }
+        }
     };
     let text = if a.json {
         format!("{:#}\n", json!(hits))
@@ -167,13 +195,36 @@ fn plane_json(h: &PlaneIntersection) -> Value {
     }
 }
 
-/// The CSV row of an answer's JSON object: the kind, then `t_a,t_b` (a plane: `t,`) and the
-/// point, or an overlap's interval ends.
+fn surface_json(h: &SurfaceIntersection) -> Value {
+    match h {
+        SurfaceIntersection::Point {
+            t,
+            uv,
+            point,
+            contact,
+        } => {
+            let mut v = point_json(*contact, &[("t", *t)], point);
+            v["uv"] = json!([uv.0, uv.1]);
+            v
+        }
+        SurfaceIntersection::Overlap { t, uv } => json!({
+            "kind": h.contact().name(),
+            "t": [t.0, t.1],
+            "uv": [[uv.0 .0, uv.0 .1], [uv.1 .0, uv.1 .1]],
+        }),
+    }
+}
+
+/// The CSV row of an answer's JSON object: the kind, then `t_a,t_b` (a plane: `t,`; a surface:
+/// `t,u,v`) and the point, or an overlap's interval ends.
 fn csv_row(h: &Value) -> String {
     let num = |v: &Value| v.as_f64().map(lekalo_io::fmt_number).unwrap_or_default();
     let mut cells = vec![h["kind"].as_str().unwrap_or_default().to_string()];
     if let Some(point) = h["point"].as_array() {
-        if h.get("t").is_some() {
+        if let Some(uv) = h["uv"].as_array() {
+            cells.push(num(&h["t"]));
+            cells.extend(uv.iter().map(num));
+        } else if h.get("t").is_some() {
             cells.extend([num(&h["t"]), String::new()]);
         } else {
             cells.extend([num(&h["t_a"]), num(&h["t_b"])]);
@@ -213,7 +264,7 @@ fn run_surfaces(a: &IntersectArgs, s: &lekalo_io::Surface, cx: &Context) -> Resu
         inputs.push(second.clone());
         let Items::Other(Shape::Surface(t)) = open(cx, second, false)? else {
             return bad_input(format!(
-                "{}: a surface intersects a surface (or a plane with --plane); this is not a surface",
+                "{}: a surface intersects a surface (or a plane with --plane); this is not a surface (a curve and a surface: give the curve first)",
                 second.display()
             ));
         };

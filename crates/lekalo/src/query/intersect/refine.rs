@@ -4,6 +4,7 @@
 //! as two crossings, a touch or a near miss.
 
 use super::super::pieces::{dist, dot, QueryCurve};
+use super::super::surface::QuerySurface;
 use super::{Contact, TOUCH_RTOL};
 
 /// Most Newton steps of a refinement (quadratic convergence needs a handful; the distance
@@ -303,5 +304,120 @@ impl QueryCurve {
         let left = self.crossing_from(other, ta - d, tb - ratio * d, touch)?;
         let right = self.crossing_from(other, ta + d, tb + ratio * d, touch)?;
         (left.0 < ta && right.0 > ta).then_some([left, right])
+    }
+}
+
+/// `a × b` of two 3-vectors.
+fn cross3(a: &[f64], b: &[f64]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The solution of the 3 × 3 system `j x = f` by Cramer's rule; `None` when `j` is singular.
+fn solve3(j: &[[f64; 3]; 3], f: &[f64; 3]) -> Option<[f64; 3]> {
+    let det = dot(&j[0], &cross3(&j[1], &j[2]));
+    if !(det != 0.0 && det.is_finite()) {
+        return None;
+    }
+    // the columns of j
+    let c = |k: usize| [j[0][k], j[1][k], j[2][k]];
+    let (c0, c1, c2) = (c(0), c(1), c(2));
+    Some([
+        dot(f, &cross3(&c1, &c2)) / det,
+        dot(&c0, &cross3(f, &c2)) / det,
+        dot(&c0, &cross3(&c1, f)) / det,
+    ])
+}
+
+impl QueryCurve {
+    /// The point of a tangential contact (or closest approach) of this 3-D curve and `surface`
+    /// near `(t, uv)`, to full precision (`docs/theory/queries.md#intersections`): Newton's
+    /// method on the square system
+    /// `F(t, u, v) = ((C − S)·S_u, (C − S)·S_v, C'·(S_u × S_v)) = 0`: `S(u, v)` is the foot of
+    /// `C(t)` on the surface and the curve's tangent lies in the tangent plane, i.e. `t` is a
+    /// critical point of the signed distance `g(t)` to the surface. The third row's derivative
+    /// along the solutions of the first two is `g''`, so the Jacobian is regular at a contact
+    /// of order 1 even where the gap vanishes and convergence is quadratic. At most 80 steps,
+    /// `t` kept in the curve's domain; the best point (least residual, in units of length) is
+    /// returned as `(t, uv, the curve's point, the gap |C − S|)`; `None` for a curve that is not
+    /// 3-D or a start that cannot be evaluated (outside the surface's domain, a zero derivative
+    /// of the curve or the surface there). A step that would leave the surface's domain ends
+    /// the iteration.
+    pub(super) fn refine_surface_contact(
+        &self,
+        surface: &QuerySurface,
+        t: f64,
+        uv: (f64, f64),
+    ) -> Option<(f64, (f64, f64), Vec<f64>, f64)> {
+        if self.dim != 3 {
+            return None;
+        }
+        let mut scratch = Vec::new();
+        let ((ul, uh), (vl, vh)) = surface.domain();
+        let (mut t, mut u, mut v) = (t, uv.0, uv.1);
+        let mut best: Option<(f64, f64, f64, f64)> = None;
+        for _ in 0..REFINE_STEPS {
+            let c = self.eval_global(t, 2, &mut scratch);
+            let (c0, c1, c2) = (&c[..3], &c[3..6], &c[6..9]);
+            let Some((s, d)) = surface.eval_global(u, v) else {
+                break;
+            };
+            let (su, sv, suu, suv, svv) = (&d[..3], &d[3..6], &d[6..9], &d[9..12], &d[12..15]);
+            let r: Vec<f64> = c0.iter().zip(&s).map(|(x, y)| x - y).collect();
+            let n = cross3(su, sv);
+            let (lc, lu, lv, ln) = (
+                dot(c1, c1).sqrt(),
+                dot(su, su).sqrt(),
+                dot(sv, sv).sqrt(),
+                dot(&n, &n).sqrt(),
+            );
+            if !(lc > 0.0 && lu > 0.0 && lv > 0.0 && ln > 0.0) {
+                break;
+            }
+            let f = [dot(&r, su), dot(&r, sv), dot(c1, &n)];
+            // the residual in units of length: the foot conditions over the speeds, the sine of
+            // the tangent's angle with the tangent plane times the gap's scale
+            let size =
+                (f[0] / lu).abs() + (f[1] / lv).abs() + (f[2] / (lc * ln)).abs() * self.scale;
+            if best.is_none_or(|b| size < b.0) {
+                best = Some((size, t, u, v));
+            }
+            if size == 0.0 {
+                break;
+            }
+            // the normal's derivatives N_u = S_uu × S_v + S_u × S_uv, N_v = S_uv × S_v + S_u × S_vv
+            let add = |a: [f64; 3], b: [f64; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+            let nu = add(cross3(suu, sv), cross3(su, suv));
+            let nv = add(cross3(suv, sv), cross3(su, svv));
+            let j = [
+                [
+                    dot(c1, su),
+                    dot(&r, suu) - lu * lu,
+                    dot(&r, suv) - dot(su, sv),
+                ],
+                [
+                    dot(c1, sv),
+                    dot(&r, suv) - dot(su, sv),
+                    dot(&r, svv) - lv * lv,
+                ],
+                [dot(c2, &n), dot(c1, &nu), dot(c1, &nv)],
+            ];
+            let Some(step) = solve3(&j, &f) else {
+                break;
+            };
+            let next = (clamp_to(self, t - step[0]), u - step[1], v - step[2]);
+            if !((ul..=uh).contains(&next.1) && (vl..=vh).contains(&next.2)) || next == (t, u, v) {
+                break;
+            }
+            (t, u, v) = next;
+        }
+        let (_, t, u, v) = best?;
+        let p = self.eval_global(t, 0, &mut scratch);
+        let (s, _) = surface.eval_global(u, v)?;
+        let gap = dist(&p, &s);
+        Some((t, (u, v), p, gap))
     }
 }

@@ -16,6 +16,8 @@ type SurfaceSolution = (f64, (f64, f64), Vec<f64>, bool);
 /// Probe step (fraction of the curve's domain) of the transversality and overlap tests, as for
 /// two curves.
 const PROBE: f64 = 1e-6;
+/// Farthest (as a fraction of the curve's domain) a contact's refinement may move it.
+const REFINE_REACH: f64 = 1e-3;
 use crate::error::{Error, Result};
 use crate::numeric::damped::{levenberg_marquardt, Residual};
 use crate::{Arg, What};
@@ -159,7 +161,9 @@ impl QueryCurve {
     /// first-order gap `|C'|·h·sin θ` (`θ` the angle between the curve and the tangent plane,
     /// `h` the probe) is at least ten times the tolerance, [`Contact::End`] at an end of the
     /// curve, a [`Contact::NearMiss`] when the gap exceeds [`super::TOUCH_RTOL`] times the
-    /// larger scale, else a [`Contact::Tangent`] with its order from the growth of the gap.
+    /// larger scale, else a [`Contact::Tangent`] with its order from the growth of the gap. A
+    /// point that is not a crossing, on a 3-D curve, is refined on the tangency system
+    /// `((C − S)·S_u, (C − S)·S_v, C'·(S_u × S_v)) = 0` to full precision.
     ///
     /// ```
     /// use lekalo::query::SurfaceIntersection;
@@ -305,6 +309,15 @@ impl QueryCurve {
         }
         let (lo, hi) = self.domain();
         let touch = TOUCH_RTOL * self.scale.max(surface.scale);
+        // a contact refined on the tangency system, kept when it stays near and its gap is no
+        // larger (two crossings close together have a least unsigned gap of zero between them
+        // but an extremum of the signed gap that is not: those keep the search's point)
+        let refined = |t: f64, uv: (f64, f64), point: Vec<f64>, d: f64| match self
+            .refine_surface_contact(surface, t, uv)
+        {
+            Some(r) if r.3 <= d.max(touch) && (r.0 - t).abs() <= REFINE_REACH * (hi - lo) => r,
+            _ => (t, uv, point, d),
+        };
         let mut out = Vec::new();
         for (gi, g) in groups.iter().enumerate() {
             let (mut a0, mut a1) = (g[0].0, g[g.len() - 1].0);
@@ -353,6 +366,7 @@ impl QueryCurve {
                 let t = super::curves::golden_min(a0, a1, |t| gap(t).0);
                 let (d, uv) = gap(t);
                 let point = self.point(t).unwrap_or_default();
+                let (t, uv, point, d) = refined(t, uv, point, d);
                 out.push(SurfaceIntersection::Point {
                     t,
                     uv,
@@ -366,20 +380,26 @@ impl QueryCurve {
                 .min_by(|x, y| gap(x.0).0.total_cmp(&gap(y.0).0))
                 .unwrap_or(&g[0]);
             let (d, _) = gap(best.0);
-            let contact = if transversal {
-                if self.is_curve_end(&best.2, tolerance) {
+            if transversal {
+                let contact = if self.is_curve_end(&best.2, tolerance) {
                     Contact::End
                 } else {
                     Contact::Crossing
-                }
-            } else {
-                self.surface_contact(surface, &best.2, best.0, d, touch, tolerance)
-            };
+                };
+                out.push(SurfaceIntersection::Point {
+                    t: best.0,
+                    uv: best.1,
+                    point: best.2.clone(),
+                    contact,
+                });
+                continue;
+            }
+            let (t, uv, point, d) = refined(best.0, best.1, best.2.clone(), d);
             out.push(SurfaceIntersection::Point {
-                t: best.0,
-                uv: best.1,
-                point: best.2.clone(),
-                contact,
+                t,
+                uv,
+                contact: self.surface_contact(surface, &point, t, d, touch, tolerance),
+                point,
             });
         }
         out
@@ -549,8 +569,54 @@ fn cart_box(net: &[f64], hd: usize, dim: usize, rational: bool) -> Vec<f64> {
 
 #[cfg(test)]
 mod tests {
-    use crate::query::{Contact, PlaneIntersection};
-    use crate::{BSplineCurve, Points, QueryCurve};
+    use std::f64::consts::{FRAC_PI_2, TAU};
+
+    use crate::query::{Contact, PlaneIntersection, SurfaceIntersection};
+    use crate::surface::Placement;
+    use crate::{BSplineCurve, NurbsSurface, Points, QueryCurve, QuerySurface};
+
+    /// A line touching the unit sphere (exact NURBS) at `(0.48, 0.64, 0.6)`, inside a patch:
+    /// one tangent contact of order 1, its parameter within 16 ulps of the closest approach of
+    /// the line to the centre (computed from the line's own rounded ends), the surface point on
+    /// the curve's.
+    #[test]
+    fn a_line_touching_a_sphere_is_found_to_full_precision() {
+        let f = Placement::new([0.0; 3], Some([0.0, 0.0, 1.0]), Some([1.0, 0.0, 0.0])).unwrap();
+        let sphere = QuerySurface::from_nurbs(
+            &NurbsSurface::sphere(&f, 1.0, (0.0, TAU), (-FRAC_PI_2, FRAC_PI_2)).unwrap(),
+        )
+        .unwrap();
+        // p − d and p + 3d with d = (0.64, −0.48, 0) orthogonal to p: the touch at t = 1/4
+        let (a, b) = ([-0.16, 1.12, 0.6], [2.4, -0.8, 0.6]);
+        let c = BSplineCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            Points::from_3d(&[a, b]).unwrap(),
+        )
+        .unwrap();
+        let hits = QueryCurve::from_bspline(&c)
+            .unwrap()
+            .intersect_surface(&sphere, 1e-9)
+            .unwrap();
+        assert_eq!(hits.len(), 1, "{hits:?}");
+        let SurfaceIntersection::Point {
+            t, point, contact, ..
+        } = &hits[0]
+        else {
+            panic!("{hits:?}")
+        };
+        assert_eq!(*contact, Contact::Tangent { order: 1 }, "{hits:?}");
+        let d: Vec<f64> = (0..3).map(|i| b[i] - a[i]).collect();
+        let exact =
+            -(0..3).map(|i| a[i] * d[i]).sum::<f64>() / (0..3).map(|i| d[i] * d[i]).sum::<f64>();
+        let ulps = (t - exact).abs() / (exact * f64::EPSILON);
+        assert!(
+            ulps <= 16.0,
+            "t = {t}, closest approach at {exact}: {ulps} ulps"
+        );
+        let r = point.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((r - 1.0).abs() <= 4.0 * f64::EPSILON, "{point:?}");
+    }
 
     #[test]
     fn plane_crossings() {
