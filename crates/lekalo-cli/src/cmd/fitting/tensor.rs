@@ -536,7 +536,7 @@ fn finish(
 
 /// [`finish`] with `extra` fields in the report.
 #[allow(clippy::too_many_arguments)]
-fn finish_with(
+pub(super) fn finish_with(
     a: &FitArgs,
     s: &TensorBSpline,
     net: &[usize],
