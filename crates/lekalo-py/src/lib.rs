@@ -36,7 +36,6 @@ mod error;
 mod faces;
 mod fit;
 mod hermite_pp;
-mod hermite_tck;
 mod interp;
 mod objects;
 mod periodic;
@@ -112,7 +111,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor::register(m)?;
     tensor_values::register(m)?;
     tck::register(m)?;
-    hermite_tck::register(m)?;
     hermite_pp::register(m)?;
     xla_ffi::register(m)?;
     Ok(())
