@@ -279,6 +279,25 @@ impl FitArgs {
             && self.slope_at.is_empty())
     }
 
+    /// The options of curve fits, each with whether it is given, for the fits that refuse them
+    /// (in 3 or more variables, on the sphere).
+    pub(super) fn curve_options(&self) -> [(bool, &'static str); 9] {
+        [
+            (self.smooth.is_some(), "--smooth"),
+            (self.tol.is_some(), "--tolerance"),
+            (self.robust.is_some(), "--robust"),
+            (self.periodic, "--periodic"),
+            (self.function, "--function"),
+            (self.clamp_ends, "--clamp-ends"),
+            (
+                self.d0.is_some() || self.dn.is_some(),
+                "--start-derivative/--end-derivative",
+            ),
+            (self.ctrl.is_some(), "--ctrl"),
+            (self.shape_given(), "shape constraints"),
+        ]
+    }
+
     /// Whether any pole option of `--sphere --grid` is given.
     pub(super) fn pole_given(&self) -> bool {
         self.pole_values.is_some()

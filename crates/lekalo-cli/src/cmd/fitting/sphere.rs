@@ -261,18 +261,7 @@ fn write(
 /// The options of other fits, refused with `--sphere` (its splines are bicubic, periodic in
 /// the longitude, with their own knots and domain).
 fn refuse_other_options(a: &FitArgs) -> Result<()> {
-    let given: Vec<&str> = [
-        (a.smooth.is_some(), "--smooth"),
-        (a.tol.is_some(), "--tolerance"),
-        (a.robust.is_some(), "--robust"),
-        (a.periodic, "--periodic"),
-        (a.function, "--function"),
-        (a.clamp_ends, "--clamp-ends"),
-        (
-            a.d0.is_some() || a.dn.is_some(),
-            "--start-derivative/--end-derivative",
-        ),
-        (a.ctrl.is_some(), "--ctrl"),
+    let others = [
         (a.ctrl_grid.is_some(), "--ctrl-grid"),
         (a.knots.is_some(), "--knots"),
         (!a.knots_in.is_empty(), "--knots-in"),
@@ -286,12 +275,14 @@ fn refuse_other_options(a: &FitArgs) -> Result<()> {
             !matches!(a.degrees[..], [3] | [3, 3]),
             "--degree (other than 3)",
         ),
-        (a.shape_given(), "shape constraints"),
-    ]
-    .iter()
-    .filter(|(on, _)| *on)
-    .map(|(_, name)| *name)
-    .collect();
+    ];
+    let given: Vec<&str> = a
+        .curve_options()
+        .into_iter()
+        .chain(others)
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| name)
+        .collect();
     if given.is_empty() {
         return Ok(());
     }
