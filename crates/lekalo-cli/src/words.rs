@@ -102,6 +102,13 @@ pub(crate) const fn option(arg: Arg) -> Option<&'static str> {
         Arg::Times => "--times",
         Arg::Knot => "--at",
         Arg::Bbox => "--bbox",
+        // `fit --sphere`: the interior knots in θ and φ, the grid's colatitudes and longitudes
+        Arg::ColatitudeKnots => "--knots-u",
+        Arg::LongitudeKnots => "--knots-v",
+        Arg::Colatitudes => "--params-u",
+        Arg::Longitudes => "--params-v",
+        Arg::PoleValues => "--pole-values",
+        Arg::PoleFlat => "--pole-flat",
         Arg::Weights
         | Arg::ControlPoints
         | Arg::Breakpoints

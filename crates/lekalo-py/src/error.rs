@@ -156,6 +156,13 @@ pub(crate) const fn argument(arg: Arg) -> Option<&'static str> {
         Arg::Eps => "eps",
         Arg::MaxKnots => "max_knots",
         Arg::Bbox => "bbox",
+        // the fits on the sphere (SciPy's names)
+        Arg::ColatitudeKnots => "tt",
+        Arg::LongitudeKnots => "tp",
+        Arg::Colatitudes => "u",
+        Arg::Longitudes => "v",
+        Arg::PoleValues => "pole_values",
+        Arg::PoleFlat => "pole_flat",
         Arg::Weights
         | Arg::ControlPoints
         | Arg::Direction

@@ -36,7 +36,6 @@ mod error;
 mod faces;
 mod fit;
 mod hermite_pp;
-mod hermite_tck;
 mod interp;
 mod objects;
 mod periodic;
@@ -113,7 +112,6 @@ fn _lekalo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tensor_fit::register(m)?;
     tensor_values::register(m)?;
     tck::register(m)?;
-    hermite_tck::register(m)?;
     hermite_pp::register(m)?;
     xla_ffi::register(m)?;
     Ok(())

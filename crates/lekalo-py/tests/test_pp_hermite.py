@@ -75,25 +75,3 @@ def test_antiderivative_and_integral_in_pp_form():
     np.testing.assert_allclose(h.eval_extrapolated([1.7], 1), [[0.0]], atol=1e-15)
     for a, b in [(-1.0, 4.0), (2.0, 0.5)]:
         assert math.isclose(f.integral_extrapolated(a, b)[0], ref.integrate(a, b), rel_tol=1e-13)
-
-
-def test_hermite_tck_is_the_hermite_curve_and_scipys_cubic():
-    """``hermite_tck``: the knots and coefficients of ``CubicHermite.to_bspline`` bit for bit,
-    the function of SciPy's ``CubicHermiteSpline``, and errors in the user's words."""
-    rng = np.random.default_rng(5)
-    x = np.cumsum(rng.uniform(0.1, 1.0, 9))
-    y = rng.standard_normal((9, 2))
-    d = rng.standard_normal((9, 2))
-    t, c = lekalo._lekalo.hermite_tck(x, y, d)
-    curve = lekalo.CubicHermite(x, y, d).to_bspline()
-    assert np.array_equal(t, curve.knots) and np.array_equal(c, curve.control)
-    xs = np.linspace(x[0], x[-1], 101)
-    want = si.CubicHermiteSpline(x, y, d)(xs)
-    got = si.BSpline(t, c, 3)(xs)
-    assert np.abs(got - want).max() <= 1e-13 * np.abs(want).max()
-    with pytest.raises(lekalo.Error, match="strictly increasing"):
-        lekalo._lekalo.hermite_tck(x[::-1].copy(), y, d)
-    with pytest.raises(lekalo.Error, match="dydx"):
-        lekalo._lekalo.hermite_tck(x, y, d[:, :1])
-    with pytest.raises(lekalo.Error, match="not finite|non-finite|NaN|nan"):
-        lekalo._lekalo.hermite_tck(x, y, np.where(d > 0, np.nan, d))

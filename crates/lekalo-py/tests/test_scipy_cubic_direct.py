@@ -112,14 +112,14 @@ def test_hostile_input_as_scipy(name):
 
 def test_the_kernels_refuse_what_they_cannot_take():
     x, y, _ = _data(10)
+    with pytest.raises(ValueError, match="one row of values per breakpoint"):
+        _lekalo.pchip_pp(x, y[:-1])
     with pytest.raises(ValueError, match="one value per breakpoint"):
-        _lekalo.pchip_tck(x, y[:-1])
-    with pytest.raises(ValueError, match="one value per breakpoint"):
-        _lekalo.akima_tck(x, np.c_[y, y])
+        _lekalo.akima_pp(x, np.c_[y, y])
     with pytest.raises(ValueError, match="'akima' or 'makima'"):
-        _lekalo.akima_tck(x, y, "spline")
+        _lekalo.akima_pp(x, y, "spline")
     with pytest.raises(_lekalo.InputError, match="strictly increasing"):
-        _lekalo.pchip_tck(x[::-1].copy(), y)
+        _lekalo.pchip_pp(x[::-1].copy(), y)
 
 
 BREAKPOINTS = {

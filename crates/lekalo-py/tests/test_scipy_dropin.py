@@ -525,6 +525,26 @@ def test_univariate_spline_family():
         ls.UnivariateSpline(x[::-1], y)
 
 
+def test_lsq_univariate_spline_without_data_raises_as_scipy():
+    """No data: SciPy reads ``x[0]`` for the end that ``bbox`` leaves open (an ``IndexError``);
+    with both ends given, FITPACK's check refuses the data (a ``ValueError``)."""
+    empty = np.array([])
+    for t, bbox in [([], (None, None)), ([0.5], (None, None)), ([0.5], (0.0, None)), ([0.5], (0.0, 1.0))]:
+        index_error = []
+        for m in (si, ls):
+            with pytest.raises((IndexError, ValueError)) as e:
+                m.LSQUnivariateSpline(empty, empty, t, bbox=bbox)
+            index_error.append(issubclass(e.type, IndexError))
+        assert index_error[0] == index_error[1], (t, bbox, index_error)
+        assert index_error[0] == (bbox[1] is None), (t, bbox)
+    with pytest.raises(IndexError):
+        ls.LSQUnivariateSpline([], [], [])
+    # too few points for the degree: a ValueError on both sides
+    for m in (si, ls):
+        with pytest.raises(ValueError):
+            m.LSQUnivariateSpline([0.0, 1.0], [0.0, 1.0], [0.5])
+
+
 def test_univariate_spline_set_smoothing_factor():
     """SciPy's tutorial: ``spl.set_smoothing_factor(0.5)`` after the default ``s``. FITPACK's
     ``iopt=1`` starts over when ``s`` reaches the polynomial's residual or there is no interior

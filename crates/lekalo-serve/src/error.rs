@@ -116,7 +116,13 @@ pub const fn field(arg: Arg) -> Option<&'static str> {
         | Arg::CornerWindow
         | Arg::Eps
         | Arg::MaxKnots
-        | Arg::Bbox => return None,
+        | Arg::Bbox
+        | Arg::ColatitudeKnots
+        | Arg::LongitudeKnots
+        | Arg::Colatitudes
+        | Arg::Longitudes
+        | Arg::PoleValues
+        | Arg::PoleFlat => return None,
     })
 }
 
@@ -157,6 +163,12 @@ mod tests {
         (Arg::Eps, "no request fits scattered data"),
         (Arg::MaxKnots, "no request fits scattered data"),
         (Arg::Bbox, "no request fits scattered data"),
+        (Arg::ColatitudeKnots, "no request fits data on the sphere"),
+        (Arg::LongitudeKnots, "no request fits data on the sphere"),
+        (Arg::Colatitudes, "no request fits data on the sphere"),
+        (Arg::Longitudes, "no request fits data on the sphere"),
+        (Arg::PoleValues, "no request fits data on the sphere"),
+        (Arg::PoleFlat, "no request fits data on the sphere"),
     ];
 
     /// Every key has a field, or is listed in `WITHOUT_FIELD` with the reason: a new key, or a

@@ -108,6 +108,22 @@ args! {
     MaxKnots => "max_knots",
     /// The box of a scattered or grid smoothing fit.
     Bbox => "bbox",
+    /// The interior colatitude knots `tt` of a least-squares fit on the sphere
+    /// ([`crate::fit::sphere_least_squares`]).
+    ColatitudeKnots => "tt",
+    /// The interior longitude knots `tp` of a least-squares fit on the sphere.
+    LongitudeKnots => "tp",
+    /// The colatitudes `u` of the grid lines of a fit on a grid of the sphere
+    /// ([`crate::fit::SphereGrid`]).
+    Colatitudes => "u",
+    /// The longitudes `v` of the grid lines of a fit on a grid of the sphere.
+    Longitudes => "v",
+    /// The values at the poles of a fit on a grid of the sphere
+    /// ([`crate::fit::PoleCondition::value`], SciPy's `pole_values`).
+    PoleValues => "pole_values",
+    /// Flatness at a pole of a fit on a grid of the sphere
+    /// ([`crate::fit::PoleCondition::flat`], SciPy's `pole_flat`).
+    PoleFlat => "pole_flat",
 }
 
 impl std::fmt::Display for Arg {

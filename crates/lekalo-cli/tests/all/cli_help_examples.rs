@@ -126,6 +126,15 @@ fn overrides(path: &str) -> Vec<(&'static str, String)> {
             ("grid.csv", rows(600, &|i| format!("{},{},{}", (i / 20.0).floor(), i % 20.0, (i * 0.01).sin()))),
             ("uvz.csv", rows(300, &|i| format!("{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.1).sin()))),
             ("xyzw.csv", rows(300, &|i| format!("{},{},{},{}", (i * 0.37) % 1.0, (i * 0.61) % 1.0, (i * 0.43) % 1.0, (i * 0.1).sin()))),
+            // theta, phi, r on the sphere, and the values of a 7 x 10 grid on it
+            ("tpr.csv", rows(300, &|i| {
+                let (t, p) = ((1.0 - (2.0 * i + 1.0) / 300.0).acos(), (2.4 * i) % std::f64::consts::TAU);
+                format!("{t},{p},{}", t.cos() + 0.3 * t.sin() * p.cos())
+            })),
+            ("r.csv", rows(70, &|i| {
+                let (t, p) = (0.4 * (1.0 + (i / 10.0).floor()), 0.6 * (i % 10.0));
+                format!("{}", t.cos() + t.sin() * p.cos())
+            })),
         ],
         // a plane surface in 2-D, so that 2-D queries suit the curve and the surface
         "project" => vec![

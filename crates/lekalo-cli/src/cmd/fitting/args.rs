@@ -51,6 +51,14 @@ such a grid places the knots itself: the fewest found with residual sum of squar
 rows in any number of variables (FITPACK's surfit, SciPy's SmoothBivariateSpline; the number
 from --degree P,Q,R…, else --bbox, else 2), weighted RSS within 0.1 % of S and never above.
 
+On the sphere (--sphere; FITPACK's sphere and spgrid, SciPy's *SphereBivariateSpline): a bicubic
+spline in (theta, phi), periodic in phi, one value at each pole, written as JSON. --scattered
+reads rows theta, phi, r: least squares on the interior knots --knots-u (theta) and --knots-v
+(phi), or --s S with FITPACK's knots; --weights weighs the rows. --grid NUxNV reads one value per
+node (theta slowest) at the colatitudes --params-u and longitudes --params-v: --s S (0, the
+default, interpolates) with the pole conditions --pole-values V|V0,V1 (none: fitted),
+--pole-exact, --pole-continuity, --pole-flat (each =B0,B1 for the poles theta = 0 and pi).
+
 Shape constraints (--function fits by --lsq, --smooth, or --s without --knots; each holds for
 every x, not only at the data; repeat an option for several intervals; =X or @X: at a point):
   --increasing[=A:B] --decreasing[=A:B] --convex[=A:B] --concave[=A:B]
@@ -82,7 +90,11 @@ Examples:
   lekalo fit uvz.csv --scattered --knots-u 0.3,0.6 --knots-v 0.5 --bbox 0:1,0:1 --degree 3,2
   lekalo fit values.csv --grid 6x5x4 --degree 2 --param uniform --ctrl-grid 4x4x3 -o fitted.json
   lekalo fit values.csv --grid 6x5x4 --degree 2,2,1 --param uniform --knots-in 3=0.5 --ctrl-grid 4x4x3
-  lekalo fit xyzw.csv --scattered --ctrl-grid 4x4x4 --degree 2 --bbox 0:1,0:1,0:1 --json")]
+  lekalo fit xyzw.csv --scattered --ctrl-grid 4x4x4 --degree 2 --bbox 0:1,0:1,0:1 --json
+  lekalo fit tpr.csv --sphere --scattered --s 0.5 -o sphere.json
+  lekalo fit tpr.csv --sphere --scattered --knots-u 1,2 --knots-v 1.5,3,4.5 --json
+  lekalo fit r.csv --sphere --grid 7x10 --params-u 0.4,0.8,1.2,1.6,2,2.4,2.8 \
+      --params-v 0,0.6,1.2,1.8,2.4,3,3.6,4.2,4.8,5.4 --pole-continuity -o sphere-grid.json")]
 pub(crate) struct FitArgs {
     /// Points file (CSV, whitespace text or JSON; `-` for standard input).
     pub(super) points: PathBuf,
@@ -196,6 +208,28 @@ pub(crate) struct FitArgs {
     /// grid line along it, as --params-u; repeat for several directions.
     #[arg(long, value_name = "K=LIST|FILE", allow_hyphen_values = true)]
     pub(super) params_in: Vec<String>,
+    /// Data on the sphere: with --scattered rows theta, phi, r (colatitude in [0, pi],
+    /// longitude in [0, 2pi], value); with --grid `NUxNV` one value per node, the colatitudes
+    /// --params-u and the longitudes --params-v. A bicubic spline in (theta, phi), periodic in
+    /// phi, one value at each pole.
+    #[arg(long)]
+    pub(super) sphere: bool,
+    /// --sphere --grid: the values at the poles theta = 0 and theta = pi, one for both or two,
+    /// `none` for a pole whose value is fitted (SciPy's `pole_values`; default: both fitted).
+    #[arg(long, value_name = "V|V0,V1", allow_hyphen_values = true)]
+    pub(super) pole_values: Option<String>,
+    /// --sphere --grid: impose the --pole-values exactly (without, each counts as one more
+    /// datum); `=true,false` for each pole (SciPy's `pole_exact`).
+    #[arg(long, value_name = "B|B0,B1", num_args = 0..=1, require_equals = true, default_missing_value = "true")]
+    pub(super) pole_exact: Option<String>,
+    /// --sphere --grid: a continuous first derivative across the poles; `=true,false` for
+    /// each pole (SciPy's `pole_continuity`).
+    #[arg(long, value_name = "B|B0,B1", num_args = 0..=1, require_equals = true, default_missing_value = "true")]
+    pub(super) pole_continuity: Option<String>,
+    /// --sphere --grid: a zero derivative at the poles (with --pole-continuity); `=true,false`
+    /// for each pole (SciPy's `pole_flat`).
+    #[arg(long, value_name = "B|B0,B1", num_args = 0..=1, require_equals = true, default_missing_value = "true")]
+    pub(super) pole_flat: Option<String>,
     /// Smoothing penalty of scattered least squares, surfaces and N variables (second
     /// differences of the net along every direction).
     #[arg(long, default_value_t = 0.0)]
@@ -249,6 +283,33 @@ impl FitArgs {
             && self.through.is_empty()
             && self.slope_at.is_empty()
             && self.integral.is_empty())
+    }
+
+    /// The options of curve fits, each with whether it is given, for the fits that refuse them
+    /// (in 3 or more variables, on the sphere).
+    pub(super) fn curve_options(&self) -> [(bool, &'static str); 9] {
+        [
+            (self.smooth.is_some(), "--smooth"),
+            (self.tol.is_some(), "--tolerance"),
+            (self.robust.is_some(), "--robust"),
+            (self.periodic, "--periodic"),
+            (self.function, "--function"),
+            (self.clamp_ends, "--clamp-ends"),
+            (
+                self.d0.is_some() || self.dn.is_some(),
+                "--start-derivative/--end-derivative",
+            ),
+            (self.ctrl.is_some(), "--ctrl"),
+            (self.shape_given(), "shape constraints"),
+        ]
+    }
+
+    /// Whether any pole option of `--sphere --grid` is given.
+    pub(super) fn pole_given(&self) -> bool {
+        self.pole_values.is_some()
+            || self.pole_exact.is_some()
+            || self.pole_continuity.is_some()
+            || self.pole_flat.is_some()
     }
 
     /// The parametrisation of curves and surfaces: `--param`, chord length by default.
@@ -309,6 +370,12 @@ impl FitArgs {
     /// they belong to.
     pub(super) fn check_options_used(&self) -> Result<()> {
         let surface = self.grid.is_some() || self.scattered;
+        if self.pole_given() && !self.sphere {
+            return bad_input(
+                "--pole-values, --pole-exact, --pole-continuity and --pole-flat are the pole \
+                 conditions of a grid on the sphere: add --sphere --grid NUxNV",
+            );
+        }
         if !surface {
             let given: Vec<&str> = [
                 (self.knots_u.is_some(), "--knots-u"),

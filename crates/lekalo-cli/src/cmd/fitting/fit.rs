@@ -38,6 +38,9 @@ fn fit(a: &FitArgs, cx: &Context) -> Result<()> {
         return bad_input("choose one mode: --lsq, --smooth, --s, --tolerance or --robust");
     }
     a.check_options_used()?;
+    if a.sphere {
+        return super::sphere::run(a, cx);
+    }
     if crate::items::is_parquet(&a.points) {
         if a.grid.is_some()
             || a.scattered

@@ -4,6 +4,7 @@
 //! - `fit.rs`: the command, dispatching to the curve modes (here), surfaces and closed curves.
 //! - `surface.rs`: grid and scattered surfaces.
 //! - `tensor.rs`: grid and scattered fits in three or more variables.
+//! - `sphere.rs`: scattered and grid fits on the sphere.
 //! - `periodic.rs`: closed curves and periodic functions.
 //! - `report.rs`: a fitted curve written out with its report.
 
@@ -11,5 +12,6 @@ pub(crate) mod args;
 pub(crate) mod fit;
 mod periodic;
 mod report;
+mod sphere;
 mod surface;
 mod tensor;

@@ -559,7 +559,7 @@ fn finish(
 
 /// [`finish`] with `extra` fields in the report.
 #[allow(clippy::too_many_arguments)]
-fn finish_with(
+pub(super) fn finish_with(
     a: &FitArgs,
     s: &TensorBSpline,
     net: &[usize],
@@ -615,25 +615,12 @@ fn shape_text(net: &[usize]) -> String {
 
 /// The options of curve fits, refused in `N` variables (least squares with given knots only).
 fn refuse_curve_options(a: &FitArgs) -> Result<()> {
-    let given: Vec<&str> = [
-        (a.smooth.is_some(), "--smooth"),
-        (a.s.is_some() && a.grid.is_none() && !a.scattered, "--s"),
-        (a.tol.is_some(), "--tolerance"),
-        (a.robust.is_some(), "--robust"),
-        (a.periodic, "--periodic"),
-        (a.function, "--function"),
-        (a.clamp_ends, "--clamp-ends"),
-        (
-            a.d0.is_some() || a.dn.is_some(),
-            "--start-derivative/--end-derivative",
-        ),
-        (a.ctrl.is_some(), "--ctrl"),
-        (a.shape_given(), "shape constraints"),
-    ]
-    .iter()
-    .filter(|(on, _)| *on)
-    .map(|(_, name)| *name)
-    .collect();
+    let s_of_a_curve = a.s.is_some() && a.grid.is_none() && !a.scattered;
+    let given: Vec<&str> = std::iter::once((s_of_a_curve, "--s"))
+        .chain(a.curve_options())
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| name)
+        .collect();
     if given.is_empty() {
         return Ok(());
     }

@@ -240,9 +240,8 @@ class LSQUnivariateSpline(UnivariateSpline):
         # (validate_input refuses a decreasing x, with s=None, in SciPy's first words)
         x, y, w, bbox, self.ext = self.validate_input(x, y, w, bbox, k, None, ext, check_finite)
         x = np.asarray(x, dtype=np.float64)
-        if x.shape[0] < k + 1:
-            # (SciPy reads x[0] first: an IndexError for no data)
-            raise ValueError("Need more x points.")
+        # the ends not given in bbox are x[0] and x[-1], as SciPy reads them: an IndexError for
+        # no data
         xb = x[0] if bbox[0] is None else float(bbox[0])
         xe = x[-1] if bbox[1] is None else float(bbox[1])
         t = np.asarray(t, dtype=np.float64)
@@ -251,6 +250,12 @@ class LSQUnivariateSpline(UnivariateSpline):
         inner = np.concatenate([[xb], t, [xe]])
         if not (np.all(inner[1:] >= inner[:-1]) and inner[0] < inner[1] and inner[-2] < inner[-1]):
             raise ValueError("Interior knots t must satisfy Schoenberg-Whitney conditions")
+        if x.shape[0] < k + 1:
+            # FITPACK's fpchec (k + 1 <= n - k - 1 <= m), SciPy's ValueError
+            raise ValueError(
+                "The input parameters have been rejected by fpchec: the spline of degree k needs "
+                f"at least k + 1 = {k + 1} data points, got {x.shape[0]}"
+            )
         tt = np.concatenate([[xb] * (k + 1), t, [xe] * (k + 1)])
         # make_lsq_spline's checks that lekalo's fit does not make in SciPy's words (x is sorted:
         # validate_input); finiteness, lengths and Schoenberg-Whitney are lekalo's

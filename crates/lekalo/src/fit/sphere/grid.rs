@@ -24,6 +24,7 @@ use crate::fit::{jump_rows, next_nplus, smooth_weight, Steps, SMOOTHING_RTOL};
 use crate::knots::span_in;
 use crate::numeric::progress::Progress;
 use crate::tensor::rotate_full;
+use crate::{Arg, What};
 
 /// Data on a grid of the sphere, checked.
 #[derive(Debug, Clone, Copy)]
@@ -55,29 +56,33 @@ impl<'a> SphereGrid<'a> {
         };
         if !(u0 > 0.0 && u1 < PI) {
             return Err(invalid(
-                "u",
+                What::of(Arg::Colatitudes, "u"),
                 format!("u should be between (0, pi) (u = {u0} … {u1})"),
             ));
         }
         if !(-PI..PI).contains(&v0) {
             return Err(invalid(
-                "v",
+                What::of(Arg::Longitudes, "v"),
                 format!("v[0] should be between [-pi, pi) (v[0] = {v0})"),
             ));
         }
         if v1 >= v0 + TWO_PI || v1.is_nan() {
             return Err(invalid(
-                "v",
+                What::of(Arg::Longitudes, "v"),
                 format!(
                     "v[-1] should be v[0] + 2pi or less; v[-1] = {v1} reaches v[0] + 2pi, the \
                      same meridian as v[0]: give it once"
                 ),
             ));
         }
-        for (what, x) in [("u", u), ("v", v)] {
-            if let Some(i) = x.windows(2).position(|p| p[1] <= p[0]) {
+        for (key, what, x) in [(Arg::Colatitudes, "u", u), (Arg::Longitudes, "v", v)] {
+            // not greater, or not comparable: a NaN between the ends is refused too
+            if let Some(i) = x
+                .windows(2)
+                .position(|p| p[1].partial_cmp(&p[0]) != Some(std::cmp::Ordering::Greater))
+            {
                 return Err(invalid(
-                    what,
+                    What::of(key, what),
                     format!(
                         "{what} must be strictly increasing ({what}[{}] = {})",
                         i + 1,
@@ -88,7 +93,10 @@ impl<'a> SphereGrid<'a> {
         }
         if v.len() < 4 {
             return Err(Error::TooFew {
-                what: "longitudes v (a periodic cubic needs four)".into(),
+                what: What::of(
+                    Arg::Longitudes,
+                    "longitudes v (a periodic cubic needs four)",
+                ),
                 min: 4,
                 got: v.len(),
             });
@@ -507,17 +515,20 @@ pub fn sphere_grid_smoothing(
     progress: &Progress<'_>,
 ) -> Result<SphereFit> {
     if !(s >= 0.0 && s.is_finite()) {
-        return Err(invalid("s", format!("s should be positive (s = {s})")));
+        return Err(invalid(Arg::S, format!("s should be positive (s = {s})")));
     }
     for pole in &poles {
         if pole.flat && !pole.continuity {
             return Err(invalid(
-                "pole_flat",
+                Arg::PoleFlat,
                 "if pole_continuity is False, so must be pole_flat".into(),
             ));
         }
         if pole.value.is_some_and(|v| !v.is_finite()) {
-            return Err(invalid("pole_values", "a pole value must be finite".into()));
+            return Err(invalid(
+                Arg::PoleValues,
+                "a pole value must be finite".into(),
+            ));
         }
     }
     let steps = Steps::new(progress, "smoothing on a grid of the sphere");

@@ -17,6 +17,7 @@ use crate::fit::{jump_rows, smooth_weight, Steps, SMOOTHING_RTOL};
 use crate::knots::span_in;
 use crate::numeric::progress::Progress;
 use crate::tensor::{rotate_full, solve_triangle, RankDeficiency};
+use crate::{Arg, What};
 
 /// Scattered data on the sphere, checked: colatitudes `theta` in `[0, π]`, longitudes `phi` in
 /// `[0, 2π]`, values `r`, weights `w ≥ 0` multiplying the residual (FITPACK's; 1 when `None`).
@@ -28,7 +29,7 @@ pub struct SphereData<'a> {
     w: Option<&'a [f64]>,
 }
 
-pub(super) fn invalid(what: &'static str, reason: String) -> Error {
+pub(super) fn invalid(what: impl Into<What>, reason: String) -> Error {
     Error::InvalidArgument {
         what: what.into(),
         reason,
@@ -53,7 +54,7 @@ impl<'a> SphereData<'a> {
         if let Some(w) = w {
             if let Some(i) = w.iter().position(|v| !(*v >= 0.0 && v.is_finite())) {
                 return Err(invalid(
-                    "w",
+                    What::of(Arg::DataWeights, "w"),
                     format!("w should be positive (w[{i}] = {})", w[i]),
                 ));
             }
@@ -78,11 +79,12 @@ impl<'a> SphereData<'a> {
             ("r (one per theta)", r.len()),
         ]
         .into_iter()
-        .chain(w.map(|w| ("w (one per theta)", w.len())))
+        .map(|(what, len)| (What::text(what), len))
+        .chain(w.map(|w| (What::of(Arg::DataWeights, "w (one per theta)"), w.len())))
         {
             if len != theta.len() {
                 return Err(Error::LengthMismatch {
-                    what: what.into(),
+                    what,
                     expected: theta.len(),
                     got: len,
                 });
@@ -124,20 +126,14 @@ pub(super) fn check_eps(eps: f64) -> Result<()> {
         Ok(())
     } else {
         Err(invalid(
-            "eps",
+            What::of(Arg::Eps, "eps"),
             format!("eps should be between (0, 1) (eps = {eps}); FITPACK's default is 1e-16"),
         ))
     }
 }
 
 /// Interior knots strictly increasing inside `(lo, hi)`, with SciPy's message `words`.
-pub(super) fn check_interior(
-    what: &'static str,
-    t: &[f64],
-    lo: f64,
-    hi: f64,
-    words: &str,
-) -> Result<()> {
+pub(super) fn check_interior(what: What, t: &[f64], lo: f64, hi: f64, words: &str) -> Result<()> {
     if let Some(i) = t.iter().position(|v| !(*v > lo && *v < hi)) {
         return Err(invalid(what, format!("{words} ({what}[{i}] = {})", t[i])));
     }
@@ -440,9 +436,15 @@ pub fn sphere_least_squares(
     phi_knots: &[f64],
     eps: f64,
 ) -> Result<SphereFit> {
-    check_interior("tt", theta_knots, 0.0, PI, "tt should be between (0, pi)")?;
     check_interior(
-        "tp",
+        What::of(Arg::ColatitudeKnots, "tt"),
+        theta_knots,
+        0.0,
+        PI,
+        "tt should be between (0, pi)",
+    )?;
+    check_interior(
+        What::of(Arg::LongitudeKnots, "tp"),
         phi_knots,
         0.0,
         TWO_PI,
@@ -573,7 +575,7 @@ pub fn sphere_smoothing(
     progress: &Progress<'_>,
 ) -> Result<SphereFit> {
     if !(s >= 0.0 && s.is_finite()) {
-        return Err(invalid("s", format!("s should be positive (s = {s})")));
+        return Err(invalid(Arg::S, format!("s should be positive (s = {s})")));
     }
     check_eps(eps)?;
     let steps = Steps::new(progress, "smoothing on the sphere");
