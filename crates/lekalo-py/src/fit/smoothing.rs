@@ -186,19 +186,22 @@ pub(crate) fn make_splrep<'py>(
     Ok(PyBSplineCurve::wrap(f.curve))
 }
 
+/// The smoothing condition's own arguments: `k`, `s`, `t`, `domain`, `knot_rounds`.
+type ConditionArgs<'a, 'py> = (
+    usize,
+    f64,
+    Option<&'a Bound<'py, PyAny>>,
+    Option<(f64, f64)>,
+    Option<&'a str>,
+);
+
 /// The smoothing condition with or without shape constraints: [`condition_fit`] when there are
 /// none, else the constrained cubic smoothing spline whose residual is `s` (knots at the data:
 /// `t`, `domain`, `knot_rounds` and `k ≠ 3` refused by name).
 fn shaped_condition_fit(
     py: Python<'_>,
     data: &Data<'_>,
-    (k, s, t, domain, knot_rounds): (
-        usize,
-        f64,
-        Option<&Bound<'_, PyAny>>,
-        Option<(f64, f64)>,
-        Option<&str>,
-    ),
+    (k, s, t, domain, knot_rounds): ConditionArgs<'_, '_>,
     shape: &ShapeConstraints,
 ) -> PyResult<CurveFit> {
     let rounds = self::knot_rounds(knot_rounds)?;

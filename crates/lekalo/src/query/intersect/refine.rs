@@ -332,6 +332,10 @@ fn solve3(j: &[[f64; 3]; 3], f: &[f64; 3]) -> Option<[f64; 3]> {
     ])
 }
 
+/// A refined contact of a curve and a surface: `(t, (u, v), the curve's point C(t), the gap
+/// |C(t) − S(u, v)|)` ([`QueryCurve::refine_surface_contact`]).
+pub(super) type SurfaceContact = (f64, (f64, f64), Vec<f64>, f64);
+
 impl QueryCurve {
     /// The point of a tangential contact (or closest approach) of this 3-D curve and `surface`
     /// near `(t, uv)`, to full precision (`docs/theory/queries.md#intersections`): Newton's
@@ -351,7 +355,7 @@ impl QueryCurve {
         surface: &QuerySurface,
         t: f64,
         uv: (f64, f64),
-    ) -> Option<(f64, (f64, f64), Vec<f64>, f64)> {
+    ) -> Option<SurfaceContact> {
         if self.dim != 3 {
             return None;
         }
