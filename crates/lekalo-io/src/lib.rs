@@ -46,7 +46,9 @@ mod tables;
 
 // each subject's files keep their short paths inside the crate (`crate::object`, `crate::svg`)
 use cad::{iges, step, step_read};
-use envelope::{analysis, face_json, flat, json_write, object, object_ext, shape, tensor_json};
+use envelope::{
+    analysis, face_json, flat, intersections, json_write, object, object_ext, shape, tensor_json,
+};
 use mesh::{mesh_files, obj};
 use plot::{figure_check, layout, palette, png, surface_plot, svg, wireframe};
 use points::{npy, npz, points_in, text_points};
@@ -63,6 +65,9 @@ pub use face_json::{face_to_json_line, read_face};
 pub use figure_check::check_svg;
 pub use iges::{
     read_iges, read_iges_faces, read_iges_limited, read_iges_with_progress, IgesRead, IgesWriter,
+};
+pub use intersections::{
+    curve_intersection_json, plane_intersection_json, surface_intersection_json,
 };
 pub use json_write::write_blend_nurbs_json;
 pub use layout::{text_extent, text_width};

@@ -6,7 +6,6 @@
 
 use axum::body::Bytes;
 use axum::response::Response;
-use lekalo::query::{Contact, CurveIntersection};
 use lekalo::QueryCurve;
 use lekalo_io::Object;
 use serde::{Deserialize, Serialize};
@@ -150,58 +149,11 @@ struct IntersectRequest {
     tolerance: f64,
 }
 
-/// One answer as `lekalo intersect --json` writes it: the kind, the parameters on both curves
-/// and the point (with the order of a tangent contact, the gap of a near miss), or an overlap's
-/// intervals.
-#[derive(Debug, Serialize)]
-#[serde(untagged)]
-enum Hit {
-    Point {
-        kind: &'static str,
-        t_a: f64,
-        t_b: f64,
-        point: Vec<f64>,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        order: Option<u32>,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        gap: Option<f64>,
-    },
-    Overlap {
-        kind: &'static str,
-        a: [f64; 2],
-        b: [f64; 2],
-    },
-}
-
-impl From<&CurveIntersection> for Hit {
-    fn from(h: &CurveIntersection) -> Self {
-        let kind = h.contact().name();
-        match h {
-            CurveIntersection::Point {
-                t_a,
-                t_b,
-                point,
-                contact,
-            } => Hit::Point {
-                kind,
-                t_a: *t_a,
-                t_b: *t_b,
-                point: point.clone(),
-                order: contact.order(),
-                gap: matches!(contact, Contact::NearMiss { .. }).then(|| contact.gap()),
-            },
-            CurveIntersection::Overlap { a, b } => Hit::Overlap {
-                kind,
-                a: [a.0, a.1],
-                b: [b.0, b.1],
-            },
-        }
-    }
-}
-
 #[derive(Debug, Serialize)]
 struct Intersections {
-    intersections: Vec<Hit>,
+    /// One answer each, as `lekalo intersect --json` writes it
+    /// ([`lekalo_io::curve_intersection_json`]).
+    intersections: Vec<Value>,
 }
 
 /// `POST /api/intersect`: every crossing, tangent contact, contact at an end, near miss and
@@ -222,7 +174,10 @@ pub(crate) fn intersect(job: &Job<'_>, body: &Bytes) -> ApiResult<Response> {
     let size = SMALL + found.len() * (qa.dim() + 6) * NUMBER_BYTES;
     Ok(answer(
         &Intersections {
-            intersections: found.iter().map(Hit::from).collect(),
+            intersections: found
+                .iter()
+                .map(lekalo_io::curve_intersection_json)
+                .collect(),
         },
         size,
     ))

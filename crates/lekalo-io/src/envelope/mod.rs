@@ -9,11 +9,13 @@
 //! - `tensor_json.rs`: tensor splines in N parameters;
 //! - `json_write.rs`: streaming writer of large curves;
 //! - `flat.rs`: control points as rows or flat `{dim, data}`;
+//! - `intersections.rs`: the answers of intersections, each with its kind of contact;
 //! - `analysis.rs`: names older callers used for the library's curve analysis.
 
 pub(crate) mod analysis;
 pub(crate) mod face_json;
 pub(crate) mod flat;
+pub(crate) mod intersections;
 pub(crate) mod json_write;
 pub(crate) mod object;
 pub(crate) mod object_ext;

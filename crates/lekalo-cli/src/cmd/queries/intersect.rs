@@ -6,9 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use lekalo::query::{
-    Contact, CurveIntersection, IntersectionBranch, PlaneIntersection, SurfaceIntersection,
-};
+use lekalo::query::IntersectionBranch;
 use lekalo_io::{Shape, StepWriter};
 use serde_json::{json, Map, Value};
 
@@ -102,13 +100,13 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
         qa.intersect_plane(&nums[..d], &nums[d..])
             .map_err(bad)?
             .iter()
-            .map(plane_json)
+            .map(lekalo_io::plane_intersection_json)
             .collect()
     } else if a.self_ {
         qa.self_intersections(tolerance)
             .map_err(bad)?
             .iter()
-            .map(curves_json)
+            .map(lekalo_io::curve_intersection_json)
             .collect()
     } else {
         let Some(second) = &a.second else {
@@ -127,7 +125,7 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
                         ))
                     })?
                     .iter()
-                    .map(surface_json)
+                    .map(lekalo_io::surface_intersection_json)
                     .collect()
             }
             other => {
@@ -140,7 +138,7 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
                 qa.intersect(&qb, tolerance)
                     .map_err(bad)?
                     .iter()
-                    .map(curves_json)
+                    .map(lekalo_io::curve_intersection_json)
                     .collect()
             }
         }
@@ -154,65 +152,6 @@ pub(crate) fn run(a: &IntersectArgs, cx: &Context) -> Result<()> {
         hits.iter().map(csv_row).collect()
     };
     emit(a.output.as_deref(), text.as_bytes(), &inputs, cx)
-}
-
-/// The JSON object of a point answer: its kind, the given parameter fields and the point, then
-/// the order of a tangent contact or the gap of a near miss.
-fn point_json(contact: Contact, params: &[(&str, f64)], point: &[f64]) -> Value {
-    let mut m = Map::new();
-    m.insert("kind".into(), json!(contact.name()));
-    for (k, t) in params {
-        m.insert((*k).into(), json!(t));
-    }
-    m.insert("point".into(), json!(point));
-    if let Some(order) = contact.order() {
-        m.insert("order".into(), json!(order));
-    }
-    if let Contact::NearMiss { gap } = contact {
-        m.insert("gap".into(), json!(gap));
-    }
-    Value::Object(m)
-}
-
-fn curves_json(h: &CurveIntersection) -> Value {
-    match h {
-        CurveIntersection::Point {
-            t_a,
-            t_b,
-            point,
-            contact,
-        } => point_json(*contact, &[("t_a", *t_a), ("t_b", *t_b)], point),
-        CurveIntersection::Overlap { a, b } => {
-            json!({"kind": h.contact().name(), "a": [a.0, a.1], "b": [b.0, b.1]})
-        }
-    }
-}
-
-fn plane_json(h: &PlaneIntersection) -> Value {
-    match h {
-        PlaneIntersection::Point { t, point, contact } => point_json(*contact, &[("t", *t)], point),
-        PlaneIntersection::Overlap { t } => json!({"kind": h.contact().name(), "t": [t.0, t.1]}),
-    }
-}
-
-fn surface_json(h: &SurfaceIntersection) -> Value {
-    match h {
-        SurfaceIntersection::Point {
-            t,
-            uv,
-            point,
-            contact,
-        } => {
-            let mut v = point_json(*contact, &[("t", *t)], point);
-            v["uv"] = json!([uv.0, uv.1]);
-            v
-        }
-        SurfaceIntersection::Overlap { t, uv } => json!({
-            "kind": h.contact().name(),
-            "t": [t.0, t.1],
-            "uv": [[uv.0 .0, uv.0 .1], [uv.1 .0, uv.1 .1]],
-        }),
-    }
 }
 
 /// The CSV row of an answer's JSON object: the kind, then `t_a,t_b` (a plane: `t,`; a surface:
