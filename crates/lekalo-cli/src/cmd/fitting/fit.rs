@@ -8,7 +8,7 @@ use lekalo::fit::{
     fit_tolerance_with_progress, least_squares_with_progress, place_knots, robust_least_squares,
     smoothing_condition_with_rounds, smoothing_on_knots_with_progress,
     smoothing_spline_with_progress, CurveFit, Deviation, EndConstraints, FitData, Lambda,
-    RobustLoss, Shape, ShapeConstraints, ToleranceOptions,
+    RobustLoss, ToleranceOptions,
 };
 use lekalo::{parametrize, KnotVector, Points};
 use lekalo_io::Object;
@@ -16,6 +16,7 @@ use serde_json::{json, Value};
 
 use super::args::{clamped, span, with_ends, FitArgs, Robust, LARGE};
 use super::report::finish;
+use super::shapes::shape_constraints;
 use super::{periodic::run_periodic, surface::run_surface};
 use crate::cancel::with_progress;
 use crate::context::Context;
@@ -330,85 +331,6 @@ fn curve_knots(a: &FitArgs, params: &[f64]) -> Result<KnotVector> {
         Some(ends) => with_ends(&placed, p, ends),
         None => Ok(placed),
     }
-}
-
-/// The shape constraints of the options, in the order of the options' kinds.
-pub(super) fn shape_constraints(a: &FitArgs) -> Result<ShapeConstraints> {
-    let mut c = ShapeConstraints::new();
-    let interval = |text: &str, option: &str| -> Result<Option<(f64, f64)>> {
-        if text.is_empty() {
-            return Ok(None);
-        }
-        let ab = numbers(&text.replacen(':', ",", 1), option)?;
-        match ab[..] {
-            [a, b] => Ok(Some((a, b))),
-            // one point: the shape at X only
-            [x] => Ok(Some((x, x))),
-            _ => bad_input(format!(
-                "{option}: \"{text}\" is not an interval A:B or a point X"
-            )),
-        }
-    };
-    let kinds: [(&[String], Shape, &str); 4] = [
-        (&a.increasing, Shape::Increasing, "--increasing"),
-        (&a.decreasing, Shape::Decreasing, "--decreasing"),
-        (&a.convex, Shape::Convex, "--convex"),
-        (&a.concave, Shape::Concave, "--concave"),
-    ];
-    for (list, shape, option) in kinds {
-        for text in list {
-            c = match interval(text, option)? {
-                None => c.with(shape),
-                Some((lo, hi)) => c.with_on(shape, lo, hi),
-            };
-        }
-    }
-    for (list, option) in [(&a.min, "--min"), (&a.max, "--max")] {
-        for text in list {
-            let (v, on) = text.split_once('@').unwrap_or((text, ""));
-            let v = match numbers(v, option)?[..] {
-                [v] => v,
-                _ => return bad_input(format!("{option}: \"{text}\" is not V, V@A:B or V@X")),
-            };
-            let shape = if option == "--min" {
-                Shape::AtLeast(v)
-            } else {
-                Shape::AtMost(v)
-            };
-            c = match interval(on, option)? {
-                None => c.with(shape),
-                Some((lo, hi)) => c.with_on(shape, lo, hi),
-            };
-        }
-    }
-    for (list, order, option) in [(&a.through, 0, "--through"), (&a.slope_at, 1, "--slope-at")] {
-        for text in list {
-            let parsed = text
-                .split_once('=')
-                .map(|(x, v)| (numbers(x, option), numbers(v, option)));
-            match parsed {
-                Some((Ok(x), Ok(v))) if x.len() == 1 && v.len() == 1 => {
-                    c = c.with_point(x[0], order, v[0]);
-                }
-                _ => return bad_input(format!("{option}: \"{text}\" is not X=V")),
-            }
-        }
-    }
-    for text in &a.integral {
-        let parsed = text.split_once('=').map(|(ab, v)| {
-            (
-                numbers(&ab.replacen(':', ",", 1), "--integral"),
-                numbers(v, "--integral"),
-            )
-        });
-        match parsed {
-            Some((Ok(ab), Ok(v))) if ab.len() == 2 && v.len() == 1 => {
-                c = c.with_integral(ab[0], ab[1], v[0]);
-            }
-            _ => return bad_input(format!("--integral: \"{text}\" is not A:B=V")),
-        }
-    }
-    Ok(c)
 }
 
 fn constraints(a: &FitArgs) -> Result<EndConstraints> {

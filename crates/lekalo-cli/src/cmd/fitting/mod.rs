@@ -6,12 +6,14 @@
 //! - `tensor.rs`: grid and scattered fits in three or more variables.
 //! - `sphere.rs`: scattered and grid fits on the sphere.
 //! - `periodic.rs`: closed curves and periodic functions.
+//! - `shapes.rs`: the shape constraints the options give (curves and periodic functions).
 //! - `report.rs`: a fitted curve written out with its report.
 
 pub(crate) mod args;
 pub(crate) mod fit;
 mod periodic;
 mod report;
+mod shapes;
 mod sphere;
 mod surface;
 mod tensor;

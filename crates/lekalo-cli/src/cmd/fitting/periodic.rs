@@ -12,8 +12,8 @@ use lekalo_io::Object;
 use serde_json::json;
 
 use super::args::FitArgs;
-use super::fit::shape_constraints;
 use super::report::finish;
+use super::shapes::shape_constraints;
 use crate::cancel::with_progress;
 use crate::context::Context;
 use crate::exit::bad_input;
