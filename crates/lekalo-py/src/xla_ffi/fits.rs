@@ -27,8 +27,8 @@ use lekalo::derivatives::{LeastSquaresFit, LeastSquaresMap, SmoothingFit, Smooth
 
 use super::abi::{self, Call, In};
 use super::operands::{
-    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
-    Batch,
+    batch_sizes, cotangents, count_attr, count_error, element, element_mut, flags, last_axis,
+    single, tangents, Batch,
 };
 use super::Handler;
 
@@ -177,15 +177,7 @@ fn layout<'a>(
     res: &[In<'a>],
     names: &[(&str, usize)],
 ) -> Result<(Batch<'a>, Vec<usize>, usize), String> {
-    if res.len() != names.len() {
-        return Err(count_error("arguments", names.len(), res.len()));
-    }
-    let batch = Batch::of(names[0].0, res[0].dims, names[0].1)?;
-    let sizes = res
-        .iter()
-        .zip(names)
-        .map(|(a, &(name, core))| batch.size(name, a.dims, core))
-        .collect::<Result<Vec<_>, _>>()?;
+    let (batch, sizes) = batch_sizes(res, names)?;
     let data = &res[res.len() - 1];
     Ok((
         batch,

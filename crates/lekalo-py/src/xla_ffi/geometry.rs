@@ -20,7 +20,7 @@ use lekalo::{BSplineCurve, Points};
 
 use super::abi::{self, In};
 use super::operands::{
-    cotangents, count_attr, count_error, element, element_mut, flags, last_axis, single, tangents,
+    batch_sizes, cotangents, count_attr, element, element_mut, flags, last_axis, single, tangents,
     Batch,
 };
 use super::Handler;
@@ -35,15 +35,7 @@ fn layout<'a>(
     res: &[In<'a>],
     names: &[(&str, usize)],
 ) -> Result<(Batch<'a>, Vec<usize>, usize), String> {
-    if res.len() != names.len() {
-        return Err(count_error("arguments", names.len(), res.len()));
-    }
-    let batch = Batch::of(names[0].0, res[0].dims, names[0].1)?;
-    let sizes = res
-        .iter()
-        .zip(names)
-        .map(|(a, &(name, core))| batch.size(name, a.dims, core))
-        .collect::<Result<Vec<_>, _>>()?;
+    let (batch, sizes) = batch_sizes(res, names)?;
     Ok((batch, sizes, last_axis(names[1].0, res[1].dims)?))
 }
 

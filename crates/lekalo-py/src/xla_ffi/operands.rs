@@ -88,6 +88,24 @@ pub(super) fn count_error(what: &str, want: usize, got: usize) -> String {
     format!("expected {want} {what}, got {got} (lekalo.jax and its native module disagree)")
 }
 
+/// The batch of a target's residuals and each one's element size (`names`: each residual's
+/// name and core axes, in order), after checking their count.
+pub(super) fn batch_sizes<'a>(
+    res: &[In<'a>],
+    names: &[(&str, usize)],
+) -> Result<(Batch<'a>, Vec<usize>), String> {
+    if res.len() != names.len() {
+        return Err(count_error("arguments", names.len(), res.len()));
+    }
+    let batch = Batch::of(names[0].0, res[0].dims, names[0].1)?;
+    let sizes = res
+        .iter()
+        .zip(names)
+        .map(|(a, &(name, core))| batch.size(name, a.dims, core))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((batch, sizes))
+}
+
 /// The flags `with_<kind>` of a derivative target, `names` the attribute names (false when
 /// absent: the values target has none).
 pub(super) fn flags<const K: usize>(call: &Call<'_>, names: [&str; K]) -> [bool; K] {
