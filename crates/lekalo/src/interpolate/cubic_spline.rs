@@ -7,7 +7,9 @@
 
 use crate::error::{check_finite, Error, Result, MAX_SCALARS};
 use crate::knots::check_breakpoints;
-use crate::numeric::tridiagonal::{solve_tridiagonal, solve_unpivoted, Tridiagonal};
+use crate::numeric::tridiagonal::{
+    solve_tridiagonal, solve_unpivoted, Bands, StoredBands, Tridiagonal,
+};
 use crate::pp::cubic_hermite_power_into;
 
 /// The condition at one end of a C² cubic spline (SciPy's `bc_type` entries).
@@ -75,6 +77,19 @@ pub fn cubic_spline_slopes_into(
     end: CubicSplineEnd<'_>,
     slopes: &mut [f64],
 ) -> Result<()> {
+    slopes_with_scratch(x, y, dim, [start, end], slopes, None)
+}
+
+/// [`cubic_spline_slopes_into`] with `scratch` (at least `n` numbers, else allocated) for the
+/// solve's pivots.
+fn slopes_with_scratch(
+    x: &[f64],
+    y: &[f64],
+    dim: usize,
+    [start, end]: [CubicSplineEnd<'_>; 2],
+    slopes: &mut [f64],
+    scratch: Option<&mut [f64]>,
+) -> Result<()> {
     check_data(x, y, dim, [start, end], slopes.len())?;
     let n = x.len();
     let periodic = match (start, end) {
@@ -117,83 +132,172 @@ pub fn cubic_spline_slopes_into(
     if periodic {
         return periodic_slopes(x, y, dim, slopes);
     }
-    // the steps and secants once (SciPy's `dx` and `slope`), then the rows of SciPy's banded
-    // matrix: row i is dl[i−1]·s[i−1] + d[i]·s[i] + du[i]·s[i+1]
-    let (hs, secants) = steps_and_secants(x, y, dim);
-    let h = |i: usize| hs[i];
-    let secant = |i: usize, j: usize| secants[i * dim + j];
-    let mut band = vec![0.0; 3 * n - 2];
-    let (d, rest) = band.split_at_mut(n);
-    let (dl, du) = rest.split_at_mut(n - 1);
-    for i in 1..n - 1 {
-        let (a, b) = (hs[i - 1], hs[i]);
-        d[i] = 2.0 * (a + b);
-        du[i] = a;
-        dl[i - 1] = b;
+    let rows = SplineRows::new(x, start, end);
+    rows.right_hand_side(y, dim, start, end, slopes);
+    let mut own = Vec::new();
+    let recip = match scratch {
+        Some(s) if s.len() >= n => &mut s[..n],
+        _ => {
+            own.resize(n, 0.0);
+            &mut own[..]
+        }
+    };
+    if solve_unpivoted(&rows, slopes, dim, recip) {
+        return Ok(());
     }
-    if dim == 1 {
-        for (i, s) in slopes[1..n - 1].iter_mut().enumerate() {
-            *s = 3.0 * (hs[i + 1] * secants[i] + hs[i] * secants[i + 1]);
+    // a pivot that is not positive (not on strictly increasing breakpoints): the stored bands,
+    // eliminated with LAPACK's row swaps
+    let (mut dl, mut d, mut du) = rows.stored();
+    solve_tridiagonal(
+        Tridiagonal {
+            dl: &mut dl,
+            d: &mut d,
+            du: &mut du,
+        },
+        slopes,
+        dim,
+    )
+}
+
+/// SciPy's `CubicSpline` matrix on `n ≥ 3` breakpoints with ends that are not periodic, its
+/// entries formed from the breakpoints where the solver reads them (three bands never written
+/// out: the solve's only scratch is its `n` pivots): row `i` of the interior is
+/// `(h_i, 2(h_{i−1} + h_i), h_{i−1})` with `h_i = x_{i+1} − x_i`, SciPy's operations in its
+/// order; the first and last rows are the end conditions' ([`cubic_spline_slopes_into`]).
+struct SplineRows<'a> {
+    x: &'a [f64],
+    /// `d[0]`, `du[0]`.
+    first: (f64, f64),
+    /// `dl[n − 2]`, `d[n − 1]`.
+    last: (f64, f64),
+}
+
+impl<'a> SplineRows<'a> {
+    fn new(x: &'a [f64], start: CubicSplineEnd<'_>, end: CubicSplineEnd<'_>) -> Self {
+        let n = x.len();
+        let h = |i: usize| x[i + 1] - x[i];
+        let first = match start {
+            CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => (h(1), x[2] - x[0]),
+            CubicSplineEnd::FirstDerivative(_) => (1.0, 0.0),
+            CubicSplineEnd::SecondDerivative(_) => (2.0 * h(0), h(0)),
+        };
+        let last = match end {
+            CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => (x[n - 1] - x[n - 3], h(n - 3)),
+            CubicSplineEnd::FirstDerivative(_) => (0.0, 1.0),
+            CubicSplineEnd::SecondDerivative(_) => (h(n - 2), 2.0 * h(n - 2)),
+        };
+        SplineRows { x, first, last }
+    }
+
+    /// SciPy's right-hand side into `b` (`n` rows of `dim`): `3(h_i δ_{i−1} + h_{i−1} δ_i)`
+    /// inside, with the secants `δ_i = (y_{i+1} − y_i)/h_i` formed where they are used, and the
+    /// end conditions' rows.
+    fn right_hand_side(
+        &self,
+        y: &[f64],
+        dim: usize,
+        start: CubicSplineEnd<'_>,
+        end: CubicSplineEnd<'_>,
+        b: &mut [f64],
+    ) {
+        let x = self.x;
+        let n = x.len();
+        let h = |i: usize| x[i + 1] - x[i];
+        let secant = |i: usize, j: usize| (y[(i + 1) * dim + j] - y[i * dim + j]) / h(i);
+        if dim == 1 {
+            let inner = b[1..n - 1].iter_mut().zip(x.windows(3)).zip(y.windows(3));
+            for ((b, xw), yw) in inner {
+                let (h0, h1) = (xw[1] - xw[0], xw[2] - xw[1]);
+                *b = 3.0 * (h1 * ((yw[1] - yw[0]) / h0) + h0 * ((yw[2] - yw[1]) / h1));
+            }
+        } else {
+            for i in 1..n - 1 {
+                for j in 0..dim {
+                    b[i * dim + j] = 3.0 * (h(i) * secant(i - 1, j) + h(i - 1) * secant(i, j));
+                }
+            }
         }
-    } else {
-        for i in 1..n - 1 {
-            for j in 0..dim {
-                slopes[i * dim + j] = 3.0 * (h(i) * secant(i - 1, j) + h(i - 1) * secant(i, j));
+        let (h0, h1) = (h(0), h(1));
+        match start {
+            CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => {
+                let w = x[2] - x[0];
+                for j in 0..dim {
+                    b[j] = ((h0 + 2.0 * w) * h1 * secant(0, j) + h0 * h0 * secant(1, j)) / w;
+                }
+            }
+            CubicSplineEnd::FirstDerivative(v) => b[..dim].copy_from_slice(v),
+            CubicSplineEnd::SecondDerivative(v) => {
+                let h0sq = h0 * h0;
+                for j in 0..dim {
+                    b[j] = -0.5 * v[j] * h0sq + 3.0 * (y[dim + j] - y[j]);
+                }
+            }
+        }
+        let (hl, hm) = (h(n - 2), h(n - 3));
+        let last = (n - 1) * dim;
+        match end {
+            CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => {
+                let w = x[n - 1] - x[n - 3];
+                for j in 0..dim {
+                    b[last + j] =
+                        (hl * hl * secant(n - 3, j) + (2.0 * w + hl) * hm * secant(n - 2, j)) / w;
+                }
+            }
+            CubicSplineEnd::FirstDerivative(v) => b[last..].copy_from_slice(v),
+            CubicSplineEnd::SecondDerivative(v) => {
+                let hlsq = hl * hl;
+                for j in 0..dim {
+                    b[last + j] = 0.5 * v[j] * hlsq + 3.0 * (y[last + j] - y[last - dim + j]);
+                }
             }
         }
     }
-    let (h0, h1) = (h(0), h(1));
-    match start {
-        // (a periodic end was solved above)
-        CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => {
-            let w = x[2] - x[0];
-            d[0] = h1;
-            du[0] = w;
-            for j in 0..dim {
-                slopes[j] = ((h0 + 2.0 * w) * h1 * secant(0, j) + h0 * h0 * secant(1, j)) / w;
-            }
-        }
-        CubicSplineEnd::FirstDerivative(v) => {
-            d[0] = 1.0;
-            du[0] = 0.0;
-            slopes[..dim].copy_from_slice(v);
-        }
-        CubicSplineEnd::SecondDerivative(v) => {
-            d[0] = 2.0 * h0;
-            du[0] = h0;
-            let h0sq = h0 * h0;
-            for j in 0..dim {
-                slopes[j] = -0.5 * v[j] * h0sq + 3.0 * (y[dim + j] - y[j]);
-            }
+
+    /// The three bands written out (`dl`, `d`, `du`), for the elimination with row swaps.
+    fn stored(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let n = self.len();
+        (
+            (0..n - 1).map(|i| self.lower(i)).collect(),
+            (0..n).map(|i| self.diag(i)).collect(),
+            (0..n - 1).map(|i| self.upper(i)).collect(),
+        )
+    }
+}
+
+impl Bands for SplineRows<'_> {
+    fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    #[inline]
+    fn diag(&self, i: usize) -> f64 {
+        let x = self.x;
+        if i == 0 {
+            self.first.0
+        } else if i + 1 == x.len() {
+            self.last.1
+        } else {
+            2.0 * ((x[i] - x[i - 1]) + (x[i + 1] - x[i]))
         }
     }
-    let (hl, hm) = (h(n - 2), h(n - 3));
-    let last = (n - 1) * dim;
-    match end {
-        CubicSplineEnd::NotAKnot | CubicSplineEnd::Periodic => {
-            let w = x[n - 1] - x[n - 3];
-            d[n - 1] = hm;
-            dl[n - 2] = w;
-            for j in 0..dim {
-                slopes[last + j] =
-                    (hl * hl * secant(n - 3, j) + (2.0 * w + hl) * hm * secant(n - 2, j)) / w;
-            }
-        }
-        CubicSplineEnd::FirstDerivative(v) => {
-            d[n - 1] = 1.0;
-            dl[n - 2] = 0.0;
-            slopes[last..].copy_from_slice(v);
-        }
-        CubicSplineEnd::SecondDerivative(v) => {
-            d[n - 1] = 2.0 * hl;
-            dl[n - 2] = hl;
-            let hlsq = hl * hl;
-            for j in 0..dim {
-                slopes[last + j] = 0.5 * v[j] * hlsq + 3.0 * (y[last + j] - y[last - dim + j]);
-            }
+
+    #[inline]
+    fn lower(&self, i: usize) -> f64 {
+        if i + 2 == self.x.len() {
+            self.last.0
+        } else {
+            self.x[i + 2] - self.x[i + 1]
         }
     }
-    solve(Tridiagonal { dl, d, du }, slopes, dim)
+
+    #[inline]
+    fn upper(&self, i: usize) -> f64 {
+        if i == 0 {
+            self.first.1
+        } else {
+            self.x[i] - self.x[i - 1]
+        }
+    }
 }
 
 /// SciPy's `dx` (`n − 1` steps) and `slope` (`n − 1` rows of `dim` secants `(y_{i+1} − y_i)/h_i`).
@@ -217,7 +321,12 @@ fn steps_and_secants(x: &[f64], y: &[f64], dim: usize) -> (Vec<f64>, Vec<f64>) {
 /// with LAPACK `dgtsv`'s partial pivoting ([`solve_tridiagonal`]).
 fn solve(m: Tridiagonal<'_>, b: &mut [f64], ncols: usize) -> Result<()> {
     let mut recip = vec![0.0; m.d.len()];
-    if solve_unpivoted(m.dl, m.d, m.du, b, ncols, &mut recip) {
+    let stored = StoredBands {
+        dl: m.dl,
+        d: m.d,
+        du: m.du,
+    };
+    if solve_unpivoted(&stored, b, ncols, &mut recip) {
         return Ok(());
     }
     solve_tridiagonal(m, b, ncols)
@@ -261,7 +370,8 @@ pub fn cubic_spline_power_into(
         });
     };
     let mut slopes = vec![0.0; rows];
-    cubic_spline_slopes_into(x, y, dim, start, end, &mut slopes)?;
+    // `c` is written over by the power form: it holds the solve's pivots until then
+    slopes_with_scratch(x, y, dim, [start, end], &mut slopes, Some(c))?;
     cubic_hermite_power_into(x, y, &slopes, dim, c)
 }
 

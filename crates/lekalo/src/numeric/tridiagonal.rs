@@ -24,6 +24,48 @@ pub(crate) struct Tridiagonal<'a> {
     pub(crate) du: &'a mut [f64],
 }
 
+/// A tridiagonal matrix read entry by entry, for [`solve_unpivoted`]: stored bands
+/// ([`StoredBands`]) or rows formed where they are read (SciPy's `CubicSpline` system from its
+/// breakpoints, so that its three bands are never written out).
+pub(crate) trait Bands {
+    /// The order `n ≥ 1`.
+    fn len(&self) -> usize;
+    /// `d[i]`, `i < n`.
+    fn diag(&self, i: usize) -> f64;
+    /// `dl[i]`, the entry of row `i + 1` left of the diagonal, `i < n − 1`.
+    fn lower(&self, i: usize) -> f64;
+    /// `du[i]`, the entry of row `i` right of the diagonal, `i < n − 1`.
+    fn upper(&self, i: usize) -> f64;
+}
+
+/// Three stored bands (`dl`, `du` of `n − 1`, `d` of `n`) as [`Bands`].
+pub(crate) struct StoredBands<'a> {
+    /// Subdiagonal.
+    pub(crate) dl: &'a [f64],
+    /// Diagonal.
+    pub(crate) d: &'a [f64],
+    /// Superdiagonal.
+    pub(crate) du: &'a [f64],
+}
+
+impl Bands for StoredBands<'_> {
+    fn len(&self) -> usize {
+        self.d.len()
+    }
+    #[inline]
+    fn diag(&self, i: usize) -> f64 {
+        self.d[i]
+    }
+    #[inline]
+    fn lower(&self, i: usize) -> f64 {
+        self.dl[i]
+    }
+    #[inline]
+    fn upper(&self, i: usize) -> f64 {
+        self.du[i]
+    }
+}
+
 /// Solves `A·X = B` in place (`b`: `n` rows of `ncols`, overwritten by `X`) for the
 /// tridiagonal `A` of `m`, destroying `m`: LAPACK `dgtsv`'s elimination with partial pivoting
 /// and its back substitution, operation for operation (`n ≥ 1`; `dl`, `du` of `n − 1`).
@@ -112,27 +154,25 @@ pub(crate) fn solve_tridiagonal(m: Tridiagonal<'_>, b: &mut [f64], ncols: usize)
 /// the solution of [`solve_tridiagonal`] to rounding. O(n·ncols); `recip` is `n` numbers of
 /// scratch.
 pub(crate) fn solve_unpivoted(
-    dl: &[f64],
-    d: &[f64],
-    du: &[f64],
+    m: &impl Bands,
     b: &mut [f64],
     ncols: usize,
     recip: &mut [f64],
 ) -> bool {
-    let n = d.len();
-    debug_assert!(dl.len() + 1 == n && du.len() + 1 == n, "band lengths");
+    let n = m.len();
     debug_assert!(
         b.len() == n * ncols && recip.len() == n,
         "right-hand side length"
     );
+    let (dl, d, du) = (|i| m.lower(i), |i| m.diag(i), |i| m.upper(i));
     // the pivots, into recip
-    let (mut q_prev, mut q) = (1.0_f64, d[0]);
+    let (mut q_prev, mut q) = (1.0_f64, d(0));
     recip[0] = q;
     // powers of two (exact): a minor beyond 2^±500 is scaled back with its predecessor; one that
     // still overflows gives an infinite pivot, refused below
     let (big, small) = (2.0_f64.powi(500), 2.0_f64.powi(-500));
     for i in 0..n - 1 {
-        let mut next = d[i + 1] * q - (dl[i] * du[i]) * q_prev;
+        let mut next = d(i + 1) * q - (dl(i) * du(i)) * q_prev;
         let size = next.abs();
         if size > big {
             next *= small;
@@ -154,18 +194,18 @@ pub(crate) fn solve_unpivoted(
     }
     if ncols == 1 {
         for i in 0..n - 1 {
-            b[i + 1] -= (dl[i] * recip[i]) * b[i];
+            b[i + 1] -= (dl(i) * recip[i]) * b[i];
         }
         // x_i = b_i/p_i − (u_i/p_i)·x_{i+1}: one multiplication and one subtraction a row on
         // the chain from x_{i+1} to x_i
         b[n - 1] *= recip[n - 1];
         for i in (0..n - 1).rev() {
-            b[i] = b[i] * recip[i] - (du[i] * recip[i]) * b[i + 1];
+            b[i] = b[i] * recip[i] - (du(i) * recip[i]) * b[i + 1];
         }
         return true;
     }
     for i in 0..n - 1 {
-        let f = dl[i] * recip[i];
+        let f = dl(i) * recip[i];
         let (top, bottom) = b[i * ncols..(i + 2) * ncols].split_at_mut(ncols);
         for (lo, hi) in bottom.iter_mut().zip(top.iter()) {
             *lo -= f * hi;
@@ -176,7 +216,7 @@ pub(crate) fn solve_unpivoted(
     }
     for i in (0..n - 1).rev() {
         let (row, next) = b[i * ncols..(i + 2) * ncols].split_at_mut(ncols);
-        let g = du[i] * recip[i];
+        let g = du(i) * recip[i];
         for (v, w) in row.iter_mut().zip(next.iter()) {
             *v = *v * recip[i] - g * w;
         }
@@ -288,7 +328,16 @@ mod tests {
             let rhs: Vec<f64> = (0..n * ncols).map(|i| (i as f64 * 0.37).sin()).collect();
             let (mut fast, mut recip) = (rhs.clone(), vec![0.0; n]);
             assert!(
-                solve_unpivoted(&dl, &d, &du, &mut fast, ncols, &mut recip),
+                solve_unpivoted(
+                    &StoredBands {
+                        dl: &dl,
+                        d: &d,
+                        du: &du
+                    },
+                    &mut fast,
+                    ncols,
+                    &mut recip
+                ),
                 "positive pivots"
             );
             let (mut l, mut m, mut u, mut slow) = (dl.clone(), d.clone(), du.clone(), rhs.clone());
@@ -306,11 +355,29 @@ mod tests {
         // a zero or negative pivot: refused, the right-hand side untouched
         let mut b = [1.0, 2.0];
         assert!(
-            !solve_unpivoted(&[1.0], &[0.0, 1.0], &[1.0], &mut b, 1, &mut [0.0; 2]),
+            !solve_unpivoted(
+                &StoredBands {
+                    dl: &[1.0],
+                    d: &[0.0, 1.0],
+                    du: &[1.0]
+                },
+                &mut b,
+                1,
+                &mut [0.0; 2]
+            ),
             "zero"
         );
         assert!(
-            !solve_unpivoted(&[2.0], &[1.0, 1.0], &[1.0], &mut b, 1, &mut [0.0; 2]),
+            !solve_unpivoted(
+                &StoredBands {
+                    dl: &[2.0],
+                    d: &[1.0, 1.0],
+                    du: &[1.0]
+                },
+                &mut b,
+                1,
+                &mut [0.0; 2]
+            ),
             "negative"
         );
         assert_eq!(b, [1.0, 2.0], "untouched");
