@@ -1121,7 +1121,7 @@ fn endless_and_oversized_inputs_are_refused_at_the_input_limit() {
         .stdout(Stdio::piped())
         .spawn()
         .unwrap();
-    let out = lekalo()
+    let out = std::process::Command::new(bin())
         .current_dir(d.path())
         .args(["--max-input-bytes", limit, "interpolate", "-"])
         .stdin(yes.stdout.take().unwrap())
